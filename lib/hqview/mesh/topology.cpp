@@ -1,0 +1,126 @@
+#include "hqview/mesh/topology.h"
+
+#include <algorithm>
+#include <numeric>
+
+#include "hqview/core/hex_topology.h"
+
+namespace hq {
+namespace {
+
+// Counting sort of items by a key in [0, num_keys): returns CSR offsets and
+// the item order. Stable, so ties keep their input order.
+template <class KeyOf>
+void bucket_by_key(std::size_t num_items, std::size_t num_keys, KeyOf key_of, std::vector<Index>& offsets,
+                   std::vector<Index>& order) {
+  offsets.assign(num_keys + 1, 0);
+  for (std::size_t i = 0; i < num_items; ++i) ++offsets[static_cast<std::size_t>(key_of(i)) + 1];
+  std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
+  order.resize(num_items);
+  std::vector<Index> cursor(offsets.begin(), offsets.end() - 1);
+  for (std::size_t i = 0; i < num_items; ++i) order[static_cast<std::size_t>(cursor[key_of(i)]++)] = static_cast<Index>(i);
+}
+
+Quad sorted_quad(Quad q) {
+  std::sort(q.begin(), q.end());
+  return q;
+}
+
+void build_vertex_hexes(const HexMesh& mesh, Topology& topo) {
+  const std::size_t nv = mesh.points.size();
+  const std::size_t nc = mesh.hexes.size() * 8;
+  std::vector<Index> corner_order;
+  bucket_by_key(
+      nc, nv, [&](std::size_t c) { return mesh.hexes[c / 8][c % 8]; }, topo.vertex_hex_offsets, corner_order);
+  // Corners are bucketed in ascending corner order, so hexes come out
+  // ascending within each vertex (a hex never repeats a vertex after io/).
+  topo.vertex_hexes.resize(nc);
+  for (std::size_t i = 0; i < nc; ++i) topo.vertex_hexes[i] = corner_order[i] / 8;
+  for (std::size_t v = 0; v < nv; ++v)
+    if (topo.vertex_hex_offsets[v] == topo.vertex_hex_offsets[v + 1]) topo.unreferenced_vertices.push_back(static_cast<Index>(v));
+}
+
+// Faces: every hex's 6 faces keyed by their sorted ids, bucketed by the
+// smallest id (linear), then sorted within each small bucket.
+void build_faces(const HexMesh& mesh, Topology& topo) {
+  const std::size_t nv = mesh.points.size();
+  const std::size_t nhf = mesh.hexes.size() * 6;
+  std::vector<Quad> keys(nhf);
+  for (std::size_t hf = 0; hf < nhf; ++hf) {
+    const Hex& hex = mesh.hexes[hf / 6];
+    const auto& local = kHexFaces[hf % 6];
+    keys[hf] = sorted_quad({hex[local[0]], hex[local[1]], hex[local[2]], hex[local[3]]});
+  }
+  std::vector<Index> offsets, order;
+  bucket_by_key(nhf, nv, [&](std::size_t hf) { return keys[hf][0]; }, offsets, order);
+  for (std::size_t v = 0; v < nv; ++v) {
+    // Stable: equal keys stay in ascending hex-face order, so the first
+    // occurrence belongs to the lowest-numbered hex.
+    std::stable_sort(order.begin() + offsets[v], order.begin() + offsets[v + 1],
+                     [&](Index a, Index b) { return keys[static_cast<std::size_t>(a)] < keys[static_cast<std::size_t>(b)]; });
+  }
+
+  topo.hex_faces.assign(nhf, kNoIndex);
+  topo.faces.clear();
+  topo.face_hex_offsets.assign(1, 0);
+  topo.face_hexes.clear();
+  topo.face_hexes.reserve(nhf);
+  for (std::size_t i = 0; i < nhf;) {
+    const Index first = order[i];
+    const Quad& key = keys[static_cast<std::size_t>(first)];
+    const Index face = static_cast<Index>(topo.faces.size());
+    const Hex& hex = mesh.hexes[static_cast<std::size_t>(first) / 6];
+    const auto& local = kHexFaces[static_cast<std::size_t>(first) % 6];
+    topo.faces.push_back({hex[local[0]], hex[local[1]], hex[local[2]], hex[local[3]]});
+    std::size_t j = i;
+    for (; j < nhf && keys[static_cast<std::size_t>(order[j])] == key; ++j) {
+      topo.hex_faces[static_cast<std::size_t>(order[j])] = face;
+      topo.face_hexes.push_back(order[j] / 6);
+    }
+    topo.face_hex_offsets.push_back(static_cast<Index>(topo.face_hexes.size()));
+    const auto count = j - i;
+    if (count == 1) topo.boundary_faces.push_back(face);
+    if (count > 2) topo.non_manifold_faces.push_back(face);
+    i = j;
+  }
+
+  topo.is_boundary_vertex.assign(nv, 0);
+  for (Index f : topo.boundary_faces)
+    for (Index v : topo.faces[static_cast<std::size_t>(f)]) topo.is_boundary_vertex[static_cast<std::size_t>(v)] = 1;
+  for (std::size_t v = 0; v < nv; ++v)
+    if (topo.is_boundary_vertex[v]) topo.boundary_vertices.push_back(static_cast<Index>(v));
+}
+
+void build_edges(const HexMesh& mesh, Topology& topo) {
+  const std::size_t nv = mesh.points.size();
+  const std::size_t nhe = mesh.hexes.size() * 12;
+  auto edge_of = [&](std::size_t he) {
+    const Hex& hex = mesh.hexes[he / 12];
+    const auto& local = kHexEdges[he % 12];
+    const Index a = hex[local[0]], b = hex[local[1]];
+    return a < b ? Edge{a, b} : Edge{b, a};
+  };
+  std::vector<Index> offsets, order;
+  bucket_by_key(nhe, nv, [&](std::size_t he) { return edge_of(he)[0]; }, offsets, order);
+  std::vector<Index> others;
+  topo.edges.clear();
+  for (std::size_t v = 0; v < nv; ++v) {
+    others.clear();
+    for (Index k = offsets[v]; k < offsets[v + 1]; ++k) others.push_back(edge_of(static_cast<std::size_t>(order[static_cast<std::size_t>(k)]))[1]);
+    std::sort(others.begin(), others.end());
+    others.erase(std::unique(others.begin(), others.end()), others.end());
+    for (Index w : others) topo.edges.push_back({static_cast<Index>(v), w});
+  }
+}
+
+}  // namespace
+
+Topology build_topology(const HexMesh& mesh) {
+  Topology topo;
+  build_vertex_hexes(mesh, topo);
+  build_faces(mesh, topo);
+  build_edges(mesh, topo);
+  return topo;
+}
+
+}  // namespace hq

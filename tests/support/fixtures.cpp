@@ -1,0 +1,64 @@
+#include "support/fixtures.h"
+
+#include <cmath>
+#include <cstdlib>
+
+namespace hq::test {
+
+std::array<Vec3, 8> cube_corners() {
+  return {{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}};
+}
+
+HexMesh unit_cube() {
+  HexMesh mesh;
+  const auto corners = cube_corners();
+  mesh.points.assign(corners.begin(), corners.end());
+  mesh.hexes.push_back({0, 1, 2, 3, 4, 5, 6, 7});
+  return mesh;
+}
+
+HexMesh grid(int n) {
+  HexMesh mesh;
+  const int m = n + 1;
+  auto id = [m](int i, int j, int k) { return static_cast<Index>(i + m * (j + m * k)); };
+  for (int k = 0; k < m; ++k)
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < m; ++i) mesh.points.push_back({double(i), double(j), double(k)});
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        mesh.hexes.push_back({id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
+                              id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)});
+  return mesh;
+}
+
+std::array<Vec3, 8> twisted_hex(double theta) {
+  auto p = cube_corners();
+  const double c = std::cos(theta), s = std::sin(theta);
+  for (int i = 4; i < 8; ++i) {
+    const double x = p[i].x - 0.5, y = p[i].y - 0.5;
+    p[i].x = 0.5 + c * x - s * y;
+    p[i].y = 0.5 + s * x + c * y;
+  }
+  return p;
+}
+
+std::array<Vec3, 8> inverted_hex() {
+  auto p = cube_corners();
+  for (int i = 0; i < 4; ++i) std::swap(p[i], p[i + 4]);
+  return p;
+}
+
+std::filesystem::path source_dir() { return HQVIEW_SOURCE_DIR; }
+
+std::optional<std::filesystem::path> shared_data_dir() {
+  if (const char* env = std::getenv("HQVIEW_DATA"); env && *env) {
+    if (std::filesystem::is_directory(env)) return std::filesystem::path(env);
+    return std::nullopt;
+  }
+  const auto dir = source_dir() / ".." / "shared" / "data";
+  if (std::filesystem::is_directory(dir)) return std::filesystem::weakly_canonical(dir);
+  return std::nullopt;
+}
+
+}  // namespace hq::test

@@ -1,0 +1,31 @@
+#pragma once
+// Meshes built in code for tests, and the location of ../shared/data.
+
+#include <array>
+#include <filesystem>
+#include <optional>
+
+#include "hqview/mesh/hex_mesh.h"
+
+namespace hq::test {
+
+// The unit cube [0,1]^3 as one hex.
+HexMesh unit_cube();
+// An n x n x n grid of unit hexes, (n+1)^3 points, x fastest.
+HexMesh grid(int n);
+// The 8 corners of the unit cube with the top face rotated by theta radians
+// about the vertical axis through its centre.
+std::array<Vec3, 8> twisted_hex(double theta);
+// The unit cube with its top and bottom faces swapped: every corner frame
+// is left-handed.
+std::array<Vec3, 8> inverted_hex();
+// The unit cube's corners.
+std::array<Vec3, 8> cube_corners();
+
+// ../shared/data (or $HQVIEW_DATA) when it exists, else nullopt; tests that
+// need it GTEST_SKIP() with a message.
+std::optional<std::filesystem::path> shared_data_dir();
+// The project's source directory (for examples/).
+std::filesystem::path source_dir();
+
+}  // namespace hq::test
