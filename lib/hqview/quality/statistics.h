@@ -1,0 +1,48 @@
+#pragma once
+// Summary statistics of a per-element field, as report.json writes them
+// (CONTRACT.md `...stats`): count, min, max, mean, std, percentiles and a
+// histogram. Deterministic: computed sequentially on sorted values.
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "hqview/core/types.h"
+
+namespace hq {
+
+struct Histogram {
+  std::vector<double> edges;          // bins + 1 ascending edges
+  std::vector<std::int64_t> counts;   // bins
+};
+
+struct Statistics {
+  std::int64_t count = 0;  // values that entered the statistics
+  double min = 0, max = 0, mean = 0, std = 0;
+  double p01 = 0, p05 = 0, p50 = 0, p95 = 0, p99 = 0;
+  std::int64_t num_inverted = 0;    // values <= 0 (for Jacobian-type fields)
+  std::int64_t num_degenerate = 0;  // excluded: Verdict's 1e30 sentinels or flagged entries
+  Histogram histogram;
+};
+
+struct StatisticsOptions {
+  // Histogram range; when unset, [min, max] of the values.
+  std::optional<double> histogram_min;
+  std::optional<double> histogram_max;
+  int histogram_bins = 20;
+};
+
+// Statistics of `values`. NaN entries are ignored (not counted anywhere);
+// entries with |v| >= 1e30 or with degenerate[i] != 0 (when `degenerate` is
+// not empty) are counted in num_degenerate and left out of everything else.
+// Percentiles interpolate linearly between closest ranks (numpy's default).
+// std is the population standard deviation. With no counted value every
+// number is 0 and the histogram counts are all 0.
+Statistics compute_statistics(std::span<const double> values, const StatisticsOptions& options = {},
+                              std::span<const std::uint8_t> degenerate = {});
+
+// Linear-interpolation percentile of ascending `sorted` values, q in [0, 1].
+double percentile_of_sorted(std::span<const double> sorted, double q);
+
+}  // namespace hq
