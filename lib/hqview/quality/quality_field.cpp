@@ -11,6 +11,16 @@
 
 namespace hq {
 
+void compute_corner_scaled_jacobians(const HexMesh& mesh, std::span<double> out, std::span<std::uint8_t> mask) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.hexes.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t h = r.begin(); h != r.end(); ++h) {
+      const CornerJacobians cj = corner_scaled_jacobians(hex_corners(mesh, static_cast<Index>(h)));
+      std::copy(cj.value.begin(), cj.value.end(), out.begin() + static_cast<std::ptrdiff_t>(8 * h));
+      mask[h] = cj.degenerate_mask;
+    }
+  });
+}
+
 QualityField compute_quality(const HexMesh& mesh, const Topology& topo) {
   const std::size_t nh = mesh.hexes.size();
   const std::size_t nv = mesh.points.size();
@@ -18,14 +28,9 @@ QualityField compute_quality(const HexMesh& mesh, const Topology& topo) {
   q.corner_scaled_jacobian.resize(8 * nh);
   q.corner_degenerate_mask.resize(nh);
   q.cell_scaled_jacobian.resize(nh);
+  compute_corner_scaled_jacobians(mesh, q.corner_scaled_jacobian, q.corner_degenerate_mask);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nh, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t h = r.begin(); h != r.end(); ++h) {
-      const auto corners = hex_corners(mesh, static_cast<Index>(h));
-      const CornerJacobians cj = corner_scaled_jacobians(corners);
-      std::copy(cj.value.begin(), cj.value.end(), q.corner_scaled_jacobian.begin() + static_cast<std::ptrdiff_t>(8 * h));
-      q.corner_degenerate_mask[h] = cj.degenerate_mask;
-      q.cell_scaled_jacobian[h] = hex_scaled_jacobian(corners);
-    }
+    for (std::size_t h = r.begin(); h != r.end(); ++h) q.cell_scaled_jacobian[h] = hex_scaled_jacobian(hex_corners(mesh, static_cast<Index>(h)));
   });
 
   q.vertex_quality.assign(nv, std::numeric_limits<double>::quiet_NaN());

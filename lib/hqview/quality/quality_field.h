@@ -4,6 +4,7 @@
 // Jacobian over the corners of the incident hexes at that vertex).
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "hqview/mesh/hex_mesh.h"
@@ -22,6 +23,10 @@ struct QualityField {
   // hex uses.
   std::vector<double> vertex_quality;
 };
+
+// The corner scaled Jacobians of every hex: out[8*h + i] and mask[h]
+// (sizes 8*#hexes and #hexes). Parallel over hexes.
+void compute_corner_scaled_jacobians(const HexMesh& mesh, std::span<double> out, std::span<std::uint8_t> mask);
 
 // Computes every field above; parallel over hexes and vertices, identical
 // results for any thread count (each entry is written by one task).

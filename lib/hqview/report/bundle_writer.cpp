@@ -1,1 +1,105 @@
-// placeholder
+#include "hqview/report/bundle_writer.h"
+
+#include <unistd.h>
+
+#include <cstring>
+#include <fstream>
+#include <system_error>
+
+#include "hqview/core/error.h"
+#include "hqview/io/image_file.h"
+#include "hqview/report/report_csv.h"
+#include "hqview/report/report_html.h"
+#include "hqview/report/report_json.h"
+
+namespace hq {
+namespace fs = std::filesystem;
+namespace {
+
+bool is_bundle(const fs::path& dir) { return fs::is_regular_file(dir / "report.json"); }
+
+template <class WriteFn>
+void write_file(const fs::path& path, WriteFn&& write) {
+  fs::create_directories(path.parent_path());
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw Error(path.string() + ": cannot create: " + std::strerror(errno));
+  write(out);
+  out.flush();
+  if (!out) throw Error(path.string() + ": write failed: " + std::strerror(errno));
+}
+
+void write_text(const fs::path& path, std::string_view text) {
+  write_file(path, [&](std::ostream& out) { out.write(text.data(), static_cast<std::streamsize>(text.size())); });
+}
+
+fs::path sibling(const fs::path& dir, const char* tag) {
+  // Built with += : GCC 12 warns falsely (-Wrestrict) on chained operator+.
+  std::string name = ".";
+  name += dir.filename().string();
+  name += '.';
+  name += tag;
+  name += '-';
+  name += std::to_string(::getpid());
+  return dir.parent_path() / name;
+}
+
+}  // namespace
+
+void check_output_dir(const fs::path& dir, const BundleOptions& options) {
+  std::error_code ec;
+  const auto status = fs::symlink_status(dir, ec);
+  if (ec || !fs::exists(status)) return;
+  if (!fs::is_directory(status))
+    throw UsageError(dir.string() + ": exists and is not a directory; choose another -o");
+  if (!options.force && !fs::is_empty(dir) && !is_bundle(dir))
+    throw UsageError(dir.string() + ": is a non-empty directory that is not an HQView bundle (no report.json); "
+                     "use --force to replace it");
+}
+
+void write_bundle(const ReportModel& model, const std::vector<BundleImage>& images, const fs::path& target,
+                  const BundleOptions& options) {
+  const fs::path dir = fs::absolute(target).lexically_normal();
+  check_output_dir(dir, options);
+  fs::create_directories(dir.parent_path());
+  const fs::path tmp = sibling(dir, "hqview-tmp");
+  fs::remove_all(tmp);
+  try {
+    fs::create_directories(tmp / "data");
+    write_text(tmp / "report.json", report_json(model));
+    write_text(tmp / "index.html", index_html(model));
+    write_text(tmp / "style.css", report_stylesheet());
+    write_file(tmp / "data" / "cells.csv", [&](std::ostream& out) { write_cells_csv(model, out); });
+    write_file(tmp / "data" / "vertices.csv", [&](std::ostream& out) { write_vertices_csv(model, out); });
+    for (const BundleImage& img : images) {
+      const fs::path path = tmp / img.relative_path;
+      fs::create_directories(path.parent_path());
+      write_png(img.image, path);
+    }
+    // Swap into place: the old bundle is moved aside, never deleted before
+    // the new one is in place.
+    if (fs::exists(dir)) {
+      const fs::path old = sibling(dir, "hqview-old");
+      fs::remove_all(old);
+      fs::rename(dir, old);
+      try {
+        fs::rename(tmp, dir);
+      } catch (...) {
+        fs::rename(old, dir);
+        throw;
+      }
+      fs::remove_all(old);
+    } else {
+      fs::rename(tmp, dir);
+    }
+  } catch (const fs::filesystem_error& e) {
+    std::error_code ignored;
+    fs::remove_all(tmp, ignored);
+    throw Error(std::string("writing the bundle: ") + e.what());
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove_all(tmp, ignored);
+    throw;
+  }
+}
+
+}  // namespace hq

@@ -1,0 +1,35 @@
+#pragma once
+// Writes an analysis bundle atomically: every file goes to a temporary
+// sibling directory, which replaces DIR by rename only once it is complete.
+// A failed run leaves DIR as it was (an older bundle is never lost).
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "hqview/render/image.h"
+#include "hqview/report/report_model.h"
+
+namespace hq {
+
+struct BundleImage {
+  std::string relative_path;  // e.g. "views/overview.png"
+  Image image;
+};
+
+struct BundleOptions {
+  bool force = false;  // replace a non-empty directory that is not an HQView bundle
+};
+
+// Throws UsageError when `dir` is an existing non-directory, or a non-empty
+// directory without report.json (not an HQView bundle) and !force. Call it
+// before the analysis, so a doomed run fails fast.
+void check_output_dir(const std::filesystem::path& dir, const BundleOptions& options);
+
+// report.json, index.html, style.css, data/cells.csv, data/vertices.csv and
+// the images. Throws hq::Error on an I/O failure (the temporary directory is
+// removed, DIR untouched).
+void write_bundle(const ReportModel& model, const std::vector<BundleImage>& images, const std::filesystem::path& dir,
+                  const BundleOptions& options);
+
+}  // namespace hq

@@ -1,0 +1,83 @@
+#pragma once
+// ReportModel: everything one `analyze` run found, gathered for the writers
+// (report.json, CSV, HTML). Plain data; the writers never recompute analysis.
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hqview/mesh/hex_mesh.h"
+#include "hqview/mesh/topology.h"
+#include "hqview/quality/quality_field.h"
+#include "hqview/quality/statistics.h"
+
+namespace hq {
+
+struct InputFile {
+  std::string path;    // as given by the user (file name only when absolute)
+  std::string format;  // reader's format name
+  std::string sha256;  // of the file's bytes, lowercase hex
+};
+
+struct MeshSummary {
+  Index num_vertices = 0;
+  Index num_hexes = 0;
+  Index num_unreferenced_vertices = 0;
+  Index num_boundary_faces = 0;
+  Index num_boundary_vertices = 0;
+  Index num_non_manifold_faces = 0;
+  Vec3 bbox_min, bbox_max;
+  double bbox_diagonal = 0;
+  double edge_length_min = 0, edge_length_mean = 0, edge_length_max = 0;
+};
+
+struct WorstVertex {
+  Index vertex = 0;
+  double quality = 0;
+  Vec3 position;
+};
+
+struct WorstCell {
+  Index cell = 0;
+  double scaled_jacobian = 0;
+};
+
+// A Verdict metric's statistics with its acceptable range.
+struct MetricSummary {
+  std::string name;
+  Statistics stats;
+  double acceptable_min = 0, acceptable_max = 0;
+  double fraction_acceptable = 0;  // of the non-degenerate cells
+};
+
+struct QualitySummary {
+  Statistics scaled_jacobian;         // per hex, Verdict
+  Statistics corner_scaled_jacobian;  // 8 per hex
+  Statistics vertex_quality;          // per referenced vertex
+  std::vector<MetricSummary> metrics;
+  std::vector<WorstVertex> worst_vertices;
+  std::vector<WorstCell> worst_cells;
+};
+
+struct ViewEntry {
+  std::string id;
+  std::string title;
+  std::vector<std::string> files;  // relative to the bundle root
+};
+
+struct ReportModel {
+  std::string tool_version;
+  InputFile mesh_input;
+  MeshSummary mesh_summary;
+  QualitySummary quality;
+  std::vector<ViewEntry> views;
+  std::vector<std::string> warnings;  // from the readers and the analysis
+
+  // Per-element data the CSV and the views are written from.
+  HexMesh mesh;
+  Topology topology;
+  QualityField field;
+};
+
+}  // namespace hq

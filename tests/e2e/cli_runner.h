@@ -1,0 +1,27 @@
+#pragma once
+// Runs the hqview binary and captures its exit code, stdout and stderr.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace hq::test {
+
+struct CliResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+// Runs hqview with `args` (each shell-quoted).
+CliResult run_hqview(const std::vector<std::string>& args);
+
+// A fresh, empty directory for one test's outputs under the build tree.
+std::filesystem::path fresh_output_dir(const std::string& name);
+
+std::string read_text(const std::filesystem::path& path);
+
+// The rows of a CSV file (no quoting: HQView's CSVs hold numbers only).
+std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& path);
+
+}  // namespace hq::test

@@ -1,0 +1,200 @@
+// The CLI on the project's own examples: bundle contents, exit codes,
+// atomic replacement, determinism, errors.
+
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.h"
+#include "support/fixtures.h"
+
+namespace hq::test {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+fs::path example(const std::string& name) { return source_dir() / "examples" / name; }
+
+json read_report(const fs::path& bundle) { return json::parse(read_text(bundle / "report.json")); }
+
+TEST(Cli, BallBundleHasEveryFileAndRealNumbers) {
+  const fs::path out = fresh_output_dir("ball") / "bundle";
+  const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "-o", out.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* f : {"report.json", "index.html", "style.css", "data/cells.csv", "data/vertices.csv", "views/overview.png"})
+    EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
+  const json report = read_report(out);
+  EXPECT_EQ(report["schema_version"], 1);
+  EXPECT_EQ(report["mesh"]["num_vertices"], 11 * 11 * 11);
+  EXPECT_EQ(report["mesh"]["num_hexes"], 1000);
+  EXPECT_EQ(report["mesh"]["num_boundary_faces"], 600);
+  EXPECT_EQ(report["mesh"]["num_boundary_vertices"], 11 * 11 * 11 - 9 * 9 * 9);
+  EXPECT_EQ(report["quality"]["corner_scaled_jacobian"]["count"], 8000);
+  // The ball's vertices lie in the unit ball, its corners on the sphere.
+  EXPECT_NEAR(report["mesh"]["bbox"]["diagonal"].get<double>(), 2 * std::sqrt(3.0), 1e-9);
+  // The pushed vertex (2,7,3) folds some corners over.
+  EXPECT_GT(report["quality"]["corner_scaled_jacobian"]["num_inverted"].get<int>(), 0);
+  const auto& views = report["views"];
+  ASSERT_EQ(views.size(), 1u);
+  EXPECT_EQ(views[0]["files"][0], "views/overview.png");
+  // The CSVs: one row per hex / vertex plus the header.
+  EXPECT_EQ(read_csv(out / "data/cells.csv").size(), 1001u);
+  const auto vertices = read_csv(out / "data/vertices.csv");
+  ASSERT_EQ(vertices.size(), 1332u);
+  EXPECT_EQ(vertices[0].size(), 10u);
+  EXPECT_EQ(vertices[0][4], "quality");
+}
+
+TEST(Cli, OverviewImageHasContent) {
+  const fs::path out = fresh_output_dir("image") / "bundle";
+  const CliResult r = run_hqview({"analyze", example("twisted_bar.mesh").string(), "-o", out.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  OIIO::ImageBuf image((out / "views/overview.png").string());
+  ASSERT_TRUE(image.read()) << image.geterror();
+  EXPECT_EQ(image.spec().width, 1600);
+  EXPECT_EQ(image.spec().height, 1200);
+  // Not uniform: the per-channel range over the image is wide.
+  const auto stats = OIIO::ImageBufAlgo::computePixelStats(image);
+  for (int c = 0; c < 3; ++c) EXPECT_GT(stats.max[c] - stats.min[c], 0.5f) << "channel " << c;
+  // The centre of the image shows the mesh, not the background (corner pixel).
+  float corner[4], centre[4];
+  image.getpixel(2, 2, corner);
+  image.getpixel(800, 600, centre);
+  float diff = 0;
+  for (int c = 0; c < 3; ++c) diff += std::abs(corner[c] - centre[c]);
+  EXPECT_GT(diff, 0.1f);
+}
+
+TEST(Cli, TwistedBarHasInvertedHexes) {
+  const fs::path out = fresh_output_dir("twisted") / "bundle";
+  const CliResult r = run_hqview({"analyze", example("twisted_bar.mesh").string(), "-o", out.string(), "--no-render"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json report = read_report(out);
+  EXPECT_EQ(report["mesh"]["num_hexes"], 3 * 3 * 16);
+  // Layer 8 is over-twisted by 100 degrees: each of its 9 hexes is inverted.
+  EXPECT_GE(report["quality"]["scaled_jacobian"]["num_inverted"].get<int>(), 9);
+  EXPECT_LT(report["quality"]["scaled_jacobian"]["min"].get<double>(), 0.0);
+  EXPECT_TRUE(report["views"].empty());
+}
+
+// The duplicated centre vertex splits the 4 faces around it in the z = 2
+// plane: 4 interior faces become 8 boundary faces (96 + 8).
+TEST(Cli, DuplicatedVertexOpensACrack) {
+  const fs::path out = fresh_output_dir("duplicated") / "bundle";
+  const CliResult r = run_hqview({"analyze", example("duplicated_vertex.mesh").string(), "-o", out.string(), "--no-render"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json report = read_report(out);
+  EXPECT_EQ(report["mesh"]["num_vertices"], 126);
+  EXPECT_EQ(report["mesh"]["num_hexes"], 64);
+  EXPECT_EQ(report["mesh"]["num_boundary_faces"], 104);
+  EXPECT_EQ(report["quality"]["scaled_jacobian"]["min"], 1.0);
+}
+
+TEST(Cli, SameBytesForOneAndTwoThreads) {
+  const fs::path dir = fresh_output_dir("threads");
+  for (const char* j : {"1", "2"}) {
+    const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "-o", (dir / j).string(), "-j", j, "--no-render"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  for (const char* f : {"report.json", "data/cells.csv", "data/vertices.csv", "index.html"})
+    EXPECT_EQ(read_text(dir / "1" / f), read_text(dir / "2" / f)) << f;
+}
+
+TEST(Cli, JsonToStdoutEqualsReportJson) {
+  const fs::path out = fresh_output_dir("json") / "bundle";
+  const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "-o", out.string(), "--no-render", "--json", "-", "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, read_text(out / "report.json"));
+  EXPECT_EQ(r.err, "");
+}
+
+TEST(Cli, RerunReplacesTheOldBundleAndLeavesNoTemporaries) {
+  const fs::path dir = fresh_output_dir("rerun");
+  const fs::path out = dir / "bundle";
+  ASSERT_EQ(run_hqview({"analyze", example("ball.mesh").string(), "-o", out.string(), "--no-render"}).exit_code, 0);
+  ASSERT_EQ(run_hqview({"analyze", example("twisted_bar.mesh").string(), "-o", out.string(), "--no-render"}).exit_code, 0);
+  EXPECT_EQ(read_report(out)["mesh"]["num_hexes"], 144);
+  std::vector<std::string> entries;
+  for (const auto& e : fs::directory_iterator(dir)) entries.push_back(e.path().filename().string());
+  EXPECT_EQ(entries, std::vector<std::string>{"bundle"});
+}
+
+TEST(Cli, MalformedMeshExitsThreeAndKeepsTheOldBundle) {
+  const fs::path dir = fresh_output_dir("malformed");
+  const fs::path out = dir / "bundle";
+  ASSERT_EQ(run_hqview({"analyze", example("ball.mesh").string(), "-o", out.string(), "--no-render"}).exit_code, 0);
+  const std::string before = read_text(out / "report.json");
+  const fs::path bad = dir / "bad.mesh";
+  std::ofstream(bad) << "MeshVersionFormatted 1\nDimension 3\nVertices\n2\n0 0 0 0\n1 0 0 0\nHexahedra\n1\n1 2 3 4 5 6 7 8 0\n";
+  const CliResult r = run_hqview({"analyze", bad.string(), "-o", out.string()});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.err.find(bad.string() + ":9: "), std::string::npos) << r.err;
+  EXPECT_EQ(read_text(out / "report.json"), before);
+  std::vector<std::string> entries;
+  for (const auto& e : fs::directory_iterator(dir)) entries.push_back(e.path().filename().string());
+  std::sort(entries.begin(), entries.end());
+  EXPECT_EQ(entries, (std::vector<std::string>{"bad.mesh", "bundle"}));
+}
+
+TEST(Cli, InputErrorsExitThree) {
+  const fs::path dir = fresh_output_dir("input_errors");
+  const CliResult missing = run_hqview({"analyze", (dir / "nope.mesh").string(), "-o", (dir / "a").string()});
+  EXPECT_EQ(missing.exit_code, 3);
+  EXPECT_NE(missing.err.find("nope.mesh"), std::string::npos) << missing.err;
+  std::ofstream(dir / "mesh.xyz") << "hello\n";
+  const CliResult unknown = run_hqview({"analyze", (dir / "mesh.xyz").string(), "-o", (dir / "b").string()});
+  EXPECT_EQ(unknown.exit_code, 3);
+  EXPECT_NE(unknown.err.find("mesh.xyz"), std::string::npos) << unknown.err;
+  const CliResult directory = run_hqview({"analyze", dir.string(), "-o", (dir / "c").string()});
+  EXPECT_EQ(directory.exit_code, 3);
+  EXPECT_FALSE(fs::exists(dir / "a"));
+  EXPECT_FALSE(fs::exists(dir / "b"));
+  EXPECT_FALSE(fs::exists(dir / "c"));
+}
+
+TEST(Cli, UsageErrorsExitTwo) {
+  const fs::path dir = fresh_output_dir("usage");
+  EXPECT_EQ(run_hqview({"analyze"}).exit_code, 2);
+  EXPECT_EQ(run_hqview({"analyze", example("ball.mesh").string(), "--no-such-flag"}).exit_code, 2);
+  EXPECT_EQ(run_hqview({"analyze", example("ball.mesh").string(), "-j", "0", "-o", (dir / "j").string()}).exit_code, 2);
+  EXPECT_EQ(run_hqview({"analyze", example("ball.mesh").string(), "--size", "big", "-o", (dir / "s").string()}).exit_code, 2);
+  // -o naming a file, or a directory that is not a bundle, is refused.
+  std::ofstream(dir / "file.txt") << "keep me\n";
+  EXPECT_EQ(run_hqview({"analyze", example("ball.mesh").string(), "-o", (dir / "file.txt").string()}).exit_code, 2);
+  EXPECT_EQ(read_text(dir / "file.txt"), "keep me\n");
+  fs::create_directories(dir / "mine");
+  std::ofstream(dir / "mine" / "notes.txt") << "mine\n";
+  const CliResult refused = run_hqview({"analyze", example("ball.mesh").string(), "-o", (dir / "mine").string(), "--no-render"});
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("--force"), std::string::npos) << refused.err;
+  EXPECT_TRUE(fs::exists(dir / "mine" / "notes.txt"));
+  EXPECT_EQ(run_hqview({"analyze", example("ball.mesh").string(), "-o", (dir / "mine").string(), "--no-render", "--force"}).exit_code, 0);
+  EXPECT_TRUE(fs::exists(dir / "mine" / "report.json"));
+}
+
+TEST(Cli, VersionAndHelp) {
+  const CliResult version = run_hqview({"--version"});
+  EXPECT_EQ(version.exit_code, 0);
+  EXPECT_EQ(version.out.rfind("hqview ", 0), 0u) << version.out;
+  const CliResult help = run_hqview({"analyze", "--help"});
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.out.find("--no-render"), std::string::npos);
+}
+
+TEST(Cli, HtmlEscapesNamesFromInput) {
+  const fs::path dir = fresh_output_dir("escape");
+  const fs::path evil = dir / "<b>x&y</b>.mesh";
+  fs::copy_file(example("twisted_bar.mesh"), evil);
+  const CliResult r = run_hqview({"analyze", evil.string(), "-o", (dir / "bundle").string(), "--no-render"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string html = read_text(dir / "bundle" / "index.html");
+  EXPECT_EQ(html.find("<b>x&y</b>"), std::string::npos);
+  EXPECT_NE(html.find("&lt;b&gt;x&amp;y&lt;/b&gt;"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace hq::test
