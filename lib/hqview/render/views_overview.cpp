@@ -1,1 +1,195 @@
-// placeholder
+#include "hqview/render/views_overview.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "hqview/core/error.h"
+#include "hqview/render/annotate.h"
+#include "hqview/render/colormap.h"
+
+namespace hq {
+namespace {
+
+const Vec3& point(const HexMesh& mesh, Index v) { return mesh.points[static_cast<std::size_t>(v)]; }
+
+const Quad& boundary_quad(const Topology& topology, Index face) {
+  return topology.faces[static_cast<std::size_t>(face)];
+}
+
+}  // namespace
+
+std::vector<Vec3> boundary_points(const HexMesh& mesh, const Topology& topology) {
+  if (topology.boundary_faces.empty()) return mesh.points;
+  std::vector<char> is_used(mesh.points.size(), 0);
+  for (Index face : topology.boundary_faces)
+    for (Index v : boundary_quad(topology, face)) is_used[static_cast<std::size_t>(v)] = 1;
+  std::vector<Vec3> points;
+  for (std::size_t v = 0; v < is_used.size(); ++v)
+    if (is_used[v]) points.push_back(mesh.points[v]);
+  return points;
+}
+
+BoundingBox boundary_bounding_box(const HexMesh& mesh, const Topology& topology) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  BoundingBox box{{inf, inf, inf}, {-inf, -inf, -inf}};
+  auto add = [&](const Vec3& p) {
+    box.min = {std::min(box.min.x, p.x), std::min(box.min.y, p.y), std::min(box.min.z, p.z)};
+    box.max = {std::max(box.max.x, p.x), std::max(box.max.y, p.y), std::max(box.max.z, p.z)};
+  };
+  if (!topology.boundary_faces.empty()) {
+    for (Index face : topology.boundary_faces)
+      for (Index v : boundary_quad(topology, face)) add(point(mesh, v));
+  } else {
+    for (const Vec3& p : mesh.points) add(p);
+  }
+  if (!(box.min.x <= box.max.x)) return {};
+  return box;
+}
+
+Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology,
+                                   const std::vector<double>& vertex_quality, const OverviewOptions& options) {
+  if (vertex_quality.size() != mesh.points.size())
+    throw Error("vertex quality has " + std::to_string(vertex_quality.size()) + " values for " +
+                std::to_string(mesh.points.size()) + " vertices");
+  const BoundingBox box = boundary_bounding_box(mesh, topology);
+
+  Scene scene;
+  scene.origin = 0.5 * (box.min + box.max);
+  scene.background = options.background;
+  auto local = [&](const Vec3& p) { return to_vec3f(p - scene.origin); };
+  auto color = [](double q) { return to_rgba8(quality_color(q)); };
+
+  // Faces: 5 vertices (corners, then centre) and 4 triangles per quad, all
+  // with the quad's normal so each quad is one flat facet.
+  TriangleSet faces;
+  const std::size_t num_faces = topology.boundary_faces.size();
+  faces.positions.reserve(5 * num_faces);
+  faces.normals.reserve(5 * num_faces);
+  faces.colors.reserve(5 * num_faces);
+  faces.indices.reserve(12 * num_faces);
+  for (Index face : topology.boundary_faces) {
+    const Quad& quad = boundary_quad(topology, face);
+    Vec3 p[4];
+    double quality_sum = 0.0;
+    int finite = 0;
+    for (int i = 0; i < 4; ++i) {
+      p[i] = point(mesh, quad[i]);
+      const double q = vertex_quality[static_cast<std::size_t>(quad[i])];
+      if (!std::isnan(q)) {
+        quality_sum += q;
+        ++finite;
+      }
+    }
+    const Vec3 centre = 0.25 * (p[0] + p[1] + p[2] + p[3]);
+    // The diagonals' cross product: the area-weighted normal of a non-planar
+    // quad, outward for an outward-oriented face.
+    const Vec3f normal = to_vec3f(normalized(cross(p[2] - p[0], p[3] - p[1])));
+    const auto base = static_cast<std::uint32_t>(faces.positions.size());
+    for (int i = 0; i < 4; ++i) {
+      faces.positions.push_back(local(p[i]));
+      faces.normals.push_back(normal);
+      faces.colors.push_back(color(vertex_quality[static_cast<std::size_t>(quad[i])]));
+    }
+    faces.positions.push_back(local(centre));
+    faces.normals.push_back(normal);
+    faces.colors.push_back(color(finite ? quality_sum / finite : std::nan("")));
+    for (std::uint32_t i = 0; i < 4; ++i) {
+      faces.indices.push_back(base + i);
+      faces.indices.push_back(base + (i + 1) % 4);
+      faces.indices.push_back(base + 4);
+    }
+  }
+  scene.triangles.push_back(std::move(faces));
+
+  // Boundary edges, each once: sorted (a < b) pairs, then the vertices they
+  // use renumbered compactly in ascending id order.
+  std::vector<Edge> edges;
+  edges.reserve(4 * num_faces);
+  for (Index face : topology.boundary_faces) {
+    const Quad& quad = boundary_quad(topology, face);
+    for (int i = 0; i < 4; ++i) {
+      const Index a = quad[i], b = quad[(i + 1) % 4];
+      edges.push_back({std::min(a, b), std::max(a, b)});
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+
+  LineSet lines;
+  lines.width = options.edge_width;
+  std::vector<Index> local_id(mesh.points.size(), kNoIndex);
+  for (const Edge& e : edges)
+    for (Index v : e) local_id[static_cast<std::size_t>(v)] = 0;
+  for (std::size_t v = 0; v < local_id.size(); ++v) {
+    if (local_id[v] == kNoIndex) continue;
+    local_id[v] = static_cast<Index>(lines.positions.size());
+    lines.positions.push_back(local(mesh.points[v]));
+    lines.colors.push_back(options.edge_color);
+  }
+  lines.indices.reserve(2 * edges.size());
+  for (const Edge& e : edges)
+    for (Index v : e) lines.indices.push_back(static_cast<std::uint32_t>(local_id[static_cast<std::size_t>(v)]));
+  scene.lines.push_back(std::move(lines));
+  return scene;
+}
+
+namespace {
+
+// Edges fade out when the mesh is dense on screen, so that a fine boundary
+// mesh reads as a surface with a grid texture, not as a black blob: full
+// opacity once the median boundary edge spans kOpaqueEdgePixels on screen,
+// linearly less below, never under kMinEdgeOpacity.
+constexpr double kOpaqueEdgePixels = 8.0;
+constexpr double kMinEdgeOpacity = 0.3;
+
+double edge_opacity(const Scene& scene, const Camera& camera, int width, int height) {
+  if (scene.lines.empty() || scene.lines[0].indices.empty()) return 1.0;
+  const LineSet& lines = scene.lines[0];
+  const Mat4 to_ndc = projection_matrix(camera, static_cast<double>(width) / height) * view_matrix(camera) *
+                      translation_matrix(scene.origin);
+  std::vector<Vec3> screen;
+  screen.reserve(lines.positions.size());
+  for (const Vec3f& p : lines.positions) {
+    const Vec3 ndc = transform_point(to_ndc, {p.x, p.y, p.z});
+    screen.push_back({0.5 * ndc.x * width, 0.5 * ndc.y * height, 0.0});
+  }
+  std::vector<double> lengths;
+  lengths.reserve(lines.indices.size() / 2);
+  for (std::size_t i = 0; i + 1 < lines.indices.size(); i += 2)
+    lengths.push_back(norm(screen[lines.indices[i]] - screen[lines.indices[i + 1]]));
+  const auto middle = lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2);
+  std::nth_element(lengths.begin(), middle, lengths.end());
+  return std::clamp(*middle / kOpaqueEdgePixels, kMinEdgeOpacity, 1.0);
+}
+
+}  // namespace
+
+Image render_quality_overview(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
+                              const OverviewOptions& options, Renderer& renderer) {
+  if (options.width <= 0 || options.height <= 0)
+    throw RenderError("overview size must be positive, got " + std::to_string(options.width) + "x" +
+                      std::to_string(options.height));
+  AnnotationStyle style = annotation_style_for(options.height);
+  style.background = options.background;
+  const ColorBar bar = quality_color_bar();
+  const FigureLayout layout =
+      figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(bar, style), style);
+
+  Scene scene = build_quality_overview_scene(mesh, topology, vertex_quality, options);
+  const double aspect = static_cast<double>(layout.view.width) / static_cast<double>(layout.view.height);
+  const Camera camera =
+      fit_camera_to_points(boundary_points(mesh, topology), options.view_direction, aspect, {.up = options.up});
+  const double opacity = edge_opacity(scene, camera, layout.view.width, layout.view.height);
+  for (LineSet& lines : scene.lines)
+    for (Rgba8& c : lines.colors) c.a = static_cast<std::uint8_t>(std::lround(c.a * opacity));
+
+  Image figure = make_image(options.width, options.height, options.background);
+  paste(figure, renderer.render(scene, camera, layout.view.width, layout.view.height), layout.view.x, layout.view.y);
+  draw_title(figure, layout.title, options.title, style);
+  draw_color_bar(figure, layout.legend, bar, style);
+  return figure;
+}
+
+}  // namespace hq

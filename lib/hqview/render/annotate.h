@@ -1,0 +1,95 @@
+#pragma once
+// Annotations drawn onto rendered images: titles, text and colour bars, and
+// the figure layout that keeps them clear of the 3D view. Text is rendered
+// with OpenImageIO (FreeType) in DejaVu Sans (package fonts-dejavu-core).
+// Sizes are given for a 1200-pixel-high figure and scaled with the height.
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "hqview/render/color.h"
+#include "hqview/render/image.h"
+
+namespace hq {
+
+inline constexpr const char* kDefaultFontPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+
+// A rectangle in image pixels, (x, y) its top-left corner.
+struct PixelRect {
+  int x = 0, y = 0, width = 0, height = 0;
+};
+
+struct AnnotationStyle {
+  std::string font_path = kDefaultFontPath;
+  Rgba8 text_color{38, 38, 38, 255};
+  Rgba8 background{255, 255, 255, 255};
+  double scale = 1.0;  // 1 for a 1200-pixel-high figure
+};
+
+// The style for a figure of the given height (scale = height / 1200,
+// clamped to [0.4, 4]).
+AnnotationStyle annotation_style_for(int figure_height);
+
+// A width x height image filled with one colour.
+Image make_image(int width, int height, Rgba8 fill);
+// Fills the part of rect inside the image.
+void fill_rect(Image& image, const PixelRect& rect, Rgba8 color);
+// Copies src into dst with its top-left corner at (x, y), clipped to dst.
+void paste(Image& dst, const Image& src, int x, int y);
+
+enum class TextAnchor { left, center, right };
+
+// Draws one or more lines ('\n') of text, the first baseline at y, anchored
+// at x. size_px is the font size in pixels (already scaled).
+// Throws RenderError when the font cannot be loaded.
+void draw_text(Image& image, int x, int y, std::string_view text, int size_px, const AnnotationStyle& style,
+               TextAnchor anchor = TextAnchor::left);
+// Width and height in pixels of text set at size_px.
+// Throws RenderError when the font cannot be loaded.
+PixelRect text_extent(std::string_view text, int size_px, const AnnotationStyle& style);
+
+struct ColorBarTick {
+  double value = 0.0;
+  std::string label;
+};
+
+// A discrete legend entry drawn below the bar (e.g. "inverted").
+struct ColorBarSwatch {
+  Color color;
+  std::string label;
+};
+
+// A vertical colour bar legend: a title (lines separated by '\n'), the bar
+// from min_value (bottom) to max_value (top) coloured by evenly spaced
+// samples, tick labels on its right, then swatches below.
+struct ColorBar {
+  std::string label;
+  double min_value = 0.0, max_value = 1.0;
+  std::vector<Color> colors;  // >= 1 samples, colors.front() at min_value
+  std::vector<ColorBarTick> ticks;
+  std::vector<ColorBarSwatch> swatches;
+};
+
+// The legend for vertex quality: quality map on [0, 1] with ticks every
+// 0.25, an "inverted (< 0)" swatch, labelled
+// "vertex quality (min corner scaled Jacobian)".
+ColorBar quality_color_bar();
+
+// Width in pixels a colour bar legend needs, margins included.
+int color_bar_width(const ColorBar& bar, const AnnotationStyle& style);
+// Draws the legend vertically centred in area.
+void draw_color_bar(Image& image, const PixelRect& area, const ColorBar& bar, const AnnotationStyle& style);
+
+// Where a figure's parts go: the title band on top (empty rect when there is
+// no title), the legend panel on the right (empty when legend_width = 0),
+// the 3D view in the rest.
+struct FigureLayout {
+  PixelRect title, legend, view;
+};
+FigureLayout figure_layout(int width, int height, bool has_title, int legend_width, const AnnotationStyle& style);
+
+// Draws a title left-aligned and vertically centred in area.
+void draw_title(Image& image, const PixelRect& area, std::string_view title, const AnnotationStyle& style);
+
+}  // namespace hq

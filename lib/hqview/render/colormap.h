@@ -1,0 +1,52 @@
+#pragma once
+// Colour maps for HQView's views: a sequential map for vertex quality, a
+// diverging map for signed error and a qualitative palette for clusters.
+// Every function is pure and deterministic (fixed tables, no libm calls that
+// could differ between platforms in the sampled colours).
+
+#include <cstdint>
+
+#include "hqview/render/color.h"
+
+namespace hq {
+
+// The quality map, "bad = conspicuous": t = 1 (a perfect element) is a calm,
+// pale blue-grey close to the background; lowering t walks through beige and
+// orange to a saturated red at t = 0. Lightness falls monotonically (CIE L*
+// 91 -> 42) and the path through CIELAB is sampled at equal colour-difference
+// steps (ΔE*ab), so equal quality differences read as equal colour
+// differences, and the few bad elements stand out against the many good ones
+// that a viridis-like map would paint as loudly. t is clamped to [0, 1].
+//
+// Table: 33 samples of the polyline through CIELAB control points
+// (t, L*, a*, b*) = (0, 42, 64, 46), (.25, 55, 50, 56), (.5, 68, 26, 60),
+// (.75, 80, 6, 34), (1, 91, -2, -6), re-parameterised by arc length, D65 sRGB;
+// all samples are inside the sRGB gamut.
+Color sample_quality_map(double t);
+
+// Inverted elements (quality < 0): a saturated blue-violet, outside the
+// quality map's hues, and far from its red end for colour-blind readers too.
+inline constexpr Color kInvertedColor{0.24f, 0.20f, 0.92f, 1.0f};
+// Undefined quality (NaN: vertices no hex uses): a neutral mid grey.
+inline constexpr Color kUndefinedColor{0.62f, 0.62f, 0.62f, 1.0f};
+
+// Vertex quality (min corner scaled Jacobian, in [-1, 1]) to colour: [0, 1]
+// through sample_quality_map, < 0 kInvertedColor, NaN kUndefinedColor,
+// > 1 (rounding) as 1.
+Color quality_color(double vertex_quality);
+
+// Diverging blue - white - red (ColorBrewer RdBu, 11 classes, interpolated in
+// sRGB) for signed values: t = -1 dark blue, 0 near-white, +1 dark red;
+// clamped to [-1, 1]; NaN is kUndefinedColor.
+Color diverging_color(double t);
+
+// Qualitative palette for clusters (Tableau 10): colour i modulo
+// kQualitativePaletteSize; negative i wraps the same way.
+inline constexpr int kQualitativePaletteSize = 10;
+Color qualitative_color(std::int64_t i);
+
+// CIE L* (0 = black, 100 = white) of an sRGB colour, D65. For tests and for
+// picking a readable text colour over a fill.
+double cie_lightness(const Color& c);
+
+}  // namespace hq

@@ -1,0 +1,75 @@
+#pragma once
+// Scene: what a view draws, as plain data (ARCHITECTURE.md, "Rendering").
+// View builders (views_*.cpp) fill it; a Renderer draws it with a Camera.
+// Nothing here touches OpenGL, so scenes are unit-tested without a context.
+//
+// Positions are single-precision offsets from Scene::origin (model units):
+// builders put the origin at the centre of what they draw, which keeps full
+// float precision for meshes far from the model origin and halves memory.
+//
+// Draw order (each layer depth-tested against the ones before it):
+//   1. triangles  opaque, shaded, pushed back by a small polygon offset so
+//                 that lines lying on them win the depth test;
+//   2. lines      on top of coincident triangles.
+// Planned layers, added as new member vectors and new renderer passes without
+// changing the ones above:
+//   - spheres     SphereSet {centres, radii, colours}: point-sprite impostors
+//                 (vertex glyphs), drawn after the triangles;
+//   - arrows      built by the view builder as TriangleSets (shaft + cone);
+//   - translucent TriangleSets with alpha < 255, drawn last without depth
+//                 writes, triangles sorted back to front for the camera.
+
+#include <cstdint>
+#include <vector>
+
+#include "hqview/core/vec3.h"
+#include "hqview/render/color.h"
+
+namespace hq {
+
+// A position or direction in single precision, relative to Scene::origin.
+struct Vec3f {
+  float x = 0.0f, y = 0.0f, z = 0.0f;
+};
+
+inline Vec3f to_vec3f(const Vec3& v) {
+  return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
+}
+
+// Indexed triangles (3 indices per triangle into the vertex arrays).
+struct TriangleSet {
+  std::vector<Vec3f> positions;         // #V, relative to Scene::origin
+  std::vector<Vec3f> normals;           // #V unit normals, or empty: each triangle flat-shaded by its own plane
+  std::vector<Rgba8> colors;            // #V, interpolated across triangles
+  std::vector<std::uint32_t> indices;   // 3 * #triangles, ids in [0, #V)
+  bool is_lit = true;                   // false: colours shown as given (2D maps)
+};
+
+// Indexed line segments (2 indices per segment into the vertex arrays).
+struct LineSet {
+  std::vector<Vec3f> positions;         // #V, relative to Scene::origin
+  std::vector<Rgba8> colors;            // #V, alpha < 255 blends over what is behind
+  std::vector<std::uint32_t> indices;   // 2 * #segments, ids in [0, #V)
+  float width = 1.0f;                   // in output pixels
+};
+
+struct Scene {
+  Vec3 origin;                          // model position that vertex offsets are relative to
+  Rgba8 background{255, 255, 255, 255};
+  std::vector<TriangleSet> triangles;
+  std::vector<LineSet> lines;
+};
+
+// Number of triangles / segments over all sets (for tests and statistics).
+inline std::size_t triangle_count(const Scene& scene) {
+  std::size_t n = 0;
+  for (const TriangleSet& set : scene.triangles) n += set.indices.size() / 3;
+  return n;
+}
+inline std::size_t segment_count(const Scene& scene) {
+  std::size_t n = 0;
+  for (const LineSet& set : scene.lines) n += set.indices.size() / 2;
+  return n;
+}
+
+}  // namespace hq

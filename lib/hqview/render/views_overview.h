@@ -1,0 +1,62 @@
+#pragma once
+// View A, the quality overview: the mesh boundary coloured by vertex quality,
+// boundary edges on top, a colour bar and a title. The first image of the
+// report.
+
+#include <string>
+#include <vector>
+
+#include "hqview/mesh/hex_mesh.h"
+#include "hqview/mesh/topology.h"
+#include "hqview/render/camera.h"
+#include "hqview/render/image.h"
+#include "hqview/render/renderer.h"
+#include "hqview/render/scene.h"
+
+namespace hq {
+
+struct OverviewOptions {
+  int width = 1600;                         // figure size in pixels, legend and title included
+  int height = 1200;
+  Vec3 view_direction{-1.0, -0.8, -0.6};    // from the eye towards the mesh (an oblique view from +x+y+z)
+  Vec3 up{0.0, 0.0, 1.0};                   // model direction shown upwards
+  std::string title = "Vertex quality";     // empty: no title band
+  Rgba8 background{255, 255, 255, 255};
+  Rgba8 edge_color{40, 40, 46, 255};        // boundary edges
+  float edge_width = 1.0f;                  // in output pixels
+};
+
+// The overview's 3D content: every boundary face (Topology::boundary_faces)
+// as 4 triangles around its centre, so that the quality of the 4 corners
+// blends without a diagonal artefact, flat-shaded with the quad's normal and
+// coloured per vertex by quality_color(vertex_quality) (the centre by the
+// mean of its corners' qualities); then the unique boundary edges as lines
+// in options.edge_color. The scene's origin is the centre of the boundary's
+// bounding box.
+//   vertex_quality: mesh.num_vertices() values (min corner scaled Jacobian,
+//                   NaN for vertices no hex uses).
+// Throws Error when vertex_quality has the wrong size.
+Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology,
+                                   const std::vector<double>& vertex_quality, const OverviewOptions& options);
+
+// The positions of the boundary faces' vertices, each once, in vertex id
+// order (all points when there is no boundary face).
+std::vector<Vec3> boundary_points(const HexMesh& mesh, const Topology& topology);
+
+// Bounding box of the boundary faces' vertices (all points when there is no
+// boundary face); {0, 0} for an empty mesh.
+struct BoundingBox {
+  Vec3 min, max;
+};
+BoundingBox boundary_bounding_box(const HexMesh& mesh, const Topology& topology);
+
+// The overview figure: options.width x options.height, the 3D view on the
+// left framing the boundary vertices tightly (fit_camera_to_points), the quality colour bar on the
+// right, the title on top. Boundary edges fade (down to 30% opacity) when
+// the median edge is shorter than 8 pixels on screen. Throws RenderError
+// from the renderer or when the font is missing, Error when vertex_quality
+// has the wrong size.
+Image render_quality_overview(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
+                              const OverviewOptions& options, Renderer& renderer);
+
+}  // namespace hq

@@ -1,0 +1,190 @@
+// The OSMesa backend, headless. Images are written next to the test binary
+// (HQ_RENDER_TEST_OUTPUT_DIR) for people to look at.
+#include "hqview/render/osmesa_renderer.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "hqview/core/error.h"
+#include "hqview/io/image_file.h"
+#include "hqview/render/annotate.h"
+#include "hqview/render/colormap.h"
+#include "hqview/render/views_overview.h"
+#include "support/fixtures.h"
+
+namespace hq {
+namespace {
+
+const Rgba8 kWhite{255, 255, 255, 255};
+
+Rgba8 at(const Image& image, int x, int y) {
+  const std::uint8_t* p = image.rgba.data() + pixel_offset(image, x, y);
+  return {p[0], p[1], p[2], p[3]};
+}
+
+int count_differing(const Image& image, const PixelRect& r, Rgba8 background) {
+  int n = 0;
+  for (int y = r.y; y < r.y + r.height; ++y)
+    for (int x = r.x; x < r.x + r.width; ++x) n += at(image, x, y) != background;
+  return n;
+}
+
+std::filesystem::path output_path(const std::string& name) {
+  return std::filesystem::path(HQ_RENDER_TEST_OUTPUT_DIR) / name;
+}
+
+// One renderer for the whole suite: contexts are cheap but not free.
+Renderer& renderer() {
+  static const std::unique_ptr<Renderer> instance = make_osmesa_renderer();
+  return *instance;
+}
+
+// A made-up but plausible field: quality falls from 1 towards the grid's
+// highest corner (the one facing the default camera), which is inverted.
+std::vector<double> falling_quality(const HexMesh& mesh) {
+  Vec3 top;
+  for (const Vec3& p : mesh.points) top = {std::max(top.x, p.x), std::max(top.y, p.y), std::max(top.z, p.z)};
+  std::vector<double> quality;
+  for (const Vec3& p : mesh.points) quality.push_back(1.0 - 0.95 * std::exp(-squared_norm(p - top) / 3.0));
+  quality.back() = -0.3;
+  return quality;
+}
+
+Scene one_triangle(Rgba8 color) {
+  Scene scene;
+  scene.background = {0, 0, 0, 255};
+  TriangleSet set;
+  set.positions = {{-1, 0.2f, 0}, {1, 0.2f, 0}, {0, 1, 0}};  // upper half of the view
+  set.colors = {color, color, color};
+  set.indices = {0, 1, 2};
+  set.is_lit = false;
+  scene.triangles.push_back(set);
+  return scene;
+}
+
+Camera front_camera() {
+  Camera camera;
+  camera.eye = {0, 0, 3};
+  camera.target = {0, 0, 0};
+  camera.up = {0, 1, 0};
+  camera.near_plane = 1;
+  camera.far_plane = 5;
+  camera.is_perspective = false;
+  camera.ortho_height = 2.2;
+  return camera;
+}
+
+TEST(OsmesaRenderer, RowsAreTopDownAndColoursExact) {
+  const Rgba8 red{230, 20, 10, 255};
+  const Image image = renderer().render(one_triangle(red), front_camera(), 64, 48);
+  ASSERT_EQ(image.width, 64);
+  ASSERT_EQ(image.height, 48);
+  ASSERT_EQ(image.rgba.size(), 64u * 48u * 4u);
+  EXPECT_EQ(at(image, 32, 12), red) << "the triangle is in the top half";
+  EXPECT_EQ(at(image, 32, 40), (Rgba8{0, 0, 0, 255}));
+  EXPECT_EQ(at(image, 2, 2), (Rgba8{0, 0, 0, 255}));
+}
+
+TEST(OsmesaRenderer, SizeChangesAndManyFrames) {
+  for (int size : {17, 200, 33, 200}) {
+    const Image image = renderer().render(one_triangle({0, 200, 0, 255}), front_camera(), size, size + 3);
+    EXPECT_EQ(image.width, size);
+    EXPECT_EQ(image.height, size + 3);
+    EXPECT_GT(count_differing(image, {0, 0, size, size + 3}, {0, 0, 0, 255}), size);
+  }
+}
+
+TEST(OsmesaRenderer, LinesShowOnTopOfCoincidentTriangles) {
+  Scene scene = one_triangle({200, 200, 200, 255});
+  LineSet line;
+  line.positions = {{-0.5f, 0.4f, 0}, {0.5f, 0.4f, 0}};
+  line.colors = {{0, 0, 255, 255}, {0, 0, 255, 255}};
+  line.indices = {0, 1};
+  line.width = 2.0f;
+  scene.lines.push_back(line);
+  const Image image = renderer().render(scene, front_camera(), 100, 100);
+  // y = 0.4 in a 2.2-high view: row (1.1 - 0.4) / 2.2 * 100 = 31.8.
+  bool found = false;
+  for (int y = 28; y < 36; ++y) found |= at(image, 50, y) == Rgba8{0, 0, 255, 255};
+  EXPECT_TRUE(found);
+}
+
+TEST(OsmesaRenderer, RejectsBadInput) {
+  EXPECT_THROW(renderer().render(Scene{}, front_camera(), 0, 10), RenderError);
+  Scene scene = one_triangle({1, 2, 3, 255});
+  scene.triangles[0].indices = {0, 1, 3};
+  EXPECT_THROW(renderer().render(scene, front_camera(), 10, 10), RenderError);
+  scene = one_triangle({1, 2, 3, 255});
+  scene.triangles[0].colors.pop_back();
+  EXPECT_THROW(renderer().render(scene, front_camera(), 10, 10), RenderError);
+}
+
+TEST(QualityOverview, Grid3RendersAFigure) {
+  const HexMesh mesh = test::grid(3);
+  const Topology topology = build_topology(mesh);
+  const std::vector<double> quality = falling_quality(mesh);
+  OverviewOptions options;
+  options.title = "grid(3): vertex quality";
+  const Image image = render_quality_overview(mesh, topology, quality, options, renderer());
+  write_png(image, output_path("overview_grid3.png"));
+
+  ASSERT_EQ(image.width, 1600);
+  ASSERT_EQ(image.height, 1200);
+  ASSERT_EQ(image.rgba.size(), 1600u * 1200u * 4u);
+
+  const AnnotationStyle style = annotation_style_for(1200);
+  const FigureLayout layout =
+      figure_layout(1600, 1200, true, color_bar_width(quality_color_bar(), style), style);
+  // The mesh fills the middle of the view; its centre pixel is not background.
+  const int cx = layout.view.x + layout.view.width / 2, cy = layout.view.y + layout.view.height / 2;
+  EXPECT_NE(at(image, cx, cy), kWhite);
+  const int mesh_pixels = count_differing(image, layout.view, kWhite);
+  EXPECT_GT(mesh_pixels, layout.view.width * layout.view.height / 5);
+  EXPECT_LT(mesh_pixels, layout.view.width * layout.view.height * 9 / 10) << "the mesh is framed with a margin";
+  // Shading: the three visible sides of the grid differ in brightness, and
+  // the striking end of the map shows where the quality is low.
+  int reds = 0;
+  for (int y = layout.view.y; y < layout.view.y + layout.view.height; y += 2)
+    for (int x = layout.view.x; x < layout.view.x + layout.view.width; x += 2) {
+      const Rgba8 c = at(image, x, y);
+      reds += c.r > 120 && c.g < 90 && c.b < 90;
+    }
+  EXPECT_GT(reds, 50);
+  // The legend: a bar and text in the right panel; the title band has text.
+  EXPECT_GT(count_differing(image, layout.legend, kWhite), 20000);
+  EXPECT_GT(count_differing(image, layout.title, kWhite), 500);
+  // Nothing of the 3D view leaks into the legend's border column.
+  EXPECT_EQ(count_differing(image, {1600 - 4, 0, 4, 1200}, kWhite), 0);
+
+  // Deterministic, byte for byte.
+  const Image again = render_quality_overview(mesh, topology, quality, options, renderer());
+  EXPECT_TRUE(again.rgba == image.rgba);
+}
+
+TEST(QualityOverview, SmallFigureStillLaysOut) {
+  const HexMesh mesh = test::grid(2);
+  const Topology topology = build_topology(mesh);
+  OverviewOptions options;
+  options.width = 480;
+  options.height = 360;
+  const Image image = render_quality_overview(mesh, topology, falling_quality(mesh), options, renderer());
+  write_png(image, output_path("overview_grid2_small.png"));
+  EXPECT_EQ(image.width, 480);
+  EXPECT_EQ(image.height, 360);
+  EXPECT_NE(at(image, 150, 200), kWhite);
+}
+
+TEST(WritePng, RejectsMalformedImagesAndBadPaths) {
+  Image image{2, 2, std::vector<std::uint8_t>(15)};
+  EXPECT_THROW(write_png(image, output_path("bad.png")), Error);
+  image.rgba.resize(16);
+  EXPECT_THROW(write_png(image, "/nonexistent/dir/x.png"), Error);
+  write_png(image, output_path("tiny.png"));
+  EXPECT_TRUE(std::filesystem::exists(output_path("tiny.png")));
+}
+
+}  // namespace
+}  // namespace hq
