@@ -3,7 +3,7 @@
 
   ball.mesh            a cube grid mapped onto the unit ball, a few vertices perturbed
   ball.off             its reference surface: an icosphere of radius 1
-  twisted_bar.mesh     a 3x3x16 bar twisted along its axis; one layer over-twisted (inverted hexes)
+  twisted_bar.mesh     a 3x3x16 bar twisted along its axis, folded at one layer (inverted hexes)
   duplicated_vertex.mesh  a 4x4x4 grid whose centre vertex is duplicated and split from 4 of its hexes
 
 Run: python3 scripts/make_examples.py   (no dependencies beyond Python 3)
@@ -107,16 +107,19 @@ def twisted_bar():
     vid, hexes = grid(nx, ny, nz)
     points = []
     for k in range(nz + 1):
-        # Smooth twist of 4 degrees per layer, then 100 degrees between
-        # layers 8 and 9: the hexes of layer 8 fold over (inverted corners).
-        angle = math.radians(4 * k + (100 if k > 8 else 0))
+        # A smooth twist of 6 degrees per layer never inverts a corner (the
+        # faces stay horizontal); the fold does: layer 9's vertices with
+        # x > 0 sink below layer 8, so the 3 hexes of layer 8 under them are
+        # inverted and their neighbours have negative corners.
+        angle = math.radians(6 * k)
         c, s = math.cos(angle), math.sin(angle)
         for j in range(ny + 1):
             for i in range(nx + 1):
                 x, y = i / nx - 0.5, j / ny - 0.5
-                points.append([c * x - s * y, s * x + c * y, k / 4.0])
+                z = 8 / 4.0 - 0.08 if (k == 9 and i >= 2) else k / 4.0
+                points.append([c * x - s * y, s * x + c * y, z])
     write_medit(os.path.join(OUT, "twisted_bar.mesh"), points, hexes,
-                "HQView example: a 3x3x16 bar twisted 4 degrees per layer, over-twisted by 100 degrees at layer 8")
+                "HQView example: a 3x3x16 bar twisted 6 degrees per layer, folded at layer 9 (inverted hexes)")
 
 
 def duplicated_vertex():

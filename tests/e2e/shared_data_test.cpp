@@ -31,6 +31,8 @@ const SharedMesh kSharedMeshes[] = {
     {"smf2019/hex_cube_coarse.vtk", 136, 68},
 };
 
+void PrintTo(const SharedMesh& m, std::ostream* os) { *os << m.path; }
+
 struct Bundle {
   json report;
   fs::path dir;

@@ -125,11 +125,10 @@ Analysis analyze(const AnalyzeOptions& options) {
   model.tool_version = options.tool_version;
 
   const std::string bytes = read_file_bytes(options.mesh_path);
-  LoadedMesh loaded = read_hex_mesh(options.mesh_path);
+  LoadedMesh loaded = read_hex_mesh(options.mesh_path, bytes);
   model.mesh_input = {reported_path(options.mesh_path), loaded.format, sha256_hex(bytes)};
   model.warnings = std::move(loaded.warnings);
   model.mesh = std::move(loaded.mesh);
-  if (model.mesh.hexes.empty()) throw InvalidMeshError(options.mesh_path.string() + ": no hexahedra");
 
   model.topology = build_topology(model.mesh);
   model.field = compute_quality(model.mesh, model.topology);

@@ -1,0 +1,373 @@
+#include "hqview/io/medit_reader.h"
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hqview/core/types.h"
+#include "hqview/io/text_scanner.h"
+
+namespace hq {
+namespace {
+
+using detail::quote;
+using detail::TextScanner;
+
+enum class SectionKind { kVersion, kDimension, kEnd, kVertices, kHexahedra, kTriangles, kSkipped, kVolume };
+
+struct SectionInfo {
+  std::string_view keyword;
+  SectionKind kind;
+  int values_per_entry;    // numbers on each entry line
+  std::string_view entry;  // what an entry line holds, for messages
+};
+
+// libMeshb's keywords that occur in hex-meshing datasets, plus "Quads"
+// (non-standard, written by some tools for boundary quadrilaterals).
+constexpr SectionInfo kSections[] = {
+    {"MeshVersionFormatted", SectionKind::kVersion, 0, ""},
+    {"Dimension", SectionKind::kDimension, 0, ""},
+    {"End", SectionKind::kEnd, 0, ""},
+    {"Vertices", SectionKind::kVertices, 4, "3 coordinates and a reference"},
+    {"Hexahedra", SectionKind::kHexahedra, 9, "8 vertex ids and a reference"},
+    {"Hexaedra", SectionKind::kHexahedra, 9, "8 vertex ids and a reference"},
+    {"Triangles", SectionKind::kTriangles, 4, "3 vertex ids and a reference"},
+    {"Quadrilaterals", SectionKind::kSkipped, 5, "4 vertex ids and a reference"},
+    {"Quads", SectionKind::kSkipped, 5, "4 vertex ids and a reference"},
+    {"Edges", SectionKind::kSkipped, 3, "2 vertex ids and a reference"},
+    {"Corners", SectionKind::kSkipped, 1, "a vertex id"},
+    {"RequiredVertices", SectionKind::kSkipped, 1, "a vertex id"},
+    {"Ridges", SectionKind::kSkipped, 1, "an edge id"},
+    {"RequiredEdges", SectionKind::kSkipped, 1, "an edge id"},
+    {"RequiredTriangles", SectionKind::kSkipped, 1, "a triangle id"},
+    {"RequiredQuadrilaterals", SectionKind::kSkipped, 1, "a quadrilateral id"},
+    {"Tetrahedra", SectionKind::kVolume, 5, "4 vertex ids and a reference"},
+    {"Prisms", SectionKind::kVolume, 7, "6 vertex ids and a reference"},
+    {"Pyramids", SectionKind::kVolume, 6, "5 vertex ids and a reference"},
+    {"Normals", SectionKind::kSkipped, 3, "3 components"},
+    {"Tangents", SectionKind::kSkipped, 3, "3 components"},
+    {"NormalAtVertices", SectionKind::kSkipped, 2, "a vertex id and a normal id"},
+    {"NormalAtTriangleVertices", SectionKind::kSkipped, 3, "a triangle id, a corner and a normal id"},
+    {"NormalAtQuadrilateralVertices", SectionKind::kSkipped, 3, "a quadrilateral id, a corner and a normal id"},
+    {"TangentAtVertices", SectionKind::kSkipped, 2, "a vertex id and a tangent id"},
+    {"TangentAtEdges", SectionKind::kSkipped, 3, "an edge id, an end and a tangent id"},
+};
+
+const SectionInfo* find_section(std::string_view keyword) {
+  for (const SectionInfo& info : kSections)
+    if (detail::iequals(info.keyword, keyword)) return &info;
+  return nullptr;
+}
+
+bool starts_like_keyword(std::string_view token) {
+  const char c = token.empty() ? '\0' : token[0];
+  return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z');
+}
+
+std::string entry_label(const char* what, std::int64_t i, std::int64_t n) {
+  return " (" + std::string(what) + " " + std::to_string(i + 1) + " of " + std::to_string(n) + ")";
+}
+
+enum class Target { kHexahedra, kTriangles };
+
+struct MeditContent {
+  std::vector<Vec3> points;
+  std::int64_t vertices_line = 0;  // 0 = no Vertices section yet
+  std::vector<Hex> hexes;
+  std::int64_t hexes_line = 0;
+  bool hexes_need_range_check = false;  // read before Vertices
+  std::vector<std::array<Index, 3>> triangles;
+  std::int64_t triangles_line = 0;
+  bool triangles_need_range_check = false;
+  std::vector<std::string> warnings;
+};
+
+class MeditParser {
+ public:
+  MeditParser(std::string_view text, const std::string& name, Target target)
+      : s_(text, name, /*has_hash_comments=*/true), target_(target) {}
+
+  MeditContent parse() {
+    read_version();
+    std::string volume_skipped;
+    while (s_.skip_space()) {
+      const std::int64_t keyword_line = s_.line();
+      const std::string_view token = s_.read_token();
+      const SectionInfo* info = find_section(token);
+      if (info == nullptr) {
+        skip_unknown_section(token, keyword_line);
+        continue;
+      }
+      switch (info->kind) {
+        case SectionKind::kEnd:
+          return finish(volume_skipped);
+        case SectionKind::kVersion:
+          s_.fail_at(keyword_line, "second MeshVersionFormatted keyword");
+        case SectionKind::kDimension: {
+          const std::int64_t dimension = read_value("Dimension", "the dimension");
+          if (dimension != 3)
+            s_.fail_at(keyword_line, "unsupported Dimension " + std::to_string(dimension) + " (expected 3)");
+          break;
+        }
+        case SectionKind::kVertices:
+          read_vertices(*info, keyword_line);
+          break;
+        case SectionKind::kHexahedra:
+          if (target_ == Target::kHexahedra) {
+            if (content_.hexes_line != 0) duplicate(*info, keyword_line, content_.hexes_line);
+            content_.hexes_line = keyword_line;
+            content_.hexes_need_range_check = content_.vertices_line == 0;
+            read_elements<8>(*info, "hexahedron", content_.hexes);
+          } else {
+            skip_section(*info);
+          }
+          break;
+        case SectionKind::kTriangles:
+          if (target_ == Target::kTriangles) {
+            if (content_.triangles_line != 0) duplicate(*info, keyword_line, content_.triangles_line);
+            content_.triangles_line = keyword_line;
+            content_.triangles_need_range_check = content_.vertices_line == 0;
+            read_elements<3>(*info, "triangle", content_.triangles);
+          } else {
+            skip_section(*info);
+          }
+          break;
+        case SectionKind::kVolume: {
+          const std::int64_t n = skip_section(*info);
+          if (n > 0 && target_ == Target::kHexahedra) {
+            if (!volume_skipped.empty()) volume_skipped += ", ";
+            volume_skipped += std::to_string(n) + " " + std::string(info->keyword);
+          }
+          break;
+        }
+        case SectionKind::kSkipped:
+          skip_section(*info);
+          break;
+      }
+    }
+    return finish(volume_skipped);
+  }
+
+ private:
+  void read_version() {
+    if (!s_.skip_space()) s_.fail("unexpected end of file, expected MeshVersionFormatted");
+    const std::int64_t line = s_.line();
+    const std::string_view token = s_.read_token();
+    if (!detail::iequals(token, "MeshVersionFormatted"))
+      s_.fail_at(line, "expected MeshVersionFormatted, got " + quote(token));
+    const std::int64_t version = read_value("MeshVersionFormatted", "the version number");
+    if (version < 1 || version > 4)
+      s_.fail_at(line, "unsupported MeshVersionFormatted " + std::to_string(version) + " (expected 1 to 4)");
+  }
+
+  // The integer after a keyword, on the same line or a later one; nothing
+  // else may follow it on its line.
+  std::int64_t read_value(std::string_view keyword, const std::string& what) {
+    if (!s_.skip_space()) s_.fail("unexpected end of file, expected " + what + " after " + std::string(keyword));
+    value_line_ = s_.line();
+    std::int64_t value = 0;
+    if (!s_.read_int(value))
+      s_.fail("expected " + what + " after " + std::string(keyword) + ", got " + quote(s_.peek_token()));
+    if (!s_.finish_line()) s_.fail("unexpected " + quote(s_.peek_token()) + " after " + what);
+    return value;
+  }
+
+  // A section's entry count, checked before anything is allocated from it.
+  std::int64_t read_count(std::string_view keyword, int values_per_entry) {
+    const std::string what = "the number of " + std::string(keyword);
+    const std::int64_t n = read_value(keyword, what);
+    const std::int64_t line = value_line_;
+    if (n < 0) s_.fail_at(line, "negative number of " + std::string(keyword) + ": " + std::to_string(n));
+    if (n > kMaxIndexCount)
+      s_.fail_at(line, "number of " + std::string(keyword) + " " + std::to_string(n) + " exceeds the limit of " +
+                           std::to_string(kMaxIndexCount));
+    // Each number takes at least one character and one separator.
+    if (detail::exceeds_remaining(n, 2 * std::int64_t{values_per_entry}, s_.remaining(), true))
+      s_.fail_at(line, std::to_string(n) + " " + std::string(keyword) + " cannot fit in the " +
+                           std::to_string(s_.remaining()) + " bytes left in the file");
+    return n;
+  }
+
+  [[noreturn]] void duplicate(const SectionInfo& info, std::int64_t line, std::int64_t first_line) {
+    s_.fail_at(line, "second " + std::string(info.keyword) + " section (the first is at line " +
+                         std::to_string(first_line) + ")");
+  }
+
+  // After the last value of an entry: nothing else may follow on its line.
+  void end_entry(std::string_view entry, int values, const std::string& label_if_error) {
+    if (s_.skip_blank()) {
+      const std::int64_t extra = s_.count_tokens_on_line();
+      s_.fail("expected " + std::string(entry) + ", got " + std::to_string(values + extra) + " values" +
+              label_if_error);
+    }
+  }
+
+  void read_vertices(const SectionInfo& info, std::int64_t keyword_line) {
+    if (content_.vertices_line != 0) duplicate(info, keyword_line, content_.vertices_line);
+    content_.vertices_line = keyword_line;
+    const std::int64_t n = read_count(info.keyword, info.values_per_entry);
+    std::vector<Vec3>& points = content_.points;
+    points.reserve(static_cast<std::size_t>(n));
+    for (std::int64_t i = 0; i < n; ++i) {
+      if (!s_.skip_space())
+        s_.fail("unexpected end of file, expected " + std::string(info.entry) + entry_label("vertex", i, n));
+      double xyz[3];
+      for (int k = 0; k < 3; ++k) {
+        if (!s_.skip_blank())
+          s_.fail("expected " + std::string(info.entry) + ", got " + std::to_string(k) + " values" +
+                  entry_label("vertex", i, n));
+        if (!s_.read_double(xyz[k]))
+          s_.fail("expected a coordinate, got " + quote(s_.peek_token()) + entry_label("vertex", i, n));
+        if (!std::isfinite(xyz[k]))
+          s_.fail(std::string("non-finite coordinate ") +
+                  (std::isnan(xyz[k]) ? "nan"
+                   : xyz[k] > 0       ? "inf"
+                                      : "-inf") +
+                  entry_label("vertex", i, n));
+      }
+      read_reference(info, 3, i, n, "vertex");
+      end_entry(info.entry, 4, entry_label("vertex", i, n));
+      points.push_back({xyz[0], xyz[1], xyz[2]});
+    }
+  }
+
+  void read_reference(const SectionInfo& info, int values_before, std::int64_t i, std::int64_t n, const char* what) {
+    if (!s_.skip_blank())
+      s_.fail("expected " + std::string(info.entry) + ", got " + std::to_string(values_before) + " values" +
+              entry_label(what, i, n));
+    std::int64_t reference = 0;
+    if (!s_.read_int(reference))
+      s_.fail("expected an integer reference, got " + quote(s_.peek_token()) + entry_label(what, i, n));
+  }
+
+  // Elements of N 1-based vertex ids and a reference.
+  template <int N>
+  void read_elements(const SectionInfo& info, const char* what, std::vector<std::array<Index, N>>& out) {
+    const std::int64_t n = read_count(info.keyword, info.values_per_entry);
+    const bool has_vertices = content_.vertices_line != 0;
+    const std::int64_t max_id = has_vertices ? static_cast<std::int64_t>(content_.points.size()) : kMaxIndexCount;
+    out.reserve(out.size() + static_cast<std::size_t>(n));
+    for (std::int64_t i = 0; i < n; ++i) {
+      if (!s_.skip_space())
+        s_.fail("unexpected end of file, expected " + std::string(info.entry) + entry_label(what, i, n));
+      std::array<Index, N> element;
+      for (int k = 0; k < N; ++k) {
+        if (!s_.skip_blank())
+          s_.fail("expected " + std::string(info.entry) + ", got " + std::to_string(k) + " values" +
+                  entry_label(what, i, n));
+        std::int64_t id = 0;
+        if (!s_.read_int(id))
+          s_.fail("expected an integer vertex id, got " + quote(s_.peek_token()) + entry_label(what, i, n));
+        if (id < 1 || id > max_id) {
+          const std::string range = has_vertices ? " out of range [1, " + std::to_string(max_id) + "]"
+                                                 : (id < 1 ? " out of range (ids start at 1)"
+                                                           : " exceeds the limit of " + std::to_string(max_id));
+          s_.fail("vertex id " + std::to_string(id) + range + entry_label(what, i, n));
+        }
+        element[k] = static_cast<Index>(id - 1);
+      }
+      read_reference(info, N, i, n, what);
+      end_entry(info.entry, N + 1, entry_label(what, i, n));
+      for (int a = 1; a < N; ++a)
+        for (int b = 0; b < a; ++b)
+          if (element[a] == element[b])
+            s_.fail("vertex id " + std::to_string(element[a] + 1) + " repeated" + entry_label(what, i, n));
+      out.push_back(element);
+    }
+  }
+
+  // Skips a known section entry by entry; returns its count.
+  std::int64_t skip_section(const SectionInfo& info) {
+    const std::int64_t n = read_count(info.keyword, info.values_per_entry);
+    const std::string section(info.keyword);
+    for (std::int64_t i = 0; i < n; ++i) {
+      if (!s_.skip_space())
+        s_.fail("unexpected end of file, expected " + std::string(info.entry) +
+                entry_label((section + " entry").c_str(), i, n));
+      double first = 0.0;
+      if (!s_.read_double(first))
+        s_.fail("expected " + std::string(info.entry) + ", got " + quote(s_.peek_token()) +
+                entry_label((section + " entry").c_str(), i, n));
+      const std::int64_t values = 1 + s_.count_tokens_on_line();
+      if (values != info.values_per_entry)
+        s_.fail("expected " + std::string(info.entry) + ", got " + std::to_string(values) + " values" +
+                entry_label((section + " entry").c_str(), i, n));
+    }
+    return n;
+  }
+
+  // An unknown keyword must be followed by an entry count; its entries are
+  // skipped one non-blank line each.
+  void skip_unknown_section(std::string_view keyword, std::int64_t keyword_line) {
+    if (!starts_like_keyword(keyword)) s_.fail_at(keyword_line, "expected a keyword, got " + quote(keyword));
+    std::int64_t n = 0;
+    if (!s_.skip_space()) s_.fail_at(keyword_line, "unknown keyword " + quote(keyword));
+    const std::int64_t count_line = s_.line();
+    if (!s_.read_int(n) || !s_.finish_line()) s_.fail_at(keyword_line, "unknown keyword " + quote(keyword));
+    const std::string name(keyword);
+    if (n < 0) s_.fail_at(count_line, "negative number of " + name + ": " + std::to_string(n));
+    if (n > kMaxIndexCount || detail::exceeds_remaining(n, 2, s_.remaining(), true))
+      s_.fail_at(count_line, std::to_string(n) + " " + name + " cannot fit in the " + std::to_string(s_.remaining()) +
+                                 " bytes left in the file");
+    for (std::int64_t i = 0; i < n; ++i) {
+      if (!s_.skip_space())
+        s_.fail("unexpected end of file, expected " + std::to_string(n) + " entries of " + quote(keyword) + ", got " +
+                std::to_string(i));
+      s_.read_line();
+    }
+    content_.warnings.push_back(s_.name() + ": unknown section " + quote(keyword) + " (" + std::to_string(n) +
+                                " entries) skipped");
+  }
+
+  template <int N>
+  void check_ids_late(const std::vector<std::array<Index, N>>& elements, std::int64_t line, const char* what) {
+    const auto n = static_cast<std::int64_t>(elements.size());
+    const auto num_points = static_cast<Index>(content_.points.size());
+    for (std::int64_t i = 0; i < n; ++i)
+      for (const Index id : elements[static_cast<std::size_t>(i)])
+        if (id >= num_points)
+          s_.fail_at(line, "vertex id " + std::to_string(std::int64_t{id} + 1) + " out of range [1, " +
+                               std::to_string(num_points) + "]" + entry_label(what, i, n));
+  }
+
+  MeditContent finish(const std::string& volume_skipped) {
+    if (content_.vertices_line == 0) s_.fail_at(0, "no Vertices section");
+    if (content_.hexes_need_range_check) check_ids_late<8>(content_.hexes, content_.hexes_line, "hexahedron");
+    if (content_.triangles_need_range_check) check_ids_late<3>(content_.triangles, content_.triangles_line, "triangle");
+    if (target_ == Target::kHexahedra && content_.hexes.empty()) s_.fail_at(0, "no hexahedra");
+    if (target_ == Target::kTriangles && content_.triangles.empty()) s_.fail_at(0, "no triangles");
+    if (!volume_skipped.empty())
+      content_.warnings.push_back(s_.name() + ": " + volume_skipped + " skipped (only hexahedra are analysed)");
+    return std::move(content_);
+  }
+
+  TextScanner s_;
+  Target target_;
+  std::int64_t value_line_ = 0;  // line of the last read_value()
+  MeditContent content_;
+};
+
+}  // namespace
+
+LoadedMesh read_medit(std::string_view text, const std::string& name) {
+  MeditContent content = MeditParser(text, name, Target::kHexahedra).parse();
+  LoadedMesh loaded;
+  loaded.mesh.points = std::move(content.points);
+  loaded.mesh.hexes = std::move(content.hexes);
+  loaded.format = "medit";
+  loaded.warnings = std::move(content.warnings);
+  return loaded;
+}
+
+TriSurface read_medit_triangles(std::string_view text, const std::string& name) {
+  MeditContent content = MeditParser(text, name, Target::kTriangles).parse();
+  TriSurface surface;
+  surface.points = std::move(content.points);
+  surface.triangles = std::move(content.triangles);
+  return surface;
+}
+
+}  // namespace hq

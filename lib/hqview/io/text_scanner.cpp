@@ -1,0 +1,90 @@
+#include "hqview/io/text_scanner.h"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace hq::detail {
+
+namespace {
+constexpr char to_lower(char c) { return c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c; }
+}  // namespace
+
+bool iequals(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (to_lower(a[i]) != to_lower(b[i])) return false;
+  return true;
+}
+
+bool istarts_with(std::string_view text, std::string_view prefix) {
+  return text.size() >= prefix.size() && iequals(text.substr(0, prefix.size()), prefix);
+}
+
+std::string quote(std::string_view token) {
+  constexpr std::size_t kMaxShown = 40;
+  std::string out = "'";
+  for (std::size_t i = 0; i < token.size() && i < kMaxShown; ++i) {
+    const auto c = static_cast<unsigned char>(token[i]);
+    if (c >= 0x20 && c < 0x7f) {
+      out += static_cast<char>(c);
+    } else {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02X", c);
+      out += buf;
+    }
+  }
+  if (token.size() > kMaxShown) out += "...";
+  out += "'";
+  return out;
+}
+
+std::int64_t TextScanner::count_tokens_on_line() {
+  std::int64_t count = 0;
+  while (skip_blank()) {
+    read_token();
+    ++count;
+  }
+  return count;
+}
+
+std::string_view TextScanner::read_line() {
+  const char* start = pos_;
+  while (pos_ != end_ && *pos_ != '\n') ++pos_;
+  std::string_view line(start, static_cast<std::size_t>(pos_ - start));
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  if (pos_ != end_) {
+    ++pos_;
+    ++line_;
+  }
+  return line;
+}
+
+bool TextScanner::finish_line() {
+  if (skip_blank()) return false;
+  if (pos_ != end_) {
+    ++pos_;  // the newline
+    ++line_;
+  }
+  return true;
+}
+
+std::string_view TextScanner::read_bytes(std::size_t n) {
+  n = std::min(n, remaining());
+  const std::string_view bytes(pos_, n);
+  line_ += std::count(bytes.begin(), bytes.end(), '\n');
+  pos_ += n;
+  return bytes;
+}
+
+void TextScanner::fail(const std::string& message) const {
+  // At the end of a text whose last line is complete, the error belongs to
+  // that last line, not to the empty one after it.
+  const bool after_last_line = pos_ == end_ && pos_ != begin_ && end_[-1] == '\n';
+  throw ParseError(name_, after_last_line ? line_ - 1 : line_, message);
+}
+
+void TextScanner::fail_at(std::int64_t line, const std::string& message) const {
+  throw ParseError(name_, line, message);
+}
+
+}  // namespace hq::detail

@@ -1,0 +1,134 @@
+#include "hqview/io/text_scanner.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "io/error_text.h"
+
+namespace hq::detail {
+namespace {
+
+using hq::test::error_text;
+
+TEST(TextScanner, SkipsSpaceAndCommentsCountingLines) {
+  TextScanner s("  # comment\n\n\tVertices # trailing\r\n 12", "t", true);
+  ASSERT_TRUE(s.skip_space());
+  EXPECT_EQ(s.line(), 3);
+  EXPECT_EQ(s.read_token(), "Vertices");
+  EXPECT_FALSE(s.skip_blank());  // the comment ends the line
+  ASSERT_TRUE(s.skip_space());
+  EXPECT_EQ(s.line(), 4);
+  std::int64_t n = 0;
+  EXPECT_TRUE(s.read_int(n));
+  EXPECT_EQ(n, 12);
+  EXPECT_FALSE(s.skip_space());
+  EXPECT_TRUE(s.at_end());
+}
+
+TEST(TextScanner, HashIsATokenWithoutComments) {
+  TextScanner s("# vtk", "t", false);
+  ASSERT_TRUE(s.skip_space());
+  EXPECT_EQ(s.read_token(), "#");
+}
+
+TEST(TextScanner, ReadsNumbersOnlyWhenTheWholeTokenIsOne) {
+  TextScanner s("12abc 1.5e3 +7 -2 +.5 1e999 nan", "t", false);
+  std::int64_t i = 0;
+  double d = 0.0;
+  ASSERT_TRUE(s.skip_space());
+  EXPECT_FALSE(s.read_int(i));
+  EXPECT_FALSE(s.read_double(d));
+  EXPECT_EQ(s.read_token(), "12abc");  // did not move on failure
+  s.skip_space();
+  EXPECT_FALSE(s.read_int(i));
+  EXPECT_TRUE(s.read_double(d));
+  EXPECT_EQ(d, 1500.0);
+  s.skip_space();
+  EXPECT_TRUE(s.read_int(i));
+  EXPECT_EQ(i, 7);
+  s.skip_space();
+  EXPECT_TRUE(s.read_int(i));
+  EXPECT_EQ(i, -2);
+  s.skip_space();
+  EXPECT_TRUE(s.read_double(d));
+  EXPECT_EQ(d, 0.5);
+  s.skip_space();
+  EXPECT_FALSE(s.read_double(d));  // out of range
+  s.read_token();
+  s.skip_space();
+  EXPECT_TRUE(s.read_double(d));  // the caller rejects non-finite values
+  EXPECT_TRUE(std::isnan(d));
+}
+
+TEST(TextScanner, IntegerOverflowIsNotANumber) {
+  TextScanner s("99999999999999999999", "t", false);
+  std::int64_t i = 0;
+  EXPECT_FALSE(s.read_int(i));
+}
+
+TEST(TextScanner, LineAwareReading) {
+  TextScanner s("1 2 3\n4", "t", false);
+  std::int64_t v = 0;
+  ASSERT_TRUE(s.skip_blank());
+  ASSERT_TRUE(s.read_int(v));
+  EXPECT_EQ(s.count_tokens_on_line(), 2);
+  EXPECT_FALSE(s.skip_blank());
+  EXPECT_TRUE(s.finish_line());
+  EXPECT_EQ(s.line(), 2);
+  EXPECT_TRUE(s.skip_blank());
+  EXPECT_FALSE(s.finish_line());
+}
+
+TEST(TextScanner, ReadLineStripsCarriageReturn) {
+  TextScanner s("title\r\nnext", "t", false);
+  EXPECT_EQ(s.read_line(), "title");
+  EXPECT_EQ(s.line(), 2);
+  EXPECT_EQ(s.read_line(), "next");
+  EXPECT_TRUE(s.at_end());
+}
+
+TEST(TextScanner, ReadBytesCountsNewlines) {
+  using namespace std::string_literals;
+  const std::string text = "A\n\x00\n\n\x01\nB"s;
+  TextScanner s(std::string_view(text.data(), text.size()), "t", false);
+  s.read_line();
+  EXPECT_EQ(s.read_bytes(4).size(), 4u);
+  EXPECT_EQ(s.line(), 4);
+  ASSERT_TRUE(s.skip_space());
+  EXPECT_EQ(s.line(), 5);
+  EXPECT_EQ(s.offset(), text.size() - 1);
+}
+
+TEST(TextScanner, FailThrowsParseErrorWithNameAndLine) {
+  TextScanner s("a\nb", "file.mesh", false);
+  s.read_line();
+  EXPECT_EQ(error_text<ParseError>([&] { s.fail("bad thing"); }), "file.mesh:2: bad thing");
+  EXPECT_EQ(error_text<ParseError>([&] { s.fail_at(0, "no line"); }), "file.mesh: no line");
+}
+
+TEST(TextScanner, QuoteShortensAndEscapes) {
+  EXPECT_EQ(quote("abc"), "'abc'");
+  EXPECT_EQ(quote(std::string_view("a\x01\xff", 3)), "'a\\x01\\xFF'");
+  EXPECT_EQ(quote(std::string(50, 'x')), "'" + std::string(40, 'x') + "...'");
+}
+
+TEST(TextScanner, CaseInsensitiveHelpers) {
+  EXPECT_TRUE(iequals("Hexahedra", "HEXAHEDRA"));
+  EXPECT_FALSE(iequals("Hexahedra", "Hexaedra"));
+  EXPECT_TRUE(istarts_with("# VTK DataFile Version 3.0", "# vtk DataFile"));
+  EXPECT_FALSE(istarts_with("# vt", "# vtk"));
+}
+
+TEST(TextScanner, ExceedsRemainingIsOverflowFree) {
+  EXPECT_FALSE(exceeds_remaining(3, 2, 5, true));  // "1 2 3"
+  EXPECT_TRUE(exceeds_remaining(3, 2, 4, true));
+  EXPECT_FALSE(exceeds_remaining(3, 4, 12, false));
+  EXPECT_TRUE(exceeds_remaining(3, 4, 11, false));
+  EXPECT_TRUE(exceeds_remaining(std::numeric_limits<std::int64_t>::max(), 8, 100, false));
+  EXPECT_FALSE(exceeds_remaining(0, 8, 0, false));
+}
+
+}  // namespace
+}  // namespace hq::detail
