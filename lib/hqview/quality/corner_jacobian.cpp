@@ -15,22 +15,19 @@ constexpr double kVerdictMinSquared = 1e-30;
 }  // namespace
 
 CornerJacobians corner_scaled_jacobians(const std::array<Vec3, 8>& p) {
-  // Each edge belongs to two corner frames: take its length once.
+  // Each edge belongs to two corner frames: its length is taken once.
   std::array<double, 12> length;
-  for (int e = 0; e < 12; ++e) length[e] = norm(p[kHexEdges[e][1]] - p[kHexEdges[e][0]]);
-
+  for (int e = 0; e < 12; ++e) length[e] = std::sqrt(squared_norm(p[kHexEdges[e][1]] - p[kHexEdges[e][0]]));
   CornerJacobians out;
   for (int i = 0; i < 8; ++i) {
     const auto& f = kCornerFrames[i];
     const auto& fe = kCornerFrameEdges[i];
     const double lengths = length[fe[0]] * length[fe[1]] * length[fe[2]];
-    if (!(lengths > 0.0)) {
-      out.value[i] = 0.0;
-      out.degenerate_mask |= static_cast<std::uint8_t>(1u << i);
-      continue;
-    }
     const double j = det(p[f[0]] - p[i], p[f[1]] - p[i], p[f[2]] - p[i]);
-    out.value[i] = std::clamp(j / lengths, -1.0, 1.0);
+    // Branch-free, so the loop stays straight-line code.
+    const bool degenerate = !(lengths > 0.0);
+    out.value[i] = degenerate ? 0.0 : std::min(1.0, std::max(-1.0, j / lengths));
+    out.degenerate_mask |= static_cast<std::uint8_t>(static_cast<unsigned>(degenerate) << i);
   }
   return out;
 }
