@@ -3,45 +3,36 @@
 #include <gtest/gtest.h>
 
 #include "hqview/core/error.h"
+#include "image_probe.h"
 #include "hqview/render/colormap.h"
 
 namespace hq {
 namespace {
 
-const Rgba8 kWhite{255, 255, 255, 255};
-
-Rgba8 at(const Image& image, int x, int y) {
-  const std::uint8_t* p = image.rgba.data() + pixel_offset(image, x, y);
-  return {p[0], p[1], p[2], p[3]};
-}
-
-int count_non_background(const Image& image, const PixelRect& r, Rgba8 background) {
-  int n = 0;
-  for (int y = r.y; y < r.y + r.height; ++y)
-    for (int x = r.x; x < r.x + r.width; ++x) n += at(image, x, y) != background;
-  return n;
-}
+using test::count_differing;
+using test::kWhite;
+using test::pixel_at;
 
 TEST(ImageOps, MakeFillPasteClip) {
   Image image = make_image(10, 6, kWhite);
   ASSERT_EQ(image.rgba.size(), 10u * 6u * 4u);
   fill_rect(image, {-3, 4, 5, 10}, {1, 2, 3, 255});  // clipped to x [0, 2), y [4, 6)
-  EXPECT_EQ(at(image, 1, 5), (Rgba8{1, 2, 3, 255}));
-  EXPECT_EQ(at(image, 2, 5), kWhite);
-  EXPECT_EQ(at(image, 1, 3), kWhite);
+  EXPECT_EQ(pixel_at(image, 1, 5), (Rgba8{1, 2, 3, 255}));
+  EXPECT_EQ(pixel_at(image, 2, 5), kWhite);
+  EXPECT_EQ(pixel_at(image, 1, 3), kWhite);
   const Image patch = make_image(4, 4, {9, 9, 9, 255});
   paste(image, patch, 8, -2);  // clipped to x [8, 10), y [0, 2)
-  EXPECT_EQ(at(image, 9, 1), (Rgba8{9, 9, 9, 255}));
-  EXPECT_EQ(at(image, 7, 1), kWhite);
-  EXPECT_EQ(at(image, 9, 2), kWhite);
+  EXPECT_EQ(pixel_at(image, 9, 1), (Rgba8{9, 9, 9, 255}));
+  EXPECT_EQ(pixel_at(image, 7, 1), kWhite);
+  EXPECT_EQ(pixel_at(image, 9, 2), kWhite);
 }
 
 TEST(Text, DrawsGlyphsAndMeasures) {
   const AnnotationStyle style;
   Image image = make_image(300, 80, kWhite);
   draw_text(image, 10, 50, "Quality 0.25", 30, style);
-  EXPECT_GT(count_non_background(image, {0, 0, 300, 80}, kWhite), 200);
-  EXPECT_EQ(count_non_background(image, {0, 60, 300, 20}, kWhite), 0) << "nothing far below the baseline";
+  EXPECT_GT(count_differing(image, {0, 0, 300, 80}, kWhite), 200);
+  EXPECT_EQ(count_differing(image, {0, 60, 300, 20}, kWhite), 0) << "nothing far below the baseline";
   const PixelRect one = text_extent("Quality", 30, style), two = text_extent("Quality\nQuality", 30, style);
   EXPECT_GT(one.width, 60);
   EXPECT_LT(one.width, 160);
@@ -69,16 +60,16 @@ TEST(ColorBar, QualityBarDrawsTheMapTopToBottom) {
   const int x = 20 + 17;  // inset + half the bar width at scale 1
   int top = -1, bottom = -1;
   for (int y = 0; y < image.height; ++y) {
-    const Rgba8 c = at(image, x, y);
+    const Rgba8 c = pixel_at(image, x, y);
     if (top < 0 && c == to_rgba8(sample_quality_map(1.0))) top = y;
     if (c == to_rgba8(sample_quality_map(0.0))) bottom = y;
   }
   ASSERT_GE(top, 0);
   ASSERT_GT(bottom, top + 300);
-  EXPECT_LT(cie_lightness(to_color(at(image, x, bottom - 5))), cie_lightness(to_color(at(image, x, top + 5))));
+  EXPECT_LT(cie_lightness(to_color(pixel_at(image, x, bottom - 5))), cie_lightness(to_color(pixel_at(image, x, top + 5))));
   // The inverted swatch sits below the bar.
   bool has_inverted = false;
-  for (int y = bottom; y < image.height; ++y) has_inverted |= at(image, x, y) == to_rgba8(kInvertedColor);
+  for (int y = bottom; y < image.height; ++y) has_inverted |= pixel_at(image, x, y) == to_rgba8(kInvertedColor);
   EXPECT_TRUE(has_inverted);
 }
 

@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "hqview/core/error.h"
+#include "image_probe.h"
 #include "hqview/io/image_file.h"
 #include "hqview/render/annotate.h"
 #include "hqview/render/colormap.h"
@@ -18,19 +19,9 @@
 namespace hq {
 namespace {
 
-const Rgba8 kWhite{255, 255, 255, 255};
-
-Rgba8 at(const Image& image, int x, int y) {
-  const std::uint8_t* p = image.rgba.data() + pixel_offset(image, x, y);
-  return {p[0], p[1], p[2], p[3]};
-}
-
-int count_differing(const Image& image, const PixelRect& r, Rgba8 background) {
-  int n = 0;
-  for (int y = r.y; y < r.y + r.height; ++y)
-    for (int x = r.x; x < r.x + r.width; ++x) n += at(image, x, y) != background;
-  return n;
-}
+using test::count_differing;
+using test::kWhite;
+using test::pixel_at;
 
 std::filesystem::path output_path(const std::string& name) {
   return std::filesystem::path(HQ_RENDER_TEST_OUTPUT_DIR) / name;
@@ -83,9 +74,9 @@ TEST(OsmesaRenderer, RowsAreTopDownAndColoursExact) {
   ASSERT_EQ(image.width, 64);
   ASSERT_EQ(image.height, 48);
   ASSERT_EQ(image.rgba.size(), 64u * 48u * 4u);
-  EXPECT_EQ(at(image, 32, 12), red) << "the triangle is in the top half";
-  EXPECT_EQ(at(image, 32, 40), (Rgba8{0, 0, 0, 255}));
-  EXPECT_EQ(at(image, 2, 2), (Rgba8{0, 0, 0, 255}));
+  EXPECT_EQ(pixel_at(image, 32, 12), red) << "the triangle is in the top half";
+  EXPECT_EQ(pixel_at(image, 32, 40), (Rgba8{0, 0, 0, 255}));
+  EXPECT_EQ(pixel_at(image, 2, 2), (Rgba8{0, 0, 0, 255}));
 }
 
 TEST(OsmesaRenderer, SizeChangesAndManyFrames) {
@@ -108,7 +99,7 @@ TEST(OsmesaRenderer, LinesShowOnTopOfCoincidentTriangles) {
   const Image image = renderer().render(scene, front_camera(), 100, 100);
   // y = 0.4 in a 2.2-high view: row (1.1 - 0.4) / 2.2 * 100 = 31.8.
   bool found = false;
-  for (int y = 28; y < 36; ++y) found |= at(image, 50, y) == Rgba8{0, 0, 255, 255};
+  for (int y = 28; y < 36; ++y) found |= pixel_at(image, 50, y) == Rgba8{0, 0, 255, 255};
   EXPECT_TRUE(found);
 }
 
@@ -140,7 +131,7 @@ TEST(QualityOverview, Grid3RendersAFigure) {
       figure_layout(1600, 1200, true, color_bar_width(quality_color_bar(), style), style);
   // The mesh fills the middle of the view; its centre pixel is not background.
   const int cx = layout.view.x + layout.view.width / 2, cy = layout.view.y + layout.view.height / 2;
-  EXPECT_NE(at(image, cx, cy), kWhite);
+  EXPECT_NE(pixel_at(image, cx, cy), kWhite);
   const int mesh_pixels = count_differing(image, layout.view, kWhite);
   EXPECT_GT(mesh_pixels, layout.view.width * layout.view.height / 5);
   EXPECT_LT(mesh_pixels, layout.view.width * layout.view.height * 9 / 10) << "the mesh is framed with a margin";
@@ -149,7 +140,7 @@ TEST(QualityOverview, Grid3RendersAFigure) {
   int reds = 0;
   for (int y = layout.view.y; y < layout.view.y + layout.view.height; y += 2)
     for (int x = layout.view.x; x < layout.view.x + layout.view.width; x += 2) {
-      const Rgba8 c = at(image, x, y);
+      const Rgba8 c = pixel_at(image, x, y);
       reds += c.r > 120 && c.g < 90 && c.b < 90;
     }
   EXPECT_GT(reds, 50);
@@ -174,7 +165,7 @@ TEST(QualityOverview, SmallFigureStillLaysOut) {
   write_png(image, output_path("overview_grid2_small.png"));
   EXPECT_EQ(image.width, 480);
   EXPECT_EQ(image.height, 360);
-  EXPECT_NE(at(image, 150, 200), kWhite);
+  EXPECT_NE(pixel_at(image, 150, 200), kWhite);
 }
 
 TEST(WritePng, RejectsMalformedImagesAndBadPaths) {
