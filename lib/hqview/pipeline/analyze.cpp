@@ -1,23 +1,22 @@
 #include "hqview/pipeline/analyze.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <numeric>
 
 #include "hqview/core/error.h"
 #include "hqview/core/sha256.h"
 #include "hqview/io/mesh_reader.h"
+#include "hqview/pipeline/metric_summary.h"
 #include "hqview/quality/corner_jacobian.h"
+#include "hqview/report/report_json.h"
 #include "hqview/render/osmesa_renderer.h"
 #include "hqview/render/views_overview.h"
 
 namespace hq {
 namespace fs = std::filesystem;
 namespace {
-
-// Verdict's acceptable range of the hex scaled Jacobian (Verdict docs).
-constexpr double kScaledJacobianAcceptableMin = 0.5;
-constexpr double kScaledJacobianAcceptableMax = 1.0;
 
 StatisticsOptions jacobian_histogram() {
   StatisticsOptions o;
@@ -30,6 +29,23 @@ StatisticsOptions jacobian_histogram() {
 // The path as the user gave it, or only its file name when absolute, so
 // report.json holds no machine-specific path.
 std::string reported_path(const fs::path& p) { return p.is_absolute() ? p.filename().string() : p.lexically_normal().string(); }
+
+// Boundary error and UV atlas against the reference surface (ALGORITHMS.md §5).
+void analyze_reference(const fs::path& path, ReportModel& model) {
+  const std::string bytes = read_file_bytes(path);
+  const TriSurface reference = read_surface(path);
+  std::string format = path.extension().string();
+  std::transform(format.begin(), format.end(), format.begin(), [](unsigned char c) { return std::tolower(c); });
+  format = format == ".mesh" ? "medit" : format.substr(std::min<std::size_t>(1, format.size()));
+  model.reference_input = InputFile{reported_path(path), format, sha256_hex(bytes)};
+  try {
+    model.boundary_error = compute_boundary_error(model.mesh, model.topology, reference);
+  } catch (const InputError& e) {
+    throw InputError(path.string() + ": " + e.what());
+  }
+  model.warnings.insert(model.warnings.end(), model.boundary_error->warnings.begin(), model.boundary_error->warnings.end());
+  model.uv_atlas = build_uv_atlas(reference, UvOptions{.improve_with_lscm = true});
+}
 
 }  // namespace
 
@@ -80,15 +96,9 @@ QualitySummary summarize_quality(const HexMesh& mesh, const QualityField& field,
   q.corner_scaled_jacobian = compute_statistics(field.corner_scaled_jacobian, options, corner_flags);
   q.vertex_quality = compute_statistics(field.vertex_quality, options);
 
-  MetricSummary sj{.name = "scaled_jacobian",
-                   .stats = q.scaled_jacobian,
-                   .acceptable_min = kScaledJacobianAcceptableMin,
-                   .acceptable_max = kScaledJacobianAcceptableMax};
-  std::int64_t inside = 0;
-  for (double v : field.cell_scaled_jacobian)
-    if (std::abs(v) < kVerdictDegenerate && v >= sj.acceptable_min && v <= sj.acceptable_max) ++inside;
-  sj.fraction_acceptable = q.scaled_jacobian.count > 0 ? double(inside) / double(q.scaled_jacobian.count) : 0.0;
-  q.metrics.push_back(sj);
+  // The headline's cell counts (Verdict metrics: summarize_hex_metrics).
+  q.num_inverted = q.scaled_jacobian.num_inverted;
+  q.num_degenerate = q.scaled_jacobian.num_degenerate;
 
   // Worst vertices: lowest quality first, ties by id; unreferenced ones skipped.
   std::vector<Index> vertices;
@@ -133,10 +143,16 @@ Analysis analyze(const AnalyzeOptions& options) {
   model.topology = build_topology(model.mesh);
   model.field = compute_quality(model.mesh, model.topology);
   model.mesh_summary = summarize_mesh(model.mesh, model.topology);
+  model.metrics = compute_hex_metrics(model.mesh, options.metrics);
   model.quality = summarize_quality(model.mesh, model.field, options.worst_count);
+  model.quality.metrics = summarize_hex_metrics(model.metrics);
+  model.glyphs = compute_glyphs(model.mesh.points, model.field.vertex_quality, model.mesh_summary.edge_length_mean,
+                                options.glyphs);
+  if (options.overlap) model.overlap = check_overlap(model.mesh, model.topology, *options.overlap);
   if (!model.topology.unreferenced_vertices.empty())
     model.warnings.push_back(std::to_string(model.topology.unreferenced_vertices.size()) +
                              " vertices are used by no hexahedron (ignored by the analysis)");
+  if (!options.reference_path.empty()) analyze_reference(options.reference_path, model);
 
   if (options.render) {
     const auto renderer = make_osmesa_renderer();
@@ -148,6 +164,8 @@ Analysis analyze(const AnalyzeOptions& options) {
         {"views/overview.png", render_quality_overview(model.mesh, model.topology, model.field.vertex_quality, overview, *renderer)});
     model.views.push_back({"overview", "Boundary coloured by vertex quality", {"views/overview.png"}});
   }
+  // Gates read the finished report, so any numeric key can be gated on.
+  model.gates = evaluate_gates(options.gates, report_json(model));
   return result;
 }
 

@@ -4,9 +4,14 @@
 // main() hands the result to write_bundle().
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "hqview/glyph/glyphs.h"
+#include "hqview/overlap/overlap.h"
+#include "hqview/pipeline/gates.h"
+#include "hqview/quality/hex_metrics.h"
 #include "hqview/report/bundle_writer.h"
 #include "hqview/report/report_model.h"
 
@@ -14,11 +19,16 @@ namespace hq {
 
 struct AnalyzeOptions {
   std::filesystem::path mesh_path;
+  std::filesystem::path reference_path;  // --reference SURFACE; empty: no boundary error
   std::string tool_version;
   bool render = true;
   int image_width = 1600;
   int image_height = 1200;
   int worst_count = 20;  // entries in worst_vertices / worst_cells
+  HexMetricSet metrics = all_hex_metrics();  // Verdict metrics to compute (scaled_jacobian always)
+  std::vector<GateRule> gates;  // evaluated on the finished report (throws UsageError for a missing key)
+  GlyphOptions glyphs;          // --rmax, --glyph-threshold, --top-clusters
+  std::optional<OverlapOptions> overlap = OverlapOptions{};  // --overlap, --coincident-eps; nullopt: --no-overlap
 };
 
 struct Analysis {

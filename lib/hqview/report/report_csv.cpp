@@ -1,6 +1,8 @@
 #include "hqview/report/report_csv.h"
 
+#include <cmath>
 #include <string>
+#include <vector>
 
 #include "hqview/core/number_format.h"
 #include "hqview/quality/corner_jacobian.h"
@@ -24,6 +26,16 @@ void flush_if_full(std::string& buffer, std::ostream& out, bool force = false) {
 void write_cells_csv(const ReportModel& model, std::ostream& out) {
   std::string buffer = "cell,scaled_jacobian";
   for (int i = 0; i < 8; ++i) buffer += ",corner_sj_" + std::to_string(i);
+  // Then every Verdict metric but scaled_jacobian (already the second
+  // column), in HexMetric order; a metric left out by --metrics keeps its
+  // column, empty, so the header never changes.
+  std::vector<const std::vector<double>*> metric_columns;
+  for (int m = 0; m < kNumHexMetrics; ++m) {
+    if (static_cast<HexMetric>(m) == HexMetric::scaled_jacobian) continue;
+    buffer += ',';
+    buffer += hex_metric_name(static_cast<HexMetric>(m));
+    metric_columns.push_back(&model.metrics.of(static_cast<HexMetric>(m)));
+  }
   buffer += ",inverted,degenerate,intersecting\n";
   const QualityField& q = model.field;
   for (std::size_t h = 0; h < model.mesh.hexes.size(); ++h) {
@@ -35,11 +47,18 @@ void write_cells_csv(const ReportModel& model, std::ostream& out) {
       buffer += ',';
       append_double(buffer, q.corner_scaled_jacobian[8 * h + static_cast<std::size_t>(i)]);
     }
+    for (const std::vector<double>* column : metric_columns) {
+      buffer += ',';
+      if (!column->empty()) append_double(buffer, (*column)[h]);
+    }
     const bool degenerate = sj >= kVerdictDegenerate || q.corner_degenerate_mask[h] != 0;
     const bool inverted = !degenerate && sj <= 0.0;
     buffer += inverted ? ",1" : ",0";
     buffer += degenerate ? ",1" : ",0";
-    buffer += ",\n";  // intersecting: the overlap stage is not part of this release
+    // intersecting: 0/1 from the overlap stage, empty with --no-overlap.
+    buffer += ',';
+    if (model.overlap) buffer += model.overlap->cell_intersecting[h] ? '1' : '0';
+    buffer += '\n';
     flush_if_full(buffer, out);
   }
   flush_if_full(buffer, out, true);
@@ -56,10 +75,23 @@ void write_vertices_csv(const ReportModel& model, std::ostream& out) {
     }
     buffer += ',';
     append_double(buffer, model.field.vertex_quality[v]);  // empty for an unreferenced vertex
-    // glyph_radius, cluster, coincident_group: stages not part of this release.
-    buffer += ",,,,";
+    // glyph_radius: 0 without a glyph, empty for an unreferenced vertex;
+    // cluster: the cluster's rank id, -1 without a glyph.
+    buffer += ',';
+    if (model.glyphs && !std::isnan(model.field.vertex_quality[v]))
+      append_double(buffer, model.glyphs->vertex_radius[v]);
+    buffer += ',';
+    if (model.glyphs) append_int(buffer, model.glyphs->vertex_cluster[v]);
+    // coincident_group: the group's index in report.json, -1 for none;
+    // empty with --no-overlap.
+    buffer += ',';
+    if (model.overlap) append_int(buffer, model.overlap->vertex_coincident_group[v]);
+    buffer += ',';
     buffer += model.topology.is_boundary_vertex[v] ? '1' : '0';
-    buffer += ",\n";  // boundary_error: needs --reference (not part of this release)
+    buffer += ',';
+    // boundary_error: signed distance for boundary vertices with --reference, else empty.
+    if (model.boundary_error) append_double(buffer, model.boundary_error->vertex_error[v]);
+    buffer += '\n';
     flush_if_full(buffer, out);
   }
   flush_if_full(buffer, out, true);

@@ -1,11 +1,13 @@
 #include "hqview/report/report_html.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <kainjow/mustache.hpp>
 
 #include "hqview/core/error.h"
+#include "hqview/report/cluster_color.h"
 
 namespace hq {
 namespace detail {
@@ -90,6 +92,8 @@ std::string index_html(const ReportModel& model) {
   headline.push_back(card("inverted hexes", show_count(q.scaled_jacobian.num_inverted), q.scaled_jacobian.num_inverted > 0));
   headline.push_back(card("degenerate hexes", show_count(q.scaled_jacobian.num_degenerate), q.scaled_jacobian.num_degenerate > 0));
   headline.push_back(card("min vertex quality", show(q.vertex_quality.min), q.vertex_quality.min <= 0));
+  if (model.overlap)
+    headline.push_back(card("intersecting hexes", show_count(model.overlap->num_intersecting_cells), model.overlap->num_intersecting_cells > 0));
   page.set("headline", headline);
 
   data warnings{data::type::list};
@@ -119,12 +123,35 @@ std::string index_html(const ReportModel& model) {
   for (const MetricSummary& metric : q.metrics) {
     data d;
     d.set("name", metric.name);
-    d.set("lo", show(metric.acceptable_min));
-    d.set("hi", show(metric.acceptable_max));
+    // Unbounded ends read as open intervals: [0, ∞).
+    d.set("range", (std::isinf(metric.acceptable_min) ? "(−∞" : "[" + show(metric.acceptable_min)) + ", " +
+                       (std::isinf(metric.acceptable_max) ? "∞)" : show(metric.acceptable_max) + "]"));
     d.set("fraction", show(100.0 * metric.fraction_acceptable) + " %");
+    d.set("low_fraction", metric.stats.count > 0 && metric.fraction_acceptable < 0.9);
+    d.set("count", show_count(metric.stats.count));
+    d.set("min", show(metric.stats.min));
+    d.set("p05", show(metric.stats.p05));
+    d.set("p50", show(metric.stats.p50));
+    d.set("mean", show(metric.stats.mean));
+    d.set("p95", show(metric.stats.p95));
+    d.set("max", show(metric.stats.max));
+    d.set("num_degenerate", show_count(metric.stats.num_degenerate));
     metrics.push_back(d);
   }
   page.set("metrics", metrics);
+  page.set("has_metrics", !q.metrics.empty());
+
+  data gates{data::type::list};
+  for (const GateResult& g : model.gates.results) {
+    data d;
+    d.set("rule", g.rule);
+    d.set("value", show(g.value));
+    d.set("passed", g.passed);
+    gates.push_back(d);
+  }
+  page.set("gates", gates);
+  page.set("has_gates", !model.gates.results.empty());
+  page.set("gates_passed", model.gates.passed);
 
   data worst_vertices{data::type::list};
   for (const WorstVertex& w : q.worst_vertices) {
@@ -155,6 +182,88 @@ std::string index_html(const ReportModel& model) {
   mesh_rows.push_back(kv("edge length min / mean / max",
                          show(m.edge_length_min) + " / " + show(m.edge_length_mean) + " / " + show(m.edge_length_max)));
   page.set("mesh_rows", mesh_rows);
+
+  // Glyph clusters: the worst kHtmlClusterRows, with their palette colour;
+  // the first top_clusters are the ones later views show in detail.
+  constexpr std::size_t kHtmlClusterRows = 20;
+  page.set("has_glyphs", model.glyphs.has_value());
+  if (model.glyphs) {
+    const GlyphResult& g = *model.glyphs;
+    const bool is_relative = g.options.rmax_unit == RmaxUnit::kMeanEdgeLength;
+    page.set("glyph_summary",
+             show_count(g.num_glyphs) + " vertices with quality below " + show(1.0 - g.options.threshold) +
+                 " have a glyph, in " + show_count(static_cast<long long>(g.clusters.size())) +
+                 " clusters of overlapping glyphs; rmax " + show(g.rmax) +
+                 (is_relative ? " (" + show(g.options.rmax) + " × mean edge length)." : " (model units)."));
+    data clusters{data::type::list};
+    const std::size_t rows = std::min(g.clusters.size(), kHtmlClusterRows);
+    for (std::size_t i = 0; i < rows; ++i) {
+      const AggregatedGlyph& c = g.clusters[i];
+      data d;
+      d.set("id", std::to_string(c.id));
+      d.set("color", cluster_color_hex(c.id));
+      d.set("size", show_count(c.size));
+      d.set("min_quality", show(c.min_quality));
+      d.set("vertex", std::to_string(c.representative_vertex));
+      d.set("position", show_vec(c.position));
+      d.set("radius", show(c.radius));
+      d.set("is_top", static_cast<int>(i) < g.options.top_clusters);
+      clusters.push_back(d);
+    }
+    page.set("clusters", clusters);
+    page.set("has_clusters", rows > 0);
+    page.set("has_more_clusters", g.clusters.size() > rows);
+    page.set("more_clusters", show_count(static_cast<long long>(g.clusters.size() - rows)));
+  }
+
+  // Overlap findings: the counts, then the first kHtmlOverlapRows pairs.
+  constexpr std::size_t kHtmlOverlapRows = 20;
+  page.set("has_overlap", model.overlap.has_value());
+  if (model.overlap) {
+    const OverlapReport& o = *model.overlap;
+    const std::string mode(overlap_mode_name(o.mode));
+    page.set("overlap_summary",
+             o.certified_clean
+                 ? "Certified: every hex is positively oriented (24 exact tets each) and the boundary is embedded and "
+                   "unnested, so no two hexes overlap (Lipman's theorem)" +
+                       std::string(o.mode == OverlapMode::exhaustive ? "; the exhaustive pair tests agree." : "; no pair tests were needed.")
+                 : "Not certified: " + show_count(o.num_flagged_cells) + " hexes were tested against every hex near them (" +
+                       show_count(o.num_candidate_pairs) + " pairs, " + mode + " mode). A pair intersects when a vertex of one lies inside the other.");
+    data rows{data::type::list};
+    auto row = [&](const std::string& key, std::size_t value) {
+      data d = kv(key, show_count(static_cast<long long>(value)));
+      d.set("alert", value > 0);
+      rows.push_back(d);
+    };
+    row("intersecting hexes", static_cast<std::size_t>(o.num_intersecting_cells));
+    row("intersecting pairs", o.intersecting_pairs.size());
+    row("coincident vertices", static_cast<std::size_t>(o.num_coincident_vertices));
+    row("zero-length edges", o.zero_length_edges.size());
+    row("inverted hexes (a negative corner)", o.inverted_cells.size());
+    row("degenerate hexes (a flat corner)", o.degenerate_cells.size());
+    row("hexes with a non-positive tet (not certified)", o.nonpositive_tet_cells.size());
+    row("faces shared by > 2 hexes", o.non_manifold_faces.size());
+    row("duplicate hexes", o.duplicate_cells.size());
+    row("interior faces with the same winding on both sides", o.same_winding_faces.size());
+    row("intersecting boundary face pairs", o.boundary_self_intersections.size());
+    row("nested boundary shells", static_cast<std::size_t>(o.num_nested_shells));
+    page.set("overlap_rows", rows);
+    data pairs{data::type::list};
+    const std::size_t shown = std::min(o.intersecting_pairs.size(), kHtmlOverlapRows);
+    for (std::size_t i = 0; i < shown; ++i) {
+      const IntersectingPair& p = o.intersecting_pairs[i];
+      data d;
+      d.set("a", std::to_string(p.cells[0]));
+      d.set("b", std::to_string(p.cells[1]));
+      d.set("vertex", p.inside_vertex == kNoIndex ? "– (duplicates)" : std::to_string(p.inside_vertex));
+      d.set("position", show_vec(p.position));
+      pairs.push_back(d);
+    }
+    page.set("overlap_pairs", pairs);
+    page.set("has_overlap_pairs", shown > 0);
+    page.set("has_more_overlap_pairs", o.intersecting_pairs.size() > shown);
+    page.set("more_overlap_pairs", show_count(static_cast<long long>(o.intersecting_pairs.size() - shown)));
+  }
 
   mustache tmpl{std::string(detail::embedded_file("index.html.mustache"))};
   if (!tmpl.is_valid()) throw Error("internal: index.html template: " + tmpl.error_message());

@@ -1,7 +1,10 @@
 #include "hqview/report/report_json.h"
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
+
+#include "hqview/report/cluster_color.h"
 
 namespace hq {
 namespace {
@@ -46,8 +49,44 @@ Json mesh_json(const MeshSummary& m) {
   return j;
 }
 
+// CONTRACT.md glyphs, with extensions before `clusters`: how rmax was given,
+// top_clusters, and how many clusters the list leaves out (it holds the
+// kMaxListedClusters worst; vertices.csv has every vertex's cluster).
+constexpr std::size_t kMaxListedClusters = 1000;
+
+Json glyphs_json(const GlyphResult& g) {
+  Json j;
+  j["rmax"] = number(g.rmax);
+  j["threshold"] = number(g.options.threshold);
+  j["num_glyphs"] = g.num_glyphs;
+  j["num_clusters"] = g.clusters.size();
+  const bool is_relative = g.options.rmax_unit == RmaxUnit::kMeanEdgeLength;
+  j["rmax_mode"] = is_relative ? "mean_edge_length" : "model_units";
+  j["rmax_factor"] = is_relative ? number(g.options.rmax) : Json(nullptr);
+  j["top_clusters"] = g.options.top_clusters;
+  const std::size_t listed = std::min(g.clusters.size(), kMaxListedClusters);
+  j["num_clusters_omitted"] = g.clusters.size() - listed;
+  Json clusters = Json::array();
+  for (std::size_t i = 0; i < listed; ++i) {
+    const AggregatedGlyph& c = g.clusters[i];
+    clusters.push_back({{"id", c.id},
+                        {"size", c.size},
+                        {"representative_vertex", c.representative_vertex},
+                        {"position", vec3(c.position)},
+                        {"min_quality", number(c.min_quality)},
+                        {"ratio", number(c.ratio)},
+                        {"radius", number(c.radius)},
+                        {"color", cluster_color_hex(c.id)}});
+  }
+  j["clusters"] = std::move(clusters);
+  return j;
+}
+
 Json quality_json(const QualitySummary& q) {
   Json j;
+  // Cell counts first: the numbers CI gates read most (`quality.num_inverted==0`).
+  j["num_inverted"] = q.num_inverted;
+  j["num_degenerate"] = q.num_degenerate;
   j["scaled_jacobian"] = stats_json(q.scaled_jacobian, true);
   j["corner_scaled_jacobian"] = stats_json(q.corner_scaled_jacobian, true);
   j["vertex_quality"] = stats_json(q.vertex_quality, true);
@@ -70,28 +109,143 @@ Json quality_json(const QualitySummary& q) {
   return j;
 }
 
+// CONTRACT.md boundary_error, then extensions (after uv_atlas).
+Json boundary_error_json(const ReportModel& model) {
+  const BoundaryError& e = *model.boundary_error;
+  Json j;
+  j["reference"] = model.reference_input ? Json(model.reference_input->path) : Json(nullptr);
+  j["bbox_diagonal"] = number(e.reference_bbox_diagonal);
+  j["normalization"] = "reference_bbox_diagonal";
+  j["hausdorff"] = {{"mesh_to_reference", number(e.hausdorff_mesh_to_reference)},
+                    {"reference_to_mesh", number(e.hausdorff_reference_to_mesh)},
+                    {"symmetric", number(e.hausdorff_symmetric)},
+                    {"relative", number(e.hausdorff_relative)},
+                    {"relative_mesh_to_reference", number(e.relative_mesh_to_reference)},
+                    {"relative_reference_to_mesh", number(e.relative_reference_to_mesh)}};
+  j["signed"] = stats_json(e.signed_stats, false);
+  j["fraction_outside"] = number(e.fraction_outside);
+  j["fraction_inside"] = number(e.fraction_inside);
+  j["sign_method"] = sign_method_name(e.sign_method);
+  if (model.uv_atlas) {
+    const UvAtlas& a = *model.uv_atlas;
+    j["uv_atlas"] = {{"num_charts", a.num_charts},
+                     {"num_flipped", a.num_flipped},
+                     {"num_overlaps", a.num_overlaps},
+                     {"num_splits", a.num_splits},
+                     {"num_lscm_charts", a.num_lscm_charts},
+                     {"packing_efficiency", number(a.packing_efficiency)}};
+  } else {
+    j["uv_atlas"] = nullptr;
+  }
+  j["num_uncertain_signs"] = e.num_uncertain_signs;
+  j["area_weighted"] = {{"mean", number(e.area_weighted_mean)},
+                        {"mean_abs", number(e.area_weighted_mean_abs)},
+                        {"rms", number(e.area_weighted_rms)}};
+  j["reference_triangles"] = {{"num_read", e.num_reference_triangles},
+                              {"num_removed_by_repair", e.num_repaired_triangles},
+                              {"num_zero_area", e.num_zero_area_triangles}};
+  return j;
+}
+
+// CONTRACT.md overlap, then extensions. Each list stops after
+// kMaxListedOverlap entries (`lists_truncated` says when); counts are always
+// complete.
+constexpr std::size_t kMaxListedOverlap = 1000;
+
+Json overlap_json(const OverlapReport& o) {
+  bool truncated = false;
+  auto listed = [&](std::size_t n) {
+    truncated = truncated || n > kMaxListedOverlap;
+    return std::min(n, kMaxListedOverlap);
+  };
+  auto ids = [&](const std::vector<Index>& v) {
+    return std::vector<Index>(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(listed(v.size())));
+  };
+  Json j;
+  j["num_coincident_vertices"] = o.num_coincident_vertices;
+  Json groups = Json::array();
+  for (std::size_t i = 0; i < listed(o.coincident_groups.size()); ++i)
+    groups.push_back({{"vertices", ids(o.coincident_groups[i].vertices)}, {"position", vec3(o.coincident_groups[i].position)}});
+  j["coincident_groups"] = std::move(groups);
+  j["num_zero_length_edges"] = o.zero_length_edges.size();
+  j["num_inverted_cells"] = o.inverted_cells.size();
+  j["num_non_manifold_faces"] = o.non_manifold_faces.size();
+  j["num_duplicate_cells"] = o.duplicate_cells.size();
+  j["num_intersecting_cells"] = o.num_intersecting_cells;
+  Json pairs = Json::array(), detail = Json::array();
+  for (std::size_t i = 0; i < listed(o.intersecting_pairs.size()); ++i) {
+    const IntersectingPair& p = o.intersecting_pairs[i];
+    pairs.push_back(p.cells);
+    detail.push_back({{"cells", p.cells}, {"inside_vertex", p.inside_vertex == kNoIndex ? Json(nullptr) : Json(p.inside_vertex)}});
+  }
+  j["intersecting_pairs"] = std::move(pairs);
+  Json markers = Json::array();
+  for (std::size_t i = 0; i < listed(o.markers.size()); ++i) {
+    const OverlapMarker& m = o.markers[i];
+    markers.push_back({{"kind", marker_kind_name(m.kind)}, {"position", vec3(m.position)}, {"count", m.count}});
+  }
+  j["markers"] = std::move(markers);
+  // Extensions.
+  j["mode"] = overlap_mode_name(o.mode);
+  j["certified_clean"] = o.certified_clean;
+  j["coincident_tolerance"] = number(o.coincident_tolerance);
+  j["num_intersecting_pairs"] = o.intersecting_pairs.size();
+  j["intersecting_pairs_detail"] = std::move(detail);
+  j["num_degenerate_cells"] = o.degenerate_cells.size();
+  j["num_nonpositive_tet_cells"] = o.nonpositive_tet_cells.size();
+  j["num_same_winding_faces"] = o.same_winding_faces.size();
+  j["num_boundary_self_intersections"] = o.boundary_self_intersections.size();
+  j["num_nested_shells"] = o.num_nested_shells;
+  Json edges = Json::array();
+  for (std::size_t i = 0; i < listed(o.zero_length_edges.size()); ++i) edges.push_back(o.zero_length_edges[i]);
+  j["zero_length_edges"] = std::move(edges);
+  j["inverted_cells"] = ids(o.inverted_cells);
+  j["degenerate_cells"] = ids(o.degenerate_cells);
+  j["nonpositive_tet_cells"] = ids(o.nonpositive_tet_cells);
+  j["duplicate_cells"] = ids(o.duplicate_cells);
+  j["num_flagged_cells"] = o.num_flagged_cells;
+  j["num_candidate_pairs"] = o.num_candidate_pairs;
+  j["certificate_rounds"] = o.certificate_rounds;
+  j["max_listed"] = kMaxListedOverlap;
+  j["lists_truncated"] = truncated;
+  return j;
+}
+
 }  // namespace
 
 std::string report_json(const ReportModel& model) {
   Json j;
   j["schema_version"] = kSchemaVersion;
   j["tool"] = {{"name", "hqview"}, {"version", model.tool_version}};
+  // The papers' headline first (an extension of the contract): #V, #H, min
+  // and mean cell scaled Jacobian, #inverted.
+  j["headline"] = {{"num_vertices", model.mesh_summary.num_vertices},
+                   {"num_hexes", model.mesh_summary.num_hexes},
+                   {"min_scaled_jacobian", number(model.quality.scaled_jacobian.min)},
+                   {"mean_scaled_jacobian", number(model.quality.scaled_jacobian.mean)},
+                   {"num_inverted", model.quality.num_inverted}};
   j["input"] = {
       {"mesh",
        {{"path", model.mesh_input.path}, {"format", model.mesh_input.format}, {"sha256", model.mesh_input.sha256}}},
-      {"reference", nullptr},
+      {"reference", model.reference_input ? Json{{"path", model.reference_input->path},
+                                                 {"format", model.reference_input->format},
+                                                 {"sha256", model.reference_input->sha256}}
+                                           : Json(nullptr)},
       {"compare", nullptr}};
   j["mesh"] = mesh_json(model.mesh_summary);
   j["quality"] = quality_json(model.quality);
   // Stages of later releases; null until computed.
-  j["glyphs"] = nullptr;
-  j["overlap"] = nullptr;
-  j["boundary_error"] = nullptr;
+  j["glyphs"] = model.glyphs ? glyphs_json(*model.glyphs) : Json(nullptr);
+  j["overlap"] = model.overlap ? overlap_json(*model.overlap) : Json(nullptr);
+  j["boundary_error"] = model.boundary_error ? boundary_error_json(model) : Json(nullptr);
   j["compare"] = nullptr;
   Json views = Json::array();
   for (const ViewEntry& v : model.views) views.push_back({{"id", v.id}, {"title", v.title}, {"files", v.files}});
   j["views"] = std::move(views);
-  j["gates"] = {{"passed", true}, {"results", Json::array()}};
+  Json gate_results = Json::array();
+  for (const GateResult& g : model.gates.results)
+    gate_results.push_back({{"rule", g.rule}, {"value", number(g.value)}, {"passed", g.passed}});
+  j["gates"] = {{"passed", model.gates.passed}, {"results", std::move(gate_results)}};
   j["warnings"] = model.warnings;
   // Invalid UTF-8 in names from input is replaced, never thrown on.
   return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";

@@ -7,10 +7,15 @@
 #include <string>
 #include <vector>
 
+#include "hqview/boundary/boundary_error.h"
+#include "hqview/glyph/glyphs.h"
 #include "hqview/mesh/hex_mesh.h"
 #include "hqview/mesh/topology.h"
+#include "hqview/overlap/overlap.h"
+#include "hqview/quality/hex_metric_field.h"
 #include "hqview/quality/quality_field.h"
 #include "hqview/quality/statistics.h"
+#include "hqview/uv/uv_atlas.h"
 
 namespace hq {
 
@@ -52,12 +57,26 @@ struct MetricSummary {
 };
 
 struct QualitySummary {
+  std::int64_t num_inverted = 0;      // cells with scaled Jacobian <= 0
+  std::int64_t num_degenerate = 0;    // cells with Verdict's 1e30 scaled Jacobian
   Statistics scaled_jacobian;         // per hex, Verdict
   Statistics corner_scaled_jacobian;  // 8 per hex
   Statistics vertex_quality;          // per referenced vertex
   std::vector<MetricSummary> metrics;
   std::vector<WorstVertex> worst_vertices;
   std::vector<WorstCell> worst_cells;
+};
+
+// One `--gate` rule's outcome (report.json `gates.results`).
+struct GateResult {
+  std::string rule;
+  double value = 0;  // the report value the rule read
+  bool passed = true;
+};
+
+struct GateSummary {
+  bool passed = true;  // every rule passed (true when there are none)
+  std::vector<GateResult> results;
 };
 
 struct ViewEntry {
@@ -73,11 +92,27 @@ struct ReportModel {
   QualitySummary quality;
   std::vector<ViewEntry> views;
   std::vector<std::string> warnings;  // from the readers and the analysis
+  GateSummary gates;
 
   // Per-element data the CSV and the views are written from.
   HexMesh mesh;
   Topology topology;
   QualityField field;
+  HexMetricField metrics;  // the Verdict metrics per hex (cells.csv columns)
+
+  // With --reference: the reference file, the boundary error and the UV atlas
+  // of the reference (as read) for the UV error map.
+  std::optional<InputFile> reference_input;
+  std::optional<BoundaryError> boundary_error;
+  std::optional<UvAtlas> uv_atlas;
+
+  // Vertex glyphs and their clusters (report.json `glyphs`, the glyph_radius
+  // and cluster columns of vertices.csv); empty when the stage did not run.
+  std::optional<GlyphResult> glyphs;
+
+  // Overlapping vertices and intersecting cells (report.json `overlap`, the
+  // coincident_group and intersecting columns); empty with --no-overlap.
+  std::optional<OverlapReport> overlap;
 };
 
 }  // namespace hq

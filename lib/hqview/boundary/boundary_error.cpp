@@ -1,0 +1,219 @@
+#include "hqview/boundary/boundary_error.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "hqview/boundary/surface_distance.h"
+#include "hqview/boundary/surface_sign.h"
+#include "hqview/core/error.h"
+
+namespace hq {
+namespace {
+
+struct Box {
+  Vec3 lo{INFINITY, INFINITY, INFINITY};
+  Vec3 hi{-INFINITY, -INFINITY, -INFINITY};
+  void add(const Vec3& p) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  bool overlaps(const Box& o) const {
+    return lo.x <= o.hi.x && o.lo.x <= hi.x && lo.y <= o.hi.y && o.lo.y <= hi.y && lo.z <= o.hi.z && o.lo.z <= hi.z;
+  }
+};
+
+std::string box_text(const Box& b) {
+  std::ostringstream s;
+  s.precision(6);
+  s << "[" << b.lo.x << ", " << b.lo.y << ", " << b.lo.z << "] - [" << b.hi.x << ", " << b.hi.y << ", " << b.hi.z
+    << "]";
+  return s.str();
+}
+
+bool has_positive_area(const TriSurface& s) {
+  for (const auto& t : s.triangles)
+    if (squared_norm(cross(s.points[t[1]] - s.points[t[0]], s.points[t[2]] - s.points[t[0]])) > 0.0) return true;
+  return false;
+}
+
+}  // namespace
+
+const char* sign_method_name(SignMethod method) {
+  return method == SignMethod::kPseudoNormal ? "pseudo_normal" : "winding_number";
+}
+
+TriSurface boundary_triangles(const HexMesh& mesh, const Topology& topo) {
+  TriSurface s;
+  s.points = mesh.points;
+  s.triangles.reserve(2 * topo.boundary_faces.size());
+  for (Index f : topo.boundary_faces) {
+    const Quad& q = topo.faces[f];
+    s.triangles.push_back({q[0], q[1], q[2]});
+    s.triangles.push_back({q[0], q[2], q[3]});
+  }
+  return s;
+}
+
+BoundaryError compute_boundary_error(const HexMesh& mesh, const Topology& topo, const TriSurface& reference,
+                                     const BoundaryOptions& options) {
+  BoundaryError out;
+  out.num_reference_triangles = static_cast<Index>(reference.triangles.size());
+  if (!has_positive_area(reference)) throw InputError("the reference surface has no triangle of positive area");
+
+  Box reference_box, mesh_box;
+  std::vector<std::uint8_t> used(reference.points.size(), 0);
+  for (const auto& t : reference.triangles)
+    for (Index v : t) used[v] = 1;
+  for (std::size_t v = 0; v < reference.points.size(); ++v)
+    if (used[v]) reference_box.add(reference.points[v]);
+  for (Index v : topo.boundary_vertices) mesh_box.add(mesh.points[v]);
+  out.reference_bbox_min = reference_box.lo;
+  out.reference_bbox_max = reference_box.hi;
+  out.reference_bbox_diagonal = norm(reference_box.hi - reference_box.lo);
+  if (!topo.boundary_vertices.empty() && !reference_box.overlaps(mesh_box))
+    throw InputError("the bounding boxes of the mesh boundary " + box_text(mesh_box) + " and the reference " +
+                     box_text(reference_box) + " do not overlap (different units or placement?)");
+
+  // Hex boundary -> reference: signed distances.
+  const RepairedSurface repaired = repair_reference(reference);
+  out.num_repaired_triangles = repaired.num_removed_triangles;
+  out.num_zero_area_triangles = repaired.num_zero_area_triangles;
+  if (!has_positive_area(repaired.surface))
+    throw InputError("the reference surface has no triangle of positive area after repair");
+  out.sign_method = repaired.is_closed_manifold ? SignMethod::kPseudoNormal : SignMethod::kWindingNumber;
+
+  std::vector<Vec3> queries;
+  queries.reserve(topo.boundary_vertices.size());
+  for (Index v : topo.boundary_vertices) queries.push_back(mesh.points[v]);
+  const std::vector<ClosestPoint> closest = closest_points(repaired.surface, queries);
+
+  std::vector<int> sign(queries.size(), 0);
+  std::vector<std::uint8_t> uncertain(queries.size(), 0);
+  if (out.sign_method == SignMethod::kPseudoNormal) {
+    const PseudoNormals normals = compute_pseudo_normals(repaired.surface);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, queries.size()), [&](const auto& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+        bool flag = false;
+        sign[i] = pseudo_normal_sign(repaired.surface, normals, queries[i], closest[i], flag);
+        uncertain[i] = flag && closest[i].distance > 0.0;
+      }
+    });
+  } else {
+    const WindingTree tree = build_winding_tree(repaired.surface);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, queries.size()), [&](const auto& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+        const double w = winding_number_for_sign(repaired.surface, tree, queries[i]);
+        sign[i] = w >= 0.5 ? -1 : 1;
+        uncertain[i] = std::abs(w - 0.5) < options.uncertain_winding_band && closest[i].distance > 0.0;
+      }
+    });
+  }
+
+  const std::size_t nv = mesh.points.size();
+  out.vertex_error.assign(nv, NAN);
+  out.sign_uncertain.assign(nv, 0);
+  out.vertex_area.assign(nv, 0.0);
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    const Index v = topo.boundary_vertices[i];
+    out.vertex_error[v] = sign[i] < 0 ? -closest[i].distance : closest[i].distance;
+    out.sign_uncertain[v] = uncertain[i];
+    out.num_uncertain_signs += uncertain[i];
+  }
+  for (Index f : topo.boundary_faces) {
+    const Quad& q = topo.faces[f];
+    const Vec3 &a = mesh.points[q[0]], &b = mesh.points[q[1]], &c = mesh.points[q[2]], &d = mesh.points[q[3]];
+    const double area = 0.5 * norm(cross(c - a, d - b));
+    for (Index v : q) out.vertex_area[v] += 0.25 * area;
+  }
+
+  // Reference -> hex boundary at reference vertices and face centres.
+  const TriSurface hex_surface = boundary_triangles(mesh, topo);
+  std::vector<Vec3> samples;
+  std::vector<Index> sample_vertex;
+  for (std::size_t v = 0; v < reference.points.size(); ++v)
+    if (used[v]) {
+      samples.push_back(reference.points[v]);
+      sample_vertex.push_back(static_cast<Index>(v));
+    }
+  const std::size_t num_vertex_samples = samples.size();
+  for (const auto& t : reference.triangles)
+    samples.push_back((reference.points[t[0]] + reference.points[t[1]] + reference.points[t[2]]) / 3.0);
+  out.reference_vertex_error.assign(reference.points.size(), NAN);
+  out.reference_face_error.assign(reference.triangles.size(), NAN);
+  if (has_positive_area(hex_surface)) {
+    const std::vector<ClosestPoint> back = closest_points(hex_surface, samples);
+    const PseudoNormals hex_normals = compute_pseudo_normals(hex_surface);
+    std::vector<double> signed_back(back.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, back.size()), [&](const auto& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+        bool flag = false;
+        // Outside the hex solid means the hex boundary is inside the reference there: negative.
+        const int side = pseudo_normal_sign(hex_surface, hex_normals, samples[i], back[i], flag);
+        signed_back[i] = side > 0 ? -back[i].distance : back[i].distance;
+      }
+    });
+    for (std::size_t i = 0; i < num_vertex_samples; ++i) out.reference_vertex_error[sample_vertex[i]] = signed_back[i];
+    for (std::size_t t = 0; t < reference.triangles.size(); ++t)
+      out.reference_face_error[t] = signed_back[num_vertex_samples + t];
+    for (const ClosestPoint& c : back)
+      out.hausdorff_reference_to_mesh = std::max(out.hausdorff_reference_to_mesh, c.distance);
+  }
+
+  // Hausdorff and statistics (sequential, fixed order).
+  std::vector<double> errors;
+  errors.reserve(queries.size());
+  double total_area = 0, sum = 0, sum_abs = 0, sum_sq = 0, outside = 0, inside = 0;
+  const double tolerance = options.on_surface_tolerance * out.reference_bbox_diagonal;
+  for (Index v : topo.boundary_vertices) {
+    const double e = out.vertex_error[v], a = out.vertex_area[v];
+    errors.push_back(e);
+    out.hausdorff_mesh_to_reference = std::max(out.hausdorff_mesh_to_reference, std::abs(e));
+    total_area += a;
+    sum += a * e;
+    sum_abs += a * std::abs(e);
+    sum_sq += a * e * e;
+    if (e > tolerance) outside += a;
+    if (e < -tolerance) inside += a;
+  }
+  if (total_area > 0) {
+    out.area_weighted_mean = sum / total_area;
+    out.area_weighted_mean_abs = sum_abs / total_area;
+    out.area_weighted_rms = std::sqrt(sum_sq / total_area);
+    out.fraction_outside = outside / total_area;
+    out.fraction_inside = inside / total_area;
+  }
+  out.hausdorff_symmetric = std::max(out.hausdorff_mesh_to_reference, out.hausdorff_reference_to_mesh);
+  if (out.reference_bbox_diagonal > 0) {
+    out.hausdorff_relative = out.hausdorff_symmetric / out.reference_bbox_diagonal;
+    out.relative_mesh_to_reference = out.hausdorff_mesh_to_reference / out.reference_bbox_diagonal;
+    out.relative_reference_to_mesh = out.hausdorff_reference_to_mesh / out.reference_bbox_diagonal;
+  }
+  StatisticsOptions histogram;
+  const double range = out.hausdorff_mesh_to_reference > 0 ? out.hausdorff_mesh_to_reference : 1.0;
+  histogram.histogram_min = -range;
+  histogram.histogram_max = range;
+  out.signed_stats = compute_statistics(errors, histogram);
+
+  if (out.num_repaired_triangles > 0)
+    out.warnings.push_back("reference: " + std::to_string(out.num_repaired_triangles) +
+                           " degenerate or duplicate triangles removed by the repair");
+  if (out.sign_method == SignMethod::kWindingNumber)
+    out.warnings.push_back(
+        "reference: not a closed manifold surface bounding a volume; boundary error signs come from the generalized "
+        "winding number (" +
+        std::to_string(out.num_uncertain_signs) + " uncertain)");
+  if (out.hausdorff_relative > options.far_warning_relative) {
+    std::ostringstream s;
+    s.precision(3);
+    s << "reference: relative Hausdorff distance " << 100.0 * out.hausdorff_relative
+      << " % of the reference's bounding-box diagonal; is the reference in the same units and placement as the mesh?";
+    out.warnings.push_back(s.str());
+  }
+  return out;
+}
+
+}  // namespace hq

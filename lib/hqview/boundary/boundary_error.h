@@ -1,0 +1,93 @@
+#pragma once
+// Boundary error of a hex mesh against a reference surface (paper goal G4,
+// ALGORITHMS.md §5): the signed distance from every hex boundary vertex to the
+// reference (positive = outside the reference solid), the unsigned distance
+// from the reference (its vertices and face centres) to the hex boundary,
+// Hausdorff distances both ways and area-weighted statistics.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hqview/mesh/hex_mesh.h"
+#include "hqview/mesh/topology.h"
+#include "hqview/quality/statistics.h"
+
+namespace hq {
+
+enum class SignMethod {
+  kPseudoNormal,   // closed manifold reference bounding a volume
+  kWindingNumber,  // open or non-manifold reference
+};
+// "pseudo_normal" / "winding_number", as report.json writes it.
+const char* sign_method_name(SignMethod method);
+
+struct BoundaryOptions {
+  // Winding-number signs with |w - 0.5| below this are counted as uncertain.
+  double uncertain_winding_band = 0.1;
+  // |error| at or below this fraction of the reference's bbox diagonal counts
+  // as "on" the reference: neither outside nor inside.
+  double on_surface_tolerance = 1e-9;
+  // Relative Hausdorff distance above which a warning says the reference
+  // may be misplaced or in other units.
+  double far_warning_relative = 0.1;
+};
+
+struct BoundaryError {
+  SignMethod sign_method = SignMethod::kPseudoNormal;
+  double reference_bbox_diagonal = 0;
+  Vec3 reference_bbox_min, reference_bbox_max;
+  Index num_reference_triangles = 0;  // as read
+  Index num_repaired_triangles = 0;   // removed by the repair (degenerate, duplicate)
+  Index num_zero_area_triangles = 0;  // kept out of the distance structure
+
+  // Per hex vertex (num_vertices): signed distance to the reference in model
+  // units, NaN where the vertex is not on the hex boundary.
+  std::vector<double> vertex_error;
+  // Per hex vertex: a quarter of the incident boundary quads' areas (0 inside).
+  std::vector<double> vertex_area;
+  // Per hex vertex: 1 when the sign of vertex_error is uncertain.
+  std::vector<std::uint8_t> sign_uncertain;
+  Index num_uncertain_signs = 0;
+
+  // Per reference point (as read): distance to the hex boundary, signed with
+  // the same convention as vertex_error (positive where the hex boundary
+  // passes outside the reference, i.e. the reference point lies inside the hex
+  // solid; sign by pseudo-normals of the triangulated hex boundary), NaN for a
+  // point no triangle uses. Per reference triangle: the same at its centroid.
+  // This is the error field of the UV error map.
+  std::vector<double> reference_vertex_error;
+  std::vector<double> reference_face_error;
+
+  double hausdorff_mesh_to_reference = 0;  // max |vertex_error|
+  double hausdorff_reference_to_mesh = 0;  // max over reference vertices and face centres
+  double hausdorff_symmetric = 0;          // the larger of the two
+  double hausdorff_relative = 0;           // symmetric / reference_bbox_diagonal
+  // Each direction over the diagonal; mesh -> reference is the per-vertex
+  // figure of the paper's reference implementation (VTK distance at hex
+  // boundary vertices), blind to reference parts the mesh leaves out.
+  double relative_mesh_to_reference = 0;
+  double relative_reference_to_mesh = 0;
+
+  Statistics signed_stats;            // of vertex_error over boundary vertices, histogram symmetric about 0
+  double area_weighted_mean = 0;      // sum(a_i e_i) / sum(a_i)
+  double area_weighted_mean_abs = 0;  // sum(a_i |e_i|) / sum(a_i)
+  double area_weighted_rms = 0;       // sqrt(sum(a_i e_i^2) / sum(a_i))
+  double fraction_outside = 0;        // boundary area fraction with e > tolerance
+  double fraction_inside = 0;         // boundary area fraction with e < -tolerance
+
+  std::vector<std::string> warnings;
+};
+
+// Computes the boundary error. Throws InputError (without a path; the caller
+// prefixes it) when the reference has no triangle of positive area, or when
+// the bounding boxes of the hex boundary and the reference do not overlap.
+// Deterministic for any thread count (TBB inside).
+BoundaryError compute_boundary_error(const HexMesh& mesh, const Topology& topo, const TriSurface& reference,
+                                     const BoundaryOptions& options = {});
+
+// The hex boundary quads split into two triangles each (diagonal 0-2), with
+// the mesh's points (outward oriented as the topology's boundary faces).
+TriSurface boundary_triangles(const HexMesh& mesh, const Topology& topo);
+
+}  // namespace hq

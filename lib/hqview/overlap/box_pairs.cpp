@@ -1,0 +1,82 @@
+#include "hqview/overlap/box_pairs.h"
+
+#include <CGAL/box_intersection_d.h>
+
+#include <algorithm>
+
+namespace hq::detail {
+namespace {
+
+// A box whose id is its index, so results do not depend on addresses or on
+// CGAL's global id counter.
+struct IndexedBox {
+  using NT = double;
+  using ID = std::size_t;
+  std::array<double, 3> lo, hi;
+  std::size_t index;
+  static int dimension() { return 3; }
+  double min_coord(int d) const { return lo[static_cast<std::size_t>(d)]; }
+  double max_coord(int d) const { return hi[static_cast<std::size_t>(d)]; }
+  std::size_t id() const { return index; }
+};
+
+IndexedBox indexed(const Box3& b, std::size_t i) { return {b.lo, b.hi, i}; }
+
+CGAL::Box_intersection_d::Topology topology_of(BoxContact contact) {
+  return contact == BoxContact::closed ? CGAL::Box_intersection_d::CLOSED : CGAL::Box_intersection_d::HALF_OPEN;
+}
+
+// CGAL's half-open boxes [lo, hi) intersect exactly when the open boxes do;
+// an empty box (lo == hi on an axis) meets nothing.
+bool is_empty(const Box3& b) { return !(b.lo[0] < b.hi[0] && b.lo[1] < b.hi[1] && b.lo[2] < b.hi[2]); }
+
+void normalize(std::vector<std::array<Index, 2>>& pairs) {
+  for (auto& p : pairs)
+    if (p[0] > p[1]) std::swap(p[0], p[1]);
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+}
+
+}  // namespace
+
+std::vector<std::array<Index, 2>> box_self_pairs(const std::vector<Box3>& boxes, BoxContact contact) {
+  std::vector<IndexedBox> items;
+  items.reserve(boxes.size());
+  for (std::size_t i = 0; i < boxes.size(); ++i)
+    if (contact == BoxContact::closed || !is_empty(boxes[i])) items.push_back(indexed(boxes[i], i));
+  std::vector<std::array<Index, 2>> pairs;
+  auto report = [&](const IndexedBox& a, const IndexedBox& b) {
+    pairs.push_back({static_cast<Index>(a.index), static_cast<Index>(b.index)});
+  };
+  // Sequential_tag: faster than Parallel_tag on 2 cores (ALGORITHMS.md §4).
+  CGAL::box_self_intersection_d<CGAL::Sequential_tag>(items.begin(), items.end(), report,
+                                                      CGAL::Box_intersection_d::Box_traits_d<IndexedBox>(), 10,
+                                                      topology_of(contact));
+  normalize(pairs);
+  return pairs;
+}
+
+std::vector<std::array<Index, 2>> box_subset_pairs(const std::vector<Box3>& boxes, const std::vector<Index>& subset,
+                                                   BoxContact contact) {
+  std::vector<IndexedBox> all, some;
+  all.reserve(boxes.size());
+  for (std::size_t i = 0; i < boxes.size(); ++i)
+    if (contact == BoxContact::closed || !is_empty(boxes[i])) all.push_back(indexed(boxes[i], i));
+  for (Index i : subset) {
+    const Box3& b = boxes[static_cast<std::size_t>(i)];
+    if (contact == BoxContact::closed || !is_empty(b)) some.push_back(indexed(b, static_cast<std::size_t>(i)));
+  }
+  std::vector<std::array<Index, 2>> pairs;
+  auto report = [&](const IndexedBox& a, const IndexedBox& b) {
+    pairs.push_back({static_cast<Index>(a.index), static_cast<Index>(b.index)});
+  };
+  // Boxes with equal ids (a subset box and its own copy in `all`) are never
+  // reported; pairs inside the subset come twice and are merged below.
+  CGAL::box_intersection_d<CGAL::Sequential_tag>(some.begin(), some.end(), all.begin(), all.end(), report,
+                                                 CGAL::Box_intersection_d::Box_traits_d<IndexedBox>(), 10,
+                                                 topology_of(contact), CGAL::Box_intersection_d::BIPARTITE);
+  normalize(pairs);
+  return pairs;
+}
+
+}  // namespace hq::detail

@@ -1,0 +1,434 @@
+// Exact predicates of the overlap stages. The one translation unit (with
+// box_pairs.cpp) that includes CGAL's kernel: keep it that way, each such
+// file costs 20+ s and > 1 GB to compile.
+//
+// Every decision below is the sign of a polynomial in the input doubles,
+// taken by CGAL Epick's predicates (orientation, collinear, has_on,
+// do_intersect: static filter, interval filter, exact fallback). Constructed
+// points (face and cell centres, ray ends) are computed once in double and
+// then taken as exact inputs.
+
+#include "hqview/overlap/exact_geometry.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "hqview/overlap/box_pairs.h"
+#include "hqview/overlap/overlap.h"
+
+namespace hq::detail {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using Segment = Kernel::Segment_3;
+using Triangle3 = Kernel::Triangle_3;
+
+Point point(const Vec3& v) { return Point(v.x, v.y, v.z); }
+
+// sign det[b - a, c - a, d - a] (CGAL::orientation): > 0 when d lies on the
+// side of plane (a, b, c) that its right-hand normal points to.
+int orient(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  return static_cast<int>(CGAL::orientation(point(a), point(b), point(c), point(d)));
+}
+
+int orient(const std::vector<Vec3>& p, const Tet& t) {
+  return orient(p[static_cast<std::size_t>(t[0])], p[static_cast<std::size_t>(t[1])], p[static_cast<std::size_t>(t[2])],
+                p[static_cast<std::size_t>(t[3])]);
+}
+
+const Vec3& at(const std::vector<Vec3>& p, Index i) { return p[static_cast<std::size_t>(i)]; }
+
+// ---- Stage G: a vertex of one cell inside the other -----------------------
+
+struct TetData {
+  Tet ids{};
+  int sign = 0;  // orientation; 0 = flat, no interior
+};
+
+bool in_closed_tet(const std::vector<Vec3>& p, const TetData& t, const Vec3& x) {
+  const Vec3 &t0 = at(p, t.ids[0]), &t1 = at(p, t.ids[1]), &t2 = at(p, t.ids[2]), &t3 = at(p, t.ids[3]);
+  return orient(x, t1, t2, t3) * t.sign >= 0 && orient(t0, x, t2, t3) * t.sign >= 0 &&
+         orient(t0, t1, x, t3) * t.sign >= 0 && orient(t0, t1, t2, x) * t.sign >= 0;
+}
+
+// x on the closed triangle (a, b, c), which may be degenerate.
+bool on_triangle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& x) {
+  const Point pa = point(a), pb = point(b), pc = point(c), px = point(x);
+  if (CGAL::collinear(pa, pb, pc))
+    return Segment(pa, pb).has_on(px) || Segment(pb, pc).has_on(px) || Segment(pc, pa).has_on(px);
+  return Triangle3(pa, pb, pc).has_on(px);
+}
+
+std::array<TetData, 24> cell_tet_data(const HexMesh& mesh, const Topology& topo, const TetPoints& tp, Index h) {
+  std::array<TetData, 24> data;
+  const auto tets = hex_tets(mesh, topo, tp, h);
+  for (std::size_t i = 0; i < 24; ++i) {
+    data[i].ids = tets[i];
+    data[i].sign = orient(tp.points, tets[i]);
+  }
+  return data;
+}
+
+// Inside = in one of the cell's closed tets of non-zero volume and on none of
+// its 24 boundary triangles: the interior of its solid.
+bool inside_cell(const std::vector<Vec3>& p, const std::array<TetData, 24>& cell, const Vec3& x) {
+  bool covered = false;
+  for (const TetData& t : cell)
+    if (t.sign != 0 && in_closed_tet(p, t, x)) {
+      covered = true;
+      break;
+    }
+  if (!covered) return false;
+  for (const TetData& t : cell)  // (p_j, p_i, c_f, c_h): boundary triangle (p_i, p_j, c_f)
+    if (on_triangle(at(p, t.ids[1]), at(p, t.ids[0]), at(p, t.ids[2]), x)) return false;
+  return true;
+}
+
+bool strictly_inside_box(const Box3& b, const Vec3& x) {
+  for (int i = 0; i < 3; ++i)
+    if (!(b.lo[static_cast<std::size_t>(i)] < x[i] && x[i] < b.hi[static_cast<std::size_t>(i)])) return false;
+  return true;
+}
+
+// The lowest vertex of hex `from` that is not a vertex of `to` and lies inside it.
+Index vertex_inside(const std::vector<Vec3>& p, const Hex& from, const Hex& to, const Box3& to_box,
+                    const std::array<TetData, 24>& to_tets) {
+  Hex ids = from;
+  std::sort(ids.begin(), ids.end());
+  for (Index v : ids) {
+    if (std::find(to.begin(), to.end(), v) != to.end()) continue;
+    if (strictly_inside_box(to_box, at(p, v)) && inside_cell(p, to_tets, at(p, v))) return v;
+  }
+  return kNoIndex;
+}
+
+Hex sorted(Hex h) {
+  std::sort(h.begin(), h.end());
+  return h;
+}
+
+CellPairTest test_cell_pair(const HexMesh& mesh, const Topology& topo, const TetPoints& tp, Index a, Index b) {
+  const auto& p = tp.points;
+  const Hex& hex_a = mesh.hexes[static_cast<std::size_t>(a)];
+  const Hex& hex_b = mesh.hexes[static_cast<std::size_t>(b)];
+  CellPairTest result;
+  if (sorted(hex_a) == sorted(hex_b)) {  // duplicates: the same solid twice
+    result.intersect = true;
+    result.position = at(p, tp.cell_base + a);
+    return result;
+  }
+  // A vertex inside a cell lies strictly inside its box: most vertices stop here.
+  const Box3 box_a = box_of(p, hex_a.data(), 8), box_b = box_of(p, hex_b.data(), 8);
+  auto has_candidate = [&](const Hex& from, const Hex& to, const Box3& to_box) {
+    for (Index v : from)
+      if (std::find(to.begin(), to.end(), v) == to.end() && strictly_inside_box(to_box, at(p, v))) return true;
+    return false;
+  };
+  if (has_candidate(hex_a, hex_b, box_b))
+    result.inside_vertex = vertex_inside(p, hex_a, hex_b, box_b, cell_tet_data(mesh, topo, tp, b));
+  if (result.inside_vertex == kNoIndex && has_candidate(hex_b, hex_a, box_a))
+    result.inside_vertex = vertex_inside(p, hex_b, hex_a, box_a, cell_tet_data(mesh, topo, tp, a));
+  if (result.inside_vertex == kNoIndex) return result;
+  result.intersect = true;
+  result.position = at(p, result.inside_vertex);
+  return result;
+}
+
+// ---- Stage E: fan triangles meeting improperly ----------------------------
+
+// Which ids of a appear in b, and how many.
+struct SharedCorners {
+  int count = 0;
+  std::array<bool, 3> in_a{}, in_b{};
+};
+
+SharedCorners shared_corners(const Triangle& a, const Triangle& b) {
+  SharedCorners s;
+  for (std::size_t i = 0; i < 3; ++i)
+    for (std::size_t j = 0; j < 3; ++j)
+      if (a[i] == b[j]) {
+        ++s.count;
+        s.in_a[i] = s.in_b[j] = true;
+      }
+  return s;
+}
+
+// All corners of b (but those it shares with a) strictly on one side of a's plane.
+bool strictly_beside(const std::vector<Vec3>& p, const Triangle& a, const Triangle& b,
+                     const std::array<bool, 3>& b_shared, bool& coplanar) {
+  int positive = 0, negative = 0, considered = 0;
+  for (std::size_t j = 0; j < 3; ++j) {
+    if (b_shared[j]) continue;
+    ++considered;
+    const int s = orient(at(p, a[0]), at(p, a[1]), at(p, a[2]), at(p, b[j]));
+    positive += s > 0;
+    negative += s < 0;
+  }
+  coplanar = positive == 0 && negative == 0;
+  return considered > 0 && (positive == considered || negative == considered);
+}
+
+// 2D closed-set tests from exact orientations (CGAL's own 2D do_intersect
+// constructs in interval arithmetic and is several times slower here).
+using Point2 = Kernel::Point_2;
+
+// Flat boundaries (grids, CAD parts) make many orientations exactly zero,
+// which CGAL's static filter hands to its slower interval filter: those
+// whose two products have an exactly zero factor are answered here first.
+int orient2(const Point2& a, const Point2& b, const Point2& c) {
+  const double acx = a.x() - c.x(), bcx = b.x() - c.x(), acy = a.y() - c.y(), bcy = b.y() - c.y();
+  if ((acx == 0.0 || bcy == 0.0) && (acy == 0.0 || bcx == 0.0)) return 0;  // a difference is 0 only for equal inputs
+  return static_cast<int>(CGAL::orientation(a, b, c));
+}
+
+// q on the closed segment [p, r], for collinear p, q, r: coordinate
+// comparisons only, so exact.
+bool between(const Point2& p, const Point2& q, const Point2& r) {
+  return std::min(p.x(), r.x()) <= q.x() && q.x() <= std::max(p.x(), r.x()) && std::min(p.y(), r.y()) <= q.y() &&
+         q.y() <= std::max(p.y(), r.y());
+}
+
+bool segments_meet(const Point2& p1, const Point2& p2, const Point2& q1, const Point2& q2) {
+  const int o1 = orient2(p1, p2, q1), o2 = orient2(p1, p2, q2), o3 = orient2(q1, q2, p1), o4 = orient2(q1, q2, p2);
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+  return (o1 == 0 && between(p1, q1, p2)) || (o2 == 0 && between(p1, q2, p2)) || (o3 == 0 && between(q1, p1, q2)) ||
+         (o4 == 0 && between(q1, p2, q2));
+}
+
+// x in the closed, non-degenerate triangle t.
+bool in_triangle(const std::array<Point2, 3>& t, const Point2& x) {
+  const int s = orient2(t[0], t[1], t[2]);
+  return orient2(t[0], t[1], x) * s >= 0 && orient2(t[1], t[2], x) * s >= 0 && orient2(t[2], t[0], x) * s >= 0;
+}
+
+bool segment_meets_triangle(const Point2& a, const Point2& b, const std::array<Point2, 3>& t) {
+  if (in_triangle(t, a) || in_triangle(t, b)) return true;
+  for (std::size_t i = 0; i < 3; ++i)
+    if (segments_meet(a, b, t[i], t[(i + 1) % 3])) return true;
+  return false;
+}
+
+// The same decision for coplanar triangles, in the coordinate plane onto
+// which their plane projects one to one.
+bool coplanar_triangles_meet_improperly(const std::vector<Vec3>& p, const Triangle& a, const Triangle& b,
+                                        const SharedCorners& shared) {
+  int drop = 0;
+  auto project = [&](Index i) {
+    const Vec3& q = at(p, i);
+    return drop == 0 ? Point2(q.y, q.z) : (drop == 1 ? Point2(q.z, q.x) : Point2(q.x, q.y));
+  };
+  for (drop = 0; drop < 3; ++drop)
+    if (CGAL::orientation(project(a[0]), project(a[1]), project(a[2])) != CGAL::COLLINEAR) break;
+  const std::array<Point2, 3> ta{project(a[0]), project(a[1]), project(a[2])},
+      tb{project(b[0]), project(b[1]), project(b[2])};
+  if (shared.count == 0) {
+    for (std::size_t i = 0; i < 3; ++i)
+      if (segment_meets_triangle(ta[i], ta[(i + 1) % 3], tb)) return true;
+    return in_triangle(ta, tb[0]);  // b inside a
+  }
+  if (shared.count == 1) {
+    auto opposite = [](const std::array<Point2, 3>& t, const std::array<bool, 3>& s) {
+      const std::size_t k = s[0] ? 0 : (s[1] ? 1 : 2);
+      return std::array<Point2, 2>{t[(k + 1) % 3], t[(k + 2) % 3]};
+    };
+    const auto ea = opposite(ta, shared.in_a), eb = opposite(tb, shared.in_b);
+    return segment_meets_triangle(ea[0], ea[1], tb) || segment_meets_triangle(eb[0], eb[1], ta);
+  }
+  // Sharing an edge uv: they overlap iff their third corners lie on the same side of it.
+  Index u = kNoIndex, v = kNoIndex, x = kNoIndex, y = kNoIndex;
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (shared.in_a[i])
+      (u == kNoIndex ? u : v) = a[i];
+    else
+      x = a[i];
+    if (!shared.in_b[i]) y = b[i];
+  }
+  return orient2(project(u), project(v), project(x)) == orient2(project(u), project(v), project(y));
+}
+
+bool triangles_meet_improperly(const std::vector<Vec3>& p, const Triangle& a, const Triangle& b) {
+  const SharedCorners shared = shared_corners(a, b);
+  if (shared.count == 3) return true;  // the same triangle twice
+  // Most candidate pairs lie strictly on one side of each other's plane.
+  bool coplanar = false, unused = false;
+  if (strictly_beside(p, a, b, shared.in_b, coplanar) || strictly_beside(p, b, a, shared.in_a, unused)) return false;
+  if (coplanar) return coplanar_triangles_meet_improperly(p, a, b, shared);
+  auto pt = [&](Index i) { return point(at(p, i)); };
+  const Triangle3 ta(pt(a[0]), pt(a[1]), pt(a[2])), tb(pt(b[0]), pt(b[1]), pt(b[2]));
+  if (shared.count == 0) return CGAL::do_intersect(ta, tb);
+  if (shared.count == 1) {
+    // They meet beyond the shared corner iff the edge opposite it in one
+    // triangle meets the other triangle.
+    auto opposite = [&](const Triangle& t, const std::array<bool, 3>& s) {
+      const std::size_t k = s[0] ? 0 : (s[1] ? 1 : 2);
+      return Segment(pt(t[(k + 1) % 3]), pt(t[(k + 2) % 3]));
+    };
+    return CGAL::do_intersect(opposite(a, shared.in_a), tb) || CGAL::do_intersect(opposite(b, shared.in_b), ta);
+  }
+  return false;  // sharing an edge, not coplanar: they meet only along it
+}
+
+}  // namespace
+
+// ---- Stage C ----------------------------------------------------------------
+
+std::vector<std::uint8_t> classify_cell_orientations(const HexMesh& mesh, const Topology& topo, const TetPoints& tp) {
+  const std::size_t nh = mesh.hexes.size();
+  std::vector<std::uint8_t> out(nh, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nh, 1024), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t h = range.begin(); h != range.end(); ++h) {
+      std::uint8_t flags = 0;
+      const auto tets = hex_tets(mesh, topo, tp, static_cast<Index>(h));
+      for (std::size_t t = 0; t < 24; ++t) {
+        const int s = orient(tp.points, tets[t]);
+        if (s < 0) flags |= kTetNegative;
+        if (s == 0) flags |= kTetFlat;
+      }
+      const Hex& hex = mesh.hexes[h];
+      for (int i = 0; i < 8; ++i) {
+        const auto& f = kCornerFrames[static_cast<std::size_t>(i)];
+        const int s = orient(
+            at(tp.points, hex[static_cast<std::size_t>(i)]), at(tp.points, hex[static_cast<std::size_t>(f[0])]),
+            at(tp.points, hex[static_cast<std::size_t>(f[1])]), at(tp.points, hex[static_cast<std::size_t>(f[2])]));
+        if (s < 0) flags |= kCornerNegative;
+        if (s == 0) flags |= kCornerFlat;
+      }
+      out[h] = flags;
+    }
+  });
+  return out;
+}
+
+// ---- Stage E ----------------------------------------------------------------
+
+std::vector<std::array<Index, 2>> intersecting_quad_pairs(const TetPoints& tp, const std::vector<BoundaryQuad>& quads) {
+  const auto& p = tp.points;
+  std::vector<Triangle> triangles;
+  std::vector<Index> triangle_quad;
+  std::vector<Box3> boxes;
+  triangles.reserve(4 * quads.size());
+  for (std::size_t q = 0; q < quads.size(); ++q)
+    for (int e = 0; e < 4; ++e) {
+      const Triangle t = fan_triangle(tp, quads[q], e);
+      if (CGAL::collinear(point(at(p, t[0])), point(at(p, t[1])), point(at(p, t[2])))) continue;
+      triangles.push_back(t);
+      triangle_quad.push_back(static_cast<Index>(q));
+      boxes.push_back(box_of(p, t.data(), 3));
+    }
+  const auto candidates = box_self_pairs(boxes, BoxContact::closed);
+  std::vector<char> hit(candidates.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i != r.end(); ++i)
+                        hit[i] = triangles_meet_improperly(p, triangles[static_cast<std::size_t>(candidates[i][0])],
+                                                           triangles[static_cast<std::size_t>(candidates[i][1])]);
+                    });
+  std::vector<std::array<Index, 2>> pairs;
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    if (hit[i]) {
+      Index a = triangle_quad[static_cast<std::size_t>(candidates[i][0])],
+            b = triangle_quad[static_cast<std::size_t>(candidates[i][1])];
+      pairs.push_back({std::min(a, b), std::max(a, b)});
+    }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  return pairs;
+}
+
+// ---- Stage F ----------------------------------------------------------------
+
+std::optional<int> winding_behind_quad(const TetPoints& tp, const std::vector<BoundaryQuad>& quads, Index q,
+                                       const Box3& bounds) {
+  const auto& p = tp.points;
+  const BoundaryQuad& quad = quads[static_cast<std::size_t>(q)];
+  const Index cf = tp.face_base + quad.face, ch = tp.cell_base + quad.cell;
+  const Vec3& start = at(p, cf);
+  double extent = 1.0;
+  for (std::size_t a = 0; a < 3; ++a)
+    extent = std::max({extent, bounds.hi[a] - bounds.lo[a], std::abs(bounds.lo[a]), std::abs(bounds.hi[a])});
+  // Barycentric weights of the ray's aim inside a tet (p_j, p_i, c_f, c_h),
+  // tried in turn on each of the fan's 4 tets until a ray meets no edge,
+  // vertex or plane degenerately.
+  static constexpr double kWeights[][3] = {{1, 1, 1}, {1, 1, 2}, {2, 1, 1}, {1, 2, 1}, {3, 2, 1}, {1, 3, 2}, {2, 1, 3}};
+  constexpr int kAttempts = 4 * static_cast<int>(std::size(kWeights));
+  for (int attempt = 0; attempt < kAttempts; ++attempt) {
+    const int e = attempt % 4;
+    const double* w = kWeights[attempt / 4];
+    const Index a = quad.corners[static_cast<std::size_t>((e + 1) % 4)], b = quad.corners[static_cast<std::size_t>(e)];
+    const int sigma = orient(at(p, a), at(p, b), start, at(p, ch));
+    if (sigma == 0) return std::nullopt;
+    const Vec3 aim = (at(p, a) * w[0] + at(p, b) * w[1] + at(p, ch) * w[2]) / (w[0] + w[1] + w[2]);
+    const Vec3 d = aim - start;
+    const double length = norm(d);
+    if (!(length > 0.0)) continue;
+    const Vec3 end = start + d * (4.0 * extent / length);
+    bool outside = false;
+    for (std::size_t i = 0; i < 3; ++i)
+      outside = outside || end[static_cast<int>(i)] < bounds.lo[i] || end[static_cast<int>(i)] > bounds.hi[i];
+    if (!outside || !is_finite(end)) continue;
+    // The ray must leave the face centre into the tet, i.e. into the cell
+    // side, and must not lie in the plane of any triangle of its own fan.
+    if (orient(end, at(p, b), start, at(p, ch)) != sigma || orient(at(p, a), end, start, at(p, ch)) != sigma ||
+        orient(at(p, a), at(p, b), start, end) != sigma)
+      continue;
+    bool degenerate = false;
+    for (int k = 0; k < 4 && !degenerate; ++k) {
+      const Triangle t = fan_triangle(tp, quad, k);
+      degenerate = orient(at(p, t[0]), at(p, t[1]), at(p, t[2]), end) == 0;
+    }
+    if (degenerate) continue;
+
+    Box3 ray_box;
+    for (std::size_t i = 0; i < 3; ++i) {
+      ray_box.lo[i] = std::min(start[static_cast<int>(i)], end[static_cast<int>(i)]);
+      ray_box.hi[i] = std::max(start[static_cast<int>(i)], end[static_cast<int>(i)]);
+    }
+    int winding = 0;
+    for (std::size_t other = 0; other < quads.size() && !degenerate; ++other) {
+      if (static_cast<Index>(other) == q) continue;
+      for (int k = 0; k < 4 && !degenerate; ++k) {
+        const Triangle t = fan_triangle(tp, quads[other], k);
+        if (!boxes_overlap_closed(box_of(p, t.data(), 3), ray_box)) continue;
+        const Vec3 &t0 = at(p, t[0]), &t1 = at(p, t[1]), &t2 = at(p, t[2]);
+        const int s_start = orient(t0, t1, t2, start), s_end = orient(t0, t1, t2, end);
+        if (s_start == 0 && s_end == 0) {
+          degenerate = true;  // the ray lies in the triangle's plane
+          break;
+        }
+        // Touching the plane at an end is no crossing: the start lies on no
+        // other fan (stage E) and the end is outside the bounds.
+        if (s_start == 0 || s_end == 0 || s_start == s_end) continue;
+        const int e1 = orient(start, end, t0, t1), e2 = orient(start, end, t1, t2), e3 = orient(start, end, t2, t0);
+        if ((e1 > 0 && e2 > 0 && e3 > 0) || (e1 < 0 && e2 < 0 && e3 < 0)) {
+          // Leaving the triangle's back (cell) side towards infinity: the
+          // winding number drops by one on the way out.
+          winding += s_start < 0 ? 1 : -1;
+        } else if ((e1 >= 0 && e2 >= 0 && e3 >= 0) || (e1 <= 0 && e2 <= 0 && e3 <= 0)) {
+          degenerate = true;  // through an edge or a vertex
+        }
+      }
+    }
+    if (!degenerate) return winding;
+  }
+  return std::nullopt;
+}
+
+// ---- Stage G ----------------------------------------------------------------
+
+std::vector<CellPairTest> test_cell_pairs(const HexMesh& mesh, const Topology& topo, const TetPoints& tp,
+                                          const std::vector<std::array<Index, 2>>& pairs) {
+  std::vector<CellPairTest> results(pairs.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pairs.size(), 256),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i != r.end(); ++i)
+                        results[i] = test_cell_pair(mesh, topo, tp, pairs[i][0], pairs[i][1]);
+                    });
+  return results;
+}
+
+}  // namespace hq::detail

@@ -1,0 +1,48 @@
+#pragma once
+// The exact geometric parts of the overlap stages (C, E, F, G), implemented
+// with CGAL's Epick predicates in exact_geometry.cpp. Plain data in and out.
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "hqview/core/types.h"
+#include "hqview/core/vec3.h"
+#include "hqview/mesh/hex_mesh.h"
+#include "hqview/mesh/topology.h"
+#include "hqview/overlap/tet_geometry.h"
+
+namespace hq::detail {
+
+// Stage C: CellOrientation flags (overlap.h) of every cell, from the exact
+// orientation of its 24 tets and 8 corner tets. TBB, deterministic.
+std::vector<std::uint8_t> classify_cell_orientations(const HexMesh& mesh, const Topology& topo, const TetPoints& tp);
+
+// Stage E: pairs {i, j} (i <= j, indices into quads) whose fans intersect
+// other than in the vertices and edges they share by id; i == j when a fan
+// folds onto itself. Triangles with collinear corners are skipped (their
+// cells are flagged by stage C). Sorted.
+std::vector<std::array<Index, 2>> intersecting_quad_pairs(const TetPoints& tp, const std::vector<BoundaryQuad>& quads);
+
+// Stage F: the winding number of the closed surface made of all the fans of
+// `quads`, at points just behind the fan of quads[q] (its cell's side),
+// counted exactly along a ray from that fan's centre. `bounds` must contain
+// every fan. nullopt when no ray avoided every degenerate contact (the caller
+// then treats the sheet as not certified). Assumes the quads' tets are
+// positively oriented and no other fan meets the face centre.
+std::optional<int> winding_behind_quad(const TetPoints& tp, const std::vector<BoundaryQuad>& quads, Index q,
+                                       const Box3& bounds);
+
+// Stage G narrow phase, one result per pair (same order): do the cells
+// intersect (overlap.h's definition), and which vertex lies inside the other.
+// TBB, deterministic.
+struct CellPairTest {
+  bool intersect = false;
+  Index inside_vertex = kNoIndex;
+  Vec3 position;  // inside_vertex's position; for duplicate cells, the first one's centre
+};
+std::vector<CellPairTest> test_cell_pairs(const HexMesh& mesh, const Topology& topo, const TetPoints& tp,
+                                          const std::vector<std::array<Index, 2>>& pairs);
+
+}  // namespace hq::detail

@@ -1,0 +1,430 @@
+#include "hqview/overlap/overlap.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <tuple>
+#include <utility>
+
+#include "hqview/core/hex_topology.h"
+#include "hqview/overlap/box_pairs.h"
+#include "hqview/overlap/exact_geometry.h"
+#include "hqview/overlap/tet_geometry.h"
+
+namespace hq {
+namespace {
+
+using detail::BoundaryQuad;
+using detail::Box3;
+using detail::TetPoints;
+
+// E/F passes before the certificate gives up on the unflagged part and hands
+// every cell to G (correct, only slower). Real defects settle in 2-3 passes.
+constexpr int kMaxCertificateRounds = 16;
+// Stage F walks every boundary triangle once per sheet; past this many
+// sheet x quad steps the remaining sheets are simply flagged.
+constexpr double kWindingBudget = 4e8;
+
+std::size_t sz(Index i) { return static_cast<std::size_t>(i); }
+
+// Union-find whose roots are the smallest members, so components come out
+// the same whatever the order of unions.
+struct UnionFind {
+  std::vector<Index> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  Index find(Index x) {
+    while (parent[sz(x)] != x) {
+      parent[sz(x)] = parent[sz(parent[sz(x)])];
+      x = parent[sz(x)];
+    }
+    return x;
+  }
+  void unite(Index a, Index b) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return;
+    if (a < b) std::swap(a, b);
+    parent[sz(a)] = b;
+  }
+};
+
+bool is_referenced(const Topology& topo, std::size_t v) {
+  return topo.vertex_hex_offsets[v] != topo.vertex_hex_offsets[v + 1];
+}
+
+double referenced_bbox_diagonal(const HexMesh& mesh, const Topology& topo) {
+  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+  bool any = false;
+  for (std::size_t v = 0; v < mesh.points.size(); ++v) {
+    if (!is_referenced(topo, v)) continue;
+    const Vec3& p = mesh.points[v];
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    any = true;
+  }
+  return any ? norm(hi - lo) : 0.0;
+}
+
+// ---- A. Coincident vertices ---------------------------------------------------
+
+void find_coincident_vertices(const HexMesh& mesh, const Topology& topo, double tolerance, OverlapReport& r) {
+  const auto& p = mesh.points;
+  std::vector<Index> vertices;
+  for (std::size_t v = 0; v < p.size(); ++v)
+    if (is_referenced(topo, v)) vertices.push_back(static_cast<Index>(v));
+  UnionFind sets(p.size());
+
+  // A grid of cell `tolerance` puts points within the tolerance in
+  // neighbouring cells; below the coordinates' resolution it degenerates to
+  // exact equality.
+  double max_abs = 0.0;
+  for (Index v : vertices)
+    max_abs = std::max({max_abs, std::abs(p[sz(v)].x), std::abs(p[sz(v)].y), std::abs(p[sz(v)].z)});
+  const bool exact = !(tolerance > 0.0) || max_abs / tolerance > 0x1p52;
+  if (exact) {
+    auto less = [&](Index a, Index b) {
+      const Vec3 &pa = p[sz(a)], &pb = p[sz(b)];
+      return std::tie(pa.x, pa.y, pa.z, a) < std::tie(pb.x, pb.y, pb.z, b);
+    };
+    tbb::parallel_sort(vertices.begin(), vertices.end(), less);  // a total order: deterministic
+    for (std::size_t i = 1; i < vertices.size(); ++i)
+      if (p[sz(vertices[i])] == p[sz(vertices[i - 1])]) sets.unite(vertices[i], vertices[i - 1]);
+  } else {
+    using Key = std::array<std::int64_t, 3>;
+    auto key_of = [&](Index v) {
+      const Vec3& q = p[sz(v)];
+      return Key{static_cast<std::int64_t>(std::floor(q.x / tolerance)),
+                 static_cast<std::int64_t>(std::floor(q.y / tolerance)),
+                 static_cast<std::int64_t>(std::floor(q.z / tolerance))};
+    };
+    std::vector<std::pair<Key, Index>> keyed;
+    keyed.reserve(vertices.size());
+    for (Index v : vertices) keyed.push_back({key_of(v), v});
+    std::sort(keyed.begin(), keyed.end());
+    const double tol2 = tolerance * tolerance;
+    for (const auto& [key, v] : keyed)
+      for (std::int64_t dx = -1; dx <= 1; ++dx)
+        for (std::int64_t dy = -1; dy <= 1; ++dy)
+          for (std::int64_t dz = -1; dz <= 1; ++dz) {
+            const Key k{key[0] + dx, key[1] + dy, key[2] + dz};
+            auto it = std::lower_bound(keyed.begin(), keyed.end(),
+                                       std::pair<Key, Index>{k, std::numeric_limits<Index>::min()});
+            for (; it != keyed.end() && it->first == k; ++it)
+              if (it->second > v && squared_norm(p[sz(it->second)] - p[sz(v)]) <= tol2) sets.unite(v, it->second);
+          }
+  }
+
+  // Groups ordered by their smallest vertex (the root), members ascending.
+  std::vector<Index> size(p.size(), 0);
+  std::sort(vertices.begin(), vertices.end());
+  for (Index v : vertices) ++size[sz(sets.find(v))];
+  r.vertex_coincident_group.assign(p.size(), kNoIndex);
+  for (Index v : vertices) {
+    const Index root = sets.find(v);
+    if (size[sz(root)] < 2) continue;
+    if (root == v) {
+      r.vertex_coincident_group[sz(v)] = static_cast<Index>(r.coincident_groups.size());
+      r.coincident_groups.push_back({{}, p[sz(v)]});
+    } else {
+      r.vertex_coincident_group[sz(v)] = r.vertex_coincident_group[sz(root)];
+    }
+    r.coincident_groups[sz(r.vertex_coincident_group[sz(v)])].vertices.push_back(v);
+    ++r.num_coincident_vertices;
+  }
+}
+
+// ---- D. Face map ----------------------------------------------------------------
+
+int local_face(const Topology& topo, Index h, Index face) {
+  for (int k = 0; k < 6; ++k)
+    if (topo.hex_faces[6 * sz(h) + static_cast<std::size_t>(k)] == face) return k;
+  return -1;
+}
+
+Quad local_quad(const HexMesh& mesh, Index h, int k) {
+  const Hex& hex = mesh.hexes[sz(h)];
+  const auto& f = kHexFaces[static_cast<std::size_t>(k)];
+  return {hex[sz(f[0])], hex[sz(f[1])], hex[sz(f[2])], hex[sz(f[3])]};
+}
+
+// b runs through a's cycle backwards: the two cells lie on opposite sides.
+bool opposite_winding(const Quad& a, const Quad& b) {
+  const auto it = std::find(b.begin(), b.end(), a[0]);
+  if (it == b.end()) return false;
+  const auto j = static_cast<std::size_t>(it - b.begin());
+  for (std::size_t m = 1; m < 4; ++m)
+    if (b[(j + 4 - m) % 4] != a[m]) return false;
+  return true;
+}
+
+std::vector<Index> find_same_winding_faces(const HexMesh& mesh, const Topology& topo) {
+  std::vector<Index> faces;
+  for (std::size_t f = 0; f < topo.faces.size(); ++f) {
+    if (topo.num_face_hexes(static_cast<Index>(f)) != 2) continue;
+    // faces[f] is seen from outside the first (lowest) hex; the second must
+    // see the same cycle reversed.
+    const Index h2 = topo.face_hexes[sz(topo.face_hex_offsets[f]) + 1];
+    const Quad q2 = local_quad(mesh, h2, local_face(topo, h2, static_cast<Index>(f)));
+    if (!opposite_winding(topo.faces[f], q2)) faces.push_back(static_cast<Index>(f));
+  }
+  return faces;
+}
+
+std::vector<Index> find_duplicate_cells(const HexMesh& mesh, std::vector<char>& flagged) {
+  const std::size_t nh = mesh.hexes.size();
+  std::vector<Hex> keys(nh);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nh, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t h = r.begin(); h != r.end(); ++h) {
+      keys[h] = mesh.hexes[h];
+      std::sort(keys[h].begin(), keys[h].end());
+    }
+  });
+  std::vector<Index> order(nh);
+  std::iota(order.begin(), order.end(), 0);
+  // A total order (ties by id): deterministic for any thread count.
+  tbb::parallel_sort(order.begin(), order.end(),
+                     [&](Index a, Index b) { return std::tie(keys[sz(a)], a) < std::tie(keys[sz(b)], b); });
+  std::vector<Index> duplicates;
+  for (std::size_t i = 1; i < nh; ++i)
+    if (keys[sz(order[i])] == keys[sz(order[i - 1])]) {
+      duplicates.push_back(order[i]);
+      flagged[sz(order[i])] = flagged[sz(order[i - 1])] = 1;
+    }
+  std::sort(duplicates.begin(), duplicates.end());
+  return duplicates;
+}
+
+// ---- E/F. The boundary of the unflagged cells -------------------------------------
+
+std::vector<BoundaryQuad> boundary_of_unflagged(const HexMesh& mesh, const Topology& topo,
+                                                const std::vector<char>& flagged) {
+  std::vector<BoundaryQuad> quads;
+  for (std::size_t f = 0; f < topo.faces.size(); ++f) {
+    Index owner = kNoIndex;
+    int count = 0;
+    for (Index i = topo.face_hex_offsets[f]; i < topo.face_hex_offsets[f + 1]; ++i) {
+      const Index h = topo.face_hexes[sz(i)];
+      if (!flagged[sz(h)]) {
+        owner = h;
+        ++count;
+      }
+    }
+    if (count != 1) continue;
+    const int k = local_face(topo, owner, static_cast<Index>(f));
+    quads.push_back({static_cast<Index>(f), owner, local_quad(mesh, owner, k)});
+  }
+  return quads;
+}
+
+// Sheets: quads connected across edges that exactly two quads share (a
+// consistently oriented piece of surface). Returns the sheet of every quad;
+// sheets are numbered by their first quad.
+std::vector<Index> find_sheets(const std::vector<BoundaryQuad>& quads, Index& num_sheets) {
+  std::vector<std::tuple<Index, Index, Index>> edges;
+  edges.reserve(4 * quads.size());
+  for (std::size_t q = 0; q < quads.size(); ++q)
+    for (std::size_t e = 0; e < 4; ++e) {
+      const Index a = quads[q].corners[e], b = quads[q].corners[(e + 1) % 4];
+      edges.emplace_back(std::min(a, b), std::max(a, b), static_cast<Index>(q));
+    }
+  std::sort(edges.begin(), edges.end());
+  UnionFind sets(quads.size());
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && std::get<0>(edges[j]) == std::get<0>(edges[i]) &&
+           std::get<1>(edges[j]) == std::get<1>(edges[i]))
+      ++j;
+    if (j - i == 2) sets.unite(std::get<2>(edges[i]), std::get<2>(edges[i + 1]));
+    i = j;
+  }
+  std::vector<Index> sheet(quads.size(), kNoIndex);
+  num_sheets = 0;
+  for (std::size_t q = 0; q < quads.size(); ++q) {
+    const Index root = sets.find(static_cast<Index>(q));
+    sheet[q] = root == static_cast<Index>(q) ? num_sheets++ : sheet[sz(root)];
+  }
+  return sheet;
+}
+
+Box3 bounds_of(const TetPoints& tp, const std::vector<BoundaryQuad>& quads) {
+  Box3 b;
+  b.lo = {INFINITY, INFINITY, INFINITY};
+  b.hi = {-INFINITY, -INFINITY, -INFINITY};
+  for (const BoundaryQuad& q : quads)
+    for (int e = 0; e < 4; ++e) {
+      const auto t = detail::fan_triangle(tp, q, e);
+      for (Index id : t)
+        for (int a = 0; a < 3; ++a) {
+          b.lo[sz(a)] = std::min(b.lo[sz(a)], tp.points[sz(id)][a]);
+          b.hi[sz(a)] = std::max(b.hi[sz(a)], tp.points[sz(id)][a]);
+        }
+    }
+  return b;
+}
+
+struct BoundaryCheck {
+  std::vector<std::array<Index, 2>> intersecting;  // indices into quads
+  std::vector<Index> bad_sheet_quads;              // quads of sheets whose winding is not 1
+  Index num_bad_sheets = 0;
+};
+
+BoundaryCheck check_boundary(const TetPoints& tp, const std::vector<BoundaryQuad>& quads) {
+  BoundaryCheck check;
+  check.intersecting = detail::intersecting_quad_pairs(tp, quads);
+  if (quads.empty()) return check;
+  Index num_sheets = 0;
+  const std::vector<Index> sheet = find_sheets(quads, num_sheets);
+  std::vector<Index> first(sz(num_sheets), kNoIndex);
+  for (std::size_t q = quads.size(); q-- > 0;) first[sz(sheet[q])] = static_cast<Index>(q);
+  const Box3 bounds = bounds_of(tp, quads);
+  const auto affordable = static_cast<std::size_t>(std::max(1.0, kWindingBudget / static_cast<double>(quads.size())));
+  std::vector<char> bad(sz(num_sheets), 1);  // beyond the budget: not certified
+  const std::size_t computed = std::min<std::size_t>(affordable, sz(num_sheets));
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, computed, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t s = r.begin(); s != r.end(); ++s) {
+      const auto w = detail::winding_behind_quad(tp, quads, first[s], bounds);
+      bad[s] = !(w && *w == 1);
+    }
+  });
+  for (std::size_t q = 0; q < quads.size(); ++q)
+    if (bad[sz(sheet[q])]) check.bad_sheet_quads.push_back(static_cast<Index>(q));
+  check.num_bad_sheets = static_cast<Index>(std::count(bad.begin(), bad.end(), 1));
+  return check;
+}
+
+// ---- Markers ------------------------------------------------------------------------
+
+void build_markers(OverlapReport& r) {
+  for (const CoincidentGroup& g : r.coincident_groups)
+    r.markers.push_back({MarkerKind::coincident, g.position, static_cast<Index>(g.vertices.size())});
+  // Pairs pointing at the same position share one marker (its arrows are
+  // spread around it), in the order of their first pair.
+  std::vector<Index> order(r.intersecting_pairs.size());
+  std::iota(order.begin(), order.end(), 0);
+  auto key = [&](Index i) {
+    const Vec3& q = r.intersecting_pairs[sz(i)].position;
+    return std::make_tuple(q.x, q.y, q.z, i);
+  };
+  std::sort(order.begin(), order.end(), [&](Index a, Index b) { return key(a) < key(b); });
+  std::vector<std::pair<Index, Index>> groups;  // (first pair, count)
+  for (std::size_t i = 0; i < order.size();) {
+    std::size_t j = i;
+    while (j < order.size() &&
+           r.intersecting_pairs[sz(order[j])].position == r.intersecting_pairs[sz(order[i])].position)
+      ++j;
+    groups.push_back({order[i], static_cast<Index>(j - i)});
+    i = j;
+  }
+  std::sort(groups.begin(), groups.end());
+  for (const auto& [first, count] : groups)
+    r.markers.push_back({MarkerKind::intersection, r.intersecting_pairs[sz(first)].position, count});
+}
+
+}  // namespace
+
+OverlapReport check_overlap(const HexMesh& mesh, const Topology& topo, const OverlapOptions& options) {
+  OverlapReport r;
+  r.mode = options.mode;
+  const std::size_t nh = mesh.hexes.size();
+  const auto& p = mesh.points;
+  r.coincident_tolerance =
+      options.coincident_eps > 0.0 ? options.coincident_eps * referenced_bbox_diagonal(mesh, topo) : 0.0;
+  std::vector<char> flagged(nh, 0);
+  auto flag_vertex_cells = [&](Index v) {
+    for (Index i = topo.vertex_hex_offsets[sz(v)]; i < topo.vertex_hex_offsets[sz(v) + 1]; ++i)
+      flagged[sz(topo.vertex_hexes[sz(i)])] = 1;
+  };
+
+  // A, B.
+  find_coincident_vertices(mesh, topo, r.coincident_tolerance, r);
+  for (const CoincidentGroup& g : r.coincident_groups)
+    for (Index v : g.vertices) flag_vertex_cells(v);
+  const double tol2 = r.coincident_tolerance * r.coincident_tolerance;
+  for (const Edge& e : topo.edges) {
+    const Vec3 d = p[sz(e[1])] - p[sz(e[0])];
+    if (tol2 > 0.0 ? squared_norm(d) <= tol2 : d == Vec3{}) {
+      r.zero_length_edges.push_back(e);
+      flag_vertex_cells(e[0]);  // every cell of the edge holds e[0]
+    }
+  }
+
+  // C.
+  const TetPoints tp = detail::build_tet_points(mesh, topo);
+  r.cell_orientation = detail::classify_cell_orientations(mesh, topo, tp);
+  for (std::size_t h = 0; h < nh; ++h) {
+    const std::uint8_t f = r.cell_orientation[h];
+    if (f & kCornerNegative)
+      r.inverted_cells.push_back(static_cast<Index>(h));
+    else if (f & kCornerFlat)
+      r.degenerate_cells.push_back(static_cast<Index>(h));
+    if (f & (kTetNegative | kTetFlat)) r.nonpositive_tet_cells.push_back(static_cast<Index>(h));
+    if (f != 0) flagged[h] = 1;
+  }
+
+  // D.
+  r.non_manifold_faces = topo.non_manifold_faces;
+  r.same_winding_faces = find_same_winding_faces(mesh, topo);
+  for (const auto* faces : {&r.non_manifold_faces, &r.same_winding_faces})
+    for (Index f : *faces)
+      for (Index i = topo.face_hex_offsets[sz(f)]; i < topo.face_hex_offsets[sz(f) + 1]; ++i)
+        flagged[sz(topo.face_hexes[sz(i)])] = 1;
+  r.duplicate_cells = find_duplicate_cells(mesh, flagged);
+  const bool clean_a_to_d = std::find(flagged.begin(), flagged.end(), 1) == flagged.end();
+
+  // E, F on the boundary of the unflagged cells K', until K' is certified.
+  for (int round = 0;; ++round) {
+    const std::vector<BoundaryQuad> quads = boundary_of_unflagged(mesh, topo, flagged);
+    const BoundaryCheck check = check_boundary(tp, quads);
+    r.certificate_rounds = round + 1;
+    if (round == 0) {
+      for (const auto& pair : check.intersecting) {
+        const Index a = quads[sz(pair[0])].face, b = quads[sz(pair[1])].face;
+        r.boundary_self_intersections.push_back({std::min(a, b), std::max(a, b)});
+      }
+      std::sort(r.boundary_self_intersections.begin(), r.boundary_self_intersections.end());
+      r.num_nested_shells = check.num_bad_sheets;
+    }
+    bool changed = false;
+    for (const auto& pair : check.intersecting)
+      for (Index q : pair) changed |= !std::exchange(flagged[sz(quads[sz(q)].cell)], 1);
+    for (Index q : check.bad_sheet_quads) changed |= !std::exchange(flagged[sz(quads[sz(q)].cell)], 1);
+    if (!changed || options.mode == OverlapMode::exhaustive) break;
+    if (round + 1 >= kMaxCertificateRounds) {
+      std::fill(flagged.begin(), flagged.end(), 1);
+      break;
+    }
+  }
+  r.certified_clean = clean_a_to_d && r.boundary_self_intersections.empty() && r.num_nested_shells == 0;
+
+  // G.
+  std::vector<Index> flagged_cells;
+  for (std::size_t h = 0; h < nh; ++h)
+    if (flagged[h]) flagged_cells.push_back(static_cast<Index>(h));
+  r.num_flagged_cells = static_cast<Index>(flagged_cells.size());
+  std::vector<std::array<Index, 2>> candidates;
+  if (options.mode == OverlapMode::exhaustive || !flagged_cells.empty()) {
+    std::vector<Box3> boxes(nh);
+    for (std::size_t h = 0; h < nh; ++h) boxes[h] = detail::box_of(p, mesh.hexes[h].data(), 8);
+    candidates = options.mode == OverlapMode::exhaustive
+                     ? detail::box_self_pairs(boxes, detail::BoxContact::open)
+                     : detail::box_subset_pairs(boxes, flagged_cells, detail::BoxContact::open);
+  }
+  r.num_candidate_pairs = static_cast<std::int64_t>(candidates.size());
+  const auto tests = detail::test_cell_pairs(mesh, topo, tp, candidates);
+  r.cell_intersecting.assign(nh, 0);
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    if (!tests[i].intersect) continue;
+    r.intersecting_pairs.push_back({candidates[i], tests[i].inside_vertex, tests[i].position});
+    r.cell_intersecting[sz(candidates[i][0])] = r.cell_intersecting[sz(candidates[i][1])] = 1;
+  }
+  r.num_intersecting_cells = static_cast<Index>(std::count(r.cell_intersecting.begin(), r.cell_intersecting.end(), 1));
+  build_markers(r);
+  return r;
+}
+
+}  // namespace hq

@@ -1,0 +1,154 @@
+#pragma once
+// Overlapping vertices and intersecting cells (paper goal G2; ALGORITHMS.md §4).
+//
+// Geometry every stage shares (the "24-tet solid" of a hex):
+//   face centre  c_f = ((p_a + p_b) + (p_c + p_d)) * 0.25, a < b < c < d the
+//                face's sorted vertex ids, so both cells of a face get the
+//                same double point;
+//   cell centre  c_h = (((p0 + p1) + (p2 + p3)) + ((p4 + p5) + (p6 + p7))) * 0.125
+//                in corner order;
+//   24 tets      for each face (kHexFaces, outward) and each of its edges i -> j,
+//                the tet (p_j, p_i, c_f, c_h): positively oriented in a valid hex.
+// The solid of a hex is the union of its 24 closed tets; a point is inside
+// the cell when it lies in one of those tets with non-zero volume and on
+// none of its 24 boundary triangles.
+//
+// Two distinct cells intersect when a vertex of one that is not a vertex of
+// the other lies inside the other (the paper's test of every vertex against
+// every cell, made exact and fast), or when both have the same 8 vertices
+// (duplicates). Cells that only touch (a shared face, edge or vertex, a
+// vertex on another cell's face, two coincident vertices) do not intersect.
+// Every decision is exact: CGAL Epick predicates on the double points above.
+//
+// Overlaps without a penetrating vertex (an edge crossing a face) are not
+// listed as pairs, but never pass unnoticed: a mesh whose cells overlap in
+// any way fails the certificate (C-F name the cells).
+//
+// Stages (ALGORITHMS.md §4):
+//   A coincident vertices   B zero-length edges   C exact orientation of the
+//   8 corner tets (inverted cells) and of the 24 tets (the certificate)
+//   D face map: non-manifold faces, duplicate cells, interior faces not seen
+//   with opposite winding   E boundary self-intersections   F shell nesting
+//   (exact winding number)   G pair tests on candidate pairs from cell boxes.
+// Certificate (default): G runs only on pairs with a flagged cell. Cells
+// flagged by A-D are removed; E and F are run on the boundary of what is left
+// (K'), flagging more cells until that boundary is embedded and unnested.
+// Then K' is injective (Lipman, arXiv 1310.0955: positively oriented cells
+// with an embedded boundary do not overlap), so no vertex of a K' cell lies
+// inside another K' cell, and G on the pairs with a flagged cell finds
+// exactly the pairs an all-pairs test finds.
+// Exhaustive: G runs on every pair of cells whose boxes overlap.
+
+#include <array>
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "hqview/core/types.h"
+#include "hqview/core/vec3.h"
+#include "hqview/mesh/hex_mesh.h"
+#include "hqview/mesh/topology.h"
+
+namespace hq {
+
+enum class OverlapMode { certificate, exhaustive };
+
+inline std::string_view overlap_mode_name(OverlapMode mode) {
+  return mode == OverlapMode::certificate ? "certificate" : "exhaustive";
+}
+
+struct OverlapOptions {
+  OverlapMode mode = OverlapMode::certificate;
+  // Tolerance of stages A and B, relative to the bounding-box diagonal of the
+  // referenced vertices: two vertices coincide when |p - q| <= eps * diagonal,
+  // an edge has zero length when its length is <= eps * diagonal. 0 = exact
+  // equality.
+  double coincident_eps = 0.0;
+};
+
+// Vertices that occupy (within the tolerance) one position. Groups are the
+// connected components of the "coincide" relation.
+struct CoincidentGroup {
+  std::vector<Index> vertices;  // ascending, at least 2
+  Vec3 position;                // of the lowest-numbered vertex
+};
+
+struct IntersectingPair {
+  std::array<Index, 2> cells{};  // cells[0] < cells[1]
+  // The lowest vertex of cells[0] inside cells[1], else the lowest of
+  // cells[1] inside cells[0]; kNoIndex for duplicate cells.
+  Index inside_vertex = kNoIndex;
+  Vec3 position;  // where an arrow points: inside_vertex, else the cells' centre
+};
+
+enum class MarkerKind { coincident, intersection };
+
+inline std::string_view marker_kind_name(MarkerKind kind) {
+  return kind == MarkerKind::coincident ? "coincident" : "intersection";
+}
+
+// One arrow target: `count` findings at the same position.
+struct OverlapMarker {
+  MarkerKind kind = MarkerKind::coincident;
+  Vec3 position;
+  Index count = 0;
+};
+
+// Stage C's verdict on one cell (bit flags).
+enum CellOrientation : std::uint8_t {
+  kTetNegative = 1,     // one of the 24 tets is negatively oriented
+  kTetFlat = 2,         // one of the 24 tets has zero volume
+  kCornerNegative = 4,  // one of the 8 corner tets (corner frames) is negative
+  kCornerFlat = 8,      // one of the 8 corner tets has zero volume
+};
+
+struct OverlapReport {
+  OverlapMode mode = OverlapMode::certificate;
+  double coincident_tolerance = 0.0;  // absolute (eps * diagonal)
+
+  // A. Groups ordered by their lowest vertex id; per vertex, its group or kNoIndex.
+  std::vector<CoincidentGroup> coincident_groups;
+  std::vector<Index> vertex_coincident_group;  // num_vertices
+  Index num_coincident_vertices = 0;           // vertices in some group
+  // B. Unique edges (a < b) of zero length, ascending.
+  std::vector<Edge> zero_length_edges;
+  // C. Per cell, CellOrientation flags. Inverted: a corner tet is negatively
+  // oriented (the exact sign of a corner Jacobian); degenerate: not inverted,
+  // a corner tet is flat. Cells whose 24 tets are not all positive are not
+  // certified (thin twisted cells can be valid and still fail this). Ascending ids.
+  std::vector<std::uint8_t> cell_orientation;
+  std::vector<Index> inverted_cells;
+  std::vector<Index> degenerate_cells;
+  std::vector<Index> nonpositive_tet_cells;
+  // D. Face ids ascending; duplicate cells: cells whose 8 vertex ids (as a
+  // set) repeat those of a lower-numbered cell.
+  std::vector<Index> non_manifold_faces;
+  std::vector<Index> same_winding_faces;  // 2 cells, not opposite windings
+  std::vector<Index> duplicate_cells;
+  // E. Pairs of boundary faces (face ids, ascending) whose 4-triangle fans
+  // intersect other than in shared vertices or edges, on the first boundary
+  // checked (the boundary of the cells A-D left unflagged; the mesh boundary
+  // when they flag nothing).
+  std::vector<std::array<Index, 2>> boundary_self_intersections;
+  // F. Boundary sheets of that first boundary whose cell side has a winding
+  // number other than 1 (a shell inside another, or overlapping shells).
+  Index num_nested_shells = 0;
+  // G.
+  std::vector<IntersectingPair> intersecting_pairs;  // sorted by cells
+  std::vector<char> cell_intersecting;               // num_hexes, 0/1
+  Index num_intersecting_cells = 0;
+  std::vector<OverlapMarker> markers;  // coincident groups, then intersections
+
+  // The certificate: A-F found nothing, so no cells intersect.
+  bool certified_clean = false;
+  Index num_flagged_cells = 0;           // cells G paired with every cell near them
+  std::int64_t num_candidate_pairs = 0;  // cell pairs G tested
+  int certificate_rounds = 0;            // E/F passes until the unflagged part was certified
+};
+
+// Runs stages A-G. mesh and topo must belong together (build_topology(mesh)).
+// Deterministic: every list is sorted, and the result is the same for any
+// number of TBB threads. Throws nothing but std::bad_alloc.
+OverlapReport check_overlap(const HexMesh& mesh, const Topology& topo, const OverlapOptions& options);
+
+}  // namespace hq

@@ -1,0 +1,174 @@
+#include "hqview/pipeline/gates.h"
+
+#include <charconv>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "hqview/core/error.h"
+
+namespace hq {
+namespace {
+
+std::string_view trim(std::string_view s) {
+  const auto first = s.find_first_not_of(" \t");
+  if (first == std::string_view::npos) return {};
+  const auto last = s.find_last_not_of(" \t");
+  return s.substr(first, last - first + 1);
+}
+
+bool is_key_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+}
+
+[[noreturn]] void bad_rule(std::string_view rule, const std::string& what) {
+  throw UsageError("--gate '" + std::string(rule) + "': " + what +
+                   " (expected PATH OP NUMBER, e.g. quality.scaled_jacobian.min>=0.2; OP is one of <= >= == != < >)");
+}
+
+std::vector<std::string> parse_path(std::string_view rule, std::string_view path) {
+  if (path.empty()) bad_rule(rule, "no report.json key before the operator");
+  std::vector<std::string> keys;
+  std::size_t start = 0;
+  while (true) {
+    const auto dot = path.find('.', start);
+    const std::string_view key =
+        path.substr(start, dot == std::string_view::npos ? std::string_view::npos : dot - start);
+    if (key.empty()) bad_rule(rule, "empty key in '" + std::string(path) + "'");
+    for (char c : key)
+      if (!is_key_char(c))
+        bad_rule(rule, "unexpected character '" + std::string(1, c) + "' in '" + std::string(path) + "'");
+    keys.emplace_back(key);
+    if (dot == std::string_view::npos) break;
+    start = dot + 1;
+  }
+  return keys;
+}
+
+// The right-hand side. Only numbers for now; `diff` will add baseline-relative
+// operands here.
+double parse_operand(std::string_view rule, std::string_view operand) {
+  if (operand.rfind("baseline", 0) == 0)
+    throw UsageError("--gate '" + std::string(rule) + "': comparisons with a baseline belong to `hqview diff`; " +
+                     "`analyze` compares with numbers");
+  std::string_view digits = operand;
+  if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
+  double value = 0;
+  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  if (digits.empty() || ec != std::errc() || end != digits.data() + digits.size() || !std::isfinite(value))
+    bad_rule(rule, "'" + std::string(operand) + "' is not a number");
+  return value;
+}
+
+std::string joined(const std::vector<std::string>& keys, std::size_t count) {
+  std::string s;
+  for (std::size_t i = 0; i < count; ++i) s += (i ? "." : "") + keys[i];
+  return s;
+}
+
+// The keys available under `node`, for the error message.
+std::string available_keys(const nlohmann::json& node) {
+  if (node.is_array())
+    return "an array of " + std::to_string(node.size()) + ", index it with 0.." + std::to_string(node.size() - 1);
+  if (!node.is_object()) return "a value with no keys";
+  std::string list;
+  int shown = 0;
+  for (const auto& [key, value] : node.items()) {
+    if (shown++ == 24) {
+      list += ", ...";
+      break;
+    }
+    list += (list.empty() ? "" : ", ") + key;
+  }
+  return "keys: " + list;
+}
+
+double lookup(const GateRule& rule, const nlohmann::json& report) {
+  const nlohmann::json* node = &report;
+  for (std::size_t i = 0; i < rule.path.size(); ++i) {
+    const std::string& key = rule.path[i];
+    const std::string where = i == 0 ? "report.json" : "'" + joined(rule.path, i) + "'";
+    const nlohmann::json* next = nullptr;
+    if (node->is_object()) {
+      if (const auto it = node->find(key); it != node->end()) next = &*it;
+    } else if (node->is_array()) {
+      std::size_t index = 0;
+      const auto [end, ec] = std::from_chars(key.data(), key.data() + key.size(), index);
+      if (ec == std::errc() && end == key.data() + key.size() && index < node->size()) next = &(*node)[index];
+    }
+    if (!next) {
+      const bool metric = i == 2 && rule.path[0] == "quality" && rule.path[1] == "metrics";
+      throw UsageError("--gate '" + rule.text + "': report.json has no '" + key + "' under " + where + " (" +
+                       available_keys(*node) + ")" + (metric ? "; was it left out by --metrics?" : ""));
+    }
+    node = next;
+  }
+  if (node->is_number()) return node->get<double>();
+  const std::string type = node->type_name();
+  const std::string what =
+      node->is_null() ? "null (not computed for this input)" : (type[0] == 'a' || type[0] == 'o' ? "an " : "a ") + type;
+  throw UsageError("--gate '" + rule.text + "': '" + joined(rule.path, rule.path.size()) + "' is " + what +
+                   ", not a number");
+}
+
+}  // namespace
+
+GateRule parse_gate_rule(std::string_view text) {
+  const std::string_view rule = trim(text);
+  const auto op_at = rule.find_first_of("<>=!");
+  if (op_at == std::string_view::npos) bad_rule(rule, "no comparison operator");
+  GateRule g;
+  g.text = std::string(rule);
+  g.path = parse_path(rule, trim(rule.substr(0, op_at)));
+  std::size_t op_end = op_at;
+  while (op_end < rule.size() && std::string_view("<>=!").find(rule[op_end]) != std::string_view::npos) ++op_end;
+  const std::string_view op = rule.substr(op_at, op_end - op_at);
+  if (op == "<=")
+    g.op = GateOp::less_equal;
+  else if (op == ">=")
+    g.op = GateOp::greater_equal;
+  else if (op == "==")
+    g.op = GateOp::equal;
+  else if (op == "!=")
+    g.op = GateOp::not_equal;
+  else if (op == "<")
+    g.op = GateOp::less;
+  else if (op == ">")
+    g.op = GateOp::greater;
+  else
+    bad_rule(rule, "'" + std::string(op) + "' is not an operator");
+  g.threshold = parse_operand(rule, trim(rule.substr(op_end)));
+  return g;
+}
+
+bool gate_holds(double value, GateOp op, double threshold) {
+  switch (op) {
+    case GateOp::less_equal:
+      return value <= threshold;
+    case GateOp::greater_equal:
+      return value >= threshold;
+    case GateOp::equal:
+      return value == threshold;
+    case GateOp::not_equal:
+      return value != threshold;
+    case GateOp::less:
+      return value < threshold;
+    case GateOp::greater:
+      return value > threshold;
+  }
+  return false;
+}
+
+GateSummary evaluate_gates(const std::vector<GateRule>& rules, std::string_view report_json_text) {
+  GateSummary summary;
+  if (rules.empty()) return summary;
+  const nlohmann::json report = nlohmann::json::parse(report_json_text);
+  for (const GateRule& rule : rules) {
+    const double value = lookup(rule, report);
+    const bool passed = gate_holds(value, rule.op, rule.threshold);
+    summary.results.push_back({rule.text, value, passed});
+    summary.passed = summary.passed && passed;
+  }
+  return summary;
+}
+
+}  // namespace hq

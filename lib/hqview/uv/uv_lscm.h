@@ -1,0 +1,21 @@
+#pragma once
+// Least-squares conformal layout of one chart (CGAL LSCM_parameterizer_3 with
+// Eigen; CGAL stays inside uv_lscm.cpp).
+
+#include <span>
+#include <vector>
+
+#include "hqview/core/types.h"
+#include "hqview/mesh/hex_mesh.h"
+#include "hqview/uv/uv_validation.h"
+
+namespace hq {
+
+// Lays out the triangles `chart` of `surface` with LSCM when they form a
+// topological disk (one border, Euler characteristic 1, a valid polygon
+// mesh); `uvs` gets 3 corners per chart triangle, in chart order, scaled to
+// the chart's 3D area. Returns false (uvs untouched) when the chart is not a
+// disk or the solver fails. The caller validates the result (flips, overlaps).
+bool lscm_chart_layout(const TriSurface& surface, std::span<const Index> chart, std::vector<Uv>& uvs);
+
+}  // namespace hq

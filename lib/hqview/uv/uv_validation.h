@@ -1,0 +1,29 @@
+#pragma once
+// Exact 2D checks of UV triangles (CGAL's filtered exact predicates; CGAL
+// stays inside uv_validation.cpp).
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "hqview/core/types.h"
+
+namespace hq {
+
+using Uv = std::array<double, 2>;
+
+// 1 for each triangle (corners uvs[3t], uvs[3t+1], uvs[3t+2]) whose exact
+// orientation is not strictly counter-clockwise (flipped or degenerate).
+std::vector<std::uint8_t> uv_flipped_triangles(std::span<const Uv> uvs);
+
+// Pairs (a < b) of triangles whose interiors intersect (exact: sharing a
+// vertex or an edge, or touching, is not an overlap), ascending. Only the
+// triangles in `subset` are considered (all when empty) and only pairs with
+// the same `group` value (all pairs when `group` is empty). Triangles must be
+// counter-clockwise (see uv_flipped_triangles). Candidates come from
+// CGAL::box_self_intersection_d.
+std::vector<std::array<Index, 2>> uv_overlapping_pairs(std::span<const Uv> uvs, std::span<const Index> group = {},
+                                                       std::span<const Index> subset = {});
+
+}  // namespace hq

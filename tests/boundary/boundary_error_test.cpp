@@ -1,0 +1,255 @@
+// Boundary error on analytic cases (offset cubes, a ball against a sphere,
+// an open sphere) and on the real mesh/reference pairs of ../shared/data.
+
+#include "hqview/boundary/boundary_error.h"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+
+#include "hqview/boundary/surface_sign.h"
+#include "hqview/core/error.h"
+#include "hqview/io/mesh_reader.h"
+#include "hqview/mesh/topology.h"
+#include "support/fixtures.h"
+#include "support/surface_fixtures.h"
+
+namespace hq::test {
+namespace {
+
+// The unit cube as an n^3 grid of hexes.
+HexMesh unit_grid(int n) {
+  HexMesh m = grid(n);
+  for (Vec3& p : m.points) p = p / double(n);
+  return m;
+}
+
+// Euclidean distance from p to the box [lo, hi]^3 (0 inside).
+double box_distance(const Vec3& p, double lo, double hi) {
+  auto axis = [&](double v) { return std::max({lo - v, 0.0, v - hi}); };
+  return norm(Vec3{axis(p.x), axis(p.y), axis(p.z)});
+}
+
+// Ericson's closest point on triangle (Real-Time Collision Detection 5.1.5).
+Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vec3 bp = p - b;
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + (d1 / (d1 - d3)) * ab;
+  const Vec3 cp = p - c;
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  const double denom = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+double brute_force_distance(const TriSurface& s, const Vec3& p) {
+  double best = INFINITY;
+  for (const auto& t : s.triangles)
+    best = std::min(best, norm(p - closest_on_triangle(p, s.points[t[0]], s.points[t[1]], s.points[t[2]])));
+  return best;
+}
+
+TEST(BoundaryError, CubeInsideAnOffsetCubeIsMinusDEverywhere) {
+  const HexMesh mesh = unit_grid(4);
+  const Topology topo = build_topology(mesh);
+  const double d = 0.1;
+  const TriSurface reference = triangulated_box({-d, -d, -d}, {1 + d, 1 + d, 1 + d}, 3);
+  const BoundaryError e = compute_boundary_error(mesh, topo, reference);
+  EXPECT_EQ(e.sign_method, SignMethod::kPseudoNormal);
+  EXPECT_EQ(e.num_uncertain_signs, 0);
+  for (Index v : topo.boundary_vertices) EXPECT_NEAR(e.vertex_error[v], -d, 1e-12) << v;
+  for (std::size_t v = 0; v < mesh.points.size(); ++v)
+    if (!topo.is_boundary_vertex[v]) {
+      EXPECT_TRUE(std::isnan(e.vertex_error[v]));
+    }
+  EXPECT_NEAR(e.hausdorff_mesh_to_reference, d, 1e-12);
+  EXPECT_NEAR(e.hausdorff_reference_to_mesh, std::sqrt(3.0) * d, 1e-12);  // the reference's corners
+  EXPECT_NEAR(e.hausdorff_symmetric, std::sqrt(3.0) * d, 1e-12);
+  EXPECT_NEAR(e.reference_bbox_diagonal, std::sqrt(3.0) * (1 + 2 * d), 1e-12);
+  EXPECT_NEAR(e.hausdorff_relative, d / (1 + 2 * d), 1e-12);
+  EXPECT_DOUBLE_EQ(e.fraction_inside, 1.0);
+  EXPECT_DOUBLE_EQ(e.fraction_outside, 0.0);
+  EXPECT_NEAR(e.area_weighted_mean, -d, 1e-12);
+  EXPECT_NEAR(e.area_weighted_rms, d, 1e-12);
+  // The reference lies outside the hex solid: its side of the error is negative too.
+  for (std::size_t v = 0; v < reference.points.size(); ++v) EXPECT_LT(e.reference_vertex_error[v], 0.0) << v;
+  for (double r : e.reference_face_error) EXPECT_NEAR(r, -d, 1e-12);
+  EXPECT_EQ(e.signed_stats.count, static_cast<std::int64_t>(topo.boundary_vertices.size()));
+  EXPECT_NEAR(e.signed_stats.p50, -d, 1e-12);
+}
+
+TEST(BoundaryError, CubeAroundAShrunkCubeIsPositiveWithTheBoxDistance) {
+  const HexMesh mesh = unit_grid(4);
+  const Topology topo = build_topology(mesh);
+  const double d = 0.05;
+  const TriSurface reference = triangulated_box({d, d, d}, {1 - d, 1 - d, 1 - d}, 4);
+  const BoundaryError e = compute_boundary_error(mesh, topo, reference);
+  EXPECT_EQ(e.sign_method, SignMethod::kPseudoNormal);
+  for (Index v : topo.boundary_vertices)
+    EXPECT_NEAR(e.vertex_error[v], box_distance(mesh.points[v], d, 1 - d), 1e-12) << v;
+  EXPECT_DOUBLE_EQ(e.fraction_outside, 1.0);
+  EXPECT_NEAR(e.hausdorff_mesh_to_reference, std::sqrt(3.0) * d, 1e-12);
+  EXPECT_NEAR(e.hausdorff_reference_to_mesh, d, 1e-12);
+  // Reference vertices all lie d inside the hex cube's faces.
+  for (double r : e.reference_vertex_error) EXPECT_NEAR(r, d, 1e-12);
+}
+
+double wavy_radius(const Vec3& u) { return 1.0 + 0.05 * u.z; }
+
+TEST(BoundaryError, HexBallMatchesTheAnalyticDistanceToASphere) {
+  const HexMesh mesh = hex_ball(8, wavy_radius);
+  const Topology topo = build_topology(mesh);
+  const TriSurface sphere = icosphere(5);  // 20480 triangles, chord sag < 1e-3
+  const BoundaryError e = compute_boundary_error(mesh, topo, sphere);
+  EXPECT_EQ(e.sign_method, SignMethod::kPseudoNormal);
+  int outside = 0, inside = 0;
+  for (Index v : topo.boundary_vertices) {
+    const double analytic = norm(mesh.points[v]) - 1.0;
+    EXPECT_NEAR(e.vertex_error[v], analytic, 1.5e-3) << v;
+    if (std::abs(analytic) > 2e-3) {
+      EXPECT_EQ(e.vertex_error[v] > 0, analytic > 0) << v;
+    }
+    outside += analytic > 2e-3;
+    inside += analytic < -2e-3;
+  }
+  EXPECT_GT(outside, 10);
+  EXPECT_GT(inside, 10);
+  EXPECT_NEAR(e.hausdorff_mesh_to_reference, 0.05, 2e-3);
+  EXPECT_GT(e.fraction_outside, 0.3);
+  EXPECT_GT(e.fraction_inside, 0.3);
+  EXPECT_NEAR(e.fraction_outside + e.fraction_inside, 1.0, 0.05);
+}
+
+TEST(BoundaryError, OpenSphereUsesWindingNumbersWithRightSignsAwayFromTheHole) {
+  const HexMesh mesh = hex_ball(8, wavy_radius);
+  const Topology topo = build_topology(mesh);
+  const TriSurface open = remove_triangles(icosphere(4), [](const Vec3& c) { return c.z > 0.8; });
+  const BoundaryError e = compute_boundary_error(mesh, topo, open);
+  EXPECT_EQ(e.sign_method, SignMethod::kWindingNumber);
+  int checked = 0;
+  for (Index v : topo.boundary_vertices) {
+    const Vec3& p = mesh.points[v];
+    const double analytic = norm(p) - 1.0;
+    if (p.z / norm(p) > 0.5 || std::abs(analytic) < 5e-3) continue;
+    EXPECT_EQ(e.vertex_error[v] > 0, analytic > 0) << v;
+    EXPECT_FALSE(e.sign_uncertain[v]) << v;
+    ++checked;
+  }
+  EXPECT_GT(checked, 50);
+}
+
+TEST(BoundaryError, WindingNumberIsOneInsideAndZeroOutside) {
+  const TriSurface sphere = icosphere(4);
+  const WindingTree tree = build_winding_tree(sphere);
+  for (const Vec3& q : {Vec3{0, 0, 0}, Vec3{0.5, 0.2, -0.3}, Vec3{0.9, 0, 0}})
+    EXPECT_NEAR(winding_number(sphere, tree, q), 1.0, 0.05);
+  for (const Vec3& q : {Vec3{1.1, 0, 0}, Vec3{3, 2, 1}, Vec3{0, -1.5, 0.2}})
+    EXPECT_NEAR(winding_number(sphere, tree, q), 0.0, 0.05);
+}
+
+TEST(BoundaryError, FarAwayReferenceIsAnInputError) {
+  const HexMesh mesh = unit_grid(2);
+  const Topology topo = build_topology(mesh);
+  const TriSurface far = triangulated_box({100, 100, 100}, {101, 101, 101}, 1);
+  try {
+    compute_boundary_error(mesh, topo, far);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("do not overlap"), std::string::npos) << e.what();
+  }
+}
+
+TEST(BoundaryError, ReferenceWithoutAreaIsAnInputError) {
+  const HexMesh mesh = unit_grid(2);
+  const Topology topo = build_topology(mesh);
+  TriSurface flat;
+  flat.points = {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}};
+  flat.triangles = {{0, 1, 2}, {0, 0, 1}};
+  EXPECT_THROW(compute_boundary_error(mesh, topo, flat), InputError);
+  EXPECT_THROW(compute_boundary_error(mesh, topo, TriSurface{}), InputError);
+}
+
+TEST(BoundaryError, SameBitsForOneAndTwoThreads) {
+  const HexMesh mesh = hex_ball(10, wavy_radius);
+  const Topology topo = build_topology(mesh);
+  const TriSurface open = remove_triangles(icosphere(5), [](const Vec3& c) { return c.x > 0.9; });
+  BoundaryError one, two;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = compute_boundary_error(mesh, topo, open);
+  }
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    two = compute_boundary_error(mesh, topo, open);
+  }
+  for (std::size_t v = 0; v < mesh.points.size(); ++v)
+    EXPECT_TRUE(one.vertex_error[v] == two.vertex_error[v] ||
+                (std::isnan(one.vertex_error[v]) && std::isnan(two.vertex_error[v])));
+  EXPECT_EQ(one.reference_vertex_error.size(), two.reference_vertex_error.size());
+  for (std::size_t i = 0; i < one.reference_face_error.size(); ++i)
+    EXPECT_EQ(one.reference_face_error[i], two.reference_face_error[i]);
+}
+
+struct Pair {
+  const char* mesh;
+  const char* reference;
+};
+const Pair kPairs[] = {{"gao2016_sweeping/kitten_1.mesh", "gao2016_sweeping/kitten.off"},
+                       {"gao2016_sweeping/bunny_1.mesh", "gao2016_sweeping/bunny.off"},
+                       {"gao2016_sweeping/hand7_1.mesh", "gao2016_sweeping/hand.off"},
+                       {"gao2016_sweeping/Dolphin_padded.mesh", "gao2016_sweeping/dolphin.off"},
+                       {"livesu2016_skeleton/armadillo.mesh", "livesu2016_skeleton/armadillo.obj"}};
+void PrintTo(const Pair& p, std::ostream* os) { *os << p.mesh; }
+
+class RealPairs : public ::testing::TestWithParam<Pair> {};
+
+TEST_P(RealPairs, FiniteSmallHausdorffAndExactAgainstBruteForce) {
+  const auto data = shared_data_dir();
+  if (!data) GTEST_SKIP() << "../shared/data absent (set HQVIEW_DATA to run these)";
+  const HexMesh mesh = read_hex_mesh(*data / "meshes" / GetParam().mesh).mesh;
+  const TriSurface reference = read_surface(*data / "meshes" / GetParam().reference);
+  const Topology topo = build_topology(mesh);
+  const BoundaryError e = compute_boundary_error(mesh, topo, reference);
+  EXPECT_TRUE(std::isfinite(e.hausdorff_symmetric));
+  // The papers' figure (hex boundary vertices -> reference) is below 5 %.
+  // Both ways it is larger for the coarsest meshes: kitten_1 (300 hexes) and
+  // bunny_1 (264) leave the ear tips out, 10 % and 11 % of the diagonal.
+  EXPECT_LT(e.relative_mesh_to_reference, 0.05);
+  EXPECT_GT(e.relative_mesh_to_reference, 0.0);
+  EXPECT_LT(e.hausdorff_relative, 0.15);
+  EXPECT_EQ(e.sign_method, SignMethod::kPseudoNormal);  // every reference here is closed
+  for (Index v : topo.boundary_vertices) ASSERT_TRUE(std::isfinite(e.vertex_error[v])) << v;
+  RecordProperty("relative_hausdorff", std::to_string(e.hausdorff_relative));
+  // A sample of boundary vertices against every triangle of the reference as read.
+  const std::size_t step = std::max<std::size_t>(1, topo.boundary_vertices.size() / 60);
+  for (std::size_t i = 0; i < topo.boundary_vertices.size(); i += step) {
+    const Index v = topo.boundary_vertices[i];
+    EXPECT_NEAR(std::abs(e.vertex_error[v]), brute_force_distance(reference, mesh.points[v]),
+                1e-9 * e.reference_bbox_diagonal)
+        << v;
+  }
+  // And a sample of reference vertices against every hex boundary triangle.
+  const TriSurface hex_boundary = boundary_triangles(mesh, topo);
+  const std::size_t ref_step = std::max<std::size_t>(1, reference.points.size() / 60);
+  for (std::size_t v = 0; v < reference.points.size(); v += ref_step) {
+    if (std::isnan(e.reference_vertex_error[v])) continue;
+    EXPECT_NEAR(std::abs(e.reference_vertex_error[v]), brute_force_distance(hex_boundary, reference.points[v]),
+                1e-9 * e.reference_bbox_diagonal)
+        << v;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(SharedData, RealPairs, ::testing::ValuesIn(kPairs));
+
+}  // namespace
+}  // namespace hq::test

@@ -1,0 +1,230 @@
+// The glyph rules of ALGORITHMS.md §3: ratio and threshold, the size bonus,
+// the aggregated glyph's position and ratio, ranking and ids.
+
+#include "hqview/glyph/glyphs.h"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "hqview/core/error.h"
+
+namespace hq {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+TEST(GlyphSizeBonus, PointOnePerTenMembersAtMostOne) {
+  EXPECT_EQ(glyph_size_bonus(0), 0.0);
+  EXPECT_EQ(glyph_size_bonus(1), 0.0);
+  EXPECT_EQ(glyph_size_bonus(9), 0.0);
+  EXPECT_EQ(glyph_size_bonus(10), 0.1);
+  EXPECT_EQ(glyph_size_bonus(19), 0.1);
+  EXPECT_EQ(glyph_size_bonus(20), 0.2);
+  EXPECT_EQ(glyph_size_bonus(30), 0.3);  // the double of 0.3, not 3 * 0.1
+  EXPECT_EQ(glyph_size_bonus(99), 0.9);
+  EXPECT_EQ(glyph_size_bonus(100), 1.0);
+  EXPECT_EQ(glyph_size_bonus(101), 1.0);
+  EXPECT_EQ(glyph_size_bonus(1'000'000), 1.0);
+}
+
+TEST(GlyphRadii, RatioAboveThresholdTimesRmax) {
+  const std::vector<double> quality{1.0, 0.9, 0.5, 0.25, 0.0, -1.0, kNaN, 0.5000000000000001};
+  const std::vector<double> r = glyph_radii(quality, 2.0, 0.5);
+  // c = 0, 0.1, 0.5 (at the threshold: no glyph), 0.75, 1, 2, NaN, just below 0.5.
+  EXPECT_EQ(r, (std::vector<double>{0, 0, 0, 1.5, 2.0, 4.0, 0, 0}));
+  const std::vector<double> all = glyph_radii(quality, 1.0, 0.0);
+  EXPECT_EQ(all[0], 0.0);  // c = 0 is at the threshold 0
+  EXPECT_DOUBLE_EQ(all[1], 1.0 - 0.9);
+}
+
+TEST(ResolveRmax, ModelUnitsOrMeanEdgeLength) {
+  GlyphOptions o;
+  EXPECT_EQ(o.rmax_unit, RmaxUnit::kMeanEdgeLength);
+  o.rmax = 1.5;
+  EXPECT_EQ(resolve_rmax(o, 2.0), 3.0);
+  o.rmax_unit = RmaxUnit::kModel;
+  EXPECT_EQ(resolve_rmax(o, 2.0), 1.5);
+}
+
+TEST(AggregateGlyph, PositionAtTheMemberNearestTheMean) {
+  const std::vector<Vec3> points{{0, 0, 0}, {10, 0, 0}, {1, 0, 0}, {4, 0, 0}, {20, 0, 0}};
+  const std::vector<double> quality{0.4, 0.1, 0.3, 0.2, 0.0};
+  // Members 0, 1, 2, 3: mean x = 3.75, nearest is vertex 3 (x = 4).
+  const std::vector<Index> members{0, 1, 2, 3};
+  const AggregatedGlyph g = aggregate_glyph(members, points, quality, 2.0);
+  EXPECT_EQ(g.size, 4);
+  EXPECT_EQ(g.representative_vertex, 3);
+  EXPECT_EQ(g.position, (Vec3{4, 0, 0}));
+  EXPECT_EQ(g.min_quality, 0.1);
+  EXPECT_EQ(g.ratio, 0.9);  // 1 − 0.1, no bonus below 10 members
+  EXPECT_EQ(g.radius, 1.8);
+}
+
+TEST(AggregateGlyph, TiesGoToTheSmallestId) {
+  // Two members equally far from the mean, listed so that the larger id comes first in space.
+  const std::vector<Vec3> points{{5, 5, 5}, {2, 0, 0}, {0, 0, 0}};
+  const std::vector<double> quality{0.0, 0.3, 0.3};
+  const std::vector<Index> members{1, 2};
+  EXPECT_EQ(aggregate_glyph(members, points, quality, 1.0).representative_vertex, 1);
+  // Four corners of a square around the mean: the smallest id wins.
+  const std::vector<Vec3> square{{1, 1, 0}, {-1, 1, 0}, {-1, -1, 0}, {1, -1, 0}};
+  const std::vector<double> q4(4, 0.2);
+  const std::vector<Index> ids{0, 1, 2, 3};
+  EXPECT_EQ(aggregate_glyph(ids, square, q4, 1.0).representative_vertex, 0);
+  const std::vector<Index> last_three{1, 2, 3};  // mean (−1/3, −1/3): vertex 2 nearest
+  EXPECT_EQ(aggregate_glyph(last_three, square, q4, 1.0).representative_vertex, 2);
+}
+
+TEST(AggregateGlyph, SizeBonusAddsToTheLargestRatio) {
+  std::vector<Vec3> points;
+  std::vector<double> quality;
+  for (int i = 0; i < 250; ++i) {
+    points.push_back({double(i), 0, 0});
+    quality.push_back(i == 7 ? 0.2 : 0.4);
+  }
+  auto aggregate = [&](int size) {
+    std::vector<Index> members;
+    for (int i = 0; i < size; ++i) members.push_back(i);
+    return aggregate_glyph(members, points, quality, 0.5);
+  };
+  EXPECT_EQ(aggregate(9).ratio, 0.8);
+  EXPECT_EQ(aggregate(10).ratio, 0.8 + 0.1);
+  EXPECT_EQ(aggregate(25).ratio, 0.8 + 0.2);
+  EXPECT_EQ(aggregate(100).ratio, 0.8 + 1.0);
+  EXPECT_EQ(aggregate(250).ratio, 0.8 + 1.0);  // the bonus is capped, not the ratio
+  EXPECT_EQ(aggregate(250).radius, (0.8 + 1.0) * 0.5);
+  EXPECT_EQ(aggregate(25).min_quality, 0.2);
+}
+
+// Three groups on a line with unit spacing, rmax = 1 model unit.
+struct Line {
+  std::vector<Vec3> points;
+  std::vector<double> quality;
+};
+
+Line three_groups() {
+  Line l;
+  auto add = [&](double x, double q) {
+    l.points.push_back({x, 0, 0});
+    l.quality.push_back(q);
+  };
+  // Group A (ids 0-2): c = 0.6 each, spacing 1: 0.6 + 0.6 > 1, merged; min Jm 0.4.
+  add(0, 0.4), add(1, 0.4), add(2, 0.4);
+  add(10, 0.9);  // good vertex: no glyph
+  // Group B (ids 4-5): min Jm 0.4, size 2.
+  add(20, 0.4), add(21, 0.45);
+  // Singleton C (id 6): Jm −0.5, the worst.
+  add(40, -0.5);
+  add(50, kNaN);  // unused vertex
+  return l;
+}
+
+TEST(ComputeGlyphs, ClustersRankedByMinQualityThenSize) {
+  const Line l = three_groups();
+  GlyphOptions o;
+  o.rmax = 1.0;
+  o.rmax_unit = RmaxUnit::kModel;
+  const GlyphResult g = compute_glyphs(l.points, l.quality, 123.0, o);
+  EXPECT_EQ(g.rmax, 1.0);
+  EXPECT_EQ(g.num_glyphs, 6);
+  ASSERT_EQ(g.clusters.size(), 3u);
+  // Rank 0: the singleton with Jm −0.5; rank 1: A (min 0.4, size 3); rank 2: B (min 0.4, size 2).
+  EXPECT_EQ(g.clusters[0].representative_vertex, 6);
+  EXPECT_EQ(g.clusters[0].ratio, 1.5);
+  EXPECT_EQ(g.clusters[1].size, 3);
+  EXPECT_EQ(g.clusters[1].representative_vertex, 1);
+  EXPECT_EQ(g.clusters[2].size, 2);
+  EXPECT_EQ(g.clusters[2].representative_vertex, 4);  // tie at the mean: smallest id
+  for (Index i = 0; i < 3; ++i) EXPECT_EQ(g.clusters[static_cast<std::size_t>(i)].id, i);
+  EXPECT_EQ(g.vertex_cluster, (std::vector<Index>{1, 1, 1, kNoIndex, 2, 2, 0, kNoIndex}));
+  EXPECT_DOUBLE_EQ(g.vertex_radius[0], 0.6);
+  EXPECT_EQ(g.vertex_radius[3], 0.0);
+  EXPECT_EQ(g.vertex_radius[7], 0.0);
+  EXPECT_EQ(g.cluster_offsets, (std::vector<Index>{0, 1, 4, 6}));
+  EXPECT_EQ(g.cluster_vertices, (std::vector<Index>{6, 0, 1, 2, 4, 5}));
+}
+
+TEST(ComputeGlyphs, EqualMinQualityAndSizeRankBySmallestMember) {
+  Line l;
+  for (double x : {30.0, 0.0, 60.0}) {  // ids 0, 1, 2: three equal singletons
+    l.points.push_back({x, 0, 0});
+    l.quality.push_back(0.2);
+  }
+  const GlyphResult g = compute_glyphs(l.points, l.quality, 1.0, GlyphOptions{});
+  ASSERT_EQ(g.clusters.size(), 3u);
+  EXPECT_EQ(g.clusters[0].representative_vertex, 0);
+  EXPECT_EQ(g.clusters[1].representative_vertex, 1);
+  EXPECT_EQ(g.clusters[2].representative_vertex, 2);
+}
+
+TEST(ComputeGlyphs, RelativeRmaxAndDefaults) {
+  const Line l = three_groups();
+  const GlyphOptions defaults;
+  EXPECT_EQ(defaults.threshold, 0.5);
+  EXPECT_EQ(defaults.rmax, 1.0);
+  EXPECT_EQ(defaults.top_clusters, 8);
+  // Default threshold 0.5: c = 0.6 and 0.55 and 1.5 pass; rmax = 1 × mean edge 0.5.
+  const GlyphResult g = compute_glyphs(l.points, l.quality, 0.5, defaults);
+  EXPECT_EQ(g.rmax, 0.5);
+  EXPECT_EQ(g.num_glyphs, 6);
+  // With rmax 0.5, A's glyphs (0.3 each, spacing 1) no longer overlap.
+  EXPECT_EQ(g.clusters.size(), 6u);
+}
+
+TEST(ComputeGlyphs, NothingBadNothingShown) {
+  std::vector<Vec3> points(5);
+  std::vector<double> quality{1.0, 0.99, 0.8, 0.5, kNaN};
+  const GlyphResult g = compute_glyphs(points, quality, 1.0, GlyphOptions{});
+  EXPECT_EQ(g.num_glyphs, 0);
+  EXPECT_TRUE(g.clusters.empty());
+  EXPECT_EQ(g.cluster_offsets, std::vector<Index>{0});
+  EXPECT_EQ(g.vertex_cluster, std::vector<Index>(5, kNoIndex));
+  EXPECT_THROW(compute_glyphs(points, std::vector<double>(4, 0.0), 1.0, GlyphOptions{}), Error);
+}
+
+TEST(ComputeGlyphs, ZeroRmaxMeansNoGlyphs) {
+  std::vector<Vec3> points(3);
+  std::vector<double> quality{0.0, -1.0, 0.2};
+  const GlyphResult g = compute_glyphs(points, quality, 0.0, GlyphOptions{});
+  EXPECT_EQ(g.num_glyphs, 0);
+  EXPECT_EQ(g.vertex_radius, std::vector<double>(3, 0.0));
+}
+
+TEST(ComputeGlyphs, IdenticalForEveryThreadCount) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> coord(0.0, 40.0), q(-1.0, 1.0);
+  std::vector<Vec3> points;
+  std::vector<double> quality;
+  for (int i = 0; i < 50000; ++i) {
+    points.push_back({coord(rng), coord(rng), coord(rng)});
+    quality.push_back(q(rng));
+  }
+  GlyphOptions o;
+  o.rmax = 0.8;
+  o.threshold = 0.3;
+  tbb::global_control allow(tbb::global_control::max_allowed_parallelism, 8);  // more threads than cores
+  GlyphResult one;
+  tbb::task_arena(1).execute([&] { one = compute_glyphs(points, quality, 1.0, o); });
+  ASSERT_GT(one.clusters.size(), 10u);
+  for (int threads : {2, 4, 7}) {
+    GlyphResult many;
+    tbb::task_arena(threads).execute([&] { many = compute_glyphs(points, quality, 1.0, o); });
+    EXPECT_EQ(many.vertex_cluster, one.vertex_cluster);
+    EXPECT_EQ(many.vertex_radius, one.vertex_radius);
+    EXPECT_EQ(many.cluster_vertices, one.cluster_vertices);
+    ASSERT_EQ(many.clusters.size(), one.clusters.size());
+    for (std::size_t c = 0; c < one.clusters.size(); ++c) {
+      EXPECT_EQ(many.clusters[c].representative_vertex, one.clusters[c].representative_vertex);
+      EXPECT_EQ(many.clusters[c].ratio, one.clusters[c].ratio);
+      EXPECT_EQ(many.clusters[c].size, one.clusters[c].size);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace hq

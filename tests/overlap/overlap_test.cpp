@@ -1,0 +1,338 @@
+// Stages A-G on generated meshes: clean grids are certified, each injected
+// defect is found with the right cells, and on random (also strongly
+// tangled) meshes the certificate plus stage G finds exactly the pairs of an
+// independent all-pairs reference.
+
+#include "hqview/overlap/overlap.h"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "overlap_fixtures.h"
+#include "reference_overlap.h"
+#include "support/fixtures.h"
+
+namespace hq {
+namespace {
+
+using test::grid;
+using test::grid_cell;
+using test::grid_vertex;
+
+OverlapReport run(const HexMesh& mesh, OverlapMode mode = OverlapMode::certificate, double eps = 0.0) {
+  return check_overlap(mesh, build_topology(mesh), OverlapOptions{.mode = mode, .coincident_eps = eps});
+}
+
+// nx x ny x nz unit hexes, x fastest, like test::grid.
+HexMesh box_grid(int nx, int ny, int nz) {
+  HexMesh mesh;
+  auto id = [&](int i, int j, int k) { return static_cast<Index>(i + (nx + 1) * (j + (ny + 1) * k)); };
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i) mesh.points.push_back({double(i), double(j), double(k)});
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        mesh.hexes.push_back({id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k), id(i, j, k + 1),
+                              id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)});
+  return mesh;
+}
+
+void expect_nothing_found(const OverlapReport& r) {
+  EXPECT_TRUE(r.certified_clean);
+  EXPECT_TRUE(r.coincident_groups.empty());
+  EXPECT_EQ(r.num_coincident_vertices, 0);
+  EXPECT_TRUE(r.zero_length_edges.empty());
+  EXPECT_TRUE(r.inverted_cells.empty());
+  EXPECT_TRUE(r.degenerate_cells.empty());
+  EXPECT_TRUE(r.non_manifold_faces.empty());
+  EXPECT_TRUE(r.same_winding_faces.empty());
+  EXPECT_TRUE(r.duplicate_cells.empty());
+  EXPECT_TRUE(r.boundary_self_intersections.empty());
+  EXPECT_EQ(r.num_nested_shells, 0);
+  EXPECT_TRUE(r.intersecting_pairs.empty());
+  EXPECT_EQ(r.num_intersecting_cells, 0);
+  EXPECT_TRUE(r.markers.empty());
+}
+
+// The certificate's pairs equal the reference's and exhaustive mode's.
+void expect_matches_reference(const HexMesh& mesh, const std::string& what) {
+  const auto expected = test::reference_intersecting_pairs(mesh);
+  EXPECT_EQ(test::pair_cells(run(mesh)), expected) << what << " (certificate)";
+  EXPECT_EQ(test::pair_cells(run(mesh, OverlapMode::exhaustive)), expected) << what << " (exhaustive)";
+}
+
+TEST(Overlap, UnitCubeIsCertified) { expect_nothing_found(run(test::unit_cube())); }
+
+TEST(Overlap, CleanGridIsCertifiedWithoutPairTests) {
+  const OverlapReport r = run(grid(4));
+  expect_nothing_found(r);
+  EXPECT_EQ(r.num_flagged_cells, 0);
+  EXPECT_EQ(r.num_candidate_pairs, 0);
+  EXPECT_EQ(r.certificate_rounds, 1);
+  EXPECT_EQ(r.vertex_coincident_group, std::vector<Index>(125, kNoIndex));
+  EXPECT_EQ(r.cell_intersecting, std::vector<char>(64, 0));
+}
+
+TEST(Overlap, CleanGridInExhaustiveModeHasNoPairs) {
+  const OverlapReport r = run(test::jittered(grid(4), 0.1, 7), OverlapMode::exhaustive);
+  expect_nothing_found(r);
+  EXPECT_GT(r.num_candidate_pairs, 0);  // jittered neighbours' boxes overlap
+}
+
+TEST(Overlap, CertificateIsInvariantUnderRigidMotionAndScale) {
+  HexMesh mesh = test::jittered(grid(3), 0.2, 3);
+  const double c = std::cos(0.7), s = std::sin(0.7);
+  for (Vec3& p : mesh.points) p = Vec3{c * p.x - s * p.y, s * p.x + c * p.y, p.z} * 1e-3 + Vec3{1e3, -5.0, 0.25};
+  expect_nothing_found(run(mesh));
+}
+
+TEST(Overlap, DuplicatedVertexIsCoincidentNotIntersecting) {
+  HexMesh mesh = grid(4);
+  const Index v = grid_vertex(4, 2, 2, 2);
+  const Index twin = test::split_vertex(
+      mesh, v, {grid_cell(4, 1, 1, 2), grid_cell(4, 2, 1, 2), grid_cell(4, 1, 2, 2), grid_cell(4, 2, 2, 2)});
+  const OverlapReport r = run(mesh);
+  ASSERT_EQ(r.coincident_groups.size(), 1u);
+  EXPECT_EQ(r.coincident_groups[0].vertices, (std::vector<Index>{v, twin}));
+  EXPECT_EQ(r.coincident_groups[0].position, (Vec3{2, 2, 2}));
+  EXPECT_EQ(r.num_coincident_vertices, 2);
+  EXPECT_EQ(r.vertex_coincident_group[v], 0);
+  EXPECT_EQ(r.vertex_coincident_group[twin], 0);
+  EXPECT_TRUE(r.intersecting_pairs.empty());
+  EXPECT_TRUE(r.inverted_cells.empty());
+  EXPECT_FALSE(r.certified_clean);
+  ASSERT_EQ(r.markers.size(), 1u);
+  EXPECT_EQ(r.markers[0].kind, MarkerKind::coincident);
+  EXPECT_EQ(r.markers[0].count, 2);
+  expect_matches_reference(mesh, "duplicated vertex");
+}
+
+TEST(Overlap, CollapsedEdgeIsZeroLengthAndDegenerate) {
+  HexMesh mesh = grid(3);
+  const Index a = grid_vertex(3, 1, 1, 1), b = grid_vertex(3, 2, 1, 1);
+  mesh.points[b] = mesh.points[a];
+  const OverlapReport r = run(mesh);
+  EXPECT_EQ(r.zero_length_edges, (std::vector<Edge>{{a, b}}));
+  ASSERT_EQ(r.coincident_groups.size(), 1u);
+  EXPECT_EQ(r.coincident_groups[0].vertices, (std::vector<Index>{a, b}));
+  // The 4 cells holding the edge lose volume on one side.
+  for (Index h : {grid_cell(3, 1, 0, 0), grid_cell(3, 1, 1, 0), grid_cell(3, 1, 0, 1), grid_cell(3, 1, 1, 1)})
+    EXPECT_TRUE(test::contains(r.inverted_cells, h) || test::contains(r.degenerate_cells, h)) << h;
+  expect_matches_reference(mesh, "collapsed edge");
+}
+
+TEST(Overlap, FoldedVertexIntersectsTheCellItWasPushedInto) {
+  HexMesh mesh = grid(4);
+  const Index v = grid_vertex(4, 2, 2, 2);
+  const Index target = grid_cell(4, 3, 2, 2);
+  mesh.points[v] = test::centroid(mesh, target);
+  const Topology topo = build_topology(mesh);
+  const OverlapReport r = check_overlap(mesh, topo, {});
+  EXPECT_FALSE(r.inverted_cells.empty());
+  for (Index h : test::cells_of_vertex(topo, v)) {
+    const IntersectingPair* pair = test::find_pair(r, h, target);
+    ASSERT_NE(pair, nullptr) << "cell " << h;
+    EXPECT_EQ(pair->inside_vertex, v) << "cell " << h;
+    EXPECT_EQ(pair->position, mesh.points[v]);
+  }
+  EXPECT_TRUE(r.cell_intersecting[target]);
+  expect_matches_reference(mesh, "fold");
+}
+
+TEST(Overlap, StrayCellInsideTheVolumeIsANestedShell) {
+  HexMesh mesh = grid(3);
+  const Index host = grid_cell(3, 1, 1, 1);
+  const Index stray = test::add_stray_cell(mesh, host, 0.5);
+  const OverlapReport r = run(mesh);
+  EXPECT_EQ(r.num_nested_shells, 1);
+  EXPECT_TRUE(r.boundary_self_intersections.empty());
+  EXPECT_TRUE(r.inverted_cells.empty());
+  EXPECT_FALSE(r.certified_clean);
+  ASSERT_EQ(test::pair_cells(r), (std::vector<std::array<Index, 2>>{{host, stray}}));
+  EXPECT_EQ(r.intersecting_pairs[0].inside_vertex, 64);  // the stray's first vertex, inside the host
+  EXPECT_EQ(r.num_intersecting_cells, 2);
+  ASSERT_EQ(r.markers.size(), 1u);
+  EXPECT_EQ(r.markers[0].kind, MarkerKind::intersection);
+  EXPECT_EQ(r.markers[0].count, 1);
+  expect_matches_reference(mesh, "stray cell");
+}
+
+TEST(Overlap, DuplicatedCellIntersectsItsOriginal) {
+  HexMesh mesh = grid(3);
+  const Index original = grid_cell(3, 1, 1, 1);
+  mesh.hexes.push_back(mesh.hexes[original]);
+  const OverlapReport r = run(mesh);
+  EXPECT_EQ(r.duplicate_cells, (std::vector<Index>{27}));
+  EXPECT_EQ(r.non_manifold_faces.size(), 6u);  // every face of the copy is now shared by 3 cells
+  ASSERT_EQ(test::pair_cells(r), (std::vector<std::array<Index, 2>>{{original, 27}}));
+  EXPECT_EQ(r.intersecting_pairs[0].inside_vertex, kNoIndex);  // all vertices shared
+  expect_matches_reference(mesh, "duplicated cell");
+}
+
+TEST(Overlap, DuplicatedBoundaryCellHasSameWindingFaces) {
+  HexMesh mesh = grid(2);
+  mesh.hexes.push_back(mesh.hexes[0]);
+  const OverlapReport r = run(mesh);
+  EXPECT_EQ(r.duplicate_cells, (std::vector<Index>{8}));
+  EXPECT_EQ(r.same_winding_faces.size(), 3u);  // its 3 boundary faces, now seen twice the same way
+  EXPECT_EQ(test::pair_cells(r), (std::vector<std::array<Index, 2>>{{0, 8}}));
+}
+
+TEST(Overlap, CellOnTheSameSideOfASharedFace) {
+  HexMesh mesh = test::unit_cube();
+  for (Vec3 p : {Vec3{0.25, 0.25, 0.5}, Vec3{0.75, 0.25, 0.5}, Vec3{0.75, 0.75, 0.5}, Vec3{0.25, 0.75, 0.5}})
+    mesh.points.push_back(p);
+  mesh.hexes.push_back({0, 1, 2, 3, 8, 9, 10, 11});  // same bottom face, same winding, inside the cube
+  const OverlapReport r = run(mesh);
+  EXPECT_EQ(r.same_winding_faces.size(), 1u);
+  EXPECT_TRUE(r.inverted_cells.empty());
+  ASSERT_EQ(test::pair_cells(r), (std::vector<std::array<Index, 2>>{{0, 1}}));
+  EXPECT_EQ(r.intersecting_pairs[0].inside_vertex, 8);
+  expect_matches_reference(mesh, "same winding");
+}
+
+TEST(Overlap, SwappedVerticesMakeCellsOverlap) {
+  // The two ends of cell (1,1,1)'s diagonal trade places: that cell turns
+  // inside out, and the cells around each end now reach over the other end.
+  HexMesh mesh = grid(4);
+  const Index u = grid_vertex(4, 1, 1, 1), w = grid_vertex(4, 2, 2, 2);
+  std::swap(mesh.points[u], mesh.points[w]);
+  const OverlapReport r = run(mesh);
+  EXPECT_EQ(r.inverted_cells, (std::vector<Index>{grid_cell(4, 1, 1, 1)}));
+  ASSERT_FALSE(r.intersecting_pairs.empty());
+  const IntersectingPair* corners = test::find_pair(r, grid_cell(4, 0, 0, 0), grid_cell(4, 2, 2, 2));
+  ASSERT_NE(corners, nullptr);
+  EXPECT_EQ(corners->inside_vertex, u);
+  for (const IntersectingPair& p : r.intersecting_pairs) EXPECT_TRUE(p.inside_vertex == u || p.inside_vertex == w);
+  expect_matches_reference(mesh, "vertex swap");
+}
+
+TEST(Overlap, BoundaryPushedThroughItselfWithoutInvertedCells) {
+  // A U of 5 cells; the top-left edge of the right arm is dragged into the
+  // left arm, so the right arm's last cell (still valid) pokes into the left's.
+  HexMesh mesh = box_grid(3, 2, 1);
+  mesh.hexes.erase(mesh.hexes.begin() + 4);  // the cell between the arms
+  const Index dragged = 2 + 4 * 2;           // vertex (2, 2, 0); (2, 2, 1) is 12 ids later
+  mesh.points[dragged] = {0.5, 1.9, 0.3};
+  mesh.points[dragged + 12] = {0.5, 1.9, 0.7};
+  const OverlapReport r = run(mesh);
+  EXPECT_TRUE(r.inverted_cells.empty());
+  EXPECT_TRUE(r.degenerate_cells.empty());
+  EXPECT_TRUE(r.nonpositive_tet_cells.empty());
+  EXPECT_FALSE(r.boundary_self_intersections.empty());
+  EXPECT_EQ(r.num_nested_shells, 0);
+  ASSERT_EQ(test::pair_cells(r), (std::vector<std::array<Index, 2>>{{3, 4}}));
+  EXPECT_EQ(r.intersecting_pairs[0].inside_vertex, dragged);
+  expect_matches_reference(mesh, "boundary through itself");
+}
+
+TEST(Overlap, FoldedStripOverlapsFarFromTheCrease) {
+  // A strip of 8 cells folded over itself at cell 4: cells 5-7 are turned
+  // 180 degrees (a rigid motion, so they stay valid) onto cells 1-3. Only the
+  // crease is inverted; the overlaps between valid cells are found through
+  // the boundary of the unflagged cells (stage E, a second round).
+  HexMesh mesh = box_grid(8, 1, 1);
+  for (Vec3& p : mesh.points)
+    if (p.x >= 5.0) p = {9.5 - p.x, p.y + 0.3, 1.3 - p.z};
+  const OverlapReport r = run(mesh);
+  for (Index h : {1, 2, 3, 5, 6, 7}) EXPECT_FALSE(test::contains(r.nonpositive_tet_cells, h)) << h;
+  EXPECT_GE(r.certificate_rounds, 2);
+  EXPECT_NE(test::find_pair(r, 2, 6), nullptr);
+  EXPECT_NE(test::find_pair(r, 1, 7), nullptr);
+  expect_matches_reference(mesh, "folded strip");
+}
+
+TEST(Overlap, MirroredCellIsInverted) {
+  HexMesh mesh = grid(2);
+  Hex& hex = mesh.hexes[3];
+  hex = {hex[4], hex[5], hex[6], hex[7], hex[0], hex[1], hex[2], hex[3]};
+  const OverlapReport r = run(mesh);
+  EXPECT_EQ(r.inverted_cells, (std::vector<Index>{3}));
+  EXPECT_EQ(r.cell_orientation[3] & (kTetNegative | kCornerNegative), kTetNegative | kCornerNegative);
+  EXPECT_FALSE(r.same_winding_faces.empty());
+  expect_matches_reference(mesh, "mirrored cell");
+}
+
+TEST(Overlap, CoincidentEpsilonIsRelativeToTheDiagonal) {
+  HexMesh mesh = grid(2);
+  const Index a = grid_vertex(2, 1, 1, 1), b = grid_vertex(2, 2, 1, 1);
+  mesh.points[b] = mesh.points[a] + Vec3{1e-9, 0, 0};
+  const OverlapReport exact = run(mesh);
+  EXPECT_TRUE(exact.coincident_groups.empty());
+  EXPECT_TRUE(exact.zero_length_edges.empty());
+  const OverlapReport loose = run(mesh, OverlapMode::certificate, 1e-6);
+  EXPECT_DOUBLE_EQ(loose.coincident_tolerance, 1e-6 * std::sqrt(12.0));
+  ASSERT_EQ(loose.coincident_groups.size(), 1u);
+  EXPECT_EQ(loose.coincident_groups[0].vertices, (std::vector<Index>{a, b}));
+  EXPECT_EQ(loose.zero_length_edges, (std::vector<Edge>{{a, b}}));
+  // Far apart stays apart.
+  EXPECT_TRUE(run(grid(2), OverlapMode::certificate, 0.1).coincident_groups.empty());
+}
+
+TEST(Overlap, UnreferencedVerticesAreIgnored) {
+  HexMesh mesh = grid(2);
+  mesh.points.push_back(mesh.points[0]);
+  const OverlapReport r = run(mesh);
+  EXPECT_TRUE(r.coincident_groups.empty());
+  EXPECT_TRUE(r.certified_clean);
+}
+
+// Random meshes, from barely to strongly tangled: the certificate plus stage
+// G, exhaustive mode and the reference agree pair for pair.
+class RandomMeshes : public ::testing::TestWithParam<double> {};
+
+TEST_P(RandomMeshes, CertificateFindsExactlyTheReferencePairs) {
+  const double amplitude = GetParam();
+  int tangled = 0;
+  for (std::uint64_t seed = 1; seed <= 24; ++seed) {
+    const HexMesh mesh = test::jittered(grid(2 + static_cast<int>(seed % 3)), amplitude, seed);
+    const auto expected = test::reference_intersecting_pairs(mesh);
+    const OverlapReport certificate = run(mesh);
+    EXPECT_EQ(test::pair_cells(certificate), expected) << "amplitude " << amplitude << ", seed " << seed;
+    EXPECT_EQ(test::pair_cells(run(mesh, OverlapMode::exhaustive)), expected)
+        << "amplitude " << amplitude << ", seed " << seed;
+    if (amplitude <= 0.05) {
+      EXPECT_TRUE(certificate.certified_clean) << "seed " << seed;
+    }
+    tangled += !expected.empty();
+    if (std::getenv("HQVIEW_TEST_VERBOSE"))
+      std::fprintf(
+          stderr, "amp %g seed %d cells %d pairs %zu inverted %zu flagged %d rounds %d bsi %zu nested %d cand %lld\n",
+          amplitude, int(seed), mesh.num_hexes(), expected.size(), certificate.inverted_cells.size(),
+          certificate.num_flagged_cells, certificate.certificate_rounds, certificate.boundary_self_intersections.size(),
+          certificate.num_nested_shells, (long long)certificate.num_candidate_pairs);
+  }
+  if (amplitude >= 0.6) {
+    EXPECT_GT(tangled, 0) << "the strong jitter should tangle some meshes";
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Jitter, RandomMeshes, ::testing::Values(0.05, 0.3, 0.45, 0.6, 1.0, 2.0));
+
+TEST(Overlap, SameResultForAnyThreadCount) {
+  HexMesh mesh = test::jittered(grid(6), 1.0, 11);
+  auto with_threads = [&](std::size_t n) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, n);
+    return run(mesh);
+  };
+  const OverlapReport one = with_threads(1), two = with_threads(2);
+  ASSERT_FALSE(one.intersecting_pairs.empty());
+  EXPECT_EQ(test::pair_cells(one), test::pair_cells(two));
+  ASSERT_EQ(one.markers.size(), two.markers.size());
+  for (std::size_t i = 0; i < one.markers.size(); ++i) {
+    EXPECT_EQ(one.markers[i].position, two.markers[i].position);
+    EXPECT_EQ(one.markers[i].count, two.markers[i].count);
+  }
+  EXPECT_EQ(one.inverted_cells, two.inverted_cells);
+  EXPECT_EQ(one.boundary_self_intersections, two.boundary_self_intersections);
+  for (std::size_t i = 0; i < one.intersecting_pairs.size(); ++i)
+    EXPECT_EQ(one.intersecting_pairs[i].inside_vertex, two.intersecting_pairs[i].inside_vertex);
+}
+
+}  // namespace
+}  // namespace hq
