@@ -94,13 +94,6 @@ inline Box3 box_of(const std::vector<Vec3>& points, const Index* ids, int n) {
   return b;
 }
 
-// Interiors overlap (open boxes).
-inline bool boxes_overlap_open(const Box3& a, const Box3& b) {
-  for (int i = 0; i < 3; ++i)
-    if (!(a.lo[i] < b.hi[i] && b.lo[i] < a.hi[i])) return false;
-  return true;
-}
-
 inline bool boxes_overlap_closed(const Box3& a, const Box3& b) {
   for (int i = 0; i < 3; ++i)
     if (!(a.lo[i] <= b.hi[i] && b.lo[i] <= a.hi[i])) return false;
