@@ -27,20 +27,7 @@ OverlapReport run(const HexMesh& mesh, OverlapMode mode = OverlapMode::certifica
   return check_overlap(mesh, build_topology(mesh), OverlapOptions{.mode = mode, .coincident_eps = eps});
 }
 
-// nx x ny x nz unit hexes, x fastest, like test::grid.
-HexMesh box_grid(int nx, int ny, int nz) {
-  HexMesh mesh;
-  auto id = [&](int i, int j, int k) { return static_cast<Index>(i + (nx + 1) * (j + (ny + 1) * k)); };
-  for (int k = 0; k <= nz; ++k)
-    for (int j = 0; j <= ny; ++j)
-      for (int i = 0; i <= nx; ++i) mesh.points.push_back({double(i), double(j), double(k)});
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i)
-        mesh.hexes.push_back({id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k), id(i, j, k + 1),
-                              id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)});
-  return mesh;
-}
+using test::box_grid;
 
 void expect_nothing_found(const OverlapReport& r) {
   EXPECT_TRUE(r.certified_clean);

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/fixtures.h"
+#include "support/verdict_oracle.h"
 
 namespace hq {
 namespace {
@@ -18,18 +19,9 @@ void expect_close(double got, double expected, const std::string& what) {
   EXPECT_NEAR(got, expected, 1e-12 * std::max(1.0, std::abs(expected))) << what;
 }
 
-nlohmann::json load_oracle() {
-  const auto dir = test::shared_data_dir();
-  if (!dir) return nullptr;
-  std::ifstream in(*dir / "verdict" / "hex_oracle_cases.json");
-  return nlohmann::json::parse(in);
-}
+using test::oracle_corners;
 
-Corners corners_of(const nlohmann::json& c) {
-  Corners p;
-  for (int i = 0; i < 8; ++i) p[i] = {c["coords"][i][0], c["coords"][i][1], c["coords"][i][2]};
-  return p;
-}
+nlohmann::json load_oracle() { return test::load_verdict_oracle(); }
 
 TEST(CornerJacobian, OracleCornersMatchNumpy) {
   const auto oracle = load_oracle();
@@ -37,7 +29,7 @@ TEST(CornerJacobian, OracleCornersMatchNumpy) {
   int checked = 0;
   for (const auto& c : oracle["cases"]) {
     const std::string name = c["name"];
-    const CornerJacobians cj = corner_scaled_jacobians(corners_of(c));
+    const CornerJacobians cj = corner_scaled_jacobians(oracle_corners(c));
     const auto& expected = c["numpy_scaled_jacobian"]["corners"];
     for (int i = 0; i < 8; ++i) {
       if (expected[i].is_null()) {
@@ -59,7 +51,7 @@ TEST(CornerJacobian, CellScaledJacobianMatchesVerdict145) {
   if (oracle.is_null()) GTEST_SKIP() << "../shared/data absent: Verdict oracle not available";
   for (const auto& c : oracle["cases"]) {
     const double expected = c["verdict_1_4_5_built_locally"]["scaled_jacobian"];
-    expect_close(hex_scaled_jacobian(corners_of(c)), expected, c["name"]);
+    expect_close(hex_scaled_jacobian(oracle_corners(c)), expected, c["name"]);
   }
 }
 
@@ -68,7 +60,7 @@ TEST(CornerJacobian, CentreFrameCatchesTangledHex) {
   if (oracle.is_null()) GTEST_SKIP() << "../shared/data absent: Verdict oracle not available";
   for (const auto& c : oracle["cases"]) {
     if (c["name"] != "center_inverted_corners_valid") continue;
-    const Corners p = corners_of(c);
+    const Corners p = oracle_corners(c);
     const CornerJacobians cj = corner_scaled_jacobians(p);
     EXPECT_GT(*std::min_element(cj.value.begin(), cj.value.end()), 0.7);
     EXPECT_LT(hex_scaled_jacobian(p), -0.98);

@@ -13,24 +13,16 @@
 #include <random>
 
 #include "support/fixtures.h"
+#include "support/verdict_oracle.h"
 
 namespace hq {
 namespace {
 
 using Corners = HexCorners;
 
-nlohmann::json load_oracle() {
-  const auto dir = test::shared_data_dir();
-  if (!dir) return nullptr;
-  std::ifstream in(*dir / "verdict" / "hex_oracle_cases.json");
-  return nlohmann::json::parse(in);
-}
+using test::oracle_corners;
 
-Corners corners_of(const nlohmann::json& c) {
-  Corners p;
-  for (int i = 0; i < 8; ++i) p[i] = {c["coords"][i][0], c["coords"][i][1], c["coords"][i][2]};
-  return p;
-}
+nlohmann::json load_oracle() { return test::load_verdict_oracle(); }
 
 HexMetric metric(int i) { return static_cast<HexMetric>(i); }
 
@@ -103,7 +95,7 @@ TEST(HexMetrics, EveryOracleCaseMatchesVerdict145) {
   if (oracle.is_null()) GTEST_SKIP() << "../shared/data absent: Verdict oracle not available";
   int checked = 0;
   for (const auto& c : oracle["cases"]) {
-    const Corners p = corners_of(c);
+    const Corners p = oracle_corners(c);
     const double average = c["avg_hex_volume"];
     const auto& reference = c["verdict_1_4_5_built_locally"];
     const HexMetricValues all = hex_metrics(p, average);
@@ -126,7 +118,7 @@ TEST(HexMetrics, VerdictPublishedUnitTestValuesToTheirPrecision) {
   int checked = 0;
   for (const auto& c : oracle["cases"]) {
     if (c.value("expected_source", "") != "Verdict unit test (published)") continue;
-    const Corners p = corners_of(c);
+    const Corners p = oracle_corners(c);
     for (const auto& [name, value] : c["expected"].items()) {
       const auto m = hex_metric_from_name(name);
       if (!m) continue;  // e.g. the timestep, not a quality metric
@@ -147,7 +139,7 @@ TEST(HexMetrics, TangledHexIsCaughtAtTheCentre) {
   if (oracle.is_null()) GTEST_SKIP() << "../shared/data absent: Verdict oracle not available";
   for (const auto& c : oracle["cases"]) {
     if (c["name"] != "center_inverted_corners_valid") continue;
-    const Corners p = corners_of(c);
+    const Corners p = oracle_corners(c);
     const CornerJacobians corners = corner_scaled_jacobians(p);
     EXPECT_GE(*std::min_element(corners.value.begin(), corners.value.end()), 0.7155);
     EXPECT_NEAR(hex_metrics(p, 1.0)[static_cast<std::size_t>(HexMetric::scaled_jacobian)], -0.987, 5e-4);

@@ -17,20 +17,21 @@ HexMesh unit_cube() {
   return mesh;
 }
 
-HexMesh grid(int n) {
+HexMesh box_grid(int nx, int ny, int nz) {
   HexMesh mesh;
-  const int m = n + 1;
-  auto id = [m](int i, int j, int k) { return static_cast<Index>(i + m * (j + m * k)); };
-  for (int k = 0; k < m; ++k)
-    for (int j = 0; j < m; ++j)
-      for (int i = 0; i < m; ++i) mesh.points.push_back({double(i), double(j), double(k)});
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        mesh.hexes.push_back({id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
-                              id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)});
+  auto id = [&](int i, int j, int k) { return static_cast<Index>(i + (nx + 1) * (j + (ny + 1) * k)); };
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i) mesh.points.push_back({double(i), double(j), double(k)});
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        mesh.hexes.push_back({id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k), id(i, j, k + 1),
+                              id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)});
   return mesh;
 }
+
+HexMesh grid(int n) { return box_grid(n, n, n); }
 
 std::array<Vec3, 8> twisted_hex(double theta) {
   auto p = cube_corners();

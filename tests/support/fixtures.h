@@ -13,6 +13,8 @@ namespace hq::test {
 HexMesh unit_cube();
 // An n x n x n grid of unit hexes, (n+1)^3 points, x fastest.
 HexMesh grid(int n);
+// An nx x ny x nz grid of unit hexes, x fastest.
+HexMesh box_grid(int nx, int ny, int nz);
 // The 8 corners of the unit cube with the top face rotated by theta radians
 // about the vertical axis through its centre.
 std::array<Vec3, 8> twisted_hex(double theta);
