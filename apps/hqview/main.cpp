@@ -7,6 +7,9 @@
 #include <CLI/CLI.hpp>
 #include <OpenMesh/Core/System/config.h>
 #include <charconv>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -18,7 +21,12 @@
 
 #include "hqview/core/error.h"
 #include "hqview/core/number_format.h"
+#include "hqview/io/mesh_reader.h"
 #include "hqview/pipeline/analyze.h"
+#include "hqview/pipeline/batch.h"
+#include "hqview/pipeline/batch_index.h"
+#include "hqview/pipeline/diff.h"
+#include "hqview/render/views.h"
 #include "hqview/report/bundle_writer.h"
 #include "hqview/report/report_json.h"
 
@@ -34,6 +42,8 @@ struct AnalyzeArgs {
   std::string output;
   std::string json;
   std::string size = "1600x1200";
+  std::string views = "all";
+  std::vector<long long> focus_vertices;
   int threads = 0;
   bool quiet = false;
   bool no_render = false;
@@ -50,7 +60,11 @@ struct AnalyzeArgs {
 
 std::string version_text() {
   std::string text = std::string("hqview ") + HQVIEW_VERSION + "\n";
-  text += "  formats: .mesh (MEDIT ASCII), .vtk (legacy, ASCII and BINARY, up to 5.1)\n";
+  text += "  formats: .mesh (MEDIT ASCII), .vtk (legacy, ASCII and BINARY, up to 5.1),\n";
+  text += std::string("           .vtu (VTK XML: ascii, binary, appended; zlib ") +
+          (hq::has_zlib_support() ? "on" : "off: built without zlib") + "), .msh (Gmsh 2.2 and 4.1, ASCII and binary),\n";
+  text += std::string("           .ovm (OpenVolumeMesh ASCII), .inp (Abaqus), .e .exo (Exodus II: ") +
+          (hq::has_exodus_support() ? "on, netCDF" : "off: built without netCDF") + ")\n";
   text += "  surfaces: .obj .off .stl .ply (OpenMesh " + std::to_string(OM_GET_VER) + "." + std::to_string(OM_GET_MAJ) + "), .mesh Triangles\n";
   text += "  threads: TBB " + std::string(TBB_VERSION_STRING) + "; rendering: OSMesa (offscreen OpenGL 4.5 core)\n";
   return text;
@@ -121,15 +135,10 @@ std::optional<hq::OverlapOptions> parse_overlap(const AnalyzeArgs& args) {
   return overlap;
 }
 
-int run_analyze(const AnalyzeArgs& args) {
-  const fs::path mesh_path = args.mesh;
-  const fs::path output =
-      args.output.empty() ? fs::path("hqview-report") / mesh_path.stem() : fs::path(args.output);
-  if (!args.json.empty() && args.json != "-") throw hq::UsageError("--json: only '-' (standard output) is supported");
-
+// The analysis options shared by `analyze` and `batch` (everything but the
+// input files). Throws UsageError for a bad value.
+hq::AnalyzeOptions make_analyze_options(const AnalyzeArgs& args) {
   hq::AnalyzeOptions options;
-  options.mesh_path = mesh_path;
-  options.reference_path = args.reference;
   options.tool_version = HQVIEW_VERSION;
   options.render = !args.no_render;
   options.metrics = hq::parse_hex_metric_list(args.metrics);
@@ -137,10 +146,27 @@ int run_analyze(const AnalyzeArgs& args) {
   // known once the report is (analyze throws UsageError then, no bundle).
   for (const std::string& rule : args.gates) options.gates.push_back(hq::parse_gate_rule(rule));
   parse_size(args.size, options.image_width, options.image_height);
+  options.views = hq::parse_view_list(args.views);
+  for (long long v : args.focus_vertices) {
+    if (v > 2147483647LL) throw hq::UsageError("--focus-vertex: vertex " + std::to_string(v) + " does not exist");
+    options.focus_vertices.push_back(static_cast<hq::Index>(v));
+  }
   parse_rmax(args.rmax, options.glyphs);
   options.glyphs.threshold = parse_glyph_threshold(args.glyph_threshold);
   options.glyphs.top_clusters = args.top_clusters;
   options.overlap = parse_overlap(args);
+  return options;
+}
+
+int run_analyze(const AnalyzeArgs& args) {
+  const fs::path mesh_path = args.mesh;
+  const fs::path output =
+      args.output.empty() ? fs::path("hqview-report") / mesh_path.stem() : fs::path(args.output);
+  if (!args.json.empty() && args.json != "-") throw hq::UsageError("--json: only '-' (standard output) is supported");
+
+  hq::AnalyzeOptions options = make_analyze_options(args);
+  options.mesh_path = mesh_path;
+  options.reference_path = args.reference;
   const hq::BundleOptions bundle{.force = args.force};
   hq::check_output_dir(output, bundle);  // fail before the work, not after
 
@@ -156,6 +182,208 @@ int run_analyze(const AnalyzeArgs& args) {
   return analysis.model.gates.passed ? kOk : kGateFailed;
 }
 
+// ---- batch, merge, diff (issue 9) -------------------------------------------
+
+struct BatchArgs {
+  AnalyzeArgs analysis;  // the analysis options (mesh, reference, output, json unused)
+  std::string input;     // DIR or MANIFEST
+  std::string output;
+  int jobs = 0;  // 0: all cores
+  std::string shard;
+  std::string memory_budget;  // e.g. 8G; default: half the physical memory
+  bool resume = false;
+};
+
+struct MergeArgs {
+  std::vector<std::string> shards;
+  std::string output;
+  bool force = false;
+};
+
+struct DiffArgs {
+  std::string baseline;
+  std::string current;
+  std::vector<std::string> gates;
+  std::string markdown;
+  bool quiet = false;
+};
+
+// A progress bar on a terminal, one line per mesh otherwise (CI logs).
+class StderrProgress : public hq::BatchProgress {
+ public:
+  explicit StderrProgress(bool quiet) : quiet_(quiet), is_terminal_(::isatty(2) != 0) {}
+  void mesh_finished(const hq::BatchEntry& entry, bool is_resumed, double seconds, int done, int total) override {
+    std::string what = is_resumed ? "kept" : std::string(hq::to_string(entry.status));
+    if (is_terminal_) {
+      constexpr int kWidth = 30;
+      const int filled = total > 0 ? done * kWidth / total : kWidth;
+      std::cerr << "\r\033[K[" << std::string(static_cast<std::size_t>(filled), '#')
+                << std::string(static_cast<std::size_t>(kWidth - filled), ' ') << "] " << done << "/" << total << " "
+                << entry.path << std::flush;
+      if (entry.status == hq::BatchStatus::failed) std::cerr << "\r\033[Khqview: failed: " << entry.error << "\n";
+      if (done == total) std::cerr << "\r\033[K";
+    } else if (!quiet_ || entry.status == hq::BatchStatus::failed) {
+      char time[32];
+      std::snprintf(time, sizeof time, "%.2f s", seconds);
+      std::cerr << "hqview: [" << done << "/" << total << "] " << what << " " << entry.path << " (" << time << ")"
+                << (entry.error.empty() ? "" : ": " + entry.error) << "\n";
+    }
+  }
+
+ private:
+  bool quiet_;
+  bool is_terminal_;
+};
+
+// "8G", "512M", "1000000" (bytes) -> bytes; "" -> half the physical memory.
+std::uint64_t parse_memory_budget(const std::string& text) {
+  if (text.empty()) {
+    const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
+    return pages > 0 && page > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) / 2 : 0;
+  }
+  std::string_view number = text;
+  std::uint64_t unit = 1;
+  switch (number.back()) {
+    case 'K': case 'k': unit = 1ull << 10; break;
+    case 'M': case 'm': unit = 1ull << 20; break;
+    case 'G': case 'g': unit = 1ull << 30; break;
+    default: break;
+  }
+  if (unit != 1) number.remove_suffix(1);
+  const auto value = parse_finite(number);
+  if (!value || *value < 0)
+    throw hq::UsageError("--memory-budget: expected a size such as 8G, 512M or 0 (no limit), got '" + text + "'");
+  return static_cast<std::uint64_t>(*value * static_cast<double>(unit));
+}
+
+CLI::App* add_batch_command(CLI::App& app, BatchArgs& args) {
+  CLI::App* cmd = app.add_subcommand("batch", "Analyse every mesh of a directory or manifest; one bundle each plus an index");
+  AnalyzeArgs& a = args.analysis;
+  cmd->add_option("INPUT", args.input,
+                  "Directory (every .mesh/.vtk below it) or manifest (.csv/.json: mesh, reference, compare, label, model)")
+      ->required();
+  cmd->add_option("-o,--output", args.output, "Output directory: one bundle per mesh, index.html/json, summary.md")
+      ->required();
+  cmd->add_option("-j,--jobs", args.jobs,
+                  "Meshes analysed at once, within the memory budget, and threads in all (default: all cores)")
+      ->check(CLI::Range(1, 1024));
+  cmd->add_option("--shard", args.shard, "Only shard I of N (1-based, stable by path); join shards with `hqview merge`");
+  cmd->add_flag("--resume", args.resume, "Keep a bundle whose mesh hash and HQView version are unchanged");
+  cmd->add_option("--memory-budget", args.memory_budget,
+                  "Estimated memory of the meshes in flight, e.g. 8G (default: half the physical memory; 0: no limit)");
+  cmd->add_option("--size", a.size, "Image size WIDTHxHEIGHT")->capture_default_str();
+  cmd->add_flag("--no-render", a.no_render, "Skip the rendered views");
+  cmd->add_option("--views", a.views, "Views to render: comma-separated ids, or all")->capture_default_str();
+  cmd->add_flag("--force", a.force, "Write into a directory that is not an HQView output");
+  cmd->add_option("--gate", a.gates, "Pass/fail rule on each mesh's report.json (repeatable); exit code 1 when one fails")
+      ->allow_extra_args(false)
+      ->take_all();
+  cmd->add_option("--metrics", a.metrics, "Verdict metrics to compute: comma-separated names, or all")
+      ->capture_default_str();
+  cmd->add_option("--rmax", a.rmax, "Glyph radius at quality 0 (R or Rx)")->capture_default_str();
+  cmd->add_option("--glyph-threshold", a.glyph_threshold, "No glyph where 1 - vertex quality is at or below T")
+      ->capture_default_str();
+  cmd->add_option("--top-clusters", a.top_clusters, "Glyph clusters that get detail views")
+      ->check(CLI::Range(0, 1000000))
+      ->capture_default_str();
+  CLI::Option* mode = cmd->add_option("--overlap", a.overlap, "certificate or exhaustive")->capture_default_str();
+  CLI::Option* eps = cmd->add_option("--coincident-eps", a.coincident_eps, "Coincidence tolerance (fraction of the diagonal)")
+                         ->capture_default_str();
+  cmd->add_flag("--no-overlap", a.no_overlap, "Skip the overlap stages")->excludes(mode)->excludes(eps);
+  cmd->add_flag("-q,--quiet", a.quiet, "Print only failures and errors");
+  return cmd;
+}
+
+CLI::App* add_merge_command(CLI::App& app, MergeArgs& args) {
+  CLI::App* cmd = app.add_subcommand("merge", "Join the outputs of `batch --shard` runs into one index");
+  cmd->add_option("SHARD_DIR", args.shards, "Output directories of the shards")->required();
+  cmd->add_option("-o,--output", args.output, "Merged output directory")->required();
+  cmd->add_flag("--force", args.force, "Write into a directory that is not an HQView output");
+  return cmd;
+}
+
+CLI::App* add_diff_command(CLI::App& app, DiffArgs& args) {
+  CLI::App* cmd = app.add_subcommand("diff", "Compare two report.json or two index.json; gates relative to the baseline");
+  cmd->add_option("BASELINE", args.baseline, "report.json or index.json (or a bundle / batch directory)")->required();
+  cmd->add_option("CURRENT", args.current, "report.json or index.json (or a bundle / batch directory)")->required();
+  cmd->add_option("--gate", args.gates,
+                  "Rule, e.g. quality.scaled_jacobian.min>=baseline-0.01 (repeatable); exit code 1 when one fails")
+      ->allow_extra_args(false)
+      ->take_all();
+  cmd->add_option("--markdown", args.markdown, "Also write the comparison as Markdown (a pull-request comment)");
+  cmd->add_flag("-q,--quiet", args.quiet, "Print only failed gates");
+  return cmd;
+}
+
+int run_batch_command(const BatchArgs& args, int jobs) {
+  hq::BatchOptions options;
+  options.analyze = make_analyze_options(args.analysis);
+  options.output = args.output;
+  options.jobs = jobs;
+  options.resume = args.resume;
+  options.force = args.analysis.force;
+  options.memory_budget = parse_memory_budget(args.memory_budget);
+  std::vector<hq::BatchInput> inputs = hq::collect_batch_inputs(args.input);
+  if (!args.shard.empty()) inputs = hq::select_shard(inputs, hq::parse_shard(args.shard));
+  hq::check_batch_output_dir(options.output, options.force);
+  fs::create_directories(options.output);
+
+  StderrProgress progress(args.analysis.quiet);
+  const std::vector<hq::BatchEntry> entries = hq::run_batch(inputs, options, &progress);
+  hq::write_batch_index(entries, HQVIEW_VERSION, options.output);
+  if (!args.analysis.quiet)
+    std::cerr << "hqview: " << entries.size() << " meshes; index written to "
+              << (options.output / "index.html").string() << "\n";
+  for (const hq::BatchEntry& e : entries)
+    for (const std::string& rule : e.failed_gates) std::cerr << "hqview: gate failed: " << e.path << ": " << rule << "\n";
+  return hq::batch_exit_code(entries);
+}
+
+int run_merge_command(const MergeArgs& args) {
+  std::vector<fs::path> shards(args.shards.begin(), args.shards.end());
+  hq::check_batch_output_dir(args.output, args.force);
+  const std::vector<hq::BatchEntry> entries = hq::merge_shards(shards, args.output);
+  hq::write_batch_index(entries, HQVIEW_VERSION, args.output);
+  std::cerr << "hqview: merged " << entries.size() << " meshes from " << shards.size() << " shards into "
+            << (fs::path(args.output) / "index.html").string() << "\n";
+  return hq::batch_exit_code(entries);
+}
+
+// A report.json/index.json, or the directory holding one (index.json first).
+fs::path diff_input_file(const std::string& arg) {
+  const fs::path path = arg;
+  if (!fs::is_directory(path)) return path;
+  if (fs::is_regular_file(path / "index.json")) return path / "index.json";
+  return path / "report.json";
+}
+
+std::string read_input_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw hq::InputError(path.string() + ": cannot open");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return std::move(text).str();
+}
+
+int run_diff_command(const DiffArgs& args) {
+  std::vector<hq::DiffGate> gates;
+  for (const std::string& rule : args.gates) gates.push_back(hq::parse_diff_gate(rule));
+  const fs::path baseline = diff_input_file(args.baseline), current = diff_input_file(args.current);
+  const hq::DiffResult diff = hq::diff_reports(read_input_text(baseline), read_input_text(current), gates,
+                                               baseline.parent_path(), current.parent_path());
+  if (!args.markdown.empty()) {
+    std::ofstream out(args.markdown, std::ios::binary);
+    out << hq::diff_markdown(diff);
+    if (!out.flush()) throw hq::Error(args.markdown + ": cannot write");
+  }
+  if (!args.quiet) std::cout << hq::diff_text(diff) << std::flush;
+  for (const hq::DiffGateResult& g : diff.gates)
+    if (!g.passed)
+      std::cerr << "hqview: gate failed: " << g.rule << (g.mesh.empty() ? "" : " [" + g.mesh + "]") << " (value "
+                << (g.value ? hq::format_double(*g.value) : std::string("none: the mesh failed")) << ")\n";
+  return diff.passed ? kOk : kGateFailed;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -166,7 +394,7 @@ int main(int argc, char** argv) {
 
   AnalyzeArgs args;
   CLI::App* analyze = app.add_subcommand("analyze", "Analyse one hex mesh and write a report bundle");
-  analyze->add_option("MESH", args.mesh, "Hex mesh: .mesh (MEDIT) or .vtk (legacy VTK)")->required();
+  analyze->add_option("MESH", args.mesh, "Hex mesh: .mesh .vtk .vtu .msh .ovm .inp .e .exo")->required();
   analyze->add_option("--reference", args.reference,
                       "Reference surface (.obj .off .stl .ply, .mesh Triangles): boundary error and UV atlas");
   analyze->add_option("-o,--output", args.output, "Bundle directory (default: ./hqview-report/<mesh stem>)");
@@ -175,6 +403,13 @@ int main(int argc, char** argv) {
   analyze->add_option("--json", args.json, "Also print report.json to standard output ('-')");
   analyze->add_option("--size", args.size, "Image size WIDTHxHEIGHT")->capture_default_str();
   analyze->add_flag("--no-render", args.no_render, "Skip the rendered views");
+  analyze->add_option("--views", args.views,
+                      "Views to render: comma-separated ids (overview, main, clusters, local, corners, boundary_error, "
+                      "uv_error, histogram, sorted_quality), or all")
+      ->capture_default_str();
+  analyze->add_option("--focus-vertex", args.focus_vertices, "Also draw the local view D and chart E of vertex V (repeatable)")
+      ->check(CLI::NonNegativeNumber)
+      ->allow_extra_args(false);
   analyze->add_flag("--force", args.force, "Replace an output directory that is not an HQView bundle");
   analyze->add_option("--gate", args.gates,
                       "Pass/fail rule on a report.json number, e.g. quality.scaled_jacobian.min>=0.2 (repeatable); "
@@ -206,6 +441,13 @@ int main(int argc, char** argv) {
       ->excludes(coincident_eps);
   analyze->add_flag("-q,--quiet", args.quiet, "Print nothing on standard error but errors");
 
+  BatchArgs batch_args;
+  CLI::App* batch = add_batch_command(app, batch_args);
+  MergeArgs merge_args;
+  CLI::App* merge = add_merge_command(app, merge_args);
+  DiffArgs diff_args;
+  CLI::App* diff = add_diff_command(app, diff_args);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -220,14 +462,18 @@ int main(int argc, char** argv) {
     std::cout << version_text();
     return kOk;
   }
-  if (!*analyze) {
+  if (!*analyze && !*batch && !*merge && !*diff) {
     std::cerr << app.help();
     return kUsage;
   }
 
   try {
-    const int threads = args.threads > 0 ? args.threads : tbb::info::default_concurrency();
+    if (*merge) return run_merge_command(merge_args);
+    if (*diff) return run_diff_command(diff_args);
+    const int requested = *batch ? batch_args.jobs : args.threads;
+    const int threads = requested > 0 ? requested : tbb::info::default_concurrency();
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+    if (*batch) return run_batch_command(batch_args, threads);
     return run_analyze(args);
   } catch (const hq::UsageError& e) {
     std::cerr << "hqview: " << e.what() << "\n";

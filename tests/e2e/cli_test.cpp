@@ -39,7 +39,7 @@ TEST(Cli, BallBundleHasEveryFileAndRealNumbers) {
   // The pushed vertex (2,7,3) folds some corners over.
   EXPECT_GT(report["quality"]["corner_scaled_jacobian"]["num_inverted"].get<int>(), 0);
   const auto& views = report["views"];
-  ASSERT_EQ(views.size(), 1u);
+  ASSERT_GE(views.size(), 1u);  // every view: tests/e2e/views_cli_test.cpp
   EXPECT_EQ(views[0]["files"][0], "views/overview.png");
   // The CSVs: one row per hex / vertex plus the header.
   EXPECT_EQ(read_csv(out / "data/cells.csv").size(), 1001u);

@@ -12,8 +12,13 @@
 #include <typeinfo>
 #include <vector>
 
+#include "hqview/io/abaqus_reader.h"
+#include "hqview/io/gmsh_reader.h"
 #include "hqview/io/medit_reader.h"
+#include "hqview/io/mesh_reader.h"
+#include "hqview/io/ovm_reader.h"
 #include "hqview/io/vtk_legacy_reader.h"
+#include "hqview/io/vtu_reader.h"
 
 namespace hq {
 namespace {
@@ -62,6 +67,117 @@ std::string binary_vtk(bool version5) {
   put_be(s, 12, 4);
   return s + "\n";
 }
+
+// A unit cube written by meshio as .vtu, binary (header and data in one
+// base64 string) and zlib-compressed (header and blocks encoded apart).
+const std::string kVtuBinary =
+    "<?xml version=\"1.0\"?>\n"
+    "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+    "<UnstructuredGrid>\n"
+    "<Piece NumberOfPoints=\"8\" NumberOfCells=\"1\">\n"
+    "<Points>\n"
+    "<DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"binary\">\n"
+    "wAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAPA/AAAAAAAAAAAAAAAAAAAAAAAAAAAAAPA/"
+    "AAAAAAAA8D8AAAAAAAAAAAAAAAAAAAAAAAAAAAAA8D8AAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAADwPwAAAAAAAPA/"
+    "AAAAAAAAAAAAAAAAAADwPwAAAAAAAPA/AAAAAAAA8D8AAAAAAADwPwAAAAAAAAAAAAAAAAAA8D8AAAAAAADwPw==\n"
+    "</DataArray>\n"
+    "</Points>\n"
+    "<Cells>\n"
+    "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"binary\">\n"
+    "QAAAAAAAAAAAAAAAAQAAAAAAAAACAAAAAAAAAAMAAAAAAAAABAAAAAAAAAAFAAAAAAAAAAYAAAAAAAAABwAAAAAAAAA=\n"
+    "</DataArray>\n"
+    "<DataArray type=\"Int64\" Name=\"offsets\" format=\"binary\">\n"
+    "CAAAAAgAAAAAAAAA\n"
+    "</DataArray>\n"
+    "<DataArray type=\"Int64\" Name=\"types\" format=\"binary\">\n"
+    "CAAAAAwAAAAAAAAA\n"
+    "</DataArray>\n"
+    "</Cells>\n"
+    "</Piece>\n"
+    "</UnstructuredGrid>\n"
+    "</VTKFile>\n";
+const std::string kVtuZlib =
+    "<?xml version=\"1.0\"?>\n"
+    "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\" "
+    "compressor=\"vtkZLibDataCompressor\">\n"
+    "<UnstructuredGrid>\n"
+    "<Piece NumberOfPoints=\"8\" NumberOfCells=\"1\">\n"
+    "<Points>\n"
+    "<DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"binary\">\n"
+    "AQAAAACAAADAAAAAGwAAAA==eJxjYMAHPtjjFyckT8hcdHXo4oTVAQDgMQ41\n"
+    "</DataArray>\n"
+    "</Points>\n"
+    "<Cells>\n"
+    "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"binary\">\n"
+    "AQAAAACAAABAAAAAHgAAAA==eJxjYIAARijNBKWZoTQLlGaF0mxQmh1KAwAC4AAd\n"
+    "</DataArray>\n"
+    "<DataArray type=\"Int64\" Name=\"offsets\" format=\"binary\">\n"
+    "AQAAAACAAAAIAAAACwAAAA==eJzjYIAAAABIAAk=\n"
+    "</DataArray>\n"
+    "<DataArray type=\"Int64\" Name=\"types\" format=\"binary\">\n"
+    "AQAAAACAAAAIAAAACwAAAA==eJzjYYAAAABoAA0=\n"
+    "</DataArray>\n"
+    "</Cells>\n"
+    "</Piece>\n"
+    "</UnstructuredGrid>\n"
+    "</VTKFile>\n";
+const std::string kVtuAppended = [] {
+  std::string appended;
+  const auto block = [&](const std::string& data) {
+    const auto size = static_cast<std::uint32_t>(data.size());
+    appended.append(reinterpret_cast<const char*>(&size), 4);
+    appended += data;
+  };
+  const double xyz[24] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1};
+  const std::int32_t ids[8] = {0, 1, 2, 3, 4, 5, 6, 7};
+  const std::int32_t offset = 8;
+  const std::uint8_t type = 12;
+  block(std::string(reinterpret_cast<const char*>(xyz), sizeof xyz));
+  block(std::string(reinterpret_cast<const char*>(ids), sizeof ids));
+  block(std::string(reinterpret_cast<const char*>(&offset), 4));
+  block(std::string(reinterpret_cast<const char*>(&type), 1));
+  return "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"8\" NumberOfCells=\"1\">\n"
+         "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" offset=\"0\"/></Points>\n"
+         "<Cells><DataArray type=\"Int32\" Name=\"connectivity\" format=\"appended\" offset=\"196\"/>\n"
+         "<DataArray type=\"Int32\" Name=\"offsets\" format=\"appended\" offset=\"232\"/>\n"
+         "<DataArray type=\"UInt8\" Name=\"types\" format=\"appended\" offset=\"240\"/></Cells>\n"
+         "</Piece></UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_" +
+         appended + "\n</AppendedData></VTKFile>\n";
+}();
+
+const std::string kGmsh22 =
+    "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n9\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n5 0 0 1\n6 1 0 1\n"
+    "7 1 1 1\n8 0 1 1\n19 2 2 2\n$EndNodes\n$Elements\n2\n1 3 2 0 1 1 2 3 4\n2 5 2 0 1 1 2 3 4 5 6 7 8\n$EndElements\n";
+const std::string kGmsh41 =
+    "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 8 1 8\n3 1 0 8\n1\n2\n3\n4\n5\n6\n7\n8\n0 0 0\n1 0 0\n"
+    "1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n$EndNodes\n$Elements\n2 2 1 2\n2 1 3 1\n1 1 2 3 4\n3 1 5 1\n"
+    "2 1 2 3 4 5 6 7 8\n$EndElements\n";
+
+std::string binary_gmsh22() {
+  std::string s = "$MeshFormat\n2.2 1 8\n";
+  const auto put_int = [&](std::int32_t v) { s.append(reinterpret_cast<const char*>(&v), 4); };
+  const auto put_double = [&](double v) { s.append(reinterpret_cast<const char*>(&v), 8); };
+  put_int(1);
+  s += "\n$EndMeshFormat\n$Nodes\n8\n";
+  const double corners[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  for (int i = 0; i < 8; ++i) {
+    put_int(i + 1);
+    for (const double c : corners[i]) put_double(c);
+  }
+  s += "\n$EndNodes\n$Elements\n1\n";
+  for (const std::int32_t v : {5, 1, 1, 1, 0}) put_int(v);
+  for (int i = 1; i <= 8; ++i) put_int(i);
+  return s + "\n$EndElements\n";
+}
+
+const std::string kAbaqus =
+    "*HEADING\ncube\n*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 1, 1, 0\n4, 0, 1, 0\n5, 0, 0, 1\n6, 1, 0, 1\n7, 1, 1, 1\n"
+    "8, 0, 1, 1\n*ELEMENT, TYPE=S4\n2, 1, 2, 3, 4\n*ELEMENT, TYPE=C3D8R\n1, 1, 2, 3, 4,\n5, 6, 7, 8\n";
+
+const std::string kOvm =
+    "OVM ASCII\nVertices\n8\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\nEdges\n12\n3 2\n2 1\n"
+    "1 0\n0 3\n5 6\n6 7\n7 4\n4 5\n2 6\n5 1\n7 3\n0 4\nFaces\n6\n4 0 2 4 6\n4 8 10 12 14\n4 3 16 9 18\n"
+    "4 13 20 7 22\n4 19 15 23 5\n4 1 21 11 17\nPolyhedra\n1\n6 0 2 4 6 8 10\n";
 
 // Replaces, inserts, deletes, truncates or duplicates a few bytes.
 std::string mutate(std::string s, std::mt19937_64& rng) {
@@ -135,6 +251,27 @@ TEST(ParserRobustness, VtkBinary) {
       binary_vtk(false), [](const std::string& s) { read_vtk_legacy(s, "m.vtk"); }, 5);
   check_mutations(
       binary_vtk(true), [](const std::string& s) { read_vtk_legacy(s, "m.vtk"); }, 6);
+}
+
+TEST(ParserRobustness, Vtu) {
+  const auto read = [](const std::string& s) { read_vtu(s, "m.vtu"); };
+  check_mutations(kVtuBinary, read, 7);
+  check_mutations(kVtuAppended, read, 8);
+  if (has_zlib_support()) check_mutations(kVtuZlib, read, 9);
+}
+
+TEST(ParserRobustness, Gmsh) {
+  const auto read = [](const std::string& s) { read_gmsh(s, "m.msh"); };
+  check_mutations(kGmsh22, read, 10);
+  check_mutations(kGmsh41, read, 11);
+  check_mutations(binary_gmsh22(), read, 12);
+}
+
+TEST(ParserRobustness, AbaqusAndOvm) {
+  check_mutations(
+      kAbaqus, [](const std::string& s) { read_abaqus(s, "m.inp"); }, 13);
+  check_mutations(
+      kOvm, [](const std::string& s) { read_ovm(s, "m.ovm"); }, 14);
 }
 
 }  // namespace

@@ -8,10 +8,15 @@
 #include <system_error>
 
 #include "hqview/core/error.h"
+#include "hqview/io/abaqus_reader.h"
+#include "hqview/io/exodus_reader.h"
+#include "hqview/io/gmsh_reader.h"
 #include "hqview/io/medit_reader.h"
 #include "hqview/io/mesh_reader.h"
+#include "hqview/io/ovm_reader.h"
 #include "hqview/io/text_scanner.h"
 #include "hqview/io/vtk_legacy_reader.h"
+#include "hqview/io/vtu_reader.h"
 
 namespace hq {
 namespace detail {
@@ -84,31 +89,124 @@ bool looks_like_medit(std::string_view bytes) {
   return false;
 }
 
+// netCDF classic / 64-bit offset / HDF5 (netCDF-4) signatures: Exodus II.
+bool looks_like_exodus(std::string_view bytes) {
+  return bytes.starts_with(std::string_view("CDF\x01", 4)) || bytes.starts_with(std::string_view("CDF\x02", 4)) ||
+         bytes.starts_with(std::string_view("CDF\x05", 4)) || bytes.starts_with("\x89HDF\r\n\x1a\n");
+}
+
+using Reader = LoadedMesh (*)(std::string_view, const std::string&);
+
+LoadedMesh read_exodus_bytes(std::string_view bytes, const std::string& name) { return read_exodus(bytes, name); }
+
+struct MeshFormat {
+  std::string_view name;         // --format value
+  std::string_view description;  // for messages
+  std::string_view extensions[2];
+  bool (*looks_like)(std::string_view);
+  Reader read;
+};
+
+// Detection order matters only for content that two formats could claim:
+// none of these signatures overlap, except that Abaqus's (a line starting
+// with '*') is checked after the others.
+constexpr MeshFormat kFormats[] = {
+    {"mesh", "MEDIT (.mesh)", {".mesh", ""}, looks_like_medit, read_medit},
+    {"vtk", "legacy VTK", {".vtk", ""}, looks_like_vtk, read_vtk_legacy},
+    {"vtu", "VTK XML", {".vtu", ""}, looks_like_vtu, read_vtu},
+    {"msh", "Gmsh", {".msh", ""}, looks_like_gmsh, read_gmsh},
+    {"ovm", "OpenVolumeMesh", {".ovm", ""}, looks_like_ovm, read_ovm},
+    {"exodus", "Exodus II (netCDF)", {".e", ".exo"}, looks_like_exodus, read_exodus_bytes},
+    {"inp", "Abaqus", {".inp", ""}, looks_like_abaqus, read_abaqus},
+};
+
+constexpr std::string_view kExpected = "expected .mesh, .vtk, .vtu, .msh, .ovm, .inp, .e or .exo";
+
+const MeshFormat* format_by_extension(const std::string& ext) {
+  if (ext.empty()) return nullptr;
+  for (const MeshFormat& format : kFormats)
+    for (const std::string_view e : format.extensions)
+      if (e == ext) return &format;
+  return nullptr;
+}
+
+const MeshFormat* format_by_name(std::string_view name) {
+  for (const MeshFormat& format : kFormats)
+    if (format.name == name) return &format;
+  return nullptr;
+}
+
+const MeshFormat* format_by_content(std::string_view bytes) {
+  for (const MeshFormat& format : kFormats)
+    if (format.looks_like(bytes)) return &format;
+  return nullptr;
+}
+
 // Throws InputError unless path has a hex mesh extension.
-void check_hex_mesh_extension(const std::filesystem::path& path) {
+const MeshFormat& format_of_path(const std::filesystem::path& path) {
   const std::string ext = detail::lowercase_extension(path);
-  if (ext == ".mesh" || ext == ".vtk") return;
-  if (ext.empty()) throw InputError(path.string() + ": no file extension (expected .mesh or .vtk)");
-  throw InputError(path.string() + ": unknown mesh format '" + path.extension().string() +
-                   "' (expected .mesh or .vtk)");
+  if (const MeshFormat* format = format_by_extension(ext)) return *format;
+  if (ext.empty()) throw InputError(path.string() + ": no file extension (" + std::string(kExpected) + ")");
+  throw InputError(path.string() + ": unknown mesh format '" + path.extension().string() + "' (" +
+                   std::string(kExpected) + ")");
+}
+
+const MeshFormat& format_of_name(std::string_view name) {
+  if (const MeshFormat* format = format_by_name(name)) return *format;
+  throw UsageError("unknown mesh format '" + std::string(name) + "' (expected " + mesh_format_names() + ")");
+}
+
+LoadedMesh read_as(const MeshFormat& format, const std::filesystem::path& path, std::string_view bytes) {
+  const std::string name = path.string();
+  const MeshFormat* content = format_by_content(bytes);
+  if (content != nullptr && content != &format)
+    throw ParseError(name, 0,
+                     "a " + detail::lowercase_extension(path) + " file with " + std::string(content->description) +
+                         " content (expected the extension " + std::string(content->extensions[0]) + ")");
+  return format.read(bytes, name);
 }
 
 }  // namespace
 
+std::string mesh_format_names() {
+  std::string names;
+  for (const MeshFormat& format : kFormats) names += (names.empty() ? "" : ", ") + std::string(format.name);
+  return names;
+}
+
+std::string detect_mesh_format(std::string_view bytes) {
+  const MeshFormat* format = format_by_content(bytes);
+  return format == nullptr ? std::string() : std::string(format->name);
+}
+
+bool has_exodus_support() { return exodus_available(); }
+
+bool has_zlib_support() {
+#ifdef HQ_HAVE_ZLIB
+  return true;
+#else
+  return false;
+#endif
+}
+
 LoadedMesh read_hex_mesh(const std::filesystem::path& path) {
-  check_hex_mesh_extension(path);
-  return read_hex_mesh(path, read_file_bytes(path));
+  const MeshFormat& format = format_of_path(path);
+  return read_as(format, path, read_file_bytes(path));
 }
 
 LoadedMesh read_hex_mesh(const std::filesystem::path& path, std::string_view bytes) {
-  check_hex_mesh_extension(path);
-  const std::string name = path.string();
-  if (detail::lowercase_extension(path) == ".mesh") {
-    if (looks_like_vtk(bytes)) throw ParseError(name, 1, "a .mesh file with legacy VTK content");
-    return read_medit(bytes, name);
-  }
-  if (looks_like_medit(bytes)) throw ParseError(name, 0, "a .vtk file with MEDIT (.mesh) content");
-  return read_vtk_legacy(bytes, name);
+  return read_as(format_of_path(path), path, bytes);
+}
+
+LoadedMesh read_hex_mesh_as(const std::filesystem::path& path, std::string_view format) {
+  if (format.empty()) return read_hex_mesh(path);
+  const MeshFormat& chosen = format_of_name(format);
+  return chosen.read(read_file_bytes(path), path.string());
+}
+
+LoadedMesh read_hex_mesh_as(const std::filesystem::path& path, std::string_view bytes, std::string_view format) {
+  if (format.empty()) return read_hex_mesh(path, bytes);
+  return format_of_name(format).read(bytes, path.string());
 }
 
 }  // namespace hq

@@ -9,7 +9,9 @@
 // input could hold that many entries.
 //
 // The in-memory readers: medit_reader.h (read_medit, read_medit_triangles),
-// vtk_legacy_reader.h (read_vtk_legacy).
+// vtk_legacy_reader.h (read_vtk_legacy), vtu_reader.h (read_vtu),
+// gmsh_reader.h (read_gmsh), abaqus_reader.h (read_abaqus), ovm_reader.h
+// (read_ovm), exodus_reader.h (read_exodus, when built with netCDF).
 
 #include <filesystem>
 #include <string>
@@ -32,15 +34,38 @@ struct LoadedMesh {
 // directory, fifo or device (never blocks on a fifo).
 std::string read_file_bytes(const std::filesystem::path& path);
 
-// A hex mesh file by its extension (.mesh, .vtk, in any case); throws
-// InputError for an unknown extension ("path: unknown mesh format '.xyz'
-// (expected .mesh or .vtk)") and ParseError for a malformed file or one
-// whose content is another format than its extension says.
+// A hex mesh file by its extension, in any case: .mesh (MEDIT), .vtk
+// (legacy VTK), .vtu (VTK XML), .msh (Gmsh), .ovm (OpenVolumeMesh), .inp
+// (Abaqus), .e or .exo (Exodus II). Throws InputError for an unknown
+// extension ("path: unknown mesh format '.xyz' (expected .mesh, ...)") and
+// ParseError for a malformed file or one whose content is recognisably
+// another format than its extension says.
 LoadedMesh read_hex_mesh(const std::filesystem::path& path);
 
 // The same from bytes already read (e.g. by read_file_bytes(), to hash them
 // too): dispatches on path's extension and names path in messages.
 LoadedMesh read_hex_mesh(const std::filesystem::path& path, std::string_view bytes);
+
+// With an explicit format (a name of mesh_format_names(); empty: by the
+// extension, as above): the extension is ignored and the content is not
+// checked against it. Throws UsageError for an unknown format name.
+LoadedMesh read_hex_mesh_as(const std::filesystem::path& path, std::string_view format);
+LoadedMesh read_hex_mesh_as(const std::filesystem::path& path, std::string_view bytes, std::string_view format);
+
+// The format names --format accepts, comma-separated: "mesh, vtk, vtu, msh,
+// ovm, exodus, inp".
+std::string mesh_format_names();
+
+// The format name whose signature the content has ("" when none does):
+// MeshVersionFormatted, "# vtk DataFile", <VTKFile, $MeshFormat, OVM ASCII,
+// a netCDF/HDF5 signature, an Abaqus keyword line.
+std::string detect_mesh_format(std::string_view bytes);
+
+// True when this build reads Exodus II files (built with netCDF).
+bool has_exodus_support();
+
+// True when this build reads zlib-compressed .vtu data (built with zlib).
+bool has_zlib_support();
 
 // A reference triangle surface (.obj .off .stl .ply via OpenMesh, polygons
 // triangulated as fans, STL duplicate vertices merged; .mesh via its

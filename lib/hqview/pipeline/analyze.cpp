@@ -12,7 +12,7 @@
 #include "hqview/quality/corner_jacobian.h"
 #include "hqview/report/report_json.h"
 #include "hqview/render/osmesa_renderer.h"
-#include "hqview/render/views_overview.h"
+#include "hqview/render/views.h"
 
 namespace hq {
 namespace fs = std::filesystem;
@@ -45,6 +45,7 @@ void analyze_reference(const fs::path& path, ReportModel& model) {
   }
   model.warnings.insert(model.warnings.end(), model.boundary_error->warnings.begin(), model.boundary_error->warnings.end());
   model.uv_atlas = build_uv_atlas(reference, UvOptions{.improve_with_lscm = true});
+  model.reference_surface = reference;
 }
 
 }  // namespace
@@ -156,13 +157,22 @@ Analysis analyze(const AnalyzeOptions& options) {
 
   if (options.render) {
     const auto renderer = make_osmesa_renderer();
-    OverviewOptions overview;
-    overview.width = options.image_width;
-    overview.height = options.image_height;
-    overview.title = fs::path(model.mesh_input.path).filename().string() + ": vertex quality on the boundary";
-    result.images.push_back(
-        {"views/overview.png", render_quality_overview(model.mesh, model.topology, model.field.vertex_quality, overview, *renderer)});
-    model.views.push_back({"overview", "Boundary coloured by vertex quality", {"views/overview.png"}});
+    ViewInputs inputs{&model.mesh, &model.topology, &model.field.vertex_quality, &model.field.cell_scaled_jacobian,
+                      model.glyphs ? &*model.glyphs : nullptr,
+                      model.overlap ? &*model.overlap : nullptr,
+                      fs::path(model.mesh_input.path).filename().string(),
+                      model.boundary_error ? &*model.boundary_error : nullptr,
+                      model.reference_surface ? &*model.reference_surface : nullptr,
+                      model.uv_atlas ? &*model.uv_atlas : nullptr};
+    for (RenderedView& view : render_views(inputs, {options.image_width, options.image_height, 40, options.glyphs.top_clusters, options.focus_vertices, options.views}, *renderer)) {
+      ViewEntry& entry = model.views.emplace_back();
+      entry.id = view.id;
+      entry.title = view.title;
+      for (ViewFile& file : view.files) {
+        entry.files.push_back(file.relative_path);
+        result.images.push_back({file.relative_path, std::move(file.image), std::move(file.text)});
+      }
+    }
   }
   // Gates read the finished report, so any numeric key can be gated on.
   model.gates = evaluate_gates(options.gates, report_json(model));

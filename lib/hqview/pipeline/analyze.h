@@ -24,6 +24,8 @@ struct AnalyzeOptions {
   bool render = true;
   int image_width = 1600;
   int image_height = 1200;
+  std::vector<std::string> views;  // --views: ids to render (parse_view_list); empty: all
+  std::vector<Index> focus_vertices;  // --focus-vertex: more D/E views
   int worst_count = 20;  // entries in worst_vertices / worst_cells
   HexMetricSet metrics = all_hex_metrics();  // Verdict metrics to compute (scaled_jacobian always)
   std::vector<GateRule> gates;  // evaluated on the finished report (throws UsageError for a missing key)

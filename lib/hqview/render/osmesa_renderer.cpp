@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "hqview/core/error.h"
+#include "hqview/render/scene_shapes.h"
 
 namespace hq {
 namespace {
@@ -25,6 +26,7 @@ constexpr int kSupersampling = 2;
 constexpr GLuint kPositionAttribute = 0;
 constexpr GLuint kNormalAttribute = 1;
 constexpr GLuint kColorAttribute = 2;
+constexpr GLuint kCornerAttribute = 3;  // sphere impostors: quad corner (xy) and radius (z)
 
 // Shading: a directional light fixed to the camera (a headlight tilted up by
 // 20 degrees, so that the sides of a box seen obliquely get three distinct
@@ -90,6 +92,77 @@ constexpr const char* kLineFragmentShader = R"(#version 450 core
 in vec4 vertex_color;
 out vec4 fragment_color;
 void main() { fragment_color = vertex_color; }
+)";
+
+// Sphere impostors: each sphere is a quad facing the eye, just large enough
+// to cover the sphere's silhouette (for a perspective camera, the tangent
+// cone's cross-section through the centre: r d / sqrt(d^2 - r^2)). Each
+// fragment casts its eye ray against the sphere, discards misses, shades the
+// hit with the triangles' light and writes the hit's depth, so spheres
+// intersect each other and the mesh correctly. (Point sprites would do the
+// same but llvmpipe caps their size at 255 pixels, too small for large
+// glyphs at 2x2 supersampling.)
+constexpr const char* kSphereVertexShader = R"(#version 450 core
+layout(location = 0) in vec3 center;
+layout(location = 2) in vec4 color;
+layout(location = 3) in vec3 corner_radius;
+uniform mat4 model_view;
+uniform mat4 projection;
+uniform bool is_perspective;
+out vec3 eye_point;
+flat out vec3 eye_center;
+flat out float radius;
+flat out vec4 sphere_color;
+void main() {
+  vec3 c = (model_view * vec4(center, 1.0)).xyz;
+  float r = corner_radius.z;
+  vec3 axis = is_perspective ? normalize(-c) : vec3(0.0, 0.0, 1.0);
+  float d = length(c);
+  float half_size = is_perspective ? r * d / sqrt(max(d * d - r * r, 1e-6 * d * d)) : r;
+  half_size *= 1.02;
+  vec3 u = normalize(cross(abs(axis.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0), axis));
+  vec3 v = cross(axis, u);
+  vec3 p = c + half_size * (corner_radius.x * u + corner_radius.y * v);
+  eye_point = p;
+  eye_center = c;
+  radius = r;
+  sphere_color = color;
+  gl_Position = projection * vec4(p, 1.0);
+}
+)";
+
+constexpr const char* kSphereFragmentShader = R"(#version 450 core
+in vec3 eye_point;
+flat in vec3 eye_center;
+flat in float radius;
+flat in vec4 sphere_color;
+uniform mat4 projection;
+uniform bool is_perspective;
+uniform vec3 light_direction;
+uniform float ambient;
+out vec4 fragment_color;
+vec3 to_linear(vec3 c) { return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), step(0.04045, c)); }
+vec3 to_srgb(vec3 c) { return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, c)); }
+void main() {
+  vec3 origin = is_perspective ? vec3(0.0) : vec3(eye_point.xy, 0.0);
+  vec3 direction = is_perspective ? normalize(eye_point) : vec3(0.0, 0.0, -1.0);
+  vec3 oc = origin - eye_center;
+  float b = dot(direction, oc);
+  float disc = b * b - (dot(oc, oc) - radius * radius);
+  if (disc < 0.0) discard;
+  float t = -b - sqrt(disc);
+  vec3 hit = origin + t * direction;
+  vec3 n = (hit - eye_center) / radius;
+  vec4 clip = projection * vec4(hit, 1.0);
+  gl_FragDepth = clamp(0.5 * clip.z / clip.w + 0.5, 0.0, 1.0);
+  float diffuse = max(dot(n, light_direction), 0.0);
+  float shade = ambient + (1.0 - ambient) * diffuse;
+  // A small highlight makes spheres read as round at a glance.
+  vec3 h = normalize(light_direction + vec3(0.0, 0.0, 1.0));
+  float specular = 0.25 * pow(max(dot(n, h), 0.0), 40.0);
+  vec3 lit = to_linear(sphere_color.rgb) * shade + vec3(specular);
+  fragment_color = vec4(to_srgb(min(lit, vec3(1.0))), 1.0);
+}
 )";
 
 std::string gl_error_name(GLenum error) {
@@ -185,6 +258,7 @@ class OsmesaRenderer final : public Renderer {
       make_current();
       triangle_program_ = link_program(kTriangleVertexShader, kTriangleFragmentShader, "triangle");
       line_program_ = link_program(kLineVertexShader, kLineFragmentShader, "line");
+      sphere_program_ = link_program(kSphereVertexShader, kSphereFragmentShader, "sphere");
       glGenVertexArrays(1, &vertex_array_);
       glGenBuffers(1, &position_buffer_);
       glGenBuffers(1, &normal_buffer_);
@@ -214,7 +288,15 @@ class OsmesaRenderer final : public Renderer {
       if (!set.normals.empty() && set.normals.size() != set.positions.size())
         throw RenderError("triangle set: normals and positions differ in count");
     }
+    for (const TriangleSet& set : scene.translucent) {
+      check_indices(set, 3, "translucent triangle set");
+      if (!set.normals.empty() && set.normals.size() != set.positions.size())
+        throw RenderError("translucent triangle set: normals and positions differ in count");
+    }
     for (const LineSet& set : scene.lines) check_indices(set, 2, "line set");
+    for (const SphereSet& set : scene.spheres)
+      if (set.radii.size() != set.centers.size() || set.colors.size() != set.centers.size())
+        throw RenderError("sphere set: centres, radii and colours differ in count");
 
     make_current();
     prepare_framebuffers(width, height);
@@ -233,11 +315,22 @@ class OsmesaRenderer final : public Renderer {
     glBindVertexArray(vertex_array_);
 
     const double aspect = static_cast<double>(width) / static_cast<double>(height);
-    const auto model_view = to_float(view_matrix(camera) * translation_matrix(scene.origin));
+    const Mat4 model_view_matrix = view_matrix(camera) * translation_matrix(scene.origin);
+    const auto model_view = to_float(model_view_matrix);
     const auto projection = to_float(projection_matrix(camera, aspect));
 
-    draw_triangles(scene, model_view, projection);
+    draw_triangles(scene.triangles, model_view, projection, nullptr);
+    draw_spheres(scene, model_view, projection, camera.is_perspective);
     draw_lines(scene, model_view, projection);
+    if (!scene.translucent.empty()) {
+      // Blended over everything, without depth writes, back to front.
+      glEnable(GL_BLEND);
+      glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+      glDepthMask(GL_FALSE);
+      draw_triangles(scene.translucent, model_view, projection, &model_view_matrix);
+      glDepthMask(GL_TRUE);
+      glDisable(GL_BLEND);
+    }
     check_gl("drawing");
 
     Image image = resolve(width, height);
@@ -260,6 +353,7 @@ class OsmesaRenderer final : public Renderer {
       glDeleteVertexArrays(1, &vertex_array_);
       glDeleteProgram(triangle_program_);
       glDeleteProgram(line_program_);
+      glDeleteProgram(sphere_program_);
     }
     OSMesaDestroyContext(context_);
     context_ = nullptr;
@@ -336,21 +430,62 @@ class OsmesaRenderer final : public Renderer {
     glUniformMatrix4fv(glGetUniformLocation(program, "projection"), 1, GL_FALSE, projection.data());
   }
 
-  void draw_triangles(const Scene& scene, const std::array<float, 16>& model_view,
-                      const std::array<float, 16>& projection) {
-    glUseProgram(triangle_program_);
-    set_matrices(triangle_program_, model_view, projection);
+  void set_light(GLuint program) {
     // Above the view direction, in eye space.
     const float light[3] = {0.0f, 0.35f, 0.94f};
     const float length = std::sqrt(light[0] * light[0] + light[1] * light[1] + light[2] * light[2]);
-    glUniform3f(glGetUniformLocation(triangle_program_, "light_direction"), light[0] / length, light[1] / length,
+    glUniform3f(glGetUniformLocation(program, "light_direction"), light[0] / length, light[1] / length,
                 light[2] / length);
-    glUniform1f(glGetUniformLocation(triangle_program_, "ambient"), 0.25f);
+    glUniform1f(glGetUniformLocation(program, "ambient"), 0.25f);
+  }
+
+  void draw_spheres(const Scene& scene, const std::array<float, 16>& model_view,
+                    const std::array<float, 16>& projection, bool is_perspective) {
+    if (sphere_count(scene) == 0) return;
+    glUseProgram(sphere_program_);
+    set_matrices(sphere_program_, model_view, projection);
+    glUniform1i(glGetUniformLocation(sphere_program_, "is_perspective"), is_perspective ? 1 : 0);
+    set_light(sphere_program_);
     glDisable(GL_BLEND);
+    static constexpr float kCorners[4][2] = {{-1.0f, -1.0f}, {1.0f, -1.0f}, {1.0f, 1.0f}, {-1.0f, 1.0f}};
+    for (const SphereSet& set : scene.spheres) {
+      if (set.centers.empty()) continue;
+      const std::size_t n = set.centers.size();
+      std::vector<Vec3f> centers(4 * n), corners(4 * n);
+      std::vector<Rgba8> colors(4 * n);
+      std::vector<std::uint32_t> indices(6 * n);
+      for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t k = 0; k < 4; ++k) {
+          centers[4 * i + k] = set.centers[i];
+          corners[4 * i + k] = {kCorners[k][0], kCorners[k][1], set.radii[i]};
+          colors[4 * i + k] = set.colors[i];
+        }
+        const auto base = static_cast<std::uint32_t>(4 * i);
+        const std::uint32_t quad[6] = {base, base + 1, base + 2, base, base + 2, base + 3};
+        std::copy(quad, quad + 6, indices.begin() + static_cast<std::ptrdiff_t>(6 * i));
+      }
+      bind_positions_and_colors(centers, colors);
+      upload(GL_ARRAY_BUFFER, normal_buffer_, corners);
+      glVertexAttribPointer(kCornerAttribute, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3f), nullptr);
+      glEnableVertexAttribArray(kCornerAttribute);
+      upload(GL_ELEMENT_ARRAY_BUFFER, index_buffer_, indices);
+      glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(indices.size()), GL_UNSIGNED_INT, nullptr);
+    }
+    glDisableVertexAttribArray(kCornerAttribute);
+  }
+
+  // Opaque sets (sort_by == nullptr) or translucent ones, whose triangles are
+  // drawn back to front for the eye-space transform *sort_by.
+  void draw_triangles(const std::vector<TriangleSet>& sets, const std::array<float, 16>& model_view,
+                      const std::array<float, 16>& projection, const Mat4* sort_by) {
+    glUseProgram(triangle_program_);
+    set_matrices(triangle_program_, model_view, projection);
+    set_light(triangle_program_);
+    if (!sort_by) glDisable(GL_BLEND);
     // Push filled triangles back so that lines on them pass the depth test.
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1.0f, 1.0f);
-    for (const TriangleSet& set : scene.triangles) {
+    for (const TriangleSet& set : sets) {
       if (set.indices.empty()) continue;
       bind_positions_and_colors(set.positions, set.colors);
       const bool use_normals = !set.normals.empty();
@@ -363,7 +498,10 @@ class OsmesaRenderer final : public Renderer {
       }
       glUniform1i(glGetUniformLocation(triangle_program_, "use_vertex_normals"), use_normals ? 1 : 0);
       glUniform1i(glGetUniformLocation(triangle_program_, "is_lit"), set.is_lit ? 1 : 0);
-      upload(GL_ELEMENT_ARRAY_BUFFER, index_buffer_, set.indices);
+      if (sort_by)
+        upload(GL_ELEMENT_ARRAY_BUFFER, index_buffer_, sorted_indices(set, back_to_front_order(set, *sort_by)));
+      else
+        upload(GL_ELEMENT_ARRAY_BUFFER, index_buffer_, set.indices);
       glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(set.indices.size()), GL_UNSIGNED_INT, nullptr);
     }
     glDisable(GL_POLYGON_OFFSET_FILL);
@@ -413,7 +551,7 @@ class OsmesaRenderer final : public Renderer {
   std::array<std::uint8_t, 4 * kDefaultSize * kDefaultSize> default_buffer_{};
 
   OSMesaContext context_ = nullptr;
-  GLuint triangle_program_ = 0, line_program_ = 0;
+  GLuint triangle_program_ = 0, line_program_ = 0, sphere_program_ = 0;
   GLuint vertex_array_ = 0;
   GLuint position_buffer_ = 0, normal_buffer_ = 0, color_buffer_ = 0, index_buffer_ = 0;
   GLuint supersampled_framebuffer_ = 0, resolved_framebuffer_ = 0;

@@ -8,16 +8,16 @@
 // float precision for meshes far from the model origin and halves memory.
 //
 // Draw order (each layer depth-tested against the ones before it):
-//   1. triangles  opaque, shaded, pushed back by a small polygon offset so
-//                 that lines lying on them win the depth test;
-//   2. lines      on top of coincident triangles.
-// Planned layers, added as new member vectors and new renderer passes without
-// changing the ones above:
-//   - spheres     SphereSet {centres, radii, colours}: point-sprite impostors
-//                 (vertex glyphs), drawn after the triangles;
-//   - arrows      built by the view builder as TriangleSets (shaft + cone);
-//   - translucent TriangleSets with alpha < 255, drawn last without depth
-//                 writes, triangles sorted back to front for the camera.
+//   1. triangles   opaque, shaded, pushed back by a small polygon offset so
+//                  that lines lying on them win the depth test; arrows are
+//                  triangles too (append_arrow, scene_shapes.h);
+//   2. spheres     ray-cast impostors (vertex glyphs): one camera-facing
+//                  quad per sphere, each fragment intersects its ray with
+//                  the sphere, shades it and writes the sphere's true depth;
+//   3. lines       on top of coincident triangles;
+//   4. translucent triangles blended over everything else without depth
+//                  writes, all triangles of a set sorted back to front for
+//                  the camera (back_to_front_order, scene_shapes.h).
 
 #include <cstdint>
 #include <vector>
@@ -53,12 +53,27 @@ struct LineSet {
   float width = 1.0f;                   // in output pixels
 };
 
+// Spheres (glyphs): centre, radius (model units, > 0) and colour each.
+struct SphereSet {
+  std::vector<Vec3f> centers;           // relative to Scene::origin
+  std::vector<float> radii;             // #spheres
+  std::vector<Rgba8> colors;            // #spheres (alpha ignored: spheres are opaque)
+};
+
 struct Scene {
   Vec3 origin;                          // model position that vertex offsets are relative to
   Rgba8 background{255, 255, 255, 255};
   std::vector<TriangleSet> triangles;
+  std::vector<SphereSet> spheres;
   std::vector<LineSet> lines;
+  std::vector<TriangleSet> translucent; // colours' alpha is the opacity
 };
+
+inline std::size_t sphere_count(const Scene& scene) {
+  std::size_t n = 0;
+  for (const SphereSet& set : scene.spheres) n += set.centers.size();
+  return n;
+}
 
 // Number of triangles / segments over all sets (for tests and statistics).
 inline std::size_t triangle_count(const Scene& scene) {

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <system_error>
 
+#include <tbb/parallel_for.h>
+
 #include "hqview/core/error.h"
 #include "hqview/io/image_file.h"
 #include "hqview/report/report_csv.h"
@@ -70,11 +72,16 @@ void write_bundle(const ReportModel& model, const std::vector<BundleImage>& imag
     write_text(tmp / "style.css", report_stylesheet());
     write_file(tmp / "data" / "cells.csv", [&](std::ostream& out) { write_cells_csv(model, out); });
     write_file(tmp / "data" / "vertices.csv", [&](std::ostream& out) { write_vertices_csv(model, out); });
-    for (const BundleImage& img : images) {
+    for (const BundleImage& img : images) fs::create_directories((tmp / img.relative_path).parent_path());
+    // PNG encoding dominates the writing of many views: one image per task.
+    tbb::parallel_for(std::size_t{0}, images.size(), [&](std::size_t i) {
+      const BundleImage& img = images[i];
       const fs::path path = tmp / img.relative_path;
-      fs::create_directories(path.parent_path());
-      write_png(img.image, path);
-    }
+      if (!img.text.empty())
+        write_text(path, img.text);  // an SVG chart
+      else
+        write_png(img.image, path);
+    });
     // Swap into place: the old bundle is moved aside, never deleted before
     // the new one is in place.
     if (fs::exists(dir)) {

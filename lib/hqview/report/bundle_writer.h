@@ -15,6 +15,7 @@ namespace hq {
 struct BundleImage {
   std::string relative_path;  // e.g. "views/overview.png"
   Image image;
+  std::string text;  // non-empty: written as is instead of the image (an SVG chart)
 };
 
 struct BundleOptions {

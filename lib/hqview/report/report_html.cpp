@@ -107,7 +107,12 @@ std::string index_html(const ReportModel& model) {
     view.set("id", v.id);
     view.set("title", v.title);
     data files{data::type::list};
-    for (const std::string& f : v.files) files.push_back(f);
+    // A chart's PNG twin (for Markdown) is left out when its SVG is listed.
+    for (const std::string& f : v.files) {
+      const bool is_png_twin = f.size() > 4 && f.ends_with(".png") &&
+                               std::find(v.files.begin(), v.files.end(), f.substr(0, f.size() - 4) + ".svg") != v.files.end();
+      if (!is_png_twin) files.push_back(f);
+    }
     view.set("files", files);
     views.push_back(view);
   }

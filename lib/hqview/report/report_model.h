@@ -105,6 +105,7 @@ struct ReportModel {
   std::optional<InputFile> reference_input;
   std::optional<BoundaryError> boundary_error;
   std::optional<UvAtlas> uv_atlas;
+  std::optional<TriSurface> reference_surface;  // as read, for the UV error map
 
   // Vertex glyphs and their clusters (report.json `glyphs`, the glyph_radius
   // and cluster columns of vertices.csv); empty when the stage did not run.

@@ -1,0 +1,307 @@
+#include "hqview/chart/chart.h"
+
+#include <cairo-svg.h>
+#include <cairo.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <regex>
+
+#include "hqview/core/error.h"
+#include "hqview/render/colormap.h"
+
+namespace hq {
+namespace {
+
+constexpr Rgba8 kAxisColor{90, 90, 96, 255};
+constexpr Rgba8 kGridColor{225, 225, 230, 255};
+constexpr Rgba8 kCurveColor{40, 70, 140, 255};
+constexpr double kTitleSize = 17.0, kLabelSize = 13.0, kTickSize = 11.5;
+
+std::string format_tick(double v) {
+  char buffer[32];
+  if (std::abs(v) < 1e-12) v = 0.0;
+  std::snprintf(buffer, sizeof buffer, "%g", v);
+  return buffer;
+}
+
+std::string format_value(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3f", v);
+  return buffer;
+}
+
+// A "nice" step (1, 2 or 5 times a power of ten) giving about `count` intervals over span.
+double nice_step(double span, int count) {
+  if (!(span > 0.0)) return 1.0;
+  const double raw = span / std::max(1, count);
+  const double power = std::pow(10.0, std::floor(std::log10(raw)));
+  for (double m : {1.0, 2.0, 5.0, 10.0})
+    if (m * power >= raw) return m * power;
+  return 10.0 * power;
+}
+
+ChartRect plot_area(const Chart& chart, bool has_title) {
+  const double left = 74.0, right = 24.0, top = has_title ? 46.0 : 18.0, bottom = 58.0;
+  return {left, top, std::max(10.0, chart.width - left - right), std::max(10.0, chart.height - top - bottom), {}};
+}
+
+Chart begin_chart(const ChartOptions& options) {
+  Chart chart;
+  chart.width = std::max(64, options.width);
+  chart.height = std::max(64, options.height);
+  if (!options.title.empty())
+    chart.texts.push_back({{16.0, 28.0}, options.title, kTitleSize, {38, 38, 38, 255}, ChartAnchor::left, false});
+  chart.plot = plot_area(chart, !options.title.empty());
+  return chart;
+}
+
+// Axes frame of area r, horizontal grid lines and y tick labels at ys
+// (value, pixel y), the axis titles.
+void add_axes(Chart& chart, const ChartRect& r, const std::vector<std::pair<double, double>>& y_ticks,
+              const std::vector<std::pair<double, double>>& x_ticks, const std::string& x_title,
+              const std::string& y_title) {
+  for (const auto& [value, y] : y_ticks) {
+    chart.lines.push_back({{{r.x, y}, {r.x + r.width, y}}, kGridColor, 1.0});
+    chart.texts.push_back({{r.x - 6.0, y + 4.0}, format_tick(value), kTickSize, kAxisColor, ChartAnchor::right, false});
+  }
+  for (const auto& [value, x] : x_ticks) {
+    chart.lines.push_back({{{x, r.y + r.height}, {x, r.y + r.height + 5.0}}, kAxisColor, 1.0});
+    chart.texts.push_back(
+        {{x, r.y + r.height + 19.0}, format_tick(value), kTickSize, kAxisColor, ChartAnchor::center, false});
+  }
+  chart.lines.push_back({{{r.x, r.y}, {r.x, r.y + r.height}, {r.x + r.width, r.y + r.height}}, kAxisColor, 1.2});
+  if (!x_title.empty())
+    chart.texts.push_back(
+        {{r.x + 0.5 * r.width, r.y + r.height + 42.0}, x_title, kLabelSize, {38, 38, 38, 255}, ChartAnchor::center, false});
+  if (!y_title.empty())
+    chart.texts.push_back({{r.x - 50.0, r.y + 0.5 * r.height}, y_title, kLabelSize, {38, 38, 38, 255},
+                           ChartAnchor::center, true});
+}
+
+Rgba8 bar_color(double quality) { return to_rgba8(quality < 0.0 ? kInvertedColor : quality_color(quality)); }
+
+}  // namespace
+
+Chart quality_histogram_chart(std::span<const double> values, bool log_scale, const ChartOptions& options,
+                              double bin_width) {
+  Chart chart = begin_chart(options);
+  const ChartRect r = chart.plot;
+  const int bins = std::max(1, static_cast<int>(std::lround(2.0 / bin_width)));
+  std::vector<std::int64_t> counts(static_cast<std::size_t>(bins), 0);
+  for (double v : values) {
+    if (std::isnan(v) || std::abs(v) >= 1e30) continue;
+    const int bin = std::clamp(static_cast<int>(std::floor((v + 1.0) / 2.0 * bins)), 0, bins - 1);
+    ++counts[static_cast<std::size_t>(bin)];
+  }
+  const std::int64_t max_count = std::max<std::int64_t>(1, *std::max_element(counts.begin(), counts.end()));
+  auto height_of = [&](double count) { return log_scale ? std::log10(1.0 + count) : count; };
+  double top = height_of(static_cast<double>(max_count));
+  std::vector<std::pair<double, double>> y_ticks;
+  if (log_scale) {
+    top = std::ceil(std::log10(static_cast<double>(max_count)) + 1e-9);
+    top = std::max(top, 1.0);
+    for (int k = 0; k <= static_cast<int>(top); ++k)
+      y_ticks.push_back({std::pow(10.0, k), r.y + r.height * (1.0 - height_of(std::pow(10.0, k)) / height_of(std::pow(10.0, top)))});
+    top = height_of(std::pow(10.0, top));
+  } else {
+    const double step = nice_step(static_cast<double>(max_count), 5);
+    top = std::ceil(static_cast<double>(max_count) / step) * step;
+    for (double t = 0.0; t <= top + 0.5 * step; t += step) y_ticks.push_back({t, r.y + r.height * (1.0 - t / top)});
+  }
+  for (int i = 0; i < bins; ++i) {
+    const std::int64_t c = counts[static_cast<std::size_t>(i)];
+    if (c == 0) continue;
+    const double h = r.height * height_of(static_cast<double>(c)) / top;
+    const double x = r.x + r.width * i / bins;
+    const double centre = -1.0 + (i + 0.5) * 2.0 / bins;
+    chart.rects.push_back({x + 0.5, r.y + r.height - h, r.width / bins - 1.0, h, bar_color(centre)});
+  }
+  std::vector<std::pair<double, double>> x_ticks;
+  for (double t = -1.0; t <= 1.0001; t += 0.25) x_ticks.push_back({t, r.x + r.width * (t + 1.0) / 2.0});
+  add_axes(chart, r, y_ticks, x_ticks, "scaled Jacobian (per hex)", log_scale ? "hexes (log scale)" : "hexes");
+  return chart;
+}
+
+Chart sorted_quality_chart(std::span<const double> vertex_quality, int worst_n, const ChartOptions& options) {
+  Chart chart = begin_chart(options);
+  std::vector<double> sorted;
+  for (double q : vertex_quality)
+    if (!std::isnan(q)) sorted.push_back(q);
+  std::sort(sorted.begin(), sorted.end());
+  const double low = sorted.empty() ? 0.0 : std::min(0.0, std::floor(sorted.front() * 4.0) / 4.0);
+  const double high = 1.0;
+  // Two panels: the worst N as bars (left 55%), the whole curve (right).
+  const ChartRect all = chart.plot;
+  const double gap = 70.0;
+  const ChartRect left{all.x, all.y, 0.55 * (all.width - gap), all.height, {}};
+  const ChartRect right{left.x + left.width + gap, all.y, all.width - left.width - gap, all.height, {}};
+  auto y_of = [&](const ChartRect& r, double q) { return r.y + r.height * (high - q) / (high - low); };
+  std::vector<std::pair<double, double>> yl, yr;
+  for (double t = low; t <= high + 1e-9; t += 0.25) {
+    yl.push_back({t, y_of(left, t)});
+    yr.push_back({t, y_of(right, t)});
+  }
+  const int n = std::min<int>(std::max(0, worst_n), static_cast<int>(sorted.size()));
+  std::vector<std::pair<double, double>> xl;
+  for (int i = 0; i < n; ++i) {
+    const double w = left.width / std::max(1, n);
+    const double q = sorted[static_cast<std::size_t>(i)];
+    const double y0 = y_of(left, std::max(q, low)), yz = y_of(left, std::clamp(0.0, low, high));
+    chart.rects.push_back({left.x + i * w + 0.15 * w, std::min(y0, yz), 0.7 * w, std::max(1.0, std::abs(yz - y0)),
+                           bar_color(q)});
+    if (n <= 12 || i % ((n + 9) / 10) == 0) xl.push_back({i + 1.0, left.x + (i + 0.5) * w});
+  }
+  add_axes(chart, left, yl, xl, "worst " + std::to_string(n) + " vertices (rank)", "vertex quality");
+  ChartPolyline curve{{}, kCurveColor, 2.0};
+  const std::size_t m = sorted.size();
+  const std::size_t step = std::max<std::size_t>(1, m / 2000);
+  for (std::size_t i = 0; i < m; i += step)
+    curve.points.push_back({right.x + right.width * (m > 1 ? double(i) / double(m - 1) : 0.0), y_of(right, sorted[i])});
+  if (m > 1 && (m - 1) % step != 0) curve.points.push_back({right.x + right.width, y_of(right, sorted.back())});
+  std::vector<std::pair<double, double>> xr;
+  for (double t = 0.0; t <= 1.0001; t += 0.25) xr.push_back({t, right.x + right.width * t});
+  add_axes(chart, right, yr, xr, "fraction of vertices (sorted)", "");
+  chart.lines.push_back(std::move(curve));
+  return chart;
+}
+
+Chart corner_chart(std::span<const double> values, std::span<const std::string> labels, const ChartOptions& options) {
+  Chart chart = begin_chart(options);
+  const ChartRect r = chart.plot;
+  auto y_of = [&](double q) { return r.y + r.height * (1.0 - std::clamp(q, -1.0, 1.0)) / 2.0; };
+  std::vector<std::pair<double, double>> y_ticks;
+  for (double t = -1.0; t <= 1.0001; t += 0.5) y_ticks.push_back({t, y_of(t)});
+  const std::size_t n = values.size();
+  std::vector<std::pair<double, double>> x_ticks;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double w = r.width / static_cast<double>(std::max<std::size_t>(1, n));
+    const double q = values[i];
+    const double y = y_of(q), y0 = y_of(0.0);
+    chart.rects.push_back({r.x + i * w + 0.2 * w, std::min(y, y0), 0.6 * w, std::max(1.0, std::abs(y - y0)), bar_color(q)});
+    chart.texts.push_back({{r.x + (i + 0.5) * w, q >= 0 ? y - 5.0 : y + 14.0}, format_value(q), kTickSize,
+                           {38, 38, 38, 255}, ChartAnchor::center, false});
+    chart.texts.push_back({{r.x + (i + 0.5) * w, r.y + r.height + 19.0}, i < labels.size() ? labels[i] : "",
+                           kTickSize, kAxisColor, ChartAnchor::center, false});
+  }
+  add_axes(chart, r, y_ticks, x_ticks, "corner", "corner scaled Jacobian");
+  chart.lines.push_back({{{r.x, y_of(0.0)}, {r.x + r.width, y_of(0.0)}}, kAxisColor, 1.0});
+  return chart;
+}
+
+namespace {
+
+void set_color(cairo_t* cr, Rgba8 c) { cairo_set_source_rgba(cr, c.r / 255.0, c.g / 255.0, c.b / 255.0, c.a / 255.0); }
+
+// The one drawing routine behind both outputs.
+void draw_chart(cairo_t* cr, const Chart& chart) {
+  set_color(cr, chart.background);
+  cairo_paint(cr);
+  for (const ChartRect& r : chart.rects) {
+    set_color(cr, r.fill);
+    cairo_rectangle(cr, r.x, r.y, r.width, r.height);
+    cairo_fill(cr);
+  }
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
+  for (const ChartPolyline& line : chart.lines) {
+    if (line.points.size() < 2) continue;
+    set_color(cr, line.color);
+    cairo_set_line_width(cr, line.width);
+    cairo_move_to(cr, line.points[0].x, line.points[0].y);
+    for (std::size_t i = 1; i < line.points.size(); ++i) cairo_line_to(cr, line.points[i].x, line.points[i].y);
+    cairo_stroke(cr);
+  }
+  cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  for (const ChartText& t : chart.texts) {
+    if (t.text.empty()) continue;
+    cairo_save(cr);
+    set_color(cr, t.color);
+    cairo_set_font_size(cr, t.size);
+    cairo_text_extents_t extents;
+    cairo_text_extents(cr, t.text.c_str(), &extents);
+    cairo_translate(cr, t.at.x, t.at.y);
+    if (t.is_vertical) cairo_rotate(cr, -M_PI / 2.0);
+    const double shift = t.anchor == ChartAnchor::left ? 0.0
+                         : t.anchor == ChartAnchor::center ? -0.5 * extents.x_advance
+                                                           : -extents.x_advance;
+    cairo_move_to(cr, shift, 0.0);
+    cairo_show_text(cr, t.text.c_str());
+    cairo_restore(cr);
+  }
+}
+
+cairo_status_t append_to_string(void* closure, const unsigned char* data, unsigned int length) {
+  static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+  return CAIRO_STATUS_SUCCESS;
+}
+
+}  // namespace
+
+std::string chart_svg(const Chart& chart) {
+  std::string svg;
+  cairo_surface_t* surface =
+      cairo_svg_surface_create_for_stream(append_to_string, &svg, chart.width, chart.height);
+  cairo_svg_surface_restrict_to_version(surface, CAIRO_SVG_VERSION_1_1);
+  cairo_t* cr = cairo_create(surface);
+  draw_chart(cr, chart);
+  const cairo_status_t status = cairo_status(cr);
+  cairo_destroy(cr);
+  cairo_surface_finish(surface);
+  cairo_surface_destroy(surface);
+  if (status != CAIRO_STATUS_SUCCESS) throw RenderError(std::string("cannot draw a chart: ") + cairo_status_to_string(status));
+  // Cairo numbers surfaces and glyphs with process-wide counters: renumber
+  // them in order of appearance so the same chart always gives the same file.
+  const std::regex ids(R"((surface|glyph|clip|image|pattern|source|mask)(\d+)(-\d+)?)");
+  std::map<std::string, int> renumbered;
+  std::string out;
+  std::size_t last = 0;
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), ids); it != std::sregex_iterator(); ++it) {
+    const std::smatch& m = *it;
+    const std::string key = m[1].str() + m[2].str();
+    const auto [entry, inserted] = renumbered.try_emplace(key, static_cast<int>(renumbered.size()));
+    out.append(svg, last, static_cast<std::size_t>(m.position(0)) - last);
+    out += m[1].str() + std::to_string(entry->second) + m[3].str();
+    last = static_cast<std::size_t>(m.position(0) + m.length(0));
+  }
+  out.append(svg, last, std::string::npos);
+  return out;
+}
+
+Image chart_image(const Chart& chart) {
+  cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, chart.width, chart.height);
+  cairo_t* cr = cairo_create(surface);
+  draw_chart(cr, chart);
+  const cairo_status_t status = cairo_status(cr);
+  cairo_destroy(cr);
+  cairo_surface_flush(surface);
+  if (status != CAIRO_STATUS_SUCCESS) {
+    cairo_surface_destroy(surface);
+    throw RenderError(std::string("cannot draw a chart: ") + cairo_status_to_string(status));
+  }
+  Image image{chart.width, chart.height, std::vector<std::uint8_t>(4 * static_cast<std::size_t>(chart.width) * chart.height)};
+  const unsigned char* data = cairo_image_surface_get_data(surface);
+  const int stride = cairo_image_surface_get_stride(surface);
+  for (int y = 0; y < chart.height; ++y)
+    for (int x = 0; x < chart.width; ++x) {
+      std::uint32_t p;
+      std::memcpy(&p, data + static_cast<std::size_t>(y) * stride + 4 * static_cast<std::size_t>(x), 4);
+      const std::uint32_t a = p >> 24;
+      auto channel = [&](int shift) {
+        const std::uint32_t c = (p >> shift) & 0xff;
+        return static_cast<std::uint8_t>(a == 0 ? 0 : std::min<std::uint32_t>(255, (c * 255 + a / 2) / a));
+      };
+      std::uint8_t* out = image.rgba.data() + pixel_offset(image, x, y);
+      out[0] = channel(16);
+      out[1] = channel(8);
+      out[2] = channel(0);
+      out[3] = static_cast<std::uint8_t>(a);
+    }
+  cairo_surface_destroy(surface);
+  return image;
+}
+
+}  // namespace hq

@@ -1,0 +1,79 @@
+#pragma once
+// Charts: a pure description (rectangles, polylines, texts in pixel
+// coordinates, y down) built by the chart builders below and tested without
+// drawing, then drawn by Cairo into SVG (for the HTML page) or PNG (for
+// Markdown) from the one drawing routine draw_chart().
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "hqview/render/color.h"
+#include "hqview/render/image.h"
+
+namespace hq {
+
+struct ChartPoint {
+  double x = 0.0, y = 0.0;
+};
+
+struct ChartRect {
+  double x = 0.0, y = 0.0, width = 0.0, height = 0.0;
+  Rgba8 fill;
+};
+
+struct ChartPolyline {
+  std::vector<ChartPoint> points;
+  Rgba8 color;
+  double width = 1.0;
+};
+
+enum class ChartAnchor { left, center, right };
+
+struct ChartText {
+  ChartPoint at;  // the baseline's anchor point
+  std::string text;
+  double size = 12.0;
+  Rgba8 color{38, 38, 38, 255};
+  ChartAnchor anchor = ChartAnchor::left;
+  bool is_vertical = false;  // rotated 90 degrees counterclockwise (y axis titles)
+};
+
+// Drawn in this order: rects, lines, texts.
+struct Chart {
+  int width = 800, height = 500;
+  Rgba8 background{255, 255, 255, 255};
+  ChartRect plot;  // the plot area (axes frame), for tests and overlays
+  std::vector<ChartRect> rects;
+  std::vector<ChartPolyline> lines;
+  std::vector<ChartText> texts;
+};
+
+struct ChartOptions {
+  int width = 800, height = 500;
+  std::string title;
+};
+
+// Histogram of per-hex scaled Jacobian: bins of width bin_width on [-1, 1],
+// bars coloured by the quality map at the bin's centre (inverted bins in
+// kInvertedColor); values >= 1e30 (degenerate) and NaN are left out. With
+// log_scale the bar heights are log10(1 + count).
+Chart quality_histogram_chart(std::span<const double> values, bool log_scale, const ChartOptions& options,
+                              double bin_width = 0.05);
+
+// Chart B, sorted vertex quality: the worst_n lowest values as bars (worst
+// on the left, coloured by quality), and the whole ascending distribution as
+// a curve over [0, 1] of the vertex rank on a second panel. NaN left out.
+Chart sorted_quality_chart(std::span<const double> vertex_quality, int worst_n, const ChartOptions& options);
+
+// Chart E: the values of the corners at one vertex as bars, each labelled
+// with its value (labels[i] under bar i).
+Chart corner_chart(std::span<const double> values, std::span<const std::string> labels, const ChartOptions& options);
+
+// The chart as an SVG document / as a PNG-ready image (both from draw_chart).
+// Throws RenderError when Cairo fails.
+std::string chart_svg(const Chart& chart);
+Image chart_image(const Chart& chart);
+
+}  // namespace hq

@@ -1,0 +1,227 @@
+#include "hqview/io/exodus_reader.h"
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#ifdef HQ_HAVE_NETCDF
+#include <netcdf.h>
+#include <netcdf_mem.h>
+#endif
+
+#include "hqview/core/types.h"
+
+namespace hq {
+
+#ifndef HQ_HAVE_NETCDF
+
+bool exodus_available() { return false; }
+
+LoadedMesh read_exodus(std::string_view, const std::string& name) {
+  throw InputError(name + ": this HQView was built without netCDF and cannot read Exodus II files");
+}
+
+#else
+
+namespace {
+
+// netCDF-4 (HDF5) variables may be compressed: allow zlib's largest
+// expansion (1032:1) over the file's size before allocating from a
+// dimension the file claims; classic files store values uncompressed.
+constexpr std::uint64_t kMaxExpansion = 1032;
+
+class NcFile {
+ public:
+  NcFile(std::string_view bytes, const std::string& name) : name_(name), memory_(bytes.begin(), bytes.end()) {
+    is_classic_ = bytes.starts_with("CDF");
+    const int status = nc_open_mem(name.c_str(), NC_NOWRITE, memory_.size(), memory_.data(), &id_);
+    if (status != NC_NOERR) fail("not an Exodus II (netCDF) file: " + std::string(nc_strerror(status)));
+  }
+  ~NcFile() { nc_close(id_); }
+  NcFile(const NcFile&) = delete;
+  NcFile& operator=(const NcFile&) = delete;
+
+  [[noreturn]] void fail(const std::string& message) const { throw ParseError(name_, 0, message); }
+
+  // A dimension's length; -1 when absent.
+  std::int64_t dimension(const std::string& dim_name) const {
+    int dim = 0;
+    if (nc_inq_dimid(id_, dim_name.c_str(), &dim) != NC_NOERR) return -1;
+    std::size_t length = 0;
+    check(nc_inq_dimlen(id_, dim, &length), "dimension " + dim_name);
+    return static_cast<std::int64_t>(length);
+  }
+  std::int64_t required_dimension(const std::string& dim_name) const {
+    const std::int64_t n = dimension(dim_name);
+    if (n < 0) fail("no dimension " + dim_name + " (not an Exodus II file?)");
+    return n;
+  }
+  // A variable's id; -1 when absent.
+  int variable(const std::string& var_name) const {
+    int var = 0;
+    return nc_inq_varid(id_, var_name.c_str(), &var) == NC_NOERR ? var : -1;
+  }
+  // The total number of values of a variable (product of its dimensions).
+  std::uint64_t size(int var, const std::string& var_name) const {
+    int num_dims = 0;
+    check(nc_inq_varndims(id_, var, &num_dims), "variable " + var_name);
+    std::vector<int> dims(static_cast<std::size_t>(num_dims));
+    check(nc_inq_vardimid(id_, var, dims.data()), "variable " + var_name);
+    std::uint64_t total = 1;
+    for (const int dim : dims) {
+      std::size_t length = 0;
+      check(nc_inq_dimlen(id_, dim, &length), "variable " + var_name);
+      if (length != 0 && total > std::numeric_limits<std::uint64_t>::max() / length)
+        fail("variable " + var_name + " is too large");
+      total *= length;
+    }
+    return total;
+  }
+  void check_room(std::uint64_t values, const std::string& what) const {
+    const std::uint64_t room = is_classic_ ? memory_.size() / 4 : memory_.size() * kMaxExpansion;
+    if (values > room)
+      fail(what + " claims " + std::to_string(values) + " values, more than the " + std::to_string(memory_.size()) +
+           "-byte file can hold");
+  }
+  std::vector<double> doubles(int var, const std::string& var_name, std::uint64_t expected) const {
+    const std::uint64_t n = size(var, var_name);
+    if (n != expected)
+      fail("variable " + var_name + " has " + std::to_string(n) + " values, expected " + std::to_string(expected));
+    check_room(n, "variable " + var_name);
+    std::vector<double> values(static_cast<std::size_t>(n));
+    if (n > 0) check(nc_get_var_double(id_, var, values.data()), "reading " + var_name);
+    return values;
+  }
+  std::vector<long long> integers(int var, const std::string& var_name, std::uint64_t expected) const {
+    const std::uint64_t n = size(var, var_name);
+    if (n != expected)
+      fail("variable " + var_name + " has " + std::to_string(n) + " values, expected " + std::to_string(expected));
+    check_room(n, "variable " + var_name);
+    std::vector<long long> values(static_cast<std::size_t>(n));
+    if (n > 0) check(nc_get_var_longlong(id_, var, values.data()), "reading " + var_name);
+    return values;
+  }
+  std::string text_attribute(int var, const char* attribute) const {
+    std::size_t length = 0;
+    if (nc_inq_attlen(id_, var, attribute, &length) != NC_NOERR) return {};
+    nc_type type = NC_NAT;
+    if (nc_inq_atttype(id_, var, attribute, &type) != NC_NOERR || type != NC_CHAR || length > 4096) return {};
+    std::string text(length, '\0');
+    check(nc_get_att_text(id_, var, attribute, text.data()), std::string("attribute ") + attribute);
+    while (!text.empty() && (text.back() == '\0' || text.back() == ' ')) text.pop_back();
+    return text;
+  }
+
+ private:
+  void check(int status, const std::string& what) const {
+    if (status != NC_NOERR) fail(what + ": " + nc_strerror(status));
+  }
+
+  const std::string& name_;
+  std::vector<char> memory_;  // nc_open_mem reads from it until nc_close
+  bool is_classic_ = false;
+  int id_ = -1;
+};
+
+std::string upper(std::string text) {
+  for (char& c : text)
+    if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
+  return text;
+}
+
+}  // namespace
+
+bool exodus_available() { return true; }
+
+LoadedMesh read_exodus(std::string_view bytes, const std::string& name) {
+  const NcFile file(bytes, name);
+  const std::int64_t num_nodes = file.required_dimension("num_nodes");
+  const std::int64_t num_dim = file.required_dimension("num_dim");
+  if (num_nodes > kMaxIndexCount)
+    file.fail("num_nodes " + std::to_string(num_nodes) + " exceeds the limit of " + std::to_string(kMaxIndexCount));
+  if (num_dim < 1 || num_dim > 3) file.fail("num_dim is " + std::to_string(num_dim) + ", expected 1 to 3");
+
+  LoadedMesh loaded;
+  loaded.format = "exodus";
+  file.check_room(static_cast<std::uint64_t>(num_nodes) * static_cast<std::uint64_t>(num_dim), "num_nodes");
+  // Coordinates by component (x of every node, then y, then z).
+  std::vector<double> xyz_by_dim(static_cast<std::size_t>(3 * num_nodes), 0.0);
+  const auto n = static_cast<std::uint64_t>(num_nodes);
+  if (const int coord = file.variable("coord"); coord >= 0) {
+    const std::vector<double> xyz = file.doubles(coord, "coord", n * static_cast<std::uint64_t>(num_dim));
+    for (std::int64_t d = 0; d < num_dim; ++d)
+      for (std::int64_t i = 0; i < num_nodes; ++i)
+        xyz_by_dim[static_cast<std::size_t>(d * num_nodes + i)] = xyz[static_cast<std::size_t>(d * num_nodes + i)];
+  } else {
+    const char* names[3] = {"coordx", "coordy", "coordz"};
+    for (std::int64_t d = 0; d < num_dim; ++d) {
+      const int var = file.variable(names[d]);
+      if (var < 0) file.fail(std::string("no coordinate variable ") + names[d] + " (nor coord)");
+      const std::vector<double> values = file.doubles(var, names[d], n);
+      for (std::int64_t i = 0; i < num_nodes; ++i)
+        xyz_by_dim[static_cast<std::size_t>(d * num_nodes + i)] = values[static_cast<std::size_t>(i)];
+    }
+  }
+  std::vector<Vec3>& points = loaded.mesh.points;
+  points.resize(static_cast<std::size_t>(num_nodes));
+  for (std::int64_t i = 0; i < num_nodes; ++i) {
+    double p[3];
+    for (int k = 0; k < 3; ++k) {
+      p[k] = xyz_by_dim[static_cast<std::size_t>(k * num_nodes + i)];
+      if (!std::isfinite(p[k])) file.fail("non-finite coordinate (node " + std::to_string(i + 1) + ")");
+    }
+    points[static_cast<std::size_t>(i)] = {p[0], p[1], p[2]};
+  }
+
+  const std::int64_t num_blocks = std::max<std::int64_t>(file.dimension("num_el_blk"), 0);
+  std::map<std::string, std::int64_t> skipped_by_type;
+  for (std::int64_t b = 1; b <= num_blocks; ++b) {
+    const std::string connect = "connect" + std::to_string(b);
+    const int var = file.variable(connect);
+    const std::int64_t num_elements = file.dimension("num_el_in_blk" + std::to_string(b));
+    const std::int64_t per_element = file.dimension("num_nod_per_el" + std::to_string(b));
+    if (var < 0 || num_elements <= 0) continue;  // an empty block has no connectivity
+    const std::string type = upper(file.text_attribute(var, "elem_type"));
+    if (!type.starts_with("HEX") || per_element != 8) {
+      skipped_by_type[type.empty() ? "?" : type] += num_elements;
+      continue;
+    }
+    const std::vector<long long> ids = file.integers(var, connect, static_cast<std::uint64_t>(num_elements) * 8u);
+    for (std::int64_t e = 0; e < num_elements; ++e) {
+      Hex hex;
+      for (int j = 0; j < 8; ++j) {
+        const long long id = ids[static_cast<std::size_t>(e * 8 + j)];
+        if (id < 1 || id > num_nodes)
+          file.fail("node " + std::to_string(id) + " out of range [1, " + std::to_string(num_nodes) + "] (" + connect +
+                    " element " + std::to_string(e + 1) + ")");
+        for (int i = 0; i < j; ++i)
+          if (hex[i] == static_cast<Index>(id - 1))
+            file.fail("node " + std::to_string(id) + " repeated (" + connect + " element " + std::to_string(e + 1) +
+                      ")");
+        hex[j] = static_cast<Index>(id - 1);
+      }
+      loaded.mesh.hexes.push_back(hex);
+    }
+  }
+  std::int64_t num_skipped = 0;
+  std::string types;
+  for (const auto& [type, count] : skipped_by_type) {
+    num_skipped += count;
+    types += (types.empty() ? "" : ", ") + type;
+  }
+  if (loaded.mesh.hexes.empty())
+    file.fail(
+        "no hexahedra (HEX8 blocks)" +
+        (num_skipped > 0 ? " among " + std::to_string(num_skipped) + " elements of type " + types : std::string()));
+  if (num_skipped > 0)
+    loaded.warnings.push_back(name + ": " + std::to_string(num_skipped) + " non-hexahedral element" +
+                              (num_skipped > 1 ? "s" : "") + " skipped (" + types + ")");
+  return loaded;
+}
+
+#endif
+
+}  // namespace hq

@@ -1,0 +1,501 @@
+#include "hqview/io/gmsh_reader.h"
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "hqview/core/types.h"
+#include "hqview/io/text_scanner.h"
+
+namespace hq {
+namespace {
+
+using detail::quote;
+using detail::TextScanner;
+
+constexpr int kGmshHexahedron = 5;
+
+// Nodes per Gmsh element type (gmsh's GmshDefines.h / the manual's list);
+// needed to step over binary elements. 0: unknown.
+// clang-format off
+int gmsh_node_count(std::int64_t type) {
+  switch (type) {
+    case 1: return 2;    case 2: return 3;    case 3: return 4;    case 4: return 4;
+    case 5: return 8;    case 6: return 6;    case 7: return 5;    case 8: return 3;
+    case 9: return 6;    case 10: return 9;   case 11: return 10;  case 12: return 27;
+    case 13: return 18;  case 14: return 14;  case 15: return 1;   case 16: return 8;
+    case 17: return 20;  case 18: return 15;  case 19: return 13;  case 20: return 9;
+    case 21: return 10;  case 22: return 12;  case 23: return 15;  case 24: return 15;
+    case 25: return 21;  case 26: return 4;   case 27: return 5;   case 28: return 6;
+    case 29: return 20;  case 30: return 35;  case 31: return 56;  case 92: return 64;
+    case 93: return 125;
+    default: return 0;
+  }
+}
+// clang-format on
+
+std::string non_finite_text(double value) { return std::isnan(value) ? "nan" : (value > 0 ? "inf" : "-inf"); }
+
+class GmshParser {
+ public:
+  GmshParser(std::string_view bytes, const std::string& name) : s_(bytes, name, /*has_hash_comments=*/false) {}
+
+  LoadedMesh parse() {
+    read_format();
+    while (nodes_line_ == 0 || elements_line_ == 0) {
+      if (!s_.skip_space())
+        s_.fail(std::string("unexpected end of file: no ") + (nodes_line_ == 0 ? "$Nodes" : "$Elements") + " section");
+      const std::int64_t line = s_.line();
+      const std::string_view keyword = s_.read_token();
+      if (keyword == "$Nodes") {
+        if (nodes_line_ != 0)
+          s_.fail_at(line, "second $Nodes section (first at line " + std::to_string(nodes_line_) + ")");
+        nodes_line_ = line;
+        end_keyword_line();
+        is_v4_ ? read_nodes_v4() : read_nodes_v2();
+        expect_end("$EndNodes");
+      } else if (keyword == "$Elements") {
+        if (nodes_line_ == 0) s_.fail_at(line, "$Elements before $Nodes");
+        elements_line_ = line;
+        end_keyword_line();
+        is_v4_ ? read_elements_v4() : read_elements_v2();
+        expect_end("$EndElements");
+      } else if (keyword.size() > 1 && keyword[0] == '$') {
+        skip_section(keyword, line);
+      } else {
+        s_.fail_at(line, "expected a section such as $Nodes, got " + quote(keyword));
+      }
+    }
+    return build();
+  }
+
+ private:
+  // "$MeshFormat\n<version> <file-type> <data-size>\n[binary int 1\n]$EndMeshFormat"
+  void read_format() {
+    if (!s_.skip_space()) s_.fail("empty file, expected $MeshFormat");
+    const std::string_view magic = s_.read_token();
+    if (magic != "$MeshFormat") s_.fail("expected $MeshFormat, got " + quote(magic));
+    if (!s_.skip_space()) s_.fail("unexpected end of file, expected the MSH version");
+    const std::string_view version = s_.read_token();
+    if (version == "2" || version == "2.0" || version == "2.1" || version == "2.2") {
+      is_v4_ = false;
+    } else if (version == "4.1") {
+      is_v4_ = true;
+    } else {
+      s_.fail("unsupported MSH version " + quote(version) + " (expected 2.2 or 4.1)");
+    }
+    version_ = version == "4.1" ? "4.1" : "2.2";
+    const std::int64_t file_type = read_int("the file type");
+    if (file_type != 0 && file_type != 1)
+      s_.fail("file type " + std::to_string(file_type) + ", expected 0 (ASCII) or 1 (binary)");
+    binary_ = file_type == 1;
+    const std::int64_t data_size = read_int("the data size");
+    if (data_size != 8 && data_size != 4) s_.fail("data size " + std::to_string(data_size) + ", expected 8 (or 4)");
+    size_t_size_ = static_cast<int>(data_size);
+    if (binary_) {
+      if (!s_.finish_line()) s_.fail("unexpected " + quote(s_.peek_token()) + " after the MSH format line");
+      if (s_.remaining() < 4) s_.fail("unexpected end of file in the binary format check");
+      const std::string_view one = s_.read_bytes(4);
+      std::uint32_t value;
+      std::memcpy(&value, one.data(), 4);
+      if (value == 1) {
+        swap_ = false;
+      } else if (value == 0x01000000u) {
+        swap_ = true;
+      } else {
+        s_.fail("binary format check: expected the integer 1, got bytes " + quote(one));
+      }
+    }
+    expect_end("$EndMeshFormat");
+  }
+
+  std::int64_t read_int(const std::string& what) {
+    if (!s_.skip_space()) s_.fail("unexpected end of file, expected " + what);
+    std::int64_t value = 0;
+    if (!s_.read_int(value)) s_.fail("expected " + what + ", got " + quote(s_.peek_token()));
+    return value;
+  }
+  double read_double(const std::string& what) {
+    if (!s_.skip_space()) s_.fail("unexpected end of file, expected " + what);
+    double value = 0;
+    if (!s_.read_double(value)) s_.fail("expected " + what + ", got " + quote(s_.peek_token()));
+    return value;
+  }
+  void end_keyword_line() {
+    if (!s_.finish_line()) s_.fail("unexpected " + quote(s_.peek_token()) + " after the section keyword");
+  }
+  void expect_end(std::string_view end) {
+    if (!s_.skip_space()) s_.fail("unexpected end of file, expected " + std::string(end));
+    const std::string_view token = s_.read_token();
+    if (token != end) s_.fail("expected " + std::string(end) + ", got " + quote(token));
+  }
+  void skip_section(std::string_view keyword, std::int64_t line) {
+    const std::string end = "$End" + std::string(keyword.substr(1));
+    while (true) {
+      if (s_.at_end()) s_.fail_at(line, "unexpected end of file: " + std::string(keyword) + " without " + end);
+      const std::string_view text = s_.read_line();
+      std::size_t i = 0;
+      while (i < text.size() && detail::is_blank(text[i])) ++i;
+      if (text.substr(i).starts_with(end)) return;
+    }
+  }
+
+  void check_count(std::int64_t n, const std::string& what, std::int64_t limit = kMaxIndexCount) {
+    if (n < 0) s_.fail("negative " + what + " " + std::to_string(n));
+    if (n > limit) s_.fail(what + " " + std::to_string(n) + " exceeds the limit of " + std::to_string(limit));
+  }
+  // Before allocating: n entries of min_bytes each must fit in the rest.
+  void check_room(std::int64_t n, std::int64_t min_bytes, const std::string& what) {
+    if (detail::exceeds_remaining(n, min_bytes, s_.remaining(), !binary_))
+      s_.fail(std::to_string(n) + " " + what + " cannot fit in the " + std::to_string(s_.remaining()) +
+              " bytes left in the file");
+  }
+
+  // --- binary values -------------------------------------------------------
+  std::uint64_t load(const char* p, int size) const {
+    std::uint64_t v = 0;
+    for (int i = 0; i < size; ++i) {
+      const auto byte = static_cast<std::uint64_t>(static_cast<unsigned char>(p[swap_ ? i : size - 1 - i]));
+      v = (v << 8) | byte;
+    }
+    return v;
+  }
+  [[noreturn]] void fail_binary(std::int64_t section_line, const std::string& message, std::size_t offset) const {
+    s_.fail_at(section_line, message + " (byte offset " + std::to_string(offset) + ")");
+  }
+  std::string_view take(std::size_t n, std::int64_t section_line) {
+    if (s_.remaining() < n) fail_binary(section_line, "unexpected end of file in binary data", s_.offset());
+    return s_.read_bytes(n);
+  }
+  std::int64_t binary_int(std::int64_t section_line) {  // a C int (4 bytes)
+    const std::uint64_t bits = load(take(4, section_line).data(), 4);
+    return static_cast<std::int32_t>(static_cast<std::uint32_t>(bits));
+  }
+  std::int64_t binary_size(std::int64_t section_line) {  // a size_t (data size)
+    const std::size_t at = s_.offset();
+    const std::uint64_t bits = load(take(static_cast<std::size_t>(size_t_size_), section_line).data(), size_t_size_);
+    if (bits > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+      fail_binary(section_line, "value " + std::to_string(bits) + " out of range", at);
+    return static_cast<std::int64_t>(bits);
+  }
+  double binary_double(std::int64_t section_line) {
+    return std::bit_cast<double>(load(take(8, section_line).data(), 8));
+  }
+
+  // --- nodes ---------------------------------------------------------------
+  void add_node(std::int64_t tag, const double xyz[3], std::int64_t line, std::size_t offset) {
+    const auto fail = [&](const std::string& message) {
+      if (binary_) fail_binary(nodes_line_, message, offset);
+      s_.fail_at(line, message);
+    };
+    if (tag < 0) fail("negative node tag " + std::to_string(tag));
+    for (int k = 0; k < 3; ++k)
+      if (!std::isfinite(xyz[k]))
+        fail("non-finite coordinate " + non_finite_text(xyz[k]) + " (node " + std::to_string(tag) + ")");
+    const auto [it, inserted] = index_of_tag_.emplace(tag, static_cast<Index>(points_.size()));
+    if (!inserted) fail("node tag " + std::to_string(tag) + " defined twice");
+    points_.push_back({xyz[0], xyz[1], xyz[2]});
+  }
+
+  void read_nodes_v2() {
+    const std::int64_t n = read_int("the number of nodes");
+    check_count(n, "number of nodes");
+    check_room(n, binary_ ? 28 : 8, "nodes");
+    if (!s_.finish_line()) s_.fail("unexpected " + quote(s_.peek_token()) + " after the number of nodes");
+    points_.reserve(static_cast<std::size_t>(n));
+    index_of_tag_.reserve(static_cast<std::size_t>(n));
+    for (std::int64_t i = 0; i < n; ++i) {
+      double xyz[3];
+      if (binary_) {
+        const std::size_t offset = s_.offset();
+        const std::int64_t tag = binary_int(nodes_line_);
+        for (double& c : xyz) c = binary_double(nodes_line_);
+        add_node(tag, xyz, 0, offset);
+      } else {
+        const std::int64_t tag = read_int("a node tag");
+        const std::int64_t line = s_.line();
+        for (double& c : xyz) c = read_double("a coordinate");
+        add_node(tag, xyz, line, 0);
+      }
+    }
+  }
+
+  void read_nodes_v4() {
+    std::int64_t header[4];
+    for (std::int64_t& h : header) h = binary_ ? binary_size(nodes_line_) : read_int("a $Nodes header count");
+    const std::int64_t num_blocks = header[0];
+    const std::int64_t n = header[1];
+    check_count(num_blocks, "number of node blocks");
+    check_count(n, "number of nodes");
+    check_room(n, binary_ ? 8 + 24 : 8, "nodes");
+    check_room(num_blocks, binary_ ? 12 + size_t_size_ : 8, "node blocks");
+    points_.reserve(static_cast<std::size_t>(n));
+    index_of_tag_.reserve(static_cast<std::size_t>(n));
+    std::int64_t total = 0;
+    std::vector<std::int64_t> tags;
+    std::vector<std::size_t> tag_offsets;
+    std::vector<std::int64_t> tag_lines;
+    for (std::int64_t b = 0; b < num_blocks; ++b) {
+      std::int64_t dim, parametric, count;
+      if (binary_) {
+        dim = binary_int(nodes_line_);
+        binary_int(nodes_line_);  // entity tag
+        parametric = binary_int(nodes_line_);
+        count = binary_size(nodes_line_);
+      } else {
+        dim = read_int("an entity dimension");
+        read_int("an entity tag");
+        parametric = read_int("the parametric flag");
+        count = read_int("the number of nodes in the block");
+      }
+      if (dim < 0 || dim > 3)
+        s_.fail("entity dimension " + std::to_string(dim) + " (node block " + std::to_string(b) + ")");
+      if (parametric != 0 && parametric != 1)
+        s_.fail("parametric flag " + std::to_string(parametric) + ", expected 0 or 1");
+      if (count < 0 || count > n - total)
+        s_.fail("node block " + std::to_string(b) + " claims " + std::to_string(count) + " nodes, " +
+                std::to_string(n - total) + " are left of the " + std::to_string(n) + " in the header");
+      total += count;
+      const int num_values = 3 + (parametric == 1 ? static_cast<int>(dim) : 0);
+      tags.assign(static_cast<std::size_t>(count), 0);
+      tag_offsets.assign(static_cast<std::size_t>(count), 0);
+      tag_lines.assign(static_cast<std::size_t>(count), 0);
+      for (std::int64_t i = 0; i < count; ++i) {
+        tag_offsets[static_cast<std::size_t>(i)] = s_.offset();
+        tags[static_cast<std::size_t>(i)] = binary_ ? binary_size(nodes_line_) : read_int("a node tag");
+        tag_lines[static_cast<std::size_t>(i)] = s_.line();
+      }
+      for (std::int64_t i = 0; i < count; ++i) {
+        double values[6];
+        const std::int64_t line = s_.line() + 1;
+        for (int k = 0; k < num_values; ++k)
+          values[k] = binary_ ? binary_double(nodes_line_) : read_double("a coordinate");
+        add_node(tags[static_cast<std::size_t>(i)], values, binary_ ? 0 : std::max(line, s_.line()),
+                 tag_offsets[static_cast<std::size_t>(i)]);
+      }
+    }
+    if (total != n)
+      s_.fail("the node blocks hold " + std::to_string(total) + " nodes, the header says " + std::to_string(n));
+  }
+
+  // --- elements ------------------------------------------------------------
+  // One hex given its node tags; where = line (ASCII) or byte offset (binary).
+  void add_hex(std::int64_t element_tag, const std::int64_t tags[8], std::int64_t where) {
+    const auto fail = [&](const std::string& message) {
+      if (binary_) fail_binary(elements_line_, message, static_cast<std::size_t>(where));
+      s_.fail_at(where, message);
+    };
+    Hex hex;
+    for (int j = 0; j < 8; ++j) {
+      const auto it = index_of_tag_.find(tags[j]);
+      if (it == index_of_tag_.end())
+        fail("node tag " + std::to_string(tags[j]) + " is not defined (element " + std::to_string(element_tag) + ")");
+      for (int i = 0; i < j; ++i)
+        if (hex[i] == it->second)
+          fail("node tag " + std::to_string(tags[j]) + " repeated (element " + std::to_string(element_tag) + ")");
+      hex[j] = it->second;
+    }
+    hexes_.push_back(hex);
+  }
+
+  void read_elements_v2() {
+    const std::int64_t m = read_int("the number of elements");
+    check_count(m, "number of elements", std::numeric_limits<std::int64_t>::max());
+    check_room(m, binary_ ? 12 : 8, "elements");
+    if (!s_.finish_line()) s_.fail("unexpected " + quote(s_.peek_token()) + " after the number of elements");
+    if (binary_) {
+      std::int64_t done = 0;
+      while (done < m) {
+        const std::size_t header_offset = s_.offset();
+        const std::int64_t type = binary_int(elements_line_);
+        const std::int64_t follow = binary_int(elements_line_);
+        const std::int64_t num_tags = binary_int(elements_line_);
+        const int num_nodes = gmsh_node_count(type);
+        if (num_nodes == 0) fail_binary(elements_line_, "unknown element type " + std::to_string(type), header_offset);
+        if (follow <= 0 || follow > m - done)
+          fail_binary(
+              elements_line_,
+              "element block claims " + std::to_string(follow) + " elements, " + std::to_string(m - done) + " are left",
+              header_offset);
+        if (num_tags < 0 || num_tags > 1000)
+          fail_binary(elements_line_, "element block claims " + std::to_string(num_tags) + " tags", header_offset);
+        const std::int64_t ints = 1 + num_tags + num_nodes;
+        if (detail::exceeds_remaining(follow, 4 * ints, s_.remaining(), false))
+          fail_binary(elements_line_, "element block of " + std::to_string(follow) + " elements truncated",
+                      header_offset);
+        for (std::int64_t e = 0; e < follow; ++e) {
+          const std::size_t offset = s_.offset();
+          const std::int64_t tag = binary_int(elements_line_);
+          for (std::int64_t t = 0; t < num_tags; ++t) binary_int(elements_line_);
+          std::int64_t nodes[8];
+          if (type == kGmshHexahedron) {
+            for (std::int64_t& node : nodes) node = binary_int(elements_line_);
+            add_hex(tag, nodes, static_cast<std::int64_t>(offset));
+          } else {
+            s_.read_bytes(static_cast<std::size_t>(4 * num_nodes));
+            ++skipped_by_type_[type];
+          }
+        }
+        done += follow;
+      }
+      return;
+    }
+    for (std::int64_t e = 0; e < m; ++e) {
+      const std::int64_t tag = read_int("an element tag");
+      const std::int64_t line = s_.line();
+      if (!s_.skip_blank()) s_.fail("expected an element type after element " + std::to_string(tag));
+      std::int64_t type = 0;
+      if (!s_.read_int(type)) s_.fail("expected an element type, got " + quote(s_.peek_token()));
+      std::int64_t num_tags = 0;
+      if (!s_.skip_blank() || !s_.read_int(num_tags) || num_tags < 0)
+        s_.fail("expected the number of tags of element " + std::to_string(tag));
+      if (type != kGmshHexahedron) {
+        ++skipped_by_type_[type];
+        s_.read_line();
+        continue;
+      }
+      for (std::int64_t t = 0; t < num_tags; ++t) {
+        std::int64_t ignored = 0;
+        if (!s_.skip_blank() || !s_.read_int(ignored))
+          s_.fail("expected " + std::to_string(num_tags) + " tags for element " + std::to_string(tag));
+      }
+      read_ascii_hex(tag, line);
+    }
+  }
+
+  // The 8 node tags of a hex on the current line, then the end of the line.
+  void read_ascii_hex(std::int64_t tag, std::int64_t line) {
+    std::int64_t nodes[8];
+    for (int j = 0; j < 8; ++j) {
+      if (!s_.skip_blank())
+        s_.fail("expected 8 node tags for hexahedron " + std::to_string(tag) + ", got " + std::to_string(j));
+      if (!s_.read_int(nodes[j])) s_.fail("expected a node tag, got " + quote(s_.peek_token()));
+    }
+    if (s_.skip_blank())
+      s_.fail("expected 8 node tags for hexahedron " + std::to_string(tag) + ", got " +
+              std::to_string(8 + s_.count_tokens_on_line()));
+    add_hex(tag, nodes, line);
+  }
+
+  void read_elements_v4() {
+    std::int64_t header[4];
+    for (std::int64_t& h : header) h = binary_ ? binary_size(elements_line_) : read_int("an $Elements header count");
+    const std::int64_t num_blocks = header[0];
+    const std::int64_t m = header[1];
+    check_count(num_blocks, "number of element blocks", std::numeric_limits<std::int64_t>::max());
+    check_count(m, "number of elements", std::numeric_limits<std::int64_t>::max());
+    check_room(m, binary_ ? 2 * size_t_size_ : 4, "elements");
+    std::int64_t total = 0;
+    for (std::int64_t b = 0; b < num_blocks; ++b) {
+      const std::size_t header_offset = s_.offset();
+      std::int64_t type, count;
+      if (binary_) {
+        binary_int(elements_line_);  // entity dim
+        binary_int(elements_line_);  // entity tag
+        type = binary_int(elements_line_);
+        count = binary_size(elements_line_);
+      } else {
+        read_int("an entity dimension");
+        read_int("an entity tag");
+        type = read_int("an element type");
+        count = read_int("the number of elements in the block");
+      }
+      if (count < 0 || count > m - total) {
+        const std::string message = "element block " + std::to_string(b) + " claims " + std::to_string(count) +
+                                    " elements, " + std::to_string(m - total) + " are left";
+        if (binary_) fail_binary(elements_line_, message, header_offset);
+        s_.fail(message);
+      }
+      total += count;
+      const int num_nodes = gmsh_node_count(type);
+      if (binary_) {
+        if (num_nodes == 0) fail_binary(elements_line_, "unknown element type " + std::to_string(type), header_offset);
+        const std::int64_t entry = static_cast<std::int64_t>(size_t_size_) * (1 + num_nodes);
+        if (detail::exceeds_remaining(count, entry, s_.remaining(), false))
+          fail_binary(elements_line_, "element block of " + std::to_string(count) + " elements truncated",
+                      header_offset);
+        for (std::int64_t e = 0; e < count; ++e) {
+          const std::size_t offset = s_.offset();
+          const std::int64_t tag = binary_size(elements_line_);
+          if (type == kGmshHexahedron) {
+            std::int64_t nodes[8];
+            for (std::int64_t& node : nodes) node = binary_size(elements_line_);
+            add_hex(tag, nodes, static_cast<std::int64_t>(offset));
+          } else {
+            s_.read_bytes(static_cast<std::size_t>(entry - size_t_size_));
+          }
+        }
+        if (type != kGmshHexahedron && count > 0) skipped_by_type_[type] += count;
+        continue;
+      }
+      if (!s_.finish_line()) s_.fail("unexpected " + quote(s_.peek_token()) + " after the element block header");
+      for (std::int64_t e = 0; e < count; ++e) {
+        const std::int64_t tag = read_int("an element tag");
+        const std::int64_t line = s_.line();
+        if (type == kGmshHexahedron) {
+          read_ascii_hex(tag, line);
+        } else {
+          s_.read_line();
+          ++skipped_by_type_[type];
+        }
+      }
+    }
+    if (total != m)
+      s_.fail("the element blocks hold " + std::to_string(total) + " elements, the header says " + std::to_string(m));
+  }
+
+  LoadedMesh build() {
+    std::int64_t num_skipped = 0;
+    std::string types;
+    for (const auto& [type, count] : skipped_by_type_) {
+      num_skipped += count;
+      types += (types.empty() ? "" : ", ") + std::to_string(type);
+    }
+    const std::string plural_types = skipped_by_type_.size() > 1 ? "types " : "type ";
+    if (hexes_.empty())
+      s_.fail_at(elements_line_, "no hexahedra (element type 5)" +
+                                     (num_skipped > 0 ? " among " + std::to_string(num_skipped) + " element" +
+                                                            (num_skipped > 1 ? "s" : "") + " of " + plural_types + types
+                                                      : std::string()));
+    LoadedMesh loaded;
+    loaded.format = "gmsh-" + version_ + (binary_ ? "-binary" : "-ascii");
+    if (num_skipped > 0)
+      loaded.warnings.push_back(s_.name() + ": " + std::to_string(num_skipped) + " non-hexahedral element" +
+                                (num_skipped > 1 ? "s" : "") + " skipped (" + plural_types + types + ")");
+    loaded.mesh.points = std::move(points_);
+    loaded.mesh.hexes = std::move(hexes_);
+    return loaded;
+  }
+
+  TextScanner s_;
+  bool is_v4_ = false;
+  bool binary_ = false;
+  bool swap_ = false;
+  int size_t_size_ = 8;
+  std::string version_;
+  std::int64_t nodes_line_ = 0;
+  std::int64_t elements_line_ = 0;
+  std::vector<Vec3> points_;
+  // Lookups only, never iterated: output order does not depend on hashing.
+  std::unordered_map<std::int64_t, Index> index_of_tag_;
+  std::vector<Hex> hexes_;
+  std::map<std::int64_t, std::int64_t> skipped_by_type_;
+};
+
+}  // namespace
+
+bool looks_like_gmsh(std::string_view bytes) {
+  std::size_t i = 0;
+  while (i < bytes.size() && detail::is_space(bytes[i])) ++i;
+  return bytes.substr(i).starts_with("$MeshFormat");
+}
+
+LoadedMesh read_gmsh(std::string_view bytes, const std::string& name) { return GmshParser(bytes, name).parse(); }
+
+}  // namespace hq

@@ -1,0 +1,243 @@
+#include "hqview/io/ovm_reader.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hqview/core/types.h"
+#include "hqview/io/text_scanner.h"
+
+namespace hq {
+namespace {
+
+using detail::iequals;
+using detail::quote;
+using detail::TextScanner;
+
+using Quad = std::array<std::int64_t, 4>;
+
+// True when b is a cyclic rotation of a (same orientation).
+bool same_cycle(const Quad& a, const Quad& b) {
+  for (int r = 0; r < 4; ++r)
+    if (a[0] == b[r] && a[1] == b[(r + 1) % 4] && a[2] == b[(r + 2) % 4] && a[3] == b[(r + 3) % 4]) return true;
+  return false;
+}
+
+class OvmParser {
+ public:
+  OvmParser(std::string_view bytes, const std::string& name) : s_(bytes, name, /*has_hash_comments=*/false) {}
+
+  LoadedMesh parse() {
+    if (!s_.skip_space()) s_.fail("empty file, expected 'OVM ASCII'");
+    const std::string_view magic = s_.read_token();
+    if (!iequals(magic, "OVM")) s_.fail("expected 'OVM ASCII', got " + quote(magic));
+    if (!s_.skip_blank()) s_.fail("expected ASCII after OVM");
+    const std::string_view kind = s_.read_token();
+    if (iequals(kind, "BINARY")) s_.fail("OVM BINARY files are not supported (write OVM ASCII)");
+    if (!iequals(kind, "ASCII")) s_.fail("expected 'OVM ASCII', got 'OVM " + std::string(kind) + "'");
+
+    const std::int64_t num_vertices = section("Vertices", 6);
+    points_.reserve(static_cast<std::size_t>(num_vertices));
+    for (std::int64_t i = 0; i < num_vertices; ++i) {
+      double xyz[3];
+      for (double& c : xyz) c = read_double("a coordinate", "vertex", i, num_vertices);
+      for (const double c : xyz)
+        if (!std::isfinite(c)) s_.fail("non-finite coordinate (vertex " + std::to_string(i) + ")");
+      points_.push_back({xyz[0], xyz[1], xyz[2]});
+    }
+
+    const std::int64_t num_edges = section("Edges", 4);
+    edges_.reserve(static_cast<std::size_t>(num_edges));
+    for (std::int64_t e = 0; e < num_edges; ++e) {
+      std::array<std::int64_t, 2> ends;
+      for (std::int64_t& v : ends) {
+        v = read_int("a vertex id", "edge", e, num_edges);
+        if (v < 0 || v >= num_vertices)
+          s_.fail("vertex id " + std::to_string(v) + " out of range [0, " + std::to_string(num_vertices) + ") (edge " +
+                  std::to_string(e) + ")");
+      }
+      if (ends[0] == ends[1])
+        s_.fail("edge " + std::to_string(e) + " joins vertex " + std::to_string(ends[0]) + " to itself");
+      edges_.push_back(ends);
+    }
+
+    const std::int64_t num_faces = section("Faces", 4);
+    faces_.reserve(static_cast<std::size_t>(num_faces));
+    for (std::int64_t f = 0; f < num_faces; ++f) {
+      const std::int64_t valence = read_int("a face valence", "face", f, num_faces);
+      std::vector<std::int64_t> halfedges;
+      if (valence < 3 || detail::exceeds_remaining(valence, 2, s_.remaining(), true))
+        s_.fail("face valence " + std::to_string(valence) + " (face " + std::to_string(f) + ")");
+      for (std::int64_t k = 0; k < valence; ++k) {
+        const std::int64_t h = read_int("a half-edge id", "face", f, num_faces);
+        if (h < 0 || h >= 2 * num_edges)
+          s_.fail("half-edge id " + std::to_string(h) + " out of range [0, " + std::to_string(2 * num_edges) +
+                  ") (face " + std::to_string(f) + ")");
+        halfedges.push_back(h);
+      }
+      for (std::size_t k = 0; k < halfedges.size(); ++k)
+        if (to_vertex(halfedges[k]) != from_vertex(halfedges[(k + 1) % halfedges.size()]))
+          s_.fail("the half-edges of face " + std::to_string(f) + " do not form a cycle");
+      // Quads only matter: other faces are kept as "not a quad" markers.
+      Quad quad{-1, -1, -1, -1};
+      if (valence == 4)
+        for (int k = 0; k < 4; ++k) quad[k] = from_vertex(halfedges[static_cast<std::size_t>(k)]);
+      faces_.push_back(quad);
+      face_valences_.push_back(valence);
+    }
+
+    const std::int64_t num_cells = section("Polyhedra", 4);
+    hexes_.reserve(static_cast<std::size_t>(num_cells));
+    for (std::int64_t c = 0; c < num_cells; ++c) {
+      const std::int64_t valence = read_int("a polyhedron valence", "polyhedron", c, num_cells);
+      const std::int64_t line = s_.line();
+      if (valence != 6)
+        s_.fail("polyhedron " + std::to_string(c) + " has " + std::to_string(valence) +
+                " half-faces: not a hexahedron (6 quadrilaterals)");
+      std::array<Quad, 6> quads;
+      for (int k = 0; k < 6; ++k) {
+        const std::int64_t hf = read_int("a half-face id", "polyhedron", c, num_cells);
+        if (hf < 0 || hf >= 2 * num_faces)
+          s_.fail("half-face id " + std::to_string(hf) + " out of range [0, " + std::to_string(2 * num_faces) +
+                  ") (polyhedron " + std::to_string(c) + ")");
+        const auto f = static_cast<std::size_t>(hf / 2);
+        if (face_valences_[f] != 4)
+          s_.fail("polyhedron " + std::to_string(c) + " has a face with " + std::to_string(face_valences_[f]) +
+                  " edges (face " + std::to_string(f) + "): not a hexahedron");
+        Quad q = faces_[f];
+        if (hf % 2 == 1) std::reverse(q.begin(), q.end());
+        quads[static_cast<std::size_t>(k)] = q;
+      }
+      hexes_.push_back(rebuild_hex(quads, c, line));
+    }
+    if (hexes_.empty()) s_.fail("no hexahedra (no polyhedra)");
+    LoadedMesh loaded;
+    loaded.format = "ovm-ascii";
+    loaded.mesh.points = std::move(points_);
+    loaded.mesh.hexes = std::move(hexes_);
+    return loaded;
+  }
+
+ private:
+  std::int64_t from_vertex(std::int64_t h) const { return edges_[static_cast<std::size_t>(h / 2)][h % 2 == 0 ? 0 : 1]; }
+  std::int64_t to_vertex(std::int64_t h) const { return edges_[static_cast<std::size_t>(h / 2)][h % 2 == 0 ? 1 : 0]; }
+
+  // "<Keyword>\n<count>"; checks the count against the rest of the file
+  // (each entry takes at least min_bytes).
+  std::int64_t section(std::string_view keyword, std::int64_t min_bytes) {
+    if (!s_.skip_space()) s_.fail("unexpected end of file, expected " + std::string(keyword));
+    const std::string_view token = s_.read_token();
+    if (!iequals(token, keyword)) s_.fail("expected " + std::string(keyword) + ", got " + quote(token));
+    if (!s_.skip_space()) s_.fail("unexpected end of file, expected the number of " + std::string(keyword));
+    std::int64_t n = 0;
+    if (!s_.read_int(n)) s_.fail("expected the number of " + std::string(keyword) + ", got " + quote(s_.peek_token()));
+    if (n < 0) s_.fail("negative number of " + std::string(keyword) + ": " + std::to_string(n));
+    if (n > kMaxIndexCount)
+      s_.fail("number of " + std::string(keyword) + " " + std::to_string(n) + " exceeds the limit of " +
+              std::to_string(kMaxIndexCount));
+    if (detail::exceeds_remaining(n, min_bytes, s_.remaining(), true))
+      s_.fail(std::to_string(n) + " " + std::string(keyword) + " cannot fit in the " + std::to_string(s_.remaining()) +
+              " bytes left in the file");
+    return n;
+  }
+
+  std::int64_t read_int(const char* what, const char* entity, std::int64_t i, std::int64_t n) {
+    if (!s_.skip_space())
+      s_.fail("unexpected end of file, expected " + std::string(what) + " (" + entity + " " + std::to_string(i) +
+              " of " + std::to_string(n) + ")");
+    std::int64_t value = 0;
+    if (!s_.read_int(value)) s_.fail("expected " + std::string(what) + ", got " + quote(s_.peek_token()));
+    return value;
+  }
+  double read_double(const char* what, const char* entity, std::int64_t i, std::int64_t n) {
+    if (!s_.skip_space())
+      s_.fail("unexpected end of file, expected " + std::string(what) + " (" + entity + " " + std::to_string(i) +
+              " of " + std::to_string(n) + ")");
+    double value = 0;
+    if (!s_.read_double(value)) s_.fail("expected " + std::string(what) + ", got " + quote(s_.peek_token()));
+    return value;
+  }
+
+  // Corners in VTK order from 6 outward-oriented quads; throws unless they
+  // are exactly the faces of that hexahedron.
+  Hex rebuild_hex(const std::array<Quad, 6>& quads, std::int64_t c, std::int64_t line) const {
+    const auto not_hex = [&](const std::string& why) {
+      s_.fail_at(line, "polyhedron " + std::to_string(c) + " is not a hexahedron: " + why);
+    };
+    // Bottom: the first half-face reversed (inward normal). OVM's HexahedralMesh
+    // stores (o3, o2, o1, o0) there: reversed, corners 0-3 are o0-o3.
+    Quad bottom = quads[0];
+    std::reverse(bottom.begin(), bottom.end());
+    std::array<std::int64_t, 8> h{};
+    for (int i = 0; i < 4; ++i) h[static_cast<std::size_t>(i)] = bottom[static_cast<std::size_t>(i)];
+    for (int i = 0; i < 4; ++i) {
+      // The neighbour of corner i along an edge of some other face, off the bottom.
+      std::int64_t above = -1;
+      for (int k = 1; k < 6; ++k)
+        for (int j = 0; j < 4; ++j) {
+          const Quad& q = quads[static_cast<std::size_t>(k)];
+          if (q[static_cast<std::size_t>(j)] != h[static_cast<std::size_t>(i)]) continue;
+          for (const std::int64_t v :
+               {q[static_cast<std::size_t>((j + 1) % 4)], q[static_cast<std::size_t>((j + 3) % 4)]})
+            if (std::find(bottom.begin(), bottom.end(), v) == bottom.end()) {
+              if (above != -1 && above != v)
+                not_hex("corner " + std::to_string(h[static_cast<std::size_t>(i)]) + " has more than 3 neighbours");
+              above = v;
+            }
+        }
+      if (above == -1)
+        not_hex("no edge leaves the bottom face at vertex " + std::to_string(h[static_cast<std::size_t>(i)]));
+      h[static_cast<std::size_t>(i) + 4] = above;
+    }
+    for (int i = 0; i < 8; ++i)
+      for (int j = 0; j < i; ++j)
+        if (h[static_cast<std::size_t>(i)] == h[static_cast<std::size_t>(j)])
+          not_hex("vertex " + std::to_string(h[static_cast<std::size_t>(i)]) + " is two of its corners");
+    // The outward faces of that hexahedron must be the 6 half-faces, each once.
+    const std::array<Quad, 6> expected = {{{h[0], h[3], h[2], h[1]},
+                                           {h[4], h[5], h[6], h[7]},
+                                           {h[0], h[1], h[5], h[4]},
+                                           {h[1], h[2], h[6], h[5]},
+                                           {h[2], h[3], h[7], h[6]},
+                                           {h[3], h[0], h[4], h[7]}}};
+    std::array<bool, 6> used{};
+    for (const Quad& q : quads) {
+      bool found = false;
+      for (std::size_t k = 0; k < 6 && !found; ++k)
+        if (!used[k] && same_cycle(expected[k], q)) used[k] = found = true;
+      if (!found) {
+        Quad reversed = q;
+        std::reverse(reversed.begin(), reversed.end());
+        bool is_flipped = false;
+        for (const Quad& e : expected) is_flipped = is_flipped || same_cycle(e, reversed);
+        not_hex(is_flipped ? "its half-faces are not consistently oriented"
+                           : "its faces do not close up as a hexahedron's");
+      }
+    }
+    Hex hex;
+    for (int i = 0; i < 8; ++i) hex[i] = static_cast<Index>(h[static_cast<std::size_t>(i)]);
+    return hex;
+  }
+
+  TextScanner s_;
+  std::vector<Vec3> points_;
+  std::vector<std::array<std::int64_t, 2>> edges_;
+  std::vector<Quad> faces_;
+  std::vector<std::int64_t> face_valences_;
+  std::vector<Hex> hexes_;
+};
+
+}  // namespace
+
+bool looks_like_ovm(std::string_view bytes) {
+  std::size_t i = 0;
+  while (i < bytes.size() && detail::is_space(bytes[i])) ++i;
+  return detail::istarts_with(bytes.substr(i), "OVM ASCII") || detail::istarts_with(bytes.substr(i), "OVM BINARY");
+}
+
+LoadedMesh read_ovm(std::string_view bytes, const std::string& name) { return OvmParser(bytes, name).parse(); }
+
+}  // namespace hq

@@ -1,0 +1,448 @@
+#include "hqview/pipeline/batch.h"
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <condition_variable>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "hqview/core/error.h"
+#include "hqview/core/sha256.h"
+#include "hqview/report/report_json.h"
+
+namespace hq {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+std::string_view trim(std::string_view s) {
+  const auto first = s.find_first_not_of(" \t\r");
+  if (first == std::string_view::npos) return {};
+  const auto last = s.find_last_not_of(" \t\r");
+  return s.substr(first, last - first + 1);
+}
+
+std::string read_file_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string() + ": cannot open");
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return std::move(bytes).str();
+}
+
+// Splits one CSV line; fields may be double-quoted ("" is a quote).
+std::vector<std::string> split_csv(std::string_view line) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        fields.back() += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        fields.back() += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      fields.emplace_back();
+    } else {
+      fields.back() += c;
+    }
+  }
+  for (std::string& f : fields) f = std::string(trim(f));
+  return fields;
+}
+
+fs::path resolve(const fs::path& base_dir, const std::string& name) {
+  if (name.empty()) return {};
+  const fs::path p(name);
+  return p.is_absolute() ? p : base_dir / p;
+}
+
+// The index key of a manifest row: the mesh as written, normalised, without
+// leading "../" or root (it names the bundle directory under OUT).
+std::string manifest_key(const std::string& mesh) {
+  fs::path p = fs::path(mesh).lexically_normal();
+  fs::path key;
+  for (const fs::path& part : p.relative_path())
+    if (part != ".." && part != ".") key /= part;
+  return key.generic_string();
+}
+
+std::optional<double> lookup_number(const json& report, std::string_view dotted) {
+  const json* node = &report;
+  std::size_t start = 0;
+  while (start <= dotted.size()) {
+    const auto dot = dotted.find('.', start);
+    const std::string key(dotted.substr(start, dot == std::string_view::npos ? std::string_view::npos : dot - start));
+    if (!node->is_object() || !node->contains(key)) return std::nullopt;
+    node = &(*node)[key];
+    if (dot == std::string_view::npos) break;
+    start = dot + 1;
+  }
+  if (!node->is_number()) return std::nullopt;
+  return node->get<double>();
+}
+
+// --resume: the bundle's report.json names the same HQView version and the
+// same mesh and reference bytes (SHA-256) as this run would.
+bool is_resumable(const BatchInput& input, const fs::path& report_path, const std::string& tool_version) {
+  std::error_code ec;
+  if (!fs::is_regular_file(report_path, ec)) return false;
+  const json old = json::parse(read_file_bytes(report_path), nullptr, false);
+  if (old.is_discarded() || !old.is_object()) return false;
+  const json tool = old.value("tool", json::object());
+  if (!tool.is_object() || tool.value("version", "") != tool_version) return false;
+  auto old_sha = [&](const char* which) {
+    const json in = old.value("input", json::object());
+    return in.is_object() && in.contains(which) && in[which].is_object() ? in[which].value("sha256", "")
+                                                                         : std::string();
+  };
+  auto sha_of = [](const fs::path& file) { return file.empty() ? std::string() : sha256_hex(read_file_bytes(file)); };
+  return old_sha("mesh") == sha_of(input.mesh_file) && old_sha("reference") == sha_of(input.reference_file);
+}
+
+}  // namespace
+
+bool is_hex_mesh_extension(const fs::path& path) {
+  const std::string ext = lower(path.extension().string());
+  // The extensions of io/mesh_reader.h's read_hex_mesh().
+  for (const char* known : {".mesh", ".vtk", ".vtu", ".msh", ".ovm", ".inp", ".e", ".exo"})
+    if (ext == known) return true;
+  return false;
+}
+
+std::vector<BatchInput> collect_directory(const fs::path& dir) {
+  std::vector<BatchInput> inputs;
+  std::error_code ec;
+  fs::recursive_directory_iterator it(dir, fs::directory_options::skip_permission_denied, ec);
+  if (ec) throw InputError(dir.string() + ": cannot list the directory: " + ec.message());
+  for (; it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    if (ec) throw InputError(dir.string() + ": cannot list the directory: " + ec.message());
+    const fs::path& file = it->path();
+    if (file.filename().string().starts_with(".")) {
+      if (it->is_directory()) it.disable_recursion_pending();
+      continue;  // hidden files and HQView's temporary siblings
+    }
+    if (it->is_directory() && (fs::exists(file / "report.json") || fs::exists(file / "index.json"))) {
+      // HQView's own outputs (a bundle holds data/annotated.vtu): an output
+      // directory inside the collection is not analysed on the next run.
+      it.disable_recursion_pending();
+      continue;
+    }
+    if (!it->is_regular_file() || !is_hex_mesh_extension(file)) continue;
+    BatchInput input;
+    input.path = file.lexically_relative(dir).generic_string();
+    input.mesh_file = file;
+    input.model = file.stem().string();
+    inputs.push_back(std::move(input));
+  }
+  std::sort(inputs.begin(), inputs.end(), [](const BatchInput& a, const BatchInput& b) { return a.path < b.path; });
+  return inputs;
+}
+
+std::vector<BatchInput> parse_manifest(std::string_view text, const std::string& name, const fs::path& base_dir,
+                                       bool is_json) {
+  std::vector<BatchInput> inputs;
+  std::vector<int> lines;
+  auto where = [&](int line) { return is_json ? "row " + std::to_string(line) + ": " : std::string(); };
+  auto add = [&](int line, const std::string& mesh, const std::string& reference, const std::string& compare,
+                 const std::string& label, const std::string& model) {
+    // JSON rows have no line numbers: messages name the row instead.
+    if (mesh.empty()) throw ParseError(name, is_json ? 0 : line, where(line) + "no mesh in this row");
+    BatchInput input;
+    input.path = manifest_key(mesh);
+    input.mesh_file = resolve(base_dir, mesh);
+    input.reference_file = resolve(base_dir, reference);
+    input.compare_file = resolve(base_dir, compare);
+    input.label = label;
+    input.model = model.empty() ? input.mesh_file.stem().string() : model;
+    inputs.push_back(std::move(input));
+    lines.push_back(line);
+  };
+  if (is_json) {
+    json rows;
+    try {
+      rows = json::parse(text);
+    } catch (const json::parse_error& e) {
+      throw ParseError(name, 0, std::string("not valid JSON: ") + e.what());
+    }
+    if (rows.is_object() && rows.contains("meshes")) rows = rows["meshes"];
+    if (!rows.is_array()) throw ParseError(name, 0, "expected an array of rows (or {\"meshes\": [...]})");
+    int row_number = 0;
+    for (const json& row : rows) {
+      ++row_number;
+      auto field = [&](const char* key) {
+        if (!row.contains(key) || row[key].is_null()) return std::string();
+        if (!row[key].is_string()) throw ParseError(name, 0, where(row_number) + "'" + key + "' must be a string");
+        return row[key].get<std::string>();
+      };
+      if (row.is_string()) {
+        add(row_number, row.get<std::string>(), "", "", "", "");
+      } else if (row.is_object()) {
+        std::string label = field("label");
+        if (label.empty()) label = field("method");
+        add(row_number, field("mesh"), field("reference"), field("compare"), label, field("model"));
+      } else {
+        throw ParseError(name, 0, where(row_number) + "expected an object or a string");
+      }
+    }
+  } else {
+    std::istringstream in{std::string(text)};
+    std::string line;
+    int line_number = 0;
+    std::map<std::string, std::size_t> columns;
+    while (std::getline(in, line)) {
+      ++line_number;
+      if (trim(line).empty() || trim(line).starts_with("#")) continue;
+      std::vector<std::string> fields = split_csv(line);
+      if (columns.empty()) {
+        for (std::size_t i = 0; i < fields.size(); ++i) {
+          std::string key = lower(fields[i]);
+          if (key == "method") key = "label";
+          if (key != "mesh" && key != "reference" && key != "compare" && key != "label" && key != "model")
+            throw ParseError(
+                name, line_number,
+                "unknown column '" + fields[i] + "' (expected mesh, reference, compare, label/method, model)");
+          if (columns.count(key)) throw ParseError(name, line_number, "column '" + key + "' appears twice");
+          columns[key] = i;
+        }
+        if (!columns.count("mesh")) throw ParseError(name, line_number, "the header has no 'mesh' column");
+        continue;
+      }
+      if (fields.size() > columns.size())
+        throw ParseError(
+            name, line_number,
+            "expected at most " + std::to_string(columns.size()) + " fields, got " + std::to_string(fields.size()));
+      auto field = [&](const char* key) {
+        const auto it = columns.find(key);
+        return it != columns.end() && it->second < fields.size() ? fields[it->second] : std::string();
+      };
+      add(line_number, field("mesh"), field("reference"), field("compare"), field("label"), field("model"));
+    }
+  }
+  std::map<std::string, int> seen;
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const auto [it, is_new] = seen.emplace(inputs[i].path, lines[i]);
+    if (!is_new)
+      throw ParseError(name, is_json ? 0 : lines[i],
+                       where(lines[i]) + "mesh '" + inputs[i].path + "' already listed (" +
+                           (is_json ? "row " : "line ") + std::to_string(it->second) + ")");
+  }
+  return inputs;
+}
+
+std::vector<BatchInput> read_manifest(const fs::path& file) {
+  const std::string ext = lower(file.extension().string());
+  if (ext != ".csv" && ext != ".json")
+    throw UsageError(file.string() + ": a batch input is a directory or a manifest (.csv or .json)");
+  return parse_manifest(read_file_bytes(file), file.string(), file.parent_path(), ext == ".json");
+}
+
+std::vector<BatchInput> collect_batch_inputs(const fs::path& dir_or_manifest) {
+  std::error_code ec;
+  if (fs::is_directory(dir_or_manifest, ec)) return collect_directory(dir_or_manifest);
+  if (!fs::exists(dir_or_manifest, ec)) throw InputError(dir_or_manifest.string() + ": no such file or directory");
+  return read_manifest(dir_or_manifest);
+}
+
+Shard parse_shard(std::string_view text) {
+  const auto slash = text.find('/');
+  Shard shard;
+  auto parse_int = [](std::string_view s, int& value) {
+    const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), value);
+    return error == std::errc() && end == s.data() + s.size();
+  };
+  if (slash == std::string_view::npos || !parse_int(text.substr(0, slash), shard.index) ||
+      !parse_int(text.substr(slash + 1), shard.count) || shard.count < 1 || shard.index < 1 ||
+      shard.index > shard.count)
+    throw UsageError("--shard: expected I/N with 1 <= I <= N, e.g. 2/8, got '" + std::string(text) + "'");
+  return shard;
+}
+
+int shard_of(std::string_view path, int count) {
+  // The first 8 bytes of SHA-256: the same on every machine and compiler.
+  const std::string hex = sha256_hex(path);
+  std::uint64_t h = 0;
+  for (int i = 0; i < 16; ++i) {
+    const char c = hex[static_cast<std::size_t>(i)];
+    h = h * 16 + static_cast<std::uint64_t>(c <= '9' ? c - '0' : c - 'a' + 10);
+  }
+  return static_cast<int>(h % static_cast<std::uint64_t>(count)) + 1;
+}
+
+std::vector<BatchInput> select_shard(const std::vector<BatchInput>& inputs, const Shard& shard) {
+  std::vector<BatchInput> selected;
+  for (const BatchInput& input : inputs)
+    if (shard_of(input.path, shard.count) == shard.index) selected.push_back(input);
+  return selected;
+}
+
+std::string_view to_string(BatchStatus status) {
+  switch (status) {
+    case BatchStatus::ok:
+      return "ok";
+    case BatchStatus::gate_failed:
+      return "gate_failed";
+    case BatchStatus::failed:
+      return "failed";
+  }
+  return "failed";
+}
+
+void fill_entry_from_report(BatchEntry& entry, std::string_view report_json_text) {
+  const json report = json::parse(report_json_text);
+  entry.sha256 = report.at("input").at("mesh").at("sha256").get<std::string>();
+  for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) entry.headline[k] = lookup_number(report, kHeadlineKeys[k]);
+  entry.failed_gates.clear();
+  bool passed = true;
+  if (report.contains("gates") && report["gates"].is_object()) {
+    passed = report["gates"].value("passed", true);
+    for (const json& g : report["gates"].value("results", json::array()))
+      if (!g.value("passed", true)) entry.failed_gates.push_back(g.value("rule", ""));
+  }
+  entry.status = passed ? BatchStatus::ok : BatchStatus::gate_failed;
+  entry.error.clear();
+}
+
+std::uint64_t estimate_mesh_memory(std::uint64_t file_bytes, bool is_rendering) {
+  // Measured with /usr/bin/time on ../shared/data (Dolphin_padded, bunny_in,
+  // warrior: 3-4 MB text files): about 9-11 bytes of peak RSS per file byte
+  // above the process baseline, with or without rendering; rendering adds
+  // about 120 MB (OSMesa framebuffers and llvmpipe). Doubled for safety.
+  return 20 * file_bytes + ((is_rendering ? std::uint64_t{128} : std::uint64_t{16}) << 20);
+}
+
+BatchEntry run_batch_mesh(const BatchInput& input, const BatchOptions& options, bool& is_resumed) {
+  is_resumed = false;
+  BatchEntry entry;
+  entry.path = input.path;
+  entry.label = input.label;
+  entry.model = input.model;
+  const fs::path dir = options.output / fs::path(input.path);
+  try {
+    if (options.resume && is_resumable(input, dir / "report.json", options.analyze.tool_version)) {
+      const std::string text = read_file_bytes(dir / "report.json");
+      fill_entry_from_report(entry, text);
+      // The rules of this run decide the status, not those of the kept bundle.
+      if (!options.analyze.gates.empty()) {
+        const GateSummary gates = evaluate_gates(options.analyze.gates, text);
+        entry.failed_gates.clear();
+        for (const GateResult& g : gates.results)
+          if (!g.passed) entry.failed_gates.push_back(g.rule);
+        entry.status = gates.passed ? BatchStatus::ok : BatchStatus::gate_failed;
+      }
+      entry.bundle = input.path;
+      is_resumed = true;
+      return entry;
+    }
+    AnalyzeOptions analyze_options = options.analyze;
+    analyze_options.mesh_path = input.mesh_file;
+    analyze_options.reference_path = input.reference_file;
+    const BundleOptions bundle{.force = options.force};
+    check_output_dir(dir, bundle);
+    const Analysis analysis = analyze(analyze_options);
+    write_bundle(analysis.model, analysis.images, dir, bundle);
+    fill_entry_from_report(entry, report_json(analysis.model));
+    entry.bundle = input.path;
+  } catch (const InputError& e) {
+    entry.status = BatchStatus::failed;
+    entry.error = e.what();
+  } catch (const Error& e) {
+    entry.status = BatchStatus::failed;
+    entry.error = e.what();
+  } catch (const std::exception& e) {
+    entry.status = BatchStatus::failed;
+    entry.error = std::string("internal error: ") + e.what();
+  }
+  if (entry.status == BatchStatus::failed) {
+    entry.bundle.clear();
+    entry.failed_gates.clear();
+    entry.headline.assign(kNumHeadlineKeys, std::nullopt);
+    std::error_code ec;
+    entry.sha256 = fs::is_regular_file(input.mesh_file, ec) ? sha256_hex(read_file_bytes(input.mesh_file)) : "";
+  }
+  return entry;
+}
+
+std::vector<BatchEntry> run_batch(const std::vector<BatchInput>& inputs, const BatchOptions& options,
+                                  BatchProgress* progress) {
+  std::vector<BatchEntry> entries(inputs.size());
+  std::vector<std::uint64_t> cost(inputs.size());
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    std::error_code ec;
+    const auto size = fs::file_size(inputs[i].mesh_file, ec);
+    cost[i] = estimate_mesh_memory(ec ? 0 : size, options.analyze.render);
+  }
+  std::mutex mutex;
+  std::condition_variable released;
+  std::uint64_t in_flight = 0;
+  int running = 0;
+  int done = 0;
+  std::size_t next = 0;
+  const int total = static_cast<int>(inputs.size());
+
+  auto worker = [&] {
+    while (true) {
+      std::size_t i = 0;
+      {
+        std::unique_lock lock(mutex);
+        if (next >= inputs.size()) return;
+        i = next++;
+        // A mesh starts when it fits in the budget next to those running, or
+        // runs alone (a mesh larger than the budget still gets analysed).
+        released.wait(lock, [&] {
+          return options.memory_budget == 0 || running == 0 || in_flight + cost[i] <= options.memory_budget;
+        });
+        in_flight += cost[i];
+        ++running;
+        if (progress) progress->mesh_started(inputs[i]);
+      }
+      const auto start = std::chrono::steady_clock::now();
+      bool is_resumed = false;
+      entries[i] = run_batch_mesh(inputs[i], options, is_resumed);
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      {
+        std::lock_guard lock(mutex);
+        in_flight -= cost[i];
+        --running;
+        ++done;
+        if (progress) progress->mesh_finished(entries[i], is_resumed, seconds, done, total);
+      }
+      released.notify_all();
+    }
+  };
+  const int workers = std::clamp(options.jobs, 1, std::max(1, total));
+  std::vector<std::thread> threads;
+  for (int t = 1; t < workers; ++t) threads.emplace_back(worker);
+  worker();
+  for (std::thread& t : threads) t.join();
+  std::sort(entries.begin(), entries.end(), [](const BatchEntry& a, const BatchEntry& b) { return a.path < b.path; });
+  return entries;
+}
+
+int batch_exit_code(const std::vector<BatchEntry>& entries) {
+  bool any_gate = false;
+  for (const BatchEntry& e : entries) {
+    if (e.status == BatchStatus::failed) return 3;
+    if (e.status == BatchStatus::gate_failed) any_gate = true;
+  }
+  return any_gate ? 1 : 0;
+}
+
+}  // namespace hq

@@ -1,0 +1,289 @@
+#include "hqview/pipeline/diff.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "hqview/core/error.h"
+#include "hqview/core/number_format.h"
+
+namespace hq {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+std::string_view trim(std::string_view s) {
+  const auto first = s.find_first_not_of(" \t");
+  if (first == std::string_view::npos) return {};
+  const auto last = s.find_last_not_of(" \t");
+  return s.substr(first, last - first + 1);
+}
+
+std::optional<double> lookup(const json& j, const std::vector<std::string>& path) {
+  const json* node = &j;
+  for (const std::string& key : path) {
+    if (node->is_object()) {
+      if (!node->contains(key)) return std::nullopt;
+      node = &(*node)[key];
+    } else if (node->is_array()) {
+      std::size_t i = 0;
+      const auto [end, error] = std::from_chars(key.data(), key.data() + key.size(), i);
+      if (error != std::errc() || end != key.data() + key.size() || i >= node->size()) return std::nullopt;
+      node = &(*node)[i];
+    } else {
+      return std::nullopt;
+    }
+  }
+  if (node->is_boolean()) return node->get<bool>() ? 1.0 : 0.0;
+  if (!node->is_number()) return std::nullopt;
+  return node->get<double>();
+}
+
+std::string join(const std::vector<std::string>& path) {
+  std::string s;
+  for (const std::string& k : path) s += (s.empty() ? "" : ".") + k;
+  return s;
+}
+
+// Numeric leaves of a report, by dotted path; arrays (histograms, lists of
+// clusters, worst cells) are left out: their entries have no stable identity.
+void flatten(const json& j, const std::string& prefix, std::map<std::string, double>& out) {
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const std::string key = prefix.empty() ? it.key() : prefix + "." + it.key();
+    if (key == "schema_version") continue;
+    if (it->is_object())
+      flatten(*it, key, out);
+    else if (it->is_number())
+      out[key] = it->get<double>();
+  }
+}
+
+json parse_or_throw(std::string_view text, const std::string& what) {
+  json j = json::parse(text, nullptr, false);
+  if (j.is_discarded() || !j.is_object())
+    throw InputError(what + ": not a JSON object (expected report.json or index.json)");
+  return j;
+}
+
+std::string string_or_empty(const json& object, const char* key) {
+  return object.contains(key) && object[key].is_string() ? object[key].get<std::string>() : std::string();
+}
+
+bool is_index(const json& j) { return j.contains("meshes") && j["meshes"].is_array(); }
+
+std::string show(std::optional<double> v) {
+  if (!v) return "–";
+  return format_double(*v, "–");
+}
+
+std::string show_delta(const DiffValue& d) {
+  if (!d.baseline || !d.current) return d.baseline ? "vanished" : "new";
+  char buffer[48];
+  std::snprintf(buffer, sizeof buffer, "%+.6g", *d.current - *d.baseline);
+  return buffer;
+}
+
+// A mesh of an index: its entry and, on demand, its bundle's report.json.
+struct IndexedMesh {
+  const json* entry = nullptr;
+  fs::path report_path;
+  std::optional<json> report;
+};
+
+std::optional<double> mesh_value(IndexedMesh& m, const std::vector<std::string>& path) {
+  const std::string key = join(path);
+  const json& headline = (*m.entry)["headline"];
+  if (headline.is_object() && headline.contains(key)) return lookup(headline, {key});
+  if (!m.report) {
+    std::ifstream in(m.report_path, std::ios::binary);
+    if (!in) return std::nullopt;
+    std::ostringstream text;
+    text << in.rdbuf();
+    m.report = json::parse(text.str(), nullptr, false);
+  }
+  return lookup(*m.report, path);
+}
+
+}  // namespace
+
+DiffGate parse_diff_gate(std::string_view text) {
+  DiffGate gate;
+  const auto at = text.find("baseline");
+  if (at == std::string_view::npos) {
+    gate.rule = parse_gate_rule(text);
+    return gate;
+  }
+  // PATH OP baseline[+-NUMBER]: parse "PATH OP 0" for the path and operator.
+  gate.rule = parse_gate_rule(std::string(text.substr(0, at)) + "0");
+  gate.rule.text = std::string(trim(text));
+  gate.is_relative = true;
+  const std::string_view offset = trim(text.substr(at + 8));
+  gate.rule.threshold = 0;
+  if (!offset.empty()) {
+    std::string_view number = offset;
+    const bool is_negative = number.front() == '-';
+    if (number.front() != '-' && number.front() != '+')
+      throw UsageError("--gate '" + std::string(text) + "': expected baseline, baseline+NUMBER or baseline-NUMBER");
+    number = trim(number.substr(1));
+    double value = 0;
+    const auto [end, error] = std::from_chars(number.data(), number.data() + number.size(), value);
+    if (error != std::errc() || end != number.data() + number.size() || !std::isfinite(value))
+      throw UsageError("--gate '" + std::string(text) + "': '" + std::string(number) + "' is not a number");
+    gate.rule.threshold = is_negative ? -value : value;
+  }
+  return gate;
+}
+
+DiffResult diff_reports(std::string_view baseline_text, std::string_view current_text,
+                        const std::vector<DiffGate>& gates, const fs::path& baseline_dir, const fs::path& current_dir) {
+  const json base = parse_or_throw(baseline_text, "BASELINE");
+  const json cur = parse_or_throw(current_text, "CURRENT");
+  DiffResult result;
+  result.is_index = is_index(base);
+  if (result.is_index != is_index(cur))
+    throw InputError("BASELINE and CURRENT must both be report.json or both be index.json");
+  std::vector<int> evaluated(gates.size(), 0);
+
+  auto evaluate = [&](const std::string& mesh, std::size_t g, std::optional<double> b, std::optional<double> c,
+                      bool current_failed) {
+    const DiffGate& gate = gates[g];
+    DiffGateResult r;
+    r.mesh = mesh;
+    r.rule = gate.rule.text;
+    if (current_failed) {
+      r.passed = false;  // a mesh that analysed in the baseline and fails now is a regression
+      ++evaluated[g];
+      result.gates.push_back(r);
+      return;
+    }
+    if (!c || (gate.is_relative && !b)) return;  // the key is null here (e.g. no reference)
+    ++evaluated[g];
+    r.value = c;
+    r.baseline = b;
+    r.threshold = gate.is_relative ? *b + gate.rule.threshold : gate.rule.threshold;
+    r.passed = gate_holds(*c, gate.rule.op, r.threshold);
+    result.gates.push_back(r);
+  };
+
+  if (!result.is_index) {
+    std::map<std::string, double> b, c;
+    flatten(base, "", b);
+    flatten(cur, "", c);
+    std::set<std::string> keys;
+    for (const auto& [k, v] : b) keys.insert(k);
+    for (const auto& [k, v] : c) keys.insert(k);
+    for (const std::string& k : keys) {
+      const auto bi = b.find(k);
+      const auto ci = c.find(k);
+      const std::optional<double> bv = bi == b.end() ? std::nullopt : std::optional<double>(bi->second);
+      const std::optional<double> cv = ci == c.end() ? std::nullopt : std::optional<double>(ci->second);
+      if (bv != cv) result.changed.push_back({"", k, bv, cv});
+    }
+    for (std::size_t g = 0; g < gates.size(); ++g)
+      evaluate("", g, lookup(base, gates[g].rule.path), lookup(cur, gates[g].rule.path), false);
+  } else {
+    std::map<std::string, IndexedMesh> b, c;
+    for (const json& m : base["meshes"])
+      b[string_or_empty(m, "path")] = {&m, baseline_dir / string_or_empty(m, "bundle") / "report.json", std::nullopt};
+    for (const json& m : cur["meshes"])
+      c[string_or_empty(m, "path")] = {&m, current_dir / string_or_empty(m, "bundle") / "report.json", std::nullopt};
+    for (auto& [path, m] : b)
+      if (!c.count(path)) result.vanished_meshes.push_back(path);
+    for (auto& [path, cm] : c) {
+      const auto bi = b.find(path);
+      const bool current_failed = string_or_empty(*cm.entry, "status") == "failed";
+      if (bi == b.end()) {
+        result.new_meshes.push_back(path);
+        for (std::size_t g = 0; g < gates.size(); ++g)
+          if (!gates[g].is_relative)
+            evaluate(path, g, std::nullopt, current_failed ? std::nullopt : mesh_value(cm, gates[g].rule.path), false);
+        continue;
+      }
+      IndexedMesh& bm = bi->second;
+      const std::string bs = string_or_empty(*bm.entry, "status"), cs = string_or_empty(*cm.entry, "status");
+      if (bs != cs) result.status_changes.push_back({path, bs, cs});
+      const json& bh = (*bm.entry)["headline"];
+      const json& ch = (*cm.entry)["headline"];
+      if (bh.is_object() && ch.is_object()) {
+        std::set<std::string> keys;
+        for (auto it = bh.begin(); it != bh.end(); ++it) keys.insert(it.key());
+        for (auto it = ch.begin(); it != ch.end(); ++it) keys.insert(it.key());
+        for (const std::string& k : keys) {
+          const auto bv = lookup(bh, {k});
+          const auto cv = lookup(ch, {k});
+          if (bv != cv) result.changed.push_back({path, k, bv, cv});
+        }
+      }
+      const bool baseline_failed = bs == "failed";
+      for (std::size_t g = 0; g < gates.size(); ++g) {
+        if (current_failed) {
+          if (!baseline_failed) evaluate(path, g, std::nullopt, std::nullopt, true);
+          continue;
+        }
+        evaluate(path, g, baseline_failed ? std::nullopt : mesh_value(bm, gates[g].rule.path),
+                 mesh_value(cm, gates[g].rule.path), false);
+      }
+    }
+  }
+  for (std::size_t g = 0; g < gates.size(); ++g)
+    if (evaluated[g] == 0)
+      throw UsageError("--gate '" + gates[g].rule.text + "': '" + join(gates[g].rule.path) +
+                       "' is a number in neither report (check the key; relative rules need it in both)");
+  for (const DiffGateResult& r : result.gates) result.passed = result.passed && r.passed;
+  return result;
+}
+
+std::string diff_markdown(const DiffResult& d) {
+  std::string md = "## HQView diff: ";
+  md += d.passed ? "gates passed" : "**gates failed**";
+  md += ", " + std::to_string(d.changed.size()) + " values changed";
+  if (d.is_index)
+    md += ", " + std::to_string(d.new_meshes.size()) + " new, " + std::to_string(d.vanished_meshes.size()) +
+          " vanished meshes";
+  md += "\n\n";
+  if (!d.gates.empty()) {
+    md += "| | rule |" + std::string(d.is_index ? " mesh |" : "") + " value | baseline | threshold |\n|---|---|" +
+          (d.is_index ? "---|" : "") + "--:|--:|--:|\n";
+    for (const DiffGateResult& g : d.gates)
+      md += std::string("| ") + (g.passed ? "✅" : "❌") + " | `" + g.rule + "` |" +
+            (d.is_index ? " " + g.mesh + " |" : "") + " " + (g.value ? show(g.value) : "failed") + " | " +
+            show(g.baseline) + " | " + (g.value ? format_double(g.threshold) : "–") + " |\n";
+    md += "\n";
+  }
+  for (const std::string& m : d.new_meshes) md += "- new mesh: `" + m + "`\n";
+  for (const std::string& m : d.vanished_meshes) md += "- vanished mesh: `" + m + "`\n";
+  for (const DiffStatusChange& s : d.status_changes)
+    md += "- `" + s.mesh + "`: status " + s.baseline + " → " + s.current + "\n";
+  if (!d.changed.empty()) {
+    md += "\n| " + std::string(d.is_index ? "mesh | " : "") + "key | baseline | current | change |\n|" +
+          (d.is_index ? "---|" : "") + "---|--:|--:|--:|\n";
+    for (const DiffValue& v : d.changed)
+      md += "| " + (d.is_index ? "`" + v.mesh + "` | " : "") + "`" + v.key + "` | " + show(v.baseline) + " | " +
+            show(v.current) + " | " + show_delta(v) + " |\n";
+  }
+  return md;
+}
+
+std::string diff_text(const DiffResult& d) {
+  std::string out;
+  for (const std::string& m : d.new_meshes) out += "new mesh: " + m + "\n";
+  for (const std::string& m : d.vanished_meshes) out += "vanished mesh: " + m + "\n";
+  for (const DiffStatusChange& s : d.status_changes)
+    out += s.mesh + ": status " + s.baseline + " -> " + s.current + "\n";
+  for (const DiffValue& v : d.changed)
+    out += (v.mesh.empty() ? "" : v.mesh + ": ") + v.key + ": " + show(v.baseline) + " -> " + show(v.current) + " (" +
+           show_delta(v) + ")\n";
+  for (const DiffGateResult& g : d.gates)
+    out += std::string("gate ") + (g.passed ? "passed" : "FAILED") + ": " + g.rule +
+           (g.mesh.empty() ? "" : " [" + g.mesh + "]") + " (value " + (g.value ? show(g.value) : "none: mesh failed") +
+           (g.value ? ", threshold " + format_double(g.threshold) : "") + ")\n";
+  return out;
+}
+
+}  // namespace hq

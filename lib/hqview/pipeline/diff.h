@@ -1,0 +1,69 @@
+#pragma once
+// `hqview diff BASELINE CURRENT`: two report.json or two batch index.json.
+// Per-key numeric differences, new and vanished meshes, and gates that may
+// compare to the baseline (`quality.scaled_jacobian.min>=baseline-0.01`),
+// for nightly regression checks and pull-request comments.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "hqview/pipeline/gates.h"
+
+namespace hq {
+
+// A gate of `diff`: PATH OP NUMBER, or PATH OP baseline[(+|-)NUMBER].
+struct DiffGate {
+  GateRule rule;             // path and op; threshold is the offset when is_relative
+  bool is_relative = false;  // the threshold is the baseline's value + rule.threshold
+};
+// Throws UsageError naming the rule.
+DiffGate parse_diff_gate(std::string_view text);
+
+struct DiffValue {
+  std::string mesh;  // empty for two report.json
+  std::string key;   // dotted report.json path
+  std::optional<double> baseline;
+  std::optional<double> current;
+};
+
+struct DiffGateResult {
+  std::string mesh;
+  std::string rule;
+  std::optional<double> value;     // current; nullopt: the mesh failed in CURRENT
+  std::optional<double> baseline;  // for relative rules
+  double threshold = 0;
+  bool passed = false;
+};
+
+struct DiffStatusChange {
+  std::string mesh;
+  std::string baseline;
+  std::string current;
+};
+
+struct DiffResult {
+  bool is_index = false;
+  std::vector<DiffValue> changed;  // keys whose value differs (or exists on one side only)
+  std::vector<std::string> new_meshes;
+  std::vector<std::string> vanished_meshes;
+  std::vector<DiffStatusChange> status_changes;
+  std::vector<DiffGateResult> gates;
+  bool passed = true;  // every gate held
+};
+
+// `baseline_text`/`current_text` are both report.json or both index.json
+// (told apart by content); the directories are where each file lives, used
+// to read a mesh's report.json for a gate key that is not in the index's
+// headline. Throws InputError for unreadable/mismatched files, UsageError for
+// a gate whose key no compared report has.
+DiffResult diff_reports(std::string_view baseline_text, std::string_view current_text,
+                        const std::vector<DiffGate>& gates, const std::filesystem::path& baseline_dir,
+                        const std::filesystem::path& current_dir);
+
+std::string diff_markdown(const DiffResult& diff);
+std::string diff_text(const DiffResult& diff);
+
+}  // namespace hq

@@ -1,0 +1,293 @@
+#include "hqview/render/views_detail.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "hqview/core/error.h"
+#include "hqview/quality/corner_jacobian.h"
+#include "hqview/render/annotate.h"
+#include "hqview/render/colormap.h"
+#include "hqview/render/views_main.h"
+
+namespace hq {
+namespace {
+
+// Glyphs of a cluster overlap by definition; at full size they hide the
+// cells they sit on, so view C draws them at half their radius.
+constexpr double kClusterGlyphScale = 0.5;
+constexpr Rgba8 kNeighbourEdgeColor{150, 152, 160, 255};
+constexpr Rgba8 kRingEdgeColor{70, 72, 80, 255};
+constexpr Rgba8 kRegionFaceColor{190, 196, 210, 60};
+
+Vec3 centre_of(const std::vector<Vec3>& points) {
+  if (points.empty()) return {};
+  Vec3 lo = points[0], hi = points[0];
+  for (const Vec3& p : points) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  return 0.5 * (lo + hi);
+}
+
+std::vector<Vec3> cell_points(const HexMesh& mesh, const std::vector<Index>& cells) {
+  std::vector<Vec3> points;
+  for (Index c : cells)
+    for (Index v : mesh.hexes[static_cast<std::size_t>(c)]) points.push_back(mesh.points[static_cast<std::size_t>(v)]);
+  return points;
+}
+
+// Unique edges of the given cells (from their faces), in one colour.
+LineSet cell_edges(const HexMesh& mesh, const Topology& topology, const std::vector<Index>& cells, const Vec3& origin,
+                   Rgba8 color, float width) {
+  std::vector<Edge> edges;
+  for (Index c : cells)
+    for (int f = 0; f < 6; ++f) {
+      const Quad& q = topology.faces[static_cast<std::size_t>(topology.hex_faces[6 * static_cast<std::size_t>(c) + f])];
+      for (int i = 0; i < 4; ++i) edges.push_back({std::min(q[i], q[(i + 1) % 4]), std::max(q[i], q[(i + 1) % 4])});
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  LineSet lines;
+  lines.width = width;
+  for (const Edge& e : edges)
+    for (Index v : e) {
+      lines.indices.push_back(static_cast<std::uint32_t>(lines.positions.size()));
+      lines.positions.push_back(to_vec3f(mesh.points[static_cast<std::size_t>(v)] - origin));
+      lines.colors.push_back(color);
+    }
+  return lines;
+}
+
+// Faces of the cells used once among them (the region's outer surface), pale.
+TriangleSet outer_faces(const HexMesh& mesh, const Topology& topology, const std::vector<Index>& cells,
+                        const Vec3& origin, Rgba8 color) {
+  std::vector<Index> faces;
+  for (Index c : cells)
+    for (int f = 0; f < 6; ++f) faces.push_back(topology.hex_faces[6 * static_cast<std::size_t>(c) + f]);
+  std::sort(faces.begin(), faces.end());
+  TriangleSet set;
+  for (std::size_t i = 0; i < faces.size();) {
+    std::size_t j = i;
+    while (j < faces.size() && faces[j] == faces[i]) ++j;
+    if (j - i == 1) {
+      const Quad& q = topology.faces[static_cast<std::size_t>(faces[i])];
+      const auto base = static_cast<std::uint32_t>(set.positions.size());
+      for (Index v : q) {
+        set.positions.push_back(to_vec3f(mesh.points[static_cast<std::size_t>(v)] - origin));
+        set.colors.push_back(color);
+      }
+      set.indices.insert(set.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+    }
+    i = j;
+  }
+  return set;
+}
+
+std::string format_value(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3f", v);
+  return buffer;
+}
+
+struct Figure {
+  AnnotationStyle style;
+  FigureLayout layout;
+  double aspect = 1.0;
+};
+
+Figure detail_figure(const DetailViewOptions& options) {
+  Figure f;
+  f.style = annotation_style_for(options.height);
+  f.style.background = options.background;
+  f.layout = figure_layout(options.width, options.height, !options.title.empty(),
+                           color_bar_width(quality_color_bar(), f.style), f.style);
+  f.aspect = static_cast<double>(std::max(1, f.layout.view.width)) / std::max(1, f.layout.view.height);
+  return f;
+}
+
+Image compose(const DetailViewOptions& options, const Figure& f, const Image& view) {
+  Image figure = make_image(options.width, options.height, options.background);
+  paste(figure, view, f.layout.view.x, f.layout.view.y);
+  draw_title(figure, f.layout.title, options.title, f.style);
+  draw_color_bar(figure, f.layout.legend, quality_color_bar(), f.style);
+  return figure;
+}
+
+}  // namespace
+
+ClusterRegion cluster_region(const Topology& topology, const GlyphResult& glyphs, Index cluster) {
+  ClusterRegion region;
+  if (cluster < 0 || static_cast<std::size_t>(cluster) + 1 >= glyphs.cluster_offsets.size()) return region;
+  auto hexes_of = [&](Index v) {
+    return std::span<const Index>(topology.vertex_hexes.data() + topology.vertex_hex_offsets[static_cast<std::size_t>(v)],
+                                  topology.vertex_hexes.data() + topology.vertex_hex_offsets[static_cast<std::size_t>(v) + 1]);
+  };
+  for (Index i = glyphs.cluster_offsets[static_cast<std::size_t>(cluster)];
+       i < glyphs.cluster_offsets[static_cast<std::size_t>(cluster) + 1]; ++i)
+    for (Index h : hexes_of(glyphs.cluster_vertices[static_cast<std::size_t>(i)])) region.cells.push_back(h);
+  std::sort(region.cells.begin(), region.cells.end());
+  region.cells.erase(std::unique(region.cells.begin(), region.cells.end()), region.cells.end());
+  return region;
+}
+
+Scene build_cluster_scene(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
+                          const GlyphResult& glyphs, Index cluster) {
+  ClusterRegion region = cluster_region(topology, glyphs, cluster);
+  // Neighbours: hexes sharing a vertex with a cluster cell.
+  for (Index c : region.cells)
+    for (Index v : mesh.hexes[static_cast<std::size_t>(c)])
+      for (Index k = topology.vertex_hex_offsets[static_cast<std::size_t>(v)];
+           k < topology.vertex_hex_offsets[static_cast<std::size_t>(v) + 1]; ++k)
+        region.neighbours.push_back(topology.vertex_hexes[static_cast<std::size_t>(k)]);
+  std::sort(region.neighbours.begin(), region.neighbours.end());
+  region.neighbours.erase(std::unique(region.neighbours.begin(), region.neighbours.end()), region.neighbours.end());
+  std::vector<Index> only_neighbours;
+  std::set_difference(region.neighbours.begin(), region.neighbours.end(), region.cells.begin(), region.cells.end(),
+                      std::back_inserter(only_neighbours));
+
+  Scene scene;
+  scene.origin = centre_of(cell_points(mesh, region.cells));
+  scene.lines.push_back(cell_edges(mesh, topology, only_neighbours, scene.origin, kNeighbourEdgeColor, 1.0f));
+  scene.lines.push_back(
+      cell_edges(mesh, topology, region.cells, scene.origin, to_rgba8(qualitative_color(cluster)), 2.0f));
+  SphereSet spheres;
+  if (cluster >= 0 && static_cast<std::size_t>(cluster) + 1 < glyphs.cluster_offsets.size())
+    for (Index i = glyphs.cluster_offsets[static_cast<std::size_t>(cluster)];
+         i < glyphs.cluster_offsets[static_cast<std::size_t>(cluster) + 1]; ++i) {
+      const auto v = static_cast<std::size_t>(glyphs.cluster_vertices[static_cast<std::size_t>(i)]);
+      if (!(glyphs.vertex_radius[v] > 0.0)) continue;
+      spheres.centers.push_back(to_vec3f(mesh.points[v] - scene.origin));
+      spheres.radii.push_back(static_cast<float>(kClusterGlyphScale * glyphs.vertex_radius[v]));
+      spheres.colors.push_back(to_rgba8(quality_color(vertex_quality[v])));
+    }
+  scene.spheres.push_back(std::move(spheres));
+  scene.translucent.push_back(outer_faces(mesh, topology, region.neighbours, scene.origin, kRegionFaceColor));
+  return scene;
+}
+
+Image render_cluster_view(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
+                          const GlyphResult& glyphs, Index cluster, const DetailViewOptions& options,
+                          Renderer& renderer) {
+  const Figure f = detail_figure(options);
+  const Scene scene = build_cluster_scene(mesh, topology, vertex_quality, glyphs, cluster);
+  const ClusterRegion region = cluster_region(topology, glyphs, cluster);
+  std::vector<Vec3> points = cell_points(mesh, region.cells);
+  std::vector<Vec3> centers;
+  std::vector<double> radii;
+  const SphereSet& s = scene.spheres[0];
+  for (std::size_t i = 0; i < s.centers.size(); ++i) {
+    const Vec3 c = scene.origin + Vec3{s.centers[i].x, s.centers[i].y, s.centers[i].z};
+    centers.push_back(c);
+    radii.push_back(s.radii[i]);
+    for (int axis = 0; axis < 3; ++axis)
+      for (double sign : {-1.0, 1.0}) {
+        Vec3 p = c;
+        (axis == 0 ? p.x : axis == 1 ? p.y : p.z) += sign * s.radii[i];
+        points.push_back(p);
+      }
+  }
+  const std::vector<Vec3> direction = choose_viewpoints(points, centers, radii, f.aspect, 1);
+  const Camera camera = fit_camera_to_points(points, direction.at(0), f.aspect, {.is_perspective = false});
+  return compose(options, f, renderer.render(scene, camera, f.layout.view.width, f.layout.view.height));
+}
+
+std::vector<VertexCorner> vertex_corners(const HexMesh& mesh, const Topology& topology, Index v) {
+  std::vector<VertexCorner> corners;
+  if (v < 0 || static_cast<std::size_t>(v) + 1 >= topology.vertex_hex_offsets.size()) return corners;
+  for (Index k = topology.vertex_hex_offsets[static_cast<std::size_t>(v)];
+       k < topology.vertex_hex_offsets[static_cast<std::size_t>(v) + 1]; ++k) {
+    const Index h = topology.vertex_hexes[static_cast<std::size_t>(k)];
+    const Hex& hex = mesh.hexes[static_cast<std::size_t>(h)];
+    const CornerJacobians j = corner_scaled_jacobians(hex_corners(mesh, h));
+    for (int i = 0; i < 8; ++i)
+      if (hex[i] == v) corners.push_back({h, i, j.value[static_cast<std::size_t>(i)]});
+  }
+  std::sort(corners.begin(), corners.end(),
+            [](const VertexCorner& a, const VertexCorner& b) { return a.hex != b.hex ? a.hex < b.hex : a.local < b.local; });
+  return corners;
+}
+
+namespace {
+
+Vec3 hex_centre(const HexMesh& mesh, Index h) {
+  Vec3 c{};
+  for (const Vec3& p : hex_corners(mesh, h)) c = c + p;
+  return c / 8.0;
+}
+
+double mean_edge_at(const HexMesh& mesh, const std::vector<VertexCorner>& corners, Index v) {
+  double sum = 0.0;
+  int n = 0;
+  const Vec3& p = mesh.points[static_cast<std::size_t>(v)];
+  for (const VertexCorner& c : corners) {
+    sum += norm(hex_centre(mesh, c.hex) - p);
+    ++n;
+  }
+  return n ? sum / n : 1.0;
+}
+
+}  // namespace
+
+Scene build_local_scene(const HexMesh& mesh, const Topology& topology, Index v) {
+  const std::vector<VertexCorner> corners = vertex_corners(mesh, topology, v);
+  std::vector<Index> ring;
+  for (const VertexCorner& c : corners) ring.push_back(c.hex);
+  Scene scene;
+  const Vec3& p = mesh.points.at(static_cast<std::size_t>(v));
+  scene.origin = p;
+  scene.lines.push_back(cell_edges(mesh, topology, ring, scene.origin, kRingEdgeColor, 1.5f));
+  const double size = mean_edge_at(mesh, corners, v);
+  SphereSet markers, centre;
+  for (const VertexCorner& c : corners) {
+    const Vec3 at = p + 0.45 * (hex_centre(mesh, c.hex) - p);
+    markers.centers.push_back(to_vec3f(at - scene.origin));
+    markers.radii.push_back(static_cast<float>(0.1 * size));
+    markers.colors.push_back(to_rgba8(quality_color(c.value)));
+  }
+  centre.centers.push_back({0.0f, 0.0f, 0.0f});
+  centre.radii.push_back(static_cast<float>(0.04 * size));
+  centre.colors.push_back({40, 40, 46, 255});
+  scene.spheres.push_back(std::move(markers));
+  scene.spheres.push_back(std::move(centre));
+  // All faces of the ring (shared ones twice is fine: pale and translucent).
+  TriangleSet faces = outer_faces(mesh, topology, ring, scene.origin, kRegionFaceColor);
+  scene.translucent.push_back(std::move(faces));
+  return scene;
+}
+
+Image render_local_view(const HexMesh& mesh, const Topology& topology, Index v, const DetailViewOptions& options,
+                        Renderer& renderer) {
+  const Figure f = detail_figure(options);
+  const Scene scene = build_local_scene(mesh, topology, v);
+  const std::vector<VertexCorner> corners = vertex_corners(mesh, topology, v);
+  std::vector<Index> ring;
+  for (const VertexCorner& c : corners) ring.push_back(c.hex);
+  std::vector<Vec3> points = cell_points(mesh, ring);
+  // Viewpoint: the one that separates the corner markers best.
+  std::vector<Vec3> centers;
+  std::vector<double> radii;
+  for (std::size_t i = 0; i < scene.spheres[0].centers.size(); ++i) {
+    const Vec3f& c = scene.spheres[0].centers[i];
+    centers.push_back(scene.origin + Vec3{c.x, c.y, c.z});
+    radii.push_back(scene.spheres[0].radii[i]);
+  }
+  const std::vector<Vec3> direction = choose_viewpoints(points, centers, radii, f.aspect, 1);
+  const Camera camera = fit_camera_to_points(points, direction.at(0), f.aspect, {.is_perspective = false});
+  Image figure = compose(options, f, renderer.render(scene, camera, f.layout.view.width, f.layout.view.height));
+  // Labels: each corner's value next to its marker.
+  const int size = std::max(11, static_cast<int>(std::lround(22 * f.style.scale)));
+  AnnotationStyle label_style = f.style;
+  for (std::size_t i = 0; i < centers.size(); ++i) {
+    const Vec3 ndc = project_to_ndc(camera, f.aspect, centers[i]);
+    const double r_px = radii[i] / camera.ortho_height * f.layout.view.height;
+    const int x = f.layout.view.x + static_cast<int>(std::lround(0.5 * (ndc.x + 1.0) * f.layout.view.width + r_px + 4));
+    const int y = f.layout.view.y + static_cast<int>(std::lround(0.5 * (1.0 - ndc.y) * f.layout.view.height + 0.35 * size));
+    label_style.text_color = corners[i].value < 0 ? Rgba8{60, 40, 200, 255} : Rgba8{30, 30, 30, 255};
+    // The hex id ties each marker to its bar in chart E.
+    draw_text(figure, x, y, format_value(corners[i].value) + "  hex " + std::to_string(corners[i].hex), size, label_style);
+  }
+  return figure;
+}
+
+}  // namespace hq

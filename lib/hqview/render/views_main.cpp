@@ -1,0 +1,367 @@
+#include "hqview/render/views_main.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+
+#include "hqview/core/error.h"
+#include "hqview/render/annotate.h"
+#include "hqview/render/colormap.h"
+#include "hqview/render/scene_shapes.h"
+#include "hqview/render/views_overview.h"
+
+namespace hq {
+namespace {
+
+Vec3 forward_of(const Camera& camera) { return normalized(camera.target - camera.eye); }
+
+// Model units per output pixel at distance depth in front of the camera.
+double units_per_pixel(const Camera& camera, double depth, int view_height) {
+  const double height = camera.is_perspective
+                            ? 2.0 * depth * std::tan(0.5 * camera.fov_y_degrees * M_PI / 180.0)
+                            : camera.ortho_height;
+  return height / std::max(1, view_height);
+}
+
+// Unique boundary edges (a < b), ascending.
+std::vector<Edge> boundary_edges(const Topology& topology) {
+  std::vector<Edge> edges;
+  edges.reserve(4 * topology.boundary_faces.size());
+  for (Index face : topology.boundary_faces) {
+    const Quad& quad = topology.faces[static_cast<std::size_t>(face)];
+    for (int i = 0; i < 4; ++i) {
+      const Index a = quad[i], b = quad[(i + 1) % 4];
+      edges.push_back({std::min(a, b), std::max(a, b)});
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
+
+// A line set of the given edges, vertices renumbered compactly; colour per edge.
+LineSet edge_lines(const HexMesh& mesh, const Vec3& origin, const std::vector<Edge>& edges,
+                   const std::vector<Rgba8>& edge_colors, float width) {
+  LineSet lines;
+  lines.width = width;
+  lines.positions.reserve(2 * edges.size());
+  lines.colors.reserve(2 * edges.size());
+  lines.indices.reserve(2 * edges.size());
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    for (Index v : edges[i]) {
+      lines.indices.push_back(static_cast<std::uint32_t>(lines.positions.size()));
+      lines.positions.push_back(to_vec3f(mesh.points[static_cast<std::size_t>(v)] - origin));
+      lines.colors.push_back(edge_colors[i]);
+    }
+  return lines;
+}
+
+// Median on-screen length of a line set's segments, in pixels.
+double median_edge_pixels(const LineSet& lines, const Vec3& origin, const Camera& camera, int width, int height) {
+  if (lines.indices.empty()) return 0.0;
+  const Mat4 to_ndc = projection_matrix(camera, static_cast<double>(width) / height) * view_matrix(camera) *
+                      translation_matrix(origin);
+  std::vector<double> lengths;
+  // A sample is enough for a median: every 7th segment of large sets.
+  const std::size_t step = lines.indices.size() > 20000 ? 14 : 2;
+  for (std::size_t i = 0; i + 1 < lines.indices.size(); i += step) {
+    const Vec3f& a = lines.positions[lines.indices[i]];
+    const Vec3f& b = lines.positions[lines.indices[i + 1]];
+    const Vec3 pa = transform_point(to_ndc, {a.x, a.y, a.z}), pb = transform_point(to_ndc, {b.x, b.y, b.z});
+    lengths.push_back(std::hypot(0.5 * (pa.x - pb.x) * width, 0.5 * (pa.y - pb.y) * height));
+  }
+  const auto middle = lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2);
+  std::nth_element(lengths.begin(), middle, lengths.end());
+  return *middle;
+}
+
+std::string format_number(double v, const char* format = "%.3g") {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, format, v);
+  return buffer;
+}
+
+}  // namespace
+
+std::vector<Vec3> candidate_view_directions() {
+  std::vector<Vec3> directions;
+  for (int x = -1; x <= 1; ++x)
+    for (int y = -1; y <= 1; ++y)
+      for (int z = -1; z <= 1; ++z)
+        if (x || y || z) directions.push_back(normalized(Vec3{double(x), double(y), double(z)}));
+  return directions;
+}
+
+std::string viewpoint_name(const Vec3& d) {
+  std::string name;
+  const char axes[3] = {'x', 'y', 'z'};
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(d[i]) < 1e-9) continue;
+    name += d[i] < 0 ? '+' : '-';  // the eye is on the side opposite the view direction
+    name += axes[i];
+  }
+  return name.empty() ? "?" : name;
+}
+
+double glyph_coverage(std::span<const Vec3> centers, std::span<const double> radii, const Camera& camera,
+                      double aspect) {
+  const int gw = std::max(8, static_cast<int>(std::lround(std::sqrt(40000.0 * aspect))));
+  const int gh = std::max(8, static_cast<int>(std::lround(40000.0 / gw)));
+  std::vector<char> covered(static_cast<std::size_t>(gw) * static_cast<std::size_t>(gh), 0);
+  const Vec3 forward = forward_of(camera);
+  const Mat4 projection = projection_matrix(camera, aspect);
+  for (std::size_t i = 0; i < centers.size(); ++i) {
+    const double depth = dot(centers[i] - camera.eye, forward);
+    if (camera.is_perspective && depth <= 0.0) continue;
+    const Vec3 ndc = project_to_ndc(camera, aspect, centers[i]);
+    if (!std::isfinite(ndc.x) || !std::isfinite(ndc.y)) continue;
+    const double scale = camera.is_perspective ? 1.0 / depth : 2.0 / camera.ortho_height;
+    const double rx = radii[i] * (camera.is_perspective ? projection(0, 0) * scale : scale / aspect);
+    const double ry = radii[i] * (camera.is_perspective ? projection(1, 1) * scale : scale);
+    // NDC to grid cells.
+    const double cx = 0.5 * (ndc.x + 1.0) * gw, cy = 0.5 * (ndc.y + 1.0) * gh;
+    const double px = 0.5 * rx * gw, py = 0.5 * ry * gh;
+    const int x0 = std::max(0, static_cast<int>(std::floor(cx - px))), x1 = std::min(gw - 1, static_cast<int>(cx + px));
+    const int y0 = std::max(0, static_cast<int>(std::floor(cy - py))), y1 = std::min(gh - 1, static_cast<int>(cy + py));
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const double dx = (x + 0.5 - cx) / std::max(px, 1e-12), dy = (y + 0.5 - cy) / std::max(py, 1e-12);
+        if (dx * dx + dy * dy <= 1.0) covered[static_cast<std::size_t>(y) * gw + x] = 1;
+      }
+  }
+  const auto n = std::count(covered.begin(), covered.end(), 1);
+  return static_cast<double>(n) / static_cast<double>(covered.size());
+}
+
+std::vector<Vec3> main_view_points(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs) {
+  std::vector<Vec3> points = boundary_points(mesh, topology);
+  for (const AggregatedGlyph& g : glyphs.clusters)
+    for (int axis = 0; axis < 3; ++axis)
+      for (double s : {-1.0, 1.0}) {
+        Vec3 p = g.position;
+        (axis == 0 ? p.x : axis == 1 ? p.y : p.z) += s * g.radius;
+        points.push_back(p);
+      }
+  return points;
+}
+
+std::vector<Vec3> choose_main_viewpoints(std::span<const Vec3> points, const GlyphResult& glyphs, double aspect,
+                                         int count, double fov_y_degrees) {
+  std::vector<Vec3> centers;
+  std::vector<double> radii;
+  for (const AggregatedGlyph& g : glyphs.clusters) {
+    centers.push_back(g.position);
+    radii.push_back(g.radius);
+  }
+  return choose_viewpoints(points, centers, radii, aspect, count, fov_y_degrees);
+}
+
+std::vector<Vec3> choose_viewpoints(std::span<const Vec3> points, std::span<const Vec3> centers,
+                                    std::span<const double> radii, double aspect, int count, double fov_y_degrees) {
+  std::vector<Vec3> chosen;
+  if (count <= 0) return chosen;
+  if (centers.empty()) {
+    const Vec3 d = normalized(Vec3{-1.0, -0.8, -0.6});
+    chosen = {d, -d};
+    chosen.resize(static_cast<std::size_t>(std::min(count, 2)));
+    return chosen;
+  }
+  const std::vector<Vec3> candidates = candidate_view_directions();
+  std::vector<double> score(candidates.size());
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const Camera camera =
+        fit_camera_to_points(points, candidates[i], aspect, {.fov_y_degrees = fov_y_degrees, .is_perspective = false});
+    // Visible glyph area in model units (the covered fraction of the view's
+    // area): independent of how tightly the view frames the mesh, so a view
+    // along a long mesh's axis does not win by zooming in.
+    score[i] = glyph_coverage(centers, radii, camera, aspect) * camera.ortho_height * camera.ortho_height * aspect;
+  }
+  std::vector<std::size_t> order(candidates.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return score[a] > score[b]; });
+  for (std::size_t i = 0; i < order.size() && static_cast<int>(chosen.size()) < count; ++i)
+    chosen.push_back(candidates[order[i]]);
+  return chosen;
+}
+
+Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
+                       const OverlapReport* overlap, const Camera& camera, int view_height,
+                       const MainViewOptions& options) {
+  if (glyphs.vertex_cluster.size() != mesh.points.size())
+    throw Error("glyph result does not match the mesh (" + std::to_string(glyphs.vertex_cluster.size()) + " vs " +
+                std::to_string(mesh.points.size()) + " vertices)");
+  const BoundingBox box = boundary_bounding_box(mesh, topology);
+  Scene scene;
+  scene.origin = 0.5 * (box.min + box.max);
+  scene.background = options.background;
+  auto local = [&](const Vec3& p) { return to_vec3f(p - scene.origin); };
+
+  // 1. Boundary wireframe.
+  const std::vector<Edge> wire = boundary_edges(topology);
+  scene.lines.push_back(
+      edge_lines(mesh, scene.origin, wire, std::vector<Rgba8>(wire.size(), kWireframeColor), options.wire_width));
+
+  // 2. Cluster edges.
+  std::vector<Edge> cluster_edges;
+  std::vector<Rgba8> cluster_colors;
+  for (const Edge& e : topology.edges) {
+    const Index ca = glyphs.vertex_cluster[static_cast<std::size_t>(e[0])];
+    const Index cb = glyphs.vertex_cluster[static_cast<std::size_t>(e[1])];
+    if (ca == kNoIndex && cb == kNoIndex) continue;
+    const Index c = ca == kNoIndex ? cb : (cb == kNoIndex ? ca : std::min(ca, cb));
+    cluster_edges.push_back(e);
+    cluster_colors.push_back(to_rgba8(qualitative_color(c)));
+  }
+  scene.lines.push_back(edge_lines(mesh, scene.origin, cluster_edges, cluster_colors, options.cluster_edge_width));
+
+  // 3. Intersecting cells: translucent faces and their edges.
+  TriangleSet cells;
+  std::vector<Edge> cell_edges;
+  if (overlap && overlap->cell_intersecting.size() == mesh.hexes.size()) {
+    for (std::size_t c = 0; c < mesh.hexes.size(); ++c) {
+      if (!overlap->cell_intersecting[c]) continue;
+      for (int f = 0; f < 6; ++f) {
+        const Quad& quad = topology.faces[static_cast<std::size_t>(topology.hex_faces[6 * c + f])];
+        const auto base = static_cast<std::uint32_t>(cells.positions.size());
+        for (int i = 0; i < 4; ++i) {
+          cells.positions.push_back(local(mesh.points[static_cast<std::size_t>(quad[i])]));
+          cells.colors.push_back(kIntersectingCellColor);
+          const Index a = quad[i], b = quad[(i + 1) % 4];
+          cell_edges.push_back({std::min(a, b), std::max(a, b)});
+        }
+        cells.indices.insert(cells.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+      }
+    }
+    std::sort(cell_edges.begin(), cell_edges.end());
+    cell_edges.erase(std::unique(cell_edges.begin(), cell_edges.end()), cell_edges.end());
+  }
+  scene.lines.push_back(edge_lines(mesh, scene.origin, cell_edges,
+                                   std::vector<Rgba8>(cell_edges.size(), kIntersectionArrowColor), 1.5f));
+
+  // 4. Aggregated glyphs.
+  SphereSet spheres;
+  for (const AggregatedGlyph& g : glyphs.clusters) {
+    if (!(g.radius > 0.0)) continue;
+    spheres.centers.push_back(local(g.position));
+    spheres.radii.push_back(static_cast<float>(g.radius));
+    spheres.colors.push_back(to_rgba8(qualitative_color(g.id)));
+  }
+  scene.spheres.push_back(std::move(spheres));
+
+  // 5. Arrows on overlap markers.
+  TriangleSet arrows;
+  if (overlap) {
+    const Vec3 forward = forward_of(camera);
+    for (const OverlapMarker& marker : overlap->markers) {
+      const int n = std::clamp<int>(static_cast<int>(marker.count), 1, std::max(1, options.max_arrows_per_marker));
+      const double depth = std::max(dot(marker.position - camera.eye, forward), 1e-12);
+      const double unit = units_per_pixel(camera, depth, view_height);
+      const ArrowShape shape{static_cast<float>(2.2 * unit), static_cast<float>(6.5 * unit),
+                             static_cast<float>(20.0 * unit), 16};
+      const Rgba8 color = marker.kind == MarkerKind::coincident ? kCoincidentArrowColor : kIntersectionArrowColor;
+      for (const Vec3& d : arrow_directions(camera, n, options.arrow_start_degrees)) {
+        const Vec3 tip = marker.position - 3.0 * unit * d;
+        const Vec3 tail = tip - options.arrow_pixels * unit * d;
+        append_arrow(arrows, local(tail), local(tip), shape, color);
+      }
+    }
+  }
+  scene.triangles.push_back(std::move(arrows));
+  scene.translucent.push_back(std::move(cells));
+  return scene;
+}
+
+namespace {
+
+FigureLayout main_layout(const MainViewOptions& options, const AnnotationStyle& style) {
+  const int legend_width = static_cast<int>(std::lround(340 * style.scale));
+  return figure_layout(options.width, options.height, !options.title.empty(), legend_width, style);
+}
+
+}  // namespace
+
+double main_view_aspect(const MainViewOptions& options) {
+  const FigureLayout layout = main_layout(options, annotation_style_for(options.height));
+  return static_cast<double>(std::max(1, layout.view.width)) / std::max(1, layout.view.height);
+}
+
+Image render_main_view(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
+                       const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& options,
+                       Renderer& renderer) {
+  if (options.width <= 0 || options.height <= 0)
+    throw RenderError("main view size must be positive, got " + std::to_string(options.width) + "x" +
+                      std::to_string(options.height));
+  AnnotationStyle style = annotation_style_for(options.height);
+  style.background = options.background;
+  const FigureLayout layout = main_layout(options, style);
+  const double aspect = static_cast<double>(layout.view.width) / static_cast<double>(layout.view.height);
+  const std::vector<Vec3> points = main_view_points(mesh, topology, glyphs);
+  const Camera camera = fit_camera_to_points(points, view_direction, aspect,
+                                             {.fov_y_degrees = options.fov_y_degrees, .is_perspective = false});
+
+  Scene scene = build_main_scene(mesh, topology, glyphs, overlap, camera, layout.view.height, options);
+  // The wireframe fades when dense on screen, so glyphs and clusters stay readable.
+  const double pixels = median_edge_pixels(scene.lines[0], scene.origin, camera, layout.view.width, layout.view.height);
+  const double opacity = std::clamp(pixels / 10.0, 0.2, 0.85);
+  for (Rgba8& c : scene.lines[0].colors) c.a = static_cast<std::uint8_t>(std::lround(255.0 * opacity));
+
+  Image figure = make_image(options.width, options.height, options.background);
+  paste(figure, renderer.render(scene, camera, layout.view.width, layout.view.height), layout.view.x, layout.view.y);
+  draw_title(figure, layout.title, options.title, style);
+
+  // Rank labels next to the worst clusters' glyphs.
+  const int label_size = std::max(11, static_cast<int>(std::lround(20 * style.scale)));
+  const std::size_t num_labels = std::min<std::size_t>(glyphs.clusters.size(), 10);
+  for (std::size_t i = 0; i < num_labels; ++i) {
+    const AggregatedGlyph& g = glyphs.clusters[i];
+    const Vec3 ndc = project_to_ndc(camera, aspect, g.position);
+    if (!std::isfinite(ndc.x) || std::abs(ndc.x) > 1.0 || std::abs(ndc.y) > 1.0) continue;
+    const double depth = dot(g.position - camera.eye, forward_of(camera));
+    const double r_px = g.radius / units_per_pixel(camera, depth, layout.view.height);
+    const int x = layout.view.x + static_cast<int>(std::lround(0.5 * (ndc.x + 1.0) * layout.view.width + 0.75 * r_px + 3));
+    const int y = layout.view.y + static_cast<int>(std::lround(0.5 * (1.0 - ndc.y) * layout.view.height - 0.75 * r_px));
+    draw_text(figure, x, y, "#" + std::to_string(g.id), label_size, style);
+  }
+
+  // Legend: what each colour means.
+  const PixelRect& area = layout.legend;
+  const int pitch = static_cast<int>(std::lround(34 * style.scale));
+  const int swatch = static_cast<int>(std::lround(18 * style.scale));
+  const int text_size = std::max(10, static_cast<int>(std::lround(19 * style.scale)));
+  int x = area.x + static_cast<int>(std::lround(16 * style.scale));
+  int y = area.y + static_cast<int>(std::lround(40 * style.scale));
+  auto entry = [&](Rgba8 color, const std::string& text) {
+    if (y + pitch > area.y + area.height) return;
+    color.a = 255;
+    fill_rect(figure, {x, y - swatch, swatch, swatch}, color);
+    draw_text(figure, x + swatch + swatch / 2, y - 2, text, text_size, style);
+    y += pitch;
+  };
+  draw_text(figure, x, y, "glyphs: worst clusters", text_size, style);
+  y += pitch;
+  const std::size_t listed = std::min<std::size_t>(glyphs.clusters.size(), 10);
+  for (std::size_t i = 0; i < listed; ++i) {
+    const AggregatedGlyph& g = glyphs.clusters[i];
+    entry(to_rgba8(qualitative_color(g.id)), "#" + std::to_string(g.id) + "  " + std::to_string(g.size) +
+                                                 (g.size == 1 ? " vertex" : " vertices") + ", min " +
+                                                 format_number(g.min_quality));
+  }
+  if (glyphs.clusters.size() > listed)
+    entry(options.background, "... " + std::to_string(glyphs.clusters.size() - listed) + " more clusters");
+  if (glyphs.clusters.empty()) entry(options.background, "none (no vertex below threshold)");
+  y += pitch / 2;
+  draw_text(figure, x, y, "size = 1 - min quality", text_size, style);
+  y += 3 * pitch / 2;
+  const std::size_t coincident = overlap ? overlap->coincident_groups.size() : 0;
+  const std::size_t intersecting = overlap ? static_cast<std::size_t>(overlap->num_intersecting_cells) : 0;
+  const std::size_t intersections = overlap ? overlap->markers.size() - std::min(overlap->markers.size(), coincident) : 0;
+  const std::string unchecked = overlap ? "" : " (not checked)";
+  entry(kCoincidentArrowColor, "coincident vertices: " + std::to_string(coincident) + unchecked);
+  entry(kIntersectionArrowColor, "intersections: " + std::to_string(intersections) + unchecked);
+  entry(kIntersectingCellColor, "intersecting cells: " + std::to_string(intersecting) + unchecked);
+  entry(kWireframeColor, "boundary edges");
+  return figure;
+}
+
+}  // namespace hq

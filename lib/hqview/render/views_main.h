@@ -1,0 +1,98 @@
+#pragma once
+// View A, the main view (paper §G1, §G2), orthographic so that glyph sizes
+// compare across depth: the boundary wireframe, the edges
+// of each glyph cluster in its cluster colour, one aggregated glyph per
+// cluster sized by its ratio, arrows on overlap markers and the intersecting
+// cells translucent. Shown from the viewpoints (among 26 axis and diagonal
+// directions) that show the most glyph area.
+
+#include <string>
+#include <vector>
+
+#include "hqview/glyph/glyphs.h"
+#include "hqview/mesh/hex_mesh.h"
+#include "hqview/mesh/topology.h"
+#include "hqview/overlap/overlap.h"
+#include "hqview/render/camera.h"
+#include "hqview/render/image.h"
+#include "hqview/render/renderer.h"
+#include "hqview/render/scene.h"
+
+namespace hq {
+
+// Colours of view A's elements (fixed, documented in the legend).
+inline constexpr Rgba8 kWireframeColor{120, 124, 134, 255};
+inline constexpr Rgba8 kCoincidentArrowColor{217, 95, 2, 255};
+inline constexpr Rgba8 kIntersectionArrowColor{140, 20, 120, 255};
+inline constexpr Rgba8 kIntersectingCellColor{214, 40, 190, 96};  // translucent magenta
+
+struct MainViewOptions {
+  int width = 1600;                  // figure size in pixels, legend and title included
+  int height = 1200;
+  std::string title;                 // empty: no title band
+  Rgba8 background{255, 255, 255, 255};
+  float wire_width = 1.0f;           // boundary edges, output pixels
+  float cluster_edge_width = 2.5f;   // cluster edges, output pixels
+  double arrow_pixels = 70.0;        // arrow length on screen (at the marker's depth)
+  double arrow_start_degrees = 45.0; // first arrow's angle in the image plane (deterministic)
+  int max_arrows_per_marker = 12;
+  double fov_y_degrees = 30.0;
+};
+
+// The 26 view directions (from the eye towards the mesh): the vectors of
+// {-1, 0, 1}^3 without 0, normalised, in lexicographic order of (x, y, z).
+std::vector<Vec3> candidate_view_directions();
+
+// The fraction of an aspect-sized image covered by the union of the spheres
+// seen through camera (rasterised on a grid of about 40k cells). Spheres
+// behind the eye are skipped.
+double glyph_coverage(std::span<const Vec3> centers, std::span<const double> radii, const Camera& camera,
+                      double aspect);
+
+// The points a main view frames: the boundary vertices, and the 6 axis
+// extremes of each aggregated glyph.
+std::vector<Vec3> main_view_points(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs);
+
+// The count directions among candidate_view_directions() whose orthographic
+// camera (fit_camera_to_points on points) shows the largest visible area (in
+// model units: glyph_coverage times the view's area) of the aggregated glyphs, best first; ties keep candidate order. Without glyphs,
+// the oblique direction (-1,-0.8,-0.6) and its opposite.
+std::vector<Vec3> choose_main_viewpoints(std::span<const Vec3> points, const GlyphResult& glyphs, double aspect,
+                                         int count, double fov_y_degrees = 30.0);
+
+// The same choice for any spheres (centres, radii); without spheres, the
+// oblique direction (-1,-0.8,-0.6) and its opposite.
+std::vector<Vec3> choose_viewpoints(std::span<const Vec3> points, std::span<const Vec3> centers,
+                                    std::span<const double> radii, double aspect, int count,
+                                    double fov_y_degrees = 30.0);
+
+// View A's scene for a camera (arrows are laid out in its image plane and
+// sized for an image view_height pixels high):
+//   lines[0]     unique boundary edges, kWireframeColor;
+//   lines[1]     every mesh edge with an endpoint in a cluster, in the colour
+//                of that cluster (qualitative_color(cluster id); the lower
+//                id when both endpoints are in different clusters);
+//   lines[2]     edges of intersecting cells, kIntersectionArrowColor;
+//   spheres[0]   aggregated glyphs: one per cluster, radius = its radius,
+//                colour = its cluster colour;
+//   triangles[0] arrows: per overlap marker min(count, max) arrows whose tips
+//                touch the marker, spread every 360/n degrees;
+//   translucent[0] the faces of the intersecting cells.
+// overlap may be null (no arrows, no intersecting cells).
+Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
+                       const OverlapReport* overlap, const Camera& camera, int view_height,
+                       const MainViewOptions& options);
+
+// Width / height of the 3D part of the figure render_main_view draws.
+double main_view_aspect(const MainViewOptions& options);
+
+// The figure: title, the 3D view, and a legend on the right.
+Image render_main_view(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
+                       const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& options,
+                       Renderer& renderer);
+
+// A short name for a candidate direction as seen from the eye, e.g. "+x-y+z"
+// for the view direction (-1, 1, -1) (the eye sits on the +x, -y, +z side).
+std::string viewpoint_name(const Vec3& view_direction);
+
+}  // namespace hq

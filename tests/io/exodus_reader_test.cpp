@@ -1,0 +1,141 @@
+// read_exodus on small Exodus II files written here with the netCDF C API
+// (classic format): separate and combined coordinate variables, HEX8 and
+// skipped blocks, and the error paths. Without netCDF, the reader's refusal.
+
+#include "hqview/io/exodus_reader.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#ifdef HQ_HAVE_NETCDF
+#include <netcdf.h>
+#endif
+
+#include "error_text.h"
+#include "hqview/io/mesh_reader.h"
+#include "temp_dir.h"
+
+namespace hq {
+namespace {
+
+using test::error_text;
+using test::TempDir;
+
+#ifndef HQ_HAVE_NETCDF
+
+TEST(ExodusReader, RefusedWithoutNetcdf) {
+  EXPECT_FALSE(exodus_available());
+  EXPECT_EQ(error_text<InputError>([] { read_exodus("CDF\x01", "m.e"); }),
+            "m.e: this HQView was built without netCDF and cannot read Exodus II files");
+}
+
+#else
+
+struct Block {
+  std::string type;
+  int nodes_per_element;
+  std::vector<int> connectivity;  // 1-based
+};
+
+// Writes an Exodus-like classic netCDF file; returns its bytes.
+std::string write_exodus(const TempDir& dir, const std::vector<double>& xyz, const std::vector<Block>& blocks,
+                         bool combined_coord, bool with_num_nodes = true) {
+  const std::string path = (dir.path() / "m.e").string();
+  int nc = 0;
+  EXPECT_EQ(nc_create(path.c_str(), NC_CLOBBER, &nc), NC_NOERR);
+  const auto n = xyz.size() / 3;
+  int dim_nodes = 0, dim_dim = 0, dim_blocks = 0;
+  nc_def_dim(nc, with_num_nodes ? "num_nodes" : "nodes", n, &dim_nodes);
+  nc_def_dim(nc, "num_dim", 3, &dim_dim);
+  nc_def_dim(nc, "num_el_blk", blocks.size(), &dim_blocks);
+  std::vector<int> coord_vars;
+  if (combined_coord) {
+    int dims[2] = {dim_dim, dim_nodes};
+    int var = 0;
+    nc_def_var(nc, "coord", NC_DOUBLE, 2, dims, &var);
+    coord_vars.push_back(var);
+  } else {
+    for (const char* name : {"coordx", "coordy", "coordz"}) {
+      int var = 0;
+      nc_def_var(nc, name, NC_DOUBLE, 1, &dim_nodes, &var);
+      coord_vars.push_back(var);
+    }
+  }
+  std::vector<int> connect_vars;
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    const std::string suffix = std::to_string(b + 1);
+    int dims[2];
+    nc_def_dim(nc, ("num_el_in_blk" + suffix).c_str(),
+               blocks[b].connectivity.size() / static_cast<std::size_t>(blocks[b].nodes_per_element), &dims[0]);
+    nc_def_dim(nc, ("num_nod_per_el" + suffix).c_str(), static_cast<std::size_t>(blocks[b].nodes_per_element),
+               &dims[1]);
+    int var = 0;
+    nc_def_var(nc, ("connect" + suffix).c_str(), NC_INT, 2, dims, &var);
+    nc_put_att_text(nc, var, "elem_type", blocks[b].type.size(), blocks[b].type.c_str());
+    connect_vars.push_back(var);
+  }
+  nc_enddef(nc);
+  std::vector<double> by_dim(xyz.size());
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t d = 0; d < 3; ++d) by_dim[d * n + i] = xyz[3 * i + d];
+  if (combined_coord) {
+    nc_put_var_double(nc, coord_vars[0], by_dim.data());
+  } else {
+    for (std::size_t d = 0; d < 3; ++d) nc_put_var_double(nc, coord_vars[d], by_dim.data() + d * n);
+  }
+  for (std::size_t b = 0; b < blocks.size(); ++b) nc_put_var_int(nc, connect_vars[b], blocks[b].connectivity.data());
+  nc_close(nc);
+  return read_file_bytes(path);
+}
+
+const std::vector<double> kCube = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1};
+
+TEST(ExodusReader, Hex8BlocksAndSkippedBlocks) {
+  EXPECT_TRUE(exodus_available());
+  TempDir dir("exodus");
+  for (const bool combined : {false, true}) {
+    const std::string bytes = write_exodus(
+        dir, kCube,
+        {{"QUAD4", 4, {1, 2, 3, 4, 5, 6, 7, 8}}, {"HEX8", 8, {1, 2, 3, 4, 5, 6, 7, 8, 5, 6, 7, 8, 1, 2, 3, 4}}},
+        combined);
+    const LoadedMesh loaded = read_exodus(bytes, "m.e");
+    EXPECT_EQ(loaded.format, "exodus");
+    ASSERT_EQ(loaded.mesh.points.size(), 8u);
+    EXPECT_EQ(loaded.mesh.points[6].x, 1.0);
+    EXPECT_EQ(loaded.mesh.points[6].z, 1.0);
+    ASSERT_EQ(loaded.mesh.hexes.size(), 2u);
+    EXPECT_EQ(loaded.mesh.hexes[0], (Hex{0, 1, 2, 3, 4, 5, 6, 7}));
+    EXPECT_EQ(loaded.mesh.hexes[1], (Hex{4, 5, 6, 7, 0, 1, 2, 3}));
+    ASSERT_EQ(loaded.warnings.size(), 1u);
+    EXPECT_EQ(loaded.warnings[0], "m.e: 2 non-hexahedral elements skipped (QUAD4)");
+  }
+}
+
+TEST(ExodusReader, Errors) {
+  TempDir dir("exodus");
+  EXPECT_EQ(error_text<ParseError>([] { read_exodus("CDF\x01garbage", "m.e"); }).substr(0, 37),
+            "m.e: not an Exodus II (netCDF) file: ");
+  EXPECT_EQ(error_text<ParseError>([&] {
+              read_exodus(write_exodus(dir, kCube, {{"HEX8", 8, {1, 2, 3, 4, 5, 6, 7, 8}}}, false, false), "m.e");
+            }),
+            "m.e: no dimension num_nodes (not an Exodus II file?)");
+  EXPECT_EQ(error_text<ParseError>([&] {
+              read_exodus(write_exodus(dir, kCube, {{"HEX8", 8, {1, 2, 3, 4, 5, 6, 7, 9}}}, false), "m.e");
+            }),
+            "m.e: node 9 out of range [1, 8] (connect1 element 1)");
+  EXPECT_EQ(error_text<ParseError>([&] {
+              read_exodus(write_exodus(dir, kCube, {{"HEX8", 8, {1, 2, 3, 4, 5, 6, 7, 1}}}, false), "m.e");
+            }),
+            "m.e: node 1 repeated (connect1 element 1)");
+  EXPECT_EQ(error_text<ParseError>([&] {
+              read_exodus(write_exodus(dir, kCube, {{"TETRA", 4, {1, 2, 3, 5}}}, false), "m.e");
+            }),
+            "m.e: no hexahedra (HEX8 blocks) among 1 elements of type TETRA");
+}
+
+#endif
+
+}  // namespace
+}  // namespace hq

@@ -1,0 +1,169 @@
+// `batch` without the analysis: manifests, shards, the index (JSON round trip,
+// HTML escaping, Markdown) and the exit code.
+
+#include "hqview/pipeline/batch.h"
+
+#include <gtest/gtest.h>
+
+#include "hqview/core/error.h"
+#include "hqview/pipeline/batch_index.h"
+
+namespace hq {
+namespace {
+
+BatchEntry entry(const std::string& path, BatchStatus status, const std::string& label = "", double min_sj = 0.5) {
+  BatchEntry e;
+  e.path = path;
+  e.label = label;
+  e.model = path;
+  e.status = status;
+  if (status == BatchStatus::failed) {
+    e.error = path + ":3: expected 8 vertex ids, got 7";
+  } else {
+    e.bundle = path;
+    e.sha256 = "abc";
+    e.headline[0] = 8;
+    e.headline[1] = 1;
+    e.headline[2] = min_sj;
+    e.headline[3] = 0.75;
+  }
+  if (status == BatchStatus::gate_failed) e.failed_gates = {"quality.scaled_jacobian.min>=0.9"};
+  return e;
+}
+
+TEST(Manifest, CsvColumnsByHeaderQuotesAndRelativePaths) {
+  const auto rows = parse_manifest(
+      "mesh,method,reference,model\n"
+      "out/bunny.mesh,\"edge, cone\",bunny.off,bunny\n"
+      "# a comment\n"
+      "\n"
+      "/abs/kitten.vtk,polycube\n",
+      "m.csv", "/data", false);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].path, "out/bunny.mesh");
+  EXPECT_EQ(rows[0].mesh_file, "/data/out/bunny.mesh");
+  EXPECT_EQ(rows[0].reference_file, "/data/bunny.off");
+  EXPECT_EQ(rows[0].label, "edge, cone");
+  EXPECT_EQ(rows[0].model, "bunny");
+  EXPECT_EQ(rows[1].path, "abs/kitten.vtk");
+  EXPECT_EQ(rows[1].mesh_file, "/abs/kitten.vtk");
+  EXPECT_EQ(rows[1].model, "kitten");  // the stem when not given
+  EXPECT_TRUE(rows[1].reference_file.empty());
+}
+
+TEST(Manifest, JsonObjectsAndStrings) {
+  const auto rows = parse_manifest(R"([{"mesh": "a/x.mesh", "label": "m1"}, "b/y.vtk"])", "m.json", "/d", true);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].label, "m1");
+  EXPECT_EQ(rows[1].path, "b/y.vtk");
+}
+
+TEST(Manifest, ErrorsNamePathAndLine) {
+  try {
+    parse_manifest("mesh,colour\nx.mesh,red\n", "m.csv", "/d", false);
+    ADD_FAILURE() << "no ParseError";
+  } catch (const ParseError& e) {
+    EXPECT_EQ(e.line(), 1);
+    EXPECT_NE(std::string(e.what()).find("m.csv:1: unknown column 'colour'"), std::string::npos) << e.what();
+  }
+  try {
+    parse_manifest("mesh\nx.mesh\n./x.mesh\n", "m.csv", "/d", false);
+    ADD_FAILURE() << "no ParseError";
+  } catch (const ParseError& e) {
+    EXPECT_NE(std::string(e.what()).find("m.csv:3: mesh 'x.mesh' already listed"), std::string::npos) << e.what();
+  }
+  try {
+    parse_manifest(R"(["a.mesh", {"label": "x"}])", "m.json", "/d", true);
+    ADD_FAILURE() << "no ParseError";
+  } catch (const ParseError& e) {
+    EXPECT_STREQ(e.what(), "m.json: row 2: no mesh in this row");
+  }
+  EXPECT_THROW(parse_manifest("[1, 2]", "m.json", "/d", true), ParseError);
+  EXPECT_THROW(parse_manifest("{", "m.json", "/d", true), ParseError);
+}
+
+TEST(Shard, ParseAndValidate) {
+  const Shard s = parse_shard("2/8");
+  EXPECT_EQ(s.index, 2);
+  EXPECT_EQ(s.count, 8);
+  for (const char* bad : {"0/3", "4/3", "1/0", "a/3", "2", "2/3x", ""})
+    EXPECT_THROW(parse_shard(bad), UsageError) << bad;
+}
+
+TEST(Shard, StablePartitionCoveringEveryPathOnce) {
+  std::vector<BatchInput> inputs;
+  for (int i = 0; i < 200; ++i) {
+    BatchInput input;
+    input.path = "papers/p" + std::to_string(i % 7) + "/m" + std::to_string(i) + ".mesh";
+    inputs.push_back(input);
+  }
+  std::size_t total = 0;
+  for (int i = 1; i <= 5; ++i) {
+    const auto part = select_shard(inputs, {i, 5});
+    EXPECT_GT(part.size(), 10u);  // roughly balanced
+    total += part.size();
+    for (const BatchInput& in : part) EXPECT_EQ(shard_of(in.path, 5), i);
+  }
+  EXPECT_EQ(total, inputs.size());
+  // The owner of a path depends on the path alone (fixed across machines).
+  EXPECT_EQ(shard_of("a/b.mesh", 4), shard_of("a/b.mesh", 4));
+  EXPECT_EQ(shard_of("anything", 1), 1);
+}
+
+TEST(BatchExitCode, FailedThenGateThenOk) {
+  EXPECT_EQ(batch_exit_code({}), 0);
+  EXPECT_EQ(batch_exit_code({entry("a", BatchStatus::ok)}), 0);
+  EXPECT_EQ(batch_exit_code({entry("a", BatchStatus::ok), entry("b", BatchStatus::gate_failed)}), 1);
+  EXPECT_EQ(batch_exit_code({entry("a", BatchStatus::gate_failed), entry("b", BatchStatus::failed)}), 3);
+}
+
+TEST(BatchIndex, JsonRoundTripIsByteIdentical) {
+  const std::vector<BatchEntry> entries = {entry("a/x.mesh", BatchStatus::ok, "m1", 0.25),
+                                           entry("b/y.mesh", BatchStatus::failed, "m2"),
+                                           entry("c/z.mesh", BatchStatus::gate_failed, "m1", 0.125)};
+  const std::string text = batch_index_json(entries, "9.9.9");
+  const auto parsed = parse_batch_index_json(text, "index.json");
+  ASSERT_EQ(parsed.size(), 3u);
+  EXPECT_EQ(parsed[1].error, entries[1].error);
+  EXPECT_EQ(parsed[2].failed_gates, entries[2].failed_gates);
+  EXPECT_EQ(batch_index_json(parsed, "9.9.9"), text);
+  EXPECT_EQ(text.find("time"), std::string::npos);
+  EXPECT_THROW(parse_batch_index_json("{}", "x.json"), InputError);
+}
+
+TEST(BatchIndex, MethodsComparePerLabel) {
+  const auto methods =
+      summarize_methods({entry("a", BatchStatus::ok, "m1", 0.25), entry("b", BatchStatus::failed, "m1"),
+                         entry("c", BatchStatus::ok, "m1", 0.75), entry("d", BatchStatus::ok, "m2", 0.5)});
+  ASSERT_EQ(methods.size(), 2u);
+  EXPECT_EQ(methods[0].label, "m1");
+  EXPECT_EQ(methods[0].num_meshes, 3);
+  EXPECT_EQ(methods[0].num_failed, 1);
+  EXPECT_DOUBLE_EQ(methods[0].mean_min_scaled_jacobian, 0.5);
+  EXPECT_DOUBLE_EQ(methods[0].worst_min_scaled_jacobian, 0.25);
+  EXPECT_TRUE(summarize_methods({entry("a", BatchStatus::ok)}).empty());
+}
+
+TEST(BatchIndex, HtmlEscapesNamesAndErrorsAndLinksBundles) {
+  BatchEntry evil = entry("<script>alert(1)</script>.mesh", BatchStatus::failed, "a&b");
+  const std::string html = batch_index_html({entry("ok.mesh", BatchStatus::ok), evil}, "1.0");
+  EXPECT_EQ(html.find("<script>alert"), std::string::npos);
+  EXPECT_NE(html.find("&lt;script&gt;alert(1)&lt;/script&gt;.mesh"), std::string::npos);
+  EXPECT_NE(html.find("a&amp;b"), std::string::npos);
+  EXPECT_NE(html.find("href=\"ok.mesh/index.html\""), std::string::npos);
+  const std::string odd = batch_index_html({entry("a b/c#1.mesh", BatchStatus::ok)}, "1.0");
+  EXPECT_NE(odd.find("href=\"a%20b/c%231.mesh/index.html\""), std::string::npos);
+  EXPECT_EQ(html.find("http"), std::string::npos);  // no external resources
+  EXPECT_EQ(html.find("src="), std::string::npos);
+}
+
+TEST(BatchIndex, MarkdownTableAndProblems) {
+  const std::string md =
+      batch_summary_markdown({entry("a|b.mesh", BatchStatus::ok), entry("c.mesh", BatchStatus::failed)});
+  EXPECT_NE(md.find("2 meshes, 1 failed"), std::string::npos) << md;
+  EXPECT_NE(md.find("a\\|b.mesh"), std::string::npos) << md;
+  EXPECT_NE(md.find("- `c.mesh`: c.mesh:3: expected 8 vertex ids"), std::string::npos) << md;
+}
+
+}  // namespace
+}  // namespace hq

@@ -1,0 +1,174 @@
+// The OSMesa backend's sphere impostors, arrows and translucent triangles,
+// on tiny scenes with pixel assertions.
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+#include "hqview/io/image_file.h"
+#include "support/fixtures.h"
+
+#include "hqview/render/osmesa_renderer.h"
+#include "hqview/render/scene_shapes.h"
+#include "image_probe.h"
+
+namespace hq {
+namespace {
+
+using test::pixel_at;
+
+Renderer& renderer() {
+  static const std::unique_ptr<Renderer> instance = make_osmesa_renderer();
+  return *instance;
+}
+
+const Rgba8 kBlack{0, 0, 0, 255};
+
+Camera front_camera(bool perspective) {
+  Camera camera;
+  camera.eye = {0, 0, 5};
+  camera.target = {0, 0, 0};
+  camera.up = {0, 1, 0};
+  camera.near_plane = 1;
+  camera.far_plane = 10;
+  camera.is_perspective = perspective;
+  camera.ortho_height = 4.0;
+  camera.fov_y_degrees = 2.0 * std::atan(2.0 / 5.0) * 180.0 / M_PI;  // the z = 0 plane spans y in [-2, 2]
+  return camera;
+}
+
+Scene sphere_scene(Vec3f centre, float radius, Rgba8 color) {
+  Scene scene;
+  scene.background = kBlack;
+  SphereSet spheres;
+  spheres.centers = {centre};
+  spheres.radii = {radius};
+  spheres.colors = {color};
+  scene.spheres.push_back(spheres);
+  return scene;
+}
+
+bool is_reddish(Rgba8 p) { return p.r > 60 && p.r > 2 * p.g && p.r > 2 * p.b; }
+
+TEST(SphereImpostor, CoversItsDiscAndNothingElse) {
+  for (bool perspective : {false, true}) {
+    const Image image = renderer().render(sphere_scene({0, 0, 0}, 1.0f, {220, 30, 30, 255}), front_camera(perspective),
+                                          80, 80);
+    // The sphere spans a disc of radius 20 pixels around the centre.
+    EXPECT_TRUE(is_reddish(pixel_at(image, 40, 40))) << "centre, perspective " << perspective;
+    EXPECT_TRUE(is_reddish(pixel_at(image, 40, 24))) << "inside the disc";
+    EXPECT_EQ(pixel_at(image, 40, 14), kBlack) << "outside the disc";
+    EXPECT_EQ(pixel_at(image, 24, 24), kBlack) << "the quad's corner is discarded";
+    EXPECT_EQ(pixel_at(image, 2, 2), kBlack) << "background";
+    // Lit from above: the upper part is brighter than the lower part.
+    EXPECT_GT(pixel_at(image, 40, 30).r, pixel_at(image, 40, 54).r);
+  }
+}
+
+TEST(SphereImpostor, WritesTheSpheresDepth) {
+  // A green square at z = 0.5 in front of the sphere's centre but behind its
+  // front cap (z = 1): the cap's centre wins, the sphere's rim loses.
+  Scene scene = sphere_scene({0, 0, 0}, 1.0f, {220, 30, 30, 255});
+  TriangleSet square;
+  const Rgba8 green{20, 200, 20, 255};
+  square.positions = {{-2, -2, 0.5f}, {2, -2, 0.5f}, {2, 2, 0.5f}, {-2, 2, 0.5f}};
+  square.colors = {green, green, green, green};
+  square.indices = {0, 1, 2, 0, 2, 3};
+  square.is_lit = false;
+  scene.triangles.push_back(square);
+  const Image image = renderer().render(scene, front_camera(false), 80, 80);
+  EXPECT_TRUE(is_reddish(pixel_at(image, 40, 40))) << "the sphere's cap is in front of the square";
+  EXPECT_EQ(pixel_at(image, 40, 21), green) << "near the rim the sphere is behind the square";
+  EXPECT_EQ(pixel_at(image, 5, 5), green);
+}
+
+TEST(Arrow, PointsTheRightWay) {
+  Scene scene;
+  scene.background = kBlack;
+  TriangleSet arrows;
+  // Along +x, tip on the right; the cone is much wider than the shaft.
+  append_arrow(arrows, {-1.5f, 0, 0}, {1.5f, 0, 0}, {0.08f, 0.4f, 0.8f, 16}, Rgba8{250, 250, 250, 255});
+  scene.triangles.push_back(arrows);
+  const Image image = renderer().render(scene, front_camera(false), 80, 80);
+  auto column_height = [&](int x) {
+    int n = 0;
+    for (int y = 0; y < 80; ++y) n += pixel_at(image, x, y).g > 100;
+    return n;
+  };
+  const int near_tail = column_height(20), near_head = column_height(56);
+  EXPECT_GT(near_tail, 0) << "the shaft is drawn";
+  EXPECT_GT(near_head, 3 * near_tail) << "the head is at the tip (+x, right)";
+  EXPECT_EQ(column_height(75), 0) << "nothing beyond the tip";
+}
+
+TEST(Translucent, BlendsBackToFrontOverTheBackground) {
+  Scene scene;
+  scene.background = {255, 255, 255, 255};
+  TriangleSet layers;
+  auto add_square = [&](float z, Rgba8 color) {
+    const auto base = static_cast<std::uint32_t>(layers.positions.size());
+    layers.positions.insert(layers.positions.end(), {{-1, -1, z}, {1, -1, z}, {1, 1, z}, {-1, 1, z}});
+    layers.colors.insert(layers.colors.end(), 4, color);
+    layers.indices.insert(layers.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+  };
+  // Listed front first: the renderer must sort them.
+  add_square(0.5f, {255, 0, 0, 128});
+  add_square(-0.5f, {0, 0, 255, 128});
+  layers.is_lit = false;
+  scene.translucent.push_back(layers);
+  const Image image = renderer().render(scene, front_camera(false), 40, 40);
+  const Rgba8 p = pixel_at(image, 20, 20);
+  // white, then blue at 50%, then red at 50%: red dominates, some blue, no green.
+  EXPECT_GT(p.r, 170);
+  EXPECT_GT(p.b, 40);
+  EXPECT_LT(p.b, p.r);
+  EXPECT_LT(p.g, 80);
+  EXPECT_GT(p.g, 40);
+  EXPECT_EQ(pixel_at(image, 1, 1), (Rgba8{255, 255, 255, 255})) << "background untouched";
+}
+
+// All layers at once against a golden image (tests/render/golden/layers.png),
+// with a tolerance for rasterizer differences between Mesa versions. Set
+// HQVIEW_UPDATE_GOLDEN=1 to rewrite the golden image after a deliberate change.
+TEST(Golden, AllLayersMatchTheGoldenImage) {
+  Scene scene;
+  scene.background = {255, 255, 255, 255};
+  SphereSet spheres;
+  spheres.centers = {{-0.8f, 0.3f, 0.0f}, {0.6f, -0.4f, 0.2f}};
+  spheres.radii = {0.6f, 0.35f};
+  spheres.colors = {{78, 121, 167, 255}, {242, 142, 43, 255}};
+  scene.spheres.push_back(spheres);
+  TriangleSet arrows;
+  append_arrow(arrows, {1.6f, 1.2f, 0.0f}, {0.75f, -0.2f, 0.2f}, {0.04f, 0.12f, 0.3f, 16}, {140, 20, 120, 255});
+  scene.triangles.push_back(arrows);
+  LineSet lines;
+  lines.positions = {{-1.8f, -1.2f, 0.0f}, {1.8f, -1.2f, 0.0f}, {1.8f, 1.2f, 0.0f}, {-1.8f, 1.2f, 0.0f}};
+  lines.colors.assign(4, {60, 60, 70, 255});
+  lines.indices = {0, 1, 1, 2, 2, 3, 3, 0};
+  scene.lines.push_back(lines);
+  TriangleSet glass;
+  glass.positions = {{-0.2f, -1.0f, 0.5f}, {1.2f, -1.0f, 0.5f}, {1.2f, 0.4f, 0.5f}, {-0.2f, 0.4f, 0.5f}};
+  glass.colors.assign(4, {214, 40, 190, 96});
+  glass.indices = {0, 1, 2, 0, 2, 3};
+  scene.translucent.push_back(glass);
+  Camera camera = front_camera(true);
+  camera.eye = {0.8, 1.0, 5.0};
+  const Image image = renderer().render(scene, camera, 160, 120);
+
+  const std::filesystem::path golden = test::source_dir() / "tests/render/golden/layers.png";
+  if (std::getenv("HQVIEW_UPDATE_GOLDEN")) write_png(image, golden);
+  OIIO::ImageBuf expected(golden.string());
+  ASSERT_TRUE(expected.read()) << "missing golden image " << golden << " (HQVIEW_UPDATE_GOLDEN=1 writes it)";
+  OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::UINT8);
+  OIIO::ImageBuf actual(spec, const_cast<std::uint8_t*>(image.rgba.data()));
+  const auto result = OIIO::ImageBufAlgo::compare(actual, expected, 0.1, 0.02);
+  EXPECT_LT(result.meanerror, 0.01);
+  EXPECT_LT(result.nfail, 40) << "pixels differing by more than 10%";
+}
+
+}  // namespace
+}  // namespace hq

@@ -1,0 +1,120 @@
+// Scenes of the detail views (C, D) and of the boundary error views, without OpenGL.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "hqview/render/colormap.h"
+#include "hqview/render/views_boundary.h"
+#include "hqview/render/views_detail.h"
+#include "support/fixtures.h"
+
+namespace hq {
+namespace {
+
+// A one-vertex cluster at vertex v of mesh.
+GlyphResult one_vertex_cluster(const HexMesh& mesh, Index v) {
+  GlyphResult g;
+  g.vertex_cluster.assign(mesh.points.size(), kNoIndex);
+  g.vertex_radius.assign(mesh.points.size(), 0.0);
+  g.vertex_cluster[static_cast<std::size_t>(v)] = 0;
+  g.vertex_radius[static_cast<std::size_t>(v)] = 0.3;
+  AggregatedGlyph a;
+  a.size = 1;
+  a.representative_vertex = v;
+  a.position = mesh.points[static_cast<std::size_t>(v)];
+  a.radius = 0.3;
+  g.clusters.push_back(a);
+  g.cluster_offsets = {0, 1};
+  g.cluster_vertices = {v};
+  return g;
+}
+
+Index interior_vertex(const HexMesh& mesh, const Topology& topology) {
+  for (Index v = 0; v < mesh.num_vertices(); ++v)
+    if (topology.vertex_hex_offsets[static_cast<std::size_t>(v) + 1] - topology.vertex_hex_offsets[static_cast<std::size_t>(v)] == 8)
+      return v;
+  return kNoIndex;
+}
+
+TEST(ClusterView, RegionIsTheClustersCellsAndTheSceneItsGlyphs) {
+  const HexMesh mesh = test::grid(3);
+  const Topology topology = build_topology(mesh);
+  const Index v = interior_vertex(mesh, topology);
+  ASSERT_NE(v, kNoIndex);
+  const GlyphResult glyphs = one_vertex_cluster(mesh, v);
+  EXPECT_EQ(cluster_region(topology, glyphs, 0).cells.size(), 8u);
+  const std::vector<double> quality(mesh.points.size(), 0.25);
+  const Scene scene = build_cluster_scene(mesh, topology, quality, glyphs, 0);
+  ASSERT_EQ(scene.spheres.size(), 1u);
+  ASSERT_EQ(scene.spheres[0].centers.size(), 1u);
+  EXPECT_FLOAT_EQ(scene.spheres[0].radii[0], 0.15f) << "half size";
+  EXPECT_EQ(scene.spheres[0].colors[0], to_rgba8(quality_color(0.25)));
+  ASSERT_EQ(scene.lines.size(), 2u);
+  for (const Rgba8& c : scene.lines[1].colors) EXPECT_EQ(c, to_rgba8(qualitative_color(0)));
+  EXPECT_EQ(scene.lines[1].indices.size() / 2, 54u) << "edges of a 2x2x2 block";
+  EXPECT_FALSE(scene.lines[0].indices.empty()) << "the neighbours";
+  EXPECT_FALSE(scene.translucent[0].indices.empty());
+}
+
+TEST(LocalView, OneMarkerPerCornerColouredByItsValue) {
+  const HexMesh mesh = test::grid(3);
+  const Topology topology = build_topology(mesh);
+  const Index v = interior_vertex(mesh, topology);
+  const auto corners = vertex_corners(mesh, topology, v);
+  ASSERT_EQ(corners.size(), 8u);
+  for (const VertexCorner& c : corners) {
+    EXPECT_NEAR(c.value, 1.0, 1e-12) << "a regular grid";
+    EXPECT_EQ(mesh.hexes[static_cast<std::size_t>(c.hex)][c.local], v);
+  }
+  const Scene scene = build_local_scene(mesh, topology, v);
+  ASSERT_EQ(scene.spheres.size(), 2u);
+  ASSERT_EQ(scene.spheres[0].centers.size(), 8u);
+  for (const Rgba8& c : scene.spheres[0].colors) EXPECT_EQ(c, to_rgba8(quality_color(1.0)));
+  // Markers sit inside their hexes, around v (the scene's origin).
+  for (const Vec3f& p : scene.spheres[0].centers) EXPECT_GT(std::hypot(p.x, p.y, p.z), 0.1);
+  EXPECT_EQ(scene.lines[0].indices.size() / 2, 54u);
+}
+
+TEST(BoundaryErrorView, ColoursFollowTheSignedErrorSymmetrically) {
+  const HexMesh mesh = test::grid(2);
+  const Topology topology = build_topology(mesh);
+  std::vector<double> error(mesh.points.size(), 0.0);
+  error[0] = 1.0;
+  error[1] = -1.0;
+  const Scene scene = build_boundary_error_scene(mesh, topology, error, 1.0);
+  const TriangleSet& faces = scene.triangles.at(0);
+  bool saw_red = false, saw_blue = false;
+  for (const Rgba8& c : faces.colors) {
+    saw_red |= c == to_rgba8(diverging_color(1.0));
+    saw_blue |= c == to_rgba8(diverging_color(-1.0));
+  }
+  EXPECT_TRUE(saw_red);
+  EXPECT_TRUE(saw_blue);
+  std::vector<double> field{std::nan("")};
+  for (int i = 1; i <= 100; ++i) field.push_back(i % 2 ? i : -i);
+  EXPECT_DOUBLE_EQ(error_scale(field), 98.0) << "the 98th percentile of |e|";
+  EXPECT_DOUBLE_EQ(error_scale({}), 1.0);
+  const ColorBar bar = error_color_bar(0.5, 10.0);
+  EXPECT_DOUBLE_EQ(bar.min_value, -5.0);
+  EXPECT_DOUBLE_EQ(bar.max_value, 5.0);
+}
+
+TEST(UvErrorMap, OutlinesSeparateChartsOnly) {
+  TriSurface surface;
+  surface.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  surface.triangles = {{0, 1, 2}, {0, 2, 3}};
+  UvAtlas atlas;
+  atlas.uvs = {{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}, {0.0, 0.0}, {1.0, 1.0}, {0.0, 1.0}};
+  atlas.triangle_chart = {0, 0};
+  atlas.num_charts = 1;
+  const std::vector<double> error{0.0, 1.0, -1.0, 0.0};
+  Scene one = build_uv_error_scene(surface, atlas, error, 1.0);
+  EXPECT_EQ(one.lines[0].indices.size() / 2, 4u) << "the shared diagonal is inside the chart";
+  EXPECT_FALSE(one.triangles[0].is_lit);
+  EXPECT_EQ(one.triangles[0].colors[1], to_rgba8(diverging_color(1.0)));
+  atlas.triangle_chart = {0, 1};
+  EXPECT_EQ(build_uv_error_scene(surface, atlas, error, 1.0).lines[0].indices.size() / 2, 6u);
+}
+
+}  // namespace
+}  // namespace hq
