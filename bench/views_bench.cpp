@@ -8,7 +8,6 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
-#include <map>
 
 #include "bench_data.h"
 #include "hqview/glyph/glyphs.h"
@@ -28,44 +27,6 @@ struct Analysed {
   hq::OverlapReport overlap;
 };
 
-// Each hex split into 2x2x2 at edge midpoints, face centres and its centre;
-// shared points merged.
-hq::HexMesh refine(const hq::HexMesh& coarse) {
-  hq::HexMesh fine;
-  fine.points = coarse.points;
-  std::map<std::vector<hq::Index>, hq::Index> made;
-  auto point_of = [&](std::vector<hq::Index> ids) {
-    std::sort(ids.begin(), ids.end());
-    if (ids.size() == 1) return ids[0];
-    if (const auto it = made.find(ids); it != made.end()) return it->second;
-    hq::Vec3 sum;
-    for (hq::Index id : ids) sum = sum + coarse.points[static_cast<std::size_t>(id)];
-    fine.points.push_back(sum / static_cast<double>(ids.size()));
-    made.emplace(std::move(ids), static_cast<hq::Index>(fine.points.size() - 1));
-    return static_cast<hq::Index>(fine.points.size() - 1);
-  };
-  static constexpr int kCorner[2][2][2] = {{{0, 4}, {3, 7}}, {{1, 5}, {2, 6}}};
-  for (const hq::Hex& hex : coarse.hexes) {
-    hq::Index g[3][3][3];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j)
-        for (int k = 0; k < 3; ++k) {
-          std::vector<hq::Index> ids;
-          for (int r = 0; r < 2; ++r)
-            for (int s = 0; s < 2; ++s)
-              for (int t = 0; t < 2; ++t)
-                if ((i == 1 || i == 2 * r) && (j == 1 || j == 2 * s) && (k == 1 || k == 2 * t))
-                  ids.push_back(hex[kCorner[r][s][t]]);
-          g[i][j][k] = point_of(std::move(ids));
-        }
-    for (int a = 0; a < 2; ++a)
-      for (int b = 0; b < 2; ++b)
-        for (int c = 0; c < 2; ++c)
-          fine.hexes.push_back({g[a][b][c], g[a + 1][b][c], g[a + 1][b + 1][c], g[a][b + 1][c], g[a][b][c + 1],
-                                g[a + 1][b][c + 1], g[a + 1][b + 1][c + 1], g[a][b + 1][c + 1]});
-  }
-  return fine;
-}
 
 Analysed analyse(hq::HexMesh mesh) {
   Analysed a;
@@ -87,7 +48,7 @@ const Analysed& coarse() {
 }
 
 const Analysed& refined() {
-  static const Analysed a = analyse(refine(coarse().mesh));
+  static const Analysed a = analyse(hq::bench::refine_1_to_8(coarse().mesh));
   return a;
 }
 
