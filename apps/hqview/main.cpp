@@ -38,6 +38,7 @@ enum ExitCode { kOk = 0, kGateFailed = 1, kUsage = 2, kInput = 3, kInternal = 4 
 
 struct AnalyzeArgs {
   std::string mesh;
+  std::string format;
   std::string reference;
   std::string output;
   std::string json;
@@ -135,11 +136,22 @@ std::optional<hq::OverlapOptions> parse_overlap(const AnalyzeArgs& args) {
   return overlap;
 }
 
+// --format: empty (detect) or one of the reader names; checked before the work.
+std::string check_mesh_format(const std::string& format) {
+  if (format.empty()) return format;
+  const std::string names = hq::mesh_format_names();
+  std::string padded = ", " + names + ",";
+  if (padded.find(", " + format + ",") == std::string::npos)
+    throw hq::UsageError("--format: unknown format '" + format + "' (expected one of: " + names + ")");
+  return format;
+}
+
 // The analysis options shared by `analyze` and `batch` (everything but the
 // input files). Throws UsageError for a bad value.
 hq::AnalyzeOptions make_analyze_options(const AnalyzeArgs& args) {
   hq::AnalyzeOptions options;
   options.tool_version = HQVIEW_VERSION;
+  options.mesh_format = check_mesh_format(args.format);
   options.render = !args.no_render;
   options.metrics = hq::parse_hex_metric_list(args.metrics);
   // Rules are checked for syntax before the work; whether their key exists is
@@ -271,6 +283,7 @@ CLI::App* add_batch_command(CLI::App& app, BatchArgs& args) {
   cmd->add_flag("--resume", args.resume, "Keep a bundle whose mesh hash and HQView version are unchanged");
   cmd->add_option("--memory-budget", args.memory_budget,
                   "Estimated memory of the meshes in flight, e.g. 8G (default: half the physical memory; 0: no limit)");
+  cmd->add_option("--format", a.format, "Read every mesh as this format: " + hq::mesh_format_names());
   cmd->add_option("--size", a.size, "Image size WIDTHxHEIGHT")->capture_default_str();
   cmd->add_flag("--no-render", a.no_render, "Skip the rendered views");
   cmd->add_option("--views", a.views, "Views to render: comma-separated ids, or all")->capture_default_str();
@@ -395,6 +408,7 @@ int main(int argc, char** argv) {
   AnalyzeArgs args;
   CLI::App* analyze = app.add_subcommand("analyze", "Analyse one hex mesh and write a report bundle");
   analyze->add_option("MESH", args.mesh, "Hex mesh: .mesh .vtk .vtu .msh .ovm .inp .e .exo")->required();
+  analyze->add_option("--format", args.format, "Read MESH as this format whatever its extension: " + hq::mesh_format_names());
   analyze->add_option("--reference", args.reference,
                       "Reference surface (.obj .off .stl .ply, .mesh Triangles): boundary error and UV atlas");
   analyze->add_option("-o,--output", args.output, "Bundle directory (default: ./hqview-report/<mesh stem>)");

@@ -205,3 +205,30 @@ TEST(Cli, HtmlEscapesNamesFromInput) {
 
 }  // namespace
 }  // namespace hq::test
+
+namespace hq::test {
+namespace {
+
+TEST(Cli, FormatOverridesTheExtension) {
+  const fs::path dir = fresh_output_dir("format");
+  const fs::path renamed = dir / "bar.dat";
+  fs::copy_file(source_dir() / "examples" / "twisted_bar.mesh", renamed);
+  const CliResult unknown = run_hqview({"analyze", renamed.string(), "-o", (dir / "a").string(), "--no-render"});
+  EXPECT_EQ(unknown.exit_code, 3) << unknown.err;
+  EXPECT_FALSE(fs::exists(dir / "a"));
+  const CliResult forced =
+      run_hqview({"analyze", renamed.string(), "--format", "mesh", "-o", (dir / "b").string(), "--no-render"});
+  ASSERT_EQ(forced.exit_code, 0) << forced.err;
+  EXPECT_EQ(nlohmann::json::parse(read_text(dir / "b" / "report.json"))["mesh"]["num_hexes"], 144);
+  // The wrong format is a parse error of that format, not a silent misread.
+  const CliResult wrong =
+      run_hqview({"analyze", renamed.string(), "--format", "vtk", "-o", (dir / "c").string(), "--no-render"});
+  EXPECT_EQ(wrong.exit_code, 3) << wrong.err;
+  const CliResult bogus =
+      run_hqview({"analyze", renamed.string(), "--format", "stl", "-o", (dir / "d").string(), "--no-render"});
+  EXPECT_EQ(bogus.exit_code, 2);
+  EXPECT_NE(bogus.err.find("--format"), std::string::npos) << bogus.err;
+}
+
+}  // namespace
+}  // namespace hq::test

@@ -11,16 +11,27 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
+#include <filesystem>
+#include <iostream>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "error_text.h"
+#include "hqview/io/mesh_reader.h"
+#include "hqview/quality/corner_jacobian.h"
+#include "support/fixtures.h"
 
 namespace hq {
 namespace {
 
 using test::error_text;
+
+std::string shortest(double v) {
+  char buffer[32];
+  return std::string(buffer, std::to_chars(buffer, buffer + sizeof buffer, v).ptr);
+}
 
 struct OvmWriter {
   std::vector<Vec3> points;
@@ -44,12 +55,17 @@ struct OvmWriter {
       if (a[0] == b[r] && a[1] == b[(r + 1) % 4] && a[2] == b[(r + 2) % 4] && a[3] == b[(r + 3) % 4]) return true;
     return false;
   }
+  std::map<std::array<int, 4>, int> face_of;  // sorted vertex ids -> face
   int halfface(const std::vector<int>& vs) {
-    for (std::size_t f = 0; f < face_vertices.size(); ++f) {
+    std::array<int, 4> key = {vs[0], vs[1], vs[2], vs[3]};
+    std::sort(key.begin(), key.end());
+    if (const auto it = face_of.find(key); it != face_of.end()) {
+      const auto f = static_cast<std::size_t>(it->second);
       if (same_cycle(face_vertices[f], vs)) return static_cast<int>(2 * f);
       std::vector<int> reversed(vs.rbegin(), vs.rend());
       if (same_cycle(face_vertices[f], reversed)) return static_cast<int>(2 * f + 1);
     }
+    face_of.emplace(key, static_cast<int>(faces.size()));
     std::vector<int> hes;
     for (std::size_t k = 0; k < vs.size(); ++k) hes.push_back(halfedge(vs[k], vs[(k + 1) % vs.size()]));
     faces.push_back(hes);
@@ -65,8 +81,7 @@ struct OvmWriter {
   }
   std::string text() const {
     std::string s = "OVM ASCII\nVertices\n" + std::to_string(points.size()) + "\n";
-    for (const Vec3& p : points)
-      s += std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
+    for (const Vec3& p : points) s += shortest(p.x) + " " + shortest(p.y) + " " + shortest(p.z) + "\n";
     s += "Edges\n" + std::to_string(edges.size()) + "\n";
     for (const auto& e : edges) s += std::to_string(e[0]) + " " + std::to_string(e[1]) + "\n";
     s += "Faces\n" + std::to_string(faces.size()) + "\n";
@@ -129,6 +144,59 @@ TEST(OvmReader, AnyHalfFaceOrder) {
   };
   const Vec3 a = d(1), b = d(3), c = d(4);
   EXPECT_GT(a.x * (b.y * c.z - b.z * c.y) - a.y * (b.x * c.z - b.z * c.x) + a.z * (b.x * c.y - b.y * c.x), 0.0);
+}
+
+// The six outward faces of a hex, each as its cycle rotated to start at its
+// smallest id, sorted: equal for the same oriented hexahedron however its
+// corners are labelled.
+std::vector<std::array<Index, 4>> oriented_faces(const Hex& h) {
+  const int faces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  std::vector<std::array<Index, 4>> out;
+  for (const auto& f : faces) {
+    std::array<Index, 4> q = {h[f[0]], h[f[1]], h[f[2]], h[f[3]]};
+    std::rotate(q.begin(), std::min_element(q.begin(), q.end()), q.end());
+    out.push_back(q);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Real meshes written the way OpenVolumeMesh writes a hexahedral mesh (faces
+// shared between cells, so many cells start with a half-face another cell
+// created) read back with the same points and the same oriented hexes.
+TEST(OvmReader, RealMeshesRoundTrip) {
+  if (!test::shared_data_dir()) GTEST_SKIP() << "../shared/data (or $HQVIEW_DATA) not found";
+  for (const char* relative :
+       {"gao2016_sweeping/kitten_1.mesh", "gao2016_sweeping/Dolphin_padded.mesh", "livesu2016_skeleton/warrior.mesh",
+        "livesu2015_edgecone/bunny_in.mesh", "li2012_srf/fandisk.mesh", "dualsheet2019/rockarm.vtk"}) {
+    SCOPED_TRACE(relative);
+    const LoadedMesh original = read_hex_mesh(*test::shared_data_dir() / "meshes" / relative);
+    OvmWriter w;
+    w.points = original.mesh.points;
+    for (const Hex& h : original.mesh.hexes) w.add_hex(h);
+    const LoadedMesh loaded = read_ovm(w.text(), "real.ovm");
+    ASSERT_EQ(loaded.mesh.points.size(), original.mesh.points.size());
+    for (std::size_t i = 0; i < loaded.mesh.points.size(); ++i) {
+      ASSERT_EQ(loaded.mesh.points[i].x, original.mesh.points[i].x);
+      ASSERT_EQ(loaded.mesh.points[i].y, original.mesh.points[i].y);
+      ASSERT_EQ(loaded.mesh.points[i].z, original.mesh.points[i].z);
+    }
+    ASSERT_EQ(loaded.mesh.hexes.size(), original.mesh.hexes.size());
+    std::size_t num_identical = 0;
+    for (Index h = 0; h < original.mesh.num_hexes(); ++h) {
+      const Hex& a = loaded.mesh.hexes[static_cast<std::size_t>(h)];
+      const Hex& b = original.mesh.hexes[static_cast<std::size_t>(h)];
+      num_identical += a == b;
+      ASSERT_EQ(oriented_faces(a), oriented_faces(b)) << "hex " << h;
+      ASSERT_NEAR(hex_scaled_jacobian(hex_corners(loaded.mesh, h)), hex_scaled_jacobian(hex_corners(original.mesh, h)),
+                  1e-12)
+          << "hex " << h;
+    }
+    // Cells whose first half-face they created themselves: exactly OVM's documented order.
+    EXPECT_GT(num_identical, 0u);
+    std::cout << "[ ovm ] " << relative << ": " << num_identical << " of " << original.mesh.hexes.size()
+              << " hexes in the original corner order, the others rotated\n";
+  }
 }
 
 TEST(OvmReader, Detection) {

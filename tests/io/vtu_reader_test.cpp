@@ -141,6 +141,23 @@ void expect_cube(const LoadedMesh& loaded, const std::string& format) {
 
 TEST(VtuReader, AsciiHexahedron) { expect_cube(read_vtu(ascii_cube(), "c.vtu"), "vtu-ascii"); }
 
+// VTK 9 writes range attributes and <InformationKey> children before the values.
+TEST(VtuReader, InformationKeysBeforeTheValues) {
+  const std::string keys =
+      "\n  <InformationKey name=\"L2_NORM_RANGE\" location=\"vtkDataArray\" length=\"2\">\n"
+      "    <Value index=\"0\">0</Value>\n    <Value index=\"1\">1.73</Value>\n  </InformationKey>\n";
+  const std::string text =
+      vtu(piece(8, 1, data_array("Float64", "Points", "ascii", keys + ascii_list(kCube), 3),
+                data_array("Int32", "connectivity", "ascii", "0 1 2 3 4 5 6 7") +
+                    data_array("Int32", "offsets", "ascii", "8") + data_array("UInt8", "types", "ascii", "12")));
+  expect_cube(read_vtu(text, "k.vtu"), "vtu-ascii");
+  const std::string binary =
+      vtu(piece(8, 1, data_array("Float64", "Points", "binary", keys + base64(raw_block(bytes_of(kCube), false)), 3),
+                data_array("Int32", "connectivity", "ascii", "0 1 2 3 4 5 6 7") +
+                    data_array("Int32", "offsets", "ascii", "8") + data_array("UInt8", "types", "ascii", "12")));
+  expect_cube(read_vtu(binary, "k.vtu"), "vtu-binary");
+}
+
 TEST(VtuReader, VoxelIsReorderedAndOtherCellsSkipped) {
   // A voxel (x fastest) of the same cube, a triangle and a quad.
   const std::string text = vtu(piece(8, 3, data_array("Float32", "Points", "ascii", ascii_list(kCube), 3),

@@ -97,10 +97,8 @@ bool looks_like_exodus(std::string_view bytes) {
 
 using Reader = LoadedMesh (*)(std::string_view, const std::string&);
 
-LoadedMesh read_exodus_bytes(std::string_view bytes, const std::string& name) { return read_exodus(bytes, name); }
-
 struct MeshFormat {
-  std::string_view name;         // --format value
+  std::string_view name;         // for read_hex_mesh_as (and a future --format)
   std::string_view description;  // for messages
   std::string_view extensions[2];
   bool (*looks_like)(std::string_view);
@@ -116,7 +114,7 @@ constexpr MeshFormat kFormats[] = {
     {"vtu", "VTK XML", {".vtu", ""}, looks_like_vtu, read_vtu},
     {"msh", "Gmsh", {".msh", ""}, looks_like_gmsh, read_gmsh},
     {"ovm", "OpenVolumeMesh", {".ovm", ""}, looks_like_ovm, read_ovm},
-    {"exodus", "Exodus II (netCDF)", {".e", ".exo"}, looks_like_exodus, read_exodus_bytes},
+    {"exodus", "Exodus II (netCDF)", {".e", ".exo"}, looks_like_exodus, read_exodus},
     {"inp", "Abaqus", {".inp", ""}, looks_like_abaqus, read_abaqus},
 };
 

@@ -32,7 +32,10 @@ class XmlParser {
         }
       } else {
         XmlElement& top = doc_.elements[open.back()];
-        if (top.text.empty() && top.children.empty() && !text.empty()) {
+        // Keep the first run that is not all whitespace: VTK writes
+        // <InformationKey> children before a DataArray's values.
+        const auto blank = [](std::string_view t) { return std::all_of(t.begin(), t.end(), is_space); };
+        if (!text.empty() && (top.text.empty() || (blank(top.text) && !blank(text)))) {
           top.text = text;
           top.text_offset = pos_;
           top.text_line = line_at(pos_);

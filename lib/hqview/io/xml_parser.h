@@ -4,7 +4,8 @@
 // entities and numeric character references decoded), character data,
 // comments, processing instructions, <!DOCTYPE> and CDATA sections
 // (skipped). No namespaces, no DTD entities. Every element records the line
-// of its '<' and its first run of character data.
+// of its '<' and its first run of character data that is not all
+// whitespace (VTK writes <InformationKey> children before the values).
 //
 // Parsing can stop at the content of a named element (VTK's AppendedData,
 // whose content is raw bytes, not XML): the document then ends there and

@@ -136,7 +136,7 @@ Analysis analyze(const AnalyzeOptions& options) {
   model.tool_version = options.tool_version;
 
   const std::string bytes = read_file_bytes(options.mesh_path);
-  LoadedMesh loaded = read_hex_mesh(options.mesh_path, bytes);
+  LoadedMesh loaded = read_hex_mesh_as(options.mesh_path, bytes, options.mesh_format);
   model.mesh_input = {reported_path(options.mesh_path), loaded.format, sha256_hex(bytes)};
   model.warnings = std::move(loaded.warnings);
   model.mesh = std::move(loaded.mesh);

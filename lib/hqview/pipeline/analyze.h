@@ -19,6 +19,7 @@ namespace hq {
 
 struct AnalyzeOptions {
   std::filesystem::path mesh_path;
+  std::string mesh_format;  // --format: a name of mesh_format_names(); empty: by extension and content
   std::filesystem::path reference_path;  // --reference SURFACE; empty: no boundary error
   std::string tool_version;
   bool render = true;

@@ -313,6 +313,7 @@ Image render_main_view(const HexMesh& mesh, const Topology& topology, const Glyp
   // Rank labels next to the worst clusters' glyphs.
   const int label_size = std::max(11, static_cast<int>(std::lround(20 * style.scale)));
   const std::size_t num_labels = std::min<std::size_t>(glyphs.clusters.size(), 10);
+  std::vector<PixelRect> placed;  // labels never overlap: a later (better-ranked first) one is skipped
   for (std::size_t i = 0; i < num_labels; ++i) {
     const AggregatedGlyph& g = glyphs.clusters[i];
     const Vec3 ndc = project_to_ndc(camera, aspect, g.position);
@@ -321,7 +322,15 @@ Image render_main_view(const HexMesh& mesh, const Topology& topology, const Glyp
     const double r_px = g.radius / units_per_pixel(camera, depth, layout.view.height);
     const int x = layout.view.x + static_cast<int>(std::lround(0.5 * (ndc.x + 1.0) * layout.view.width + 0.75 * r_px + 3));
     const int y = layout.view.y + static_cast<int>(std::lround(0.5 * (1.0 - ndc.y) * layout.view.height - 0.75 * r_px));
-    draw_text(figure, x, y, "#" + std::to_string(g.id), label_size, style);
+    const std::string label = "#" + std::to_string(g.id);
+    const PixelRect extent = text_extent(label, label_size, style);
+    const PixelRect box{x - 2, y - extent.height - 2, extent.width + 4, extent.height + 4};
+    const bool overlaps = std::any_of(placed.begin(), placed.end(), [&](const PixelRect& r) {
+      return box.x < r.x + r.width && r.x < box.x + box.width && box.y < r.y + r.height && r.y < box.y + box.height;
+    });
+    if (overlaps) continue;
+    placed.push_back(box);
+    draw_text(figure, x, y, label, label_size, style);
   }
 
   // Legend: what each colour means.
