@@ -166,6 +166,10 @@ LoadedMesh read_as(const MeshFormat& format, const std::filesystem::path& path, 
 
 }  // namespace
 
+bool has_hex_mesh_extension(const std::filesystem::path& path) {
+  return format_by_extension(detail::lowercase_extension(path)) != nullptr;
+}
+
 std::string mesh_format_names() {
   std::string names;
   for (const MeshFormat& format : kFormats) names += (names.empty() ? "" : ", ") + std::string(format.name);

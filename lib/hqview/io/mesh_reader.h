@@ -52,6 +52,9 @@ LoadedMesh read_hex_mesh(const std::filesystem::path& path, std::string_view byt
 LoadedMesh read_hex_mesh_as(const std::filesystem::path& path, std::string_view format);
 LoadedMesh read_hex_mesh_as(const std::filesystem::path& path, std::string_view bytes, std::string_view format);
 
+// True when path's extension (any case) is one read_hex_mesh() dispatches on.
+bool has_hex_mesh_extension(const std::filesystem::path& path);
+
 // The format names --format accepts, comma-separated: "mesh, vtk, vtu, msh,
 // ovm, exodus, inp".
 std::string mesh_format_names();

@@ -13,6 +13,7 @@
 
 #include "hqview/core/error.h"
 #include "hqview/core/sha256.h"
+#include "hqview/io/mesh_reader.h"
 #include "hqview/report/report_json.h"
 
 namespace hq {
@@ -31,14 +32,6 @@ std::string_view trim(std::string_view s) {
   if (first == std::string_view::npos) return {};
   const auto last = s.find_last_not_of(" \t\r");
   return s.substr(first, last - first + 1);
-}
-
-std::string read_file_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string() + ": cannot open");
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return std::move(bytes).str();
 }
 
 // Splits one CSV line; fields may be double-quoted ("" is a quote).
@@ -119,13 +112,7 @@ bool is_resumable(const BatchInput& input, const fs::path& report_path, const st
 
 }  // namespace
 
-bool is_hex_mesh_extension(const fs::path& path) {
-  const std::string ext = lower(path.extension().string());
-  // The extensions of io/mesh_reader.h's read_hex_mesh().
-  for (const char* known : {".mesh", ".vtk", ".vtu", ".msh", ".ovm", ".inp", ".e", ".exo"})
-    if (ext == known) return true;
-  return false;
-}
+bool is_hex_mesh_extension(const fs::path& path) { return has_hex_mesh_extension(path); }
 
 std::vector<BatchInput> collect_directory(const fs::path& dir) {
   std::vector<BatchInput> inputs;
