@@ -40,6 +40,7 @@ struct AnalyzeArgs {
   std::string mesh;
   std::string format;
   std::string reference;
+  std::string compare;
   std::string output;
   std::string json;
   std::string size = "1600x1200";
@@ -179,6 +180,7 @@ int run_analyze(const AnalyzeArgs& args) {
   hq::AnalyzeOptions options = make_analyze_options(args);
   options.mesh_path = mesh_path;
   options.reference_path = args.reference;
+  options.compare_path = args.compare;
   const hq::BundleOptions bundle{.force = args.force};
   hq::check_output_dir(output, bundle);  // fail before the work, not after
 
@@ -411,6 +413,9 @@ int main(int argc, char** argv) {
   analyze->add_option("--format", args.format, "Read MESH as this format whatever its extension: " + hq::mesh_format_names());
   analyze->add_option("--reference", args.reference,
                       "Reference surface (.obj .off .stl .ply, .mesh Triangles): boundary error and UV atlas");
+  analyze->add_option("--compare", args.compare,
+                      "Second hex mesh (e.g. before/after optimisation): its quality summary and differences in "
+                      "report.json compare, both boundaries side by side (view compare)");
   analyze->add_option("-o,--output", args.output, "Bundle directory (default: ./hqview-report/<mesh stem>)");
   analyze->add_option("-j,--threads", args.threads, "Worker threads (default: all cores); results are identical for any N")
       ->check(CLI::Range(1, 1024));

@@ -74,6 +74,93 @@ TEST(CornerChart, LabelsEveryCornerWithItsValue) {
   EXPECT_EQ(chart.rects[1].fill, to_rgba8(kInvertedColor));
 }
 
+TEST(SortedBoundaryError, BarsFromTheZeroLineOnASymmetricAxis) {
+  const std::vector<double> e{0.3, -0.1, std::nan(""), 0.0, -0.45, 0.2};
+  const Chart chart = sorted_boundary_error_chart(e, {800, 400, "t"});
+  // 5 finite values, the exact zero has no bar.
+  ASSERT_EQ(chart.rects.size(), 4u);
+  for (const ChartRect& r : chart.rects) EXPECT_TRUE(inside(chart.plot, r));
+  // Symmetric axis [-0.6, 0.6] (steps of 0.2 over max |error| 0.45): zero in the middle of the plot.
+  EXPECT_TRUE(has_text(chart, "-0.6"));
+  EXPECT_TRUE(has_text(chart, "0.6"));
+  EXPECT_TRUE(has_text(chart, "0"));
+  const double y0 = chart.plot.y + 0.5 * chart.plot.height;
+  // Sorted ascending: the most inside (-0.45) first, below the zero line, in blue.
+  EXPECT_NEAR(chart.rects[0].y, y0, 1e-9);
+  EXPECT_NEAR(chart.rects[0].height, 0.45 / 1.2 * chart.plot.height, 1e-9);
+  EXPECT_GT(chart.rects[0].fill.b, chart.rects[0].fill.r);
+  // The most outside (0.3) last, above the zero line, in red.
+  const ChartRect& last = chart.rects.back();
+  EXPECT_NEAR(last.y + last.height, y0, 1e-9);
+  EXPECT_NEAR(last.height, 0.3 / 1.2 * chart.plot.height, 1e-9);
+  EXPECT_GT(last.fill.r, last.fill.b);
+  for (std::size_t i = 1; i < chart.rects.size(); ++i) EXPECT_GT(chart.rects[i].x, chart.rects[i - 1].x);
+  // The zero line spans the plot.
+  EXPECT_TRUE(std::any_of(chart.lines.begin(), chart.lines.end(), [&](const ChartPolyline& l) {
+    return l.points.size() == 2 && std::abs(l.points[0].y - y0) < 1e-9 && std::abs(l.points[1].y - y0) < 1e-9 &&
+           std::abs(l.points[1].x - l.points[0].x - chart.plot.width) < 1e-9;
+  }));
+}
+
+TEST(SortedBoundaryError, ManyVerticesOneBarPerPixelColumn) {
+  std::vector<double> e;
+  for (int i = 0; i < 100000; ++i) e.push_back((i % 2 ? 1.0 : -1.0) * 1e-3 * (i % 97));
+  const Chart chart = sorted_boundary_error_chart(e, {600, 300, ""});
+  EXPECT_LE(chart.rects.size(), static_cast<std::size_t>(chart.plot.width));
+  EXPECT_GT(chart.rects.size(), static_cast<std::size_t>(chart.plot.width) - 5);
+  // The extremes reach the axis limit 0.1 (nice ceiling of 0.096).
+  EXPECT_TRUE(has_text(chart, "0.1"));
+  EXPECT_NEAR(chart.rects.front().height, 0.5 * chart.plot.height * 0.096 / 0.1, 1e-6);
+}
+
+TEST(SortedBoundaryError, FewOutliersAreClippedAndCounted) {
+  std::vector<double> e;
+  for (int i = 0; i < 199; ++i) e.push_back((i % 2 ? 1e-5 : -1e-5) * (1 + i % 5));  // |e| <= 5e-5
+  e.push_back(-0.036);
+  const Chart chart = sorted_boundary_error_chart(e, {800, 400, ""});
+  EXPECT_TRUE(has_text(chart, "6e-05"));  // the axis follows the bulk (steps of 2e-05), not the outlier
+  EXPECT_TRUE(has_text(chart, "1 vertex beyond the axis (clipped), max |error| 0.036"));
+  // The outlier's bar ends at the bottom of the plot.
+  EXPECT_NEAR(chart.rects.front().y + chart.rects.front().height, chart.plot.y + chart.plot.height, 1e-9);
+  const Chart area = boundary_area_chart(e, std::vector<double>(e.size(), 1.0), 1e-9, {800, 500, ""});
+  EXPECT_TRUE(has_text(area, "5e-05"));
+}
+
+TEST(BoundaryArea, StackedBarAndCumulativeCurves) {
+  // Areas: outside 1+2 = 3, on 1, inside 4; total 8.
+  const std::vector<double> e{0.1, 0.2, 0.0, -0.3, std::nan("")};
+  const std::vector<double> a{1.0, 2.0, 1.0, 4.0, 5.0};
+  const Chart chart = boundary_area_chart(e, a, 1e-9, {800, 500, "t"});
+  // Stacked bar: the first three rects, outside | on | inside, widths in proportion.
+  ASSERT_GE(chart.rects.size(), 3u);
+  const double w = chart.rects[0].width + chart.rects[1].width + chart.rects[2].width;
+  EXPECT_NEAR(chart.rects[0].width / w, 3.0 / 8.0, 1e-9);
+  EXPECT_NEAR(chart.rects[1].width / w, 1.0 / 8.0, 1e-9);
+  EXPECT_NEAR(chart.rects[2].width / w, 4.0 / 8.0, 1e-9);
+  EXPECT_LT(chart.rects[0].x, chart.rects[2].x);
+  EXPECT_GT(chart.rects[0].fill.r, chart.rects[0].fill.b);  // outside red
+  EXPECT_GT(chart.rects[2].fill.b, chart.rects[2].fill.r);  // inside blue
+  EXPECT_LT(chart.rects[0].y + chart.rects[0].height, chart.plot.y) << "the bar is above the curve panel";
+  EXPECT_TRUE(has_text(chart, "outside (37.5%)"));
+  EXPECT_TRUE(has_text(chart, "inside (50.0%)"));
+  // y axis up to 50% (nice ceiling), x axis up to 0.3.
+  EXPECT_TRUE(has_text(chart, "50"));
+  EXPECT_TRUE(has_text(chart, "0.3"));
+  // Two curves, each ending at its fraction on the right edge.
+  std::vector<const ChartPolyline*> curves;
+  for (const ChartPolyline& l : chart.lines)
+    if (l.width > 2.0) curves.push_back(&l);
+  ASSERT_EQ(curves.size(), 2u);
+  auto y_of = [&](double percent) { return chart.plot.y + chart.plot.height * (1.0 - percent / 50.0); };
+  EXPECT_NEAR(curves[0]->points.back().y, y_of(37.5), 1e-9);
+  EXPECT_NEAR(curves[0]->points.back().x, chart.plot.x + chart.plot.width, 1e-9);
+  EXPECT_NEAR(curves[1]->points.back().y, y_of(50.0), 1e-9);
+  EXPECT_NEAR(curves[0]->points.front().y, y_of(0.0), 1e-9);
+  // The outside curve steps at 0.1 (x = a third of the axis) to 12.5%.
+  EXPECT_NEAR(curves[0]->points[2].x, chart.plot.x + chart.plot.width / 3.0, 1e-9);
+  EXPECT_NEAR(curves[0]->points[2].y, y_of(12.5), 1e-9);
+}
+
 TEST(ChartOutput, SvgAndPngFromOneChart) {
   const Chart chart = quality_histogram_chart(std::vector<double>{0.5, 0.7}, false, {320, 200, "t"}, 0.1);
   const std::string svg = chart_svg(chart);

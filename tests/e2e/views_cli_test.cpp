@@ -65,6 +65,45 @@ TEST(ViewsCli, EveryViewOfTheBallIsWrittenAndNotBlank) {
   EXPECT_EQ(html.find("views/sorted_quality.png"), std::string::npos);
 }
 
+TEST(ViewsCli, ReferenceAddsTheBoundaryChartsAndTheOverlay) {
+  const fs::path out = fresh_output_dir("views/reference") / "bundle";
+  const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "--reference", example("ball.off").string(),
+                                  "-o", out.string(), "--size", "400x300"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto ids = check_views(out, "reference");
+  for (const char* id : {"boundary_error", "reference_overlay", "boundary_error_sorted", "boundary_area"})
+    EXPECT_NE(std::find(ids.begin(), ids.end(), id), ids.end()) << id;
+  for (const char* f : {"views/boundary_error_sorted.png", "views/boundary_area.png", "views/reference_overlay.png"})
+    EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
+  const std::string html = read_text(out / "index.html");
+  EXPECT_NE(html.find("views/boundary_error_sorted.svg"), std::string::npos);
+  EXPECT_NE(html.find("views/boundary_area.svg"), std::string::npos);
+  EXPECT_NE(html.find("views/reference_overlay.png"), std::string::npos);
+}
+
+TEST(ViewsCli, CompareAnalysesTheSecondMeshAndDrawsBothBoundaries) {
+  const fs::path out = fresh_output_dir("views/compare") / "bundle";
+  const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "--compare", example("twisted_bar.mesh").string(),
+                                  "-o", out.string(), "--size", "480x240", "--views", "compare"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(check_views(out, "compare"), (std::vector<std::string>{"compare"}));
+  const json report = json::parse(read_text(out / "report.json"));
+  EXPECT_EQ(report["input"]["compare"]["path"], "twisted_bar.mesh");
+  const json& c = report["compare"];
+  ASSERT_TRUE(c.is_object());
+  for (const char* part : {"headline", "mesh", "quality", "differences"}) EXPECT_TRUE(c.contains(part)) << part;
+  const json& d = c["differences"];
+  EXPECT_EQ(d["headline.num_hexes"].get<double>(),
+            c["headline"]["num_hexes"].get<double>() - report["headline"]["num_hexes"].get<double>());
+  EXPECT_DOUBLE_EQ(d["quality.scaled_jacobian.min"].get<double>(),
+                   c["quality"]["scaled_jacobian"]["min"].get<double>() - report["quality"]["scaled_jacobian"]["min"].get<double>());
+  EXPECT_TRUE(d.contains("quality.metrics.skew.mean"));
+  // Without --compare: null.
+  const fs::path plain = fresh_output_dir("views/compare_none") / "bundle";
+  ASSERT_EQ(run_hqview({"analyze", example("ball.mesh").string(), "-o", plain.string(), "--no-render"}).exit_code, 0);
+  EXPECT_TRUE(json::parse(read_text(plain / "report.json"))["compare"].is_null());
+}
+
 TEST(ViewsCli, ViewsSelectsAndRejectsUnknownIds) {
   const fs::path out = fresh_output_dir("views/select") / "bundle";
   CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "-o", out.string(), "--size", "320x240",

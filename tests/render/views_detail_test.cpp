@@ -116,5 +116,27 @@ TEST(UvErrorMap, OutlinesSeparateChartsOnly) {
   EXPECT_EQ(build_uv_error_scene(surface, atlas, error, 1.0).lines[0].indices.size() / 2, 6u);
 }
 
+TEST(ReferenceOverlay, OpaqueHexBoundaryUnderTheTranslucentReference) {
+  const HexMesh mesh = test::grid(2);
+  const Topology topology = build_topology(mesh);
+  TriSurface reference;
+  reference.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {5, 5, 5}};
+  reference.triangles = {{0, 1, 2}, {0, 2, 3}, {4, 4, 4}};  // the last degenerate: left out
+  const Scene scene = build_reference_overlay_scene(mesh, topology, reference);
+  ASSERT_EQ(scene.triangles.size(), 1u);
+  ASSERT_EQ(scene.lines.size(), 1u);
+  ASSERT_EQ(scene.translucent.size(), 1u);
+  for (const Rgba8& c : scene.triangles[0].colors) EXPECT_EQ(c.a, 255);
+  const TriangleSet& ref = scene.translucent[0];
+  EXPECT_EQ(ref.indices.size(), 6u);
+  ASSERT_EQ(ref.positions.size(), 5u);
+  for (const Rgba8& c : ref.colors) EXPECT_EQ(c, kReferenceOverlayColor);
+  EXPECT_LT(kReferenceOverlayColor.a, 255);
+  // Same origin for both: reference point (1, 1, 0) sits where the hex boundary's corner does.
+  EXPECT_NEAR(ref.positions[2].x + scene.origin.x, 1.0, 1e-6);
+  EXPECT_NEAR(ref.positions[2].y + scene.origin.y, 1.0, 1e-6);
+  EXPECT_NEAR(ref.positions[2].z + scene.origin.z, 0.0, 1e-6);
+}
+
 }  // namespace
 }  // namespace hq

@@ -194,6 +194,195 @@ Chart corner_chart(std::span<const double> values, std::span<const std::string> 
 
 namespace {
 
+// Signed error colour: the diverging map at e / scale, kept away from the
+// near-white middle so small bars stay visible on the white background.
+Rgba8 error_bar_color(double e, double scale) {
+  const double t = scale > 0.0 ? e / scale : 0.0;
+  if (t == 0.0) return kAxisColor;
+  return to_rgba8(diverging_color(std::copysign(std::max(0.3, std::min(1.0, std::abs(t))), t)));
+}
+
+// A nice ceiling of a positive value (and the tick step under it): about `count` steps.
+std::pair<double, double> nice_ceiling(double value, int count) {
+  if (!(value > 0.0) || !std::isfinite(value)) return {1.0, nice_step(1.0, count)};
+  const double step = nice_step(value, count);
+  return {std::max(step, std::ceil(value / step - 1e-9) * step), step};
+}
+
+// The axis limit for |error| values: the largest, unless a few outliers
+// (the top 1%) are over 4 times the rest, then the 99th percentile so the bulk
+// stays readable (the outliers are clipped at the axis and counted in a note).
+double robust_abs_limit(std::vector<double> abs_values) {
+  if (abs_values.empty()) return 0.0;
+  std::sort(abs_values.begin(), abs_values.end());
+  const double largest = abs_values.back();
+  const double p99 = abs_values[static_cast<std::size_t>(std::floor(0.99 * static_cast<double>(abs_values.size() - 1)))];
+  return p99 > 0.0 && largest > 4.0 * p99 ? p99 : largest;
+}
+
+std::string clipped_note(std::size_t clipped, double max_abs) {
+  char buffer[96];
+  std::snprintf(buffer, sizeof buffer, "%zu %s beyond the axis (clipped), max |error| %.3g", clipped,
+                clipped == 1 ? "vertex" : "vertices", max_abs);
+  return buffer;
+}
+
+const Rgba8 kOutsideColor = to_rgba8(diverging_color(0.75));
+const Rgba8 kInsideColor = to_rgba8(diverging_color(-0.75));
+constexpr Rgba8 kOnColor{190, 190, 196, 255};
+
+std::string format_percent(double fraction) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.1f%%", 100.0 * fraction);
+  return buffer;
+}
+
+}  // namespace
+
+Chart sorted_boundary_error_chart(std::span<const double> vertex_error, const ChartOptions& options) {
+  Chart chart = begin_chart(options);
+  const ChartRect r = chart.plot;
+  std::vector<double> sorted;
+  for (double e : vertex_error)
+    if (!std::isnan(e)) sorted.push_back(e);
+  std::sort(sorted.begin(), sorted.end());
+  double max_abs = 0.0;
+  std::vector<double> abs_values;
+  for (double e : sorted) {
+    max_abs = std::max(max_abs, std::abs(e));
+    abs_values.push_back(std::abs(e));
+  }
+  const auto [limit, step] = nice_ceiling(robust_abs_limit(std::move(abs_values)), 3);
+  std::size_t clipped = 0;
+  for (double e : sorted) clipped += std::abs(e) > limit ? 1 : 0;
+  auto y_of = [&](double e) { return r.y + r.height * (limit - std::clamp(e, -limit, limit)) / (2.0 * limit); };
+  std::vector<std::pair<double, double>> y_ticks;
+  for (double t = -limit; t <= limit + 0.5 * step; t += step) y_ticks.push_back({t, y_of(t)});
+  const std::size_t n = sorted.size();
+  const std::size_t columns = std::min<std::size_t>(n, static_cast<std::size_t>(std::max(1.0, std::floor(r.width))));
+  const double w = columns > 0 ? r.width / static_cast<double>(columns) : r.width;
+  const double y0 = y_of(0.0);
+  for (std::size_t c = 0; c < columns; ++c) {
+    const std::size_t lo = c * n / columns, hi = std::max(lo, (c + 1) * n / columns - 1);
+    const double e = std::abs(sorted[lo]) >= std::abs(sorted[hi]) ? sorted[lo] : sorted[hi];
+    const double y = y_of(e);
+    if (std::abs(y - y0) <= 0.0) continue;
+    const double bar = columns == n && w > 3.0 ? 0.8 * w : w;
+    chart.rects.push_back({r.x + c * w + 0.5 * (w - bar), std::min(y, y0), bar, std::abs(y - y0), error_bar_color(e, limit)});
+  }
+  std::vector<std::pair<double, double>> x_ticks;
+  for (double t = 0.0; t <= 1.0001; t += 0.25) x_ticks.push_back({t, r.x + r.width * t});
+  add_axes(chart, r, y_ticks, x_ticks, "boundary vertices sorted by signed error (fraction of " + std::to_string(n) + ")",
+           "signed error (+ outside)");
+  chart.lines.push_back({{{r.x, y0}, {r.x + r.width, y0}}, kAxisColor, 1.2});
+  if (clipped > 0)
+    chart.texts.push_back({{r.x + r.width - 8.0, r.y + 16.0}, clipped_note(clipped, max_abs), kTickSize, kAxisColor,
+                           ChartAnchor::right, false});
+  chart.texts.push_back({{r.x + 8.0, r.y + 16.0}, "outside the reference", kTickSize, kOutsideColor, ChartAnchor::left, false});
+  chart.texts.push_back(
+      {{r.x + r.width - 8.0, r.y + r.height - 8.0}, "inside the reference", kTickSize, kInsideColor, ChartAnchor::right, false});
+  return chart;
+}
+
+Chart boundary_area_chart(std::span<const double> vertex_error, std::span<const double> vertex_area, double tolerance,
+                          const ChartOptions& options) {
+  Chart chart = begin_chart(options);
+  const ChartRect all = chart.plot;
+  const ChartRect strip{all.x, all.y, all.width, 26.0, {}};
+  const ChartRect r{all.x, all.y + 74.0, all.width, std::max(10.0, all.height - 74.0), {}};
+  chart.plot = r;
+  std::vector<std::pair<double, double>> outside, inside;  // (|error|, area)
+  double total = 0.0, on = 0.0, max_abs = 0.0;
+  const std::size_t count = std::min(vertex_error.size(), vertex_area.size());
+  for (std::size_t i = 0; i < count; ++i) {
+    const double e = vertex_error[i], a = vertex_area[i];
+    if (std::isnan(e) || !(a > 0.0)) continue;
+    total += a;
+    if (e > tolerance) outside.push_back({e, a});
+    else if (e < -tolerance) inside.push_back({-e, a});
+    else on += a;
+    max_abs = std::max(max_abs, std::abs(e));
+  }
+  std::sort(outside.begin(), outside.end());
+  std::sort(inside.begin(), inside.end());
+  auto area_of = [](const std::vector<std::pair<double, double>>& v) {
+    double s = 0.0;
+    for (const auto& p : v) s += p.second;
+    return s;
+  };
+  const double f_out = total > 0.0 ? area_of(outside) / total : 0.0;
+  const double f_in = total > 0.0 ? area_of(inside) / total : 0.0;
+  const double f_on = total > 0.0 ? on / total : 0.0;
+  // The stacked bar: outside | on | inside, each labelled when wide enough.
+  double x = strip.x;
+  const std::pair<double, std::pair<Rgba8, const char*>> parts[] = {
+      {f_out, {kOutsideColor, "outside"}}, {f_on, {kOnColor, "on"}}, {f_in, {kInsideColor, "inside"}}};
+  for (const auto& [f, style] : parts) {
+    const double w = strip.width * f;
+    if (w > 0.0) chart.rects.push_back({x, strip.y, w, strip.height, style.first});
+    if (w > 110.0)
+      chart.texts.push_back({{x + 0.5 * w, strip.y + 17.5}, std::string(style.second) + " " + format_percent(f), kTickSize,
+                             style.first == kOnColor ? Rgba8{38, 38, 38, 255} : Rgba8{255, 255, 255, 255},
+                             ChartAnchor::center, false});
+    x += w;
+  }
+  chart.lines.push_back({{{strip.x, strip.y}, {strip.x + strip.width, strip.y}, {strip.x + strip.width, strip.y + strip.height},
+                          {strip.x, strip.y + strip.height}, {strip.x, strip.y}},
+                         kAxisColor, 1.0});
+  chart.texts.push_back({{strip.x, strip.y + strip.height + 18.0},
+                         "boundary area: outside " + format_percent(f_out) + ", on " + format_percent(f_on) + ", inside " +
+                             format_percent(f_in),
+                         kTickSize, kAxisColor, ChartAnchor::left, false});
+  // Cumulative curves: percent of the whole boundary area with |error| <= x.
+  std::vector<double> abs_values;
+  for (const auto& p : outside) abs_values.push_back(p.first);
+  for (const auto& p : inside) abs_values.push_back(p.first);
+  const auto [x_limit, x_step] = nice_ceiling(robust_abs_limit(std::move(abs_values)), 5);
+  std::size_t clipped = 0;
+  for (const auto& p : outside) clipped += p.first > x_limit ? 1 : 0;
+  for (const auto& p : inside) clipped += p.first > x_limit ? 1 : 0;
+  if (clipped > 0)
+    chart.texts.push_back({{r.x + r.width - 8.0, r.y + r.height - 10.0}, clipped_note(clipped, max_abs) + ", counted at the right edge",
+                           kTickSize, kAxisColor, ChartAnchor::right, false});
+  const auto [y_limit, y_step] = nice_ceiling(100.0 * std::max({f_out, f_in, 1e-9}), 5);
+  auto x_of = [&](double e) { return r.x + r.width * std::clamp(e / x_limit, 0.0, 1.0); };
+  auto y_of = [&](double percent) { return r.y + r.height * (1.0 - std::clamp(percent / y_limit, 0.0, 1.0)); };
+  std::vector<std::pair<double, double>> x_ticks, y_ticks;
+  for (double t = 0.0; t <= x_limit + 0.5 * x_step; t += x_step) x_ticks.push_back({t, x_of(t)});
+  for (double t = 0.0; t <= y_limit + 0.5 * y_step; t += y_step) y_ticks.push_back({t, y_of(t)});
+  add_axes(chart, r, y_ticks, x_ticks, "|signed error| at most", "% of boundary area");
+  auto curve = [&](const std::vector<std::pair<double, double>>& v, Rgba8 color) {
+    ChartPolyline line{{{x_of(0.0), y_of(0.0)}}, color, 2.2};
+    const std::size_t stride = std::max<std::size_t>(1, v.size() / 2000);
+    double cumulative = 0.0, previous = 0.0;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      cumulative += v[i].second;
+      if ((i + 1) % stride != 0 && i + 1 != v.size()) continue;
+      const double px = x_of(v[i].first);
+      line.points.push_back({px, y_of(100.0 * previous / total)});
+      line.points.push_back({px, y_of(100.0 * cumulative / total)});
+      previous = cumulative;
+    }
+    line.points.push_back({r.x + r.width, line.points.back().y});
+    return line;
+  };
+  if (total > 0.0) {
+    chart.lines.push_back(curve(outside, kOutsideColor));
+    chart.lines.push_back(curve(inside, kInsideColor));
+  }
+  // Legend, top left of the curve panel.
+  const double lx = r.x + 12.0, ly = r.y + 10.0;
+  chart.rects.push_back({lx, ly, 18.0, 4.0, kOutsideColor});
+  chart.texts.push_back({{lx + 24.0, ly + 7.0}, "outside (" + format_percent(f_out) + ")", kTickSize, kAxisColor,
+                         ChartAnchor::left, false});
+  chart.rects.push_back({lx, ly + 18.0, 18.0, 4.0, kInsideColor});
+  chart.texts.push_back({{lx + 24.0, ly + 25.0}, "inside (" + format_percent(f_in) + ")", kTickSize, kAxisColor,
+                         ChartAnchor::left, false});
+  return chart;
+}
+
+namespace {
+
 void set_color(cairo_t* cr, Rgba8 c) { cairo_set_source_rgba(cr, c.r / 255.0, c.g / 255.0, c.b / 255.0, c.a / 255.0); }
 
 // The one drawing routine behind both outputs.

@@ -71,6 +71,23 @@ Chart sorted_quality_chart(std::span<const double> vertex_quality, int worst_n, 
 // with its value (labels[i] under bar i).
 Chart corner_chart(std::span<const double> values, std::span<const std::string> labels, const ChartOptions& options);
 
+// With --reference: the signed error of every hex boundary vertex, sorted
+// ascending (most inside on the left, most outside on the right), as bars
+// from the zero line coloured by the diverging error map, on a y axis
+// symmetric about 0 ([-A, A], A a nice ceiling of max |error|); the x axis is
+// the fraction of boundary vertices. More vertices than plot pixels are drawn
+// as one bar per pixel column (the extreme value of its ranks). NaN left out.
+Chart sorted_boundary_error_chart(std::span<const double> vertex_error, const ChartOptions& options);
+
+// With --reference: the boundary area outside / on / inside the reference as
+// one stacked horizontal bar of percentages (top strip), and below it the
+// cumulative area fraction (percent of the whole boundary area) against
+// |error|, one curve for the outside part (ending at fraction_outside) and one
+// for the inside part. error and area per vertex (NaN error or area <= 0 left
+// out); tolerance: |error| at or below it is "on" the reference.
+Chart boundary_area_chart(std::span<const double> vertex_error, std::span<const double> vertex_area, double tolerance,
+                          const ChartOptions& options);
+
 // The chart as an SVG document / as a PNG-ready image (both from draw_chart).
 // Throws RenderError when Cairo fails.
 std::string chart_svg(const Chart& chart);

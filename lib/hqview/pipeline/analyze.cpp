@@ -154,6 +154,18 @@ Analysis analyze(const AnalyzeOptions& options) {
     model.warnings.push_back(std::to_string(model.topology.unreferenced_vertices.size()) +
                              " vertices are used by no hexahedron (ignored by the analysis)");
   if (!options.reference_path.empty()) analyze_reference(options.reference_path, model);
+  if (!options.compare_path.empty()) {
+    const std::string other_bytes = read_file_bytes(options.compare_path);
+    LoadedMesh other = read_hex_mesh_as(options.compare_path, other_bytes, options.mesh_format);
+    ReportModel::Compared& c = model.compare.emplace();
+    c.input = {reported_path(options.compare_path), other.format, sha256_hex(other_bytes)};
+    c.mesh = std::move(other.mesh);
+    c.topology = build_topology(c.mesh);
+    c.field = compute_quality(c.mesh, c.topology);
+    c.mesh_summary = summarize_mesh(c.mesh, c.topology);
+    c.quality = summarize_quality(c.mesh, c.field, options.worst_count);
+    c.quality.metrics = summarize_hex_metrics(compute_hex_metrics(c.mesh, options.metrics));
+  }
 
   if (options.render) {
     const auto renderer = make_osmesa_renderer();
@@ -164,6 +176,12 @@ Analysis analyze(const AnalyzeOptions& options) {
                       model.boundary_error ? &*model.boundary_error : nullptr,
                       model.reference_surface ? &*model.reference_surface : nullptr,
                       model.uv_atlas ? &*model.uv_atlas : nullptr};
+    if (model.compare) {
+      inputs.compare_mesh = &model.compare->mesh;
+      inputs.compare_topology = &model.compare->topology;
+      inputs.compare_vertex_quality = &model.compare->field.vertex_quality;
+      inputs.compare_name = fs::path(model.compare->input.path).filename().string();
+    }
     for (RenderedView& view : render_views(inputs, {options.image_width, options.image_height, 40, options.glyphs.top_clusters, options.focus_vertices, options.views}, *renderer)) {
       ViewEntry& entry = model.views.emplace_back();
       entry.id = view.id;

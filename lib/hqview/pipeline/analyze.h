@@ -21,6 +21,7 @@ struct AnalyzeOptions {
   std::filesystem::path mesh_path;
   std::string mesh_format;  // --format: a name of mesh_format_names(); empty: by extension and content
   std::filesystem::path reference_path;  // --reference SURFACE; empty: no boundary error
+  std::filesystem::path compare_path;    // --compare MESH2; empty: no comparison
   std::string tool_version;
   bool render = true;
   int image_width = 1600;

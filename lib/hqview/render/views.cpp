@@ -169,6 +169,37 @@ std::vector<RenderedView> render_views(const ViewInputs& in, const ViewOptions& 
                      {{"views/uv_error.png", render_uv_error_map(*in.reference, *in.uv_atlas, *in.boundary_error, b, renderer),
                        {}}}});
   }
+  if (in.reference && wanted("reference_overlay")) {
+    BoundaryViewOptions b;
+    b.width = options.width;
+    b.height = options.height;
+    b.title = in.mesh_name + ": hex boundary (grey) and reference (orange, translucent)";
+    views.push_back({"reference_overlay", "F: hex boundary over the translucent reference surface",
+                     {{"views/reference_overlay.png",
+                       render_reference_overlay(*in.mesh, *in.topology, *in.reference, normalized(Vec3{-1.0, -0.8, -0.6}), b,
+                                                renderer),
+                       {}}}});
+  }
+  if (in.compare_mesh && in.compare_topology && in.compare_vertex_quality && wanted("compare")) {
+    OverviewOptions overview;
+    overview.width = options.width;
+    overview.height = options.height;
+    overview.title = in.mesh_name + " (left) vs " + in.compare_name + " (right): vertex quality, one camera";
+    views.push_back({"compare", "Compare: both boundaries coloured by vertex quality, one camera",
+                     {{"views/compare.png",
+                       render_compare_overview(*in.mesh, *in.topology, *in.vertex_quality, *in.compare_mesh,
+                                               *in.compare_topology, *in.compare_vertex_quality, overview, renderer),
+                       {}}}});
+  }
+  if (in.boundary_error && wanted("boundary_error_sorted"))
+    add_chart("boundary_error_sorted", "Sorted boundary error (signed, every hex boundary vertex)", "boundary_error_sorted",
+              sorted_boundary_error_chart(in.boundary_error->vertex_error,
+                                          {900, 460, in.mesh_name + ": sorted signed boundary error (+ outside the reference)"}));
+  if (in.boundary_error && wanted("boundary_area"))
+    add_chart("boundary_area", "Boundary area outside / inside the reference", "boundary_area",
+              boundary_area_chart(in.boundary_error->vertex_error, in.boundary_error->vertex_area,
+                                  BoundaryOptions{}.on_surface_tolerance * in.boundary_error->reference_bbox_diagonal,
+                                  {900, 500, in.mesh_name + ": boundary area outside / inside the reference"}));
   if (wanted("histogram") && in.cell_quality) {
     add_chart("histogram", "Quality histogram (per hex scaled Jacobian)", "histogram",
               quality_histogram_chart(*in.cell_quality, false, {800, 460, in.mesh_name + ": scaled Jacobian per hex"}));

@@ -19,7 +19,7 @@
 namespace hq {
 
 // View ids, in report order.
-inline constexpr const char* kViewIds[] = {"overview", "main", "clusters", "local", "corners", "boundary_error", "uv_error", "histogram", "sorted_quality"};
+inline constexpr const char* kViewIds[] = {"overview", "main", "clusters", "local", "corners", "boundary_error", "uv_error", "reference_overlay", "compare", "boundary_error_sorted", "boundary_area", "histogram", "sorted_quality"};
 
 // Parses a --views list ("all", or ids separated by commas); throws
 // UsageError naming the unknown id. The result keeps report order.
@@ -37,6 +37,11 @@ struct ViewInputs {
   const BoundaryError* boundary_error = nullptr;
   const TriSurface* reference = nullptr;
   const UvAtlas* uv_atlas = nullptr;
+  // With --compare MESH2: its mesh, topology and vertex quality (all or none).
+  const HexMesh* compare_mesh = nullptr;
+  const Topology* compare_topology = nullptr;
+  const std::vector<double>* compare_vertex_quality = nullptr;
+  std::string compare_name;
 };
 
 struct ViewFile {

@@ -94,6 +94,42 @@ Image render_boundary_error_view(const HexMesh& mesh, const Topology& topology, 
   return figure;
 }
 
+Scene build_reference_overlay_scene(const HexMesh& mesh, const Topology& topology, const TriSurface& reference) {
+  OverviewOptions overview;
+  std::vector<double> dummy(mesh.points.size(), 1.0);
+  Scene scene = build_quality_overview_scene(mesh, topology, dummy, overview);
+  for (Rgba8& c : scene.triangles.at(0).colors) c = {214, 214, 218, 255};
+  for (Rgba8& c : scene.lines.at(0).colors) c = {50, 50, 60, 150};
+  TriangleSet surface;
+  for (const Vec3& p : reference.points) {
+    surface.positions.push_back(to_vec3f(p - scene.origin));
+    surface.colors.push_back(kReferenceOverlayColor);
+  }
+  for (const auto& t : reference.triangles) {
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
+    for (Index v : t) surface.indices.push_back(static_cast<std::uint32_t>(v));
+  }
+  scene.translucent.push_back(std::move(surface));
+  return scene;
+}
+
+Image render_reference_overlay(const HexMesh& mesh, const Topology& topology, const TriSurface& reference,
+                               const Vec3& view_direction, const BoundaryViewOptions& options, Renderer& renderer) {
+  AnnotationStyle style = annotation_style_for(options.height);
+  style.background = options.background;
+  const FigureLayout layout = figure_layout(options.width, options.height, !options.title.empty(), 0, style);
+  Scene scene = build_reference_overlay_scene(mesh, topology, reference);
+  scene.background = options.background;
+  std::vector<Vec3> points = boundary_points(mesh, topology);
+  points.insert(points.end(), reference.points.begin(), reference.points.end());
+  const double aspect = static_cast<double>(layout.view.width) / layout.view.height;
+  const Camera camera = fit_camera_to_points(points, view_direction, aspect);
+  Image figure = make_image(options.width, options.height, options.background);
+  paste(figure, renderer.render(scene, camera, layout.view.width, layout.view.height), layout.view.x, layout.view.y);
+  draw_title(figure, layout.title, options.title, style);
+  return figure;
+}
+
 Scene build_uv_error_scene(const TriSurface& reference, const UvAtlas& atlas, const std::vector<double>& point_error,
                            double scale) {
   Scene scene;

@@ -46,6 +46,19 @@ Scene build_boundary_error_scene(const HexMesh& mesh, const Topology& topology, 
 Image render_boundary_error_view(const HexMesh& mesh, const Topology& topology, const BoundaryError& error,
                                  const Vec3& view_direction, const BoundaryViewOptions& options, Renderer& renderer);
 
+// F with --reference: the hex boundary (opaque light grey faces, dark edges)
+// under the reference surface (translucent orange, flat shaded): reference
+// parts the mesh leaves out show plain orange. Where the two surfaces coincide
+// within depth precision the depth test picks either (grey speckles, not an
+// error reading: the boundary_error views give the signed error). triangles[0] the hex boundary,
+// lines[0] its edges, translucent[0] the reference.
+inline constexpr Rgba8 kReferenceOverlayColor{235, 125, 35, 96};
+Scene build_reference_overlay_scene(const HexMesh& mesh, const Topology& topology, const TriSurface& reference);
+
+// One camera (view_direction) fitted to both the hex boundary and the reference.
+Image render_reference_overlay(const HexMesh& mesh, const Topology& topology, const TriSurface& reference,
+                               const Vec3& view_direction, const BoundaryViewOptions& options, Renderer& renderer);
+
 // The UV map as a flat scene in the z = 0 plane (u, v in [0, 1]):
 // triangles[0] unlit, corners coloured by the reference error; lines[0] the
 // chart outlines (triangle edges not shared with a triangle of the same chart).

@@ -192,4 +192,35 @@ Image render_quality_overview(const HexMesh& mesh, const Topology& topology, con
   return figure;
 }
 
+Image render_compare_overview(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
+                              const HexMesh& other, const Topology& other_topology,
+                              const std::vector<double>& other_vertex_quality, const OverviewOptions& options,
+                              Renderer& renderer) {
+  AnnotationStyle style = annotation_style_for(options.height);
+  style.background = options.background;
+  const ColorBar bar = quality_color_bar();
+  const FigureLayout layout =
+      figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(bar, style), style);
+  const int half = std::max(1, layout.view.width / 2);
+  std::vector<Vec3> points = boundary_points(mesh, topology);
+  const std::vector<Vec3> other_points = boundary_points(other, other_topology);
+  points.insert(points.end(), other_points.begin(), other_points.end());
+  const double aspect = static_cast<double>(half) / static_cast<double>(layout.view.height);
+  const Camera camera = fit_camera_to_points(points, options.view_direction, aspect, {.up = options.up});
+  Image figure = make_image(options.width, options.height, options.background);
+  const HexMesh* meshes[] = {&mesh, &other};
+  const Topology* topologies[] = {&topology, &other_topology};
+  const std::vector<double>* qualities[] = {&vertex_quality, &other_vertex_quality};
+  for (int k = 0; k < 2; ++k) {
+    Scene scene = build_quality_overview_scene(*meshes[k], *topologies[k], *qualities[k], options);
+    const double opacity = edge_opacity(scene, camera, half, layout.view.height);
+    for (LineSet& lines : scene.lines)
+      for (Rgba8& c : lines.colors) c.a = static_cast<std::uint8_t>(std::lround(c.a * opacity));
+    paste(figure, renderer.render(scene, camera, half, layout.view.height), layout.view.x + k * half, layout.view.y);
+  }
+  draw_title(figure, layout.title, options.title, style);
+  draw_color_bar(figure, layout.legend, bar, style);
+  return figure;
+}
+
 }  // namespace hq

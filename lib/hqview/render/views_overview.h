@@ -59,4 +59,12 @@ BoundingBox boundary_bounding_box(const HexMesh& mesh, const Topology& topology)
 Image render_quality_overview(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
                               const OverviewOptions& options, Renderer& renderer);
 
+// --compare: two meshes' boundaries coloured by vertex quality side by side
+// (first on the left), one camera (fitted to both boundaries, so the same
+// model region is at the same place in each half), one colour bar, the title.
+Image render_compare_overview(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
+                              const HexMesh& other, const Topology& other_topology,
+                              const std::vector<double>& other_vertex_quality, const OverviewOptions& options,
+                              Renderer& renderer);
+
 }  // namespace hq

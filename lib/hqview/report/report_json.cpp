@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "hqview/report/cluster_color.h"
@@ -211,6 +212,40 @@ Json overlap_json(const OverlapReport& o) {
   return j;
 }
 
+// Every number under from (objects only, arrays skipped) as "a.b.c" -> value.
+void numeric_leaves(const Json& from, const std::string& prefix, std::vector<std::pair<std::string, double>>& out) {
+  if (from.is_object()) {
+    for (auto it = from.begin(); it != from.end(); ++it)
+      numeric_leaves(it.value(), prefix.empty() ? it.key() : prefix + "." + it.key(), out);
+  } else if (from.is_number()) {
+    out.push_back({prefix, from.get<double>()});
+  }
+}
+
+// compare: MESH2's headline, mesh and quality summaries (as for MESH), and
+// differences{key: MESH2 - MESH} for every number both have (keys as in gates).
+Json compare_json(const Json& report, const ReportModel::Compared& c) {
+  Json j;
+  j["headline"] = {{"num_vertices", c.mesh_summary.num_vertices},
+                   {"num_hexes", c.mesh_summary.num_hexes},
+                   {"min_scaled_jacobian", number(c.quality.scaled_jacobian.min)},
+                   {"mean_scaled_jacobian", number(c.quality.scaled_jacobian.mean)},
+                   {"num_inverted", c.quality.num_inverted}};
+  j["mesh"] = mesh_json(c.mesh_summary);
+  j["quality"] = quality_json(c.quality);
+  Json differences = Json::object();
+  for (const char* part : {"headline", "mesh", "quality"}) {
+    std::vector<std::pair<std::string, double>> mine, theirs;
+    numeric_leaves(report[part], part, mine);
+    numeric_leaves(j[part], part, theirs);
+    std::map<std::string, double> base(mine.begin(), mine.end());
+    for (const auto& [key, value] : theirs)
+      if (const auto it = base.find(key); it != base.end()) differences[key] = number(value - it->second);
+  }
+  j["differences"] = std::move(differences);
+  return j;
+}
+
 }  // namespace
 
 std::string report_json(const ReportModel& model) {
@@ -231,14 +266,17 @@ std::string report_json(const ReportModel& model) {
                                                  {"format", model.reference_input->format},
                                                  {"sha256", model.reference_input->sha256}}
                                            : Json(nullptr)},
-      {"compare", nullptr}};
+      {"compare", model.compare ? Json{{"path", model.compare->input.path},
+                                       {"format", model.compare->input.format},
+                                       {"sha256", model.compare->input.sha256}}
+                                 : Json(nullptr)}};
   j["mesh"] = mesh_json(model.mesh_summary);
   j["quality"] = quality_json(model.quality);
   // Stages of later releases; null until computed.
   j["glyphs"] = model.glyphs ? glyphs_json(*model.glyphs) : Json(nullptr);
   j["overlap"] = model.overlap ? overlap_json(*model.overlap) : Json(nullptr);
   j["boundary_error"] = model.boundary_error ? boundary_error_json(model) : Json(nullptr);
-  j["compare"] = nullptr;
+  j["compare"] = model.compare ? compare_json(j, *model.compare) : Json(nullptr);
   Json views = Json::array();
   for (const ViewEntry& v : model.views) views.push_back({{"id", v.id}, {"title", v.title}, {"files", v.files}});
   j["views"] = std::move(views);

@@ -107,6 +107,17 @@ struct ReportModel {
   std::optional<UvAtlas> uv_atlas;
   std::optional<TriSurface> reference_surface;  // as read, for the UV error map
 
+  // With --compare MESH2: MESH2 analysed the same way (quality only).
+  struct Compared {
+    InputFile input;
+    MeshSummary mesh_summary;
+    QualitySummary quality;
+    HexMesh mesh;
+    Topology topology;
+    QualityField field;
+  };
+  std::optional<Compared> compare;
+
   // Vertex glyphs and their clusters (report.json `glyphs`, the glyph_radius
   // and cluster columns of vertices.csv); empty when the stage did not run.
   std::optional<GlyphResult> glyphs;
