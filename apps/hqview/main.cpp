@@ -270,6 +270,47 @@ std::uint64_t parse_memory_budget(const std::string& text) {
   return static_cast<std::uint64_t>(*value * static_cast<double>(unit));
 }
 
+// The analysis options `analyze` and `batch` share, registered once.
+void add_analysis_options(CLI::App* cmd, AnalyzeArgs& args) {
+  cmd->add_option("--format", args.format, "Read meshes as this format whatever their extension: " + hq::mesh_format_names());
+  cmd->add_option("--size", args.size, "Image size WIDTHxHEIGHT")->capture_default_str();
+  cmd->add_flag("--no-render", args.no_render, "Skip the rendered views");
+  std::string view_ids;  // from the renderer's own list, so the help never goes stale
+  for (const char* id : hq::kViewIds) view_ids += (view_ids.empty() ? "" : ", ") + std::string(id);
+  cmd->add_option("--views", args.views, "Views to render: comma-separated ids (" + view_ids + "), or all")
+      ->capture_default_str();
+  cmd->add_flag("--force", args.force, "Replace an output directory that is not an HQView output");
+  cmd->add_option("--gate", args.gates,
+                  "Pass/fail rule on a report.json number, e.g. quality.scaled_jacobian.min>=0.2 (repeatable); "
+                  "exit code 1 when one fails")
+      ->allow_extra_args(false)
+      ->take_all();
+  cmd->add_option("--metrics", args.metrics, "Verdict metrics to compute: comma-separated names, or all")
+      ->capture_default_str();
+  cmd->add_option("--rmax", args.rmax,
+                  "Glyph radius at quality 0: R in model units, or Rx for R times the mean edge length")
+      ->capture_default_str();
+  cmd->add_option("--glyph-threshold", args.glyph_threshold,
+                  "No glyph where 1 - vertex quality is at or below T (0 to 2)")
+      ->capture_default_str();
+  cmd->add_option("--top-clusters", args.top_clusters, "Glyph clusters that get detail views (the worst K)")
+      ->check(CLI::Range(0, 1000000))
+      ->capture_default_str();
+  CLI::Option* overlap_mode =
+      cmd->add_option("--overlap", args.overlap,
+                      "Intersecting cells: certificate (pair tests only where the certificate fails) or exhaustive "
+                      "(pair tests on every pair of cells whose boxes overlap)")
+          ->capture_default_str();
+  CLI::Option* coincident_eps =
+      cmd->add_option("--coincident-eps", args.coincident_eps,
+                      "Vertices closer than E times the bounding-box diagonal coincide (0: exact equality)")
+          ->capture_default_str();
+  cmd->add_flag("--no-overlap", args.no_overlap, "Skip the overlap stages (report.json overlap is null)")
+      ->excludes(overlap_mode)
+      ->excludes(coincident_eps);
+  cmd->add_flag("-q,--quiet", args.quiet, "Print nothing on standard error but failures and errors");
+}
+
 CLI::App* add_batch_command(CLI::App& app, BatchArgs& args) {
   CLI::App* cmd = app.add_subcommand("batch", "Analyse every mesh of a directory or manifest; one bundle each plus an index");
   AnalyzeArgs& a = args.analysis;
@@ -285,27 +326,7 @@ CLI::App* add_batch_command(CLI::App& app, BatchArgs& args) {
   cmd->add_flag("--resume", args.resume, "Keep a bundle whose mesh hash and HQView version are unchanged");
   cmd->add_option("--memory-budget", args.memory_budget,
                   "Estimated memory of the meshes in flight, e.g. 8G (default: half the physical memory; 0: no limit)");
-  cmd->add_option("--format", a.format, "Read every mesh as this format: " + hq::mesh_format_names());
-  cmd->add_option("--size", a.size, "Image size WIDTHxHEIGHT")->capture_default_str();
-  cmd->add_flag("--no-render", a.no_render, "Skip the rendered views");
-  cmd->add_option("--views", a.views, "Views to render: comma-separated ids, or all")->capture_default_str();
-  cmd->add_flag("--force", a.force, "Write into a directory that is not an HQView output");
-  cmd->add_option("--gate", a.gates, "Pass/fail rule on each mesh's report.json (repeatable); exit code 1 when one fails")
-      ->allow_extra_args(false)
-      ->take_all();
-  cmd->add_option("--metrics", a.metrics, "Verdict metrics to compute: comma-separated names, or all")
-      ->capture_default_str();
-  cmd->add_option("--rmax", a.rmax, "Glyph radius at quality 0 (R or Rx)")->capture_default_str();
-  cmd->add_option("--glyph-threshold", a.glyph_threshold, "No glyph where 1 - vertex quality is at or below T")
-      ->capture_default_str();
-  cmd->add_option("--top-clusters", a.top_clusters, "Glyph clusters that get detail views")
-      ->check(CLI::Range(0, 1000000))
-      ->capture_default_str();
-  CLI::Option* mode = cmd->add_option("--overlap", a.overlap, "certificate or exhaustive")->capture_default_str();
-  CLI::Option* eps = cmd->add_option("--coincident-eps", a.coincident_eps, "Coincidence tolerance (fraction of the diagonal)")
-                         ->capture_default_str();
-  cmd->add_flag("--no-overlap", a.no_overlap, "Skip the overlap stages")->excludes(mode)->excludes(eps);
-  cmd->add_flag("-q,--quiet", a.quiet, "Print only failures and errors");
+  add_analysis_options(cmd, a);
   return cmd;
 }
 
@@ -410,7 +431,6 @@ int main(int argc, char** argv) {
   AnalyzeArgs args;
   CLI::App* analyze = app.add_subcommand("analyze", "Analyse one hex mesh and write a report bundle");
   analyze->add_option("MESH", args.mesh, "Hex mesh: .mesh .vtk .vtu .msh .ovm .inp .e .exo")->required();
-  analyze->add_option("--format", args.format, "Read MESH as this format whatever its extension: " + hq::mesh_format_names());
   analyze->add_option("--reference", args.reference,
                       "Reference surface (.obj .off .stl .ply, .mesh Triangles): boundary error and UV atlas");
   analyze->add_option("--compare", args.compare,
@@ -420,45 +440,10 @@ int main(int argc, char** argv) {
   analyze->add_option("-j,--threads", args.threads, "Worker threads (default: all cores); results are identical for any N")
       ->check(CLI::Range(1, 1024));
   analyze->add_option("--json", args.json, "Also print report.json to standard output ('-')");
-  analyze->add_option("--size", args.size, "Image size WIDTHxHEIGHT")->capture_default_str();
-  analyze->add_flag("--no-render", args.no_render, "Skip the rendered views");
-  analyze->add_option("--views", args.views,
-                      "Views to render: comma-separated ids (overview, main, clusters, local, corners, boundary_error, "
-                      "uv_error, histogram, sorted_quality), or all")
-      ->capture_default_str();
   analyze->add_option("--focus-vertex", args.focus_vertices, "Also draw the local view D and chart E of vertex V (repeatable)")
       ->check(CLI::NonNegativeNumber)
       ->allow_extra_args(false);
-  analyze->add_flag("--force", args.force, "Replace an output directory that is not an HQView bundle");
-  analyze->add_option("--gate", args.gates,
-                      "Pass/fail rule on a report.json number, e.g. quality.scaled_jacobian.min>=0.2 (repeatable); "
-                      "exit code 1 when one fails")
-      ->allow_extra_args(false)
-      ->take_all();
-  analyze->add_option("--metrics", args.metrics, "Verdict metrics to compute: comma-separated names, or all")
-      ->capture_default_str();
-  analyze->add_option("--rmax", args.rmax,
-                      "Glyph radius at quality 0: R in model units, or Rx for R times the mean edge length")
-      ->capture_default_str();
-  analyze->add_option("--glyph-threshold", args.glyph_threshold,
-                      "No glyph where 1 - vertex quality is at or below T (0 to 2)")
-      ->capture_default_str();
-  analyze->add_option("--top-clusters", args.top_clusters, "Glyph clusters that get detail views (the worst K)")
-      ->check(CLI::Range(0, 1000000))
-      ->capture_default_str();
-  CLI::Option* overlap_mode =
-      analyze->add_option("--overlap", args.overlap,
-                          "Intersecting cells: certificate (pair tests only where the certificate fails) or exhaustive "
-                          "(pair tests on every pair of cells whose boxes overlap)")
-          ->capture_default_str();
-  CLI::Option* coincident_eps =
-      analyze->add_option("--coincident-eps", args.coincident_eps,
-                          "Vertices closer than E times the bounding-box diagonal coincide (0: exact equality)")
-          ->capture_default_str();
-  analyze->add_flag("--no-overlap", args.no_overlap, "Skip the overlap stages (report.json overlap is null)")
-      ->excludes(overlap_mode)
-      ->excludes(coincident_eps);
-  analyze->add_flag("-q,--quiet", args.quiet, "Print nothing on standard error but errors");
+  add_analysis_options(analyze, args);
 
   BatchArgs batch_args;
   CLI::App* batch = add_batch_command(app, batch_args);
