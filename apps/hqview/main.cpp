@@ -58,6 +58,7 @@ struct AnalyzeArgs {
   std::string overlap = "certificate";
   std::string coincident_eps = "0";
   bool no_overlap = false;
+  std::string max_memory;  // --max-memory; empty: hq::default_max_memory()
 };
 
 std::string version_text() {
@@ -168,6 +169,8 @@ hq::AnalyzeOptions make_analyze_options(const AnalyzeArgs& args) {
   options.glyphs.threshold = parse_glyph_threshold(args.glyph_threshold);
   options.glyphs.top_clusters = args.top_clusters;
   options.overlap = parse_overlap(args);
+  options.read_limits.max_memory =
+      args.max_memory.empty() ? hq::default_max_memory() : hq::parse_memory_size(args.max_memory, "--max-memory");
   return options;
 }
 
@@ -308,6 +311,10 @@ void add_analysis_options(CLI::App* cmd, AnalyzeArgs& args) {
   cmd->add_flag("--no-overlap", args.no_overlap, "Skip the overlap stages (report.json overlap is null)")
       ->excludes(overlap_mode)
       ->excludes(coincident_eps);
+  cmd->add_option("--max-memory", args.max_memory,
+                  "Refuse (exit 3) a mesh whose size or declared counts need more memory than SIZE, e.g. 512M, 4G, "
+                  "0.5T; 0: no limit (default: 75% of the physical or cgroup memory, " +
+                      hq::format_memory_size(hq::default_max_memory()) + " here)");
   cmd->add_flag("-q,--quiet", args.quiet, "Print nothing on standard error but failures and errors");
 }
 

@@ -63,6 +63,29 @@ TEST(SortedQuality, WorstFirstAndACurveOverAll) {
   EXPECT_GT(curve->points.front().y, curve->points.back().y) << "ascending quality goes up the page";
 }
 
+TEST(SortedQuality, EachBarHasAHotspotOverItsColumnNamingItsVertex) {
+  // Vertex i has quality q[i]; by hand, ascending with ties by id:
+  // 3 (-0.5), 0 (0.2), 4 (0.2), 1 (0.7); vertex 2 (NaN) has no bar.
+  const std::vector<double> q{0.2, 0.7, std::nan(""), -0.5, 0.2};
+  const Chart chart = sorted_quality_chart(q, 4, {});
+  ASSERT_EQ(chart.rects.size(), 4u);
+  ASSERT_EQ(chart.hotspots.size(), 4u);
+  const std::vector<std::int32_t> expected{3, 0, 4, 1};
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(chart.hotspots[i].key, expected[i]) << i;
+    // The hotspot is the bar's column: it holds the bar, spans the plot's
+    // height, and the columns tile the bar panel without overlapping.
+    const ChartRect& spot = chart.hotspots[i].rect;
+    EXPECT_TRUE(inside(spot, chart.rects[i])) << i;
+    EXPECT_TRUE(inside(chart.plot, spot)) << i;
+    EXPECT_DOUBLE_EQ(spot.y, chart.plot.y);
+    EXPECT_DOUBLE_EQ(spot.height, chart.plot.height);
+    if (i > 0) {
+      EXPECT_NEAR(spot.x, chart.hotspots[i - 1].rect.x + chart.hotspots[i - 1].rect.width, 1e-9);
+    }
+  }
+}
+
 TEST(CornerChart, LabelsEveryCornerWithItsValue) {
   const std::vector<double> values{0.5, -0.25};
   const std::vector<std::string> labels{"hex 3", "hex 7"};

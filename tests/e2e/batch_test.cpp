@@ -183,6 +183,44 @@ TEST(Batch, ResumeRedoesOnlyTheChangedMesh) {
   EXPECT_EQ(read_json(dir / "out/index.json")["meshes"].size(), 2u);
 }
 
+// A manifest row's `compare` mesh is analysed as with `analyze --compare`
+// (report.json input.compare and compare, the compare view); a row without
+// one has none; --resume redoes the row whose compare mesh changed.
+TEST(Batch, ManifestRowsWithACompareMesh) {
+  REQUIRE_SHARED_DATA(data);
+  const fs::path dir = fresh_output_dir("batch/compare");
+  const fs::path meshes = *data / "meshes" / "gao2016_sweeping";
+  fs::create_directories(dir / "in");
+  fs::copy_file(meshes / "kitten_1.mesh", dir / "in/kitten.mesh");
+  fs::copy_file(meshes / "bunny_1.mesh", dir / "in/bunny.mesh");
+  write_file(dir / "in/manifest.csv", "mesh,compare,label\nkitten.mesh,bunny.mesh,before\nbunny.mesh,,after\n");
+  const std::vector<std::string> args = {"batch",    (dir / "in/manifest.csv").string(),
+                                         "-o",       (dir / "out").string(),
+                                         "--views",  "compare",
+                                         "--size",   "320x240",
+                                         "--resume", "-j",
+                                         "2"};
+  const CliResult run = run_hqview(args);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json kitten = read_json(dir / "out/kitten.mesh/report.json");
+  ASSERT_TRUE(kitten["compare"].is_object());
+  EXPECT_EQ(kitten["input"]["compare"]["path"], "bunny.mesh");
+  // ../shared/data/README.md: kitten_1 has 300 hexes, bunny_1 264.
+  EXPECT_EQ(kitten["mesh"]["num_hexes"], 300);
+  EXPECT_EQ(kitten["compare"]["headline"]["num_hexes"], 264);
+  EXPECT_EQ(kitten["compare"]["differences"]["headline.num_hexes"], 264 - 300);
+  EXPECT_TRUE(fs::is_regular_file(dir / "out/kitten.mesh/views/compare.png"));
+  const json bunny = read_json(dir / "out/bunny.mesh/report.json");
+  EXPECT_TRUE(bunny["compare"].is_null());
+  EXPECT_FALSE(fs::exists(dir / "out/bunny.mesh/views/compare.png"));
+  // The compare mesh changes (now the kitten itself): its row is redone.
+  fs::copy_file(meshes / "kitten_1.mesh", dir / "in/bunny.mesh", fs::copy_options::overwrite_existing);
+  const CliResult again = run_hqview(args);
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.err.find("ok kitten.mesh"), std::string::npos) << again.err;
+  EXPECT_EQ(read_json(dir / "out/kitten.mesh/report.json")["compare"]["differences"]["headline.num_hexes"], 0);
+}
+
 TEST(Diff, BunnyInToOutImprovesAndAnInjectedRegressionFails) {
   REQUIRE_SHARED_DATA(data);
   const fs::path dir = fresh_output_dir("batch/diff");

@@ -25,7 +25,8 @@ TEST(Cli, BallBundleHasEveryFileAndRealNumbers) {
   const fs::path out = fresh_output_dir("ball") / "bundle";
   const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "-o", out.string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* f : {"report.json", "index.html", "style.css", "data/cells.csv", "data/vertices.csv", "views/overview.png"})
+  for (const char* f : {"report.json", "index.html", "style.css", "data/cells.csv", "data/vertices.csv",
+                        "data/annotated.vtu", "views/overview.png"})
     EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
   const json report = read_report(out);
   EXPECT_EQ(report["schema_version"], 1);
@@ -107,7 +108,7 @@ TEST(Cli, SameBytesForOneAndTwoThreads) {
     const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "-o", (dir / j).string(), "-j", j, "--no-render"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
-  for (const char* f : {"report.json", "data/cells.csv", "data/vertices.csv", "index.html"})
+  for (const char* f : {"report.json", "data/cells.csv", "data/vertices.csv", "data/annotated.vtu", "index.html"})
     EXPECT_EQ(read_text(dir / "1" / f), read_text(dir / "2" / f)) << f;
 }
 

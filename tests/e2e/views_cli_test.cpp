@@ -75,9 +75,10 @@ TEST(ViewsCli, ReferenceAddsTheBoundaryChartsAndTheOverlay) {
     EXPECT_NE(std::find(ids.begin(), ids.end(), id), ids.end()) << id;
   for (const char* f : {"views/boundary_error_sorted.png", "views/boundary_area.png", "views/reference_overlay.png"})
     EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
-  const std::string html = read_text(out / "index.html");
-  EXPECT_NE(html.find("views/boundary_error_sorted.svg"), std::string::npos);
-  EXPECT_NE(html.find("views/boundary_area.svg"), std::string::npos);
+  // View F on index.html, the boundary views on boundary.html.
+  const std::string html = read_text(out / "index.html"), boundary = read_text(out / "boundary.html");
+  EXPECT_NE(boundary.find("views/boundary_error_sorted.svg"), std::string::npos);
+  EXPECT_NE(boundary.find("views/boundary_area.svg"), std::string::npos);
   EXPECT_NE(html.find("views/reference_overlay.png"), std::string::npos);
 }
 

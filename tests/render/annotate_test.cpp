@@ -73,6 +73,48 @@ TEST(ColorBar, QualityBarDrawsTheMapTopToBottom) {
   EXPECT_TRUE(has_inverted);
 }
 
+TEST(Text, FitsAndEllipsizes) {
+  const AnnotationStyle style;
+  const std::string text = "ball.mesh: glyph clusters and overlaps, view 1 (from +x+z)";
+  const int wide = text_extent(text, 30, style).width;
+  EXPECT_EQ(fitting_text_size(text, 30, 9, wide, style), 30) << "fits as it is";
+  const int size = fitting_text_size(text, 30, 9, wide / 2, style);
+  EXPECT_LT(size, 30);
+  EXPECT_LE(text_extent(text, size, style).width, wide / 2);
+  EXPECT_GT(text_extent(text, size + 1, style).width, wide / 2) << "the largest size that fits";
+  EXPECT_EQ(ellipsize(text, 30, wide, style), text);
+  const std::string cut = ellipsize(text, 30, wide / 3, style);
+  EXPECT_LE(text_extent(cut, 30, style).width, wide / 3);
+  ASSERT_GT(cut.size(), 3u);
+  EXPECT_EQ(cut.substr(cut.size() - 3), "...");
+  EXPECT_EQ(text.rfind(cut.substr(0, cut.size() - 3), 0), 0u) << "a prefix of the text";
+}
+
+// A 320x240 figure (--size 320x240): the legend panel gets at most half the
+// width, less than the quality bar asks for at the minimum text size. Drawn
+// into a figure with spare room right of and below the panel, the legend
+// leaves that room untouched, and so does the title right of its band.
+TEST(ColorBar, SmallFigureLegendStaysInItsPanel) {
+  const AnnotationStyle style = annotation_style_for(240);
+  const ColorBar bar = quality_color_bar();
+  const FigureLayout layout = figure_layout(320, 240, true, color_bar_width(bar, style), style);
+  ASSERT_LT(layout.legend.width, color_bar_width(bar, style)) << "the case this test is about";
+  const AnnotationStyle fitted = color_bar_style_for(bar, style, layout.legend);
+  EXPECT_LE(color_bar_width(bar, fitted), layout.legend.width);
+  EXPECT_LE(color_bar_height(bar, fitted, layout.legend.height), layout.legend.height);
+  Image image = make_image(320 + 200, 240 + 100, kWhite);
+  draw_color_bar(image, layout.legend, bar, style);
+  draw_title(image, layout.title, "ball.mesh: glyph clusters and overlaps, view 1 (from +x+z)", style);
+  EXPECT_GT(count_differing(image, layout.legend, kWhite), 500);
+  EXPECT_GT(count_differing(image, layout.title, kWhite), 200);
+  EXPECT_EQ(count_differing(image, {320, 0, 200, 340}, kWhite), 0) << "nothing right of the figure";
+  EXPECT_EQ(count_differing(image, {0, 240, 520, 100}, kWhite), 0) << "nothing below the figure";
+  // A 1200-pixel-high figure keeps its style.
+  const AnnotationStyle big = annotation_style_for(1200);
+  const FigureLayout full = figure_layout(1600, 1200, true, color_bar_width(bar, big), big);
+  EXPECT_EQ(color_bar_style_for(bar, big, full.legend).scale, big.scale);
+}
+
 TEST(FigureLayout, PartsTileTheFigure) {
   const AnnotationStyle style = annotation_style_for(1200);
   const FigureLayout layout = figure_layout(1600, 1200, true, 340, style);

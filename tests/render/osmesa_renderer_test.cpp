@@ -103,6 +103,29 @@ TEST(OsmesaRenderer, LinesShowOnTopOfCoincidentTriangles) {
   EXPECT_TRUE(found);
 }
 
+TEST(OsmesaRenderer, OverlayShowsOverCloserGeometryAndHidesOnlyItself) {
+  // An opaque grey triangle in front (z = 0.5, nearer the eye at z = 3); the
+  // overlay's red triangle behind it (z = -0.5) and, over the left half, a
+  // green one between them (z = 0): the overlay wins over the grey one, and
+  // within the overlay the nearer green one wins.
+  Scene scene = one_triangle({200, 200, 200, 255});
+  for (Vec3f& p : scene.triangles[0].positions) p.z = 0.5f;
+  TriangleSet red = one_triangle({230, 20, 10, 255}).triangles[0];
+  for (Vec3f& p : red.positions) p.z = -0.5f;
+  TriangleSet green;
+  green.positions = {{-1, 0.2f, 0}, {0, 0.2f, 0}, {-0.5f, 1, 0}};
+  green.colors.assign(3, {0, 200, 0, 255});
+  green.indices = {0, 1, 2};
+  green.is_lit = false;
+  scene.overlay = {red, green};
+  const Image image = renderer().render(scene, front_camera(), 100, 100);
+  // Rows: y = 0.4 is row (1.1 - 0.4) / 2.2 * 100 = 32; x = 0.3 is column 64.
+  EXPECT_EQ(pixel_at(image, 64, 32), (Rgba8{230, 20, 10, 255}));
+  // x = -0.5 is column 27: inside green (x in [-0.9, -0.1] at y = 0.4).
+  EXPECT_EQ(pixel_at(image, 27, 32), (Rgba8{0, 200, 0, 255}));
+  EXPECT_EQ(pixel_at(image, 50, 80), (Rgba8{0, 0, 0, 255})) << "background below the triangles";
+}
+
 TEST(OsmesaRenderer, RejectsBadInput) {
   EXPECT_THROW(renderer().render(Scene{}, front_camera(), 0, 10), RenderError);
   Scene scene = one_triangle({1, 2, 3, 255});

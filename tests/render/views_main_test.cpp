@@ -3,6 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
 #include "hqview/glyph/glyphs.h"
 #include "hqview/render/colormap.h"
 #include "support/fixtures.h"
@@ -43,7 +47,8 @@ TEST(MainScene, LayersHoldWhatTheViewDraws) {
   const Scene scene = build_main_scene(f.mesh, f.topology, f.glyphs, &f.overlap, camera_for(f), 600, {});
   ASSERT_EQ(scene.lines.size(), 3u);
   ASSERT_EQ(scene.spheres.size(), 1u);
-  ASSERT_EQ(scene.triangles.size(), 1u);
+  ASSERT_TRUE(scene.triangles.empty());
+  ASSERT_EQ(scene.overlay.size(), 1u);
   ASSERT_EQ(scene.translucent.size(), 1u);
   // Boundary wireframe of a 3x3x3 grid: 56 vertices, 54 quads, so 108 edges (Euler).
   EXPECT_EQ(scene.lines[0].indices.size() / 2, 108u);
@@ -58,8 +63,8 @@ TEST(MainScene, LayersHoldWhatTheViewDraws) {
   ASSERT_EQ(scene.spheres[0].centers.size(), 1u);
   EXPECT_FLOAT_EQ(scene.spheres[0].radii[0], 0.4f);
   EXPECT_EQ(scene.spheres[0].colors[0], cluster0);
-  // Three arrows, and one intersecting cell (6 quads, 12 triangles) with 12 edges.
-  EXPECT_GT(scene.triangles[0].indices.size(), 0u);
+  // Three arrows (in the overlay), and one intersecting cell (6 quads, 12 triangles) with 12 edges.
+  EXPECT_GT(scene.overlay[0].indices.size(), 0u);
   EXPECT_EQ(scene.translucent[0].indices.size(), 36u);
   EXPECT_LT(scene.translucent[0].colors[0].a, 255);
   EXPECT_EQ(scene.lines[2].indices.size() / 2, 12u);
@@ -68,7 +73,7 @@ TEST(MainScene, LayersHoldWhatTheViewDraws) {
 TEST(MainScene, WithoutOverlapNoArrowsNoCells) {
   Fixture f;
   const Scene scene = build_main_scene(f.mesh, f.topology, f.glyphs, nullptr, camera_for(f), 600, {});
-  EXPECT_TRUE(scene.triangles[0].indices.empty());
+  EXPECT_TRUE(scene.overlay[0].indices.empty());
   EXPECT_TRUE(scene.translucent[0].indices.empty());
 }
 
@@ -77,7 +82,112 @@ TEST(MainScene, ArrowCountFollowsTheMarker) {
   const Scene one = build_main_scene(f.mesh, f.topology, f.glyphs, &f.overlap, camera_for(f), 600, {});
   f.overlap.markers[0].count = 6;
   const Scene two = build_main_scene(f.mesh, f.topology, f.glyphs, &f.overlap, camera_for(f), 600, {});
-  EXPECT_EQ(2 * one.triangles[0].indices.size(), two.triangles[0].indices.size());
+  EXPECT_EQ(2 * one.overlay[0].indices.size(), two.overlay[0].indices.size());
+}
+
+// Looking down -z, orthographic, 100 model units over a 100-pixel-high view:
+// one model unit per pixel, screen x = model x, screen y = model y.
+Camera pixel_camera() {
+  Camera camera;
+  camera.eye = {0, 0, 10};
+  camera.target = {0, 0, 0};
+  camera.up = {0, 1, 0};
+  camera.ortho_height = 100.0;
+  camera.is_perspective = false;
+  return camera;
+}
+
+TEST(MarkerMerge, CloseMarkersBecomeOneWithTheirCounts) {
+  // Pixels 0, 10 (24 apart: merged with the anchor at 0), 30 (30 >= 25 from
+  // the anchor: its own marker although 20 from the marker at 10), 100.
+  const std::vector<OverlapMarker> markers{{MarkerKind::coincident, {0, 0, 0}, 2},
+                                           {MarkerKind::intersection, {10, 0, 5}, 3},
+                                           {MarkerKind::intersection, {30, 0, 0}, 1},
+                                           {MarkerKind::coincident, {100, 0, -5}, 4}};
+  const auto drawn = merge_markers_on_screen(markers, pixel_camera(), 100, 25.0);
+  ASSERT_EQ(drawn.size(), 3u);
+  EXPECT_EQ(drawn[0].members, 2);
+  EXPECT_EQ(drawn[0].coincident, 2);
+  EXPECT_EQ(drawn[0].intersections, 3);
+  EXPECT_EQ(drawn[0].position, markers[0].position) << "anchored at the first member";
+  EXPECT_EQ(drawn[1].members, 1);
+  EXPECT_EQ(drawn[1].intersections, 1);
+  EXPECT_EQ(drawn[2].coincident, 4);
+  // Depth does not matter in an orthographic view; no merging at 0 pixels.
+  EXPECT_EQ(merge_markers_on_screen(markers, pixel_camera(), 100, 0.0).size(), 4u);
+  // Twice the pixels per unit: 10 units are 20 pixels, still merged; 30 and
+  // 0 are 60 pixels apart.
+  EXPECT_EQ(merge_markers_on_screen(markers, pixel_camera(), 200, 25.0).size(), 3u);
+  EXPECT_EQ(merge_markers_on_screen(markers, pixel_camera(), 400, 25.0).size(), 4u);
+}
+
+TEST(MarkerMerge, DrawnMarkersAreApartAndKeepEveryFinding) {
+  // A crowded pseudo-random cloud (fixed LCG): drawn anchors are pairwise at
+  // least min_pixels apart, every marker lies within min_pixels of some
+  // anchor, and the findings add up.
+  std::vector<OverlapMarker> markers;
+  std::uint32_t state = 12345;
+  auto next = [&] {
+    state = state * 1664525u + 1013904223u;
+    return static_cast<double>(state >> 8) / static_cast<double>(1u << 24);
+  };
+  Index total = 0;
+  for (int i = 0; i < 500; ++i) {
+    const Index count = 1 + static_cast<Index>(next() * 5);
+    total += count;
+    markers.push_back({next() < 0.3 ? MarkerKind::coincident : MarkerKind::intersection,
+                       {100 * next() - 50, 100 * next() - 50, 10 * next()},
+                       count});
+  }
+  const double d = 12.0;
+  const auto drawn = merge_markers_on_screen(markers, pixel_camera(), 100, d);
+  ASSERT_LT(drawn.size(), markers.size());
+  Index sum = 0, members = 0;
+  for (const ScreenMarker& m : drawn) {
+    sum += m.count();
+    members += m.members;
+  }
+  EXPECT_EQ(sum, total);
+  EXPECT_EQ(members, static_cast<Index>(markers.size()));
+  for (std::size_t i = 0; i < drawn.size(); ++i)
+    for (std::size_t j = i + 1; j < drawn.size(); ++j)
+      EXPECT_GE(std::hypot(drawn[i].position.x - drawn[j].position.x, drawn[i].position.y - drawn[j].position.y), d);
+  for (const OverlapMarker& m : markers)
+    EXPECT_TRUE(std::any_of(drawn.begin(), drawn.end(), [&](const ScreenMarker& a) {
+      return std::hypot(a.position.x - m.position.x, a.position.y - m.position.y) < d;
+    }));
+}
+
+// Triangles of the arrows in the scene that have the given colour.
+std::size_t arrow_triangles(const Scene& scene, Rgba8 color) {
+  const TriangleSet& set = scene.overlay[0];  // the arrows
+  std::size_t n = 0;
+  for (std::size_t t = 0; t + 2 < set.indices.size(); t += 3) n += set.colors[set.indices[t]] == color;
+  return n;
+}
+
+TEST(MainScene, CrowdedMarkersShareOneFanOfArrows) {
+  Fixture f;
+  // One intersection marker of count 1 gives the triangles of one arrow.
+  f.overlap.markers = {{MarkerKind::intersection, f.mesh.points[0], 1}};
+  const std::size_t per_arrow =
+      build_main_scene(f.mesh, f.topology, f.glyphs, &f.overlap, camera_for(f), 600, {}).overlay[0].indices.size() / 3;
+  ASSERT_GT(per_arrow, 0u);
+  // Two markers of 8 a hair apart: one fan of at most 12 arrows, not 16.
+  const Vec3 p = f.mesh.points[0];
+  f.overlap.markers = {{MarkerKind::intersection, p, 8}, {MarkerKind::intersection, p + Vec3{1e-3, 0, 0}, 8}};
+  const Scene merged = build_main_scene(f.mesh, f.topology, f.glyphs, &f.overlap, camera_for(f), 600, {});
+  EXPECT_EQ(merged.overlay[0].indices.size() / 3, 12 * per_arrow);
+  MainViewOptions apart;
+  apart.marker_merge_pixels = 0.0;
+  const Scene separate = build_main_scene(f.mesh, f.topology, f.glyphs, &f.overlap, camera_for(f), 600, apart);
+  EXPECT_EQ(separate.overlay[0].indices.size() / 3, 16 * per_arrow);
+  // Mixed kinds: 3 coincident and 1 intersection findings, 4 arrows, 3 of
+  // them in the coincident colour.
+  f.overlap.markers = {{MarkerKind::coincident, p, 3}, {MarkerKind::intersection, p + Vec3{1e-3, 0, 0}, 1}};
+  const Scene mixed = build_main_scene(f.mesh, f.topology, f.glyphs, &f.overlap, camera_for(f), 600, {});
+  EXPECT_EQ(arrow_triangles(mixed, kCoincidentArrowColor), 3 * per_arrow);
+  EXPECT_EQ(arrow_triangles(mixed, kIntersectionArrowColor), per_arrow);
 }
 
 TEST(Viewpoints, TwentySixDirections) {

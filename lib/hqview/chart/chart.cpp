@@ -128,10 +128,14 @@ Chart quality_histogram_chart(std::span<const double> values, bool log_scale, co
 
 Chart sorted_quality_chart(std::span<const double> vertex_quality, int worst_n, const ChartOptions& options) {
   Chart chart = begin_chart(options);
-  std::vector<double> sorted;
-  for (double q : vertex_quality)
-    if (!std::isnan(q)) sorted.push_back(q);
-  std::sort(sorted.begin(), sorted.end());
+  // (quality, vertex) pairs sorted ascending: ties ranked by vertex id, so
+  // each bar knows its vertex (hotspots) and the order is deterministic.
+  std::vector<std::pair<double, std::int32_t>> ranked;
+  for (std::size_t v = 0; v < vertex_quality.size(); ++v)
+    if (!std::isnan(vertex_quality[v])) ranked.push_back({vertex_quality[v], static_cast<std::int32_t>(v)});
+  std::sort(ranked.begin(), ranked.end());
+  std::vector<double> sorted(ranked.size());
+  for (std::size_t i = 0; i < ranked.size(); ++i) sorted[i] = ranked[i].first;
   const double low = sorted.empty() ? 0.0 : std::min(0.0, std::floor(sorted.front() * 4.0) / 4.0);
   const double high = 1.0;
   // Two panels: the worst N as bars (left 55%), the whole curve (right).
@@ -153,6 +157,8 @@ Chart sorted_quality_chart(std::span<const double> vertex_quality, int worst_n, 
     const double y0 = y_of(left, std::max(q, low)), yz = y_of(left, std::clamp(0.0, low, high));
     chart.rects.push_back({left.x + i * w + 0.15 * w, std::min(y0, yz), 0.7 * w, std::max(1.0, std::abs(yz - y0)),
                            bar_color(q)});
+    chart.hotspots.push_back(
+        {{left.x + i * w, left.y, w, left.height, {}}, ranked[static_cast<std::size_t>(i)].second});
     if (n <= 12 || i % ((n + 9) / 10) == 0) xl.push_back({i + 1.0, left.x + (i + 0.5) * w});
   }
   add_axes(chart, left, yl, xl, "worst " + std::to_string(n) + " vertices (rank)", "vertex quality");

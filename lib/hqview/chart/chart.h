@@ -29,6 +29,13 @@ struct ChartPolyline {
   double width = 1.0;
 };
 
+// A clickable region of a chart (chart B: a bar's column), standing for
+// `key` (chart B: the bar's vertex id). Pixel coordinates like the rects.
+struct ChartHotspot {
+  ChartRect rect;
+  std::int32_t key = -1;
+};
+
 enum class ChartAnchor { left, center, right };
 
 struct ChartText {
@@ -48,6 +55,7 @@ struct Chart {
   std::vector<ChartRect> rects;
   std::vector<ChartPolyline> lines;
   std::vector<ChartText> texts;
+  std::vector<ChartHotspot> hotspots;  // not drawn: for links over the image
 };
 
 struct ChartOptions {
@@ -65,6 +73,8 @@ Chart quality_histogram_chart(std::span<const double> values, bool log_scale, co
 // Chart B, sorted vertex quality: the worst_n lowest values as bars (worst
 // on the left, coloured by quality), and the whole ascending distribution as
 // a curve over [0, 1] of the vertex rank on a second panel. NaN left out.
+// Ties are ranked by vertex id; hotspots: one per bar (its whole column in
+// the plot), key = the bar's vertex id.
 Chart sorted_quality_chart(std::span<const double> vertex_quality, int worst_n, const ChartOptions& options);
 
 // Chart E: the values of the corners at one vertex as bars, each labelled

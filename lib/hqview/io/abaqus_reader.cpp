@@ -35,7 +35,8 @@ std::string upper(std::string_view text) {
 
 class AbaqusParser {
  public:
-  AbaqusParser(std::string_view bytes, const std::string& name) : bytes_(bytes), name_(name) {}
+  AbaqusParser(std::string_view bytes, const std::string& name, const ReadLimits& limits)
+      : bytes_(bytes), name_(name), limits_(limits) {}
 
   LoadedMesh parse() {
     enum class Block { kNone, kNodes, kHexes, kOtherElements, kSkipped };
@@ -189,6 +190,10 @@ class AbaqusParser {
     if (hexes_.empty())
       fail(0,
            "no hexahedra (*ELEMENT, TYPE=C3D8, C3D8R or C3D8I)" + (num_skipped > 0 ? ": " + skipped : std::string()));
+    // Abaqus declares no counts: the budget is checked once the file is read
+    // (what reading allocates is bounded by the file's size), before the analysis.
+    check_mesh_memory(limits_, name_, 0, bytes_.size(), static_cast<std::int64_t>(points_.size()),
+                      static_cast<std::int64_t>(hexes_.size()));
     LoadedMesh loaded;
     loaded.format = "abaqus";
     if (num_skipped > 0)
@@ -202,6 +207,7 @@ class AbaqusParser {
 
   std::string_view bytes_;
   const std::string& name_;
+  ReadLimits limits_;
   std::size_t pos_ = 0;
   std::string_view line_;
   std::int64_t line_number_ = 0;
@@ -226,6 +232,8 @@ bool looks_like_abaqus(std::string_view bytes) {
   return false;
 }
 
-LoadedMesh read_abaqus(std::string_view bytes, const std::string& name) { return AbaqusParser(bytes, name).parse(); }
+LoadedMesh read_abaqus(std::string_view bytes, const std::string& name, const ReadLimits& limits) {
+  return AbaqusParser(bytes, name, limits).parse();
+}
 
 }  // namespace hq

@@ -29,6 +29,7 @@ bool looks_like_abaqus(std::string_view bytes);
 
 // The hex mesh of an Abaqus .inp file's bytes. format = "abaqus"; warnings
 // are prefixed with name.
-LoadedMesh read_abaqus(std::string_view bytes, const std::string& name);
+// Throws ParseError for a file whose declared counts exceed limits (read_limits.h).
+LoadedMesh read_abaqus(std::string_view bytes, const std::string& name, const ReadLimits& limits = {});
 
 }  // namespace hq

@@ -1,5 +1,6 @@
 #include "hqview/io/exodus_reader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -13,6 +14,7 @@
 #endif
 
 #include "hqview/core/types.h"
+#include "hqview/io/netcdf_header.h"
 
 namespace hq {
 
@@ -20,7 +22,7 @@ namespace hq {
 
 bool exodus_available() { return false; }
 
-LoadedMesh read_exodus(std::string_view, const std::string& name) {
+LoadedMesh read_exodus(std::string_view, const std::string& name, const ReadLimits&) {
   throw InputError(name + ": this HQView was built without netCDF and cannot read Exodus II files");
 }
 
@@ -36,7 +38,9 @@ constexpr std::uint64_t kMaxExpansion = 1032;
 class NcFile {
  public:
   NcFile(std::string_view bytes, const std::string& name) : name_(name), memory_(bytes.begin(), bytes.end()) {
-    is_classic_ = bytes.starts_with("CDF");
+    is_classic_ = detail::is_netcdf_classic(bytes);
+    // libnetcdf allocates what a classic header claims: bound it first.
+    if (is_classic_) detail::check_netcdf_classic_header(bytes, name);
     const int status = nc_open_mem(name.c_str(), NC_NOWRITE, memory_.size(), memory_.data(), &id_);
     if (status != NC_NOERR) fail("not an Exodus II (netCDF) file: " + std::string(nc_strerror(status)));
   }
@@ -136,7 +140,7 @@ std::string upper(std::string text) {
 
 bool exodus_available() { return true; }
 
-LoadedMesh read_exodus(std::string_view bytes, const std::string& name) {
+LoadedMesh read_exodus(std::string_view bytes, const std::string& name, const ReadLimits& limits) {
   const NcFile file(bytes, name);
   const std::int64_t num_nodes = file.required_dimension("num_nodes");
   const std::int64_t num_dim = file.required_dimension("num_dim");
@@ -144,6 +148,7 @@ LoadedMesh read_exodus(std::string_view bytes, const std::string& name) {
     file.fail("num_nodes " + std::to_string(num_nodes) + " exceeds the limit of " + std::to_string(kMaxIndexCount));
   if (num_dim < 1 || num_dim > 3) file.fail("num_dim is " + std::to_string(num_dim) + ", expected 1 to 3");
 
+  check_mesh_memory(limits, name, 0, bytes.size(), num_nodes, -1);
   LoadedMesh loaded;
   loaded.format = "exodus";
   file.check_room(static_cast<std::uint64_t>(num_nodes) * static_cast<std::uint64_t>(num_dim), "num_nodes");
@@ -177,6 +182,11 @@ LoadedMesh read_exodus(std::string_view bytes, const std::string& name) {
   }
 
   const std::int64_t num_blocks = std::max<std::int64_t>(file.dimension("num_el_blk"), 0);
+  std::int64_t num_elements_declared = 0;  // every block's, an upper bound of the hexes
+  for (std::int64_t b = 1; b <= num_blocks; ++b)
+    num_elements_declared +=
+        std::clamp<std::int64_t>(file.dimension("num_el_in_blk" + std::to_string(b)), 0, kMaxIndexCount);
+  check_mesh_memory(limits, name, 0, bytes.size(), num_nodes, num_elements_declared, "element");
   std::map<std::string, std::int64_t> skipped_by_type;
   for (std::int64_t b = 1; b <= num_blocks; ++b) {
     const std::string connect = "connect" + std::to_string(b);

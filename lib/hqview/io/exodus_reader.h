@@ -28,6 +28,7 @@ namespace hq {
 bool exodus_available();
 
 // The hex mesh of an Exodus II file's bytes. format = "exodus".
-LoadedMesh read_exodus(std::string_view bytes, const std::string& name);
+// Throws ParseError for a file whose declared counts exceed limits (read_limits.h).
+LoadedMesh read_exodus(std::string_view bytes, const std::string& name, const ReadLimits& limits = {});
 
 }  // namespace hq

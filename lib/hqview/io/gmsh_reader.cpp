@@ -44,7 +44,8 @@ std::string non_finite_text(double value) { return std::isnan(value) ? "nan" : (
 
 class GmshParser {
  public:
-  GmshParser(std::string_view bytes, const std::string& name) : s_(bytes, name, /*has_hash_comments=*/false) {}
+  GmshParser(std::string_view bytes, const std::string& name, const ReadLimits& limits)
+      : s_(bytes, name, /*has_hash_comments=*/false), limits_(limits), file_bytes_(bytes.size()) {}
 
   LoadedMesh parse() {
     read_format();
@@ -207,6 +208,7 @@ class GmshParser {
     const std::int64_t n = read_int("the number of nodes");
     check_count(n, "number of nodes");
     check_room(n, binary_ ? 28 : 8, "nodes");
+    check_mesh_memory(limits_, s_.name(), s_.line(), file_bytes_, n, -1);
     if (!s_.finish_line()) s_.fail("unexpected " + quote(s_.peek_token()) + " after the number of nodes");
     points_.reserve(static_cast<std::size_t>(n));
     index_of_tag_.reserve(static_cast<std::size_t>(n));
@@ -234,6 +236,7 @@ class GmshParser {
     check_count(num_blocks, "number of node blocks");
     check_count(n, "number of nodes");
     check_room(n, binary_ ? 8 + 24 : 8, "nodes");
+    check_mesh_memory(limits_, s_.name(), nodes_line_, file_bytes_, n, -1);
     check_room(num_blocks, binary_ ? 12 + size_t_size_ : 8, "node blocks");
     points_.reserve(static_cast<std::size_t>(n));
     index_of_tag_.reserve(static_cast<std::size_t>(n));
@@ -308,6 +311,8 @@ class GmshParser {
     const std::int64_t m = read_int("the number of elements");
     check_count(m, "number of elements", std::numeric_limits<std::int64_t>::max());
     check_room(m, binary_ ? 12 : 8, "elements");
+    check_mesh_memory(limits_, s_.name(), s_.line(), file_bytes_, static_cast<std::int64_t>(points_.size()), m,
+                      "element");
     if (!s_.finish_line()) s_.fail("unexpected " + quote(s_.peek_token()) + " after the number of elements");
     if (binary_) {
       std::int64_t done = 0;
@@ -391,6 +396,8 @@ class GmshParser {
     check_count(num_blocks, "number of element blocks", std::numeric_limits<std::int64_t>::max());
     check_count(m, "number of elements", std::numeric_limits<std::int64_t>::max());
     check_room(m, binary_ ? 2 * size_t_size_ : 4, "elements");
+    check_mesh_memory(limits_, s_.name(), elements_line_, file_bytes_, static_cast<std::int64_t>(points_.size()), m,
+                      "element");
     std::int64_t total = 0;
     for (std::int64_t b = 0; b < num_blocks; ++b) {
       const std::size_t header_offset = s_.offset();
@@ -474,6 +481,8 @@ class GmshParser {
   }
 
   TextScanner s_;
+  ReadLimits limits_;
+  std::uint64_t file_bytes_;
   bool is_v4_ = false;
   bool binary_ = false;
   bool swap_ = false;
@@ -496,6 +505,8 @@ bool looks_like_gmsh(std::string_view bytes) {
   return bytes.substr(i).starts_with("$MeshFormat");
 }
 
-LoadedMesh read_gmsh(std::string_view bytes, const std::string& name) { return GmshParser(bytes, name).parse(); }
+LoadedMesh read_gmsh(std::string_view bytes, const std::string& name, const ReadLimits& limits) {
+  return GmshParser(bytes, name, limits).parse();
+}
 
 }  // namespace hq

@@ -29,6 +29,7 @@ bool looks_like_gmsh(std::string_view bytes);
 
 // The hex mesh of a .msh file's bytes. format = "gmsh-2.2-ascii",
 // "gmsh-4.1-binary", ...; warnings are prefixed with name.
-LoadedMesh read_gmsh(std::string_view bytes, const std::string& name);
+// Throws ParseError for a file whose declared counts exceed limits (read_limits.h).
+LoadedMesh read_gmsh(std::string_view bytes, const std::string& name, const ReadLimits& limits = {});
 
 }  // namespace hq

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "hqview/core/types.h"
+#include "hqview/io/read_limits.h"
 #include "hqview/io/text_scanner.h"
 
 namespace hq {
@@ -87,8 +88,8 @@ struct MeditContent {
 
 class MeditParser {
  public:
-  MeditParser(std::string_view text, const std::string& name, Target target)
-      : s_(text, name, /*has_hash_comments=*/true), target_(target) {}
+  MeditParser(std::string_view text, const std::string& name, Target target, const ReadLimits& limits = {})
+      : s_(text, name, /*has_hash_comments=*/true), target_(target), limits_(limits), file_bytes_(text.size()) {}
 
   MeditContent parse() {
     read_version();
@@ -209,6 +210,7 @@ class MeditParser {
     if (content_.vertices_line != 0) duplicate(info, keyword_line, content_.vertices_line);
     content_.vertices_line = keyword_line;
     const std::int64_t n = read_count(info.keyword, info.values_per_entry);
+    if (target_ == Target::kHexahedra) check_mesh_memory(limits_, s_.name(), value_line_, file_bytes_, n, -1);
     std::vector<Vec3>& points = content_.points;
     points.reserve(static_cast<std::size_t>(n));
     for (std::int64_t i = 0; i < n; ++i) {
@@ -247,6 +249,9 @@ class MeditParser {
   template <int N>
   void read_elements(const SectionInfo& info, const char* what, std::vector<std::array<Index, N>>& out) {
     const std::int64_t n = read_count(info.keyword, info.values_per_entry);
+    if (N == 8)
+      check_mesh_memory(limits_, s_.name(), value_line_, file_bytes_, static_cast<std::int64_t>(content_.points.size()),
+                        static_cast<std::int64_t>(out.size()) + n);
     const bool has_vertices = content_.vertices_line != 0;
     const std::int64_t max_id = has_vertices ? static_cast<std::int64_t>(content_.points.size()) : kMaxIndexCount;
     out.reserve(out.size() + static_cast<std::size_t>(n));
@@ -346,14 +351,16 @@ class MeditParser {
 
   TextScanner s_;
   Target target_;
+  ReadLimits limits_;
+  std::uint64_t file_bytes_;
   std::int64_t value_line_ = 0;  // line of the last read_value()
   MeditContent content_;
 };
 
 }  // namespace
 
-LoadedMesh read_medit(std::string_view text, const std::string& name) {
-  MeditContent content = MeditParser(text, name, Target::kHexahedra).parse();
+LoadedMesh read_medit(std::string_view text, const std::string& name, const ReadLimits& limits) {
+  MeditContent content = MeditParser(text, name, Target::kHexahedra, limits).parse();
   LoadedMesh loaded;
   loaded.mesh.points = std::move(content.points);
   loaded.mesh.hexes = std::move(content.hexes);

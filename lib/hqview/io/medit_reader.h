@@ -36,7 +36,8 @@ namespace hq {
 // The hex mesh of a .mesh text. format = "medit". Warnings (prefixed with
 // name) for skipped volume elements (Tetrahedra, Prisms, Pyramids) and
 // unknown sections.
-LoadedMesh read_medit(std::string_view text, const std::string& name);
+// Throws ParseError for a file whose declared counts exceed limits (read_limits.h).
+LoadedMesh read_medit(std::string_view text, const std::string& name, const ReadLimits& limits = {});
 
 // The Vertices and Triangles of a .mesh text (a reference surface); all
 // other sections, Hexahedra included, are skipped. Throws ParseError as

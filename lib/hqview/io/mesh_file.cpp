@@ -14,6 +14,7 @@
 #include "hqview/io/medit_reader.h"
 #include "hqview/io/mesh_reader.h"
 #include "hqview/io/ovm_reader.h"
+#include "hqview/io/read_limits.h"
 #include "hqview/io/text_scanner.h"
 #include "hqview/io/vtk_legacy_reader.h"
 #include "hqview/io/vtu_reader.h"
@@ -95,7 +96,7 @@ bool looks_like_exodus(std::string_view bytes) {
          bytes.starts_with(std::string_view("CDF\x05", 4)) || bytes.starts_with("\x89HDF\r\n\x1a\n");
 }
 
-using Reader = LoadedMesh (*)(std::string_view, const std::string&);
+using Reader = LoadedMesh (*)(std::string_view, const std::string&, const ReadLimits&);
 
 struct MeshFormat {
   std::string_view name;         // for read_hex_mesh_as (and a future --format)
@@ -103,19 +104,20 @@ struct MeshFormat {
   std::string_view extensions[2];
   bool (*looks_like)(std::string_view);
   Reader read;
+  bool is_text_only;  // no binary variant: a NUL byte anywhere is binary data
 };
 
 // Detection order matters only for content that two formats could claim:
 // none of these signatures overlap, except that Abaqus's (a line starting
 // with '*') is checked after the others.
 constexpr MeshFormat kFormats[] = {
-    {"mesh", "MEDIT (.mesh)", {".mesh", ""}, looks_like_medit, read_medit},
-    {"vtk", "legacy VTK", {".vtk", ""}, looks_like_vtk, read_vtk_legacy},
-    {"vtu", "VTK XML", {".vtu", ""}, looks_like_vtu, read_vtu},
-    {"msh", "Gmsh", {".msh", ""}, looks_like_gmsh, read_gmsh},
-    {"ovm", "OpenVolumeMesh", {".ovm", ""}, looks_like_ovm, read_ovm},
-    {"exodus", "Exodus II (netCDF)", {".e", ".exo"}, looks_like_exodus, read_exodus},
-    {"inp", "Abaqus", {".inp", ""}, looks_like_abaqus, read_abaqus},
+    {"mesh", "MEDIT (.mesh)", {".mesh", ""}, looks_like_medit, read_medit, true},
+    {"vtk", "legacy VTK", {".vtk", ""}, looks_like_vtk, read_vtk_legacy, false},
+    {"vtu", "VTK XML", {".vtu", ""}, looks_like_vtu, read_vtu, false},
+    {"msh", "Gmsh", {".msh", ""}, looks_like_gmsh, read_gmsh, false},
+    {"ovm", "OpenVolumeMesh", {".ovm", ""}, looks_like_ovm, read_ovm, false},  // refuses OVM BINARY itself
+    {"exodus", "Exodus II (netCDF)", {".e", ".exo"}, looks_like_exodus, read_exodus, false},
+    {"inp", "Abaqus", {".inp", ""}, looks_like_abaqus, read_abaqus, true},
 };
 
 constexpr std::string_view kExpected = "expected .mesh, .vtk, .vtu, .msh, .ovm, .inp, .e or .exo";
@@ -154,14 +156,65 @@ const MeshFormat& format_of_name(std::string_view name) {
   throw UsageError("unknown mesh format '" + std::string(name) + "' (expected " + mesh_format_names() + ")");
 }
 
-LoadedMesh read_as(const MeshFormat& format, const std::filesystem::path& path, std::string_view bytes) {
+// The bytes looked at before a file is read whole.
+constexpr std::size_t kPrefixBytes = std::size_t{1} << 20;
+
+// Binary data is refused from the file's first MiB, before the rest is read:
+// a NUL byte where no format's signature is (every binary format HQView
+// reads starts with one), or anywhere in a text-only format. This is what
+// makes a 2 GB file of zeros fail at once instead of being read whole.
+void check_not_binary(const MeshFormat& format, std::string_view prefix, const std::string& name) {
+  prefix = prefix.substr(0, kPrefixBytes);
+  const std::size_t nul = prefix.find('\0');
+  if (nul == std::string_view::npos) return;
+  if (format.is_text_only)
+    throw ParseError(name, 0,
+                     "binary data, expected " + std::string(format.description) + " text (a NUL byte at offset " +
+                         std::to_string(nul) + ")");
+  if (format_by_content(prefix) == nullptr)
+    throw ParseError(name, 0,
+                     "binary data, expected " + std::string(format.description) + " content (a NUL byte at offset " +
+                         std::to_string(nul) + " and no mesh format's signature)");
+}
+
+LoadedMesh read_as(const MeshFormat& format, const std::filesystem::path& path, std::string_view bytes,
+                   const ReadLimits& limits) {
   const std::string name = path.string();
   const MeshFormat* content = format_by_content(bytes);
   if (content != nullptr && content != &format)
     throw ParseError(name, 0,
                      "a " + detail::lowercase_extension(path) + " file with " + std::string(content->description) +
                          " content (expected the extension " + std::string(content->extensions[0]) + ")");
-  return format.read(bytes, name);
+  check_not_binary(format, bytes, name);
+  return format.read(bytes, name, limits);
+}
+
+// The bytes of a mesh file: its size checked against the budget and its
+// first MiB against binary garbage before the rest is read.
+std::string read_mesh_bytes(const MeshFormat& format, const std::filesystem::path& path, const ReadLimits& limits) {
+  const detail::FilePtr file = detail::open_regular_file(path);
+  std::error_code ec;
+  const std::uint64_t size = std::filesystem::file_size(path, ec);
+  // The bytes alone must fit; the counts the file declares are checked by its reader.
+  if (!ec && limits.max_memory > 0 && size >= limits.max_memory)
+    throw InputError(path.string() + ": the file has " + std::to_string(size) + " bytes (" + format_memory_size(size) +
+                     "), more than --max-memory (" + format_memory_size(limits.max_memory) + ")");
+  std::string bytes;
+  if (!ec) bytes.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(size, kPrefixBytes)));
+  bool is_prefix_checked = false;
+  char buffer[1 << 16];
+  while (true) {
+    const std::size_t n = std::fread(buffer, 1, sizeof buffer, file.get());
+    bytes.append(buffer, n);
+    if (!is_prefix_checked && (bytes.size() >= kPrefixBytes || n < sizeof buffer)) {
+      check_not_binary(format, bytes, path.string());
+      is_prefix_checked = true;
+      if (!ec && size > bytes.size()) bytes.reserve(static_cast<std::size_t>(size));
+    }
+    if (n < sizeof buffer) break;
+  }
+  if (std::ferror(file.get())) throw InputError(path.string() + ": read error: " + detail::errno_text(errno));
+  return bytes;
 }
 
 }  // namespace
@@ -191,24 +244,31 @@ bool has_zlib_support() {
 #endif
 }
 
-LoadedMesh read_hex_mesh(const std::filesystem::path& path) {
+LoadedMesh read_hex_mesh(const std::filesystem::path& path, const ReadLimits& limits) {
   const MeshFormat& format = format_of_path(path);
-  return read_as(format, path, read_file_bytes(path));
+  return read_as(format, path, read_mesh_bytes(format, path, limits), limits);
 }
 
-LoadedMesh read_hex_mesh(const std::filesystem::path& path, std::string_view bytes) {
-  return read_as(format_of_path(path), path, bytes);
+LoadedMesh read_hex_mesh(const std::filesystem::path& path, std::string_view bytes, const ReadLimits& limits) {
+  return read_as(format_of_path(path), path, bytes, limits);
 }
 
-LoadedMesh read_hex_mesh_as(const std::filesystem::path& path, std::string_view format) {
-  if (format.empty()) return read_hex_mesh(path);
+LoadedMesh read_hex_mesh_as(const std::filesystem::path& path, std::string_view format, const ReadLimits& limits) {
+  if (format.empty()) return read_hex_mesh(path, limits);
   const MeshFormat& chosen = format_of_name(format);
-  return chosen.read(read_file_bytes(path), path.string());
+  return chosen.read(read_mesh_bytes(chosen, path, limits), path.string(), limits);
 }
 
-LoadedMesh read_hex_mesh_as(const std::filesystem::path& path, std::string_view bytes, std::string_view format) {
-  if (format.empty()) return read_hex_mesh(path, bytes);
-  return format_of_name(format).read(bytes, path.string());
+LoadedMesh read_hex_mesh_as(const std::filesystem::path& path, std::string_view bytes, std::string_view format,
+                            const ReadLimits& limits) {
+  if (format.empty()) return read_hex_mesh(path, bytes, limits);
+  const MeshFormat& chosen = format_of_name(format);
+  check_not_binary(chosen, bytes, path.string());
+  return chosen.read(bytes, path.string(), limits);
+}
+
+std::string read_hex_mesh_bytes(const std::filesystem::path& path, std::string_view format, const ReadLimits& limits) {
+  return read_mesh_bytes(format.empty() ? format_of_path(path) : format_of_name(format), path, limits);
 }
 
 }  // namespace hq

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "hqview/core/error.h"
+#include "hqview/io/read_limits.h"
 #include "hqview/mesh/hex_mesh.h"
 
 namespace hq {
@@ -40,17 +41,32 @@ std::string read_file_bytes(const std::filesystem::path& path);
 // extension ("path: unknown mesh format '.xyz' (expected .mesh, ...)") and
 // ParseError for a malformed file or one whose content is recognisably
 // another format than its extension says.
-LoadedMesh read_hex_mesh(const std::filesystem::path& path);
+//
+// limits (read_limits.h): the file's size and the counts it declares are
+// checked against limits.max_memory before anything is allocated from them
+// (ParseError / InputError "... which needs about X; --max-memory is Y").
+// Binary data where no format's signature is (a NUL byte in the first MiB)
+// is refused from that first MiB: "binary data, not a MEDIT (.mesh) file".
+LoadedMesh read_hex_mesh(const std::filesystem::path& path, const ReadLimits& limits = {});
 
 // The same from bytes already read (e.g. by read_file_bytes(), to hash them
 // too): dispatches on path's extension and names path in messages.
-LoadedMesh read_hex_mesh(const std::filesystem::path& path, std::string_view bytes);
+LoadedMesh read_hex_mesh(const std::filesystem::path& path, std::string_view bytes, const ReadLimits& limits = {});
 
 // With an explicit format (a name of mesh_format_names(); empty: by the
 // extension, as above): the extension is ignored and the content is not
 // checked against it. Throws UsageError for an unknown format name.
-LoadedMesh read_hex_mesh_as(const std::filesystem::path& path, std::string_view format);
-LoadedMesh read_hex_mesh_as(const std::filesystem::path& path, std::string_view bytes, std::string_view format);
+LoadedMesh read_hex_mesh_as(const std::filesystem::path& path, std::string_view format, const ReadLimits& limits = {});
+LoadedMesh read_hex_mesh_as(const std::filesystem::path& path, std::string_view bytes, std::string_view format,
+                            const ReadLimits& limits = {});
+
+// The bytes of a hex mesh file for read_hex_mesh_as(path, bytes, format):
+// like read_file_bytes(), but the file's size is checked against limits and
+// its first MiB against binary data (as read_hex_mesh does) before the rest
+// is read. format as read_hex_mesh_as (empty: by the extension; an unknown
+// extension or name throws as there).
+std::string read_hex_mesh_bytes(const std::filesystem::path& path, std::string_view format = {},
+                                const ReadLimits& limits = {});
 
 // True when path's extension (any case) is one read_hex_mesh() dispatches on.
 bool has_hex_mesh_extension(const std::filesystem::path& path);

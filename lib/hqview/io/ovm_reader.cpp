@@ -28,7 +28,8 @@ bool same_cycle(const Quad& a, const Quad& b) {
 
 class OvmParser {
  public:
-  OvmParser(std::string_view bytes, const std::string& name) : s_(bytes, name, /*has_hash_comments=*/false) {}
+  OvmParser(std::string_view bytes, const std::string& name, const ReadLimits& limits)
+      : s_(bytes, name, /*has_hash_comments=*/false), limits_(limits), file_bytes_(bytes.size()) {}
 
   LoadedMesh parse() {
     if (!s_.skip_space()) s_.fail("empty file, expected 'OVM ASCII'");
@@ -40,6 +41,7 @@ class OvmParser {
     if (!iequals(kind, "ASCII")) s_.fail("expected 'OVM ASCII', got 'OVM " + std::string(kind) + "'");
 
     const std::int64_t num_vertices = section("Vertices", 6);
+    check_mesh_memory(limits_, s_.name(), s_.line(), file_bytes_, num_vertices, -1);
     points_.reserve(static_cast<std::size_t>(num_vertices));
     for (std::int64_t i = 0; i < num_vertices; ++i) {
       double xyz[3];
@@ -90,6 +92,7 @@ class OvmParser {
     }
 
     const std::int64_t num_cells = section("Polyhedra", 4);
+    check_mesh_memory(limits_, s_.name(), s_.line(), file_bytes_, num_vertices, num_cells, "cell");
     hexes_.reserve(static_cast<std::size_t>(num_cells));
     for (std::int64_t c = 0; c < num_cells; ++c) {
       const std::int64_t valence = read_int("a polyhedron valence", "polyhedron", c, num_cells);
@@ -223,6 +226,8 @@ class OvmParser {
   }
 
   TextScanner s_;
+  ReadLimits limits_;
+  std::uint64_t file_bytes_;
   std::vector<Vec3> points_;
   std::vector<std::array<std::int64_t, 2>> edges_;
   std::vector<Quad> faces_;
@@ -238,6 +243,8 @@ bool looks_like_ovm(std::string_view bytes) {
   return detail::istarts_with(bytes.substr(i), "OVM ASCII") || detail::istarts_with(bytes.substr(i), "OVM BINARY");
 }
 
-LoadedMesh read_ovm(std::string_view bytes, const std::string& name) { return OvmParser(bytes, name).parse(); }
+LoadedMesh read_ovm(std::string_view bytes, const std::string& name, const ReadLimits& limits) {
+  return OvmParser(bytes, name, limits).parse();
+}
 
 }  // namespace hq

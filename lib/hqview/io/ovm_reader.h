@@ -31,6 +31,7 @@ namespace hq {
 bool looks_like_ovm(std::string_view bytes);
 
 // The hex mesh of an OVM ASCII file's bytes. format = "ovm-ascii".
-LoadedMesh read_ovm(std::string_view bytes, const std::string& name);
+// Throws ParseError for a file whose declared counts exceed limits (read_limits.h).
+LoadedMesh read_ovm(std::string_view bytes, const std::string& name, const ReadLimits& limits = {});
 
 }  // namespace hq

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "hqview/core/types.h"
+#include "hqview/io/read_limits.h"
 #include "hqview/io/text_scanner.h"
 
 namespace hq {
@@ -251,7 +252,8 @@ struct CellArrays {
 
 class VtkParser {
  public:
-  VtkParser(std::string_view bytes, const std::string& name) : s_(bytes, name, /*has_hash_comments=*/false) {}
+  VtkParser(std::string_view bytes, const std::string& name, const ReadLimits& limits)
+      : s_(bytes, name, /*has_hash_comments=*/false), limits_(limits), file_bytes_(bytes.size()) {}
 
   LoadedMesh parse() {
     read_header();
@@ -385,6 +387,7 @@ class VtkParser {
     const VtkType& type = read_type_argument("POINTS", false);
     end_header("POINTS");
     check_room(3 * n, type, "POINTS", line);
+    check_mesh_memory(limits_, s_.name(), line, file_bytes_, n, -1);
     ArrayCursor cursor(s_, binary_, type, 3 * n, "POINTS", line);
     points_.resize(static_cast<std::size_t>(n));
     for (std::int64_t i = 0; i < n; ++i) {
@@ -426,6 +429,7 @@ class VtkParser {
     if (size < n)
       s_.fail_at(line, "cell list size " + std::to_string(size) + " cannot hold " + std::to_string(n) + " cells");
     check_room(size, kInt32Type, "CELLS", line);
+    check_mesh_memory(limits_, s_.name(), line, file_bytes_, static_cast<std::int64_t>(points_.size()), n, "cell");
     ArrayCursor cursor(s_, binary_, kInt32Type, size, "CELLS", line);
     cells_.connectivity_line = line;
     cells_.connectivity_section = "CELLS";
@@ -466,6 +470,7 @@ class VtkParser {
     const VtkType& offsets_type = read_type_argument("OFFSETS", true);
     end_header("OFFSETS");
     check_room(num_offsets, offsets_type, "OFFSETS", offsets_line);
+    check_mesh_memory(limits_, s_.name(), line, file_bytes_, static_cast<std::int64_t>(points_.size()), n, "cell");
     ArrayCursor offsets(s_, binary_, offsets_type, num_offsets, "OFFSETS", offsets_line);
     cells_.offsets.resize(static_cast<std::size_t>(n) + 1, 0);
     for (std::int64_t i = 0; i < num_offsets; ++i) {
@@ -678,6 +683,8 @@ class VtkParser {
   }
 
   TextScanner s_;
+  ReadLimits limits_;
+  std::uint64_t file_bytes_;
   bool binary_ = false;
   bool is_version5_ = false;
   std::vector<Vec3> points_;
@@ -689,6 +696,8 @@ class VtkParser {
 
 }  // namespace
 
-LoadedMesh read_vtk_legacy(std::string_view bytes, const std::string& name) { return VtkParser(bytes, name).parse(); }
+LoadedMesh read_vtk_legacy(std::string_view bytes, const std::string& name, const ReadLimits& limits) {
+  return VtkParser(bytes, name, limits).parse();
+}
 
 }  // namespace hq

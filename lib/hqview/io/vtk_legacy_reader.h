@@ -31,6 +31,7 @@ namespace hq {
 
 // The hex mesh of a legacy VTK file's bytes. format = "vtk-legacy-ascii" or
 // "vtk-legacy-binary"; warnings are prefixed with name.
-LoadedMesh read_vtk_legacy(std::string_view bytes, const std::string& name);
+// Throws ParseError for a file whose declared counts exceed limits (read_limits.h).
+LoadedMesh read_vtk_legacy(std::string_view bytes, const std::string& name, const ReadLimits& limits = {});
 
 }  // namespace hq

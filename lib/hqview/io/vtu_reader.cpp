@@ -164,7 +164,8 @@ struct ArrayRef {
 
 class VtuParser {
  public:
-  VtuParser(std::string_view bytes, const std::string& name) : bytes_(bytes), name_(name) {}
+  VtuParser(std::string_view bytes, const std::string& name, const ReadLimits& limits)
+      : bytes_(bytes), name_(name), limits_(limits) {}
 
   LoadedMesh parse() {
     doc_ = detail::parse_xml(bytes_, name_, "AppendedData");
@@ -478,6 +479,8 @@ class VtuParser {
     const std::int64_t base = static_cast<std::int64_t>(points_.size());
     if (base + num_points > kMaxIndexCount)
       fail(piece, "more than " + std::to_string(kMaxIndexCount) + " points in all pieces");
+    check_mesh_memory(limits_, name_, piece.line, bytes_.size(), base + num_points,
+                      static_cast<std::int64_t>(hexes_.size()) + num_cells, "cell");
 
     const XmlElement* points = child(piece, "Points");
     if (points == nullptr) {
@@ -574,6 +577,7 @@ class VtuParser {
 
   std::string_view bytes_;
   const std::string& name_;
+  ReadLimits limits_;
   XmlDocument doc_;
   bool big_endian_ = false;
   int header_size_ = 4;
@@ -607,6 +611,8 @@ bool looks_like_vtu(std::string_view bytes) {
   return false;
 }
 
-LoadedMesh read_vtu(std::string_view bytes, const std::string& name) { return VtuParser(bytes, name).parse(); }
+LoadedMesh read_vtu(std::string_view bytes, const std::string& name, const ReadLimits& limits) {
+  return VtuParser(bytes, name, limits).parse();
+}
 
 }  // namespace hq

@@ -35,6 +35,7 @@ bool looks_like_vtu(std::string_view bytes);
 
 // The hex mesh of a .vtu file's bytes. format = "vtu-ascii", "vtu-binary" or
 // "vtu-appended" (by the format of the points); warnings are prefixed with name.
-LoadedMesh read_vtu(std::string_view bytes, const std::string& name);
+// Throws ParseError for a file whose declared counts exceed limits (read_limits.h).
+LoadedMesh read_vtu(std::string_view bytes, const std::string& name, const ReadLimits& limits = {});
 
 }  // namespace hq

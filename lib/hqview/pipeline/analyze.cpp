@@ -134,9 +134,10 @@ Analysis analyze(const AnalyzeOptions& options) {
   Analysis result;
   ReportModel& model = result.model;
   model.tool_version = options.tool_version;
+  model.has_annotated_vtu = true;  // every analyze bundle has data/annotated.vtu
 
-  const std::string bytes = read_file_bytes(options.mesh_path);
-  LoadedMesh loaded = read_hex_mesh_as(options.mesh_path, bytes, options.mesh_format);
+  const std::string bytes = read_hex_mesh_bytes(options.mesh_path, options.mesh_format, options.read_limits);
+  LoadedMesh loaded = read_hex_mesh_as(options.mesh_path, bytes, options.mesh_format, options.read_limits);
   model.mesh_input = {reported_path(options.mesh_path), loaded.format, sha256_hex(bytes)};
   model.warnings = std::move(loaded.warnings);
   model.mesh = std::move(loaded.mesh);
@@ -155,8 +156,8 @@ Analysis analyze(const AnalyzeOptions& options) {
                              " vertices are used by no hexahedron (ignored by the analysis)");
   if (!options.reference_path.empty()) analyze_reference(options.reference_path, model);
   if (!options.compare_path.empty()) {
-    const std::string other_bytes = read_file_bytes(options.compare_path);
-    LoadedMesh other = read_hex_mesh_as(options.compare_path, other_bytes, options.mesh_format);
+    const std::string other_bytes = read_hex_mesh_bytes(options.compare_path, options.mesh_format, options.read_limits);
+    LoadedMesh other = read_hex_mesh_as(options.compare_path, other_bytes, options.mesh_format, options.read_limits);
     ReportModel::Compared& c = model.compare.emplace();
     c.input = {reported_path(options.compare_path), other.format, sha256_hex(other_bytes)};
     c.mesh = std::move(other.mesh);
@@ -188,7 +189,11 @@ Analysis analyze(const AnalyzeOptions& options) {
       entry.title = view.title;
       for (ViewFile& file : view.files) {
         entry.files.push_back(file.relative_path);
-        result.images.push_back({file.relative_path, std::move(file.image), std::move(file.text)});
+        entry.links.push_back({file.cluster, file.vertex, std::move(file.hotspots)});
+        // A PNG already encoded by render_views is written as its bytes.
+        const bool encoded = !file.png.empty();
+        result.images.push_back({file.relative_path, encoded ? Image{} : std::move(file.image),
+                                 encoded ? std::move(file.png) : std::move(file.text)});
       }
     }
   }

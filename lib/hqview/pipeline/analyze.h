@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "hqview/glyph/glyphs.h"
+#include "hqview/io/read_limits.h"
 #include "hqview/overlap/overlap.h"
 #include "hqview/pipeline/gates.h"
 #include "hqview/quality/hex_metrics.h"
@@ -33,6 +34,7 @@ struct AnalyzeOptions {
   std::vector<GateRule> gates;  // evaluated on the finished report (throws UsageError for a missing key)
   GlyphOptions glyphs;          // --rmax, --glyph-threshold, --top-clusters
   std::optional<OverlapOptions> overlap = OverlapOptions{};  // --overlap, --coincident-eps; nullopt: --no-overlap
+  ReadLimits read_limits;  // --max-memory: checked against each mesh file's size and declared counts
 };
 
 struct Analysis {

@@ -93,7 +93,7 @@ std::optional<double> lookup_number(const json& report, std::string_view dotted)
 }
 
 // --resume: the bundle's report.json names the same HQView version and the
-// same mesh and reference bytes (SHA-256) as this run would.
+// same mesh, reference and compare mesh bytes (SHA-256) as this run would.
 bool is_resumable(const BatchInput& input, const fs::path& report_path, const std::string& tool_version) {
   std::error_code ec;
   if (!fs::is_regular_file(report_path, ec)) return false;
@@ -107,7 +107,8 @@ bool is_resumable(const BatchInput& input, const fs::path& report_path, const st
                                                                          : std::string();
   };
   auto sha_of = [](const fs::path& file) { return file.empty() ? std::string() : sha256_hex(read_file_bytes(file)); };
-  return old_sha("mesh") == sha_of(input.mesh_file) && old_sha("reference") == sha_of(input.reference_file);
+  return old_sha("mesh") == sha_of(input.mesh_file) && old_sha("reference") == sha_of(input.reference_file) &&
+         old_sha("compare") == sha_of(input.compare_file);
 }
 
 }  // namespace
@@ -341,6 +342,7 @@ BatchEntry run_batch_mesh(const BatchInput& input, const BatchOptions& options, 
     AnalyzeOptions analyze_options = options.analyze;
     analyze_options.mesh_path = input.mesh_file;
     analyze_options.reference_path = input.reference_file;
+    analyze_options.compare_path = input.compare_file;
     const BundleOptions bundle{.force = options.force};
     check_output_dir(dir, bundle);
     const Analysis analysis = analyze(analyze_options);
@@ -373,8 +375,12 @@ std::vector<BatchEntry> run_batch(const std::vector<BatchInput>& inputs, const B
   std::vector<std::uint64_t> cost(inputs.size());
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     std::error_code ec;
-    const auto size = fs::file_size(inputs[i].mesh_file, ec);
-    cost[i] = estimate_mesh_memory(ec ? 0 : size, options.analyze.render);
+    std::uint64_t size = fs::file_size(inputs[i].mesh_file, ec);
+    if (ec) size = 0;
+    // A compare mesh is analysed in the same run: count its bytes too.
+    if (!inputs[i].compare_file.empty())
+      if (const auto other = fs::file_size(inputs[i].compare_file, ec); !ec) size += other;
+    cost[i] = estimate_mesh_memory(size, options.analyze.render);
   }
   std::mutex mutex;
   std::condition_variable released;

@@ -24,7 +24,7 @@ struct BatchInput {
   std::string path;                      // index key and bundle directory: relative, '/'-separated
   std::filesystem::path mesh_file;       // the file to open
   std::filesystem::path reference_file;  // --reference for this mesh; empty: none
-  std::filesystem::path compare_file;    // --compare (recorded; analyze has no compare stage yet)
+  std::filesystem::path compare_file;    // --compare for this mesh (MESH2); empty: none
   std::string label;                     // method / algorithm, for the per-method comparison
   std::string model;                     // model name (rows of the method comparison); default: file stem
 };

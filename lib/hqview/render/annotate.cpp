@@ -37,9 +37,10 @@ int scaled(double size, const AnnotationStyle& style) {
   return std::max(1, static_cast<int>(std::lround(size * style.scale)));
 }
 
-// Text stays legible in thumbnails: never below 11 pixels.
-constexpr int kMinTextSize = 11;
-int scaled_text(double size, const AnnotationStyle& style) { return std::max(kMinTextSize, scaled(size, style)); }
+// Text stays legible in thumbnails: never below style.min_text_size pixels.
+int scaled_text(double size, const AnnotationStyle& style) {
+  return std::max(style.min_text_size, scaled(size, style));
+}
 
 std::vector<std::string_view> split_lines(std::string_view text) {
   std::vector<std::string_view> lines;
@@ -184,6 +185,41 @@ ColorBar quality_color_bar() {
   return bar;
 }
 
+int fitting_text_size(std::string_view text, int size_px, int min_size, int max_width, const AnnotationStyle& style) {
+  int size = std::max(size_px, min_size);
+  while (size > min_size) {
+    const int width = text_extent(text, size, style).width;
+    if (width <= max_width) break;
+    // Text width is about proportional to the size: jump close, then step.
+    size = std::clamp(static_cast<int>(std::floor(size * static_cast<double>(max_width) / width)), min_size, size - 1);
+  }
+  return size;
+}
+
+std::string ellipsize(std::string_view text, int size_px, int max_width, const AnnotationStyle& style) {
+  if (text_extent(text, size_px, style).width <= max_width) return std::string(text);
+  // Longest prefix, by bisection over character boundaries (not inside a
+  // UTF-8 sequence: continuation bytes are 10xxxxxx).
+  std::vector<std::size_t> cuts;
+  for (std::size_t i = 0; i < text.size(); ++i)
+    if ((static_cast<unsigned char>(text[i]) & 0xC0) != 0x80) cuts.push_back(i);
+  // The prefix of k characters is text[0, cuts[k]), k < cuts.size().
+  auto shortened = [&](std::size_t k) {
+    std::string_view prefix = text.substr(0, cuts[k]);
+    while (!prefix.empty() && prefix.back() == ' ') prefix.remove_suffix(1);
+    return std::string(prefix) + "...";
+  };
+  std::size_t lo = 0, hi = cuts.empty() ? 0 : cuts.size() - 1;
+  while (lo < hi) {
+    const std::size_t mid = (lo + hi + 1) / 2;
+    if (text_extent(shortened(mid), size_px, style).width <= max_width)
+      lo = mid;
+    else
+      hi = mid - 1;
+  }
+  return cuts.empty() ? std::string("...") : shortened(lo);
+}
+
 int color_bar_width(const ColorBar& bar, const AnnotationStyle& style) {
   const LegendMetrics m = legend_metrics(style, 0);
   int content = text_extent(bar.label, m.label_size, style).width;
@@ -197,13 +233,30 @@ int color_bar_width(const ColorBar& bar, const AnnotationStyle& style) {
   return m.inset + content + scaled(kLegendRightMargin, style);
 }
 
-void draw_color_bar(Image& image, const PixelRect& area, const ColorBar& bar, const AnnotationStyle& style) {
+int color_bar_height(const ColorBar& bar, const AnnotationStyle& style, int area_height) {
+  const LegendMetrics m = legend_metrics(style, area_height);
+  const int label_lines = bar.label.empty() ? 0 : static_cast<int>(split_lines(bar.label).size());
+  const int swatch_block =
+      bar.swatches.empty() ? 0 : m.swatch_gap + static_cast<int>(bar.swatches.size()) * m.swatch_pitch;
+  return label_lines * m.line_height + (label_lines ? m.label_gap : 0) + m.bar_height + swatch_block;
+}
+
+AnnotationStyle color_bar_style_for(const ColorBar& bar, const AnnotationStyle& style, const PixelRect& area) {
+  AnnotationStyle fitted = style;
+  for (int step = 0; step < 12; ++step) {
+    if (color_bar_width(bar, fitted) <= area.width && color_bar_height(bar, fitted, area.height) <= area.height) break;
+    fitted.scale *= 0.9;
+    fitted.min_text_size = std::max(7, fitted.min_text_size - 1);
+  }
+  return fitted;
+}
+
+void draw_color_bar(Image& image, const PixelRect& area, const ColorBar& bar, const AnnotationStyle& given_style) {
+  const AnnotationStyle style = color_bar_style_for(bar, given_style, area);
   const LegendMetrics m = legend_metrics(style, area.height);
   const int label_lines = bar.label.empty() ? 0 : static_cast<int>(split_lines(bar.label).size());
   const int label_block = label_lines * m.line_height;
-  const int swatch_block =
-      bar.swatches.empty() ? 0 : m.swatch_gap + static_cast<int>(bar.swatches.size()) * m.swatch_pitch;
-  const int total = label_block + (label_lines ? m.label_gap : 0) + m.bar_height + swatch_block;
+  const int total = color_bar_height(bar, style, area.height);
   const int top = area.y + std::max(0, (area.height - total) / 2);
   const int x = area.x + m.inset;
   const int outline = std::max(1, scaled(1.0, style));
@@ -254,10 +307,12 @@ FigureLayout figure_layout(int width, int height, bool has_title, int legend_wid
 
 void draw_title(Image& image, const PixelRect& area, std::string_view title, const AnnotationStyle& style) {
   if (title.empty() || area.height <= 0) return;
-  const int size = std::max(14, scaled(kTitleSize, style));
+  const int inset = scaled(kTitleInset, style);
+  const int max_width = std::max(1, area.width - 2 * inset);
+  const int size = fitting_text_size(title, std::max(14, scaled(kTitleSize, style)), 9, max_width, style);
   // Baseline so that the cap height (0.73 em) is centred in the band.
   const int baseline = area.y + area.height / 2 + static_cast<int>(std::lround(0.365 * size));
-  draw_text(image, area.x + scaled(kTitleInset, style), baseline, title, size, style);
+  draw_text(image, area.x + inset, baseline, ellipsize(title, size, max_width, style), size, style);
 }
 
 }  // namespace hq

@@ -25,6 +25,7 @@ struct AnnotationStyle {
   Rgba8 text_color{38, 38, 38, 255};
   Rgba8 background{255, 255, 255, 255};
   double scale = 1.0;  // 1 for a 1200-pixel-high figure
+  int min_text_size = 11;  // pixels: scaled text never gets smaller (legible thumbnails)
 };
 
 // The style for a figure of the given height (scale = height / 1200,
@@ -48,6 +49,13 @@ void draw_text(Image& image, int x, int y, std::string_view text, int size_px, c
 // Width and height in pixels of text set at size_px.
 // Throws RenderError when the font cannot be loaded.
 PixelRect text_extent(std::string_view text, int size_px, const AnnotationStyle& style);
+
+// The largest size in [min_size, size_px] at which text is at most max_width
+// pixels wide (min_size when even that is too wide).
+int fitting_text_size(std::string_view text, int size_px, int min_size, int max_width, const AnnotationStyle& style);
+// text itself when it is at most max_width pixels wide at size_px, else its
+// longest prefix (whole UTF-8 characters) followed by "..." that is.
+std::string ellipsize(std::string_view text, int size_px, int max_width, const AnnotationStyle& style);
 
 struct ColorBarTick {
   double value = 0.0;
@@ -78,7 +86,15 @@ ColorBar quality_color_bar();
 
 // Width in pixels a colour bar legend needs, margins included.
 int color_bar_width(const ColorBar& bar, const AnnotationStyle& style);
-// Draws the legend vertically centred in area.
+// The style draw_color_bar uses in area: style itself when the legend fits,
+// else one with smaller scale (and smaller minimum text size, down to 7
+// pixels) so that the legend's width and height fit area (small figures,
+// e.g. --size 320x240, where the legend panel is capped at half the width).
+AnnotationStyle color_bar_style_for(const ColorBar& bar, const AnnotationStyle& style, const PixelRect& area);
+// Pixel height of the legend drawn in an area of the given height.
+int color_bar_height(const ColorBar& bar, const AnnotationStyle& style, int area_height);
+// Draws the legend vertically centred in area, shrunk to fit it
+// (color_bar_style_for).
 void draw_color_bar(Image& image, const PixelRect& area, const ColorBar& bar, const AnnotationStyle& style);
 
 // Where a figure's parts go: the title band on top (empty rect when there is
@@ -89,7 +105,9 @@ struct FigureLayout {
 };
 FigureLayout figure_layout(int width, int height, bool has_title, int legend_width, const AnnotationStyle& style);
 
-// Draws a title left-aligned and vertically centred in area.
+// Draws a title left-aligned and vertically centred in area; a title too
+// long for the area's width is set smaller (down to 9 pixels), then cut
+// with "...".
 void draw_title(Image& image, const PixelRect& area, std::string_view title, const AnnotationStyle& style);
 
 }  // namespace hq

@@ -18,9 +18,10 @@
 namespace hq {
 namespace {
 
-// Each axis is drawn at this many times the output resolution, then averaged
-// by a linear blit: on llvmpipe this is as fast as 4x MSAA and also smooths
-// the discarded edges of future sphere impostors (ALGORITHMS.md §6).
+// Each axis is drawn at this many times the output resolution, then each
+// output pixel is the rounded mean of its 2x2 block (box_filter_2x2): on
+// llvmpipe this is as fast as 4x MSAA and also smooths the discarded edges
+// of the sphere impostors (ALGORITHMS.md §6).
 constexpr int kSupersampling = 2;
 
 constexpr GLuint kPositionAttribute = 0;
@@ -112,7 +113,8 @@ uniform bool is_perspective;
 out vec3 eye_point;
 flat out vec3 eye_center;
 flat out float radius;
-flat out vec4 sphere_color;
+flat out vec3 linear_color;
+vec3 to_linear(vec3 c) { return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), step(0.04045, c)); }
 void main() {
   vec3 c = (model_view * vec4(center, 1.0)).xyz;
   float r = corner_radius.z;
@@ -126,7 +128,8 @@ void main() {
   eye_point = p;
   eye_center = c;
   radius = r;
-  sphere_color = color;
+  // One colour per sphere: linearised once here, not for every fragment.
+  linear_color = to_linear(color.rgb);
   gl_Position = projection * vec4(p, 1.0);
 }
 )";
@@ -135,13 +138,12 @@ constexpr const char* kSphereFragmentShader = R"(#version 450 core
 in vec3 eye_point;
 flat in vec3 eye_center;
 flat in float radius;
-flat in vec4 sphere_color;
+flat in vec3 linear_color;
 uniform mat4 projection;
 uniform bool is_perspective;
 uniform vec3 light_direction;
 uniform float ambient;
 out vec4 fragment_color;
-vec3 to_linear(vec3 c) { return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), step(0.04045, c)); }
 vec3 to_srgb(vec3 c) { return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, c)); }
 void main() {
   vec3 origin = is_perspective ? vec3(0.0) : vec3(eye_point.xy, 0.0);
@@ -160,7 +162,7 @@ void main() {
   // A small highlight makes spheres read as round at a glance.
   vec3 h = normalize(light_direction + vec3(0.0, 0.0, 1.0));
   float specular = 0.25 * pow(max(dot(n, h), 0.0), 40.0);
-  vec3 lit = to_linear(sphere_color.rgb) * shade + vec3(specular);
+  vec3 lit = linear_color * shade + vec3(specular);
   fragment_color = vec4(to_srgb(min(lit, vec3(1.0))), 1.0);
 }
 )";
@@ -238,6 +240,31 @@ void check_indices(const Set& set, std::size_t per_primitive, const char* kind) 
     if (i >= n) throw RenderError(std::string(kind) + ": vertex index " + std::to_string(i) + " out of range");
 }
 
+// The output image of a 2x2-supersampled frame read back bottom-up
+// (OpenGL's row order): each output pixel, rows top-down, is the rounded
+// mean of its 2x2 block in every channel, in integers, so the result is
+// exact and the same on every machine.
+Image box_filter_2x2(const std::vector<std::uint8_t>& bottom_up, int width, int height) {
+  static_assert(kSupersampling == 2);
+  Image image{width, height,
+              std::vector<std::uint8_t>(4 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height))};
+  const std::size_t ss_row = 8 * static_cast<std::size_t>(width);
+  for (int y = 0; y < height; ++y) {
+    // Output row y (top-down) is resolved row height - 1 - y (bottom-up),
+    // i.e. supersampled rows 2 (height - 1 - y) and the one above it.
+    const std::uint8_t* r0 = bottom_up.data() + ss_row * (2 * static_cast<std::size_t>(height - 1 - y));
+    const std::uint8_t* r1 = r0 + ss_row;
+    std::uint8_t* out = image.rgba.data() + 4 * static_cast<std::size_t>(width) * static_cast<std::size_t>(y);
+    for (int x = 0; x < width; ++x) {
+      const std::size_t i = 8 * static_cast<std::size_t>(x);
+      for (std::size_t c = 0; c < 4; ++c)
+        out[4 * static_cast<std::size_t>(x) + c] = static_cast<std::uint8_t>(
+            (static_cast<unsigned>(r0[i + c]) + r0[i + 4 + c] + r1[i + c] + r1[i + 4 + c] + 2u) >> 2);
+    }
+  }
+  return image;
+}
+
 class OsmesaRenderer final : public Renderer {
  public:
   OsmesaRenderer() {
@@ -293,6 +320,11 @@ class OsmesaRenderer final : public Renderer {
       if (!set.normals.empty() && set.normals.size() != set.positions.size())
         throw RenderError("translucent triangle set: normals and positions differ in count");
     }
+    for (const TriangleSet& set : scene.overlay) {
+      check_indices(set, 3, "overlay triangle set");
+      if (!set.normals.empty() && set.normals.size() != set.positions.size())
+        throw RenderError("overlay triangle set: normals and positions differ in count");
+    }
     for (const LineSet& set : scene.lines) check_indices(set, 2, "line set");
     for (const SphereSet& set : scene.spheres)
       if (set.radii.size() != set.centers.size() || set.colors.size() != set.centers.size())
@@ -331,6 +363,11 @@ class OsmesaRenderer final : public Renderer {
       glDepthMask(GL_TRUE);
       glDisable(GL_BLEND);
     }
+    if (std::any_of(scene.overlay.begin(), scene.overlay.end(),
+                    [](const TriangleSet& set) { return !set.indices.empty(); })) {
+      glClear(GL_DEPTH_BUFFER_BIT);  // the depth mask is on again
+      draw_triangles(scene.overlay, model_view, projection, nullptr);
+    }
     check_gl("drawing");
 
     Image image = resolve(width, height);
@@ -360,17 +397,16 @@ class OsmesaRenderer final : public Renderer {
   }
 
   void delete_framebuffers() {
-    const GLuint framebuffers[] = {supersampled_framebuffer_, resolved_framebuffer_};
-    const GLuint renderbuffers[] = {supersampled_color_, supersampled_depth_, resolved_color_};
-    glDeleteFramebuffers(2, framebuffers);
-    glDeleteRenderbuffers(3, renderbuffers);
-    supersampled_framebuffer_ = resolved_framebuffer_ = 0;
-    supersampled_color_ = supersampled_depth_ = resolved_color_ = 0;
+    const GLuint renderbuffers[] = {supersampled_color_, supersampled_depth_};
+    glDeleteFramebuffers(1, &supersampled_framebuffer_);
+    glDeleteRenderbuffers(2, renderbuffers);
+    supersampled_framebuffer_ = 0;
+    supersampled_color_ = supersampled_depth_ = 0;
     framebuffer_width_ = framebuffer_height_ = 0;
   }
 
-  // (Re)creates the supersampled and the resolved framebuffers when the
-  // image size changes; frames of one size reuse them.
+  // (Re)creates the supersampled framebuffer when the image size changes;
+  // frames of one size reuse it.
   void prepare_framebuffers(int width, int height) {
     if (width == framebuffer_width_ && height == framebuffer_height_) return;
     const int ss_width = kSupersampling * width, ss_height = kSupersampling * height;
@@ -388,20 +424,14 @@ class OsmesaRenderer final : public Renderer {
     };
     supersampled_color_ = make_renderbuffer(GL_RGBA8, ss_width, ss_height);
     supersampled_depth_ = make_renderbuffer(GL_DEPTH_COMPONENT24, ss_width, ss_height);
-    resolved_color_ = make_renderbuffer(GL_RGBA8, width, height);
 
     glGenFramebuffers(1, &supersampled_framebuffer_);
     glBindFramebuffer(GL_FRAMEBUFFER, supersampled_framebuffer_);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, supersampled_color_);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, supersampled_depth_);
     const GLenum supersampled_status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-
-    glGenFramebuffers(1, &resolved_framebuffer_);
-    glBindFramebuffer(GL_FRAMEBUFFER, resolved_framebuffer_);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, resolved_color_);
-    const GLenum resolved_status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
     check_gl("framebuffer set-up");
-    if (supersampled_status != GL_FRAMEBUFFER_COMPLETE || resolved_status != GL_FRAMEBUFFER_COMPLETE) {
+    if (supersampled_status != GL_FRAMEBUFFER_COMPLETE) {
       delete_framebuffers();
       throw RenderError("cannot create an offscreen framebuffer of " + std::to_string(ss_width) + "x" +
                         std::to_string(ss_height) + " pixels");
@@ -524,25 +554,16 @@ class OsmesaRenderer final : public Renderer {
     glDisable(GL_BLEND);
   }
 
-  // Box-filters the supersampled frame down (a 2:1 linear blit averages
-  // exactly the 2x2 block under each output pixel) and reads it top-down.
+  // Reads the supersampled frame back (on llvmpipe a plain copy, far
+  // cheaper than a GPU-side downsampling blit) and box-filters it down.
   Image resolve(int width, int height) {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, supersampled_framebuffer_);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolved_framebuffer_);
-    glBlitFramebuffer(0, 0, kSupersampling * width, kSupersampling * height, 0, 0, width, height,
-                      GL_COLOR_BUFFER_BIT, GL_LINEAR);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, resolved_framebuffer_);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    const std::size_t row_bytes = 4 * static_cast<std::size_t>(width);
-    std::vector<std::uint8_t> bottom_up(row_bytes * static_cast<std::size_t>(height));
-    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
+    const int ss_width = kSupersampling * width, ss_height = kSupersampling * height;
+    supersampled_pixels_.resize(4 * static_cast<std::size_t>(ss_width) * static_cast<std::size_t>(ss_height));
+    glReadPixels(0, 0, ss_width, ss_height, GL_RGBA, GL_UNSIGNED_BYTE, supersampled_pixels_.data());
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-
-    Image image{width, height, std::vector<std::uint8_t>(bottom_up.size())};
-    for (int y = 0; y < height; ++y)
-      std::memcpy(image.rgba.data() + row_bytes * static_cast<std::size_t>(y),
-                  bottom_up.data() + row_bytes * static_cast<std::size_t>(height - 1 - y), row_bytes);
-    return image;
+    return box_filter_2x2(supersampled_pixels_, width, height);
   }
 
   // OSMesa needs a client buffer to make a context current; every frame is
@@ -554,8 +575,9 @@ class OsmesaRenderer final : public Renderer {
   GLuint triangle_program_ = 0, line_program_ = 0, sphere_program_ = 0;
   GLuint vertex_array_ = 0;
   GLuint position_buffer_ = 0, normal_buffer_ = 0, color_buffer_ = 0, index_buffer_ = 0;
-  GLuint supersampled_framebuffer_ = 0, resolved_framebuffer_ = 0;
-  GLuint supersampled_color_ = 0, supersampled_depth_ = 0, resolved_color_ = 0;
+  GLuint supersampled_framebuffer_ = 0;
+  GLuint supersampled_color_ = 0, supersampled_depth_ = 0;
+  std::vector<std::uint8_t> supersampled_pixels_;  // read-back buffer, reused by every frame
   int framebuffer_width_ = 0, framebuffer_height_ = 0;
   GLint max_renderbuffer_size_ = 0;
   float max_line_width_ = 1.0f;

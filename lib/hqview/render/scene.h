@@ -17,7 +17,11 @@
 //   3. lines       on top of coincident triangles;
 //   4. translucent triangles blended over everything else without depth
 //                  writes, all triangles of a set sorted back to front for
-//                  the camera (back_to_front_order, scene_shapes.h).
+//                  the camera (back_to_front_order, scene_shapes.h);
+//   5. overlay     opaque triangles over everything else: drawn last, after
+//                  the depth buffer is cleared, so they hide only each other
+//                  (markers that must stay visible, e.g. overlap arrows
+//                  whose target lies inside a glyph).
 
 #include <cstdint>
 #include <vector>
@@ -67,6 +71,7 @@ struct Scene {
   std::vector<SphereSet> spheres;
   std::vector<LineSet> lines;
   std::vector<TriangleSet> translucent; // colours' alpha is the opacity
+  std::vector<TriangleSet> overlay;     // opaque, on top of all the rest
 };
 
 inline std::size_t sphere_count(const Scene& scene) {

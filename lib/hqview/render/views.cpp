@@ -1,9 +1,13 @@
 #include "hqview/render/views.h"
 
+#include <tbb/task_group.h>
+
 #include <algorithm>
+#include <functional>
 
 #include "hqview/chart/chart.h"
 #include "hqview/core/error.h"
+#include "hqview/io/image_file.h"
 #include "hqview/render/views_boundary.h"
 #include "hqview/render/views_detail.h"
 #include "hqview/render/views_main.h"
@@ -37,11 +41,57 @@ std::vector<std::string> parse_view_list(const std::string& list) {
   return ids;
 }
 
-std::vector<RenderedView> render_views(const ViewInputs& in, const ViewOptions& options, Renderer& renderer) {
+namespace {
+
+// Calls before_frame, then the wrapped renderer, for every frame.
+class HookedRenderer final : public Renderer {
+ public:
+  HookedRenderer(Renderer& inner, std::function<void()> before_frame)
+      : inner_(inner), before_frame_(std::move(before_frame)) {}
+  Image render(const Scene& scene, const Camera& camera, int width, int height) override {
+    before_frame_();
+    return inner_.render(scene, camera, width, height);
+  }
+
+ private:
+  Renderer& inner_;
+  std::function<void()> before_frame_;
+};
+
+// Waits for a task group's tasks, also when leaving by an exception (the
+// tasks write into the views being returned).
+struct WaitOnExit {
+  tbb::task_group& group;
+  ~WaitOnExit() {
+    try {
+      group.wait();
+    } catch (...) {  // the exception already on its way wins
+    }
+  }
+};
+
+}  // namespace
+
+std::vector<RenderedView> render_views(const ViewInputs& in, const ViewOptions& options, Renderer& base_renderer) {
   auto wanted = [&](const char* id) {
     return options.views.empty() || std::find(options.views.begin(), options.views.end(), id) != options.views.end();
   };
   std::vector<RenderedView> views;
+  // PNG encoding overlaps rendering: before each frame, the images of the
+  // views pushed so far go to TBB tasks that encode them (ViewFile::png);
+  // the rest (the charts at the end) before returning. A pushed view's
+  // files never move (a vector's elements survive moves of the vector), so
+  // the tasks may hold references to them.
+  tbb::task_group encoding;
+  const WaitOnExit wait_for_encoding{encoding};
+  std::size_t num_submitted = 0;
+  auto encode_pushed_views = [&] {
+    for (; num_submitted < views.size(); ++num_submitted)
+      for (ViewFile& file : views[num_submitted].files)
+        if (file.text.empty() && !file.image.rgba.empty())
+          encoding.run([&file] { file.png = encode_png(file.image); });
+  };
+  HookedRenderer renderer(base_renderer, encode_pushed_views);
   if (wanted("overview")) {
     OverviewOptions overview;
     overview.width = options.width;
@@ -75,9 +125,17 @@ std::vector<RenderedView> render_views(const ViewInputs& in, const ViewOptions& 
   }
   // Charts: SVG for the HTML page and a PNG twin, from one Chart each.
   auto chart_files = [](const std::string& name, const Chart& chart) {
-    return std::vector<ViewFile>{{"views/" + name + ".svg", {}, chart_svg(chart)},
-                                 {"views/" + name + ".png", chart_image(chart), {}}};
+    std::vector<ViewFile> files{{"views/" + name + ".svg", {}, chart_svg(chart)},
+                                {"views/" + name + ".png", chart_image(chart), {}}};
+    // Hotspots in fractions of the image: they follow the image when scaled.
+    const double sx = 1.0 / chart.width, sy = 1.0 / chart.height;
+    for (ChartHotspot h : chart.hotspots) {
+      h.rect = {h.rect.x * sx, h.rect.y * sy, h.rect.width * sx, h.rect.height * sy, {}};
+      for (ViewFile& f : files) f.hotspots.push_back(h);
+    }
+    return files;
   };
+  auto cluster_of = [&](Index v) { return glyphs.vertex_cluster[static_cast<std::size_t>(v)]; };
   auto add_chart = [&](const char* id, const std::string& title, const std::string& name, const Chart& chart) {
     views.push_back({id, title, chart_files(name, chart)});
   };
@@ -95,7 +153,8 @@ std::vector<RenderedView> render_views(const ViewInputs& in, const ViewOptions& 
       view.files.push_back({"views/cluster_" + std::to_string(k) + ".png",
                             render_cluster_view(*in.mesh, *in.topology, *in.vertex_quality, glyphs,
                                                 static_cast<Index>(k), detail, renderer),
-                            {}});
+                            {},
+                            static_cast<Index>(k)});
     }
     views.push_back(std::move(view));
   }
@@ -126,7 +185,10 @@ std::vector<RenderedView> render_views(const ViewInputs& in, const ViewOptions& 
     for (Index v : local_vertices) {
       detail.title = in.mesh_name + ": vertex " + std::to_string(v) + ", its hexes and their corner scaled Jacobians";
       view.files.push_back({"views/local_v" + std::to_string(v) + ".png",
-                            render_local_view(*in.mesh, *in.topology, v, detail, renderer), {}});
+                            render_local_view(*in.mesh, *in.topology, v, detail, renderer),
+                            {},
+                            cluster_of(v),
+                            v});
     }
     views.push_back(std::move(view));
   }
@@ -142,7 +204,11 @@ std::vector<RenderedView> render_views(const ViewInputs& in, const ViewOptions& 
       const Chart chart = corner_chart(values, labels,
                                        {std::max(480, 90 * static_cast<int>(values.size()) + 120), 420,
                                         in.mesh_name + ": corners at vertex " + std::to_string(v)});
-      for (ViewFile& file : chart_files("corners_v" + std::to_string(v), chart)) view.files.push_back(std::move(file));
+      for (ViewFile& file : chart_files("corners_v" + std::to_string(v), chart)) {
+        file.cluster = cluster_of(v);
+        file.vertex = v;
+        view.files.push_back(std::move(file));
+      }
     }
     views.push_back(std::move(view));
   }
@@ -211,6 +277,8 @@ std::vector<RenderedView> render_views(const ViewInputs& in, const ViewOptions& 
     add_chart("sorted_quality", "B: sorted vertex quality", "sorted_quality",
               sorted_quality_chart(*in.vertex_quality, options.worst_vertices,
                                    {900, 460, in.mesh_name + ": sorted vertex quality (min corner scaled Jacobian)"}));
+  encode_pushed_views();
+  encoding.wait();
   return views;
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "hqview/boundary/boundary_error.h"
+#include "hqview/chart/chart.h"
 #include "hqview/glyph/glyphs.h"
 #include "hqview/mesh/hex_mesh.h"
 #include "hqview/mesh/topology.h"
@@ -48,6 +49,13 @@ struct ViewFile {
   std::string relative_path;  // "views/<name>.png" or "views/<name>.svg"
   Image image;                // for .png
   std::string text;           // for .svg
+  // What the file shows, for the links between panels (index.html).
+  Index cluster = kNoIndex;  // C: its cluster; D, E: the cluster of its vertex (kNoIndex: none)
+  Index vertex = kNoIndex;   // D, E: its vertex
+  // Chart B: one clickable region per bar, as fractions of the image's width
+  // and height (x, y from the top left), key = the bar's vertex id.
+  std::vector<ChartHotspot> hotspots{};
+  std::string png{};  // for .png: image encoded (encode_png), the bytes to write
 };
 
 struct RenderedView {
@@ -63,7 +71,9 @@ struct ViewOptions {
   std::vector<std::string> views;  // ids to render (parse_view_list); empty: all
 };
 
-// Renders the selected views in report order. Throws RenderError.
+// Renders the selected views in report order. The PNG images of finished
+// views are encoded (ViewFile::png) by TBB tasks while later views render.
+// Throws RenderError.
 std::vector<RenderedView> render_views(const ViewInputs& inputs, const ViewOptions& options, Renderer& renderer);
 
 }  // namespace hq

@@ -1,8 +1,11 @@
 #include "hqview/render/views_main.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <map>
 #include <numeric>
 
 #include "hqview/core/error.h"
@@ -185,6 +188,49 @@ std::vector<Vec3> choose_viewpoints(std::span<const Vec3> points, std::span<cons
   return chosen;
 }
 
+std::vector<ScreenMarker> merge_markers_on_screen(std::span<const OverlapMarker> markers, const Camera& camera,
+                                                  int view_height, double min_pixels) {
+  std::vector<ScreenMarker> drawn;
+  const Vec3 forward = forward_of(camera);
+  const Vec3 right = normalized(cross(forward, camera.up));
+  const Vec3 up = cross(right, forward);
+  // Screen position in pixels (any origin: only differences matter).
+  auto screen = [&](const Vec3& p) {
+    const Vec3 q = p - camera.eye;
+    const double unit = units_per_pixel(camera, std::max(dot(q, forward), 1e-12), view_height);
+    return std::array<double, 2>{dot(q, right) / unit, dot(q, up) / unit};
+  };
+  // Anchors in a grid of min_pixels cells: a closer anchor is in one of the
+  // 3x3 cells around a marker's cell.
+  const double cell = std::max(min_pixels, 1e-9);
+  auto cell_of = [&](double v) { return static_cast<std::int64_t>(std::floor(v / cell)); };
+  std::map<std::pair<std::int64_t, std::int64_t>, std::vector<std::size_t>> grid;
+  std::vector<std::array<double, 2>> anchors;
+  for (const OverlapMarker& m : markers) {
+    const std::array<double, 2> s = screen(m.position);
+    std::size_t best = drawn.size();
+    if (min_pixels > 0.0 && std::isfinite(s[0]) && std::isfinite(s[1])) {
+      const std::int64_t cx = cell_of(s[0]), cy = cell_of(s[1]);
+      for (std::int64_t dx = -1; dx <= 1; ++dx)
+        for (std::int64_t dy = -1; dy <= 1; ++dy) {
+          const auto it = grid.find({cx + dx, cy + dy});
+          if (it == grid.end()) continue;
+          for (std::size_t g : it->second)
+            if (g < best && std::hypot(anchors[g][0] - s[0], anchors[g][1] - s[1]) < min_pixels) best = g;
+        }
+    }
+    if (best == drawn.size()) {
+      drawn.push_back({m.position, 0, 0, 0});
+      anchors.push_back(s);
+      if (std::isfinite(s[0]) && std::isfinite(s[1])) grid[{cell_of(s[0]), cell_of(s[1])}].push_back(best);
+    }
+    ScreenMarker& d = drawn[best];
+    (m.kind == MarkerKind::coincident ? d.coincident : d.intersections) += std::max<Index>(m.count, 1);
+    ++d.members;
+  }
+  return drawn;
+}
+
 Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                        const OverlapReport* overlap, const Camera& camera, int view_height,
                        const MainViewOptions& options) {
@@ -249,25 +295,36 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   }
   scene.spheres.push_back(std::move(spheres));
 
-  // 5. Arrows on overlap markers.
+  // 5. Arrows on overlap markers, merged where they crowd on screen.
   TriangleSet arrows;
   if (overlap) {
     const Vec3 forward = forward_of(camera);
-    for (const OverlapMarker& marker : overlap->markers) {
-      const int n = std::clamp<int>(static_cast<int>(marker.count), 1, std::max(1, options.max_arrows_per_marker));
+    for (const ScreenMarker& marker : merge_markers_on_screen(overlap->markers, camera, view_height,
+                                                              options.marker_merge_pixels * options.pixel_scale)) {
+      const Index total = std::max<Index>(1, marker.count());
+      const int n = std::clamp<int>(static_cast<int>(total), 1, std::max(1, options.max_arrows_per_marker));
+      // Coincident arrows first: their share of n, at least one when any.
+      int num_coincident = 0;
+      if (marker.intersections == 0)
+        num_coincident = n;
+      else if (marker.coincident > 0)
+        num_coincident = std::clamp(
+            static_cast<int>(std::lround(static_cast<double>(n) * static_cast<double>(marker.coincident) / total)), 1,
+            std::max(1, n - 1));
       const double depth = std::max(dot(marker.position - camera.eye, forward), 1e-12);
-      const double unit = units_per_pixel(camera, depth, view_height);
+      const double unit = units_per_pixel(camera, depth, view_height) * options.pixel_scale;
       const ArrowShape shape{static_cast<float>(2.2 * unit), static_cast<float>(6.5 * unit),
                              static_cast<float>(20.0 * unit), 16};
-      const Rgba8 color = marker.kind == MarkerKind::coincident ? kCoincidentArrowColor : kIntersectionArrowColor;
+      int k = 0;
       for (const Vec3& d : arrow_directions(camera, n, options.arrow_start_degrees)) {
+        const Rgba8 color = k++ < num_coincident ? kCoincidentArrowColor : kIntersectionArrowColor;
         const Vec3 tip = marker.position - 3.0 * unit * d;
         const Vec3 tail = tip - options.arrow_pixels * unit * d;
         append_arrow(arrows, local(tail), local(tip), shape, color);
       }
     }
   }
-  scene.triangles.push_back(std::move(arrows));
+  scene.overlay.push_back(std::move(arrows));
   scene.translucent.push_back(std::move(cells));
   return scene;
 }
@@ -300,7 +357,9 @@ Image render_main_view(const HexMesh& mesh, const Topology& topology, const Glyp
   const Camera camera = fit_camera_to_points(points, view_direction, aspect,
                                              {.fov_y_degrees = options.fov_y_degrees, .is_perspective = false});
 
-  Scene scene = build_main_scene(mesh, topology, glyphs, overlap, camera, layout.view.height, options);
+  MainViewOptions scaled = options;
+  scaled.pixel_scale = style.scale;
+  Scene scene = build_main_scene(mesh, topology, glyphs, overlap, camera, layout.view.height, scaled);
   // The wireframe fades when dense on screen, so glyphs and clusters stay readable.
   const double pixels = median_edge_pixels(scene.lines[0], scene.origin, camera, layout.view.width, layout.view.height);
   const double opacity = std::clamp(pixels / 10.0, 0.2, 0.85);
@@ -333,23 +392,57 @@ Image render_main_view(const HexMesh& mesh, const Topology& topology, const Glyp
     draw_text(figure, x, y, label, label_size, style);
   }
 
+  // Counts on merged (or over-full) overlap markers, right of the marker
+  // below the first arrow (which starts at 45 degrees, up and right).
+  if (overlap) {
+    const int count_size = std::max(10, static_cast<int>(std::lround(18 * style.scale)));
+    AnnotationStyle count_style = style;
+    for (const ScreenMarker& marker : merge_markers_on_screen(overlap->markers, camera, layout.view.height,
+                                                              scaled.marker_merge_pixels * scaled.pixel_scale)) {
+      if (marker.members < 2 && marker.count() <= options.max_arrows_per_marker) continue;
+      count_style.text_color = marker.intersections > 0 ? kIntersectionArrowColor : kCoincidentArrowColor;
+      const Vec3 ndc = project_to_ndc(camera, aspect, marker.position);
+      if (!std::isfinite(ndc.x) || std::abs(ndc.x) > 1.0 || std::abs(ndc.y) > 1.0) continue;
+      const int x = layout.view.x + static_cast<int>(std::lround(0.5 * (ndc.x + 1.0) * layout.view.width + 6));
+      const int y =
+          layout.view.y + static_cast<int>(std::lround(0.5 * (1.0 - ndc.y) * layout.view.height)) + count_size;
+      // On a pale box: the label sits among arrow shafts and cells.
+      const std::string label = "x" + std::to_string(marker.count());
+      const PixelRect extent = text_extent(label, count_size, count_style);
+      Rgba8 halo = options.background;
+      halo.a = 255;
+      fill_rect(figure, {x - 2, y - count_size - 1, extent.width + 4, count_size + 5}, halo);
+      draw_text(figure, x, y, label, count_size, count_style);
+    }
+  }
+
   // Legend: what each colour means.
+  // Line pitch, swatch and text sizes shrink together when the legend's
+  // lines would not fit the panel's height (small figures); lines too long
+  // for its width end with "...".
   const PixelRect& area = layout.legend;
-  const int pitch = static_cast<int>(std::lround(34 * style.scale));
-  const int swatch = static_cast<int>(std::lround(18 * style.scale));
-  const int text_size = std::max(10, static_cast<int>(std::lround(19 * style.scale)));
+  const std::size_t listed = std::min<std::size_t>(glyphs.clusters.size(), 10);
+  const double lines = 1.0 + static_cast<double>(listed) + (glyphs.clusters.size() != listed ? 1.0 : 0.0) +
+                       (glyphs.clusters.empty() ? 1.0 : 0.0) + 0.5 + 1.5 + 4.0;
+  const int top = static_cast<int>(std::lround(40 * style.scale));
+  const double fit = std::min(1.0, (area.height - top) / (lines * 34 * style.scale));
+  const int pitch = std::max(1, static_cast<int>(std::lround(34 * style.scale * fit)));
+  const int swatch = std::max(1, static_cast<int>(std::lround(18 * style.scale * fit)));
+  const int text_size =
+      std::max(fit < 1.0 ? 7 : 10, std::min(static_cast<int>(std::lround(19 * style.scale)), pitch * 3 / 4));
   int x = area.x + static_cast<int>(std::lround(16 * style.scale));
-  int y = area.y + static_cast<int>(std::lround(40 * style.scale));
+  int y = area.y + top;
+  const int right = area.x + area.width - static_cast<int>(std::lround(8 * style.scale));
   auto entry = [&](Rgba8 color, const std::string& text) {
-    if (y + pitch > area.y + area.height) return;
+    if (y > area.y + area.height) return;
     color.a = 255;
     fill_rect(figure, {x, y - swatch, swatch, swatch}, color);
-    draw_text(figure, x + swatch + swatch / 2, y - 2, text, text_size, style);
+    const int text_x = x + swatch + swatch / 2;
+    draw_text(figure, text_x, y - 2, ellipsize(text, text_size, right - text_x, style), text_size, style);
     y += pitch;
   };
-  draw_text(figure, x, y, "glyphs: worst clusters", text_size, style);
+  draw_text(figure, x, y, ellipsize("glyphs: worst clusters", text_size, right - x, style), text_size, style);
   y += pitch;
-  const std::size_t listed = std::min<std::size_t>(glyphs.clusters.size(), 10);
   for (std::size_t i = 0; i < listed; ++i) {
     const AggregatedGlyph& g = glyphs.clusters[i];
     entry(to_rgba8(qualitative_color(g.id)), "#" + std::to_string(g.id) + "  " + std::to_string(g.size) +
@@ -360,7 +453,7 @@ Image render_main_view(const HexMesh& mesh, const Topology& topology, const Glyp
     entry(options.background, "... " + std::to_string(glyphs.clusters.size() - listed) + " more clusters");
   if (glyphs.clusters.empty()) entry(options.background, "none (no vertex below threshold)");
   y += pitch / 2;
-  draw_text(figure, x, y, "size = 1 - min quality", text_size, style);
+  draw_text(figure, x, y, ellipsize("size = 1 - min quality", text_size, right - x, style), text_size, style);
   y += 3 * pitch / 2;
   const std::size_t coincident = overlap ? overlap->coincident_groups.size() : 0;
   const std::size_t intersecting = overlap ? static_cast<std::size_t>(overlap->num_intersecting_cells) : 0;

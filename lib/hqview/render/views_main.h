@@ -36,6 +36,9 @@ struct MainViewOptions {
   double arrow_pixels = 70.0;        // arrow length on screen (at the marker's depth)
   double arrow_start_degrees = 45.0; // first arrow's angle in the image plane (deterministic)
   int max_arrows_per_marker = 12;
+  double marker_merge_pixels = 70.0;  // markers closer on screen (one arrow length) are drawn as one
+  double pixel_scale = 1.0;           // multiplies the arrow sizes and marker_merge_pixels; render_main_view
+                                      // sets it to the figure's annotation scale (height / 1200)
   double fov_y_degrees = 30.0;
 };
 
@@ -66,6 +69,22 @@ std::vector<Vec3> choose_viewpoints(std::span<const Vec3> points, std::span<cons
                                     std::span<const double> radii, double aspect, int count,
                                     double fov_y_degrees = 30.0);
 
+// Overlap markers as view A draws them. Arrows of markers a few pixels apart
+// tangle into an unreadable knot, so markers closer on screen than
+// min_pixels are merged: markers are taken in report order, each joins the
+// first drawn marker (in creation order) whose anchor is strictly closer
+// than min_pixels on screen, else it becomes a new drawn marker anchored at
+// its own position. Drawn markers are therefore at least min_pixels apart.
+struct ScreenMarker {
+  Vec3 position;         // the first member's position (the anchor)
+  Index coincident = 0;  // findings of the members, by kind
+  Index intersections = 0;
+  Index members = 0;  // markers merged into this one
+  Index count() const { return coincident + intersections; }
+};
+std::vector<ScreenMarker> merge_markers_on_screen(std::span<const OverlapMarker> markers, const Camera& camera,
+                                                  int view_height, double min_pixels);
+
 // View A's scene for a camera (arrows are laid out in its image plane and
 // sized for an image view_height pixels high):
 //   lines[0]     unique boundary edges, kWireframeColor;
@@ -75,8 +94,11 @@ std::vector<Vec3> choose_viewpoints(std::span<const Vec3> points, std::span<cons
 //   lines[2]     edges of intersecting cells, kIntersectionArrowColor;
 //   spheres[0]   aggregated glyphs: one per cluster, radius = its radius,
 //                colour = its cluster colour;
-//   triangles[0] arrows: per overlap marker min(count, max) arrows whose tips
-//                touch the marker, spread every 360/n degrees;
+//   overlay[0]   arrows, over everything (a marker inside a glyph still
+//                shows its arrows): per drawn marker (merge_markers_on_screen with
+//                options.marker_merge_pixels) n = min(count, max) arrows
+//                whose tips touch the marker, spread every 360/n degrees,
+//                coincident ones first (their share of n, at least one);
 //   translucent[0] the faces of the intersecting cells.
 // overlap may be null (no arrows, no intersecting cells).
 Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
@@ -86,7 +108,9 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
 // Width / height of the 3D part of the figure render_main_view draws.
 double main_view_aspect(const MainViewOptions& options);
 
-// The figure: title, the 3D view, and a legend on the right.
+// The figure: title, the 3D view, and a legend on the right. A drawn marker
+// that merges several markers, or has more findings than arrows, is
+// labelled with its number of findings ("x12").
 Image render_main_view(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                        const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& options,
                        Renderer& renderer);

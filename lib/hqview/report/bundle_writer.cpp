@@ -13,12 +13,22 @@
 #include "hqview/report/report_csv.h"
 #include "hqview/report/report_html.h"
 #include "hqview/report/report_json.h"
+#include "hqview/report/report_markdown.h"
+#include "hqview/report/report_vtu.h"
 
 namespace hq {
 namespace fs = std::filesystem;
 namespace {
 
 bool is_bundle(const fs::path& dir) { return fs::is_regular_file(dir / "report.json"); }
+
+bool is_inside_bundle(const std::string& relative_path) {
+  const fs::path p(relative_path);
+  if (p.empty() || p.is_absolute() || p.has_root_name()) return false;
+  for (const fs::path& part : p)
+    if (part == ".." || part == "." || part.empty()) return false;
+  return true;
+}
 
 template <class WriteFn>
 void write_file(const fs::path& path, WriteFn&& write) {
@@ -51,8 +61,11 @@ void check_output_dir(const fs::path& dir, const BundleOptions& options) {
   std::error_code ec;
   const auto status = fs::symlink_status(dir, ec);
   if (ec || !fs::exists(status)) return;
-  if (!fs::is_directory(status))
-    throw UsageError(dir.string() + ": exists and is not a directory; choose another -o");
+  if (!fs::is_directory(status)) {
+    if (!options.force)
+      throw UsageError(dir.string() + ": exists and is not a directory; choose another -o, or --force to replace it");
+    return;
+  }
   if (!options.force && !fs::is_empty(dir) && !is_bundle(dir))
     throw UsageError(dir.string() + ": is a non-empty directory that is not an HQView bundle (no report.json); "
                      "use --force to replace it");
@@ -65,13 +78,21 @@ void write_bundle(const ReportModel& model, const std::vector<BundleImage>& imag
   fs::create_directories(dir.parent_path());
   const fs::path tmp = sibling(dir, "hqview-tmp");
   fs::remove_all(tmp);
+  // Every file stays inside the bundle: image paths are relative, without "..".
+  for (const BundleImage& img : images)
+    if (!is_inside_bundle(img.relative_path))
+      throw Error("internal: bundle file outside the bundle: " + img.relative_path);
   try {
     fs::create_directories(tmp / "data");
     write_text(tmp / "report.json", report_json(model));
     write_text(tmp / "index.html", index_html(model));
     write_text(tmp / "style.css", report_stylesheet());
+    if (model.boundary_error) write_text(tmp / "boundary.html", boundary_html(model));
+    write_text(tmp / "summary.md", summary_markdown(model));
     write_file(tmp / "data" / "cells.csv", [&](std::ostream& out) { write_cells_csv(model, out); });
     write_file(tmp / "data" / "vertices.csv", [&](std::ostream& out) { write_vertices_csv(model, out); });
+    if (model.has_annotated_vtu)
+      write_file(tmp / "data" / "annotated.vtu", [&](std::ostream& out) { write_annotated_vtu(model, out); });
     for (const BundleImage& img : images) fs::create_directories((tmp / img.relative_path).parent_path());
     // PNG encoding dominates the writing of many views: one image per task.
     tbb::parallel_for(std::size_t{0}, images.size(), [&](std::size_t i) {

@@ -15,21 +15,22 @@ namespace hq {
 struct BundleImage {
   std::string relative_path;  // e.g. "views/overview.png"
   Image image;
-  std::string text;  // non-empty: written as is instead of the image (an SVG chart)
+  std::string text;  // non-empty: written as is instead of the image (an SVG chart, an encoded PNG)
 };
 
 struct BundleOptions {
-  bool force = false;  // replace a non-empty directory that is not an HQView bundle
+  bool force = false;  // replace a file, or a non-empty directory that is not an HQView bundle
 };
 
-// Throws UsageError when `dir` is an existing non-directory, or a non-empty
-// directory without report.json (not an HQView bundle) and !force. Call it
-// before the analysis, so a doomed run fails fast.
+// Throws UsageError, unless force, when `dir` is an existing non-directory
+// (a file: --force replaces it) or a non-empty directory without report.json
+// (not an HQView bundle). Call it before the analysis, so a doomed run fails fast.
 void check_output_dir(const std::filesystem::path& dir, const BundleOptions& options);
 
-// report.json, index.html, style.css, data/cells.csv, data/vertices.csv and
-// the images. Throws hq::Error on an I/O failure (the temporary directory is
-// removed, DIR untouched).
+// report.json, index.html, boundary.html (with a boundary error), summary.md, style.css, data/cells.csv,
+// data/vertices.csv, data/annotated.vtu (when model.has_annotated_vtu) and the images (relative paths without "..":
+// anything else is an internal error, nothing is written outside DIR). Throws hq::Error on an I/O failure (the
+// temporary directory is removed, DIR untouched).
 void write_bundle(const ReportModel& model, const std::vector<BundleImage>& images, const std::filesystem::path& dir,
                   const BundleOptions& options);
 

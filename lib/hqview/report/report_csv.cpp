@@ -51,10 +51,8 @@ void write_cells_csv(const ReportModel& model, std::ostream& out) {
       buffer += ',';
       if (!column->empty()) append_double(buffer, (*column)[h]);
     }
-    const bool degenerate = sj >= kVerdictDegenerate || q.corner_degenerate_mask[h] != 0;
-    const bool inverted = !degenerate && sj <= 0.0;
-    buffer += inverted ? ",1" : ",0";
-    buffer += degenerate ? ",1" : ",0";
+    buffer += cell_is_inverted(q, h) ? ",1" : ",0";
+    buffer += cell_is_degenerate(q, h) ? ",1" : ",0";
     // intersecting: 0/1 from the overlap stage, empty with --no-overlap.
     buffer += ',';
     if (model.overlap) buffer += model.overlap->cell_intersecting[h] ? '1' : '0';

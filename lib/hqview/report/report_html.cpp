@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <kainjow/mustache.hpp>
+#include <map>
+#include <set>
 
 #include "hqview/core/error.h"
 #include "hqview/report/cluster_color.h"
@@ -70,6 +72,228 @@ data kv(const std::string& key, const std::string& value) {
 
 std::string show_vec(const Vec3& v) { return "(" + show(v.x) + ", " + show(v.y) + ", " + show(v.z) + ")"; }
 
+// ---- panels A–F: figures and the links between them ----
+
+// The paper's six linked views (A–F) of index.html, in page order, and the
+// views each shows; the boundary views have their own page.
+struct PanelSpec {
+  const char* anchor;
+  const char* nav;  // short title for the navigation bar
+  const char* title;
+  const char* intro;
+  std::vector<std::string_view> view_ids;
+};
+
+const std::vector<PanelSpec>& index_panels() {
+  static const std::vector<PanelSpec> panels{
+      {"panel-a",
+       "A main",
+       "A · Main view: glyphs, clusters and overlaps",
+       "Sphere glyphs sit on bad vertices (the lower the quality, the larger), merged where they overlap and coloured "
+       "per cluster; arrows point at overlapping elements. The overview colours the boundary by vertex quality.",
+       {"main", "overview"}},
+      {"panel-b",
+       "B sorted quality",
+       "B · Sorted vertex quality",
+       "Each bar of the sorted chart is one of the worst vertices, worst on the left. Click a bar to go to its "
+       "cluster's sub-region (C), or to its local view (D) when its cluster has no sub-region view.",
+       {"sorted_quality", "histogram", "histogram_log"}},
+      {"panel-c",
+       "C clusters",
+       "C · Sub-regions of the worst clusters",
+       "One view per top cluster (the table's bold rows): its glyphs at half size and the hexes around them. Each "
+       "links "
+       "to the local view (D) and corner chart (E) of the cluster's worst vertex, and back to its table row.",
+       {"clusters"}},
+      {"panel-d",
+       "D local",
+       "D · Local views: one-ring hexes of a vertex",
+       "The hexes around a chosen vertex (the worst of each top cluster, then any --focus-vertex), with the scaled "
+       "Jacobian of every corner at the vertex.",
+       {"local"}},
+      {"panel-e",
+       "E corners",
+       "E · Corner charts",
+       "The corner scaled Jacobians at each chosen vertex, one bar per incident hex.",
+       {"corners"}},
+      {"panel-f",
+       "F reference",
+       "F · Reference",
+       "The hex boundary against the reference surface (--reference), and the compared mesh (--compare).",
+       {"reference_overlay", "compare"}},
+  };
+  return panels;
+}
+
+bool is_boundary_view(std::string_view id) {
+  return id == "boundary_error" || id == "uv_error" || id == "boundary_error_sorted" || id == "boundary_area";
+}
+
+std::string stem_of(const std::string& file) { return std::filesystem::path(file).stem().string(); }
+
+// A chart's PNG twin (for Markdown) is left out of the pages when its SVG is listed.
+bool is_png_twin(const ViewEntry& v, const std::string& f) {
+  return f.size() > 4 && f.ends_with(".png") &&
+         std::find(v.files.begin(), v.files.end(), f.substr(0, f.size() - 4) + ".svg") != v.files.end();
+}
+
+std::string percent_style(const ChartRect& r) {
+  char buffer[128];
+  std::snprintf(buffer, sizeof buffer, "left:%.4f%%;top:%.4f%%;width:%.4f%%;height:%.4f%%", 100.0 * r.x, 100.0 * r.y,
+                100.0 * r.width, 100.0 * r.height);
+  return buffer;
+}
+
+data link(const std::string& href, const std::string& label) {
+  data d;
+  d.set("href", href);
+  d.set("label", label);
+  return d;
+}
+
+// Which panels exist, for the links between them.
+struct PanelIndex {
+  std::set<Index> cluster_views;                  // clusters with a C view
+  std::set<Index> local_views, corner_views;      // vertices with a D / E view
+  std::map<Index, std::vector<Index>> detail_of;  // cluster -> its vertices with a D or E view
+  std::set<Index> table_clusters;                 // clusters with a row in the table
+  std::set<Index> worst_vertices;                 // vertices with a row in the worst vertex table
+  const ReportModel* model = nullptr;
+
+  Index cluster_of(Index v) const {
+    if (!model->glyphs || v < 0 || static_cast<std::size_t>(v) >= model->glyphs->vertex_cluster.size()) return kNoIndex;
+    return model->glyphs->vertex_cluster[static_cast<std::size_t>(v)];
+  }
+  const AggregatedGlyph* glyph_cluster(Index c) const {
+    if (!model->glyphs || c < 0 || static_cast<std::size_t>(c) >= model->glyphs->clusters.size()) return nullptr;
+    return &model->glyphs->clusters[static_cast<std::size_t>(c)];
+  }
+  double quality_of(Index v) const {
+    const auto& q = model->field.vertex_quality;
+    return v >= 0 && static_cast<std::size_t>(v) < q.size() ? q[static_cast<std::size_t>(v)] : NAN;
+  }
+  // Where a click on vertex v leads: its cluster's C view, else its D view,
+  // else its cluster's table row, else its worst-vertex row ("" when none).
+  std::string target_of_vertex(Index v) const {
+    const Index c = cluster_of(v);
+    if (c != kNoIndex && cluster_views.count(c)) return "#cluster-" + std::to_string(c);
+    if (local_views.count(v)) return "#vertex-" + std::to_string(v);
+    if (c != kNoIndex && table_clusters.count(c)) return "#cluster-row-" + std::to_string(c);
+    if (worst_vertices.count(v)) return "#worst-vertex-" + std::to_string(v);
+    return "";
+  }
+  // Links from a cluster to its D and E panels (short labels for a table cell).
+  void push_detail_links(Index c, data& links, bool is_short) const {
+    const auto it = detail_of.find(c);
+    if (it == detail_of.end()) return;
+    for (Index v : it->second) {
+      const std::string vs = std::to_string(v);
+      if (local_views.count(v))
+        links.push_back(link("#vertex-" + vs, is_short ? "D: " + vs : "D: local view of vertex " + vs));
+      if (corner_views.count(v))
+        links.push_back(link("#corners-" + vs, is_short ? "E: " + vs : "E: corner chart of vertex " + vs));
+    }
+  }
+};
+
+PanelIndex index_panels_of(const ReportModel& model, std::size_t table_rows) {
+  PanelIndex index;
+  index.model = &model;
+  for (const ViewEntry& v : model.views)
+    for (const ViewFileLinks& l : v.links) {
+      if (v.id == "clusters" && l.cluster != kNoIndex) index.cluster_views.insert(l.cluster);
+      if (l.vertex == kNoIndex) continue;
+      if (v.id == "local") index.local_views.insert(l.vertex);
+      if (v.id == "corners") index.corner_views.insert(l.vertex);
+      if (l.cluster != kNoIndex) {
+        std::vector<Index>& d = index.detail_of[l.cluster];
+        if (std::find(d.begin(), d.end(), l.vertex) == d.end()) d.push_back(l.vertex);
+      }
+    }
+  for (std::size_t i = 0; i < table_rows; ++i) index.table_clusters.insert(static_cast<Index>(i));
+  for (const WorstVertex& w : model.quality.worst_vertices) index.worst_vertices.insert(w.vertex);
+  return index;
+}
+
+// One <figure> of a view file: anchor id, caption and the links it carries.
+data figure(const ViewEntry& v, std::size_t i, const PanelIndex& index) {
+  const std::string& file = v.files[i];
+  const ViewFileLinks no_links;
+  const ViewFileLinks& l = i < v.links.size() ? v.links[i] : no_links;
+  data d;
+  d.set("file", file);
+  d.set("alt", v.title);
+  d.set("is_chart", file.ends_with(".svg"));
+  data links{data::type::list};
+  std::string id = "view-" + stem_of(file), caption = v.title;
+  if (v.id == "clusters" && l.cluster != kNoIndex) {
+    const std::string c = std::to_string(l.cluster);
+    id = "cluster-" + c;
+    caption = "Cluster " + c;
+    if (const AggregatedGlyph* g = index.glyph_cluster(l.cluster))
+      caption += ": " + show_count(g->size) + " glyphs, min quality " + show(g->min_quality);
+    index.push_detail_links(l.cluster, links, false);
+    if (index.table_clusters.count(l.cluster)) links.push_back(link("#cluster-row-" + c, "↑ table row"));
+  } else if ((v.id == "local" || v.id == "corners") && l.vertex != kNoIndex) {
+    const std::string vs = std::to_string(l.vertex);
+    const bool is_local = v.id == "local";
+    id = (is_local ? "vertex-" : "corners-") + vs;
+    caption = std::string(is_local ? "Vertex " : "Corners at vertex ") + vs + " (quality " +
+              show(index.quality_of(l.vertex)) + ")";
+    if (is_local && index.corner_views.count(l.vertex)) links.push_back(link("#corners-" + vs, "E: corner chart"));
+    if (!is_local && index.local_views.count(l.vertex)) links.push_back(link("#vertex-" + vs, "D: local view"));
+    const std::string c = std::to_string(l.cluster);
+    if (l.cluster != kNoIndex && index.cluster_views.count(l.cluster))
+      links.push_back(link("#cluster-" + c, "C: cluster " + c));
+    if (l.cluster != kNoIndex && index.table_clusters.count(l.cluster))
+      links.push_back(link("#cluster-row-" + c, "↑ table row"));
+  }
+  d.set("id", id);
+  d.set("caption", caption);
+  d.set("links", links);
+  d.set("has_links", !links.is_empty_list());
+  data hotspots{data::type::list};
+  for (std::size_t rank = 0; rank < l.hotspots.size(); ++rank) {
+    const ChartHotspot& h = l.hotspots[rank];
+    const std::string target = index.target_of_vertex(h.key);
+    if (target.empty()) continue;
+    data spot;
+    spot.set("href", target);
+    spot.set("style", percent_style(h.rect));
+    spot.set("label", "rank " + std::to_string(rank + 1) + ": vertex " + std::to_string(h.key) + ", quality " +
+                          show(index.quality_of(h.key)));
+    hotspots.push_back(spot);
+  }
+  d.set("hotspots", hotspots);
+  d.set("has_hotspots", !hotspots.is_empty_list());
+  return d;
+}
+
+data figures_of(const ReportModel& model, const std::vector<std::string_view>& ids, const PanelIndex& index) {
+  data figures{data::type::list};
+  for (std::string_view id : ids)
+    for (const ViewEntry& v : model.views)
+      if (v.id == id)
+        for (std::size_t i = 0; i < v.files.size(); ++i)
+          if (!is_png_twin(v, v.files[i])) figures.push_back(figure(v, i, index));
+  return figures;
+}
+
+data input_rows(const ReportModel& model) {
+  data rows{data::type::list};
+  auto add = [&](const std::string& role, const InputFile& f) {
+    rows.push_back(kv(role, f.path));
+    rows.push_back(kv(role + " format", f.format));
+    rows.push_back(kv(role + " sha256", f.sha256));
+  };
+  add("mesh", model.mesh_input);
+  if (model.reference_input) add("reference", *model.reference_input);
+  if (model.compare) add("compared mesh", model.compare->input);
+  rows.push_back(kv("HQView", model.tool_version));
+  rows.push_back(kv("metric definitions", "Verdict 1.4.5 (hex), Si and Chen (IEEE VIS 2023) vertex quality"));
+  return rows;
+}
+
 }  // namespace
 
 std::string_view report_stylesheet() { return detail::embedded_file("style.css"); }
@@ -82,18 +306,35 @@ std::string index_html(const ReportModel& model) {
   page.set("format", model.mesh_input.format);
   page.set("sha256_short", model.mesh_input.sha256.substr(0, 12));
   page.set("version", model.tool_version);
+  page.set("has_boundary_page", model.boundary_error.has_value());
+  page.set("has_annotated_vtu", model.has_annotated_vtu);
+  page.set("inputs", input_rows(model));
 
-  // The papers' headline: #V, #H, min and mean scaled Jacobian, #inverted.
+  // The papers' headline: #V, #H, min and mean scaled Jacobian, #inverted,
+  // overlaps, Hausdorff distance (% of the reference's bbox diagonal).
   data headline{data::type::list};
   headline.push_back(card("vertices", show_count(m.num_vertices)));
   headline.push_back(card("hexahedra", show_count(m.num_hexes)));
   headline.push_back(card("min scaled Jacobian", show(q.scaled_jacobian.min), q.scaled_jacobian.min <= 0));
   headline.push_back(card("mean scaled Jacobian", show(q.scaled_jacobian.mean)));
-  headline.push_back(card("inverted hexes", show_count(q.scaled_jacobian.num_inverted), q.scaled_jacobian.num_inverted > 0));
-  headline.push_back(card("degenerate hexes", show_count(q.scaled_jacobian.num_degenerate), q.scaled_jacobian.num_degenerate > 0));
-  headline.push_back(card("min vertex quality", show(q.vertex_quality.min), q.vertex_quality.min <= 0));
+  headline.push_back(
+      card("inverted hexes", show_count(q.scaled_jacobian.num_inverted), q.scaled_jacobian.num_inverted > 0));
   if (model.overlap)
-    headline.push_back(card("intersecting hexes", show_count(model.overlap->num_intersecting_cells), model.overlap->num_intersecting_cells > 0));
+    headline.push_back(card("overlapping hexes", show_count(model.overlap->num_intersecting_cells),
+                            model.overlap->num_intersecting_cells > 0));
+  else
+    headline.push_back(card("overlapping hexes", "not checked"));
+  if (model.boundary_error) {
+    data hausdorff =
+        card("Hausdorff distance, % of bbox diagonal", show(100.0 * model.boundary_error->hausdorff_relative) + " %");
+    hausdorff.set("href", "boundary.html");
+    headline.push_back(hausdorff);
+  }
+  headline.push_back(
+      card("degenerate hexes", show_count(q.scaled_jacobian.num_degenerate), q.scaled_jacobian.num_degenerate > 0));
+  headline.push_back(card("min vertex quality", show(q.vertex_quality.min), q.vertex_quality.min <= 0));
+  if (model.overlap && model.overlap->num_coincident_vertices > 0)
+    headline.push_back(card("coincident vertices", show_count(model.overlap->num_coincident_vertices), true));
   page.set("headline", headline);
 
   data warnings{data::type::list};
@@ -101,22 +342,39 @@ std::string index_html(const ReportModel& model) {
   page.set("warnings", warnings);
   page.set("has_warnings", !model.warnings.empty());
 
-  data views{data::type::list};
-  for (const ViewEntry& v : model.views) {
-    data view;
-    view.set("id", v.id);
-    view.set("title", v.title);
-    data files{data::type::list};
-    // A chart's PNG twin (for Markdown) is left out when its SVG is listed.
-    for (const std::string& f : v.files) {
-      const bool is_png_twin = f.size() > 4 && f.ends_with(".png") &&
-                               std::find(v.files.begin(), v.files.end(), f.substr(0, f.size() - 4) + ".svg") != v.files.end();
-      if (!is_png_twin) files.push_back(f);
-    }
-    view.set("files", files);
-    views.push_back(view);
+  // Panels A–F with the links between them; views of unknown ids go to
+  // "Other views", the boundary views to boundary.html.
+  constexpr std::size_t kHtmlClusterRows = 20;
+  const std::size_t cluster_rows = model.glyphs ? std::min(model.glyphs->clusters.size(), kHtmlClusterRows) : 0;
+  const PanelIndex index = index_panels_of(model, cluster_rows);
+  data panels{data::type::list};
+  std::vector<std::string_view> known;
+  for (const PanelSpec& spec : index_panels()) {
+    known.insert(known.end(), spec.view_ids.begin(), spec.view_ids.end());
+    data figures = figures_of(model, spec.view_ids, index);
+    if (figures.is_empty_list()) continue;
+    data panel;
+    panel.set("anchor", spec.anchor);
+    panel.set("nav", spec.nav);
+    panel.set("title", spec.title);
+    panel.set("intro", spec.intro);
+    panel.set("figures", figures);
+    panels.push_back(panel);
   }
-  page.set("views", views);
+  std::vector<std::string_view> others;
+  for (const ViewEntry& v : model.views)
+    if (!is_boundary_view(v.id) && std::find(known.begin(), known.end(), v.id) == known.end()) others.push_back(v.id);
+  if (!others.empty()) {
+    data panel;
+    panel.set("anchor", "panel-other");
+    panel.set("nav", "other views");
+    panel.set("title", "Other views");
+    panel.set("intro", "Views without a panel of their own.");
+    panel.set("figures", figures_of(model, others, index));
+    panels.push_back(panel);
+  }
+  page.set("panels", panels);
+  page.set("has_views", !model.views.empty());
 
   data stats{data::type::list};
   stats.push_back(stats_row("cell scaled Jacobian", "Verdict: min over centre and 8 corner frames", q.scaled_jacobian));
@@ -162,6 +420,8 @@ std::string index_html(const ReportModel& model) {
   for (const WorstVertex& w : q.worst_vertices) {
     data d;
     d.set("vertex", std::to_string(w.vertex));
+    const std::string target = index.target_of_vertex(w.vertex);
+    d.set("target", target.starts_with("#worst-vertex-") ? "" : target);
     d.set("quality", show(w.quality));
     d.set("position", show_vec(w.position));
     worst_vertices.push_back(d);
@@ -190,7 +450,6 @@ std::string index_html(const ReportModel& model) {
 
   // Glyph clusters: the worst kHtmlClusterRows, with their palette colour;
   // the first top_clusters are the ones later views show in detail.
-  constexpr std::size_t kHtmlClusterRows = 20;
   page.set("has_glyphs", model.glyphs.has_value());
   if (model.glyphs) {
     const GlyphResult& g = *model.glyphs;
@@ -201,7 +460,7 @@ std::string index_html(const ReportModel& model) {
                  " clusters of overlapping glyphs; rmax " + show(g.rmax) +
                  (is_relative ? " (" + show(g.options.rmax) + " × mean edge length)." : " (model units)."));
     data clusters{data::type::list};
-    const std::size_t rows = std::min(g.clusters.size(), kHtmlClusterRows);
+    const std::size_t rows = cluster_rows;
     for (std::size_t i = 0; i < rows; ++i) {
       const AggregatedGlyph& c = g.clusters[i];
       data d;
@@ -213,6 +472,10 @@ std::string index_html(const ReportModel& model) {
       d.set("position", show_vec(c.position));
       d.set("radius", show(c.radius));
       d.set("is_top", static_cast<int>(i) < g.options.top_clusters);
+      d.set("has_view", index.cluster_views.count(c.id) > 0);
+      data links{data::type::list};
+      index.push_detail_links(c.id, links, true);
+      d.set("links", links);
       clusters.push_back(d);
     }
     page.set("clusters", clusters);
@@ -231,9 +494,11 @@ std::string index_html(const ReportModel& model) {
              o.certified_clean
                  ? "Certified: every hex is positively oriented (24 exact tets each) and the boundary is embedded and "
                    "unnested, so no two hexes overlap (Lipman's theorem)" +
-                       std::string(o.mode == OverlapMode::exhaustive ? "; the exhaustive pair tests agree." : "; no pair tests were needed.")
-                 : "Not certified: " + show_count(o.num_flagged_cells) + " hexes were tested against every hex near them (" +
-                       show_count(o.num_candidate_pairs) + " pairs, " + mode + " mode). A pair intersects when a vertex of one lies inside the other.");
+                       std::string(o.mode == OverlapMode::exhaustive ? "; the exhaustive pair tests agree."
+                                                                     : "; no pair tests were needed.")
+                 : "Not certified: " + show_count(o.num_flagged_cells) +
+                       " hexes were tested against every hex near them (" + show_count(o.num_candidate_pairs) +
+                       " pairs, " + mode + " mode). A pair intersects when a vertex of one lies inside the other.");
     data rows{data::type::list};
     auto row = [&](const std::string& key, std::size_t value) {
       data d = kv(key, show_count(static_cast<long long>(value)));
@@ -272,6 +537,80 @@ std::string index_html(const ReportModel& model) {
 
   mustache tmpl{std::string(detail::embedded_file("index.html.mustache"))};
   if (!tmpl.is_valid()) throw Error("internal: index.html template: " + tmpl.error_message());
+  return tmpl.render(page);
+}
+
+std::string boundary_html(const ReportModel& model) {
+  if (!model.boundary_error) throw Error("internal: boundary.html without a boundary error");
+  const BoundaryError& e = *model.boundary_error;
+  data page;
+  page.set("mesh_name", std::filesystem::path(model.mesh_input.path).filename().string());
+  page.set("reference_name",
+           model.reference_input ? std::filesystem::path(model.reference_input->path).filename().string() : "");
+  page.set("version", model.tool_version);
+
+  data headline{data::type::list};
+  headline.push_back(card("Hausdorff distance, % of bbox diagonal", show(100.0 * e.hausdorff_relative) + " %"));
+  headline.push_back(card("Hausdorff distance (model units)", show(e.hausdorff_symmetric)));
+  headline.push_back(
+      card("Hausdorff mesh → reference, % of diagonal", show(100.0 * e.relative_mesh_to_reference) + " %"));
+  headline.push_back(
+      card("Hausdorff reference → mesh, % of diagonal", show(100.0 * e.relative_reference_to_mesh) + " %"));
+  headline.push_back(card("boundary area outside", show(100.0 * e.fraction_outside) + " %"));
+  headline.push_back(card("boundary area inside", show(100.0 * e.fraction_inside) + " %"));
+  page.set("headline", headline);
+
+  // The boundary views in the order of the paper's figure: 3D error views,
+  // UV error map, sorted error chart, area percentages.
+  PanelIndex no_links;
+  no_links.model = &model;
+  data figures = figures_of(model, {"boundary_error", "uv_error", "boundary_error_sorted", "boundary_area"}, no_links);
+  page.set("has_figures", !figures.is_empty_list());
+  page.set("figures", figures);
+
+  const Statistics& s = e.signed_stats;
+  data stats{data::type::list};
+  auto stat = [&](const std::string& key, const std::string& value) { stats.push_back(kv(key, value)); };
+  stat("boundary vertices", show_count(s.count));
+  stat("min (most inside)", show(s.min));
+  stat("p01 / p05", show(s.p01) + " / " + show(s.p05));
+  stat("median", show(s.p50));
+  stat("mean / std", show(s.mean) + " / " + show(s.std));
+  stat("p95 / p99", show(s.p95) + " / " + show(s.p99));
+  stat("max (most outside)", show(s.max));
+  page.set("signed_rows", stats);
+
+  data rows{data::type::list};
+  rows.push_back(kv("Hausdorff, mesh → reference", show(e.hausdorff_mesh_to_reference)));
+  rows.push_back(kv("Hausdorff, reference → mesh", show(e.hausdorff_reference_to_mesh)));
+  rows.push_back(kv("Hausdorff, symmetric", show(e.hausdorff_symmetric)));
+  rows.push_back(kv("reference bbox diagonal", show(e.reference_bbox_diagonal)));
+  rows.push_back(
+      kv("area-weighted mean / mean |error| / rms",
+         show(e.area_weighted_mean) + " / " + show(e.area_weighted_mean_abs) + " / " + show(e.area_weighted_rms)));
+  rows.push_back(kv("sign method", sign_method_name(e.sign_method)));
+  rows.push_back(kv("uncertain signs", show_count(e.num_uncertain_signs)));
+  rows.push_back(kv("reference triangles read / repaired / zero area",
+                    show_count(e.num_reference_triangles) + " / " + show_count(e.num_repaired_triangles) + " / " +
+                        show_count(e.num_zero_area_triangles)));
+  if (model.uv_atlas) {
+    const UvAtlas& a = *model.uv_atlas;
+    rows.push_back(kv("UV atlas charts (split / LSCM)", show_count(a.num_charts) + " (" + show_count(a.num_splits) +
+                                                            " / " + show_count(a.num_lscm_charts) + ")"));
+    rows.push_back(
+        kv("UV flipped triangles / overlapping pairs", show_count(a.num_flipped) + " / " + show_count(a.num_overlaps)));
+    rows.push_back(kv("UV packing efficiency", show(100.0 * a.packing_efficiency) + " %"));
+  }
+  page.set("detail_rows", rows);
+
+  data warnings{data::type::list};
+  for (const std::string& w : e.warnings) warnings.push_back(w);
+  page.set("warnings", warnings);
+  page.set("has_warnings", !e.warnings.empty());
+  page.set("inputs", input_rows(model));
+
+  mustache tmpl{std::string(detail::embedded_file("boundary.html.mustache"))};
+  if (!tmpl.is_valid()) throw Error("internal: boundary.html template: " + tmpl.error_message());
   return tmpl.render(page);
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "hqview/boundary/boundary_error.h"
+#include "hqview/chart/chart.h"
 #include "hqview/glyph/glyphs.h"
 #include "hqview/mesh/hex_mesh.h"
 #include "hqview/mesh/topology.h"
@@ -79,10 +80,20 @@ struct GateSummary {
   std::vector<GateResult> results;
 };
 
+// What one file of a view shows, for the links between panels in
+// index.html (not written to report.json).
+struct ViewFileLinks {
+  Index cluster = kNoIndex;  // C: its cluster; D, E: the cluster of its vertex (kNoIndex: none)
+  Index vertex = kNoIndex;   // D, E: its vertex
+  // Chart B: one region per bar, in fractions of the image, key = vertex id.
+  std::vector<ChartHotspot> hotspots;
+};
+
 struct ViewEntry {
   std::string id;
   std::string title;
-  std::vector<std::string> files;  // relative to the bundle root
+  std::vector<std::string> files;    // relative to the bundle root
+  std::vector<ViewFileLinks> links;  // one per file, or empty (no links)
 };
 
 struct ReportModel {
@@ -93,6 +104,9 @@ struct ReportModel {
   std::vector<ViewEntry> views;
   std::vector<std::string> warnings;  // from the readers and the analysis
   GateSummary gates;
+  // data/annotated.vtu is part of the bundle (set by whoever writes it):
+  // index.html links it only then.
+  bool has_annotated_vtu = false;
 
   // Per-element data the CSV and the views are written from.
   HexMesh mesh;

@@ -1,0 +1,170 @@
+#include "hqview/io/read_limits.h"
+
+#include <unistd.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+
+#include "hqview/core/error.h"
+
+namespace hq {
+namespace {
+
+constexpr std::uint64_t kSaturated = std::numeric_limits<std::uint64_t>::max();
+
+// Peak RSS of `hqview analyze -j2` measured with /usr/bin/time -v (README,
+// "Resource limits"): a 14 KB mesh 183 MB (libraries, TBB, OSMesa); grids of
+// 50^3 and 100^3 hexes without rendering 277 MB and 938 MB, i.e. 183 MB +
+// the file + about 690 bytes per hex and vertex pair; rendering adds 110 MB
+// (grid 50^3) to 240 MB (Dolphin_padded, 45,440 hexes: 456 MB in all). The
+// constants below are those numbers with about 30 % to spare.
+constexpr std::uint64_t kBaseBytes = std::uint64_t{448} << 20;  // process, libraries, rendering framebuffers
+constexpr std::uint64_t kBytesPerVertex = 250;
+constexpr std::uint64_t kBytesPerHex = 650;
+
+std::uint64_t saturating_mul(std::uint64_t a, std::uint64_t b) {
+  return a != 0 && b > kSaturated / a ? kSaturated : a * b;
+}
+std::uint64_t saturating_add(std::uint64_t a, std::uint64_t b) { return b > kSaturated - a ? kSaturated : a + b; }
+
+// The first line of a file as a number of bytes; 0 when absent, "max" or unreadable.
+std::uint64_t read_limit_file(const std::string& path) {
+  std::ifstream in(path);
+  std::string text;
+  if (!in || !std::getline(in, text)) return 0;
+  std::uint64_t value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return error == std::errc() ? value : 0;
+}
+
+// The memory limit of this process's cgroup (v2, else v1); 0 when none.
+std::uint64_t cgroup_memory_limit() {
+  std::ifstream in("/proc/self/cgroup");
+  std::string line;
+  std::uint64_t limit = 0;
+  while (std::getline(in, line)) {
+    // "0::/path" (v2) or "4:memory:/path" (v1).
+    const auto first = line.find(':'), second = line.find(':', first + 1);
+    if (first == std::string::npos || second == std::string::npos) continue;
+    const std::string controllers = line.substr(first + 1, second - first - 1);
+    const std::string group = line.substr(second + 1);
+    std::uint64_t found = 0;
+    if (controllers.empty())
+      found = read_limit_file("/sys/fs/cgroup" + group + "/memory.max");
+    else if (controllers == "memory" || controllers.find("memory,") != std::string::npos ||
+             controllers.ends_with(",memory"))
+      found = read_limit_file("/sys/fs/cgroup/memory" + group + "/memory.limit_in_bytes");
+    // v1 writes "no limit" as a huge number rounded to the page size.
+    if (found > 0 && found < (std::uint64_t{1} << 62) && (limit == 0 || found < limit)) limit = found;
+  }
+  return limit;
+}
+
+std::uint64_t compute_default_max_memory() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
+  std::uint64_t physical =
+      pages > 0 && page > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) : 0;
+  const std::uint64_t cgroup = cgroup_memory_limit();
+  if (cgroup > 0 && (physical == 0 || cgroup < physical)) physical = cgroup;
+  return physical / 4 * 3;
+}
+
+}  // namespace
+
+std::uint64_t default_max_memory() {
+  static const std::uint64_t bytes = compute_default_max_memory();
+  return bytes;
+}
+
+std::uint64_t estimate_analysis_memory(std::uint64_t file_bytes, std::uint64_t num_vertices, std::uint64_t num_hexes) {
+  std::uint64_t bytes = saturating_add(kBaseBytes, file_bytes);
+  bytes = saturating_add(bytes, saturating_mul(num_vertices, kBytesPerVertex));
+  return saturating_add(bytes, saturating_mul(num_hexes, kBytesPerHex));
+}
+
+std::string format_memory_size(std::uint64_t bytes) {
+  constexpr const char* kUnits[] = {"bytes", "KB", "MB", "GB", "TB", "PB", "EB"};
+  double value = static_cast<double>(bytes);
+  int unit = 0;
+  while (value >= 1024.0 && unit < 6) {
+    value /= 1024.0;
+    ++unit;
+  }
+  if (unit == 0) return std::to_string(bytes) + (bytes == 1 ? " byte" : " bytes");
+  char text[32];
+  // Three significant digits: 1.23 GB, 12.3 GB, 123 GB.
+  std::snprintf(text, sizeof text, value < 10 ? "%.2f" : value < 100 ? "%.1f" : "%.0f", value);
+  std::string number = text;
+  if (number.find('.') != std::string::npos) {
+    while (number.back() == '0') number.pop_back();
+    if (number.back() == '.') number.pop_back();
+  }
+  return number + " " + kUnits[unit];
+}
+
+std::uint64_t parse_memory_size(std::string_view text, std::string_view option) {
+  std::string_view number = text;
+  if (!number.empty() && (number.back() == 'B' || number.back() == 'b')) number.remove_suffix(1);
+  double unit = 1;
+  if (!number.empty()) {
+    switch (number.back()) {
+      case 'K':
+      case 'k':
+        unit = 0x1p10;
+        break;
+      case 'M':
+      case 'm':
+        unit = 0x1p20;
+        break;
+      case 'G':
+      case 'g':
+        unit = 0x1p30;
+        break;
+      case 'T':
+      case 't':
+        unit = 0x1p40;
+        break;
+      default:
+        break;
+    }
+  }
+  if (unit != 1) number.remove_suffix(1);
+  double value = 0;
+  const auto [end, error] = std::from_chars(number.data(), number.data() + number.size(), value);
+  const double bytes = value * unit;
+  if (number.empty() || error != std::errc() || end != number.data() + number.size() || !std::isfinite(bytes) ||
+      !(bytes == 0 || bytes >= 1) || bytes >= 0x1p64)
+    throw UsageError(std::string(option) +
+                     ": expected a size such as 512M, 4G or 0.5T (K, M, G, T: powers of 1024; 0: no limit), got '" +
+                     std::string(text) + "'");
+  return static_cast<std::uint64_t>(bytes);
+}
+
+void check_mesh_memory(const ReadLimits& limits, const std::string& name, std::int64_t line, std::uint64_t file_bytes,
+                       std::int64_t num_vertices, std::int64_t num_hexes, std::string_view cell_noun) {
+  if (limits.max_memory == 0) return;
+  const std::uint64_t vertices = num_vertices > 0 ? static_cast<std::uint64_t>(num_vertices) : 0;
+  const std::uint64_t hexes = num_hexes > 0 ? static_cast<std::uint64_t>(num_hexes) : 0;
+  const std::uint64_t needed = estimate_analysis_memory(file_bytes, vertices, hexes);
+  if (needed <= limits.max_memory) return;
+  const std::string noun(cell_noun);
+  const std::string what = num_hexes >= 0
+                               ? std::to_string(num_hexes) + " " +
+                                     (num_hexes == 1  ? noun
+                                      : noun == "hex" ? "hexes"
+                                                      : noun + "s")
+                               : std::to_string(num_vertices) + (num_vertices == 1 ? " vertex" : " vertices");
+  std::string needed_text = format_memory_size(needed), limit_text = format_memory_size(limits.max_memory);
+  if (needed_text == limit_text) {  // rounded alike: say which is larger
+    needed_text += " (" + std::to_string(needed) + " bytes)";
+    limit_text += " (" + std::to_string(limits.max_memory) + " bytes)";
+  }
+  throw ParseError(
+      name, line,
+      "the file declares " + what + ", which needs about " + needed_text + "; --max-memory is " + limit_text);
+}
+
+}  // namespace hq

@@ -1,0 +1,53 @@
+#pragma once
+// The memory budget of reading and analysing one mesh (--max-memory). Each
+// reader calls check_mesh_memory() as soon as it knows the counts a file
+// declares (vertices, then hexahedra) and before it allocates from them, so
+// a file asking for more than the budget is refused with a clear message
+// instead of being killed by the kernel's OOM killer half-way through.
+//
+// Order of the checks in a reader: a count is first checked against the
+// bytes left in the file ("... cannot fit in the N bytes left in the file":
+// a malformed file), then against the budget (a well-formed file too large
+// for this machine).
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace hq {
+
+// The default budget: 75 % of the physical memory (sysconf), or of the
+// cgroup's memory limit when that is lower and readable (cgroup v2
+// memory.max, v1 memory.limit_in_bytes). 0 when neither is known.
+std::uint64_t default_max_memory();
+
+struct ReadLimits {
+  std::uint64_t max_memory = default_max_memory();  // bytes; 0: no limit
+};
+
+// Estimated peak bytes of `hqview analyze` on a mesh: the file's bytes
+// (held during the analysis) plus per vertex and per hex costs of the whole
+// pipeline (mesh, topology, quality fields, Verdict metrics, glyphs,
+// overlap, rendering). Calibrated with /usr/bin/time -v (README, "Resource
+// limits"). Saturates instead of overflowing.
+std::uint64_t estimate_analysis_memory(std::uint64_t file_bytes, std::uint64_t num_vertices, std::uint64_t num_hexes);
+
+// "512 MB", "1.5 GB", "3 TB" (binary units: 1 GB = 2^30 bytes), 3 significant digits.
+std::string format_memory_size(std::uint64_t bytes);
+
+// Parses a --max-memory value: a number (fractions allowed) with an
+// optional unit K, M, G or T (binary, any case, optional trailing B):
+// "512M", "4G", "0.5T", "1000000" (bytes); "0": no limit. Throws
+// UsageError naming `option` for anything else (negative, below one byte,
+// 2^64 bytes or more).
+std::uint64_t parse_memory_size(std::string_view text, std::string_view option);
+
+// Throws ParseError "name:line: the file declares N hexes, which needs about
+// X; --max-memory is Y" (or "N vertices" while the hexes are not known yet:
+// num_hexes < 0) when estimate_analysis_memory() exceeds limits.max_memory.
+// cell_noun: what the file declares ("cell", "element": a count of cells of
+// any type, estimated as hexes).
+void check_mesh_memory(const ReadLimits& limits, const std::string& name, std::int64_t line, std::uint64_t file_bytes,
+                       std::int64_t num_vertices, std::int64_t num_hexes, std::string_view cell_noun = "hex");
+
+}  // namespace hq

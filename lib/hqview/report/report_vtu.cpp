@@ -1,0 +1,250 @@
+#include "hqview/report/report_vtu.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <limits>
+#include <string_view>
+#include <type_traits>
+#include <utility>
+
+#include "hqview/core/error.h"
+#include "hqview/quality/hex_metrics.h"
+#include "hqview/report/report_csv.h"
+
+namespace hq {
+namespace {
+
+// VTK_HEXAHEDRON's cell type id (vtkCellType.h).
+constexpr std::uint8_t kVtkHexahedron = 12;
+// Values converted per chunk: 64 Ki values, at most 512 KiB of buffer.
+constexpr std::size_t kChunkValues = std::size_t{1} << 16;
+
+template <class T>
+constexpr const char* vtk_type_name() {
+  if constexpr (std::is_same_v<T, double>) return "Float64";
+  if constexpr (std::is_same_v<T, std::int64_t>) return "Int64";
+  if constexpr (std::is_same_v<T, std::int32_t>) return "Int32";
+  if constexpr (std::is_same_v<T, std::uint8_t>) return "UInt8";
+  static_assert(std::is_same_v<T, double> || std::is_same_v<T, std::int64_t> || std::is_same_v<T, std::int32_t> ||
+                std::is_same_v<T, std::uint8_t>);
+}
+
+template <class T>
+void store_little_endian(T value, unsigned char* out) {
+  std::memcpy(out, &value, sizeof(T));
+  if constexpr (std::endian::native == std::endian::big) std::reverse(out, out + sizeof(T));
+}
+
+// An array of the file: its header entry and a function that writes values
+// [first, first + count) little-endian into a buffer.
+struct VtuArray {
+  VtuArrayInfo info;
+  std::size_t value_size = 0;
+  std::function<void(std::size_t first, std::size_t count, unsigned char* out)> fill;
+};
+
+template <class T, class Get>
+VtuArray make_array(const char* section, std::string name, int components, std::size_t num_values, Get get) {
+  VtuArray a;
+  a.info.section = section;
+  a.info.name = std::move(name);
+  a.info.type = vtk_type_name<T>();
+  a.info.components = components;
+  a.info.num_values = num_values;
+  a.value_size = sizeof(T);
+  a.fill = [get](std::size_t first, std::size_t count, unsigned char* out) {
+    for (std::size_t i = 0; i < count; ++i) store_little_endian(static_cast<T>(get(first + i)), out + i * sizeof(T));
+  };
+  return a;
+}
+
+template <class T>
+VtuArray copy_array(const char* section, std::string name, const std::vector<T>& values) {
+  return make_array<T>(section, std::move(name), 1, values.size(), [&values](std::size_t i) { return values[i]; });
+}
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// A per-element input with the wrong length is a bug upstream: refuse it
+// rather than write a file VTK rejects (or read past a vector).
+template <class Vector>
+void require_size(const Vector& v, std::size_t expected, const char* what) {
+  if (v.size() != expected)
+    throw Error(std::string("internal: annotated.vtu: ") + what + " has " + std::to_string(v.size()) +
+                " entries, expected " + std::to_string(expected));
+}
+
+void check_sizes(const ReportModel& model) {
+  const std::size_t nv = model.mesh.points.size(), nc = model.mesh.hexes.size();
+  const QualityField& q = model.field;
+  require_size(q.vertex_quality, nv, "vertex_quality");
+  require_size(q.cell_scaled_jacobian, nc, "cell_scaled_jacobian");
+  require_size(q.corner_scaled_jacobian, 8 * nc, "corner_scaled_jacobian");
+  require_size(q.corner_degenerate_mask, nc, "corner_degenerate_mask");
+  require_size(model.topology.is_boundary_vertex, nv, "is_boundary_vertex");
+  for (const std::vector<double>& values : model.metrics.values)
+    if (!values.empty()) require_size(values, nc, "a metric");
+  if (model.glyphs) {
+    require_size(model.glyphs->vertex_radius, nv, "glyph vertex_radius");
+    require_size(model.glyphs->vertex_cluster, nv, "glyph vertex_cluster");
+  }
+  if (model.overlap) {
+    require_size(model.overlap->vertex_coincident_group, nv, "vertex_coincident_group");
+    require_size(model.overlap->cell_intersecting, nc, "cell_intersecting");
+  }
+  if (model.boundary_error) require_size(model.boundary_error->vertex_error, nv, "boundary vertex_error");
+}
+
+// Every array, in file order (PointData, CellData, Points, Cells, the order
+// of VTK's own writer), offsets filled in.
+std::vector<VtuArray> build_arrays(const ReportModel& model) {
+  check_sizes(model);
+  const std::size_t num_points = model.mesh.points.size();
+  const std::size_t num_cells = model.mesh.hexes.size();
+  const QualityField& q = model.field;
+  std::vector<VtuArray> arrays;
+
+  // PointData: the columns of vertices.csv (x, y, z are the points).
+  arrays.push_back(copy_array("PointData", "quality", q.vertex_quality));
+  if (model.glyphs) {
+    const GlyphResult& g = *model.glyphs;
+    arrays.push_back(make_array<double>("PointData", "glyph_radius", 1, num_points, [&g, &q](std::size_t v) {
+      return std::isnan(q.vertex_quality[v]) ? kNaN : g.vertex_radius[v];
+    }));
+    arrays.push_back(copy_array<std::int32_t>("PointData", "cluster", g.vertex_cluster));
+  }
+  if (model.overlap)
+    arrays.push_back(copy_array<std::int32_t>("PointData", "coincident_group", model.overlap->vertex_coincident_group));
+  arrays.push_back(make_array<std::uint8_t>("PointData", "boundary", 1, num_points, [&model](std::size_t v) {
+    return model.topology.is_boundary_vertex[v] != 0 ? 1 : 0;
+  }));
+  if (model.boundary_error)
+    arrays.push_back(copy_array("PointData", "boundary_error", model.boundary_error->vertex_error));
+
+  // CellData: the columns of cells.csv, plus min_corner_sj.
+  arrays.push_back(copy_array("CellData", "scaled_jacobian", q.cell_scaled_jacobian));
+  for (std::size_t i = 0; i < 8; ++i) {
+    arrays.push_back(make_array<double>("CellData", "corner_sj_" + std::to_string(i), 1, num_cells,
+                                        [&q, i](std::size_t h) { return q.corner_scaled_jacobian[8 * h + i]; }));
+  }
+  arrays.push_back(make_array<double>("CellData", "min_corner_sj", 1, num_cells, [&q](std::size_t h) {
+    const double* corners = q.corner_scaled_jacobian.data() + 8 * h;
+    return *std::min_element(corners, corners + 8);
+  }));
+  for (int m = 0; m < kNumHexMetrics; ++m) {
+    const auto metric = static_cast<HexMetric>(m);
+    const std::vector<double>& values = model.metrics.of(metric);
+    if (metric == HexMetric::scaled_jacobian || values.empty()) continue;
+    arrays.push_back(copy_array("CellData", std::string(hex_metric_name(metric)), values));
+  }
+  arrays.push_back(make_array<std::uint8_t>("CellData", "inverted", 1, num_cells,
+                                            [&q](std::size_t h) { return cell_is_inverted(q, h) ? 1 : 0; }));
+  arrays.push_back(make_array<std::uint8_t>("CellData", "degenerate", 1, num_cells,
+                                            [&q](std::size_t h) { return cell_is_degenerate(q, h) ? 1 : 0; }));
+  if (model.overlap) {
+    const std::vector<char>& intersecting = model.overlap->cell_intersecting;
+    arrays.push_back(make_array<std::uint8_t>("CellData", "intersecting", 1, num_cells,
+                                              [&intersecting](std::size_t h) { return intersecting[h] != 0 ? 1 : 0; }));
+  }
+
+  // Points and Cells.
+  const std::vector<Vec3>& points = model.mesh.points;
+  arrays.push_back(make_array<double>("Points", "Points", 3, 3 * num_points, [&points](std::size_t i) {
+    const Vec3& p = points[i / 3];
+    return i % 3 == 0 ? p.x : i % 3 == 1 ? p.y : p.z;
+  }));
+  const std::vector<Hex>& hexes = model.mesh.hexes;
+  arrays.push_back(make_array<std::int64_t>("Cells", "connectivity", 1, 8 * num_cells,
+                                            [&hexes](std::size_t i) { return hexes[i / 8][i % 8]; }));
+  arrays.push_back(make_array<std::int64_t>("Cells", "offsets", 1, num_cells,
+                                            [](std::size_t h) { return static_cast<std::int64_t>(8 * (h + 1)); }));
+  arrays.push_back(
+      make_array<std::uint8_t>("Cells", "types", 1, num_cells, [](std::size_t) { return kVtkHexahedron; }));
+
+  std::uint64_t offset = 0;
+  for (VtuArray& a : arrays) {
+    a.info.offset = offset;
+    offset += sizeof(std::uint64_t) + a.info.num_values * a.value_size;
+  }
+  return arrays;
+}
+
+void append_data_array(std::string& xml, const VtuArrayInfo& info, std::string_view indent) {
+  xml += indent;
+  xml += "<DataArray type=\"";
+  xml += info.type;
+  xml += "\" Name=\"";
+  xml += info.name;  // HQView's own identifiers: nothing to escape
+  xml += '"';
+  if (info.components != 1) {
+    xml += " NumberOfComponents=\"";
+    xml += std::to_string(info.components);
+    xml += '"';
+  }
+  xml += " format=\"appended\" offset=\"";
+  xml += std::to_string(info.offset);
+  xml += "\"/>\n";
+}
+
+std::string xml_header(const ReportModel& model, const std::vector<VtuArray>& arrays) {
+  std::string xml =
+      "<?xml version=\"1.0\"?>\n"
+      "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+      "  <UnstructuredGrid>\n";
+  xml += "    <Piece NumberOfPoints=\"" + std::to_string(model.mesh.points.size()) + "\" NumberOfCells=\"" +
+         std::to_string(model.mesh.hexes.size()) + "\">\n";
+  // ParaView colours by the active scalars when a file is opened.
+  const std::pair<const char*, const char*> sections[] = {{"PointData", " Scalars=\"quality\""},
+                                                          {"CellData", " Scalars=\"scaled_jacobian\""},
+                                                          {"Points", ""},
+                                                          {"Cells", ""}};
+  for (const auto& [section, attributes] : sections) {
+    xml += "      <";
+    xml += section;
+    xml += attributes;
+    xml += ">\n";
+    for (const VtuArray& a : arrays)
+      if (a.info.section == section) append_data_array(xml, a.info, "        ");
+    xml += "      </";
+    xml += section;
+    xml += ">\n";
+  }
+  xml +=
+      "    </Piece>\n"
+      "  </UnstructuredGrid>\n"
+      "  <AppendedData encoding=\"raw\">\n"
+      "   _";
+  return xml;
+}
+
+}  // namespace
+
+std::vector<VtuArrayInfo> annotated_vtu_layout(const ReportModel& model) {
+  std::vector<VtuArrayInfo> layout;
+  for (VtuArray& a : build_arrays(model)) layout.push_back(std::move(a.info));
+  return layout;
+}
+
+void write_annotated_vtu(const ReportModel& model, std::ostream& out) {
+  const std::vector<VtuArray> arrays = build_arrays(model);
+  const std::string header = xml_header(model, arrays);
+  out.write(header.data(), static_cast<std::streamsize>(header.size()));
+  std::vector<unsigned char> buffer(kChunkValues * sizeof(double));
+  for (const VtuArray& a : arrays) {
+    unsigned char count[sizeof(std::uint64_t)];
+    store_little_endian<std::uint64_t>(a.info.num_values * a.value_size, count);
+    out.write(reinterpret_cast<const char*>(count), sizeof count);
+    for (std::size_t first = 0; first < a.info.num_values; first += kChunkValues) {
+      const std::size_t n = std::min<std::size_t>(kChunkValues, a.info.num_values - first);
+      a.fill(first, n, buffer.data());
+      out.write(reinterpret_cast<const char*>(buffer.data()), static_cast<std::streamsize>(n * a.value_size));
+    }
+  }
+  static constexpr std::string_view kTail = "\n  </AppendedData>\n</VTKFile>\n";
+  out.write(kTail.data(), static_cast<std::streamsize>(kTail.size()));
+}
+
+}  // namespace hq

@@ -1,0 +1,240 @@
+// Browser test of the report bundle: generates bundles with the built hqview,
+// opens index.html and boundary.html from file:// in headless Chromium
+// (Debian's /usr/bin/chromium, driven by playwright-core) and checks what a
+// reader relies on: no console errors or failed loads, every image decodes,
+// the links between panels land on their targets, no injected script runs,
+// no horizontal overflow on a phone-sized screen. Screenshots go to
+// OUT/screenshots/.
+//
+// usage: node report_test.mjs HQVIEW SOURCE_DIR OUT_DIR
+// exit 0 pass, 1 fail, 77 skipped (no Chromium).
+
+import { execFileSync } from 'node:child_process';
+import fs from 'node:fs';
+import path from 'node:path';
+import { pathToFileURL } from 'node:url';
+
+const [hqview, sourceDir, outDir] = process.argv.slice(2);
+if (!hqview || !sourceDir || !outDir) {
+  console.error('usage: node report_test.mjs HQVIEW SOURCE_DIR OUT_DIR');
+  process.exit(2);
+}
+const chromiumPath = process.env.HQVIEW_CHROMIUM || '/usr/bin/chromium';
+if (!fs.existsSync(chromiumPath)) {
+  console.log(`SKIP: no Chromium at ${chromiumPath} (install Debian's chromium, or set HQVIEW_CHROMIUM)`);
+  process.exit(77);
+}
+const { chromium } = await import('playwright-core');
+
+const failures = [];
+function check(condition, message) {
+  if (!condition) {
+    failures.push(message);
+    console.log(`FAIL: ${message}`);
+  }
+}
+
+// ---- bundles ----
+fs.rmSync(outDir, { recursive: true, force: true });
+const shots = path.join(outDir, 'screenshots');
+fs.mkdirSync(shots, { recursive: true });
+const example = (name) => path.join(sourceDir, 'examples', name);
+function analyze(args) {
+  execFileSync(hqview, ['analyze', ...args, '--size', '800x600', '-j', '2', '--quiet'], { stdio: 'inherit' });
+}
+const ball = path.join(outDir, 'ball');
+analyze([example('ball.mesh'), '--reference', example('ball.off'), '-o', ball]);
+// A small rmax splits the twisted bar's bad vertices into several clusters:
+// 3 with C views, the others only in the table.
+const bar = path.join(outDir, 'bar');
+analyze([example('twisted_bar.mesh'), '--rmax', '0.05', '--top-clusters', '3', '-o', bar]);
+// A file name that would run script if the pages did not escape it.
+const evilName = `"q'&amp;<script>window.hqPwned=1<img src=x onerror="window.hqPwned=2">.mesh`;
+const evilDir = path.join(outDir, 'evil-input');
+fs.mkdirSync(evilDir, { recursive: true });
+fs.copyFileSync(example('twisted_bar.mesh'), path.join(evilDir, evilName));
+const evil = path.join(outDir, 'evil');
+analyze([path.join(evilDir, evilName), '-o', evil]);
+
+// A real mesh with 12 clusters and its reference, when ../shared/data is there.
+const dataDir = process.env.HQVIEW_DATA || path.join(sourceDir, '..', 'shared', 'data');
+const handMesh = path.join(dataDir, 'meshes', 'gao2016_sweeping', 'hand7_1.mesh');
+const hand = path.join(outDir, 'hand');
+const hasHand = fs.existsSync(handMesh);
+if (hasHand) analyze([handMesh, '--reference', path.join(dataDir, 'meshes', 'gao2016_sweeping', 'hand.off'), '-o', hand]);
+else console.log(`note: ${handMesh} absent, the real-mesh pages are not checked`);
+
+// ---- browser ----
+const browser = await chromium.launch({ executablePath: chromiumPath, args: ['--no-sandbox'] });
+
+// Opens a page from disk and records console errors and failed requests.
+async function open(file, viewport = { width: 1280, height: 900 }) {
+  const page = await browser.newPage({ viewport });
+  const problems = [];
+  page.on('console', (m) => { if (m.type() === 'error') problems.push(`console error: ${m.text()}`); });
+  page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
+  page.on('requestfailed', (r) => problems.push(`failed request: ${r.url()} (${r.failure()?.errorText})`));
+  await page.goto(pathToFileURL(file).href, { waitUntil: 'load' });
+  return { page, problems };
+}
+
+// Every image decoded, every in-page link has its target, every file link
+// exists inside the bundle.
+async function checkPage(name, file) {
+  const { page, problems } = await open(file);
+  const images = await page.$$eval('img', (imgs) => imgs.map((i) => ({ src: i.getAttribute('src'), ok: i.complete && i.naturalWidth > 0 })));
+  check(images.length > 0 || name.includes('norender'), `${name}: has images`);
+  for (const img of images) check(img.ok, `${name}: image ${img.src} has zero natural size`);
+  const hrefs = await page.$$eval('a[href]', (as) => as.map((a) => a.getAttribute('href')));
+  const ids = new Set(await page.$$eval('[id]', (els) => els.map((e) => e.id)));
+  for (const href of hrefs) {
+    if (href.startsWith('#')) {
+      check(ids.has(decodeURIComponent(href.slice(1))), `${name}: link ${href} has no target`);
+    } else {
+      check(!/^[a-z]+:/i.test(href) && !href.startsWith('/') && !href.includes('..'), `${name}: link ${href} leaves the bundle`);
+      check(fs.existsSync(path.join(path.dirname(file), href)), `${name}: link ${href} names a missing file`);
+    }
+  }
+  check((await page.$$('script')).length === 0, `${name}: has no <script> element`);
+  await page.screenshot({ path: path.join(shots, `${name}.png`), fullPage: true });
+  await page.waitForTimeout(100);
+  for (const p of problems) check(false, `${name}: ${p}`);
+  return page;
+}
+
+// Clicks `selector` and checks the URL's hash and that the target is on screen.
+async function clickLands(page, selector, what) {
+  const link = await page.$(selector);
+  check(link !== null, `${what}: link ${selector} exists`);
+  if (!link) return null;
+  const href = await link.getAttribute('href');
+  await link.click();
+  await page.waitForFunction((h) => location.hash === h, href, { timeout: 5000 }).catch(() => {});
+  const hash = await page.evaluate(() => location.hash);
+  check(hash === href, `${what}: location.hash is ${hash}, expected ${href}`);
+  const onScreen = await page.evaluate((id) => {
+    const el = document.getElementById(id);
+    if (!el) return false;
+    const r = el.getBoundingClientRect();
+    const style = getComputedStyle(el);
+    return style.display !== 'none' && style.visibility !== 'hidden' && r.height > 0 && r.top < innerHeight && r.bottom > 0;
+  }, href.slice(1));
+  check(onScreen, `${what}: target ${href} is visible`);
+  return href;
+}
+
+// ---- index.html of the twisted bar: panels and links ----
+{
+  const page = await checkPage('bar-index', path.join(bar, 'index.html'));
+  // A cluster table row leads to its C view, the C view to D and E and back.
+  const c = await clickLands(page, '#cluster-row-1 td:first-child a', 'cluster table row 1 -> C');
+  check(c === '#cluster-1', `cluster table row 1 links to #cluster-1 (got ${c})`);
+  await page.screenshot({ path: path.join(shots, 'bar-index-cluster-target.png') });
+  const d = await clickLands(page, '#cluster-1 figcaption a[href^="#vertex-"]', 'C -> D');
+  await page.screenshot({ path: path.join(shots, 'bar-index-vertex-target.png') });
+  if (d) {
+    const v = d.slice('#vertex-'.length);
+    await clickLands(page, `${d} figcaption a[href="#corners-${v}"]`, 'D -> E');
+    await clickLands(page, `#corners-${v} figcaption a[href="#cluster-1"]`, 'E -> C');
+  }
+  await clickLands(page, '#cluster-1 figcaption a[href="#cluster-row-1"]', 'C -> table row');
+  for (const id of ['panel-b', 'clusters']) await page.locator(`#${id}`).screenshot({ path: path.join(shots, `bar-index-${id}.png`) });
+  // Chart B: the worst bar leads to the C view of its vertex's cluster, and
+  // each bar's link is the one its vertex's table row gives.
+  await page.evaluate(() => window.scrollTo(0, 0));
+  // Oracle from vertices.csv and report.json: of the 40 worst vertices (by
+  // quality, then id), those with a cluster or a worst-vertex row get a link.
+  const rows = fs.readFileSync(path.join(bar, 'data', 'vertices.csv'), 'utf8').trim().split('\n').slice(1)
+    .map((l) => l.split(',')).filter((r) => r[4] !== '' && r[4] !== 'nan')
+    .map((r) => ({ vertex: Number(r[0]), quality: Number(r[4]), cluster: Number(r[6]) }));
+  rows.sort((a, b) => a.quality - b.quality || a.vertex - b.vertex);
+  const report = JSON.parse(fs.readFileSync(path.join(bar, 'report.json'), 'utf8'));
+  const worstRows = new Set(report.quality.worst_vertices.map((w) => w.vertex));
+  const expected = rows.slice(0, 40).filter((r) => r.cluster >= 0 || worstRows.has(r.vertex)).length;
+  const hotspots = await page.$$('#view-sorted_quality a.hotspot');
+  check(hotspots.length === expected, `chart B has ${expected} bar links (got ${hotspots.length})`);
+  const labels = await page.$$eval('#view-sorted_quality a.hotspot', (as) => as.map((a) => a.getAttribute('title')));
+  check(labels.length > 0 && labels[0].includes(`vertex ${rows[0].vertex},`), `the first bar is vertex ${rows[0].vertex} (${labels[0]})`);
+  const first = await clickLands(page, '#view-sorted_quality a.hotspot', 'chart B worst bar -> C');
+  check(first !== null && first.startsWith('#cluster-'), `the worst bar leads to a C view (got ${first})`);
+  // The bar's rectangle lies over the chart image.
+  const inside = await page.$eval('#view-sorted_quality', (fig) => {
+    const img = fig.querySelector('img').getBoundingClientRect();
+    return [...fig.querySelectorAll('a.hotspot')].every((a) => {
+      const r = a.getBoundingClientRect();
+      return r.left >= img.left - 1 && r.right <= img.right + 1 && r.top >= img.top - 1 && r.bottom <= img.bottom + 1 && r.width > 0;
+    });
+  });
+  check(inside, 'every bar link lies over the chart image');
+  // :target highlighting is visible.
+  const highlighted = await page.$eval(first, (el) => getComputedStyle(el).backgroundColor);
+  check(highlighted !== 'rgba(0, 0, 0, 0)', `the target panel is highlighted (background ${highlighted})`);
+  // Print: no navigation, no bar links.
+  await page.emulateMedia({ media: 'print' });
+  check(await page.$eval('nav', (n) => getComputedStyle(n).display === 'none'), 'print hides the navigation');
+  await page.evaluate(() => window.scrollTo(0, 0));
+  await page.screenshot({ path: path.join(shots, 'bar-index-print.png'), fullPage: true });
+  await page.emulateMedia({ media: 'screen' });
+  await page.close();
+}
+
+// ---- the ball with a reference: both pages, linked ----
+{
+  const page = await checkPage('ball-index', path.join(ball, 'index.html'));
+  check((await page.$$('a[href="boundary.html"]')).length > 0, 'index.html links boundary.html');
+  await page.close();
+  const b = await checkPage('ball-boundary', path.join(ball, 'boundary.html'));
+  const figs = await b.$$eval('figure img', (imgs) => imgs.map((i) => i.getAttribute('src')));
+  for (const f of ['views/boundary_error_front.png', 'views/boundary_error_back.png', 'views/uv_error.png',
+    'views/boundary_error_sorted.svg', 'views/boundary_area.svg']) check(figs.includes(f), `boundary.html shows ${f}`);
+  check((await b.$$('a[href="index.html"]')).length > 0, 'boundary.html links back to index.html');
+  await b.close();
+}
+
+// ---- hand7_1 (real data): 8 C views, every bar of chart B a link ----
+if (hasHand) {
+  const page = await checkPage('hand-index', path.join(hand, 'index.html'));
+  check((await page.$$('#panel-c figure')).length === 8, 'hand7_1: 8 C views (--top-clusters default)');
+  await clickLands(page, '#cluster-row-7 td:first-child a', 'hand7_1: cluster table row 7 -> C');
+  await clickLands(page, '#cluster-7 figcaption a[href^="#corners-"]', 'hand7_1: C -> E');
+  const last = await page.$$('#view-sorted_quality a.hotspot');
+  check(last.length > 0, 'hand7_1: chart B has bar links');
+  await page.close();
+  await (await checkPage('hand-boundary', path.join(hand, 'boundary.html'))).close();
+}
+
+// ---- narrow screen: no horizontal overflow ----
+for (const [name, file] of [['bar-index', path.join(bar, 'index.html')], ['ball-index', path.join(ball, 'index.html')],
+  ['ball-boundary', path.join(ball, 'boundary.html')]]) {
+  const { page, problems } = await open(file, { width: 375, height: 812 });
+  const widths = await page.evaluate(() => ({ body: document.body.scrollWidth, doc: document.documentElement.scrollWidth, view: innerWidth }));
+  check(widths.body <= widths.view && widths.doc <= widths.view,
+    `${name} at 375 px: page is ${Math.max(widths.body, widths.doc)} px wide (viewport ${widths.view})`);
+  await page.screenshot({ path: path.join(shots, `${name}-375px.png`), fullPage: true });
+  for (const p of problems) check(false, `${name} at 375 px: ${p}`);
+  await page.close();
+}
+
+// ---- the injected file name is shown literally and runs nothing ----
+{
+  const { page, problems } = await open(path.join(evil, 'index.html'));
+  await page.waitForTimeout(200);
+  const pwned = await page.evaluate(() => window.hqPwned);
+  check(pwned === undefined, `a script from the file name ran (window.hqPwned = ${pwned})`);
+  check((await page.$$('script')).length === 0, 'evil: no <script> element');
+  const shown = await page.$eval('.subtitle .file', (e) => e.textContent);
+  check(shown === evilName, `evil: the file name is shown literally (got ${JSON.stringify(shown)})`);
+  const title = await page.title();
+  check(title.startsWith(evilName), `evil: the title holds the literal name (got ${JSON.stringify(title)})`);
+  await page.screenshot({ path: path.join(shots, 'evil-index.png') });
+  // Failed loads are expected nowhere: an <img src=x> would show up here.
+  for (const p of problems) check(false, `evil: ${p}`);
+  await page.close();
+}
+
+await browser.close();
+if (failures.length) {
+  console.log(`${failures.length} check(s) failed; screenshots in ${shots}`);
+  process.exit(1);
+}
+console.log(`browser test passed; screenshots in ${shots}`);

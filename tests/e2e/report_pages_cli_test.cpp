@@ -1,0 +1,147 @@
+// The bundle's pages through the CLI: index.html, boundary.html and
+// summary.md are written, byte-identical for any -j, escape a hostile mesh
+// name, and -o is refused on a file or a foreign directory unless --force.
+// (tests/browser opens the same pages in Chromium.)
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.h"
+#include "support/fixtures.h"
+
+namespace hq::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path example(const std::string& name) { return source_dir() / "examples" / name; }
+
+std::vector<std::string> listing(const fs::path& dir) {
+  std::vector<std::string> entries;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) entries.push_back(fs::relative(e.path(), dir).string());
+  std::sort(entries.begin(), entries.end());
+  return entries;
+}
+
+TEST(ReportPages, SameBytesForOneAndTwoThreadsWithViewsAndReference) {
+  // Every view rendered (small), so the pages hold every panel, the chart B
+  // links and boundary.html.
+  const fs::path dir = fresh_output_dir("pages_threads");
+  for (const char* j : {"1", "2"}) {
+    const CliResult r =
+        run_hqview({"analyze", example("ball.mesh").string(), "--reference", example("ball.off").string(), "-o",
+                    (dir / j).string(), "-j", j, "--size", "320x240"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  EXPECT_EQ(listing(dir / "1"), listing(dir / "2"));
+  for (const char* f : {"report.json", "data/cells.csv", "data/vertices.csv", "index.html", "boundary.html",
+                        "summary.md", "style.css", "views/sorted_quality.svg"}) {
+    EXPECT_TRUE(fs::is_regular_file(dir / "1" / f)) << f;
+    EXPECT_EQ(read_text(dir / "1" / f), read_text(dir / "2" / f)) << f;
+  }
+}
+
+TEST(ReportPages, EveryListedViewIsOnAPageAndSummaryLinksExist) {
+  const fs::path out = fresh_output_dir("pages_views") / "bundle";
+  const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "--reference", example("ball.off").string(),
+                                  "-o", out.string(), "--size", "320x240"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json report = nlohmann::json::parse(read_text(out / "report.json"));
+  const std::string pages = read_text(out / "index.html") + read_text(out / "boundary.html");
+  for (const auto& view : report["views"]) {
+    for (const auto& file : view["files"]) {
+      const std::string f = file.get<std::string>();
+      // A chart's PNG twin is for Markdown; its SVG is on the page.
+      const bool has_svg_twin = f.ends_with(".png") && fs::exists(out / (f.substr(0, f.size() - 4) + ".svg"));
+      if (!has_svg_twin) {
+        EXPECT_NE(pages.find("src=\"" + f + "\""), std::string::npos) << f;
+      }
+    }
+  }
+  // Every relative link of summary.md names a file of the bundle.
+  const std::string md = read_text(out / "summary.md");
+  int links = 0;
+  for (std::size_t p = md.find("]("); p != std::string::npos; p = md.find("](", p + 2)) {
+    const std::string target = md.substr(p + 2, md.find(')', p) - p - 2);
+    EXPECT_TRUE(fs::is_regular_file(out / target)) << target;
+    ++links;
+  }
+  EXPECT_GE(links, 10);
+  EXPECT_NE(md.find("(views/boundary_error_front.png)"), std::string::npos) << md;
+  // Without --reference there is no boundary page, and nothing links to one.
+  const fs::path plain = fresh_output_dir("pages_views") / "plain";
+  ASSERT_EQ(run_hqview({"analyze", example("ball.mesh").string(), "-o", plain.string(), "--no-render"}).exit_code, 0);
+  EXPECT_FALSE(fs::exists(plain / "boundary.html"));
+  EXPECT_EQ(read_text(plain / "index.html").find("boundary.html"), std::string::npos);
+  EXPECT_EQ(read_text(plain / "summary.md").find("boundary.html"), std::string::npos);
+}
+
+TEST(ReportPages, ScriptInTheMeshNameIsShownLiterallyInPagesAndMarkdown) {
+  const fs::path dir = fresh_output_dir("pages_escape");
+  const std::string name = "<script>window.x=1<img src=q onerror=alert(1)>\"it's\" & co.mesh";
+  fs::create_directories(dir / "in");
+  fs::copy_file(example("twisted_bar.mesh"), dir / "in" / name);
+  const CliResult r = run_hqview({"analyze", (dir / "in" / name).string(), "--reference", example("ball.off").string(),
+                                  "-o", (dir / "bundle").string(), "--no-render"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string escaped =
+      "&lt;script&gt;window.x=1&lt;img src=q onerror=alert(1)&gt;&quot;it&apos;s&quot; &amp; co.mesh";
+  for (const char* page : {"index.html", "boundary.html"}) {
+    const std::string html = read_text(dir / "bundle" / page);
+    EXPECT_EQ(html.find("<script"), std::string::npos) << page;
+    EXPECT_EQ(html.find("<img src=q"), std::string::npos) << page;
+    EXPECT_NE(html.find("<span class=\"file\">" + escaped + "</span>"), std::string::npos) << page;
+  }
+  // Markdown: no raw < or > anywhere; the name backslash-escaped as
+  // CommonMark reads it literally.
+  const std::string md = read_text(dir / "bundle" / "summary.md");
+  EXPECT_EQ(md.find('<'), std::string::npos) << md;
+  EXPECT_EQ(md.find('>'), std::string::npos) << md;
+  EXPECT_NE(
+      md.find("## HQView: &lt;script&gt;window\\.x\\=1&lt;img src\\=q onerror\\=alert\\(1\\)&gt;\\\"it\\'s\\\" &amp; "
+              "co\\.mesh\n"),
+      std::string::npos)
+      << md;
+  // Nothing is written beside the bundle.
+  std::vector<std::string> entries;
+  for (const auto& e : fs::directory_iterator(dir)) entries.push_back(e.path().filename().string());
+  std::sort(entries.begin(), entries.end());
+  EXPECT_EQ(entries, (std::vector<std::string>{"bundle", "in"}));
+}
+
+TEST(ReportPages, OutputOnAFileOrAForeignDirectoryNeedsForce) {
+  const fs::path dir = fresh_output_dir("pages_output");
+  std::ofstream(dir / "file.txt") << "keep me\n";
+  const CliResult file =
+      run_hqview({"analyze", example("ball.mesh").string(), "-o", (dir / "file.txt").string(), "--no-render"});
+  EXPECT_EQ(file.exit_code, 2);
+  EXPECT_NE(file.err.find("--force"), std::string::npos) << file.err;
+  EXPECT_EQ(read_text(dir / "file.txt"), "keep me\n");
+  // --force replaces the file with the bundle.
+  const CliResult forced = run_hqview(
+      {"analyze", example("ball.mesh").string(), "-o", (dir / "file.txt").string(), "--no-render", "--force"});
+  EXPECT_EQ(forced.exit_code, 0) << forced.err;
+  EXPECT_TRUE(fs::is_regular_file(dir / "file.txt" / "report.json"));
+  // A non-empty directory that is not a bundle is kept; a bundle is replaced.
+  fs::create_directories(dir / "photos");
+  std::ofstream(dir / "photos" / "cat.jpg") << "meow\n";
+  EXPECT_EQ(
+      run_hqview({"analyze", example("ball.mesh").string(), "-o", (dir / "photos").string(), "--no-render"}).exit_code,
+      2);
+  EXPECT_EQ(listing(dir / "photos"), std::vector<std::string>{"cat.jpg"});
+  EXPECT_EQ(
+      run_hqview({"analyze", example("twisted_bar.mesh").string(), "-o", (dir / "file.txt").string(), "--no-render"})
+          .exit_code,
+      0);
+  // Nothing beside the outputs: no temporaries left.
+  std::vector<std::string> entries;
+  for (const auto& e : fs::directory_iterator(dir)) entries.push_back(e.path().filename().string());
+  std::sort(entries.begin(), entries.end());
+  EXPECT_EQ(entries, (std::vector<std::string>{"file.txt", "photos"}));
+}
+
+}  // namespace
+}  // namespace hq::test

@@ -1,0 +1,216 @@
+// index.html, boundary.html and summary.md from hand-built report models:
+// escaping of input text, the anchors that link panels A–F, the bar links of
+// chart B, and the Markdown escaping as a CommonMark reader undoes it.
+
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <cmath>
+#include <string>
+
+#include "hqview/core/error.h"
+#include "hqview/report/report_html.h"
+#include "hqview/report/report_markdown.h"
+
+namespace hq {
+namespace {
+
+// CommonMark's reading of escaped text: "\c" is c for ASCII punctuation c,
+// and the three entities markdown_escape writes.
+std::string commonmark_unescape(const std::string& md) {
+  std::string out;
+  for (std::size_t i = 0; i < md.size(); ++i) {
+    if (md[i] == '\\' && i + 1 < md.size() && std::ispunct(static_cast<unsigned char>(md[i + 1]))) {
+      out += md[++i];
+    } else if (md.compare(i, 5, "&amp;") == 0) {
+      out += '&';
+      i += 4;
+    } else if (md.compare(i, 4, "&lt;") == 0) {
+      out += '<';
+      i += 3;
+    } else if (md.compare(i, 4, "&gt;") == 0) {
+      out += '>';
+      i += 3;
+    } else {
+      out += md[i];
+    }
+  }
+  return out;
+}
+
+TEST(MarkdownEscape, HandExamples) {
+  EXPECT_EQ(markdown_escape("ball.mesh"), "ball\\.mesh");
+  EXPECT_EQ(markdown_escape("a_b*c"), "a\\_b\\*c");
+  EXPECT_EQ(markdown_escape("<b>&"), "&lt;b&gt;&amp;");
+  EXPECT_EQ(markdown_escape("[x](javascript:y)"), "\\[x\\]\\(javascript\\:y\\)");
+  EXPECT_EQ(markdown_escape("@team #1 | `c`"), "\\@team \\#1 \\| \\`c\\`");
+  EXPECT_EQ(markdown_escape("two\nlines\r\tend"), "two lines  end");
+  EXPECT_EQ(markdown_escape("maillage é"), "maillage é");  // UTF-8 passes through
+}
+
+TEST(MarkdownEscape, EveryPrintableAsciiReadsBackLiterally) {
+  std::string all;
+  for (int c = 0x20; c < 0x7f; ++c) all += static_cast<char>(c);
+  const std::string md = markdown_escape(all);
+  EXPECT_EQ(commonmark_unescape(md), all);
+  EXPECT_EQ(md.find('<'), std::string::npos);
+  EXPECT_EQ(md.find('>'), std::string::npos);
+  // Every punctuation character left is escaped or part of an entity.
+  for (std::size_t i = 0; i < md.size(); ++i) {
+    const char c = md[i];
+    if (!std::ispunct(static_cast<unsigned char>(c)) || c == '\\') continue;
+    const bool escaped = i > 0 && md[i - 1] == '\\';
+    const bool in_entity = c == '&' || c == ';';
+    EXPECT_TRUE(escaped || in_entity) << "unescaped '" << c << "' at " << i << " in " << md;
+  }
+}
+
+// A file name (no '/') that would run script in a page that did not escape it.
+const std::string kEvilName = "x<script>alert(1)<img src=y onerror=alert(3)>\"q'&amp;[l](u)*.mesh";
+
+// A model with 3 vertices in 2 clusters (0: vertices 0 and 1, 1: vertex 2),
+// a C view of cluster 0, D and E views of vertex 1, and chart B with bars on
+// vertices 1, 2, 0 (worst first).
+ReportModel linked_model() {
+  ReportModel m;
+  m.tool_version = "9.9.9";
+  m.mesh_input = {kEvilName, "medit", std::string(64, 'a')};
+  m.warnings = {"line 3: <img src=x onerror=alert(2)> & more"};
+  m.field.vertex_quality = {0.2, -0.5, 0.1};
+  m.quality.worst_vertices = {{1, -0.5, {}}, {2, 0.1, {}}};
+  GlyphResult& g = m.glyphs.emplace();
+  g.vertex_cluster = {0, 0, 1};
+  g.clusters = {{0, 2, 0, {}, -0.5, 1.5, 0.1}, {1, 1, 2, {}, 0.1, 0.9, 0.05}};
+  g.options.top_clusters = 1;
+  m.views.push_back({"clusters", "C: sub-region", {"views/cluster_0.png"}, {{0, kNoIndex, {}}}});
+  m.views.push_back({"local", "D: local", {"views/local_v1.png"}, {{0, 1, {}}}});
+  m.views.push_back(
+      {"corners", "E: corners", {"views/corners_v1.svg", "views/corners_v1.png"}, {{0, 1, {}}, {0, 1, {}}}});
+  ViewFileLinks bars;
+  bars.hotspots = {{{0.1, 0.2, 0.05, 0.5, {}}, 1}, {{0.15, 0.2, 0.05, 0.5, {}}, 2}, {{0.2, 0.2, 0.05, 0.5, {}}, 0}};
+  m.views.push_back(
+      {"sorted_quality", "B: sorted", {"views/sorted_quality.svg", "views/sorted_quality.png"}, {bars, bars}});
+  return m;
+}
+
+TEST(IndexHtml, InputTextIsEscapedAndNoScriptIsWritten) {
+  const std::string html = index_html(linked_model());
+  EXPECT_EQ(html.find("<script"), std::string::npos);
+  EXPECT_EQ(html.find("<img src=x"), std::string::npos);
+  EXPECT_EQ(html.find("<img src=y"), std::string::npos);
+  const std::string shown =
+      "x&lt;script&gt;alert(1)&lt;img src=y onerror=alert(3)&gt;&quot;q&apos;&amp;amp;[l](u)*.mesh";
+  EXPECT_NE(html.find("<title>" + shown), std::string::npos);
+  EXPECT_NE(html.find("<span class=\"file\">" + shown + "</span>"), std::string::npos);
+  EXPECT_NE(html.find("line 3: &lt;img src=x onerror=alert(2)&gt; &amp; more"), std::string::npos);
+}
+
+TEST(IndexHtml, PanelsLinkClusterRowsToCAndCToDAndE) {
+  const std::string html = index_html(linked_model());
+  // Anchors: C of cluster 0, D and E of vertex 1, the table rows.
+  for (const char* id : {"id=\"cluster-0\"", "id=\"vertex-1\"", "id=\"corners-1\"", "id=\"cluster-row-0\"",
+                         "id=\"cluster-row-1\"", "id=\"view-sorted_quality\""})
+    EXPECT_NE(html.find(id), std::string::npos) << id;
+  // The PNG twins of charts are not shown (their SVG is).
+  EXPECT_EQ(html.find("src=\"views/corners_v1.png\""), std::string::npos);
+  // Cluster 0's row leads to its C view, and to D and E of its vertex.
+  const std::size_t row0 = html.find("id=\"cluster-row-0\"");
+  const std::string row = html.substr(row0, html.find("</tr>", row0) - row0);
+  EXPECT_NE(row.find("href=\"#cluster-0\""), std::string::npos) << row;
+  EXPECT_NE(row.find("href=\"#vertex-1\""), std::string::npos) << row;
+  EXPECT_NE(row.find("href=\"#corners-1\""), std::string::npos) << row;
+  // Cluster 1 has no C view: its id is not a link.
+  const std::size_t row1 = html.find("id=\"cluster-row-1\"");
+  EXPECT_EQ(html.substr(row1, html.find("</tr>", row1) - row1).find("href=\"#cluster-1\""), std::string::npos);
+  // The C view links to D, E and back to the row.
+  const std::size_t c0 = html.find("id=\"cluster-0\"");
+  const std::string caption = html.substr(c0, html.find("</figure>", c0) - c0);
+  for (const char* href : {"href=\"#vertex-1\"", "href=\"#corners-1\"", "href=\"#cluster-row-0\""})
+    EXPECT_NE(caption.find(href), std::string::npos) << href;
+}
+
+TEST(IndexHtml, ChartBarsLinkWhereTheirVertexIsShown) {
+  const std::string html = index_html(linked_model());
+  // Bar 1 (vertex 1): its cluster 0 has a C view. Bar 2 (vertex 2): cluster
+  // 1 has no C and vertex 2 no D view: its table row. Bar 3 (vertex 0):
+  // cluster 0's C view. Positions in percent of the image.
+  const std::string bar1 =
+      "<a class=\"hotspot\" href=\"#cluster-0\" style=\"left:10.0000%;top:20.0000%;width:5.0000%;height:50.0000%\"";
+  const std::string bar2 =
+      "<a class=\"hotspot\" href=\"#cluster-row-1\" style=\"left:15.0000%;top:20.0000%;width:5.0000%;height:50.0000%\"";
+  const std::string bar3 =
+      "<a class=\"hotspot\" href=\"#cluster-0\" style=\"left:20.0000%;top:20.0000%;width:5.0000%;height:50.0000%\"";
+  const std::size_t p1 = html.find(bar1), p2 = html.find(bar2), p3 = html.find(bar3);
+  ASSERT_NE(p1, std::string::npos);
+  ASSERT_NE(p2, std::string::npos);
+  ASSERT_NE(p3, std::string::npos);
+  EXPECT_LT(p1, p2);
+  EXPECT_LT(p2, p3);
+  EXPECT_NE(html.find("title=\"rank 1: vertex 1, quality -0.5\""), std::string::npos);
+}
+
+TEST(IndexHtml, AnnotatedVtuAndBoundaryPageAreLinkedOnlyWhenWritten) {
+  ReportModel m = linked_model();
+  EXPECT_EQ(index_html(m).find("data/annotated.vtu"), std::string::npos);
+  EXPECT_EQ(index_html(m).find("href=\"boundary.html\""), std::string::npos);
+  m.has_annotated_vtu = true;
+  m.boundary_error.emplace().hausdorff_relative = 0.0125;
+  const std::string html = index_html(m);
+  EXPECT_NE(html.find("href=\"data/annotated.vtu\""), std::string::npos);
+  EXPECT_NE(html.find("href=\"boundary.html\""), std::string::npos);
+  EXPECT_NE(html.find("1.25 %"), std::string::npos);  // Hausdorff in the headline
+}
+
+TEST(BoundaryHtml, StatisticsViewsAndTheWayBack) {
+  ReportModel m = linked_model();
+  EXPECT_THROW(boundary_html(m), Error);
+  BoundaryError& e = m.boundary_error.emplace();
+  e.hausdorff_relative = 0.03;
+  e.fraction_outside = 0.25;
+  e.signed_stats.count = 7;
+  e.signed_stats.max = 0.5;
+  e.warnings = {"<b>far</b>"};
+  m.reference_input = InputFile{"ref<&>.off", "off", std::string(64, 'b')};
+  m.views.push_back(
+      {"boundary_error", "Boundary error", {"views/boundary_error_front.png", "views/boundary_error_back.png"}, {}});
+  m.views.push_back({"boundary_area", "Area", {"views/boundary_area.svg", "views/boundary_area.png"}, {}});
+  const std::string html = boundary_html(m);
+  EXPECT_NE(html.find("<h1>Boundary Error Analysis</h1>"), std::string::npos);
+  EXPECT_NE(html.find("href=\"index.html\""), std::string::npos);
+  EXPECT_NE(html.find("src=\"views/boundary_error_front.png\""), std::string::npos);
+  EXPECT_NE(html.find("src=\"views/boundary_error_back.png\""), std::string::npos);
+  EXPECT_NE(html.find("src=\"views/boundary_area.svg\""), std::string::npos);
+  EXPECT_NE(html.find(">3 %<"), std::string::npos);   // 0.03 of the diagonal
+  EXPECT_NE(html.find(">25 %<"), std::string::npos);  // area outside
+  EXPECT_NE(html.find("ref&lt;&amp;&gt;.off"), std::string::npos);
+  EXPECT_NE(html.find("&lt;b&gt;far&lt;/b&gt;"), std::string::npos);
+  EXPECT_EQ(html.find("<b>"), std::string::npos);
+  EXPECT_EQ(html.find("<script"), std::string::npos);
+}
+
+TEST(SummaryMarkdown, HeadlineGatesAndLinksWithInputEscaped) {
+  ReportModel m = linked_model();
+  m.mesh_summary.num_vertices = 3;
+  m.mesh_summary.num_hexes = 1;
+  m.quality.scaled_jacobian.min = -0.5;
+  m.quality.scaled_jacobian.mean = 0.25;
+  m.quality.scaled_jacobian.num_inverted = 1;
+  m.gates = {false, {{"quality.scaled_jacobian.min>=0.2", -0.5, false}}};
+  const std::string md = summary_markdown(m);
+  // No HTML from input survives; the name reads back literally.
+  EXPECT_EQ(md.find('<'), std::string::npos) << md;
+  const std::string heading = md.substr(0, md.find('\n'));
+  EXPECT_EQ(commonmark_unescape(heading), "## HQView: " + kEvilName);
+  EXPECT_NE(md.find("| 3 | 1 | -0.5 | 0.25 | 1 | not checked |"), std::string::npos) << md;
+  EXPECT_NE(md.find("### Gates: **failed**"), std::string::npos);
+  EXPECT_NE(md.find("| quality\\.scaled\\_jacobian\\.min&gt;\\=0\\.2 | -0.5 | **fail** |"), std::string::npos) << md;
+  EXPECT_NE(md.find("- line 3\\: &lt;img src\\=x onerror\\=alert\\(2\\)&gt; &amp; more"), std::string::npos) << md;
+  // Links to the key PNGs, relative to the bundle (the PNG twin of a chart).
+  EXPECT_NE(md.find("](views/cluster_0.png)"), std::string::npos);
+  EXPECT_NE(md.find("](views/sorted_quality.png)"), std::string::npos);
+  EXPECT_NE(md.find("](views/corners_v1.png)"), std::string::npos);
+  EXPECT_EQ(md.find("boundary.html"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace hq
