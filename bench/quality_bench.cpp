@@ -5,7 +5,12 @@
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
+#include <map>
+#include <set>
 
 #include "bench_data.h"
 #include "hqview/core/hex_topology.h"
@@ -68,10 +73,70 @@ void BM_Topology_HQView(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(m.hexes.size()));
 }
 
+// Baseline of the quality field: the per-corner formula on one thread, the
+// cell value as the min of its corners, and vertex quality by scattering
+// each corner's value to its vertex (a min per corner; no topology needed).
+void BM_QualityField_BaselineScatterMin(benchmark::State& state) {
+  const hq::HexMesh& m = mesh();
+  std::vector<double> corners(8 * m.hexes.size()), cells(m.hexes.size()), vertices(m.points.size());
+  for (auto _ : state) {
+    std::fill(vertices.begin(), vertices.end(), std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t h = 0; h < m.hexes.size(); ++h) {
+      const auto p = hq::hex_corners(m, static_cast<hq::Index>(h));
+      double cell = std::numeric_limits<double>::infinity();
+      for (int i = 0; i < 8; ++i) {
+        const auto& f = hq::kCornerFrames[i];
+        const hq::Vec3 a = p[f[0]] - p[i], b = p[f[1]] - p[i], c = p[f[2]] - p[i];
+        const double sj = hq::det(a, b, c) / (hq::norm(a) * hq::norm(b) * hq::norm(c));
+        corners[8 * h + i] = sj;
+        cell = std::min(cell, sj);
+        double& v = vertices[static_cast<std::size_t>(m.hexes[h][i])];
+        if (!(v <= sj)) v = sj;
+      }
+      cells[h] = cell;
+    }
+    benchmark::DoNotOptimize(vertices.data());
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(m.hexes.size()));
+}
+
+// Baseline of the topology: ordered containers keyed by sorted ids, the way
+// research codes usually find unique faces and edges (std::map of faces to
+// their hexes, std::set of edges, vector-of-vectors vertex -> hexes).
+void BM_Topology_BaselineStdMap(benchmark::State& state) {
+  const hq::HexMesh& m = mesh();
+  for (auto _ : state) {
+    std::vector<std::vector<hq::Index>> vertex_hexes(m.points.size());
+    std::map<std::array<hq::Index, 4>, std::vector<hq::Index>> faces;
+    std::set<std::array<hq::Index, 2>> edges;
+    for (std::size_t h = 0; h < m.hexes.size(); ++h) {
+      const hq::Hex& hex = m.hexes[h];
+      for (hq::Index v : hex) vertex_hexes[static_cast<std::size_t>(v)].push_back(static_cast<hq::Index>(h));
+      for (const auto& f : hq::kHexFaces) {
+        std::array<hq::Index, 4> key{hex[f[0]], hex[f[1]], hex[f[2]], hex[f[3]]};
+        std::sort(key.begin(), key.end());
+        faces[key].push_back(static_cast<hq::Index>(h));
+      }
+      for (const auto& e : hq::kHexEdges)
+        edges.insert({std::min(hex[e[0]], hex[e[1]]), std::max(hex[e[0]], hex[e[1]])});
+    }
+    std::vector<hq::Index> boundary_vertices;
+    for (const auto& [key, hexes] : faces)
+      if (hexes.size() == 1) boundary_vertices.insert(boundary_vertices.end(), key.begin(), key.end());
+    std::sort(boundary_vertices.begin(), boundary_vertices.end());
+    boundary_vertices.erase(std::unique(boundary_vertices.begin(), boundary_vertices.end()), boundary_vertices.end());
+    benchmark::DoNotOptimize(boundary_vertices.data());
+    benchmark::DoNotOptimize(edges.size());
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(m.hexes.size()));
+}
+
 BENCHMARK(BM_CornerSJ_HQView)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CornerSJ_BaselinePerCorner)->UseRealTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_QualityField_HQView)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_QualityField_BaselineScatterMin)->UseRealTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Topology_HQView)->UseRealTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Topology_BaselineStdMap)->UseRealTime()->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

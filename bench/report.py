@@ -32,7 +32,6 @@ TARGETS = {
     "BM_WindingSign_HQView": ("time", 5.0, "issue 6"),
     "BM_ReferenceRepair_HQView": ("time", 5.0, "issue 6 stage"),
     "BM_UvAtlas_HQView": ("time", 3.0, "issue 6"),
-    "BM_UvAtlasLscm_HQView": ("time", 3.0, "issue 6"),
     "BM_AllViews_Dolphin": ("time", 5.0, "issue 7"),
     "BM_AllViewsPng_Dolphin": ("time", 5.0, "issue 7"),
     "BM_AllViews_Refined": ("time", 15.0, "issue 7"),
@@ -40,6 +39,12 @@ TARGETS = {
 }
 
 SECONDS = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
+
+
+def canonical(run_name):
+    """BM_X/2/iterations:1/repeats:3/real_time -> BM_X/2 (the name in TARGETS)."""
+    parts = run_name.split("/")
+    return "/".join(p for p in parts if ":" not in p and p not in ("real_time", "process_time", "manual_time"))
 
 
 def family_of(name):
@@ -64,7 +69,7 @@ def load(paths):
         programs.append(data.get("context", {}).get("executable", path).split("/")[-1])
         runs = {}
         for b in data["benchmarks"]:
-            name = b["run_name"]
+            name = canonical(b["run_name"])
             if b.get("run_type") == "aggregate" and b.get("aggregate_name") != "median":
                 continue
             # A benchmark run once has no aggregates: its single run is its median.
@@ -80,16 +85,19 @@ def load(paths):
             if b.get("error_occurred"):
                 rows.append({"name": name, "error": b.get("error_message", "error")})
                 continue
+            raw = b.get("bytes_per_second", b.get("items_per_second"))
             if "bytes_per_second" in b:
                 rate, unit = b["bytes_per_second"] / 1e6, "MB/s"
             elif "items_per_second" in b:
-                rate, unit = b["items_per_second"] / 1e6, "M/s"
+                rate, unit = b["items_per_second"] / 1e6, "M items/s"
+                if rate < 1:
+                    rate, unit = rate * 1e3, "k items/s"
             else:
                 rate, unit = None, ""
             seconds = b["real_time"] * SECONDS[b["time_unit"]]
             label = name + (" [" + b["label"] + "]" if b.get("label") else "")
             rows.append({"name": name, "label": label, "seconds": seconds, "time": b["real_time"],
-                         "unit": b["time_unit"], "rate": rate, "rate_unit": unit, "reps": entry["reps"]})
+                         "unit": b["time_unit"], "rate": rate, "raw_rate": raw, "rate_unit": unit, "reps": entry["reps"]})
     return rows, e2e, programs
 
 
@@ -122,8 +130,8 @@ def main():
         base = baselines.get(family)
         if base is r:
             vs = "1.00x (baseline)"
-        elif base and r["rate"] and base["rate"]:
-            vs = "%.2fx %s" % (r["rate"] / base["rate"], base["name"].split("_")[2].split("/")[0])
+        elif base and r["raw_rate"] and base["raw_rate"]:
+            vs = "%.2fx %s" % (r["raw_rate"] / base["raw_rate"], base["name"].split("_")[2].split("/")[0])
         elif base:
             vs = "%.2fx %s" % (base["seconds"] / r["seconds"], base["name"].split("_")[2].split("/")[0])
         else:

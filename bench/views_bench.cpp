@@ -148,13 +148,15 @@ BENCHMARK(BM_ViewWithoutGl_Dolphin)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1)
     ->UseRealTime();
-BENCHMARK(BM_AllViews_Dolphin)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
+// Plain names (bench/report.py's targets): one iteration takes more than the
+// minimum time of main-thread CPU, and the JSON's real_time is what counts.
+BENCHMARK(BM_AllViews_Dolphin)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_View_Dolphin)
     ->DenseRange(0, static_cast<int>(std::size(hq::kViewIds)) - 1)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1)
     ->UseRealTime();
-BENCHMARK(BM_AllViews_Refined)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
+BENCHMARK(BM_AllViews_Refined)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

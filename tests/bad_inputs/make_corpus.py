@@ -162,3 +162,10 @@ put("ovm_negative_count.ovm", "OVM ASCII\nVertices\n-8\n")
 
 # netCDF-4 (HDF5) signature, then noise: refused by the HDF5 library.
 put("exodus_hdf5_garbage.e", b"\x89HDF\r\n\x1a\n" + bytes(random.Random(5).randrange(256) for _ in range(2000)))
+put("reference_off_claims_1e9.off", "OFF\n1000000000 1000000000 0\n0 0 0\n")
+put("reference_ply_claims_1e9.ply",
+    "ply\nformat ascii 1.0\nelement vertex 1000000000\nproperty float x\nproperty float y\nproperty float z\n"
+    "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n")
+# Binary STL: 80-byte header, uint32 count (1000 here), 50 bytes per triangle (2 here).
+put("reference_stl_count_mismatch.stl", b"\0" * 80 + struct.pack("<I", 1000) + b"\0" * 100)
+put("reference_binary_garbage.obj", b"v 0 0 0\n\0\1\2\3")

@@ -88,11 +88,13 @@ async function checkPage(name, file) {
   const hrefs = await page.$$eval('a[href]', (as) => as.map((a) => a.getAttribute('href')));
   const ids = new Set(await page.$$eval('[id]', (els) => els.map((e) => e.id)));
   for (const href of hrefs) {
+    check(href !== '' && href !== '#', `${name}: an empty link`);
     if (href.startsWith('#')) {
       check(ids.has(decodeURIComponent(href.slice(1))), `${name}: link ${href} has no target`);
     } else {
       check(!/^[a-z]+:/i.test(href) && !href.startsWith('/') && !href.includes('..'), `${name}: link ${href} leaves the bundle`);
-      check(fs.existsSync(path.join(path.dirname(file), href)), `${name}: link ${href} names a missing file`);
+      const target = path.join(path.dirname(file), href);
+      check(fs.existsSync(target) && fs.statSync(target).isFile(), `${name}: link ${href} names a missing file`);
     }
   }
   check((await page.$$('script')).length === 0, `${name}: has no <script> element`);

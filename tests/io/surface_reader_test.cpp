@@ -128,5 +128,33 @@ TEST(SurfaceReader, OpenMeshDoesNotPrint) {
   EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
 }
 
+// Files OpenMesh would read whole or allocate for from their headers are
+// refused before it opens them (each message names what the file claims).
+TEST(ReadSurface, HostileFilesAreRefusedBeforeOpenMeshReadsThem) {
+  TempDir dir("surface_hostile");
+  const auto off = dir.write("a.off", "OFF\n1000000000 1000000000 0\n0 0 0\n");
+  EXPECT_EQ(error_text<ParseError>([&] { read_surface(off); }),
+            off.string() + ": the header claims 2000000000 vertices and faces but the file has 34 bytes");
+  const auto ply = dir.write("a.ply", "ply\nformat ascii 1.0\nelement vertex 500\nelement face 600\nend_header\n");
+  EXPECT_EQ(error_text<ParseError>([&] { read_surface(ply); }),
+            ply.string() + ": the header claims 1100 vertices and faces but the file has 70 bytes");
+  std::string stl(84 + 50, '\0');
+  stl[80] = 2;  // claims 2 triangles, holds 1
+  const auto binary_stl = dir.write("a.stl", stl);
+  EXPECT_EQ(error_text<ParseError>([&] { read_surface(binary_stl); }),
+            binary_stl.string() + ": binary STL header claims 2 triangles (184 bytes) but the file has 134");
+  for (const char* name : {"z.obj", "z.off", "z.mesh"}) {
+    const auto zeros = dir.write(name, std::string(4096, '\0'));
+    const std::string format = std::string(name) == "z.obj"   ? "OBJ"
+                               : std::string(name) == "z.off" ? "OFF"
+                                                              : "MEDIT (.mesh)";
+    EXPECT_EQ(error_text<ParseError>([&] { read_surface(zeros); }),
+              zeros.string() + ": binary data, expected " + format + " text (a NUL byte at offset 0)");
+  }
+  const auto big = dir.write("big.obj", std::string(2048, ' '));
+  EXPECT_EQ(error_text<InputError>([&] { read_surface(big, ReadLimits{.max_memory = 1024}); }),
+            big.string() + ": the file has 2048 bytes (2 KB), more than --max-memory (1 KB)");
+}
+
 }  // namespace
 }  // namespace hq

@@ -48,6 +48,11 @@ TEST(ClusterView, RegionIsTheClustersCellsAndTheSceneItsGlyphs) {
   ASSERT_EQ(scene.spheres.size(), 1u);
   ASSERT_EQ(scene.spheres[0].centers.size(), 1u);
   EXPECT_FLOAT_EQ(scene.spheres[0].radii[0], 0.15f) << "half size";
+  // An inverted vertex's glyph (radius 2 rmax, rmax = 1 edge): at half size
+  // still 1 edge, capped at 0.35 of the cells' mean edge (1 in a unit grid).
+  GlyphResult big = glyphs;
+  big.vertex_radius[static_cast<std::size_t>(v)] = 2.0;
+  EXPECT_FLOAT_EQ(build_cluster_scene(mesh, topology, quality, big, 0).spheres[0].radii[0], 0.35f);
   EXPECT_EQ(scene.spheres[0].colors[0], to_rgba8(quality_color(0.25)));
   ASSERT_EQ(scene.lines.size(), 2u);
   for (const Rgba8& c : scene.lines[1].colors) EXPECT_EQ(c, to_rgba8(qualitative_color(0)));

@@ -68,7 +68,7 @@ TEST(MarkdownEscape, EveryPrintableAsciiReadsBackLiterally) {
 // A file name (no '/') that would run script in a page that did not escape it.
 const std::string kEvilName = "x<script>alert(1)<img src=y onerror=alert(3)>\"q'&amp;[l](u)*.mesh";
 
-// A model with 3 vertices in 2 clusters (0: vertices 0 and 1, 1: vertex 2),
+// A model with 4 vertices, 3 in 2 clusters (0: vertices 0 and 1, 1: vertex 2),
 // a C view of cluster 0, D and E views of vertex 1, and chart B with bars on
 // vertices 1, 2, 0 (worst first).
 ReportModel linked_model() {
@@ -76,10 +76,10 @@ ReportModel linked_model() {
   m.tool_version = "9.9.9";
   m.mesh_input = {kEvilName, "medit", std::string(64, 'a')};
   m.warnings = {"line 3: <img src=x onerror=alert(2)> & more"};
-  m.field.vertex_quality = {0.2, -0.5, 0.1};
-  m.quality.worst_vertices = {{1, -0.5, {}}, {2, 0.1, {}}};
+  m.field.vertex_quality = {0.2, -0.5, 0.1, 0.9};
+  m.quality.worst_vertices = {{1, -0.5, {}}, {2, 0.1, {}}, {3, 0.9, {}}};
   GlyphResult& g = m.glyphs.emplace();
-  g.vertex_cluster = {0, 0, 1};
+  g.vertex_cluster = {0, 0, 1, kNoIndex};
   g.clusters = {{0, 2, 0, {}, -0.5, 1.5, 0.1}, {1, 1, 2, {}, 0.1, 0.9, 0.05}};
   g.options.top_clusters = 1;
   m.views.push_back({"clusters", "C: sub-region", {"views/cluster_0.png"}, {{0, kNoIndex, {}}}});
@@ -122,6 +122,12 @@ TEST(IndexHtml, PanelsLinkClusterRowsToCAndCToDAndE) {
   // Cluster 1 has no C view: its id is not a link.
   const std::size_t row1 = html.find("id=\"cluster-row-1\"");
   EXPECT_EQ(html.substr(row1, html.find("</tr>", row1) - row1).find("href=\"#cluster-1\""), std::string::npos);
+  // Worst vertex rows link where the vertex is shown; vertex 3 (no cluster,
+  // no view) is plain text, never an empty link.
+  EXPECT_NE(html.find("<tr id=\"worst-vertex-1\"><td><a href=\"#cluster-0\">1</a>"), std::string::npos);
+  EXPECT_NE(html.find("<tr id=\"worst-vertex-2\"><td><a href=\"#cluster-row-1\">2</a>"), std::string::npos);
+  EXPECT_NE(html.find("<tr id=\"worst-vertex-3\"><td>3</td>"), std::string::npos);
+  EXPECT_EQ(html.find("href=\"\""), std::string::npos);
   // The C view links to D, E and back to the row.
   const std::size_t c0 = html.find("id=\"cluster-0\"");
   const std::string caption = html.substr(c0, html.find("</figure>", c0) - c0);

@@ -91,6 +91,11 @@ bool has_zlib_support();
 // Triangles section). Throws InputError "path: ..." for an unknown
 // extension, an unreadable file, a file OpenMesh cannot parse or a surface
 // without faces; ParseError for a malformed .mesh or NaN/Inf coordinates.
-TriSurface read_surface(const std::filesystem::path& path);
+//
+// Before OpenMesh reads the file: a file larger than limits.max_memory, binary
+// data in a text format (OBJ, ASCII OFF, a PLY header, .mesh), a binary STL
+// whose size is not 84 + 50 x its triangle count, and OFF/PLY header counts
+// above the file's byte count are refused (ParseError / InputError).
+TriSurface read_surface(const std::filesystem::path& path, const ReadLimits& limits = {});
 
 }  // namespace hq

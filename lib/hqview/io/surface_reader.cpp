@@ -6,8 +6,13 @@
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
 #include <mutex>
+#include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "hqview/core/error.h"
@@ -70,17 +75,122 @@ TriSurface read_with_openmesh(const std::filesystem::path& path) {
   return surface;
 }
 
+constexpr std::size_t kPrefixBytes = std::size_t{1} << 20;
+
+// The first MiB of a file (or all of it).
+std::string read_prefix(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string prefix(kPrefixBytes, '\0');
+  in.read(prefix.data(), static_cast<std::streamsize>(prefix.size()));
+  prefix.resize(static_cast<std::size_t>(in.gcount()));
+  return prefix;
+}
+
+// The element counts in the text header of an OFF ("OFF\nV F
+// E") or PLY ("element vertex V") file, summed; 0 when none can be read.
+std::uint64_t header_counts(std::string_view header, bool is_ply) {
+  std::istringstream in{std::string(header)};
+  std::string line;
+  std::uint64_t total = 0;
+  if (!is_ply) {
+    std::getline(in, line);  // OFF keyword (counts may follow on the same line)
+    const std::size_t off = line.find("OFF");
+    std::istringstream rest(off == std::string::npos ? std::string() : line.substr(off + 3));
+    std::uint64_t v = 0, f = 0;
+    if (!(rest >> v >> f)) {
+      while (std::getline(in, line) && (line.find_first_not_of(" \t\r") == std::string::npos || line[0] == '#')) {
+      }
+      std::istringstream counts(line);
+      if (!(counts >> v >> f)) return 0;
+    }
+    return v > UINT64_MAX - f ? UINT64_MAX : v + f;
+  }
+  while (std::getline(in, line) && line.rfind("end_header", 0) != 0) {
+    std::istringstream words(line);
+    std::string word, kind;
+    std::uint64_t n = 0;
+    if (words >> word >> kind >> n && word == "element") total = n > UINT64_MAX - total ? UINT64_MAX : total + n;
+  }
+  return total;
+}
+
+// Refuses, before OpenMesh reads the file (and allocates what its header
+// claims, or reads gigabytes of zeros), a surface larger than the budget,
+// binary data in a text format, a binary STL whose triangle count does not
+// match its size, and OFF / PLY header counts the file cannot hold (each
+// element takes at least one byte).
+void check_surface_file(const std::filesystem::path& path, const std::string& ext, const ReadLimits& limits) {
+  const std::string name = path.string();
+  std::error_code ec;
+  const std::uint64_t size = std::filesystem::file_size(path, ec);
+  if (ec) return;  // OpenMesh reports it
+  if (limits.max_memory > 0 && size >= limits.max_memory)
+    throw InputError(name + ": the file has " + std::to_string(size) + " bytes (" + format_memory_size(size) +
+                     "), more than --max-memory (" + format_memory_size(limits.max_memory) + ")");
+  const std::string prefix = read_prefix(path);
+  const std::size_t nul = prefix.find('\0');
+  const std::string_view first_line = std::string_view(prefix).substr(0, prefix.find('\n'));
+  auto binary_data = [&](const char* format) {
+    throw ParseError(
+        name, 0,
+        std::string("binary data, expected ") + format + " text (a NUL byte at offset " + std::to_string(nul) + ")");
+  };
+  if (ext == ".stl") {
+    // Binary STL: an 80-byte header, a uint32 count, 50 bytes per triangle.
+    const bool is_ascii = prefix.starts_with("solid") && nul == std::string::npos;
+    if (is_ascii) return;
+    std::uint64_t count = 0;
+    for (int i = 3; i >= 0 && prefix.size() >= 84; --i) count = count << 8 | static_cast<unsigned char>(prefix[80 + i]);
+    if (size < 84 || 84 + 50 * count != size)
+      throw ParseError(name, 0,
+                       "binary STL header claims " + std::to_string(count) + " triangles (" +
+                           std::to_string(84 + 50 * count) + " bytes) but the file has " + std::to_string(size));
+    return;
+  }
+  if (ext == ".obj" && nul != std::string::npos) binary_data("OBJ");
+  if (ext == ".mesh" && nul != std::string::npos) binary_data("MEDIT (.mesh)");
+  if (ext == ".off") {
+    const bool is_binary = first_line.find("BINARY") != std::string_view::npos;
+    if (nul != std::string::npos && (!is_binary || first_line.find("OFF") == std::string_view::npos))
+      binary_data("OFF");
+  }
+  if (ext == ".ply") {
+    const std::size_t end = prefix.find("end_header");
+    if (!prefix.starts_with("ply") || (nul != std::string::npos && nul < end)) {
+      if (nul != std::string::npos) binary_data("PLY header");
+      return;  // OpenMesh reports it
+    }
+  }
+  if (ext == ".off" || ext == ".ply") {
+    const std::uint64_t claimed =
+        header_counts(prefix.substr(0, std::min(prefix.size(), std::size_t{1} << 16)), ext == ".ply");
+    if (claimed > size)
+      throw ParseError(name, 0,
+                       "the header claims " + std::to_string(claimed) + " vertices and faces but the file has " +
+                           std::to_string(size) + " bytes");
+  }
+}
+
 }  // namespace
 
-TriSurface read_surface(const std::filesystem::path& path) {
+TriSurface read_surface(const std::filesystem::path& path, const ReadLimits& limits) {
   const std::string ext = detail::lowercase_extension(path);
-  if (ext == ".mesh") return read_medit_triangles(read_file_bytes(path), path.string());
+  if (ext == ".mesh") {
+    detail::check_readable_file(path);
+    check_surface_file(path, ext, limits);
+    const std::string text = read_file_bytes(path);
+    if (const std::size_t nul = text.find('\0'); nul != std::string::npos)
+      throw ParseError(path.string(), 0,
+                       "binary data, expected MEDIT (.mesh) text (a NUL byte at offset " + std::to_string(nul) + ")");
+    return read_medit_triangles(text, path.string());
+  }
   if (ext != ".obj" && ext != ".off" && ext != ".stl" && ext != ".ply") {
     if (ext.empty()) throw InputError(path.string() + ": no file extension (expected .obj, .off, .stl, .ply or .mesh)");
     throw InputError(path.string() + ": unknown surface format '" + path.extension().string() +
                      "' (expected .obj, .off, .stl, .ply or .mesh)");
   }
   detail::check_readable_file(path);
+  check_surface_file(path, ext, limits);
   return read_with_openmesh(path);
 }
 

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numeric>
 
+#include <tbb/parallel_invoke.h>
+
 #include "hqview/core/error.h"
 #include "hqview/core/sha256.h"
 #include "hqview/io/mesh_reader.h"
@@ -31,9 +33,9 @@ StatisticsOptions jacobian_histogram() {
 std::string reported_path(const fs::path& p) { return p.is_absolute() ? p.filename().string() : p.lexically_normal().string(); }
 
 // Boundary error and UV atlas against the reference surface (ALGORITHMS.md §5).
-void analyze_reference(const fs::path& path, ReportModel& model) {
+void analyze_reference(const fs::path& path, const ReadLimits& limits, ReportModel& model) {
+  const TriSurface reference = read_surface(path, limits);  // checks the file before it is read whole
   const std::string bytes = read_file_bytes(path);
-  const TriSurface reference = read_surface(path);
   std::string format = path.extension().string();
   std::transform(format.begin(), format.end(), format.begin(), [](unsigned char c) { return std::tolower(c); });
   format = format == ".mesh" ? "medit" : format.substr(std::min<std::size_t>(1, format.size()));
@@ -88,14 +90,18 @@ MeshSummary summarize_mesh(const HexMesh& mesh, const Topology& topo) {
 QualitySummary summarize_quality(const HexMesh& mesh, const QualityField& field, int worst_count) {
   QualitySummary q;
   const auto options = jacobian_histogram();
-  q.scaled_jacobian = compute_statistics(field.cell_scaled_jacobian, options);
   // A corner with a zero-length edge is degenerate: counted, kept out of the
   // distribution (its value 0 still reaches vertex quality).
   std::vector<std::uint8_t> corner_flags(field.corner_scaled_jacobian.size());
   for (std::size_t h = 0; h < field.corner_degenerate_mask.size(); ++h)
     for (int i = 0; i < 8; ++i) corner_flags[8 * h + static_cast<std::size_t>(i)] = (field.corner_degenerate_mask[h] >> i) & 1u;
-  q.corner_scaled_jacobian = compute_statistics(field.corner_scaled_jacobian, options, corner_flags);
-  q.vertex_quality = compute_statistics(field.vertex_quality, options);
+  // Three independent sorts (the corners': 8 values per hex) run at once.
+  tbb::parallel_invoke([&] { q.scaled_jacobian = compute_statistics(field.cell_scaled_jacobian, options); },
+                       [&] {
+                         q.corner_scaled_jacobian =
+                             compute_statistics(field.corner_scaled_jacobian, options, corner_flags);
+                       },
+                       [&] { q.vertex_quality = compute_statistics(field.vertex_quality, options); });
 
   // The headline's cell counts (Verdict metrics: summarize_hex_metrics).
   q.num_inverted = q.scaled_jacobian.num_inverted;
@@ -154,7 +160,7 @@ Analysis analyze(const AnalyzeOptions& options) {
   if (!model.topology.unreferenced_vertices.empty())
     model.warnings.push_back(std::to_string(model.topology.unreferenced_vertices.size()) +
                              " vertices are used by no hexahedron (ignored by the analysis)");
-  if (!options.reference_path.empty()) analyze_reference(options.reference_path, model);
+  if (!options.reference_path.empty()) analyze_reference(options.reference_path, options.read_limits, model);
   if (!options.compare_path.empty()) {
     const std::string other_bytes = read_hex_mesh_bytes(options.compare_path, options.mesh_format, options.read_limits);
     LoadedMesh other = read_hex_mesh_as(options.compare_path, other_bytes, options.mesh_format, options.read_limits);

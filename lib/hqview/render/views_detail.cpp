@@ -1,6 +1,7 @@
 #include "hqview/render/views_detail.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 
@@ -14,8 +15,12 @@ namespace hq {
 namespace {
 
 // Glyphs of a cluster overlap by definition; at full size they hide the
-// cells they sit on, so view C draws them at half their radius.
+// cells they sit on, so view C draws them at half their radius, and at most
+// this fraction of the mean edge length of the cluster's cells (an inverted
+// vertex's half-size glyph is still about one edge in radius: a cluster of
+// them would be one blob hiding every cell).
 constexpr double kClusterGlyphScale = 0.5;
+constexpr double kClusterGlyphMaxEdgeFraction = 0.35;
 constexpr Rgba8 kNeighbourEdgeColor{150, 152, 160, 255};
 constexpr Rgba8 kRingEdgeColor{70, 72, 80, 255};
 constexpr Rgba8 kRegionFaceColor{190, 196, 210, 60};
@@ -151,6 +156,16 @@ Scene build_cluster_scene(const HexMesh& mesh, const Topology& topology, const s
   scene.lines.push_back(cell_edges(mesh, topology, only_neighbours, scene.origin, kNeighbourEdgeColor, 1.0f));
   scene.lines.push_back(
       cell_edges(mesh, topology, region.cells, scene.origin, to_rgba8(qualitative_color(cluster)), 2.0f));
+  double edge_sum = 0.0;
+  const LineSet& own = scene.lines.back();
+  for (std::size_t i = 0; i + 1 < own.positions.size(); i += 2) {
+    const Vec3f& a = own.positions[i];
+    const Vec3f& b = own.positions[i + 1];
+    edge_sum += std::hypot(double(a.x) - b.x, double(a.y) - b.y, double(a.z) - b.z);
+  }
+  const double max_radius =
+      own.positions.empty() ? HUGE_VAL
+                            : kClusterGlyphMaxEdgeFraction * edge_sum / static_cast<double>(own.positions.size() / 2);
   SphereSet spheres;
   if (cluster >= 0 && static_cast<std::size_t>(cluster) + 1 < glyphs.cluster_offsets.size())
     for (Index i = glyphs.cluster_offsets[static_cast<std::size_t>(cluster)];
@@ -158,7 +173,7 @@ Scene build_cluster_scene(const HexMesh& mesh, const Topology& topology, const s
       const auto v = static_cast<std::size_t>(glyphs.cluster_vertices[static_cast<std::size_t>(i)]);
       if (!(glyphs.vertex_radius[v] > 0.0)) continue;
       spheres.centers.push_back(to_vec3f(mesh.points[v] - scene.origin));
-      spheres.radii.push_back(static_cast<float>(kClusterGlyphScale * glyphs.vertex_radius[v]));
+      spheres.radii.push_back(static_cast<float>(std::min(kClusterGlyphScale * glyphs.vertex_radius[v], max_radius)));
       spheres.colors.push_back(to_rgba8(quality_color(vertex_quality[v])));
     }
   scene.spheres.push_back(std::move(spheres));
@@ -275,17 +290,55 @@ Image render_local_view(const HexMesh& mesh, const Topology& topology, Index v, 
   const std::vector<Vec3> direction = choose_viewpoints(points, centers, radii, f.aspect, 1);
   const Camera camera = fit_camera_to_points(points, direction.at(0), f.aspect, {.is_perspective = false});
   Image figure = compose(options, f, renderer.render(scene, camera, f.layout.view.width, f.layout.view.height));
-  // Labels: each corner's value next to its marker.
+  // Labels: each corner's value next to its marker. Markers of a ring can
+  // sit a few pixels apart: a label that would overlap a marker or a label
+  // placed before it moves up or down by a line or two, or to the marker's
+  // left side (the first free place in that order; else it stays right of
+  // its marker).
   const int size = std::max(11, static_cast<int>(std::lround(22 * f.style.scale)));
   AnnotationStyle label_style = f.style;
-  for (std::size_t i = 0; i < centers.size(); ++i) {
+  std::vector<PixelRect> placed;  // the markers' squares, then the labels' boxes
+  auto screen_of = [&](std::size_t i) {
     const Vec3 ndc = project_to_ndc(camera, f.aspect, centers[i]);
-    const double r_px = radii[i] / camera.ortho_height * f.layout.view.height;
-    const int x = f.layout.view.x + static_cast<int>(std::lround(0.5 * (ndc.x + 1.0) * f.layout.view.width + r_px + 4));
-    const int y = f.layout.view.y + static_cast<int>(std::lround(0.5 * (1.0 - ndc.y) * f.layout.view.height + 0.35 * size));
-    label_style.text_color = corners[i].value < 0 ? Rgba8{60, 40, 200, 255} : Rgba8{30, 30, 30, 255};
+    return std::array<double, 3>{f.layout.view.x + 0.5 * (ndc.x + 1.0) * f.layout.view.width,
+                                 f.layout.view.y + 0.5 * (1.0 - ndc.y) * f.layout.view.height,
+                                 radii[i] / camera.ortho_height * f.layout.view.height};
+  };
+  for (std::size_t i = 0; i < centers.size(); ++i) {
+    const auto [cx, cy, r] = screen_of(i);
+    placed.push_back({static_cast<int>(std::lround(cx - r)), static_cast<int>(std::lround(cy - r)),
+                      static_cast<int>(std::lround(2 * r)), static_cast<int>(std::lround(2 * r))});
+  }
+  auto overlaps = [&](const PixelRect& b) {
+    return std::any_of(placed.begin(), placed.end(), [&](const PixelRect& r) {
+      return b.x < r.x + r.width && r.x < b.x + b.width && b.y < r.y + r.height && r.y < b.y + b.height;
+    });
+  };
+  for (std::size_t i = 0; i < centers.size(); ++i) {
+    const auto [cx, cy, r_px] = screen_of(i);
     // The hex id ties each marker to its bar in chart E.
-    draw_text(figure, x, y, format_value(corners[i].value) + "  hex " + std::to_string(corners[i].hex), size, label_style);
+    const std::string text = format_value(corners[i].value) + "  hex " + std::to_string(corners[i].hex);
+    const PixelRect extent = text_extent(text, size, label_style);
+    const int line = static_cast<int>(std::lround(1.15 * size));
+    const int right_x = static_cast<int>(std::lround(cx + r_px + 4));
+    const int left_x = static_cast<int>(std::lround(cx - r_px - 4)) - extent.width;
+    const int base_y = static_cast<int>(std::lround(cy + 0.35 * size));
+    auto box_at = [&](int x, int y) { return PixelRect{x - 2, y - size, extent.width + 4, line}; };
+    int x = right_x, y = base_y;
+    bool found = false;
+    for (int side = 0; side < 2 && !found; ++side)
+      for (int dy : {0, 1, -1, 2, -2}) {
+        const int tx = side == 0 ? right_x : left_x, ty = base_y + dy * line;
+        if (!overlaps(box_at(tx, ty))) {
+          x = tx;
+          y = ty;
+          found = true;
+          break;
+        }
+      }
+    placed.push_back(box_at(x, y));
+    label_style.text_color = corners[i].value < 0 ? Rgba8{60, 40, 200, 255} : Rgba8{30, 30, 30, 255};
+    draw_text(figure, x, y, text, size, label_style);
   }
   return figure;
 }

@@ -33,7 +33,8 @@ ClusterRegion cluster_region(const Topology& topology, const GlyphResult& glyphs
 //   lines[1]       edges of the cluster's cells, in the cluster's colour;
 //   spheres[0]     the cluster's glyphs, not aggregated: one per member at
 //                  half its radius (full-size glyphs overlap and hide the
-//                  cells), coloured by quality_color(vertex quality);
+//                  cells), at most 0.35 times the mean edge length of the
+//                  cluster's cells, coloured by quality_color(vertex quality);
 //   translucent[0] the region's outer faces (faces of region cells not
 //                  shared by two region cells), pale, so its shape reads.
 Scene build_cluster_scene(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,

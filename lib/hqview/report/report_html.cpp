@@ -102,8 +102,7 @@ const std::vector<PanelSpec>& index_panels() {
        "C clusters",
        "C · Sub-regions of the worst clusters",
        "One view per top cluster (the table's bold rows): its glyphs at half size and the hexes around them. Each "
-       "links "
-       "to the local view (D) and corner chart (E) of the cluster's worst vertex, and back to its table row.",
+       "links to the local view (D) and corner chart (E) of the cluster's worst vertex, and back to its table row.",
        {"clusters"}},
       {"panel-d",
        "D local",
@@ -125,8 +124,13 @@ const std::vector<PanelSpec>& index_panels() {
   return panels;
 }
 
+// The views of boundary.html, in the order of the paper's figure: 3D error
+// views, UV error map, sorted error chart, area percentages.
+const std::vector<std::string_view> kBoundaryViewIds{"boundary_error", "uv_error", "boundary_error_sorted",
+                                                     "boundary_area"};
+
 bool is_boundary_view(std::string_view id) {
-  return id == "boundary_error" || id == "uv_error" || id == "boundary_error_sorted" || id == "boundary_area";
+  return std::find(kBoundaryViewIds.begin(), kBoundaryViewIds.end(), id) != kBoundaryViewIds.end();
 }
 
 std::string stem_of(const std::string& file) { return std::filesystem::path(file).stem().string(); }
@@ -421,7 +425,10 @@ std::string index_html(const ReportModel& model) {
     data d;
     d.set("vertex", std::to_string(w.vertex));
     const std::string target = index.target_of_vertex(w.vertex);
-    d.set("target", target.starts_with("#worst-vertex-") ? "" : target);
+    // A link only to another panel or table (not to the row itself).
+    const bool has_target = !target.empty() && !target.starts_with("#worst-vertex-");
+    d.set("target", target);
+    d.set("has_target", has_target);
     d.set("quality", show(w.quality));
     d.set("position", show_vec(w.position));
     worst_vertices.push_back(d);
@@ -560,11 +567,10 @@ std::string boundary_html(const ReportModel& model) {
   headline.push_back(card("boundary area inside", show(100.0 * e.fraction_inside) + " %"));
   page.set("headline", headline);
 
-  // The boundary views in the order of the paper's figure: 3D error views,
-  // UV error map, sorted error chart, area percentages.
+  // No links between these views: an empty panel index.
   PanelIndex no_links;
   no_links.model = &model;
-  data figures = figures_of(model, {"boundary_error", "uv_error", "boundary_error_sorted", "boundary_area"}, no_links);
+  data figures = figures_of(model, kBoundaryViewIds, no_links);
   page.set("has_figures", !figures.is_empty_list());
   page.set("figures", figures);
 
