@@ -58,6 +58,8 @@ in vec3 eye_normal;
 in vec4 vertex_color;
 uniform bool use_vertex_normals;
 uniform bool is_lit;
+uniform bool has_set_color;     // every vertex has one colour: set_linear_color
+uniform vec3 set_linear_color;  // that colour in linear RGB (saves 3 pow per fragment)
 uniform vec3 light_direction;
 uniform float ambient;
 out vec4 fragment_color;
@@ -73,7 +75,8 @@ void main() {
   float diffuse = len > 0.0 ? abs(dot(n / len, light_direction)) : 1.0;
   float shade = ambient + (1.0 - ambient) * diffuse;
   // Light in linear RGB: shading in sRGB would muddy the pale end of the map.
-  fragment_color = vec4(to_srgb(to_linear(vertex_color.rgb) * shade), vertex_color.a);
+  vec3 base = has_set_color ? set_linear_color : to_linear(vertex_color.rgb);
+  fragment_color = vec4(to_srgb(base * shade), vertex_color.a);
 }
 )";
 
@@ -528,6 +531,20 @@ class OsmesaRenderer final : public Renderer {
       }
       glUniform1i(glGetUniformLocation(triangle_program_, "use_vertex_normals"), use_normals ? 1 : 0);
       glUniform1i(glGetUniformLocation(triangle_program_, "is_lit"), set.is_lit ? 1 : 0);
+      // One colour for the whole set (translucent hulls, arrows, the grey
+      // boundary of view F): linearised once here instead of per fragment.
+      const Rgba8 first = set.colors.front();
+      const bool one_color =
+          std::all_of(set.colors.begin(), set.colors.end(), [&](const Rgba8& c) { return c == first; });
+      glUniform1i(glGetUniformLocation(triangle_program_, "has_set_color"), one_color ? 1 : 0);
+      if (one_color) {
+        auto to_linear = [](std::uint8_t byte) {
+          const float c = static_cast<float>(byte) / 255.0f;
+          return c >= 0.04045f ? std::pow((c + 0.055f) / 1.055f, 2.4f) : c / 12.92f;
+        };
+        glUniform3f(glGetUniformLocation(triangle_program_, "set_linear_color"), to_linear(first.r), to_linear(first.g),
+                    to_linear(first.b));
+      }
       if (sort_by)
         upload(GL_ELEMENT_ARRAY_BUFFER, index_buffer_, sorted_indices(set, back_to_front_order(set, *sort_by)));
       else
