@@ -1,7 +1,11 @@
 #include "hqview/core/sha256.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <vector>
 
 namespace hq {
 namespace {
@@ -46,19 +50,36 @@ void compress(std::array<std::uint32_t, 8>& h, const unsigned char* block) {
 
 }  // namespace
 
-std::string sha256_hex(std::string_view bytes) {
-  std::array<std::uint32_t, 8> h = {0x6a09e667, 0xbb67ae85, 0x3c6ef372, 0xa54ff53a,
-                                    0x510e527f, 0x9b05688c, 0x1f83d9ab, 0x5be0cd19};
+Sha256::Sha256()
+    : state_{0x6a09e667, 0xbb67ae85, 0x3c6ef372, 0xa54ff53a, 0x510e527f, 0x9b05688c, 0x1f83d9ab, 0x5be0cd19} {}
+
+void Sha256::update(std::string_view bytes) {
   const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
-  std::size_t full = bytes.size() / 64;
-  for (std::size_t i = 0; i < full; ++i) compress(h, data + 64 * i);
+  std::size_t n = bytes.size();
+  total_ += n;
+  if (pending_ > 0) {
+    const std::size_t take = std::min(n, block_.size() - pending_);
+    std::memcpy(block_.data() + pending_, data, take);
+    pending_ += take;
+    data += take;
+    n -= take;
+    if (pending_ < block_.size()) return;
+    compress(state_, block_.data());
+    pending_ = 0;
+  }
+  for (; n >= 64; data += 64, n -= 64) compress(state_, data);
+  std::memcpy(block_.data(), data, n);
+  pending_ = n;
+}
+
+std::string Sha256::hex() const {
   // Padding: 0x80, zeros, then the bit length big-endian in the last 8 bytes.
+  std::array<std::uint32_t, 8> h = state_;
   unsigned char tail[128] = {};
-  const std::size_t rest = bytes.size() % 64;
-  for (std::size_t i = 0; i < rest; ++i) tail[i] = data[64 * full + i];
-  tail[rest] = 0x80;
-  const std::size_t tail_len = rest < 56 ? 64 : 128;
-  const std::uint64_t bits = static_cast<std::uint64_t>(bytes.size()) * 8;
+  std::memcpy(tail, block_.data(), pending_);
+  tail[pending_] = 0x80;
+  const std::size_t tail_len = pending_ < 56 ? 64 : 128;
+  const std::uint64_t bits = total_ * 8;
   for (int i = 0; i < 8; ++i) tail[tail_len - 1 - i] = static_cast<unsigned char>(bits >> (8 * i));
   compress(h, tail);
   if (tail_len == 128) compress(h, tail + 64);
@@ -67,6 +88,25 @@ std::string sha256_hex(std::string_view bytes) {
   for (std::uint32_t word : h)
     for (int shift = 28; shift >= 0; shift -= 4) out += kHex[(word >> shift) & 0xf];
   return out;
+}
+
+std::string sha256_hex(std::string_view bytes) {
+  Sha256 sha;
+  sha.update(bytes);
+  return sha.hex();
+}
+
+std::optional<std::string> sha256_file_hex(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return std::nullopt;
+  Sha256 sha;
+  std::vector<char> chunk(1 << 20);
+  while (in) {
+    in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+    sha.update(std::string_view(chunk.data(), static_cast<std::size_t>(in.gcount())));
+  }
+  if (in.bad()) return std::nullopt;
+  return sha.hex();
 }
 
 }  // namespace hq

@@ -106,7 +106,9 @@ bool is_resumable(const BatchInput& input, const fs::path& report_path, const st
     return in.is_object() && in.contains(which) && in[which].is_object() ? in[which].value("sha256", "")
                                                                          : std::string();
   };
-  auto sha_of = [](const fs::path& file) { return file.empty() ? std::string() : sha256_hex(read_file_bytes(file)); };
+  auto sha_of = [](const fs::path& file) {
+    return file.empty() ? std::string() : sha256_file_hex(file).value_or(std::string());
+  };
   return old_sha("mesh") == sha_of(input.mesh_file) && old_sha("reference") == sha_of(input.reference_file) &&
          old_sha("compare") == sha_of(input.compare_file);
 }
@@ -363,8 +365,9 @@ BatchEntry run_batch_mesh(const BatchInput& input, const BatchOptions& options, 
     entry.bundle.clear();
     entry.failed_gates.clear();
     entry.headline.assign(kNumHeadlineKeys, std::nullopt);
+    // Hashed in chunks: a failed mesh may be a file too big to read whole.
     std::error_code ec;
-    entry.sha256 = fs::is_regular_file(input.mesh_file, ec) ? sha256_hex(read_file_bytes(input.mesh_file)) : "";
+    entry.sha256 = fs::is_regular_file(input.mesh_file, ec) ? sha256_file_hex(input.mesh_file).value_or("") : "";
   }
   return entry;
 }
