@@ -16,12 +16,9 @@
 
 #include "hqview/core/error.h"
 #include "hqview/core/number_format.h"
+#include "hqview/report/report_templates.h"
 
 namespace hq {
-namespace detail {
-std::string_view embedded_file(std::string_view name);
-}
-
 namespace fs = std::filesystem;
 using nlohmann::json;
 
@@ -289,7 +286,7 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
     method_rows.push_back(row);
   }
   page.set("methods", method_rows);
-  mustache tmpl{std::string(detail::embedded_file("batch_index.html.mustache"))};
+  mustache tmpl{std::string(report_template("batch_index.html.mustache"))};
   if (!tmpl.is_valid()) throw Error("batch index template: " + tmpl.error_message());
   return tmpl.render(page);
 }

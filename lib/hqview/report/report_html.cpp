@@ -10,11 +10,9 @@
 
 #include "hqview/core/error.h"
 #include "hqview/report/cluster_color.h"
+#include "hqview/report/report_templates.h"
 
 namespace hq {
-namespace detail {
-std::string_view embedded_file(std::string_view name);
-}
 
 namespace {
 
@@ -300,7 +298,7 @@ data input_rows(const ReportModel& model) {
 
 }  // namespace
 
-std::string_view report_stylesheet() { return detail::embedded_file("style.css"); }
+std::string_view report_stylesheet() { return report_template("style.css"); }
 
 std::string index_html(const ReportModel& model) {
   const MeshSummary& m = model.mesh_summary;
@@ -542,7 +540,7 @@ std::string index_html(const ReportModel& model) {
     page.set("more_overlap_pairs", show_count(static_cast<long long>(o.intersecting_pairs.size() - shown)));
   }
 
-  mustache tmpl{std::string(detail::embedded_file("index.html.mustache"))};
+  mustache tmpl{std::string(report_template("index.html.mustache"))};
   if (!tmpl.is_valid()) throw Error("internal: index.html template: " + tmpl.error_message());
   return tmpl.render(page);
 }
@@ -615,7 +613,7 @@ std::string boundary_html(const ReportModel& model) {
   page.set("has_warnings", !e.warnings.empty());
   page.set("inputs", input_rows(model));
 
-  mustache tmpl{std::string(detail::embedded_file("boundary.html.mustache"))};
+  mustache tmpl{std::string(report_template("boundary.html.mustache"))};
   if (!tmpl.is_valid()) throw Error("internal: boundary.html template: " + tmpl.error_message());
   return tmpl.render(page);
 }
