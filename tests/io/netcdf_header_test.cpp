@@ -183,5 +183,18 @@ TEST(NetcdfHeader, FuzzFindingOomDimensionIds6f9e6fbb) {
             "has 552");
 }
 
+// Fuzz finding exodus-timeout-2a40bb80 (session 2, fuzz_exodus): num_el_blk
+// was the record dimension, 1,112,831 records long in a 665-byte file, and the
+// reader looked up connectN/num_el_in_blkN for every one of them (2 s in a
+// release build, > 10 s under ASan). The block count is now bounded by the
+// file's variables.
+TEST(NetcdfHeader, FuzzFindingTimeoutRecordBlockCount2a40bb80) {
+  if (!has_exodus_support()) GTEST_SKIP() << "built without netCDF";
+  const std::string path = (test::source_dir() / "tests/bad_inputs/exodus_fuzz_timeout_2a40bb80.e").string();
+  ASSERT_EQ(read_file_bytes(path).size(), 665u);
+  EXPECT_EQ(error_text<ParseError>([&] { read_hex_mesh(path); }).substr(path.size()),
+            ": num_el_blk is 1112831 but the file has only 2 variables");
+}
+
 }  // namespace
 }  // namespace hq

@@ -63,6 +63,12 @@ class NcFile {
     if (n < 0) fail("no dimension " + dim_name + " (not an Exodus II file?)");
     return n;
   }
+  // How many variables the file has.
+  int num_variables() const {
+    int n = 0;
+    check(nc_inq_nvars(id_, &n), "variables");
+    return n;
+  }
   // A variable's id; -1 when absent.
   int variable(const std::string& var_name) const {
     int var = 0;
@@ -182,6 +188,12 @@ LoadedMesh read_exodus(std::string_view bytes, const std::string& name, const Re
   }
 
   const std::int64_t num_blocks = std::max<std::int64_t>(file.dimension("num_el_blk"), 0);
+  // Each block has its own connectN variable: a count beyond the file's
+  // variables (e.g. num_el_blk made the record dimension) is a lie, and looking
+  // up that many names would take minutes.
+  if (num_blocks > file.num_variables())
+    file.fail("num_el_blk is " + std::to_string(num_blocks) + " but the file has only " +
+              std::to_string(file.num_variables()) + " variables");
   std::int64_t num_elements_declared = 0;  // every block's, an upper bound of the hexes
   for (std::int64_t b = 1; b <= num_blocks; ++b)
     num_elements_declared +=

@@ -149,7 +149,7 @@ std::vector<RenderedView> render_views(const ViewInputs& in, const ViewOptions& 
     for (std::size_t k = 0; k < num_top; ++k) {
       const AggregatedGlyph& g = glyphs.clusters[k];
       detail.title = in.mesh_name + ": cluster #" + std::to_string(k) + " (" + std::to_string(g.size) +
-                     " glyphs at half size, min quality " + std::to_string(g.min_quality).substr(0, 6) + ") and its neighbours";
+                     " glyphs, reduced, min quality " + std::to_string(g.min_quality).substr(0, 6) + ") and its neighbours";
       view.files.push_back({"views/cluster_" + std::to_string(k) + ".png",
                             render_cluster_view(*in.mesh, *in.topology, *in.vertex_quality, glyphs,
                                                 static_cast<Index>(k), detail, renderer),

@@ -99,7 +99,7 @@ const std::vector<PanelSpec>& index_panels() {
       {"panel-c",
        "C clusters",
        "C · Sub-regions of the worst clusters",
-       "One view per top cluster (the table's bold rows): its glyphs at half size and the hexes around them. Each "
+       "One view per top cluster (the table's bold rows): its glyphs (reduced: half size, at most 0.35 of the mean edge) and the hexes around them. Each "
        "links to the local view (D) and corner chart (E) of the cluster's worst vertex, and back to its table row.",
        {"clusters"}},
       {"panel-d",
