@@ -161,6 +161,8 @@ def main():
                      "< %g GB %s (issue 11)" % (e["target_rss_gb"], "ok" if ok_rss else "MISS")))
         print("  e2e runs: wall %s s, peak RSS %s GB (median of %d)" %
               (", ".join("%.1f" % w for w in walls), ", ".join("%.2f" % (k / 1024 / 1024) for k in rss), len(walls)))
+        if "load_average" in e:
+            print("  load average after the e2e runs: %s" % " ".join("%.2f" % x for x in e["load_average"]))
         if not ok_wall:
             misses.append("e2e wall time")
         if not ok_rss:
