@@ -120,7 +120,7 @@ TEST(ExodusReader, Hex8BlocksAndSkippedBlocks) {
     EXPECT_EQ(loaded.mesh.hexes[0], (Hex{0, 1, 2, 3, 4, 5, 6, 7}));
     EXPECT_EQ(loaded.mesh.hexes[1], (Hex{4, 5, 6, 7, 0, 1, 2, 3}));
     ASSERT_EQ(loaded.warnings.size(), 1u);
-    EXPECT_EQ(loaded.warnings[0], "m.e: 2 non-hexahedral elements skipped (QUAD4)");
+    EXPECT_EQ(loaded.warnings[0], "m.e: 2 non-hexahedral elements skipped (type QUAD4)");
   }
 }
 
@@ -159,7 +159,7 @@ TEST(ExodusReader, Errors) {
   EXPECT_EQ(error_text<ParseError>([&] {
               read_exodus(write_exodus(dir, kCube, {{"TETRA", 4, {1, 2, 3, 5}}}, false), "m.e");
             }),
-            "m.e: no hexahedra (HEX8 blocks) among 1 elements of type TETRA");
+            "m.e: no hexahedra (HEX8 blocks) among 1 element of type TETRA");
 }
 
 #endif

@@ -179,27 +179,17 @@ class AbaqusParser {
   }
 
   LoadedMesh build() {
-    std::int64_t num_skipped = 0;
-    std::string types;
-    for (const auto& [type, count] : skipped_by_type_) {
-      num_skipped += count;
-      types += (types.empty() ? "" : ", ") + type;
-    }
-    const std::string skipped = std::to_string(num_skipped) + " element" + (num_skipped > 1 ? "s" : "") + " of type" +
-                                (skipped_by_type_.size() > 1 ? "s " : " ") + types;
+    const SkippedCells skipped(skipped_by_type_);
     if (hexes_.empty())
-      fail(0,
-           "no hexahedra (*ELEMENT, TYPE=C3D8, C3D8R or C3D8I)" + (num_skipped > 0 ? ": " + skipped : std::string()));
+      fail(0, "no hexahedra (*ELEMENT, TYPE=C3D8, C3D8R or C3D8I)" +
+                  (skipped.count > 0 ? ": " + skipped.counted("element") : std::string()));
     // Abaqus declares no counts: the budget is checked once the file is read
     // (what reading allocates is bounded by the file's size), before the analysis.
     check_mesh_memory(limits_, name_, 0, bytes_.size(), static_cast<std::int64_t>(points_.size()),
                       static_cast<std::int64_t>(hexes_.size()));
     LoadedMesh loaded;
     loaded.format = "abaqus";
-    if (num_skipped > 0)
-      loaded.warnings.push_back(name_ + ": " + std::to_string(num_skipped) + " non-hexahedral element" +
-                                (num_skipped > 1 ? "s" : "") + " skipped (type" +
-                                (skipped_by_type_.size() > 1 ? "s " : " ") + types + ")");
+    if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(name_, "element"));
     loaded.mesh.points = std::move(points_);
     loaded.mesh.hexes = std::move(hexes_);
     return loaded;

@@ -228,19 +228,11 @@ LoadedMesh read_exodus(std::string_view bytes, const std::string& name, const Re
       loaded.mesh.hexes.push_back(hex);
     }
   }
-  std::int64_t num_skipped = 0;
-  std::string types;
-  for (const auto& [type, count] : skipped_by_type) {
-    num_skipped += count;
-    types += (types.empty() ? "" : ", ") + type;
-  }
+  const SkippedCells skipped(skipped_by_type);
   if (loaded.mesh.hexes.empty())
-    file.fail(
-        "no hexahedra (HEX8 blocks)" +
-        (num_skipped > 0 ? " among " + std::to_string(num_skipped) + " elements of type " + types : std::string()));
-  if (num_skipped > 0)
-    loaded.warnings.push_back(name + ": " + std::to_string(num_skipped) + " non-hexahedral element" +
-                              (num_skipped > 1 ? "s" : "") + " skipped (" + types + ")");
+    file.fail("no hexahedra (HEX8 blocks)" +
+              (skipped.count > 0 ? " among " + skipped.counted("element") : std::string()));
+  if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(name, "element"));
   return loaded;
 }
 

@@ -458,23 +458,13 @@ class GmshParser {
   }
 
   LoadedMesh build() {
-    std::int64_t num_skipped = 0;
-    std::string types;
-    for (const auto& [type, count] : skipped_by_type_) {
-      num_skipped += count;
-      types += (types.empty() ? "" : ", ") + std::to_string(type);
-    }
-    const std::string plural_types = skipped_by_type_.size() > 1 ? "types " : "type ";
+    const SkippedCells skipped(skipped_by_type_);
     if (hexes_.empty())
       s_.fail_at(elements_line_, "no hexahedra (element type 5)" +
-                                     (num_skipped > 0 ? " among " + std::to_string(num_skipped) + " element" +
-                                                            (num_skipped > 1 ? "s" : "") + " of " + plural_types + types
-                                                      : std::string()));
+                                     (skipped.count > 0 ? " among " + skipped.counted("element") : std::string()));
     LoadedMesh loaded;
     loaded.format = "gmsh-" + version_ + (binary_ ? "-binary" : "-ascii");
-    if (num_skipped > 0)
-      loaded.warnings.push_back(s_.name() + ": " + std::to_string(num_skipped) + " non-hexahedral element" +
-                                (num_skipped > 1 ? "s" : "") + " skipped (" + plural_types + types + ")");
+    if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(s_.name(), "element"));
     loaded.mesh.points = std::move(points_);
     loaded.mesh.hexes = std::move(hexes_);
     return loaded;

@@ -13,9 +13,12 @@
 // gmsh_reader.h (read_gmsh), abaqus_reader.h (read_abaqus), ovm_reader.h
 // (read_ovm), exodus_reader.h (read_exodus, when built with netCDF).
 
+#include <cstdint>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "hqview/core/error.h"
@@ -28,6 +31,37 @@ struct LoadedMesh {
   HexMesh mesh;
   std::string format;                 // "medit", "vtk-legacy-ascii", "vtk-legacy-binary", ...
   std::vector<std::string> warnings;  // e.g. "12 non-hexahedral cells skipped"
+};
+
+// The cells a reader left out because they are not hexahedra, counted by the
+// format's type (a VTK/Gmsh number, an Abaqus or Exodus name), and the two
+// texts every reader words the same way: "3 cells of types 10, 12" for its
+// "no hexahedra" error and "NAME: 3 non-hexahedral cells skipped (types 10,
+// 12)" for the warning. `noun` is the format's word: "cell" or "element".
+struct SkippedCells {
+  std::int64_t count = 0;
+  std::size_t num_types = 0;
+  std::string types;  // "10, 12", in the map's order
+
+  template <class Type>
+  explicit SkippedCells(const std::map<Type, std::int64_t>& by_type) : num_types(by_type.size()) {
+    for (const auto& [type, n] : by_type) {
+      count += n;
+      if (!types.empty()) types += ", ";
+      if constexpr (std::is_arithmetic_v<Type>)
+        types += std::to_string(type);
+      else
+        types += type;
+    }
+  }
+  std::string type_word() const { return num_types > 1 ? "types " : "type "; }
+  std::string counted(const char* noun) const {
+    return std::to_string(count) + " " + noun + (count > 1 ? "s" : "") + " of " + type_word() + types;
+  }
+  std::string warning(const std::string& file, const char* noun) const {
+    return file + ": " + std::to_string(count) + " non-hexahedral " + noun + (count > 1 ? "s" : "") + " skipped (" +
+           type_word() + types + ")";
+  }
 };
 
 // Reads a whole file into memory. Throws InputError "path: cannot open:

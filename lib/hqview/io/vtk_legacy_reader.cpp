@@ -648,24 +648,10 @@ class VtkParser {
       hexes.push_back(hex);
     }
 
-    const auto type_list = [](const std::map<int, std::int64_t>& by_type) {
-      std::string list;
-      for (const auto& [type, count] : by_type) list += (list.empty() ? "" : ", ") + std::to_string(type);
-      return list;
-    };
-    std::int64_t num_skipped = 0;
-    for (const auto& entry : skipped_by_type) num_skipped += entry.second;
-    if (hexes.empty()) {
-      std::string message = "no hexahedra";
-      if (num_skipped > 0)
-        message += " (" + std::to_string(num_skipped) + " cell" + (num_skipped > 1 ? "s" : "") + " of type" +
-                   (skipped_by_type.size() > 1 ? "s " : " ") + type_list(skipped_by_type) + ")";
-      s_.fail_at(0, message);
-    }
-    if (num_skipped > 0)
-      loaded.warnings.push_back(s_.name() + ": " + std::to_string(num_skipped) + " non-hexahedral cell" +
-                                (num_skipped > 1 ? "s" : "") + " skipped (type" +
-                                (skipped_by_type.size() > 1 ? "s " : " ") + type_list(skipped_by_type) + ")");
+    const SkippedCells skipped(skipped_by_type);
+    if (hexes.empty())
+      s_.fail_at(0, "no hexahedra" + (skipped.count > 0 ? " (" + skipped.counted("cell") + ")" : std::string()));
+    if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(s_.name(), "cell"));
     if (!mislabelled_cells.empty()) {
       constexpr std::size_t kShown = 5;
       std::string cells;
@@ -675,7 +661,7 @@ class VtkParser {
         cells += " and " + std::to_string(mislabelled_cells.size() - kShown) + " more";
       loaded.warnings.push_back(s_.name() + ": " + std::to_string(mislabelled_cells.size()) + " cell" +
                                 (mislabelled_cells.size() > 1 ? "s" : "") +
-                                " with 8 points but a non-hexahedral type (" + type_list(mislabelled_by_type) +
+                                " with 8 points but a non-hexahedral type (" + SkippedCells(mislabelled_by_type).types +
                                 ") loaded as hexahedra: cell" + (mislabelled_cells.size() > 1 ? "s " : " ") + cells);
     }
     loaded.mesh.points = std::move(points_);

@@ -555,21 +555,12 @@ class VtuParser {
   }
 
   LoadedMesh build(const XmlElement& grid) {
-    std::int64_t num_skipped = 0;
-    std::string types;
-    for (const auto& [type, count] : skipped_by_type_) {
-      num_skipped += count;
-      types += (types.empty() ? "" : ", ") + std::to_string(type);
-    }
-    const std::string skipped_text = std::to_string(num_skipped) + " cell" + (num_skipped > 1 ? "s" : "") + " of type" +
-                                     (skipped_by_type_.size() > 1 ? "s " : " ") + types;
-    if (hexes_.empty()) fail(grid, "no hexahedra" + (num_skipped > 0 ? " (" + skipped_text + ")" : std::string()));
+    const SkippedCells skipped(skipped_by_type_);
+    if (hexes_.empty())
+      fail(grid, "no hexahedra" + (skipped.count > 0 ? " (" + skipped.counted("cell") + ")" : std::string()));
     LoadedMesh loaded;
     loaded.format = "vtu-" + format_;
-    if (num_skipped > 0)
-      loaded.warnings.push_back(name_ + ": " + std::to_string(num_skipped) + " non-hexahedral cell" +
-                                (num_skipped > 1 ? "s" : "") + " skipped (type" +
-                                (skipped_by_type_.size() > 1 ? "s " : " ") + types + ")");
+    if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(name_, "cell"));
     loaded.mesh.points = std::move(points_);
     loaded.mesh.hexes = std::move(hexes_);
     return loaded;
