@@ -28,7 +28,6 @@ const hq::HexMesh& mesh() {
   return m;
 }
 
-
 const hq::HexMesh& refined_mesh() {
   static const hq::HexMesh m = hq::bench::refine_1_to_8(mesh());
   return m;
@@ -67,10 +66,10 @@ void run_baseline(benchmark::State& state, const hq::HexMesh& m) {
 const hq::ReportModel& refined_model() {
   static const hq::ReportModel model = [] {
     hq::ReportModel m;
-    m.mesh = refined_mesh();
-    m.topology = hq::build_topology(m.mesh);
-    m.field = hq::compute_quality(m.mesh, m.topology);
-    m.metrics = hq::compute_hex_metrics(m.mesh, hq::all_hex_metrics());
+    m.analysis.mesh = refined_mesh();
+    m.analysis.topology = hq::build_topology(m.analysis.mesh);
+    m.analysis.field = hq::compute_quality(m.analysis.mesh, m.analysis.topology);
+    m.analysis.metrics = hq::compute_hex_metrics(m.analysis.mesh, hq::all_hex_metrics());
     return m;
   }();
   return model;
@@ -86,8 +85,9 @@ void run_writer(benchmark::State& state, Write write) {
     out.close();
   }
   std::filesystem::remove(path);
-  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(model.mesh.hexes.size()));
-  state.counters["hexes"] = static_cast<double>(model.mesh.hexes.size());
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) *
+                          static_cast<int64_t>(model.analysis.mesh.hexes.size()));
+  state.counters["hexes"] = static_cast<double>(model.analysis.mesh.hexes.size());
 }
 
 void BM_AnnotatedVtuRefined_HQView(benchmark::State& state) {

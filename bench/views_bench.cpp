@@ -7,7 +7,7 @@
 //
 // BM_AllViews_* render every view and encode every PNG (render_views does
 // both, the encoding on a second thread while later frames render);
-// BM_View_Dolphin/<k> renders view kViewIds[k] alone (its label names it),
+// BM_View_Dolphin/<k> renders the k-th selectable view of kViews alone (its label names it),
 // for a per-view profile.
 
 #include <benchmark/benchmark.h>
@@ -20,27 +20,17 @@
 #include <optional>
 
 #include "bench_data.h"
+#include "hqview/analysis/analysis.h"
 #include "hqview/boundary/boundary_error.h"
 #include "hqview/glyph/glyphs.h"
 #include "hqview/io/mesh_reader.h"
 #include "hqview/overlap/overlap.h"
 #include "hqview/quality/quality_field.h"
 #include "hqview/render/osmesa_renderer.h"
-#include "hqview/render/views.h"
 #include "hqview/uv/uv_atlas.h"
+#include "hqview/views/views.h"
 
 namespace {
-
-struct Analysed {
-  hq::HexMesh mesh;
-  hq::Topology topology;
-  hq::QualityField field;
-  hq::GlyphResult glyphs;
-  hq::OverlapReport overlap;
-  std::optional<hq::TriSurface> reference;
-  std::optional<hq::BoundaryError> boundary_error;
-  std::optional<hq::UvAtlas> uv_atlas;
-};
 
 // The reference surface next to the benchmark mesh (dolphin.off), if any.
 std::optional<hq::TriSurface> reference_surface() {
@@ -49,8 +39,9 @@ std::optional<hq::TriSurface> reference_surface() {
   return hq::read_surface(path);
 }
 
-Analysed analyse(hq::HexMesh mesh) {
-  Analysed a;
+hq::Analysis analyse(hq::HexMesh mesh) {
+  hq::Analysis a;
+  a.mesh_input.path = "bench";
   a.mesh = std::move(mesh);
   a.topology = hq::build_topology(a.mesh);
   a.field = hq::compute_quality(a.mesh, a.topology);
@@ -60,39 +51,33 @@ Analysed analyse(hq::HexMesh mesh) {
   a.glyphs = hq::compute_glyphs(a.mesh.points, a.field.vertex_quality,
                                 sum / std::max<std::size_t>(1, a.topology.edges.size()), hq::GlyphOptions{});
   a.overlap = hq::check_overlap(a.mesh, a.topology, hq::OverlapOptions{});
-  a.reference = reference_surface();
-  if (a.reference) {
-    a.boundary_error = hq::compute_boundary_error(a.mesh, a.topology, *a.reference);
-    a.uv_atlas = hq::build_uv_atlas(*a.reference, hq::UvOptions{.improve_with_lscm = true});
+  a.reference_surface = reference_surface();
+  if (a.reference_surface) {
+    a.boundary_error = hq::compute_boundary_error(a.mesh, a.topology, *a.reference_surface);
+    a.uv_atlas = hq::build_uv_atlas(*a.reference_surface, hq::UvOptions{.improve_with_lscm = true});
   }
   return a;
 }
 
-const Analysed& coarse() {
-  static const Analysed a = analyse(hq::read_hex_mesh(hq::bench::largest_mesh()).mesh);
+const hq::Analysis& coarse() {
+  static const hq::Analysis a = analyse(hq::read_hex_mesh(hq::bench::largest_mesh()).mesh);
   return a;
 }
 
-const Analysed& refined() {
-  static const Analysed a = analyse(hq::bench::refine_1_to_8(coarse().mesh));
+const hq::Analysis& refined() {
+  static const hq::Analysis a = analyse(hq::bench::refine_1_to_8(coarse().mesh));
   return a;
 }
 
-hq::ViewInputs inputs_of(const Analysed& a) {
-  hq::ViewInputs inputs;
-  inputs.mesh = &a.mesh;
-  inputs.topology = &a.topology;
-  inputs.vertex_quality = &a.field.vertex_quality;
-  inputs.cell_quality = &a.field.cell_scaled_jacobian;
-  inputs.glyphs = &a.glyphs;
-  inputs.overlap = &a.overlap;
-  inputs.mesh_name = "bench";
-  if (a.reference) {
-    inputs.boundary_error = &*a.boundary_error;
-    inputs.reference = &*a.reference;
-    inputs.uv_atlas = &*a.uv_atlas;
-  }
-  return inputs;
+// The ids --views accepts, in table order (BM_View_*'s argument indexes them).
+const std::vector<std::string>& view_ids() {
+  static const std::vector<std::string> ids = [] {
+    std::vector<std::string> out;
+    for (const hq::ViewSpec& spec : hq::kViews)
+      if (spec.is_selectable) out.emplace_back(spec.id);
+    return out;
+  }();
+  return ids;
 }
 
 // A renderer that draws nothing (a white frame): what a view costs besides
@@ -104,15 +89,14 @@ class BlankRenderer final : public hq::Renderer {
   }
 };
 
-void run_views(benchmark::State& state, const Analysed& a, std::vector<std::string> ids = {}, bool blank = false) {
+void run_views(benchmark::State& state, const hq::Analysis& a, std::vector<std::string> ids = {}, bool blank = false) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
   const std::unique_ptr<hq::Renderer> renderer = blank ? std::make_unique<BlankRenderer>() : hq::make_osmesa_renderer();
-  const hq::ViewInputs inputs = inputs_of(a);
   hq::ViewOptions options;
   options.views = std::move(ids);
   std::size_t images = 0;
   for (auto _ : state) {
-    const auto views = hq::render_views(inputs, options, *renderer);
+    const auto views = hq::render_views(a, options, *renderer);
     images = 0;
     for (const hq::RenderedView& view : views) images += view.files.size();
     benchmark::DoNotOptimize(views.data());
@@ -124,7 +108,7 @@ void run_views(benchmark::State& state, const Analysed& a, std::vector<std::stri
 void BM_AllViews_Dolphin(benchmark::State& state) { run_views(state, coarse()); }
 void BM_AllViews_Refined(benchmark::State& state) { run_views(state, refined()); }
 void BM_View_Dolphin(benchmark::State& state) {
-  const char* id = hq::kViewIds[state.range(0)];
+  const std::string& id = view_ids()[static_cast<std::size_t>(state.range(0))];
   state.SetLabel(id);
   run_views(state, coarse(), {id});
 }
@@ -139,12 +123,12 @@ void BM_EmptyFrame(benchmark::State& state) {
 
 BENCHMARK(BM_EmptyFrame)->Unit(benchmark::kMillisecond)->UseRealTime();
 void BM_ViewWithoutGl_Dolphin(benchmark::State& state) {
-  const char* id = hq::kViewIds[state.range(0)];
+  const std::string& id = view_ids()[static_cast<std::size_t>(state.range(0))];
   state.SetLabel(id);
   run_views(state, coarse(), {id}, true);
 }
 BENCHMARK(BM_ViewWithoutGl_Dolphin)
-    ->DenseRange(0, static_cast<int>(std::size(hq::kViewIds)) - 1)
+    ->DenseRange(0, static_cast<int>(view_ids().size()) - 1)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1)
     ->UseRealTime();
@@ -152,7 +136,7 @@ BENCHMARK(BM_ViewWithoutGl_Dolphin)
 // minimum time of main-thread CPU, and the JSON's real_time is what counts.
 BENCHMARK(BM_AllViews_Dolphin)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_View_Dolphin)
-    ->DenseRange(0, static_cast<int>(std::size(hq::kViewIds)) - 1)
+    ->DenseRange(0, static_cast<int>(view_ids().size()) - 1)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1)
     ->UseRealTime();

@@ -4,37 +4,41 @@
 
 #include <unistd.h>
 
-#include <CLI/CLI.hpp>
 #include <OpenMesh/Core/System/config.h>
-#include <charconv>
-#include <cstdio>
-#include <fstream>
-#include <sstream>
-#include <cmath>
-#include <filesystem>
-#include <optional>
-#include <string_view>
-#include <iostream>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <tbb/version.h>
+#include <CLI/CLI.hpp>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string_view>
 
+#include "flags.h"
 #include "hqview/core/error.h"
 #include "hqview/core/number_format.h"
 #include "hqview/io/mesh_reader.h"
+#include "hqview/io/read_limits.h"
 #include "hqview/pipeline/analyze.h"
 #include "hqview/pipeline/batch.h"
-#include "hqview/pipeline/batch_index.h"
 #include "hqview/pipeline/diff.h"
-#include "hqview/render/views.h"
+#include "hqview/render/osmesa_renderer.h"
+#include "hqview/report/atomic_file.h"
+#include "hqview/report/batch_index.h"
 #include "hqview/report/bundle_writer.h"
 #include "hqview/report/report_json.h"
+#include "hqview/views/views.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-enum ExitCode { kOk = 0, kGateFailed = 1, kUsage = 2, kInput = 3, kInternal = 4 };
+using namespace hqcli;
 
 struct AnalyzeArgs {
   std::string mesh;
@@ -65,87 +69,14 @@ std::string version_text() {
   std::string text = std::string("hqview ") + HQVIEW_VERSION + "\n";
   text += "  formats: .mesh (MEDIT ASCII), .vtk (legacy, ASCII and BINARY, up to 5.1),\n";
   text += std::string("           .vtu (VTK XML: ascii, binary, appended; zlib ") +
-          (hq::has_zlib_support() ? "on" : "off: built without zlib") + "), .msh (Gmsh 2.2 and 4.1, ASCII and binary),\n";
+          (hq::has_zlib_support() ? "on" : "off: built without zlib") +
+          "), .msh (Gmsh 2.2 and 4.1, ASCII and binary),\n";
   text += std::string("           .ovm (OpenVolumeMesh ASCII), .inp (Abaqus), .e .exo (Exodus II: ") +
           (hq::has_exodus_support() ? "on, netCDF" : "off: built without netCDF") + ")\n";
-  text += "  surfaces: .obj .off .stl .ply (OpenMesh " + std::to_string(OM_GET_VER) + "." + std::to_string(OM_GET_MAJ) + "), .mesh Triangles\n";
+  text += "  surfaces: .obj .off .stl .ply (OpenMesh " + std::to_string(OM_GET_VER) + "." + std::to_string(OM_GET_MAJ) +
+          "), .mesh Triangles\n";
   text += "  threads: TBB " + std::string(TBB_VERSION_STRING) + "; rendering: OSMesa (offscreen OpenGL 4.5 core)\n";
   return text;
-}
-
-void parse_size(const std::string& size, int& width, int& height) {
-  const auto x = size.find('x');
-  try {
-    if (x == std::string::npos) throw std::invalid_argument("no x");
-    std::size_t used = 0;
-    width = std::stoi(size.substr(0, x), &used);
-    if (used != x) throw std::invalid_argument("width");
-    height = std::stoi(size.substr(x + 1), &used);
-    if (used != size.size() - x - 1) throw std::invalid_argument("height");
-  } catch (const std::exception&) {
-    throw hq::UsageError("--size: expected WIDTHxHEIGHT, e.g. 1600x1200, got '" + size + "'");
-  }
-  if (width < 64 || height < 64 || width > 8192 || height > 8192)
-    throw hq::UsageError("--size: width and height must be between 64 and 8192, got '" + size + "'");
-}
-
-// The whole of `text` as a finite number, or nullopt.
-std::optional<double> parse_finite(std::string_view text) {
-  double value = 0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) return std::nullopt;
-  return value;
-}
-
-// --rmax R (model units) or Rx (R times the mean edge length), R > 0.
-void parse_rmax(const std::string& text, hq::GlyphOptions& glyphs) {
-  std::string_view number = text;
-  const bool is_relative = !number.empty() && number.back() == 'x';
-  if (is_relative) number.remove_suffix(1);
-  const auto value = parse_finite(number);
-  if (!value || !(*value > 0))
-    throw hq::UsageError("--rmax: expected a positive number in model units (e.g. 0.05) or a multiple of the mean "
-                         "edge length (e.g. 1.5x), got '" + text + "'");
-  glyphs.rmax = *value;
-  glyphs.rmax_unit = is_relative ? hq::RmaxUnit::kMeanEdgeLength : hq::RmaxUnit::kModel;
-}
-
-// --glyph-threshold T: a ratio 1 - Jm, in [0, 2].
-double parse_glyph_threshold(const std::string& text) {
-  const auto value = parse_finite(text);
-  if (!value || *value < 0 || *value > 2)
-    throw hq::UsageError("--glyph-threshold: expected a number from 0 to 2 (glyphs where 1 - quality is above it), got '" +
-                         text + "'");
-  return *value;
-}
-
-// --overlap certificate|exhaustive and --coincident-eps E (a fraction of the
-// bounding-box diagonal, 0 = exact equality); nullopt with --no-overlap.
-std::optional<hq::OverlapOptions> parse_overlap(const AnalyzeArgs& args) {
-  if (args.no_overlap) return std::nullopt;
-  hq::OverlapOptions overlap;
-  if (args.overlap == "certificate")
-    overlap.mode = hq::OverlapMode::certificate;
-  else if (args.overlap == "exhaustive")
-    overlap.mode = hq::OverlapMode::exhaustive;
-  else
-    throw hq::UsageError("--overlap: expected certificate or exhaustive, got '" + args.overlap + "'");
-  const auto eps = parse_finite(args.coincident_eps);
-  if (!eps || *eps < 0 || *eps > 1)
-    throw hq::UsageError("--coincident-eps: expected a number from 0 (exact equality) to 1, a fraction of the bounding-box "
-                         "diagonal, got '" + args.coincident_eps + "'");
-  overlap.coincident_eps = *eps;
-  return overlap;
-}
-
-// --format: empty (detect) or one of the reader names; checked before the work.
-std::string check_mesh_format(const std::string& format) {
-  if (format.empty()) return format;
-  const std::string names = hq::mesh_format_names();
-  std::string padded = ", " + names + ",";
-  if (padded.find(", " + format + ",") == std::string::npos)
-    throw hq::UsageError("--format: unknown format '" + format + "' (expected one of: " + names + ")");
-  return format;
 }
 
 // The analysis options shared by `analyze` and `batch` (everything but the
@@ -153,32 +84,30 @@ std::string check_mesh_format(const std::string& format) {
 hq::AnalyzeOptions make_analyze_options(const AnalyzeArgs& args) {
   hq::AnalyzeOptions options;
   options.tool_version = HQVIEW_VERSION;
-  options.mesh_format = check_mesh_format(args.format);
-  options.render = !args.no_render;
-  options.metrics = hq::parse_hex_metric_list(args.metrics);
+  options.mesh_format = parse_mesh_format(args.format);
+  options.metrics = parse_metric_list(args.metrics);
   // Rules are checked for syntax before the work; whether their key exists is
-  // known once the report is (analyze throws UsageError then, no bundle).
+  // known once the report is (analyze throws hq::ValueError then, no bundle).
   for (const std::string& rule : args.gates) options.gates.push_back(hq::parse_gate_rule(rule));
-  parse_size(args.size, options.image_width, options.image_height);
-  options.views = hq::parse_view_list(args.views);
+  parse_size(args.size, options.views.width, options.views.height);
+  options.views.views = parse_view_list(args.views);
   for (long long v : args.focus_vertices) {
-    if (v > 2147483647LL) throw hq::UsageError("--focus-vertex: vertex " + std::to_string(v) + " does not exist");
-    options.focus_vertices.push_back(static_cast<hq::Index>(v));
+    if (v > 2147483647LL) throw UsageError("--focus-vertex: vertex " + std::to_string(v) + " does not exist");
+    options.views.focus_vertices.push_back(static_cast<hq::Index>(v));
   }
   parse_rmax(args.rmax, options.glyphs);
   options.glyphs.threshold = parse_glyph_threshold(args.glyph_threshold);
   options.glyphs.top_clusters = args.top_clusters;
-  options.overlap = parse_overlap(args);
+  options.overlap = parse_overlap(args.overlap, args.coincident_eps, args.no_overlap);
   options.read_limits.max_memory =
-      args.max_memory.empty() ? hq::default_max_memory() : hq::parse_memory_size(args.max_memory, "--max-memory");
+      args.max_memory.empty() ? hq::default_max_memory() : parse_memory_size(args.max_memory, "--max-memory");
   return options;
 }
 
 int run_analyze(const AnalyzeArgs& args) {
   const fs::path mesh_path = args.mesh;
-  const fs::path output =
-      args.output.empty() ? fs::path("hqview-report") / mesh_path.stem() : fs::path(args.output);
-  if (!args.json.empty() && args.json != "-") throw hq::UsageError("--json: only '-' (standard output) is supported");
+  const fs::path output = args.output.empty() ? fs::path("hqview-report") / mesh_path.stem() : fs::path(args.output);
+  if (!args.json.empty() && args.json != "-") throw UsageError("--json: only '-' (standard output) is supported");
 
   hq::AnalyzeOptions options = make_analyze_options(args);
   options.mesh_path = mesh_path;
@@ -187,16 +116,17 @@ int run_analyze(const AnalyzeArgs& args) {
   const hq::BundleOptions bundle{.force = args.force};
   hq::check_output_dir(output, bundle);  // fail before the work, not after
 
-  const hq::Analysis analysis = hq::analyze(options);
+  const std::unique_ptr<hq::Renderer> renderer = args.no_render ? nullptr : hq::make_osmesa_renderer();
+  const hq::AnalyzeResult result = hq::analyze(options, renderer.get());
   if (!args.quiet)
-    for (const std::string& w : analysis.model.warnings) std::cerr << "hqview: warning: " << w << "\n";
-  hq::write_bundle(analysis.model, analysis.images, output, bundle);
-  if (args.json == "-") std::cout << hq::report_json(analysis.model) << std::flush;
+    for (const std::string& w : result.model.analysis.warnings) std::cerr << "hqview: warning: " << w << "\n";
+  hq::write_bundle(result.model, result.document, result.images, output, bundle);
+  if (args.json == "-") std::cout << hq::report_json_text(result.document) << std::flush;
   if (!args.quiet) std::cerr << "hqview: report written to " << (output / "index.html").string() << "\n";
   // Failing gates are printed even with --quiet: they explain exit code 1.
-  for (const hq::GateResult& g : analysis.model.gates.results)
+  for (const hq::GateResult& g : result.model.gates.results)
     if (!g.passed) std::cerr << "hqview: gate failed: " << g.rule << " (value " << hq::format_double(g.value) << ")\n";
-  return analysis.model.gates.passed ? kOk : kGateFailed;
+  return result.model.gates.passed ? kOk : kGateFailed;
 }
 
 // ---- batch, merge, diff (issue 9) -------------------------------------------
@@ -252,34 +182,22 @@ class StderrProgress : public hq::BatchProgress {
   bool is_terminal_;
 };
 
-// "8G", "512M", "1000000" (bytes) -> bytes; "" -> half the physical memory.
+// --memory-budget: "" -> half the physical memory.
 std::uint64_t parse_memory_budget(const std::string& text) {
-  if (text.empty()) {
-    const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
-    return pages > 0 && page > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) / 2 : 0;
-  }
-  std::string_view number = text;
-  std::uint64_t unit = 1;
-  switch (number.back()) {
-    case 'K': case 'k': unit = 1ull << 10; break;
-    case 'M': case 'm': unit = 1ull << 20; break;
-    case 'G': case 'g': unit = 1ull << 30; break;
-    default: break;
-  }
-  if (unit != 1) number.remove_suffix(1);
-  const auto value = parse_finite(number);
-  if (!value || *value < 0)
-    throw hq::UsageError("--memory-budget: expected a size such as 8G, 512M or 0 (no limit), got '" + text + "'");
-  return static_cast<std::uint64_t>(*value * static_cast<double>(unit));
+  if (!text.empty()) return parse_memory_size(text, "--memory-budget");
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && page > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) / 2 : 0;
 }
 
 // The analysis options `analyze` and `batch` share, registered once.
 void add_analysis_options(CLI::App* cmd, AnalyzeArgs& args) {
-  cmd->add_option("--format", args.format, "Read meshes as this format whatever their extension: " + hq::mesh_format_names());
+  cmd->add_option("--format", args.format,
+                  "Read meshes as this format whatever their extension: " + hq::mesh_format_names());
   cmd->add_option("--size", args.size, "Image size WIDTHxHEIGHT")->capture_default_str();
   cmd->add_flag("--no-render", args.no_render, "Skip the rendered views");
-  std::string view_ids;  // from the renderer's own list, so the help never goes stale
-  for (const char* id : hq::kViewIds) view_ids += (view_ids.empty() ? "" : ", ") + std::string(id);
+  std::string view_ids;  // from the table of views, so the help never goes stale
+  for (const hq::ViewSpec& spec : hq::kViews)
+    if (spec.is_selectable) view_ids += (view_ids.empty() ? "" : ", ") + std::string(spec.id);
   cmd->add_option("--views", args.views, "Views to render: comma-separated ids (" + view_ids + "), or all")
       ->capture_default_str();
   cmd->add_flag("--force", args.force, "Replace an output directory that is not an HQView output");
@@ -319,17 +237,20 @@ void add_analysis_options(CLI::App* cmd, AnalyzeArgs& args) {
 }
 
 CLI::App* add_batch_command(CLI::App& app, BatchArgs& args) {
-  CLI::App* cmd = app.add_subcommand("batch", "Analyse every mesh of a directory or manifest; one bundle each plus an index");
+  CLI::App* cmd =
+      app.add_subcommand("batch", "Analyse every mesh of a directory or manifest; one bundle each plus an index");
   AnalyzeArgs& a = args.analysis;
-  cmd->add_option("INPUT", args.input,
-                  "Directory (every .mesh/.vtk below it) or manifest (.csv/.json: mesh, reference, compare, label, model)")
+  cmd->add_option(
+         "INPUT", args.input,
+         "Directory (every .mesh/.vtk below it) or manifest (.csv/.json: mesh, reference, compare, label, model)")
       ->required();
   cmd->add_option("-o,--output", args.output, "Output directory: one bundle per mesh, index.html/json, summary.md")
       ->required();
   cmd->add_option("-j,--jobs", args.jobs,
                   "Meshes analysed at once, within the memory budget, and threads in all (default: all cores)")
       ->check(CLI::Range(1, 1024));
-  cmd->add_option("--shard", args.shard, "Only shard I of N (1-based, stable by path); join shards with `hqview merge`");
+  cmd->add_option("--shard", args.shard,
+                  "Only shard I of N (1-based, stable by path); join shards with `hqview merge`");
   cmd->add_flag("--resume", args.resume, "Keep a bundle whose mesh hash and HQView version are unchanged");
   cmd->add_option("--memory-budget", args.memory_budget,
                   "Estimated memory of the meshes in flight, e.g. 8G (default: half the physical memory; 0: no limit)");
@@ -346,7 +267,8 @@ CLI::App* add_merge_command(CLI::App& app, MergeArgs& args) {
 }
 
 CLI::App* add_diff_command(CLI::App& app, DiffArgs& args) {
-  CLI::App* cmd = app.add_subcommand("diff", "Compare two report.json or two index.json; gates relative to the baseline");
+  CLI::App* cmd =
+      app.add_subcommand("diff", "Compare two report.json or two index.json; gates relative to the baseline");
   cmd->add_option("BASELINE", args.baseline, "report.json or index.json (or a bundle / batch directory)")->required();
   cmd->add_option("CURRENT", args.current, "report.json or index.json (or a bundle / batch directory)")->required();
   cmd->add_option("--gate", args.gates,
@@ -366,8 +288,9 @@ int run_batch_command(const BatchArgs& args, int jobs) {
   options.resume = args.resume;
   options.force = args.analysis.force;
   options.memory_budget = parse_memory_budget(args.memory_budget);
+  if (!args.analysis.no_render) options.make_renderer = [] { return hq::make_osmesa_renderer(); };
   std::vector<hq::BatchInput> inputs = hq::collect_batch_inputs(args.input);
-  if (!args.shard.empty()) inputs = hq::select_shard(inputs, hq::parse_shard(args.shard));
+  if (!args.shard.empty()) inputs = hq::select_shard(inputs, parse_shard(args.shard));
   hq::check_batch_output_dir(options.output, options.force);
   fs::create_directories(options.output);
 
@@ -378,8 +301,9 @@ int run_batch_command(const BatchArgs& args, int jobs) {
     std::cerr << "hqview: " << entries.size() << " meshes; index written to "
               << (options.output / "index.html").string() << "\n";
   for (const hq::BatchEntry& e : entries)
-    for (const std::string& rule : e.failed_gates) std::cerr << "hqview: gate failed: " << e.path << ": " << rule << "\n";
-  return hq::batch_exit_code(entries);
+    for (const std::string& rule : e.failed_gates)
+      std::cerr << "hqview: gate failed: " << e.path << ": " << rule << "\n";
+  return batch_exit_code(entries);
 }
 
 int run_merge_command(const MergeArgs& args) {
@@ -389,7 +313,7 @@ int run_merge_command(const MergeArgs& args) {
   hq::write_batch_index(entries, HQVIEW_VERSION, args.output);
   std::cerr << "hqview: merged " << entries.size() << " meshes from " << shards.size() << " shards into "
             << (fs::path(args.output) / "index.html").string() << "\n";
-  return hq::batch_exit_code(entries);
+  return batch_exit_code(entries);
 }
 
 // A report.json/index.json, or the directory holding one (index.json first).
@@ -415,9 +339,7 @@ int run_diff_command(const DiffArgs& args) {
   const hq::DiffResult diff = hq::diff_reports(read_input_text(baseline), read_input_text(current), gates,
                                                baseline.parent_path(), current.parent_path());
   if (!args.markdown.empty()) {
-    std::ofstream out(args.markdown, std::ios::binary);
-    out << hq::diff_markdown(diff);
-    if (!out.flush()) throw hq::Error(args.markdown + ": cannot write");
+    hq::write_file_atomically(args.markdown, hq::diff_markdown(diff));
   }
   if (!args.quiet) std::cout << hq::diff_text(diff) << std::flush;
   for (const hq::DiffGateResult& g : diff.gates)
@@ -444,10 +366,13 @@ int main(int argc, char** argv) {
                       "Second hex mesh (e.g. before/after optimisation): its quality summary and differences in "
                       "report.json compare, both boundaries side by side (view compare)");
   analyze->add_option("-o,--output", args.output, "Bundle directory (default: ./hqview-report/<mesh stem>)");
-  analyze->add_option("-j,--threads", args.threads, "Worker threads (default: all cores); results are identical for any N")
+  analyze
+      ->add_option("-j,--threads", args.threads, "Worker threads (default: all cores); results are identical for any N")
       ->check(CLI::Range(1, 1024));
   analyze->add_option("--json", args.json, "Also print report.json to standard output ('-')");
-  analyze->add_option("--focus-vertex", args.focus_vertices, "Also draw the local view D and chart E of vertex V (repeatable)")
+  analyze
+      ->add_option("--focus-vertex", args.focus_vertices,
+                   "Also draw the local view D and chart E of vertex V (repeatable)")
       ->check(CLI::NonNegativeNumber)
       ->allow_extra_args(false);
   add_analysis_options(analyze, args);
@@ -486,14 +411,12 @@ int main(int argc, char** argv) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
     if (*batch) return run_batch_command(batch_args, threads);
     return run_analyze(args);
-  } catch (const hq::UsageError& e) {
-    std::cerr << "hqview: " << e.what() << "\n";
-    return kUsage;
-  } catch (const hq::InputError& e) {
-    std::cerr << "hqview: " << e.what() << "\n";
-    return kInput;
   } catch (const std::exception& e) {
-    std::cerr << "hqview: internal error: " << e.what() << " (please report this)\n";
-    return kInternal;
+    const ExitCode code = exit_code_of_current_exception();
+    if (code == kInternal)
+      std::cerr << "hqview: internal error: " << e.what() << " (please report this)\n";
+    else
+      std::cerr << "hqview: " << e.what() << "\n";
+    return code;
   }
 }

@@ -6,7 +6,7 @@
 
 #include <algorithm>
 
-#include "hqview/render/colormap.h"
+#include "hqview/image/colormap.h"
 
 namespace hq {
 namespace {

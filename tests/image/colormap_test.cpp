@@ -1,4 +1,4 @@
-#include "hqview/render/colormap.h"
+#include "hqview/image/colormap.h"
 
 #include <gtest/gtest.h>
 

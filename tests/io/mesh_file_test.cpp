@@ -168,7 +168,7 @@ TEST(ReadHexMesh, FormatOverride) {
   EXPECT_EQ(read_hex_mesh_as("m.vtk", kVtk, "").format, "vtk-legacy-ascii");  // empty: by the extension
   EXPECT_EQ(error_text<ParseError>([] { read_hex_mesh_as("m.vtu", kMedit, "vtu"); }),
             "m.vtu:1: text before the root element");  // the chosen reader's own error
-  EXPECT_EQ(error_text<UsageError>([] { read_hex_mesh_as("m.vtk", kVtk, "stl"); }),
+  EXPECT_EQ(error_text<ValueError>([] { read_hex_mesh_as("m.vtk", kVtk, "stl"); }),
             "unknown mesh format 'stl' (expected mesh, vtk, vtu, msh, ovm, exodus, inp)");
   TempDir dir("file");
   EXPECT_EQ(read_hex_mesh_as(dir.write("cube.dat", kAbaqus), "inp").format, "abaqus");

@@ -1,4 +1,4 @@
-// --max-memory: parsing sizes, the estimate, and each reader refusing a file
+// --max-memory: the estimate, and each reader refusing a file
 // whose declared counts need more than the budget, before allocating.
 
 #include "hqview/io/read_limits.h"
@@ -22,22 +22,6 @@ namespace {
 using test::error_text;
 
 constexpr std::uint64_t kMiB = std::uint64_t{1} << 20;
-
-TEST(ReadLimits, ParsesSizesWithBinaryUnits) {
-  EXPECT_EQ(parse_memory_size("512M", "--max-memory"), 512 * kMiB);
-  EXPECT_EQ(parse_memory_size("4G", "--max-memory"), 4096 * kMiB);
-  EXPECT_EQ(parse_memory_size("0.5T", "--max-memory"), 512 * 1024 * kMiB);
-  EXPECT_EQ(parse_memory_size("1.5g", "--max-memory"), 1536 * kMiB);
-  EXPECT_EQ(parse_memory_size("64KB", "--max-memory"), 64 * 1024u);
-  EXPECT_EQ(parse_memory_size("1000000", "--max-memory"), 1000000u);
-  EXPECT_EQ(parse_memory_size("0", "--max-memory"), 0u);  // no limit
-  for (const char* bad : {"", "G", "-1G", "4X", "4 G", "nan", "inf", "0.5", "1e30T", "4GG"})
-    EXPECT_EQ(error_text<UsageError>([&] { parse_memory_size(bad, "--max-memory"); }),
-              "--max-memory: expected a size such as 512M, 4G or 0.5T (K, M, G, T: powers of 1024; 0: no limit), "
-              "got '" +
-                  std::string(bad) + "'")
-        << bad;
-}
 
 TEST(ReadLimits, FormatsSizesWithThreeDigits) {
   EXPECT_EQ(format_memory_size(1), "1 byte");

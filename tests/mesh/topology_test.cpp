@@ -102,5 +102,21 @@ TEST(Topology, UnreferencedVerticesAndNonManifoldFaces) {
   EXPECT_EQ(topo.boundary_faces.size(), 5u);
 }
 
+TEST_P(GridTopology, BoundaryEdgesObeyEulerOnTheSphere) {
+  // The boundary of an n^3 grid is a sphere: E = V + F - 2, and every
+  // boundary edge is a mesh edge with both ends on the boundary.
+  const HexMesh mesh = test::grid(GetParam());
+  const Topology topo = build_topology(mesh);
+  const std::vector<Edge> edges = boundary_edges(topo);
+  EXPECT_EQ(edges.size(), topo.boundary_vertices.size() + topo.boundary_faces.size() - 2);
+  EXPECT_TRUE(std::is_sorted(edges.begin(), edges.end()));
+  for (const Edge& e : edges) {
+    EXPECT_LT(e[0], e[1]);
+    EXPECT_TRUE(topo.is_boundary_vertex[static_cast<std::size_t>(e[0])] &&
+                topo.is_boundary_vertex[static_cast<std::size_t>(e[1])]);
+    EXPECT_TRUE(std::binary_search(topo.edges.begin(), topo.edges.end(), e));
+  }
+}
+
 }  // namespace
 }  // namespace hq

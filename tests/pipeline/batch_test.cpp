@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "hqview/core/error.h"
-#include "hqview/pipeline/batch_index.h"
+#include "hqview/report/batch_index.h"
 
 namespace hq {
 namespace {
@@ -82,14 +82,6 @@ TEST(Manifest, ErrorsNamePathAndLine) {
   EXPECT_THROW(parse_manifest("{", "m.json", "/d", true), ParseError);
 }
 
-TEST(Shard, ParseAndValidate) {
-  const Shard s = parse_shard("2/8");
-  EXPECT_EQ(s.index, 2);
-  EXPECT_EQ(s.count, 8);
-  for (const char* bad : {"0/3", "4/3", "1/0", "a/3", "2", "2/3x", ""})
-    EXPECT_THROW(parse_shard(bad), UsageError) << bad;
-}
-
 TEST(Shard, StablePartitionCoveringEveryPathOnce) {
   std::vector<BatchInput> inputs;
   for (int i = 0; i < 200; ++i) {
@@ -108,13 +100,6 @@ TEST(Shard, StablePartitionCoveringEveryPathOnce) {
   // The owner of a path depends on the path alone (fixed across machines).
   EXPECT_EQ(shard_of("a/b.mesh", 4), shard_of("a/b.mesh", 4));
   EXPECT_EQ(shard_of("anything", 1), 1);
-}
-
-TEST(BatchExitCode, FailedThenGateThenOk) {
-  EXPECT_EQ(batch_exit_code({}), 0);
-  EXPECT_EQ(batch_exit_code({entry("a", BatchStatus::ok)}), 0);
-  EXPECT_EQ(batch_exit_code({entry("a", BatchStatus::ok), entry("b", BatchStatus::gate_failed)}), 1);
-  EXPECT_EQ(batch_exit_code({entry("a", BatchStatus::gate_failed), entry("b", BatchStatus::failed)}), 3);
 }
 
 TEST(BatchIndex, JsonRoundTripIsByteIdentical) {

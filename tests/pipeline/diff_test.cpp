@@ -22,8 +22,8 @@ TEST(DiffGate, RelativeAndAbsolute) {
   EXPECT_EQ(g.rule.text, "quality.scaled_jacobian.min >= baseline-0.01");
   EXPECT_TRUE(parse_diff_gate("quality.num_inverted<=baseline").is_relative);
   EXPECT_FALSE(parse_diff_gate("quality.num_inverted==0").is_relative);
-  EXPECT_THROW(parse_diff_gate("quality.num_inverted<=baseline*2"), UsageError);
-  EXPECT_THROW(parse_diff_gate("quality.num_inverted<=baseline-x"), UsageError);
+  EXPECT_THROW(parse_diff_gate("quality.num_inverted<=baseline*2"), ValueError);
+  EXPECT_THROW(parse_diff_gate("quality.num_inverted<=baseline-x"), ValueError);
 }
 
 TEST(DiffReports, RegressionFailsRelativeGate) {
@@ -39,7 +39,7 @@ TEST(DiffReports, RegressionFailsRelativeGate) {
   ASSERT_EQ(worse.changed.size(), 2u);
   EXPECT_EQ(worse.changed[0].key, "quality.num_inverted");
   EXPECT_NE(diff_markdown(worse).find("❌"), std::string::npos);
-  EXPECT_THROW(diff_reports(kBase, kWorse, {parse_diff_gate("quality.nothing>=baseline")}, "", ""), UsageError);
+  EXPECT_THROW(diff_reports(kBase, kWorse, {parse_diff_gate("quality.nothing>=baseline")}, "", ""), ValueError);
   EXPECT_THROW(diff_reports(kBase, "[]", {}, "", ""), InputError);
 }
 

@@ -10,12 +10,12 @@
 namespace hq {
 namespace {
 
-// Expects a UsageError whose text contains `part`.
-#define EXPECT_USAGE_ERROR(statement, part)                                     \
+// Expects a ValueError whose text contains `part`.
+#define EXPECT_VALUE_ERROR(statement, part)                                     \
   try {                                                                         \
     statement;                                                                  \
-    ADD_FAILURE() << "no UsageError from " #statement;                          \
-  } catch (const UsageError& e) {                                               \
+    ADD_FAILURE() << "no ValueError from " #statement;                          \
+  } catch (const ValueError& e) {                                               \
     EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what(); \
   }
 
@@ -44,19 +44,19 @@ TEST(GateRule, EveryOperatorSpacesSignsAndExponents) {
   EXPECT_EQ(parse_gate_rule("quality.worst_cells.0.scaled_jacobian>0").path[2], "0");
 }
 
-TEST(GateRule, MalformedRulesAreUsageErrors) {
-  EXPECT_USAGE_ERROR(parse_gate_rule("quality.num_inverted"), "no comparison operator");
-  EXPECT_USAGE_ERROR(parse_gate_rule(">=1"), "no report.json key");
-  EXPECT_USAGE_ERROR(parse_gate_rule("a=1"), "'=' is not an operator");
-  EXPECT_USAGE_ERROR(parse_gate_rule("a=>1"), "'=>' is not an operator");
-  EXPECT_USAGE_ERROR(parse_gate_rule("a<>1"), "'<>' is not an operator");
-  EXPECT_USAGE_ERROR(parse_gate_rule("a>=abc"), "'abc' is not a number");
-  EXPECT_USAGE_ERROR(parse_gate_rule("a>="), "'' is not a number");
-  EXPECT_USAGE_ERROR(parse_gate_rule("a>=1.5x"), "is not a number");
-  EXPECT_USAGE_ERROR(parse_gate_rule("a>=inf"), "is not a number");
-  EXPECT_USAGE_ERROR(parse_gate_rule("a..b>=1"), "empty key");
-  EXPECT_USAGE_ERROR(parse_gate_rule("a-b>=1"), "unexpected character '-'");
-  EXPECT_USAGE_ERROR(parse_gate_rule("quality.scaled_jacobian.min>=baseline-0.01"), "hqview diff");
+TEST(GateRule, MalformedRulesAreValueErrors) {
+  EXPECT_VALUE_ERROR(parse_gate_rule("quality.num_inverted"), "no comparison operator");
+  EXPECT_VALUE_ERROR(parse_gate_rule(">=1"), "no report.json key");
+  EXPECT_VALUE_ERROR(parse_gate_rule("a=1"), "'=' is not an operator");
+  EXPECT_VALUE_ERROR(parse_gate_rule("a=>1"), "'=>' is not an operator");
+  EXPECT_VALUE_ERROR(parse_gate_rule("a<>1"), "'<>' is not an operator");
+  EXPECT_VALUE_ERROR(parse_gate_rule("a>=abc"), "'abc' is not a number");
+  EXPECT_VALUE_ERROR(parse_gate_rule("a>="), "'' is not a number");
+  EXPECT_VALUE_ERROR(parse_gate_rule("a>=1.5x"), "is not a number");
+  EXPECT_VALUE_ERROR(parse_gate_rule("a>=inf"), "is not a number");
+  EXPECT_VALUE_ERROR(parse_gate_rule("a..b>=1"), "empty key");
+  EXPECT_VALUE_ERROR(parse_gate_rule("a-b>=1"), "unexpected character '-'");
+  EXPECT_VALUE_ERROR(parse_gate_rule("quality.scaled_jacobian.min>=baseline-0.01"), "hqview diff");
 }
 
 TEST(GateRule, Comparisons) {
@@ -80,11 +80,16 @@ const char* kReport = R"({
   "tool": {"name": "hqview"}
 })";
 
+const ReportDocument& report() {
+  static const ReportDocument document = ReportDocument::parse(kReport);
+  return document;
+}
+
 TEST(Gates, EvaluatesEveryRuleInOrder) {
   const std::vector<GateRule> rules = {
       parse_gate_rule("quality.scaled_jacobian.min>=0.2"), parse_gate_rule("quality.metrics.skew.p95<=0.5"),
       parse_gate_rule("quality.num_inverted==0"), parse_gate_rule("quality.worst_cells.1.scaled_jacobian>0")};
-  const GateSummary s = evaluate_gates(rules, kReport);
+  const GateSummary s = evaluate_gates(rules, report());
   EXPECT_FALSE(s.passed);
   ASSERT_EQ(s.results.size(), 4u);
   EXPECT_EQ(s.results[0].rule, "quality.scaled_jacobian.min>=0.2");
@@ -98,24 +103,25 @@ TEST(Gates, EvaluatesEveryRuleInOrder) {
 }
 
 TEST(Gates, AllPassingAndNoRules) {
-  EXPECT_TRUE(evaluate_gates({parse_gate_rule("quality.scaled_jacobian.mean>0.5")}, kReport).passed);
-  const GateSummary none = evaluate_gates({}, "not even json");
+  EXPECT_TRUE(evaluate_gates({parse_gate_rule("quality.scaled_jacobian.mean>0.5")}, report()).passed);
+  const GateSummary none = evaluate_gates({}, ReportDocument());
   EXPECT_TRUE(none.passed);
   EXPECT_TRUE(none.results.empty());
 }
 
-TEST(Gates, MissingOrNonNumericKeysAreUsageErrors) {
-  EXPECT_USAGE_ERROR(evaluate_gates({parse_gate_rule("quality.scaled_jacobian.mn>=0.2")}, kReport),
+TEST(Gates, MissingOrNonNumericKeysAreValueErrors) {
+  EXPECT_VALUE_ERROR(evaluate_gates({parse_gate_rule("quality.scaled_jacobian.mn>=0.2")}, report()),
                      "no 'mn' under 'quality.scaled_jacobian' (keys: mean, min)");
-  EXPECT_USAGE_ERROR(evaluate_gates({parse_gate_rule("qualty.num_inverted==0")}, kReport),
+  EXPECT_VALUE_ERROR(evaluate_gates({parse_gate_rule("qualty.num_inverted==0")}, report()),
                      "no 'qualty' under report.json");
-  EXPECT_USAGE_ERROR(evaluate_gates({parse_gate_rule("quality.metrics.oddy.max<1")}, kReport), "--metrics");
-  EXPECT_USAGE_ERROR(evaluate_gates({parse_gate_rule("quality.worst_cells.2.cell==0")}, kReport), "index it with 0..1");
-  EXPECT_USAGE_ERROR(evaluate_gates({parse_gate_rule("quality.worst_cells.x.cell==0")}, kReport), "no 'x'");
-  EXPECT_USAGE_ERROR(evaluate_gates({parse_gate_rule("glyphs.num_glyphs==0")}, kReport),
+  EXPECT_VALUE_ERROR(evaluate_gates({parse_gate_rule("quality.metrics.oddy.max<1")}, report()), "--metrics");
+  EXPECT_VALUE_ERROR(evaluate_gates({parse_gate_rule("quality.worst_cells.2.cell==0")}, report()),
+                     "index it with 0..1");
+  EXPECT_VALUE_ERROR(evaluate_gates({parse_gate_rule("quality.worst_cells.x.cell==0")}, report()), "no 'x'");
+  EXPECT_VALUE_ERROR(evaluate_gates({parse_gate_rule("glyphs.num_glyphs==0")}, report()),
                      "no 'num_glyphs' under 'glyphs'");
-  EXPECT_USAGE_ERROR(evaluate_gates({parse_gate_rule("tool.name==1")}, kReport), "is a string, not a number");
-  EXPECT_USAGE_ERROR(evaluate_gates({parse_gate_rule("quality.scaled_jacobian>0")}, kReport),
+  EXPECT_VALUE_ERROR(evaluate_gates({parse_gate_rule("tool.name==1")}, report()), "is a string, not a number");
+  EXPECT_VALUE_ERROR(evaluate_gates({parse_gate_rule("quality.scaled_jacobian>0")}, report()),
                      "is an object, not a number");
 }
 

@@ -1,7 +1,7 @@
 // quality.metrics: statistics of each computed metric, acceptable fraction,
 // Verdict's sentinels counted apart.
 
-#include "hqview/pipeline/metric_summary.h"
+#include "hqview/quality/quality_summary.h"
 
 #include <gtest/gtest.h>
 

@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "hqview/core/error.h"
-#include "image_probe.h"
-#include "hqview/render/colormap.h"
+#include "hqview/image/colormap.h"
+#include "support/image_probe.h"
 
 namespace hq {
 namespace {
@@ -66,7 +66,8 @@ TEST(ColorBar, QualityBarDrawsTheMapTopToBottom) {
   }
   ASSERT_GE(top, 0);
   ASSERT_GT(bottom, top + 300);
-  EXPECT_LT(cie_lightness(to_color(pixel_at(image, x, bottom - 5))), cie_lightness(to_color(pixel_at(image, x, top + 5))));
+  EXPECT_LT(cie_lightness(to_color(pixel_at(image, x, bottom - 5))),
+            cie_lightness(to_color(pixel_at(image, x, top + 5))));
   // The inverted swatch sits below the bar.
   bool has_inverted = false;
   for (int y = bottom; y < image.height; ++y) has_inverted |= pixel_at(image, x, y) == to_rgba8(kInvertedColor);

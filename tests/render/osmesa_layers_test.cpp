@@ -9,12 +9,12 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "hqview/io/image_file.h"
+#include "hqview/image/png.h"
 #include "support/fixtures.h"
 
 #include "hqview/render/osmesa_renderer.h"
 #include "hqview/render/scene_shapes.h"
-#include "image_probe.h"
+#include "support/image_probe.h"
 
 namespace hq {
 namespace {
@@ -56,8 +56,8 @@ bool is_reddish(Rgba8 p) { return p.r > 60 && p.r > 2 * p.g && p.r > 2 * p.b; }
 
 TEST(SphereImpostor, CoversItsDiscAndNothingElse) {
   for (bool perspective : {false, true}) {
-    const Image image = renderer().render(sphere_scene({0, 0, 0}, 1.0f, {220, 30, 30, 255}), front_camera(perspective),
-                                          80, 80);
+    const Image image =
+        renderer().render(sphere_scene({0, 0, 0}, 1.0f, {220, 30, 30, 255}), front_camera(perspective), 80, 80);
     // The sphere spans a disc of radius 20 pixels around the centre.
     EXPECT_TRUE(is_reddish(pixel_at(image, 40, 40))) << "centre, perspective " << perspective;
     EXPECT_TRUE(is_reddish(pixel_at(image, 40, 24))) << "inside the disc";
@@ -160,7 +160,7 @@ TEST(Golden, AllLayersMatchTheGoldenImage) {
   const Image image = renderer().render(scene, camera, 160, 120);
 
   const std::filesystem::path golden = test::source_dir() / "tests/render/golden/layers.png";
-  if (std::getenv("HQVIEW_UPDATE_GOLDEN")) write_png(image, golden);
+  if (std::getenv("HQVIEW_UPDATE_GOLDEN")) test::write_png_file(image, golden);
   OIIO::ImageBuf expected(golden.string());
   ASSERT_TRUE(expected.read()) << "missing golden image " << golden << " (HQVIEW_UPDATE_GOLDEN=1 writes it)";
   OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::UINT8);

@@ -74,11 +74,11 @@ const std::string kEvilName = "x<script>alert(1)<img src=y onerror=alert(3)>\"q'
 ReportModel linked_model() {
   ReportModel m;
   m.tool_version = "9.9.9";
-  m.mesh_input = {kEvilName, "medit", std::string(64, 'a')};
-  m.warnings = {"line 3: <img src=x onerror=alert(2)> & more"};
-  m.field.vertex_quality = {0.2, -0.5, 0.1, 0.9};
-  m.quality.worst_vertices = {{1, -0.5, {}}, {2, 0.1, {}}, {3, 0.9, {}}};
-  GlyphResult& g = m.glyphs.emplace();
+  m.analysis.mesh_input = {kEvilName, "medit", std::string(64, 'a')};
+  m.analysis.warnings = {"line 3: <img src=x onerror=alert(2)> & more"};
+  m.analysis.field.vertex_quality = {0.2, -0.5, 0.1, 0.9};
+  m.analysis.quality.worst_vertices = {{1, -0.5, {}}, {2, 0.1, {}}, {3, 0.9, {}}};
+  GlyphResult& g = m.analysis.glyphs.emplace();
   g.vertex_cluster = {0, 0, 1, kNoIndex};
   g.clusters = {{0, 2, 0, {}, -0.5, 1.5, 0.1}, {1, 1, 2, {}, 0.1, 0.9, 0.05}};
   g.options.top_clusters = 1;
@@ -160,7 +160,7 @@ TEST(IndexHtml, AnnotatedVtuAndBoundaryPageAreLinkedOnlyWhenWritten) {
   EXPECT_EQ(index_html(m).find("data/annotated.vtu"), std::string::npos);
   EXPECT_EQ(index_html(m).find("href=\"boundary.html\""), std::string::npos);
   m.has_annotated_vtu = true;
-  m.boundary_error.emplace().hausdorff_relative = 0.0125;
+  m.analysis.boundary_error.emplace().hausdorff_relative = 0.0125;
   const std::string html = index_html(m);
   EXPECT_NE(html.find("href=\"data/annotated.vtu\""), std::string::npos);
   EXPECT_NE(html.find("href=\"boundary.html\""), std::string::npos);
@@ -170,13 +170,13 @@ TEST(IndexHtml, AnnotatedVtuAndBoundaryPageAreLinkedOnlyWhenWritten) {
 TEST(BoundaryHtml, StatisticsViewsAndTheWayBack) {
   ReportModel m = linked_model();
   EXPECT_THROW(boundary_html(m), Error);
-  BoundaryError& e = m.boundary_error.emplace();
+  BoundaryError& e = m.analysis.boundary_error.emplace();
   e.hausdorff_relative = 0.03;
   e.fraction_outside = 0.25;
   e.signed_stats.count = 7;
   e.signed_stats.max = 0.5;
   e.warnings = {"<b>far</b>"};
-  m.reference_input = InputFile{"ref<&>.off", "off", std::string(64, 'b')};
+  m.analysis.reference_input = InputFile{"ref<&>.off", "off", std::string(64, 'b')};
   m.views.push_back(
       {"boundary_error", "Boundary error", {"views/boundary_error_front.png", "views/boundary_error_back.png"}, {}});
   m.views.push_back({"boundary_area", "Area", {"views/boundary_area.svg", "views/boundary_area.png"}, {}});
@@ -196,11 +196,11 @@ TEST(BoundaryHtml, StatisticsViewsAndTheWayBack) {
 
 TEST(SummaryMarkdown, HeadlineGatesAndLinksWithInputEscaped) {
   ReportModel m = linked_model();
-  m.mesh_summary.num_vertices = 3;
-  m.mesh_summary.num_hexes = 1;
-  m.quality.scaled_jacobian.min = -0.5;
-  m.quality.scaled_jacobian.mean = 0.25;
-  m.quality.scaled_jacobian.num_inverted = 1;
+  m.analysis.mesh_summary.num_vertices = 3;
+  m.analysis.mesh_summary.num_hexes = 1;
+  m.analysis.quality.scaled_jacobian.min = -0.5;
+  m.analysis.quality.scaled_jacobian.mean = 0.25;
+  m.analysis.quality.scaled_jacobian.num_inverted = 1;
   m.gates = {false, {{"quality.scaled_jacobian.min>=0.2", -0.5, false}}};
   const std::string md = summary_markdown(m);
   // No HTML from input survives; the name reads back literally.

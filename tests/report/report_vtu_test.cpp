@@ -42,13 +42,18 @@ struct ModelParts {
 
 ReportModel make_model(HexMesh mesh, const ModelParts& parts = {}) {
   ReportModel model;
-  model.mesh = std::move(mesh);
-  model.topology = build_topology(model.mesh);
-  model.field = compute_quality(model.mesh, model.topology);
-  model.metrics = compute_hex_metrics(model.mesh, parts.metrics);
-  if (parts.glyphs) model.glyphs = compute_glyphs(model.mesh.points, model.field.vertex_quality, 1.0, GlyphOptions{});
-  if (parts.overlap) model.overlap = check_overlap(model.mesh, model.topology, OverlapOptions{});
-  if (parts.reference) model.boundary_error = compute_boundary_error(model.mesh, model.topology, *parts.reference);
+  model.analysis.mesh = std::move(mesh);
+  model.analysis.topology = build_topology(model.analysis.mesh);
+  model.analysis.field = compute_quality(model.analysis.mesh, model.analysis.topology);
+  model.analysis.metrics = compute_hex_metrics(model.analysis.mesh, parts.metrics);
+  if (parts.glyphs)
+    model.analysis.glyphs =
+        compute_glyphs(model.analysis.mesh.points, model.analysis.field.vertex_quality, 1.0, GlyphOptions{});
+  if (parts.overlap)
+    model.analysis.overlap = check_overlap(model.analysis.mesh, model.analysis.topology, OverlapOptions{});
+  if (parts.reference)
+    model.analysis.boundary_error =
+        compute_boundary_error(model.analysis.mesh, model.analysis.topology, *parts.reference);
   return model;
 }
 
@@ -191,7 +196,7 @@ TEST(AnnotatedVtu, HeaderOffsetsAndSizesAreConsistent) {
   EXPECT_EQ(p.root.at("byte_order"), "LittleEndian");
   EXPECT_EQ(p.root.at("header_type"), "UInt64");
   EXPECT_EQ(p.root.count("compressor"), 0u);
-  const std::size_t nv = model.mesh.points.size(), nc = model.mesh.hexes.size();
+  const std::size_t nv = model.analysis.mesh.points.size(), nc = model.analysis.mesh.hexes.size();
   EXPECT_EQ(p.piece.at("NumberOfPoints"), std::to_string(nv));
   EXPECT_EQ(p.piece.at("NumberOfCells"), std::to_string(nc));
   EXPECT_EQ(p.scalars.at("PointData"), "quality");
@@ -264,14 +269,14 @@ TEST(AnnotatedVtu, ArraysMirrorTheCsvColumns) {
 TEST(AnnotatedVtu, ValuesAreTheModels) {
   const ReportModel model = make_model(perturbed_grid());
   const ParsedVtu p = parse(vtu_bytes(model));
-  const std::size_t nv = model.mesh.points.size(), nc = model.mesh.hexes.size();
+  const std::size_t nv = model.analysis.mesh.points.size(), nc = model.analysis.mesh.hexes.size();
 
   const auto points = values<double>(p, "Points", "Points");
   ASSERT_EQ(points.size(), 3 * nv);
   for (std::size_t v = 0; v < nv; ++v) {
-    EXPECT_EQ(points[3 * v], model.mesh.points[v].x);
-    EXPECT_EQ(points[3 * v + 1], model.mesh.points[v].y);
-    EXPECT_EQ(points[3 * v + 2], model.mesh.points[v].z);
+    EXPECT_EQ(points[3 * v], model.analysis.mesh.points[v].x);
+    EXPECT_EQ(points[3 * v + 1], model.analysis.mesh.points[v].y);
+    EXPECT_EQ(points[3 * v + 2], model.analysis.mesh.points[v].z);
   }
   const auto connectivity = values<std::int64_t>(p, "Cells", "connectivity");
   const auto offsets = values<std::int64_t>(p, "Cells", "offsets");
@@ -282,7 +287,7 @@ TEST(AnnotatedVtu, ValuesAreTheModels) {
   for (std::size_t h = 0; h < nc; ++h) {
     EXPECT_EQ(offsets[h], static_cast<std::int64_t>(8 * (h + 1)));
     EXPECT_EQ(types[h], 12);  // VTK_HEXAHEDRON
-    for (std::size_t i = 0; i < 8; ++i) EXPECT_EQ(connectivity[8 * h + i], model.mesh.hexes[h][i]);
+    for (std::size_t i = 0; i < 8; ++i) EXPECT_EQ(connectivity[8 * h + i], model.analysis.mesh.hexes[h][i]);
   }
 
   const auto sj = values<double>(p, "CellData", "scaled_jacobian");
@@ -293,10 +298,10 @@ TEST(AnnotatedVtu, ValuesAreTheModels) {
   for (int i = 0; i < 8; ++i) corners.push_back(values<double>(p, "CellData", "corner_sj_" + std::to_string(i)));
   bool any_negative_corner = false;
   for (std::size_t h = 0; h < nc; ++h) {
-    EXPECT_EQ(sj[h], model.field.cell_scaled_jacobian[h]);
+    EXPECT_EQ(sj[h], model.analysis.field.cell_scaled_jacobian[h]);
     double lowest = corners[0][h];
     for (std::size_t i = 0; i < 8; ++i) {
-      EXPECT_EQ(corners[i][h], model.field.corner_scaled_jacobian[8 * h + i]);
+      EXPECT_EQ(corners[i][h], model.analysis.field.corner_scaled_jacobian[8 * h + i]);
       lowest = std::min(lowest, corners[i][h]);
     }
     EXPECT_EQ(min_corner[h], lowest);
@@ -308,10 +313,10 @@ TEST(AnnotatedVtu, ValuesAreTheModels) {
     if (metric == HexMetric::scaled_jacobian) continue;
     const auto column = values<double>(p, "CellData", std::string(hex_metric_name(metric)));
     ASSERT_EQ(column.size(), nc) << hex_metric_name(metric);
-    for (std::size_t h = 0; h < nc; ++h) EXPECT_TRUE(same(column[h], model.metrics.of(metric)[h]));
+    for (std::size_t h = 0; h < nc; ++h) EXPECT_TRUE(same(column[h], model.analysis.metrics.of(metric)[h]));
   }
   const auto intersecting = values<std::uint8_t>(p, "CellData", "intersecting");
-  for (std::size_t h = 0; h < nc; ++h) EXPECT_EQ(intersecting[h], model.overlap->cell_intersecting[h] ? 1 : 0);
+  for (std::size_t h = 0; h < nc; ++h) EXPECT_EQ(intersecting[h], model.analysis.overlap->cell_intersecting[h] ? 1 : 0);
 
   const auto quality = values<double>(p, "PointData", "quality");
   const auto radius = values<double>(p, "PointData", "glyph_radius");
@@ -321,16 +326,16 @@ TEST(AnnotatedVtu, ValuesAreTheModels) {
   ASSERT_EQ(quality.size(), nv);
   std::size_t num_glyphs = 0;
   for (std::size_t v = 0; v < nv; ++v) {
-    EXPECT_TRUE(same(quality[v], model.field.vertex_quality[v]));
-    EXPECT_EQ(cluster[v], model.glyphs->vertex_cluster[v]);
+    EXPECT_TRUE(same(quality[v], model.analysis.field.vertex_quality[v]));
+    EXPECT_EQ(cluster[v], model.analysis.glyphs->vertex_cluster[v]);
     EXPECT_EQ(group[v], -1);  // no two points coincide
-    EXPECT_EQ(boundary[v], model.topology.is_boundary_vertex[v] ? 1 : 0);
+    EXPECT_EQ(boundary[v], model.analysis.topology.is_boundary_vertex[v] ? 1 : 0);
     if (v + 1 == nv) {
       EXPECT_TRUE(std::isnan(quality[v])) << "the unreferenced point";
       EXPECT_TRUE(std::isnan(radius[v]));
       EXPECT_EQ(cluster[v], -1);
     } else {
-      EXPECT_EQ(radius[v], model.glyphs->vertex_radius[v]);
+      EXPECT_EQ(radius[v], model.analysis.glyphs->vertex_radius[v]);
       num_glyphs += radius[v] > 0;
       EXPECT_EQ(radius[v] > 0, cluster[v] >= 0);
     }
@@ -343,18 +348,20 @@ TEST(AnnotatedVtu, IoReaderReadsTheMeshBack) {
   const LoadedMesh loaded = read_vtu(vtu_bytes(model), "annotated.vtu");
   EXPECT_EQ(loaded.format, "vtu-appended");
   EXPECT_TRUE(loaded.warnings.empty());
-  ASSERT_EQ(loaded.mesh.points.size(), model.mesh.points.size());
-  for (std::size_t v = 0; v < model.mesh.points.size(); ++v) {
-    EXPECT_EQ(loaded.mesh.points[v].x, model.mesh.points[v].x);
-    EXPECT_EQ(loaded.mesh.points[v].y, model.mesh.points[v].y);
-    EXPECT_EQ(loaded.mesh.points[v].z, model.mesh.points[v].z);
+  ASSERT_EQ(loaded.mesh.points.size(), model.analysis.mesh.points.size());
+  for (std::size_t v = 0; v < model.analysis.mesh.points.size(); ++v) {
+    EXPECT_EQ(loaded.mesh.points[v].x, model.analysis.mesh.points[v].x);
+    EXPECT_EQ(loaded.mesh.points[v].y, model.analysis.mesh.points[v].y);
+    EXPECT_EQ(loaded.mesh.points[v].z, model.analysis.mesh.points[v].z);
   }
-  EXPECT_EQ(loaded.mesh.hexes, model.mesh.hexes);
+  EXPECT_EQ(loaded.mesh.hexes, model.analysis.mesh.hexes);
 }
 
 TEST(AnnotatedVtu, LeavesOutStagesThatDidNotRun) {
   ModelParts parts;
-  parts.metrics = parse_hex_metric_list("skew,volume");
+  parts.metrics = HexMetricSet{};
+  insert(parts.metrics, HexMetric::skew);
+  insert(parts.metrics, HexMetric::volume);
   parts.glyphs = false;
   parts.overlap = false;
   const ReportModel model = make_model(test::grid(2), parts);
@@ -410,11 +417,11 @@ TEST(AnnotatedVtu, BoundaryErrorIsNaNInside) {
   const ReportModel model = make_model(ball, parts);
   const ParsedVtu p = parse(vtu_bytes(model));
   const auto error = values<double>(p, "PointData", "boundary_error");
-  ASSERT_EQ(error.size(), model.mesh.points.size());
+  ASSERT_EQ(error.size(), model.analysis.mesh.points.size());
   std::size_t num_boundary = 0;
   for (std::size_t v = 0; v < error.size(); ++v) {
-    EXPECT_TRUE(same(error[v], model.boundary_error->vertex_error[v]));
-    if (model.topology.is_boundary_vertex[v]) {
+    EXPECT_TRUE(same(error[v], model.analysis.boundary_error->vertex_error[v]));
+    if (model.analysis.topology.is_boundary_vertex[v]) {
       ++num_boundary;
       // Boundary points lie on the unit sphere, inside the reference
       // (radius 1.02 faceted): the mesh is inside, within 0.02.
@@ -444,7 +451,7 @@ TEST(AnnotatedVtu, MeshWithoutHexesGivesEmptyCellArrays) {
 
 TEST(AnnotatedVtu, FieldOfTheWrongLengthIsAnInternalError) {
   ReportModel model = make_model(test::grid(2));
-  model.field.vertex_quality.pop_back();
+  model.analysis.field.vertex_quality.pop_back();
   try {
     vtu_bytes(model);
     ADD_FAILURE() << "no exception";

@@ -1,9 +1,13 @@
 #pragma once
 // Pixel probes shared by the render tests.
 
+#include <filesystem>
+#include <fstream>
+
+#include "hqview/image/color.h"
+#include "hqview/image/image.h"
+#include "hqview/image/png.h"
 #include "hqview/render/annotate.h"
-#include "hqview/render/color.h"
-#include "hqview/render/image.h"
 
 namespace hq::test {
 
@@ -20,6 +24,12 @@ inline int count_differing(const Image& image, const PixelRect& r, Rgba8 backgro
   for (int y = r.y; y < r.y + r.height; ++y)
     for (int x = r.x; x < r.x + r.width; ++x) n += pixel_at(image, x, y) != background;
   return n;
+}
+
+// Writes image as PNG for a person to look at (or as a golden image).
+inline void write_png_file(const Image& image, const std::filesystem::path& path) {
+  const std::string bytes = encode_png(image);
+  std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
 }
 
 }  // namespace hq::test

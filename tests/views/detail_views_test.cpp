@@ -3,9 +3,10 @@
 
 #include <cmath>
 
-#include "hqview/render/colormap.h"
-#include "hqview/render/views_boundary.h"
-#include "hqview/render/views_detail.h"
+#include "hqview/image/colormap.h"
+#include "hqview/quality/quality_field.h"
+#include "hqview/views/boundary_views.h"
+#include "hqview/views/detail_views.h"
 #include "support/fixtures.h"
 
 namespace hq {
@@ -31,7 +32,9 @@ GlyphResult one_vertex_cluster(const HexMesh& mesh, Index v) {
 
 Index interior_vertex(const HexMesh& mesh, const Topology& topology) {
   for (Index v = 0; v < mesh.num_vertices(); ++v)
-    if (topology.vertex_hex_offsets[static_cast<std::size_t>(v) + 1] - topology.vertex_hex_offsets[static_cast<std::size_t>(v)] == 8)
+    if (topology.vertex_hex_offsets[static_cast<std::size_t>(v) + 1] -
+            topology.vertex_hex_offsets[static_cast<std::size_t>(v)] ==
+        8)
       return v;
   return kNoIndex;
 }
@@ -65,13 +68,14 @@ TEST(LocalView, OneMarkerPerCornerColouredByItsValue) {
   const HexMesh mesh = test::grid(3);
   const Topology topology = build_topology(mesh);
   const Index v = interior_vertex(mesh, topology);
-  const auto corners = vertex_corners(mesh, topology, v);
+  const QualityField field = compute_quality(mesh, topology);
+  const auto corners = vertex_corners(mesh, topology, field.corner_scaled_jacobian, v);
   ASSERT_EQ(corners.size(), 8u);
   for (const VertexCorner& c : corners) {
     EXPECT_NEAR(c.value, 1.0, 1e-12) << "a regular grid";
     EXPECT_EQ(mesh.hexes[static_cast<std::size_t>(c.hex)][c.local], v);
   }
-  const Scene scene = build_local_scene(mesh, topology, v);
+  const Scene scene = build_local_scene(mesh, topology, field.corner_scaled_jacobian, v);
   ASSERT_EQ(scene.spheres.size(), 2u);
   ASSERT_EQ(scene.spheres[0].centers.size(), 8u);
   for (const Rgba8& c : scene.spheres[0].colors) EXPECT_EQ(c, to_rgba8(quality_color(1.0)));

@@ -1,5 +1,5 @@
 // View A's scene and viewpoint choice, without OpenGL.
-#include "hqview/render/views_main.h"
+#include "hqview/views/main_views.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <cstdint>
 
 #include "hqview/glyph/glyphs.h"
-#include "hqview/render/colormap.h"
+#include "hqview/image/colormap.h"
 #include "support/fixtures.h"
 
 namespace hq {

@@ -1,5 +1,5 @@
 // The overview's scene, built without OpenGL.
-#include "hqview/render/views_overview.h"
+#include "hqview/views/overview_views.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <set>
 
 #include "hqview/core/error.h"
-#include "hqview/render/colormap.h"
+#include "hqview/image/colormap.h"
 #include "support/fixtures.h"
 
 namespace hq {
@@ -33,7 +33,8 @@ TEST(QualityOverviewScene, Grid2CountsFacesAndUniqueBoundaryEdges) {
   EXPECT_EQ(scene.lines[0].positions.size(), 26u);
   std::set<std::pair<std::uint32_t, std::uint32_t>> unique;
   const auto& idx = scene.lines[0].indices;
-  for (std::size_t i = 0; i < idx.size(); i += 2) unique.insert({std::min(idx[i], idx[i + 1]), std::max(idx[i], idx[i + 1])});
+  for (std::size_t i = 0; i < idx.size(); i += 2)
+    unique.insert({std::min(idx[i], idx[i + 1]), std::max(idx[i], idx[i + 1])});
   EXPECT_EQ(unique.size(), 48u);
 }
 
@@ -131,9 +132,9 @@ TEST(BoundaryBoundingBox, SpansTheBoundaryVertices) {
   HexMesh mesh = test::grid(2);
   mesh.points.push_back({50, 50, 50});  // unreferenced: not part of the boundary
   const Topology topology = build_topology(mesh);
-  const BoundingBox box = boundary_bounding_box(mesh, topology);
-  EXPECT_EQ(box.min, (Vec3{0, 0, 0}));
-  EXPECT_EQ(box.max, (Vec3{2, 2, 2}));
+  const Box3 box = boundary_bounding_box(mesh, topology);
+  EXPECT_EQ(box.lo, (Vec3{0, 0, 0}));
+  EXPECT_EQ(box.hi, (Vec3{2, 2, 2}));
 }
 
 }  // namespace

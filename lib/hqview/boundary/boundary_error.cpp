@@ -9,24 +9,13 @@
 
 #include "hqview/boundary/surface_distance.h"
 #include "hqview/boundary/surface_sign.h"
+#include "hqview/core/box3.h"
 #include "hqview/core/error.h"
 
 namespace hq {
 namespace {
 
-struct Box {
-  Vec3 lo{INFINITY, INFINITY, INFINITY};
-  Vec3 hi{-INFINITY, -INFINITY, -INFINITY};
-  void add(const Vec3& p) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
-  bool overlaps(const Box& o) const {
-    return lo.x <= o.hi.x && o.lo.x <= hi.x && lo.y <= o.hi.y && o.lo.y <= hi.y && lo.z <= o.hi.z && o.lo.z <= hi.z;
-  }
-};
-
-std::string box_text(const Box& b) {
+std::string box_text(const Box3& b) {
   std::ostringstream s;
   s.precision(6);
   s << "[" << b.lo.x << ", " << b.lo.y << ", " << b.lo.z << "] - [" << b.hi.x << ", " << b.hi.y << ", " << b.hi.z
@@ -58,13 +47,13 @@ TriSurface boundary_triangles(const HexMesh& mesh, const Topology& topo) {
   return s;
 }
 
-BoundaryError compute_boundary_error(const HexMesh& mesh, const Topology& topo, const TriSurface& reference,
-                                     const BoundaryOptions& options) {
-  BoundaryError out;
-  out.num_reference_triangles = static_cast<Index>(reference.triangles.size());
-  if (!has_positive_area(reference)) throw InputError("the reference surface has no triangle of positive area");
+namespace {
 
-  Box reference_box, mesh_box;
+// The reference's used vertices (those of a triangle). Throws InputError when
+// the bounding boxes of the mesh boundary and the reference do not overlap.
+std::vector<std::uint8_t> check_bounding_boxes(const HexMesh& mesh, const Topology& topo, const TriSurface& reference,
+                                               BoundaryError& out) {
+  Box3 reference_box, mesh_box;
   std::vector<std::uint8_t> used(reference.points.size(), 0);
   for (const auto& t : reference.triangles)
     for (Index v : t) used[v] = 1;
@@ -78,7 +67,14 @@ BoundaryError compute_boundary_error(const HexMesh& mesh, const Topology& topo, 
     throw InputError("the bounding boxes of the mesh boundary " + box_text(mesh_box) + " and the reference " +
                      box_text(reference_box) + " do not overlap (different units or placement?)");
 
-  // Hex boundary -> reference: signed distances.
+  return used;
+}
+
+// Hex boundary -> reference: the signed distance of every boundary vertex
+// (sign by pseudo-normals on a closed manifold reference, else by the
+// generalized winding number).
+void signed_vertex_errors(const HexMesh& mesh, const Topology& topo, const TriSurface& reference,
+                          const BoundaryOptions& options, BoundaryError& out) {
   const RepairedSurface repaired = repair_reference(reference);
   out.num_repaired_triangles = repaired.num_removed_triangles;
   out.num_zero_area_triangles = repaired.num_zero_area_triangles;
@@ -123,14 +119,21 @@ BoundaryError compute_boundary_error(const HexMesh& mesh, const Topology& topo, 
     out.sign_uncertain[v] = uncertain[i];
     out.num_uncertain_signs += uncertain[i];
   }
+}
+
+// A quarter of each boundary quad's area to each of its corners.
+void vertex_areas(const HexMesh& mesh, const Topology& topo, BoundaryError& out) {
   for (Index f : topo.boundary_faces) {
     const Quad& q = topo.faces[f];
     const Vec3 &a = mesh.points[q[0]], &b = mesh.points[q[1]], &c = mesh.points[q[2]], &d = mesh.points[q[3]];
     const double area = 0.5 * norm(cross(c - a, d - b));
     for (Index v : q) out.vertex_area[v] += 0.25 * area;
   }
+}
 
-  // Reference -> hex boundary at reference vertices and face centres.
+// Reference -> hex boundary at reference vertices and face centres.
+void reference_to_mesh_errors(const HexMesh& mesh, const Topology& topo, const TriSurface& reference,
+                              const std::vector<std::uint8_t>& used, BoundaryError& out) {
   const TriSurface hex_surface = boundary_triangles(mesh, topo);
   std::vector<Vec3> samples;
   std::vector<Index> sample_vertex;
@@ -162,10 +165,13 @@ BoundaryError compute_boundary_error(const HexMesh& mesh, const Topology& topo, 
     for (const ClosestPoint& c : back)
       out.hausdorff_reference_to_mesh = std::max(out.hausdorff_reference_to_mesh, c.distance);
   }
+}
 
-  // Hausdorff and statistics (sequential, fixed order).
+// Hausdorff distances, area-weighted errors and statistics (sequential,
+// fixed order).
+void summarize_errors(const Topology& topo, const BoundaryOptions& options, BoundaryError& out) {
   std::vector<double> errors;
-  errors.reserve(queries.size());
+  errors.reserve(topo.boundary_vertices.size());
   double total_area = 0, sum = 0, sum_abs = 0, sum_sq = 0, outside = 0, inside = 0;
   const double tolerance = options.on_surface_tolerance * out.reference_bbox_diagonal;
   for (Index v : topo.boundary_vertices) {
@@ -197,7 +203,9 @@ BoundaryError compute_boundary_error(const HexMesh& mesh, const Topology& topo, 
   histogram.histogram_min = -range;
   histogram.histogram_max = range;
   out.signed_stats = compute_statistics(errors, histogram);
+}
 
+void add_warnings(const BoundaryOptions& options, BoundaryError& out) {
   if (out.num_repaired_triangles > 0)
     out.warnings.push_back("reference: " + std::to_string(out.num_repaired_triangles) +
                            " degenerate or duplicate triangles removed by the repair");
@@ -213,6 +221,21 @@ BoundaryError compute_boundary_error(const HexMesh& mesh, const Topology& topo, 
       << " % of the reference's bounding-box diagonal; is the reference in the same units and placement as the mesh?";
     out.warnings.push_back(s.str());
   }
+}
+
+}  // namespace
+
+BoundaryError compute_boundary_error(const HexMesh& mesh, const Topology& topo, const TriSurface& reference,
+                                     const BoundaryOptions& options) {
+  BoundaryError out;
+  out.num_reference_triangles = static_cast<Index>(reference.triangles.size());
+  if (!has_positive_area(reference)) throw InputError("the reference surface has no triangle of positive area");
+  const std::vector<std::uint8_t> used = check_bounding_boxes(mesh, topo, reference, out);
+  signed_vertex_errors(mesh, topo, reference, options, out);
+  vertex_areas(mesh, topo, out);
+  reference_to_mesh_errors(mesh, topo, reference, used, out);
+  summarize_errors(topo, options, out);
+  add_warnings(options, out);
   return out;
 }
 

@@ -4,6 +4,8 @@
 
 #include "hqview/boundary/surface_distance.h"
 
+#include "hqview/core/box3.h"
+
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
@@ -90,11 +92,8 @@ std::uint64_t spread_bits(std::uint64_t x) {
 
 // Query order along a Morton curve (deterministic, ties by index).
 std::vector<std::uint32_t> morton_order(std::span<const Vec3> q) {
-  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
-  for (const Vec3& p : q) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
+  const Box3 box = bounding_box(q);
+  const Vec3 lo = box.lo, hi = box.hi;
   const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-300});
   const double scale = double((1u << 21) - 1) / extent;
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(q.size());

@@ -11,7 +11,7 @@
 #include <regex>
 
 #include "hqview/core/error.h"
-#include "hqview/render/colormap.h"
+#include "hqview/image/colormap.h"
 
 namespace hq {
 namespace {
@@ -75,11 +75,15 @@ void add_axes(Chart& chart, const ChartRect& r, const std::vector<std::pair<doub
   }
   chart.lines.push_back({{{r.x, r.y}, {r.x, r.y + r.height}, {r.x + r.width, r.y + r.height}}, kAxisColor, 1.2});
   if (!x_title.empty())
-    chart.texts.push_back(
-        {{r.x + 0.5 * r.width, r.y + r.height + 42.0}, x_title, kLabelSize, {38, 38, 38, 255}, ChartAnchor::center, false});
+    chart.texts.push_back({{r.x + 0.5 * r.width, r.y + r.height + 42.0},
+                           x_title,
+                           kLabelSize,
+                           {38, 38, 38, 255},
+                           ChartAnchor::center,
+                           false});
   if (!y_title.empty())
-    chart.texts.push_back({{r.x - 50.0, r.y + 0.5 * r.height}, y_title, kLabelSize, {38, 38, 38, 255},
-                           ChartAnchor::center, true});
+    chart.texts.push_back(
+        {{r.x - 50.0, r.y + 0.5 * r.height}, y_title, kLabelSize, {38, 38, 38, 255}, ChartAnchor::center, true});
 }
 
 Rgba8 bar_color(double quality) { return to_rgba8(quality < 0.0 ? kInvertedColor : quality_color(quality)); }
@@ -105,7 +109,8 @@ Chart quality_histogram_chart(std::span<const double> values, bool log_scale, co
     top = std::ceil(std::log10(static_cast<double>(max_count)) + 1e-9);
     top = std::max(top, 1.0);
     for (int k = 0; k <= static_cast<int>(top); ++k)
-      y_ticks.push_back({std::pow(10.0, k), r.y + r.height * (1.0 - height_of(std::pow(10.0, k)) / height_of(std::pow(10.0, top)))});
+      y_ticks.push_back(
+          {std::pow(10.0, k), r.y + r.height * (1.0 - height_of(std::pow(10.0, k)) / height_of(std::pow(10.0, top)))});
     top = height_of(std::pow(10.0, top));
   } else {
     const double step = nice_step(static_cast<double>(max_count), 5);
@@ -155,8 +160,8 @@ Chart sorted_quality_chart(std::span<const double> vertex_quality, int worst_n, 
     const double w = left.width / std::max(1, n);
     const double q = sorted[static_cast<std::size_t>(i)];
     const double y0 = y_of(left, std::max(q, low)), yz = y_of(left, std::clamp(0.0, low, high));
-    chart.rects.push_back({left.x + i * w + 0.15 * w, std::min(y0, yz), 0.7 * w, std::max(1.0, std::abs(yz - y0)),
-                           bar_color(q)});
+    chart.rects.push_back(
+        {left.x + i * w + 0.15 * w, std::min(y0, yz), 0.7 * w, std::max(1.0, std::abs(yz - y0)), bar_color(q)});
     chart.hotspots.push_back(
         {{left.x + i * w, left.y, w, left.height, {}}, ranked[static_cast<std::size_t>(i)].second});
     if (n <= 12 || i % ((n + 9) / 10) == 0) xl.push_back({i + 1.0, left.x + (i + 0.5) * w});
@@ -187,11 +192,20 @@ Chart corner_chart(std::span<const double> values, std::span<const std::string> 
     const double w = r.width / static_cast<double>(std::max<std::size_t>(1, n));
     const double q = values[i];
     const double y = y_of(q), y0 = y_of(0.0);
-    chart.rects.push_back({r.x + i * w + 0.2 * w, std::min(y, y0), 0.6 * w, std::max(1.0, std::abs(y - y0)), bar_color(q)});
-    chart.texts.push_back({{r.x + (i + 0.5) * w, q >= 0 ? y - 5.0 : y + 14.0}, format_value(q), kTickSize,
-                           {38, 38, 38, 255}, ChartAnchor::center, false});
-    chart.texts.push_back({{r.x + (i + 0.5) * w, r.y + r.height + 19.0}, i < labels.size() ? labels[i] : "",
-                           kTickSize, kAxisColor, ChartAnchor::center, false});
+    chart.rects.push_back(
+        {r.x + i * w + 0.2 * w, std::min(y, y0), 0.6 * w, std::max(1.0, std::abs(y - y0)), bar_color(q)});
+    chart.texts.push_back({{r.x + (i + 0.5) * w, q >= 0 ? y - 5.0 : y + 14.0},
+                           format_value(q),
+                           kTickSize,
+                           {38, 38, 38, 255},
+                           ChartAnchor::center,
+                           false});
+    chart.texts.push_back({{r.x + (i + 0.5) * w, r.y + r.height + 19.0},
+                           i < labels.size() ? labels[i] : "",
+                           kTickSize,
+                           kAxisColor,
+                           ChartAnchor::center,
+                           false});
   }
   add_axes(chart, r, y_ticks, x_ticks, "corner", "corner scaled Jacobian");
   chart.lines.push_back({{{r.x, y_of(0.0)}, {r.x + r.width, y_of(0.0)}}, kAxisColor, 1.0});
@@ -222,7 +236,8 @@ double robust_abs_limit(std::vector<double> abs_values) {
   if (abs_values.empty()) return 0.0;
   std::sort(abs_values.begin(), abs_values.end());
   const double largest = abs_values.back();
-  const double p99 = abs_values[static_cast<std::size_t>(std::floor(0.99 * static_cast<double>(abs_values.size() - 1)))];
+  const double p99 =
+      abs_values[static_cast<std::size_t>(std::floor(0.99 * static_cast<double>(abs_values.size() - 1)))];
   return p99 > 0.0 && largest > 4.0 * p99 ? p99 : largest;
 }
 
@@ -274,19 +289,30 @@ Chart sorted_boundary_error_chart(std::span<const double> vertex_error, const Ch
     const double y = y_of(e);
     if (std::abs(y - y0) <= 0.0) continue;
     const double bar = columns == n && w > 3.0 ? 0.8 * w : w;
-    chart.rects.push_back({r.x + c * w + 0.5 * (w - bar), std::min(y, y0), bar, std::abs(y - y0), error_bar_color(e, limit)});
+    chart.rects.push_back(
+        {r.x + c * w + 0.5 * (w - bar), std::min(y, y0), bar, std::abs(y - y0), error_bar_color(e, limit)});
   }
   std::vector<std::pair<double, double>> x_ticks;
   for (double t = 0.0; t <= 1.0001; t += 0.25) x_ticks.push_back({t, r.x + r.width * t});
-  add_axes(chart, r, y_ticks, x_ticks, "boundary vertices sorted by signed error (fraction of " + std::to_string(n) + ")",
+  add_axes(chart, r, y_ticks, x_ticks,
+           "boundary vertices sorted by signed error (fraction of " + std::to_string(n) + ")",
            "signed error (+ outside)");
   chart.lines.push_back({{{r.x, y0}, {r.x + r.width, y0}}, kAxisColor, 1.2});
   if (clipped > 0)
-    chart.texts.push_back({{r.x + r.width - 8.0, r.y + 16.0}, clipped_note(clipped, max_abs), kTickSize, kAxisColor,
-                           ChartAnchor::right, false});
-  chart.texts.push_back({{r.x + 8.0, r.y + 16.0}, "outside the reference", kTickSize, kOutsideColor, ChartAnchor::left, false});
+    chart.texts.push_back({{r.x + r.width - 8.0, r.y + 16.0},
+                           clipped_note(clipped, max_abs),
+                           kTickSize,
+                           kAxisColor,
+                           ChartAnchor::right,
+                           false});
   chart.texts.push_back(
-      {{r.x + r.width - 8.0, r.y + r.height - 8.0}, "inside the reference", kTickSize, kInsideColor, ChartAnchor::right, false});
+      {{r.x + 8.0, r.y + 16.0}, "outside the reference", kTickSize, kOutsideColor, ChartAnchor::left, false});
+  chart.texts.push_back({{r.x + r.width - 8.0, r.y + r.height - 8.0},
+                         "inside the reference",
+                         kTickSize,
+                         kInsideColor,
+                         ChartAnchor::right,
+                         false});
   return chart;
 }
 
@@ -304,9 +330,12 @@ Chart boundary_area_chart(std::span<const double> vertex_error, std::span<const 
     const double e = vertex_error[i], a = vertex_area[i];
     if (std::isnan(e) || !(a > 0.0)) continue;
     total += a;
-    if (e > tolerance) outside.push_back({e, a});
-    else if (e < -tolerance) inside.push_back({-e, a});
-    else on += a;
+    if (e > tolerance)
+      outside.push_back({e, a});
+    else if (e < -tolerance)
+      inside.push_back({-e, a});
+    else
+      on += a;
     max_abs = std::max(max_abs, std::abs(e));
   }
   std::sort(outside.begin(), outside.end());
@@ -327,18 +356,28 @@ Chart boundary_area_chart(std::span<const double> vertex_error, std::span<const 
     const double w = strip.width * f;
     if (w > 0.0) chart.rects.push_back({x, strip.y, w, strip.height, style.first});
     if (w > 110.0)
-      chart.texts.push_back({{x + 0.5 * w, strip.y + 17.5}, std::string(style.second) + " " + format_percent(f), kTickSize,
+      chart.texts.push_back({{x + 0.5 * w, strip.y + 17.5},
+                             std::string(style.second) + " " + format_percent(f),
+                             kTickSize,
                              style.first == kOnColor ? Rgba8{38, 38, 38, 255} : Rgba8{255, 255, 255, 255},
-                             ChartAnchor::center, false});
+                             ChartAnchor::center,
+                             false});
     x += w;
   }
-  chart.lines.push_back({{{strip.x, strip.y}, {strip.x + strip.width, strip.y}, {strip.x + strip.width, strip.y + strip.height},
-                          {strip.x, strip.y + strip.height}, {strip.x, strip.y}},
-                         kAxisColor, 1.0});
+  chart.lines.push_back({{{strip.x, strip.y},
+                          {strip.x + strip.width, strip.y},
+                          {strip.x + strip.width, strip.y + strip.height},
+                          {strip.x, strip.y + strip.height},
+                          {strip.x, strip.y}},
+                         kAxisColor,
+                         1.0});
   chart.texts.push_back({{strip.x, strip.y + strip.height + 18.0},
-                         "boundary area: outside " + format_percent(f_out) + ", on " + format_percent(f_on) + ", inside " +
-                             format_percent(f_in),
-                         kTickSize, kAxisColor, ChartAnchor::left, false});
+                         "boundary area: outside " + format_percent(f_out) + ", on " + format_percent(f_on) +
+                             ", inside " + format_percent(f_in),
+                         kTickSize,
+                         kAxisColor,
+                         ChartAnchor::left,
+                         false});
   // Cumulative curves: percent of the whole boundary area with |error| <= x.
   std::vector<double> abs_values;
   for (const auto& p : outside) abs_values.push_back(p.first);
@@ -348,8 +387,12 @@ Chart boundary_area_chart(std::span<const double> vertex_error, std::span<const 
   for (const auto& p : outside) clipped += p.first > x_limit ? 1 : 0;
   for (const auto& p : inside) clipped += p.first > x_limit ? 1 : 0;
   if (clipped > 0)
-    chart.texts.push_back({{r.x + r.width - 8.0, r.y + r.height - 10.0}, clipped_note(clipped, max_abs) + ", counted at the right edge",
-                           kTickSize, kAxisColor, ChartAnchor::right, false});
+    chart.texts.push_back({{r.x + r.width - 8.0, r.y + r.height - 10.0},
+                           clipped_note(clipped, max_abs) + ", counted at the right edge",
+                           kTickSize,
+                           kAxisColor,
+                           ChartAnchor::right,
+                           false});
   const auto [y_limit, y_step] = nice_ceiling(100.0 * std::max({f_out, f_in, 1e-9}), 5);
   auto x_of = [&](double e) { return r.x + r.width * std::clamp(e / x_limit, 0.0, 1.0); };
   auto y_of = [&](double percent) { return r.y + r.height * (1.0 - std::clamp(percent / y_limit, 0.0, 1.0)); };
@@ -379,11 +422,19 @@ Chart boundary_area_chart(std::span<const double> vertex_error, std::span<const 
   // Legend, top left of the curve panel.
   const double lx = r.x + 12.0, ly = r.y + 10.0;
   chart.rects.push_back({lx, ly, 18.0, 4.0, kOutsideColor});
-  chart.texts.push_back({{lx + 24.0, ly + 7.0}, "outside (" + format_percent(f_out) + ")", kTickSize, kAxisColor,
-                         ChartAnchor::left, false});
+  chart.texts.push_back({{lx + 24.0, ly + 7.0},
+                         "outside (" + format_percent(f_out) + ")",
+                         kTickSize,
+                         kAxisColor,
+                         ChartAnchor::left,
+                         false});
   chart.rects.push_back({lx, ly + 18.0, 18.0, 4.0, kInsideColor});
-  chart.texts.push_back({{lx + 24.0, ly + 25.0}, "inside (" + format_percent(f_in) + ")", kTickSize, kAxisColor,
-                         ChartAnchor::left, false});
+  chart.texts.push_back({{lx + 24.0, ly + 25.0},
+                         "inside (" + format_percent(f_in) + ")",
+                         kTickSize,
+                         kAxisColor,
+                         ChartAnchor::left,
+                         false});
   return chart;
 }
 
@@ -420,7 +471,7 @@ void draw_chart(cairo_t* cr, const Chart& chart) {
     cairo_text_extents(cr, t.text.c_str(), &extents);
     cairo_translate(cr, t.at.x, t.at.y);
     if (t.is_vertical) cairo_rotate(cr, -M_PI / 2.0);
-    const double shift = t.anchor == ChartAnchor::left ? 0.0
+    const double shift = t.anchor == ChartAnchor::left     ? 0.0
                          : t.anchor == ChartAnchor::center ? -0.5 * extents.x_advance
                                                            : -extents.x_advance;
     cairo_move_to(cr, shift, 0.0);
@@ -438,8 +489,7 @@ cairo_status_t append_to_string(void* closure, const unsigned char* data, unsign
 
 std::string chart_svg(const Chart& chart) {
   std::string svg;
-  cairo_surface_t* surface =
-      cairo_svg_surface_create_for_stream(append_to_string, &svg, chart.width, chart.height);
+  cairo_surface_t* surface = cairo_svg_surface_create_for_stream(append_to_string, &svg, chart.width, chart.height);
   cairo_svg_surface_restrict_to_version(surface, CAIRO_SVG_VERSION_1_1);
   cairo_t* cr = cairo_create(surface);
   draw_chart(cr, chart);
@@ -447,7 +497,8 @@ std::string chart_svg(const Chart& chart) {
   cairo_destroy(cr);
   cairo_surface_finish(surface);
   cairo_surface_destroy(surface);
-  if (status != CAIRO_STATUS_SUCCESS) throw RenderError(std::string("cannot draw a chart: ") + cairo_status_to_string(status));
+  if (status != CAIRO_STATUS_SUCCESS)
+    throw RenderError(std::string("cannot draw a chart: ") + cairo_status_to_string(status));
   // Cairo numbers surfaces and glyphs with process-wide counters: renumber
   // them in order of appearance so the same chart always gives the same file.
   const std::regex ids(R"((surface|glyph|clip|image|pattern|source|mask)(\d+)(-\d+)?)");
@@ -477,7 +528,8 @@ Image chart_image(const Chart& chart) {
     cairo_surface_destroy(surface);
     throw RenderError(std::string("cannot draw a chart: ") + cairo_status_to_string(status));
   }
-  Image image{chart.width, chart.height, std::vector<std::uint8_t>(4 * static_cast<std::size_t>(chart.width) * chart.height)};
+  Image image{chart.width, chart.height,
+              std::vector<std::uint8_t>(4 * static_cast<std::size_t>(chart.width) * chart.height)};
   const unsigned char* data = cairo_image_surface_get_data(surface);
   const int stride = cairo_image_surface_get_stride(surface);
   for (int y = 0; y < chart.height; ++y)

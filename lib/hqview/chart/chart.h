@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "hqview/render/color.h"
-#include "hqview/render/image.h"
+#include "hqview/image/color.h"
+#include "hqview/image/image.h"
 
 namespace hq {
 

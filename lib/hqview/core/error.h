@@ -1,7 +1,7 @@
 #pragma once
-// HQView's exception hierarchy. The library throws; only main() prints and
-// maps the type to an exit code (CONTRACT.md): ParseError / InputError -> 3,
-// UsageError -> 2, anything else -> 4.
+// HQView's exception hierarchy. The library throws these typed errors and
+// never prints or decides an exit code; the command line (apps/hqview) maps
+// each type to one (docs/contract.md).
 
 #include <cstdint>
 #include <stdexcept>
@@ -14,15 +14,15 @@ class Error : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Bad user input that is not a file's content: a missing file, an unknown
-// extension, an unreadable reference. Exit code 3.
+// Bad input that is not a file's content: a missing file, an unknown
+// extension, an unreadable reference.
 class InputError : public Error {
  public:
   using Error::Error;
 };
 
 // A malformed file. what() reads "path:line: message" (line 0 = no line,
-// then "path: message"). Exit code 3.
+// then "path: message").
 class ParseError : public InputError {
  public:
   ParseError(std::string path, std::int64_t line, const std::string& message)
@@ -40,19 +40,20 @@ class ParseError : public InputError {
 };
 
 // A mesh that parsed but cannot be analysed (no hexes, ids out of range).
-// Exit code 3.
 class InvalidMeshError : public InputError {
  public:
   using InputError::InputError;
 };
 
-// A bad option value or an output directory that must not be touched. Exit code 2.
-class UsageError : public Error {
+// A value the caller chose that cannot be used: a rule or id that names
+// nothing in this mesh or report, a name that is not a format or metric, an
+// output directory that must not be replaced. Not the content of a file.
+class ValueError : public Error {
  public:
   using Error::Error;
 };
 
-// OpenGL / OSMesa failure. Exit code 4.
+// OpenGL / OSMesa failure.
 class RenderError : public Error {
  public:
   using Error::Error;

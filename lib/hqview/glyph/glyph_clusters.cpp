@@ -13,6 +13,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
+#include "hqview/core/box3.h"
 #include "hqview/core/error.h"
 
 namespace hq {
@@ -137,8 +138,7 @@ struct Ball {
 };
 
 // The box around the centres of a cell's small glyphs and their largest radius.
-struct CellBounds {
-  Vec3 lo, hi;
+struct CellBounds : Box3 {
   double max_radius = 0.0;
 };
 
@@ -164,62 +164,83 @@ inline bool is_out_of_reach(double box_distance_squared, double radius_sum) {
   return box_distance_squared > radius_sum * radius_sum * (1.0 + 1e-12);
 }
 
-}  // namespace
+// What the phases of cluster_glyphs share: the glyphs, the grid they are
+// sorted into, and per cell the runs of small and large glyphs.
+struct GlyphGrid {
+  std::span<const Vec3> positions;
+  std::span<const double> radii;
+  std::vector<Index> glyph_point;  // glyph g is point glyph_point[g], ascending point ids
 
-GlyphClusters cluster_glyphs(std::span<const Vec3> positions, std::span<const double> radii) {
-  if (positions.size() != radii.size())
-    throw Error("cluster_glyphs: " + std::to_string(positions.size()) + " positions but " +
-                std::to_string(radii.size()) + " radii");
-  GlyphClusters result;
-  result.point_cluster.assign(positions.size(), kNoIndex);
-  result.offsets.assign(1, 0);
+  // The grid: cell coordinates are (p - lo) * inv_cell; glyphs of radius
+  // up to small_bound set the cell size, larger ones search around them.
+  Vec3 lo;
+  double inv_cell = 0.0;
+  double small_bound = 0.0;
 
-  // Glyphs in ascending point id: glyph g is point glyph_point[g].
-  std::vector<Index> glyph_point;
-  for (std::size_t i = 0; i < radii.size(); ++i)
-    if (std::isfinite(radii[i]) && radii[i] > 0.0) glyph_point.push_back(static_cast<Index>(i));
-  const Index m = static_cast<Index>(glyph_point.size());
-  if (m == 0) return result;
-  const auto glyph_count = static_cast<std::size_t>(m);
+  // Glyphs as balls sorted by cell, in each cell the small ones first, then
+  // by decreasing radius; ball k is glyph ball_glyph[k].
+  std::vector<Ball> balls;
+  std::vector<Index> ball_glyph;
+  // Cells in key order: balls [cell_begin[c], cell_small_end[c]) are small,
+  // [cell_small_end[c], cell_begin[c+1]) large.
+  std::vector<std::uint64_t> cell_keys;
+  std::vector<Index> cell_begin, cell_small_end;
+  std::vector<Index> large_balls;
+  std::array<std::int64_t, 3> max_coord{0, 0, 0};
+  std::vector<CellBounds> bounds;  // of each cell's small glyphs
+  std::vector<char> is_connected;  // a cell whose small glyphs are already one cluster
 
-  // Cell size: twice the radius bound of the "small" glyphs, the 99th
-  // percentile but at least a quarter of the largest radius (so a large
-  // glyph's search box spans at most 10 cells per axis).
-  std::vector<double> sorted_radii(glyph_count);
-  double largest = 0.0;
-  Vec3 lo = positions[static_cast<std::size_t>(glyph_point[0])], hi = lo;
-  for (std::size_t g = 0; g < glyph_count; ++g) {
-    const auto i = static_cast<std::size_t>(glyph_point[g]);
-    sorted_radii[g] = radii[i];
-    largest = std::max(largest, radii[i]);
-    const Vec3& p = positions[i];
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  std::size_t num_glyphs() const { return glyph_point.size(); }
+  std::size_t num_cells() const { return cell_keys.size(); }
+  std::array<double, 3> coords_of(const Vec3& p) const {
+    return {(p.x - lo.x) * inv_cell, (p.y - lo.y) * inv_cell, (p.z - lo.z) * inv_cell};
   }
-  const auto quantile = static_cast<std::ptrdiff_t>(kSmallRadiusQuantile * static_cast<double>(glyph_count - 1));
-  std::nth_element(sorted_radii.begin(), sorted_radii.begin() + quantile, sorted_radii.end());
-  const double small_bound = std::max(sorted_radii[static_cast<std::size_t>(quantile)], 0.25 * largest);
-  sorted_radii = {};
-  double cell = 2.0 * small_bound * (1.0 + kCellMargin);
-  // Very spread-out glyphs: coarser cells rather than more than 2^20 per axis.
-  const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
-  cell = std::max(cell, extent / static_cast<double>(kMaxCellCoord - 1));
-  const double inv_cell = 1.0 / cell;  // infinite extents give 0: one cell, still exact
-  auto coords_of = [&](const Vec3& p) {
-    return std::array<double, 3>{(p.x - lo.x) * inv_cell, (p.y - lo.y) * inv_cell, (p.z - lo.z) * inv_cell};
-  };
+};
 
-  // Glyphs sorted by cell, the small ones of a cell first.
-  std::vector<Entry> entries(glyph_count);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, glyph_count, 4096),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      for (std::size_t g = r.begin(); g != r.end(); ++g) {
-                        const auto i = static_cast<std::size_t>(glyph_point[g]);
-                        const auto u = coords_of(positions[i]);
-                        entries[g] = {cell_key(cell_coord(u[0]), cell_coord(u[1]), cell_coord(u[2])),
-                                      radii[i] > small_bound, radii[i], static_cast<Index>(g)};
-                      }
-                    });
+// Joins two glyphs' clusters when the glyphs overlap.
+bool test_and_unite(const GlyphGrid& grid, ConcurrentUnionFind& sets, const Ball& a, Index glyph_a, std::size_t b) {
+  if (!glyphs_overlap(a.centre, a.radius, grid.balls[b].centre, grid.balls[b].radius)) return false;
+  sets.unite(glyph_a, grid.ball_glyph[b]);
+  return true;
+}
+
+// Cell size: twice the radius bound of the "small" glyphs, the 99th
+// percentile but at least a quarter of the largest radius (so a large
+// glyph's search box spans at most 10 cells per axis).
+void choose_cells(GlyphGrid& grid) {
+  const std::size_t n = grid.num_glyphs();
+  std::vector<double> sorted_radii(n);
+  double largest = 0.0;
+  Box3 box;
+  for (std::size_t g = 0; g < n; ++g) {
+    const auto i = static_cast<std::size_t>(grid.glyph_point[g]);
+    sorted_radii[g] = grid.radii[i];
+    largest = std::max(largest, grid.radii[i]);
+    box.add(grid.positions[i]);
+  }
+  const auto quantile = static_cast<std::ptrdiff_t>(kSmallRadiusQuantile * static_cast<double>(n - 1));
+  std::nth_element(sorted_radii.begin(), sorted_radii.begin() + quantile, sorted_radii.end());
+  grid.small_bound = std::max(sorted_radii[static_cast<std::size_t>(quantile)], 0.25 * largest);
+  double cell = 2.0 * grid.small_bound * (1.0 + kCellMargin);
+  // Very spread-out glyphs: coarser cells rather than more than 2^20 per axis.
+  const double extent = std::max({box.hi.x - box.lo.x, box.hi.y - box.lo.y, box.hi.z - box.lo.z});
+  cell = std::max(cell, extent / static_cast<double>(kMaxCellCoord - 1));
+  grid.lo = box.lo;
+  grid.inv_cell = 1.0 / cell;  // infinite extents give 0: one cell, still exact
+}
+
+// Sorts the glyphs into their cells and finds each cell's runs.
+void sort_into_cells(GlyphGrid& grid) {
+  const std::size_t n = grid.num_glyphs();
+  std::vector<Entry> entries(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t g = r.begin(); g != r.end(); ++g) {
+      const auto i = static_cast<std::size_t>(grid.glyph_point[g]);
+      const auto u = grid.coords_of(grid.positions[i]);
+      entries[g] = {cell_key(cell_coord(u[0]), cell_coord(u[1]), cell_coord(u[2])), grid.radii[i] > grid.small_bound,
+                    grid.radii[i], static_cast<Index>(g)};
+    }
+  });
   // Within a cell, by decreasing radius: a search can stop at the first glyph
   // out of reach. (key, is_large, radius, glyph) is unique, so any correct
   // sort gives this order.
@@ -230,162 +251,163 @@ GlyphClusters cluster_glyphs(std::span<const Vec3> positions, std::span<const do
     return a.glyph < b.glyph;
   });
 
-  std::vector<Ball> balls(glyph_count);
-  std::vector<Index> ball_glyph(glyph_count);
-  tbb::parallel_for(
-      tbb::blocked_range<std::size_t>(0, glyph_count, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t k = r.begin(); k != r.end(); ++k) {
-          const auto i = static_cast<std::size_t>(glyph_point[static_cast<std::size_t>(entries[k].glyph)]);
-          balls[k] = {positions[i], radii[i]};
-          ball_glyph[k] = entries[k].glyph;
-        }
-      });
+  grid.balls.resize(n);
+  grid.ball_glyph.resize(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k) {
+      const auto i = static_cast<std::size_t>(grid.glyph_point[static_cast<std::size_t>(entries[k].glyph)]);
+      grid.balls[k] = {grid.positions[i], grid.radii[i]};
+      grid.ball_glyph[k] = entries[k].glyph;
+    }
+  });
 
-  // Cells: balls [begin[c], small_end[c]) are small, [small_end[c], begin[c+1]) large.
-  std::vector<std::uint64_t> cell_keys;
-  std::vector<Index> cell_begin, cell_small_end;
-  std::vector<Index> large_balls;
-  std::array<std::int64_t, 3> max_coord{0, 0, 0};
-  for (std::size_t k = 0; k < glyph_count; ++k) {
+  for (std::size_t k = 0; k < n; ++k) {
     if (k == 0 || entries[k].key != entries[k - 1].key) {
-      cell_keys.push_back(entries[k].key);
-      cell_begin.push_back(static_cast<Index>(k));
-      cell_small_end.push_back(static_cast<Index>(k));
+      grid.cell_keys.push_back(entries[k].key);
+      grid.cell_begin.push_back(static_cast<Index>(k));
+      grid.cell_small_end.push_back(static_cast<Index>(k));
       const auto c = cell_coords(entries[k].key);
-      for (int a = 0; a < 3; ++a) max_coord[a] = std::max(max_coord[a], c[a]);
+      for (int a = 0; a < 3; ++a) grid.max_coord[a] = std::max(grid.max_coord[a], c[a]);
     }
     if (entries[k].is_large)
-      large_balls.push_back(static_cast<Index>(k));
+      grid.large_balls.push_back(static_cast<Index>(k));
     else
-      cell_small_end.back() = static_cast<Index>(k) + 1;
+      grid.cell_small_end.back() = static_cast<Index>(k) + 1;
   }
-  cell_begin.push_back(m);
-  entries = {};
-  const CellTable table(cell_keys);
-  // Bounds of each cell's small glyphs, to skip neighbours out of reach.
-  std::vector<CellBounds> bounds(cell_keys.size());
-  tbb::parallel_for(
-      tbb::blocked_range<std::size_t>(0, cell_keys.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t c = r.begin(); c != r.end(); ++c) {
-          CellBounds& b = bounds[c];
-          for (Index k = cell_begin[c]; k < cell_small_end[c]; ++k) {
-            const Ball& ball = balls[static_cast<std::size_t>(k)];
-            if (k == cell_begin[c]) b.lo = b.hi = ball.centre;
-            b.lo = {std::min(b.lo.x, ball.centre.x), std::min(b.lo.y, ball.centre.y), std::min(b.lo.z, ball.centre.z)};
-            b.hi = {std::max(b.hi.x, ball.centre.x), std::max(b.hi.y, ball.centre.y), std::max(b.hi.z, ball.centre.z)};
-            b.max_radius = std::max(b.max_radius, ball.radius);
-          }
-        }
-      });
+  grid.cell_begin.push_back(static_cast<Index>(n));
+}
 
-  ConcurrentUnionFind sets(m);
-  auto test_and_unite = [&](const Ball& a, Index glyph_a, std::size_t b) {
-    if (!glyphs_overlap(a.centre, a.radius, balls[b].centre, balls[b].radius)) return false;
-    sets.unite(glyph_a, ball_glyph[b]);
-    return true;
-  };
-
-  // Small with small, within each cell.
-  tbb::parallel_for(
-      tbb::blocked_range<std::size_t>(0, cell_keys.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t c = r.begin(); c != r.end(); ++c)
-          for (auto a = static_cast<std::size_t>(cell_begin[c]); a < static_cast<std::size_t>(cell_small_end[c]); ++a)
-            for (std::size_t b = a + 1; b < static_cast<std::size_t>(cell_small_end[c]); ++b)
-              test_and_unite(balls[a], ball_glyph[a], b);
-      });
-  // Cells whose small glyphs already form one cluster: a neighbour's glyph
-  // then joins all of them through its first overlap, so the rest of its
-  // tests can be skipped (the partition is the same; dense regions of
-  // overlapping glyphs cost about one test per glyph and neighbour cell).
-  std::vector<char> is_connected(cell_keys.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cell_keys.size(), 256),
+// Bounds of each cell's small glyphs, to skip neighbours out of reach.
+void bound_cells(GlyphGrid& grid) {
+  grid.bounds.assign(grid.num_cells(), CellBounds{});
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, grid.num_cells(), 1024),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t c = r.begin(); c != r.end(); ++c) {
-                        const Index first = cell_begin[c], end = cell_small_end[c];
-                        bool connected = first < end;
-                        for (Index k = first + 1; connected && k < end; ++k)
-                          connected = sets.find(ball_glyph[static_cast<std::size_t>(k)]) ==
-                                      sets.find(ball_glyph[static_cast<std::size_t>(first)]);
-                        is_connected[c] = connected;
+                        CellBounds& b = grid.bounds[c];
+                        for (Index k = grid.cell_begin[c]; k < grid.cell_small_end[c]; ++k) {
+                          const Ball& ball = grid.balls[static_cast<std::size_t>(k)];
+                          b.add(ball.centre);
+                          b.max_radius = std::max(b.max_radius, ball.radius);
+                        }
                       }
                     });
+}
 
-  // Small with small across neighbouring cells: both radii ≤ small_bound, so
-  // an overlapping pair is less than one cell apart on each axis.
-  auto join_neighbours = [&](std::size_t c, std::size_t o) {
-    const auto begin = static_cast<std::size_t>(cell_begin[c]), end = static_cast<std::size_t>(cell_small_end[c]);
-    const auto other_begin = static_cast<std::size_t>(cell_begin[o]),
-               other_end = static_cast<std::size_t>(cell_small_end[o]);
-    if (other_begin == other_end ||
-        is_out_of_reach(box_distance_squared(bounds[c], bounds[o]), bounds[c].max_radius + bounds[o].max_radius))
-      return;
-    if (is_connected[c] && is_connected[o] && sets.find(ball_glyph[begin]) == sets.find(ball_glyph[other_begin]))
-      return;  // already one cluster
-    // With the neighbour connected, each of our glyphs needs one overlap with
-    // it at most; with both connected, the pair of cells needs one.
-    const bool once_per_glyph = is_connected[o] != 0;
-    const bool once_per_cell = is_connected[c] && is_connected[o];
-    for (std::size_t a = begin; a < end; ++a) {
-      const Ball& ball = balls[a];
-      const double gap_squared = box_distance_squared(ball.centre, bounds[o]);
-      for (std::size_t b = other_begin; b < other_end; ++b) {
-        if (is_out_of_reach(gap_squared, ball.radius + balls[b].radius)) break;  // and so are the smaller ones
-        if (test_and_unite(ball, ball_glyph[a], b) && once_per_glyph) {
-          if (once_per_cell) return;
-          break;
-        }
+// Small with small, within each cell.
+void join_within_cells(const GlyphGrid& grid, ConcurrentUnionFind& sets) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, grid.num_cells(), 64),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t c = r.begin(); c != r.end(); ++c) {
+                        const auto end = static_cast<std::size_t>(grid.cell_small_end[c]);
+                        for (auto a = static_cast<std::size_t>(grid.cell_begin[c]); a < end; ++a)
+                          for (std::size_t b = a + 1; b < end; ++b)
+                            test_and_unite(grid, sets, grid.balls[a], grid.ball_glyph[a], b);
+                      }
+                    });
+}
+
+// Cells whose small glyphs already form one cluster: a neighbour's glyph
+// then joins all of them through its first overlap, so the rest of its
+// tests can be skipped (the partition is the same; dense regions of
+// overlapping glyphs cost about one test per glyph and neighbour cell).
+void mark_connected_cells(GlyphGrid& grid, const ConcurrentUnionFind& sets) {
+  grid.is_connected.assign(grid.num_cells(), 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, grid.num_cells(), 256),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t c = r.begin(); c != r.end(); ++c) {
+                        const Index first = grid.cell_begin[c], end = grid.cell_small_end[c];
+                        bool connected = first < end;
+                        for (Index k = first + 1; connected && k < end; ++k)
+                          connected = sets.find(grid.ball_glyph[static_cast<std::size_t>(k)]) ==
+                                      sets.find(grid.ball_glyph[static_cast<std::size_t>(first)]);
+                        grid.is_connected[c] = connected;
+                      }
+                    });
+}
+
+// Small glyphs of cell c with those of its neighbour o: both radii are at
+// most small_bound, so an overlapping pair is less than one cell apart on
+// each axis.
+void join_cell_pair(const GlyphGrid& grid, ConcurrentUnionFind& sets, std::size_t c, std::size_t o) {
+  const auto begin = static_cast<std::size_t>(grid.cell_begin[c]),
+             end = static_cast<std::size_t>(grid.cell_small_end[c]);
+  const auto other_begin = static_cast<std::size_t>(grid.cell_begin[o]),
+             other_end = static_cast<std::size_t>(grid.cell_small_end[o]);
+  const CellBounds &bc = grid.bounds[c], &bo = grid.bounds[o];
+  if (other_begin == other_end || is_out_of_reach(box_distance_squared(bc, bo), bc.max_radius + bo.max_radius)) return;
+  if (grid.is_connected[c] && grid.is_connected[o] &&
+      sets.find(grid.ball_glyph[begin]) == sets.find(grid.ball_glyph[other_begin]))
+    return;  // already one cluster
+  // With the neighbour connected, each of our glyphs needs one overlap with
+  // it at most; with both connected, the pair of cells needs one.
+  const bool once_per_glyph = grid.is_connected[o] != 0;
+  const bool once_per_cell = grid.is_connected[c] && grid.is_connected[o];
+  for (std::size_t a = begin; a < end; ++a) {
+    const Ball& ball = grid.balls[a];
+    const double gap_squared = box_distance_squared(ball.centre, bo);
+    for (std::size_t b = other_begin; b < other_end; ++b) {
+      if (is_out_of_reach(gap_squared, ball.radius + grid.balls[b].radius)) break;  // and so are the smaller ones
+      if (test_and_unite(grid, sets, ball, grid.ball_glyph[a], b) && once_per_glyph) {
+        if (once_per_cell) return;
+        break;
       }
     }
-  };
-  // The forward neighbours of cell (x, y, z) are (x+1, y, z) and x−1..x+1 in
-  // the rows (y+1, z), (y−1, z+1), (y, z+1) and (y+1, z+1). Cells are sorted
-  // by key, so a row's cells are a contiguous run, and where that run starts
-  // only moves forward as c does: one pointer per row finds the neighbours
-  // with sequential reads (a hash lookup per neighbour costs cache misses).
+  }
+}
+
+// Small with small across neighbouring cells. The forward neighbours of cell
+// (x, y, z) are (x+1, y, z) and x−1..x+1 in the rows (y+1, z), (y−1, z+1),
+// (y, z+1) and (y+1, z+1). Cells are sorted by key, so a row's cells are a
+// contiguous run, and where that run starts only moves forward as c does:
+// one pointer per row finds the neighbours with sequential reads (a hash
+// lookup per neighbour costs cache misses).
+void join_neighbour_cells(const GlyphGrid& grid, ConcurrentUnionFind& sets) {
   constexpr std::array<std::array<std::int64_t, 2>, 4> kForwardRows = {{{1, 0}, {-1, 1}, {0, 1}, {1, 1}}};
-  const std::size_t num_cells = cell_keys.size();
+  const std::vector<std::uint64_t>& keys = grid.cell_keys;
+  const std::size_t num_cells = grid.num_cells();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_cells, 256), [&](const tbb::blocked_range<std::size_t>& r) {
     std::array<std::size_t, 4> row_start;
     row_start.fill(num_cells + 1);  // not positioned yet
     for (std::size_t c = r.begin(); c != r.end(); ++c) {
-      if (cell_begin[c] == cell_small_end[c]) continue;
-      const auto [x, y, z] = cell_coords(cell_keys[c]);
-      if (c + 1 < num_cells && cell_keys[c + 1] == cell_keys[c] + 1) join_neighbours(c, c + 1);
+      if (grid.cell_begin[c] == grid.cell_small_end[c]) continue;
+      const auto [x, y, z] = cell_coords(keys[c]);
+      if (c + 1 < num_cells && keys[c + 1] == keys[c] + 1) join_cell_pair(grid, sets, c, c + 1);
       for (std::size_t k = 0; k < kForwardRows.size(); ++k) {
         const std::int64_t row_y = y + kForwardRows[k][0], row_z = z + kForwardRows[k][1];
-        if (row_y < 0 || row_y > max_coord[1] || row_z > max_coord[2]) continue;
+        if (row_y < 0 || row_y > grid.max_coord[1] || row_z > grid.max_coord[2]) continue;
         const std::uint64_t lo = cell_key(std::max<std::int64_t>(x - 1, 0), row_y, row_z);
         const std::uint64_t hi = cell_key(x + 1, row_y, row_z);
         std::size_t& o = row_start[k];
-        if (o > num_cells)
-          o = static_cast<std::size_t>(std::lower_bound(cell_keys.begin(), cell_keys.end(), lo) - cell_keys.begin());
+        if (o > num_cells) o = static_cast<std::size_t>(std::lower_bound(keys.begin(), keys.end(), lo) - keys.begin());
         // A few steps forward usually; a binary search after a long gap.
-        for (int step = 0; step < 8 && o < num_cells && cell_keys[o] < lo; ++step) ++o;
-        if (o < num_cells && cell_keys[o] < lo)
-          o = static_cast<std::size_t>(
-              std::lower_bound(cell_keys.begin() + static_cast<std::ptrdiff_t>(o), cell_keys.end(), lo) -
-              cell_keys.begin());
-        for (std::size_t n = o; n < num_cells && cell_keys[n] <= hi; ++n) join_neighbours(c, n);
+        for (int step = 0; step < 8 && o < num_cells && keys[o] < lo; ++step) ++o;
+        if (o < num_cells && keys[o] < lo)
+          o = static_cast<std::size_t>(std::lower_bound(keys.begin() + static_cast<std::ptrdiff_t>(o), keys.end(), lo) -
+                                       keys.begin());
+        for (std::size_t n = o; n < num_cells && keys[n] <= hi; ++n) join_cell_pair(grid, sets, c, n);
       }
     }
   });
+}
 
-  // Large glyphs: each tests every small glyph and every large glyph no larger
-  // than itself (equal radii: the higher glyph id) within 2·r, which covers
-  // every overlapping partner; so each such pair is tested (or known to be
-  // joined) exactly once.
+// Large glyphs: each tests every small glyph and every large glyph no larger
+// than itself (equal radii: the higher glyph id) within 2·r, which covers
+// every overlapping partner; so each such pair is tested (or known to be
+// joined) exactly once.
+void join_large_glyphs(const GlyphGrid& grid, ConcurrentUnionFind& sets) {
+  const CellTable table(grid.cell_keys);
   tbb::parallel_for(
-      tbb::blocked_range<std::size_t>(0, large_balls.size(), 16), [&](const tbb::blocked_range<std::size_t>& r) {
+      tbb::blocked_range<std::size_t>(0, grid.large_balls.size(), 16), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t l = r.begin(); l != r.end(); ++l) {
-          const auto k = static_cast<std::size_t>(large_balls[l]);
-          const Ball& ball = balls[k];
-          const Index glyph = ball_glyph[k];
-          const auto u = coords_of(ball.centre);
-          const double reach = 2.0 * ball.radius * (1.0 + kCellMargin) * inv_cell;
+          const auto k = static_cast<std::size_t>(grid.large_balls[l]);
+          const Ball& ball = grid.balls[k];
+          const Index glyph = grid.ball_glyph[k];
+          const auto u = grid.coords_of(ball.centre);
+          const double reach = 2.0 * ball.radius * (1.0 + kCellMargin) * grid.inv_cell;
           std::array<std::int64_t, 3> from{}, to{};
           for (int a = 0; a < 3; ++a) {
             from[a] = cell_coord(u[a] - reach);
-            to[a] = std::min(cell_coord(u[a] + reach), max_coord[a]);
+            to[a] = std::min(cell_coord(u[a] + reach), grid.max_coord[a]);
           }
           for (std::int64_t z = from[2]; z <= to[2]; ++z)
             for (std::int64_t y = from[1]; y <= to[1]; ++y)
@@ -393,51 +415,80 @@ GlyphClusters cluster_glyphs(std::span<const Vec3> positions, std::span<const do
                 const Index c = table.find(cell_key(x, y, z));
                 if (c == kNoIndex) continue;
                 const auto cs = static_cast<std::size_t>(c);
-                const auto begin = static_cast<std::size_t>(cell_begin[cs]),
-                           small_end = static_cast<std::size_t>(cell_small_end[cs]);
-                const double gap_squared = begin < small_end ? box_distance_squared(ball.centre, bounds[cs]) : 0.0;
-                if (begin < small_end && !is_out_of_reach(gap_squared, ball.radius + bounds[cs].max_radius) &&
-                    !(is_connected[cs] && sets.find(glyph) == sets.find(ball_glyph[begin]))) {
+                const auto begin = static_cast<std::size_t>(grid.cell_begin[cs]),
+                           small_end = static_cast<std::size_t>(grid.cell_small_end[cs]);
+                const double gap_squared = begin < small_end ? box_distance_squared(ball.centre, grid.bounds[cs]) : 0.0;
+                if (begin < small_end && !is_out_of_reach(gap_squared, ball.radius + grid.bounds[cs].max_radius) &&
+                    !(grid.is_connected[cs] && sets.find(glyph) == sets.find(grid.ball_glyph[begin]))) {
                   for (std::size_t b = begin; b < small_end; ++b) {
-                    if (is_out_of_reach(gap_squared, ball.radius + balls[b].radius)) break;  // radii decrease
-                    if (test_and_unite(ball, glyph, b) && is_connected[cs]) break;
+                    if (is_out_of_reach(gap_squared, ball.radius + grid.balls[b].radius)) break;  // radii decrease
+                    if (test_and_unite(grid, sets, ball, glyph, b) && grid.is_connected[cs]) break;
                   }
                 }
-                for (std::size_t b = small_end; b < static_cast<std::size_t>(cell_begin[cs + 1]); ++b) {
-                  const Ball& other = balls[b];  // large: only the smaller one of the pair, or the higher id
-                  if (other.radius > ball.radius || (other.radius == ball.radius && ball_glyph[b] <= glyph)) continue;
-                  test_and_unite(ball, glyph, b);
+                for (std::size_t b = small_end; b < static_cast<std::size_t>(grid.cell_begin[cs + 1]); ++b) {
+                  const Ball& other = grid.balls[b];  // large: only the smaller one of the pair, or the higher id
+                  if (other.radius > ball.radius || (other.radius == ball.radius && grid.ball_glyph[b] <= glyph))
+                    continue;
+                  test_and_unite(grid, sets, ball, glyph, b);
                 }
               }
         }
       });
+}
 
-  // Number the clusters by their roots, which are their smallest glyphs (so
-  // smallest point ids), then list members in ascending point id.
-  std::vector<Index> root(glyph_count);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, glyph_count, 4096),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      for (std::size_t g = r.begin(); g != r.end(); ++g) root[g] = sets.find(static_cast<Index>(g));
-                    });
-  std::vector<Index> cluster_of_root(glyph_count, kNoIndex);
+// Numbers the clusters by their roots, which are their smallest glyphs (so
+// smallest point ids), then lists members in ascending point id.
+void number_clusters(const GlyphGrid& grid, const ConcurrentUnionFind& sets, GlyphClusters& result) {
+  const std::size_t n = grid.num_glyphs();
+  std::vector<Index> root(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t g = r.begin(); g != r.end(); ++g) root[g] = sets.find(static_cast<Index>(g));
+  });
+  std::vector<Index> cluster_of_root(n, kNoIndex);
   std::vector<Index> counts;
-  for (std::size_t g = 0; g < glyph_count; ++g) {
+  for (std::size_t g = 0; g < n; ++g) {
     if (root[g] == static_cast<Index>(g)) {
       cluster_of_root[g] = static_cast<Index>(counts.size());
       counts.push_back(0);
     }
     const Index cluster = cluster_of_root[static_cast<std::size_t>(root[g])];
     ++counts[static_cast<std::size_t>(cluster)];
-    result.point_cluster[static_cast<std::size_t>(glyph_point[g])] = cluster;
+    result.point_cluster[static_cast<std::size_t>(grid.glyph_point[g])] = cluster;
   }
   result.offsets.resize(counts.size() + 1);
   for (std::size_t c = 0; c < counts.size(); ++c) result.offsets[c + 1] = result.offsets[c] + counts[c];
-  result.members.resize(glyph_count);
+  result.members.resize(n);
   std::vector<Index> next(result.offsets.begin(), result.offsets.end() - 1);
-  for (std::size_t g = 0; g < glyph_count; ++g) {
-    const Index cluster = result.point_cluster[static_cast<std::size_t>(glyph_point[g])];
-    result.members[static_cast<std::size_t>(next[static_cast<std::size_t>(cluster)]++)] = glyph_point[g];
+  for (std::size_t g = 0; g < n; ++g) {
+    const Index cluster = result.point_cluster[static_cast<std::size_t>(grid.glyph_point[g])];
+    result.members[static_cast<std::size_t>(next[static_cast<std::size_t>(cluster)]++)] = grid.glyph_point[g];
   }
+}
+
+}  // namespace
+
+GlyphClusters cluster_glyphs(std::span<const Vec3> positions, std::span<const double> radii) {
+  if (positions.size() != radii.size())
+    throw Error("cluster_glyphs: " + std::to_string(positions.size()) + " positions but " +
+                std::to_string(radii.size()) + " radii");
+  GlyphClusters result;
+  result.point_cluster.assign(positions.size(), kNoIndex);
+  result.offsets.assign(1, 0);
+
+  GlyphGrid grid{positions, radii, {}};
+  for (std::size_t i = 0; i < radii.size(); ++i)
+    if (std::isfinite(radii[i]) && radii[i] > 0.0) grid.glyph_point.push_back(static_cast<Index>(i));
+  if (grid.glyph_point.empty()) return result;
+
+  choose_cells(grid);
+  sort_into_cells(grid);
+  bound_cells(grid);
+  ConcurrentUnionFind sets(static_cast<Index>(grid.num_glyphs()));
+  join_within_cells(grid, sets);
+  mark_connected_cells(grid, sets);
+  join_neighbour_cells(grid, sets);
+  join_large_glyphs(grid, sets);
+  number_clusters(grid, sets, result);
   return result;
 }
 

@@ -6,7 +6,7 @@
 
 #include <cstdint>
 
-#include "hqview/render/color.h"
+#include "hqview/image/color.h"
 
 namespace hq {
 

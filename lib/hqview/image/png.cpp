@@ -1,4 +1,4 @@
-#include "hqview/io/image_file.h"
+#include "hqview/image/png.h"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
@@ -14,14 +14,14 @@ namespace hq {
 namespace {
 
 void check_image(const Image& image, const std::string& what) {
-  const std::size_t expected = 4 * static_cast<std::size_t>(std::max(image.width, 0)) *
-                               static_cast<std::size_t>(std::max(image.height, 0));
+  const std::size_t expected =
+      4 * static_cast<std::size_t>(std::max(image.width, 0)) * static_cast<std::size_t>(std::max(image.height, 0));
   if (image.width <= 0 || image.height <= 0 || image.rgba.size() != expected)
     throw Error("cannot write " + what + ": malformed image (" + std::to_string(image.width) + "x" +
                 std::to_string(image.height) + ", " + std::to_string(image.rgba.size()) + " bytes)");
 }
 
-// Writes image through output (opened on name, which may be a proxy's).
+// Writes image through output (opened on name, a proxy's).
 void write_with(OIIO::ImageOutput& output, const Image& image, const std::string& name, const std::string& what) {
   OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::UINT8);
   // Fast zlib level and libpng's "up" filter alone: on rendered views
@@ -37,13 +37,6 @@ void write_with(OIIO::ImageOutput& output, const Image& image, const std::string
 }
 
 }  // namespace
-
-void write_png(const Image& image, const std::filesystem::path& path) {
-  check_image(image, path.string());
-  std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create("png");
-  if (!output) throw Error("cannot write " + path.string() + ": no PNG support in OpenImageIO: " + OIIO::geterror());
-  write_with(*output, image, path.string(), path.string());
-}
 
 std::string encode_png(const Image& image) {
   check_image(image, "a PNG image");

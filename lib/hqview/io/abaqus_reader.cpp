@@ -9,6 +9,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "hqview/core/text.h"
 #include "hqview/core/types.h"
 #include "hqview/io/text_scanner.h"
 
@@ -19,12 +20,6 @@ using detail::iequals;
 using detail::quote;
 
 constexpr std::string_view kHexTypes[] = {"C3D8", "C3D8R", "C3D8I", "C3D8H", "C3D8RH", "C3D8IH"};
-
-std::string_view trim(std::string_view text) {
-  while (!text.empty() && detail::is_space(text.front())) text.remove_prefix(1);
-  while (!text.empty() && detail::is_space(text.back())) text.remove_suffix(1);
-  return text;
-}
 
 std::string upper(std::string_view text) {
   std::string out(text);

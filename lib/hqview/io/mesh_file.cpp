@@ -8,11 +8,13 @@
 #include <system_error>
 
 #include "hqview/core/error.h"
+#include "hqview/core/sha256.h"
 #include "hqview/io/abaqus_reader.h"
 #include "hqview/io/exodus_reader.h"
 #include "hqview/io/gmsh_reader.h"
 #include "hqview/io/medit_reader.h"
 #include "hqview/io/mesh_reader.h"
+#include "hqview/io/mesh_source.h"
 #include "hqview/io/ovm_reader.h"
 #include "hqview/io/read_limits.h"
 #include "hqview/io/text_scanner.h"
@@ -153,7 +155,7 @@ const MeshFormat& format_of_path(const std::filesystem::path& path) {
 
 const MeshFormat& format_of_name(std::string_view name) {
   if (const MeshFormat* format = format_by_name(name)) return *format;
-  throw UsageError("unknown mesh format '" + std::string(name) + "' (expected " + mesh_format_names() + ")");
+  throw ValueError("unknown mesh format '" + std::string(name) + "' (expected " + mesh_format_names() + ")");
 }
 
 // The bytes looked at before a file is read whole.
@@ -177,16 +179,20 @@ void check_not_binary(const MeshFormat& format, std::string_view prefix, const s
                          std::to_string(nul) + " and no mesh format's signature)");
 }
 
-LoadedMesh read_as(const MeshFormat& format, const std::filesystem::path& path, std::string_view bytes,
-                   const ReadLimits& limits) {
-  const std::string name = path.string();
+// Refuses content that is recognisably another format than the extension says.
+void check_content_matches(const MeshFormat& format, const std::filesystem::path& path, std::string_view bytes) {
   const MeshFormat* content = format_by_content(bytes);
   if (content != nullptr && content != &format)
-    throw ParseError(name, 0,
+    throw ParseError(path.string(), 0,
                      "a " + detail::lowercase_extension(path) + " file with " + std::string(content->description) +
                          " content (expected the extension " + std::string(content->extensions[0]) + ")");
-  check_not_binary(format, bytes, name);
-  return format.read(bytes, name, limits);
+}
+
+LoadedMesh read_as(const MeshFormat& format, const std::filesystem::path& path, std::string_view bytes,
+                   const ReadLimits& limits) {
+  check_content_matches(format, path, bytes);
+  check_not_binary(format, bytes, path.string());
+  return format.read(bytes, path.string(), limits);
 }
 
 // The bytes of a mesh file: its size checked against the budget and its
@@ -267,8 +273,29 @@ LoadedMesh read_hex_mesh_as(const std::filesystem::path& path, std::string_view 
   return chosen.read(bytes, path.string(), limits);
 }
 
-std::string read_hex_mesh_bytes(const std::filesystem::path& path, std::string_view format, const ReadLimits& limits) {
-  return read_mesh_bytes(format.empty() ? format_of_path(path) : format_of_name(format), path, limits);
+std::string reported_path(const std::filesystem::path& path) {
+  return path.is_absolute() ? path.filename().string() : path.lexically_normal().string();
+}
+
+MeshSource open_mesh_source(const std::filesystem::path& path, std::string_view format, const ReadLimits& limits) {
+  const MeshFormat& chosen = format.empty() ? format_of_path(path) : format_of_name(format);
+  MeshSource source;
+  source.path = path;
+  source.format = std::string(chosen.name);
+  source.is_format_given = !format.empty();
+  source.bytes = read_mesh_bytes(chosen, path, limits);  // size and binary checks, once
+  source.sha256 = sha256_hex(source.bytes);
+  return source;
+}
+
+LoadedMesh read_hex_mesh(const MeshSource& source, const ReadLimits& limits) {
+  const MeshFormat& format = format_of_name(source.format);
+  if (!source.is_format_given) check_content_matches(format, source.path, source.bytes);
+  return format.read(source.bytes, source.path.string(), limits);
+}
+
+InputFile input_file(const MeshSource& source, const LoadedMesh& loaded) {
+  return {reported_path(source.path), loaded.format, source.sha256};
 }
 
 }  // namespace hq

@@ -89,18 +89,10 @@ LoadedMesh read_hex_mesh(const std::filesystem::path& path, std::string_view byt
 
 // With an explicit format (a name of mesh_format_names(); empty: by the
 // extension, as above): the extension is ignored and the content is not
-// checked against it. Throws UsageError for an unknown format name.
+// checked against it. Throws ValueError for an unknown format name.
 LoadedMesh read_hex_mesh_as(const std::filesystem::path& path, std::string_view format, const ReadLimits& limits = {});
 LoadedMesh read_hex_mesh_as(const std::filesystem::path& path, std::string_view bytes, std::string_view format,
                             const ReadLimits& limits = {});
-
-// The bytes of a hex mesh file for read_hex_mesh_as(path, bytes, format):
-// like read_file_bytes(), but the file's size is checked against limits and
-// its first MiB against binary data (as read_hex_mesh does) before the rest
-// is read. format as read_hex_mesh_as (empty: by the extension; an unknown
-// extension or name throws as there).
-std::string read_hex_mesh_bytes(const std::filesystem::path& path, std::string_view format = {},
-                                const ReadLimits& limits = {});
 
 // True when path's extension (any case) is one read_hex_mesh() dispatches on.
 bool has_hex_mesh_extension(const std::filesystem::path& path);

@@ -32,15 +32,13 @@ struct ReadLimits {
 // limits"). Saturates instead of overflowing.
 std::uint64_t estimate_analysis_memory(std::uint64_t file_bytes, std::uint64_t num_vertices, std::uint64_t num_hexes);
 
+// Estimated peak memory (bytes) of analysing a mesh file of `file_bytes`
+// bytes, with or without the rendered views, before its counts are known:
+// what `batch` schedules meshes by (--memory-budget).
+std::uint64_t estimate_mesh_memory(std::uint64_t file_bytes, bool is_rendering);
+
 // "512 MB", "1.5 GB", "3 TB" (binary units: 1 GB = 2^30 bytes), 3 significant digits.
 std::string format_memory_size(std::uint64_t bytes);
-
-// Parses a --max-memory value: a number (fractions allowed) with an
-// optional unit K, M, G or T (binary, any case, optional trailing B):
-// "512M", "4G", "0.5T", "1000000" (bytes); "0": no limit. Throws
-// UsageError naming `option` for anything else (negative, below one byte,
-// 2^64 bytes or more).
-std::uint64_t parse_memory_size(std::string_view text, std::string_view option);
 
 // Throws ParseError "name:line: the file declares N hexes, which needs about
 // X; --max-memory is Y" (or "N vertices" while the hexes are not known yet:

@@ -16,10 +16,12 @@
 #include <vector>
 
 #include "hqview/core/error.h"
+#include "hqview/core/sha256.h"
 #include "hqview/core/types.h"
 #include "hqview/io/medit_reader.h"
 #include "hqview/io/mesh_file.h"
 #include "hqview/io/mesh_reader.h"
+#include "hqview/io/mesh_source.h"
 
 namespace hq {
 namespace {
@@ -33,8 +35,15 @@ std::mutex& openmesh_mutex() {
   return mutex;
 }
 
-TriSurface read_with_openmesh(const std::filesystem::path& path) {
-  const std::string name = path.string();
+constexpr std::size_t kPrefixBytes = std::size_t{1} << 20;
+
+// ASCII STL starts with "solid" and holds no NUL byte (in its first MiB).
+bool is_ascii_stl(std::string_view bytes) {
+  return bytes.starts_with("solid") && bytes.substr(0, kPrefixBytes).find('\0') == std::string_view::npos;
+}
+
+TriSurface read_with_openmesh(const SurfaceSource& source) {
+  const std::string name = source.path.string();
   PolyMesh mesh;
   {
     const std::lock_guard lock(openmesh_mutex());
@@ -44,6 +53,9 @@ TriSurface read_with_openmesh(const std::filesystem::path& path) {
     omlog().disable();
     omout().disable();
     OpenMesh::IO::Options options;
+    // OpenMesh reads the file by its path, not from source.bytes: its
+    // readers check the content's format (can_u_read) only on files, and a
+    // stream would take text that is no OFF at all for an empty surface.
     if (!OpenMesh::IO::read_mesh(mesh, name, options))
       throw InputError(name + ": cannot read surface (OpenMesh could not parse it)");
   }
@@ -74,8 +86,6 @@ TriSurface read_with_openmesh(const std::filesystem::path& path) {
                      std::to_string(kMaxIndexCount));
   return surface;
 }
-
-constexpr std::size_t kPrefixBytes = std::size_t{1} << 20;
 
 // The first MiB of a file (or all of it).
 std::string read_prefix(const std::filesystem::path& path) {
@@ -137,8 +147,7 @@ void check_surface_file(const std::filesystem::path& path, const std::string& ex
   };
   if (ext == ".stl") {
     // Binary STL: an 80-byte header, a uint32 count, 50 bytes per triangle.
-    const bool is_ascii = prefix.starts_with("solid") && nul == std::string::npos;
-    if (is_ascii) return;
+    if (is_ascii_stl(prefix)) return;
     std::uint64_t count = 0;
     for (int i = 3; i >= 0 && prefix.size() >= 84; --i) count = count << 8 | static_cast<unsigned char>(prefix[80 + i]);
     if (size < 84 || 84 + 50 * count != size)
@@ -173,25 +182,35 @@ void check_surface_file(const std::filesystem::path& path, const std::string& ex
 
 }  // namespace
 
-TriSurface read_surface(const std::filesystem::path& path, const ReadLimits& limits) {
+SurfaceSource open_surface_source(const std::filesystem::path& path, const ReadLimits& limits) {
   const std::string ext = detail::lowercase_extension(path);
-  if (ext == ".mesh") {
-    detail::check_readable_file(path);
-    check_surface_file(path, ext, limits);
-    const std::string text = read_file_bytes(path);
-    if (const std::size_t nul = text.find('\0'); nul != std::string::npos)
-      throw ParseError(path.string(), 0,
-                       "binary data, expected MEDIT (.mesh) text (a NUL byte at offset " + std::to_string(nul) + ")");
-    return read_medit_triangles(text, path.string());
-  }
-  if (ext != ".obj" && ext != ".off" && ext != ".stl" && ext != ".ply") {
+  if (ext != ".obj" && ext != ".off" && ext != ".stl" && ext != ".ply" && ext != ".mesh") {
     if (ext.empty()) throw InputError(path.string() + ": no file extension (expected .obj, .off, .stl, .ply or .mesh)");
     throw InputError(path.string() + ": unknown surface format '" + path.extension().string() +
                      "' (expected .obj, .off, .stl, .ply or .mesh)");
   }
   detail::check_readable_file(path);
-  check_surface_file(path, ext, limits);
-  return read_with_openmesh(path);
+  check_surface_file(path, ext, limits);  // before the file is read whole
+  SurfaceSource source;
+  source.path = path;
+  source.format = ext == ".mesh" ? "medit" : ext.substr(1);
+  source.bytes = read_file_bytes(path);
+  source.sha256 = sha256_hex(source.bytes);
+  return source;
 }
+
+TriSurface read_surface(const SurfaceSource& source) {
+  if (source.format != "medit") return read_with_openmesh(source);
+  if (const std::size_t nul = source.bytes.find('\0'); nul != std::string::npos)
+    throw ParseError(source.path.string(), 0,
+                     "binary data, expected MEDIT (.mesh) text (a NUL byte at offset " + std::to_string(nul) + ")");
+  return read_medit_triangles(source.bytes, source.path.string());
+}
+
+TriSurface read_surface(const std::filesystem::path& path, const ReadLimits& limits) {
+  return read_surface(open_surface_source(path, limits));
+}
+
+InputFile input_file(const SurfaceSource& source) { return {reported_path(source.path), source.format, source.sha256}; }
 
 }  // namespace hq

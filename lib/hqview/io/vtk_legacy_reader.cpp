@@ -15,6 +15,7 @@
 #include "hqview/core/types.h"
 #include "hqview/io/read_limits.h"
 #include "hqview/io/text_scanner.h"
+#include "hqview/io/vtk_cells.h"
 
 namespace hq {
 namespace {
@@ -23,11 +24,8 @@ using detail::iequals;
 using detail::quote;
 using detail::TextScanner;
 
-constexpr int kVtkVoxel = 11;
-constexpr int kVtkHexahedron = 12;
-
-// Voxel corner order (x fastest, then y, then z) to hexahedron order.
-constexpr std::array<int, 8> kVoxelToHex = {0, 1, 3, 2, 4, 5, 7, 6};
+using vtk::kVoxelToHex;
+using vtk::sign_extend;
 
 // The linear and quadratic VTK cell types with a fixed point count
 // (vtkCellType.h). Variable-size types (poly vertex, polyline, triangle
@@ -137,11 +135,6 @@ std::uint64_t load_big_endian(const char* p, int size) {
       return __builtin_bswap64(v);
     }
   }
-}
-
-std::int64_t sign_extend(std::uint64_t bits, int size) {
-  const int shift = 64 - 8 * size;
-  return static_cast<std::int64_t>(bits << shift) >> shift;
 }
 
 std::string non_finite_text(double value) { return std::isnan(value) ? "nan" : (value > 0 ? "inf" : "-inf"); }
@@ -613,11 +606,11 @@ class VtkParser {
       const int type = types_[static_cast<std::size_t>(c)];
       const std::int64_t begin = cells_.offsets[static_cast<std::size_t>(c)];
       const std::int64_t k = cells_.offsets[static_cast<std::size_t>(c) + 1] - begin;
-      const bool is_hex_type = type == kVtkHexahedron || type == kVtkVoxel;
+      const bool is_hex_type = type == vtk::kHexahedron || type == vtk::kVoxel;
       if (is_hex_type && k != 8)
         fail_cell(c, 0,
                   "cell " + std::to_string(c) + " has type " + std::to_string(type) + " (" +
-                      (type == kVtkVoxel ? "voxel" : "hexahedron") + ") but " + std::to_string(k) + " points");
+                      (type == vtk::kVoxel ? "voxel" : "hexahedron") + ") but " + std::to_string(k) + " points");
       // An 8-point cell whose type cannot have 8 points (HexaLab loads these as hexahedra).
       const int type_points = is_hex_type || k != 8 ? 8 : fixed_point_count(type);
       const bool is_mislabelled = type_points >= 0 && type_points != 8;
@@ -641,7 +634,7 @@ class VtkParser {
             fail_cell(c, j, "point id " + std::to_string(id) + " repeated (cell " + std::to_string(c) + ")");
         hex[j] = id;
       }
-      if (type == kVtkVoxel) {
+      if (type == vtk::kVoxel) {
         const Hex voxel = hex;
         for (int j = 0; j < 8; ++j) hex[j] = voxel[kVoxelToHex[j]];
       }

@@ -19,6 +19,7 @@
 
 #include "hqview/core/types.h"
 #include "hqview/io/text_scanner.h"
+#include "hqview/io/vtk_cells.h"
 #include "hqview/io/xml_parser.h"
 
 namespace hq {
@@ -28,9 +29,8 @@ using detail::quote;
 using detail::XmlDocument;
 using detail::XmlElement;
 
-constexpr int kVtkVoxel = 11;
-constexpr int kVtkHexahedron = 12;
-constexpr std::array<int, 8> kVoxelToHex = {0, 1, 3, 2, 4, 5, 7, 6};
+using vtk::kVoxelToHex;
+using vtk::sign_extend;
 
 // zlib's largest expansion of deflated data is 1032:1 (zlib FAQ); a block
 // that claims more cannot be genuine, so nothing is allocated for it.
@@ -64,11 +64,6 @@ std::uint64_t load_bits(const char* p, int size, bool big_endian) {
     v = (v << 8) | byte;
   }
   return v;
-}
-
-std::int64_t sign_extend(std::uint64_t bits, int size) {
-  const int shift = 64 - 8 * size;
-  return static_cast<std::int64_t>(bits << shift) >> shift;
 }
 
 int base64_value(char c) {
@@ -524,14 +519,14 @@ class VtuParser {
                                 std::to_string(begin) + ", " + std::to_string(ids.size()) + "]");
       const std::int64_t type = types[static_cast<std::size_t>(c)];
       const std::int64_t cell = num_cells_ + c;
-      if (type != kVtkHexahedron && type != kVtkVoxel) {
+      if (type != vtk::kHexahedron && type != vtk::kVoxel) {
         ++skipped_by_type_[type];
         begin = end;
         continue;
       }
       if (end - begin != 8)
         fail(ids_array, "cell " + std::to_string(cell) + " has type " + std::to_string(type) + " (" +
-                            (type == kVtkVoxel ? "voxel" : "hexahedron") + ") but " + std::to_string(end - begin) +
+                            (type == vtk::kVoxel ? "voxel" : "hexahedron") + ") but " + std::to_string(end - begin) +
                             " points");
       Hex hex;
       for (int j = 0; j < 8; ++j) {
@@ -544,7 +539,7 @@ class VtuParser {
             fail(ids_array, "point id " + std::to_string(id) + " repeated (cell " + std::to_string(cell) + ")");
         hex[j] = static_cast<Index>(base + id);
       }
-      if (type == kVtkVoxel) {
+      if (type == vtk::kVoxel) {
         const Hex voxel = hex;
         for (int j = 0; j < 8; ++j) hex[j] = voxel[kVoxelToHex[j]];
       }

@@ -18,7 +18,8 @@ void bucket_by_key(std::size_t num_items, std::size_t num_keys, KeyOf key_of, st
   std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
   order.resize(num_items);
   std::vector<Index> cursor(offsets.begin(), offsets.end() - 1);
-  for (std::size_t i = 0; i < num_items; ++i) order[static_cast<std::size_t>(cursor[key_of(i)]++)] = static_cast<Index>(i);
+  for (std::size_t i = 0; i < num_items; ++i)
+    order[static_cast<std::size_t>(cursor[key_of(i)]++)] = static_cast<Index>(i);
 }
 
 Quad sorted_quad(Quad q) {
@@ -37,7 +38,8 @@ void build_vertex_hexes(const HexMesh& mesh, Topology& topo) {
   topo.vertex_hexes.resize(nc);
   for (std::size_t i = 0; i < nc; ++i) topo.vertex_hexes[i] = corner_order[i] / 8;
   for (std::size_t v = 0; v < nv; ++v)
-    if (topo.vertex_hex_offsets[v] == topo.vertex_hex_offsets[v + 1]) topo.unreferenced_vertices.push_back(static_cast<Index>(v));
+    if (topo.vertex_hex_offsets[v] == topo.vertex_hex_offsets[v + 1])
+      topo.unreferenced_vertices.push_back(static_cast<Index>(v));
 }
 
 // Faces: every hex's 6 faces keyed by their sorted ids, bucketed by the
@@ -52,12 +54,14 @@ void build_faces(const HexMesh& mesh, Topology& topo) {
     keys[hf] = sorted_quad({hex[local[0]], hex[local[1]], hex[local[2]], hex[local[3]]});
   }
   std::vector<Index> offsets, order;
-  bucket_by_key(nhf, nv, [&](std::size_t hf) { return keys[hf][0]; }, offsets, order);
+  bucket_by_key(
+      nhf, nv, [&](std::size_t hf) { return keys[hf][0]; }, offsets, order);
   for (std::size_t v = 0; v < nv; ++v) {
     // Stable: equal keys stay in ascending hex-face order, so the first
     // occurrence belongs to the lowest-numbered hex.
-    std::stable_sort(order.begin() + offsets[v], order.begin() + offsets[v + 1],
-                     [&](Index a, Index b) { return keys[static_cast<std::size_t>(a)] < keys[static_cast<std::size_t>(b)]; });
+    std::stable_sort(order.begin() + offsets[v], order.begin() + offsets[v + 1], [&](Index a, Index b) {
+      return keys[static_cast<std::size_t>(a)] < keys[static_cast<std::size_t>(b)];
+    });
   }
 
   topo.hex_faces.assign(nhf, kNoIndex);
@@ -101,12 +105,14 @@ void build_edges(const HexMesh& mesh, Topology& topo) {
     return a < b ? Edge{a, b} : Edge{b, a};
   };
   std::vector<Index> offsets, order;
-  bucket_by_key(nhe, nv, [&](std::size_t he) { return edge_of(he)[0]; }, offsets, order);
+  bucket_by_key(
+      nhe, nv, [&](std::size_t he) { return edge_of(he)[0]; }, offsets, order);
   std::vector<Index> others;
   topo.edges.clear();
   for (std::size_t v = 0; v < nv; ++v) {
     others.clear();
-    for (Index k = offsets[v]; k < offsets[v + 1]; ++k) others.push_back(edge_of(static_cast<std::size_t>(order[static_cast<std::size_t>(k)]))[1]);
+    for (Index k = offsets[v]; k < offsets[v + 1]; ++k)
+      others.push_back(edge_of(static_cast<std::size_t>(order[static_cast<std::size_t>(k)]))[1]);
     std::sort(others.begin(), others.end());
     others.erase(std::unique(others.begin(), others.end()), others.end());
     for (Index w : others) topo.edges.push_back({static_cast<Index>(v), w});
@@ -121,6 +127,21 @@ Topology build_topology(const HexMesh& mesh) {
   build_faces(mesh, topo);
   build_edges(mesh, topo);
   return topo;
+}
+
+std::vector<Edge> boundary_edges(const Topology& topology) {
+  std::vector<Edge> edges;
+  edges.reserve(4 * topology.boundary_faces.size());
+  for (Index face : topology.boundary_faces) {
+    const Quad& quad = topology.faces[static_cast<std::size_t>(face)];
+    for (int i = 0; i < 4; ++i) {
+      const Index a = quad[i], b = quad[(i + 1) % 4];
+      edges.push_back({std::min(a, b), std::max(a, b)});
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
 }
 
 }  // namespace hq

@@ -30,17 +30,20 @@ struct Topology {
   // For hex h and local face f (kHexFaces order), its face id: hex_faces[6*h+f].
   std::vector<Index> hex_faces;
 
-  std::vector<Index> boundary_faces;      // face ids used by exactly one hex, ascending
-  std::vector<Index> non_manifold_faces;  // face ids used by more than two hexes
-  std::vector<Index> boundary_vertices;   // ascending vertex ids on a boundary face
-  std::vector<char> is_boundary_vertex;   // num_vertices, 0/1
-  std::vector<Edge> edges;                // unique edges (a < b), ascending
+  std::vector<Index> boundary_faces;         // face ids used by exactly one hex, ascending
+  std::vector<Index> non_manifold_faces;     // face ids used by more than two hexes
+  std::vector<Index> boundary_vertices;      // ascending vertex ids on a boundary face
+  std::vector<char> is_boundary_vertex;      // num_vertices, 0/1
+  std::vector<Edge> edges;                   // unique edges (a < b), ascending
   std::vector<Index> unreferenced_vertices;  // vertices used by no hex, ascending
 
   Index num_face_hexes(Index face) const {
     return face_hex_offsets[static_cast<std::size_t>(face) + 1] - face_hex_offsets[static_cast<std::size_t>(face)];
   }
 };
+
+// The unique edges of the boundary faces (a < b), ascending.
+std::vector<Edge> boundary_edges(const Topology& topology);
 
 // Builds every table above in O(#hexes) expected time.
 // Precondition: every id in mesh.hexes is in [0, mesh.num_vertices()) (the

@@ -20,7 +20,9 @@ struct IndexedBox {
   std::size_t id() const { return index; }
 };
 
-IndexedBox indexed(const Box3& b, std::size_t i) { return {b.lo, b.hi, i}; }
+IndexedBox indexed(const Box3& b, std::size_t i) {
+  return {std::array<double, 3>{b.lo.x, b.lo.y, b.lo.z}, std::array<double, 3>{b.hi.x, b.hi.y, b.hi.z}, i};
+}
 
 CGAL::Box_intersection_d::Topology topology_of(BoxContact contact) {
   return contact == BoxContact::closed ? CGAL::Box_intersection_d::CLOSED : CGAL::Box_intersection_d::HALF_OPEN;

@@ -1,5 +1,7 @@
 #include "hqview/overlap/overlap.h"
 
+#include "hqview/mesh/mesh_summary.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
@@ -20,7 +22,6 @@ namespace hq {
 namespace {
 
 using detail::BoundaryQuad;
-using detail::Box3;
 using detail::TetPoints;
 
 // E/F passes before the certificate gives up on the unflagged part and hands
@@ -58,16 +59,7 @@ bool is_referenced(const Topology& topo, std::size_t v) {
 }
 
 double referenced_bbox_diagonal(const HexMesh& mesh, const Topology& topo) {
-  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
-  bool any = false;
-  for (std::size_t v = 0; v < mesh.points.size(); ++v) {
-    if (!is_referenced(topo, v)) continue;
-    const Vec3& p = mesh.points[v];
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-    any = true;
-  }
-  return any ? norm(hi - lo) : 0.0;
+  return referenced_bounding_box(mesh, topo).diagonal();
 }
 
 // ---- A. Coincident vertices ---------------------------------------------------
@@ -253,16 +245,10 @@ std::vector<Index> find_sheets(const std::vector<BoundaryQuad>& quads, Index& nu
 
 Box3 bounds_of(const TetPoints& tp, const std::vector<BoundaryQuad>& quads) {
   Box3 b;
-  b.lo = {INFINITY, INFINITY, INFINITY};
-  b.hi = {-INFINITY, -INFINITY, -INFINITY};
   for (const BoundaryQuad& q : quads)
     for (int e = 0; e < 4; ++e) {
       const auto t = detail::fan_triangle(tp, q, e);
-      for (Index id : t)
-        for (int a = 0; a < 3; ++a) {
-          b.lo[sz(a)] = std::min(b.lo[sz(a)], tp.points[sz(id)][a]);
-          b.hi[sz(a)] = std::max(b.hi[sz(a)], tp.points[sz(id)][a]);
-        }
+      for (Index id : t) b.add(tp.points[sz(id)]);
     }
   return b;
 }

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "hqview/core/box3.h"
 #include "hqview/core/hex_topology.h"
 #include "hqview/core/types.h"
 #include "hqview/core/vec3.h"
@@ -75,29 +76,14 @@ inline Triangle fan_triangle(const TetPoints& tp, const BoundaryQuad& q, int e) 
           tp.face_base + q.face};
 }
 
-// Axis-aligned box; doubles of input or centre points, so exact.
-struct Box3 {
-  std::array<double, 3> lo{}, hi{};
-};
-
+// The box of n points given by their ids; doubles of input or centre
+// points, so exact.
 inline Box3 box_of(const std::vector<Vec3>& points, const Index* ids, int n) {
   Box3 b;
-  const Vec3& p0 = points[static_cast<std::size_t>(ids[0])];
-  b.lo = b.hi = {p0.x, p0.y, p0.z};
-  for (int i = 1; i < n; ++i) {
-    const Vec3& p = points[static_cast<std::size_t>(ids[i])];
-    for (int a = 0; a < 3; ++a) {
-      b.lo[a] = std::min(b.lo[a], p[a]);
-      b.hi[a] = std::max(b.hi[a], p[a]);
-    }
-  }
+  for (int i = 0; i < n; ++i) b.add(points[static_cast<std::size_t>(ids[i])]);
   return b;
 }
 
-inline bool boxes_overlap_closed(const Box3& a, const Box3& b) {
-  for (int i = 0; i < 3; ++i)
-    if (!(a.lo[i] <= b.hi[i] && b.lo[i] <= a.hi[i])) return false;
-  return true;
-}
+inline bool boxes_overlap_closed(const Box3& a, const Box3& b) { return a.overlaps(b); }
 
 }  // namespace hq::detail

@@ -1,54 +1,58 @@
 #pragma once
-// The `analyze` pipeline: read -> topology -> quality -> views -> ReportModel.
-// The one place that knows the order of the stages. Touches no output file:
-// main() hands the result to write_bundle().
+// The `analyze` pipeline: read -> topology -> quality -> metrics -> glyphs ->
+// overlap -> boundary error and atlas -> compare mesh -> views -> report
+// document -> gates. The one place that knows the order of the stages.
+// Touches no output file: the caller hands the result to write_bundle().
 
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "hqview/analysis/analysis.h"
 #include "hqview/glyph/glyphs.h"
 #include "hqview/io/read_limits.h"
 #include "hqview/overlap/overlap.h"
 #include "hqview/pipeline/gates.h"
 #include "hqview/quality/hex_metrics.h"
+#include "hqview/render/renderer.h"
 #include "hqview/report/bundle_writer.h"
+#include "hqview/report/report_json.h"
 #include "hqview/report/report_model.h"
+#include "hqview/views/views.h"
 
 namespace hq {
 
 struct AnalyzeOptions {
   std::filesystem::path mesh_path;
-  std::string mesh_format;  // --format: a name of mesh_format_names(); empty: by extension and content
-  std::filesystem::path reference_path;  // --reference SURFACE; empty: no boundary error
-  std::filesystem::path compare_path;    // --compare MESH2; empty: no comparison
+  std::string mesh_format;               // a name of mesh_format_names(); empty: by extension and content
+  std::filesystem::path reference_path;  // empty: no boundary error
+  std::filesystem::path compare_path;    // empty: no comparison
   std::string tool_version;
-  bool render = true;
-  int image_width = 1600;
-  int image_height = 1200;
-  std::vector<std::string> views;  // --views: ids to render (parse_view_list); empty: all
-  std::vector<Index> focus_vertices;  // --focus-vertex: more D/E views
-  int worst_count = 20;  // entries in worst_vertices / worst_cells
+  ViewOptions views;                         // size, views to draw, focus vertices (top_clusters: from glyphs)
+  int worst_count = 20;                      // entries in worst_vertices / worst_cells
   HexMetricSet metrics = all_hex_metrics();  // Verdict metrics to compute (scaled_jacobian always)
-  std::vector<GateRule> gates;  // evaluated on the finished report (throws UsageError for a missing key)
-  GlyphOptions glyphs;          // --rmax, --glyph-threshold, --top-clusters
-  std::optional<OverlapOptions> overlap = OverlapOptions{};  // --overlap, --coincident-eps; nullopt: --no-overlap
-  ReadLimits read_limits;  // --max-memory: checked against each mesh file's size and declared counts
+  std::vector<GateRule> gates;               // evaluated on the finished report document
+  GlyphOptions glyphs;
+  std::optional<OverlapOptions> overlap = OverlapOptions{};  // nullopt: no overlap stage
+  ReadLimits read_limits;  // checked against each mesh file's size and declared counts
 };
 
-struct Analysis {
+struct AnalyzeResult {
   ReportModel model;
+  ReportDocument document;  // report.json, gates included
   std::vector<BundleImage> images;
 };
 
+// Every stage but the views: what `analyze` computes before it draws.
 // Throws InputError/ParseError for unreadable or malformed input,
-// InvalidMeshError for a mesh that cannot be analysed, RenderError when the
-// offscreen context fails.
-Analysis analyze(const AnalyzeOptions& options);
+// InvalidMeshError for a mesh that cannot be analysed.
+Analysis analyze_mesh(const AnalyzeOptions& options);
 
-// The summary parts, exposed for tests.
-MeshSummary summarize_mesh(const HexMesh& mesh, const Topology& topo);
-QualitySummary summarize_quality(const HexMesh& mesh, const QualityField& field, int worst_count);
+// analyze_mesh(), then every view drawn with `renderer` (nullptr: no views),
+// the report document and the gates. Throws as analyze_mesh(), RenderError
+// when drawing fails, ValueError for a focus vertex that does not exist or a
+// gate rule whose key the report lacks.
+AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer);
 
 }  // namespace hq

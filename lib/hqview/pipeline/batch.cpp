@@ -13,7 +13,9 @@
 
 #include "hqview/core/error.h"
 #include "hqview/core/sha256.h"
+#include "hqview/core/text.h"
 #include "hqview/io/mesh_reader.h"
+#include "hqview/report/json_path.h"
 #include "hqview/report/report_json.h"
 
 namespace hq {
@@ -25,13 +27,6 @@ namespace {
 std::string lower(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return s;
-}
-
-std::string_view trim(std::string_view s) {
-  const auto first = s.find_first_not_of(" \t\r");
-  if (first == std::string_view::npos) return {};
-  const auto last = s.find_last_not_of(" \t\r");
-  return s.substr(first, last - first + 1);
 }
 
 // Splits one CSV line; fields may be double-quoted ("" is a quote).
@@ -57,7 +52,7 @@ std::vector<std::string> split_csv(std::string_view line) {
       fields.back() += c;
     }
   }
-  for (std::string& f : fields) f = std::string(trim(f));
+  for (std::string& f : fields) f = std::string(trim(f, " \t\r"));
   return fields;
 }
 
@@ -75,21 +70,6 @@ std::string manifest_key(const std::string& mesh) {
   for (const fs::path& part : p.relative_path())
     if (part != ".." && part != ".") key /= part;
   return key.generic_string();
-}
-
-std::optional<double> lookup_number(const json& report, std::string_view dotted) {
-  const json* node = &report;
-  std::size_t start = 0;
-  while (start <= dotted.size()) {
-    const auto dot = dotted.find('.', start);
-    const std::string key(dotted.substr(start, dot == std::string_view::npos ? std::string_view::npos : dot - start));
-    if (!node->is_object() || !node->contains(key)) return std::nullopt;
-    node = &(*node)[key];
-    if (dot == std::string_view::npos) break;
-    start = dot + 1;
-  }
-  if (!node->is_number()) return std::nullopt;
-  return node->get<double>();
 }
 
 // --resume: the bundle's report.json names the same HQView version and the
@@ -199,7 +179,7 @@ std::vector<BatchInput> parse_manifest(std::string_view text, const std::string&
     std::map<std::string, std::size_t> columns;
     while (std::getline(in, line)) {
       ++line_number;
-      if (trim(line).empty() || trim(line).starts_with("#")) continue;
+      if (trim(line, " \t\r").empty() || trim(line, " \t\r").starts_with("#")) continue;
       std::vector<std::string> fields = split_csv(line);
       if (columns.empty()) {
         for (std::size_t i = 0; i < fields.size(); ++i) {
@@ -240,7 +220,7 @@ std::vector<BatchInput> parse_manifest(std::string_view text, const std::string&
 std::vector<BatchInput> read_manifest(const fs::path& file) {
   const std::string ext = lower(file.extension().string());
   if (ext != ".csv" && ext != ".json")
-    throw UsageError(file.string() + ": a batch input is a directory or a manifest (.csv or .json)");
+    throw ValueError(file.string() + ": a batch input is a directory or a manifest (.csv or .json)");
   return parse_manifest(read_file_bytes(file), file.string(), file.parent_path(), ext == ".json");
 }
 
@@ -249,20 +229,6 @@ std::vector<BatchInput> collect_batch_inputs(const fs::path& dir_or_manifest) {
   if (fs::is_directory(dir_or_manifest, ec)) return collect_directory(dir_or_manifest);
   if (!fs::exists(dir_or_manifest, ec)) throw InputError(dir_or_manifest.string() + ": no such file or directory");
   return read_manifest(dir_or_manifest);
-}
-
-Shard parse_shard(std::string_view text) {
-  const auto slash = text.find('/');
-  Shard shard;
-  auto parse_int = [](std::string_view s, int& value) {
-    const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), value);
-    return error == std::errc() && end == s.data() + s.size();
-  };
-  if (slash == std::string_view::npos || !parse_int(text.substr(0, slash), shard.index) ||
-      !parse_int(text.substr(slash + 1), shard.count) || shard.count < 1 || shard.index < 1 ||
-      shard.index > shard.count)
-    throw UsageError("--shard: expected I/N with 1 <= I <= N, e.g. 2/8, got '" + std::string(text) + "'");
-  return shard;
 }
 
 int shard_of(std::string_view path, int count) {
@@ -283,41 +249,6 @@ std::vector<BatchInput> select_shard(const std::vector<BatchInput>& inputs, cons
   return selected;
 }
 
-std::string_view to_string(BatchStatus status) {
-  switch (status) {
-    case BatchStatus::ok:
-      return "ok";
-    case BatchStatus::gate_failed:
-      return "gate_failed";
-    case BatchStatus::failed:
-      return "failed";
-  }
-  return "failed";
-}
-
-void fill_entry_from_report(BatchEntry& entry, std::string_view report_json_text) {
-  const json report = json::parse(report_json_text);
-  entry.sha256 = report.at("input").at("mesh").at("sha256").get<std::string>();
-  for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) entry.headline[k] = lookup_number(report, kHeadlineKeys[k]);
-  entry.failed_gates.clear();
-  bool passed = true;
-  if (report.contains("gates") && report["gates"].is_object()) {
-    passed = report["gates"].value("passed", true);
-    for (const json& g : report["gates"].value("results", json::array()))
-      if (!g.value("passed", true)) entry.failed_gates.push_back(g.value("rule", ""));
-  }
-  entry.status = passed ? BatchStatus::ok : BatchStatus::gate_failed;
-  entry.error.clear();
-}
-
-std::uint64_t estimate_mesh_memory(std::uint64_t file_bytes, bool is_rendering) {
-  // Measured with /usr/bin/time on ../shared/data (Dolphin_padded, bunny_in,
-  // warrior: 3-4 MB text files): about 9-11 bytes of peak RSS per file byte
-  // above the process baseline, with or without rendering; rendering adds
-  // about 120 MB (OSMesa framebuffers and llvmpipe). Doubled for safety.
-  return 20 * file_bytes + ((is_rendering ? std::uint64_t{128} : std::uint64_t{16}) << 20);
-}
-
 BatchEntry run_batch_mesh(const BatchInput& input, const BatchOptions& options, bool& is_resumed) {
   is_resumed = false;
   BatchEntry entry;
@@ -327,11 +258,11 @@ BatchEntry run_batch_mesh(const BatchInput& input, const BatchOptions& options, 
   const fs::path dir = options.output / fs::path(input.path);
   try {
     if (options.resume && is_resumable(input, dir / "report.json", options.analyze.tool_version)) {
-      const std::string text = read_file_bytes(dir / "report.json");
-      fill_entry_from_report(entry, text);
+      const ReportDocument report = ReportDocument::parse(read_file_bytes(dir / "report.json"));
+      fill_entry_from_report(entry, report);
       // The rules of this run decide the status, not those of the kept bundle.
       if (!options.analyze.gates.empty()) {
-        const GateSummary gates = evaluate_gates(options.analyze.gates, text);
+        const GateSummary gates = evaluate_gates(options.analyze.gates, report);
         entry.failed_gates.clear();
         for (const GateResult& g : gates.results)
           if (!g.passed) entry.failed_gates.push_back(g.rule);
@@ -347,9 +278,10 @@ BatchEntry run_batch_mesh(const BatchInput& input, const BatchOptions& options, 
     analyze_options.compare_path = input.compare_file;
     const BundleOptions bundle{.force = options.force};
     check_output_dir(dir, bundle);
-    const Analysis analysis = analyze(analyze_options);
-    write_bundle(analysis.model, analysis.images, dir, bundle);
-    fill_entry_from_report(entry, report_json(analysis.model));
+    const std::unique_ptr<Renderer> renderer = options.make_renderer ? options.make_renderer() : nullptr;
+    const AnalyzeResult result = analyze(analyze_options, renderer.get());
+    write_bundle(result.model, result.document, result.images, dir, bundle);
+    fill_entry_from_report(entry, result.document);
     entry.bundle = input.path;
   } catch (const InputError& e) {
     entry.status = BatchStatus::failed;
@@ -383,7 +315,7 @@ std::vector<BatchEntry> run_batch(const std::vector<BatchInput>& inputs, const B
     // A compare mesh is analysed in the same run: count its bytes too.
     if (!inputs[i].compare_file.empty())
       if (const auto other = fs::file_size(inputs[i].compare_file, ec); !ec) size += other;
-    cost[i] = estimate_mesh_memory(size, options.analyze.render);
+    cost[i] = estimate_mesh_memory(size, static_cast<bool>(options.make_renderer));
   }
   std::mutex mutex;
   std::condition_variable released;
@@ -432,13 +364,41 @@ std::vector<BatchEntry> run_batch(const std::vector<BatchInput>& inputs, const B
   return entries;
 }
 
-int batch_exit_code(const std::vector<BatchEntry>& entries) {
-  bool any_gate = false;
-  for (const BatchEntry& e : entries) {
-    if (e.status == BatchStatus::failed) return 3;
-    if (e.status == BatchStatus::gate_failed) any_gate = true;
+std::vector<BatchEntry> merge_shards(const std::vector<fs::path>& shard_dirs, const fs::path& out) {
+  std::map<std::string, BatchEntry> merged;
+  std::map<std::string, fs::path> source;
+  for (const fs::path& shard : shard_dirs) {
+    const fs::path index = shard / "index.json";
+    std::ifstream in(index, std::ios::binary);
+    if (!in) throw InputError(index.string() + ": cannot open (not a batch output directory?)");
+    std::ostringstream text;
+    text << in.rdbuf();
+    for (BatchEntry& e : parse_batch_index_json(text.str(), index.string())) {
+      if (merged.count(e.path))
+        throw InputError(index.string() + ": mesh '" + e.path + "' is also in " + source[e.path].string() +
+                         " (shards overlap)");
+      source[e.path] = shard;
+      merged.emplace(e.path, std::move(e));
+    }
   }
-  return any_gate ? 1 : 0;
+  fs::create_directories(out);
+  std::vector<BatchEntry> entries;
+  for (auto& [path, e] : merged) {
+    if (!e.bundle.empty()) {
+      const fs::path from = source[path] / fs::path(e.bundle);
+      const fs::path to = out / fs::path(e.bundle);
+      if (fs::weakly_canonical(from) != fs::weakly_canonical(to)) {
+        if (!fs::is_regular_file(from / "report.json"))
+          throw InputError(from.string() + ": the bundle listed in the shard's index.json is missing");
+        fs::create_directories(to.parent_path());
+        std::error_code ignored;
+        fs::remove_all(to, ignored);
+        fs::copy(from, to, fs::copy_options::recursive);
+      }
+    }
+    entries.push_back(std::move(e));
+  }
+  return entries;
 }
 
 }  // namespace hq

@@ -10,12 +10,15 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "hqview/pipeline/analyze.h"
+#include "hqview/report/batch_index.h"
 
 namespace hq {
 
@@ -52,55 +55,24 @@ std::vector<BatchInput> parse_manifest(std::string_view text, const std::string&
 // A directory or a manifest file (.csv, .json).
 std::vector<BatchInput> collect_batch_inputs(const std::filesystem::path& dir_or_manifest);
 
-// "I/N" with 1 <= I <= N; throws UsageError otherwise.
+// Shard I of N, 1 <= I <= N (`--shard I/N`).
 struct Shard {
   int index = 1;
   int count = 1;
 };
-Shard parse_shard(std::string_view text);
 
 // The shard (1-based) that owns `path`: a hash of the path alone, so the
 // partition does not change when other meshes are added or removed.
 int shard_of(std::string_view path, int count);
 std::vector<BatchInput> select_shard(const std::vector<BatchInput>& inputs, const Shard& shard);
 
-enum class BatchStatus { ok, gate_failed, failed };
-std::string_view to_string(BatchStatus status);
-
-// The headline values of a bundle's report.json, named by their dotted
-// report.json paths (so `diff` gates use the same names on both). nullopt
-// where the report has null (e.g. no reference: no boundary error).
-inline constexpr const char* kHeadlineKeys[] = {
-    "mesh.num_vertices",
-    "mesh.num_hexes",
-    "quality.scaled_jacobian.min",
-    "quality.scaled_jacobian.mean",
-    "quality.scaled_jacobian.p05",
-    "quality.num_inverted",
-    "overlap.num_intersecting_cells",
-    "boundary_error.hausdorff.relative",
-};
-inline constexpr std::size_t kNumHeadlineKeys = std::size(kHeadlineKeys);
-
-// One row of the index.
-struct BatchEntry {
-  std::string path;
-  std::string label;
-  std::string model;
-  BatchStatus status = BatchStatus::failed;
-  std::string error;   // why it failed (status failed)
-  std::string bundle;  // bundle directory relative to the batch output; empty when failed
-  std::string sha256;  // of the mesh file; empty when unreadable
-  std::vector<std::optional<double>> headline = std::vector<std::optional<double>>(kNumHeadlineKeys);
-  std::vector<std::string> failed_gates;  // rules
-};
-
-// Fills the report-derived fields of `entry` (status ok/gate_failed,
-// sha256, headline, failed_gates) from a report.json text.
-void fill_entry_from_report(BatchEntry& entry, std::string_view report_json_text);
+// Makes the renderer one mesh's views are drawn with (one per mesh: meshes
+// run on several threads at once).
+using RendererFactory = std::function<std::unique_ptr<Renderer>()>;
 
 struct BatchOptions {
-  AnalyzeOptions analyze;  // template: mesh_path and reference_path are set per mesh
+  AnalyzeOptions analyze;         // template: mesh_path and reference_path are set per mesh
+  RendererFactory make_renderer;  // empty: no views
   std::filesystem::path output;
   int jobs = 1;                     // meshes analysed at once
   std::uint64_t memory_budget = 0;  // bytes for the meshes in flight (estimated); 0: no limit
@@ -118,13 +90,9 @@ class BatchProgress {
                              int /*total*/) {}
 };
 
-// Estimated peak memory (bytes) of analysing a mesh file of `file_bytes`
-// bytes, with or without the rendered views.
-std::uint64_t estimate_mesh_memory(std::uint64_t file_bytes, bool is_rendering);
-
 // Analyses every input into options.output / input.path (bundle_path()).
 // Never throws for a mesh's failure (it is recorded in its entry); throws
-// UsageError when options.output is unusable. Entries sorted by path.
+// ValueError when options.output is unusable. Entries sorted by path.
 std::vector<BatchEntry> run_batch(const std::vector<BatchInput>& inputs, const BatchOptions& options,
                                   BatchProgress* progress);
 
@@ -132,7 +100,10 @@ std::vector<BatchEntry> run_batch(const std::vector<BatchInput>& inputs, const B
 // --resume. `is_resumed` tells which.
 BatchEntry run_batch_mesh(const BatchInput& input, const BatchOptions& options, bool& is_resumed);
 
-// 3 if any entry failed, else 1 if any gate failed, else 0 (CONTRACT.md).
-int batch_exit_code(const std::vector<BatchEntry>& entries);
+// `hqview merge`: copies every shard's bundles into `out` and returns the
+// union of their index entries, sorted by path. Throws InputError for a
+// shard without index.json or a mesh present in two shards.
+std::vector<BatchEntry> merge_shards(const std::vector<std::filesystem::path>& shard_dirs,
+                                     const std::filesystem::path& out);
 
 }  // namespace hq

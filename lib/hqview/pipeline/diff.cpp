@@ -11,6 +11,8 @@
 
 #include "hqview/core/error.h"
 #include "hqview/core/number_format.h"
+#include "hqview/core/text.h"
+#include "hqview/report/json_path.h"
 
 namespace hq {
 namespace fs = std::filesystem;
@@ -18,28 +20,10 @@ using nlohmann::json;
 
 namespace {
 
-std::string_view trim(std::string_view s) {
-  const auto first = s.find_first_not_of(" \t");
-  if (first == std::string_view::npos) return {};
-  const auto last = s.find_last_not_of(" \t");
-  return s.substr(first, last - first + 1);
-}
-
+// A gate's value: a number, or a boolean as 1 / 0.
 std::optional<double> lookup(const json& j, const std::vector<std::string>& path) {
-  const json* node = &j;
-  for (const std::string& key : path) {
-    if (node->is_object()) {
-      if (!node->contains(key)) return std::nullopt;
-      node = &(*node)[key];
-    } else if (node->is_array()) {
-      std::size_t i = 0;
-      const auto [end, error] = std::from_chars(key.data(), key.data() + key.size(), i);
-      if (error != std::errc() || end != key.data() + key.size() || i >= node->size()) return std::nullopt;
-      node = &(*node)[i];
-    } else {
-      return std::nullopt;
-    }
-  }
+  const json* node = find_json_path(j, std::span<const std::string>(path));
+  if (node == nullptr) return std::nullopt;
   if (node->is_boolean()) return node->get<bool>() ? 1.0 : 0.0;
   if (!node->is_number()) return std::nullopt;
   return node->get<double>();
@@ -121,20 +105,20 @@ DiffGate parse_diff_gate(std::string_view text) {
   }
   // PATH OP baseline[+-NUMBER]: parse "PATH OP 0" for the path and operator.
   gate.rule = parse_gate_rule(std::string(text.substr(0, at)) + "0");
-  gate.rule.text = std::string(trim(text));
+  gate.rule.text = std::string(trim(text, " \t"));
   gate.is_relative = true;
-  const std::string_view offset = trim(text.substr(at + 8));
+  const std::string_view offset = trim(text.substr(at + 8), " \t");
   gate.rule.threshold = 0;
   if (!offset.empty()) {
     std::string_view number = offset;
     const bool is_negative = number.front() == '-';
     if (number.front() != '-' && number.front() != '+')
-      throw UsageError("--gate '" + std::string(text) + "': expected baseline, baseline+NUMBER or baseline-NUMBER");
-    number = trim(number.substr(1));
+      throw ValueError("--gate '" + std::string(text) + "': expected baseline, baseline+NUMBER or baseline-NUMBER");
+    number = trim(number.substr(1), " \t");
     double value = 0;
     const auto [end, error] = std::from_chars(number.data(), number.data() + number.size(), value);
     if (error != std::errc() || end != number.data() + number.size() || !std::isfinite(value))
-      throw UsageError("--gate '" + std::string(text) + "': '" + std::string(number) + "' is not a number");
+      throw ValueError("--gate '" + std::string(text) + "': '" + std::string(number) + "' is not a number");
     gate.rule.threshold = is_negative ? -value : value;
   }
   return gate;
@@ -233,7 +217,7 @@ DiffResult diff_reports(std::string_view baseline_text, std::string_view current
   }
   for (std::size_t g = 0; g < gates.size(); ++g)
     if (evaluated[g] == 0)
-      throw UsageError("--gate '" + gates[g].rule.text + "': '" + join(gates[g].rule.path) +
+      throw ValueError("--gate '" + gates[g].rule.text + "': '" + join(gates[g].rule.path) +
                        "' is a number in neither report (check the key; relative rules need it in both)");
   for (const DiffGateResult& r : result.gates) result.passed = result.passed && r.passed;
   return result;

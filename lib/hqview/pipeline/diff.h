@@ -19,7 +19,7 @@ struct DiffGate {
   GateRule rule;             // path and op; threshold is the offset when is_relative
   bool is_relative = false;  // the threshold is the baseline's value + rule.threshold
 };
-// Throws UsageError naming the rule.
+// Throws ValueError naming the rule.
 DiffGate parse_diff_gate(std::string_view text);
 
 struct DiffValue {
@@ -57,7 +57,7 @@ struct DiffResult {
 // `baseline_text`/`current_text` are both report.json or both index.json
 // (told apart by content); the directories are where each file lives, used
 // to read a mesh's report.json for a gate key that is not in the index's
-// headline. Throws InputError for unreadable/mismatched files, UsageError for
+// headline. Throws InputError for unreadable/mismatched files, ValueError for
 // a gate whose key no compared report has.
 DiffResult diff_reports(std::string_view baseline_text, std::string_view current_text,
                         const std::vector<DiffGate>& gates, const std::filesystem::path& baseline_dir,

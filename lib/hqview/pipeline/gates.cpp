@@ -1,27 +1,21 @@
 #include "hqview/pipeline/gates.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <nlohmann/json.hpp>
-
 #include "hqview/core/error.h"
+#include "hqview/core/text.h"
+#include "hqview/report/json_path.h"
 
 namespace hq {
 namespace {
-
-std::string_view trim(std::string_view s) {
-  const auto first = s.find_first_not_of(" \t");
-  if (first == std::string_view::npos) return {};
-  const auto last = s.find_last_not_of(" \t");
-  return s.substr(first, last - first + 1);
-}
 
 bool is_key_char(char c) {
   return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
 }
 
 [[noreturn]] void bad_rule(std::string_view rule, const std::string& what) {
-  throw UsageError("--gate '" + std::string(rule) + "': " + what +
+  throw ValueError("--gate '" + std::string(rule) + "': " + what +
                    " (expected PATH OP NUMBER, e.g. quality.scaled_jacobian.min>=0.2; OP is one of <= >= == != < >)");
 }
 
@@ -48,7 +42,7 @@ std::vector<std::string> parse_path(std::string_view rule, std::string_view path
 // operands here.
 double parse_operand(std::string_view rule, std::string_view operand) {
   if (operand.rfind("baseline", 0) == 0)
-    throw UsageError("--gate '" + std::string(rule) + "': comparisons with a baseline belong to `hqview diff`; " +
+    throw ValueError("--gate '" + std::string(rule) + "': comparisons with a baseline belong to `hqview diff`; " +
                      "`analyze` compares with numbers");
   std::string_view digits = operand;
   if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
@@ -65,14 +59,17 @@ std::string joined(const std::vector<std::string>& keys, std::size_t count) {
   return s;
 }
 
-// The keys available under `node`, for the error message.
-std::string available_keys(const nlohmann::json& node) {
+// The keys available under `node`, sorted, for the error message.
+std::string available_keys(const ReportDocument& node) {
   if (node.is_array())
     return "an array of " + std::to_string(node.size()) + ", index it with 0.." + std::to_string(node.size() - 1);
   if (!node.is_object()) return "a value with no keys";
+  std::vector<std::string> keys;
+  for (const auto& item : node.items()) keys.push_back(item.key());
+  std::sort(keys.begin(), keys.end());
   std::string list;
   int shown = 0;
-  for (const auto& [key, value] : node.items()) {
+  for (const std::string& key : keys) {
     if (shown++ == 24) {
       list += ", ...";
       break;
@@ -82,43 +79,34 @@ std::string available_keys(const nlohmann::json& node) {
   return "keys: " + list;
 }
 
-double lookup(const GateRule& rule, const nlohmann::json& report) {
-  const nlohmann::json* node = &report;
-  for (std::size_t i = 0; i < rule.path.size(); ++i) {
-    const std::string& key = rule.path[i];
-    const std::string where = i == 0 ? "report.json" : "'" + joined(rule.path, i) + "'";
-    const nlohmann::json* next = nullptr;
-    if (node->is_object()) {
-      if (const auto it = node->find(key); it != node->end()) next = &*it;
-    } else if (node->is_array()) {
-      std::size_t index = 0;
-      const auto [end, ec] = std::from_chars(key.data(), key.data() + key.size(), index);
-      if (ec == std::errc() && end == key.data() + key.size() && index < node->size()) next = &(*node)[index];
-    }
-    if (!next) {
-      const bool metric = i == 2 && rule.path[0] == "quality" && rule.path[1] == "metrics";
-      throw UsageError("--gate '" + rule.text + "': report.json has no '" + key + "' under " + where + " (" +
-                       available_keys(*node) + ")" + (metric ? "; was it left out by --metrics?" : ""));
-    }
-    node = next;
+double lookup(const GateRule& rule, const ReportDocument& report) {
+  std::size_t depth = 0;
+  const ReportDocument* node = find_json_path(report, std::span<const std::string>(rule.path), &depth);
+  if (node == nullptr) {
+    const std::vector<std::string> found(rule.path.begin(), rule.path.begin() + static_cast<std::ptrdiff_t>(depth));
+    const ReportDocument* parent = find_json_path(report, std::span<const std::string>(found));
+    const std::string where = depth == 0 ? "report.json" : "'" + joined(rule.path, depth) + "'";
+    const bool metric = depth == 2 && rule.path[0] == "quality" && rule.path[1] == "metrics";
+    throw ValueError("--gate '" + rule.text + "': report.json has no '" + rule.path[depth] + "' under " + where + " (" +
+                     available_keys(*parent) + ")" + (metric ? "; was it left out by --metrics?" : ""));
   }
   if (node->is_number()) return node->get<double>();
   const std::string type = node->type_name();
   const std::string what =
       node->is_null() ? "null (not computed for this input)" : (type[0] == 'a' || type[0] == 'o' ? "an " : "a ") + type;
-  throw UsageError("--gate '" + rule.text + "': '" + joined(rule.path, rule.path.size()) + "' is " + what +
+  throw ValueError("--gate '" + rule.text + "': '" + joined(rule.path, rule.path.size()) + "' is " + what +
                    ", not a number");
 }
 
 }  // namespace
 
 GateRule parse_gate_rule(std::string_view text) {
-  const std::string_view rule = trim(text);
+  const std::string_view rule = trim(text, " \t");
   const auto op_at = rule.find_first_of("<>=!");
   if (op_at == std::string_view::npos) bad_rule(rule, "no comparison operator");
   GateRule g;
   g.text = std::string(rule);
-  g.path = parse_path(rule, trim(rule.substr(0, op_at)));
+  g.path = parse_path(rule, trim(rule.substr(0, op_at), " \t"));
   std::size_t op_end = op_at;
   while (op_end < rule.size() && std::string_view("<>=!").find(rule[op_end]) != std::string_view::npos) ++op_end;
   const std::string_view op = rule.substr(op_at, op_end - op_at);
@@ -136,7 +124,7 @@ GateRule parse_gate_rule(std::string_view text) {
     g.op = GateOp::greater;
   else
     bad_rule(rule, "'" + std::string(op) + "' is not an operator");
-  g.threshold = parse_operand(rule, trim(rule.substr(op_end)));
+  g.threshold = parse_operand(rule, trim(rule.substr(op_end), " \t"));
   return g;
 }
 
@@ -158,10 +146,8 @@ bool gate_holds(double value, GateOp op, double threshold) {
   return false;
 }
 
-GateSummary evaluate_gates(const std::vector<GateRule>& rules, std::string_view report_json_text) {
+GateSummary evaluate_gates(const std::vector<GateRule>& rules, const ReportDocument& report) {
   GateSummary summary;
-  if (rules.empty()) return summary;
-  const nlohmann::json report = nlohmann::json::parse(report_json_text);
   for (const GateRule& rule : rules) {
     const double value = lookup(rule, report);
     const bool passed = gate_holds(value, rule.op, rule.threshold);

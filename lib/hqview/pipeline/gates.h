@@ -15,7 +15,7 @@
 #include <string_view>
 #include <vector>
 
-#include "hqview/report/report_model.h"
+#include "hqview/report/report_json.h"
 
 namespace hq {
 
@@ -28,13 +28,13 @@ struct GateRule {
   double threshold = 0;
 };
 
-// Parses one rule. Throws UsageError naming the rule and what is wrong.
+// Parses one rule. Throws ValueError naming the rule and what is wrong.
 GateRule parse_gate_rule(std::string_view text);
 
-// Evaluates `rules` in order against a report.json text. Throws UsageError
+// Evaluates `rules` in order against a report document. Throws ValueError
 // when a rule's path names no key of the report, or a value that is not a
 // number (null, text, object): such a rule can never pass, it is a mistake.
-GateSummary evaluate_gates(const std::vector<GateRule>& rules, std::string_view report_json_text);
+GateSummary evaluate_gates(const std::vector<GateRule>& rules, const ReportDocument& report);
 
 // True when `value OP threshold` holds.
 bool gate_holds(double value, GateOp op, double threshold);

@@ -621,30 +621,6 @@ std::optional<HexMetric> hex_metric_from_name(std::string_view name) {
   return std::nullopt;
 }
 
-HexMetricSet parse_hex_metric_list(std::string_view list) {
-  HexMetricSet set;
-  std::size_t start = 0;
-  while (start <= list.size()) {
-    const auto comma = std::min(list.find(',', start), list.size());
-    std::string_view item = list.substr(start, comma - start);
-    while (!item.empty() && item.front() == ' ') item.remove_prefix(1);
-    while (!item.empty() && item.back() == ' ') item.remove_suffix(1);
-    if (item == "all") {
-      set.set();
-    } else if (const auto m = hex_metric_from_name(item)) {
-      insert(set, *m);
-    } else {
-      std::string names;
-      for (const HexMetricInfo& info : kInfo) names += (names.empty() ? "" : ", ") + std::string(info.name);
-      throw UsageError(
-          "--metrics: " + (item.empty() ? std::string("empty entry") : "unknown metric '" + std::string(item) + "'") +
-          " in '" + std::string(list) + "'; choose from: all, " + names);
-    }
-    start = comma + 1;
-  }
-  return set;
-}
-
 HexMetricValues hex_metrics(const HexCorners& p, double average_volume, const HexMetricSet& which) {
   using M = HexMetric;
   HexMetricValues out;

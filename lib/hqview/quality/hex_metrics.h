@@ -79,10 +79,6 @@ inline HexMetricSet all_hex_metrics() { return HexMetricSet().set(); }
 inline bool contains(const HexMetricSet& s, HexMetric m) { return s.test(static_cast<std::size_t>(m)); }
 inline void insert(HexMetricSet& s, HexMetric m) { s.set(static_cast<std::size_t>(m)); }
 
-// `--metrics LIST`: comma-separated Verdict names, or `all`. Throws
-// UsageError naming an unknown entry and listing the valid names.
-HexMetricSet parse_hex_metric_list(std::string_view list);
-
 using HexCorners = std::array<Vec3, 8>;
 using HexMetricValues = std::array<double, kNumHexMetrics>;
 

@@ -8,7 +8,7 @@
 #include <cstring>
 
 #include "hqview/core/error.h"
-#include "hqview/render/colormap.h"
+#include "hqview/image/colormap.h"
 
 namespace hq {
 namespace {
@@ -149,9 +149,8 @@ void draw_text(Image& image, int x, int y, std::string_view text, int size_px, c
   const int line_height = static_cast<int>(std::lround(size_px * kLineSpacing));
   int baseline = y;
   for (std::string_view line : split_lines(text)) {
-    if (!line.empty() &&
-        !OIIO::ImageBufAlgo::render_text(buffer, x, baseline, line, size_px, style.font_path, color, align,
-                                         OIIO::ImageBufAlgo::TextAlignY::Baseline, 0, {}, 1))
+    if (!line.empty() && !OIIO::ImageBufAlgo::render_text(buffer, x, baseline, line, size_px, style.font_path, color,
+                                                          align, OIIO::ImageBufAlgo::TextAlignY::Baseline, 0, {}, 1))
       throw RenderError("cannot draw text with font '" + style.font_path +
                         "' (install fonts-dejavu-core): " + buffer.geterror());
     baseline += line_height;
@@ -164,12 +163,12 @@ PixelRect text_extent(std::string_view text, int size_px, const AnnotationStyle&
   for (std::string_view line : lines) {
     if (line.empty()) continue;
     const OIIO::ROI roi = OIIO::ImageBufAlgo::text_size(line, size_px, style.font_path);
-    if (!roi.defined())
-      throw RenderError("cannot load font '" + style.font_path + "' (install fonts-dejavu-core)");
+    if (!roi.defined()) throw RenderError("cannot load font '" + style.font_path + "' (install fonts-dejavu-core)");
     width = std::max(width, roi.width());
     height = std::max(height, roi.height());
   }
-  if (lines.size() > 1) height += static_cast<int>(std::lround(size_px * kLineSpacing)) * static_cast<int>(lines.size() - 1);
+  if (lines.size() > 1)
+    height += static_cast<int>(std::lround(size_px * kLineSpacing)) * static_cast<int>(lines.size() - 1);
   return {0, 0, width, height};
 }
 
@@ -228,8 +227,8 @@ int color_bar_width(const ColorBar& bar, const AnnotationStyle& style) {
     tick_labels = std::max(tick_labels, text_extent(tick.label, m.tick_size, style).width);
   content = std::max(content, m.bar_width + m.tick_length + m.tick_gap + tick_labels);
   for (const ColorBarSwatch& swatch : bar.swatches)
-    content = std::max(content, m.bar_width + m.tick_gap + m.tick_length +
-                                    text_extent(swatch.label, m.tick_size, style).width);
+    content = std::max(content,
+                       m.bar_width + m.tick_gap + m.tick_length + text_extent(swatch.label, m.tick_size, style).width);
   return m.inset + content + scaled(kLegendRightMargin, style);
 }
 
@@ -289,8 +288,8 @@ void draw_color_bar(Image& image, const PixelRect& area, const ColorBar& bar, co
     const PixelRect box{x, swatch_y, m.bar_width, m.swatch_height};
     fill_rect(image, box, to_rgba8(swatch.color));
     outline_rect(image, box, outline, kOutlineColor);
-    draw_text(image, tick_x + m.tick_length + m.tick_gap, swatch_y + m.swatch_height / 2 + baseline_shift,
-              swatch.label, m.tick_size, style);
+    draw_text(image, tick_x + m.tick_length + m.tick_gap, swatch_y + m.swatch_height / 2 + baseline_shift, swatch.label,
+              m.tick_size, style);
     swatch_y += m.swatch_pitch;
   }
 }

@@ -8,8 +8,8 @@
 #include <string_view>
 #include <vector>
 
-#include "hqview/render/color.h"
-#include "hqview/render/image.h"
+#include "hqview/image/color.h"
+#include "hqview/image/image.h"
 
 namespace hq {
 
@@ -24,7 +24,7 @@ struct AnnotationStyle {
   std::string font_path = kDefaultFontPath;
   Rgba8 text_color{38, 38, 38, 255};
   Rgba8 background{255, 255, 255, 255};
-  double scale = 1.0;  // 1 for a 1200-pixel-high figure
+  double scale = 1.0;      // 1 for a 1200-pixel-high figure
   int min_text_size = 11;  // pixels: scaled text never gets smaller (legible thumbnails)
 };
 

@@ -1,5 +1,7 @@
 #include "hqview/render/camera.h"
 
+#include "hqview/core/box3.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -102,13 +104,11 @@ Vec3 project_to_ndc(const Camera& camera, double aspect, const Vec3& p) {
 Camera fit_camera_to_points(std::span<const Vec3> points, const Vec3& view_direction, double aspect,
                             const CameraFitOptions& options) {
   constexpr double inf = std::numeric_limits<double>::infinity();
-  Vec3 lo{inf, inf, inf}, hi{-inf, -inf, -inf};
-  for (const Vec3& p : points) {
-    if (!is_finite(p)) continue;
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
-  if (!(lo.x <= hi.x)) lo = hi = Vec3{};
+  Box3 bounds;
+  for (const Vec3& p : points)
+    if (is_finite(p)) bounds.add(p);
+  if (bounds.is_empty()) bounds.lo = bounds.hi = Vec3{};
+  const Vec3 lo = bounds.lo, hi = bounds.hi;
   const bool is_degenerate = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}) <= 0.0;
   if (is_degenerate) {  // a single point: frame a unit box around it
     const Vec3 c = lo;

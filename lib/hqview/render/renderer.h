@@ -3,8 +3,8 @@
 // implementation that touches OpenGL is the OSMesa backend
 // (osmesa_renderer.h); tests may substitute their own.
 
+#include "hqview/image/image.h"
 #include "hqview/render/camera.h"
-#include "hqview/render/image.h"
 #include "hqview/render/scene.h"
 
 namespace hq {

@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "hqview/core/vec3.h"
-#include "hqview/render/color.h"
+#include "hqview/image/color.h"
 
 namespace hq {
 
@@ -42,36 +42,36 @@ inline Vec3f to_vec3f(const Vec3& v) {
 
 // Indexed triangles (3 indices per triangle into the vertex arrays).
 struct TriangleSet {
-  std::vector<Vec3f> positions;         // #V, relative to Scene::origin
-  std::vector<Vec3f> normals;           // #V unit normals, or empty: each triangle flat-shaded by its own plane
-  std::vector<Rgba8> colors;            // #V, interpolated across triangles
-  std::vector<std::uint32_t> indices;   // 3 * #triangles, ids in [0, #V)
-  bool is_lit = true;                   // false: colours shown as given (2D maps)
+  std::vector<Vec3f> positions;        // #V, relative to Scene::origin
+  std::vector<Vec3f> normals;          // #V unit normals, or empty: each triangle flat-shaded by its own plane
+  std::vector<Rgba8> colors;           // #V, interpolated across triangles
+  std::vector<std::uint32_t> indices;  // 3 * #triangles, ids in [0, #V)
+  bool is_lit = true;                  // false: colours shown as given (2D maps)
 };
 
 // Indexed line segments (2 indices per segment into the vertex arrays).
 struct LineSet {
-  std::vector<Vec3f> positions;         // #V, relative to Scene::origin
-  std::vector<Rgba8> colors;            // #V, alpha < 255 blends over what is behind
-  std::vector<std::uint32_t> indices;   // 2 * #segments, ids in [0, #V)
-  float width = 1.0f;                   // in output pixels
+  std::vector<Vec3f> positions;        // #V, relative to Scene::origin
+  std::vector<Rgba8> colors;           // #V, alpha < 255 blends over what is behind
+  std::vector<std::uint32_t> indices;  // 2 * #segments, ids in [0, #V)
+  float width = 1.0f;                  // in output pixels
 };
 
 // Spheres (glyphs): centre, radius (model units, > 0) and colour each.
 struct SphereSet {
-  std::vector<Vec3f> centers;           // relative to Scene::origin
-  std::vector<float> radii;             // #spheres
-  std::vector<Rgba8> colors;            // #spheres (alpha ignored: spheres are opaque)
+  std::vector<Vec3f> centers;  // relative to Scene::origin
+  std::vector<float> radii;    // #spheres
+  std::vector<Rgba8> colors;   // #spheres (alpha ignored: spheres are opaque)
 };
 
 struct Scene {
-  Vec3 origin;                          // model position that vertex offsets are relative to
+  Vec3 origin;  // model position that vertex offsets are relative to
   Rgba8 background{255, 255, 255, 255};
   std::vector<TriangleSet> triangles;
   std::vector<SphereSet> spheres;
   std::vector<LineSet> lines;
-  std::vector<TriangleSet> translucent; // colours' alpha is the opacity
-  std::vector<TriangleSet> overlay;     // opaque, on top of all the rest
+  std::vector<TriangleSet> translucent;  // colours' alpha is the opacity
+  std::vector<TriangleSet> overlay;      // opaque, on top of all the rest
 };
 
 inline std::size_t sphere_count(const Scene& scene) {

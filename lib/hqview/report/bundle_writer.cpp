@@ -9,7 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "hqview/core/error.h"
-#include "hqview/io/image_file.h"
+#include "hqview/image/png.h"
 #include "hqview/report/report_csv.h"
 #include "hqview/report/report_html.h"
 #include "hqview/report/report_json.h"
@@ -63,16 +63,17 @@ void check_output_dir(const fs::path& dir, const BundleOptions& options) {
   if (ec || !fs::exists(status)) return;
   if (!fs::is_directory(status)) {
     if (!options.force)
-      throw UsageError(dir.string() + ": exists and is not a directory; choose another -o, or --force to replace it");
+      throw ValueError(dir.string() + ": exists and is not a directory; choose another -o, or --force to replace it");
     return;
   }
   if (!options.force && !fs::is_empty(dir) && !is_bundle(dir))
-    throw UsageError(dir.string() + ": is a non-empty directory that is not an HQView bundle (no report.json); "
+    throw ValueError(dir.string() +
+                     ": is a non-empty directory that is not an HQView bundle (no report.json); "
                      "use --force to replace it");
 }
 
-void write_bundle(const ReportModel& model, const std::vector<BundleImage>& images, const fs::path& target,
-                  const BundleOptions& options) {
+void write_bundle(const ReportModel& model, const ReportDocument& document, const std::vector<BundleImage>& images,
+                  const fs::path& target, const BundleOptions& options) {
   const fs::path dir = fs::absolute(target).lexically_normal();
   check_output_dir(dir, options);
   fs::create_directories(dir.parent_path());
@@ -84,10 +85,10 @@ void write_bundle(const ReportModel& model, const std::vector<BundleImage>& imag
       throw Error("internal: bundle file outside the bundle: " + img.relative_path);
   try {
     fs::create_directories(tmp / "data");
-    write_text(tmp / "report.json", report_json(model));
+    write_text(tmp / "report.json", report_json_text(document));
     write_text(tmp / "index.html", index_html(model));
     write_text(tmp / "style.css", report_stylesheet());
-    if (model.boundary_error) write_text(tmp / "boundary.html", boundary_html(model));
+    if (model.analysis.boundary_error) write_text(tmp / "boundary.html", boundary_html(model));
     write_text(tmp / "summary.md", summary_markdown(model));
     write_file(tmp / "data" / "cells.csv", [&](std::ostream& out) { write_cells_csv(model, out); });
     write_file(tmp / "data" / "vertices.csv", [&](std::ostream& out) { write_vertices_csv(model, out); });
@@ -101,7 +102,7 @@ void write_bundle(const ReportModel& model, const std::vector<BundleImage>& imag
       if (!img.text.empty())
         write_text(path, img.text);  // an SVG chart
       else
-        write_png(img.image, path);
+        write_text(path, encode_png(img.image));
     });
     // Swap into place: the old bundle is moved aside, never deleted before
     // the new one is in place.

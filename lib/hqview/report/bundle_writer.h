@@ -7,7 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "hqview/render/image.h"
+#include "hqview/image/image.h"
+#include "hqview/report/report_json.h"
 #include "hqview/report/report_model.h"
 
 namespace hq {
@@ -22,16 +23,16 @@ struct BundleOptions {
   bool force = false;  // replace a file, or a non-empty directory that is not an HQView bundle
 };
 
-// Throws UsageError, unless force, when `dir` is an existing non-directory
+// Throws ValueError, unless force, when `dir` is an existing non-directory
 // (a file: --force replaces it) or a non-empty directory without report.json
 // (not an HQView bundle). Call it before the analysis, so a doomed run fails fast.
 void check_output_dir(const std::filesystem::path& dir, const BundleOptions& options);
 
-// report.json, index.html, boundary.html (with a boundary error), summary.md, style.css, data/cells.csv,
-// data/vertices.csv, data/annotated.vtu (when model.has_annotated_vtu) and the images (relative paths without "..":
-// anything else is an internal error, nothing is written outside DIR). Throws hq::Error on an I/O failure (the
-// temporary directory is removed, DIR untouched).
-void write_bundle(const ReportModel& model, const std::vector<BundleImage>& images, const std::filesystem::path& dir,
-                  const BundleOptions& options);
+// report.json (document's text), index.html, boundary.html (with a boundary error), summary.md, style.css,
+// data/cells.csv, data/vertices.csv, data/annotated.vtu (when model.has_annotated_vtu) and the images (relative paths
+// without "..": anything else is an internal error, nothing is written outside DIR). Throws hq::Error on an I/O failure
+// (the temporary directory is removed, DIR untouched).
+void write_bundle(const ReportModel& model, const ReportDocument& document, const std::vector<BundleImage>& images,
+                  const std::filesystem::path& dir, const BundleOptions& options);
 
 }  // namespace hq

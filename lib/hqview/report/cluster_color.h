@@ -7,7 +7,7 @@
 #include <string>
 
 #include "hqview/core/types.h"
-#include "hqview/render/colormap.h"
+#include "hqview/image/colormap.h"
 
 namespace hq {
 

@@ -34,11 +34,11 @@ void write_cells_csv(const ReportModel& model, std::ostream& out) {
     if (static_cast<HexMetric>(m) == HexMetric::scaled_jacobian) continue;
     buffer += ',';
     buffer += hex_metric_name(static_cast<HexMetric>(m));
-    metric_columns.push_back(&model.metrics.of(static_cast<HexMetric>(m)));
+    metric_columns.push_back(&model.analysis.metrics.of(static_cast<HexMetric>(m)));
   }
   buffer += ",inverted,degenerate,intersecting\n";
-  const QualityField& q = model.field;
-  for (std::size_t h = 0; h < model.mesh.hexes.size(); ++h) {
+  const QualityField& q = model.analysis.field;
+  for (std::size_t h = 0; h < model.analysis.mesh.hexes.size(); ++h) {
     append_int(buffer, static_cast<long long>(h));
     buffer += ',';
     const double sj = q.cell_scaled_jacobian[h];
@@ -55,7 +55,7 @@ void write_cells_csv(const ReportModel& model, std::ostream& out) {
     buffer += cell_is_degenerate(q, h) ? ",1" : ",0";
     // intersecting: 0/1 from the overlap stage, empty with --no-overlap.
     buffer += ',';
-    if (model.overlap) buffer += model.overlap->cell_intersecting[h] ? '1' : '0';
+    if (model.analysis.overlap) buffer += model.analysis.overlap->cell_intersecting[h] ? '1' : '0';
     buffer += '\n';
     flush_if_full(buffer, out);
   }
@@ -64,31 +64,31 @@ void write_cells_csv(const ReportModel& model, std::ostream& out) {
 
 void write_vertices_csv(const ReportModel& model, std::ostream& out) {
   std::string buffer = "vertex,x,y,z,quality,glyph_radius,cluster,coincident_group,boundary,boundary_error\n";
-  for (std::size_t v = 0; v < model.mesh.points.size(); ++v) {
-    const Vec3& p = model.mesh.points[v];
+  for (std::size_t v = 0; v < model.analysis.mesh.points.size(); ++v) {
+    const Vec3& p = model.analysis.mesh.points[v];
     append_int(buffer, static_cast<long long>(v));
     for (double c : {p.x, p.y, p.z}) {
       buffer += ',';
       append_double(buffer, c);
     }
     buffer += ',';
-    append_double(buffer, model.field.vertex_quality[v]);  // empty for an unreferenced vertex
+    append_double(buffer, model.analysis.field.vertex_quality[v]);  // empty for an unreferenced vertex
     // glyph_radius: 0 without a glyph, empty for an unreferenced vertex;
     // cluster: the cluster's rank id, -1 without a glyph.
     buffer += ',';
-    if (model.glyphs && !std::isnan(model.field.vertex_quality[v]))
-      append_double(buffer, model.glyphs->vertex_radius[v]);
+    if (model.analysis.glyphs && !std::isnan(model.analysis.field.vertex_quality[v]))
+      append_double(buffer, model.analysis.glyphs->vertex_radius[v]);
     buffer += ',';
-    if (model.glyphs) append_int(buffer, model.glyphs->vertex_cluster[v]);
+    if (model.analysis.glyphs) append_int(buffer, model.analysis.glyphs->vertex_cluster[v]);
     // coincident_group: the group's index in report.json, -1 for none;
     // empty with --no-overlap.
     buffer += ',';
-    if (model.overlap) append_int(buffer, model.overlap->vertex_coincident_group[v]);
+    if (model.analysis.overlap) append_int(buffer, model.analysis.overlap->vertex_coincident_group[v]);
     buffer += ',';
-    buffer += model.topology.is_boundary_vertex[v] ? '1' : '0';
+    buffer += model.analysis.topology.is_boundary_vertex[v] ? '1' : '0';
     buffer += ',';
     // boundary_error: signed distance for boundary vertices with --reference, else empty.
-    if (model.boundary_error) append_double(buffer, model.boundary_error->vertex_error[v]);
+    if (model.analysis.boundary_error) append_double(buffer, model.analysis.boundary_error->vertex_error[v]);
     buffer += '\n';
     flush_if_full(buffer, out);
   }

@@ -9,8 +9,10 @@
 #include <set>
 
 #include "hqview/core/error.h"
+#include "hqview/core/number_format.h"
 #include "hqview/report/cluster_color.h"
 #include "hqview/report/report_templates.h"
+#include "hqview/views/views.h"
 
 namespace hq {
 
@@ -19,23 +21,9 @@ namespace {
 using kainjow::mustache::data;
 using kainjow::mustache::mustache;
 
-// Display text: 6 significant digits (report.json keeps full precision).
-std::string show(double v) {
-  if (!std::isfinite(v)) return "–";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", v);
-  return buffer;
-}
-
-std::string show_count(long long v) {
-  // Thousands separators make 6- and 7-digit counts readable at a glance.
-  std::string digits = std::to_string(v < 0 ? -v : v), out;
-  for (std::size_t i = 0; i < digits.size(); ++i) {
-    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
-    out += digits[i];
-  }
-  return v < 0 ? "-" + out : out;
-}
+// Display text (report.json keeps full precision).
+std::string show(double v) { return display_number(v); }
+std::string show_count(long long v) { return display_count(v); }
 
 data card(const std::string& label, const std::string& value, bool alert = false) {
   data d;
@@ -79,56 +67,43 @@ struct PanelSpec {
   const char* nav;  // short title for the navigation bar
   const char* title;
   const char* intro;
-  std::vector<std::string_view> view_ids;
+  char letter;  // its views: those of kViews with this panel
 };
 
 const std::vector<PanelSpec>& index_panels() {
   static const std::vector<PanelSpec> panels{
-      {"panel-a",
-       "A main",
-       "A · Main view: glyphs, clusters and overlaps",
+      {"panel-a", "A main", "A · Main view: glyphs, clusters and overlaps",
        "Sphere glyphs sit on bad vertices (the lower the quality, the larger), merged where they overlap and coloured "
        "per cluster; arrows point at overlapping elements. The overview colours the boundary by vertex quality.",
-       {"main", "overview"}},
-      {"panel-b",
-       "B sorted quality",
-       "B · Sorted vertex quality",
+       'A'},
+      {"panel-b", "B sorted quality", "B · Sorted vertex quality",
        "Each bar of the sorted chart is one of the worst vertices, worst on the left. Click a bar to go to its "
        "cluster's sub-region (C), or to its local view (D) when its cluster has no sub-region view.",
-       {"sorted_quality", "histogram", "histogram_log"}},
-      {"panel-c",
-       "C clusters",
-       "C · Sub-regions of the worst clusters",
-       "One view per top cluster (the table's bold rows): its glyphs (reduced: half size, at most 0.35 of the mean edge) and the hexes around them. Each "
+       'B'},
+      {"panel-c", "C clusters", "C · Sub-regions of the worst clusters",
+       "One view per top cluster (the table's bold rows): its glyphs (reduced: half size, at most 0.35 of the mean "
+       "edge) and the hexes around them. Each "
        "links to the local view (D) and corner chart (E) of the cluster's worst vertex, and back to its table row.",
-       {"clusters"}},
-      {"panel-d",
-       "D local",
-       "D · Local views: one-ring hexes of a vertex",
+       'C'},
+      {"panel-d", "D local", "D · Local views: one-ring hexes of a vertex",
        "The hexes around a chosen vertex (the worst of each top cluster, then any --focus-vertex), with the scaled "
        "Jacobian of every corner at the vertex.",
-       {"local"}},
-      {"panel-e",
-       "E corners",
-       "E · Corner charts",
-       "The corner scaled Jacobians at each chosen vertex, one bar per incident hex.",
-       {"corners"}},
-      {"panel-f",
-       "F reference",
-       "F · Reference",
-       "The hex boundary against the reference surface (--reference), and the compared mesh (--compare).",
-       {"reference_overlay", "compare"}},
+       'D'},
+      {"panel-e", "E corners", "E · Corner charts",
+       "The corner scaled Jacobians at each chosen vertex, one bar per incident hex.", 'E'},
+      {"panel-f", "F reference", "F · Reference",
+       "The hex boundary against the reference surface (--reference), and the compared mesh (--compare).", 'F'},
   };
   return panels;
 }
 
-// The views of boundary.html, in the order of the paper's figure: 3D error
-// views, UV error map, sorted error chart, area percentages.
-const std::vector<std::string_view> kBoundaryViewIds{"boundary_error", "uv_error", "boundary_error_sorted",
-                                                     "boundary_area"};
-
-bool is_boundary_view(std::string_view id) {
-  return std::find(kBoundaryViewIds.begin(), kBoundaryViewIds.end(), id) != kBoundaryViewIds.end();
+// The ids of a panel's views (kViews), in its order; panel 0: boundary.html
+// (the order of the paper's figure: 3D error views, UV error map, sorted
+// error chart, area percentages).
+std::vector<std::string_view> panel_view_ids(char panel) {
+  std::vector<std::string_view> ids;
+  for (const ViewSpec* spec : views_of_panel(panel)) ids.push_back(spec->id);
+  return ids;
 }
 
 std::string stem_of(const std::string& file) { return std::filesystem::path(file).stem().string(); }
@@ -163,15 +138,18 @@ struct PanelIndex {
   const ReportModel* model = nullptr;
 
   Index cluster_of(Index v) const {
-    if (!model->glyphs || v < 0 || static_cast<std::size_t>(v) >= model->glyphs->vertex_cluster.size()) return kNoIndex;
-    return model->glyphs->vertex_cluster[static_cast<std::size_t>(v)];
+    if (!model->analysis.glyphs || v < 0 ||
+        static_cast<std::size_t>(v) >= model->analysis.glyphs->vertex_cluster.size())
+      return kNoIndex;
+    return model->analysis.glyphs->vertex_cluster[static_cast<std::size_t>(v)];
   }
   const AggregatedGlyph* glyph_cluster(Index c) const {
-    if (!model->glyphs || c < 0 || static_cast<std::size_t>(c) >= model->glyphs->clusters.size()) return nullptr;
-    return &model->glyphs->clusters[static_cast<std::size_t>(c)];
+    if (!model->analysis.glyphs || c < 0 || static_cast<std::size_t>(c) >= model->analysis.glyphs->clusters.size())
+      return nullptr;
+    return &model->analysis.glyphs->clusters[static_cast<std::size_t>(c)];
   }
   double quality_of(Index v) const {
-    const auto& q = model->field.vertex_quality;
+    const auto& q = model->analysis.field.vertex_quality;
     return v >= 0 && static_cast<std::size_t>(v) < q.size() ? q[static_cast<std::size_t>(v)] : NAN;
   }
   // Where a click on vertex v leads: its cluster's C view, else its D view,
@@ -213,7 +191,7 @@ PanelIndex index_panels_of(const ReportModel& model, std::size_t table_rows) {
       }
     }
   for (std::size_t i = 0; i < table_rows; ++i) index.table_clusters.insert(static_cast<Index>(i));
-  for (const WorstVertex& w : model.quality.worst_vertices) index.worst_vertices.insert(w.vertex);
+  for (const WorstVertex& w : model.analysis.quality.worst_vertices) index.worst_vertices.insert(w.vertex);
   return index;
 }
 
@@ -288,32 +266,32 @@ data input_rows(const ReportModel& model) {
     rows.push_back(kv(role + " format", f.format));
     rows.push_back(kv(role + " sha256", f.sha256));
   };
-  add("mesh", model.mesh_input);
-  if (model.reference_input) add("reference", *model.reference_input);
-  if (model.compare) add("compared mesh", model.compare->input);
+  add("mesh", model.analysis.mesh_input);
+  if (model.analysis.reference_input) add("reference", *model.analysis.reference_input);
+  if (model.analysis.compare) add("compared mesh", model.analysis.compare->input);
   rows.push_back(kv("HQView", model.tool_version));
   rows.push_back(kv("metric definitions", "Verdict 1.4.5 (hex), Si and Chen (IEEE VIS 2023) vertex quality"));
   return rows;
 }
 
-}  // namespace
+// ---- index.html, section by section ----
 
-std::string_view report_stylesheet() { return report_template("style.css"); }
-
-std::string index_html(const ReportModel& model) {
-  const MeshSummary& m = model.mesh_summary;
-  const QualitySummary& q = model.quality;
-  data page;
-  page.set("mesh_name", std::filesystem::path(model.mesh_input.path).filename().string());
-  page.set("format", model.mesh_input.format);
-  page.set("sha256_short", model.mesh_input.sha256.substr(0, 12));
+// The mesh, its inputs and the tool.
+void set_header(data& page, const ReportModel& model) {
+  page.set("mesh_name", std::filesystem::path(model.analysis.mesh_input.path).filename().string());
+  page.set("format", model.analysis.mesh_input.format);
+  page.set("sha256_short", model.analysis.mesh_input.sha256.substr(0, 12));
   page.set("version", model.tool_version);
-  page.set("has_boundary_page", model.boundary_error.has_value());
+  page.set("has_boundary_page", model.analysis.boundary_error.has_value());
   page.set("has_annotated_vtu", model.has_annotated_vtu);
   page.set("inputs", input_rows(model));
+}
 
-  // The papers' headline: #V, #H, min and mean scaled Jacobian, #inverted,
-  // overlaps, Hausdorff distance (% of the reference's bbox diagonal).
+// The papers' headline: #V, #H, min and mean scaled Jacobian, #inverted,
+// overlaps, Hausdorff distance (% of the reference's bbox diagonal).
+void set_headline(data& page, const ReportModel& model) {
+  const MeshSummary& m = model.analysis.mesh_summary;
+  const QualitySummary& q = model.analysis.quality;
   data headline{data::type::list};
   headline.push_back(card("vertices", show_count(m.num_vertices)));
   headline.push_back(card("hexahedra", show_count(m.num_hexes)));
@@ -321,39 +299,36 @@ std::string index_html(const ReportModel& model) {
   headline.push_back(card("mean scaled Jacobian", show(q.scaled_jacobian.mean)));
   headline.push_back(
       card("inverted hexes", show_count(q.scaled_jacobian.num_inverted), q.scaled_jacobian.num_inverted > 0));
-  if (model.overlap)
-    headline.push_back(card("overlapping hexes", show_count(model.overlap->num_intersecting_cells),
-                            model.overlap->num_intersecting_cells > 0));
+  if (model.analysis.overlap)
+    headline.push_back(card("overlapping hexes", show_count(model.analysis.overlap->num_intersecting_cells),
+                            model.analysis.overlap->num_intersecting_cells > 0));
   else
     headline.push_back(card("overlapping hexes", "not checked"));
-  if (model.boundary_error) {
-    data hausdorff =
-        card("Hausdorff distance, % of bbox diagonal", show(100.0 * model.boundary_error->hausdorff_relative) + " %");
+  if (model.analysis.boundary_error) {
+    data hausdorff = card("Hausdorff distance, % of bbox diagonal",
+                          show(100.0 * model.analysis.boundary_error->hausdorff_relative) + " %");
     hausdorff.set("href", "boundary.html");
     headline.push_back(hausdorff);
   }
   headline.push_back(
       card("degenerate hexes", show_count(q.scaled_jacobian.num_degenerate), q.scaled_jacobian.num_degenerate > 0));
   headline.push_back(card("min vertex quality", show(q.vertex_quality.min), q.vertex_quality.min <= 0));
-  if (model.overlap && model.overlap->num_coincident_vertices > 0)
-    headline.push_back(card("coincident vertices", show_count(model.overlap->num_coincident_vertices), true));
+  if (model.analysis.overlap && model.analysis.overlap->num_coincident_vertices > 0)
+    headline.push_back(card("coincident vertices", show_count(model.analysis.overlap->num_coincident_vertices), true));
   page.set("headline", headline);
 
   data warnings{data::type::list};
-  for (const std::string& w : model.warnings) warnings.push_back(w);
+  for (const std::string& w : model.analysis.warnings) warnings.push_back(w);
   page.set("warnings", warnings);
-  page.set("has_warnings", !model.warnings.empty());
+  page.set("has_warnings", !model.analysis.warnings.empty());
+}
 
-  // Panels A–F with the links between them; views of unknown ids go to
-  // "Other views", the boundary views to boundary.html.
-  constexpr std::size_t kHtmlClusterRows = 20;
-  const std::size_t cluster_rows = model.glyphs ? std::min(model.glyphs->clusters.size(), kHtmlClusterRows) : 0;
-  const PanelIndex index = index_panels_of(model, cluster_rows);
+// Panels A–F with the links between them (every view of kViews has a
+// panel here or on boundary.html).
+void set_panels(data& page, const ReportModel& model, const PanelIndex& index) {
   data panels{data::type::list};
-  std::vector<std::string_view> known;
   for (const PanelSpec& spec : index_panels()) {
-    known.insert(known.end(), spec.view_ids.begin(), spec.view_ids.end());
-    data figures = figures_of(model, spec.view_ids, index);
+    data figures = figures_of(model, panel_view_ids(spec.letter), index);
     if (figures.is_empty_list()) continue;
     data panel;
     panel.set("anchor", spec.anchor);
@@ -363,21 +338,12 @@ std::string index_html(const ReportModel& model) {
     panel.set("figures", figures);
     panels.push_back(panel);
   }
-  std::vector<std::string_view> others;
-  for (const ViewEntry& v : model.views)
-    if (!is_boundary_view(v.id) && std::find(known.begin(), known.end(), v.id) == known.end()) others.push_back(v.id);
-  if (!others.empty()) {
-    data panel;
-    panel.set("anchor", "panel-other");
-    panel.set("nav", "other views");
-    panel.set("title", "Other views");
-    panel.set("intro", "Views without a panel of their own.");
-    panel.set("figures", figures_of(model, others, index));
-    panels.push_back(panel);
-  }
   page.set("panels", panels);
   page.set("has_views", !model.views.empty());
+}
 
+// The statistics of the Jacobian fields and of every Verdict metric.
+void set_statistics(data& page, const QualitySummary& q) {
   data stats{data::type::list};
   stats.push_back(stats_row("cell scaled Jacobian", "Verdict: min over centre and 8 corner frames", q.scaled_jacobian));
   stats.push_back(stats_row("corner scaled Jacobian", "all 8 corners of every hex", q.corner_scaled_jacobian));
@@ -405,9 +371,11 @@ std::string index_html(const ReportModel& model) {
   }
   page.set("metrics", metrics);
   page.set("has_metrics", !q.metrics.empty());
+}
 
+void set_gates(data& page, const GateSummary& gate_summary) {
   data gates{data::type::list};
-  for (const GateResult& g : model.gates.results) {
+  for (const GateResult& g : gate_summary.results) {
     data d;
     d.set("rule", g.rule);
     d.set("value", show(g.value));
@@ -415,9 +383,12 @@ std::string index_html(const ReportModel& model) {
     gates.push_back(d);
   }
   page.set("gates", gates);
-  page.set("has_gates", !model.gates.results.empty());
-  page.set("gates_passed", model.gates.passed);
+  page.set("has_gates", !gate_summary.results.empty());
+  page.set("gates_passed", gate_summary.passed);
+}
 
+// The worst vertices (linked to their cluster's views) and cells.
+void set_worst(data& page, const QualitySummary& q, const PanelIndex& index) {
   data worst_vertices{data::type::list};
   for (const WorstVertex& w : q.worst_vertices) {
     data d;
@@ -440,7 +411,9 @@ std::string index_html(const ReportModel& model) {
     worst_cells.push_back(d);
   }
   page.set("worst_cells", worst_cells);
+}
 
+void set_mesh_rows(data& page, const MeshSummary& m) {
   data mesh_rows{data::type::list};
   mesh_rows.push_back(kv("boundary faces", show_count(m.num_boundary_faces)));
   mesh_rows.push_back(kv("boundary vertices", show_count(m.num_boundary_vertices)));
@@ -452,12 +425,14 @@ std::string index_html(const ReportModel& model) {
   mesh_rows.push_back(kv("edge length min / mean / max",
                          show(m.edge_length_min) + " / " + show(m.edge_length_mean) + " / " + show(m.edge_length_max)));
   page.set("mesh_rows", mesh_rows);
+}
 
-  // Glyph clusters: the worst kHtmlClusterRows, with their palette colour;
-  // the first top_clusters are the ones later views show in detail.
-  page.set("has_glyphs", model.glyphs.has_value());
-  if (model.glyphs) {
-    const GlyphResult& g = *model.glyphs;
+// Glyph clusters: the worst cluster_rows, with their palette colour; the
+// first top_clusters are the ones later views show in detail.
+void set_glyphs(data& page, const ReportModel& model, const PanelIndex& index, std::size_t cluster_rows) {
+  page.set("has_glyphs", model.analysis.glyphs.has_value());
+  if (model.analysis.glyphs) {
+    const GlyphResult& g = *model.analysis.glyphs;
     const bool is_relative = g.options.rmax_unit == RmaxUnit::kMeanEdgeLength;
     page.set("glyph_summary",
              show_count(g.num_glyphs) + " vertices with quality below " + show(1.0 - g.options.threshold) +
@@ -488,12 +463,14 @@ std::string index_html(const ReportModel& model) {
     page.set("has_more_clusters", g.clusters.size() > rows);
     page.set("more_clusters", show_count(static_cast<long long>(g.clusters.size() - rows)));
   }
+}
 
-  // Overlap findings: the counts, then the first kHtmlOverlapRows pairs.
+// Overlap findings: the counts, then the first kHtmlOverlapRows pairs.
+void set_overlap(data& page, const ReportModel& model) {
   constexpr std::size_t kHtmlOverlapRows = 20;
-  page.set("has_overlap", model.overlap.has_value());
-  if (model.overlap) {
-    const OverlapReport& o = *model.overlap;
+  page.set("has_overlap", model.analysis.overlap.has_value());
+  if (model.analysis.overlap) {
+    const OverlapReport& o = *model.analysis.overlap;
     const std::string mode(overlap_mode_name(o.mode));
     page.set("overlap_summary",
              o.certified_clean
@@ -539,19 +516,40 @@ std::string index_html(const ReportModel& model) {
     page.set("has_more_overlap_pairs", o.intersecting_pairs.size() > shown);
     page.set("more_overlap_pairs", show_count(static_cast<long long>(o.intersecting_pairs.size() - shown)));
   }
+}
 
+}  // namespace
+
+std::string_view report_stylesheet() { return report_template("style.css"); }
+
+std::string index_html(const ReportModel& model) {
+  constexpr std::size_t kHtmlClusterRows = 20;
+  const std::size_t cluster_rows =
+      model.analysis.glyphs ? std::min(model.analysis.glyphs->clusters.size(), kHtmlClusterRows) : 0;
+  const PanelIndex index = index_panels_of(model, cluster_rows);
+  data page;
+  set_header(page, model);
+  set_headline(page, model);
+  set_panels(page, model, index);
+  set_statistics(page, model.analysis.quality);
+  set_gates(page, model.gates);
+  set_worst(page, model.analysis.quality, index);
+  set_mesh_rows(page, model.analysis.mesh_summary);
+  set_glyphs(page, model, index, cluster_rows);
+  set_overlap(page, model);
   mustache tmpl{std::string(report_template("index.html.mustache"))};
   if (!tmpl.is_valid()) throw Error("internal: index.html template: " + tmpl.error_message());
   return tmpl.render(page);
 }
 
 std::string boundary_html(const ReportModel& model) {
-  if (!model.boundary_error) throw Error("internal: boundary.html without a boundary error");
-  const BoundaryError& e = *model.boundary_error;
+  if (!model.analysis.boundary_error) throw Error("internal: boundary.html without a boundary error");
+  const BoundaryError& e = *model.analysis.boundary_error;
   data page;
-  page.set("mesh_name", std::filesystem::path(model.mesh_input.path).filename().string());
-  page.set("reference_name",
-           model.reference_input ? std::filesystem::path(model.reference_input->path).filename().string() : "");
+  page.set("mesh_name", std::filesystem::path(model.analysis.mesh_input.path).filename().string());
+  page.set("reference_name", model.analysis.reference_input
+                                 ? std::filesystem::path(model.analysis.reference_input->path).filename().string()
+                                 : "");
   page.set("version", model.tool_version);
 
   data headline{data::type::list};
@@ -568,7 +566,7 @@ std::string boundary_html(const ReportModel& model) {
   // No links between these views: an empty panel index.
   PanelIndex no_links;
   no_links.model = &model;
-  data figures = figures_of(model, kBoundaryViewIds, no_links);
+  data figures = figures_of(model, panel_view_ids(0), no_links);
   page.set("has_figures", !figures.is_empty_list());
   page.set("figures", figures);
 
@@ -597,8 +595,8 @@ std::string boundary_html(const ReportModel& model) {
   rows.push_back(kv("reference triangles read / repaired / zero area",
                     show_count(e.num_reference_triangles) + " / " + show_count(e.num_repaired_triangles) + " / " +
                         show_count(e.num_zero_area_triangles)));
-  if (model.uv_atlas) {
-    const UvAtlas& a = *model.uv_atlas;
+  if (model.analysis.uv_atlas) {
+    const UvAtlas& a = *model.analysis.uv_atlas;
     rows.push_back(kv("UV atlas charts (split / LSCM)", show_count(a.num_charts) + " (" + show_count(a.num_splits) +
                                                             " / " + show_count(a.num_lscm_charts) + ")"));
     rows.push_back(

@@ -15,7 +15,7 @@ namespace hq {
 // views of vertex V, #cluster-row-K: its table row), tables.
 std::string index_html(const ReportModel& model);
 // boundary.html, the Boundary Error Analysis page. Requires
-// model.boundary_error (throws hq::Error otherwise).
+// model.analysis.boundary_error (throws hq::Error otherwise).
 std::string boundary_html(const ReportModel& model);
 // The one stylesheet of the bundle (style.css).
 std::string_view report_stylesheet();

@@ -112,9 +112,9 @@ Json quality_json(const QualitySummary& q) {
 
 // CONTRACT.md boundary_error, then extensions (after uv_atlas).
 Json boundary_error_json(const ReportModel& model) {
-  const BoundaryError& e = *model.boundary_error;
+  const BoundaryError& e = *model.analysis.boundary_error;
   Json j;
-  j["reference"] = model.reference_input ? Json(model.reference_input->path) : Json(nullptr);
+  j["reference"] = model.analysis.reference_input ? Json(model.analysis.reference_input->path) : Json(nullptr);
   j["bbox_diagonal"] = number(e.reference_bbox_diagonal);
   j["normalization"] = "reference_bbox_diagonal";
   j["hausdorff"] = {{"mesh_to_reference", number(e.hausdorff_mesh_to_reference)},
@@ -127,14 +127,11 @@ Json boundary_error_json(const ReportModel& model) {
   j["fraction_outside"] = number(e.fraction_outside);
   j["fraction_inside"] = number(e.fraction_inside);
   j["sign_method"] = sign_method_name(e.sign_method);
-  if (model.uv_atlas) {
-    const UvAtlas& a = *model.uv_atlas;
-    j["uv_atlas"] = {{"num_charts", a.num_charts},
-                     {"num_flipped", a.num_flipped},
-                     {"num_overlaps", a.num_overlaps},
-                     {"num_splits", a.num_splits},
-                     {"num_lscm_charts", a.num_lscm_charts},
-                     {"packing_efficiency", number(a.packing_efficiency)}};
+  if (model.analysis.uv_atlas) {
+    const UvAtlas& a = *model.analysis.uv_atlas;
+    j["uv_atlas"] = {{"num_charts", a.num_charts},           {"num_flipped", a.num_flipped},
+                     {"num_overlaps", a.num_overlaps},       {"num_splits", a.num_splits},
+                     {"num_lscm_charts", a.num_lscm_charts}, {"packing_efficiency", number(a.packing_efficiency)}};
   } else {
     j["uv_atlas"] = nullptr;
   }
@@ -166,7 +163,8 @@ Json overlap_json(const OverlapReport& o) {
   j["num_coincident_vertices"] = o.num_coincident_vertices;
   Json groups = Json::array();
   for (std::size_t i = 0; i < listed(o.coincident_groups.size()); ++i)
-    groups.push_back({{"vertices", ids(o.coincident_groups[i].vertices)}, {"position", vec3(o.coincident_groups[i].position)}});
+    groups.push_back(
+        {{"vertices", ids(o.coincident_groups[i].vertices)}, {"position", vec3(o.coincident_groups[i].position)}});
   j["coincident_groups"] = std::move(groups);
   j["num_zero_length_edges"] = o.zero_length_edges.size();
   j["num_inverted_cells"] = o.inverted_cells.size();
@@ -177,7 +175,8 @@ Json overlap_json(const OverlapReport& o) {
   for (std::size_t i = 0; i < listed(o.intersecting_pairs.size()); ++i) {
     const IntersectingPair& p = o.intersecting_pairs[i];
     pairs.push_back(p.cells);
-    detail.push_back({{"cells", p.cells}, {"inside_vertex", p.inside_vertex == kNoIndex ? Json(nullptr) : Json(p.inside_vertex)}});
+    detail.push_back(
+        {{"cells", p.cells}, {"inside_vertex", p.inside_vertex == kNoIndex ? Json(nullptr) : Json(p.inside_vertex)}});
   }
   j["intersecting_pairs"] = std::move(pairs);
   Json markers = Json::array();
@@ -224,7 +223,7 @@ void numeric_leaves(const Json& from, const std::string& prefix, std::vector<std
 
 // compare: MESH2's headline, mesh and quality summaries (as for MESH), and
 // differences{key: MESH2 - MESH} for every number both have (keys as in gates).
-Json compare_json(const Json& report, const ReportModel::Compared& c) {
+Json compare_json(const Json& report, const Analysis::Compared& c) {
   Json j;
   j["headline"] = {{"num_vertices", c.mesh_summary.num_vertices},
                    {"num_hexes", c.mesh_summary.num_hexes},
@@ -246,47 +245,59 @@ Json compare_json(const Json& report, const ReportModel::Compared& c) {
   return j;
 }
 
+Json gates_json(const GateSummary& gates) {
+  Json results = Json::array();
+  for (const GateResult& g : gates.results)
+    results.push_back({{"rule", g.rule}, {"value", number(g.value)}, {"passed", g.passed}});
+  return {{"passed", gates.passed}, {"results", std::move(results)}};
+}
+
 }  // namespace
 
-std::string report_json(const ReportModel& model) {
+ReportDocument report_document(const ReportModel& model) {
   Json j;
   j["schema_version"] = kSchemaVersion;
   j["tool"] = {{"name", "hqview"}, {"version", model.tool_version}};
   // The papers' headline first (an extension of the contract): #V, #H, min
   // and mean cell scaled Jacobian, #inverted.
-  j["headline"] = {{"num_vertices", model.mesh_summary.num_vertices},
-                   {"num_hexes", model.mesh_summary.num_hexes},
-                   {"min_scaled_jacobian", number(model.quality.scaled_jacobian.min)},
-                   {"mean_scaled_jacobian", number(model.quality.scaled_jacobian.mean)},
-                   {"num_inverted", model.quality.num_inverted}};
-  j["input"] = {
-      {"mesh",
-       {{"path", model.mesh_input.path}, {"format", model.mesh_input.format}, {"sha256", model.mesh_input.sha256}}},
-      {"reference", model.reference_input ? Json{{"path", model.reference_input->path},
-                                                 {"format", model.reference_input->format},
-                                                 {"sha256", model.reference_input->sha256}}
-                                           : Json(nullptr)},
-      {"compare", model.compare ? Json{{"path", model.compare->input.path},
-                                       {"format", model.compare->input.format},
-                                       {"sha256", model.compare->input.sha256}}
-                                 : Json(nullptr)}};
-  j["mesh"] = mesh_json(model.mesh_summary);
-  j["quality"] = quality_json(model.quality);
+  j["headline"] = {{"num_vertices", model.analysis.mesh_summary.num_vertices},
+                   {"num_hexes", model.analysis.mesh_summary.num_hexes},
+                   {"min_scaled_jacobian", number(model.analysis.quality.scaled_jacobian.min)},
+                   {"mean_scaled_jacobian", number(model.analysis.quality.scaled_jacobian.mean)},
+                   {"num_inverted", model.analysis.quality.num_inverted}};
+  j["input"] = {{"mesh",
+                 {{"path", model.analysis.mesh_input.path},
+                  {"format", model.analysis.mesh_input.format},
+                  {"sha256", model.analysis.mesh_input.sha256}}},
+                {"reference", model.analysis.reference_input ? Json{{"path", model.analysis.reference_input->path},
+                                                                    {"format", model.analysis.reference_input->format},
+                                                                    {"sha256", model.analysis.reference_input->sha256}}
+                                                             : Json(nullptr)},
+                {"compare", model.analysis.compare ? Json{{"path", model.analysis.compare->input.path},
+                                                          {"format", model.analysis.compare->input.format},
+                                                          {"sha256", model.analysis.compare->input.sha256}}
+                                                   : Json(nullptr)}};
+  j["mesh"] = mesh_json(model.analysis.mesh_summary);
+  j["quality"] = quality_json(model.analysis.quality);
   // Stages of later releases; null until computed.
-  j["glyphs"] = model.glyphs ? glyphs_json(*model.glyphs) : Json(nullptr);
-  j["overlap"] = model.overlap ? overlap_json(*model.overlap) : Json(nullptr);
-  j["boundary_error"] = model.boundary_error ? boundary_error_json(model) : Json(nullptr);
-  j["compare"] = model.compare ? compare_json(j, *model.compare) : Json(nullptr);
+  j["glyphs"] = model.analysis.glyphs ? glyphs_json(*model.analysis.glyphs) : Json(nullptr);
+  j["overlap"] = model.analysis.overlap ? overlap_json(*model.analysis.overlap) : Json(nullptr);
+  j["boundary_error"] = model.analysis.boundary_error ? boundary_error_json(model) : Json(nullptr);
+  j["compare"] = model.analysis.compare ? compare_json(j, *model.analysis.compare) : Json(nullptr);
   Json views = Json::array();
   for (const ViewEntry& v : model.views) views.push_back({{"id", v.id}, {"title", v.title}, {"files", v.files}});
   j["views"] = std::move(views);
-  Json gate_results = Json::array();
-  for (const GateResult& g : model.gates.results)
-    gate_results.push_back({{"rule", g.rule}, {"value", number(g.value)}, {"passed", g.passed}});
-  j["gates"] = {{"passed", model.gates.passed}, {"results", std::move(gate_results)}};
-  j["warnings"] = model.warnings;
-  // Invalid UTF-8 in names from input is replaced, never thrown on.
-  return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
+  j["gates"] = gates_json(model.gates);
+  j["warnings"] = model.analysis.warnings;
+  return j;
 }
+
+void set_report_gates(ReportDocument& document, const GateSummary& gates) { document["gates"] = gates_json(gates); }
+
+std::string report_json_text(const ReportDocument& document) {
+  return document.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
+}
+
+std::string report_json(const ReportModel& model) { return report_json_text(report_document(model)); }
 
 }  // namespace hq

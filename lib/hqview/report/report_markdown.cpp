@@ -1,20 +1,19 @@
 #include "hqview/report/report_markdown.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 
+#include "hqview/core/number_format.h"
+#include "hqview/views/views.h"
+
 namespace hq {
 namespace {
 
-// Display text: 6 significant digits, like the HTML pages.
-std::string show(double v) {
-  if (!std::isfinite(v)) return "–";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", v);
-  return buffer;
-}
+// Display text, as on the HTML pages.
+std::string show(double v) { return display_number(v); }
 
 // A bundle path HQView made itself (views/<id>.png): letters, digits and
 // _ . / - only, never .. or absolute, so it is safe as a link destination.
@@ -25,11 +24,18 @@ bool is_plain_relative_path(const std::string& path) {
   return true;
 }
 
-// The views summary.md links, one file each (the first PNG), in this order.
-constexpr const char* kKeyViews[] = {
-    "main",          "sorted_quality",    "clusters", "local",          "corners",
-    "histogram",     "reference_overlay", "compare",  "boundary_error", "boundary_error_sorted",
-    "boundary_area", "uv_error"};
+// The views summary.md links, one file each (the first PNG), in kViews'
+// summary order.
+std::vector<std::string_view> summary_view_ids() {
+  std::vector<const ViewSpec*> specs;
+  for (const ViewSpec& spec : kViews)
+    if (spec.summary_order >= 0) specs.push_back(&spec);
+  std::sort(specs.begin(), specs.end(),
+            [](const ViewSpec* a, const ViewSpec* b) { return a->summary_order < b->summary_order; });
+  std::vector<std::string_view> ids;
+  for (const ViewSpec* spec : specs) ids.push_back(spec->id);
+  return ids;
+}
 
 }  // namespace
 
@@ -57,32 +63,33 @@ std::string markdown_escape(std::string_view text) {
 }
 
 std::string summary_markdown(const ReportModel& model) {
-  const MeshSummary& m = model.mesh_summary;
-  const QualitySummary& q = model.quality;
-  const std::string name = std::filesystem::path(model.mesh_input.path).filename().string();
+  const MeshSummary& m = model.analysis.mesh_summary;
+  const QualitySummary& q = model.analysis.quality;
+  const std::string name = std::filesystem::path(model.analysis.mesh_input.path).filename().string();
   std::string md;
   md += "## HQView: " + markdown_escape(name) + "\n\n";
 
   // The papers' headline row.
   std::string header = "| #V | #H | min scaled Jacobian | mean scaled Jacobian | #inverted | overlapping hexes |";
   std::string align = "|---:|---:|---:|---:|---:|---:|";
-  std::string row =
-      "| " + std::to_string(m.num_vertices) + " | " + std::to_string(m.num_hexes) + " | " +
-      show(q.scaled_jacobian.min) + " | " + show(q.scaled_jacobian.mean) + " | " +
-      std::to_string(q.scaled_jacobian.num_inverted) + " | " +
-      (model.overlap ? std::to_string(model.overlap->num_intersecting_cells) : std::string("not checked")) + " |";
-  if (model.boundary_error) {
+  std::string row = "| " + std::to_string(m.num_vertices) + " | " + std::to_string(m.num_hexes) + " | " +
+                    show(q.scaled_jacobian.min) + " | " + show(q.scaled_jacobian.mean) + " | " +
+                    std::to_string(q.scaled_jacobian.num_inverted) + " | " +
+                    (model.analysis.overlap ? std::to_string(model.analysis.overlap->num_intersecting_cells)
+                                            : std::string("not checked")) +
+                    " |";
+  if (model.analysis.boundary_error) {
     header += " Hausdorff (% of bbox diagonal) |";
     align += "---:|";
-    row += " " + show(100.0 * model.boundary_error->hausdorff_relative) + " % |";
+    row += " " + show(100.0 * model.analysis.boundary_error->hausdorff_relative) + " % |";
   }
   md += header + "\n" + align + "\n" + row + "\n\n";
   if (q.scaled_jacobian.num_degenerate > 0)
     md += "Degenerate hexes (Verdict's 1e30): " + std::to_string(q.scaled_jacobian.num_degenerate) + "\n\n";
-  if (model.glyphs)
-    md += "Glyphs: " + std::to_string(model.glyphs->num_glyphs) + " bad vertices in " +
-          std::to_string(model.glyphs->clusters.size()) +
-          (model.glyphs->clusters.size() == 1 ? " cluster" : " clusters") + "; min vertex quality " +
+  if (model.analysis.glyphs)
+    md += "Glyphs: " + std::to_string(model.analysis.glyphs->num_glyphs) + " bad vertices in " +
+          std::to_string(model.analysis.glyphs->clusters.size()) +
+          (model.analysis.glyphs->clusters.size() == 1 ? " cluster" : " clusters") + "; min vertex quality " +
           show(q.vertex_quality.min) + ".\n\n";
 
   if (!model.gates.results.empty()) {
@@ -93,14 +100,14 @@ std::string summary_markdown(const ReportModel& model) {
     md += "\n";
   }
 
-  if (!model.warnings.empty()) {
+  if (!model.analysis.warnings.empty()) {
     md += "### Warnings\n\n";
-    for (const std::string& w : model.warnings) md += "- " + markdown_escape(w) + "\n";
+    for (const std::string& w : model.analysis.warnings) md += "- " + markdown_escape(w) + "\n";
     md += "\n";
   }
 
   std::string views;
-  for (const char* id : kKeyViews)
+  for (const std::string_view id : summary_view_ids())
     for (const ViewEntry& v : model.views) {
       if (v.id != id) continue;
       for (const std::string& f : v.files)
@@ -112,14 +119,15 @@ std::string summary_markdown(const ReportModel& model) {
   if (!views.empty()) md += "### Views\n\n" + views + "\n";
 
   md += "Pages: [index.html](index.html)";
-  if (model.boundary_error) md += " · [boundary.html](boundary.html)";
+  if (model.analysis.boundary_error) md += " · [boundary.html](boundary.html)";
   md += " · data: [report.json](report.json) · [cells.csv](data/cells.csv) · [vertices.csv](data/vertices.csv)";
   if (model.has_annotated_vtu) md += " · [annotated.vtu](data/annotated.vtu)";
   md += "\n\n";
-  md += "HQView " + markdown_escape(model.tool_version) + " · " + markdown_escape(model.mesh_input.format) +
-        " · sha256 " + markdown_escape(model.mesh_input.sha256.substr(0, 12));
-  if (model.reference_input)
-    md += " · reference " + markdown_escape(std::filesystem::path(model.reference_input->path).filename().string());
+  md += "HQView " + markdown_escape(model.tool_version) + " · " + markdown_escape(model.analysis.mesh_input.format) +
+        " · sha256 " + markdown_escape(model.analysis.mesh_input.sha256.substr(0, 12));
+  if (model.analysis.reference_input)
+    md += " · reference " +
+          markdown_escape(std::filesystem::path(model.analysis.reference_input->path).filename().string());
   md += "\n";
   return md;
 }

@@ -11,14 +11,13 @@
 #include <utility>
 
 #include "hqview/core/error.h"
+#include "hqview/io/vtk_cells.h"
 #include "hqview/quality/hex_metrics.h"
 #include "hqview/report/report_csv.h"
 
 namespace hq {
 namespace {
 
-// VTK_HEXAHEDRON's cell type id (vtkCellType.h).
-constexpr std::uint8_t kVtkHexahedron = 12;
 // Values converted per chunk: 64 Ki values, at most 512 KiB of buffer.
 constexpr std::size_t kChunkValues = std::size_t{1} << 16;
 
@@ -78,51 +77,53 @@ void require_size(const Vector& v, std::size_t expected, const char* what) {
 }
 
 void check_sizes(const ReportModel& model) {
-  const std::size_t nv = model.mesh.points.size(), nc = model.mesh.hexes.size();
-  const QualityField& q = model.field;
+  const std::size_t nv = model.analysis.mesh.points.size(), nc = model.analysis.mesh.hexes.size();
+  const QualityField& q = model.analysis.field;
   require_size(q.vertex_quality, nv, "vertex_quality");
   require_size(q.cell_scaled_jacobian, nc, "cell_scaled_jacobian");
   require_size(q.corner_scaled_jacobian, 8 * nc, "corner_scaled_jacobian");
   require_size(q.corner_degenerate_mask, nc, "corner_degenerate_mask");
-  require_size(model.topology.is_boundary_vertex, nv, "is_boundary_vertex");
-  for (const std::vector<double>& values : model.metrics.values)
+  require_size(model.analysis.topology.is_boundary_vertex, nv, "is_boundary_vertex");
+  for (const std::vector<double>& values : model.analysis.metrics.values)
     if (!values.empty()) require_size(values, nc, "a metric");
-  if (model.glyphs) {
-    require_size(model.glyphs->vertex_radius, nv, "glyph vertex_radius");
-    require_size(model.glyphs->vertex_cluster, nv, "glyph vertex_cluster");
+  if (model.analysis.glyphs) {
+    require_size(model.analysis.glyphs->vertex_radius, nv, "glyph vertex_radius");
+    require_size(model.analysis.glyphs->vertex_cluster, nv, "glyph vertex_cluster");
   }
-  if (model.overlap) {
-    require_size(model.overlap->vertex_coincident_group, nv, "vertex_coincident_group");
-    require_size(model.overlap->cell_intersecting, nc, "cell_intersecting");
+  if (model.analysis.overlap) {
+    require_size(model.analysis.overlap->vertex_coincident_group, nv, "vertex_coincident_group");
+    require_size(model.analysis.overlap->cell_intersecting, nc, "cell_intersecting");
   }
-  if (model.boundary_error) require_size(model.boundary_error->vertex_error, nv, "boundary vertex_error");
+  if (model.analysis.boundary_error)
+    require_size(model.analysis.boundary_error->vertex_error, nv, "boundary vertex_error");
 }
 
 // Every array, in file order (PointData, CellData, Points, Cells, the order
 // of VTK's own writer), offsets filled in.
 std::vector<VtuArray> build_arrays(const ReportModel& model) {
   check_sizes(model);
-  const std::size_t num_points = model.mesh.points.size();
-  const std::size_t num_cells = model.mesh.hexes.size();
-  const QualityField& q = model.field;
+  const std::size_t num_points = model.analysis.mesh.points.size();
+  const std::size_t num_cells = model.analysis.mesh.hexes.size();
+  const QualityField& q = model.analysis.field;
   std::vector<VtuArray> arrays;
 
   // PointData: the columns of vertices.csv (x, y, z are the points).
   arrays.push_back(copy_array("PointData", "quality", q.vertex_quality));
-  if (model.glyphs) {
-    const GlyphResult& g = *model.glyphs;
+  if (model.analysis.glyphs) {
+    const GlyphResult& g = *model.analysis.glyphs;
     arrays.push_back(make_array<double>("PointData", "glyph_radius", 1, num_points, [&g, &q](std::size_t v) {
       return std::isnan(q.vertex_quality[v]) ? kNaN : g.vertex_radius[v];
     }));
     arrays.push_back(copy_array<std::int32_t>("PointData", "cluster", g.vertex_cluster));
   }
-  if (model.overlap)
-    arrays.push_back(copy_array<std::int32_t>("PointData", "coincident_group", model.overlap->vertex_coincident_group));
+  if (model.analysis.overlap)
+    arrays.push_back(
+        copy_array<std::int32_t>("PointData", "coincident_group", model.analysis.overlap->vertex_coincident_group));
   arrays.push_back(make_array<std::uint8_t>("PointData", "boundary", 1, num_points, [&model](std::size_t v) {
-    return model.topology.is_boundary_vertex[v] != 0 ? 1 : 0;
+    return model.analysis.topology.is_boundary_vertex[v] != 0 ? 1 : 0;
   }));
-  if (model.boundary_error)
-    arrays.push_back(copy_array("PointData", "boundary_error", model.boundary_error->vertex_error));
+  if (model.analysis.boundary_error)
+    arrays.push_back(copy_array("PointData", "boundary_error", model.analysis.boundary_error->vertex_error));
 
   // CellData: the columns of cells.csv, plus min_corner_sj.
   arrays.push_back(copy_array("CellData", "scaled_jacobian", q.cell_scaled_jacobian));
@@ -136,7 +137,7 @@ std::vector<VtuArray> build_arrays(const ReportModel& model) {
   }));
   for (int m = 0; m < kNumHexMetrics; ++m) {
     const auto metric = static_cast<HexMetric>(m);
-    const std::vector<double>& values = model.metrics.of(metric);
+    const std::vector<double>& values = model.analysis.metrics.of(metric);
     if (metric == HexMetric::scaled_jacobian || values.empty()) continue;
     arrays.push_back(copy_array("CellData", std::string(hex_metric_name(metric)), values));
   }
@@ -144,25 +145,25 @@ std::vector<VtuArray> build_arrays(const ReportModel& model) {
                                             [&q](std::size_t h) { return cell_is_inverted(q, h) ? 1 : 0; }));
   arrays.push_back(make_array<std::uint8_t>("CellData", "degenerate", 1, num_cells,
                                             [&q](std::size_t h) { return cell_is_degenerate(q, h) ? 1 : 0; }));
-  if (model.overlap) {
-    const std::vector<char>& intersecting = model.overlap->cell_intersecting;
+  if (model.analysis.overlap) {
+    const std::vector<char>& intersecting = model.analysis.overlap->cell_intersecting;
     arrays.push_back(make_array<std::uint8_t>("CellData", "intersecting", 1, num_cells,
                                               [&intersecting](std::size_t h) { return intersecting[h] != 0 ? 1 : 0; }));
   }
 
   // Points and Cells.
-  const std::vector<Vec3>& points = model.mesh.points;
+  const std::vector<Vec3>& points = model.analysis.mesh.points;
   arrays.push_back(make_array<double>("Points", "Points", 3, 3 * num_points, [&points](std::size_t i) {
     const Vec3& p = points[i / 3];
     return i % 3 == 0 ? p.x : i % 3 == 1 ? p.y : p.z;
   }));
-  const std::vector<Hex>& hexes = model.mesh.hexes;
+  const std::vector<Hex>& hexes = model.analysis.mesh.hexes;
   arrays.push_back(make_array<std::int64_t>("Cells", "connectivity", 1, 8 * num_cells,
                                             [&hexes](std::size_t i) { return hexes[i / 8][i % 8]; }));
   arrays.push_back(make_array<std::int64_t>("Cells", "offsets", 1, num_cells,
                                             [](std::size_t h) { return static_cast<std::int64_t>(8 * (h + 1)); }));
-  arrays.push_back(
-      make_array<std::uint8_t>("Cells", "types", 1, num_cells, [](std::size_t) { return kVtkHexahedron; }));
+  arrays.push_back(make_array<std::uint8_t>("Cells", "types", 1, num_cells,
+                                            [](std::size_t) { return static_cast<std::uint8_t>(vtk::kHexahedron); }));
 
   std::uint64_t offset = 0;
   for (VtuArray& a : arrays) {
@@ -194,8 +195,8 @@ std::string xml_header(const ReportModel& model, const std::vector<VtuArray>& ar
       "<?xml version=\"1.0\"?>\n"
       "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
       "  <UnstructuredGrid>\n";
-  xml += "    <Piece NumberOfPoints=\"" + std::to_string(model.mesh.points.size()) + "\" NumberOfCells=\"" +
-         std::to_string(model.mesh.hexes.size()) + "\">\n";
+  xml += "    <Piece NumberOfPoints=\"" + std::to_string(model.analysis.mesh.points.size()) + "\" NumberOfCells=\"" +
+         std::to_string(model.analysis.mesh.hexes.size()) + "\">\n";
   // ParaView colours by the active scalars when a file is opened.
   const std::pair<const char*, const char*> sections[] = {{"PointData", " Scalars=\"quality\""},
                                                           {"CellData", " Scalars=\"scaled_jacobian\""},

@@ -1,12 +1,13 @@
-#include "hqview/render/views_boundary.h"
+#include "hqview/views/boundary_views.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
 
-#include "hqview/render/colormap.h"
-#include "hqview/render/views_overview.h"
+#include "hqview/core/number_format.h"
+#include "hqview/image/colormap.h"
+#include "hqview/views/overview_views.h"
 
 namespace hq {
 namespace {
@@ -17,11 +18,7 @@ constexpr double kMinScale = 1e-4;
 
 Rgba8 error_rgba(double e, double scale) { return to_rgba8(diverging_color(e / scale)); }
 
-std::string percent(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3g", v);
-  return buffer;
-}
+std::string percent(double v) { return display_number(v, 3); }
 
 }  // namespace
 

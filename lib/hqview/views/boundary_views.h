@@ -8,10 +8,10 @@
 #include <vector>
 
 #include "hqview/boundary/boundary_error.h"
+#include "hqview/image/image.h"
 #include "hqview/mesh/hex_mesh.h"
 #include "hqview/mesh/topology.h"
 #include "hqview/render/annotate.h"
-#include "hqview/render/image.h"
 #include "hqview/render/renderer.h"
 #include "hqview/render/scene.h"
 #include "hqview/uv/uv_atlas.h"

@@ -1,15 +1,15 @@
-#include "hqview/render/views_detail.h"
+#include "hqview/views/detail_views.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 
+#include "hqview/core/box3.h"
 #include "hqview/core/error.h"
-#include "hqview/quality/corner_jacobian.h"
+#include "hqview/image/colormap.h"
 #include "hqview/render/annotate.h"
-#include "hqview/render/colormap.h"
-#include "hqview/render/views_main.h"
+#include "hqview/views/main_views.h"
 
 namespace hq {
 namespace {
@@ -27,12 +27,8 @@ constexpr Rgba8 kRegionFaceColor{190, 196, 210, 60};
 
 Vec3 centre_of(const std::vector<Vec3>& points) {
   if (points.empty()) return {};
-  Vec3 lo = points[0], hi = points[0];
-  for (const Vec3& p : points) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
-  return 0.5 * (lo + hi);
+  const Box3 box = bounding_box(points);
+  return 0.5 * (box.lo + box.hi);
 }
 
 std::vector<Vec3> cell_points(const HexMesh& mesh, const std::vector<Index>& cells) {
@@ -125,8 +121,9 @@ ClusterRegion cluster_region(const Topology& topology, const GlyphResult& glyphs
   ClusterRegion region;
   if (cluster < 0 || static_cast<std::size_t>(cluster) + 1 >= glyphs.cluster_offsets.size()) return region;
   auto hexes_of = [&](Index v) {
-    return std::span<const Index>(topology.vertex_hexes.data() + topology.vertex_hex_offsets[static_cast<std::size_t>(v)],
-                                  topology.vertex_hexes.data() + topology.vertex_hex_offsets[static_cast<std::size_t>(v) + 1]);
+    return std::span<const Index>(
+        topology.vertex_hexes.data() + topology.vertex_hex_offsets[static_cast<std::size_t>(v)],
+        topology.vertex_hexes.data() + topology.vertex_hex_offsets[static_cast<std::size_t>(v) + 1]);
   };
   for (Index i = glyphs.cluster_offsets[static_cast<std::size_t>(cluster)];
        i < glyphs.cluster_offsets[static_cast<std::size_t>(cluster) + 1]; ++i)
@@ -207,19 +204,21 @@ Image render_cluster_view(const HexMesh& mesh, const Topology& topology, const s
   return compose(options, f, renderer.render(scene, camera, f.layout.view.width, f.layout.view.height));
 }
 
-std::vector<VertexCorner> vertex_corners(const HexMesh& mesh, const Topology& topology, Index v) {
+std::vector<VertexCorner> vertex_corners(const HexMesh& mesh, const Topology& topology,
+                                         std::span<const double> corner_values, Index v) {
   std::vector<VertexCorner> corners;
   if (v < 0 || static_cast<std::size_t>(v) + 1 >= topology.vertex_hex_offsets.size()) return corners;
   for (Index k = topology.vertex_hex_offsets[static_cast<std::size_t>(v)];
        k < topology.vertex_hex_offsets[static_cast<std::size_t>(v) + 1]; ++k) {
     const Index h = topology.vertex_hexes[static_cast<std::size_t>(k)];
     const Hex& hex = mesh.hexes[static_cast<std::size_t>(h)];
-    const CornerJacobians j = corner_scaled_jacobians(hex_corners(mesh, h));
     for (int i = 0; i < 8; ++i)
-      if (hex[i] == v) corners.push_back({h, i, j.value[static_cast<std::size_t>(i)]});
+      if (hex[i] == v)
+        corners.push_back({h, i, corner_values[8 * static_cast<std::size_t>(h) + static_cast<std::size_t>(i)]});
   }
-  std::sort(corners.begin(), corners.end(),
-            [](const VertexCorner& a, const VertexCorner& b) { return a.hex != b.hex ? a.hex < b.hex : a.local < b.local; });
+  std::sort(corners.begin(), corners.end(), [](const VertexCorner& a, const VertexCorner& b) {
+    return a.hex != b.hex ? a.hex < b.hex : a.local < b.local;
+  });
   return corners;
 }
 
@@ -244,8 +243,8 @@ double mean_edge_at(const HexMesh& mesh, const std::vector<VertexCorner>& corner
 
 }  // namespace
 
-Scene build_local_scene(const HexMesh& mesh, const Topology& topology, Index v) {
-  const std::vector<VertexCorner> corners = vertex_corners(mesh, topology, v);
+Scene build_local_scene(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v) {
+  const std::vector<VertexCorner> corners = vertex_corners(mesh, topology, corner_values, v);
   std::vector<Index> ring;
   for (const VertexCorner& c : corners) ring.push_back(c.hex);
   Scene scene;
@@ -271,11 +270,11 @@ Scene build_local_scene(const HexMesh& mesh, const Topology& topology, Index v) 
   return scene;
 }
 
-Image render_local_view(const HexMesh& mesh, const Topology& topology, Index v, const DetailViewOptions& options,
-                        Renderer& renderer) {
+Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v,
+                        const DetailViewOptions& options, Renderer& renderer) {
   const Figure f = detail_figure(options);
-  const Scene scene = build_local_scene(mesh, topology, v);
-  const std::vector<VertexCorner> corners = vertex_corners(mesh, topology, v);
+  const Scene scene = build_local_scene(mesh, topology, corner_values, v);
+  const std::vector<VertexCorner> corners = vertex_corners(mesh, topology, corner_values, v);
   std::vector<Index> ring;
   for (const VertexCorner& c : corners) ring.push_back(c.hex);
   std::vector<Vec3> points = cell_points(mesh, ring);

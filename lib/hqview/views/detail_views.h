@@ -2,14 +2,15 @@
 // Detail views: C, the sub-region of one glyph cluster, and D, the one-ring
 // of hexes around one vertex with the scaled Jacobian of each corner there.
 
+#include <span>
 #include <string>
 #include <vector>
 
 #include "hqview/glyph/glyphs.h"
+#include "hqview/image/image.h"
 #include "hqview/mesh/hex_mesh.h"
 #include "hqview/mesh/topology.h"
 #include "hqview/render/camera.h"
-#include "hqview/render/image.h"
 #include "hqview/render/renderer.h"
 #include "hqview/render/scene.h"
 
@@ -47,13 +48,15 @@ Image render_cluster_view(const HexMesh& mesh, const Topology& topology, const s
                           Renderer& renderer);
 
 // The corners at vertex v: one per incident hex (ascending hex id), with its
-// corner scaled Jacobian.
+// corner scaled Jacobian read from corner_values (QualityField's
+// corner_scaled_jacobian: 8 per hex).
 struct VertexCorner {
   Index hex = 0;
   int local = 0;     // corner index 0..7 of v in the hex
   double value = 0;  // corner scaled Jacobian
 };
-std::vector<VertexCorner> vertex_corners(const HexMesh& mesh, const Topology& topology, Index v);
+std::vector<VertexCorner> vertex_corners(const HexMesh& mesh, const Topology& topology,
+                                         std::span<const double> corner_values, Index v);
 
 // View D's scene:
 //   lines[0]       edges of the one-ring hexes, dark grey;
@@ -61,11 +64,11 @@ std::vector<VertexCorner> vertex_corners(const HexMesh& mesh, const Topology& to
 //                  towards its hex's centre, coloured by quality_color(value);
 //   spheres[1]     v itself, small, dark;
 //   translucent[0] the one-ring hexes' faces, pale.
-Scene build_local_scene(const HexMesh& mesh, const Topology& topology, Index v);
+Scene build_local_scene(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v);
 
 // The figure of view D: the one ring framed, each corner marker labelled
 // with its value and its hex id (as in chart E), quality colour bar.
-Image render_local_view(const HexMesh& mesh, const Topology& topology, Index v, const DetailViewOptions& options,
-                        Renderer& renderer);
+Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v,
+                        const DetailViewOptions& options, Renderer& renderer);
 
 }  // namespace hq

@@ -1,4 +1,4 @@
-#include "hqview/render/views_main.h"
+#include "hqview/views/main_views.h"
 
 #include <algorithm>
 #include <array>
@@ -9,10 +9,11 @@
 #include <numeric>
 
 #include "hqview/core/error.h"
+#include "hqview/core/number_format.h"
+#include "hqview/image/colormap.h"
 #include "hqview/render/annotate.h"
-#include "hqview/render/colormap.h"
 #include "hqview/render/scene_shapes.h"
-#include "hqview/render/views_overview.h"
+#include "hqview/views/overview_views.h"
 
 namespace hq {
 namespace {
@@ -21,26 +22,9 @@ Vec3 forward_of(const Camera& camera) { return normalized(camera.target - camera
 
 // Model units per output pixel at distance depth in front of the camera.
 double units_per_pixel(const Camera& camera, double depth, int view_height) {
-  const double height = camera.is_perspective
-                            ? 2.0 * depth * std::tan(0.5 * camera.fov_y_degrees * M_PI / 180.0)
-                            : camera.ortho_height;
+  const double height =
+      camera.is_perspective ? 2.0 * depth * std::tan(0.5 * camera.fov_y_degrees * M_PI / 180.0) : camera.ortho_height;
   return height / std::max(1, view_height);
-}
-
-// Unique boundary edges (a < b), ascending.
-std::vector<Edge> boundary_edges(const Topology& topology) {
-  std::vector<Edge> edges;
-  edges.reserve(4 * topology.boundary_faces.size());
-  for (Index face : topology.boundary_faces) {
-    const Quad& quad = topology.faces[static_cast<std::size_t>(face)];
-    for (int i = 0; i < 4; ++i) {
-      const Index a = quad[i], b = quad[(i + 1) % 4];
-      edges.push_back({std::min(a, b), std::max(a, b)});
-    }
-  }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  return edges;
 }
 
 // A line set of the given edges, vertices renumbered compactly; colour per edge.
@@ -63,8 +47,8 @@ LineSet edge_lines(const HexMesh& mesh, const Vec3& origin, const std::vector<Ed
 // Median on-screen length of a line set's segments, in pixels.
 double median_edge_pixels(const LineSet& lines, const Vec3& origin, const Camera& camera, int width, int height) {
   if (lines.indices.empty()) return 0.0;
-  const Mat4 to_ndc = projection_matrix(camera, static_cast<double>(width) / height) * view_matrix(camera) *
-                      translation_matrix(origin);
+  const Mat4 to_ndc =
+      projection_matrix(camera, static_cast<double>(width) / height) * view_matrix(camera) * translation_matrix(origin);
   std::vector<double> lengths;
   // A sample is enough for a median: every 7th segment of large sets.
   const std::size_t step = lines.indices.size() > 20000 ? 14 : 2;
@@ -77,12 +61,6 @@ double median_edge_pixels(const LineSet& lines, const Vec3& origin, const Camera
   const auto middle = lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2);
   std::nth_element(lengths.begin(), middle, lengths.end());
   return *middle;
-}
-
-std::string format_number(double v, const char* format = "%.3g") {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, format, v);
-  return buffer;
 }
 
 }  // namespace
@@ -237,9 +215,9 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   if (glyphs.vertex_cluster.size() != mesh.points.size())
     throw Error("glyph result does not match the mesh (" + std::to_string(glyphs.vertex_cluster.size()) + " vs " +
                 std::to_string(mesh.points.size()) + " vertices)");
-  const BoundingBox box = boundary_bounding_box(mesh, topology);
+  const Box3 box = boundary_bounding_box(mesh, topology);
   Scene scene;
-  scene.origin = 0.5 * (box.min + box.max);
+  scene.origin = 0.5 * (box.lo + box.hi);
   scene.background = options.background;
   auto local = [&](const Vec3& p) { return to_vec3f(p - scene.origin); };
 
@@ -282,8 +260,8 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
     std::sort(cell_edges.begin(), cell_edges.end());
     cell_edges.erase(std::unique(cell_edges.begin(), cell_edges.end()), cell_edges.end());
   }
-  scene.lines.push_back(edge_lines(mesh, scene.origin, cell_edges,
-                                   std::vector<Rgba8>(cell_edges.size(), kIntersectionArrowColor), 1.5f));
+  scene.lines.push_back(
+      edge_lines(mesh, scene.origin, cell_edges, std::vector<Rgba8>(cell_edges.size(), kIntersectionArrowColor), 1.5f));
 
   // 4. Aggregated glyphs.
   SphereSet spheres;
@@ -343,33 +321,12 @@ double main_view_aspect(const MainViewOptions& options) {
   return static_cast<double>(std::max(1, layout.view.width)) / std::max(1, layout.view.height);
 }
 
-Image render_main_view(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
-                       const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& options,
-                       Renderer& renderer) {
-  if (options.width <= 0 || options.height <= 0)
-    throw RenderError("main view size must be positive, got " + std::to_string(options.width) + "x" +
-                      std::to_string(options.height));
-  AnnotationStyle style = annotation_style_for(options.height);
-  style.background = options.background;
-  const FigureLayout layout = main_layout(options, style);
+namespace {
+
+// Rank labels next to the worst clusters' glyphs.
+void draw_rank_labels(Image& figure, const GlyphResult& glyphs, const Camera& camera, const FigureLayout& layout,
+                      const AnnotationStyle& style) {
   const double aspect = static_cast<double>(layout.view.width) / static_cast<double>(layout.view.height);
-  const std::vector<Vec3> points = main_view_points(mesh, topology, glyphs);
-  const Camera camera = fit_camera_to_points(points, view_direction, aspect,
-                                             {.fov_y_degrees = options.fov_y_degrees, .is_perspective = false});
-
-  MainViewOptions scaled = options;
-  scaled.pixel_scale = style.scale;
-  Scene scene = build_main_scene(mesh, topology, glyphs, overlap, camera, layout.view.height, scaled);
-  // The wireframe fades when dense on screen, so glyphs and clusters stay readable.
-  const double pixels = median_edge_pixels(scene.lines[0], scene.origin, camera, layout.view.width, layout.view.height);
-  const double opacity = std::clamp(pixels / 10.0, 0.2, 0.85);
-  for (Rgba8& c : scene.lines[0].colors) c.a = static_cast<std::uint8_t>(std::lround(255.0 * opacity));
-
-  Image figure = make_image(options.width, options.height, options.background);
-  paste(figure, renderer.render(scene, camera, layout.view.width, layout.view.height), layout.view.x, layout.view.y);
-  draw_title(figure, layout.title, options.title, style);
-
-  // Rank labels next to the worst clusters' glyphs.
   const int label_size = std::max(11, static_cast<int>(std::lround(20 * style.scale)));
   const std::size_t num_labels = std::min<std::size_t>(glyphs.clusters.size(), 10);
   std::vector<PixelRect> placed;  // labels never overlap: a later (better-ranked first) one is skipped
@@ -379,7 +336,8 @@ Image render_main_view(const HexMesh& mesh, const Topology& topology, const Glyp
     if (!std::isfinite(ndc.x) || std::abs(ndc.x) > 1.0 || std::abs(ndc.y) > 1.0) continue;
     const double depth = dot(g.position - camera.eye, forward_of(camera));
     const double r_px = g.radius / units_per_pixel(camera, depth, layout.view.height);
-    const int x = layout.view.x + static_cast<int>(std::lround(0.5 * (ndc.x + 1.0) * layout.view.width + 0.75 * r_px + 3));
+    const int x =
+        layout.view.x + static_cast<int>(std::lround(0.5 * (ndc.x + 1.0) * layout.view.width + 0.75 * r_px + 3));
     const int y = layout.view.y + static_cast<int>(std::lround(0.5 * (1.0 - ndc.y) * layout.view.height - 0.75 * r_px));
     const std::string label = "#" + std::to_string(g.id);
     const PixelRect extent = text_extent(label, label_size, style);
@@ -391,35 +349,38 @@ Image render_main_view(const HexMesh& mesh, const Topology& topology, const Glyp
     placed.push_back(box);
     draw_text(figure, x, y, label, label_size, style);
   }
+}
 
-  // Counts on merged (or over-full) overlap markers, right of the marker
-  // below the first arrow (which starts at 45 degrees, up and right).
-  if (overlap) {
-    const int count_size = std::max(10, static_cast<int>(std::lround(18 * style.scale)));
-    AnnotationStyle count_style = style;
-    for (const ScreenMarker& marker : merge_markers_on_screen(overlap->markers, camera, layout.view.height,
-                                                              scaled.marker_merge_pixels * scaled.pixel_scale)) {
-      if (marker.members < 2 && marker.count() <= options.max_arrows_per_marker) continue;
-      count_style.text_color = marker.intersections > 0 ? kIntersectionArrowColor : kCoincidentArrowColor;
-      const Vec3 ndc = project_to_ndc(camera, aspect, marker.position);
-      if (!std::isfinite(ndc.x) || std::abs(ndc.x) > 1.0 || std::abs(ndc.y) > 1.0) continue;
-      const int x = layout.view.x + static_cast<int>(std::lround(0.5 * (ndc.x + 1.0) * layout.view.width + 6));
-      const int y =
-          layout.view.y + static_cast<int>(std::lround(0.5 * (1.0 - ndc.y) * layout.view.height)) + count_size;
-      // On a pale box: the label sits among arrow shafts and cells.
-      const std::string label = "x" + std::to_string(marker.count());
-      const PixelRect extent = text_extent(label, count_size, count_style);
-      Rgba8 halo = options.background;
-      halo.a = 255;
-      fill_rect(figure, {x - 2, y - count_size - 1, extent.width + 4, count_size + 5}, halo);
-      draw_text(figure, x, y, label, count_size, count_style);
-    }
+// Counts on merged (or over-full) overlap markers, right of the marker
+// below the first arrow (which starts at 45 degrees, up and right).
+void draw_marker_counts(Image& figure, const OverlapReport& overlap, const Camera& camera, const FigureLayout& layout,
+                        const AnnotationStyle& style, const MainViewOptions& scaled) {
+  const double aspect = static_cast<double>(layout.view.width) / static_cast<double>(layout.view.height);
+  const int count_size = std::max(10, static_cast<int>(std::lround(18 * style.scale)));
+  AnnotationStyle count_style = style;
+  for (const ScreenMarker& marker : merge_markers_on_screen(overlap.markers, camera, layout.view.height,
+                                                            scaled.marker_merge_pixels * scaled.pixel_scale)) {
+    if (marker.members < 2 && marker.count() <= scaled.max_arrows_per_marker) continue;
+    count_style.text_color = marker.intersections > 0 ? kIntersectionArrowColor : kCoincidentArrowColor;
+    const Vec3 ndc = project_to_ndc(camera, aspect, marker.position);
+    if (!std::isfinite(ndc.x) || std::abs(ndc.x) > 1.0 || std::abs(ndc.y) > 1.0) continue;
+    const int x = layout.view.x + static_cast<int>(std::lround(0.5 * (ndc.x + 1.0) * layout.view.width + 6));
+    const int y = layout.view.y + static_cast<int>(std::lround(0.5 * (1.0 - ndc.y) * layout.view.height)) + count_size;
+    // On a pale box: the label sits among arrow shafts and cells.
+    const std::string label = "x" + std::to_string(marker.count());
+    const PixelRect extent = text_extent(label, count_size, count_style);
+    Rgba8 halo = scaled.background;
+    halo.a = 255;
+    fill_rect(figure, {x - 2, y - count_size - 1, extent.width + 4, count_size + 5}, halo);
+    draw_text(figure, x, y, label, count_size, count_style);
   }
+}
 
-  // Legend: what each colour means.
-  // Line pitch, swatch and text sizes shrink together when the legend's
-  // lines would not fit the panel's height (small figures); lines too long
-  // for its width end with "...".
+// Legend: what each colour means. Line pitch, swatch and text sizes shrink
+// together when the legend's lines would not fit the panel's height (small
+// figures); lines too long for its width end with "...".
+void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapReport* overlap,
+                      const FigureLayout& layout, const AnnotationStyle& style, const MainViewOptions& options) {
   const PixelRect& area = layout.legend;
   const std::size_t listed = std::min<std::size_t>(glyphs.clusters.size(), 10);
   const double lines = 1.0 + static_cast<double>(listed) + (glyphs.clusters.size() != listed ? 1.0 : 0.0) +
@@ -447,7 +408,7 @@ Image render_main_view(const HexMesh& mesh, const Topology& topology, const Glyp
     const AggregatedGlyph& g = glyphs.clusters[i];
     entry(to_rgba8(qualitative_color(g.id)), "#" + std::to_string(g.id) + "  " + std::to_string(g.size) +
                                                  (g.size == 1 ? " vertex" : " vertices") + ", min " +
-                                                 format_number(g.min_quality));
+                                                 display_number(g.min_quality, 3));
   }
   if (glyphs.clusters.size() > listed)
     entry(options.background, "... " + std::to_string(glyphs.clusters.size() - listed) + " more clusters");
@@ -457,12 +418,46 @@ Image render_main_view(const HexMesh& mesh, const Topology& topology, const Glyp
   y += 3 * pitch / 2;
   const std::size_t coincident = overlap ? overlap->coincident_groups.size() : 0;
   const std::size_t intersecting = overlap ? static_cast<std::size_t>(overlap->num_intersecting_cells) : 0;
-  const std::size_t intersections = overlap ? overlap->markers.size() - std::min(overlap->markers.size(), coincident) : 0;
+  const std::size_t intersections =
+      overlap ? overlap->markers.size() - std::min(overlap->markers.size(), coincident) : 0;
   const std::string unchecked = overlap ? "" : " (not checked)";
   entry(kCoincidentArrowColor, "coincident vertices: " + std::to_string(coincident) + unchecked);
   entry(kIntersectionArrowColor, "intersections: " + std::to_string(intersections) + unchecked);
   entry(kIntersectingCellColor, "intersecting cells: " + std::to_string(intersecting) + unchecked);
   entry(kWireframeColor, "boundary edges");
+}
+
+}  // namespace
+
+Image render_main_view(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
+                       const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& options,
+                       Renderer& renderer) {
+  if (options.width <= 0 || options.height <= 0)
+    throw RenderError("main view size must be positive, got " + std::to_string(options.width) + "x" +
+                      std::to_string(options.height));
+  AnnotationStyle style = annotation_style_for(options.height);
+  style.background = options.background;
+  const FigureLayout layout = main_layout(options, style);
+  const double aspect = static_cast<double>(layout.view.width) / static_cast<double>(layout.view.height);
+  const std::vector<Vec3> points = main_view_points(mesh, topology, glyphs);
+  const Camera camera = fit_camera_to_points(points, view_direction, aspect,
+                                             {.fov_y_degrees = options.fov_y_degrees, .is_perspective = false});
+
+  MainViewOptions scaled = options;
+  scaled.pixel_scale = style.scale;
+  Scene scene = build_main_scene(mesh, topology, glyphs, overlap, camera, layout.view.height, scaled);
+  // The wireframe fades when dense on screen, so glyphs and clusters stay readable.
+  const double pixels = median_edge_pixels(scene.lines[0], scene.origin, camera, layout.view.width, layout.view.height);
+  const double opacity = std::clamp(pixels / 10.0, 0.2, 0.85);
+  for (Rgba8& c : scene.lines[0].colors) c.a = static_cast<std::uint8_t>(std::lround(255.0 * opacity));
+
+  Image figure = make_image(options.width, options.height, options.background);
+  paste(figure, renderer.render(scene, camera, layout.view.width, layout.view.height), layout.view.x, layout.view.y);
+  draw_title(figure, layout.title, options.title, style);
+
+  draw_rank_labels(figure, glyphs, camera, layout, style);
+  if (overlap) draw_marker_counts(figure, *overlap, camera, layout, style, scaled);
+  draw_main_legend(figure, glyphs, overlap, layout, style, options);
   return figure;
 }
 

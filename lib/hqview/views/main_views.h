@@ -10,11 +10,11 @@
 #include <vector>
 
 #include "hqview/glyph/glyphs.h"
+#include "hqview/image/image.h"
 #include "hqview/mesh/hex_mesh.h"
 #include "hqview/mesh/topology.h"
 #include "hqview/overlap/overlap.h"
 #include "hqview/render/camera.h"
-#include "hqview/render/image.h"
 #include "hqview/render/renderer.h"
 #include "hqview/render/scene.h"
 
@@ -27,14 +27,14 @@ inline constexpr Rgba8 kIntersectionArrowColor{140, 20, 120, 255};
 inline constexpr Rgba8 kIntersectingCellColor{214, 40, 190, 96};  // translucent magenta
 
 struct MainViewOptions {
-  int width = 1600;                  // figure size in pixels, legend and title included
+  int width = 1600;  // figure size in pixels, legend and title included
   int height = 1200;
-  std::string title;                 // empty: no title band
+  std::string title;  // empty: no title band
   Rgba8 background{255, 255, 255, 255};
-  float wire_width = 1.0f;           // boundary edges, output pixels
-  float cluster_edge_width = 2.5f;   // cluster edges, output pixels
-  double arrow_pixels = 70.0;        // arrow length on screen (at the marker's depth)
-  double arrow_start_degrees = 45.0; // first arrow's angle in the image plane (deterministic)
+  float wire_width = 1.0f;            // boundary edges, output pixels
+  float cluster_edge_width = 2.5f;    // cluster edges, output pixels
+  double arrow_pixels = 70.0;         // arrow length on screen (at the marker's depth)
+  double arrow_start_degrees = 45.0;  // first arrow's angle in the image plane (deterministic)
   int max_arrows_per_marker = 12;
   double marker_merge_pixels = 70.0;  // markers closer on screen (one arrow length) are drawn as one
   double pixel_scale = 1.0;           // multiplies the arrow sizes and marker_merge_pixels; render_main_view
@@ -58,8 +58,8 @@ std::vector<Vec3> main_view_points(const HexMesh& mesh, const Topology& topology
 
 // The count directions among candidate_view_directions() whose orthographic
 // camera (fit_camera_to_points on points) shows the largest visible area (in
-// model units: glyph_coverage times the view's area) of the aggregated glyphs, best first; ties keep candidate order. Without glyphs,
-// the oblique direction (-1,-0.8,-0.6) and its opposite.
+// model units: glyph_coverage times the view's area) of the aggregated glyphs, best first; ties keep candidate order.
+// Without glyphs, the oblique direction (-1,-0.8,-0.6) and its opposite.
 std::vector<Vec3> choose_main_viewpoints(std::span<const Vec3> points, const GlyphResult& glyphs, double aspect,
                                          int count, double fov_y_degrees = 30.0);
 

@@ -1,4 +1,4 @@
-#include "hqview/render/views_overview.h"
+#include "hqview/views/overview_views.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,8 @@
 #include <string>
 
 #include "hqview/core/error.h"
+#include "hqview/image/colormap.h"
 #include "hqview/render/annotate.h"
-#include "hqview/render/colormap.h"
 
 namespace hq {
 namespace {
@@ -31,20 +31,15 @@ std::vector<Vec3> boundary_points(const HexMesh& mesh, const Topology& topology)
   return points;
 }
 
-BoundingBox boundary_bounding_box(const HexMesh& mesh, const Topology& topology) {
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  BoundingBox box{{inf, inf, inf}, {-inf, -inf, -inf}};
-  auto add = [&](const Vec3& p) {
-    box.min = {std::min(box.min.x, p.x), std::min(box.min.y, p.y), std::min(box.min.z, p.z)};
-    box.max = {std::max(box.max.x, p.x), std::max(box.max.y, p.y), std::max(box.max.z, p.z)};
-  };
+Box3 boundary_bounding_box(const HexMesh& mesh, const Topology& topology) {
+  Box3 box;
   if (!topology.boundary_faces.empty()) {
     for (Index face : topology.boundary_faces)
-      for (Index v : boundary_quad(topology, face)) add(point(mesh, v));
+      for (Index v : boundary_quad(topology, face)) box.add(point(mesh, v));
   } else {
-    for (const Vec3& p : mesh.points) add(p);
+    box = bounding_box(mesh.points);
   }
-  if (!(box.min.x <= box.max.x)) return {};
+  if (!(box.lo.x <= box.hi.x)) return Box3{Vec3{}, Vec3{}};
   return box;
 }
 
@@ -53,10 +48,10 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
   if (vertex_quality.size() != mesh.points.size())
     throw Error("vertex quality has " + std::to_string(vertex_quality.size()) + " values for " +
                 std::to_string(mesh.points.size()) + " vertices");
-  const BoundingBox box = boundary_bounding_box(mesh, topology);
+  const Box3 box = boundary_bounding_box(mesh, topology);
 
   Scene scene;
-  scene.origin = 0.5 * (box.min + box.max);
+  scene.origin = 0.5 * (box.lo + box.hi);
   scene.background = options.background;
   auto local = [&](const Vec3& p) { return to_vec3f(p - scene.origin); };
   auto color = [](double q) { return to_rgba8(quality_color(q)); };
@@ -103,19 +98,9 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
   }
   scene.triangles.push_back(std::move(faces));
 
-  // Boundary edges, each once: sorted (a < b) pairs, then the vertices they
-  // use renumbered compactly in ascending id order.
-  std::vector<Edge> edges;
-  edges.reserve(4 * num_faces);
-  for (Index face : topology.boundary_faces) {
-    const Quad& quad = boundary_quad(topology, face);
-    for (int i = 0; i < 4; ++i) {
-      const Index a = quad[i], b = quad[(i + 1) % 4];
-      edges.push_back({std::min(a, b), std::max(a, b)});
-    }
-  }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  // Boundary edges, each once, then the vertices they use renumbered
+  // compactly in ascending id order.
+  const std::vector<Edge> edges = boundary_edges(topology);
 
   LineSet lines;
   lines.width = options.edge_width;

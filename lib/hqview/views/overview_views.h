@@ -6,24 +6,25 @@
 #include <string>
 #include <vector>
 
+#include "hqview/core/box3.h"
+#include "hqview/image/image.h"
 #include "hqview/mesh/hex_mesh.h"
 #include "hqview/mesh/topology.h"
 #include "hqview/render/camera.h"
-#include "hqview/render/image.h"
 #include "hqview/render/renderer.h"
 #include "hqview/render/scene.h"
 
 namespace hq {
 
 struct OverviewOptions {
-  int width = 1600;                         // figure size in pixels, legend and title included
+  int width = 1600;  // figure size in pixels, legend and title included
   int height = 1200;
-  Vec3 view_direction{-1.0, -0.8, -0.6};    // from the eye towards the mesh (an oblique view from +x+y+z)
-  Vec3 up{0.0, 0.0, 1.0};                   // model direction shown upwards
-  std::string title = "Vertex quality";     // empty: no title band
+  Vec3 view_direction{-1.0, -0.8, -0.6};  // from the eye towards the mesh (an oblique view from +x+y+z)
+  Vec3 up{0.0, 0.0, 1.0};                 // model direction shown upwards
+  std::string title = "Vertex quality";   // empty: no title band
   Rgba8 background{255, 255, 255, 255};
-  Rgba8 edge_color{40, 40, 46, 255};        // boundary edges
-  float edge_width = 1.0f;                  // in output pixels
+  Rgba8 edge_color{40, 40, 46, 255};  // boundary edges
+  float edge_width = 1.0f;            // in output pixels
 };
 
 // The overview's 3D content: every boundary face (Topology::boundary_faces)
@@ -44,11 +45,8 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
 std::vector<Vec3> boundary_points(const HexMesh& mesh, const Topology& topology);
 
 // Bounding box of the boundary faces' vertices (all points when there is no
-// boundary face); {0, 0} for an empty mesh.
-struct BoundingBox {
-  Vec3 min, max;
-};
-BoundingBox boundary_bounding_box(const HexMesh& mesh, const Topology& topology);
+// boundary face); lo = hi = (0, 0, 0) for an empty mesh.
+Box3 boundary_bounding_box(const HexMesh& mesh, const Topology& topology);
 
 // The overview figure: options.width x options.height, the 3D view on the
 // left framing the boundary vertices tightly (fit_camera_to_points), the quality colour bar on the

@@ -1,49 +1,20 @@
 #pragma once
-// All of a report's views: which exist, and rendering the selected ones.
-// The pipeline hands the analysis results in; each view comes back as files
-// (PNG images, SVG text) with the id and title report.json lists.
+// The views of a report: one table (kViews) that says which views exist,
+// which paper panel and page show them, what each needs, and which builder
+// draws it. The --views list, the render loop, report.json, index.html and
+// boundary.html all read this table.
 
-#include <optional>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
-#include "hqview/boundary/boundary_error.h"
+#include "hqview/analysis/analysis.h"
 #include "hqview/chart/chart.h"
-#include "hqview/glyph/glyphs.h"
-#include "hqview/mesh/hex_mesh.h"
-#include "hqview/mesh/topology.h"
-#include "hqview/overlap/overlap.h"
-#include "hqview/render/image.h"
+#include "hqview/image/image.h"
 #include "hqview/render/renderer.h"
-#include "hqview/uv/uv_atlas.h"
 
 namespace hq {
-
-// View ids, in report order.
-inline constexpr const char* kViewIds[] = {"overview", "main", "clusters", "local", "corners", "boundary_error", "uv_error", "reference_overlay", "compare", "boundary_error_sorted", "boundary_area", "histogram", "sorted_quality"};
-
-// Parses a --views list ("all", or ids separated by commas); throws
-// UsageError naming the unknown id. The result keeps report order.
-std::vector<std::string> parse_view_list(const std::string& list);
-
-struct ViewInputs {
-  const HexMesh* mesh = nullptr;
-  const Topology* topology = nullptr;
-  const std::vector<double>* vertex_quality = nullptr;  // per vertex
-  const std::vector<double>* cell_quality = nullptr;    // per hex scaled Jacobian (Verdict); null: no histogram
-  const GlyphResult* glyphs = nullptr;     // null: no glyphs
-  const OverlapReport* overlap = nullptr;  // null with --no-overlap
-  std::string mesh_name;                   // for titles
-  // With --reference (all three or none): boundary error views, UV error map.
-  const BoundaryError* boundary_error = nullptr;
-  const TriSurface* reference = nullptr;
-  const UvAtlas* uv_atlas = nullptr;
-  // With --compare MESH2: its mesh, topology and vertex quality (all or none).
-  const HexMesh* compare_mesh = nullptr;
-  const Topology* compare_topology = nullptr;
-  const std::vector<double>* compare_vertex_quality = nullptr;
-  std::string compare_name;
-};
 
 struct ViewFile {
   std::string relative_path;  // "views/<name>.png" or "views/<name>.svg"
@@ -65,15 +36,81 @@ struct RenderedView {
 
 struct ViewOptions {
   int width = 1600, height = 1200;
-  int worst_vertices = 40;  // bars in chart B
-  int top_clusters = 8;     // clusters with a C view; their worst vertices get D and E
+  int worst_vertices = 40;            // bars in chart B
+  int top_clusters = 8;               // clusters with a C view; their worst vertices get D and E
   std::vector<Index> focus_vertices;  // more D and E views (--focus-vertex)
-  std::vector<std::string> views;  // ids to render (parse_view_list); empty: all
+  std::vector<std::string> views;     // ids of kViews to draw (selectable ones); empty: all
 };
 
-// Renders the selected views in report order. The PNG images of finished
+struct ViewContext;  // what the builders share (views.cpp)
+using ViewBuilder = std::vector<ViewFile> (*)(ViewContext&);
+
+// Where a view is shown: index.html's panels A-F, or boundary.html.
+enum class ViewPage { index, boundary };
+
+// What a view needs beyond the mesh.
+enum class ViewNeeds { mesh, reference, compare };
+
+struct ViewSpec {
+  std::string_view id;     // report.json views[].id
+  std::string_view title;  // report.json views[].title
+  char panel;              // index.html panel 'A'..'F' (paper's letters); 0 on boundary.html
+  int panel_order;         // position inside its panel or page
+  ViewNeeds needs;
+  bool is_selectable;  // a --views id of its own; else drawn with the view before it
+  int summary_order;   // position among summary.md's links (its first PNG); -1: not linked
+  ViewBuilder build;   // no files: the view is left out (nothing to show)
+};
+
+// The builders (views.cpp).
+std::vector<ViewFile> build_overview(ViewContext&);
+std::vector<ViewFile> build_main(ViewContext&);
+std::vector<ViewFile> build_clusters(ViewContext&);
+std::vector<ViewFile> build_local(ViewContext&);
+std::vector<ViewFile> build_corners(ViewContext&);
+std::vector<ViewFile> build_boundary_error(ViewContext&);
+std::vector<ViewFile> build_uv_error(ViewContext&);
+std::vector<ViewFile> build_reference_overlay(ViewContext&);
+std::vector<ViewFile> build_compare(ViewContext&);
+std::vector<ViewFile> build_boundary_error_sorted(ViewContext&);
+std::vector<ViewFile> build_boundary_area(ViewContext&);
+std::vector<ViewFile> build_histogram(ViewContext&);
+std::vector<ViewFile> build_histogram_log(ViewContext&);
+std::vector<ViewFile> build_sorted_quality(ViewContext&);
+
+// Every view, in report order (the order they are drawn and listed).
+inline constexpr ViewSpec kViews[] = {
+    {"overview", "Boundary coloured by vertex quality", 'A', 1, ViewNeeds::mesh, true, -1, build_overview},
+    {"main", "A: glyphs, clusters and overlaps", 'A', 0, ViewNeeds::mesh, true, 0, build_main},
+    {"clusters", "C: sub-region of each top cluster", 'C', 0, ViewNeeds::mesh, true, 2, build_clusters},
+    {"local", "D: one-ring hexes around chosen vertices, corner scaled Jacobians", 'D', 0, ViewNeeds::mesh, true, 3,
+     build_local},
+    {"corners", "E: corner scaled Jacobians at each chosen vertex", 'E', 0, ViewNeeds::mesh, true, 4, build_corners},
+    {"boundary_error", "Boundary error: hex boundary coloured by signed distance to the reference", 0, 0,
+     ViewNeeds::reference, true, 8, build_boundary_error},
+    {"uv_error", "UV error map of the reference", 0, 1, ViewNeeds::reference, true, 11, build_uv_error},
+    {"reference_overlay", "F: hex boundary over the translucent reference surface", 'F', 0, ViewNeeds::reference, true,
+     6, build_reference_overlay},
+    {"compare", "Compare: both boundaries coloured by vertex quality, one camera", 'F', 1, ViewNeeds::compare, true, 7,
+     build_compare},
+    {"boundary_error_sorted", "Sorted boundary error (signed, every hex boundary vertex)", 0, 2, ViewNeeds::reference,
+     true, 9, build_boundary_error_sorted},
+    {"boundary_area", "Boundary area outside / inside the reference", 0, 3, ViewNeeds::reference, true, 10,
+     build_boundary_area},
+    {"histogram", "Quality histogram (per hex scaled Jacobian)", 'B', 1, ViewNeeds::mesh, true, 5, build_histogram},
+    {"histogram_log", "Quality histogram, log scale", 'B', 2, ViewNeeds::mesh, false, -1, build_histogram_log},
+    {"sorted_quality", "B: sorted vertex quality", 'B', 0, ViewNeeds::mesh, true, 1, build_sorted_quality},
+};
+
+// The view of an id, or nullptr.
+const ViewSpec* find_view(std::string_view id);
+
+// The views a page shows in its order: panel (0: boundary.html) or 'A'..'F'.
+std::vector<const ViewSpec*> views_of_panel(char panel);
+
+// Draws the selected views in kViews order. The PNG images of finished
 // views are encoded (ViewFile::png) by TBB tasks while later views render.
-// Throws RenderError.
-std::vector<RenderedView> render_views(const ViewInputs& inputs, const ViewOptions& options, Renderer& renderer);
+// Throws RenderError; ValueError for a focus vertex that does not exist.
+std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptions& options, Renderer& renderer);
 
 }  // namespace hq

@@ -1,0 +1,62 @@
+#pragma once
+// Analysis: every result one `analyze` run computes, as plain data. The
+// pipeline fills it in stage order (pipeline/analyze.h); the views and the
+// report read it and never recompute what it holds.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hqview/boundary/boundary_error.h"
+#include "hqview/glyph/glyphs.h"
+#include "hqview/io/mesh_source.h"
+#include "hqview/mesh/hex_mesh.h"
+#include "hqview/mesh/mesh_summary.h"
+#include "hqview/mesh/topology.h"
+#include "hqview/overlap/overlap.h"
+#include "hqview/quality/hex_metric_field.h"
+#include "hqview/quality/quality_field.h"
+#include "hqview/quality/quality_summary.h"
+#include "hqview/uv/uv_atlas.h"
+
+namespace hq {
+
+struct Analysis {
+  InputFile mesh_input;
+  std::vector<std::string> warnings;  // from the readers and the analysis, in stage order
+
+  HexMesh mesh;
+  Topology topology;
+  QualityField field;      // corner scaled Jacobians, vertex quality, cell scaled Jacobian
+  HexMetricField metrics;  // the Verdict metrics per hex (cells.csv columns)
+  MeshSummary mesh_summary;
+  QualitySummary quality;
+
+  // Vertex glyphs and their clusters; empty when the stage did not run.
+  std::optional<GlyphResult> glyphs;
+  // Overlapping vertices and intersecting cells; empty with --no-overlap.
+  std::optional<OverlapReport> overlap;
+
+  // With --reference: the reference file and surface (as read), the boundary
+  // error and the reference's UV atlas (all four or none).
+  std::optional<InputFile> reference_input;
+  std::optional<TriSurface> reference_surface;
+  std::optional<BoundaryError> boundary_error;
+  std::optional<UvAtlas> uv_atlas;
+
+  // With --compare MESH2: MESH2 analysed the same way (quality only).
+  struct Compared {
+    InputFile input;
+    MeshSummary mesh_summary;
+    QualitySummary quality;
+    HexMesh mesh;
+    Topology topology;
+    QualityField field;
+  };
+  std::optional<Compared> compare;
+
+  // The mesh's file name, for titles ("kitten_1.mesh").
+  std::string mesh_name() const;
+};
+
+}  // namespace hq

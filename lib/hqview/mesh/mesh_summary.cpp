@@ -1,0 +1,45 @@
+#include "hqview/mesh/mesh_summary.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "hqview/core/box3.h"
+
+namespace hq {
+
+Box3 referenced_bounding_box(const HexMesh& mesh, const Topology& topo) {
+  Box3 box;
+  for (std::size_t v = 0; v < mesh.points.size(); ++v)
+    if (topo.vertex_hex_offsets[v] != topo.vertex_hex_offsets[v + 1]) box.add(mesh.points[v]);
+  return box;
+}
+
+MeshSummary summarize_mesh(const HexMesh& mesh, const Topology& topo) {
+  MeshSummary s;
+  s.num_vertices = mesh.num_vertices();
+  s.num_hexes = mesh.num_hexes();
+  s.num_unreferenced_vertices = static_cast<Index>(topo.unreferenced_vertices.size());
+  s.num_boundary_faces = static_cast<Index>(topo.boundary_faces.size());
+  s.num_boundary_vertices = static_cast<Index>(topo.boundary_vertices.size());
+  s.num_non_manifold_faces = static_cast<Index>(topo.non_manifold_faces.size());
+  const Box3 box = referenced_bounding_box(mesh, topo);
+  if (!box.is_empty()) {
+    s.bbox_min = box.lo;
+    s.bbox_max = box.hi;
+  }
+  s.bbox_diagonal = norm(s.bbox_max - s.bbox_min);
+  if (!topo.edges.empty()) {
+    double sum = 0.0;
+    s.edge_length_min = INFINITY;
+    for (const Edge& e : topo.edges) {
+      const double l = norm(mesh.points[e[1]] - mesh.points[e[0]]);
+      s.edge_length_min = std::min(s.edge_length_min, l);
+      s.edge_length_max = std::max(s.edge_length_max, l);
+      sum += l;
+    }
+    s.edge_length_mean = sum / static_cast<double>(topo.edges.size());
+  }
+  return s;
+}
+
+}  // namespace hq

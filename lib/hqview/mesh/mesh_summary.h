@@ -1,0 +1,29 @@
+#pragma once
+// report.json `mesh`: counts, bounding box and edge lengths of a hex mesh.
+
+#include "hqview/core/box3.h"
+#include "hqview/core/types.h"
+#include "hqview/core/vec3.h"
+#include "hqview/mesh/hex_mesh.h"
+#include "hqview/mesh/topology.h"
+
+namespace hq {
+
+struct MeshSummary {
+  Index num_vertices = 0;
+  Index num_hexes = 0;
+  Index num_unreferenced_vertices = 0;
+  Index num_boundary_faces = 0;
+  Index num_boundary_vertices = 0;
+  Index num_non_manifold_faces = 0;
+  Vec3 bbox_min, bbox_max;  // of the vertices hexes use (stray points do not frame views)
+  double bbox_diagonal = 0;
+  double edge_length_min = 0, edge_length_mean = 0, edge_length_max = 0;  // over topo.edges; 0 without edges
+};
+
+MeshSummary summarize_mesh(const HexMesh& mesh, const Topology& topo);
+
+// The box of the vertices hexes use (empty when none is).
+Box3 referenced_bounding_box(const HexMesh& mesh, const Topology& topo);
+
+}  // namespace hq

@@ -1,0 +1,41 @@
+#include "hqview/report/atomic_file.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <system_error>
+
+#include "hqview/core/error.h"
+
+namespace hq {
+namespace fs = std::filesystem;
+
+void write_file_atomically(const fs::path& path, std::string_view text) {
+  std::string name = ".";
+  name += path.filename().string();
+  name += ".hqview-tmp-";
+  name += std::to_string(::getpid());
+  const fs::path tmp = path.parent_path() / name;
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    if (!out) throw Error(tmp.string() + ": cannot create: " + std::strerror(errno));
+    out.write(text.data(), static_cast<std::streamsize>(text.size()));
+    out.flush();
+    if (!out) {
+      std::error_code ignored;
+      fs::remove(tmp, ignored);
+      throw Error(tmp.string() + ": write failed: " + std::strerror(errno));
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+    throw Error(path.string() + ": cannot rename into place: " + ec.message());
+  }
+}
+
+}  // namespace hq

@@ -1,0 +1,352 @@
+#include "hqview/report/batch_index.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <kainjow/mustache.hpp>
+#include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "hqview/core/error.h"
+#include "hqview/core/number_format.h"
+#include "hqview/report/atomic_file.h"
+#include "hqview/report/json_path.h"
+#include "hqview/report/report_templates.h"
+
+namespace hq {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+constexpr int kIndexSchemaVersion = 1;
+
+// Column titles of the headline keys (kHeadlineKeys order).
+constexpr const char* kHeadlineTitles[] = {"#V",     "#H",        "min SJ",        "mean SJ",
+                                           "p05 SJ", "#inverted", "#intersecting", "Hausdorff (rel.)"};
+static_assert(std::size(kHeadlineTitles) == kNumHeadlineKeys);
+
+std::string show(std::optional<double> v) { return v ? display_number(*v) : "–"; }
+
+json number_or_null(std::optional<double> v) {
+  if (!v || !std::isfinite(*v)) return nullptr;
+  // Counts stay integers in the JSON.
+  if (*v == std::floor(*v) && std::abs(*v) < 9e15) return static_cast<long long>(*v);
+  return *v;
+}
+
+BatchStatus status_from(const std::string& s, const std::string& name) {
+  if (s == "ok") return BatchStatus::ok;
+  if (s == "gate_failed") return BatchStatus::gate_failed;
+  if (s == "failed") return BatchStatus::failed;
+  throw InputError(name + ": unknown mesh status '" + s + "'");
+}
+
+std::size_t headline_index(std::string_view key) {
+  for (std::size_t k = 0; k < kNumHeadlineKeys; ++k)
+    if (key == kHeadlineKeys[k]) return k;
+  return kNumHeadlineKeys;
+}
+
+// Markdown table cells: no pipes or line breaks from file names or errors.
+std::string md_cell(std::string_view text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '|')
+      out += "\\|";
+    else if (c == '\n' || c == '\r')
+      out += ' ';
+    else
+      out += c;
+  }
+  return out;
+}
+
+// A relative path as a URL path: every byte but unreserved ones and '/'
+// percent-encoded, so '#', '?', '%' and spaces in file names keep links working.
+std::string url_path(std::string_view path) {
+  static constexpr char kHex[] = "0123456789ABCDEF";
+  std::string out;
+  for (const char c : path) {
+    const auto b = static_cast<unsigned char>(c);
+    if (std::isalnum(b) || c == '-' || c == '_' || c == '.' || c == '~' || c == '/') {
+      out += c;
+    } else {
+      out += '%';
+      out += kHex[b >> 4];
+      out += kHex[b & 15];
+    }
+  }
+  return out;
+}
+
+bool has_labels(const std::vector<BatchEntry>& entries) {
+  return std::any_of(entries.begin(), entries.end(), [](const BatchEntry& e) { return !e.label.empty(); });
+}
+
+}  // namespace
+
+std::string_view to_string(BatchStatus status) {
+  switch (status) {
+    case BatchStatus::ok:
+      return "ok";
+    case BatchStatus::gate_failed:
+      return "gate_failed";
+    case BatchStatus::failed:
+      return "failed";
+  }
+  return "failed";
+}
+
+void fill_entry_from_report(BatchEntry& entry, const ReportDocument& report) {
+  entry.sha256 = report.at("input").at("mesh").at("sha256").get<std::string>();
+  for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) entry.headline[k] = json_number_at(report, kHeadlineKeys[k]);
+  entry.failed_gates.clear();
+  bool passed = true;
+  if (report.contains("gates") && report["gates"].is_object()) {
+    passed = report["gates"].value("passed", true);
+    for (const ReportDocument& g : report["gates"].value("results", ReportDocument::array()))
+      if (!g.value("passed", true)) entry.failed_gates.push_back(g.value("rule", ""));
+  }
+  entry.status = passed ? BatchStatus::ok : BatchStatus::gate_failed;
+  entry.error.clear();
+}
+
+std::vector<MethodSummary> summarize_methods(const std::vector<BatchEntry>& entries) {
+  if (!has_labels(entries)) return {};
+  std::map<std::string, MethodSummary> by_label;
+  std::map<std::string, int> analysed;
+  const std::size_t k_min = headline_index("quality.scaled_jacobian.min");
+  const std::size_t k_mean = headline_index("quality.scaled_jacobian.mean");
+  const std::size_t k_inv = headline_index("quality.num_inverted");
+  for (const BatchEntry& e : entries) {  // entries are sorted: fixed-order sums
+    MethodSummary& m = by_label[e.label];
+    m.label = e.label;
+    ++m.num_meshes;
+    if (e.status == BatchStatus::failed) {
+      ++m.num_failed;
+      continue;
+    }
+    if (e.status == BatchStatus::gate_failed) ++m.num_gate_failed;
+    const double min_sj = e.headline[k_min].value_or(std::numeric_limits<double>::quiet_NaN());
+    const double mean_sj = e.headline[k_mean].value_or(std::numeric_limits<double>::quiet_NaN());
+    if (e.headline[k_inv].value_or(0) > 0) ++m.num_with_inverted;
+    int& n = analysed[e.label];
+    m.worst_min_scaled_jacobian = n == 0 ? min_sj : std::min(m.worst_min_scaled_jacobian, min_sj);
+    m.mean_min_scaled_jacobian += min_sj;
+    m.mean_mean_scaled_jacobian += mean_sj;
+    ++n;
+  }
+  std::vector<MethodSummary> methods;
+  for (auto& [label, m] : by_label) {
+    const int n = analysed[label];
+    if (n > 0) {
+      m.mean_min_scaled_jacobian /= n;
+      m.mean_mean_scaled_jacobian /= n;
+    } else {
+      m.mean_min_scaled_jacobian = m.mean_mean_scaled_jacobian = m.worst_min_scaled_jacobian =
+          std::numeric_limits<double>::quiet_NaN();
+    }
+    methods.push_back(m);
+  }
+  return methods;
+}
+
+std::string batch_index_json(const std::vector<BatchEntry>& entries, const std::string& tool_version) {
+  json j = json::object();
+  j["schema_version"] = kIndexSchemaVersion;
+  j["tool"] = {{"name", "hqview"}, {"version", tool_version}};
+  int ok = 0, gate_failed = 0, failed = 0;
+  for (const BatchEntry& e : entries) {
+    ok += e.status == BatchStatus::ok;
+    gate_failed += e.status == BatchStatus::gate_failed;
+    failed += e.status == BatchStatus::failed;
+  }
+  j["counts"] = {{"meshes", entries.size()}, {"ok", ok}, {"gate_failed", gate_failed}, {"failed", failed}};
+  json meshes = json::array();
+  for (const BatchEntry& e : entries) {
+    json m = json::object();
+    m["path"] = e.path;
+    m["label"] = e.label;
+    m["model"] = e.model;
+    m["status"] = std::string(to_string(e.status));
+    m["error"] = e.error.empty() ? json(nullptr) : json(e.error);
+    m["bundle"] = e.bundle.empty() ? json(nullptr) : json(e.bundle);
+    m["sha256"] = e.sha256;
+    json headline = json::object();
+    for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) headline[kHeadlineKeys[k]] = number_or_null(e.headline[k]);
+    m["headline"] = std::move(headline);
+    m["failed_gates"] = e.failed_gates;
+    meshes.push_back(std::move(m));
+  }
+  j["meshes"] = std::move(meshes);
+  json methods = json::array();
+  for (const MethodSummary& m : summarize_methods(entries))
+    methods.push_back({{"label", m.label},
+                       {"num_meshes", m.num_meshes},
+                       {"num_failed", m.num_failed},
+                       {"num_gate_failed", m.num_gate_failed},
+                       {"num_with_inverted", m.num_with_inverted},
+                       {"mean_min_scaled_jacobian", number_or_null(m.mean_min_scaled_jacobian)},
+                       {"mean_mean_scaled_jacobian", number_or_null(m.mean_mean_scaled_jacobian)},
+                       {"worst_min_scaled_jacobian", number_or_null(m.worst_min_scaled_jacobian)}});
+  j["methods"] = std::move(methods);
+  return j.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
+}
+
+std::vector<BatchEntry> parse_batch_index_json(std::string_view text, const std::string& name) {
+  const json j = json::parse(text, nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("meshes") || !j["meshes"].is_array())
+    throw InputError(name + ": not an HQView batch index.json (no 'meshes' array)");
+  std::vector<BatchEntry> entries;
+  try {
+    for (const json& m : j["meshes"]) {
+      BatchEntry e;
+      e.path = m.at("path").get<std::string>();
+      e.label = m.value("label", "");
+      e.model = m.value("model", "");
+      e.status = status_from(m.at("status").get<std::string>(), name);
+      if (m.contains("error") && m["error"].is_string()) e.error = m["error"].get<std::string>();
+      if (m.contains("bundle") && m["bundle"].is_string()) e.bundle = m["bundle"].get<std::string>();
+      e.sha256 = m.value("sha256", "");
+      const json& headline = m.at("headline");
+      for (std::size_t k = 0; k < kNumHeadlineKeys; ++k)
+        if (headline.contains(kHeadlineKeys[k]) && headline[kHeadlineKeys[k]].is_number())
+          e.headline[k] = headline[kHeadlineKeys[k]].get<double>();
+      if (m.contains("failed_gates")) e.failed_gates = m["failed_gates"].get<std::vector<std::string>>();
+      entries.push_back(std::move(e));
+    }
+  } catch (const json::exception& e) {
+    throw InputError(name + ": malformed index.json: " + e.what());
+  }
+  return entries;
+}
+
+std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::string& tool_version) {
+  using kainjow::mustache::data;
+  using kainjow::mustache::mustache;
+  data page;
+  page.set("version", tool_version);
+  data headers = data::type::list;
+  for (const char* title : kHeadlineTitles) headers.push_back(data("title", title));
+  page.set("headline_columns", headers);
+  int failed = 0, gate_failed = 0;
+  data rows = data::type::list;
+  for (const BatchEntry& e : entries) {
+    failed += e.status == BatchStatus::failed;
+    gate_failed += e.status == BatchStatus::gate_failed;
+    data row;
+    row.set("path", e.path);
+    row.set("label", e.label);
+    row.set("model", e.model);
+    row.set("status", std::string(to_string(e.status)));
+    row.set("has_bundle", !e.bundle.empty());
+    row.set("link", url_path(e.bundle) + "/index.html");
+    std::string detail = e.error;
+    for (const std::string& g : e.failed_gates) detail += (detail.empty() ? "" : "; ") + g;
+    row.set("detail", detail);
+    data cells = data::type::list;
+    for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) {
+      data cell;
+      cell.set("text", show(e.headline[k]));
+      // The sort key: the exact number, or empty (sorted last).
+      cell.set("sort", e.headline[k] && std::isfinite(*e.headline[k]) ? format_double(*e.headline[k]) : "");
+      cells.push_back(cell);
+    }
+    row.set("cells", cells);
+    rows.push_back(row);
+  }
+  page.set("rows", rows);
+  page.set("num_meshes", std::to_string(entries.size()));
+  page.set("num_failed", std::to_string(failed));
+  page.set("num_gate_failed", std::to_string(gate_failed));
+  const std::vector<MethodSummary> methods = summarize_methods(entries);
+  page.set("has_methods", !methods.empty());
+  data method_rows = data::type::list;
+  for (const MethodSummary& m : methods) {
+    data row;
+    row.set("label", m.label);
+    row.set("num_meshes", std::to_string(m.num_meshes));
+    row.set("num_failed", std::to_string(m.num_failed));
+    row.set("num_gate_failed", std::to_string(m.num_gate_failed));
+    row.set("num_with_inverted", std::to_string(m.num_with_inverted));
+    row.set("mean_min", show(m.mean_min_scaled_jacobian));
+    row.set("mean_mean", show(m.mean_mean_scaled_jacobian));
+    row.set("worst_min", show(m.worst_min_scaled_jacobian));
+    method_rows.push_back(row);
+  }
+  page.set("methods", method_rows);
+  mustache tmpl{std::string(report_template("batch_index.html.mustache"))};
+  if (!tmpl.is_valid()) throw Error("batch index template: " + tmpl.error_message());
+  return tmpl.render(page);
+}
+
+std::string batch_summary_markdown(const std::vector<BatchEntry>& entries) {
+  int failed = 0, gate_failed = 0;
+  for (const BatchEntry& e : entries) {
+    failed += e.status == BatchStatus::failed;
+    gate_failed += e.status == BatchStatus::gate_failed;
+  }
+  std::string md = "## HQView batch: " + std::to_string(entries.size()) + " meshes, " + std::to_string(failed) +
+                   " failed, " + std::to_string(gate_failed) + " with failed gates\n\n";
+  md += "| mesh | label | status |";
+  for (const char* title : kHeadlineTitles) md += std::string(" ") + title + " |";
+  md += "\n|---|---|---|";
+  for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) md += "--:|";
+  md += "\n";
+  for (const BatchEntry& e : entries) {
+    md += "| " +
+          (e.bundle.empty() ? md_cell(e.path) : "[" + md_cell(e.path) + "](" + url_path(e.bundle) + "/index.html)") +
+          " | " + md_cell(e.label) + " | " + std::string(to_string(e.status)) + " |";
+    for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) md += " " + show(e.headline[k]) + " |";
+    md += "\n";
+  }
+  bool any_problem = false;
+  for (const BatchEntry& e : entries) {
+    if (e.status == BatchStatus::ok) continue;
+    if (!any_problem) md += "\n### Problems\n\n";
+    any_problem = true;
+    std::string what = e.error;
+    for (const std::string& g : e.failed_gates) what += (what.empty() ? "gate failed: " : "; ") + g;
+    md += "- `" + md_cell(e.path) + "`: " + md_cell(what) + "\n";
+  }
+  const std::vector<MethodSummary> methods = summarize_methods(entries);
+  if (!methods.empty()) {
+    md +=
+        "\n### Methods\n\n| method | meshes | failed | gate failed | with inverted | mean min SJ | mean mean SJ | "
+        "worst min SJ |\n|---|--:|--:|--:|--:|--:|--:|--:|\n";
+    for (const MethodSummary& m : methods)
+      md += "| " + md_cell(m.label) + " | " + std::to_string(m.num_meshes) + " | " + std::to_string(m.num_failed) +
+            " | " + std::to_string(m.num_gate_failed) + " | " + std::to_string(m.num_with_inverted) + " | " +
+            show(m.mean_min_scaled_jacobian) + " | " + show(m.mean_mean_scaled_jacobian) + " | " +
+            show(m.worst_min_scaled_jacobian) + " |\n";
+  }
+  return md;
+}
+
+void write_batch_index(const std::vector<BatchEntry>& entries, const std::string& tool_version, const fs::path& dir) {
+  fs::create_directories(dir);
+  write_file_atomically(dir / "index.json", batch_index_json(entries, tool_version));
+  write_file_atomically(dir / "index.html", batch_index_html(entries, tool_version));
+  write_file_atomically(dir / "summary.md", batch_summary_markdown(entries));
+}
+
+void check_batch_output_dir(const fs::path& dir, bool force) {
+  std::error_code ec;
+  const auto status = fs::symlink_status(dir, ec);
+  if (ec || !fs::exists(status)) return;
+  if (!fs::is_directory(status)) throw ValueError(dir.string() + ": exists and is not a directory; choose another -o");
+  if (!force && !fs::is_empty(dir) && !fs::is_regular_file(dir / "index.json"))
+    throw ValueError(dir.string() +
+                     ": is a non-empty directory that is not an HQView batch output (no index.json); "
+                     "use --force to write into it");
+}
+
+}  // namespace hq

@@ -1,0 +1,85 @@
+#pragma once
+// The batch index: one row per mesh (BatchEntry, filled from its report
+// document), OUT/index.json (every mesh, sorted by path, no timestamps: a
+// sharded-then-merged run gives the same bytes as one run), OUT/index.html
+// (a table sortable in the browser and readable without scripts, plus the
+// per-method comparison) and OUT/summary.md.
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <optional>
+
+#include "hqview/report/report_json.h"
+
+namespace hq {
+
+enum class BatchStatus { ok, gate_failed, failed };
+std::string_view to_string(BatchStatus status);
+
+// The headline values of a bundle's report.json, named by their dotted
+// report.json paths (so `diff` gates use the same names on both). nullopt
+// where the report has null (e.g. no reference: no boundary error).
+inline constexpr const char* kHeadlineKeys[] = {
+    "mesh.num_vertices",
+    "mesh.num_hexes",
+    "quality.scaled_jacobian.min",
+    "quality.scaled_jacobian.mean",
+    "quality.scaled_jacobian.p05",
+    "quality.num_inverted",
+    "overlap.num_intersecting_cells",
+    "boundary_error.hausdorff.relative",
+};
+inline constexpr std::size_t kNumHeadlineKeys = std::size(kHeadlineKeys);
+
+// One row of the index.
+struct BatchEntry {
+  std::string path;
+  std::string label;
+  std::string model;
+  BatchStatus status = BatchStatus::failed;
+  std::string error;   // why it failed (status failed)
+  std::string bundle;  // bundle directory relative to the batch output; empty when failed
+  std::string sha256;  // of the mesh file; empty when unreadable
+  std::vector<std::optional<double>> headline = std::vector<std::optional<double>>(kNumHeadlineKeys);
+  std::vector<std::string> failed_gates;  // rules
+};
+
+// Fills the report-derived fields of `entry` (status ok/gate_failed,
+// sha256, headline, failed_gates) from a report document.
+void fill_entry_from_report(BatchEntry& entry, const ReportDocument& report);
+
+// Per label (method): the paper's "compare mesh generation and optimization
+// algorithms" table. Means are over the meshes analysed (not failed).
+struct MethodSummary {
+  std::string label;
+  int num_meshes = 0;
+  int num_failed = 0;
+  int num_gate_failed = 0;
+  int num_with_inverted = 0;  // meshes with at least one inverted hex
+  double mean_min_scaled_jacobian = 0;
+  double mean_mean_scaled_jacobian = 0;
+  double worst_min_scaled_jacobian = 0;
+};
+
+// Empty when no entry has a label.
+std::vector<MethodSummary> summarize_methods(const std::vector<BatchEntry>& entries);
+
+std::string batch_index_json(const std::vector<BatchEntry>& entries, const std::string& tool_version);
+// Throws InputError naming `name` when the text is not an HQView index.json.
+std::vector<BatchEntry> parse_batch_index_json(std::string_view text, const std::string& name);
+std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::string& tool_version);
+std::string batch_summary_markdown(const std::vector<BatchEntry>& entries);
+
+// Writes index.json, index.html and summary.md into `dir`, each through a
+// temporary sibling renamed into place. Throws Error on an I/O failure.
+void write_batch_index(const std::vector<BatchEntry>& entries, const std::string& tool_version,
+                       const std::filesystem::path& dir);
+
+// Throws ValueError when `dir` exists and is neither empty nor a batch
+// output (index.json) and !force.
+void check_batch_output_dir(const std::filesystem::path& dir, bool force);
+
+}  // namespace hq

@@ -1,0 +1,162 @@
+// The whole analyze pipeline without OpenGL: a mock renderer records every
+// scene and returns a plain image. Every view of kViews is produced for a
+// small mesh with and without a reference and a compare mesh, and the scenes
+// hold what the analysis says they must.
+#include "hqview/pipeline/analyze.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "hqview/render/scene.h"
+#include "hqview/views/views.h"
+#include "support/fixtures.h"
+
+namespace hq {
+namespace {
+
+class RecordingRenderer final : public Renderer {
+ public:
+  Image render(const Scene& scene, const Camera&, int width, int height) override {
+    scenes.push_back(scene);
+    sizes.emplace_back(width, height);
+    return {width, height, std::vector<std::uint8_t>(4 * static_cast<std::size_t>(width) * height, 200)};
+  }
+  std::vector<Scene> scenes;
+  std::vector<std::pair<int, int>> sizes;
+};
+
+AnalyzeOptions small_run() {
+  AnalyzeOptions options;
+  options.mesh_path = test::source_dir() / "examples/ball.mesh";
+  options.tool_version = "test";
+  options.views.width = 320;
+  options.views.height = 240;
+  return options;
+}
+
+std::vector<std::string> ids_of(const AnalyzeResult& result) {
+  std::vector<std::string> ids;
+  for (const ViewEntry& v : result.model.views) ids.push_back(v.id);
+  return ids;
+}
+
+// The ids of kViews whose needs the run meets, in table order.
+std::vector<std::string> expected_ids(bool with_reference, bool with_compare) {
+  std::vector<std::string> ids;
+  for (const ViewSpec& spec : kViews)
+    if (spec.needs == ViewNeeds::mesh || (spec.needs == ViewNeeds::reference && with_reference) ||
+        (spec.needs == ViewNeeds::compare && with_compare))
+      ids.emplace_back(spec.id);
+  return ids;
+}
+
+// The first frame each 3D view drew: frames come in view order, one per PNG
+// file of a view that is not a chart (charts have an SVG twin), two for the
+// compare view (one per half, one camera).
+std::map<std::string, std::size_t> first_frames(const AnalyzeResult& result) {
+  std::map<std::string, std::size_t> first;
+  std::size_t frame = 0;
+  for (const ViewEntry& v : result.model.views) {
+    const bool is_chart =
+        std::any_of(v.files.begin(), v.files.end(), [](const std::string& f) { return f.ends_with(".svg"); });
+    if (is_chart) continue;
+    first[v.id] = frame;
+    frame += v.id == "compare" ? 2 : v.files.size();
+  }
+  first["(end)"] = frame;
+  return first;
+}
+
+TEST(AnalyzePipeline, EveryMeshViewWithAMockRenderer) {
+  RecordingRenderer renderer;
+  const AnalyzeResult result = analyze(small_run(), &renderer);
+  const Analysis& a = result.model.analysis;
+  ASSERT_TRUE(a.glyphs);
+  ASSERT_GT(a.glyphs->clusters.size(), 0u) << "ball.mesh has bad vertices: C, D, E need clusters";
+  EXPECT_EQ(ids_of(result), expected_ids(false, false));
+
+  const auto first = first_frames(result);
+  ASSERT_EQ(renderer.scenes.size(), first.at("(end)")) << "one frame per 3D image";
+  for (const auto& [w, h] : renderer.sizes) EXPECT_TRUE(w > 0 && w <= 320 && h > 0 && h <= 240);
+  // Overview: 4 triangles per boundary quad, coloured by vertex quality.
+  const Scene& overview = renderer.scenes[first.at("overview")];
+  EXPECT_EQ(triangle_count(overview), 4 * a.topology.boundary_faces.size());
+  // Main view (two viewpoints): one aggregated glyph per cluster.
+  const std::size_t main = first.at("main");
+  EXPECT_EQ(first.at("clusters") - main, 2u);
+  for (std::size_t f = main; f < main + 2; ++f) {
+    ASSERT_FALSE(renderer.scenes[f].spheres.empty());
+    EXPECT_EQ(renderer.scenes[f].spheres[0].centers.size(), a.glyphs->clusters.size());
+  }
+  // Local views: one marker per corner at the vertex, coloured from the field.
+  const ViewEntry& local = result.model.views[3];
+  ASSERT_EQ(local.id, "local");
+  const Index v = local.links[0].vertex;
+  const std::size_t corners =
+      static_cast<std::size_t>(a.topology.vertex_hex_offsets[v + 1] - a.topology.vertex_hex_offsets[v]);
+  EXPECT_EQ(renderer.scenes[first.at("local")].spheres[0].centers.size(), corners);
+  // Every file of every view is a bundle image.
+  std::size_t files = 0;
+  for (const ViewEntry& view : result.model.views) files += view.files.size();
+  EXPECT_EQ(result.images.size(), files);
+  // The document holds the views as report.json lists them.
+  ASSERT_EQ(result.document["views"].size(), result.model.views.size());
+  EXPECT_EQ(result.document["views"][0]["id"], "overview");
+}
+
+TEST(AnalyzePipeline, ReferenceAndCompareViewsWithAMockRenderer) {
+  AnalyzeOptions options = small_run();
+  options.reference_path = test::source_dir() / "examples/ball.off";
+  options.compare_path = test::source_dir() / "examples/twisted_bar.mesh";
+  RecordingRenderer renderer;
+  const AnalyzeResult result = analyze(options, &renderer);
+  const Analysis& a = result.model.analysis;
+  ASSERT_TRUE(a.reference_surface && a.boundary_error && a.uv_atlas && a.compare);
+  EXPECT_EQ(ids_of(result), expected_ids(true, true));
+  EXPECT_EQ(ids_of(result).size(), std::size(kViews)) << "every view of the table";
+
+  const auto first = first_frames(result);
+  ASSERT_EQ(renderer.scenes.size(), first.at("(end)"));
+  // Boundary error: front and back.
+  EXPECT_EQ(first.at("uv_error") - first.at("boundary_error"), 2u);
+  // The reference overlay draws the reference's triangles translucent.
+  const Scene& overlay = renderer.scenes[first.at("reference_overlay")];
+  std::size_t translucent = 0;
+  for (const TriangleSet& t : overlay.translucent) translucent += t.indices.size() / 3;
+  EXPECT_EQ(translucent, a.reference_surface->triangles.size());
+  // Compare: the two boundaries, one half each, 4 triangles per quad.
+  const std::size_t compare = first.at("compare");
+  EXPECT_EQ(triangle_count(renderer.scenes[compare]), 4 * a.topology.boundary_faces.size());
+  EXPECT_EQ(triangle_count(renderer.scenes[compare + 1]), 4 * a.compare->topology.boundary_faces.size());
+  EXPECT_TRUE(result.document["compare"].is_object());
+  EXPECT_TRUE(result.document["boundary_error"].is_object());
+}
+
+TEST(AnalyzePipeline, NoRendererNoViewsSameNumbers) {
+  RecordingRenderer renderer;
+  const AnalyzeResult drawn = analyze(small_run(), &renderer);
+  const AnalyzeResult plain = analyze(small_run(), nullptr);
+  EXPECT_TRUE(plain.model.views.empty());
+  EXPECT_TRUE(plain.images.empty());
+  EXPECT_EQ(plain.document["quality"], drawn.document["quality"]);
+  EXPECT_EQ(plain.document["glyphs"], drawn.document["glyphs"]);
+}
+
+TEST(AnalyzePipeline, GatesReadTheDocument) {
+  AnalyzeOptions options = small_run();
+  options.gates = {parse_gate_rule("quality.scaled_jacobian.min>=2"), parse_gate_rule("mesh.num_hexes>0")};
+  const AnalyzeResult result = analyze(options, nullptr);
+  ASSERT_EQ(result.model.gates.results.size(), 2u);
+  EXPECT_FALSE(result.model.gates.passed);
+  EXPECT_EQ(result.model.gates.results[0].value, result.document["quality"]["scaled_jacobian"]["min"].get<double>());
+  EXPECT_EQ(result.model.gates.results[1].value, result.model.analysis.mesh_summary.num_hexes);
+  EXPECT_EQ(result.document["gates"]["passed"], false);
+  EXPECT_EQ(result.document["gates"]["results"].size(), 2u);
+}
+
+}  // namespace
+}  // namespace hq
