@@ -1,5 +1,5 @@
-"""The keys of HQView's JSON outputs and CSV headers, normalised as
-docs/contract.md lists them (shared by check_contract.py)."""
+"""The keys of HQView's JSON outputs, normalised as docs/contract.md lists
+them (shared by check_contract.py)."""
 import json
 
 STATS_KEYS = {"count", "min", "max", "mean", "std", "p01", "p05", "p50", "p95", "p99", "histogram"}
@@ -9,39 +9,49 @@ def is_stats(value):
     return isinstance(value, dict) and STATS_KEYS <= set(value)
 
 
-def report_keys(report):
-    """Dotted paths of a report.json: arrays of objects as `[]`, the metric
-    names under quality.metrics as `<metric>`, the keys of
-    compare.differences as `<key>`, each statistics object as one path
-    (its members are listed once, by stats_keys()), and compare.headline,
-    compare.mesh and compare.quality as one path each (their members must be
-    those of the top-level headline, mesh and quality: compare_mirrors())."""
+def dotted_paths(document, rule):
+    """Every leaf's dotted path; an array of objects is `path[]` (listed
+    itself, then its objects' keys). rule(path, value) may claim a node:
+    it returns the paths that stand for it (the walk does not go below), or
+    None to walk on."""
     keys = set()
 
     def walk(value, path):
-        if is_stats(value) or path in ("compare.headline", "compare.mesh", "compare.quality"):
-            keys.add(path)
-            return
-        if isinstance(value, dict):
-            if path.endswith("quality.metrics"):
-                for v in value.values():
-                    walk(v, path + ".<metric>")
-                return
-            if path == "compare.differences":
-                keys.add("compare.differences.<key>")
-                return
+        claimed = rule(path, value)
+        if claimed is not None:
+            keys.update(claimed)
+        elif isinstance(value, dict):
             for k, v in value.items():
                 walk(v, f"{path}.{k}" if path else k)
-            return
-        if isinstance(value, list) and value and all(isinstance(v, dict) for v in value):
+        elif isinstance(value, list) and value and all(isinstance(v, dict) for v in value):
             keys.add(path + "[]")
             for v in value:
                 walk(v, path + "[]")
-            return
-        keys.add(path)
+        else:
+            keys.add(path)
 
-    walk(report, "")
+    walk(document, "")
     return keys
+
+
+def report_rule(path, value):
+    """report.json: each statistics object is one path (its members are
+    listed once, by stats_keys()); compare.headline, compare.mesh and
+    compare.quality one path each (their members must be those of the
+    top-level headline, mesh and quality: compare_mirrors()); the metric
+    names under quality.metrics are `<metric>`, the keys of
+    compare.differences `<key>`."""
+    if is_stats(value) or path in ("compare.headline", "compare.mesh", "compare.quality"):
+        return {path}
+    if path == "compare.differences" and isinstance(value, dict):
+        return {path + ".<key>"}
+    if path.endswith("quality.metrics") and isinstance(value, dict):
+        return {path + ".<metric>"} if value else set()
+    return None
+
+
+def report_keys(report):
+    return dotted_paths(report, report_rule)
 
 
 def compare_mirrors(report):
@@ -75,26 +85,14 @@ def stats_keys(report):
 
 
 def index_keys(index):
-    keys = set()
+    """index.json: a mesh's headline keys are dotted report.json paths
+    themselves, listed as they are."""
+    def rule(path, value):
+        if path == "meshes[].headline" and isinstance(value, dict):
+            return {path + "." + k for k in value}
+        return None
 
-    def walk(value, path):
-        if isinstance(value, dict):
-            if path == "meshes[].headline":
-                for k in value:
-                    keys.add(path + "." + k)
-                return
-            for k, v in value.items():
-                walk(v, f"{path}.{k}" if path else k)
-            return
-        if isinstance(value, list) and value and all(isinstance(v, dict) for v in value):
-            keys.add(path + "[]")
-            for v in value:
-                walk(v, path + "[]")
-            return
-        keys.add(path)
-
-    walk(index, "")
-    return keys
+    return dotted_paths(index, rule)
 
 
 def load(path):

@@ -99,16 +99,7 @@ class AbaqusParser {
     return true;
   }
 
-  static std::vector<std::string_view> split(std::string_view text) {
-    std::vector<std::string_view> parts;
-    std::size_t start = 0;
-    while (true) {
-      const std::size_t comma = text.find(',', start);
-      parts.push_back(text.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
-      if (comma == std::string_view::npos) return parts;
-      start = comma + 1;
-    }
-  }
+  static std::vector<std::string_view> split(std::string_view text) { return hq::split(text, ','); }
 
   [[noreturn]] void fail(std::int64_t line, const std::string& message) const {
     throw ParseError(name_, line, message);

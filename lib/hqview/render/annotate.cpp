@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "hqview/core/error.h"
+#include "hqview/core/text.h"
 #include "hqview/image/colormap.h"
 
 namespace hq {
@@ -42,16 +43,7 @@ int scaled_text(double size, const AnnotationStyle& style) {
   return std::max(style.min_text_size, scaled(size, style));
 }
 
-std::vector<std::string_view> split_lines(std::string_view text) {
-  std::vector<std::string_view> lines;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t end = text.find('\n', start);
-    lines.push_back(text.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start));
-    if (end == std::string_view::npos) return lines;
-    start = end + 1;
-  }
-}
+std::vector<std::string_view> split_lines(std::string_view text) { return split(text, '\n'); }
 
 void outline_rect(Image& image, const PixelRect& r, int thickness, Rgba8 color) {
   fill_rect(image, {r.x - thickness, r.y - thickness, r.width + 2 * thickness, thickness}, color);
