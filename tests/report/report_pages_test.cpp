@@ -10,6 +10,7 @@
 
 #include "hqview/core/error.h"
 #include "hqview/report/report_html.h"
+#include "hqview/report/escape.h"
 #include "hqview/report/report_markdown.h"
 
 namespace hq {

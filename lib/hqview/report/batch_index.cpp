@@ -17,6 +17,7 @@
 #include "hqview/core/error.h"
 #include "hqview/core/number_format.h"
 #include "hqview/report/atomic_file.h"
+#include "hqview/report/escape.h"
 #include "hqview/report/json_path.h"
 #include "hqview/report/report_templates.h"
 
@@ -53,38 +54,6 @@ std::size_t headline_index(std::string_view key) {
   for (std::size_t k = 0; k < kNumHeadlineKeys; ++k)
     if (key == kHeadlineKeys[k]) return k;
   return kNumHeadlineKeys;
-}
-
-// Markdown table cells: no pipes or line breaks from file names or errors.
-std::string md_cell(std::string_view text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '|')
-      out += "\\|";
-    else if (c == '\n' || c == '\r')
-      out += ' ';
-    else
-      out += c;
-  }
-  return out;
-}
-
-// A relative path as a URL path: every byte but unreserved ones and '/'
-// percent-encoded, so '#', '?', '%' and spaces in file names keep links working.
-std::string url_path(std::string_view path) {
-  static constexpr char kHex[] = "0123456789ABCDEF";
-  std::string out;
-  for (const char c : path) {
-    const auto b = static_cast<unsigned char>(c);
-    if (std::isalnum(b) || c == '-' || c == '_' || c == '.' || c == '~' || c == '/') {
-      out += c;
-    } else {
-      out += '%';
-      out += kHex[b >> 4];
-      out += kHex[b & 15];
-    }
-  }
-  return out;
 }
 
 bool has_labels(const std::vector<BatchEntry>& entries) {
@@ -303,8 +272,8 @@ std::string batch_summary_markdown(const std::vector<BatchEntry>& entries) {
   md += "\n";
   for (const BatchEntry& e : entries) {
     md += "| " +
-          (e.bundle.empty() ? md_cell(e.path) : "[" + md_cell(e.path) + "](" + url_path(e.bundle) + "/index.html)") +
-          " | " + md_cell(e.label) + " | " + std::string(to_string(e.status)) + " |";
+          (e.bundle.empty() ? markdown_escape(e.path) : "[" + markdown_escape(e.path) + "](" + url_path(e.bundle) + "/index.html)") +
+          " | " + markdown_escape(e.label) + " | " + std::string(to_string(e.status)) + " |";
     for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) md += " " + show(e.headline[k]) + " |";
     md += "\n";
   }
@@ -315,7 +284,7 @@ std::string batch_summary_markdown(const std::vector<BatchEntry>& entries) {
     any_problem = true;
     std::string what = e.error;
     for (const std::string& g : e.failed_gates) what += (what.empty() ? "gate failed: " : "; ") + g;
-    md += "- `" + md_cell(e.path) + "`: " + md_cell(what) + "\n";
+    md += "- " + markdown_escape(e.path) + ": " + markdown_escape(what) + "\n";
   }
   const std::vector<MethodSummary> methods = summarize_methods(entries);
   if (!methods.empty()) {
@@ -323,7 +292,7 @@ std::string batch_summary_markdown(const std::vector<BatchEntry>& entries) {
         "\n### Methods\n\n| method | meshes | failed | gate failed | with inverted | mean min SJ | mean mean SJ | "
         "worst min SJ |\n|---|--:|--:|--:|--:|--:|--:|--:|\n";
     for (const MethodSummary& m : methods)
-      md += "| " + md_cell(m.label) + " | " + std::to_string(m.num_meshes) + " | " + std::to_string(m.num_failed) +
+      md += "| " + markdown_escape(m.label) + " | " + std::to_string(m.num_meshes) + " | " + std::to_string(m.num_failed) +
             " | " + std::to_string(m.num_gate_failed) + " | " + std::to_string(m.num_with_inverted) + " | " +
             show(m.mean_min_scaled_jacobian) + " | " + show(m.mean_mean_scaled_jacobian) + " | " +
             show(m.worst_min_scaled_jacobian) + " |\n";

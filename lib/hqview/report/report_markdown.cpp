@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "hqview/core/number_format.h"
+#include "hqview/report/escape.h"
 #include "hqview/views/views.h"
 
 namespace hq {
@@ -38,29 +39,6 @@ std::vector<std::string_view> summary_view_ids() {
 }
 
 }  // namespace
-
-std::string markdown_escape(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (char c : text) {
-    const auto u = static_cast<unsigned char>(c);
-    if (c == '&')
-      out += "&amp;";
-    else if (c == '<')
-      out += "&lt;";
-    else if (c == '>')
-      out += "&gt;";
-    else if (u < 0x20 || u == 0x7f)
-      out += ' ';
-    else if (u < 0x80 && std::ispunct(u)) {
-      out += '\\';
-      out += c;
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
 
 std::string summary_markdown(const ReportModel& model) {
   const MeshSummary& m = model.analysis.mesh_summary;
