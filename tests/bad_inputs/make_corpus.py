@@ -129,10 +129,10 @@ def cdf1(dims, variables):
     return header(begins) + b"".join(v[3] + b"\0" * (-len(v[3]) % 4) for v in variables)
 
 
-def exodus(num_nodes_claimed=8):
+def exodus(num_nodes_claimed=8, points=P):
     dims = [("num_nodes", num_nodes_claimed), ("num_dim", 3), ("num_el_blk", 1), ("num_el_in_blk1", 1),
             ("num_nod_per_el1", 8)]
-    cols = [struct.pack(">8d", *[p[k] for p in P]) for k in range(3)]
+    cols = [struct.pack(">8d", *[p[k] for p in points]) for k in range(3)]
     variables = [(n, [0], 6, cols[k], {}) for k, n in enumerate(("coordx", "coordy", "coordz"))]
     variables.append(("connect1", [3, 4], 4, struct.pack(">8i", *range(1, 9)), {"elem_type": "HEX8"}))
     return cdf1(dims, variables)
@@ -169,3 +169,45 @@ put("reference_ply_claims_1e9.ply",
 # Binary STL: 80-byte header, uint32 count (1000 here), 50 bytes per triangle (2 here).
 put("reference_stl_count_mismatch.stl", b"\0" * 80 + struct.pack("<I", 1000) + b"\0" * 100)
 put("reference_binary_garbage.obj", b"v 0 0 0\n\0\1\2\3")
+
+# --- Coordinates of extreme magnitude (issue 22) ---------------------------
+# The cube with corner 1 at 1e-124 and corner 6 at 1.3e308: finite, so every
+# reader takes them, but no physical mesh has them (squared lengths
+# overflow, exact geometry on such numbers crawls): refused after reading,
+# with one message for every format. Denormal coordinates are analysed.
+X = [(1e-124, 0.0, 0.0) if i == 1 else (1.3e308, 1.0, 1.0) if i == 6 else p for i, p in enumerate(P)]
+DENORMAL = [(x * 1e-310, y * 1e-310, z * 1e-310) for x, y, z in P]
+
+
+def text(v):
+    return repr(float(v))
+
+
+put("medit_extreme_coordinates.mesh",
+    HEAD + "Vertices 8\n" + "".join(f"{text(x)} {text(y)} {text(z)} 0\n" for x, y, z in X) + HEX)
+put("medit_denormal_coordinates.mesh",
+    HEAD + "Vertices 8\n" + "".join(f"{text(x)} {text(y)} {text(z)} 0\n" for x, y, z in DENORMAL) + HEX)
+put("vtk_extreme_coordinates.vtk",
+    VTK_HEAD + "POINTS 8 double\n" + "".join(f"{text(x)} {text(y)} {text(z)}\n" for x, y, z in X) + VTK_CELLS)
+put("vtk_binary_extreme_coordinates.vtk",
+    b"# vtk DataFile Version 3.0\ncube\nBINARY\nDATASET UNSTRUCTURED_GRID\nPOINTS 8 double\n"
+    + b"".join(struct.pack(">3d", *p) for p in X)
+    + b"\nCELLS 1 9\n" + struct.pack(">9i", 8, *range(8)) + b"\nCELL_TYPES 1\n" + struct.pack(">i", 12) + b"\n")
+put("vtu_extreme_coordinates.vtu", vtu(8, 1, points=" ".join(f"{text(x)} {text(y)} {text(z)}" for x, y, z in X)))
+put("gmsh_extreme_coordinates.msh",
+    MSH_HEAD + "$Nodes\n8\n" + "".join(f"{i + 1} {text(x)} {text(y)} {text(z)}\n" for i, (x, y, z) in enumerate(X))
+    + "$EndNodes\n" + MSH_ELEMENTS)
+put("abaqus_extreme_coordinates.inp",
+    "*NODE\n" + "".join(f"{i + 1}, {text(x)}, {text(y)}, {text(z)}\n" for i, (x, y, z) in enumerate(X))
+    + "*ELEMENT, TYPE=C3D8\n1, 1, 2, 3, 4, 5, 6, 7, 8\n")
+put("exodus_extreme_coordinates.e", exodus(points=X))
+
+# 1,500 unit cubes, each shifted by 1e-4 along x from the last: every box
+# overlaps every other, so the overlap stage meets over a million candidate
+# pairs and stops at its work budget instead of testing them (294 KB).
+stack = []
+for i in range(1500):
+    stack += [(x + 1e-4 * i, y, z) for x, y, z in P]
+put("medit_overlapping_stack.mesh",
+    HEAD + f"Vertices {len(stack)}\n" + "".join(f"{text(x)} {text(y)} {text(z)} 0\n" for x, y, z in stack)
+    + "Hexahedra 1500\n" + "".join(" ".join(str(8 * i + k + 1) for k in range(8)) + " 0\n" for i in range(1500)))

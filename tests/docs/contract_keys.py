@@ -95,6 +95,21 @@ def index_keys(index):
     return dotted_paths(index, rule)
 
 
+def null_paths(document):
+    """The dotted paths whose value is null."""
+    found = set()
+
+    def walk(value, path):
+        if value is None:
+            found.add(path)
+        elif isinstance(value, dict):
+            for k, v in value.items():
+                walk(v, f"{path}.{k}" if path else k)
+
+    walk(document, "")
+    return found
+
+
 def load(path):
     with open(path, encoding="utf-8") as f:
         return json.load(f)

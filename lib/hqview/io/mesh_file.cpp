@@ -188,11 +188,17 @@ void check_content_matches(const MeshFormat& format, const std::filesystem::path
                          " content (expected the extension " + std::string(content->extensions[0]) + ")");
 }
 
+// Every reader's mesh passes here: its coordinates must be analysable.
+LoadedMesh checked(LoadedMesh loaded, const std::string& name) {
+  check_coordinate_magnitudes(loaded.mesh, name);
+  return loaded;
+}
+
 LoadedMesh read_as(const MeshFormat& format, const std::filesystem::path& path, std::string_view bytes,
                    const ReadLimits& limits) {
   check_content_matches(format, path, bytes);
   check_not_binary(format, bytes, path.string());
-  return format.read(bytes, path.string(), limits);
+  return checked(format.read(bytes, path.string(), limits), path.string());
 }
 
 // The bytes of a mesh file: its size checked against the budget and its
@@ -262,7 +268,7 @@ LoadedMesh read_hex_mesh(const std::filesystem::path& path, std::string_view byt
 LoadedMesh read_hex_mesh_as(const std::filesystem::path& path, std::string_view format, const ReadLimits& limits) {
   if (format.empty()) return read_hex_mesh(path, limits);
   const MeshFormat& chosen = format_of_name(format);
-  return chosen.read(read_mesh_bytes(chosen, path, limits), path.string(), limits);
+  return checked(chosen.read(read_mesh_bytes(chosen, path, limits), path.string(), limits), path.string());
 }
 
 LoadedMesh read_hex_mesh_as(const std::filesystem::path& path, std::string_view bytes, std::string_view format,
@@ -270,7 +276,7 @@ LoadedMesh read_hex_mesh_as(const std::filesystem::path& path, std::string_view 
   if (format.empty()) return read_hex_mesh(path, bytes, limits);
   const MeshFormat& chosen = format_of_name(format);
   check_not_binary(chosen, bytes, path.string());
-  return chosen.read(bytes, path.string(), limits);
+  return checked(chosen.read(bytes, path.string(), limits), path.string());
 }
 
 std::string reported_path(const std::filesystem::path& path) {
@@ -291,7 +297,7 @@ MeshSource open_mesh_source(const std::filesystem::path& path, std::string_view 
 LoadedMesh read_hex_mesh(const MeshSource& source, const ReadLimits& limits) {
   const MeshFormat& format = format_of_name(source.format);
   if (!source.is_format_given) check_content_matches(format, source.path, source.bytes);
-  return format.read(source.bytes, source.path.string(), limits);
+  return checked(format.read(source.bytes, source.path.string(), limits), source.path.string());
 }
 
 InputFile input_file(const MeshSource& source, const LoadedMesh& loaded) {

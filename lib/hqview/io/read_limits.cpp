@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -135,6 +136,23 @@ void check_mesh_memory(const ReadLimits& limits, const std::string& name, std::i
   throw ParseError(
       name, line,
       "the file declares " + what + ", which needs about " + needed_text + "; --max-memory is " + limit_text);
+}
+
+void check_coordinate_magnitudes(const HexMesh& mesh, const std::string& name) {
+  double smallest = INFINITY, largest = 0.0;
+  for (const Vec3& p : mesh.points)
+    for (const double c : {p.x, p.y, p.z}) {
+      const double m = std::abs(c);
+      largest = std::max(largest, m);
+      if (m > 0.0) smallest = std::min(smallest, m);
+    }
+  if (!(largest > kMaxCoordinateMagnitude)) return;
+  char text[160];
+  std::snprintf(text, sizeof text, "node coordinates span %.3g to %.3g in magnitude", smallest, largest);
+  throw ParseError(name, 0,
+                   std::string(text) +
+                       "; HQView analyses magnitudes up to 1e+100 (beyond, squared lengths overflow and exact "
+                       "geometry slows down): rescale the mesh");
 }
 
 }  // namespace hq

@@ -14,6 +14,8 @@
 #include <string>
 #include <string_view>
 
+#include "hqview/mesh/hex_mesh.h"
+
 namespace hq {
 
 // The default budget: 75 % of the physical memory (sysconf), or of the
@@ -47,5 +49,18 @@ std::string format_memory_size(std::uint64_t bytes);
 // any type, estimated as hexes).
 void check_mesh_memory(const ReadLimits& limits, const std::string& name, std::int64_t line, std::uint64_t file_bytes,
                        std::int64_t num_vertices, std::int64_t num_hexes, std::string_view cell_noun = "hex");
+
+// The largest coordinate magnitude HQView analyses. Squared lengths of
+// coordinates up to 1e100 stay far from overflow (1.8e308), so bounding-box
+// diagonals, edge lengths and Jacobians are finite; no physical mesh comes
+// near it (a light year is 1e16 m; 1e9-scaled real meshes reach 1e11).
+inline constexpr double kMaxCoordinateMagnitude = 1e100;
+
+// Throws ParseError "name: node coordinates span A to B in magnitude: ..."
+// when a coordinate's magnitude exceeds kMaxCoordinateMagnitude (A: the
+// smallest non-zero magnitude, B: the largest). The readers refuse NaN and
+// Inf themselves; tiny and denormal coordinates are analysed (their
+// degenerate cells are data).
+void check_coordinate_magnitudes(const HexMesh& mesh, const std::string& name);
 
 }  // namespace hq

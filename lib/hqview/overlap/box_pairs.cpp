@@ -32,6 +32,37 @@ CGAL::Box_intersection_d::Topology topology_of(BoxContact contact) {
 // an empty box (lo == hi on an axis) meets nothing.
 bool is_empty(const Box3& b) { return !(b.lo[0] < b.hi[0] && b.lo[1] < b.hi[1] && b.lo[2] < b.hi[2]); }
 
+// Collects reported pairs up to a budget; past it, only counts them, and
+// stops the search (by exception: CGAL's callbacks cannot) at
+// kBudgetCountFactor x the budget.
+class BudgetedPairs {
+ public:
+  explicit BudgetedPairs(std::int64_t max_pairs) : max_pairs_(max_pairs) {}
+  struct Stop {};
+  void add(std::size_t a, std::size_t b) {
+    ++result_.num_found;
+    if (result_.num_found <= max_pairs_) result_.pairs.push_back({static_cast<Index>(a), static_cast<Index>(b)});
+    if (result_.num_found >= kBudgetCountFactor * max_pairs_) throw Stop{};
+  }
+  template <class Search>
+  BoxPairs run(Search&& search) {
+    try {
+      search();
+    } catch (const Stop&) {
+      result_.is_count_exact = false;
+    }
+    if (result_.num_found > max_pairs_) {
+      result_.is_complete = false;
+      result_.pairs = {};
+    }
+    return std::move(result_);
+  }
+
+ private:
+  std::int64_t max_pairs_;
+  BoxPairs result_;
+};
+
 void normalize(std::vector<std::array<Index, 2>>& pairs) {
   for (auto& p : pairs)
     if (p[0] > p[1]) std::swap(p[0], p[1]);
@@ -41,25 +72,25 @@ void normalize(std::vector<std::array<Index, 2>>& pairs) {
 
 }  // namespace
 
-std::vector<std::array<Index, 2>> box_self_pairs(const std::vector<Box3>& boxes, BoxContact contact) {
+BoxPairs box_self_pairs(const std::vector<Box3>& boxes, BoxContact contact, std::int64_t max_pairs) {
   std::vector<IndexedBox> items;
   items.reserve(boxes.size());
   for (std::size_t i = 0; i < boxes.size(); ++i)
     if (contact == BoxContact::closed || !is_empty(boxes[i])) items.push_back(indexed(boxes[i], i));
-  std::vector<std::array<Index, 2>> pairs;
-  auto report = [&](const IndexedBox& a, const IndexedBox& b) {
-    pairs.push_back({static_cast<Index>(a.index), static_cast<Index>(b.index)});
-  };
+  BudgetedPairs collected(max_pairs);
+  auto report = [&](const IndexedBox& a, const IndexedBox& b) { collected.add(a.index, b.index); };
   // Sequential_tag: faster than Parallel_tag on 2 cores (ALGORITHMS.md §4).
-  CGAL::box_self_intersection_d<CGAL::Sequential_tag>(items.begin(), items.end(), report,
-                                                      CGAL::Box_intersection_d::Box_traits_d<IndexedBox>(), 10,
-                                                      topology_of(contact));
-  normalize(pairs);
-  return pairs;
+  BoxPairs result = collected.run([&] {
+    CGAL::box_self_intersection_d<CGAL::Sequential_tag>(items.begin(), items.end(), report,
+                                                        CGAL::Box_intersection_d::Box_traits_d<IndexedBox>(), 10,
+                                                        topology_of(contact));
+  });
+  normalize(result.pairs);
+  return result;
 }
 
-std::vector<std::array<Index, 2>> box_subset_pairs(const std::vector<Box3>& boxes, const std::vector<Index>& subset,
-                                                   BoxContact contact) {
+BoxPairs box_subset_pairs(const std::vector<Box3>& boxes, const std::vector<Index>& subset, BoxContact contact,
+                          std::int64_t max_pairs) {
   std::vector<IndexedBox> all, some;
   all.reserve(boxes.size());
   for (std::size_t i = 0; i < boxes.size(); ++i)
@@ -68,17 +99,18 @@ std::vector<std::array<Index, 2>> box_subset_pairs(const std::vector<Box3>& boxe
     const Box3& b = boxes[static_cast<std::size_t>(i)];
     if (contact == BoxContact::closed || !is_empty(b)) some.push_back(indexed(b, static_cast<std::size_t>(i)));
   }
-  std::vector<std::array<Index, 2>> pairs;
-  auto report = [&](const IndexedBox& a, const IndexedBox& b) {
-    pairs.push_back({static_cast<Index>(a.index), static_cast<Index>(b.index)});
-  };
+  BudgetedPairs collected(max_pairs);
+  auto report = [&](const IndexedBox& a, const IndexedBox& b) { collected.add(a.index, b.index); };
   // Boxes with equal ids (a subset box and its own copy in `all`) are never
-  // reported; pairs inside the subset come twice and are merged below.
-  CGAL::box_intersection_d<CGAL::Sequential_tag>(some.begin(), some.end(), all.begin(), all.end(), report,
-                                                 CGAL::Box_intersection_d::Box_traits_d<IndexedBox>(), 10,
-                                                 topology_of(contact), CGAL::Box_intersection_d::BIPARTITE);
-  normalize(pairs);
-  return pairs;
+  // reported; pairs inside the subset come twice (and count twice against
+  // the budget) and are merged below.
+  BoxPairs result = collected.run([&] {
+    CGAL::box_intersection_d<CGAL::Sequential_tag>(some.begin(), some.end(), all.begin(), all.end(), report,
+                                                   CGAL::Box_intersection_d::Box_traits_d<IndexedBox>(), 10,
+                                                   topology_of(contact), CGAL::Box_intersection_d::BIPARTITE);
+  });
+  normalize(result.pairs);
+  return result;
 }
 
 }  // namespace hq::detail

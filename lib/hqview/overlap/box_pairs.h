@@ -3,6 +3,7 @@
 // (CGAL::box_intersection_d behind a plain interface).
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "hqview/core/types.h"
@@ -13,12 +14,26 @@ namespace hq::detail {
 // closed: boxes that touch count; open: only boxes whose interiors overlap.
 enum class BoxContact { closed, open };
 
-// Every pair {i, j}, i < j, of boxes that intersect. Sorted, no repeats.
-std::vector<std::array<Index, 2>> box_self_pairs(const std::vector<Box3>& boxes, BoxContact contact);
+// The pairs found, unless there are more than the caller's budget: then
+// `pairs` is empty, is_complete false, and num_found counts the pairs met
+// before the search stopped (it stops at kBudgetCountFactor x the budget, so
+// num_found is a lower bound when is_count_exact is false).
+struct BoxPairs {
+  std::vector<std::array<Index, 2>> pairs;
+  bool is_complete = true;
+  std::int64_t num_found = 0;
+  bool is_count_exact = true;
+};
+inline constexpr std::int64_t kBudgetCountFactor = 8;
+
+// Every pair {i, j}, i < j, of boxes that intersect, at most max_pairs of
+// them (see BoxPairs). Sorted, no repeats.
+BoxPairs box_self_pairs(const std::vector<Box3>& boxes, BoxContact contact, std::int64_t max_pairs);
 
 // Every pair {i, j}, i < j, with i or j in `subset` (ascending indices into
-// boxes), whose boxes intersect. Sorted, no repeats.
-std::vector<std::array<Index, 2>> box_subset_pairs(const std::vector<Box3>& boxes, const std::vector<Index>& subset,
-                                                   BoxContact contact);
+// boxes), whose boxes intersect, at most max_pairs of them. Sorted, no
+// repeats.
+BoxPairs box_subset_pairs(const std::vector<Box3>& boxes, const std::vector<Index>& subset, BoxContact contact,
+                          std::int64_t max_pairs);
 
 }  // namespace hq::detail

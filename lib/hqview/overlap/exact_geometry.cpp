@@ -306,7 +306,7 @@ std::vector<std::uint8_t> classify_cell_orientations(const HexMesh& mesh, const 
 
 // ---- Stage E ----------------------------------------------------------------
 
-std::vector<std::array<Index, 2>> intersecting_quad_pairs(const TetPoints& tp, const std::vector<BoundaryQuad>& quads) {
+QuadPairs intersecting_quad_pairs(const TetPoints& tp, const std::vector<BoundaryQuad>& quads, std::int64_t max_pairs) {
   const auto& p = tp.points;
   std::vector<Triangle> triangles;
   std::vector<Index> triangle_quad;
@@ -320,7 +320,10 @@ std::vector<std::array<Index, 2>> intersecting_quad_pairs(const TetPoints& tp, c
       triangle_quad.push_back(static_cast<Index>(q));
       boxes.push_back(box_of(p, t.data(), 3));
     }
-  const auto candidates = box_self_pairs(boxes, BoxContact::closed);
+  QuadPairs result;
+  result.budget = box_self_pairs(boxes, BoxContact::closed, max_pairs);
+  const std::vector<std::array<Index, 2>> candidates = std::move(result.budget.pairs);
+  result.budget.pairs = {};
   std::vector<char> hit(candidates.size(), 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 4096),
                     [&](const tbb::blocked_range<std::size_t>& r) {
@@ -328,7 +331,7 @@ std::vector<std::array<Index, 2>> intersecting_quad_pairs(const TetPoints& tp, c
                         hit[i] = triangles_meet_improperly(p, triangles[static_cast<std::size_t>(candidates[i][0])],
                                                            triangles[static_cast<std::size_t>(candidates[i][1])]);
                     });
-  std::vector<std::array<Index, 2>> pairs;
+  std::vector<std::array<Index, 2>>& pairs = result.pairs;
   for (std::size_t i = 0; i < candidates.size(); ++i)
     if (hit[i]) {
       Index a = triangle_quad[static_cast<std::size_t>(candidates[i][0])],
@@ -337,7 +340,7 @@ std::vector<std::array<Index, 2>> intersecting_quad_pairs(const TetPoints& tp, c
     }
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  return pairs;
+  return result;
 }
 
 // ---- Stage F ----------------------------------------------------------------

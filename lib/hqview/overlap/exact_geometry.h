@@ -11,6 +11,7 @@
 #include "hqview/core/vec3.h"
 #include "hqview/mesh/hex_mesh.h"
 #include "hqview/mesh/topology.h"
+#include "hqview/overlap/box_pairs.h"
 #include "hqview/overlap/tet_geometry.h"
 
 namespace hq::detail {
@@ -23,7 +24,13 @@ std::vector<std::uint8_t> classify_cell_orientations(const HexMesh& mesh, const 
 // other than in the vertices and edges they share by id; i == j when a fan
 // folds onto itself. Triangles with collinear corners are skipped (their
 // cells are flagged by stage C). Sorted.
-std::vector<std::array<Index, 2>> intersecting_quad_pairs(const TetPoints& tp, const std::vector<BoundaryQuad>& quads);
+// At most max_pairs candidate triangle pairs are tested: beyond, the result
+// is empty and budget.is_complete false (box_pairs.h).
+struct QuadPairs {
+  std::vector<std::array<Index, 2>> pairs;
+  BoxPairs budget;  // its pairs are cleared; is_complete, num_found, is_count_exact
+};
+QuadPairs intersecting_quad_pairs(const TetPoints& tp, const std::vector<BoundaryQuad>& quads, std::int64_t max_pairs);
 
 // Stage F: the winding number of the closed surface made of all the fans of
 // `quads`, at points just behind the fan of quads[q] (its cell's side),

@@ -255,14 +255,30 @@ Box3 bounds_of(const TetPoints& tp, const std::vector<BoundaryQuad>& quads) {
 
 struct BoundaryCheck {
   std::vector<std::array<Index, 2>> intersecting;  // indices into quads
+  detail::BoxPairs budget;                         // E's candidate pairs: within the budget?
   std::vector<Index> bad_sheet_quads;              // quads of sheets whose winding is not 1
   Index num_bad_sheets = 0;
 };
 
-BoundaryCheck check_boundary(const TetPoints& tp, const std::vector<BoundaryQuad>& quads) {
+std::int64_t pair_budget(const OverlapOptions& options, std::size_t num_boxes) {
+  return std::max(options.min_pair_budget, options.pairs_per_box * static_cast<std::int64_t>(num_boxes));
+}
+
+// Records that a pair stage stopped at its budget.
+void record_over_budget(OverlapReport& r, const char* stage, std::int64_t budget, const detail::BoxPairs& pairs) {
+  r.is_over_budget = true;
+  r.over_budget_stage = stage;
+  r.pair_budget = budget;
+  r.num_untested_pairs = pairs.num_found;
+  r.is_untested_count_exact = pairs.is_count_exact;
+}
+
+BoundaryCheck check_boundary(const TetPoints& tp, const std::vector<BoundaryQuad>& quads, std::int64_t max_pairs) {
   BoundaryCheck check;
-  check.intersecting = detail::intersecting_quad_pairs(tp, quads);
-  if (quads.empty()) return check;
+  detail::QuadPairs pairs = detail::intersecting_quad_pairs(tp, quads, max_pairs);
+  check.intersecting = std::move(pairs.pairs);
+  check.budget = pairs.budget;
+  if (!check.budget.is_complete || quads.empty()) return check;
   Index num_sheets = 0;
   const std::vector<Index> sheet = find_sheets(quads, num_sheets);
   std::vector<Index> first(sz(num_sheets), kNoIndex);
@@ -365,8 +381,15 @@ OverlapReport check_overlap(const HexMesh& mesh, const Topology& topo, const Ove
   // E, F on the boundary of the unflagged cells K', until K' is certified.
   for (int round = 0;; ++round) {
     const std::vector<BoundaryQuad> quads = boundary_of_unflagged(mesh, topo, flagged);
-    const BoundaryCheck check = check_boundary(tp, quads);
+    // E tests the quads' fan triangles: 4 per quad.
+    const std::int64_t budget = pair_budget(options, 4 * quads.size());
+    const BoundaryCheck check = check_boundary(tp, quads, budget);
     r.certificate_rounds = round + 1;
+    if (!check.budget.is_complete) {  // nothing is known of this boundary: every cell goes to G
+      record_over_budget(r, "boundary", budget, check.budget);
+      std::fill(flagged.begin(), flagged.end(), 1);
+      break;
+    }
     if (round == 0) {
       for (const auto& pair : check.intersecting) {
         const Index a = quads[sz(pair[0])].face, b = quads[sz(pair[1])].face;
@@ -385,7 +408,8 @@ OverlapReport check_overlap(const HexMesh& mesh, const Topology& topo, const Ove
       break;
     }
   }
-  r.certified_clean = clean_a_to_d && r.boundary_self_intersections.empty() && r.num_nested_shells == 0;
+  r.certified_clean =
+      clean_a_to_d && !r.is_over_budget && r.boundary_self_intersections.empty() && r.num_nested_shells == 0;
 
   // G.
   std::vector<Index> flagged_cells;
@@ -396,9 +420,14 @@ OverlapReport check_overlap(const HexMesh& mesh, const Topology& topo, const Ove
   if (options.mode == OverlapMode::exhaustive || !flagged_cells.empty()) {
     std::vector<Box3> boxes(nh);
     for (std::size_t h = 0; h < nh; ++h) boxes[h] = detail::box_of(p, mesh.hexes[h].data(), 8);
-    candidates = options.mode == OverlapMode::exhaustive
-                     ? detail::box_self_pairs(boxes, detail::BoxContact::open)
-                     : detail::box_subset_pairs(boxes, flagged_cells, detail::BoxContact::open);
+    const std::int64_t budget = pair_budget(options, nh);
+    detail::BoxPairs pairs = options.mode == OverlapMode::exhaustive
+                                 ? detail::box_self_pairs(boxes, detail::BoxContact::open, budget)
+                                 : detail::box_subset_pairs(boxes, flagged_cells, detail::BoxContact::open, budget);
+    if (pairs.is_complete)
+      candidates = std::move(pairs.pairs);
+    else if (!r.is_over_budget)  // a stopped E already says what was not tested
+      record_over_budget(r, "cells", budget, pairs);
   }
   r.num_candidate_pairs = static_cast<std::int64_t>(candidates.size());
   const auto tests = detail::test_cell_pairs(mesh, topo, tp, candidates);

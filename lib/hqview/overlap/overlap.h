@@ -41,6 +41,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -64,6 +65,14 @@ struct OverlapOptions {
   // an edge has zero length when its length is <= eps * diagonal. 0 = exact
   // equality.
   double coincident_eps = 0.0;
+  // Work budget of the pair stages E and G: each tests at most
+  // max(min_pair_budget, pairs_per_box x its number of boxes) candidate
+  // pairs (boundary triangles for E, cells for G). Beyond it a stage stops:
+  // nothing is certified and OverlapReport says which stage stopped and how
+  // many pairs were not tested. Real meshes stay far below (about 30 pairs
+  // per box; docs/analysis.md, "Overlap").
+  std::int64_t pairs_per_box = 64;
+  std::int64_t min_pair_budget = 1'000'000;
 };
 
 // Vertices that occupy (within the tolerance) one position. Groups are the
@@ -138,6 +147,15 @@ struct OverlapReport {
   std::vector<char> cell_intersecting;               // num_hexes, 0/1
   Index num_intersecting_cells = 0;
   std::vector<OverlapMarker> markers;  // coincident groups, then intersections
+
+  // The work budget (OverlapOptions): a stage whose candidate pairs exceed
+  // it is skipped; then certified_clean is false and the intersecting pairs
+  // are unknown.
+  bool is_over_budget = false;
+  std::string over_budget_stage;        // "boundary" (E) or "cells" (G); empty within the budget
+  std::int64_t pair_budget = 0;         // the stage's budget, when over it
+  std::int64_t num_untested_pairs = 0;  // its candidate pairs, none tested
+  bool is_untested_count_exact = true;  // false: num_untested_pairs is a lower bound
 
   // The certificate: A-F found nothing, so no cells intersect.
   bool certified_clean = false;

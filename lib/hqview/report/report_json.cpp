@@ -208,6 +208,13 @@ Json overlap_json(const OverlapReport& o) {
   j["certificate_rounds"] = o.certificate_rounds;
   j["max_listed"] = kMaxListedOverlap;
   j["lists_truncated"] = truncated;
+  // The work budget (issue 22): a pair stage that stopped, and what it left untested.
+  j["budget_exceeded"] = o.is_over_budget;
+  j["untested_pairs"] = o.is_over_budget ? Json{{"stage", o.over_budget_stage},
+                                                {"budget", o.pair_budget},
+                                                {"count", o.num_untested_pairs},
+                                                {"count_is_lower_bound", !o.is_untested_count_exact}}
+                                         : Json(nullptr);
   return j;
 }
 
