@@ -146,6 +146,24 @@ TEST(AnalyzePipeline, NoRendererNoViewsSameNumbers) {
   EXPECT_EQ(plain.document["glyphs"], drawn.document["glyphs"]);
 }
 
+TEST(AnalyzePipeline, TopClustersChoosesTheDetailViews) {
+  // --top-clusters reaches the views through the glyph result: K clusters
+  // get a C view, their K worst vertices D and E (plus a focus vertex).
+  for (const int k : {0, 1, 3}) {
+    AnalyzeOptions options = small_run();
+    options.glyphs.rmax = 0.3;  // x the mean edge length: several clusters on the ball
+    options.glyphs.top_clusters = k;
+    options.views.focus_vertices = {0};
+    RecordingRenderer renderer;
+    const AnalyzeResult result = analyze(options, &renderer);
+    ASSERT_GE(result.model.analysis.glyphs->clusters.size(), 3u);
+    std::map<std::string, std::size_t> files;
+    for (const ViewEntry& v : result.model.views) files[v.id] = v.files.size();
+    EXPECT_EQ(files.count("clusters") ? files["clusters"] : 0u, static_cast<std::size_t>(k)) << k;
+    EXPECT_EQ(files["local"], static_cast<std::size_t>(k) + 1) << k;  // vertex 0 is no cluster's worst here
+  }
+}
+
 TEST(AnalyzePipeline, GatesReadTheDocument) {
   AnalyzeOptions options = small_run();
   options.gates = {parse_gate_rule("quality.scaled_jacobian.min>=2"), parse_gate_rule("mesh.num_hexes>0")};

@@ -93,11 +93,7 @@ AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
   model.tool_version = options.tool_version;
   model.has_annotated_vtu = true;  // every analyze bundle has data/annotated.vtu
   model.analysis = analyze_mesh(options);
-  if (renderer) {
-    ViewOptions views = options.views;
-    views.top_clusters = options.glyphs.top_clusters;
-    add_views(render_views(model.analysis, views, *renderer), result);
-  }
+  if (renderer) add_views(render_views(model.analysis, options.views, *renderer), result);
   // Gates read the finished report, so any numeric key can be gated on.
   result.document = report_document(model);
   model.gates = evaluate_gates(options.gates, result.document);

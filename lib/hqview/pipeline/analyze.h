@@ -29,7 +29,7 @@ struct AnalyzeOptions {
   std::filesystem::path reference_path;  // empty: no boundary error
   std::filesystem::path compare_path;    // empty: no comparison
   std::string tool_version;
-  ViewOptions views;                         // size, views to draw, focus vertices (top_clusters: from glyphs)
+  ViewOptions views;                         // size, views to draw, focus vertices
   int worst_count = 20;                      // entries in worst_vertices / worst_cells
   HexMetricSet metrics = all_hex_metrics();  // Verdict metrics to compute (scaled_jacobian always)
   std::vector<GateRule> gates;               // evaluated on the finished report document

@@ -319,7 +319,8 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
   ViewContext context{analysis, options, renderer, analysis.mesh_name(), {}};
   if (!analysis.glyphs) context.no_glyphs.vertex_cluster.assign(analysis.mesh.points.size(), kNoIndex);
   context.glyphs = analysis.glyphs ? &*analysis.glyphs : &context.no_glyphs;
-  context.num_top = std::min<std::size_t>(static_cast<std::size_t>(std::max(0, options.top_clusters)),
+  // The top clusters (C views; their worst vertices get D and E): as the glyph stage was asked.
+  context.num_top = std::min<std::size_t>(static_cast<std::size_t>(std::max(0, context.glyphs->options.top_clusters)),
                                           context.glyphs->clusters.size());
   context.local_vertices = choose_local_vertices(context);
 

@@ -37,7 +37,6 @@ struct RenderedView {
 struct ViewOptions {
   int width = 1600, height = 1200;
   int worst_vertices = 40;            // bars in chart B
-  int top_clusters = 8;               // clusters with a C view; their worst vertices get D and E
   std::vector<Index> focus_vertices;  // more D and E views (--focus-vertex)
   std::vector<std::string> views;     // ids of kViews to draw (selectable ones); empty: all
 };
