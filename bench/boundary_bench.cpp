@@ -170,6 +170,19 @@ void BM_UvAtlas_HQView(benchmark::State& state) {
                           static_cast<std::int64_t>(s.triangles.size()));
 }
 
+// Baseline: the first atlas (best of 26 projection directions per triangle).
+void BM_UvAtlas_BaselineProjected(benchmark::State& state) {
+  const hq::TriSurface& s = reference();
+  for (auto _ : state) {
+    const hq::UvAtlas atlas = hq::build_uv_atlas(s, hq::UvOptions{.charts = hq::UvCharts::projected});
+    if (atlas.num_flipped != 0 || atlas.num_overlaps != 0) state.SkipWithError("invalid atlas");
+    state.counters["charts"] = atlas.num_charts;
+    state.counters["efficiency"] = atlas.packing_efficiency;
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) *
+                          static_cast<std::int64_t>(s.triangles.size()));
+}
+
 // The same with the LSCM improvement of every disk chart.
 void BM_UvAtlasLscm_HQView(benchmark::State& state) {
   const hq::TriSurface& s = reference();
@@ -202,6 +215,7 @@ BENCHMARK(BM_SignedDistance_BaselineNoHint)
 BENCHMARK(BM_WindingSign_HQView)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)->UseRealTime();
 BENCHMARK(BM_ReferenceRepair_HQView)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)->UseRealTime();
 BENCHMARK(BM_UvAtlasLscm_HQView)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)->UseRealTime();
+BENCHMARK(BM_UvAtlas_BaselineProjected)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)->UseRealTime();
 BENCHMARK(BM_UvAtlas_HQView)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)->UseRealTime();
 
 }  // namespace

@@ -129,9 +129,22 @@ Json boundary_error_json(const ReportModel& model) {
   j["sign_method"] = sign_method_name(e.sign_method);
   if (model.analysis.uv_atlas) {
     const UvAtlas& a = *model.analysis.uv_atlas;
-    j["uv_atlas"] = {{"num_charts", a.num_charts},           {"num_flipped", a.num_flipped},
-                     {"num_overlaps", a.num_overlaps},       {"num_splits", a.num_splits},
-                     {"num_lscm_charts", a.num_lscm_charts}, {"packing_efficiency", number(a.packing_efficiency)}};
+    auto quantiles = [&](const UvDistortionStats& d) {
+      return ReportDocument{{"min", number(d.min)}, {"p5", number(d.p5)},   {"p50", number(d.p50)},
+                            {"p95", number(d.p95)}, {"max", number(d.max)}};
+    };
+    j["uv_atlas"] = {{"num_charts", a.num_charts},
+                     {"num_flipped", a.num_flipped},
+                     {"num_overlaps", a.num_overlaps},
+                     {"num_splits", a.num_splits},
+                     {"num_lscm_charts", a.num_lscm_charts},
+                     {"packing_efficiency", number(a.packing_efficiency)},
+                     {"area_fraction_largest_chart", number(a.area_fraction_largest_chart)},
+                     {"area_fraction_top_4_charts", number(a.area_fraction_top_4_charts)},
+                     {"area_fraction_top_8_charts", number(a.area_fraction_top_8_charts)},
+                     {"area_ratio", quantiles(a.area_ratio)},
+                     {"area_fraction_area_ratio_within_2", number(a.area_fraction_area_ratio_within_2)},
+                     {"conformal_distortion", quantiles(a.conformal_distortion)}};
   } else {
     j["uv_atlas"] = nullptr;
   }

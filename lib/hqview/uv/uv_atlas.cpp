@@ -3,15 +3,19 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <numeric>
+#include <queue>
+#include <tuple>
 
 #include "hqview/uv/uv_lscm.h"
+#include "hqview/uv/uv_metrics.h"
+#include "hqview/uv/uv_pack.h"
 
 namespace hq {
 namespace {
 
 constexpr int kNumDirections = 26;
-constexpr int kOwnPlane = -1;  // a singleton chart laid out in its own plane (or canonically)
 
 std::array<Vec3, kNumDirections> projection_directions() {
   std::array<Vec3, kNumDirections> d{};
@@ -23,14 +27,21 @@ std::array<Vec3, kNumDirections> projection_directions() {
   return d;
 }
 
+// A chart: its triangles and the direction it is projected along (a zero
+// direction: each triangle laid out alone, in its own plane or canonically).
 struct Chart {
   std::vector<Index> triangles;
-  int direction = kOwnPlane;
+  Vec3 direction{};
+  bool own_plane() const { return direction == Vec3{}; }
 };
 
 Index find_root(std::vector<Index>& parent, Index v) {
   while (parent[v] != v) v = parent[v] = parent[parent[v]];
   return v;
+}
+
+double triangle_area_2d(const Uv* p) {
+  return 0.5 * ((p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]));
 }
 
 class AtlasBuilder {
@@ -45,21 +56,30 @@ class AtlasBuilder {
   UvAtlas build() {
     UvAtlas atlas;
     if (nt_ == 0) return atlas;
-    make_initial_charts();
+    compute_triangles();
+    if (options_.charts == UvCharts::grown) {
+      grow_charts();
+      merge_charts();
+      smooth_borders();
+    } else {
+      make_projected_charts();
+    }
     for (std::size_t c = 0; c < charts_.size(); ++c) lay_out(c);
+    separate_flipped();
+    atlas.num_splits += make_disks();
     if (options_.improve_with_lscm && nt_ <= options_.lscm_max_surface_triangles)
       atlas.num_lscm_charts = improve_with_lscm();
-    separate_flipped();
-    split_dominant_charts();
-    // Overlaps are searched once, on a first packing (charts apart, plain 2D
-    // boxes); splitting only separates triangles, so it never makes new ones.
+    equalise_scale();
+    // Overlaps are searched once, on a first packing (charts apart);
+    // splitting only separates triangles, so it never makes new ones.
     pack();
     std::vector<std::array<Index, 2>> overlaps = uv_overlapping_pairs(uvs_);
-    atlas.num_splits = split_overlapping_charts(overlaps);
+    const Index overlap_splits = split_overlapping_charts(overlaps);
+    atlas.num_splits += overlap_splits;
     // The final exact check on the final UVs. Without splits the first
     // packing is final and its overlaps (if any, across charts) are known.
     for (int round = 0;; ++round) {
-      if (round > 0 || atlas.num_splits > 0) {
+      if (round > 0 || overlap_splits > 0) {
         pack();
         overlaps = uv_overlapping_pairs(uvs_);
       }
@@ -74,6 +94,7 @@ class AtlasBuilder {
       std::sort(bad.begin(), bad.end());
       bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
       make_singletons(bad, /*canonical=*/true);
+      equalise_scale();
     }
     // Drop emptied charts, number the rest in order.
     atlas.triangle_chart.assign(static_cast<std::size_t>(nt_), kNoIndex);
@@ -82,13 +103,8 @@ class AtlasBuilder {
       for (Index t : c.triangles) atlas.triangle_chart[t] = atlas.num_charts;
       ++atlas.num_charts;
     }
-    double area = 0.0;
-    for (Index t = 0; t < nt_; ++t) {
-      const Uv &a = uvs_[3 * t], &b = uvs_[3 * t + 1], &c = uvs_[3 * t + 2];
-      area += 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
-    }
-    atlas.packing_efficiency = area;
     atlas.uvs = std::move(uvs_);
+    measure_uv_atlas(s_, atlas);
     return atlas;
   }
 
@@ -107,159 +123,339 @@ class AtlasBuilder {
     return lengths[lengths.size() / 2];
   }
 
-  // Label = best of the 26 directions; charts = components of equal labels
-  // across edges shared by exactly two triangles. Zero-area triangles are singletons.
-  void make_initial_charts() {
-    const auto dirs = projection_directions();
-    std::vector<int> label(static_cast<std::size_t>(nt_), kOwnPlane);
+  // Unit normals (zero for degenerate triangles), areas, centroids, and the
+  // neighbour across each edge shared by exactly two triangles.
+  void compute_triangles() {
+    normal_.assign(static_cast<std::size_t>(nt_), Vec3{});
+    area_.assign(static_cast<std::size_t>(nt_), 0.0);
+    centroid_.assign(static_cast<std::size_t>(nt_), Vec3{});
     for (Index t = 0; t < nt_; ++t) {
       const Vec3 n = cross(point(t, 1) - point(t, 0), point(t, 2) - point(t, 0));
-      if (!(squared_norm(n) > 0.0)) continue;
-      double best = -INFINITY;
-      for (int d = 0; d < kNumDirections; ++d) {
-        const double score = dot(n, dirs[d]);
-        if (score > best) best = score, label[t] = d;
-      }
+      const double l = norm(n);
+      centroid_[t] = (point(t, 0) + point(t, 1) + point(t, 2)) / 3.0;
+      if (!(l > 0.0) || !std::isfinite(l)) continue;
+      const Vec3 u = n / l;
+      if (!is_finite(u)) continue;
+      normal_[t] = u;
+      area_[t] = 0.5 * l;
     }
     std::vector<std::pair<std::uint64_t, Index>> edges(3 * static_cast<std::size_t>(nt_));
     for (Index t = 0; t < nt_; ++t)
       for (int k = 0; k < 3; ++k) {
         const auto a = static_cast<std::uint64_t>(static_cast<std::uint32_t>(s_.triangles[t][k]));
         const auto b = static_cast<std::uint64_t>(static_cast<std::uint32_t>(s_.triangles[t][(k + 1) % 3]));
-        edges[3 * static_cast<std::size_t>(t) + k] = {std::min(a, b) << 32 | std::max(a, b), t};
+        edges[3 * static_cast<std::size_t>(t) + k] = {std::min(a, b) << 32 | std::max(a, b), 3 * t + k};
       }
     std::sort(edges.begin(), edges.end());
-    std::vector<Index> parent(static_cast<std::size_t>(nt_));
-    std::iota(parent.begin(), parent.end(), 0);
+    neighbour_.assign(3 * static_cast<std::size_t>(nt_), kNoIndex);
     for (std::size_t i = 0; i < edges.size();) {
       std::size_t j = i;
       while (j < edges.size() && edges[j].first == edges[i].first) ++j;
-      if (j - i == 2) {
-        const Index a = edges[i].second, b = edges[i + 1].second;
-        if (a != b && label[a] == label[b] && label[a] != kOwnPlane) {
-          const Index ra = find_root(parent, a), rb = find_root(parent, b);
-          if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
-        }
+      if (j - i == 2 && edges[i].second / 3 != edges[i + 1].second / 3 && (edges[i].first >> 32) !=
+                                                                              (edges[i].first & 0xffffffffu)) {
+        neighbour_[edges[i].second] = edges[i + 1].second / 3;
+        neighbour_[edges[i + 1].second] = edges[i].second / 3;
       }
       i = j;
     }
+  }
+
+  double edge_length(Index t, int k) const { return norm(point(t, (k + 1) % 3) - point(t, k)); }
+
+  // Charts grown from seeds over manifold edges (xatlas-like): a triangle
+  // joins while its normal stays within the cone around the chart's
+  // area-weighted mean normal; nearest-in-normal and nearest-in-space first,
+  // so charts grow round. Degenerate triangles become charts of their own.
+  void grow_charts() {
+    const double cos_limit = std::cos(options_.grow_cone_degrees * std::numbers::pi / 180.0);
+    chart_of_.assign(static_cast<std::size_t>(nt_), kNoIndex);
+    using Entry = std::pair<double, Index>;
+    for (Index seed = 0, sweep_from = 0; seed < nt_ || sweep_from < nt_; ++seed) {
+      if (seed == nt_) {  // another sweep for the triangles sent back
+        sweep_from = nt_;
+        for (Index t = 0; t < nt_; ++t)
+          if (chart_of_[t] == kNoIndex) sweep_from = std::min(sweep_from, t);
+        if (sweep_from == nt_) break;
+        seed = sweep_from;
+      }
+      if (chart_of_[seed] != kNoIndex) continue;
+      const Index id = static_cast<Index>(charts_.size());
+      charts_.push_back({{seed}, normal_[seed]});
+      chart_of_[seed] = id;
+      if (normal_[seed] == Vec3{}) continue;
+      Vec3 sum = area_[seed] * normal_[seed];
+      double chart_area = area_[seed];
+      std::priority_queue<Entry, std::vector<Entry>, std::greater<>> heap;
+      auto push_neighbours = [&](Index t) {
+        for (int k = 0; k < 3; ++k) {
+          const Index n = neighbour_[3 * static_cast<std::size_t>(t) + k];
+          if (n == kNoIndex || chart_of_[n] != kNoIndex || normal_[n] == Vec3{}) continue;
+          const Vec3 mean = normalized(sum);
+          const double spread = norm(centroid_[n] - centroid_[seed]) / std::sqrt(chart_area);
+          heap.push({(1.0 - dot(normal_[n], mean)) + 0.02 * spread, n});
+        }
+      };
+      push_neighbours(seed);
+      while (!heap.empty()) {
+        const Index t = heap.top().second;
+        heap.pop();
+        if (chart_of_[t] != kNoIndex) continue;
+        if (dot(normal_[t], normalized(sum)) < cos_limit) continue;
+        chart_of_[t] = id;
+        charts_[id].triangles.push_back(t);
+        sum = sum + area_[t] * normal_[t];
+        chart_area += area_[t];
+        push_neighbours(t);
+      }
+      charts_[id].direction = normalized(sum);
+      std::sort(charts_[id].triangles.begin(), charts_[id].triangles.end());
+      // The mean moved while the chart grew: triangles left outside the cone
+      // of the final mean go back to be grown again.
+      std::erase_if(charts_[id].triangles, [&](Index t) {
+        const bool out = t != seed && dot(normal_[t], charts_[id].direction) < cos_limit;
+        if (out) chart_of_[t] = kNoIndex;
+        return out;
+      });
+    }
+  }
+
+  // Merges neighbouring charts, longest shared border first, while every
+  // triangle of the union stays within the merge cone of the union's mean
+  // normal (so its projection stays one-sided and its area ratio bounded).
+  // Small charts (below merge_small_area of the surface) may use the wider
+  // absorb cone when they join a larger neighbour.
+  void merge_charts() {
+    double total = 0.0;
+    for (Index t = 0; t < nt_; ++t) total += area_[t];
+    const double cos_merge = std::cos(options_.merge_cone_degrees * std::numbers::pi / 180.0);
+    const double cos_absorb = std::cos(options_.absorb_cone_degrees * std::numbers::pi / 180.0);
+    for (int pass = 0; pass < 64; ++pass) {
+      // Shared border lengths between chart pairs.
+      std::vector<std::tuple<Index, Index, double>> borders;
+      for (Index t = 0; t < nt_; ++t)
+        for (int k = 0; k < 3; ++k) {
+          const Index n = neighbour_[3 * static_cast<std::size_t>(t) + k];
+          if (n == kNoIndex || n < t) continue;
+          const Index a = chart_of_[t], b = chart_of_[n];
+          if (a != b && !charts_[a].own_plane() && !charts_[b].own_plane())
+            borders.emplace_back(std::min(a, b), std::max(a, b), edge_length(t, k));
+        }
+      std::sort(borders.begin(), borders.end());
+      std::vector<std::tuple<double, Index, Index>> pairs;
+      for (std::size_t i = 0; i < borders.size();) {
+        std::size_t j = i;
+        double length = 0.0;
+        while (j < borders.size() && std::get<0>(borders[j]) == std::get<0>(borders[i]) &&
+               std::get<1>(borders[j]) == std::get<1>(borders[i]))
+          length += std::get<2>(borders[j++]);
+        pairs.emplace_back(-length, std::get<0>(borders[i]), std::get<1>(borders[i]));
+        i = j;
+      }
+      std::sort(pairs.begin(), pairs.end());
+      std::vector<std::uint8_t> touched(charts_.size(), 0);
+      bool merged = false;
+      for (const auto& [neg_length, a, b] : pairs) {
+        if (touched[a] || touched[b]) continue;
+        const double area_a = chart_area(a), area_b = chart_area(b);
+        const bool small = std::min(area_a, area_b) < options_.merge_small_area * total;
+        // A small chart joining a large one keeps the large one's direction.
+        const Vec3 direction = small ? (area_a >= area_b ? charts_[a].direction : charts_[b].direction)
+                                     : normalized(normal_sum(a) + normal_sum(b));
+        const double limit = small ? cos_absorb : cos_merge;
+        if (!(squared_norm(direction) > 0.5) || !within_cone(a, direction, limit) || !within_cone(b, direction, limit))
+          continue;
+        const Index keep = std::min(a, b), gone = std::max(a, b);
+        for (Index t : charts_[gone].triangles) chart_of_[t] = keep;
+        charts_[keep].triangles.insert(charts_[keep].triangles.end(), charts_[gone].triangles.begin(),
+                                       charts_[gone].triangles.end());
+        std::sort(charts_[keep].triangles.begin(), charts_[keep].triangles.end());
+        charts_[gone].triangles.clear();
+        charts_[gone].direction = Vec3{};
+        charts_[keep].direction = direction;
+        touched[a] = touched[b] = 1;
+        merged = true;
+      }
+      if (!merged) break;
+    }
+    std::erase_if(charts_, [](const Chart& c) { return c.triangles.empty(); });
+  }
+
+  // Straighter borders, fewer pinches: a triangle with two or three
+  // neighbours in one other chart moves there when its normal is within the
+  // absorb cone of that chart's direction (a few passes, in triangle order).
+  void smooth_borders() {
+    for (std::size_t c = 0; c < charts_.size(); ++c)
+      for (Index t : charts_[c].triangles) chart_of_[t] = static_cast<Index>(c);
+    const double cos_absorb = std::cos(options_.absorb_cone_degrees * std::numbers::pi / 180.0);
+    std::vector<Index> size(charts_.size());
+    for (std::size_t c = 0; c < charts_.size(); ++c) size[c] = static_cast<Index>(charts_[c].triangles.size());
+    for (int pass = 0; pass < 4; ++pass) {
+      bool moved = false;
+      for (Index t = 0; t < nt_; ++t) {
+        const Index own = chart_of_[t];
+        if (charts_[own].own_plane() || size[own] <= 1) continue;
+        Index n3[3];
+        for (int k = 0; k < 3; ++k) n3[k] = neighbour_[3 * static_cast<std::size_t>(t) + k];
+        for (int k = 0; k < 3; ++k) {
+          if (n3[k] == kNoIndex) continue;
+          const Index other = chart_of_[n3[k]];
+          if (other == own || charts_[other].own_plane()) continue;
+          int count = 0;
+          for (int j = 0; j < 3; ++j) count += n3[j] != kNoIndex && chart_of_[n3[j]] == other;
+          if (count < 2 || dot(normal_[t], charts_[other].direction) < cos_absorb) continue;
+          chart_of_[t] = other;
+          --size[own], ++size[other];
+          moved = true;
+          break;
+        }
+      }
+      if (!moved) break;
+    }
+    for (Chart& c : charts_) c.triangles.clear();
+    for (Index t = 0; t < nt_; ++t) charts_[chart_of_[t]].triangles.push_back(t);
+    std::erase_if(charts_, [](const Chart& c) { return c.triangles.empty(); });
+  }
+
+  double chart_area(Index c) const {
+    double a = 0.0;
+    for (Index t : charts_[c].triangles) a += area_[t];
+    return a;
+  }
+
+  Vec3 normal_sum(Index c) const {
+    Vec3 sum{};
+    for (Index t : charts_[c].triangles) sum = sum + area_[t] * normal_[t];
+    return sum;
+  }
+
+  bool within_cone(Index c, const Vec3& direction, double cos_limit) const {
+    for (Index t : charts_[c].triangles)
+      if (dot(normal_[t], direction) < cos_limit) return false;
+    return true;
+  }
+
+  // The fallback charting: each triangle labelled with the best of 26
+  // projection directions; charts = components of equal labels.
+  void make_projected_charts() {
+    const auto dirs = projection_directions();
+    std::vector<int> label(static_cast<std::size_t>(nt_), -1);
+    for (Index t = 0; t < nt_; ++t) {
+      if (normal_[t] == Vec3{}) continue;
+      double best = -INFINITY;
+      for (int d = 0; d < kNumDirections; ++d) {
+        const double score = dot(normal_[t], dirs[d]);
+        if (score > best) best = score, label[t] = d;
+      }
+    }
+    std::vector<Index> parent(static_cast<std::size_t>(nt_));
+    std::iota(parent.begin(), parent.end(), 0);
+    for (Index t = 0; t < nt_; ++t)
+      for (int k = 0; k < 3; ++k) {
+        const Index n = neighbour_[3 * static_cast<std::size_t>(t) + k];
+        if (n == kNoIndex || label[t] != label[n] || label[t] < 0) continue;
+        const Index ra = find_root(parent, t), rb = find_root(parent, n);
+        if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
+      }
     std::vector<Index> chart_of_root(static_cast<std::size_t>(nt_), kNoIndex);
     for (Index t = 0; t < nt_; ++t) {
       const Index r = find_root(parent, t);
       if (chart_of_root[r] == kNoIndex) {
         chart_of_root[r] = static_cast<Index>(charts_.size());
-        charts_.push_back({{}, label[t]});
+        charts_.push_back({{}, label[t] < 0 ? Vec3{} : dirs[label[t]]});
       }
       charts_[chart_of_root[r]].triangles.push_back(t);
     }
   }
 
-  // Local UVs of chart c: orthogonal projection on the plane of its direction
-  // (u × v = direction, so front-facing triangles stay counter-clockwise), or
-  // for a singleton its own plane, or a canonical right triangle.
+  // Local UVs of chart c: orthogonal projection on the plane of its
+  // direction d (u x v = d, so front-facing triangles stay counter-clockwise),
+  // with v along the model's up axis where the chart is not seen from above
+  // or below; own-plane charts lay each triangle out alone.
   void lay_out(std::size_t c) {
     Chart& chart = charts_[c];
-    if (chart.direction == kOwnPlane) {
+    if (chart.own_plane()) {
       for (Index t : chart.triangles) lay_out_alone(t, false);
       return;
     }
-    static const auto dirs = projection_directions();
-    const Vec3 d = dirs[chart.direction];
-    const Vec3 axis = std::abs(d.x) <= std::abs(d.y) && std::abs(d.x) <= std::abs(d.z) ? Vec3{1, 0, 0}
-                      : std::abs(d.y) <= std::abs(d.z)                                 ? Vec3{0, 1, 0}
-                                                                                       : Vec3{0, 0, 1};
-    const Vec3 u = normalized(cross(axis, d));
-    const Vec3 v = cross(d, u);
+    const Vec3 d = chart.direction;
+    Vec3 up = options_.up - dot(options_.up, d) * d;
+    if (!(norm(up) > 0.3)) {
+      const Vec3 axis = std::abs(d.x) <= std::abs(d.y) && std::abs(d.x) <= std::abs(d.z) ? Vec3{1, 0, 0}
+                        : std::abs(d.y) <= std::abs(d.z)                                 ? Vec3{0, 1, 0}
+                                                                                         : Vec3{0, 0, 1};
+      up = cross(d, cross(axis, d));
+    }
+    const Vec3 v = normalized(up);
+    const Vec3 u = cross(v, d);
     const Vec3 origin = point(chart.triangles.front(), 0);
-    // In-plane rotation to the principal axes of the chart's corners: tighter
-    // bounding boxes, better packing (a rotation keeps orientations; the
-    // exact flip check that follows catches rounding).
-    Vec3 mean{};
-    for (Index t : chart.triangles)
-      for (int k = 0; k < 3; ++k) mean = mean + (point(t, k) - origin);
-    mean = mean / (3.0 * static_cast<double>(chart.triangles.size()));
-    double sxx = 0, syy = 0, sxy = 0;
-    for (Index t : chart.triangles)
-      for (int k = 0; k < 3; ++k) {
-        const Vec3 p = point(t, k) - origin - mean;
-        const double x = dot(p, u), y = dot(p, v);
-        sxx += x * x, syy += y * y, sxy += x * y;
-      }
-    const double angle = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
-    const Vec3 pu = std::cos(angle) * u + std::sin(angle) * v;
-    // Keep the principal axes only when their bounding box is smaller (not for a square, say).
-    auto box_size = [&](const Vec3& a) {
-      const Vec3 b = cross(d, a);
-      double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-      for (Index t : chart.triangles)
-        for (int k = 0; k < 3; ++k) {
-          const Vec3 p = point(t, k) - origin;
-          const double x = dot(p, a), y = dot(p, b);
-          lo[0] = std::min(lo[0], x), hi[0] = std::max(hi[0], x), lo[1] = std::min(lo[1], y),
-          hi[1] = std::max(hi[1], y);
-        }
-      return std::array<double, 2>{hi[0] - lo[0], hi[1] - lo[1]};
-    };
-    const auto principal = box_size(pu), plain = box_size(u);
-    const bool use_principal = principal[0] * principal[1] < plain[0] * plain[1];
-    Vec3 ru = use_principal ? pu : u;
-    const auto size = use_principal ? principal : plain;
-    // Stand every chart upright (height >= width) for the shelf packer.
-    if (size[0] > size[1]) ru = cross(d, ru);
-    const Vec3 rv = cross(d, ru);
     for (Index t : chart.triangles)
       for (int k = 0; k < 3; ++k) {
         const Vec3 p = point(t, k) - origin;
-        local_[3 * static_cast<std::size_t>(t) + k] = {dot(p, ru), dot(p, rv)};
+        local_[3 * static_cast<std::size_t>(t) + k] = {dot(p, u), dot(p, v)};
       }
   }
 
-  // Rotates a 2D layout to the principal axes of its corners when that
-  // shrinks its bounding box, then stands it upright (height >= width). A
-  // rotation keeps orientations up to rounding; the exact checks that follow
-  // catch the rest.
-  static void turn_for_packing(std::vector<Uv>& uv) {
-    double mean[2] = {0, 0};
-    for (const Uv& p : uv) mean[0] += p[0], mean[1] += p[1];
-    mean[0] /= static_cast<double>(uv.size()), mean[1] /= static_cast<double>(uv.size());
-    double sxx = 0, syy = 0, sxy = 0;
-    for (const Uv& p : uv) {
-      const double x = p[0] - mean[0], y = p[1] - mean[1];
-      sxx += x * x, syy += y * y, sxy += x * y;
-    }
-    const double angle = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
-    const double c = std::cos(angle), sn = std::sin(angle);
-    auto size = [&](double cs, double sc) {
-      double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-      for (const Uv& p : uv) {
-        const double x = cs * p[0] + sc * p[1], y = -sc * p[0] + cs * p[1];
-        lo[0] = std::min(lo[0], x), hi[0] = std::max(hi[0], x), lo[1] = std::min(lo[1], y), hi[1] = std::max(hi[1], y);
-      }
-      return std::array<double, 2>{hi[0] - lo[0], hi[1] - lo[1]};
-    };
-    const auto turned = size(c, sn), plain = size(1.0, 0.0);
-    if (turned[0] * turned[1] < plain[0] * plain[1])
-      for (Uv& p : uv) p = {c * p[0] + sn * p[1], -sn * p[0] + c * p[1]};
-    const auto now = turned[0] * turned[1] < plain[0] * plain[1] ? turned : plain;
-    if (now[0] > now[1])
-      for (Uv& p : uv) p = {p[1], -p[0]};  // exact quarter turn
-  }
-
+  // Replaces a projected chart's layout by its LSCM layout when that is
+  // one-to-one (exact checks) and distorts less (area-weighted |log area
+  // ratio| + log conformal distortion); the LSCM layout is turned to match
+  // the projection (so the model's up axis stays up).
   Index improve_with_lscm() {
     Index improved = 0;
     for (const Chart& c : charts_) {
-      if (c.direction == kOwnPlane || c.triangles.size() < static_cast<std::size_t>(options_.lscm_min_triangles))
-        continue;
+      if (c.own_plane() || c.triangles.size() < static_cast<std::size_t>(options_.lscm_min_triangles)) continue;
       std::vector<Uv> uv;
       if (!lscm_chart_layout(s_, c.triangles, uv)) continue;
       const auto flipped = uv_flipped_triangles(uv);
       if (std::find(flipped.begin(), flipped.end(), 1) != flipped.end() || !uv_overlapping_pairs(uv).empty()) continue;
-      turn_for_packing(uv);
+      std::vector<Uv> projected(uv.size());
+      for (std::size_t i = 0; i < c.triangles.size(); ++i)
+        for (int k = 0; k < 3; ++k) projected[3 * i + k] = local_[3 * static_cast<std::size_t>(c.triangles[i]) + k];
+      if (chart_distortion(c.triangles, uv) >= chart_distortion(c.triangles, projected)) continue;
+      turn_like(uv, projected);
       for (std::size_t i = 0; i < c.triangles.size(); ++i)
         for (int k = 0; k < 3; ++k) local_[3 * static_cast<std::size_t>(c.triangles[i]) + k] = uv[3 * i + k];
       ++improved;
     }
     return improved;
+  }
+
+  // Area-weighted mean of |log area ratio| + log conformal distortion of a
+  // chart's layout, the area ratio taken against the chart's own scale.
+  double chart_distortion(std::span<const Index> tris, std::span<const Uv> uv) const {
+    double area3 = 0.0, area2 = 0.0;
+    for (std::size_t i = 0; i < tris.size(); ++i) area3 += area_[tris[i]], area2 += triangle_area_2d(&uv[3 * i]);
+    if (!(area3 > 0.0) || !(area2 > 0.0)) return INFINITY;
+    const double k = area2 / area3;
+    double sum = 0.0;
+    for (std::size_t i = 0; i < tris.size(); ++i) {
+      const Index t = tris[i];
+      if (!(area_[t] > 0.0)) continue;
+      const TriangleDistortion m = triangle_distortion(point(t, 0), point(t, 1), point(t, 2), &uv[3 * i]);
+      if (!(m.area_ratio > 0.0) || !std::isfinite(m.conformal)) return INFINITY;
+      sum += area_[t] * (std::abs(std::log(m.area_ratio / k)) + std::log(m.conformal));
+    }
+    return sum / area3;
+  }
+
+  // Rotates `uv` about its centroid to best match `target` (2D Procrustes, no reflection).
+  static void turn_like(std::vector<Uv>& uv, const std::vector<Uv>& target) {
+    double mu[2] = {0, 0}, mt[2] = {0, 0};
+    for (std::size_t i = 0; i < uv.size(); ++i)
+      for (int a = 0; a < 2; ++a) mu[a] += uv[i][a], mt[a] += target[i][a];
+    for (int a = 0; a < 2; ++a) mu[a] /= static_cast<double>(uv.size()), mt[a] /= static_cast<double>(uv.size());
+    double sdot = 0.0, scross = 0.0;
+    for (std::size_t i = 0; i < uv.size(); ++i) {
+      const double qx = uv[i][0] - mu[0], qy = uv[i][1] - mu[1];
+      const double px = target[i][0] - mt[0], py = target[i][1] - mt[1];
+      sdot += qx * px + qy * py;
+      scross += qx * py - qy * px;
+    }
+    const double angle = std::atan2(scross, sdot);
+    const double c = std::cos(angle), sn = std::sin(angle);
+    for (Uv& p : uv) {
+      const double x = p[0] - mu[0], y = p[1] - mu[1];
+      p = {c * x - sn * y, sn * x + c * y};
+    }
   }
 
   void lay_out_alone(Index t, bool canonical) {
@@ -288,7 +484,7 @@ class AtlasBuilder {
     for (Index t : triangles) moving[t] = 1;
     for (Chart& c : charts_) std::erase_if(c.triangles, [&](Index t) { return moving[t] != 0; });
     for (Index t : triangles) {
-      charts_.push_back({{t}, kOwnPlane});
+      charts_.push_back({{t}, Vec3{}});
       lay_out_alone(t, canonical);
     }
   }
@@ -299,6 +495,158 @@ class AtlasBuilder {
     for (Index t = 0; t < nt_; ++t)
       if (flipped[t]) bad.push_back(t);
     if (!bad.empty()) make_singletons(bad, false);
+  }
+
+  // Every chart a topological disk: a chart falling apart over its manifold
+  // edges is separated into its pieces, and a connected chart whose Euler
+  // characteristic is not 1 (an annulus, a handle, a pinched vertex) is split
+  // at its median until the pieces are disks (one triangle always is).
+  Index make_disks() {
+    Index splits = 0;
+    std::vector<Index> chart_of(static_cast<std::size_t>(nt_), kNoIndex);
+    for (std::size_t c = 0; c < charts_.size(); ++c) {
+      std::vector<std::size_t> todo = {c};
+      while (!todo.empty()) {
+        const std::size_t k = todo.back();
+        todo.pop_back();
+        for (Index t : charts_[k].triangles) chart_of[t] = static_cast<Index>(k);
+        std::vector<std::vector<Index>> pieces = components(k, chart_of);
+        if (pieces.size() > 1) {
+          charts_[k].triangles = std::move(pieces[0]);
+          for (std::size_t i = 1; i < pieces.size(); ++i) {
+            for (Index t : pieces[i]) chart_of[t] = static_cast<Index>(charts_.size());
+            charts_.push_back({std::move(pieces[i]), charts_[k].direction});
+            todo.push_back(charts_.size() - 1);
+          }
+          todo.push_back(k);
+          continue;
+        }
+        if (euler_characteristic(charts_[k].triangles) == 1) continue;
+        if (!split_through_a_hole(k)) split(k);
+        ++splits;
+        todo.push_back(k);
+        todo.push_back(charts_.size() - 1);
+      }
+    }
+    return splits;
+  }
+
+  // A chart with a hole (a second border loop: an island of another chart,
+  // or a hole of the surface) is cut in two by the vertical line through
+  // the hole's centre, so both halves have a notch where the hole was and
+  // the model's up axis stays up in both. False when it has one border loop
+  // or the line leaves one side empty.
+  bool split_through_a_hole(std::size_t c) {
+    std::vector<Index>& tris = charts_[c].triangles;
+    std::vector<Index> in_chart(static_cast<std::size_t>(nt_), 0);
+    for (Index t : tris) in_chart[t] = 1;
+    // Border edges (no neighbour in this chart), their loops by shared vertices.
+    std::vector<std::array<Index, 2>> border;
+    std::vector<std::array<Uv, 2>> border_uv;
+    for (Index t : tris)
+      for (int k = 0; k < 3; ++k) {
+        const Index n = neighbour_[3 * static_cast<std::size_t>(t) + k];
+        if (n != kNoIndex && in_chart[n]) continue;
+        border.push_back({s_.triangles[t][k], s_.triangles[t][(k + 1) % 3]});
+        border_uv.push_back({local_[3 * static_cast<std::size_t>(t) + k], local_[3 * static_cast<std::size_t>(t) + (k + 1) % 3]});
+      }
+    std::vector<Index> ids;
+    for (const auto& e : border) ids.insert(ids.end(), {e[0], e[1]});
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    auto id = [&](Index v) { return static_cast<Index>(std::lower_bound(ids.begin(), ids.end(), v) - ids.begin()); };
+    std::vector<Index> parent(ids.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    for (const auto& e : border) {
+      const Index a = find_root(parent, id(e[0])), b = find_root(parent, id(e[1]));
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+    // Per loop: its UV box and centre.
+    std::vector<std::array<double, 6>> loop(ids.size(), {INFINITY, INFINITY, -INFINITY, -INFINITY, 0.0, 0.0});
+    for (std::size_t i = 0; i < border.size(); ++i) {
+      auto& l = loop[static_cast<std::size_t>(find_root(parent, id(border[i][0])))];
+      for (const Uv& p : border_uv[i])
+        l = {std::min(l[0], p[0]), std::min(l[1], p[1]), std::max(l[2], p[0]), std::max(l[3], p[1]), l[4] + p[0], l[5] + 1.0};
+    }
+    std::size_t outer = ids.size(), hole = ids.size();
+    for (std::size_t r = 0; r < ids.size(); ++r) {
+      if (loop[r][5] == 0.0) continue;
+      auto extent = [&](std::size_t q) { return (loop[q][2] - loop[q][0]) + (loop[q][3] - loop[q][1]); };
+      if (outer == ids.size() || extent(r) > extent(outer)) hole = outer, outer = r;
+      else if (hole == ids.size() || extent(r) > extent(hole)) hole = r;
+    }
+    if (hole == ids.size()) return false;
+    const double cut = loop[hole][4] / loop[hole][5];
+    std::vector<Index> left, right;
+    for (Index t : tris) {
+      const std::size_t i = 3 * static_cast<std::size_t>(t);
+      (local_[i][0] + local_[i + 1][0] + local_[i + 2][0] < 3.0 * cut ? left : right).push_back(t);
+    }
+    if (left.empty() || right.empty()) return false;
+    tris = std::move(left);
+    charts_.push_back({std::move(right), charts_[c].direction});
+    return true;
+  }
+
+  std::vector<std::vector<Index>> components(std::size_t c, const std::vector<Index>& chart_of) const {
+    std::vector<std::vector<Index>> out;
+    std::vector<Index> seen;
+    std::vector<std::uint8_t> mark(charts_[c].triangles.size(), 0);
+    auto position = [&](Index t) {
+      return static_cast<std::size_t>(
+          std::lower_bound(charts_[c].triangles.begin(), charts_[c].triangles.end(), t) - charts_[c].triangles.begin());
+    };
+    for (std::size_t i = 0; i < charts_[c].triangles.size(); ++i) {
+      if (mark[i]) continue;
+      std::vector<Index> piece = {charts_[c].triangles[i]};
+      mark[i] = 1;
+      for (std::size_t j = 0; j < piece.size(); ++j)
+        for (int k = 0; k < 3; ++k) {
+          const Index n = neighbour_[3 * static_cast<std::size_t>(piece[j]) + k];
+          if (n == kNoIndex || chart_of[n] != static_cast<Index>(c)) continue;
+          const std::size_t pn = position(n);
+          if (!mark[pn]) mark[pn] = 1, piece.push_back(n);
+        }
+      std::sort(piece.begin(), piece.end());
+      out.push_back(std::move(piece));
+    }
+    return out;
+  }
+
+  // V - E + F over the chart's own vertices and edges.
+  long euler_characteristic(const std::vector<Index>& tris) const {
+    std::vector<Index> vertices;
+    std::vector<std::uint64_t> edges;
+    for (Index t : tris)
+      for (int k = 0; k < 3; ++k) {
+        const auto a = static_cast<std::uint32_t>(s_.triangles[t][k]);
+        const auto b = static_cast<std::uint32_t>(s_.triangles[t][(k + 1) % 3]);
+        vertices.push_back(s_.triangles[t][k]);
+        edges.push_back(static_cast<std::uint64_t>(std::min(a, b)) << 32 | std::max(a, b));
+      }
+    std::sort(vertices.begin(), vertices.end());
+    std::sort(edges.begin(), edges.end());
+    const long v = std::unique(vertices.begin(), vertices.end()) - vertices.begin();
+    const long e = std::unique(edges.begin(), edges.end()) - edges.begin();
+    return v - e + static_cast<long>(tris.size());
+  }
+
+  // One global scale: each chart's layout is scaled so that its UV area is its
+  // 3D area (UV area / 3D area = 1 for the whole atlas before packing).
+  // Degenerate charts keep their layout.
+  void equalise_scale() {
+    for (const Chart& c : charts_) {
+      double area3 = 0.0, area2 = 0.0;
+      for (Index t : c.triangles) area3 += area_[t], area2 += triangle_area_2d(&local_[3 * static_cast<std::size_t>(t)]);
+      if (!(area3 > 0.0) || !(area2 > 0.0) || !std::isfinite(area3 / area2)) continue;
+      const double f = std::sqrt(area3 / area2);
+      if (!std::isfinite(f) || std::abs(f - 1.0) < 1e-12) continue;
+      for (Index t : c.triangles)
+        for (int k = 0; k < 3; ++k) {
+          Uv& p = local_[3 * static_cast<std::size_t>(t) + k];
+          p = {p[0] * f, p[1] * f};
+        }
+    }
   }
 
   // A chart holding an overlapping pair is split in two at the median of its
@@ -321,35 +669,8 @@ class AtlasBuilder {
         for (Index t : charts_.back().triangles) chart_of[t] = static_cast<Index>(charts_.size() - 1);
       }
     }
-    return splits;
-  }
-
-  // A chart longer than half the side of the ideal square atlas would leave
-  // most of the square empty: split it at its median until none is.
-  void split_dominant_charts() {
-    auto box = [&](const Chart& c) {
-      double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-      for (Index t : c.triangles)
-        for (int k = 0; k < 3; ++k)
-          for (int a = 0; a < 2; ++a) {
-            const double x = local_[3 * static_cast<std::size_t>(t) + k][a];
-            lo[a] = std::min(lo[a], x), hi[a] = std::max(hi[a], x);
-          }
-      return std::array<double, 2>{hi[0] - lo[0], hi[1] - lo[1]};
-    };
-    double total = 0.0;
-    for (const Chart& c : charts_) {
-      const auto size = box(c);
-      total += size[0] * size[1];
-    }
-    const double limit = 0.5 * std::sqrt(total);
-    for (std::size_t c = 0; c < charts_.size(); ++c) {
-      while (charts_[c].triangles.size() > 1) {
-        const auto size = box(charts_[c]);
-        if (std::max(size[0], size[1]) <= limit) break;
-        split(c);
-      }
-    }
+    // Halves may fall apart: keep every chart connected (and a disk).
+    return splits + make_disks();
   }
 
   void split(std::size_t c) {
@@ -375,52 +696,11 @@ class AtlasBuilder {
     charts_.push_back(std::move(second));
   }
 
-  // Shelf packing of the charts' bounding boxes (tallest first), then one
-  // uniform scale into [0,1]². Local UVs are read from local_, written to uvs_.
   void pack() {
-    const std::size_t nc = charts_.size();
-    std::vector<std::array<double, 4>> box(nc, {INFINITY, INFINITY, -INFINITY, -INFINITY});
-    double total = 0.0, widest = 0.0;
-    for (std::size_t c = 0; c < nc; ++c) {
-      for (Index t : charts_[c].triangles)
-        for (int k = 0; k < 3; ++k) {
-          const Uv& p = local_[3 * static_cast<std::size_t>(t) + k];
-          box[c] = {std::min(box[c][0], p[0]), std::min(box[c][1], p[1]), std::max(box[c][2], p[0]),
-                    std::max(box[c][3], p[1])};
-        }
-      if (charts_[c].triangles.empty()) continue;
-      total += (box[c][2] - box[c][0]) * (box[c][3] - box[c][1]);
-      widest = std::max(widest, box[c][2] - box[c][0]);
-    }
-    const double pad = options_.padding * std::sqrt(std::max(total, 1e-300));
-    std::vector<Index> order;
-    for (std::size_t c = 0; c < nc; ++c)
-      if (!charts_[c].triangles.empty()) order.push_back(static_cast<Index>(c));
-    std::sort(order.begin(), order.end(), [&](Index a, Index b) {
-      const double ha = box[a][3] - box[a][1], hb = box[b][3] - box[b][1];
-      return ha != hb ? ha > hb : a < b;
-    });
-    double packed_area = 0.0;
-    for (Index c : order) packed_area += (box[c][2] - box[c][0] + pad) * (box[c][3] - box[c][1] + pad);
-    const double row_width = std::max(widest + pad, std::sqrt(packed_area));
-    std::vector<std::array<double, 2>> offset(nc);
-    double x = 0.0, y = 0.0, shelf = 0.0, used_width = 0.0;
-    for (Index c : order) {
-      const double w = box[c][2] - box[c][0] + pad, h = box[c][3] - box[c][1] + pad;
-      if (x > 0.0 && x + w > row_width) y += shelf, x = 0.0, shelf = 0.0;
-      offset[c] = {x + 0.5 * pad, y + 0.5 * pad};
-      x += w;
-      shelf = std::max(shelf, h);
-      used_width = std::max(used_width, x);
-    }
-    const double side = std::max(used_width, y + shelf);
-    for (Index c : order)
-      for (Index t : charts_[c].triangles)
-        for (int k = 0; k < 3; ++k) {
-          const std::size_t i = 3 * static_cast<std::size_t>(t) + k;
-          uvs_[i] = {std::clamp((local_[i][0] - box[c][0] + offset[c][0]) / side, 0.0, 1.0),
-                     std::clamp((local_[i][1] - box[c][1] + offset[c][1]) / side, 0.0, 1.0)};
-        }
+    std::vector<std::vector<Index>> lists;
+    lists.reserve(charts_.size());
+    for (const Chart& c : charts_) lists.push_back(c.triangles);
+    pack_charts(local_, lists, uvs_, PackOptions{.resolution = options_.pack_resolution});
   }
 
   const TriSurface& s_;
@@ -428,6 +708,10 @@ class AtlasBuilder {
   Index nt_ = 0;
   double fallback_length_ = 1.0;
   std::vector<Chart> charts_;
+  std::vector<Index> chart_of_;  // while growing and merging
+  std::vector<Vec3> normal_, centroid_;
+  std::vector<double> area_;
+  std::vector<Index> neighbour_;  // 3 per triangle: across each manifold edge, or kNoIndex
   std::vector<Uv> local_;  // each chart's own layout (model units)
   std::vector<Uv> uvs_;    // packed into [0,1]² by pack()
 };

@@ -1,0 +1,26 @@
+// Prints the UV atlas statistics of each surface given (the numbers of docs/analysis.md, "UV atlas"):
+//   build/bench/uv_atlas_stats ../shared/data/meshes/*/*.off
+// LSCM=1 lays charts out by LSCM where better (as hqview does); PROJ=1 uses the first, projected charting.
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include "hqview/io/mesh_reader.h"
+#include "hqview/uv/uv_atlas.h"
+using namespace hq;
+int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    TriSurface s = read_surface(argv[i]);
+    UvOptions o; o.improve_with_lscm = getenv("LSCM") != nullptr;
+    if (getenv("PROJ")) o.charts = UvCharts::projected;
+    if (getenv("UPY")) o.up = {0,1,0};
+    auto t0 = std::chrono::steady_clock::now();
+    UvAtlas a = build_uv_atlas(s, o);
+    double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("%-14s tris %7zu charts %5d lscm %3d splits %4d top1 %.3f top4 %.3f top8 %.3f pack %.3f ratio p5 %.2f p50 %.2f p95 %.2f within %.3f conf p50 %.2f p95 %.2f flip %d ov %d  %.2fs\n",
+      argv[i] + std::string(argv[i]).rfind('/') + 1, s.triangles.size(), a.num_charts, a.num_lscm_charts, a.num_splits,
+      a.area_fraction_largest_chart, a.area_fraction_top_4_charts, a.area_fraction_top_8_charts, a.packing_efficiency,
+      a.area_ratio.p5, a.area_ratio.p50, a.area_ratio.p95, a.area_fraction_area_ratio_within_2,
+      a.conformal_distortion.p50, a.conformal_distortion.p95, a.num_flipped, a.num_overlaps, sec);
+  }
+}

@@ -1,0 +1,291 @@
+#include "hqview/uv/uv_pack.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+
+namespace hq {
+namespace {
+
+// One chart on the grid: the cells its triangles touch (`mask`) and the same
+// dilated by the gutter (`halo`), rows of bits, width x height cells.
+struct Footprint {
+  int width = 0, height = 0;
+  std::vector<std::vector<std::uint8_t>> mask, halo;
+  std::vector<std::vector<std::array<int, 2>>> runs;  // per row: [begin, end) columns of the mask
+};
+
+// Does the triangle (a, b, c) meet the closed square [x0, x0+s] x [y0, y0+s]?
+// Separating axes: the square's two axes and the triangle's three edge normals.
+bool triangle_meets_square(const Uv& a, const Uv& b, const Uv& c, double x0, double y0, double s) {
+  const Uv p[3] = {a, b, c};
+  const Uv q[4] = {{x0, y0}, {x0 + s, y0}, {x0 + s, y0 + s}, {x0, y0 + s}};
+  for (int axis = 0; axis < 2; ++axis) {
+    const double lo = std::min({a[axis], b[axis], c[axis]}), hi = std::max({a[axis], b[axis], c[axis]});
+    const double qlo = axis == 0 ? x0 : y0;
+    if (hi < qlo || lo > qlo + s) return false;
+  }
+  for (int e = 0; e < 3; ++e) {
+    const Uv& u = p[e];
+    const Uv& v = p[(e + 1) % 3];
+    const double nx = v[1] - u[1], ny = u[0] - v[0];
+    double tlo = INFINITY, thi = -INFINITY, slo = INFINITY, shi = -INFINITY;
+    for (const Uv& r : p) {
+      const double d = nx * r[0] + ny * r[1];
+      tlo = std::min(tlo, d), thi = std::max(thi, d);
+    }
+    for (const Uv& r : q) {
+      const double d = nx * r[0] + ny * r[1];
+      slo = std::min(slo, d), shi = std::max(shi, d);
+    }
+    if (thi < slo || shi < tlo) return false;
+  }
+  return true;
+}
+
+// Rasterises chart corners (already moved so that their box starts at the
+// origin, in cells) turned by `turn` quarter turns.
+Footprint rasterise(const std::vector<Uv>& corners, int gutter) {
+  double w = 0, h = 0;
+  for (const Uv& p : corners) w = std::max(w, p[0]), h = std::max(h, p[1]);
+  Footprint f;
+  f.width = static_cast<int>(std::floor(w)) + 1 + 2 * gutter;
+  f.height = static_cast<int>(std::floor(h)) + 1 + 2 * gutter;
+  f.mask.assign(static_cast<std::size_t>(f.height), std::vector<std::uint8_t>(static_cast<std::size_t>(f.width), 0));
+  for (std::size_t i = 0; i + 2 < corners.size(); i += 3) {
+    const Uv &a = corners[i], &b = corners[i + 1], &c = corners[i + 2];
+    const int x0 = static_cast<int>(std::floor(std::min({a[0], b[0], c[0]})));
+    const int x1 = static_cast<int>(std::floor(std::max({a[0], b[0], c[0]})));
+    const int y0 = static_cast<int>(std::floor(std::min({a[1], b[1], c[1]})));
+    const int y1 = static_cast<int>(std::floor(std::max({a[1], b[1], c[1]})));
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x)
+        if ((x == x0 && x == x1 && y == y0 && y == y1) || triangle_meets_square(a, b, c, x, y, 1.0))
+          f.mask[static_cast<std::size_t>(y + gutter)][static_cast<std::size_t>(x + gutter)] = 1;
+  }
+  f.runs.resize(static_cast<std::size_t>(f.height));
+  for (int y = 0; y < f.height; ++y) {
+    const auto& row = f.mask[static_cast<std::size_t>(y)];
+    for (int x = 0; x < f.width;) {
+      if (!row[static_cast<std::size_t>(x)]) {
+        ++x;
+        continue;
+      }
+      const int begin = x;
+      while (x < f.width && row[static_cast<std::size_t>(x)]) ++x;
+      f.runs[static_cast<std::size_t>(y)].push_back({begin, x});
+    }
+  }
+  f.halo = f.mask;
+  for (int y = 0; y < f.height; ++y)
+    for (int x = 0; x < f.width; ++x) {
+      if (!f.mask[static_cast<std::size_t>(y)][static_cast<std::size_t>(x)]) continue;
+      for (int dy = -gutter; dy <= gutter; ++dy)
+        for (int dx = -gutter; dx <= gutter; ++dx) {
+          const int yy = y + dy, xx = x + dx;
+          if (yy >= 0 && yy < f.height && xx >= 0 && xx < f.width)
+            f.halo[static_cast<std::size_t>(yy)][static_cast<std::size_t>(xx)] = 1;
+        }
+    }
+  return f;
+}
+
+// Corners turned by `turn` quarter turns (exact: coordinate swaps and
+// negations), moved so that their box starts at (0, 0).
+std::vector<Uv> turned(const std::vector<Uv>& corners, int turn) {
+  std::vector<Uv> out(corners.size());
+  double lo[2] = {INFINITY, INFINITY};
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    const Uv& p = corners[i];
+    out[i] = turn == 0 ? p : turn == 1 ? Uv{-p[1], p[0]} : turn == 2 ? Uv{-p[0], -p[1]} : Uv{p[1], -p[0]};
+    lo[0] = std::min(lo[0], out[i][0]), lo[1] = std::min(lo[1], out[i][1]);
+  }
+  for (Uv& p : out) p = {p[0] - lo[0], p[1] - lo[1]};
+  return out;
+}
+
+struct Shape {
+  std::vector<Uv> corners;
+  Footprint footprint;
+};
+
+class Grid {
+ public:
+  explicit Grid(int width) : width_(width) {}
+  int width() const { return width_; }
+  int height() const { return static_cast<int>(rows_.size()); }
+
+  // Whether f's mask meets no occupied cell at (x, y): per mask run, the
+  // row's prefix count of occupied cells; the middle row first (most often
+  // the one that collides).
+  bool fits(const Footprint& f, int x, int y) const {
+    if (x < 0 || x + f.width > width_) return false;
+    const int mid = f.height / 2;
+    for (int i = 0; i < f.height; ++i) {
+      const int r = i == 0 ? mid : (i <= mid ? i - 1 : i);
+      const int gy = y + r;
+      if (gy >= height()) continue;  // above the used rows everything is free
+      const auto& count = prefix_[static_cast<std::size_t>(gy)];
+      for (const auto& [c0, c1] : f.runs[static_cast<std::size_t>(r)])
+        if (count[static_cast<std::size_t>(x + c1)] != count[static_cast<std::size_t>(x + c0)]) return false;
+    }
+    return true;
+  }
+
+  // Stores the halo, so that later masks keep the gutter.
+  void place(const Footprint& f, int x, int y) {
+    while (height() < y + f.height) rows_.emplace_back(static_cast<std::size_t>(width_), 0);
+    for (int r = 0; r < f.height; ++r)
+      for (int c = 0; c < f.width; ++c)
+        if (f.halo[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)])
+          rows_[static_cast<std::size_t>(y + r)][static_cast<std::size_t>(x + c)] = 1;
+    prefix_.resize(rows_.size());
+    for (int r = 0; r < f.height; ++r) {
+      const auto& row = rows_[static_cast<std::size_t>(y + r)];
+      auto& count = prefix_[static_cast<std::size_t>(y + r)];
+      count.assign(row.size() + 1, 0);
+      for (std::size_t c = 0; c < row.size(); ++c) count[c + 1] = count[c] + row[c];
+    }
+  }
+
+  // Lowest row, then leftmost column where f fits, looking at no more than
+  // `budget` places; past the budget (or the used rows) it goes on top,
+  // where everything is free.
+  std::array<int, 2> lowest_place(const Footprint& f, long budget) const {
+    long looked = 0;
+    for (int y = 0; y < height(); ++y) {
+      if (full_[static_cast<std::size_t>(std::min(y + f.height / 2, height() - 1))]) continue;
+      for (int x = 0; x + f.width <= width_; ++x) {
+        if (fits(f, x, y)) return {x, y};
+        if (++looked > budget) return {0, height()};
+      }
+    }
+    return {0, height()};
+  }
+
+  // Marks rows without a free cell (skipped by lowest_place).
+  void update_full_rows(int from, int to) {
+    full_.resize(rows_.size(), 0);
+    for (int y = std::max(from, 0); y < std::min(to, height()); ++y) {
+      const auto& row = rows_[static_cast<std::size_t>(y)];
+      full_[static_cast<std::size_t>(y)] = std::find(row.begin(), row.end(), 0) == row.end();
+    }
+  }
+
+ private:
+  int width_;
+  std::vector<std::vector<std::uint8_t>> rows_;
+  std::vector<std::uint8_t> full_;
+  std::vector<std::vector<int>> prefix_;  // per row: occupied cells left of each column
+};
+
+// Places looked at per chart before it goes on top of the packed rows.
+constexpr long kPlaceBudget = 100'000;
+
+}  // namespace
+
+void pack_charts(std::span<const Uv> local, const std::vector<std::vector<Index>>& charts, std::vector<Uv>& packed,
+                 const PackOptions& options) {
+  packed.assign(local.size(), Uv{0.0, 0.0});
+  std::vector<double> area(charts.size(), 0.0);
+  double total = 0.0, longest = 0.0;
+  std::vector<std::array<double, 4>> box(charts.size(), {INFINITY, INFINITY, -INFINITY, -INFINITY});
+  for (std::size_t c = 0; c < charts.size(); ++c) {
+    for (Index t : charts[c]) {
+      const Uv* p = &local[3 * static_cast<std::size_t>(t)];
+      area[c] += std::abs(0.5 * ((p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0])));
+      for (int k = 0; k < 3; ++k)
+        box[c] = {std::min(box[c][0], p[k][0]), std::min(box[c][1], p[k][1]), std::max(box[c][2], p[k][0]),
+                  std::max(box[c][3], p[k][1])};
+    }
+    total += area[c];
+    if (!charts[c].empty()) longest = std::max({longest, box[c][2] - box[c][0], box[c][3] - box[c][1]});
+  }
+  // Cell size: the ideal square of all chart area is `resolution` cells on a
+  // side; a surface of degenerate charts falls back to its longest chart.
+  double cell = total > 0.0 ? std::sqrt(total) / options.resolution : 0.0;
+  if (!(cell > 0.0) || !std::isfinite(cell)) cell = longest > 0.0 ? longest / options.resolution : 1.0;
+  // Never more than ~4 resolution of cells along one chart (thin long charts).
+  cell = std::max(cell, longest / (4.0 * options.resolution));
+
+  std::vector<Index> order;
+  for (std::size_t c = 0; c < charts.size(); ++c)
+    if (!charts[c].empty()) order.push_back(static_cast<Index>(c));
+  std::stable_sort(order.begin(), order.end(), [&](Index a, Index b) { return area[a] > area[b]; });
+
+  int widest = 0;
+  for (Index c : order)
+    widest = std::max(widest, static_cast<int>((box[c][2] - box[c][0]) / cell) + 2 + 2 * options.gutter_cells);
+  // Each chart's corners (in cells) and footprint, per allowed quarter turn;
+  // the same for every grid width tried.
+  std::vector<std::vector<Shape>> shapes_of(charts.size());
+  for (Index c : order) {
+    std::vector<Uv> corners;
+    corners.reserve(3 * charts[c].size());
+    for (Index t : charts[c])
+      for (int k = 0; k < 3; ++k) {
+        const Uv& p = local[3 * static_cast<std::size_t>(t) + k];
+        corners.push_back({(p[0] - box[c][0]) / cell, (p[1] - box[c][1]) / cell});
+      }
+    const bool may_turn = total > 0.0 && area[c] < options.fixed_orientation_area * total;
+    for (int turn = 0; turn < (may_turn ? 4 : 1); ++turn) {
+      Shape shape;
+      shape.corners = turned(corners, turn);
+      shape.footprint = rasterise(shape.corners, options.gutter_cells);
+      shapes_of[static_cast<std::size_t>(c)].push_back(std::move(shape));
+    }
+  }
+  // Grid widths tried (in units of the ideal side); the one whose packing
+  // fills the square best wins (ties: the first).
+  std::vector<Uv> cells, best_cells;
+  double best_extent = 0.0, best_fill = -1.0;
+  for (int step = 0; step <= 6; ++step) {
+    const double factor = 0.9 + 0.1 * step;
+    const int side = static_cast<int>(std::ceil(options.resolution * factor));
+    cells.assign(local.size(), Uv{0.0, 0.0});
+    Grid grid(std::max(side, widest));
+
+    // Local corners of each chart, in cells; placed corners in cells.
+    int used_width = 0, used_height = 0;
+    for (Index c : order) {
+      const std::vector<Shape>& shapes = shapes_of[static_cast<std::size_t>(c)];
+      const Shape* best = nullptr;
+      std::array<int, 2> best_at{};
+      long best_score = -1;
+      for (const Shape& shape : shapes) {
+        if (shape.footprint.width > grid.width()) continue;
+        const auto at = grid.lowest_place(shape.footprint, kPlaceBudget);
+        // Lowest top edge first, then leftmost.
+        const long score = static_cast<long>(at[1] + shape.footprint.height) * 1'000'000L + at[0];
+        if (best_score < 0 || score < best_score) best_score = score, best_at = at, best = &shape;
+      }
+      if (best == nullptr) continue;  // cannot happen: the grid is as wide as the widest chart unturned
+      const Footprint& f = best->footprint;
+      const std::vector<Uv>& best_corners = best->corners;
+      grid.place(f, best_at[0], best_at[1]);
+      grid.update_full_rows(best_at[1], best_at[1] + f.height);
+      used_width = std::max(used_width, best_at[0] + f.width);
+      used_height = std::max(used_height, best_at[1] + f.height);
+      const double ox = best_at[0] + options.gutter_cells, oy = best_at[1] + options.gutter_cells;
+      for (std::size_t i = 0; i < charts[c].size(); ++i)
+        for (int k = 0; k < 3; ++k)
+          cells[3 * static_cast<std::size_t>(charts[c][i]) + k] = {best_corners[3 * i + k][0] + ox,
+                                                                    best_corners[3 * i + k][1] + oy};
+    }
+    const double extent = std::max({used_width, used_height, 1});
+    const double fill = total / (cell * cell) / (extent * extent);
+    if (fill > best_fill) best_fill = fill, best_extent = extent, best_cells = cells;
+  }
+  const double extent = best_extent;
+  cells = std::move(best_cells);
+  for (Index c : order)
+    for (Index t : charts[c])
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t i = 3 * static_cast<std::size_t>(t) + k;
+        packed[i] = {std::clamp(cells[i][0] / extent, 0.0, 1.0), std::clamp(cells[i][1] / extent, 0.0, 1.0)};
+      }
+}
+
+}  // namespace hq

@@ -1,0 +1,34 @@
+#pragma once
+// Packing of UV charts into [0,1]² on a raster (the way xatlas packs): each
+// chart is rasterised conservatively on a grid, dilated by a gutter, and
+// dropped at the lowest free place that its footprint fits (holes left by
+// earlier charts are filled by later small ones); large charts keep their
+// orientation, small ones may turn by quarter turns. Charts on the grid never
+// share a cell, so packed charts are disjoint with at least `gutter_cells`
+// of empty grid between them.
+
+#include <span>
+#include <vector>
+
+#include "hqview/core/types.h"
+#include "hqview/uv/uv_validation.h"
+
+namespace hq {
+
+struct PackOptions {
+  // Grid cells along the side of an ideal square holding all chart area.
+  int resolution = 256;
+  int gutter_cells = 1;
+  // Charts holding at least this share of the total area keep their
+  // orientation; smaller ones may be turned by quarter turns to fit.
+  double fixed_orientation_area = 0.2;
+};
+
+// `local` holds each chart's layout (3 corners per triangle, any scale, one
+// scale for all charts); `charts[c]` lists chart c's triangles. Writes the
+// packed corners to `packed` (same indexing as `local`) in [0,1]² with one
+// uniform scale for all charts.
+void pack_charts(std::span<const Uv> local, const std::vector<std::vector<Index>>& charts, std::vector<Uv>& packed,
+                 const PackOptions& options = {});
+
+}  // namespace hq
