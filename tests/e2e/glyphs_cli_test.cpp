@@ -97,8 +97,15 @@ void expect_glyphs_match_vertices_csv(const GlyphBundle& b) {
     const std::string color = c["color"];
     EXPECT_EQ(color.size(), 7u);
     EXPECT_EQ(color[0], '#');
-    if (i >= 10) {
-      EXPECT_EQ(color, clusters[i - 10]["color"].get<std::string>()) << "palette of 10";
+    // The top K clusters wear distinct colours; every other cluster the one
+    // neutral tone, which no top cluster wears.
+    const std::size_t top = std::min<std::size_t>(g["top_clusters"].get<std::size_t>(), 10);
+    if (i < top) {
+      for (std::size_t j = 0; j < i; ++j) EXPECT_NE(color, clusters[j]["color"].get<std::string>()) << i << " " << j;
+    } else if (i > top) {
+      EXPECT_EQ(color, clusters[top]["color"].get<std::string>()) << "cluster " << i << " is neutral";
+    } else {
+      for (std::size_t j = 0; j < top; ++j) EXPECT_NE(color, clusters[j]["color"].get<std::string>()) << j;
     }
     if (i > 0) {  // ranked by min quality, then larger first
       const auto& prev = clusters[i - 1];

@@ -78,16 +78,28 @@ TEST(DivergingColor, BlueWhiteRed) {
   }
 }
 
-TEST(QualitativeColor, DistinctAndCyclic) {
-  std::set<std::tuple<int, int, int>> seen;
-  for (int i = 0; i < kQualitativePaletteSize; ++i) {
-    const Rgba8 c = to_rgba8(qualitative_color(i));
-    seen.insert({c.r, c.g, c.b});
+double rgb_distance(const Color& a, const Color& b) {
+  return std::sqrt((a.r - b.r) * (a.r - b.r) + (a.g - b.g) * (a.g - b.g) + (a.b - b.b) * (a.b - b.b));
+}
+
+TEST(ClusterColor, LabelledColoursAreDistinctAndFarFromNeutralAndTheQualityMap) {
+  for (int i = 0; i < kLabelledClusterPaletteSize; ++i) {
+    const Color c = labelled_cluster_color(i);
+    for (int j = 0; j < i; ++j) EXPECT_GE(rgb_distance(c, labelled_cluster_color(j)), 0.25) << i << " vs " << j;
+    EXPECT_GE(rgb_distance(c, neutral_cluster_color()), 0.25) << i;
+    for (int k = 0; k <= 100; ++k) EXPECT_GE(rgb_distance(c, sample_quality_map(k / 100.0)), 0.2) << i << " at " << k;
   }
-  EXPECT_GE(kQualitativePaletteSize, 8);
-  EXPECT_EQ(seen.size(), static_cast<std::size_t>(kQualitativePaletteSize));
-  EXPECT_TRUE(same(qualitative_color(kQualitativePaletteSize + 3), qualitative_color(3)));
-  EXPECT_TRUE(same(qualitative_color(-1), qualitative_color(kQualitativePaletteSize - 1)));
+}
+
+TEST(ClusterColor, OnlyTheTopClustersWearAColour) {
+  // K = 3: ranks 0..2 their own colours, every other rank the neutral tone.
+  for (int rank = 0; rank < 3; ++rank) EXPECT_TRUE(same(cluster_color(rank, 3), labelled_cluster_color(rank)));
+  for (int rank : {3, 4, 9, 10, 500}) EXPECT_TRUE(same(cluster_color(rank, 3), neutral_cluster_color())) << rank;
+  EXPECT_TRUE(same(cluster_color(-1, 3), neutral_cluster_color()));
+  // K beyond the palette: the first 10 are labelled, never a repeat.
+  EXPECT_EQ(labelled_cluster_count(25), kLabelledClusterPaletteSize);
+  EXPECT_TRUE(same(cluster_color(kLabelledClusterPaletteSize, 25), neutral_cluster_color()));
+  EXPECT_EQ(labelled_cluster_count(0), 0);
 }
 
 TEST(CieLightness, KnownValues) {

@@ -58,7 +58,7 @@ TEST(ClusterView, RegionIsTheClustersCellsAndTheSceneItsGlyphs) {
   EXPECT_FLOAT_EQ(build_cluster_scene(mesh, topology, quality, big, 0).spheres[0].radii[0], 0.35f);
   EXPECT_EQ(scene.spheres[0].colors[0], to_rgba8(quality_color(0.25)));
   ASSERT_EQ(scene.lines.size(), 2u);
-  for (const Rgba8& c : scene.lines[1].colors) EXPECT_EQ(c, to_rgba8(qualitative_color(0)));
+  for (const Rgba8& c : scene.lines[1].colors) EXPECT_EQ(c, to_rgba8(labelled_cluster_color(0)));
   EXPECT_EQ(scene.lines[1].indices.size() / 2, 54u) << "edges of a 2x2x2 block";
   EXPECT_FALSE(scene.lines[0].indices.empty()) << "the neighbours";
   EXPECT_FALSE(scene.translucent[0].indices.empty());

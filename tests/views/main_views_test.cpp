@@ -25,6 +25,8 @@ struct Fixture {
     glyphs.vertex_cluster.assign(mesh.points.size(), kNoIndex);
     glyphs.vertex_radius.assign(mesh.points.size(), 0.0);
     glyphs.vertex_cluster[0] = glyphs.vertex_cluster[1] = 0;
+    glyphs.cluster_offsets = {0, 2};
+    glyphs.cluster_vertices = {0, 1};
     AggregatedGlyph g;
     g.id = 0;
     g.size = 2;
@@ -42,6 +44,72 @@ Camera camera_for(const Fixture& f) {
   return fit_camera_to_points(main_view_points(f.mesh, f.topology, f.glyphs), {-1, -1, -1}, 1.0);
 }
 
+// Many more clusters than K: every vertex of a 4x4x4 grid is a cluster of
+// its own (rank = vertex id), K = 3.
+TEST(MainScene, OnlyTheTopClustersAreColouredTheRestAreNeutral) {
+  HexMesh mesh = test::grid(4);
+  const Topology topology = build_topology(mesh);
+  GlyphResult glyphs;
+  glyphs.options.top_clusters = 3;
+  const auto n = static_cast<Index>(mesh.points.size());
+  glyphs.vertex_cluster.resize(mesh.points.size());
+  glyphs.vertex_radius.assign(mesh.points.size(), 0.1);
+  for (Index v = 0; v < n; ++v) {
+    glyphs.vertex_cluster[v] = v;
+    glyphs.cluster_offsets.push_back(v);
+    glyphs.cluster_vertices.push_back(v);
+    AggregatedGlyph g;
+    g.id = v, g.size = 1, g.representative_vertex = v, g.position = mesh.points[v], g.radius = 0.1;
+    glyphs.clusters.push_back(g);
+  }
+  glyphs.cluster_offsets.push_back(n);
+  const Scene scene = build_main_scene(mesh, topology, glyphs, nullptr,
+                                       fit_camera_to_points(main_view_points(mesh, topology, glyphs), {-1, -1, -1}, 1.0),
+                                       600, {});
+  const Rgba8 neutral = to_rgba8(neutral_cluster_color());
+  for (Index v = 0; v < n; ++v) {
+    const Rgba8 expected = v < 3 ? to_rgba8(labelled_cluster_color(v)) : neutral;
+    EXPECT_EQ(scene.spheres[0].colors[static_cast<std::size_t>(v)], expected) << v;
+  }
+  // Edge colours: the lower-ranked endpoint's cluster decides.
+  std::size_t i = 0;
+  for (const Edge& e : topology.edges) {
+    const Index rank = std::min(e[0], e[1]);
+    const Rgba8 expected = rank < 3 ? to_rgba8(labelled_cluster_color(rank)) : neutral;
+    EXPECT_EQ(scene.lines[1].colors[2 * i], expected) << e[0] << "-" << e[1];
+    ++i;
+  }
+}
+
+TEST(MainScene, ClusterColoursAreFarFromTheOverlapMarkers) {
+  auto distance = [](const Rgba8& a, const Rgba8& b) {
+    const double dr = (a.r - b.r) / 255.0, dg = (a.g - b.g) / 255.0, db = (a.b - b.b) / 255.0;
+    return std::sqrt(dr * dr + dg * dg + db * db);
+  };
+  for (int i = 0; i < kLabelledClusterPaletteSize; ++i) {
+    const Rgba8 c = to_rgba8(labelled_cluster_color(i));
+    for (const Rgba8& m : {kCoincidentArrowColor, kIntersectionArrowColor, kIntersectingCellColor, kWireframeColor})
+      EXPECT_GE(distance(c, m), 0.25) << i;
+  }
+}
+
+TEST(MainScene, ClusterEdgesCircleOnlyTheWorstVerticesOfABigCluster) {
+  HexMesh mesh = test::grid(4);
+  GlyphResult glyphs;
+  glyphs.vertex_cluster.assign(mesh.points.size(), 0);
+  glyphs.vertex_radius.resize(mesh.points.size());
+  for (std::size_t v = 0; v < mesh.points.size(); ++v) {
+    glyphs.vertex_radius[v] = static_cast<double>((v * 37) % mesh.points.size());  // a permutation of 0..n-1
+    glyphs.cluster_vertices.push_back(static_cast<Index>(v));
+  }
+  glyphs.cluster_offsets = {0, static_cast<Index>(mesh.points.size())};
+  const std::vector<std::uint8_t> marked = worst_cluster_vertices(glyphs, 5);
+  ASSERT_EQ(marked.size(), mesh.points.size());
+  EXPECT_EQ(std::count(marked.begin(), marked.end(), 1), 5);
+  for (std::size_t v = 0; v < mesh.points.size(); ++v)
+    EXPECT_EQ(marked[v] != 0, glyphs.vertex_radius[v] >= static_cast<double>(mesh.points.size() - 5)) << v;
+}
+
 TEST(MainScene, LayersHoldWhatTheViewDraws) {
   Fixture f;
   const Scene scene = build_main_scene(f.mesh, f.topology, f.glyphs, &f.overlap, camera_for(f), 600, {});
@@ -54,7 +122,7 @@ TEST(MainScene, LayersHoldWhatTheViewDraws) {
   EXPECT_EQ(scene.lines[0].indices.size() / 2, 108u);
   for (const Rgba8& c : scene.lines[0].colors) EXPECT_EQ((Rgba8{c.r, c.g, c.b, 255}), kWireframeColor);
   // Cluster edges: every edge at vertex 0 or 1, in cluster 0's colour.
-  const Rgba8 cluster0 = to_rgba8(qualitative_color(0));
+  const Rgba8 cluster0 = to_rgba8(labelled_cluster_color(0));
   std::size_t expected = 0;
   for (const Edge& e : f.topology.edges) expected += (e[0] <= 1 || e[1] <= 1);
   EXPECT_EQ(scene.lines[1].indices.size() / 2, expected);

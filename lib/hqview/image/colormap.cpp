@@ -45,19 +45,23 @@ constexpr std::array<Rgb, 11> kDivergingTable = {{
     hex(0x67001f),
 }};
 
-// Tableau 10.
-constexpr std::array<Rgb, kQualitativePaletteSize> kQualitativeTable = {{
-    hex(0x4e79a7),
-    hex(0xf28e2b),
-    hex(0xe15759),
-    hex(0x76b7b2),
-    hex(0x59a14f),
-    hex(0xedc948),
-    hex(0xb07aa1),
-    hex(0xff9da7),
-    hex(0x9c755f),
-    hex(0xbab0ac),
+// Labelled clusters: blues, greens, purple, cyan, charcoal, brown, olive;
+// none near the quality map's red-orange-cream ramp, the neutral grey or the
+// overlap markers' orange and magentas
+// (colormap_test checks the distances).
+constexpr std::array<Rgb, kLabelledClusterPaletteSize> kLabelledClusterTable = {{
+    hex(0x1f5fbf),
+    hex(0x2ca02c),
+    hex(0x9467bd),
+    hex(0x17becf),
+    hex(0x303030),
+    hex(0x8c564b),
+    hex(0xa0a020),
+    hex(0x0b2d6b),
+    hex(0x7fd13b),
+    hex(0x00a087),
 }};
+constexpr Rgb kNeutralCluster = hex(0x9e9e9e);
 
 // Piecewise-linear lookup, u in [0, 1] over the whole table.
 template <std::size_t N>
@@ -88,10 +92,16 @@ Color diverging_color(double t) {
   return sample(kDivergingTable, 0.5 * (t + 1.0));
 }
 
-Color qualitative_color(std::int64_t i) {
-  const std::int64_t n = kQualitativePaletteSize;
-  const Rgb& c = kQualitativeTable[static_cast<std::size_t>(((i % n) + n) % n)];
+Color labelled_cluster_color(int i) {
+  const Rgb& c = kLabelledClusterTable[static_cast<std::size_t>(std::clamp(i, 0, kLabelledClusterPaletteSize - 1))];
   return {c.r, c.g, c.b, 1.0f};
+}
+
+Color neutral_cluster_color() { return {kNeutralCluster.r, kNeutralCluster.g, kNeutralCluster.b, 1.0f}; }
+
+Color cluster_color(std::int64_t rank, std::int64_t top_clusters) {
+  if (rank >= 0 && rank < labelled_cluster_count(top_clusters)) return labelled_cluster_color(static_cast<int>(rank));
+  return neutral_cluster_color();
 }
 
 double cie_lightness(const Color& c) {

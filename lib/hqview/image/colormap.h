@@ -40,10 +40,18 @@ Color quality_color(double vertex_quality);
 // clamped to [-1, 1]; NaN is kUndefinedColor.
 Color diverging_color(double t);
 
-// Qualitative palette for clusters (Tableau 10): colour i modulo
-// kQualitativePaletteSize; negative i wraps the same way.
-inline constexpr int kQualitativePaletteSize = 10;
-Color qualitative_color(std::int64_t i);
+// Colours of glyph clusters (ranked 0 = worst). The labelled clusters, the
+// first labelled_cluster_count(K) ranks, each get their own colour of a
+// 10-colour palette chosen away from the quality map (reds, oranges,
+// creams) and from grey; every other cluster wears the one neutral tone, so
+// a colour in a picture always means one legend entry.
+inline constexpr int kLabelledClusterPaletteSize = 10;
+inline constexpr std::int64_t labelled_cluster_count(std::int64_t top_clusters) {
+  return top_clusters < 0 ? 0 : (top_clusters > kLabelledClusterPaletteSize ? kLabelledClusterPaletteSize : top_clusters);
+}
+Color labelled_cluster_color(int i);  // i in [0, kLabelledClusterPaletteSize)
+Color neutral_cluster_color();
+Color cluster_color(std::int64_t rank, std::int64_t top_clusters);
 
 // CIE L* (0 = black, 100 = white) of an sRGB colour, D65. For tests and for
 // picking a readable text colour over a fill.

@@ -1,7 +1,7 @@
 #pragma once
 // The colour of a glyph cluster in every output (report.json `color`, the
-// HTML swatches, later the views): the fixed qualitative palette
-// (render/colormap.h) by cluster rank, as "#rrggbb".
+// HTML swatches, the views): cluster_color (image/colormap.h) by rank and
+// the run's --top-clusters K, as "#rrggbb".
 
 #include <cstdio>
 #include <string>
@@ -11,8 +11,8 @@
 
 namespace hq {
 
-inline std::string cluster_color_hex(Index cluster_id) {
-  const Rgba8 c = to_rgba8(qualitative_color(cluster_id));
+inline std::string cluster_color_hex(Index cluster_id, std::int64_t top_clusters) {
+  const Rgba8 c = to_rgba8(cluster_color(cluster_id, top_clusters));
   char text[8];
   std::snprintf(text, sizeof text, "#%02x%02x%02x", c.r, c.g, c.b);
   return text;

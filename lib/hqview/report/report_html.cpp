@@ -445,7 +445,7 @@ void set_glyphs(data& page, const ReportModel& model, const PanelIndex& index, s
       const AggregatedGlyph& c = g.clusters[i];
       data d;
       d.set("id", std::to_string(c.id));
-      d.set("color", cluster_color_hex(c.id));
+      d.set("color", cluster_color_hex(c.id, g.options.top_clusters));
       d.set("size", show_count(c.size));
       d.set("min_quality", show(c.min_quality));
       d.set("vertex", std::to_string(c.representative_vertex));

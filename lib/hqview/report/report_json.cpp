@@ -77,7 +77,7 @@ Json glyphs_json(const GlyphResult& g) {
                         {"min_quality", number(c.min_quality)},
                         {"ratio", number(c.ratio)},
                         {"radius", number(c.radius)},
-                        {"color", cluster_color_hex(c.id)}});
+                        {"color", cluster_color_hex(c.id, g.options.top_clusters)}});
   }
   j["clusters"] = std::move(clusters);
   return j;

@@ -152,7 +152,7 @@ Scene build_cluster_scene(const HexMesh& mesh, const Topology& topology, const s
   scene.origin = centre_of(cell_points(mesh, region.cells));
   scene.lines.push_back(cell_edges(mesh, topology, only_neighbours, scene.origin, kNeighbourEdgeColor, 1.0f));
   scene.lines.push_back(
-      cell_edges(mesh, topology, region.cells, scene.origin, to_rgba8(qualitative_color(cluster)), 2.0f));
+      cell_edges(mesh, topology, region.cells, scene.origin, to_rgba8(cluster_color(cluster, glyphs.options.top_clusters)), 2.0f));
   double edge_sum = 0.0;
   const LineSet& own = scene.lines.back();
   for (std::size_t i = 0; i + 1 < own.positions.size(); i += 2) {

@@ -209,6 +209,24 @@ std::vector<ScreenMarker> merge_markers_on_screen(std::span<const OverlapMarker>
   return drawn;
 }
 
+std::vector<std::uint8_t> worst_cluster_vertices(const GlyphResult& glyphs, int per_cluster) {
+  std::vector<std::uint8_t> marked(glyphs.vertex_cluster.size(), 0);
+  std::vector<Index> members;
+  for (std::size_t c = 0; c + 1 < glyphs.cluster_offsets.size(); ++c) {
+    members.assign(glyphs.cluster_vertices.begin() + glyphs.cluster_offsets[c],
+                   glyphs.cluster_vertices.begin() + glyphs.cluster_offsets[c + 1]);
+    const auto keep = std::min<std::size_t>(members.size(), static_cast<std::size_t>(std::max(per_cluster, 0)));
+    auto radius = [&](Index v) {
+      const std::size_t i = static_cast<std::size_t>(v);
+      return i < glyphs.vertex_radius.size() ? glyphs.vertex_radius[i] : 0.0;
+    };
+    std::partial_sort(members.begin(), members.begin() + static_cast<std::ptrdiff_t>(keep), members.end(),
+                      [&](Index a, Index b) { return radius(a) != radius(b) ? radius(a) > radius(b) : a < b; });
+    for (std::size_t i = 0; i < keep; ++i) marked[static_cast<std::size_t>(members[i])] = 1;
+  }
+  return marked;
+}
+
 Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                        const OverlapReport* overlap, const Camera& camera, int view_height,
                        const MainViewOptions& options) {
@@ -226,16 +244,20 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   scene.lines.push_back(
       edge_lines(mesh, scene.origin, wire, std::vector<Rgba8>(wire.size(), kWireframeColor), options.wire_width));
 
-  // 2. Cluster edges.
+  // 2. Cluster edges: around each cluster's worst vertices only (a cluster
+  // of thousands of vertices would paint over the model), in its colour.
+  const std::int64_t top = glyphs.options.top_clusters;
+  const std::vector<std::uint8_t> marked = worst_cluster_vertices(glyphs, options.cluster_edge_vertices);
   std::vector<Edge> cluster_edges;
   std::vector<Rgba8> cluster_colors;
   for (const Edge& e : topology.edges) {
-    const Index ca = glyphs.vertex_cluster[static_cast<std::size_t>(e[0])];
-    const Index cb = glyphs.vertex_cluster[static_cast<std::size_t>(e[1])];
-    if (ca == kNoIndex && cb == kNoIndex) continue;
+    const bool ma = marked[static_cast<std::size_t>(e[0])] != 0, mb = marked[static_cast<std::size_t>(e[1])] != 0;
+    if (!ma && !mb) continue;
+    const Index ca = ma ? glyphs.vertex_cluster[static_cast<std::size_t>(e[0])] : kNoIndex;
+    const Index cb = mb ? glyphs.vertex_cluster[static_cast<std::size_t>(e[1])] : kNoIndex;
     const Index c = ca == kNoIndex ? cb : (cb == kNoIndex ? ca : std::min(ca, cb));
     cluster_edges.push_back(e);
-    cluster_colors.push_back(to_rgba8(qualitative_color(c)));
+    cluster_colors.push_back(to_rgba8(cluster_color(c, top)));
   }
   scene.lines.push_back(edge_lines(mesh, scene.origin, cluster_edges, cluster_colors, options.cluster_edge_width));
 
@@ -269,7 +291,7 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
     if (!(g.radius > 0.0)) continue;
     spheres.centers.push_back(local(g.position));
     spheres.radii.push_back(static_cast<float>(g.radius));
-    spheres.colors.push_back(to_rgba8(qualitative_color(g.id)));
+    spheres.colors.push_back(to_rgba8(cluster_color(g.id, top)));
   }
   scene.spheres.push_back(std::move(spheres));
 
@@ -328,7 +350,8 @@ void draw_rank_labels(Image& figure, const GlyphResult& glyphs, const Camera& ca
                       const AnnotationStyle& style) {
   const double aspect = static_cast<double>(layout.view.width) / static_cast<double>(layout.view.height);
   const int label_size = std::max(11, static_cast<int>(std::lround(20 * style.scale)));
-  const std::size_t num_labels = std::min<std::size_t>(glyphs.clusters.size(), 10);
+  const std::size_t num_labels = std::min<std::size_t>(
+      glyphs.clusters.size(), static_cast<std::size_t>(labelled_cluster_count(glyphs.options.top_clusters)));
   std::vector<PixelRect> placed;  // labels never overlap: a later (better-ranked first) one is skipped
   for (std::size_t i = 0; i < num_labels; ++i) {
     const AggregatedGlyph& g = glyphs.clusters[i];
@@ -382,7 +405,8 @@ void draw_marker_counts(Image& figure, const OverlapReport& overlap, const Camer
 void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapReport* overlap,
                       const FigureLayout& layout, const AnnotationStyle& style, const MainViewOptions& options) {
   const PixelRect& area = layout.legend;
-  const std::size_t listed = std::min<std::size_t>(glyphs.clusters.size(), 10);
+  const std::size_t listed = std::min<std::size_t>(
+      glyphs.clusters.size(), static_cast<std::size_t>(labelled_cluster_count(glyphs.options.top_clusters)));
   const double lines = 1.0 + static_cast<double>(listed) + (glyphs.clusters.size() != listed ? 1.0 : 0.0) +
                        (glyphs.clusters.empty() ? 1.0 : 0.0) + 0.5 + 1.5 + 4.0;
   const int top = static_cast<int>(std::lround(40 * style.scale));
@@ -406,12 +430,15 @@ void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapRep
   y += pitch;
   for (std::size_t i = 0; i < listed; ++i) {
     const AggregatedGlyph& g = glyphs.clusters[i];
-    entry(to_rgba8(qualitative_color(g.id)), "#" + std::to_string(g.id) + "  " + std::to_string(g.size) +
-                                                 (g.size == 1 ? " vertex" : " vertices") + ", min " +
-                                                 display_number(g.min_quality, 3));
+    entry(to_rgba8(cluster_color(g.id, glyphs.options.top_clusters)),
+          "#" + std::to_string(g.id) + "  " + std::to_string(g.size) + (g.size == 1 ? " vertex" : " vertices") +
+              ", min " + display_number(g.min_quality, 3));
   }
-  if (glyphs.clusters.size() > listed)
-    entry(options.background, "... " + std::to_string(glyphs.clusters.size() - listed) + " more clusters");
+  if (glyphs.clusters.size() > listed) {
+    const std::size_t rest = glyphs.clusters.size() - listed;
+    entry(to_rgba8(neutral_cluster_color()),
+          std::to_string(rest) + (rest == 1 ? " other cluster" : " other clusters"));
+  }
   if (glyphs.clusters.empty()) entry(options.background, "none (no vertex below threshold)");
   y += pitch / 2;
   draw_text(figure, x, y, ellipsize("size = 1 - min quality", text_size, right - x, style), text_size, style);

@@ -33,6 +33,8 @@ struct MainViewOptions {
   Rgba8 background{255, 255, 255, 255};
   float wire_width = 1.0f;            // boundary edges, output pixels
   float cluster_edge_width = 2.5f;    // cluster edges, output pixels
+  // Cluster edges are drawn around this many of each cluster's worst vertices.
+  int cluster_edge_vertices = 48;
   double arrow_pixels = 70.0;         // arrow length on screen (at the marker's depth)
   double arrow_start_degrees = 45.0;  // first arrow's angle in the image plane (deterministic)
   int max_arrows_per_marker = 12;
@@ -88,9 +90,12 @@ std::vector<ScreenMarker> merge_markers_on_screen(std::span<const OverlapMarker>
 // View A's scene for a camera (arrows are laid out in its image plane and
 // sized for an image view_height pixels high):
 //   lines[0]     unique boundary edges, kWireframeColor;
-//   lines[1]     every mesh edge with an endpoint in a cluster, in the colour
-//                of that cluster (qualitative_color(cluster id); the lower
-//                id when both endpoints are in different clusters);
+//   lines[1]     every mesh edge with an endpoint among the
+//                options.cluster_edge_vertices worst vertices (largest glyph
+//                radius) of its cluster, in that cluster's colour
+//                (cluster_color(rank, K): the K labelled clusters their own,
+//                all others the neutral tone; the lower rank when both
+//                endpoints are marked);
 //   lines[2]     edges of intersecting cells, kIntersectionArrowColor;
 //   spheres[0]   aggregated glyphs: one per cluster, radius = its radius,
 //                colour = its cluster colour;
@@ -101,6 +106,10 @@ std::vector<ScreenMarker> merge_markers_on_screen(std::span<const OverlapMarker>
 //                coincident ones first (their share of n, at least one);
 //   translucent[0] the faces of the intersecting cells.
 // overlap may be null (no arrows, no intersecting cells).
+// 1 for the per_cluster worst members (largest glyph radius, then lowest
+// id) of every cluster, per mesh vertex.
+std::vector<std::uint8_t> worst_cluster_vertices(const GlyphResult& glyphs, int per_cluster);
+
 Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                        const OverlapReport* overlap, const Camera& camera, int view_height,
                        const MainViewOptions& options);
