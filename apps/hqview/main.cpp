@@ -45,6 +45,7 @@ struct AnalyzeArgs {
   std::string format;
   std::string reference;
   std::string compare;
+  std::string compare_align = "auto";
   std::string output;
   std::string json;
   std::string size = "1600x1200";
@@ -113,6 +114,9 @@ int run_analyze(const AnalyzeArgs& args) {
   options.mesh_path = mesh_path;
   options.reference_path = args.reference;
   options.compare_path = args.compare;
+  options.compare_align = args.compare_align == "none"   ? hq::CompareAlign::none
+                          : args.compare_align == "bbox" ? hq::CompareAlign::bbox
+                                                         : hq::CompareAlign::auto_;
   const hq::BundleOptions bundle{.force = args.force};
   hq::check_output_dir(output, bundle);  // fail before the work, not after
 
@@ -365,6 +369,11 @@ int main(int argc, char** argv) {
   analyze->add_option("--compare", args.compare,
                       "Second hex mesh (e.g. before/after optimisation): its quality summary and differences in "
                       "report.json compare, both boundaries side by side (view compare)");
+  analyze
+      ->add_option("--compare-align", args.compare_align,
+                   "Place MESH2 in the compare view: auto (align by bounding box when the diagonals differ by "
+                   "more than 2x or the boxes do not overlap), bbox (always), none; numbers stay in each mesh's units")
+      ->check(CLI::IsMember({"auto", "bbox", "none"}));
   analyze->add_option("-o,--output", args.output, "Bundle directory (default: ./hqview-report/<mesh stem>)");
   analyze
       ->add_option("-j,--threads", args.threads, "Worker threads (default: all cores); results are identical for any N")

@@ -2,6 +2,10 @@
 // blank, --views selects, --focus-vertex adds D/E views, bad values are usage
 // errors; every real mesh of ../shared/data gets every view (small --size).
 
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <array>
 #include <gtest/gtest.h>
 
 #include <OpenImageIO/imagebuf.h>
@@ -103,6 +107,92 @@ TEST(ViewsCli, CompareAnalysesTheSecondMeshAndDrawsBothBoundaries) {
   const fs::path plain = fresh_output_dir("views/compare_none") / "bundle";
   ASSERT_EQ(run_hqview({"analyze", example("ball.mesh").string(), "-o", plain.string(), "--no-render"}).exit_code, 0);
   EXPECT_TRUE(json::parse(read_text(plain / "report.json"))["compare"].is_null());
+}
+
+// A copy of a MEDIT mesh with every vertex p -> f p + offset.
+fs::path scaled_copy(const fs::path& mesh, double f, Vec3 offset, const fs::path& out) {
+  std::istringstream in(read_text(mesh));
+  std::ofstream o(out);
+  std::string line;
+  while (std::getline(in, line)) {
+    o << line << "\n";
+    if (line != "Vertices") continue;
+    std::getline(in, line);
+    o << line << "\n";
+    const long n = std::stol(line);
+    for (long i = 0; i < n; ++i) {
+      double x, y, z;
+      long ref;
+      in >> x >> y >> z >> ref;
+      o << std::setprecision(17) << f * x + offset.x << " " << f * y + offset.y << " " << f * z + offset.z << " "
+        << ref << "\n";
+    }
+    std::getline(in, line);  // the rest of the last vertex line
+  }
+  return out;
+}
+
+// Model pixels (not the background) of the two halves of compare.png's view
+// (the view is the left 0.76 of an 800-wide figure; the colour bar right of it).
+std::array<long, 2> compare_half_pixels(const fs::path& png) {
+  OIIO::ImageBuf image(png.string());
+  EXPECT_TRUE(image.read()) << image.geterror();
+  const int w = image.spec().width, h = image.spec().height;
+  std::array<long, 2> count{0, 0};
+  float bg[4], px[4];
+  image.getpixel(w - 1, h - 1, bg, 3);
+  for (int y = h / 8; y < h; ++y)
+    for (int x = 0; x < static_cast<int>(0.76 * w); ++x) {
+      image.getpixel(x, y, px, 3);
+      if (std::abs(px[0] - bg[0]) + std::abs(px[1] - bg[1]) + std::abs(px[2] - bg[2]) > 0.05)
+        ++count[x < static_cast<int>(0.38 * w) ? 0 : 1];
+    }
+  return count;
+}
+
+TEST(ViewsCli, CompareAlignsAMeshInAnotherFrameByBoundingBox) {
+  const fs::path dir = fresh_output_dir("views/compare_align");
+  // 50x larger and moved away: auto aligns, both halves show the ball alike.
+  const fs::path big = scaled_copy(example("ball.mesh"), 50.0, {300, -100, 40}, dir / "ball50.mesh");
+  const fs::path out = dir / "bundle";
+  CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "--compare", big.string(), "-o", out.string(),
+                            "--size", "800x400", "--views", "compare"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  json a = json::parse(read_text(out / "report.json"))["compare"]["alignment"];
+  EXPECT_EQ(a["mode"], "bbox");
+  EXPECT_EQ(a["requested"], "auto");
+  EXPECT_NEAR(a["scale"].get<double>(), 1.0 / 50.0, 1e-9);
+  EXPECT_FALSE(a["boxes_overlap"].get<bool>());
+  auto pixels = compare_half_pixels(out / "views/compare.png");
+  ASSERT_GT(pixels[0], 1000);
+  EXPECT_LT(std::max(pixels[0], pixels[1]), 1.5 * std::min(pixels[0], pixels[1])) << pixels[0] << " " << pixels[1];
+  // Numbers stay in each mesh's own units: the copy's edges are 50 times as long.
+  const json report = json::parse(read_text(out / "report.json"));
+  EXPECT_NEAR(report["compare"]["mesh"]["edge_length"]["mean"].get<double>(),
+              50.0 * report["mesh"]["edge_length"]["mean"].get<double>(),
+              1e-9 * report["compare"]["mesh"]["edge_length"]["mean"].get<double>());
+  // --compare-align none: the ball is a dot next to the big one.
+  const fs::path raw = dir / "raw";
+  r = run_hqview({"analyze", example("ball.mesh").string(), "--compare", big.string(), "-o", raw.string(), "--size",
+                  "800x400", "--views", "compare", "--compare-align", "none"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(json::parse(read_text(raw / "report.json"))["compare"]["alignment"]["mode"], "none");
+  pixels = compare_half_pixels(raw / "views/compare.png");
+  EXPECT_GT(pixels[1], 20 * pixels[0]) << pixels[0] << " " << pixels[1];
+
+  // The same frame, 1.5x: not aligned, the right ball has about 2.25x the pixels.
+  const fs::path larger = scaled_copy(example("ball.mesh"), 1.5, {0, 0, 0}, dir / "ball15.mesh");
+  const fs::path same = dir / "same";
+  r = run_hqview({"analyze", example("ball.mesh").string(), "--compare", larger.string(), "-o", same.string(),
+                  "--size", "800x400", "--views", "compare"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  a = json::parse(read_text(same / "report.json"))["compare"]["alignment"];
+  EXPECT_EQ(a["mode"], "none");
+  EXPECT_DOUBLE_EQ(a["scale"].get<double>(), 1.0);
+  EXPECT_NEAR(a["diagonal_ratio"].get<double>(), 1.5, 1e-9);
+  pixels = compare_half_pixels(same / "views/compare.png");
+  const double ratio = static_cast<double>(pixels[1]) / static_cast<double>(pixels[0]);
+  EXPECT_NEAR(ratio, 2.25, 0.3) << pixels[0] << " " << pixels[1];
 }
 
 TEST(ViewsCli, ViewsSelectsAndRejectsUnknownIds) {

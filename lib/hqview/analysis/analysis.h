@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "hqview/analysis/compare_alignment.h"
 #include "hqview/boundary/boundary_error.h"
 #include "hqview/glyph/glyphs.h"
 #include "hqview/io/mesh_source.h"
@@ -52,6 +53,7 @@ struct Analysis {
     HexMesh mesh;
     Topology topology;
     QualityField field;
+    CompareAlignment alignment;  // how the views place MESH2 (numbers stay in its own units)
   };
   std::optional<Compared> compare;
 

@@ -50,6 +50,7 @@ void analyze_compare(Analysis& a, const AnalyzeOptions& options) {
   c.mesh_summary = summarize_mesh(c.mesh, c.topology);
   c.quality = summarize_quality(c.mesh, c.field, options.worst_count);
   c.quality.metrics = summarize_hex_metrics(compute_hex_metrics(c.mesh, options.metrics));
+  c.alignment = align_compare_mesh(a.mesh, c.mesh, options.compare_align);
 }
 
 // The rendered views as report entries and bundle files.

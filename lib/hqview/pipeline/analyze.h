@@ -28,6 +28,7 @@ struct AnalyzeOptions {
   std::string mesh_format;               // a name of mesh_format_names(); empty: by extension and content
   std::filesystem::path reference_path;  // empty: no boundary error
   std::filesystem::path compare_path;    // empty: no comparison
+  CompareAlign compare_align = CompareAlign::auto_;  // --compare-align
   std::string tool_version;
   ViewOptions views;                         // size, views to draw, focus vertices
   int worst_count = 20;                      // entries in worst_vertices / worst_cells

@@ -262,6 +262,13 @@ Json compare_json(const Json& report, const Analysis::Compared& c) {
       if (const auto it = base.find(key); it != base.end()) differences[key] = number(value - it->second);
   }
   j["differences"] = std::move(differences);
+  const CompareAlignment& a = c.alignment;
+  j["alignment"] = {{"requested", compare_align_name(a.requested)},
+                    {"mode", a.aligned ? "bbox" : "none"},
+                    {"scale", number(a.scale)},
+                    {"translation", vec3(a.translation)},
+                    {"diagonal_ratio", number(a.diagonal_ratio)},
+                    {"boxes_overlap", a.boxes_overlap}};
   return j;
 }
 

@@ -8,6 +8,7 @@
 #include <functional>
 
 #include "hqview/core/error.h"
+#include "hqview/core/number_format.h"
 #include "hqview/image/png.h"
 #include "hqview/views/boundary_views.h"
 #include "hqview/views/detail_views.h"
@@ -242,10 +243,14 @@ std::vector<ViewFile> build_reference_overlay(ViewContext& c) {
 std::vector<ViewFile> build_compare(ViewContext& c) {
   const Analysis::Compared& other = *c.a.compare;
   auto overview = sized<OverviewOptions>(c);
+  const CompareAlignment& align = other.alignment;
   overview.title = c.name + " (left) vs " + std::filesystem::path(other.input.path).filename().string() +
-                   " (right): vertex quality, one camera";
+                   " (right): vertex quality, one camera" +
+                   (align.aligned ? ", right aligned by bounding box (scale " + display_number(align.scale, 3) + ")"
+                                  : std::string());
+  const HexMesh placed = aligned_copy(other.mesh, align);
   return {{"views/compare.png",
-           render_compare_overview(c.a.mesh, c.a.topology, c.quality(), other.mesh, other.topology,
+           render_compare_overview(c.a.mesh, c.a.topology, c.quality(), placed, other.topology,
                                    other.field.vertex_quality, overview, c.renderer),
            {}}};
 }
