@@ -538,8 +538,17 @@ class AtlasBuilder {
   // or the line leaves one side empty.
   bool split_through_a_hole(std::size_t c) {
     std::vector<Index>& tris = charts_[c].triangles;
-    std::vector<Index> in_chart(static_cast<std::size_t>(nt_), 0);
+    // in_chart_ is all 0 between calls: set for this chart, cleared on return.
+    in_chart_.resize(static_cast<std::size_t>(nt_), 0);
+    std::vector<std::uint8_t>& in_chart = in_chart_;
     for (Index t : tris) in_chart[t] = 1;
+    struct Clear {
+      std::vector<std::uint8_t>& marks;
+      const std::vector<Index> triangles;
+      ~Clear() {
+        for (Index t : triangles) marks[static_cast<std::size_t>(t)] = 0;
+      }
+    } clear{in_chart, tris};
     // Border edges (no neighbour in this chart), their loops by shared vertices.
     std::vector<std::array<Index, 2>> border;
     std::vector<std::array<Uv, 2>> border_uv;
@@ -711,6 +720,7 @@ class AtlasBuilder {
   std::vector<Index> chart_of_;  // while growing and merging
   std::vector<Vec3> normal_, centroid_;
   std::vector<double> area_;
+  std::vector<std::uint8_t> in_chart_;  // scratch of split_through_a_hole
   std::vector<Index> neighbour_;  // 3 per triangle: across each manifold edge, or kNoIndex
   std::vector<Uv> local_;  // each chart's own layout (model units)
   std::vector<Uv> uvs_;    // packed into [0,1]² by pack()
