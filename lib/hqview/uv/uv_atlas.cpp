@@ -40,10 +40,6 @@ Index find_root(std::vector<Index>& parent, Index v) {
   return v;
 }
 
-double triangle_area_2d(const Uv* p) {
-  return 0.5 * ((p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]));
-}
-
 class AtlasBuilder {
  public:
   AtlasBuilder(const TriSurface& s, const UvOptions& o) : s_(s), options_(o) {
@@ -423,7 +419,7 @@ class AtlasBuilder {
   // chart's layout, the area ratio taken against the chart's own scale.
   double chart_distortion(std::span<const Index> tris, std::span<const Uv> uv) const {
     double area3 = 0.0, area2 = 0.0;
-    for (std::size_t i = 0; i < tris.size(); ++i) area3 += area_[tris[i]], area2 += triangle_area_2d(&uv[3 * i]);
+    for (std::size_t i = 0; i < tris.size(); ++i) area3 += area_[tris[i]], area2 += uv_signed_area(&uv[3 * i]);
     if (!(area3 > 0.0) || !(area2 > 0.0)) return INFINITY;
     const double k = area2 / area3;
     double sum = 0.0;
@@ -646,7 +642,7 @@ class AtlasBuilder {
   void equalise_scale() {
     for (const Chart& c : charts_) {
       double area3 = 0.0, area2 = 0.0;
-      for (Index t : c.triangles) area3 += area_[t], area2 += triangle_area_2d(&local_[3 * static_cast<std::size_t>(t)]);
+      for (Index t : c.triangles) area3 += area_[t], area2 += uv_signed_area(&local_[3 * static_cast<std::size_t>(t)]);
       if (!(area3 > 0.0) || !(area2 > 0.0) || !std::isfinite(area3 / area2)) continue;
       const double f = std::sqrt(area3 / area2);
       if (!std::isfinite(f) || std::abs(f - 1.0) < 1e-12) continue;

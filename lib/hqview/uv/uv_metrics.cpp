@@ -42,7 +42,7 @@ TriangleDistortion triangle_distortion(const Vec3& a, const Vec3& b, const Vec3&
   const Vec3 e1 = b - a, e2 = c - a;
   const double l1 = norm(e1);
   const double area3 = 0.5 * norm(cross(e1, e2));
-  const double area2 = 0.5 * ((uv[1][0] - uv[0][0]) * (uv[2][1] - uv[0][1]) - (uv[1][1] - uv[0][1]) * (uv[2][0] - uv[0][0]));
+  const double area2 = uv_signed_area(uv);
   if (!(area3 > 0.0) || !(l1 > 0.0)) {
     d.conformal = INFINITY;
     return d;
@@ -73,8 +73,7 @@ void measure_uv_atlas(const TriSurface& surface, UvAtlas& atlas) {
     a3[t] = 0.5 * norm(cross(b - a, c - a));
     if (!std::isfinite(a3[t])) a3[t] = 0.0;
     d[t] = triangle_distortion(a, b, c, &atlas.uvs[3 * t]);
-    const Uv* p = &atlas.uvs[3 * t];
-    a2[t] = 0.5 * ((p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]));
+    a2[t] = uv_signed_area(&atlas.uvs[3 * t]);
     area3 += a3[t];
     area2 += a2[t];
     if (atlas.triangle_chart[t] >= 0) chart_area[static_cast<std::size_t>(atlas.triangle_chart[t])] += a3[t];

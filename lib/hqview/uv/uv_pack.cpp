@@ -195,7 +195,7 @@ void pack_charts(std::span<const Uv> local, const std::vector<std::vector<Index>
   for (std::size_t c = 0; c < charts.size(); ++c) {
     for (Index t : charts[c]) {
       const Uv* p = &local[3 * static_cast<std::size_t>(t)];
-      area[c] += std::abs(0.5 * ((p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0])));
+      area[c] += std::abs(uv_signed_area(p));
       for (int k = 0; k < 3; ++k)
         box[c] = {std::min(box[c][0], p[k][0]), std::min(box[c][1], p[k][1]), std::max(box[c][2], p[k][0]),
                   std::max(box[c][3], p[k][1])};

@@ -13,6 +13,11 @@ namespace hq {
 
 using Uv = std::array<double, 2>;
 
+// Signed area of the UV triangle p[0], p[1], p[2] (positive: counter-clockwise), in floating point.
+inline double uv_signed_area(const Uv* p) {
+  return 0.5 * ((p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]));
+}
+
 // 1 for each triangle (corners uvs[3t], uvs[3t+1], uvs[3t+2]) whose exact
 // orientation is not strictly counter-clockwise (flipped or degenerate).
 std::vector<std::uint8_t> uv_flipped_triangles(std::span<const Uv> uvs);
