@@ -195,6 +195,11 @@ std::uint64_t parse_memory_budget(const std::string& text) {
 
 // The analysis options `analyze` and `batch` share, registered once.
 void add_analysis_options(CLI::App* cmd, AnalyzeArgs& args) {
+  cmd
+      ->add_option("--compare-align", args.compare_align,
+                   "Place MESH2 in the compare view: auto (align by bounding box when the diagonals differ by "
+                   "more than 2x or the boxes do not overlap), bbox (always), none; numbers stay in each mesh's units")
+      ->check(CLI::IsMember({"auto", "bbox", "none"}));
   cmd->add_option("--format", args.format,
                   "Read meshes as this format whatever their extension: " + hq::mesh_format_names());
   cmd->add_option("--size", args.size, "Image size WIDTHxHEIGHT")->capture_default_str();
@@ -369,11 +374,6 @@ int main(int argc, char** argv) {
   analyze->add_option("--compare", args.compare,
                       "Second hex mesh (e.g. before/after optimisation): its quality summary and differences in "
                       "report.json compare, both boundaries side by side (view compare)");
-  analyze
-      ->add_option("--compare-align", args.compare_align,
-                   "Place MESH2 in the compare view: auto (align by bounding box when the diagonals differ by "
-                   "more than 2x or the boxes do not overlap), bbox (always), none; numbers stay in each mesh's units")
-      ->check(CLI::IsMember({"auto", "bbox", "none"}));
   analyze->add_option("-o,--output", args.output, "Bundle directory (default: ./hqview-report/<mesh stem>)");
   analyze
       ->add_option("-j,--threads", args.threads, "Worker threads (default: all cores); results are identical for any N")
