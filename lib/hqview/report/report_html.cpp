@@ -73,8 +73,8 @@ struct PanelSpec {
 const std::vector<PanelSpec>& index_panels() {
   static const std::vector<PanelSpec> panels{
       {"panel-a", "A main", "A · Main view: glyphs, clusters and overlaps",
-       "Sphere glyphs sit on bad vertices (the lower the quality, the larger), merged where they overlap and coloured "
-       "per cluster; arrows point at overlapping elements. The overview colours the boundary by vertex quality.",
+       "Sphere glyphs sit on bad vertices (the lower the quality, the larger), merged where they overlap; the worst "
+       "clusters each have a colour, all others are grey; arrows point at overlapping elements. The overview colours the boundary by vertex quality.",
        'A'},
       {"panel-b", "B sorted quality", "B · Sorted vertex quality",
        "Each bar of the sorted chart is one of the worst vertices, worst on the left. Click a bar to go to its "
