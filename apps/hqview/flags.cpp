@@ -7,6 +7,7 @@
 #include "hqview/core/error.h"
 #include "hqview/core/text.h"
 #include "hqview/io/mesh_reader.h"
+#include "hqview/render/upright.h"
 #include "hqview/views/views.h"
 
 namespace hqcli {
@@ -55,6 +56,11 @@ void parse_size(const std::string& size, int& width, int& height) {
   }
   if (width < 64 || height < 64 || width > 8192 || height > 8192)
     throw UsageError("--size: width and height must be between 64 and 8192, got '" + size + "'");
+}
+
+hq::Vec3 parse_up(const std::string& text) {
+  if (const std::optional<hq::Vec3> up = hq::parse_up_axis(text)) return *up;
+  throw UsageError("--up: expected one of +x -x +y -y +z -z, got '" + text + "'");
 }
 
 void parse_rmax(const std::string& text, hq::GlyphOptions& glyphs) {

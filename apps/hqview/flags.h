@@ -41,6 +41,9 @@ std::optional<double> parse_finite(std::string_view text);
 // --size WIDTHxHEIGHT, each from 64 to 8192.
 void parse_size(const std::string& text, int& width, int& height);
 
+// --up AXIS: +x -x +y -y +z -z (x, y, z without a sign are +).
+hq::Vec3 parse_up(const std::string& text);
+
 // --rmax R (model units) or Rx (R times the mean edge length), R > 0.
 void parse_rmax(const std::string& text, hq::GlyphOptions& glyphs);
 

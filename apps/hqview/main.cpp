@@ -28,6 +28,7 @@
 #include "hqview/pipeline/batch.h"
 #include "hqview/pipeline/diff.h"
 #include "hqview/render/osmesa_renderer.h"
+#include "hqview/render/upright.h"
 #include "hqview/report/atomic_file.h"
 #include "hqview/report/batch_index.h"
 #include "hqview/report/bundle_writer.h"
@@ -46,6 +47,8 @@ struct AnalyzeArgs {
   std::string reference;
   std::string compare;
   std::string compare_align = "auto";
+  std::string reference_align = "none";
+  std::string up{hq::kDefaultUpAxis};
   std::string output;
   std::string json;
   std::string size = "1600x1200";
@@ -91,6 +94,8 @@ hq::AnalyzeOptions make_analyze_options(const AnalyzeArgs& args) {
   // known once the report is (analyze throws hq::ValueError then, no bundle).
   for (const std::string& rule : args.gates) options.gates.push_back(hq::parse_gate_rule(rule));
   parse_size(args.size, options.views.width, options.views.height);
+  options.views.up = parse_up(args.up);
+  options.reference_align = args.reference_align == "bbox" ? hq::CompareAlign::bbox : hq::CompareAlign::none;
   options.views.views = parse_view_list(args.views);
   for (long long v : args.focus_vertices) {
     if (v > 2147483647LL) throw UsageError("--focus-vertex: vertex " + std::to_string(v) + " does not exist");
@@ -195,6 +200,15 @@ std::uint64_t parse_memory_budget(const std::string& text) {
 
 // The analysis options `analyze` and `batch` share, registered once.
 void add_analysis_options(CLI::App* cmd, AnalyzeArgs& args) {
+  cmd->add_option("--up", args.up,
+                  "The model axis drawn upwards in the 3D views and the UV map: +x -x +y -y +z -z; views look "
+                  "from 15-35 degrees above the horizon")
+      ->capture_default_str();
+  cmd->add_option("--reference-align", args.reference_align,
+                  "Move the reference onto the mesh boundary's bounding box before the boundary error: bbox "
+                  "(uniform scale and translation; errors in the mesh's units) or none")
+      ->check(CLI::IsMember({"none", "bbox"}))
+      ->capture_default_str();
   cmd
       ->add_option("--compare-align", args.compare_align,
                    "Place MESH2 in the compare view: auto (align by bounding box when the diagonals differ by "

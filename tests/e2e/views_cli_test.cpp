@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.h"
+#include "hqview/image/colormap.h"
 #include "support/fixtures.h"
 
 namespace hq::test {
@@ -193,6 +194,193 @@ TEST(ViewsCli, CompareAlignsAMeshInAnotherFrameByBoundingBox) {
   pixels = compare_half_pixels(same / "views/compare.png");
   const double ratio = static_cast<double>(pixels[1]) / static_cast<double>(pixels[0]);
   EXPECT_NEAR(ratio, 2.25, 0.3) << pixels[0] << " " << pixels[1];
+}
+
+// A tall box of 2 x 2 x 12 unit hexes whose long side lies along `axis`
+// (0: x, 1: y, 2: z), the edge vertex at mid-height pulled outwards so
+// that glyphs exist.
+fs::path tall_box(int axis, const fs::path& out) {
+  const int n[3] = {axis == 0 ? 12 : 2, axis == 1 ? 12 : 2, axis == 2 ? 12 : 2};
+  auto id = [&](int i, int j, int k) { return 1 + i + (n[0] + 1) * (j + (n[1] + 1) * k); };
+  std::ofstream o(out);
+  o << "MeshVersionFormatted 1\nDimension 3\nVertices\n" << (n[0] + 1) * (n[1] + 1) * (n[2] + 1) << "\n";
+  for (int k = 0; k <= n[2]; ++k)
+    for (int j = 0; j <= n[1]; ++j)
+      for (int i = 0; i <= n[0]; ++i) {
+        const int c[3] = {i, j, k};
+        bool pulled = true;
+        for (int d = 0; d < 3; ++d) pulled = pulled && c[d] == (d == axis ? n[d] / 2 : n[d]);
+        for (int d = 0; d < 3; ++d) o << c[d] + (pulled && d != axis ? 0.7 : 0.0) << (d < 2 ? " " : " 0\n");
+      }
+  o << "Hexahedra\n" << n[0] * n[1] * n[2] << "\n";
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i)
+        o << id(i, j, k) << " " << id(i + 1, j, k) << " " << id(i + 1, j + 1, k) << " " << id(i, j + 1, k) << " "
+          << id(i, j, k + 1) << " " << id(i + 1, j, k + 1) << " " << id(i + 1, j + 1, k + 1) << " " << id(i, j + 1, k + 1)
+          << " 0\n";
+  o << "End\n";
+  return out;
+}
+
+// The extent (width, height) in pixels of what is not background in the
+// left `fraction` of a figure, below its title band.
+std::array<int, 2> model_extent(const fs::path& png, double fraction) {
+  OIIO::ImageBuf image(png.string());
+  EXPECT_TRUE(image.read()) << image.geterror();
+  const int w = image.spec().width, h = image.spec().height;
+  float bg[4], px[4];
+  image.getpixel(w - 1, h - 1, bg, 3);
+  int x0 = w, x1 = -1, y0 = h, y1 = -1;
+  for (int y = h / 10; y < h; ++y)
+    for (int x = 0; x < static_cast<int>(fraction * w); ++x) {
+      image.getpixel(x, y, px, 3);
+      if (std::abs(px[0] - bg[0]) + std::abs(px[1] - bg[1]) + std::abs(px[2] - bg[2]) <= 0.05) continue;
+      x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+    }
+  return {x1 - x0 + 1, y1 - y0 + 1};
+}
+
+TEST(ViewsCli, UpKeepsATallBoxUprightInEveryView) {
+  const fs::path dir = fresh_output_dir("views/upright");
+  const char* names[3] = {"+x", "+y", "+z"};
+  for (int axis : {0, 2}) {
+    const fs::path box = tall_box(axis, dir / ("box" + std::to_string(axis) + ".mesh"));
+    const fs::path out = dir / ("bundle" + std::to_string(axis));
+    CliResult r = run_hqview({"analyze", box.string(), "-o", out.string(), "--size", "480x480", "--up",
+                              names[axis], "--views", "overview,main,clusters,local", "--glyph-threshold", "0.1"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const json report = json::parse(read_text(out / "report.json"));
+    Vec3 up{0, 0, 0};
+    up[axis] = 1.0;
+    int cameras = 0;
+    for (const json& view : report["views"]) {
+      ASSERT_EQ(view["cameras"].size(), view["files"].size());
+      for (std::size_t i = 0; i < view["files"].size(); ++i) {
+        const json& c = view["cameras"][i];
+        if (c.is_null()) continue;
+        ++cameras;
+        const std::string file = view["files"][i];
+        const auto e = c["eye"].get<std::vector<double>>(), t = c["target"].get<std::vector<double>>();
+        const Vec3 back = normalized(Vec3{e[0] - t[0], e[1] - t[1], e[2] - t[2]});
+        // The eye 15-35 degrees above the horizon, read from the camera itself.
+        const double elevation = std::asin(dot(back, up)) * 180.0 / 3.14159265358979323846;
+        EXPECT_GE(elevation, 15.0 - 1e-6) << file;
+        EXPECT_LE(elevation, 35.0 + 1e-6) << file;
+        EXPECT_NEAR(c["elevation_degrees"].get<double>(), elevation, 1e-9) << file;
+        // The image's up direction leans towards the axis and the axis has no
+        // sideways component: the box's long side is vertical in the image.
+        const auto u = c["up"].get<std::vector<double>>();
+        const Vec3 image_up{u[0], u[1], u[2]};
+        EXPECT_GT(dot(image_up, up), 0.8) << file;
+        EXPECT_NEAR(dot(normalized(cross(back, image_up)), up), 0.0, 1e-9) << file;
+      }
+    }
+    EXPECT_GE(cameras, 5);  // overview, two main views, a cluster and a local view
+    // Seen upright, the box is a tall shape in the overview and in view A
+    // (their 3D areas: the left 60 % and 70 % of the figure).
+    for (const char* file : {"views/overview.png", "views/main_1.png", "views/main_2.png"}) {
+      const auto extent = model_extent(out / file, file[6] == 'o' ? 0.6 : 0.7);
+      EXPECT_GT(extent[1], 2 * extent[0]) << file << ": " << extent[0] << " x " << extent[1];
+    }
+  }
+}
+
+// A copy of an OFF surface with every vertex p -> f p + offset.
+fs::path scaled_off_copy(const fs::path& off, double f, Vec3 offset, const fs::path& out) {
+  std::istringstream in(read_text(off));
+  std::ofstream o(out);
+  std::string header;
+  long nv = 0, nf = 0, ne = 0;
+  in >> header >> nv >> nf >> ne;
+  o << header << "\n" << nv << " " << nf << " " << ne << "\n" << std::setprecision(17);
+  for (long i = 0; i < nv; ++i) {
+    double x, y, z;
+    in >> x >> y >> z;
+    o << f * x + offset.x << " " << f * y + offset.y << " " << f * z + offset.z << "\n";
+  }
+  o << in.rdbuf();
+  return out;
+}
+
+TEST(ViewsCli, ReferenceAlignMovesAReferenceInAnotherFrame) {
+  const fs::path dir = fresh_output_dir("views/reference_align");
+  const fs::path far = scaled_off_copy(example("ball.off"), 50.0, {300, -100, 40}, dir / "ball50.off");
+  // Default none: today's refusal, which now names the flag.
+  CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "--reference", far.string(), "-o",
+                            (dir / "refused").string(), "--no-render"});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.err.find("--reference-align bbox"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "refused" / "report.json"));
+  // bbox: the reference is moved onto the mesh; the error matches the run
+  // with the reference in place.
+  r = run_hqview({"analyze", example("ball.mesh").string(), "--reference", far.string(), "--reference-align", "bbox",
+                  "-o", (dir / "aligned").string(), "--no-render"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json aligned = json::parse(read_text(dir / "aligned" / "report.json"))["boundary_error"];
+  EXPECT_EQ(aligned["reference_alignment"]["mode"], "bbox");
+  EXPECT_EQ(aligned["reference_alignment"]["requested"], "bbox");
+  const double scale = aligned["reference_alignment"]["scale"].get<double>();
+  r = run_hqview({"analyze", example("ball.mesh").string(), "--reference", example("ball.off").string(), "-o",
+                  (dir / "in_place").string(), "--no-render"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json in_place = json::parse(read_text(dir / "in_place" / "report.json"))["boundary_error"];
+  EXPECT_EQ(in_place["reference_alignment"]["mode"], "none");
+  // The ball's hex boundary and ball.off have nearly the same box: the
+  // scale is 1/50 up to the boxes' difference.
+  EXPECT_NEAR(scale * 50.0, 1.0, 0.02);
+  EXPECT_NEAR(aligned["hausdorff"]["relative"].get<double>(), in_place["hausdorff"]["relative"].get<double>(),
+              0.02 * in_place["hausdorff"]["relative"].get<double>() + 1e-3);
+}
+
+// Pixels of view A's 3D area (the left 70 %, below the title) within 10 of a
+// colour in every channel (cluster edges are drawn unlit in their colour).
+long pixels_near(const fs::path& png, const Color& c) {
+  OIIO::ImageBuf image(png.string());
+  EXPECT_TRUE(image.read()) << image.geterror();
+  const int w = image.spec().width, h = image.spec().height;
+  float px[4];
+  long n = 0;
+  for (int y = h / 10; y < h; ++y)
+    for (int x = 0; x < static_cast<int>(0.7 * w); ++x) {
+      image.getpixel(x, y, px, 3);
+      if (std::abs(px[0] - c.r) <= 10 / 255.0 && std::abs(px[1] - c.g) <= 10 / 255.0 &&
+          std::abs(px[2] - c.b) <= 10 / 255.0)
+        ++n;
+    }
+  return n;
+}
+
+TEST(ViewsCli, OnlyTheTopClustersWearTheirColoursInViewA) {
+  // armadillo.mesh has 67 clusters; with K = 4 the first 4 palette colours
+  // are on screen and the other 6 nowhere; with K = 0 no palette colour is
+  // (every cluster neutral), so no unlabelled cluster ever wears one.
+  const auto data = shared_data_dir();
+  if (!data) GTEST_SKIP() << "../shared/data absent";
+  const fs::path mesh = *data / "meshes/livesu2016_skeleton/armadillo.mesh";
+  const fs::path dir = fresh_output_dir("views/cluster_pixels");
+  for (int k : {4, 0}) {
+    const fs::path out = dir / ("k" + std::to_string(k));
+    CliResult r = run_hqview({"analyze", mesh.string(), "-o", out.string(), "--size", "800x600", "--views", "main",
+                              "--top-clusters", std::to_string(k), "--no-overlap", "--up", "+y"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const json glyphs = json::parse(read_text(out / "report.json"))["glyphs"];
+    ASSERT_GT(glyphs["num_clusters"].get<long>(), 20);
+    for (int i = 0; i < kLabelledClusterPaletteSize; ++i) {
+      const long n = pixels_near(out / "views/main_1.png", labelled_cluster_color(i)) +
+                     pixels_near(out / "views/main_2.png", labelled_cluster_color(i));
+      // With labels on screen, the two dark palette entries (L* < 35) are
+      // also reached by antialiased label text and by the shadowed side of
+      // a lit labelled sphere; K = 0 checks them (no labels, no palette).
+      const bool is_dark = cie_lightness(labelled_cluster_color(i)) < 35.0;
+      if (i < k) {
+        EXPECT_GT(n, 20) << "K=" << k << ": colour " << i << " missing";
+      } else if (k == 0 || !is_dark) {
+        EXPECT_EQ(n, 0) << "K=" << k << ": colour " << i << " drawn by an unlabelled cluster";
+      }
+    }
+    EXPECT_GT(pixels_near(out / "views/main_1.png", neutral_cluster_color()), 20) << "K=" << k;
+  }
 }
 
 TEST(ViewsCli, ViewsSelectsAndRejectsUnknownIds) {

@@ -258,12 +258,11 @@ TEST(MainScene, CrowdedMarkersShareOneFanOfArrows) {
   EXPECT_EQ(arrow_triangles(mixed, kIntersectionArrowColor), per_arrow);
 }
 
-TEST(Viewpoints, TwentySixDirections) {
-  const auto d = candidate_view_directions();
-  ASSERT_EQ(d.size(), 26u);
-  for (const Vec3& v : d) EXPECT_NEAR(norm(v), 1.0, 1e-12);
-  EXPECT_EQ(viewpoint_name({-1, 0, 0}), "+x");
-  EXPECT_EQ(viewpoint_name(normalized(Vec3{-1, 1, -1})), "+x-y+z");
+TEST(Viewpoints, NamesSayWhereTheEyeSits) {
+  const Vec3 up{0, 1, 0};
+  EXPECT_EQ(viewpoint_name(upright_view_direction(up, 30.0, 25.0), up), "azimuth 30, elevation 25 deg");
+  EXPECT_EQ(viewpoint_name(upright_view_direction(up, -90.0, 15.0), up), "azimuth 270, elevation 15 deg");
+  EXPECT_EQ(viewpoint_name({0, 1, 0}, up), "straight below");
 }
 
 TEST(Viewpoints, CoverageGrowsWithSphereSize) {
@@ -294,10 +293,39 @@ TEST(Viewpoints, PrefersTheViewThatSeparatesGlyphs) {
     f.glyphs.clusters.push_back(g);
   }
   const auto points = main_view_points(f.mesh, f.topology, f.glyphs);
-  const auto chosen = choose_main_viewpoints(points, f.glyphs, 1.0, 2);
+  // z up: every candidate looks from 15-35 degrees above; from the side
+  // both show.
+  const Vec3 up{0, 0, 1};
+  const auto chosen = choose_main_viewpoints(points, f.glyphs, 1.0, 2, up);
   ASSERT_EQ(chosen.size(), 2u);
-  EXPECT_LT(std::abs(chosen[0].z), 0.99);
-  EXPECT_EQ(chosen, choose_main_viewpoints(points, f.glyphs, 1.0, 2)) << "deterministic";
+  for (const Vec3& d : chosen) {
+    EXPECT_GE(view_elevation_degrees(d, up), 15.0 - 1e-9);
+    EXPECT_LE(view_elevation_degrees(d, up), 35.0 + 1e-9);
+  }
+  // The second view looks from the other side (90 degrees of azimuth or more).
+  const double gap = std::abs(std::remainder(view_azimuth_degrees(chosen[0], up) - view_azimuth_degrees(chosen[1], up), 360.0));
+  EXPECT_GE(gap, 90.0 - 1e-9);
+  EXPECT_EQ(chosen, choose_main_viewpoints(points, f.glyphs, 1.0, 2, up)) << "deterministic";
+  // x up: the glyphs' line (along z) is horizontal; the chosen view looks
+  // across it (azimuth near +-90, where the eye is on the y axis), not along it.
+  const Vec3 x_up{1, 0, 0};
+  const Vec3 across = choose_main_viewpoints(points, f.glyphs, 1.0, 1, x_up).at(0);
+  EXPECT_LT(std::abs(across.z), 0.6);
+}
+
+TEST(Viewpoints, WithoutSpheresTheThreeQuarterViews) {
+  const Vec3 up{0, 0, 1};
+  const std::vector<Vec3> points{{0, 0, 0}, {1, 1, 1}};
+  const auto none = choose_viewpoints(points, {}, {}, 1.0, 2, up);
+  ASSERT_EQ(none.size(), 2u);
+  EXPECT_EQ(none[0], three_quarter_view(up));
+  EXPECT_EQ(none[1], three_quarter_back_view(up));
+  // One sphere: every upright view shows it; the choice is an upright one.
+  const std::vector<Vec3> centers{{0.5, 0.5, 0.5}};
+  const std::vector<double> radii{0.2};
+  const Vec3 d = choose_viewpoints(points, centers, radii, 1.0, 1, up).at(0);
+  EXPECT_GE(view_elevation_degrees(d, up), 15.0 - 1e-9);
+  EXPECT_LE(view_elevation_degrees(d, up), 35.0 + 1e-9);
 }
 
 }  // namespace

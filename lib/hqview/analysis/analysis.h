@@ -44,6 +44,9 @@ struct Analysis {
   std::optional<TriSurface> reference_surface;
   std::optional<BoundaryError> boundary_error;
   std::optional<UvAtlas> uv_atlas;
+  // --reference-align: how the reference was moved into the mesh's frame
+  // before the boundary error (reference_surface is the moved surface).
+  CompareAlignment reference_alignment{.requested = CompareAlign::none};
 
   // With --compare MESH2: MESH2 analysed the same way (quality only).
   struct Compared {

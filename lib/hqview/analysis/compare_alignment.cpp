@@ -3,7 +3,6 @@
 #include <cmath>
 #include <vector>
 
-#include "hqview/core/box3.h"
 
 namespace hq {
 namespace {
@@ -21,9 +20,12 @@ Box3 used_box(const HexMesh& mesh) {
 }  // namespace
 
 CompareAlignment align_compare_mesh(const HexMesh& mesh, const HexMesh& other, CompareAlign requested) {
+  return align_boxes(used_box(mesh), used_box(other), requested);
+}
+
+CompareAlignment align_boxes(const Box3& mine, const Box3& theirs, CompareAlign requested) {
   CompareAlignment a;
   a.requested = requested;
-  const Box3 mine = used_box(mesh), theirs = used_box(other);
   if (mine.is_empty() || theirs.is_empty()) return a;
   const double dm = mine.diagonal(), dt = theirs.diagonal();
   if (!(dm > 0.0) || !(dt > 0.0) || !std::isfinite(dm) || !std::isfinite(dt)) return a;
@@ -38,10 +40,13 @@ CompareAlignment align_compare_mesh(const HexMesh& mesh, const HexMesh& other, C
   return a;
 }
 
+Vec3 aligned_point(const Vec3& p, const CompareAlignment& alignment) {
+  return alignment.aligned ? alignment.scale * p + alignment.translation : p;
+}
+
 HexMesh aligned_copy(const HexMesh& other, const CompareAlignment& alignment) {
   HexMesh copy = other;
-  if (alignment.aligned)
-    for (Vec3& p : copy.points) p = alignment.scale * p + alignment.translation;
+  for (Vec3& p : copy.points) p = aligned_point(p, alignment);
   return copy;
 }
 

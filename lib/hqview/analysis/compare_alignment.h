@@ -5,11 +5,14 @@
 // the same model from another paper near 105). A uniform scale and a
 // translation map MESH2's bounding box onto MESH's (centres matched,
 // diagonals equal). Only views use it: every number of report.json stays in
-// each mesh's own units.
+// each mesh's own units. --reference-align bbox uses the same transform to
+// bring the reference surface into the mesh's frame (there the boundary
+// error is then measured in the mesh's units).
 
 #include <array>
 #include <string>
 
+#include "hqview/core/box3.h"
 #include "hqview/core/vec3.h"
 #include "hqview/mesh/hex_mesh.h"
 
@@ -34,6 +37,12 @@ struct CompareAlignment {
 
 // Boxes of the vertices used by hexes. Degenerate boxes (a point) are never aligned.
 CompareAlignment align_compare_mesh(const HexMesh& mesh, const HexMesh& other, CompareAlign requested);
+
+// The same rule for any two boxes: the transform takes `moving` onto `fixed`.
+CompareAlignment align_boxes(const Box3& fixed, const Box3& moving, CompareAlign requested);
+
+// p -> scale * p + translation (the identity when not aligned).
+Vec3 aligned_point(const Vec3& p, const CompareAlignment& alignment);
 
 // MESH2's points moved into MESH's frame (a copy; the identity when not aligned).
 HexMesh aligned_copy(const HexMesh& other, const CompareAlignment& alignment);

@@ -1,8 +1,10 @@
 #include "hqview/pipeline/analyze.h"
 
+#include "hqview/core/box3.h"
 #include "hqview/core/error.h"
 #include "hqview/io/mesh_reader.h"
 #include "hqview/io/mesh_source.h"
+#include "hqview/render/upright.h"
 #include "hqview/quality/quality_summary.h"
 
 namespace hq {
@@ -27,17 +29,33 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options) {
 }
 
 // Boundary error and UV atlas against the reference surface (ALGORITHMS.md §5).
-void analyze_reference(Analysis& a, const fs::path& path, const ReadLimits& limits) {
-  SurfaceSource source = open_surface_source(path, limits);
+// With --reference-align bbox the reference is first moved onto the mesh
+// boundary's bounding box (uniform scale and translation).
+void analyze_reference(Analysis& a, const AnalyzeOptions& options) {
+  const fs::path& path = options.reference_path;
+  SurfaceSource source = open_surface_source(path, options.read_limits);
   TriSurface reference = read_surface(source);
   a.reference_input = input_file(source);
+  Box3 mesh_box, reference_box;
+  for (Index v : a.topology.boundary_vertices) mesh_box.add(a.mesh.points[static_cast<std::size_t>(v)]);
+  for (const auto& t : reference.triangles)
+    for (Index v : t) reference_box.add(reference.points[static_cast<std::size_t>(v)]);
+  a.reference_alignment = align_boxes(mesh_box, reference_box, options.reference_align);
+  for (Vec3& p : reference.points) p = aligned_point(p, a.reference_alignment);
+  const char* hint = options.reference_align == CompareAlign::none ? "; --reference-align bbox moves the reference "
+                                                                     "onto the mesh's bounding box"
+                                                                   : "";
   try {
     a.boundary_error = compute_boundary_error(a.mesh, a.topology, reference);
   } catch (const InputError& e) {
-    throw InputError(path.string() + ": " + e.what());
+    const std::string what = e.what();
+    throw InputError(path.string() + ": " + what + (what.find("do not overlap") != std::string::npos ? hint : ""));
   }
-  a.warnings.insert(a.warnings.end(), a.boundary_error->warnings.begin(), a.boundary_error->warnings.end());
-  a.uv_atlas = build_uv_atlas(reference, UvOptions{.improve_with_lscm = true});
+  for (std::string w : a.boundary_error->warnings) {
+    if (w.find("same units and placement") != std::string::npos) w += hint;
+    a.warnings.push_back(std::move(w));
+  }
+  a.uv_atlas = build_uv_atlas(reference, UvOptions{.up = options.views.up, .improve_with_lscm = true});
   a.reference_surface = std::move(reference);
 }
 
@@ -53,8 +71,19 @@ void analyze_compare(Analysis& a, const AnalyzeOptions& options) {
   c.alignment = align_compare_mesh(a.mesh, c.mesh, options.compare_align);
 }
 
+std::optional<ViewCameraEntry> camera_entry(const std::optional<Camera>& camera, const Vec3& up) {
+  if (!camera) return std::nullopt;
+  const Vec3 direction = camera->target - camera->eye;
+  return ViewCameraEntry{camera->eye,
+                         camera->target,
+                         camera->up,
+                         view_elevation_degrees(direction, up),
+                         view_azimuth_degrees(direction, up),
+                         camera->is_perspective};
+}
+
 // The rendered views as report entries and bundle files.
-void add_views(std::vector<RenderedView> views, AnalyzeResult& result) {
+void add_views(std::vector<RenderedView> views, const Vec3& up, AnalyzeResult& result) {
   for (RenderedView& view : views) {
     ViewEntry& entry = result.model.views.emplace_back();
     entry.id = view.id;
@@ -62,6 +91,7 @@ void add_views(std::vector<RenderedView> views, AnalyzeResult& result) {
     for (ViewFile& file : view.files) {
       entry.files.push_back(file.relative_path);
       entry.links.push_back({file.cluster, file.vertex, std::move(file.hotspots)});
+      entry.cameras.push_back(camera_entry(file.camera, up));
       // A PNG already encoded by render_views is written as its bytes.
       const bool encoded = !file.png.empty();
       result.images.push_back({file.relative_path, encoded ? Image{} : std::move(file.image),
@@ -83,7 +113,7 @@ Analysis analyze_mesh(const AnalyzeOptions& options) {
   if (!a.topology.unreferenced_vertices.empty())
     a.warnings.push_back(std::to_string(a.topology.unreferenced_vertices.size()) +
                          " vertices are used by no hexahedron (ignored by the analysis)");
-  if (!options.reference_path.empty()) analyze_reference(a, options.reference_path, options.read_limits);
+  if (!options.reference_path.empty()) analyze_reference(a, options);
   if (!options.compare_path.empty()) analyze_compare(a, options);
   return a;
 }
@@ -94,7 +124,7 @@ AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
   model.tool_version = options.tool_version;
   model.has_annotated_vtu = true;  // every analyze bundle has data/annotated.vtu
   model.analysis = analyze_mesh(options);
-  if (renderer) add_views(render_views(model.analysis, options.views, *renderer), result);
+  if (renderer) add_views(render_views(model.analysis, options.views, *renderer), options.views.up, result);
   // Gates read the finished report, so any numeric key can be gated on.
   result.document = report_document(model);
   model.gates = evaluate_gates(options.gates, result.document);

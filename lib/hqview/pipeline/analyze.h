@@ -29,6 +29,7 @@ struct AnalyzeOptions {
   std::filesystem::path reference_path;  // empty: no boundary error
   std::filesystem::path compare_path;    // empty: no comparison
   CompareAlign compare_align = CompareAlign::auto_;  // --compare-align
+  CompareAlign reference_align = CompareAlign::none; // --reference-align (none or bbox)
   std::string tool_version;
   ViewOptions views;                         // size, views to draw, focus vertices
   int worst_count = 20;                      // entries in worst_vertices / worst_cells

@@ -110,6 +110,16 @@ Json quality_json(const QualitySummary& q) {
   return j;
 }
 
+// compare.alignment, boundary_error.reference_alignment.
+Json alignment_json(const CompareAlignment& a) {
+  return {{"requested", compare_align_name(a.requested)},
+          {"mode", a.aligned ? "bbox" : "none"},
+          {"scale", number(a.scale)},
+          {"translation", vec3(a.translation)},
+          {"diagonal_ratio", number(a.diagonal_ratio)},
+          {"boxes_overlap", a.boxes_overlap}};
+}
+
 // CONTRACT.md boundary_error, then extensions (after uv_atlas).
 Json boundary_error_json(const ReportModel& model) {
   const BoundaryError& e = *model.analysis.boundary_error;
@@ -155,6 +165,7 @@ Json boundary_error_json(const ReportModel& model) {
   j["reference_triangles"] = {{"num_read", e.num_reference_triangles},
                               {"num_removed_by_repair", e.num_repaired_triangles},
                               {"num_zero_area", e.num_zero_area_triangles}};
+  j["reference_alignment"] = alignment_json(model.analysis.reference_alignment);
   return j;
 }
 
@@ -262,13 +273,7 @@ Json compare_json(const Json& report, const Analysis::Compared& c) {
       if (const auto it = base.find(key); it != base.end()) differences[key] = number(value - it->second);
   }
   j["differences"] = std::move(differences);
-  const CompareAlignment& a = c.alignment;
-  j["alignment"] = {{"requested", compare_align_name(a.requested)},
-                    {"mode", a.aligned ? "bbox" : "none"},
-                    {"scale", number(a.scale)},
-                    {"translation", vec3(a.translation)},
-                    {"diagonal_ratio", number(a.diagonal_ratio)},
-                    {"boxes_overlap", a.boxes_overlap}};
+  j["alignment"] = alignment_json(c.alignment);
   return j;
 }
 
@@ -312,7 +317,19 @@ ReportDocument report_document(const ReportModel& model) {
   j["boundary_error"] = model.analysis.boundary_error ? boundary_error_json(model) : Json(nullptr);
   j["compare"] = model.analysis.compare ? compare_json(j, *model.analysis.compare) : Json(nullptr);
   Json views = Json::array();
-  for (const ViewEntry& v : model.views) views.push_back({{"id", v.id}, {"title", v.title}, {"files", v.files}});
+  for (const ViewEntry& v : model.views) {
+    Json cameras = Json::array();
+    for (const std::optional<ViewCameraEntry>& c : v.cameras)
+      cameras.push_back(c ? Json{{"eye", vec3(c->eye)},
+                                 {"target", vec3(c->target)},
+                                 {"up", vec3(c->up)},
+                                 {"elevation_degrees", number(c->elevation_degrees)},
+                                 {"azimuth_degrees", number(c->azimuth_degrees)},
+                                 {"projection", c->is_perspective ? "perspective" : "orthographic"}}
+                          : Json(nullptr));
+    if (cameras.empty()) cameras = Json(std::vector<std::nullptr_t>(v.files.size(), nullptr));
+    views.push_back({{"id", v.id}, {"title", v.title}, {"files", v.files}, {"cameras", std::move(cameras)}});
+  }
   j["views"] = std::move(views);
   j["gates"] = gates_json(model.gates);
   j["warnings"] = model.analysis.warnings;

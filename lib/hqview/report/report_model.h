@@ -3,6 +3,7 @@
 // from: the Analysis, the views rendered from it and the gates' outcome.
 // Plain data; the writers never recompute analysis.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,11 +33,20 @@ struct ViewFileLinks {
   std::vector<ChartHotspot> hotspots;
 };
 
+// Where a 3D view's camera looked from (report.json views[].cameras).
+struct ViewCameraEntry {
+  Vec3 eye, target, up;                 // model units; up: the image's up direction (--up made orthogonal)
+  double elevation_degrees = 0;         // of the eye above the horizontal plane of up
+  double azimuth_degrees = 0;           // around up, from the front (render/upright.h), in (-180, 180]
+  bool is_perspective = true;
+};
+
 struct ViewEntry {
   std::string id;
   std::string title;
   std::vector<std::string> files;    // relative to the bundle root
   std::vector<ViewFileLinks> links;  // one per file, or empty (no links)
+  std::vector<std::optional<ViewCameraEntry>> cameras{};  // one per file (none: not a 3D view), or empty
 };
 
 struct ReportModel {

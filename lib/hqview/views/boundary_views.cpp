@@ -83,7 +83,7 @@ Image render_boundary_error_view(const HexMesh& mesh, const Topology& topology, 
   Scene scene = build_boundary_error_scene(mesh, topology, error.vertex_error, scale);
   scene.background = options.background;
   const double aspect = static_cast<double>(layout.view.width) / layout.view.height;
-  const Camera camera = fit_camera_to_points(boundary_points(mesh, topology), view_direction, aspect);
+  const Camera camera = fit_camera_to_points(boundary_points(mesh, topology), view_direction, aspect, {.up = options.up});
   Image figure = make_image(options.width, options.height, options.background);
   paste(figure, renderer.render(scene, camera, layout.view.width, layout.view.height), layout.view.x, layout.view.y);
   draw_title(figure, layout.title, options.title, style);
@@ -120,7 +120,7 @@ Image render_reference_overlay(const HexMesh& mesh, const Topology& topology, co
   std::vector<Vec3> points = boundary_points(mesh, topology);
   points.insert(points.end(), reference.points.begin(), reference.points.end());
   const double aspect = static_cast<double>(layout.view.width) / layout.view.height;
-  const Camera camera = fit_camera_to_points(points, view_direction, aspect);
+  const Camera camera = fit_camera_to_points(points, view_direction, aspect, {.up = options.up});
   Image figure = make_image(options.width, options.height, options.background);
   paste(figure, renderer.render(scene, camera, layout.view.width, layout.view.height), layout.view.x, layout.view.y);
   draw_title(figure, layout.title, options.title, style);

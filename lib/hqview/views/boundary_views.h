@@ -22,6 +22,7 @@ struct BoundaryViewOptions {
   int width = 1600, height = 1200;
   std::string title;
   Rgba8 background{255, 255, 255, 255};
+  Vec3 up{0.0, 0.0, 1.0};  // the model axis drawn upwards in the 3D views (--up)
 };
 
 // The colour scale's half-range (model units): the 98th percentile of |e|

@@ -199,8 +199,9 @@ Image render_cluster_view(const HexMesh& mesh, const Topology& topology, const s
         points.push_back(p);
       }
   }
-  const std::vector<Vec3> direction = choose_viewpoints(points, centers, radii, f.aspect, 1);
-  const Camera camera = fit_camera_to_points(points, direction.at(0), f.aspect, {.is_perspective = false});
+  const std::vector<Vec3> direction = choose_viewpoints(points, centers, radii, f.aspect, 1, options.up);
+  const Camera camera =
+      fit_camera_to_points(points, direction.at(0), f.aspect, {.up = options.up, .is_perspective = false});
   return compose(options, f, renderer.render(scene, camera, f.layout.view.width, f.layout.view.height));
 }
 
@@ -286,8 +287,9 @@ Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span
     centers.push_back(scene.origin + Vec3{c.x, c.y, c.z});
     radii.push_back(scene.spheres[0].radii[i]);
   }
-  const std::vector<Vec3> direction = choose_viewpoints(points, centers, radii, f.aspect, 1);
-  const Camera camera = fit_camera_to_points(points, direction.at(0), f.aspect, {.is_perspective = false});
+  const std::vector<Vec3> direction = choose_viewpoints(points, centers, radii, f.aspect, 1, options.up);
+  const Camera camera =
+      fit_camera_to_points(points, direction.at(0), f.aspect, {.up = options.up, .is_perspective = false});
   Image figure = compose(options, f, renderer.render(scene, camera, f.layout.view.width, f.layout.view.height));
   // Labels: each corner's value next to its marker. Markers of a ring can
   // sit a few pixels apart: a label that would overlap a marker or a label

@@ -20,6 +20,7 @@ struct DetailViewOptions {
   int width = 1600, height = 1200;
   std::string title;
   Rgba8 background{255, 255, 255, 255};
+  Vec3 up{0.0, 0.0, 1.0};  // the model axis drawn upwards (--up)
 };
 
 // The hexes of a cluster (those with a member vertex), then their

@@ -65,24 +65,13 @@ double median_edge_pixels(const LineSet& lines, const Vec3& origin, const Camera
 
 }  // namespace
 
-std::vector<Vec3> candidate_view_directions() {
-  std::vector<Vec3> directions;
-  for (int x = -1; x <= 1; ++x)
-    for (int y = -1; y <= 1; ++y)
-      for (int z = -1; z <= 1; ++z)
-        if (x || y || z) directions.push_back(normalized(Vec3{double(x), double(y), double(z)}));
-  return directions;
-}
-
-std::string viewpoint_name(const Vec3& d) {
-  std::string name;
-  const char axes[3] = {'x', 'y', 'z'};
-  for (int i = 0; i < 3; ++i) {
-    if (std::abs(d[i]) < 1e-9) continue;
-    name += d[i] < 0 ? '+' : '-';  // the eye is on the side opposite the view direction
-    name += axes[i];
-  }
-  return name.empty() ? "?" : name;
+std::string viewpoint_name(const Vec3& d, const Vec3& up) {
+  const double elevation = view_elevation_degrees(d, up);
+  if (elevation > 89.5) return "straight above";
+  if (elevation < -89.5) return "straight below";
+  const long azimuth = std::lround(view_azimuth_degrees(d, up));
+  return "azimuth " + std::to_string(azimuth < 0 ? azimuth + 360 : azimuth) + ", elevation " +
+         std::to_string(std::lround(elevation)) + " deg";
 }
 
 double glyph_coverage(std::span<const Vec3> centers, std::span<const double> radii, const Camera& camera,
@@ -128,41 +117,90 @@ std::vector<Vec3> main_view_points(const HexMesh& mesh, const Topology& topology
 }
 
 std::vector<Vec3> choose_main_viewpoints(std::span<const Vec3> points, const GlyphResult& glyphs, double aspect,
-                                         int count, double fov_y_degrees) {
+                                         int count, const Vec3& up, double fov_y_degrees) {
   std::vector<Vec3> centers;
   std::vector<double> radii;
   for (const AggregatedGlyph& g : glyphs.clusters) {
     centers.push_back(g.position);
     radii.push_back(g.radius);
   }
-  return choose_viewpoints(points, centers, radii, aspect, count, fov_y_degrees);
+  return choose_viewpoints(points, centers, radii, aspect, count, up, fov_y_degrees);
 }
 
+namespace {
+
+// Visible sphere area in model units (the covered fraction of the view's
+// area) from each direction: independent of how tightly the view frames
+// the mesh, so a view along a long mesh's axis does not win by zooming in.
+std::vector<double> visible_sphere_areas(std::span<const Vec3> directions, std::span<const Vec3> points,
+                                         std::span<const Vec3> centers, std::span<const double> radii,
+                                         double aspect, const Vec3& up, double fov_y_degrees) {
+  std::vector<double> score(directions.size());
+  for (std::size_t i = 0; i < directions.size(); ++i) {
+    const Camera camera = fit_camera_to_points(
+        points, directions[i], aspect, {.up = up, .fov_y_degrees = fov_y_degrees, .is_perspective = false});
+    score[i] = glyph_coverage(centers, radii, camera, aspect) * camera.ortho_height * camera.ortho_height * aspect;
+  }
+  return score;
+}
+
+// The azimuth difference of two directions, degrees in [0, 180].
+double azimuth_gap(const Vec3& a, const Vec3& b, const Vec3& up) {
+  const double gap = std::abs(view_azimuth_degrees(a, up) - view_azimuth_degrees(b, up));
+  return gap > 180.0 ? 360.0 - gap : gap;
+}
+
+}  // namespace
+
 std::vector<Vec3> choose_viewpoints(std::span<const Vec3> points, std::span<const Vec3> centers,
-                                    std::span<const double> radii, double aspect, int count, double fov_y_degrees) {
-  std::vector<Vec3> chosen;
-  if (count <= 0) return chosen;
-  if (centers.empty()) {
-    const Vec3 d = normalized(Vec3{-1.0, -0.8, -0.6});
-    chosen = {d, -d};
+                                    std::span<const double> radii, double aspect, int count, const Vec3& up,
+                                    double fov_y_degrees) {
+  if (count <= 0) return {};
+  std::vector<Vec3> candidates = upright_view_candidates(up);
+  std::vector<double> score;
+  if (!centers.empty()) {
+    score = visible_sphere_areas(candidates, points, centers, radii, aspect, up, fov_y_degrees);
+    // Views from below only when no upright view shows a sphere.
+    if (*std::max_element(score.begin(), score.end()) <= 0.0) {
+      candidates = below_view_candidates(up);
+      score = visible_sphere_areas(candidates, points, centers, radii, aspect, up, fov_y_degrees);
+    }
+  }
+  if (score.empty() || *std::max_element(score.begin(), score.end()) <= 0.0) {
+    // Nothing to aim at: the three-quarter view and the one behind it.
+    std::vector<Vec3> chosen{three_quarter_view(up), three_quarter_back_view(up)};
     chosen.resize(static_cast<std::size_t>(std::min(count, 2)));
     return chosen;
-  }
-  const std::vector<Vec3> candidates = candidate_view_directions();
-  std::vector<double> score(candidates.size());
-  for (std::size_t i = 0; i < candidates.size(); ++i) {
-    const Camera camera =
-        fit_camera_to_points(points, candidates[i], aspect, {.fov_y_degrees = fov_y_degrees, .is_perspective = false});
-    // Visible glyph area in model units (the covered fraction of the view's
-    // area): independent of how tightly the view frames the mesh, so a view
-    // along a long mesh's axis does not win by zooming in.
-    score[i] = glyph_coverage(centers, radii, camera, aspect) * camera.ortho_height * camera.ortho_height * aspect;
   }
   std::vector<std::size_t> order(candidates.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return score[a] > score[b]; });
-  for (std::size_t i = 0; i < order.size() && static_cast<int>(chosen.size()) < count; ++i)
-    chosen.push_back(candidates[order[i]]);
+  // Each further view looks from at least 90 degrees of azimuth away from
+  // those chosen (the other side of the model), while such a view remains.
+  std::vector<Vec3> chosen{candidates[order[0]]};
+  std::vector<bool> taken(candidates.size(), false);
+  taken[order[0]] = true;
+  while (static_cast<int>(chosen.size()) < count) {
+    std::size_t pick = candidates.size();
+    for (std::size_t i : order) {
+      if (taken[i]) continue;
+      const bool apart = std::all_of(chosen.begin(), chosen.end(),
+                                     [&](const Vec3& c) { return azimuth_gap(candidates[i], c, up) >= 90.0 - 1e-9; });
+      if (apart) {
+        pick = i;
+        break;
+      }
+    }
+    if (pick == candidates.size())  // none far enough: the best one left
+      for (std::size_t i : order)
+        if (!taken[i]) {
+          pick = i;
+          break;
+        }
+    if (pick == candidates.size()) break;
+    taken[pick] = true;
+    chosen.push_back(candidates[pick]);
+  }
   return chosen;
 }
 
@@ -467,8 +505,8 @@ Image render_main_view(const HexMesh& mesh, const Topology& topology, const Glyp
   const FigureLayout layout = main_layout(options, style);
   const double aspect = static_cast<double>(layout.view.width) / static_cast<double>(layout.view.height);
   const std::vector<Vec3> points = main_view_points(mesh, topology, glyphs);
-  const Camera camera = fit_camera_to_points(points, view_direction, aspect,
-                                             {.fov_y_degrees = options.fov_y_degrees, .is_perspective = false});
+  const Camera camera = fit_camera_to_points(
+      points, view_direction, aspect, {.up = options.up, .fov_y_degrees = options.fov_y_degrees, .is_perspective = false});
 
   MainViewOptions scaled = options;
   scaled.pixel_scale = style.scale;

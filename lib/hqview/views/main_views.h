@@ -17,6 +17,7 @@
 #include "hqview/render/camera.h"
 #include "hqview/render/renderer.h"
 #include "hqview/render/scene.h"
+#include "hqview/render/upright.h"
 
 namespace hq {
 
@@ -42,11 +43,8 @@ struct MainViewOptions {
   double pixel_scale = 1.0;           // multiplies the arrow sizes and marker_merge_pixels; render_main_view
                                       // sets it to the figure's annotation scale (height / 1200)
   double fov_y_degrees = 30.0;
+  Vec3 up{0.0, 0.0, 1.0};  // the model axis drawn upwards (--up)
 };
-
-// The 26 view directions (from the eye towards the mesh): the vectors of
-// {-1, 0, 1}^3 without 0, normalised, in lexicographic order of (x, y, z).
-std::vector<Vec3> candidate_view_directions();
 
 // The fraction of an aspect-sized image covered by the union of the spheres
 // seen through camera (rasterised on a grid of about 40k cells). Spheres
@@ -58,17 +56,21 @@ double glyph_coverage(std::span<const Vec3> centers, std::span<const double> rad
 // extremes of each aggregated glyph.
 std::vector<Vec3> main_view_points(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs);
 
-// The count directions among candidate_view_directions() whose orthographic
-// camera (fit_camera_to_points on points) shows the largest visible area (in
-// model units: glyph_coverage times the view's area) of the aggregated glyphs, best first; ties keep candidate order.
-// Without glyphs, the oblique direction (-1,-0.8,-0.6) and its opposite.
+// The count view directions whose orthographic camera (fit_camera_to_points
+// on points, the model's up axis up) shows the largest visible area (in model
+// units: glyph_coverage times the view's area) of the aggregated glyphs,
+// best first; ties keep candidate order. Candidates are the upright ones
+// (upright_view_candidates: 12 azimuths at 15-35 degrees of elevation); the
+// views from the horizon and below (below_view_candidates) only when no
+// upright one shows a glyph. Each further view is at least 90 degrees of
+// azimuth away from the earlier ones when such a candidate exists. Without
+// glyphs (or none visible): the three-quarter view and the one behind it.
 std::vector<Vec3> choose_main_viewpoints(std::span<const Vec3> points, const GlyphResult& glyphs, double aspect,
-                                         int count, double fov_y_degrees = 30.0);
+                                         int count, const Vec3& up, double fov_y_degrees = 30.0);
 
-// The same choice for any spheres (centres, radii); without spheres, the
-// oblique direction (-1,-0.8,-0.6) and its opposite.
+// The same choice for any spheres (centres, radii).
 std::vector<Vec3> choose_viewpoints(std::span<const Vec3> points, std::span<const Vec3> centers,
-                                    std::span<const double> radii, double aspect, int count,
+                                    std::span<const double> radii, double aspect, int count, const Vec3& up,
                                     double fov_y_degrees = 30.0);
 
 // Overlap markers as view A draws them. Arrows of markers a few pixels apart
@@ -124,8 +126,9 @@ Image render_main_view(const HexMesh& mesh, const Topology& topology, const Glyp
                        const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& options,
                        Renderer& renderer);
 
-// A short name for a candidate direction as seen from the eye, e.g. "+x-y+z"
-// for the view direction (-1, 1, -1) (the eye sits on the +x, -y, +z side).
-std::string viewpoint_name(const Vec3& view_direction);
+// Where the eye of a view direction sits, for titles: "azimuth 30,
+// elevation 25 deg" (azimuth in [0, 360) from the front, upright.h), or
+// "straight above" / "straight below".
+std::string viewpoint_name(const Vec3& view_direction, const Vec3& up);
 
 }  // namespace hq

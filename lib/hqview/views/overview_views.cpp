@@ -8,9 +8,14 @@
 #include "hqview/core/error.h"
 #include "hqview/image/colormap.h"
 #include "hqview/render/annotate.h"
+#include "hqview/render/upright.h"
 
 namespace hq {
 namespace {
+
+Vec3 view_direction_of(const OverviewOptions& options) {
+  return squared_norm(options.view_direction) > 0.0 ? options.view_direction : three_quarter_view(options.up);
+}
 
 const Vec3& point(const HexMesh& mesh, Index v) { return mesh.points[static_cast<std::size_t>(v)]; }
 
@@ -165,7 +170,7 @@ Image render_quality_overview(const HexMesh& mesh, const Topology& topology, con
   Scene scene = build_quality_overview_scene(mesh, topology, vertex_quality, options);
   const double aspect = static_cast<double>(layout.view.width) / static_cast<double>(layout.view.height);
   const Camera camera =
-      fit_camera_to_points(boundary_points(mesh, topology), options.view_direction, aspect, {.up = options.up});
+      fit_camera_to_points(boundary_points(mesh, topology), view_direction_of(options), aspect, {.up = options.up});
   const double opacity = edge_opacity(scene, camera, layout.view.width, layout.view.height);
   for (LineSet& lines : scene.lines)
     for (Rgba8& c : lines.colors) c.a = static_cast<std::uint8_t>(std::lround(c.a * opacity));
@@ -191,7 +196,7 @@ Image render_compare_overview(const HexMesh& mesh, const Topology& topology, con
   const std::vector<Vec3> other_points = boundary_points(other, other_topology);
   points.insert(points.end(), other_points.begin(), other_points.end());
   const double aspect = static_cast<double>(half) / static_cast<double>(layout.view.height);
-  const Camera camera = fit_camera_to_points(points, options.view_direction, aspect, {.up = options.up});
+  const Camera camera = fit_camera_to_points(points, view_direction_of(options), aspect, {.up = options.up});
   Image figure = make_image(options.width, options.height, options.background);
   const HexMesh* meshes[] = {&mesh, &other};
   const Topology* topologies[] = {&topology, &other_topology};

@@ -19,8 +19,8 @@ namespace hq {
 struct OverviewOptions {
   int width = 1600;  // figure size in pixels, legend and title included
   int height = 1200;
-  Vec3 view_direction{-1.0, -0.8, -0.6};  // from the eye towards the mesh (an oblique view from +x+y+z)
-  Vec3 up{0.0, 0.0, 1.0};                 // model direction shown upwards
+  Vec3 up{0.0, 0.0, 1.0};       // the model axis drawn upwards (--up)
+  Vec3 view_direction{0, 0, 0};  // from the eye towards the mesh; zero: the three-quarter view of up (upright.h)
   std::string title = "Vertex quality";   // empty: no title band
   Rgba8 background{255, 255, 255, 255};
   Rgba8 edge_color{40, 40, 46, 255};  // boundary edges

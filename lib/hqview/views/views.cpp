@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <optional>
 
 #include "hqview/core/error.h"
 #include "hqview/core/number_format.h"
@@ -29,6 +30,7 @@ struct ViewContext {
   const GlyphResult* glyphs = nullptr;
   std::size_t num_top = 0;            // clusters with a C view
   std::vector<Index> local_vertices;  // views D and E
+  const std::optional<Camera>* last_camera = nullptr;  // of the frame rendered last
 
   Index cluster_of(Index v) const { return glyphs->vertex_cluster[static_cast<std::size_t>(v)]; }
   const std::vector<double>& quality() const { return a.field.vertex_quality; }
@@ -36,15 +38,18 @@ struct ViewContext {
 
 namespace {
 
-// Calls before_frame, then the wrapped renderer, for every frame.
+// Calls before_frame, then the wrapped renderer, for every frame; keeps the
+// camera of the last frame (report.json views[].cameras).
 class HookedRenderer final : public Renderer {
  public:
   HookedRenderer(Renderer& inner, std::function<void()> before_frame)
       : inner_(inner), before_frame_(std::move(before_frame)) {}
   Image render(const Scene& scene, const Camera& camera, int width, int height) override {
     before_frame_();
+    last_camera = camera;
     return inner_.render(scene, camera, width, height);
   }
+  std::optional<Camera> last_camera;
 
  private:
   Renderer& inner_;
@@ -68,11 +73,16 @@ Options sized(const ViewContext& c) {
   Options o;
   o.width = c.options.width;
   o.height = c.options.height;
+  o.up = c.options.up;
   return o;
 }
 
-// The front of the boundary error and reference views.
-Vec3 front_direction() { return normalized(Vec3{-1.0, -0.8, -0.6}); }
+// A 3D view's file: its image and the camera that drew it.
+ViewFile framed(std::string relative_path, Image image, const ViewContext& c) {
+  ViewFile file{std::move(relative_path), std::move(image), {}};
+  if (c.last_camera) file.camera = *c.last_camera;  // an optional: none before the first frame
+  return file;
+}
 
 // Charts: SVG for the HTML page and a PNG twin, from one Chart each.
 std::vector<ViewFile> chart_files(const std::string& name, const Chart& chart) {
@@ -135,8 +145,8 @@ bool has_inputs(const Analysis& a, ViewNeeds needs) {
 std::vector<ViewFile> build_overview(ViewContext& c) {
   auto overview = sized<OverviewOptions>(c);
   overview.title = c.name + ": vertex quality on the boundary";
-  return {
-      {"views/overview.png", render_quality_overview(c.a.mesh, c.a.topology, c.quality(), overview, c.renderer), {}}};
+  Image image = render_quality_overview(c.a.mesh, c.a.topology, c.quality(), overview, c.renderer);
+  return {framed("views/overview.png", std::move(image), c)};
 }
 
 std::vector<ViewFile> build_main(ViewContext& c) {
@@ -144,15 +154,15 @@ std::vector<ViewFile> build_main(ViewContext& c) {
   const std::vector<Vec3> points = main_view_points(c.a.mesh, c.a.topology, *c.glyphs);
   main.title = "-";  // the layout of a titled figure
   const double aspect = main_view_aspect(main);
-  const std::vector<Vec3> directions = choose_main_viewpoints(points, *c.glyphs, aspect, 2, main.fov_y_degrees);
+  const std::vector<Vec3> directions =
+      choose_main_viewpoints(points, *c.glyphs, aspect, 2, main.up, main.fov_y_degrees);
   const OverlapReport* overlap = c.a.overlap ? &*c.a.overlap : nullptr;
   std::vector<ViewFile> files;
   for (std::size_t i = 0; i < directions.size(); ++i) {
     main.title = c.name + ": glyph clusters and overlaps, view " + std::to_string(i + 1) + " (from " +
-                 viewpoint_name(directions[i]) + ")";
-    files.push_back({"views/main_" + std::to_string(i + 1) + ".png",
-                     render_main_view(c.a.mesh, c.a.topology, *c.glyphs, overlap, directions[i], main, c.renderer),
-                     {}});
+                 viewpoint_name(directions[i], main.up) + ")";
+    Image image = render_main_view(c.a.mesh, c.a.topology, *c.glyphs, overlap, directions[i], main, c.renderer);
+    files.push_back(framed("views/main_" + std::to_string(i + 1) + ".png", std::move(image), c));
   }
   return files;
 }
@@ -165,11 +175,10 @@ std::vector<ViewFile> build_clusters(ViewContext& c) {
     detail.title = c.name + ": cluster #" + std::to_string(k) + " (" + std::to_string(g.size) +
                    " glyphs, reduced, min quality " + std::to_string(g.min_quality).substr(0, 6) +
                    ") and its neighbours";
-    files.push_back(
-        {"views/cluster_" + std::to_string(k) + ".png",
-         render_cluster_view(c.a.mesh, c.a.topology, c.quality(), *c.glyphs, static_cast<Index>(k), detail, c.renderer),
-         {},
-         static_cast<Index>(k)});
+    Image image =
+        render_cluster_view(c.a.mesh, c.a.topology, c.quality(), *c.glyphs, static_cast<Index>(k), detail, c.renderer);
+    files.push_back(framed("views/cluster_" + std::to_string(k) + ".png", std::move(image), c));
+    files.back().cluster = static_cast<Index>(k);
   }
   return files;
 }
@@ -179,11 +188,10 @@ std::vector<ViewFile> build_local(ViewContext& c) {
   std::vector<ViewFile> files;
   for (Index v : c.local_vertices) {
     detail.title = c.name + ": vertex " + std::to_string(v) + ", its hexes and their corner scaled Jacobians";
-    files.push_back({"views/local_v" + std::to_string(v) + ".png",
-                     render_local_view(c.a.mesh, c.a.topology, c.a.field.corner_scaled_jacobian, v, detail, c.renderer),
-                     {},
-                     c.cluster_of(v),
-                     v});
+    Image image = render_local_view(c.a.mesh, c.a.topology, c.a.field.corner_scaled_jacobian, v, detail, c.renderer);
+    files.push_back(framed("views/local_v" + std::to_string(v) + ".png", std::move(image), c));
+    files.back().cluster = c.cluster_of(v);
+    files.back().vertex = v;
   }
   return files;
 }
@@ -211,16 +219,15 @@ std::vector<ViewFile> build_corners(ViewContext& c) {
 
 std::vector<ViewFile> build_boundary_error(ViewContext& c) {
   auto b = sized<BoundaryViewOptions>(c);
-  const Vec3 front = front_direction();
   std::vector<ViewFile> files;
   b.title = c.name + ": signed boundary error, front";
-  files.push_back({"views/boundary_error_front.png",
-                   render_boundary_error_view(c.a.mesh, c.a.topology, *c.a.boundary_error, front, b, c.renderer),
-                   {}});
+  Image front = render_boundary_error_view(c.a.mesh, c.a.topology, *c.a.boundary_error, three_quarter_view(b.up), b,
+                                           c.renderer);
+  files.push_back(framed("views/boundary_error_front.png", std::move(front), c));
   b.title = c.name + ": signed boundary error, back";
-  files.push_back({"views/boundary_error_back.png",
-                   render_boundary_error_view(c.a.mesh, c.a.topology, *c.a.boundary_error, -front, b, c.renderer),
-                   {}});
+  Image back = render_boundary_error_view(c.a.mesh, c.a.topology, *c.a.boundary_error, three_quarter_back_view(b.up),
+                                          b, c.renderer);
+  files.push_back(framed("views/boundary_error_back.png", std::move(back), c));
   return files;
 }
 
@@ -235,9 +242,9 @@ std::vector<ViewFile> build_uv_error(ViewContext& c) {
 std::vector<ViewFile> build_reference_overlay(ViewContext& c) {
   auto b = sized<BoundaryViewOptions>(c);
   b.title = c.name + ": hex boundary (grey) and reference (orange, translucent)";
-  return {{"views/reference_overlay.png",
-           render_reference_overlay(c.a.mesh, c.a.topology, *c.a.reference_surface, front_direction(), b, c.renderer),
-           {}}};
+  Image image =
+      render_reference_overlay(c.a.mesh, c.a.topology, *c.a.reference_surface, three_quarter_view(b.up), b, c.renderer);
+  return {framed("views/reference_overlay.png", std::move(image), c)};
 }
 
 std::vector<ViewFile> build_compare(ViewContext& c) {
@@ -249,10 +256,9 @@ std::vector<ViewFile> build_compare(ViewContext& c) {
                    (align.aligned ? ", right aligned by bounding box (scale " + display_number(align.scale, 3) + ")"
                                   : std::string());
   const HexMesh placed = aligned_copy(other.mesh, align);
-  return {{"views/compare.png",
-           render_compare_overview(c.a.mesh, c.a.topology, c.quality(), placed, other.topology,
-                                   other.field.vertex_quality, overview, c.renderer),
-           {}}};
+  Image image = render_compare_overview(c.a.mesh, c.a.topology, c.quality(), placed, other.topology,
+                                        other.field.vertex_quality, overview, c.renderer);
+  return {framed("views/compare.png", std::move(image), c)};
 }
 
 std::vector<ViewFile> build_boundary_error_sorted(ViewContext& c) {
@@ -322,6 +328,7 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
   HookedRenderer renderer(base_renderer, encode_pushed_views);
 
   ViewContext context{analysis, options, renderer, analysis.mesh_name(), {}};
+  context.last_camera = &renderer.last_camera;
   if (!analysis.glyphs) context.no_glyphs.vertex_cluster.assign(analysis.mesh.points.size(), kNoIndex);
   context.glyphs = analysis.glyphs ? &*analysis.glyphs : &context.no_glyphs;
   // The top clusters (C views; their worst vertices get D and E): as the glyph stage was asked.

@@ -4,6 +4,7 @@
 // draws it. The --views list, the render loop, report.json, index.html and
 // boundary.html all read this table.
 
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -27,6 +28,7 @@ struct ViewFile {
   // and height (x, y from the top left), key = the bar's vertex id.
   std::vector<ChartHotspot> hotspots{};
   std::string png{};  // for .png: image encoded (encode_png), the bytes to write
+  std::optional<Camera> camera{};  // a 3D view's camera (report.json views[].cameras)
 };
 
 struct RenderedView {
@@ -39,6 +41,7 @@ struct ViewOptions {
   int worst_vertices = 40;            // bars in chart B
   std::vector<Index> focus_vertices;  // more D and E views (--focus-vertex)
   std::vector<std::string> views;     // ids of kViews to draw (selectable ones); empty: all
+  Vec3 up{0.0, 0.0, 1.0};             // the model axis drawn upwards in every 3D view (--up)
 };
 
 struct ViewContext;  // what the builders share (views.cpp)
