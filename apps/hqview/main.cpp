@@ -49,6 +49,8 @@ struct AnalyzeArgs {
   std::string compare_align = "auto";
   std::string reference_align = "none";
   std::string up{hq::kDefaultUpAxis};
+  bool no_viewer = false;
+  double viewer_max_mb = 25;
   std::string output;
   std::string json;
   std::string size = "1600x1200";
@@ -95,6 +97,8 @@ hq::AnalyzeOptions make_analyze_options(const AnalyzeArgs& args) {
   for (const std::string& rule : args.gates) options.gates.push_back(hq::parse_gate_rule(rule));
   parse_size(args.size, options.views.width, options.views.height);
   options.views.up = parse_up(args.up);
+  options.viewer = !args.no_viewer;
+  options.viewer_max_mb = args.viewer_max_mb;
   options.reference_align = args.reference_align == "bbox" ? hq::CompareAlign::bbox : hq::CompareAlign::none;
   options.views.views = parse_view_list(args.views);
   for (long long v : args.focus_vertices) {
@@ -203,6 +207,12 @@ void add_analysis_options(CLI::App* cmd, AnalyzeArgs& args) {
   cmd->add_option("--up", args.up,
                   "The model axis drawn upwards in the 3D views and the UV map: +x -x +y -y +z -z; views look "
                   "from 15-35 degrees above the horizon")
+      ->capture_default_str();
+  cmd->add_flag("--no-viewer", args.no_viewer, "Leave the interactive 3D viewer (viewer.html) out of the bundle");
+  cmd->add_option("--viewer-max-mb", args.viewer_max_mb,
+                  "Size budget of the viewer's data in MB: over it, what is drawn is reduced (never the glyphs, "
+                  "the cells under the threshold or any number); the page says what was reduced")
+      ->check(CLI::Range(0.001, 100000.0))
       ->capture_default_str();
   cmd->add_option("--reference-align", args.reference_align,
                   "Move the reference onto the mesh boundary's bounding box before the boundary error: bbox "

@@ -93,7 +93,7 @@ async function checkPage(name, file) {
       check(ids.has(decodeURIComponent(href.slice(1))), `${name}: link ${href} has no target`);
     } else {
       check(!/^[a-z]+:/i.test(href) && !href.startsWith('/') && !href.includes('..'), `${name}: link ${href} leaves the bundle`);
-      const target = path.join(path.dirname(file), href);
+      const target = path.join(path.dirname(file), decodeURIComponent(href.split('#')[0]));
       check(fs.existsSync(target) && fs.statSync(target).isFile(), `${name}: link ${href} names a missing file`);
     }
   }

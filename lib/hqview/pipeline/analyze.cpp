@@ -71,7 +71,7 @@ void analyze_compare(Analysis& a, const AnalyzeOptions& options) {
   c.alignment = align_compare_mesh(a.mesh, c.mesh, options.compare_align);
 }
 
-std::optional<ViewCameraEntry> camera_entry(const std::optional<Camera>& camera, const Vec3& up) {
+std::optional<ViewCameraEntry> camera_entry(const std::optional<Camera>& camera, double aspect, const Vec3& up) {
   if (!camera) return std::nullopt;
   const Vec3 direction = camera->target - camera->eye;
   return ViewCameraEntry{camera->eye,
@@ -79,7 +79,9 @@ std::optional<ViewCameraEntry> camera_entry(const std::optional<Camera>& camera,
                          camera->up,
                          view_elevation_degrees(direction, up),
                          view_azimuth_degrees(direction, up),
-                         camera->is_perspective};
+                         camera->is_perspective,
+                         camera->is_perspective ? camera->fov_y_degrees : camera->ortho_height,
+                         aspect};
 }
 
 // The rendered views as report entries and bundle files.
@@ -91,7 +93,7 @@ void add_views(std::vector<RenderedView> views, const Vec3& up, AnalyzeResult& r
     for (ViewFile& file : view.files) {
       entry.files.push_back(file.relative_path);
       entry.links.push_back({file.cluster, file.vertex, std::move(file.hotspots)});
-      entry.cameras.push_back(camera_entry(file.camera, up));
+      entry.cameras.push_back(camera_entry(file.camera, file.camera_aspect, up));
       // A PNG already encoded by render_views is written as its bytes.
       const bool encoded = !file.png.empty();
       result.images.push_back({file.relative_path, encoded ? Image{} : std::move(file.image),
@@ -125,6 +127,9 @@ AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
   model.has_annotated_vtu = true;  // every analyze bundle has data/annotated.vtu
   model.analysis = analyze_mesh(options);
   if (renderer) add_views(render_views(model.analysis, options.views, *renderer), options.views.up, result);
+  model.has_viewer = renderer && options.viewer;
+  model.viewer_max_mb = options.viewer_max_mb;
+  model.viewer_up = options.views.up;
   // Gates read the finished report, so any numeric key can be gated on.
   result.document = report_document(model);
   model.gates = evaluate_gates(options.gates, result.document);

@@ -31,7 +31,9 @@ struct AnalyzeOptions {
   CompareAlign compare_align = CompareAlign::auto_;  // --compare-align
   CompareAlign reference_align = CompareAlign::none; // --reference-align (none or bbox)
   std::string tool_version;
-  ViewOptions views;                         // size, views to draw, focus vertices
+  ViewOptions views;                         // size, views to draw, focus vertices, up axis
+  bool viewer = true;                        // viewer.html when views are drawn (--no-viewer: false)
+  double viewer_max_mb = 25;                 // --viewer-max-mb
   int worst_count = 20;                      // entries in worst_vertices / worst_cells
   HexMetricSet metrics = all_hex_metrics();  // Verdict metrics to compute (scaled_jacobian always)
   std::vector<GateRule> gates;               // evaluated on the finished report document

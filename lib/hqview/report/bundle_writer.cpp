@@ -12,6 +12,7 @@
 #include "hqview/image/png.h"
 #include "hqview/report/report_csv.h"
 #include "hqview/report/report_html.h"
+#include "hqview/report/viewer.h"
 #include "hqview/report/report_json.h"
 #include "hqview/report/report_markdown.h"
 #include "hqview/report/report_vtu.h"
@@ -94,6 +95,10 @@ void write_bundle(const ReportModel& model, const ReportDocument& document, cons
     write_file(tmp / "data" / "vertices.csv", [&](std::ostream& out) { write_vertices_csv(model, out); });
     if (model.has_annotated_vtu)
       write_file(tmp / "data" / "annotated.vtu", [&](std::ostream& out) { write_annotated_vtu(model, out); });
+    if (model.has_viewer) {
+      fs::create_directories(tmp / "viewer");
+      for (const ViewerFile& f : viewer_files(model)) write_text(tmp / f.relative_path, f.text);
+    }
     for (const BundleImage& img : images) fs::create_directories((tmp / img.relative_path).parent_path());
     // PNG encoding dominates the writing of many views: one image per task.
     tbb::parallel_for(std::size_t{0}, images.size(), [&](std::size_t i) {

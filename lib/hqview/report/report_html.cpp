@@ -336,6 +336,7 @@ void set_panels(data& page, const ReportModel& model, const PanelIndex& index) {
     panel.set("title", spec.title);
     panel.set("intro", spec.intro);
     panel.set("figures", figures);
+    panel.set("has_viewer", spec.letter == 'A' && model.has_viewer);
     panels.push_back(panel);
   }
   page.set("panels", panels);
@@ -453,6 +454,7 @@ void set_glyphs(data& page, const ReportModel& model, const PanelIndex& index, s
       d.set("radius", show(c.radius));
       d.set("is_top", static_cast<int>(i) < g.options.top_clusters);
       d.set("has_view", index.cluster_views.count(c.id) > 0);
+      d.set("has_viewer", model.has_viewer && i < 1000);
       data links{data::type::list};
       index.push_detail_links(c.id, links, true);
       d.set("links", links);

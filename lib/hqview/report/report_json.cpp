@@ -325,7 +325,9 @@ ReportDocument report_document(const ReportModel& model) {
                                  {"up", vec3(c->up)},
                                  {"elevation_degrees", number(c->elevation_degrees)},
                                  {"azimuth_degrees", number(c->azimuth_degrees)},
-                                 {"projection", c->is_perspective ? "perspective" : "orthographic"}}
+                                 {"projection", c->is_perspective ? "perspective" : "orthographic"},
+                                 {"height", number(c->height)},
+                                 {"aspect", number(c->aspect)}}
                           : Json(nullptr));
     if (cameras.empty()) cameras = Json(std::vector<std::nullptr_t>(v.files.size(), nullptr));
     views.push_back({{"id", v.id}, {"title", v.title}, {"files", v.files}, {"cameras", std::move(cameras)}});

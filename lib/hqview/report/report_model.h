@@ -39,6 +39,8 @@ struct ViewCameraEntry {
   double elevation_degrees = 0;         // of the eye above the horizontal plane of up
   double azimuth_degrees = 0;           // around up, from the front (render/upright.h), in (-180, 180]
   bool is_perspective = true;
+  double height = 0;  // orthographic: the view's height in model units; perspective: its vertical field of view, degrees
+  double aspect = 1;  // the 3D area's width / height, pixels
 };
 
 struct ViewEntry {
@@ -57,6 +59,10 @@ struct ReportModel {
   // data/annotated.vtu is part of the bundle (set by whoever writes it):
   // index.html links it only then.
   bool has_annotated_vtu = false;
+  // viewer.html and viewer/ are part of the bundle (--no-viewer: not).
+  bool has_viewer = false;
+  double viewer_max_mb = 25;  // --viewer-max-mb
+  Vec3 viewer_up{0.0, 0.0, 1.0};  // --up
 };
 
 }  // namespace hq

@@ -31,6 +31,7 @@ struct ViewContext {
   std::size_t num_top = 0;            // clusters with a C view
   std::vector<Index> local_vertices;  // views D and E
   const std::optional<Camera>* last_camera = nullptr;  // of the frame rendered last
+  const double* last_aspect = nullptr;                 // its width / height
 
   Index cluster_of(Index v) const { return glyphs->vertex_cluster[static_cast<std::size_t>(v)]; }
   const std::vector<double>& quality() const { return a.field.vertex_quality; }
@@ -47,9 +48,11 @@ class HookedRenderer final : public Renderer {
   Image render(const Scene& scene, const Camera& camera, int width, int height) override {
     before_frame_();
     last_camera = camera;
+    last_aspect = static_cast<double>(width) / static_cast<double>(std::max(height, 1));
     return inner_.render(scene, camera, width, height);
   }
   std::optional<Camera> last_camera;
+  double last_aspect = 1.0;
 
  private:
   Renderer& inner_;
@@ -81,6 +84,7 @@ Options sized(const ViewContext& c) {
 ViewFile framed(std::string relative_path, Image image, const ViewContext& c) {
   ViewFile file{std::move(relative_path), std::move(image), {}};
   if (c.last_camera) file.camera = *c.last_camera;  // an optional: none before the first frame
+  if (c.last_aspect) file.camera_aspect = *c.last_aspect;
   return file;
 }
 
@@ -329,6 +333,7 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
 
   ViewContext context{analysis, options, renderer, analysis.mesh_name(), {}};
   context.last_camera = &renderer.last_camera;
+  context.last_aspect = &renderer.last_aspect;
   if (!analysis.glyphs) context.no_glyphs.vertex_cluster.assign(analysis.mesh.points.size(), kNoIndex);
   context.glyphs = analysis.glyphs ? &*analysis.glyphs : &context.no_glyphs;
   // The top clusters (C views; their worst vertices get D and E): as the glyph stage was asked.

@@ -29,6 +29,7 @@ struct ViewFile {
   std::vector<ChartHotspot> hotspots{};
   std::string png{};  // for .png: image encoded (encode_png), the bytes to write
   std::optional<Camera> camera{};  // a 3D view's camera (report.json views[].cameras)
+  double camera_aspect = 1.0;      // its frame's width / height
 };
 
 struct RenderedView {

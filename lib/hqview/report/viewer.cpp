@@ -1,0 +1,328 @@
+#include "hqview/report/viewer.h"
+
+#include <kainjow/mustache.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <map>
+
+#include "hqview/core/box3.h"
+#include "hqview/image/colormap.h"
+#include "hqview/quality/corner_jacobian.h"
+#include "hqview/report/cluster_color.h"
+#include "hqview/report/report_templates.h"
+#include "hqview/views/boundary_views.h"
+
+namespace hq {
+
+using Json = nlohmann::ordered_json;
+
+std::string base64_encode(const void* bytes, std::size_t size) {
+  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  const auto* p = static_cast<const unsigned char*>(bytes);
+  std::string out;
+  out.reserve((size + 2) / 3 * 4);
+  std::size_t i = 0;
+  for (; i + 2 < size; i += 3) {
+    const std::uint32_t v = (std::uint32_t{p[i]} << 16) | (std::uint32_t{p[i + 1]} << 8) | p[i + 2];
+    for (int k = 3; k >= 0; --k) out += kAlphabet[(v >> (6 * k)) & 63];
+  }
+  if (i < size) {
+    const std::uint32_t v = (std::uint32_t{p[i]} << 16) | (i + 1 < size ? std::uint32_t{p[i + 1]} << 8 : 0);
+    out += kAlphabet[(v >> 18) & 63];
+    out += kAlphabet[(v >> 12) & 63];
+    out += i + 1 < size ? kAlphabet[(v >> 6) & 63] : '=';
+    out += '=';
+  }
+  return out;
+}
+
+std::string script_safe_json(std::string text) {
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '<') {
+      out += "\\u003c";
+    } else if (c == '>') {
+      out += "\\u003e";
+    } else if (c == '&') {
+      out += "\\u0026";
+    } else if (c == '\xE2' && i + 2 < text.size() && text[i + 1] == '\x80' && (text[i + 2] == '\xA8' || text[i + 2] == '\xA9')) {
+      out += text[i + 2] == '\xA8' ? "\\u2028" : "\\u2029";
+      i += 2;
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+namespace {
+
+template <class T>
+std::string b64(const std::vector<T>& v) {
+  return base64_encode(v.data(), v.size() * sizeof(T));
+}
+
+Json vec(const Vec3& p) { return Json::array({p.x, p.y, p.z}); }
+
+// Colour tables: 256 RGB triples; index 255 is "no value".
+constexpr std::uint8_t kNoValue = 255;
+
+std::vector<std::uint8_t> lut_of(auto&& color_of_index) {
+  std::vector<std::uint8_t> rgb;
+  for (int i = 0; i < 256; ++i) {
+    const Color c = color_of_index(i);
+    for (float f : {c.r, c.g, c.b}) rgb.push_back(static_cast<std::uint8_t>(std::lround(std::clamp(f, 0.0f, 1.0f) * 255.0f)));
+  }
+  return rgb;
+}
+
+// Quality in [-1, 1] on indices 0..254 (the colour map of the PNG views).
+std::uint8_t quality_index(double q) {
+  if (!std::isfinite(q) || std::abs(q) >= kVerdictDegenerate) return kNoValue;
+  return static_cast<std::uint8_t>(std::lround((std::clamp(q, -1.0, 1.0) + 1.0) / 2.0 * 254.0));
+}
+double quality_of_index(int i) { return -1.0 + 2.0 * i / 254.0; }
+
+Json field_json(std::string id, std::string label, const char* per, const std::vector<std::uint8_t>& values,
+                const std::vector<std::uint8_t>& lut, double lo, double hi, Json legend) {
+  return {{"id", std::move(id)}, {"label", std::move(label)}, {"per", per}, {"min", lo}, {"max", hi},
+          {"values", b64(values)}, {"lut", b64(lut)}, {"legend", std::move(legend)}};
+}
+
+struct Boundary {
+  std::vector<Index> vertices;      // mesh vertex ids, ascending
+  std::vector<std::uint32_t> quads;  // 4 per face, into `vertices`
+  std::vector<Index> face_hex;       // the hex of each boundary face
+};
+
+Boundary boundary_of(const Analysis& a) {
+  const Topology& t = a.topology;
+  Boundary b;
+  b.vertices = t.boundary_vertices;
+  std::vector<std::uint32_t> slot(a.mesh.points.size(), 0);
+  for (std::size_t i = 0; i < b.vertices.size(); ++i) slot[static_cast<std::size_t>(b.vertices[i])] = static_cast<std::uint32_t>(i);
+  for (Index f : t.boundary_faces) {
+    for (Index v : t.faces[static_cast<std::size_t>(f)]) b.quads.push_back(slot[static_cast<std::size_t>(v)]);
+    b.face_hex.push_back(t.face_hexes[static_cast<std::size_t>(t.face_hex_offsets[static_cast<std::size_t>(f)])]);
+  }
+  return b;
+}
+
+// Positions quantised to 16 bits per axis over the bounding box.
+Json quantised_positions(const std::vector<Vec3>& points) {
+  Box3 box;
+  for (const Vec3& p : points) box.add(p);
+  if (box.is_empty()) box.add({0, 0, 0});
+  std::vector<std::uint16_t> q;
+  q.reserve(points.size() * 3);
+  Vec3 step;
+  for (int k = 0; k < 3; ++k) step[k] = box.hi[k] > box.lo[k] ? (box.hi[k] - box.lo[k]) / 65535.0 : 1.0;
+  for (const Vec3& p : points)
+    for (int k = 0; k < 3; ++k)
+      q.push_back(static_cast<std::uint16_t>(std::lround(std::clamp((p[k] - box.lo[k]) / step[k], 0.0, 65535.0))));
+  return {{"count", points.size()}, {"lo", vec(box.lo)}, {"step", vec(step)}, {"quantised", b64(q)}};
+}
+
+Json camera_of_view_a(const ReportModel& model) {
+  for (const ViewEntry& v : model.views)
+    if (v.id == "main")
+      for (const auto& c : v.cameras)
+        if (c) return {{"eye", vec(c->eye)}, {"target", vec(c->target)}, {"up", vec(c->up)}, {"height", c->height},
+                       {"aspect", c->aspect}, {"orthographic", !c->is_perspective}};
+  return nullptr;
+}
+
+}  // namespace
+
+std::vector<ViewerFile> viewer_files(const ReportModel& model) {
+  const Analysis& a = model.analysis;
+  const Boundary b = boundary_of(a);
+  const std::size_t num_faces = b.face_hex.size();
+  const double budget = model.viewer_max_mb * 1e6;
+  Json reduced = Json::array();
+
+  Json d;
+  d["name"] = a.mesh_name();
+  d["num_vertices"] = a.mesh_summary.num_vertices;
+  d["num_hexes"] = a.mesh_summary.num_hexes;
+  d["up"] = vec(model.viewer_up);
+  std::vector<Vec3> points;
+  for (Index v : b.vertices) points.push_back(a.mesh.points[static_cast<std::size_t>(v)]);
+  d["vertices"] = quantised_positions(points);
+  std::vector<std::uint32_t> face_hex(b.face_hex.begin(), b.face_hex.end());
+  d["faces"] = {{"count", num_faces}, {"quads", b64(b.quads)}, {"hex", b64(face_hex)}};
+  // Exact cell scaled Jacobian of each face's hex (the click shows it).
+  std::vector<double> face_sj;
+  for (Index h : b.face_hex) face_sj.push_back(a.field.cell_scaled_jacobian[static_cast<std::size_t>(h)]);
+  d["face_scaled_jacobian"] = b64(face_sj);
+  // The 8 corner scaled Jacobians of each face's hex (kCornerFrames order),
+  // float32: dropped after the metric colourings when over the budget.
+  std::vector<float> face_corners;
+  for (Index h : b.face_hex)
+    for (int c = 0; c < 8; ++c)
+      face_corners.push_back(static_cast<float>(a.field.corner_scaled_jacobian[8 * static_cast<std::size_t>(h) + c]));
+  const std::string corners_b64 = b64(face_corners);
+
+  // Fields: vertex quality, the cell scaled Jacobian, the boundary error,
+  // then every other Verdict metric of the faces' cells (dropped first when
+  // over the budget).
+  Json fields = Json::array();
+  const std::vector<std::uint8_t> quality_lut = lut_of([](int i) {
+    return i == kNoValue ? kUndefinedColor : quality_color(quality_of_index(i));
+  });
+  {
+    std::vector<std::uint8_t> vq;
+    for (Index v : b.vertices) vq.push_back(quality_index(a.field.vertex_quality[static_cast<std::size_t>(v)]));
+    fields.push_back(field_json("vertex_quality", "vertex quality (min corner scaled Jacobian)", "vertex", vq,
+                                quality_lut, -1.0, 1.0, Json::array()));
+    std::vector<std::uint8_t> sj;
+    for (double s : face_sj) sj.push_back(quality_index(s));
+    fields.push_back(field_json("scaled_jacobian", "cell scaled Jacobian (Verdict)", "face", sj, quality_lut, -1.0,
+                                1.0, Json::array()));
+  }
+  if (a.boundary_error) {
+    const double s = error_scale(a.boundary_error->vertex_error);
+    std::vector<std::uint8_t> e;
+    for (Index v : b.vertices) {
+      const double x = a.boundary_error->vertex_error[static_cast<std::size_t>(v)];
+      e.push_back(std::isfinite(x) ? static_cast<std::uint8_t>(std::lround((std::clamp(x / s, -1.0, 1.0) + 1.0) / 2.0 * 254.0))
+                                   : kNoValue);
+    }
+    const auto lut = lut_of([](int i) { return i == kNoValue ? kUndefinedColor : diverging_color(-1.0 + 2.0 * i / 254.0); });
+    fields.push_back(field_json("boundary_error", "signed boundary error (+ outside the reference), model units",
+                                "vertex", e, lut, -s, s, Json::array()));
+  }
+  // Metrics: indices 0..253 over [min, max] of the faces' cells, 254 outside
+  // Verdict's acceptable range, 255 no value (a sentinel).
+  Json metric_fields = Json::array();
+  std::size_t metric_bytes = 0;
+  for (int m = 0; m < kNumHexMetrics; ++m) {
+    const auto metric = static_cast<HexMetric>(m);
+    if (metric == HexMetric::scaled_jacobian || !a.metrics.computed.test(static_cast<std::size_t>(m))) continue;
+    const std::vector<double>& values = a.metrics.of(metric);
+    const HexMetricInfo& info = hex_metric_info(metric);
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (Index h : b.face_hex) {
+      const double x = values[static_cast<std::size_t>(h)];
+      if (std::isfinite(x) && std::abs(x) < kVerdictDegenerate) lo = std::min(lo, x), hi = std::max(hi, x);
+    }
+    if (!(lo <= hi)) continue;
+    std::vector<std::uint8_t> idx;
+    for (Index h : b.face_hex) {
+      const double x = values[static_cast<std::size_t>(h)];
+      if (!std::isfinite(x) || std::abs(x) >= kVerdictDegenerate) idx.push_back(kNoValue);
+      else if (x < info.acceptable_min || x > info.acceptable_max) idx.push_back(254);
+      else idx.push_back(static_cast<std::uint8_t>(hi > lo ? std::lround((x - lo) / (hi - lo) * 253.0) : 0));
+    }
+    const auto lut = lut_of([](int i) {
+      if (i == kNoValue) return kUndefinedColor;
+      if (i == 254) return Color{0.80f, 0.10f, 0.10f, 1.0f};
+      const float t = static_cast<float>(i) / 253.0f;  // light to dark blue
+      return Color{0.93f - 0.80f * t, 0.95f - 0.65f * t, 0.98f - 0.35f * t, 1.0f};
+    });
+    metric_bytes += idx.size();
+    metric_fields.push_back(field_json(std::string(info.name), std::string(info.name) + " (Verdict, per cell)", "face",
+                                       idx, lut, lo, hi,
+                                       Json::array({{{"label", "outside Verdict's acceptable range"}, {"index", 254}}})));
+  }
+
+  // Glyph clusters (every listed one: never reduced).
+  Json clusters = Json::array();
+  if (a.glyphs) {
+    const std::int64_t k = a.glyphs->options.top_clusters;
+    const std::size_t listed = std::min<std::size_t>(a.glyphs->clusters.size(), 1000);
+    for (std::size_t i = 0; i < listed; ++i) {
+      const AggregatedGlyph& g = a.glyphs->clusters[i];
+      clusters.push_back({{"id", g.id}, {"size", g.size}, {"min_quality", g.min_quality},
+                          {"vertex", g.representative_vertex}, {"position", vec(g.position)}, {"radius", g.radius},
+                          {"color", cluster_color_hex(g.id, k)}, {"is_top", static_cast<std::int64_t>(i) < k}});
+    }
+    d["top_clusters"] = k;
+    d["glyph_threshold"] = a.glyphs->options.threshold;
+  }
+  d["clusters"] = std::move(clusters);
+
+  // Overlap markers and the edges of intersecting cells.
+  Json markers = Json::array();
+  std::vector<float> intersecting;
+  if (a.overlap) {
+    for (const OverlapMarker& m : a.overlap->markers)
+      markers.push_back({{"kind", m.kind == MarkerKind::coincident ? "coincident" : "intersection"},
+                         {"position", vec(m.position)}, {"count", m.count}});
+    for (std::size_t h = 0; h < a.overlap->cell_intersecting.size(); ++h) {
+      if (!a.overlap->cell_intersecting[h]) continue;
+      const Hex& hex = a.mesh.hexes[h];
+      static constexpr int kEdges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
+                                           {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+      for (const auto& e : kEdges)
+        for (int k : e)
+          for (int c = 0; c < 3; ++c)
+            intersecting.push_back(static_cast<float>(a.mesh.points[static_cast<std::size_t>(hex[k])][c]));
+    }
+  }
+  d["markers"] = std::move(markers);
+  d["intersecting_edges"] = b64(intersecting);
+
+  // Interior cells under the glyph threshold (cell scaled Jacobian below
+  // 1 - T): drawn by the cut, never reduced.
+  {
+    const double t = a.glyphs ? a.glyphs->options.threshold : 0.5;
+    std::vector<std::uint32_t> ids;
+    std::vector<float> corners;
+    std::vector<double> sj;
+    for (std::size_t h = 0; h < a.mesh.hexes.size(); ++h) {
+      const double s = a.field.cell_scaled_jacobian[h];
+      if (!(s < 1.0 - t) && std::abs(s) < kVerdictDegenerate) continue;
+      ids.push_back(static_cast<std::uint32_t>(h));
+      sj.push_back(s);
+      for (Index v : a.mesh.hexes[h])
+        for (int c = 0; c < 3; ++c) corners.push_back(static_cast<float>(a.mesh.points[static_cast<std::size_t>(v)][c]));
+    }
+    d["low_cells"] = {{"count", ids.size()}, {"threshold", 1.0 - t}, {"ids", b64(ids)}, {"corners", b64(corners)},
+                      {"scaled_jacobian", b64(sj)}};
+  }
+  d["camera"] = camera_of_view_a(model);
+
+  // The budget: base64 is 4/3 of the bytes; the metric colourings go first.
+  const std::string without_metrics = d.dump();
+  if (static_cast<double>(without_metrics.size() + metric_bytes * 4 / 3) > budget && !metric_fields.empty()) {
+    reduced.push_back("the " + std::to_string(metric_fields.size()) +
+                      " Verdict metric colourings other than the scaled Jacobian were left out (--viewer-max-mb " +
+                      std::to_string(static_cast<long long>(std::llround(model.viewer_max_mb))) +
+                      "); cells.csv has every value");
+    metric_fields = Json::array();
+  }
+  if (static_cast<double>(without_metrics.size() + corners_b64.size()) > budget) {
+    reduced.push_back("the corner scaled Jacobians shown when a face is clicked were left out; cells.csv has them");
+  } else {
+    d["face_corners"] = corners_b64;
+  }
+  if (static_cast<double>(without_metrics.size()) > budget)
+    reduced.push_back("the boundary, the glyphs and the cells under the threshold alone exceed --viewer-max-mb; "
+                      "all of them are drawn");
+  for (Json& f : metric_fields) fields.push_back(std::move(f));
+  d["fields"] = std::move(fields);
+  d["reduced"] = std::move(reduced);
+
+  // Links from a cluster to index.html's panels.
+  std::vector<ViewerFile> files;
+  files.push_back({"viewer/data.js", "window.HQ_VIEWER_DATA = " + script_safe_json(d.dump()) + ";\n"});
+  files.push_back({"viewer/three.min.js", std::string(report_template("three.min.js"))});
+  files.push_back({"viewer/OrbitControls.js", std::string(report_template("OrbitControls.js"))});
+  files.push_back({"viewer/viewer.js", std::string(report_template("viewer.js"))});
+  kainjow::mustache::mustache page{std::string(report_template("viewer.html.mustache"))};
+  kainjow::mustache::data data;
+  data.set("name", a.mesh_name());
+  data.set("tool_version", model.tool_version);
+  files.push_back({"viewer.html", page.render(data)});
+  return files;
+}
+
+}  // namespace hq

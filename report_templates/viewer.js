@@ -1,0 +1,411 @@
+// HQView's interactive viewer (viewer.html): a classic script over
+// three.js r111 and window.HQ_VIEWER_DATA (viewer/data.js, docs/viewer.md).
+// No modules, no fetch: it runs from file://.
+(function () {
+  'use strict';
+  var D = window.HQ_VIEWER_DATA;
+  var view = document.getElementById('view');
+  var info = document.getElementById('info');
+
+  function bytes(b64) {
+    var s = atob(b64), out = new Uint8Array(s.length);
+    for (var i = 0; i < s.length; ++i) out[i] = s.charCodeAt(i);
+    return out;
+  }
+  function typed(Type, b64) { var b = bytes(b64); return new Type(b.buffer, 0, b.length / Type.BYTES_PER_ELEMENT); }
+  function text(s) { return document.createTextNode(String(s)); }
+  function el(tag, attrs, children) {
+    var e = document.createElement(tag);
+    for (var k in attrs || {}) e.setAttribute(k, attrs[k]);
+    (children || []).forEach(function (c) { e.appendChild(c instanceof Node ? c : text(c)); });
+    return e;
+  }
+  // One normal per quad (the cross product of its diagonals) for its 6
+  // triangle corners: a non-planar quad is shaded flat, without a diagonal.
+  function quadNormals(tri, count) {
+    var n = new Float32Array(count * 18);
+    for (var f = 0; f < count; ++f) {
+      var o = 18 * f, d1 = [], d2 = [];
+      // corners a b c | a c d: a = 0, b = 3, c = 6, d = 15 (floats)
+      for (var k = 0; k < 3; ++k) { d1.push(tri[o + 6 + k] - tri[o + k]); d2.push(tri[o + 15 + k] - tri[o + 3 + k]); }
+      var x = d1[1] * d2[2] - d1[2] * d2[1], y = d1[2] * d2[0] - d1[0] * d2[2], z = d1[0] * d2[1] - d1[1] * d2[0];
+      var len = Math.hypot(x, y, z) || 1;
+      for (var c = 0; c < 6; ++c) { n[o + 3 * c] = x / len; n[o + 3 * c + 1] = y / len; n[o + 3 * c + 2] = z / len; }
+    }
+    return n;
+  }
+  function show(x) { return typeof x === 'number' ? String(Number(x.toPrecision(6))) : String(x); }
+
+  if (!D || !window.THREE) {
+    view.appendChild(el('p', { id: 'nogl' }, ['The viewer data did not load. The report: ', el('a', { href: 'index.html' }, ['index.html'])]));
+    return;
+  }
+  var renderer;
+  try {
+    renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+  } catch (e) {
+    view.appendChild(el('p', { id: 'nogl' }, ['This browser cannot draw WebGL. The report: ', el('a', { href: 'index.html' }, ['index.html'])]));
+    return;
+  }
+  renderer.setPixelRatio(1);
+  renderer.setClearColor(0xffffff, 1);
+  renderer.localClippingEnabled = true;
+  view.appendChild(renderer.domElement);
+
+  // ---- the data ----
+  var V = D.vertices, q = typed(Uint16Array, V.quantised), nv = V.count;
+  var pos = new Float32Array(3 * nv);
+  for (var i = 0; i < nv; ++i)
+    for (var k = 0; k < 3; ++k) pos[3 * i + k] = V.lo[k] + q[3 * i + k] * V.step[k];
+  var quads = typed(Uint32Array, D.faces.quads), faceHex = typed(Uint32Array, D.faces.hex), nf = D.faces.count;
+  var faceSj = typed(Float64Array, D.face_scaled_jacobian);
+  var faceCorners = D.face_corners ? typed(Float32Array, D.face_corners) : null;
+  var lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (i = 0; i < nv; ++i)
+    for (k = 0; k < 3; ++k) { lo[k] = Math.min(lo[k], pos[3 * i + k]); hi[k] = Math.max(hi[k], pos[3 * i + k]); }
+  if (nv === 0) { lo = [0, 0, 0]; hi = [1, 1, 1]; }
+  var center = new THREE.Vector3((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2);
+  var diagonal = Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) || 1;
+
+  var scene = new THREE.Scene();
+  scene.add(new THREE.AmbientLight(0xffffff, 0.45));
+  var light = new THREE.DirectionalLight(0xffffff, 0.65);
+  var cut = new THREE.Plane(new THREE.Vector3(1, 0, 0), 0);
+  var clipping = [];
+
+  // Boundary: two triangles per quad, unindexed so that a face field colours a quad flat.
+  var triPos = new Float32Array(nf * 18), triCol = new Float32Array(nf * 18);
+  var corners = [0, 1, 2, 0, 2, 3];
+  for (var f = 0; f < nf; ++f)
+    for (var c = 0; c < 6; ++c) {
+      var v = quads[4 * f + corners[c]];
+      for (k = 0; k < 3; ++k) triPos[18 * f + 3 * c + k] = pos[3 * v + k];
+    }
+  var boundaryGeometry = new THREE.BufferGeometry();
+  boundaryGeometry.setAttribute('position', new THREE.BufferAttribute(triPos, 3));
+  boundaryGeometry.setAttribute('color', new THREE.BufferAttribute(triCol, 3));
+  boundaryGeometry.setAttribute('normal', new THREE.BufferAttribute(quadNormals(triPos, nf), 3));
+  var boundaryMaterial = new THREE.MeshLambertMaterial({
+    vertexColors: THREE.VertexColors, side: THREE.DoubleSide, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
+    clippingPlanes: clipping, transparent: true, depthWrite: false
+  });
+  var boundary = new THREE.Mesh(boundaryGeometry, boundaryMaterial);
+  // The faces are see-through while there are glyphs inside (as view A's
+  // wireframe is), opaque otherwise; the opacity slider changes it.
+  var opacity = document.getElementById('opacity');
+  function setOpacity() {
+    var a = Number(opacity.value) / 100;
+    boundaryMaterial.opacity = a;
+    boundaryMaterial.transparent = a < 1;
+    boundaryMaterial.depthWrite = a >= 1;
+    boundaryMaterial.needsUpdate = true;
+  }
+  opacity.value = D.clusters.length ? 35 : 100;
+  setOpacity();
+  opacity.addEventListener('input', function () { setOpacity(); draw(); });
+  scene.add(boundary);
+
+  // Edges: each unique quad edge once.
+  var seen = {}, edgePos = [];
+  for (f = 0; f < nf; ++f)
+    for (c = 0; c < 4; ++c) {
+      var a = quads[4 * f + c], b = quads[4 * f + (c + 1) % 4];
+      var key = a < b ? a + ',' + b : b + ',' + a;
+      if (seen[key]) continue;
+      seen[key] = 1;
+      for (k = 0; k < 3; ++k) edgePos.push(pos[3 * a + k]);
+      for (k = 0; k < 3; ++k) edgePos.push(pos[3 * b + k]);
+    }
+  var edgeGeometry = new THREE.BufferGeometry();
+  edgeGeometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(edgePos), 3));
+  var edges = new THREE.LineSegments(edgeGeometry, new THREE.LineBasicMaterial({
+    color: 0x28282e, transparent: true, opacity: nf > 20000 ? 0.25 : 0.55, clippingPlanes: clipping
+  }));
+  scene.add(edges);
+
+  // Glyphs: one sphere per listed cluster in its colour.
+  var glyphs = new THREE.Group(), sphere = new THREE.SphereGeometry(1, 24, 16);
+  D.clusters.forEach(function (cl) {
+    var m = new THREE.Mesh(sphere, new THREE.MeshLambertMaterial({ color: new THREE.Color(cl.color) }));
+    m.position.set(cl.position[0], cl.position[1], cl.position[2]);
+    var r = Math.max(cl.radius, 1e-6 * diagonal);
+    m.scale.set(r, r, r);
+    m.userData.cluster = cl;
+    glyphs.add(m);
+  });
+  scene.add(glyphs);
+
+  // Overlap markers and intersecting cells.
+  var markers = new THREE.Group(), markerRadius = 0.012 * diagonal;
+  D.markers.forEach(function (mk) {
+    var m = new THREE.Mesh(sphere, new THREE.MeshBasicMaterial({ color: mk.kind === 'coincident' ? 0xd95f02 : 0x8e1a7e }));
+    m.position.set(mk.position[0], mk.position[1], mk.position[2]);
+    m.scale.set(markerRadius, markerRadius, markerRadius);
+    m.userData.marker = mk;
+    markers.add(m);
+  });
+  scene.add(markers);
+  var intersectingGeometry = new THREE.BufferGeometry();
+  intersectingGeometry.setAttribute('position', new THREE.BufferAttribute(typed(Float32Array, D.intersecting_edges), 3));
+  var intersecting = new THREE.LineSegments(intersectingGeometry, new THREE.LineBasicMaterial({ color: 0xe7298a }));
+  scene.add(intersecting);
+
+  // Cells under the threshold: their 6 faces, coloured by the cell scaled
+  // Jacobian; shown while a cut is active (the boundary hides them otherwise).
+  var L = D.low_cells, lowCorners = typed(Float32Array, L.corners), lowSj = typed(Float64Array, L.scaled_jacobian);
+  var lowIds = typed(Uint32Array, L.ids);
+  var hexFaces = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]];
+  var lowPos = new Float32Array(L.count * 6 * 18), lowCol = new Float32Array(L.count * 6 * 18);
+  var sjField = D.fields.filter(function (fd) { return fd.id === 'scaled_jacobian'; })[0];
+  var sjLut = bytes(sjField.lut);
+  function qualityIndex(s) {
+    if (!isFinite(s) || Math.abs(s) >= 1e30) return 255;
+    return Math.round((Math.min(1, Math.max(-1, s)) + 1) / 2 * 254);
+  }
+  for (var h = 0; h < L.count; ++h) {
+    var qi = qualityIndex(lowSj[h]);
+    for (var fc = 0; fc < 6; ++fc)
+      for (c = 0; c < 6; ++c) {
+        var corner = hexFaces[fc][corners[c]], o = ((h * 6 + fc) * 6 + c) * 3;
+        for (k = 0; k < 3; ++k) {
+          lowPos[o + k] = lowCorners[24 * h + 3 * corner + k];
+          lowCol[o + k] = sjLut[3 * qi + k] / 255;
+        }
+      }
+  }
+  var lowGeometry = new THREE.BufferGeometry();
+  lowGeometry.setAttribute('position', new THREE.BufferAttribute(lowPos, 3));
+  lowGeometry.setAttribute('color', new THREE.BufferAttribute(lowCol, 3));
+  lowGeometry.setAttribute('normal', new THREE.BufferAttribute(quadNormals(lowPos, L.count * 6), 3));
+  var low = new THREE.Mesh(lowGeometry, new THREE.MeshLambertMaterial({ vertexColors: THREE.VertexColors, side: THREE.DoubleSide, clippingPlanes: clipping }));
+  low.visible = false;
+  scene.add(low);
+
+  // ---- colour fields ----
+  var fieldSelect = document.getElementById('field');
+  D.fields.forEach(function (fd, n) { fieldSelect.appendChild(el('option', { value: String(n) }, [fd.label])); });
+  function setField(n) {
+    var fd = D.fields[n], values = bytes(fd.values), lut = bytes(fd.lut);
+    for (var f = 0; f < nf; ++f)
+      for (var c = 0; c < 6; ++c) {
+        var idx = fd.per === 'vertex' ? values[quads[4 * f + corners[c]]] : values[f];
+        for (var k = 0; k < 3; ++k) triCol[18 * f + 3 * c + k] = lut[3 * idx + k] / 255;
+      }
+    boundaryGeometry.attributes.color.needsUpdate = true;
+    var bar = document.getElementById('legend-bar'), g = bar.getContext('2d'), img = g.createImageData(256, 1);
+    // Quality fields show [0, 1] (below 0 is the one inverted colour); the
+    // others their whole range.
+    var isQuality = fd.id === 'vertex_quality' || fd.id === 'scaled_jacobian';
+    var first = isQuality ? 127 : 0, last = isQuality || fd.id === 'boundary_error' ? 254 : 253;
+    for (var i = 0; i < 256; ++i) {
+      var j = Math.round(first + i / 255 * (last - first));
+      img.data[4 * i] = lut[3 * j]; img.data[4 * i + 1] = lut[3 * j + 1]; img.data[4 * i + 2] = lut[3 * j + 2]; img.data[4 * i + 3] = 255;
+    }
+    g.putImageData(img, 0, 0);
+    document.getElementById('legend-min').textContent = show(isQuality ? 0 : fd.min);
+    document.getElementById('legend-max').textContent = show(fd.max);
+    var extra = document.getElementById('legend-extra');
+    extra.textContent = '';
+    var entries = fd.legend.concat([{ label: 'no value', index: 255 }]);
+    if (fd.id === 'vertex_quality' || fd.id === 'scaled_jacobian') entries.unshift({ label: 'inverted (< 0)', index: 0 });
+    entries.forEach(function (e) {
+      var sw = el('span', { class: 'swatch' });
+      sw.style.background = 'rgb(' + lut[3 * e.index] + ',' + lut[3 * e.index + 1] + ',' + lut[3 * e.index + 2] + ')';
+      extra.appendChild(el('div', {}, [sw, e.label]));
+    });
+    draw();
+  }
+  fieldSelect.addEventListener('change', function () { setField(Number(fieldSelect.value)); });
+
+  // ---- camera ----
+  var camera = new THREE.OrthographicCamera(-1, 1, 1, -1, 1e-4 * diagonal, 100 * diagonal);
+  // OrbitControls orbits about the camera's up at its construction: the
+  // model's up axis (--up), so turning keeps the model upright.
+  camera.up.fromArray(D.up);
+  var controls = new THREE.OrbitControls(camera, renderer.domElement);
+  controls.screenSpacePanning = true;
+  var frameHeight = diagonal, frameAspect = 1;
+  function resize() {
+    var w = Math.max(1, view.clientWidth), hgt = Math.max(1, view.clientHeight), aspect = w / hgt;
+    renderer.setSize(w, hgt, false);
+    // Keep the framed height; widen it when the window is narrower than the frame.
+    var h = aspect >= frameAspect ? frameHeight : frameHeight * frameAspect / aspect;
+    camera.left = -h * aspect / 2; camera.right = h * aspect / 2; camera.top = h / 2; camera.bottom = -h / 2;
+    camera.updateProjectionMatrix();
+    draw();
+  }
+  function place(eye, target, up, height, aspect) {
+    var e = new THREE.Vector3().fromArray(eye), t = new THREE.Vector3().fromArray(target);
+    // Far enough back that near/far enclose the model whatever the zoom.
+    var dir = e.clone().sub(t).normalize();
+    camera.position.copy(t.clone().add(dir.multiplyScalar(2 * diagonal + t.distanceTo(center))));
+    camera.near = 1e-3 * diagonal; camera.far = 6 * diagonal + 2 * t.distanceTo(center);
+    controls.target.copy(t);
+    camera.zoom = 1;
+    frameHeight = height; frameAspect = aspect;
+    camera.lookAt(t);
+    controls.update();
+    resize();
+  }
+  function reset() {
+    if (D.camera && D.camera.orthographic) {
+      place(D.camera.eye, D.camera.target, D.camera.up, D.camera.height, D.camera.aspect);
+    } else {
+      // The three-quarter view of --up (render/upright.h): azimuth 30, elevation 25.
+      var up = new THREE.Vector3().fromArray(D.up).normalize();
+      var front = Math.abs(up.z) >= Math.abs(up.x) && Math.abs(up.z) >= Math.abs(up.y) ? new THREE.Vector3(0, -1, 0) : new THREE.Vector3(0, 0, 1);
+      var side = up.clone().cross(front), az = 30 * Math.PI / 180, el = 25 * Math.PI / 180;
+      var eyeDir = front.multiplyScalar(Math.cos(az)).add(side.multiplyScalar(Math.sin(az))).multiplyScalar(Math.cos(el)).add(up.clone().multiplyScalar(Math.sin(el)));
+      place(center.clone().add(eyeDir).toArray(), center.toArray(), D.up, 1.1 * diagonal, 1);
+    }
+  }
+  document.getElementById('reset').addEventListener('click', function () { location.hash = ''; reset(); });
+
+  // The cut removes the part between the eye and the plane (it follows the
+  // camera as the model turns): the plane at the slider's position across
+  // the chosen axis keeps the side away from the eye.
+  function orientCut() {
+    var axis = Number(document.getElementById('cut-axis').value);
+    if (axis < 0) return;
+    var t = Number(document.getElementById('cut').value) / 1000, at = lo[axis] + t * (hi[axis] - lo[axis]);
+    var eyeSide = camera.position.getComponent(axis) - controls.target.getComponent(axis);
+    var n = new THREE.Vector3(0, 0, 0);
+    n.setComponent(axis, eyeSide >= 0 ? -1 : 1);
+    cut.set(n, eyeSide >= 0 ? at : -at);
+  }
+  function draw() { orientCut(); renderer.render(scene, camera); }
+  // The light moves with the camera: from above-left of the eye.
+  camera.add(light);
+  camera.add(light.target);
+  light.position.set(-0.3, 0.5, 1);
+  light.target.position.set(0, 0, -1);
+  scene.add(camera);
+  controls.addEventListener('change', draw);
+
+  // ---- layers and the cut ----
+  function layer(id, object) {
+    var box = document.getElementById(id);
+    box.addEventListener('change', function () { object.visible = box.checked; updateCut(); });
+  }
+  layer('layer-boundary', boundary);
+  layer('layer-edges', edges);
+  layer('layer-glyphs', glyphs);
+  layer('layer-markers', markers);
+  layer('layer-intersecting', intersecting);
+  var axisSelect = document.getElementById('cut-axis'), slider = document.getElementById('cut');
+  function updateCut() {
+    var axis = Number(axisSelect.value);
+    clipping.length = 0;
+    if (axis >= 0) clipping.push(cut);
+    low.visible = axis >= 0 && document.getElementById('layer-low').checked;
+    document.getElementById('cut-note').textContent = axis >= 0
+      ? L.count + ' cells with scaled Jacobian under ' + show(L.threshold) + ' drawn inside'
+      : '';
+    [boundaryMaterial, edges.material, low.material].forEach(function (m) { m.needsUpdate = true; });
+    draw();
+  }
+  axisSelect.addEventListener('change', updateCut);
+  slider.addEventListener('input', updateCut);
+  document.getElementById('layer-low').addEventListener('change', updateCut);
+
+  // ---- picking ----
+  var raycaster = new THREE.Raycaster(), pointer = new THREE.Vector2(), down = null;
+  function row(label, value, attr) {
+    var td = el('td', {}, [value]);
+    if (attr) td.setAttribute(attr, String(value));
+    return el('tr', {}, [el('td', {}, [label]), td]);
+  }
+  function showCluster(cl) {
+    info.textContent = '';
+    var links = el('p', {}, [el('a', { href: 'index.html#cluster-row-' + cl.id }, ['table row'])]);
+    if (cl.is_top) {
+      links.appendChild(text(' · '));
+      links.appendChild(el('a', { href: 'index.html#cluster-' + cl.id }, ['C: sub-region']));
+      links.appendChild(text(' · '));
+      links.appendChild(el('a', { href: 'index.html#vertex-' + cl.vertex }, ['D: local view']));
+      links.appendChild(text(' · '));
+      links.appendChild(el('a', { href: 'index.html#corners-' + cl.vertex }, ['E: corner chart']));
+    }
+    info.appendChild(el('table', { id: 'picked-cluster' }, [
+      row('cluster', cl.id, 'data-cluster'), row('size', cl.size, 'data-size'),
+      row('min quality', show(cl.min_quality), 'data-min-quality'), row('vertex', cl.vertex, 'data-vertex')]));
+    info.appendChild(links);
+  }
+  function showFace(f) {
+    info.textContent = '';
+    info.appendChild(el('table', { id: 'picked-face' }, [
+      row('hex', faceHex[f], 'data-hex'), row('scaled Jacobian', show(faceSj[f]), 'data-sj'),
+      row('boundary face', f, 'data-face')]));
+    if (faceCorners) {
+      var values = [];
+      for (var c = 0; c < 8; ++c) values.push(show(faceCorners[8 * f + c]));
+      info.appendChild(el('p', { 'data-corners': values.join(' ') }, ['corner scaled Jacobians: ' + values.join(', ')]));
+    }
+    info.appendChild(el('p', {}, ['every metric of the hex: ', el('a', { href: 'data/cells.csv' }, ['data/cells.csv'])]));
+  }
+  function pick(x, y) {
+    var r = renderer.domElement.getBoundingClientRect();
+    pointer.set((x - r.left) / r.width * 2 - 1, -((y - r.top) / r.height) * 2 + 1);
+    raycaster.setFromCamera(pointer, camera);
+    // Glyphs first: they show through the see-through faces.
+    function hitsOf(objects) {
+      return raycaster.intersectObjects(objects, false).filter(function (hit) {
+        return clipping.length === 0 || clipping[0].distanceToPoint(hit.point) >= 0;
+      });
+    }
+    var glyphHits = glyphs.visible ? hitsOf(glyphs.children) : [];
+    if (glyphHits.length) { showCluster(glyphHits[0].object.userData.cluster); return; }
+    var faceHits = boundary.visible ? hitsOf([boundary]) : [];
+    if (faceHits.length) { showFace(Math.floor(faceHits[0].faceIndex / 2)); return; }
+    info.textContent = 'Nothing here.';
+  }
+  renderer.domElement.addEventListener('pointerdown', function (e) { down = [e.clientX, e.clientY]; });
+  renderer.domElement.addEventListener('pointerup', function (e) {
+    if (down && Math.hypot(e.clientX - down[0], e.clientY - down[1]) < 4) pick(e.clientX, e.clientY);
+    down = null;
+  });
+
+  // ---- #cluster-K ----
+  function focusFromHash() {
+    var m = /^#cluster-(\d+)$/.exec(location.hash);
+    if (!m) return false;
+    var cl = D.clusters.filter(function (c) { return c.id === Number(m[1]); })[0];
+    if (!cl) { info.textContent = 'Cluster ' + m[1] + ' is not among the listed clusters.'; return false; }
+    var t = new THREE.Vector3().fromArray(cl.position);
+    var eye = camera.position.clone().sub(controls.target).add(t);
+    camera.position.copy(eye);
+    controls.target.copy(t);
+    camera.zoom = Math.max(1, frameHeight / Math.max(12 * cl.radius, 0.05 * diagonal));
+    camera.updateProjectionMatrix();
+    controls.update();
+    showCluster(cl);
+    draw();
+    return true;
+  }
+  window.addEventListener('hashchange', focusFromHash);
+  window.addEventListener('resize', resize);
+
+  // The cluster legend: the labelled clusters' colours, then the one grey of
+  // all others; an entry focuses its cluster.
+  var legend = document.getElementById('clusters'), others = 0;
+  D.clusters.forEach(function (cl) {
+    if (!cl.is_top) { others += 1; return; }
+    var sw = el('span', { class: 'swatch' });
+    sw.style.background = cl.color;
+    legend.appendChild(el('a', { href: '#cluster-' + cl.id }, [sw, '#' + cl.id + '  ' + cl.size + ' vertices, min ' + show(cl.min_quality)]));
+  });
+  if (others) {
+    var grey = D.clusters.filter(function (cl) { return !cl.is_top; })[0].color, sw = el('span', { class: 'swatch' });
+    sw.style.background = grey;
+    legend.appendChild(el('div', {}, [sw, others + ' other clusters']));
+  }
+  if (!D.clusters.length) legend.appendChild(text('no glyph: every vertex is above the threshold'));
+
+  var reduced = document.getElementById('reduced');
+  D.reduced.forEach(function (r) { reduced.appendChild(el('p', { class: 'note' }, ['Reduced: ' + r])); });
+
+  setField(0);
+  reset();
+  focusFromHash();
+  window.hqViewer = { camera: camera, renderer: renderer, scene: scene, controls: controls, data: D, draw: draw, ready: true };
+})();

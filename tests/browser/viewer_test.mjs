@@ -1,0 +1,242 @@
+// Browser test of the interactive viewer (viewer.html): bundles made by the
+// built hqview, opened from file:// in headless Chromium with SwiftShader
+// WebGL (Debian's /usr/bin/chromium through playwright-core). Checks: no
+// request leaves file:// (each one is aborted and counted), no console error,
+// a click where the worst cluster's glyph projects (computed here from
+// report.json and the page's camera matrices) shows that cluster's numbers,
+// a click on a face shows a hex whose scaled Jacobian is cells.csv's,
+// #cluster-K focuses cluster K, the glyph layer toggle changes the pixels,
+// the cut reveals an interior bad cell, a tiny --viewer-max-mb keeps every
+// glyph and every cell under the threshold, a hostile file name runs nothing.
+//
+// usage: node viewer_test.mjs HQVIEW SOURCE_DIR OUT_DIR
+// exit 0 pass, 1 fail, 77 skipped (no Chromium).
+
+import { execFileSync } from 'node:child_process';
+import fs from 'node:fs';
+import path from 'node:path';
+import { pathToFileURL } from 'node:url';
+
+const [hqview, sourceDir, outDir] = process.argv.slice(2);
+const chromiumPath = process.env.HQVIEW_CHROMIUM || '/usr/bin/chromium';
+if (!fs.existsSync(chromiumPath)) {
+  console.log(`SKIP: no Chromium at ${chromiumPath}`);
+  process.exit(77);
+}
+const { chromium } = await import('playwright-core');
+
+const failures = [];
+function check(condition, message) {
+  if (!condition) {
+    failures.push(message);
+    console.log(`FAIL: ${message}`);
+  } else {
+    console.log(`ok: ${message}`);
+  }
+}
+
+fs.rmSync(outDir, { recursive: true, force: true });
+fs.mkdirSync(outDir, { recursive: true });
+const example = (name) => path.join(sourceDir, 'examples', name);
+function analyze(args) {
+  execFileSync(hqview, ['analyze', ...args, '--size', '640x480', '-j', '2', '--quiet'], { stdio: 'inherit' });
+}
+
+// A 4x4x4 grid whose interior vertex (2,2,2) is pulled: 8 interior cells
+// under the threshold, none on the boundary.
+function interiorBadMesh(file) {
+  const n = 4, id = (i, j, k) => 1 + i + (n + 1) * (j + (n + 1) * k);
+  let s = `MeshVersionFormatted 1\nDimension 3\nVertices\n${(n + 1) ** 3}\n`;
+  for (let k = 0; k <= n; ++k)
+    for (let j = 0; j <= n; ++j)
+      for (let i = 0; i <= n; ++i) {
+        const pulled = i === 2 && j === 2 && k === 2;
+        s += `${i + (pulled ? 0.85 : 0)} ${j + (pulled ? 0.85 : 0)} ${k + (pulled ? 0.85 : 0)} 0\n`;
+      }
+  s += `Hexahedra\n${n ** 3}\n`;
+  for (let k = 0; k < n; ++k)
+    for (let j = 0; j < n; ++j)
+      for (let i = 0; i < n; ++i)
+        s += `${id(i, j, k)} ${id(i + 1, j, k)} ${id(i + 1, j + 1, k)} ${id(i, j + 1, k)} ${id(i, j, k + 1)} ${id(i + 1, j, k + 1)} ${id(i + 1, j + 1, k + 1)} ${id(i, j + 1, k + 1)} 0\n`;
+  fs.writeFileSync(file, s + 'End\n');
+  return file;
+}
+
+const bar = path.join(outDir, 'bar');
+analyze([example('twisted_bar.mesh'), '-o', bar]);
+const tiny = path.join(outDir, 'tiny');
+analyze([example('twisted_bar.mesh'), '-o', tiny, '--viewer-max-mb', '0.01']);
+const inner = path.join(outDir, 'inner');
+analyze([interiorBadMesh(path.join(outDir, 'inner.mesh')), '-o', inner]);
+const evilName = `"q'&amp;<script>window.hqPwned=1<img src=x onerror="window.hqPwned=2">.mesh`;
+const evilDir = path.join(outDir, 'evil-input');
+fs.mkdirSync(evilDir, { recursive: true });
+fs.copyFileSync(example('twisted_bar.mesh'), path.join(evilDir, evilName));
+const evil = path.join(outDir, 'evil');
+analyze([path.join(evilDir, evilName), '-o', evil]);
+
+const browser = await chromium.launch({
+  executablePath: chromiumPath,
+  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'],
+});
+
+async function open(bundle, hash = '') {
+  const page = await browser.newPage({ viewport: { width: 1200, height: 800 } });
+  const problems = [];
+  let network = 0;
+  await page.route('**/*', (route) => {
+    if (route.request().url().startsWith('file:')) return route.continue();
+    network += 1;
+    return route.abort();
+  });
+  page.on('console', (m) => { if (m.type() === 'error') problems.push(`console error: ${m.text()}`); });
+  page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
+  await page.goto(pathToFileURL(path.join(bundle, 'viewer.html')).href + hash, { waitUntil: 'load' });
+  await page.waitForFunction(() => window.hqViewer && window.hqViewer.ready, null, { timeout: 30000 });
+  return { page, problems, network: () => network };
+}
+
+// The pixel where a model point projects, from the page's camera.
+async function projectToPage(page, p) {
+  const m = await page.evaluate(() => {
+    const c = window.hqViewer.camera;
+    c.updateMatrixWorld();
+    const r = window.hqViewer.renderer.domElement.getBoundingClientRect();
+    return { proj: c.projectionMatrix.elements.slice(), view: c.matrixWorldInverse.elements.slice(), rect: [r.left, r.top, r.width, r.height] };
+  });
+  const mul = (e, v) => [0, 1, 2, 3].map((row) => e[row] * v[0] + e[4 + row] * v[1] + e[8 + row] * v[2] + e[12 + row] * v[3]);
+  const clip = mul(m.proj, mul(m.view, [p[0], p[1], p[2], 1]));
+  const ndc = [clip[0] / clip[3], clip[1] / clip[3]];
+  return [m.rect[0] + (ndc[0] + 1) / 2 * m.rect[2], m.rect[1] + (1 - ndc[1]) / 2 * m.rect[3]];
+}
+
+async function pixels(page) {
+  return page.evaluate(() => {
+    window.hqViewer.draw();
+    const gl = window.hqViewer.renderer.getContext(), w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
+    const px = new Uint8Array(w * h * 4);
+    gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    let nonWhite = 0, warm = 0, sum = 0;
+    for (let i = 0; i < px.length; i += 4) {
+      if (px[i] < 250 || px[i + 1] < 250 || px[i + 2] < 250) nonWhite += 1;
+      if (px[i] > 150 && px[i] - px[i + 2] > 60) warm += 1;  // reds and oranges of the quality map
+      sum = (sum * 31 + px[i] + 7 * px[i + 1] + 13 * px[i + 2]) % 1000000007;
+    }
+    return { nonWhite, warm, sum };
+  });
+}
+
+const num = (s) => Number(s);
+const near = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
+
+// ---- the twisted bar ----
+{
+  const report = JSON.parse(fs.readFileSync(path.join(bar, 'report.json'), 'utf8'));
+  const { page, problems, network } = await open(bar);
+  await page.screenshot({ path: path.join(outDir, 'bar_viewer.png') });
+  const worst = report.glyphs.clusters[0];
+  const [x, y] = await projectToPage(page, worst.position);
+  await page.mouse.click(x, y);
+  const picked = await page.evaluate(() => {
+    const t = document.querySelector('#picked-cluster');
+    if (!t) return null;
+    const get = (a) => t.querySelector(`[${a}]`)?.getAttribute(a);
+    return { id: get('data-cluster'), size: get('data-size'), min: get('data-min-quality') };
+  });
+  check(picked && num(picked.id) === worst.id && num(picked.size) === worst.size && near(num(picked.min), worst.min_quality),
+    `a click on the worst glyph shows cluster ${worst.id} (size ${worst.size}, min ${worst.min_quality}): got ${JSON.stringify(picked)}`);
+
+  // Glyphs off: the pixels change; a click on the boundary names a hex.
+  const before = await pixels(page);
+  await page.uncheck('#layer-glyphs');
+  const after = await pixels(page);
+  check(before.sum !== after.sum && before.nonWhite > 1000, `toggling the glyph layer changes the picture (${JSON.stringify(before)} -> ${JSON.stringify(after)})`);
+  const box = await page.evaluate(() => { const r = window.hqViewer.renderer.domElement.getBoundingClientRect(); return [r.left, r.top, r.width, r.height]; });
+  await page.mouse.click(box[0] + box[2] / 2, box[1] + box[3] * 0.2);
+  const face = await page.evaluate(() => {
+    const t = document.querySelector('#picked-face');
+    const corners = document.querySelector('[data-corners]');
+    return t ? { hex: t.querySelector('[data-hex]').getAttribute('data-hex'), sj: t.querySelector('[data-sj]').getAttribute('data-sj'),
+      corners: corners ? corners.getAttribute('data-corners').split(' ').map(Number) : [] } : null;
+  });
+  const csv = fs.readFileSync(path.join(bar, 'data', 'cells.csv'), 'utf8').trim().split('\n');
+  const header = csv[0].split(','), col = header.indexOf('scaled_jacobian'), idCol = header.indexOf('cell');
+  const row = face && csv.slice(1).map((l) => l.split(',')).find((r) => num(r[idCol]) === num(face.hex));
+  check(face && row && near(num(face.sj), num(row[col])),
+    `a click on a face shows its hex and scaled Jacobian as cells.csv has them: ${JSON.stringify(face)} vs ${row && row[col]}`);
+  const c0 = header.indexOf('corner_sj_0');
+  check(face && row && face.corners.length === 8 && face.corners.every((v, i) => Math.abs(v - num(row[c0 + i])) <= 1e-5),
+    `the face's hex corners are cells.csv's corner_sj_0..7: ${face && face.corners}`);
+  check(problems.length === 0, `no console error on the bar's viewer: ${problems.join('; ')}`);
+  check(network() === 0, `no request leaves file:// (${network()} aborted)`);
+  await page.close();
+}
+
+// ---- #cluster-K ----
+{
+  const report = JSON.parse(fs.readFileSync(path.join(bar, 'report.json'), 'utf8'));
+  const k = report.glyphs.clusters[report.glyphs.clusters.length - 1].id;
+  const { page, problems } = await open(bar, `#cluster-${k}`);
+  const shown = await page.evaluate(() => document.querySelector('#picked-cluster [data-cluster]')?.getAttribute('data-cluster'));
+  check(num(shown) === k, `#cluster-${k} focuses cluster ${k} (shows ${shown})`);
+  const target = await page.evaluate(() => window.hqViewer.controls.target.toArray());
+  const pos = report.glyphs.clusters.find((c) => c.id === k).position;
+  check(target.every((v, i) => Math.abs(v - pos[i]) < 1e-6), `#cluster-${k} turns about the cluster`);
+  check(problems.length === 0, `no console error with a fragment: ${problems.join('; ')}`);
+  await page.close();
+}
+
+// ---- the cut reveals the interior bad cells ----
+{
+  const { page, problems } = await open(inner);
+  const count = await page.evaluate(() => window.hqViewer.data.low_cells.count);
+  check(count === 8, `the 8 interior cells around the pulled vertex are the cells under the threshold (${count})`);
+  await page.evaluate(() => { document.getElementById('opacity').value = 100; document.getElementById('opacity').dispatchEvent(new Event('input')); });
+  await page.uncheck('#layer-glyphs');
+  const closed = await pixels(page);
+  // Cut across the axis the eye looks along most, at the middle: the half
+  // near the eye goes, the pulled vertex's cells show.
+  const axis = await page.evaluate(() => {
+    const d = window.hqViewer.camera.position.clone().sub(window.hqViewer.controls.target).toArray().map(Math.abs);
+    return String(d.indexOf(Math.max(...d)));
+  });
+  await page.selectOption('#cut-axis', axis);
+  await page.evaluate(() => { const s = document.getElementById('cut'); s.value = 500; s.dispatchEvent(new Event('input')); });
+  const open_ = await pixels(page);
+  await page.screenshot({ path: path.join(outDir, 'inner_cut.png') });
+  check(open_.warm > closed.warm + 200, `the cut shows the bad interior cells (warm pixels ${closed.warm} -> ${open_.warm})`);
+  check(problems.length === 0, `no console error on the cut: ${problems.join('; ')}`);
+  await page.close();
+}
+
+// ---- a tiny budget keeps every glyph and every cell under the threshold ----
+{
+  const report = JSON.parse(fs.readFileSync(path.join(tiny, 'report.json'), 'utf8'));
+  const { page } = await open(tiny);
+  const d = await page.evaluate(() => ({ clusters: window.hqViewer.data.clusters.length, low: window.hqViewer.data.low_cells.count,
+    threshold: window.hqViewer.data.low_cells.threshold, note: document.getElementById('reduced').textContent }));
+  const csv = fs.readFileSync(path.join(tiny, 'data', 'cells.csv'), 'utf8').trim().split('\n');
+  const col = csv[0].split(',').indexOf('scaled_jacobian');
+  const under = csv.slice(1).filter((l) => num(l.split(',')[col]) < d.threshold).length;
+  check(d.clusters === Math.min(report.glyphs.clusters.length, 1000), `tiny budget: every listed cluster drawn (${d.clusters})`);
+  check(d.low === under, `tiny budget: every cell under the threshold drawn (${d.low} of ${under})`);
+  check(/Reduced/.test(d.note), `tiny budget: the page says what was reduced ("${d.note.slice(0, 80)}")`);
+  await page.close();
+}
+
+// ---- a hostile file name ----
+{
+  const { page, problems } = await open(evil);
+  const r = await page.evaluate(() => ({ pwned: window.hqPwned, h1: document.querySelector('h1').textContent, title: document.title }));
+  check(r.pwned === undefined, 'the hostile file name runs no script in the viewer');
+  check(r.h1 === evilName, `the viewer shows the file name literally (${r.h1})`);
+  check(problems.length === 0, `no console error on the hostile name: ${problems.join('; ')}`);
+  await page.close();
+}
+
+await browser.close();
+if (failures.length) {
+  console.log(`${failures.length} failure(s)`);
+  process.exit(1);
+}
+console.log('viewer test passed');
