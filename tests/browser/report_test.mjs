@@ -14,24 +14,12 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 
+import { check, chromium, chromiumPath, failures } from './harness.mjs';
+
 const [hqview, sourceDir, outDir] = process.argv.slice(2);
 if (!hqview || !sourceDir || !outDir) {
   console.error('usage: node report_test.mjs HQVIEW SOURCE_DIR OUT_DIR');
   process.exit(2);
-}
-const chromiumPath = process.env.HQVIEW_CHROMIUM || '/usr/bin/chromium';
-if (!fs.existsSync(chromiumPath)) {
-  console.log(`SKIP: no Chromium at ${chromiumPath} (install Debian's chromium, or set HQVIEW_CHROMIUM)`);
-  process.exit(77);
-}
-const { chromium } = await import('playwright-core');
-
-const failures = [];
-function check(condition, message) {
-  if (!condition) {
-    failures.push(message);
-    console.log(`FAIL: ${message}`);
-  }
 }
 
 // ---- bundles ----

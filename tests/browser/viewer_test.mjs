@@ -17,23 +17,10 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 
-const [hqview, sourceDir, outDir] = process.argv.slice(2);
-const chromiumPath = process.env.HQVIEW_CHROMIUM || '/usr/bin/chromium';
-if (!fs.existsSync(chromiumPath)) {
-  console.log(`SKIP: no Chromium at ${chromiumPath}`);
-  process.exit(77);
-}
-const { chromium } = await import('playwright-core');
+import { check as checkOnce, chromium, chromiumPath, failures } from './harness.mjs';
 
-const failures = [];
-function check(condition, message) {
-  if (!condition) {
-    failures.push(message);
-    console.log(`FAIL: ${message}`);
-  } else {
-    console.log(`ok: ${message}`);
-  }
-}
+const [hqview, sourceDir, outDir] = process.argv.slice(2);
+const check = (condition, message) => checkOnce(condition, message, true);
 
 fs.rmSync(outDir, { recursive: true, force: true });
 fs.mkdirSync(outDir, { recursive: true });
