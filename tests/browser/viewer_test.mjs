@@ -64,11 +64,13 @@ analyze([path.join(evilDir, evilName), '-o', evil]);
 
 const browser = await chromium.launch({
   executablePath: chromiumPath,
-  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'],
+  // File access from files: the silhouette check reads views/main_1.png's pixels.
+  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
+    '--allow-file-access-from-files'],
 });
 
-async function open(bundle, hash = '') {
-  const page = await browser.newPage({ viewport: { width: 1200, height: 800 } });
+async function open(bundle, hash = '', viewport = { width: 1200, height: 800 }) {
+  const page = await browser.newPage({ viewport });
   const problems = [];
   let network = 0;
   await page.route('**/*', (route) => {
@@ -156,6 +158,50 @@ const near = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
     `the face's hex corners are cells.csv's corner_sj_0..7: ${face && face.corners}`);
   check(problems.length === 0, `no console error on the bar's viewer: ${problems.join('; ')}`);
   check(network() === 0, `no request leaves file:// (${network()} aborted)`);
+  await page.close();
+}
+
+// ---- the reset view is view A ----
+{
+  const report = JSON.parse(fs.readFileSync(path.join(bar, 'report.json'), 'utf8'));
+  const [w, h] = report.views.find((v) => v.id === 'main').cameras[0].pixels;
+  // The side panel is 320 px wide: the canvas gets view A's 3D area's size.
+  const { page } = await open(bar, '', { width: w + 320, height: h });
+  // Row-filled silhouettes (view A draws a wireframe, the viewer faces): each
+  // row from its leftmost to its rightmost non-white pixel.
+  const overlap = await page.evaluate(async ([w, h]) => {
+    const fill = (get, width, height) => {
+      const m = new Uint8Array(width * height);
+      for (let y = 0; y < height; ++y) {
+        let a = -1, b = -1;
+        for (let x = 0; x < width; ++x) if (get(x, y)) { if (a < 0) a = x; b = x; }
+        for (let x = a; a >= 0 && x <= b; ++x) m[y * width + x] = 1;
+      }
+      return m;
+    };
+    const v = window.hqViewer;
+    v.draw();
+    const gl = v.renderer.getContext(), gw = gl.drawingBufferWidth, gh = gl.drawingBufferHeight;
+    const px = new Uint8Array(gw * gh * 4);
+    gl.readPixels(0, 0, gw, gh, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    const dark = (r, g, b) => r < 235 || g < 235 || b < 235;
+    const mine = fill((x, y) => { const i = 4 * ((gh - 1 - y) * gw + x); return dark(px[i], px[i + 1], px[i + 2]); }, gw, gh);
+    const img = new Image();
+    img.src = 'views/main_1.png';
+    await img.decode();
+    const c = document.createElement('canvas');
+    c.width = img.width; c.height = img.height;
+    const g = c.getContext('2d');
+    g.drawImage(img, 0, 0);
+    const d = g.getImageData(0, img.height - h, w, h).data;
+    const theirs = fill((x, y) => { const i = 4 * (y * w + x); return dark(d[i], d[i + 1], d[i + 2]); }, w, h);
+    if (gw !== w || gh !== h) return { error: `canvas ${gw}x${gh}, view A ${w}x${h}` };
+    let both = 0, either = 0;
+    for (let i = 0; i < mine.length; ++i) { both += mine[i] & theirs[i]; either += mine[i] | theirs[i]; }
+    return { iou: both / either, mine: mine.reduce((a, b) => a + b, 0), theirs: theirs.reduce((a, b) => a + b, 0) };
+  }, [w, h]);
+  check(!overlap.error && overlap.iou >= 0.9, `the reset view's silhouette overlaps view A's (intersection over union ${JSON.stringify(overlap)})`);
+  await page.screenshot({ path: path.join(outDir, 'bar_reset.png') });
   await page.close();
 }
 

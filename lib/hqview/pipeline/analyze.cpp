@@ -71,7 +71,7 @@ void analyze_compare(Analysis& a, const AnalyzeOptions& options) {
   c.alignment = align_compare_mesh(a.mesh, c.mesh, options.compare_align);
 }
 
-std::optional<ViewCameraEntry> camera_entry(const std::optional<Camera>& camera, double aspect, const Vec3& up) {
+std::optional<ViewCameraEntry> camera_entry(const std::optional<Camera>& camera, const ViewFile& file, const Vec3& up) {
   if (!camera) return std::nullopt;
   const Vec3 direction = camera->target - camera->eye;
   return ViewCameraEntry{camera->eye,
@@ -81,7 +81,9 @@ std::optional<ViewCameraEntry> camera_entry(const std::optional<Camera>& camera,
                          view_azimuth_degrees(direction, up),
                          camera->is_perspective,
                          camera->is_perspective ? camera->fov_y_degrees : camera->ortho_height,
-                         aspect};
+                         file.camera_aspect,
+                         file.frame_width,
+                         file.frame_height};
 }
 
 // The rendered views as report entries and bundle files.
@@ -93,7 +95,7 @@ void add_views(std::vector<RenderedView> views, const Vec3& up, AnalyzeResult& r
     for (ViewFile& file : view.files) {
       entry.files.push_back(file.relative_path);
       entry.links.push_back({file.cluster, file.vertex, std::move(file.hotspots)});
-      entry.cameras.push_back(camera_entry(file.camera, file.camera_aspect, up));
+      entry.cameras.push_back(camera_entry(file.camera, file, up));
       // A PNG already encoded by render_views is written as its bytes.
       const bool encoded = !file.png.empty();
       result.images.push_back({file.relative_path, encoded ? Image{} : std::move(file.image),

@@ -327,7 +327,8 @@ ReportDocument report_document(const ReportModel& model) {
                                  {"azimuth_degrees", number(c->azimuth_degrees)},
                                  {"projection", c->is_perspective ? "perspective" : "orthographic"},
                                  {"height", number(c->height)},
-                                 {"aspect", number(c->aspect)}}
+                                 {"aspect", number(c->aspect)},
+                                 {"pixels", Json::array({c->pixel_width, c->pixel_height})}}
                           : Json(nullptr));
     if (cameras.empty()) cameras = Json(std::vector<std::nullptr_t>(v.files.size(), nullptr));
     views.push_back({{"id", v.id}, {"title", v.title}, {"files", v.files}, {"cameras", std::move(cameras)}});

@@ -41,6 +41,7 @@ struct ViewCameraEntry {
   bool is_perspective = true;
   double height = 0;  // orthographic: the view's height in model units; perspective: its vertical field of view, degrees
   double aspect = 1;  // the 3D area's width / height, pixels
+  int pixel_width = 0, pixel_height = 0;  // the 3D area in the image: its bottom-left corner (below the title, left of the legend)
 };
 
 struct ViewEntry {

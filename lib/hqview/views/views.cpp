@@ -5,6 +5,7 @@
 #include <tbb/task_group.h>
 
 #include <algorithm>
+#include <array>
 #include <functional>
 #include <optional>
 
@@ -32,6 +33,7 @@ struct ViewContext {
   std::vector<Index> local_vertices;  // views D and E
   const std::optional<Camera>* last_camera = nullptr;  // of the frame rendered last
   const double* last_aspect = nullptr;                 // its width / height
+  const std::array<int, 2>* last_size = nullptr;       // its size, pixels
 
   Index cluster_of(Index v) const { return glyphs->vertex_cluster[static_cast<std::size_t>(v)]; }
   const std::vector<double>& quality() const { return a.field.vertex_quality; }
@@ -49,10 +51,12 @@ class HookedRenderer final : public Renderer {
     before_frame_();
     last_camera = camera;
     last_aspect = static_cast<double>(width) / static_cast<double>(std::max(height, 1));
+    last_size = {width, height};
     return inner_.render(scene, camera, width, height);
   }
   std::optional<Camera> last_camera;
   double last_aspect = 1.0;
+  std::array<int, 2> last_size{0, 0};
 
  private:
   Renderer& inner_;
@@ -85,6 +89,7 @@ ViewFile framed(std::string relative_path, Image image, const ViewContext& c) {
   ViewFile file{std::move(relative_path), std::move(image), {}};
   if (c.last_camera) file.camera = *c.last_camera;  // an optional: none before the first frame
   if (c.last_aspect) file.camera_aspect = *c.last_aspect;
+  if (c.last_size) file.frame_width = (*c.last_size)[0], file.frame_height = (*c.last_size)[1];
   return file;
 }
 
@@ -334,6 +339,7 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
   ViewContext context{analysis, options, renderer, analysis.mesh_name(), {}};
   context.last_camera = &renderer.last_camera;
   context.last_aspect = &renderer.last_aspect;
+  context.last_size = &renderer.last_size;
   if (!analysis.glyphs) context.no_glyphs.vertex_cluster.assign(analysis.mesh.points.size(), kNoIndex);
   context.glyphs = analysis.glyphs ? &*analysis.glyphs : &context.no_glyphs;
   // The top clusters (C views; their worst vertices get D and E): as the glyph stage was asked.

@@ -30,6 +30,7 @@ struct ViewFile {
   std::string png{};  // for .png: image encoded (encode_png), the bytes to write
   std::optional<Camera> camera{};  // a 3D view's camera (report.json views[].cameras)
   double camera_aspect = 1.0;      // its frame's width / height
+  int frame_width = 0, frame_height = 0;  // its frame's size, pixels
 };
 
 struct RenderedView {
