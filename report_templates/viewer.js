@@ -36,7 +36,9 @@
   }
   function show(x) { return typeof x === 'number' ? String(Number(x.toPrecision(6))) : String(x); }
 
+  function unavailable() { document.getElementById('controls').hidden = true; }
   if (!D || !window.THREE) {
+    unavailable();
     view.appendChild(el('p', { id: 'nogl' }, ['The viewer data did not load. The report: ', el('a', { href: 'index.html' }, ['index.html'])]));
     return;
   }
@@ -44,6 +46,7 @@
   try {
     renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
   } catch (e) {
+    unavailable();
     view.appendChild(el('p', { id: 'nogl' }, ['This browser cannot draw WebGL. The report: ', el('a', { href: 'index.html' }, ['index.html'])]));
     return;
   }
