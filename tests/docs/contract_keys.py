@@ -45,6 +45,8 @@ def report_rule(path, value):
         return {path}
     if path == "compare.differences" and isinstance(value, dict):
         return {path + ".<key>"}
+    if path.startswith("structure.singular_edges_by_valence.") and isinstance(value, dict):
+        return {path + ".<valence>"}
     if path.endswith("quality.metrics") and isinstance(value, dict):
         return {path + ".<metric>"} if value else set()
     return None

@@ -296,3 +296,31 @@ TEST(RealMeshGates, ExitCodesOnTheDefectsThePapersKnow) {
 
 }  // namespace
 }  // namespace hq::test
+
+namespace hq::test {
+namespace {
+
+TEST(StructureGates, SingularityCountsGateLikeAnyNumber) {
+  // The ball is a 10x10x10 grid warped into a sphere: its 12 box edges (120
+  // edges of valence 1) lie on a smooth surface, where valence 2 is
+  // expected, so all 120 are irregular. A rule that wants none fails with
+  // exit 1, one that allows the count passes; a size-gradation rule reads
+  // the statistics.
+  const fs::path out = fresh_output_dir("gates_structure") / "bundle";
+  CliResult r = run_hqview({"analyze", kBall, "-o", out.string(), "--no-render", "--quiet", "--gate",
+                            "structure.num_irregular_edges_boundary==0"});
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  const json report = read_report(out);
+  const auto count = report["structure"]["num_irregular_edges_boundary"].get<long>();
+  EXPECT_EQ(count, 120);
+  EXPECT_EQ(report["structure"]["num_singular_edges_interior"].get<long>(), 0);
+  EXPECT_EQ(report["structure"]["num_singular_curves"].get<long>(), 12);
+  EXPECT_EQ(report["gates"]["results"][0]["value"].get<long>(), count);
+  r = run_hqview({"analyze", kBall, "-o", out.string(), "--no-render", "--quiet", "--gate",
+                  "structure.num_irregular_edges_boundary<=" + std::to_string(count), "--gate",
+                  "structure.size_gradation.max>=1"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
+}  // namespace
+}  // namespace hq::test

@@ -160,7 +160,9 @@ TEST(Viewer, TheNameReachesThePageOnlyEscaped) {
       EXPECT_EQ(f.text.find("<script>alert"), std::string::npos);
       EXPECT_NE(f.text.find("&lt;script&gt;alert(1)"), std::string::npos);
     }
-    if (f.relative_path == "viewer/data.js") EXPECT_EQ(f.text.find("<script>"), std::string::npos);
+    if (f.relative_path == "viewer/data.js") {
+      EXPECT_EQ(f.text.find("<script>"), std::string::npos);
+    }
   }
 }
 

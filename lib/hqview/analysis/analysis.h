@@ -18,6 +18,7 @@
 #include "hqview/quality/hex_metric_field.h"
 #include "hqview/quality/quality_field.h"
 #include "hqview/quality/quality_summary.h"
+#include "hqview/structure/structure.h"
 #include "hqview/uv/uv_atlas.h"
 
 namespace hq {
@@ -32,6 +33,8 @@ struct Analysis {
   HexMetricField metrics;  // the Verdict metrics per hex (cells.csv columns)
   MeshSummary mesh_summary;
   QualitySummary quality;
+  // Edge valences, singular edges and vertices, the singularity graph, size gradation.
+  HexStructure structure;
 
   // Vertex glyphs and their clusters; empty when the stage did not run.
   std::optional<GlyphResult> glyphs;

@@ -26,6 +26,7 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options) {
   a.metrics = compute_hex_metrics(a.mesh, options.metrics);
   a.quality = summarize_quality(a.mesh, a.field, options.worst_count);
   a.quality.metrics = summarize_hex_metrics(a.metrics);
+  a.structure = compute_structure(a.mesh, a.topology);
 }
 
 // Boundary error and UV atlas against the reference surface (ALGORITHMS.md §5).

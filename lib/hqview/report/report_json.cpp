@@ -110,6 +110,37 @@ Json quality_json(const QualitySummary& q) {
   return j;
 }
 
+// structure: counts of the singularity graph and the size gradation.
+Json structure_json(const HexStructure& s) {
+  auto by_valence = [](const std::map<Index, Index>& m) {
+    Json j = Json::object();
+    for (const auto& [valence, count] : m) j[std::to_string(valence)] = count;
+    return j;
+  };
+  Json lengths = {{"min", 0}, {"mean", 0.0}, {"max", 0}};
+  if (!s.curve_lengths.empty()) {
+    double sum = 0;
+    for (Index l : s.curve_lengths) sum += static_cast<double>(l);
+    lengths = {{"min", *std::min_element(s.curve_lengths.begin(), s.curve_lengths.end())},
+               {"mean", number(sum / static_cast<double>(s.curve_lengths.size()))},
+               {"max", *std::max_element(s.curve_lengths.begin(), s.curve_lengths.end())}};
+  }
+  return {{"num_edges", s.num_edges},
+          {"num_singular_edges_interior", s.num_singular_edges_interior},
+          {"num_singular_edges_boundary", s.num_singular_edges_boundary},
+          {"num_irregular_edges_boundary", s.num_irregular_edges_boundary},
+          {"num_nonmanifold_edges", s.num_nonmanifold_edges},
+          {"singular_edges_by_valence", {{"interior", by_valence(s.interior_by_valence)},
+                                         {"boundary", by_valence(s.boundary_by_valence)}}},
+          {"num_singular_vertices", s.num_singular_vertices},
+          {"num_singularity_nodes", static_cast<Index>(s.nodes.size())},
+          {"num_singular_curves", s.num_curves},
+          {"curve_length", std::move(lengths)},
+          {"size_gradation", stats_json(s.gradation, false)},
+          {"num_gradation_above_2", s.num_gradation_above_2},
+          {"num_gradation_above_4", s.num_gradation_above_4}};
+}
+
 // compare.alignment, boundary_error.reference_alignment.
 Json alignment_json(const CompareAlignment& a) {
   return {{"requested", compare_align_name(a.requested)},
@@ -314,6 +345,7 @@ ReportDocument report_document(const ReportModel& model) {
   // Stages of later releases; null until computed.
   j["glyphs"] = model.analysis.glyphs ? glyphs_json(*model.analysis.glyphs) : Json(nullptr);
   j["overlap"] = model.analysis.overlap ? overlap_json(*model.analysis.overlap) : Json(nullptr);
+  j["structure"] = structure_json(model.analysis.structure);
   j["boundary_error"] = model.analysis.boundary_error ? boundary_error_json(model) : Json(nullptr);
   j["compare"] = model.analysis.compare ? compare_json(j, *model.analysis.compare) : Json(nullptr);
   Json views = Json::array();

@@ -1,0 +1,207 @@
+#include "hqview/structure/structure.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "hqview/quality/hex_metrics.h"
+
+namespace hq {
+namespace {
+
+// VTK_HEXAHEDRON's 12 edges.
+constexpr int kHexEdges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
+                                  {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+
+// Edge ids of Topology::edges (sorted by (a, b)) by vertex pair.
+class EdgeIndex {
+ public:
+  explicit EdgeIndex(const Topology& topology, std::size_t num_vertices) : edges_(topology.edges) {
+    first_.assign(num_vertices + 1, 0);
+    for (const Edge& e : edges_) ++first_[static_cast<std::size_t>(e[0]) + 1];
+    for (std::size_t v = 0; v < num_vertices; ++v) first_[v + 1] += first_[v];
+  }
+  // kNoIndex when a == b or the pair is no edge.
+  Index find(Index a, Index b) const {
+    if (a == b) return kNoIndex;
+    if (a > b) std::swap(a, b);
+    const auto lo = edges_.begin() + first_[static_cast<std::size_t>(a)];
+    const auto hi = edges_.begin() + first_[static_cast<std::size_t>(a) + 1];
+    const auto it = std::lower_bound(lo, hi, Edge{a, b});
+    return it != hi && *it == Edge{a, b} ? static_cast<Index>(it - edges_.begin()) : kNoIndex;
+  }
+
+ private:
+  const std::vector<Edge>& edges_;
+  std::vector<std::ptrdiff_t> first_;
+};
+
+Vec3 quad_normal(const HexMesh& mesh, const Quad& q) {
+  const auto& p = mesh.points;
+  const Vec3 n = cross(p[static_cast<std::size_t>(q[2])] - p[static_cast<std::size_t>(q[0])],
+                       p[static_cast<std::size_t>(q[3])] - p[static_cast<std::size_t>(q[1])]);
+  return squared_norm(n) > 0.0 ? normalized(n) : n;
+}
+
+Vec3 quad_centre(const HexMesh& mesh, const Quad& q) {
+  Vec3 c{};
+  for (Index v : q) c = c + mesh.points[static_cast<std::size_t>(v)];
+  return 0.25 * c;
+}
+
+// The valence a boundary edge between two outward boundary faces should
+// have: round(theta / 90 deg), at least 1, theta the dihedral angle inside
+// the mesh (180 on a flat surface, 90 along a convex box edge, 270 along a
+// concave one).
+Index ideal_boundary_valence(const HexMesh& mesh, const Quad& f1, const Quad& f2) {
+  const Vec3 n1 = quad_normal(mesh, f1), n2 = quad_normal(mesh, f2);
+  const double phi = std::acos(std::clamp(dot(n1, n2), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+  const bool convex = dot(n1, quad_centre(mesh, f2) - quad_centre(mesh, f1)) < 0.0;
+  const double theta = convex ? 180.0 - phi : 180.0 + phi;
+  return std::max<Index>(1, static_cast<Index>(std::lround(theta / 90.0)));
+}
+
+// Numbers the singular curves: chains from each node (ascending) along
+// unvisited singular edges until the next node, then the closed chains.
+void number_curves(HexStructure& s, std::size_t num_vertices) {
+  std::vector<std::ptrdiff_t> first(num_vertices + 1, 0);
+  for (const SingularEdge& e : s.singular_edges)
+    for (Index v : e.vertices) ++first[static_cast<std::size_t>(v) + 1];
+  for (std::size_t v = 0; v < num_vertices; ++v) first[v + 1] += first[v];
+  std::vector<Index> incident(static_cast<std::size_t>(first[num_vertices]));
+  std::vector<std::ptrdiff_t> fill(first.begin(), first.end() - 1);
+  for (std::size_t i = 0; i < s.singular_edges.size(); ++i)
+    for (Index v : s.singular_edges[i].vertices) incident[static_cast<std::size_t>(fill[static_cast<std::size_t>(v)]++)] = static_cast<Index>(i);
+  auto degree = [&](Index v) { return first[static_cast<std::size_t>(v) + 1] - first[static_cast<std::size_t>(v)]; };
+  std::vector<char> is_node(num_vertices, 0);
+  for (std::size_t v = 0; v < num_vertices; ++v)
+    if (degree(static_cast<Index>(v)) > 0 && degree(static_cast<Index>(v)) != 2) {
+      is_node[v] = 1;
+      s.nodes.push_back(static_cast<Index>(v));
+    }
+  // Walks from vertex `from` along edge `e` until a node or a visited edge.
+  auto walk = [&](Index from, Index e) {
+    const Index curve = s.num_curves++;
+    Index length = 0;
+    while (e != kNoIndex && s.singular_edges[static_cast<std::size_t>(e)].curve == kNoIndex) {
+      SingularEdge& edge = s.singular_edges[static_cast<std::size_t>(e)];
+      edge.curve = curve;
+      ++length;
+      const Index to = edge.vertices[0] == from ? edge.vertices[1] : edge.vertices[0];
+      if (is_node[static_cast<std::size_t>(to)]) break;
+      Index next = kNoIndex;
+      for (auto k = first[static_cast<std::size_t>(to)]; k < first[static_cast<std::size_t>(to) + 1]; ++k)
+        if (s.singular_edges[static_cast<std::size_t>(incident[static_cast<std::size_t>(k)])].curve == kNoIndex)
+          next = incident[static_cast<std::size_t>(k)];
+      from = to;
+      e = next;
+    }
+    s.curve_lengths.push_back(length);
+  };
+  for (Index v : s.nodes)
+    for (auto k = first[static_cast<std::size_t>(v)]; k < first[static_cast<std::size_t>(v) + 1]; ++k)
+      if (s.singular_edges[static_cast<std::size_t>(incident[static_cast<std::size_t>(k)])].curve == kNoIndex)
+        walk(v, incident[static_cast<std::size_t>(k)]);
+  for (std::size_t i = 0; i < s.singular_edges.size(); ++i)
+    if (s.singular_edges[i].curve == kNoIndex) walk(s.singular_edges[i].vertices[0], static_cast<Index>(i));
+}
+
+void size_gradation(const HexMesh& mesh, const Topology& topology, HexStructure& s) {
+  const std::size_t n = mesh.hexes.size();
+  std::vector<double> volume(n);
+  for (std::size_t h = 0; h < n; ++h) {
+    HexCorners p;
+    for (int i = 0; i < 8; ++i) p[static_cast<std::size_t>(i)] = mesh.points[static_cast<std::size_t>(mesh.hexes[h][static_cast<std::size_t>(i)])];
+    volume[h] = hex_volume(p);
+  }
+  s.cell_gradation.assign(n, std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t h = 0; h < n; ++h) {
+    if (!(volume[h] > 0.0) || topology.hex_faces.size() < 6 * n) continue;
+    double worst = std::numeric_limits<double>::quiet_NaN();
+    for (int f = 0; f < 6; ++f) {
+      const Index face = topology.hex_faces[6 * h + static_cast<std::size_t>(f)];
+      for (Index k = topology.face_hex_offsets[static_cast<std::size_t>(face)];
+           k < topology.face_hex_offsets[static_cast<std::size_t>(face) + 1]; ++k) {
+        const auto o = static_cast<std::size_t>(topology.face_hexes[static_cast<std::size_t>(k)]);
+        if (o == h || !(volume[o] > 0.0)) continue;
+        const double r = std::max(volume[h] / volume[o], volume[o] / volume[h]);
+        if (!(worst >= r)) worst = r;
+      }
+    }
+    s.cell_gradation[h] = worst;
+  }
+  s.gradation = compute_statistics(s.cell_gradation);
+  for (double g : s.cell_gradation) {
+    s.num_gradation_above_2 += g > 2.0;
+    s.num_gradation_above_4 += g > 4.0;
+  }
+}
+
+}  // namespace
+
+HexStructure compute_structure(const HexMesh& mesh, const Topology& topology) {
+  HexStructure s;
+  const std::size_t nv = mesh.points.size(), ne = topology.edges.size();
+  s.num_edges = static_cast<Index>(ne);
+  const EdgeIndex index(topology, nv);
+  std::vector<Index> valence(ne, 0);
+  for (const Hex& h : mesh.hexes)
+    for (const auto& e : kHexEdges) {
+      const Index id = index.find(h[static_cast<std::size_t>(e[0])], h[static_cast<std::size_t>(e[1])]);
+      if (id != kNoIndex) ++valence[static_cast<std::size_t>(id)];
+    }
+  // Boundary faces per edge, and the first two of them (the dihedral angle).
+  std::vector<Index> num_faces(ne, 0);
+  std::vector<std::array<Index, 2>> faces(ne, {kNoIndex, kNoIndex});
+  for (Index f : topology.boundary_faces) {
+    const Quad& q = topology.faces[static_cast<std::size_t>(f)];
+    for (int c = 0; c < 4; ++c) {
+      const Index id = index.find(q[static_cast<std::size_t>(c)], q[static_cast<std::size_t>((c + 1) % 4)]);
+      if (id == kNoIndex) continue;
+      const auto i = static_cast<std::size_t>(id);
+      if (num_faces[i] < 2) faces[i][static_cast<std::size_t>(num_faces[i])] = f;
+      ++num_faces[i];
+    }
+  }
+  s.vertex_singular.assign(nv, 0);
+  for (std::size_t i = 0; i < ne; ++i) {
+    const Index v = valence[i];
+    if (num_faces[i] == 0) {
+      if (v == 4) continue;
+      ++s.num_singular_edges_interior;
+      ++s.interior_by_valence[v];
+      s.singular_edges.push_back({topology.edges[i], v, EdgeKind::interior});
+    } else if (num_faces[i] == 2) {
+      const Index ideal = ideal_boundary_valence(mesh, topology.faces[static_cast<std::size_t>(faces[i][0])],
+                                                 topology.faces[static_cast<std::size_t>(faces[i][1])]);
+      s.num_irregular_edges_boundary += v != ideal;
+      if (v == 2) continue;
+      ++s.num_singular_edges_boundary;
+      ++s.boundary_by_valence[v];
+      s.singular_edges.push_back({topology.edges[i], v, EdgeKind::boundary});
+    } else {
+      ++s.num_nonmanifold_edges;  // on 1 or more than 2 boundary faces
+      continue;
+    }
+    for (Index w : topology.edges[i]) s.vertex_singular[static_cast<std::size_t>(w)] = 1;
+  }
+  s.num_singular_vertices = static_cast<Index>(std::count(s.vertex_singular.begin(), s.vertex_singular.end(), 1));
+  number_curves(s, nv);
+  size_gradation(mesh, topology, s);
+  return s;
+}
+
+std::map<Edge, Index> edge_valences_by_map(const HexMesh& mesh) {
+  std::map<Edge, Index> valence;
+  for (const Hex& h : mesh.hexes)
+    for (const auto& e : kHexEdges) {
+      Index a = h[static_cast<std::size_t>(e[0])], b = h[static_cast<std::size_t>(e[1])];
+      if (a == b) continue;
+      if (a > b) std::swap(a, b);
+      ++valence[{a, b}];
+    }
+  return valence;
+}
+
+}  // namespace hq

@@ -1,0 +1,64 @@
+#pragma once
+// The structure of a hex mesh, as HexaLab and cinolib define it:
+//   - an edge's valence is its number of incident hexes; an interior edge
+//     is singular when its valence is not 4, a boundary edge (an edge of a
+//     boundary face) when it is not 2; a boundary edge on more than two
+//     boundary faces is non-manifold and counted apart;
+//   - a boundary edge is also irregular when its valence differs from
+//     round(theta / 90 deg) (at least 1), theta the dihedral angle inside the
+//     mesh between its two boundary faces (90 along a box edge);
+//   - singular vertices touch a singular edge; the singularity graph's nodes
+//     are singular vertices with other than 2 singular edges, its curves
+//     maximal chains of singular edges between nodes (a closed chain
+//     without a node is one curve);
+//   - the size gradation of a hex is the largest ratio of its volume to a
+//     face neighbour's (or the inverse, so >= 1).
+// Linear in the mesh: the valences come from Topology's sorted edges.
+
+#include <cstdint>
+#include <map>
+#include <vector>
+
+#include "hqview/mesh/hex_mesh.h"
+#include "hqview/mesh/topology.h"
+#include "hqview/quality/statistics.h"
+
+namespace hq {
+
+enum class EdgeKind : std::uint8_t { interior, boundary, nonmanifold };
+
+struct SingularEdge {
+  Edge vertices;  // a < b
+  Index valence = 0;
+  EdgeKind kind = EdgeKind::interior;
+  Index curve = kNoIndex;  // its singular curve
+};
+
+struct HexStructure {
+  Index num_edges = 0;
+  Index num_singular_edges_interior = 0;
+  Index num_singular_edges_boundary = 0;
+  Index num_irregular_edges_boundary = 0;
+  Index num_nonmanifold_edges = 0;
+  std::map<Index, Index> interior_by_valence;  // singular interior edges: valence -> count
+  std::map<Index, Index> boundary_by_valence;  // singular boundary edges: valence -> count
+  std::vector<SingularEdge> singular_edges;    // ascending vertex pairs (interior and boundary)
+  std::vector<char> vertex_singular;           // per vertex, 0/1
+  Index num_singular_vertices = 0;
+  std::vector<Index> nodes;                    // ascending vertex ids
+  Index num_curves = 0;
+  std::vector<Index> curve_lengths;            // edges per curve, by curve id
+  // Per hex: the size gradation (NaN for a hex without a positive volume or
+  // without a face neighbour of positive volume).
+  std::vector<double> cell_gradation;
+  Statistics gradation;                        // of the finite cell_gradation values
+  Index num_gradation_above_2 = 0, num_gradation_above_4 = 0;
+};
+
+HexStructure compute_structure(const HexMesh& mesh, const Topology& topology);
+
+// Edge valences the simple way (a std::map of sorted vertex pairs): the
+// baseline of bench_structure and a test oracle.
+std::map<Edge, Index> edge_valences_by_map(const HexMesh& mesh);
+
+}  // namespace hq
