@@ -99,7 +99,7 @@ def main():
                   documented(contract, "report.json keys"), contract_keys.null_paths(report))
     ok &= compare("index.json", contract_keys.index_keys(contract_keys.load(os.path.join(work, "batch", "index.json"))),
                   documented(contract, "index.json keys"))
-    for name in ("cells.csv", "vertices.csv"):
+    for name in ("cells.csv", "vertices.csv", "edges.csv"):
         with open(os.path.join(bundle, "data", name), newline="") as f:
             header = next(csv.reader(f))
         ok &= compare("data/" + name, set(header), documented(contract, "data/" + name))

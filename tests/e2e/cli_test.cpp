@@ -46,7 +46,8 @@ TEST(Cli, BallBundleHasEveryFileAndRealNumbers) {
   EXPECT_EQ(read_csv(out / "data/cells.csv").size(), 1001u);
   const auto vertices = read_csv(out / "data/vertices.csv");
   ASSERT_EQ(vertices.size(), 1332u);
-  EXPECT_EQ(vertices[0].size(), 10u);
+  EXPECT_EQ(vertices[0].size(), 11u);
+  EXPECT_EQ(vertices[0][10], "singular");
   EXPECT_EQ(vertices[0][4], "quality");
 }
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.h"
@@ -164,7 +165,8 @@ TEST(Metrics, HeadlineComesFirstAndCellsCsvHasEveryVerdictColumn) {
                            "equiangle_skew",
                            "inverted",
                            "degenerate",
-                           "intersecting"})
+                           "intersecting",
+                           "size_gradation"})
     expected.push_back(name);
   EXPECT_EQ(read_csv(out / "data/cells.csv").at(0), expected);
   EXPECT_LT(text.find("\"edge_ratio\": {"), text.find("\"equiangle_skew\": {"));
@@ -320,6 +322,31 @@ TEST(StructureGates, SingularityCountsGateLikeAnyNumber) {
                   "structure.num_irregular_edges_boundary<=" + std::to_string(count), "--gate",
                   "structure.size_gradation.max>=1"});
   EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
+TEST(StructureGates, BatchAndDiffReadTheStructureKeys) {
+  // Two examples: the ball (120 singular boundary edges) and the twisted bar
+  // (88, counted by the numpy oracle structure.oracle). A batch gate on a
+  // structure key fails the mesh over it (exit 1); diff prints the change.
+  const fs::path dir = fresh_output_dir("gates_structure_batch");
+  const std::string bar = (source_dir() / "examples" / "twisted_bar.mesh").string();
+  std::ofstream(dir / "manifest.csv") << "mesh,label\n" << kBall << ",ball\n" << bar << ",bar\n";
+  CliResult r = run_hqview({"batch", (dir / "manifest.csv").string(), "-o", (dir / "batch").string(), "--no-render",
+                            "--quiet", "--gate", "structure.num_singular_edges_boundary<=100"});
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  const json index = json::parse(read_text(dir / "batch" / "index.json"));
+  EXPECT_EQ(index["counts"]["gate_failed"], 1);
+  for (const json& m : index["meshes"])
+    EXPECT_EQ(m["status"], m["label"] == "ball" ? "gate_failed" : "ok") << m["label"];
+  for (const auto& [name, path] : {std::pair{"ball", kBall}, std::pair{"bar", bar}})
+    ASSERT_EQ(run_hqview({"analyze", path, "-o", (dir / name).string(), "--no-render", "--quiet"}).exit_code, 0);
+  r = run_hqview({"diff", (dir / "ball").string(), (dir / "bar").string(), "--gate",
+                  "structure.num_singular_edges_boundary<=baseline"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("structure.num_singular_edges_boundary: 120 -> 88"), std::string::npos) << r.out;
+  r = run_hqview({"diff", (dir / "bar").string(), (dir / "ball").string(), "--gate",
+                  "structure.num_singular_edges_boundary<=baseline"});
+  EXPECT_EQ(r.exit_code, 1) << r.err;
 }
 
 }  // namespace

@@ -333,9 +333,10 @@ TEST(ViewsCli, ReferenceAlignMovesAReferenceInAnotherFrame) {
               0.02 * in_place["hausdorff"]["relative"].get<double>() + 1e-3);
 }
 
-// Pixels of view A's 3D area (the left 70 %, below the title) within 10 of a
-// colour in every channel (cluster edges are drawn unlit in their colour).
-long pixels_near(const fs::path& png, const Color& c) {
+// Pixels of a figure's 3D area (the left 70 %, below the title) for which
+// is_match(rgb in [0, 1]) holds.
+template <class Match>
+long count_pixels(const fs::path& png, Match is_match) {
   OIIO::ImageBuf image(png.string());
   EXPECT_TRUE(image.read()) << image.geterror();
   const int w = image.spec().width, h = image.spec().height;
@@ -344,11 +345,18 @@ long pixels_near(const fs::path& png, const Color& c) {
   for (int y = h / 10; y < h; ++y)
     for (int x = 0; x < static_cast<int>(0.7 * w); ++x) {
       image.getpixel(x, y, px, 3);
-      if (std::abs(px[0] - c.r) <= 10 / 255.0 && std::abs(px[1] - c.g) <= 10 / 255.0 &&
-          std::abs(px[2] - c.b) <= 10 / 255.0)
-        ++n;
+      n += is_match(px);
     }
   return n;
+}
+
+// Pixels within 10 of a colour in every channel (view A's cluster edges are
+// drawn unlit in their colour).
+long pixels_near(const fs::path& png, const Color& c) {
+  return count_pixels(png, [&c](const float* px) {
+    return std::abs(px[0] - c.r) <= 10 / 255.0 && std::abs(px[1] - c.g) <= 10 / 255.0 &&
+           std::abs(px[2] - c.b) <= 10 / 255.0;
+  });
 }
 
 TEST(ViewsCli, OnlyTheTopClustersWearTheirColoursInViewA) {
@@ -397,6 +405,78 @@ TEST(ViewsCli, ViewsSelectsAndRejectsUnknownIds) {
                   "--focus-vertex", "99999"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("99999"), std::string::npos) << r.err;
+}
+
+// The colour of a singular edge after one or two layers of the translucent
+// boundary veil (structure_views.cpp: grey 176,182,194 at alpha 56).
+bool near_veiled(const float* px, Rgba8 line) {
+  const double a = 56.0 / 255.0, veil[3] = {176, 182, 194};
+  const double c[3] = {static_cast<double>(line.r), static_cast<double>(line.g), static_cast<double>(line.b)};
+  for (int layers = 1; layers <= 2; ++layers) {
+    bool close = true;
+    for (int k = 0; k < 3; ++k) {
+      double v = c[k];
+      for (int l = 0; l < layers; ++l) v = v * (1 - a) + veil[k] * a;
+      close = close && std::abs(px[k] * 255.0 - v) <= 12.0;
+    }
+    if (close) return true;
+  }
+  return false;
+}
+
+long veiled_pixels(const fs::path& png, Rgba8 line) {
+  return count_pixels(png, [line](const float* px) { return near_veiled(px, line); });
+}
+
+TEST(ViewsCli, TheStructurePanelDrawsEachSingularClassInItsColour) {
+  // fandisk.mesh (counted by the numpy oracle): interior valence 3 (1 edge)
+  // and 5 (12), boundary valence 1 (169) and 3+ (38); no interior valence
+  // 6+ or 1-2. Each present class shows its colour, the absent ones none.
+  const auto data = shared_data_dir();
+  if (!data) GTEST_SKIP() << "../shared/data absent";
+  const fs::path out = fresh_output_dir("views/structure") / "bundle";
+  const CliResult r = run_hqview({"analyze", (*data / "meshes/li2012_srf/fandisk.mesh").string(), "-o", out.string(),
+                                  "--size", "800x600", "--views", "main,structure,size_gradation", "--no-overlap"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(check_views(out, "structure"), (std::vector<std::string>{"main", "structure", "size_gradation"}));
+  const json report = json::parse(read_text(out / "report.json"));
+  const json& by = report["structure"]["singular_edges_by_valence"];
+  EXPECT_EQ(by["interior"], json::parse(R"({"3": 1, "5": 12})"));
+  struct Class {
+    Rgba8 color;
+    bool present;
+  };
+  const Class classes[] = {{{0, 114, 178, 255}, true},    {{213, 94, 0, 255}, true},
+                           {{204, 121, 167, 255}, false}, {{86, 180, 233, 255}, false},
+                           {{0, 158, 115, 255}, true},    {{230, 159, 0, 255}, true}};
+  for (std::size_t i = 0; i < std::size(classes); ++i) {
+    const long n = veiled_pixels(out / "views/structure_1.png", classes[i].color) +
+                   veiled_pixels(out / "views/structure_2.png", classes[i].color);
+    if (classes[i].present) {
+      EXPECT_GT(n, 10) << "class " << i;
+    } else {
+      EXPECT_EQ(n, 0) << "class " << i;
+    }
+  }
+  // Two upright viewpoints at least 90 degrees of azimuth apart.
+  const json& cameras = report["views"][1]["cameras"];
+  ASSERT_EQ(report["views"][1]["id"], "structure");
+  ASSERT_EQ(cameras.size(), 2u);
+  for (const json& c : cameras) {
+    EXPECT_GE(c["elevation_degrees"].get<double>(), 15.0 - 1e-9);
+    EXPECT_LE(c["elevation_degrees"].get<double>(), 35.0 + 1e-9);
+  }
+  double gap = std::abs(cameras[0]["azimuth_degrees"].get<double>() - cameras[1]["azimuth_degrees"].get<double>());
+  gap = gap > 180 ? 360 - gap : gap;
+  EXPECT_GE(gap, 90.0 - 1e-9);
+  // On index.html, panel S after panel A.
+  const std::string html = read_text(out / "index.html");
+  const auto s = html.find("id=\"panel-s\"");
+  ASSERT_NE(s, std::string::npos);
+  EXPECT_LT(html.find("id=\"panel-a\""), s);
+  EXPECT_LT(s, html.find("id=\"panel-b\""));
+  EXPECT_NE(html.find("views/structure_1.png", s), std::string::npos);
+  EXPECT_NE(html.find("views/size_gradation.png", s), std::string::npos);
 }
 
 class SharedViews : public ::testing::TestWithParam<const char*> {};

@@ -45,6 +45,7 @@ ReportModel make_model(HexMesh mesh, const ModelParts& parts = {}) {
   model.analysis.mesh = std::move(mesh);
   model.analysis.topology = build_topology(model.analysis.mesh);
   model.analysis.field = compute_quality(model.analysis.mesh, model.analysis.topology);
+  model.analysis.structure = compute_structure(model.analysis.mesh, model.analysis.topology);
   model.analysis.metrics = compute_hex_metrics(model.analysis.mesh, parts.metrics);
   if (parts.glyphs)
     model.analysis.glyphs =
@@ -259,7 +260,7 @@ TEST(AnnotatedVtu, ArraysMirrorTheCsvColumns) {
     std::string type = "Float64";
     if (a.name == "cluster" || a.name == "coincident_group") type = "Int32";
     if (a.name == "inverted" || a.name == "degenerate" || a.name == "intersecting" || a.name == "boundary" ||
-        a.name == "types")
+        a.name == "singular" || a.name == "types")
       type = "UInt8";
     if (a.name == "connectivity" || a.name == "offsets") type = "Int64";
     EXPECT_EQ(a.type, type) << a.name;
@@ -317,6 +318,12 @@ TEST(AnnotatedVtu, ValuesAreTheModels) {
   }
   const auto intersecting = values<std::uint8_t>(p, "CellData", "intersecting");
   for (std::size_t h = 0; h < nc; ++h) EXPECT_EQ(intersecting[h], model.analysis.overlap->cell_intersecting[h] ? 1 : 0);
+  const auto gradation = values<double>(p, "CellData", "size_gradation");
+  ASSERT_EQ(gradation.size(), nc);
+  for (std::size_t h = 0; h < nc; ++h) EXPECT_TRUE(same(gradation[h], model.analysis.structure.cell_gradation[h]));
+  const auto singular = values<std::uint8_t>(p, "PointData", "singular");
+  ASSERT_EQ(singular.size(), nv);
+  for (std::size_t v = 0; v < nv; ++v) EXPECT_EQ(singular[v], model.analysis.structure.vertex_singular[v]);
 
   const auto quality = values<double>(p, "PointData", "quality");
   const auto radius = values<double>(p, "PointData", "glyph_radius");
@@ -369,7 +376,7 @@ TEST(AnnotatedVtu, LeavesOutStagesThatDidNotRun) {
   std::set<std::string> names;
   for (const ParsedArray& a : p.arrays) names.insert(a.name);
   for (const char* present : {"scaled_jacobian", "min_corner_sj", "skew", "volume", "inverted", "degenerate", "quality",
-                              "boundary", "Points", "connectivity"})
+                              "boundary", "singular", "size_gradation", "Points", "connectivity"})
     EXPECT_TRUE(names.count(present)) << present;
   for (const char* absent : {"edge_ratio", "taper", "shape", "equiangle_skew", "intersecting", "glyph_radius",
                              "cluster", "coincident_group", "boundary_error"})

@@ -6,6 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
+
+#include "hqview/quality/hex_metrics.h"
 
 #include "hqview/io/mesh_reader.h"
 #include "support/fixtures.h"
@@ -78,6 +81,113 @@ TEST(Structure, GradationIsTheLargestVolumeRatioToAFaceNeighbour) {
   EXPECT_EQ(s.num_gradation_above_4, 0);  // strictly above
 }
 
+// A hex ball of 7 blocks: an n^3 grid of the cube [-1, 1]^3 and, on each of
+// its 6 faces, an n x n x m block from the face out to the sphere of radius
+// 3 (points on a seam are merged by their rounded coordinates).
+HexMesh seven_block_ball(int n, int m) {
+  HexMesh mesh;
+  std::map<std::array<long long, 3>, Index> ids;
+  auto vertex = [&](Vec3 p) {
+    const std::array<long long, 3> key{std::llround(p.x * 1e9), std::llround(p.y * 1e9), std::llround(p.z * 1e9)};
+    const auto [it, fresh] = ids.emplace(key, static_cast<Index>(mesh.points.size()));
+    if (fresh) mesh.points.push_back(p);
+    return it->second;
+  };
+  auto add_block = [&](auto point) {  // point(i, j, k) on an n x n x m lattice
+    for (int k = 0; k < m; ++k)
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          Hex h;
+          const int c[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+          for (int v = 0; v < 8; ++v) h[static_cast<std::size_t>(v)] = vertex(point(i + c[v][0], j + c[v][1], k + c[v][2]));
+          mesh.hexes.push_back(h);
+        }
+  };
+  const double step = 2.0 / n;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        Hex h;
+        const int c[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+        for (int v = 0; v < 8; ++v)
+          h[static_cast<std::size_t>(v)] = vertex({-1 + step * (i + c[v][0]), -1 + step * (j + c[v][1]), -1 + step * (k + c[v][2])});
+        mesh.hexes.push_back(h);
+      }
+  // Face blocks: axis a, side s; (u, v) across the face, t outwards.
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side : {-1, 1})
+      add_block([&, axis, side](int i, int j, int k) {
+        const double u = -1 + step * i, v = -1 + step * j, t = static_cast<double>(k) / m;
+        double q[3];
+        q[axis] = side;
+        q[(axis + 1) % 3] = u;
+        q[(axis + 2) % 3] = v;
+        const Vec3 face{q[0], q[1], q[2]};
+        const Vec3 out = 3.0 * normalized(face);
+        return (1 - t) * face + t * out;
+      });
+  // Orientation: the -side blocks come out mirrored; flip them so every
+  // hex has a positive volume (structure does not care, gradation does).
+  for (Hex& h : mesh.hexes) {
+    HexCorners p;
+    for (int v = 0; v < 8; ++v) p[static_cast<std::size_t>(v)] = mesh.points[static_cast<std::size_t>(h[static_cast<std::size_t>(v)])];
+    if (hex_volume(p) < 0) {
+      std::swap(h[1], h[3]);
+      std::swap(h[5], h[7]);
+    }
+  }
+  return mesh;
+}
+
+TEST(Structure, ABallOfSevenBlocksHasTheSingularEdgesOfItsConstruction) {
+  // n >= 3: with 2 x 2 quads a face the sphere's seams fold by more than 45
+  // degrees, and valence 2 would rightly be irregular there.
+  for (auto [n, m] : {std::pair{3, 2}, std::pair{4, 3}, std::pair{5, 1}}) {
+    const HexMesh mesh = seven_block_ball(n, m);
+    ASSERT_EQ(mesh.hexes.size(), static_cast<std::size_t>(n * n * n + 6 * n * n * m));
+    // Vertices: the cube lattice plus m shells of the cube's surface lattice.
+    ASSERT_EQ(mesh.points.size(), static_cast<std::size_t>((n + 1) * (n + 1) * (n + 1) + m * (6 * n * n + 2)));
+    const HexStructure s = structure_of(mesh);
+    // By hand: each of the cube's 12 edges has 3 hexes around it (one of the
+    // cube, one of each of the two blocks on its faces): 12 n edges of
+    // valence 3. From each of the cube's 8 corners a radial line of m edges
+    // runs to the sphere between 3 blocks: valence 3. The sphere is smooth,
+    // every boundary edge has 2 hexes (flat: 2 expected).
+    EXPECT_EQ(s.interior_by_valence, (std::map<Index, Index>{{3, 12 * n + 8 * m}})) << n << m;
+    EXPECT_EQ(s.num_singular_edges_boundary, 0) << n << m;
+    EXPECT_EQ(s.num_irregular_edges_boundary, 0) << n << m;
+    EXPECT_EQ(s.num_nonmanifold_edges, 0) << n << m;
+    // Nodes: the 8 corners (4 singular edges each) and the 8 radial lines'
+    // ends on the sphere (1 each); curves: 12 cube edges and 8 radial lines.
+    EXPECT_EQ(s.nodes.size(), 16u) << n << m;
+    EXPECT_EQ(s.num_curves, 20) << n << m;
+    std::map<Index, int> lengths;
+    for (Index l : s.curve_lengths) ++lengths[l];
+    if (n != m) {
+      EXPECT_EQ(lengths, (std::map<Index, int>{{n, 12}, {m, 8}})) << n << m;
+    }
+    EXPECT_EQ(s.num_singular_vertices, 12 * (n - 1) + 8 + 8 * m) << n << m;
+    EXPECT_GE(s.gradation.min, 1.0);
+  }
+}
+
+TEST(Structure, TheBundledBallIsAMappedGridWithTwelveIrregularSeams) {
+  // examples/ball.mesh maps a 10^3 grid onto the ball: no interior
+  // singularity; the grid's 12 box edges keep valence 1 on a smooth sphere,
+  // where 2 is expected: 120 singular boundary edges, all irregular.
+  const HexMesh mesh = read_hex_mesh(test::source_dir() / "examples" / "ball.mesh").mesh;
+  const HexStructure s = structure_of(mesh);
+  EXPECT_EQ(s.num_singular_edges_interior, 0);
+  EXPECT_EQ(s.boundary_by_valence, (std::map<Index, Index>{{1, 120}}));
+  EXPECT_EQ(s.num_irregular_edges_boundary, 120);
+  EXPECT_EQ(s.num_curves, 12);
+  EXPECT_EQ(s.nodes.size(), 8u);
+  for (const StructureEdge& e : s.edges) {
+    EXPECT_TRUE(e.singular && e.irregular);
+    EXPECT_EQ(e.ideal_valence, 2);
+  }
+}
+
 // The counts from the map of vertex pairs and an independent boundary test.
 void expect_map_counts(const HexMesh& mesh, const HexStructure& s, const std::string& what) {
   const std::map<Edge, Index> valence = edge_valences_by_map(mesh);
@@ -116,9 +226,40 @@ TEST(Structure, SharedMeshesMatchTheMapOfVertexPairs) {
     // Every singular edge is on exactly one curve; the lengths add up.
     Index total = 0;
     for (Index l : s.curve_lengths) total += l;
-    EXPECT_EQ(total, static_cast<Index>(s.singular_edges.size())) << name;
-    for (const SingularEdge& e : s.singular_edges) EXPECT_NE(e.curve, kNoIndex) << name;
+    Index listed_singular = 0;
+    for (const StructureEdge& e : s.edges) {
+      listed_singular += e.singular;
+      EXPECT_EQ(e.curve != kNoIndex, e.singular) << name;
+    }
+    EXPECT_EQ(total, listed_singular) << name;
   }
+}
+
+TEST(Structure, BadInputIsCountedNotFatal) {
+  // Two grids sharing only an edge: that edge has valence 2 but 4 boundary
+  // faces (non-manifold); a duplicate hex doubles valences; an unreferenced
+  // vertex is no edge at all.
+  HexMesh mesh = test::unit_cube();
+  const HexMesh other = test::unit_cube();
+  const Index base = static_cast<Index>(mesh.points.size());
+  for (Vec3 p : other.points) mesh.points.push_back(p + Vec3{1, 1, 0});
+  Hex h = other.hexes[0];
+  for (Index& v : h) v += base;
+  mesh.hexes.push_back(h);
+  // Merge the second cube's x = 0, y = 0 edge (points (1,1,0) and (1,1,1)) with the first's.
+  for (Index& v : mesh.hexes[1]) {
+    const Vec3 p = mesh.points[static_cast<std::size_t>(v)];
+    for (Index w = 0; w < base; ++w)
+      if (squared_norm(mesh.points[static_cast<std::size_t>(w)] - p) == 0.0) v = w;
+  }
+  mesh.points.push_back({9, 9, 9});  // unreferenced
+  HexStructure s = structure_of(mesh);
+  EXPECT_EQ(s.num_nonmanifold_edges, 1);
+  EXPECT_EQ(s.num_edges, 23);
+  mesh.hexes.push_back(mesh.hexes[0]);  // a duplicate
+  s = structure_of(mesh);
+  EXPECT_EQ(s.num_edges, 23);
+  expect_map_counts(mesh, s, "duplicate");
 }
 
 }  // namespace

@@ -306,4 +306,32 @@ void draw_title(Image& image, const PixelRect& area, std::string_view title, con
   draw_text(image, area.x + inset, baseline, ellipsize(title, size, max_width, style), size, style);
 }
 
+void draw_legend(Image& image, const PixelRect& area, std::span<const LegendLine> lines, const AnnotationStyle& style) {
+  double height_in_lines = 0.0;
+  for (const LegendLine& line : lines) height_in_lines += 1.0 + 0.5 * line.gap_halves;
+  const int top = static_cast<int>(std::lround(40 * style.scale));
+  const double fit = std::min(1.0, (area.height - top) / (std::max(1.0, height_in_lines) * 34 * style.scale));
+  const int pitch = std::max(1, static_cast<int>(std::lround(34 * style.scale * fit)));
+  const int swatch = std::max(1, static_cast<int>(std::lround(18 * style.scale * fit)));
+  const int text_size =
+      std::max(fit < 1.0 ? 7 : 10, std::min(static_cast<int>(std::lround(19 * style.scale)), pitch * 3 / 4));
+  const int x = area.x + static_cast<int>(std::lround(16 * style.scale));
+  const int right = area.x + area.width - static_cast<int>(std::lround(8 * style.scale));
+  int y = area.y + top;
+  for (const LegendLine& line : lines) {
+    y += pitch * line.gap_halves / 2;
+    if (y > area.y + area.height) return;
+    if (line.swatch) {
+      Rgba8 color = *line.swatch;
+      color.a = 255;
+      fill_rect(image, {x, y - swatch, swatch, swatch}, color);
+      const int text_x = x + swatch + swatch / 2;
+      draw_text(image, text_x, y - 2, ellipsize(line.text, text_size, right - text_x, style), text_size, style);
+    } else {
+      draw_text(image, x, y, ellipsize(line.text, text_size, right - x, style), text_size, style);
+    }
+    y += pitch;
+  }
+}
+
 }  // namespace hq

@@ -4,6 +4,8 @@
 // with OpenImageIO (FreeType) in DejaVu Sans (package fonts-dejavu-core).
 // Sizes are given for a 1200-pixel-high figure and scaled with the height.
 
+#include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -109,5 +111,18 @@ FigureLayout figure_layout(int width, int height, bool has_title, int legend_wid
 // long for the area's width is set smaller (down to 9 pixels), then cut
 // with "...".
 void draw_title(Image& image, const PixelRect& area, std::string_view title, const AnnotationStyle& style);
+
+// A line of a swatch legend: a colour square and its text, or text alone (a
+// heading or a note); gap_halves half lines of space before it.
+struct LegendLine {
+  std::optional<Rgba8> swatch;
+  std::string text;
+  int gap_halves = 0;
+};
+// Draws the lines from the top of area: 34-pixel pitch, 18-pixel swatches and
+// 19-pixel text at the style's scale, all shrunk together when the lines
+// would not fit the area's height; text too long for the width ends in
+// "...". Swatches are drawn opaque.
+void draw_legend(Image& image, const PixelRect& area, std::span<const LegendLine> lines, const AnnotationStyle& style);
 
 }  // namespace hq

@@ -93,6 +93,7 @@ void write_bundle(const ReportModel& model, const ReportDocument& document, cons
     write_text(tmp / "summary.md", summary_markdown(model));
     write_file(tmp / "data" / "cells.csv", [&](std::ostream& out) { write_cells_csv(model, out); });
     write_file(tmp / "data" / "vertices.csv", [&](std::ostream& out) { write_vertices_csv(model, out); });
+    write_file(tmp / "data" / "edges.csv", [&](std::ostream& out) { write_edges_csv(model, out); });
     if (model.has_annotated_vtu)
       write_file(tmp / "data" / "annotated.vtu", [&](std::ostream& out) { write_annotated_vtu(model, out); });
     if (model.has_viewer) {

@@ -36,7 +36,7 @@ void write_cells_csv(const ReportModel& model, std::ostream& out) {
     buffer += hex_metric_name(static_cast<HexMetric>(m));
     metric_columns.push_back(&model.analysis.metrics.of(static_cast<HexMetric>(m)));
   }
-  buffer += ",inverted,degenerate,intersecting\n";
+  buffer += ",inverted,degenerate,intersecting,size_gradation\n";
   const QualityField& q = model.analysis.field;
   for (std::size_t h = 0; h < model.analysis.mesh.hexes.size(); ++h) {
     append_int(buffer, static_cast<long long>(h));
@@ -56,6 +56,10 @@ void write_cells_csv(const ReportModel& model, std::ostream& out) {
     // intersecting: 0/1 from the overlap stage, empty with --no-overlap.
     buffer += ',';
     if (model.analysis.overlap) buffer += model.analysis.overlap->cell_intersecting[h] ? '1' : '0';
+    // size_gradation: empty for a hex without a positive volume or a face
+    // neighbour of positive volume.
+    buffer += ',';
+    append_double(buffer, model.analysis.structure.cell_gradation[h]);
     buffer += '\n';
     flush_if_full(buffer, out);
   }
@@ -63,7 +67,7 @@ void write_cells_csv(const ReportModel& model, std::ostream& out) {
 }
 
 void write_vertices_csv(const ReportModel& model, std::ostream& out) {
-  std::string buffer = "vertex,x,y,z,quality,glyph_radius,cluster,coincident_group,boundary,boundary_error\n";
+  std::string buffer = "vertex,x,y,z,quality,glyph_radius,cluster,coincident_group,boundary,boundary_error,singular\n";
   for (std::size_t v = 0; v < model.analysis.mesh.points.size(); ++v) {
     const Vec3& p = model.analysis.mesh.points[v];
     append_int(buffer, static_cast<long long>(v));
@@ -89,6 +93,43 @@ void write_vertices_csv(const ReportModel& model, std::ostream& out) {
     buffer += ',';
     // boundary_error: signed distance for boundary vertices with --reference, else empty.
     if (model.analysis.boundary_error) append_double(buffer, model.analysis.boundary_error->vertex_error[v]);
+    buffer += model.analysis.structure.vertex_singular[v] ? ",1\n" : ",0\n";
+    flush_if_full(buffer, out);
+  }
+  flush_if_full(buffer, out, true);
+}
+
+const char* edge_kind_name(EdgeKind kind) {
+  switch (kind) {
+    case EdgeKind::interior: return "interior";
+    case EdgeKind::boundary: return "boundary";
+    case EdgeKind::nonmanifold: return "nonmanifold";
+  }
+  return "";
+}
+
+void write_edges_csv(const ReportModel& model, std::ostream& out) {
+  std::string buffer = "edge,v0,v1,valence,kind,singular,ideal_valence,irregular,curve\n";
+  const HexStructure& s = model.analysis.structure;
+  for (std::size_t i = 0; i < s.edges.size(); ++i) {
+    const StructureEdge& e = s.edges[i];
+    append_int(buffer, static_cast<long long>(i));
+    for (Index v : {e.vertices[0], e.vertices[1], e.valence}) {
+      buffer += ',';
+      append_int(buffer, v);
+    }
+    buffer += ',';
+    buffer += edge_kind_name(e.kind);
+    buffer += e.singular ? ",1," : ",0,";
+    // ideal_valence and irregular: boundary edges only.
+    if (e.kind == EdgeKind::boundary) {
+      append_int(buffer, e.ideal_valence);
+      buffer += e.irregular ? ",1" : ",0";
+    } else {
+      buffer += ',';
+    }
+    buffer += ',';
+    append_int(buffer, e.curve == kNoIndex ? -1 : e.curve);
     buffer += '\n';
     flush_if_full(buffer, out);
   }

@@ -1,5 +1,6 @@
 #pragma once
-// data/cells.csv and data/vertices.csv (CONTRACT.md "CSV columns").
+// data/cells.csv, data/vertices.csv and data/edges.csv (docs/contract.md
+// "CSV columns").
 // Ids are 0-based in file order; floats shortest round-trip; a column whose
 // analysis stage has not run is written empty (never a made-up 0).
 
@@ -7,6 +8,7 @@
 
 #include "hqview/quality/corner_jacobian.h"
 #include "hqview/report/report_model.h"
+#include "hqview/structure/structure.h"
 
 namespace hq {
 
@@ -22,5 +24,8 @@ inline bool cell_is_inverted(const QualityField& q, std::size_t h) {
 
 void write_cells_csv(const ReportModel& model, std::ostream& out);
 void write_vertices_csv(const ReportModel& model, std::ostream& out);
+// One row per singular, irregular or non-manifold edge (HexStructure::edges).
+void write_edges_csv(const ReportModel& model, std::ostream& out);
+const char* edge_kind_name(EdgeKind kind);
 
 }  // namespace hq

@@ -58,10 +58,11 @@ data kv(const std::string& key, const std::string& value) {
 
 std::string show_vec(const Vec3& v) { return "(" + show(v.x) + ", " + show(v.y) + ", " + show(v.z) + ")"; }
 
-// ---- panels A–F: figures and the links between them ----
+// ---- panels A–F and S: figures and the links between them ----
 
-// The paper's six linked views (A–F) of index.html, in page order, and the
-// views each shows; the boundary views have their own page.
+// The paper's six linked views (A–F) of index.html and the structure panel
+// (S, after A), in page order, and the views each shows; the boundary views
+// have their own page.
 struct PanelSpec {
   const char* anchor;
   const char* nav;  // short title for the navigation bar
@@ -76,6 +77,12 @@ const std::vector<PanelSpec>& index_panels() {
        "Sphere glyphs sit on bad vertices (the lower the quality, the larger), merged where they overlap; the worst "
        "clusters each have a colour, all others are grey; arrows point at overlapping elements. The overview colours the boundary by vertex quality.",
        'A'},
+      {"panel-s", "S structure", "S · Structure: singularity graph and size gradation",
+       "The singular edges (an interior edge without 4 hexes, a boundary edge without 2) coloured by valence, inside "
+       "the translucent boundary; dark spheres are the nodes where singular curves meet or end. The second image "
+       "colours the boundary by size gradation: a hex's largest volume ratio to a face neighbour. Counts: report.json "
+       "structure; every singular, irregular or non-manifold edge: data/edges.csv.",
+       'S'},
       {"panel-b", "B sorted quality", "B · Sorted vertex quality",
        "Each bar of the sorted chart is one of the worst vertices, worst on the left. Click a bar to go to its "
        "cluster's sub-region (C), or to its local view (D) when its cluster has no sub-region view.",

@@ -98,7 +98,7 @@ std::string summary_markdown(const ReportModel& model) {
 
   md += "Pages: [index.html](index.html)";
   if (model.analysis.boundary_error) md += " · [boundary.html](boundary.html)";
-  md += " · data: [report.json](report.json) · [cells.csv](data/cells.csv) · [vertices.csv](data/vertices.csv)";
+  md += " · data: [report.json](report.json) · [cells.csv](data/cells.csv) · [vertices.csv](data/vertices.csv) · [edges.csv](data/edges.csv)";
   if (model.has_annotated_vtu) md += " · [annotated.vtu](data/annotated.vtu)";
   md += "\n\n";
   md += "HQView " + markdown_escape(model.tool_version) + " · " + markdown_escape(model.analysis.mesh_input.format) +

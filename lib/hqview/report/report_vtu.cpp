@@ -96,6 +96,8 @@ void check_sizes(const ReportModel& model) {
   }
   if (model.analysis.boundary_error)
     require_size(model.analysis.boundary_error->vertex_error, nv, "boundary vertex_error");
+  require_size(model.analysis.structure.vertex_singular, nv, "vertex_singular");
+  require_size(model.analysis.structure.cell_gradation, nc, "cell_gradation");
 }
 
 // Every array, in file order (PointData, CellData, Points, Cells, the order
@@ -124,6 +126,9 @@ std::vector<VtuArray> build_arrays(const ReportModel& model) {
   }));
   if (model.analysis.boundary_error)
     arrays.push_back(copy_array("PointData", "boundary_error", model.analysis.boundary_error->vertex_error));
+  arrays.push_back(make_array<std::uint8_t>("PointData", "singular", 1, num_points, [&model](std::size_t v) {
+    return model.analysis.structure.vertex_singular[v] != 0 ? 1 : 0;
+  }));
 
   // CellData: the columns of cells.csv, plus min_corner_sj.
   arrays.push_back(copy_array("CellData", "scaled_jacobian", q.cell_scaled_jacobian));
@@ -150,6 +155,7 @@ std::vector<VtuArray> build_arrays(const ReportModel& model) {
     arrays.push_back(make_array<std::uint8_t>("CellData", "intersecting", 1, num_cells,
                                               [&intersecting](std::size_t h) { return intersecting[h] != 0 ? 1 : 0; }));
   }
+  arrays.push_back(copy_array("CellData", "size_gradation", model.analysis.structure.cell_gradation));
 
   // Points and Cells.
   const std::vector<Vec3>& points = model.analysis.mesh.points;

@@ -16,12 +16,12 @@
 // ... corner_sj_7, min_corner_sj (an addition: min of the 8), one Float64 array
 // per computed Verdict metric (Verdict's order; metrics not computed are left
 // out), then UInt8 inverted, degenerate and intersecting (left out with
-// --no-overlap). PointData mirrors data/vertices.csv: quality (NaN for a
+// --no-overlap), then Float64 size_gradation (NaN where the CSV is empty). PointData mirrors data/vertices.csv: quality (NaN for a
 // vertex no hex uses), glyph_radius (0 without a glyph, NaN where quality is
 // NaN) and Int32 cluster (-1 none) when the glyph stage ran, Int32
 // coincident_group (-1 none) when the overlap stage ran, UInt8 boundary, and
 // boundary_error (signed distance, NaN for interior vertices) with a
-// reference. Verdict's +-1e30 sentinels are written as they are.
+// reference, then UInt8 singular. Verdict's +-1e30 sentinels are written as they are.
 
 #include <cstdint>
 #include <ostream>

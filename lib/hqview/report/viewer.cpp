@@ -6,9 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
-#include <map>
 
 #include "hqview/core/box3.h"
 #include "hqview/image/colormap.h"
@@ -311,7 +309,7 @@ std::vector<ViewerFile> viewer_files(const ReportModel& model) {
   d["fields"] = std::move(fields);
   d["reduced"] = std::move(reduced);
 
-  // Links from a cluster to index.html's panels.
+  // The data, the scripts (embedded at build time) and the page.
   std::vector<ViewerFile> files;
   files.push_back({"viewer/data.js", "window.HQ_VIEWER_DATA = " + script_safe_json(d.dump()) + ";\n"});
   files.push_back({"viewer/three.min.js", std::string(report_template("three.min.js"))});

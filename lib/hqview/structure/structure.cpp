@@ -62,17 +62,19 @@ Index ideal_boundary_valence(const HexMesh& mesh, const Quad& f1, const Quad& f2
   return std::max<Index>(1, static_cast<Index>(std::lround(theta / 90.0)));
 }
 
-// Numbers the singular curves: chains from each node (ascending) along
+// Numbers the singular curves (over the singular edges of s.edges): chains from each node (ascending) along
 // unvisited singular edges until the next node, then the closed chains.
 void number_curves(HexStructure& s, std::size_t num_vertices) {
   std::vector<std::ptrdiff_t> first(num_vertices + 1, 0);
-  for (const SingularEdge& e : s.singular_edges)
-    for (Index v : e.vertices) ++first[static_cast<std::size_t>(v) + 1];
+  for (const StructureEdge& e : s.edges)
+    if (e.singular)
+      for (Index v : e.vertices) ++first[static_cast<std::size_t>(v) + 1];
   for (std::size_t v = 0; v < num_vertices; ++v) first[v + 1] += first[v];
   std::vector<Index> incident(static_cast<std::size_t>(first[num_vertices]));
   std::vector<std::ptrdiff_t> fill(first.begin(), first.end() - 1);
-  for (std::size_t i = 0; i < s.singular_edges.size(); ++i)
-    for (Index v : s.singular_edges[i].vertices) incident[static_cast<std::size_t>(fill[static_cast<std::size_t>(v)]++)] = static_cast<Index>(i);
+  for (std::size_t i = 0; i < s.edges.size(); ++i)
+    if (s.edges[i].singular)
+      for (Index v : s.edges[i].vertices) incident[static_cast<std::size_t>(fill[static_cast<std::size_t>(v)]++)] = static_cast<Index>(i);
   auto degree = [&](Index v) { return first[static_cast<std::size_t>(v) + 1] - first[static_cast<std::size_t>(v)]; };
   std::vector<char> is_node(num_vertices, 0);
   for (std::size_t v = 0; v < num_vertices; ++v)
@@ -84,15 +86,15 @@ void number_curves(HexStructure& s, std::size_t num_vertices) {
   auto walk = [&](Index from, Index e) {
     const Index curve = s.num_curves++;
     Index length = 0;
-    while (e != kNoIndex && s.singular_edges[static_cast<std::size_t>(e)].curve == kNoIndex) {
-      SingularEdge& edge = s.singular_edges[static_cast<std::size_t>(e)];
+    while (e != kNoIndex && s.edges[static_cast<std::size_t>(e)].curve == kNoIndex) {
+      StructureEdge& edge = s.edges[static_cast<std::size_t>(e)];
       edge.curve = curve;
       ++length;
       const Index to = edge.vertices[0] == from ? edge.vertices[1] : edge.vertices[0];
       if (is_node[static_cast<std::size_t>(to)]) break;
       Index next = kNoIndex;
       for (auto k = first[static_cast<std::size_t>(to)]; k < first[static_cast<std::size_t>(to) + 1]; ++k)
-        if (s.singular_edges[static_cast<std::size_t>(incident[static_cast<std::size_t>(k)])].curve == kNoIndex)
+        if (s.edges[static_cast<std::size_t>(incident[static_cast<std::size_t>(k)])].curve == kNoIndex)
           next = incident[static_cast<std::size_t>(k)];
       from = to;
       e = next;
@@ -101,10 +103,10 @@ void number_curves(HexStructure& s, std::size_t num_vertices) {
   };
   for (Index v : s.nodes)
     for (auto k = first[static_cast<std::size_t>(v)]; k < first[static_cast<std::size_t>(v) + 1]; ++k)
-      if (s.singular_edges[static_cast<std::size_t>(incident[static_cast<std::size_t>(k)])].curve == kNoIndex)
+      if (s.edges[static_cast<std::size_t>(incident[static_cast<std::size_t>(k)])].curve == kNoIndex)
         walk(v, incident[static_cast<std::size_t>(k)]);
-  for (std::size_t i = 0; i < s.singular_edges.size(); ++i)
-    if (s.singular_edges[i].curve == kNoIndex) walk(s.singular_edges[i].vertices[0], static_cast<Index>(i));
+  for (std::size_t i = 0; i < s.edges.size(); ++i)
+    if (s.edges[i].singular && s.edges[i].curve == kNoIndex) walk(s.edges[i].vertices[0], static_cast<Index>(i));
 }
 
 void size_gradation(const HexMesh& mesh, const Topology& topology, HexStructure& s) {
@@ -166,25 +168,31 @@ HexStructure compute_structure(const HexMesh& mesh, const Topology& topology) {
   }
   s.vertex_singular.assign(nv, 0);
   for (std::size_t i = 0; i < ne; ++i) {
-    const Index v = valence[i];
+    StructureEdge e{topology.edges[i], valence[i]};
     if (num_faces[i] == 0) {
-      if (v == 4) continue;
-      ++s.num_singular_edges_interior;
-      ++s.interior_by_valence[v];
-      s.singular_edges.push_back({topology.edges[i], v, EdgeKind::interior});
+      e.singular = e.valence != 4;
+      if (e.singular) {
+        ++s.num_singular_edges_interior;
+        ++s.interior_by_valence[e.valence];
+      }
     } else if (num_faces[i] == 2) {
-      const Index ideal = ideal_boundary_valence(mesh, topology.faces[static_cast<std::size_t>(faces[i][0])],
-                                                 topology.faces[static_cast<std::size_t>(faces[i][1])]);
-      s.num_irregular_edges_boundary += v != ideal;
-      if (v == 2) continue;
-      ++s.num_singular_edges_boundary;
-      ++s.boundary_by_valence[v];
-      s.singular_edges.push_back({topology.edges[i], v, EdgeKind::boundary});
+      e.kind = EdgeKind::boundary;
+      e.ideal_valence = ideal_boundary_valence(mesh, topology.faces[static_cast<std::size_t>(faces[i][0])],
+                                               topology.faces[static_cast<std::size_t>(faces[i][1])]);
+      e.irregular = e.valence != e.ideal_valence;
+      e.singular = e.valence != 2;
+      s.num_irregular_edges_boundary += e.irregular;
+      if (e.singular) {
+        ++s.num_singular_edges_boundary;
+        ++s.boundary_by_valence[e.valence];
+      }
     } else {
-      ++s.num_nonmanifold_edges;  // on 1 or more than 2 boundary faces
-      continue;
+      e.kind = EdgeKind::nonmanifold;  // on 1 or more than 2 boundary faces
+      ++s.num_nonmanifold_edges;
     }
-    for (Index w : topology.edges[i]) s.vertex_singular[static_cast<std::size_t>(w)] = 1;
+    if (e.singular)
+      for (Index w : e.vertices) s.vertex_singular[static_cast<std::size_t>(w)] = 1;
+    if (e.singular || e.irregular || e.kind == EdgeKind::nonmanifold) s.edges.push_back(e);
   }
   s.num_singular_vertices = static_cast<Index>(std::count(s.vertex_singular.begin(), s.vertex_singular.end(), 1));
   number_curves(s, nv);

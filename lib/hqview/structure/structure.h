@@ -27,11 +27,15 @@ namespace hq {
 
 enum class EdgeKind : std::uint8_t { interior, boundary, nonmanifold };
 
-struct SingularEdge {
+// An edge worth a row of data/edges.csv: singular, irregular or non-manifold.
+struct StructureEdge {
   Edge vertices;  // a < b
   Index valence = 0;
   EdgeKind kind = EdgeKind::interior;
-  Index curve = kNoIndex;  // its singular curve
+  bool singular = false;
+  Index ideal_valence = 0;  // boundary edges: round(theta / 90 deg), at least 1; else 0
+  bool irregular = false;   // boundary edges: valence != ideal_valence
+  Index curve = kNoIndex;   // singular edges: their singular curve
 };
 
 struct HexStructure {
@@ -42,7 +46,9 @@ struct HexStructure {
   Index num_nonmanifold_edges = 0;
   std::map<Index, Index> interior_by_valence;  // singular interior edges: valence -> count
   std::map<Index, Index> boundary_by_valence;  // singular boundary edges: valence -> count
-  std::vector<SingularEdge> singular_edges;    // ascending vertex pairs (interior and boundary)
+  // Singular, irregular and non-manifold edges, ascending vertex pairs; the
+  // singular ones (interior and boundary) make the singularity graph.
+  std::vector<StructureEdge> edges;
   std::vector<char> vertex_singular;           // per vertex, 0/1
   Index num_singular_vertices = 0;
   std::vector<Index> nodes;                    // ascending vertex ids

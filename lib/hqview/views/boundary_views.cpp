@@ -84,9 +84,7 @@ Image render_boundary_error_view(const HexMesh& mesh, const Topology& topology, 
   scene.background = options.background;
   const double aspect = static_cast<double>(layout.view.width) / layout.view.height;
   const Camera camera = fit_camera_to_points(boundary_points(mesh, topology), view_direction, aspect, {.up = options.up});
-  Image figure = make_image(options.width, options.height, options.background);
-  paste(figure, renderer.render(scene, camera, layout.view.width, layout.view.height), layout.view.x, layout.view.y);
-  draw_title(figure, layout.title, options.title, style);
+  Image figure = render_figure(renderer, scene, camera, options.width, options.height, layout, options.title, style);
   draw_color_bar(figure, layout.legend, bar, style);
   return figure;
 }
@@ -121,9 +119,7 @@ Image render_reference_overlay(const HexMesh& mesh, const Topology& topology, co
   points.insert(points.end(), reference.points.begin(), reference.points.end());
   const double aspect = static_cast<double>(layout.view.width) / layout.view.height;
   const Camera camera = fit_camera_to_points(points, view_direction, aspect, {.up = options.up});
-  Image figure = make_image(options.width, options.height, options.background);
-  paste(figure, renderer.render(scene, camera, layout.view.width, layout.view.height), layout.view.x, layout.view.y);
-  draw_title(figure, layout.title, options.title, style);
+  Image figure = render_figure(renderer, scene, camera, options.width, options.height, layout, options.title, style);
   return figure;
 }
 
@@ -189,9 +185,7 @@ Image render_uv_error_map(const TriSurface& reference, const UvAtlas& atlas, con
   camera.far_plane = 4.0;
   const double aspect = static_cast<double>(layout.view.width) / layout.view.height;
   camera.ortho_height = 1.06 * std::max(1.0, 1.0 / aspect);
-  Image figure = make_image(options.width, options.height, options.background);
-  paste(figure, renderer.render(scene, camera, layout.view.width, layout.view.height), layout.view.x, layout.view.y);
-  draw_title(figure, layout.title, options.title, style);
+  Image figure = render_figure(renderer, scene, camera, options.width, options.height, layout, options.title, style);
   draw_color_bar(figure, layout.legend, bar, style);
   return figure;
 }

@@ -437,59 +437,34 @@ void draw_marker_counts(Image& figure, const OverlapReport& overlap, const Camer
   }
 }
 
-// Legend: what each colour means. Line pitch, swatch and text sizes shrink
-// together when the legend's lines would not fit the panel's height (small
-// figures); lines too long for its width end with "...".
+// Legend: what each colour means (draw_legend shrinks it to the panel).
 void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapReport* overlap,
                       const FigureLayout& layout, const AnnotationStyle& style, const MainViewOptions& options) {
-  const PixelRect& area = layout.legend;
   const std::size_t listed = std::min<std::size_t>(
       glyphs.clusters.size(), static_cast<std::size_t>(labelled_cluster_count(glyphs.options.top_clusters)));
-  const double lines = 1.0 + static_cast<double>(listed) + (glyphs.clusters.size() != listed ? 1.0 : 0.0) +
-                       (glyphs.clusters.empty() ? 1.0 : 0.0) + 0.5 + 1.5 + 4.0;
-  const int top = static_cast<int>(std::lround(40 * style.scale));
-  const double fit = std::min(1.0, (area.height - top) / (lines * 34 * style.scale));
-  const int pitch = std::max(1, static_cast<int>(std::lround(34 * style.scale * fit)));
-  const int swatch = std::max(1, static_cast<int>(std::lround(18 * style.scale * fit)));
-  const int text_size =
-      std::max(fit < 1.0 ? 7 : 10, std::min(static_cast<int>(std::lround(19 * style.scale)), pitch * 3 / 4));
-  int x = area.x + static_cast<int>(std::lround(16 * style.scale));
-  int y = area.y + top;
-  const int right = area.x + area.width - static_cast<int>(std::lround(8 * style.scale));
-  auto entry = [&](Rgba8 color, const std::string& text) {
-    if (y > area.y + area.height) return;
-    color.a = 255;
-    fill_rect(figure, {x, y - swatch, swatch, swatch}, color);
-    const int text_x = x + swatch + swatch / 2;
-    draw_text(figure, text_x, y - 2, ellipsize(text, text_size, right - text_x, style), text_size, style);
-    y += pitch;
-  };
-  draw_text(figure, x, y, ellipsize("glyphs: worst clusters", text_size, right - x, style), text_size, style);
-  y += pitch;
+  std::vector<LegendLine> lines{{std::nullopt, "glyphs: worst clusters"}};
   for (std::size_t i = 0; i < listed; ++i) {
     const AggregatedGlyph& g = glyphs.clusters[i];
-    entry(to_rgba8(cluster_color(g.id, glyphs.options.top_clusters)),
-          "#" + std::to_string(g.id) + "  " + std::to_string(g.size) + (g.size == 1 ? " vertex" : " vertices") +
-              ", min " + display_number(g.min_quality, 3));
+    lines.push_back({to_rgba8(cluster_color(g.id, glyphs.options.top_clusters)),
+                     "#" + std::to_string(g.id) + "  " + std::to_string(g.size) + (g.size == 1 ? " vertex" : " vertices") +
+                         ", min " + display_number(g.min_quality, 3)});
   }
   if (glyphs.clusters.size() > listed) {
     const std::size_t rest = glyphs.clusters.size() - listed;
-    entry(to_rgba8(neutral_cluster_color()),
-          std::to_string(rest) + (rest == 1 ? " other cluster" : " other clusters"));
+    lines.push_back({to_rgba8(neutral_cluster_color()), std::to_string(rest) + (rest == 1 ? " other cluster" : " other clusters")});
   }
-  if (glyphs.clusters.empty()) entry(options.background, "none (no vertex below threshold)");
-  y += pitch / 2;
-  draw_text(figure, x, y, ellipsize("size = 1 - min quality", text_size, right - x, style), text_size, style);
-  y += 3 * pitch / 2;
+  if (glyphs.clusters.empty()) lines.push_back({options.background, "none (no vertex below threshold)"});
+  lines.push_back({std::nullopt, "size = 1 - min quality", 1});
   const std::size_t coincident = overlap ? overlap->coincident_groups.size() : 0;
   const std::size_t intersecting = overlap ? static_cast<std::size_t>(overlap->num_intersecting_cells) : 0;
   const std::size_t intersections =
       overlap ? overlap->markers.size() - std::min(overlap->markers.size(), coincident) : 0;
   const std::string unchecked = overlap ? "" : " (not checked)";
-  entry(kCoincidentArrowColor, "coincident vertices: " + std::to_string(coincident) + unchecked);
-  entry(kIntersectionArrowColor, "intersections: " + std::to_string(intersections) + unchecked);
-  entry(kIntersectingCellColor, "intersecting cells: " + std::to_string(intersecting) + unchecked);
-  entry(kWireframeColor, "boundary edges");
+  lines.push_back({kCoincidentArrowColor, "coincident vertices: " + std::to_string(coincident) + unchecked, 1});
+  lines.push_back({kIntersectionArrowColor, "intersections: " + std::to_string(intersections) + unchecked});
+  lines.push_back({kIntersectingCellColor, "intersecting cells: " + std::to_string(intersecting) + unchecked});
+  lines.push_back({kWireframeColor, "boundary edges"});
+  draw_legend(figure, layout.legend, lines, style);
 }
 
 }  // namespace
@@ -516,9 +491,7 @@ Image render_main_view(const HexMesh& mesh, const Topology& topology, const Glyp
   const double opacity = std::clamp(pixels / 10.0, 0.2, 0.85);
   for (Rgba8& c : scene.lines[0].colors) c.a = static_cast<std::uint8_t>(std::lround(255.0 * opacity));
 
-  Image figure = make_image(options.width, options.height, options.background);
-  paste(figure, renderer.render(scene, camera, layout.view.width, layout.view.height), layout.view.x, layout.view.y);
-  draw_title(figure, layout.title, options.title, style);
+  Image figure = render_figure(renderer, scene, camera, options.width, options.height, layout, options.title, style);
 
   draw_rank_labels(figure, glyphs, camera, layout, style);
   if (overlap) draw_marker_counts(figure, *overlap, camera, layout, style, scaled);

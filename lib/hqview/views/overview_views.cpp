@@ -156,6 +156,14 @@ double edge_opacity(const Scene& scene, const Camera& camera, int width, int hei
 
 }  // namespace
 
+Image render_figure(Renderer& renderer, const Scene& scene, const Camera& camera, int width, int height,
+                    const FigureLayout& layout, const std::string& title, const AnnotationStyle& style) {
+  Image figure = make_image(width, height, style.background);
+  paste(figure, renderer.render(scene, camera, layout.view.width, layout.view.height), layout.view.x, layout.view.y);
+  draw_title(figure, layout.title, title, style);
+  return figure;
+}
+
 Image render_quality_overview(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
                               const OverviewOptions& options, Renderer& renderer) {
   if (options.width <= 0 || options.height <= 0)
@@ -175,9 +183,7 @@ Image render_quality_overview(const HexMesh& mesh, const Topology& topology, con
   for (LineSet& lines : scene.lines)
     for (Rgba8& c : lines.colors) c.a = static_cast<std::uint8_t>(std::lround(c.a * opacity));
 
-  Image figure = make_image(options.width, options.height, options.background);
-  paste(figure, renderer.render(scene, camera, layout.view.width, layout.view.height), layout.view.x, layout.view.y);
-  draw_title(figure, layout.title, options.title, style);
+  Image figure = render_figure(renderer, scene, camera, options.width, options.height, layout, options.title, style);
   draw_color_bar(figure, layout.legend, bar, style);
   return figure;
 }

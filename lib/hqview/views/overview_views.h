@@ -10,6 +10,7 @@
 #include "hqview/image/image.h"
 #include "hqview/mesh/hex_mesh.h"
 #include "hqview/mesh/topology.h"
+#include "hqview/render/annotate.h"
 #include "hqview/render/camera.h"
 #include "hqview/render/renderer.h"
 #include "hqview/render/scene.h"
@@ -47,6 +48,11 @@ std::vector<Vec3> boundary_points(const HexMesh& mesh, const Topology& topology)
 // Bounding box of the boundary faces' vertices (all points when there is no
 // boundary face); lo = hi = (0, 0, 0) for an empty mesh.
 Box3 boundary_bounding_box(const HexMesh& mesh, const Topology& topology);
+
+// A figure of width x height in style.background: the scene rendered into
+// layout.view, the title in layout.title (the legend is the caller's).
+Image render_figure(Renderer& renderer, const Scene& scene, const Camera& camera, int width, int height,
+                    const FigureLayout& layout, const std::string& title, const AnnotationStyle& style);
 
 // The overview figure: options.width x options.height, the 3D view on the
 // left framing the boundary vertices tightly (fit_camera_to_points), the quality colour bar on the

@@ -16,8 +16,16 @@
 #include "hqview/views/detail_views.h"
 #include "hqview/views/main_views.h"
 #include "hqview/views/overview_views.h"
+#include "hqview/views/structure_views.h"
 
 namespace hq {
+
+// The camera and size of a rendered frame (report.json views[].cameras).
+struct FrameRecord {
+  std::optional<Camera> camera;  // none before the first frame
+  double aspect = 1.0;           // width / height
+  int width = 0, height = 0;     // pixels
+};
 
 // What the builders share: the analysis, the options, the renderer, and what
 // several views derive from the analysis (glyphs, the top clusters, the
@@ -31,9 +39,7 @@ struct ViewContext {
   const GlyphResult* glyphs = nullptr;
   std::size_t num_top = 0;            // clusters with a C view
   std::vector<Index> local_vertices;  // views D and E
-  const std::optional<Camera>* last_camera = nullptr;  // of the frame rendered last
-  const double* last_aspect = nullptr;                 // its width / height
-  const std::array<int, 2>* last_size = nullptr;       // its size, pixels
+  const FrameRecord* last_frame = nullptr;  // the frame rendered last
 
   Index cluster_of(Index v) const { return glyphs->vertex_cluster[static_cast<std::size_t>(v)]; }
   const std::vector<double>& quality() const { return a.field.vertex_quality; }
@@ -49,14 +55,10 @@ class HookedRenderer final : public Renderer {
       : inner_(inner), before_frame_(std::move(before_frame)) {}
   Image render(const Scene& scene, const Camera& camera, int width, int height) override {
     before_frame_();
-    last_camera = camera;
-    last_aspect = static_cast<double>(width) / static_cast<double>(std::max(height, 1));
-    last_size = {width, height};
+    last_frame = {camera, static_cast<double>(width) / static_cast<double>(std::max(height, 1)), width, height};
     return inner_.render(scene, camera, width, height);
   }
-  std::optional<Camera> last_camera;
-  double last_aspect = 1.0;
-  std::array<int, 2> last_size{0, 0};
+  FrameRecord last_frame;
 
  private:
   Renderer& inner_;
@@ -87,9 +89,12 @@ Options sized(const ViewContext& c) {
 // A 3D view's file: its image and the camera that drew it.
 ViewFile framed(std::string relative_path, Image image, const ViewContext& c) {
   ViewFile file{std::move(relative_path), std::move(image), {}};
-  if (c.last_camera) file.camera = *c.last_camera;  // an optional: none before the first frame
-  if (c.last_aspect) file.camera_aspect = *c.last_aspect;
-  if (c.last_size) file.frame_width = (*c.last_size)[0], file.frame_height = (*c.last_size)[1];
+  if (c.last_frame) {
+    file.camera = c.last_frame->camera;
+    file.camera_aspect = c.last_frame->aspect;
+    file.frame_width = c.last_frame->width;
+    file.frame_height = c.last_frame->height;
+  }
   return file;
 }
 
@@ -302,6 +307,32 @@ std::vector<ViewFile> build_sorted_quality(ViewContext& c) {
                                           {900, 460, c.name + ": sorted vertex quality (min corner scaled Jacobian)"}));
 }
 
+std::vector<ViewFile> build_structure(ViewContext& c) {
+  auto options = sized<StructureViewOptions>(c);
+  options.title = "-";  // the layout of a titled figure
+  const HexStructure& s = c.a.structure;
+  const std::vector<Vec3> directions = choose_singularity_viewpoints(c.a.mesh, c.a.topology, s, 2, options);
+  std::vector<ViewFile> files;
+  for (std::size_t i = 0; i < directions.size(); ++i) {
+    options.title = c.name + ": singularity graph, view " + std::to_string(i + 1) + " (from " +
+                    viewpoint_name(directions[i], options.up) + ")";
+    Image image = render_singularity_view(c.a.mesh, c.a.topology, s, directions[i], options, c.renderer);
+    files.push_back(framed("views/structure_" + std::to_string(i + 1) + ".png", std::move(image), c));
+  }
+  return files;
+}
+
+std::vector<ViewFile> build_size_gradation(ViewContext& c) {
+  auto options = sized<StructureViewOptions>(c);
+  const HexStructure& s = c.a.structure;
+  options.title = c.name + ": size gradation of the boundary hexes (p95 " + display_number(s.gradation.p95, 3) +
+                  ", max " + display_number(s.gradation.max, 3) + "; " + std::to_string(s.num_gradation_above_2) +
+                  " of all hexes above 2)";
+  const Vec3 direction = choose_gradation_viewpoint(c.a.mesh, c.a.topology, s, options);
+  Image image = render_gradation_view(c.a.mesh, c.a.topology, s, direction, options, c.renderer);
+  return {framed("views/size_gradation.png", std::move(image), c)};
+}
+
 // ---- the table's readers -----------------------------------------------------
 
 const ViewSpec* find_view(std::string_view id) {
@@ -337,9 +368,7 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
   HookedRenderer renderer(base_renderer, encode_pushed_views);
 
   ViewContext context{analysis, options, renderer, analysis.mesh_name(), {}};
-  context.last_camera = &renderer.last_camera;
-  context.last_aspect = &renderer.last_aspect;
-  context.last_size = &renderer.last_size;
+  context.last_frame = &renderer.last_frame;
   if (!analysis.glyphs) context.no_glyphs.vertex_cluster.assign(analysis.mesh.points.size(), kNoIndex);
   context.glyphs = analysis.glyphs ? &*analysis.glyphs : &context.no_glyphs;
   // The top clusters (C views; their worst vertices get D and E): as the glyph stage was asked.

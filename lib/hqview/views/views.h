@@ -49,7 +49,7 @@ struct ViewOptions {
 struct ViewContext;  // what the builders share (views.cpp)
 using ViewBuilder = std::vector<ViewFile> (*)(ViewContext&);
 
-// Where a view is shown: index.html's panels A-F, or boundary.html.
+// Where a view is shown: index.html's panels A-F and S, or boundary.html.
 enum class ViewPage { index, boundary };
 
 // What a view needs beyond the mesh.
@@ -58,7 +58,7 @@ enum class ViewNeeds { mesh, reference, compare };
 struct ViewSpec {
   std::string_view id;     // report.json views[].id
   std::string_view title;  // report.json views[].title
-  char panel;              // index.html panel 'A'..'F' (paper's letters); 0 on boundary.html
+  char panel;              // index.html panel 'A'..'F' (paper's letters), 'S' structure; 0 on boundary.html
   int panel_order;         // position inside its panel or page
   ViewNeeds needs;
   bool is_selectable;  // a --views id of its own; else drawn with the view before it
@@ -81,6 +81,8 @@ std::vector<ViewFile> build_boundary_area(ViewContext&);
 std::vector<ViewFile> build_histogram(ViewContext&);
 std::vector<ViewFile> build_histogram_log(ViewContext&);
 std::vector<ViewFile> build_sorted_quality(ViewContext&);
+std::vector<ViewFile> build_structure(ViewContext&);
+std::vector<ViewFile> build_size_gradation(ViewContext&);
 
 // Every view, in report order (the order they are drawn and listed).
 inline constexpr ViewSpec kViews[] = {
@@ -104,6 +106,9 @@ inline constexpr ViewSpec kViews[] = {
     {"histogram", "Quality histogram (per hex scaled Jacobian)", 'B', 1, ViewNeeds::mesh, true, 5, build_histogram},
     {"histogram_log", "Quality histogram, log scale", 'B', 2, ViewNeeds::mesh, false, -1, build_histogram_log},
     {"sorted_quality", "B: sorted vertex quality", 'B', 0, ViewNeeds::mesh, true, 1, build_sorted_quality},
+    {"structure", "Structure: the singularity graph by valence", 'S', 0, ViewNeeds::mesh, true, 12, build_structure},
+    {"size_gradation", "Structure: size gradation on the boundary", 'S', 1, ViewNeeds::mesh, true, -1,
+     build_size_gradation},
 };
 
 // The view of an id, or nullptr.

@@ -1,0 +1,257 @@
+#include "hqview/views/structure_views.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "hqview/core/error.h"
+#include "hqview/core/number_format.h"
+#include "hqview/image/colormap.h"
+#include "hqview/render/annotate.h"
+#include "hqview/render/camera.h"
+#include "hqview/render/upright.h"
+#include "hqview/views/main_views.h"
+#include "hqview/views/overview_views.h"
+
+namespace hq {
+namespace {
+
+constexpr double kNodeRadius = 0.2;  // of the median singular edge length
+constexpr Rgba8 kVeilColor{176, 182, 194, 56};     // the translucent boundary
+constexpr Rgba8 kNodeColor{40, 40, 46, 255};        // singularity nodes
+constexpr Rgba8 kGradationEdgeColor{40, 40, 46, 70};  // boundary edges over the gradation
+
+const Vec3& point(const HexMesh& mesh, Index v) { return mesh.points[static_cast<std::size_t>(v)]; }
+
+FigureLayout structure_layout(const StructureViewOptions& options, const AnnotationStyle& style) {
+  const int legend_width = static_cast<int>(std::lround(360 * style.scale));
+  return figure_layout(options.width, options.height, !options.title.empty(), legend_width, style);
+}
+
+Camera structure_camera(std::span<const Vec3> points, const Vec3& direction, double aspect,
+                        const StructureViewOptions& options) {
+  return fit_camera_to_points(points, direction, aspect,
+                              {.up = options.up, .fov_y_degrees = options.fov_y_degrees, .is_perspective = false});
+}
+
+void check_size(const StructureViewOptions& options) {
+  if (options.width <= 0 || options.height <= 0)
+    throw RenderError("structure view size must be positive, got " + std::to_string(options.width) + "x" +
+                      std::to_string(options.height));
+}
+
+// The boundary faces as two triangles each, one colour per face, flat.
+TriangleSet boundary_faces(const HexMesh& mesh, const Topology& topology, const Vec3& origin, auto color_of_face) {
+  TriangleSet set;
+  const std::size_t n = topology.boundary_faces.size();
+  set.positions.reserve(4 * n);
+  set.colors.reserve(4 * n);
+  set.indices.reserve(6 * n);
+  for (Index face : topology.boundary_faces) {
+    const Quad& q = topology.faces[static_cast<std::size_t>(face)];
+    const auto base = static_cast<std::uint32_t>(set.positions.size());
+    const Rgba8 color = color_of_face(face);
+    for (Index v : q) {
+      set.positions.push_back(to_vec3f(point(mesh, v) - origin));
+      set.colors.push_back(color);
+    }
+    for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) set.indices.push_back(base + i);
+  }
+  return set;
+}
+
+double median_singular_edge_length(const HexMesh& mesh, const HexStructure& s) {
+  std::vector<double> lengths;
+  for (const StructureEdge& e : s.edges)
+    if (e.singular) lengths.push_back(norm(point(mesh, e.vertices[1]) - point(mesh, e.vertices[0])));
+  if (lengths.empty()) return 0.0;
+  const auto middle = lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2);
+  std::nth_element(lengths.begin(), middle, lengths.end());
+  return *middle;
+}
+
+}  // namespace
+
+SingularClass singular_class(const StructureEdge& e) {
+  if (e.kind == EdgeKind::boundary) return e.valence <= 1 ? SingularClass::boundary_1 : SingularClass::boundary_3_plus;
+  if (e.valence == 3) return SingularClass::interior_3;
+  if (e.valence == 5) return SingularClass::interior_5;
+  if (e.valence >= 6) return SingularClass::interior_6_plus;
+  return SingularClass::interior_other;
+}
+
+Rgba8 singular_class_color(SingularClass c) {
+  switch (c) {
+    case SingularClass::interior_3: return {0, 114, 178, 255};       // blue
+    case SingularClass::interior_5: return {213, 94, 0, 255};        // vermillion
+    case SingularClass::interior_6_plus: return {204, 121, 167, 255};  // reddish purple
+    case SingularClass::interior_other: return {86, 180, 233, 255};  // sky blue
+    case SingularClass::boundary_1: return {0, 158, 115, 255};       // bluish green
+    case SingularClass::boundary_3_plus: return {230, 159, 0, 255};  // orange
+  }
+  return {0, 0, 0, 255};
+}
+
+const char* singular_class_label(SingularClass c) {
+  switch (c) {
+    case SingularClass::interior_3: return "interior, valence 3";
+    case SingularClass::interior_5: return "interior, valence 5";
+    case SingularClass::interior_6_plus: return "interior, valence 6+";
+    case SingularClass::interior_other: return "interior, valence 1-2";
+    case SingularClass::boundary_1: return "boundary, valence 1";
+    case SingularClass::boundary_3_plus: return "boundary, valence 3+";
+  }
+  return "";
+}
+
+Scene build_singularity_scene(const HexMesh& mesh, const Topology& topology, const HexStructure& structure,
+                              const StructureViewOptions& options) {
+  const Box3 box = boundary_bounding_box(mesh, topology);
+  Scene scene;
+  scene.origin = 0.5 * (box.lo + box.hi);
+  scene.background = options.background;
+  LineSet lines;
+  lines.width = options.edge_width;
+  for (const StructureEdge& e : structure.edges) {
+    if (!e.singular) continue;
+    const Rgba8 color = singular_class_color(singular_class(e));
+    for (Index v : e.vertices) {
+      lines.indices.push_back(static_cast<std::uint32_t>(lines.positions.size()));
+      lines.positions.push_back(to_vec3f(point(mesh, v) - scene.origin));
+      lines.colors.push_back(color);
+    }
+  }
+  scene.lines.push_back(std::move(lines));
+  SphereSet nodes;
+  const auto radius = static_cast<float>(kNodeRadius * median_singular_edge_length(mesh, structure));
+  if (radius > 0.0f)
+    for (Index v : structure.nodes) {
+      nodes.centers.push_back(to_vec3f(point(mesh, v) - scene.origin));
+      nodes.radii.push_back(radius);
+      nodes.colors.push_back(kNodeColor);
+    }
+  scene.spheres.push_back(std::move(nodes));
+  scene.translucent.push_back(boundary_faces(mesh, topology, scene.origin, [](Index) { return kVeilColor; }));
+  return scene;
+}
+
+double structure_view_aspect(const StructureViewOptions& options) {
+  const FigureLayout layout = structure_layout(options, annotation_style_for(options.height));
+  return static_cast<double>(std::max(1, layout.view.width)) / std::max(1, layout.view.height);
+}
+
+std::vector<Vec3> choose_singularity_viewpoints(const HexMesh& mesh, const Topology& topology,
+                                                const HexStructure& structure, int count,
+                                                const StructureViewOptions& options) {
+  std::vector<Vec3> centers;
+  std::vector<double> radii;
+  for (const StructureEdge& e : structure.edges)
+    if (e.singular) {
+      const Vec3 a = point(mesh, e.vertices[0]), b = point(mesh, e.vertices[1]);
+      centers.push_back(0.5 * (a + b));
+      radii.push_back(0.5 * norm(b - a));
+    }
+  return choose_viewpoints(boundary_points(mesh, topology), centers, radii, structure_view_aspect(options), count,
+                           options.up, options.fov_y_degrees);
+}
+
+Image render_singularity_view(const HexMesh& mesh, const Topology& topology, const HexStructure& structure,
+                              const Vec3& view_direction, const StructureViewOptions& options, Renderer& renderer) {
+  check_size(options);
+  AnnotationStyle style = annotation_style_for(options.height);
+  style.background = options.background;
+  const FigureLayout layout = structure_layout(options, style);
+  const double aspect = static_cast<double>(layout.view.width) / std::max(1, layout.view.height);
+  const Camera camera = structure_camera(boundary_points(mesh, topology), view_direction, aspect, options);
+  StructureViewOptions scaled = options;
+  scaled.edge_width = static_cast<float>(options.edge_width * style.scale);
+  const Scene scene = build_singularity_scene(mesh, topology, structure, scaled);
+
+  Image figure = render_figure(renderer, scene, camera, options.width, options.height, layout, options.title, style);
+
+  std::array<Index, kNumSingularClasses> counts{};
+  for (const StructureEdge& e : structure.edges)
+    if (e.singular) ++counts[static_cast<std::size_t>(singular_class(e))];
+  std::vector<LegendLine> lines{{std::nullopt, "singular edges"}};
+  for (int c = 0; c < kNumSingularClasses; ++c)
+    if (counts[static_cast<std::size_t>(c)] > 0)
+      lines.push_back({singular_class_color(static_cast<SingularClass>(c)),
+                       std::string(singular_class_label(static_cast<SingularClass>(c))) + ": " +
+                           std::to_string(counts[static_cast<std::size_t>(c)])});
+  if (structure.num_singular_edges_interior + structure.num_singular_edges_boundary == 0)
+    lines.push_back({std::nullopt, "none: every edge is regular"});
+  lines.push_back({kNodeColor, "nodes: " + std::to_string(structure.nodes.size()), 1});
+  lines.push_back({std::nullopt, "curves: " + std::to_string(structure.num_curves)});
+  lines.push_back({std::nullopt, "irregular boundary edges: " + std::to_string(structure.num_irregular_edges_boundary)});
+  if (structure.num_nonmanifold_edges > 0)
+    lines.push_back({std::nullopt, "non-manifold edges: " + std::to_string(structure.num_nonmanifold_edges)});
+  lines.push_back({Rgba8{176, 182, 194, 255}, "boundary (translucent)", 1});
+  draw_legend(figure, layout.legend, lines, style);
+  return figure;
+}
+
+Color gradation_color(double g) {
+  if (std::isnan(g)) return kUndefinedColor;
+  return sample_quality_map(1.0 - std::clamp(std::log2(std::max(g, 1.0)) / 2.0, 0.0, 1.0));
+}
+
+Vec3 choose_gradation_viewpoint(const HexMesh& mesh, const Topology& topology, const HexStructure& structure,
+                                const StructureViewOptions& options) {
+  std::vector<Vec3> centers;
+  std::vector<double> radii;
+  for (Index face : topology.boundary_faces) {
+    const Index h = topology.face_hexes[static_cast<std::size_t>(topology.face_hex_offsets[static_cast<std::size_t>(face)])];
+    if (!(structure.cell_gradation[static_cast<std::size_t>(h)] > 2.0)) continue;
+    const Quad& q = topology.faces[static_cast<std::size_t>(face)];
+    centers.push_back(0.25 * (point(mesh, q[0]) + point(mesh, q[1]) + point(mesh, q[2]) + point(mesh, q[3])));
+    radii.push_back(0.5 * norm(point(mesh, q[2]) - point(mesh, q[0])));
+  }
+  return choose_viewpoints(boundary_points(mesh, topology), centers, radii, structure_view_aspect(options), 1,
+                           options.up, options.fov_y_degrees)
+      .front();
+}
+
+Image render_gradation_view(const HexMesh& mesh, const Topology& topology, const HexStructure& structure,
+                            const Vec3& view_direction, const StructureViewOptions& options, Renderer& renderer) {
+  check_size(options);
+  if (structure.cell_gradation.size() != mesh.hexes.size())
+    throw Error("size gradation has " + std::to_string(structure.cell_gradation.size()) + " values for " +
+                std::to_string(mesh.hexes.size()) + " hexes");
+  AnnotationStyle style = annotation_style_for(options.height);
+  style.background = options.background;
+  ColorBar bar;
+  bar.label = "size gradation:\nvolume ratio to a\nface neighbour (max)";
+  bar.min_value = 0.0;
+  bar.max_value = 2.0;  // log2 of the gradation
+  for (int i = 0; i <= 32; ++i) bar.colors.push_back(gradation_color(std::exp2(2.0 * i / 32.0)));
+  bar.ticks = {{0.0, "1"}, {std::log2(1.5), "1.5"}, {1.0, "2"}, {std::log2(3.0), "3"}, {2.0, ">= 4"}};
+  bar.swatches = {{kUndefinedColor, "undefined"}};
+  const FigureLayout layout =
+      figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(bar, style), style);
+  const double aspect = static_cast<double>(layout.view.width) / std::max(1, layout.view.height);
+  const Camera camera = structure_camera(boundary_points(mesh, topology), view_direction, aspect, options);
+
+  const Box3 box = boundary_bounding_box(mesh, topology);
+  Scene scene;
+  scene.origin = 0.5 * (box.lo + box.hi);
+  scene.background = options.background;
+  scene.triangles.push_back(boundary_faces(mesh, topology, scene.origin, [&](Index face) {
+    const Index h = topology.face_hexes[static_cast<std::size_t>(topology.face_hex_offsets[static_cast<std::size_t>(face)])];
+    return to_rgba8(gradation_color(structure.cell_gradation[static_cast<std::size_t>(h)]));
+  }));
+  LineSet edges;
+  edges.width = static_cast<float>(std::max(1.0, style.scale));
+  for (const Edge& e : boundary_edges(topology))
+    for (Index v : e) {
+      edges.indices.push_back(static_cast<std::uint32_t>(edges.positions.size()));
+      edges.positions.push_back(to_vec3f(point(mesh, v) - scene.origin));
+      edges.colors.push_back(kGradationEdgeColor);
+    }
+  scene.lines.push_back(std::move(edges));
+
+  Image figure = render_figure(renderer, scene, camera, options.width, options.height, layout, options.title, style);
+  draw_color_bar(figure, layout.legend, bar, style);
+  return figure;
+}
+
+}  // namespace hq

@@ -1,0 +1,74 @@
+#pragma once
+// The structure views (index.html's panel S, after A): the singularity graph
+// and the size gradation.
+//   - Singularity graph: the singular edges (HexStructure) as thick lines
+//     coloured by their class (a fixed palette, one legend entry each, with
+//     its count), the singularity nodes as small dark spheres, inside the
+//     boundary drawn as a translucent grey veil; orthographic and upright,
+//     from the viewpoints that show the most singular edges (choose_viewpoints
+//     with a sphere on each singular edge).
+//   - Size gradation: every boundary face coloured by its hex's gradation on
+//     a fixed log scale from 1 (pale: equal neighbours) to 4 and more (red),
+//     grey where undefined; upright, from the viewpoint that shows the most
+//     faces above 2 (the three-quarter view when there are none).
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "hqview/image/image.h"
+#include "hqview/mesh/hex_mesh.h"
+#include "hqview/mesh/topology.h"
+#include "hqview/render/renderer.h"
+#include "hqview/render/scene.h"
+#include "hqview/structure/structure.h"
+
+namespace hq {
+
+// The classes of singular edges, in legend order.
+enum class SingularClass { interior_3, interior_5, interior_6_plus, interior_other, boundary_1, boundary_3_plus };
+inline constexpr int kNumSingularClasses = 6;
+SingularClass singular_class(const StructureEdge& e);
+// Okabe-Ito colours (told apart with colour-blindness too), never grey.
+Rgba8 singular_class_color(SingularClass c);
+const char* singular_class_label(SingularClass c);  // "interior valence 3", ...
+
+struct StructureViewOptions {
+  int width = 1600;  // figure size in pixels, legend and title included
+  int height = 1200;
+  std::string title;  // empty: no title band
+  Rgba8 background{255, 255, 255, 255};
+  float edge_width = 4.0f;       // singular edges, output pixels at 1200 pixels of height
+  Vec3 up{0.0, 0.0, 1.0};        // the model axis drawn upwards (--up)
+  double fov_y_degrees = 30.0;
+};
+
+// The singularity graph's scene: translucent boundary, lines, node spheres
+// (radius 0.2 of the median singular edge length).
+Scene build_singularity_scene(const HexMesh& mesh, const Topology& topology, const HexStructure& structure,
+                              const StructureViewOptions& options);
+
+// Width / height of the 3D area of a structure figure.
+double structure_view_aspect(const StructureViewOptions& options);
+
+// The count upright directions that show the most of the singular edges
+// (each a sphere of half its length); the three-quarter views without any.
+std::vector<Vec3> choose_singularity_viewpoints(const HexMesh& mesh, const Topology& topology,
+                                                const HexStructure& structure, int count,
+                                                const StructureViewOptions& options);
+
+Image render_singularity_view(const HexMesh& mesh, const Topology& topology, const HexStructure& structure,
+                              const Vec3& view_direction, const StructureViewOptions& options, Renderer& renderer);
+
+// The colour of a size gradation g: sample_quality_map(1 - log2(g) / 2)
+// (g = 1 pale, g >= 4 red), kUndefinedColor for NaN.
+Color gradation_color(double g);
+
+// One upright direction for the gradation view.
+Vec3 choose_gradation_viewpoint(const HexMesh& mesh, const Topology& topology, const HexStructure& structure,
+                                const StructureViewOptions& options);
+
+Image render_gradation_view(const HexMesh& mesh, const Topology& topology, const HexStructure& structure,
+                            const Vec3& view_direction, const StructureViewOptions& options, Renderer& renderer);
+
+}  // namespace hq

@@ -1,0 +1,115 @@
+// The structure views' scenes, palette and viewpoints, built without OpenGL.
+#include "hqview/views/structure_views.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "hqview/image/colormap.h"
+#include "hqview/render/upright.h"
+#include "support/fixtures.h"
+
+namespace hq {
+namespace {
+
+int channel_distance(Rgba8 a, Rgba8 b) {
+  return std::abs(a.r - b.r) + std::abs(a.g - b.g) + std::abs(a.b - b.b);
+}
+
+TEST(StructureViews, TheSixClassesHaveDistinctColoursNoneGrey) {
+  for (int i = 0; i < kNumSingularClasses; ++i) {
+    const Rgba8 c = singular_class_color(static_cast<SingularClass>(i));
+    const int spread = std::max({c.r, c.g, c.b}) - std::min({c.r, c.g, c.b});
+    EXPECT_GT(spread, 80) << singular_class_label(static_cast<SingularClass>(i)) << " is greyish";
+    for (int j = 0; j < i; ++j)
+      EXPECT_GT(channel_distance(c, singular_class_color(static_cast<SingularClass>(j))), 80) << i << " vs " << j;
+  }
+  StructureEdge e;
+  e.singular = true;
+  const std::pair<Index, SingularClass> interior[] = {{1, SingularClass::interior_other}, {2, SingularClass::interior_other},
+                                                      {3, SingularClass::interior_3},     {5, SingularClass::interior_5},
+                                                      {6, SingularClass::interior_6_plus}, {9, SingularClass::interior_6_plus}};
+  for (auto [valence, expected] : interior) {
+    e.valence = valence;
+    EXPECT_EQ(singular_class(e), expected) << valence;
+  }
+  e.kind = EdgeKind::boundary;
+  e.valence = 1;
+  EXPECT_EQ(singular_class(e), SingularClass::boundary_1);
+  e.valence = 4;
+  EXPECT_EQ(singular_class(e), SingularClass::boundary_3_plus);
+}
+
+TEST(StructureViews, AGridShowsItsTwelveBoxEdgesAndEightNodes) {
+  const HexMesh mesh = test::grid(3);
+  const Topology topology = build_topology(mesh);
+  const HexStructure s = compute_structure(mesh, topology);
+  const Scene scene = build_singularity_scene(mesh, topology, s, {});
+  ASSERT_EQ(scene.lines.size(), 1u);
+  EXPECT_EQ(segment_count(scene), 36u);
+  for (const Rgba8& c : scene.lines[0].colors)
+    EXPECT_EQ(channel_distance(c, singular_class_color(SingularClass::boundary_1)), 0);
+  // Every segment lies on an edge of the box [0, 3]^3: two coordinates at 0 or 3.
+  const auto& p = scene.lines[0].positions;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec3 m = scene.origin + Vec3{p[i].x, p[i].y, p[i].z};
+    int on_faces = 0;
+    for (double c : {m.x, m.y, m.z}) on_faces += std::abs(c) < 1e-6 || std::abs(c - 3.0) < 1e-6;
+    EXPECT_GE(on_faces, 2) << i;
+  }
+  ASSERT_EQ(sphere_count(scene), 8u);
+  EXPECT_FLOAT_EQ(scene.spheres[0].radii[0], 0.2f);  // 0.2 of the unit edge
+  ASSERT_EQ(scene.translucent.size(), 1u);
+  EXPECT_EQ(scene.translucent[0].indices.size(), 54u * 6u);
+  for (const Rgba8& c : scene.translucent[0].colors) EXPECT_LT(c.a, 128);
+  EXPECT_TRUE(scene.triangles.empty());  // nothing opaque hides an interior edge
+}
+
+TEST(StructureViews, ACavityDrawsItsTwelveConcaveEdgesInTheValenceThreeColour) {
+  HexMesh mesh = test::grid(3);
+  mesh.hexes.erase(mesh.hexes.begin() + 13);
+  const Topology topology = build_topology(mesh);
+  const Scene scene = build_singularity_scene(mesh, topology, compute_structure(mesh, topology), {});
+  int concave = 0;
+  for (std::size_t i = 0; i < scene.lines[0].colors.size(); i += 2)
+    concave += channel_distance(scene.lines[0].colors[i], singular_class_color(SingularClass::boundary_3_plus)) == 0;
+  EXPECT_EQ(concave, 12);
+  EXPECT_EQ(sphere_count(scene), 16u);
+}
+
+TEST(StructureViews, ViewpointsAreUprightAndApart) {
+  for (const Vec3 up : {Vec3{0, 0, 1}, Vec3{0, 1, 0}}) {
+    HexMesh mesh = test::box_grid(2, 3, 4);
+    const Topology topology = build_topology(mesh);
+    const HexStructure s = compute_structure(mesh, topology);
+    StructureViewOptions options;
+    options.up = up;
+    const std::vector<Vec3> d = choose_singularity_viewpoints(mesh, topology, s, 2, options);
+    ASSERT_EQ(d.size(), 2u);
+    for (const Vec3& v : d) {
+      const double elevation = view_elevation_degrees(v, up);
+      EXPECT_GE(elevation, 15.0 - 1e-9);
+      EXPECT_LE(elevation, 35.0 + 1e-9);
+    }
+    double gap = std::abs(view_azimuth_degrees(d[0], up) - view_azimuth_degrees(d[1], up));
+    EXPECT_GE(gap > 180 ? 360 - gap : gap, 90.0 - 1e-9);
+  }
+}
+
+TEST(StructureViews, GradationColoursRunFromPaleToRedOnALogScale) {
+  EXPECT_EQ(to_rgba8(gradation_color(1.0)).r, to_rgba8(sample_quality_map(1.0)).r);
+  EXPECT_EQ(channel_distance(to_rgba8(gradation_color(2.0)), to_rgba8(sample_quality_map(0.5))), 0);
+  EXPECT_EQ(channel_distance(to_rgba8(gradation_color(4.0)), to_rgba8(sample_quality_map(0.0))), 0);
+  EXPECT_EQ(channel_distance(to_rgba8(gradation_color(40.0)), to_rgba8(sample_quality_map(0.0))), 0);
+  EXPECT_EQ(channel_distance(to_rgba8(gradation_color(std::nan(""))), to_rgba8(kUndefinedColor)), 0);
+  double previous = 101.0;
+  for (double g = 1.0; g <= 4.0; g += 0.25) {
+    const double l = cie_lightness(gradation_color(g));
+    EXPECT_LT(l, previous) << g;  // darker as the jump grows
+    previous = l;
+  }
+}
+
+}  // namespace
+}  // namespace hq
