@@ -350,6 +350,48 @@ void set_panels(data& page, const ReportModel& model, const PanelIndex& index) {
   page.set("has_views", !model.views.empty());
 }
 
+// The structure table: counts of report.json `structure`, one row each.
+void set_structure(data& page, const HexStructure& s) {
+  data rows{data::type::list};
+  auto row = [&rows](const std::string& name, const std::string& value, const std::string& key) {
+    data d;
+    d.set("name", name);
+    d.set("value", value);
+    d.set("key", key);
+    rows.push_back(d);
+  };
+  auto by_valence = [](const std::map<Index, Index>& counts) {
+    std::string text;
+    for (const auto& [valence, count] : counts)
+      text += (text.empty() ? "" : ", ") + std::string("valence ") + std::to_string(valence) + ": " + display_count(count);
+    return text.empty() ? std::string("none") : text;
+  };
+  row("edges", display_count(s.num_edges), "num_edges");
+  row("singular interior edges (valence ≠ 4)", display_count(s.num_singular_edges_interior) + " — " +
+      by_valence(s.interior_by_valence), "num_singular_edges_interior");
+  row("singular boundary edges (valence ≠ 2)", display_count(s.num_singular_edges_boundary) + " — " +
+      by_valence(s.boundary_by_valence), "num_singular_edges_boundary");
+  row("irregular boundary edges (valence ≠ round(angle / 90°))", display_count(s.num_irregular_edges_boundary),
+      "num_irregular_edges_boundary");
+  row("non-manifold edges", display_count(s.num_nonmanifold_edges), "num_nonmanifold_edges");
+  row("singular vertices", display_count(s.num_singular_vertices), "num_singular_vertices");
+  row("singularity nodes", display_count(static_cast<long long>(s.nodes.size())), "num_singularity_nodes");
+  std::string curves = display_count(s.num_curves);
+  if (!s.curve_lengths.empty()) {
+    const auto [lo, hi] = std::minmax_element(s.curve_lengths.begin(), s.curve_lengths.end());
+    curves += " — " + std::to_string(*lo) + " to " + std::to_string(*hi) + " edges long";
+  }
+  row("singular curves", curves, "num_singular_curves");
+  row("size gradation (volume ratio to a face neighbour)",
+      s.gradation.count == 0 ? std::string("undefined")
+                             : "median " + display_number(s.gradation.p50, 3) + ", p95 " +
+                                   display_number(s.gradation.p95, 3) + ", max " + display_number(s.gradation.max, 3) +
+                                   "; above 2: " + display_count(s.num_gradation_above_2) +
+                                   ", above 4: " + display_count(s.num_gradation_above_4),
+      "size_gradation");
+  page.set("structure_rows", rows);
+}
+
 // The statistics of the Jacobian fields and of every Verdict metric.
 void set_statistics(data& page, const QualitySummary& q) {
   data stats{data::type::list};
@@ -541,6 +583,7 @@ std::string index_html(const ReportModel& model) {
   set_headline(page, model);
   set_panels(page, model, index);
   set_statistics(page, model.analysis.quality);
+  set_structure(page, model.analysis.structure);
   set_gates(page, model.gates);
   set_worst(page, model.analysis.quality, index);
   set_mesh_rows(page, model.analysis.mesh_summary);
