@@ -29,6 +29,7 @@
 #include "hqview/pipeline/diff.h"
 #include "hqview/render/osmesa_renderer.h"
 #include "hqview/render/upright.h"
+#include "hqview/report/comparison.h"
 #include "hqview/report/atomic_file.h"
 #include "hqview/report/batch_index.h"
 #include "hqview/report/bundle_writer.h"
@@ -152,13 +153,26 @@ struct BatchArgs {
   std::string shard;
   std::string memory_budget;  // e.g. 8G; default: half the physical memory
   bool resume = false;
+  std::string compare_keys;  // --compare-keys; empty: the default keys
 };
 
 struct MergeArgs {
   std::vector<std::string> shards;
   std::string output;
   bool force = false;
+  std::string compare_keys;
 };
+
+constexpr const char* kCompareKeysHelp =
+    "Keys of the method comparison tables (comparison.md/.tex, index.html), comma-separated report.json paths, e.g. "
+    "quality.scaled_jacobian.min,quality.num_inverted (default: #V, #H, min and mean SJ, #inverted, Hausdorff, "
+    "singular interior edges)";
+
+// The comparison keys of --compare-keys (nullopt: the default keys).
+std::optional<std::vector<hq::ComparisonKey>> comparison_keys_of(const std::string& list) {
+  if (list.empty()) return std::nullopt;
+  return hq::parse_comparison_keys(list);
+}
 
 struct DiffArgs {
   std::string baseline;
@@ -285,6 +299,7 @@ CLI::App* add_batch_command(CLI::App& app, BatchArgs& args) {
   cmd->add_option("--shard", args.shard,
                   "Only shard I of N (1-based, stable by path); join shards with `hqview merge`");
   cmd->add_flag("--resume", args.resume, "Keep a bundle whose mesh hash and HQView version are unchanged");
+  cmd->add_option("--compare-keys", args.compare_keys, kCompareKeysHelp);
   cmd->add_option("--memory-budget", args.memory_budget,
                   "Estimated memory of the meshes in flight, e.g. 8G (default: half the physical memory; 0: no limit)");
   add_analysis_options(cmd, a);
@@ -296,6 +311,7 @@ CLI::App* add_merge_command(CLI::App& app, MergeArgs& args) {
   cmd->add_option("SHARD_DIR", args.shards, "Output directories of the shards")->required();
   cmd->add_option("-o,--output", args.output, "Merged output directory")->required();
   cmd->add_flag("--force", args.force, "Write into a directory that is not an HQView output");
+  cmd->add_option("--compare-keys", args.compare_keys, kCompareKeysHelp);
   return cmd;
 }
 
@@ -322,6 +338,7 @@ int run_batch_command(const BatchArgs& args, int jobs) {
   options.force = args.analysis.force;
   options.memory_budget = parse_memory_budget(args.memory_budget);
   if (!args.analysis.no_render) options.make_renderer = [] { return hq::make_osmesa_renderer(); };
+  const auto keys = comparison_keys_of(args.compare_keys);  // a usage error before any mesh is read
   std::vector<hq::BatchInput> inputs = hq::collect_batch_inputs(args.input);
   if (!args.shard.empty()) inputs = hq::select_shard(inputs, parse_shard(args.shard));
   hq::check_batch_output_dir(options.output, options.force);
@@ -329,7 +346,7 @@ int run_batch_command(const BatchArgs& args, int jobs) {
 
   StderrProgress progress(args.analysis.quiet);
   const std::vector<hq::BatchEntry> entries = hq::run_batch(inputs, options, &progress);
-  hq::write_batch_index(entries, HQVIEW_VERSION, options.output);
+  hq::write_batch_index(entries, HQVIEW_VERSION, options.output, keys ? &*keys : nullptr);
   if (!args.analysis.quiet)
     std::cerr << "hqview: " << entries.size() << " meshes; index written to "
               << (options.output / "index.html").string() << "\n";
@@ -341,9 +358,10 @@ int run_batch_command(const BatchArgs& args, int jobs) {
 
 int run_merge_command(const MergeArgs& args) {
   std::vector<fs::path> shards(args.shards.begin(), args.shards.end());
+  const auto keys = comparison_keys_of(args.compare_keys);
   hq::check_batch_output_dir(args.output, args.force);
   const std::vector<hq::BatchEntry> entries = hq::merge_shards(shards, args.output);
-  hq::write_batch_index(entries, HQVIEW_VERSION, args.output);
+  hq::write_batch_index(entries, HQVIEW_VERSION, args.output, keys ? &*keys : nullptr);
   std::cerr << "hqview: merged " << entries.size() << " meshes from " << shards.size() << " shards into "
             << (fs::path(args.output) / "index.html").string() << "\n";
   return batch_exit_code(entries);

@@ -8,6 +8,8 @@
 #include "hqview/core/error.h"
 #include "hqview/report/batch_index.h"
 
+#include <nlohmann/json.hpp>
+
 namespace hq {
 namespace {
 
@@ -150,6 +152,86 @@ TEST(BatchIndex, MarkdownTableAndProblems) {
   // the error's colons are backslash-escaped.
   EXPECT_NE(md.find("a\\|b\\.mesh"), std::string::npos) << md;
   EXPECT_NE(md.find("- c\\.mesh: c\\.mesh\\:3\\: expected 8 vertex ids"), std::string::npos) << md;
+}
+
+TEST(ModelOfPath, HexMarkersVariantSuffixesAndGenericStems) {
+  // The names of HexaLab's published index and of ../shared/data.
+  const std::pair<const char*, ModelAndVariant> cases[] = {
+      {"gao2016_sweeping/bunny_1.mesh", {"bunny", "1"}},
+      {"livesu2015_edgecone/bunny_in.mesh", {"bunny", "in"}},
+      {"bunny_out.mesh", {"bunny", "out"}},
+      {"hex_mesh/cat/cat_2_padded.mesh", {"cat", "2_padded"}},
+      {"Dolphin_padded.mesh", {"dolphin", "padded"}},
+      {"armadillo_stresstest_out.mesh", {"armadillo_stresstest", "out"}},
+      {"bunny_hex.mesh", {"bunny", ""}},
+      {"Kiss_hex_coarse.mesh", {"kiss", "coarse"}},
+      {"Armadillo_hex-a.vtk", {"armadillo", "a"}},
+      {"kitten-hex.vtk", {"kitten", ""}},
+      {"bunny_hex_opt.mesh", {"bunny", "opt"}},
+      {"anc101/hex.vtk", {"anc101", ""}},
+      {"asm/polycube_in.mesh", {"asm", "polycube_in"}},
+      {"asm/model_out.mesh", {"asm", "model_out"}},
+      {"double torus/double torus.vtk", {"double torus", ""}},
+      {"hexagon.mesh", {"hexagon", ""}},  // "hex" inside a word is no marker
+      {"fandisk.mesh", {"fandisk", ""}},
+      {"hex.vtk", {"hex", ""}},  // no folder to name it
+  };
+  for (const auto& [path, expected] : cases) {
+    const ModelAndVariant mv = model_of_path(path);
+    EXPECT_EQ(mv.model, expected.model) << path;
+    EXPECT_EQ(mv.variant, expected.variant) << path;
+  }
+}
+
+TEST(Manifest, ModelAndVariantColumnsWin) {
+  const auto rows = parse_manifest(
+      "mesh,method,model,variant\n"
+      "a/bunny_in.mesh,ec,,\n"
+      "a/bunny_out.mesh,ec,rabbit,\n"
+      "a/bunny_3.mesh,ec,,fine\n",
+      "m.csv", "/d", false);
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0].model, "bunny");
+  EXPECT_EQ(rows[0].variant, "in");
+  EXPECT_EQ(rows[1].model, "rabbit");  // a model alone: its only variant
+  EXPECT_EQ(rows[1].variant, "");
+  EXPECT_EQ(rows[2].model, "bunny");
+  EXPECT_EQ(rows[2].variant, "fine");
+}
+
+TEST(HexaLabIndex, TrailingCommaSpacesYearsAndSkippedFiles) {
+  // The published file's quirks: a trailing comma inside "paper", a year as
+  // a string and one as a number, a path with spaces and non-ASCII, a
+  // generic stem, the same file name in two sources, a surface file.
+  const std::string text = R"({
+    "sources": [
+      {"paper": {"title": "Edge-Cone", "year": "2015", "DOI": "10.1145/2766905",},
+       "path": "2015 - Édge cone", "label": "edgecone",
+       "data": ["bunny_in.mesh", "bunny_out.mesh", "bunny.off"]},
+      {"paper": {"title": "ℓ1 polycube", "year": 2014, "DOI": ""},
+       "path": "l1", "label": "ℓ1",
+       "data": ["bunny/hex.vtk", "bunny_out.mesh"]},
+    ]
+  })";
+  const auto rows = parse_manifest(text, "index.json", "/hl", true);
+  ASSERT_EQ(rows.size(), 5u);
+  EXPECT_EQ(rows[0].path, "2015 - Édge cone/bunny_in.mesh");
+  EXPECT_EQ(rows[0].mesh_file, "/hl/2015 - Édge cone/bunny_in.mesh");
+  EXPECT_EQ(rows[0].label, "edgecone");
+  EXPECT_EQ(rows[0].model, "bunny");
+  EXPECT_EQ(rows[0].variant, "in");
+  EXPECT_EQ(rows[0].paper, (PaperInfo{"Edge-Cone", "2015", "10.1145/2766905"}));
+  EXPECT_TRUE(rows[0].skip_reason.empty());
+  EXPECT_NE(rows[2].skip_reason.find("not a hex mesh"), std::string::npos);
+  EXPECT_EQ(rows[3].model, "bunny");  // l1/bunny/hex.vtk: the folder names it
+  EXPECT_EQ(rows[3].paper.year, "2014");
+  EXPECT_EQ(rows[4].path, "l1/bunny_out.mesh");  // same name, other source
+  // Strict JSON elsewhere: a trailing comma in a plain manifest is an error.
+  EXPECT_THROW(parse_manifest(R"([{"mesh": "a.mesh",}])", "m.json", "/d", true), ParseError);
+  EXPECT_EQ(strip_trailing_commas(R"({"a": [1, 2, ], "s": ",}", "b": {"c": 1 ,
+  }})"),
+            R"({"a": [1, 2 ], "s": ",}", "b": {"c": 1 
+  }})");
 }
 
 }  // namespace

@@ -17,6 +17,8 @@
 #include <string_view>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "hqview/pipeline/analyze.h"
 #include "hqview/report/batch_index.h"
 
@@ -29,8 +31,37 @@ struct BatchInput {
   std::filesystem::path reference_file;  // --reference for this mesh; empty: none
   std::filesystem::path compare_file;    // --compare for this mesh (MESH2); empty: none
   std::string label;                     // method / algorithm, for the per-method comparison
-  std::string model;                     // model name (rows of the method comparison); default: file stem
+  std::string model;                     // model name (rows of the method comparison); default: model_of_path
+  std::string variant;                   // which mesh of the model and method; default: model_of_path
+  PaperInfo paper;                       // the method's paper (HexaLab's index.json)
+  std::string skip_reason;               // not empty: listed but not analysed (not a hex mesh)
 };
+
+// The model and variant a mesh path stands for, when the manifest does not
+// say (docs/batch.md, "Models and variants"): the file stem, lower-cased;
+// a hex marker ("_hex", "-hex", ".hex") ends the model, what follows it is
+// the variant ("kiss_hex_coarse" -> kiss, coarse); else trailing variant
+// suffixes ("_in", "_out", "_padded", "_opt", "_graded", "_coarse", "_fine",
+// "_final", "_<digits>", also with '-') move to the variant ("cat_2_padded"
+// -> cat, 2_padded); a stem left empty or generic ("hex", "mesh", "model",
+// "polycube", "volume", "output", "result", "input") names no model: the
+// parent folder does, and the whole stem is the variant ("asm/polycube_in"
+// -> asm, polycube_in; "anc101/hex" -> anc101, "").
+struct ModelAndVariant {
+  std::string model, variant;
+};
+ModelAndVariant model_of_path(const std::filesystem::path& mesh);
+
+// HexaLab's datasets/index.json as it is published: {"sources": [{"paper":
+// {title, year, DOI, ...}, "path": folder, "label": method, "data": [mesh
+// paths relative to the folder]}]}; a trailing comma before } or ] is
+// accepted here (the published file has one), nowhere else. Files that are
+// not hex meshes become skipped rows. Throws ParseError naming the source.
+std::vector<BatchInput> parse_hexalab_index(const nlohmann::json& index, const std::string& name,
+                                            const std::filesystem::path& base_dir);
+// The text without commas that directly precede (blanks between) a } or ]
+// outside strings: JSON with trailing commas made strict.
+std::string strip_trailing_commas(std::string_view text);
 
 // True for the hex mesh extensions read_hex_mesh() knows (.mesh .vtk .vtu
 // .msh .ovm .inp .e .exo; any case).
@@ -43,8 +74,8 @@ bool is_hex_mesh_extension(const std::filesystem::path& path);
 std::vector<BatchInput> collect_directory(const std::filesystem::path& dir);
 
 // A manifest: CSV with a header row naming the columns (mesh, reference,
-// compare, label or method, model; only mesh is required), or JSON (an array
-// of objects with those keys, or of strings). Relative file names are
+// compare, label or method, model, variant; only mesh is required), or JSON
+// (an array of objects with those keys, or of strings, or HexaLab's index). Relative file names are
 // relative to the manifest's directory; rows keep the manifest's order until
 // the index sorts them. Throws ParseError (`path:line: what`) on a malformed
 // row or a duplicate mesh.

@@ -17,6 +17,7 @@
 #include "hqview/core/error.h"
 #include "hqview/core/number_format.h"
 #include "hqview/report/atomic_file.h"
+#include "hqview/report/comparison.h"
 #include "hqview/report/escape.h"
 #include "hqview/report/json_path.h"
 #include "hqview/report/report_templates.h"
@@ -30,8 +31,9 @@ namespace {
 constexpr int kIndexSchemaVersion = 1;
 
 // Column titles of the headline keys (kHeadlineKeys order).
-constexpr const char* kHeadlineTitles[] = {"#V",     "#H",        "min SJ",        "mean SJ",
-                                           "p05 SJ", "#inverted", "#intersecting", "Hausdorff (rel.)"};
+constexpr const char* kHeadlineTitles[] = {"#V",        "#H",        "min SJ",           "mean SJ",
+                                           "p05 SJ",    "#inverted", "#intersecting",    "Hausdorff (rel.)",
+                                           "#singular interior edges", "#singular boundary edges"};
 static_assert(std::size(kHeadlineTitles) == kNumHeadlineKeys);
 
 std::string show(std::optional<double> v) { return v ? display_number(*v) : "–"; }
@@ -47,6 +49,7 @@ BatchStatus status_from(const std::string& s, const std::string& name) {
   if (s == "ok") return BatchStatus::ok;
   if (s == "gate_failed") return BatchStatus::gate_failed;
   if (s == "failed") return BatchStatus::failed;
+  if (s == "skipped") return BatchStatus::skipped;
   throw InputError(name + ": unknown mesh status '" + s + "'");
 }
 
@@ -70,6 +73,8 @@ std::string_view to_string(BatchStatus status) {
       return "gate_failed";
     case BatchStatus::failed:
       return "failed";
+    case BatchStatus::skipped:
+      return "skipped";
   }
   return "failed";
 }
@@ -96,6 +101,7 @@ std::vector<MethodSummary> summarize_methods(const std::vector<BatchEntry>& entr
   const std::size_t k_mean = headline_index("quality.scaled_jacobian.mean");
   const std::size_t k_inv = headline_index("quality.num_inverted");
   for (const BatchEntry& e : entries) {  // entries are sorted: fixed-order sums
+    if (e.status == BatchStatus::skipped) continue;
     MethodSummary& m = by_label[e.label];
     m.label = e.label;
     ++m.num_meshes;
@@ -132,19 +138,27 @@ std::string batch_index_json(const std::vector<BatchEntry>& entries, const std::
   json j = json::object();
   j["schema_version"] = kIndexSchemaVersion;
   j["tool"] = {{"name", "hqview"}, {"version", tool_version}};
-  int ok = 0, gate_failed = 0, failed = 0;
+  int ok = 0, gate_failed = 0, failed = 0, skipped = 0;
   for (const BatchEntry& e : entries) {
     ok += e.status == BatchStatus::ok;
     gate_failed += e.status == BatchStatus::gate_failed;
     failed += e.status == BatchStatus::failed;
+    skipped += e.status == BatchStatus::skipped;
   }
-  j["counts"] = {{"meshes", entries.size()}, {"ok", ok}, {"gate_failed", gate_failed}, {"failed", failed}};
+  j["counts"] = {{"meshes", entries.size() - static_cast<std::size_t>(skipped)},
+                 {"ok", ok},
+                 {"gate_failed", gate_failed},
+                 {"failed", failed},
+                 {"skipped", skipped}};
   json meshes = json::array();
   for (const BatchEntry& e : entries) {
     json m = json::object();
     m["path"] = e.path;
     m["label"] = e.label;
     m["model"] = e.model;
+    m["variant"] = e.variant;
+    m["paper"] = e.paper.empty() ? json(nullptr)
+                                 : json{{"title", e.paper.title}, {"year", e.paper.year}, {"doi", e.paper.doi}};
     m["status"] = std::string(to_string(e.status));
     m["error"] = e.error.empty() ? json(nullptr) : json(e.error);
     m["bundle"] = e.bundle.empty() ? json(nullptr) : json(e.bundle);
@@ -181,6 +195,9 @@ std::vector<BatchEntry> parse_batch_index_json(std::string_view text, const std:
       e.path = m.at("path").get<std::string>();
       e.label = m.value("label", "");
       e.model = m.value("model", "");
+      e.variant = m.value("variant", "");
+      if (m.contains("paper") && m["paper"].is_object())
+        e.paper = {m["paper"].value("title", ""), m["paper"].value("year", ""), m["paper"].value("doi", "")};
       e.status = status_from(m.at("status").get<std::string>(), name);
       if (m.contains("error") && m["error"].is_string()) e.error = m["error"].get<std::string>();
       if (m.contains("bundle") && m["bundle"].is_string()) e.bundle = m["bundle"].get<std::string>();
@@ -198,7 +215,79 @@ std::vector<BatchEntry> parse_batch_index_json(std::string_view text, const std:
   return entries;
 }
 
-std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::string& tool_version) {
+namespace {
+
+// The Comparison section's tables (comparison.h), one per key.
+kainjow::mustache::data comparison_data(const std::vector<BatchEntry>& entries, const std::vector<ComparisonKey>& keys) {
+  using kainjow::mustache::data;
+  const Comparison c = build_comparison(entries, keys);
+  data methods = data::type::list;
+  for (const MethodColumn& m : c.methods) {
+    data d;
+    d.set("label", m.label);
+    d.set("year", m.paper.year);
+    d.set("title", m.paper.title);
+    d.set("doi", m.paper.doi);
+    d.set("num_meshes", std::to_string(m.num_meshes));
+    d.set("num_models", std::to_string(m.num_models));
+    d.set("num_valid", std::to_string(m.num_valid));
+    d.set("num_failed", std::to_string(m.num_failed));
+    data stats = data::type::list;
+    for (std::size_t k = 0; k < c.keys.size(); ++k) {
+      data x;
+      x.set("mean", show(m.mean[k]));
+      x.set("median", show(m.median[k]));
+      x.set("sort", m.mean[k] ? format_double(*m.mean[k]) : "");
+      stats.push_back(x);
+    }
+    d.set("stats", stats);
+    methods.push_back(d);
+  }
+  data tables = data::type::list;
+  for (std::size_t k = 0; k < c.keys.size(); ++k) {
+    data table;
+    table.set("title", std::string(c.keys[k].title));
+    table.set("key", std::string(c.keys[k].key));
+    table.set("direction", c.keys[k].direction > 0   ? "higher is better"
+                           : c.keys[k].direction < 0 ? "lower is better"
+                                                     : "no better direction");
+    data columns = data::type::list;
+    for (const ComparisonColumn& column : c.columns) columns.push_back(data("heading", column_heading(column)));
+    table.set("columns", columns);
+    data rows = data::type::list;
+    for (const ComparisonRow& row : c.rows) {
+      data r;
+      r.set("model", row.model);
+      data cells = data::type::list;
+      for (const ComparisonCell& cell : comparison_cells(c, row, k)) {
+        data x;
+        x.set("text", cell.text);
+        x.set("best", cell.is_best);
+        x.set("sort", cell.value ? format_double(*cell.value) : "");
+        x.set("has_link", cell.entry && !cell.entry->bundle.empty());
+        x.set("link", cell.entry ? url_path(cell.entry->bundle) + "/index.html" : "");
+        x.set("path", cell.entry ? cell.entry->path : "");
+        cells.push_back(x);
+      }
+      r.set("cells", cells);
+      rows.push_back(r);
+    }
+    table.set("rows", rows);
+    tables.push_back(table);
+  }
+  data keys_data = data::type::list;
+  for (const ComparisonKey& key : c.keys) keys_data.push_back(data("title", std::string(key.title)));
+  data d;
+  d.set("tables", tables);
+  d.set("methods", methods);
+  d.set("keys", keys_data);
+  return d;
+}
+
+}  // namespace
+
+std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::string& tool_version,
+                             const std::vector<ComparisonKey>* keys) {
   using kainjow::mustache::data;
   using kainjow::mustache::mustache;
   data page;
@@ -215,6 +304,7 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
     row.set("path", e.path);
     row.set("label", e.label);
     row.set("model", e.model);
+    row.set("variant", e.variant);
     row.set("status", std::string(to_string(e.status)));
     row.set("has_bundle", !e.bundle.empty());
     row.set("link", url_path(e.bundle) + "/index.html");
@@ -236,6 +326,9 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
   page.set("num_meshes", std::to_string(entries.size()));
   page.set("num_failed", std::to_string(failed));
   page.set("num_gate_failed", std::to_string(gate_failed));
+  const auto skipped = std::count_if(entries.begin(), entries.end(),
+                                     [](const BatchEntry& e) { return e.status == BatchStatus::skipped; });
+  if (skipped > 0) page.set("num_skipped", std::to_string(skipped));
   const std::vector<MethodSummary> methods = summarize_methods(entries);
   page.set("has_methods", !methods.empty());
   data method_rows = data::type::list;
@@ -252,6 +345,9 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
     method_rows.push_back(row);
   }
   page.set("methods", method_rows);
+  page.set("has_comparison", has_comparison(entries));
+  if (has_comparison(entries))
+    page.set("comparison", comparison_data(entries, keys ? *keys : default_comparison_keys(entries)));
   mustache tmpl{std::string(report_template("batch_index.html.mustache"))};
   if (!tmpl.is_valid()) throw Error("batch index template: " + tmpl.error_message());
   return tmpl.render(page);
@@ -300,11 +396,18 @@ std::string batch_summary_markdown(const std::vector<BatchEntry>& entries) {
   return md;
 }
 
-void write_batch_index(const std::vector<BatchEntry>& entries, const std::string& tool_version, const fs::path& dir) {
+void write_batch_index(const std::vector<BatchEntry>& entries, const std::string& tool_version, const fs::path& dir,
+                       const std::vector<ComparisonKey>* keys) {
   fs::create_directories(dir);
   write_file_atomically(dir / "index.json", batch_index_json(entries, tool_version));
-  write_file_atomically(dir / "index.html", batch_index_html(entries, tool_version));
+  write_file_atomically(dir / "index.html", batch_index_html(entries, tool_version, keys));
   write_file_atomically(dir / "summary.md", batch_summary_markdown(entries));
+  if (has_comparison(entries)) {
+    const Comparison c = build_comparison(entries, keys ? *keys : default_comparison_keys(entries));
+    write_file_atomically(dir / "comparison.csv", comparison_csv(entries));
+    write_file_atomically(dir / "comparison.md", comparison_markdown(c));
+    write_file_atomically(dir / "comparison.tex", comparison_latex(c));
+  }
 }
 
 void check_batch_output_dir(const fs::path& dir, bool force) {

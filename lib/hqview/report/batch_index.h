@@ -16,7 +16,9 @@
 
 namespace hq {
 
-enum class BatchStatus { ok, gate_failed, failed };
+// skipped: listed by the collection but not a hex mesh (HexaLab's index
+// lists other files too); its error says why. Skipped rows never fail a run.
+enum class BatchStatus { ok, gate_failed, failed, skipped };
 std::string_view to_string(BatchStatus status);
 
 // The headline values of a bundle's report.json, named by their dotted
@@ -31,14 +33,26 @@ inline constexpr const char* kHeadlineKeys[] = {
     "quality.num_inverted",
     "overlap.num_intersecting_cells",
     "boundary_error.hausdorff.relative",
+    "structure.num_singular_edges_interior",
+    "structure.num_singular_edges_boundary",
 };
 inline constexpr std::size_t kNumHeadlineKeys = std::size(kHeadlineKeys);
+
+// The paper a method comes from (HexaLab's index.json `paper`); empty when
+// unknown.
+struct PaperInfo {
+  std::string title, year, doi;
+  bool empty() const { return title.empty() && year.empty() && doi.empty(); }
+  bool operator==(const PaperInfo&) const = default;
+};
 
 // One row of the index.
 struct BatchEntry {
   std::string path;
   std::string label;
   std::string model;
+  std::string variant;  // several meshes of one model and method (bunny_1, _in/_out): one row each
+  PaperInfo paper;
   BatchStatus status = BatchStatus::failed;
   std::string error;   // why it failed (status failed)
   std::string bundle;  // bundle directory relative to the batch output; empty when failed
@@ -70,13 +84,17 @@ std::vector<MethodSummary> summarize_methods(const std::vector<BatchEntry>& entr
 std::string batch_index_json(const std::vector<BatchEntry>& entries, const std::string& tool_version);
 // Throws InputError naming `name` when the text is not an HQView index.json.
 std::vector<BatchEntry> parse_batch_index_json(std::string_view text, const std::string& name);
-std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::string& tool_version);
+struct ComparisonKey;  // comparison.h
+// keys: the comparison's keys (nullptr: default_comparison_keys).
+std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::string& tool_version,
+                             const std::vector<ComparisonKey>* keys = nullptr);
 std::string batch_summary_markdown(const std::vector<BatchEntry>& entries);
 
-// Writes index.json, index.html and summary.md into `dir`, each through a
+// Writes index.json, index.html and summary.md into `dir`, and with method
+// labels comparison.csv, .md and .tex (comparison.h), each through a
 // temporary sibling renamed into place. Throws Error on an I/O failure.
 void write_batch_index(const std::vector<BatchEntry>& entries, const std::string& tool_version,
-                       const std::filesystem::path& dir);
+                       const std::filesystem::path& dir, const std::vector<ComparisonKey>* keys = nullptr);
 
 // Throws ValueError when `dir` exists and is neither empty nor a batch
 // output (index.json) and !force.

@@ -1,0 +1,289 @@
+#include "hqview/report/comparison.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "hqview/core/error.h"
+#include "hqview/core/number_format.h"
+#include "hqview/core/text.h"
+#include "hqview/report/escape.h"
+
+namespace hq {
+namespace {
+
+std::size_t headline_slot(std::string_view key) {
+  for (std::size_t k = 0; k < kNumHeadlineKeys; ++k)
+    if (key == kHeadlineKeys[k]) return k;
+  throw Error("internal: no headline key " + std::string(key));
+}
+
+bool is_analysed(const BatchEntry& e) { return e.status == BatchStatus::ok || e.status == BatchStatus::gate_failed; }
+
+bool needs_reference(std::string_view key) { return key.starts_with("boundary_error."); }
+
+std::optional<double> value_of(const BatchEntry& e, std::string_view key) { return e.headline[headline_slot(key)]; }
+
+std::optional<double> median_of(std::vector<double> v) {
+  if (v.empty()) return std::nullopt;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+std::string csv_field(std::string_view text) {
+  if (text.find_first_of(",\"\n\r") == std::string_view::npos) return std::string(text);
+  std::string out = "\"";
+  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+std::string method_heading(const MethodColumn& m) { return m.paper.year.empty() ? m.label : m.label + " (" + m.paper.year + ")"; }
+
+std::string show_mean(const std::optional<double>& v) { return v ? display_number(*v) : "–"; }
+
+}  // namespace
+
+std::string column_heading(const ComparisonColumn& c) {
+  return (c.year.empty() ? c.label : c.label + " (" + c.year + ")") + (c.variant.empty() ? "" : " · " + c.variant);
+}
+
+const std::vector<ComparisonKey>& comparison_keys() {
+  static const std::vector<ComparisonKey> keys{
+      {"mesh.num_vertices", "#V", 0},
+      {"mesh.num_hexes", "#H", 0},
+      {"quality.scaled_jacobian.min", "min SJ", +1},
+      {"quality.scaled_jacobian.mean", "mean SJ", +1},
+      {"quality.scaled_jacobian.p05", "p05 SJ", +1},
+      {"quality.num_inverted", "#inverted", -1},
+      {"overlap.num_intersecting_cells", "#intersecting", -1},
+      {"boundary_error.hausdorff.relative", "Hausdorff (rel.)", -1},
+      {"structure.num_singular_edges_interior", "#singular interior edges", -1},
+      {"structure.num_singular_edges_boundary", "#singular boundary edges", -1},
+  };
+  return keys;
+}
+
+std::vector<ComparisonKey> default_comparison_keys(const std::vector<BatchEntry>& entries) {
+  std::vector<ComparisonKey> keys;
+  for (const ComparisonKey& k : comparison_keys()) {
+    if (k.key == "mesh.num_vertices" || k.key == "mesh.num_hexes" || k.key == "quality.scaled_jacobian.min" ||
+        k.key == "quality.scaled_jacobian.mean" || k.key == "quality.num_inverted" ||
+        k.key == "boundary_error.hausdorff.relative")
+      keys.push_back(k);
+    if (k.key == "structure.num_singular_edges_interior" &&
+        std::any_of(entries.begin(), entries.end(), [&](const BatchEntry& e) { return value_of(e, k.key).has_value(); }))
+      keys.push_back(k);
+  }
+  return keys;
+}
+
+std::vector<ComparisonKey> parse_comparison_keys(std::string_view list) {
+  std::vector<ComparisonKey> keys;
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t end = std::min(list.find(',', start), list.size());
+    const std::string_view name = trim(list.substr(start, end - start), " \t");
+    start = end + 1;
+    if (name.empty()) continue;
+    const auto it = std::find_if(comparison_keys().begin(), comparison_keys().end(),
+                                 [&](const ComparisonKey& k) { return k.key == name; });
+    if (it == comparison_keys().end()) {
+      std::string known;
+      for (const ComparisonKey& k : comparison_keys()) known += (known.empty() ? "" : ", ") + std::string(k.key);
+      throw ValueError("--compare-keys: unknown key '" + std::string(name) + "' (known: " + known + ")");
+    }
+    keys.push_back(*it);
+  }
+  if (keys.empty()) throw ValueError("--compare-keys: no key given");
+  return keys;
+}
+
+bool has_comparison(const std::vector<BatchEntry>& entries) {
+  return std::any_of(entries.begin(), entries.end(),
+                     [](const BatchEntry& e) { return !e.label.empty() && e.status != BatchStatus::skipped; });
+}
+
+Comparison build_comparison(const std::vector<BatchEntry>& entries, std::vector<ComparisonKey> keys) {
+  Comparison c;
+  c.keys = std::move(keys);
+  std::map<std::string, MethodColumn> methods;
+  std::map<std::string, std::set<std::string>> models_of;
+  std::map<std::string, ComparisonRow> rows;
+  std::set<std::pair<std::string, std::string>> columns;
+  for (const BatchEntry& e : entries) {  // sorted by path: fixed order
+    if (e.status == BatchStatus::skipped) continue;
+    MethodColumn& m = methods[e.label];
+    m.label = e.label;
+    if (m.paper.empty()) m.paper = e.paper;
+    ++m.num_meshes;
+    models_of[e.label].insert(e.model);
+    if (e.status == BatchStatus::failed) ++m.num_failed;
+    if (is_analysed(e) && value_of(e, "quality.scaled_jacobian.min").value_or(-1.0) > 0.0) ++m.num_valid;
+    ComparisonRow& row = rows[e.model];
+    row.model = e.model;
+    columns.insert({e.label, e.variant});
+    // Two meshes of one model, variant and method (possible only through a
+    // manifest): the first by path keeps the cell, the index lists both.
+    row.cells.emplace(std::pair{e.label, e.variant}, &e);
+  }
+  for (auto& [label, m] : methods) {
+    m.num_models = static_cast<int>(models_of[label].size());
+    for (const ComparisonKey& k : c.keys) {
+      std::vector<double> values;
+      for (const BatchEntry& e : entries)
+        if (e.label == label && is_analysed(e))
+          if (const auto v = value_of(e, k.key); v && std::isfinite(*v)) values.push_back(*v);
+      double sum = 0.0;
+      for (double v : values) sum += v;
+      m.mean.push_back(values.empty() ? std::nullopt : std::optional<double>(sum / static_cast<double>(values.size())));
+      m.median.push_back(median_of(values));
+    }
+    c.methods.push_back(m);
+  }
+  for (auto& [key, row] : rows) c.rows.push_back(std::move(row));
+  for (const auto& [label, variant] : columns) c.columns.push_back({label, variant, methods[label].paper.year});
+  return c;
+}
+
+std::vector<ComparisonCell> comparison_cells(const Comparison& c, const ComparisonRow& row, std::size_t k) {
+  const ComparisonKey& key = c.keys[k];
+  std::vector<ComparisonCell> cells;
+  for (const ComparisonColumn& column : c.columns) {
+    ComparisonCell cell;
+    const auto it = row.cells.find({column.label, column.variant});
+    if (it == row.cells.end()) {
+      cell.text = "–";
+    } else {
+      cell.entry = it->second;
+      if (cell.entry->status == BatchStatus::failed) {
+        cell.text = "failed";
+      } else if (const auto v = value_of(*cell.entry, key.key); v && std::isfinite(*v)) {
+        cell.value = v;
+        cell.text = display_number(*v);
+      } else {
+        cell.text = needs_reference(key.key) ? "no ref." : "n/a";
+      }
+    }
+    cells.push_back(std::move(cell));
+  }
+  // Bold: the best of two or more values; values that read the same as the
+  // best (equal as shown, e.g. a mesh and its scaled copy) are bold too.
+  if (key.direction != 0 && std::count_if(cells.begin(), cells.end(), [](const ComparisonCell& x) { return x.value; }) > 1) {
+    std::optional<double> best;
+    for (const ComparisonCell& x : cells)
+      if (x.value && (!best || (key.direction > 0 ? *x.value > *best : *x.value < *best))) best = x.value;
+    const std::string shown = display_number(*best);
+    for (ComparisonCell& x : cells) x.is_best = x.value && x.text == shown;
+  }
+  return cells;
+}
+
+std::string comparison_csv(const std::vector<BatchEntry>& entries) {
+  std::string out = "model,variant,method,mesh,status";
+  for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) out += std::string(",") + kHeadlineKeys[k];
+  out += '\n';
+  for (const BatchEntry& e : entries) {
+    if (e.status == BatchStatus::skipped) continue;
+    out += csv_field(e.model) + ',' + csv_field(e.variant) + ',' + csv_field(e.label) + ',' + csv_field(e.path) + ',' +
+           std::string(to_string(e.status));
+    for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) {
+      out += ',';
+      if (e.headline[k] && std::isfinite(*e.headline[k])) out += format_double(*e.headline[k]);
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+std::string comparison_markdown(const Comparison& c) {
+  std::string md = "# Methods compared\n\n";
+  md += std::to_string(c.rows.size()) + " models × " + std::to_string(c.methods.size()) + " methods (" +
+        std::to_string(c.columns.size()) +
+        " columns: one per method and variant). Bold: the best of a row; – no mesh; failed: the mesh failed; no "
+        "ref.: analysed without a reference.\n";
+  for (std::size_t k = 0; k < c.keys.size(); ++k) {
+    md += "\n## " + std::string(c.keys[k].title) + " (`" + std::string(c.keys[k].key) + "`" +
+          (c.keys[k].direction > 0 ? ", higher is better" : c.keys[k].direction < 0 ? ", lower is better" : "") +
+          ")\n\n| model |";
+    for (const ComparisonColumn& column : c.columns) md += " " + markdown_escape(column_heading(column)) + " |";
+    md += "\n|---|";
+    for (std::size_t i = 0; i < c.columns.size(); ++i) md += "--:|";
+    md += "\n";
+    for (const ComparisonRow& row : c.rows) {
+      md += "| " + markdown_escape(row.model) + " |";
+      for (const ComparisonCell& cell : comparison_cells(c, row, k))
+        md += " " + (cell.is_best ? "**" + cell.text + "**" : cell.text) + " |";
+      md += "\n";
+    }
+  }
+  md += "\n## Per method\n\n| method | meshes | models | valid (min SJ > 0) | failed |";
+  for (const ComparisonKey& k : c.keys) md += " mean / median " + std::string(k.title) + " |";
+  md += "\n|---|--:|--:|--:|--:|";
+  for (std::size_t i = 0; i < c.keys.size(); ++i) md += "--:|";
+  md += "\n";
+  for (const MethodColumn& m : c.methods) {
+    md += "| " + markdown_escape(method_heading(m)) + " | " + std::to_string(m.num_meshes) + " | " +
+          std::to_string(m.num_models) + " | " + std::to_string(m.num_valid) + " | " + std::to_string(m.num_failed) + " |";
+    for (std::size_t k = 0; k < c.keys.size(); ++k) md += " " + show_mean(m.mean[k]) + " / " + show_mean(m.median[k]) + " |";
+    md += "\n";
+  }
+  bool any_paper = false;
+  for (const MethodColumn& m : c.methods) {
+    if (m.paper.empty()) continue;
+    if (!any_paper) md += "\n## Papers\n\n";
+    any_paper = true;
+    md += "- " + markdown_escape(m.label) + ": " + markdown_escape(m.paper.title) +
+          (m.paper.year.empty() ? "" : " (" + markdown_escape(m.paper.year) + ")") +
+          (m.paper.doi.empty() ? "" : ", doi:" + markdown_escape(m.paper.doi)) + "\n";
+  }
+  return md;
+}
+
+std::string latex_escape(std::string_view text) {
+  std::string out;
+  for (char ch : text) {
+    switch (ch) {
+      case '\\': out += "\\textbackslash{}"; break;
+      case '{': out += "\\{"; break;
+      case '}': out += "\\}"; break;
+      case '$': out += "\\$"; break;
+      case '&': out += "\\&"; break;
+      case '#': out += "\\#"; break;
+      case '^': out += "\\textasciicircum{}"; break;
+      case '_': out += "\\_"; break;
+      case '~': out += "\\textasciitilde{}"; break;
+      case '%': out += "\\%"; break;
+      default: out += ch;
+    }
+  }
+  return out;
+}
+
+std::string comparison_latex(const Comparison& c) {
+  std::string tex =
+      "% HQView: methods compared (one table per key). Needs \\usepackage{booktabs};\n"
+      "% UTF-8 input (model and method names are written as they are, TeX specials escaped).\n";
+  auto cell_tex = [](const ComparisonCell& cell) {
+    if (cell.text == "–") return std::string("--");
+    const std::string text = latex_escape(cell.text);
+    return cell.is_best ? "\\textbf{" + text + "}" : text;
+  };
+  for (std::size_t k = 0; k < c.keys.size(); ++k) {
+    tex += "\n\\begin{table}\n\\centering\n\\caption{" + latex_escape(c.keys[k].title) + " (" +
+           latex_escape(c.keys[k].key) +
+           (c.keys[k].direction > 0 ? "; higher is better" : c.keys[k].direction < 0 ? "; lower is better" : "") +
+           ")}\n\\begin{tabular}{l" + std::string(c.columns.size(), 'r') + "}\n\\toprule\nmodel";
+    for (const ComparisonColumn& column : c.columns) tex += " & " + latex_escape(column_heading(column));
+    tex += " \\\\\n\\midrule\n";
+    for (const ComparisonRow& row : c.rows) {
+      tex += latex_escape(row.model);
+      for (const ComparisonCell& cell : comparison_cells(c, row, k)) tex += " & " + cell_tex(cell);
+      tex += " \\\\\n";
+    }
+    tex += "\\bottomrule\n\\end{tabular}\n\\end{table}\n";
+  }
+  return tex;
+}
+
+}  // namespace hq
