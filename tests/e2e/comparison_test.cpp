@@ -371,6 +371,33 @@ TEST_F(Comparison, AHexaLabIndexGivesTheTableOfItsManifestAndShardsMergeToIt) {
   const auto tables = markdown_tables(read_text(dir / "keys/comparison.md"));
   EXPECT_EQ(tables.size(), 3u);  // two keys and the per-method table
   EXPECT_EQ(batch("manifest.csv", dir / "bad", {"--compare-keys", "quality.bogus"}).exit_code, 2);
+
+  // Tonight's run: edgecone's output is its input again (a regression).
+  // diff names the cell that got worse; the per-method gate on the number
+  // of valid meshes fails for edgecone alone.
+  const Collection tonight = make_collection(data_, dir / "tonight");
+  fs::remove(tonight.dir / "2015 - Édge cone/bunny_out.mesh");
+  fs::create_symlink(data_ / "meshes/livesu2015_edgecone/bunny_in.mesh", tonight.dir / "2015 - Édge cone/bunny_out.mesh");
+  write_file(tonight.dir / "manifest.csv", tonight.manifest);
+  r = run_hqview({"batch", (tonight.dir / "manifest.csv").string(), "-o", (dir / "tonight_out").string(),
+                  "--no-render", "--no-overlap", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_hqview({"diff", (dir / "manifest").string(), (dir / "tonight_out").string(), "--gate",
+                  "method.num_valid>=baseline", "--markdown", (dir / "diff.md").string()});
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.out.find("worse: bunny · edgecone · out: quality.scaled_jacobian.min: 0.6061486641020569 -> "
+                       "-0.0027514737706080556"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("gate FAILED: method.num_valid>=baseline [method edgecone] (value 0, threshold 1)"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("gate passed: method.num_valid>=baseline [method gao2016] (value 2, threshold 2)"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("better: "), std::string::npos) << r.out;  // nothing else moved
+  EXPECT_NE(read_text(dir / "diff.md").find("| **worse** | bunny | edgecone · out | `quality.scaled_jacobian.min` |"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -12,6 +12,9 @@
 #include "hqview/core/error.h"
 #include "hqview/core/number_format.h"
 #include "hqview/core/text.h"
+#include "hqview/report/batch_index.h"
+#include "hqview/report/comparison.h"
+#include "hqview/report/escape.h"
 #include "hqview/report/json_path.h"
 
 namespace hq {
@@ -92,6 +95,48 @@ std::optional<double> mesh_value(IndexedMesh& m, const std::vector<std::string>&
     m.report = json::parse(text.str(), nullptr, false);
   }
   return lookup(*m.report, path);
+}
+
+bool is_method_gate(const DiffGate& g) { return !g.rule.path.empty() && g.rule.path[0] == "method"; }
+
+// A method's numbers by gate path ("method.num_valid", "method.mean.KEY").
+std::map<std::string, std::map<std::string, double>> method_values(const Comparison& c) {
+  std::map<std::string, std::map<std::string, double>> out;
+  for (const MethodColumn& m : c.methods) {
+    auto& v = out[m.label];
+    v["method.num_meshes"] = m.num_meshes;
+    v["method.num_models"] = m.num_models;
+    v["method.num_valid"] = m.num_valid;
+    v["method.num_failed"] = m.num_failed;
+    for (std::size_t k = 0; k < c.keys.size(); ++k) {
+      if (m.mean[k]) v["method.mean." + std::string(c.keys[k].key)] = *m.mean[k];
+      if (m.median[k]) v["method.median." + std::string(c.keys[k].key)] = *m.median[k];
+    }
+  }
+  return out;
+}
+
+// The cells of the comparison whose value moved, by the key's direction.
+void diff_comparison_cells(const Comparison& b, const Comparison& c, std::vector<DiffCellChange>& out) {
+  std::map<std::string, const ComparisonRow*> rows;
+  for (const ComparisonRow& row : b.rows) rows[row.model] = &row;
+  for (const ComparisonRow& row : c.rows) {
+    const auto base = rows.find(row.model);
+    if (base == rows.end()) continue;
+    for (const auto& [column, entry] : row.cells) {
+      const auto other = base->second->cells.find(column);
+      if (other == base->second->cells.end()) continue;
+      for (const ComparisonKey& key : c.keys) {
+        if (key.direction == 0) continue;
+        std::size_t k = 0;
+        while (k < kNumHeadlineKeys && key.key != kHeadlineKeys[k]) ++k;
+        const auto bv = other->second->headline[k], cv = entry->headline[k];
+        if (!bv || !cv || *bv == *cv || !std::isfinite(*bv) || !std::isfinite(*cv)) continue;
+        out.push_back({row.model, column.first, column.second, std::string(key.key), *bv, *cv,
+                       key.direction > 0 ? *cv > *bv : *cv < *bv});
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -185,7 +230,7 @@ DiffResult diff_reports(std::string_view baseline_text, std::string_view current
       if (bi == b.end()) {
         result.new_meshes.push_back(path);
         for (std::size_t g = 0; g < gates.size(); ++g)
-          if (!gates[g].is_relative)
+          if (!gates[g].is_relative && !is_method_gate(gates[g]))
             evaluate(path, g, std::nullopt, current_failed ? std::nullopt : mesh_value(cm, gates[g].rule.path), false);
         continue;
       }
@@ -206,12 +251,34 @@ DiffResult diff_reports(std::string_view baseline_text, std::string_view current
       }
       const bool baseline_failed = bs == "failed";
       for (std::size_t g = 0; g < gates.size(); ++g) {
+        if (is_method_gate(gates[g])) continue;
         if (current_failed) {
           if (!baseline_failed) evaluate(path, g, std::nullopt, std::nullopt, true);
           continue;
         }
         evaluate(path, g, baseline_failed ? std::nullopt : mesh_value(bm, gates[g].rule.path),
                  mesh_value(cm, gates[g].rule.path), false);
+      }
+    }
+  }
+  if (result.is_index) {
+    // The methods compared: cells that moved, and the per-method gates.
+    const std::vector<BatchEntry> be = parse_batch_index_json(baseline_text, "BASELINE");
+    const std::vector<BatchEntry> ce = parse_batch_index_json(current_text, "CURRENT");
+    if (has_comparison(be) && has_comparison(ce)) {
+      const Comparison bc = build_comparison(be, comparison_keys()), cc = build_comparison(ce, comparison_keys());
+      diff_comparison_cells(bc, cc, result.cells);
+      const auto bm = method_values(bc), cm = method_values(cc);
+      for (const auto& [label, values] : cm) {
+        const auto base = bm.find(label);
+        for (std::size_t g = 0; g < gates.size(); ++g) {
+          if (!is_method_gate(gates[g])) continue;
+          auto value = [&](const std::map<std::string, double>& v) {
+            const auto it = v.find(join(gates[g].rule.path));
+            return it == v.end() ? std::nullopt : std::optional<double>(it->second);
+          };
+          evaluate("method " + label, g, base == bm.end() ? std::nullopt : value(base->second), value(values), false);
+        }
       }
     }
   }
@@ -251,6 +318,13 @@ std::string diff_markdown(const DiffResult& d) {
       md += "| " + (d.is_index ? "`" + v.mesh + "` | " : "") + "`" + v.key + "` | " + show(v.baseline) + " | " +
             show(v.current) + " | " + show_delta(v) + " |\n";
   }
+  if (!d.cells.empty()) {
+    md += "\n### Methods compared: cells that moved\n\n| | model | method | key | baseline | current |\n|---|---|---|---|--:|--:|\n";
+    for (const DiffCellChange& c : d.cells)
+      md += std::string("| ") + (c.is_better ? "better" : "**worse**") + " | " + markdown_escape(c.model) + " | " +
+            markdown_escape(c.method + (c.variant.empty() ? "" : " · " + c.variant)) + " | `" + c.key + "` | " +
+            format_double(c.baseline) + " | " + format_double(c.current) + " |\n";
+  }
   return md;
 }
 
@@ -263,6 +337,10 @@ std::string diff_text(const DiffResult& d) {
   for (const DiffValue& v : d.changed)
     out += (v.mesh.empty() ? "" : v.mesh + ": ") + v.key + ": " + show(v.baseline) + " -> " + show(v.current) + " (" +
            show_delta(v) + ")\n";
+  for (const DiffCellChange& c : d.cells)
+    out += std::string(c.is_better ? "better: " : "worse: ") + c.model + " · " + c.method +
+           (c.variant.empty() ? "" : " · " + c.variant) + ": " + c.key + ": " + format_double(c.baseline) + " -> " +
+           format_double(c.current) + "\n";
   for (const DiffGateResult& g : d.gates)
     out += std::string("gate ") + (g.passed ? "passed" : "FAILED") + ": " + g.rule +
            (g.mesh.empty() ? "" : " [" + g.mesh + "]") + " (value " + (g.value ? show(g.value) : "none: mesh failed") +

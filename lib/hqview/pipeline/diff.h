@@ -44,8 +44,17 @@ struct DiffStatusChange {
   std::string current;
 };
 
+// Two index.json with methods: a cell of the model x method comparison
+// (comparison.h) whose value moved, better or worse by the key's direction.
+struct DiffCellChange {
+  std::string model, method, variant, key;
+  double baseline = 0, current = 0;
+  bool is_better = false;
+};
+
 struct DiffResult {
   bool is_index = false;
+  std::vector<DiffCellChange> cells;  // index.json with methods: comparison cells that got better or worse
   std::vector<DiffValue> changed;  // keys whose value differs (or exists on one side only)
   std::vector<std::string> new_meshes;
   std::vector<std::string> vanished_meshes;
@@ -54,6 +63,10 @@ struct DiffResult {
   bool passed = true;  // every gate held
 };
 
+// Gates on two index.json may also name a method's numbers, checked per
+// method of CURRENT: `method.num_meshes`, `method.num_models`,
+// `method.num_valid` (min SJ > 0), `method.num_failed`, `method.mean.KEY`,
+// `method.median.KEY` (KEY a headline key), e.g. `method.num_valid>=baseline`.
 // `baseline_text`/`current_text` are both report.json or both index.json
 // (told apart by content); the directories are where each file lives, used
 // to read a mesh's report.json for a gate key that is not in the index's
