@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "hqview/image/colormap.h"
 
@@ -205,4 +206,37 @@ TEST(ChartOutput, SvgAndPngFromOneChart) {
 }
 
 }  // namespace
+TEST(MethodDistribution, OneDotPerValueAtItsHeightAndAMedianBar) {
+  const std::vector<std::string> methods = {"a", "b"};
+  const std::vector<std::vector<double>> values = {{0.5, -0.25, std::nan("")}, {1.0, 0.0, 0.5, 0.25}};
+  const Chart chart = method_distribution_chart(methods, values, {600, 400, "t"});
+  ASSERT_EQ(chart.rects.size(), 6u);  // NaN left out
+  const ChartRect& plot = chart.plot;
+  auto y_of = [&](double q) { return plot.y + plot.height * (1.0 - q) / 2.0; };
+  // Column a: the dots' centres at y(-0.25) and y(0.5), the inverted one blue-violet.
+  int inverted = 0;
+  for (const ChartRect& r : chart.rects) {
+    const double cx = r.x + r.width / 2, cy = r.y + r.height / 2;
+    EXPECT_GT(cx, plot.x);
+    EXPECT_LT(cx, plot.x + plot.width);
+    const bool in_a = cx < plot.x + plot.width / 2;
+    const std::vector<double>& mine = values[in_a ? 0 : 1];
+    EXPECT_TRUE(std::any_of(mine.begin(), mine.end(), [&](double q) { return std::abs(y_of(q) - cy) < 1e-9; }));
+    inverted += r.fill.r == to_rgba8(kInvertedColor).r && r.fill.b == to_rgba8(kInvertedColor).b;
+  }
+  EXPECT_EQ(inverted, 1);
+  // Median bars: a at 0.125 (of -0.25 and 0.5), b at 0.375 (of 0, 0.25, 0.5, 1).
+  std::vector<double> bars;
+  for (const ChartPolyline& l : chart.lines)
+    if (l.points.size() == 2 && l.width == 2.0) bars.push_back(l.points[0].y);
+  ASSERT_EQ(bars.size(), 2u);
+  EXPECT_NEAR(bars[0], y_of(0.125), 1e-9);
+  EXPECT_NEAR(bars[1], y_of(0.375), 1e-9);
+  // Each column names its method and count.
+  auto has_text = [&](const std::string& t) {
+    return std::any_of(chart.texts.begin(), chart.texts.end(), [&](const ChartText& x) { return x.text == t; });
+  };
+  EXPECT_TRUE(has_text("a") && has_text("b") && has_text("2 meshes") && has_text("4 meshes"));
+}
+
 }  // namespace hq

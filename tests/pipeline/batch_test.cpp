@@ -141,7 +141,9 @@ TEST(BatchIndex, HtmlEscapesNamesAndErrorsAndLinksBundles) {
   const std::string odd = batch_index_html({entry("a b/c#1.mesh", BatchStatus::ok)}, "1.0");
   EXPECT_NE(odd.find("href=\"a%20b/c%231.mesh/index.html\""), std::string::npos);
   EXPECT_EQ(html.find("http"), std::string::npos);  // no external resources
-  EXPECT_EQ(html.find("src="), std::string::npos);
+  // The one image: the comparison chart beside the page.
+  EXPECT_EQ(html.find("src="), html.find("src=\"comparison_min_sj.svg\""));
+  EXPECT_EQ(html.find("src=", html.find("src=") + 1), std::string::npos);
 }
 
 TEST(BatchIndex, MarkdownTableAndProblems) {

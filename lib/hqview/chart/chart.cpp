@@ -212,6 +212,47 @@ Chart corner_chart(std::span<const double> values, std::span<const std::string> 
   return chart;
 }
 
+Chart method_distribution_chart(std::span<const std::string> methods, std::span<const std::vector<double>> values,
+                                const ChartOptions& options) {
+  Chart chart = begin_chart(options);
+  const ChartRect r = chart.plot;
+  auto y_of = [&](double q) { return r.y + r.height * (1.0 - std::clamp(q, -1.0, 1.0)) / 2.0; };
+  std::vector<std::pair<double, double>> y_ticks;
+  for (double t = -1.0; t <= 1.0001; t += 0.5) y_ticks.push_back({t, y_of(t)});
+  const std::size_t n = std::max<std::size_t>(1, methods.size());
+  const double w = r.width / static_cast<double>(n);
+  for (std::size_t i = 0; i < methods.size(); ++i) {
+    std::vector<double> v;
+    if (i < values.size())
+      for (double x : values[i])
+        if (!std::isnan(x)) v.push_back(x);
+    std::sort(v.begin(), v.end());
+    const double centre = r.x + (static_cast<double>(i) + 0.5) * w;
+    // Dots spread sideways by rank within the column so equal values stay
+    // countable: a deterministic jitter of at most a third of the column.
+    const double dot = std::clamp(w / 12.0, 3.0, 7.0);
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      const double spread = v.size() > 1 ? (static_cast<double>(k % 7) / 6.0 - 0.5) * w / 3.0 : 0.0;
+      const double y = y_of(v[k]);
+      chart.rects.push_back({centre + spread - dot / 2, y - dot / 2, dot, dot, bar_color(v[k])});
+    }
+    if (!v.empty()) {
+      const double median = v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+      chart.lines.push_back({{{centre - w * 0.3, y_of(median)}, {centre + w * 0.3, y_of(median)}}, {38, 38, 38, 255}, 2.0});
+    }
+    chart.texts.push_back({{centre, r.y + r.height + 19.0}, methods[i], kTickSize, kAxisColor, ChartAnchor::center, false});
+    chart.texts.push_back({{centre, r.y + r.height + 34.0},
+                           std::to_string(v.size()) + (v.size() == 1 ? " mesh" : " meshes"),
+                           kTickSize,
+                           kAxisColor,
+                           ChartAnchor::center,
+                           false});
+  }
+  add_axes(chart, r, y_ticks, {}, "", "min scaled Jacobian per mesh (bar: median)");
+  chart.lines.push_back({{{r.x, y_of(0.0)}, {r.x + r.width, y_of(0.0)}}, kAxisColor, 1.0});
+  return chart;
+}
+
 namespace {
 
 // Signed error colour: the diverging map at e / scale, kept away from the

@@ -98,6 +98,14 @@ Chart sorted_boundary_error_chart(std::span<const double> vertex_error, const Ch
 Chart boundary_area_chart(std::span<const double> vertex_error, std::span<const double> vertex_area, double tolerance,
                           const ChartOptions& options);
 
+// Methods compared over a dataset: one column per method, one dot per mesh
+// at its min scaled Jacobian (coloured by the quality map, inverted ones in
+// kInvertedColor), a dark bar at the column's median; y on [-1, 1]; the
+// method's name and its number of values under its column. values[i] holds
+// method i's values (NaN left out).
+Chart method_distribution_chart(std::span<const std::string> methods, std::span<const std::vector<double>> values,
+                                const ChartOptions& options);
+
 // The chart as an SVG document / as a PNG-ready image (both from draw_chart).
 // Throws RenderError when Cairo fails.
 std::string chart_svg(const Chart& chart);

@@ -281,6 +281,7 @@ kainjow::mustache::data comparison_data(const std::vector<BatchEntry>& entries, 
   d.set("tables", tables);
   d.set("methods", methods);
   d.set("keys", keys_data);
+  d.set("chart", std::string(kComparisonChartFile));
   return d;
 }
 
@@ -407,6 +408,7 @@ void write_batch_index(const std::vector<BatchEntry>& entries, const std::string
     write_file_atomically(dir / "comparison.csv", comparison_csv(entries));
     write_file_atomically(dir / "comparison.md", comparison_markdown(c));
     write_file_atomically(dir / "comparison.tex", comparison_latex(c));
+    write_file_atomically(dir / kComparisonChartFile, comparison_chart_svg(entries));
   }
 }
 

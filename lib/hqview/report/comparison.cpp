@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 
+#include "hqview/chart/chart.h"
 #include "hqview/core/error.h"
 #include "hqview/core/number_format.h"
 #include "hqview/core/text.h"
@@ -196,12 +197,30 @@ std::string comparison_csv(const std::vector<BatchEntry>& entries) {
   return out;
 }
 
+std::string comparison_chart_svg(const std::vector<BatchEntry>& entries) {
+  std::map<std::string, std::vector<double>> by_method;
+  for (const BatchEntry& e : entries) {
+    if (e.status == BatchStatus::skipped || e.label.empty()) continue;
+    std::vector<double>& v = by_method[e.label];
+    if (const auto x = value_of(e, "quality.scaled_jacobian.min"); x && is_analysed(e)) v.push_back(*x);
+  }
+  std::vector<std::string> methods;
+  std::vector<std::vector<double>> values;
+  for (auto& [label, v] : by_method) {
+    methods.push_back(label);
+    values.push_back(std::move(v));
+  }
+  const int width = std::clamp(160 + 110 * static_cast<int>(methods.size()), 480, 1600);
+  return chart_svg(method_distribution_chart(methods, values, {width, 420, "Min scaled Jacobian per mesh, by method"}));
+}
+
 std::string comparison_markdown(const Comparison& c) {
   std::string md = "# Methods compared\n\n";
   md += std::to_string(c.rows.size()) + " models × " + std::to_string(c.methods.size()) + " methods (" +
         std::to_string(c.columns.size()) +
         " columns: one per method and variant). Bold: the best of a row; – no mesh; failed: the mesh failed; no "
-        "ref.: analysed without a reference.\n";
+        "ref.: analysed without a reference.\n\n![min scaled Jacobian per mesh, by method](" +
+        std::string(kComparisonChartFile) + ")\n";
   for (std::size_t k = 0; k < c.keys.size(); ++k) {
     md += "\n## " + std::string(c.keys[k].title) + " (`" + std::string(c.keys[k].key) + "`" +
           (c.keys[k].direction > 0 ? ", higher is better" : c.keys[k].direction < 0 ? ", lower is better" : "") +

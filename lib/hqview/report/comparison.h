@@ -88,6 +88,10 @@ struct ComparisonCell {
 std::vector<ComparisonCell> comparison_cells(const Comparison& c, const ComparisonRow& row, std::size_t k);
 
 std::string comparison_csv(const std::vector<BatchEntry>& entries);
+// OUT/comparison_min_sj.svg: the min scaled Jacobian of every analysed mesh,
+// one column per method (method_distribution_chart).
+std::string comparison_chart_svg(const std::vector<BatchEntry>& entries);
+inline constexpr const char* kComparisonChartFile = "comparison_min_sj.svg";
 std::string comparison_markdown(const Comparison& c);
 std::string comparison_latex(const Comparison& c);
 // TeX special characters escaped (\ { } $ & # ^ _ ~ %).
