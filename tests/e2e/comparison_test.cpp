@@ -316,6 +316,28 @@ TEST_F(Comparison, ManifestTablesEqualTheReportsAndBoldTheBest) {
   const std::string html = read_text(dir / "out/index.html");
   EXPECT_NE(html.find("<section id=\"comparison\">"), std::string::npos);
   EXPECT_NE(html.find("href=\"2015%20-%20%C3%89dge%20cone/bunny_out.mesh/index.html\""), std::string::npos);
+  EXPECT_EQ(html.find("views/thumbnail.png"), std::string::npos);  // --no-render: no thumbnails
+
+  // Rendering only the thumbnails: one per cell, each from its own mesh,
+  // all from the same upright direction.
+  const CliResult thumbs = run_hqview({"batch", (c.dir / "manifest.csv").string(), "-o", (dir / "thumbs").string(),
+                                       "--views", "thumbnail", "--no-overlap", "--no-viewer", "-q"});
+  ASSERT_EQ(thumbs.exit_code, 0) << thumbs.err;
+  const std::string page = read_text(dir / "thumbs/index.html");
+  int images = 0;
+  for (std::size_t at = page.find("/views/thumbnail.png\""); at != std::string::npos;
+       at = page.find("/views/thumbnail.png\"", at + 1))
+    ++images;
+  EXPECT_EQ(images, 7);
+  for (const json& m : read_json(dir / "thumbs/index.json")["meshes"]) {
+    ASSERT_EQ(m["thumbnail"], "views/thumbnail.png") << m["path"];
+    const fs::path bundle = dir / "thumbs" / m["bundle"].get<std::string>();
+    EXPECT_TRUE(fs::is_regular_file(bundle / "views/thumbnail.png"));
+    const json camera = read_json(bundle / "report.json")["views"][0]["cameras"][0];
+    EXPECT_NEAR(camera["azimuth_degrees"].get<double>(), 30.0, 1e-6) << m["path"];
+    EXPECT_NEAR(camera["elevation_degrees"].get<double>(), 25.0, 1e-6) << m["path"];
+    EXPECT_EQ(camera["pixels"], json::array({320, 240}));
+  }
 }
 
 TEST_F(Comparison, AHexaLabIndexGivesTheTableOfItsManifestAndShardsMergeToIt) {

@@ -91,6 +91,11 @@ void fill_entry_from_report(BatchEntry& entry, const ReportDocument& report) {
   }
   entry.status = passed ? BatchStatus::ok : BatchStatus::gate_failed;
   entry.error.clear();
+  entry.thumbnail.clear();
+  if (report.contains("views") && report["views"].is_array())
+    for (const ReportDocument& v : report["views"])
+      if (v.value("id", "") == "thumbnail" && v.contains("files") && v["files"].is_array() && !v["files"].empty())
+        entry.thumbnail = v["files"][0].get<std::string>();
 }
 
 std::vector<MethodSummary> summarize_methods(const std::vector<BatchEntry>& entries) {
@@ -167,6 +172,7 @@ std::string batch_index_json(const std::vector<BatchEntry>& entries, const std::
     for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) headline[kHeadlineKeys[k]] = number_or_null(e.headline[k]);
     m["headline"] = std::move(headline);
     m["failed_gates"] = e.failed_gates;
+    m["thumbnail"] = e.thumbnail.empty() ? json(nullptr) : json(e.thumbnail);
     meshes.push_back(std::move(m));
   }
   j["meshes"] = std::move(meshes);
@@ -207,6 +213,7 @@ std::vector<BatchEntry> parse_batch_index_json(std::string_view text, const std:
         if (headline.contains(kHeadlineKeys[k]) && headline[kHeadlineKeys[k]].is_number())
           e.headline[k] = headline[kHeadlineKeys[k]].get<double>();
       if (m.contains("failed_gates")) e.failed_gates = m["failed_gates"].get<std::vector<std::string>>();
+      if (m.contains("thumbnail") && m["thumbnail"].is_string()) e.thumbnail = m["thumbnail"].get<std::string>();
       entries.push_back(std::move(e));
     }
   } catch (const json::exception& e) {
@@ -275,6 +282,31 @@ kainjow::mustache::data comparison_data(const std::vector<BatchEntry>& entries, 
     table.set("rows", rows);
     tables.push_back(table);
   }
+  // Thumbnails: one row per model, one cell per method and variant.
+  bool any_thumbnail = false;
+  data thumb_rows = data::type::list;
+  for (const ComparisonRow& row : c.rows) {
+    data r;
+    r.set("model", row.model);
+    data cells = data::type::list;
+    for (const ComparisonColumn& column : c.columns) {
+      data x;
+      const auto it = row.cells.find({column.label, column.variant});
+      const BatchEntry* e = it == row.cells.end() ? nullptr : it->second;
+      const bool has = e && !e->bundle.empty() && !e->thumbnail.empty();
+      any_thumbnail = any_thumbnail || has;
+      x.set("has_image", has);
+      x.set("image", has ? url_path(e->bundle) + "/" + url_path(e->thumbnail) : "");
+      x.set("link", has ? url_path(e->bundle) + "/index.html" : "");
+      x.set("alt", e ? e->path : "");
+      x.set("text", e ? (e->status == BatchStatus::failed ? "failed" : "not rendered") : "–");
+      cells.push_back(x);
+    }
+    r.set("cells", cells);
+    thumb_rows.push_back(r);
+  }
+  data columns = data::type::list;
+  for (const ComparisonColumn& column : c.columns) columns.push_back(data("heading", column_heading(column)));
   data keys_data = data::type::list;
   for (const ComparisonKey& key : c.keys) keys_data.push_back(data("title", std::string(key.title)));
   data d;
@@ -282,6 +314,9 @@ kainjow::mustache::data comparison_data(const std::vector<BatchEntry>& entries, 
   d.set("methods", methods);
   d.set("keys", keys_data);
   d.set("chart", std::string(kComparisonChartFile));
+  d.set("has_thumbnails", any_thumbnail);
+  d.set("thumbnail_rows", thumb_rows);
+  d.set("columns", columns);
   return d;
 }
 

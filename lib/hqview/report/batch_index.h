@@ -59,6 +59,7 @@ struct BatchEntry {
   std::string sha256;  // of the mesh file; empty when unreadable
   std::vector<std::optional<double>> headline = std::vector<std::optional<double>>(kNumHeadlineKeys);
   std::vector<std::string> failed_gates;  // rules
+  std::string thumbnail;  // the bundle's thumbnail view, relative to the bundle; empty: not rendered
 };
 
 // Fills the report-derived fields of `entry` (status ok/gate_failed,

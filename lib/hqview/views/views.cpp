@@ -12,6 +12,7 @@
 #include "hqview/core/error.h"
 #include "hqview/core/number_format.h"
 #include "hqview/image/png.h"
+#include "hqview/render/upright.h"
 #include "hqview/views/boundary_views.h"
 #include "hqview/views/detail_views.h"
 #include "hqview/views/main_views.h"
@@ -331,6 +332,23 @@ std::vector<ViewFile> build_size_gradation(ViewContext& c) {
   const Vec3 direction = choose_gradation_viewpoint(c.a.mesh, c.a.topology, s, options);
   Image image = render_gradation_view(c.a.mesh, c.a.topology, s, direction, options, c.renderer);
   return {framed("views/size_gradation.png", std::move(image), c)};
+}
+
+// 320 x 240, no title, legend or edges: the boundary coloured by vertex quality
+// from the three-quarter view of --up, the camera fitted to the boundary's
+// bounding box, so that every mesh of a model is framed alike whoever
+// renders it (a shard, one job per mesh).
+std::vector<ViewFile> build_thumbnail(ViewContext& c) {
+  OverviewOptions options;
+  options.up = c.options.up;
+  const int width = 320, height = 240;
+  const Box3 box = boundary_bounding_box(c.a.mesh, c.a.topology);
+  const Camera camera = fit_camera(box.lo, box.hi, three_quarter_view(options.up), static_cast<double>(width) / height,
+                                   {.up = options.up});
+  Scene scene = build_quality_overview_scene(c.a.mesh, c.a.topology, c.quality(), options);
+  scene.lines.clear();  // at 320 pixels the edges of a real mesh are a grey smear
+  Image image = c.renderer.render(scene, camera, width, height);
+  return {framed("views/thumbnail.png", std::move(image), c)};
 }
 
 // ---- the table's readers -----------------------------------------------------

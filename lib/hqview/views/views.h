@@ -58,7 +58,8 @@ enum class ViewNeeds { mesh, reference, compare };
 struct ViewSpec {
   std::string_view id;     // report.json views[].id
   std::string_view title;  // report.json views[].title
-  char panel;              // index.html panel 'A'..'F' (paper's letters), 'S' structure; 0 on boundary.html
+  char panel;              // index.html panel 'A'..'F' (paper's letters), 'S' structure; 0 on boundary.html;
+                           // 'T' the thumbnail (on the batch index only)
   int panel_order;         // position inside its panel or page
   ViewNeeds needs;
   bool is_selectable;  // a --views id of its own; else drawn with the view before it
@@ -83,6 +84,7 @@ std::vector<ViewFile> build_histogram_log(ViewContext&);
 std::vector<ViewFile> build_sorted_quality(ViewContext&);
 std::vector<ViewFile> build_structure(ViewContext&);
 std::vector<ViewFile> build_size_gradation(ViewContext&);
+std::vector<ViewFile> build_thumbnail(ViewContext&);
 
 // Every view, in report order (the order they are drawn and listed).
 inline constexpr ViewSpec kViews[] = {
@@ -109,6 +111,9 @@ inline constexpr ViewSpec kViews[] = {
     {"structure", "Structure: the singularity graph by valence", 'S', 0, ViewNeeds::mesh, true, 12, build_structure},
     {"size_gradation", "Structure: size gradation on the boundary", 'S', 1, ViewNeeds::mesh, true, -1,
      build_size_gradation},
+    // On no page of its own: the batch comparison's strip of thumbnails.
+    {"thumbnail", "Thumbnail: the boundary by vertex quality, bounding-box frame", 'T', 0, ViewNeeds::mesh, true, -1,
+     build_thumbnail},
 };
 
 // The view of an id, or nullptr.
