@@ -92,6 +92,8 @@ def index_keys(index):
     def rule(path, value):
         if path == "meshes[].headline" and isinstance(value, dict):
             return {path + "." + k for k in value}
+        if path == "methods[].keys" and isinstance(value, dict):
+            return {path + ".<key>." + member for v in value.values() for member in v}
         return None
 
     return dotted_paths(index, rule)

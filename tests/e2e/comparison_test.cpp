@@ -1,8 +1,8 @@
 // The model x method comparison end to end on ../shared/data (linked, never
 // copied into the repository): a manifest, the same collection as a
 // HexaLab-style index.json with the published file's quirks, and shards
-// merged. Two "methods" are synthetic: scaled and moved copies of kitten_1
-// and bunny_in written by this test into the build tree (labelled
+// merged. One "method" is synthetic: scaled and moved copies of kitten_1
+// and armadillo written by this test into the build tree (labelled
 // "synthetic"), standing for a second method in another frame.
 
 #include <gtest/gtest.h>
@@ -129,8 +129,8 @@ struct Collection {
 
 // The collection of the issue: bunny by gao2016 (bunny_1) and by edgecone
 // (bunny_in and bunny_out: two variants), kitten by gao2016, armadillo by
-// livesu2016, and the synthetic method (kitten x 2 moved by 10, bunny_in x
-// 0.5 moved by -3). Files are links under dir, or the copies.
+// livesu2016, and the synthetic method (kitten x 2 moved by 10, armadillo
+// x 0.5 moved by -3). Files are links under dir, or the copies.
 Collection make_collection(const fs::path& data, const fs::path& dir) {
   const fs::path m = data / "meshes";
   auto link = [&](const fs::path& target, const std::string& name) {
@@ -144,7 +144,7 @@ Collection make_collection(const fs::path& data, const fs::path& dir) {
   link(m / "livesu2016_skeleton/armadillo.mesh", "2016 - Skeleton/armadillo.mesh");
   link(m / "gao2016_sweeping/bunny.off", "synthetic/bunny.off");  // not a hex mesh
   write_scaled_copy(m / "gao2016_sweeping/kitten_1.mesh", dir / "synthetic/kitten/polycube_in.mesh", 2.0, 10.0);
-  write_scaled_copy(m / "livesu2015_edgecone/bunny_in.mesh", dir / "synthetic/bunny_in.mesh", 0.5, -3.0);
+  write_scaled_copy(m / "livesu2016_skeleton/armadillo.mesh", dir / "synthetic/armadillo.mesh", 0.5, -3.0);
   Collection c{dir, "mesh,method,model,variant\n"};
   c.manifest += "2016 - Gao sweeping/hex_mesh/bunny/bunny_1.mesh,gao2016,bunny,1\n";
   c.manifest += "2016 - Gao sweeping/hex_mesh/kitten/kitten_1.mesh,gao2016,kitten,1\n";
@@ -152,13 +152,13 @@ Collection make_collection(const fs::path& data, const fs::path& dir) {
   c.manifest += "2015 - Édge cone/bunny_out.mesh,edgecone,bunny,out\n";
   c.manifest += "2016 - Skeleton/armadillo.mesh,livesu2016,armadillo,\n";
   c.manifest += "synthetic/kitten/polycube_in.mesh,synthetic,kitten,polycube_in\n";
-  c.manifest += "synthetic/bunny_in.mesh,synthetic,bunny,in\n";
+  c.manifest += "synthetic/armadillo.mesh,synthetic,armadillo,\n";
   return c;
 }
 
 // HexaLab's layout with the published quirks: a trailing comma in a paper
 // object, years as a string and as a number, spaces and non-ASCII in paths,
-// a generic stem (polycube_in), one file name in two sources (bunny_in),
+// a generic stem (polycube_in), one file name in two sources (armadillo),
 // several meshes per model and method, a surface file listed.
 const char* kHexaLabIndex = R"({
   "sources": [
@@ -170,7 +170,7 @@ const char* kHexaLabIndex = R"({
      "path": "2015 - Édge cone", "label": "edgecone", "data": ["bunny_in.mesh", "bunny_out.mesh"]},
     {"paper": {"title": "Skeleton-driven Adaptive Hexahedral Meshing of Tubular Shapes", "year": "2016"},
      "path": "2016 - Skeleton", "label": "livesu2016", "data": ["armadillo.mesh"]},
-    {"path": "synthetic", "label": "synthetic", "data": ["kitten/polycube_in.mesh", "bunny_in.mesh", "bunny.off"]}
+    {"path": "synthetic", "label": "synthetic", "data": ["kitten/polycube_in.mesh", "armadillo.mesh", "bunny.off"]}
   ]
 })";
 
@@ -211,7 +211,9 @@ TEST_F(Comparison, ManifestTablesEqualTheReportsAndBoldTheBest) {
     for (std::size_t k = 5; k < csv[0].size(); ++k) {
       const std::optional<double> expected = at_path(report, csv[0][k]);
       ASSERT_EQ(csv[i][k].empty(), !expected.has_value()) << csv[i][3] << " " << csv[0][k];
-      if (expected) EXPECT_EQ(std::stod(csv[i][k]), *expected) << csv[i][3] << " " << csv[0][k];
+      if (expected) {
+        EXPECT_EQ(std::stod(csv[i][k]), *expected) << csv[i][3] << " " << csv[0][k];
+      }
       value[csv[i][0] + "|" + csv[i][2] + "|" + csv[i][1]][csv[0][k]] = expected;
     }
   }
@@ -234,7 +236,7 @@ TEST_F(Comparison, ManifestTablesEqualTheReportsAndBoldTheBest) {
     ASSERT_EQ(table.size(), 4u) << key;  // header + armadillo, bunny, kitten
     const std::vector<std::string>& header = table[0];
     EXPECT_EQ(header, (std::vector<std::string>{"model", "edgecone · in", "edgecone · out", "gao2016 · 1", "livesu2016",
-                                                "synthetic · in", "synthetic · polycube_in"}));
+                                                "synthetic", "synthetic · polycube_in"}));
     for (std::size_t row = 1; row < table.size(); ++row) {
       const std::string& model = table[row][0];
       std::optional<double> best;
@@ -274,13 +276,15 @@ TEST_F(Comparison, ManifestTablesEqualTheReportsAndBoldTheBest) {
     }
   }
   EXPECT_GT(bold_seen, 5);
-  // The synthetic kitten is kitten_1 scaled: the same scaled Jacobians, so
-  // the min SJ row of kitten ties and both are bold.
+  // The synthetic kitten and armadillo are scaled copies: the same scaled
+  // Jacobians, so their min SJ rows tie and both cells are bold.
   const auto min_table = std::find_if(tables.begin(), tables.end(), [](const auto& t) {
     return t.first.find("`quality.scaled_jacobian.min`") != std::string::npos;
   });
   EXPECT_EQ(min_table->second[3][3].rfind("**", 0), 0u) << "kitten gao2016";
   EXPECT_EQ(min_table->second[3][6].rfind("**", 0), 0u) << "kitten synthetic";
+  EXPECT_EQ(min_table->second[1][4].rfind("**", 0), 0u) << "armadillo livesu2016";
+  EXPECT_EQ(min_table->second[1][5].rfind("**", 0), 0u) << "armadillo synthetic";
 
   // comparison.tex: balanced braces, one row per model in each table, the
   // column separators and nothing else unescaped.
@@ -366,7 +370,9 @@ TEST_F(Comparison, AHexaLabIndexGivesTheTableOfItsManifestAndShardsMergeToIt) {
       EXPECT_EQ(m["status"], "skipped");
       EXPECT_NE(m["error"].get<std::string>().find("not a hex mesh"), std::string::npos);
     }
-    if (m["label"] == "edgecone") EXPECT_EQ(m["paper"]["year"], "2015");  // a number in the index
+    if (m["label"] == "edgecone") {
+      EXPECT_EQ(m["paper"]["year"], "2015");  // a number in the index
+    }
   }
   const std::string md = read_text(dir / "hexalab/comparison.md");
   // Headings carry the papers' years (Markdown-escaped parentheses).

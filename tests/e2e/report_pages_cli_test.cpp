@@ -52,6 +52,7 @@ TEST(ReportPages, EveryListedViewIsOnAPageAndSummaryLinksExist) {
   const nlohmann::json report = nlohmann::json::parse(read_text(out / "report.json"));
   const std::string pages = read_text(out / "index.html") + read_text(out / "boundary.html");
   for (const auto& view : report["views"]) {
+    if (view["id"] == "thumbnail") continue;  // for the batch index's comparison only (docs/contract.md)
     for (const auto& file : view["files"]) {
       const std::string f = file.get<std::string>();
       // A chart's PNG twin is for Markdown; its SVG is on the page.

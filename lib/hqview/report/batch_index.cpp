@@ -177,6 +177,31 @@ std::string batch_index_json(const std::vector<BatchEntry>& entries, const std::
   }
   j["meshes"] = std::move(meshes);
   json methods = json::array();
+  // Per method and headline key, what merges exactly across shards: count,
+  // sum, sum of squares, min and max over the analysed meshes' values.
+  auto key_aggregates = [&](const std::string& label) {
+    json keys = json::object();
+    for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) {
+      long long count = 0;
+      double sum = 0, sum_squares = 0, lo = 0, hi = 0;
+      for (const BatchEntry& e : entries) {
+        if (e.label != label || (e.status != BatchStatus::ok && e.status != BatchStatus::gate_failed)) continue;
+        if (!e.headline[k] || !std::isfinite(*e.headline[k])) continue;
+        const double v = *e.headline[k];
+        lo = count == 0 ? v : std::min(lo, v);
+        hi = count == 0 ? v : std::max(hi, v);
+        sum += v;
+        sum_squares += v * v;
+        ++count;
+      }
+      keys[kHeadlineKeys[k]] = {{"count", count},
+                                {"sum", number_or_null(sum)},
+                                {"sum_squares", number_or_null(sum_squares)},
+                                {"min", count ? number_or_null(lo) : json(nullptr)},
+                                {"max", count ? number_or_null(hi) : json(nullptr)}};
+    }
+    return keys;
+  };
   for (const MethodSummary& m : summarize_methods(entries))
     methods.push_back({{"label", m.label},
                        {"num_meshes", m.num_meshes},
@@ -185,7 +210,8 @@ std::string batch_index_json(const std::vector<BatchEntry>& entries, const std::
                        {"num_with_inverted", m.num_with_inverted},
                        {"mean_min_scaled_jacobian", number_or_null(m.mean_min_scaled_jacobian)},
                        {"mean_mean_scaled_jacobian", number_or_null(m.mean_mean_scaled_jacobian)},
-                       {"worst_min_scaled_jacobian", number_or_null(m.worst_min_scaled_jacobian)}});
+                       {"worst_min_scaled_jacobian", number_or_null(m.worst_min_scaled_jacobian)},
+                       {"keys", key_aggregates(m.label)}});
   j["methods"] = std::move(methods);
   return j.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
 }
