@@ -59,6 +59,7 @@ struct AnalyzeArgs {
   std::vector<long long> focus_vertices;
   int threads = 0;
   bool quiet = false;
+  bool verbose = false;  // each stage's wall time on standard error (analyze)
   bool no_render = false;
   bool force = false;
   std::vector<std::string> gates;
@@ -127,7 +128,13 @@ int run_analyze(const AnalyzeArgs& args) {
   options.compare_align = args.compare_align == "none"   ? hq::CompareAlign::none
                           : args.compare_align == "bbox" ? hq::CompareAlign::bbox
                                                          : hq::CompareAlign::auto_;
-  const hq::BundleOptions bundle{.force = args.force};
+  hq::BundleOptions bundle;
+  bundle.force = args.force;
+  if (args.verbose && !args.quiet) {
+    options.on_stage = bundle.on_stage = [](const hq::StageTime& t) {
+      std::cerr << "hqview: " << t.name << ": " << hq::display_number(t.seconds, 3) << " s\n";
+    };
+  }
   hq::check_output_dir(output, bundle);  // fail before the work, not after
 
   const std::unique_ptr<hq::Renderer> renderer = args.no_render ? nullptr : hq::make_osmesa_renderer();
@@ -281,6 +288,8 @@ void add_analysis_options(CLI::App* cmd, AnalyzeArgs& args) {
                   "0.5T; 0: no limit (default: 75% of the physical or cgroup memory, " +
                       hq::format_memory_size(hq::default_max_memory()) + " here)");
   cmd->add_flag("-q,--quiet", args.quiet, "Print nothing on standard error but failures and errors");
+  cmd->add_flag("-v,--verbose", args.verbose,
+                "analyze: print each stage's wall time on standard error as it ends (every bundle has them in timings.json)");
 }
 
 CLI::App* add_batch_command(CLI::App& app, BatchArgs& args) {

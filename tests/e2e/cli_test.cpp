@@ -233,4 +233,40 @@ TEST(Cli, FormatOverridesTheExtension) {
 }
 
 }  // namespace
+TEST(Cli, VerbosePrintsEachStageAndTimingsJsonListsThem) {
+  // --verbose: one line per stage on standard error as it ends; the same
+  // stages, in the same order, in timings.json (outside report.json, which
+  // stays the same bytes as a run without --verbose).
+  const fs::path dir = fresh_output_dir("verbose");
+  const std::string ball = (source_dir() / "examples/ball.mesh").string(), off = (source_dir() / "examples/ball.off").string();
+  const CliResult r = run_hqview({"analyze", ball, "--reference", off, "-o", (dir / "v").string(), "--size", "320x240", "-v"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json timings = json::parse(read_text(dir / "v/timings.json"));
+  std::vector<std::string> names;
+  double total = 0;
+  for (const json& s : timings["stages"]) {
+    names.push_back(s["name"]);
+    EXPECT_GE(s["seconds"].get<double>(), 0.0) << s["name"];
+    total += s["seconds"].get<double>();
+    EXPECT_NE(r.err.find("hqview: " + s["name"].get<std::string>() + ": "), std::string::npos) << s["name"];
+  }
+  EXPECT_NEAR(timings["total_seconds"].get<double>(), total, 1e-9);
+  for (const char* stage : {"read", "topology", "quality", "metrics", "summaries", "structure", "glyphs", "overlap",
+                            "boundary error", "uv atlas", "view overview", "view main", "view uv_error",
+                            "write report.json", "write cells.csv", "write annotated.vtu", "write images"})
+    EXPECT_NE(std::find(names.begin(), names.end(), stage), names.end()) << stage;
+  EXPECT_EQ(names.front(), "read");
+  EXPECT_EQ(names.back(), "write images");
+  // Stage lines come in that order on standard error, before the last line.
+  EXPECT_LT(r.err.find("hqview: read: "), r.err.find("hqview: metrics: "));
+  EXPECT_LT(r.err.find("hqview: write images: "), r.err.find("hqview: report written to"));
+  // Without -v: silent about stages, the same report.json, a timings.json all the same.
+  const CliResult quiet = run_hqview({"analyze", ball, "--reference", off, "-o", (dir / "q").string(), "--size", "320x240"});
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err.find("hqview: read: "), std::string::npos) << quiet.err;
+  EXPECT_EQ(read_text(dir / "q/report.json"), read_text(dir / "v/report.json"));
+  EXPECT_TRUE(fs::is_regular_file(dir / "q/timings.json"));
+  EXPECT_EQ(read_text(dir / "v/report.json").find("seconds"), std::string::npos);
+}
+
 }  // namespace hq::test

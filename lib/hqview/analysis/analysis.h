@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "hqview/core/stage_times.h"
+
 #include "hqview/analysis/compare_alignment.h"
 #include "hqview/boundary/boundary_error.h"
 #include "hqview/glyph/glyphs.h"
@@ -26,6 +28,7 @@ namespace hq {
 struct Analysis {
   InputFile mesh_input;
   std::vector<std::string> warnings;  // from the readers and the analysis, in stage order
+  std::vector<StageTime> timings;     // wall times of the stages run (timings.json; never in report.json)
 
   HexMesh mesh;
   Topology topology;

@@ -19,20 +19,26 @@ LoadedMesh load_mesh(const fs::path& path, const AnalyzeOptions& options, InputF
   return loaded;
 }
 
-void analyze_quality(Analysis& a, const AnalyzeOptions& options) {
+void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clock) {
+  clock.start("topology");
   a.topology = build_topology(a.mesh);
+  clock.start("quality");
   a.field = compute_quality(a.mesh, a.topology);
   a.mesh_summary = summarize_mesh(a.mesh, a.topology);
+  clock.start("metrics");
   a.metrics = compute_hex_metrics(a.mesh, options.metrics);
+  clock.start("summaries");
   a.quality = summarize_quality(a.mesh, a.field, options.worst_count);
   a.quality.metrics = summarize_hex_metrics(a.metrics);
+  clock.start("structure");
   a.structure = compute_structure(a.mesh, a.topology);
+  clock.stop();
 }
 
 // Boundary error and UV atlas against the reference surface (ALGORITHMS.md §5).
 // With --reference-align bbox the reference is first moved onto the mesh
 // boundary's bounding box (uniform scale and translation).
-void analyze_reference(Analysis& a, const AnalyzeOptions& options) {
+void analyze_reference(Analysis& a, const AnalyzeOptions& options, StageClock& clock) {
   const fs::path& path = options.reference_path;
   SurfaceSource source = open_surface_source(path, options.read_limits);
   TriSurface reference = read_surface(source);
@@ -46,6 +52,7 @@ void analyze_reference(Analysis& a, const AnalyzeOptions& options) {
   const char* hint = options.reference_align == CompareAlign::none ? "; --reference-align bbox moves the reference "
                                                                      "onto the mesh's bounding box"
                                                                    : "";
+  clock.start("boundary error");
   try {
     a.boundary_error = compute_boundary_error(a.mesh, a.topology, reference);
   } catch (const InputError& e) {
@@ -56,7 +63,9 @@ void analyze_reference(Analysis& a, const AnalyzeOptions& options) {
     if (w.find("same units and placement") != std::string::npos) w += hint;
     a.warnings.push_back(std::move(w));
   }
+  clock.start("uv atlas");
   a.uv_atlas = build_uv_atlas(reference, UvOptions{.up = options.views.up, .improve_with_lscm = true});
+  clock.stop();
   a.reference_surface = std::move(reference);
 }
 
@@ -109,17 +118,30 @@ void add_views(std::vector<RenderedView> views, const Vec3& up, AnalyzeResult& r
 
 Analysis analyze_mesh(const AnalyzeOptions& options) {
   Analysis a;
+  StageClock clock(a.timings, options.on_stage);
+  clock.start("read");
   LoadedMesh loaded = load_mesh(options.mesh_path, options, a.mesh_input);
   a.warnings = std::move(loaded.warnings);
   a.mesh = std::move(loaded.mesh);
-  analyze_quality(a, options);
+  clock.stop();
+  analyze_quality(a, options, clock);
+  clock.start("glyphs");
   a.glyphs = compute_glyphs(a.mesh.points, a.field.vertex_quality, a.mesh_summary.edge_length_mean, options.glyphs);
-  if (options.overlap) a.overlap = check_overlap(a.mesh, a.topology, *options.overlap);
+  clock.stop();
+  if (options.overlap) {
+    clock.start("overlap");
+    a.overlap = check_overlap(a.mesh, a.topology, *options.overlap);
+    clock.stop();
+  }
   if (!a.topology.unreferenced_vertices.empty())
     a.warnings.push_back(std::to_string(a.topology.unreferenced_vertices.size()) +
                          " vertices are used by no hexahedron (ignored by the analysis)");
-  if (!options.reference_path.empty()) analyze_reference(a, options);
-  if (!options.compare_path.empty()) analyze_compare(a, options);
+  if (!options.reference_path.empty()) analyze_reference(a, options, clock);
+  if (!options.compare_path.empty()) {
+    clock.start("compare mesh");
+    analyze_compare(a, options);
+    clock.stop();
+  }
   return a;
 }
 
@@ -129,7 +151,14 @@ AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
   model.tool_version = options.tool_version;
   model.has_annotated_vtu = true;  // every analyze bundle has data/annotated.vtu
   model.analysis = analyze_mesh(options);
-  if (renderer) add_views(render_views(model.analysis, options.views, *renderer), options.views.up, result);
+  if (renderer) {
+    std::vector<StageTime> view_times;
+    {
+      StageClock clock(view_times, options.on_stage);
+      add_views(render_views(model.analysis, options.views, *renderer, &clock), options.views.up, result);
+    }
+    model.analysis.timings.insert(model.analysis.timings.end(), view_times.begin(), view_times.end());
+  }
   model.has_viewer = renderer && options.viewer;
   model.viewer_max_mb = options.viewer_max_mb;
   model.viewer_up = options.views.up;

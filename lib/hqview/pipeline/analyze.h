@@ -40,6 +40,7 @@ struct AnalyzeOptions {
   GlyphOptions glyphs;
   std::optional<OverlapOptions> overlap = OverlapOptions{};  // nullopt: no overlap stage
   ReadLimits read_limits;  // checked against each mesh file's size and declared counts
+  StageSink on_stage;      // called as each stage ends (--verbose); may be empty
 };
 
 struct AnalyzeResult {

@@ -99,7 +99,8 @@ BatchEntry run_batch_mesh(const BatchInput& input, const BatchOptions& options, 
     analyze_options.mesh_path = input.mesh_file;
     analyze_options.reference_path = input.reference_file;
     analyze_options.compare_path = input.compare_file;
-    const BundleOptions bundle{.force = options.force};
+    BundleOptions bundle;
+    bundle.force = options.force;
     check_output_dir(dir, bundle);
     const std::unique_ptr<Renderer> renderer = options.make_renderer ? options.make_renderer() : nullptr;
     const AnalyzeResult result = analyze(analyze_options, renderer.get());

@@ -8,6 +8,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include <nlohmann/json.hpp>
+
 #include "hqview/core/error.h"
 #include "hqview/image/png.h"
 #include "hqview/report/report_csv.h"
@@ -58,6 +60,19 @@ fs::path sibling(const fs::path& dir, const char* tag) {
 
 }  // namespace
 
+std::string timings_json(const std::vector<StageTime>& timings) {
+  nlohmann::json stages = nlohmann::json::array();
+  double total = 0.0;
+  for (const StageTime& t : timings) {
+    stages.push_back({{"name", t.name}, {"seconds", t.seconds}});
+    total += t.seconds;
+  }
+  const nlohmann::json j = {{"note", "wall seconds of this run's stages; differs from run to run (report.json does not)"},
+                            {"stages", std::move(stages)},
+                            {"total_seconds", total}};
+  return j.dump(2) + "\n";
+}
+
 void check_output_dir(const fs::path& dir, const BundleOptions& options) {
   std::error_code ec;
   const auto status = fs::symlink_status(dir, ec);
@@ -84,22 +99,33 @@ void write_bundle(const ReportModel& model, const ReportDocument& document, cons
   for (const BundleImage& img : images)
     if (!is_inside_bundle(img.relative_path))
       throw Error("internal: bundle file outside the bundle: " + img.relative_path);
+  std::vector<StageTime> timings = model.analysis.timings;
   try {
+    StageClock clock(timings, options.on_stage);
     fs::create_directories(tmp / "data");
+    clock.start("write report.json");
     write_text(tmp / "report.json", report_json_text(document));
+    clock.start("write pages");
     write_text(tmp / "index.html", index_html(model));
     write_text(tmp / "style.css", report_stylesheet());
     if (model.analysis.boundary_error) write_text(tmp / "boundary.html", boundary_html(model));
     write_text(tmp / "summary.md", summary_markdown(model));
+    clock.start("write cells.csv");
     write_file(tmp / "data" / "cells.csv", [&](std::ostream& out) { write_cells_csv(model, out); });
+    clock.start("write vertices.csv");
     write_file(tmp / "data" / "vertices.csv", [&](std::ostream& out) { write_vertices_csv(model, out); });
+    clock.start("write edges.csv");
     write_file(tmp / "data" / "edges.csv", [&](std::ostream& out) { write_edges_csv(model, out); });
-    if (model.has_annotated_vtu)
+    if (model.has_annotated_vtu) {
+      clock.start("write annotated.vtu");
       write_file(tmp / "data" / "annotated.vtu", [&](std::ostream& out) { write_annotated_vtu(model, out); });
+    }
     if (model.has_viewer) {
+      clock.start("write viewer");
       fs::create_directories(tmp / "viewer");
       for (const ViewerFile& f : viewer_files(model)) write_text(tmp / f.relative_path, f.text);
     }
+    clock.start("write images");
     for (const BundleImage& img : images) fs::create_directories((tmp / img.relative_path).parent_path());
     // PNG encoding dominates the writing of many views: one image per task.
     tbb::parallel_for(std::size_t{0}, images.size(), [&](std::size_t i) {
@@ -110,6 +136,8 @@ void write_bundle(const ReportModel& model, const ReportDocument& document, cons
       else
         write_text(path, encode_png(img.image));
     });
+    clock.stop();
+    write_text(tmp / "timings.json", timings_json(timings));
     // Swap into place: the old bundle is moved aside, never deleted before
     // the new one is in place.
     if (fs::exists(dir)) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "hqview/core/stage_times.h"
 #include "hqview/image/image.h"
 #include "hqview/report/report_json.h"
 #include "hqview/report/report_model.h"
@@ -21,6 +22,7 @@ struct BundleImage {
 
 struct BundleOptions {
   bool force = false;  // replace a file, or a non-empty directory that is not an HQView bundle
+  StageSink on_stage;  // called as each file is written (--verbose); may be empty
 };
 
 // Throws ValueError, unless force, when `dir` is an existing non-directory
@@ -28,7 +30,11 @@ struct BundleOptions {
 // (not an HQView bundle). Call it before the analysis, so a doomed run fails fast.
 void check_output_dir(const std::filesystem::path& dir, const BundleOptions& options);
 
-// report.json (document's text), index.html, boundary.html (with a boundary error), summary.md, style.css,
+// timings.json: {note, stages[{name, seconds}], total_seconds}, in stage order.
+std::string timings_json(const std::vector<StageTime>& timings);
+
+// report.json (document's text), timings.json (model.analysis.timings and the
+// writing of each file: wall seconds, the one file that differs run to run), index.html, boundary.html (with a boundary error), summary.md, style.css,
 // data/cells.csv, data/vertices.csv, data/annotated.vtu (when model.has_annotated_vtu) and the images (relative paths
 // without "..": anything else is an internal error, nothing is written outside DIR). Throws hq::Error on an I/O failure
 // (the temporary directory is removed, DIR untouched).

@@ -368,7 +368,8 @@ std::vector<const ViewSpec*> views_of_panel(char panel) {
   return views;
 }
 
-std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptions& options, Renderer& base_renderer) {
+std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptions& options, Renderer& base_renderer,
+                                       StageClock* clock) {
   // PNG encoding overlaps rendering: before each frame, the images of the
   // views pushed so far go to TBB tasks that encode them (ViewFile::png);
   // the rest (the charts at the end) before returning. A pushed view's
@@ -385,7 +386,7 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
   };
   HookedRenderer renderer(base_renderer, encode_pushed_views);
 
-  ViewContext context{analysis, options, renderer, analysis.mesh_name(), {}};
+  ViewContext context{analysis, options, renderer, analysis.mesh_name(), {}, nullptr, 0, {}, nullptr};
   context.last_frame = &renderer.last_frame;
   if (!analysis.glyphs) context.no_glyphs.vertex_cluster.assign(analysis.mesh.points.size(), kNoIndex);
   context.glyphs = analysis.glyphs ? &*analysis.glyphs : &context.no_glyphs;
@@ -400,7 +401,9 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
     const bool is_wanted = options.views.empty() ||
                            std::find(options.views.begin(), options.views.end(), selected_by) != options.views.end();
     if (!is_wanted || !has_inputs(analysis, spec.needs)) continue;
+    if (clock) clock->start("view " + std::string(spec.id));
     std::vector<ViewFile> files = spec.build(context);
+    if (clock) clock->stop();
     if (!files.empty()) views.push_back({std::string(spec.id), std::string(spec.title), std::move(files)});
   }
   encode_pushed_views();

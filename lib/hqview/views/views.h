@@ -125,6 +125,8 @@ std::vector<const ViewSpec*> views_of_panel(char panel);
 // Draws the selected views in kViews order. The PNG images of finished
 // views are encoded (ViewFile::png) by TBB tasks while later views render.
 // Throws RenderError; ValueError for a focus vertex that does not exist.
-std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptions& options, Renderer& renderer);
+// clock (may be null) times each view as "view <id>".
+std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptions& options, Renderer& renderer,
+                                       StageClock* clock = nullptr);
 
 }  // namespace hq

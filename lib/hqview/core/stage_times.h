@@ -1,0 +1,52 @@
+#pragma once
+// Wall times of named stages, for OUT/timings.json and `--verbose`:
+// measured, so never part of report.json (which stays byte-identical from
+// run to run). A StageClock times consecutive stages: start() ends the
+// running stage and begins the next, stop() ends it; each finished stage is
+// appended to the list and handed to the sink (main prints it).
+
+#include <chrono>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace hq {
+
+struct StageTime {
+  std::string name;
+  double seconds = 0.0;
+};
+
+using StageSink = std::function<void(const StageTime&)>;
+
+class StageClock {
+ public:
+  StageClock(std::vector<StageTime>& out, StageSink sink) : out_(out), sink_(std::move(sink)) {}
+  StageClock(const StageClock&) = delete;
+  StageClock& operator=(const StageClock&) = delete;
+  ~StageClock() { stop(); }
+
+  void start(std::string name) {
+    stop();
+    name_ = std::move(name);
+    begin_ = std::chrono::steady_clock::now();
+    running_ = true;
+  }
+  void stop() {
+    if (!running_) return;
+    running_ = false;
+    const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - begin_;
+    out_.push_back({std::move(name_), elapsed.count()});
+    if (sink_) sink_(out_.back());
+  }
+
+ private:
+  std::vector<StageTime>& out_;
+  StageSink sink_;
+  std::string name_;
+  std::chrono::steady_clock::time_point begin_{};
+  bool running_ = false;
+};
+
+}  // namespace hq
