@@ -344,7 +344,7 @@
       for (var c = 0; c < 8; ++c) values.push(show(faceCorners[8 * f + c]));
       info.appendChild(el('p', { 'data-corners': values.join(' ') }, ['corner scaled Jacobians: ' + values.join(', ')]));
     }
-    info.appendChild(el('p', {}, ['every metric of the hex: ', el('a', { href: 'data/cells.csv' }, ['data/cells.csv'])]));
+    if (D.cell_data) info.appendChild(el('p', {}, ['every metric of the hex: ', el('a', { href: D.cell_data }, [D.cell_data])]));
   }
   function pick(x, y) {
     var r = renderer.domElement.getBoundingClientRect();

@@ -10,6 +10,7 @@
 #include <tbb/version.h>
 #include <CLI/CLI.hpp>
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -40,6 +41,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The process's start (first use at the top of main): timings.json's wall time.
+std::chrono::steady_clock::time_point process_start() {
+  static const auto start = std::chrono::steady_clock::now();
+  return start;
+}
+
 using namespace hqcli;
 
 struct AnalyzeArgs {
@@ -52,6 +59,7 @@ struct AnalyzeArgs {
   std::string up{hq::kDefaultUpAxis};
   bool no_viewer = false;
   double viewer_max_mb = 25;
+  std::string data{hq::kDefaultDataList};  // --data
   std::string output;
   std::string json;
   std::string size = "1600x1200";
@@ -100,6 +108,7 @@ hq::AnalyzeOptions make_analyze_options(const AnalyzeArgs& args) {
   parse_size(args.size, options.views.width, options.views.height);
   options.views.up = parse_up(args.up);
   options.viewer = !args.no_viewer;
+  options.data = hq::parse_data_formats(args.data);
   options.viewer_max_mb = args.viewer_max_mb;
   options.reference_align = args.reference_align == "bbox" ? hq::CompareAlign::bbox : hq::CompareAlign::none;
   options.views.views = parse_view_list(args.views);
@@ -132,13 +141,22 @@ int run_analyze(const AnalyzeArgs& args) {
   bundle.force = args.force;
   if (args.verbose && !args.quiet) {
     options.on_stage = bundle.on_stage = [](const hq::StageTime& t) {
-      std::cerr << "hqview: " << t.name << ": " << hq::display_number(t.seconds, 3) << " s\n";
+      std::cerr << "hqview: " << t.name << ": " << hq::display_number(t.seconds, 3) << " s (peak memory "
+                << hq::display_number(static_cast<double>(t.peak_rss_bytes) / 1e6, 4) << " MB)\n";
     };
   }
   hq::check_output_dir(output, bundle);  // fail before the work, not after
+  bundle.started = process_start();
 
-  const std::unique_ptr<hq::Renderer> renderer = args.no_render ? nullptr : hq::make_osmesa_renderer();
-  const hq::AnalyzeResult result = hq::analyze(options, renderer.get());
+  std::vector<hq::StageTime> setup;
+  std::unique_ptr<hq::Renderer> renderer;
+  if (!args.no_render) {
+    hq::StageClock clock(setup, options.on_stage);
+    clock.start("renderer");
+    renderer = hq::make_osmesa_renderer();
+  }
+  hq::AnalyzeResult result = hq::analyze(options, renderer.get());
+  result.model.analysis.timings.insert(result.model.analysis.timings.begin(), setup.begin(), setup.end());
   if (!args.quiet)
     for (const std::string& w : result.model.analysis.warnings) std::cerr << "hqview: warning: " << w << "\n";
   hq::write_bundle(result.model, result.document, result.images, output, bundle);
@@ -228,6 +246,11 @@ void add_analysis_options(CLI::App* cmd, AnalyzeArgs& args) {
   cmd->add_option("--up", args.up,
                   "The model axis drawn upwards in the 3D views and the UV map: +x -x +y -y +z -z; views look "
                   "from 15-35 degrees above the horizon")
+      ->capture_default_str();
+  cmd->add_option("--data", args.data,
+                  "Per-cell and per-vertex data files, comma-separated: vtu.zlib (data/annotated.vtu, compressed), "
+                  "vtu (uncompressed), csv (data/cells.csv, data/vertices.csv), csv.gz (gzip'ed), or none; "
+                  "data/edges.csv is always written")
       ->capture_default_str();
   cmd->add_flag("--no-viewer", args.no_viewer, "Leave the interactive 3D viewer (viewer.html) out of the bundle");
   cmd->add_option("--viewer-max-mb", args.viewer_max_mb,
@@ -412,6 +435,7 @@ int run_diff_command(const DiffArgs& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  process_start();
   CLI::App app{"HQView: hexahedral mesh quality analysis and report bundles"};
   app.require_subcommand(0, 1);
   bool show_version = false;

@@ -75,7 +75,7 @@ def main():
     bundle = os.path.join(work, "bundle")
     run([hqview, "analyze", os.path.join(examples, "ball.mesh"), "--reference", os.path.join(examples, "ball.off"),
          "--compare", os.path.join(examples, "twisted_bar.mesh"), "--gate", "mesh.num_hexes>0", "--size", "160x120",
-         "-o", bundle, "-q"], work)
+         "--data", "csv,vtu.zlib", "-o", bundle, "-q"], work)
     with open(os.path.join(work, "manifest.csv"), "w") as f:
         f.write("mesh,label,model\n")
         f.write(os.path.join(examples, "ball.mesh") + ",m1,ball\n")

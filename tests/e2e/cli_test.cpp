@@ -23,13 +23,16 @@ json read_report(const fs::path& bundle) { return json::parse(read_text(bundle /
 
 TEST(Cli, BallBundleHasEveryFileAndRealNumbers) {
   const fs::path out = fresh_output_dir("ball") / "bundle";
-  const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "-o", out.string()});
+  const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "-o", out.string(), "--data", "csv,vtu.zlib"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* f : {"report.json", "index.html", "style.css", "data/cells.csv", "data/vertices.csv",
                         "data/annotated.vtu", "views/overview.png"})
     EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
   const json report = read_report(out);
-  EXPECT_EQ(report["schema_version"], 1);
+  EXPECT_EQ(report["schema_version"], 2);
+  EXPECT_EQ(report["data_files"], json::parse(R"([{"path": "data/annotated.vtu", "format": "vtu.zlib"},
+      {"path": "data/cells.csv", "format": "csv"}, {"path": "data/vertices.csv", "format": "csv"},
+      {"path": "data/edges.csv", "format": "csv"}])"));
   EXPECT_EQ(report["mesh"]["num_vertices"], 11 * 11 * 11);
   EXPECT_EQ(report["mesh"]["num_hexes"], 1000);
   EXPECT_EQ(report["mesh"]["num_boundary_faces"], 600);
@@ -53,7 +56,7 @@ TEST(Cli, BallBundleHasEveryFileAndRealNumbers) {
 
 TEST(Cli, OverviewImageHasContent) {
   const fs::path out = fresh_output_dir("image") / "bundle";
-  const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "-o", out.string()});
+  const CliResult r = run_hqview({"analyze", "--data", "csv,vtu.zlib", example("ball.mesh").string(), "-o", out.string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   OIIO::ImageBuf image((out / "views/overview.png").string());
   ASSERT_TRUE(image.read()) << image.geterror();
@@ -78,7 +81,7 @@ TEST(Cli, OverviewImageHasContent) {
 
 TEST(Cli, TwistedBarHasInvertedHexes) {
   const fs::path out = fresh_output_dir("twisted") / "bundle";
-  const CliResult r = run_hqview({"analyze", example("twisted_bar.mesh").string(), "-o", out.string(), "--no-render"});
+  const CliResult r = run_hqview({"analyze", "--data", "csv,vtu.zlib", example("twisted_bar.mesh").string(), "-o", out.string(), "--no-render"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json report = read_report(out);
   EXPECT_EQ(report["mesh"]["num_hexes"], 3 * 3 * 16);
@@ -94,7 +97,7 @@ TEST(Cli, TwistedBarHasInvertedHexes) {
 // plane: 4 interior faces become 8 boundary faces (96 + 8).
 TEST(Cli, DuplicatedVertexOpensACrack) {
   const fs::path out = fresh_output_dir("duplicated") / "bundle";
-  const CliResult r = run_hqview({"analyze", example("duplicated_vertex.mesh").string(), "-o", out.string(), "--no-render"});
+  const CliResult r = run_hqview({"analyze", "--data", "csv,vtu.zlib", example("duplicated_vertex.mesh").string(), "-o", out.string(), "--no-render"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json report = read_report(out);
   EXPECT_EQ(report["mesh"]["num_vertices"], 126);
@@ -103,19 +106,48 @@ TEST(Cli, DuplicatedVertexOpensACrack) {
   EXPECT_EQ(report["quality"]["scaled_jacobian"]["min"], 1.0);
 }
 
+TEST(Cli, DefaultDataIsTheCompressedVtuAlone) {
+  // The default bundle: every per-cell and per-vertex value in the
+  // compressed annotated.vtu, edges.csv, no per-cell text.
+  const fs::path out = fresh_output_dir("default_data") / "bundle";
+  const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "-o", out.string(), "--no-render"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::vector<std::string> files;
+  for (const auto& e : fs::directory_iterator(out / "data")) files.push_back(e.path().filename().string());
+  std::sort(files.begin(), files.end());
+  EXPECT_EQ(files, (std::vector<std::string>{"annotated.vtu", "edges.csv"}));
+  EXPECT_NE(read_text(out / "data/annotated.vtu").find("compressor=\"vtkZLibDataCompressor\""), std::string::npos);
+  // --data none: only edges.csv; a bad list is a usage error naming --data.
+  const CliResult none = run_hqview({"analyze", example("ball.mesh").string(), "-o", (out.parent_path() / "none").string(),
+                                     "--no-render", "--data", "none"});
+  ASSERT_EQ(none.exit_code, 0) << none.err;
+  EXPECT_FALSE(fs::exists(out.parent_path() / "none/data/annotated.vtu"));
+  EXPECT_TRUE(fs::is_regular_file(out.parent_path() / "none/data/edges.csv"));
+  for (const char* bad : {"csv,xml", "vtu,vtu.zlib", "none,csv", ""}) {
+    const CliResult b = run_hqview({"analyze", example("ball.mesh").string(), "-o", (out.parent_path() / "bad").string(),
+                                    "--no-render", "--data", bad});
+    EXPECT_EQ(b.exit_code, 2) << bad;
+    EXPECT_NE(b.err.find("--data"), std::string::npos) << b.err;
+  }
+}
+
 TEST(Cli, SameBytesForOneAndTwoThreads) {
   const fs::path dir = fresh_output_dir("threads");
-  for (const char* j : {"1", "2"}) {
-    const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "-o", (dir / j).string(), "-j", j, "--no-render"});
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-  }
-  for (const char* f : {"report.json", "data/cells.csv", "data/vertices.csv", "data/annotated.vtu", "index.html"})
-    EXPECT_EQ(read_text(dir / "1" / f), read_text(dir / "2" / f)) << f;
+  for (const char* data : {"csv,csv.gz,vtu", "vtu.zlib"})
+    for (const char* j : {"1", "2"}) {
+      const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "-o", (dir / (std::string(j) + data)).string(),
+                                      "-j", j, "--no-render", "--data", data});
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+    }
+  for (const char* f : {"report.json", "data/cells.csv", "data/vertices.csv", "data/cells.csv.gz", "data/vertices.csv.gz",
+                        "data/annotated.vtu", "index.html"})
+    EXPECT_EQ(read_text(dir / "1csv,csv.gz,vtu" / f), read_text(dir / "2csv,csv.gz,vtu" / f)) << f;
+  EXPECT_EQ(read_text(dir / "1vtu.zlib/data/annotated.vtu"), read_text(dir / "2vtu.zlib/data/annotated.vtu"));
 }
 
 TEST(Cli, JsonToStdoutEqualsReportJson) {
   const fs::path out = fresh_output_dir("json") / "bundle";
-  const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "-o", out.string(), "--no-render", "--json", "-", "--quiet"});
+  const CliResult r = run_hqview({"analyze", "--data", "csv,vtu.zlib", example("ball.mesh").string(), "-o", out.string(), "--no-render", "--json", "-", "--quiet"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out, read_text(out / "report.json"));
   EXPECT_EQ(r.err, "");
@@ -124,8 +156,8 @@ TEST(Cli, JsonToStdoutEqualsReportJson) {
 TEST(Cli, RerunReplacesTheOldBundleAndLeavesNoTemporaries) {
   const fs::path dir = fresh_output_dir("rerun");
   const fs::path out = dir / "bundle";
-  ASSERT_EQ(run_hqview({"analyze", example("ball.mesh").string(), "-o", out.string(), "--no-render"}).exit_code, 0);
-  ASSERT_EQ(run_hqview({"analyze", example("twisted_bar.mesh").string(), "-o", out.string(), "--no-render"}).exit_code, 0);
+  ASSERT_EQ(run_hqview({"analyze", "--data", "csv,vtu.zlib", example("ball.mesh").string(), "-o", out.string(), "--no-render"}).exit_code, 0);
+  ASSERT_EQ(run_hqview({"analyze", "--data", "csv,vtu.zlib", example("twisted_bar.mesh").string(), "-o", out.string(), "--no-render"}).exit_code, 0);
   EXPECT_EQ(read_report(out)["mesh"]["num_hexes"], 144);
   std::vector<std::string> entries;
   for (const auto& e : fs::directory_iterator(dir)) entries.push_back(e.path().filename().string());
@@ -135,11 +167,11 @@ TEST(Cli, RerunReplacesTheOldBundleAndLeavesNoTemporaries) {
 TEST(Cli, MalformedMeshExitsThreeAndKeepsTheOldBundle) {
   const fs::path dir = fresh_output_dir("malformed");
   const fs::path out = dir / "bundle";
-  ASSERT_EQ(run_hqview({"analyze", example("ball.mesh").string(), "-o", out.string(), "--no-render"}).exit_code, 0);
+  ASSERT_EQ(run_hqview({"analyze", "--data", "csv,vtu.zlib", example("ball.mesh").string(), "-o", out.string(), "--no-render"}).exit_code, 0);
   const std::string before = read_text(out / "report.json");
   const fs::path bad = dir / "bad.mesh";
   std::ofstream(bad) << "MeshVersionFormatted 1\nDimension 3\nVertices\n2\n0 0 0 0\n1 0 0 0\nHexahedra\n1\n1 2 3 4 5 6 7 8 0\n";
-  const CliResult r = run_hqview({"analyze", bad.string(), "-o", out.string()});
+  const CliResult r = run_hqview({"analyze", "--data", "csv,vtu.zlib", bad.string(), "-o", out.string()});
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_NE(r.err.find(bad.string() + ":9: "), std::string::npos) << r.err;
   EXPECT_EQ(read_text(out / "report.json"), before);
@@ -151,14 +183,14 @@ TEST(Cli, MalformedMeshExitsThreeAndKeepsTheOldBundle) {
 
 TEST(Cli, InputErrorsExitThree) {
   const fs::path dir = fresh_output_dir("input_errors");
-  const CliResult missing = run_hqview({"analyze", (dir / "nope.mesh").string(), "-o", (dir / "a").string()});
+  const CliResult missing = run_hqview({"analyze", "--data", "csv,vtu.zlib", (dir / "nope.mesh").string(), "-o", (dir / "a").string()});
   EXPECT_EQ(missing.exit_code, 3);
   EXPECT_NE(missing.err.find("nope.mesh"), std::string::npos) << missing.err;
   std::ofstream(dir / "mesh.xyz") << "hello\n";
-  const CliResult unknown = run_hqview({"analyze", (dir / "mesh.xyz").string(), "-o", (dir / "b").string()});
+  const CliResult unknown = run_hqview({"analyze", "--data", "csv,vtu.zlib", (dir / "mesh.xyz").string(), "-o", (dir / "b").string()});
   EXPECT_EQ(unknown.exit_code, 3);
   EXPECT_NE(unknown.err.find("mesh.xyz"), std::string::npos) << unknown.err;
-  const CliResult directory = run_hqview({"analyze", dir.string(), "-o", (dir / "c").string()});
+  const CliResult directory = run_hqview({"analyze", "--data", "csv,vtu.zlib", dir.string(), "-o", (dir / "c").string()});
   EXPECT_EQ(directory.exit_code, 3);
   EXPECT_FALSE(fs::exists(dir / "a"));
   EXPECT_FALSE(fs::exists(dir / "b"));
@@ -168,20 +200,20 @@ TEST(Cli, InputErrorsExitThree) {
 TEST(Cli, UsageErrorsExitTwo) {
   const fs::path dir = fresh_output_dir("usage");
   EXPECT_EQ(run_hqview({"analyze"}).exit_code, 2);
-  EXPECT_EQ(run_hqview({"analyze", example("ball.mesh").string(), "--no-such-flag"}).exit_code, 2);
-  EXPECT_EQ(run_hqview({"analyze", example("ball.mesh").string(), "-j", "0", "-o", (dir / "j").string()}).exit_code, 2);
-  EXPECT_EQ(run_hqview({"analyze", example("ball.mesh").string(), "--size", "big", "-o", (dir / "s").string()}).exit_code, 2);
+  EXPECT_EQ(run_hqview({"analyze", "--data", "csv,vtu.zlib", example("ball.mesh").string(), "--no-such-flag"}).exit_code, 2);
+  EXPECT_EQ(run_hqview({"analyze", "--data", "csv,vtu.zlib", example("ball.mesh").string(), "-j", "0", "-o", (dir / "j").string()}).exit_code, 2);
+  EXPECT_EQ(run_hqview({"analyze", "--data", "csv,vtu.zlib", example("ball.mesh").string(), "--size", "big", "-o", (dir / "s").string()}).exit_code, 2);
   // -o naming a file, or a directory that is not a bundle, is refused.
   std::ofstream(dir / "file.txt") << "keep me\n";
-  EXPECT_EQ(run_hqview({"analyze", example("ball.mesh").string(), "-o", (dir / "file.txt").string()}).exit_code, 2);
+  EXPECT_EQ(run_hqview({"analyze", "--data", "csv,vtu.zlib", example("ball.mesh").string(), "-o", (dir / "file.txt").string()}).exit_code, 2);
   EXPECT_EQ(read_text(dir / "file.txt"), "keep me\n");
   fs::create_directories(dir / "mine");
   std::ofstream(dir / "mine" / "notes.txt") << "mine\n";
-  const CliResult refused = run_hqview({"analyze", example("ball.mesh").string(), "-o", (dir / "mine").string(), "--no-render"});
+  const CliResult refused = run_hqview({"analyze", "--data", "csv,vtu.zlib", example("ball.mesh").string(), "-o", (dir / "mine").string(), "--no-render"});
   EXPECT_EQ(refused.exit_code, 2);
   EXPECT_NE(refused.err.find("--force"), std::string::npos) << refused.err;
   EXPECT_TRUE(fs::exists(dir / "mine" / "notes.txt"));
-  EXPECT_EQ(run_hqview({"analyze", example("ball.mesh").string(), "-o", (dir / "mine").string(), "--no-render", "--force"}).exit_code, 0);
+  EXPECT_EQ(run_hqview({"analyze", "--data", "csv,vtu.zlib", example("ball.mesh").string(), "-o", (dir / "mine").string(), "--no-render", "--force"}).exit_code, 0);
   EXPECT_TRUE(fs::exists(dir / "mine" / "report.json"));
 }
 
@@ -189,7 +221,7 @@ TEST(Cli, VersionAndHelp) {
   const CliResult version = run_hqview({"--version"});
   EXPECT_EQ(version.exit_code, 0);
   EXPECT_EQ(version.out.rfind("hqview ", 0), 0u) << version.out;
-  const CliResult help = run_hqview({"analyze", "--help"});
+  const CliResult help = run_hqview({"analyze", "--data", "csv,vtu.zlib", "--help"});
   EXPECT_EQ(help.exit_code, 0);
   EXPECT_NE(help.out.find("--no-render"), std::string::npos);
 }
@@ -198,7 +230,7 @@ TEST(Cli, HtmlEscapesNamesFromInput) {
   const fs::path dir = fresh_output_dir("escape");
   const fs::path evil = dir / "<b>x&y'\"<i.mesh";
   fs::copy_file(example("twisted_bar.mesh"), evil);
-  const CliResult r = run_hqview({"analyze", evil.string(), "-o", (dir / "bundle").string(), "--no-render"});
+  const CliResult r = run_hqview({"analyze", "--data", "csv,vtu.zlib", evil.string(), "-o", (dir / "bundle").string(), "--no-render"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string html = read_text(dir / "bundle" / "index.html");
   EXPECT_EQ(html.find("<b>x&y"), std::string::npos);
@@ -215,19 +247,19 @@ TEST(Cli, FormatOverridesTheExtension) {
   const fs::path dir = fresh_output_dir("format");
   const fs::path renamed = dir / "bar.dat";
   fs::copy_file(source_dir() / "examples" / "twisted_bar.mesh", renamed);
-  const CliResult unknown = run_hqview({"analyze", renamed.string(), "-o", (dir / "a").string(), "--no-render"});
+  const CliResult unknown = run_hqview({"analyze", "--data", "csv,vtu.zlib", renamed.string(), "-o", (dir / "a").string(), "--no-render"});
   EXPECT_EQ(unknown.exit_code, 3) << unknown.err;
   EXPECT_FALSE(fs::exists(dir / "a"));
   const CliResult forced =
-      run_hqview({"analyze", renamed.string(), "--format", "mesh", "-o", (dir / "b").string(), "--no-render"});
+      run_hqview({"analyze", "--data", "csv,vtu.zlib", renamed.string(), "--format", "mesh", "-o", (dir / "b").string(), "--no-render"});
   ASSERT_EQ(forced.exit_code, 0) << forced.err;
   EXPECT_EQ(nlohmann::json::parse(read_text(dir / "b" / "report.json"))["mesh"]["num_hexes"], 144);
   // The wrong format is a parse error of that format, not a silent misread.
   const CliResult wrong =
-      run_hqview({"analyze", renamed.string(), "--format", "vtk", "-o", (dir / "c").string(), "--no-render"});
+      run_hqview({"analyze", "--data", "csv,vtu.zlib", renamed.string(), "--format", "vtk", "-o", (dir / "c").string(), "--no-render"});
   EXPECT_EQ(wrong.exit_code, 3) << wrong.err;
   const CliResult bogus =
-      run_hqview({"analyze", renamed.string(), "--format", "stl", "-o", (dir / "d").string(), "--no-render"});
+      run_hqview({"analyze", "--data", "csv,vtu.zlib", renamed.string(), "--format", "stl", "-o", (dir / "d").string(), "--no-render"});
   EXPECT_EQ(bogus.exit_code, 2);
   EXPECT_NE(bogus.err.find("--format"), std::string::npos) << bogus.err;
 }
@@ -239,7 +271,7 @@ TEST(Cli, VerbosePrintsEachStageAndTimingsJsonListsThem) {
   // stays the same bytes as a run without --verbose).
   const fs::path dir = fresh_output_dir("verbose");
   const std::string ball = (source_dir() / "examples/ball.mesh").string(), off = (source_dir() / "examples/ball.off").string();
-  const CliResult r = run_hqview({"analyze", ball, "--reference", off, "-o", (dir / "v").string(), "--size", "320x240", "-v"});
+  const CliResult r = run_hqview({"analyze", "--data", "csv,vtu.zlib", ball, "--reference", off, "-o", (dir / "v").string(), "--size", "320x240", "-v"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json timings = json::parse(read_text(dir / "v/timings.json"));
   std::vector<std::string> names;
@@ -251,17 +283,23 @@ TEST(Cli, VerbosePrintsEachStageAndTimingsJsonListsThem) {
     EXPECT_NE(r.err.find("hqview: " + s["name"].get<std::string>() + ": "), std::string::npos) << s["name"];
   }
   EXPECT_NEAR(timings["total_seconds"].get<double>(), total, 1e-9);
-  for (const char* stage : {"read", "topology", "quality", "metrics", "summaries", "structure", "glyphs", "overlap",
+  // The stages account for the run: their sum within 10 % of the wall time
+  // from the process's start to the last file.
+  const double wall = timings["wall_seconds"].get<double>();
+  EXPECT_GE(wall, total - 1e-6);
+  EXPECT_LE(wall, 1.1 * total) << "stages " << total << " s of " << wall << " s";
+  for (const char* stage : {"renderer", "read", "topology", "quality", "metrics", "summaries", "structure", "glyphs", "overlap",
                             "boundary error", "uv atlas", "view overview", "view main", "view uv_error",
-                            "write report.json", "write cells.csv", "write annotated.vtu", "write images"})
+                            "report document", "write report.json", "write cells.csv", "write annotated.vtu", "write edges.csv",
+                            "write images"})
     EXPECT_NE(std::find(names.begin(), names.end(), stage), names.end()) << stage;
-  EXPECT_EQ(names.front(), "read");
+  EXPECT_EQ(names.front(), "renderer");
   EXPECT_EQ(names.back(), "write images");
   // Stage lines come in that order on standard error, before the last line.
   EXPECT_LT(r.err.find("hqview: read: "), r.err.find("hqview: metrics: "));
   EXPECT_LT(r.err.find("hqview: write images: "), r.err.find("hqview: report written to"));
   // Without -v: silent about stages, the same report.json, a timings.json all the same.
-  const CliResult quiet = run_hqview({"analyze", ball, "--reference", off, "-o", (dir / "q").string(), "--size", "320x240"});
+  const CliResult quiet = run_hqview({"analyze", "--data", "csv,vtu.zlib", ball, "--reference", off, "-o", (dir / "q").string(), "--size", "320x240"});
   ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
   EXPECT_EQ(quiet.err.find("hqview: read: "), std::string::npos) << quiet.err;
   EXPECT_EQ(read_text(dir / "q/report.json"), read_text(dir / "v/report.json"));

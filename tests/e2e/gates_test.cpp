@@ -36,7 +36,7 @@ std::vector<std::string> lines_with(const std::string& text, const std::string& 
 
 TEST(Gates, PassingRulesExitZeroAndAreReported) {
   const fs::path out = fresh_output_dir("gates_pass") / "bundle";
-  const CliResult r = run_hqview({"analyze", kBall, "-o", out.string(), "--no-render", "--gate",
+  const CliResult r = run_hqview({"analyze", "--data", "csv,vtu.zlib", kBall, "-o", out.string(), "--no-render", "--gate",
                                   "quality.num_degenerate==0", "--gate", "quality.metrics.skew.p95 <= 0.5"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json gates = read_report(out)["gates"];
@@ -51,7 +51,7 @@ TEST(Gates, PassingRulesExitZeroAndAreReported) {
 TEST(Gates, AFailingRuleExitsOneWritesTheBundleAndSaysWhichOnStderr) {
   const fs::path out = fresh_output_dir("gates_fail") / "bundle";
   // The ball has folded corners: 14 inverted hexes, min scaled Jacobian < 0.
-  const CliResult r = run_hqview({"analyze", kBall, "-o", out.string(), "--no-render", "--quiet", "--gate",
+  const CliResult r = run_hqview({"analyze", "--data", "csv,vtu.zlib", kBall, "-o", out.string(), "--no-render", "--quiet", "--gate",
                                   "quality.scaled_jacobian.min>=0.2", "--gate", "quality.num_inverted==0", "--gate",
                                   "quality.worst_cells.0.scaled_jacobian>-1", "--gate", "headline.num_hexes==1000"});
   EXPECT_EQ(r.exit_code, 1) << r.err;
@@ -76,18 +76,18 @@ TEST(Gates, AFailingRuleExitsOneWritesTheBundleAndSaysWhichOnStderr) {
 TEST(Gates, BadRulesAndMissingKeysExitTwoWithoutABundle) {
   const fs::path dir = fresh_output_dir("gates_usage");
   const CliResult syntax =
-      run_hqview({"analyze", kBall, "-o", (dir / "a").string(), "--no-render", "--gate", "quality.num_inverted=0"});
+      run_hqview({"analyze", "--data", "csv,vtu.zlib", kBall, "-o", (dir / "a").string(), "--no-render", "--gate", "quality.num_inverted=0"});
   EXPECT_EQ(syntax.exit_code, 2);
   EXPECT_NE(syntax.err.find("'=' is not an operator"), std::string::npos) << syntax.err;
   const CliResult missing = run_hqview(
-      {"analyze", kBall, "-o", (dir / "b").string(), "--no-render", "--gate", "quality.scaled_jacobian.mn>=0.2"});
+      {"analyze", "--data", "csv,vtu.zlib", kBall, "-o", (dir / "b").string(), "--no-render", "--gate", "quality.scaled_jacobian.mn>=0.2"});
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_NE(missing.err.find("no 'mn' under 'quality.scaled_jacobian'"), std::string::npos) << missing.err;
-  const CliResult null_value = run_hqview({"analyze", kBall, "-o", (dir / "c").string(), "--no-render", "--gate",
+  const CliResult null_value = run_hqview({"analyze", "--data", "csv,vtu.zlib", kBall, "-o", (dir / "c").string(), "--no-render", "--gate",
                                            "quality.metrics.volume.acceptable.1<=1"});
   EXPECT_EQ(null_value.exit_code, 2);
   EXPECT_NE(null_value.err.find("null"), std::string::npos) << null_value.err;
-  const CliResult baseline = run_hqview({"analyze", kBall, "-o", (dir / "d").string(), "--no-render", "--gate",
+  const CliResult baseline = run_hqview({"analyze", "--data", "csv,vtu.zlib", kBall, "-o", (dir / "d").string(), "--no-render", "--gate",
                                          "quality.scaled_jacobian.min>=baseline-0.01"});
   EXPECT_EQ(baseline.exit_code, 2);
   for (const char* d : {"a", "b", "c", "d"}) EXPECT_FALSE(fs::exists(dir / d)) << d;
@@ -95,9 +95,9 @@ TEST(Gates, BadRulesAndMissingKeysExitTwoWithoutABundle) {
 
 TEST(Metrics, SubsetKeepsTheCsvHeaderAndLeavesColumnsEmpty) {
   const fs::path dir = fresh_output_dir("metrics_subset");
-  ASSERT_EQ(run_hqview({"analyze", kBall, "-o", (dir / "all").string(), "--no-render"}).exit_code, 0);
+  ASSERT_EQ(run_hqview({"analyze", "--data", "csv,vtu.zlib", kBall, "-o", (dir / "all").string(), "--no-render"}).exit_code, 0);
   const CliResult r =
-      run_hqview({"analyze", kBall, "-o", (dir / "some").string(), "--no-render", "--metrics", "taper, skew"});
+      run_hqview({"analyze", "--data", "csv,vtu.zlib", kBall, "-o", (dir / "some").string(), "--no-render", "--metrics", "taper, skew"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json report = read_report(dir / "some");
   std::vector<std::string> names;  // in the file's order
@@ -118,12 +118,12 @@ TEST(Metrics, SubsetKeepsTheCsvHeaderAndLeavesColumnsEmpty) {
     EXPECT_EQ(rows[i][column("oddy")], "");
     EXPECT_NE(all_rows[i][column("oddy")], "");
   }
-  EXPECT_EQ(run_hqview({"analyze", kBall, "-o", (dir / "bad").string(), "--metrics", "skew,aspect"}).exit_code, 2);
+  EXPECT_EQ(run_hqview({"analyze", "--data", "csv,vtu.zlib", kBall, "-o", (dir / "bad").string(), "--metrics", "skew,aspect"}).exit_code, 2);
 }
 
 TEST(Metrics, HeadlineComesFirstAndCellsCsvHasEveryVerdictColumn) {
   const fs::path out = fresh_output_dir("headline") / "bundle";
-  ASSERT_EQ(run_hqview({"analyze", kBall, "-o", out.string(), "--no-render"}).exit_code, 0);
+  ASSERT_EQ(run_hqview({"analyze", "--data", "csv,vtu.zlib", kBall, "-o", out.string(), "--no-render"}).exit_code, 0);
   const std::string text = read_text(out / "report.json");
   const json report = json::parse(text);
   // (nlohmann::json sorts keys when parsing: the order is read from the text.)
@@ -225,7 +225,7 @@ TEST_P(RealMeshStatistics, ReportMatchesCellsCsv) {
   const std::string relative = GetParam();
   const fs::path out = fresh_output_dir("stats/" + fs::path(relative).stem().string()) / "bundle";
   const CliResult r =
-      run_hqview({"analyze", (*data / "meshes" / relative).string(), "-o", out.string(), "--no-render"});
+      run_hqview({"analyze", "--data", "csv,vtu.zlib", (*data / "meshes" / relative).string(), "-o", out.string(), "--no-render"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json report = read_report(out);
   const auto rows = read_csv(out / "data/cells.csv");
@@ -285,12 +285,12 @@ TEST(RealMeshGates, ExitCodesOnTheDefectsThePapersKnow) {
   const fs::path dir = fresh_output_dir("real_gates");
   // rockarm: 11 hexes with a negative corner, so at least 11 inverted cells.
   const CliResult rockarm =
-      run_hqview({"analyze", (*data / "meshes/dualsheet2019/rockarm.vtk").string(), "-o", (dir / "rockarm").string(),
+      run_hqview({"analyze", "--data", "csv,vtu.zlib", (*data / "meshes/dualsheet2019/rockarm.vtk").string(), "-o", (dir / "rockarm").string(),
                   "--no-render", "--gate", "quality.num_inverted==0"});
   EXPECT_EQ(rockarm.exit_code, 1) << rockarm.err;
   EXPECT_GE(read_report(dir / "rockarm")["quality"]["num_inverted"].get<int>(), 11);
   // bunny_out: no inverted hex, every scaled Jacobian positive.
-  const CliResult bunny = run_hqview({"analyze", (*data / "meshes/livesu2015_edgecone/bunny_out.mesh").string(), "-o",
+  const CliResult bunny = run_hqview({"analyze", "--data", "csv,vtu.zlib", (*data / "meshes/livesu2015_edgecone/bunny_out.mesh").string(), "-o",
                                       (dir / "bunny").string(), "--no-render", "--gate", "quality.num_inverted==0",
                                       "--gate", "quality.scaled_jacobian.min>0", "--metrics", "scaled_jacobian"});
   EXPECT_EQ(bunny.exit_code, 0) << bunny.err;
@@ -309,7 +309,7 @@ TEST(StructureGates, SingularityCountsGateLikeAnyNumber) {
   // exit 1, one that allows the count passes; a size-gradation rule reads
   // the statistics.
   const fs::path out = fresh_output_dir("gates_structure") / "bundle";
-  CliResult r = run_hqview({"analyze", kBall, "-o", out.string(), "--no-render", "--quiet", "--gate",
+  CliResult r = run_hqview({"analyze", "--data", "csv,vtu.zlib", kBall, "-o", out.string(), "--no-render", "--quiet", "--gate",
                             "structure.num_irregular_edges_boundary==0"});
   EXPECT_EQ(r.exit_code, 1) << r.err;
   const json report = read_report(out);
@@ -318,7 +318,7 @@ TEST(StructureGates, SingularityCountsGateLikeAnyNumber) {
   EXPECT_EQ(report["structure"]["num_singular_edges_interior"].get<long>(), 0);
   EXPECT_EQ(report["structure"]["num_singular_curves"].get<long>(), 12);
   EXPECT_EQ(report["gates"]["results"][0]["value"].get<long>(), count);
-  r = run_hqview({"analyze", kBall, "-o", out.string(), "--no-render", "--quiet", "--gate",
+  r = run_hqview({"analyze", "--data", "csv,vtu.zlib", kBall, "-o", out.string(), "--no-render", "--quiet", "--gate",
                   "structure.num_irregular_edges_boundary<=" + std::to_string(count), "--gate",
                   "structure.size_gradation.max>=1"});
   EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -339,7 +339,7 @@ TEST(StructureGates, BatchAndDiffReadTheStructureKeys) {
   for (const json& m : index["meshes"])
     EXPECT_EQ(m["status"], m["label"] == "ball" ? "gate_failed" : "ok") << m["label"];
   for (const auto& [name, path] : {std::pair{"ball", kBall}, std::pair{"bar", bar}})
-    ASSERT_EQ(run_hqview({"analyze", path, "-o", (dir / name).string(), "--no-render", "--quiet"}).exit_code, 0);
+    ASSERT_EQ(run_hqview({"analyze", "--data", "csv,vtu.zlib", path, "-o", (dir / name).string(), "--no-render", "--quiet"}).exit_code, 0);
   r = run_hqview({"diff", (dir / "ball").string(), (dir / "bar").string(), "--gate",
                   "structure.num_singular_edges_boundary<=baseline"});
   EXPECT_EQ(r.exit_code, 0) << r.err;

@@ -28,7 +28,7 @@ struct GlyphBundle {
 
 GlyphBundle analyze(const fs::path& mesh, const std::string& name, std::vector<std::string> extra = {}) {
   const fs::path out = fresh_output_dir("glyphs/" + name) / "bundle";
-  std::vector<std::string> args = {"analyze", mesh.string(), "-o", out.string(), "--no-render"};
+  std::vector<std::string> args = {"analyze", "--data", "csv,vtu.zlib", mesh.string(), "-o", out.string(), "--no-render"};
   args.insert(args.end(), extra.begin(), extra.end());
   const CliResult r = run_hqview(args);
   EXPECT_EQ(r.exit_code, 0) << name << ": " << r.err;
@@ -205,7 +205,7 @@ TEST(Glyphs, BadOptionValuesAreUsageErrors) {
   };
   for (const auto& option : bad) {
     const fs::path out = fresh_output_dir("glyphs/bad") / "bundle";
-    std::vector<std::string> args = {"analyze", example("ball.mesh").string(), "-o", out.string(), "--no-render"};
+    std::vector<std::string> args = {"analyze", "--data", "csv,vtu.zlib", example("ball.mesh").string(), "-o", out.string(), "--no-render"};
     args.insert(args.end(), option.begin(), option.end());
     const CliResult r = run_hqview(args);
     EXPECT_EQ(r.exit_code, 2) << option[0] << " " << option[1] << ": " << r.err;

@@ -18,7 +18,7 @@ using json = nlohmann::ordered_json;  // keeps report.json's key order
 fs::path example(const std::string& name) { return source_dir() / "examples" / name; }
 
 json analyze_json(const std::string& mesh, std::vector<std::string> extra, const fs::path& out) {
-  std::vector<std::string> args = {"analyze", example(mesh).string(), "-o", out.string(), "--no-render", "-q", "--json",
+  std::vector<std::string> args = {"analyze", "--data", "csv,vtu.zlib", example(mesh).string(), "-o", out.string(), "--no-render", "-q", "--json",
                                    "-"};
   args.insert(args.end(), extra.begin(), extra.end());
   const CliResult r = run_hqview(args);
@@ -99,7 +99,7 @@ TEST(OverlapCli, BallFoldIsReportedInJsonCsvAndHtml) {
 
 TEST(OverlapCli, GateOnIntersectingCells) {
   const fs::path out = fresh_output_dir("overlap_gate") / "bundle";
-  const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "-o", out.string(), "--no-render", "-q",
+  const CliResult r = run_hqview({"analyze", "--data", "csv,vtu.zlib", example("ball.mesh").string(), "-o", out.string(), "--no-render", "-q",
                                   "--gate", "overlap.num_intersecting_cells==0"});
   EXPECT_EQ(r.exit_code, 1) << r.err;
 }
@@ -133,7 +133,7 @@ TEST(OverlapCli, BadValuesAreUsageErrors) {
                                              {"--coincident-eps", "2"},
                                              {"--coincident-eps", "0.1x"},
                                              {"--no-overlap", "--overlap", "exhaustive"}}) {
-    std::vector<std::string> args = {"analyze", example("duplicated_vertex.mesh").string(), "-o", out.string(),
+    std::vector<std::string> args = {"analyze", "--data", "csv,vtu.zlib", example("duplicated_vertex.mesh").string(), "-o", out.string(),
                                      "--no-render"};
     args.insert(args.end(), extra.begin(), extra.end());
     const CliResult r = run_hqview(args);

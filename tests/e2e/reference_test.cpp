@@ -21,7 +21,7 @@ fs::path example(const char* name) { return source_dir() / "examples" / name; }
 
 TEST(Reference, BallAgainstItsSphere) {
   const fs::path out = fresh_output_dir("reference/ball") / "bundle";
-  const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "--reference", example("ball.off").string(),
+  const CliResult r = run_hqview({"analyze", "--data", "csv,vtu.zlib", example("ball.mesh").string(), "--reference", example("ball.off").string(),
                                   "-o", out.string(), "--no-render", "-j", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json report = json::parse(read_text(out / "report.json"));
@@ -70,7 +70,7 @@ TEST(Reference, BallAgainstItsSphere) {
 
 TEST(Reference, WithoutReferenceTheFieldsAreNullAndTheColumnEmpty) {
   const fs::path out = fresh_output_dir("reference/none") / "bundle";
-  const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "-o", out.string(), "--no-render"});
+  const CliResult r = run_hqview({"analyze", "--data", "csv,vtu.zlib", example("ball.mesh").string(), "-o", out.string(), "--no-render"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json report = json::parse(read_text(out / "report.json"));
   EXPECT_TRUE(report["input"]["reference"].is_null());
@@ -84,7 +84,7 @@ TEST(Reference, SameReportForOneAndTwoThreads) {
   for (int j = 1; j <= 2; ++j) {
     const fs::path out = fresh_output_dir("reference/threads" + std::to_string(j)) / "bundle";
     const CliResult r =
-        run_hqview({"analyze", example("ball.mesh").string(), "--reference", example("ball.off").string(), "-o",
+        run_hqview({"analyze", "--data", "csv,vtu.zlib", example("ball.mesh").string(), "--reference", example("ball.off").string(), "-o",
                     out.string(), "--no-render", "-j", std::to_string(j)});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     reports[j - 1] = read_text(out / "report.json") + read_text(out / "data/vertices.csv");
@@ -95,7 +95,7 @@ TEST(Reference, SameReportForOneAndTwoThreads) {
 TEST(Reference, MissingEmptyAndFarReferencesAreInputErrors) {
   const fs::path dir = fresh_output_dir("reference/errors");
   auto run = [&](const fs::path& reference) {
-    return run_hqview({"analyze", example("ball.mesh").string(), "--reference", reference.string(), "-o",
+    return run_hqview({"analyze", "--data", "csv,vtu.zlib", example("ball.mesh").string(), "--reference", reference.string(), "-o",
                        (dir / "bundle").string(), "--no-render"});
   };
   const CliResult missing = run(dir / "missing.off");
@@ -117,7 +117,7 @@ TEST(Reference, MissingEmptyAndFarReferencesAreInputErrors) {
 TEST(Reference, GatesReadTheBoundaryError) {
   const fs::path dir = fresh_output_dir("reference/gates");
   auto run = [&](const std::string& rule) {
-    return run_hqview({"analyze", example("ball.mesh").string(), "--reference", example("ball.off").string(), "-o",
+    return run_hqview({"analyze", "--data", "csv,vtu.zlib", example("ball.mesh").string(), "--reference", example("ball.off").string(), "-o",
                        (dir / "bundle").string(), "--no-render", "--force", "--gate", rule, "--gate",
                        "boundary_error.uv_atlas.num_overlaps==0"});
   };
@@ -133,7 +133,7 @@ TEST(Reference, RealPairsFromSharedData) {
       {"livesu2016_skeleton/armadillo.mesh", "livesu2016_skeleton/armadillo.obj"}};
   for (const auto& [mesh, reference] : pairs) {
     const fs::path out = fresh_output_dir("reference/" + fs::path(mesh).stem().string()) / "bundle";
-    const CliResult r = run_hqview({"analyze", (*data / "meshes" / mesh).string(), "--reference",
+    const CliResult r = run_hqview({"analyze", "--data", "csv,vtu.zlib", (*data / "meshes" / mesh).string(), "--reference",
                                     (*data / "meshes" / reference).string(), "-o", out.string(), "--no-render"});
     ASSERT_EQ(r.exit_code, 0) << mesh << ": " << r.err;
     const json b = json::parse(read_text(out / "report.json"))["boundary_error"];

@@ -32,7 +32,7 @@ TEST(ReportPages, SameBytesForOneAndTwoThreadsWithViewsAndReference) {
   const fs::path dir = fresh_output_dir("pages_threads");
   for (const char* j : {"1", "2"}) {
     const CliResult r =
-        run_hqview({"analyze", example("ball.mesh").string(), "--reference", example("ball.off").string(), "-o",
+        run_hqview({"analyze", "--data", "csv,vtu.zlib", example("ball.mesh").string(), "--reference", example("ball.off").string(), "-o",
                     (dir / j).string(), "-j", j, "--size", "320x240"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
@@ -46,7 +46,7 @@ TEST(ReportPages, SameBytesForOneAndTwoThreadsWithViewsAndReference) {
 
 TEST(ReportPages, EveryListedViewIsOnAPageAndSummaryLinksExist) {
   const fs::path out = fresh_output_dir("pages_views") / "bundle";
-  const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "--reference", example("ball.off").string(),
+  const CliResult r = run_hqview({"analyze", "--data", "csv,vtu.zlib", example("ball.mesh").string(), "--reference", example("ball.off").string(),
                                   "-o", out.string(), "--size", "320x240"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json report = nlohmann::json::parse(read_text(out / "report.json"));
@@ -74,7 +74,7 @@ TEST(ReportPages, EveryListedViewIsOnAPageAndSummaryLinksExist) {
   EXPECT_NE(md.find("(views/boundary_error_front.png)"), std::string::npos) << md;
   // Without --reference there is no boundary page, and nothing links to one.
   const fs::path plain = fresh_output_dir("pages_views") / "plain";
-  ASSERT_EQ(run_hqview({"analyze", example("ball.mesh").string(), "-o", plain.string(), "--no-render"}).exit_code, 0);
+  ASSERT_EQ(run_hqview({"analyze", "--data", "csv,vtu.zlib", example("ball.mesh").string(), "-o", plain.string(), "--no-render"}).exit_code, 0);
   EXPECT_FALSE(fs::exists(plain / "boundary.html"));
   EXPECT_EQ(read_text(plain / "index.html").find("boundary.html"), std::string::npos);
   EXPECT_EQ(read_text(plain / "summary.md").find("boundary.html"), std::string::npos);
@@ -85,7 +85,7 @@ TEST(ReportPages, ScriptInTheMeshNameIsShownLiterallyInPagesAndMarkdown) {
   const std::string name = "<script>window.x=1<img src=q onerror=alert(1)>\"it's\" & co.mesh";
   fs::create_directories(dir / "in");
   fs::copy_file(example("twisted_bar.mesh"), dir / "in" / name);
-  const CliResult r = run_hqview({"analyze", (dir / "in" / name).string(), "--reference", example("ball.off").string(),
+  const CliResult r = run_hqview({"analyze", "--data", "csv,vtu.zlib", (dir / "in" / name).string(), "--reference", example("ball.off").string(),
                                   "-o", (dir / "bundle").string(), "--no-render"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string escaped =
@@ -117,24 +117,24 @@ TEST(ReportPages, OutputOnAFileOrAForeignDirectoryNeedsForce) {
   const fs::path dir = fresh_output_dir("pages_output");
   std::ofstream(dir / "file.txt") << "keep me\n";
   const CliResult file =
-      run_hqview({"analyze", example("ball.mesh").string(), "-o", (dir / "file.txt").string(), "--no-render"});
+      run_hqview({"analyze", "--data", "csv,vtu.zlib", example("ball.mesh").string(), "-o", (dir / "file.txt").string(), "--no-render"});
   EXPECT_EQ(file.exit_code, 2);
   EXPECT_NE(file.err.find("--force"), std::string::npos) << file.err;
   EXPECT_EQ(read_text(dir / "file.txt"), "keep me\n");
   // --force replaces the file with the bundle.
   const CliResult forced = run_hqview(
-      {"analyze", example("ball.mesh").string(), "-o", (dir / "file.txt").string(), "--no-render", "--force"});
+      {"analyze", "--data", "csv,vtu.zlib", example("ball.mesh").string(), "-o", (dir / "file.txt").string(), "--no-render", "--force"});
   EXPECT_EQ(forced.exit_code, 0) << forced.err;
   EXPECT_TRUE(fs::is_regular_file(dir / "file.txt" / "report.json"));
   // A non-empty directory that is not a bundle is kept; a bundle is replaced.
   fs::create_directories(dir / "photos");
   std::ofstream(dir / "photos" / "cat.jpg") << "meow\n";
   EXPECT_EQ(
-      run_hqview({"analyze", example("ball.mesh").string(), "-o", (dir / "photos").string(), "--no-render"}).exit_code,
+      run_hqview({"analyze", "--data", "csv,vtu.zlib", example("ball.mesh").string(), "-o", (dir / "photos").string(), "--no-render"}).exit_code,
       2);
   EXPECT_EQ(listing(dir / "photos"), std::vector<std::string>{"cat.jpg"});
   EXPECT_EQ(
-      run_hqview({"analyze", example("twisted_bar.mesh").string(), "-o", (dir / "file.txt").string(), "--no-render"})
+      run_hqview({"analyze", "--data", "csv,vtu.zlib", example("twisted_bar.mesh").string(), "-o", (dir / "file.txt").string(), "--no-render"})
           .exit_code,
       0);
   // Nothing beside the outputs: no temporaries left.

@@ -41,7 +41,7 @@ struct Bundle {
 Bundle analyze_shared(const std::string& relative, bool render) {
   const auto data = shared_data_dir();
   const fs::path out = fresh_output_dir("shared/" + fs::path(relative).stem().string()) / "bundle";
-  std::vector<std::string> args = {"analyze", (*data / "meshes" / relative).string(), "-o", out.string()};
+  std::vector<std::string> args = {"analyze", "--data", "csv,vtu.zlib", (*data / "meshes" / relative).string(), "-o", out.string()};
   if (!render) args.push_back("--no-render");
   const CliResult r = run_hqview(args);
   EXPECT_EQ(r.exit_code, 0) << relative << ": " << r.err;

@@ -156,11 +156,25 @@ TEST(IndexHtml, ChartBarsLinkWhereTheirVertexIsShown) {
   EXPECT_NE(html.find("title=\"rank 1: vertex 1, quality -0.5\""), std::string::npos);
 }
 
-TEST(IndexHtml, AnnotatedVtuAndBoundaryPageAreLinkedOnlyWhenWritten) {
+TEST(IndexHtml, DataFilesAndBoundaryPageAreLinkedOnlyWhenWritten) {
   ReportModel m = linked_model();
-  EXPECT_EQ(index_html(m).find("data/annotated.vtu"), std::string::npos);
-  EXPECT_EQ(index_html(m).find("href=\"boundary.html\""), std::string::npos);
-  m.has_annotated_vtu = true;
+  // --data none: no per-cell file linked, the page says how to get them.
+  m.data = parse_data_formats("none");
+  std::string none = index_html(m);
+  EXPECT_EQ(none.find("data/annotated.vtu"), std::string::npos);
+  EXPECT_EQ(none.find("data/cells.csv"), std::string::npos);
+  EXPECT_NE(none.find("href=\"data/edges.csv\""), std::string::npos);
+  EXPECT_NE(none.find("<code>--data none</code>"), std::string::npos);
+  EXPECT_EQ(none.find("href=\"boundary.html\""), std::string::npos);
+  // csv.gz: the gzip'ed tables, not the plain ones or the VTU.
+  m.data = parse_data_formats("csv.gz");
+  const std::string gz = index_html(m);
+  EXPECT_NE(gz.find("href=\"data/cells.csv.gz\""), std::string::npos);
+  EXPECT_NE(gz.find("href=\"data/vertices.csv.gz\""), std::string::npos);
+  EXPECT_EQ(gz.find("href=\"data/cells.csv\""), std::string::npos);
+  EXPECT_EQ(gz.find("data/annotated.vtu"), std::string::npos);
+  m.data = DataFormats{};  // the default: the compressed VTU
+  EXPECT_EQ(index_html(m).find("data/cells.csv"), std::string::npos);
   m.analysis.boundary_error.emplace().hausdorff_relative = 0.0125;
   const std::string html = index_html(m);
   EXPECT_NE(html.find("href=\"data/annotated.vtu\""), std::string::npos);

@@ -198,7 +198,7 @@ def compare(name, path, hqview, out):
     before = len(failures)
     bundle = os.path.join(out, name)
     shutil.rmtree(bundle, ignore_errors=True)
-    result = subprocess.run([hqview, "analyze", path, "--no-render", "--no-overlap", "-q", "-o", bundle],
+    result = subprocess.run([hqview, "analyze", path, "--no-render", "--no-overlap", "-q", "--data", "csv", "-o", bundle],
                             capture_output=True, text=True)
     if result.returncode not in (0, 1):
         check(False, f"{name}: hqview exited {result.returncode}: {result.stderr}")

@@ -5,7 +5,10 @@
 // running stage and begins the next, stop() ends it; each finished stage is
 // appended to the list and handed to the sink (main prints it).
 
+#include <sys/resource.h>
+
 #include <chrono>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <utility>
@@ -16,7 +19,15 @@ namespace hq {
 struct StageTime {
   std::string name;
   double seconds = 0.0;
+  std::uint64_t peak_rss_bytes = 0;  // the process's peak resident memory when the stage ended
 };
+
+// The process's peak resident set so far (getrusage), in bytes.
+inline std::uint64_t peak_rss_bytes() {
+  rusage usage{};
+  if (::getrusage(RUSAGE_SELF, &usage) != 0) return 0;
+  return static_cast<std::uint64_t>(usage.ru_maxrss) * 1024;  // Linux: KiB
+}
 
 using StageSink = std::function<void(const StageTime&)>;
 
@@ -37,7 +48,7 @@ class StageClock {
     if (!running_) return;
     running_ = false;
     const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - begin_;
-    out_.push_back({std::move(name_), elapsed.count()});
+    out_.push_back({std::move(name_), elapsed.count(), peak_rss_bytes()});
     if (sink_) sink_(out_.back());
   }
 

@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <numeric>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+
 #include "hqview/core/hex_topology.h"
 
 namespace hq {
@@ -48,21 +52,25 @@ void build_faces(const HexMesh& mesh, Topology& topo) {
   const std::size_t nv = mesh.points.size();
   const std::size_t nhf = mesh.hexes.size() * 6;
   std::vector<Quad> keys(nhf);
-  for (std::size_t hf = 0; hf < nhf; ++hf) {
-    const Hex& hex = mesh.hexes[hf / 6];
-    const auto& local = kHexFaces[hf % 6];
-    keys[hf] = sorted_quad({hex[local[0]], hex[local[1]], hex[local[2]], hex[local[3]]});
-  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nhf), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t hf = r.begin(); hf != r.end(); ++hf) {
+      const Hex& hex = mesh.hexes[hf / 6];
+      const auto& local = kHexFaces[hf % 6];
+      keys[hf] = sorted_quad({hex[local[0]], hex[local[1]], hex[local[2]], hex[local[3]]});
+    }
+  });
   std::vector<Index> offsets, order;
   bucket_by_key(
       nhf, nv, [&](std::size_t hf) { return keys[hf][0]; }, offsets, order);
-  for (std::size_t v = 0; v < nv; ++v) {
-    // Stable: equal keys stay in ascending hex-face order, so the first
-    // occurrence belongs to the lowest-numbered hex.
-    std::stable_sort(order.begin() + offsets[v], order.begin() + offsets[v + 1], [&](Index a, Index b) {
-      return keys[static_cast<std::size_t>(a)] < keys[static_cast<std::size_t>(b)];
-    });
-  }
+  // Each vertex's bucket sorted on its own (disjoint ranges: any thread
+  // count gives the same order). Stable: equal keys stay in ascending
+  // hex-face order, so the first occurrence belongs to the lowest-numbered hex.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t v = r.begin(); v != r.end(); ++v)
+      std::stable_sort(order.begin() + offsets[v], order.begin() + offsets[v + 1], [&](Index a, Index b) {
+        return keys[static_cast<std::size_t>(a)] < keys[static_cast<std::size_t>(b)];
+      });
+  });
 
   topo.hex_faces.assign(nhf, kNoIndex);
   topo.faces.clear();
@@ -123,9 +131,9 @@ void build_edges(const HexMesh& mesh, Topology& topo) {
 
 Topology build_topology(const HexMesh& mesh) {
   Topology topo;
-  build_vertex_hexes(mesh, topo);
-  build_faces(mesh, topo);
-  build_edges(mesh, topo);
+  // Three independent parts, each filling its own members.
+  tbb::parallel_invoke([&] { build_vertex_hexes(mesh, topo); }, [&] { build_faces(mesh, topo); },
+                       [&] { build_edges(mesh, topo); });
   return topo;
 }
 

@@ -149,7 +149,7 @@ AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
   AnalyzeResult result;
   ReportModel& model = result.model;
   model.tool_version = options.tool_version;
-  model.has_annotated_vtu = true;  // every analyze bundle has data/annotated.vtu
+  model.data = options.data;
   model.analysis = analyze_mesh(options);
   if (renderer) {
     std::vector<StageTime> view_times;
@@ -163,9 +163,13 @@ AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
   model.viewer_max_mb = options.viewer_max_mb;
   model.viewer_up = options.views.up;
   // Gates read the finished report, so any numeric key can be gated on.
-  result.document = report_document(model);
-  model.gates = evaluate_gates(options.gates, result.document);
-  set_report_gates(result.document, model.gates);
+  {
+    StageClock clock(model.analysis.timings, options.on_stage);
+    clock.start("report document");
+    result.document = report_document(model);
+    model.gates = evaluate_gates(options.gates, result.document);
+    set_report_gates(result.document, model.gates);
+  }
   return result;
 }
 

@@ -14,6 +14,7 @@
 #include "hqview/io/read_limits.h"
 #include "hqview/overlap/overlap.h"
 #include "hqview/pipeline/gates.h"
+#include "hqview/report/data_files.h"
 #include "hqview/quality/hex_metrics.h"
 #include "hqview/render/renderer.h"
 #include "hqview/report/bundle_writer.h"
@@ -32,6 +33,7 @@ struct AnalyzeOptions {
   CompareAlign reference_align = CompareAlign::none; // --reference-align (none or bbox)
   std::string tool_version;
   ViewOptions views;                         // size, views to draw, focus vertices, up axis
+  DataFormats data;                          // --data: the per-cell and per-vertex data files
   bool viewer = true;                        // viewer.html when views are drawn (--no-viewer: false)
   double viewer_max_mb = 25;                 // --viewer-max-mb
   int worst_count = 20;                      // entries in worst_vertices / worst_cells

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <system_error>
@@ -14,10 +15,10 @@
 #include "hqview/image/png.h"
 #include "hqview/report/report_csv.h"
 #include "hqview/report/report_html.h"
-#include "hqview/report/viewer.h"
 #include "hqview/report/report_json.h"
 #include "hqview/report/report_markdown.h"
 #include "hqview/report/report_vtu.h"
+#include "hqview/report/viewer.h"
 
 namespace hq {
 namespace fs = std::filesystem;
@@ -60,16 +61,19 @@ fs::path sibling(const fs::path& dir, const char* tag) {
 
 }  // namespace
 
-std::string timings_json(const std::vector<StageTime>& timings) {
+std::string timings_json(const std::vector<StageTime>& timings, double wall_seconds) {
   nlohmann::json stages = nlohmann::json::array();
   double total = 0.0;
   for (const StageTime& t : timings) {
-    stages.push_back({{"name", t.name}, {"seconds", t.seconds}});
+    stages.push_back(
+        {{"name", t.name}, {"seconds", t.seconds}, {"peak_rss_mb", std::round(t.peak_rss_bytes / 1e5) / 10}});
     total += t.seconds;
   }
-  const nlohmann::json j = {{"note", "wall seconds of this run's stages; differs from run to run (report.json does not)"},
-                            {"stages", std::move(stages)},
-                            {"total_seconds", total}};
+  const nlohmann::json j = {
+      {"note", "wall seconds of this run's stages; differs from run to run (report.json does not)"},
+      {"stages", std::move(stages)},
+      {"total_seconds", total},
+      {"wall_seconds", wall_seconds}};
   return j.dump(2) + "\n";
 }
 
@@ -110,15 +114,20 @@ void write_bundle(const ReportModel& model, const ReportDocument& document, cons
     write_text(tmp / "style.css", report_stylesheet());
     if (model.analysis.boundary_error) write_text(tmp / "boundary.html", boundary_html(model));
     write_text(tmp / "summary.md", summary_markdown(model));
-    clock.start("write cells.csv");
-    write_file(tmp / "data" / "cells.csv", [&](std::ostream& out) { write_cells_csv(model, out); });
-    clock.start("write vertices.csv");
-    write_file(tmp / "data" / "vertices.csv", [&](std::ostream& out) { write_vertices_csv(model, out); });
-    clock.start("write edges.csv");
-    write_file(tmp / "data" / "edges.csv", [&](std::ostream& out) { write_edges_csv(model, out); });
-    if (model.has_annotated_vtu) {
-      clock.start("write annotated.vtu");
-      write_file(tmp / "data" / "annotated.vtu", [&](std::ostream& out) { write_annotated_vtu(model, out); });
+    // The data files (--data), each written in parallel chunks.
+    for (const DataFile& f : data_files(model.data)) {
+      clock.start("write " + f.path.substr(f.path.find('/') + 1));
+      const TextEncoding text = f.format == "csv.gz" ? TextEncoding::gzip : TextEncoding::plain;
+      write_file(tmp / f.path, [&](std::ostream& out) {
+        if (f.format == "vtu" || f.format == "vtu.zlib")
+          write_annotated_vtu(model, out, model.data.vtu);
+        else if (f.path.starts_with("data/cells."))
+          write_cells_csv(model, out, text);
+        else if (f.path.starts_with("data/vertices."))
+          write_vertices_csv(model, out, text);
+        else
+          write_edges_csv(model, out);
+      });
     }
     if (model.has_viewer) {
       clock.start("write viewer");
@@ -137,7 +146,11 @@ void write_bundle(const ReportModel& model, const ReportDocument& document, cons
         write_text(path, encode_png(img.image));
     });
     clock.stop();
-    write_text(tmp / "timings.json", timings_json(timings));
+    double wall = 0;
+    for (const StageTime& t : timings) wall += t.seconds;
+    if (options.started)
+      wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - *options.started).count();
+    write_text(tmp / "timings.json", timings_json(timings, wall));
     // Swap into place: the old bundle is moved aside, never deleted before
     // the new one is in place.
     if (fs::exists(dir)) {

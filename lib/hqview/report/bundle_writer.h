@@ -3,7 +3,9 @@
 // sibling directory, which replaces DIR by rename only once it is complete.
 // A failed run leaves DIR as it was (an older bundle is never lost).
 
+#include <chrono>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +25,9 @@ struct BundleImage {
 struct BundleOptions {
   bool force = false;  // replace a file, or a non-empty directory that is not an HQView bundle
   StageSink on_stage;  // called as each file is written (--verbose); may be empty
+  // When the process started: timings.json's wall_seconds runs from it to
+  // the last file (unset: from the first stage's start).
+  std::optional<std::chrono::steady_clock::time_point> started;
 };
 
 // Throws ValueError, unless force, when `dir` is an existing non-directory
@@ -30,8 +35,9 @@ struct BundleOptions {
 // (not an HQView bundle). Call it before the analysis, so a doomed run fails fast.
 void check_output_dir(const std::filesystem::path& dir, const BundleOptions& options);
 
-// timings.json: {note, stages[{name, seconds}], total_seconds}, in stage order.
-std::string timings_json(const std::vector<StageTime>& timings);
+// timings.json: {note, stages[{name, seconds, peak_rss_mb}], total_seconds,
+// wall_seconds}, in stage order.
+std::string timings_json(const std::vector<StageTime>& timings, double wall_seconds);
 
 // report.json (document's text), timings.json (model.analysis.timings and the
 // writing of each file: wall seconds, the one file that differs run to run), index.html, boundary.html (with a boundary error), summary.md, style.css,

@@ -22,8 +22,13 @@ inline bool cell_is_inverted(const QualityField& q, std::size_t h) {
   return !cell_is_degenerate(q, h) && q.cell_scaled_jacobian[h] <= 0.0;
 }
 
-void write_cells_csv(const ReportModel& model, std::ostream& out);
-void write_vertices_csv(const ReportModel& model, std::ostream& out);
+// plain: the CSV text; gzip: the same bytes gzip'ed, as concatenated gzip
+// members of a fixed number of rows each (the same file for any -j).
+enum class TextEncoding { plain, gzip };
+
+// Rows are formatted in parallel chunks and written in order.
+void write_cells_csv(const ReportModel& model, std::ostream& out, TextEncoding encoding = TextEncoding::plain);
+void write_vertices_csv(const ReportModel& model, std::ostream& out, TextEncoding encoding = TextEncoding::plain);
 // One row per singular, irregular or non-manifold edge (HexStructure::edges).
 void write_edges_csv(const ReportModel& model, std::ostream& out);
 const char* edge_kind_name(EdgeKind kind);

@@ -283,6 +283,22 @@ data input_rows(const ReportModel& model) {
 
 // ---- index.html, section by section ----
 
+// The data files and where the per-cell and per-vertex values are.
+void set_data_files(data& page, const ReportModel& model) {
+  data files{data::type::list};
+  for (const DataFile& f : data_files(model.data)) {
+    data file;
+    file.set("path", f.path);
+    file.set("what", f.what);
+    files.push_back(file);
+  }
+  page.set("data_files", files);
+  const std::string cells = cell_data_path(model.data);
+  page.set("has_cell_data", !cells.empty());
+  page.set("cell_data", cells.empty() ? "a bundle written with --data csv" : cells);
+  page.set("vertex_data", cells.empty() ? "a bundle written with --data csv" : vertex_data_path(model.data));
+}
+
 // The mesh, its inputs and the tool.
 void set_header(data& page, const ReportModel& model) {
   page.set("mesh_name", std::filesystem::path(model.analysis.mesh_input.path).filename().string());
@@ -290,7 +306,7 @@ void set_header(data& page, const ReportModel& model) {
   page.set("sha256_short", model.analysis.mesh_input.sha256.substr(0, 12));
   page.set("version", model.tool_version);
   page.set("has_boundary_page", model.analysis.boundary_error.has_value());
-  page.set("has_annotated_vtu", model.has_annotated_vtu);
+  set_data_files(page, model);
   page.set("inputs", input_rows(model));
 }
 
@@ -603,6 +619,7 @@ std::string boundary_html(const ReportModel& model) {
                                  ? std::filesystem::path(model.analysis.reference_input->path).filename().string()
                                  : "");
   page.set("version", model.tool_version);
+  set_data_files(page, model);
 
   data headline{data::type::list};
   headline.push_back(card("Hausdorff distance, % of bbox diagonal", show(100.0 * e.hausdorff_relative) + " %"));

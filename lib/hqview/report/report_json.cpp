@@ -366,6 +366,10 @@ ReportDocument report_document(const ReportModel& model) {
     views.push_back({{"id", v.id}, {"title", v.title}, {"files", v.files}, {"cameras", std::move(cameras)}});
   }
   j["views"] = std::move(views);
+  // The data files of the bundle (--data), schema_version 2.
+  Json files = Json::array();
+  for (const DataFile& f : data_files(model.data)) files.push_back({{"path", f.path}, {"format", f.format}});
+  j["data_files"] = std::move(files);
   j["gates"] = gates_json(model.gates);
   j["warnings"] = model.analysis.warnings;
   return j;

@@ -1,5 +1,5 @@
 #pragma once
-// report.json (docs/contract.md, schema_version 1) as one JSON value, built
+// report.json (docs/contract.md, schema_version 2) as one JSON value, built
 // once per run: the bundle writer prints it, gates and batch rows read it
 // (json_path.h). Fixed key order, shortest round-trip floats, NaN/Inf as
 // null, no timestamps or absolute paths.
@@ -12,7 +12,7 @@
 
 namespace hq {
 
-inline constexpr int kSchemaVersion = 1;
+inline constexpr int kSchemaVersion = 2;
 
 using ReportDocument = nlohmann::ordered_json;
 

@@ -98,8 +98,11 @@ std::string summary_markdown(const ReportModel& model) {
 
   md += "Pages: [index.html](index.html)";
   if (model.analysis.boundary_error) md += " · [boundary.html](boundary.html)";
-  md += " · data: [report.json](report.json) · [cells.csv](data/cells.csv) · [vertices.csv](data/vertices.csv) · [edges.csv](data/edges.csv)";
-  if (model.has_annotated_vtu) md += " · [annotated.vtu](data/annotated.vtu)";
+  md += " · data: [report.json](report.json)";
+  for (const DataFile& f : data_files(model.data)) {
+    const std::string name = f.path.substr(f.path.find('/') + 1);
+    md += " · [" + name + "](" + f.path + ")";
+  }
   md += "\n\n";
   md += "HQView " + markdown_escape(model.tool_version) + " · " + markdown_escape(model.analysis.mesh_input.format) +
         " · sha256 " + markdown_escape(model.analysis.mesh_input.sha256.substr(0, 12));

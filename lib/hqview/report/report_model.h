@@ -9,6 +9,7 @@
 
 #include "hqview/analysis/analysis.h"
 #include "hqview/chart/chart.h"
+#include "hqview/report/data_files.h"
 
 namespace hq {
 
@@ -57,9 +58,9 @@ struct ReportModel {
   Analysis analysis;
   std::vector<ViewEntry> views;
   GateSummary gates;
-  // data/annotated.vtu is part of the bundle (set by whoever writes it):
-  // index.html links it only then.
-  bool has_annotated_vtu = false;
+  // The per-cell and per-vertex data files of the bundle (--data); the
+  // pages link the ones there are.
+  DataFormats data;
   // viewer.html and viewer/ are part of the bundle (--no-viewer: not).
   bool has_viewer = false;
   double viewer_max_mb = 25;  // --viewer-max-mb

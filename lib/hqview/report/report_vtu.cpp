@@ -13,7 +13,10 @@
 #include "hqview/core/error.h"
 #include "hqview/io/vtk_cells.h"
 #include "hqview/quality/hex_metrics.h"
+#include "hqview/report/deflate.h"
 #include "hqview/report/report_csv.h"
+
+#include <tbb/parallel_for.h>
 
 namespace hq {
 namespace {
@@ -196,10 +199,13 @@ void append_data_array(std::string& xml, const VtuArrayInfo& info, std::string_v
   xml += "\"/>\n";
 }
 
-std::string xml_header(const ReportModel& model, const std::vector<VtuArray>& arrays) {
+std::string xml_header(const ReportModel& model, const std::vector<VtuArray>& arrays, VtuData encoding) {
   std::string xml =
       "<?xml version=\"1.0\"?>\n"
-      "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+      "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\"";
+  if (encoding == VtuData::zlib) xml += " compressor=\"vtkZLibDataCompressor\"";
+  xml +=
+      ">\n"
       "  <UnstructuredGrid>\n";
   xml += "    <Piece NumberOfPoints=\"" + std::to_string(model.analysis.mesh.points.size()) + "\" NumberOfCells=\"" +
          std::to_string(model.analysis.mesh.hexes.size()) + "\">\n";
@@ -227,17 +233,69 @@ std::string xml_header(const ReportModel& model, const std::vector<VtuArray>& ar
   return xml;
 }
 
-}  // namespace
+constexpr std::string_view kTail = "\n  </AppendedData>\n</VTKFile>\n";
 
-std::vector<VtuArrayInfo> annotated_vtu_layout(const ReportModel& model) {
-  std::vector<VtuArrayInfo> layout;
-  for (VtuArray& a : build_arrays(model)) layout.push_back(std::move(a.info));
-  return layout;
+// Compressed (VTK's vtkZLibDataCompressor with UInt64 headers): each array
+// is split into kZlibBlockBytes blocks (the last one shorter), each an
+// independent zlib stream, preceded by the header [number of blocks, block
+// size, last block size (0: full), compressed size of each block]. The
+// blocks of an array are compressed in parallel and written in order; the
+// block size is fixed, so the bytes do not depend on the thread count.
+// Offsets are known only once the arrays are written: the XML header is
+// written last, over a placeholder as long as its longest form (20-digit
+// offsets), any shortfall made up with spaces before the '_' (blank text
+// that VTK, ParaView and meshio skip).
+constexpr std::size_t kZlibBlockBytes = std::size_t{1} << 17;
+
+void write_compressed(const ReportModel& model, std::vector<VtuArray> arrays, std::ostream& out) {
+  for (VtuArray& a : arrays) a.info.offset = std::numeric_limits<std::uint64_t>::max();
+  const std::size_t placeholder = xml_header(model, arrays, VtuData::zlib).size();
+  const std::streampos start = out.tellp();
+  out << std::string(placeholder, ' ');
+  std::uint64_t offset = 0;
+  std::vector<std::vector<unsigned char>> blocks;
+  std::vector<unsigned char> block_header;
+  for (VtuArray& a : arrays) {
+    a.info.offset = offset;
+    const std::size_t bytes = a.info.num_values * a.value_size;
+    const std::size_t num_blocks = (bytes + kZlibBlockBytes - 1) / kZlibBlockBytes;
+    const std::size_t values_per_block = kZlibBlockBytes / a.value_size;
+    blocks.assign(num_blocks, {});
+    tbb::parallel_for(std::size_t{0}, num_blocks, [&](std::size_t b) {
+      thread_local std::vector<unsigned char> raw;
+      const std::size_t first = b * values_per_block;
+      const std::size_t count = std::min<std::size_t>(values_per_block, a.info.num_values - first);
+      raw.resize(count * a.value_size);
+      a.fill(first, count, raw.data());
+      append_zlib_stream(raw, blocks[b]);
+    });
+    block_header.assign((3 + num_blocks) * sizeof(std::uint64_t), 0);
+    const auto put = [&](std::size_t i, std::uint64_t v) { store_little_endian(v, &block_header[8 * i]); };
+    put(0, num_blocks);
+    put(1, kZlibBlockBytes);
+    put(2, bytes % kZlibBlockBytes);
+    for (std::size_t b = 0; b < num_blocks; ++b) put(3 + b, blocks[b].size());
+    out.write(reinterpret_cast<const char*>(block_header.data()), static_cast<std::streamsize>(block_header.size()));
+    offset += block_header.size();
+    for (const std::vector<unsigned char>& block : blocks) {
+      out.write(reinterpret_cast<const char*>(block.data()), static_cast<std::streamsize>(block.size()));
+      offset += block.size();
+    }
+  }
+  out.write(kTail.data(), static_cast<std::streamsize>(kTail.size()));
+  const std::streampos end = out.tellp();
+  std::string header = xml_header(model, arrays, VtuData::zlib);
+  if (header.size() > placeholder || header.back() != '_') throw Error("internal: annotated.vtu header overflow");
+  header.insert(header.size() - 1, placeholder - header.size(), ' ');
+  out.seekp(start);
+  out.write(header.data(), static_cast<std::streamsize>(header.size()));
+  out.seekp(end);
 }
 
-void write_annotated_vtu(const ReportModel& model, std::ostream& out) {
-  const std::vector<VtuArray> arrays = build_arrays(model);
-  const std::string header = xml_header(model, arrays);
+// Uncompressed: each array is its UInt64 byte count and its values,
+// streamed through a fixed-size buffer.
+void write_raw(const ReportModel& model, const std::vector<VtuArray>& arrays, std::ostream& out) {
+  const std::string header = xml_header(model, arrays, VtuData::raw);
   out.write(header.data(), static_cast<std::streamsize>(header.size()));
   std::vector<unsigned char> buffer(kChunkValues * sizeof(double));
   for (const VtuArray& a : arrays) {
@@ -250,8 +308,22 @@ void write_annotated_vtu(const ReportModel& model, std::ostream& out) {
       out.write(reinterpret_cast<const char*>(buffer.data()), static_cast<std::streamsize>(n * a.value_size));
     }
   }
-  static constexpr std::string_view kTail = "\n  </AppendedData>\n</VTKFile>\n";
   out.write(kTail.data(), static_cast<std::streamsize>(kTail.size()));
+}
+
+}  // namespace
+
+std::vector<VtuArrayInfo> annotated_vtu_layout(const ReportModel& model) {
+  std::vector<VtuArrayInfo> layout;
+  for (VtuArray& a : build_arrays(model)) layout.push_back(std::move(a.info));
+  return layout;
+}
+
+void write_annotated_vtu(const ReportModel& model, std::ostream& out, VtuData encoding) {
+  if (encoding == VtuData::zlib)
+    write_compressed(model, build_arrays(model), out);
+  else
+    write_raw(model, build_arrays(model), out);
 }
 
 }  // namespace hq

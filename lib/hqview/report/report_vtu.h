@@ -8,7 +8,10 @@
 // <AppendedData encoding="raw">: after its '_', each array is a UInt64 byte
 // count followed by the values, little-endian, in the order the arrays are
 // declared; a DataArray's `offset` is the position of its byte count after
-// the '_'. No compression, no timestamps: the same model gives the same bytes.
+// the '_'. No timestamps: the same model gives the same bytes. Compressed
+// (VtuData::zlib, the default of a bundle): VTK's vtkZLibDataCompressor,
+// each array in fixed-size zlib blocks (report_vtu.cpp), read by VTK,
+// ParaView, pyvista and meshio as the uncompressed file.
 //
 // Points: Float64 x 3. Cells: connectivity Int64 (HQView's corner order is
 // VTK_HEXAHEDRON's, so no permutation), offsets Int64, types UInt8 (12).
@@ -28,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "hqview/report/data_files.h"
 #include "hqview/report/report_model.h"
 
 namespace hq {
@@ -43,7 +47,8 @@ struct VtuArrayInfo {
 };
 
 // The arrays write_annotated_vtu writes for `model`, in file order, with
-// their offsets (the layout; lets tests and callers list the arrays).
+// their offsets in the uncompressed file (the layout; lets tests and
+// callers list the arrays).
 std::vector<VtuArrayInfo> annotated_vtu_layout(const ReportModel& model);
 
 // Writes the file to `out` (opened in binary mode), array by array through a
@@ -51,6 +56,7 @@ std::vector<VtuArrayInfo> annotated_vtu_layout(const ReportModel& model);
 // The caller checks the stream for I/O errors. Both functions throw
 // hq::Error ("internal: ...") when a per-vertex or per-cell field of the
 // model does not have one entry per vertex or cell.
-void write_annotated_vtu(const ReportModel& model, std::ostream& out);
+// `out` must be seekable when compressed (the header is written last).
+void write_annotated_vtu(const ReportModel& model, std::ostream& out, VtuData encoding = VtuData::raw);
 
 }  // namespace hq

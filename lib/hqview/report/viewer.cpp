@@ -62,6 +62,12 @@ std::string script_safe_json(std::string text) {
 
 namespace {
 
+// "data/cells.csv has", or what the bundle has instead (--data).
+std::string where_cell_values(const ReportModel& model) {
+  const std::string path = cell_data_path(model.data);
+  return path.empty() ? "a bundle written with --data csv has" : path + " has";
+}
+
 template <class T>
 std::string b64(const std::vector<T>& v) {
   return base64_encode(v.data(), v.size() * sizeof(T));
@@ -150,6 +156,7 @@ std::vector<ViewerFile> viewer_files(const ReportModel& model) {
   d["name"] = a.mesh_name();
   d["num_vertices"] = a.mesh_summary.num_vertices;
   d["num_hexes"] = a.mesh_summary.num_hexes;
+  d["cell_data"] = cell_data_path(model.data);  // where every value of a hex is ("": --data none)
   d["up"] = vec(model.viewer_up);
   std::vector<Vec3> points;
   for (Index v : b.vertices) points.push_back(a.mesh.points[static_cast<std::size_t>(v)]);
@@ -294,11 +301,12 @@ std::vector<ViewerFile> viewer_files(const ReportModel& model) {
     reduced.push_back("the " + std::to_string(metric_fields.size()) +
                       " Verdict metric colourings other than the scaled Jacobian were left out (--viewer-max-mb " +
                       std::to_string(static_cast<long long>(std::llround(model.viewer_max_mb))) +
-                      "); cells.csv has every value");
+                      "); " + where_cell_values(model) + " every value");
     metric_fields = Json::array();
   }
   if (static_cast<double>(without_metrics.size() + corners_b64.size()) > budget) {
-    reduced.push_back("the corner scaled Jacobians shown when a face is clicked were left out; cells.csv has them");
+    reduced.push_back("the corner scaled Jacobians shown when a face is clicked were left out; " +
+                      where_cell_values(model) + " them");
   } else {
     d["face_corners"] = corners_b64;
   }

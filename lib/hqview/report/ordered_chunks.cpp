@@ -1,0 +1,37 @@
+#include "hqview/report/ordered_chunks.h"
+
+#include <tbb/parallel_pipeline.h>
+#include <tbb/task_arena.h>
+
+#include <memory>
+
+namespace hq {
+
+void write_ordered_chunks(std::ostream& out, std::size_t num_chunks, const ChunkProducer& produce) {
+  if (num_chunks == 0) return;
+  std::size_t next = 0;
+  // Two chunks in flight per thread keep both the producers and the writer busy.
+  const auto tokens = static_cast<std::size_t>(2 * tbb::this_task_arena::max_concurrency());
+  struct Chunk {
+    std::size_t index;
+    std::string text;
+  };
+  // Shared pointers: a producer that throws leaves nothing behind.
+  using ChunkPtr = std::shared_ptr<Chunk>;
+  tbb::parallel_pipeline(
+      tokens,
+      tbb::make_filter<void, ChunkPtr>(tbb::filter_mode::serial_in_order, [&](tbb::flow_control& fc) -> ChunkPtr {
+        if (next == num_chunks) {
+          fc.stop();
+          return nullptr;
+        }
+        return std::make_shared<Chunk>(Chunk{next++, {}});
+      }) & tbb::make_filter<ChunkPtr, ChunkPtr>(tbb::filter_mode::parallel, [&](ChunkPtr c) {
+        produce(c->index, c->text);
+        return c;
+      }) & tbb::make_filter<ChunkPtr, void>(tbb::filter_mode::serial_in_order, [&](const ChunkPtr& c) {
+        out.write(c->text.data(), static_cast<std::streamsize>(c->text.size()));
+      }));
+}
+
+}  // namespace hq

@@ -1,0 +1,19 @@
+#pragma once
+// Writing a large file as numbered chunks made in parallel and written in
+// order: chunk i is made by produce(i, text) on any thread, then written to
+// `out` after chunks 0 ... i-1. At most a few chunks per thread are in memory
+// at once. The chunks (and so the bytes) are fixed by the caller, never by
+// the thread count.
+
+#include <cstddef>
+#include <functional>
+#include <ostream>
+#include <string>
+
+namespace hq {
+
+using ChunkProducer = std::function<void(std::size_t index, std::string& text)>;
+
+void write_ordered_chunks(std::ostream& out, std::size_t num_chunks, const ChunkProducer& produce);
+
+}  // namespace hq
