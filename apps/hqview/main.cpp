@@ -10,6 +10,9 @@
 #include <tbb/version.h>
 #include <CLI/CLI.hpp>
 #include <charconv>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -23,6 +26,7 @@
 #include "flags.h"
 #include "hqview/core/error.h"
 #include "hqview/core/number_format.h"
+#include "hqview/core/progress.h"
 #include "hqview/io/mesh_reader.h"
 #include "hqview/io/read_limits.h"
 #include "hqview/pipeline/analyze.h"
@@ -125,6 +129,75 @@ hq::AnalyzeOptions make_analyze_options(const AnalyzeArgs& args) {
   return options;
 }
 
+// `hqview: STAGE: SECONDS s`, with the peak memory under --verbose.
+std::string stage_line(const hq::StageTime& t, bool with_memory) {
+  std::string line = "hqview: " + t.name + ": " + hq::display_number(t.seconds, 3) + " s";
+  if (with_memory)
+    line += " (peak memory " + hq::display_number(static_cast<double>(t.peak_rss_bytes) / 1e6, 4) + " MB)";
+  return line;
+}
+
+// analyze's progress on a terminal: one line per finished stage and, below
+// it, the running stage redrawn every 0.1 s once it has run 0.2 s: a bar
+// when the stage reports its work (reading, metrics, overlap, writing),
+// else its elapsed time. Only on a terminal (stderr a TTY), never with
+// --quiet: piped output stays the plain lines of --verbose, or nothing.
+class TerminalProgress {
+ public:
+  explicit TerminalProgress(bool with_memory)
+      : with_memory_(with_memory), thread_([this] { run(); }) {}
+  TerminalProgress(const TerminalProgress&) = delete;
+  TerminalProgress& operator=(const TerminalProgress&) = delete;
+  ~TerminalProgress() {
+    {
+      const std::lock_guard lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    thread_.join();
+    std::cerr << "\r\033[K" << std::flush;
+  }
+
+  void stage_finished(const hq::StageTime& t) {
+    const std::lock_guard lock(mutex_);
+    std::cerr << "\r\033[K" << stage_line(t, with_memory_) << "\n" << std::flush;
+  }
+
+ private:
+  void run() {
+    std::unique_lock lock(mutex_);
+    std::string stage;
+    auto since = std::chrono::steady_clock::now();
+    while (!wake_.wait_for(lock, std::chrono::milliseconds(100), [this] { return stop_; })) {
+      const hq::progress::Snapshot s = hq::progress::snapshot();
+      const auto now = std::chrono::steady_clock::now();
+      if (s.stage != stage) {
+        stage = s.stage;
+        since = now;
+      }
+      const double elapsed = std::chrono::duration<double>(now - since).count();
+      if (stage.empty() || elapsed < 0.2) continue;
+      std::string line = "hqview: " + stage + " ";
+      if (s.total > 0) {
+        constexpr int kWidth = 30;
+        const double f = std::min(1.0, static_cast<double>(s.done) / static_cast<double>(s.total));
+        const int filled = static_cast<int>(f * kWidth);
+        line += "[" + std::string(static_cast<std::size_t>(filled), '#') +
+                std::string(static_cast<std::size_t>(kWidth - filled), ' ') + "] " +
+                std::to_string(static_cast<int>(100 * f)) + "% ";
+      }
+      line += hq::display_number(elapsed, 2) + " s";
+      std::cerr << "\r\033[K" << line << std::flush;
+    }
+  }
+
+  bool with_memory_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_ = false;
+  std::thread thread_;  // last: started once the members above exist
+};
+
 int run_analyze(const AnalyzeArgs& args) {
   const fs::path mesh_path = args.mesh;
   const fs::path output = args.output.empty() ? fs::path("hqview-report") / mesh_path.stem() : fs::path(args.output);
@@ -139,11 +212,12 @@ int run_analyze(const AnalyzeArgs& args) {
                                                          : hq::CompareAlign::auto_;
   hq::BundleOptions bundle;
   bundle.force = args.force;
-  if (args.verbose && !args.quiet) {
-    options.on_stage = bundle.on_stage = [](const hq::StageTime& t) {
-      std::cerr << "hqview: " << t.name << ": " << hq::display_number(t.seconds, 3) << " s (peak memory "
-                << hq::display_number(static_cast<double>(t.peak_rss_bytes) / 1e6, 4) << " MB)\n";
-    };
+  std::optional<TerminalProgress> terminal;
+  if (!args.quiet && ::isatty(2) != 0) {
+    terminal.emplace(args.verbose);
+    options.on_stage = bundle.on_stage = [&terminal](const hq::StageTime& t) { terminal->stage_finished(t); };
+  } else if (args.verbose && !args.quiet) {
+    options.on_stage = bundle.on_stage = [](const hq::StageTime& t) { std::cerr << stage_line(t, true) << "\n"; };
   }
   hq::check_output_dir(output, bundle);  // fail before the work, not after
   bundle.started = process_start();
@@ -160,6 +234,7 @@ int run_analyze(const AnalyzeArgs& args) {
   if (!args.quiet)
     for (const std::string& w : result.model.analysis.warnings) std::cerr << "hqview: warning: " << w << "\n";
   hq::write_bundle(result.model, result.document, result.images, output, bundle);
+  terminal.reset();  // the last stage line stays; the running line is cleared
   if (args.json == "-") std::cout << hq::report_json_text(result.document) << std::flush;
   if (!args.quiet) std::cerr << "hqview: report written to " << (output / "index.html").string() << "\n";
   // Failing gates are printed even with --quiet: they explain exit code 1.

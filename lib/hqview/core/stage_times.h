@@ -14,6 +14,8 @@
 #include <utility>
 #include <vector>
 
+#include "hqview/core/progress.h"
+
 namespace hq {
 
 struct StageTime {
@@ -41,12 +43,14 @@ class StageClock {
   void start(std::string name) {
     stop();
     name_ = std::move(name);
+    progress::stage_started(name_);
     begin_ = std::chrono::steady_clock::now();
     running_ = true;
   }
   void stop() {
     if (!running_) return;
     running_ = false;
+    progress::stage_started("");
     const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - begin_;
     out_.push_back({std::move(name_), elapsed.count(), peak_rss_bytes()});
     if (sink_) sink_(out_.back());

@@ -63,7 +63,7 @@ bool TextScanner::finish_line() {
   if (skip_blank()) return false;
   if (pos_ != end_) {
     ++pos_;  // the newline
-    ++line_;
+    if ((++line_ & 0xFFFF) == 0) progress::set_done(offset());
   }
   return true;
 }

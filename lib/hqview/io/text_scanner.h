@@ -23,6 +23,7 @@
 #include <utility>
 
 #include "hqview/core/error.h"
+#include "hqview/core/progress.h"
 
 namespace hq::detail {
 
@@ -46,7 +47,9 @@ class TextScanner {
         pos_(text.data()),
         end_(text.data() + text.size()),
         name_(std::move(name)),
-        has_hash_comments_(has_hash_comments) {}
+        has_hash_comments_(has_hash_comments) {
+    progress::set_total(text.size());  // the reading stage's bar: bytes scanned
+  }
 
   const std::string& name() const { return name_; }
   std::int64_t line() const { return line_; }
@@ -59,7 +62,7 @@ class TextScanner {
     while (pos_ != end_) {
       const char c = *pos_;
       if (c == '\n') {
-        ++line_;
+        if ((++line_ & 0xFFFF) == 0) progress::set_done(offset());
         ++pos_;
       } else if (is_blank(c)) {
         ++pos_;

@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "hqview/core/hex_topology.h"
+#include "hqview/core/progress.h"
 #include "hqview/overlap/box_pairs.h"
 #include "hqview/overlap/exact_geometry.h"
 #include "hqview/overlap/tet_geometry.h"
@@ -342,6 +343,8 @@ OverlapReport check_overlap(const HexMesh& mesh, const Topology& topo, const Ove
       flagged[sz(topo.vertex_hexes[sz(i)])] = 1;
   };
 
+  // The progress bar: steps A-B, C, D, E-F, G of the paper's order.
+  progress::set_total(5);
   // A, B.
   find_coincident_vertices(mesh, topo, r.coincident_tolerance, r);
   for (const CoincidentGroup& g : r.coincident_groups)
@@ -355,6 +358,7 @@ OverlapReport check_overlap(const HexMesh& mesh, const Topology& topo, const Ove
     }
   }
 
+  progress::add_done(1);
   // C.
   const TetPoints tp = detail::build_tet_points(mesh, topo);
   r.cell_orientation = detail::classify_cell_orientations(mesh, topo, tp);
@@ -368,6 +372,7 @@ OverlapReport check_overlap(const HexMesh& mesh, const Topology& topo, const Ove
     if (f != 0) flagged[h] = 1;
   }
 
+  progress::add_done(1);
   // D.
   r.non_manifold_faces = topo.non_manifold_faces;
   r.same_winding_faces = find_same_winding_faces(mesh, topo);
@@ -378,6 +383,7 @@ OverlapReport check_overlap(const HexMesh& mesh, const Topology& topo, const Ove
   r.duplicate_cells = find_duplicate_cells(mesh, flagged);
   const bool clean_a_to_d = std::find(flagged.begin(), flagged.end(), 1) == flagged.end();
 
+  progress::add_done(1);
   // E, F on the boundary of the unflagged cells K', until K' is certified.
   for (int round = 0;; ++round) {
     const std::vector<BoundaryQuad> quads = boundary_of_unflagged(mesh, topo, flagged);
@@ -411,6 +417,7 @@ OverlapReport check_overlap(const HexMesh& mesh, const Topology& topo, const Ove
   r.certified_clean =
       clean_a_to_d && !r.is_over_budget && r.boundary_self_intersections.empty() && r.num_nested_shells == 0;
 
+  progress::add_done(1);
   // G.
   std::vector<Index> flagged_cells;
   for (std::size_t h = 0; h < nh; ++h)

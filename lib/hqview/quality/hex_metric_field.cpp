@@ -3,6 +3,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "hqview/core/progress.h"
+
 namespace hq {
 namespace {
 
@@ -12,6 +14,7 @@ template <typename Body>
 void for_each_hex(std::size_t count, const Body& body) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t h = r.begin(); h != r.end(); ++h) body(h);
+    progress::add_done(r.size());
   });
 }
 
@@ -28,6 +31,7 @@ HexMetricField compute_hex_metrics(const HexMesh& mesh, HexMetricSet which) {
   // Pass 1, only when needed: volumes and their mean (the size metrics'
   // reference, so it must be known before pass 2).
   bool wants_size = false;
+  progress::set_total(2 * nh);  // two passes over the hexes at most
   for (int m = 0; m < kNumHexMetrics; ++m)
     wants_size = wants_size || (which.test(static_cast<std::size_t>(m)) &&
                                 hex_metric_info(static_cast<HexMetric>(m)).uses_average_volume);

@@ -5,10 +5,13 @@
 
 #include <memory>
 
+#include "hqview/core/progress.h"
+
 namespace hq {
 
 void write_ordered_chunks(std::ostream& out, std::size_t num_chunks, const ChunkProducer& produce) {
   if (num_chunks == 0) return;
+  progress::set_total(num_chunks);
   std::size_t next = 0;
   // Two chunks in flight per thread keep both the producers and the writer busy.
   const auto tokens = static_cast<std::size_t>(2 * tbb::this_task_arena::max_concurrency());
@@ -31,6 +34,7 @@ void write_ordered_chunks(std::ostream& out, std::size_t num_chunks, const Chunk
         return c;
       }) & tbb::make_filter<ChunkPtr, void>(tbb::filter_mode::serial_in_order, [&](const ChunkPtr& c) {
         out.write(c->text.data(), static_cast<std::streamsize>(c->text.size()));
+        progress::add_done(1);
       }));
 }
 

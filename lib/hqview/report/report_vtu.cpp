@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "hqview/core/error.h"
+#include "hqview/core/progress.h"
 #include "hqview/io/vtk_cells.h"
 #include "hqview/quality/hex_metrics.h"
 #include "hqview/report/deflate.h"
@@ -253,6 +254,9 @@ void write_compressed(const ReportModel& model, std::vector<VtuArray> arrays, st
   const std::streampos start = out.tellp();
   out << std::string(placeholder, ' ');
   std::uint64_t offset = 0;
+  std::uint64_t total_bytes = 0;
+  for (const VtuArray& a : arrays) total_bytes += a.info.num_values * a.value_size;
+  progress::set_total(total_bytes);
   std::vector<std::vector<unsigned char>> blocks;
   std::vector<unsigned char> block_header;
   for (VtuArray& a : arrays) {
@@ -268,6 +272,7 @@ void write_compressed(const ReportModel& model, std::vector<VtuArray> arrays, st
       raw.resize(count * a.value_size);
       a.fill(first, count, raw.data());
       append_zlib_stream(raw, blocks[b]);
+      progress::add_done(raw.size());
     });
     block_header.assign((3 + num_blocks) * sizeof(std::uint64_t), 0);
     const auto put = [&](std::size_t i, std::uint64_t v) { store_little_endian(v, &block_header[8 * i]); };
@@ -298,7 +303,9 @@ void write_raw(const ReportModel& model, const std::vector<VtuArray>& arrays, st
   const std::string header = xml_header(model, arrays, VtuData::raw);
   out.write(header.data(), static_cast<std::streamsize>(header.size()));
   std::vector<unsigned char> buffer(kChunkValues * sizeof(double));
+  progress::set_total(arrays.size());
   for (const VtuArray& a : arrays) {
+    progress::add_done(1);
     unsigned char count[sizeof(std::uint64_t)];
     store_little_endian<std::uint64_t>(a.info.num_values * a.value_size, count);
     out.write(reinterpret_cast<const char*>(count), sizeof count);

@@ -1,0 +1,31 @@
+#pragma once
+// How far the running stage is, for `analyze`'s progress bar on a terminal.
+// One per process: a stage with a long loop (reading, metrics, overlap,
+// writing) announces its amount of work and adds to what is done as it goes;
+// the terminal display polls it from its own thread. Nothing else reads it,
+// so stages run the same with or without a display (batch runs several
+// analyses at once and draws its own bar: the counts are then meaningless,
+// and unread). Relaxed atomics: a stage pays one add per block of work.
+
+#include <atomic>
+#include <cstdint>
+#include <mutex>
+#include <string>
+
+namespace hq::progress {
+
+struct Snapshot {
+  std::string stage;        // "" between stages
+  std::uint64_t done = 0;   // work units done of total
+  std::uint64_t total = 0;  // 0: the stage does not report its progress
+};
+
+// A stage begins (StageClock::start) or ends (StageClock::stop, stage "").
+void stage_started(std::string stage);
+// The running stage's amount of work (any unit), done reset to 0.
+void set_total(std::uint64_t total);
+void add_done(std::uint64_t amount);
+void set_done(std::uint64_t done);
+Snapshot snapshot();
+
+}  // namespace hq::progress
