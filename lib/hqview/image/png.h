@@ -1,5 +1,5 @@
 #pragma once
-// PNG encoding of rendered images (OpenImageIO, in memory: the bundle
+// PNG encoding of rendered images (libpng, in memory: the bundle
 // writer puts the bytes on disk).
 
 #include <string>

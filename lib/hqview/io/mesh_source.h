@@ -28,7 +28,7 @@ struct MeshSource {
   std::string format;            // resolved: a name of mesh_format_names()
   bool is_format_given = false;  // --format: the content is not checked against the extension
   std::string bytes;
-  std::string sha256;  // of bytes, lowercase hex
+  std::string sha256;  // of bytes, lowercase hex (filled by read_hex_mesh)
 };
 
 // Opens a hex mesh file: format by `format` (a name of mesh_format_names())
@@ -38,10 +38,11 @@ struct MeshSource {
 // ParseError (binary data), ValueError (an unknown format name).
 MeshSource open_mesh_source(const std::filesystem::path& path, std::string_view format, const ReadLimits& limits);
 
-// The mesh of an opened source. Unless the format was given, content that
-// is recognisably another format than the extension says is refused
-// (ParseError); then the format's reader runs (ParseError, InvalidMeshError).
-LoadedMesh read_hex_mesh(const MeshSource& source, const ReadLimits& limits);
+// The mesh of an opened source, and source.sha256 (hashed while the reader
+// runs). Unless the format was given, content that is recognisably another
+// format than the extension says is refused (ParseError); then the format's
+// reader runs (ParseError, InvalidMeshError).
+LoadedMesh read_hex_mesh(MeshSource& source, const ReadLimits& limits);
 
 // report.json's description of the source once its mesh is read.
 InputFile input_file(const MeshSource& source, const LoadedMesh& loaded);

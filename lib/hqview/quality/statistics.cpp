@@ -1,7 +1,6 @@
 #include "hqview/quality/statistics.h"
 
 #include <algorithm>
-#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -20,41 +19,42 @@ inline std::uint64_t order_key(double v) {
   return (bits >> 63) != 0 ? ~bits : bits | (std::uint64_t{1} << 63);
 }
 
-// Ascending order of finite doubles by LSD radix sort on order_key: 11-bit
-// digits, 6 passes, a pass skipped when every key shares its digit (the high
-// digits of values in a narrow range). Linear in the count: the summaries of
-// 22 metrics over millions of cells are not dominated by sorting, and the
-// order (hence every sum and percentile) is that of std::sort but for the
-// relative order of -0.0 and +0.0, which compare equal.
-void radix_sort(std::vector<double>& values) {
-  constexpr int kBits = 11, kPasses = 6;
-  constexpr std::size_t kBuckets = std::size_t{1} << kBits;
-  const std::size_t n = values.size();
-  if (n < 256) {
-    std::sort(values.begin(), values.end());
-    return;
-  }
-  std::vector<std::uint64_t> keys(n), scratch(n);
-  std::vector<std::array<std::size_t, kBuckets>> counts(kPasses);
-  for (auto& c : counts) c.fill(0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint64_t k = order_key(values[i]);
-    keys[i] = k;
-    for (int p = 0; p < kPasses; ++p) ++counts[static_cast<std::size_t>(p)][(k >> (p * kBits)) & (kBuckets - 1)];
-  }
-  for (int p = 0; p < kPasses; ++p) {
-    auto& c = counts[static_cast<std::size_t>(p)];
-    const int shift = p * kBits;
-    if (c[(keys[0] >> shift) & (kBuckets - 1)] == n) continue;  // one digit for all
-    std::size_t offset = 0;
-    for (std::size_t& count : c) offset += std::exchange(count, offset);
-    for (std::size_t i = 0; i < n; ++i) scratch[c[(keys[i] >> shift) & (kBuckets - 1)]++] = keys[i];
-    keys.swap(scratch);
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint64_t k = keys[i];
-    values[i] = std::bit_cast<double>((k >> 63) != 0 ? k & ~(std::uint64_t{1} << 63) : ~k);
-  }
+// The values kept by the statistics (not NaN, not degenerate), ascending,
+// in one array, without sorting them whole: a pass finds the range of their
+// order keys, a second counts them into up to 2^16 buckets of that range
+// (monotone in the value), a third scatters them into place, and each bucket
+// is sorted on its own (few values each, unless many are equal). Memory: the
+// output array and the bucket counts. The order, hence every sum and
+// percentile, is that of one std::sort, but for the relative order of -0.0
+// and +0.0, which compare equal (and add up the same).
+template <class IsKept>
+std::vector<double> sorted_kept_values(std::span<const double> values, IsKept is_kept, std::size_t num_kept) {
+  std::vector<double> out(num_kept);
+  if (num_kept == 0) return out;
+  std::uint64_t lo = ~std::uint64_t{0}, hi = 0;
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (is_kept(i)) {
+      const std::uint64_t k = order_key(values[i]);
+      lo = std::min(lo, k);
+      hi = std::max(hi, k);
+    }
+  constexpr int kBucketBits = 16;
+  const int span_bits = std::bit_width(hi - lo);
+  const int shift = std::max(0, span_bits - kBucketBits);
+  const std::size_t num_buckets = static_cast<std::size_t>((hi - lo) >> shift) + 1;
+  std::vector<std::size_t> start(num_buckets + 1, 0);
+  const auto bucket = [&](double v) { return static_cast<std::size_t>((order_key(v) - lo) >> shift); };
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (is_kept(i)) ++start[bucket(values[i]) + 1];
+  for (std::size_t b = 0; b < num_buckets; ++b) start[b + 1] += start[b];
+  std::vector<std::size_t> next(start.begin(), start.end() - 1);
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (is_kept(i)) out[next[bucket(values[i])]++] = values[i];
+  for (std::size_t b = 0; b < num_buckets; ++b)
+    if (start[b + 1] - start[b] > 1)
+      std::sort(out.begin() + static_cast<std::ptrdiff_t>(start[b]),
+                out.begin() + static_cast<std::ptrdiff_t>(start[b + 1]));
+  return out;
 }
 
 }  // namespace
@@ -71,18 +71,19 @@ double percentile_of_sorted(std::span<const double> sorted, double q) {
 Statistics compute_statistics(std::span<const double> values, const StatisticsOptions& options,
                               std::span<const std::uint8_t> degenerate) {
   Statistics s;
-  std::vector<double> kept;
-  kept.reserve(values.size());
-  for (std::size_t i = 0; i < values.size(); ++i) {
+  // Kept: finite, not Verdict's sentinel, not flagged degenerate.
+  const auto is_kept = [&](std::size_t i) {
     const double v = values[i];
-    if (std::isnan(v)) continue;
-    if (std::abs(v) >= kVerdictDegenerate || (!degenerate.empty() && degenerate[i])) {
+    return !std::isnan(v) && std::abs(v) < kVerdictDegenerate && (degenerate.empty() || degenerate[i] == 0);
+  };
+  std::size_t num_kept = 0;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (is_kept(i))
+      ++num_kept;
+    else if (!std::isnan(values[i]))
       ++s.num_degenerate;
-      continue;
-    }
-    kept.push_back(v);
   }
-  radix_sort(kept);
+  const std::vector<double> kept = sorted_kept_values(values, is_kept, num_kept);
   s.count = static_cast<std::int64_t>(kept.size());
 
   const int bins = std::max(1, options.histogram_bins);

@@ -1,11 +1,13 @@
 #include "hqview/render/annotate.h"
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
+#include <ft2build.h>
+#include FT_FREETYPE_H
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
+#include <mutex>
 
 #include "hqview/core/error.h"
 #include "hqview/core/text.h"
@@ -129,22 +131,137 @@ void paste(Image& dst, const Image& src, int x, int y) {
                 row_bytes);
 }
 
+namespace {
+
+// FreeType, one library and one face per font file for the process, behind
+// one lock (faces are not thread-safe; text is a sliver of a view's time).
+class Fonts {
+ public:
+  ~Fonts() {
+    for (auto& [path, face] : faces_) FT_Done_Face(face);
+    if (library_ != nullptr) FT_Done_FreeType(library_);
+  }
+  std::mutex mutex;
+  // The face of `path` at `size_px`; throws RenderError when it cannot be loaded.
+  FT_Face face(const std::string& path, int size_px) {
+    if (library_ == nullptr && FT_Init_FreeType(&library_) != 0) throw RenderError("cannot start FreeType");
+    auto it = faces_.find(path);
+    if (it == faces_.end()) {
+      FT_Face f = nullptr;
+      if (FT_New_Face(library_, path.c_str(), 0, &f) != 0)
+        throw RenderError("cannot load font '" + path + "' (install fonts-dejavu-core)");
+      it = faces_.emplace(path, f).first;
+    }
+    if (FT_Set_Pixel_Sizes(it->second, 0, static_cast<FT_UInt>(std::max(size_px, 1))) != 0)
+      throw RenderError("cannot use font '" + path + "' at " + std::to_string(size_px) + " px");
+    return it->second;
+  }
+
+ private:
+  FT_Library library_ = nullptr;
+  std::map<std::string, FT_Face> faces_;
+};
+
+Fonts& fonts() {
+  static Fonts f;
+  return f;
+}
+
+// The next code point of UTF-8 text at i (advanced); U+FFFD for a bad byte.
+char32_t next_code_point(std::string_view s, std::size_t& i) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
+  const unsigned char c = byte(i++);
+  if (c < 0x80) return c;
+  const int extra = c >= 0xF0 ? 3 : c >= 0xE0 ? 2 : c >= 0xC0 ? 1 : -1;
+  if (extra < 0 || i + static_cast<std::size_t>(extra) > s.size()) return 0xFFFD;
+  char32_t cp = c & (0x3F >> extra);
+  for (int k = 0; k < extra; ++k) {
+    if ((byte(i) & 0xC0) != 0x80) return 0xFFFD;
+    cp = (cp << 6) | (byte(i++) & 0x3F);
+  }
+  return cp;
+}
+
+// One line laid out: each glyph's pen position (pixels from the line's
+// start, kerned) and the line's advance width and ink box (y up from the
+// baseline: top > 0 above it). Calls visit(glyph slot, pen x) when given.
+struct LineExtent {
+  int advance = 0;
+  int ink_top = 0, ink_bottom = 0;
+};
+
+template <class Visit>
+LineExtent lay_out(FT_Face face, std::string_view line, Visit&& visit) {
+  LineExtent e;
+  long pen = 0;  // 26.6 fixed point
+  FT_UInt previous = 0;
+  bool any_ink = false;
+  for (std::size_t i = 0; i < line.size();) {
+    const FT_UInt glyph = FT_Get_Char_Index(face, next_code_point(line, i));
+    if (previous != 0 && glyph != 0 && FT_HAS_KERNING(face)) {
+      FT_Vector k{};
+      if (FT_Get_Kerning(face, previous, glyph, FT_KERNING_DEFAULT, &k) == 0) pen += k.x;
+    }
+    if (FT_Load_Glyph(face, glyph, FT_LOAD_RENDER) != 0) continue;
+    const FT_GlyphSlot slot = face->glyph;
+    const int x = static_cast<int>((pen + 32) >> 6);
+    if (slot->bitmap.rows > 0) {
+      const int top = slot->bitmap_top, bottom = slot->bitmap_top - static_cast<int>(slot->bitmap.rows);
+      e.ink_top = any_ink ? std::max(e.ink_top, top) : top;
+      e.ink_bottom = any_ink ? std::min(e.ink_bottom, bottom) : bottom;
+      any_ink = true;
+    }
+    visit(slot, x);
+    pen += slot->advance.x;
+    previous = glyph;
+  }
+  e.advance = static_cast<int>((pen + 32) >> 6);
+  return e;
+}
+
+// Blends a glyph's coverage in `color` over the image ("over": straight
+// alpha), its pen at (x, baseline).
+void blend_glyph(Image& image, const FT_GlyphSlot slot, int x, int baseline, const Color& color) {
+  const FT_Bitmap& b = slot->bitmap;
+  for (unsigned row = 0; row < b.rows; ++row) {
+    const int py = baseline - slot->bitmap_top + static_cast<int>(row);
+    if (py < 0 || py >= image.height) continue;
+    for (unsigned col = 0; col < b.width; ++col) {
+      const int px = x + slot->bitmap_left + static_cast<int>(col);
+      if (px < 0 || px >= image.width) continue;
+      const float a = color.a * static_cast<float>(b.buffer[static_cast<std::ptrdiff_t>(row) * b.pitch + col]) / 255.0f;
+      if (a <= 0.0f) continue;
+      std::uint8_t* p = image.rgba.data() + pixel_offset(image, px, py);
+      const float rgb[3] = {color.r, color.g, color.b};
+      const float dst_a = static_cast<float>(p[3]) / 255.0f;
+      const float out_a = a + dst_a * (1.0f - a);
+      for (int k = 0; k < 3; ++k) {
+        const float d = static_cast<float>(p[k]) / 255.0f;
+        const float v = out_a > 0.0f ? (rgb[k] * a + d * dst_a * (1.0f - a)) / out_a : 0.0f;
+        p[k] = static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+      }
+      p[3] = static_cast<std::uint8_t>(std::lround(std::clamp(out_a, 0.0f, 1.0f) * 255.0f));
+    }
+  }
+}
+
+}  // namespace
+
 void draw_text(Image& image, int x, int y, std::string_view text, int size_px, const AnnotationStyle& style,
                TextAnchor anchor) {
   if (image.width <= 0 || image.height <= 0 || text.empty()) return;
-  OIIO::ImageBuf buffer(OIIO::ImageSpec(image.width, image.height, 4, OIIO::TypeDesc::UINT8), image.rgba.data());
   const Color c = to_color(style.text_color);
-  const float color[4] = {c.r, c.g, c.b, c.a};
-  const auto align = anchor == TextAnchor::left     ? OIIO::ImageBufAlgo::TextAlignX::Left
-                     : anchor == TextAnchor::center ? OIIO::ImageBufAlgo::TextAlignX::Center
-                                                    : OIIO::ImageBufAlgo::TextAlignX::Right;
   const int line_height = static_cast<int>(std::lround(size_px * kLineSpacing));
+  Fonts& f = fonts();
+  const std::lock_guard lock(f.mutex);
+  FT_Face face = f.face(style.font_path, size_px);
   int baseline = y;
   for (std::string_view line : split_lines(text)) {
-    if (!line.empty() && !OIIO::ImageBufAlgo::render_text(buffer, x, baseline, line, size_px, style.font_path, color,
-                                                          align, OIIO::ImageBufAlgo::TextAlignY::Baseline, 0, {}, 1))
-      throw RenderError("cannot draw text with font '" + style.font_path +
-                        "' (install fonts-dejavu-core): " + buffer.geterror());
+    if (!line.empty()) {
+      const int width = lay_out(face, line, [](FT_GlyphSlot, int) {}).advance;
+      const int start = anchor == TextAnchor::left ? x : anchor == TextAnchor::center ? x - width / 2 : x - width;
+      lay_out(face, line, [&](FT_GlyphSlot slot, int pen) { blend_glyph(image, slot, start + pen, baseline, c); });
+    }
     baseline += line_height;
   }
 }
@@ -152,12 +269,14 @@ void draw_text(Image& image, int x, int y, std::string_view text, int size_px, c
 PixelRect text_extent(std::string_view text, int size_px, const AnnotationStyle& style) {
   int width = 0, height = 0;
   const std::vector<std::string_view> lines = split_lines(text);
+  Fonts& f = fonts();
+  const std::lock_guard lock(f.mutex);
+  FT_Face face = f.face(style.font_path, size_px);
   for (std::string_view line : lines) {
     if (line.empty()) continue;
-    const OIIO::ROI roi = OIIO::ImageBufAlgo::text_size(line, size_px, style.font_path);
-    if (!roi.defined()) throw RenderError("cannot load font '" + style.font_path + "' (install fonts-dejavu-core)");
-    width = std::max(width, roi.width());
-    height = std::max(height, roi.height());
+    const LineExtent e = lay_out(face, line, [](FT_GlyphSlot, int) {});
+    width = std::max(width, e.advance);
+    height = std::max(height, e.ink_top - e.ink_bottom);
   }
   if (lines.size() > 1)
     height += static_cast<int>(std::lround(size_px * kLineSpacing)) * static_cast<int>(lines.size() - 1);

@@ -1,7 +1,7 @@
 #pragma once
 // Annotations drawn onto rendered images: titles, text and colour bars, and
 // the figure layout that keeps them clear of the 3D view. Text is rendered
-// with OpenImageIO (FreeType) in DejaVu Sans (package fonts-dejavu-core).
+// with FreeType in DejaVu Sans (package fonts-dejavu-core).
 // Sizes are given for a 1200-pixel-high figure and scaled with the height.
 
 #include <optional>
