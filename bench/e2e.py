@@ -1,52 +1,106 @@
 #!/usr/bin/env python3
-"""The end-to-end stage of scripts/bench: runs `hqview analyze MESH -o OUT
---no-render -j THREADS -q` RUNS times (OUT emptied before each run, outside
-the timing) and writes each run's wall time and peak RSS (the child's
-maximum resident set size from wait4) as JSON for report.py.
+"""The end-to-end stage of scripts/bench: the whole `hqview analyze`
+process timed from outside (wall time and the child's peak RSS from wait4),
+median of RUNS, against issue 20's targets and VTK's metric passes measured
+in the same run (bench/vtk_metrics.py, Debian's python3-vtk9):
 
-usage: e2e.py HQVIEW MESH OUT_DIR RESULT.json --hexes N [--threads 2] [--runs 3]
+  - 363,520 hexes (Dolphin_padded refined once), --no-render, default data,
+    overlap on: at least 2x faster than VTK's 20 hex metric passes;
+  - the same run's bundle: at most 120 MB;
+  - 2,908,160 hexes (refined twice), --no-render: at most 12 s, peak RSS
+    under 2 GB (issue 11's 60 s and 6 GB before it);
+  - 363,520 hexes with --reference dolphin.off and every view: at most 5 s.
+
+Each case prints the exact command it times. Writes RESULT.json for
+bench/report.py.
+
+usage: e2e.py HQVIEW MESH_363K MESH_2_9M REFERENCE OUT_DIR RESULT.json [--runs 3]
 """
 import argparse
 import json
 import os
+import shlex
 import shutil
+import statistics
 import subprocess
 import sys
 import time
 
+VTK_PYTHON = "/usr/bin/python3"  # Debian's, with python3-vtk9
 
-def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("hqview")
-    ap.add_argument("mesh")
-    ap.add_argument("out")
-    ap.add_argument("result")
-    ap.add_argument("--hexes", type=int, required=True)
-    ap.add_argument("--threads", type=int, default=2)
-    ap.add_argument("--runs", type=int, default=3)
-    ap.add_argument("--target-wall-s", type=float, default=60.0)
-    ap.add_argument("--target-rss-gb", type=float, default=6.0)
-    a = ap.parse_args()
-    runs = []
-    for i in range(a.runs):
-        shutil.rmtree(a.out, ignore_errors=True)
-        cmd = [a.hqview, "analyze", a.mesh, "-o", a.out, "--no-render", "-j", str(a.threads), "-q"]
+
+def run_timed(cmd, out, runs):
+    walls, peaks = [], []
+    for i in range(runs):
+        shutil.rmtree(out, ignore_errors=True)
         start = time.monotonic()
         child = subprocess.Popen(cmd)
         _, status, usage = os.wait4(child.pid, 0)
         wall = time.monotonic() - start
         code = os.waitstatus_to_exitcode(status)
-        if code != 0:
-            sys.exit("e2e: %s exited with %d" % (" ".join(cmd), code))
-        runs.append({"wall_s": wall, "max_rss_kb": usage.ru_maxrss, "user_s": usage.ru_utime,
-                     "sys_s": usage.ru_stime})
-        print("e2e run %d/%d: %.1f s wall, %.2f GB peak RSS, %.1f s user + %.1f s sys" %
-              (i + 1, a.runs, wall, usage.ru_maxrss / 1024 / 1024, usage.ru_utime, usage.ru_stime), file=sys.stderr)
-    shutil.rmtree(a.out, ignore_errors=True)
+        if code not in (0, 1):
+            sys.exit("e2e: %s exited with %d" % (shlex.join(cmd), code))
+        walls.append(wall)
+        peaks.append(usage.ru_maxrss * 1024)
+        print("e2e: %.2f s wall, %.2f GB peak RSS: %s" % (wall, usage.ru_maxrss / 2**20, shlex.join(cmd)),
+              file=sys.stderr)
+    return walls, peaks
+
+
+def bundle_bytes(path):
+    return sum(os.path.getsize(os.path.join(d, f)) for d, _, files in os.walk(path) for f in files)
+
+
+def case(label, command, value, unit, target, ok, runs=None):
+    return {"label": label, "command": command, "value": value, "unit": unit, "target": target, "ok": ok,
+            "runs": runs or []}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    for name in ("hqview", "mesh363", "mesh2900", "reference", "out", "result"):
+        ap.add_argument(name)
+    ap.add_argument("--runs", type=int, default=3)
+    a = ap.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    cases = []
+
+    # The VTK baseline: its 20 passes on the 363k mesh, points in memory.
+    raw = os.path.join(a.out, "raw")
+    subprocess.run([a.hqview, "analyze", a.mesh363, "-o", raw, "--no-render", "--no-overlap", "--data", "vtu", "-q"],
+                   check=True)
+    vtk = json.loads(subprocess.run([VTK_PYTHON, os.path.join(os.path.dirname(__file__), "vtk_metrics.py"),
+                                     os.path.join(raw, "data", "annotated.vtu"), str(a.runs)],
+                                    check=True, capture_output=True, text=True).stdout)
+    shutil.rmtree(raw, ignore_errors=True)
+    cases.append(case("VTK 9.1 vtkMeshQuality, 20 hex metrics, one pass each (363,520 hexes)",
+                      "bench/vtk_metrics.py annotated.vtu", vtk["median_s"], "s", "baseline", True, vtk["runs_s"]))
+
+    out = os.path.join(a.out, "bundle")
+    cmd = [a.hqview, "analyze", a.mesh363, "-o", out, "--no-render", "-j", "2", "-q"]
+    walls, _ = run_timed(cmd, out, a.runs)
+    wall = statistics.median(walls)
+    ratio = vtk["median_s"] / wall
+    cases.append(case("hqview 363,520 hexes --no-render (whole process)", shlex.join(cmd), wall, "s",
+                      "VTK / hqview = %.2fx, target >= 2x" % ratio, ratio >= 2.0, walls))
+    size = bundle_bytes(out) / 1e6
+    cases.append(case("its bundle (default data)", shlex.join(cmd), size, "MB", "<= 120 MB", size <= 120.0))
+
+    cmd = [a.hqview, "analyze", a.mesh2900, "-o", out, "--no-render", "-j", "2", "-q"]
+    walls, peaks = run_timed(cmd, out, a.runs)
+    wall, peak = statistics.median(walls), statistics.median(peaks) / 1e9
+    cases.append(case("hqview 2,908,160 hexes --no-render", shlex.join(cmd), wall, "s", "<= 12 s", wall <= 12.0,
+                      walls))
+    cases.append(case("its peak RSS", shlex.join(cmd), peak, "GB", "< 2 GB", peak < 2.0, [p / 1e9 for p in peaks]))
+
+    cmd = [a.hqview, "analyze", a.mesh363, "--reference", a.reference, "-o", out, "-j", "2", "-q"]
+    walls, _ = run_timed(cmd, out, a.runs)
+    wall = statistics.median(walls)
+    cases.append(case("hqview 363,520 hexes --reference, every view", shlex.join(cmd), wall, "s", "<= 5 s",
+                      wall <= 5.0, walls))
+    shutil.rmtree(out, ignore_errors=True)
     with open(a.result, "w") as f:
-        json.dump({"e2e": {"hexes": a.hexes, "threads": a.threads, "target_wall_s": a.target_wall_s,
-                           "target_rss_gb": a.target_rss_gb, "runs": runs,
-                           "load_average": os.getloadavg()}}, f, indent=1)
+        json.dump({"e2e_cases": cases, "load_average": os.getloadavg()}, f, indent=1)
 
 
 if __name__ == "__main__":

@@ -9,8 +9,9 @@ when neither reports a throughput). TARGETS holds the issues' targets by
 exact run name. A family with neither a baseline nor a target is listed
 under the table.
 
-An end-to-end result (a JSON object with "e2e": {...}, written by
-scripts/bench) adds its median wall time and peak RSS against its targets.
+An end-to-end result (a JSON object with "e2e_cases": [...], written by
+bench/e2e.py) adds each whole-process case: its median, the command it
+timed, its target with ok/MISS (the VTK baseline measured in the same run).
 
 usage: report.py result.json [result.json ...]
 """
@@ -63,8 +64,8 @@ def load(paths):
     for path in paths:
         with open(path) as f:
             data = json.load(f)
-        if "e2e" in data:
-            e2e.append(data["e2e"])
+        if "e2e_cases" in data:
+            e2e.append(data)
             continue
         programs.append(data.get("context", {}).get("executable", path).split("/")[-1])
         runs = {}
@@ -149,24 +150,18 @@ def main():
         tp = "%.1f %s" % (r["rate"], r["rate_unit"]) if r["rate"] else "-"
         print(fmt % (r["label"][:52], "%.3f %s" % (r["time"], r["unit"]), tp, vs, target))
 
+    # The whole process (bench/e2e.py): each case with the command it timed.
     for e in e2e:
-        walls = sorted(run["wall_s"] for run in e["runs"])
-        rss = sorted(run["max_rss_kb"] for run in e["runs"])
-        wall, peak = statistics.median(walls), statistics.median(rss) / 1024 / 1024
-        name = "e2e: analyze %s hexes -j%d --no-render" % (format(e["hexes"], ","), e["threads"])
-        ok_wall, ok_rss = wall < e["target_wall_s"], peak < e["target_rss_gb"]
-        print(fmt % (name, "%.1f s" % wall, "-", "-",
-                     "< %g s %s (issue 11)" % (e["target_wall_s"], "ok" if ok_wall else "MISS")))
-        print(fmt % ("e2e: peak RSS (max resident set size)", "%.2f GB" % peak, "-", "-",
-                     "< %g GB %s (issue 11)" % (e["target_rss_gb"], "ok" if ok_rss else "MISS")))
-        print("  e2e runs: wall %s s, peak RSS %s GB (median of %d)" %
-              (", ".join("%.1f" % w for w in walls), ", ".join("%.2f" % (k / 1024 / 1024) for k in rss), len(walls)))
-        if "load_average" in e:
-            print("  load average after the e2e runs: %s" % " ".join("%.2f" % x for x in e["load_average"]))
-        if not ok_wall:
-            misses.append("e2e wall time")
-        if not ok_rss:
-            misses.append("e2e peak RSS")
+        print()
+        print("end to end (issue 20), medians; every command is printed under its figure:")
+        for c in e["e2e_cases"]:
+            runs = ", ".join("%.2f" % r for r in c["runs"])
+            print("  %-66s %9.2f %-2s  %s%s" % (c["label"], c["value"], c["unit"], c["target"],
+                                                "" if c["target"] == "baseline" else (" ok" if c["ok"] else " MISS")))
+            print("      $ %s%s" % (c["command"], "   (runs: %s)" % runs if runs else ""))
+            if not c["ok"]:
+                misses.append(c["label"])
+        print("  load average after the e2e runs: %s" % " ".join("%.2f" % x for x in e["load_average"]))
 
     print()
     print("programs: %s" % ", ".join(programs))
