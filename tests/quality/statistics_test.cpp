@@ -2,8 +2,16 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
+#include <random>
+#include <utility>
+#include <vector>
+
+#include "hqview/quality/corner_jacobian.h"
 
 namespace hq {
 namespace {
@@ -59,9 +67,74 @@ TEST(Statistics, OrderDoesNotChangeTheBytes) {
 }
 
 TEST(Statistics, EmptyInput) {
-  const Statistics s = compute_statistics(std::vector<double>{}, StatisticsOptions{.histogram_min = {}, .histogram_max = {}, .histogram_bins = 3});
+  const Statistics s = compute_statistics(
+      std::vector<double>{}, StatisticsOptions{.histogram_min = {}, .histogram_max = {}, .histogram_bins = 3});
   EXPECT_EQ(s.count, 0);
   EXPECT_EQ(s.histogram.counts, (std::vector<std::int64_t>{0, 0, 0}));
+}
+
+}  // namespace
+}  // namespace hq
+
+namespace hq {
+namespace {
+
+// The reference: the definitions as written (kept values copied, one
+// std::sort, ascending sums, numpy's linear percentiles).
+Statistics reference_statistics(const std::vector<double>& values) {
+  std::vector<double> kept;
+  for (double v : values)
+    if (!std::isnan(v) && std::abs(v) < kVerdictDegenerate) kept.push_back(v);
+  std::sort(kept.begin(), kept.end());
+  Statistics s;
+  s.count = static_cast<std::int64_t>(kept.size());
+  double sum = 0;
+  for (double v : kept) sum += v;
+  s.mean = sum / static_cast<double>(kept.size());
+  double squares = 0;
+  for (double v : kept) squares += (v - s.mean) * (v - s.mean);
+  s.std = std::sqrt(squares / static_cast<double>(kept.size()));
+  s.min = kept.front();
+  s.max = kept.back();
+  s.p01 = percentile_of_sorted(kept, 0.01);
+  s.p50 = percentile_of_sorted(kept, 0.50);
+  s.p99 = percentile_of_sorted(kept, 0.99);
+  return s;
+}
+
+TEST(Statistics, BucketedOrderEqualsOneSortBitForBit) {
+  // Shapes that stress the bucketing: a narrow range (every value shares
+  // its high bits), a range over many orders of magnitude with both signs,
+  // a handful of distinct values repeated (one bucket holds most), and
+  // zeros of both signs; sentinels and NaN mixed in.
+  std::mt19937_64 rng(20);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<std::vector<double>> cases(4);
+  for (int i = 0; i < 200000; ++i) {
+    cases[0].push_back(0.9 + 1e-9 * unit(rng));
+    cases[1].push_back((unit(rng) < 0.5 ? -1 : 1) * std::pow(10.0, -300 + 330 * unit(rng)));
+    cases[2].push_back(std::array<double, 4>{1.0, 0.5, -0.25, 1.0}[static_cast<std::size_t>(i) % 4]);
+    cases[3].push_back(i % 3 == 0 ? 0.0 : i % 3 == 1 ? -0.0 : unit(rng) - 0.5);
+  }
+  for (auto& c : cases) {
+    c.push_back(kVerdictDegenerate);
+    c.push_back(-kVerdictDegenerate);
+    c.push_back(std::numeric_limits<double>::quiet_NaN());
+  }
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const Statistics got = compute_statistics(cases[k]), want = reference_statistics(cases[k]);
+    EXPECT_EQ(got.count, want.count) << k;
+    EXPECT_EQ(got.num_degenerate, 2) << k;
+    for (const auto& [a, b] : {std::pair{got.mean, want.mean},
+                               {got.std, want.std},
+                               {got.min, want.min},
+                               {got.max, want.max},
+                               {got.p01, want.p01},
+                               {got.p50, want.p50},
+                               {got.p99, want.p99}})
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(a == 0.0 ? 0.0 : a), std::bit_cast<std::uint64_t>(b == 0.0 ? 0.0 : b))
+          << "case " << k << ": " << a << " vs " << b;
+  }
 }
 
 }  // namespace

@@ -17,7 +17,8 @@ namespace hq {
 void append_gzip_member(std::string_view data, std::string& out);
 
 // Appends one zlib stream (RFC 1950) holding `data`: a block of VTK's
-// vtkZLibDataCompressor.
-void append_zlib_stream(std::span<const unsigned char> data, std::vector<unsigned char>& out);
+// vtkZLibDataCompressor. stored: deflate's stored blocks (no compression,
+// a copy and a checksum), for data that compresses by a few percent only.
+void append_zlib_stream(std::span<const unsigned char> data, std::vector<unsigned char>& out, bool stored = false);
 
 }  // namespace hq
