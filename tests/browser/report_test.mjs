@@ -28,7 +28,7 @@ const shots = path.join(outDir, 'screenshots');
 fs.mkdirSync(shots, { recursive: true });
 const example = (name) => path.join(sourceDir, 'examples', name);
 function analyze(args) {
-  execFileSync(hqview, ['analyze', ...args, '--size', '800x600', '-j', '2', '--quiet'], { stdio: 'inherit' });
+  execFileSync(hqview, ['analyze', ...args, '--data', 'csv,vtu.zlib', '--size', '800x600', '-j', '2', '--quiet'], { stdio: 'inherit' });
 }
 const ball = path.join(outDir, 'ball');
 analyze([example('ball.mesh'), '--reference', example('ball.off'), '-o', ball]);

@@ -26,7 +26,7 @@ fs.rmSync(outDir, { recursive: true, force: true });
 fs.mkdirSync(outDir, { recursive: true });
 const example = (name) => path.join(sourceDir, 'examples', name);
 function analyze(args) {
-  execFileSync(hqview, ['analyze', ...args, '--size', '640x480', '-j', '2', '--quiet'], { stdio: 'inherit' });
+  execFileSync(hqview, ['analyze', ...args, '--data', 'csv,vtu.zlib', '--size', '640x480', '-j', '2', '--quiet'], { stdio: 'inherit' });
 }
 
 // A 4x4x4 grid whose interior vertex (2,2,2) is pulled: 8 interior cells
