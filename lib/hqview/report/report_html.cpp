@@ -295,6 +295,7 @@ void set_data_files(data& page, const ReportModel& model) {
   page.set("data_files", files);
   const std::string cells = cell_data_path(model.data);
   page.set("has_cell_data", !cells.empty());
+  page.set("has_csv", model.data.csv || model.data.csv_gz);
   page.set("cell_data", cells.empty() ? "a bundle written with --data csv" : cells);
   page.set("vertex_data", cells.empty() ? "a bundle written with --data csv" : vertex_data_path(model.data));
 }
