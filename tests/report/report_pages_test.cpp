@@ -173,8 +173,12 @@ TEST(IndexHtml, DataFilesAndBoundaryPageAreLinkedOnlyWhenWritten) {
   EXPECT_NE(gz.find("href=\"data/vertices.csv.gz\""), std::string::npos);
   EXPECT_EQ(gz.find("href=\"data/cells.csv\""), std::string::npos);
   EXPECT_EQ(gz.find("data/annotated.vtu"), std::string::npos);
-  m.data = DataFormats{};  // the default: the compressed VTU
-  EXPECT_EQ(index_html(m).find("data/cells.csv"), std::string::npos);
+  EXPECT_EQ(gz.find("<code>--data csv.gz</code>"), std::string::npos);  // no hint when the tables are there
+  m.data = DataFormats{};  // the default: the compressed VTU, and how to get the tables
+  const std::string vtu = index_html(m);
+  EXPECT_EQ(vtu.find("href=\"data/cells.csv"), std::string::npos);
+  EXPECT_NE(vtu.find("href=\"data/annotated.vtu\""), std::string::npos);
+  EXPECT_NE(vtu.find("<code>--data csv.gz</code>"), std::string::npos);
   m.analysis.boundary_error.emplace().hausdorff_relative = 0.0125;
   const std::string html = index_html(m);
   EXPECT_NE(html.find("href=\"data/annotated.vtu\""), std::string::npos);
