@@ -3,8 +3,11 @@
 #include <charconv>
 #include <cmath>
 #include <exception>
+#include <filesystem>
+#include <new>
 
 #include "hqview/core/error.h"
+#include "hqview/core/stop.h"
 #include "hqview/core/text.h"
 #include "hqview/io/mesh_reader.h"
 #include "hqview/render/upright.h"
@@ -12,7 +15,7 @@
 
 namespace hqcli {
 
-ExitCode exit_code_of_current_exception() {
+int exit_code_of_current_exception() {
   try {
     throw;
   } catch (const UsageError&) {
@@ -21,17 +24,28 @@ ExitCode exit_code_of_current_exception() {
     return kUsage;
   } catch (const hq::InputError&) {
     return kInput;
+  } catch (const hq::EnvironmentError&) {
+    return kEnvironment;
+  } catch (const hq::Interrupted& e) {
+    return 128 + e.signal();
+  } catch (const std::filesystem::filesystem_error&) {
+    return kEnvironment;
+  } catch (const std::bad_alloc&) {
+    return kEnvironment;
   } catch (...) {
     return kInternal;
   }
 }
 
 ExitCode batch_exit_code(const std::vector<hq::BatchEntry>& entries) {
-  bool any_gate = false;
+  bool any_gate = false, any_failed = false, any_environment = false;
   for (const hq::BatchEntry& e : entries) {
-    if (e.status == hq::BatchStatus::failed) return kInput;
-    if (e.status == hq::BatchStatus::gate_failed) any_gate = true;
+    any_failed = any_failed || e.status == hq::BatchStatus::failed;
+    any_environment = any_environment || (e.status == hq::BatchStatus::failed && e.environment_failure);
+    any_gate = any_gate || e.status == hq::BatchStatus::gate_failed;
   }
+  if (any_environment) return kEnvironment;
+  if (any_failed) return kInput;
   return any_gate ? kGateFailed : kOk;
 }
 

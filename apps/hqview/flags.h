@@ -24,15 +24,18 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// The exit codes of docs/contract.md.
-enum ExitCode { kOk = 0, kGateFailed = 1, kUsage = 2, kInput = 3, kInternal = 4 };
+// The exit codes of docs/contract.md; a signal that stopped the run gives
+// 128 + its number (130 SIGINT, 143 SIGTERM).
+enum ExitCode { kOk = 0, kGateFailed = 1, kUsage = 2, kInput = 3, kInternal = 4, kEnvironment = 5 };
 
 // The exit code of the exception being handled (call inside a catch block):
 // UsageError and hq::ValueError 2, hq::InputError (ParseError,
-// InvalidMeshError) 3, anything else 4.
-ExitCode exit_code_of_current_exception();
+// InvalidMeshError) 3, hq::EnvironmentError, std::filesystem::filesystem_error
+// and std::bad_alloc 5, hq::Interrupted 128 + its signal, anything else 4.
+int exit_code_of_current_exception();
 
-// `batch` and `merge`: 3 if any mesh failed, else 1 if any gate failed, else 0.
+// `batch` and `merge`: 5 if a mesh failed because of the machine (disk full,
+// permission), else 3 if any mesh failed, else 1 if any gate failed, else 0.
 ExitCode batch_exit_code(const std::vector<hq::BatchEntry>& entries);
 
 // The whole of `text` as a finite number, or nullopt.

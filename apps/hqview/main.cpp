@@ -5,6 +5,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <csignal>
+
 #include <OpenMesh/Core/System/config.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
@@ -29,6 +31,7 @@
 #include "hqview/core/error.h"
 #include "hqview/core/number_format.h"
 #include "hqview/core/progress.h"
+#include "hqview/core/stop.h"
 #include "hqview/io/mesh_reader.h"
 #include "hqview/io/read_limits.h"
 #include "hqview/pipeline/analyze.h"
@@ -40,6 +43,7 @@
 #include "hqview/report/batch_index.h"
 #include "hqview/report/bundle_writer.h"
 #include "hqview/report/comparison.h"
+#include "hqview/report/junit.h"
 #include "hqview/report/report_json.h"
 #include "hqview/views/views.h"
 
@@ -81,6 +85,27 @@ void use_huge_pages(int argc, char** argv) {
     ::setenv("GLIBC_TUNABLES", tunables, 1);
   else
     ::unsetenv("GLIBC_TUNABLES");
+}
+
+// SIGINT, SIGTERM, SIGHUP: recorded, and honoured by the stages at their next
+// poll (hq::stop): the bundle being written is dropped with its temporary
+// directory and hqview exits 128 + the signal. A second signal while the
+// first is being honoured ends the process at once (the next run removes
+// what it left). SIGXFSZ (a file size limit, `ulimit -f`) and SIGPIPE are
+// ignored: the write fails with "File too large" / "Broken pipe" instead,
+// and the error names the file.
+extern "C" void on_stop_signal(int signal) {
+  if (hq::stop::requested() != 0) ::_exit(128 + signal);
+  hq::stop::request(signal);
+}
+
+void install_signal_handlers() {
+  struct sigaction action {};
+  action.sa_handler = on_stop_signal;
+  sigemptyset(&action.sa_mask);
+  for (const int s : {SIGINT, SIGTERM, SIGHUP}) ::sigaction(s, &action, nullptr);
+  std::signal(SIGXFSZ, SIG_IGN);
+  std::signal(SIGPIPE, SIG_IGN);
 }
 
 // The process's start (first use at the top of main): timings.json's wall time.
@@ -291,6 +316,7 @@ struct BatchArgs {
   std::string memory_budget;  // e.g. 8G; default: half the physical memory
   bool resume = false;
   std::string compare_keys;  // --compare-keys; empty: the default keys
+  double mesh_timeout = 0;   // --mesh-timeout SECONDS; 0: none
 };
 
 struct MergeArgs {
@@ -316,6 +342,7 @@ struct DiffArgs {
   std::string current;
   std::vector<std::string> gates;
   std::string markdown;
+  std::string junit;
   bool quiet = false;
 };
 
@@ -446,6 +473,10 @@ CLI::App* add_batch_command(CLI::App& app, BatchArgs& args) {
   cmd->add_option("--compare-keys", args.compare_keys, kCompareKeysHelp);
   cmd->add_option("--memory-budget", args.memory_budget,
                   "Estimated memory of the meshes in flight, e.g. 8G (default: half the physical memory; 0: no limit)");
+  cmd->add_option("--mesh-timeout", args.mesh_timeout,
+                  "Stop a mesh's analysis after SECONDS: it is recorded failed with the reason and the batch goes on "
+                  "(default: no limit)")
+      ->check(CLI::PositiveNumber);
   add_analysis_options(cmd, a);
   return cmd;
 }
@@ -469,6 +500,7 @@ CLI::App* add_diff_command(CLI::App& app, DiffArgs& args) {
       ->allow_extra_args(false)
       ->take_all();
   cmd->add_option("--markdown", args.markdown, "Also write the comparison as Markdown (a pull-request comment)");
+  cmd->add_option("--junit", args.junit, "Also write the gates as JUnit XML (one test case per gate and mesh)");
   cmd->add_flag("-q,--quiet", args.quiet, "Print only failed gates");
   return cmd;
 }
@@ -481,12 +513,16 @@ int run_batch_command(const BatchArgs& args, int jobs) {
   options.resume = args.resume;
   options.force = args.analysis.force;
   options.memory_budget = parse_memory_budget(args.memory_budget);
+  options.mesh_timeout = args.mesh_timeout;
   if (!args.analysis.no_render) options.make_renderer = [] { return hq::make_osmesa_renderer(); };
   const auto keys = comparison_keys_of(args.compare_keys);  // a usage error before any mesh is read
   std::vector<hq::BatchInput> inputs = hq::collect_batch_inputs(args.input);
   if (!args.shard.empty()) inputs = hq::select_shard(inputs, parse_shard(args.shard));
   hq::check_batch_output_dir(options.output, options.force);
   fs::create_directories(options.output);
+  // What a killed run left: its temporary bundles go, a bundle it had moved
+  // aside comes back.
+  hq::remove_stale_temporaries(options.output, true);
 
   StderrProgress progress(args.analysis.quiet);
   const std::vector<hq::BatchEntry> entries = hq::run_batch(inputs, options, &progress);
@@ -536,6 +572,7 @@ int run_diff_command(const DiffArgs& args) {
   if (!args.markdown.empty()) {
     hq::write_file_atomically(args.markdown, hq::diff_markdown(diff));
   }
+  if (!args.junit.empty()) hq::write_file_atomically(args.junit, hq::junit_xml("hqview diff", hq::diff_junit_cases(diff)));
   if (!args.quiet) std::cout << hq::diff_text(diff) << std::flush;
   for (const hq::DiffGateResult& g : diff.gates)
     if (!g.passed)
@@ -549,6 +586,7 @@ int run_diff_command(const DiffArgs& args) {
 int main(int argc, char** argv) {
   use_huge_pages(argc, argv);
   process_start();
+  install_signal_handlers();
   CLI::App app{"HQView: hexahedral mesh quality analysis and report bundles"};
   app.require_subcommand(0, 1);
   bool show_version = false;
@@ -608,8 +646,11 @@ int main(int argc, char** argv) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
     if (*batch) return run_batch_command(batch_args, threads);
     return run_analyze(args);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "hqview: out of memory (see --max-memory, --memory-budget)\n";
+    return kEnvironment;
   } catch (const std::exception& e) {
-    const ExitCode code = exit_code_of_current_exception();
+    const int code = exit_code_of_current_exception();
     if (code == kInternal)
       std::cerr << "hqview: internal error: " << e.what() << " (please report this)\n";
     else

@@ -3,6 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <csignal>
+#include <filesystem>
+
+#include "hqview/core/stop.h"
+
 #include <string>
 
 #include "hqview/core/error.h"
@@ -67,10 +72,14 @@ TEST(BatchExitCode, FailedThenGateThenOk) {
   EXPECT_EQ(batch_exit_code({entry(BatchStatus::ok)}), kOk);
   EXPECT_EQ(batch_exit_code({entry(BatchStatus::ok), entry(BatchStatus::gate_failed)}), kGateFailed);
   EXPECT_EQ(batch_exit_code({entry(BatchStatus::gate_failed), entry(BatchStatus::failed)}), kInput);
+  // A mesh that failed because of the machine (disk full) wins: retry elsewhere.
+  hq::BatchEntry full = entry(BatchStatus::failed);
+  full.environment_failure = true;
+  EXPECT_EQ(batch_exit_code({entry(BatchStatus::failed), full, entry(BatchStatus::gate_failed)}), kEnvironment);
 }
 
 TEST(ExitCode, EachErrorTypeHasItsCode) {
-  auto code_of = [](auto&& thrower) {
+  auto code_of = [](auto&& thrower) -> int {
     try {
       thrower();
     } catch (const std::exception&) {
@@ -85,6 +94,14 @@ TEST(ExitCode, EachErrorTypeHasItsCode) {
   EXPECT_EQ(code_of([] { throw hq::InvalidMeshError("x"); }), kInput);
   EXPECT_EQ(code_of([] { throw hq::RenderError("x"); }), kInternal);
   EXPECT_EQ(code_of([] { throw std::logic_error("x"); }), kInternal);
+  EXPECT_EQ(code_of([] { throw hq::EnvironmentError("x"); }), kEnvironment);
+  EXPECT_EQ(code_of([] {
+              throw std::filesystem::filesystem_error("x", "/p", std::make_error_code(std::errc::no_space_on_device));
+            }),
+            kEnvironment);
+  EXPECT_EQ(code_of([] { throw std::bad_alloc(); }), kEnvironment);
+  EXPECT_EQ(code_of([] { throw hq::Interrupted(SIGINT); }), 130);
+  EXPECT_EQ(code_of([] { throw hq::Interrupted(SIGTERM); }), 143);
 }
 
 TEST(ViewList, AllOrIdsInTableOrder) {

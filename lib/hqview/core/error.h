@@ -53,6 +53,15 @@ class ValueError : public Error {
   using Error::Error;
 };
 
+// The machine refused what the run needs: no space left on the device, a
+// file size limit, a read-only file system, a permission, too many levels of
+// symbolic links, no memory. Neither the input nor a bug: a pipeline may
+// retry elsewhere (exit code 5). what() names the path and the cause.
+class EnvironmentError : public Error {
+ public:
+  using Error::Error;
+};
+
 // OpenGL / OSMesa failure.
 class RenderError : public Error {
  public:

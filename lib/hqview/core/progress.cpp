@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "hqview/core/stop.h"
+
 namespace hq::progress {
 namespace {
 
@@ -20,6 +22,9 @@ State& state() {
 }  // namespace
 
 void stage_started(std::string stage) {
+  // A stage's start is a point where a stop request is honoured; its end
+  // ("", from StageClock's destructor among others) is not: it must not throw.
+  if (!stage.empty()) stop::check();
   State& s = state();
   const std::lock_guard lock(s.mutex);
   s.stage = std::move(stage);
@@ -32,9 +37,15 @@ void set_total(std::uint64_t total) {
   state().total.store(total, std::memory_order_relaxed);
 }
 
-void add_done(std::uint64_t amount) { state().done.fetch_add(amount, std::memory_order_relaxed); }
+void add_done(std::uint64_t amount) {
+  state().done.fetch_add(amount, std::memory_order_relaxed);
+  stop::check();
+}
 
-void set_done(std::uint64_t done) { state().done.store(done, std::memory_order_relaxed); }
+void set_done(std::uint64_t done) {
+  state().done.store(done, std::memory_order_relaxed);
+  stop::check();
+}
 
 Snapshot snapshot() {
   State& s = state();

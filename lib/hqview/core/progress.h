@@ -6,6 +6,8 @@
 // so stages run the same with or without a display (batch runs several
 // analyses at once and draws its own bar: the counts are then meaningless,
 // and unread). Relaxed atomics: a stage pays one add per block of work.
+// Each report of work (and each stage's start) is also where a stop request
+// is honoured: these calls throw Interrupted or TimedOut (stop.h).
 
 #include <atomic>
 #include <cstdint>

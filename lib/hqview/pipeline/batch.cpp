@@ -11,8 +11,11 @@
 #include <sstream>
 #include <thread>
 
+#include <tbb/task_arena.h>
+
 #include "hqview/core/error.h"
 #include "hqview/core/sha256.h"
+#include "hqview/core/stop.h"
 #include "hqview/core/text.h"
 #include "hqview/io/mesh_reader.h"
 #include "hqview/report/json_path.h"
@@ -86,6 +89,7 @@ BatchEntry run_batch_mesh(const BatchInput& input, const BatchOptions& options, 
       // The rules of this run decide the status, not those of the kept bundle.
       if (!options.analyze.gates.empty()) {
         const GateSummary gates = evaluate_gates(options.analyze.gates, report);
+        entry.gates = gates.results;
         entry.failed_gates.clear();
         for (const GateResult& g : gates.results)
           if (!g.passed) entry.failed_gates.push_back(g.rule);
@@ -102,11 +106,32 @@ BatchEntry run_batch_mesh(const BatchInput& input, const BatchOptions& options, 
     BundleOptions bundle;
     bundle.force = options.force;
     check_output_dir(dir, bundle);
-    const std::unique_ptr<Renderer> renderer = options.make_renderer ? options.make_renderer() : nullptr;
-    const AnalyzeResult result = analyze(analyze_options, renderer.get());
-    write_bundle(result.model, result.document, result.images, dir, bundle);
-    fill_entry_from_report(entry, result.document);
+    // The mesh's work stays on its own: a thread waiting inside it runs only
+    // its tasks, so that the deadline it checks is this mesh's (stop.h).
+    tbb::this_task_arena::isolate([&] {
+      std::optional<stop::ScopedDeadline> deadline;
+      if (options.mesh_timeout > 0) deadline.emplace(options.mesh_timeout, "--mesh-timeout");
+      const std::unique_ptr<Renderer> renderer = options.make_renderer ? options.make_renderer() : nullptr;
+      const AnalyzeResult result = analyze(analyze_options, renderer.get());
+      write_bundle(result.model, result.document, result.images, dir, bundle);
+      fill_entry_from_report(entry, result.document);
+      if (!options.analyze.gates.empty()) entry.gates = evaluate_gates(options.analyze.gates, result.document).results;
+    });
     entry.bundle = input.path;
+  } catch (const Interrupted&) {
+    throw;  // the whole batch stops (run_batch)
+  } catch (const EnvironmentError& e) {
+    entry.status = BatchStatus::failed;
+    entry.error = e.what();
+    entry.environment_failure = true;
+  } catch (const fs::filesystem_error& e) {
+    entry.status = BatchStatus::failed;
+    entry.error = e.what();
+    entry.environment_failure = true;
+  } catch (const std::bad_alloc&) {
+    entry.status = BatchStatus::failed;
+    entry.error = "out of memory";
+    entry.environment_failure = true;
   } catch (const InputError& e) {
     entry.status = BatchStatus::failed;
     entry.error = e.what();
@@ -120,6 +145,7 @@ BatchEntry run_batch_mesh(const BatchInput& input, const BatchOptions& options, 
   if (entry.status == BatchStatus::failed) {
     entry.bundle.clear();
     entry.failed_gates.clear();
+    entry.gates.clear();
     entry.headline.assign(kNumHeadlineKeys, std::nullopt);
     // Hashed in chunks: a failed mesh may be a file too big to read whole.
     std::error_code ec;
@@ -148,26 +174,38 @@ std::vector<BatchEntry> run_batch(const std::vector<BatchInput>& inputs, const B
   int done = 0;
   std::size_t next = 0;
   const int total = static_cast<int>(inputs.size());
+  std::exception_ptr interrupted;  // the first Interrupted: no mesh starts after it
 
   auto worker = [&] {
     while (true) {
       std::size_t i = 0;
       {
         std::unique_lock lock(mutex);
-        if (next >= inputs.size()) return;
+        if (next >= inputs.size() || interrupted || stop::requested() != 0) return;
         i = next++;
         // A mesh starts when it fits in the budget next to those running, or
         // runs alone (a mesh larger than the budget still gets analysed).
-        released.wait(lock, [&] {
+        // Woken every 100 ms to notice a signal.
+        while (!released.wait_for(lock, std::chrono::milliseconds(100), [&] {
           return options.memory_budget == 0 || running == 0 || in_flight + cost[i] <= options.memory_budget;
-        });
+        }))
+          if (stop::requested() != 0) return;
         in_flight += cost[i];
         ++running;
         if (progress) progress->mesh_started(inputs[i]);
       }
       const auto start = std::chrono::steady_clock::now();
       bool is_resumed = false;
-      entries[i] = run_batch_mesh(inputs[i], options, is_resumed);
+      try {
+        entries[i] = run_batch_mesh(inputs[i], options, is_resumed);
+      } catch (const Interrupted&) {
+        std::lock_guard lock(mutex);
+        if (!interrupted) interrupted = std::current_exception();
+        in_flight -= cost[i];
+        --running;
+        released.notify_all();
+        return;
+      }
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       {
         std::lock_guard lock(mutex);
@@ -184,6 +222,8 @@ std::vector<BatchEntry> run_batch(const std::vector<BatchInput>& inputs, const B
   for (int t = 1; t < workers; ++t) threads.emplace_back(worker);
   worker();
   for (std::thread& t : threads) t.join();
+  if (interrupted) std::rethrow_exception(interrupted);
+  if (const int signal = stop::requested(); signal != 0) throw Interrupted(signal);
   std::sort(entries.begin(), entries.end(), [](const BatchEntry& a, const BatchEntry& b) { return a.path < b.path; });
   return entries;
 }

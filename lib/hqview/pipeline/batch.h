@@ -108,7 +108,8 @@ struct BatchOptions {
   int jobs = 1;                     // meshes analysed at once
   std::uint64_t memory_budget = 0;  // bytes for the meshes in flight (estimated); 0: no limit
   bool resume = false;
-  bool force = false;  // passed to each bundle (replace a non-bundle directory)
+  bool force = false;         // passed to each bundle (replace a non-bundle directory)
+  double mesh_timeout = 0;    // seconds per mesh (--mesh-timeout); 0: none. Over it: failed, the batch goes on
 };
 
 // Progress sink (main draws a bar or prints lines). Called from worker
@@ -123,7 +124,9 @@ class BatchProgress {
 
 // Analyses every input into options.output / input.path (bundle_path()).
 // Never throws for a mesh's failure (it is recorded in its entry); throws
-// ValueError when options.output is unusable. Entries sorted by path.
+// ValueError when options.output is unusable, Interrupted when a stop was
+// requested (stop.h: the meshes running stop, no other starts, bundles
+// already written stay). Entries sorted by path.
 std::vector<BatchEntry> run_batch(const std::vector<BatchInput>& inputs, const BatchOptions& options,
                                   BatchProgress* progress);
 

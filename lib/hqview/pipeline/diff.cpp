@@ -348,4 +348,21 @@ std::string diff_text(const DiffResult& d) {
   return out;
 }
 
+std::vector<JunitCase> diff_junit_cases(const DiffResult& diff) {
+  std::vector<JunitCase> cases;
+  for (const DiffGateResult& g : diff.gates) {
+    JunitCase c{"hqview.diff", g.mesh.empty() ? g.rule : g.mesh + ": " + g.rule, JunitCase::Outcome::passed, "", ""};
+    if (!g.passed) {
+      c.outcome = JunitCase::Outcome::failed;
+      const std::string value = g.value ? format_double(*g.value) : std::string("none: the mesh failed");
+      c.message = "gate failed: " + g.rule + " (value " + value + ", threshold " + format_double(g.threshold) + ")";
+      c.text = (g.mesh.empty() ? std::string() : "mesh: " + g.mesh + "\n") + "rule: " + g.rule + "\nvalue: " + value +
+               "\nthreshold: " + format_double(g.threshold) + "\n" +
+               (g.baseline ? "baseline: " + format_double(*g.baseline) + "\n" : std::string());
+    }
+    cases.push_back(std::move(c));
+  }
+  return cases;
+}
+
 }  // namespace hq

@@ -10,6 +10,8 @@
 #include <string_view>
 #include <vector>
 
+#include "hqview/report/junit.h"
+
 #include "hqview/pipeline/gates.h"
 
 namespace hq {
@@ -78,5 +80,10 @@ DiffResult diff_reports(std::string_view baseline_text, std::string_view current
 
 std::string diff_markdown(const DiffResult& diff);
 std::string diff_text(const DiffResult& diff);
+
+// `diff --junit FILE`: one test case per gate (per mesh of two indexes):
+// "RULE" or "MESH: RULE", a failure with the value, the threshold and the
+// baseline value.
+std::vector<JunitCase> diff_junit_cases(const DiffResult& diff);
 
 }  // namespace hq

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "hqview/core/error.h"
+#include "hqview/core/stop.h"
 #include "hqview/render/scene_shapes.h"
 
 namespace hq {
@@ -311,6 +312,7 @@ class OsmesaRenderer final : public Renderer {
   OsmesaRenderer& operator=(const OsmesaRenderer&) = delete;
 
   Image render(const Scene& scene, const Camera& camera, int width, int height) override {
+    stop::check();
     if (width <= 0 || height <= 0)
       throw RenderError("image size must be positive, got " + std::to_string(width) + "x" + std::to_string(height));
     for (const TriangleSet& set : scene.triangles) {
@@ -482,6 +484,7 @@ class OsmesaRenderer final : public Renderer {
     glDisable(GL_BLEND);
     static constexpr float kCorners[4][2] = {{-1.0f, -1.0f}, {1.0f, -1.0f}, {1.0f, 1.0f}, {-1.0f, 1.0f}};
     for (const SphereSet& set : scene.spheres) {
+      stop::check();  // a stop request lands between draws (hq::stop)
       if (set.centers.empty()) continue;
       const std::size_t n = set.centers.size();
       std::vector<Vec3f> centers(4 * n), corners(4 * n);
@@ -519,6 +522,7 @@ class OsmesaRenderer final : public Renderer {
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1.0f, 1.0f);
     for (const TriangleSet& set : sets) {
+      stop::check();
       if (set.indices.empty()) continue;
       bind_positions_and_colors(set.positions, set.colors);
       const bool use_normals = !set.normals.empty();
@@ -562,6 +566,7 @@ class OsmesaRenderer final : public Renderer {
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     for (const LineSet& set : scene.lines) {
+      stop::check();
       if (set.indices.empty()) continue;
       bind_positions_and_colors(set.positions, set.colors);
       glLineWidth(std::clamp(set.width * static_cast<float>(kSupersampling), 1.0f, max_line_width_));

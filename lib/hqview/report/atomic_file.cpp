@@ -20,13 +20,13 @@ void write_file_atomically(const fs::path& path, std::string_view text) {
   const fs::path tmp = path.parent_path() / name;
   {
     std::ofstream out(tmp, std::ios::binary);
-    if (!out) throw Error(tmp.string() + ": cannot create: " + std::strerror(errno));
+    if (!out) throw EnvironmentError(tmp.string() + ": cannot create: " + std::strerror(errno));
     out.write(text.data(), static_cast<std::streamsize>(text.size()));
     out.flush();
     if (!out) {
       std::error_code ignored;
       fs::remove(tmp, ignored);
-      throw Error(tmp.string() + ": write failed: " + std::strerror(errno));
+      throw EnvironmentError(tmp.string() + ": write failed: " + std::strerror(errno));
     }
   }
   std::error_code ec;
@@ -34,7 +34,7 @@ void write_file_atomically(const fs::path& path, std::string_view text) {
   if (ec) {
     std::error_code ignored;
     fs::remove(tmp, ignored);
-    throw Error(path.string() + ": cannot rename into place: " + ec.message());
+    throw EnvironmentError(path.string() + ": cannot rename into place: " + ec.message());
   }
 }
 

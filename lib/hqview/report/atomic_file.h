@@ -9,7 +9,7 @@
 
 namespace hq {
 
-// Throws Error when the temporary file cannot be written or renamed (it is
+// Throws EnvironmentError when the temporary file cannot be written or renamed (it is
 // removed then; `path` is untouched).
 void write_file_atomically(const std::filesystem::path& path, std::string_view text);
 

@@ -16,7 +16,9 @@
 
 #include "hqview/core/error.h"
 #include "hqview/core/number_format.h"
+#include "hqview/core/fault_point.h"
 #include "hqview/report/atomic_file.h"
+#include "hqview/report/junit.h"
 #include "hqview/report/comparison.h"
 #include "hqview/report/escape.h"
 #include "hqview/report/json_path.h"
@@ -461,9 +463,12 @@ std::string batch_summary_markdown(const std::vector<BatchEntry>& entries) {
 void write_batch_index(const std::vector<BatchEntry>& entries, const std::string& tool_version, const fs::path& dir,
                        const std::vector<ComparisonKey>* keys) {
   fs::create_directories(dir);
+  fault_point("batch-before-index");
   write_file_atomically(dir / "index.json", batch_index_json(entries, tool_version));
+  fault_point("batch-index-write");
   write_file_atomically(dir / "index.html", batch_index_html(entries, tool_version, keys));
   write_file_atomically(dir / "summary.md", batch_summary_markdown(entries));
+  write_file_atomically(dir / "junit.xml", junit_xml("hqview batch", batch_junit_cases(entries)));
   if (has_comparison(entries)) {
     const Comparison c = build_comparison(entries, keys ? *keys : default_comparison_keys(entries));
     write_file_atomically(dir / "comparison.csv", comparison_csv(entries));

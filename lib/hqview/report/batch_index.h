@@ -60,6 +60,11 @@ struct BatchEntry {
   std::vector<std::optional<double>> headline = std::vector<std::optional<double>>(kNumHeadlineKeys);
   std::vector<std::string> failed_gates;  // rules
   std::string thumbnail;  // the bundle's thumbnail view, relative to the bundle; empty: not rendered
+  // Of this run only (not in index.json, so not after merge): every gate's
+  // rule, value and outcome (OUT/junit.xml), and whether the failure was
+  // the machine's (disk full, permission: batch exit code 5).
+  std::vector<GateResult> gates;
+  bool environment_failure = false;
 };
 
 // Fills the report-derived fields of `entry` (status ok/gate_failed,

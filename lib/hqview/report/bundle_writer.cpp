@@ -1,5 +1,8 @@
 #include "hqview/report/bundle_writer.h"
 
+#include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -12,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hqview/core/error.h"
+#include "hqview/core/fault_point.h"
 #include "hqview/image/png.h"
 #include "hqview/report/report_csv.h"
 #include "hqview/report/report_html.h"
@@ -38,17 +42,20 @@ template <class WriteFn>
 void write_file(const fs::path& path, WriteFn&& write) {
   fs::create_directories(path.parent_path());
   std::ofstream out(path, std::ios::binary);
-  if (!out) throw Error(path.string() + ": cannot create: " + std::strerror(errno));
+  if (!out) throw EnvironmentError(path.string() + ": cannot create: " + std::strerror(errno));
   write(out);
   out.flush();
-  if (!out) throw Error(path.string() + ": write failed: " + std::strerror(errno));
+  if (!out) throw EnvironmentError(path.string() + ": write failed: " + std::strerror(errno));
 }
 
 void write_text(const fs::path& path, std::string_view text) {
   write_file(path, [&](std::ostream& out) { out.write(text.data(), static_cast<std::streamsize>(text.size())); });
 }
 
-fs::path sibling(const fs::path& dir, const char* tag) {
+constexpr std::string_view kTmpTag = "hqview-tmp";
+constexpr std::string_view kOldTag = "hqview-old";
+
+fs::path sibling(const fs::path& dir, std::string_view tag) {
   // Built with += : GCC 12 warns falsely (-Wrestrict) on chained operator+.
   std::string name = ".";
   name += dir.filename().string();
@@ -59,7 +66,97 @@ fs::path sibling(const fs::path& dir, const char* tag) {
   return dir.parent_path() / name;
 }
 
+// "path: cause" of a file system error, the cause as the OS says it.
+std::string describe(const fs::filesystem_error& e) {
+  std::string out = e.path1().empty() ? std::string() : e.path1().string() + ": ";
+  return out + e.code().message();
+}
+
+// The process that named a temporary `.NAME.TAG-PID` is gone (a run that was
+// killed): its leftovers may be removed.
+bool is_stale(const std::string& name, std::string_view tag, std::string& base) {
+  if (name.size() < 2 || name[0] != '.') return false;
+  const std::size_t at = name.rfind(std::string(".") + std::string(tag) + "-");
+  if (at == std::string::npos || at == 0) return false;
+  const std::string pid_text = name.substr(at + tag.size() + 2);
+  if (pid_text.empty() || pid_text.size() > 9 || pid_text.find_first_not_of("0123456789") != std::string::npos)
+    return false;
+  const pid_t pid = static_cast<pid_t>(std::stol(pid_text));
+  if (pid == ::getpid() || pid <= 0) return false;
+  if (::kill(pid, 0) == 0 || errno == EPERM) return false;  // still running
+  base = name.substr(1, at - 1);
+  return true;
+}
+
 }  // namespace
+
+void swap_into_place(const fs::path& tmp, const fs::path& dir) {
+  // Exchanged in one step where the file system can (Linux renameat2): there
+  // is never a moment without a bundle at DIR, and two runs writing DIR at
+  // once each put a whole bundle there; the last one stays.
+  for (int attempt = 0; attempt < 8; ++attempt) {
+    if (::renameat2(AT_FDCWD, tmp.c_str(), AT_FDCWD, dir.c_str(), RENAME_NOREPLACE) == 0) return;
+    if (errno != EEXIST && errno != ENOTEMPTY && errno != EINVAL && errno != ENOSYS)
+      throw EnvironmentError(dir.string() + ": cannot rename the new bundle into place: " + std::strerror(errno));
+    if (errno == EEXIST || errno == ENOTEMPTY) {
+      if (::renameat2(AT_FDCWD, tmp.c_str(), AT_FDCWD, dir.c_str(), RENAME_EXCHANGE) == 0) {
+        std::error_code ignored;
+        fs::remove_all(tmp, ignored);  // now the old bundle
+        return;
+      }
+      if (errno == ENOENT) continue;  // DIR vanished between the two calls: try again
+      if (errno != EINVAL && errno != ENOSYS)
+        throw EnvironmentError(dir.string() + ": cannot exchange the new bundle with the old: " +
+                               std::strerror(errno));
+    }
+    break;  // no renameat2 flags here: two renames below
+  }
+  // The old bundle is moved aside, never deleted before the new one is in
+  // place; a run killed in between leaves it as `.DIR.hqview-old-PID`, which
+  // the next run puts back (remove_stale_temporaries).
+  if (fs::exists(dir)) {
+    const fs::path old = sibling(dir, kOldTag);
+    fs::remove_all(old);
+    fs::rename(dir, old);
+    try {
+      fs::rename(tmp, dir);
+    } catch (...) {
+      fs::rename(old, dir);
+      throw;
+    }
+    fs::remove_all(old);
+  } else {
+    fs::rename(tmp, dir);
+  }
+}
+
+int remove_stale_temporaries(const fs::path& dir, bool recursive) {
+  int removed = 0;
+  std::error_code ec;
+  std::vector<fs::path> subdirs;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    std::string base;
+    std::error_code ignored;
+    if (is_stale(name, kTmpTag, base)) {
+      fs::remove_all(it->path(), ignored);
+      ++removed;
+    } else if (is_stale(name, kOldTag, base)) {
+      // A killed swap: the bundle it moved aside goes back where it was.
+      const fs::path original = dir / base;
+      if (!fs::exists(fs::symlink_status(original, ignored)))
+        fs::rename(it->path(), original, ignored);
+      else
+        fs::remove_all(it->path(), ignored);
+      ++removed;
+    } else if (recursive && name[0] != '.' && it->is_directory(ignored) && !it->is_symlink(ignored)) {
+      subdirs.push_back(it->path());
+    }
+  }
+  for (const fs::path& sub : subdirs)
+    if (!fs::is_regular_file(sub / "report.json", ec)) removed += remove_stale_temporaries(sub, true);
+  return removed;
+}
 
 std::string timings_json(const std::vector<StageTime>& timings, double wall_seconds) {
   nlohmann::json stages = nlohmann::json::array();
@@ -96,9 +193,15 @@ void write_bundle(const ReportModel& model, const ReportDocument& document, cons
                   const fs::path& target, const BundleOptions& options) {
   const fs::path dir = fs::absolute(target).lexically_normal();
   check_output_dir(dir, options);
-  fs::create_directories(dir.parent_path());
-  const fs::path tmp = sibling(dir, "hqview-tmp");
-  fs::remove_all(tmp);
+  try {
+    fs::create_directories(dir.parent_path());
+  } catch (const fs::filesystem_error& e) {
+    throw EnvironmentError("writing the bundle: " + describe(e));
+  }
+  remove_stale_temporaries(dir.parent_path(), false);
+  const fs::path tmp = sibling(dir, kTmpTag);
+  std::error_code ignored_ec;
+  fs::remove_all(tmp, ignored_ec);
   // Every file stays inside the bundle: image paths are relative, without "..".
   for (const BundleImage& img : images)
     if (!is_inside_bundle(img.relative_path))
@@ -151,26 +254,12 @@ void write_bundle(const ReportModel& model, const ReportDocument& document, cons
     if (options.started)
       wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - *options.started).count();
     write_text(tmp / "timings.json", timings_json(timings, wall));
-    // Swap into place: the old bundle is moved aside, never deleted before
-    // the new one is in place.
-    if (fs::exists(dir)) {
-      const fs::path old = sibling(dir, "hqview-old");
-      fs::remove_all(old);
-      fs::rename(dir, old);
-      try {
-        fs::rename(tmp, dir);
-      } catch (...) {
-        fs::rename(old, dir);
-        throw;
-      }
-      fs::remove_all(old);
-    } else {
-      fs::rename(tmp, dir);
-    }
+    fault_point("bundle-before-swap");
+    swap_into_place(tmp, dir);
   } catch (const fs::filesystem_error& e) {
     std::error_code ignored;
     fs::remove_all(tmp, ignored);
-    throw Error(std::string("writing the bundle: ") + e.what());
+    throw EnvironmentError("writing the bundle: " + describe(e));
   } catch (...) {
     std::error_code ignored;
     fs::remove_all(tmp, ignored);

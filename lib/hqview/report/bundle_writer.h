@@ -42,9 +42,22 @@ std::string timings_json(const std::vector<StageTime>& timings, double wall_seco
 // report.json (document's text), timings.json (model.analysis.timings and the
 // writing of each file: wall seconds, the one file that differs run to run), index.html, boundary.html (with a boundary error), summary.md, style.css,
 // data/cells.csv, data/vertices.csv, data/annotated.vtu (when model.has_annotated_vtu) and the images (relative paths
-// without "..": anything else is an internal error, nothing is written outside DIR). Throws hq::Error on an I/O failure
-// (the temporary directory is removed, DIR untouched).
+// without "..": anything else is an internal error, nothing is written outside DIR). Throws EnvironmentError on an I/O
+// failure (the temporary directory is removed, DIR untouched), Interrupted when a stop is requested while writing.
+// Stale temporaries of killed runs next to DIR are cleaned first (remove_stale_temporaries).
 void write_bundle(const ReportModel& model, const ReportDocument& document, const std::vector<BundleImage>& images,
                   const std::filesystem::path& dir, const BundleOptions& options);
+
+// Puts the complete directory `tmp` at `dir`: exchanged atomically with an
+// existing bundle where the file system allows (renameat2), else by two
+// renames with the old bundle kept aside until the new one is in place.
+void swap_into_place(const std::filesystem::path& tmp, const std::filesystem::path& dir);
+
+// Removes what killed runs left in `dir` (and, when recursive, in its
+// subdirectories that are not bundles): `.NAME.hqview-tmp-PID` entries whose
+// process is gone; a `.NAME.hqview-old-PID` (a bundle moved aside by a swap
+// that was killed) goes back to NAME when NAME is missing, else is removed.
+// Returns how many entries it removed or restored.
+int remove_stale_temporaries(const std::filesystem::path& dir, bool recursive);
 
 }  // namespace hq

@@ -1,0 +1,65 @@
+#pragma once
+// Stopping a run on request: a signal (SIGINT, SIGTERM) for the whole
+// process, or a deadline for one mesh of a batch (--mesh-timeout). Nothing is
+// interrupted from outside: the signal handler only records the signal, and
+// the stages poll at their natural points (each stage's start and every block
+// of work they report to progress.h), where check() throws. The exception
+// unwinds through the bundle writer, which removes its temporary directory,
+// so a stopped run leaves what was there before (docs/contract.md, "Exit
+// codes"; ARCHITECTURE.md, "Faults").
+
+#include <chrono>
+
+#include "hqview/core/error.h"
+
+namespace hq {
+
+// The run was stopped by a signal; main exits 128 + signal().
+class Interrupted : public Error {
+ public:
+  explicit Interrupted(int signal);
+  int signal() const { return signal_; }
+
+ private:
+  int signal_;
+};
+
+// One mesh's analysis ran past its --mesh-timeout.
+class TimedOut : public Error {
+ public:
+  using Error::Error;
+};
+
+namespace stop {
+
+// Records a stop request. Async-signal-safe: the signal handler's only call.
+void request(int signal) noexcept;
+// The first signal requested, 0 if none.
+int requested() noexcept;
+// Forgets a request (tests; a library caller that handled it).
+void reset() noexcept;
+
+// Throws Interrupted when a stop was requested, TimedOut when the calling
+// thread's deadline (ScopedDeadline) has passed; else returns at once (one
+// relaxed load, plus a clock read when a deadline is set).
+void check();
+
+// Sets the calling thread's deadline while it lives: `seconds` from now,
+// described in the TimedOut message as `what` ("--mesh-timeout 60").
+// Work that the thread hands to other threads checks only the signal; the
+// calling thread polls its own share, so a long parallel stage still stops
+// (batch runs each mesh in an isolated TBB region so that a thread never
+// checks one mesh's deadline inside another mesh's work).
+class ScopedDeadline {
+ public:
+  ScopedDeadline(double seconds, const char* what);
+  ScopedDeadline(const ScopedDeadline&) = delete;
+  ScopedDeadline& operator=(const ScopedDeadline&) = delete;
+  ~ScopedDeadline();
+
+ private:
+  const void* previous_;
+};
+
+}  // namespace stop
+}  // namespace hq
