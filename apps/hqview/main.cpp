@@ -519,7 +519,7 @@ int run_batch_command(const BatchArgs& args, int jobs) {
   std::vector<hq::BatchInput> inputs = hq::collect_batch_inputs(args.input);
   if (!args.shard.empty()) inputs = hq::select_shard(inputs, parse_shard(args.shard));
   hq::check_batch_output_dir(options.output, options.force);
-  fs::create_directories(options.output);
+  hq::mark_batch_output_dir(options.output);
   // What a killed run left: its temporary bundles go, a bundle it had moved
   // aside comes back.
   hq::remove_stale_temporaries(options.output, true);
@@ -540,6 +540,7 @@ int run_merge_command(const MergeArgs& args) {
   std::vector<fs::path> shards(args.shards.begin(), args.shards.end());
   const auto keys = comparison_keys_of(args.compare_keys);
   hq::check_batch_output_dir(args.output, args.force);
+  hq::mark_batch_output_dir(args.output);
   const std::vector<hq::BatchEntry> entries = hq::merge_shards(shards, args.output);
   hq::write_batch_index(entries, HQVIEW_VERSION, args.output, keys ? &*keys : nullptr);
   std::cerr << "hqview: merged " << entries.size() << " meshes from " << shards.size() << " shards into "

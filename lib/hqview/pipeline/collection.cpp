@@ -196,7 +196,8 @@ std::vector<BatchInput> collect_directory(const fs::path& dir) {
       if (it->is_directory()) it.disable_recursion_pending();
       continue;  // hidden files and HQView's temporary siblings
     }
-    if (it->is_directory() && (fs::exists(file / "report.json") || fs::exists(file / "index.json"))) {
+    if (it->is_directory() && (fs::exists(file / "report.json") || fs::exists(file / "index.json") ||
+                                 fs::exists(file / kBatchMarkerFile))) {
       // HQView's own outputs (a bundle holds data/annotated.vtu): an output
       // directory inside the collection is not analysed on the next run.
       it.disable_recursion_pending();

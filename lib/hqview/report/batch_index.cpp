@@ -483,10 +483,17 @@ void check_batch_output_dir(const fs::path& dir, bool force) {
   const auto status = fs::symlink_status(dir, ec);
   if (ec || !fs::exists(status)) return;
   if (!fs::is_directory(status)) throw ValueError(dir.string() + ": exists and is not a directory; choose another -o");
-  if (!force && !fs::is_empty(dir) && !fs::is_regular_file(dir / "index.json"))
+  if (!force && !fs::is_empty(dir) && !fs::is_regular_file(dir / "index.json") &&
+      !fs::is_regular_file(dir / kBatchMarkerFile))
     throw ValueError(dir.string() +
                      ": is a non-empty directory that is not an HQView batch output (no index.json); "
                      "use --force to write into it");
+}
+
+void mark_batch_output_dir(const fs::path& dir) {
+  fs::create_directories(dir);
+  if (!fs::is_regular_file(dir / kBatchMarkerFile))
+    write_file_atomically(dir / kBatchMarkerFile, "an HQView batch output (hqview batch / merge)\n");
 }
 
 }  // namespace hq

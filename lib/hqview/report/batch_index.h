@@ -103,7 +103,13 @@ void write_batch_index(const std::vector<BatchEntry>& entries, const std::string
                        const std::filesystem::path& dir, const std::vector<ComparisonKey>* keys = nullptr);
 
 // Throws ValueError when `dir` exists and is neither empty nor a batch
-// output (index.json) and !force.
+// output (index.json, or the marker of a batch that has not written its
+// index yet: a run killed or stopped midway) and !force.
 void check_batch_output_dir(const std::filesystem::path& dir, bool force);
+
+// Creates `dir` and its marker `.hqview-batch` (before any bundle is
+// written), so that a run killed before its index can be resumed there.
+inline constexpr const char* kBatchMarkerFile = ".hqview-batch";
+void mark_batch_output_dir(const std::filesystem::path& dir);
 
 }  // namespace hq
