@@ -12,6 +12,7 @@
 #include <tbb/info.h>
 #include <tbb/version.h>
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -317,6 +318,7 @@ struct BatchArgs {
   bool resume = false;
   std::string compare_keys;  // --compare-keys; empty: the default keys
   double mesh_timeout = 0;   // --mesh-timeout SECONDS; 0: none
+  bool list = false;         // --list: print the collection as JSON and stop
 };
 
 struct MergeArgs {
@@ -473,6 +475,9 @@ CLI::App* add_batch_command(CLI::App& app, BatchArgs& args) {
   cmd->add_option("--compare-keys", args.compare_keys, kCompareKeysHelp);
   cmd->add_option("--memory-budget", args.memory_budget,
                   "Estimated memory of the meshes in flight, e.g. 8G (default: half the physical memory; 0: no limit)");
+  cmd->add_flag("--list", args.list,
+                "Print the collection (after --shard) as JSON, one object per mesh {path, mesh, reference, compare, "
+                "skipped}, and stop: what a workflow engine schedules (workflow/Snakefile)");
   cmd->add_option("--mesh-timeout", args.mesh_timeout,
                   "Stop a mesh's analysis after SECONDS: it is recorded failed with the reason and the batch goes on "
                   "(default: no limit)")
@@ -518,6 +523,17 @@ int run_batch_command(const BatchArgs& args, int jobs) {
   const auto keys = comparison_keys_of(args.compare_keys);  // a usage error before any mesh is read
   std::vector<hq::BatchInput> inputs = hq::collect_batch_inputs(args.input);
   if (!args.shard.empty()) inputs = hq::select_shard(inputs, parse_shard(args.shard));
+  if (args.list) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (const hq::BatchInput& in : inputs)
+      rows.push_back({{"path", in.path},
+                      {"mesh", in.mesh_file.string()},
+                      {"reference", in.reference_file.string()},
+                      {"compare", in.compare_file.string()},
+                      {"skipped", in.skip_reason}});
+    std::cout << rows.dump(1) << "\n";
+    return kOk;
+  }
   hq::check_batch_output_dir(options.output, options.force);
   hq::mark_batch_output_dir(options.output);
   // What a killed run left: its temporary bundles go, a bundle it had moved

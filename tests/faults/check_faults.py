@@ -137,8 +137,10 @@ def signal_stops(hq, mesh, work, args):
             # Another mesh, so that a finished run would change report.json.
             p = subprocess.Popen(base[:2] + [str(args.other_mesh)] + base[3:], stderr=subprocess.PIPE, text=True)
             time.sleep(delay)
-            if p.poll() is not None:
+            if p.poll() is not None:  # finished first: it replaced the bundle; make the first one again
                 p.communicate()
+                run(base)
+                before = (out / "report.json").read_bytes()
                 continue
             t = time.monotonic()
             p.send_signal(sig)
@@ -248,7 +250,11 @@ def inputs_changing(hq, data, work):
     shutil.rmtree(out, ignore_errors=True)
     p = subprocess.Popen([hq, "batch", str(src), "-o", str(out), "-j", "1", "--no-render", "--quiet"],
                          stderr=subprocess.PIPE, text=True)
-    time.sleep(0.15)  # the big mesh is being analysed (0.5 s): the others wait
+    # The marker appears once the collection is listed; then the big mesh is
+    # analysed (0.5 s) while the others wait.
+    deadline = time.monotonic() + 30
+    while not (out / ".hqview-batch").exists() and time.monotonic() < deadline:
+        time.sleep(0.005)
     (src / "b_deleted.mesh").unlink()
     text = (src / "c_truncated.mesh").read_bytes()
     (src / "c_truncated.mesh").write_bytes(text[: len(text) // 2])
