@@ -45,6 +45,7 @@
 #include "hqview/report/bundle_writer.h"
 #include "hqview/report/comparison.h"
 #include "hqview/report/junit.h"
+#include "hqview/report/link_base.h"
 #include "hqview/report/report_json.h"
 #include "hqview/views/views.h"
 
@@ -126,6 +127,7 @@ struct AnalyzeArgs {
   std::string reference_align = "none";
   std::string up{hq::kDefaultUpAxis};
   bool no_viewer = false;
+  std::string link_base;  // --link-base URL; empty: relative links
   double viewer_max_mb = 25;
   std::string data{hq::kDefaultDataList};  // --data
   std::string output;
@@ -275,6 +277,7 @@ int run_analyze(const AnalyzeArgs& args) {
                                                          : hq::CompareAlign::auto_;
   hq::BundleOptions bundle;
   bundle.force = args.force;
+  if (!args.link_base.empty()) bundle.link_base = hq::normalize_link_base(args.link_base);
   std::optional<TerminalProgress> terminal;
   if (!args.quiet && ::isatty(2) != 0) {
     terminal.emplace(args.verbose);
@@ -326,6 +329,7 @@ struct MergeArgs {
   std::string output;
   bool force = false;
   std::string compare_keys;
+  std::string link_base;
 };
 
 constexpr const char* kCompareKeysHelp =
@@ -394,6 +398,9 @@ void add_analysis_options(CLI::App* cmd, AnalyzeArgs& args) {
                   "data/edges.csv is always written")
       ->capture_default_str();
   cmd->add_flag("--no-viewer", args.no_viewer, "Leave the interactive 3D viewer (viewer.html) out of the bundle");
+  cmd->add_option("--link-base", args.link_base,
+                  "Absolute links under URL in index.html, boundary.html and summary.md (and the batch pages), for "
+                  "bundles published at URL (e.g. GitHub Pages); summary.md then shows the key view inline");
   cmd->add_option("--viewer-max-mb", args.viewer_max_mb,
                   "Size budget of the viewer's data in MB: over it, what is drawn is reduced (never the glyphs, "
                   "the cells under the threshold or any number); the page says what was reduced")
@@ -492,6 +499,9 @@ CLI::App* add_merge_command(CLI::App& app, MergeArgs& args) {
   cmd->add_option("-o,--output", args.output, "Merged output directory")->required();
   cmd->add_flag("--force", args.force, "Write into a directory that is not an HQView output");
   cmd->add_option("--compare-keys", args.compare_keys, kCompareKeysHelp);
+  cmd->add_option("--link-base", args.link_base,
+                  "Absolute links under URL in the merged index.html, summary.md and comparison.md (give the shards "
+                  "the same --link-base)");
   return cmd;
 }
 
@@ -519,6 +529,7 @@ int run_batch_command(const BatchArgs& args, int jobs) {
   options.force = args.analysis.force;
   options.memory_budget = parse_memory_budget(args.memory_budget);
   options.mesh_timeout = args.mesh_timeout;
+  if (!args.analysis.link_base.empty()) options.link_base = hq::normalize_link_base(args.analysis.link_base);
   if (!args.analysis.no_render) options.make_renderer = [] { return hq::make_osmesa_renderer(); };
   const auto keys = comparison_keys_of(args.compare_keys);  // a usage error before any mesh is read
   std::vector<hq::BatchInput> inputs = hq::collect_batch_inputs(args.input);
@@ -542,7 +553,7 @@ int run_batch_command(const BatchArgs& args, int jobs) {
 
   StderrProgress progress(args.analysis.quiet);
   const std::vector<hq::BatchEntry> entries = hq::run_batch(inputs, options, &progress);
-  hq::write_batch_index(entries, HQVIEW_VERSION, options.output, keys ? &*keys : nullptr);
+  hq::write_batch_index(entries, HQVIEW_VERSION, options.output, keys ? &*keys : nullptr, options.link_base);
   if (!args.analysis.quiet)
     std::cerr << "hqview: " << entries.size() << " meshes; index written to "
               << (options.output / "index.html").string() << "\n";
@@ -558,7 +569,8 @@ int run_merge_command(const MergeArgs& args) {
   hq::check_batch_output_dir(args.output, args.force);
   hq::mark_batch_output_dir(args.output);
   const std::vector<hq::BatchEntry> entries = hq::merge_shards(shards, args.output);
-  hq::write_batch_index(entries, HQVIEW_VERSION, args.output, keys ? &*keys : nullptr);
+  hq::write_batch_index(entries, HQVIEW_VERSION, args.output, keys ? &*keys : nullptr,
+                        args.link_base.empty() ? "" : hq::normalize_link_base(args.link_base));
   std::cerr << "hqview: merged " << entries.size() << " meshes from " << shards.size() << " shards into "
             << (fs::path(args.output) / "index.html").string() << "\n";
   return batch_exit_code(entries);

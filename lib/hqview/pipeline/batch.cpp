@@ -19,6 +19,7 @@
 #include "hqview/core/text.h"
 #include "hqview/io/mesh_reader.h"
 #include "hqview/report/json_path.h"
+#include "hqview/report/link_base.h"
 #include "hqview/report/report_json.h"
 
 namespace hq {
@@ -105,6 +106,7 @@ BatchEntry run_batch_mesh(const BatchInput& input, const BatchOptions& options, 
     analyze_options.compare_path = input.compare_file;
     BundleOptions bundle;
     bundle.force = options.force;
+    bundle.link_base = link_base_of(options.link_base, input.path);
     check_output_dir(dir, bundle);
     // The mesh's work stays on its own: a thread waiting inside it runs only
     // its tasks, so that the deadline it checks is this mesh's (stop.h).

@@ -110,6 +110,7 @@ struct BatchOptions {
   bool resume = false;
   bool force = false;         // passed to each bundle (replace a non-bundle directory)
   double mesh_timeout = 0;    // seconds per mesh (--mesh-timeout); 0: none. Over it: failed, the batch goes on
+  std::string link_base;      // --link-base, normalized; each bundle's pages link under link_base + its path
 };
 
 // Progress sink (main draws a bar or prints lines). Called from worker

@@ -19,6 +19,7 @@
 #include "hqview/core/fault_point.h"
 #include "hqview/report/atomic_file.h"
 #include "hqview/report/junit.h"
+#include "hqview/report/link_base.h"
 #include "hqview/report/comparison.h"
 #include "hqview/report/escape.h"
 #include "hqview/report/json_path.h"
@@ -461,18 +462,18 @@ std::string batch_summary_markdown(const std::vector<BatchEntry>& entries) {
 }
 
 void write_batch_index(const std::vector<BatchEntry>& entries, const std::string& tool_version, const fs::path& dir,
-                       const std::vector<ComparisonKey>* keys) {
+                       const std::vector<ComparisonKey>* keys, const std::string& link_base) {
   fs::create_directories(dir);
   fault_point("batch-before-index");
   write_file_atomically(dir / "index.json", batch_index_json(entries, tool_version));
   fault_point("batch-index-write");
-  write_file_atomically(dir / "index.html", batch_index_html(entries, tool_version, keys));
-  write_file_atomically(dir / "summary.md", batch_summary_markdown(entries));
+  write_file_atomically(dir / "index.html", absolute_links_html(batch_index_html(entries, tool_version, keys), link_base));
+  write_file_atomically(dir / "summary.md", absolute_links_markdown(batch_summary_markdown(entries), link_base));
   write_file_atomically(dir / "junit.xml", junit_xml("hqview batch", batch_junit_cases(entries)));
   if (has_comparison(entries)) {
     const Comparison c = build_comparison(entries, keys ? *keys : default_comparison_keys(entries));
     write_file_atomically(dir / "comparison.csv", comparison_csv(entries));
-    write_file_atomically(dir / "comparison.md", comparison_markdown(c));
+    write_file_atomically(dir / "comparison.md", absolute_links_markdown(comparison_markdown(c), link_base));
     write_file_atomically(dir / "comparison.tex", comparison_latex(c));
     write_file_atomically(dir / kComparisonChartFile, comparison_chart_svg(entries));
   }

@@ -100,7 +100,7 @@ std::string batch_summary_markdown(const std::vector<BatchEntry>& entries);
 // labels comparison.csv, .md and .tex (comparison.h), each through a
 // temporary sibling renamed into place. Throws Error on an I/O failure.
 void write_batch_index(const std::vector<BatchEntry>& entries, const std::string& tool_version,
-                       const std::filesystem::path& dir, const std::vector<ComparisonKey>* keys = nullptr);
+                       const std::filesystem::path& dir, const std::vector<ComparisonKey>* keys = nullptr, const std::string& link_base = "");
 
 // Throws ValueError when `dir` exists and is neither empty nor a batch
 // output (index.json, or the marker of a batch that has not written its

@@ -17,6 +17,7 @@
 #include "hqview/core/error.h"
 #include "hqview/core/fault_point.h"
 #include "hqview/image/png.h"
+#include "hqview/report/link_base.h"
 #include "hqview/report/report_csv.h"
 #include "hqview/report/report_html.h"
 #include "hqview/report/report_json.h"
@@ -213,10 +214,11 @@ void write_bundle(const ReportModel& model, const ReportDocument& document, cons
     clock.start("write report.json");
     write_text(tmp / "report.json", report_json_text(document));
     clock.start("write pages");
-    write_text(tmp / "index.html", index_html(model));
+    write_text(tmp / "index.html", absolute_links_html(index_html(model), options.link_base));
     write_text(tmp / "style.css", report_stylesheet());
-    if (model.analysis.boundary_error) write_text(tmp / "boundary.html", boundary_html(model));
-    write_text(tmp / "summary.md", summary_markdown(model));
+    if (model.analysis.boundary_error)
+      write_text(tmp / "boundary.html", absolute_links_html(boundary_html(model), options.link_base));
+    write_text(tmp / "summary.md", summary_markdown(model, options.link_base));
     // The data files (--data), each written in parallel chunks.
     for (const DataFile& f : data_files(model.data)) {
       clock.start("write " + f.path.substr(f.path.find('/') + 1));

@@ -24,6 +24,7 @@ struct BundleImage {
 
 struct BundleOptions {
   bool force = false;  // replace a file, or a non-empty directory that is not an HQView bundle
+  std::string link_base;  // --link-base (normalize_link_base): pages with absolute links; empty: relative
   StageSink on_stage;  // called as each file is written (--verbose); may be empty
   // When the process started: timings.json's wall_seconds runs from it to
   // the last file (unset: from the first stage's start).

@@ -1,5 +1,7 @@
 #include "hqview/report/report_markdown.h"
 
+#include "hqview/report/link_base.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -40,7 +42,7 @@ std::vector<std::string_view> summary_view_ids() {
 
 }  // namespace
 
-std::string summary_markdown(const ReportModel& model) {
+std::string summary_markdown(const ReportModel& model, const std::string& link_base) {
   const MeshSummary& m = model.analysis.mesh_summary;
   const QualitySummary& q = model.analysis.quality;
   const std::string name = std::filesystem::path(model.analysis.mesh_input.path).filename().string();
@@ -90,6 +92,9 @@ std::string summary_markdown(const ReportModel& model) {
       if (v.id != id) continue;
       for (const std::string& f : v.files)
         if (f.ends_with(".png") && is_plain_relative_path(f)) {
+          // Published (--link-base): the key view inline, for a pull-request
+          // comment or a CI job summary that shows no files.
+          if (views.empty() && !link_base.empty()) views += "![" + markdown_escape(v.title) + "](" + f + ")\n\n";
           views += "- [" + markdown_escape(v.title) + "](" + f + ")\n";
           break;
         }
@@ -110,7 +115,7 @@ std::string summary_markdown(const ReportModel& model) {
     md += " · reference " +
           markdown_escape(std::filesystem::path(model.analysis.reference_input->path).filename().string());
   md += "\n";
-  return md;
+  return absolute_links_markdown(md, link_base);
 }
 
 }  // namespace hq
