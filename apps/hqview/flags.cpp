@@ -3,10 +3,9 @@
 #include <charconv>
 #include <cmath>
 #include <exception>
-#include <filesystem>
-#include <new>
 
 #include "hqview/core/error.h"
+#include "hqview/core/error_kind.h"
 #include "hqview/core/stop.h"
 #include "hqview/core/text.h"
 #include "hqview/io/mesh_reader.h"
@@ -20,19 +19,16 @@ int exit_code_of_current_exception() {
     throw;
   } catch (const UsageError&) {
     return kUsage;
-  } catch (const hq::ValueError&) {
-    return kUsage;
-  } catch (const hq::InputError&) {
-    return kInput;
-  } catch (const hq::EnvironmentError&) {
-    return kEnvironment;
   } catch (const hq::Interrupted& e) {
     return 128 + e.signal();
-  } catch (const std::filesystem::filesystem_error&) {
-    return kEnvironment;
-  } catch (const std::bad_alloc&) {
-    return kEnvironment;
   } catch (...) {
+    switch (hq::kind_of_current_exception()) {
+      case hq::ErrorKind::usage: return kUsage;
+      case hq::ErrorKind::input: return kInput;
+      case hq::ErrorKind::environment: return kEnvironment;
+      case hq::ErrorKind::interrupted:  // caught above
+      case hq::ErrorKind::internal: break;
+    }
     return kInternal;
   }
 }

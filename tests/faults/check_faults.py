@@ -12,6 +12,7 @@ Each check prints one line; the exit code is 1 when one failed, 77 when the
 machine lacks what every check needs.
 """
 import argparse
+import json
 import os
 import random
 import resource
@@ -59,7 +60,6 @@ def same_bytes(a, b):
 
 
 def bundles_of(index_dir):
-    import json
     index = json.loads((Path(index_dir) / "index.json").read_text())
     return [m["bundle"] for m in index["meshes"] if m.get("bundle")]
 
@@ -188,7 +188,6 @@ def batch_disk_full(hq, collection, work):
     shutil.rmtree(out, ignore_errors=True)
     # 200 KiB per file: the small meshes' bundles fit, the large ones' annotated.vtu does not.
     r = run([hq, "batch", str(collection), "-o", str(out), "--no-render", "--quiet"], limit_fsize=200 * 1024)
-    import json
     index = json.loads((out / "index.json").read_text()) if (out / "index.json").exists() else {"meshes": []}
     failed = [m for m in index["meshes"] if m["status"] == "failed"]
     ok = [m for m in index["meshes"] if m["status"] != "failed"]
@@ -218,7 +217,6 @@ def read_only_and_loops(hq, small, collection, work):
         subprocess.run(["chattr", "+i", str(sub)])
         try:
             r = run([hq, "batch", str(collection), "-o", str(out), "--no-render", "--quiet"])
-            import json
             index = json.loads((out / "index.json").read_text())
             failed = {m["path"] for m in index["meshes"] if m["status"] == "failed"}
             inside = {m["path"] for m in index["meshes"] if m["path"].startswith(sub.name + "/")}
@@ -259,7 +257,6 @@ def inputs_changing(hq, data, work):
     text = (src / "c_truncated.mesh").read_bytes()
     (src / "c_truncated.mesh").write_bytes(text[: len(text) // 2])
     p.communicate()
-    import json
     index = json.loads((out / "index.json").read_text())
     status = {m["path"]: (m["status"], m["error"] or "") for m in index["meshes"]}
     check(p.returncode == 3 and status["a_big.mesh"][0] == "ok" and status["d_kept.mesh"][0] == "ok"
@@ -297,7 +294,6 @@ def mesh_timeout(hq, data, work):
     out = work / "timeout_out"
     shutil.rmtree(out, ignore_errors=True)
     r = run([hq, "batch", str(src), "-o", str(out), "-j", "1", "--no-render", "--quiet", "--mesh-timeout", "0.1"])
-    import json
     index = json.loads((out / "index.json").read_text())
     status = {m["path"]: (m["status"], m["error"]) for m in index["meshes"]}
     junit = (out / "junit.xml").read_text()

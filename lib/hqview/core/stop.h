@@ -57,8 +57,12 @@ class ScopedDeadline {
   ScopedDeadline& operator=(const ScopedDeadline&) = delete;
   ~ScopedDeadline();
 
+  std::chrono::steady_clock::time_point at;
+  double seconds;
+  const char* what;
+
  private:
-  const void* previous_;
+  const ScopedDeadline* previous_;
 };
 
 }  // namespace stop

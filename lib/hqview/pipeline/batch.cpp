@@ -14,6 +14,7 @@
 #include <tbb/task_arena.h>
 
 #include "hqview/core/error.h"
+#include "hqview/core/error_kind.h"
 #include "hqview/core/sha256.h"
 #include "hqview/core/stop.h"
 #include "hqview/core/text.h"
@@ -120,29 +121,16 @@ BatchEntry run_batch_mesh(const BatchInput& input, const BatchOptions& options, 
       if (!options.analyze.gates.empty()) entry.gates = evaluate_gates(options.analyze.gates, result.document).results;
     });
     entry.bundle = input.path;
-  } catch (const Interrupted&) {
-    throw;  // the whole batch stops (run_batch)
-  } catch (const EnvironmentError& e) {
-    entry.status = BatchStatus::failed;
-    entry.error = e.what();
-    entry.environment_failure = true;
-  } catch (const fs::filesystem_error& e) {
-    entry.status = BatchStatus::failed;
-    entry.error = e.what();
-    entry.environment_failure = true;
-  } catch (const std::bad_alloc&) {
-    entry.status = BatchStatus::failed;
-    entry.error = "out of memory";
-    entry.environment_failure = true;
-  } catch (const InputError& e) {
-    entry.status = BatchStatus::failed;
-    entry.error = e.what();
-  } catch (const Error& e) {
-    entry.status = BatchStatus::failed;
-    entry.error = e.what();
   } catch (const std::exception& e) {
+    const ErrorKind kind = kind_of_current_exception();
+    if (kind == ErrorKind::interrupted) throw;  // the whole batch stops (run_batch)
     entry.status = BatchStatus::failed;
-    entry.error = std::string("internal error: ") + e.what();
+    entry.environment_failure = kind == ErrorKind::environment;
+    // hq::Error's messages (a render failure, a timeout) stand as they are;
+    // a std:: exception from elsewhere is a bug.
+    entry.error = dynamic_cast<const std::bad_alloc*>(&e) != nullptr ? std::string("out of memory")
+                  : dynamic_cast<const Error*>(&e) == nullptr        ? std::string("internal error: ") + e.what()
+                                                                     : std::string(e.what());
   }
   if (entry.status == BatchStatus::failed) {
     entry.bundle.clear();
@@ -198,25 +186,26 @@ std::vector<BatchEntry> run_batch(const std::vector<BatchInput>& inputs, const B
       }
       const auto start = std::chrono::steady_clock::now();
       bool is_resumed = false;
+      bool stopped = false;
       try {
         entries[i] = run_batch_mesh(inputs[i], options, is_resumed);
       } catch (const Interrupted&) {
-        std::lock_guard lock(mutex);
+        stopped = true;
+        const std::lock_guard lock(mutex);
         if (!interrupted) interrupted = std::current_exception();
-        in_flight -= cost[i];
-        --running;
-        released.notify_all();
-        return;
       }
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       {
         std::lock_guard lock(mutex);
         in_flight -= cost[i];
         --running;
-        ++done;
-        if (progress) progress->mesh_finished(entries[i], is_resumed, seconds, done, total);
+        if (!stopped) {
+          ++done;
+          if (progress) progress->mesh_finished(entries[i], is_resumed, seconds, done, total);
+        }
       }
       released.notify_all();
+      if (stopped) return;
     }
   };
   const int workers = std::clamp(options.jobs, 1, std::max(1, total));

@@ -12,12 +12,19 @@
 namespace hq {
 namespace fs = std::filesystem;
 
-void write_file_atomically(const fs::path& path, std::string_view text) {
+fs::path temporary_sibling(const fs::path& path, std::string_view tag) {
+  // Built with += : GCC 12 warns falsely (-Wrestrict) on chained operator+.
   std::string name = ".";
   name += path.filename().string();
-  name += ".hqview-tmp-";
+  name += '.';
+  name += tag;
+  name += '-';
   name += std::to_string(::getpid());
-  const fs::path tmp = path.parent_path() / name;
+  return path.parent_path() / name;
+}
+
+void write_file_atomically(const fs::path& path, std::string_view text) {
+  const fs::path tmp = temporary_sibling(path, kTemporaryTag);
   {
     std::ofstream out(tmp, std::ios::binary);
     if (!out) throw EnvironmentError(tmp.string() + ": cannot create: " + std::strerror(errno));

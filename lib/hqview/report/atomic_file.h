@@ -9,6 +9,13 @@
 
 namespace hq {
 
+// The temporaries of a write in progress: `.NAME.TAG-PID` beside NAME, so
+// that the next run can tell a killed run's leftovers (its PID is gone)
+// from a running one's (bundle_writer.h, remove_stale_temporaries).
+inline constexpr std::string_view kTemporaryTag = "hqview-tmp";
+inline constexpr std::string_view kSetAsideTag = "hqview-old";  // an old bundle moved aside by a swap
+std::filesystem::path temporary_sibling(const std::filesystem::path& path, std::string_view tag);
+
 // Throws EnvironmentError when the temporary file cannot be written or renamed (it is
 // removed then; `path` is untouched).
 void write_file_atomically(const std::filesystem::path& path, std::string_view text);

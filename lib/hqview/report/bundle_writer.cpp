@@ -16,6 +16,7 @@
 
 #include "hqview/core/error.h"
 #include "hqview/core/fault_point.h"
+#include "hqview/report/atomic_file.h"
 #include "hqview/image/png.h"
 #include "hqview/report/link_base.h"
 #include "hqview/report/report_csv.h"
@@ -53,20 +54,6 @@ void write_text(const fs::path& path, std::string_view text) {
   write_file(path, [&](std::ostream& out) { out.write(text.data(), static_cast<std::streamsize>(text.size())); });
 }
 
-constexpr std::string_view kTmpTag = "hqview-tmp";
-constexpr std::string_view kOldTag = "hqview-old";
-
-fs::path sibling(const fs::path& dir, std::string_view tag) {
-  // Built with += : GCC 12 warns falsely (-Wrestrict) on chained operator+.
-  std::string name = ".";
-  name += dir.filename().string();
-  name += '.';
-  name += tag;
-  name += '-';
-  name += std::to_string(::getpid());
-  return dir.parent_path() / name;
-}
-
 // "path: cause" of a file system error, the cause as the OS says it.
 std::string describe(const fs::filesystem_error& e) {
   std::string out = e.path1().empty() ? std::string() : e.path1().string() + ": ";
@@ -95,28 +82,23 @@ void swap_into_place(const fs::path& tmp, const fs::path& dir) {
   // Exchanged in one step where the file system can (Linux renameat2): there
   // is never a moment without a bundle at DIR, and two runs writing DIR at
   // once each put a whole bundle there; the last one stays.
-  for (int attempt = 0; attempt < 8; ++attempt) {
-    if (::renameat2(AT_FDCWD, tmp.c_str(), AT_FDCWD, dir.c_str(), RENAME_NOREPLACE) == 0) return;
-    if (errno != EEXIST && errno != ENOTEMPTY && errno != EINVAL && errno != ENOSYS)
-      throw EnvironmentError(dir.string() + ": cannot rename the new bundle into place: " + std::strerror(errno));
-    if (errno == EEXIST || errno == ENOTEMPTY) {
-      if (::renameat2(AT_FDCWD, tmp.c_str(), AT_FDCWD, dir.c_str(), RENAME_EXCHANGE) == 0) {
-        std::error_code ignored;
-        fs::remove_all(tmp, ignored);  // now the old bundle
-        return;
-      }
-      if (errno == ENOENT) continue;  // DIR vanished between the two calls: try again
-      if (errno != EINVAL && errno != ENOSYS)
-        throw EnvironmentError(dir.string() + ": cannot exchange the new bundle with the old: " +
-                               std::strerror(errno));
+  if (::renameat2(AT_FDCWD, tmp.c_str(), AT_FDCWD, dir.c_str(), RENAME_NOREPLACE) == 0) return;
+  if (errno == EEXIST || errno == ENOTEMPTY) {
+    if (::renameat2(AT_FDCWD, tmp.c_str(), AT_FDCWD, dir.c_str(), RENAME_EXCHANGE) == 0) {
+      std::error_code ignored;
+      fs::remove_all(tmp, ignored);  // now the old bundle
+      return;
     }
-    break;  // no renameat2 flags here: two renames below
   }
+  // ENOENT: DIR vanished between the two calls; EINVAL/ENOSYS: no renameat2
+  // flags on this file system. Both: the two renames below.
+  if (errno != ENOENT && errno != EINVAL && errno != ENOSYS)
+    throw EnvironmentError(dir.string() + ": cannot put the new bundle in place: " + std::strerror(errno));
   // The old bundle is moved aside, never deleted before the new one is in
   // place; a run killed in between leaves it as `.DIR.hqview-old-PID`, which
   // the next run puts back (remove_stale_temporaries).
   if (fs::exists(dir)) {
-    const fs::path old = sibling(dir, kOldTag);
+    const fs::path old = temporary_sibling(dir, kSetAsideTag);
     fs::remove_all(old);
     fs::rename(dir, old);
     try {
@@ -139,10 +121,10 @@ int remove_stale_temporaries(const fs::path& dir, bool recursive) {
     const std::string name = it->path().filename().string();
     std::string base;
     std::error_code ignored;
-    if (is_stale(name, kTmpTag, base)) {
+    if (is_stale(name, kTemporaryTag, base)) {
       fs::remove_all(it->path(), ignored);
       ++removed;
-    } else if (is_stale(name, kOldTag, base)) {
+    } else if (is_stale(name, kSetAsideTag, base)) {
       // A killed swap: the bundle it moved aside goes back where it was.
       const fs::path original = dir / base;
       if (!fs::exists(fs::symlink_status(original, ignored)))
@@ -200,7 +182,7 @@ void write_bundle(const ReportModel& model, const ReportDocument& document, cons
     throw EnvironmentError("writing the bundle: " + describe(e));
   }
   remove_stale_temporaries(dir.parent_path(), false);
-  const fs::path tmp = sibling(dir, kTmpTag);
+  const fs::path tmp = temporary_sibling(dir, kTemporaryTag);
   std::error_code ignored_ec;
   fs::remove_all(tmp, ignored_ec);
   // Every file stays inside the bundle: image paths are relative, without "..".

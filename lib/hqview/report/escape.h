@@ -21,4 +21,9 @@ std::string markdown_escape(std::string_view text);
 // and spaces in file names keep links working.
 std::string url_path(std::string_view path);
 
+// XML text and attribute values (junit.xml; a page attribute): & < > " '
+// as entities, tab and line breaks as character references, other control
+// characters and bytes that are not UTF-8 as U+FFFD (XML 1.0 cannot hold them).
+std::string xml_escape(std::string_view text);
+
 }  // namespace hq

@@ -40,14 +40,6 @@ std::string rewrite(std::string_view text, std::initializer_list<std::string_vie
   return out;
 }
 
-// The base in an attribute value: normalize_link_base() let no quote or
-// bracket through; '&' (a query string) becomes &amp;.
-std::string attribute_text(std::string_view base) {
-  std::string out;
-  for (const char c : base) out += c == '&' ? std::string("&amp;") : std::string(1, c);
-  return out;
-}
-
 }  // namespace
 
 std::string normalize_link_base(std::string_view url) {
@@ -70,7 +62,7 @@ std::string link_base_of(std::string_view base, std::string_view relative_dir) {
 
 std::string absolute_links_html(std::string_view html, std::string_view base) {
   if (base.empty()) return std::string(html);
-  return rewrite(html, {" href=\"", " src=\""}, '"', attribute_text(base));
+  return rewrite(html, {" href=\"", " src=\""}, '"', xml_escape(base));
 }
 
 std::string absolute_links_markdown(std::string_view markdown, std::string_view base) {
