@@ -2,6 +2,7 @@
 // method and variant, bold by direction, the cell kinds, per-method means
 // and medians, the CSV long form and the TeX escaping.
 #include "hqview/report/comparison.h"
+#include "hqview/report/escape.h"
 
 #include <gtest/gtest.h>
 

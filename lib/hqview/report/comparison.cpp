@@ -259,26 +259,6 @@ std::string comparison_markdown(const Comparison& c) {
   return md;
 }
 
-std::string latex_escape(std::string_view text) {
-  std::string out;
-  for (char ch : text) {
-    switch (ch) {
-      case '\\': out += "\\textbackslash{}"; break;
-      case '{': out += "\\{"; break;
-      case '}': out += "\\}"; break;
-      case '$': out += "\\$"; break;
-      case '&': out += "\\&"; break;
-      case '#': out += "\\#"; break;
-      case '^': out += "\\textasciicircum{}"; break;
-      case '_': out += "\\_"; break;
-      case '~': out += "\\textasciitilde{}"; break;
-      case '%': out += "\\%"; break;
-      default: out += ch;
-    }
-  }
-  return out;
-}
-
 std::string comparison_latex(const Comparison& c) {
   std::string tex =
       "% HQView: methods compared (one table per key). Needs \\usepackage{booktabs};\n"

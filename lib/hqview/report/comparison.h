@@ -94,7 +94,5 @@ std::string comparison_chart_svg(const std::vector<BatchEntry>& entries);
 inline constexpr const char* kComparisonChartFile = "comparison_min_sj.svg";
 std::string comparison_markdown(const Comparison& c);
 std::string comparison_latex(const Comparison& c);
-// TeX special characters escaped (\ { } $ & # ^ _ ~ %).
-std::string latex_escape(std::string_view text);
 
 }  // namespace hq

@@ -93,4 +93,24 @@ std::string xml_escape(std::string_view text) {
 }
 
 
+std::string latex_escape(std::string_view text) {
+  std::string out;
+  for (char ch : text) {
+    switch (ch) {
+      case '\\': out += "\\textbackslash{}"; break;
+      case '{': out += "\\{"; break;
+      case '}': out += "\\}"; break;
+      case '$': out += "\\$"; break;
+      case '&': out += "\\&"; break;
+      case '#': out += "\\#"; break;
+      case '^': out += "\\textasciicircum{}"; break;
+      case '_': out += "\\_"; break;
+      case '~': out += "\\textasciitilde{}"; break;
+      case '%': out += "\\%"; break;
+      default: out += ch;
+    }
+  }
+  return out;
+}
+
 }  // namespace hq

@@ -26,4 +26,7 @@ std::string url_path(std::string_view path);
 // characters and bytes that are not UTF-8 as U+FFFD (XML 1.0 cannot hold them).
 std::string xml_escape(std::string_view text);
 
+// LaTeX text (comparison.tex): the TeX specials \ { } $ & # ^ _ ~ % escaped.
+std::string latex_escape(std::string_view text);
+
 }  // namespace hq
