@@ -1,6 +1,7 @@
 // Prints the UV atlas statistics of each surface given (the numbers of docs/analysis.md, "UV atlas"):
 //   build/bench/uv_atlas_stats ../shared/data/meshes/*/*.off
-// LSCM=1 lays charts out by LSCM where better (as hqview does); PROJ=1 uses the first, projected charting.
+// LSCM=1 lays charts out by LSCM where better and merges them (as hqview does; NOMERGE=1: without the
+// merging); PROJ=1 uses the first, projected charting.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -14,6 +15,9 @@ int main(int argc, char** argv) {
     UvOptions o; o.improve_with_lscm = getenv("LSCM") != nullptr;
     if (getenv("PROJ")) o.charts = UvCharts::projected;
     if (getenv("UPY")) o.up = {0,1,0};
+    if (getenv("NOMERGE")) o.merge_by_layout = false;
+    if (getenv("RES")) o.pack_resolution = atoi(getenv("RES"));
+    if (getenv("WITHIN")) o.merge_min_area_within_2 = atof(getenv("WITHIN"));
     auto t0 = std::chrono::steady_clock::now();
     UvAtlas a = build_uv_atlas(s, o);
     double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

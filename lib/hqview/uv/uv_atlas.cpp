@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <numbers>
 #include <numeric>
 #include <queue>
+#include <set>
 #include <tuple>
+
+#include <tbb/parallel_for.h>
 
 #include "hqview/uv/uv_lscm.h"
 #include "hqview/uv/uv_metrics.h"
@@ -32,6 +36,7 @@ std::array<Vec3, kNumDirections> projection_directions() {
 struct Chart {
   std::vector<Index> triangles;
   Vec3 direction{};
+  bool lscm = false;  // laid out by LSCM (else projected along direction)
   bool own_plane() const { return direction == Vec3{}; }
 };
 
@@ -63,8 +68,10 @@ class AtlasBuilder {
     for (std::size_t c = 0; c < charts_.size(); ++c) lay_out(c);
     separate_flipped();
     atlas.num_splits += make_disks();
-    if (options_.improve_with_lscm && nt_ <= options_.lscm_max_surface_triangles)
-      atlas.num_lscm_charts = improve_with_lscm();
+    if (options_.improve_with_lscm && nt_ <= options_.lscm_max_surface_triangles) {
+      improve_with_lscm();
+      if (options_.merge_by_layout) merge_by_layout();
+    }
     equalise_scale();
     // Overlaps are searched once, on a first packing (charts apart);
     // splitting only separates triangles, so it never makes new ones.
@@ -98,6 +105,7 @@ class AtlasBuilder {
       if (c.triangles.empty()) continue;
       for (Index t : c.triangles) atlas.triangle_chart[t] = atlas.num_charts;
       ++atlas.num_charts;
+      atlas.num_lscm_charts += c.lscm ? 1 : 0;
     }
     atlas.uvs = std::move(uvs_);
     measure_uv_atlas(s_, atlas);
@@ -397,7 +405,7 @@ class AtlasBuilder {
   // the projection (so the model's up axis stays up).
   Index improve_with_lscm() {
     Index improved = 0;
-    for (const Chart& c : charts_) {
+    for (Chart& c : charts_) {
       if (c.own_plane() || c.triangles.size() < static_cast<std::size_t>(options_.lscm_min_triangles)) continue;
       std::vector<Uv> uv;
       if (!lscm_chart_layout(s_, c.triangles, uv)) continue;
@@ -410,27 +418,261 @@ class AtlasBuilder {
       turn_like(uv, projected);
       for (std::size_t i = 0; i < c.triangles.size(); ++i)
         for (int k = 0; k < 3; ++k) local_[3 * static_cast<std::size_t>(c.triangles[i]) + k] = uv[3 * i + k];
+      c.lscm = true;
       ++improved;
     }
     return improved;
   }
 
-  // Area-weighted mean of |log area ratio| + log conformal distortion of a
-  // chart's layout, the area ratio taken against the chart's own scale.
-  double chart_distortion(std::span<const Index> tris, std::span<const Uv> uv) const {
+  // Neighbouring charts are merged, longest shared border first, while the
+  // union's LSCM layout stays one-to-one (exact checks) and within the
+  // distortion bound (layout_acceptable). Two charts that share their border
+  // in several arcs are glued along the longest and cut open along the
+  // others (seams), so an open cylinder unrolls into one chart and a torus
+  // can become one disk. The merged layout is turned so that the model's up
+  // axis points up where the chart allows it.
+  void merge_by_layout() {
+    std::size_t work = 0;  // triangles laid out so far: at most 40 surfaces' worth
+    const std::size_t budget = 40 * static_cast<std::size_t>(nt_);
+    std::set<std::array<std::size_t, 4>> failed;
+    while (work < budget) {
+      std::vector<Index> chart_of(static_cast<std::size_t>(nt_), kNoIndex);
+      for (std::size_t c = 0; c < charts_.size(); ++c)
+        for (Index t : charts_[c].triangles) chart_of[t] = static_cast<Index>(c);
+      // Shared border edges per chart pair: (a, b, edge key, length).
+      struct Border {
+        Index a, b;
+        std::uint64_t edge;
+        double length;
+      };
+      std::vector<Border> borders;
+      for (Index t = 0; t < nt_; ++t)
+        for (int k = 0; k < 3; ++k) {
+          const Index n = neighbour_[3 * static_cast<std::size_t>(t) + k];
+          if (n == kNoIndex || n < t) continue;
+          const Index a = chart_of[t], b = chart_of[n];
+          if (a == b || charts_[a].own_plane() || charts_[b].own_plane()) continue;
+          borders.push_back({std::min(a, b), std::max(a, b), edge_key(t, k), edge_length(t, k)});
+        }
+      std::sort(borders.begin(), borders.end(), [](const Border& x, const Border& y) {
+        return std::tie(x.a, x.b, x.edge) < std::tie(y.a, y.b, y.edge);
+      });
+      struct Candidate {
+        double length;
+        std::size_t first, last;  // range of borders
+      };
+      std::vector<Candidate> candidates;
+      for (std::size_t i = 0; i < borders.size();) {
+        std::size_t j = i;
+        double length = 0.0;
+        while (j < borders.size() && borders[j].a == borders[i].a && borders[j].b == borders[i].b)
+          length += borders[j++].length;
+        candidates.push_back({length, i, j});
+        i = j;
+      }
+      // Small charts join a neighbour first (the smaller chart of the pair
+      // smallest first, then the longest shared border): their layouts are
+      // cheap and they pass most often; two large charts are tried when
+      // neither has a small neighbour left.
+      auto smaller = [&](const Candidate& c) {
+        return std::min(charts_[borders[c.first].a].triangles.size(), charts_[borders[c.first].b].triangles.size());
+      };
+      std::sort(candidates.begin(), candidates.end(), [&](const Candidate& x, const Candidate& y) {
+        const std::size_t sx = smaller(x), sy = smaller(y);
+        if (sx != sy) return sx < sy;
+        return x.length != y.length ? x.length > y.length : x.first < y.first;
+      });
+      // A matching of untried pairs, best first; its layouts are computed in
+      // parallel and the pairs that pass are merged (in matching order, so
+      // the result is the same for any thread count). A pair that fails is
+      // not tried again while both charts stay as they are (a chart is known
+      // by its first triangle and its size: charts only grow).
+      std::vector<std::uint8_t> touched(charts_.size(), 0);
+      std::vector<const Candidate*> matching;
+      for (const Candidate& cand : candidates) {
+        const Index a = borders[cand.first].a, b = borders[cand.first].b;
+        if (touched[a] || touched[b] || failed.count(pair_signature(a, b)) != 0) continue;
+        touched[a] = touched[b] = 1;
+        matching.push_back(&cand);
+        work += charts_[a].triangles.size() + charts_[b].triangles.size();
+        if (work >= budget) break;
+      }
+      if (matching.empty()) break;
+      std::vector<std::vector<Index>> merged_tris(matching.size());
+      std::vector<std::vector<Uv>> merged_uv(matching.size());
+      std::vector<std::uint8_t> ok(matching.size(), 0);
+      tbb::parallel_for(std::size_t{0}, matching.size(), [&](std::size_t i) {
+        const Candidate& cand = *matching[i];
+        const Index a = borders[cand.first].a, b = borders[cand.first].b;
+        std::vector<Index>& tris = merged_tris[i];
+        tris.reserve(charts_[a].triangles.size() + charts_[b].triangles.size());
+        std::merge(charts_[a].triangles.begin(), charts_[a].triangles.end(), charts_[b].triangles.begin(),
+                   charts_[b].triangles.end(), std::back_inserter(tris));
+        const std::vector<std::uint64_t> seams =
+            seams_but_the_longest_arc(std::span<const Border>(borders.data() + cand.first, cand.last - cand.first));
+        std::vector<Uv>& uv = merged_uv[i];
+        if (!lscm_chart_layout(s_, tris, uv, seams)) return;
+        const auto flipped = uv_flipped_triangles(uv);
+        if (std::find(flipped.begin(), flipped.end(), 1) != flipped.end()) return;
+        if (!layout_acceptable(tris, uv) || !uv_overlapping_pairs(uv).empty()) return;
+        turn_up(tris, uv);
+        ok[i] = 1;
+      });
+      for (std::size_t i = 0; i < matching.size(); ++i) {
+        const Index a = borders[matching[i]->first].a, b = borders[matching[i]->first].b;
+        if (!ok[i]) {
+          failed.insert(pair_signature(a, b));
+          continue;
+        }
+        const std::vector<Index>& tris = merged_tris[i];
+        for (std::size_t j = 0; j < tris.size(); ++j)
+          for (int k = 0; k < 3; ++k) local_[3 * static_cast<std::size_t>(tris[j]) + k] = merged_uv[i][3 * j + k];
+        const Vec3 direction = normalized(normal_sum(a) + normal_sum(b));
+        charts_[a].triangles = std::move(merged_tris[i]);
+        if (squared_norm(direction) > 0.5) charts_[a].direction = direction;
+        charts_[a].lscm = true;
+        charts_[b].triangles.clear();
+      }
+      std::erase_if(charts_, [](const Chart& c) { return c.triangles.empty(); });
+    }
+  }
+
+  // Charts a and b as they are now (see merge_by_layout).
+  std::array<std::size_t, 4> pair_signature(Index a, Index b) const {
+    const Chart &x = charts_[a], &y = charts_[b];
+    return {static_cast<std::size_t>(x.triangles.front()), x.triangles.size(), static_cast<std::size_t>(y.triangles.front()),
+            y.triangles.size()};
+  }
+
+  // The shared edges of two charts fall into arcs (paths joined at
+  // vertices); every edge but those of the longest arc becomes a seam.
+  template <class Border>
+  static std::vector<std::uint64_t> seams_but_the_longest_arc(std::span<const Border> shared) {
+    if (shared.size() < 2) return {};
+    std::vector<Index> ids;
+    for (const Border& e : shared) ids.insert(ids.end(), {Index(e.edge >> 32), Index(e.edge & 0xffffffffu)});
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    auto id = [&](std::uint64_t v) {
+      return static_cast<Index>(std::lower_bound(ids.begin(), ids.end(), Index(v)) - ids.begin());
+    };
+    std::vector<Index> parent(ids.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    for (const Border& e : shared) {
+      const Index x = find_root(parent, id(e.edge >> 32)), y = find_root(parent, id(e.edge & 0xffffffffu));
+      if (x != y) parent[std::max(x, y)] = std::min(x, y);
+    }
+    std::vector<double> arc_length(ids.size(), 0.0);
+    for (const Border& e : shared) arc_length[find_root(parent, id(e.edge >> 32))] += e.length;
+    const auto longest = static_cast<Index>(std::max_element(arc_length.begin(), arc_length.end()) - arc_length.begin());
+    std::vector<std::uint64_t> seams;
+    for (const Border& e : shared)
+      if (find_root(parent, id(e.edge >> 32)) != longest) seams.push_back(e.edge);
+    std::sort(seams.begin(), seams.end());
+    return seams;
+  }
+
+  // The distortion bound of a merged chart, against its own scale: at least
+  // merge_min_area_within_2 of its area with area ratio in [0.5, 2], and as
+  // much with conformal distortion at most 2.
+  bool layout_acceptable(std::span<const Index> tris, std::span<const Uv> uv) const {
+    double within = 0.0, conformal = 0.0;
+    const double area3 = for_each_distortion(tris, uv, [&](Index t, double ratio, double conf) {
+      if (ratio >= 0.5 && ratio <= 2.0) within += area_[t];
+      if (conf <= 2.0) conformal += area_[t];
+      return true;
+    });
+    const double need = options_.merge_min_area_within_2 * area3;
+    return area3 > 0.0 && within >= need && conformal >= need;
+  }
+
+  // Calls f(t, area ratio against the chart's own scale, conformal
+  // distortion) for each triangle of positive area of a chart's layout, while
+  // f returns true. Returns the chart's 3D area, or 0 when the layout has no
+  // positive area or f stopped.
+  template <class F>
+  double for_each_distortion(std::span<const Index> tris, std::span<const Uv> uv, F&& f) const {
     double area3 = 0.0, area2 = 0.0;
     for (std::size_t i = 0; i < tris.size(); ++i) area3 += area_[tris[i]], area2 += uv_signed_area(&uv[3 * i]);
-    if (!(area3 > 0.0) || !(area2 > 0.0)) return INFINITY;
+    if (!(area3 > 0.0) || !(area2 > 0.0)) return 0.0;
     const double k = area2 / area3;
-    double sum = 0.0;
     for (std::size_t i = 0; i < tris.size(); ++i) {
       const Index t = tris[i];
       if (!(area_[t] > 0.0)) continue;
       const TriangleDistortion m = triangle_distortion(point(t, 0), point(t, 1), point(t, 2), &uv[3 * i]);
-      if (!(m.area_ratio > 0.0) || !std::isfinite(m.conformal)) return INFINITY;
-      sum += area_[t] * (std::abs(std::log(m.area_ratio / k)) + std::log(m.conformal));
+      if (!f(t, m.area_ratio / k, m.conformal)) return 0.0;
     }
-    return sum / area3;
+    return area3;
+  }
+
+  // Turns a chart's layout about its centroid so that the model's up axis,
+  // mapped into UV by each triangle's linear map (area-weighted, by how much
+  // of the axis lies in the triangle's plane), points along +v. Charts seen
+  // along the axis (little of it in their planes) keep their turn.
+  void turn_up(std::span<const Index> tris, std::vector<Uv>& uv) const {
+    double sx = 0.0, sy = 0.0, weight = 0.0;
+    for (std::size_t i = 0; i < tris.size(); ++i) {
+      const Index t = tris[i];
+      if (!(area_[t] > 0.0)) continue;
+      const Vec3 e1 = point(t, 1) - point(t, 0), e2 = point(t, 2) - point(t, 0);
+      const Vec3 w = options_.up - dot(options_.up, normal_[t]) * normal_[t];
+      // w = x e1 + y e2 (w is in the plane): the 2x2 Gram system.
+      const double g11 = dot(e1, e1), g12 = dot(e1, e2), g22 = dot(e2, e2);
+      const double det = g11 * g22 - g12 * g12;
+      if (!(det > 0.0)) continue;
+      const double r1 = dot(w, e1), r2 = dot(w, e2);
+      const double x = (r1 * g22 - r2 * g12) / det, y = (g11 * r2 - g12 * r1) / det;
+      const Uv* q = &uv[3 * i];
+      const double dx = x * (q[1][0] - q[0][0]) + y * (q[2][0] - q[0][0]);
+      const double dy = x * (q[1][1] - q[0][1]) + y * (q[2][1] - q[0][1]);
+      const double l = std::hypot(dx, dy);
+      if (!(l > 0.0) || !std::isfinite(l)) continue;
+      const double wn = norm(w);
+      sx += area_[t] * wn * dx / l, sy += area_[t] * wn * dy / l;
+      weight += area_[t];
+    }
+    if (!(weight > 0.0) || std::hypot(sx, sy) < 0.3 * weight) return;
+    const double angle = std::numbers::pi / 2 - std::atan2(sy, sx);
+    const double c = std::cos(angle), sn = std::sin(angle);
+    double mu[2] = {0.0, 0.0};
+    for (const Uv& p : uv) mu[0] += p[0], mu[1] += p[1];
+    mu[0] /= static_cast<double>(uv.size()), mu[1] /= static_cast<double>(uv.size());
+    for (Uv& p : uv) {
+      const double x = p[0] - mu[0], y = p[1] - mu[1];
+      p = {c * x - sn * y, sn * x + c * y};
+    }
+  }
+
+  std::uint64_t edge_key(Index t, int k) const {
+    const auto a = static_cast<std::uint32_t>(s_.triangles[t][k]);
+    const auto b = static_cast<std::uint32_t>(s_.triangles[t][(k + 1) % 3]);
+    return static_cast<std::uint64_t>(std::min(a, b)) << 32 | std::max(a, b);
+  }
+
+  // Triangles t and n, neighbours across edge k of t, are glued in the
+  // current layouts: the shared vertices have the same local UV in both
+  // (false across a seam).
+  bool glued(Index t, int k, Index n) const {
+    for (int j = 0; j < 2; ++j) {
+      const Index v = s_.triangles[t][(k + j) % 3];
+      const Uv& p = local_[3 * static_cast<std::size_t>(t) + (k + j) % 3];
+      int m = 0;
+      while (m < 3 && s_.triangles[n][m] != v) ++m;
+      if (m == 3 || local_[3 * static_cast<std::size_t>(n) + m] != p) return false;
+    }
+    return true;
+  }
+
+  // Area-weighted mean of |log area ratio| + log conformal distortion of a
+  // chart's layout, the area ratio taken against the chart's own scale.
+  double chart_distortion(std::span<const Index> tris, std::span<const Uv> uv) const {
+    double sum = 0.0;
+    const double area3 = for_each_distortion(tris, uv, [&](Index t, double ratio, double conformal) {
+      if (!(ratio > 0.0) || !std::isfinite(conformal)) return false;
+      sum += area_[t] * (std::abs(std::log(ratio)) + std::log(conformal));
+      return true;
+    });
+    return area3 > 0.0 ? sum / area3 : INFINITY;
   }
 
   // Rotates `uv` about its centroid to best match `target` (2D Procrustes, no reflection).
@@ -551,7 +793,7 @@ class AtlasBuilder {
     for (Index t : tris)
       for (int k = 0; k < 3; ++k) {
         const Index n = neighbour_[3 * static_cast<std::size_t>(t) + k];
-        if (n != kNoIndex && in_chart[n]) continue;
+        if (n != kNoIndex && in_chart[n] && glued(t, k, n)) continue;
         border.push_back({s_.triangles[t][k], s_.triangles[t][(k + 1) % 3]});
         border_uv.push_back({local_[3 * static_cast<std::size_t>(t) + k], local_[3 * static_cast<std::size_t>(t) + (k + 1) % 3]});
       }
@@ -608,7 +850,7 @@ class AtlasBuilder {
       for (std::size_t j = 0; j < piece.size(); ++j)
         for (int k = 0; k < 3; ++k) {
           const Index n = neighbour_[3 * static_cast<std::size_t>(piece[j]) + k];
-          if (n == kNoIndex || chart_of[n] != static_cast<Index>(c)) continue;
+          if (n == kNoIndex || chart_of[n] != static_cast<Index>(c) || !glued(piece[j], k, n)) continue;
           const std::size_t pn = position(n);
           if (!mark[pn]) mark[pn] = 1, piece.push_back(n);
         }
@@ -618,22 +860,39 @@ class AtlasBuilder {
     return out;
   }
 
-  // V - E + F over the chart's own vertices and edges.
+  // V - E + F over the chart's own vertices and edges, a vertex being a
+  // surface vertex at one position of the chart's layout (so a seam, where
+  // the layout cuts the chart open, counts as border).
   long euler_characteristic(const std::vector<Index>& tris) const {
-    std::vector<Index> vertices;
+    struct Corner {
+      Index vertex;
+      Uv uv;
+      std::size_t at;  // position 3 i + k in tris
+    };
+    std::vector<Corner> corners;
+    corners.reserve(3 * tris.size());
+    for (std::size_t i = 0; i < tris.size(); ++i)
+      for (int k = 0; k < 3; ++k)
+        corners.push_back({s_.triangles[tris[i]][k], local_[3 * static_cast<std::size_t>(tris[i]) + k], 3 * i + k});
+    std::sort(corners.begin(), corners.end(), [](const Corner& x, const Corner& y) {
+      return std::tie(x.vertex, x.uv, x.at) < std::tie(y.vertex, y.uv, y.at);
+    });
+    std::vector<std::uint32_t> vertex_of(corners.size());
+    std::uint32_t v = 0;
+    for (std::size_t i = 0; i < corners.size(); ++i) {
+      if (i > 0 && (corners[i].vertex != corners[i - 1].vertex || corners[i].uv != corners[i - 1].uv)) ++v;
+      vertex_of[corners[i].at] = v;
+    }
     std::vector<std::uint64_t> edges;
-    for (Index t : tris)
-      for (int k = 0; k < 3; ++k) {
-        const auto a = static_cast<std::uint32_t>(s_.triangles[t][k]);
-        const auto b = static_cast<std::uint32_t>(s_.triangles[t][(k + 1) % 3]);
-        vertices.push_back(s_.triangles[t][k]);
+    edges.reserve(corners.size());
+    for (std::size_t i = 0; i < tris.size(); ++i)
+      for (std::size_t k = 0; k < 3; ++k) {
+        const std::uint32_t a = vertex_of[3 * i + k], b = vertex_of[3 * i + (k + 1) % 3];
         edges.push_back(static_cast<std::uint64_t>(std::min(a, b)) << 32 | std::max(a, b));
       }
-    std::sort(vertices.begin(), vertices.end());
     std::sort(edges.begin(), edges.end());
-    const long v = std::unique(vertices.begin(), vertices.end()) - vertices.begin();
     const long e = std::unique(edges.begin(), edges.end()) - edges.begin();
-    return v - e + static_cast<long>(tris.size());
+    return static_cast<long>(corners.empty() ? 0 : v + 1) - e + static_cast<long>(tris.size());
   }
 
   // One global scale: each chart's layout is scaled so that its UV area is its

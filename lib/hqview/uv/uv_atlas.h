@@ -5,7 +5,11 @@
 // are merged while the union stays in a wider cone; each chart is projected on
 // the plane of its mean normal (one-sided, so no flip), the model's up axis
 // up, and replaced by its LSCM layout where that is one-to-one and distorts
-// less; charts that are not topological disks, and charts whose layout
+// less; then neighbouring charts are merged, small ones first, while the
+// union's LSCM layout stays one-to-one and within a distortion bound (two
+// charts that share several border arcs are glued along the longest and cut
+// open along the others: seams); charts that are not topological disks (as
+// laid out), and charts whose layout
 // overlaps itself (exact check), are split until they are (one triangle
 // always is); all charts get one scale and are packed on a raster
 // (uv_pack.h); the final UVs are checked again exactly and failing triangles
@@ -51,6 +55,12 @@ struct UvOptions {
   // (exact checks) and distorts less.
   bool improve_with_lscm = false;
   int lscm_min_triangles = 8;
+  // Then merge neighbouring LSCM charts while the union's LSCM layout is
+  // one-to-one and keeps at least merge_min_area_within_2 of its area within
+  // [0.5, 2] of its mean area ratio (conformal distortion at most 2), cut open
+  // along seams where two charts share more than one border arc.
+  bool merge_by_layout = true;
+  double merge_min_area_within_2 = 0.95;
   // ...and only on surfaces of at most this many triangles (LSCM on the 1M
   // benchmark surface takes seconds).
   Index lscm_max_surface_triangles = 250'000;

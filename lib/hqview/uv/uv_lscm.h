@@ -2,6 +2,7 @@
 // Least-squares conformal layout of one chart (CGAL LSCM_parameterizer_3 with
 // Eigen; CGAL stays inside uv_lscm.cpp).
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -14,8 +15,12 @@ namespace hq {
 // Lays out the triangles `chart` of `surface` with LSCM when they form a
 // topological disk (one border, Euler characteristic 1, a valid polygon
 // mesh); `uvs` gets 3 corners per chart triangle, in chart order, scaled to
-// the chart's 3D area. Returns false (uvs untouched) when the chart is not a
-// disk or the solver fails. The caller validates the result (flips, overlaps).
-bool lscm_chart_layout(const TriSurface& surface, std::span<const Index> chart, std::vector<Uv>& uvs);
+// the chart's 3D area. Triangles are glued across the edges that exactly two
+// of them share, except `seams` (ascending keys min(a, b) << 32 | max(a, b)
+// of surface vertex ids), along which the chart is cut open. Returns false
+// (uvs untouched) when the chart is not a disk or the solver fails. The
+// caller validates the result (flips, overlaps).
+bool lscm_chart_layout(const TriSurface& surface, std::span<const Index> chart, std::vector<Uv>& uvs,
+                       std::span<const std::uint64_t> seams = {});
 
 }  // namespace hq
