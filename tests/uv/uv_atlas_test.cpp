@@ -1,5 +1,6 @@
 // The UV atlas never fails: property test over adversarial surfaces made
-// here and every reference surface in ../shared/data.
+// here, and analytic cases (uv_atlas_real_data_test.cpp: every reference
+// surface in ../shared/data).
 
 #include "hqview/uv/uv_atlas.h"
 #include "hqview/uv/uv_metrics.h"
@@ -13,36 +14,10 @@
 #include "hqview/io/mesh_reader.h"
 #include "support/fixtures.h"
 #include "support/surface_fixtures.h"
+#include "uv_atlas_checks.h"
 
 namespace hq::test {
 namespace {
-
-namespace fs = std::filesystem;
-
-// Every triangle in exactly one chart, 0 flipped, 0 overlapping (exact), all
-// UVs in [0,1]^2, and the atlas's own counts agree.
-void expect_valid_atlas(const TriSurface& s, const UvAtlas& atlas, const std::string& name) {
-  const std::size_t nt = s.triangles.size();
-  ASSERT_EQ(atlas.uvs.size(), 3 * nt) << name;
-  ASSERT_EQ(atlas.triangle_chart.size(), nt) << name;
-  std::vector<int> chart_size(static_cast<std::size_t>(atlas.num_charts), 0);
-  for (Index c : atlas.triangle_chart) {
-    ASSERT_GE(c, 0) << name;
-    ASSERT_LT(c, atlas.num_charts) << name;
-    ++chart_size[c];
-  }
-  for (int n : chart_size) EXPECT_GT(n, 0) << name << ": empty chart";
-  for (const Uv& p : atlas.uvs) {
-    ASSERT_TRUE(p[0] >= 0.0 && p[0] <= 1.0 && p[1] >= 0.0 && p[1] <= 1.0) << name << ": " << p[0] << " " << p[1];
-  }
-  const auto flipped = uv_flipped_triangles(atlas.uvs);
-  EXPECT_EQ(std::count(flipped.begin(), flipped.end(), 1), 0) << name;
-  EXPECT_TRUE(uv_overlapping_pairs(atlas.uvs).empty()) << name;
-  EXPECT_EQ(atlas.num_flipped, 0) << name;
-  EXPECT_EQ(atlas.num_overlaps, 0) << name;
-  EXPECT_GT(atlas.packing_efficiency, 0.0) << name;
-  EXPECT_LE(atlas.packing_efficiency, 1.0) << name;
-}
 
 TEST(UvValidation, ExactOverlapAndTouching) {
   // Triangles 0 and 1 share an edge: they touch. 2 is a copy of 0; 3 crosses 0, 1 and 2.
@@ -58,40 +33,6 @@ TEST(UvValidation, ExactOverlapAndTouching) {
   // A clockwise and a degenerate triangle are flipped.
   const std::vector<Uv> bad = {{0, 0}, {0, 1}, {1, 0}, {0, 0}, {1, 1}, {2, 2}};
   EXPECT_EQ(uv_flipped_triangles(bad), (std::vector<std::uint8_t>{1, 1}));
-}
-
-// V - E + F of each chart over its own vertices and edges (1: a disk). A
-// vertex of a chart is a surface vertex at one UV position: where a chart is
-// cut open along a seam, the two sides are two vertices.
-std::vector<long> chart_euler_characteristics(const TriSurface& s, const UvAtlas& atlas) {
-  using Vertex = std::tuple<Index, double, double>;
-  std::vector<std::vector<Vertex>> vertices(static_cast<std::size_t>(atlas.num_charts));
-  std::vector<std::vector<std::pair<Vertex, Vertex>>> edges(vertices.size());
-  std::vector<long> faces(vertices.size(), 0);
-  for (std::size_t t = 0; t < s.triangles.size(); ++t) {
-    const auto c = static_cast<std::size_t>(atlas.triangle_chart[t]);
-    ++faces[c];
-    for (int k = 0; k < 3; ++k) {
-      const Uv &p = atlas.uvs[3 * t + k], &q = atlas.uvs[3 * t + (k + 1) % 3];
-      const Vertex a{s.triangles[t][k], p[0], p[1]}, b{s.triangles[t][(k + 1) % 3], q[0], q[1]};
-      vertices[c].push_back(a);
-      edges[c].emplace_back(std::min(a, b), std::max(a, b));
-    }
-  }
-  std::vector<long> out;
-  for (std::size_t c = 0; c < vertices.size(); ++c) {
-    std::sort(vertices[c].begin(), vertices[c].end());
-    std::sort(edges[c].begin(), edges[c].end());
-    const long v = std::unique(vertices[c].begin(), vertices[c].end()) - vertices[c].begin();
-    const long e = std::unique(edges[c].begin(), edges[c].end()) - edges[c].begin();
-    out.push_back(v - e + faces[c]);
-  }
-  return out;
-}
-
-void expect_disks(const TriSurface& s, const UvAtlas& atlas, const std::string& name) {
-  const auto euler = chart_euler_characteristics(s, atlas);
-  EXPECT_EQ(std::count(euler.begin(), euler.end(), 1L), static_cast<long>(euler.size())) << name;
 }
 
 // Per triangle (UV area / 3D area) / (total UV area / total 3D area), recomputed here.
@@ -336,40 +277,6 @@ TEST(UvAtlas, CornerValuesFollowTheTriangles) {
   ASSERT_EQ(corners.size(), 3 * s.triangles.size());
   for (std::size_t t = 0; t < s.triangles.size(); ++t)
     for (int k = 0; k < 3; ++k) EXPECT_EQ(corners[3 * t + k], double(s.triangles[t][k]));
-}
-
-TEST(UvAtlas, EveryReferenceInSharedData) {
-  const auto data = shared_data_dir();
-  if (!data) GTEST_SKIP() << "../shared/data absent (set HQVIEW_DATA to run these)";
-  std::vector<fs::path> references;
-  for (const auto& entry : fs::recursive_directory_iterator(*data / "meshes")) {
-    const std::string ext = entry.path().extension().string();
-    if (entry.is_regular_file() && (ext == ".off" || ext == ".obj" || ext == ".stl" || ext == ".ply"))
-      references.push_back(entry.path());
-  }
-  std::sort(references.begin(), references.end());
-  ASSERT_FALSE(references.empty());
-  for (const fs::path& path : references) {
-    const TriSurface s = read_surface(path);
-    const UvAtlas atlas = build_uv_atlas(s);
-    expect_valid_atlas(s, atlas, path.filename().string());
-    UvOptions lscm;
-    lscm.improve_with_lscm = true;
-    const UvAtlas improved = build_uv_atlas(s, lscm);
-    expect_valid_atlas(s, improved, path.filename().string() + " (LSCM)");
-    EXPECT_GT(improved.num_lscm_charts, 0) << path.filename().string();
-    expect_disks(s, improved, path.filename().string());
-    // The targets that every shared reference meets (docs/analysis.md lists
-    // each reference's numbers and the targets it misses).
-    EXPECT_GE(improved.area_fraction_area_ratio_within_2, 0.9) << path.filename().string();
-    // Few large charts pack less tightly (dolphin: 3 charts, 0.38).
-    EXPECT_GE(improved.packing_efficiency, 0.35) << path.filename().string();
-    EXPECT_LT(improved.num_charts, 200) << path.filename().string();
-    // At most 8 charts hold 95 % of the area, but on armadillo (0.57).
-    if (path.filename() != "armadillo.obj") EXPECT_GE(improved.area_fraction_top_8_charts, 0.95) << path.filename().string();
-    RecordProperty(path.filename().string() + "_lscm_charts",
-                   std::to_string(improved.num_lscm_charts) + "/" + std::to_string(improved.num_charts));
-  }
 }
 
 }  // namespace
