@@ -237,12 +237,15 @@ void pack_charts(std::span<const Uv> local, const std::vector<std::vector<Index>
       shapes_of[static_cast<std::size_t>(c)].push_back(std::move(shape));
     }
   }
-  // Grid widths tried (in units of the ideal side); the one whose packing
+  // Grid widths tried (in units of the ideal side; finer steps over a wider
+  // range for a few charts, which are cheap to place); the one whose packing
   // fills the square best wins (ties: the first).
   std::vector<Uv> cells, best_cells;
   double best_extent = 0.0, best_fill = -1.0;
-  for (int step = 0; step <= 6; ++step) {
-    const double factor = 0.9 + 0.1 * step;
+  const bool few = order.size() <= 64;
+  const int steps = few ? 26 : 6;
+  for (int step = 0; step <= steps; ++step) {
+    const double factor = few ? 0.7 + 0.05 * step : 0.9 + 0.1 * step;
     const int side = static_cast<int>(std::ceil(options.resolution * factor));
     cells.assign(local.size(), Uv{0.0, 0.0});
     Grid grid(std::max(side, widest));
