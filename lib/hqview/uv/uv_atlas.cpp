@@ -12,6 +12,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "hqview/core/stop.h"
 #include "hqview/uv/uv_lscm.h"
 #include "hqview/uv/uv_metrics.h"
 #include "hqview/uv/uv_pack.h"
@@ -407,6 +408,7 @@ class AtlasBuilder {
     Index improved = 0;
     for (Chart& c : charts_) {
       if (c.own_plane() || c.triangles.size() < static_cast<std::size_t>(options_.lscm_min_triangles)) continue;
+      if (c.triangles.size() >= 4096) stop::check();
       std::vector<Uv> uv;
       if (!lscm_chart_layout(s_, c.triangles, uv)) continue;
       const auto flipped = uv_flipped_triangles(uv);
@@ -436,6 +438,9 @@ class AtlasBuilder {
     const std::size_t budget = 40 * static_cast<std::size_t>(nt_);
     std::set<std::array<std::size_t, 4>> failed;
     while (work < budget) {
+      // The merging can take seconds: a stop request (or this thread's
+      // --mesh-timeout) is honoured between rounds and before each layout.
+      stop::check();
       std::vector<Index> chart_of(static_cast<std::size_t>(nt_), kNoIndex);
       for (std::size_t c = 0; c < charts_.size(); ++c)
         for (Index t : charts_[c].triangles) chart_of[t] = static_cast<Index>(c);
@@ -502,6 +507,7 @@ class AtlasBuilder {
       std::vector<std::vector<Uv>> merged_uv(matching.size());
       std::vector<std::uint8_t> ok(matching.size(), 0);
       tbb::parallel_for(std::size_t{0}, matching.size(), [&](std::size_t i) {
+        stop::check();
         const Candidate& cand = *matching[i];
         const Index a = borders[cand.first].a, b = borders[cand.first].b;
         std::vector<Index>& tris = merged_tris[i];

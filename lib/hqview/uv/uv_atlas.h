@@ -91,8 +91,10 @@ struct UvAtlas {
   double area_fraction_area_ratio_within_2 = 0;  // share of 3D area with area ratio in [0.5, 2]
 };
 
-// Builds the atlas; throws nothing. Deterministic for any thread count (the
-// exact overlap search runs on TBB threads).
+// Builds the atlas; throws only what stop::check() throws (a stop request
+// or the calling thread's deadline, polled while charts are laid out).
+// Deterministic for any thread count (the merging's layouts and the exact
+// overlap search run on TBB threads).
 UvAtlas build_uv_atlas(const TriSurface& surface, const UvOptions& options = {});
 
 // Per-corner values of a per-point field (e.g. the reference -> hex boundary
