@@ -114,7 +114,7 @@
     for (c = 0; c < 4; ++c) {
       var a = quads[4 * f + c], b = quads[4 * f + (c + 1) % 4];
       var key = a < b ? a + ',' + b : b + ',' + a;
-      if (seen[key]) continue;
+      if (a === b || seen[key]) continue;  // a reduced boundary's triangle repeats its last corner
       seen[key] = 1;
       for (k = 0; k < 3; ++k) edgePos.push(pos[3 * a + k]);
       for (k = 0; k < 3; ++k) edgePos.push(pos[3 * b + k]);
@@ -292,6 +292,13 @@
   }
   layer('layer-boundary', boundary);
   layer('layer-edges', edges);
+  if (D.boundary_reduced) {
+    // The edges of a reduced boundary are the clustering's, not the mesh's: off until asked for.
+    var edgesBox = document.getElementById('layer-edges');
+    edgesBox.checked = false;
+    edges.visible = false;
+    edgesBox.parentNode.appendChild(document.createTextNode(' (of the reduced drawing, not the mesh)'));
+  }
   layer('layer-glyphs', glyphs);
   layer('layer-markers', markers);
   layer('layer-intersecting', intersecting);

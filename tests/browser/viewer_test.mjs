@@ -29,15 +29,15 @@ function analyze(args) {
   execFileSync(hqview, ['analyze', ...args, '--data', 'csv,vtu.zlib', '--size', '640x480', '-j', '2', '--quiet'], { stdio: 'inherit' });
 }
 
-// A 4x4x4 grid whose interior vertex (2,2,2) is pulled: 8 interior cells
-// under the threshold, none on the boundary.
-function interiorBadMesh(file) {
-  const n = 4, id = (i, j, k) => 1 + i + (n + 1) * (j + (n + 1) * k);
+// An n x n x n grid whose central vertex (n/2, n/2, n/2) is pulled: 8
+// interior cells under the threshold, none on the boundary.
+function interiorBadMesh(file, n = 4) {
+  const id = (i, j, k) => 1 + i + (n + 1) * (j + (n + 1) * k);
   let s = `MeshVersionFormatted 1\nDimension 3\nVertices\n${(n + 1) ** 3}\n`;
   for (let k = 0; k <= n; ++k)
     for (let j = 0; j <= n; ++j)
       for (let i = 0; i <= n; ++i) {
-        const pulled = i === 2 && j === 2 && k === 2;
+        const pulled = i === n / 2 && j === n / 2 && k === n / 2;
         s += `${i + (pulled ? 0.85 : 0)} ${j + (pulled ? 0.85 : 0)} ${k + (pulled ? 0.85 : 0)} 0\n`;
       }
   s += `Hexahedra\n${n ** 3}\n`;
@@ -52,7 +52,8 @@ function interiorBadMesh(file) {
 const bar = path.join(outDir, 'bar');
 analyze([example('twisted_bar.mesh'), '-o', bar]);
 const tiny = path.join(outDir, 'tiny');
-analyze([example('twisted_bar.mesh'), '-o', tiny, '--viewer-max-mb', '0.01']);
+// 28^3 cells, 4,704 boundary faces: the tiny budget reduces the boundary too.
+analyze([interiorBadMesh(path.join(outDir, 'dense.mesh'), 28), '-o', tiny, '--viewer-max-mb', '0.01']);
 const inner = path.join(outDir, 'inner');
 analyze([interiorBadMesh(path.join(outDir, 'inner.mesh')), '-o', inner]);
 const evilName = `"q'&amp;<script>window.hqPwned=1<img src=x onerror="window.hqPwned=2">.mesh`;
@@ -254,6 +255,20 @@ const near = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
   check(d.clusters === Math.min(report.glyphs.clusters.length, 1000), `tiny budget: every listed cluster drawn (${d.clusters})`);
   check(d.low === under, `tiny budget: every cell under the threshold drawn (${d.low} of ${under})`);
   check(/Reduced/.test(d.note), `tiny budget: the page says what was reduced ("${d.note.slice(0, 80)}")`);
+  // The boundary is drawn reduced, and a face still names its own hex.
+  const faces = await page.evaluate(() => window.hqViewer.data.faces.count);
+  check(faces < 6 * 28 * 28 && /boundary is drawn with/.test(d.note), `tiny budget: the boundary is reduced (${faces} of ${6 * 28 * 28} faces)`);
+  const box = await page.evaluate(() => { const r = window.hqViewer.renderer.domElement.getBoundingClientRect(); return [r.left, r.top, r.width, r.height]; });
+  await page.uncheck('#layer-glyphs');  // the central cluster's glyph would take the click
+  await page.mouse.click(box[0] + box[2] / 2, box[1] + box[3] / 2);
+  const face = await page.evaluate(() => {
+    const t = document.querySelector('#picked-face');
+    return t ? { hex: t.querySelector('[data-hex]').getAttribute('data-hex'), sj: t.querySelector('[data-sj]').getAttribute('data-sj') } : null;
+  });
+  const idCol = csv[0].split(',').indexOf('cell');
+  const row = face && csv.slice(1).map((l) => l.split(',')).find((r) => num(r[idCol]) === num(face.hex));
+  check(face && row && near(num(face.sj), num(row[col])),
+    `tiny budget: a click on a reduced face shows its hex's scaled Jacobian as cells.csv has it: ${JSON.stringify(face)} vs ${row && row[col]}`);
   await page.close();
 }
 

@@ -5,12 +5,14 @@
 // threshold, the budget never dropping those).
 
 #include "hqview/report/viewer.h"
+#include "hqview/report/viewer_boundary.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstring>
+#include <set>
 
 #include "hqview/glyph/glyphs.h"
 #include "hqview/mesh/topology.h"
@@ -75,10 +77,14 @@ std::vector<T> array_of(const json& b64) {
   return v;
 }
 
-ReportModel grid_model() {
+// A grid of n^3 cells whose centre vertex is pulled (8 bad interior cells);
+// `dent` also pushes a vertex at the middle of the face x = 0 inwards.
+ReportModel grid_model(int n = 4, bool dent = false) {
   ReportModel model;
-  HexMesh mesh = test::grid(4);
-  mesh.points[62] = mesh.points[62] + Vec3{0.8, 0.8, 0.8};  // the interior vertex (2,2,2): 8 bad interior cells
+  HexMesh mesh = test::grid(n);
+  const auto at = [n](int i, int j, int k) { return static_cast<std::size_t>(i + (n + 1) * (j + (n + 1) * k)); };
+  mesh.points[at(n / 2, n / 2, n / 2)] = mesh.points[at(n / 2, n / 2, n / 2)] + Vec3{0.8, 0.8, 0.8};
+  if (dent) mesh.points[at(0, n / 2, n / 2)] = mesh.points[at(0, n / 2, n / 2)] + Vec3{0.9, 0.3, 0};
   model.analysis.mesh = std::move(mesh);
   model.analysis.topology = build_topology(model.analysis.mesh);
   model.analysis.field = compute_quality(model.analysis.mesh, model.analysis.topology);
@@ -149,6 +155,76 @@ TEST(Viewer, TheBudgetDropsMetricColouringsNeverGlyphsOrBadCells) {
   ASSERT_FALSE(tiny["reduced"].empty());
   // Deterministic: the same model gives the same bytes.
   EXPECT_EQ(viewer_files(model).back().text, viewer_files(model).back().text);
+  EXPECT_EQ(data_of(model), tiny);
+}
+
+// The boundary reduced under the budget: at most the asked faces, real
+// vertices at their own positions, the worst boundary vertex kept, every
+// face a boundary face's hex, and the same result every time.
+TEST(Viewer, TheReducedBoundaryKeepsTheWorstVertexAndRealHexes) {
+  const ReportModel model = grid_model(24, true);
+  const Analysis& a = model.analysis;
+  const ViewerBoundary full = viewer_boundary(a);
+  ASSERT_EQ(full.face_hex.size(), 6u * 24 * 24);
+  const ViewerBoundary r = reduce_boundary(full, a.mesh.points, a.field.vertex_quality, a.field.cell_scaled_jacobian, 600);
+  EXPECT_LE(r.face_hex.size(), 600u);
+  EXPECT_GE(r.face_hex.size(), 100u);  // not reduced to nothing
+  EXPECT_GT(r.cell_size, 0);
+  EXPECT_EQ(r.num_source_faces, full.face_hex.size());
+  const std::set<Index> boundary_vertices(full.vertices.begin(), full.vertices.end());
+  const std::set<Index> boundary_hexes(full.face_hex.begin(), full.face_hex.end());
+  for (Index v : r.vertices) EXPECT_TRUE(boundary_vertices.count(v)) << v;
+  for (Index h : r.face_hex) EXPECT_TRUE(boundary_hexes.count(h)) << h;
+  ASSERT_EQ(r.quads.size(), 4 * r.face_hex.size());
+  for (std::size_t f = 0; f < r.face_hex.size(); ++f) {
+    std::set<std::uint32_t> distinct;
+    for (int c = 0; c < 4; ++c) {
+      ASSERT_LT(r.quads[4 * f + c], r.vertices.size());
+      distinct.insert(r.quads[4 * f + c]);
+    }
+    EXPECT_GE(distinct.size(), 3u);
+  }
+  // The dented vertex is the boundary's worst, and it is drawn.
+  Index worst = full.vertices[0];
+  for (Index v : full.vertices)
+    if (a.field.vertex_quality[static_cast<std::size_t>(v)] < a.field.vertex_quality[static_cast<std::size_t>(worst)]) worst = v;
+  EXPECT_EQ(worst, static_cast<Index>(25 * (12 + 25 * 12)));
+  EXPECT_NE(std::find(r.vertices.begin(), r.vertices.end(), worst), r.vertices.end());
+  // Faces on the same cells keep the worst hex: the lowest scaled Jacobian
+  // of the boundary hexes is drawn.
+  double lowest = 2, lowest_drawn = 2;
+  for (Index h : full.face_hex) lowest = std::min(lowest, a.field.cell_scaled_jacobian[static_cast<std::size_t>(h)]);
+  for (Index h : r.face_hex) lowest_drawn = std::min(lowest_drawn, a.field.cell_scaled_jacobian[static_cast<std::size_t>(h)]);
+  EXPECT_EQ(lowest_drawn, lowest);
+  const ViewerBoundary again = reduce_boundary(full, a.mesh.points, a.field.vertex_quality, a.field.cell_scaled_jacobian, 600);
+  EXPECT_EQ(again.vertices, r.vertices);
+  EXPECT_EQ(again.quads, r.quads);
+  EXPECT_EQ(again.face_hex, r.face_hex);
+  // A budget that fits changes nothing.
+  const ViewerBoundary same = reduce_boundary(full, a.mesh.points, a.field.vertex_quality, a.field.cell_scaled_jacobian, full.face_hex.size());
+  EXPECT_EQ(same.quads, full.quads);
+  EXPECT_EQ(same.cell_size, 0);
+}
+
+TEST(Viewer, OverTheBudgetTheBoundaryIsReducedNeverGlyphsOrBadCells) {
+  ReportModel model = grid_model(40);
+  const json full = data_of(model);
+  model.viewer_max_mb = 0.05;
+  const json tiny = data_of(model);
+  EXPECT_EQ(full["faces"]["count"].get<std::size_t>(), 6u * 40 * 40);
+  EXPECT_LT(tiny["faces"]["count"].get<std::size_t>(), full["faces"]["count"].get<std::size_t>());
+  EXPECT_LE(tiny["faces"]["count"].get<std::size_t>(), 2000u);  // kMinViewerFaces: the floor of the target
+  EXPECT_GE(tiny["faces"]["count"].get<std::size_t>(), 1000u);
+  EXPECT_EQ(tiny["clusters"], full["clusters"]);
+  EXPECT_EQ(tiny["low_cells"], full["low_cells"]);
+  // Each drawn face's scaled Jacobian is its hex's exact value.
+  const auto hex = array_of<std::uint32_t>(tiny["faces"]["hex"]);
+  const auto sj = array_of<double>(tiny["face_scaled_jacobian"]);
+  ASSERT_EQ(hex.size(), sj.size());
+  for (std::size_t f = 0; f < hex.size(); ++f) EXPECT_EQ(sj[f], model.analysis.field.cell_scaled_jacobian[hex[f]]);
+  bool says = false;
+  for (const json& r : tiny["reduced"]) says |= r.get<std::string>().find("the boundary is drawn with") != std::string::npos;
+  EXPECT_TRUE(says) << tiny["reduced"].dump();
   EXPECT_EQ(data_of(model), tiny);
 }
 

@@ -9,10 +9,12 @@
 #include <limits>
 
 #include "hqview/core/box3.h"
+#include "hqview/core/number_format.h"
 #include "hqview/image/colormap.h"
 #include "hqview/quality/corner_jacobian.h"
 #include "hqview/report/cluster_color.h"
 #include "hqview/report/report_templates.h"
+#include "hqview/report/viewer_boundary.h"
 #include "hqview/views/boundary_views.h"
 
 namespace hq {
@@ -100,25 +102,6 @@ Json field_json(std::string id, std::string label, const char* per, const std::v
           {"values", b64(values)}, {"lut", b64(lut)}, {"legend", std::move(legend)}};
 }
 
-struct Boundary {
-  std::vector<Index> vertices;      // mesh vertex ids, ascending
-  std::vector<std::uint32_t> quads;  // 4 per face, into `vertices`
-  std::vector<Index> face_hex;       // the hex of each boundary face
-};
-
-Boundary boundary_of(const Analysis& a) {
-  const Topology& t = a.topology;
-  Boundary b;
-  b.vertices = t.boundary_vertices;
-  std::vector<std::uint32_t> slot(a.mesh.points.size(), 0);
-  for (std::size_t i = 0; i < b.vertices.size(); ++i) slot[static_cast<std::size_t>(b.vertices[i])] = static_cast<std::uint32_t>(i);
-  for (Index f : t.boundary_faces) {
-    for (Index v : t.faces[static_cast<std::size_t>(f)]) b.quads.push_back(slot[static_cast<std::size_t>(v)]);
-    b.face_hex.push_back(t.face_hexes[static_cast<std::size_t>(t.face_hex_offsets[static_cast<std::size_t>(f)])]);
-  }
-  return b;
-}
-
 // Positions quantised to 16 bits per axis over the bounding box.
 Json quantised_positions(const std::vector<Vec3>& points) {
   Box3 box;
@@ -143,54 +126,48 @@ Json camera_of_view_a(const ReportModel& model) {
   return nullptr;
 }
 
-}  // namespace
+// The boundary's part of data.js: positions, faces, the exact scaled
+// Jacobian and corners of each face's hex, and the colour fields.
+struct BoundaryData {
+  Json vertices, faces, face_scaled_jacobian, fields = Json::array();
+  std::string face_corners;                  // base64 float32, 8 per face
+  Json metric_fields = Json::array();        // the other Verdict metrics (dropped first)
+  std::size_t metric_bytes = 0;
+  std::size_t size() const { return vertices.dump().size() + faces.dump().size() + face_scaled_jacobian.dump().size() + fields.dump().size(); }
+};
 
-std::vector<ViewerFile> viewer_files(const ReportModel& model) {
-  const Analysis& a = model.analysis;
-  const Boundary b = boundary_of(a);
-  const std::size_t num_faces = b.face_hex.size();
-  const double budget = model.viewer_max_mb * 1e6;
-  Json reduced = Json::array();
-
-  Json d;
-  d["name"] = a.mesh_name();
-  d["num_vertices"] = a.mesh_summary.num_vertices;
-  d["num_hexes"] = a.mesh_summary.num_hexes;
-  d["cell_data"] = cell_data_path(model.data);  // where every value of a hex is ("": --data none)
-  d["up"] = vec(model.viewer_up);
+BoundaryData boundary_data(const Analysis& a, const ViewerBoundary& b, bool with_metrics) {
+  BoundaryData out;
   std::vector<Vec3> points;
   for (Index v : b.vertices) points.push_back(a.mesh.points[static_cast<std::size_t>(v)]);
-  d["vertices"] = quantised_positions(points);
+  out.vertices = quantised_positions(points);
   std::vector<std::uint32_t> face_hex(b.face_hex.begin(), b.face_hex.end());
-  d["faces"] = {{"count", num_faces}, {"quads", b64(b.quads)}, {"hex", b64(face_hex)}};
+  out.faces = {{"count", b.face_hex.size()}, {"quads", b64(b.quads)}, {"hex", b64(face_hex)}};
   // Exact cell scaled Jacobian of each face's hex (the click shows it).
   std::vector<double> face_sj;
   for (Index h : b.face_hex) face_sj.push_back(a.field.cell_scaled_jacobian[static_cast<std::size_t>(h)]);
-  d["face_scaled_jacobian"] = b64(face_sj);
-  // The 8 corner scaled Jacobians of each face's hex (kCornerFrames order),
-  // float32: dropped after the metric colourings when over the budget.
+  out.face_scaled_jacobian = b64(face_sj);
+  // The 8 corner scaled Jacobians of each face's hex (kCornerFrames order).
   std::vector<float> face_corners;
   for (Index h : b.face_hex)
     for (int c = 0; c < 8; ++c)
       face_corners.push_back(static_cast<float>(a.field.corner_scaled_jacobian[8 * static_cast<std::size_t>(h) + c]));
-  const std::string corners_b64 = b64(face_corners);
+  out.face_corners = b64(face_corners);
 
   // Fields: vertex quality, the cell scaled Jacobian, the boundary error,
-  // then every other Verdict metric of the faces' cells (dropped first when
-  // over the budget).
-  Json fields = Json::array();
+  // then every other Verdict metric of the faces' cells.
   const std::vector<std::uint8_t> quality_lut = lut_of([](int i) {
     return i == kNoValue ? kUndefinedColor : quality_color(quality_of_index(i));
   });
   {
     std::vector<std::uint8_t> vq;
     for (Index v : b.vertices) vq.push_back(quality_index(a.field.vertex_quality[static_cast<std::size_t>(v)]));
-    fields.push_back(field_json("vertex_quality", "vertex quality (min corner scaled Jacobian)", "vertex", vq,
-                                quality_lut, -1.0, 1.0, Json::array()));
+    out.fields.push_back(field_json("vertex_quality", "vertex quality (min corner scaled Jacobian)", "vertex", vq,
+                                    quality_lut, -1.0, 1.0, Json::array()));
     std::vector<std::uint8_t> sj;
     for (double s : face_sj) sj.push_back(quality_index(s));
-    fields.push_back(field_json("scaled_jacobian", "cell scaled Jacobian (Verdict)", "face", sj, quality_lut, -1.0,
-                                1.0, Json::array()));
+    out.fields.push_back(field_json("scaled_jacobian", "cell scaled Jacobian (Verdict)", "face", sj, quality_lut, -1.0,
+                                    1.0, Json::array()));
   }
   if (a.boundary_error) {
     const double s = error_scale(a.boundary_error->vertex_error);
@@ -201,13 +178,12 @@ std::vector<ViewerFile> viewer_files(const ReportModel& model) {
                                    : kNoValue);
     }
     const auto lut = lut_of([](int i) { return i == kNoValue ? kUndefinedColor : diverging_color(-1.0 + 2.0 * i / 254.0); });
-    fields.push_back(field_json("boundary_error", "signed boundary error (+ outside the reference), model units",
-                                "vertex", e, lut, -s, s, Json::array()));
+    out.fields.push_back(field_json("boundary_error", "signed boundary error (+ outside the reference), model units",
+                                    "vertex", e, lut, -s, s, Json::array()));
   }
+  if (!with_metrics) return out;
   // Metrics: indices 0..253 over [min, max] of the faces' cells, 254 outside
   // Verdict's acceptable range, 255 no value (a sentinel).
-  Json metric_fields = Json::array();
-  std::size_t metric_bytes = 0;
   for (int m = 0; m < kNumHexMetrics; ++m) {
     const auto metric = static_cast<HexMetric>(m);
     if (metric == HexMetric::scaled_jacobian || !a.metrics.computed.test(static_cast<std::size_t>(m))) continue;
@@ -232,11 +208,35 @@ std::vector<ViewerFile> viewer_files(const ReportModel& model) {
       const float t = static_cast<float>(i) / 253.0f;  // light to dark blue
       return Color{0.93f - 0.80f * t, 0.95f - 0.65f * t, 0.98f - 0.35f * t, 1.0f};
     });
-    metric_bytes += idx.size();
-    metric_fields.push_back(field_json(std::string(info.name), std::string(info.name) + " (Verdict, per cell)", "face",
-                                       idx, lut, lo, hi,
-                                       Json::array({{{"label", "outside Verdict's acceptable range"}, {"index", 254}}})));
+    out.metric_bytes += idx.size();
+    out.metric_fields.push_back(field_json(std::string(info.name), std::string(info.name) + " (Verdict, per cell)",
+                                           "face", idx, lut, lo, hi,
+                                           Json::array({{{"label", "outside Verdict's acceptable range"}, {"index", 254}}})));
   }
+  return out;
+}
+
+// A reduced boundary keeps at least this many faces (the model stays
+// recognisable) even when the glyphs and cells alone fill the budget.
+constexpr std::size_t kMinViewerFaces = 2000;
+
+}  // namespace
+
+std::vector<ViewerFile> viewer_files(const ReportModel& model) {
+  const Analysis& a = model.analysis;
+  const ViewerBoundary full = viewer_boundary(a);
+  const double budget = model.viewer_max_mb * 1e6;
+  const std::string budget_flag =
+      "--viewer-max-mb " + display_number(model.viewer_max_mb);
+  Json reduced = Json::array();
+
+  Json d;
+  d["name"] = a.mesh_name();
+  d["num_vertices"] = a.mesh_summary.num_vertices;
+  d["num_hexes"] = a.mesh_summary.num_hexes;
+  d["cell_data"] = cell_data_path(model.data);  // where every value of a hex is ("": --data none)
+  d["up"] = vec(model.viewer_up);
+  d["boundary_reduced"] = nullptr;  // or what the budget did to the boundary
 
   // Glyph clusters (every listed one: never reduced).
   Json clusters = Json::array();
@@ -295,26 +295,45 @@ std::vector<ViewerFile> viewer_files(const ReportModel& model) {
   }
   d["camera"] = camera_of_view_a(model);
 
-  // The budget: base64 is 4/3 of the bytes; the metric colourings go first.
-  const std::string without_metrics = d.dump();
-  if (static_cast<double>(without_metrics.size() + metric_bytes * 4 / 3) > budget && !metric_fields.empty()) {
-    reduced.push_back("the " + std::to_string(metric_fields.size()) +
-                      " Verdict metric colourings other than the scaled Jacobian were left out (--viewer-max-mb " +
-                      std::to_string(static_cast<long long>(std::llround(model.viewer_max_mb))) +
+  // The budget (base64 is 4/3 of the bytes): the metric colourings go first,
+  // then the corner values of a click, then the boundary is reduced.
+  const double rest = static_cast<double>(d.dump().size());
+  BoundaryData bd = boundary_data(a, full, true);
+  const double boundary_size = static_cast<double>(bd.size());
+  if (rest + boundary_size + static_cast<double>(bd.metric_bytes * 4 / 3) > budget && !bd.metric_fields.empty()) {
+    reduced.push_back("the " + std::to_string(bd.metric_fields.size()) +
+                      " Verdict metric colourings other than the scaled Jacobian were left out (" + budget_flag +
                       "); " + where_cell_values(model) + " every value");
-    metric_fields = Json::array();
+    bd.metric_fields = Json::array();
   }
-  if (static_cast<double>(without_metrics.size() + corners_b64.size()) > budget) {
+  if (rest + boundary_size + static_cast<double>(bd.face_corners.size()) > budget) {
     reduced.push_back("the corner scaled Jacobians shown when a face is clicked were left out; " +
                       where_cell_values(model) + " them");
-  } else {
-    d["face_corners"] = corners_b64;
+    bd.face_corners.clear();
   }
-  if (static_cast<double>(without_metrics.size()) > budget)
-    reduced.push_back("the boundary, the glyphs and the cells under the threshold alone exceed --viewer-max-mb; "
-                      "all of them are drawn");
-  for (Json& f : metric_fields) fields.push_back(std::move(f));
-  d["fields"] = std::move(fields);
+  if (rest + boundary_size > budget && full.face_hex.size() > kMinViewerFaces) {
+    const double share = std::max(0.0, budget - rest) / boundary_size;
+    const auto target = std::max(kMinViewerFaces, static_cast<std::size_t>(0.9 * share * static_cast<double>(full.face_hex.size())));
+    const ViewerBoundary drawn = reduce_boundary(full, a.mesh.points, a.field.vertex_quality, a.field.cell_scaled_jacobian, target);
+    if (drawn.face_hex.size() < full.face_hex.size()) {
+      bd = boundary_data(a, drawn, false);
+      d["boundary_reduced"] = {{"faces", full.face_hex.size()}, {"cell_size", drawn.cell_size}};
+      reduced.push_back("the boundary is drawn with " + display_count(static_cast<long long>(drawn.face_hex.size())) + " of its " +
+                        display_count(static_cast<long long>(full.face_hex.size())) + " faces (vertex clustering on a grid of " +
+                        display_number(drawn.cell_size, 3) + " model units, keeping each cell's worst vertex and "
+                        "each face's worst hex; " + budget_flag + "); a click on a face still shows its hex's exact "
+                        "values, and every glyph and cell under the threshold is drawn");
+    }
+  }
+  if (rest > budget)
+    reduced.push_back("the glyphs and the cells under the threshold alone exceed " + budget_flag +
+                      "; all of them are drawn");
+  d["vertices"] = std::move(bd.vertices);
+  d["faces"] = std::move(bd.faces);
+  d["face_scaled_jacobian"] = std::move(bd.face_scaled_jacobian);
+  if (!bd.face_corners.empty()) d["face_corners"] = std::move(bd.face_corners);
+  for (Json& f : bd.metric_fields) bd.fields.push_back(std::move(f));
+  d["fields"] = std::move(bd.fields);
   d["reduced"] = std::move(reduced);
 
   // The data, the scripts (embedded at build time) and the page.
