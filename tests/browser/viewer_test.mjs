@@ -17,9 +17,12 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 
-import { check as checkOnce, chromium, chromiumPath, failures } from './harness.mjs';
+import { check as checkOnce, failures, launchBrowser, selectValue, setChecked } from './harness.mjs';
 
 const [hqview, sourceDir, outDir] = process.argv.slice(2);
+// chromium (the default) or firefox (run_browser_test.sh --firefox).
+const browserKind = process.env.HQVIEW_VIEWER_BROWSER || 'chromium';
+console.log(`viewer test in ${browserKind}`);
 const check = (condition, message) => checkOnce(condition, message, true);
 
 fs.rmSync(outDir, { recursive: true, force: true });
@@ -63,26 +66,16 @@ fs.copyFileSync(example('twisted_bar.mesh'), path.join(evilDir, evilName));
 const evil = path.join(outDir, 'evil');
 analyze([path.join(evilDir, evilName), '-o', evil]);
 
-const browser = await chromium.launch({
-  executablePath: chromiumPath,
-  // File access from files: the silhouette check reads views/main_1.png's pixels.
-  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
-    '--allow-file-access-from-files'],
-});
+const browser = await launchBrowser(browserKind);
 
 async function open(bundle, hash = '', viewport = { width: 1200, height: 800 }) {
-  const page = await browser.newPage({ viewport });
-  const problems = [];
   let network = 0;
-  await page.route('**/*', (route) => {
-    if (route.request().url().startsWith('file:')) return route.continue();
-    network += 1;
-    return route.abort();
-  });
+  const page = await browser.newPage(viewport, () => { network += 1; });
+  const problems = [];
   page.on('console', (m) => { if (m.type() === 'error') problems.push(`console error: ${m.text()}`); });
   page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
   await page.goto(pathToFileURL(path.join(bundle, 'viewer.html')).href + hash, { waitUntil: 'load' });
-  await page.waitForFunction(() => window.hqViewer && window.hqViewer.ready, null, { timeout: 30000 });
+  await browser.waitFor(page, () => window.hqViewer && window.hqViewer.ready, 30000);
   return { page, problems, network: () => network };
 }
 
@@ -138,7 +131,7 @@ const near = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
 
   // Glyphs off: the pixels change; a click on the boundary names a hex.
   const before = await pixels(page);
-  await page.uncheck('#layer-glyphs');
+  await setChecked(page, '#layer-glyphs', false);
   const after = await pixels(page);
   check(before.sum !== after.sum && before.nonWhite > 1000, `toggling the glyph layer changes the picture (${JSON.stringify(before)} -> ${JSON.stringify(after)})`);
   const box = await page.evaluate(() => { const r = window.hqViewer.renderer.domElement.getBoundingClientRect(); return [r.left, r.top, r.width, r.height]; });
@@ -226,7 +219,7 @@ const near = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
   const count = await page.evaluate(() => window.hqViewer.data.low_cells.count);
   check(count === 8, `the 8 interior cells around the pulled vertex are the cells under the threshold (${count})`);
   await page.evaluate(() => { document.getElementById('opacity').value = 100; document.getElementById('opacity').dispatchEvent(new Event('input')); });
-  await page.uncheck('#layer-glyphs');
+  await setChecked(page, '#layer-glyphs', false);
   const closed = await pixels(page);
   // Cut across the axis the eye looks along most, at the middle: the half
   // near the eye goes, the pulled vertex's cells show.
@@ -234,7 +227,7 @@ const near = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
     const d = window.hqViewer.camera.position.clone().sub(window.hqViewer.controls.target).toArray().map(Math.abs);
     return String(d.indexOf(Math.max(...d)));
   });
-  await page.selectOption('#cut-axis', axis);
+  await selectValue(page, '#cut-axis', axis);
   await page.evaluate(() => { const s = document.getElementById('cut'); s.value = 500; s.dispatchEvent(new Event('input')); });
   const open_ = await pixels(page);
   await page.screenshot({ path: path.join(outDir, 'inner_cut.png') });
@@ -259,7 +252,7 @@ const near = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
   const faces = await page.evaluate(() => window.hqViewer.data.faces.count);
   check(faces < 6 * 28 * 28 && /boundary is drawn with/.test(d.note), `tiny budget: the boundary is reduced (${faces} of ${6 * 28 * 28} faces)`);
   const box = await page.evaluate(() => { const r = window.hqViewer.renderer.domElement.getBoundingClientRect(); return [r.left, r.top, r.width, r.height]; });
-  await page.uncheck('#layer-glyphs');  // the central cluster's glyph would take the click
+  await setChecked(page, '#layer-glyphs', false);  // the central cluster's glyph would take the click
   await page.mouse.click(box[0] + box[2] / 2, box[1] + box[3] / 2);
   const face = await page.evaluate(() => {
     const t = document.querySelector('#picked-face');
