@@ -9,12 +9,16 @@ in the same run (bench/vtk_metrics.py, Debian's python3-vtk9):
   - the same run's bundle: at most 120 MB;
   - 2,908,160 hexes (refined twice), --no-render: at most 12 s, peak RSS
     under 2 GB (issue 11's 60 s and 6 GB before it);
-  - 363,520 hexes with --reference dolphin.off and every view: at most 5 s.
+  - 363,520 hexes with --reference dolphin.off and every view: at most 5 s;
+  - issue 17's viewer: `analyze` (every view) with the viewer against
+    --no-viewer, runs interleaved, at most 10 % slower; the viewer's files
+    at most 25 MB for the 363,520 hexes and (--small Dolphin_padded.mesh)
+    at most 5 MB.
 
 Each case prints the exact command it times. Writes RESULT.json for
 bench/report.py.
 
-usage: e2e.py HQVIEW MESH_363K MESH_2_9M REFERENCE OUT_DIR RESULT.json [--runs 3]
+usage: e2e.py HQVIEW MESH_363K MESH_2_9M REFERENCE OUT_DIR RESULT.json [--runs 3] [--small MESH]
 """
 import argparse
 import json
@@ -47,6 +51,22 @@ def run_timed(cmd, out, runs):
     return walls, peaks
 
 
+def run_interleaved(cmd_a, cmd_b, out, runs):
+    """Median walls of two commands run alternately (a, b, a, b, ...), so
+    that a change of the machine's load hits both alike."""
+    a, b = [], []
+    for _ in range(runs):
+        a += run_timed(cmd_a, out, 1)[0]
+        b += run_timed(cmd_b, out, 1)[0]
+    return a, b
+
+
+def viewer_bytes(bundle):
+    files = [os.path.join(bundle, "viewer.html")]
+    files += [os.path.join(bundle, "viewer", f) for f in os.listdir(os.path.join(bundle, "viewer"))]
+    return sum(os.path.getsize(f) for f in files)
+
+
 def bundle_bytes(path):
     return sum(os.path.getsize(os.path.join(d, f)) for d, _, files in os.walk(path) for f in files)
 
@@ -61,6 +81,7 @@ def main():
     for name in ("hqview", "mesh363", "mesh2900", "reference", "out", "result"):
         ap.add_argument(name)
     ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--small", help="Dolphin_padded.mesh: the viewer's size on it")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     cases = []
@@ -98,6 +119,23 @@ def main():
     wall = statistics.median(walls)
     cases.append(case("hqview 363,520 hexes --reference, every view", shlex.join(cmd), wall, "s", "<= 5 s",
                       wall <= 5.0, walls))
+    # The viewer's cost: every view, with and without it.
+    cmd = [a.hqview, "analyze", a.mesh363, "-o", out, "-j", "2", "-q"]
+    with_viewer, without = run_interleaved(cmd, cmd + ["--no-viewer"], out, a.runs)
+    ratio = statistics.median(with_viewer) / statistics.median(without)
+    cases.append(case("hqview 363,520 hexes, every view, --no-viewer (baseline)", shlex.join(cmd + ["--no-viewer"]),
+                      statistics.median(without), "s", "baseline", True, without))
+    cases.append(case("the same with the viewer", shlex.join(cmd), statistics.median(with_viewer), "s",
+                      "with / without = %.3f, target <= 1.10" % ratio, ratio <= 1.10, with_viewer))
+    subprocess.run(cmd, check=True)
+    size = viewer_bytes(out) / 1e6
+    cases.append(case("its viewer files (viewer.html, viewer/)", shlex.join(cmd), size, "MB", "<= 25 MB", size <= 25.0))
+    if a.small:
+        small = [a.hqview, "analyze", a.small, "-o", out, "-j", "2", "-q"]
+        subprocess.run(small, check=True)
+        size = viewer_bytes(out) / 1e6
+        cases.append(case("the viewer files of Dolphin_padded (39,784 hexes)", shlex.join(small), size, "MB", "<= 5 MB",
+                          size <= 5.0))
     shutil.rmtree(out, ignore_errors=True)
     with open(a.result, "w") as f:
         json.dump({"e2e_cases": cases, "load_average": os.getloadavg()}, f, indent=1)
