@@ -38,7 +38,7 @@ TEST(ReportPages, SameBytesForOneAndTwoThreadsWithViewsAndReference) {
   }
   EXPECT_EQ(listing(dir / "1"), listing(dir / "2"));
   for (const char* f : {"report.json", "data/cells.csv", "data/vertices.csv", "index.html", "boundary.html",
-                        "summary.md", "style.css", "views/sorted_quality.svg"}) {
+                        "summary.md", "style.css", "views/sorted_quality.svg", "viewer.html", "viewer/data.js"}) {
     EXPECT_TRUE(fs::is_regular_file(dir / "1" / f)) << f;
     EXPECT_EQ(read_text(dir / "1" / f), read_text(dir / "2" / f)) << f;
   }
