@@ -88,4 +88,32 @@ TEST(Stop, NestedDeadlinesRestoreTheOuterOne) {
   EXPECT_NO_THROW(hq::stop::check());
 }
 
+TEST(Stop, AThreadOfItsOwnCanTakeItsCallersDeadline) {
+  // The UV atlas's thread (pipeline/analyze.cpp): the same deadline, the same
+  // message; a caller without one hands none over.
+  ResetStop reset;
+  EXPECT_EQ(hq::stop::current_deadline(), nullptr);
+  hq::stop::ScopedDeadline deadline(0.05, "--mesh-timeout 0.05");
+  EXPECT_EQ(hq::stop::current_deadline(), &deadline);
+  std::string message;
+  std::thread worker([caller = hq::stop::current_deadline(), &message] {
+    const hq::stop::ScopedDeadline same(caller);
+    EXPECT_EQ(hq::stop::current_deadline(), &same);
+    std::this_thread::sleep_for(std::chrono::milliseconds(80));
+    try {
+      hq::stop::check();
+    } catch (const hq::TimedOut& e) {
+      message = e.what();
+    }
+  });
+  worker.join();
+  EXPECT_EQ(message, "stopped after 0.05 s (--mesh-timeout 0.05)");
+  std::thread without([] {
+    const hq::stop::ScopedDeadline none(nullptr);
+    EXPECT_EQ(hq::stop::current_deadline(), nullptr);
+    EXPECT_NO_THROW(hq::stop::check());
+  });
+  without.join();
+}
+
 }  // namespace

@@ -48,7 +48,8 @@ std::vector<std::string> ids_of(const AnalyzeResult& result) {
 std::vector<std::string> expected_ids(bool with_reference, bool with_compare) {
   std::vector<std::string> ids;
   for (const ViewSpec& spec : kViews)
-    if (spec.needs == ViewNeeds::mesh || (spec.needs == ViewNeeds::reference && with_reference) ||
+    if (spec.needs == ViewNeeds::mesh ||
+        ((spec.needs == ViewNeeds::reference || spec.needs == ViewNeeds::uv_atlas) && with_reference) ||
         (spec.needs == ViewNeeds::compare && with_compare))
       ids.emplace_back(spec.id);
   return ids;

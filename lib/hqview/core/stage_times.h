@@ -22,6 +22,9 @@ struct StageTime {
   std::string name;
   double seconds = 0.0;
   std::uint64_t peak_rss_bytes = 0;  // the process's peak resident memory when the stage ended
+  // Ran on its own thread beside the stages listed around it (the UV atlas):
+  // not part of the sum that accounts for the wall time.
+  bool concurrent = false;
 };
 
 // The process's peak resident set so far (getrusage), in bytes.

@@ -54,7 +54,17 @@ ScopedDeadline::ScopedDeadline(double seconds_, const char* what_)
   t_deadline = this;
 }
 
+ScopedDeadline::ScopedDeadline(const ScopedDeadline* same_as)
+    : at(same_as ? same_as->at : std::chrono::steady_clock::time_point::max()),
+      seconds(same_as ? same_as->seconds : 0.0),
+      what(same_as ? same_as->what : ""),
+      previous_(t_deadline) {
+  if (same_as) t_deadline = this;
+}
+
 ScopedDeadline::~ScopedDeadline() { t_deadline = previous_; }
+
+const ScopedDeadline* current_deadline() noexcept { return t_deadline; }
 
 }  // namespace stop
 }  // namespace hq

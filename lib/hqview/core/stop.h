@@ -53,6 +53,9 @@ void check();
 class ScopedDeadline {
  public:
   ScopedDeadline(double seconds, const char* what);
+  // The deadline another thread set (`same_as`, from current() there) on
+  // this thread too, for work handed to a thread of its own; none if null.
+  explicit ScopedDeadline(const ScopedDeadline* same_as);
   ScopedDeadline(const ScopedDeadline&) = delete;
   ScopedDeadline& operator=(const ScopedDeadline&) = delete;
   ~ScopedDeadline();
@@ -64,6 +67,9 @@ class ScopedDeadline {
  private:
   const ScopedDeadline* previous_;
 };
+
+// The calling thread's innermost deadline, null if none.
+const ScopedDeadline* current_deadline() noexcept;
 
 }  // namespace stop
 }  // namespace hq

@@ -2,8 +2,13 @@
 
 #include <tbb/parallel_invoke.h>
 
+#include <chrono>
+#include <future>
+#include <optional>
+
 #include "hqview/core/box3.h"
 #include "hqview/core/error.h"
+#include "hqview/core/stop.h"
 #include "hqview/io/mesh_reader.h"
 #include "hqview/io/mesh_source.h"
 #include "hqview/quality/quality_summary.h"
@@ -22,8 +27,6 @@ LoadedMesh load_mesh(const fs::path& path, const AnalyzeOptions& options, InputF
 }
 
 void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clock) {
-  clock.start("topology");
-  a.topology = build_topology(a.mesh);
   clock.start("quality");
   a.field = compute_quality(a.mesh, a.topology);
   a.mesh_summary = summarize_mesh(a.mesh, a.topology);
@@ -48,12 +51,11 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
   clock.stop();
 }
 
-// Boundary error and UV atlas against the reference surface (ALGORITHMS.md §5).
-// With --reference-align bbox the reference is first moved onto the mesh
-// boundary's bounding box (uniform scale and translation).
-void analyze_reference(Analysis& a, const AnalyzeOptions& options, StageClock& clock) {
-  const fs::path& path = options.reference_path;
-  SurfaceSource source = open_surface_source(path, options.read_limits);
+// The reference surface (ALGORITHMS.md §5), read and, with
+// --reference-align bbox, moved onto the mesh boundary's bounding box
+// (uniform scale and translation).
+TriSurface read_reference(Analysis& a, const AnalyzeOptions& options) {
+  SurfaceSource source = open_surface_source(options.reference_path, options.read_limits);
   TriSurface reference = read_surface(source);
   a.reference_input = input_file(source);
   Box3 mesh_box, reference_box;
@@ -62,10 +64,36 @@ void analyze_reference(Analysis& a, const AnalyzeOptions& options, StageClock& c
     for (Index v : t) reference_box.add(reference.points[static_cast<std::size_t>(v)]);
   a.reference_alignment = align_boxes(mesh_box, reference_box, options.reference_align);
   for (Vec3& p : reference.points) p = aligned_point(p, a.reference_alignment);
+  return reference;
+}
+
+// The UV atlas of the reference on a thread of its own, beside the other
+// stages and the first views: it is mostly sequential (the charts' LSCM
+// solves) and so are the views, so on two cores it takes the core they
+// leave. Its result does not depend on what runs beside it. It works on its
+// own copy of the reference; the caller's --mesh-timeout deadline follows it,
+// and a stop request stops it at its next check.
+struct AtlasJob {
+  UvAtlas atlas;
+  double seconds = 0;
+};
+std::future<AtlasJob> start_atlas(TriSurface reference, const Vec3& up) {
+  return std::async(std::launch::async, [reference = std::move(reference), up, deadline = stop::current_deadline()] {
+    const stop::ScopedDeadline same(deadline);
+    const auto begin = std::chrono::steady_clock::now();
+    AtlasJob job;
+    job.atlas = build_uv_atlas(reference, UvOptions{.up = up, .improve_with_lscm = true});
+    job.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+    return job;
+  });
+}
+
+// Boundary error against the reference.
+void analyze_boundary_error(Analysis& a, const TriSurface& reference, const AnalyzeOptions& options) {
+  const fs::path& path = options.reference_path;
   const char* hint = options.reference_align == CompareAlign::none ? "; --reference-align bbox moves the reference "
                                                                      "onto the mesh's bounding box"
                                                                    : "";
-  clock.start("boundary error");
   try {
     a.boundary_error = compute_boundary_error(a.mesh, a.topology, reference);
   } catch (const InputError& e) {
@@ -76,10 +104,6 @@ void analyze_reference(Analysis& a, const AnalyzeOptions& options, StageClock& c
     if (w.find("same units and placement") != std::string::npos) w += hint;
     a.warnings.push_back(std::move(w));
   }
-  clock.start("uv atlas");
-  a.uv_atlas = build_uv_atlas(reference, UvOptions{.up = options.views.up, .improve_with_lscm = true});
-  clock.stop();
-  a.reference_surface = std::move(reference);
 }
 
 // MESH2 of --compare, analysed as the mesh is (quality only).
@@ -127,15 +151,45 @@ void add_views(std::vector<RenderedView> views, const Vec3& up, AnalyzeResult& r
   }
 }
 
-}  // namespace
+// An analysis whose UV atlas may still be being built (start_atlas).
+struct AnalysisInProgress {
+  Analysis analysis;
+  std::future<AtlasJob> atlas;
 
-Analysis analyze_mesh(const AnalyzeOptions& options) {
-  Analysis a;
+  // Waits for the atlas (a stage "uv atlas wait" on `timings`) and files it,
+  // with its own time as a concurrent stage "uv atlas". Rethrows what the
+  // atlas threw. Does nothing once done or without a reference.
+  void finish_atlas(std::vector<StageTime>& timings, const StageSink& sink) {
+    if (!atlas.valid()) return;
+    AtlasJob job;
+    {
+      StageClock clock(timings, sink);
+      clock.start("uv atlas wait");
+      job = atlas.get();
+    }
+    analysis.uv_atlas = std::move(job.atlas);
+    timings.push_back({"uv atlas", job.seconds, peak_rss_bytes(), true});
+    if (sink) sink(timings.back());
+  }
+};
+
+// Every stage but the views, the atlas left running (when there is a reference).
+void start_analysis(const AnalyzeOptions& options, AnalysisInProgress& out) {
+  Analysis& a = out.analysis;
   StageClock clock(a.timings, options.on_stage);
   clock.start("read");
   LoadedMesh loaded = load_mesh(options.mesh_path, options, a.mesh_input);
   a.warnings = std::move(loaded.warnings);
   a.mesh = std::move(loaded.mesh);
+  clock.start("topology");
+  a.topology = build_topology(a.mesh);
+  // The reference as soon as the boundary is known, so that its atlas runs
+  // beside everything after.
+  if (!options.reference_path.empty()) {
+    clock.start("read reference");
+    a.reference_surface = read_reference(a, options);
+    out.atlas = start_atlas(*a.reference_surface, options.views.up);
+  }
   clock.stop();
   analyze_quality(a, options, clock);
   clock.start("glyphs");
@@ -144,13 +198,25 @@ Analysis analyze_mesh(const AnalyzeOptions& options) {
   if (!a.topology.unreferenced_vertices.empty())
     a.warnings.push_back(std::to_string(a.topology.unreferenced_vertices.size()) +
                          " vertices are used by no hexahedron (ignored by the analysis)");
-  if (!options.reference_path.empty()) analyze_reference(a, options, clock);
+  if (a.reference_surface) {
+    clock.start("boundary error");
+    analyze_boundary_error(a, *a.reference_surface, options);
+    clock.stop();
+  }
   if (!options.compare_path.empty()) {
     clock.start("compare mesh");
     analyze_compare(a, options);
     clock.stop();
   }
-  return a;
+}
+
+}  // namespace
+
+Analysis analyze_mesh(const AnalyzeOptions& options) {
+  AnalysisInProgress in_progress;
+  start_analysis(options, in_progress);
+  in_progress.finish_atlas(in_progress.analysis.timings, options.on_stage);
+  return std::move(in_progress.analysis);
 }
 
 AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
@@ -158,15 +224,24 @@ AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
   ReportModel& model = result.model;
   model.tool_version = options.tool_version;
   model.data = options.data;
-  model.analysis = analyze_mesh(options);
+  AnalysisInProgress in_progress;
+  start_analysis(options, in_progress);
   if (renderer) {
+    // The views that need no atlas are drawn while it is built.
     std::vector<StageTime> view_times;
     {
       StageClock clock(view_times, options.on_stage);
-      add_views(render_views(model.analysis, options.views, *renderer, &clock), options.views.up, result);
+      const auto before_view = [&](ViewNeeds needs) {
+        if (needs == ViewNeeds::uv_atlas) in_progress.finish_atlas(view_times, options.on_stage);
+      };
+      add_views(render_views(in_progress.analysis, options.views, *renderer, &clock, before_view), options.views.up,
+                result);
+      in_progress.finish_atlas(view_times, options.on_stage);
     }
-    model.analysis.timings.insert(model.analysis.timings.end(), view_times.begin(), view_times.end());
+    in_progress.analysis.timings.insert(in_progress.analysis.timings.end(), view_times.begin(), view_times.end());
   }
+  in_progress.finish_atlas(in_progress.analysis.timings, options.on_stage);
+  model.analysis = std::move(in_progress.analysis);
   model.has_viewer = renderer && options.viewer;
   model.viewer_max_mb = options.viewer_max_mb;
   model.viewer_up = options.views.up;

@@ -147,7 +147,10 @@ std::string timings_json(const std::vector<StageTime>& timings, double wall_seco
   for (const StageTime& t : timings) {
     stages.push_back(
         {{"name", t.name}, {"seconds", t.seconds}, {"peak_rss_mb", std::round(t.peak_rss_bytes / 1e5) / 10}});
-    total += t.seconds;
+    if (t.concurrent)
+      stages.back()["concurrent"] = true;
+    else
+      total += t.seconds;
   }
   const nlohmann::json j = {
       {"note", "wall seconds of this run's stages; differs from run to run (report.json does not)"},
@@ -234,7 +237,7 @@ void write_bundle(const ReportModel& model, const ReportDocument& document, cons
     });
     clock.stop();
     double wall = 0;
-    for (const StageTime& t : timings) wall += t.seconds;
+    for (const StageTime& t : timings) wall += t.concurrent ? 0.0 : t.seconds;
     if (options.started)
       wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - *options.started).count();
     write_text(tmp / "timings.json", timings_json(timings, wall));

@@ -146,6 +146,8 @@ bool has_inputs(const Analysis& a, ViewNeeds needs) {
     case ViewNeeds::mesh:
       return true;
     case ViewNeeds::reference:
+      return a.boundary_error && a.reference_surface;
+    case ViewNeeds::uv_atlas:
       return a.boundary_error && a.reference_surface && a.uv_atlas;
     case ViewNeeds::compare:
       return a.compare.has_value();
@@ -369,7 +371,7 @@ std::vector<const ViewSpec*> views_of_panel(char panel) {
 }
 
 std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptions& options, Renderer& base_renderer,
-                                       StageClock* clock) {
+                                       StageClock* clock, const std::function<void(ViewNeeds)>& before_view) {
   // PNG encoding overlaps rendering: before each frame, the images of the
   // views pushed so far go to TBB tasks that encode them (ViewFile::png);
   // the rest (the charts at the end) before returning. A pushed view's
@@ -397,6 +399,7 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
 
   std::string_view selected_by;  // the selectable view a view is drawn with
   for (const ViewSpec& spec : kViews) {
+    if (before_view) before_view(spec.needs);
     if (spec.is_selectable) selected_by = spec.id;
     const bool is_wanted = options.views.empty() ||
                            std::find(options.views.begin(), options.views.end(), selected_by) != options.views.end();

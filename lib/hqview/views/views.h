@@ -4,6 +4,7 @@
 // draws it. The --views list, the render loop, report.json, index.html and
 // boundary.html all read this table.
 
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -53,7 +54,7 @@ using ViewBuilder = std::vector<ViewFile> (*)(ViewContext&);
 enum class ViewPage { index, boundary };
 
 // What a view needs beyond the mesh.
-enum class ViewNeeds { mesh, reference, compare };
+enum class ViewNeeds { mesh, reference, uv_atlas, compare };  // uv_atlas: the reference and its atlas
 
 struct ViewSpec {
   std::string_view id;     // report.json views[].id
@@ -96,7 +97,7 @@ inline constexpr ViewSpec kViews[] = {
     {"corners", "E: corner scaled Jacobians at each chosen vertex", 'E', 0, ViewNeeds::mesh, true, 4, build_corners},
     {"boundary_error", "Boundary error: hex boundary coloured by signed distance to the reference", 0, 0,
      ViewNeeds::reference, true, 8, build_boundary_error},
-    {"uv_error", "UV error map of the reference", 0, 1, ViewNeeds::reference, true, 11, build_uv_error},
+    {"uv_error", "UV error map of the reference", 0, 1, ViewNeeds::uv_atlas, true, 11, build_uv_error},
     {"reference_overlay", "F: hex boundary over the translucent reference surface", 'F', 0, ViewNeeds::reference, true,
      6, build_reference_overlay},
     {"compare", "Compare: both boundaries coloured by vertex quality, one camera", 'F', 1, ViewNeeds::compare, true, 7,
@@ -125,8 +126,12 @@ std::vector<const ViewSpec*> views_of_panel(char panel);
 // Draws the selected views in kViews order. The PNG images of finished
 // views are encoded (ViewFile::png) by TBB tasks while later views render.
 // Throws RenderError; ValueError for a focus vertex that does not exist.
-// clock (may be null) times each view as "view <id>".
+// clock (may be null) times each view as "view <id>". before_view (may be
+// empty) is called before each view is considered, with what the view
+// needs, between the views' stages: the pipeline completes `analysis` there
+// (the UV atlas, built on its own thread while the first views are drawn).
 std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptions& options, Renderer& renderer,
-                                       StageClock* clock = nullptr);
+                                       StageClock* clock = nullptr,
+                                       const std::function<void(ViewNeeds)>& before_view = {});
 
 }  // namespace hq
