@@ -1,7 +1,7 @@
 #pragma once
 // The `analyze` pipeline: read -> topology -> [read reference, the UV atlas
-// started on its own thread] -> quality -> overlap -> metrics -> summaries
-// -> structure -> glyphs -> boundary error -> compare mesh -> views (the UV
+// started on its own thread] -> quality -> overlap (and beside it the
+// structure) -> metrics -> summaries -> glyphs -> boundary error -> compare mesh -> views (the UV
 // error map waits for the atlas) -> report document -> gates. The one place
 // that knows the order of the stages. Touches no output file: the caller
 // hands the result to write_bundle(). When a stage fails while the atlas is
