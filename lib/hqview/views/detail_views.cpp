@@ -178,18 +178,18 @@ Scene build_cluster_scene(const HexMesh& mesh, const Topology& topology, const s
   return scene;
 }
 
-Image render_cluster_view(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
-                          const GlyphResult& glyphs, Index cluster, const DetailViewOptions& options,
-                          Renderer& renderer) {
+ClusterShot cluster_shot(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
+                         const GlyphResult& glyphs, Index cluster, const DetailViewOptions& options) {
   const Figure f = detail_figure(options);
-  const Scene scene = build_cluster_scene(mesh, topology, vertex_quality, glyphs, cluster);
+  ClusterShot shot;
+  shot.scene = build_cluster_scene(mesh, topology, vertex_quality, glyphs, cluster);
   const ClusterRegion region = cluster_region(topology, glyphs, cluster);
   std::vector<Vec3> points = cell_points(mesh, region.cells);
   std::vector<Vec3> centers;
   std::vector<double> radii;
-  const SphereSet& s = scene.spheres[0];
+  const SphereSet& s = shot.scene.spheres[0];
   for (std::size_t i = 0; i < s.centers.size(); ++i) {
-    const Vec3 c = scene.origin + Vec3{s.centers[i].x, s.centers[i].y, s.centers[i].z};
+    const Vec3 c = shot.scene.origin + Vec3{s.centers[i].x, s.centers[i].y, s.centers[i].z};
     centers.push_back(c);
     radii.push_back(s.radii[i]);
     for (int axis = 0; axis < 3; ++axis)
@@ -200,9 +200,19 @@ Image render_cluster_view(const HexMesh& mesh, const Topology& topology, const s
       }
   }
   const std::vector<Vec3> direction = choose_viewpoints(points, centers, radii, f.aspect, 1, options.up);
-  const Camera camera =
-      fit_camera_to_points(points, direction.at(0), f.aspect, {.up = options.up, .is_perspective = false});
-  return compose(options, f, renderer.render(scene, camera, f.layout.view.width, f.layout.view.height));
+  shot.camera = fit_camera_to_points(points, direction.at(0), f.aspect, {.up = options.up, .is_perspective = false});
+  return shot;
+}
+
+Image render_cluster_shot(const ClusterShot& shot, const DetailViewOptions& options, Renderer& renderer) {
+  const Figure f = detail_figure(options);
+  return compose(options, f, renderer.render(shot.scene, shot.camera, f.layout.view.width, f.layout.view.height));
+}
+
+Image render_cluster_view(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
+                          const GlyphResult& glyphs, Index cluster, const DetailViewOptions& options,
+                          Renderer& renderer) {
+  return render_cluster_shot(cluster_shot(mesh, topology, vertex_quality, glyphs, cluster, options), options, renderer);
 }
 
 std::vector<VertexCorner> vertex_corners(const HexMesh& mesh, const Topology& topology,

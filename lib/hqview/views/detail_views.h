@@ -48,6 +48,16 @@ Image render_cluster_view(const HexMesh& mesh, const Topology& topology, const s
                           const GlyphResult& glyphs, Index cluster, const DetailViewOptions& options,
                           Renderer& renderer);
 
+// The same in two steps: the scene and its camera (no drawing; safe to run
+// for several clusters at once), then the figure drawn from them.
+struct ClusterShot {
+  Scene scene;
+  Camera camera;
+};
+ClusterShot cluster_shot(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
+                         const GlyphResult& glyphs, Index cluster, const DetailViewOptions& options);
+Image render_cluster_shot(const ClusterShot& shot, const DetailViewOptions& options, Renderer& renderer);
+
 // The corners at vertex v: one per incident hex (ascending hex id), with its
 // corner scaled Jacobian read from corner_values (QualityField's
 // corner_scaled_jacobian: 8 per hex).

@@ -2,6 +2,8 @@
 // that runs them.
 #include "hqview/views/views.h"
 
+#include <tbb/parallel_for.h>
+
 #include <tbb/task_group.h>
 
 #include <algorithm>
@@ -185,15 +187,23 @@ std::vector<ViewFile> build_main(ViewContext& c) {
 }
 
 std::vector<ViewFile> build_clusters(ViewContext& c) {
-  auto detail = sized<DetailViewOptions>(c);
-  std::vector<ViewFile> files;
+  // The scenes and cameras of all the top clusters at once (the camera
+  // search is the costly part), then drawn one by one, in order.
+  std::vector<DetailViewOptions> detail(c.num_top, sized<DetailViewOptions>(c));
   for (std::size_t k = 0; k < c.num_top; ++k) {
     const AggregatedGlyph& g = c.glyphs->clusters[k];
-    detail.title = c.name + ": cluster #" + std::to_string(k) + " (" + std::to_string(g.size) +
-                   " glyphs, reduced, min quality " + std::to_string(g.min_quality).substr(0, 6) +
-                   ") and its neighbours";
-    Image image =
-        render_cluster_view(c.a.mesh, c.a.topology, c.quality(), *c.glyphs, static_cast<Index>(k), detail, c.renderer);
+    detail[k].title = c.name + ": cluster #" + std::to_string(k) + " (" + std::to_string(g.size) +
+                      " glyphs, reduced, min quality " + std::to_string(g.min_quality).substr(0, 6) +
+                      ") and its neighbours";
+  }
+  std::vector<ClusterShot> shots(c.num_top);
+  tbb::parallel_for(std::size_t{0}, c.num_top, [&](std::size_t k) {
+    shots[k] = cluster_shot(c.a.mesh, c.a.topology, c.quality(), *c.glyphs, static_cast<Index>(k), detail[k]);
+  });
+  std::vector<ViewFile> files;
+  for (std::size_t k = 0; k < c.num_top; ++k) {
+    Image image = render_cluster_shot(shots[k], detail[k], c.renderer);
+    shots[k] = ClusterShot{};  // freed once drawn
     files.push_back(framed("views/cluster_" + std::to_string(k) + ".png", std::move(image), c));
     files.back().cluster = static_cast<Index>(k);
   }
