@@ -116,4 +116,27 @@ TEST(Stop, AThreadOfItsOwnCanTakeItsCallersDeadline) {
   without.join();
 }
 
+TEST(Stop, ACancelFlagStopsOnlyTheThreadThatWatchesIt) {
+  ResetStop reset;
+  std::atomic<bool> flag{false};
+  std::atomic<bool> raised{false};
+  bool cancelled = false;
+  std::thread worker([&] {
+    const hq::stop::ScopedCancel watch(flag);
+    EXPECT_NO_THROW(hq::stop::check());
+    raised = true;
+    while (!flag) std::this_thread::yield();
+    try {
+      hq::stop::check();
+    } catch (const hq::stop::Cancelled&) {
+      cancelled = true;
+    }
+  });
+  while (!raised) std::this_thread::yield();
+  flag = true;
+  worker.join();
+  EXPECT_TRUE(cancelled);
+  EXPECT_NO_THROW(hq::stop::check());  // this thread does not watch the flag
+}
+
 }  // namespace

@@ -225,6 +225,12 @@ void add_warnings(const BoundaryOptions& options, BoundaryError& out) {
 
 }  // namespace
 
+void check_reference_placement(const HexMesh& mesh, const Topology& topo, const TriSurface& reference) {
+  if (!has_positive_area(reference)) throw InputError("the reference surface has no triangle of positive area");
+  BoundaryError scratch;
+  check_bounding_boxes(mesh, topo, reference, scratch);
+}
+
 BoundaryError compute_boundary_error(const HexMesh& mesh, const Topology& topo, const TriSurface& reference,
                                      const BoundaryOptions& options) {
   BoundaryError out;

@@ -86,6 +86,11 @@ struct BoundaryError {
 BoundaryError compute_boundary_error(const HexMesh& mesh, const Topology& topo, const TriSurface& reference,
                                      const BoundaryOptions& options = {});
 
+// compute_boundary_error()'s first checks alone (a reference with a triangle
+// of positive area, the two bounding boxes overlapping), for a caller that
+// starts other work on the reference first. Throws the same InputError.
+void check_reference_placement(const HexMesh& mesh, const Topology& topo, const TriSurface& reference);
+
 // The hex boundary quads split into two triangles each (diagonal 0-2), with
 // the mesh's points (outward oriented as the topology's boundary faces).
 TriSurface boundary_triangles(const HexMesh& mesh, const Topology& topo);

@@ -14,6 +14,7 @@ std::atomic<int> g_signal{0};
 static_assert(std::atomic<int>::is_always_lock_free, "the signal handler needs a lock-free flag");
 
 thread_local const stop::ScopedDeadline* t_deadline = nullptr;
+thread_local const std::atomic<bool>* t_cancel = nullptr;
 
 std::string signal_name(int signal) {
   switch (signal) {
@@ -43,6 +44,7 @@ void check() {
   if (const int s = requested(); s != 0) throw Interrupted(s);
   if (const stop::ScopedDeadline* d = t_deadline; d != nullptr && std::chrono::steady_clock::now() >= d->at)
     throw TimedOut("stopped after " + format_double(d->seconds) + " s (" + d->what + ")");
+  if (const std::atomic<bool>* c = t_cancel; c != nullptr && c->load(std::memory_order_relaxed)) throw Cancelled();
 }
 
 ScopedDeadline::ScopedDeadline(double seconds_, const char* what_)
@@ -65,6 +67,10 @@ ScopedDeadline::ScopedDeadline(const ScopedDeadline* same_as)
 ScopedDeadline::~ScopedDeadline() { t_deadline = previous_; }
 
 const ScopedDeadline* current_deadline() noexcept { return t_deadline; }
+
+ScopedCancel::ScopedCancel(const std::atomic<bool>& flag) : previous_(t_cancel) { t_cancel = &flag; }
+
+ScopedCancel::~ScopedCancel() { t_cancel = previous_; }
 
 }  // namespace stop
 }  // namespace hq

@@ -8,6 +8,7 @@
 // so a stopped run leaves what was there before (docs/contract.md, "Exit
 // codes"; ARCHITECTURE.md, "Faults").
 
+#include <atomic>
 #include <chrono>
 
 #include "hqview/core/error.h"
@@ -40,8 +41,9 @@ int requested() noexcept;
 void reset() noexcept;
 
 // Throws Interrupted when a stop was requested, TimedOut when the calling
-// thread's deadline (ScopedDeadline) has passed; else returns at once (one
-// relaxed load, plus a clock read when a deadline is set).
+// thread's deadline (ScopedDeadline) has passed, Cancelled when its
+// ScopedCancel's flag is set; else returns at once (one relaxed load, plus
+// a clock read when a deadline is set).
 void check();
 
 // Sets the calling thread's deadline while it lives: `seconds` from now,
@@ -70,6 +72,26 @@ class ScopedDeadline {
 
 // The calling thread's innermost deadline, null if none.
 const ScopedDeadline* current_deadline() noexcept;
+
+// Work handed to a thread of its own that its owner may abandon (the
+// pipeline's UV atlas when a stage beside it fails): while a ScopedCancel
+// lives on that thread, check() there throws Cancelled once `flag` is set.
+// Cancelled never reaches the user: the owner raises the flag only when it
+// will not read the work's result.
+class Cancelled : public Error {
+ public:
+  Cancelled() : Error("cancelled") {}
+};
+class ScopedCancel {
+ public:
+  explicit ScopedCancel(const std::atomic<bool>& flag);
+  ScopedCancel(const ScopedCancel&) = delete;
+  ScopedCancel& operator=(const ScopedCancel&) = delete;
+  ~ScopedCancel();
+
+ private:
+  const std::atomic<bool>* previous_;
+};
 
 }  // namespace stop
 }  // namespace hq

@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_invoke.h>
 
+#include <atomic>
 #include <chrono>
 #include <future>
 #include <optional>
@@ -65,6 +66,26 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
   clock.stop();
 }
 
+// What to try when the reference seems misplaced (unless already tried).
+const char* alignment_hint(const AnalyzeOptions& options) {
+  return options.reference_align == CompareAlign::none
+             ? "; --reference-align bbox moves the reference onto the mesh's bounding box"
+             : "";
+}
+
+// Runs f; an InputError it throws comes back prefixed with the reference's
+// path, and with the alignment hint when the boxes do not overlap.
+template <class F>
+void with_reference_hint(const AnalyzeOptions& options, F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    throw InputError(options.reference_path.string() + ": " + what +
+                     (what.find("do not overlap") != std::string::npos ? alignment_hint(options) : ""));
+  }
+}
+
 // The reference surface (ALGORITHMS.md §5), read and, with
 // --reference-align bbox, moved onto the mesh boundary's bounding box
 // (uniform scale and translation).
@@ -78,6 +99,8 @@ TriSurface read_reference(Analysis& a, const AnalyzeOptions& options) {
     for (Index v : t) reference_box.add(reference.points[static_cast<std::size_t>(v)]);
   a.reference_alignment = align_boxes(mesh_box, reference_box, options.reference_align);
   for (Vec3& p : reference.points) p = aligned_point(p, a.reference_alignment);
+  // A misplaced reference is refused before its atlas is started.
+  with_reference_hint(options, [&] { check_reference_placement(a.mesh, a.topology, reference); });
   return reference;
 }
 
@@ -91,9 +114,11 @@ struct AtlasJob {
   UvAtlas atlas;
   double seconds = 0;
 };
-std::future<AtlasJob> start_atlas(TriSurface reference, const Vec3& up) {
-  return std::async(std::launch::async, [reference = std::move(reference), up, deadline = stop::current_deadline()] {
+std::future<AtlasJob> start_atlas(TriSurface reference, const Vec3& up, const std::atomic<bool>& cancel) {
+  return std::async(std::launch::async,
+                    [reference = std::move(reference), up, deadline = stop::current_deadline(), &cancel] {
     const stop::ScopedDeadline same(deadline);
+    const stop::ScopedCancel abandoned(cancel);
     const auto begin = std::chrono::steady_clock::now();
     AtlasJob job;
     job.atlas = build_uv_atlas(reference, UvOptions{.up = up, .improve_with_lscm = true});
@@ -104,18 +129,9 @@ std::future<AtlasJob> start_atlas(TriSurface reference, const Vec3& up) {
 
 // Boundary error against the reference.
 void analyze_boundary_error(Analysis& a, const TriSurface& reference, const AnalyzeOptions& options) {
-  const fs::path& path = options.reference_path;
-  const char* hint = options.reference_align == CompareAlign::none ? "; --reference-align bbox moves the reference "
-                                                                     "onto the mesh's bounding box"
-                                                                   : "";
-  try {
-    a.boundary_error = compute_boundary_error(a.mesh, a.topology, reference);
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    throw InputError(path.string() + ": " + what + (what.find("do not overlap") != std::string::npos ? hint : ""));
-  }
+  with_reference_hint(options, [&] { a.boundary_error = compute_boundary_error(a.mesh, a.topology, reference); });
   for (std::string w : a.boundary_error->warnings) {
-    if (w.find("same units and placement") != std::string::npos) w += hint;
+    if (w.find("same units and placement") != std::string::npos) w += alignment_hint(options);
     a.warnings.push_back(std::move(w));
   }
 }
@@ -165,10 +181,18 @@ void add_views(std::vector<RenderedView> views, const Vec3& up, AnalyzeResult& r
   }
 }
 
-// An analysis whose UV atlas may still be being built (start_atlas).
+// An analysis whose UV atlas may still be being built (start_atlas). When
+// it is left with the atlas unfinished (a stage threw), the atlas is
+// cancelled at its next check and waited for (the future's destructor).
 struct AnalysisInProgress {
   Analysis analysis;
+  std::atomic<bool> cancel_atlas{false};
   std::future<AtlasJob> atlas;
+
+  AnalysisInProgress() = default;
+  AnalysisInProgress(const AnalysisInProgress&) = delete;
+  AnalysisInProgress& operator=(const AnalysisInProgress&) = delete;
+  ~AnalysisInProgress() { cancel_atlas = true; }
 
   // Waits for the atlas (a stage "uv atlas wait" on `timings`) and files it,
   // with its own time as a concurrent stage "uv atlas". Rethrows what the
@@ -202,7 +226,7 @@ void start_analysis(const AnalyzeOptions& options, AnalysisInProgress& out) {
   if (!options.reference_path.empty()) {
     clock.start("read reference");
     a.reference_surface = read_reference(a, options);
-    out.atlas = start_atlas(*a.reference_surface, options.views.up);
+    out.atlas = start_atlas(*a.reference_surface, options.views.up, out.cancel_atlas);
   }
   clock.stop();
   analyze_quality(a, options, clock);
