@@ -129,6 +129,23 @@ TEST(UvAtlas, SphereAndTorusAreCutIntoFewDisks) {
   EXPECT_LE(b.num_charts, 3);
 }
 
+TEST(UvAtlas, TheMergeStopsWhenItsWorkBudgetIsSpent) {
+  // The sphere needs many trial layouts to come down to two charts: with a
+  // budget of one surface's worth the merge stops early, and the atlas is
+  // valid all the same; with none it is the per-chart LSCM atlas.
+  const TriSurface sphere = icosphere(4);
+  const UvAtlas full = build_uv_atlas(sphere, UvOptions{.improve_with_lscm = true});
+  const UvAtlas one = build_uv_atlas(sphere, UvOptions{.improve_with_lscm = true, .merge_work_surfaces = 1});
+  const UvAtlas none = build_uv_atlas(sphere, UvOptions{.improve_with_lscm = true, .merge_work_surfaces = 0});
+  const UvAtlas off = build_uv_atlas(sphere, UvOptions{.improve_with_lscm = true, .merge_by_layout = false});
+  expect_valid_atlas(sphere, one, "sphere, budget 1");
+  expect_disks(sphere, one, "sphere, budget 1");
+  EXPECT_GT(one.num_charts, full.num_charts);
+  EXPECT_LT(one.num_charts, none.num_charts);
+  EXPECT_EQ(none.num_charts, off.num_charts);
+  EXPECT_EQ(none.uvs, off.uvs);
+}
+
 TEST(UvAtlas, StatisticsAgreeWithARecount) {
   const TriSurface s = icosphere(3);
   const UvAtlas atlas = build_uv_atlas(s);

@@ -404,8 +404,7 @@ class AtlasBuilder {
   // one-to-one (exact checks) and distorts less (area-weighted |log area
   // ratio| + log conformal distortion); the LSCM layout is turned to match
   // the projection (so the model's up axis stays up).
-  Index improve_with_lscm() {
-    Index improved = 0;
+  void improve_with_lscm() {
     for (Chart& c : charts_) {
       if (c.own_plane() || c.triangles.size() < static_cast<std::size_t>(options_.lscm_min_triangles)) continue;
       if (c.triangles.size() >= 4096) stop::check();
@@ -421,9 +420,7 @@ class AtlasBuilder {
       for (std::size_t i = 0; i < c.triangles.size(); ++i)
         for (int k = 0; k < 3; ++k) local_[3 * static_cast<std::size_t>(c.triangles[i]) + k] = uv[3 * i + k];
       c.lscm = true;
-      ++improved;
     }
-    return improved;
   }
 
   // Neighbouring charts are merged, longest shared border first, while the
@@ -434,8 +431,8 @@ class AtlasBuilder {
   // can become one disk. The merged layout is turned so that the model's up
   // axis points up where the chart allows it.
   void merge_by_layout() {
-    std::size_t work = 0;  // triangles laid out so far: at most 40 surfaces' worth
-    const std::size_t budget = 40 * static_cast<std::size_t>(nt_);
+    std::size_t work = 0;  // triangles laid out so far: at most merge_work_surfaces surfaces' worth
+    const auto budget = static_cast<std::size_t>(std::max(0.0, options_.merge_work_surfaces) * static_cast<double>(nt_));
     std::set<std::array<std::size_t, 4>> failed;
     while (work < budget) {
       // The merging can take seconds: a stop request (or this thread's

@@ -61,6 +61,9 @@ struct UvOptions {
   // along seams where two charts share more than one border arc.
   bool merge_by_layout = true;
   double merge_min_area_within_2 = 0.95;
+  // The merge's work budget: triangles laid out by its trial layouts, in
+  // multiples of the surface's triangle count (it stops when spent).
+  double merge_work_surfaces = 40;
   // ...and only on surfaces of at most this many triangles (LSCM on the 1M
   // benchmark surface takes seconds).
   Index lscm_max_surface_triangles = 250'000;
