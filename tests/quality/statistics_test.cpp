@@ -99,6 +99,12 @@ Statistics reference_statistics(const std::vector<double>& values) {
   s.p01 = percentile_of_sorted(kept, 0.01);
   s.p50 = percentile_of_sorted(kept, 0.50);
   s.p99 = percentile_of_sorted(kept, 0.99);
+  // The histogram over [min, max], 20 bins, value by value.
+  s.histogram.counts.assign(20, 0);
+  for (double v : kept) {
+    const double t = (v - s.min) / (s.max - s.min) * 20;
+    ++s.histogram.counts[static_cast<std::size_t>(std::clamp(static_cast<int>(std::floor(t)), 0, 19))];
+  }
   return s;
 }
 
@@ -125,6 +131,7 @@ TEST(Statistics, BucketedOrderEqualsOneSortBitForBit) {
     const Statistics got = compute_statistics(cases[k]), want = reference_statistics(cases[k]);
     EXPECT_EQ(got.count, want.count) << k;
     EXPECT_EQ(got.num_degenerate, 2) << k;
+    EXPECT_EQ(got.histogram.counts, want.histogram.counts) << k;
     for (const auto& [a, b] : {std::pair{got.mean, want.mean},
                                {got.std, want.std},
                                {got.min, want.min},

@@ -19,6 +19,44 @@ inline std::uint64_t order_key(double v) {
   return (bits >> 63) != 0 ? ~bits : bits | (std::uint64_t{1} << 63);
 }
 
+// The bucket of an order key: the keys of negative values (below 2^63) and
+// those of positive values each take their own run of buckets, evenly over
+// their own key range, so values of one sign keep the bucket resolution
+// when the other sign is present too (a key range spanning both signs
+// would put every value of [0.5, 1) into 16 buckets of 65,536).
+class KeyBuckets {
+ public:
+  static constexpr std::uint64_t kPositive = std::uint64_t{1} << 63;
+  void include(std::uint64_t k) {
+    Side& s = side(k);
+    s.lo = std::min(s.lo, k);
+    s.hi = std::max(s.hi, k);
+  }
+  // Fixes the buckets: 2^15 a side, 2^16 when one side is empty.
+  std::size_t finish() {
+    const bool both = negative_.lo <= negative_.hi && positive_.lo <= positive_.hi;
+    for (Side* s : {&negative_, &positive_}) {
+      if (s->lo > s->hi) continue;
+      s->shift = std::max(0, static_cast<int>(std::bit_width(s->hi - s->lo)) - (both ? 15 : 16));
+      s->count = static_cast<std::size_t>((s->hi - s->lo) >> s->shift) + 1;
+    }
+    return negative_.count + positive_.count;
+  }
+  std::size_t operator()(std::uint64_t k) const {
+    return k < kPositive ? static_cast<std::size_t>((k - negative_.lo) >> negative_.shift)
+                         : negative_.count + static_cast<std::size_t>((k - positive_.lo) >> positive_.shift);
+  }
+
+ private:
+  struct Side {
+    std::uint64_t lo = ~std::uint64_t{0}, hi = 0;
+    int shift = 0;
+    std::size_t count = 0;
+  };
+  Side& side(std::uint64_t k) { return k < kPositive ? negative_ : positive_; }
+  Side negative_, positive_;
+};
+
 // The values kept by the statistics (not NaN, not degenerate), ascending,
 // in one array, without sorting them whole: a pass finds the range of their
 // order keys, a second counts them into up to 2^16 buckets of that range
@@ -31,19 +69,12 @@ template <class IsKept>
 std::vector<double> sorted_kept_values(std::span<const double> values, IsKept is_kept, std::size_t num_kept) {
   std::vector<double> out(num_kept);
   if (num_kept == 0) return out;
-  std::uint64_t lo = ~std::uint64_t{0}, hi = 0;
+  KeyBuckets buckets;
   for (std::size_t i = 0; i < values.size(); ++i)
-    if (is_kept(i)) {
-      const std::uint64_t k = order_key(values[i]);
-      lo = std::min(lo, k);
-      hi = std::max(hi, k);
-    }
-  constexpr int kBucketBits = 16;
-  const int span_bits = std::bit_width(hi - lo);
-  const int shift = std::max(0, span_bits - kBucketBits);
-  const std::size_t num_buckets = static_cast<std::size_t>((hi - lo) >> shift) + 1;
+    if (is_kept(i)) buckets.include(order_key(values[i]));
+  const std::size_t num_buckets = buckets.finish();
   std::vector<std::size_t> start(num_buckets + 1, 0);
-  const auto bucket = [&](double v) { return static_cast<std::size_t>((order_key(v) - lo) >> shift); };
+  const auto bucket = [&](double v) { return buckets(order_key(v)); };
   for (std::size_t i = 0; i < values.size(); ++i)
     if (is_kept(i)) ++start[bucket(values[i]) + 1];
   for (std::size_t b = 0; b < num_buckets; ++b) start[b + 1] += start[b];
@@ -110,11 +141,18 @@ Statistics compute_statistics(std::span<const double> values, const StatisticsOp
   s.p95 = percentile_of_sorted(kept, 0.95);
   s.p99 = percentile_of_sorted(kept, 0.99);
   s.num_inverted = std::upper_bound(kept.begin(), kept.end(), 0.0) - kept.begin();
-  for (double v : kept) {
-    // Values outside the range go to the end bins; the last edge is inclusive.
+  // Values outside the range go to the end bins; the last edge is inclusive.
+  // The bin is monotone in the value (each operation rounds monotonically),
+  // so on the ascending values each bin is a run, found by bisection.
+  const auto bin_of = [&](double v) {
     const double t = (v - lo) / (hi - lo) * bins;
-    const int b = std::clamp(static_cast<int>(std::floor(t)), 0, bins - 1);
-    ++s.histogram.counts[static_cast<std::size_t>(b)];
+    return std::clamp(static_cast<int>(std::floor(t)), 0, bins - 1);
+  };
+  auto run_begin = kept.begin();
+  for (int b = 0; b < bins; ++b) {
+    const auto run_end = std::partition_point(run_begin, kept.end(), [&](double v) { return bin_of(v) <= b; });
+    s.histogram.counts[static_cast<std::size_t>(b)] = run_end - run_begin;
+    run_begin = run_end;
   }
   return s;
 }
