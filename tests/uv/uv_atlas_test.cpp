@@ -4,6 +4,7 @@
 
 #include "hqview/uv/uv_atlas.h"
 #include "hqview/uv/uv_metrics.h"
+#include "hqview/uv/uv_pack.h"
 
 #include <gtest/gtest.h>
 
@@ -84,6 +85,28 @@ TriSurface torus(int n, int m, double big, double small) {
       s.triangles.push_back({a, d, c});
     }
   return s;
+}
+
+TEST(UvPack, AChartLyingAtAnAngleIsTurnedToItsSmallestBox) {
+  // A unit square chart (two triangles) laid out at 30 degrees: kept so,
+  // its box is (cos 30 + sin 30)^2 = 1.866 times its area; turned by -30
+  // degrees it fills the unit square but for the gutter (a cell or two of
+  // the 256 along a side).
+  const double a = std::numbers::pi / 6, c = std::cos(a), s = std::sin(a);
+  const auto at = [&](double x, double y) { return Uv{c * x - s * y, s * x + c * y}; };
+  const std::vector<Uv> local = {at(0, 0), at(1, 0), at(1, 1), at(0, 0), at(1, 1), at(0, 1)};
+  const std::vector<std::vector<Index>> charts = {{0, 1}};
+  const auto fill = [&](bool tilt) {
+    std::vector<Uv> packed;
+    pack_charts(local, charts, packed, PackOptions{.tilt_to_smallest_box = tilt});
+    EXPECT_EQ(uv_flipped_triangles(packed), std::vector<std::uint8_t>(2, 0));
+    for (const Uv& p : packed) EXPECT_TRUE(p[0] >= 0 && p[0] <= 1 && p[1] >= 0 && p[1] <= 1);
+    return uv_signed_area(&packed[0]) + uv_signed_area(&packed[3]);
+  };
+  const double kept = fill(false), tilted = fill(true);
+  EXPECT_NEAR(kept, 1.0 / ((c + s) * (c + s)), 0.02);
+  EXPECT_GT(tilted, 0.97);
+  EXPECT_LE(tilted, 1.0);
 }
 
 TEST(UvAtlas, CubeCornersUnfoldWithoutAreaDistortion) {

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <numeric>
 
 namespace hq {
@@ -100,6 +101,67 @@ std::vector<Uv> turned(const std::vector<Uv>& corners, int turn) {
   for (std::size_t i = 0; i < corners.size(); ++i) {
     const Uv& p = corners[i];
     out[i] = turn == 0 ? p : turn == 1 ? Uv{-p[1], p[0]} : turn == 2 ? Uv{-p[0], -p[1]} : Uv{p[1], -p[0]};
+    lo[0] = std::min(lo[0], out[i][0]), lo[1] = std::min(lo[1], out[i][1]);
+  }
+  for (Uv& p : out) p = {p[0] - lo[0], p[1] - lo[1]};
+  return out;
+}
+
+// The turn (radians, within a quarter turn either way) that makes the
+// bounding box of `corners` smallest: a side of the smallest box lies on a
+// side of the convex hull (rotating calipers, every hull edge tried).
+double smallest_box_turn(const std::vector<Uv>& corners) {
+  std::vector<Uv> p(corners);
+  std::sort(p.begin(), p.end());
+  p.erase(std::unique(p.begin(), p.end()), p.end());
+  if (p.size() < 3) return 0.0;
+  // Andrew's monotone chain.
+  const auto cross = [](const Uv& o, const Uv& a, const Uv& b) {
+    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+  };
+  std::vector<Uv> hull(2 * p.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
+    hull[k++] = p[i];
+  }
+  for (std::size_t i = p.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && cross(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
+    hull[k++] = p[i];
+  }
+  hull.resize(k - 1);
+  const auto box_area = [&](double angle) {
+    const double c = std::cos(angle), s = std::sin(angle);
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (const Uv& q : hull) {
+      const double x = c * q[0] - s * q[1], y = s * q[0] + c * q[1];
+      lo[0] = std::min(lo[0], x), hi[0] = std::max(hi[0], x), lo[1] = std::min(lo[1], y), hi[1] = std::max(hi[1], y);
+    }
+    return (hi[0] - lo[0]) * (hi[1] - lo[1]);
+  };
+  double best = 0.0, best_area = box_area(0.0);
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    const Uv& a = hull[i];
+    const Uv& b = hull[(i + 1) % hull.size()];
+    double angle = -std::atan2(b[1] - a[1], b[0] - a[0]);
+    // Fold into [-pi/4, pi/4]: a quarter turn more or less gives the same box.
+    angle = std::remainder(angle, std::numbers::pi / 2);
+    const double area = box_area(angle);
+    if (area < best_area) best_area = area, best = angle;
+  }
+  // Not worth turning for a box under 3 % smaller.
+  return best_area < 0.97 * box_area(0.0) ? best : 0.0;
+}
+
+// Corners turned by `angle` about the origin, moved so that their box
+// starts at (0, 0).
+std::vector<Uv> rotated(const std::vector<Uv>& corners, double angle) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  std::vector<Uv> out(corners.size());
+  double lo[2] = {INFINITY, INFINITY};
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    const Uv& p = corners[i];
+    out[i] = {c * p[0] - s * p[1], s * p[0] + c * p[1]};
     lo[0] = std::min(lo[0], out[i][0]), lo[1] = std::min(lo[1], out[i][1]);
   }
   for (Uv& p : out) p = {p[0] - lo[0], p[1] - lo[1]};
@@ -230,11 +292,18 @@ void pack_charts(std::span<const Uv> local, const std::vector<std::vector<Index>
         corners.push_back({(p[0] - box[c][0]) / cell, (p[1] - box[c][1]) / cell});
       }
     const bool may_turn = total > 0.0 && area[c] < options.fixed_orientation_area * total;
-    for (int turn = 0; turn < (may_turn ? 4 : 1); ++turn) {
-      Shape shape;
-      shape.corners = turned(corners, turn);
-      shape.footprint = rasterise(shape.corners, options.gutter_cells);
-      shapes_of[static_cast<std::size_t>(c)].push_back(std::move(shape));
+    // As laid out (the model's up axis up), and turned by at most an eighth
+    // of a turn to the smallest bounding box; small charts also by quarter
+    // turns of either.
+    const double tilt = options.tilt_to_smallest_box ? smallest_box_turn(corners) : 0.0;
+    for (int tilted = 0; tilted < (tilt != 0.0 ? 2 : 1); ++tilted) {
+      const std::vector<Uv> base = tilted ? rotated(corners, tilt) : corners;
+      for (int turn = 0; turn < (may_turn ? 4 : 1); ++turn) {
+        Shape shape;
+        shape.corners = turned(base, turn);
+        shape.footprint = rasterise(shape.corners, options.gutter_cells);
+        shapes_of[static_cast<std::size_t>(c)].push_back(std::move(shape));
+      }
     }
   }
   // Grid widths tried (in units of the ideal side; finer steps over a wider

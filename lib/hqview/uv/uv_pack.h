@@ -22,6 +22,9 @@ struct PackOptions {
   // Charts holding at least this share of the total area keep their
   // orientation; smaller ones may be turned by quarter turns to fit.
   double fixed_orientation_area = 0.2;
+  // Also try each chart turned (at most an eighth of a turn) to its
+  // smallest bounding box.
+  bool tilt_to_smallest_box = true;
 };
 
 // `local` holds each chart's layout (3 corners per triangle, any scale, one
