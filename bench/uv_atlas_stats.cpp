@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
     if (getenv("PROJ")) o.charts = UvCharts::projected;
     if (getenv("UPY")) o.up = {0,1,0};
     if (getenv("NOMERGE")) o.merge_by_layout = false;
+    if (getenv("NOARAP")) o.merge_with_arap = false;
     if (getenv("RES")) o.pack_resolution = atoi(getenv("RES"));
     if (getenv("WITHIN")) o.merge_min_area_within_2 = atof(getenv("WITHIN"));
     auto t0 = std::chrono::steady_clock::now();

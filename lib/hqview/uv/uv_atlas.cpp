@@ -38,6 +38,9 @@ struct Chart {
   std::vector<Index> triangles;
   Vec3 direction{};
   bool lscm = false;  // laid out by LSCM (else projected along direction)
+  // Edges inside the chart along which its layout is cut open (ascending
+  // keys; set by merge_by_layout, which lays unions out again with them).
+  std::vector<std::uint64_t> seams = {};
   bool own_plane() const { return direction == Vec3{}; }
 };
 
@@ -502,6 +505,7 @@ class AtlasBuilder {
       if (matching.empty()) break;
       std::vector<std::vector<Index>> merged_tris(matching.size());
       std::vector<std::vector<Uv>> merged_uv(matching.size());
+      std::vector<std::vector<std::uint64_t>> merged_seams(matching.size());
       std::vector<std::uint8_t> ok(matching.size(), 0);
       tbb::parallel_for(std::size_t{0}, matching.size(), [&](std::size_t i) {
         stop::check();
@@ -511,13 +515,27 @@ class AtlasBuilder {
         tris.reserve(charts_[a].triangles.size() + charts_[b].triangles.size());
         std::merge(charts_[a].triangles.begin(), charts_[a].triangles.end(), charts_[b].triangles.begin(),
                    charts_[b].triangles.end(), std::back_inserter(tris));
-        const std::vector<std::uint64_t> seams =
+        // The new seams and both charts' own (else a chart cut open by an
+        // earlier union would be glued shut again).
+        const std::vector<std::uint64_t> cut =
             seams_but_the_longest_arc(std::span<const Border>(borders.data() + cand.first, cand.last - cand.first));
+        std::vector<std::uint64_t>& seams = merged_seams[i];
+        std::merge(charts_[a].seams.begin(), charts_[a].seams.end(), charts_[b].seams.begin(), charts_[b].seams.end(),
+                   std::back_inserter(seams));
+        const auto old_end = static_cast<std::ptrdiff_t>(seams.size());
+        seams.insert(seams.end(), cut.begin(), cut.end());
+        std::inplace_merge(seams.begin(), seams.begin() + old_end, seams.end());
         std::vector<Uv>& uv = merged_uv[i];
-        if (!lscm_chart_layout(s_, tris, uv, seams)) return;
-        const auto flipped = uv_flipped_triangles(uv);
-        if (std::find(flipped.begin(), flipped.end(), 1) != flipped.end()) return;
-        if (!layout_acceptable(tris, uv) || !uv_overlapping_pairs(uv).empty()) return;
+        const auto passes = [&] {
+          const auto flipped = uv_flipped_triangles(uv);
+          return std::find(flipped.begin(), flipped.end(), 1) == flipped.end() && layout_acceptable(tris, uv) &&
+                 uv_overlapping_pairs(uv).empty();
+        };
+        if (!lscm_chart_layout(s_, tris, uv, seams)) return;  // not a disk
+        // LSCM keeps angles and may shrink a limb's tip; ARAP evens areas out.
+        if (!passes() && !(options_.merge_with_arap && lscm_chart_layout(s_, tris, uv, seams, ChartLayout::arap) &&
+                           passes()))
+          return;
         turn_up(tris, uv);
         ok[i] = 1;
       });
@@ -532,6 +550,7 @@ class AtlasBuilder {
           for (int k = 0; k < 3; ++k) local_[3 * static_cast<std::size_t>(tris[j]) + k] = merged_uv[i][3 * j + k];
         const Vec3 direction = normalized(normal_sum(a) + normal_sum(b));
         charts_[a].triangles = std::move(merged_tris[i]);
+        charts_[a].seams = std::move(merged_seams[i]);
         if (squared_norm(direction) > 0.5) charts_[a].direction = direction;
         charts_[a].lscm = true;
         charts_[b].triangles.clear();

@@ -61,6 +61,9 @@ struct UvOptions {
   // along seams where two charts share more than one border arc.
   bool merge_by_layout = true;
   double merge_min_area_within_2 = 0.95;
+  // A union whose LSCM layout fails the bound is laid out again by ARAP
+  // (LSCM refined as rigidly as possible), which keeps areas better.
+  bool merge_with_arap = true;
   // The merge's work budget: triangles laid out by its trial layouts, in
   // multiples of the surface's triangle count (it stops when spent).
   double merge_work_surfaces = 40;

@@ -8,10 +8,13 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_parameterization/LSCM_parameterizer_3.h>
 #include <CGAL/Surface_mesh_parameterization/parameterize.h>
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <tuple>
 
 namespace hq {
 namespace {
@@ -21,10 +24,110 @@ namespace SMP = CGAL::Surface_mesh_parameterization;
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
 
+// As-rigid-as-possible refinement of a disk's layout (the local/global
+// iterations of Liu et al., "A local/global approach to mesh
+// parameterization", 2008): each triangle's best rotation onto its 3D shape
+// (local), then the cotangent-weighted least-squares positions that follow
+// those rotations (global: one sparse Cholesky factorisation, vertex 0
+// pinned, two back-substitutions an iteration). Starts from `uv` (the LSCM
+// layout) and replaces it; false when the system cannot be factorised.
+bool arap_refine(const std::vector<Vec3>& points, const std::vector<std::vector<std::size_t>>& polygons,
+                 std::vector<std::array<double, 2>>& uv, int iterations) {
+  const std::size_t n = points.size(), nf = polygons.size();
+  // Per triangle: its corners' 2D isometric coordinates and the cotangent
+  // of each corner's angle (the weight of the opposite edge).
+  std::vector<std::array<std::array<double, 2>, 3>> flat(nf);
+  std::vector<std::array<double, 3>> cot(nf);
+  for (std::size_t f = 0; f < nf; ++f) {
+    const Vec3 &a = points[polygons[f][0]], &b = points[polygons[f][1]], &c = points[polygons[f][2]];
+    const Vec3 e1 = b - a, e2 = c - a;
+    const double l1 = norm(e1), twice_area = norm(cross(e1, e2));
+    if (!(l1 > 0.0) || !(twice_area > 0.0)) {
+      cot[f] = {0.0, 0.0, 0.0};
+      flat[f] = {};
+      continue;
+    }
+    flat[f] = {std::array<double, 2>{0.0, 0.0}, {l1, 0.0}, {dot(e2, e1) / l1, twice_area / l1}};
+    const Vec3* p[3] = {&a, &b, &c};
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 u = *p[(k + 1) % 3] - *p[k], v = *p[(k + 2) % 3] - *p[k];
+      cot[f][static_cast<std::size_t>(k)] = std::clamp(dot(u, v) / twice_area, -1e3, 1e3);
+    }
+  }
+  // The Laplacian of the cotangent weights, vertex 0 left out (pinned).
+  using SparseMatrix = Eigen::SparseMatrix<double>;
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(12 * nf);
+  const auto add = [&](std::size_t i, std::size_t j, double w) {
+    if (i == 0 || j == 0) return;
+    entries.emplace_back(static_cast<int>(i - 1), static_cast<int>(j - 1), w);
+  };
+  for (std::size_t f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t i = polygons[f][static_cast<std::size_t>((k + 1) % 3)],
+                        j = polygons[f][static_cast<std::size_t>((k + 2) % 3)];
+      const double w = cot[f][static_cast<std::size_t>(k)];
+      add(i, i, w), add(j, j, w), add(i, j, -w), add(j, i, -w);
+    }
+  if (n < 3) return false;
+  SparseMatrix laplacian(static_cast<int>(n - 1), static_cast<int>(n - 1));
+  laplacian.setFromTriplets(entries.begin(), entries.end());
+  Eigen::SimplicialLDLT<SparseMatrix> solver(laplacian);
+  if (solver.info() != Eigen::Success) return false;
+  const std::array<double, 2> pinned = uv[0];
+  std::vector<std::array<double, 4>> rotation(nf);  // row-major 2x2
+  Eigen::VectorXd bu(static_cast<Eigen::Index>(n - 1)), bv(static_cast<Eigen::Index>(n - 1));
+  for (int iteration = 0; iteration < iterations; ++iteration) {
+    // Local: the rotation closest to the cotangent-weighted covariance of
+    // each triangle's layout edges against its flat edges.
+    for (std::size_t f = 0; f < nf; ++f) {
+      double s00 = 0, s01 = 0, s10 = 0, s11 = 0;
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t a = static_cast<std::size_t>((k + 1) % 3), b = static_cast<std::size_t>((k + 2) % 3);
+        const double w = cot[f][static_cast<std::size_t>(k)];
+        const double ux = uv[polygons[f][a]][0] - uv[polygons[f][b]][0], uy = uv[polygons[f][a]][1] - uv[polygons[f][b]][1];
+        const double xx = flat[f][a][0] - flat[f][b][0], xy = flat[f][a][1] - flat[f][b][1];
+        s00 += w * ux * xx, s01 += w * ux * xy, s10 += w * uy * xx, s11 += w * uy * xy;
+      }
+      const double angle = std::atan2(s10 - s01, s00 + s11);
+      const double c = std::cos(angle), sn = std::sin(angle);
+      rotation[f] = {c, -sn, sn, c};
+    }
+    // Global: L u = sum over edges of w R (x_i - x_j), with vertex 0 moved
+    // to the right-hand side.
+    bu.setZero(), bv.setZero();
+    for (std::size_t f = 0; f < nf; ++f)
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t a = static_cast<std::size_t>((k + 1) % 3), b = static_cast<std::size_t>((k + 2) % 3);
+        const std::size_t i = polygons[f][a], j = polygons[f][b];
+        const double w = cot[f][static_cast<std::size_t>(k)];
+        const double xx = flat[f][a][0] - flat[f][b][0], xy = flat[f][a][1] - flat[f][b][1];
+        const auto& r = rotation[f];
+        const double rx = r[0] * xx + r[1] * xy, ry = r[2] * xx + r[3] * xy;
+        for (const auto& [p, q, sign] : {std::tuple{i, j, 1.0}, std::tuple{j, i, -1.0}}) {
+          if (p == 0) continue;
+          bu[static_cast<Eigen::Index>(p - 1)] += sign * w * rx;
+          bv[static_cast<Eigen::Index>(p - 1)] += sign * w * ry;
+          if (q == 0) {  // the pinned neighbour's term of L u
+            bu[static_cast<Eigen::Index>(p - 1)] += w * pinned[0];
+            bv[static_cast<Eigen::Index>(p - 1)] += w * pinned[1];
+          }
+        }
+      }
+    const Eigen::VectorXd u = solver.solve(bu), v = solver.solve(bv);
+    if (solver.info() != Eigen::Success) return false;
+    for (std::size_t i = 1; i < n; ++i) {
+      uv[i] = {u[static_cast<Eigen::Index>(i - 1)], v[static_cast<Eigen::Index>(i - 1)]};
+      if (!std::isfinite(uv[i][0]) || !std::isfinite(uv[i][1])) return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 bool lscm_chart_layout(const TriSurface& surface, std::span<const Index> chart, std::vector<Uv>& uvs,
-                       std::span<const std::uint64_t> seams) {
+                       std::span<const std::uint64_t> seams, ChartLayout method) {
   if (chart.size() < 2) return false;
   // The chart's own vertices: the corners around a surface vertex are one
   // vertex where their triangles are glued, across an edge that two chart
@@ -113,14 +216,21 @@ bool lscm_chart_layout(const TriSurface& surface, std::span<const Index> chart, 
   auto uv_map = mesh.add_property_map<Mesh::Vertex_index, Kernel::Point_2>("v:uv").first;
   if (SMP::parameterize(mesh, SMP::LSCM_parameterizer_3<Mesh>(), border, uv_map) != SMP::OK) return false;
 
+  std::vector<std::array<double, 2>> vertex_uv(ids.size());
+  for (std::size_t v = 0; v < ids.size(); ++v) {
+    const Kernel::Point_2& p = uv_map[Mesh::Vertex_index(static_cast<Mesh::size_type>(v))];
+    vertex_uv[v] = {p.x(), p.y()};
+  }
+  if (method == ChartLayout::arap) {
+    std::vector<Vec3> vertex_points(ids.size());
+    for (std::size_t v = 0; v < ids.size(); ++v) vertex_points[v] = surface.points[ids[v]];
+    if (!arap_refine(vertex_points, polygons, vertex_uv, kArapIterations)) return false;
+  }
+
   std::vector<Uv> out(3 * chart.size());
   double area_uv = 0.0;
   for (std::size_t i = 0; i < chart.size(); ++i) {
-    const auto& tri = surface.triangles[chart[i]];
-    for (int k = 0; k < 3; ++k) {
-      const Kernel::Point_2& p = uv_map[Mesh::Vertex_index(static_cast<Mesh::size_type>(vertex_of[3 * i + k]))];
-      out[3 * i + k] = {p.x(), p.y()};
-    }
+    for (int k = 0; k < 3; ++k) out[3 * i + k] = {vertex_uv[vertex_of[3 * i + k]][0], vertex_uv[vertex_of[3 * i + k]][1]};
     const Uv &a = out[3 * i], &b = out[3 * i + 1], &c = out[3 * i + 2];
     area_uv += 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
   }
