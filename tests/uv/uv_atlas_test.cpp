@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <tuple>
 
 #include "hqview/io/mesh_reader.h"
@@ -85,6 +86,29 @@ TriSurface torus(int n, int m, double big, double small) {
       s.triangles.push_back({a, d, c});
     }
   return s;
+}
+
+TEST(UvValidation, PartByPartFindsThePairsOfOneSearch) {
+  // 3,000 random small counter-clockwise triangles in the unit square, in
+  // 40 parts (random, so parts overlap everywhere), then the same with
+  // parts that are vertical strips (the packed-charts case): the pairs
+  // equal those of one search over all triangles.
+  std::mt19937 rng(16);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<Uv> uvs;
+  for (int t = 0; t < 3000; ++t) {
+    const double x = unit(rng), y = unit(rng), r = 0.02 * unit(rng) + 1e-3;
+    uvs.insert(uvs.end(), {Uv{x, y}, Uv{x + r, y}, Uv{x + 0.3 * r, y + r}});
+  }
+  const auto all = uv_overlapping_pairs(uvs);
+  ASSERT_GT(all.size(), 100u);
+  std::vector<Index> random_parts, strips;
+  for (int t = 0; t < 3000; ++t) {
+    random_parts.push_back(static_cast<Index>(rng() % 40));
+    strips.push_back(static_cast<Index>(std::min(9.0, std::floor(10 * uvs[3 * static_cast<std::size_t>(t)][0]))));
+  }
+  EXPECT_EQ(uv_overlapping_pairs_by_part(uvs, random_parts), all);
+  EXPECT_EQ(uv_overlapping_pairs_by_part(uvs, strips), all);
 }
 
 TEST(UvPack, AChartLyingAtAnAngleIsTurnedToItsSmallestBox) {

@@ -80,7 +80,7 @@ class AtlasBuilder {
     // Overlaps are searched once, on a first packing (charts apart);
     // splitting only separates triangles, so it never makes new ones.
     pack();
-    std::vector<std::array<Index, 2>> overlaps = uv_overlapping_pairs(uvs_);
+    std::vector<std::array<Index, 2>> overlaps = uv_overlapping_pairs_by_part(uvs_, current_chart_of());
     const Index overlap_splits = split_overlapping_charts(overlaps);
     atlas.num_splits += overlap_splits;
     // The final exact check on the final UVs. Without splits the first
@@ -88,7 +88,7 @@ class AtlasBuilder {
     for (int round = 0;; ++round) {
       if (round > 0 || overlap_splits > 0) {
         pack();
-        overlaps = uv_overlapping_pairs(uvs_);
+        overlaps = uv_overlapping_pairs_by_part(uvs_, current_chart_of());
       }
       const std::vector<std::uint8_t> flipped = uv_flipped_triangles(uvs_);
       std::vector<Index> bad;
@@ -557,6 +557,14 @@ class AtlasBuilder {
       }
       std::erase_if(charts_, [](const Chart& c) { return c.triangles.empty(); });
     }
+  }
+
+  // Each triangle's chart now (triangles of no chart share one more part).
+  std::vector<Index> current_chart_of() const {
+    std::vector<Index> part(static_cast<std::size_t>(nt_), static_cast<Index>(charts_.size()));
+    for (std::size_t c = 0; c < charts_.size(); ++c)
+      for (Index t : charts_[c].triangles) part[t] = static_cast<Index>(c);
+    return part;
   }
 
   // Charts a and b as they are now (see merge_by_layout).

@@ -31,4 +31,12 @@ std::vector<std::uint8_t> uv_flipped_triangles(std::span<const Uv> uvs);
 std::vector<std::array<Index, 2>> uv_overlapping_pairs(std::span<const Uv> uvs, std::span<const Index> group = {},
                                                        std::span<const Index> subset = {});
 
+// The same pairs as uv_overlapping_pairs(uvs), found part by part
+// (`part_of[t]`: t's part, e.g. its chart, 0-based): inside each part, and
+// between two parts whose bounding boxes meet, among the triangles inside
+// the other part's box; the parts are searched in parallel. Much faster
+// than one search over all triangles when the parts lie mostly apart, as
+// packed charts do.
+std::vector<std::array<Index, 2>> uv_overlapping_pairs_by_part(std::span<const Uv> uvs, std::span<const Index> part_of);
+
 }  // namespace hq
