@@ -237,7 +237,19 @@ class AtlasBuilder {
     for (Index t = 0; t < nt_; ++t) total += area_[t];
     const double cos_merge = std::cos(options_.merge_cone_degrees * std::numbers::pi / 180.0);
     const double cos_absorb = std::cos(options_.absorb_cone_degrees * std::numbers::pi / 180.0);
+    // Each chart's triangles ascending (kept so by the merges below).
+    tbb::parallel_for(std::size_t{0}, charts_.size(),
+                      [&](std::size_t c) { std::sort(charts_[c].triangles.begin(), charts_[c].triangles.end()); });
+    std::vector<double> area_of(charts_.size());
+    std::vector<Vec3> normal_of(charts_.size());
     for (int pass = 0; pass < 64; ++pass) {
+      // Each chart's area and area-weighted normal sum, as chart_area and
+      // normal_sum compute them (a chart merged in this pass is not looked
+      // at again in it).
+      tbb::parallel_for(std::size_t{0}, charts_.size(), [&](std::size_t c) {
+        area_of[c] = chart_area(static_cast<Index>(c));
+        normal_of[c] = normal_sum(static_cast<Index>(c));
+      });
       // Shared border lengths between chart pairs.
       std::vector<std::tuple<Index, Index, double>> borders;
       for (Index t = 0; t < nt_; ++t)
@@ -264,19 +276,20 @@ class AtlasBuilder {
       bool merged = false;
       for (const auto& [neg_length, a, b] : pairs) {
         if (touched[a] || touched[b]) continue;
-        const double area_a = chart_area(a), area_b = chart_area(b);
+        const double area_a = area_of[a], area_b = area_of[b];
         const bool small = std::min(area_a, area_b) < options_.merge_small_area * total;
         // A small chart joining a large one keeps the large one's direction.
         const Vec3 direction = small ? (area_a >= area_b ? charts_[a].direction : charts_[b].direction)
-                                     : normalized(normal_sum(a) + normal_sum(b));
+                                     : normalized(normal_of[a] + normal_of[b]);
         const double limit = small ? cos_absorb : cos_merge;
         if (!(squared_norm(direction) > 0.5) || !within_cone(a, direction, limit) || !within_cone(b, direction, limit))
           continue;
         const Index keep = std::min(a, b), gone = std::max(a, b);
         for (Index t : charts_[gone].triangles) chart_of_[t] = keep;
-        charts_[keep].triangles.insert(charts_[keep].triangles.end(), charts_[gone].triangles.begin(),
-                                       charts_[gone].triangles.end());
-        std::sort(charts_[keep].triangles.begin(), charts_[keep].triangles.end());
+        std::vector<Index>& kept = charts_[keep].triangles;
+        const auto middle = static_cast<std::ptrdiff_t>(kept.size());
+        kept.insert(kept.end(), charts_[gone].triangles.begin(), charts_[gone].triangles.end());
+        std::inplace_merge(kept.begin(), kept.begin() + middle, kept.end());
         charts_[gone].triangles.clear();
         charts_[gone].direction = Vec3{};
         charts_[keep].direction = direction;
@@ -772,7 +785,18 @@ class AtlasBuilder {
   Index make_disks() {
     Index splits = 0;
     std::vector<Index> chart_of(static_cast<std::size_t>(nt_), kNoIndex);
+    for (std::size_t c = 0; c < charts_.size(); ++c)
+      for (Index t : charts_[c].triangles) chart_of[t] = static_cast<Index>(c);
+    // The charts that already are one disk (most) are found in parallel and
+    // left as they are; the others are cut below, one after the other, as
+    // before (the same charts in the same order).
+    const std::size_t num_first = charts_.size();
+    std::vector<std::uint8_t> is_disk(num_first, 0);
+    tbb::parallel_for(std::size_t{0}, num_first, [&](std::size_t c) {
+      is_disk[c] = components(c, chart_of).size() == 1 && euler_characteristic(charts_[c].triangles) == 1;
+    });
     for (std::size_t c = 0; c < charts_.size(); ++c) {
+      if (c < num_first && is_disk[c]) continue;
       std::vector<std::size_t> todo = {c};
       while (!todo.empty()) {
         const std::size_t k = todo.back();
