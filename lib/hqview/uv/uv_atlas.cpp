@@ -10,6 +10,7 @@
 #include <set>
 #include <tuple>
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "hqview/core/stop.h"
@@ -891,26 +892,23 @@ class AtlasBuilder {
 
   std::vector<std::vector<Index>> components(std::size_t c, const std::vector<Index>& chart_of) const {
     std::vector<std::vector<Index>> out;
-    std::vector<Index> seen;
-    std::vector<std::uint8_t> mark(charts_[c].triangles.size(), 0);
-    auto position = [&](Index t) {
-      return static_cast<std::size_t>(
-          std::lower_bound(charts_[c].triangles.begin(), charts_[c].triangles.end(), t) - charts_[c].triangles.begin());
-    };
-    for (std::size_t i = 0; i < charts_[c].triangles.size(); ++i) {
-      if (mark[i]) continue;
-      std::vector<Index> piece = {charts_[c].triangles[i]};
-      mark[i] = 1;
+    // This thread's marks, one per surface triangle: all 0 between calls.
+    std::vector<std::uint8_t>& mark = marks_.local();
+    mark.resize(static_cast<std::size_t>(nt_), 0);
+    for (Index t0 : charts_[c].triangles) {
+      if (mark[t0]) continue;
+      std::vector<Index> piece = {t0};
+      mark[t0] = 1;
       for (std::size_t j = 0; j < piece.size(); ++j)
         for (int k = 0; k < 3; ++k) {
           const Index n = neighbour_[3 * static_cast<std::size_t>(piece[j]) + k];
           if (n == kNoIndex || chart_of[n] != static_cast<Index>(c) || !glued(piece[j], k, n)) continue;
-          const std::size_t pn = position(n);
-          if (!mark[pn]) mark[pn] = 1, piece.push_back(n);
+          if (!mark[n]) mark[n] = 1, piece.push_back(n);
         }
       std::sort(piece.begin(), piece.end());
       out.push_back(std::move(piece));
     }
+    for (Index t : charts_[c].triangles) mark[t] = 0;
     return out;
   }
 
@@ -1033,6 +1031,7 @@ class AtlasBuilder {
   std::vector<Index> neighbour_;  // 3 per triangle: across each manifold edge, or kNoIndex
   std::vector<Uv> local_;  // each chart's own layout (model units)
   std::vector<Uv> uvs_;    // packed into [0,1]² by pack()
+  mutable tbb::enumerable_thread_specific<std::vector<std::uint8_t>> marks_;  // components()' scratch
 };
 
 }  // namespace
