@@ -441,8 +441,9 @@ class AtlasBuilder {
   }
 
   // Neighbouring charts are merged, longest shared border first, while the
-  // union's LSCM layout stays one-to-one (exact checks) and within the
-  // distortion bound (layout_acceptable). Two charts that share their border
+  // union's LSCM layout (or, when that fails, its ARAP layout) stays
+  // one-to-one (exact checks) and within the distortion bound
+  // (layout_acceptable). Two charts that share their border
   // in several arcs are glued along the longest and cut open along the
   // others (seams), so an open cylinder unrolls into one chart and a torus
   // can become one disk. The merged layout is turned so that the model's up

@@ -1,5 +1,6 @@
-// The LSCM translation unit (CGAL Surface_mesh_parameterization and Eigen):
-// heavy to compile, so nothing else lives here.
+// The chart-layout translation unit (CGAL Surface_mesh_parameterization's
+// LSCM, then optionally our ARAP iterations on Eigen): heavy to compile, so
+// nothing else lives here.
 
 #include "hqview/uv/uv_lscm.h"
 
