@@ -3,6 +3,8 @@
 // surface in ../shared/data).
 
 #include "hqview/uv/uv_atlas.h"
+#include "hqview/uv/uv_cut.h"
+#include "hqview/uv/uv_lscm.h"
 #include "hqview/uv/uv_metrics.h"
 #include "hqview/uv/uv_pack.h"
 
@@ -170,11 +172,70 @@ TEST(UvAtlas, SphereAndTorusAreCutIntoFewDisks) {
   expect_valid_atlas(ring, b, "torus");
   expect_disks(ring, b, "torus");
   EXPECT_GE(b.area_fraction_area_ratio_within_2, 0.9);
-  // The issue asks for one disk (cut along two loops); the merge stops at
-  // two (three with LSCM alone, whose union leaves the distortion bound):
-  // the last union's shared border closes a loop, which the seams of
-  // merge_by_layout do not cut (docs/analysis.md, "UV atlas").
-  EXPECT_LE(b.num_charts, 2);
+  // One disk: the last union is an annulus, cut open by disk_cut.
+  EXPECT_EQ(b.num_charts, 1);
+}
+
+// Sum of the lengths of the edges `keys` of s.
+double seam_length(const TriSurface& s, const std::vector<std::uint64_t>& keys) {
+  double length = 0.0;
+  for (std::uint64_t k : keys) length += norm(s.points[k >> 32] - s.points[k & 0xffffffffu]);
+  return length;
+}
+
+std::vector<Index> all_triangles(const TriSurface& s) {
+  std::vector<Index> tris(s.triangles.size());
+  for (std::size_t t = 0; t < tris.size(); ++t) tris[t] = static_cast<Index>(t);
+  return tris;
+}
+
+TEST(UvCut, AnOpenCylinderIsCutAlongOneShortestLineBetweenItsBorders) {
+  // 48 around, 10 rings, height 2: the shortest path between the two
+  // borders is one vertical line of 10 edges, length 2.
+  const TriSurface s = open_cylinder(48, 10, 1.0, 2.0);
+  const std::vector<Index> tris = all_triangles(s);
+  const std::vector<std::uint64_t> cut = disk_cut(s, tris, {});
+  ASSERT_EQ(cut.size(), 10u);
+  EXPECT_NEAR(seam_length(s, cut), 2.0, 1e-12);
+  for (std::uint64_t k : cut) EXPECT_EQ((k & 0xffffffffu) - (k >> 32), 48u);  // vertical: one ring apart
+  std::vector<Uv> uv;
+  EXPECT_TRUE(lscm_chart_layout(s, tris, uv, cut));
+  EXPECT_FALSE(lscm_chart_layout(s, tris, uv, {}));  // uncut it is no disk
+}
+
+TEST(UvCut, AClosedTorusIsCutIntoOneDiskAlongTwoLoops) {
+  const TriSurface s = torus(48, 16, 2.0, 0.6);
+  const std::vector<Index> tris = all_triangles(s);
+  const std::vector<std::uint64_t> cut = disk_cut(s, tris, {});
+  std::vector<Uv> uv;
+  ASSERT_TRUE(lscm_chart_layout(s, tris, uv, cut));
+  // No longer than the meridian and the outer equator through the first
+  // vertex (both polylines of the grid), which together cut it open; at
+  // least the meridian, the shortest loop that is not contractible.
+  const double meridian = 16 * 2 * 0.6 * std::sin(std::numbers::pi / 16);
+  const double equator = 48 * 2 * 2.6 * std::sin(std::numbers::pi / 48);
+  EXPECT_LE(seam_length(s, cut), meridian + equator + 1e-9);
+  EXPECT_GE(seam_length(s, cut), meridian - 1e-9);
+}
+
+TEST(UvCut, DisksSpheresAndPiecesAreLeftAsTheyAre) {
+  // Half the cylinder is a disk already; a sphere would need a slit; two
+  // pieces are no single chart.
+  const TriSurface cylinder = open_cylinder(48, 10, 1.0, 2.0);
+  std::vector<Index> half, pieces;
+  for (Index t = 0; t < static_cast<Index>(cylinder.triangles.size()); ++t) {
+    const Index i = t / 2 % 48, j = t / 2 / 48;
+    if (i < 24) half.push_back(t);
+    if (i < 10 && (j < 3 || j > 6)) pieces.push_back(t);
+  }
+  EXPECT_TRUE(disk_cut(cylinder, half, {}).empty());
+  EXPECT_TRUE(disk_cut(cylinder, pieces, {}).empty());
+  const TriSurface sphere = icosphere(3);
+  EXPECT_TRUE(disk_cut(sphere, all_triangles(sphere), {}).empty());
+  // A seam already cut across the cylinder leaves nothing to add.
+  std::vector<std::uint64_t> line;
+  for (std::uint64_t j = 0; j < 10; ++j) line.push_back((48 * j) << 32 | (48 * j + 48));
+  EXPECT_TRUE(disk_cut(cylinder, all_triangles(cylinder), line).empty());
 }
 
 TEST(UvAtlas, TheMergeStopsWhenItsWorkBudgetIsSpent) {

@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "hqview/core/stop.h"
+#include "hqview/uv/uv_cut.h"
 #include "hqview/uv/uv_lscm.h"
 #include "hqview/uv/uv_metrics.h"
 #include "hqview/uv/uv_pack.h"
@@ -445,13 +446,17 @@ class AtlasBuilder {
   // one-to-one (exact checks) and within the distortion bound
   // (layout_acceptable). Two charts that share their border
   // in several arcs are glued along the longest and cut open along the
-  // others (seams), so an open cylinder unrolls into one chart and a torus
-  // can become one disk. The merged layout is turned so that the model's up
+  // others (seams), so an open cylinder unrolls into one chart. A union
+  // that still is no disk (a handle, two borders) is cut open along
+  // shortest loops (disk_cut) once no other union passes, so a torus
+  // becomes one disk. The merged layout is turned so that the model's up
   // axis points up where the chart allows it.
   void merge_by_layout() {
     std::size_t work = 0;  // triangles laid out so far: at most merge_work_surfaces surfaces' worth
     const auto budget = static_cast<std::size_t>(std::max(0.0, options_.merge_work_surfaces) * static_cast<double>(nt_));
-    std::set<std::array<std::size_t, 4>> failed;
+    std::set<std::array<std::size_t, 4>> failed, not_a_disk;
+    bool cut_loops = false;
+    constexpr std::uint8_t kNotADisk = 2;
     while (work < budget) {
       // The merging can take seconds: a stop request (or this thread's
       // --mesh-timeout) is honoured between rounds and before each layout.
@@ -517,7 +522,16 @@ class AtlasBuilder {
         work += charts_[a].triangles.size() + charts_[b].triangles.size();
         if (work >= budget) break;
       }
-      if (matching.empty()) break;
+      if (matching.empty()) {
+        // Unions that are no disk are tried again, cut open, once the
+        // merge without cuts is done: cuts are longer seams, and an atlas
+        // merged first without them keeps larger, rounder charts.
+        if (cut_loops || not_a_disk.empty()) break;
+        cut_loops = true;
+        for (const auto& pair : not_a_disk) failed.erase(pair);
+        not_a_disk.clear();
+        continue;
+      }
       std::vector<std::vector<Index>> merged_tris(matching.size());
       std::vector<std::vector<Uv>> merged_uv(matching.size());
       std::vector<std::vector<std::uint64_t>> merged_seams(matching.size());
@@ -546,7 +560,21 @@ class AtlasBuilder {
           return std::find(flipped.begin(), flipped.end(), 1) == flipped.end() && layout_acceptable(tris, uv) &&
                  uv_overlapping_pairs(uv).empty();
         };
-        if (!lscm_chart_layout(s_, tris, uv, seams)) return;  // not a disk
+        if (!lscm_chart_layout(s_, tris, uv, seams)) {
+          // Not a disk (a handle, or borders that the glued arc joined into
+          // an annulus): once no union without cuts is left, cut it open
+          // along shortest loops and try again.
+          if (!cut_loops) {
+            ok[i] = kNotADisk;
+            return;
+          }
+          const std::vector<std::uint64_t> loops = disk_cut(s_, tris, seams);
+          if (loops.empty()) return;
+          const auto end = static_cast<std::ptrdiff_t>(seams.size());
+          seams.insert(seams.end(), loops.begin(), loops.end());
+          std::inplace_merge(seams.begin(), seams.begin() + end, seams.end());
+          if (!lscm_chart_layout(s_, tris, uv, seams)) return;
+        }
         // LSCM keeps angles and may shrink a limb's tip; ARAP evens areas out.
         if (!passes() && !(options_.merge_with_arap && lscm_chart_layout(s_, tris, uv, seams, ChartLayout::arap) &&
                            passes()))
@@ -556,8 +584,9 @@ class AtlasBuilder {
       });
       for (std::size_t i = 0; i < matching.size(); ++i) {
         const Index a = borders[matching[i]->first].a, b = borders[matching[i]->first].b;
-        if (!ok[i]) {
+        if (ok[i] != 1) {
           failed.insert(pair_signature(a, b));
+          if (ok[i] == kNotADisk) not_a_disk.insert(pair_signature(a, b));
           continue;
         }
         const std::vector<Index>& tris = merged_tris[i];
