@@ -555,12 +555,17 @@ class AtlasBuilder {
         seams.insert(seams.end(), cut.begin(), cut.end());
         std::inplace_merge(seams.begin(), seams.begin() + old_end, seams.end());
         std::vector<Uv>& uv = merged_uv[i];
-        const auto passes = [&] {
-          const auto flipped = uv_flipped_triangles(uv);
-          return std::find(flipped.begin(), flipped.end(), 1) == flipped.end() && layout_acceptable(tris, uv) &&
-                 uv_overlapping_pairs(uv).empty();
+        // The exact checks and the distortion bound.
+        bool accepted = false;
+        const auto passes = [&](std::span<const Uv> layout) {
+          const auto flipped = uv_flipped_triangles(layout);
+          return accepted = std::find(flipped.begin(), flipped.end(), 1) == flipped.end() &&
+                            layout_acceptable(tris, layout) && uv_overlapping_pairs(layout).empty();
         };
-        if (!lscm_chart_layout(s_, tris, uv, seams)) {
+        // LSCM keeps angles and may shrink a limb's tip; when its layout does
+        // not pass, ARAP (from it) evens areas out.
+        const ChartLayout method = options_.merge_with_arap ? ChartLayout::arap : ChartLayout::lscm;
+        if (!lscm_chart_layout(s_, tris, uv, seams, method, passes)) {
           // Not a disk (a handle, or borders that the glued arc joined into
           // an annulus): once no union without cuts is left, cut it open
           // along shortest loops and try again.
@@ -573,12 +578,9 @@ class AtlasBuilder {
           const auto end = static_cast<std::ptrdiff_t>(seams.size());
           seams.insert(seams.end(), loops.begin(), loops.end());
           std::inplace_merge(seams.begin(), seams.begin() + end, seams.end());
-          if (!lscm_chart_layout(s_, tris, uv, seams)) return;
+          if (!lscm_chart_layout(s_, tris, uv, seams, method, passes)) return;
         }
-        // LSCM keeps angles and may shrink a limb's tip; ARAP evens areas out.
-        if (!passes() && !(options_.merge_with_arap && lscm_chart_layout(s_, tris, uv, seams, ChartLayout::arap) &&
-                           passes()))
-          return;
+        if (!accepted && !passes(uv)) return;
         turn_up(tris, uv);
         ok[i] = 1;
       });

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <tuple>
 
 namespace hq {
@@ -128,7 +129,8 @@ bool arap_refine(const std::vector<Vec3>& points, const std::vector<std::vector<
 }  // namespace
 
 bool lscm_chart_layout(const TriSurface& surface, std::span<const Index> chart, std::vector<Uv>& uvs,
-                       std::span<const std::uint64_t> seams, ChartLayout method) {
+                       std::span<const std::uint64_t> seams, ChartLayout method,
+                       const std::function<bool(std::span<const Uv>)>& good_enough) {
   if (chart.size() < 2) return false;
   // The chart's own vertices: the corners around a surface vertex are one
   // vertex where their triangles are glued, across an edge that two chart
@@ -222,22 +224,37 @@ bool lscm_chart_layout(const TriSurface& surface, std::span<const Index> chart, 
     const Kernel::Point_2& p = uv_map[Mesh::Vertex_index(static_cast<Mesh::size_type>(v))];
     vertex_uv[v] = {p.x(), p.y()};
   }
-  if (method == ChartLayout::arap) {
-    std::vector<Vec3> vertex_points(ids.size());
-    for (std::size_t v = 0; v < ids.size(); ++v) vertex_points[v] = surface.points[ids[v]];
-    if (!arap_refine(vertex_points, polygons, vertex_uv, kArapIterations)) return false;
+  // Corners of the chart triangles, scaled to the chart's 3D area.
+  const auto corners = [&](std::vector<Uv>& out) {
+    out.assign(3 * chart.size(), Uv{});
+    double area_uv = 0.0;
+    for (std::size_t i = 0; i < chart.size(); ++i) {
+      for (int k = 0; k < 3; ++k)
+        out[3 * i + k] = {vertex_uv[vertex_of[3 * i + k]][0], vertex_uv[vertex_of[3 * i + k]][1]};
+      const Uv &a = out[3 * i], &b = out[3 * i + 1], &c = out[3 * i + 2];
+      area_uv += 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
+    }
+    if (!(area_uv > 0.0) || !std::isfinite(area_uv)) return false;
+    const double scale = std::sqrt(area_3d / area_uv);
+    for (Uv& p : out) p = {p[0] * scale, p[1] * scale};
+    return true;
+  };
+  std::vector<Uv> out;
+  if (method == ChartLayout::lscm || good_enough) {
+    const bool laid_out = corners(out);
+    if (method == ChartLayout::lscm) {
+      if (laid_out) uvs = std::move(out);
+      return laid_out;
+    }
+    if (laid_out && good_enough(out)) {
+      uvs = std::move(out);
+      return true;
+    }
   }
-
-  std::vector<Uv> out(3 * chart.size());
-  double area_uv = 0.0;
-  for (std::size_t i = 0; i < chart.size(); ++i) {
-    for (int k = 0; k < 3; ++k) out[3 * i + k] = {vertex_uv[vertex_of[3 * i + k]][0], vertex_uv[vertex_of[3 * i + k]][1]};
-    const Uv &a = out[3 * i], &b = out[3 * i + 1], &c = out[3 * i + 2];
-    area_uv += 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
-  }
-  if (!(area_uv > 0.0) || !std::isfinite(area_uv)) return false;
-  const double scale = std::sqrt(area_3d / area_uv);
-  for (Uv& p : out) p = {p[0] * scale, p[1] * scale};
+  // ARAP, from the LSCM layout.
+  std::vector<Vec3> vertex_points(ids.size());
+  for (std::size_t v = 0; v < ids.size(); ++v) vertex_points[v] = surface.points[ids[v]];
+  if (!arap_refine(vertex_points, polygons, vertex_uv, kArapIterations) || !corners(out)) return false;
   uvs = std::move(out);
   return true;
 }

@@ -4,6 +4,7 @@
 // possible (ARAP local/global iterations, Eigen's sparse Cholesky).
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -28,8 +29,11 @@ inline constexpr int kArapIterations = 12;
 // of them share, except `seams` (ascending keys min(a, b) << 32 | max(a, b)
 // of surface vertex ids), along which the chart is cut open. Returns false
 // (uvs untouched) when the chart is not a disk or the solver fails. The
-// caller validates the result (flips, overlaps).
+// caller validates the result (flips, overlaps). With method arap and
+// `good_enough`, the LSCM layout is kept when good_enough accepts it, and
+// refined by ARAP (without solving LSCM again) when not.
 bool lscm_chart_layout(const TriSurface& surface, std::span<const Index> chart, std::vector<Uv>& uvs,
-                       std::span<const std::uint64_t> seams = {}, ChartLayout method = ChartLayout::lscm);
+                       std::span<const std::uint64_t> seams = {}, ChartLayout method = ChartLayout::lscm,
+                       const std::function<bool(std::span<const Uv>)>& good_enough = {});
 
 }  // namespace hq
