@@ -948,35 +948,46 @@ class AtlasBuilder {
   // surface vertex at one position of the chart's layout (so a seam, where
   // the layout cuts the chart open, counts as border).
   long euler_characteristic(const std::vector<Index>& tris) const {
-    struct Corner {
-      Index vertex;
-      Uv uv;
-      std::size_t at;  // position 3 i + k in tris
-    };
-    std::vector<Corner> corners;
-    corners.reserve(3 * tris.size());
+    const std::size_t n = 3 * tris.size();
+    if (n == 0) return 0;
+    // Corners by surface vertex (key vertex << 32 | position 3 i + k).
+    std::vector<std::uint64_t> keys(n);
     for (std::size_t i = 0; i < tris.size(); ++i)
       for (int k = 0; k < 3; ++k)
-        corners.push_back({s_.triangles[tris[i]][k], local_[3 * static_cast<std::size_t>(tris[i]) + k], 3 * i + k});
-    std::sort(corners.begin(), corners.end(), [](const Corner& x, const Corner& y) {
-      return std::tie(x.vertex, x.uv, x.at) < std::tie(y.vertex, y.uv, y.at);
-    });
-    std::vector<std::uint32_t> vertex_of(corners.size());
+        keys[3 * i + k] = static_cast<std::uint64_t>(static_cast<std::uint32_t>(s_.triangles[tris[i]][k])) << 32 |
+                          (3 * i + k);
+    std::sort(keys.begin(), keys.end());
+    const auto at = [&](std::size_t p) { return static_cast<std::size_t>(keys[p] & 0xffffffffu); };
+    const auto uv_at = [&](std::size_t corner) { return local_[3 * static_cast<std::size_t>(tris[corner / 3]) + corner % 3]; };
+    // Chart vertices: the corners of one surface vertex at one position.
+    std::vector<std::uint32_t> vertex_of(n);
     std::uint32_t v = 0;
-    for (std::size_t i = 0; i < corners.size(); ++i) {
-      if (i > 0 && (corners[i].vertex != corners[i - 1].vertex || corners[i].uv != corners[i - 1].uv)) ++v;
-      vertex_of[corners[i].at] = v;
+    std::vector<std::size_t> runs{0};
+    for (std::size_t p = 0; p < n; ++p) {
+      if (p > 0 && keys[p] >> 32 != keys[p - 1] >> 32) runs.push_back(p);
+      const Uv uv = uv_at(at(p));
+      std::size_t q = runs.back();
+      while (q < p && uv_at(at(q)) != uv) ++q;
+      vertex_of[at(p)] = q < p ? vertex_of[at(q)] : v++;
     }
-    std::vector<std::uint64_t> edges;
-    edges.reserve(corners.size());
-    for (std::size_t i = 0; i < tris.size(); ++i)
-      for (std::size_t k = 0; k < 3; ++k) {
-        const std::uint32_t a = vertex_of[3 * i + k], b = vertex_of[3 * i + (k + 1) % 3];
-        edges.push_back(static_cast<std::uint64_t>(std::min(a, b)) << 32 | std::max(a, b));
+    runs.push_back(n);
+    // Edges: each chart vertex's distinct neighbours, an edge seen from both
+    // ends (a degenerate edge from a vertex to itself once).
+    std::size_t ends = 0, loops = 0;
+    std::vector<std::uint64_t> pairs;
+    for (std::size_t r = 0; r + 1 < runs.size(); ++r) {
+      pairs.clear();
+      for (std::size_t p = runs[r]; p < runs[r + 1]; ++p) {
+        const std::size_t c = at(p), base = c / 3 * 3;
+        const std::uint64_t a = vertex_of[c];
+        pairs.push_back(a << 32 | vertex_of[base + (c + 1) % 3]);
+        pairs.push_back(a << 32 | vertex_of[base + (c + 2) % 3]);
       }
-    std::sort(edges.begin(), edges.end());
-    const long e = std::unique(edges.begin(), edges.end()) - edges.begin();
-    return static_cast<long>(corners.empty() ? 0 : v + 1) - e + static_cast<long>(tris.size());
+      std::sort(pairs.begin(), pairs.end());
+      pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+      for (std::uint64_t e : pairs) (e >> 32 == (e & 0xffffffffu) ? loops : ends) += 1;
+    }
+    return static_cast<long>(v) - static_cast<long>(ends / 2 + loops) + static_cast<long>(tris.size());
   }
 
   // One global scale: each chart's layout is scaled so that its UV area is its

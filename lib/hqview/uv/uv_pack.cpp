@@ -7,6 +7,8 @@
 #include <numbers>
 #include <numeric>
 
+#include <tbb/parallel_for.h>
+
 namespace hq {
 namespace {
 
@@ -283,7 +285,8 @@ void pack_charts(std::span<const Uv> local, const std::vector<std::vector<Index>
   // Each chart's corners (in cells) and footprint, per allowed quarter turn;
   // the same for every grid width tried.
   std::vector<std::vector<Shape>> shapes_of(charts.size());
-  for (Index c : order) {
+  tbb::parallel_for(std::size_t{0}, order.size(), [&](std::size_t o) {
+    const Index c = order[o];
     std::vector<Uv> corners;
     corners.reserve(3 * charts[c].size());
     for (Index t : charts[c])
@@ -305,59 +308,67 @@ void pack_charts(std::span<const Uv> local, const std::vector<std::vector<Index>
         shapes_of[static_cast<std::size_t>(c)].push_back(std::move(shape));
       }
     }
-  }
+  });
   // Grid widths tried (in units of the ideal side; finer steps over a wider
   // range for a few charts, which are cheap to place); the one whose packing
   // fills the square best wins (ties: the first).
-  std::vector<Uv> cells, best_cells;
-  double best_extent = 0.0, best_fill = -1.0;
+  // Per grid width (tried in parallel), only where each chart goes (its
+  // shape and cell); the corners are written once, for the best width.
+  struct Placement {
+    const Shape* shape = nullptr;
+    std::array<int, 2> at{};
+  };
   const bool few = order.size() <= 64;
   const int steps = few ? 26 : 6;
-  for (int step = 0; step <= steps; ++step) {
+  std::vector<std::vector<Placement>> placements_of(static_cast<std::size_t>(steps) + 1);
+  std::vector<double> extent_of(placements_of.size()), fill_of(placements_of.size());
+  tbb::parallel_for(0, steps + 1, [&](int step) {
     const double factor = few ? 0.7 + 0.05 * step : 0.9 + 0.1 * step;
     const int side = static_cast<int>(std::ceil(options.resolution * factor));
-    cells.assign(local.size(), Uv{0.0, 0.0});
     Grid grid(std::max(side, widest));
-
-    // Local corners of each chart, in cells; placed corners in cells.
+    std::vector<Placement>& placements = placements_of[static_cast<std::size_t>(step)];
+    placements.assign(charts.size(), Placement{});
     int used_width = 0, used_height = 0;
     for (Index c : order) {
       const std::vector<Shape>& shapes = shapes_of[static_cast<std::size_t>(c)];
-      const Shape* best = nullptr;
-      std::array<int, 2> best_at{};
+      Placement& best = placements[static_cast<std::size_t>(c)];
       long best_score = -1;
       for (const Shape& shape : shapes) {
         if (shape.footprint.width > grid.width()) continue;
         const auto at = grid.lowest_place(shape.footprint, kPlaceBudget);
         // Lowest top edge first, then leftmost.
         const long score = static_cast<long>(at[1] + shape.footprint.height) * 1'000'000L + at[0];
-        if (best_score < 0 || score < best_score) best_score = score, best_at = at, best = &shape;
+        if (best_score < 0 || score < best_score) best_score = score, best = {&shape, at};
       }
-      if (best == nullptr) continue;  // cannot happen: the grid is as wide as the widest chart unturned
-      const Footprint& f = best->footprint;
-      const std::vector<Uv>& best_corners = best->corners;
-      grid.place(f, best_at[0], best_at[1]);
-      grid.update_full_rows(best_at[1], best_at[1] + f.height);
-      used_width = std::max(used_width, best_at[0] + f.width);
-      used_height = std::max(used_height, best_at[1] + f.height);
-      const double ox = best_at[0] + options.gutter_cells, oy = best_at[1] + options.gutter_cells;
-      for (std::size_t i = 0; i < charts[c].size(); ++i)
-        for (int k = 0; k < 3; ++k)
-          cells[3 * static_cast<std::size_t>(charts[c][i]) + k] = {best_corners[3 * i + k][0] + ox,
-                                                                    best_corners[3 * i + k][1] + oy};
+      if (best.shape == nullptr) continue;  // cannot happen: the grid is as wide as the widest chart unturned
+      const Footprint& f = best.shape->footprint;
+      grid.place(f, best.at[0], best.at[1]);
+      grid.update_full_rows(best.at[1], best.at[1] + f.height);
+      used_width = std::max(used_width, best.at[0] + f.width);
+      used_height = std::max(used_height, best.at[1] + f.height);
     }
     const double extent = std::max({used_width, used_height, 1});
-    const double fill = total / (cell * cell) / (extent * extent);
-    if (fill > best_fill) best_fill = fill, best_extent = extent, best_cells = cells;
-  }
+    extent_of[static_cast<std::size_t>(step)] = extent;
+    fill_of[static_cast<std::size_t>(step)] = total / (cell * cell) / (extent * extent);
+  });
+  // The fullest square wins (ties: the first width).
+  std::size_t chosen = 0;
+  for (std::size_t i = 1; i < fill_of.size(); ++i)
+    if (fill_of[i] > fill_of[chosen]) chosen = i;
+  const std::vector<Placement>& best_placements = placements_of[chosen];
+  const double best_extent = extent_of[chosen];
   const double extent = best_extent;
-  cells = std::move(best_cells);
-  for (Index c : order)
-    for (Index t : charts[c])
+  for (Index c : order) {
+    const Placement& p = best_placements[static_cast<std::size_t>(c)];
+    if (p.shape == nullptr) continue;
+    const double ox = p.at[0] + options.gutter_cells, oy = p.at[1] + options.gutter_cells;
+    for (std::size_t i = 0; i < charts[c].size(); ++i)
       for (int k = 0; k < 3; ++k) {
-        const std::size_t i = 3 * static_cast<std::size_t>(t) + k;
-        packed[i] = {std::clamp(cells[i][0] / extent, 0.0, 1.0), std::clamp(cells[i][1] / extent, 0.0, 1.0)};
+        const Uv& q = p.shape->corners[3 * i + k];
+        packed[3 * static_cast<std::size_t>(charts[c][i]) + k] = {std::clamp((q[0] + ox) / extent, 0.0, 1.0),
+                                                                   std::clamp((q[1] + oy) / extent, 0.0, 1.0)};
       }
+  }
 }
 
 }  // namespace hq
