@@ -43,11 +43,14 @@ TEST(UvAtlas, EveryReferenceInSharedData) {
     EXPECT_GE(improved.area_fraction_area_ratio_within_2, 0.9) << path.filename().string();
     // Few large charts pack less tightly (dolphin: 3 charts, 0.38).
     EXPECT_GE(improved.packing_efficiency, 0.35) << path.filename().string();
-    EXPECT_LT(improved.num_charts, 200) << path.filename().string();
-    // At most 8 charts hold 95 % of the area, but on armadillo (0.57).
-    if (path.filename() != "armadillo.obj") {
-      EXPECT_GE(improved.area_fraction_top_8_charts, 0.95) << path.filename().string();
-    }
+    // Projected charts that overlap themselves are split before the merge,
+    // so their pieces join neighbours: armadillo 13 charts (86 when they
+    // were split after packing).
+    EXPECT_LE(improved.num_charts, 16) << path.filename().string();
+    // At most 8 charts hold 95 % of the area; armadillo 94.3 % (84 % when
+    // the overlapping charts were split after packing).
+    EXPECT_GE(improved.area_fraction_top_8_charts, path.filename() == "armadillo.obj" ? 0.94 : 0.95)
+        << path.filename().string();
     RecordProperty(path.filename().string() + "_lscm_charts",
                    std::to_string(improved.num_lscm_charts) + "/" + std::to_string(improved.num_charts));
   }

@@ -76,7 +76,10 @@ class AtlasBuilder {
     atlas.num_splits += make_disks();
     if (options_.improve_with_lscm && nt_ <= options_.lscm_max_surface_triangles) {
       improve_with_lscm();
-      if (options_.merge_by_layout) merge_by_layout();
+      if (options_.merge_by_layout) {
+        atlas.num_splits += split_overlapping_layouts();
+        merge_by_layout();
+      }
     }
     equalise_scale();
     // Overlaps are searched once, on a first packing (charts apart);
@@ -422,9 +425,10 @@ class AtlasBuilder {
   // one-to-one (exact checks) and distorts less (area-weighted |log area
   // ratio| + log conformal distortion); the LSCM layout is turned to match
   // the projection (so the model's up axis stays up).
-  void improve_with_lscm() {
+  void improve_with_lscm(bool only_projected = false) {
     for (Chart& c : charts_) {
       if (c.own_plane() || c.triangles.size() < static_cast<std::size_t>(options_.lscm_min_triangles)) continue;
+      if (only_projected && c.lscm) continue;
       if (c.triangles.size() >= 4096) stop::check();
       std::vector<Uv> uv;
       if (!lscm_chart_layout(s_, c.triangles, uv)) continue;
@@ -439,6 +443,34 @@ class AtlasBuilder {
         for (int k = 0; k < 3; ++k) local_[3 * static_cast<std::size_t>(c.triangles[i]) + k] = uv[3 * i + k];
       c.lscm = true;
     }
+  }
+
+  // A projected chart whose layout LSCM could not replace and that overlaps
+  // itself would be split after packing anyway, at its median, into pieces
+  // that no union takes any more. Split before the merge, its pieces (laid
+  // out by LSCM where that is one-to-one and within the distortion bound)
+  // can join their neighbours. Returns the splits made.
+  Index split_overlapping_layouts() {
+    Index splits = 0;
+    for (int round = 0; round < 32; ++round) {
+      std::vector<std::uint8_t> overlaps(charts_.size(), 0);
+      tbb::parallel_for(std::size_t{0}, charts_.size(), [&](std::size_t c) {
+        const Chart& chart = charts_[c];
+        if (chart.lscm || chart.own_plane() || chart.triangles.size() < 2) return;
+        std::vector<Uv> uv;
+        uv.reserve(3 * chart.triangles.size());
+        for (Index t : chart.triangles)
+          for (int k = 0; k < 3; ++k) uv.push_back(local_[3 * static_cast<std::size_t>(t) + k]);
+        overlaps[c] = !uv_overlapping_pairs(uv).empty();
+      });
+      const std::size_t before = charts_.size();
+      for (std::size_t c = 0; c < before; ++c)
+        if (overlaps[c]) split(c), ++splits;
+      if (charts_.size() == before) break;
+      splits += make_disks();
+      improve_with_lscm(/*only_projected=*/true);
+    }
+    return splits;
   }
 
   // Neighbouring charts are merged, longest shared border first, while the
