@@ -667,7 +667,7 @@ std::string boundary_html(const ReportModel& model) {
                         show_count(e.num_zero_area_triangles)));
   if (model.analysis.uv_atlas) {
     const UvAtlas& a = *model.analysis.uv_atlas;
-    rows.push_back(kv("UV atlas charts (split / LSCM)", show_count(a.num_charts) + " (" + show_count(a.num_splits) +
+    rows.push_back(kv("UV atlas charts (splits / laid out by LSCM or ARAP)", show_count(a.num_charts) + " (" + show_count(a.num_splits) +
                                                             " / " + show_count(a.num_lscm_charts) + ")"));
     rows.push_back(
         kv("UV flipped triangles / overlapping pairs", show_count(a.num_flipped) + " / " + show_count(a.num_overlaps)));
