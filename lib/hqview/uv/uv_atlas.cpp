@@ -448,8 +448,9 @@ class AtlasBuilder {
   // A projected chart whose layout LSCM could not replace and that overlaps
   // itself would be split after packing anyway, at its median, into pieces
   // that no union takes any more. Split before the merge, its pieces (laid
-  // out by LSCM where that is one-to-one and within the distortion bound)
-  // can join their neighbours. Returns the splits made.
+  // out by LSCM where that is one-to-one and distorts less than their
+  // projection, as improve_with_lscm does) can join their neighbours.
+  // Returns the splits made.
   Index split_overlapping_layouts() {
     Index splits = 0;
     for (int round = 0; round < 32; ++round) {
@@ -583,9 +584,7 @@ class AtlasBuilder {
         std::vector<std::uint64_t>& seams = merged_seams[i];
         std::merge(charts_[a].seams.begin(), charts_[a].seams.end(), charts_[b].seams.begin(), charts_[b].seams.end(),
                    std::back_inserter(seams));
-        const auto old_end = static_cast<std::ptrdiff_t>(seams.size());
-        seams.insert(seams.end(), cut.begin(), cut.end());
-        std::inplace_merge(seams.begin(), seams.begin() + old_end, seams.end());
+        add_seams(seams, cut);
         std::vector<Uv>& uv = merged_uv[i];
         // The exact checks and the distortion bound.
         bool accepted = false;
@@ -607,9 +606,7 @@ class AtlasBuilder {
           }
           const std::vector<std::uint64_t> loops = disk_cut(s_, tris, seams);
           if (loops.empty()) return;
-          const auto end = static_cast<std::ptrdiff_t>(seams.size());
-          seams.insert(seams.end(), loops.begin(), loops.end());
-          std::inplace_merge(seams.begin(), seams.begin() + end, seams.end());
+          add_seams(seams, loops);
           if (!lscm_chart_layout(s_, tris, uv, seams, method, passes)) return;
         }
         if (!accepted && !passes(uv)) return;
@@ -635,6 +632,13 @@ class AtlasBuilder {
       }
       std::erase_if(charts_, [](const Chart& c) { return c.triangles.empty(); });
     }
+  }
+
+  // Adds the ascending edge keys `extra` to the ascending `seams`.
+  static void add_seams(std::vector<std::uint64_t>& seams, const std::vector<std::uint64_t>& extra) {
+    const auto end = static_cast<std::ptrdiff_t>(seams.size());
+    seams.insert(seams.end(), extra.begin(), extra.end());
+    std::inplace_merge(seams.begin(), seams.begin() + end, seams.end());
   }
 
   // Each triangle's chart now (triangles of no chart share one more part).
