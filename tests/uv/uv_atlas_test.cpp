@@ -218,6 +218,32 @@ TEST(UvCut, AClosedTorusIsCutIntoOneDiskAlongTwoLoops) {
   EXPECT_GE(seam_length(s, cut), meridian - 1e-9);
 }
 
+TEST(UvLscm, GoodEnoughKeepsTheLscmLayoutOrAsksForArapFromIt) {
+  // Half an icosphere (a disk): with a callback that accepts, the arap
+  // method returns exactly the LSCM layout; with one that refuses, exactly
+  // the ARAP layout (LSCM then the iterations), which differs from LSCM.
+  const TriSurface sphere = icosphere(3);
+  std::vector<Index> half;
+  for (Index t = 0; t < static_cast<Index>(sphere.triangles.size()); ++t) {
+    const auto& tri = sphere.triangles[t];
+    if (sphere.points[tri[0]].z + sphere.points[tri[1]].z + sphere.points[tri[2]].z > 0) half.push_back(t);
+  }
+  std::vector<Uv> lscm, arap, kept, refined;
+  ASSERT_TRUE(lscm_chart_layout(sphere, half, lscm));
+  ASSERT_TRUE(lscm_chart_layout(sphere, half, arap, {}, ChartLayout::arap));
+  int asked = 0;
+  ASSERT_TRUE(lscm_chart_layout(sphere, half, kept, {}, ChartLayout::arap, [&](std::span<const Uv> layout) {
+    ++asked;
+    EXPECT_TRUE(std::equal(layout.begin(), layout.end(), lscm.begin(), lscm.end()));
+    return true;
+  }));
+  ASSERT_TRUE(lscm_chart_layout(sphere, half, refined, {}, ChartLayout::arap, [](std::span<const Uv>) { return false; }));
+  EXPECT_EQ(asked, 1);
+  EXPECT_EQ(kept, lscm);
+  EXPECT_EQ(refined, arap);
+  EXPECT_NE(arap, lscm);
+}
+
 TEST(UvCut, DisksSpheresAndPiecesAreLeftAsTheyAre) {
   // Half the cylinder is a disk already; a sphere would need a slit; two
   // pieces are no single chart.

@@ -122,8 +122,7 @@ std::vector<std::uint64_t> disk_cut(const TriSurface& surface, std::span<const I
   std::vector<std::uint32_t> parent(nt);
   std::iota(parent.begin(), parent.end(), 0u);
   std::size_t joined = 0;
-  std::vector<std::uint8_t> cut(ne, 0);  // cut graph: every edge but the dual tree's
-  for (std::uint32_t e = 0; e < ne; ++e) cut[e] = 1;
+  std::vector<std::uint8_t> cut(ne, 1);  // cut graph: every edge but the dual tree's
   bool leftover = false;
   for (std::uint32_t e : rest) {
     const std::uint32_t a = find(parent, edges[e].t0), b = find(parent, edges[e].t1);

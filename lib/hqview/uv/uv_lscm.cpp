@@ -240,18 +240,16 @@ bool lscm_chart_layout(const TriSurface& surface, std::span<const Index> chart, 
     return true;
   };
   std::vector<Uv> out;
-  if (method == ChartLayout::lscm || good_enough) {
-    const bool laid_out = corners(out);
-    if (method == ChartLayout::lscm) {
-      if (laid_out) uvs = std::move(out);
-      return laid_out;
-    }
-    if (laid_out && good_enough(out)) {
-      uvs = std::move(out);
-      return true;
-    }
+  if (method == ChartLayout::lscm) {
+    if (!corners(out)) return false;
+    uvs = std::move(out);
+    return true;
   }
-  // ARAP, from the LSCM layout.
+  // ARAP, from the LSCM layout, unless good_enough keeps that.
+  if (good_enough && corners(out) && good_enough(out)) {
+    uvs = std::move(out);
+    return true;
+  }
   std::vector<Vec3> vertex_points(ids.size());
   for (std::size_t v = 0; v < ids.size(); ++v) vertex_points[v] = surface.points[ids[v]];
   if (!arap_refine(vertex_points, polygons, vertex_uv, kArapIterations) || !corners(out)) return false;

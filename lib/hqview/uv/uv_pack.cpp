@@ -309,11 +309,11 @@ void pack_charts(std::span<const Uv> local, const std::vector<std::vector<Index>
       }
     }
   });
-  // Grid widths tried (in units of the ideal side; finer steps over a wider
-  // range for a few charts, which are cheap to place); the one whose packing
-  // fills the square best wins (ties: the first).
-  // Per grid width (tried in parallel), only where each chart goes (its
-  // shape and cell); the corners are written once, for the best width.
+  // Grid widths tried, in parallel (in units of the ideal side; finer steps
+  // over a wider range for a few charts, which are cheap to place): per
+  // width only where each chart goes (its shape and cell). The width whose
+  // packing fills the square best wins (ties: the first), and only its
+  // corners are written.
   struct Placement {
     const Shape* shape = nullptr;
     std::array<int, 2> at{};
@@ -351,13 +351,11 @@ void pack_charts(std::span<const Uv> local, const std::vector<std::vector<Index>
     extent_of[static_cast<std::size_t>(step)] = extent;
     fill_of[static_cast<std::size_t>(step)] = total / (cell * cell) / (extent * extent);
   });
-  // The fullest square wins (ties: the first width).
   std::size_t chosen = 0;
   for (std::size_t i = 1; i < fill_of.size(); ++i)
     if (fill_of[i] > fill_of[chosen]) chosen = i;
   const std::vector<Placement>& best_placements = placements_of[chosen];
-  const double best_extent = extent_of[chosen];
-  const double extent = best_extent;
+  const double extent = extent_of[chosen];
   for (Index c : order) {
     const Placement& p = best_placements[static_cast<std::size_t>(c)];
     if (p.shape == nullptr) continue;
