@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -37,6 +38,108 @@ TEST(UvValidation, ExactOverlapAndTouching) {
   // A clockwise and a degenerate triangle are flipped.
   const std::vector<Uv> bad = {{0, 0}, {0, 1}, {1, 0}, {0, 0}, {1, 1}, {2, 2}};
   EXPECT_EQ(uv_flipped_triangles(bad), (std::vector<std::uint8_t>{1, 1}));
+}
+
+// The corners of an n x n vertex grid's triangles (two per cell,
+// counter-clockwise in (u, v)), each vertex at place(i, j).
+template <class Place>
+std::vector<Uv> grid_layout(int n, Place&& place) {
+  std::vector<Uv> uvs;
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      const Uv a = place(i, j), b = place(i + 1, j), c = place(i, j + 1), d = place(i + 1, j + 1);
+      uvs.insert(uvs.end(), {a, b, d, a, d, c});
+    }
+  return uvs;
+}
+
+bool all_counter_clockwise(const std::vector<Uv>& uvs) {
+  const auto flipped = uv_flipped_triangles(uvs);
+  return std::count(flipped.begin(), flipped.end(), 1) == 0;
+}
+
+TEST(UvValidation, TheBorderCertificateAgreesWithTheSearchOnGridDisks) {
+  // A 9 x 9 grid, each vertex moved at random by up to a third of a cell,
+  // then bent around the origin through 0.6 to 1.4 turns (radius falling
+  // with the row, so the triangles stay counter-clockwise): below a turn
+  // mostly one-to-one, above it the ends overlap. Among the layouts
+  // without a flipped triangle (the certificate's premise), a certified
+  // one never has an overlapping pair, and here (a disk whose border does
+  // not merely touch itself) the certificate holds exactly when the search
+  // finds no pair.
+  std::mt19937 rng(20);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int certified = 0, refused = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const double jitter = 0.33 * std::abs(unit(rng)), turns = 1.0 + 0.4 * unit(rng);
+    std::vector<Uv> moved(81);
+    for (Uv& p : moved) p = {jitter * unit(rng), jitter * unit(rng)};
+    const std::vector<Uv> uvs = grid_layout(9, [&](int i, int j) {
+      const Uv m = moved[static_cast<std::size_t>(9 * j + i)];
+      const double angle = 2.0 * std::numbers::pi * turns * (i + m[0]) / 8.0, radius = 2.0 - 0.1 * (j + m[1]);
+      return Uv{radius * std::cos(angle), radius * std::sin(angle)};
+    });
+    if (!all_counter_clockwise(uvs)) continue;
+    const bool certificate = uv_border_certifies_one_to_one(uvs);
+    const bool none = uv_overlapping_pairs(uvs).empty();
+    EXPECT_EQ(certificate, none) << "trial " << trial;
+    EXPECT_EQ(uv_one_to_one(uvs), none) << "trial " << trial;
+    (certificate ? certified : refused) += 1;
+  }
+  EXPECT_GT(certified, 50);
+  EXPECT_GT(refused, 25);
+}
+
+TEST(UvValidation, TheBorderCertificateRefusesWindingsAndHolesAndTheSearchDecides) {
+  // A grid strip bent around the origin through an angle: below a full
+  // turn it is one-to-one (certified); past a full turn its ends overlap,
+  // every triangle still counter-clockwise (refused; the search finds the
+  // pairs).
+  for (const double turns : {0.5, 0.9, 1.1, 1.6}) {
+    const std::vector<Uv> uvs = grid_layout(24, [&](int i, int j) {
+      const double angle = 2.0 * std::numbers::pi * turns * i / 23.0, radius = 1.0 - 0.02 * j;
+      return Uv{radius * std::cos(angle), radius * std::sin(angle)};
+    });
+    ASSERT_TRUE(all_counter_clockwise(uvs)) << turns;
+    EXPECT_EQ(uv_border_certifies_one_to_one(uvs), turns < 1.0) << turns;
+    EXPECT_EQ(uv_overlapping_pairs(uvs).empty(), turns < 1.0) << turns;
+    EXPECT_EQ(uv_one_to_one(uvs), turns < 1.0) << turns;
+  }
+  // A fan of 8 triangles around one vertex through two full turns (each
+  // rim point a little further out): every triangle counter-clockwise, the
+  // rim winds twice.
+  std::vector<Uv> fan;
+  for (int k = 0; k < 8; ++k) {
+    const auto rim = [](int i) {
+      const double angle = std::numbers::pi / 2 * i, radius = 1.0 + 0.1 * i;
+      return Uv{radius * std::cos(angle), radius * std::sin(angle)};
+    };
+    fan.insert(fan.end(), {Uv{0, 0}, rim(k), rim(k + 1)});
+  }
+  ASSERT_TRUE(all_counter_clockwise(fan));
+  EXPECT_FALSE(uv_border_certifies_one_to_one(fan));
+  EXPECT_FALSE(uv_one_to_one(fan));
+  // An annulus (a ring of 16 quads): one-to-one, but its border is two
+  // loops, so the certificate proves nothing and the search decides.
+  const std::vector<Uv> ring = grid_layout(17, [](int i, int j) {
+    const double angle = 2.0 * std::numbers::pi * (i % 16) / 16.0, radius = 1.5 - 0.5 * std::min(j, 1);
+    return Uv{radius * std::cos(angle), radius * std::sin(angle)};
+  });
+  std::vector<Uv> annulus(ring.begin(), ring.begin() + 6 * 16);  // the first row of cells
+  ASSERT_TRUE(all_counter_clockwise(annulus));
+  EXPECT_FALSE(uv_border_certifies_one_to_one(annulus));
+  EXPECT_TRUE(uv_overlapping_pairs(annulus).empty());
+  EXPECT_TRUE(uv_one_to_one(annulus));
+  // Two triangles that touch at one corner: no pair overlaps, but the
+  // border passes through that point twice; one triangle alone is
+  // certified; a triangle twice over is refused.
+  const std::vector<Uv> bowtie = {{0, 0}, {1, 0}, {0, 1}, {0, 0}, {-1, 0}, {0, -1}};
+  EXPECT_FALSE(uv_border_certifies_one_to_one(bowtie));
+  EXPECT_TRUE(uv_one_to_one(bowtie));
+  EXPECT_TRUE(uv_border_certifies_one_to_one(std::vector<Uv>(bowtie.begin(), bowtie.begin() + 3)));
+  const std::vector<Uv> twice = {{0, 0}, {1, 0}, {0, 1}, {0, 0}, {1, 0}, {0, 1}};
+  EXPECT_FALSE(uv_border_certifies_one_to_one(twice));
+  EXPECT_FALSE(uv_one_to_one(twice));
 }
 
 // Per triangle (UV area / 3D area) / (total UV area / total 3D area), recomputed here.

@@ -433,7 +433,7 @@ class AtlasBuilder {
       std::vector<Uv> uv;
       if (!lscm_chart_layout(s_, c.triangles, uv)) continue;
       const auto flipped = uv_flipped_triangles(uv);
-      if (std::find(flipped.begin(), flipped.end(), 1) != flipped.end() || !uv_overlapping_pairs(uv).empty()) continue;
+      if (std::find(flipped.begin(), flipped.end(), 1) != flipped.end() || !uv_one_to_one(uv)) continue;
       std::vector<Uv> projected(uv.size());
       for (std::size_t i = 0; i < c.triangles.size(); ++i)
         for (int k = 0; k < 3; ++k) projected[3 * i + k] = local_[3 * static_cast<std::size_t>(c.triangles[i]) + k];
@@ -462,7 +462,7 @@ class AtlasBuilder {
         uv.reserve(3 * chart.triangles.size());
         for (Index t : chart.triangles)
           for (int k = 0; k < 3; ++k) uv.push_back(local_[3 * static_cast<std::size_t>(t) + k]);
-        overlaps[c] = !uv_overlapping_pairs(uv).empty();
+        overlaps[c] = !uv_one_to_one(uv);
       });
       const std::size_t before = charts_.size();
       for (std::size_t c = 0; c < before; ++c)
@@ -591,7 +591,7 @@ class AtlasBuilder {
         const auto passes = [&](std::span<const Uv> layout) {
           const auto flipped = uv_flipped_triangles(layout);
           return accepted = std::find(flipped.begin(), flipped.end(), 1) == flipped.end() &&
-                            layout_acceptable(tris, layout) && uv_overlapping_pairs(layout).empty();
+                            layout_acceptable(tris, layout) && uv_one_to_one(layout);
         };
         // LSCM keeps angles and may shrink a limb's tip; when its layout does
         // not pass, ARAP (from it) evens areas out.

@@ -1,14 +1,17 @@
-// The one CGAL translation unit of the UV module: exact orientation
-// predicates and box intersection (both light headers).
+// The one CGAL translation unit of the UV module: exact orientation and
+// segment predicates and box intersection (light headers).
 
 #include "hqview/uv/uv_validation.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Intersections_2/Segment_2_Segment_2.h>
 #include <CGAL/box_intersection_d.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
+#include <numeric>
 
 namespace hq {
 namespace {
@@ -85,7 +88,105 @@ std::vector<std::array<Index, 2>> overlapping_pairs(std::span<const Uv> uvs, std
   return pairs;
 }
 
+bool less_uv(const Uv& a, const Uv& b) { return a[0] < b[0] || (a[0] == b[0] && a[1] < b[1]); }
+
+// The border of the sum of the triangles: each edge with the number of
+// times it is run forwards less the times it is run backwards, kept where
+// that is +1 or -1 (as a directed segment), false where it is more (a
+// border run twice cannot be simple).
+bool border_segments(std::span<const Uv> uvs, std::vector<std::array<Uv, 2>>& border) {
+  struct Edge {
+    Uv lo, hi;
+    int sign;
+  };
+  const std::size_t nt = uvs.size() / 3;
+  std::vector<Edge> edges;
+  edges.reserve(3 * nt);
+  for (std::size_t t = 0; t < nt; ++t)
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Uv &p = uvs[3 * t + k], &q = uvs[3 * t + (k + 1) % 3];
+      if (less_uv(p, q)) edges.push_back({p, q, 1});
+      else edges.push_back({q, p, -1});
+    }
+  std::sort(edges.begin(), edges.end(), [](const Edge& a, const Edge& b) {
+    return less_uv(a.lo, b.lo) || (a.lo == b.lo && less_uv(a.hi, b.hi));
+  });
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    int net = 0;
+    while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) net += edges[j++].sign;
+    if (net > 1 || net < -1) return false;
+    if (net == 1) border.push_back({edges[i].lo, edges[i].hi});
+    if (net == -1) border.push_back({edges[i].hi, edges[i].lo});
+    i = j;
+  }
+  return true;
+}
+
 }  // namespace
+
+bool uv_border_certifies_one_to_one(std::span<const Uv> uvs) {
+  const std::size_t nt = uvs.size() / 3;
+  for (const Uv& p : uvs)
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1])) return false;
+  for (std::size_t t = 0; t < nt; ++t)
+    if (CGAL::orientation(corner(uvs, Index(t), 0), corner(uvs, Index(t), 1), corner(uvs, Index(t), 2)) !=
+        CGAL::LEFT_TURN)
+      return false;
+  std::vector<std::array<Uv, 2>> border;
+  if (!border_segments(uvs, border) || border.size() < 3) return nt == 0;
+  // One closed polygon: every border point starts exactly one segment, and
+  // following the segments from the first runs through all of them.
+  const std::size_t n = border.size();
+  std::vector<std::size_t> by_start(n);
+  std::iota(by_start.begin(), by_start.end(), std::size_t{0});
+  std::sort(by_start.begin(), by_start.end(),
+            [&](std::size_t a, std::size_t b) { return less_uv(border[a][0], border[b][0]); });
+  for (std::size_t i = 1; i < n; ++i)
+    if (border[by_start[i]][0] == border[by_start[i - 1]][0]) return false;
+  std::vector<std::size_t> next(n);
+  for (std::size_t s = 0; s < n; ++s) {
+    const auto it = std::lower_bound(by_start.begin(), by_start.end(), border[s][1],
+                                     [&](std::size_t a, const Uv& p) { return less_uv(border[a][0], p); });
+    if (it == by_start.end() || border[*it][0] != border[s][1]) return false;
+    next[s] = *it;
+  }
+  std::vector<std::uint8_t> visited(n, 0);
+  std::size_t s = 0, steps = 0;
+  for (; !visited[s]; s = next[s], ++steps) visited[s] = 1;
+  if (s != 0 || steps != n) return false;
+  // Simple: two segments meet only at the point one ends and the next
+  // starts, and there without running back along each other.
+  std::vector<Box2> boxes;
+  boxes.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    double lo[2] = {std::min(border[i][0][0], border[i][1][0]), std::min(border[i][0][1], border[i][1][1])};
+    double hi[2] = {std::max(border[i][0][0], border[i][1][0]), std::max(border[i][0][1], border[i][1][1])};
+    boxes.emplace_back(lo, hi, static_cast<Index>(i));
+  }
+  const auto point = [](const Uv& p) { return Point(p[0], p[1]); };
+  // Segment a ends where segment b starts: they may only share that point.
+  const auto only_joined = [&](std::size_t a, std::size_t b) {
+    const Point p = point(border[a][0]), q = point(border[a][1]), r = point(border[b][1]);
+    return CGAL::orientation(p, q, r) != CGAL::COLLINEAR || CGAL::angle(p, q, r) == CGAL::OBTUSE;
+  };
+  bool simple = true;
+  CGAL::box_self_intersection_d<CGAL::Sequential_tag>(boxes.begin(), boxes.end(), [&](const Box2& x, const Box2& y) {
+    if (!simple) return;
+    const auto a = static_cast<std::size_t>(x.info()), b = static_cast<std::size_t>(y.info());
+    if (next[a] == b || next[b] == a) {
+      simple = (next[a] != b || only_joined(a, b)) && (next[b] != a || only_joined(b, a));
+      return;
+    }
+    simple = !CGAL::do_intersect(Kernel::Segment_2(point(border[a][0]), point(border[a][1])),
+                                 Kernel::Segment_2(point(border[b][0]), point(border[b][1])));
+  });
+  return simple;
+}
+
+bool uv_one_to_one(std::span<const Uv> uvs) {
+  return uv_border_certifies_one_to_one(uvs) || uv_overlapping_pairs(uvs).empty();
+}
 
 std::vector<std::array<Index, 2>> uv_overlapping_pairs_by_part(std::span<const Uv> uvs, std::span<const Index> part_of) {
   const auto nt = static_cast<Index>(uvs.size() / 3);
@@ -119,6 +220,11 @@ std::vector<std::array<Index, 2>> uv_overlapping_pairs_by_part(std::span<const U
     auto& out = found.local();
     const auto report = [&](const Box2& x, const Box2& y) { add_if_overlapping(uvs, x.info(), y.info(), out); };
     if (p == q) {
+      std::vector<Uv> corners;
+      corners.reserve(3 * members[p].size());
+      for (const Box2& x : members[p])
+        for (int k = 0; k < 3; ++k) corners.push_back(uvs[3 * static_cast<std::size_t>(x.info()) + k]);
+      if (uv_border_certifies_one_to_one(corners)) return;
       std::vector<Box2> boxes = members[p];
       CGAL::box_self_intersection_d<CGAL::Sequential_tag>(boxes.begin(), boxes.end(), report);
       return;

@@ -31,10 +31,24 @@ std::vector<std::uint8_t> uv_flipped_triangles(std::span<const Uv> uvs);
 std::vector<std::array<Index, 2>> uv_overlapping_pairs(std::span<const Uv> uvs, std::span<const Index> group = {},
                                                        std::span<const Index> subset = {});
 
+// True when the border alone proves the layout one-to-one: every triangle
+// is strictly counter-clockwise (exact) and the edges that no other triangle
+// runs the other way (the border of the sum of the triangles) form one
+// simple closed polygon (exact). The number of triangles over a point off
+// their edges is then the polygon's winding number around it, 0 or 1, so no
+// two interiors meet and uv_overlapping_pairs(uvs) is empty. False proves
+// nothing (a chart with a hole, a border that touches itself, a fold): search.
+bool uv_border_certifies_one_to_one(std::span<const Uv> uvs);
+
+// uv_overlapping_pairs(uvs).empty() for counter-clockwise triangles: the
+// border certificate first, the search only where it fails.
+bool uv_one_to_one(std::span<const Uv> uvs);
+
 // The same pairs as uv_overlapping_pairs(uvs), found part by part
 // (`part_of[t]`: t's part, e.g. its chart, 0-based): inside each part, and
 // between two parts whose bounding boxes meet, among the triangles inside
-// the other part's box; the parts are searched in parallel. Much faster
+// the other part's box; the parts are searched in parallel (a part that
+// uv_border_certifies_one_to_one has no pair inside it). Much faster
 // than one search over all triangles when the parts lie mostly apart, as
 // packed charts do.
 std::vector<std::array<Index, 2>> uv_overlapping_pairs_by_part(std::span<const Uv> uvs, std::span<const Index> part_of);
