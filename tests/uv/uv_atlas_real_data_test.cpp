@@ -44,13 +44,14 @@ TEST(UvAtlas, EveryReferenceInSharedData) {
     // Few large charts pack less tightly (dolphin: 3 charts, 0.38).
     EXPECT_GE(improved.packing_efficiency, 0.35) << path.filename().string();
     // Projected charts that overlap themselves are split before the merge,
-    // so their pieces join neighbours: armadillo 13 charts (86 when they
+    // so their pieces join neighbours: armadillo 12 charts (86 when they
     // were split after packing).
     EXPECT_LE(improved.num_charts, 16) << path.filename().string();
-    // At most 8 charts hold 95 % of the area; armadillo 94.3 % (84 % when
-    // the overlapping charts were split after packing).
-    EXPECT_GE(improved.area_fraction_top_8_charts, path.filename() == "armadillo.obj" ? 0.94 : 0.95)
-        << path.filename().string();
+    // At most 8 charts hold 95 % of the area (issue 16's target): armadillo
+    // 95.1 %, since a union whose ARAP layout folds may take an earlier
+    // ARAP iterate (94.3 % without; 84 % when the overlapping charts were
+    // split after packing).
+    EXPECT_GE(improved.area_fraction_top_8_charts, 0.95) << path.filename().string();
     RecordProperty(path.filename().string() + "_lscm_charts",
                    std::to_string(improved.num_lscm_charts) + "/" + std::to_string(improved.num_charts));
   }

@@ -345,6 +345,29 @@ TEST(UvLscm, GoodEnoughKeepsTheLscmLayoutOrAsksForArapFromIt) {
   EXPECT_EQ(kept, lscm);
   EXPECT_EQ(refined, arap);
   EXPECT_NE(arap, lscm);
+  // Refusing LSCM's and ARAP's layouts, the callback is asked about the
+  // ARAP iterates from the latest back; the first it accepts is returned.
+  std::vector<std::vector<Uv>> seen;
+  std::vector<Uv> earlier;
+  ASSERT_TRUE(lscm_chart_layout(sphere, half, earlier, {}, ChartLayout::arap, [&](std::span<const Uv> layout) {
+    seen.emplace_back(layout.begin(), layout.end());
+    return seen.size() == 4;
+  }));
+  ASSERT_EQ(seen.size(), 4u);
+  EXPECT_EQ(seen[0], lscm);
+  EXPECT_EQ(seen[1], arap);
+  EXPECT_EQ(earlier, seen[3]);
+  EXPECT_NE(seen[2], arap);
+  EXPECT_NE(seen[3], seen[2]);
+  EXPECT_NE(seen[3], lscm);
+  // Refusing everything: LSCM, ARAP and its 11 earlier iterates were asked.
+  int refusals = 0;
+  ASSERT_TRUE(lscm_chart_layout(sphere, half, refined, {}, ChartLayout::arap, [&](std::span<const Uv>) {
+    ++refusals;
+    return false;
+  }));
+  EXPECT_EQ(refusals, 2 + kArapIterations - 1);
+  EXPECT_EQ(refined, arap);
 }
 
 TEST(UvCut, DisksSpheresAndPiecesAreLeftAsTheyAre) {

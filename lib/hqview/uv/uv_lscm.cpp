@@ -33,8 +33,10 @@ using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
 // those rotations (global: one sparse Cholesky factorisation, vertex 0
 // pinned, two back-substitutions an iteration). Starts from `uv` (the LSCM
 // layout) and replaces it; false when the system cannot be factorised.
+// `iterates`, when given, gets the layout after each iteration but the last.
 bool arap_refine(const std::vector<Vec3>& points, const std::vector<std::vector<std::size_t>>& polygons,
-                 std::vector<std::array<double, 2>>& uv, int iterations) {
+                 std::vector<std::array<double, 2>>& uv, int iterations,
+                 std::vector<std::vector<std::array<double, 2>>>* iterates = nullptr) {
   const std::size_t n = points.size(), nf = polygons.size();
   // Per triangle: its corners' 2D isometric coordinates and the cotangent
   // of each corner's angle (the weight of the opposite edge).
@@ -80,6 +82,7 @@ bool arap_refine(const std::vector<Vec3>& points, const std::vector<std::vector<
   std::vector<std::array<double, 4>> rotation(nf);  // row-major 2x2
   Eigen::VectorXd bu(static_cast<Eigen::Index>(n - 1)), bv(static_cast<Eigen::Index>(n - 1));
   for (int iteration = 0; iteration < iterations; ++iteration) {
+    if (iterates != nullptr && iteration > 0) iterates->push_back(uv);
     // Local: the rotation closest to the cotangent-weighted covariance of
     // each triangle's layout edges against its flat edges.
     for (std::size_t f = 0; f < nf; ++f) {
@@ -252,7 +255,24 @@ bool lscm_chart_layout(const TriSurface& surface, std::span<const Index> chart, 
   }
   std::vector<Vec3> vertex_points(ids.size());
   for (std::size_t v = 0; v < ids.size(); ++v) vertex_points[v] = surface.points[ids[v]];
-  if (!arap_refine(vertex_points, polygons, vertex_uv, kArapIterations) || !corners(out)) return false;
+  std::vector<std::vector<std::array<double, 2>>> iterates;
+  if (!arap_refine(vertex_points, polygons, vertex_uv, kArapIterations, good_enough ? &iterates : nullptr) ||
+      !corners(out))
+    return false;
+  // ARAP evens the areas out from LSCM's and may fold on the way (a
+  // finger's tip turned over): when its layout is not good enough, the
+  // latest iterate that is wins (it has the least area distortion of those
+  // that pass).
+  if (good_enough && !good_enough(out)) {
+    std::vector<Uv> earlier;
+    for (auto it = iterates.rbegin(); it != iterates.rend(); ++it) {
+      vertex_uv = std::move(*it);
+      if (corners(earlier) && good_enough(earlier)) {
+        uvs = std::move(earlier);
+        return true;
+      }
+    }
+  }
   uvs = std::move(out);
   return true;
 }

@@ -31,7 +31,9 @@ inline constexpr int kArapIterations = 12;
 // (uvs untouched) when the chart is not a disk or the solver fails. The
 // caller validates the result (flips, overlaps). With method arap and
 // `good_enough`, the LSCM layout is kept when good_enough accepts it, and
-// refined by ARAP (without solving LSCM again) when not.
+// refined by ARAP (without solving LSCM again) when not; when good_enough
+// refuses the ARAP layout too, the latest ARAP iterate it accepts is
+// returned (else the refused ARAP layout).
 bool lscm_chart_layout(const TriSurface& surface, std::span<const Index> chart, std::vector<Uv>& uvs,
                        std::span<const std::uint64_t> seams = {}, ChartLayout method = ChartLayout::lscm,
                        const std::function<bool(std::span<const Uv>)>& good_enough = {});

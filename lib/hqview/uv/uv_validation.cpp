@@ -92,8 +92,8 @@ bool less_uv(const Uv& a, const Uv& b) { return a[0] < b[0] || (a[0] == b[0] && 
 
 // The border of the sum of the triangles: each edge with the number of
 // times it is run forwards less the times it is run backwards, kept where
-// that is +1 or -1 (as a directed segment), false where it is more (a
-// border run twice cannot be simple).
+// that is +1 or -1 (as a directed segment). False where it is more: two
+// triangles run that edge the same way, so both lie on its left.
 bool border_segments(std::span<const Uv> uvs, std::vector<std::array<Uv, 2>>& border) {
   struct Edge {
     Uv lo, hi;
@@ -123,38 +123,47 @@ bool border_segments(std::span<const Uv> uvs, std::vector<std::array<Uv, 2>>& bo
   return true;
 }
 
-}  // namespace
+enum class Verdict { one_to_one, overlapping, unknown };
 
-bool uv_border_certifies_one_to_one(std::span<const Uv> uvs) {
+// What the border of counter-clockwise triangles proves (see
+// uv_border_certifies_one_to_one). Each border segment has a triangle on
+// its left that runs it, so two border segments that cross (each through
+// the other's interior) prove that two triangles overlap, as does an edge
+// two triangles run the same way.
+Verdict border_verdict(std::span<const Uv> uvs) {
   const std::size_t nt = uvs.size() / 3;
   for (const Uv& p : uvs)
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1])) return false;
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1])) return Verdict::unknown;
   for (std::size_t t = 0; t < nt; ++t)
     if (CGAL::orientation(corner(uvs, Index(t), 0), corner(uvs, Index(t), 1), corner(uvs, Index(t), 2)) !=
         CGAL::LEFT_TURN)
-      return false;
+      return Verdict::unknown;
   std::vector<std::array<Uv, 2>> border;
-  if (!border_segments(uvs, border) || border.size() < 3) return nt == 0;
+  if (!border_segments(uvs, border)) return Verdict::overlapping;
+  if (border.size() < 3) return nt == 0 ? Verdict::one_to_one : Verdict::unknown;
   // One closed polygon: every border point starts exactly one segment, and
   // following the segments from the first runs through all of them.
-  const std::size_t n = border.size();
+  const std::size_t n = border.size(), none = n;
+  bool one_loop = true;
   std::vector<std::size_t> by_start(n);
   std::iota(by_start.begin(), by_start.end(), std::size_t{0});
   std::sort(by_start.begin(), by_start.end(),
             [&](std::size_t a, std::size_t b) { return less_uv(border[a][0], border[b][0]); });
   for (std::size_t i = 1; i < n; ++i)
-    if (border[by_start[i]][0] == border[by_start[i - 1]][0]) return false;
-  std::vector<std::size_t> next(n);
+    if (border[by_start[i]][0] == border[by_start[i - 1]][0]) one_loop = false;
+  std::vector<std::size_t> next(n, none);
   for (std::size_t s = 0; s < n; ++s) {
     const auto it = std::lower_bound(by_start.begin(), by_start.end(), border[s][1],
                                      [&](std::size_t a, const Uv& p) { return less_uv(border[a][0], p); });
-    if (it == by_start.end() || border[*it][0] != border[s][1]) return false;
-    next[s] = *it;
+    if (it != by_start.end() && border[*it][0] == border[s][1]) next[s] = *it;
+    else one_loop = false;
   }
-  std::vector<std::uint8_t> visited(n, 0);
-  std::size_t s = 0, steps = 0;
-  for (; !visited[s]; s = next[s], ++steps) visited[s] = 1;
-  if (s != 0 || steps != n) return false;
+  if (one_loop) {
+    std::vector<std::uint8_t> visited(n, 0);
+    std::size_t s = 0, steps = 0;
+    for (; s != none && !visited[s]; s = next[s], ++steps) visited[s] = 1;
+    one_loop = s == 0 && steps == n;
+  }
   // Simple: two segments meet only at the point one ends and the next
   // starts, and there without running back along each other.
   std::vector<Box2> boxes;
@@ -170,22 +179,60 @@ bool uv_border_certifies_one_to_one(std::span<const Uv> uvs) {
     const Point p = point(border[a][0]), q = point(border[a][1]), r = point(border[b][1]);
     return CGAL::orientation(p, q, r) != CGAL::COLLINEAR || CGAL::angle(p, q, r) == CGAL::OBTUSE;
   };
-  bool simple = true;
+  bool simple = true, crossing = false;
   CGAL::box_self_intersection_d<CGAL::Sequential_tag>(boxes.begin(), boxes.end(), [&](const Box2& x, const Box2& y) {
-    if (!simple) return;
+    if (crossing) return;
     const auto a = static_cast<std::size_t>(x.info()), b = static_cast<std::size_t>(y.info());
-    if (next[a] == b || next[b] == a) {
-      simple = (next[a] != b || only_joined(a, b)) && (next[b] != a || only_joined(b, a));
-      return;
+    const Point p = point(border[a][0]), q = point(border[a][1]), r = point(border[b][0]), t = point(border[b][1]);
+    const CGAL::Orientation pqr = CGAL::orientation(p, q, r), pqt = CGAL::orientation(p, q, t);
+    if (pqr != CGAL::COLLINEAR && pqr == CGAL::opposite(pqt)) {
+      const CGAL::Orientation rtp = CGAL::orientation(r, t, p), rtq = CGAL::orientation(r, t, q);
+      if (rtp != CGAL::COLLINEAR && rtp == CGAL::opposite(rtq)) {
+        crossing = true;
+        return;
+      }
     }
-    simple = !CGAL::do_intersect(Kernel::Segment_2(point(border[a][0]), point(border[a][1])),
-                                 Kernel::Segment_2(point(border[b][0]), point(border[b][1])));
+    if (!simple) return;
+    if (next[a] == b || next[b] == a)
+      simple = (next[a] != b || only_joined(a, b)) && (next[b] != a || only_joined(b, a));
+    else
+      simple = !CGAL::do_intersect(Kernel::Segment_2(p, q), Kernel::Segment_2(r, t));
   });
-  return simple;
+  if (crossing) return Verdict::overlapping;
+  return one_loop && simple ? Verdict::one_to_one : Verdict::unknown;
 }
 
+struct FoundOverlap {};
+
+// Whether any two interiors meet: the search of uv_overlapping_pairs,
+// stopped at the first pair.
+bool any_overlap(std::span<const Uv> uvs) {
+  std::vector<Box2> boxes;
+  boxes.reserve(uvs.size() / 3);
+  for (Index t = 0; t < static_cast<Index>(uvs.size() / 3); ++t) boxes.push_back(uv_box(uvs, t));
+  std::vector<std::array<Index, 2>> found;
+  try {
+    CGAL::box_self_intersection_d<CGAL::Sequential_tag>(boxes.begin(), boxes.end(), [&](const Box2& x, const Box2& y) {
+      add_if_overlapping(uvs, x.info(), y.info(), found);
+      if (!found.empty()) throw FoundOverlap{};
+    });
+  } catch (const FoundOverlap&) {
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool uv_border_certifies_one_to_one(std::span<const Uv> uvs) { return border_verdict(uvs) == Verdict::one_to_one; }
+
 bool uv_one_to_one(std::span<const Uv> uvs) {
-  return uv_border_certifies_one_to_one(uvs) || uv_overlapping_pairs(uvs).empty();
+  switch (border_verdict(uvs)) {
+    case Verdict::one_to_one: return true;
+    case Verdict::overlapping: return false;
+    case Verdict::unknown: break;
+  }
+  return !any_overlap(uvs);
 }
 
 std::vector<std::array<Index, 2>> uv_overlapping_pairs_by_part(std::span<const Uv> uvs, std::span<const Index> part_of) {

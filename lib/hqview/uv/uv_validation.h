@@ -41,7 +41,10 @@ std::vector<std::array<Index, 2>> uv_overlapping_pairs(std::span<const Uv> uvs, 
 bool uv_border_certifies_one_to_one(std::span<const Uv> uvs);
 
 // uv_overlapping_pairs(uvs).empty() for counter-clockwise triangles: the
-// border certificate first, the search only where it fails.
+// border certificate first; two border segments that cross, or an edge
+// two triangles run the same way, prove an overlap (each border segment
+// has a triangle on its left); the search, stopped at its first pair, runs
+// only where neither is found.
 bool uv_one_to_one(std::span<const Uv> uvs);
 
 // The same pairs as uv_overlapping_pairs(uvs), found part by part
