@@ -226,6 +226,30 @@ TEST(Cli, VersionAndHelp) {
   EXPECT_NE(help.out.find("--no-render"), std::string::npos);
 }
 
+// Mesa (with LLVM) and netCDF are opened when a run needs them, not at
+// every start: the dynamic loader's list of the files it opens
+// (LD_DEBUG=files, on standard error) names them only when views are drawn.
+TEST(Cli, MesaIsLoadedOnlyWhenAViewIsDrawn) {
+  const fs::path dir = fresh_output_dir("lazy_libraries");
+  const auto loaded_files = [&](std::vector<std::string> args) {
+    setenv("LD_DEBUG", "files", 1);
+    const CliResult r = run_hqview(args);
+    unsetenv("LD_DEBUG");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return r.err;
+  };
+  const std::string no_render =
+      loaded_files({"analyze", example("ball.mesh").string(), "-o", (dir / "a").string(), "--no-render", "-q"});
+  EXPECT_NE(no_render.find("libtbb"), std::string::npos) << "LD_DEBUG=files printed nothing";
+  EXPECT_EQ(no_render.find("libOSMesa"), std::string::npos);
+  EXPECT_EQ(no_render.find("libLLVM"), std::string::npos);
+  EXPECT_EQ(no_render.find("libnetcdf"), std::string::npos);
+  const std::string drawn = loaded_files(
+      {"analyze", example("ball.mesh").string(), "-o", (dir / "b").string(), "--views", "overview", "-q"});
+  EXPECT_NE(drawn.find("libOSMesa"), std::string::npos);
+  EXPECT_TRUE(fs::is_regular_file(dir / "b" / "views" / "overview.png"));
+}
+
 TEST(Cli, HtmlEscapesNamesFromInput) {
   const fs::path dir = fresh_output_dir("escape");
   const fs::path evil = dir / "<b>x&y'\"<i.mesh";

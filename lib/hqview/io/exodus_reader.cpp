@@ -13,6 +13,7 @@
 #include <netcdf_mem.h>
 #endif
 
+#include "hqview/core/shared_library.h"
 #include "hqview/core/types.h"
 #include "hqview/io/netcdf_header.h"
 
@@ -35,16 +36,50 @@ namespace {
 // dimension the file claims; classic files store values uncompressed.
 constexpr std::uint64_t kMaxExpansion = 1032;
 
+// The netCDF functions the reader calls, looked up in libnetcdf when the
+// first Exodus II file is read (hq::SharedLibrary), not linked: a run on
+// any other format never loads netCDF and HDF5 (about 17 ms at every start).
+#define HQ_NETCDF_FUNCTIONS(X)                                                                                    \
+  X(open_mem) X(close) X(strerror) X(inq_dimid) X(inq_dimlen) X(inq_nvars) X(inq_varid) X(inq_varndims)          \
+  X(inq_vardimid) X(get_var_double) X(get_var_longlong) X(inq_attlen) X(inq_atttype) X(get_att_text)
+
+struct NetcdfApi {
+#define HQ_NETCDF_MEMBER(name) decltype(&::nc_##name) name = nullptr;
+  HQ_NETCDF_FUNCTIONS(HQ_NETCDF_MEMBER)
+#undef HQ_NETCDF_MEMBER
+};
+
+// Loaded once per process; throws InputError naming `file` when libnetcdf
+// cannot be loaded or lacks a function.
+const NetcdfApi& netcdf_api(const std::string& file) {
+  static const auto loaded = [] {
+    std::pair<NetcdfApi, std::string> result;  // the functions, the error
+    const SharedLibrary library({"libnetcdf.so.19", "libnetcdf.so"});
+    if (!library.is_open()) {
+      result.second = "cannot load libnetcdf (Debian package libnetcdf19) to read Exodus II: " + library.error();
+      return result;
+    }
+#define HQ_LOAD_NETCDF(f) \
+  if (!library.load(result.first.f, "nc_" #f) && result.second.empty()) result.second = library.name() + " has no nc_" #f;
+    HQ_NETCDF_FUNCTIONS(HQ_LOAD_NETCDF)
+#undef HQ_LOAD_NETCDF
+    return result;
+  }();
+  if (!loaded.second.empty()) throw InputError(file + ": " + loaded.second);
+  return loaded.first;
+}
+
 class NcFile {
  public:
-  NcFile(std::string_view bytes, const std::string& name) : name_(name), memory_(bytes.begin(), bytes.end()) {
+  NcFile(std::string_view bytes, const std::string& name)
+      : nc_(netcdf_api(name)), name_(name), memory_(bytes.begin(), bytes.end()) {
     is_classic_ = detail::is_netcdf_classic(bytes);
     // libnetcdf allocates what a classic header claims: bound it first.
     if (is_classic_) detail::check_netcdf_classic_header(bytes, name);
-    const int status = nc_open_mem(name.c_str(), NC_NOWRITE, memory_.size(), memory_.data(), &id_);
-    if (status != NC_NOERR) fail("not an Exodus II (netCDF) file: " + std::string(nc_strerror(status)));
+    const int status = nc_.open_mem(name.c_str(), NC_NOWRITE, memory_.size(), memory_.data(), &id_);
+    if (status != NC_NOERR) fail("not an Exodus II (netCDF) file: " + std::string(nc_.strerror(status)));
   }
-  ~NcFile() { nc_close(id_); }
+  ~NcFile() { nc_.close(id_); }
   NcFile(const NcFile&) = delete;
   NcFile& operator=(const NcFile&) = delete;
 
@@ -53,9 +88,9 @@ class NcFile {
   // A dimension's length; -1 when absent.
   std::int64_t dimension(const std::string& dim_name) const {
     int dim = 0;
-    if (nc_inq_dimid(id_, dim_name.c_str(), &dim) != NC_NOERR) return -1;
+    if (nc_.inq_dimid(id_, dim_name.c_str(), &dim) != NC_NOERR) return -1;
     std::size_t length = 0;
-    check(nc_inq_dimlen(id_, dim, &length), "dimension " + dim_name);
+    check(nc_.inq_dimlen(id_, dim, &length), "dimension " + dim_name);
     return static_cast<std::int64_t>(length);
   }
   std::int64_t required_dimension(const std::string& dim_name) const {
@@ -66,24 +101,24 @@ class NcFile {
   // How many variables the file has.
   int num_variables() const {
     int n = 0;
-    check(nc_inq_nvars(id_, &n), "variables");
+    check(nc_.inq_nvars(id_, &n), "variables");
     return n;
   }
   // A variable's id; -1 when absent.
   int variable(const std::string& var_name) const {
     int var = 0;
-    return nc_inq_varid(id_, var_name.c_str(), &var) == NC_NOERR ? var : -1;
+    return nc_.inq_varid(id_, var_name.c_str(), &var) == NC_NOERR ? var : -1;
   }
   // The total number of values of a variable (product of its dimensions).
   std::uint64_t size(int var, const std::string& var_name) const {
     int num_dims = 0;
-    check(nc_inq_varndims(id_, var, &num_dims), "variable " + var_name);
+    check(nc_.inq_varndims(id_, var, &num_dims), "variable " + var_name);
     std::vector<int> dims(static_cast<std::size_t>(num_dims));
-    check(nc_inq_vardimid(id_, var, dims.data()), "variable " + var_name);
+    check(nc_.inq_vardimid(id_, var, dims.data()), "variable " + var_name);
     std::uint64_t total = 1;
     for (const int dim : dims) {
       std::size_t length = 0;
-      check(nc_inq_dimlen(id_, dim, &length), "variable " + var_name);
+      check(nc_.inq_dimlen(id_, dim, &length), "variable " + var_name);
       if (length != 0 && total > std::numeric_limits<std::uint64_t>::max() / length)
         fail("variable " + var_name + " is too large");
       total *= length;
@@ -102,7 +137,7 @@ class NcFile {
       fail("variable " + var_name + " has " + std::to_string(n) + " values, expected " + std::to_string(expected));
     check_room(n, "variable " + var_name);
     std::vector<double> values(static_cast<std::size_t>(n));
-    if (n > 0) check(nc_get_var_double(id_, var, values.data()), "reading " + var_name);
+    if (n > 0) check(nc_.get_var_double(id_, var, values.data()), "reading " + var_name);
     return values;
   }
   std::vector<long long> integers(int var, const std::string& var_name, std::uint64_t expected) const {
@@ -111,25 +146,26 @@ class NcFile {
       fail("variable " + var_name + " has " + std::to_string(n) + " values, expected " + std::to_string(expected));
     check_room(n, "variable " + var_name);
     std::vector<long long> values(static_cast<std::size_t>(n));
-    if (n > 0) check(nc_get_var_longlong(id_, var, values.data()), "reading " + var_name);
+    if (n > 0) check(nc_.get_var_longlong(id_, var, values.data()), "reading " + var_name);
     return values;
   }
   std::string text_attribute(int var, const char* attribute) const {
     std::size_t length = 0;
-    if (nc_inq_attlen(id_, var, attribute, &length) != NC_NOERR) return {};
+    if (nc_.inq_attlen(id_, var, attribute, &length) != NC_NOERR) return {};
     nc_type type = NC_NAT;
-    if (nc_inq_atttype(id_, var, attribute, &type) != NC_NOERR || type != NC_CHAR || length > 4096) return {};
+    if (nc_.inq_atttype(id_, var, attribute, &type) != NC_NOERR || type != NC_CHAR || length > 4096) return {};
     std::string text(length, '\0');
-    check(nc_get_att_text(id_, var, attribute, text.data()), std::string("attribute ") + attribute);
+    check(nc_.get_att_text(id_, var, attribute, text.data()), std::string("attribute ") + attribute);
     while (!text.empty() && (text.back() == '\0' || text.back() == ' ')) text.pop_back();
     return text;
   }
 
  private:
   void check(int status, const std::string& what) const {
-    if (status != NC_NOERR) fail(what + ": " + nc_strerror(status));
+    if (status != NC_NOERR) fail(what + ": " + nc_.strerror(status));
   }
 
+  const NetcdfApi& nc_;
   const std::string& name_;
   std::vector<char> memory_;  // nc_open_mem reads from it until nc_close
   bool is_classic_ = false;

@@ -1,9 +1,5 @@
 #include "hqview/render/osmesa_renderer.h"
 
-#include <GL/osmesa.h>
-#include <GL/gl.h>
-#include <GL/glext.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -14,6 +10,7 @@
 
 #include "hqview/core/error.h"
 #include "hqview/core/stop.h"
+#include "hqview/render/gl_api.h"
 #include "hqview/render/scene_shapes.h"
 
 namespace hq {
@@ -187,40 +184,43 @@ std::string gl_error_name(GLenum error) {
 }
 
 void check_gl(const char* what) {
-  const GLenum error = glGetError();
+  const GlApi& gl = gl_api();
+  const GLenum error = gl.GetError();
   if (error != GL_NO_ERROR) throw RenderError(std::string("OpenGL error during ") + what + ": " + gl_error_name(error));
 }
 
 GLuint compile_shader(GLenum type, const char* source, const char* name) {
-  const GLuint shader = glCreateShader(type);
-  glShaderSource(shader, 1, &source, nullptr);
-  glCompileShader(shader);
+  const GlApi& gl = gl_api();
+  const GLuint shader = gl.CreateShader(type);
+  gl.ShaderSource(shader, 1, &source, nullptr);
+  gl.CompileShader(shader);
   GLint ok = GL_FALSE;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
   if (ok != GL_TRUE) {
     std::array<char, 4096> log{};
-    glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
-    glDeleteShader(shader);
+    gl.GetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
+    gl.DeleteShader(shader);
     throw RenderError(std::string("cannot compile the ") + name + " shader: " + log.data());
   }
   return shader;
 }
 
 GLuint link_program(const char* vertex_source, const char* fragment_source, const char* name) {
+  const GlApi& gl = gl_api();
   const GLuint vertex = compile_shader(GL_VERTEX_SHADER, vertex_source, name);
   const GLuint fragment = compile_shader(GL_FRAGMENT_SHADER, fragment_source, name);
-  const GLuint program = glCreateProgram();
-  glAttachShader(program, vertex);
-  glAttachShader(program, fragment);
-  glLinkProgram(program);
-  glDeleteShader(vertex);
-  glDeleteShader(fragment);
+  const GLuint program = gl.CreateProgram();
+  gl.AttachShader(program, vertex);
+  gl.AttachShader(program, fragment);
+  gl.LinkProgram(program);
+  gl.DeleteShader(vertex);
+  gl.DeleteShader(fragment);
   GLint ok = GL_FALSE;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  gl.GetProgramiv(program, GL_LINK_STATUS, &ok);
   if (ok != GL_TRUE) {
     std::array<char, 4096> log{};
-    glGetProgramInfoLog(program, static_cast<GLsizei>(log.size()), nullptr, log.data());
-    glDeleteProgram(program);
+    gl.GetProgramInfoLog(program, static_cast<GLsizei>(log.size()), nullptr, log.data());
+    gl.DeleteProgram(program);
     throw RenderError(std::string("cannot link the ") + name + " shader program: " + log.data());
   }
   return program;
@@ -280,7 +280,7 @@ class OsmesaRenderer final : public Renderer {
                               OSMESA_CONTEXT_MAJOR_VERSION, 4,
                               OSMESA_CONTEXT_MINOR_VERSION, 5,
                               0};
-    context_ = OSMesaCreateContextAttribs(attributes, nullptr);
+    context_ = gl.CreateContextAttribs(attributes, nullptr);
     if (!context_)
       throw RenderError(
           "cannot create an OSMesa OpenGL 4.5 core-profile context (is libOSMesa from Mesa >= 20 with "
@@ -290,14 +290,14 @@ class OsmesaRenderer final : public Renderer {
       triangle_program_ = link_program(kTriangleVertexShader, kTriangleFragmentShader, "triangle");
       line_program_ = link_program(kLineVertexShader, kLineFragmentShader, "line");
       sphere_program_ = link_program(kSphereVertexShader, kSphereFragmentShader, "sphere");
-      glGenVertexArrays(1, &vertex_array_);
-      glGenBuffers(1, &position_buffer_);
-      glGenBuffers(1, &normal_buffer_);
-      glGenBuffers(1, &color_buffer_);
-      glGenBuffers(1, &index_buffer_);
-      glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_renderbuffer_size_);
+      gl.GenVertexArrays(1, &vertex_array_);
+      gl.GenBuffers(1, &position_buffer_);
+      gl.GenBuffers(1, &normal_buffer_);
+      gl.GenBuffers(1, &color_buffer_);
+      gl.GenBuffers(1, &index_buffer_);
+      gl.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_renderbuffer_size_);
       GLfloat widths[2] = {1.0f, 1.0f};
-      glGetFloatv(GL_ALIASED_LINE_WIDTH_RANGE, widths);
+      gl.GetFloatv(GL_ALIASED_LINE_WIDTH_RANGE, widths);
       max_line_width_ = std::max(1.0f, widths[1]);
       check_gl("renderer set-up");
     } catch (...) {
@@ -339,17 +339,17 @@ class OsmesaRenderer final : public Renderer {
     prepare_framebuffers(width, height);
     const int ss_width = kSupersampling * width, ss_height = kSupersampling * height;
 
-    glBindFramebuffer(GL_FRAMEBUFFER, supersampled_framebuffer_);
-    glViewport(0, 0, ss_width, ss_height);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, supersampled_framebuffer_);
+    gl.Viewport(0, 0, ss_width, ss_height);
     const Color background = to_color(scene.background);
-    glClearColor(background.r, background.g, background.b, background.a);
-    glClearDepth(1.0);
-    glDepthMask(GL_TRUE);  // glClear obeys the depth mask
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LEQUAL);
-    glDisable(GL_CULL_FACE);
-    glBindVertexArray(vertex_array_);
+    gl.ClearColor(background.r, background.g, background.b, background.a);
+    gl.ClearDepth(1.0);
+    gl.DepthMask(GL_TRUE);  // glClear obeys the depth mask
+    gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_LEQUAL);
+    gl.Disable(GL_CULL_FACE);
+    gl.BindVertexArray(vertex_array_);
 
     const double aspect = static_cast<double>(width) / static_cast<double>(height);
     const Mat4 model_view_matrix = view_matrix(camera) * translation_matrix(scene.origin);
@@ -361,16 +361,16 @@ class OsmesaRenderer final : public Renderer {
     draw_lines(scene, model_view, projection);
     if (!scene.translucent.empty()) {
       // Blended over everything, without depth writes, back to front.
-      glEnable(GL_BLEND);
-      glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-      glDepthMask(GL_FALSE);
+      gl.Enable(GL_BLEND);
+      gl.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+      gl.DepthMask(GL_FALSE);
       draw_triangles(scene.translucent, model_view, projection, &model_view_matrix);
-      glDepthMask(GL_TRUE);
-      glDisable(GL_BLEND);
+      gl.DepthMask(GL_TRUE);
+      gl.Disable(GL_BLEND);
     }
     if (std::any_of(scene.overlay.begin(), scene.overlay.end(),
                     [](const TriangleSet& set) { return !set.indices.empty(); })) {
-      glClear(GL_DEPTH_BUFFER_BIT);  // the depth mask is on again
+      gl.Clear(GL_DEPTH_BUFFER_BIT);  // the depth mask is on again
       draw_triangles(scene.overlay, model_view, projection, nullptr);
     }
     check_gl("drawing");
@@ -382,29 +382,29 @@ class OsmesaRenderer final : public Renderer {
 
  private:
   void make_current() {
-    if (!OSMesaMakeCurrent(context_, default_buffer_.data(), GL_UNSIGNED_BYTE, kDefaultSize, kDefaultSize))
+    if (!gl.MakeCurrent(context_, default_buffer_.data(), GL_UNSIGNED_BYTE, kDefaultSize, kDefaultSize))
       throw RenderError("cannot make the OSMesa context current");
   }
 
   void release() {
     if (!context_) return;
-    if (OSMesaMakeCurrent(context_, default_buffer_.data(), GL_UNSIGNED_BYTE, kDefaultSize, kDefaultSize)) {
+    if (gl.MakeCurrent(context_, default_buffer_.data(), GL_UNSIGNED_BYTE, kDefaultSize, kDefaultSize)) {
       delete_framebuffers();
       const GLuint buffers[] = {position_buffer_, normal_buffer_, color_buffer_, index_buffer_};
-      glDeleteBuffers(4, buffers);
-      glDeleteVertexArrays(1, &vertex_array_);
-      glDeleteProgram(triangle_program_);
-      glDeleteProgram(line_program_);
-      glDeleteProgram(sphere_program_);
+      gl.DeleteBuffers(4, buffers);
+      gl.DeleteVertexArrays(1, &vertex_array_);
+      gl.DeleteProgram(triangle_program_);
+      gl.DeleteProgram(line_program_);
+      gl.DeleteProgram(sphere_program_);
     }
-    OSMesaDestroyContext(context_);
+    gl.DestroyContext(context_);
     context_ = nullptr;
   }
 
   void delete_framebuffers() {
     const GLuint renderbuffers[] = {supersampled_color_, supersampled_depth_};
-    glDeleteFramebuffers(1, &supersampled_framebuffer_);
-    glDeleteRenderbuffers(2, renderbuffers);
+    gl.DeleteFramebuffers(1, &supersampled_framebuffer_);
+    gl.DeleteRenderbuffers(2, renderbuffers);
     supersampled_framebuffer_ = 0;
     supersampled_color_ = supersampled_depth_ = 0;
     framebuffer_width_ = framebuffer_height_ = 0;
@@ -420,21 +420,21 @@ class OsmesaRenderer final : public Renderer {
                         " exceeds the renderer's limit of " + std::to_string(max_renderbuffer_size_ / kSupersampling) +
                         " pixels per side");
     delete_framebuffers();
-    auto make_renderbuffer = [](GLenum format, int w, int h) {
+    auto make_renderbuffer = [this](GLenum format, int w, int h) {
       GLuint id = 0;
-      glGenRenderbuffers(1, &id);
-      glBindRenderbuffer(GL_RENDERBUFFER, id);
-      glRenderbufferStorage(GL_RENDERBUFFER, format, w, h);
+      gl.GenRenderbuffers(1, &id);
+      gl.BindRenderbuffer(GL_RENDERBUFFER, id);
+      gl.RenderbufferStorage(GL_RENDERBUFFER, format, w, h);
       return id;
     };
     supersampled_color_ = make_renderbuffer(GL_RGBA8, ss_width, ss_height);
     supersampled_depth_ = make_renderbuffer(GL_DEPTH_COMPONENT24, ss_width, ss_height);
 
-    glGenFramebuffers(1, &supersampled_framebuffer_);
-    glBindFramebuffer(GL_FRAMEBUFFER, supersampled_framebuffer_);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, supersampled_color_);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, supersampled_depth_);
-    const GLenum supersampled_status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    gl.GenFramebuffers(1, &supersampled_framebuffer_);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, supersampled_framebuffer_);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, supersampled_color_);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, supersampled_depth_);
+    const GLenum supersampled_status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
     check_gl("framebuffer set-up");
     if (supersampled_status != GL_FRAMEBUFFER_COMPLETE) {
       delete_framebuffers();
@@ -447,41 +447,41 @@ class OsmesaRenderer final : public Renderer {
 
   template <class T>
   void upload(GLenum target, GLuint buffer, const std::vector<T>& data) {
-    glBindBuffer(target, buffer);
-    glBufferData(target, static_cast<GLsizeiptr>(data.size() * sizeof(T)), data.data(), GL_STREAM_DRAW);
+    gl.BindBuffer(target, buffer);
+    gl.BufferData(target, static_cast<GLsizeiptr>(data.size() * sizeof(T)), data.data(), GL_STREAM_DRAW);
   }
 
   void bind_positions_and_colors(const std::vector<Vec3f>& positions, const std::vector<Rgba8>& colors) {
     upload(GL_ARRAY_BUFFER, position_buffer_, positions);
-    glVertexAttribPointer(kPositionAttribute, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3f), nullptr);
-    glEnableVertexAttribArray(kPositionAttribute);
+    gl.VertexAttribPointer(kPositionAttribute, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3f), nullptr);
+    gl.EnableVertexAttribArray(kPositionAttribute);
     upload(GL_ARRAY_BUFFER, color_buffer_, colors);
-    glVertexAttribPointer(kColorAttribute, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(Rgba8), nullptr);
-    glEnableVertexAttribArray(kColorAttribute);
+    gl.VertexAttribPointer(kColorAttribute, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(Rgba8), nullptr);
+    gl.EnableVertexAttribArray(kColorAttribute);
   }
 
   void set_matrices(GLuint program, const std::array<float, 16>& model_view, const std::array<float, 16>& projection) {
-    glUniformMatrix4fv(glGetUniformLocation(program, "model_view"), 1, GL_FALSE, model_view.data());
-    glUniformMatrix4fv(glGetUniformLocation(program, "projection"), 1, GL_FALSE, projection.data());
+    gl.UniformMatrix4fv(gl.GetUniformLocation(program, "model_view"), 1, GL_FALSE, model_view.data());
+    gl.UniformMatrix4fv(gl.GetUniformLocation(program, "projection"), 1, GL_FALSE, projection.data());
   }
 
   void set_light(GLuint program) {
     // Above the view direction, in eye space.
     const float light[3] = {0.0f, 0.35f, 0.94f};
     const float length = std::sqrt(light[0] * light[0] + light[1] * light[1] + light[2] * light[2]);
-    glUniform3f(glGetUniformLocation(program, "light_direction"), light[0] / length, light[1] / length,
+    gl.Uniform3f(gl.GetUniformLocation(program, "light_direction"), light[0] / length, light[1] / length,
                 light[2] / length);
-    glUniform1f(glGetUniformLocation(program, "ambient"), 0.25f);
+    gl.Uniform1f(gl.GetUniformLocation(program, "ambient"), 0.25f);
   }
 
   void draw_spheres(const Scene& scene, const std::array<float, 16>& model_view,
                     const std::array<float, 16>& projection, bool is_perspective) {
     if (sphere_count(scene) == 0) return;
-    glUseProgram(sphere_program_);
+    gl.UseProgram(sphere_program_);
     set_matrices(sphere_program_, model_view, projection);
-    glUniform1i(glGetUniformLocation(sphere_program_, "is_perspective"), is_perspective ? 1 : 0);
+    gl.Uniform1i(gl.GetUniformLocation(sphere_program_, "is_perspective"), is_perspective ? 1 : 0);
     set_light(sphere_program_);
-    glDisable(GL_BLEND);
+    gl.Disable(GL_BLEND);
     static constexpr float kCorners[4][2] = {{-1.0f, -1.0f}, {1.0f, -1.0f}, {1.0f, 1.0f}, {-1.0f, 1.0f}};
     for (const SphereSet& set : scene.spheres) {
       stop::check();  // a stop request lands between draws (hq::stop)
@@ -502,25 +502,25 @@ class OsmesaRenderer final : public Renderer {
       }
       bind_positions_and_colors(centers, colors);
       upload(GL_ARRAY_BUFFER, normal_buffer_, corners);
-      glVertexAttribPointer(kCornerAttribute, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3f), nullptr);
-      glEnableVertexAttribArray(kCornerAttribute);
+      gl.VertexAttribPointer(kCornerAttribute, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3f), nullptr);
+      gl.EnableVertexAttribArray(kCornerAttribute);
       upload(GL_ELEMENT_ARRAY_BUFFER, index_buffer_, indices);
-      glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(indices.size()), GL_UNSIGNED_INT, nullptr);
+      gl.DrawElements(GL_TRIANGLES, static_cast<GLsizei>(indices.size()), GL_UNSIGNED_INT, nullptr);
     }
-    glDisableVertexAttribArray(kCornerAttribute);
+    gl.DisableVertexAttribArray(kCornerAttribute);
   }
 
   // Opaque sets (sort_by == nullptr) or translucent ones, whose triangles are
   // drawn back to front for the eye-space transform *sort_by.
   void draw_triangles(const std::vector<TriangleSet>& sets, const std::array<float, 16>& model_view,
                       const std::array<float, 16>& projection, const Mat4* sort_by) {
-    glUseProgram(triangle_program_);
+    gl.UseProgram(triangle_program_);
     set_matrices(triangle_program_, model_view, projection);
     set_light(triangle_program_);
-    if (!sort_by) glDisable(GL_BLEND);
+    if (!sort_by) gl.Disable(GL_BLEND);
     // Push filled triangles back so that lines on them pass the depth test.
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(1.0f, 1.0f);
+    gl.Enable(GL_POLYGON_OFFSET_FILL);
+    gl.PolygonOffset(1.0f, 1.0f);
     for (const TriangleSet& set : sets) {
       stop::check();
       if (set.indices.empty()) continue;
@@ -528,63 +528,63 @@ class OsmesaRenderer final : public Renderer {
       const bool use_normals = !set.normals.empty();
       if (use_normals) {
         upload(GL_ARRAY_BUFFER, normal_buffer_, set.normals);
-        glVertexAttribPointer(kNormalAttribute, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3f), nullptr);
-        glEnableVertexAttribArray(kNormalAttribute);
+        gl.VertexAttribPointer(kNormalAttribute, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3f), nullptr);
+        gl.EnableVertexAttribArray(kNormalAttribute);
       } else {
-        glDisableVertexAttribArray(kNormalAttribute);
+        gl.DisableVertexAttribArray(kNormalAttribute);
       }
-      glUniform1i(glGetUniformLocation(triangle_program_, "use_vertex_normals"), use_normals ? 1 : 0);
-      glUniform1i(glGetUniformLocation(triangle_program_, "is_lit"), set.is_lit ? 1 : 0);
+      gl.Uniform1i(gl.GetUniformLocation(triangle_program_, "use_vertex_normals"), use_normals ? 1 : 0);
+      gl.Uniform1i(gl.GetUniformLocation(triangle_program_, "is_lit"), set.is_lit ? 1 : 0);
       // One colour for the whole set (translucent hulls, arrows, the grey
       // boundary of view F): linearised once here instead of per fragment.
       const Rgba8 first = set.colors.front();
       const bool one_color =
           std::all_of(set.colors.begin(), set.colors.end(), [&](const Rgba8& c) { return c == first; });
-      glUniform1i(glGetUniformLocation(triangle_program_, "has_set_color"), one_color ? 1 : 0);
+      gl.Uniform1i(gl.GetUniformLocation(triangle_program_, "has_set_color"), one_color ? 1 : 0);
       if (one_color) {
         auto to_linear = [](std::uint8_t byte) {
           const float c = static_cast<float>(byte) / 255.0f;
           return c >= 0.04045f ? std::pow((c + 0.055f) / 1.055f, 2.4f) : c / 12.92f;
         };
-        glUniform3f(glGetUniformLocation(triangle_program_, "set_linear_color"), to_linear(first.r), to_linear(first.g),
+        gl.Uniform3f(gl.GetUniformLocation(triangle_program_, "set_linear_color"), to_linear(first.r), to_linear(first.g),
                     to_linear(first.b));
       }
       if (sort_by)
         upload(GL_ELEMENT_ARRAY_BUFFER, index_buffer_, sorted_indices(set, back_to_front_order(set, *sort_by)));
       else
         upload(GL_ELEMENT_ARRAY_BUFFER, index_buffer_, set.indices);
-      glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(set.indices.size()), GL_UNSIGNED_INT, nullptr);
+      gl.DrawElements(GL_TRIANGLES, static_cast<GLsizei>(set.indices.size()), GL_UNSIGNED_INT, nullptr);
     }
-    glDisable(GL_POLYGON_OFFSET_FILL);
-    glDisableVertexAttribArray(kNormalAttribute);
+    gl.Disable(GL_POLYGON_OFFSET_FILL);
+    gl.DisableVertexAttribArray(kNormalAttribute);
   }
 
   void draw_lines(const Scene& scene, const std::array<float, 16>& model_view,
                   const std::array<float, 16>& projection) {
-    glUseProgram(line_program_);
+    gl.UseProgram(line_program_);
     set_matrices(line_program_, model_view, projection);
-    glEnable(GL_BLEND);
-    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    gl.Enable(GL_BLEND);
+    gl.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     for (const LineSet& set : scene.lines) {
       stop::check();
       if (set.indices.empty()) continue;
       bind_positions_and_colors(set.positions, set.colors);
-      glLineWidth(std::clamp(set.width * static_cast<float>(kSupersampling), 1.0f, max_line_width_));
+      gl.LineWidth(std::clamp(set.width * static_cast<float>(kSupersampling), 1.0f, max_line_width_));
       upload(GL_ELEMENT_ARRAY_BUFFER, index_buffer_, set.indices);
-      glDrawElements(GL_LINES, static_cast<GLsizei>(set.indices.size()), GL_UNSIGNED_INT, nullptr);
+      gl.DrawElements(GL_LINES, static_cast<GLsizei>(set.indices.size()), GL_UNSIGNED_INT, nullptr);
     }
-    glDisable(GL_BLEND);
+    gl.Disable(GL_BLEND);
   }
 
   // Reads the supersampled frame back (on llvmpipe a plain copy, far
   // cheaper than a GPU-side downsampling blit) and box-filters it down.
   Image resolve(int width, int height) {
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, supersampled_framebuffer_);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, supersampled_framebuffer_);
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
     const int ss_width = kSupersampling * width, ss_height = kSupersampling * height;
     supersampled_pixels_.resize(4 * static_cast<std::size_t>(ss_width) * static_cast<std::size_t>(ss_height));
-    glReadPixels(0, 0, ss_width, ss_height, GL_RGBA, GL_UNSIGNED_BYTE, supersampled_pixels_.data());
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl.ReadPixels(0, 0, ss_width, ss_height, GL_RGBA, GL_UNSIGNED_BYTE, supersampled_pixels_.data());
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
     return box_filter_2x2(supersampled_pixels_, width, height);
   }
 
@@ -593,6 +593,8 @@ class OsmesaRenderer final : public Renderer {
   static constexpr int kDefaultSize = 4;
   std::array<std::uint8_t, 4 * kDefaultSize * kDefaultSize> default_buffer_{};
 
+  // Loaded before anything else (the first renderer loads libOSMesa).
+  const GlApi& gl = gl_api();
   OSMesaContext context_ = nullptr;
   GLuint triangle_program_ = 0, line_program_ = 0, sphere_program_ = 0;
   GLuint vertex_array_ = 0;
