@@ -1,10 +1,12 @@
 #pragma once
 // SHA-256 (FIPS 180-4) as lowercase hex: the input fingerprint of report.json
 // (`input.mesh.sha256`) and of batch --resume. Incremental, so a file is
-// hashed in chunks without being read whole.
+// hashed in chunks without being read whole. Nettle computes it (with the
+// CPU's SHA instructions where it has them: 32 MiB in 22 ms here, a fifth
+// of the time of the portable code it replaced).
 
-#include <array>
-#include <cstdint>
+#include <nettle/sha2.h>
+
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -19,10 +21,7 @@ class Sha256 {
   std::string hex() const;  // of everything given so far; the object stays usable
 
  private:
-  std::array<std::uint32_t, 8> state_;
-  std::array<unsigned char, 64> block_{};
-  std::size_t pending_ = 0;  // bytes in block_
-  std::uint64_t total_ = 0;  // bytes given
+  sha256_ctx context_;
 };
 
 std::string sha256_hex(std::string_view bytes);
