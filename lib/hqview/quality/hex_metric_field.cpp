@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include "hqview/core/progress.h"
+#include "hqview/core/stop.h"
 
 namespace hq {
 namespace {
@@ -11,16 +12,19 @@ namespace {
 constexpr std::size_t kGrain = 2048;
 
 template <typename Body>
-void for_each_hex(std::size_t count, const Body& body) {
+void for_each_hex(std::size_t count, Progress reporting, const Body& body) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t h = r.begin(); h != r.end(); ++h) body(h);
-    progress::add_done(r.size());
+    if (reporting == Progress::report)
+      progress::add_done(r.size());
+    else
+      stop::check();
   });
 }
 
 }  // namespace
 
-HexMetricField compute_hex_metrics(const HexMesh& mesh, HexMetricSet which) {
+HexMetricField compute_hex_metrics(const HexMesh& mesh, HexMetricSet which, Progress reporting) {
   insert(which, HexMetric::scaled_jacobian);
   const std::size_t nh = mesh.hexes.size();
   HexMetricField field;
@@ -31,7 +35,7 @@ HexMetricField compute_hex_metrics(const HexMesh& mesh, HexMetricSet which) {
   // Pass 1, only when needed: volumes and their mean (the size metrics'
   // reference, so it must be known before pass 2).
   bool wants_size = false;
-  progress::set_total(2 * nh);  // two passes over the hexes at most
+  if (reporting == Progress::report) progress::set_total(2 * nh);  // two passes over the hexes at most
   for (int m = 0; m < kNumHexMetrics; ++m)
     wants_size = wants_size || (which.test(static_cast<std::size_t>(m)) &&
                                 hex_metric_info(static_cast<HexMetric>(m)).uses_average_volume);
@@ -41,7 +45,7 @@ HexMetricField compute_hex_metrics(const HexMesh& mesh, HexMetricSet which) {
     std::vector<double>& volume =
         contains(which, HexMetric::volume) ? field.values[static_cast<std::size_t>(HexMetric::volume)] : scratch;
     volume.resize(nh);
-    for_each_hex(nh, [&](std::size_t h) { volume[h] = hex_volume(hex_corners(mesh, static_cast<Index>(h))); });
+    for_each_hex(nh, reporting, [&](std::size_t h) { volume[h] = hex_volume(hex_corners(mesh, static_cast<Index>(h))); });
     double sum = 0;
     for (double v : volume) sum += v;  // in id order: the same bytes for any thread count
     field.average_volume = nh > 0 ? sum / static_cast<double>(nh) : 0.0;
@@ -49,7 +53,7 @@ HexMetricField compute_hex_metrics(const HexMesh& mesh, HexMetricSet which) {
   }
 
   // Pass 2: everything else, one shared kernel per hex.
-  for_each_hex(nh, [&](std::size_t h) {
+  for_each_hex(nh, reporting, [&](std::size_t h) {
     const HexMetricValues v = hex_metrics(hex_corners(mesh, static_cast<Index>(h)), field.average_volume, rest);
     for (int m = 0; m < kNumHexMetrics; ++m)
       if (rest.test(static_cast<std::size_t>(m)))

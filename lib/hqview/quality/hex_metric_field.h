@@ -26,7 +26,13 @@ struct HexMetricField {
   const std::vector<double>& of(HexMetric m) const { return values[static_cast<std::size_t>(m)]; }
 };
 
+// Whether a stage reports its work to the progress bar (progress.h), or
+// only polls for stop requests (when it runs beside another stage that owns
+// the bar).
+enum class Progress { report, silent };
+
 // Computes the metrics in `which` (plus scaled_jacobian) for every hex.
-HexMetricField compute_hex_metrics(const HexMesh& mesh, HexMetricSet which = all_hex_metrics());
+HexMetricField compute_hex_metrics(const HexMesh& mesh, HexMetricSet which = all_hex_metrics(),
+                                   Progress reporting = Progress::report);
 
 }  // namespace hq
