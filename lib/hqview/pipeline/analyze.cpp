@@ -30,10 +30,11 @@ LoadedMesh load_mesh(const fs::path& path, const AnalyzeOptions& options, InputF
 // Meshes of up to this many hexes get their metrics and the metrics'
 // summaries computed beside the overlap stage, whose box search and sorts
 // run largely on one core (363,520 hexes: the whole run 1.42 -> 1.35 s on 2
-// cores, medians of 5 interleaved runs). Larger meshes compute them after it, so that the overlap scratch
-// (the tetrahedra's points, 24 bytes per vertex, face and hex) is freed
-// before the metric arrays (176 bytes per hex) exist and the two never add
-// up in the peak memory (2,908,160 hexes: 1.77 GB).
+// cores, medians of 5 interleaved runs). Larger meshes compute them after
+// it, so that the overlap scratch (the tetrahedra's points, 24 bytes per
+// vertex, face and hex) is freed before the metric arrays (176 bytes per
+// hex) exist and the two never add up in the peak memory (2,908,160 hexes:
+// 1.77 GB).
 constexpr std::size_t kMetricsBesideOverlapMaxHexes = 1'000'000;
 
 // f, timed into `seconds`: for stages that run beside another one.
