@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
     if (getenv("NOARAP")) o.merge_with_arap = false;
     if (getenv("RES")) o.pack_resolution = atoi(getenv("RES"));
     if (getenv("WITHIN")) o.merge_min_area_within_2 = atof(getenv("WITHIN"));
+    if (getenv("PACKSPLITS")) o.pack_max_splits = atoi(getenv("PACKSPLITS"));
     auto t0 = std::chrono::steady_clock::now();
     UvAtlas a = build_uv_atlas(s, o);
     double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

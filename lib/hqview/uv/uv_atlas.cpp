@@ -6,6 +6,7 @@
 #include <iterator>
 #include <numbers>
 #include <numeric>
+#include <optional>
 #include <queue>
 #include <set>
 #include <tuple>
@@ -84,7 +85,8 @@ class AtlasBuilder {
     equalise_scale();
     // Overlaps are searched once, on a first packing (charts apart);
     // splitting only separates triangles, so it never makes new ones.
-    pack();
+    atlas.num_splits += split_for_packing();
+    if (!packs_by_splitting()) pack();
     std::vector<std::array<Index, 2>> overlaps = uv_overlapping_pairs_by_part(uvs_, current_chart_of());
     const Index overlap_splits = split_overlapping_charts(overlaps);
     atlas.num_splits += overlap_splits;
@@ -876,7 +878,7 @@ class AtlasBuilder {
           charts_[k].triangles = std::move(pieces[0]);
           for (std::size_t i = 1; i < pieces.size(); ++i) {
             for (Index t : pieces[i]) chart_of[t] = static_cast<Index>(charts_.size());
-            charts_.push_back({std::move(pieces[i]), charts_[k].direction});
+            charts_.push_back({std::move(pieces[i]), charts_[k].direction, charts_[k].lscm});
             todo.push_back(charts_.size() - 1);
           }
           todo.push_back(k);
@@ -1083,7 +1085,8 @@ class AtlasBuilder {
       const double ca = centroid(a, axis), cb = centroid(b, axis);
       return ca != cb ? ca < cb : a < b;
     });
-    Chart second{std::vector<Index>(half, tris.end()), charts_[c].direction};
+    // A piece keeps the chart's layout, hence how it was made (lscm).
+    Chart second{std::vector<Index>(half, tris.end()), charts_[c].direction, charts_[c].lscm};
     tris.erase(half, tris.end());
     std::sort(tris.begin(), tris.end());
     std::sort(second.triangles.begin(), second.triangles.end());
@@ -1091,11 +1094,144 @@ class AtlasBuilder {
     charts_.push_back(std::move(second));
   }
 
-  void pack() {
+  // A chart that fills its bounding box poorly (a long strip, an L, a hand)
+  // leaves the square around it empty. While the packed charts fill less
+  // than pack_target, each of the three largest charts is tried halved at
+  // its median (split(), pieces kept disks by make_disks()): each piece
+  // keeps its part of the chart's layout, so no flip, no overlap within a
+  // piece and the same distortion. The try that packs best is kept when it
+  // packs better than before and at most pack_max_charts_95 charts still
+  // hold 95 % of the area; else the charts stay as they were. The tries are
+  // packed on a coarser grid (a third of the cells a side: a ninth of the
+  // places to look at), the result again on the full one. Leaves the charts
+  // packed. Returns the splits kept.
+  Index split_for_packing() {
+    if (!packs_by_splitting()) return 0;
+    const int coarse = std::max(32, options_.pack_resolution / 3);
+    pack(coarse);
+    Index kept = 0;
+    double filled = packed_area();
+    for (int round = 0; round < options_.pack_max_splits && filled < options_.pack_target; ++round) {
+      std::vector<std::size_t> order(charts_.size());
+      std::iota(order.begin(), order.end(), std::size_t{0});
+      std::vector<double> area(charts_.size(), 0.0);
+      for (std::size_t c = 0; c < charts_.size(); ++c)
+        for (Index t : charts_[c].triangles) area[c] += area_[t];
+      std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return area[a] != area[b] ? area[a] > area[b] : a < b;
+      });
+      const std::vector<Chart> before = charts_;
+      std::optional<std::vector<Chart>> best;
+      double best_filled = filled;
+      Index best_splits = 0;
+      for (std::size_t i = 0; i < std::min<std::size_t>(5, order.size()); ++i) {
+        if (charts_[order[i]].triangles.size() < 2) break;
+        if (box_fill(charts_[order[i]]) >= options_.pack_split_max_box_fill) continue;
+        split(order[i]);
+        straighten_cut(order[i], charts_.size() - 1);
+        const Index splits = 1 + make_disks();
+        if (charts_holding(0.95) <= options_.pack_max_charts_95) {
+          pack(coarse);
+          const double f = packed_area();
+          if (f > best_filled) best = charts_, best_filled = f, best_splits = splits;
+        }
+        charts_ = before;
+      }
+      if (!best) break;
+      charts_ = std::move(*best);
+      filled = best_filled;
+      kept += best_splits;
+    }
+    pack();
+    return kept;
+  }
+
+  // Only surfaces of up to pack_split_max_triangles: each try rasterises
+  // every triangle again, which on a 10^6-triangle surface costs more than
+  // the rest of the atlas.
+  bool packs_by_splitting() const {
+    return options_.pack_max_splits > 0 && nt_ <= options_.pack_split_max_triangles;
+  }
+
+  // The median cut of split() runs along triangle borders and so zigzags:
+  // a triangle of one half with two glued neighbours in the other half moves
+  // there (a few passes). Both halves keep their layout (a part of one
+  // one-to-one layout), so this changes only where the seam runs.
+  void straighten_cut(std::size_t a, std::size_t b) {
+    std::vector<std::uint8_t> side(static_cast<std::size_t>(nt_), 0);  // 1: in a, 2: in b
+    for (Index t : charts_[a].triangles) side[t] = 1;
+    for (Index t : charts_[b].triangles) side[t] = 2;
+    for (int pass = 0; pass < 4; ++pass) {
+      bool moved = false;
+      for (std::size_t from : {a, b}) {
+        const std::uint8_t own = from == a ? 1 : 2, other = from == a ? 2 : 1;
+        for (Index t : charts_[from].triangles) {
+          if (side[t] != own) continue;
+          int glued_to_other = 0;
+          for (int k = 0; k < 3; ++k) {
+            const Index n = neighbour_[3 * static_cast<std::size_t>(t) + k];
+            glued_to_other += n != kNoIndex && side[n] == other && glued(t, k, n);
+          }
+          if (glued_to_other >= 2) side[t] = other, moved = true;
+        }
+      }
+      if (!moved) break;
+    }
+    std::vector<Index> all = std::move(charts_[a].triangles);
+    all.insert(all.end(), charts_[b].triangles.begin(), charts_[b].triangles.end());
+    std::sort(all.begin(), all.end());
+    charts_[a].triangles.clear();
+    charts_[b].triangles.clear();
+    for (Index t : all) charts_[side[t] == 1 ? a : b].triangles.push_back(t);
+  }
+
+  // How much of its layout's bounding box a chart covers.
+  double box_fill(const Chart& c) const {
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY}, area = 0.0;
+    for (Index t : c.triangles) {
+      const Uv* p = &local_[3 * static_cast<std::size_t>(t)];
+      area += std::abs(uv_signed_area(p));
+      for (int k = 0; k < 3; ++k)
+        for (int a = 0; a < 2; ++a) lo[a] = std::min(lo[a], p[k][a]), hi[a] = std::max(hi[a], p[k][a]);
+    }
+    const double box = (hi[0] - lo[0]) * (hi[1] - lo[1]);
+    return box > 0.0 ? area / box : 1.0;
+  }
+
+  // The packed UV area of all charts (the packing efficiency).
+  double packed_area() const {
+    double sum = 0.0;
+    for (const Chart& c : charts_)
+      for (Index t : c.triangles) {
+        const std::size_t i = 3 * static_cast<std::size_t>(t);
+        const Uv &a = uvs_[i], &b = uvs_[i + 1], &d = uvs_[i + 2];
+        sum += 0.5 * std::abs((b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]));
+      }
+    return sum;
+  }
+
+  // How many of the largest charts hold `fraction` of the surface's area.
+  std::size_t charts_holding(double fraction) const {
+    std::vector<double> area;
+    double total = 0.0;
+    for (const Chart& c : charts_) {
+      double a = 0.0;
+      for (Index t : c.triangles) a += area_[t];
+      if (a > 0.0) area.push_back(a), total += a;
+    }
+    std::sort(area.begin(), area.end(), std::greater<>());
+    double held = 0.0;
+    std::size_t n = 0;
+    while (n < area.size() && held < fraction * total) held += area[n++];
+    return n;
+  }
+
+  void pack() { pack(options_.pack_resolution); }
+  void pack(int resolution) {
     std::vector<std::vector<Index>> lists;
     lists.reserve(charts_.size());
     for (const Chart& c : charts_) lists.push_back(c.triangles);
-    pack_charts(local_, lists, uvs_, PackOptions{.resolution = options_.pack_resolution});
+    pack_charts(local_, lists, uvs_, PackOptions{.resolution = resolution});
   }
 
   const TriSurface& s_;

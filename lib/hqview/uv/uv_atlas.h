@@ -50,6 +50,18 @@ struct UvOptions {
   int pack_resolution = 256;
   // Rounds of "re-chart the triangles that fail the final exact check, pack again".
   int max_repair_rounds = 4;
+  // While the packed charts fill less than pack_target of the square, one of
+  // the largest charts that covers less than pack_split_max_box_fill of its
+  // bounding box (a strip bent in UV, a hand; not a rectangle or a disk,
+  // which pack well whole) is halved (its layout kept) when that packs better
+  // and at most pack_max_charts_95 charts still hold 95 % of the area; at
+  // most pack_max_splits halvings (0: off). Only on surfaces of up to
+  // pack_split_max_triangles.
+  double pack_target = 0.6;
+  int pack_max_charts_95 = 8;
+  int pack_max_splits = 6;
+  Index pack_split_max_triangles = 250'000;
+  double pack_split_max_box_fill = 0.6;
   // Replace the projection of each chart (of at least lscm_min_triangles) by
   // its LSCM layout (CGAL LSCM_parameterizer_3) when that is one-to-one
   // (exact checks) and distorts less.
