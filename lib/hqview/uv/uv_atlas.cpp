@@ -47,6 +47,9 @@ struct Chart {
   bool own_plane() const { return direction == Vec3{}; }
 };
 
+// The largest charts tried halved in each round of the packing splits.
+constexpr std::size_t kPackSplitCandidates = 5;
+
 Index find_root(std::vector<Index>& parent, Index v) {
   while (parent[v] != v) v = parent[v] = parent[parent[v]];
   return v;
@@ -1096,7 +1099,8 @@ class AtlasBuilder {
 
   // A chart that fills its bounding box poorly (a long strip, an L, a hand)
   // leaves the square around it empty. While the packed charts fill less
-  // than pack_target, each of the three largest charts is tried halved at
+  // than pack_target, each of the kPackSplitCandidates largest charts that
+  // fills less than pack_split_max_box_fill of its box is tried halved at
   // its median (split(), pieces kept disks by make_disks()): each piece
   // keeps its part of the chart's layout, so no flip, no overlap within a
   // piece and the same distortion. The try that packs best is kept when it
@@ -1114,9 +1118,8 @@ class AtlasBuilder {
     for (int round = 0; round < options_.pack_max_splits && filled < options_.pack_target; ++round) {
       std::vector<std::size_t> order(charts_.size());
       std::iota(order.begin(), order.end(), std::size_t{0});
-      std::vector<double> area(charts_.size(), 0.0);
-      for (std::size_t c = 0; c < charts_.size(); ++c)
-        for (Index t : charts_[c].triangles) area[c] += area_[t];
+      std::vector<double> area(charts_.size());
+      for (std::size_t c = 0; c < charts_.size(); ++c) area[c] = chart_area(charts_[c]);
       std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
         return area[a] != area[b] ? area[a] > area[b] : a < b;
       });
@@ -1124,8 +1127,8 @@ class AtlasBuilder {
       std::optional<std::vector<Chart>> best;
       double best_filled = filled;
       Index best_splits = 0;
-      for (std::size_t i = 0; i < std::min<std::size_t>(5, order.size()); ++i) {
-        if (charts_[order[i]].triangles.size() < 2) break;
+      for (std::size_t i = 0; i < std::min(kPackSplitCandidates, order.size()); ++i) {
+        if (charts_[order[i]].triangles.size() < 2) continue;
         if (box_fill(charts_[order[i]]) >= options_.pack_split_max_box_fill) continue;
         split(order[i]);
         straighten_cut(order[i], charts_.size() - 1);
@@ -1203,22 +1206,23 @@ class AtlasBuilder {
     double sum = 0.0;
     for (const Chart& c : charts_)
       for (Index t : c.triangles) {
-        const std::size_t i = 3 * static_cast<std::size_t>(t);
-        const Uv &a = uvs_[i], &b = uvs_[i + 1], &d = uvs_[i + 2];
-        sum += 0.5 * std::abs((b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]));
+        sum += std::abs(uv_signed_area(&uvs_[3 * static_cast<std::size_t>(t)]));
       }
     return sum;
+  }
+
+  double chart_area(const Chart& c) const {
+    double a = 0.0;
+    for (Index t : c.triangles) a += area_[t];
+    return a;
   }
 
   // How many of the largest charts hold `fraction` of the surface's area.
   std::size_t charts_holding(double fraction) const {
     std::vector<double> area;
     double total = 0.0;
-    for (const Chart& c : charts_) {
-      double a = 0.0;
-      for (Index t : c.triangles) a += area_[t];
-      if (a > 0.0) area.push_back(a), total += a;
-    }
+    for (const Chart& c : charts_)
+      if (const double a = chart_area(c); a > 0.0) area.push_back(a), total += a;
     std::sort(area.begin(), area.end(), std::greater<>());
     double held = 0.0;
     std::size_t n = 0;
