@@ -41,8 +41,29 @@ TEST(Stop, ASignalIsHonouredAtTheNextPollAndTheFirstOneWins) {
   // (StageClock's destructor calls it).
   EXPECT_THROW(hq::progress::add_done(1), hq::Interrupted);
   EXPECT_THROW(hq::progress::set_done(1), hq::Interrupted);
+  // A stage that does not draw the bar still polls.
+  EXPECT_THROW(hq::progress::add_done(hq::progress::Reporting::silent, 1), hq::Interrupted);
   EXPECT_THROW(hq::progress::stage_started("metrics"), hq::Interrupted);
   EXPECT_NO_THROW(hq::progress::stage_started(""));
+}
+
+// A silent stage leaves the running stage's counts as they are; a reporting
+// one sets and adds to them.
+TEST(Progress, ASilentStageLeavesTheBarAlone) {
+  ResetStop reset;
+  hq::progress::stage_started("overlap");
+  hq::progress::set_total(5);
+  hq::progress::add_done(2);
+  hq::progress::set_total(hq::progress::Reporting::silent, 1000);
+  hq::progress::add_done(hq::progress::Reporting::silent, 300);
+  EXPECT_EQ(hq::progress::snapshot().total, 5u);
+  EXPECT_EQ(hq::progress::snapshot().done, 2u);
+  hq::progress::add_done(hq::progress::Reporting::report, 1);
+  EXPECT_EQ(hq::progress::snapshot().done, 3u);
+  hq::progress::set_total(hq::progress::Reporting::report, 7);
+  EXPECT_EQ(hq::progress::snapshot().total, 7u);
+  EXPECT_EQ(hq::progress::snapshot().done, 0u);
+  hq::progress::stage_started("");
 }
 
 TEST(Stop, APollInsideAParallelLoopStopsTheLoopAndReachesTheCaller) {

@@ -47,6 +47,17 @@ void set_done(std::uint64_t done) {
   stop::check();
 }
 
+void set_total(Reporting reporting, std::uint64_t total) {
+  if (reporting == Reporting::report) set_total(total);
+}
+
+void add_done(Reporting reporting, std::uint64_t amount) {
+  if (reporting == Reporting::report)
+    add_done(amount);
+  else
+    stop::check();
+}
+
 Snapshot snapshot() {
   State& s = state();
   Snapshot out;

@@ -30,4 +30,12 @@ void add_done(std::uint64_t amount);
 void set_done(std::uint64_t done);
 Snapshot snapshot();
 
+// Whether a stage draws the bar, or only polls for stop requests because it
+// runs beside another stage that owns the bar (the pipeline's metrics
+// beside the overlap stage). The calls below do what add_done and set_total
+// do when `reporting` is report; when silent, only the stop check.
+enum class Reporting { report, silent };
+void set_total(Reporting reporting, std::uint64_t total);
+void add_done(Reporting reporting, std::uint64_t amount);
+
 }  // namespace hq::progress

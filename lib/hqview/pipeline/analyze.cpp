@@ -61,7 +61,7 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
   double structure_seconds = 0, metrics_seconds = 0, metric_summaries_seconds = 0;
   const auto structure = timed(structure_seconds, [&] { a.structure = compute_structure(a.mesh, a.topology); });
   const auto metrics = timed(metrics_seconds, [&] {
-    a.metrics = compute_hex_metrics(a.mesh, options.metrics, metrics_beside ? Progress::silent : Progress::report);
+    a.metrics = compute_hex_metrics(a.mesh, options.metrics, metrics_beside ? progress::Reporting::silent : progress::Reporting::report);
   });
   const auto summarize_metrics =
       timed(metric_summaries_seconds, [&] { metric_summaries = summarize_hex_metrics(a.metrics); });

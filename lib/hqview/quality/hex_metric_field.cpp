@@ -4,7 +4,6 @@
 #include <tbb/parallel_for.h>
 
 #include "hqview/core/progress.h"
-#include "hqview/core/stop.h"
 
 namespace hq {
 namespace {
@@ -12,19 +11,16 @@ namespace {
 constexpr std::size_t kGrain = 2048;
 
 template <typename Body>
-void for_each_hex(std::size_t count, Progress reporting, const Body& body) {
+void for_each_hex(std::size_t count, progress::Reporting reporting, const Body& body) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t h = r.begin(); h != r.end(); ++h) body(h);
-    if (reporting == Progress::report)
-      progress::add_done(r.size());
-    else
-      stop::check();
+    progress::add_done(reporting, r.size());
   });
 }
 
 }  // namespace
 
-HexMetricField compute_hex_metrics(const HexMesh& mesh, HexMetricSet which, Progress reporting) {
+HexMetricField compute_hex_metrics(const HexMesh& mesh, HexMetricSet which, progress::Reporting reporting) {
   insert(which, HexMetric::scaled_jacobian);
   const std::size_t nh = mesh.hexes.size();
   HexMetricField field;
@@ -35,7 +31,7 @@ HexMetricField compute_hex_metrics(const HexMesh& mesh, HexMetricSet which, Prog
   // Pass 1, only when needed: volumes and their mean (the size metrics'
   // reference, so it must be known before pass 2).
   bool wants_size = false;
-  if (reporting == Progress::report) progress::set_total(2 * nh);  // two passes over the hexes at most
+  progress::set_total(reporting, 2 * nh);  // two passes over the hexes at most
   for (int m = 0; m < kNumHexMetrics; ++m)
     wants_size = wants_size || (which.test(static_cast<std::size_t>(m)) &&
                                 hex_metric_info(static_cast<HexMetric>(m)).uses_average_volume);

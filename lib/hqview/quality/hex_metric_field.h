@@ -6,6 +6,7 @@
 #include <array>
 #include <vector>
 
+#include "hqview/core/progress.h"
 #include "hqview/mesh/hex_mesh.h"
 #include "hqview/quality/hex_metrics.h"
 
@@ -26,13 +27,9 @@ struct HexMetricField {
   const std::vector<double>& of(HexMetric m) const { return values[static_cast<std::size_t>(m)]; }
 };
 
-// Whether a stage reports its work to the progress bar (progress.h), or
-// only polls for stop requests (when it runs beside another stage that owns
-// the bar).
-enum class Progress { report, silent };
-
-// Computes the metrics in `which` (plus scaled_jacobian) for every hex.
+// Computes the metrics in `which` (plus scaled_jacobian) for every hex;
+// `reporting`: whether it draws the progress bar (progress.h).
 HexMetricField compute_hex_metrics(const HexMesh& mesh, HexMetricSet which = all_hex_metrics(),
-                                   Progress reporting = Progress::report);
+                                   progress::Reporting reporting = progress::Reporting::report);
 
 }  // namespace hq
