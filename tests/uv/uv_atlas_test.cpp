@@ -263,6 +263,50 @@ TEST(UvAtlas, OpenCylinderUnrollsIsometrically) {
   EXPECT_EQ(atlas.num_charts, 1);
 }
 
+// A flat half ring (radii 3 and 4: area 11.0 in an 8 x 4 box, fill 0.34)
+// unfolds into one chart that leaves most of the square empty; halved for
+// the packing, its pieces fill it better, and each keeps its part of the
+// isometric layout (area ratio and conformal distortion 1 on every
+// triangle). A flat L (fill 0.44) is tried too, but its median cut falls
+// inside one arm and packs worse, so it stays whole: never worse.
+TEST(UvAtlas, AChartThatFillsItsBoxPoorlyIsHalvedWhenThatPacksBetter) {
+  TriSurface ring;
+  const int n = 48, m = 4;
+  for (int j = 0; j <= m; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const double a = std::numbers::pi * i / n, r = 3.0 + 1.0 * j / m;
+      ring.points.push_back({r * std::cos(a), r * std::sin(a), 0.0});
+    }
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < n; ++i) {
+      const Index a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      ring.triangles.push_back({a, d, b});
+      ring.triangles.push_back({a, c, d});
+    }
+  const TriSurface l = remove_triangles(triangulated_box({0, 0, 0}, {8, 8, 1}, 16), [](const Vec3& c) {
+    return c.z > 1e-9 || (c.x > 2.0 && c.y > 2.0);
+  });
+  for (const auto& [surface, name] : {std::pair<const TriSurface*, const char*>{&ring, "half ring"}, {&l, "L"}}) {
+    UvOptions whole{.improve_with_lscm = true};
+    whole.pack_max_splits = 0;
+    const UvAtlas one = build_uv_atlas(*surface, whole);
+    const UvAtlas halved = build_uv_atlas(*surface, UvOptions{.improve_with_lscm = true});
+    expect_valid_atlas(*surface, halved, name);
+    expect_disks(*surface, halved, name);
+    EXPECT_EQ(one.num_charts, 1) << name;
+    EXPECT_LE(halved.num_charts, 8) << name;
+    EXPECT_GE(halved.packing_efficiency, one.packing_efficiency - 1e-12) << name;
+    EXPECT_NEAR(halved.area_ratio.min, 1.0, 1e-6) << name;
+    EXPECT_NEAR(halved.area_ratio.max, 1.0, 1e-6) << name;
+    EXPECT_NEAR(halved.conformal_distortion.max, 1.0, 1e-6) << name;
+    if (surface == &ring) {
+      EXPECT_GE(halved.num_charts, 2);
+      EXPECT_GT(halved.packing_efficiency, one.packing_efficiency + 0.1)
+          << one.packing_efficiency << " -> " << halved.packing_efficiency;
+    }
+  }
+}
+
 TEST(UvAtlas, SphereAndTorusAreCutIntoFewDisks) {
   const TriSurface sphere = icosphere(4);
   const UvAtlas a = build_uv_atlas(sphere, UvOptions{.improve_with_lscm = true});
