@@ -16,7 +16,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <random>
 
 #include "hqview/boundary/surface_distance.h"
@@ -183,23 +182,6 @@ void BM_UvAtlas_BaselineProjected(benchmark::State& state) {
                           static_cast<std::int64_t>(s.triangles.size()));
 }
 
-// The same with the LSCM improvement of every disk chart.
-void BM_UvAtlasLscm_HQView(benchmark::State& state) {
-  const hq::TriSurface& s = reference();
-  hq::UvOptions options;
-  options.improve_with_lscm = true;
-  options.lscm_max_surface_triangles = std::numeric_limits<Index>::max();
-  for (auto _ : state) {
-    const hq::UvAtlas atlas = hq::build_uv_atlas(s, options);
-    if (atlas.num_flipped != 0 || atlas.num_overlaps != 0) state.SkipWithError("invalid atlas");
-    state.counters["charts"] = atlas.num_charts;
-    state.counters["lscm_charts"] = atlas.num_lscm_charts;
-    state.counters["efficiency"] = atlas.packing_efficiency;
-  }
-  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) *
-                          static_cast<std::int64_t>(s.triangles.size()));
-}
-
 BENCHMARK(BM_SignedDistance_HQView)
     ->Arg(1)
     ->Arg(2)
@@ -214,7 +196,6 @@ BENCHMARK(BM_SignedDistance_BaselineNoHint)
     ->UseRealTime();
 BENCHMARK(BM_WindingSign_HQView)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)->UseRealTime();
 BENCHMARK(BM_ReferenceRepair_HQView)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)->UseRealTime();
-BENCHMARK(BM_UvAtlasLscm_HQView)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)->UseRealTime();
 BENCHMARK(BM_UvAtlas_BaselineProjected)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)->UseRealTime();
 BENCHMARK(BM_UvAtlas_HQView)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)->UseRealTime();
 

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <random>
 #include <tuple>
@@ -267,8 +268,10 @@ TEST(UvAtlas, OpenCylinderUnrollsIsometrically) {
 // unfolds into one chart that leaves most of the square empty; halved for
 // the packing, its pieces fill it better, and each keeps its part of the
 // isometric layout (area ratio and conformal distortion 1 on every
-// triangle). A flat L (fill 0.44) is tried too, but its median cut falls
-// inside one arm and packs worse, so it stays whole: never worse.
+// triangle). A flat L (8 x 8, arms 2 wide: fill 0.44) is tried too: its
+// median cut falls inside one arm, its tightest-box cut at the corner
+// gives a 2 x 8 and a 6 x 2 bar, which still need a square of side 8
+// (the same 0.44), so neither packs better and it stays whole: never worse.
 TEST(UvAtlas, AChartThatFillsItsBoxPoorlyIsHalvedWhenThatPacksBetter) {
   TriSurface ring;
   const int n = 48, m = 4;
@@ -334,6 +337,77 @@ std::vector<Index> all_triangles(const TriSurface& s) {
   std::vector<Index> tris(s.triangles.size());
   for (std::size_t t = 0; t < tris.size(); ++t) tris[t] = static_cast<Index>(t);
   return tris;
+}
+
+// Across each edge of each triangle: the triangle on its other side, or
+// kNoIndex (3 per triangle).
+std::vector<Index> triangle_neighbours(const TriSurface& s) {
+  std::map<std::pair<Index, Index>, std::pair<Index, int>> first;
+  std::vector<Index> out(3 * s.triangles.size(), kNoIndex);
+  for (std::size_t t = 0; t < s.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const Index a = s.triangles[t][k], b = s.triangles[t][(k + 1) % 3];
+      const auto key = std::minmax(a, b);
+      if (const auto it = first.find(key); it != first.end()) {
+        out[3 * t + k] = it->second.first;
+        out[3 * static_cast<std::size_t>(it->second.first) + it->second.second] = static_cast<Index>(t);
+      } else {
+        first.emplace(key, std::pair{static_cast<Index>(t), k});
+      }
+    }
+  return out;
+}
+
+TEST(UvCut, AZigzagCutThroughARowOfDiagonalsIsStraightened) {
+  // A 10 x 10 grid of unit squares, each halved by its diagonal from (i, j)
+  // to (i+1, j+1). Side 1: triangles whose centroid lies left of x = 4.5.
+  // In column 4 the upper triangle (centroid x 4 1/3) is on side 1 and the
+  // lower (4 2/3) on side 2: the cut runs up the 10 diagonals of column 4
+  // and the 9 edges between the rows there, 10 sqrt 2 + 9 long (worked by
+  // hand). Each upper triangle of column 4 but the top one borders the
+  // other side across its diagonal and its top edge and moves; the cut
+  // then runs up the line x = 4 for 9 rows and across the top diagonal:
+  // 10 edges, 9 + sqrt 2 long.
+  const int n = 10;
+  TriSurface s;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) s.points.push_back({double(i), double(j), 0.0});
+  const auto v = [&](int i, int j) { return static_cast<Index>(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      s.triangles.push_back({v(i, j), v(i + 1, j), v(i + 1, j + 1)});
+      s.triangles.push_back({v(i, j), v(i + 1, j + 1), v(i, j + 1)});
+    }
+  const std::vector<Index> neighbour = triangle_neighbours(s);
+  std::vector<std::uint8_t> side(s.triangles.size());
+  for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+    double x = 0.0;
+    for (Index p : s.triangles[t]) x += s.points[p].x / 3.0;
+    side[t] = x < 4.5 ? 1 : 2;
+  }
+  const auto cut = [&](const std::vector<std::uint8_t>& by) {
+    std::vector<std::uint64_t> keys;
+    for (std::size_t t = 0; t < s.triangles.size(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        const Index m = neighbour[3 * t + k];
+        if (m != kNoIndex && static_cast<std::size_t>(m) > t && by[m] != by[t]) {
+          const auto [a, b] = std::minmax(s.triangles[t][k], s.triangles[t][(k + 1) % 3]);
+          keys.push_back(std::uint64_t(a) << 32 | std::uint64_t(b));
+        }
+      }
+    return keys;
+  };
+  ASSERT_EQ(cut(side).size(), 19u);
+  EXPECT_NEAR(seam_length(s, cut(side)), 10 * std::sqrt(2.0) + 9, 1e-12);
+  const std::vector<Index> tris = all_triangles(s);
+  // Edges that are not glued do not count: nothing moves.
+  std::vector<std::uint8_t> unglued = side;
+  straighten_two_way_cut(tris, neighbour, unglued, [](Index, int, Index) { return false; });
+  EXPECT_EQ(unglued, side);
+  straighten_two_way_cut(tris, neighbour, side, [](Index, int, Index) { return true; });
+  ASSERT_EQ(cut(side).size(), 10u);
+  EXPECT_NEAR(seam_length(s, cut(side)), 9 + std::sqrt(2.0), 1e-12);
+  EXPECT_EQ(std::count(side.begin(), side.end(), 1), 2 * 4 * n + 1);  // 4 columns and the top upper triangle
 }
 
 TEST(UvCut, AnOpenCylinderIsCutAlongOneShortestLineBetweenItsBorders) {

@@ -49,6 +49,8 @@ struct Chart {
 
 // The largest charts tried halved in each round of the packing splits.
 constexpr std::size_t kPackSplitCandidates = 5;
+// The least share of a chart's area each piece of a packing cut holds.
+constexpr double kPackCutMinShare = 0.2;
 
 Index find_root(std::vector<Index>& parent, Index v) {
   while (parent[v] != v) v = parent[v] = parent[parent[v]];
@@ -1073,28 +1075,88 @@ class AtlasBuilder {
     return splits + make_disks();
   }
 
-  void split(std::size_t c) {
-    std::vector<Index> tris = std::move(charts_[c].triangles);
-    auto centroid = [&](Index t, int axis) {
-      const std::size_t i = 3 * static_cast<std::size_t>(t);
-      return local_[i][axis] + local_[i + 1][axis] + local_[i + 2][axis];
-    };
-    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-    for (Index t : tris)
-      for (int a = 0; a < 2; ++a) lo[a] = std::min(lo[a], centroid(t, a)), hi[a] = std::max(hi[a], centroid(t, a));
-    const int axis = hi[0] - lo[0] >= hi[1] - lo[1] ? 0 : 1;
-    const auto half = tris.begin() + static_cast<std::ptrdiff_t>(tris.size() / 2);
-    std::nth_element(tris.begin(), half, tris.end(), [&](Index a, Index b) {
-      const double ca = centroid(a, axis), cb = centroid(b, axis);
+  // Three times the centroid of triangle t along the layout's axis.
+  double layout_centroid(Index t, int axis) const {
+    const std::size_t i = 3 * static_cast<std::size_t>(t);
+    return local_[i][axis] + local_[i + 1][axis] + local_[i + 2][axis];
+  }
+
+  // Orders triangles along a layout axis (ties by index: deterministic).
+  auto along(int axis) const {
+    return [this, axis](Index a, Index b) {
+      const double ca = layout_centroid(a, axis), cb = layout_centroid(b, axis);
       return ca != cb ? ca < cb : a < b;
-    });
+    };
+  }
+
+  // A cut of a chart: its first `count` triangles along `axis` stay, the
+  // rest become a new chart.
+  struct Cut {
+    int axis = 0;
+    std::size_t count = 0;
+  };
+
+  // Halves chart c at the median of its triangles along the layout's longer
+  // axis (the split of a chart whose layout is not one-to-one).
+  void split(std::size_t c) { split_at(c, median_cut(c)); }
+
+  Cut median_cut(std::size_t c) const {
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (Index t : charts_[c].triangles)
+      for (int a = 0; a < 2; ++a)
+        lo[a] = std::min(lo[a], layout_centroid(t, a)), hi[a] = std::max(hi[a], layout_centroid(t, a));
+    return Cut{hi[0] - lo[0] >= hi[1] - lo[1] ? 0 : 1, charts_[c].triangles.size() / 2};
+  }
+
+  void split_at(std::size_t c, Cut cut) {
+    std::vector<Index> tris = std::move(charts_[c].triangles);
+    const auto first = tris.begin() + static_cast<std::ptrdiff_t>(cut.count);
+    std::nth_element(tris.begin(), first, tris.end(), along(cut.axis));
     // A piece keeps the chart's layout, hence how it was made (lscm).
-    Chart second{std::vector<Index>(half, tris.end()), charts_[c].direction, charts_[c].lscm};
-    tris.erase(half, tris.end());
+    Chart second{std::vector<Index>(first, tris.end()), charts_[c].direction, charts_[c].lscm};
+    tris.erase(first, tris.end());
     std::sort(tris.begin(), tris.end());
     std::sort(second.triangles.begin(), second.triangles.end());
     charts_[c].triangles = std::move(tris);
     charts_.push_back(std::move(second));
+  }
+
+  // The cut of chart c, along either layout axis, whose two pieces' layout
+  // bounding boxes have the least summed area, each piece holding at least
+  // kPackCutMinShare of the chart's area (an L is cut at its corner into two
+  // bars, a half ring about its middle): two sorts and sweeps of prefix and
+  // suffix boxes.
+  Cut tightest_box_cut(std::size_t c) const {
+    std::vector<Index> tris = charts_[c].triangles;
+    const std::size_t n = tris.size();
+    const double total = chart_area(charts_[c]);
+    Cut best{0, n / 2};
+    double best_cost = INFINITY;
+    std::vector<std::array<double, 4>> suffix(n + 1);
+    for (int axis = 0; axis < 2; ++axis) {
+      std::sort(tris.begin(), tris.end(), along(axis));
+      const auto grown = [&](std::array<double, 4> b, Index t) {
+        for (int k = 0; k < 3; ++k) {
+          const Uv& p = local_[3 * static_cast<std::size_t>(t) + k];
+          b = {std::min(b[0], p[0]), std::min(b[1], p[1]), std::max(b[2], p[0]), std::max(b[3], p[1])};
+        }
+        return b;
+      };
+      const std::array<double, 4> empty{INFINITY, INFINITY, -INFINITY, -INFINITY};
+      suffix[n] = empty;
+      for (std::size_t i = n; i-- > 0;) suffix[i] = grown(suffix[i + 1], tris[i]);
+      const auto box_area = [](const std::array<double, 4>& b) { return (b[2] - b[0]) * (b[3] - b[1]); };
+      std::array<double, 4> prefix = empty;
+      double held = 0.0;
+      for (std::size_t k = 1; k < n; ++k) {
+        prefix = grown(prefix, tris[k - 1]);
+        held += area_[tris[k - 1]];
+        if (held < kPackCutMinShare * total || held > (1.0 - kPackCutMinShare) * total) continue;
+        const double cost = box_area(prefix) + box_area(suffix[k]);
+        if (cost < best_cost) best_cost = cost, best = {axis, k};
+      }
+    }
+    return best;
   }
 
   // A chart that fills its bounding box poorly (a long strip, an L, a hand)
@@ -1130,15 +1192,20 @@ class AtlasBuilder {
       for (std::size_t i = 0; i < std::min(kPackSplitCandidates, order.size()); ++i) {
         if (charts_[order[i]].triangles.size() < 2) continue;
         if (box_fill(charts_[order[i]]) >= options_.pack_split_max_box_fill) continue;
-        split(order[i]);
-        straighten_cut(order[i], charts_.size() - 1);
-        const Index splits = 1 + make_disks();
-        if (charts_holding(0.95) <= options_.pack_max_charts_95) {
-          pack(coarse);
-          const double f = packed_area();
-          if (f > best_filled) best = charts_, best_filled = f, best_splits = splits;
+        // The median cut and the one with the tightest boxes (when not the same).
+        const std::array<Cut, 2> cuts = {median_cut(order[i]), tightest_box_cut(order[i])};
+        const bool same = cuts[1].axis == cuts[0].axis && cuts[1].count == cuts[0].count;
+        for (const Cut cut : std::span(cuts).first(same ? 1 : 2)) {
+          split_at(order[i], cut);
+          straighten_cut(order[i], charts_.size() - 1);
+          const Index splits = 1 + make_disks();
+          if (charts_holding(0.95) <= static_cast<std::size_t>(options_.pack_max_charts_95)) {
+            pack(coarse);
+            const double f = packed_area();
+            if (f > best_filled) best = charts_, best_filled = f, best_splits = splits;
+          }
+          charts_ = before;
         }
-        charts_ = before;
       }
       if (!best) break;
       charts_ = std::move(*best);
@@ -1164,22 +1231,9 @@ class AtlasBuilder {
     std::vector<std::uint8_t> side(static_cast<std::size_t>(nt_), 0);  // 1: in a, 2: in b
     for (Index t : charts_[a].triangles) side[t] = 1;
     for (Index t : charts_[b].triangles) side[t] = 2;
-    for (int pass = 0; pass < 4; ++pass) {
-      bool moved = false;
-      for (std::size_t from : {a, b}) {
-        const std::uint8_t own = from == a ? 1 : 2, other = from == a ? 2 : 1;
-        for (Index t : charts_[from].triangles) {
-          if (side[t] != own) continue;
-          int glued_to_other = 0;
-          for (int k = 0; k < 3; ++k) {
-            const Index n = neighbour_[3 * static_cast<std::size_t>(t) + k];
-            glued_to_other += n != kNoIndex && side[n] == other && glued(t, k, n);
-          }
-          if (glued_to_other >= 2) side[t] = other, moved = true;
-        }
-      }
-      if (!moved) break;
-    }
+    std::vector<Index> order = charts_[a].triangles;
+    order.insert(order.end(), charts_[b].triangles.begin(), charts_[b].triangles.end());
+    straighten_two_way_cut(order, neighbour_, side, [this](Index t, int k, Index n) { return glued(t, k, n); });
     std::vector<Index> all = std::move(charts_[a].triangles);
     all.insert(all.end(), charts_[b].triangles.begin(), charts_[b].triangles.end());
     std::sort(all.begin(), all.end());

@@ -26,4 +26,30 @@ namespace hq {
 std::vector<std::uint64_t> disk_cut(const TriSurface& surface, std::span<const Index> chart,
                                     std::span<const std::uint64_t> seams);
 
+// A cut of a chart into two pieces along triangle borders (side[t] 1 or 2
+// for each triangle t of `triangles`) zigzags where it crosses rows of
+// triangles at a slant. Straightens it: a triangle with two or three
+// neighbours on the other side (neighbour: 3 per triangle of the surface,
+// kNoIndex across a border; only edges with glued(t, k, n) count) moves
+// there, over `triangles` in their order, until a pass moves none (at most
+// `passes`). Each move shortens the cut by at least one edge; the pieces
+// keep the layout they had, so their layouts stay one-to-one.
+template <class Glued>
+void straighten_two_way_cut(std::span<const Index> triangles, std::span<const Index> neighbour,
+                            std::span<std::uint8_t> side, const Glued& glued, int passes = 4) {
+  for (int pass = 0; pass < passes; ++pass) {
+    bool moved = false;
+    for (Index t : triangles) {
+      const std::uint8_t other = side[t] == 1 ? 2 : 1;
+      int glued_to_other = 0;
+      for (int k = 0; k < 3; ++k) {
+        const Index n = neighbour[3 * static_cast<std::size_t>(t) + k];
+        glued_to_other += n != kNoIndex && side[n] == other && glued(t, k, n);
+      }
+      if (glued_to_other >= 2) side[t] = other, moved = true;
+    }
+    if (!moved) break;
+  }
+}
+
 }  // namespace hq
