@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include <tbb/global_control.h>
+
 #include "hqview/quality/corner_jacobian.h"
 
 namespace hq {
@@ -141,6 +143,30 @@ TEST(Statistics, BucketedOrderEqualsOneSortBitForBit) {
                                {got.p99, want.p99}})
       EXPECT_EQ(std::bit_cast<std::uint64_t>(a == 0.0 ? 0.0 : a), std::bit_cast<std::uint64_t>(b == 0.0 ? 0.0 : b))
           << "case " << k << ": " << a << " vs " << b;
+  }
+}
+
+
+TEST(Statistics, ParallelBucketSortsEqualOneSortForAnyThreadCount) {
+  // Over 2^20 kept values: the buckets are sorted in parallel. Corner-like
+  // values (most in [0.6, 1], a few negative, a run of equal ones, zeros of
+  // both signs): every number bit for bit the definition's, with 1 and 2
+  // threads.
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<double> v(1'200'000);
+  for (std::size_t i = 0; i < v.size(); ++i)
+    v[i] = i % 5000 == 0 ? -0.9 * unit(rng) : i % 7 == 0 ? 1.0 : i % 11 == 0 ? (i % 2 ? 0.0 : -0.0)
+                                                              : 1.0 - 0.4 * unit(rng) * unit(rng);
+  const Statistics want = reference_statistics(v);
+  for (const std::size_t threads : {1, 2}) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    const Statistics got = compute_statistics(v);
+    EXPECT_EQ(got.count, want.count);
+    EXPECT_EQ(got.histogram.counts, want.histogram.counts);
+    for (const auto& [a, b] : {std::pair{got.mean, want.mean}, {got.std, want.std}, {got.min, want.min},
+                               {got.max, want.max}, {got.p01, want.p01}, {got.p50, want.p50}, {got.p99, want.p99}})
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(a), std::bit_cast<std::uint64_t>(b)) << threads << " threads";
   }
 }
 

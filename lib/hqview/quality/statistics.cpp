@@ -7,6 +7,9 @@
 #include <utility>
 #include <vector>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "hqview/quality/corner_jacobian.h"
 
 namespace hq {
@@ -57,21 +60,71 @@ class KeyBuckets {
   Side negative_, positive_;
 };
 
+// Ascending by order key, by insertion: the sort of the smallest ranges.
+void insertion_sort_by_key(std::span<double> v) {
+  for (std::size_t i = 1; i < v.size(); ++i) {
+    const double x = v[i];
+    const std::uint64_t k = order_key(x);
+    std::size_t j = i;
+    for (; j > 0 && order_key(v[j - 1]) > k; --j) v[j] = v[j - 1];
+    v[j] = x;
+  }
+}
+
+constexpr std::size_t kInsertionSortMax = 32;
+
+// Ascending by order key, most significant digits first: the range's keys
+// are counted into about one bucket per value over their own [min, max]
+// (at most 2^16), scattered through `scratch`, and each bucket of more than
+// one value sorted the same way. Every level narrows a bucket's key range
+// by at least 2^(bits-1), so the depth is bounded; equal values end a
+// bucket at once (min == max). `scratch` is reused by the levels below.
+void radix_sort_by_key(std::span<double> v, std::vector<double>& scratch) {
+  if (v.size() <= kInsertionSortMax) {
+    insertion_sort_by_key(v);
+    return;
+  }
+  std::uint64_t lo = ~std::uint64_t{0}, hi = 0;
+  for (double x : v) {
+    const std::uint64_t k = order_key(x);
+    lo = std::min(lo, k);
+    hi = std::max(hi, k);
+  }
+  if (lo == hi) return;
+  const int bits = std::min(16, static_cast<int>(std::bit_width(v.size())));
+  const int shift = std::max(0, static_cast<int>(std::bit_width(hi - lo)) - bits);
+  const std::size_t num_buckets = static_cast<std::size_t>((hi - lo) >> shift) + 1;
+  const auto bucket = [&](double x) { return static_cast<std::size_t>((order_key(x) - lo) >> shift); };
+  // end[b]: first the count of bucket b-1, then its start, then (after the
+  // scatter) the end of bucket b.
+  std::vector<std::size_t> end(num_buckets + 1, 0);
+  for (double x : v) ++end[bucket(x) + 1];
+  for (std::size_t b = 0; b < num_buckets; ++b) end[b + 1] += end[b];
+  if (scratch.size() < v.size()) scratch.resize(v.size());
+  for (double x : v) scratch[end[bucket(x)]++] = x;
+  std::copy(scratch.begin(), scratch.begin() + static_cast<std::ptrdiff_t>(v.size()), v.begin());
+  for (std::size_t b = 0, begin = 0; b < num_buckets; begin = end[b++])
+    if (end[b] - begin > 1) radix_sort_by_key(v.subspan(begin, end[b] - begin), scratch);
+}
+
+// Inputs of at least this many kept values sort their buckets in parallel.
+constexpr std::size_t kParallelSortMin = 1 << 20;
+
 // The values kept by the statistics (not NaN, not degenerate), ascending,
-// in one array, without sorting them whole: a pass finds the range of their
-// order keys, a second counts them into up to 2^16 buckets of that range
-// (monotone in the value), a third scatters them into place, and each bucket
-// is sorted on its own (few values each, unless many are equal). Memory: the
-// output array and the bucket counts. The order, hence every sum and
-// percentile, is that of one std::sort, but for the relative order of -0.0
-// and +0.0, which compare equal (and add up the same).
+// in one array, without sorting them whole: the range of their order keys
+// (`buckets`, from the caller's pass), a pass counting them into up to 2^16
+// buckets of that range (monotone in the value), a second scattering them
+// into place, and each bucket sorted on its own by its keys' digits
+// (radix_sort_by_key), in parallel on large inputs. The array is the one
+// std::sort gives, but for the relative order of -0.0 and +0.0 (compare
+// equal, add up the same), so every sum and percentile is the same for any
+// thread count. Memory: the output array, the bucket offsets, and scratch
+// as large as the largest bucket.
 template <class IsKept>
-std::vector<double> sorted_kept_values(std::span<const double> values, IsKept is_kept, std::size_t num_kept) {
+std::vector<double> sorted_kept_values(std::span<const double> values, IsKept is_kept, std::size_t num_kept,
+                                       KeyBuckets& buckets) {
   std::vector<double> out(num_kept);
   if (num_kept == 0) return out;
-  KeyBuckets buckets;
-  for (std::size_t i = 0; i < values.size(); ++i)
-    if (is_kept(i)) buckets.include(order_key(values[i]));
   const std::size_t num_buckets = buckets.finish();
   std::vector<std::size_t> start(num_buckets + 1, 0);
   const auto bucket = [&](double v) { return buckets(order_key(v)); };
@@ -81,10 +134,17 @@ std::vector<double> sorted_kept_values(std::span<const double> values, IsKept is
   std::vector<std::size_t> next(start.begin(), start.end() - 1);
   for (std::size_t i = 0; i < values.size(); ++i)
     if (is_kept(i)) out[next[bucket(values[i])]++] = values[i];
-  for (std::size_t b = 0; b < num_buckets; ++b)
-    if (start[b + 1] - start[b] > 1)
-      std::sort(out.begin() + static_cast<std::ptrdiff_t>(start[b]),
-                out.begin() + static_cast<std::ptrdiff_t>(start[b + 1]));
+  const auto sort_buckets = [&](std::size_t first, std::size_t last) {
+    std::vector<double> scratch;
+    for (std::size_t b = first; b < last; ++b)
+      if (start[b + 1] - start[b] > 1)
+        radix_sort_by_key(std::span<double>(out).subspan(start[b], start[b + 1] - start[b]), scratch);
+  };
+  if (num_kept < kParallelSortMin)
+    sort_buckets(0, num_buckets);
+  else
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_buckets, 256),
+                      [&](const tbb::blocked_range<std::size_t>& r) { sort_buckets(r.begin(), r.end()); });
   return out;
 }
 
@@ -108,13 +168,16 @@ Statistics compute_statistics(std::span<const double> values, const StatisticsOp
     return !std::isnan(v) && std::abs(v) < kVerdictDegenerate && (degenerate.empty() || degenerate[i] == 0);
   };
   std::size_t num_kept = 0;
+  KeyBuckets buckets;
   for (std::size_t i = 0; i < values.size(); ++i) {
-    if (is_kept(i))
+    if (is_kept(i)) {
       ++num_kept;
-    else if (!std::isnan(values[i]))
+      buckets.include(order_key(values[i]));
+    } else if (!std::isnan(values[i])) {
       ++s.num_degenerate;
+    }
   }
-  const std::vector<double> kept = sorted_kept_values(values, is_kept, num_kept);
+  const std::vector<double> kept = sorted_kept_values(values, is_kept, num_kept, buckets);
   s.count = static_cast<std::int64_t>(kept.size());
 
   const int bins = std::max(1, options.histogram_bins);

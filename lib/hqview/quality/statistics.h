@@ -1,7 +1,9 @@
 #pragma once
 // Summary statistics of a per-element field, as report.json writes them
 // (CONTRACT.md `...stats`): count, min, max, mean, std, percentiles and a
-// histogram. Deterministic: computed sequentially on sorted values.
+// histogram. Deterministic: sums and percentiles taken sequentially on the
+// values in ascending order (sorted by buckets, in parallel on large inputs:
+// the order, hence every number, is the same for any thread count).
 
 #include <cstdint>
 #include <optional>
