@@ -17,7 +17,11 @@
 #include "hqview/report/deflate.h"
 #include "hqview/report/report_csv.h"
 
-#include <tbb/parallel_for.h>
+#include <tbb/parallel_pipeline.h>
+#include <tbb/task_arena.h>
+
+#include <memory>
+#include <vector>
 
 namespace hq {
 namespace {
@@ -239,64 +243,116 @@ constexpr std::string_view kTail = "\n  </AppendedData>\n</VTKFile>\n";
 // Compressed (VTK's vtkZLibDataCompressor with UInt64 headers): each array
 // is split into kZlibBlockBytes blocks (the last one shorter), each an
 // independent zlib stream, preceded by the header [number of blocks, block
-// size, last block size (0: full), compressed size of each block]. The
-// blocks of an array are compressed in parallel and written in order; the
-// block size is fixed, so the bytes do not depend on the thread count.
-// Offsets are known only once the arrays are written: the XML header is
-// written last, over a placeholder as long as its longest form (20-digit
-// offsets), any shortfall made up with spaces before the '_' (blank text
-// that VTK, ParaView and meshio skip).
+// size, last block size (0: full), compressed size of each block]. The block
+// size is fixed, so the bytes do not depend on the thread count. The blocks
+// of every array go through one pipeline: handed out in file order (an
+// array's first block compressed there, as it decides how the rest are
+// written), compressed in parallel, and gathered in order, an array written
+// once its last block is in; so the compression of one array overlaps the
+// writing of the one before, and at most one array's compressed blocks wait
+// in memory. Offsets are known only once the arrays are written: the XML
+// header is written last, over a placeholder as long as its longest form
+// (20-digit offsets), any shortfall made up with spaces before the '_' (blank
+// text that VTK, ParaView and meshio skip).
 constexpr std::size_t kZlibBlockBytes = std::size_t{1} << 17;
 constexpr double kStoreAbove = 0.85;
+
+// One block of one array, and what the pipeline made of it.
+struct VtuBlock {
+  std::size_t array = 0, block = 0;
+  bool compressed = false;              // block 0: compressed when handed out
+  std::vector<unsigned char> data;      // the zlib stream
+};
 
 void write_compressed(const ReportModel& model, std::vector<VtuArray> arrays, std::ostream& out) {
   for (VtuArray& a : arrays) a.info.offset = std::numeric_limits<std::uint64_t>::max();
   const std::size_t placeholder = xml_header(model, arrays, VtuData::zlib).size();
   const std::streampos start = out.tellp();
   out << std::string(placeholder, ' ');
-  std::uint64_t offset = 0;
   std::uint64_t total_bytes = 0;
   for (const VtuArray& a : arrays) total_bytes += a.info.num_values * a.value_size;
   progress::set_total(total_bytes);
-  std::vector<std::vector<unsigned char>> blocks;
-  std::vector<unsigned char> block_header;
-  for (VtuArray& a : arrays) {
-    a.info.offset = offset;
-    const std::size_t bytes = a.info.num_values * a.value_size;
-    const std::size_t num_blocks = (bytes + kZlibBlockBytes - 1) / kZlibBlockBytes;
+
+  const auto num_blocks = [&](std::size_t i) {
+    return (arrays[i].info.num_values * arrays[i].value_size + kZlibBlockBytes - 1) / kZlibBlockBytes;
+  };
+  std::vector<char> stored(arrays.size(), 0);  // set with an array's first block, before the others exist
+  const auto compress = [&](VtuBlock& b) {
+    thread_local std::vector<unsigned char> raw;
+    const VtuArray& a = arrays[b.array];
     const std::size_t values_per_block = kZlibBlockBytes / a.value_size;
-    blocks.assign(num_blocks, {});
-    const auto compress_block = [&](std::size_t b, bool stored) {
-      thread_local std::vector<unsigned char> raw;
-      const std::size_t first = b * values_per_block;
-      const std::size_t count = std::min<std::size_t>(values_per_block, a.info.num_values - first);
-      raw.resize(count * a.value_size);
-      a.fill(first, count, raw.data());
-      append_zlib_stream(raw, blocks[b], stored);
-      progress::add_done(raw.size());
-      return static_cast<double>(blocks[b].size()) / static_cast<double>(std::max<std::size_t>(raw.size(), 1));
-    };
+    const std::size_t first = b.block * values_per_block;
+    const std::size_t count = std::min<std::size_t>(values_per_block, a.info.num_values - first);
+    raw.resize(count * a.value_size);
+    a.fill(first, count, raw.data());
+    append_zlib_stream(raw, b.data, stored[b.array] != 0);
+    b.compressed = true;
+    progress::add_done(raw.size());
+    return static_cast<double>(b.data.size()) / static_cast<double>(std::max<std::size_t>(raw.size(), 1));
+  };
+
+  // Handed out: array by array, block by block; an array without values
+  // still passes as one empty token, for its header.
+  std::size_t next_array = 0, next_block = 0;
+  const auto hand_out = [&](tbb::flow_control& fc) -> std::shared_ptr<VtuBlock> {
+    while (next_array < arrays.size() && next_block > 0 && next_block >= num_blocks(next_array)) {
+      ++next_array;
+      next_block = 0;
+    }
+    if (next_array == arrays.size()) {
+      fc.stop();
+      return nullptr;
+    }
+    auto b = std::make_shared<VtuBlock>();
+    b->array = next_array;
+    b->block = next_block++;
     // The first block decides for the rest of the array: the measured
     // values (doubles with noisy low bits) shrink by 6-8 % for most of the
     // time of the whole file, so an array whose first block keeps more than
-    // kStoreAbove of its size is stored (zlib streams of stored blocks).
-    // The choice depends on the data only, never on the thread count.
-    const bool stored = num_blocks > 0 && compress_block(0, false) > kStoreAbove;
-    tbb::parallel_for(std::size_t{1}, std::max<std::size_t>(num_blocks, 1),
-                      [&](std::size_t b) { compress_block(b, stored); });
-    block_header.assign((3 + num_blocks) * sizeof(std::uint64_t), 0);
+    // kStoreAbove of its size is stored (zlib streams of stored blocks). The
+    // choice depends on the data only, never on the thread count.
+    if (b->block == 0 && num_blocks(b->array) > 0) stored[b->array] = compress(*b) > kStoreAbove;
+    if (num_blocks(b->array) == 0) b->compressed = true;
+    return b;
+  };
+
+  // Gathered in order; an array is written when its last block is in.
+  std::uint64_t offset = 0;
+  std::vector<std::vector<unsigned char>> blocks;
+  std::vector<unsigned char> block_header;
+  const auto gather = [&](const std::shared_ptr<VtuBlock>& b) {
+    const std::size_t n = num_blocks(b->array);
+    if (n > 0) blocks.push_back(std::move(b->data));
+    if (b->block + 1 < n) return;
+    VtuArray& a = arrays[b->array];
+    a.info.offset = offset;
+    block_header.assign((3 + n) * sizeof(std::uint64_t), 0);
     const auto put = [&](std::size_t i, std::uint64_t v) { store_little_endian(v, &block_header[8 * i]); };
-    put(0, num_blocks);
+    put(0, n);
     put(1, kZlibBlockBytes);
-    put(2, bytes % kZlibBlockBytes);
-    for (std::size_t b = 0; b < num_blocks; ++b) put(3 + b, blocks[b].size());
+    put(2, (a.info.num_values * a.value_size) % kZlibBlockBytes);
+    for (std::size_t k = 0; k < n; ++k) put(3 + k, blocks[k].size());
     out.write(reinterpret_cast<const char*>(block_header.data()), static_cast<std::streamsize>(block_header.size()));
     offset += block_header.size();
     for (const std::vector<unsigned char>& block : blocks) {
       out.write(reinterpret_cast<const char*>(block.data()), static_cast<std::streamsize>(block.size()));
       offset += block.size();
     }
-  }
+    blocks.clear();
+  };
+
+  // Four blocks in flight per thread: the compressors never wait on the writer.
+  const auto tokens = static_cast<std::size_t>(4 * tbb::this_task_arena::max_concurrency());
+  using Token = std::shared_ptr<VtuBlock>;  // a stage that throws leaves nothing behind
+  tbb::parallel_pipeline(tokens,
+                         tbb::make_filter<void, Token>(tbb::filter_mode::serial_in_order, hand_out) &
+                             tbb::make_filter<Token, Token>(tbb::filter_mode::parallel,
+                                                            [&](Token b) {
+                                                              if (!b->compressed) compress(*b);
+                                                              return b;
+                                                            }) &
+                             tbb::make_filter<Token, void>(tbb::filter_mode::serial_in_order, gather));
+
   out.write(kTail.data(), static_cast<std::streamsize>(kTail.size()));
   const std::streampos end = out.tellp();
   std::string header = xml_header(model, arrays, VtuData::zlib);
