@@ -47,7 +47,10 @@ void build_vertex_hexes(const HexMesh& mesh, Topology& topo) {
 }
 
 // Faces: every hex's 6 faces keyed by their sorted ids, bucketed by the
-// smallest id (linear), then sorted within each small bucket.
+// smallest id (linear), then sorted within each small bucket, and numbered
+// in that order: bucket by bucket (in parallel, each bucket's first face
+// from a prefix sum of the buckets' face counts), so any thread count gives
+// the same numbers.
 void build_faces(const HexMesh& mesh, Topology& topo) {
   const std::size_t nv = mesh.points.size();
   const std::size_t nhf = mesh.hexes.size() * 6;
@@ -62,38 +65,63 @@ void build_faces(const HexMesh& mesh, Topology& topo) {
   std::vector<Index> offsets, order;
   bucket_by_key(
       nhf, nv, [&](std::size_t hf) { return keys[hf][0]; }, offsets, order);
-  // Each vertex's bucket sorted on its own (disjoint ranges: any thread
-  // count gives the same order). Stable: equal keys stay in ascending
-  // hex-face order, so the first occurrence belongs to the lowest-numbered hex.
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t v = r.begin(); v != r.end(); ++v)
-      std::stable_sort(order.begin() + offsets[v], order.begin() + offsets[v + 1], [&](Index a, Index b) {
-        return keys[static_cast<std::size_t>(a)] < keys[static_cast<std::size_t>(b)];
-      });
+  const auto key = [&](Index hf) -> const Quad& { return keys[static_cast<std::size_t>(hf)]; };
+  // Within a bucket every key starts with the bucket's vertex.
+  const auto less = [&](Index a, Index b) {
+    const Quad &x = key(a), &y = key(b);
+    return x[1] != y[1] ? x[1] < y[1] : x[2] != y[2] ? x[2] < y[2] : x[3] < y[3];
+  };
+  const auto for_each_bucket = [&](auto body) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t v = r.begin(); v != r.end(); ++v)
+        body(static_cast<std::size_t>(offsets[v]), static_cast<std::size_t>(offsets[v + 1]), v);
+    });
+  };
+  // Each vertex's bucket (a handful of faces) sorted by insertion: stable,
+  // so equal keys stay in ascending hex-face order and the first occurrence
+  // belongs to the lowest-numbered hex. Then its distinct keys counted.
+  std::vector<Index> first_face(nv + 1, 0);
+  for_each_bucket([&](std::size_t begin, std::size_t end, std::size_t v) {
+    for (std::size_t i = begin + 1; i < end; ++i) {
+      const Index hf = order[i];
+      std::size_t j = i;
+      for (; j > begin && less(hf, order[j - 1]); --j) order[j] = order[j - 1];
+      order[j] = hf;
+    }
+    Index distinct = 0;
+    for (std::size_t i = begin; i < end; ++i) distinct += i == begin || key(order[i]) != key(order[i - 1]);
+    first_face[v + 1] = distinct;
   });
+  std::partial_sum(first_face.begin(), first_face.end(), first_face.begin());
+  const auto nf = static_cast<std::size_t>(first_face[nv]);
 
   topo.hex_faces.assign(nhf, kNoIndex);
-  topo.faces.clear();
-  topo.face_hex_offsets.assign(1, 0);
-  topo.face_hexes.clear();
-  topo.face_hexes.reserve(nhf);
-  for (std::size_t i = 0; i < nhf;) {
-    const Index first = order[i];
-    const Quad& key = keys[static_cast<std::size_t>(first)];
-    const Index face = static_cast<Index>(topo.faces.size());
-    const Hex& hex = mesh.hexes[static_cast<std::size_t>(first) / 6];
-    const auto& local = kHexFaces[static_cast<std::size_t>(first) % 6];
-    topo.faces.push_back({hex[local[0]], hex[local[1]], hex[local[2]], hex[local[3]]});
-    std::size_t j = i;
-    for (; j < nhf && keys[static_cast<std::size_t>(order[j])] == key; ++j) {
-      topo.hex_faces[static_cast<std::size_t>(order[j])] = face;
-      topo.face_hexes.push_back(order[j] / 6);
+  topo.faces.resize(nf);
+  topo.face_hex_offsets.resize(nf + 1);
+  topo.face_hexes.resize(nhf);
+  for_each_bucket([&](std::size_t begin, std::size_t end, std::size_t v) {
+    auto face = static_cast<std::size_t>(first_face[v]);
+    for (std::size_t i = begin; i < end; ++i) {
+      const Index hf = order[i];
+      if (i == begin || key(hf) != key(order[i - 1])) {
+        if (i > begin) ++face;
+        // The face's corners in the order of its first hex.
+        const Hex& hex = mesh.hexes[static_cast<std::size_t>(hf) / 6];
+        const auto& local = kHexFaces[static_cast<std::size_t>(hf) % 6];
+        topo.faces[face] = {hex[local[0]], hex[local[1]], hex[local[2]], hex[local[3]]};
+        topo.face_hex_offsets[face] = static_cast<Index>(i);
+      }
+      topo.hex_faces[static_cast<std::size_t>(hf)] = static_cast<Index>(face);
+      topo.face_hexes[i] = hf / 6;
     }
-    topo.face_hex_offsets.push_back(static_cast<Index>(topo.face_hexes.size()));
-    const auto count = j - i;
-    if (count == 1) topo.boundary_faces.push_back(face);
-    if (count > 2) topo.non_manifold_faces.push_back(face);
-    i = j;
+  });
+  topo.face_hex_offsets[nf] = static_cast<Index>(nhf);
+  topo.boundary_faces.clear();
+  topo.non_manifold_faces.clear();
+  for (std::size_t f = 0; f < nf; ++f) {
+    const Index count = topo.face_hex_offsets[f + 1] - topo.face_hex_offsets[f];
+    if (count == 1) topo.boundary_faces.push_back(static_cast<Index>(f));
+    if (count > 2) topo.non_manifold_faces.push_back(static_cast<Index>(f));
   }
 
   topo.is_boundary_vertex.assign(nv, 0);
