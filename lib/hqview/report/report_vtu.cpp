@@ -6,9 +6,12 @@
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <string_view>
+#include <tuple>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include "hqview/core/error.h"
 #include "hqview/core/progress.h"
@@ -19,9 +22,6 @@
 
 #include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
-
-#include <memory>
-#include <vector>
 
 namespace hq {
 namespace {
@@ -293,26 +293,26 @@ void write_compressed(const ReportModel& model, std::vector<VtuArray> arrays, st
 
   // Handed out: array by array, block by block; an array without values
   // still passes as one empty token, for its header.
-  std::size_t next_array = 0, next_block = 0;
+  std::vector<std::pair<std::size_t, std::size_t>> order;  // (array, block), in file order
+  for (std::size_t i = 0; i < arrays.size(); ++i)
+    for (std::size_t k = 0; k < std::max<std::size_t>(num_blocks(i), 1); ++k) order.emplace_back(i, k);
+  std::size_t next = 0;
   const auto hand_out = [&](tbb::flow_control& fc) -> std::shared_ptr<VtuBlock> {
-    while (next_array < arrays.size() && next_block > 0 && next_block >= num_blocks(next_array)) {
-      ++next_array;
-      next_block = 0;
-    }
-    if (next_array == arrays.size()) {
+    if (next == order.size()) {
       fc.stop();
       return nullptr;
     }
     auto b = std::make_shared<VtuBlock>();
-    b->array = next_array;
-    b->block = next_block++;
+    std::tie(b->array, b->block) = order[next++];
     // The first block decides for the rest of the array: the measured
     // values (doubles with noisy low bits) shrink by 6-8 % for most of the
     // time of the whole file, so an array whose first block keeps more than
     // kStoreAbove of its size is stored (zlib streams of stored blocks). The
     // choice depends on the data only, never on the thread count.
-    if (b->block == 0 && num_blocks(b->array) > 0) stored[b->array] = compress(*b) > kStoreAbove;
-    if (num_blocks(b->array) == 0) b->compressed = true;
+    if (num_blocks(b->array) == 0)
+      b->compressed = true;
+    else if (b->block == 0)
+      stored[b->array] = compress(*b) > kStoreAbove;
     return b;
   };
 
