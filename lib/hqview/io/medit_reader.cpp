@@ -68,9 +68,17 @@ bool starts_like_keyword(std::string_view token) {
   return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z');
 }
 
-std::string entry_label(const char* what, std::int64_t i, std::int64_t n) {
-  return " (" + std::string(what) + " " + std::to_string(i + 1) + " of " + std::to_string(n) + ")";
-}
+// Which entry a message is about: " (vertex 3 of 10)". Held as its parts
+// and spelt out only when a message is made, not for every entry read.
+struct EntryAt {
+  std::string_view what;
+  std::string_view suffix;  // after `what`: " entry" for skipped sections
+  std::int64_t i, n;
+  std::string label() const {
+    return " (" + std::string(what) + std::string(suffix) + " " + std::to_string(i + 1) + " of " +
+           std::to_string(n) + ")";
+  }
+};
 
 enum class Target { kHexahedra, kTriangles };
 
@@ -198,11 +206,10 @@ class MeditParser {
   }
 
   // After the last value of an entry: nothing else may follow on its line.
-  void end_entry(std::string_view entry, int values, const std::string& label_if_error) {
+  void end_entry(std::string_view entry, int values, const EntryAt& at) {
     if (s_.skip_blank()) {
       const std::int64_t extra = s_.count_tokens_on_line();
-      s_.fail("expected " + std::string(entry) + ", got " + std::to_string(values + extra) + " values" +
-              label_if_error);
+      s_.fail("expected " + std::string(entry) + ", got " + std::to_string(values + extra) + " values" + at.label());
     }
   }
 
@@ -214,35 +221,34 @@ class MeditParser {
     std::vector<Vec3>& points = content_.points;
     points.reserve(static_cast<std::size_t>(n));
     for (std::int64_t i = 0; i < n; ++i) {
-      if (!s_.skip_space())
-        s_.fail("unexpected end of file, expected " + std::string(info.entry) + entry_label("vertex", i, n));
+      const EntryAt at{"vertex", "", i, n};
+      if (!s_.skip_space()) s_.fail("unexpected end of file, expected " + std::string(info.entry) + at.label());
       double xyz[3];
       for (int k = 0; k < 3; ++k) {
         if (!s_.skip_blank())
           s_.fail("expected " + std::string(info.entry) + ", got " + std::to_string(k) + " values" +
-                  entry_label("vertex", i, n));
+                  at.label());
         if (!s_.read_double(xyz[k]))
-          s_.fail("expected a coordinate, got " + quote(s_.peek_token()) + entry_label("vertex", i, n));
+          s_.fail("expected a coordinate, got " + quote(s_.peek_token()) + at.label());
         if (!std::isfinite(xyz[k]))
           s_.fail(std::string("non-finite coordinate ") +
                   (std::isnan(xyz[k]) ? "nan"
                    : xyz[k] > 0       ? "inf"
                                       : "-inf") +
-                  entry_label("vertex", i, n));
+                  at.label());
       }
-      read_reference(info, 3, i, n, "vertex");
-      end_entry(info.entry, 4, entry_label("vertex", i, n));
+      read_reference(info, 3, at);
+      end_entry(info.entry, 4, at);
       points.push_back({xyz[0], xyz[1], xyz[2]});
     }
   }
 
-  void read_reference(const SectionInfo& info, int values_before, std::int64_t i, std::int64_t n, const char* what) {
+  void read_reference(const SectionInfo& info, int values_before, const EntryAt& at) {
     if (!s_.skip_blank())
       s_.fail("expected " + std::string(info.entry) + ", got " + std::to_string(values_before) + " values" +
-              entry_label(what, i, n));
+              at.label());
     std::int64_t reference = 0;
-    if (!s_.read_int(reference))
-      s_.fail("expected an integer reference, got " + quote(s_.peek_token()) + entry_label(what, i, n));
+    if (!s_.read_int(reference)) s_.fail("expected an integer reference, got " + quote(s_.peek_token()) + at.label());
   }
 
   // Elements of N 1-based vertex ids and a reference.
@@ -256,30 +262,30 @@ class MeditParser {
     const std::int64_t max_id = has_vertices ? static_cast<std::int64_t>(content_.points.size()) : kMaxIndexCount;
     out.reserve(out.size() + static_cast<std::size_t>(n));
     for (std::int64_t i = 0; i < n; ++i) {
-      if (!s_.skip_space())
-        s_.fail("unexpected end of file, expected " + std::string(info.entry) + entry_label(what, i, n));
+      const EntryAt at{what, "", i, n};
+      if (!s_.skip_space()) s_.fail("unexpected end of file, expected " + std::string(info.entry) + at.label());
       std::array<Index, N> element;
       for (int k = 0; k < N; ++k) {
         if (!s_.skip_blank())
           s_.fail("expected " + std::string(info.entry) + ", got " + std::to_string(k) + " values" +
-                  entry_label(what, i, n));
+                  at.label());
         std::int64_t id = 0;
         if (!s_.read_int(id))
-          s_.fail("expected an integer vertex id, got " + quote(s_.peek_token()) + entry_label(what, i, n));
+          s_.fail("expected an integer vertex id, got " + quote(s_.peek_token()) + at.label());
         if (id < 1 || id > max_id) {
           const std::string range = has_vertices ? " out of range [1, " + std::to_string(max_id) + "]"
                                                  : (id < 1 ? " out of range (ids start at 1)"
                                                            : " exceeds the limit of " + std::to_string(max_id));
-          s_.fail("vertex id " + std::to_string(id) + range + entry_label(what, i, n));
+          s_.fail("vertex id " + std::to_string(id) + range + at.label());
         }
         element[k] = static_cast<Index>(id - 1);
       }
-      read_reference(info, N, i, n, what);
-      end_entry(info.entry, N + 1, entry_label(what, i, n));
+      read_reference(info, N, at);
+      end_entry(info.entry, N + 1, at);
       for (int a = 1; a < N; ++a)
         for (int b = 0; b < a; ++b)
           if (element[a] == element[b])
-            s_.fail("vertex id " + std::to_string(element[a] + 1) + " repeated" + entry_label(what, i, n));
+            s_.fail("vertex id " + std::to_string(element[a] + 1) + " repeated" + at.label());
       out.push_back(element);
     }
   }
@@ -287,19 +293,19 @@ class MeditParser {
   // Skips a known section entry by entry; returns its count.
   std::int64_t skip_section(const SectionInfo& info) {
     const std::int64_t n = read_count(info.keyword, info.values_per_entry);
-    const std::string section(info.keyword);
     for (std::int64_t i = 0; i < n; ++i) {
+      const EntryAt at{info.keyword, " entry", i, n};
       if (!s_.skip_space())
         s_.fail("unexpected end of file, expected " + std::string(info.entry) +
-                entry_label((section + " entry").c_str(), i, n));
+                at.label());
       double first = 0.0;
       if (!s_.read_double(first))
         s_.fail("expected " + std::string(info.entry) + ", got " + quote(s_.peek_token()) +
-                entry_label((section + " entry").c_str(), i, n));
+                at.label());
       const std::int64_t values = 1 + s_.count_tokens_on_line();
       if (values != info.values_per_entry)
         s_.fail("expected " + std::string(info.entry) + ", got " + std::to_string(values) + " values" +
-                entry_label((section + " entry").c_str(), i, n));
+                at.label());
     }
     return n;
   }
@@ -335,7 +341,7 @@ class MeditParser {
       for (const Index id : elements[static_cast<std::size_t>(i)])
         if (id >= num_points)
           s_.fail_at(line, "vertex id " + std::to_string(std::int64_t{id} + 1) + " out of range [1, " +
-                               std::to_string(num_points) + "]" + entry_label(what, i, n));
+                               std::to_string(num_points) + "]" + EntryAt{what, "", i, n}.label());
   }
 
   MeditContent finish(const std::string& volume_skipped) {
