@@ -71,6 +71,11 @@ void build_faces(const HexMesh& mesh, Topology& topo) {
     const Quad &x = key(a), &y = key(b);
     return x[1] != y[1] ? x[1] < y[1] : x[2] != y[2] ? x[2] < y[2] : x[3] < y[3];
   };
+  // Inline, not std::array's == (a memcmp call per half-face).
+  const auto differ = [&](Index a, Index b) {
+    const Quad &x = key(a), &y = key(b);
+    return x[1] != y[1] || x[2] != y[2] || x[3] != y[3];
+  };
   const auto for_each_bucket = [&](auto body) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t v = r.begin(); v != r.end(); ++v)
@@ -89,7 +94,7 @@ void build_faces(const HexMesh& mesh, Topology& topo) {
       order[j] = hf;
     }
     Index distinct = 0;
-    for (std::size_t i = begin; i < end; ++i) distinct += i == begin || key(order[i]) != key(order[i - 1]);
+    for (std::size_t i = begin; i < end; ++i) distinct += i == begin || differ(order[i], order[i - 1]);
     first_face[v + 1] = distinct;
   });
   std::partial_sum(first_face.begin(), first_face.end(), first_face.begin());
@@ -103,7 +108,7 @@ void build_faces(const HexMesh& mesh, Topology& topo) {
     auto face = static_cast<std::size_t>(first_face[v]);
     for (std::size_t i = begin; i < end; ++i) {
       const Index hf = order[i];
-      if (i == begin || key(hf) != key(order[i - 1])) {
+      if (i == begin || differ(hf, order[i - 1])) {
         if (i > begin) ++face;
         // The face's corners in the order of its first hex.
         const Hex& hex = mesh.hexes[static_cast<std::size_t>(hf) / 6];

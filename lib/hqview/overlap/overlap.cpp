@@ -168,25 +168,39 @@ std::vector<Index> find_same_winding_faces(const HexMesh& mesh, const Topology& 
   return faces;
 }
 
+// Cells with the same vertex set as a lower-numbered cell. The cells are
+// ordered by a hash of their sorted vertex ids (then the ids, then the cell:
+// a total order, the same for any thread count), so equal sets are
+// adjacent; whole keys are compared only between neighbours.
 std::vector<Index> find_duplicate_cells(const HexMesh& mesh, std::vector<char>& flagged) {
   const std::size_t nh = mesh.hexes.size();
-  std::vector<Hex> keys(nh);
+  struct Key {
+    std::uint64_t hash;
+    Index cell;
+  };
+  std::vector<Hex> sorted(nh);
+  std::vector<Key> keys(nh);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nh, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t h = r.begin(); h != r.end(); ++h) {
-      keys[h] = mesh.hexes[h];
-      std::sort(keys[h].begin(), keys[h].end());
+      Hex& k = sorted[h];
+      k = mesh.hexes[h];
+      std::sort(k.begin(), k.end());
+      std::uint64_t hash = 0x9E3779B97F4A7C15ULL;
+      for (Index v : k) hash = (hash ^ static_cast<std::uint32_t>(v)) * 0xFF51AFD7ED558CCDULL;
+      keys[h] = {hash ^ (hash >> 29), static_cast<Index>(h)};
     }
   });
-  std::vector<Index> order(nh);
-  std::iota(order.begin(), order.end(), 0);
-  // A total order (ties by id): deterministic for any thread count.
-  tbb::parallel_sort(order.begin(), order.end(),
-                     [&](Index a, Index b) { return std::tie(keys[sz(a)], a) < std::tie(keys[sz(b)], b); });
+  const auto same = [&](Index a, Index b) { return std::equal(sorted[sz(a)].begin(), sorted[sz(a)].end(), sorted[sz(b)].begin()); };
+  tbb::parallel_sort(keys.begin(), keys.end(), [&](const Key& a, const Key& b) {
+    if (a.hash != b.hash) return a.hash < b.hash;
+    if (!same(a.cell, b.cell)) return sorted[sz(a.cell)] < sorted[sz(b.cell)];
+    return a.cell < b.cell;
+  });
   std::vector<Index> duplicates;
   for (std::size_t i = 1; i < nh; ++i)
-    if (keys[sz(order[i])] == keys[sz(order[i - 1])]) {
-      duplicates.push_back(order[i]);
-      flagged[sz(order[i])] = flagged[sz(order[i - 1])] = 1;
+    if (keys[i].hash == keys[i - 1].hash && same(keys[i].cell, keys[i - 1].cell)) {
+      duplicates.push_back(keys[i].cell);
+      flagged[sz(keys[i].cell)] = flagged[sz(keys[i - 1].cell)] = 1;
     }
   std::sort(duplicates.begin(), duplicates.end());
   return duplicates;

@@ -28,8 +28,10 @@ class EdgeIndex {
     if (a > b) std::swap(a, b);
     const auto lo = edges_.begin() + first_[static_cast<std::size_t>(a)];
     const auto hi = edges_.begin() + first_[static_cast<std::size_t>(a) + 1];
-    const auto it = std::lower_bound(lo, hi, Edge{a, b});
-    return it != hi && *it == Edge{a, b} ? static_cast<Index>(it - edges_.begin()) : kNoIndex;
+    // Every edge of [lo, hi) starts at a: compared on its other end only
+    // (std::array's == would call memcmp for each of the 12 edges of a hex).
+    const auto it = std::lower_bound(lo, hi, b, [](const Edge& e, Index v) { return e[1] < v; });
+    return it != hi && (*it)[1] == b ? static_cast<Index>(it - edges_.begin()) : kNoIndex;
   }
 
  private:
