@@ -36,4 +36,13 @@ BoxPairs box_self_pairs(const std::vector<Box3>& boxes, BoxContact contact, std:
 BoxPairs box_subset_pairs(const std::vector<Box3>& boxes, const std::vector<Index>& subset, BoxContact contact,
                           std::int64_t max_pairs);
 
+// The same pairs as box_self_pairs(boxes, closed, max_pairs), found through
+// groups: the boxes of group g are boxes[first[g] .. first[g+1]) (first has
+// one entry more than there are groups). The search runs on each group's
+// bounding box and tests the boxes of two groups whose bounds meet, and the
+// boxes inside each group, directly. For boxes that come in small clusters
+// of near neighbours (a boundary quad's 4 fan triangles): a quarter of the
+// boxes for CGAL to sort and split. The budget counts box pairs, as there.
+BoxPairs grouped_box_self_pairs(const std::vector<Box3>& boxes, const std::vector<Index>& first, std::int64_t max_pairs);
+
 }  // namespace hq::detail

@@ -311,8 +311,10 @@ QuadPairs intersecting_quad_pairs(const TetPoints& tp, const std::vector<Boundar
   std::vector<Triangle> triangles;
   std::vector<Index> triangle_quad;
   std::vector<Box3> boxes;
+  // A quad's triangles are consecutive: the groups of the box search.
+  std::vector<Index> first_triangle(quads.size() + 1, 0);
   triangles.reserve(4 * quads.size());
-  for (std::size_t q = 0; q < quads.size(); ++q)
+  for (std::size_t q = 0; q < quads.size(); ++q) {
     for (int e = 0; e < 4; ++e) {
       const Triangle t = fan_triangle(tp, quads[q], e);
       if (CGAL::collinear(point(at(p, t[0])), point(at(p, t[1])), point(at(p, t[2])))) continue;
@@ -320,8 +322,10 @@ QuadPairs intersecting_quad_pairs(const TetPoints& tp, const std::vector<Boundar
       triangle_quad.push_back(static_cast<Index>(q));
       boxes.push_back(box_of(p, t.data(), 3));
     }
+    first_triangle[q + 1] = static_cast<Index>(triangles.size());
+  }
   QuadPairs result;
-  result.budget = box_self_pairs(boxes, BoxContact::closed, max_pairs);
+  result.budget = grouped_box_self_pairs(boxes, first_triangle, max_pairs);
   const std::vector<std::array<Index, 2>> candidates = std::move(result.budget.pairs);
   result.budget.pairs = {};
   std::vector<char> hit(candidates.size(), 0);
