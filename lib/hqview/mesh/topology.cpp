@@ -54,7 +54,7 @@ void build_vertex_hexes(const HexMesh& mesh, Topology& topo) {
 void build_faces(const HexMesh& mesh, Topology& topo) {
   const std::size_t nv = mesh.points.size();
   const std::size_t nhf = mesh.hexes.size() * 6;
-  std::vector<Quad> keys(nhf);
+  UntouchedVector<Quad> keys(nhf);  // filled whole below, in parallel
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nhf), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t hf = r.begin(); hf != r.end(); ++hf) {
       const Hex& hex = mesh.hexes[hf / 6];
@@ -100,7 +100,8 @@ void build_faces(const HexMesh& mesh, Topology& topo) {
   std::partial_sum(first_face.begin(), first_face.end(), first_face.begin());
   const auto nf = static_cast<std::size_t>(first_face[nv]);
 
-  topo.hex_faces.assign(nhf, kNoIndex);
+  // Every entry is written below, in parallel (where the pages are first touched).
+  topo.hex_faces.resize(nhf);
   topo.faces.resize(nf);
   topo.face_hex_offsets.resize(nf + 1);
   topo.face_hexes.resize(nhf);

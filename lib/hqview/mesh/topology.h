@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "hqview/core/types.h"
+#include "hqview/core/untouched_vector.h"
 #include "hqview/mesh/hex_mesh.h"
 
 namespace hq {
@@ -22,13 +23,13 @@ struct Topology {
 
   // Unique faces (4 vertex ids as seen from outside their first hex, i.e. the
   // lowest-numbered hex using the face), ordered by their sorted vertex ids.
-  std::vector<Quad> faces;
+  UntouchedVector<Quad> faces;
   // face -> incident hexes (CSR, ascending hex ids); 1 = boundary face,
   // 2 = interior face, more = non-manifold.
-  std::vector<Index> face_hex_offsets;  // faces.size() + 1
-  std::vector<Index> face_hexes;
+  UntouchedVector<Index> face_hex_offsets;  // faces.size() + 1
+  UntouchedVector<Index> face_hexes;
   // For hex h and local face f (kHexFaces order), its face id: hex_faces[6*h+f].
-  std::vector<Index> hex_faces;
+  UntouchedVector<Index> hex_faces;
 
   std::vector<Index> boundary_faces;         // face ids used by exactly one hex, ascending
   std::vector<Index> non_manifold_faces;     // face ids used by more than two hexes
