@@ -20,6 +20,7 @@
 #include "hqview/quality/hex_metric_field.h"
 #include "hqview/report/report_csv.h"
 #include "hqview/report/report_vtu.h"
+#include "hqview/structure/structure.h"
 
 namespace {
 
@@ -62,7 +63,8 @@ void run_baseline(benchmark::State& state, const hq::HexMesh& m) {
 }
 
 // The refined mesh's model as the bundle writer gets it (no glyph, overlap
-// or reference stage: their arrays are a few per-vertex columns).
+// or reference stage: their arrays are a few per-vertex columns; the
+// structure stage's are required).
 const hq::ReportModel& refined_model() {
   static const hq::ReportModel model = [] {
     hq::ReportModel m;
@@ -70,6 +72,7 @@ const hq::ReportModel& refined_model() {
     m.analysis.topology = hq::build_topology(m.analysis.mesh);
     m.analysis.field = hq::compute_quality(m.analysis.mesh, m.analysis.topology);
     m.analysis.metrics = hq::compute_hex_metrics(m.analysis.mesh, hq::all_hex_metrics());
+    m.analysis.structure = hq::compute_structure(m.analysis.mesh, m.analysis.topology);
     return m;
   }();
   return model;
