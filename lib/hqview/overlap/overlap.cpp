@@ -71,6 +71,7 @@ void find_coincident_vertices(const HexMesh& mesh, const Topology& topo, double 
   for (std::size_t v = 0; v < p.size(); ++v)
     if (is_referenced(topo, v)) vertices.push_back(static_cast<Index>(v));
   UnionFind sets(p.size());
+  bool any_coincident = false;
 
   // A grid of cell `tolerance` puts points within the tolerance in
   // neighbouring cells; below the coordinates' resolution it degenerates to
@@ -84,9 +85,13 @@ void find_coincident_vertices(const HexMesh& mesh, const Topology& topo, double 
       const Vec3 &pa = p[sz(a)], &pb = p[sz(b)];
       return std::tie(pa.x, pa.y, pa.z, a) < std::tie(pb.x, pb.y, pb.z, b);
     };
-    tbb::parallel_sort(vertices.begin(), vertices.end(), less);  // a total order: deterministic
-    for (std::size_t i = 1; i < vertices.size(); ++i)
-      if (p[sz(vertices[i])] == p[sz(vertices[i - 1])]) sets.unite(vertices[i], vertices[i - 1]);
+    std::vector<Index> by_position = vertices;
+    tbb::parallel_sort(by_position.begin(), by_position.end(), less);  // a total order: deterministic
+    for (std::size_t i = 1; i < by_position.size(); ++i)
+      if (p[sz(by_position[i])] == p[sz(by_position[i - 1])]) {
+        sets.unite(by_position[i], by_position[i - 1]);
+        any_coincident = true;
+      }
   } else {
     using Key = std::array<std::int64_t, 3>;
     auto key_of = [&](Index v) {
@@ -108,15 +113,19 @@ void find_coincident_vertices(const HexMesh& mesh, const Topology& topo, double 
             auto it = std::lower_bound(keyed.begin(), keyed.end(),
                                        std::pair<Key, Index>{k, std::numeric_limits<Index>::min()});
             for (; it != keyed.end() && it->first == k; ++it)
-              if (it->second > v && squared_norm(p[sz(it->second)] - p[sz(v)]) <= tol2) sets.unite(v, it->second);
+              if (it->second > v && squared_norm(p[sz(it->second)] - p[sz(v)]) <= tol2) {
+                sets.unite(v, it->second);
+                any_coincident = true;
+              }
           }
   }
 
-  // Groups ordered by their smallest vertex (the root), members ascending.
-  std::vector<Index> size(p.size(), 0);
-  std::sort(vertices.begin(), vertices.end());
-  for (Index v : vertices) ++size[sz(sets.find(v))];
+  // Groups ordered by their smallest vertex (the root), members ascending
+  // (`vertices` is ascending).
   r.vertex_coincident_group.assign(p.size(), kNoIndex);
+  if (!any_coincident) return;
+  std::vector<Index> size(p.size(), 0);
+  for (Index v : vertices) ++size[sz(sets.find(v))];
   for (Index v : vertices) {
     const Index root = sets.find(v);
     if (size[sz(root)] < 2) continue;
