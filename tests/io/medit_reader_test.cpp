@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "io/error_text.h"
 
@@ -48,6 +51,112 @@ void expect_unit_cube(const LoadedMesh& loaded) {
   EXPECT_EQ(loaded.mesh.points[6], (Vec3{1, 1, 1}));
   EXPECT_EQ(loaded.mesh.hexes[0], (Hex{0, 1, 2, 3, 4, 5, 6, 7}));
   EXPECT_EQ(loaded.format, "medit");
+}
+
+// A grid of n^3 hexes, large enough (more than 2^15 vertices and hexes) for
+// its sections to be read in parts on several threads. Its text has blank
+// lines, comment lines, CRLF line ends and trailing comments between and
+// after entries; `vertex_line[i]` / `hex_line[h]` is the line of each entry.
+struct GridText {
+  std::string text;
+  std::vector<std::int64_t> vertex_line, hex_line;
+  int n = 0;
+  Index id(int i, int j, int k) const { return static_cast<Index>((k * (n + 1) + j) * (n + 1) + i); }
+};
+
+GridText grid_text(int n) {
+  GridText g;
+  g.n = n;
+  const int m = n + 1;
+  std::int64_t line = 1;
+  auto add = [&](const std::string& s) {
+    g.text += s;
+    line += static_cast<std::int64_t>(std::count(s.begin(), s.end(), '\n'));
+  };
+  add("MeshVersionFormatted 2\nDimension 3\nVertices\n" + std::to_string(m * m * m) + "\n");
+  for (int k = 0; k < m; ++k)
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < m; ++i) {
+        const auto v = static_cast<std::size_t>(g.id(i, j, k));
+        if (v % 997 == 5) add("\n");
+        if (v % 1009 == 7) add("# a comment line\n");
+        g.vertex_line.push_back(line);
+        add(std::to_string(i) + ".5 " + std::to_string(-j) + " " + std::to_string(k) + "e-1 " + std::to_string(v % 3) +
+            (v % 101 == 0 ? " # trailing\r\n" : v % 2 == 0 ? "\r\n" : "\n"));
+      }
+  add("Hexahedra\n" + std::to_string(n * n * n) + "\n");
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        if (g.hex_line.size() % 1013 == 11) add("  # between hexes\n\t\n");
+        g.hex_line.push_back(line);
+        std::string entry;
+        for (const Index v : {g.id(i, j, k), g.id(i + 1, j, k), g.id(i + 1, j + 1, k), g.id(i, j + 1, k),
+                              g.id(i, j, k + 1), g.id(i + 1, j, k + 1), g.id(i + 1, j + 1, k + 1), g.id(i, j + 1, k + 1)})
+          entry += std::to_string(v + 1) + " ";
+        add(entry + "0\n");
+      }
+  add("End\n");
+  return g;
+}
+
+TEST(MeditReader, LargeSectionsReadInPartsGiveEveryEntryInOrder) {
+  const GridText g = grid_text(34);  // 42,875 vertices, 39,304 hexes
+  const LoadedMesh loaded = read_medit(g.text, "grid.mesh");
+  ASSERT_EQ(loaded.mesh.points.size(), 42875u);
+  ASSERT_EQ(loaded.mesh.hexes.size(), 39304u);
+  const int m = g.n + 1;
+  for (int k = 0; k < m; ++k)
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < m; ++i)
+        ASSERT_EQ(loaded.mesh.points[static_cast<std::size_t>(g.id(i, j, k))], (Vec3{i + 0.5, -1.0 * j, k / 10.0}))
+            << i << " " << j << " " << k;
+  std::size_t h = 0;
+  for (int k = 0; k < g.n; ++k)
+    for (int j = 0; j < g.n; ++j)
+      for (int i = 0; i < g.n; ++i, ++h)
+        ASSERT_EQ(loaded.mesh.hexes[h], (Hex{g.id(i, j, k), g.id(i + 1, j, k), g.id(i + 1, j + 1, k), g.id(i, j + 1, k),
+                                             g.id(i, j, k + 1), g.id(i + 1, j, k + 1), g.id(i + 1, j + 1, k + 1),
+                                             g.id(i, j + 1, k + 1)}))
+            << h;
+}
+
+// An error anywhere in a large section is the one the entry-by-entry
+// reading finds first, with its line, whichever part it falls in.
+TEST(MeditReader, LargeSectionsReportTheFirstErrorWithItsLine) {
+  const GridText g = grid_text(34);
+  const auto line_start = [&](std::int64_t line) {
+    std::size_t pos = 0;
+    for (std::int64_t l = 1; l < line; ++l) pos = g.text.find('\n', pos) + 1;
+    return pos;
+  };
+  const auto replace_line = [&](std::string text, std::int64_t line, const std::string& with) {
+    const std::size_t begin = line_start(line);
+    return text.replace(begin, text.find('\n', begin) - begin, with);
+  };
+  const auto error = [](const std::string& text) {
+    return error_text<ParseError>([&] { read_medit(text, "grid.mesh"); });
+  };
+  // Two errors in different parts: the earlier one is reported.
+  std::string two = replace_line(g.text, g.vertex_line[40000], "1 2 x 0");
+  two = replace_line(two, g.vertex_line[30001], "1 2 3");
+  EXPECT_EQ(error(two), "grid.mesh:" + std::to_string(g.vertex_line[30001]) +
+                            ": expected 3 coordinates and a reference, got 3 values (vertex 30002 of 42875)");
+  EXPECT_EQ(error(replace_line(g.text, g.vertex_line[40000], "1 2 x 0")),
+            "grid.mesh:" + std::to_string(g.vertex_line[40000]) + ": expected a coordinate, got 'x' (vertex 40001 of 42875)");
+  EXPECT_EQ(error(replace_line(g.text, g.hex_line[39303], "1 2 3 4 5 6 7 99999 0")),
+            "grid.mesh:" + std::to_string(g.hex_line[39303]) +
+                ": vertex id 99999 out of range [1, 42875] (hexahedron 39304 of 39304)");
+  // An entry over two lines: the first line lacks values.
+  EXPECT_EQ(error(replace_line(g.text, g.hex_line[20000], "1 2 3 4\n5 6 7 8 0")),
+            "grid.mesh:" + std::to_string(g.hex_line[20000]) +
+                ": expected 8 vertex ids and a reference, got 4 values (hexahedron 20001 of 39304)");
+  // Fewer entries than the count: the Hexahedra keyword is read as a vertex.
+  std::string short_text = g.text;
+  const std::size_t last_vertex = line_start(g.vertex_line[42874]);
+  short_text.erase(last_vertex, line_start(g.vertex_line[42874] + 1) - last_vertex);
+  EXPECT_EQ(error(short_text), "grid.mesh:" + std::to_string(g.vertex_line[42874]) +
+                                   ": expected a coordinate, got 'Hexahedra' (vertex 42875 of 42875)");
 }
 
 TEST(MeditReader, ReadsTheUnitCubeWithZeroBasedIds) {

@@ -1,12 +1,16 @@
 #include "hqview/io/medit_reader.h"
 
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include <tbb/parallel_for.h>
+
+#include "hqview/core/error.h"
 #include "hqview/core/types.h"
 #include "hqview/io/read_limits.h"
 #include "hqview/io/text_scanner.h"
@@ -81,6 +85,11 @@ struct EntryAt {
 };
 
 enum class Target { kHexahedra, kTriangles };
+
+// Sections of at least this many entries are read in kEntryParts parts in
+// parallel (a fixed count, so the parts do not depend on the thread count).
+constexpr std::int64_t kParallelEntriesMin = std::int64_t{1} << 15;
+constexpr std::int64_t kEntryParts = 8;
 
 struct MeditContent {
   std::vector<Vec3> points;
@@ -206,11 +215,102 @@ class MeditParser {
   }
 
   // After the last value of an entry: nothing else may follow on its line.
-  void end_entry(std::string_view entry, int values, const EntryAt& at) {
-    if (s_.skip_blank()) {
-      const std::int64_t extra = s_.count_tokens_on_line();
-      s_.fail("expected " + std::string(entry) + ", got " + std::to_string(values + extra) + " values" + at.label());
+  static void end_entry(TextScanner& s, std::string_view entry, int values, const EntryAt& at) {
+    if (s.skip_blank()) {
+      const std::int64_t extra = s.count_tokens_on_line();
+      s.fail("expected " + std::string(entry) + ", got " + std::to_string(values + extra) + " values" + at.label());
     }
+  }
+
+  static void read_reference(TextScanner& s, const SectionInfo& info, int values_before, const EntryAt& at) {
+    if (!s.skip_blank())
+      s.fail("expected " + std::string(info.entry) + ", got " + std::to_string(values_before) + " values" + at.label());
+    std::int64_t reference = 0;
+    if (!s.read_int(reference)) s.fail("expected an integer reference, got " + quote(s.peek_token()) + at.label());
+  }
+
+  // One vertex entry: 3 finite coordinates and a reference.
+  static Vec3 read_vertex(TextScanner& s, const SectionInfo& info, const EntryAt& at) {
+    if (!s.skip_space()) s.fail("unexpected end of file, expected " + std::string(info.entry) + at.label());
+    double xyz[3];
+    for (int k = 0; k < 3; ++k) {
+      if (!s.skip_blank())
+        s.fail("expected " + std::string(info.entry) + ", got " + std::to_string(k) + " values" + at.label());
+      if (!s.read_double(xyz[k])) s.fail("expected a coordinate, got " + quote(s.peek_token()) + at.label());
+      if (!std::isfinite(xyz[k]))
+        s.fail(std::string("non-finite coordinate ") +
+               (std::isnan(xyz[k]) ? "nan"
+                : xyz[k] > 0       ? "inf"
+                                   : "-inf") +
+               at.label());
+    }
+    read_reference(s, info, 3, at);
+    end_entry(s, info.entry, 4, at);
+    return {xyz[0], xyz[1], xyz[2]};
+  }
+
+  // One element entry: N distinct 1-based vertex ids in [1, max_id] and a reference.
+  template <int N>
+  static std::array<Index, N> read_element(TextScanner& s, const SectionInfo& info, const EntryAt& at,
+                                           std::int64_t max_id, bool has_vertices) {
+    if (!s.skip_space()) s.fail("unexpected end of file, expected " + std::string(info.entry) + at.label());
+    std::array<Index, N> element;
+    for (int k = 0; k < N; ++k) {
+      if (!s.skip_blank())
+        s.fail("expected " + std::string(info.entry) + ", got " + std::to_string(k) + " values" + at.label());
+      std::int64_t id = 0;
+      if (!s.read_int(id)) s.fail("expected an integer vertex id, got " + quote(s.peek_token()) + at.label());
+      if (id < 1 || id > max_id) {
+        const std::string range = has_vertices ? " out of range [1, " + std::to_string(max_id) + "]"
+                                               : (id < 1 ? " out of range (ids start at 1)"
+                                                         : " exceeds the limit of " + std::to_string(max_id));
+        s.fail("vertex id " + std::to_string(id) + range + at.label());
+      }
+      element[k] = static_cast<Index>(id - 1);
+    }
+    read_reference(s, info, N, at);
+    end_entry(s, info.entry, N + 1, at);
+    for (int a = 1; a < N; ++a)
+      for (int b = 0; b < a; ++b)
+        if (element[a] == element[b]) s.fail("vertex id " + std::to_string(element[a] + 1) + " repeated" + at.label());
+    return element;
+  }
+
+  // Reads the n entries of a section into out[first + i] (out already that
+  // long) with read(scanner, i). A large section is read in kEntryParts
+  // parts on the worker threads when every entry takes one line: each part
+  // by its own scanner from the line where it starts, so each value and
+  // message is the one the sequential reading would give. If any part
+  // fails, the section is read again from its start, sequentially, and that
+  // reading's first error is the one reported (the same file always gives
+  // the same message, whatever the thread count).
+  template <class T, class Read>
+  void read_entries(std::int64_t n, std::vector<T>& out, std::size_t first, Read read) {
+    if (n >= kParallelEntriesMin) {
+      std::vector<std::int64_t> every;
+      for (std::int64_t k = 0; k < kEntryParts; ++k) every.push_back(n * k / kEntryParts);
+      std::vector<TextScanner::Mark> starts;
+      TextScanner::Mark end;
+      if (s_.mark_entry_lines(n, every, starts, end)) {
+        std::atomic<bool> failed{false};
+        tbb::parallel_for(std::int64_t{0}, kEntryParts, [&](std::int64_t k) {
+          const auto part = static_cast<std::size_t>(k);
+          const std::size_t last = part + 1 < starts.size() ? starts[part + 1].offset : end.offset;
+          TextScanner piece(s_, starts[part].offset, last, starts[part].line);
+          const std::int64_t stop = k + 1 < kEntryParts ? every[part + 1] : n;
+          try {
+            for (std::int64_t i = every[part]; i < stop; ++i) out[first + static_cast<std::size_t>(i)] = read(piece, i);
+          } catch (const ParseError&) {
+            failed = true;
+          }
+        });
+        if (!failed) {
+          s_.move_to(end);
+          return;
+        }
+      }
+    }
+    for (std::int64_t i = 0; i < n; ++i) out[first + static_cast<std::size_t>(i)] = read(s_, i);
   }
 
   void read_vertices(const SectionInfo& info, std::int64_t keyword_line) {
@@ -218,37 +318,9 @@ class MeditParser {
     content_.vertices_line = keyword_line;
     const std::int64_t n = read_count(info.keyword, info.values_per_entry);
     if (target_ == Target::kHexahedra) check_mesh_memory(limits_, s_.name(), value_line_, file_bytes_, n, -1);
-    std::vector<Vec3>& points = content_.points;
-    points.reserve(static_cast<std::size_t>(n));
-    for (std::int64_t i = 0; i < n; ++i) {
-      const EntryAt at{"vertex", "", i, n};
-      if (!s_.skip_space()) s_.fail("unexpected end of file, expected " + std::string(info.entry) + at.label());
-      double xyz[3];
-      for (int k = 0; k < 3; ++k) {
-        if (!s_.skip_blank())
-          s_.fail("expected " + std::string(info.entry) + ", got " + std::to_string(k) + " values" +
-                  at.label());
-        if (!s_.read_double(xyz[k]))
-          s_.fail("expected a coordinate, got " + quote(s_.peek_token()) + at.label());
-        if (!std::isfinite(xyz[k]))
-          s_.fail(std::string("non-finite coordinate ") +
-                  (std::isnan(xyz[k]) ? "nan"
-                   : xyz[k] > 0       ? "inf"
-                                      : "-inf") +
-                  at.label());
-      }
-      read_reference(info, 3, at);
-      end_entry(info.entry, 4, at);
-      points.push_back({xyz[0], xyz[1], xyz[2]});
-    }
-  }
-
-  void read_reference(const SectionInfo& info, int values_before, const EntryAt& at) {
-    if (!s_.skip_blank())
-      s_.fail("expected " + std::string(info.entry) + ", got " + std::to_string(values_before) + " values" +
-              at.label());
-    std::int64_t reference = 0;
-    if (!s_.read_int(reference)) s_.fail("expected an integer reference, got " + quote(s_.peek_token()) + at.label());
+    content_.points.resize(static_cast<std::size_t>(n));
+    read_entries(n, content_.points, 0,
+                 [&](TextScanner& s, std::int64_t i) { return read_vertex(s, info, EntryAt{"vertex", "", i, n}); });
   }
 
   // Elements of N 1-based vertex ids and a reference.
@@ -260,34 +332,11 @@ class MeditParser {
                         static_cast<std::int64_t>(out.size()) + n);
     const bool has_vertices = content_.vertices_line != 0;
     const std::int64_t max_id = has_vertices ? static_cast<std::int64_t>(content_.points.size()) : kMaxIndexCount;
-    out.reserve(out.size() + static_cast<std::size_t>(n));
-    for (std::int64_t i = 0; i < n; ++i) {
-      const EntryAt at{what, "", i, n};
-      if (!s_.skip_space()) s_.fail("unexpected end of file, expected " + std::string(info.entry) + at.label());
-      std::array<Index, N> element;
-      for (int k = 0; k < N; ++k) {
-        if (!s_.skip_blank())
-          s_.fail("expected " + std::string(info.entry) + ", got " + std::to_string(k) + " values" +
-                  at.label());
-        std::int64_t id = 0;
-        if (!s_.read_int(id))
-          s_.fail("expected an integer vertex id, got " + quote(s_.peek_token()) + at.label());
-        if (id < 1 || id > max_id) {
-          const std::string range = has_vertices ? " out of range [1, " + std::to_string(max_id) + "]"
-                                                 : (id < 1 ? " out of range (ids start at 1)"
-                                                           : " exceeds the limit of " + std::to_string(max_id));
-          s_.fail("vertex id " + std::to_string(id) + range + at.label());
-        }
-        element[k] = static_cast<Index>(id - 1);
-      }
-      read_reference(info, N, at);
-      end_entry(info.entry, N + 1, at);
-      for (int a = 1; a < N; ++a)
-        for (int b = 0; b < a; ++b)
-          if (element[a] == element[b])
-            s_.fail("vertex id " + std::to_string(element[a] + 1) + " repeated" + at.label());
-      out.push_back(element);
-    }
+    const std::size_t first = out.size();
+    out.resize(first + static_cast<std::size_t>(n));
+    read_entries(n, out, first, [&](TextScanner& s, std::int64_t i) {
+      return read_element<N>(s, info, EntryAt{what, "", i, n}, max_id, has_vertices);
+    });
   }
 
   // Skips a known section entry by entry; returns its count.

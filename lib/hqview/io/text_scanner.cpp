@@ -1,5 +1,7 @@
 #include "hqview/io/text_scanner.h"
 
+#include <cstring>
+
 #include <algorithm>
 #include <cstdio>
 
@@ -74,6 +76,37 @@ std::string_view TextScanner::read_bytes(std::size_t n) {
   line_ += std::count(bytes.begin(), bytes.end(), '\n');
   pos_ += n;
   return bytes;
+}
+
+bool TextScanner::mark_entry_lines(std::int64_t n, const std::vector<std::int64_t>& every, std::vector<Mark>& starts,
+                                   Mark& end) const {
+  starts.clear();
+  const char* p = pos_;
+  std::int64_t line = line_, entries = 0;
+  std::size_t next = 0;
+  const auto to_newline = [&] {
+    const void* nl = std::memchr(p, '\n', static_cast<std::size_t>(end_ - p));
+    p = nl != nullptr ? static_cast<const char*>(nl) : end_;
+  };
+  while (entries < n) {
+    while (p != end_ && is_blank(*p)) ++p;
+    if (p == end_) return false;
+    if (*p == '\n') {
+      ++line;
+      ++p;
+    } else if (*p == '#' && has_hash_comments_) {
+      to_newline();
+    } else {
+      if (next < every.size() && every[next] == entries) {
+        starts.push_back({static_cast<std::size_t>(p - begin_), line});
+        ++next;
+      }
+      ++entries;
+      to_newline();
+    }
+  }
+  end = {static_cast<std::size_t>(p - begin_), line};
+  return true;
 }
 
 void TextScanner::fail(const std::string& message) const {

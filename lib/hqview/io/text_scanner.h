@@ -21,6 +21,7 @@
 #include <string_view>
 #include <system_error>
 #include <utility>
+#include <vector>
 
 #include "hqview/core/error.h"
 #include "hqview/core/progress.h"
@@ -51,6 +52,18 @@ class TextScanner {
     progress::set_total(text.size());  // the reading stage's bar: bytes scanned
   }
 
+  // A scanner over text [first, last) of `whole`, starting at line `line`
+  // (its messages name that line, as `whole`'s would), for a part of a
+  // section read on another thread: it draws no progress.
+  TextScanner(const TextScanner& whole, std::size_t first, std::size_t last, std::int64_t line)
+      : begin_(whole.begin_ + first),
+        pos_(begin_),
+        end_(whole.begin_ + last),
+        name_(whole.name_),
+        line_(line),
+        has_hash_comments_(whole.has_hash_comments_),
+        reports_progress_(false) {}
+
   const std::string& name() const { return name_; }
   std::int64_t line() const { return line_; }
   std::size_t offset() const { return static_cast<std::size_t>(pos_ - begin_); }
@@ -62,7 +75,7 @@ class TextScanner {
     while (pos_ != end_) {
       const char c = *pos_;
       if (c == '\n') {
-        if ((++line_ & 0xFFFF) == 0) progress::set_done(offset());
+        if ((++line_ & 0xFFFF) == 0 && reports_progress_) progress::set_done(offset());
         ++pos_;
       } else if (is_blank(c)) {
         ++pos_;
@@ -118,6 +131,25 @@ class TextScanner {
     return true;
   }
 
+  // A place in the text: its offset and its line.
+  struct Mark {
+    std::size_t offset = 0;
+    std::int64_t line = 0;
+  };
+  // Where the next n entries lie when each takes one line, found as
+  // skip_space() would (blank and comment lines between them skipped),
+  // without moving: the start of entry every[k] for each k (ascending
+  // entry indices) in `starts`, and in `end` the end of the n-th entry's
+  // line (at its newline, not past it). False when fewer lines follow.
+  bool mark_entry_lines(std::int64_t n, const std::vector<std::int64_t>& every, std::vector<Mark>& starts,
+                        Mark& end) const;
+  // Moves to a mark found by mark_entry_lines().
+  void move_to(const Mark& mark) {
+    pos_ = begin_ + mark.offset;
+    line_ = mark.line;
+    if (reports_progress_) progress::set_done(offset());
+  }
+
   // Counts the tokens left on the current line (comments excluded) and moves
   // to its end. For error messages.
   std::int64_t count_tokens_on_line();
@@ -158,6 +190,7 @@ class TextScanner {
   std::string name_;
   std::int64_t line_ = 1;
   bool has_hash_comments_;
+  bool reports_progress_ = true;
 };
 
 // True when `count` entries of at least `min_bytes` bytes each (the last one
