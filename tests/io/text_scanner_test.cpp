@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+#include <vector>
+
 #include <cmath>
 #include <limits>
 
@@ -11,6 +14,55 @@ namespace hq::detail {
 namespace {
 
 using hq::test::error_text;
+
+// The entry lines of a section as skip_space() finds them: blank and
+// comment lines skipped, a comment after an entry kept on its line; marks
+// by hand from the text below.
+TEST(TextScanner, MarksEntryLinesAsSkipSpaceFindsThem) {
+  const std::string text =
+      "4\n"             // line 1, offsets 0-1
+      "a 1\n"           // line 2, entry 0 at offset 2
+      "\n"              // line 3
+      "# note\n"        // line 4, offsets 7-13
+      "  b 2 # c\r\n"   // line 5, offsets 14-24: entry 1 at 16 (after 2 blanks)
+      "c 3\n"           // line 6, entry 2 at offset 25
+      "\t\n"            // line 7, offsets 29-30
+      "d 4\n"           // line 8, entry 3 at offset 31; its newline at 34
+      "rest\n";
+  TextScanner s(text, "t", true);
+  std::int64_t n = 0;
+  ASSERT_TRUE(s.read_int(n));
+  std::vector<TextScanner::Mark> starts;
+  TextScanner::Mark end;
+  ASSERT_TRUE(s.mark_entry_lines(4, {0, 1, 3}, starts, end));
+  ASSERT_EQ(starts.size(), 3u);
+  EXPECT_EQ(starts[0].offset, 2u);
+  EXPECT_EQ(starts[0].line, 2);
+  EXPECT_EQ(starts[1].offset, 16u);
+  EXPECT_EQ(starts[1].line, 5);
+  EXPECT_EQ(starts[2].offset, 31u);
+  EXPECT_EQ(starts[2].line, 8);
+  EXPECT_EQ(end.offset, 34u);
+  EXPECT_EQ(end.line, 8);
+  EXPECT_EQ(s.line(), 1);  // not moved
+  // A part read from its mark by its own scanner sees the same lines.
+  TextScanner part(s, starts[1].offset, starts[2].offset, starts[1].line);
+  ASSERT_TRUE(part.skip_space());
+  EXPECT_EQ(part.read_token(), "b");
+  ASSERT_TRUE(part.skip_space());
+  EXPECT_EQ(part.read_token(), "2");
+  ASSERT_TRUE(part.skip_space());
+  EXPECT_EQ(part.line(), 6);
+  EXPECT_EQ(part.read_token(), "c");
+  // After the last entry: where reading goes on, with its line.
+  s.move_to(end);
+  ASSERT_TRUE(s.skip_space());
+  EXPECT_EQ(s.line(), 9);
+  EXPECT_EQ(s.read_token(), "rest");
+  // Fewer entry lines than asked for.
+  TextScanner again(text, "t", true);
+  EXPECT_FALSE(again.mark_entry_lines(7, {0}, starts, end));
+}
 
 TEST(TextScanner, SkipsSpaceAndCommentsCountingLines) {
   TextScanner s("  # comment\n\n\tVertices # trailing\r\n 12", "t", true);

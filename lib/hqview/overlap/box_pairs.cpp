@@ -105,26 +105,25 @@ BoxPairs grouped_box_self_pairs(const std::vector<Box3>& boxes, const std::vecto
   const auto at = [&](Index i) -> const Box3& { return boxes[static_cast<std::size_t>(i)]; };
   std::vector<IndexedBox> groups;
   for (std::size_t g = 0; g + 1 < first.size(); ++g) {
-    if (first[g] == first[g + 1]) continue;
-    Box3 bounds = at(first[g]);
-    for (Index i = first[g] + 1; i < first[g + 1]; ++i)
-      for (int a = 0; a < 3; ++a) {
-        bounds.lo[a] = std::min(bounds.lo[a], at(i).lo[a]);
-        bounds.hi[a] = std::max(bounds.hi[a], at(i).hi[a]);
-      }
-    groups.push_back(indexed(bounds, g));
+    Box3 bounds;
+    for (Index i = first[g]; i < first[g + 1]; ++i) {
+      bounds.add(at(i).lo);
+      bounds.add(at(i).hi);
+    }
+    if (first[g] < first[g + 1]) groups.push_back(indexed(bounds, g));
   }
   BudgetedPairs collected(max_pairs);
+  const auto test = [&](Index i, Index j) {
+    if (boxes_overlap_closed(at(i), at(j))) collected.add(static_cast<std::size_t>(i), static_cast<std::size_t>(j));
+  };
   auto report = [&](const IndexedBox& a, const IndexedBox& b) {
     for (Index i = first[a.index]; i < first[a.index + 1]; ++i)
-      for (Index j = first[b.index]; j < first[b.index + 1]; ++j)
-        if (boxes_overlap_closed(at(i), at(j))) collected.add(static_cast<std::size_t>(i), static_cast<std::size_t>(j));
+      for (Index j = first[b.index]; j < first[b.index + 1]; ++j) test(i, j);
   };
   BoxPairs result = collected.run([&] {
     for (const IndexedBox& g : groups)
       for (Index i = first[g.index]; i < first[g.index + 1]; ++i)
-        for (Index j = i + 1; j < first[g.index + 1]; ++j)
-          if (boxes_overlap_closed(at(i), at(j))) collected.add(static_cast<std::size_t>(i), static_cast<std::size_t>(j));
+        for (Index j = i + 1; j < first[g.index + 1]; ++j) test(i, j);
     CGAL::box_self_intersection_d<CGAL::Sequential_tag>(groups.begin(), groups.end(), report,
                                                         CGAL::Box_intersection_d::Box_traits_d<IndexedBox>(), kScanCutoff,
                                                         CGAL::Box_intersection_d::CLOSED);
