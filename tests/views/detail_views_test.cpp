@@ -1,7 +1,10 @@
 // Scenes of the detail views (C, D) and of the boundary error views, without OpenGL.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <map>
+#include <set>
 
 #include "hqview/image/colormap.h"
 #include "hqview/quality/quality_field.h"
@@ -62,6 +65,76 @@ TEST(ClusterView, RegionIsTheClustersCellsAndTheSceneItsGlyphs) {
   EXPECT_EQ(scene.lines[1].indices.size() / 2, 54u) << "edges of a 2x2x2 block";
   EXPECT_FALSE(scene.lines[0].indices.empty()) << "the neighbours";
   EXPECT_FALSE(scene.translucent[0].indices.empty());
+}
+
+// The scene's neighbour edges, cluster edges and translucent hull against
+// the definitions computed directly with std::set and std::map, on a
+// cluster of several vertices whose region reaches the mesh's boundary.
+TEST(ClusterView, SceneSetsEqualTheirDefinitions) {
+  const HexMesh mesh = test::box_grid(6, 5, 4);
+  const Topology topology = build_topology(mesh);
+  GlyphResult glyphs = one_vertex_cluster(mesh, 0);
+  glyphs.cluster_vertices = {0, 1, 7, 50, 51};  // a corner, its row and an interior pair
+  glyphs.cluster_offsets = {0, 5};
+  for (Index v : glyphs.cluster_vertices) glyphs.vertex_radius[static_cast<std::size_t>(v)] = 0.3;
+  std::set<Index> cells;
+  for (Index v : glyphs.cluster_vertices)
+    for (Index k = topology.vertex_hex_offsets[static_cast<std::size_t>(v)];
+         k < topology.vertex_hex_offsets[static_cast<std::size_t>(v) + 1]; ++k)
+      cells.insert(topology.vertex_hexes[static_cast<std::size_t>(k)]);
+  std::set<Index> neighbours;
+  for (Index h = 0; h < static_cast<Index>(mesh.hexes.size()); ++h)
+    for (Index c : cells)
+      for (Index a : mesh.hexes[static_cast<std::size_t>(h)])
+        for (Index b : mesh.hexes[static_cast<std::size_t>(c)])
+          if (a == b) neighbours.insert(h);
+  const auto edges_of = [&](const std::set<Index>& set) {
+    std::set<std::array<Index, 2>> edges;
+    for (Index c : set)
+      for (int f = 0; f < 6; ++f) {
+        const Quad& q = topology.faces[static_cast<std::size_t>(topology.hex_faces[6 * static_cast<std::size_t>(c) + f])];
+        for (int i = 0; i < 4; ++i) edges.insert({std::min(q[i], q[(i + 1) % 4]), std::max(q[i], q[(i + 1) % 4])});
+      }
+    return edges;
+  };
+  std::set<Index> only_neighbours;
+  for (Index h : neighbours)
+    if (!cells.count(h)) only_neighbours.insert(h);
+  std::map<Index, int> face_uses;
+  for (Index h : neighbours)
+    for (int f = 0; f < 6; ++f) ++face_uses[topology.hex_faces[6 * static_cast<std::size_t>(h) + f]];
+
+  const ClusterRegion region = cluster_region(topology, glyphs, 0);
+  EXPECT_EQ(region.cells, std::vector<Index>(cells.begin(), cells.end()));
+  const std::vector<double> quality(mesh.points.size(), 0.25);
+  const Scene scene = build_cluster_scene(mesh, topology, quality, glyphs, 0);
+  // Lines as (a, b) vertex pairs, recovered from the positions.
+  const auto line_pairs = [&](const LineSet& lines) {
+    std::vector<std::array<Index, 2>> pairs;
+    const auto vertex_at = [&](std::size_t i) {
+      for (Index v = 0; v < mesh.num_vertices(); ++v)
+      {
+        const Vec3f p = to_vec3f(mesh.points[static_cast<std::size_t>(v)] - scene.origin);
+        if (p.x == lines.positions[i].x && p.y == lines.positions[i].y && p.z == lines.positions[i].z) return v;
+      }
+      return kNoIndex;
+    };
+    for (std::size_t i = 0; i + 1 < lines.indices.size(); i += 2)
+      pairs.push_back({vertex_at(lines.indices[i]), vertex_at(lines.indices[i + 1])});
+    return pairs;
+  };
+  const auto expected_grey = edges_of(only_neighbours);
+  const auto expected_own = edges_of(cells);
+  ASSERT_EQ(scene.lines.size(), 2u);
+  using Pairs = std::vector<std::array<Index, 2>>;
+  EXPECT_EQ(line_pairs(scene.lines[0]), Pairs(expected_grey.begin(), expected_grey.end()));
+  EXPECT_EQ(line_pairs(scene.lines[1]), Pairs(expected_own.begin(), expected_own.end()));
+  std::size_t hull_quads = 0;
+  for (const auto& [face, uses] : face_uses) hull_quads += uses == 1 ? 1 : 0;
+  ASSERT_EQ(scene.translucent.size(), 1u);
+  EXPECT_EQ(scene.translucent[0].indices.size(), 6 * hull_quads);
+  EXPECT_GT(hull_quads, 0u);
+  EXPECT_EQ(scene.spheres[0].centers.size(), 5u);
 }
 
 TEST(LocalView, OneMarkerPerCornerColouredByItsValue) {

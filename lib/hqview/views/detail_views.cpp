@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <span>
 
 #include "hqview/core/box3.h"
 #include "hqview/core/error.h"
@@ -31,58 +33,104 @@ Vec3 centre_of(const std::vector<Vec3>& points) {
   return 0.5 * (box.lo + box.hi);
 }
 
-std::vector<Vec3> cell_points(const HexMesh& mesh, const std::vector<Index>& cells) {
-  std::vector<Vec3> points;
-  for (Index c : cells)
-    for (Index v : mesh.hexes[static_cast<std::size_t>(c)]) points.push_back(mesh.points[static_cast<std::size_t>(v)]);
-  return points;
-}
-
-// Unique edges of the given cells (from their faces), in one colour.
+// Unique edges of the given cells (from their faces), in one colour, in
+// ascending (a, b) order: the edges as 64-bit keys a * 2^32 + b, sorted.
 LineSet cell_edges(const HexMesh& mesh, const Topology& topology, const std::vector<Index>& cells, const Vec3& origin,
                    Rgba8 color, float width) {
-  std::vector<Edge> edges;
+  std::vector<std::uint64_t> keys;
+  keys.reserve(24 * cells.size());
   for (Index c : cells)
     for (int f = 0; f < 6; ++f) {
       const Quad& q = topology.faces[static_cast<std::size_t>(topology.hex_faces[6 * static_cast<std::size_t>(c) + f])];
-      for (int i = 0; i < 4; ++i) edges.push_back({std::min(q[i], q[(i + 1) % 4]), std::max(q[i], q[(i + 1) % 4])});
+      for (int i = 0; i < 4; ++i) {
+        const auto a = static_cast<std::uint32_t>(std::min(q[i], q[(i + 1) % 4]));
+        const auto b = static_cast<std::uint32_t>(std::max(q[i], q[(i + 1) % 4]));
+        keys.push_back(std::uint64_t{a} << 32 | b);
+      }
     }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
   LineSet lines;
   lines.width = width;
-  for (const Edge& e : edges)
-    for (Index v : e) {
+  lines.indices.reserve(2 * keys.size());
+  lines.positions.reserve(2 * keys.size());
+  lines.colors.assign(2 * keys.size(), color);
+  for (const std::uint64_t key : keys)
+    for (const std::uint64_t v : {key >> 32, key & 0xFFFFFFFFu}) {
       lines.indices.push_back(static_cast<std::uint32_t>(lines.positions.size()));
       lines.positions.push_back(to_vec3f(mesh.points[static_cast<std::size_t>(v)] - origin));
-      lines.colors.push_back(color);
     }
   return lines;
 }
 
-// Faces of the cells used once among them (the region's outer surface), pale.
+// Faces of the cells used once among them (the region's outer surface), pale,
+// in ascending face order: each face's uses counted (up to 2) in a table
+// of all faces, then the table read in order.
 TriangleSet outer_faces(const HexMesh& mesh, const Topology& topology, const std::vector<Index>& cells,
                         const Vec3& origin, Rgba8 color) {
-  std::vector<Index> faces;
+  std::vector<std::uint8_t> uses(topology.faces.size(), 0);
+  std::size_t first = uses.size(), last = 0;  // the range of faces used
   for (Index c : cells)
-    for (int f = 0; f < 6; ++f) faces.push_back(topology.hex_faces[6 * static_cast<std::size_t>(c) + f]);
-  std::sort(faces.begin(), faces.end());
-  TriangleSet set;
-  for (std::size_t i = 0; i < faces.size();) {
-    std::size_t j = i;
-    while (j < faces.size() && faces[j] == faces[i]) ++j;
-    if (j - i == 1) {
-      const Quad& q = topology.faces[static_cast<std::size_t>(faces[i])];
-      const auto base = static_cast<std::uint32_t>(set.positions.size());
-      for (Index v : q) {
-        set.positions.push_back(to_vec3f(mesh.points[static_cast<std::size_t>(v)] - origin));
-        set.colors.push_back(color);
-      }
-      set.indices.insert(set.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+    for (int f = 0; f < 6; ++f) {
+      const auto face = static_cast<std::size_t>(topology.hex_faces[6 * static_cast<std::size_t>(c) + f]);
+      uses[face] = static_cast<std::uint8_t>(std::min(2, uses[face] + 1));
+      first = std::min(first, face);
+      last = std::max(last, face + 1);
     }
-    i = j;
+  TriangleSet set;
+  for (std::size_t face = first; face < last; ++face) {
+    if (uses[face] != 1) continue;
+    const Quad& q = topology.faces[face];
+    const auto base = static_cast<std::uint32_t>(set.positions.size());
+    for (Index v : q) {
+      set.positions.push_back(to_vec3f(mesh.points[static_cast<std::size_t>(v)] - origin));
+      set.colors.push_back(color);
+    }
+    set.indices.insert(set.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
   }
   return set;
+}
+
+// A set of ids below a fixed bound, marked in a table of that size and
+// read back ascending: the distinct members without sorting the repeats.
+class IdSet {
+ public:
+  explicit IdSet(std::size_t universe) : seen_(universe, 0) {}
+  // Whether id was new.
+  bool add(Index id) {
+    const auto i = static_cast<std::size_t>(id);
+    if (seen_[i]) return false;
+    seen_[i] = 1;
+    first_ = std::min(first_, i);
+    last_ = std::max(last_, i + 1);
+    return true;
+  }
+  std::vector<Index> ascending() const {
+    std::vector<Index> out;
+    for (std::size_t i = first_; i < last_; ++i)
+      if (seen_[i]) out.push_back(static_cast<Index>(i));
+    return out;
+  }
+
+ private:
+  std::vector<char> seen_;
+  std::size_t first_ = std::numeric_limits<std::size_t>::max(), last_ = 0;
+};
+
+// The points of the cells' distinct vertices: what their bounding box and a
+// camera framing them need (a vertex shared by eight cells counts once).
+std::vector<Vec3> cell_points(const HexMesh& mesh, const std::vector<Index>& cells) {
+  IdSet vertices(mesh.points.size());
+  std::vector<Vec3> points;
+  for (Index c : cells)
+    for (Index v : mesh.hexes[static_cast<std::size_t>(c)])
+      if (vertices.add(v)) points.push_back(mesh.points[static_cast<std::size_t>(v)]);
+  return points;
+}
+
+std::span<const Index> hexes_of(const Topology& topology, Index v) {
+  return {topology.vertex_hexes.data() + topology.vertex_hex_offsets[static_cast<std::size_t>(v)],
+          topology.vertex_hexes.data() + topology.vertex_hex_offsets[static_cast<std::size_t>(v) + 1]};
 }
 
 std::string format_value(double v) {
@@ -120,30 +168,33 @@ Image compose(const DetailViewOptions& options, const Figure& f, const Image& vi
 ClusterRegion cluster_region(const Topology& topology, const GlyphResult& glyphs, Index cluster) {
   ClusterRegion region;
   if (cluster < 0 || static_cast<std::size_t>(cluster) + 1 >= glyphs.cluster_offsets.size()) return region;
-  auto hexes_of = [&](Index v) {
-    return std::span<const Index>(
-        topology.vertex_hexes.data() + topology.vertex_hex_offsets[static_cast<std::size_t>(v)],
-        topology.vertex_hexes.data() + topology.vertex_hex_offsets[static_cast<std::size_t>(v) + 1]);
-  };
+  IdSet cells(topology.hex_faces.size() / 6);
   for (Index i = glyphs.cluster_offsets[static_cast<std::size_t>(cluster)];
        i < glyphs.cluster_offsets[static_cast<std::size_t>(cluster) + 1]; ++i)
-    for (Index h : hexes_of(glyphs.cluster_vertices[static_cast<std::size_t>(i)])) region.cells.push_back(h);
-  std::sort(region.cells.begin(), region.cells.end());
-  region.cells.erase(std::unique(region.cells.begin(), region.cells.end()), region.cells.end());
+    for (Index h : hexes_of(topology, glyphs.cluster_vertices[static_cast<std::size_t>(i)])) cells.add(h);
+  region.cells = cells.ascending();
   return region;
 }
+
+namespace {
+
+// Neighbours: the hexes sharing a vertex with a cluster cell (the cells
+// among them), ascending.
+std::vector<Index> neighbour_cells(const HexMesh& mesh, const Topology& topology, const std::vector<Index>& cells) {
+  IdSet vertices(mesh.points.size()), neighbours(mesh.hexes.size());
+  for (Index c : cells)
+    for (Index v : mesh.hexes[static_cast<std::size_t>(c)])
+      if (vertices.add(v))
+        for (Index h : hexes_of(topology, v)) neighbours.add(h);
+  return neighbours.ascending();
+}
+
+}  // namespace
 
 Scene build_cluster_scene(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
                           const GlyphResult& glyphs, Index cluster) {
   ClusterRegion region = cluster_region(topology, glyphs, cluster);
-  // Neighbours: hexes sharing a vertex with a cluster cell.
-  for (Index c : region.cells)
-    for (Index v : mesh.hexes[static_cast<std::size_t>(c)])
-      for (Index k = topology.vertex_hex_offsets[static_cast<std::size_t>(v)];
-           k < topology.vertex_hex_offsets[static_cast<std::size_t>(v) + 1]; ++k)
-        region.neighbours.push_back(topology.vertex_hexes[static_cast<std::size_t>(k)]);
-  std::sort(region.neighbours.begin(), region.neighbours.end());
-  region.neighbours.erase(std::unique(region.neighbours.begin(), region.neighbours.end()), region.neighbours.end());
+  region.neighbours = neighbour_cells(mesh, topology, region.cells);
   std::vector<Index> only_neighbours;
   std::set_difference(region.neighbours.begin(), region.neighbours.end(), region.cells.begin(), region.cells.end(),
                       std::back_inserter(only_neighbours));

@@ -1,5 +1,7 @@
 #include "hqview/views/main_views.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -81,10 +83,11 @@ double glyph_coverage(std::span<const Vec3> centers, std::span<const double> rad
   std::vector<char> covered(static_cast<std::size_t>(gw) * static_cast<std::size_t>(gh), 0);
   const Vec3 forward = forward_of(camera);
   const Mat4 projection = projection_matrix(camera, aspect);
+  const Mat4 to_ndc = projection * view_matrix(camera);  // project_to_ndc's, made once
   for (std::size_t i = 0; i < centers.size(); ++i) {
     const double depth = dot(centers[i] - camera.eye, forward);
     if (camera.is_perspective && depth <= 0.0) continue;
-    const Vec3 ndc = project_to_ndc(camera, aspect, centers[i]);
+    const Vec3 ndc = transform_point(to_ndc, centers[i]);
     if (!std::isfinite(ndc.x) || !std::isfinite(ndc.y)) continue;
     const double scale = camera.is_perspective ? 1.0 / depth : 2.0 / camera.ortho_height;
     const double rx = radii[i] * (camera.is_perspective ? projection(0, 0) * scale : scale / aspect);
@@ -136,11 +139,12 @@ std::vector<double> visible_sphere_areas(std::span<const Vec3> directions, std::
                                          std::span<const Vec3> centers, std::span<const double> radii,
                                          double aspect, const Vec3& up, double fov_y_degrees) {
   std::vector<double> score(directions.size());
-  for (std::size_t i = 0; i < directions.size(); ++i) {
+  // One task a direction (each score on its own: the same for any thread count).
+  tbb::parallel_for(std::size_t{0}, directions.size(), [&](std::size_t i) {
     const Camera camera = fit_camera_to_points(
         points, directions[i], aspect, {.up = up, .fov_y_degrees = fov_y_degrees, .is_perspective = false});
     score[i] = glyph_coverage(centers, radii, camera, aspect) * camera.ortho_height * camera.ortho_height * aspect;
-  }
+  });
   return score;
 }
 
