@@ -8,7 +8,6 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
-#include <regex>
 
 #include "hqview/core/error.h"
 #include "hqview/image/colormap.h"
@@ -528,6 +527,49 @@ cairo_status_t append_to_string(void* closure, const unsigned char* data, unsign
 
 }  // namespace
 
+// Cairo numbers surfaces and glyphs with process-wide counters: each id
+// (surface|glyph|clip|image|pattern|source|mask, digits, optionally '-' and
+// digits) is renumbered in order of first appearance of its word and first
+// number, so the same chart always gives the same file. One scan, leftmost
+// matches first, as std::regex_iterator would find them (at 20 charts a run
+// std::regex took 50 ms).
+std::string renumber_cairo_ids(const std::string& svg) {
+  static constexpr std::string_view kWords[] = {"surface", "glyph", "clip", "image", "pattern", "source", "mask"};
+  const auto is_digit = [&](std::size_t i) { return i < svg.size() && svg[i] >= '0' && svg[i] <= '9'; };
+  std::map<std::string, int> renumbered;
+  std::string out;
+  out.reserve(svg.size());
+  std::size_t last = 0;
+  for (std::size_t i = 0; i < svg.size();) {
+    std::size_t word_end = 0;
+    for (std::string_view w : kWords)
+      if (svg.compare(i, w.size(), w) == 0 && is_digit(i + w.size())) {
+        word_end = i + w.size();
+        break;
+      }
+    if (word_end == 0) {
+      ++i;
+      continue;
+    }
+    std::size_t number_end = word_end;
+    while (is_digit(number_end)) ++number_end;
+    std::size_t end = number_end;
+    if (end < svg.size() && svg[end] == '-' && is_digit(end + 1)) {
+      ++end;
+      while (is_digit(end)) ++end;
+    }
+    const auto [entry, inserted] =
+        renumbered.try_emplace(svg.substr(i, number_end - i), static_cast<int>(renumbered.size()));
+    out.append(svg, last, i - last);
+    out.append(svg, i, word_end - i);
+    out += std::to_string(entry->second);
+    out.append(svg, number_end, end - number_end);
+    last = i = end;
+  }
+  out.append(svg, last, std::string::npos);
+  return out;
+}
+
 std::string chart_svg(const Chart& chart) {
   std::string svg;
   cairo_surface_t* surface = cairo_svg_surface_create_for_stream(append_to_string, &svg, chart.width, chart.height);
@@ -540,22 +582,7 @@ std::string chart_svg(const Chart& chart) {
   cairo_surface_destroy(surface);
   if (status != CAIRO_STATUS_SUCCESS)
     throw RenderError(std::string("cannot draw a chart: ") + cairo_status_to_string(status));
-  // Cairo numbers surfaces and glyphs with process-wide counters: renumber
-  // them in order of appearance so the same chart always gives the same file.
-  const std::regex ids(R"((surface|glyph|clip|image|pattern|source|mask)(\d+)(-\d+)?)");
-  std::map<std::string, int> renumbered;
-  std::string out;
-  std::size_t last = 0;
-  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), ids); it != std::sregex_iterator(); ++it) {
-    const std::smatch& m = *it;
-    const std::string key = m[1].str() + m[2].str();
-    const auto [entry, inserted] = renumbered.try_emplace(key, static_cast<int>(renumbered.size()));
-    out.append(svg, last, static_cast<std::size_t>(m.position(0)) - last);
-    out += m[1].str() + std::to_string(entry->second) + m[3].str();
-    last = static_cast<std::size_t>(m.position(0) + m.length(0));
-  }
-  out.append(svg, last, std::string::npos);
-  return out;
+  return renumber_cairo_ids(svg);
 }
 
 Image chart_image(const Chart& chart) {

@@ -109,6 +109,11 @@ Chart method_distribution_chart(std::span<const std::string> methods, std::span<
 // The chart as an SVG document / as a PNG-ready image (both from draw_chart).
 // Throws RenderError when Cairo fails.
 std::string chart_svg(const Chart& chart);
+
+// Cairo's SVG ids (surface|glyph|clip|image|pattern|source|mask followed by
+// digits, optionally '-' and digits) renumbered from 0 in order of first
+// appearance of word and number: chart_svg's last step.
+std::string renumber_cairo_ids(const std::string& svg);
 Image chart_image(const Chart& chart);
 
 }  // namespace hq
