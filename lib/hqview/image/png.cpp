@@ -33,6 +33,12 @@ void append_bytes(png_structp png, png_bytep data, png_size_t size) {
 
 void no_flush(png_structp) {}
 
+bool is_opaque(const Image& image) {
+  for (std::size_t i = 3; i < image.rgba.size(); i += 4)
+    if (image.rgba[i] != 255) return false;
+  return true;
+}
+
 }  // namespace
 
 std::string encode_png(const Image& image) {
@@ -51,9 +57,15 @@ std::string encode_png(const Image& image) {
   // the encoding time of libpng's adaptive filter choice, files as small.
   png_set_compression_level(png, 1);
   png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_UP);
+  // An opaque image (every view and chart is: figures have a background) is
+  // written as RGB, libpng dropping each pixel's alpha byte: a quarter less
+  // to filter and compress, and smaller files; it decodes to the same pixels.
+  const bool opaque = is_opaque(image);
   png_set_IHDR(png, info, static_cast<png_uint_32>(image.width), static_cast<png_uint_32>(image.height), 8,
-               PNG_COLOR_TYPE_RGB_ALPHA, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_BASE, PNG_FILTER_TYPE_BASE);
+               opaque ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_RGB_ALPHA, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_BASE,
+               PNG_FILTER_TYPE_BASE);
   png_write_info(png, info);  // no time, text or gamma chunks: the same image gives the same bytes
+  if (opaque) png_set_filler(png, 0, PNG_FILLER_AFTER);  // on writing: strip the 4th byte of each pixel
   const std::size_t row_bytes = 4 * static_cast<std::size_t>(image.width);
   for (int y = 0; y < image.height; ++y)
     png_write_row(png, image.rgba.data() + static_cast<std::size_t>(y) * row_bytes);
