@@ -5,7 +5,8 @@
 #include "hqview/uv/uv_lscm.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/iterator.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_parameterization/LSCM_parameterizer_3.h>
 #include <CGAL/Surface_mesh_parameterization/parameterize.h>
@@ -21,7 +22,6 @@
 namespace hq {
 namespace {
 
-namespace PMP = CGAL::Polygon_mesh_processing;
 namespace SMP = CGAL::Surface_mesh_parameterization;
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
@@ -199,9 +199,33 @@ bool lscm_chart_layout(const TriSurface& surface, std::span<const Index> chart, 
     area_3d += 0.5 * norm(cross(surface.points[tri[1]] - surface.points[tri[0]],
                                 surface.points[tri[2]] - surface.points[tri[0]]));
   }
-  if (!PMP::is_polygon_soup_a_polygon_mesh(polygons)) return false;
+  // The mesh as PMP::polygon_soup_to_polygon_mesh builds it (the same
+  // calls in the same order, so the same indices and the same layout), but
+  // without PMP::is_polygon_soup_a_polygon_mesh's std::set of every edge
+  // (as costly as the LSCM solve): Euler::add_face refuses a face that
+  // repeats a vertex or uses an edge side already taken (an edge of three
+  // triangles, or two of the same orientation), and a vertex whose faces
+  // form two fans (which add_face may create) is found by counting the faces
+  // around it against its corners.
   Mesh mesh;
-  PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
+  mesh.reserve(static_cast<Mesh::size_type>(points.size()), static_cast<Mesh::size_type>(2 * polygons.size()),
+               static_cast<Mesh::size_type>(polygons.size()));
+  for (const Kernel::Point_3& p : points) mesh.add_vertex(p);
+  {
+    std::vector<Mesh::Vertex_index> face(3);
+    for (const auto& polygon : polygons) {
+      for (std::size_t k = 0; k < 3; ++k) face[k] = Mesh::Vertex_index(static_cast<Mesh::size_type>(polygon[k]));
+      if (CGAL::Euler::add_face(face, mesh) == Mesh::null_face()) return false;
+    }
+    std::vector<std::size_t> corners_at(ids.size(), 0);
+    for (std::size_t c = 0; c < nc; ++c) ++corners_at[vertex_of[c]];
+    for (Mesh::Vertex_index v : mesh.vertices()) {
+      std::size_t faces = 0;
+      for (Mesh::Halfedge_index h : CGAL::halfedges_around_target(mesh.halfedge(v), mesh))
+        faces += mesh.is_border(h) ? 0 : 1;
+      if (faces != corners_at[v.idx()]) return false;
+    }
+  }
   if (mesh.number_of_faces() != chart.size() || mesh.number_of_vertices() != ids.size()) return false;
 
   // A disk: one border cycle and V - E + F = 1.
