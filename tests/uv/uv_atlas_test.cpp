@@ -239,6 +239,64 @@ TEST(UvPack, AChartLyingAtAnAngleIsTurnedToItsSmallestBox) {
   EXPECT_LE(tilted, 1.0);
 }
 
+// The hull's candidates hold every vertex of the convex hull of all corners
+// (computed here by gift wrapping on exact small integers): random clouds,
+// a disk's rim (every rim point a vertex), and a grid with collinear sides;
+// most interior corners are left out.
+TEST(UvPack, HullCandidatesKeepEveryHullVertex) {
+  const auto hull_vertices = [](const std::vector<Uv>& points) {
+    std::vector<Uv> hull;
+    const auto cross = [](const Uv& o, const Uv& a, const Uv& b) {
+      return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+    };
+    std::size_t start = 0;
+    for (std::size_t i = 1; i < points.size(); ++i)
+      if (points[i] < points[start]) start = i;
+    std::size_t p = start;
+    do {  // the next vertex: every point on its left (collinear: the farthest)
+      hull.push_back(points[p]);
+      std::size_t q = p == 0 ? 1 : 0;
+      for (std::size_t r = 0; r < points.size(); ++r) {
+        const double c = cross(points[p], points[q], points[r]);
+        const auto d2 = [&](std::size_t k) {
+          return (points[k][0] - points[p][0]) * (points[k][0] - points[p][0]) +
+                 (points[k][1] - points[p][1]) * (points[k][1] - points[p][1]);
+        };
+        if (c < 0 || (c == 0 && d2(r) > d2(q))) q = r;
+      }
+      p = q;
+    } while (p != start && hull.size() <= points.size());
+    return hull;
+  };
+  std::mt19937 random(7);
+  std::vector<std::vector<Uv>> clouds;
+  for (int n : {70, 500, 4000}) {
+    std::uniform_int_distribution<int> coordinate(-1000, 1000);
+    std::vector<Uv> cloud;
+    for (int i = 0; i < n; ++i) cloud.push_back({double(coordinate(random)), double(coordinate(random))});
+    clouds.push_back(cloud);
+  }
+  std::vector<Uv> rim;  // a regular 96-gon and its centre, each point 6 times
+  for (int i = 0; i < 96; ++i)
+    for (int k = 0; k < 6; ++k)
+      rim.push_back({std::round(1e6 * std::cos(2 * std::numbers::pi * i / 96)),
+                     std::round(1e6 * std::sin(2 * std::numbers::pi * i / 96))});
+  rim.push_back({0, 0});
+  clouds.push_back(rim);
+  std::vector<Uv> grid;
+  for (int x = 0; x < 30; ++x)
+    for (int y = 0; y < 20; ++y) grid.push_back({double(x), double(y)});
+  clouds.push_back(grid);
+  for (const std::vector<Uv>& cloud : clouds) {
+    const std::vector<Uv> candidates = hull_candidates(cloud);
+    for (const Uv& v : hull_vertices(cloud))
+      EXPECT_NE(std::find(candidates.begin(), candidates.end(), v), candidates.end())
+          << "hull vertex " << v[0] << " " << v[1] << " of a cloud of " << cloud.size();
+    const bool mostly_inside = &cloud != &clouds[3];  // not the rim
+    if (mostly_inside && cloud.size() >= 500) EXPECT_LT(candidates.size(), cloud.size() / 2) << cloud.size();
+  }
+}
+
 TEST(UvAtlas, CubeCornersUnfoldWithoutAreaDistortion) {
   // Three faces around a corner are one cone of normals (54.7 degrees from
   // the diagonal): charts hold corners, not single faces.

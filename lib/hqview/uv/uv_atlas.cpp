@@ -994,12 +994,26 @@ class AtlasBuilder {
     const std::size_t n = 3 * tris.size();
     if (n == 0) return 0;
     // Corners by surface vertex (key vertex << 32 | position 3 i + k).
+    // Ascending: by a count of each vertex's corners when the chart has
+    // corners enough to pay for a table of all surface vertices, else sorted.
     std::vector<std::uint64_t> keys(n);
-    for (std::size_t i = 0; i < tris.size(); ++i)
-      for (int k = 0; k < 3; ++k)
-        keys[3 * i + k] = static_cast<std::uint64_t>(static_cast<std::uint32_t>(s_.triangles[tris[i]][k])) << 32 |
-                          (3 * i + k);
-    std::sort(keys.begin(), keys.end());
+    const auto key_of = [&](std::size_t corner) {
+      return static_cast<std::uint64_t>(static_cast<std::uint32_t>(s_.triangles[tris[corner / 3]][corner % 3])) << 32 |
+             corner;
+    };
+    const std::size_t num_vertices = s_.points.size();
+    if (4 * n >= num_vertices) {
+      std::vector<std::size_t> next(num_vertices + 1, 0);
+      for (std::size_t c = 0; c < n; ++c) ++next[(key_of(c) >> 32) + 1];
+      for (std::size_t v = 0; v < num_vertices; ++v) next[v + 1] += next[v];
+      for (std::size_t c = 0; c < n; ++c) {
+        const std::uint64_t key = key_of(c);
+        keys[next[key >> 32]++] = key;
+      }
+    } else {
+      for (std::size_t c = 0; c < n; ++c) keys[c] = key_of(c);
+      std::sort(keys.begin(), keys.end());
+    }
     const auto at = [&](std::size_t p) { return static_cast<std::size_t>(keys[p] & 0xffffffffu); };
     const auto uv_at = [&](std::size_t corner) { return local_[3 * static_cast<std::size_t>(tris[corner / 3]) + corner % 3]; };
     // Chart vertices: the corners of one surface vertex at one position.

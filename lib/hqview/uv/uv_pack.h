@@ -34,4 +34,10 @@ struct PackOptions {
 void pack_charts(std::span<const Uv> local, const std::vector<std::vector<Index>>& charts, std::vector<Uv>& packed,
                  const PackOptions& options = {});
 
+// The corners that may be vertices of their convex hull (every hull vertex
+// among them): those not inside, by a margin far above rounding, the
+// polygon of the extreme corners in eight directions. The packer's search
+// for the smallest bounding box sorts these instead of every corner.
+std::vector<Uv> hull_candidates(const std::vector<Uv>& corners);
+
 }  // namespace hq
