@@ -297,6 +297,46 @@ TEST(UvPack, HullCandidatesKeepEveryHullVertex) {
   }
 }
 
+// Packing with a shape cache gives the packing without it, bit for bit,
+// when the charts come back the same, when one chart's layout moves (its
+// cached shapes must not be reused) and when a chart is split in two.
+TEST(UvPack, TheShapeCacheChangesNoPacking) {
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> jitter(-0.2, 0.2);
+  // 30 charts, each a strip of 2k triangles of a perturbed grid row.
+  std::vector<Uv> local;
+  std::vector<std::vector<Index>> charts;
+  for (int c = 0; c < 30; ++c) {
+    std::vector<Index> chart;
+    const int n = 2 + c % 7;
+    for (int i = 0; i < n; ++i) {
+      const double x = i + 0.1 * jitter(random), y = 2.0 * c;
+      for (const Uv& p : {Uv{x, y}, Uv{x + 1, y}, Uv{x + 1, y + 1 + jitter(random)}, Uv{x, y}, Uv{x + 1, y + 1},
+                          Uv{x, y + 1 + jitter(random)}})
+        local.push_back(p);
+      chart.push_back(static_cast<Index>(local.size() / 3 - 2));
+      chart.push_back(static_cast<Index>(local.size() / 3 - 1));
+    }
+    charts.push_back(chart);
+  }
+  PackShapeCache cache;
+  const auto both = [&](const char* what) {
+    std::vector<Uv> plain, cached;
+    pack_charts(local, charts, plain, PackOptions{.resolution = 64});
+    pack_charts(local, charts, cached, PackOptions{.resolution = 64}, &cache);
+    EXPECT_EQ(plain, cached) << what;
+  };
+  both("first call");
+  both("the same charts again");
+  for (std::size_t k = 3 * static_cast<std::size_t>(charts[4][0]); k < 3 * static_cast<std::size_t>(charts[4].back() + 1); ++k)
+    local[k] = {1.5 * local[k][1], 0.5 * local[k][0]};  // chart 4 laid out anew
+  both("one chart moved");
+  std::vector<Index> half(charts[6].begin() + 2, charts[6].end());
+  charts[6].resize(2);
+  charts.push_back(half);  // chart 6 halved
+  both("one chart split");
+}
+
 TEST(UvAtlas, CubeCornersUnfoldWithoutAreaDistortion) {
   // Three faces around a corner are one cone of normals (54.7 degrees from
   // the diagonal): charts hold corners, not single faces.

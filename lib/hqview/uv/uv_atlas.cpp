@@ -1227,6 +1227,7 @@ class AtlasBuilder {
       kept += best_splits;
     }
     pack();
+    pack_cache_.clear();
     return kept;
   }
 
@@ -1303,7 +1304,7 @@ class AtlasBuilder {
     std::vector<std::vector<Index>> lists;
     lists.reserve(charts_.size());
     for (const Chart& c : charts_) lists.push_back(c.triangles);
-    pack_charts(local_, lists, uvs_, PackOptions{.resolution = resolution});
+    pack_charts(local_, lists, uvs_, PackOptions{.resolution = resolution}, &pack_cache_);
   }
 
   const TriSurface& s_;
@@ -1318,6 +1319,9 @@ class AtlasBuilder {
   std::vector<Index> neighbour_;  // 3 per triangle: across each manifold edge, or kNoIndex
   std::vector<Uv> local_;  // each chart's own layout (model units)
   std::vector<Uv> uvs_;    // packed into [0,1]² by pack()
+  // The shapes of the charts packed by split_for_packing's tries (most
+  // charts are the same from one try to the next); emptied after it.
+  PackShapeCache pack_cache_;
   mutable tbb::enumerable_thread_specific<std::vector<std::uint8_t>> marks_;  // components()' scratch
 };
 

@@ -1,6 +1,9 @@
 #include "hqview/uv/uv_pack.h"
 
 #include <algorithm>
+#include <unordered_map>
+#include <memory>
+#include <bit>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -291,8 +294,26 @@ constexpr long kPlaceBudget = 100'000;
 
 }  // namespace
 
+// A chart's shapes and what they were made from: equal inputs, equal shapes.
+struct PackShapeCache::Impl {
+  struct Entry {
+    std::vector<Index> triangles;
+    std::vector<Uv> corners;  // the chart's layout, 3 per triangle
+    double cell = 0.0;
+    bool may_turn = false;
+    int gutter = 0;
+    bool tilt = false;
+    std::shared_ptr<const std::vector<Shape>> shapes;
+  };
+  std::unordered_multimap<std::uint64_t, Entry> entries;  // by a hash of the inputs
+};
+
+PackShapeCache::PackShapeCache() : impl(std::make_unique<Impl>()) {}
+PackShapeCache::~PackShapeCache() = default;
+void PackShapeCache::clear() { impl->entries.clear(); }
+
 void pack_charts(std::span<const Uv> local, const std::vector<std::vector<Index>>& charts, std::vector<Uv>& packed,
-                 const PackOptions& options) {
+                 const PackOptions& options, PackShapeCache* cache) {
   packed.assign(local.size(), Uv{0.0, 0.0});
   std::vector<double> area(charts.size(), 0.0);
   double total = 0.0, longest = 0.0;
@@ -324,10 +345,48 @@ void pack_charts(std::span<const Uv> local, const std::vector<std::vector<Index>
   for (Index c : order)
     widest = std::max(widest, static_cast<int>((box[c][2] - box[c][0]) / cell) + 2 + 2 * options.gutter_cells);
   // Each chart's corners (in cells) and footprint, per allowed quarter turn;
-  // the same for every grid width tried.
-  std::vector<std::vector<Shape>> shapes_of(charts.size());
-  tbb::parallel_for(std::size_t{0}, order.size(), [&](std::size_t o) {
-    const Index c = order[o];
+  // the same for every grid width tried. From the cache when it has them.
+  using Entry = PackShapeCache::Impl::Entry;
+  const auto may_turn_of = [&](Index c) { return total > 0.0 && area[c] < options.fixed_orientation_area * total; };
+  const auto chart_corners = [&](Index c) {
+    std::vector<Uv> corners;
+    corners.reserve(3 * charts[c].size());
+    for (Index t : charts[c])
+      for (int k = 0; k < 3; ++k) corners.push_back(local[3 * static_cast<std::size_t>(t) + k]);
+    return corners;
+  };
+  const auto hash_of = [&](Index c, const std::vector<Uv>& corners) {
+    std::uint64_t h = 0x9E3779B97F4A7C15ULL ^ std::bit_cast<std::uint64_t>(cell);
+    const auto mix = [&](std::uint64_t x) { h = (h ^ x) * 0xFF51AFD7ED558CCDULL; };
+    for (Index t : charts[c]) mix(static_cast<std::uint32_t>(t));
+    for (const Uv& p : corners) mix(std::bit_cast<std::uint64_t>(p[0]) ^ (std::bit_cast<std::uint64_t>(p[1]) << 1));
+    return h ^ (h >> 29);
+  };
+  std::vector<std::shared_ptr<const std::vector<Shape>>> shapes_of(charts.size());
+  std::vector<std::vector<Uv>> layout_of(charts.size());
+  std::vector<std::uint64_t> key_of(charts.size(), 0);
+  std::vector<Index> to_make;
+  for (Index c : order) {
+    if (cache == nullptr) {
+      to_make.push_back(c);
+      continue;
+    }
+    layout_of[static_cast<std::size_t>(c)] = chart_corners(c);
+    key_of[static_cast<std::size_t>(c)] = hash_of(c, layout_of[static_cast<std::size_t>(c)]);
+    const auto [first, last] = cache->impl->entries.equal_range(key_of[static_cast<std::size_t>(c)]);
+    for (auto it = first; it != last; ++it) {
+      const Entry& e = it->second;
+      if (e.cell == cell && e.may_turn == may_turn_of(c) && e.gutter == options.gutter_cells &&
+          e.tilt == options.tilt_to_smallest_box && e.triangles == charts[c] &&
+          e.corners == layout_of[static_cast<std::size_t>(c)]) {
+        shapes_of[static_cast<std::size_t>(c)] = e.shapes;
+        break;
+      }
+    }
+    if (!shapes_of[static_cast<std::size_t>(c)]) to_make.push_back(c);
+  }
+  tbb::parallel_for(std::size_t{0}, to_make.size(), [&](std::size_t o) {
+    const Index c = to_make[o];
     std::vector<Uv> corners;
     corners.reserve(3 * charts[c].size());
     for (Index t : charts[c])
@@ -335,21 +394,29 @@ void pack_charts(std::span<const Uv> local, const std::vector<std::vector<Index>
         const Uv& p = local[3 * static_cast<std::size_t>(t) + k];
         corners.push_back({(p[0] - box[c][0]) / cell, (p[1] - box[c][1]) / cell});
       }
-    const bool may_turn = total > 0.0 && area[c] < options.fixed_orientation_area * total;
+    const bool may_turn = may_turn_of(c);
     // As laid out (the model's up axis up), and turned by at most an eighth
     // of a turn to the smallest bounding box; small charts also by quarter
     // turns of either.
     const double tilt = options.tilt_to_smallest_box ? smallest_box_turn(corners) : 0.0;
+    auto shapes = std::make_shared<std::vector<Shape>>();
     for (int tilted = 0; tilted < (tilt != 0.0 ? 2 : 1); ++tilted) {
       const std::vector<Uv> base = tilted ? rotated(corners, tilt) : corners;
       for (int turn = 0; turn < (may_turn ? 4 : 1); ++turn) {
         Shape shape;
         shape.corners = turned(base, turn);
         shape.footprint = rasterise(shape.corners, options.gutter_cells);
-        shapes_of[static_cast<std::size_t>(c)].push_back(std::move(shape));
+        shapes->push_back(std::move(shape));
       }
     }
+    shapes_of[static_cast<std::size_t>(c)] = std::move(shapes);
   });
+  if (cache != nullptr)
+    for (Index c : to_make)
+      cache->impl->entries.emplace(
+          key_of[static_cast<std::size_t>(c)],
+          Entry{charts[c], std::move(layout_of[static_cast<std::size_t>(c)]), cell, may_turn_of(c),
+                options.gutter_cells, options.tilt_to_smallest_box, shapes_of[static_cast<std::size_t>(c)]});
   // Grid widths tried, in parallel (in units of the ideal side; finer steps
   // over a wider range for a few charts, which are cheap to place): per
   // width only where each chart goes (its shape and cell). The width whose
@@ -371,7 +438,7 @@ void pack_charts(std::span<const Uv> local, const std::vector<std::vector<Index>
     placements.assign(charts.size(), Placement{});
     int used_width = 0, used_height = 0;
     for (Index c : order) {
-      const std::vector<Shape>& shapes = shapes_of[static_cast<std::size_t>(c)];
+      const std::vector<Shape>& shapes = *shapes_of[static_cast<std::size_t>(c)];
       Placement& best = placements[static_cast<std::size_t>(c)];
       long best_score = -1;
       for (const Shape& shape : shapes) {

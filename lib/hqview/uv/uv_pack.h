@@ -7,6 +7,7 @@
 // share a cell, so packed charts are disjoint with at least `gutter_cells`
 // of empty grid between them.
 
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -27,12 +28,28 @@ struct PackOptions {
   bool tilt_to_smallest_box = true;
 };
 
+// The rasterised shapes of charts packed before, for packings that differ
+// in a few charts (the atlas's tries of halved charts): a chart whose
+// triangles, layout, cell size and options are those of an earlier call
+// reuses its shapes instead of rasterising them again (the same result).
+class PackShapeCache {
+ public:
+  PackShapeCache();
+  ~PackShapeCache();
+  PackShapeCache(const PackShapeCache&) = delete;
+  PackShapeCache& operator=(const PackShapeCache&) = delete;
+  void clear();
+  struct Impl;
+  std::unique_ptr<Impl> impl;
+};
+
 // `local` holds each chart's layout (3 corners per triangle, any scale, one
 // scale for all charts); `charts[c]` lists chart c's triangles. Writes the
 // packed corners to `packed` (same indexing as `local`) in [0,1]² with one
-// uniform scale for all charts.
+// uniform scale for all charts. With a cache, charts met before keep their
+// shapes (and the new ones are added).
 void pack_charts(std::span<const Uv> local, const std::vector<std::vector<Index>>& charts, std::vector<Uv>& packed,
-                 const PackOptions& options = {});
+                 const PackOptions& options = {}, PackShapeCache* cache = nullptr);
 
 // The corners that may be vertices of their convex hull (every hull vertex
 // among them): those not inside, by a margin far above rounding, the
