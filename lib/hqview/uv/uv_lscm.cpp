@@ -129,6 +129,27 @@ bool arap_refine(const std::vector<Vec3>& points, const std::vector<std::vector<
   return true;
 }
 
+// Whether every face of the mesh is reached from the first across edges.
+bool is_connected(const Mesh& mesh) {
+  if (mesh.number_of_faces() == 0) return true;
+  std::vector<char> seen(mesh.number_of_faces(), 0);
+  std::vector<Mesh::Face_index> stack{*mesh.faces().begin()};
+  seen[stack.back().idx()] = 1;
+  std::size_t reached = 1;
+  while (!stack.empty()) {
+    const Mesh::Face_index f = stack.back();
+    stack.pop_back();
+    for (Mesh::Halfedge_index h : CGAL::halfedges_around_face(mesh.halfedge(f), mesh)) {
+      const Mesh::Face_index g = mesh.face(mesh.opposite(h));
+      if (g == Mesh::null_face() || seen[g.idx()]) continue;
+      seen[g.idx()] = 1;
+      ++reached;
+      stack.push_back(g);
+    }
+  }
+  return reached == mesh.number_of_faces();
+}
+
 }  // namespace
 
 bool lscm_chart_layout(const TriSurface& surface, std::span<const Index> chart, std::vector<Uv>& uvs,
@@ -244,7 +265,19 @@ bool lscm_chart_layout(const TriSurface& surface, std::span<const Index> chart, 
   if (cycles != 1) return false;
 
   auto uv_map = mesh.add_property_map<Mesh::Vertex_index, Kernel::Point_2>("v:uv").first;
-  if (SMP::parameterize(mesh, SMP::LSCM_parameterizer_3<Mesh>(), border, uv_map) != SMP::OK) return false;
+  // SMP::parameterize numbers the vertices of the border's component (by a
+  // search that keeps a std::set of faces), which for a connected chart is
+  // every vertex in index order: a connected chart (checked by a walk over
+  // face neighbours) is handed that numbering directly, the same system.
+  if (is_connected(mesh)) {
+    auto index_map = mesh.add_property_map<Mesh::Vertex_index, int>("v:lscm_index", 0).first;
+    for (Mesh::Vertex_index v : mesh.vertices()) index_map[v] = static_cast<int>(v.idx());
+    auto parameterized = mesh.add_property_map<Mesh::Vertex_index, bool>("v:lscm_parameterized", false).first;
+    if (SMP::LSCM_parameterizer_3<Mesh>().parameterize(mesh, border, uv_map, index_map, parameterized) != SMP::OK)
+      return false;
+  } else if (SMP::parameterize(mesh, SMP::LSCM_parameterizer_3<Mesh>(), border, uv_map) != SMP::OK) {
+    return false;
+  }
 
   std::vector<std::array<double, 2>> vertex_uv(ids.size());
   for (std::size_t v = 0; v < ids.size(); ++v) {
