@@ -8,13 +8,16 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <map>
 #include <regex>
 #include <set>
 #include <sstream>
+#include <streambuf>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "hqview/boundary/boundary_error.h"
@@ -26,6 +29,7 @@
 #include "hqview/quality/corner_jacobian.h"
 #include "hqview/quality/hex_metric_field.h"
 #include "hqview/quality/quality_field.h"
+#include "hqview/report/ordered_chunks.h"
 #include "hqview/report/report_csv.h"
 #include "support/fixtures.h"
 #include "support/surface_fixtures.h"
@@ -472,6 +476,60 @@ TEST(AnnotatedVtu, FieldOfTheWrongLengthIsAnInternalError) {
 TEST(AnnotatedVtu, SameModelSameBytes) {
   const ReportModel model = make_model(perturbed_grid());
   EXPECT_EQ(vtu_bytes(model), vtu_bytes(model));
+}
+
+// A stream buffer that takes `room` bytes, then fails as a full disk does:
+// the write returns short with errno ENOSPC, on whichever thread wrote.
+class FullDisk : public std::streambuf {
+ public:
+  explicit FullDisk(std::size_t room) : room_(room) {}
+
+ protected:
+  std::streamsize xsputn(const char*, std::streamsize n) override {
+    if (static_cast<std::size_t>(n) <= room_) {
+      room_ -= static_cast<std::size_t>(n);
+      return n;
+    }
+    errno = ENOSPC;
+    return 0;
+  }
+  int_type overflow(int_type c) override { return xsputn(nullptr, 1) == 1 ? c : traits_type::eof(); }
+
+ private:
+  std::size_t room_;
+};
+
+// The pipelines' writing stage runs on any thread and errno is per thread:
+// the cause of a failed write must come from where it failed (a file size
+// limit was once reported as "No such file or directory", the main
+// thread's errno). Run with a stale errno on this thread, 2 threads.
+TEST(AnnotatedVtu, AFailedWriteKeepsItsCause) {
+  const ReportModel model = make_model(perturbed_grid());
+  const std::size_t size = vtu_bytes(model).size();
+  // Rooms that end inside the arrays' blocks, which a pipeline stage writes
+  // (the header and tail are written on the calling thread, whose errno
+  // the bundle writer reads after its flush).
+  for (const std::size_t room : {std::size_t{0}, size / 3, 2 * size / 3}) {
+    FullDisk disk(room);
+    std::ostream out(&disk);
+    errno = ENOENT;
+    try {
+      write_annotated_vtu(model, out, VtuData::zlib);
+      ADD_FAILURE() << "no error with room for " << room << " of " << size << " bytes";
+    } catch (const std::system_error& e) {
+      EXPECT_EQ(e.code().value(), ENOSPC) << e.what();
+    }
+  }
+  // Chunks written in order by a pipeline: the same.
+  FullDisk disk(10);
+  std::ostream out(&disk);
+  errno = ENOENT;
+  try {
+    write_ordered_chunks(out, 64, [](std::size_t i, std::string& text) { text.assign(100 + i, 'x'); });
+    ADD_FAILURE() << "no error";
+  } catch (const std::system_error& e) {
+    EXPECT_EQ(e.code().value(), ENOSPC);
+  }
 }
 
 }  // namespace

@@ -45,7 +45,11 @@ void write_file(const fs::path& path, WriteFn&& write) {
   fs::create_directories(path.parent_path());
   std::ofstream out(path, std::ios::binary);
   if (!out) throw EnvironmentError(path.string() + ": cannot create: " + std::strerror(errno));
-  write(out);
+  try {
+    write(out);
+  } catch (const std::system_error& e) {  // a write that failed on a worker thread (throw_if_failed)
+    throw EnvironmentError(path.string() + ": write failed: " + e.code().message());
+  }
   out.flush();
   if (!out) throw EnvironmentError(path.string() + ": write failed: " + std::strerror(errno));
 }

@@ -3,6 +3,7 @@
 #include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
+#include <cerrno>
 #include <memory>
 
 #include "hqview/core/progress.h"
@@ -11,6 +12,7 @@ namespace hq {
 
 void write_ordered_chunks(std::ostream& out, std::size_t num_chunks, const ChunkProducer& produce) {
   if (num_chunks == 0) return;
+  throw_if_failed(out);  // a stream already failed: its cause is this thread's errno
   progress::set_total(num_chunks);
   std::size_t next = 0;
   // Two chunks in flight per thread keep both the producers and the writer busy.
@@ -34,8 +36,15 @@ void write_ordered_chunks(std::ostream& out, std::size_t num_chunks, const Chunk
         return c;
       }) & tbb::make_filter<ChunkPtr, void>(tbb::filter_mode::serial_in_order, [&](const ChunkPtr& c) {
         out.write(c->text.data(), static_cast<std::streamsize>(c->text.size()));
+        throw_if_failed(out);
         progress::add_done(1);
       }));
+}
+
+void throw_if_failed(const std::ostream& out) {
+  if (out) return;
+  const int cause = errno != 0 ? errno : EIO;
+  throw std::system_error(cause, std::generic_category(), "write");
 }
 
 }  // namespace hq

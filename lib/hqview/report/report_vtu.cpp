@@ -1,5 +1,7 @@
 #include "hqview/report/report_vtu.h"
 
+#include "hqview/report/ordered_chunks.h"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -269,6 +271,7 @@ void write_compressed(const ReportModel& model, std::vector<VtuArray> arrays, st
   const std::size_t placeholder = xml_header(model, arrays, VtuData::zlib).size();
   const std::streampos start = out.tellp();
   out << std::string(placeholder, ' ');
+  throw_if_failed(out);  // here, on the calling thread, before the pipeline's stages
   std::uint64_t total_bytes = 0;
   for (const VtuArray& a : arrays) total_bytes += a.info.num_values * a.value_size;
   progress::set_total(total_bytes);
@@ -339,6 +342,7 @@ void write_compressed(const ReportModel& model, std::vector<VtuArray> arrays, st
       out.write(reinterpret_cast<const char*>(block.data()), static_cast<std::streamsize>(block.size()));
       offset += block.size();
     }
+    throw_if_failed(out);  // on this (worker) thread, where errno tells why
     blocks.clear();
   };
 
