@@ -1,14 +1,14 @@
 #include "hqview/uv/uv_pack.h"
 
 #include <algorithm>
-#include <unordered_map>
-#include <memory>
-#include <bit>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <numbers>
 #include <numeric>
+#include <unordered_map>
 
 #include <tbb/parallel_for.h>
 
