@@ -320,21 +320,22 @@ TEST(UvPack, TheShapeCacheChangesNoPacking) {
     charts.push_back(chart);
   }
   PackShapeCache cache;
-  const auto both = [&](const char* what) {
+  const auto both = [&](const char* what, std::size_t reused) {
     std::vector<Uv> plain, cached;
     pack_charts(local, charts, plain, PackOptions{.resolution = 64});
     pack_charts(local, charts, cached, PackOptions{.resolution = 64}, &cache);
     EXPECT_EQ(plain, cached) << what;
+    EXPECT_EQ(cache.num_reused(), reused) << what;
   };
-  both("first call");
-  both("the same charts again");
+  both("first call", 0);
+  both("the same charts again", 30);
   for (std::size_t k = 3 * static_cast<std::size_t>(charts[4][0]); k < 3 * static_cast<std::size_t>(charts[4].back() + 1); ++k)
-    local[k] = {1.5 * local[k][1], 0.5 * local[k][0]};  // chart 4 laid out anew
-  both("one chart moved");
+    local[k] = {-local[k][1], local[k][0]};  // chart 4 laid out anew: turned, the same area
+  both("one chart moved", 29);
   std::vector<Index> half(charts[6].begin() + 2, charts[6].end());
   charts[6].resize(2);
   charts.push_back(half);  // chart 6 halved
-  both("one chart split");
+  both("one chart split", 29);  // chart 6 and its new half are new
 }
 
 TEST(UvAtlas, CubeCornersUnfoldWithoutAreaDistortion) {
@@ -506,6 +507,27 @@ TEST(UvCut, AZigzagCutThroughARowOfDiagonalsIsStraightened) {
   ASSERT_EQ(cut(side).size(), 10u);
   EXPECT_NEAR(seam_length(s, cut(side)), 9 + std::sqrt(2.0), 1e-12);
   EXPECT_EQ(std::count(side.begin(), side.end(), 1), 2 * 4 * n + 1);  // 4 columns and the top upper triangle
+}
+
+// The chart mesh is built face by face (Euler::add_face) without a soup
+// check first: what is no disk polygon mesh is still refused, and the uvs
+// are left as they were. Points of a unit square and one above it.
+TEST(LscmChartLayout, RefusesChartsThatAreNoDiskMesh) {
+  TriSurface s;
+  s.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, 0.5, 1}, {2, 0, 0}, {2, 1, 0}};
+  const auto layout = [&](std::vector<std::array<Index, 3>> triangles) {
+    s.triangles = std::move(triangles);
+    std::vector<Uv> uv{{7, 7}};
+    const bool ok = lscm_chart_layout(s, all_triangles(s), uv);
+    if (!ok) EXPECT_EQ(uv, (std::vector<Uv>{{7, 7}})) << "untouched";
+    return ok;
+  };
+  EXPECT_TRUE(layout({{0, 1, 2}, {0, 2, 3}})) << "a square";
+  EXPECT_FALSE(layout({{0, 1, 2}, {0, 3, 2}})) << "two triangles turned against each other";
+  EXPECT_FALSE(layout({{0, 1, 2}, {0, 2, 3}, {0, 2, 4}})) << "three triangles on one edge";
+  EXPECT_FALSE(layout({{0, 1, 2}, {2, 5, 6}})) << "a bowtie: two pieces at one vertex";
+  EXPECT_FALSE(layout({{0, 1, 1}, {0, 1, 2}})) << "a triangle repeating a vertex";
+  EXPECT_FALSE(layout({{0, 1, 2}, {0, 1, 2}})) << "a triangle twice";
 }
 
 TEST(UvCut, AnOpenCylinderIsCutAlongOneShortestLineBetweenItsBorders) {

@@ -4,6 +4,7 @@
 // deterministic (sorted by vertex ids, never by hash order).
 
 #include <array>
+#include <span>
 #include <vector>
 
 #include "hqview/core/types.h"
@@ -37,6 +38,12 @@ struct Topology {
   std::vector<char> is_boundary_vertex;      // num_vertices, 0/1
   std::vector<Edge> edges;                   // unique edges (a < b), ascending
   std::vector<Index> unreferenced_vertices;  // vertices used by no hex, ascending
+
+  // The hexes using vertex v, ascending.
+  std::span<const Index> hexes_of(Index v) const {
+    return {vertex_hexes.data() + vertex_hex_offsets[static_cast<std::size_t>(v)],
+            vertex_hexes.data() + vertex_hex_offsets[static_cast<std::size_t>(v) + 1]};
+  }
 
   Index num_face_hexes(Index face) const {
     return face_hex_offsets[static_cast<std::size_t>(face) + 1] - face_hex_offsets[static_cast<std::size_t>(face)];

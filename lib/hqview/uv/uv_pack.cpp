@@ -306,11 +306,13 @@ struct PackShapeCache::Impl {
     std::shared_ptr<const std::vector<Shape>> shapes;
   };
   std::unordered_multimap<std::uint64_t, Entry> entries;  // by a hash of the inputs
+  std::size_t reused = 0;  // charts of the last call whose shapes came from here
 };
 
 PackShapeCache::PackShapeCache() : impl(std::make_unique<Impl>()) {}
 PackShapeCache::~PackShapeCache() = default;
 void PackShapeCache::clear() { impl->entries.clear(); }
+std::size_t PackShapeCache::num_reused() const { return impl->reused; }
 
 void pack_charts(std::span<const Uv> local, const std::vector<std::vector<Index>>& charts, std::vector<Uv>& packed,
                  const PackOptions& options, PackShapeCache* cache) {
@@ -366,6 +368,7 @@ void pack_charts(std::span<const Uv> local, const std::vector<std::vector<Index>
   std::vector<std::vector<Uv>> layout_of(charts.size());
   std::vector<std::uint64_t> key_of(charts.size(), 0);
   std::vector<Index> to_make;
+  if (cache != nullptr) cache->impl->reused = 0;
   for (Index c : order) {
     if (cache == nullptr) {
       to_make.push_back(c);
@@ -380,6 +383,7 @@ void pack_charts(std::span<const Uv> local, const std::vector<std::vector<Index>
           e.tilt == options.tilt_to_smallest_box && e.triangles == charts[c] &&
           e.corners == layout_of[static_cast<std::size_t>(c)]) {
         shapes_of[static_cast<std::size_t>(c)] = e.shapes;
+        ++cache->impl->reused;
         break;
       }
     }
@@ -387,13 +391,9 @@ void pack_charts(std::span<const Uv> local, const std::vector<std::vector<Index>
   }
   tbb::parallel_for(std::size_t{0}, to_make.size(), [&](std::size_t o) {
     const Index c = to_make[o];
-    std::vector<Uv> corners;
-    corners.reserve(3 * charts[c].size());
-    for (Index t : charts[c])
-      for (int k = 0; k < 3; ++k) {
-        const Uv& p = local[3 * static_cast<std::size_t>(t) + k];
-        corners.push_back({(p[0] - box[c][0]) / cell, (p[1] - box[c][1]) / cell});
-      }
+    // The layout in cells, its box at the origin.
+    std::vector<Uv> corners = cache != nullptr ? layout_of[static_cast<std::size_t>(c)] : chart_corners(c);
+    for (Uv& p : corners) p = {(p[0] - box[c][0]) / cell, (p[1] - box[c][1]) / cell};
     const bool may_turn = may_turn_of(c);
     // As laid out (the model's up axis up), and turned by at most an eighth
     // of a turn to the smallest bounding box; small charts also by quarter

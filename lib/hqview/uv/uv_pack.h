@@ -7,6 +7,7 @@
 // share a cell, so packed charts are disjoint with at least `gutter_cells`
 // of empty grid between them.
 
+#include <cstddef>
 #include <memory>
 #include <span>
 #include <vector>
@@ -39,6 +40,7 @@ class PackShapeCache {
   PackShapeCache(const PackShapeCache&) = delete;
   PackShapeCache& operator=(const PackShapeCache&) = delete;
   void clear();
+  std::size_t num_reused() const;  // charts of the last pack_charts call whose shapes were reused
   struct Impl;
   std::unique_ptr<Impl> impl;
 };

@@ -128,11 +128,6 @@ std::vector<Vec3> cell_points(const HexMesh& mesh, const std::vector<Index>& cel
   return points;
 }
 
-std::span<const Index> hexes_of(const Topology& topology, Index v) {
-  return {topology.vertex_hexes.data() + topology.vertex_hex_offsets[static_cast<std::size_t>(v)],
-          topology.vertex_hexes.data() + topology.vertex_hex_offsets[static_cast<std::size_t>(v) + 1]};
-}
-
 std::string format_value(double v) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.3f", v);
@@ -171,7 +166,7 @@ ClusterRegion cluster_region(const Topology& topology, const GlyphResult& glyphs
   IdSet cells(topology.hex_faces.size() / 6);
   for (Index i = glyphs.cluster_offsets[static_cast<std::size_t>(cluster)];
        i < glyphs.cluster_offsets[static_cast<std::size_t>(cluster) + 1]; ++i)
-    for (Index h : hexes_of(topology, glyphs.cluster_vertices[static_cast<std::size_t>(i)])) cells.add(h);
+    for (Index h : topology.hexes_of(glyphs.cluster_vertices[static_cast<std::size_t>(i)])) cells.add(h);
   region.cells = cells.ascending();
   return region;
 }
@@ -185,25 +180,25 @@ std::vector<Index> neighbour_cells(const HexMesh& mesh, const Topology& topology
   for (Index c : cells)
     for (Index v : mesh.hexes[static_cast<std::size_t>(c)])
       if (vertices.add(v))
-        for (Index h : hexes_of(topology, v)) neighbours.add(h);
+        for (Index h : topology.hexes_of(v)) neighbours.add(h);
   return neighbours.ascending();
 }
 
-}  // namespace
-
-Scene build_cluster_scene(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
-                          const GlyphResult& glyphs, Index cluster) {
-  ClusterRegion region = cluster_region(topology, glyphs, cluster);
-  region.neighbours = neighbour_cells(mesh, topology, region.cells);
+// View C's scene for the cluster's cells and the points of their distinct
+// vertices (cell_points), both made once by the caller.
+Scene cluster_scene(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
+                    const GlyphResult& glyphs, Index cluster, const std::vector<Index>& cells,
+                    const std::vector<Vec3>& cell_vertex_points) {
+  const std::vector<Index> neighbours = neighbour_cells(mesh, topology, cells);
   std::vector<Index> only_neighbours;
-  std::set_difference(region.neighbours.begin(), region.neighbours.end(), region.cells.begin(), region.cells.end(),
+  std::set_difference(neighbours.begin(), neighbours.end(), cells.begin(), cells.end(),
                       std::back_inserter(only_neighbours));
 
   Scene scene;
-  scene.origin = centre_of(cell_points(mesh, region.cells));
+  scene.origin = centre_of(cell_vertex_points);
   scene.lines.push_back(cell_edges(mesh, topology, only_neighbours, scene.origin, kNeighbourEdgeColor, 1.0f));
   scene.lines.push_back(
-      cell_edges(mesh, topology, region.cells, scene.origin, to_rgba8(cluster_color(cluster, glyphs.options.top_clusters)), 2.0f));
+      cell_edges(mesh, topology, cells, scene.origin, to_rgba8(cluster_color(cluster, glyphs.options.top_clusters)), 2.0f));
   double edge_sum = 0.0;
   const LineSet& own = scene.lines.back();
   for (std::size_t i = 0; i + 1 < own.positions.size(); i += 2) {
@@ -225,17 +220,26 @@ Scene build_cluster_scene(const HexMesh& mesh, const Topology& topology, const s
       spheres.colors.push_back(to_rgba8(quality_color(vertex_quality[v])));
     }
   scene.spheres.push_back(std::move(spheres));
-  scene.translucent.push_back(outer_faces(mesh, topology, region.neighbours, scene.origin, kRegionFaceColor));
+  scene.translucent.push_back(outer_faces(mesh, topology, neighbours, scene.origin, kRegionFaceColor));
   return scene;
+}
+
+}  // namespace
+
+Scene build_cluster_scene(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
+                          const GlyphResult& glyphs, Index cluster) {
+  const ClusterRegion region = cluster_region(topology, glyphs, cluster);
+  return cluster_scene(mesh, topology, vertex_quality, glyphs, cluster, region.cells, cell_points(mesh, region.cells));
 }
 
 ClusterShot cluster_shot(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
                          const GlyphResult& glyphs, Index cluster, const DetailViewOptions& options) {
   const Figure f = detail_figure(options);
-  ClusterShot shot;
-  shot.scene = build_cluster_scene(mesh, topology, vertex_quality, glyphs, cluster);
   const ClusterRegion region = cluster_region(topology, glyphs, cluster);
+  // The camera frames the cells' vertices and the extremes of every glyph.
   std::vector<Vec3> points = cell_points(mesh, region.cells);
+  ClusterShot shot;
+  shot.scene = cluster_scene(mesh, topology, vertex_quality, glyphs, cluster, region.cells, points);
   std::vector<Vec3> centers;
   std::vector<double> radii;
   const SphereSet& s = shot.scene.spheres[0];
@@ -270,17 +274,13 @@ std::vector<VertexCorner> vertex_corners(const HexMesh& mesh, const Topology& to
                                          std::span<const double> corner_values, Index v) {
   std::vector<VertexCorner> corners;
   if (v < 0 || static_cast<std::size_t>(v) + 1 >= topology.vertex_hex_offsets.size()) return corners;
-  for (Index k = topology.vertex_hex_offsets[static_cast<std::size_t>(v)];
-       k < topology.vertex_hex_offsets[static_cast<std::size_t>(v) + 1]; ++k) {
-    const Index h = topology.vertex_hexes[static_cast<std::size_t>(k)];
+  // By hex, then corner: the vertex's hexes are ascending.
+  for (Index h : topology.hexes_of(v)) {
     const Hex& hex = mesh.hexes[static_cast<std::size_t>(h)];
     for (int i = 0; i < 8; ++i)
       if (hex[i] == v)
         corners.push_back({h, i, corner_values[8 * static_cast<std::size_t>(h) + static_cast<std::size_t>(i)]});
   }
-  std::sort(corners.begin(), corners.end(), [](const VertexCorner& a, const VertexCorner& b) {
-    return a.hex != b.hex ? a.hex < b.hex : a.local < b.local;
-  });
   return corners;
 }
 

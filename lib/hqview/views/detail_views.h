@@ -23,10 +23,9 @@ struct DetailViewOptions {
   Vec3 up{0.0, 0.0, 1.0};  // the model axis drawn upwards (--up)
 };
 
-// The hexes of a cluster (those with a member vertex), then their
-// neighbours (hexes sharing a vertex with them), each list ascending.
+// The hexes of a cluster (those with a member vertex), ascending.
 struct ClusterRegion {
-  std::vector<Index> cells, neighbours;
+  std::vector<Index> cells;
 };
 ClusterRegion cluster_region(const Topology& topology, const GlyphResult& glyphs, Index cluster);
 
