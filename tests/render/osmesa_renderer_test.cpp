@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
+#include <utility>
 
 #include "hqview/core/error.h"
 #include "hqview/image/colormap.h"
@@ -77,6 +79,55 @@ TEST(OsmesaRenderer, RowsAreTopDownAndColoursExact) {
   EXPECT_EQ(pixel_at(image, 32, 12), red) << "the triangle is in the top half";
   EXPECT_EQ(pixel_at(image, 32, 40), (Rgba8{0, 0, 0, 255}));
   EXPECT_EQ(pixel_at(image, 2, 2), (Rgba8{0, 0, 0, 255}));
+}
+
+// Lit shading against the definitions: sRGB to linear, times ambient plus
+// diffuse, back to sRGB, rounded to 8 bits. 256 quads in one set, each in its
+// own colour (so the shader linearises per fragment), facing the camera.
+TEST(OsmesaRenderer, ShadingFollowsTheSrgbCurves) {
+  auto to_linear = [](double c) { return c >= 0.04045 ? std::pow((c + 0.055) / 1.055, 2.4) : c / 12.92; };
+  auto to_srgb = [](double c) { return c >= 0.0031308 ? 1.055 * std::pow(c, 1.0 / 2.4) - 0.055 : 12.92 * c; };
+  // The renderer's headlight, (0, 0.35, 0.94) normalised, on a normal (0, 0, 1).
+  const double shade = 0.25 + 0.75 * 0.94 / std::sqrt(0.35 * 0.35 + 0.94 * 0.94);
+  auto expected = [&](std::uint8_t byte) {
+    return static_cast<int>(std::lround(255.0 * to_srgb(to_linear(byte / 255.0) * shade)));
+  };
+  // Cell (i, j) of a 16x16 grid over [-1, 1]^2; at 176x176 pixels
+  // (ortho height 2.2) a cell is 10 pixels wide, its centre pixel 13 + 10 i.
+  Scene scene;
+  scene.background = {0, 0, 0, 255};
+  TriangleSet set;
+  auto color_of = [](int k) {
+    return Rgba8{static_cast<std::uint8_t>(k), static_cast<std::uint8_t>(255 - k),
+                 static_cast<std::uint8_t>((37 * k + 11) % 256), 255};
+  };
+  for (int j = 0; j < 16; ++j)
+    for (int i = 0; i < 16; ++i) {
+      const float x0 = -1.0f + 0.125f * static_cast<float>(i), y1 = 1.0f - 0.125f * static_cast<float>(j);
+      const auto base = static_cast<std::uint32_t>(set.positions.size());
+      set.positions.insert(set.positions.end(), {{x0, y1 - 0.125f, 0}, {x0 + 0.125f, y1 - 0.125f, 0},
+                                                 {x0 + 0.125f, y1, 0}, {x0, y1, 0}});
+      set.normals.insert(set.normals.end(), 4, Vec3f{0, 0, 1});
+      set.colors.insert(set.colors.end(), 4, color_of(16 * j + i));
+      set.indices.insert(set.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+    }
+  scene.triangles.push_back(set);
+  const Image image = renderer().render(scene, front_camera(), 176, 176);
+  int off_by_one = 0;
+  for (int j = 0; j < 16; ++j)
+    for (int i = 0; i < 16; ++i) {
+      const Rgba8 c = color_of(16 * j + i), p = pixel_at(image, 13 + 10 * i, 13 + 10 * j);
+      const std::array<std::pair<std::uint8_t, std::uint8_t>, 3> channels{{{c.r, p.r}, {c.g, p.g}, {c.b, p.b}}};
+      for (const auto& [in, out] : channels) {
+        const int want = expected(in);
+        EXPECT_LE(std::abs(out - want), 1) << "cell " << i << "," << j << ": input " << int(in) << " gives " << int(out)
+                                           << ", the curves give " << want;
+        off_by_one += out != want;
+      }
+    }
+  // The shader's curves are within 0.001/255 of the exact ones: a value
+  // moves only where the exact one lies that close to a rounding boundary.
+  EXPECT_LE(off_by_one, 8) << "of 768 channel values";
 }
 
 TEST(OsmesaRenderer, SizeChangesAndManyFrames) {
