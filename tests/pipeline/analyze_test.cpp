@@ -6,11 +6,19 @@
 
 #include <gtest/gtest.h>
 
+#include <tbb/global_control.h>
+
 #include <algorithm>
+#include <cmath>
 #include <map>
+#include <memory>
+#include <mutex>
+#include <set>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "hqview/core/error.h"
 #include "hqview/render/scene.h"
 #include "hqview/views/views.h"
 #include "support/fixtures.h"
@@ -55,13 +63,18 @@ std::vector<std::string> expected_ids(bool with_reference, bool with_compare) {
   return ids;
 }
 
-// The first frame each 3D view drew: frames come in view order, one per PNG
-// file of a view that is not a chart (charts have an SVG twin), two for the
-// compare view (one per half, one camera).
+// The first frame each 3D view drew: with one render thread, frames come in
+// view order, except that the views that need the UV atlas come last (it is
+// built beside the others); one per PNG file of a view that is not a chart
+// (charts have an SVG twin), two for the compare view (one per half, one
+// camera).
 std::map<std::string, std::size_t> first_frames(const AnalyzeResult& result) {
   std::map<std::string, std::size_t> first;
   std::size_t frame = 0;
-  for (const ViewEntry& v : result.model.views) {
+  std::vector<ViewEntry> drawn = result.model.views;
+  std::stable_partition(drawn.begin(), drawn.end(),
+                        [](const ViewEntry& v) { return find_view(v.id)->needs != ViewNeeds::uv_atlas; });
+  for (const ViewEntry& v : drawn) {
     const bool is_chart =
         std::any_of(v.files.begin(), v.files.end(), [](const std::string& f) { return f.ends_with(".svg"); });
     if (is_chart) continue;
@@ -123,7 +136,7 @@ TEST(AnalyzePipeline, ReferenceAndCompareViewsWithAMockRenderer) {
   const auto first = first_frames(result);
   ASSERT_EQ(renderer.scenes.size(), first.at("(end)"));
   // Boundary error: front and back.
-  EXPECT_EQ(first.at("uv_error") - first.at("boundary_error"), 2u);
+  EXPECT_EQ(first.at("reference_overlay") - first.at("boundary_error"), 2u);
   // The reference overlay draws the reference's triangles translucent.
   const Scene& overlay = renderer.scenes[first.at("reference_overlay")];
   std::size_t translucent = 0;
@@ -163,6 +176,91 @@ TEST(AnalyzePipeline, TopClustersChoosesTheDetailViews) {
     EXPECT_EQ(files.count("clusters") ? files["clusters"] : 0u, static_cast<std::size_t>(k)) << k;
     EXPECT_EQ(files["local"], static_cast<std::size_t>(k) + 1) << k;  // vertex 0 is no cluster's worst here
   }
+}
+
+// A mock renderer with a sibling (Renderer::sibling): every frame's image is
+// made from the scene and the camera alone, so any renderer of the family
+// draws it alike; the family counts the frames each member drew, and on
+// which threads.
+struct FamilyLog {
+  std::mutex mutex;
+  std::map<int, std::size_t> frames;  // by member: 0 the first, 1 its sibling
+  std::set<std::thread::id> threads;
+  bool sibling_fails = false;
+};
+
+class FamilyRenderer final : public Renderer {
+ public:
+  FamilyRenderer(std::shared_ptr<FamilyLog> log, int member) : log_(std::move(log)), member_(member) {}
+  Image render(const Scene& scene, const Camera& camera, int width, int height) override {
+    {
+      const std::lock_guard<std::mutex> guard(log_->mutex);
+      ++log_->frames[member_];
+      log_->threads.insert(std::this_thread::get_id());
+      if (member_ == 1 && log_->sibling_fails) throw RenderError("the sibling broke");
+    }
+    // Pixels from what is drawn and from where.
+    std::size_t spheres = 0;
+    for (const SphereSet& set : scene.spheres) spheres += set.centers.size();
+    const auto seed = static_cast<std::uint8_t>(triangle_count(scene) * 7 + spheres * 13 +
+                                                static_cast<std::size_t>(std::abs(camera.eye.x) * 1000.0));
+    Image image{width, height, std::vector<std::uint8_t>(4 * static_cast<std::size_t>(width) * height)};
+    for (std::size_t i = 0; i < image.rgba.size(); ++i) image.rgba[i] = static_cast<std::uint8_t>(seed + i % 251);
+    return image;
+  }
+  std::unique_ptr<Renderer> sibling() const override { return std::make_unique<FamilyRenderer>(log_, 1); }
+
+ private:
+  std::shared_ptr<FamilyLog> log_;
+  int member_;
+};
+
+TEST(AnalyzePipeline, TwoRenderThreadsDrawWhatOneDraws) {
+  const tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
+  if (tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) < 2)
+    GTEST_SKIP() << "TBB allows one thread here";
+  AnalyzeOptions options = small_run();
+  options.reference_path = test::source_dir() / "examples/ball.off";
+  std::vector<AnalyzeResult> results;
+  std::vector<std::shared_ptr<FamilyLog>> logs;
+  for (const int threads : {1, 2}) {
+    options.views.render_threads = threads;
+    logs.push_back(std::make_shared<FamilyLog>());
+    FamilyRenderer renderer(logs.back(), 0);
+    results.push_back(analyze(options, &renderer));
+  }
+  EXPECT_EQ(logs[0]->frames[1], 0u) << "one thread: no sibling";
+  EXPECT_GT(logs[1]->frames[0], 0u);
+  EXPECT_GT(logs[1]->frames[1], 0u) << "two threads: the sibling draws some views";
+  EXPECT_EQ(logs[1]->threads.size(), 2u);
+  EXPECT_EQ(logs[0]->frames[0], logs[1]->frames[0] + logs[1]->frames[1]) << "every frame drawn once";
+  // The same views, files, cameras and image bytes, in the same order.
+  EXPECT_EQ(ids_of(results[0]), expected_ids(true, false));
+  EXPECT_EQ(ids_of(results[0]), ids_of(results[1]));
+  EXPECT_EQ(results[0].document["views"], results[1].document["views"]);
+  ASSERT_EQ(results[0].images.size(), results[1].images.size());
+  for (std::size_t i = 0; i < results[0].images.size(); ++i) {
+    const BundleImage &a = results[0].images[i], &b = results[1].images[i];
+    EXPECT_EQ(a.relative_path, b.relative_path);
+    EXPECT_EQ(a.text, b.text) << a.relative_path;
+    EXPECT_EQ(a.image.rgba, b.image.rgba) << a.relative_path;
+  }
+}
+
+TEST(AnalyzePipeline, AFailureOnTheSecondRenderThreadReachesTheCaller) {
+  const tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
+  if (tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) < 2)
+    GTEST_SKIP() << "TBB allows one thread here";
+  auto log = std::make_shared<FamilyLog>();
+  log->sibling_fails = true;
+  FamilyRenderer renderer(log, 0);
+  try {
+    (void)analyze(small_run(), &renderer);
+    FAIL() << "no error";
+  } catch (const RenderError& e) {
+    EXPECT_STREQ(e.what(), "the sibling broke");
+  }
+  EXPECT_EQ(log->frames[1], 1u) << "the sibling stopped at its failure";
 }
 
 TEST(AnalyzePipeline, GatesReadTheDocument) {

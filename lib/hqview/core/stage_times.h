@@ -50,6 +50,12 @@ class StageClock {
     begin_ = std::chrono::steady_clock::now();
     running_ = true;
   }
+  // A stage timed elsewhere (a view drawn on a second thread): appended and
+  // handed to the sink like the others; `concurrent` as in StageTime.
+  void record(std::string name, double seconds, bool concurrent) {
+    out_.push_back({std::move(name), seconds, peak_rss_bytes(), concurrent});
+    if (sink_) sink_(out_.back());
+  }
   void stop() {
     if (!running_) return;
     running_ = false;

@@ -157,6 +157,11 @@ std::vector<BatchEntry> run_batch(const std::vector<BatchInput>& inputs, const B
       if (const auto other = fs::file_size(inputs[i].compare_file, ec); !ec) size += other;
     cost[i] = estimate_mesh_memory(size, static_cast<bool>(options.make_renderer));
   }
+  const int workers = std::clamp(options.jobs, 1, std::max(1, static_cast<int>(inputs.size())));
+  // Meshes analysed side by side each draw their views on one thread (their
+  // parallelism is the batch's); a batch of one worker draws on two.
+  BatchOptions per_mesh = options;
+  if (workers > 1) per_mesh.analyze.views.render_threads = 1;
   std::mutex mutex;
   std::condition_variable released;
   std::uint64_t in_flight = 0;
@@ -188,7 +193,7 @@ std::vector<BatchEntry> run_batch(const std::vector<BatchInput>& inputs, const B
       bool is_resumed = false;
       bool stopped = false;
       try {
-        entries[i] = run_batch_mesh(inputs[i], options, is_resumed);
+        entries[i] = run_batch_mesh(inputs[i], per_mesh, is_resumed);
       } catch (const Interrupted&) {
         stopped = true;
         const std::lock_guard lock(mutex);
@@ -208,7 +213,6 @@ std::vector<BatchEntry> run_batch(const std::vector<BatchInput>& inputs, const B
       if (stopped) return;
     }
   };
-  const int workers = std::clamp(options.jobs, 1, std::max(1, total));
   std::vector<std::thread> threads;
   for (int t = 1; t < workers; ++t) threads.emplace_back(worker);
   worker();

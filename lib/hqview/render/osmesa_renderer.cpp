@@ -332,6 +332,10 @@ class OsmesaRenderer final : public Renderer {
 
   ~OsmesaRenderer() override { release(); }
 
+  // Its own context: llvmpipe draws two contexts' frames at once, and
+  // their images are the same bit for bit (one JIT, one rasteriser).
+  std::unique_ptr<Renderer> sibling() const override { return std::make_unique<OsmesaRenderer>(); }
+
   OsmesaRenderer(const OsmesaRenderer&) = delete;
   OsmesaRenderer& operator=(const OsmesaRenderer&) = delete;
 

@@ -2,17 +2,25 @@
 // that runs them.
 #include "hqview/views/views.h"
 
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
-
+#include <tbb/task_arena.h>
 #include <tbb/task_group.h>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <chrono>
+#include <exception>
 #include <functional>
+#include <mutex>
 #include <optional>
+#include <thread>
 
 #include "hqview/core/error.h"
 #include "hqview/core/number_format.h"
+#include "hqview/core/progress.h"
+#include "hqview/core/stop.h"
 #include "hqview/image/png.h"
 #include "hqview/render/upright.h"
 #include "hqview/views/boundary_views.h"
@@ -50,14 +58,12 @@ struct ViewContext {
 
 namespace {
 
-// Calls before_frame, then the wrapped renderer, for every frame; keeps the
-// camera of the last frame (report.json views[].cameras).
-class HookedRenderer final : public Renderer {
+// The wrapped renderer, keeping the camera of the last frame (report.json
+// views[].cameras).
+class RecordingRenderer final : public Renderer {
  public:
-  HookedRenderer(Renderer& inner, std::function<void()> before_frame)
-      : inner_(inner), before_frame_(std::move(before_frame)) {}
+  explicit RecordingRenderer(Renderer& inner) : inner_(inner) {}
   Image render(const Scene& scene, const Camera& camera, int width, int height) override {
-    before_frame_();
     last_frame = {camera, static_cast<double>(width) / static_cast<double>(std::max(height, 1)), width, height};
     return inner_.render(scene, camera, width, height);
   }
@@ -65,7 +71,6 @@ class HookedRenderer final : public Renderer {
 
  private:
   Renderer& inner_;
-  std::function<void()> before_frame_;
 };
 
 // Waits for a task group's tasks, also when leaving by an exception (the
@@ -382,45 +387,126 @@ std::vector<const ViewSpec*> views_of_panel(char panel) {
 
 std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptions& options, Renderer& base_renderer,
                                        StageClock* clock, const std::function<void(ViewNeeds)>& before_view) {
-  // PNG encoding overlaps rendering: before each frame, the images of the
-  // views pushed so far go to TBB tasks that encode them (ViewFile::png);
-  // the rest (the charts at the end) before returning. A pushed view's
-  // files never move (a vector's elements survive moves of the vector), so
-  // the tasks may hold references to them.
-  std::vector<RenderedView> views;
+  // The views that are wanted, with what each is selected by (a view that is
+  // not selectable is drawn with the selectable one before it).
+  std::vector<std::size_t> wanted;
+  {
+    std::string_view selected_by;
+    for (std::size_t i = 0; i < std::size(kViews); ++i) {
+      if (kViews[i].is_selectable) selected_by = kViews[i].id;
+      if (options.views.empty() || std::find(options.views.begin(), options.views.end(), selected_by) != options.views.end())
+        wanted.push_back(i);
+    }
+  }
+  // Drawn in kViews order, except that the views that need the UV atlas
+  // come last: the atlas is built on its own thread while the others draw.
+  std::stable_partition(wanted.begin(), wanted.end(),
+                        [](std::size_t i) { return kViews[i].needs != ViewNeeds::uv_atlas; });
+
+  // Two threads draw the views when the renderer has a sibling: one view's
+  // scenes, cameras and figures are made on the CPU while the other's
+  // frames rasterise, so both cores stay busy. Each thread takes the next
+  // view; the files land in the view's own slot, so the result is the same
+  // in kViews order for any thread count. PNG encoding overlaps the drawing:
+  // a finished view's images go to TBB tasks at once (ViewFile::png). A
+  // slot's files never move, so the tasks may hold references to them.
+  struct Slot {
+    std::vector<ViewFile> files;
+  };
+  std::vector<Slot> slots(std::size(kViews));
   tbb::task_group encoding;
   const WaitOnExit wait_for_encoding{encoding};
-  std::size_t num_submitted = 0;
-  auto encode_pushed_views = [&] {
-    for (; num_submitted < views.size(); ++num_submitted)
-      for (ViewFile& file : views[num_submitted].files)
-        if (file.text.empty() && !file.image.rgba.empty()) encoding.run([&file] { file.png = encode_png(file.image); });
-  };
-  HookedRenderer renderer(base_renderer, encode_pushed_views);
 
-  ViewContext context{analysis, options, renderer, analysis.mesh_name(), {}, nullptr, 0, {}, nullptr};
-  context.last_frame = &renderer.last_frame;
-  if (!analysis.glyphs) context.no_glyphs.vertex_cluster.assign(analysis.mesh.points.size(), kNoIndex);
-  context.glyphs = analysis.glyphs ? &*analysis.glyphs : &context.no_glyphs;
+  ViewContext shared{analysis, options, base_renderer, analysis.mesh_name(), {}, nullptr, 0, {}, nullptr};
+  if (!analysis.glyphs) shared.no_glyphs.vertex_cluster.assign(analysis.mesh.points.size(), kNoIndex);
+  shared.glyphs = analysis.glyphs ? &*analysis.glyphs : &shared.no_glyphs;
   // The top clusters (C views; their worst vertices get D and E): as the glyph stage was asked.
-  context.num_top = std::min<std::size_t>(static_cast<std::size_t>(std::max(0, context.glyphs->options.top_clusters)),
-                                          context.glyphs->clusters.size());
-  context.local_vertices = choose_local_vertices(context);
+  shared.num_top = std::min<std::size_t>(static_cast<std::size_t>(std::max(0, shared.glyphs->options.top_clusters)),
+                                         shared.glyphs->clusters.size());
+  shared.local_vertices = choose_local_vertices(shared);
 
-  std::string_view selected_by;  // the selectable view a view is drawn with
-  for (const ViewSpec& spec : kViews) {
-    if (before_view) before_view(spec.needs);
-    if (spec.is_selectable) selected_by = spec.id;
-    const bool is_wanted = options.views.empty() ||
-                           std::find(options.views.begin(), options.views.end(), selected_by) != options.views.end();
-    if (!is_wanted || !has_inputs(analysis, spec.needs)) continue;
-    if (clock) clock->start("view " + std::string(spec.id));
-    std::vector<ViewFile> files = spec.build(context);
-    if (clock) clock->stop();
-    if (!files.empty()) views.push_back({std::string(spec.id), std::string(spec.title), std::move(files)});
+  // Taking the next view, before_view, the clock and the encoding tasks'
+  // submission happen under this lock.
+  std::mutex lock;
+  std::size_t next = 0;
+  bool failed = false;
+  auto work = [&](Renderer& inner, bool is_second) {
+    RecordingRenderer renderer(inner);
+    ViewContext context{analysis, options, renderer, shared.name, {}, shared.glyphs, shared.num_top,
+                        shared.local_vertices, &renderer.last_frame};
+    for (;;) {
+      std::size_t i = 0;
+      {
+        const std::lock_guard<std::mutex> guard(lock);
+        if (failed || next == wanted.size()) return;
+        i = wanted[next++];
+        if (before_view) before_view(kViews[i].needs);
+        if (!has_inputs(analysis, kViews[i].needs)) continue;
+        progress::stage_started("view " + std::string(kViews[i].id));
+      }
+      const auto begin = std::chrono::steady_clock::now();
+      std::vector<ViewFile> files = kViews[i].build(context);
+      const std::chrono::duration<double> seconds = std::chrono::steady_clock::now() - begin;
+      const std::lock_guard<std::mutex> guard(lock);
+      slots[i].files = std::move(files);
+      for (ViewFile& file : slots[i].files)
+        if (file.text.empty() && !file.image.rgba.empty()) encoding.run([&file] { file.png = encode_png(file.image); });
+      if (clock) clock->record("view " + std::string(kViews[i].id), seconds.count(), is_second);
+    }
+  };
+
+  // One thread when TBB may use one (-j1): the run then uses one core.
+  const bool two_threads = options.render_threads > 1 && wanted.size() > 1 &&
+                           tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) > 1;
+  if (two_threads) {
+    // The second thread makes its renderer (a sibling of the caller's; none:
+    // the caller draws every view) while the first view draws, keeps this
+    // thread's deadline, and stops at its next check when this one fails.
+    std::atomic<bool> cancel{false};
+    std::exception_ptr second_error;
+    std::thread thread([&, deadline = stop::current_deadline()] {
+      const stop::ScopedDeadline same(deadline);
+      const stop::ScopedCancel abandoned(cancel);
+      try {
+        const std::unique_ptr<Renderer> second = base_renderer.sibling();
+        // Its TBB waits run only its own tasks (as the caller's do in a
+        // batch, whose meshes each check their own deadline).
+        if (second) tbb::this_task_arena::isolate([&] { work(*second, true); });
+      } catch (...) {
+        second_error = std::current_exception();
+        const std::lock_guard<std::mutex> guard(lock);
+        failed = true;
+      }
+    });
+    try {
+      work(base_renderer, false);
+    } catch (...) {
+      {
+        const std::lock_guard<std::mutex> guard(lock);
+        failed = true;
+      }
+      cancel = true;
+      thread.join();
+      throw;
+    }
+    // Timed as a stage of its own, so the stages this thread timed still
+    // add up to the wall time (the second thread's are flagged concurrent).
+    const auto begin = std::chrono::steady_clock::now();
+    thread.join();
+    if (clock)
+      clock->record("view thread wait", std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count(),
+                    false);
+    if (second_error) std::rethrow_exception(second_error);
+  } else {
+    work(base_renderer, false);
   }
-  encode_pushed_views();
+  progress::stage_started("");
   encoding.wait();
+
+  std::vector<RenderedView> views;
+  for (std::size_t i = 0; i < std::size(kViews); ++i)
+    if (!slots[i].files.empty())
+      views.push_back({std::string(kViews[i].id), std::string(kViews[i].title), std::move(slots[i].files)});
   return views;
 }
 

@@ -45,6 +45,7 @@ struct ViewOptions {
   std::vector<Index> focus_vertices;  // more D and E views (--focus-vertex)
   std::vector<std::string> views;     // ids of kViews to draw (selectable ones); empty: all
   Vec3 up{0.0, 0.0, 1.0};             // the model axis drawn upwards in every 3D view (--up)
+  int render_threads = 2;             // threads drawing views, each with its own renderer (Renderer::sibling)
 };
 
 struct ViewContext;  // what the builders share (views.cpp)
