@@ -310,10 +310,10 @@ TEST(Cli, VerbosePrintsEachStageAndTimingsJsonListsThem) {
     // beside the overlap stage, and the views drawn by the second render
     // thread beside those of the first: the stages flagged concurrent, left
     // out of the sum (the main thread's "uv atlas wait", "overlap" and
-    // "view thread wait" are in it).
+    // "views wait" are in it).
     const bool concurrent = s.value("concurrent", false);
     const std::string name = s["name"];
-    if (name.starts_with("view ") && name != "view thread wait") {
+    if (name.starts_with("view ")) {
       drawn_beside += concurrent;
     } else {
       EXPECT_EQ(concurrent, name == "uv atlas" || name == "structure" || name == "metrics" || name == "metric summaries")
@@ -324,14 +324,16 @@ TEST(Cli, VerbosePrintsEachStageAndTimingsJsonListsThem) {
   }
   EXPECT_NEAR(timings["total_seconds"].get<double>(), total, 1e-9);
   // The stages account for the run: their sum within 10 % of the wall time
-  // from the process's start to the last file.
+  // from the process's start to the last file, plus 50 ms for what no stage
+  // times (loading the libraries, the steps between stages), which on this
+  // 0.3 s run grows to a tenth of it when the test runs beside others.
   const double wall = timings["wall_seconds"].get<double>();
   EXPECT_GE(wall, total - 1e-6);
-  EXPECT_LE(wall, 1.1 * total) << "stages " << total << " s of " << wall << " s";
+  EXPECT_LE(wall, 1.1 * total + 0.05) << "stages " << total << " s of " << wall << " s";
   for (const char* stage : {"renderer", "read", "topology", "quality", "metrics", "metric summaries", "summaries", "structure", "glyphs", "overlap",
                             "read reference", "boundary error", "uv atlas wait", "uv atlas", "view overview", "view main", "view uv_error",
                             "report document", "write report.json", "write cells.csv", "write annotated.vtu", "write edges.csv",
-                            "write images", "view thread wait"})
+                            "write images", "views wait"})
     EXPECT_NE(std::find(names.begin(), names.end(), stage), names.end()) << stage;
   if (std::thread::hardware_concurrency() >= 2) EXPECT_GT(drawn_beside, 0) << "two render threads on two cores";
   EXPECT_EQ(names.front(), "renderer");

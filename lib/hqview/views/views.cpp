@@ -439,6 +439,9 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
       {
         const std::lock_guard<std::mutex> guard(lock);
         if (failed || next == wanted.size()) return;
+        // The views that need the atlas (last) are the first thread's, so
+        // that its wait for the atlas is a stage of this thread's.
+        if (is_second && kViews[wanted[next]].needs == ViewNeeds::uv_atlas) return;
         i = wanted[next++];
         if (before_view) before_view(kViews[i].needs);
         if (!has_inputs(analysis, kViews[i].needs)) continue;
@@ -446,8 +449,9 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
       }
       const auto begin = std::chrono::steady_clock::now();
       std::vector<ViewFile> files = kViews[i].build(context);
-      const std::chrono::duration<double> seconds = std::chrono::steady_clock::now() - begin;
       const std::lock_guard<std::mutex> guard(lock);
+      // Up to the lock: a wait for it is this thread's time too.
+      const std::chrono::duration<double> seconds = std::chrono::steady_clock::now() - begin;
       slots[i].files = std::move(files);
       for (ViewFile& file : slots[i].files)
         if (file.text.empty() && !file.image.rgba.empty()) encoding.run([&file] { file.png = encode_png(file.image); });
@@ -455,6 +459,7 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
     }
   };
 
+  std::chrono::steady_clock::time_point last_view_end;  // when this thread's last view was done
   // One thread when TBB may use one (-j1): the run then uses one core.
   const bool two_threads = options.render_threads > 1 && wanted.size() > 1 &&
                            tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) > 1;
@@ -480,6 +485,7 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
     });
     try {
       work(base_renderer, false);
+      last_view_end = std::chrono::steady_clock::now();
     } catch (...) {
       {
         const std::lock_guard<std::mutex> guard(lock);
@@ -489,19 +495,21 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
       thread.join();
       throw;
     }
-    // Timed as a stage of its own, so the stages this thread timed still
-    // add up to the wall time (the second thread's are flagged concurrent).
-    const auto begin = std::chrono::steady_clock::now();
     thread.join();
-    if (clock)
-      clock->record("view thread wait", std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count(),
-                    false);
     if (second_error) std::rethrow_exception(second_error);
   } else {
     work(base_renderer, false);
+    last_view_end = std::chrono::steady_clock::now();
   }
   progress::stage_started("");
   encoding.wait();
+  // This thread's wait, after its last view, for the second thread and the
+  // PNG encoding: timed as a stage of its own, so that the stages this
+  // thread timed add up to the wall time (the second thread's are flagged
+  // concurrent).
+  if (clock)
+    clock->record("views wait", std::chrono::duration<double>(std::chrono::steady_clock::now() - last_view_end).count(),
+                  false);
 
   std::vector<RenderedView> views;
   for (std::size_t i = 0; i < std::size(kViews); ++i)
