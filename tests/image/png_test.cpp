@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <thread>
 #include <vector>
 
 #include "hqview/core/error.h"
@@ -66,6 +68,48 @@ TEST(EncodePng, OpaqueImagesAreWrittenAsRgb) {
     for (std::size_t c = 0; c < 3; ++c) EXPECT_EQ(rgb[3 * p + c], image.rgba[4 * p + c]);
   image.rgba[4 * 7 + 3] = 254;
   EXPECT_EQ(static_cast<int>(encode_png(image)[25]), 6) << "colour type RGBA";
+}
+
+// A larger image (rows of noise, runs and gradients, so that the "up"
+// filter and the compressor see every kind of row) decodes to the same
+// pixels through libpng (via OIIO), which checks every chunk's CRC; the
+// bytes are the same on every call and on another thread.
+TEST(EncodePng, LargeImagesRoundTripAndGiveTheSameBytes) {
+  for (const bool opaque : {true, false}) {
+    Image image{301, 77, {}};
+    std::uint32_t state = 12345;
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x) {
+        state = state * 1664525u + 1013904223u;
+        const auto noise = static_cast<std::uint8_t>(state >> 24);
+        const auto r = static_cast<std::uint8_t>(y % 3 == 0 ? noise : x);
+        const auto g = static_cast<std::uint8_t>(y % 3 == 1 ? noise : 255 - x);
+        const auto b = static_cast<std::uint8_t>(y % 3 == 2 ? noise : x + y);
+        const auto a = static_cast<std::uint8_t>(opaque ? 255 : (x * 7 + y) % 256);
+        image.rgba.insert(image.rgba.end(), {r, g, b, a});
+      }
+    const std::string bytes = encode_png(image);
+    EXPECT_EQ(static_cast<int>(bytes[25]), opaque ? 2 : 6);
+    std::string other;
+    std::thread([&] { other = encode_png(image); }).join();
+    EXPECT_EQ(bytes, other) << "the same bytes on another thread";
+    EXPECT_EQ(bytes, encode_png(image));
+    const std::filesystem::path path = std::filesystem::temp_directory_path() / "hqview_png_large_test.png";
+    std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto input = OIIO::ImageInput::open(path.string(), &config);
+    ASSERT_TRUE(input) << OIIO::geterror();
+    EXPECT_EQ(input->spec().width, 301);
+    EXPECT_EQ(input->spec().height, 77);
+    const int channels = opaque ? 3 : 4;
+    ASSERT_EQ(input->spec().nchannels, channels);
+    std::vector<std::uint8_t> decoded(static_cast<std::size_t>(channels) * 301 * 77), expected;
+    ASSERT_TRUE(input->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, decoded.data())) << input->geterror();
+    for (std::size_t i = 0; i < image.rgba.size(); ++i)
+      if (i % 4 < static_cast<std::size_t>(channels)) expected.push_back(image.rgba[i]);
+    EXPECT_EQ(decoded, expected) << (opaque ? "RGB" : "RGBA");
+  }
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 #pragma once
-// PNG encoding of rendered images (libpng, in memory: the bundle
-// writer puts the bytes on disk).
+// PNG encoding of rendered images (the chunks written here, the zlib
+// stream by libdeflate; in memory: the bundle writer puts the bytes on disk).
 
 #include <string>
 
@@ -8,8 +8,9 @@
 
 namespace hq {
 
-// The 8-bit RGBA PNG of image (zlib level 1 and the "up" filter: far faster
-// than libpng's defaults, files about as small). Thread-safe: views are
+// The 8-bit PNG of image, RGB when every alpha is 255, else RGBA (the "up"
+// filter, libdeflate level 2: far faster than libpng's defaults, files about
+// as small). The same image gives the same bytes. Thread-safe: views are
 // encoded on worker threads while the next frame renders. Throws Error when
 // the image is malformed (rgba.size() != 4 * width * height, or empty).
 std::string encode_png(const Image& image);
