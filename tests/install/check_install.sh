@@ -54,6 +54,6 @@ depends="$(dpkg-deb -f "$deb" Depends)"
 echo "      $(basename "$deb"): Depends: $depends"
 check ".deb holds /usr/bin/hqview, the man page and the completion" \
   "grep -q ' ./usr/bin/hqview$' <<<\"\$files\" && grep -q 'share/man/man1/hqview.1.gz$' <<<\"\$files\" && grep -q 'bash-completion/completions/hqview$' <<<\"\$files\""
-check ".deb depends on Debian's runtime libraries (TBB, OSMesa, libpng, FreeType) and the font" \
-  "grep -q libtbb <<<\"\$depends\" && grep -q libosmesa6 <<<\"\$depends\" && grep -q libpng16 <<<\"\$depends\" && grep -q libfreetype6 <<<\"\$depends\" && grep -q fonts-dejavu-core <<<\"\$depends\" && ! grep -q -- '-dev' <<<\"\$depends\""
+check ".deb depends on Debian's runtime libraries (TBB, OSMesa, libdeflate, FreeType) and the font" \
+  "grep -q libtbb <<<\"\$depends\" && grep -q libosmesa6 <<<\"\$depends\" && grep -q libdeflate0 <<<\"\$depends\" && grep -q libfreetype6 <<<\"\$depends\" && grep -q fonts-dejavu-core <<<\"\$depends\" && ! grep -q -- '-dev' <<<\"\$depends\""
 exit "$fail"
