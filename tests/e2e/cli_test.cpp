@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.h"
+#include "hqview/io/read_limits.h"
 #include "support/fixtures.h"
 
 namespace hq::test {
@@ -144,6 +145,33 @@ TEST(Cli, SameBytesForOneAndTwoThreads) {
                         "data/annotated.vtu", "index.html"})
     EXPECT_EQ(read_text(dir / "1csv,csv.gz,vtu" / f), read_text(dir / "2csv,csv.gz,vtu" / f)) << f;
   EXPECT_EQ(read_text(dir / "1vtu.zlib/data/annotated.vtu"), read_text(dir / "2vtu.zlib/data/annotated.vtu"));
+}
+
+// batch schedules meshes by estimate_mesh_memory: the estimate covers the
+// measured peak (timings.json's last stage, the process's peak RSS) of a
+// run with every view on one render thread, as each mesh of a batch of
+// several workers draws, without being more than four times it. (Not under
+// AddressSanitizer, whose shadow memory is no user's.)
+TEST(Cli, MemoryEstimateCoversTheMeasuredPeak) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "peak memory under AddressSanitizer";
+#endif
+  std::vector<fs::path> meshes{source_dir() / "examples/ball.mesh"};
+  if (const auto data = shared_data_dir()) meshes.push_back(*data / "meshes/gao2016_sweeping/Dolphin_padded.mesh");
+  const fs::path dir = fresh_output_dir("memory_estimate");
+  for (const fs::path& mesh : meshes) {
+    for (const bool render : {true, false}) {
+      std::vector<std::string> args{"analyze", mesh.string(), "-o", (dir / "out").string(), "-j", "1", "-q"};
+      if (!render) args.push_back("--no-render");
+      const CliResult r = run_hqview(args);
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+      const json timings = json::parse(read_text(dir / "out/timings.json"));
+      const double peak = timings["stages"].back()["peak_rss_mb"].get<double>() * 1e6;
+      const auto estimate = static_cast<double>(estimate_mesh_memory(fs::file_size(mesh), render));
+      EXPECT_LE(peak, estimate) << mesh << (render ? " with views" : " without");
+      EXPECT_LE(estimate, 4.0 * peak) << mesh << (render ? " with views" : " without");
+    }
+  }
 }
 
 TEST(Cli, JsonToStdoutEqualsReportJson) {
@@ -335,7 +363,9 @@ TEST(Cli, VerbosePrintsEachStageAndTimingsJsonListsThem) {
                             "report document", "write report.json", "write cells.csv", "write annotated.vtu", "write edges.csv",
                             "write images", "views wait"})
     EXPECT_NE(std::find(names.begin(), names.end(), stage), names.end()) << stage;
-  if (std::thread::hardware_concurrency() >= 2) EXPECT_GT(drawn_beside, 0) << "two render threads on two cores";
+  if (std::thread::hardware_concurrency() >= 2) {
+    EXPECT_GT(drawn_beside, 0) << "two render threads on two cores";
+  }
   EXPECT_EQ(names.front(), "renderer");
   EXPECT_EQ(names.back(), "write images");
   // Stage lines come in that order on standard error, before the last line.

@@ -88,10 +88,15 @@ std::uint64_t estimate_analysis_memory(std::uint64_t file_bytes, std::uint64_t n
 
 std::uint64_t estimate_mesh_memory(std::uint64_t file_bytes, bool is_rendering) {
   // Measured with /usr/bin/time on ../shared/data (Dolphin_padded, bunny_in,
-  // warrior: 3-4 MB text files): about 9-11 bytes of peak RSS per file byte
-  // above the process baseline, with or without rendering; rendering adds
-  // about 120 MB (OSMesa framebuffers and llvmpipe). Doubled for safety.
-  return 20 * file_bytes + ((is_rendering ? std::uint64_t{128} : std::uint64_t{16}) << 20);
+  // warrior: 3-4 MB text files; hex_cube_coarse, 7 KB), one render thread
+  // as in a batch of several workers: about 9-11 bytes of peak RSS per file
+  // byte above a 12 MB baseline without rendering (33-45 MB); rendering
+  // at 1600x1200 adds 245 MB for the smallest mesh (the 2x2-supersampled
+  // framebuffer, its read-back, llvmpipe, the figures and their PNGs) and
+  // about 50 bytes per file byte more (the views' scenes): 257 MB and
+  // 428-441 MB in all. Doubled for safety.
+  if (!is_rendering) return saturating_add(saturating_mul(file_bytes, 20), std::uint64_t{16} << 20);
+  return saturating_add(saturating_mul(file_bytes, 120), std::uint64_t{512} << 20);
 }
 
 std::string format_memory_size(std::uint64_t bytes) {
