@@ -152,11 +152,27 @@ TEST(BadInputs, EveryHostileInputGivesItsMessageAndKeepsThePreviousBundle) {
     command += " -o " + shell_quote(out.string()) + " -q" + (c.exit_code == 0 ? "" : " --no-render");
     const fs::path err_file = root / "stderr.txt";
     command += " >/dev/null 2>" + shell_quote(err_file.string()) + " </dev/null";
-    const auto start = std::chrono::steady_clock::now();
-    const int status = std::system(command.c_str());
+    auto start = std::chrono::steady_clock::now();
+    int status = std::system(command.c_str());
+    std::string err = read_text(err_file);
+    // LeakSanitizer's stop-the-world tracer sometimes crashes at exit on
+    // its own ("Tracer caught signal 11", then "LeakSanitizer has
+    // encountered a fatal error", no leak report: a known fault of the
+    // sanitizer runtime, google/sanitizers#1353). Under scripts/test
+    // --sanitize it hit the run of row 78 (every view, with a reference) in
+    // 7 of 48 runs of this test on 2026-12-06 (cause not found: it stays
+    // with one render thread and with the TBB workers joined before exit).
+    // Such a run, and only on that signature, is made once more: a leak
+    // report, an ASan error or a wrong result still fails.
+    if (err.find("Tracer caught signal") != std::string::npos &&
+        err.find("LeakSanitizer has encountered a fatal error") != std::string::npos) {
+      std::cerr << "[ retried ] expected.tsv:" << c.line << ": LeakSanitizer's tracer crashed at exit\n";
+      start = std::chrono::steady_clock::now();
+      status = std::system(command.c_str());
+      err = read_text(err_file);
+    }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const int exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    const std::string err = read_text(err_file);
 
     EXPECT_NE(exit_code, 124) << "hqview hung (killed by timeout)";
     EXPECT_EQ(exit_code, c.exit_code) << err;
