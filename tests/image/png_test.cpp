@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
@@ -16,6 +17,16 @@
 
 namespace hq {
 namespace {
+
+// PNG bytes written to a file and opened with OIIO (libpng underneath, which
+// checks every chunk's CRC), alpha kept straight.
+std::unique_ptr<OIIO::ImageInput> open_png(const std::string& bytes, const std::string& name) {
+  const std::filesystem::path path = std::filesystem::temp_directory_path() / name;
+  std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  return OIIO::ImageInput::open(path.string(), &config);
+}
 
 TEST(EncodePng, RejectsMalformedImages) {
   EXPECT_THROW(encode_png(Image{2, 2, std::vector<std::uint8_t>(15)}), Error);
@@ -32,11 +43,7 @@ TEST(EncodePng, DecodesToTheSamePixels) {
   }
   const std::string bytes = encode_png(image);
   ASSERT_EQ(bytes.substr(1, 3), "PNG");
-  const std::filesystem::path path = std::filesystem::temp_directory_path() / "hqview_png_test.png";
-  std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  auto input = OIIO::ImageInput::open(path.string(), &config);
+  const auto input = open_png(bytes, "hqview_png_test.png");
   ASSERT_TRUE(input) << OIIO::geterror();
   const OIIO::ImageSpec& spec = input->spec();
   EXPECT_EQ(spec.width, 3);
@@ -94,11 +101,7 @@ TEST(EncodePng, LargeImagesRoundTripAndGiveTheSameBytes) {
     std::thread([&] { other = encode_png(image); }).join();
     EXPECT_EQ(bytes, other) << "the same bytes on another thread";
     EXPECT_EQ(bytes, encode_png(image));
-    const std::filesystem::path path = std::filesystem::temp_directory_path() / "hqview_png_large_test.png";
-    std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    auto input = OIIO::ImageInput::open(path.string(), &config);
+    const auto input = open_png(bytes, "hqview_png_large_test.png");
     ASSERT_TRUE(input) << OIIO::geterror();
     EXPECT_EQ(input->spec().width, 301);
     EXPECT_EQ(input->spec().height, 77);

@@ -410,10 +410,7 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
   // in kViews order for any thread count. PNG encoding overlaps the drawing:
   // a finished view's images go to TBB tasks at once (ViewFile::png). A
   // slot's files never move, so the tasks may hold references to them.
-  struct Slot {
-    std::vector<ViewFile> files;
-  };
-  std::vector<Slot> slots(std::size(kViews));
+  std::vector<std::vector<ViewFile>> slots(std::size(kViews));  // each view's files
   tbb::task_group encoding;
   const WaitOnExit wait_for_encoding{encoding};
 
@@ -452,8 +449,8 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
       const std::lock_guard<std::mutex> guard(lock);
       // Up to the lock: a wait for it is this thread's time too.
       const std::chrono::duration<double> seconds = std::chrono::steady_clock::now() - begin;
-      slots[i].files = std::move(files);
-      for (ViewFile& file : slots[i].files)
+      slots[i] = std::move(files);
+      for (ViewFile& file : slots[i])
         if (file.text.empty() && !file.image.rgba.empty()) encoding.run([&file] { file.png = encode_png(file.image); });
       if (clock) clock->record("view " + std::string(kViews[i].id), seconds.count(), is_second);
     }
@@ -513,8 +510,8 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
 
   std::vector<RenderedView> views;
   for (std::size_t i = 0; i < std::size(kViews); ++i)
-    if (!slots[i].files.empty())
-      views.push_back({std::string(kViews[i].id), std::string(kViews[i].title), std::move(slots[i].files)});
+    if (!slots[i].empty())
+      views.push_back({std::string(kViews[i].id), std::string(kViews[i].title), std::move(slots[i])});
   return views;
 }
 
