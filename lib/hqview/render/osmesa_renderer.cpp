@@ -85,7 +85,7 @@ in vec4 vertex_color;
 uniform bool use_vertex_normals;
 uniform bool is_lit;
 uniform bool has_set_color;     // every vertex has one colour: set_linear_color
-uniform vec3 set_linear_color;  // that colour in linear RGB (saves 3 pow per fragment)
+uniform vec3 set_linear_color;  // that colour in linear RGB (saves a to_linear per fragment)
 uniform vec3 light_direction;
 uniform float ambient;
 out vec4 fragment_color;

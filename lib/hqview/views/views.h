@@ -124,13 +124,18 @@ const ViewSpec* find_view(std::string_view id);
 // The views a page shows in its order: panel (0: boundary.html) or 'A'..'F'.
 std::vector<const ViewSpec*> views_of_panel(char panel);
 
-// Draws the selected views in kViews order. The PNG images of finished
+// Draws the selected views and returns them in kViews order. They are
+// drawn in that order but for those that need the UV atlas, which come
+// last; on two or more TBB threads (and options.render_threads > 1) by two
+// threads, the second with renderer.sibling(). The PNG images of finished
 // views are encoded (ViewFile::png) by TBB tasks while later views render.
-// Throws RenderError; ValueError for a focus vertex that does not exist.
-// clock (may be null) times each view as "view <id>". before_view (may be
-// empty) is called before each view is considered, with what the view
-// needs, between the views' stages: the pipeline completes `analysis` there
-// (the UV atlas, built on its own thread while the first views are drawn).
+// Throws RenderError (from either thread); ValueError for a focus vertex
+// that does not exist. clock (may be null) times each view as "view <id>"
+// (the second thread's flagged concurrent) and the wait after the last as
+// "views wait". before_view (may be empty) is called once per view before
+// it is drawn, under a lock, with what the view needs: the pipeline
+// completes `analysis` there (the UV atlas, built on its own thread while
+// the first views are drawn; the views that need it are the first thread's).
 std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptions& options, Renderer& renderer,
                                        StageClock* clock = nullptr,
                                        const std::function<void(ViewNeeds)>& before_view = {});
