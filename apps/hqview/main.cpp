@@ -360,6 +360,7 @@ struct DiffArgs {
   std::string current;
   std::vector<std::string> gates;
   std::string markdown;
+  std::size_t markdown_max_chars = hq::kDiffMarkdownMaxChars;
   std::string junit;
   bool quiet = false;
 };
@@ -527,6 +528,9 @@ CLI::App* add_diff_command(CLI::App& app, DiffArgs& args) {
       ->allow_extra_args(false)
       ->take_all();
   cmd->add_option("--markdown", args.markdown, "Also write the comparison as Markdown (a pull-request comment)");
+  cmd->add_option("--markdown-max-chars", args.markdown_max_chars,
+                  "Size cap of --markdown's file (default 60000; GitHub allows 65536): the worst changes are kept")
+      ->check(CLI::Range(hq::kDiffMarkdownMinChars, std::size_t{100000000}));
   cmd->add_option("--junit", args.junit, "Also write the gates as JUnit XML (one test case per gate and mesh)");
   cmd->add_flag("-q,--quiet", args.quiet, "Print only failed gates");
   return cmd;
@@ -611,7 +615,7 @@ int run_diff_command(const DiffArgs& args) {
   const hq::DiffResult diff = hq::diff_reports(read_input_text(baseline), read_input_text(current), gates,
                                                baseline.parent_path(), current.parent_path());
   if (!args.markdown.empty()) {
-    hq::write_file_atomically(args.markdown, hq::diff_markdown(diff));
+    hq::write_file_atomically(args.markdown, hq::diff_markdown(diff, args.markdown_max_chars));
   }
   if (!args.junit.empty()) hq::write_file_atomically(args.junit, hq::junit_xml("hqview diff", hq::diff_junit_cases(diff)));
   if (!args.quiet) std::cout << hq::diff_text(diff) << std::flush;

@@ -66,5 +66,59 @@ TEST(DiffReports, IndexNewVanishedAndFailedMeshes) {
   EXPECT_THROW(diff_reports(base, kBase, {}, "", ""), InputError);  // index vs report
 }
 
+
+// Counts the lines of `md` that start with `prefix`.
+std::size_t count_lines(const std::string& md, const std::string& prefix) {
+  std::size_t n = 0, at = 0;
+  while (at < md.size()) {
+    const std::size_t end = md.find('\n', at);
+    if (md.compare(at, prefix.size(), prefix) == 0) ++n;
+    if (end == std::string::npos) break;
+    at = end + 1;
+  }
+  return n;
+}
+
+// 300 meshes whose min SJ moved by i/100000 (mesh i; odd: down), mesh 7 dropped by 0.5
+// and failed its gate; mesh "a|b`<i>" names test the escaping.
+TEST(DiffMarkdown, MarkerAndSizeCapKeepTheWorstRows) {
+  DiffResult d;
+  d.is_index = true;
+  for (int i = 0; i < 300; ++i) {
+    const std::string mesh = "m" + std::to_string(i) + ".mesh";
+    const double base = 0.5, cur = i == 7 ? 0.0 : 0.5 - (i % 2 ? 1 : -1) * i / 100000.0;
+    d.changed.push_back({mesh, "quality.scaled_jacobian.min", base, cur});
+    d.gates.push_back({mesh, "quality.scaled_jacobian.min>=baseline-0.01", cur, base, base - 0.01, cur >= base - 0.01});
+  }
+  d.vanished_meshes = {"a|b`<i>.mesh"};
+  d.passed = false;
+  const std::string full = diff_markdown(d, 100000000);
+  EXPECT_EQ(full.rfind(std::string(kDiffMarkdownMarker) + "\n", 0), 0u);
+  EXPECT_EQ(count_lines(full, "| m"), 301u);  // the header and every changed value (gate rows start "| ✅"/"| ❌")
+  EXPECT_EQ(full.find("left out"), std::string::npos);
+  EXPECT_NE(full.find("- vanished mesh: a\\|b\\`&lt;i&gt;\\.mesh"), std::string::npos);
+  EXPECT_EQ(diff_markdown(d), diff_markdown(d, kDiffMarkdownMaxChars));
+  EXPECT_LE(full.size(), 60000u);  // this one fits the default cap
+
+  const std::size_t cap = 4000;
+  const std::string md = diff_markdown(d, cap);
+  EXPECT_LE(md.size(), cap);
+  EXPECT_EQ(md.rfind(std::string(kDiffMarkdownMarker) + "\n", 0), 0u);
+  // The failed gate, the vanished mesh and the largest drops are kept; passed
+  // gates and improvements go first.
+  EXPECT_NE(md.find("| ❌ | `quality.scaled_jacobian.min>=baseline-0.01` | m7\\.mesh |"), std::string::npos);
+  EXPECT_NE(md.find("vanished mesh"), std::string::npos);
+  EXPECT_NE(md.find("| m7\\.mesh | `quality.scaled_jacobian.min` | 0.5 | 0 |"), std::string::npos);
+  EXPECT_NE(md.find("| m299\\.mesh |"), std::string::npos);  // the largest drop after mesh 7
+  EXPECT_EQ(md.find("| m298\\.mesh |"), std::string::npos);  // an improvement
+  EXPECT_EQ(md.find("| m1\\.mesh |"), std::string::npos);    // the smallest drop
+  EXPECT_EQ(md.find("| ✅"), std::string::npos);
+  const std::size_t kept = count_lines(md, "| m") - 1 + count_lines(md, "| ❌") + count_lines(md, "- vanished");
+  const std::string note = "_" + std::to_string(601 - kept) + " of 601 rows left out to stay under 4000 characters";
+  EXPECT_NE(md.find(note), std::string::npos) << md.substr(md.size() - 300);
+  // Kept drops in their original order, largest to smallest among the odd meshes kept.
+  EXPECT_LT(md.find("| m7\\.mesh |"), md.find("| m299\\.mesh |"));
+}
+
 }  // namespace
 }  // namespace hq

@@ -1,5 +1,6 @@
 #include "hqview/pipeline/diff.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -290,42 +291,146 @@ DiffResult diff_reports(std::string_view baseline_text, std::string_view current
   return result;
 }
 
-std::string diff_markdown(const DiffResult& d) {
-  std::string md = "## HQView diff: ";
-  md += d.passed ? "gates passed" : "**gates failed**";
-  md += ", " + std::to_string(d.changed.size()) + " values changed";
-  if (d.is_index)
-    md += ", " + std::to_string(d.new_meshes.size()) + " new, " + std::to_string(d.vanished_meshes.size()) +
-          " vanished meshes";
-  md += "\n\n";
-  if (!d.gates.empty()) {
-    md += "| | rule |" + std::string(d.is_index ? " mesh |" : "") + " value | baseline | threshold |\n|---|---|" +
-          (d.is_index ? "---|" : "") + "--:|--:|--:|\n";
-    for (const DiffGateResult& g : d.gates)
-      md += std::string("| ") + (g.passed ? "✅" : "❌") + " | `" + g.rule + "` |" +
-            (d.is_index ? " " + g.mesh + " |" : "") + " " + (g.value ? show(g.value) : "failed") + " | " +
-            show(g.baseline) + " | " + (g.value ? format_double(g.threshold) : "–") + " |\n";
-    md += "\n";
-  }
-  for (const std::string& m : d.new_meshes) md += "- new mesh: `" + m + "`\n";
-  for (const std::string& m : d.vanished_meshes) md += "- vanished mesh: `" + m + "`\n";
+namespace {
+
+// diff_markdown's parts: fixed text, and rows that may be left out to keep
+// under the size cap, each with a rank (lower: kept first) and a severity
+// (higher: kept first within a rank).
+struct MarkdownRow {
+  int section = 0;  // index into the sections below
+  int rank = 0;
+  double severity = 0;
+  std::string text;
+};
+
+enum MarkdownSection { kGates, kMeshes, kChanged, kCells, kNumSections };
+
+// Relative size of a change: |current - baseline| / max(|baseline|, |current|);
+// 1 for a value that appeared or vanished.
+double relative_change(std::optional<double> baseline, std::optional<double> current) {
+  if (!baseline || !current) return 1;
+  const double scale = std::max(std::fabs(*baseline), std::fabs(*current));
+  if (!(scale > 0) || !std::isfinite(scale)) return 0;
+  return std::fabs(*current - *baseline) / scale;
+}
+
+// +1 when higher is better, -1 lower, 0 unknown (the comparison keys' directions).
+int key_direction(std::string_view key) {
+  for (const ComparisonKey& k : comparison_keys())
+    if (k.key == key) return k.direction;
+  return 0;
+}
+
+std::vector<MarkdownRow> markdown_rows(const DiffResult& d) {
+  std::vector<MarkdownRow> rows;
+  for (const DiffGateResult& g : d.gates)
+    rows.push_back({kGates, g.passed ? 5 : 0, 0,
+                    std::string("| ") + (g.passed ? "✅" : "❌") + " | `" + g.rule + "` |" +
+                        (d.is_index ? " " + markdown_escape(g.mesh) + " |" : "") + " " +
+                        (g.value ? show(g.value) : "failed") + " | " + show(g.baseline) + " | " +
+                        (g.value ? format_double(g.threshold) : "–") + " |\n"});
+  for (const std::string& m : d.new_meshes) rows.push_back({kMeshes, 3, 0, "- new mesh: " + markdown_escape(m) + "\n"});
+  for (const std::string& m : d.vanished_meshes)
+    rows.push_back({kMeshes, 1, 0, "- vanished mesh: " + markdown_escape(m) + "\n"});
   for (const DiffStatusChange& s : d.status_changes)
-    md += "- `" + s.mesh + "`: status " + s.baseline + " → " + s.current + "\n";
-  if (!d.changed.empty()) {
-    md += "\n| " + std::string(d.is_index ? "mesh | " : "") + "key | baseline | current | change |\n|" +
-          (d.is_index ? "---|" : "") + "---|--:|--:|--:|\n";
-    for (const DiffValue& v : d.changed)
-      md += "| " + (d.is_index ? "`" + v.mesh + "` | " : "") + "`" + v.key + "` | " + show(v.baseline) + " | " +
-            show(v.current) + " | " + show_delta(v) + " |\n";
+    rows.push_back({kMeshes, 1, s.current == "failed" ? 1.0 : 0.0,
+                    "- " + markdown_escape(s.mesh) + ": status " + markdown_escape(s.baseline) + " → " +
+                        markdown_escape(s.current) + "\n"});
+  for (const DiffValue& v : d.changed) {
+    const int direction = key_direction(v.key);
+    int rank = 3;
+    if (direction != 0 && v.baseline && v.current)
+      rank = (direction > 0 ? *v.current < *v.baseline : *v.current > *v.baseline) ? 2 : 4;
+    rows.push_back({kChanged, rank, relative_change(v.baseline, v.current),
+                    "| " + (d.is_index ? markdown_escape(v.mesh) + " | " : "") + "`" + v.key + "` | " +
+                        show(v.baseline) + " | " + show(v.current) + " | " + show_delta(v) + " |\n"});
   }
-  if (!d.cells.empty()) {
-    md += "\n### Methods compared: cells that moved\n\n| | model | method | key | baseline | current |\n|---|---|---|---|--:|--:|\n";
-    for (const DiffCellChange& c : d.cells)
-      md += std::string("| ") + (c.is_better ? "better" : "**worse**") + " | " + markdown_escape(c.model) + " | " +
-            markdown_escape(c.method + (c.variant.empty() ? "" : " · " + c.variant)) + " | `" + c.key + "` | " +
-            format_double(c.baseline) + " | " + format_double(c.current) + " |\n";
+  for (const DiffCellChange& c : d.cells)
+    rows.push_back({kCells, c.is_better ? 4 : 2, relative_change(c.baseline, c.current),
+                    std::string("| ") + (c.is_better ? "better" : "**worse**") + " | " + markdown_escape(c.model) +
+                        " | " + markdown_escape(c.method + (c.variant.empty() ? "" : " · " + c.variant)) + " | `" +
+                        c.key + "` | " + format_double(c.baseline) + " | " + format_double(c.current) + " |\n"});
+  return rows;
+}
+
+// The text around each section's rows (empty when the section has none kept).
+std::string section_head(int section, bool is_index) {
+  switch (section) {
+    case kGates:
+      return "| | rule |" + std::string(is_index ? " mesh |" : "") + " value | baseline | threshold |\n|---|---|" +
+             (is_index ? "---|" : "") + "--:|--:|--:|\n";
+    case kChanged:
+      return "\n| " + std::string(is_index ? "mesh | " : "") + "key | baseline | current | change |\n|" +
+             (is_index ? "---|" : "") + "---|--:|--:|--:|\n";
+    case kCells:
+      return "\n### Methods compared: cells that moved\n\n| | model | method | key | baseline | current |\n"
+             "|---|---|---|---|--:|--:|\n";
+    default:
+      return "";
   }
-  return md;
+}
+
+std::string section_tail(int section) { return section == kGates ? "\n" : ""; }
+
+}  // namespace
+
+std::string diff_markdown(const DiffResult& d, std::size_t max_chars) {
+  std::string head = std::string(kDiffMarkdownMarker) + "\n## HQView diff: ";
+  head += d.passed ? "gates passed" : "**gates failed**";
+  head += ", " + std::to_string(d.changed.size()) + " values changed";
+  if (d.is_index)
+    head += ", " + std::to_string(d.new_meshes.size()) + " new, " + std::to_string(d.vanished_meshes.size()) +
+            " vanished meshes";
+  head += "\n\n";
+  const std::vector<MarkdownRow> rows = markdown_rows(d);
+  std::vector<char> keep(rows.size(), 1);
+  auto render = [&](std::size_t left_out) {
+    std::string md = head;
+    for (int s = 0; s < kNumSections; ++s) {
+      bool any = false;
+      for (std::size_t i = 0; i < rows.size(); ++i) {
+        if (rows[i].section != s || !keep[i]) continue;
+        if (!any) md += section_head(s, d.is_index);
+        any = true;
+        md += rows[i].text;
+      }
+      if (any) md += section_tail(s);
+    }
+    if (left_out > 0)
+      md += "\n_" + std::to_string(left_out) + " of " + std::to_string(rows.size()) +
+            " rows left out to stay under " + std::to_string(max_chars) +
+            " characters (passed gates, improvements and the smallest changes first); `hqview diff` without "
+            "`--markdown` prints every one._\n";
+    return md;
+  };
+  std::string full = render(0);
+  if (full.size() <= max_chars) return full;
+
+  // Over the cap: the rows by importance, each added while the text (with
+  // its section's head and the note saying how many were left out) fits.
+  std::vector<std::size_t> order(rows.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    if (rows[a].rank != rows[b].rank) return rows[a].rank < rows[b].rank;
+    return rows[a].severity > rows[b].severity;
+  });
+  std::fill(keep.begin(), keep.end(), 0);
+  const std::size_t note = render(rows.size()).size() - render(0).size() + 2 * 20;  // the note, digits to spare
+  std::size_t size = head.size() + note;
+  std::vector<char> section_open(kNumSections, 0);
+  std::size_t left_out = rows.size();
+  for (std::size_t i : order) {
+    const int s = rows[i].section;
+    const std::size_t extra =
+        rows[i].text.size() +
+        (section_open[s] ? 0 : section_head(s, d.is_index).size() + section_tail(s).size());
+    if (size + extra > max_chars) continue;
+    size += extra;
+    section_open[s] = 1;
+    keep[i] = 1;
+    --left_out;
+  }
+  return render(left_out);
 }
 
 std::string diff_text(const DiffResult& d) {

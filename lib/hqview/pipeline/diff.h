@@ -78,7 +78,20 @@ DiffResult diff_reports(std::string_view baseline_text, std::string_view current
                         const std::vector<DiffGate>& gates, const std::filesystem::path& baseline_dir,
                         const std::filesystem::path& current_dir);
 
-std::string diff_markdown(const DiffResult& diff);
+// `diff --markdown FILE`: a pull-request comment or job summary. Its first
+// line is kDiffMarkdownMarker (an HTML comment: hidden when rendered, found
+// by a bot that updates its comment). At most max_chars bytes (so at most
+// that many characters; GitHub takes 65,536 in a comment or a step summary):
+// over it, whole table rows are left out, passed gates first, then
+// improvements, then the smallest changes (|current - baseline| relative to
+// the larger magnitude); failed gates, meshes that failed or vanished and the
+// largest regressions stay; a last line says how many rows were left out.
+// The kept rows keep their order. max_chars must be at least
+// kDiffMarkdownMinChars (the header and the note).
+inline constexpr std::string_view kDiffMarkdownMarker = "<!-- hqview diff -->";
+inline constexpr std::size_t kDiffMarkdownMaxChars = 60000;
+inline constexpr std::size_t kDiffMarkdownMinChars = 1000;
+std::string diff_markdown(const DiffResult& diff, std::size_t max_chars = kDiffMarkdownMaxChars);
 std::string diff_text(const DiffResult& diff);
 
 // `diff --junit FILE`: one test case per gate (per mesh of two indexes):
