@@ -140,6 +140,7 @@ struct AnalyzeArgs {
   std::string up{hq::kDefaultUpAxis};
   bool no_viewer = false;
   std::string link_base;  // --link-base URL; empty: relative links
+  std::string single_file;  // --single-file[=viewer]: "pages" or "viewer"; empty: no report.html
   double viewer_max_mb = 25;
   std::string data{hq::kDefaultDataList};  // --data
   std::string output;
@@ -290,6 +291,7 @@ int run_analyze(const AnalyzeArgs& args) {
   hq::BundleOptions bundle;
   bundle.force = args.force;
   if (!args.link_base.empty()) bundle.link_base = hq::normalize_link_base(args.link_base);
+  if (!args.single_file.empty()) bundle.single_file = hq::parse_single_file(args.single_file);
   std::optional<TerminalProgress> terminal;
   if (!args.quiet && ::isatty(2) != 0) {
     terminal.emplace(args.verbose);
@@ -414,6 +416,10 @@ void add_analysis_options(CLI::App* cmd, AnalyzeArgs& args) {
   cmd->add_option("--link-base", args.link_base,
                   "Absolute links under URL in index.html, boundary.html and summary.md (and the batch pages), for "
                   "bundles published at URL (e.g. GitHub Pages); summary.md then shows the key view inline");
+  cmd->add_flag("--single-file{pages}", args.single_file,
+                "Also write report.html: the index page with its stylesheet, images and the boundary page in one "
+                "file (links to the data files stay); --single-file=viewer also embeds the 3D viewer and its data")
+      ->check(CLI::IsMember({"pages", "viewer"}));
   cmd->add_option("--viewer-max-mb", args.viewer_max_mb,
                   "Size budget of the viewer's data in MB: over it, what is drawn is reduced (never the glyphs, "
                   "the cells under the threshold or any number); the page says what was reduced")
@@ -546,6 +552,7 @@ int run_batch_command(const BatchArgs& args, int jobs) {
   options.memory_budget = parse_memory_budget(args.memory_budget);
   options.mesh_timeout = args.mesh_timeout;
   if (!args.analysis.link_base.empty()) options.link_base = hq::normalize_link_base(args.analysis.link_base);
+  if (!args.analysis.single_file.empty()) options.single_file = hq::parse_single_file(args.analysis.single_file);
   if (!args.analysis.no_render) options.make_renderer = [] { return hq::make_osmesa_renderer(); };
   const auto keys = comparison_keys_of(args.compare_keys);  // a usage error before any mesh is read
   std::vector<hq::BatchInput> inputs = hq::collect_batch_inputs(args.input);
@@ -570,6 +577,7 @@ int run_batch_command(const BatchArgs& args, int jobs) {
   StderrProgress progress(args.analysis.quiet);
   const std::vector<hq::BatchEntry> entries = hq::run_batch(inputs, options, &progress);
   hq::write_batch_index(entries, HQVIEW_VERSION, options.output, keys ? &*keys : nullptr, options.link_base);
+  if (options.single_file != hq::SingleFile::none) hq::write_batch_single_file(options.output, options.link_base);
   if (!args.analysis.quiet)
     std::cerr << "hqview: " << entries.size() << " meshes; index written to "
               << (options.output / "index.html").string() << "\n";

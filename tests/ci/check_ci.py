@@ -153,7 +153,7 @@ class Runner:
                 dest = self.artifacts / str(n)
                 (shutil.copytree if src.is_dir() else lambda a, b: (b.mkdir(), shutil.copy(a, b)))(src, dest)
                 steps[step["id"]] = {"artifact-url": f"https://github.com/owner/repo/actions/runs/1/artifacts/{n}",
-                                     "archive": with_.get("archive", "true")}
+                                     "archive": str(with_.get("archive", "true")).lower()}
                 continue
             if name == "Install HQView":
                 continue  # the build under test is on PATH (install.sh is checked on its own)
@@ -200,6 +200,9 @@ def action_runs(hq, source, data, work, action):
     check(outputs["exit-code"] == "0" and outputs["gate-status"] == "passed" and outputs["bundle"] == "hqview-report"
           and outputs["worst-mesh"] == "cube.vtk" and outputs["artifact-url"].endswith("/artifacts/1"),
           f"passing gate: outputs {outputs}")
+    check(outputs["report-url"].endswith("/artifacts/2") and steps["upload-report"]["archive"] == "false"
+          and (run.artifacts / "2" / "report.html").is_file(),
+          "passing gate: report.html uploaded as a file of its own (archive: false)")
     check(report["quality"]["num_inverted"] == 0, "passing gate: the mesh has no inverted hex (the gate's truth)")
     check(codes.get("Gate") == 0 and all(c == 0 for c in codes.values()), f"passing gate: every step exit 0 {codes}")
     c = calls(gh_log)
@@ -210,8 +213,8 @@ def action_runs(hq, source, data, work, action):
     check(body.startswith("<!-- hqview-action:hqview -->\n") and "Mesh Quality" in body or "hex_cube" in body or
           summary_md.splitlines()[0] in body, "passing gate: the comment has the marker and the bundle's summary")
     rel = re.findall(r"\]\((?!<?https?:|#)([^)]*)\)", body)
-    check(not rel and "(<https://github.com/owner/repo/actions/runs/1/artifacts/" in body,
-          f"passing gate: no relative link left in the comment, links point at the artifact ({rel[:3]})")
+    check(not rel and "(<https://github.com/owner/repo/actions/runs/1/artifacts/2>)" in body,
+          f"passing gate: no relative link left in the comment, links point at report.html's artifact ({rel[:3]})")
     check(run.summary.read_text().strip() == body.strip(), "passing gate: the job summary is the comment")
     steps, codes, outputs = run.run(inputs)
     c = calls(gh_log)

@@ -108,6 +108,7 @@ BatchEntry run_batch_mesh(const BatchInput& input, const BatchOptions& options, 
     BundleOptions bundle;
     bundle.force = options.force;
     bundle.link_base = link_base_of(options.link_base, input.path);
+    bundle.single_file = options.single_file;
     check_output_dir(dir, bundle);
     // The mesh's work stays on its own: a thread waiting inside it runs only
     // its tasks, so that the deadline it checks is this mesh's (stop.h).

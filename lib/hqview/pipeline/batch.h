@@ -21,6 +21,7 @@
 
 #include "hqview/pipeline/analyze.h"
 #include "hqview/report/batch_index.h"
+#include "hqview/report/single_file.h"
 
 namespace hq {
 
@@ -111,6 +112,7 @@ struct BatchOptions {
   bool force = false;         // passed to each bundle (replace a non-bundle directory)
   double mesh_timeout = 0;    // seconds per mesh (--mesh-timeout); 0: none. Over it: failed, the batch goes on
   std::string link_base;      // --link-base, normalized; each bundle's pages link under link_base + its path
+  SingleFile single_file = SingleFile::none;  // --single-file: report.html in each bundle and OUT/report.html
 };
 
 // Progress sink (main draws a bar or prints lines). Called from worker

@@ -24,6 +24,7 @@
 #include "hqview/report/escape.h"
 #include "hqview/report/json_path.h"
 #include "hqview/report/report_templates.h"
+#include "hqview/report/single_file.h"
 
 namespace hq {
 namespace fs = std::filesystem;
@@ -477,6 +478,32 @@ void write_batch_index(const std::vector<BatchEntry>& entries, const std::string
     write_file_atomically(dir / "comparison.tex", comparison_latex(c));
     write_file_atomically(dir / kComparisonChartFile, comparison_chart_svg(entries));
   }
+}
+
+void write_batch_single_file(const fs::path& dir, const std::string& link_base) {
+  auto read = [&dir](const std::string& relative) -> std::optional<std::string> {
+    const fs::path p = fs::path(relative).lexically_normal();
+    if (p.is_absolute() || p.empty() || *p.begin() == "..") return std::nullopt;
+    std::ifstream in(dir / p, std::ios::binary);
+    if (!in) return std::nullopt;
+    std::ostringstream text;
+    text << in.rdbuf();
+    return std::move(text).str();
+  };
+  const std::string index = read("index.html").value_or("");
+  SingleFileSources sources;
+  sources.index_html = index;
+  sources.read_file = read;
+  sources.link_base = link_base;
+  sources.page_link = [&dir](const std::string& relative) -> std::optional<std::string> {
+    constexpr std::string_view kIndex = "/index.html";
+    if (relative.size() <= kIndex.size() || relative.compare(relative.size() - kIndex.size(), kIndex.size(), kIndex) != 0)
+      return std::nullopt;
+    const std::string bundle = relative.substr(0, relative.size() - kIndex.size());
+    if (!fs::is_regular_file(dir / bundle / "report.html")) return std::nullopt;
+    return url_path(bundle + "/report.html");
+  };
+  write_file_atomically(dir / "report.html", single_file_html(sources));
 }
 
 void check_batch_output_dir(const fs::path& dir, bool force) {

@@ -102,6 +102,11 @@ std::string batch_summary_markdown(const std::vector<BatchEntry>& entries);
 void write_batch_index(const std::vector<BatchEntry>& entries, const std::string& tool_version,
                        const std::filesystem::path& dir, const std::vector<ComparisonKey>* keys = nullptr, const std::string& link_base = "");
 
+// OUT/report.html (--single-file), after write_batch_index: OUT/index.html
+// with its thumbnails and chart as data URIs (single_file.h); each mesh's
+// link goes to its bundle's report.html where that exists, else stays.
+void write_batch_single_file(const std::filesystem::path& dir, const std::string& link_base = "");
+
 // Throws ValueError when `dir` exists and is neither empty nor a batch
 // output (index.json, or the marker of a batch that has not written its
 // index yet: a run killed or stopped midway) and !force.

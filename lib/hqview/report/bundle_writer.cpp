@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 #include <system_error>
 
 #include <tbb/parallel_for.h>
@@ -164,6 +165,33 @@ std::string timings_json(const std::vector<StageTime>& timings, double wall_seco
   return j.dump(2) + "\n";
 }
 
+namespace {
+
+// report.html from the pages, stylesheet, images and viewer written in `dir`.
+std::string single_file_of(const fs::path& dir, const BundleOptions& options) {
+  auto read = [&dir](const std::string& relative) -> std::optional<std::string> {
+    if (!is_inside_bundle(relative)) return std::nullopt;
+    std::ifstream in(dir / relative, std::ios::binary);
+    if (!in) return std::nullopt;
+    std::ostringstream text;
+    text << in.rdbuf();
+    return std::move(text).str();
+  };
+  const std::optional<std::string> index = read("index.html"), boundary = read("boundary.html"),
+                                   viewer = read("viewer.html"), css = read("style.css");
+  const std::string index_text = index.value_or(""), css_text = css.value_or("");
+  SingleFileSources sources;
+  sources.index_html = index_text;
+  if (boundary) sources.boundary_html = *boundary;
+  if (viewer && options.single_file == SingleFile::viewer) sources.viewer_html = *viewer;
+  sources.stylesheet = css_text;
+  sources.read_file = read;
+  sources.link_base = options.link_base;
+  return single_file_html(sources);
+}
+
+}  // namespace
+
 void check_output_dir(const fs::path& dir, const BundleOptions& options) {
   std::error_code ec;
   const auto status = fs::symlink_status(dir, ec);
@@ -239,6 +267,10 @@ void write_bundle(const ReportModel& model, const ReportDocument& document, cons
       else
         write_text(path, encode_png(img.image));
     });
+    if (options.single_file != SingleFile::none) {
+      clock.start("write report.html");
+      write_text(tmp / "report.html", single_file_of(tmp, options));
+    }
     clock.stop();
     double wall = 0;
     for (const StageTime& t : timings) wall += t.concurrent ? 0.0 : t.seconds;

@@ -13,6 +13,7 @@
 #include "hqview/image/image.h"
 #include "hqview/report/report_json.h"
 #include "hqview/report/report_model.h"
+#include "hqview/report/single_file.h"
 
 namespace hq {
 
@@ -25,6 +26,7 @@ struct BundleImage {
 struct BundleOptions {
   bool force = false;  // replace a file, or a non-empty directory that is not an HQView bundle
   std::string link_base;  // --link-base (normalize_link_base): pages with absolute links; empty: relative
+  SingleFile single_file = SingleFile::none;  // --single-file: also report.html (single_file.h)
   StageSink on_stage;  // called as each file is written (--verbose); may be empty
   // When the process started: timings.json's wall_seconds runs from it to
   // the last file (unset: from the first stage's start).
