@@ -289,6 +289,66 @@ def action_runs(hq, source, data, work, action):
     return True
 
 
+def install_script(source, work):
+    """action/install.sh's logic with stand-ins for apt-get, dpkg-query, curl,
+    scripts/setup and scripts/build (installing for real would change this
+    machine): the .deb path, URL and refusals, and the build from the
+    action's checkout, each putting hqview's directory on GITHUB_PATH."""
+    root = work / "install"
+    shutil.rmtree(root, ignore_errors=True)
+    (root / "action").mkdir(parents=True)
+    shutil.copy(source / "action" / "install.sh", root / "action" / "install.sh")
+    log = root / "calls.log"
+    fake = root / "fakebin"
+    fake.mkdir()
+    stubs = {
+        "apt-get": 'echo "apt-get $*" >> "$CALLS"; case "$*" in *install*) mkdir -p "$FAKE_PREFIX/bin";'
+                   ' printf "#!/bin/sh\necho hqview 9.9\n" > "$FAKE_PREFIX/bin/hqview"; chmod +x "$FAKE_PREFIX/bin/hqview";; esac',
+        "dpkg-query": "exit 1",
+        "curl": 'echo "curl $*" >> "$CALLS"; while [ $# -gt 0 ]; do [ "$1" = --output ] && : > "$2"; shift; done',
+        "jq": "exit 0", "gh": "exit 0",
+    }
+    for name, body in stubs.items():
+        (fake / name).write_text("#!/bin/sh\n" + body + "\n")
+        (fake / name).chmod(0o755)
+    (root / "scripts").mkdir()
+    (root / "scripts" / "setup").write_text('#!/bin/sh\necho "setup $*" >> "$CALLS"\n')
+    (root / "scripts" / "build").write_text('#!/bin/sh\necho "build $HQVIEW_BUILD_DIR $*" >> "$CALLS"\n'
+                                            'mkdir -p "$HQVIEW_BUILD_DIR/apps/hqview"\n'
+                                            'printf "#!/bin/sh\\necho hqview built\\n" > "$HQVIEW_BUILD_DIR/apps/hqview/hqview"\n'
+                                            'chmod +x "$HQVIEW_BUILD_DIR/apps/hqview/hqview"\n')
+    for f in ("setup", "build"):
+        (root / "scripts" / f).chmod(0o755)
+    (root / "hqview_9.9_amd64.deb").write_bytes(b"!<arch>\n")
+
+    def install(deb, cwd=root):
+        log.write_text("")
+        gp = root / "github_path"
+        gp.write_text("")
+        env = dict(os.environ, PATH=f"{fake}:/usr/bin:/bin", CALLS=str(log), FAKE_PREFIX=str(fake / "prefix"),
+                   HQVIEW_DEB=deb, HQVIEW_BUILD_DIR=str(root / "build"), GITHUB_PATH=str(gp), RUNNER_TEMP=str(root))
+        env["PATH"] = f"{fake / 'prefix' / 'bin'}:{env['PATH']}"
+        r = subprocess.run(["bash", str(root / "action" / "install.sh")], cwd=cwd, env=env, capture_output=True, text=True)
+        return r.returncode, log.read_text(), gp.read_text(), r.stdout + r.stderr
+
+    code, calls_, path, out = install("hqview_9.9_amd64.deb")
+    check(code == 0 and "install -y -q --no-install-recommends ./hqview_9.9_amd64.deb" in calls_
+          and path.strip() == str(fake / "prefix" / "bin") and "hqview 9.9" in out,
+          f"install.sh, a .deb path: apt-get installs ./FILE, hqview's directory on GITHUB_PATH ({calls_!r} {out[-200:]})")
+    code, calls_, path, out = install("https://example.org/hqview_9.9_amd64.deb")
+    check(code == 0 and f"--output {root}/hqview.deb -- https://example.org/hqview_9.9_amd64.deb" in calls_
+          and f"install -y -q --no-install-recommends {root}/hqview.deb" in calls_,
+          f"install.sh, an https URL: downloaded with curl, then installed ({calls_!r})")
+    for deb, what in [("missing.deb", "no such file"), ("ftp://example.org/x.deb", "only a path or an https")]:
+        code, calls_, path, out = install(deb)
+        check(code == 2 and what in out and "install" not in calls_ and not path,
+              f"install.sh refuses {deb}: exit {code}, '{what}', nothing installed")
+    code, calls_, path, out = install("")
+    check(code == 0 and "setup --build" in calls_ and f"build {root}/build -DHQVIEW_BUILD_TESTS=OFF" in calls_
+          and path.strip() == str(root / "build" / "apps" / "hqview") and "hqview built" in out,
+          f"install.sh without a .deb: scripts/setup --build and scripts/build from the action's checkout ({calls_!r})")
+
+
 def gitlab_template(hq, source, data, work):
     tpl = yaml.safe_load((source / "ci" / "hqview.gitlab-ci.yml").read_text())[".hqview"]
     art = tpl["artifacts"]
@@ -329,6 +389,7 @@ def main():
     work.mkdir(parents=True, exist_ok=True)
     action = action_rules(source)
     action_runs(hq, source, data.resolve(), work, action)
+    install_script(source, work)
     gitlab_template(hq, source, data.resolve(), work)
     print(f"{len(FAILURES)} failed" if FAILURES else "all CI checks passed")
     return 1 if FAILURES else 0
