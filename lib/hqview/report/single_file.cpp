@@ -132,7 +132,7 @@ std::string rewrite_attributes(const SingleFileSources& s, Page page, std::strin
     while (name_start > i && std::isalpha(static_cast<unsigned char>(html[name_start - 1])) != 0) --name_start;
     const std::string_view name = html.substr(name_start, at - name_start);
     const bool known = (name == "src" || name == "href" || (name == "id" && page == Page::boundary));
-    if (!known || name_start == 0 || (html[name_start - 1] != ' ' && html[name_start - 1] != '\n') ||
+    if (!known || name_start <= i || (html[name_start - 1] != ' ' && html[name_start - 1] != '\n') ||
         html[at + 1] != '"') {
       out.append(html.substr(i, at + 1 - i));
       i = at + 1;
