@@ -15,7 +15,7 @@
 # GITHUB_STEP_SUMMARY, RUNNER_TEMP.
 set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-# shellcheck source=lib.sh
+# shellcheck source=SCRIPTDIR/lib.sh
 source "$here/lib.sh"
 
 max_bytes=65000  # GitHub: 65,536 characters; bytes >= characters

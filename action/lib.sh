@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # Helpers of the action's scripts (sourced): outputs, words, messages.
 
 # output NAME VALUE: a step output, in GITHUB_OUTPUT's multi-line form with a

@@ -12,7 +12,7 @@
 # HQVIEW_SINGLE_FILE (true|viewer|false); RUNNER_TEMP, GITHUB_OUTPUT.
 set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-# shellcheck source=lib.sh
+# shellcheck source=SCRIPTDIR/lib.sh
 source "$here/lib.sh"
 
 inputs="${HQVIEW_INPUTS:-}"
@@ -35,9 +35,9 @@ fail_early() {  # an input the action cannot use: outputs as for an hqview usage
 
 [ -n "$inputs" ] || fail_early "inputs: empty (a mesh, a directory or a manifest)"
 if [ "$mode" = auto ]; then
-  if [ -d "$inputs" ]; then mode=batch
+  if [ -d "$inputs" ]; then mode="batch"
   else
-    case "${inputs,,}" in *.csv | *.json) mode=batch ;; *) mode=analyze ;; esac
+    case "${inputs,,}" in *.csv | *.json) mode="batch" ;; *) mode="analyze" ;; esac
   fi
 fi
 case "$mode" in analyze | batch) ;; *) fail_early "mode: '$mode' (auto, analyze or batch)" ;; esac
@@ -108,6 +108,7 @@ if [ -f "$work/diff.md" ]; then cat "$work/diff.md" >> "$draft"; printf '\n' >> 
 if [ -n "$bundle" ] && [ -f "$bundle/summary.md" ]; then
   cat "$bundle/summary.md" >> "$draft"
 else
+  # shellcheck disable=SC2016  # the backticks are Markdown
   printf '## HQView: no report\n\n`hqview %s` stopped with exit code %s; the log of this step says why.\n' "$mode" "$code" >> "$draft"
 fi
 

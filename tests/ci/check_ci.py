@@ -81,6 +81,12 @@ def action_rules(source):
     else:
         check(False, "action-validator is installed (cd tests/ci && npm ci)")
     check(action["runs"]["using"] == "composite", "action.yml is a composite action")
+    if shutil.which("shellcheck"):
+        r = subprocess.run(["shellcheck", "-x", *sorted(str(p) for p in (source / "action").glob("*.sh"))],
+                           capture_output=True, text=True)
+        check(r.returncode == 0, f"shellcheck passes action/*.sh {r.stdout[-800:]}")
+    else:
+        check(False, "shellcheck is installed (scripts/setup)")
     for step in action["runs"]["steps"]:
         if "run" not in step:
             continue
