@@ -50,6 +50,21 @@ Vec3 solution_gradient(const HarmonicSolution& u, const Normalization& n, const 
   return g / n.diagonal;
 }
 
+void solution_value_and_gradient(const HarmonicSolution& u, const Normalization& n, const Vec3& x, double& value,
+                                 Vec3& gradient) {
+  if (u.kind == HarmonicSolution::Kind::linear) {
+    value = solution_value(u, n, x);
+    gradient = solution_gradient(u, n, x);
+    return;
+  }
+  const ExpCosTerms t = exp_cos_terms(u, n, x);
+  value = t.e * t.c;
+  Vec3 g;
+  g[t.a] = kPi * t.e * t.c;
+  g[t.b] = g[t.cc] = -kPi * kRootHalf * t.e * t.s;
+  gradient = g / n.diagonal;
+}
+
 double solution_hessian_norm2(const HarmonicSolution& u, const Normalization& n, const Vec3& x) {
   if (u.kind == HarmonicSolution::Kind::linear) return 0;
   // u_aa = pi^2 e c, u_ab = u_ac = -pi^2 e s / sqrt 2, u_bb = u_cc = u_bc = -pi^2 e c / 2:

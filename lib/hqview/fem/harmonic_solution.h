@@ -34,6 +34,9 @@ std::vector<HarmonicSolution> default_harmonic_solutions();
 
 double solution_value(const HarmonicSolution& u, const Normalization& n, const Vec3& x);
 Vec3 solution_gradient(const HarmonicSolution& u, const Normalization& n, const Vec3& x);
+// Value and gradient at once (one exp, one sin and cos).
+void solution_value_and_gradient(const HarmonicSolution& u, const Normalization& n, const Vec3& x, double& value,
+                                 Vec3& gradient);
 double solution_hessian_norm2(const HarmonicSolution& u, const Normalization& n, const Vec3& x);
 
 }  // namespace hq

@@ -30,6 +30,18 @@ std::vector<double> average_ranks(const std::vector<double>& values) {
   return ranks;
 }
 
+// Pearson's r of two rank vectors of n entries (both with mean (n + 1) / 2).
+double rank_pearson(const std::vector<double>& ra, const std::vector<double>& rb) {
+  const double mean = 0.5 * (static_cast<double>(ra.size()) + 1.0);
+  double sab = 0, saa = 0, sbb = 0;
+  for (std::size_t i = 0; i < ra.size(); ++i) {
+    sab += (ra[i] - mean) * (rb[i] - mean);
+    saa += (ra[i] - mean) * (ra[i] - mean);
+    sbb += (rb[i] - mean) * (rb[i] - mean);
+  }
+  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : std::numeric_limits<double>::quiet_NaN();
+}
+
 }  // namespace
 
 RankCorrelation spearman_correlation(std::span<const double> x, std::span<const double> y) {
@@ -41,17 +53,7 @@ RankCorrelation spearman_correlation(std::span<const double> x, std::span<const 
     }
   RankCorrelation out;
   out.count = static_cast<std::int64_t>(a.size());
-  out.rho = std::numeric_limits<double>::quiet_NaN();
-  if (a.size() < 3) return out;
-  const std::vector<double> ra = average_ranks(a), rb = average_ranks(b);
-  const double mean = 0.5 * (static_cast<double>(a.size()) + 1.0);  // the mean rank, ties or not
-  double sab = 0, saa = 0, sbb = 0;
-  for (std::size_t i = 0; i < ra.size(); ++i) {
-    sab += (ra[i] - mean) * (rb[i] - mean);
-    saa += (ra[i] - mean) * (ra[i] - mean);
-    sbb += (rb[i] - mean) * (rb[i] - mean);
-  }
-  if (saa > 0 && sbb > 0) out.rho = sab / std::sqrt(saa * sbb);
+  out.rho = a.size() < 3 ? std::numeric_limits<double>::quiet_NaN() : rank_pearson(average_ranks(a), average_ranks(b));
   return out;
 }
 
@@ -71,8 +73,32 @@ std::vector<MetricCorrelation> correlate_metrics(std::span<const double> error_d
   columns.push_back(&elements.lambda_max);
   out.push_back({"fem_det_j_min", {}});
   columns.push_back(&elements.det_j_min);
-  tbb::parallel_for(std::size_t{0}, out.size(),
-                    [&](std::size_t i) { out[i].correlation = spearman_correlation(error_density, *columns[i]); });
+  // The density's ranks once, over the hexes where it is usable; a metric
+  // usable on all of them reuses them (the same numbers as spearman_correlation).
+  std::vector<std::size_t> hexes;
+  std::vector<double> density;
+  for (std::size_t h = 0; h < error_density.size(); ++h)
+    if (is_usable(error_density[h])) {
+      hexes.push_back(h);
+      density.push_back(error_density[h]);
+    }
+  const std::vector<double> density_ranks = average_ranks(density);
+  tbb::parallel_for(std::size_t{0}, out.size(), [&](std::size_t i) {
+    const std::vector<double>& metric = *columns[i];
+    std::vector<double> values(hexes.size());
+    bool all_usable = metric.size() == error_density.size();
+    for (std::size_t j = 0; j < hexes.size() && all_usable; ++j) {
+      values[j] = metric[hexes[j]];
+      all_usable = is_usable(values[j]);
+    }
+    if (!all_usable) {
+      out[i].correlation = spearman_correlation(error_density, metric);
+      return;
+    }
+    out[i].correlation.count = static_cast<std::int64_t>(hexes.size());
+    out[i].correlation.rho = hexes.size() < 3 ? std::numeric_limits<double>::quiet_NaN()
+                                              : rank_pearson(density_ranks, average_ranks(values));
+  });
   return out;
 }
 

@@ -23,6 +23,40 @@ Sums column_dots(const std::vector<double>& a, const std::vector<double>& b, std
   });
 }
 
+// q = A p for K interleaved columns, and per column p . q (fixed chunks).
+template <std::size_t K>
+Sums multiply_and_dot(const CsrMatrix& a, const std::vector<double>& p, std::vector<double>& q) {
+  return detail::sum_fem_chunks<kMaxColumns>(a.num_rows(), [&](std::size_t first, std::size_t last) {
+    Sums s{};
+    for (std::size_t r = first; r < last; ++r) {
+      std::array<double, K> sum{};
+      for (std::int64_t e = a.offsets[r]; e < a.offsets[r + 1]; ++e) {
+        const double v = a.values[static_cast<std::size_t>(e)];
+        const double* pc = p.data() + static_cast<std::size_t>(a.columns[static_cast<std::size_t>(e)]) * K;
+        for (std::size_t c = 0; c < K; ++c) sum[c] += v * pc[c];
+      }
+      for (std::size_t c = 0; c < K; ++c) {
+        q[r * K + c] = sum[c];
+        s[c] += p[r * K + c] * sum[c];
+      }
+    }
+    return s;
+  });
+}
+
+Sums multiply_and_dot(const CsrMatrix& a, const std::vector<double>& p, std::vector<double>& q, int k) {
+  switch (k) {
+    case 1:
+      return multiply_and_dot<1>(a, p, q);
+    case 2:
+      return multiply_and_dot<2>(a, p, q);
+    case 3:
+      return multiply_and_dot<3>(a, p, q);
+    default:
+      return multiply_and_dot<4>(a, p, q);
+  }
+}
+
 // Ritz values of the symmetric tridiagonal (diag, sub).
 RitzExtremes tridiagonal_extremes(const std::vector<double>& diag, const std::vector<double>& sub) {
   if (diag.empty()) return {};
@@ -65,7 +99,7 @@ PcgResult solve_pcg(const CsrMatrix& a, const std::vector<double>& diagonal, con
   const auto ritz_settled = [&](std::size_t c) {
     PcgColumn& column = out.columns[c];
     const int extra = column.lanczos_steps - column.iterations;
-    if (extra > column.iterations + 50) return true;
+    if (extra >= options.max_ritz_iterations) return true;
     if (extra % std::max(1, options.ritz_check_every) != 0) return false;
     const RitzExtremes now = cg_ritz_extremes(column);
     const bool settled = extra > 0 && std::abs(now.min - last_ritz[c].min) <= options.ritz_tolerance * now.min &&
@@ -77,8 +111,7 @@ PcgResult solve_pcg(const CsrMatrix& a, const std::vector<double>& diagonal, con
     bool any = false;
     for (std::size_t c = 0; c < uk; ++c) any = any || active[c];
     if (!any) break;
-    multiply(a, p, q, k);
-    const Sums pq = column_dots(p, q, rows, k);
+    const Sums pq = multiply_and_dot(a, p, q, k);
     std::array<double, kMaxColumns> alpha{};
     for (std::size_t c = 0; c < uk; ++c) {
       if (!active[c]) continue;

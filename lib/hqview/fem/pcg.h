@@ -23,11 +23,12 @@ struct PcgOptions {
   double tolerance = 1e-10;  // relative to ||b||_2
   // Once the residual is below the tolerance, a column goes on until its
   // extreme Ritz values change by at most ritz_tolerance (relative) over
-  // ritz_check_every iterations, or for at most as many iterations again
-  // (+50): on small meshes CG converges before its Lanczos estimate of
-  // lambda_max does. The iterate keeps improving meanwhile.
+  // ritz_check_every iterations, for at most max_ritz_iterations more: on
+  // small meshes CG converges before its Lanczos estimate of lambda_max
+  // does. The iterate keeps improving meanwhile.
   double ritz_tolerance = 1e-9;
   int ritz_check_every = 5;
+  int max_ritz_iterations = 50;
   int max_iterations = 0;  // 0: 10 * rows + 100
 };
 

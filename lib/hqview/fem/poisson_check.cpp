@@ -151,34 +151,42 @@ Q1FieldErrors q1_field_errors(const HexMesh& mesh, const std::vector<double>& no
   e.h1_squared.assign(n * k, 0.0);
   e.volume.assign(n, 0.0);
   std::vector<double> u_squared(n * k, 0.0), grad_squared(n * k, 0.0);
+  std::array<Q1Reference, 27> reference;
+  std::array<double, 27> weight;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int l = 0; l < 3; ++l) {
+        reference[static_cast<std::size_t>(9 * i + 3 * j + l)] =
+            q1_reference({kGauss3Points[i], kGauss3Points[j], kGauss3Points[l]});
+        weight[static_cast<std::size_t>(9 * i + 3 * j + l)] = kGauss3Weights[i] * kGauss3Weights[j] * kGauss3Weights[l];
+      }
   detail::for_fem_chunks(n, [&](std::size_t first, std::size_t last) {
     for (std::size_t h = first; h < last; ++h) {
       const Hex& hex = mesh.hexes[h];
       const Q1Corners p = hex_corners(mesh, static_cast<Index>(h));
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-          for (int l = 0; l < 3; ++l) {
-            const Q1PointData d = q1_point(p, {kGauss3Points[i], kGauss3Points[j], kGauss3Points[l]});
-            // |det J|: a valid element can still turn over between its 2-point
-            // Gauss points; the squared errors stay non-negative.
-            const double w = kGauss3Weights[i] * kGauss3Weights[j] * kGauss3Weights[l] * std::abs(d.det_j);
-            e.volume[h] += w;
-            for (std::size_t s = 0; s < k; ++s) {
-              double uh = 0;
-              Vec3 grad_uh;
-              for (int a = 0; a < 8; ++a) {
-                const double value = nodal[static_cast<std::size_t>(hex[a]) * k + s];
-                uh += d.shape[a] * value;
-                grad_uh = grad_uh + value * d.grad[a];
-              }
-              const double u = solution_value(solutions[s], normalization, d.position);
-              const Vec3 grad_u = solution_gradient(solutions[s], normalization, d.position);
-              e.l2_squared[h * k + s] += w * (uh - u) * (uh - u);
-              e.h1_squared[h * k + s] += w * squared_norm(grad_uh - grad_u);
-              u_squared[h * k + s] += w * u * u;
-              grad_squared[h * k + s] += w * squared_norm(grad_u);
-            }
+      for (std::size_t g = 0; g < 27; ++g) {
+        const Q1PointData d = q1_point(p, reference[g]);
+        // |det J|: a valid element can still turn over between its 2-point
+        // Gauss points; the squared errors stay non-negative.
+        const double w = weight[g] * std::abs(d.det_j);
+        e.volume[h] += w;
+        for (std::size_t s = 0; s < k; ++s) {
+          double uh = 0;
+          Vec3 grad_uh;
+          for (int a = 0; a < 8; ++a) {
+            const double value = nodal[static_cast<std::size_t>(hex[a]) * k + s];
+            uh += d.shape[a] * value;
+            grad_uh = grad_uh + value * d.grad[a];
           }
+          double u;
+          Vec3 grad_u;
+          solution_value_and_gradient(solutions[s], normalization, d.position, u, grad_u);
+          e.l2_squared[h * k + s] += w * (uh - u) * (uh - u);
+          e.h1_squared[h * k + s] += w * squared_norm(grad_uh - grad_u);
+          u_squared[h * k + s] += w * u * u;
+          grad_squared[h * k + s] += w * squared_norm(grad_u);
+        }
+      }
     }
   });
   const auto totals = detail::sum_fem_chunks<16>(n, [&](std::size_t first, std::size_t last) {

@@ -15,29 +15,38 @@ Vec3 gauss2_point(int g) {
 
 }  // namespace
 
-Q1PointData q1_point(const Q1Corners& p, const Vec3& xi) {
-  Q1PointData d;
-  std::array<Vec3, 8> ref_grad;  // dN_i / dxi
-  Vec3 a, b, c;                  // the columns of J
+Q1Reference q1_reference(const Vec3& xi) {
+  Q1Reference r;
   for (int i = 0; i < 8; ++i) {
     const auto& s = kQ1CornerSigns[i];
     const double fx = 1 + xi.x * s[0], fy = 1 + xi.y * s[1], fz = 1 + xi.z * s[2];
-    d.shape[i] = 0.125 * fx * fy * fz;
-    ref_grad[i] = {0.125 * s[0] * fy * fz, 0.125 * s[1] * fx * fz, 0.125 * s[2] * fx * fy};
-    a = a + ref_grad[i].x * p[i];
-    b = b + ref_grad[i].y * p[i];
-    c = c + ref_grad[i].z * p[i];
-    d.position = d.position + d.shape[i] * p[i];
+    r.shape[i] = 0.125 * fx * fy * fz;
+    r.grad[i] = {0.125 * s[0] * fy * fz, 0.125 * s[1] * fx * fz, 0.125 * s[2] * fx * fy};
+  }
+  return r;
+}
+
+Q1PointData q1_point(const Q1Corners& p, const Q1Reference& ref) {
+  Q1PointData d;
+  d.shape = ref.shape;
+  Vec3 a, b, c;  // the columns of J
+  for (int i = 0; i < 8; ++i) {
+    a = a + ref.grad[i].x * p[i];
+    b = b + ref.grad[i].y * p[i];
+    c = c + ref.grad[i].z * p[i];
+    d.position = d.position + ref.shape[i] * p[i];
   }
   d.det_j = det(a, b, c);
   if (d.det_j != 0) {
     // J^-T g = (g0 (b x c) + g1 (c x a) + g2 (a x b)) / det J.
     const Vec3 bc = cross(b, c), ca = cross(c, a), ab = cross(a, b);
     const double inv = 1.0 / d.det_j;
-    for (int i = 0; i < 8; ++i) d.grad[i] = inv * (ref_grad[i].x * bc + ref_grad[i].y * ca + ref_grad[i].z * ab);
+    for (int i = 0; i < 8; ++i) d.grad[i] = inv * (ref.grad[i].x * bc + ref.grad[i].y * ca + ref.grad[i].z * ab);
   }
   return d;
 }
+
+Q1PointData q1_point(const Q1Corners& p, const Vec3& xi) { return q1_point(p, q1_reference(xi)); }
 
 std::array<double, 8> q1_gauss_det_j(const Q1Corners& p) {
   std::array<double, 8> out;
@@ -46,11 +55,33 @@ std::array<double, 8> q1_gauss_det_j(const Q1Corners& p) {
 }
 
 Q1Matrix q1_laplace_stiffness(const Q1Corners& p) {
+  // dN_i/dxi at the 8 Gauss points, computed once.
+  static const std::array<std::array<Vec3, 8>, 8> ref_grad = [] {
+    std::array<std::array<Vec3, 8>, 8> t;
+    for (int g = 0; g < 8; ++g) t[g] = q1_reference(gauss2_point(g)).grad;
+    return t;
+  }();
   Q1Matrix k{};
   for (int g = 0; g < 8; ++g) {
-    const Q1PointData d = q1_point(p, gauss2_point(g));
+    Vec3 a, b, c;  // the columns of J
+    for (int i = 0; i < 8; ++i) {
+      a = a + ref_grad[g][i].x * p[i];
+      b = b + ref_grad[g][i].y * p[i];
+      c = c + ref_grad[g][i].z * p[i];
+    }
+    const double det_j = det(a, b, c);
+    if (det_j == 0) continue;
+    // grad N_i = J^-T g_i = (g0 (b x c) + g1 (c x a) + g2 (a x b)) / det J; the
+    // weight det J (Gauss weights 1) leaves one 1/det J.
+    const Vec3 bc = cross(b, c), ca = cross(c, a), ab = cross(a, b);
+    std::array<Vec3, 8> grad;
+    for (int i = 0; i < 8; ++i) {
+      const Vec3& r = ref_grad[g][i];
+      grad[i] = r.x * bc + r.y * ca + r.z * ab;
+    }
+    const double w = 1.0 / det_j;
     for (int i = 0; i < 8; ++i)
-      for (int j = i; j < 8; ++j) k[8 * i + j] += d.det_j * dot(d.grad[i], d.grad[j]);
+      for (int j = i; j < 8; ++j) k[8 * i + j] += w * dot(grad[i], grad[j]);
   }
   for (int i = 0; i < 8; ++i)
     for (int j = 0; j < i; ++j) k[8 * i + j] = k[8 * j + i];

@@ -38,8 +38,17 @@ struct Q1PointData {
   Vec3 position;                // x(xi)
 };
 
-// The map at reference point xi (each coordinate in [-1, 1]).
+// The shape functions and their reference gradients at one reference point.
+struct Q1Reference {
+  std::array<double, 8> shape;
+  std::array<Vec3, 8> grad;  // dN_i / dxi
+};
+Q1Reference q1_reference(const Vec3& xi);
+
+// The map at reference point xi (each coordinate in [-1, 1]), or at a point
+// whose reference data is already known.
 Q1PointData q1_point(const Q1Corners& p, const Vec3& xi);
+Q1PointData q1_point(const Q1Corners& p, const Q1Reference& ref);
 
 // det J at the 2 x 2 x 2 Gauss points (+-1/sqrt 3), in kQ1CornerSigns order.
 std::array<double, 8> q1_gauss_det_j(const Q1Corners& p);
