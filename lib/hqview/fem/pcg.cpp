@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "hqview/core/stop.h"
 #include "hqview/fem/fixed_chunks.h"
 
 namespace hq {
@@ -111,6 +112,7 @@ PcgResult solve_pcg(const CsrMatrix& a, const std::vector<double>& diagonal, con
     bool any = false;
     for (std::size_t c = 0; c < uk; ++c) any = any || active[c];
     if (!any) break;
+    stop::check();  // a signal or --mesh-timeout lands between iterations
     const Sums pq = multiply_and_dot(a, p, q, k);
     std::array<double, kMaxColumns> alpha{};
     for (std::size_t c = 0; c < uk; ++c) {
@@ -189,6 +191,7 @@ double lanczos_largest_eigenvalue(const CsrMatrix& a, int steps) {
   std::vector<double> alphas, betas;
   double beta = 0;
   for (int j = 0; j < steps && static_cast<std::size_t>(j) < n; ++j) {
+    stop::check();
     multiply(a, v, w, 1);
     const double alpha = column_dots(w, v, n, 1)[0];
     alphas.push_back(alpha);

@@ -47,7 +47,8 @@ struct PcgResult {
 
 // Solves A x_s = b_s for the k interleaved columns of b (1 <= k <= 4), from x = 0.
 // `diagonal`: A's diagonal (positive). Never throws on a bad matrix: a
-// column whose p.Ap is not positive stops, not converged.
+// column whose p.Ap is not positive stops, not converged. Polls hq::stop
+// each iteration (throws what stop::check() throws).
 PcgResult solve_pcg(const CsrMatrix& a, const std::vector<double>& diagonal, const std::vector<double>& b, int k,
                     const PcgOptions& options = {});
 
