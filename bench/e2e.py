@@ -9,6 +9,9 @@ in the same run (bench/vtk_metrics.py, Debian's python3-vtk9):
   - the same run's bundle: at most 120 MB;
   - 2,908,160 hexes (refined twice), --no-render: at most 12 s, peak RSS
     under 2 GB (issue 11's 60 s and 6 GB before it);
+  - issue 48: --simulate on the 363,520 hexes at most 5x the --no-render
+    run (interleaved), and on the 2,908,160 hexes a peak RSS at most 2 GB
+    above the --no-render run's;
   - 363,520 hexes with --reference dolphin.off and every view: at most 5 s;
   - issue 17's viewer: `analyze` (every view) with the viewer against
     --no-viewer, runs interleaved, at most 10 % slower; the viewer's files
@@ -113,6 +116,21 @@ def main():
     cases.append(case("hqview 2,908,160 hexes --no-render", shlex.join(cmd), wall, "s", "<= 12 s", wall <= 12.0,
                       walls))
     cases.append(case("its peak RSS", shlex.join(cmd), peak, "GB", "< 2 GB", peak < 2.0, [p / 1e9 for p in peaks]))
+
+    # Issue 48: the finite-element check against the --no-render run of the
+    # same mesh, interleaved; its peak memory on the 2.9M-hex mesh against
+    # that run's.
+    cmd = [a.hqview, "analyze", a.mesh363, "-o", out, "--no-render", "-j", "2", "-q"]
+    plain, simulated = run_interleaved(cmd, cmd + ["--simulate"], out, a.runs)
+    ratio = statistics.median(simulated) / statistics.median(plain)
+    cases.append(case("hqview 363,520 hexes --no-render --simulate", shlex.join(cmd + ["--simulate"]),
+                      statistics.median(simulated), "s", "simulate / no-render = %.2fx, target <= 5x" % ratio,
+                      ratio <= 5.0, simulated))
+    cmd = [a.hqview, "analyze", a.mesh2900, "-o", out, "--no-render", "-j", "2", "-q", "--simulate"]
+    _, sim_peaks = run_timed(cmd, out, 1)
+    extra = sim_peaks[0] / 1e9 - peak
+    cases.append(case("hqview 2,908,160 hexes --no-render --simulate: peak RSS", shlex.join(cmd), sim_peaks[0] / 1e9,
+                      "GB", "above --no-render: %.2f GB, target <= 2 GB" % extra, extra <= 2.0))
 
     cmd = [a.hqview, "analyze", a.mesh363, "--reference", a.reference, "-o", out, "-j", "2", "-q"]
     walls, _ = run_timed(cmd, out, a.runs)

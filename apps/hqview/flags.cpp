@@ -130,6 +130,8 @@ hq::HexMetricSet parse_metric_list(std::string_view list) {
     const std::string_view item = hq::trim(entry, " ");
     if (item == "all") {
       set.set();
+    } else if (item == kFemElementMetric) {
+      // The Q1 element conditioning (lists_fem_element); no Verdict metric.
     } else if (const auto m = hq::hex_metric_from_name(item)) {
       hq::insert(set, *m);
     } else {
@@ -142,6 +144,12 @@ hq::HexMetricSet parse_metric_list(std::string_view list) {
     }
   }
   return set;
+}
+
+bool lists_fem_element(std::string_view list) {
+  for (const std::string_view entry : hq::split(list, ','))
+    if (hq::trim(entry, " ") == kFemElementMetric) return true;
+  return false;
 }
 
 std::vector<std::string> parse_view_list(const std::string& list) {

@@ -61,8 +61,12 @@ std::optional<hq::OverlapOptions> parse_overlap(const std::string& mode, const s
 // --format: empty (detect) or one of hq::mesh_format_names().
 std::string parse_mesh_format(const std::string& format);
 
-// --metrics LIST: comma-separated Verdict names, or `all`.
+// --metrics LIST: comma-separated Verdict names, or `all` (every Verdict
+// metric), and fem_element (the Q1 element conditioning, not in `all`).
+inline constexpr std::string_view kFemElementMetric = "fem_element";
 hq::HexMetricSet parse_metric_list(std::string_view list);
+// Whether LIST names fem_element.
+bool lists_fem_element(std::string_view list);
 
 // --views LIST: "all" or ids of hq::kViews (selectable ones) separated by
 // commas; the result keeps the table's order.

@@ -161,6 +161,7 @@ struct AnalyzeArgs {
   std::string overlap = "certificate";
   std::string coincident_eps = "0";
   bool no_overlap = false;
+  bool simulate = false;   // --simulate: the finite-element (Poisson) check
   std::string max_memory;  // --max-memory; empty: hq::default_max_memory()
 };
 
@@ -185,6 +186,8 @@ hq::AnalyzeOptions make_analyze_options(const AnalyzeArgs& args) {
   options.tool_version = HQVIEW_VERSION;
   options.mesh_format = parse_mesh_format(args.format);
   options.metrics = parse_metric_list(args.metrics);
+  options.fem_elements = lists_fem_element(args.metrics) || args.simulate;
+  options.simulate = args.simulate;
   // Rules are checked for syntax before the work; whether their key exists is
   // known once the report is (analyze throws hq::ValueError then, no bundle).
   for (const std::string& rule : args.gates) options.gates.push_back(hq::parse_gate_rule(rule));
@@ -449,8 +452,13 @@ void add_analysis_options(CLI::App* cmd, AnalyzeArgs& args) {
                   "exit code 1 when one fails")
       ->allow_extra_args(false)
       ->take_all();
-  cmd->add_option("--metrics", args.metrics, "Verdict metrics to compute: comma-separated names, or all")
+  cmd->add_option("--metrics", args.metrics,
+                  "Verdict metrics to compute: comma-separated names, or all; fem_element adds the Q1 element "
+                  "conditioning (report.json fem.element)")
       ->capture_default_str();
+  cmd->add_flag("--simulate", args.simulate,
+                "Run the finite-element check: element conditioning and a Poisson solve with three manufactured "
+                "solutions (report.json fem)");
   cmd->add_option("--rmax", args.rmax,
                   "Glyph radius at quality 0: R in model units, or Rx for R times the mean edge length")
       ->capture_default_str();

@@ -166,9 +166,18 @@ TEST(Metrics, HeadlineComesFirstAndCellsCsvHasEveryVerdictColumn) {
                            "inverted",
                            "degenerate",
                            "intersecting",
-                           "size_gradation"})
+                           "size_gradation",
+                           // The finite-element check's, empty without --simulate.
+                           "fem_kappa",
+                           "fem_lambda_max",
+                           "fem_det_j_min",
+                           "fem_det_j_max",
+                           "fem_l2_error_share",
+                           "fem_h1_error_share",
+                           "fem_error_density"})
     expected.push_back(name);
   EXPECT_EQ(read_csv(out / "data/cells.csv").at(0), expected);
+  EXPECT_FALSE(report.contains("fem"));
   EXPECT_LT(text.find("\"edge_ratio\": {"), text.find("\"equiangle_skew\": {"));
 }
 

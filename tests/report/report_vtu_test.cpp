@@ -27,6 +27,7 @@
 #include "hqview/mesh/topology.h"
 #include "hqview/overlap/overlap.h"
 #include "hqview/quality/corner_jacobian.h"
+#include "hqview/fem/poisson_check.h"
 #include "hqview/quality/hex_metric_field.h"
 #include "hqview/quality/quality_field.h"
 #include "hqview/report/ordered_chunks.h"
@@ -41,6 +42,7 @@ struct ModelParts {
   HexMetricSet metrics = all_hex_metrics();
   bool glyphs = true;
   bool overlap = true;
+  bool simulate = false;  // the finite-element check (element conditioning and Poisson)
   const TriSurface* reference = nullptr;
 };
 
@@ -59,6 +61,12 @@ ReportModel make_model(HexMesh mesh, const ModelParts& parts = {}) {
   if (parts.reference)
     model.analysis.boundary_error =
         compute_boundary_error(model.analysis.mesh, model.analysis.topology, *parts.reference);
+  if (parts.simulate) {
+    model.analysis.fem_elements = compute_fem_elements(model.analysis.mesh);
+    model.analysis.poisson =
+        run_poisson_check(model.analysis.mesh, model.analysis.topology, *model.analysis.fem_elements,
+                          PoissonOptions{.min_free_vertices = 1});  // small fixtures solve too
+  }
   return model;
 }
 
@@ -237,7 +245,9 @@ TEST(AnnotatedVtu, ArraysMirrorTheCsvColumns) {
   const TriSurface sphere = test::icosphere(2, 1.02);
   ModelParts parts;
   parts.reference = &sphere;
+  parts.simulate = true;
   const ReportModel model = make_model(test::hex_ball(3, [](const Vec3&) { return 1.0; }), parts);
+  ASSERT_TRUE(model.analysis.poisson && model.analysis.poisson->skipped.empty()) << model.analysis.poisson->skipped;
   const ParsedVtu p = parse(vtu_bytes(model));
   std::ostringstream cells, vertices;
   write_cells_csv(model, cells);

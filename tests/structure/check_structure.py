@@ -38,34 +38,8 @@ except ImportError as e:
 HEX_EDGES = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
 # Faces of VTK_HEXAHEDRON, outward for a positive hex.
 HEX_FACES = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
-failures = []
-
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
-        print("FAIL:", message)
-
-
-def read_medit(path):
-    """MEDIT .mesh by tokens (meshio's reader wants each count on its own line)."""
-    with open(path) as f:
-        tokens = " ".join(line.split("#")[0] for line in f).split()
-    points = hexes = None
-    i = 0
-    while i < len(tokens):
-        word = tokens[i].lower()
-        if word == "vertices":
-            n = int(tokens[i + 1])
-            points = np.array(tokens[i + 2:i + 2 + 4 * n], dtype=float).reshape(n, 4)[:, :3]
-            i += 2 + 4 * n
-        elif word == "hexahedra":
-            n = int(tokens[i + 1])
-            hexes = np.array(tokens[i + 2:i + 2 + 9 * n], dtype=np.int64).reshape(n, 9)[:, :8] - 1
-            i += 2 + 9 * n
-        else:
-            i += 1
-    return points, hexes
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from oracle_support import check, failures, read_medit  # noqa: E402
 
 
 def read_legacy_vtk(path):

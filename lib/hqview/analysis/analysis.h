@@ -11,6 +11,9 @@
 
 #include "hqview/analysis/compare_alignment.h"
 #include "hqview/boundary/boundary_error.h"
+#include "hqview/fem/fem_element_field.h"
+#include "hqview/fem/metric_correlation.h"
+#include "hqview/fem/poisson_check.h"
 #include "hqview/glyph/glyphs.h"
 #include "hqview/io/mesh_source.h"
 #include "hqview/mesh/hex_mesh.h"
@@ -38,6 +41,12 @@ struct Analysis {
   QualitySummary quality;
   // Edge valences, singular edges and vertices, the singularity graph, size gradation.
   HexStructure structure;
+  // The finite-element check (--simulate, or fem_element in --metrics for
+  // the element conditioning alone); empty when not asked for.
+  std::optional<FemElementField> fem_elements;
+  std::optional<PoissonCheck> poisson;
+  // Spearman rho over the hexes of the error density and each metric (solved checks only).
+  std::vector<MetricCorrelation> fem_correlations;
 
   // Vertex glyphs and their clusters; empty when the stage did not run.
   std::optional<GlyphResult> glyphs;

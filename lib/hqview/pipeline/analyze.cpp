@@ -47,6 +47,24 @@ auto timed(double& seconds, F f) {
   };
 }
 
+// The finite-element check: the element conditioning, then with --simulate
+// the Poisson check and its correlations with the metrics (after the
+// metrics, so that the overlap scratch is gone on large meshes).
+void analyze_fem(Analysis& a, const AnalyzeOptions& options, StageClock& clock) {
+  if (!options.fem_elements && !options.simulate) return;
+  clock.start("fem elements");
+  a.fem_elements = compute_fem_elements(a.mesh);
+  if (options.simulate) {
+    clock.start("fem poisson");
+    a.poisson = run_poisson_check(a.mesh, a.topology, *a.fem_elements);
+    if (a.poisson->skipped.empty()) {
+      clock.start("fem correlations");
+      a.fem_correlations = correlate_metrics(a.poisson->cell_error_density, a.metrics, *a.fem_elements);
+    }
+  }
+  clock.stop();
+}
+
 void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clock) {
   clock.start("quality");
   a.field = compute_quality(a.mesh, a.topology);
@@ -105,6 +123,7 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
     structure();
   }
   clock.stop();
+  analyze_fem(a, options, clock);
 }
 
 // What to try when the reference seems misplaced (unless already tried).

@@ -1,7 +1,7 @@
 #pragma once
 // The `analyze` pipeline: read -> topology -> [read reference, the UV atlas
 // started on its own thread] -> quality -> overlap (and beside it the
-// structure) -> metrics -> summaries -> glyphs -> boundary error -> compare mesh -> views (the UV
+// structure) -> metrics -> summaries -> [fem elements -> fem poisson] -> glyphs -> boundary error -> compare mesh -> views (the UV
 // error map waits for the atlas) -> report document -> gates. The one place
 // that knows the order of the stages. Touches no output file: the caller
 // hands the result to write_bundle(). When a stage fails while the atlas is
@@ -42,6 +42,8 @@ struct AnalyzeOptions {
   double viewer_max_mb = 25;                 // --viewer-max-mb
   int worst_count = 20;                      // entries in worst_vertices / worst_cells
   HexMetricSet metrics = all_hex_metrics();  // Verdict metrics to compute (scaled_jacobian always)
+  bool fem_elements = false;                 // the Q1 element conditioning (fem_element in --metrics; --simulate)
+  bool simulate = false;                     // --simulate: the Poisson check (implies fem_elements)
   std::vector<GateRule> gates;               // evaluated on the finished report document
   GlyphOptions glyphs;
   std::optional<OverlapOptions> overlap = OverlapOptions{};  // nullopt: no overlap stage

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,7 +51,13 @@ void write_cells_csv(const ReportModel& model, std::ostream& out, TextEncoding e
     header += hex_metric_name(static_cast<HexMetric>(m));
     metric_columns.push_back(&model.analysis.metrics.of(static_cast<HexMetric>(m)));
   }
-  header += ",inverted,degenerate,intersecting,size_gradation\n";
+  header += ",inverted,degenerate,intersecting,size_gradation";
+  // The finite-element check's columns, empty when it did not run (element
+  // conditioning: --simulate or --metrics fem_element; the rest: --simulate).
+  header += ",fem_kappa,fem_lambda_max,fem_det_j_min,fem_det_j_max,fem_l2_error_share,fem_h1_error_share,"
+            "fem_error_density\n";
+  const std::optional<FemElementField>& fem = model.analysis.fem_elements;
+  const bool has_poisson = model.analysis.poisson && model.analysis.poisson->skipped.empty();
   const QualityField& q = model.analysis.field;
   write_table(out, encoding, header, model.analysis.mesh.hexes.size(),
               [&](std::size_t first, std::size_t last, std::string& buffer) {
@@ -76,6 +83,19 @@ void write_cells_csv(const ReportModel& model, std::ostream& out, TextEncoding e
                   // neighbour of positive volume.
                   buffer += ',';
                   append_double(buffer, model.analysis.structure.cell_gradation[h]);
+                  for (const std::vector<double>* column :
+                       {fem ? &fem->kappa : nullptr, fem ? &fem->lambda_max : nullptr, fem ? &fem->det_j_min : nullptr,
+                        fem ? &fem->det_j_max : nullptr}) {
+                    buffer += ',';
+                    if (column) append_double(buffer, (*column)[h]);
+                  }
+                  for (const std::vector<double>* column :
+                       {has_poisson ? &model.analysis.poisson->cell_l2_share : nullptr,
+                        has_poisson ? &model.analysis.poisson->cell_h1_share : nullptr,
+                        has_poisson ? &model.analysis.poisson->cell_error_density : nullptr}) {
+                    buffer += ',';
+                    if (column) append_double(buffer, (*column)[h]);
+                  }
                   buffer += '\n';
                 }
               });

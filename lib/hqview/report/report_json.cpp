@@ -141,6 +141,57 @@ Json structure_json(const HexStructure& s) {
           {"num_gradation_above_4", s.num_gradation_above_4}};
 }
 
+// fem: the element conditioning, and with --simulate the Poisson check
+// (docs/contract.md "fem"). A skipped check keeps every key, null.
+Json fem_poisson_json(const PoissonCheck& p, const std::vector<MetricCorrelation>& correlations) {
+  const bool solved = p.skipped.empty();
+  auto value = [&](double v) { return solved ? number(v) : Json(nullptr); };
+  Json solutions = Json::object();
+  for (const PoissonSolutionResult& s : p.solutions)
+    solutions[s.name] = {{"l2_error", number(s.l2_error)},
+                         {"h1_error", number(s.h1_error)},
+                         {"nodal_error", number(s.nodal_error)},
+                         {"iterations", s.iterations},
+                         {"lanczos_steps", s.lanczos_steps},
+                         {"converged", s.converged},
+                         {"relative_residual", number(s.relative_residual)}};
+  Json correlation = Json::object();
+  for (const MetricCorrelation& c : correlations) correlation[c.metric] = number(c.correlation.rho);
+  return {{"skipped", solved ? Json(nullptr) : Json(p.skipped)},
+          {"num_free_vertices", p.num_free_vertices},
+          {"min_free_vertices", p.min_free_vertices},
+          {"normalization", {{"center", vec3(p.normalization.center)}, {"diagonal", number(p.normalization.diagonal)}}},
+          {"solver", {{"method", "cg"}, {"preconditioner", "jacobi"}, {"tolerance", 1e-10}}},
+          {"solutions", solved ? std::move(solutions) : Json(nullptr)},
+          {"mean",
+           {{"l2_error", value(p.mean_l2_error)},
+            {"h1_error", value(p.mean_h1_error)},
+            {"nodal_error", value(p.mean_nodal_error)},
+            {"iterations", value(p.mean_iterations)}}},
+          {"scaled_matrix",
+           {{"lambda_min", value(p.scaled_lambda_min)},
+            {"lambda_max", value(p.scaled_lambda_max)},
+            {"condition", value(p.scaled_condition)}}},
+          {"stiffness",
+           {{"lambda_max", value(p.stiffness_lambda_max)},
+            {"lanczos_steps", solved ? Json(p.stiffness_lanczos_steps) : Json(nullptr)},
+            {"fried_bound", value(p.fried_bound)},
+            {"max_hexes_at_vertex", solved ? Json(p.max_hexes_at_vertex) : Json(nullptr)}}},
+          {"error_density", solved ? stats_json(p.error_density_stats, false) : Json(nullptr)},
+          {"correlation", solved ? std::move(correlation) : Json(nullptr)}};
+}
+
+Json fem_json(const Analysis& a) {
+  const FemElementField& e = *a.fem_elements;
+  Json element = {{"num_invalid", e.num_invalid},
+                  {"kappa", stats_json(e.kappa_stats, false)},
+                  {"lambda_max", stats_json(e.lambda_max_stats, false)},
+                  {"det_j_min", stats_json(e.det_j_min_stats, true)},
+                  {"det_j_max", stats_json(e.det_j_max_stats, true)}};
+  return {{"element", std::move(element)},
+          {"poisson", a.poisson ? fem_poisson_json(*a.poisson, a.fem_correlations) : Json(nullptr)}};
+}
+
 // compare.alignment, boundary_error.reference_alignment.
 Json alignment_json(const CompareAlignment& a) {
   return {{"requested", compare_align_name(a.requested)},
@@ -346,6 +397,8 @@ ReportDocument report_document(const ReportModel& model) {
   j["glyphs"] = model.analysis.glyphs ? glyphs_json(*model.analysis.glyphs) : Json(nullptr);
   j["overlap"] = model.analysis.overlap ? overlap_json(*model.analysis.overlap) : Json(nullptr);
   j["structure"] = structure_json(model.analysis.structure);
+  // Only when asked for (--simulate, --metrics fem_element): other reports keep their bytes.
+  if (model.analysis.fem_elements) j["fem"] = fem_json(model.analysis);
   j["boundary_error"] = model.analysis.boundary_error ? boundary_error_json(model) : Json(nullptr);
   j["compare"] = model.analysis.compare ? compare_json(j, *model.analysis.compare) : Json(nullptr);
   Json views = Json::array();

@@ -108,6 +108,9 @@ void check_sizes(const ReportModel& model) {
     require_size(model.analysis.boundary_error->vertex_error, nv, "boundary vertex_error");
   require_size(model.analysis.structure.vertex_singular, nv, "vertex_singular");
   require_size(model.analysis.structure.cell_gradation, nc, "cell_gradation");
+  if (model.analysis.fem_elements) require_size(model.analysis.fem_elements->kappa, nc, "fem kappa");
+  if (model.analysis.poisson && model.analysis.poisson->skipped.empty())
+    require_size(model.analysis.poisson->cell_error_density, nc, "fem error density");
 }
 
 // Every array, in file order (PointData, CellData, Points, Cells, the order
@@ -166,6 +169,17 @@ std::vector<VtuArray> build_arrays(const ReportModel& model) {
                                               [&intersecting](std::size_t h) { return intersecting[h] != 0 ? 1 : 0; }));
   }
   arrays.push_back(copy_array("CellData", "size_gradation", model.analysis.structure.cell_gradation));
+  if (const auto& fem = model.analysis.fem_elements) {
+    arrays.push_back(copy_array("CellData", "fem_kappa", fem->kappa));
+    arrays.push_back(copy_array("CellData", "fem_lambda_max", fem->lambda_max));
+    arrays.push_back(copy_array("CellData", "fem_det_j_min", fem->det_j_min));
+    arrays.push_back(copy_array("CellData", "fem_det_j_max", fem->det_j_max));
+  }
+  if (const auto& poisson = model.analysis.poisson; poisson && poisson->skipped.empty()) {
+    arrays.push_back(copy_array("CellData", "fem_l2_error_share", poisson->cell_l2_share));
+    arrays.push_back(copy_array("CellData", "fem_h1_error_share", poisson->cell_h1_share));
+    arrays.push_back(copy_array("CellData", "fem_error_density", poisson->cell_error_density));
+  }
 
   // Points and Cells.
   const std::vector<Vec3>& points = model.analysis.mesh.points;

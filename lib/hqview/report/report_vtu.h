@@ -19,7 +19,10 @@
 // ... corner_sj_7, min_corner_sj (an addition: min of the 8), one Float64 array
 // per computed Verdict metric (Verdict's order; metrics not computed are left
 // out), then UInt8 inverted, degenerate and intersecting (left out with
-// --no-overlap), then Float64 size_gradation (NaN where the CSV is empty). PointData mirrors data/vertices.csv: quality (NaN for a
+// --no-overlap), then Float64 size_gradation (NaN where the CSV is empty), then
+// with the finite-element check Float64 fem_kappa, fem_lambda_max, fem_det_j_min,
+// fem_det_j_max and, when the Poisson check was solved, fem_l2_error_share,
+// fem_h1_error_share, fem_error_density. PointData mirrors data/vertices.csv: quality (NaN for a
 // vertex no hex uses), glyph_radius (0 without a glyph, NaN where quality is
 // NaN) and Int32 cluster (-1 none) when the glyph stage ran, Int32
 // coincident_group (-1 none) when the overlap stage ran, UInt8 boundary, and

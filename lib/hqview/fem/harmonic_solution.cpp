@@ -1,0 +1,77 @@
+#include "hqview/fem/harmonic_solution.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace hq {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+const double kRootHalf = std::sqrt(0.5);
+
+struct ExpCosTerms {
+  double e, c, s;  // exp(pi x^_a), cos(theta), sin(theta), theta = pi (x^_b + x^_c) / sqrt 2
+  int a, b, cc;
+};
+
+ExpCosTerms exp_cos_terms(const HarmonicSolution& u, const Normalization& n, const Vec3& x) {
+  const Vec3 xn = (x - n.center) / n.diagonal;
+  ExpCosTerms t;
+  t.a = u.axis;
+  t.b = (u.axis + 1) % 3;
+  t.cc = (u.axis + 2) % 3;
+  const double theta = kPi * kRootHalf * (xn[t.b] + xn[t.cc]);
+  t.e = std::exp(kPi * xn[t.a]);
+  t.c = std::cos(theta);
+  t.s = std::sin(theta);
+  return t;
+}
+
+}  // namespace
+
+std::vector<HarmonicSolution> default_harmonic_solutions() {
+  return {{"exp_x", HarmonicSolution::Kind::exp_cos, 0, {}},
+          {"exp_y", HarmonicSolution::Kind::exp_cos, 1, {}},
+          {"exp_z", HarmonicSolution::Kind::exp_cos, 2, {}}};
+}
+
+double solution_value(const HarmonicSolution& u, const Normalization& n, const Vec3& x) {
+  if (u.kind == HarmonicSolution::Kind::linear) return dot(u.slope, (x - n.center) / n.diagonal);
+  const ExpCosTerms t = exp_cos_terms(u, n, x);
+  return t.e * t.c;
+}
+
+Vec3 solution_gradient(const HarmonicSolution& u, const Normalization& n, const Vec3& x) {
+  if (u.kind == HarmonicSolution::Kind::linear) return u.slope / n.diagonal;
+  const ExpCosTerms t = exp_cos_terms(u, n, x);
+  Vec3 g;
+  g[t.a] = kPi * t.e * t.c;
+  g[t.b] = g[t.cc] = -kPi * kRootHalf * t.e * t.s;
+  return g / n.diagonal;
+}
+
+void solution_value_and_gradient(const HarmonicSolution& u, const Normalization& n, const Vec3& x, double& value,
+                                 Vec3& gradient) {
+  if (u.kind == HarmonicSolution::Kind::linear) {
+    value = solution_value(u, n, x);
+    gradient = solution_gradient(u, n, x);
+    return;
+  }
+  const ExpCosTerms t = exp_cos_terms(u, n, x);
+  value = t.e * t.c;
+  Vec3 g;
+  g[t.a] = kPi * t.e * t.c;
+  g[t.b] = g[t.cc] = -kPi * kRootHalf * t.e * t.s;
+  gradient = g / n.diagonal;
+}
+
+double solution_hessian_norm2(const HarmonicSolution& u, const Normalization& n, const Vec3& x) {
+  if (u.kind == HarmonicSolution::Kind::linear) return 0;
+  // u_aa = pi^2 e c, u_ab = u_ac = -pi^2 e s / sqrt 2, u_bb = u_cc = u_bc = -pi^2 e c / 2:
+  // the nine entries squared sum to 2 pi^4 e^2 (c^2 + s^2).
+  const ExpCosTerms t = exp_cos_terms(u, n, x);
+  const double d2 = n.diagonal * n.diagonal;
+  return 2 * std::pow(kPi, 4) * t.e * t.e / (d2 * d2);
+}
+
+}  // namespace hq

@@ -1,0 +1,44 @@
+#pragma once
+// The Q1 Laplace system of a hex mesh with Dirichlet values at its boundary
+// vertices eliminated: K_ff u_f = -K_fb g_b for the free (interior) vertices,
+// for k right-hand sides at once. Assembled row by row: each row gathers the
+// rows of the element matrices of its vertex's hexes (ascending hex ids; the
+// matrices of a chunk of 4,096 rows' hexes are computed for that chunk and
+// dropped after it: no element matrix is kept, no atomics), so every entry
+// is summed in the same order for any thread count.
+
+#include <cstdint>
+#include <vector>
+
+#include "hqview/mesh/hex_mesh.h"
+#include "hqview/mesh/topology.h"
+
+namespace hq {
+
+// Compressed sparse rows; columns ascending within a row.
+struct CsrMatrix {
+  std::vector<std::int64_t> offsets;  // rows + 1
+  std::vector<Index> columns;
+  std::vector<double> values;
+  std::size_t num_rows() const { return offsets.empty() ? 0 : offsets.size() - 1; }
+};
+
+struct LaplaceSystem {
+  CsrMatrix matrix;               // K_ff (model units), symmetric positive definite on a valid mesh
+  std::vector<double> diagonal;   // its diagonal
+  std::vector<Index> row_vertex;  // row -> vertex id (ascending)
+  std::vector<Index> vertex_row;  // vertex -> row, kNoIndex for a boundary or unused vertex
+  int num_rhs = 0;
+  std::vector<double> rhs;        // rows x num_rhs, rhs[row * num_rhs + s] = -(K_fb g_s)
+  Index max_hexes_at_vertex = 0;  // m of Fried's bound
+};
+
+// Free vertices: used by a hex and not on a boundary face.
+// `dirichlet`: #vertices x num_rhs values (interleaved), read at boundary vertices only.
+LaplaceSystem assemble_laplace_system(const HexMesh& mesh, const Topology& topology,
+                                      const std::vector<double>& dirichlet, int num_rhs);
+
+// y = A x for k interleaved columns (x, y: rows x k). Parallel over rows.
+void multiply(const CsrMatrix& a, const std::vector<double>& x, std::vector<double>& y, int k);
+
+}  // namespace hq

@@ -1,0 +1,105 @@
+#include "hqview/fem/metric_correlation.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "hqview/quality/hex_metrics.h"
+
+namespace hq {
+namespace {
+
+bool is_usable(double v) { return std::isfinite(v) && !is_verdict_sentinel(v); }
+
+// Ranks 1..n, ties sharing their mean rank.
+std::vector<double> average_ranks(const std::vector<double>& values) {
+  std::vector<std::size_t> order(values.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return values[a] < values[b]; });
+  std::vector<double> ranks(values.size());
+  for (std::size_t i = 0; i < order.size();) {
+    std::size_t j = i;
+    while (j + 1 < order.size() && values[order[j + 1]] == values[order[i]]) ++j;
+    const double rank = 0.5 * static_cast<double>(i + j) + 1.0;
+    for (std::size_t t = i; t <= j; ++t) ranks[order[t]] = rank;
+    i = j + 1;
+  }
+  return ranks;
+}
+
+// Pearson's r of two rank vectors of n entries (both with mean (n + 1) / 2).
+double rank_pearson(const std::vector<double>& ra, const std::vector<double>& rb) {
+  const double mean = 0.5 * (static_cast<double>(ra.size()) + 1.0);
+  double sab = 0, saa = 0, sbb = 0;
+  for (std::size_t i = 0; i < ra.size(); ++i) {
+    sab += (ra[i] - mean) * (rb[i] - mean);
+    saa += (ra[i] - mean) * (ra[i] - mean);
+    sbb += (rb[i] - mean) * (rb[i] - mean);
+  }
+  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace
+
+RankCorrelation spearman_correlation(std::span<const double> x, std::span<const double> y) {
+  std::vector<double> a, b;
+  for (std::size_t i = 0; i < std::min(x.size(), y.size()); ++i)
+    if (is_usable(x[i]) && is_usable(y[i])) {
+      a.push_back(x[i]);
+      b.push_back(y[i]);
+    }
+  RankCorrelation out;
+  out.count = static_cast<std::int64_t>(a.size());
+  out.rho = a.size() < 3 ? std::numeric_limits<double>::quiet_NaN() : rank_pearson(average_ranks(a), average_ranks(b));
+  return out;
+}
+
+std::vector<MetricCorrelation> correlate_metrics(std::span<const double> error_density, const HexMetricField& metrics,
+                                                 const FemElementField& elements) {
+  std::vector<MetricCorrelation> out;
+  std::vector<const std::vector<double>*> columns;
+  for (int m = 0; m < kNumHexMetrics; ++m) {
+    const auto metric = static_cast<HexMetric>(m);
+    if (metrics.of(metric).empty()) continue;
+    out.push_back({std::string(hex_metric_name(metric)), {}});
+    columns.push_back(&metrics.of(metric));
+  }
+  out.push_back({"fem_kappa", {}});
+  columns.push_back(&elements.kappa);
+  out.push_back({"fem_lambda_max", {}});
+  columns.push_back(&elements.lambda_max);
+  out.push_back({"fem_det_j_min", {}});
+  columns.push_back(&elements.det_j_min);
+  // The density's ranks once, over the hexes where it is usable; a metric
+  // usable on all of them reuses them (the same numbers as spearman_correlation).
+  std::vector<std::size_t> hexes;
+  std::vector<double> density;
+  for (std::size_t h = 0; h < error_density.size(); ++h)
+    if (is_usable(error_density[h])) {
+      hexes.push_back(h);
+      density.push_back(error_density[h]);
+    }
+  const std::vector<double> density_ranks = average_ranks(density);
+  tbb::parallel_for(std::size_t{0}, out.size(), [&](std::size_t i) {
+    const std::vector<double>& metric = *columns[i];
+    std::vector<double> values(hexes.size());
+    bool all_usable = metric.size() == error_density.size();
+    for (std::size_t j = 0; j < hexes.size() && all_usable; ++j) {
+      values[j] = metric[hexes[j]];
+      all_usable = is_usable(values[j]);
+    }
+    if (!all_usable) {
+      out[i].correlation = spearman_correlation(error_density, metric);
+      return;
+    }
+    out[i].correlation.count = static_cast<std::int64_t>(hexes.size());
+    out[i].correlation.rho = hexes.size() < 3 ? std::numeric_limits<double>::quiet_NaN()
+                                              : rank_pearson(density_ranks, average_ranks(values));
+  });
+  return out;
+}
+
+}  // namespace hq

@@ -1,0 +1,117 @@
+#include "hqview/fem/q1_element.h"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <limits>
+
+namespace hq {
+namespace {
+
+const double kGauss2 = 1.0 / std::sqrt(3.0);
+
+Vec3 gauss2_point(int g) {
+  return {kQ1CornerSigns[g][0] * kGauss2, kQ1CornerSigns[g][1] * kGauss2, kQ1CornerSigns[g][2] * kGauss2};
+}
+
+}  // namespace
+
+Q1Reference q1_reference(const Vec3& xi) {
+  Q1Reference r;
+  for (int i = 0; i < 8; ++i) {
+    const auto& s = kQ1CornerSigns[i];
+    const double fx = 1 + xi.x * s[0], fy = 1 + xi.y * s[1], fz = 1 + xi.z * s[2];
+    r.shape[i] = 0.125 * fx * fy * fz;
+    r.grad[i] = {0.125 * s[0] * fy * fz, 0.125 * s[1] * fx * fz, 0.125 * s[2] * fx * fy};
+  }
+  return r;
+}
+
+Q1PointData q1_point(const Q1Corners& p, const Q1Reference& ref) {
+  Q1PointData d;
+  d.shape = ref.shape;
+  Vec3 a, b, c;  // the columns of J
+  for (int i = 0; i < 8; ++i) {
+    a = a + ref.grad[i].x * p[i];
+    b = b + ref.grad[i].y * p[i];
+    c = c + ref.grad[i].z * p[i];
+    d.position = d.position + ref.shape[i] * p[i];
+  }
+  d.det_j = det(a, b, c);
+  if (d.det_j != 0) {
+    // J^-T g = (g0 (b x c) + g1 (c x a) + g2 (a x b)) / det J.
+    const Vec3 bc = cross(b, c), ca = cross(c, a), ab = cross(a, b);
+    const double inv = 1.0 / d.det_j;
+    for (int i = 0; i < 8; ++i) d.grad[i] = inv * (ref.grad[i].x * bc + ref.grad[i].y * ca + ref.grad[i].z * ab);
+  }
+  return d;
+}
+
+Q1PointData q1_point(const Q1Corners& p, const Vec3& xi) { return q1_point(p, q1_reference(xi)); }
+
+std::array<double, 8> q1_gauss_det_j(const Q1Corners& p) {
+  std::array<double, 8> out;
+  for (int g = 0; g < 8; ++g) out[g] = q1_point(p, gauss2_point(g)).det_j;
+  return out;
+}
+
+Q1Matrix q1_laplace_stiffness(const Q1Corners& p) {
+  // dN_i/dxi at the 8 Gauss points, computed once.
+  static const std::array<std::array<Vec3, 8>, 8> ref_grad = [] {
+    std::array<std::array<Vec3, 8>, 8> t;
+    for (int g = 0; g < 8; ++g) t[g] = q1_reference(gauss2_point(g)).grad;
+    return t;
+  }();
+  Q1Matrix k{};
+  for (int g = 0; g < 8; ++g) {
+    Vec3 a, b, c;  // the columns of J
+    for (int i = 0; i < 8; ++i) {
+      a = a + ref_grad[g][i].x * p[i];
+      b = b + ref_grad[g][i].y * p[i];
+      c = c + ref_grad[g][i].z * p[i];
+    }
+    const double det_j = det(a, b, c);
+    if (det_j == 0) continue;
+    // grad N_i = J^-T g_i = (g0 (b x c) + g1 (c x a) + g2 (a x b)) / det J; the
+    // weight det J (Gauss weights 1) leaves one 1/det J.
+    const Vec3 bc = cross(b, c), ca = cross(c, a), ab = cross(a, b);
+    std::array<Vec3, 8> grad;
+    for (int i = 0; i < 8; ++i) {
+      const Vec3& r = ref_grad[g][i];
+      grad[i] = r.x * bc + r.y * ca + r.z * ab;
+    }
+    const double w = 1.0 / det_j;
+    for (int i = 0; i < 8; ++i)
+      for (int j = i; j < 8; ++j) k[8 * i + j] += w * dot(grad[i], grad[j]);
+  }
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < i; ++j) k[8 * i + j] = k[8 * j + i];
+  return k;
+}
+
+Q1Conditioning q1_conditioning(const Q1Corners& p) {
+  Q1Conditioning c;
+  const std::array<double, 8> det_j = q1_gauss_det_j(p);
+  c.det_j_min = c.det_j_max = det_j[0];
+  for (double d : det_j) {
+    c.det_j_min = std::min(c.det_j_min, d);
+    c.det_j_max = std::max(c.det_j_max, d);
+  }
+  // NaN coordinates make every comparison false: not valid.
+  c.is_valid = c.det_j_min > 0 && std::isfinite(c.det_j_max);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (!c.is_valid) {
+    c.eigenvalues.fill(nan);
+    c.lambda_max = c.lambda_2 = c.kappa = nan;
+    return c;
+  }
+  const Q1Matrix k = q1_laplace_stiffness(p);
+  const Eigen::Map<const Eigen::Matrix<double, 8, 8, Eigen::RowMajor>> matrix(k.data());
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 8, 8>> solver(matrix, Eigen::EigenvaluesOnly);
+  for (int i = 0; i < 8; ++i) c.eigenvalues[i] = solver.eigenvalues()[i];
+  c.lambda_max = c.eigenvalues[7];
+  c.lambda_2 = c.eigenvalues[1];
+  c.kappa = c.lambda_max / c.lambda_2;
+  return c;
+}
+
+}  // namespace hq
