@@ -179,11 +179,16 @@ TEST(IndexHtml, DataFilesAndBoundaryPageAreLinkedOnlyWhenWritten) {
   EXPECT_EQ(vtu.find("href=\"data/cells.csv"), std::string::npos);
   EXPECT_NE(vtu.find("href=\"data/annotated.vtu\""), std::string::npos);
   EXPECT_NE(vtu.find("<code>--data csv.gz</code>"), std::string::npos);
-  m.analysis.boundary_error.emplace().hausdorff_relative = 0.0125;
+  BoundaryError& e = m.analysis.boundary_error.emplace();
+  e.hausdorff_relative = 0.0125;  // the vertex figure: not the headline's
+  e.reference_bbox_diagonal = 2.0;
+  e.sampled_symmetric = 0.09;
   const std::string html = index_html(m);
   EXPECT_NE(html.find("href=\"data/annotated.vtu\""), std::string::npos);
   EXPECT_NE(html.find("href=\"boundary.html\""), std::string::npos);
-  EXPECT_NE(html.find("1.25 %"), std::string::npos);  // Hausdorff in the headline
+  EXPECT_NE(html.find("4.5 %"), std::string::npos);  // the sampled symmetric Hausdorff in the headline, named
+  EXPECT_NE(html.find("Hausdorff distance (sampled, symmetric)"), std::string::npos);
+  EXPECT_EQ(html.find("1.25 %"), std::string::npos);
 }
 
 TEST(BoundaryHtml, StatisticsViewsAndTheWayBack) {
