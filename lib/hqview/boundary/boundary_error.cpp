@@ -238,8 +238,10 @@ void reference_to_mesh_errors(const HexMesh& mesh, const Topology& topo, const T
       out.hausdorff_reference_to_mesh = std::max(out.hausdorff_reference_to_mesh, c.distance);
 
     // Over the reference triangles (certified maximum), signed as above.
-    const SampledDistance d =
-        sample_distance(reference, tree, sampling_options(options, out, out.hausdorff_reference_to_mesh));
+    // The face centres above are the level-0 samples of the triangles sampled whole.
+    SampledDistanceOptions sampling = sampling_options(options, out, out.hausdorff_reference_to_mesh);
+    sampling.triangle_centroids = std::span<const ClosestPoint>(back).subspan(num_vertex_samples);
+    const SampledDistance d = sample_distance(reference, tree, sampling);
     out.reference_patches.resize(d.patches.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, d.patches.size()), [&](const auto& r) {
       for (std::size_t i = r.begin(); i != r.end(); ++i) {

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "hqview/boundary/triangle_closest_point.h"
 
 namespace hq {
@@ -12,6 +15,7 @@ struct Patch {
   std::array<Vec3, 3> corners;
   Index source = kNoIndex;
   int level = 0;
+  bool whole = false;  // the source triangle itself
 };
 
 Vec3 centroid(const std::array<Vec3, 3>& c) { return (c[0] + c[1] + c[2]) / 3.0; }
@@ -45,27 +49,37 @@ void split(const Patch& p, std::vector<Patch>& out) {
   out.push_back({{ab, bc, ca}, p.source, p.level + 1});
 }
 
+// p subdivided `levels` times, appended to out as level-0 patches.
+void subdivide_into(const Patch& p, int levels, std::vector<Patch>& out) {
+  if (levels == 0) {
+    out.push_back({p.corners, p.source, 0, false});
+    return;
+  }
+  const Vec3 &a = p.corners[0], &b = p.corners[1], &c = p.corners[2];
+  const Vec3 ab = (a + b) * 0.5, bc = (b + c) * 0.5, ca = (c + a) * 0.5;
+  for (const std::array<Vec3, 3>& child : {std::array<Vec3, 3>{a, ab, ca}, std::array<Vec3, 3>{ab, b, bc},
+                                           std::array<Vec3, 3>{ca, bc, c}, std::array<Vec3, 3>{ab, bc, ca}})
+    subdivide_into({child, p.source, 0, false}, levels - 1, out);
+}
+
 // Level-0 patches: each source triangle of positive area subdivided to the
 // coarsest level whose radius is at most options.initial_radius.
 std::vector<Patch> initial_patches(const TriSurface& source, const SampledDistanceOptions& options) {
-  std::vector<Patch> patches, next;
+  std::vector<Patch> patches;
+  patches.reserve(source.triangles.size());
   for (std::size_t t = 0; t < source.triangles.size(); ++t) {
     const auto& tri = source.triangles[t];
-    Patch p{{source.points[tri[0]], source.points[tri[1]], source.points[tri[2]]}, static_cast<Index>(t), 0};
+    const Patch p{{source.points[tri[0]], source.points[tri[1]], source.points[tri[2]]}, static_cast<Index>(t), 0, true};
     if (!(area(p.corners) > 0.0)) continue;
     int level = 0;
     if (options.initial_radius > 0.0) {
       const double r = radius(p.corners);
       while (level < options.max_initial_level && r / std::ldexp(1.0, level) > options.initial_radius) ++level;
     }
-    std::vector<Patch> current{p};
-    for (int l = 0; l < level; ++l) {
-      next.clear();
-      for (const Patch& q : current) split(q, next);
-      current.swap(next);
-    }
-    for (Patch& q : current) q.level = 0;  // levels count from the initial subdivision
-    patches.insert(patches.end(), current.begin(), current.end());
+    if (level == 0)
+      patches.push_back(p);
+    else
+      subdivide_into(p, level, patches);
   }
   return patches;
 }
@@ -77,18 +91,38 @@ SampledDistance sample_distance(const TriSurface& source, const ClosestPointTree
   SampledDistance out;
   out.max_distance = options.known_distance;
   std::vector<Patch> current = initial_patches(source, options), next;
-  std::vector<Vec3> centres;
+  std::vector<Vec3> centres, queries;
+  std::vector<std::size_t> asked;
   for (int level = 0; !current.empty(); ++level) {
+    // Centroids: given (a whole source triangle at level 0) or queried.
     centres.clear();
-    for (const Patch& p : current) centres.push_back(centroid(p.corners));
-    const std::vector<ClosestPoint> closest = target.query(centres);
+    queries.clear();
+    asked.clear();
+    for (std::size_t i = 0; i < current.size(); ++i) {
+      centres.push_back(centroid(current[i].corners));
+      if (level > 0 || !current[i].whole || options.triangle_centroids.empty()) {
+        queries.push_back(centres.back());
+        asked.push_back(i);
+      }
+    }
+    std::vector<ClosestPoint> closest(current.size());
+    if (level == 0 && !options.triangle_centroids.empty())
+      for (std::size_t i = 0; i < current.size(); ++i)
+        if (current[i].whole) closest[i] = options.triangle_centroids[static_cast<std::size_t>(current[i].source)];
+    const std::vector<ClosestPoint> answers = target.query(queries);
+    for (std::size_t k = 0; k < asked.size(); ++k) closest[asked[k]] = answers[k];
     out.num_samples += static_cast<std::int64_t>(closest.size());
     out.deepest_level = level;
     for (const ClosestPoint& c : closest) out.max_distance = std::max(out.max_distance, c.distance);
     next.clear();
     const TriSurface& surface = target.surface();
+    std::vector<double> bounds(current.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, current.size()), [&](const auto& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) bounds[i] = patch_bound(current[i].corners, closest[i], surface);
+    });
+    out.patches.reserve(out.patches.size() + current.size());
     for (std::size_t i = 0; i < current.size(); ++i) {
-      const double bound = patch_bound(current[i].corners, closest[i], surface);
+      const double bound = bounds[i];
       const bool budget = out.num_samples + static_cast<std::int64_t>(next.size() + 4) <= options.max_samples;
       if (bound > out.max_distance + options.tolerance && level < options.max_level && budget) {
         split(current[i], next);

@@ -18,6 +18,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "hqview/boundary/surface_distance.h"
@@ -42,6 +43,10 @@ struct SampledDistanceOptions {
   // A distance already known to be reached on the source (e.g. at its
   // vertices): patches below it are not split.
   double known_distance = 0;
+  // When not empty: the closest point of each source triangle's centroid,
+  // already queried; a triangle sampled whole (initial level 0) takes it
+  // instead of a new query.
+  std::span<const ClosestPoint> triangle_centroids;
 };
 
 // A leaf patch: a triangle of the subdivision with its centroid sample.
@@ -59,7 +64,7 @@ struct SampledDistance {
   std::vector<SamplePatch> patches;
   double max_distance = 0;  // the largest distance sampled (and known_distance)
   double upper_bound = 0;   // certified: no point of the source is farther from the target
-  std::int64_t num_samples = 0;  // closest-point queries made (every level)
+  std::int64_t num_samples = 0;  // samples taken (every level; given centroids included)
   int deepest_level = 0;
 };
 
