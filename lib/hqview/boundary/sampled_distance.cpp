@@ -91,6 +91,8 @@ SampledDistance sample_distance(const TriSurface& source, const ClosestPointTree
   SampledDistance out;
   out.max_distance = options.known_distance;
   std::vector<Patch> current = initial_patches(source, options), next;
+  const std::int64_t budget =
+      std::min<std::int64_t>(options.max_samples, 1'000'000 + 8 * static_cast<std::int64_t>(current.size()));
   std::vector<Vec3> centres, queries;
   std::vector<std::size_t> asked;
   for (int level = 0; !current.empty(); ++level) {
@@ -123,8 +125,8 @@ SampledDistance sample_distance(const TriSurface& source, const ClosestPointTree
     out.patches.reserve(out.patches.size() + current.size());
     for (std::size_t i = 0; i < current.size(); ++i) {
       const double bound = bounds[i];
-      const bool budget = out.num_samples + static_cast<std::int64_t>(next.size() + 4) <= options.max_samples;
-      if (bound > out.max_distance + options.tolerance && level < options.max_level && budget) {
+      const bool within_budget = out.num_samples + static_cast<std::int64_t>(next.size() + 4) <= budget;
+      if (bound > out.max_distance + options.tolerance && level < options.max_level && within_budget) {
         split(current[i], next);
         continue;
       }

@@ -36,8 +36,9 @@ struct SampledDistanceOptions {
   // colour and of the area-weighted means.
   double initial_radius = 0;
   int max_initial_level = 6;
-  // No patch is split beyond this level, nor once this many samples were
-  // taken (the bound then says so: upper_bound - max_distance > tolerance).
+  // No patch is split beyond this level, nor once more samples than
+  // max_samples, or than 1e6 + 8 x the initial patches, were taken (the
+  // bound then says so: upper_bound - max_distance > tolerance).
   int max_level = 24;
   std::int64_t max_samples = 50'000'000;
   // A distance already known to be reached on the source (e.g. at its
