@@ -141,14 +141,22 @@ TEST(SampledDistance, TighterToleranceGivesATighterBoundAndMoreSamples) {
   EXPECT_LE(a.sampled_mesh_to_reference.max, b.sampled_mesh_to_reference.upper_bound);
 }
 
-TEST(SampledDistance, PlaneTriangleAboveAPlaneIsItsHeightEverywhere) {
-  // Source: a triangle at height 0.25 over the target square [0,4]^2 x {0}.
+// The target square [0,4]^2 x {0} (split along y = x) and a source triangle at height 0.25 over it.
+TriSurface square_target() {
   TriSurface target;
   target.points = {{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}};
   target.triangles = {{0, 1, 2}, {0, 2, 3}};
+  return target;
+}
+TriSurface triangle_above() {
   TriSurface source;
   source.points = {{1, 1, 0.25}, {3, 1, 0.25}, {2, 3, 0.25}};
   source.triangles = {{0, 1, 2}};
+  return source;
+}
+
+TEST(SampledDistance, PlaneTriangleAboveAPlaneIsItsHeightEverywhere) {
+  const TriSurface target = square_target(), source = triangle_above();
   const ClosestPointTree tree(target);
   SampledDistanceOptions options;
   options.tolerance = 1e-3;
@@ -173,12 +181,7 @@ TEST(SampledDistance, PlaneTriangleAboveAPlaneIsItsHeightEverywhere) {
 }
 
 TEST(SampledDistance, ASampleBudgetStopsTheSplitsAndTheBoundSaysSo) {
-  TriSurface target;
-  target.points = {{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}};
-  target.triangles = {{0, 1, 2}, {0, 2, 3}};
-  TriSurface source;
-  source.points = {{1, 1, 0.25}, {3, 1, 0.25}, {2, 3, 0.25}};
-  source.triangles = {{0, 1, 2}};
+  const TriSurface target = square_target(), source = triangle_above();
   const ClosestPointTree tree(target);
   SampledDistanceOptions options;
   options.tolerance = 1e-12;  // unreachable across the target's diagonal
