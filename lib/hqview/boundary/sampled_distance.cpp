@@ -55,11 +55,9 @@ void subdivide_into(const Patch& p, int levels, std::vector<Patch>& out) {
     out.push_back({p.corners, p.source, 0, false});
     return;
   }
-  const Vec3 &a = p.corners[0], &b = p.corners[1], &c = p.corners[2];
-  const Vec3 ab = (a + b) * 0.5, bc = (b + c) * 0.5, ca = (c + a) * 0.5;
-  for (const std::array<Vec3, 3>& child : {std::array<Vec3, 3>{a, ab, ca}, std::array<Vec3, 3>{ab, b, bc},
-                                           std::array<Vec3, 3>{ca, bc, c}, std::array<Vec3, 3>{ab, bc, ca}})
-    subdivide_into({child, p.source, 0, false}, levels - 1, out);
+  std::vector<Patch> children;
+  split(p, children);
+  for (const Patch& child : children) subdivide_into(child, levels - 1, out);
 }
 
 // Level-0 patches: each source triangle of positive area subdivided to the
@@ -122,7 +120,7 @@ SampledDistance sample_distance(const TriSurface& source, const ClosestPointTree
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, current.size()), [&](const auto& r) {
       for (std::size_t i = r.begin(); i != r.end(); ++i) bounds[i] = patch_bound(current[i].corners, closest[i], surface);
     });
-    out.patches.reserve(out.patches.size() + current.size());
+    if (level == 0) out.patches.reserve(current.size());
     for (std::size_t i = 0; i < current.size(); ++i) {
       const double bound = bounds[i];
       const bool within_budget = out.num_samples + static_cast<std::int64_t>(next.size() + 4) <= budget;
