@@ -189,6 +189,10 @@ TEST(IndexHtml, DataFilesAndBoundaryPageAreLinkedOnlyWhenWritten) {
   EXPECT_NE(html.find("4.5 %"), std::string::npos);  // the sampled symmetric Hausdorff in the headline, named
   EXPECT_NE(html.find("Hausdorff distance (sampled, symmetric)"), std::string::npos);
   EXPECT_EQ(html.find("1.25 %"), std::string::npos);
+  // summary.md's headline row: the sampled symmetric figure, named.
+  const std::string md = summary_markdown(m);
+  EXPECT_NE(md.find("| Hausdorff, sampled symmetric (% of bbox diagonal) |"), std::string::npos) << md;
+  EXPECT_NE(md.find(" 4.5 % |"), std::string::npos) << md;
 }
 
 TEST(BoundaryHtml, StatisticsViewsAndTheWayBack) {
