@@ -406,8 +406,8 @@ TEST(ViewsCli, KittenBoundaryViewsShowTheErrorBetweenTheVertices) {
   const fs::path dir = fresh_output_dir("views/kitten_error");
   const fs::path kitten = *data / "meshes/gao2016_sweeping";
   const CliResult r = run_hqview({"analyze", (kitten / "kitten_1.mesh").string(), "--reference",
-                                  (kitten / "kitten.off").string(), "-o", (dir / "out").string(), "--size", "800x600",
-                                  "--views", "boundary_error,reference_error", "--no-viewer", "-j", "2"});
+                                  (kitten / "kitten.off").string(), "-o", (dir / "out").string(), "--size", "640x480",
+                                  "--views", "boundary_error,reference_error", "--no-viewer", "--no-overlap", "-j", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const ModelPixels front = model_pixels(dir / "out/views/boundary_error_front.png", 0.1);
   ASSERT_GT(front.model, 20000);
