@@ -24,6 +24,12 @@ using kainjow::mustache::mustache;
 // Display text (report.json keeps full precision).
 std::string show(double v) { return display_number(v); }
 std::string show_count(long long v) { return display_count(v); }
+// A share in percent with one decimal (the three boundary area shares).
+std::string one_decimal(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.1f", v);
+  return buffer;
+}
 // A boundary-error distance in % of the reference's diagonal.
 double sampled_relative(const BoundaryError& e, double v) {
   return e.reference_bbox_diagonal > 0 ? 100.0 * v / e.reference_bbox_diagonal : 0.0;
@@ -641,8 +647,8 @@ std::string boundary_html(const ReportModel& model) {
   const std::string floor = show(sampled_relative(e, e.on_surface_tolerance));
   headline.push_back(card("boundary area outside / on / inside the reference (on: |error| ≤ " + floor +
                               " % of the diagonal)",
-                          display_number(100.0 * e.fraction_outside, 3) + " / " + display_number(100.0 * e.fraction_on_surface, 3) + " / " +
-                              display_number(100.0 * e.fraction_inside, 3) + " %"));
+                          one_decimal(100.0 * e.fraction_outside) + " / " + one_decimal(100.0 * e.fraction_on_surface) +
+                              " / " + one_decimal(100.0 * e.fraction_inside) + " %"));
   page.set("headline", headline);
 
   // No links between these views: an empty panel index.
@@ -665,9 +671,9 @@ std::string boundary_html(const ReportModel& model) {
   page.set("signed_rows", stats);
 
   data rows{data::type::list};
-  rows.push_back(kv("Hausdorff sampled over the surfaces, mesh → reference (upper bound)",
+  rows.push_back(kv("Hausdorff sampled over the surfaces, mesh → reference: max sampled (certified upper bound)",
                     show(e.sampled_mesh_to_reference.max) + " (" + show(e.sampled_mesh_to_reference.upper_bound) + ")"));
-  rows.push_back(kv("Hausdorff sampled over the surfaces, reference → mesh (upper bound)",
+  rows.push_back(kv("Hausdorff sampled over the surfaces, reference → mesh: max sampled (certified upper bound)",
                     show(e.sampled_reference_to_mesh.max) + " (" + show(e.sampled_reference_to_mesh.upper_bound) + ")"));
   rows.push_back(kv("sampling tolerance / samples",
                     show(e.sampling_tolerance) + " / " +
