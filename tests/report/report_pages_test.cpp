@@ -221,7 +221,7 @@ TEST(BoundaryHtml, StatisticsViewsAndTheWayBack) {
   EXPECT_NE(html.find("src=\"views/boundary_area.svg\""), std::string::npos);
   EXPECT_NE(html.find(">3 %<"), std::string::npos);    // 0.06 / 2 of the diagonal
   EXPECT_NE(html.find(">0.5 %<"), std::string::npos);  // the vertex figure
-  EXPECT_NE(html.find(">25.0 / 50.0 / 25.0 %<"), std::string::npos);  // area outside / on / inside
+  EXPECT_NE(html.find(">25.0/50.0/25.0 %<"), std::string::npos);  // area outside / on / inside
   EXPECT_NE(html.find("on: |error| ≤ 0.1 % of the diagonal"), std::string::npos);
   EXPECT_NE(html.find("Hausdorff distance (sampled, symmetric)"), std::string::npos);
   EXPECT_NE(html.find("ref&lt;&amp;&gt;.off"), std::string::npos);

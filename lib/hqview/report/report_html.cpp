@@ -647,8 +647,9 @@ std::string boundary_html(const ReportModel& model) {
   const std::string floor = show(sampled_relative(e, e.on_surface_tolerance));
   headline.push_back(card("boundary area outside / on / inside the reference (on: |error| ≤ " + floor +
                               " % of the diagonal)",
-                          one_decimal(100.0 * e.fraction_outside) + " / " + one_decimal(100.0 * e.fraction_on_surface) +
-                              " / " + one_decimal(100.0 * e.fraction_inside) + " %"));
+                          // No spaces around the slashes: the card's value does not wrap (a phone's 375 px).
+                          one_decimal(100.0 * e.fraction_outside) + "/" + one_decimal(100.0 * e.fraction_on_surface) +
+                              "/" + one_decimal(100.0 * e.fraction_inside) + " %"));
   page.set("headline", headline);
 
   // No links between these views: an empty panel index.
