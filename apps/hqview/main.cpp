@@ -137,6 +137,7 @@ struct AnalyzeArgs {
   std::string compare;
   std::string compare_align = "auto";
   std::string reference_align = "none";
+  double boundary_tolerance = 1e-4;  // --boundary-tolerance
   std::string up{hq::kDefaultUpAxis};
   bool no_viewer = false;
   std::string link_base;  // --link-base URL; empty: relative links
@@ -197,6 +198,7 @@ hq::AnalyzeOptions make_analyze_options(const AnalyzeArgs& args) {
   options.data = hq::parse_data_formats(args.data);
   options.viewer_max_mb = args.viewer_max_mb;
   options.reference_align = args.reference_align == "bbox" ? hq::CompareAlign::bbox : hq::CompareAlign::none;
+  options.boundary.sampling_tolerance = args.boundary_tolerance;
   options.views.views = parse_view_list(args.views);
   for (long long v : args.focus_vertices) {
     if (v > 2147483647LL) throw UsageError("--focus-vertex: vertex " + std::to_string(v) + " does not exist");
@@ -432,6 +434,11 @@ void add_analysis_options(CLI::App* cmd, AnalyzeArgs& args) {
                   "Move the reference onto the mesh boundary's bounding box before the boundary error: bbox "
                   "(uniform scale and translation; errors in the mesh's units) or none")
       ->check(CLI::IsMember({"none", "bbox"}))
+      ->capture_default_str();
+  cmd->add_option("--boundary-tolerance", args.boundary_tolerance,
+                  "Sampled boundary error: each certified upper bound within this fraction of the reference's "
+                  "bounding-box diagonal of the maximum found (smaller: more samples)")
+      ->check(CLI::Range(1e-7, 1e-1))
       ->capture_default_str();
   cmd->add_option("--compare-align", args.compare_align,
                   "Place MESH2 in the compare view: auto (align by bounding box when the diagonals differ by "

@@ -20,6 +20,23 @@ using nlohmann::json;
 
 fs::path example(const char* name) { return source_dir() / "examples" / name; }
 
+TEST(Reference, BoundaryToleranceSetsTheCertificate) {
+  const fs::path out = fresh_output_dir("reference/tolerance") / "bundle";
+  const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "--reference", example("ball.off").string(),
+                                  "-o", out.string(), "--no-render", "--boundary-tolerance", "0.001", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json s = json::parse(read_text(out / "report.json"))["boundary_error"]["hausdorff_sampled"];
+  EXPECT_DOUBLE_EQ(s["relative_tolerance"].get<double>(), 1e-3);
+  EXPECT_LE(s["upper_bound"]["symmetric"].get<double>() - s["symmetric"].get<double>(), s["tolerance"].get<double>());
+  for (const char* bad : {"0", "-1", "0.5", "x"}) {
+    const CliResult e = run_hqview({"analyze", example("ball.mesh").string(), "--reference",
+                                    example("ball.off").string(), "-o", out.string(), "--no-render",
+                                    "--boundary-tolerance", bad});
+    EXPECT_EQ(e.exit_code, 2) << bad << ": " << e.err;
+    EXPECT_NE(e.err.find("--boundary-tolerance"), std::string::npos) << e.err;
+  }
+}
+
 TEST(Reference, BallAgainstItsSphere) {
   const fs::path out = fresh_output_dir("reference/ball") / "bundle";
   const CliResult r = run_hqview({"analyze", "--data", "csv,vtu.zlib", example("ball.mesh").string(), "--reference", example("ball.off").string(),
@@ -46,7 +63,25 @@ TEST(Reference, BallAgainstItsSphere) {
   EXPECT_EQ(b["uv_atlas"]["num_overlaps"], 0);
   EXPECT_GT(b["uv_atlas"]["num_charts"].get<int>(), 0);
   const double outside = b["fraction_outside"], inside = b["fraction_inside"];
-  EXPECT_LE(outside + inside, 1.0 + 1e-12);
+  EXPECT_NEAR(outside + inside + b["fraction_on_surface"].get<double>(), 1.0, 1e-12);
+  EXPECT_DOUBLE_EQ(b["on_surface_tolerance_relative"].get<double>(), 1e-3);
+  // The sampled figures (issue 43): at least the vertex ones, certified within the tolerance.
+  const json& s = b["hausdorff_sampled"];
+  EXPECT_GE(s["mesh_to_reference"].get<double>(), h["mesh_to_reference"].get<double>());
+  EXPECT_GE(s["reference_to_mesh"].get<double>(), h["reference_to_mesh"].get<double>());
+  EXPECT_EQ(s["symmetric"], std::max(s["mesh_to_reference"].get<double>(), s["reference_to_mesh"].get<double>()));
+  EXPECT_DOUBLE_EQ(s["relative"].get<double>(), s["symmetric"].get<double>() / diagonal);
+  EXPECT_DOUBLE_EQ(s["tolerance"].get<double>(), 1e-4 * diagonal);
+  const double upper = s["upper_bound"]["symmetric"];
+  EXPECT_GE(upper, s["symmetric"].get<double>());
+  EXPECT_LE(upper - s["symmetric"].get<double>(), s["tolerance"].get<double>());
+  EXPECT_GT(s["num_samples"].get<long>(), report["mesh"]["num_boundary_faces"].get<long>());
+  for (const char* side : {"mesh_to_reference", "reference_to_mesh"}) {
+    const json& m = b["area_weighted_sampled"][side];
+    EXPECT_LE(std::abs(m["mean"].get<double>()), m["mean_abs"].get<double>() + 1e-15) << side;
+    EXPECT_LE(m["mean_abs"].get<double>(), m["rms"].get<double>() + 1e-15) << side;
+    EXPECT_LE(m["rms"].get<double>(), upper) << side;
+  }
 
   // vertices.csv: boundary_error filled exactly for boundary vertices, its max |.| the mesh -> reference Hausdorff.
   const auto rows = read_csv(out / "data/vertices.csv");

@@ -135,8 +135,15 @@ TEST(AnalyzePipeline, ReferenceAndCompareViewsWithAMockRenderer) {
 
   const auto first = first_frames(result);
   ASSERT_EQ(renderer.scenes.size(), first.at("(end)"));
-  // Boundary error: front and back.
-  EXPECT_EQ(first.at("reference_overlay") - first.at("boundary_error"), 2u);
+  // Boundary error: front and back, the hex boundary's sampled patches; then
+  // the reference error, front and back, the reference's patches.
+  EXPECT_EQ(first.at("reference_error") - first.at("boundary_error"), 2u);
+  EXPECT_EQ(first.at("reference_overlay") - first.at("reference_error"), 2u);
+  EXPECT_EQ(renderer.scenes[first.at("boundary_error")].triangles.at(0).indices.size() / 3,
+            a.boundary_error->mesh_patches.size());
+  EXPECT_EQ(renderer.scenes[first.at("reference_error")].triangles.at(0).indices.size() / 3,
+            a.boundary_error->reference_patches.size());
+  EXPECT_GT(a.boundary_error->reference_patches.size(), a.reference_surface->triangles.size() / 2);
   // The reference overlay draws the reference's triangles translucent.
   const Scene& overlay = renderer.scenes[first.at("reference_overlay")];
   std::size_t translucent = 0;

@@ -179,19 +179,33 @@ TEST(IndexHtml, DataFilesAndBoundaryPageAreLinkedOnlyWhenWritten) {
   EXPECT_EQ(vtu.find("href=\"data/cells.csv"), std::string::npos);
   EXPECT_NE(vtu.find("href=\"data/annotated.vtu\""), std::string::npos);
   EXPECT_NE(vtu.find("<code>--data csv.gz</code>"), std::string::npos);
-  m.analysis.boundary_error.emplace().hausdorff_relative = 0.0125;
+  BoundaryError& e = m.analysis.boundary_error.emplace();
+  e.hausdorff_relative = 0.0125;  // the vertex figure: not the headline's
+  e.reference_bbox_diagonal = 2.0;
+  e.sampled_symmetric = 0.09;
   const std::string html = index_html(m);
   EXPECT_NE(html.find("href=\"data/annotated.vtu\""), std::string::npos);
   EXPECT_NE(html.find("href=\"boundary.html\""), std::string::npos);
-  EXPECT_NE(html.find("1.25 %"), std::string::npos);  // Hausdorff in the headline
+  EXPECT_NE(html.find("4.5 %"), std::string::npos);  // the sampled symmetric Hausdorff in the headline, named
+  EXPECT_NE(html.find("Hausdorff distance (sampled, symmetric)"), std::string::npos);
+  EXPECT_EQ(html.find("1.25 %"), std::string::npos);
+  // summary.md's headline row: the sampled symmetric figure, named.
+  const std::string md = summary_markdown(m);
+  EXPECT_NE(md.find("| Hausdorff, sampled symmetric (% of bbox diagonal) |"), std::string::npos) << md;
+  EXPECT_NE(md.find(" 4.5 % |"), std::string::npos) << md;
 }
 
 TEST(BoundaryHtml, StatisticsViewsAndTheWayBack) {
   ReportModel m = linked_model();
   EXPECT_THROW(boundary_html(m), Error);
   BoundaryError& e = m.analysis.boundary_error.emplace();
-  e.hausdorff_relative = 0.03;
+  e.reference_bbox_diagonal = 2.0;
+  e.sampled_symmetric = 0.06;             // the headline: 3 % of the diagonal
+  e.relative_mesh_to_reference = 0.005;   // the papers' vertex figure
+  e.on_surface_tolerance = 0.002;         // the noise floor: 0.1 %
   e.fraction_outside = 0.25;
+  e.fraction_on_surface = 0.5;
+  e.fraction_inside = 0.25;
   e.signed_stats.count = 7;
   e.signed_stats.max = 0.5;
   e.warnings = {"<b>far</b>"};
@@ -205,8 +219,11 @@ TEST(BoundaryHtml, StatisticsViewsAndTheWayBack) {
   EXPECT_NE(html.find("src=\"views/boundary_error_front.png\""), std::string::npos);
   EXPECT_NE(html.find("src=\"views/boundary_error_back.png\""), std::string::npos);
   EXPECT_NE(html.find("src=\"views/boundary_area.svg\""), std::string::npos);
-  EXPECT_NE(html.find(">3 %<"), std::string::npos);   // 0.03 of the diagonal
-  EXPECT_NE(html.find(">25 %<"), std::string::npos);  // area outside
+  EXPECT_NE(html.find(">3 %<"), std::string::npos);    // 0.06 / 2 of the diagonal
+  EXPECT_NE(html.find(">0.5 %<"), std::string::npos);  // the vertex figure
+  EXPECT_NE(html.find(">25.0/50.0/25.0 %<"), std::string::npos);  // area outside / on / inside
+  EXPECT_NE(html.find("on: |error| ≤ 0.1 % of the diagonal"), std::string::npos);
+  EXPECT_NE(html.find("Hausdorff distance (sampled, symmetric)"), std::string::npos);
   EXPECT_NE(html.find("ref&lt;&amp;&gt;.off"), std::string::npos);
   EXPECT_NE(html.find("&lt;b&gt;far&lt;/b&gt;"), std::string::npos);
   EXPECT_EQ(html.find("<b>"), std::string::npos);

@@ -157,28 +157,50 @@ TEST(LocalView, OneMarkerPerCornerColouredByItsValue) {
   EXPECT_EQ(scene.lines[0].indices.size() / 2, 54u);
 }
 
-TEST(BoundaryErrorView, ColoursFollowTheSignedErrorSymmetrically) {
+TEST(BoundaryErrorView, ColoursFollowTheSignedErrorOfEachSampleSymmetrically) {
   const HexMesh mesh = test::grid(2);
   const Topology topology = build_topology(mesh);
-  std::vector<double> error(mesh.points.size(), 0.0);
-  error[0] = 1.0;
-  error[1] = -1.0;
+  BoundaryError error;
+  error.reference_bbox_diagonal = 10.0;
+  // Three patches: one outside (+1), one inside (-1), one on the surface.
+  const std::array<Vec3, 3> corners{Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{0, 1, 0}};
+  error.mesh_patches = {{corners, 1.0, 0.5}, {corners, -1.0, 0.5}, {corners, 0.0, 0.5}};
   const Scene scene = build_boundary_error_scene(mesh, topology, error, 1.0);
   const TriangleSet& faces = scene.triangles.at(0);
-  bool saw_red = false, saw_blue = false;
-  for (const Rgba8& c : faces.colors) {
-    saw_red |= c == to_rgba8(diverging_color(1.0));
-    saw_blue |= c == to_rgba8(diverging_color(-1.0));
+  ASSERT_EQ(faces.indices.size(), 9u);
+  ASSERT_EQ(faces.colors.size(), 9u);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(faces.colors[k], to_rgba8(diverging_color(1.0))) << "one colour per sample, the whole patch";
+    EXPECT_EQ(faces.colors[3 + k], to_rgba8(diverging_color(-1.0)));
+    EXPECT_EQ(faces.colors[6 + k], to_rgba8(diverging_color(0.0)));
   }
-  EXPECT_TRUE(saw_red);
-  EXPECT_TRUE(saw_blue);
+  EXPECT_FALSE(scene.lines.at(0).indices.empty()) << "the boundary edges";
+
   std::vector<double> field{std::nan("")};
   for (int i = 1; i <= 100; ++i) field.push_back(i % 2 ? i : -i);
   EXPECT_DOUBLE_EQ(error_scale(field), 98.0) << "the 98th percentile of |e|";
   EXPECT_DOUBLE_EQ(error_scale({}), 1.0);
+
+  // The shared scale: the area-weighted 98th percentile over both directions.
+  BoundaryError both;
+  both.reference_bbox_diagonal = 1.0;
+  for (int i = 1; i <= 50; ++i) both.mesh_patches.push_back({corners, i % 2 ? 0.001 * i : -0.001 * i, 1.0});
+  for (int i = 51; i <= 100; ++i) both.reference_patches.push_back({corners, -0.001 * i, 1.0});
+  EXPECT_DOUBLE_EQ(boundary_error_scale(both), 0.098);
+  both.reference_patches.back().area = 10.0;  // the largest error now holds 10 / 109 of the area
+  EXPECT_DOUBLE_EQ(boundary_error_scale(both), 0.1);
+  BoundaryError fits;
+  fits.reference_bbox_diagonal = 2.0;
+  fits.mesh_patches = {{corners, 0.0, 1.0}};
+  EXPECT_DOUBLE_EQ(boundary_error_scale(fits), 2e-4) << "never below 0.01 % of the diagonal";
+
   const ColorBar bar = error_color_bar(0.5, 10.0);
   EXPECT_DOUBLE_EQ(bar.min_value, -5.0);
   EXPECT_DOUBLE_EQ(bar.max_value, 5.0);
+  ASSERT_EQ(bar.ticks.size(), 5u);
+  EXPECT_EQ(bar.ticks.back().label, ">= 5 (0.5)") << "% of the diagonal, model units in parentheses";
+  EXPECT_NE(bar.label.find("% of diagonal"), std::string::npos);
+  EXPECT_NE(bar.label.find("model units"), std::string::npos);
 }
 
 TEST(UvErrorMap, OutlinesSeparateChartsOnly) {

@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <sstream>
 
+#include "hqview/boundary/sampled_distance.h"
 #include "hqview/boundary/surface_distance.h"
 #include "hqview/boundary/surface_sign.h"
 #include "hqview/core/box3.h"
@@ -70,44 +72,62 @@ std::vector<std::uint8_t> check_bounding_boxes(const HexMesh& mesh, const Topolo
   return used;
 }
 
+// The repaired reference with what distances and signs to it need.
+struct ReferenceSide {
+  RepairedSurface repaired;
+  std::unique_ptr<ClosestPointTree> tree;
+  PseudoNormals normals;  // closed manifold reference
+  WindingTree winding;    // otherwise
+};
+
+// +1 outside the reference, -1 inside (0 on it); `uncertain` as the sign tests set it.
+int reference_sign(const ReferenceSide& side, SignMethod method, double band, const Vec3& query,
+                   const ClosestPoint& closest, bool& uncertain) {
+  if (method == SignMethod::kPseudoNormal) {
+    bool flag = false;
+    const int s = pseudo_normal_sign(side.repaired.surface, side.normals, query, closest, flag);
+    uncertain = flag && closest.distance > 0.0;
+    return s;
+  }
+  const double w = winding_number_for_sign(side.repaired.surface, side.winding, query);
+  uncertain = std::abs(w - 0.5) < band && closest.distance > 0.0;
+  return w >= 0.5 ? -1 : 1;
+}
+
+// Repairs the reference and builds its closest-point tree and sign structure.
+void prepare_reference(const TriSurface& reference, ReferenceSide& side, BoundaryError& out) {
+  side.repaired = repair_reference(reference);
+  out.num_repaired_triangles = side.repaired.num_removed_triangles;
+  out.num_zero_area_triangles = side.repaired.num_zero_area_triangles;
+  if (!has_positive_area(side.repaired.surface))
+    throw InputError("the reference surface has no triangle of positive area after repair");
+  out.sign_method = side.repaired.is_closed_manifold ? SignMethod::kPseudoNormal : SignMethod::kWindingNumber;
+  side.tree = std::make_unique<ClosestPointTree>(side.repaired.surface);
+  if (out.sign_method == SignMethod::kPseudoNormal)
+    side.normals = compute_pseudo_normals(side.repaired.surface);
+  else
+    side.winding = build_winding_tree(side.repaired.surface);
+}
+
 // Hex boundary -> reference: the signed distance of every boundary vertex
 // (sign by pseudo-normals on a closed manifold reference, else by the
 // generalized winding number).
-void signed_vertex_errors(const HexMesh& mesh, const Topology& topo, const TriSurface& reference,
+void signed_vertex_errors(const HexMesh& mesh, const Topology& topo, const ReferenceSide& side,
                           const BoundaryOptions& options, BoundaryError& out) {
-  const RepairedSurface repaired = repair_reference(reference);
-  out.num_repaired_triangles = repaired.num_removed_triangles;
-  out.num_zero_area_triangles = repaired.num_zero_area_triangles;
-  if (!has_positive_area(repaired.surface))
-    throw InputError("the reference surface has no triangle of positive area after repair");
-  out.sign_method = repaired.is_closed_manifold ? SignMethod::kPseudoNormal : SignMethod::kWindingNumber;
-
   std::vector<Vec3> queries;
   queries.reserve(topo.boundary_vertices.size());
   for (Index v : topo.boundary_vertices) queries.push_back(mesh.points[v]);
-  const std::vector<ClosestPoint> closest = closest_points(repaired.surface, queries);
+  const std::vector<ClosestPoint> closest = side.tree->query(queries);
 
   std::vector<int> sign(queries.size(), 0);
   std::vector<std::uint8_t> uncertain(queries.size(), 0);
-  if (out.sign_method == SignMethod::kPseudoNormal) {
-    const PseudoNormals normals = compute_pseudo_normals(repaired.surface);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, queries.size()), [&](const auto& r) {
-      for (std::size_t i = r.begin(); i != r.end(); ++i) {
-        bool flag = false;
-        sign[i] = pseudo_normal_sign(repaired.surface, normals, queries[i], closest[i], flag);
-        uncertain[i] = flag && closest[i].distance > 0.0;
-      }
-    });
-  } else {
-    const WindingTree tree = build_winding_tree(repaired.surface);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, queries.size()), [&](const auto& r) {
-      for (std::size_t i = r.begin(); i != r.end(); ++i) {
-        const double w = winding_number_for_sign(repaired.surface, tree, queries[i]);
-        sign[i] = w >= 0.5 ? -1 : 1;
-        uncertain[i] = std::abs(w - 0.5) < options.uncertain_winding_band && closest[i].distance > 0.0;
-      }
-    });
-  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, queries.size()), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      bool flag = false;
+      sign[i] = reference_sign(side, out.sign_method, options.uncertain_winding_band, queries[i], closest[i], flag);
+      uncertain[i] = flag;
+    }
+  });
 
   const std::size_t nv = mesh.points.size();
   out.vertex_error.assign(nv, NAN);
@@ -119,6 +139,56 @@ void signed_vertex_errors(const HexMesh& mesh, const Topology& topo, const TriSu
     out.sign_uncertain[v] = uncertain[i];
     out.num_uncertain_signs += uncertain[i];
   }
+}
+
+SampledDistanceOptions sampling_options(const BoundaryOptions& options, const BoundaryError& out,
+                                        double known_distance) {
+  SampledDistanceOptions s;
+  s.tolerance = options.sampling_tolerance * out.reference_bbox_diagonal;
+  s.initial_radius = options.sampling_radius * out.reference_bbox_diagonal;
+  s.known_distance = known_distance;
+  return s;
+}
+
+// Area-weighted mean, mean |e| and rms over the patches (fixed order).
+void patch_means(const std::vector<BoundaryError::ErrorPatch>& patches, BoundaryError::SampledSide& side) {
+  double total = 0, sum = 0, sum_abs = 0, sum_sq = 0;
+  for (const auto& p : patches) {
+    total += p.area;
+    sum += p.area * p.error;
+    sum_abs += p.area * std::abs(p.error);
+    sum_sq += p.area * p.error * p.error;
+  }
+  if (total > 0) {
+    side.mean = sum / total;
+    side.mean_abs = sum_abs / total;
+    side.rms = std::sqrt(sum_sq / total);
+  }
+}
+
+// Hex boundary -> reference over the boundary triangles (certified maximum),
+// each patch signed like the vertices.
+void sampled_mesh_errors(const HexMesh& mesh, const Topology& topo, const ReferenceSide& side,
+                         const BoundaryOptions& options, BoundaryError& out) {
+  double vertex_max = 0;
+  for (Index v : topo.boundary_vertices) vertex_max = std::max(vertex_max, std::abs(out.vertex_error[v]));
+  const SampledDistance d =
+      sample_distance(boundary_triangles(mesh, topo), *side.tree, sampling_options(options, out, vertex_max));
+  out.mesh_patches.resize(d.patches.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, d.patches.size()), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const SamplePatch& p = d.patches[i];
+      bool flag = false;
+      const int sign =
+          reference_sign(side, out.sign_method, options.uncertain_winding_band, p.centre, p.closest, flag);
+      out.mesh_patches[i] = {p.corners, sign < 0 ? -p.closest.distance : p.closest.distance, p.area};
+    }
+  });
+  auto& s = out.sampled_mesh_to_reference;
+  s.max = d.max_distance;
+  s.upper_bound = d.upper_bound;
+  s.num_samples = d.num_samples;
+  patch_means(out.mesh_patches, s);
 }
 
 // A quarter of each boundary quad's area to each of its corners.
@@ -133,7 +203,8 @@ void vertex_areas(const HexMesh& mesh, const Topology& topo, BoundaryError& out)
 
 // Reference -> hex boundary at reference vertices and face centres.
 void reference_to_mesh_errors(const HexMesh& mesh, const Topology& topo, const TriSurface& reference,
-                              const std::vector<std::uint8_t>& used, BoundaryError& out) {
+                              const std::vector<std::uint8_t>& used, const BoundaryOptions& options,
+                              BoundaryError& out) {
   const TriSurface hex_surface = boundary_triangles(mesh, topo);
   std::vector<Vec3> samples;
   std::vector<Index> sample_vertex;
@@ -148,7 +219,8 @@ void reference_to_mesh_errors(const HexMesh& mesh, const Topology& topo, const T
   out.reference_vertex_error.assign(reference.points.size(), NAN);
   out.reference_face_error.assign(reference.triangles.size(), NAN);
   if (has_positive_area(hex_surface)) {
-    const std::vector<ClosestPoint> back = closest_points(hex_surface, samples);
+    const ClosestPointTree tree(hex_surface);
+    const std::vector<ClosestPoint> back = tree.query(samples);
     const PseudoNormals hex_normals = compute_pseudo_normals(hex_surface);
     std::vector<double> signed_back(back.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, back.size()), [&](const auto& r) {
@@ -164,6 +236,26 @@ void reference_to_mesh_errors(const HexMesh& mesh, const Topology& topo, const T
       out.reference_face_error[t] = signed_back[num_vertex_samples + t];
     for (const ClosestPoint& c : back)
       out.hausdorff_reference_to_mesh = std::max(out.hausdorff_reference_to_mesh, c.distance);
+
+    // Over the reference triangles (certified maximum), signed as above.
+    // The face centres above are the level-0 samples of the triangles sampled whole.
+    SampledDistanceOptions sampling = sampling_options(options, out, out.hausdorff_reference_to_mesh);
+    sampling.triangle_centroids = std::span<const ClosestPoint>(back).subspan(num_vertex_samples);
+    const SampledDistance d = sample_distance(reference, tree, sampling);
+    out.reference_patches.resize(d.patches.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, d.patches.size()), [&](const auto& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+        const SamplePatch& p = d.patches[i];
+        bool flag = false;
+        const int side = pseudo_normal_sign(hex_surface, hex_normals, p.centre, p.closest, flag);
+        out.reference_patches[i] = {p.corners, side > 0 ? -p.closest.distance : p.closest.distance, p.area};
+      }
+    });
+    auto& s = out.sampled_reference_to_mesh;
+    s.max = d.max_distance;
+    s.upper_bound = d.upper_bound;
+    s.num_samples = d.num_samples;
+    patch_means(out.reference_patches, s);
   }
 }
 
@@ -172,8 +264,7 @@ void reference_to_mesh_errors(const HexMesh& mesh, const Topology& topo, const T
 void summarize_errors(const Topology& topo, const BoundaryOptions& options, BoundaryError& out) {
   std::vector<double> errors;
   errors.reserve(topo.boundary_vertices.size());
-  double total_area = 0, sum = 0, sum_abs = 0, sum_sq = 0, outside = 0, inside = 0;
-  const double tolerance = options.on_surface_tolerance * out.reference_bbox_diagonal;
+  double total_area = 0, sum = 0, sum_abs = 0, sum_sq = 0;
   for (Index v : topo.boundary_vertices) {
     const double e = out.vertex_error[v], a = out.vertex_area[v];
     errors.push_back(e);
@@ -182,16 +273,29 @@ void summarize_errors(const Topology& topo, const BoundaryOptions& options, Boun
     sum += a * e;
     sum_abs += a * std::abs(e);
     sum_sq += a * e * e;
-    if (e > tolerance) outside += a;
-    if (e < -tolerance) inside += a;
   }
   if (total_area > 0) {
     out.area_weighted_mean = sum / total_area;
     out.area_weighted_mean_abs = sum_abs / total_area;
     out.area_weighted_rms = std::sqrt(sum_sq / total_area);
-    out.fraction_outside = outside / total_area;
-    out.fraction_inside = inside / total_area;
   }
+  // Outside / inside / on, of the sampled hex boundary area.
+  out.on_surface_tolerance = options.on_surface_tolerance * out.reference_bbox_diagonal;
+  double sampled_area = 0, outside = 0, inside = 0;
+  for (const auto& p : out.mesh_patches) {
+    sampled_area += p.area;
+    if (p.error > out.on_surface_tolerance) outside += p.area;
+    if (p.error < -out.on_surface_tolerance) inside += p.area;
+  }
+  if (sampled_area > 0) {
+    out.fraction_outside = outside / sampled_area;
+    out.fraction_inside = inside / sampled_area;
+    out.fraction_on_surface = std::max(0.0, 1.0 - out.fraction_outside - out.fraction_inside);
+  }
+  out.sampling_tolerance = options.sampling_tolerance * out.reference_bbox_diagonal;
+  out.sampled_symmetric = std::max(out.sampled_mesh_to_reference.max, out.sampled_reference_to_mesh.max);
+  out.sampled_upper_bound =
+      std::max(out.sampled_mesh_to_reference.upper_bound, out.sampled_reference_to_mesh.upper_bound);
   out.hausdorff_symmetric = std::max(out.hausdorff_mesh_to_reference, out.hausdorff_reference_to_mesh);
   if (out.reference_bbox_diagonal > 0) {
     out.hausdorff_relative = out.hausdorff_symmetric / out.reference_bbox_diagonal;
@@ -237,9 +341,12 @@ BoundaryError compute_boundary_error(const HexMesh& mesh, const Topology& topo, 
   out.num_reference_triangles = static_cast<Index>(reference.triangles.size());
   if (!has_positive_area(reference)) throw InputError("the reference surface has no triangle of positive area");
   const std::vector<std::uint8_t> used = check_bounding_boxes(mesh, topo, reference, out);
-  signed_vertex_errors(mesh, topo, reference, options, out);
+  ReferenceSide side;
+  prepare_reference(reference, side, out);
+  signed_vertex_errors(mesh, topo, side, options, out);
+  sampled_mesh_errors(mesh, topo, side, options, out);
   vertex_areas(mesh, topo, out);
-  reference_to_mesh_errors(mesh, topo, reference, used, out);
+  reference_to_mesh_errors(mesh, topo, reference, used, options, out);
   summarize_errors(topo, options, out);
   add_warnings(options, out);
   return out;

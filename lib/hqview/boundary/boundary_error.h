@@ -5,6 +5,7 @@
 // from the reference (its vertices and face centres) to the hex boundary,
 // Hausdorff distances both ways and area-weighted statistics.
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -26,8 +27,16 @@ struct BoundaryOptions {
   // Winding-number signs with |w - 0.5| below this are counted as uncertain.
   double uncertain_winding_band = 0.1;
   // |error| at or below this fraction of the reference's bbox diagonal counts
-  // as "on" the reference: neither outside nor inside.
-  double on_surface_tolerance = 1e-9;
+  // as "on" the reference (the noise floor of fraction_outside / _inside):
+  // neither outside nor inside.
+  double on_surface_tolerance = 1e-3;
+  // Sampled distances over the surfaces: each bound within this fraction of
+  // the diagonal of the maximum found (--boundary-tolerance).
+  double sampling_tolerance = 1e-4;
+  // The first patches of each triangle are no wider (centroid to corner)
+  // than this fraction of the diagonal (the resolution of the colours and
+  // of the sampled means); finer triangles are sampled at their centroid.
+  double sampling_radius = 5e-3;
   // Relative Hausdorff distance above which a warning says the reference
   // may be misplaced or in other units.
   double far_warning_relative = 0.1;
@@ -69,12 +78,39 @@ struct BoundaryError {
   double relative_mesh_to_reference = 0;
   double relative_reference_to_mesh = 0;
 
+  // Sampled over the surfaces (certified; docs/analysis.md "Sampled boundary
+  // error"): the hex boundary triangles (quads split 0-2, as
+  // boundary_triangles()) against the reference, and the reference's
+  // triangles against the hex boundary, each cut into patches sampled at
+  // their centroid. error: signed like vertex_error / reference_vertex_error.
+  struct ErrorPatch {
+    std::array<Vec3, 3> corners;
+    double error = 0;  // model units, at the centroid
+    double area = 0;
+  };
+  struct SampledSide {
+    double max = 0;          // largest |error| sampled (the vertex figure included)
+    double upper_bound = 0;  // no point of the surface is farther
+    std::int64_t num_samples = 0;  // closest-point queries
+    double mean = 0, mean_abs = 0, rms = 0;  // area-weighted over the patches
+  };
+  std::vector<ErrorPatch> mesh_patches;       // hex boundary -> reference
+  std::vector<ErrorPatch> reference_patches;  // reference -> hex boundary
+  SampledSide sampled_mesh_to_reference, sampled_reference_to_mesh;
+  double sampled_symmetric = 0;    // the larger max
+  double sampled_upper_bound = 0;  // the larger upper bound
+  double sampling_tolerance = 0;   // model units
+  double on_surface_tolerance = 0;  // model units: the noise floor of the fractions
+
   Statistics signed_stats;            // of vertex_error over boundary vertices, histogram symmetric about 0
   double area_weighted_mean = 0;      // sum(a_i e_i) / sum(a_i)
   double area_weighted_mean_abs = 0;  // sum(a_i |e_i|) / sum(a_i)
   double area_weighted_rms = 0;       // sqrt(sum(a_i e_i^2) / sum(a_i))
-  double fraction_outside = 0;        // boundary area fraction with e > tolerance
-  double fraction_inside = 0;         // boundary area fraction with e < -tolerance
+  // Of the sampled hex boundary area (mesh_patches): error above
+  // on_surface_tolerance, below its negative, and within it.
+  double fraction_outside = 0;
+  double fraction_inside = 0;
+  double fraction_on_surface = 0;
 
   std::vector<std::string> warnings;
 };

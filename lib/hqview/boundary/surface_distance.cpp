@@ -154,26 +154,42 @@ RepairedSurface repair_reference(const TriSurface& reference) {
   return out;
 }
 
-std::vector<ClosestPoint> closest_points(const TriSurface& surface, std::span<const Vec3> queries,
-                                         const ClosestPointOptions& options) {
-  std::vector<ClosestPoint> result(queries.size(), ClosestPoint{{}, kNoIndex, INFINITY});
+struct ClosestPointTree::Impl {
+  const TriSurface* surface = nullptr;
   std::vector<Triangle> triangles;
   std::vector<Index> triangle_ids;
-  triangles.reserve(surface.triangles.size());
-  triangle_ids.reserve(surface.triangles.size());
+  Tree tree;
+};
+
+ClosestPointTree::ClosestPointTree(const TriSurface& surface) : impl_(std::make_unique<Impl>()) {
+  impl_->surface = &surface;
+  impl_->triangles.reserve(surface.triangles.size());
+  impl_->triangle_ids.reserve(surface.triangles.size());
   for (std::size_t t = 0; t < surface.triangles.size(); ++t) {
     const auto& tri = surface.triangles[t];
     if (twice_area(surface, tri) == 0.0) continue;
-    triangles.emplace_back(to_point(surface.points[tri[0]]), to_point(surface.points[tri[1]]),
-                           to_point(surface.points[tri[2]]));
-    triangle_ids.push_back(static_cast<Index>(t));
+    impl_->triangles.emplace_back(to_point(surface.points[tri[0]]), to_point(surface.points[tri[1]]),
+                                  to_point(surface.points[tri[2]]));
+    impl_->triangle_ids.push_back(static_cast<Index>(t));
   }
-  if (triangles.empty() || queries.empty()) return result;
+  if (impl_->triangles.empty()) return;
+  impl_->tree.rebuild(impl_->triangles.cbegin(), impl_->triangles.cend());
+  impl_->tree.accelerate_distance_queries();
+  // Builds the search structure before the threads share it.
+  (void)impl_->tree.closest_point(to_point(surface.points[surface.triangles[impl_->triangle_ids[0]][0]]));
+}
 
-  Tree tree(triangles.cbegin(), triangles.cend());
-  tree.build();
-  tree.accelerate_distance_queries();
-  (void)tree.closest_point(to_point(queries[0]));  // builds the search structure before the threads share it
+ClosestPointTree::~ClosestPointTree() = default;
+
+const TriSurface& ClosestPointTree::surface() const { return *impl_->surface; }
+
+std::vector<ClosestPoint> ClosestPointTree::query(std::span<const Vec3> queries,
+                                                  const ClosestPointOptions& options) const {
+  std::vector<ClosestPoint> result(queries.size(), ClosestPoint{{}, kNoIndex, INFINITY});
+  const Tree& tree = impl_->tree;
+  const std::vector<Triangle>& triangles = impl_->triangles;
+  const std::vector<Index>& triangle_ids = impl_->triangle_ids;
+  if (triangles.empty() || queries.empty()) return result;
 
   std::vector<std::uint32_t> order(queries.size());
   if (options.spatial_order)
@@ -198,6 +214,12 @@ std::vector<ClosestPoint> closest_points(const TriSurface& surface, std::span<co
     }
   });
   return result;
+}
+
+std::vector<ClosestPoint> closest_points(const TriSurface& surface, std::span<const Vec3> queries,
+                                         const ClosestPointOptions& options) {
+  if (queries.empty()) return {};
+  return ClosestPointTree(surface).query(queries, options);
 }
 
 }  // namespace hq

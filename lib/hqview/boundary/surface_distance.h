@@ -3,6 +3,7 @@
 // behind a plain interface: CGAL (Polygon Mesh Processing, AABB tree) stays
 // inside surface_distance.cpp (ALGORITHMS.md §5, §7).
 
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -47,5 +48,22 @@ struct ClosestPointOptions {
 };
 std::vector<ClosestPoint> closest_points(const TriSurface& surface, std::span<const Vec3> queries,
                                          const ClosestPointOptions& options = {});
+
+// closest_points() with the search tree built once and queried many times
+// (the adaptive sampling asks one surface level after level). Same answers as
+// closest_points() for the same queries. The surface must outlive the tree.
+class ClosestPointTree {
+ public:
+  explicit ClosestPointTree(const TriSurface& surface);
+  ~ClosestPointTree();
+  ClosestPointTree(const ClosestPointTree&) = delete;
+  ClosestPointTree& operator=(const ClosestPointTree&) = delete;
+  std::vector<ClosestPoint> query(std::span<const Vec3> queries, const ClosestPointOptions& options = {}) const;
+  const TriSurface& surface() const;  // the surface it was built on
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace hq

@@ -10,6 +10,7 @@
 #include <map>
 
 #include "hqview/core/error.h"
+#include "hqview/core/number_format.h"
 #include "hqview/image/colormap.h"
 
 namespace hq {
@@ -300,7 +301,8 @@ std::string format_percent(double fraction) {
 
 }  // namespace
 
-Chart sorted_boundary_error_chart(std::span<const double> vertex_error, const ChartOptions& options) {
+Chart sorted_boundary_error_chart(std::span<const double> vertex_error, const ChartOptions& options,
+                                  const ErrorChartLabels& labels) {
   Chart chart = begin_chart(options);
   const ChartRect r = chart.plot;
   std::vector<double> sorted;
@@ -335,8 +337,8 @@ Chart sorted_boundary_error_chart(std::span<const double> vertex_error, const Ch
   std::vector<std::pair<double, double>> x_ticks;
   for (double t = 0.0; t <= 1.0001; t += 0.25) x_ticks.push_back({t, r.x + r.width * t});
   add_axes(chart, r, y_ticks, x_ticks,
-           "boundary vertices sorted by signed error (fraction of " + std::to_string(n) + ")",
-           "signed error (+ outside)");
+           labels.items + " sorted by signed error (fraction of " + std::to_string(n) + ")",
+           "signed error (+ outside)" + (labels.unit.empty() ? std::string() : ", " + labels.unit));
   chart.lines.push_back({{{r.x, y0}, {r.x + r.width, y0}}, kAxisColor, 1.2});
   if (clipped > 0)
     chart.texts.push_back({{r.x + r.width - 8.0, r.y + 16.0},
@@ -357,7 +359,7 @@ Chart sorted_boundary_error_chart(std::span<const double> vertex_error, const Ch
 }
 
 Chart boundary_area_chart(std::span<const double> vertex_error, std::span<const double> vertex_area, double tolerance,
-                          const ChartOptions& options) {
+                          const ChartOptions& options, const ErrorChartLabels& labels) {
   Chart chart = begin_chart(options);
   const ChartRect all = chart.plot;
   const ChartRect strip{all.x, all.y, all.width, 26.0, {}};
@@ -413,6 +415,9 @@ Chart boundary_area_chart(std::span<const double> vertex_error, std::span<const 
                          1.0});
   chart.texts.push_back({{strip.x, strip.y + strip.height + 18.0},
                          "boundary area: outside " + format_percent(f_out) + ", on " + format_percent(f_on) +
+                             (labels.unit.empty() ? std::string()
+                                                  : " (|error| <= " + display_number(tolerance, 3) + " " +
+                                                        labels.unit + ")") +
                              ", inside " + format_percent(f_in),
                          kTickSize,
                          kAxisColor,
@@ -439,7 +444,9 @@ Chart boundary_area_chart(std::span<const double> vertex_error, std::span<const 
   std::vector<std::pair<double, double>> x_ticks, y_ticks;
   for (double t = 0.0; t <= x_limit + 0.5 * x_step; t += x_step) x_ticks.push_back({t, x_of(t)});
   for (double t = 0.0; t <= y_limit + 0.5 * y_step; t += y_step) y_ticks.push_back({t, y_of(t)});
-  add_axes(chart, r, y_ticks, x_ticks, "|signed error| at most", "% of boundary area");
+  add_axes(chart, r, y_ticks, x_ticks,
+           "|signed error| at most" + (labels.unit.empty() ? std::string() : " (" + labels.unit + ")"),
+           "% of boundary area");
   auto curve = [&](const std::vector<std::pair<double, double>>& v, Rgba8 color) {
     ChartPolyline line{{{x_of(0.0), y_of(0.0)}}, color, 2.2};
     const std::size_t stride = std::max<std::size_t>(1, v.size() / 2000);

@@ -87,7 +87,14 @@ Chart corner_chart(std::span<const double> values, std::span<const std::string> 
 // symmetric about 0 ([-A, A], A a nice ceiling of max |error|); the x axis is
 // the fraction of boundary vertices. More vertices than plot pixels are drawn
 // as one bar per pixel column (the extreme value of its ranks). NaN left out.
-Chart sorted_boundary_error_chart(std::span<const double> vertex_error, const ChartOptions& options);
+// labels.items names what is sorted (the x axis), labels.unit the values'
+// unit (both axis titles say it when not empty).
+struct ErrorChartLabels {
+  std::string items = "boundary vertices";
+  std::string unit;  // e.g. "% of diagonal"
+};
+Chart sorted_boundary_error_chart(std::span<const double> vertex_error, const ChartOptions& options,
+                                  const ErrorChartLabels& labels = {});
 
 // With --reference: the boundary area outside / on / inside the reference as
 // one stacked horizontal bar of percentages (top strip), and below it the
@@ -96,7 +103,7 @@ Chart sorted_boundary_error_chart(std::span<const double> vertex_error, const Ch
 // for the inside part. error and area per vertex (NaN error or area <= 0 left
 // out); tolerance: |error| at or below it is "on" the reference.
 Chart boundary_area_chart(std::span<const double> vertex_error, std::span<const double> vertex_area, double tolerance,
-                          const ChartOptions& options);
+                          const ChartOptions& options, const ErrorChartLabels& labels = {});
 
 // Methods compared over a dataset: one column per method, one dot per mesh
 // at its min scaled Jacobian (coloured by the quality map, inverted ones in

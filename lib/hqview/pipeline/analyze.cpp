@@ -189,7 +189,8 @@ std::future<AtlasJob> start_atlas(TriSurface reference, const Vec3& up, const st
 
 // Boundary error against the reference.
 void analyze_boundary_error(Analysis& a, const TriSurface& reference, const AnalyzeOptions& options) {
-  with_reference_hint(options, [&] { a.boundary_error = compute_boundary_error(a.mesh, a.topology, reference); });
+  with_reference_hint(options, [&] { a.boundary_error = compute_boundary_error(a.mesh, a.topology, reference, options.boundary);
+  });
   for (std::string w : a.boundary_error->warnings) {
     if (w.find("same units and placement") != std::string::npos) w += alignment_hint(options);
     a.warnings.push_back(std::move(w));

@@ -35,6 +35,7 @@ struct AnalyzeOptions {
   std::filesystem::path compare_path;    // empty: no comparison
   CompareAlign compare_align = CompareAlign::auto_;  // --compare-align
   CompareAlign reference_align = CompareAlign::none; // --reference-align (none or bbox)
+  BoundaryOptions boundary;                          // --boundary-tolerance (sampling_tolerance)
   std::string tool_version;
   ViewOptions views;                         // size, views to draw, focus vertices, up axis
   DataFormats data;                          // --data: the per-cell and per-vertex data files

@@ -24,6 +24,16 @@ using kainjow::mustache::mustache;
 // Display text (report.json keeps full precision).
 std::string show(double v) { return display_number(v); }
 std::string show_count(long long v) { return display_count(v); }
+// A share in percent with one decimal (the three boundary area shares).
+std::string one_decimal(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.1f", v);
+  return buffer;
+}
+// A boundary-error distance in % of the reference's diagonal.
+double sampled_relative(const BoundaryError& e, double v) {
+  return e.reference_bbox_diagonal > 0 ? 100.0 * v / e.reference_bbox_diagonal : 0.0;
+}
 
 data card(const std::string& label, const std::string& value, bool alert = false) {
   data d;
@@ -329,8 +339,9 @@ void set_headline(data& page, const ReportModel& model) {
   else
     headline.push_back(card("overlapping hexes", "not checked"));
   if (model.analysis.boundary_error) {
-    data hausdorff = card("Hausdorff distance, % of bbox diagonal",
-                          show(100.0 * model.analysis.boundary_error->hausdorff_relative) + " %");
+    const BoundaryError& e = *model.analysis.boundary_error;
+    data hausdorff = card("Hausdorff distance (sampled, symmetric), % of bbox diagonal",
+                          show(sampled_relative(e, e.sampled_symmetric)) + " %");
     hausdorff.set("href", "boundary.html");
     headline.push_back(hausdorff);
   }
@@ -623,14 +634,22 @@ std::string boundary_html(const ReportModel& model) {
   set_data_files(page, model);
 
   data headline{data::type::list};
-  headline.push_back(card("Hausdorff distance, % of bbox diagonal", show(100.0 * e.hausdorff_relative) + " %"));
-  headline.push_back(card("Hausdorff distance (model units)", show(e.hausdorff_symmetric)));
-  headline.push_back(
-      card("Hausdorff mesh → reference, % of diagonal", show(100.0 * e.relative_mesh_to_reference) + " %"));
-  headline.push_back(
-      card("Hausdorff reference → mesh, % of diagonal", show(100.0 * e.relative_reference_to_mesh) + " %"));
-  headline.push_back(card("boundary area outside", show(100.0 * e.fraction_outside) + " %"));
-  headline.push_back(card("boundary area inside", show(100.0 * e.fraction_inside) + " %"));
+  // The sampled figures (over the surfaces, certified); the vertex figures below.
+  headline.push_back(card("Hausdorff distance (sampled, symmetric), % of bbox diagonal",
+                          show(sampled_relative(e, e.sampled_symmetric)) + " %"));
+  headline.push_back(card("Hausdorff distance (sampled, symmetric), model units", show(e.sampled_symmetric)));
+  headline.push_back(card("sampled mesh → reference, % of diagonal",
+                          show(sampled_relative(e, e.sampled_mesh_to_reference.max)) + " %"));
+  headline.push_back(card("sampled reference → mesh, % of diagonal",
+                          show(sampled_relative(e, e.sampled_reference_to_mesh.max)) + " %"));
+  headline.push_back(card("mesh → reference at the hex boundary vertices (the papers' figure), % of diagonal",
+                          show(100.0 * e.relative_mesh_to_reference) + " %"));
+  const std::string floor = show(sampled_relative(e, e.on_surface_tolerance));
+  headline.push_back(card("boundary area outside / on / inside the reference (on: |error| ≤ " + floor +
+                              " % of the diagonal)",
+                          // No spaces around the slashes: the card's value does not wrap (a phone's 375 px).
+                          one_decimal(100.0 * e.fraction_outside) + "/" + one_decimal(100.0 * e.fraction_on_surface) +
+                              "/" + one_decimal(100.0 * e.fraction_inside) + " %"));
   page.set("headline", headline);
 
   // No links between these views: an empty panel index.
@@ -653,12 +672,26 @@ std::string boundary_html(const ReportModel& model) {
   page.set("signed_rows", stats);
 
   data rows{data::type::list};
-  rows.push_back(kv("Hausdorff, mesh → reference", show(e.hausdorff_mesh_to_reference)));
-  rows.push_back(kv("Hausdorff, reference → mesh", show(e.hausdorff_reference_to_mesh)));
-  rows.push_back(kv("Hausdorff, symmetric", show(e.hausdorff_symmetric)));
+  rows.push_back(kv("Hausdorff sampled over the surfaces, mesh → reference: max sampled (certified upper bound)",
+                    show(e.sampled_mesh_to_reference.max) + " (" + show(e.sampled_mesh_to_reference.upper_bound) + ")"));
+  rows.push_back(kv("Hausdorff sampled over the surfaces, reference → mesh: max sampled (certified upper bound)",
+                    show(e.sampled_reference_to_mesh.max) + " (" + show(e.sampled_reference_to_mesh.upper_bound) + ")"));
+  rows.push_back(kv("sampling tolerance / samples",
+                    show(e.sampling_tolerance) + " / " +
+                        show_count(e.sampled_mesh_to_reference.num_samples + e.sampled_reference_to_mesh.num_samples)));
+  rows.push_back(kv("sampled area-weighted mean / mean |error| / rms, mesh → reference",
+                    show(e.sampled_mesh_to_reference.mean) + " / " + show(e.sampled_mesh_to_reference.mean_abs) + " / " +
+                        show(e.sampled_mesh_to_reference.rms)));
+  rows.push_back(kv("sampled area-weighted mean / mean |error| / rms, reference → mesh",
+                    show(e.sampled_reference_to_mesh.mean) + " / " + show(e.sampled_reference_to_mesh.mean_abs) +
+                        " / " + show(e.sampled_reference_to_mesh.rms)));
+  rows.push_back(kv("Hausdorff at hex boundary vertices, mesh → reference", show(e.hausdorff_mesh_to_reference)));
+  rows.push_back(kv("Hausdorff at reference vertices and face centres, reference → mesh",
+                    show(e.hausdorff_reference_to_mesh)));
+  rows.push_back(kv("Hausdorff (vertex figures), symmetric", show(e.hausdorff_symmetric)));
   rows.push_back(kv("reference bbox diagonal", show(e.reference_bbox_diagonal)));
   rows.push_back(
-      kv("area-weighted mean / mean |error| / rms",
+      kv("area-weighted mean / mean |error| / rms (hex boundary vertices)",
          show(e.area_weighted_mean) + " / " + show(e.area_weighted_mean_abs) + " / " + show(e.area_weighted_rms)));
   rows.push_back(kv("sign method", sign_method_name(e.sign_method)));
   rows.push_back(kv("uncertain signs", show_count(e.num_uncertain_signs)));

@@ -248,6 +248,31 @@ Json boundary_error_json(const ReportModel& model) {
                               {"num_removed_by_repair", e.num_repaired_triangles},
                               {"num_zero_area", e.num_zero_area_triangles}};
   j["reference_alignment"] = alignment_json(model.analysis.reference_alignment);
+  // Sampled over the surfaces (issue 43): certified maxima both ways.
+  const double d = e.reference_bbox_diagonal;
+  auto relative = [d](double v) { return number(d > 0 ? v / d : 0.0); };
+  const auto &m = e.sampled_mesh_to_reference, &r = e.sampled_reference_to_mesh;
+  j["hausdorff_sampled"] = {
+      {"mesh_to_reference", number(m.max)},
+      {"reference_to_mesh", number(r.max)},
+      {"symmetric", number(e.sampled_symmetric)},
+      {"relative", relative(e.sampled_symmetric)},
+      {"relative_mesh_to_reference", relative(m.max)},
+      {"relative_reference_to_mesh", relative(r.max)},
+      {"upper_bound",
+       {{"mesh_to_reference", number(m.upper_bound)},
+        {"reference_to_mesh", number(r.upper_bound)},
+        {"symmetric", number(e.sampled_upper_bound)},
+        {"relative", relative(e.sampled_upper_bound)}}},
+      {"tolerance", number(e.sampling_tolerance)},
+      {"relative_tolerance", relative(e.sampling_tolerance)},
+      {"num_samples", m.num_samples + r.num_samples}};
+  auto means = [](const BoundaryError::SampledSide& s) {
+    return ReportDocument{{"mean", number(s.mean)}, {"mean_abs", number(s.mean_abs)}, {"rms", number(s.rms)}};
+  };
+  j["area_weighted_sampled"] = {{"mesh_to_reference", means(m)}, {"reference_to_mesh", means(r)}};
+  j["fraction_on_surface"] = number(e.fraction_on_surface);
+  j["on_surface_tolerance_relative"] = relative(e.on_surface_tolerance);
   return j;
 }
 

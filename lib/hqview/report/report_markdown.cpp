@@ -59,9 +59,12 @@ std::string summary_markdown(const ReportModel& model, const std::string& link_b
                                             : std::string("not checked")) +
                     " |";
   if (model.analysis.boundary_error) {
-    header += " Hausdorff (% of bbox diagonal) |";
+    // The sampled symmetric Hausdorff (over the surfaces, both ways), named.
+    const BoundaryError& e = *model.analysis.boundary_error;
+    header += " Hausdorff, sampled symmetric (% of bbox diagonal) |";
     align += "---:|";
-    row += " " + show(100.0 * model.analysis.boundary_error->hausdorff_relative) + " % |";
+    row += " " + show(e.reference_bbox_diagonal > 0 ? 100.0 * e.sampled_symmetric / e.reference_bbox_diagonal : 0.0) +
+           " % |";
   }
   md += header + "\n" + align + "\n" + row + "\n\n";
   if (q.scaled_jacobian.num_degenerate > 0)

@@ -20,6 +20,40 @@ Rgba8 error_rgba(double e, double scale) { return to_rgba8(diverging_color(e / s
 
 std::string percent(double v) { return display_number(v, 3); }
 
+// Patches as flat triangles (3 vertices each, normals from their planes), coloured by their error.
+TriangleSet patch_triangles(const std::vector<BoundaryError::ErrorPatch>& patches, const Vec3& origin, double scale) {
+  TriangleSet set;
+  set.positions.reserve(3 * patches.size());
+  set.colors.reserve(3 * patches.size());
+  set.indices.reserve(3 * patches.size());
+  for (const auto& p : patches) {
+    const Rgba8 color = error_rgba(p.error, scale);
+    for (const Vec3& c : p.corners) {
+      set.indices.push_back(static_cast<std::uint32_t>(set.positions.size()));
+      set.positions.push_back(to_vec3f(c - origin));
+      set.colors.push_back(color);
+    }
+  }
+  return set;
+}
+
+// A 3D error figure: the scene from view_direction, the camera fitted to
+// `points`, the shared colour bar.
+Image render_error_figure(Scene scene, const std::vector<Vec3>& points, const BoundaryError& error, double scale,
+                          const Vec3& view_direction, const BoundaryViewOptions& options, Renderer& renderer) {
+  AnnotationStyle style = annotation_style_for(options.height);
+  style.background = options.background;
+  const ColorBar bar = error_color_bar(scale, error.reference_bbox_diagonal);
+  const FigureLayout layout =
+      figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(bar, style), style);
+  scene.background = options.background;
+  const double aspect = static_cast<double>(layout.view.width) / layout.view.height;
+  const Camera camera = fit_camera_to_points(points, view_direction, aspect, {.up = options.up});
+  Image figure = render_figure(renderer, scene, camera, options.width, options.height, layout, options.title, style);
+  draw_color_bar(figure, layout.legend, bar, style);
+  return figure;
+}
+
 }  // namespace
 
 double error_scale(const std::vector<double>& field) {
@@ -33,60 +67,75 @@ double error_scale(const std::vector<double>& field) {
   return s > 0.0 ? s : 1.0;
 }
 
+double boundary_error_scale(const BoundaryError& error) {
+  std::vector<std::pair<double, double>> magnitudes;  // (|error|, area)
+  double total = 0.0;
+  for (const auto* patches : {&error.mesh_patches, &error.reference_patches})
+    for (const auto& p : *patches)
+      if (std::isfinite(p.error) && p.area > 0.0) {
+        magnitudes.push_back({std::abs(p.error), p.area});
+        total += p.area;
+      }
+  if (magnitudes.empty()) return 1.0;
+  std::sort(magnitudes.begin(), magnitudes.end());
+  double cumulative = 0.0, s = magnitudes.back().first;
+  for (const auto& [m, a] : magnitudes) {
+    cumulative += a;
+    if (cumulative >= 0.98 * total) {
+      s = m;
+      break;
+    }
+  }
+  s = std::max(s, kMinScale * error.reference_bbox_diagonal);
+  return s > 0.0 ? s : 1.0;
+}
+
 ColorBar error_color_bar(double scale, double diagonal) {
   ColorBar bar;
-  bar.label = "signed error\n(% of diagonal)\n+ = hex outside";
+  bar.label = "signed error\n% of diagonal\n(model units)\n+ = hex outside";
   const double top = diagonal > 0.0 ? 100.0 * scale / diagonal : scale;
   bar.min_value = -top;
   bar.max_value = top;
   for (int i = 0; i <= 32; ++i) bar.colors.push_back(diverging_color(-1.0 + i / 16.0));
   for (double t : {-1.0, -0.5, 0.0, 0.5, 1.0})
-    bar.ticks.push_back({t * top, (t == -1.0 ? "<= " : t == 1.0 ? ">= " : "") + percent(t * top)});
+    bar.ticks.push_back({t * top, (t == -1.0 ? "<= " : t == 1.0 ? ">= " : "") + percent(t * top) +
+                                      (t == 0.0 ? std::string() : " (" + percent(t * scale) + ")")});
   return bar;
 }
 
-Scene build_boundary_error_scene(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_error,
+Scene build_boundary_error_scene(const HexMesh& mesh, const Topology& topology, const BoundaryError& error,
                                  double scale) {
-  // The overview's geometry (faces as 4-triangle fans, boundary edges), recoloured.
+  // The overview's boundary edges; the faces are the sampled patches.
   OverviewOptions overview;
   std::vector<double> dummy(mesh.points.size(), 1.0);
   Scene scene = build_quality_overview_scene(mesh, topology, dummy, overview);
-  TriangleSet& faces = scene.triangles.at(0);
-  std::size_t k = 0;
-  for (Index face : topology.boundary_faces) {
-    const Quad& quad = topology.faces[static_cast<std::size_t>(face)];
-    double sum = 0.0;
-    int n = 0;
-    for (int i = 0; i < 4; ++i) {
-      const double e = vertex_error[static_cast<std::size_t>(quad[i])];
-      faces.colors[k + static_cast<std::size_t>(i)] = error_rgba(e, scale);
-      if (std::isfinite(e)) {
-        sum += e;
-        ++n;
-      }
-    }
-    faces.colors[k + 4] = error_rgba(n ? sum / n : std::nan(""), scale);
-    k += 5;
-  }
+  scene.triangles.at(0) = patch_triangles(error.mesh_patches, scene.origin, scale);
   for (Rgba8& c : scene.lines.at(0).colors) c.a = 60;
   return scene;
 }
 
 Image render_boundary_error_view(const HexMesh& mesh, const Topology& topology, const BoundaryError& error,
                                  const Vec3& view_direction, const BoundaryViewOptions& options, Renderer& renderer) {
-  AnnotationStyle style = annotation_style_for(options.height);
-  style.background = options.background;
-  const double scale = std::max(error_scale(error.vertex_error), kMinScale * error.reference_bbox_diagonal);
-  const ColorBar bar = error_color_bar(scale, error.reference_bbox_diagonal);
-  const FigureLayout layout =
-      figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(bar, style), style);
-  Scene scene = build_boundary_error_scene(mesh, topology, error.vertex_error, scale);
-  scene.background = options.background;
-  const double aspect = static_cast<double>(layout.view.width) / layout.view.height;
-  const Camera camera = fit_camera_to_points(boundary_points(mesh, topology), view_direction, aspect, {.up = options.up});
-  Image figure = render_figure(renderer, scene, camera, options.width, options.height, layout, options.title, style);
-  draw_color_bar(figure, layout.legend, bar, style);
-  return figure;
+  const double scale = boundary_error_scale(error);
+  return render_error_figure(build_boundary_error_scene(mesh, topology, error, scale), boundary_points(mesh, topology),
+                             error, scale, view_direction, options, renderer);
+}
+
+Scene build_reference_error_scene(const BoundaryError& error, double scale) {
+  Scene scene;
+  scene.origin = 0.5 * (error.reference_bbox_min + error.reference_bbox_max);
+  scene.triangles.push_back(patch_triangles(error.reference_patches, scene.origin, scale));
+  return scene;
+}
+
+Image render_reference_error_view(const BoundaryError& error, const Vec3& view_direction,
+                                  const BoundaryViewOptions& options, Renderer& renderer) {
+  const double scale = boundary_error_scale(error);
+  std::vector<Vec3> points;
+  points.reserve(3 * error.reference_patches.size());
+  for (const auto& p : error.reference_patches) points.insert(points.end(), p.corners.begin(), p.corners.end());
+  return render_error_figure(build_reference_error_scene(error, scale), points, error, scale, view_direction, options,
+                             renderer);
 }
 
 Scene build_reference_overlay_scene(const HexMesh& mesh, const Topology& topology, const TriSurface& reference) {
@@ -170,7 +219,7 @@ Image render_uv_error_map(const TriSurface& reference, const UvAtlas& atlas, con
                           const BoundaryViewOptions& options, Renderer& renderer) {
   AnnotationStyle style = annotation_style_for(options.height);
   style.background = options.background;
-  const double scale = std::max(error_scale(error.reference_vertex_error), kMinScale * error.reference_bbox_diagonal);
+  const double scale = boundary_error_scale(error);
   const ColorBar bar = error_color_bar(scale, error.reference_bbox_diagonal);
   const FigureLayout layout =
       figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(bar, style), style);

@@ -25,27 +25,41 @@ struct BoundaryViewOptions {
   Vec3 up{0.0, 0.0, 1.0};  // the model axis drawn upwards in the 3D views (--up)
 };
 
-// The colour scale's half-range (model units): the 98th percentile of |e|
-// over the finite values of field, so that a few large errors (a cut-off
-// fin) do not wash the rest out; larger errors saturate (the bar's ends read
-// "<=" / ">="). 1 when there is no error. The figures never go below 0.01%
-// of the diagonal (smaller errors are noise). The 3D views use the hex boundary's
-// vertex_error, the UV map the reference's reference_vertex_error.
+// The 98th percentile of |e| over the finite values of field (1 when there
+// is none): the viewer's scale of the per-vertex boundary error.
 double error_scale(const std::vector<double>& field);
 
+// The one colour scale of every boundary view (boundary_error front/back,
+// reference_error front/back, uv_error), half-range in model units: the
+// area-weighted 98th percentile of |error| over the sampled patches of both
+// directions (mesh_patches and reference_patches), so that a few large
+// errors (a cut-off fin) do not wash the rest out; larger errors saturate
+// (the bar's ends read "<=" / ">="). Never below 0.01% of the diagonal
+// (smaller errors are noise); 1 when there is no patch.
+double boundary_error_scale(const BoundaryError& error);
+
 // The legend: diverging map over [-100 s / d, +100 s / d] percent of the
-// reference's diagonal d, labelled "signed error (% of diagonal)", ticks at
-// the ends, the middle and the quarter points.
+// reference's diagonal d, each tick in % of the diagonal and in model units,
+// ticks at the ends, the middle and the quarter points.
 ColorBar error_color_bar(double scale, double diagonal);
 
-// Boundary faces (4 triangles around the centre each, smooth colours) coloured
-// by diverging_color(vertex_error / scale); boundary edges faint.
-Scene build_boundary_error_scene(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_error,
+// The hex boundary's sampled patches (mesh_patches), each flat-coloured by
+// diverging_color(error / scale) of its centre sample; boundary edges faint.
+Scene build_boundary_error_scene(const HexMesh& mesh, const Topology& topology, const BoundaryError& error,
                                  double scale);
 
 // The front (view_direction) or back (its opposite) figure.
 Image render_boundary_error_view(const HexMesh& mesh, const Topology& topology, const BoundaryError& error,
                                  const Vec3& view_direction, const BoundaryViewOptions& options, Renderer& renderer);
+
+// The reference's sampled patches (reference_patches), each flat-coloured by
+// its signed distance to the hex boundary (negative, "inside" blue, where the
+// reference lies outside the hex solid: the parts the mesh cuts off).
+Scene build_reference_error_scene(const BoundaryError& error, double scale);
+
+// The reference error figure, one camera fitted to the reference.
+Image render_reference_error_view(const BoundaryError& error, const Vec3& view_direction,
+                                  const BoundaryViewOptions& options, Renderer& renderer);
 
 // F with --reference: the hex boundary (opaque light grey faces, dark edges)
 // under the reference surface (translucent orange, flat shaded): reference

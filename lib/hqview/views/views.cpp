@@ -263,6 +263,19 @@ std::vector<ViewFile> build_boundary_error(ViewContext& c) {
   return files;
 }
 
+std::vector<ViewFile> build_reference_error(ViewContext& c) {
+  auto b = sized<BoundaryViewOptions>(c);
+  std::vector<ViewFile> files;
+  const BoundaryError& e = *c.a.boundary_error;
+  b.title = c.name + ": reference coloured by signed distance to the hex boundary, front";
+  files.push_back(framed("views/reference_error_front.png",
+                         render_reference_error_view(e, three_quarter_view(b.up), b, c.renderer), c));
+  b.title = c.name + ": reference coloured by signed distance to the hex boundary, back";
+  files.push_back(framed("views/reference_error_back.png",
+                         render_reference_error_view(e, three_quarter_back_view(b.up), b, c.renderer), c));
+  return files;
+}
+
 std::vector<ViewFile> build_uv_error(ViewContext& c) {
   auto b = sized<BoundaryViewOptions>(c);
   b.title = c.name + ": reference UV atlas, reference to hex boundary error";
@@ -293,19 +306,37 @@ std::vector<ViewFile> build_compare(ViewContext& c) {
   return {framed("views/compare.png", std::move(image), c)};
 }
 
+// The sampled hex boundary errors (% of the reference's diagonal) and their areas.
+struct PercentErrors {
+  std::vector<double> error, area;
+  double per_unit = 1.0;  // % of the diagonal per model unit
+};
+PercentErrors percent_errors(const BoundaryError& e) {
+  PercentErrors out;
+  out.per_unit = e.reference_bbox_diagonal > 0.0 ? 100.0 / e.reference_bbox_diagonal : 1.0;
+  for (const auto& p : e.mesh_patches) {
+    out.error.push_back(out.per_unit * p.error);
+    out.area.push_back(p.area);
+  }
+  return out;
+}
+
 std::vector<ViewFile> build_boundary_error_sorted(ViewContext& c) {
+  const PercentErrors v = percent_errors(*c.a.boundary_error);
   return chart_files(
       "boundary_error_sorted",
-      sorted_boundary_error_chart(c.a.boundary_error->vertex_error,
-                                  {900, 460, c.name + ": sorted signed boundary error (+ outside the reference)"}));
+      sorted_boundary_error_chart(v.error,
+                                  {900, 460, c.name + ": sorted signed boundary error (+ outside the reference)"},
+                                  {"hex boundary samples", "% of diagonal"}));
 }
 
 std::vector<ViewFile> build_boundary_area(ViewContext& c) {
   const BoundaryError& e = *c.a.boundary_error;
+  const PercentErrors v = percent_errors(e);
   return chart_files("boundary_area",
-                     boundary_area_chart(e.vertex_error, e.vertex_area,
-                                         BoundaryOptions{}.on_surface_tolerance * e.reference_bbox_diagonal,
-                                         {900, 500, c.name + ": boundary area outside / inside the reference"}));
+                     boundary_area_chart(v.error, v.area, v.per_unit * e.on_surface_tolerance,
+                                         {900, 500, c.name + ": boundary area outside / inside the reference"},
+                                         {"hex boundary samples", "% of diagonal"}));
 }
 
 std::vector<ViewFile> build_histogram(ViewContext& c) {

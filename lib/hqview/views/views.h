@@ -76,6 +76,7 @@ std::vector<ViewFile> build_clusters(ViewContext&);
 std::vector<ViewFile> build_local(ViewContext&);
 std::vector<ViewFile> build_corners(ViewContext&);
 std::vector<ViewFile> build_boundary_error(ViewContext&);
+std::vector<ViewFile> build_reference_error(ViewContext&);
 std::vector<ViewFile> build_uv_error(ViewContext&);
 std::vector<ViewFile> build_reference_overlay(ViewContext&);
 std::vector<ViewFile> build_compare(ViewContext&);
@@ -98,14 +99,16 @@ inline constexpr ViewSpec kViews[] = {
     {"corners", "E: corner scaled Jacobians at each chosen vertex", 'E', 0, ViewNeeds::mesh, true, 4, build_corners},
     {"boundary_error", "Boundary error: hex boundary coloured by signed distance to the reference", 0, 0,
      ViewNeeds::reference, true, 8, build_boundary_error},
-    {"uv_error", "UV error map of the reference", 0, 1, ViewNeeds::uv_atlas, true, 11, build_uv_error},
+    {"reference_error", "Reference error: the reference coloured by signed distance to the hex boundary", 0, 1,
+     ViewNeeds::reference, true, -1, build_reference_error},
+    {"uv_error", "UV error map of the reference", 0, 2, ViewNeeds::uv_atlas, true, 11, build_uv_error},
     {"reference_overlay", "F: hex boundary over the translucent reference surface", 'F', 0, ViewNeeds::reference, true,
      6, build_reference_overlay},
     {"compare", "Compare: both boundaries coloured by vertex quality, one camera", 'F', 1, ViewNeeds::compare, true, 7,
      build_compare},
-    {"boundary_error_sorted", "Sorted boundary error (signed, every hex boundary vertex)", 0, 2, ViewNeeds::reference,
+    {"boundary_error_sorted", "Sorted boundary error (signed, hex boundary samples, % of diagonal)", 0, 3, ViewNeeds::reference,
      true, 9, build_boundary_error_sorted},
-    {"boundary_area", "Boundary area outside / inside the reference", 0, 3, ViewNeeds::reference, true, 10,
+    {"boundary_area", "Boundary area outside / inside the reference", 0, 4, ViewNeeds::reference, true, 10,
      build_boundary_area},
     {"histogram", "Quality histogram (per hex scaled Jacobian)", 'B', 1, ViewNeeds::mesh, true, 5, build_histogram},
     {"histogram_log", "Quality histogram, log scale", 'B', 2, ViewNeeds::mesh, false, -1, build_histogram_log},
