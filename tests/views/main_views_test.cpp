@@ -81,17 +81,8 @@ TEST(MainScene, OnlyTheTopClustersAreColouredTheRestAreNeutral) {
   }
 }
 
-TEST(MainScene, ClusterColoursAreFarFromTheOverlapMarkers) {
-  auto distance = [](const Rgba8& a, const Rgba8& b) {
-    const double dr = (a.r - b.r) / 255.0, dg = (a.g - b.g) / 255.0, db = (a.b - b.b) / 255.0;
-    return std::sqrt(dr * dr + dg * dg + db * db);
-  };
-  for (int i = 0; i < kLabelledClusterPaletteSize; ++i) {
-    const Rgba8 c = to_rgba8(labelled_cluster_color(i));
-    for (const Rgba8& m : {kCoincidentArrowColor, kIntersectionArrowColor, kIntersectingCellColor, kWireframeColor})
-      EXPECT_GE(distance(c, m), 0.25) << i;
-  }
-}
+// The distances between the cluster colours and the overlap markers' and
+// wireframe's colours: tests/views/palette_test.cpp (CIEDE2000).
 
 TEST(MainScene, ClusterEdgesCircleOnlyTheWorstVerticesOfABigCluster) {
   HexMesh mesh = test::grid(4);

@@ -5,6 +5,7 @@
 // could differ between platforms in the sampled colours).
 
 #include <cstdint>
+#include <vector>
 
 #include "hqview/image/color.h"
 
@@ -23,6 +24,9 @@ namespace hq {
 // (.75, 80, 6, 34), (1, 91, -2, -6), re-parameterised by arc length, D65 sRGB;
 // all samples are inside the sRGB gamut.
 Color sample_quality_map(double t);
+// The quality map's 33 table samples, t = 0 first (sample_quality_map is
+// their piecewise-linear interpolation): for renderers that map per fragment.
+std::vector<Color> quality_map_samples();
 
 // Inverted elements (quality < 0): a saturated blue-violet, outside the
 // quality map's hues, and far from its red end for colour-blind readers too.

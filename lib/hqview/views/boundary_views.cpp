@@ -52,6 +52,7 @@ Scene build_boundary_error_scene(const HexMesh& mesh, const Topology& topology, 
   std::vector<double> dummy(mesh.points.size(), 1.0);
   Scene scene = build_quality_overview_scene(mesh, topology, dummy, overview);
   TriangleSet& faces = scene.triangles.at(0);
+  faces.scalars.clear();  // coloured per vertex below, not by the quality map
   std::size_t k = 0;
   for (Index face : topology.boundary_faces) {
     const Quad& quad = topology.faces[static_cast<std::size_t>(face)];
@@ -93,6 +94,7 @@ Scene build_reference_overlay_scene(const HexMesh& mesh, const Topology& topolog
   OverviewOptions overview;
   std::vector<double> dummy(mesh.points.size(), 1.0);
   Scene scene = build_quality_overview_scene(mesh, topology, dummy, overview);
+  scene.triangles.at(0).scalars.clear();  // plain grey, not the quality map
   for (Rgba8& c : scene.triangles.at(0).colors) c = {214, 214, 218, 255};
   for (Rgba8& c : scene.lines.at(0).colors) c = {50, 50, 60, 150};
   TriangleSet surface;
