@@ -69,10 +69,11 @@ constexpr std::array<Rgb, kLabelledClusterPaletteSize> kLabelledClusterTable = {
     hex(0x005a4b),
     hex(0xa56978),
 }};
-// A dark grey: CIEDE2000 18 from the undefined grey (kUndefinedColor) and
-// >= 17 from the cluster and overlap colours. (No light grey can be: the
-// quality map's pale end is a light blue-grey.)
-constexpr Rgb kNeutralCluster = hex(0x6c6c6c);
+// A light grey (#a0a0a0), calm among the coloured clusters: CIEDE2000 19
+// from the undefined grey (kUndefinedColor), 16 from the quality map's
+// nearest sample (its pale end is a light blue-grey), >= 17 from the cluster
+// and overlap colours.
+constexpr Rgb kNeutralCluster = hex(0xa0a0a0);
 
 // Piecewise-linear lookup, u in [0, 1] over the whole table.
 template <std::size_t N>

@@ -31,8 +31,10 @@ std::vector<Color> quality_map_samples();
 // Inverted elements (quality < 0): a saturated blue-violet, outside the
 // quality map's hues, and far from its red end for colour-blind readers too.
 inline constexpr Color kInvertedColor{0.24f, 0.20f, 0.92f, 1.0f};
-// Undefined quality (NaN: vertices no hex uses): a neutral mid grey.
-inline constexpr Color kUndefinedColor{0.62f, 0.62f, 0.62f, 1.0f};
+// Undefined values (NaN: e.g. vertices no hex uses): a dark neutral grey
+// (#6c6c6c), CIEDE2000 >= 19 from the neutral cluster grey and >= 28 from
+// the quality map (docs/analysis.md, "Colours").
+inline constexpr Color kUndefinedColor{108.0f / 255.0f, 108.0f / 255.0f, 108.0f / 255.0f, 1.0f};
 
 // Vertex quality (min corner scaled Jacobian, in [-1, 1]) to colour: [0, 1]
 // through sample_quality_map, < 0 kInvertedColor, NaN kUndefinedColor,
