@@ -141,6 +141,29 @@ TEST(Palette, CriticalPairsSurviveColourVisionDeficiency) {
           << clusters[i].name << " vs " << clusters[j].name;
 }
 
+// A sphere glyph is lit: its colour runs from 25 % light on its dark side
+// (the renderer's ambient) to a highlight. The dark side or highlight of
+// one cluster colour must not look like another (CIEDE2000 >= 9.9; the
+// palette was chosen with >= 10 on 8-bit rounded shades).
+TEST(Palette, ShadedClusterColoursStayApart) {
+  auto shaded = [](const Rgba8& c, double light, double white) {
+    std::array<double, 3> rgb = test::linear_of(c);
+    for (double& v : rgb) v = v * light * (1.0 - white) + white;
+    return test::lab_of_linear(rgb);
+  };
+  const std::vector<Named> clusters = cluster_colors();
+  for (const Named& a : clusters)
+    for (const Named& b : clusters) {
+      if (&a == &b) continue;
+      for (double light : {0.25, 0.4, 0.55, 0.7, 0.85})
+        EXPECT_GE(ciede2000(shaded(a.color, light, 0.0), lab_of(b.color)), 9.9)
+            << a.name << " at " << light << " vs " << b.name;
+      for (double white : {0.15, 0.3, 0.45})
+        EXPECT_GE(ciede2000(shaded(a.color, 1.0, white), lab_of(b.color)), 9.9)
+            << a.name << " +" << white << " vs " << b.name;
+    }
+}
+
 TEST(Palette, TheOldPaletteFailsTheseRules) {
   // The rules are strict enough to reject the palette issue 44 reported:
   // cluster #0 #1f5fbf against inverted, and against the intersecting-cell

@@ -48,26 +48,28 @@ constexpr std::array<Rgb, 11> kDivergingTable = {{
 // Labelled clusters: designed, not cycled (docs/analysis.md, "Colours").
 // Chosen on the sRGB grid of step 15 (levels 0, 15, ..., 255) among the
 // colours with CIE L* in [28, 78] (visible on white, distinct from black
-// when shaded) and chroma >= 25 that keep CIEDE2000 >= 15 from every sample of
-// the quality map, the inverted and undefined colours, the neutral cluster
-// grey, the overlap markers' colours and white, and >= 8 from the inverted
-// and overlap colours under simulated protanopia, deuteranopia and
-// tritanopia (Machado et al. 2009, severity 1); then greedily, each the one
-// farthest (smallest CIEDE2000 to all the above and to the ones before it
-// largest) among those >= 15 from the ones before it and >= 8 from them under
-// each simulation, so that the first K of them are the best separated K.
-// Minimum CIEDE2000 between two of them: 20.3. palette_test checks the rules.
+// when shaded) and chroma >= 25 that keep CIEDE2000 >= 20 from every sample of
+// the quality map, >= 15 from the inverted and undefined colours, the
+// neutral cluster grey, the overlap markers' colours, view A's wireframe and
+// white, and >= 8 from the inverted and overlap colours under simulated
+// protanopia, deuteranopia and tritanopia (Machado et al. 2009, severity 1);
+// then greedily, each the one farthest (smallest CIEDE2000 to all the above
+// and to the ones before it largest) among those >= 15 from the ones before
+// it, >= 8 from them under each simulation, and >= 10 from them when either
+// is shaded (the lit spheres' dark sides, 25-85 % light, and highlights), so
+// that a shaded sphere of one colour does not look like another and the
+// first K are the best separated K. palette_test checks the rules.
 constexpr std::array<Rgb, kLabelledClusterPaletteSize> kLabelledClusterTable = {{
     hex(0x00d200),
-    hex(0x007800),
     hex(0x0087f0),
-    hex(0xff96b4),
-    hex(0x009687),
-    hex(0x693c00),
-    hex(0x969600),
-    hex(0x00c3f0),
-    hex(0x005a4b),
-    hex(0xa56978),
+    hex(0x2d4b00),
+    hex(0x009678),
+    hex(0xff96a5),
+    hex(0x876900),
+    hex(0x00b4d2),
+    hex(0x786996),
+    hex(0x87a569),
+    hex(0xc378a5),
 }};
 // A light grey (#a0a0a0), calm among the coloured clusters: CIEDE2000 19
 // from the undefined grey (kUndefinedColor), 16 from the quality map's
