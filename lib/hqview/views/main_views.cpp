@@ -527,7 +527,7 @@ void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapRep
                        ? "size = 1 - min quality + 0.1 per 10 vertices (paper)"
                        : "size = 1 - min quality",
                    1});
-  lines.push_back({std::nullopt, "label #k (n): rank k, n vertices"});
+  if (!glyphs.clusters.empty()) lines.push_back({std::nullopt, "label #k (n): rank k, n vertices"});
   // Findings and places by kind, as the markers count them: the "xN"
   // labels of the marker groups add up to the two findings counts.
   std::size_t findings[2] = {0, 0};
