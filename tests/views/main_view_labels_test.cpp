@@ -6,7 +6,10 @@
 // - each label is within the leader distance of its anchor or has a leader
 //   line from its anchor to its box;
 // - there are at most max_marker_groups + 10 labels;
-// - the marker labels' counts add up to the findings;
+// - each marker label counts one kind and wears its colour: the labels of
+//   coincident vertices add up to the coincident vertices (the vertices in
+//   coincident groups), those of intersecting pairs to the pairs;
+// - a leader line runs from the anchor disc's edge to the label's box;
 // - no label and no arrow covers the worst cluster's glyph (its disc on
 //   screen), so it keeps all of its pixels but the arrows' anti-aliased
 //   edges; the test checks the scene's overlay vertices, not pixels.
@@ -73,9 +76,11 @@ HexMesh injected_overlaps() {
 
 void expect_clear_views(const Case& c, const char* name) {
   const MainViewOptions options;  // 1600 x 1200
-  Index findings = 0;
-  for (const OverlapMarker& m : c.overlap.markers) findings += std::max<Index>(m.count, 1);
-  ASSERT_GT(findings, 0) << name;
+  Index findings[2] = {0, 0};  // coincident vertices, intersecting pairs
+  for (const OverlapMarker& m : c.overlap.markers)
+    findings[m.kind == MarkerKind::coincident ? 0 : 1] += std::max<Index>(m.count, 1);
+  ASSERT_GT(findings[0] + findings[1], 0) << name;
+  EXPECT_EQ(findings[0], c.overlap.num_coincident_vertices) << name;
   const std::vector<Vec3> points = main_view_points(c.mesh, c.topology, c.glyphs);
   const std::vector<Vec3> directions =
       choose_main_viewpoints(points, c.glyphs, main_view_aspect(options), 2, options.up, options.fov_y_degrees);
@@ -88,26 +93,39 @@ void expect_clear_views(const Case& c, const char* name) {
         main_view_labels(c.mesh, c.topology, c.glyphs, &c.overlap, direction, options, &scene);
     ASSERT_FALSE(labels.labels.empty());
     EXPECT_LE(labels.labels.size(), static_cast<std::size_t>(options.max_marker_groups + 10));
-    Index counted = 0;
+    Index counted[2] = {0, 0};
     int markers = 0;
     for (std::size_t i = 0; i < labels.labels.size(); ++i) {
       const MainViewLabel& l = labels.labels[i];
       if (l.kind == MainViewLabel::Kind::marker) {
-        counted += l.count;
+        const bool is_pair = l.color == kIntersectionArrowColor;
+        EXPECT_TRUE(is_pair || l.color == kCoincidentArrowColor) << l.text;
+        counted[is_pair ? 1 : 0] += l.count;
         ++markers;
         EXPECT_EQ(l.text, "x" + std::to_string(l.count));
+        // Anchored at its group's position (a small disc), not at its fan's rim.
+        EXPECT_LE(l.anchor.radius, 3.0 * scale) << l.text;
       }
       const PixelRect& b = l.placement.box;
       for (std::size_t j = 0; j < i; ++j)
         EXPECT_FALSE(boxes_overlap(b, labels.labels[j].placement.box)) << i << " " << j;
       EXPECT_TRUE(l.placement.has_leader || disc_box_gap(l.anchor, b) <= 10.0 * scale) << l.text;
+      if (l.placement.has_leader) {
+        const PlacedLabel& p = l.placement;
+        EXPECT_NEAR(std::hypot(p.leader_x0 - l.anchor.x, p.leader_y0 - l.anchor.y), l.anchor.radius, 1.0) << l.text;
+        EXPECT_TRUE(p.leader_x1 >= b.x - 0.5 && p.leader_x1 <= b.x + b.width + 0.5 && p.leader_y1 >= b.y - 0.5 &&
+                    p.leader_y1 <= b.y + b.height + 0.5)
+            << l.text;
+        EXPECT_LE(disc_box_gap(ScreenDisc{p.leader_x1, p.leader_y1, 0.0}, b), 0.5) << l.text;
+      }
       EXPECT_GE(b.x, 0);
       EXPECT_LE(b.x + b.width, options.width);
       if (labels.worst_glyph.radius > 0.0) {
         EXPECT_FALSE(box_meets_disc(b, labels.worst_glyph)) << l.text;
       }
     }
-    EXPECT_EQ(counted, findings);
+    EXPECT_EQ(counted[0], findings[0]);
+    EXPECT_EQ(counted[1], findings[1]);
     EXPECT_LE(markers, options.max_marker_groups);
     // Arrows keep off the worst glyph: every overlay vertex lies outside
     // its disc in the image plane (orthographic view along direction).

@@ -157,27 +157,33 @@ Camera pixel_camera() {
 }
 
 TEST(MarkerMerge, CloseMarkersBecomeOneWithTheirCounts) {
-  // Pixels 0, 10 (24 apart: merged with the anchor at 0), 30 (30 >= 25 from
-  // the anchor: its own marker although 20 from the marker at 10), 100.
+  // Markers merge with the first anchor of their own kind within 25 pixels.
+  // Coincident at pixel 0; intersections at 10 (10 from the coincident one:
+  // another kind, so its own marker), 30 (20 from 10: merged), 40 (30 from
+  // the anchor at 10: its own); coincident at 20 (merged with 0), 100.
   const std::vector<OverlapMarker> markers{{MarkerKind::coincident, {0, 0, 0}, 2},
                                            {MarkerKind::intersection, {10, 0, 5}, 3},
                                            {MarkerKind::intersection, {30, 0, 0}, 1},
+                                           {MarkerKind::intersection, {40, 0, 0}, 6},
+                                           {MarkerKind::coincident, {20, 0, 0}, 7},
                                            {MarkerKind::coincident, {100, 0, -5}, 4}};
   const auto drawn = merge_markers_on_screen(markers, pixel_camera(), 100, 25.0);
-  ASSERT_EQ(drawn.size(), 3u);
+  ASSERT_EQ(drawn.size(), 4u);
+  EXPECT_EQ(drawn[0].kind, MarkerKind::coincident);
   EXPECT_EQ(drawn[0].members, 2);
-  EXPECT_EQ(drawn[0].coincident, 2);
-  EXPECT_EQ(drawn[0].intersections, 3);
+  EXPECT_EQ(drawn[0].coincident, 9);
+  EXPECT_EQ(drawn[0].intersections, 0);
   EXPECT_EQ(drawn[0].position, markers[0].position) << "anchored at the first member";
-  EXPECT_EQ(drawn[1].members, 1);
-  EXPECT_EQ(drawn[1].intersections, 1);
-  EXPECT_EQ(drawn[2].coincident, 4);
+  EXPECT_EQ(drawn[1].kind, MarkerKind::intersection);
+  EXPECT_EQ(drawn[1].members, 2);
+  EXPECT_EQ(drawn[1].intersections, 4);
+  EXPECT_EQ(drawn[1].coincident, 0);
+  EXPECT_EQ(drawn[2].intersections, 6);
+  EXPECT_EQ(drawn[3].coincident, 4);
   // Depth does not matter in an orthographic view; no merging at 0 pixels.
-  EXPECT_EQ(merge_markers_on_screen(markers, pixel_camera(), 100, 0.0).size(), 4u);
-  // Twice the pixels per unit: 10 units are 20 pixels, still merged; 30 and
-  // 0 are 60 pixels apart.
-  EXPECT_EQ(merge_markers_on_screen(markers, pixel_camera(), 200, 25.0).size(), 3u);
-  EXPECT_EQ(merge_markers_on_screen(markers, pixel_camera(), 400, 25.0).size(), 4u);
+  EXPECT_EQ(merge_markers_on_screen(markers, pixel_camera(), 100, 0.0).size(), 6u);
+  // Half the pixels per unit: 30 units are 15 pixels, all intersections merge.
+  EXPECT_EQ(merge_markers_on_screen(markers, pixel_camera(), 50, 25.0).size(), 3u);
 }
 
 TEST(MarkerMerge, DrawnMarkersAreApartAndKeepEveryFinding) {
@@ -208,12 +214,16 @@ TEST(MarkerMerge, DrawnMarkersAreApartAndKeepEveryFinding) {
   }
   EXPECT_EQ(sum, total);
   EXPECT_EQ(members, static_cast<Index>(markers.size()));
+  for (const ScreenMarker& m : drawn)  // one kind per drawn marker
+    EXPECT_EQ(m.kind == MarkerKind::coincident ? m.intersections : m.coincident, 0);
   for (std::size_t i = 0; i < drawn.size(); ++i)
     for (std::size_t j = i + 1; j < drawn.size(); ++j)
-      EXPECT_GE(std::hypot(drawn[i].position.x - drawn[j].position.x, drawn[i].position.y - drawn[j].position.y), d);
+      if (drawn[i].kind == drawn[j].kind)
+        EXPECT_GE(std::hypot(drawn[i].position.x - drawn[j].position.x, drawn[i].position.y - drawn[j].position.y),
+                  d);
   for (const OverlapMarker& m : markers)
     EXPECT_TRUE(std::any_of(drawn.begin(), drawn.end(), [&](const ScreenMarker& a) {
-      return std::hypot(a.position.x - m.position.x, a.position.y - m.position.y) < d;
+      return a.kind == m.kind && std::hypot(a.position.x - m.position.x, a.position.y - m.position.y) < d;
     }));
 }
 

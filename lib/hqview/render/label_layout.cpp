@@ -55,6 +55,19 @@ double disc_box_gap(const ScreenDisc& disc, const PixelRect& box) {
   return std::max(0.0, std::hypot(p[0] - disc.x, p[1] - disc.y) - disc.radius);
 }
 
+PlacedLabel with_leader(const ScreenDisc& anchor, const PixelRect& box) {
+  const auto end = nearest_point(box, anchor.x, anchor.y);
+  const double dx = end[0] - anchor.x, dy = end[1] - anchor.y;
+  const double length = std::max(std::hypot(dx, dy), 1e-9);
+  PlacedLabel result{box};
+  result.has_leader = true;
+  result.leader_x0 = anchor.x + dx / length * anchor.radius;
+  result.leader_y0 = anchor.y + dy / length * anchor.radius;
+  result.leader_x1 = end[0];
+  result.leader_y1 = end[1];
+  return result;
+}
+
 std::vector<std::optional<PlacedLabel>> place_labels(std::span<const LabelRequest> labels,
                                                      std::span<const ScreenDisc> obstacles,
                                                      std::span<const PixelRect> taken,
@@ -76,17 +89,8 @@ std::vector<std::optional<PlacedLabel>> place_labels(std::span<const LabelReques
         const PixelRect box =
             box_at(label.anchor.x + d[0] * distance, label.anchor.y + d[1] * distance, d, label.width, label.height);
         if (!is_free(box, label.anchor)) continue;
-        PlacedLabel result{box};
-        if (disc_box_gap(label.anchor, box) > options.leader_distance) {
-          const auto end = nearest_point(box, label.anchor.x, label.anchor.y);
-          const double dx = end[0] - label.anchor.x, dy = end[1] - label.anchor.y;
-          const double length = std::max(std::hypot(dx, dy), 1e-9);
-          result.has_leader = true;
-          result.leader_x0 = label.anchor.x + dx / length * label.anchor.radius;
-          result.leader_y0 = label.anchor.y + dy / length * label.anchor.radius;
-          result.leader_x1 = end[0];
-          result.leader_y1 = end[1];
-        }
+        const PlacedLabel result =
+            disc_box_gap(label.anchor, box) > options.leader_distance ? with_leader(label.anchor, box) : PlacedLabel{box};
         boxes.push_back(box);
         placed[i] = result;
         break;

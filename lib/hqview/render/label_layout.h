@@ -58,6 +58,10 @@ std::vector<std::optional<PlacedLabel>> place_labels(std::span<const LabelReques
                                                      std::span<const PixelRect> taken,
                                                      const LabelLayoutOptions& options);
 
+// A placement of box with a leader line from the anchor disc's edge
+// towards the box's point nearest the anchor's centre.
+PlacedLabel with_leader(const ScreenDisc& anchor, const PixelRect& box);
+
 // Whether two boxes share interior pixels / a box meets a disc's interior.
 bool boxes_overlap(const PixelRect& a, const PixelRect& b);
 bool box_meets_disc(const PixelRect& box, const ScreenDisc& disc);

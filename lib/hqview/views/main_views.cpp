@@ -236,11 +236,12 @@ std::vector<ScreenMarker> merge_markers_on_screen(std::span<const OverlapMarker>
           const auto it = grid.find({cx + dx, cy + dy});
           if (it == grid.end()) continue;
           for (std::size_t g : it->second)
-            if (g < best && std::hypot(anchors[g][0] - s[0], anchors[g][1] - s[1]) < min_pixels) best = g;
+            if (g < best && drawn[g].kind == m.kind && std::hypot(anchors[g][0] - s[0], anchors[g][1] - s[1]) < min_pixels)
+              best = g;
         }
     }
     if (best == drawn.size()) {
-      drawn.push_back({m.position, 0, 0, 0});
+      drawn.push_back({m.position, 0, 0, 0, m.kind});
       anchors.push_back(s);
       if (std::isfinite(s[0]) && std::isfinite(s[1])) grid[{cell_of(s[0]), cell_of(s[1])}].push_back(best);
     }
@@ -495,9 +496,12 @@ void draw_main_view_labels(Image& figure, const MainViewLabels& labels, const An
   for (const MainViewLabel& label : labels.labels) {
     const PlacedLabel& p = label.placement;
     const int size = label.kind == MainViewLabel::Kind::cluster ? cluster_label_size(style) : marker_label_size(style);
-    if (p.has_leader)
+    if (p.has_leader) {
+      // On a pale halo, so it shows over arrows, cells and edges.
+      draw_line(figure, p.leader_x0, p.leader_y0, p.leader_x1, p.leader_y1, halo, std::max(3.0, 4.5 * style.scale));
       draw_line(figure, p.leader_x0, p.leader_y0, p.leader_x1, p.leader_y1, label.color,
-                std::max(1.0, 1.2 * style.scale));
+                std::max(1.0, 1.8 * style.scale));
+    }
     // On a pale box: labels sit among arrow shafts and edges.
     fill_rect(figure, p.box, halo);
     text_style.text_color = label.color;
@@ -541,7 +545,7 @@ void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapRep
   lines.push_back({kCoincidentArrowColor, "coincident vertices: " + std::to_string(findings[0]) + unchecked, 1});
   lines.push_back({kIntersectionArrowColor, "intersecting pairs: " + std::to_string(findings[1]) + unchecked});
   lines.push_back({kIntersectingCellColor, "intersecting cells: " + std::to_string(intersecting) + unchecked});
-  if (overlap && !overlap->markers.empty()) lines.push_back({std::nullopt, "label xN: N pairs or vertices"});
+  if (overlap && !overlap->markers.empty()) lines.push_back({std::nullopt, "label xN: N of its colour's kind"});
   lines.push_back({kWireframeColor, "boundary edges"});
   draw_legend(figure, layout.legend, lines, style);
 }
@@ -591,8 +595,10 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
       label.kind = MainViewLabel::Kind::marker;
       label.count = fan.group.count();
       label.text = "x" + std::to_string(label.count);
-      label.color = fan.group.intersections > 0 ? kIntersectionArrowColor : kCoincidentArrowColor;
-      label.anchor = disc;
+      label.color = fan.group.kind == MarkerKind::intersection ? kIntersectionArrowColor : kCoincidentArrowColor;
+      // Anchored where its arrows point; its own fan is an obstacle, so
+      // the label sits next to the fan with a leader line to its centre.
+      label.anchor = ScreenDisc{disc.x, disc.y, 3.0 * style.scale};
       markers.push_back(label);
     }
     std::stable_sort(markers.begin(), markers.end(),
@@ -649,6 +655,7 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
       box.x = std::clamp(box.x, layout.view.x, layout.view.x + layout.view.width - box.width);
       box.y = std::clamp(box.y, layout.view.y, layout.view.y + layout.view.height - box.height);
       placed = PlacedLabel{box};
+      if (disc_box_gap(label.anchor, box) > options.leader_distance) *placed = with_leader(label.anchor, box);
     }
     if (!placed) {
       ++result.omitted_clusters;

@@ -83,22 +83,26 @@ std::vector<Vec3> choose_viewpoints(std::span<const Vec3> points, std::span<cons
 // Overlap markers as view A draws them. Arrows of markers a few pixels apart
 // tangle into an unreadable knot, so markers closer on screen than
 // min_pixels are merged: markers are taken in report order, each joins the
-// first drawn marker (in creation order) whose anchor is strictly closer
-// than min_pixels on screen, else it becomes a new drawn marker anchored at
-// its own position. Drawn markers are therefore at least min_pixels apart.
+// first drawn marker of its own kind (in creation order) whose anchor is
+// strictly closer than min_pixels on screen, else it becomes a new drawn
+// marker anchored at its own position. Drawn markers of one kind are
+// therefore at least min_pixels apart; a drawn marker counts one kind only
+// (coincident vertices or intersecting pairs), so its label can wear that
+// kind's colour and the labels of a kind add up to that kind's findings.
 struct ScreenMarker {
   Vec3 position;         // the first member's position (the anchor)
   Index coincident = 0;  // findings of the members, by kind
   Index intersections = 0;
   Index members = 0;  // markers merged into this one
   Index count() const { return coincident + intersections; }
+  MarkerKind kind = MarkerKind::coincident;  // every member's kind (markers of one kind only are merged)
 };
 std::vector<ScreenMarker> merge_markers_on_screen(std::span<const OverlapMarker> markers, const Camera& camera,
                                                   int view_height, double min_pixels);
 
 // The marker groups view A draws: merge_markers_on_screen with min_pixels,
 // then with 1.5 times that (1 pixel after 0), and so on, until there are at
-// most max_groups (>= 1). Every finding is in one group: the groups' count() sum to the
+// most max_groups (>= 1; >= 2 when both kinds occur). Every finding is in one group: the groups' count() sum to the
 // markers' findings (a marker counts max(count, 1)).
 std::vector<ScreenMarker> group_markers_on_screen(std::span<const OverlapMarker> markers, const Camera& camera,
                                                   int view_height, double min_pixels, int max_groups);
@@ -146,7 +150,7 @@ struct MainViewLabel {
   Index cluster = kNoIndex;  // the cluster's rank (cluster labels)
   Index count = 0;           // findings (marker labels)
   Rgba8 color;               // text colour
-  ScreenDisc anchor;         // the glyph's disc, or the marker group's arrow fan
+  ScreenDisc anchor;         // the glyph's disc, or a 3-pixel disc at the marker group's position
   PlacedLabel placement;
 };
 struct MainViewLabels {
@@ -162,8 +166,12 @@ struct MainViewLabels {
 // max_marker_groups + 10 labels. Placed greedily (place_labels): cluster #0
 // first, then the marker groups (largest count first), then clusters #1 ..;
 // none overlaps another label, a glyph disc of the 200 largest clusters on
-// screen, or another group's arrow fan; a label farther than 10 pixels (at
-// 1200 px height) from its anchor has a leader line. A marker label that
+// screen, or an arrow fan (its own too); a label farther than 10 pixels (at
+// 1200 px height) from its anchor has a leader line. A marker label's anchor
+// is its group's position (a 3-pixel disc at the fans' centre, where the
+// arrows point), so it sits just outside its own fan with a leader line to
+// the centre, never reading as the label of a neighbouring fan; it wears the
+// colour of its kind. A marker label that
 // finds no such place is placed ignoring the other glyphs (never the worst
 // one), so the counts always add up; a cluster label that finds none is left
 // out (omitted_clusters).
