@@ -67,9 +67,15 @@ TEST(MainScene, OnlyTheTopClustersAreColouredTheRestAreNeutral) {
                                        fit_camera_to_points(main_view_points(mesh, topology, glyphs), {-1, -1, -1}, 1.0),
                                        600, {});
   const Rgba8 neutral = to_rgba8(neutral_cluster_color());
+  // The three ranked glyphs in the set drawn over the grey ones.
+  ASSERT_EQ(scene.spheres.size(), 2u);
+  ASSERT_EQ(scene.spheres[1].colors.size(), 3u);
+  ASSERT_EQ(scene.spheres[0].colors.size(), static_cast<std::size_t>(n) - 3);
   for (Index v = 0; v < n; ++v) {
     const Rgba8 expected = v < 3 ? to_rgba8(labelled_cluster_color(v)) : neutral;
-    EXPECT_EQ(scene.spheres[0].colors[static_cast<std::size_t>(v)], expected) << v;
+    const Rgba8 drawn = v < 3 ? scene.spheres[1].colors[static_cast<std::size_t>(v)]
+                              : scene.spheres[0].colors[static_cast<std::size_t>(v - 3)];
+    EXPECT_EQ(drawn, expected) << v;
   }
   // Edge colours: the lower-ranked endpoint's cluster decides.
   std::size_t i = 0;
@@ -105,7 +111,9 @@ TEST(MainScene, LayersHoldWhatTheViewDraws) {
   Fixture f;
   const Scene scene = build_main_scene(f.mesh, f.topology, f.glyphs, &f.overlap, camera_for(f), 600, {});
   ASSERT_EQ(scene.lines.size(), 3u);
-  ASSERT_EQ(scene.spheres.size(), 1u);
+  ASSERT_EQ(scene.spheres.size(), 2u);  // grey glyphs, then the ranked ones over them
+  EXPECT_FALSE(scene.spheres[0].over_other_spheres);
+  EXPECT_TRUE(scene.spheres[1].over_other_spheres);
   ASSERT_TRUE(scene.triangles.empty());
   ASSERT_EQ(scene.overlay.size(), 1u);
   ASSERT_EQ(scene.translucent.size(), 1u);
@@ -118,10 +126,11 @@ TEST(MainScene, LayersHoldWhatTheViewDraws) {
   for (const Edge& e : f.topology.edges) expected += (e[0] <= 1 || e[1] <= 1);
   EXPECT_EQ(scene.lines[1].indices.size() / 2, expected);
   for (const Rgba8& c : scene.lines[1].colors) EXPECT_EQ(c, cluster0);
-  // One aggregated glyph.
-  ASSERT_EQ(scene.spheres[0].centers.size(), 1u);
-  EXPECT_FLOAT_EQ(scene.spheres[0].radii[0], 0.4f);
-  EXPECT_EQ(scene.spheres[0].colors[0], cluster0);
+  // One aggregated glyph, ranked: in the set drawn over the grey ones.
+  EXPECT_TRUE(scene.spheres[0].centers.empty());
+  ASSERT_EQ(scene.spheres[1].centers.size(), 1u);
+  EXPECT_FLOAT_EQ(scene.spheres[1].radii[0], 0.4f);
+  EXPECT_EQ(scene.spheres[1].colors[0], cluster0);
   // Three arrows (in the overlay), and one intersecting cell (6 quads, 12 triangles) with 12 edges.
   EXPECT_GT(scene.overlay[0].indices.size(), 0u);
   EXPECT_EQ(scene.translucent[0].indices.size(), 36u);

@@ -545,18 +545,34 @@ class OsmesaRenderer final : public Renderer {
     set_light(sphere_program_);
     gl.Disable(GL_BLEND);
     static constexpr float kCorners[4][2] = {{-1.0f, -1.0f}, {1.0f, -1.0f}, {1.0f, 1.0f}, {-1.0f, 1.0f}};
-    for (const SphereSet& set : scene.spheres) {
+    // Sets over the others last, back to front (eye z ascending), depth test off.
+    std::vector<const SphereSet*> order;
+    for (const SphereSet& set : scene.spheres)
+      if (!set.over_other_spheres) order.push_back(&set);
+    for (const SphereSet& set : scene.spheres)
+      if (set.over_other_spheres) order.push_back(&set);
+    auto eye_z = [&](const Vec3f& c) { return model_view[2] * c.x + model_view[6] * c.y + model_view[10] * c.z; };
+    for (const SphereSet* set_pointer : order) {
+      const SphereSet& set = *set_pointer;
       stop::check();  // a stop request lands between draws (hq::stop)
       if (set.centers.empty()) continue;
       const std::size_t n = set.centers.size();
+      std::vector<std::size_t> sphere_order(n);
+      for (std::size_t i = 0; i < n; ++i) sphere_order[i] = i;
+      if (set.over_other_spheres) {
+        std::stable_sort(sphere_order.begin(), sphere_order.end(),
+                         [&](std::size_t a, std::size_t b) { return eye_z(set.centers[a]) < eye_z(set.centers[b]); });
+        gl.DepthFunc(GL_ALWAYS);
+      }
       std::vector<Vec3f> centers(4 * n), corners(4 * n);
       std::vector<Rgba8> colors(4 * n);
       std::vector<std::uint32_t> indices(6 * n);
       for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t s = sphere_order[i];
         for (std::size_t k = 0; k < 4; ++k) {
-          centers[4 * i + k] = set.centers[i];
-          corners[4 * i + k] = {kCorners[k][0], kCorners[k][1], set.radii[i]};
-          colors[4 * i + k] = set.colors[i];
+          centers[4 * i + k] = set.centers[s];
+          corners[4 * i + k] = {kCorners[k][0], kCorners[k][1], set.radii[s]};
+          colors[4 * i + k] = set.colors[s];
         }
         const auto base = static_cast<std::uint32_t>(4 * i);
         const std::uint32_t quad[6] = {base, base + 1, base + 2, base, base + 2, base + 3};
@@ -568,6 +584,7 @@ class OsmesaRenderer final : public Renderer {
       gl.EnableVertexAttribArray(kCornerAttribute);
       upload(GL_ELEMENT_ARRAY_BUFFER, index_buffer_, indices);
       gl.DrawElements(GL_TRIANGLES, static_cast<GLsizei>(indices.size()), GL_UNSIGNED_INT, nullptr);
+      gl.DepthFunc(GL_LEQUAL);
     }
     gl.DisableVertexAttribArray(kCornerAttribute);
   }

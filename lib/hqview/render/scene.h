@@ -93,6 +93,11 @@ struct SphereSet {
   std::vector<Vec3f> centers;  // relative to Scene::origin
   std::vector<float> radii;    // #spheres
   std::vector<Rgba8> colors;   // #spheres (alpha ignored: spheres are opaque)
+  // Drawn after the other sphere sets, back to front, over the opaque
+  // triangles and the other sets' spheres (depth test off), still writing
+  // their depth (lines and translucent faces in front of them show): view
+  // A's ranked glyphs, which the many grey ones must not hide.
+  bool over_other_spheres = false;
 };
 
 struct Scene {

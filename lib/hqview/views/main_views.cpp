@@ -431,15 +431,21 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   scene.lines.push_back(
       edge_lines(mesh, scene.origin, cell_edges, std::vector<Rgba8>(cell_edges.size(), kIntersectionArrowColor), 1.5f));
 
-  // 4. Aggregated glyphs.
-  SphereSet spheres;
+  // 4. Aggregated glyphs: the grey ones, then the coloured (ranked) ones
+  // over them, so that no grey glyph hides a ranked one.
+  SphereSet spheres, ranked;
+  ranked.over_other_spheres = true;
+  const Rgba8 neutral = to_rgba8(neutral_cluster_color());
   for (const AggregatedGlyph& g : glyphs.clusters) {
     if (!(g.radius > 0.0)) continue;
-    spheres.centers.push_back(local(g.position));
-    spheres.radii.push_back(static_cast<float>(g.radius));
-    spheres.colors.push_back(to_rgba8(cluster_color(g.id, top)));
+    const Rgba8 color = to_rgba8(cluster_color(g.id, top));
+    SphereSet& set = color == neutral ? spheres : ranked;
+    set.centers.push_back(local(g.position));
+    set.radii.push_back(static_cast<float>(g.radius));
+    set.colors.push_back(color);
   }
   scene.spheres.push_back(std::move(spheres));
+  scene.spheres.push_back(std::move(ranked));
 
   // 5. Arrows on overlap markers, grouped where they crowd on screen.
   TriangleSet arrows;
@@ -509,6 +515,25 @@ void draw_main_view_labels(Image& figure, const MainViewLabels& labels, const An
   }
 }
 
+// A ring around cluster #0's glyph on screen (dark on a pale halo, a few
+// pixels outside its silhouette), so the worst place is found first even
+// where its glyph is small.
+void draw_worst_glyph_ring(Image& figure, const ScreenDisc& worst, const AnnotationStyle& style,
+                           const MainViewOptions& options) {
+  if (!(worst.radius > 0.0)) return;
+  Rgba8 halo = options.background;
+  halo.a = 255;
+  const double radius = worst.radius + 4.0 * style.scale;
+  constexpr int kSegments = 96;
+  for (int pass = 0; pass < 2; ++pass)
+    for (int i = 0; i < kSegments; ++i) {
+      const double a0 = 2.0 * M_PI * i / kSegments, a1 = 2.0 * M_PI * (i + 1) / kSegments;
+      draw_line(figure, worst.x + radius * std::cos(a0), worst.y + radius * std::sin(a0), worst.x + radius * std::cos(a1),
+                worst.y + radius * std::sin(a1), pass == 0 ? halo : style.text_color,
+                pass == 0 ? std::max(4.0, 5.0 * style.scale) : std::max(1.5, 2.2 * style.scale));
+    }
+}
+
 // Legend: what each colour means (draw_legend shrinks it to the panel).
 void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapReport* overlap,
                       const FigureLayout& layout, const AnnotationStyle& style, const MainViewOptions& options) {
@@ -517,15 +542,17 @@ void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapRep
   std::vector<LegendLine> lines{{std::nullopt, "glyphs: worst clusters"}};
   for (std::size_t i = 0; i < listed; ++i) {
     const AggregatedGlyph& g = glyphs.clusters[i];
+    // As the label reads, then the key number (short: a long line is cut).
     lines.push_back({to_rgba8(cluster_color(g.id, glyphs.options.top_clusters)),
-                     "#" + std::to_string(g.id) + "  " + std::to_string(g.size) + (g.size == 1 ? " vertex" : " vertices") +
-                         ", min " + display_number(g.min_quality, 3)});
+                     "#" + std::to_string(g.id) + " (" + std::to_string(g.size) + ")  min " +
+                         display_number(g.min_quality, 3)});
   }
   if (glyphs.clusters.size() > listed) {
     const std::size_t rest = glyphs.clusters.size() - listed;
     lines.push_back({to_rgba8(neutral_cluster_color()), std::to_string(rest) + (rest == 1 ? " other cluster" : " other clusters")});
   }
-  if (glyphs.clusters.empty()) lines.push_back({options.background, "none (no vertex below threshold)"});
+  if (glyphs.clusters.empty())
+    lines.push_back({options.background, "none: no quality below " + display_number(1.0 - glyphs.options.threshold, 3)});
   lines.push_back({std::nullopt,
                    glyphs.options.size_rule == GlyphSizeRule::kPaper
                        ? "size = 1 - min quality + 0.1 per 10 vertices (paper)"
@@ -722,7 +749,9 @@ Image render_main_view(const HexMesh& mesh, const Topology& topology, const Glyp
 
   Image figure = render_figure(renderer, scene, camera, options.width, options.height, layout, options.title, style);
 
-  draw_main_view_labels(figure, layout_main_view_labels(glyphs, overlap, camera, layout, style, scaled), style, scaled);
+  const MainViewLabels labels = layout_main_view_labels(glyphs, overlap, camera, layout, style, scaled);
+  draw_worst_glyph_ring(figure, labels.worst_glyph, style, scaled);
+  draw_main_view_labels(figure, labels, style, scaled);
   draw_main_legend(figure, glyphs, overlap, layout, style, options);
   return figure;
 }
