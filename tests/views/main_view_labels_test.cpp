@@ -110,6 +110,11 @@ void expect_clear_views(const Case& c, const char* name) {
       for (std::size_t j = 0; j < i; ++j)
         EXPECT_FALSE(boxes_overlap(b, labels.labels[j].placement.box)) << i << " " << j;
       EXPECT_TRUE(l.placement.has_leader || disc_box_gap(l.anchor, b) <= 10.0 * scale) << l.text;
+      // Without a leader, no other label's anchor is nearer to the box than its own.
+      if (!l.placement.has_leader)
+        for (const MainViewLabel& other : labels.labels)
+          if (&other != &l)
+            EXPECT_GE(disc_box_gap(other.anchor, b), disc_box_gap(l.anchor, b)) << l.text << " reads as " << other.text;
       if (l.placement.has_leader) {
         const PlacedLabel& p = l.placement;
         EXPECT_NEAR(std::hypot(p.leader_x0 - l.anchor.x, p.leader_y0 - l.anchor.y), l.anchor.radius, 1.0) << l.text;

@@ -688,6 +688,16 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
       ++result.omitted_clusters;
       continue;
     }
+    // A label nearer to another glyph or fan than to its own anchor would
+    // read as that one's: it gets a leader line too.
+    if (!placed->has_leader) {
+      const double own = disc_box_gap(label.anchor, placed->box);
+      auto nearer = [&](const ScreenDisc& d) {
+        const bool is_own = d.x == label.anchor.x && d.y == label.anchor.y;
+        return !is_own && disc_box_gap(d, placed->box) < own;
+      };
+      if (std::any_of(all_obstacles.begin(), all_obstacles.end(), nearer)) *placed = with_leader(label.anchor, placed->box);
+    }
     label.placement = *placed;
     taken.push_back(placed->box);
     result.labels.push_back(label);

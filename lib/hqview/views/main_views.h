@@ -167,7 +167,8 @@ struct MainViewLabels {
 // first, then the marker groups (largest count first), then clusters #1 ..;
 // none overlaps another label, a glyph disc of the 200 largest clusters on
 // screen, or an arrow fan (its own too); a label farther than 10 pixels (at
-// 1200 px height) from its anchor has a leader line. A marker label's anchor
+// 1200 px height) from its anchor, or nearer to another glyph disc or fan
+// than to its anchor, has a leader line. A marker label's anchor
 // is its group's position (a 3-pixel disc at the fans' centre, where the
 // arrows point), so it sits just outside its own fan with a leader line to
 // the centre, never reading as the label of a neighbouring fan; it wears the
