@@ -499,15 +499,17 @@ void draw_main_view_labels(Image& figure, const MainViewLabels& labels, const An
   AnnotationStyle text_style = style;
   Rgba8 halo = options.background;
   halo.a = 255;
+  // Leader lines first (on a pale halo, so they show over arrows, cells and
+  // edges), then the labels: a leader never crosses a label's text.
+  for (const MainViewLabel& label : labels.labels) {
+    const PlacedLabel& p = label.placement;
+    if (!p.has_leader) continue;
+    draw_line(figure, p.leader_x0, p.leader_y0, p.leader_x1, p.leader_y1, halo, std::max(3.0, 4.5 * style.scale));
+    draw_line(figure, p.leader_x0, p.leader_y0, p.leader_x1, p.leader_y1, label.color, std::max(1.0, 1.8 * style.scale));
+  }
   for (const MainViewLabel& label : labels.labels) {
     const PlacedLabel& p = label.placement;
     const int size = label.kind == MainViewLabel::Kind::cluster ? cluster_label_size(style) : marker_label_size(style);
-    if (p.has_leader) {
-      // On a pale halo, so it shows over arrows, cells and edges.
-      draw_line(figure, p.leader_x0, p.leader_y0, p.leader_x1, p.leader_y1, halo, std::max(3.0, 4.5 * style.scale));
-      draw_line(figure, p.leader_x0, p.leader_y0, p.leader_x1, p.leader_y1, label.color,
-                std::max(1.0, 1.8 * style.scale));
-    }
     // On a pale box: labels sit among arrow shafts and edges.
     fill_rect(figure, p.box, halo);
     text_style.text_color = label.color;
