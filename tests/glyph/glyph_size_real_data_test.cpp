@@ -66,9 +66,12 @@ TEST(GlyphSize, SharedMeshesNeverDrawTheWorseClusterSmaller) {
     const std::vector<Vec3> points = main_view_points(mesh, topology, severity);
     const Camera camera = fit_camera_to_points(points, {-1, -1, -1}, 4.0 / 3.0, {.is_perspective = false});
     const Scene scene = build_main_scene(mesh, topology, severity, nullptr, camera, 1000, {});
-    ASSERT_EQ(scene.spheres.at(0).radii.size(), severity.clusters.size());
-    for (std::size_t i = 1; i < scene.spheres[0].radii.size(); ++i)
-      EXPECT_GE(scene.spheres[0].radii[i - 1], scene.spheres[0].radii[i]) << i;
+    // The ranked (coloured) glyphs are the set drawn over the grey ones.
+    ASSERT_EQ(scene.spheres.size(), 2u);
+    std::vector<float> radii = scene.spheres[1].radii;
+    radii.insert(radii.end(), scene.spheres[0].radii.begin(), scene.spheres[0].radii.end());
+    ASSERT_EQ(radii.size(), severity.clusters.size());
+    for (std::size_t i = 1; i < radii.size(); ++i) EXPECT_GE(radii[i - 1], radii[i]) << i;
   }
 }
 
