@@ -141,7 +141,7 @@
   // Overlap markers and intersecting cells.
   var markers = new THREE.Group(), markerRadius = 0.012 * diagonal;
   D.markers.forEach(function (mk) {
-    var m = new THREE.Mesh(sphere, new THREE.MeshBasicMaterial({ color: mk.kind === 'coincident' ? 0xd95f02 : 0x8e1a7e }));
+    var m = new THREE.Mesh(sphere, new THREE.MeshBasicMaterial({ color: mk.kind === 'coincident' ? 0x191919 : 0x8e1a7e }));
     m.position.set(mk.position[0], mk.position[1], mk.position[2]);
     m.scale.set(markerRadius, markerRadius, markerRadius);
     m.userData.marker = mk;

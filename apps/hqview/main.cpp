@@ -158,6 +158,7 @@ struct AnalyzeArgs {
   std::string metrics = "all";
   std::string rmax = "1x";
   std::string glyph_threshold = "0.5";
+  std::string glyph_size = "severity";
   int top_clusters = 8;
   std::string overlap = "certificate";
   std::string coincident_eps = "0";
@@ -207,6 +208,7 @@ hq::AnalyzeOptions make_analyze_options(const AnalyzeArgs& args) {
   parse_rmax(args.rmax, options.glyphs);
   options.glyphs.threshold = parse_glyph_threshold(args.glyph_threshold);
   options.glyphs.top_clusters = args.top_clusters;
+  options.glyphs.size_rule = args.glyph_size == "paper" ? hq::GlyphSizeRule::kPaper : hq::GlyphSizeRule::kSeverity;
   options.overlap = parse_overlap(args.overlap, args.coincident_eps, args.no_overlap);
   options.read_limits.max_memory =
       args.max_memory.empty() ? hq::default_max_memory() : parse_memory_size(args.max_memory, "--max-memory");
@@ -471,6 +473,11 @@ void add_analysis_options(CLI::App* cmd, AnalyzeArgs& args) {
       ->capture_default_str();
   cmd->add_option("--glyph-threshold", args.glyph_threshold,
                   "No glyph where 1 - vertex quality is at or below T (0 to 2)")
+      ->capture_default_str();
+  cmd->add_option("--glyph-size", args.glyph_size,
+                  "Aggregated glyph radius: severity ((1 - min quality) * rmax; the member count is in the labels) "
+                  "or paper (HQViewer's: + 0.1 * rmax per 10 members, up to + rmax)")
+      ->check(CLI::IsMember({"severity", "paper"}))
       ->capture_default_str();
   cmd->add_option("--top-clusters", args.top_clusters, "Glyph clusters that get detail views (the worst K)")
       ->check(CLI::Range(0, 1000000))

@@ -44,8 +44,11 @@ void expect_glyphs_match_vertices_csv(const GlyphBundle& b) {
   ASSERT_TRUE(g.is_object());
   std::vector<std::string> keys;
   for (const auto& item : g.items()) keys.push_back(item.key());
-  EXPECT_EQ(keys, (std::vector<std::string>{"rmax", "threshold", "num_glyphs", "num_clusters", "rmax_mode",
-                                            "rmax_factor", "top_clusters", "num_clusters_omitted", "clusters"}));
+  EXPECT_EQ(keys,
+            (std::vector<std::string>{"rmax", "threshold", "num_glyphs", "num_clusters", "rmax_mode", "rmax_factor",
+                                      "top_clusters", "size_rule", "num_clusters_omitted", "clusters"}));
+  const bool is_paper = g["size_rule"] == "paper";
+  EXPECT_TRUE(is_paper || g["size_rule"] == "severity");
   const double rmax = g["rmax"], threshold = g["threshold"];
   const auto rows = read_csv(b.dir / "data/vertices.csv");
   ASSERT_GT(rows.size(), 1u);
@@ -91,7 +94,8 @@ void expect_glyphs_match_vertices_csv(const GlyphBundle& b) {
     const auto& row = rows[static_cast<std::size_t>(rep) + 1];
     EXPECT_EQ(c["position"], (ordered_json{std::stod(row[1]), std::stod(row[2]), std::stod(row[3])}));
     EXPECT_EQ(c["min_quality"].get<double>(), min_quality[id]) << "cluster " << id;
-    const double ratio = (1.0 - min_quality[id]) + bonus(static_cast<std::int64_t>(m.size()));
+    // Size is severity; the paper's rule adds the size bonus.
+    const double ratio = (1.0 - min_quality[id]) + (is_paper ? bonus(static_cast<std::int64_t>(m.size())) : 0.0);
     EXPECT_EQ(c["ratio"].get<double>(), ratio) << "cluster " << id;
     EXPECT_EQ(c["radius"].get<double>(), ratio * rmax) << "cluster " << id;
     const std::string color = c["color"];
@@ -127,9 +131,31 @@ TEST(Glyphs, BallDefaultsMatchVerticesCsv) {
   EXPECT_EQ(g["rmax_factor"].get<double>(), 1.0);
   EXPECT_EQ(g["top_clusters"], 8);
   EXPECT_GT(g["num_glyphs"].get<int>(), 0);
+  EXPECT_EQ(g["size_rule"], "severity");
   // The worst cluster holds the worst vertex.
   EXPECT_EQ(g["clusters"][0]["min_quality"], b.report["quality"]["vertex_quality"]["min"]);
   expect_glyphs_match_vertices_csv(b);
+}
+
+TEST(Glyphs, PaperSizeRuleAddsTheBonusAndKeepsTheClusters) {
+  const GlyphBundle severity = analyze(example("ball.mesh"), "ball-severity", {"--rmax", "2x"});
+  const GlyphBundle paper = analyze(example("ball.mesh"), "ball-paper", {"--rmax", "2x", "--glyph-size", "paper"});
+  ASSERT_TRUE(severity.report.is_object() && paper.report.is_object());
+  EXPECT_EQ(paper.report["glyphs"]["size_rule"], "paper");
+  expect_glyphs_match_vertices_csv(severity);
+  expect_glyphs_match_vertices_csv(paper);
+  // Same clusters, ranks, members; only ratio and radius differ, by the bonus.
+  const auto& a = severity.report["glyphs"]["clusters"];
+  const auto& b = paper.report["glyphs"]["clusters"];
+  ASSERT_EQ(a.size(), b.size());
+  bool has_bonus = false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i]["size"], b[i]["size"]);
+    EXPECT_EQ(a[i]["min_quality"], b[i]["min_quality"]);
+    has_bonus = has_bonus || a[i]["size"].get<long>() >= 10;
+  }
+  EXPECT_TRUE(has_bonus);  // some cluster of 10 or more members: the rules differ there
+  EXPECT_EQ(read_text(severity.dir / "data/vertices.csv"), read_text(paper.dir / "data/vertices.csv"));
 }
 
 TEST(Glyphs, SmallerRmaxSplitsClusters) {
@@ -195,6 +221,8 @@ TEST(Glyphs, BadOptionValuesAreUsageErrors) {
       {"--rmax", "1e400"},
       {"--rmax", "0x"},
       {"--rmax", " 1"},
+      {"--glyph-size", "big"},
+      {"--glyph-size", "Paper"},
       {"--glyph-threshold", "-0.1"},
       {"--glyph-threshold", "2.5"},
       {"--glyph-threshold", "nan"},

@@ -324,12 +324,7 @@ TEST(GlyphClusters, IdenticalForEveryThreadCount) {
 TEST(GlyphClusters, RealMeshesMatchAllPairs) {
   const auto data = test::shared_data_dir();
   if (!data) GTEST_SKIP() << "../shared/data (or $HQVIEW_DATA) not found";
-  std::vector<std::filesystem::path> files;
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(*data / "meshes")) {
-    const auto ext = entry.path().extension();
-    if (entry.is_regular_file() && (ext == ".mesh" || ext == ".vtk")) files.push_back(entry.path());
-  }
-  std::sort(files.begin(), files.end());
+  const std::vector<std::filesystem::path> files = test::shared_hex_meshes(*data);
   ASSERT_GE(files.size(), 11u);
   // The all-pairs reference is quadratic: up to this many glyphs (~1.3e9 pairs).
   constexpr std::size_t kMaxGlyphs = 50000;
@@ -338,9 +333,7 @@ TEST(GlyphClusters, RealMeshesMatchAllPairs) {
     const HexMesh mesh = read_hex_mesh(file).mesh;
     const Topology topo = build_topology(mesh);
     const QualityField q = compute_quality(mesh, topo);
-    double sum = 0;
-    for (const Edge& e : topo.edges) sum += norm(mesh.points[e[1]] - mesh.points[e[0]]);
-    const double mean_edge = sum / static_cast<double>(topo.edges.size());
+    const double mean_edge = test::mean_edge_length(mesh, topo);
     struct Setting {
       double threshold, rmax;
     };

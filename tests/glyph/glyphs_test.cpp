@@ -80,7 +80,7 @@ TEST(AggregateGlyph, TiesGoToTheSmallestId) {
   EXPECT_EQ(aggregate_glyph(last_three, square, q4, 1.0).representative_vertex, 2);
 }
 
-TEST(AggregateGlyph, SizeBonusAddsToTheLargestRatio) {
+TEST(AggregateGlyph, PaperRuleAddsTheSizeBonusToTheLargestRatio) {
   std::vector<Vec3> points;
   std::vector<double> quality;
   for (int i = 0; i < 250; ++i) {
@@ -90,7 +90,7 @@ TEST(AggregateGlyph, SizeBonusAddsToTheLargestRatio) {
   auto aggregate = [&](int size) {
     std::vector<Index> members;
     for (int i = 0; i < size; ++i) members.push_back(i);
-    return aggregate_glyph(members, points, quality, 0.5);
+    return aggregate_glyph(members, points, quality, 0.5, GlyphSizeRule::kPaper);
   };
   EXPECT_EQ(aggregate(9).ratio, 0.8);
   EXPECT_EQ(aggregate(10).ratio, 0.8 + 0.1);
@@ -99,6 +99,30 @@ TEST(AggregateGlyph, SizeBonusAddsToTheLargestRatio) {
   EXPECT_EQ(aggregate(250).ratio, 0.8 + 1.0);  // the bonus is capped, not the ratio
   EXPECT_EQ(aggregate(250).radius, (0.8 + 1.0) * 0.5);
   EXPECT_EQ(aggregate(25).min_quality, 0.2);
+}
+
+TEST(AggregateGlyph, SeverityRuleIgnoresTheMemberCount) {
+  // The default rule: radius = (1 − min quality) · rmax whatever the size, so
+  // 250 members at min 0.4 are drawn smaller than 9 at min 0.2.
+  std::vector<Vec3> points;
+  std::vector<double> quality;
+  for (int i = 0; i < 250; ++i) {
+    points.push_back({double(i), 0, 0});
+    quality.push_back(i == 7 ? 0.2 : 0.4);
+  }
+  auto aggregate = [&](int first, int size) {
+    std::vector<Index> members;
+    for (int i = first; i < first + size; ++i) members.push_back(i);
+    return aggregate_glyph(members, points, quality, 0.5);
+  };
+  for (int size : {1, 9, 10, 25, 100, 250}) {
+    EXPECT_EQ(aggregate(0, size).ratio, size > 7 ? 0.8 : 0.6) << size;
+    EXPECT_EQ(aggregate(0, size).radius, (size > 7 ? 0.8 : 0.6) * 0.5) << size;
+    EXPECT_EQ(aggregate(0, size).size, size);
+  }
+  EXPECT_LT(aggregate(8, 242).radius, aggregate(0, 9).radius);  // 242 at 0.4 < 9 with a 0.2
+  EXPECT_STREQ(glyph_size_rule_name(GlyphSizeRule::kSeverity), "severity");
+  EXPECT_STREQ(glyph_size_rule_name(GlyphSizeRule::kPaper), "paper");
 }
 
 // Three groups on a line with unit spacing, rmax = 1 model unit.
@@ -224,6 +248,55 @@ TEST(ComputeGlyphs, IdenticalForEveryThreadCount) {
       EXPECT_EQ(many.clusters[c].size, one.clusters[c].size);
     }
   }
+}
+
+// The size rules on a random cloud: under severity (the default) a worse
+// cluster is never drawn smaller than a better one (radius non-increasing
+// with rank, equal min quality equal radius); under paper every radius is
+// the severity radius plus the size bonus, and clusters and ranks agree.
+TEST(ComputeGlyphs, SeverityRadiusFollowsRankAndPaperAddsTheBonus) {
+  // Scattered vertices of any badness, and 6 dense blobs of 60 mildly bad
+  // ones (the paper's bonus makes those outgrow worse small clusters).
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> coord(0.0, 80.0), q(-1.0, 0.6), mild(0.3, 0.45), blob(-1.5, 1.5);
+  std::vector<Vec3> points;
+  std::vector<double> quality;
+  for (int i = 0; i < 15000; ++i) {
+    points.push_back({coord(rng), coord(rng), coord(rng)});
+    quality.push_back(q(rng));
+  }
+  for (int b = 0; b < 6; ++b) {
+    const Vec3 centre{coord(rng), coord(rng), coord(rng)};
+    for (int i = 0; i < 60; ++i) {
+      points.push_back(centre + Vec3{blob(rng), blob(rng), blob(rng)});
+      quality.push_back(mild(rng));
+    }
+  }
+  GlyphOptions o;
+  o.rmax = 0.7;
+  o.rmax_unit = RmaxUnit::kModel;
+  const GlyphResult severity = compute_glyphs(points, quality, 1.0, o);
+  o.size_rule = GlyphSizeRule::kPaper;
+  const GlyphResult paper = compute_glyphs(points, quality, 1.0, o);
+  ASSERT_EQ(severity.clusters.size(), paper.clusters.size());
+  ASSERT_GT(severity.clusters.size(), 100u);
+  int paper_inversions = 0;
+  for (std::size_t i = 0; i < severity.clusters.size(); ++i) {
+    const AggregatedGlyph& s = severity.clusters[i];
+    const AggregatedGlyph& p = paper.clusters[i];
+    EXPECT_EQ(s.representative_vertex, p.representative_vertex);
+    EXPECT_EQ(s.size, p.size);
+    EXPECT_EQ(s.ratio, 1.0 - s.min_quality);
+    EXPECT_EQ(s.radius, (1.0 - s.min_quality) * 0.7);
+    EXPECT_EQ(p.ratio, 1.0 - p.min_quality + glyph_size_bonus(p.size));
+    if (i > 0) {
+      EXPECT_GE(severity.clusters[i - 1].radius, s.radius) << i;
+      paper_inversions += paper.clusters[i - 1].radius < p.radius;
+    }
+  }
+  EXPECT_GT(paper_inversions, 0);  // the cloud has big mild clusters: the paper rule inverts some pairs
+  EXPECT_EQ(severity.vertex_radius, paper.vertex_radius);  // member glyphs (and so the clusters) do not change
+  EXPECT_EQ(severity.vertex_cluster, paper.vertex_cluster);
 }
 
 }  // namespace

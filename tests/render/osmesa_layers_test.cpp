@@ -86,6 +86,45 @@ TEST(SphereImpostor, WritesTheSpheresDepth) {
   EXPECT_EQ(pixel_at(image, 5, 5), green);
 }
 
+bool is_greyish(Rgba8 p) { return p.r > 40 && std::abs(p.r - p.g) < 12 && std::abs(p.r - p.b) < 12; }
+
+TEST(SphereImpostor, ASetOverOtherSpheresShowsInFrontOfCloserOnes) {
+  // A grey sphere in front of (closer than) a red one and a blue one, the
+  // red one also in front of the blue one. Without the flag the grey one
+  // hides the red one's centre; with it, the red and blue spheres (the
+  // flagged set, in the order red, blue) show over the grey one, and the
+  // red one over the blue one (back to front within the set), while a
+  // line in front of the red one still shows (depth is written).
+  for (bool over : {false, true}) {
+    Scene scene;
+    scene.background = kBlack;
+    SphereSet grey;
+    grey.centers = {{0, 0, 2}};
+    grey.radii = {0.8f};
+    grey.colors = {{128, 128, 128, 255}};
+    SphereSet ranked;
+    ranked.over_other_spheres = over;
+    ranked.centers = {{0, 0, 0}, {0.5f, 0, -1}};  // red first: the set's order is not the drawing order
+    ranked.radii = {0.6f, 1.0f};
+    ranked.colors = {{220, 30, 30, 255}, {30, 30, 220, 255}};
+    scene.spheres = {grey, ranked};
+    LineSet line;
+    line.positions = {{-2, -0.25f, 3}, {2, -0.25f, 3}};
+    line.colors = {{20, 200, 20, 255}, {20, 200, 20, 255}};
+    line.indices = {0, 1};
+    line.width = 3.0f;
+    scene.lines.push_back(line);
+    const Image image = renderer().render(scene, front_camera(false), 80, 80);
+    if (over) {
+      EXPECT_TRUE(is_reddish(pixel_at(image, 40, 40))) << "the red sphere over the grey one";
+      EXPECT_TRUE(is_reddish(pixel_at(image, 47, 40))) << "red in front of blue within the set";
+      EXPECT_GT(pixel_at(image, 40, 45).g, 150) << "the line in front still shows";
+    } else {
+      EXPECT_TRUE(is_greyish(pixel_at(image, 40, 40))) << "depth order: the grey sphere is closest";
+    }
+  }
+}
+
 TEST(Arrow, PointsTheRightWay) {
   Scene scene;
   scene.background = kBlack;

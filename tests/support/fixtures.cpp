@@ -1,5 +1,6 @@
 #include "support/fixtures.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 
@@ -60,6 +61,23 @@ std::optional<std::filesystem::path> shared_data_dir() {
   const auto dir = source_dir() / ".." / "shared" / "data";
   if (std::filesystem::is_directory(dir)) return std::filesystem::weakly_canonical(dir);
   return std::nullopt;
+}
+
+std::vector<std::filesystem::path> shared_hex_meshes(const std::filesystem::path& data) {
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(data / "meshes")) {
+    const auto ext = entry.path().extension();
+    if (entry.is_regular_file() && (ext == ".mesh" || ext == ".vtk")) files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+double mean_edge_length(const HexMesh& mesh, const Topology& topology) {
+  double sum = 0;
+  for (const Edge& e : topology.edges)
+    sum += norm(mesh.points[static_cast<std::size_t>(e[1])] - mesh.points[static_cast<std::size_t>(e[0])]);
+  return topology.edges.empty() ? 0.0 : sum / static_cast<double>(topology.edges.size());
 }
 
 }  // namespace hq::test

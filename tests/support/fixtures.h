@@ -4,8 +4,10 @@
 #include <array>
 #include <filesystem>
 #include <optional>
+#include <vector>
 
 #include "hqview/mesh/hex_mesh.h"
+#include "hqview/mesh/topology.h"
 
 namespace hq::test {
 
@@ -29,5 +31,9 @@ std::array<Vec3, 8> cube_corners();
 std::optional<std::filesystem::path> shared_data_dir();
 // The project's source directory (for examples/).
 std::filesystem::path source_dir();
+// The hex meshes (.mesh, .vtk) under data/meshes, sorted by path.
+std::vector<std::filesystem::path> shared_hex_meshes(const std::filesystem::path& data);
+// The mean length of the mesh's unique edges (the unit of --rmax Rx).
+double mean_edge_length(const HexMesh& mesh, const Topology& topology);
 
 }  // namespace hq::test

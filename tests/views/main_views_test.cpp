@@ -67,9 +67,15 @@ TEST(MainScene, OnlyTheTopClustersAreColouredTheRestAreNeutral) {
                                        fit_camera_to_points(main_view_points(mesh, topology, glyphs), {-1, -1, -1}, 1.0),
                                        600, {});
   const Rgba8 neutral = to_rgba8(neutral_cluster_color());
+  // The three ranked glyphs in the set drawn over the grey ones.
+  ASSERT_EQ(scene.spheres.size(), 2u);
+  ASSERT_EQ(scene.spheres[1].colors.size(), 3u);
+  ASSERT_EQ(scene.spheres[0].colors.size(), static_cast<std::size_t>(n) - 3);
   for (Index v = 0; v < n; ++v) {
     const Rgba8 expected = v < 3 ? to_rgba8(labelled_cluster_color(v)) : neutral;
-    EXPECT_EQ(scene.spheres[0].colors[static_cast<std::size_t>(v)], expected) << v;
+    const Rgba8 drawn = v < 3 ? scene.spheres[1].colors[static_cast<std::size_t>(v)]
+                              : scene.spheres[0].colors[static_cast<std::size_t>(v - 3)];
+    EXPECT_EQ(drawn, expected) << v;
   }
   // Edge colours: the lower-ranked endpoint's cluster decides.
   std::size_t i = 0;
@@ -81,17 +87,8 @@ TEST(MainScene, OnlyTheTopClustersAreColouredTheRestAreNeutral) {
   }
 }
 
-TEST(MainScene, ClusterColoursAreFarFromTheOverlapMarkers) {
-  auto distance = [](const Rgba8& a, const Rgba8& b) {
-    const double dr = (a.r - b.r) / 255.0, dg = (a.g - b.g) / 255.0, db = (a.b - b.b) / 255.0;
-    return std::sqrt(dr * dr + dg * dg + db * db);
-  };
-  for (int i = 0; i < kLabelledClusterPaletteSize; ++i) {
-    const Rgba8 c = to_rgba8(labelled_cluster_color(i));
-    for (const Rgba8& m : {kCoincidentArrowColor, kIntersectionArrowColor, kIntersectingCellColor, kWireframeColor})
-      EXPECT_GE(distance(c, m), 0.25) << i;
-  }
-}
+// The distances between the cluster colours and the overlap markers' and
+// wireframe's colours: tests/views/palette_test.cpp (CIEDE2000).
 
 TEST(MainScene, ClusterEdgesCircleOnlyTheWorstVerticesOfABigCluster) {
   HexMesh mesh = test::grid(4);
@@ -114,7 +111,9 @@ TEST(MainScene, LayersHoldWhatTheViewDraws) {
   Fixture f;
   const Scene scene = build_main_scene(f.mesh, f.topology, f.glyphs, &f.overlap, camera_for(f), 600, {});
   ASSERT_EQ(scene.lines.size(), 3u);
-  ASSERT_EQ(scene.spheres.size(), 1u);
+  ASSERT_EQ(scene.spheres.size(), 2u);  // grey glyphs, then the ranked ones over them
+  EXPECT_FALSE(scene.spheres[0].over_other_spheres);
+  EXPECT_TRUE(scene.spheres[1].over_other_spheres);
   ASSERT_TRUE(scene.triangles.empty());
   ASSERT_EQ(scene.overlay.size(), 1u);
   ASSERT_EQ(scene.translucent.size(), 1u);
@@ -127,10 +126,11 @@ TEST(MainScene, LayersHoldWhatTheViewDraws) {
   for (const Edge& e : f.topology.edges) expected += (e[0] <= 1 || e[1] <= 1);
   EXPECT_EQ(scene.lines[1].indices.size() / 2, expected);
   for (const Rgba8& c : scene.lines[1].colors) EXPECT_EQ(c, cluster0);
-  // One aggregated glyph.
-  ASSERT_EQ(scene.spheres[0].centers.size(), 1u);
-  EXPECT_FLOAT_EQ(scene.spheres[0].radii[0], 0.4f);
-  EXPECT_EQ(scene.spheres[0].colors[0], cluster0);
+  // One aggregated glyph, ranked: in the set drawn over the grey ones.
+  EXPECT_TRUE(scene.spheres[0].centers.empty());
+  ASSERT_EQ(scene.spheres[1].centers.size(), 1u);
+  EXPECT_FLOAT_EQ(scene.spheres[1].radii[0], 0.4f);
+  EXPECT_EQ(scene.spheres[1].colors[0], cluster0);
   // Three arrows (in the overlay), and one intersecting cell (6 quads, 12 triangles) with 12 edges.
   EXPECT_GT(scene.overlay[0].indices.size(), 0u);
   EXPECT_EQ(scene.translucent[0].indices.size(), 36u);
@@ -166,27 +166,33 @@ Camera pixel_camera() {
 }
 
 TEST(MarkerMerge, CloseMarkersBecomeOneWithTheirCounts) {
-  // Pixels 0, 10 (24 apart: merged with the anchor at 0), 30 (30 >= 25 from
-  // the anchor: its own marker although 20 from the marker at 10), 100.
+  // Markers merge with the first anchor of their own kind within 25 pixels.
+  // Coincident at pixel 0; intersections at 10 (10 from the coincident one:
+  // another kind, so its own marker), 30 (20 from 10: merged), 40 (30 from
+  // the anchor at 10: its own); coincident at 20 (merged with 0), 100.
   const std::vector<OverlapMarker> markers{{MarkerKind::coincident, {0, 0, 0}, 2},
                                            {MarkerKind::intersection, {10, 0, 5}, 3},
                                            {MarkerKind::intersection, {30, 0, 0}, 1},
+                                           {MarkerKind::intersection, {40, 0, 0}, 6},
+                                           {MarkerKind::coincident, {20, 0, 0}, 7},
                                            {MarkerKind::coincident, {100, 0, -5}, 4}};
   const auto drawn = merge_markers_on_screen(markers, pixel_camera(), 100, 25.0);
-  ASSERT_EQ(drawn.size(), 3u);
+  ASSERT_EQ(drawn.size(), 4u);
+  EXPECT_EQ(drawn[0].kind, MarkerKind::coincident);
   EXPECT_EQ(drawn[0].members, 2);
-  EXPECT_EQ(drawn[0].coincident, 2);
-  EXPECT_EQ(drawn[0].intersections, 3);
+  EXPECT_EQ(drawn[0].coincident, 9);
+  EXPECT_EQ(drawn[0].intersections, 0);
   EXPECT_EQ(drawn[0].position, markers[0].position) << "anchored at the first member";
-  EXPECT_EQ(drawn[1].members, 1);
-  EXPECT_EQ(drawn[1].intersections, 1);
-  EXPECT_EQ(drawn[2].coincident, 4);
+  EXPECT_EQ(drawn[1].kind, MarkerKind::intersection);
+  EXPECT_EQ(drawn[1].members, 2);
+  EXPECT_EQ(drawn[1].intersections, 4);
+  EXPECT_EQ(drawn[1].coincident, 0);
+  EXPECT_EQ(drawn[2].intersections, 6);
+  EXPECT_EQ(drawn[3].coincident, 4);
   // Depth does not matter in an orthographic view; no merging at 0 pixels.
-  EXPECT_EQ(merge_markers_on_screen(markers, pixel_camera(), 100, 0.0).size(), 4u);
-  // Twice the pixels per unit: 10 units are 20 pixels, still merged; 30 and
-  // 0 are 60 pixels apart.
-  EXPECT_EQ(merge_markers_on_screen(markers, pixel_camera(), 200, 25.0).size(), 3u);
-  EXPECT_EQ(merge_markers_on_screen(markers, pixel_camera(), 400, 25.0).size(), 4u);
+  EXPECT_EQ(merge_markers_on_screen(markers, pixel_camera(), 100, 0.0).size(), 6u);
+  // Half the pixels per unit: 30 units are 15 pixels, all intersections merge.
+  EXPECT_EQ(merge_markers_on_screen(markers, pixel_camera(), 50, 25.0).size(), 3u);
 }
 
 TEST(MarkerMerge, DrawnMarkersAreApartAndKeepEveryFinding) {
@@ -217,12 +223,16 @@ TEST(MarkerMerge, DrawnMarkersAreApartAndKeepEveryFinding) {
   }
   EXPECT_EQ(sum, total);
   EXPECT_EQ(members, static_cast<Index>(markers.size()));
+  for (const ScreenMarker& m : drawn)  // one kind per drawn marker
+    EXPECT_EQ(m.kind == MarkerKind::coincident ? m.intersections : m.coincident, 0);
   for (std::size_t i = 0; i < drawn.size(); ++i)
     for (std::size_t j = i + 1; j < drawn.size(); ++j)
-      EXPECT_GE(std::hypot(drawn[i].position.x - drawn[j].position.x, drawn[i].position.y - drawn[j].position.y), d);
+      if (drawn[i].kind == drawn[j].kind)
+        EXPECT_GE(std::hypot(drawn[i].position.x - drawn[j].position.x, drawn[i].position.y - drawn[j].position.y),
+                  d);
   for (const OverlapMarker& m : markers)
     EXPECT_TRUE(std::any_of(drawn.begin(), drawn.end(), [&](const ScreenMarker& a) {
-      return std::hypot(a.position.x - m.position.x, a.position.y - m.position.y) < d;
+      return a.kind == m.kind && std::hypot(a.position.x - m.position.x, a.position.y - m.position.y) < d;
     }));
 }
 

@@ -17,6 +17,8 @@ double glyph_size_bonus(std::int64_t size) {
   return static_cast<double>(tens) / 10.0;
 }
 
+const char* glyph_size_rule_name(GlyphSizeRule rule) { return rule == GlyphSizeRule::kPaper ? "paper" : "severity"; }
+
 double resolve_rmax(const GlyphOptions& options, double mean_edge_length) {
   return options.rmax_unit == RmaxUnit::kMeanEdgeLength ? options.rmax * mean_edge_length : options.rmax;
 }
@@ -34,7 +36,7 @@ std::vector<double> glyph_radii(std::span<const double> vertex_quality, double r
 }
 
 AggregatedGlyph aggregate_glyph(std::span<const Index> members, std::span<const Vec3> points,
-                                std::span<const double> vertex_quality, double rmax) {
+                                std::span<const double> vertex_quality, double rmax, GlyphSizeRule size_rule) {
   AggregatedGlyph glyph;
   glyph.size = static_cast<Index>(members.size());
   if (members.empty()) return glyph;
@@ -59,7 +61,8 @@ AggregatedGlyph aggregate_glyph(std::span<const Index> members, std::span<const 
   glyph.min_quality = min_quality;
   // The largest member ratio is the ratio of the smallest quality (1 − x is
   // monotone in floating point too).
-  glyph.ratio = glyph_ratio(min_quality) + glyph_size_bonus(glyph.size);
+  glyph.ratio = glyph_ratio(min_quality);
+  if (size_rule == GlyphSizeRule::kPaper) glyph.ratio += glyph_size_bonus(glyph.size);
   glyph.radius = glyph.ratio * rmax;
   return glyph;
 }
@@ -87,7 +90,7 @@ GlyphResult compute_glyphs(std::span<const Vec3> points, std::span<const double>
       const auto begin = clusters.members.begin() + clusters.offsets[static_cast<std::size_t>(c)];
       const auto end = clusters.members.begin() + clusters.offsets[static_cast<std::size_t>(c) + 1];
       unranked[static_cast<std::size_t>(c)] =
-          aggregate_glyph(std::span<const Index>(begin, end), points, vertex_quality, result.rmax);
+          aggregate_glyph(std::span<const Index>(begin, end), points, vertex_quality, result.rmax, options.size_rule);
     }
   });
 

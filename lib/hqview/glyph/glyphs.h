@@ -7,9 +7,15 @@
 // bad element is as visible as a large one. Overlapping glyphs
 // (glyph_clusters.h) form clusters; each cluster is drawn as one aggregated
 // glyph, placed at the member closest to the members' mean position (ties:
-// the smallest vertex id), with ratio = the largest member ratio + a size
-// bonus of 0.1 per 10 members (the bonus at most 1.0: the rule of the paper's
-// reference implementation, HQViewer), radius = ratio · rmax. Clusters are
+// the smallest vertex id), with radius = ratio · rmax where ratio is, by the
+// size rule (GlyphSizeRule):
+// - severity (default): the largest member ratio, 1 − min quality, so that a
+//   worse cluster is never drawn smaller than a better one; the cluster's
+//   size is told by its member count (labels, table), not by its radius;
+// - paper: the largest member ratio + a size bonus of 0.1 per 10 members
+//   (the bonus at most 1.0: the rule of the paper's reference
+//   implementation, HQViewer), so a large mild cluster can outgrow a small
+//   severe one. Clusters are
 // ranked worst first: by min quality, then by size (larger first), then by
 // smallest member vertex id; a cluster's id is its rank.
 
@@ -27,6 +33,15 @@ enum class RmaxUnit {
   kMeanEdgeLength,  // rmax as a multiple of the mesh's mean edge length
 };
 
+// How an aggregated glyph's ratio is made from its members (see above).
+enum class GlyphSizeRule {
+  kSeverity,  // 1 − min quality
+  kPaper,     // 1 − min quality + glyph_size_bonus(size) (HQViewer)
+};
+
+// "severity" / "paper": the --glyph-size value and report.json glyphs.size_rule.
+const char* glyph_size_rule_name(GlyphSizeRule rule);
+
 struct GlyphOptions {
   // The radius of a glyph of ratio 1 (a vertex with Jm = 0). Default: one mean
   // edge length, so that two neighbouring vertices with Jm ≤ 0.5 (c ≥ 0.5) merge
@@ -40,6 +55,8 @@ struct GlyphOptions {
   // How many of the top-ranked clusters later views show in detail (not how
   // many are found).
   int top_clusters = 8;
+  // The aggregated glyphs' size rule (--glyph-size).
+  GlyphSizeRule size_rule = GlyphSizeRule::kSeverity;
 };
 
 struct AggregatedGlyph {
@@ -48,7 +65,7 @@ struct AggregatedGlyph {
   Index representative_vertex = 0;  // the member the aggregated glyph sits on
   Vec3 position;                    // of representative_vertex
   double min_quality = 0;           // min Jm over the members
-  double ratio = 0;                 // max member ratio + size bonus
+  double ratio = 0;                 // max member ratio (+ size bonus under GlyphSizeRule::kPaper)
   double radius = 0;                // ratio · rmax
 };
 
@@ -88,8 +105,10 @@ std::vector<double> glyph_radii(std::span<const double> vertex_quality, double r
 //   points:         all vertex positions; vertex_quality: all Jm.
 // Position: the member nearest to the mean of the members' positions (summed
 // in ascending id order), ties to the smallest id.
+//   size_rule:      how the ratio is made (GlyphSizeRule).
 AggregatedGlyph aggregate_glyph(std::span<const Index> members, std::span<const Vec3> points,
-                                std::span<const double> vertex_quality, double rmax);
+                                std::span<const double> vertex_quality, double rmax,
+                                GlyphSizeRule size_rule = GlyphSizeRule::kSeverity);
 
 // The whole stage: glyph radii, clusters, aggregated glyphs, ranks.
 //   points, vertex_quality: #V each (Jm per vertex, NaN for unused vertices).

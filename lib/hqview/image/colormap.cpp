@@ -45,23 +45,37 @@ constexpr std::array<Rgb, 11> kDivergingTable = {{
     hex(0x67001f),
 }};
 
-// Labelled clusters: blues, greens, purple, cyan, charcoal, brown, olive;
-// none near the quality map's red-orange-cream ramp, the neutral grey or the
-// overlap markers' orange and magentas
-// (colormap_test checks the distances).
+// Labelled clusters: designed, not cycled (docs/analysis.md, "Colours").
+// Chosen on the sRGB grid of step 15 (levels 0, 15, ..., 255) among the
+// colours with CIE L* in [28, 78] (visible on white, distinct from black
+// when shaded) and chroma >= 25 that keep CIEDE2000 >= 20 from every sample of
+// the quality map, >= 15 from the inverted and undefined colours, the
+// neutral cluster grey, the overlap markers' colours, view A's wireframe and
+// white, and >= 8 from the inverted and overlap colours under simulated
+// protanopia, deuteranopia and tritanopia (Machado et al. 2009, severity 1);
+// then greedily, each the one farthest (smallest CIEDE2000 to all the above
+// and to the ones before it largest) among those >= 15 from the ones before
+// it, >= 8 from them under each simulation, and >= 10 from them when either
+// is shaded (the lit spheres' dark sides, 25-85 % light, and highlights), so
+// that a shaded sphere of one colour does not look like another and the
+// first K are the best separated K. palette_test checks the rules.
 constexpr std::array<Rgb, kLabelledClusterPaletteSize> kLabelledClusterTable = {{
-    hex(0x1f5fbf),
-    hex(0x2ca02c),
-    hex(0x9467bd),
-    hex(0x17becf),
-    hex(0x303030),
-    hex(0x8c564b),
-    hex(0xa0a020),
-    hex(0x0b2d6b),
-    hex(0x7fd13b),
-    hex(0x00a087),
+    hex(0x00d200),
+    hex(0x0087f0),
+    hex(0x2d4b00),
+    hex(0x009678),
+    hex(0xff96a5),
+    hex(0x876900),
+    hex(0x00b4d2),
+    hex(0x786996),
+    hex(0x87a569),
+    hex(0xc378a5),
 }};
-constexpr Rgb kNeutralCluster = hex(0x9e9e9e);
+// A light grey (#a0a0a0), calm among the coloured clusters: CIEDE2000 19
+// from the undefined grey (kUndefinedColor), 16 from the quality map's
+// nearest sample (its pale end is a light blue-grey), >= 17 from the cluster
+// and overlap colours.
+constexpr Rgb kNeutralCluster = hex(0xa0a0a0);
 
 // Piecewise-linear lookup, u in [0, 1] over the whole table.
 template <std::size_t N>
@@ -79,6 +93,12 @@ Color sample(const std::array<Rgb, N>& table, double u) {
 Color sample_quality_map(double t) {
   if (std::isnan(t)) return kUndefinedColor;
   return sample(kQualityTable, t);
+}
+
+std::vector<Color> quality_map_samples() {
+  std::vector<Color> samples;
+  for (const Rgb& c : kQualityTable) samples.push_back({c.r, c.g, c.b, 1.0f});
+  return samples;
 }
 
 Color quality_color(double vertex_quality) {

@@ -5,6 +5,7 @@
 // could differ between platforms in the sampled colours).
 
 #include <cstdint>
+#include <vector>
 
 #include "hqview/image/color.h"
 
@@ -23,12 +24,17 @@ namespace hq {
 // (.75, 80, 6, 34), (1, 91, -2, -6), re-parameterised by arc length, D65 sRGB;
 // all samples are inside the sRGB gamut.
 Color sample_quality_map(double t);
+// The quality map's 33 table samples, t = 0 first (sample_quality_map is
+// their piecewise-linear interpolation): for renderers that map per fragment.
+std::vector<Color> quality_map_samples();
 
 // Inverted elements (quality < 0): a saturated blue-violet, outside the
 // quality map's hues, and far from its red end for colour-blind readers too.
 inline constexpr Color kInvertedColor{0.24f, 0.20f, 0.92f, 1.0f};
-// Undefined quality (NaN: vertices no hex uses): a neutral mid grey.
-inline constexpr Color kUndefinedColor{0.62f, 0.62f, 0.62f, 1.0f};
+// Undefined values (NaN: e.g. vertices no hex uses): a dark neutral grey
+// (#6c6c6c), CIEDE2000 >= 19 from the neutral cluster grey and >= 28 from
+// the quality map (docs/analysis.md, "Colours").
+inline constexpr Color kUndefinedColor{108.0f / 255.0f, 108.0f / 255.0f, 108.0f / 255.0f, 1.0f};
 
 // Vertex quality (min corner scaled Jacobian, in [-1, 1]) to colour: [0, 1]
 // through sample_quality_map, < 0 kInvertedColor, NaN kUndefinedColor,

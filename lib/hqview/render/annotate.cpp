@@ -109,6 +109,28 @@ Image make_image(int width, int height, Rgba8 fill) {
   return image;
 }
 
+void draw_line(Image& image, double x0, double y0, double x1, double y1, Rgba8 color, double width) {
+  const double half = 0.5 * std::max(width, 0.5);
+  const int left = std::max(0, static_cast<int>(std::floor(std::min(x0, x1) - half - 1)));
+  const int right = std::min(image.width - 1, static_cast<int>(std::ceil(std::max(x0, x1) + half + 1)));
+  const int top = std::max(0, static_cast<int>(std::floor(std::min(y0, y1) - half - 1)));
+  const int bottom = std::min(image.height - 1, static_cast<int>(std::ceil(std::max(y0, y1) + half + 1)));
+  const double dx = x1 - x0, dy = y1 - y0, length2 = dx * dx + dy * dy;
+  for (int y = top; y <= bottom; ++y)
+    for (int x = left; x <= right; ++x) {
+      // Distance from the pixel centre to the segment; coverage falls off
+      // over one pixel at the line's edge.
+      const double px = x + 0.5 - x0, py = y + 0.5 - y0;
+      const double t = length2 > 0.0 ? std::clamp((px * dx + py * dy) / length2, 0.0, 1.0) : 0.0;
+      const double distance = std::hypot(px - t * dx, py - t * dy);
+      const double coverage = std::clamp(half + 0.5 - distance, 0.0, 1.0) * (color.a / 255.0);
+      if (coverage <= 0.0) continue;
+      std::uint8_t* p = image.rgba.data() + pixel_offset(image, x, y);
+      const std::uint8_t channels[3] = {color.r, color.g, color.b};
+      for (int c = 0; c < 3; ++c) p[c] = static_cast<std::uint8_t>(std::lround(p[c] + (channels[c] - p[c]) * coverage));
+    }
+}
+
 void fill_rect(Image& image, const PixelRect& rect, Rgba8 color) {
   const int x0 = std::max(rect.x, 0), x1 = std::min(rect.x + rect.width, image.width);
   const int y0 = std::max(rect.y, 0), y1 = std::min(rect.y + rect.height, image.height);

@@ -38,6 +38,10 @@ AnnotationStyle annotation_style_for(int figure_height);
 Image make_image(int width, int height, Rgba8 fill);
 // Fills the part of rect inside the image.
 void fill_rect(Image& image, const PixelRect& rect, Rgba8 color);
+// Blends a straight line from (x0, y0) to (x1, y1) (pixel coordinates, the
+// top-left corner of pixel (0, 0) at (0, 0)) of the given width in pixels,
+// anti-aliased, clipped to the image (leader lines of moved labels).
+void draw_line(Image& image, double x0, double y0, double x1, double y1, Rgba8 color, double width);
 // Copies src into dst with its top-left corner at (x, y), clipped to dst.
 void paste(Image& dst, const Image& src, int x, int y);
 

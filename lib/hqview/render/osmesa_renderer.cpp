@@ -56,25 +56,32 @@ constexpr GLuint kPositionAttribute = 0;
 constexpr GLuint kNormalAttribute = 1;
 constexpr GLuint kColorAttribute = 2;
 constexpr GLuint kCornerAttribute = 3;  // sphere impostors: quad corner (xy) and radius (z)
+constexpr GLuint kScalarAttribute = 3;  // triangles: (scalar, below weight, undefined weight)
 
 // Shading: a directional light fixed to the camera (a headlight tilted up by
 // 20 degrees, so that the sides of a box seen obliquely get three distinct
 // brightnesses, lit from above as people expect)
 // plus ambient. Two-sided: |n . l|, since boundary quads of a broken mesh
 // can face either way and clipped views show inner sides.
+// Sets with scalars (TriangleSet::scalars) interpolate (scalar, below weight,
+// undefined weight) and map them per fragment (scene.h's map_fragment_color,
+// the same steps): every fragment shows a colour of the map.
 constexpr const char* kTriangleVertexShader = R"(layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
 layout(location = 2) in vec4 color;
+layout(location = 3) in vec3 scalar;
 uniform mat4 model_view;
 uniform mat4 projection;
 out vec3 eye_position;
 out vec3 eye_normal;
 out vec4 vertex_color;
+out vec3 vertex_scalar;
 void main() {
   vec4 p = model_view * vec4(position, 1.0);
   eye_position = p.xyz;
   eye_normal = mat3(model_view) * normal;  // model_view is rigid
   vertex_color = color;
+  vertex_scalar = scalar;
   gl_Position = projection * p;
 }
 )";
@@ -82,16 +89,29 @@ void main() {
 constexpr const char* kTriangleFragmentShader = R"(in vec3 eye_position;
 in vec3 eye_normal;
 in vec4 vertex_color;
+in vec3 vertex_scalar;
 uniform bool use_vertex_normals;
 uniform bool is_lit;
 uniform bool has_set_color;     // every vertex has one colour: set_linear_color
 uniform vec3 set_linear_color;  // that colour in linear RGB (saves a to_linear per fragment)
+uniform bool has_scalars;       // colour = the map of vertex_scalar (sRGB samples)
+uniform int map_size;
+uniform vec3 map_samples[64];
+uniform vec3 map_below;
+uniform vec3 map_undefined;
 uniform vec3 light_direction;
 uniform float ambient;
 out vec4 fragment_color;
+vec3 mapped_color() {
+  if (vertex_scalar.z > 0.5) return map_undefined;
+  if (vertex_scalar.y > 0.5) return map_below;
+  float x = clamp(vertex_scalar.x, 0.0, 1.0) * float(map_size - 1);
+  int i = min(int(x), map_size - 2);
+  return mix(map_samples[i], map_samples[i + 1], x - float(i));
+}
 void main() {
   if (!is_lit) {
-    fragment_color = vertex_color;
+    fragment_color = has_scalars ? vec4(mapped_color(), vertex_color.a) : vertex_color;
     return;
   }
   vec3 n = use_vertex_normals ? eye_normal : cross(dFdx(eye_position), dFdy(eye_position));
@@ -99,7 +119,7 @@ void main() {
   float diffuse = len > 0.0 ? abs(dot(n / len, light_direction)) : 1.0;
   float shade = ambient + (1.0 - ambient) * diffuse;
   // Light in linear RGB: shading in sRGB would muddy the pale end of the map.
-  vec3 base = has_set_color ? set_linear_color : to_linear(vertex_color.rgb);
+  vec3 base = has_scalars ? to_linear(mapped_color()) : has_set_color ? set_linear_color : to_linear(vertex_color.rgb);
   fragment_color = vec4(to_srgb(base * shade), vertex_color.a);
 }
 )";
@@ -268,6 +288,17 @@ void check_indices(const Set& set, std::size_t per_primitive, const char* kind) 
     if (i >= n) throw RenderError(std::string(kind) + ": vertex index " + std::to_string(i) + " out of range");
 }
 
+// Scalars: one per vertex and a map of 2 to kMaxColorMapSamples samples.
+void check_scalars(const TriangleSet& set) {
+  if (set.scalars.empty()) return;
+  if (set.scalars.size() != set.positions.size())
+    throw RenderError("triangle set: scalars and positions differ in count");
+  const std::size_t n = set.color_map.samples.size();
+  if (n < 2 || n > kMaxColorMapSamples)
+    throw RenderError("triangle set: a colour map needs 2 to " + std::to_string(kMaxColorMapSamples) +
+                      " samples, got " + std::to_string(n));
+}
+
 // The output image of a 2x2-supersampled frame read back bottom-up
 // (OpenGL's row order): each output pixel, rows top-down, is the rounded
 // mean of its 2x2 block in every channel, in integers, so the result is
@@ -319,6 +350,7 @@ class OsmesaRenderer final : public Renderer {
       gl.GenBuffers(1, &normal_buffer_);
       gl.GenBuffers(1, &color_buffer_);
       gl.GenBuffers(1, &index_buffer_);
+      gl.GenBuffers(1, &scalar_buffer_);
       gl.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_renderbuffer_size_);
       GLfloat widths[2] = {1.0f, 1.0f};
       gl.GetFloatv(GL_ALIASED_LINE_WIDTH_RANGE, widths);
@@ -343,6 +375,8 @@ class OsmesaRenderer final : public Renderer {
     stop::check();
     if (width <= 0 || height <= 0)
       throw RenderError("image size must be positive, got " + std::to_string(width) + "x" + std::to_string(height));
+    for (const auto* sets : {&scene.triangles, &scene.translucent, &scene.overlay})
+      for (const TriangleSet& set : *sets) check_scalars(set);
     for (const TriangleSet& set : scene.triangles) {
       check_indices(set, 3, "triangle set");
       if (!set.normals.empty() && set.normals.size() != set.positions.size())
@@ -418,8 +452,8 @@ class OsmesaRenderer final : public Renderer {
     if (!context_) return;
     if (gl.MakeCurrent(context_, default_buffer_.data(), GL_UNSIGNED_BYTE, kDefaultSize, kDefaultSize)) {
       delete_framebuffers();
-      const GLuint buffers[] = {position_buffer_, normal_buffer_, color_buffer_, index_buffer_};
-      gl.DeleteBuffers(4, buffers);
+      const GLuint buffers[] = {position_buffer_, normal_buffer_, color_buffer_, index_buffer_, scalar_buffer_};
+      gl.DeleteBuffers(5, buffers);
       gl.DeleteVertexArrays(1, &vertex_array_);
       gl.DeleteProgram(triangle_program_);
       gl.DeleteProgram(line_program_);
@@ -511,18 +545,34 @@ class OsmesaRenderer final : public Renderer {
     set_light(sphere_program_);
     gl.Disable(GL_BLEND);
     static constexpr float kCorners[4][2] = {{-1.0f, -1.0f}, {1.0f, -1.0f}, {1.0f, 1.0f}, {-1.0f, 1.0f}};
-    for (const SphereSet& set : scene.spheres) {
+    // Sets over the others last, back to front (eye z ascending), depth test off.
+    std::vector<const SphereSet*> order;
+    for (const SphereSet& set : scene.spheres)
+      if (!set.over_other_spheres) order.push_back(&set);
+    for (const SphereSet& set : scene.spheres)
+      if (set.over_other_spheres) order.push_back(&set);
+    auto eye_z = [&](const Vec3f& c) { return model_view[2] * c.x + model_view[6] * c.y + model_view[10] * c.z; };
+    for (const SphereSet* set_pointer : order) {
+      const SphereSet& set = *set_pointer;
       stop::check();  // a stop request lands between draws (hq::stop)
       if (set.centers.empty()) continue;
       const std::size_t n = set.centers.size();
+      std::vector<std::size_t> sphere_order(n);
+      for (std::size_t i = 0; i < n; ++i) sphere_order[i] = i;
+      if (set.over_other_spheres) {
+        std::stable_sort(sphere_order.begin(), sphere_order.end(),
+                         [&](std::size_t a, std::size_t b) { return eye_z(set.centers[a]) < eye_z(set.centers[b]); });
+        gl.DepthFunc(GL_ALWAYS);
+      }
       std::vector<Vec3f> centers(4 * n), corners(4 * n);
       std::vector<Rgba8> colors(4 * n);
       std::vector<std::uint32_t> indices(6 * n);
       for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t s = sphere_order[i];
         for (std::size_t k = 0; k < 4; ++k) {
-          centers[4 * i + k] = set.centers[i];
-          corners[4 * i + k] = {kCorners[k][0], kCorners[k][1], set.radii[i]};
-          colors[4 * i + k] = set.colors[i];
+          centers[4 * i + k] = set.centers[s];
+          corners[4 * i + k] = {kCorners[k][0], kCorners[k][1], set.radii[s]};
+          colors[4 * i + k] = set.colors[s];
         }
         const auto base = static_cast<std::uint32_t>(4 * i);
         const std::uint32_t quad[6] = {base, base + 1, base + 2, base, base + 2, base + 3};
@@ -534,6 +584,7 @@ class OsmesaRenderer final : public Renderer {
       gl.EnableVertexAttribArray(kCornerAttribute);
       upload(GL_ELEMENT_ARRAY_BUFFER, index_buffer_, indices);
       gl.DrawElements(GL_TRIANGLES, static_cast<GLsizei>(indices.size()), GL_UNSIGNED_INT, nullptr);
+      gl.DepthFunc(GL_LEQUAL);
     }
     gl.DisableVertexAttribArray(kCornerAttribute);
   }
@@ -563,6 +614,7 @@ class OsmesaRenderer final : public Renderer {
       }
       gl.Uniform1i(gl.GetUniformLocation(triangle_program_, "use_vertex_normals"), use_normals ? 1 : 0);
       gl.Uniform1i(gl.GetUniformLocation(triangle_program_, "is_lit"), set.is_lit ? 1 : 0);
+      set_scalars(set);
       // One colour for the whole set (translucent hulls, arrows, the grey
       // boundary of view F): linearised once here instead of per fragment.
       const Rgba8 first = set.colors.front();
@@ -585,6 +637,37 @@ class OsmesaRenderer final : public Renderer {
     }
     gl.Disable(GL_POLYGON_OFFSET_FILL);
     gl.DisableVertexAttribArray(kNormalAttribute);
+    gl.DisableVertexAttribArray(kScalarAttribute);
+  }
+
+  // The per-fragment colour map of a set with scalars (has_scalars off
+  // otherwise): per vertex (scalar, below weight, undefined weight) as
+  // map_fragment_color (scene.h) reads them, the samples as uniforms.
+  void set_scalars(const TriangleSet& set) {
+    const bool has_scalars = !set.scalars.empty();
+    gl.Uniform1i(gl.GetUniformLocation(triangle_program_, "has_scalars"), has_scalars ? 1 : 0);
+    if (!has_scalars) {
+      gl.DisableVertexAttribArray(kScalarAttribute);
+      return;
+    }
+    std::vector<Vec3f> weights(set.scalars.size());
+    for (std::size_t i = 0; i < weights.size(); ++i) {
+      const float s = set.scalars[i];
+      weights[i] = std::isnan(s) ? Vec3f{1.0f, 0.0f, 1.0f} : s < 0.0f ? Vec3f{0.0f, 1.0f, 0.0f} : Vec3f{s, 0.0f, 0.0f};
+    }
+    upload(GL_ARRAY_BUFFER, scalar_buffer_, weights);
+    gl.VertexAttribPointer(kScalarAttribute, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3f), nullptr);
+    gl.EnableVertexAttribArray(kScalarAttribute);
+    const std::vector<Color>& samples = set.color_map.samples;
+    std::vector<float> rgb;
+    for (const Color& c : samples) rgb.insert(rgb.end(), {c.r, c.g, c.b});
+    gl.Uniform1i(gl.GetUniformLocation(triangle_program_, "map_size"), static_cast<GLint>(samples.size()));
+    gl.Uniform3fv(gl.GetUniformLocation(triangle_program_, "map_samples"), static_cast<GLsizei>(samples.size()),
+                  rgb.data());
+    const Color& below = set.color_map.below;
+    const Color& undefined = set.color_map.undefined;
+    gl.Uniform3f(gl.GetUniformLocation(triangle_program_, "map_below"), below.r, below.g, below.b);
+    gl.Uniform3f(gl.GetUniformLocation(triangle_program_, "map_undefined"), undefined.r, undefined.g, undefined.b);
   }
 
   void draw_lines(const Scene& scene, const std::array<float, 16>& model_view,
@@ -626,7 +709,7 @@ class OsmesaRenderer final : public Renderer {
   OSMesaContext context_ = nullptr;
   GLuint triangle_program_ = 0, line_program_ = 0, sphere_program_ = 0;
   GLuint vertex_array_ = 0;
-  GLuint position_buffer_ = 0, normal_buffer_ = 0, color_buffer_ = 0, index_buffer_ = 0;
+  GLuint position_buffer_ = 0, normal_buffer_ = 0, color_buffer_ = 0, index_buffer_ = 0, scalar_buffer_ = 0;
   GLuint supersampled_framebuffer_ = 0;
   GLuint supersampled_color_ = 0, supersampled_depth_ = 0;
   std::vector<std::uint8_t> supersampled_pixels_;  // read-back buffer, reused by every frame

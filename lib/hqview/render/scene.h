@@ -40,14 +40,45 @@ inline Vec3f to_vec3f(const Vec3& v) {
   return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
 }
 
+// A colour map applied to each fragment's interpolated scalar (colour after
+// interpolation): interpolating colours mapped at the vertices would paint
+// faces in blends that are in no legend (the purple between an inverted
+// vertex's blue and its neighbour's orange).
+//   samples:   2 to kMaxColorMapSamples colours evenly spaced over the scalar
+//              range [0, 1] (sRGB), interpolated linearly between samples as
+//              the CPU-side maps do (colormap.h); scalars clamped to [0, 1];
+//   below:     the colour where the vertices with a scalar < 0 weigh more
+//              than half (barycentrically), so that such a vertex keeps
+//              this colour in the part of each face nearest to it however
+//              little below 0 it is; there the map takes its scalar as 0;
+//   undefined: likewise for NaN scalars (there the map takes them as 1).
+inline constexpr std::size_t kMaxColorMapSamples = 64;
+struct ScalarColorMap {
+  std::vector<Color> samples;
+  Color below;
+  Color undefined;
+};
+
 // Indexed triangles (3 indices per triangle into the vertex arrays).
 struct TriangleSet {
   std::vector<Vec3f> positions;        // #V, relative to Scene::origin
   std::vector<Vec3f> normals;          // #V unit normals, or empty: each triangle flat-shaded by its own plane
-  std::vector<Rgba8> colors;           // #V, interpolated across triangles
+  std::vector<Rgba8> colors;           // #V, interpolated across triangles (with scalars: only their alpha)
   std::vector<std::uint32_t> indices;  // 3 * #triangles, ids in [0, #V)
   bool is_lit = true;                  // false: colours shown as given (2D maps)
+  // #V values, or empty. When set, each fragment's colour is color_map of the
+  // interpolated scalar (ScalarColorMap) instead of the interpolated colour.
+  std::vector<float> scalars;
+  ScalarColorMap color_map;
 };
+
+// The colour a renderer draws for a fragment of a TriangleSet with scalars:
+//   scalar:          interpolated scalar, vertices below 0 counted as 0 and
+//                    NaN ones as 1;
+//   below_weight:    interpolated 1 for vertices below 0, else 0;
+//   undefined_weight interpolated 1 for NaN vertices, else 0.
+// (The GL backend runs the same steps in its fragment shader.)
+Color map_fragment_color(const ScalarColorMap& map, float scalar, float below_weight, float undefined_weight);
 
 // Indexed line segments (2 indices per segment into the vertex arrays).
 struct LineSet {
@@ -62,6 +93,11 @@ struct SphereSet {
   std::vector<Vec3f> centers;  // relative to Scene::origin
   std::vector<float> radii;    // #spheres
   std::vector<Rgba8> colors;   // #spheres (alpha ignored: spheres are opaque)
+  // Drawn after the other sphere sets, back to front, over the opaque
+  // triangles and the other sets' spheres (depth test off), still writing
+  // their depth (lines and translucent faces in front of them show): view
+  // A's ranked glyphs, which the many grey ones must not hide.
+  bool over_other_spheres = false;
 };
 
 struct Scene {

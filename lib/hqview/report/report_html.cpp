@@ -516,7 +516,11 @@ void set_glyphs(data& page, const ReportModel& model, const PanelIndex& index, s
              show_count(g.num_glyphs) + " vertices with quality below " + show(1.0 - g.options.threshold) +
                  " have a glyph, in " + show_count(static_cast<long long>(g.clusters.size())) +
                  " clusters of overlapping glyphs; rmax " + show(g.rmax) +
-                 (is_relative ? " (" + show(g.options.rmax) + " × mean edge length)." : " (model units)."));
+                 (is_relative ? " (" + show(g.options.rmax) + " × mean edge length)." : " (model units).") +
+                 (g.options.size_rule == GlyphSizeRule::kPaper
+                      ? " A cluster's glyph radius is (1 − min quality + 0.1 per 10 members, at most + 1) · rmax "
+                        "(--glyph-size paper, HQViewer's rule)."
+                      : " A cluster's glyph radius is (1 − min quality) · rmax, its size the member count."));
     data clusters{data::type::list};
     const std::size_t rows = cluster_rows;
     for (std::size_t i = 0; i < rows; ++i) {

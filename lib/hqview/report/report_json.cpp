@@ -65,6 +65,7 @@ Json glyphs_json(const GlyphResult& g) {
   j["rmax_mode"] = is_relative ? "mean_edge_length" : "model_units";
   j["rmax_factor"] = is_relative ? number(g.options.rmax) : Json(nullptr);
   j["top_clusters"] = g.options.top_clusters;
+  j["size_rule"] = glyph_size_rule_name(g.options.size_rule);
   const std::size_t listed = std::min(g.clusters.size(), kMaxListedClusters);
   j["num_clusters_omitted"] = g.clusters.size() - listed;
   Json clusters = Json::array();

@@ -142,6 +142,7 @@ Scene build_reference_overlay_scene(const HexMesh& mesh, const Topology& topolog
   OverviewOptions overview;
   std::vector<double> dummy(mesh.points.size(), 1.0);
   Scene scene = build_quality_overview_scene(mesh, topology, dummy, overview);
+  scene.triangles.at(0).scalars.clear();  // plain grey, not the quality map
   for (Rgba8& c : scene.triangles.at(0).colors) c = {214, 214, 218, 255};
   for (Rgba8& c : scene.lines.at(0).colors) c = {50, 50, 60, 150};
   TriangleSet surface;

@@ -11,6 +11,7 @@
 #include "hqview/core/error.h"
 #include "hqview/image/colormap.h"
 #include "hqview/render/annotate.h"
+#include "hqview/render/label_layout.h"
 #include "hqview/views/main_views.h"
 
 namespace hq {
@@ -352,55 +353,46 @@ Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span
   const Camera camera =
       fit_camera_to_points(points, direction.at(0), f.aspect, {.up = options.up, .is_perspective = false});
   Image figure = compose(options, f, renderer.render(scene, camera, f.layout.view.width, f.layout.view.height));
-  // Labels: each corner's value next to its marker. Markers of a ring can
-  // sit a few pixels apart: a label that would overlap a marker or a label
-  // placed before it moves up or down by a line or two, or to the marker's
-  // left side (the first free place in that order; else it stays right of
-  // its marker).
+  // Labels: each corner's value next to its marker, placed greedily
+  // (place_labels) so that no label covers another or any marker; a label
+  // that has to move away from its marker gets a leader line to it.
   const int size = std::max(11, static_cast<int>(std::lround(22 * f.style.scale)));
   AnnotationStyle label_style = f.style;
-  std::vector<PixelRect> placed;  // the markers' squares, then the labels' boxes
-  auto screen_of = [&](std::size_t i) {
+  std::vector<ScreenDisc> markers;
+  for (std::size_t i = 0; i < centers.size(); ++i) {
     const Vec3 ndc = project_to_ndc(camera, f.aspect, centers[i]);
-    return std::array<double, 3>{f.layout.view.x + 0.5 * (ndc.x + 1.0) * f.layout.view.width,
-                                 f.layout.view.y + 0.5 * (1.0 - ndc.y) * f.layout.view.height,
-                                 radii[i] / camera.ortho_height * f.layout.view.height};
-  };
-  for (std::size_t i = 0; i < centers.size(); ++i) {
-    const auto [cx, cy, r] = screen_of(i);
-    placed.push_back({static_cast<int>(std::lround(cx - r)), static_cast<int>(std::lround(cy - r)),
-                      static_cast<int>(std::lround(2 * r)), static_cast<int>(std::lround(2 * r))});
+    markers.push_back({f.layout.view.x + 0.5 * (ndc.x + 1.0) * f.layout.view.width,
+                       f.layout.view.y + 0.5 * (1.0 - ndc.y) * f.layout.view.height,
+                       radii[i] / camera.ortho_height * f.layout.view.height});
   }
-  auto overlaps = [&](const PixelRect& b) {
-    return std::any_of(placed.begin(), placed.end(), [&](const PixelRect& r) {
-      return b.x < r.x + r.width && r.x < b.x + b.width && b.y < r.y + r.height && r.y < b.y + b.height;
-    });
-  };
+  std::vector<std::string> texts;
+  std::vector<LabelRequest> requests;
   for (std::size_t i = 0; i < centers.size(); ++i) {
-    const auto [cx, cy, r_px] = screen_of(i);
     // The hex id ties each marker to its bar in chart E.
-    const std::string text = format_value(corners[i].value) + "  hex " + std::to_string(corners[i].hex);
-    const PixelRect extent = text_extent(text, size, label_style);
-    const int line = static_cast<int>(std::lround(1.15 * size));
-    const int right_x = static_cast<int>(std::lround(cx + r_px + 4));
-    const int left_x = static_cast<int>(std::lround(cx - r_px - 4)) - extent.width;
-    const int base_y = static_cast<int>(std::lround(cy + 0.35 * size));
-    auto box_at = [&](int x, int y) { return PixelRect{x - 2, y - size, extent.width + 4, line}; };
-    int x = right_x, y = base_y;
-    bool found = false;
-    for (int side = 0; side < 2 && !found; ++side)
-      for (int dy : {0, 1, -1, 2, -2}) {
-        const int tx = side == 0 ? right_x : left_x, ty = base_y + dy * line;
-        if (!overlaps(box_at(tx, ty))) {
-          x = tx;
-          y = ty;
-          found = true;
-          break;
-        }
-      }
-    placed.push_back(box_at(x, y));
-    label_style.text_color = corners[i].value < 0 ? Rgba8{60, 40, 200, 255} : Rgba8{30, 30, 30, 255};
-    draw_text(figure, x, y, text, size, label_style);
+    texts.push_back(format_value(corners[i].value) + "  hex " + std::to_string(corners[i].hex));
+    const PixelRect extent = text_extent(texts.back(), size, label_style);
+    requests.push_back({markers[i], extent.width + 4, static_cast<int>(std::lround(1.15 * size))});
+  }
+  LabelLayoutOptions layout;
+  layout.bounds = f.layout.view;
+  layout.gap = 4.0 * f.style.scale;
+  layout.ring_step = 12.0 * f.style.scale;
+  layout.rings = static_cast<int>(std::ceil(std::max(f.layout.view.width, f.layout.view.height) / layout.ring_step));
+  layout.leader_distance = 8.0 * f.style.scale;
+  const std::vector<std::optional<PlacedLabel>> placed = place_labels(requests, markers, {}, layout);
+  for (std::size_t i = 0; i < centers.size(); ++i) {
+    const Rgba8 color = corners[i].value < 0 ? to_rgba8(kInvertedColor) : Rgba8{30, 30, 30, 255};
+    PixelRect box{static_cast<int>(std::lround(markers[i].x + markers[i].radius + 4)),
+                  static_cast<int>(std::lround(markers[i].y - 0.5 * requests[i].height)), requests[i].width,
+                  requests[i].height};
+    if (placed[i]) {
+      box = placed[i]->box;
+      if (placed[i]->has_leader)
+        draw_line(figure, placed[i]->leader_x0, placed[i]->leader_y0, placed[i]->leader_x1, placed[i]->leader_y1, color,
+                  std::max(1.0, 1.2 * f.style.scale));
+    }
+    label_style.text_color = color;
+    draw_text(figure, box.x + 2, box.y + static_cast<int>(std::lround(0.85 * size)), texts[i], size, label_style);
   }
   return figure;
 }

@@ -236,11 +236,12 @@ std::vector<ScreenMarker> merge_markers_on_screen(std::span<const OverlapMarker>
           const auto it = grid.find({cx + dx, cy + dy});
           if (it == grid.end()) continue;
           for (std::size_t g : it->second)
-            if (g < best && std::hypot(anchors[g][0] - s[0], anchors[g][1] - s[1]) < min_pixels) best = g;
+            if (g < best && drawn[g].kind == m.kind && std::hypot(anchors[g][0] - s[0], anchors[g][1] - s[1]) < min_pixels)
+              best = g;
         }
     }
     if (best == drawn.size()) {
-      drawn.push_back({m.position, 0, 0, 0});
+      drawn.push_back({m.position, 0, 0, 0, m.kind});
       anchors.push_back(s);
       if (std::isfinite(s[0]) && std::isfinite(s[1])) grid[{cell_of(s[0]), cell_of(s[1])}].push_back(best);
     }
@@ -250,6 +251,109 @@ std::vector<ScreenMarker> merge_markers_on_screen(std::span<const OverlapMarker>
   }
   return drawn;
 }
+
+std::vector<ScreenMarker> group_markers_on_screen(std::span<const OverlapMarker> markers, const Camera& camera,
+                                                  int view_height, double min_pixels, int max_groups) {
+  double distance = std::max(min_pixels, 0.0);
+  std::vector<ScreenMarker> groups = merge_markers_on_screen(markers, camera, view_height, distance);
+  while (static_cast<int>(groups.size()) > std::max(1, max_groups) && distance < 1e7) {
+    distance = distance > 0.0 ? 1.5 * distance : 1.0;
+    groups = merge_markers_on_screen(markers, camera, view_height, distance);
+  }
+  return groups;
+}
+
+namespace {
+
+// The image plane of a camera: right and up, unit vectors.
+struct ImagePlane {
+  Vec3 right, up, forward;
+};
+ImagePlane image_plane(const Camera& camera) {
+  const Vec3 forward = forward_of(camera);
+  const Vec3 right = normalized(cross(forward, camera.up));
+  return {right, cross(right, forward), forward};
+}
+
+// One marker group's arrows, as drawn.
+struct MarkerFan {
+  ScreenMarker group;
+  struct Arrow {
+    Vec3 tail, tip;
+    Rgba8 color;
+  };
+  std::vector<Arrow> arrows;
+  double reach = 0;  // model units from the anchor to the farthest arrow tail (in the image plane)
+  double unit = 0;   // model units per output pixel at the anchor
+};
+
+// The arrows of every marker group (build_main_scene's overlay[0] and the
+// labels' fans). The worst glyph's disc (in the image plane, plus the arrow
+// head's half width) is kept clear, see build_main_scene.
+std::vector<MarkerFan> marker_fans(const GlyphResult& glyphs, const OverlapReport& overlap, const Camera& camera,
+                                   int view_height, const MainViewOptions& options) {
+  const ImagePlane plane = image_plane(camera);
+  const bool has_worst = !glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0;
+  const Vec3 worst = has_worst ? glyphs.clusters[0].position : Vec3{};
+  auto in_plane = [&](const Vec3& v) { return std::array<double, 2>{dot(v, plane.right), dot(v, plane.up)}; };
+  std::vector<MarkerFan> fans;
+  for (const ScreenMarker& marker :
+       group_markers_on_screen(overlap.markers, camera, view_height, options.marker_merge_pixels * options.pixel_scale,
+                               options.max_marker_groups)) {
+    MarkerFan fan{marker, {}, 0.0, 0.0};
+    const Index total = std::max<Index>(1, marker.count());
+    const int n = std::clamp<int>(static_cast<int>(total), 1, std::max(1, options.max_arrows_per_marker));
+    // Coincident arrows first: their share of n, at least one when any.
+    int num_coincident = 0;
+    if (marker.intersections == 0)
+      num_coincident = n;
+    else if (marker.coincident > 0)
+      num_coincident = std::clamp(
+          static_cast<int>(std::lround(static_cast<double>(n) * static_cast<double>(marker.coincident) / total)), 1,
+          std::max(1, n - 1));
+    const double depth = std::max(dot(marker.position - camera.eye, plane.forward), 1e-12);
+    const double unit = units_per_pixel(camera, depth, view_height) * options.pixel_scale;
+    fan.unit = unit;
+    const double length = options.arrow_pixels * unit;
+    // The worst glyph's disc, widened by an arrow head's half width.
+    const double clear = has_worst ? glyphs.clusters[0].radius + 7.0 * unit : 0.0;
+    const std::array<double, 2> m = in_plane(marker.position - worst);
+    const double m2 = m[0] * m[0] + m[1] * m[1];
+    // The arrow on the ray marker − t d, t in [t0, t0 + length]: its start
+    // t0 (3 pixels, or where the ray leaves the disc), or −1 to leave it out.
+    auto start_of = [&](const Vec3& d) {
+      const double t0 = 3.0 * unit;
+      if (!has_worst) return t0;
+      const std::array<double, 2> e = in_plane(d);
+      const double me = m[0] * e[0] + m[1] * e[1];
+      if (m2 < clear * clear) return std::max(t0, me + std::sqrt(std::max(0.0, me * me - m2 + clear * clear)));
+      const double t = std::clamp(me, t0, t0 + length);
+      const double gx = m[0] - t * e[0], gy = m[1] - t * e[1];
+      return gx * gx + gy * gy < clear * clear ? -1.0 : t0;
+    };
+    int k = 0;
+    for (const Vec3& d : arrow_directions(camera, n, options.arrow_start_degrees)) {
+      const Rgba8 color = k++ < num_coincident ? kCoincidentArrowColor : kIntersectionArrowColor;
+      const double t0 = start_of(d);
+      if (t0 < 0.0) continue;
+      fan.arrows.push_back({marker.position - (t0 + length) * d, marker.position - t0 * d, color});
+      fan.reach = std::max(fan.reach, t0 + length);
+    }
+    if (fan.arrows.empty()) {
+      // Every direction crossed the glyph: one arrow from the far side.
+      const Vec3 away = m[0] * plane.right + m[1] * plane.up;
+      const Vec3 d = -1.0 * normalized(away);
+      const double t0 = 3.0 * unit;
+      fan.arrows.push_back({marker.position - (t0 + length) * d, marker.position - t0 * d,
+                            marker.intersections > 0 ? kIntersectionArrowColor : kCoincidentArrowColor});
+      fan.reach = t0 + length;
+    }
+    fans.push_back(std::move(fan));
+  }
+  return fans;
+}
+
+}  // namespace
 
 std::vector<std::uint8_t> worst_cluster_vertices(const GlyphResult& glyphs, int per_cluster) {
   std::vector<std::uint8_t> marked(glyphs.vertex_cluster.size(), 0);
@@ -327,43 +431,31 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   scene.lines.push_back(
       edge_lines(mesh, scene.origin, cell_edges, std::vector<Rgba8>(cell_edges.size(), kIntersectionArrowColor), 1.5f));
 
-  // 4. Aggregated glyphs.
-  SphereSet spheres;
+  // 4. Aggregated glyphs: the grey ones, then the coloured (ranked) ones
+  // over them, so that no grey glyph hides a ranked one.
+  SphereSet spheres, ranked;
+  ranked.over_other_spheres = true;
+  const Rgba8 neutral = to_rgba8(neutral_cluster_color());
   for (const AggregatedGlyph& g : glyphs.clusters) {
     if (!(g.radius > 0.0)) continue;
-    spheres.centers.push_back(local(g.position));
-    spheres.radii.push_back(static_cast<float>(g.radius));
-    spheres.colors.push_back(to_rgba8(cluster_color(g.id, top)));
+    const Rgba8 color = to_rgba8(cluster_color(g.id, top));
+    SphereSet& set = color == neutral ? spheres : ranked;
+    set.centers.push_back(local(g.position));
+    set.radii.push_back(static_cast<float>(g.radius));
+    set.colors.push_back(color);
   }
   scene.spheres.push_back(std::move(spheres));
+  scene.spheres.push_back(std::move(ranked));
 
-  // 5. Arrows on overlap markers, merged where they crowd on screen.
+  // 5. Arrows on overlap markers, grouped where they crowd on screen.
   TriangleSet arrows;
   if (overlap) {
-    const Vec3 forward = forward_of(camera);
-    for (const ScreenMarker& marker : merge_markers_on_screen(overlap->markers, camera, view_height,
-                                                              options.marker_merge_pixels * options.pixel_scale)) {
-      const Index total = std::max<Index>(1, marker.count());
-      const int n = std::clamp<int>(static_cast<int>(total), 1, std::max(1, options.max_arrows_per_marker));
-      // Coincident arrows first: their share of n, at least one when any.
-      int num_coincident = 0;
-      if (marker.intersections == 0)
-        num_coincident = n;
-      else if (marker.coincident > 0)
-        num_coincident = std::clamp(
-            static_cast<int>(std::lround(static_cast<double>(n) * static_cast<double>(marker.coincident) / total)), 1,
-            std::max(1, n - 1));
-      const double depth = std::max(dot(marker.position - camera.eye, forward), 1e-12);
-      const double unit = units_per_pixel(camera, depth, view_height) * options.pixel_scale;
+    for (const MarkerFan& fan : marker_fans(glyphs, *overlap, camera, view_height, options)) {
+      const double unit = fan.unit;
       const ArrowShape shape{static_cast<float>(2.2 * unit), static_cast<float>(6.5 * unit),
                              static_cast<float>(20.0 * unit), 16};
-      int k = 0;
-      for (const Vec3& d : arrow_directions(camera, n, options.arrow_start_degrees)) {
-        const Rgba8 color = k++ < num_coincident ? kCoincidentArrowColor : kIntersectionArrowColor;
-        const Vec3 tip = marker.position - 3.0 * unit * d;
-        const Vec3 tail = tip - options.arrow_pixels * unit * d;
-        append_arrow(arrows, local(tail), local(tip), shape, color);
-      }
+      for (const MarkerFan::Arrow& arrow : fan.arrows)
+        append_arrow(arrows, local(arrow.tail), local(arrow.tip), shape, arrow.color);
     }
   }
   scene.overlay.push_back(std::move(arrows));
@@ -387,58 +479,61 @@ double main_view_aspect(const MainViewOptions& options) {
 
 namespace {
 
-// Rank labels next to the worst clusters' glyphs.
-void draw_rank_labels(Image& figure, const GlyphResult& glyphs, const Camera& camera, const FigureLayout& layout,
-                      const AnnotationStyle& style) {
-  const double aspect = static_cast<double>(layout.view.width) / static_cast<double>(layout.view.height);
-  const int label_size = std::max(11, static_cast<int>(std::lround(20 * style.scale)));
-  const std::size_t num_labels = std::min<std::size_t>(
-      glyphs.clusters.size(), static_cast<std::size_t>(labelled_cluster_count(glyphs.options.top_clusters)));
-  std::vector<PixelRect> placed;  // labels never overlap: a later (better-ranked first) one is skipped
-  for (std::size_t i = 0; i < num_labels; ++i) {
-    const AggregatedGlyph& g = glyphs.clusters[i];
-    const Vec3 ndc = project_to_ndc(camera, aspect, g.position);
-    if (!std::isfinite(ndc.x) || std::abs(ndc.x) > 1.0 || std::abs(ndc.y) > 1.0) continue;
-    const double depth = dot(g.position - camera.eye, forward_of(camera));
-    const double r_px = g.radius / units_per_pixel(camera, depth, layout.view.height);
-    const int x =
-        layout.view.x + static_cast<int>(std::lround(0.5 * (ndc.x + 1.0) * layout.view.width + 0.75 * r_px + 3));
-    const int y = layout.view.y + static_cast<int>(std::lround(0.5 * (1.0 - ndc.y) * layout.view.height - 0.75 * r_px));
-    const std::string label = "#" + std::to_string(g.id);
-    const PixelRect extent = text_extent(label, label_size, style);
-    const PixelRect box{x - 2, y - extent.height - 2, extent.width + 4, extent.height + 4};
-    const bool overlaps = std::any_of(placed.begin(), placed.end(), [&](const PixelRect& r) {
-      return box.x < r.x + r.width && r.x < box.x + box.width && box.y < r.y + r.height && r.y < box.y + box.height;
-    });
-    if (overlaps) continue;
-    placed.push_back(box);
-    draw_text(figure, x, y, label, label_size, style);
+// Label sizes at the figure's scale.
+int cluster_label_size(const AnnotationStyle& style) {
+  return std::max(11, static_cast<int>(std::lround(20 * style.scale)));
+}
+int marker_label_size(const AnnotationStyle& style) {
+  return std::max(10, static_cast<int>(std::lround(18 * style.scale)));
+}
+
+// A label's box: its text's extent with a 2-pixel margin, the baseline at
+// box.y + 2 + size (draw_main_view_labels).
+LabelRequest label_request(const std::string& text, int size, const ScreenDisc& anchor, const AnnotationStyle& style) {
+  const PixelRect extent = text_extent(text, size, style);
+  return {anchor, extent.width + 4, std::max(extent.height, size) + 5};
+}
+
+void draw_main_view_labels(Image& figure, const MainViewLabels& labels, const AnnotationStyle& style,
+                           const MainViewOptions& options) {
+  AnnotationStyle text_style = style;
+  Rgba8 halo = options.background;
+  halo.a = 255;
+  // Leader lines first (on a pale halo, so they show over arrows, cells and
+  // edges), then the labels: a leader never crosses a label's text.
+  for (const MainViewLabel& label : labels.labels) {
+    const PlacedLabel& p = label.placement;
+    if (!p.has_leader) continue;
+    draw_line(figure, p.leader_x0, p.leader_y0, p.leader_x1, p.leader_y1, halo, std::max(3.0, 4.5 * style.scale));
+    draw_line(figure, p.leader_x0, p.leader_y0, p.leader_x1, p.leader_y1, label.color, std::max(1.0, 1.8 * style.scale));
+  }
+  for (const MainViewLabel& label : labels.labels) {
+    const PlacedLabel& p = label.placement;
+    const int size = label.kind == MainViewLabel::Kind::cluster ? cluster_label_size(style) : marker_label_size(style);
+    // On a pale box: labels sit among arrow shafts and edges.
+    fill_rect(figure, p.box, halo);
+    text_style.text_color = label.color;
+    draw_text(figure, p.box.x + 2, p.box.y + 1 + size, label.text, size, text_style);
   }
 }
 
-// Counts on merged (or over-full) overlap markers, right of the marker
-// below the first arrow (which starts at 45 degrees, up and right).
-void draw_marker_counts(Image& figure, const OverlapReport& overlap, const Camera& camera, const FigureLayout& layout,
-                        const AnnotationStyle& style, const MainViewOptions& scaled) {
-  const double aspect = static_cast<double>(layout.view.width) / static_cast<double>(layout.view.height);
-  const int count_size = std::max(10, static_cast<int>(std::lround(18 * style.scale)));
-  AnnotationStyle count_style = style;
-  for (const ScreenMarker& marker : merge_markers_on_screen(overlap.markers, camera, layout.view.height,
-                                                            scaled.marker_merge_pixels * scaled.pixel_scale)) {
-    if (marker.members < 2 && marker.count() <= scaled.max_arrows_per_marker) continue;
-    count_style.text_color = marker.intersections > 0 ? kIntersectionArrowColor : kCoincidentArrowColor;
-    const Vec3 ndc = project_to_ndc(camera, aspect, marker.position);
-    if (!std::isfinite(ndc.x) || std::abs(ndc.x) > 1.0 || std::abs(ndc.y) > 1.0) continue;
-    const int x = layout.view.x + static_cast<int>(std::lround(0.5 * (ndc.x + 1.0) * layout.view.width + 6));
-    const int y = layout.view.y + static_cast<int>(std::lround(0.5 * (1.0 - ndc.y) * layout.view.height)) + count_size;
-    // On a pale box: the label sits among arrow shafts and cells.
-    const std::string label = "x" + std::to_string(marker.count());
-    const PixelRect extent = text_extent(label, count_size, count_style);
-    Rgba8 halo = scaled.background;
-    halo.a = 255;
-    fill_rect(figure, {x - 2, y - count_size - 1, extent.width + 4, count_size + 5}, halo);
-    draw_text(figure, x, y, label, count_size, count_style);
-  }
+// A ring around cluster #0's glyph on screen (dark on a pale halo, a few
+// pixels outside its silhouette), so the worst place is found first even
+// where its glyph is small.
+void draw_worst_glyph_ring(Image& figure, const ScreenDisc& worst, const AnnotationStyle& style,
+                           const MainViewOptions& options) {
+  if (!(worst.radius > 0.0)) return;
+  Rgba8 halo = options.background;
+  halo.a = 255;
+  const double radius = worst.radius + 4.0 * style.scale;
+  constexpr int kSegments = 96;
+  for (int pass = 0; pass < 2; ++pass)
+    for (int i = 0; i < kSegments; ++i) {
+      const double a0 = 2.0 * M_PI * i / kSegments, a1 = 2.0 * M_PI * (i + 1) / kSegments;
+      draw_line(figure, worst.x + radius * std::cos(a0), worst.y + radius * std::sin(a0), worst.x + radius * std::cos(a1),
+                worst.y + radius * std::sin(a1), pass == 0 ? halo : style.text_color,
+                pass == 0 ? std::max(4.0, 5.0 * style.scale) : std::max(1.5, 2.2 * style.scale));
+    }
 }
 
 // Legend: what each colour means (draw_legend shrinks it to the panel).
@@ -449,46 +544,215 @@ void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapRep
   std::vector<LegendLine> lines{{std::nullopt, "glyphs: worst clusters"}};
   for (std::size_t i = 0; i < listed; ++i) {
     const AggregatedGlyph& g = glyphs.clusters[i];
+    // As the label reads, then the key number (short: a long line is cut).
     lines.push_back({to_rgba8(cluster_color(g.id, glyphs.options.top_clusters)),
-                     "#" + std::to_string(g.id) + "  " + std::to_string(g.size) + (g.size == 1 ? " vertex" : " vertices") +
-                         ", min " + display_number(g.min_quality, 3)});
+                     "#" + std::to_string(g.id) + " (" + std::to_string(g.size) + ")  min " +
+                         display_number(g.min_quality, 3)});
   }
   if (glyphs.clusters.size() > listed) {
     const std::size_t rest = glyphs.clusters.size() - listed;
     lines.push_back({to_rgba8(neutral_cluster_color()), std::to_string(rest) + (rest == 1 ? " other cluster" : " other clusters")});
   }
-  if (glyphs.clusters.empty()) lines.push_back({options.background, "none (no vertex below threshold)"});
-  lines.push_back({std::nullopt, "size = 1 - min quality", 1});
-  const std::size_t coincident = overlap ? overlap->coincident_groups.size() : 0;
+  if (glyphs.clusters.empty())
+    lines.push_back({options.background, "none: no quality below " + display_number(1.0 - glyphs.options.threshold, 3)});
+  lines.push_back({std::nullopt,
+                   glyphs.options.size_rule == GlyphSizeRule::kPaper
+                       ? "size = 1 - min quality + 0.1 per 10 vertices (paper)"
+                       : "size = 1 - min quality",
+                   1});
+  if (!glyphs.clusters.empty()) lines.push_back({std::nullopt, "label #k (n): rank k, n vertices"});
+  // Findings and places by kind, as the markers count them: the "xN"
+  // labels of the marker groups add up to the two findings counts.
+  std::size_t findings[2] = {0, 0};
+  if (overlap)
+    for (const OverlapMarker& m : overlap->markers) {
+      const int kind = m.kind == MarkerKind::coincident ? 0 : 1;
+      findings[kind] += static_cast<std::size_t>(std::max<Index>(m.count, 1));
+    }
   const std::size_t intersecting = overlap ? static_cast<std::size_t>(overlap->num_intersecting_cells) : 0;
-  const std::size_t intersections =
-      overlap ? overlap->markers.size() - std::min(overlap->markers.size(), coincident) : 0;
   const std::string unchecked = overlap ? "" : " (not checked)";
-  lines.push_back({kCoincidentArrowColor, "coincident vertices: " + std::to_string(coincident) + unchecked, 1});
-  lines.push_back({kIntersectionArrowColor, "intersections: " + std::to_string(intersections) + unchecked});
+  lines.push_back({kCoincidentArrowColor, "coincident vertices: " + std::to_string(findings[0]) + unchecked, 1});
+  lines.push_back({kIntersectionArrowColor, "intersecting pairs: " + std::to_string(findings[1]) + unchecked});
   lines.push_back({kIntersectingCellColor, "intersecting cells: " + std::to_string(intersecting) + unchecked});
+  if (overlap && !overlap->markers.empty()) lines.push_back({std::nullopt, "label xN: N of its colour's kind"});
   lines.push_back({kWireframeColor, "boundary edges"});
   draw_legend(figure, layout.legend, lines, style);
 }
 
 }  // namespace
 
-Image render_main_view(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
-                       const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& options,
-                       Renderer& renderer) {
+MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapReport* overlap, const Camera& camera,
+                                       const FigureLayout& layout, const AnnotationStyle& style,
+                                       const MainViewOptions& scaled) {
+  const double aspect = static_cast<double>(layout.view.width) / static_cast<double>(std::max(1, layout.view.height));
+  const ImagePlane plane = image_plane(camera);
+  // Figure pixels of a model point, and model units per pixel there.
+  auto screen_of = [&](const Vec3& p, double radius) {
+    const Vec3 ndc = project_to_ndc(camera, aspect, p);
+    const double depth = dot(p - camera.eye, plane.forward);
+    return ScreenDisc{layout.view.x + 0.5 * (ndc.x + 1.0) * layout.view.width,
+                      layout.view.y + 0.5 * (1.0 - ndc.y) * layout.view.height,
+                      radius / units_per_pixel(camera, depth, layout.view.height)};
+  };
+  auto on_screen = [&](const ScreenDisc& d) {
+    return std::isfinite(d.x) && std::isfinite(d.y) && d.x >= layout.view.x &&
+           d.x <= layout.view.x + layout.view.width && d.y >= layout.view.y &&
+           d.y <= layout.view.y + layout.view.height;
+  };
+  MainViewLabels result;
+  // Obstacles: the glyphs (the 200 largest on screen: under the severity
+  // rule the first 200 ranks) and the arrow fans.
+  constexpr std::size_t kGlyphObstacles = 200;
+  std::vector<std::pair<double, ScreenDisc>> glyph_discs;
+  for (const AggregatedGlyph& g : glyphs.clusters) {
+    if (!(g.radius > 0.0)) continue;
+    const ScreenDisc d = screen_of(g.position, g.radius);
+    if (on_screen(d) && d.radius >= 1.0) glyph_discs.push_back({d.radius, d});
+  }
+  std::stable_sort(glyph_discs.begin(), glyph_discs.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  if (glyph_discs.size() > kGlyphObstacles) glyph_discs.resize(kGlyphObstacles);
+  if (!glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0)
+    result.worst_glyph = screen_of(glyphs.clusters[0].position, glyphs.clusters[0].radius);
+  std::vector<ScreenDisc> fans;
+  std::vector<MainViewLabel> markers;
+  if (overlap) {
+    for (const MarkerFan& fan : marker_fans(glyphs, *overlap, camera, layout.view.height, scaled)) {
+      const ScreenDisc disc = screen_of(fan.group.position, fan.reach + 6.5 * fan.unit);
+      fans.push_back(disc);
+      MainViewLabel label;
+      label.kind = MainViewLabel::Kind::marker;
+      label.count = fan.group.count();
+      label.text = "x" + std::to_string(label.count);
+      label.color = fan.group.kind == MarkerKind::intersection ? kIntersectionArrowColor : kCoincidentArrowColor;
+      // Anchored where its arrows point; its own fan is an obstacle, so
+      // the label sits next to the fan with a leader line to its centre.
+      label.anchor = ScreenDisc{disc.x, disc.y, 3.0 * style.scale};
+      markers.push_back(label);
+    }
+    std::stable_sort(markers.begin(), markers.end(),
+                     [](const MainViewLabel& a, const MainViewLabel& b) { return a.count > b.count; });
+  }
+  std::vector<MainViewLabel> clusters;
+  const std::size_t num_cluster_labels = std::min<std::size_t>(
+      glyphs.clusters.size(), static_cast<std::size_t>(labelled_cluster_count(glyphs.options.top_clusters)));
+  for (std::size_t i = 0; i < num_cluster_labels; ++i) {
+    const AggregatedGlyph& g = glyphs.clusters[i];
+    const ScreenDisc disc = screen_of(g.position, g.radius);
+    if (!on_screen(disc)) continue;
+    MainViewLabel label;
+    label.kind = MainViewLabel::Kind::cluster;
+    label.cluster = g.id;
+    label.text = "#" + std::to_string(g.id) + " (" + std::to_string(g.size) + ")";
+    label.color = style.text_color;
+    label.anchor = disc;
+    clusters.push_back(label);
+  }
+  // Order: cluster #0, the marker groups, the other clusters.
+  std::vector<MainViewLabel> order;
+  std::size_t first_other = 0;
+  if (!clusters.empty() && clusters[0].cluster == 0) {
+    order.push_back(clusters[0]);
+    first_other = 1;
+  }
+  order.insert(order.end(), markers.begin(), markers.end());
+  order.insert(order.end(), clusters.begin() + static_cast<std::ptrdiff_t>(first_other), clusters.end());
+
+  LabelLayoutOptions options;
+  options.bounds = layout.view;
+  options.gap = 4.0 * style.scale;
+  options.ring_step = 14.0 * style.scale;
+  options.rings = static_cast<int>(std::ceil(std::max(layout.view.width, layout.view.height) / options.ring_step));
+  options.leader_distance = 10.0 * style.scale;
+  std::vector<ScreenDisc> all_obstacles;
+  for (const auto& g : glyph_discs) all_obstacles.push_back(g.second);
+  if (result.worst_glyph.radius > 0.0) all_obstacles.push_back(result.worst_glyph);
+  all_obstacles.insert(all_obstacles.end(), fans.begin(), fans.end());
+  std::vector<ScreenDisc> worst_only;
+  if (result.worst_glyph.radius > 0.0) worst_only.push_back(result.worst_glyph);
+  std::vector<PixelRect> taken;
+  for (MainViewLabel& label : order) {
+    const int size = label.kind == MainViewLabel::Kind::cluster ? cluster_label_size(style) : marker_label_size(style);
+    const LabelRequest request[] = {label_request(label.text, size, label.anchor, style)};
+    std::optional<PlacedLabel> placed = place_labels(request, all_obstacles, taken, options)[0];
+    if (!placed && label.kind == MainViewLabel::Kind::marker)
+      placed = place_labels(request, worst_only, taken, options)[0];
+    if (!placed && label.kind == MainViewLabel::Kind::marker) {
+      // No free place in the whole view: at the anchor's right, clamped to the view.
+      PixelRect box{static_cast<int>(std::lround(label.anchor.x + label.anchor.radius)),
+                    static_cast<int>(std::lround(label.anchor.y)), request[0].width, request[0].height};
+      box.x = std::clamp(box.x, layout.view.x, layout.view.x + layout.view.width - box.width);
+      box.y = std::clamp(box.y, layout.view.y, layout.view.y + layout.view.height - box.height);
+      placed = PlacedLabel{box};
+      if (disc_box_gap(label.anchor, box) > options.leader_distance) *placed = with_leader(label.anchor, box);
+    }
+    if (!placed) {
+      ++result.omitted_clusters;
+      continue;
+    }
+    // A label nearer to another glyph or fan than to its own anchor would
+    // read as that one's: it gets a leader line too.
+    if (!placed->has_leader) {
+      const double own = disc_box_gap(label.anchor, placed->box);
+      auto nearer = [&](const ScreenDisc& d) {
+        const bool is_own = d.x == label.anchor.x && d.y == label.anchor.y;
+        return !is_own && disc_box_gap(d, placed->box) < own;
+      };
+      if (std::any_of(all_obstacles.begin(), all_obstacles.end(), nearer)) *placed = with_leader(label.anchor, placed->box);
+    }
+    label.placement = *placed;
+    taken.push_back(placed->box);
+    result.labels.push_back(label);
+  }
+  return result;
+}
+
+namespace {
+
+// The style, layout, camera and scaled options of one main view figure.
+struct MainViewFrame {
+  AnnotationStyle style;
+  FigureLayout layout;
+  Camera camera;
+  MainViewOptions scaled;
+};
+
+MainViewFrame main_view_frame(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
+                              const Vec3& view_direction, const MainViewOptions& options) {
   if (options.width <= 0 || options.height <= 0)
     throw RenderError("main view size must be positive, got " + std::to_string(options.width) + "x" +
                       std::to_string(options.height));
-  AnnotationStyle style = annotation_style_for(options.height);
-  style.background = options.background;
-  const FigureLayout layout = main_layout(options, style);
-  const double aspect = static_cast<double>(layout.view.width) / static_cast<double>(layout.view.height);
-  const std::vector<Vec3> points = main_view_points(mesh, topology, glyphs);
-  const Camera camera = fit_camera_to_points(
-      points, view_direction, aspect, {.up = options.up, .fov_y_degrees = options.fov_y_degrees, .is_perspective = false});
+  MainViewFrame frame;
+  frame.style = annotation_style_for(options.height);
+  frame.style.background = options.background;
+  frame.layout = main_layout(options, frame.style);
+  const double aspect = static_cast<double>(frame.layout.view.width) / static_cast<double>(frame.layout.view.height);
+  frame.camera =
+      fit_camera_to_points(main_view_points(mesh, topology, glyphs), view_direction, aspect,
+                           {.up = options.up, .fov_y_degrees = options.fov_y_degrees, .is_perspective = false});
+  frame.scaled = options;
+  frame.scaled.pixel_scale = frame.style.scale;
+  return frame;
+}
 
-  MainViewOptions scaled = options;
-  scaled.pixel_scale = style.scale;
+}  // namespace
+
+MainViewLabels main_view_labels(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
+                                const OverlapReport* overlap, const Vec3& view_direction,
+                                const MainViewOptions& options, Scene* scene) {
+  const MainViewFrame f = main_view_frame(mesh, topology, glyphs, view_direction, options);
+  if (scene) *scene = build_main_scene(mesh, topology, glyphs, overlap, f.camera, f.layout.view.height, f.scaled);
+  return layout_main_view_labels(glyphs, overlap, f.camera, f.layout, f.style, f.scaled);
+}
+
+Image render_main_view(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
+                       const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& options,
+                       Renderer& renderer) {
+  const MainViewFrame frame = main_view_frame(mesh, topology, glyphs, view_direction, options);
+  const AnnotationStyle& style = frame.style;
+  const FigureLayout& layout = frame.layout;
+  const Camera& camera = frame.camera;
+  const MainViewOptions& scaled = frame.scaled;
   Scene scene = build_main_scene(mesh, topology, glyphs, overlap, camera, layout.view.height, scaled);
   // The wireframe fades when dense on screen, so glyphs and clusters stay readable.
   const double pixels = median_edge_pixels(scene.lines[0], scene.origin, camera, layout.view.width, layout.view.height);
@@ -497,8 +761,9 @@ Image render_main_view(const HexMesh& mesh, const Topology& topology, const Glyp
 
   Image figure = render_figure(renderer, scene, camera, options.width, options.height, layout, options.title, style);
 
-  draw_rank_labels(figure, glyphs, camera, layout, style);
-  if (overlap) draw_marker_counts(figure, *overlap, camera, layout, style, scaled);
+  const MainViewLabels labels = layout_main_view_labels(glyphs, overlap, camera, layout, style, scaled);
+  draw_worst_glyph_ring(figure, labels.worst_glyph, style, scaled);
+  draw_main_view_labels(figure, labels, style, scaled);
   draw_main_legend(figure, glyphs, overlap, layout, style, options);
   return figure;
 }

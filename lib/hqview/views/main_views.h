@@ -14,7 +14,9 @@
 #include "hqview/mesh/hex_mesh.h"
 #include "hqview/mesh/topology.h"
 #include "hqview/overlap/overlap.h"
+#include "hqview/render/annotate.h"
 #include "hqview/render/camera.h"
+#include "hqview/render/label_layout.h"
 #include "hqview/render/renderer.h"
 #include "hqview/render/scene.h"
 #include "hqview/render/upright.h"
@@ -23,7 +25,9 @@ namespace hq {
 
 // Colours of view A's elements (fixed, documented in the legend).
 inline constexpr Rgba8 kWireframeColor{120, 124, 134, 255};
-inline constexpr Rgba8 kCoincidentArrowColor{217, 95, 2, 255};
+// Coincident vertices: near-black (the earlier orange was CIEDE2000 3.8
+// from the quality map's orange, which the viewer draws under the markers).
+inline constexpr Rgba8 kCoincidentArrowColor{25, 25, 25, 255};
 inline constexpr Rgba8 kIntersectionArrowColor{140, 20, 120, 255};
 inline constexpr Rgba8 kIntersectingCellColor{214, 40, 190, 96};  // translucent magenta
 
@@ -40,6 +44,9 @@ struct MainViewOptions {
   double arrow_start_degrees = 45.0;  // first arrow's angle in the image plane (deterministic)
   int max_arrows_per_marker = 12;
   double marker_merge_pixels = 70.0;  // markers closer on screen (one arrow length) are drawn as one
+  // At most this many marker groups (one arrow fan and one count label
+  // each): the merge distance grows by half until the groups are this few.
+  int max_marker_groups = 12;
   double pixel_scale = 1.0;           // multiplies the arrow sizes and marker_merge_pixels; render_main_view
                                       // sets it to the figure's annotation scale (height / 1200)
   double fov_y_degrees = 30.0;
@@ -76,18 +83,29 @@ std::vector<Vec3> choose_viewpoints(std::span<const Vec3> points, std::span<cons
 // Overlap markers as view A draws them. Arrows of markers a few pixels apart
 // tangle into an unreadable knot, so markers closer on screen than
 // min_pixels are merged: markers are taken in report order, each joins the
-// first drawn marker (in creation order) whose anchor is strictly closer
-// than min_pixels on screen, else it becomes a new drawn marker anchored at
-// its own position. Drawn markers are therefore at least min_pixels apart.
+// first drawn marker of its own kind (in creation order) whose anchor is
+// strictly closer than min_pixels on screen, else it becomes a new drawn
+// marker anchored at its own position. Drawn markers of one kind are
+// therefore at least min_pixels apart; a drawn marker counts one kind only
+// (coincident vertices or intersecting pairs), so its label can wear that
+// kind's colour and the labels of a kind add up to that kind's findings.
 struct ScreenMarker {
   Vec3 position;         // the first member's position (the anchor)
   Index coincident = 0;  // findings of the members, by kind
   Index intersections = 0;
   Index members = 0;  // markers merged into this one
   Index count() const { return coincident + intersections; }
+  MarkerKind kind = MarkerKind::coincident;  // every member's kind (markers of one kind only are merged)
 };
 std::vector<ScreenMarker> merge_markers_on_screen(std::span<const OverlapMarker> markers, const Camera& camera,
                                                   int view_height, double min_pixels);
+
+// The marker groups view A draws: merge_markers_on_screen with min_pixels,
+// then with 1.5 times that (1 pixel after 0), and so on, until there are at
+// most max_groups (>= 1; >= 2 when both kinds occur). Every finding is in one group: the groups' count() sum to the
+// markers' findings (a marker counts max(count, 1)).
+std::vector<ScreenMarker> group_markers_on_screen(std::span<const OverlapMarker> markers, const Camera& camera,
+                                                  int view_height, double min_pixels, int max_groups);
 
 // View A's scene for a camera (arrows are laid out in its image plane and
 // sized for an image view_height pixels high):
@@ -102,10 +120,15 @@ std::vector<ScreenMarker> merge_markers_on_screen(std::span<const OverlapMarker>
 //   spheres[0]   aggregated glyphs: one per cluster, radius = its radius,
 //                colour = its cluster colour;
 //   overlay[0]   arrows, over everything (a marker inside a glyph still
-//                shows its arrows): per drawn marker (merge_markers_on_screen with
-//                options.marker_merge_pixels) n = min(count, max) arrows
-//                whose tips touch the marker, spread every 360/n degrees,
-//                coincident ones first (their share of n, at least one);
+//                shows its arrows): per marker group (group_markers_on_screen
+//                with options.marker_merge_pixels and max_marker_groups)
+//                n = min(count, max) arrows whose tips point at the group's
+//                anchor, spread every 360/n degrees, coincident ones first
+//                (their share of n, at least one). The worst cluster's glyph
+//                is never covered: an arrow whose shaft would cross its disc
+//                on screen is left out (when all would, one arrow comes from
+//                the side away from the glyph), and the arrows of an anchor
+//                inside the disc start at the disc's edge;
 //   translucent[0] the faces of the intersecting cells.
 // overlap may be null (no arrows, no intersecting cells).
 // 1 for the per_cluster worst members (largest glyph radius, then lowest
@@ -119,9 +142,53 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
 // Width / height of the 3D part of the figure render_main_view draws.
 double main_view_aspect(const MainViewOptions& options);
 
-// The figure: title, the 3D view, and a legend on the right. A drawn marker
-// that merges several markers, or has more findings than arrows, is
-// labelled with its number of findings ("x12").
+// A label of view A, in figure pixels.
+struct MainViewLabel {
+  enum class Kind { cluster, marker };
+  Kind kind = Kind::cluster;
+  std::string text;          // "#k (n)": rank and member count; "xN": findings of a marker group
+  Index cluster = kNoIndex;  // the cluster's rank (cluster labels)
+  Index count = 0;           // findings (marker labels)
+  Rgba8 color;               // text colour
+  ScreenDisc anchor;         // the glyph's disc, or a 3-pixel disc at the marker group's position
+  PlacedLabel placement;
+};
+struct MainViewLabels {
+  std::vector<MainViewLabel> labels;
+  ScreenDisc worst_glyph;      // cluster #0 on screen (radius 0 without glyphs)
+  Index omitted_clusters = 0;  // cluster labels with no free place (left out)
+};
+
+// Where view A's labels go (pure; render_main_view draws them): one count
+// label per marker group (group_markers_on_screen; their counts add up to
+// the findings) and a rank label "#k (n)" for each of the first
+// labelled_cluster_count(K) clusters on screen, at most
+// max_marker_groups + 10 labels. Placed greedily (place_labels): cluster #0
+// first, then the marker groups (largest count first), then clusters #1 ..;
+// none overlaps another label, a glyph disc of the 200 largest clusters on
+// screen, or an arrow fan (its own too); a label farther than 10 pixels (at
+// 1200 px height) from its anchor, or nearer to another glyph disc or fan
+// than to its anchor, has a leader line. A marker label's anchor
+// is its group's position (a 3-pixel disc at the fans' centre, where the
+// arrows point), so it sits just outside its own fan with a leader line to
+// the centre, never reading as the label of a neighbouring fan; it wears the
+// colour of its kind. A marker label that
+// finds no such place is placed ignoring the other glyphs (never the worst
+// one), so the counts always add up; a cluster label that finds none is left
+// out (omitted_clusters).
+MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapReport* overlap, const Camera& camera,
+                                       const FigureLayout& layout, const AnnotationStyle& style,
+                                       const MainViewOptions& scaled);
+
+// The labels render_main_view draws for view_direction (and, when scene is
+// not null, the scene it draws), figure pixels.
+MainViewLabels main_view_labels(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
+                                const OverlapReport* overlap, const Vec3& view_direction,
+                                const MainViewOptions& options, Scene* scene = nullptr);
+
+// The figure: title, the 3D view, the labels (layout_main_view_labels:
+// every marker group with its number of findings "xN", the worst clusters
+// "#k (n)"), and a legend on the right.
 Image render_main_view(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                        const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& options,
                        Renderer& renderer);

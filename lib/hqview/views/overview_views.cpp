@@ -63,7 +63,13 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
 
   // Faces: 5 vertices (corners, then centre) and 4 triangles per quad, all
   // with the quad's normal so each quad is one flat facet.
+  // Colour after interpolation: the corners' qualities are interpolated and
+  // mapped per fragment (ScalarColorMap), so an inverted corner keeps the
+  // inverted colour in its part of the face and no face shows a blend that
+  // is in no legend; colors holds the same mapping per vertex (alpha, and
+  // renderers without per-fragment maps).
   TriangleSet faces;
+  faces.color_map = {quality_map_samples(), kInvertedColor, kUndefinedColor};
   const std::size_t num_faces = topology.boundary_faces.size();
   faces.positions.reserve(5 * num_faces);
   faces.normals.reserve(5 * num_faces);
@@ -88,13 +94,20 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
     const Vec3f normal = to_vec3f(normalized(cross(p[2] - p[0], p[3] - p[1])));
     const auto base = static_cast<std::uint32_t>(faces.positions.size());
     for (int i = 0; i < 4; ++i) {
+      const double q = vertex_quality[static_cast<std::size_t>(quad[i])];
       faces.positions.push_back(local(p[i]));
       faces.normals.push_back(normal);
-      faces.colors.push_back(color(vertex_quality[static_cast<std::size_t>(quad[i])]));
+      faces.colors.push_back(color(q));
+      faces.scalars.push_back(static_cast<float>(q));
     }
+    // The centre carries the mean of the corners' qualities: it is inverted
+    // (and so is the part of the face nearer to it) when that mean is < 0.
+    // An inverted corner alone keeps the inverted colour where its
+    // barycentric weight is above one half: an eighth of the face.
     faces.positions.push_back(local(centre));
     faces.normals.push_back(normal);
     faces.colors.push_back(color(finite ? quality_sum / finite : std::nan("")));
+    faces.scalars.push_back(static_cast<float>(finite ? quality_sum / finite : std::nan("")));
     for (std::uint32_t i = 0; i < 4; ++i) {
       faces.indices.push_back(base + i);
       faces.indices.push_back(base + (i + 1) % 4);

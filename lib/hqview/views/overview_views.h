@@ -30,9 +30,14 @@ struct OverviewOptions {
 
 // The overview's 3D content: every boundary face (Topology::boundary_faces)
 // as 4 triangles around its centre, so that the quality of the 4 corners
-// blends without a diagonal artefact, flat-shaded with the quad's normal and
-// coloured per vertex by quality_color(vertex_quality) (the centre by the
-// mean of its corners' qualities); then the unique boundary edges as lines
+// blends without a diagonal artefact, flat-shaded with the quad's normal,
+// with scalars = vertex quality (the centre: the mean of its corners') and the
+// quality map (quality_map_samples, kInvertedColor below 0, kUndefinedColor
+// for NaN) applied per fragment after interpolation, so that every pixel of a
+// face is a colour of the legend and an inverted vertex keeps the inverted
+// colour in the part of its faces nearest to it (colors: quality_color per
+// vertex, the same values; a caller that recolours the faces must clear
+// scalars, which win over colors); then the unique boundary edges as lines
 // in options.edge_color. The scene's origin is the centre of the boundary's
 // bounding box.
 //   vertex_quality: mesh.num_vertices() values (min corner scaled Jacobian,

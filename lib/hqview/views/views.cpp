@@ -219,7 +219,11 @@ std::vector<ViewFile> build_local(ViewContext& c) {
   auto detail = sized<DetailViewOptions>(c);
   std::vector<ViewFile> files;
   for (Index v : c.local_vertices) {
-    detail.title = c.name + ": vertex " + std::to_string(v) + ", its hexes and their corner scaled Jacobians";
+    // Named by its cluster: the local vertex of a lower-ranked cluster is
+    // not read as cluster #0's worst.
+    const Index cluster = c.cluster_of(v);
+    detail.title = c.name + ": " + (cluster == kNoIndex ? std::string() : "cluster #" + std::to_string(cluster) + ", ") +
+                   "vertex " + std::to_string(v) + ", its hexes and their corner scaled Jacobians";
     Image image = render_local_view(c.a.mesh, c.a.topology, c.a.field.corner_scaled_jacobian, v, detail, c.renderer);
     files.push_back(framed("views/local_v" + std::to_string(v) + ".png", std::move(image), c));
     files.back().cluster = c.cluster_of(v);

@@ -1,0 +1,79 @@
+// Size is severity (issue 44), on every mesh of ../shared/data with the
+// default options: no pair of clusters has the worse one (lower min
+// quality) drawn smaller, in the result (report.json glyphs.clusters) and in
+// view A's scene; --glyph-size paper gives every cluster today's radius,
+// (1 − min quality + the size bonus) · rmax, and so the inverted pairs the
+// issue counted in report.json's listed clusters (the first 1,000):
+// Dolphin_padded 51, armadillo 21, warrior 4, rockarm 2.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "hqview/glyph/glyphs.h"
+#include "hqview/io/mesh_reader.h"
+#include "hqview/mesh/topology.h"
+#include "hqview/quality/quality_field.h"
+#include "hqview/views/main_views.h"
+#include "support/fixtures.h"
+
+namespace hq {
+namespace {
+
+// Pairs (i, j) among the first `listed` clusters where i is strictly worse
+// (lower min quality) and drawn strictly smaller.
+int worse_drawn_smaller(const std::vector<AggregatedGlyph>& clusters, std::size_t listed) {
+  const std::size_t n = std::min(clusters.size(), listed);
+  int pairs = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j)
+      pairs += clusters[i].min_quality < clusters[j].min_quality && clusters[i].radius < clusters[j].radius;
+  return pairs;
+}
+
+TEST(GlyphSize, SharedMeshesNeverDrawTheWorseClusterSmaller) {
+  const auto data = test::shared_data_dir();
+  if (!data) GTEST_SKIP() << "../shared/data (or $HQVIEW_DATA) not found";
+  const std::vector<std::filesystem::path> files = test::shared_hex_meshes(*data);
+  ASSERT_GE(files.size(), 11u);
+  const std::map<std::string, int> paper_pairs{
+      {"Dolphin_padded", 51}, {"armadillo", 21}, {"warrior", 4}, {"rockarm", 2}};
+  for (const auto& file : files) {
+    SCOPED_TRACE(file.string());
+    const HexMesh mesh = read_hex_mesh(file).mesh;
+    const Topology topology = build_topology(mesh);
+    const QualityField q = compute_quality(mesh, topology);
+    const double mean_edge = test::mean_edge_length(mesh, topology);
+    GlyphOptions options;
+    const GlyphResult severity = compute_glyphs(mesh.points, q.vertex_quality, mean_edge, options);
+    options.size_rule = GlyphSizeRule::kPaper;
+    const GlyphResult paper = compute_glyphs(mesh.points, q.vertex_quality, mean_edge, options);
+
+    EXPECT_EQ(worse_drawn_smaller(severity.clusters, severity.clusters.size()), 0);
+    ASSERT_EQ(severity.clusters.size(), paper.clusters.size());
+    for (std::size_t i = 0; i < paper.clusters.size(); ++i) {
+      const AggregatedGlyph& p = paper.clusters[i];
+      EXPECT_EQ(p.radius, (1.0 - p.min_quality + glyph_size_bonus(p.size)) * paper.rmax);
+      EXPECT_EQ(severity.clusters[i].radius, (1.0 - p.min_quality) * severity.rmax);
+    }
+    const auto expected = paper_pairs.find(file.stem().string());
+    EXPECT_EQ(worse_drawn_smaller(paper.clusters, 1000), expected == paper_pairs.end() ? 0 : expected->second);
+
+    // View A's spheres: one per cluster, in rank order, with its radius.
+    const std::vector<Vec3> points = main_view_points(mesh, topology, severity);
+    const Camera camera = fit_camera_to_points(points, {-1, -1, -1}, 4.0 / 3.0, {.is_perspective = false});
+    const Scene scene = build_main_scene(mesh, topology, severity, nullptr, camera, 1000, {});
+    // The ranked (coloured) glyphs are the set drawn over the grey ones.
+    ASSERT_EQ(scene.spheres.size(), 2u);
+    std::vector<float> radii = scene.spheres[1].radii;
+    radii.insert(radii.end(), scene.spheres[0].radii.begin(), scene.spheres[0].radii.end());
+    ASSERT_EQ(radii.size(), severity.clusters.size());
+    for (std::size_t i = 1; i < radii.size(); ++i) EXPECT_GE(radii[i - 1], radii[i]) << i;
+  }
+}
+
+}  // namespace
+}  // namespace hq

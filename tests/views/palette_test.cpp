@@ -1,0 +1,178 @@
+// The colours the views draw, checked against the rules of issue 44 with
+// colour science written from the published formulas (support/
+// colour_science.h: CIEDE2000 after Sharma et al. 2005, checked here on
+// their test pairs; Machado et al. 2009 colour vision deficiency).
+// Rules: the cluster colours, the neutral cluster grey, the undefined grey,
+// the inverted colour and the overlap colours differ pairwise by CIEDE2000
+// >= 15, and from the quality map (sampled densely) too; the critical pairs
+// (inverted and overlap colours against each cluster colour) keep >= 8
+// under simulated protanopia, deuteranopia and tritanopia.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "hqview/image/colormap.h"
+#include "hqview/views/main_views.h"
+#include "support/colour_science.h"
+
+namespace hq {
+namespace {
+
+using test::ciede2000;
+using test::delta_e;
+using test::kDeuteranopia;
+using test::kProtanopia;
+using test::kTritanopia;
+using test::Lab;
+using test::lab_of;
+using test::simulated;
+using test::worst_cvd_delta_e;
+using Matrix = test::CvdMatrix;
+
+struct Named {
+  std::string name;
+  Rgba8 color;
+};
+
+Rgba8 opaque(Rgba8 c) {
+  c.a = 255;
+  return c;
+}
+
+std::vector<Named> cluster_colors() {
+  std::vector<Named> colors;
+  for (int i = 0; i < kLabelledClusterPaletteSize; ++i)
+    colors.push_back({"cluster #" + std::to_string(i), to_rgba8(labelled_cluster_color(i))});
+  return colors;
+}
+
+std::vector<Named> special_colors() {
+  return {{"neutral cluster grey", to_rgba8(neutral_cluster_color())},
+          {"undefined", to_rgba8(kUndefinedColor)},
+          {"inverted", to_rgba8(kInvertedColor)},
+          {"coincident", kCoincidentArrowColor},
+          {"intersection", kIntersectionArrowColor},
+          {"intersecting cell", opaque(kIntersectingCellColor)}};
+}
+
+std::vector<Named> overlap_colors() {
+  return {{"coincident", kCoincidentArrowColor},
+          {"intersection", kIntersectionArrowColor},
+          {"intersecting cell", opaque(kIntersectingCellColor)}};
+}
+
+TEST(Ciede2000, SharmaTestPairs) {
+  // Sharma et al. 2005, Table 1: pairs 1, 7, 13, 17, 19, 25, 34.
+  struct Pair {
+    Lab x, y;
+    double expected;
+  };
+  const Pair pairs[] = {
+      {{50.0, 2.6772, -79.7751}, {50.0, 0.0, -82.7485}, 2.0425},
+      {{50.0, 0.0, 0.0}, {50.0, -1.0, 2.0}, 2.3669},
+      {{50.0, 2.4900, -0.0010}, {50.0, -2.4900, 0.0011}, 7.2195},
+      {{50.0, 2.5, 0.0}, {73.0, 25.0, -18.0}, 27.1492},
+      {{50.0, 2.5, 0.0}, {50.0, 3.1736, 0.5854}, 1.0},
+      {{60.2574, -34.0099, 36.2677}, {60.4626, -34.1751, 39.4387}, 1.2644},
+      {{2.0776, 0.0795, -1.1350}, {0.9033, -0.0636, -0.5514}, 0.9082},
+  };
+  for (const Pair& p : pairs) {
+    EXPECT_NEAR(ciede2000(p.x, p.y), p.expected, 5e-5);
+    EXPECT_NEAR(ciede2000(p.y, p.x), p.expected, 5e-5);  // symmetric
+  }
+}
+
+TEST(MachadoSimulation, GreysStayGreyAndRedGreenCollapses) {
+  // Each matrix keeps white and greys (rows sum to 1).
+  for (const Matrix* m : {&kProtanopia, &kDeuteranopia, &kTritanopia})
+    for (std::uint8_t v : {0, 90, 200, 255})
+      EXPECT_LT(ciede2000(simulated({v, v, v, 255}, *m), lab_of({v, v, v, 255})), 0.5);
+  // A red and a green of about equal lightness that deuteranopes confuse
+  // (CIEDE2000 45.8 for normal vision, 2.6 simulated).
+  const Rgba8 red{200, 80, 60, 255}, green{110, 130, 40, 255};
+  EXPECT_GT(delta_e(red, green), 40.0);
+  EXPECT_LT(ciede2000(simulated(red, kDeuteranopia), simulated(green, kDeuteranopia)), 5.0);
+}
+
+TEST(Palette, ColoursOfOneViewDifferByAtLeast15) {
+  std::vector<Named> all = cluster_colors();
+  for (const Named& s : special_colors()) all.push_back(s);
+  for (std::size_t i = 0; i < all.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      EXPECT_GE(delta_e(all[i].color, all[j].color), 15.0) << all[i].name << " vs " << all[j].name;
+  // On the white background and against view A's wireframe, every cluster
+  // colour stands out (the neutral grey is 8 from the wireframe: grey
+  // spheres among faded grey lines).
+  for (const Named& c : cluster_colors()) {
+    EXPECT_GE(delta_e(c.color, {255, 255, 255, 255}), 15.0) << c.name;
+    EXPECT_GE(delta_e(c.color, opaque(kWireframeColor)), 15.0) << c.name;
+  }
+  EXPECT_GE(delta_e(to_rgba8(neutral_cluster_color()), {255, 255, 255, 255}), 15.0);
+}
+
+TEST(Palette, FarFromTheQualityMap) {
+  // The map as the views draw it: 1001 samples of its interpolation.
+  std::vector<Rgba8> map;
+  for (int i = 0; i <= 1000; ++i) map.push_back(to_rgba8(sample_quality_map(i / 1000.0)));
+  std::vector<Named> checked = cluster_colors();
+  for (const Named& s : special_colors()) checked.push_back(s);
+  for (const Named& c : checked) {
+    double nearest = 1e9;
+    for (const Rgba8& m : map) nearest = std::min(nearest, delta_e(c.color, m));
+    EXPECT_GE(nearest, 15.0) << c.name;
+  }
+}
+
+TEST(Palette, CriticalPairsSurviveColourVisionDeficiency) {
+  std::vector<Named> critical = overlap_colors();
+  critical.push_back({"inverted", to_rgba8(kInvertedColor)});
+  for (const Named& c : cluster_colors())
+    for (const Named& k : critical) EXPECT_GE(worst_cvd_delta_e(c.color, k.color), 8.0) << c.name << " vs " << k.name;
+  // The cluster colours among themselves too (not a rule of the issue; the
+  // palette was chosen so).
+  const std::vector<Named> clusters = cluster_colors();
+  for (std::size_t i = 0; i < clusters.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      EXPECT_GE(worst_cvd_delta_e(clusters[i].color, clusters[j].color), 8.0)
+          << clusters[i].name << " vs " << clusters[j].name;
+}
+
+// A sphere glyph is lit: its colour runs from 25 % light on its dark side
+// (the renderer's ambient) to a highlight. The dark side or highlight of
+// one cluster colour must not look like another (CIEDE2000 >= 9.9; the
+// palette was chosen with >= 10 on 8-bit rounded shades).
+TEST(Palette, ShadedClusterColoursStayApart) {
+  auto shaded = [](const Rgba8& c, double light, double white) {
+    std::array<double, 3> rgb = test::linear_of(c);
+    for (double& v : rgb) v = v * light * (1.0 - white) + white;
+    return test::lab_of_linear(rgb);
+  };
+  const std::vector<Named> clusters = cluster_colors();
+  for (const Named& a : clusters)
+    for (const Named& b : clusters) {
+      if (&a == &b) continue;
+      for (double light : {0.25, 0.4, 0.55, 0.7, 0.85})
+        EXPECT_GE(ciede2000(shaded(a.color, light, 0.0), lab_of(b.color)), 9.9)
+            << a.name << " at " << light << " vs " << b.name;
+      for (double white : {0.15, 0.3, 0.45})
+        EXPECT_GE(ciede2000(shaded(a.color, 1.0, white), lab_of(b.color)), 9.9)
+            << a.name << " +" << white << " vs " << b.name;
+    }
+}
+
+TEST(Palette, TheOldPaletteFailsTheseRules) {
+  // The rules are strict enough to reject the palette issue 44 reported:
+  // cluster #0 #1f5fbf against inverted, and against the intersecting-cell
+  // magenta for protanopes (the old neutral grey was the undefined grey,
+  // #9e9e9e both).
+  const Rgba8 old_first{0x1f, 0x5f, 0xbf, 255};
+  EXPECT_LT(delta_e(old_first, to_rgba8(kInvertedColor)), 15.5);
+  EXPECT_LT(worst_cvd_delta_e(old_first, opaque(kIntersectingCellColor)), 8.0);
+}
+
+}  // namespace
+}  // namespace hq
