@@ -269,10 +269,10 @@ std::vector<ViewFile> build_reference_error(ViewContext& c) {
   const BoundaryError& e = *c.a.boundary_error;
   b.title = c.name + ": reference coloured by signed distance to the hex boundary, front";
   files.push_back(framed("views/reference_error_front.png",
-                         render_reference_error_view(e, three_quarter_view(b.up), b, c.renderer), c));
+                         render_reference_error_view(*c.a.reference_surface, e, three_quarter_view(b.up), b, c.renderer), c));
   b.title = c.name + ": reference coloured by signed distance to the hex boundary, back";
   files.push_back(framed("views/reference_error_back.png",
-                         render_reference_error_view(e, three_quarter_back_view(b.up), b, c.renderer), c));
+                         render_reference_error_view(*c.a.reference_surface, e, three_quarter_back_view(b.up), b, c.renderer), c));
   return files;
 }
 
