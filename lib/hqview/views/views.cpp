@@ -327,7 +327,8 @@ std::vector<ViewFile> build_boundary_error_sorted(ViewContext& c) {
       "boundary_error_sorted",
       sorted_boundary_error_chart(v.error,
                                   {900, 460, c.name + ": sorted signed boundary error (+ outside the reference)"},
-                                  {"hex boundary samples", "% of diagonal"}));
+                                  {"hex boundary samples", "% of diagonal",
+                                   v.per_unit * c.a.boundary_error->on_surface_tolerance}));
 }
 
 std::vector<ViewFile> build_boundary_area(ViewContext& c) {
