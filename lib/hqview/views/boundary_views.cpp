@@ -68,15 +68,24 @@ void draw_ring(Image& image, double cx, double cy, double radius, double thickne
 }
 
 // The marker's label: "max |error| +10.2 % (1.36)", right of the ring (left
-// when it would leave the view), on a pale box, inside the view.
+// when it would leave the view; above or below it when neither side has
+// room), on a pale box, inside the view.
 void draw_worst_label(Image& figure, const PixelRect& view, double cx, double cy, double radius,
                       const std::string& label, const AnnotationStyle& style) {
   const int size = std::max(style.min_text_size, static_cast<int>(std::lround(20 * style.scale)));
   const PixelRect extent = text_extent(label, size, style);
-  int x = static_cast<int>(std::lround(cx + radius + 6));
-  if (x + extent.width + 4 > view.x + view.width) x = static_cast<int>(std::lround(cx - radius - 6)) - extent.width;
-  x = std::clamp(x, view.x + 2, std::max(view.x + 2, view.x + view.width - extent.width - 2));
-  const int y = std::clamp(static_cast<int>(std::lround(cy + 0.35 * size)), view.y + size + 2, view.y + view.height - 4);
+  const int right = static_cast<int>(std::lround(cx + radius + 6));
+  const int left = static_cast<int>(std::lround(cx - radius - 6)) - extent.width;
+  int x = right, baseline = static_cast<int>(std::lround(cy + 0.35 * size));
+  if (right + extent.width + 4 > view.x + view.width) x = left;
+  if (x < view.x + 2) {  // fits neither side: above the ring, else below it
+    x = static_cast<int>(std::lround(cx)) - extent.width / 2;
+    baseline = static_cast<int>(std::lround(cy - radius - 6));
+    if (baseline - size < view.y) baseline = static_cast<int>(std::lround(cy + radius + 6)) + size;
+  }
+  x = std::max(view.x + 2, std::min(x, view.x + view.width - extent.width - 2));
+  // Inside the view (its top row first when the view is smaller than the text).
+  const int y = std::max(view.y + size + 2, std::min(baseline, view.y + view.height - 4));
   fill_rect(figure, {x - 3, y - size - 1, extent.width + 6, size + 6}, {255, 255, 255, 230});
   draw_text(figure, x, y, label, size, style);
 }
