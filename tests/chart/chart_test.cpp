@@ -129,6 +129,22 @@ TEST(SortedBoundaryError, BarsFromTheZeroLineOnASymmetricAxis) {
   }));
 }
 
+TEST(SortedBoundaryError, TheNoiseFloorIsAGreyBandAboutZero) {
+  const std::vector<double> e{0.3, -0.1, 0.0, -0.45, 0.2};
+  const Chart plain = sorted_boundary_error_chart(e, {800, 400, "t"}, {"samples", "% of diagonal"});
+  const Chart chart = sorted_boundary_error_chart(e, {800, 400, "t"}, {"samples", "% of diagonal", 0.06});
+  ASSERT_EQ(chart.rects.size(), plain.rects.size() + 1);
+  // Axis [-0.6, 0.6]: the band spans the plot's width, +-0.06 about the zero line, over the bars.
+  const ChartRect& band = chart.rects.back();
+  const double y0 = chart.plot.y + 0.5 * chart.plot.height;
+  EXPECT_NEAR(band.x, chart.plot.x, 1e-9);
+  EXPECT_NEAR(band.width, chart.plot.width, 1e-9);
+  EXPECT_NEAR(band.y, y0 - 0.06 / 1.2 * chart.plot.height, 1e-9);
+  EXPECT_NEAR(band.height, 0.12 / 1.2 * chart.plot.height, 1e-9);
+  EXPECT_LT(band.fill.a, 255) << "translucent: the bars show through";
+  EXPECT_TRUE(has_text(chart, "grey band about 0: on the surface, |error| \u2264 0.06 % of diagonal"));
+}
+
 TEST(SortedBoundaryError, ManyVerticesOneBarPerPixelColumn) {
   std::vector<double> e;
   for (int i = 0; i < 100000; ++i) e.push_back((i % 2 ? 1.0 : -1.0) * 1e-3 * (i % 97));
@@ -170,6 +186,12 @@ TEST(BoundaryArea, StackedBarAndCumulativeCurves) {
   EXPECT_LT(chart.rects[0].y + chart.rects[0].height, chart.plot.y) << "the bar is above the curve panel";
   EXPECT_TRUE(has_text(chart, "outside (37.5%)"));
   EXPECT_TRUE(has_text(chart, "inside (50.0%)"));
+  // Every colour of the bar has a legend entry: the grey "on" one too, with its share and tolerance.
+  EXPECT_TRUE(has_text(chart, "on the surface (12.5%), |error| \u2264 1e-09: bar only"));
+  EXPECT_EQ(std::count_if(chart.rects.begin(), chart.rects.end(),
+                          [&](const ChartRect& r) { return r.fill == chart.rects[1].fill; }),
+            2)
+      << "the grey segment and its legend swatch";
   // y axis up to 50% (nice ceiling), x axis up to 0.3.
   EXPECT_TRUE(has_text(chart, "50"));
   EXPECT_TRUE(has_text(chart, "0.3"));

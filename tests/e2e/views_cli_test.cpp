@@ -365,6 +365,7 @@ struct ModelPixels {
   long model = 0, coloured = 0;          // coloured: chroma (max - min channel) above 0.12
   long top_model = 0, top_inside = 0;    // top rows: model pixels, and "inside" blue ones (b > r + 0.2)
   long outside = 0;                      // red ones (r > b + 0.2)
+  long top_marker = 0;                   // top rows: pixels of the max |error| ring (kWorstMarkerColor, 20 grey)
 };
 ModelPixels model_pixels(const fs::path& png, double top) {
   OIIO::ImageBuf image(png.string());
@@ -387,7 +388,12 @@ ModelPixels model_pixels(const fs::path& png, double top) {
       ++m.model;
       m.coloured += std::max({px[0], px[1], px[2]}) - std::min({px[0], px[1], px[2]}) > 0.12f;
       m.outside += px[0] > px[2] + 0.2f;
+      const float chroma = std::max({px[0], px[1], px[2]}) - std::min({px[0], px[1], px[2]});
       if (y <= top_end) {
+        m.top_marker += std::abs(px[0] - 20.0f / 255) < 0.002f && chroma < 0.002f;
+        // Dark neutral pixels are the marker's ring and label, not the
+        // model: the diverging map's dark ends are saturated.
+        if (chroma < 0.04f && std::max({px[0], px[1], px[2]}) < 0.5f) continue;
         ++m.top_model;
         m.top_inside += px[2] > px[0] + 0.2f;
       }
@@ -421,6 +427,9 @@ TEST(ViewsCli, KittenBoundaryViewsShowTheErrorBetweenTheVertices) {
   const ModelPixels reference = model_pixels(dir / "out/views/reference_error_front.png", 0.1);
   ASSERT_GT(reference.top_model, 1000);
   EXPECT_GT(reference.top_inside, 0.6 * reference.top_model) << reference.top_inside << " of " << reference.top_model;
+  // The marker of the largest |error| (reference -> mesh, 10.2 % of the
+  // diagonal: a cut-off ear tip) is drawn on the ears.
+  EXPECT_GT(reference.top_marker, 30) << "the max |error| ring on the ears";
   EXPECT_LT(reference.outside, 0.05 * reference.model) << "the kitten mesh lies mostly inside its reference";
   for (const char* f : {"views/reference_error_back.png", "views/boundary_error_back.png"})
     EXPECT_TRUE(fs::is_regular_file(dir / "out" / f)) << f;

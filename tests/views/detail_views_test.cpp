@@ -199,6 +199,30 @@ TEST(BoundaryErrorView, ColoursFollowTheSignedErrorOfEachSampleSymmetrically) {
   EXPECT_DOUBLE_EQ(bar.max_value, 5.0);
   ASSERT_EQ(bar.ticks.size(), 5u);
   EXPECT_EQ(bar.ticks.back().label, ">= 5 (0.5)") << "% of the diagonal, model units in parentheses";
+  EXPECT_EQ(bar.ticks[1].label, "-2.5 (-0.25)");
+
+  // Round ticks (1, 2, 2.5, 5 x 10^k, 2 to 4 a side) between the exact ends.
+  EXPECT_DOUBLE_EQ(nice_tick_step(5.75), 2.5);
+  EXPECT_DOUBLE_EQ(nice_tick_step(1.13), 0.5);
+  EXPECT_DOUBLE_EQ(nice_tick_step(0.01), 0.005);
+  EXPECT_DOUBLE_EQ(nice_tick_step(4.0), 2.0);
+  EXPECT_DOUBLE_EQ(nice_tick_step(0.0), 1.0);
+  for (double top : {5.75, 1.13, 0.0123, 37.0, 4.0}) {
+    const double step = nice_tick_step(top);
+    EXPECT_GE(top / step, 2.0 - 1e-9);
+    EXPECT_LT(top / step, 5.0);
+  }
+  const ColorBar kitten = error_color_bar(0.766, 13.33);  // +-5.75 %
+  std::vector<std::string> labels;
+  for (const auto& t : kitten.ticks) labels.push_back(t.label);
+  EXPECT_EQ(labels.front(), "<= -5.75 (-0.766)") << "the scale's end stated exactly";
+  EXPECT_EQ(labels.back(), ">= 5.75 (0.766)");
+  for (std::size_t i = 1; i + 1 < kitten.ticks.size(); ++i) {
+    const double v = kitten.ticks[i].value / 2.5;
+    EXPECT_DOUBLE_EQ(v, std::round(v)) << kitten.ticks[i].label;
+  }
+  EXPECT_EQ(kitten.ticks.size(), 7u) << "-5.75, -5, -2.5, 0, 2.5, 5, 5.75";
+  EXPECT_EQ(kitten.ticks[3].label, "0");
   EXPECT_NE(bar.label.find("% of diagonal"), std::string::npos);
   EXPECT_NE(bar.label.find("model units"), std::string::npos);
 }

@@ -292,6 +292,7 @@ std::string clipped_note(std::size_t clipped, double max_abs) {
 const Rgba8 kOutsideColor = to_rgba8(diverging_color(0.75));
 const Rgba8 kInsideColor = to_rgba8(diverging_color(-0.75));
 constexpr Rgba8 kOnColor{190, 190, 196, 255};
+constexpr Rgba8 kOnBandColor{150, 150, 158, 110};  // over the sorted chart's bars
 
 std::string format_percent(double fraction) {
   char buffer[32];
@@ -340,6 +341,20 @@ Chart sorted_boundary_error_chart(std::span<const double> vertex_error, const Ch
            labels.items + " sorted by signed error (fraction of " + std::to_string(n) + ")",
            "signed error (+ outside)" + (labels.unit.empty() ? std::string() : ", " + labels.unit));
   chart.lines.push_back({{{r.x, y0}, {r.x + r.width, y0}}, kAxisColor, 1.2});
+  if (labels.on_band > 0.0) {
+    // The noise floor: a translucent grey band over the bars, edged, named.
+    const double band = std::min(labels.on_band, limit);
+    const double top = y_of(band), bottom = y_of(-band);
+    chart.rects.push_back({r.x, top, r.width, bottom - top, kOnBandColor});
+    for (double y : {top, bottom}) chart.lines.push_back({{{r.x, y}, {r.x + r.width, y}}, kOnColor, 1.0});
+    chart.texts.push_back({{r.x + 8.0, r.y + r.height - 8.0},
+                           "grey band about 0: on the surface, |error| \u2264 " + display_number(labels.on_band, 3) +
+                               (labels.unit.empty() ? std::string() : " " + labels.unit),
+                           kTickSize,
+                           kAxisColor,
+                           ChartAnchor::left,
+                           false});
+  }
   if (clipped > 0)
     chart.texts.push_back({{r.x + r.width - 8.0, r.y + 16.0},
                            clipped_note(clipped, max_abs),
@@ -416,7 +431,7 @@ Chart boundary_area_chart(std::span<const double> vertex_error, std::span<const 
   chart.texts.push_back({{strip.x, strip.y + strip.height + 18.0},
                          "boundary area: outside " + format_percent(f_out) + ", on " + format_percent(f_on) +
                              (labels.unit.empty() ? std::string()
-                                                  : " (|error| <= " + display_number(tolerance, 3) + " " +
+                                                  : " (|error| \u2264 " + display_number(tolerance, 3) + " " +
                                                         labels.unit + ")") +
                              ", inside " + format_percent(f_in),
                          kTickSize,
@@ -444,8 +459,7 @@ Chart boundary_area_chart(std::span<const double> vertex_error, std::span<const 
   std::vector<std::pair<double, double>> x_ticks, y_ticks;
   for (double t = 0.0; t <= x_limit + 0.5 * x_step; t += x_step) x_ticks.push_back({t, x_of(t)});
   for (double t = 0.0; t <= y_limit + 0.5 * y_step; t += y_step) y_ticks.push_back({t, y_of(t)});
-  add_axes(chart, r, y_ticks, x_ticks,
-           "|signed error| at most" + (labels.unit.empty() ? std::string() : " (" + labels.unit + ")"),
+  add_axes(chart, r, y_ticks, x_ticks, "|error| \u2264 x" + (labels.unit.empty() ? std::string() : " (" + labels.unit + ")"),
            "% of boundary area");
   auto curve = [&](const std::vector<std::pair<double, double>>& v, Rgba8 color) {
     ChartPolyline line{{{x_of(0.0), y_of(0.0)}}, color, 2.2};
@@ -478,6 +492,16 @@ Chart boundary_area_chart(std::span<const double> vertex_error, std::span<const 
   chart.rects.push_back({lx, ly + 18.0, 18.0, 4.0, kInsideColor});
   chart.texts.push_back({{lx + 24.0, ly + 25.0},
                          "inside (" + format_percent(f_in) + ")",
+                         kTickSize,
+                         kAxisColor,
+                         ChartAnchor::left,
+                         false});
+  // The bar's grey segment (no curve: its |error| is within the noise floor).
+  chart.rects.push_back({lx, ly + 32.0, 18.0, 10.0, kOnColor});
+  chart.texts.push_back({{lx + 24.0, ly + 43.0},
+                         "on the surface (" + format_percent(f_on) + "), |error| \u2264 " +
+                             display_number(tolerance, 3) + (labels.unit.empty() ? std::string() : " " + labels.unit) +
+                             ": bar only",
                          kTickSize,
                          kAxisColor,
                          ChartAnchor::left,

@@ -92,6 +92,10 @@ Chart corner_chart(std::span<const double> values, std::span<const std::string> 
 struct ErrorChartLabels {
   std::string items = "boundary vertices";
   std::string unit;  // e.g. "% of diagonal"
+  // Sorted chart: when > 0, |error| at or below it (the noise floor, in the
+  // values' unit) is "on the surface": a translucent grey band about 0 over
+  // the bars, edged by grey lines at +-on_band and named in a note.
+  double on_band = 0;
 };
 Chart sorted_boundary_error_chart(std::span<const double> vertex_error, const ChartOptions& options,
                                   const ErrorChartLabels& labels = {});
@@ -101,7 +105,9 @@ Chart sorted_boundary_error_chart(std::span<const double> vertex_error, const Ch
 // cumulative area fraction (percent of the whole boundary area) against
 // |error|, one curve for the outside part (ending at fraction_outside) and one
 // for the inside part. error and area per vertex (NaN error or area <= 0 left
-// out); tolerance: |error| at or below it is "on" the reference.
+// out); tolerance: |error| at or below it is "on" the reference. The legend
+// names all three colours of the bar: outside and inside (their curves) and
+// the grey "on the surface" with its tolerance (no curve).
 Chart boundary_area_chart(std::span<const double> vertex_error, std::span<const double> vertex_area, double tolerance,
                           const ChartOptions& options, const ErrorChartLabels& labels = {});
 

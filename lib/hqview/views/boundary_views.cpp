@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <span>
 
 #include "hqview/core/number_format.h"
 #include "hqview/image/colormap.h"
@@ -19,6 +20,15 @@ constexpr double kMinScale = 1e-4;
 Rgba8 error_rgba(double e, double scale) { return to_rgba8(diverging_color(e / scale)); }
 
 std::string percent(double v) { return display_number(v, 3); }
+
+// "+10.2 % (1.36)": a signed error in % of the diagonal and in model units.
+std::string signed_percent_label(double e, double diagonal) {
+  const double pct = diagonal > 0.0 ? 100.0 * e / diagonal : e;
+  return (e > 0 ? "+" : "") + percent(pct) + " % (" + (e > 0 ? "+" : "") + percent(e) + ")";
+}
+
+// The outward normal of a triangle's plane, times twice its area.
+Vec3 area_normal(const std::array<Vec3, 3>& c) { return cross(c[1] - c[0], c[2] - c[0]); }
 
 // Patches as flat triangles (3 vertices each, normals from their planes), coloured by their error.
 TriangleSet patch_triangles(const std::vector<BoundaryError::ErrorPatch>& patches, const Vec3& origin, double scale) {
@@ -37,20 +47,75 @@ TriangleSet patch_triangles(const std::vector<BoundaryError::ErrorPatch>& patche
   return set;
 }
 
+// The marker's ring: an annulus of kWorstMarkerColor on a white halo, solid
+// when the sample faces the camera, dashed (every other 30 degrees) when it
+// faces away (it lies on the far side of the model).
+void draw_ring(Image& image, double cx, double cy, double radius, double thickness, bool dashed) {
+  const Rgba8 halo{255, 255, 255, 255};
+  const int r = static_cast<int>(std::ceil(radius + 2 * thickness)) + 1;
+  for (int y = static_cast<int>(cy) - r; y <= static_cast<int>(cy) + r; ++y)
+    for (int x = static_cast<int>(cx) - r; x <= static_cast<int>(cx) + r; ++x) {
+      if (x < 0 || y < 0 || x >= image.width || y >= image.height) continue;
+      const double dx = x + 0.5 - cx, dy = y + 0.5 - cy, d = std::hypot(dx, dy);
+      const double off = std::abs(d - radius);
+      if (off > thickness) continue;
+      const bool core = off <= 0.5 * thickness;
+      const double angle = std::atan2(dy, dx) * 180.0 / 3.14159265358979323846 + 180.0;
+      if (dashed && static_cast<int>(angle / 30.0) % 2 == 1) continue;
+      const Rgba8 c = core ? kWorstMarkerColor : halo;
+      std::copy_n(&c.r, 4, &image.rgba[pixel_offset(image, x, y)]);
+    }
+}
+
+// The marker's label: "max |error| +10.2 % (1.36)", right of the ring (left
+// when it would leave the view; above or below it when neither side has
+// room), on a pale box, inside the view.
+void draw_worst_label(Image& figure, const PixelRect& view, double cx, double cy, double radius,
+                      const std::string& label, const AnnotationStyle& style) {
+  const int size = std::max(style.min_text_size, static_cast<int>(std::lround(20 * style.scale)));
+  const PixelRect extent = text_extent(label, size, style);
+  const int right = static_cast<int>(std::lround(cx + radius + 6));
+  const int left = static_cast<int>(std::lround(cx - radius - 6)) - extent.width;
+  int x = right, baseline = static_cast<int>(std::lround(cy + 0.35 * size));
+  if (right + extent.width + 4 > view.x + view.width) x = left;
+  if (x < view.x + 2) {  // fits neither side: above the ring, else below it
+    x = static_cast<int>(std::lround(cx)) - extent.width / 2;
+    baseline = static_cast<int>(std::lround(cy - radius - 6));
+    if (baseline - size < view.y) baseline = static_cast<int>(std::lround(cy + radius + 6)) + size;
+  }
+  x = std::max(view.x + 2, std::min(x, view.x + view.width - extent.width - 2));
+  // Inside the view (its top row first when the view is smaller than the text).
+  const int y = std::max(view.y + size + 2, std::min(baseline, view.y + view.height - 4));
+  fill_rect(figure, {x - 3, y - size - 1, extent.width + 6, size + 6}, {255, 255, 255, 230});
+  draw_text(figure, x, y, label, size, style);
+}
+
 // A 3D error figure: the scene from view_direction, the camera fitted to
-// `points`, the shared colour bar.
+// `points`, the shared colour bar with the marker's entry, the marker on the
+// sample of largest |error| (worst).
 Image render_error_figure(Scene scene, const std::vector<Vec3>& points, const BoundaryError& error, double scale,
-                          const Vec3& view_direction, const BoundaryViewOptions& options, Renderer& renderer) {
-  AnnotationStyle style = annotation_style_for(options.height);
-  style.background = options.background;
-  const ColorBar bar = error_color_bar(scale, error.reference_bbox_diagonal);
-  const FigureLayout layout =
-      figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(bar, style), style);
+                          const WorstError& worst, const Vec3& view_direction, const BoundaryViewOptions& options,
+                          Renderer& renderer) {
+  const ErrorFigureFrame frame = error_figure_frame(points, error, scale, worst, view_direction, options);
   scene.background = options.background;
-  const double aspect = static_cast<double>(layout.view.width) / layout.view.height;
-  const Camera camera = fit_camera_to_points(points, view_direction, aspect, {.up = options.up});
-  Image figure = render_figure(renderer, scene, camera, options.width, options.height, layout, options.title, style);
-  draw_color_bar(figure, layout.legend, bar, style);
+  Image figure = render_figure(renderer, scene, frame.camera, options.width, options.height, frame.layout,
+                               options.title, frame.style);
+  draw_color_bar(figure, frame.layout.legend, frame.bar, frame.style);
+  if (worst.found) {
+    const double aspect = static_cast<double>(frame.layout.view.width) / frame.layout.view.height;
+    const Vec3 ndc = project_to_ndc(frame.camera, aspect, worst.position);
+    if (std::isfinite(ndc.x) && std::abs(ndc.x) <= 1.0 && std::abs(ndc.y) <= 1.0) {
+      const double cx = frame.layout.view.x + 0.5 * (ndc.x + 1.0) * frame.layout.view.width;
+      const double cy = frame.layout.view.y + 0.5 * (1.0 - ndc.y) * frame.layout.view.height;
+      const double radius = std::max(8.0, 22.0 * frame.style.scale), thickness = std::max(2.0, 4.0 * frame.style.scale);
+      const bool facing = dot(worst.normal, frame.camera.eye - worst.position) >= 0.0;
+      draw_ring(figure, cx, cy, radius, thickness, !facing);
+      draw_worst_label(figure, frame.layout.view, cx, cy, radius,
+                       "max |error| " + signed_percent_label(worst.error, error.reference_bbox_diagonal) +
+                           (facing ? "" : ", far side"),
+                       frame.style);
+    }
+  }
   return figure;
 }
 
@@ -90,17 +155,86 @@ double boundary_error_scale(const BoundaryError& error) {
   return s > 0.0 ? s : 1.0;
 }
 
+double nice_tick_step(double top) {
+  if (!(top > 0.0) || !std::isfinite(top)) return 1.0;
+  const double raw = 0.5 * top;
+  const double power = std::pow(10.0, std::floor(std::log10(raw)));
+  double step = power;
+  for (double m : {1.0, 2.0, 2.5, 5.0, 10.0})
+    if (m * power <= raw * (1.0 + 1e-9)) step = m * power;
+  return step;
+}
+
 ColorBar error_color_bar(double scale, double diagonal) {
   ColorBar bar;
   bar.label = "signed error\n% of diagonal\n(model units)\n+ = hex outside";
   const double top = diagonal > 0.0 ? 100.0 * scale / diagonal : scale;
+  const double units_per_percent = top > 0.0 ? scale / top : 1.0;
   bar.min_value = -top;
   bar.max_value = top;
   for (int i = 0; i <= 32; ++i) bar.colors.push_back(diverging_color(-1.0 + i / 16.0));
-  for (double t : {-1.0, -0.5, 0.0, 0.5, 1.0})
-    bar.ticks.push_back({t * top, (t == -1.0 ? "<= " : t == 1.0 ? ">= " : "") + percent(t * top) +
-                                      (t == 0.0 ? std::string() : " (" + percent(t * scale) + ")")});
+  // The ends (the scale's exact half-range; beyond it the end colour), then
+  // round ticks at multiples of nice_tick_step, none within 8 % of an end.
+  bar.ticks.push_back({-top, "<= " + percent(-top) + " (" + percent(-scale) + ")"});
+  const double step = nice_tick_step(top);
+  const int n = static_cast<int>(std::floor(top / step + 1e-9));
+  for (int i = -n; i <= n; ++i) {
+    const double v = i * step;
+    if (std::abs(v) > 0.92 * top) continue;
+    bar.ticks.push_back({v, i == 0 ? std::string("0") : percent(v) + " (" + percent(v * units_per_percent) + ")"});
+  }
+  bar.ticks.push_back({top, ">= " + percent(top) + " (" + percent(scale) + ")"});
   return bar;
+}
+
+WorstError worst_error(const std::vector<BoundaryError::ErrorPatch>& patches, std::span<const Vec3> points,
+                       std::span<const double> point_error) {
+  WorstError w;
+  for (const auto& p : patches)
+    if (std::isfinite(p.error) && (!w.found || std::abs(p.error) > std::abs(w.error))) {
+      w = {(p.corners[0] + p.corners[1] + p.corners[2]) / 3.0, area_normal(p.corners), p.error, true};
+    }
+  std::size_t best_point = points.size();
+  const std::size_t n = std::min(points.size(), point_error.size());
+  for (std::size_t i = 0; i < n; ++i)
+    if (std::isfinite(point_error[i]) && (!w.found || std::abs(point_error[i]) > std::abs(w.error))) {
+      w = {points[i], Vec3{}, point_error[i], true};
+      best_point = i;
+    }
+  if (best_point < points.size()) {  // a vertex: the summed normals of the patches around it
+    for (const auto& p : patches)
+      for (const Vec3& c : p.corners)
+        if (c.x == w.position.x && c.y == w.position.y && c.z == w.position.z) w.normal = w.normal + area_normal(p.corners);
+  }
+  return w;
+}
+
+ErrorFigureFrame error_figure_frame(const std::vector<Vec3>& points, const BoundaryError& error, double scale,
+                                   const WorstError& worst, const Vec3& view_direction,
+                                   const BoundaryViewOptions& options) {
+  ErrorFigureFrame f;
+  f.style = annotation_style_for(options.height);
+  f.style.background = options.background;
+  f.bar = error_color_bar(scale, error.reference_bbox_diagonal);
+  if (worst.found)
+    f.bar.swatches.push_back({to_color(kWorstMarkerColor),
+                              "ring: max |error| " + signed_percent_label(worst.error, error.reference_bbox_diagonal)});
+  f.layout = figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(f.bar, f.style),
+                           f.style);
+  const double aspect = static_cast<double>(f.layout.view.width) / f.layout.view.height;
+  f.camera = fit_camera_to_points(points, view_direction, aspect, {.up = options.up});
+  return f;
+}
+
+WorstError worst_mesh_error(const HexMesh& mesh, const Topology& topology, const BoundaryError& error) {
+  std::vector<Vec3> points;
+  std::vector<double> values;
+  for (Index v : topology.boundary_vertices)
+    if (static_cast<std::size_t>(v) < error.vertex_error.size()) {
+      points.push_back(mesh.points[static_cast<std::size_t>(v)]);
+      values.push_back(error.vertex_error[static_cast<std::size_t>(v)]);
+    }
+  return worst_error(error.mesh_patches, points, values);
 }
 
 Scene build_boundary_error_scene(const HexMesh& mesh, const Topology& topology, const BoundaryError& error,
@@ -117,8 +251,9 @@ Scene build_boundary_error_scene(const HexMesh& mesh, const Topology& topology, 
 Image render_boundary_error_view(const HexMesh& mesh, const Topology& topology, const BoundaryError& error,
                                  const Vec3& view_direction, const BoundaryViewOptions& options, Renderer& renderer) {
   const double scale = boundary_error_scale(error);
-  return render_error_figure(build_boundary_error_scene(mesh, topology, error, scale), boundary_points(mesh, topology),
-                             error, scale, view_direction, options, renderer);
+  const std::vector<Vec3> points = boundary_points(mesh, topology);
+  return render_error_figure(build_boundary_error_scene(mesh, topology, error, scale), points, error, scale,
+                             worst_mesh_error(mesh, topology, error), view_direction, options, renderer);
 }
 
 Scene build_reference_error_scene(const BoundaryError& error, double scale) {
@@ -128,14 +263,15 @@ Scene build_reference_error_scene(const BoundaryError& error, double scale) {
   return scene;
 }
 
-Image render_reference_error_view(const BoundaryError& error, const Vec3& view_direction,
+Image render_reference_error_view(const TriSurface& reference, const BoundaryError& error, const Vec3& view_direction,
                                   const BoundaryViewOptions& options, Renderer& renderer) {
   const double scale = boundary_error_scale(error);
   std::vector<Vec3> points;
   points.reserve(3 * error.reference_patches.size());
   for (const auto& p : error.reference_patches) points.insert(points.end(), p.corners.begin(), p.corners.end());
-  return render_error_figure(build_reference_error_scene(error, scale), points, error, scale, view_direction, options,
-                             renderer);
+  return render_error_figure(build_reference_error_scene(error, scale), points, error, scale,
+                             worst_error(error.reference_patches, reference.points, error.reference_vertex_error),
+                             view_direction, options, renderer);
 }
 
 Scene build_reference_overlay_scene(const HexMesh& mesh, const Topology& topology, const TriSurface& reference) {

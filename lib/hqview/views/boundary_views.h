@@ -4,6 +4,7 @@
 // reference (its atlas filled with the interpolated reference -> hex
 // boundary error, chart outlines drawn). Symmetric diverging scales.
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "hqview/mesh/hex_mesh.h"
 #include "hqview/mesh/topology.h"
 #include "hqview/render/annotate.h"
+#include "hqview/render/camera.h"
 #include "hqview/render/renderer.h"
 #include "hqview/render/scene.h"
 #include "hqview/uv/uv_atlas.h"
@@ -38,17 +40,54 @@ double error_scale(const std::vector<double>& field);
 // (smaller errors are noise); 1 when there is no patch.
 double boundary_error_scale(const BoundaryError& error);
 
+// The step of the colour bar's round ticks for a half-range top (> 0): the
+// largest of 1, 2, 2.5, 5 x 10^k that is at most top / 2 (2 to 4 ticks a
+// side). 1 when top is not positive and finite.
+double nice_tick_step(double top);
 // The legend: diverging map over [-100 s / d, +100 s / d] percent of the
-// reference's diagonal d, each tick in % of the diagonal and in model units,
-// ticks at the ends, the middle and the quarter points.
+// reference's diagonal d, each tick in % of the diagonal and in model units:
+// the two ends (the scale's exact values, "<=" / ">=": larger errors are
+// drawn in the end colour), 0 and the multiples of nice_tick_step(100 s / d)
+// not within 8 % of an end.
 ColorBar error_color_bar(double scale, double diagonal);
+// The marker of the boundary_error and reference_error views: a dark ring
+// on a white halo with the value beside it, and a legend swatch.
+inline constexpr Rgba8 kWorstMarkerColor{20, 20, 20, 255};
+// The sample of largest |error| of one direction (the first on ties):
+// patches in order (their centroid; normal = the patch's area normal), then
+// points (e.g. boundary vertices, whose vertex errors the sampled maximum
+// includes; normal = the sum of the area normals of the patches with that
+// corner). Non-finite errors are skipped; found = false when none is left.
+struct WorstError {
+  Vec3 position;
+  Vec3 normal;      // not unit; faces the camera when dot(normal, eye - position) >= 0
+  double error = 0;  // signed, model units
+  bool found = false;
+};
+WorstError worst_error(const std::vector<BoundaryError::ErrorPatch>& patches, std::span<const Vec3> points,
+                       std::span<const double> point_error);
+// worst_error over mesh_patches and the boundary vertices' vertex_error.
+WorstError worst_mesh_error(const HexMesh& mesh, const Topology& topology, const BoundaryError& error);
+// Where the parts of a 3D error figure go: the style, the colour bar (with
+// the marker's swatch when worst.found), the layout and the camera fitted to
+// points from view_direction.
+struct ErrorFigureFrame {
+  AnnotationStyle style;
+  ColorBar bar;
+  FigureLayout layout;
+  Camera camera;
+};
+ErrorFigureFrame error_figure_frame(const std::vector<Vec3>& points, const BoundaryError& error, double scale,
+                                   const WorstError& worst, const Vec3& view_direction,
+                                   const BoundaryViewOptions& options);
 
 // The hex boundary's sampled patches (mesh_patches), each flat-coloured by
 // diverging_color(error / scale) of its centre sample; boundary edges faint.
 Scene build_boundary_error_scene(const HexMesh& mesh, const Topology& topology, const BoundaryError& error,
                                  double scale);
 
-// The front (view_direction) or back (its opposite) figure.
+// The front (view_direction) or back (its opposite) figure, the marker on
+// worst_mesh_error (dashed and "far side" when its sample faces away).
 Image render_boundary_error_view(const HexMesh& mesh, const Topology& topology, const BoundaryError& error,
                                  const Vec3& view_direction, const BoundaryViewOptions& options, Renderer& renderer);
 
@@ -57,8 +96,9 @@ Image render_boundary_error_view(const HexMesh& mesh, const Topology& topology, 
 // reference lies outside the hex solid: the parts the mesh cuts off).
 Scene build_reference_error_scene(const BoundaryError& error, double scale);
 
-// The reference error figure, one camera fitted to the reference.
-Image render_reference_error_view(const BoundaryError& error, const Vec3& view_direction,
+// The reference error figure, one camera fitted to the reference, the marker
+// on worst_error(reference_patches, reference.points, reference_vertex_error).
+Image render_reference_error_view(const TriSurface& reference, const BoundaryError& error, const Vec3& view_direction,
                                   const BoundaryViewOptions& options, Renderer& renderer);
 
 // F with --reference: the hex boundary (opaque light grey faces, dark edges)

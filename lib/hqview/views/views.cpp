@@ -273,10 +273,10 @@ std::vector<ViewFile> build_reference_error(ViewContext& c) {
   const BoundaryError& e = *c.a.boundary_error;
   b.title = c.name + ": reference coloured by signed distance to the hex boundary, front";
   files.push_back(framed("views/reference_error_front.png",
-                         render_reference_error_view(e, three_quarter_view(b.up), b, c.renderer), c));
+                         render_reference_error_view(*c.a.reference_surface, e, three_quarter_view(b.up), b, c.renderer), c));
   b.title = c.name + ": reference coloured by signed distance to the hex boundary, back";
   files.push_back(framed("views/reference_error_back.png",
-                         render_reference_error_view(e, three_quarter_back_view(b.up), b, c.renderer), c));
+                         render_reference_error_view(*c.a.reference_surface, e, three_quarter_back_view(b.up), b, c.renderer), c));
   return files;
 }
 
@@ -331,7 +331,8 @@ std::vector<ViewFile> build_boundary_error_sorted(ViewContext& c) {
       "boundary_error_sorted",
       sorted_boundary_error_chart(v.error,
                                   {900, 460, c.name + ": sorted signed boundary error (+ outside the reference)"},
-                                  {"hex boundary samples", "% of diagonal"}));
+                                  {"hex boundary samples", "% of diagonal",
+                                   v.per_unit * c.a.boundary_error->on_surface_tolerance}));
 }
 
 std::vector<ViewFile> build_boundary_area(ViewContext& c) {
