@@ -285,8 +285,7 @@ std::vector<ViewFile> build_compare(ViewContext& c) {
   const CompareAlignment& align = other.alignment;
   overview.title = c.name + " (left) vs " + std::filesystem::path(other.input.path).filename().string() +
                    " (right): vertex quality, one camera" +
-                   (align.aligned ? ", right aligned by bounding box (scale " + display_number(align.scale, 3) + ")"
-                                  : std::string());
+                   (alignment_description(align).empty() ? std::string() : ", right " + alignment_description(align));
   const HexMesh placed = aligned_copy(other.mesh, align);
   Image image = render_compare_overview(c.a.mesh, c.a.topology, c.quality(), placed, other.topology,
                                         other.field.vertex_quality, overview, c.renderer);
