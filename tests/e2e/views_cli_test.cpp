@@ -584,9 +584,9 @@ TEST(ViewsCli, TheStructurePanelDrawsEachSingularClassInItsColour) {
   EXPECT_NE(html.find("views/structure_1.png", s), std::string::npos);
   EXPECT_NE(html.find("views/size_gradation.png", s), std::string::npos);
   // The Structure table: report.json's counts, by valence.
-  EXPECT_NE(html.find("<td>13 — valence 3: 1, valence 5: 12</td><td><code>structure.num_singular_edges_interior</code>"),
+  EXPECT_NE(html.find("<td class=\"text\">13 — valence 3: 1, valence 5: 12</td><td><code>structure.num_singular_edges_interior</code>"),
             std::string::npos);
-  EXPECT_NE(html.find("<td>207 — valence 1: 169, valence 3: 38</td>"), std::string::npos);
+  EXPECT_NE(html.find("<td class=\"text\">207 — valence 1: 169, valence 3: 38</td>"), std::string::npos);
 }
 
 class SharedViews : public ::testing::TestWithParam<const char*> {};

@@ -28,6 +28,7 @@
 #include "hqview/views/main_views.h"
 #include "hqview/views/overview_views.h"
 #include "hqview/views/structure_views.h"
+#include "hqview/views/uv_key_view.h"
 
 namespace hq {
 
@@ -269,6 +270,13 @@ std::vector<ViewFile> build_uv_error(ViewContext& c) {
   return {{"views/uv_error.png",
            render_uv_error_map(*c.a.reference_surface, *c.a.uv_atlas, *c.a.boundary_error, b, c.renderer),
            {}}};
+}
+
+std::vector<ViewFile> build_uv_key(ViewContext& c) {
+  auto b = sized<BoundaryViewOptions>(c);
+  b.title = c.name + ": UV key, the reference's " + std::to_string(c.a.uv_atlas->num_charts) +
+            " charts numbered (front, back; the atlas as the UV error map lays it out)";
+  return {{"views/uv_key.png", render_uv_key(*c.a.reference_surface, *c.a.uv_atlas, b, c.renderer), {}}};
 }
 
 std::vector<ViewFile> build_reference_overlay(ViewContext& c) {
