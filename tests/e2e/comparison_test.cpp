@@ -439,21 +439,8 @@ TEST(ReferenceAlign, AutoTurnsAReferenceBack) {
   const fs::path mesh = *data / "meshes/gao2016_sweeping/kitten_1.mesh";
   const fs::path off = *data / "meshes/gao2016_sweeping/kitten.off";
   // The OFF's vertices p -> (x, -z, y) + (0, 0, 50).
-  std::istringstream in(read_text(off));
-  const fs::path turned = dir / "kitten_x90.off";
-  {
-    std::ofstream o(turned);
-    std::string header;
-    long nv = 0, nf = 0, ne = 0;
-    in >> header >> nv >> nf >> ne;
-    o << header << "\n" << nv << " " << nf << " " << ne << "\n" << std::setprecision(17);
-    for (long i = 0; i < nv; ++i) {
-      double x, y, z;
-      in >> x >> y >> z;
-      o << x << " " << -z << " " << y + 50.0 << "\n";
-    }
-    o << in.rdbuf();
-  }
+  const fs::path turned = transformed_off_copy(
+      off, [](double x, double y, double z) { return std::array<double, 3>{x, -z, y + 50.0}; }, dir / "kitten_x90.off");
   CliResult r = run_hqview({"analyze", mesh.string(), "--reference", turned.string(), "--reference-align", "auto", "-o",
                             (dir / "auto").string(), "--no-render"});
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -394,19 +394,9 @@ TEST(ViewsCli, UpKeepsATallBoxUprightInEveryView) {
 
 // A copy of an OFF surface with every vertex p -> f p + offset.
 fs::path scaled_off_copy(const fs::path& off, double f, Vec3 offset, const fs::path& out) {
-  std::istringstream in(read_text(off));
-  std::ofstream o(out);
-  std::string header;
-  long nv = 0, nf = 0, ne = 0;
-  in >> header >> nv >> nf >> ne;
-  o << header << "\n" << nv << " " << nf << " " << ne << "\n" << std::setprecision(17);
-  for (long i = 0; i < nv; ++i) {
-    double x, y, z;
-    in >> x >> y >> z;
-    o << f * x + offset.x << " " << f * y + offset.y << " " << f * z + offset.z << "\n";
-  }
-  o << in.rdbuf();
-  return out;
+  return transformed_off_copy(
+      off, [&](double x, double y, double z) { return std::array<double, 3>{f * x + offset.x, f * y + offset.y, f * z + offset.z}; },
+      out);
 }
 
 TEST(ViewsCli, ReferenceAlignMovesAReferenceInAnotherFrame) {
