@@ -79,7 +79,8 @@ std::map<std::string, std::size_t> first_frames(const AnalyzeResult& result) {
         std::any_of(v.files.begin(), v.files.end(), [](const std::string& f) { return f.ends_with(".svg"); });
     if (is_chart) continue;
     first[v.id] = frame;
-    frame += v.id == "compare" ? 2 : v.files.size();
+    // compare: two meshes; uv_key: front, back and the atlas.
+    frame += v.id == "compare" ? 2 : v.id == "uv_key" ? 3 : v.files.size();
   }
   first["(end)"] = frame;
   return first;
@@ -137,6 +138,11 @@ TEST(AnalyzePipeline, ReferenceAndCompareViewsWithAMockRenderer) {
   ASSERT_EQ(renderer.scenes.size(), first.at("(end)"));
   // Boundary error: front and back.
   EXPECT_EQ(first.at("reference_overlay") - first.at("boundary_error"), 2u);
+  // The UV key: the reference twice in 3D, every triangle tinted by its
+  // chart, then the atlas with the UV error map's triangles.
+  const std::size_t key = first.at("uv_key");
+  for (std::size_t f = key; f < key + 3; ++f) EXPECT_EQ(triangle_count(renderer.scenes[f]), a.reference_surface->triangles.size());
+  EXPECT_EQ(triangle_count(renderer.scenes[key + 2]), triangle_count(renderer.scenes[first.at("uv_error")]));
   // The reference overlay draws the reference's triangles translucent.
   const Scene& overlay = renderer.scenes[first.at("reference_overlay")];
   std::size_t translucent = 0;
