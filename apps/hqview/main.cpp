@@ -198,7 +198,9 @@ hq::AnalyzeOptions make_analyze_options(const AnalyzeArgs& args) {
   options.viewer = !args.no_viewer;
   options.data = hq::parse_data_formats(args.data);
   options.viewer_max_mb = args.viewer_max_mb;
-  options.reference_align = args.reference_align == "bbox" ? hq::CompareAlign::bbox : hq::CompareAlign::none;
+  options.reference_align = args.reference_align == "bbox"   ? hq::CompareAlign::bbox
+                            : args.reference_align == "auto" ? hq::CompareAlign::auto_
+                                                             : hq::CompareAlign::none;
   options.boundary.sampling_tolerance = args.boundary_tolerance;
   options.views.views = parse_view_list(args.views);
   for (long long v : args.focus_vertices) {
@@ -412,7 +414,9 @@ std::uint64_t parse_memory_budget(const std::string& text) {
 void add_analysis_options(CLI::App* cmd, AnalyzeArgs& args) {
   cmd->add_option("--up", args.up,
                   "The model axis drawn upwards in the 3D views and the UV map: +x -x +y -y +z -z; views look "
-                  "from 15-35 degrees above the horizon")
+                  "from 15-35 degrees above the horizon (given twice, the last wins; in batch, a manifest's up "
+                  "column wins)")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast)
       ->capture_default_str();
   cmd->add_option("--data", args.data,
                   "Per-cell and per-vertex data files, comma-separated: vtu.zlib (data/annotated.vtu, compressed), "
@@ -433,9 +437,11 @@ void add_analysis_options(CLI::App* cmd, AnalyzeArgs& args) {
       ->check(CLI::Range(0.001, 100000.0))
       ->capture_default_str();
   cmd->add_option("--reference-align", args.reference_align,
-                  "Move the reference onto the mesh boundary's bounding box before the boundary error: bbox "
-                  "(uniform scale and translation; errors in the mesh's units) or none")
-      ->check(CLI::IsMember({"none", "bbox"}))
+                  "Move the reference into the mesh's frame before the boundary error: bbox (onto the mesh "
+                  "boundary's bounding box: uniform scale and translation; errors in the mesh's units), auto (as "
+                  "--compare-align auto: the 24 axis rotations, ICP) or none (the default: a misplacement is "
+                  "shown, not hidden)")
+      ->check(CLI::IsMember({"none", "bbox", "auto"}))
       ->capture_default_str();
   cmd->add_option("--boundary-tolerance", args.boundary_tolerance,
                   "Sampled boundary error: each certified upper bound within this fraction of the reference's "
@@ -444,7 +450,9 @@ void add_analysis_options(CLI::App* cmd, AnalyzeArgs& args) {
       ->capture_default_str();
   cmd->add_option("--compare-align", args.compare_align,
                   "Place MESH2 in the compare view: auto (align by bounding box when the diagonals differ by "
-                  "more than 2x or the boxes do not overlap), bbox (always), none; numbers stay in each mesh's units")
+                  "more than 2x or the boxes do not overlap, then the one of the 24 axis rotations that brings the "
+                  "boundaries closest if it halves the distance, refined by ICP; a mirror image is reported), bbox "
+                  "(always, no rotation), none; numbers stay in each mesh's units")
       ->check(CLI::IsMember({"auto", "bbox", "none"}));
   cmd->add_option("--format", args.format,
                   "Read meshes as this format whatever their extension: " + hq::mesh_format_names());
@@ -525,7 +533,7 @@ CLI::App* add_batch_command(CLI::App& app, BatchArgs& args) {
                   "Estimated memory of the meshes in flight, e.g. 8G (default: half the physical memory; 0: no limit)");
   cmd->add_flag("--list", args.list,
                 "Print the collection (after --shard) as JSON, one object per mesh {path, mesh, reference, compare, "
-                "skipped}, and stop: what a workflow engine schedules (workflow/Snakefile)");
+                "up, skipped}, and stop: what a workflow engine schedules (workflow/Snakefile)");
   cmd->add_option("--mesh-timeout", args.mesh_timeout,
                   "Stop a mesh's analysis after SECONDS: it is recorded failed with the reason and the batch goes on "
                   "(default: no limit)")
@@ -586,6 +594,7 @@ int run_batch_command(const BatchArgs& args, int jobs) {
                       {"mesh", in.mesh_file.string()},
                       {"reference", in.reference_file.string()},
                       {"compare", in.compare_file.string()},
+                      {"up", in.up},
                       {"skipped", in.skip_reason}});
     std::cout << rows.dump(1) << "\n";
     return kOk;

@@ -52,6 +52,13 @@ const hasHand = fs.existsSync(handMesh);
 if (hasHand) analyze([handMesh, '--reference', path.join(dataDir, 'meshes', 'gao2016_sweeping', 'hand.off'), '-o', hand]);
 else console.log(`note: ${handMesh} absent, the real-mesh pages are not checked`);
 
+// Default-size views (1600 x 1200) of the hand (or the ball) and a compare
+// mesh: what a reader sees at a 1400 px window (issue 45).
+const full = path.join(outDir, 'full');
+execFileSync(hqview, ['analyze', hasHand ? handMesh : example('ball.mesh'), '--compare', example('twisted_bar.mesh'),
+  '--views', 'overview,main,structure,local,corners,sorted_quality,histogram,compare', '--top-clusters', '3',
+  '--no-viewer', '-o', full, '-j', '2', '--quiet'], { stdio: 'inherit' });
+
 // ---- browser ----
 const browser = await chromium.launch({ executablePath: chromiumPath, args: ['--no-sandbox'] });
 
@@ -191,6 +198,47 @@ if (hasHand) {
   check(last.length > 0, 'hand7_1: chart B has bar links');
   await page.close();
   await (await checkPage('hand-boundary', path.join(hand, 'boundary.html'))).close();
+}
+
+// ---- 1400 px: every legend readable, corner charts at one bar width, tables fit (issue 45) ----
+{
+  const { page, problems } = await open(path.join(full, 'index.html'), { width: 1400, height: 1000 });
+  const figures = await page.$$eval('figure img', (imgs) => imgs.map((i) => ({
+    src: i.getAttribute('src'), shown: i.clientWidth, natural: i.naturalWidth, height: i.naturalHeight })));
+  check(figures.length >= 8, `1400 px: the full bundle shows its views (${figures.length})`);
+  for (const f of figures) {
+    // The smallest legend text of a figure, in its own pixels: a chart's
+    // (SVG, text drawn as glyph outlines by Cairo) tick text, 11.5 units of
+    // its viewBox (lib/hqview/chart/chart.cpp kTickSize; the width is in pt,
+    // so more pixels); a rendered view's swatch legend text, 19 px per 1200
+    // px of height (lib/hqview/render/annotate.cpp), never below 11.
+    let font;
+    if (f.src.endsWith('.svg')) {
+      const svg = fs.readFileSync(path.join(full, f.src), 'utf8');
+      const box = svg.match(/viewBox="0 0 ([0-9.]+) /);
+      check(box !== null, `${f.src}: has a viewBox`);
+      font = 11.5 * f.natural / Number(box ? box[1] : f.natural);
+    } else {
+      font = Math.max(11, 19 * f.height / 1200);
+    }
+    const onScreen = (f.shown / f.natural) * font;
+    check(onScreen >= 11, `1400 px: ${f.src} legend text ${onScreen.toFixed(1)} px on screen (shown ${f.shown.toFixed(0)} of ${f.natural} px, font ${font.toFixed(1)})`);
+  }
+  // Corner charts: every bar the same width on screen (charts at natural size).
+  const corners = figures.filter((f) => /views\/corners_v\d+\.svg$/.test(f.src));
+  check(corners.length > 0, '1400 px: corner charts shown');
+  for (const f of corners) check(Math.abs(f.shown - f.natural) <= 1, `1400 px: ${f.src} at its natural width (${f.shown} vs ${f.natural})`);
+  // Tables fit: no table wider than its box, no page overflow.
+  const wide = await page.$$eval('table', (ts) => ts.filter((t) => t.getBoundingClientRect().width > t.parentElement.clientWidth + 1)
+    .map((t) => (t.closest('section') || {}).id));
+  check(wide.length === 0, `1400 px: tables wider than the column: ${wide.join(', ')}`);
+  const widths = await page.evaluate(() => ({ doc: document.documentElement.scrollWidth, view: innerWidth }));
+  check(widths.doc <= widths.view, `1400 px: page ${widths.doc} px wide`);
+  // The comparison is on the page, both meshes' numbers side by side.
+  check((await page.$$('#compare table.compare tbody tr')).length >= 10, '1400 px: the Comparison table has its rows');
+  await page.screenshot({ path: path.join(shots, 'full-index-1400px.png'), fullPage: true });
+  for (const p of problems) check(false, `full at 1400 px: ${p}`);
+  await page.close();
 }
 
 // ---- narrow screen: no horizontal overflow ----

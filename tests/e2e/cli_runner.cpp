@@ -1,9 +1,11 @@
 #include "cli_runner.h"
 
+
 #include <sys/wait.h>
 
 #include <cstdlib>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 
 namespace hq::test {
@@ -64,6 +66,25 @@ std::vector<std::vector<std::string>> read_csv(const fs::path& path) {
     rows.push_back(std::move(row));
   }
   return rows;
+}
+
+std::filesystem::path transformed_off_copy(const std::filesystem::path& off,
+                                           const std::function<std::array<double, 3>(double, double, double)>& move,
+                                           const std::filesystem::path& out) {
+  std::istringstream in(read_text(off));
+  std::ofstream o(out);
+  std::string header;
+  long nv = 0, nf = 0, ne = 0;
+  in >> header >> nv >> nf >> ne;
+  o << header << "\n" << nv << " " << nf << " " << ne << "\n" << std::setprecision(17);
+  for (long i = 0; i < nv; ++i) {
+    double x, y, z;
+    in >> x >> y >> z;
+    const auto p = move(x, y, z);
+    o << p[0] << " " << p[1] << " " << p[2] << "\n";
+  }
+  o << in.rdbuf();
+  return out;
 }
 
 }  // namespace hq::test

@@ -1,7 +1,9 @@
 #pragma once
 // Runs the hqview binary and captures its exit code, stdout and stderr.
 
+#include <array>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -20,6 +22,11 @@ CliResult run_hqview(const std::vector<std::string>& args);
 std::filesystem::path fresh_output_dir(const std::string& name);
 
 std::string read_text(const std::filesystem::path& path);
+
+// A copy of an OFF surface with every vertex p -> move(p) (x, y, z in and out).
+std::filesystem::path transformed_off_copy(const std::filesystem::path& off,
+                                           const std::function<std::array<double, 3>(double, double, double)>& move,
+                                           const std::filesystem::path& out);
 
 // The rows of a CSV file (no quoting: HQView's CSVs hold numbers only).
 std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& path);

@@ -2,6 +2,7 @@
 // blank, --views selects, --focus-vertex adds D/E views, bad values are usage
 // errors; every real mesh of ../shared/data gets every view (small --size).
 
+#include <cstdio>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -196,6 +197,111 @@ TEST(ViewsCli, CompareAlignsAMeshInAnotherFrameByBoundingBox) {
   EXPECT_NEAR(ratio, 2.25, 0.3) << pixels[0] << " " << pixels[1];
 }
 
+// A copy of a MEDIT mesh with every vertex p -> m p (m a 3x3 matrix, rows).
+fs::path turned_copy(const fs::path& mesh, const std::array<std::array<double, 3>, 3>& m, const fs::path& out) {
+  std::istringstream in(read_text(mesh));
+  std::ofstream o(out);
+  std::string line;
+  while (std::getline(in, line)) {
+    o << line << "\n";
+    // "Vertices" then the count, or both on one line (kitten_1.mesh).
+    if (!line.starts_with("Vertices")) continue;
+    std::string count = line.substr(8);
+    if (count.find_first_not_of(" \t\r") == std::string::npos) {
+      std::getline(in, count);
+      o << count << "\n";
+    }
+    const long n = std::stol(count);
+    for (long i = 0; i < n; ++i) {
+      double p[3];
+      long ref;
+      in >> p[0] >> p[1] >> p[2] >> ref;
+      o << std::setprecision(17);
+      for (int r = 0; r < 3; ++r) o << m[r][0] * p[0] + m[r][1] * p[1] + m[r][2] * p[2] << " ";
+      o << ref << "\n";
+    }
+    std::getline(in, line);  // the rest of the last vertex line
+  }
+  return out;
+}
+
+// --compare-align auto (the default): a copy of a shared mesh turned 90
+// degrees about x, and one turned 180 degrees about up (+z), is turned back;
+// both halves of compare.png show the model alike; a mirrored copy is said.
+TEST(ViewsCli, CompareTurnsACopyInAnotherAxisConventionBack) {
+  const auto data = shared_data_dir();
+  if (!data) GTEST_SKIP() << "../shared/data is absent";
+  const fs::path dir = fresh_output_dir("views/compare_turn");
+  const fs::path kitten = *data / "meshes/gao2016_sweeping/kitten_1.mesh";
+  struct Case {
+    const char* name;
+    std::array<std::array<double, 3>, 3> m;
+    const char* found;  // the rotation taking the copy back
+  };
+  for (const Case& c : {Case{"x90", {{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}}}, "90 deg about -x"},
+                        Case{"z180", {{{-1, 0, 0}, {0, -1, 0}, {0, 0, 1}}}, "180 deg about +z"}}) {
+    SCOPED_TRACE(c.name);
+    const fs::path copy = turned_copy(kitten, c.m, dir / (std::string("kitten_") + c.name + ".mesh"));
+    const fs::path out = dir / c.name;
+    const CliResult r = run_hqview({"analyze", kitten.string(), "--compare", copy.string(), "-o", out.string(),
+                                    "--size", "800x400", "--views", "compare"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const json a = json::parse(read_text(out / "report.json"))["compare"]["alignment"];
+    EXPECT_EQ(a["mode"], "rotation");
+    EXPECT_EQ(a["axis_rotation"], c.found);
+    EXPECT_LT(a["mean_distance"].get<double>(), 1e-3);
+    EXPECT_GT(a["mean_distance_identity"].get<double>(), 0.02);
+    EXPECT_FALSE(a["mirrored"].get<bool>());
+    EXPECT_NE(a["description"].get<std::string>().find(std::string("turned ") + c.found), std::string::npos);
+    const auto pixels = compare_half_pixels(out / "views/compare.png");
+    ASSERT_GT(pixels[0], 1000);
+    EXPECT_LT(std::max(pixels[0], pixels[1]), 1.3 * std::min(pixels[0], pixels[1])) << pixels[0] << " " << pixels[1];
+  }
+  // Mirrored across x: no rotation fits; said in report.json and the title.
+  const fs::path mirrored = turned_copy(kitten, {{{-1, 0, 0}, {0, 1, 0}, {0, 0, 1}}}, dir / "kitten_mirror.mesh");
+  const fs::path out = dir / "mirror";
+  const CliResult r = run_hqview({"analyze", kitten.string(), "--compare", mirrored.string(), "-o", out.string(),
+                                  "--no-render"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json a = json::parse(read_text(out / "report.json"))["compare"]["alignment"];
+  EXPECT_TRUE(a["mirrored"].get<bool>());
+  EXPECT_LT(a["mean_distance_mirror"].get<double>(), 1e-3);
+  EXPECT_NE(a["description"].get<std::string>().find("mirror image"), std::string::npos);
+}
+
+// index.html and summary.md of --compare hold both meshes' numbers side by
+// side and their differences.
+TEST(ViewsCli, ComparePagesHoldBothMeshesNumbers) {
+  const fs::path out = fresh_output_dir("views/compare_pages") / "bundle";
+  const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "--compare",
+                                  example("twisted_bar.mesh").string(), "-o", out.string(), "--no-render"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json report = json::parse(read_text(out / "report.json"));
+  const auto count = [](long long v) {  // thousands separators, as the pages show counts
+    std::string d = std::to_string(v), o;
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      if (i > 0 && (d.size() - i) % 3 == 0) o += ',';
+      o += d[i];
+    }
+    return o;
+  };
+  const long long h1 = report["headline"]["num_hexes"], h2 = report["compare"]["headline"]["num_hexes"];
+  const std::string diff = (h2 - h1 > 0 ? "+" : "") + (h2 - h1 < 0 ? "-" + count(h1 - h2) : count(h2 - h1));
+  const std::string html = read_text(out / "index.html"), md = read_text(out / "summary.md");
+  const std::string row = "<tr><th scope=\"row\">hexahedra</th><td>" + count(h1) + "</td><td>" + count(h2) +
+                          "</td><td>" + diff + "</td></tr>";
+  EXPECT_NE(html.find(row), std::string::npos) << row;
+  EXPECT_NE(html.find("<section id=\"compare\">"), std::string::npos);
+  EXPECT_NE(md.find("| hexahedra | " + count(h1) + " | " + count(h2) + " | " + diff + " |"), std::string::npos) << md;
+  EXPECT_NE(md.find("### Compared with twisted"), std::string::npos) << md;
+  char sj[2][40];
+  std::snprintf(sj[0], sizeof sj[0], "%.6g", report["quality"]["scaled_jacobian"]["min"].get<double>());
+  std::snprintf(sj[1], sizeof sj[1], "%.6g", report["compare"]["quality"]["scaled_jacobian"]["min"].get<double>());
+  const std::string sj_row = std::string("| min scaled Jacobian | ") + sj[0] + " | " + sj[1] + " | ";
+  EXPECT_NE(md.find(sj_row), std::string::npos) << sj_row << "\n" << md;
+  EXPECT_NE(html.find(std::string("<td>") + sj[0] + "</td><td>" + sj[1] + "</td>"), std::string::npos);
+}
+
 // A tall box of 2 x 2 x 12 unit hexes whose long side lies along `axis`
 // (0: x, 1: y, 2: z), the edge vertex at mid-height pulled outwards so
 // that glyphs exist.
@@ -288,19 +394,9 @@ TEST(ViewsCli, UpKeepsATallBoxUprightInEveryView) {
 
 // A copy of an OFF surface with every vertex p -> f p + offset.
 fs::path scaled_off_copy(const fs::path& off, double f, Vec3 offset, const fs::path& out) {
-  std::istringstream in(read_text(off));
-  std::ofstream o(out);
-  std::string header;
-  long nv = 0, nf = 0, ne = 0;
-  in >> header >> nv >> nf >> ne;
-  o << header << "\n" << nv << " " << nf << " " << ne << "\n" << std::setprecision(17);
-  for (long i = 0; i < nv; ++i) {
-    double x, y, z;
-    in >> x >> y >> z;
-    o << f * x + offset.x << " " << f * y + offset.y << " " << f * z + offset.z << "\n";
-  }
-  o << in.rdbuf();
-  return out;
+  return transformed_off_copy(
+      off, [&](double x, double y, double z) { return std::array<double, 3>{f * x + offset.x, f * y + offset.y, f * z + offset.z}; },
+      out);
 }
 
 TEST(ViewsCli, ReferenceAlignMovesAReferenceInAnotherFrame) {
@@ -554,9 +650,9 @@ TEST(ViewsCli, TheStructurePanelDrawsEachSingularClassInItsColour) {
   EXPECT_NE(html.find("views/structure_1.png", s), std::string::npos);
   EXPECT_NE(html.find("views/size_gradation.png", s), std::string::npos);
   // The Structure table: report.json's counts, by valence.
-  EXPECT_NE(html.find("<td>13 — valence 3: 1, valence 5: 12</td><td><code>structure.num_singular_edges_interior</code>"),
+  EXPECT_NE(html.find("<td class=\"text\">13 — valence 3: 1, valence 5: 12</td><td><code>structure.num_singular_edges_interior</code>"),
             std::string::npos);
-  EXPECT_NE(html.find("<td>207 — valence 1: 169, valence 3: 38</td>"), std::string::npos);
+  EXPECT_NE(html.find("<td class=\"text\">207 — valence 1: 169, valence 3: 38</td>"), std::string::npos);
 }
 
 class SharedViews : public ::testing::TestWithParam<const char*> {};

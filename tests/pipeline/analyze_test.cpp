@@ -79,7 +79,8 @@ std::map<std::string, std::size_t> first_frames(const AnalyzeResult& result) {
         std::any_of(v.files.begin(), v.files.end(), [](const std::string& f) { return f.ends_with(".svg"); });
     if (is_chart) continue;
     first[v.id] = frame;
-    frame += v.id == "compare" ? 2 : v.files.size();
+    // compare: two meshes; uv_key: front, back and the atlas.
+    frame += v.id == "compare" ? 2 : v.id == "uv_key" ? 3 : v.files.size();
   }
   first["(end)"] = frame;
   return first;
@@ -146,6 +147,11 @@ TEST(AnalyzePipeline, ReferenceAndCompareViewsWithAMockRenderer) {
   EXPECT_EQ(renderer.scenes[first.at("reference_error")].triangles.at(0).indices.size() / 3,
             a.boundary_error->reference_patches.size());
   EXPECT_GT(a.boundary_error->reference_patches.size(), a.reference_surface->triangles.size() / 2);
+  // The UV key: the reference twice in 3D, every triangle tinted by its
+  // chart, then the atlas with the UV error map's triangles.
+  const std::size_t key = first.at("uv_key");
+  for (std::size_t f = key; f < key + 3; ++f) EXPECT_EQ(triangle_count(renderer.scenes[f]), a.reference_surface->triangles.size());
+  EXPECT_EQ(triangle_count(renderer.scenes[key + 2]), triangle_count(renderer.scenes[first.at("uv_error")]));
   // The reference overlay draws the reference's triangles translucent.
   const Scene& overlay = renderer.scenes[first.at("reference_overlay")];
   std::size_t translucent = 0;

@@ -84,6 +84,36 @@ TEST(Manifest, ErrorsNamePathAndLine) {
   EXPECT_THROW(parse_manifest("{", "m.json", "/d", true), ParseError);
 }
 
+// The up column (issue 45): an axis per mesh, in canonical form; empty: the
+// run's --up; anything else is refused with the row's line.
+TEST(Manifest, UpColumnPerMesh) {
+  const auto rows = parse_manifest("mesh,up\na.mesh,+y\nb.mesh,\nc.mesh, -X \nd.mesh,z\n", "m.csv", "/d", false);
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_EQ(rows[0].up, "+y");
+  EXPECT_EQ(rows[1].up, "");
+  EXPECT_EQ(rows[2].up, "-x");
+  EXPECT_EQ(rows[3].up, "+z");
+  const auto json_rows =
+      parse_manifest(R"([{"mesh": "a.mesh", "up": "-y"}, {"mesh": "b.mesh"}, "c.mesh"])", "m.json", "/d", true);
+  EXPECT_EQ(json_rows[0].up, "-y");
+  EXPECT_EQ(json_rows[1].up, "");
+  EXPECT_EQ(json_rows[2].up, "");
+  try {
+    parse_manifest("mesh,up\na.mesh,+y\nb.mesh,sideways\n", "m.csv", "/d", false);
+    ADD_FAILURE() << "no ParseError";
+  } catch (const ParseError& e) {
+    EXPECT_EQ(e.line(), 3);
+    EXPECT_NE(std::string(e.what()).find("m.csv:3: up: expected one of +x -x +y -y +z -z"), std::string::npos)
+        << e.what();
+  }
+  try {
+    parse_manifest(R"([{"mesh": "a.mesh", "up": "+w"}])", "m.json", "/d", true);
+    ADD_FAILURE() << "no ParseError";
+  } catch (const ParseError& e) {
+    EXPECT_NE(std::string(e.what()).find("m.json: row 1: up: expected"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Shard, StablePartitionCoveringEveryPathOnce) {
   std::vector<BatchInput> inputs;
   for (int i = 0; i < 200; ++i) {
@@ -116,6 +146,81 @@ TEST(BatchIndex, JsonRoundTripIsByteIdentical) {
   EXPECT_EQ(batch_index_json(parsed, "9.9.9"), text);
   EXPECT_EQ(text.find("time"), std::string::npos);
   EXPECT_THROW(parse_batch_index_json("{}", "x.json"), InputError);
+}
+
+// index.html's mesh table worst first (issue 45): failed, then gate failed
+// (most rules first), then inverted count, then min SJ; ties by path; a
+// missing value after the known ones; index.json keeps the path order.
+TEST(BatchIndex, MeshTableWorstFirstTiesByPath) {
+  auto ok = [](const std::string& path, std::optional<double> min_sj, double inverted) {
+    BatchEntry e = entry(path, BatchStatus::ok, "", 0.5);
+    e.headline[2] = min_sj;
+    e.headline[5] = inverted;
+    return e;
+  };
+  BatchEntry two_gates = entry("e.mesh", BatchStatus::gate_failed, "", 0.9);
+  two_gates.failed_gates.push_back("quality.num_inverted==0");
+  BatchEntry skipped = entry("h.mesh", BatchStatus::skipped);
+  skipped.headline = std::vector<std::optional<double>>(kNumHeadlineKeys);
+  skipped.bundle.clear();
+  const std::vector<BatchEntry> entries = {
+      ok("a.mesh", 0.5, 0),  ok("b.mesh", -0.999, 2357), entry("c.mesh", BatchStatus::failed),
+      entry("d.mesh", BatchStatus::gate_failed, "", 0.2), two_gates, ok("f.mesh", 0.5, 0), ok("g.mesh", 0.1, 0),
+      skipped, ok("i.mesh", std::nullopt, 0), ok("j.mesh", 0.7, 1)};
+  const std::vector<std::string> expected = {"c.mesh", "e.mesh", "d.mesh", "b.mesh", "j.mesh",
+                                             "g.mesh", "a.mesh", "f.mesh", "i.mesh", "h.mesh"};
+  auto paths = [](const std::vector<BatchEntry>& list) {
+    std::vector<std::string> out;
+    for (std::size_t i : worst_first_order(list)) out.push_back(list[i].path);
+    return out;
+  };
+  EXPECT_EQ(paths(entries), expected);
+  // The same order whatever order the entries come in (a merge's shards).
+  std::vector<BatchEntry> reversed(entries.rbegin(), entries.rend());
+  EXPECT_EQ(paths(reversed), expected);
+  // The page's rows in that order; index.json in the given (path) order.
+  const std::string html = batch_index_html(entries, "9.9.9");
+  const std::size_t table = html.find("id=\"mesh-table\"");
+  ASSERT_NE(table, std::string::npos);
+  std::size_t last = table;
+  for (const std::string& p : expected) {
+    const std::size_t at = html.find(">" + p + "<", table);
+    ASSERT_NE(at, std::string::npos) << p;
+    EXPECT_GT(at, last) << p;
+    last = at;
+  }
+  const auto json_index = nlohmann::json::parse(batch_index_json(entries, "9.9.9"));
+  for (std::size_t i = 0; i < entries.size(); ++i) EXPECT_EQ(json_index["meshes"][i]["path"], entries[i].path);
+  // Failing rows marked; the inverted count and a negative min SJ in red.
+  EXPECT_NE(html.find("<tr class=\"failed\">"), std::string::npos);
+  EXPECT_NE(html.find("✗ failed"), std::string::npos);
+  EXPECT_NE(html.find("✗ gate failed"), std::string::npos);
+  EXPECT_NE(html.find("class=\"alert\">2357<"), std::string::npos);
+  EXPECT_NE(html.find("class=\"alert\">-0.999<"), std::string::npos);
+}
+
+// No empty columns: labels, variants, a Hausdorff distance or details that
+// no row has are left out of the mesh table; thumbnails show when rendered.
+TEST(BatchIndex, MeshTableHasNoEmptyColumns) {
+  BatchEntry a = entry("a.mesh", BatchStatus::ok);
+  BatchEntry b = entry("b.mesh", BatchStatus::ok);
+  b.thumbnail = "views/thumbnail.png";
+  const std::string html = batch_index_html({a, b}, "9.9.9");
+  const std::string table = html.substr(html.find("id=\"mesh-table\""));
+  for (const char* absent : {">label<", ">variant<", ">details<", ">Hausdorff (rel.)<", ">#intersecting<"})
+    EXPECT_EQ(table.find(absent), std::string::npos) << absent;
+  for (const char* present : {">model<", ">min SJ<", ">#V<", ">view<"})
+    EXPECT_NE(table.find(present), std::string::npos) << present;
+  EXPECT_NE(table.find("<img src=\"b.mesh/views/thumbnail.png\""), std::string::npos);
+  // Every row has as many cells as the header.
+  const std::size_t body = table.find("<tbody>"), end = table.find("</tbody>");
+  const std::string head = table.substr(0, body), rows = table.substr(body, end - body);
+  auto count = [](const std::string& text, const std::string& what) {
+    std::size_t n = 0;
+    for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(count(rows, "</td>"), 2 * count(head, "</th>"));
 }
 
 TEST(BatchIndex, MethodsComparePerLabel) {

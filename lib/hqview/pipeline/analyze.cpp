@@ -129,7 +129,8 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
 // What to try when the reference seems misplaced (unless already tried).
 const char* alignment_hint(const AnalyzeOptions& options) {
   return options.reference_align == CompareAlign::none
-             ? "; --reference-align bbox moves the reference onto the mesh's bounding box"
+             ? "; --reference-align bbox moves the reference onto the mesh's bounding box (auto also tries the axis "
+               "rotations)"
              : "";
 }
 
@@ -148,7 +149,7 @@ void with_reference_hint(const AnalyzeOptions& options, F&& f) {
 
 // The reference surface (ALGORITHMS.md §5), read and, with
 // --reference-align bbox, moved onto the mesh boundary's bounding box
-// (uniform scale and translation).
+// (uniform scale and translation); with auto, as --compare-align auto.
 TriSurface read_reference(Analysis& a, const AnalyzeOptions& options) {
   SurfaceSource source = open_surface_source(options.reference_path, options.read_limits);
   TriSurface reference = read_surface(source);
@@ -157,7 +158,10 @@ TriSurface read_reference(Analysis& a, const AnalyzeOptions& options) {
   for (Index v : a.topology.boundary_vertices) mesh_box.add(a.mesh.points[static_cast<std::size_t>(v)]);
   for (const auto& t : reference.triangles)
     for (Index v : t) reference_box.add(reference.points[static_cast<std::size_t>(v)]);
-  a.reference_alignment = align_boxes(mesh_box, reference_box, options.reference_align);
+  a.reference_alignment =
+      options.reference_align == CompareAlign::auto_
+          ? align_surfaces(boundary_triangles(a.mesh, a.topology), mesh_box, reference, reference_box, CompareAlign::auto_)
+          : align_boxes(mesh_box, reference_box, options.reference_align);
   for (Vec3& p : reference.points) p = aligned_point(p, a.reference_alignment);
   // A misplaced reference is refused before its atlas is started.
   with_reference_hint(options, [&] { check_reference_placement(a.mesh, a.topology, reference); });
@@ -206,7 +210,7 @@ void analyze_compare(Analysis& a, const AnalyzeOptions& options) {
   c.mesh_summary = summarize_mesh(c.mesh, c.topology);
   c.quality = summarize_quality(c.mesh, c.field, options.worst_count);
   c.quality.metrics = summarize_hex_metrics(compute_hex_metrics(c.mesh, options.metrics));
-  c.alignment = align_compare_mesh(a.mesh, c.mesh, options.compare_align);
+  c.alignment = align_compare_mesh(a.mesh, a.topology, c.mesh, c.topology, options.compare_align);
 }
 
 std::optional<ViewCameraEntry> camera_entry(const std::optional<Camera>& camera, const ViewFile& file, const Vec3& up) {

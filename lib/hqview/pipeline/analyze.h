@@ -34,7 +34,7 @@ struct AnalyzeOptions {
   std::filesystem::path reference_path;  // empty: no boundary error
   std::filesystem::path compare_path;    // empty: no comparison
   CompareAlign compare_align = CompareAlign::auto_;  // --compare-align
-  CompareAlign reference_align = CompareAlign::none; // --reference-align (none or bbox)
+  CompareAlign reference_align = CompareAlign::none; // --reference-align (none, bbox or auto)
   BoundaryOptions boundary;                          // --boundary-tolerance (sampling_tolerance)
   std::string tool_version;
   ViewOptions views;                         // size, views to draw, focus vertices, up axis

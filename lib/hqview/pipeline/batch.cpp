@@ -19,6 +19,7 @@
 #include "hqview/core/stop.h"
 #include "hqview/core/text.h"
 #include "hqview/io/mesh_reader.h"
+#include "hqview/render/upright.h"
 #include "hqview/report/json_path.h"
 #include "hqview/report/link_base.h"
 #include "hqview/report/report_json.h"
@@ -105,6 +106,7 @@ BatchEntry run_batch_mesh(const BatchInput& input, const BatchOptions& options, 
     analyze_options.mesh_path = input.mesh_file;
     analyze_options.reference_path = input.reference_file;
     analyze_options.compare_path = input.compare_file;
+    if (!input.up.empty()) analyze_options.views.up = *parse_up_axis(input.up);  // the manifest's up column
     BundleOptions bundle;
     bundle.force = options.force;
     bundle.link_base = link_base_of(options.link_base, input.path);

@@ -34,6 +34,7 @@ struct BatchInput {
   std::string label;                     // method / algorithm, for the per-method comparison
   std::string model;                     // model name (rows of the method comparison); default: model_of_path
   std::string variant;                   // which mesh of the model and method; default: model_of_path
+  std::string up;                        // the manifest's up axis ("+y"; parse_up_axis); empty: the run's --up
   PaperInfo paper;                       // the method's paper (HexaLab's index.json)
   std::string skip_reason;               // not empty: listed but not analysed (not a hex mesh)
 };
@@ -75,7 +76,7 @@ bool is_hex_mesh_extension(const std::filesystem::path& path);
 std::vector<BatchInput> collect_directory(const std::filesystem::path& dir);
 
 // A manifest: CSV with a header row naming the columns (mesh, reference,
-// compare, label or method, model, variant; only mesh is required), or JSON
+// compare, label or method, model, variant, up; only mesh is required), or JSON
 // (an array of objects with those keys, or of strings, or HexaLab's index). Relative file names are
 // relative to the manifest's directory; rows keep the manifest's order until
 // the index sorts them. Throws ParseError (`path:line: what`) on a malformed

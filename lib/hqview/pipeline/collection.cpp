@@ -10,6 +10,7 @@
 #include "hqview/core/text.h"
 #include "hqview/io/mesh_reader.h"
 #include "hqview/pipeline/batch.h"
+#include "hqview/render/upright.h"
 
 namespace hq {
 namespace fs = std::filesystem;
@@ -222,9 +223,14 @@ std::vector<BatchInput> parse_manifest(std::string_view text, const std::string&
   std::vector<int> lines;
   auto where = [&](int line) { return is_json ? "row " + std::to_string(line) + ": " : std::string(); };
   auto add = [&](int line, const std::string& mesh, const std::string& reference, const std::string& compare,
-                 const std::string& label, const std::string& model, const std::string& variant) {
+                 const std::string& label, const std::string& model, const std::string& variant,
+                 const std::string& up) {
     // JSON rows have no line numbers: messages name the row instead.
     if (mesh.empty()) throw ParseError(name, is_json ? 0 : line, where(line) + "no mesh in this row");
+    const std::optional<Vec3> axis = parse_up_axis(lower(up));
+    if (!up.empty() && !axis)
+      throw ParseError(name, is_json ? 0 : line,
+                       where(line) + "up: expected one of +x -x +y -y +z -z (or empty), got '" + up + "'");
     BatchInput input;
     input.path = manifest_key(mesh);
     input.mesh_file = resolve(base_dir, mesh);
@@ -236,6 +242,7 @@ std::vector<BatchInput> parse_manifest(std::string_view text, const std::string&
     const ModelAndVariant mv = model_of_path(mesh);
     input.model = model.empty() ? mv.model : model;
     input.variant = !variant.empty() || !model.empty() ? variant : mv.variant;
+    input.up = up.empty() ? std::string() : up_axis_name(*axis);
     inputs.push_back(std::move(input));
     lines.push_back(line);
   };
@@ -274,11 +281,12 @@ std::vector<BatchInput> parse_manifest(std::string_view text, const std::string&
         return row[key].get<std::string>();
       };
       if (row.is_string()) {
-        add(row_number, row.get<std::string>(), "", "", "", "", "");
+        add(row_number, row.get<std::string>(), "", "", "", "", "", "");
       } else if (row.is_object()) {
         std::string label = field("label");
         if (label.empty()) label = field("method");
-        add(row_number, field("mesh"), field("reference"), field("compare"), label, field("model"), field("variant"));
+        add(row_number, field("mesh"), field("reference"), field("compare"), label, field("model"), field("variant"),
+            field("up"));
       } else {
         throw ParseError(name, 0, where(row_number) + "expected an object or a string");
       }
@@ -297,10 +305,10 @@ std::vector<BatchInput> parse_manifest(std::string_view text, const std::string&
           std::string key = lower(fields[i]);
           if (key == "method") key = "label";
           if (key != "mesh" && key != "reference" && key != "compare" && key != "label" && key != "model" &&
-              key != "variant")
-            throw ParseError(
-                name, line_number,
-                "unknown column '" + fields[i] + "' (expected mesh, reference, compare, label/method, model, variant)");
+              key != "variant" && key != "up")
+            throw ParseError(name, line_number,
+                             "unknown column '" + fields[i] +
+                                 "' (expected mesh, reference, compare, label/method, model, variant, up)");
           if (columns.count(key)) throw ParseError(name, line_number, "column '" + key + "' appears twice");
           columns[key] = i;
         }
@@ -316,7 +324,7 @@ std::vector<BatchInput> parse_manifest(std::string_view text, const std::string&
         return it != columns.end() && it->second < fields.size() ? fields[it->second] : std::string();
       };
       add(line_number, field("mesh"), field("reference"), field("compare"), field("label"), field("model"),
-          field("variant"));
+          field("variant"), field("up"));
     }
   }
   std::map<std::string, int> seen;

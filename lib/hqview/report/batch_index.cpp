@@ -350,7 +350,44 @@ kainjow::mustache::data comparison_data(const std::vector<BatchEntry>& entries, 
   return d;
 }
 
+// The order of index.html's mesh table: worst first (batch_index.h).
+int status_rank(BatchStatus s) {
+  switch (s) {
+    case BatchStatus::failed:
+      return 0;
+    case BatchStatus::gate_failed:
+      return 1;
+    case BatchStatus::ok:
+      return 2;
+    case BatchStatus::skipped:
+      return 3;
+  }
+  return 3;
+}
+
 }  // namespace
+
+std::vector<std::size_t> worst_first_order(const std::vector<BatchEntry>& entries) {
+  static const std::size_t inverted = headline_index("quality.num_inverted");
+  static const std::size_t min_sj = headline_index("quality.scaled_jacobian.min");
+  // A missing value sorts as the best (after every known one).
+  const auto value = [](const BatchEntry& e, std::size_t k, double missing) {
+    return e.headline[k] && std::isfinite(*e.headline[k]) ? *e.headline[k] : missing;
+  };
+  std::vector<std::size_t> order(entries.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
+    const BatchEntry &a = entries[i], &b = entries[j];
+    if (status_rank(a.status) != status_rank(b.status)) return status_rank(a.status) < status_rank(b.status);
+    if (a.failed_gates.size() != b.failed_gates.size()) return a.failed_gates.size() > b.failed_gates.size();
+    const double ia = value(a, inverted, -1), ib = value(b, inverted, -1);
+    if (ia != ib) return ia > ib;
+    const double sa = value(a, min_sj, INFINITY), sb = value(b, min_sj, INFINITY);
+    if (sa != sb) return sa < sb;
+    return a.path < b.path;
+  });
+  return order;
+}
 
 std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::string& tool_version,
                              const std::vector<ComparisonKey>* keys) {
@@ -358,12 +395,33 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
   using kainjow::mustache::mustache;
   data page;
   page.set("version", tool_version);
+  // Columns no row has a value in are left out (a batch without references
+  // has no Hausdorff distance; a directory has no labels).
+  std::vector<bool> shown(kNumHeadlineKeys, false);
+  bool any_label = false, any_model = false, any_variant = false, any_detail = false, any_thumbnail = false;
+  for (const BatchEntry& e : entries) {
+    for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) shown[k] = shown[k] || e.headline[k].has_value();
+    any_label = any_label || !e.label.empty();
+    any_model = any_model || !e.model.empty();
+    any_variant = any_variant || !e.variant.empty();
+    any_detail = any_detail || !e.error.empty() || !e.failed_gates.empty();
+    any_thumbnail = any_thumbnail || (!e.bundle.empty() && !e.thumbnail.empty());
+  }
+  page.set("has_label", any_label);
+  page.set("has_model", any_model);
+  page.set("has_variant", any_variant);
+  page.set("has_detail", any_detail);
+  page.set("has_thumbnail", any_thumbnail);
+  static const std::size_t inverted_key = headline_index("quality.num_inverted");
+  static const std::size_t min_sj_key = headline_index("quality.scaled_jacobian.min");
   data headers = data::type::list;
-  for (const char* title : kHeadlineTitles) headers.push_back(data("title", title));
+  for (std::size_t k = 0; k < kNumHeadlineKeys; ++k)
+    if (shown[k]) headers.push_back(data("title", kHeadlineTitles[k]));
   page.set("headline_columns", headers);
   int failed = 0, gate_failed = 0;
   data rows = data::type::list;
-  for (const BatchEntry& e : entries) {
+  for (const std::size_t i : worst_first_order(entries)) {
+    const BatchEntry& e = entries[i];
     failed += e.status == BatchStatus::failed;
     gate_failed += e.status == BatchStatus::gate_failed;
     data row;
@@ -372,17 +430,29 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
     row.set("model", e.model);
     row.set("variant", e.variant);
     row.set("status", std::string(to_string(e.status)));
+    row.set("status_text", e.status == BatchStatus::failed        ? "✗ failed"
+                           : e.status == BatchStatus::gate_failed ? "✗ gate failed"
+                           : e.status == BatchStatus::skipped     ? "skipped"
+                                                                  : "ok");
     row.set("has_bundle", !e.bundle.empty());
     row.set("link", url_path(e.bundle) + "/index.html");
+    const bool has_thumbnail = !e.bundle.empty() && !e.thumbnail.empty();
+    row.set("has_thumbnail_image", has_thumbnail);
+    row.set("thumbnail_src", has_thumbnail ? url_path(e.bundle) + "/" + url_path(e.thumbnail) : "");
     std::string detail = e.error;
     for (const std::string& g : e.failed_gates) detail += (detail.empty() ? "" : "; ") + g;
     row.set("detail", detail);
     data cells = data::type::list;
     for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) {
+      if (!shown[k]) continue;
       data cell;
       cell.set("text", show(e.headline[k]));
       // The sort key: the exact number, or empty (sorted last).
       cell.set("sort", e.headline[k] && std::isfinite(*e.headline[k]) ? format_double(*e.headline[k]) : "");
+      // Inverted hexes and a non-positive min SJ stand out.
+      const bool alert = e.headline[k] && ((k == inverted_key && *e.headline[k] > 0) ||
+                                           (k == min_sj_key && *e.headline[k] <= 0));
+      cell.set("alert", alert);
       cells.push_back(cell);
     }
     row.set("cells", cells);

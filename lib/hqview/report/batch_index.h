@@ -2,8 +2,8 @@
 // The batch index: one row per mesh (BatchEntry, filled from its report
 // document), OUT/index.json (every mesh, sorted by path, no timestamps: a
 // sharded-then-merged run gives the same bytes as one run), OUT/index.html
-// (a table sortable in the browser and readable without scripts, plus the
-// per-method comparison) and OUT/summary.md.
+// (a table worst first, sortable in the browser and readable without
+// scripts, plus the per-method comparison) and OUT/summary.md.
 
 #include <filesystem>
 #include <string>
@@ -92,6 +92,13 @@ std::string batch_index_json(const std::vector<BatchEntry>& entries, const std::
 std::vector<BatchEntry> parse_batch_index_json(std::string_view text, const std::string& name);
 struct ComparisonKey;  // comparison.h
 // keys: the comparison's keys (nullptr: default_comparison_keys).
+// The order of index.html's mesh table, as indices into `entries`: worst
+// first. Key: failed, then gate failed, then ok, then skipped; within a
+// status, more failed gates first, then more inverted hexes, then the lower
+// min scaled Jacobian (a missing value after every known one); ties by path.
+// A total order of the entries' own fields, so a merge of shards gives the
+// same page as one run. index.json keeps the path order.
+std::vector<std::size_t> worst_first_order(const std::vector<BatchEntry>& entries);
 std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::string& tool_version,
                              const std::vector<ComparisonKey>* keys = nullptr);
 std::string batch_summary_markdown(const std::vector<BatchEntry>& entries);

@@ -11,6 +11,7 @@
 #include "hqview/core/error.h"
 #include "hqview/core/number_format.h"
 #include "hqview/report/cluster_color.h"
+#include "hqview/report/compare_table.h"
 #include "hqview/report/report_templates.h"
 #include "hqview/views/views.h"
 
@@ -358,6 +359,27 @@ void set_headline(data& page, const ReportModel& model) {
   page.set("has_warnings", !model.analysis.warnings.empty());
 }
 
+// --compare: both meshes' numbers side by side and their differences.
+void set_comparison(data& page, const ReportModel& model) {
+  page.set("has_compare", model.analysis.compare.has_value());
+  if (!model.analysis.compare) return;
+  const CompareTable t = compare_table(model.analysis);
+  page.set("compare_mine", t.mine_name);
+  page.set("compare_theirs", t.theirs_name);
+  page.set("compare_alignment", t.alignment.empty() ? std::string("as read (same frame)") : t.alignment);
+  data rows{data::type::list};
+  for (const CompareTableRow& r : t.rows) {
+    data d;
+    d.set("label", r.label);
+    d.set("mine", r.mine);
+    d.set("theirs", r.theirs);
+    d.set("difference", r.difference);
+    d.set("is_worse", r.is_worse);
+    rows.push_back(d);
+  }
+  page.set("compare_rows", rows);
+}
+
 // Panels A–F with the links between them (every view of kViews has a
 // panel here or on boundary.html).
 void set_panels(data& page, const ReportModel& model, const PanelIndex& index) {
@@ -614,6 +636,7 @@ std::string index_html(const ReportModel& model) {
   set_header(page, model);
   set_headline(page, model);
   set_panels(page, model, index);
+  set_comparison(page, model);
   set_statistics(page, model.analysis.quality);
   set_structure(page, model.analysis.structure);
   set_gates(page, model.gates);
@@ -636,6 +659,12 @@ std::string boundary_html(const ReportModel& model) {
                                  : "");
   page.set("version", model.tool_version);
   set_data_files(page, model);
+  // --reference-align: what was done to the reference, said on the page.
+  const CompareAlignment& moved = model.analysis.reference_alignment;
+  page.set("has_reference_alignment", moved.requested != CompareAlign::none);
+  page.set("reference_align_mode", compare_align_name(moved.requested));
+  page.set("reference_alignment",
+           alignment_description(moved).empty() ? std::string("left as read (already in place)") : alignment_description(moved));
 
   data headline{data::type::list};
   // The sampled figures (over the surfaces, certified); the vertex figures below.

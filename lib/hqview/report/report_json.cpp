@@ -194,13 +194,31 @@ Json fem_json(const Analysis& a) {
 }
 
 // compare.alignment, boundary_error.reference_alignment.
+// The rotation keys are added after the box rule's (auto's search: null
+// distances for none and bbox).
 Json alignment_json(const CompareAlignment& a) {
+  const auto matrix = [](const Matrix3& m) {
+    Json rows = Json::array();
+    for (const auto& row : m) rows.push_back({number(row[0]), number(row[1]), number(row[2])});
+    return rows;
+  };
+  const auto searched = [&](double v) { return a.searched ? number(v) : Json(nullptr); };
+  const bool turned = a.aligned && rotation_angle_degrees(a.rotation) > 1e-6;
   return {{"requested", compare_align_name(a.requested)},
-          {"mode", a.aligned ? "bbox" : "none"},
+          {"mode", !a.aligned ? "none" : turned ? "rotation" : "bbox"},
           {"scale", number(a.scale)},
           {"translation", vec3(a.translation)},
           {"diagonal_ratio", number(a.diagonal_ratio)},
-          {"boxes_overlap", a.boxes_overlap}};
+          {"boxes_overlap", a.boxes_overlap},
+          {"rotation", matrix(a.aligned ? a.rotation : kIdentity3)},
+          {"rotation_name", rotation_name(a.aligned ? a.rotation : kIdentity3)},
+          {"axis_rotation", rotation_name(a.axis_rotation)},
+          {"icp", {{"applied", a.icp_applied}, {"iterations", a.icp_iterations}}},
+          {"mean_distance_identity", searched(a.identity_distance)},
+          {"mean_distance", searched(a.distance)},
+          {"mirrored", a.mirrored},
+          {"mean_distance_mirror", searched(a.mirror_distance)},
+          {"description", alignment_description(a)}};
 }
 
 // CONTRACT.md boundary_error, then extensions (after uv_atlas).

@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "hqview/core/number_format.h"
+#include "hqview/report/compare_table.h"
 #include "hqview/report/escape.h"
 #include "hqview/views/views.h"
 
@@ -74,6 +75,19 @@ std::string summary_markdown(const ReportModel& model, const std::string& link_b
           std::to_string(model.analysis.glyphs->clusters.size()) +
           (model.analysis.glyphs->clusters.size() == 1 ? " cluster" : " clusters") + "; min vertex quality " +
           show(q.vertex_quality.min) + ".\n\n";
+
+  if (model.analysis.compare) {
+    const CompareTable t = compare_table(model.analysis);
+    md += "### Compared with " + markdown_escape(t.theirs_name) + "\n\n";
+    md += "| | " + markdown_escape(t.mine_name) + " | " + markdown_escape(t.theirs_name) +
+          " | difference |\n|---|---:|---:|---:|\n";
+    for (const CompareTableRow& r : t.rows)
+      md += "| " + r.label + " | " + r.mine + " | " + r.theirs + " | " +
+            (r.is_worse ? "**" + r.difference + "**" : r.difference) + " |\n";
+    md += "\nDifference = right - left (bold: the right mesh is worse); each mesh in its own units";
+    if (!t.alignment.empty()) md += "; the compare view's right mesh: " + markdown_escape(t.alignment);
+    md += ".\n\n";
+  }
 
   if (!model.gates.results.empty()) {
     md += std::string("### Gates: ") + (model.gates.passed ? "passed" : "**failed**") + "\n\n";

@@ -352,6 +352,18 @@ Scene build_uv_error_scene(const TriSurface& reference, const UvAtlas& atlas, co
   return scene;
 }
 
+Camera uv_map_camera(double aspect) {
+  Camera camera;
+  camera.eye = {0.5, 0.5, 2.0};
+  camera.target = {0.5, 0.5, 0.0};
+  camera.up = {0.0, 1.0, 0.0};
+  camera.is_perspective = false;
+  camera.near_plane = 0.5;
+  camera.far_plane = 4.0;
+  camera.ortho_height = 1.06 * std::max(1.0, 1.0 / aspect);
+  return camera;
+}
+
 Image render_uv_error_map(const TriSurface& reference, const UvAtlas& atlas, const BoundaryError& error,
                           const BoundaryViewOptions& options, Renderer& renderer) {
   AnnotationStyle style = annotation_style_for(options.height);
@@ -362,15 +374,7 @@ Image render_uv_error_map(const TriSurface& reference, const UvAtlas& atlas, con
       figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(bar, style), style);
   Scene scene = build_uv_error_scene(reference, atlas, error.reference_vertex_error, scale);
   scene.background = options.background;
-  Camera camera;
-  camera.eye = {0.5, 0.5, 2.0};
-  camera.target = {0.5, 0.5, 0.0};
-  camera.up = {0.0, 1.0, 0.0};
-  camera.is_perspective = false;
-  camera.near_plane = 0.5;
-  camera.far_plane = 4.0;
-  const double aspect = static_cast<double>(layout.view.width) / layout.view.height;
-  camera.ortho_height = 1.06 * std::max(1.0, 1.0 / aspect);
+  const Camera camera = uv_map_camera(static_cast<double>(layout.view.width) / layout.view.height);
   Image figure = render_figure(renderer, scene, camera, options.width, options.height, layout, options.title, style);
   draw_color_bar(figure, layout.legend, bar, style);
   return figure;

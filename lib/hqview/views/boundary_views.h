@@ -120,6 +120,10 @@ Image render_reference_overlay(const HexMesh& mesh, const Topology& topology, co
 Scene build_uv_error_scene(const TriSurface& reference, const UvAtlas& atlas, const std::vector<double>& point_error,
                            double scale);
 
+// The orthographic camera that frames the unit UV square (with a 3 % margin)
+// in a view of the given aspect (width / height), v up.
+Camera uv_map_camera(double aspect);
+
 Image render_uv_error_map(const TriSurface& reference, const UvAtlas& atlas, const BoundaryError& error,
                           const BoundaryViewOptions& options, Renderer& renderer);
 

@@ -28,6 +28,7 @@
 #include "hqview/views/main_views.h"
 #include "hqview/views/overview_views.h"
 #include "hqview/views/structure_views.h"
+#include "hqview/views/uv_key_view.h"
 
 namespace hq {
 
@@ -288,6 +289,13 @@ std::vector<ViewFile> build_uv_error(ViewContext& c) {
            {}}};
 }
 
+std::vector<ViewFile> build_uv_key(ViewContext& c) {
+  auto b = sized<BoundaryViewOptions>(c);
+  b.title = c.name + ": UV key, the reference's " + std::to_string(c.a.uv_atlas->num_charts) +
+            " charts numbered (front, back; the atlas as the UV error map lays it out)";
+  return {{"views/uv_key.png", render_uv_key(*c.a.reference_surface, *c.a.uv_atlas, b, c.renderer), {}}};
+}
+
 std::vector<ViewFile> build_reference_overlay(ViewContext& c) {
   auto b = sized<BoundaryViewOptions>(c);
   b.title = c.name + ": hex boundary (grey) and reference (orange, translucent)";
@@ -302,8 +310,7 @@ std::vector<ViewFile> build_compare(ViewContext& c) {
   const CompareAlignment& align = other.alignment;
   overview.title = c.name + " (left) vs " + std::filesystem::path(other.input.path).filename().string() +
                    " (right): vertex quality, one camera" +
-                   (align.aligned ? ", right aligned by bounding box (scale " + display_number(align.scale, 3) + ")"
-                                  : std::string());
+                   (alignment_description(align).empty() ? std::string() : ", right " + alignment_description(align));
   const HexMesh placed = aligned_copy(other.mesh, align);
   Image image = render_compare_overview(c.a.mesh, c.a.topology, c.quality(), placed, other.topology,
                                         other.field.vertex_quality, overview, c.renderer);

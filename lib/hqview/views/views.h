@@ -78,6 +78,7 @@ std::vector<ViewFile> build_corners(ViewContext&);
 std::vector<ViewFile> build_boundary_error(ViewContext&);
 std::vector<ViewFile> build_reference_error(ViewContext&);
 std::vector<ViewFile> build_uv_error(ViewContext&);
+std::vector<ViewFile> build_uv_key(ViewContext&);
 std::vector<ViewFile> build_reference_overlay(ViewContext&);
 std::vector<ViewFile> build_compare(ViewContext&);
 std::vector<ViewFile> build_boundary_error_sorted(ViewContext&);
@@ -102,6 +103,8 @@ inline constexpr ViewSpec kViews[] = {
     {"reference_error", "Reference error: the reference coloured by signed distance to the hex boundary", 0, 1,
      ViewNeeds::reference, true, -1, build_reference_error},
     {"uv_error", "UV error map of the reference", 0, 2, ViewNeeds::uv_atlas, true, 11, build_uv_error},
+    {"uv_key", "UV key: the reference's charts numbered, in 3D and in the atlas", 0, 2, ViewNeeds::uv_atlas, true, -1,
+     build_uv_key},
     {"reference_overlay", "F: hex boundary over the translucent reference surface", 'F', 0, ViewNeeds::reference, true,
      6, build_reference_overlay},
     {"compare", "Compare: both boundaries coloured by vertex quality, one camera", 'F', 1, ViewNeeds::compare, true, 7,
