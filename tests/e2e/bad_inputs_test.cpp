@@ -164,8 +164,7 @@ TEST(BadInputs, EveryHostileInputGivesItsMessageAndKeepsThePreviousBundle) {
     // with one render thread and with the TBB workers joined before exit).
     // Such a run, and only on that signature, is made once more: a leak
     // report, an ASan error or a wrong result still fails.
-    if (err.find("Tracer caught signal") != std::string::npos &&
-        err.find("LeakSanitizer has encountered a fatal error") != std::string::npos) {
+    if (lsan_tracer_crashed(err)) {
       std::cerr << "[ retried ] expected.tsv:" << c.line << ": LeakSanitizer's tracer crashed at exit\n";
       start = std::chrono::steady_clock::now();
       status = std::system(command.c_str());

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
 #include <sstream>
 
 namespace hq::test {
@@ -34,6 +35,11 @@ fs::path fresh_output_dir(const std::string& name) {
   return dir;
 }
 
+bool lsan_tracer_crashed(const std::string& err) {
+  return err.find("Tracer caught signal") != std::string::npos &&
+         err.find("LeakSanitizer has encountered a fatal error") != std::string::npos;
+}
+
 CliResult run_hqview(const std::vector<std::string>& args) {
   static int counter = 0;
   const fs::path capture = fs::path(HQVIEW_TEST_OUTPUT) / "capture";
@@ -43,11 +49,19 @@ CliResult run_hqview(const std::vector<std::string>& args) {
   std::string command = quote(HQVIEW_BINARY);
   for (const std::string& a : args) command += " " + quote(a);
   command += " >" + quote(out.string()) + " 2>" + quote(err.string()) + " </dev/null";
-  const int status = std::system(command.c_str());
+  int status = std::system(command.c_str());
   CliResult r;
+  r.err = read_text(err);
+  // Under the sanitizers, LeakSanitizer's tracer may crash at exit on its
+  // own (lsan_tracer_crashed): such a run is made once more, on that
+  // signature only.
+  if (lsan_tracer_crashed(r.err)) {
+    std::cerr << "[ retried ] hqview: LeakSanitizer's tracer crashed at exit\n";
+    status = std::system(command.c_str());
+    r.err = read_text(err);
+  }
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   r.out = read_text(out);
-  r.err = read_text(err);
   fs::remove(out);
   fs::remove(err);
   return r;
