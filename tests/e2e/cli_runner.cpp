@@ -35,6 +35,8 @@ fs::path fresh_output_dir(const std::string& name) {
   return dir;
 }
 
+nlohmann::json read_report(const fs::path& bundle) { return nlohmann::json::parse(read_text(bundle / "report.json")); }
+
 bool lsan_tracer_crashed(const std::string& err) {
   return err.find("Tracer caught signal") != std::string::npos &&
          err.find("LeakSanitizer has encountered a fatal error") != std::string::npos;

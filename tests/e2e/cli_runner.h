@@ -4,6 +4,7 @@
 #include <array>
 #include <filesystem>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,9 @@ bool lsan_tracer_crashed(const std::string& err);
 std::filesystem::path fresh_output_dir(const std::string& name);
 
 std::string read_text(const std::filesystem::path& path);
+
+// BUNDLE/report.json, parsed.
+nlohmann::json read_report(const std::filesystem::path& bundle);
 
 // A copy of an OFF surface with every vertex p -> move(p) (x, y, z in and out).
 std::filesystem::path transformed_off_copy(const std::filesystem::path& off,

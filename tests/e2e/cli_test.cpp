@@ -21,8 +21,6 @@ using nlohmann::json;
 
 fs::path example(const std::string& name) { return source_dir() / "examples" / name; }
 
-json read_report(const fs::path& bundle) { return json::parse(read_text(bundle / "report.json")); }
-
 TEST(Cli, BallBundleHasEveryFileAndRealNumbers) {
   const fs::path out = fresh_output_dir("ball") / "bundle";
   const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "-o", out.string(), "--data", "csv,vtu.zlib"});

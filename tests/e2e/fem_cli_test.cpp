@@ -19,8 +19,6 @@ using nlohmann::json;
 
 const std::string kBall = (source_dir() / "examples" / "ball.mesh").string();
 
-json read_report(const fs::path& bundle) { return json::parse(read_text(bundle / "report.json")); }
-
 // An n x n x n box of side n as MEDIT; vertex (2, 2, 2) moved by `shift` along x.
 fs::path write_box(const fs::path& path, int n, double shift) {
   std::ofstream f(path);

@@ -20,8 +20,6 @@ using nlohmann::json;
 
 const std::string kBall = (source_dir() / "examples" / "ball.mesh").string();
 
-json read_report(const fs::path& bundle) { return json::parse(read_text(bundle / "report.json")); }
-
 std::vector<std::string> lines_with(const std::string& text, const std::string& part) {
   std::vector<std::string> out;
   std::size_t start = 0;
