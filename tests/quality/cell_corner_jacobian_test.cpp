@@ -11,6 +11,9 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <random>
+
+#include "hqview/core/cell_kinds.h"
 
 #include "support/verdict_oracle.h"
 
@@ -46,11 +49,11 @@ TEST(CellCornerJacobian, IdealCellsScoreOneAtEveryCorner) {
   for (double v : pyramid_corner_scaled_jacobians(kPyramid).value) EXPECT_NEAR(v, 1.0, 1e-15);
   for (double v : quad_corner_scaled_jacobians(kQuad).value) EXPECT_NEAR(v, 1.0, 1e-15);
   for (double v : triangle_corner_scaled_jacobians(kTriangle).value) EXPECT_NEAR(v, 1.0, 1e-15);
-  EXPECT_EQ(tet_orientation(kTet), CellOrientation::valid);
-  EXPECT_EQ(wedge_orientation(kWedge), CellOrientation::valid);
-  EXPECT_EQ(pyramid_orientation(kPyramid), CellOrientation::valid);
-  EXPECT_EQ(quad_orientation(kQuad), CellOrientation::valid);
-  EXPECT_EQ(triangle_orientation(kTriangle), CellOrientation::valid);
+  EXPECT_EQ(tet_validity(kTet), CellValidity::valid);
+  EXPECT_EQ(wedge_validity(kWedge), CellValidity::valid);
+  EXPECT_EQ(pyramid_validity(kPyramid), CellValidity::valid);
+  EXPECT_EQ(quad_validity(kQuad), CellValidity::valid);
+  EXPECT_EQ(triangle_validity(kTriangle), CellValidity::valid);
 }
 
 TEST(CellCornerJacobian, HandComputedCorners) {
@@ -89,7 +92,7 @@ TEST(CellCornerJacobian, MinimumOverCornersRelatesToVerdictOnEveryOracleCase) {
       const std::array<Vec3, 4> p = {at(0), at(1), at(2), at(3)};
       const auto corners = tet_corner_scaled_jacobians(p);
       if (corners.degenerate_mask) continue;  // Verdict: 1e30 (all coincident) or 0
-      const bool inverted = is_inverted(tet_orientation(p));
+      const bool inverted = is_inverted(tet_validity(p));
       EXPECT_NEAR(inverted ? max_of(corners) : min_of(corners), verdict, 1e-12);
       ++compared;
     } else if (kind == "wedge") {
@@ -103,7 +106,7 @@ TEST(CellCornerJacobian, MinimumOverCornersRelatesToVerdictOnEveryOracleCase) {
       const auto corners = pyramid_corner_scaled_jacobians(p);
       // Verdict's 0 (never negative) and a corner <= 0 go together.
       if (std::abs(verdict) < 1e30) {
-        EXPECT_EQ(verdict == 0.0, pyramid_orientation(p) != CellOrientation::valid);
+        EXPECT_EQ(verdict == 0.0, pyramid_validity(p) != CellValidity::valid);
         EXPECT_EQ(verdict == 0.0, min_of(corners) <= 0.0);
         ++compared;
       }
@@ -126,9 +129,9 @@ TEST(CellCornerJacobian, MinimumOverCornersRelatesToVerdictOnEveryOracleCase) {
 
 TEST(CellCornerJacobian, MirroredTangledAndFlatCells) {
   // Mirrored: inverted, every corner -1 for the ideal cells.
-  EXPECT_EQ(tet_orientation(mirrored(kTet)), CellOrientation::inverted);
-  EXPECT_EQ(wedge_orientation(mirrored(kWedge)), CellOrientation::inverted);
-  EXPECT_EQ(pyramid_orientation(mirrored(kPyramid)), CellOrientation::inverted);
+  EXPECT_EQ(tet_validity(mirrored(kTet)), CellValidity::inverted);
+  EXPECT_EQ(wedge_validity(mirrored(kWedge)), CellValidity::inverted);
+  EXPECT_EQ(pyramid_validity(mirrored(kPyramid)), CellValidity::inverted);
   EXPECT_NEAR(max_of(tet_corner_scaled_jacobians(mirrored(kTet))), -1.0, 1e-15);
   EXPECT_NEAR(max_of(wedge_corner_scaled_jacobians(mirrored(kWedge))), -1.0, 1e-15);
   EXPECT_NEAR(max_of(pyramid_corner_scaled_jacobians(mirrored(kPyramid))), -1.0, 1e-15);
@@ -136,31 +139,57 @@ TEST(CellCornerJacobian, MirroredTangledAndFlatCells) {
   // corners' frames turn left-handed, its bottom ones stay right-handed).
   auto tangled = kWedge;
   std::swap(tangled[4], tangled[5]);
-  EXPECT_EQ(wedge_orientation(tangled), CellOrientation::inverted);
+  EXPECT_EQ(wedge_validity(tangled), CellValidity::inverted);
   EXPECT_LT(min_of(wedge_corner_scaled_jacobians(tangled)), 0.0);
   // A pyramid whose apex pokes through its base: inverted, Verdict's 0.
   auto poked = kPyramid;
   poked[4].z = -0.1;
-  EXPECT_EQ(pyramid_orientation(poked), CellOrientation::inverted);
+  EXPECT_EQ(pyramid_validity(poked), CellValidity::inverted);
   // A pyramid with a reflex base corner (a dart) is inverted too.
   auto dart = kPyramid;
   dart[2] = {0.3, 0.3, 0};
-  EXPECT_EQ(pyramid_orientation(dart), CellOrientation::inverted);
+  EXPECT_EQ(pyramid_validity(dart), CellValidity::inverted);
   // Flat cells: exactly zero determinants are flat, not inverted.
   auto flat_tet = kTet;
   flat_tet[3].z = 0;
-  EXPECT_EQ(tet_orientation(flat_tet), CellOrientation::flat);
+  EXPECT_EQ(tet_validity(flat_tet), CellValidity::flat);
   auto flat_pyramid = kPyramid;
   flat_pyramid[4].z = 0;
-  EXPECT_EQ(pyramid_orientation(flat_pyramid), CellOrientation::flat);
+  EXPECT_EQ(pyramid_validity(flat_pyramid), CellValidity::flat);
   auto flat_wedge = kWedge;
   for (int i = 3; i < 6; ++i) flat_wedge[i].z = 0;
-  EXPECT_EQ(wedge_orientation(flat_wedge), CellOrientation::flat);
+  EXPECT_EQ(wedge_validity(flat_wedge), CellValidity::flat);
   // A tet flat only to rounding (0.1 + 0.2 != 0.3) is decided exactly.
   const std::array<Vec3, 4> nearly = {Vec3{0, 0, 0}, {0.1, 0, 0}, {0, 0.1, 0}, {0.1 + 0.2, 0, 0.3 - 0.1 - 0.2}};
-  EXPECT_EQ(tet_orientation(nearly), (0.3 - 0.1 - 0.2) > 0   ? CellOrientation::valid
-                                     : (0.3 - 0.1 - 0.2) < 0 ? CellOrientation::inverted
-                                                             : CellOrientation::flat);
+  EXPECT_EQ(tet_validity(nearly), (0.3 - 0.1 - 0.2) > 0   ? CellValidity::valid
+                                  : (0.3 - 0.1 - 0.2) < 0 ? CellValidity::inverted
+                                                          : CellValidity::flat);
+}
+
+TEST(CellCornerJacobian, TetValidityAgreesWithEveryCornerFrameOnNearlyFlatTets) {
+  // tet_validity decides by corner 0 alone (the frames are even permutations
+  // of one another): compare with the sign of every corner determinant,
+  // exact here because the coordinates are small integers.
+  std::mt19937 rng(46);
+  std::uniform_int_distribution<int> coordinate(-3, 3);
+  int counts[3] = {0, 0, 0};
+  for (int n = 0; n < 4000; ++n) {
+    std::array<Vec3, 4> p;
+    for (auto& v : p) v = {double(coordinate(rng)), double(coordinate(rng)), double(coordinate(rng))};
+    const auto& frames = CellKindTable<CellKind::tet>::corner_frames;
+    bool negative = false, zero = false;
+    for (int i = 0; i < 4; ++i) {
+      const double d = det(p[frames[i][0]] - p[i], p[frames[i][1]] - p[i], p[frames[i][2]] - p[i]);
+      negative = negative || d < 0;
+      zero = zero || d == 0;
+    }
+    const CellValidity expected = negative ? CellValidity::inverted : zero ? CellValidity::flat : CellValidity::valid;
+    EXPECT_EQ(tet_validity(p), expected);
+    ++counts[static_cast<int>(expected)];
+  }
+  EXPECT_GT(counts[0], 100);  // valid, flat and inverted tets all occur
+  EXPECT_GT(counts[1], 100);
+  EXPECT_GT(counts[2], 100);
 }
 
 TEST(CellCornerJacobian, SurfaceCellsAgainstTheirOwnOrAGivenNormal) {
@@ -169,26 +198,26 @@ TEST(CellCornerJacobian, SurfaceCellsAgainstTheirOwnOrAGivenNormal) {
   std::reverse(reversed.begin(), reversed.end());
   // No orientation of its own: a reversed quad scores the same...
   EXPECT_EQ(quad_corner_scaled_jacobians(reversed).value, quad_corner_scaled_jacobians(kQuad).value);
-  EXPECT_EQ(quad_orientation(reversed), CellOrientation::valid);
+  EXPECT_EQ(quad_validity(reversed), CellValidity::valid);
   // ...but against the plane's normal it is inverted, every corner -1.
-  EXPECT_EQ(quad_orientation(reversed, up), CellOrientation::inverted);
+  EXPECT_EQ(quad_validity(reversed, up), CellValidity::inverted);
   EXPECT_NEAR(max_of(quad_corner_scaled_jacobians(reversed, up)), -1.0, 1e-15);
-  EXPECT_EQ(quad_orientation(kQuad, up), CellOrientation::valid);
+  EXPECT_EQ(quad_validity(kQuad, up), CellValidity::valid);
   // A concave (dart) quad is folded against its own normal.
   const std::array<Vec3, 4> dart = {Vec3{0, 0, 0}, {2, 0, 0}, {0.5, 0.5, 0}, {0, 2, 0}};
-  EXPECT_EQ(quad_orientation(dart), CellOrientation::inverted);
+  EXPECT_EQ(quad_validity(dart), CellValidity::inverted);
   EXPECT_LT(min_of(quad_corner_scaled_jacobians(dart)), 0.0);
   // A planar bow-tie has no centre normal (flat) until a normal is given.
   const std::array<Vec3, 4> bowtie = {Vec3{0, 0, 0}, {1, 1, 0}, {1, 0, 0}, {0, 1, 0}};
-  EXPECT_EQ(quad_orientation(bowtie), CellOrientation::flat);
-  EXPECT_EQ(quad_orientation(bowtie, up), CellOrientation::inverted);
+  EXPECT_EQ(quad_validity(bowtie), CellValidity::flat);
+  EXPECT_EQ(quad_validity(bowtie, up), CellValidity::inverted);
   // Triangles: never inverted against their own normal; reversed against +z.
   const std::array<Vec3, 3> cw = {kTriangle[0], kTriangle[2], kTriangle[1]};
-  EXPECT_EQ(triangle_orientation(cw), CellOrientation::valid);
-  EXPECT_EQ(triangle_orientation(cw, up), CellOrientation::inverted);
+  EXPECT_EQ(triangle_validity(cw), CellValidity::valid);
+  EXPECT_EQ(triangle_validity(cw, up), CellValidity::inverted);
   EXPECT_NEAR(min_of(triangle_corner_scaled_jacobians(cw, up)), -1.0, 1e-15);
   const std::array<Vec3, 3> collinear = {Vec3{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
-  EXPECT_EQ(triangle_orientation(collinear), CellOrientation::flat);
+  EXPECT_EQ(triangle_validity(collinear), CellValidity::flat);
 }
 
 }  // namespace

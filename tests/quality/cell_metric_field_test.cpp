@@ -47,7 +47,7 @@ TEST(CellMetricField, CubeTetsEqualTheKernelsWithTheBlockMean) {
   EXPECT_EQ(field.count, 7);
   EXPECT_NEAR(field.average_size, (6.0 / 6 - 1.0 / 6) / 7, 1e-16);
   EXPECT_EQ(field.num_inverted, 1);
-  EXPECT_EQ(field.orientation[6], CellOrientation::inverted);
+  EXPECT_EQ(field.validity[6], CellValidity::inverted);
   ASSERT_EQ(field.names.size(), static_cast<std::size_t>(kNumTetMetrics));
   for (std::size_t c = 0; c < tets.size(); ++c) {
     const auto expected = tet_metrics(corners(kCube, tets[c]), field.average_size);
@@ -94,7 +94,7 @@ TEST(CellMetricField, CubeWedgesAndPyramids) {
                                                       {1, 2, 3, 0, 9}};
   const auto p = compute_pyramid_block_metrics(points, pyramids);
   EXPECT_EQ(p.num_inverted, 1);
-  EXPECT_EQ(p.orientation[6], CellOrientation::inverted);
+  EXPECT_EQ(p.validity[6], CellValidity::inverted);
   double sum = 0;
   for (int c = 0; c < 6; ++c) sum += (*p.of("volume"))[static_cast<std::size_t>(c)];
   EXPECT_NEAR(sum, 1.0, 1e-15);
@@ -123,7 +123,7 @@ TEST(CellMetricField, PlanarQuadGridAndItsTriangles) {
   const auto planar = compute_quad_block_metrics(points, quads, up);
   EXPECT_EQ(own.num_inverted, 0);  // no orientation of its own
   EXPECT_EQ(planar.num_inverted, 1);
-  EXPECT_EQ(planar.orientation[4], CellOrientation::inverted);
+  EXPECT_EQ(planar.validity[4], CellValidity::inverted);
   EXPECT_NEAR(own.average_size, 1.0, 1e-16);
   EXPECT_EQ(*own.of("scaled_jacobian"), *planar.of("scaled_jacobian"));  // Verdict's value either way
   const auto t = compute_triangle_block_metrics(points, triangles, up);
@@ -152,7 +152,7 @@ TEST(CellMetricField, SameBitsForAnyThreadCount) {
   EXPECT_EQ(std::memcmp(&one.average_size, &two.average_size, sizeof(double)), 0);
   for (std::size_t m = 0; m < one.values.size(); ++m) EXPECT_TRUE(same_bits(one.values[m], two.values[m]));
   EXPECT_TRUE(same_bits(one.corner_scaled_jacobian, two.corner_scaled_jacobian));
-  EXPECT_EQ(one.orientation, two.orientation);
+  EXPECT_EQ(one.validity, two.validity);
 }
 
 }  // namespace

@@ -37,7 +37,7 @@ auto volume_corners(const std::array<Vec3, N>& p, double factor, bool fold = fal
 }
 
 template <CellKind K, std::size_t N>
-CellOrientation volume_orientation(const std::array<Vec3, N>& p) {
+CellValidity volume_validity(const std::array<Vec3, N>& p) {
   using T = CellKindTable<K>;
   auto point = [&](int i) { return Kernel::Point_3(p[i].x, p[i].y, p[i].z); };
   bool flat = false;
@@ -45,10 +45,10 @@ CellOrientation volume_orientation(const std::array<Vec3, N>& p) {
     const auto& f = T::corner_frames[i];
     // orientation(o, a, b, c) is the sign of det[a - o, b - o, c - o].
     const auto s = CGAL::orientation(point(static_cast<int>(i)), point(f[0]), point(f[1]), point(f[2]));
-    if (s == CGAL::NEGATIVE) return CellOrientation::inverted;
+    if (s == CGAL::NEGATIVE) return CellValidity::inverted;
     flat = flat || s == CGAL::ZERO;
   }
-  return flat ? CellOrientation::flat : CellOrientation::valid;
+  return flat ? CellValidity::flat : CellValidity::valid;
 }
 
 // Verdict's quad centre normal, unit (zero when the quad has none).
@@ -73,14 +73,14 @@ KindCornerJacobians<N> surface_corners(const std::array<Vec3, N>& p, const Vec3&
 }
 
 template <std::size_t N>
-CellOrientation surface_orientation(const std::array<Vec3, N>& p, const Vec3& n) {
+CellValidity surface_validity(const std::array<Vec3, N>& p, const Vec3& n) {
   bool flat = false;
   for (std::size_t i = 0; i < N; ++i) {
     const double area = dot(cross(p[(i + 1) % N] - p[i], p[(i + N - 1) % N] - p[i]), n);
-    if (area < 0) return CellOrientation::inverted;
+    if (area < 0) return CellValidity::inverted;
     flat = flat || !(area > 0);
   }
-  return flat ? CellOrientation::flat : CellOrientation::valid;
+  return flat ? CellValidity::flat : CellValidity::valid;
 }
 
 }  // namespace
@@ -104,16 +104,23 @@ KindCornerJacobians<3> triangle_corner_scaled_jacobians(const std::array<Vec3, 3
   return surface_corners(p, normalized(normal ? *normal : cross(p[1] - p[0], p[2] - p[0])), kTwoOverSqrt3);
 }
 
-CellOrientation tet_orientation(const std::array<Vec3, 4>& p) { return volume_orientation<CellKind::tet>(p); }
-CellOrientation wedge_orientation(const std::array<Vec3, 6>& p) { return volume_orientation<CellKind::wedge>(p); }
-CellOrientation pyramid_orientation(const std::array<Vec3, 5>& p) { return volume_orientation<CellKind::pyramid>(p); }
+CellValidity tet_validity(const std::array<Vec3, 4>& p) {
+  // The 4 corner frames list the corners in even permutations of (0,1,2,3)
+  // ((1,2,0,3), (2,0,1,3), (3,0,2,1)): their determinants' exact signs are
+  // one sign, so corner 0's decides.
+  const auto s = CGAL::orientation(Kernel::Point_3(p[0].x, p[0].y, p[0].z), Kernel::Point_3(p[1].x, p[1].y, p[1].z),
+                                   Kernel::Point_3(p[2].x, p[2].y, p[2].z), Kernel::Point_3(p[3].x, p[3].y, p[3].z));
+  return s == CGAL::NEGATIVE ? CellValidity::inverted : s == CGAL::ZERO ? CellValidity::flat : CellValidity::valid;
+}
+CellValidity wedge_validity(const std::array<Vec3, 6>& p) { return volume_validity<CellKind::wedge>(p); }
+CellValidity pyramid_validity(const std::array<Vec3, 5>& p) { return volume_validity<CellKind::pyramid>(p); }
 
-CellOrientation quad_orientation(const std::array<Vec3, 4>& p, const std::optional<Vec3>& normal) {
-  return surface_orientation(p, normal ? *normal : quad_centre_normal(p));
+CellValidity quad_validity(const std::array<Vec3, 4>& p, const std::optional<Vec3>& normal) {
+  return surface_validity(p, normal ? *normal : quad_centre_normal(p));
 }
 
-CellOrientation triangle_orientation(const std::array<Vec3, 3>& p, const std::optional<Vec3>& normal) {
-  return surface_orientation(p, normal ? *normal : cross(p[1] - p[0], p[2] - p[0]));
+CellValidity triangle_validity(const std::array<Vec3, 3>& p, const std::optional<Vec3>& normal) {
+  return surface_validity(p, normal ? *normal : cross(p[1] - p[0], p[2] - p[0]));
 }
 
 }  // namespace hq

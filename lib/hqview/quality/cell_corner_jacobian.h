@@ -28,7 +28,7 @@
 //   pyramid: Verdict splits the pyramid into 4 tets through the base
 //            diagonals, not the corner frames: no identity; both score 1 on
 //            the ideal pyramid, and Verdict's 0 goes with a corner <= 0
-//            (pyramid_orientation not valid) on every oracle case;
+//            (pyramid_validity not valid) on every oracle case;
 //   quad:    equal (Verdict's signed corner areas against the quad's centre
 //            normal), unless P3 == P2 (Verdict then scores the triangle);
 //   triangle: equal (no orientation: never negative against its own normal).
@@ -64,7 +64,7 @@ KindCornerJacobians<3> triangle_corner_scaled_jacobians(const std::array<Vec3, 3
                                                         const std::optional<Vec3>& normal = std::nullopt);
 
 // How a cell's corners are oriented.
-enum class CellOrientation : std::uint8_t {
+enum class CellValidity : std::uint8_t {
   valid,     // every corner determinant > 0
   flat,      // none < 0, one = 0 (a flat or collapsed corner)
   inverted,  // a corner determinant < 0
@@ -75,16 +75,16 @@ enum class CellOrientation : std::uint8_t {
 // doubles). A pyramid counts every base corner (the apex has no frame): one
 // with its apex below the base, or a reflex base corner, is inverted even
 // though Verdict's pyramid scaled_jacobian is then 0, never negative.
-CellOrientation tet_orientation(const std::array<Vec3, 4>& p);
-CellOrientation wedge_orientation(const std::array<Vec3, 6>& p);  // VTK order
-CellOrientation pyramid_orientation(const std::array<Vec3, 5>& p);
+CellValidity tet_validity(const std::array<Vec3, 4>& p);
+CellValidity wedge_validity(const std::array<Vec3, 6>& p);  // VTK order
+CellValidity pyramid_validity(const std::array<Vec3, 5>& p);
 // Surface cells: the signs of the corner areas against `normal` (in double
 // precision: the normal is itself computed), or, without one, against the
 // cell's own normal as above: a quad is then inverted when it is folded
 // (concave or bow-tie: a corner against the centre normal), a triangle never.
-CellOrientation quad_orientation(const std::array<Vec3, 4>& p, const std::optional<Vec3>& normal = std::nullopt);
-CellOrientation triangle_orientation(const std::array<Vec3, 3>& p, const std::optional<Vec3>& normal = std::nullopt);
+CellValidity quad_validity(const std::array<Vec3, 4>& p, const std::optional<Vec3>& normal = std::nullopt);
+CellValidity triangle_validity(const std::array<Vec3, 3>& p, const std::optional<Vec3>& normal = std::nullopt);
 
-inline bool is_inverted(CellOrientation o) { return o == CellOrientation::inverted; }
+inline bool is_inverted(CellValidity o) { return o == CellValidity::inverted; }
 
 }  // namespace hq

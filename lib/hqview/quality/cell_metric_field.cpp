@@ -51,7 +51,7 @@ CellBlockMetricField compute_block(CellKind kind, std::span<const Vec3> points,
   field.corners_per_cell = C;
   field.corner_scaled_jacobian.resize(n * C);
   field.corner_degenerate_mask.resize(n);
-  field.orientation.resize(n);
+  field.validity.resize(n);
   for_each_cell(n, [&](std::size_t c) {
     const auto p = corners_of(c);
     const auto v = metrics(p, field.average_size);
@@ -59,11 +59,11 @@ CellBlockMetricField compute_block(CellKind kind, std::span<const Vec3> points,
     const auto k = corners(p);
     for (int i = 0; i < C; ++i) field.corner_scaled_jacobian[c * C + static_cast<std::size_t>(i)] = k.value[i];
     field.corner_degenerate_mask[c] = k.degenerate_mask;
-    field.orientation[c] = orient(p);
+    field.validity[c] = orient(p);
   });
-  for (CellOrientation o : field.orientation) {
-    field.num_inverted += o == CellOrientation::inverted;
-    field.num_flat += o == CellOrientation::flat;
+  for (CellValidity o : field.validity) {
+    field.num_inverted += o == CellValidity::inverted;
+    field.num_flat += o == CellValidity::flat;
   }
   return field;
 }
@@ -83,7 +83,7 @@ CellBlockMetricField compute_tet_block_metrics(std::span<const Vec3> points,
       [](const TetCorners& p) { return tet_volume(p); },
       [](const TetCorners& p, double average) { return tet_metrics(p, average); },
       [](const TetCorners& p) { return tet_corner_scaled_jacobians(p); },
-      [](const TetCorners& p) { return tet_orientation(p); });
+      [](const TetCorners& p) { return tet_validity(p); });
 }
 
 CellBlockMetricField compute_wedge_block_metrics(std::span<const Vec3> points,
@@ -93,7 +93,7 @@ CellBlockMetricField compute_wedge_block_metrics(std::span<const Vec3> points,
       [](const WedgeCorners& p) { return wedge_metric(WedgeMetric::volume, p); },
       [](const WedgeCorners& p, double average) { return wedge_metrics(p, average); },
       [](const WedgeCorners& p) { return wedge_corner_scaled_jacobians(p); },
-      [](const WedgeCorners& p) { return wedge_orientation(p); });
+      [](const WedgeCorners& p) { return wedge_validity(p); });
 }
 
 CellBlockMetricField compute_pyramid_block_metrics(std::span<const Vec3> points,
@@ -103,7 +103,7 @@ CellBlockMetricField compute_pyramid_block_metrics(std::span<const Vec3> points,
       [](const PyramidCorners& p) { return pyramid_metric(PyramidMetric::volume, p); },
       [](const PyramidCorners& p, double average) { return pyramid_metrics(p, average); },
       [](const PyramidCorners& p) { return pyramid_corner_scaled_jacobians(p); },
-      [](const PyramidCorners& p) { return pyramid_orientation(p); });
+      [](const PyramidCorners& p) { return pyramid_validity(p); });
 }
 
 CellBlockMetricField compute_quad_block_metrics(std::span<const Vec3> points,
@@ -114,7 +114,7 @@ CellBlockMetricField compute_quad_block_metrics(std::span<const Vec3> points,
       [](const QuadCorners& p) { return quad_metric(QuadMetric::area, p, 0.0); },
       [](const QuadCorners& p, double average) { return quad_metrics(p, average); },
       [&](const QuadCorners& p) { return quad_corner_scaled_jacobians(p, normal); },
-      [&](const QuadCorners& p) { return quad_orientation(p, normal); });
+      [&](const QuadCorners& p) { return quad_validity(p, normal); });
 }
 
 CellBlockMetricField compute_triangle_block_metrics(std::span<const Vec3> points,
@@ -125,7 +125,7 @@ CellBlockMetricField compute_triangle_block_metrics(std::span<const Vec3> points
       [](const TriangleCorners& p) { return triangle_area(p); },
       [](const TriangleCorners& p, double average) { return triangle_metrics(p, average); },
       [&](const TriangleCorners& p) { return triangle_corner_scaled_jacobians(p, normal); },
-      [&](const TriangleCorners& p) { return triangle_orientation(p, normal); });
+      [&](const TriangleCorners& p) { return triangle_validity(p, normal); });
 }
 
 std::vector<CellMetricSummary> summarize_cell_block(const CellBlockMetricField& field) {

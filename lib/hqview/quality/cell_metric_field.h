@@ -41,9 +41,9 @@ struct CellBlockMetricField {
   int corners_per_cell = 0;
   std::vector<double> corner_scaled_jacobian;
   std::vector<std::uint8_t> corner_degenerate_mask;
-  std::vector<CellOrientation> orientation;  // per cell
-  std::int64_t num_inverted = 0;             // cells with orientation inverted
-  std::int64_t num_flat = 0;                 // cells with orientation flat
+  std::vector<CellValidity> validity;  // per cell
+  std::int64_t num_inverted = 0;       // cells with validity inverted
+  std::int64_t num_flat = 0;           // cells with validity flat
 
   // The values of metric `name`, or nullptr when the kind has no such metric.
   const std::vector<double>* of(std::string_view name) const;

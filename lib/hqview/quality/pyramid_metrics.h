@@ -9,7 +9,7 @@
 //     (0,1,2,4), (0,2,3,4), (0,1,3,4), (1,2,3,4), returned as 0 when that is
 //     <= 0 (an inverted pyramid scores 0, never negative) and folded above 1
 //     as 2 - x: an all-coincident pyramid gets -1.414e30; use
-//     cell_inverted() (cell_corner_jacobian.h) to tell inverted pyramids;
+//     pyramid_validity() (cell_corner_jacobian.h) to tell inverted pyramids;
 //   - jacobian stays signed; Verdict's ideal pyramid has equilateral
 //     triangular faces (apex height = base edge / sqrt(2)).
 // Units: volume and jacobian in model units cubed; the rest unitless.

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <limits>
 
-#include "hqview/quality/triangle_metrics.h"
 #include "hqview/quality/verdict_support.h"
 
 // Follows V_TetMetric.cpp of Verdict 1.4.5 (4-node tets), including where it
@@ -36,23 +35,29 @@ std::array<Vec3, 6> sides_of(const TetCorners& p) {
   return {p[1] - p[0], p[2] - p[1], p[0] - p[2], p[3] - p[0], p[3] - p[1], p[3] - p[2]};
 }
 
-std::array<Vec3, 6> scaled_sides(const TetCorners& p, double& size) {
-  size = char_size(p);
+// The sides divided by the characteristic size `size` (char_size(p), computed
+// once per tet by the callers).
+std::array<Vec3, 6> scaled_sides(const TetCorners& p, double size) {
   auto s = sides_of(p);
   for (Vec3& v : s) v = v / size;
   return s;
 }
 
+// Verdict's tri_area (triangle_area(), inlined here: the inradius of the 12
+// sub-tets of normalized_inradius calls it 48 times per tet).
+inline double face_area(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return clamp_signed(0.5 * norm(cross(b - a, c - a)));
+}
+
 double inradius_of(const TetCorners& p) {
-  const double a1 = triangle_area({p[0], p[1], p[2]});
-  const double a2 = triangle_area({p[0], p[3], p[1]});
-  const double a3 = triangle_area({p[0], p[2], p[3]});
-  const double a4 = triangle_area({p[1], p[3], p[2]});
+  const double a1 = face_area(p[0], p[1], p[2]);
+  const double a2 = face_area(p[0], p[3], p[1]);
+  const double a3 = face_area(p[0], p[2], p[3]);
+  const double a4 = face_area(p[1], p[3], p[2]);
   return 3 * tet_volume(p) / (a1 + a2 + a3 + a4);
 }
 
-double edge_ratio_of(const TetCorners& p) {
-  double size;
+double edge_ratio_of(const TetCorners& p, double size) {
   const auto v = scaled_sides(p, size);
   double m2 = squared_norm(v[0]), M2 = m2;
   for (int i = 1; i < 6; ++i) {
@@ -64,8 +69,7 @@ double edge_ratio_of(const TetCorners& p) {
   return fix_range(std::sqrt(M2 / m2));
 }
 
-double radius_ratio_of(const TetCorners& p) {
-  double size;
+double radius_ratio_of(const TetCorners& p, double size) {
   const auto s = scaled_sides(p, size);
   const Vec3 numerator = squared_norm(s[3]) * cross(s[2], s[0]) + squared_norm(s[2]) * cross(s[3], s[0]) +
                          squared_norm(s[0]) * cross(s[3], s[2]);
@@ -77,8 +81,7 @@ double radius_ratio_of(const TetCorners& p) {
   return fix_range(norm(numerator) * area_sum / (108 * volume * volume));
 }
 
-double aspect_ratio_of(const TetCorners& p) {
-  const double size = char_size(p);
+double aspect_ratio_of(const TetCorners& p, double size) {
   const Vec3 ab = (p[1] - p[0]) / size, ac = (p[2] - p[0]) / size, ad = (p[3] - p[0]) / size;
   const double det_tet = dot(ab, cross(ac, ad));
   if (std::fabs(det_tet) < kDblMin) return kDblMax;
@@ -97,8 +100,7 @@ double aspect_ratio_of(const TetCorners& p) {
   return fix_range(kSqrt6 / 12. * hm * (A + B + C + D) / std::fabs(det_tet));
 }
 
-double aspect_gamma_of(const TetCorners& p) {
-  double size;
+double aspect_gamma_of(const TetCorners& p, double size) {
   const auto s = scaled_sides(p, size);
   double volume = std::fabs(tet_volume(p));
   volume /= (size * size * size);
@@ -109,23 +111,37 @@ double aspect_gamma_of(const TetCorners& p) {
   return (srms * srms * srms) / (8.48528137423857 * volume);
 }
 
+// Angle extremes taken on the arguments of acos (acos is decreasing), so acos
+// runs once per extreme for the same values: an argument outside [-1, 1]
+// (or NaN) is a NaN angle, and Verdict's ternaries `m = m < a ? m : a`
+// replace a NaN on the left and keep one on the right.
+bool in_acos_domain(double c) { return c >= -1.0 && c <= 1.0; }
+
+template <std::size_t N>
+double ternary_min_angle_argument(const std::array<double, N>& c) {
+  double chosen = c[0];
+  for (std::size_t i = 1; i < N; ++i)
+    chosen = in_acos_domain(chosen) && in_acos_domain(c[i]) && chosen > c[i] ? chosen : c[i];
+  return chosen;
+}
+
+template <std::size_t N>
+double ternary_max_angle_argument(const std::array<double, N>& c) {
+  double chosen = c[0];
+  for (std::size_t i = 1; i < N; ++i)
+    chosen = in_acos_domain(chosen) && in_acos_domain(c[i]) && chosen < c[i] ? chosen : c[i];
+  return chosen;
+}
+
 double minimum_angle_of(const TetCorners& p) {
   const Vec3 ab = p[1] - p[0], ad = p[3] - p[0], bc = p[2] - p[1], cd = p[3] - p[2];
   const Vec3 abc = cross(ab, bc), abd = cross(ab, ad), acd = cross(ad, cd), bcd = cross(bc, cd);
   const double nabc = norm(abc), nabd = norm(abd), nacd = norm(acd), nbcd = norm(bcd);
-  double alpha = std::acos(dot(abc, abd) / (nabc * nabd));
-  const double beta = std::acos(dot(abc, acd) / (nabc * nacd));
-  const double gamma = std::acos(dot(abc, bcd) / (nabc * nbcd));
-  const double delta = std::acos(dot(abd, acd) / (nabd * nacd));
-  const double epsilon = std::acos(dot(abd, bcd) / (nabd * nbcd));
-  const double zeta = std::acos(dot(acd, bcd) / (nacd * nbcd));
-  // Verdict's ternaries: a NaN on the left is replaced, one on the right is not.
-  alpha = alpha < beta ? alpha : beta;
-  alpha = alpha < gamma ? alpha : gamma;
-  alpha = alpha < delta ? alpha : delta;
-  alpha = alpha < epsilon ? alpha : epsilon;
-  alpha = alpha < zeta ? alpha : zeta;
-  return fix_range(alpha * kToDegrees);
+  // The six dihedral angles' cosines, in Verdict's order (alpha ... zeta).
+  const std::array<double, 6> c = {dot(abc, abd) / (nabc * nabd), dot(abc, acd) / (nabc * nacd),
+                                   dot(abc, bcd) / (nabc * nbcd), dot(abd, acd) / (nabd * nacd),
+                                   dot(abd, bcd) / (nabd * nbcd), dot(acd, bcd) / (nacd * nbcd)};
+  return fix_range(std::acos(ternary_min_angle_argument(c)) * kToDegrees);
 }
 
 double collapse_ratio_of(const TetCorners& p) {
@@ -152,8 +168,7 @@ double collapse_ratio_of(const TetCorners& p) {
   return fix_range(smallest);
 }
 
-double condition_of(const TetCorners& p) {
-  const double size = char_size(p);
+double condition_of(const TetCorners& p, double size) {
   const Vec3 side0 = (p[1] - p[0]) / size, side2 = (p[0] - p[2]) / size, side3 = (p[3] - p[0]) / size;
   // The corner frame mapped to the regular tet.
   const Vec3 c1 = side0;
@@ -167,8 +182,7 @@ double condition_of(const TetCorners& p) {
   return std::sqrt(term1) * std::sqrt(term2) / (3.0 * det);
 }
 
-double mean_ratio_of(const TetCorners& p) {
-  double size;
+double mean_ratio_of(const TetCorners& p, double size) {
   const auto s = scaled_sides(p, size);
   // Verdict's calculate_tet_volume_using_sides(side0, side2, side3).
   const double volume = dot(s[3], cross(s[2], s[0])) / 6.0;
@@ -219,8 +233,7 @@ double normalized_inradius_of(const TetCorners& p) {
   return fix_range(std::fmin(a, b));
 }
 
-double shape_of(const TetCorners& p) {
-  const double size = char_size(p);
+double shape_of(const TetCorners& p, double size) {
   const Vec3 e0 = (p[1] - p[0]) / size, e1 = (p[0] - p[2]) / size, e2 = (p[3] - p[0]) / size;
   const double jacobian = dot(e2, cross(e1, e0));
   if (jacobian < kDblMin) return 0.0;
@@ -265,32 +278,27 @@ double equiangle_skew_of(const TetCorners& p) {
   for (Vec3* v : {&ab, &ac, &ad, &bc, &bd, &cd}) normalize(*v);
   Vec3 abc = cross(bc, ab), abd = cross(ab, ad), acd = cross(cd, ad), bcd = cross(bc, cd);
   for (Vec3* v : {&abc, &abd, &acd, &bcd}) normalize(*v);
-  // Dihedral angles.
-  const double dihedral[6] = {std::acos(-dot(abc, abd)), std::acos(-dot(abc, acd)), std::acos(-dot(abc, bcd)),
-                              std::acos(-dot(abd, acd)), std::acos(-dot(abd, bcd)), std::acos(-dot(acd, bcd))};
-  double min_angle = dihedral[0], max_angle = dihedral[0];
-  for (int i = 1; i < 6; ++i) {
-    min_angle = min_angle < dihedral[i] ? min_angle : dihedral[i];
-    max_angle = max_angle > dihedral[i] ? max_angle : dihedral[i];
-  }
-  min_angle *= kToDegrees;
-  max_angle *= kToDegrees;
+  // Dihedral angles (the acos arguments, Verdict's order).
+  const std::array<double, 6> dihedral = {-dot(abc, abd), -dot(abc, acd), -dot(abc, bcd),
+                                          -dot(abd, acd), -dot(abd, bcd), -dot(acd, bcd)};
+  double min_angle = std::acos(ternary_min_angle_argument(dihedral)) * kToDegrees;
+  double max_angle = std::acos(ternary_max_angle_argument(dihedral)) * kToDegrees;
   const double theta = std::acos(1 / 3.0) * kToDegrees;
   const double dihedral_skew_max = (max_angle - theta) / (180 - theta);
   const double dihedral_skew_min = (theta - min_angle) / theta;
-  // Face angles.
-  const double face[12] = {std::acos(-dot(ab, bc)), std::acos(dot(bc, ac)),  std::acos(dot(ac, ab)),
-                           std::acos(-dot(ab, bd)), std::acos(dot(bd, ad)),  std::acos(dot(ad, ab)),
-                           std::acos(-dot(bc, cd)), std::acos(dot(cd, bd)),  std::acos(dot(bd, bc)),
-                           std::acos(dot(ad, cd)),  std::acos(-dot(cd, ac)), std::acos(dot(ac, ad))};
-  min_angle = 360.0;
-  max_angle = 0.0;
-  for (double a : face) {
-    if (a < min_angle) min_angle = a;
-    if (a > max_angle) max_angle = a;
+  // Face angles: Verdict starts from 360 and 0 (radians) and skips NaNs.
+  const double face[12] = {-dot(ab, bc), dot(bc, ac), dot(ac, ab), -dot(ab, bd), dot(bd, ad),  dot(ad, ab),
+                           -dot(bc, cd), dot(cd, bd), dot(bd, bc), dot(ad, cd),  -dot(cd, ac), dot(ac, ad)};
+  bool any = false;
+  double largest_cosine = 0, smallest_cosine = 0;
+  for (double c : face) {
+    if (!in_acos_domain(c)) continue;
+    largest_cosine = !any || c > largest_cosine ? c : largest_cosine;
+    smallest_cosine = !any || c < smallest_cosine ? c : smallest_cosine;
+    any = true;
   }
-  max_angle *= kToDegrees;
-  min_angle *= kToDegrees;
+  min_angle = (any ? std::acos(largest_cosine) : 360.0) * kToDegrees;
+  max_angle = (any ? std::acos(smallest_cosine) : 0.0) * kToDegrees;
   const double skew_max = (max_angle - 60.0) / 120.0;
   const double skew_min = (60.0 - min_angle) / 60.0;
   double skew = dihedral_skew_min;
@@ -316,6 +324,40 @@ double relative_size_squared_of(const TetCorners& p, double average_volume) {
   return size * size;
 }
 
+double scaled_jacobian_with_size(const TetCorners& p, double size) {
+  const auto s = scaled_sides(p, size);
+  const double jacobian = dot(s[3], cross(s[2], s[0]));
+  double l2[6];
+  for (int i = 0; i < 6; ++i) l2[i] = squared_norm(s[i]);
+  // The edge-length products at the 4 corners; the largest normalises.
+  const double product[4] = {l2[0] * l2[2] * l2[3], l2[0] * l2[1] * l2[4], l2[1] * l2[2] * l2[5],
+                             l2[3] * l2[4] * l2[5]};
+  int which = 0;
+  for (int i = 1; i < 4; ++i)
+    if (product[i] > product[which]) which = i;
+  double length_product = std::sqrt(product[which]);
+  if (length_product < std::fabs(jacobian)) length_product = std::fabs(jacobian);
+  if (length_product < kDblMin) return kDblMax;
+  return kSqrt2 * jacobian / length_product;
+}
+
+double aspect_frobenius_with_size(const TetCorners& p, double size) {
+  const Vec3 u = (p[1] - p[0]) / size, v = (p[2] - p[0]) / size, w = (p[3] - p[0]) / size;
+  double denominator = dot(u, cross(v, w));
+  denominator *= denominator;
+  denominator *= 2.;
+  denominator = 3. * std::pow(denominator, 1.0 / 3.0);
+  if (denominator < kDblMin) return kDblMax;
+  double numerator = dot(u, u);
+  numerator += dot(v, v);
+  numerator += dot(w, w);
+  numerator *= 1.5;
+  numerator -= dot(v, u);
+  numerator -= dot(w, u);
+  numerator -= dot(w, v);
+  return fix_range(numerator / denominator);
+}
+
 }  // namespace
 
 const CellMetricInfo& tet_metric_info(TetMetric m) { return kInfo[static_cast<std::size_t>(m)]; }
@@ -336,57 +378,27 @@ double tet_jacobian(const TetCorners& p) {
   return dot(side3, cross(side2, side0));
 }
 
-double tet_scaled_jacobian(const TetCorners& p) {
-  double size;
-  const auto s = scaled_sides(p, size);
-  const double jacobian = dot(s[3], cross(s[2], s[0]));
-  double l2[6];
-  for (int i = 0; i < 6; ++i) l2[i] = squared_norm(s[i]);
-  // The edge-length products at the 4 corners; the largest normalises.
-  const double product[4] = {l2[0] * l2[2] * l2[3], l2[0] * l2[1] * l2[4], l2[1] * l2[2] * l2[5],
-                             l2[3] * l2[4] * l2[5]};
-  int which = 0;
-  for (int i = 1; i < 4; ++i)
-    if (product[i] > product[which]) which = i;
-  double length_product = std::sqrt(product[which]);
-  if (length_product < std::fabs(jacobian)) length_product = std::fabs(jacobian);
-  if (length_product < kDblMin) return kDblMax;
-  return kSqrt2 * jacobian / length_product;
-}
+double tet_scaled_jacobian(const TetCorners& p) { return scaled_jacobian_with_size(p, char_size(p)); }
+double tet_aspect_frobenius(const TetCorners& p) { return aspect_frobenius_with_size(p, char_size(p)); }
 
-double tet_aspect_frobenius(const TetCorners& p) {
-  const double size = char_size(p);
-  const Vec3 u = (p[1] - p[0]) / size, v = (p[2] - p[0]) / size, w = (p[3] - p[0]) / size;
-  double denominator = dot(u, cross(v, w));
-  denominator *= denominator;
-  denominator *= 2.;
-  denominator = 3. * std::pow(denominator, 1.0 / 3.0);
-  if (denominator < kDblMin) return kDblMax;
-  double numerator = dot(u, u);
-  numerator += dot(v, v);
-  numerator += dot(w, w);
-  numerator *= 1.5;
-  numerator -= dot(v, u);
-  numerator -= dot(w, u);
-  numerator -= dot(w, v);
-  return fix_range(numerator / denominator);
-}
+namespace {
 
-double tet_metric(TetMetric m, const TetCorners& p, double average_volume) {
+// One metric, given the tet's characteristic size (char_size(p)).
+double metric_with_size(TetMetric m, const TetCorners& p, double average_volume, double size) {
   using M = TetMetric;
   switch (m) {
     case M::inradius:
       return inradius_of(p);
     case M::edge_ratio:
-      return edge_ratio_of(p);
+      return edge_ratio_of(p, size);
     case M::radius_ratio:
-      return radius_ratio_of(p);
+      return radius_ratio_of(p, size);
     case M::aspect_ratio:
-      return aspect_ratio_of(p);
+      return aspect_ratio_of(p, size);
     case M::aspect_gamma:
-      return aspect_gamma_of(p);
+      return aspect_gamma_of(p, size);
     case M::aspect_frobenius:
-      return tet_aspect_frobenius(p);
+      return aspect_frobenius_with_size(p, size);
     case M::minimum_angle:
       return minimum_angle_of(p);
     case M::collapse_ratio:
@@ -394,17 +406,17 @@ double tet_metric(TetMetric m, const TetCorners& p, double average_volume) {
     case M::volume:
       return tet_volume(p);
     case M::condition:
-      return condition_of(p);
+      return condition_of(p, size);
     case M::jacobian:
       return tet_jacobian(p);
     case M::scaled_jacobian:
-      return tet_scaled_jacobian(p);
+      return scaled_jacobian_with_size(p, size);
     case M::mean_ratio:
-      return mean_ratio_of(p);
+      return mean_ratio_of(p, size);
     case M::normalized_inradius:
       return normalized_inradius_of(p);
     case M::shape:
-      return shape_of(p);
+      return shape_of(p, size);
     case M::distortion:
       return 1.0;  // every linear tet (Verdict's tet_distortion for 4 nodes)
     case M::equivolume_skew:
@@ -416,15 +428,27 @@ double tet_metric(TetMetric m, const TetCorners& p, double average_volume) {
     case M::relative_size_squared:
       return relative_size_squared_of(p, average_volume);
     case M::shape_and_size:
-      return shape_of(p) * relative_size_squared_of(p, average_volume);
+      return shape_of(p, size) * relative_size_squared_of(p, average_volume);
   }
   return std::numeric_limits<double>::quiet_NaN();
 }
 
+}  // namespace
+
+double tet_metric(TetMetric m, const TetCorners& p, double average_volume) {
+  return metric_with_size(m, p, average_volume, char_size(p));
+}
+
 TetMetricValues tet_metrics(const TetCorners& p, double average_volume) {
+  const double size = char_size(p);  // shared by every scaled metric
   TetMetricValues out;
-  for (int m = 0; m < kNumTetMetrics; ++m)
-    out[static_cast<std::size_t>(m)] = tet_metric(static_cast<TetMetric>(m), p, average_volume);
+  for (int m = 0; m < kNumTetMetrics; ++m) {
+    const auto metric = static_cast<TetMetric>(m);
+    if (metric == TetMetric::shape_and_size) continue;  // from shape and relative_size_squared below
+    out[static_cast<std::size_t>(m)] = metric_with_size(metric, p, average_volume, size);
+  }
+  out[static_cast<std::size_t>(TetMetric::shape_and_size)] =
+      out[static_cast<std::size_t>(TetMetric::shape)] * out[static_cast<std::size_t>(TetMetric::relative_size_squared)];
   return out;
 }
 

@@ -30,7 +30,9 @@ inline constexpr double kSqrt6 = 2.449489742783178098197284;
 
 // Verdict's closing clamp of most metrics: min(v, 1e30) when v > 0, else
 // max(v, -1e30) (a NaN becomes -1e30, as fmax(NaN, -1e30) does).
-inline double clamp_signed(double v) { return v > 0 ? std::fmin(v, kDblMax) : std::fmax(v, -kDblMax); }
+// Written with comparisons (the same values as fmin/fmax here, v > 0 being
+// no NaN) so that it inlines instead of calling libm.
+inline double clamp_signed(double v) { return v > 0 ? (v < kDblMax ? v : kDblMax) : (v > -kDblMax ? v : -kDblMax); }
 
 // Verdict's fix_range (tet metrics): NaN -> +1e30, then into [-1e30, 1e30].
 inline double fix_range(double v) {
