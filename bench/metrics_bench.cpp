@@ -5,6 +5,14 @@
 // VTK's vtkMeshQuality is driven (one metric per filter execution, after a
 // pass for the mean volume when a size metric is asked for).
 //
+// TetMetricsSplitRefined: every Verdict tet metric, corner scaled Jacobian
+// and orientation (cell_metric_field.h) of the refined mesh split into 6
+// tets per hex (2,181,120 tets, Kuhn's split along each hex's 0-6
+// diagonal), on 1 and 2 threads, against the hex metric field of the same
+// 363,520 hexes on 2 threads in the same run (issue 46: a tet mesh made from
+// the hexes should take at most 3x the hex time); items are source hexes,
+// so the ratio column is the time ratio.
+//
 // AnnotatedVtuRefined: writing data/annotated.vtu of the refined mesh (every
 // metric, the quality field) to a file, against writing cells.csv and
 // vertices.csv of the same model.
@@ -17,6 +25,7 @@
 
 #include "bench_data.h"
 #include "hqview/io/mesh_reader.h"
+#include "hqview/quality/cell_metric_field.h"
 #include "hqview/quality/hex_metric_field.h"
 #include "hqview/report/report_csv.h"
 #include "hqview/report/report_vtu.h"
@@ -103,6 +112,36 @@ void BM_AnnotatedVtuRefined_BaselineCsv(benchmark::State& state) {
   });
 }
 
+// Six positively oriented tets per hex (VTK corners), along the 0-6 diagonal.
+const std::vector<std::array<hq::Index, 4>>& split_tets() {
+  static const std::vector<std::array<hq::Index, 4>> tets = [] {
+    static constexpr int kKuhn[6][4] = {{0, 1, 2, 6}, {0, 2, 3, 6}, {0, 3, 7, 6},
+                                        {0, 7, 4, 6}, {0, 4, 5, 6}, {0, 5, 1, 6}};
+    std::vector<std::array<hq::Index, 4>> out;
+    out.reserve(6 * refined_mesh().hexes.size());
+    for (const auto& h : refined_mesh().hexes)
+      for (const auto& t : kKuhn) out.push_back({h[t[0]], h[t[1]], h[t[2]], h[t[3]]});
+    return out;
+  }();
+  return tets;
+}
+
+void BM_TetMetricsSplitRefined_HQView(benchmark::State& state) {
+  const auto& tets = split_tets();
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(0)));
+  for (auto _ : state) {
+    const hq::CellBlockMetricField field = hq::compute_tet_block_metrics(refined_mesh().points, tets);
+    benchmark::DoNotOptimize(field.values[0].data());
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(refined_mesh().hexes.size()));
+  state.counters["tets"] = static_cast<double>(tets.size());
+}
+
+void BM_TetMetricsSplitRefined_BaselineHexField(benchmark::State& state) {
+  state.range(0);  // (2 threads, as the HQView/2 row it is compared with)
+  run_hqview(state, refined_mesh());
+}
+
 void BM_HexMetrics_HQView(benchmark::State& state) { run_hqview(state, mesh()); }
 void BM_HexMetrics_BaselinePerMetric(benchmark::State& state) { run_baseline(state, mesh()); }
 void BM_HexMetricsRefined_HQView(benchmark::State& state) { run_hqview(state, refined_mesh()); }
@@ -112,6 +151,8 @@ BENCHMARK(BM_HexMetrics_HQView)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::
 BENCHMARK(BM_HexMetrics_BaselinePerMetric)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_HexMetricsRefined_HQView)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_HexMetricsRefined_BaselinePerMetric)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TetMetricsSplitRefined_HQView)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TetMetricsSplitRefined_BaselineHexField)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_AnnotatedVtuRefined_HQView)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_AnnotatedVtuRefined_BaselineCsv)->UseRealTime()->Unit(benchmark::kMillisecond);
 

@@ -12,6 +12,10 @@ namespace hq::test {
 // The parsed oracle, or null when ../shared/data is absent.
 nlohmann::json load_verdict_oracle();
 
+// ../shared/data/verdict/cell_oracle_cases.json (quads, triangles, tets,
+// wedges, pyramids), or null when ../shared/data is absent.
+nlohmann::json load_cell_oracle();
+
 // The 8 corners of one oracle case.
 std::array<Vec3, 8> oracle_corners(const nlohmann::json& oracle_case);
 

@@ -7,6 +7,7 @@
 
 #include "hqview/core/error.h"
 #include "hqview/core/hex_topology.h"
+#include "hqview/quality/triangle_metrics.h"
 
 // Operation order follows Verdict where it decides the last digits (sums of
 // more than two terms, the raw-coordinate formulas); elsewhere the kernels
@@ -507,33 +508,6 @@ double nodal_jacobian_ratio_of(const HexCorners& p) {
 // ---------------------------------------------------------------------------
 // Equiangle skew: the largest deviation of a face angle from 90 degrees.
 
-// Verdict's VerdictVector::interior_angle, in degrees.
-double interior_angle(const Vec3& u, const Vec3& v) {
-  const double l1 = norm(u), l2 = norm(v);
-  double cosine = 0.0, radians = 0.0;
-  if (l1 > 0 && l2 > 0) cosine = dot(u, v) / (l1 * l2);
-  if (cosine > 1.0 && cosine < 1.0001)
-    radians = std::acos(1.0);
-  else if (cosine < -1.0 && cosine > -1.0001)
-    radians = std::acos(-1.0);
-  else if (cosine >= -1.0 && cosine <= 1.0)
-    radians = std::acos(cosine);
-  return (radians * 180.) / kVerdictPi;
-}
-
-// Verdict's tri_minimum_angle / tri_maximum_angle: the angle opposite the
-// shortest (longest) side, first side on ties.
-double triangle_extreme_angle(const Vec3& q0, const Vec3& q1, const Vec3& q2, bool largest) {
-  const Vec3 s0 = q1 - q0, s1 = q2 - q1, s2 = q2 - q0, s3 = -s1;
-  const double l[3] = {squared_norm(s0), squared_norm(s1), squared_norm(s2)};
-  if (l[0] == 0.0 || l[1] == 0.0 || l[2] == 0.0) return 0.0;
-  int side = 0;
-  if (largest ? l[1] > l[0] : l[1] < l[0]) side = 1;
-  if (largest ? l[2] > l[side] : l[2] < l[side]) side = 2;
-  const double angle = side == 0 ? interior_angle(s2, s1) : side == 1 ? interior_angle(s0, s2) : interior_angle(s0, s3);
-  return clamp_sentinel(angle);
-}
-
 double degrees(double radians) { return radians * 180.0 / kVerdictPi; }
 
 // Verdict's hex_equiangle_skew: over the 6 faces (V_QuadMetric's
@@ -564,7 +538,7 @@ double equiangle_skew_of(const HexCorners& p, const std::array<double, 12>& edge
     const Vec3& q3 = p[kFaces[f][3]];
     // A quad with its last two corners equal is Verdict's triangle.
     if (q3 == q2) {
-      fold(triangle_extreme_angle(q0, q1, q2, false), triangle_extreme_angle(q0, q1, q2, true));
+      fold(triangle_minimum_angle({q0, q1, q2}), triangle_maximum_angle({q0, q1, q2}));
       continue;
     }
     const Vec3 e[4] = {q1 - q0, q2 - q1, q3 - q2, q0 - q3};

@@ -1,0 +1,159 @@
+// The per-block metric field of tets, wedges, pyramids, quads and triangles
+// on meshes built by hand (a unit cube split into 6 tets, 2 wedges or 6
+// pyramids; a planar quad grid and its triangulation): every value equals
+// the per-cell kernel with the block's mean size, the mean and the inverted
+// counts are the hand-computed ones, and -j1 equals -j2 bit for bit.
+
+#include "hqview/quality/cell_metric_field.h"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include "hqview/quality/pyramid_metrics.h"
+#include "hqview/quality/quad_metrics.h"
+#include "hqview/quality/tet_metrics.h"
+#include "hqview/quality/triangle_metrics.h"
+#include "hqview/quality/wedge_metrics.h"
+
+namespace hq {
+namespace {
+
+// The unit cube's corners in VTK_HEXAHEDRON order, then its centre (8).
+const std::vector<Vec3> kCube = {Vec3{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},      {0, 0, 1},
+                                 {1, 0, 1},     {1, 1, 1}, {0, 1, 1}, {0.5, 0.5, 0.5}};
+
+template <std::size_t N>
+std::array<Vec3, N> corners(const std::vector<Vec3>& points, const std::array<Index, N>& cell) {
+  std::array<Vec3, N> p;
+  for (std::size_t i = 0; i < N; ++i) p[i] = points[static_cast<std::size_t>(cell[i])];
+  return p;
+}
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+TEST(CellMetricField, CubeTetsEqualTheKernelsWithTheBlockMean) {
+  // Kuhn's 6 tets along the diagonal 0-6 (each det 1, volume 1/6) and one
+  // mirrored copy of the first.
+  const std::vector<std::array<Index, 4>> tets = {{0, 1, 2, 6}, {0, 2, 3, 6}, {0, 3, 7, 6}, {0, 7, 4, 6},
+                                                  {0, 4, 5, 6}, {0, 5, 1, 6}, {0, 2, 1, 6}};
+  const auto field = compute_tet_block_metrics(kCube, tets);
+  EXPECT_EQ(field.kind, CellKind::tet);
+  EXPECT_EQ(field.count, 7);
+  EXPECT_NEAR(field.average_size, (6.0 / 6 - 1.0 / 6) / 7, 1e-16);
+  EXPECT_EQ(field.num_inverted, 1);
+  EXPECT_EQ(field.validity[6], CellValidity::inverted);
+  ASSERT_EQ(field.names.size(), static_cast<std::size_t>(kNumTetMetrics));
+  for (std::size_t c = 0; c < tets.size(); ++c) {
+    const auto expected = tet_metrics(corners(kCube, tets[c]), field.average_size);
+    for (int m = 0; m < kNumTetMetrics; ++m) {
+      const double v = field.values[static_cast<std::size_t>(m)][c];
+      EXPECT_TRUE(v == expected[m] || (std::isnan(v) && std::isnan(expected[m]))) << field.names[m];
+    }
+    const auto k = tet_corner_scaled_jacobians(corners(kCube, tets[c]));
+    for (int i = 0; i < 4; ++i) EXPECT_EQ(field.corner_scaled_jacobian[c * 4 + i], k.value[i]);
+  }
+  EXPECT_NEAR((*field.of("volume"))[0], 1.0 / 6, 1e-16);
+  EXPECT_EQ(field.of("hex_only_metric"), nullptr);
+  // Relative size against the mean 5/42: min(r, 1/r)^2 with r = (1/6)/(5/42).
+  const double r = (1.0 / 6) / ((6.0 / 6 - 1.0 / 6) / 7);
+  EXPECT_NEAR((*field.of("relative_size_squared"))[0], 1 / (r * r), 1e-12);
+
+  const auto summary = summarize_cell_block(field);
+  ASSERT_EQ(summary.size(), static_cast<std::size_t>(kNumTetMetrics) + 1);
+  EXPECT_EQ(summary.back().name, "corner_scaled_jacobian");
+  EXPECT_EQ(summary.back().stats.count, 28);
+  EXPECT_EQ(summary.back().stats.num_inverted, 4);  // the mirrored tet's 4 corners
+  for (const auto& s : summary)
+    if (s.name == "scaled_jacobian") {
+      EXPECT_EQ(s.stats.count, 7);
+      EXPECT_EQ(s.stats.num_inverted, 1);
+      EXPECT_EQ(s.stats.histogram.edges.front(), -1.0);
+    }
+}
+
+TEST(CellMetricField, CubeWedgesAndPyramids) {
+  // Two wedges in VTK order (normal of the first triangle away from the second).
+  const std::vector<std::array<Index, 6>> wedges = {{0, 2, 1, 4, 6, 5}, {0, 3, 2, 4, 7, 6}};
+  const auto w = compute_wedge_block_metrics(kCube, wedges);
+  EXPECT_EQ(w.num_inverted, 0);
+  EXPECT_NEAR(w.average_size, 0.5, 1e-16);
+  for (double v : *w.of("scaled_jacobian")) EXPECT_NEAR(v, std::sqrt(2.0 / 3.0), 1e-15);  // 2/sqrt(3) sin 45
+  EXPECT_EQ(w.corners_per_cell, 6);
+  // Six pyramids from the cube's faces to its centre, base counter-clockwise
+  // seen from the apex; the last with its apex pushed through its base.
+  std::vector<Vec3> points = kCube;
+  points.push_back({0.5, 0.5, -0.5});  // 9: below the bottom face
+  const std::vector<std::array<Index, 5>> pyramids = {{1, 2, 3, 0, 8}, {7, 6, 5, 4, 8}, {4, 5, 1, 0, 8},
+                                                      {6, 7, 3, 2, 8}, {5, 6, 2, 1, 8}, {7, 4, 0, 3, 8},
+                                                      {1, 2, 3, 0, 9}};
+  const auto p = compute_pyramid_block_metrics(points, pyramids);
+  EXPECT_EQ(p.num_inverted, 1);
+  EXPECT_EQ(p.validity[6], CellValidity::inverted);
+  double sum = 0;
+  for (int c = 0; c < 6; ++c) sum += (*p.of("volume"))[static_cast<std::size_t>(c)];
+  EXPECT_NEAR(sum, 1.0, 1e-15);
+  EXPECT_EQ((*p.of("scaled_jacobian"))[6], 0.0);  // Verdict: 0, never negative
+  EXPECT_EQ(p.corners_per_cell, 4);
+  for (int i = 0; i < 4; ++i) EXPECT_LT(p.corner_scaled_jacobian[6 * 4 + static_cast<std::size_t>(i)], 0.0);
+}
+
+TEST(CellMetricField, PlanarQuadGridAndItsTriangles) {
+  std::vector<Vec3> points;
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) points.push_back({double(i), double(j), 0.0});
+  auto id = [](int i, int j) { return static_cast<Index>(j * 4 + i); };
+  std::vector<std::array<Index, 4>> quads;
+  std::vector<std::array<Index, 3>> triangles;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) {
+      quads.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+      triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  std::swap(quads[4][1], quads[4][3]);  // the centre quad reversed
+  std::swap(triangles[0][1], triangles[0][2]);
+  const Vec3 up{0, 0, 1};
+  const auto own = compute_quad_block_metrics(points, quads);
+  const auto planar = compute_quad_block_metrics(points, quads, up);
+  EXPECT_EQ(own.num_inverted, 0);  // no orientation of its own
+  EXPECT_EQ(planar.num_inverted, 1);
+  EXPECT_EQ(planar.validity[4], CellValidity::inverted);
+  EXPECT_NEAR(own.average_size, 1.0, 1e-16);
+  EXPECT_EQ(*own.of("scaled_jacobian"), *planar.of("scaled_jacobian"));  // Verdict's value either way
+  const auto t = compute_triangle_block_metrics(points, triangles, up);
+  EXPECT_EQ(t.num_inverted, 1);
+  EXPECT_NEAR(t.average_size, 0.5, 1e-16);
+  EXPECT_EQ(compute_triangle_block_metrics(points, triangles).num_inverted, 0);
+}
+
+TEST(CellMetricField, SameBitsForAnyThreadCount) {
+  // 5000 jittered tets (enough for several TBB tasks).
+  std::mt19937 rng(4646);
+  std::uniform_real_distribution<double> u(-0.2, 0.2);
+  std::vector<Vec3> points;
+  std::vector<std::array<Index, 4>> tets;
+  for (int c = 0; c < 5000; ++c) {
+    const Index b = static_cast<Index>(points.size());
+    for (const Vec3& v : {Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}})
+      points.push_back(v + Vec3{u(rng) + c, u(rng), u(rng)});
+    tets.push_back({b, b + 1, b + 2, b + 3});
+  }
+  auto run = [&](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+    return compute_tet_block_metrics(points, tets);
+  };
+  const auto one = run(1), two = run(2);
+  EXPECT_EQ(std::memcmp(&one.average_size, &two.average_size, sizeof(double)), 0);
+  for (std::size_t m = 0; m < one.values.size(); ++m) EXPECT_TRUE(same_bits(one.values[m], two.values[m]));
+  EXPECT_TRUE(same_bits(one.corner_scaled_jacobian, two.corner_scaled_jacobian));
+  EXPECT_EQ(one.validity, two.validity);
+}
+
+}  // namespace
+}  // namespace hq
