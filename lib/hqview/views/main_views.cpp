@@ -600,6 +600,8 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
            d.y <= layout.view.y + layout.view.height;
   };
   MainViewLabels result;
+  result.camera = camera;
+  result.view = layout.view;
   // Obstacles: the glyphs (the 200 largest on screen: under the severity
   // rule the first 200 ranks) and the arrow fans.
   constexpr std::size_t kGlyphObstacles = 200;
@@ -670,13 +672,13 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
   all_obstacles.insert(all_obstacles.end(), fans.begin(), fans.end());
   std::vector<ScreenDisc> worst_only;
   if (result.worst_glyph.radius > 0.0) worst_only.push_back(result.worst_glyph);
-  std::vector<PixelRect> taken;
+  std::vector<PlacedLabel> earlier;
   for (MainViewLabel& label : order) {
     const int size = label.kind == MainViewLabel::Kind::cluster ? cluster_label_size(style) : marker_label_size(style);
     const LabelRequest request[] = {label_request(label.text, size, label.anchor, style)};
-    std::optional<PlacedLabel> placed = place_labels(request, all_obstacles, taken, options)[0];
+    std::optional<PlacedLabel> placed = place_labels(request, all_obstacles, {}, options, earlier)[0];
     if (!placed && label.kind == MainViewLabel::Kind::marker)
-      placed = place_labels(request, worst_only, taken, options)[0];
+      placed = place_labels(request, worst_only, {}, options, earlier)[0];
     if (!placed && label.kind == MainViewLabel::Kind::marker) {
       // No free place in the whole view: at the anchor's right, clamped to the view.
       PixelRect box{static_cast<int>(std::lround(label.anchor.x + label.anchor.radius)),
@@ -690,18 +692,8 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
       ++result.omitted_clusters;
       continue;
     }
-    // A label nearer to another glyph or fan than to its own anchor would
-    // read as that one's: it gets a leader line too.
-    if (!placed->has_leader) {
-      const double own = disc_box_gap(label.anchor, placed->box);
-      auto nearer = [&](const ScreenDisc& d) {
-        const bool is_own = d.x == label.anchor.x && d.y == label.anchor.y;
-        return !is_own && disc_box_gap(d, placed->box) < own;
-      };
-      if (std::any_of(all_obstacles.begin(), all_obstacles.end(), nearer)) *placed = with_leader(label.anchor, placed->box);
-    }
     label.placement = *placed;
-    taken.push_back(placed->box);
+    earlier.push_back(*placed);
     result.labels.push_back(label);
   }
   return result;

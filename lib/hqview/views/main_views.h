@@ -157,6 +157,8 @@ struct MainViewLabels {
   std::vector<MainViewLabel> labels;
   ScreenDisc worst_glyph;      // cluster #0 on screen (radius 0 without glyphs)
   Index omitted_clusters = 0;  // cluster labels with no free place (left out)
+  Camera camera;               // the camera and the figure's 3D area they were laid out for
+  PixelRect view;
 };
 
 // Where view A's labels go (pure; render_main_view draws them): one count
@@ -167,8 +169,10 @@ struct MainViewLabels {
 // first, then the marker groups (largest count first), then clusters #1 ..;
 // none overlaps another label, a glyph disc of the 200 largest clusters on
 // screen, or an arrow fan (its own too); a label farther than 10 pixels (at
-// 1200 px height) from its anchor, or nearer to another glyph disc or fan
-// than to its anchor, has a leader line. A marker label's anchor
+// 1200 px height) from its anchor, or with another glyph disc or fan within
+// its anchor's gap + 10 pixels, has a leader line; a label sits beside
+// another glyph or fan only with a leader, and leader lines cross no other
+// leader, label or glyph, when such a place exists (place_labels). A marker label's anchor
 // is its group's position (a 3-pixel disc at the fans' centre, where the
 // arrows point), so it sits just outside its own fan with a leader line to
 // the centre, never reading as the label of a neighbouring fan; it wears the
