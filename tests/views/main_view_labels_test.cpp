@@ -106,6 +106,28 @@ std::vector<ScreenDisc> glyph_discs(const Scene& scene, const MainViewLabels& la
   return discs;
 }
 
+// Glyph sizes in the scene (issue 44): the grey glyphs (spheres[0]) and the
+// coloured ones (spheres[1]) are in rank order; their radii on screen never
+// grow with the rank (a worse cluster is never drawn smaller), #0 is at
+// least kWorstGlyphMinPixels (24 px at 1200 px height) and the largest, and
+// no grey glyph is drawn bigger than 0.6 of the smallest coloured one.
+void expect_sizes_by_severity(const Scene& scene, const std::vector<ScreenDisc>& discs, const MainViewLabels& labels) {
+  ASSERT_EQ(scene.spheres.size(), 2u);
+  const std::size_t grey = scene.spheres[0].centers.size(), coloured = scene.spheres[1].centers.size();
+  ASSERT_EQ(grey + coloured, discs.size());
+  const auto radius = [&](std::size_t i) { return discs[i].radius; };
+  for (std::size_t i = 1; i < grey; ++i) EXPECT_LE(radius(i), radius(i - 1) * (1 + 1e-9) + 1e-9) << "grey " << i;
+  for (std::size_t i = grey + 1; i < discs.size(); ++i)
+    EXPECT_LE(radius(i), radius(i - 1) * (1 + 1e-9) + 1e-9) << "coloured " << i - grey;
+  if (coloured == 0) return;
+  const double worst = radius(grey);  // cluster #0
+  EXPECT_GE(worst, 24.0 - 0.01);
+  EXPECT_NEAR(labels.worst_glyph.radius, worst, 0.01);
+  for (std::size_t i = 0; i < discs.size(); ++i) EXPECT_LE(radius(i), worst * (1 + 1e-9)) << i;
+  for (std::size_t i = 0; i < grey; ++i)
+    EXPECT_LE(radius(i), 0.6 * radius(discs.size() - 1) * (1 + 1e-6)) << "grey " << i << " as big as a coloured glyph";
+}
+
 void expect_clear_views(const Case& c, const char* name, bool expect_findings = true) {
   const MainViewOptions options;  // 1600 x 1200
   Index findings[2] = {0, 0};  // coincident vertices, intersecting pairs
@@ -126,6 +148,7 @@ void expect_clear_views(const Case& c, const char* name, bool expect_findings = 
     ASSERT_FALSE(labels.labels.empty());
     const std::vector<ScreenDisc> discs = glyph_discs(scene, labels);
     EXPECT_EQ(discs.size(), c.glyphs.clusters.size());
+    expect_sizes_by_severity(scene, discs, labels);
     for (const MainViewLabel& l : labels.labels) {
       const PixelRect& b = l.placement.box;
       const double own = disc_box_gap(l.anchor, b);

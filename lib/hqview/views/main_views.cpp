@@ -29,6 +29,29 @@ double units_per_pixel(const Camera& camera, double depth, int view_height) {
   return height / std::max(1, view_height);
 }
 
+}  // namespace
+
+double displayed_glyph_scale(const GlyphResult& glyphs, const Camera& camera, int view_height, double pixel_scale) {
+  if (glyphs.clusters.empty() || !(glyphs.clusters[0].radius > 0.0)) return 1.0;
+  const AggregatedGlyph& worst = glyphs.clusters[0];
+  const double depth = std::max(dot(worst.position - camera.eye, forward_of(camera)), 1e-12);
+  const double pixels = worst.radius / units_per_pixel(camera, depth, view_height);
+  return std::max(1.0, kWorstGlyphMinPixels * pixel_scale / pixels);
+}
+
+std::vector<double> displayed_glyph_radii(const GlyphResult& glyphs, double scale) {
+  const Rgba8 neutral = to_rgba8(neutral_cluster_color());
+  std::vector<double> radii;
+  radii.reserve(glyphs.clusters.size());
+  for (const AggregatedGlyph& g : glyphs.clusters) {
+    const bool is_grey = to_rgba8(cluster_color(g.id, glyphs.options.top_clusters)) == neutral;
+    radii.push_back(g.radius * scale * (is_grey ? kGreyGlyphFactor : 1.0));
+  }
+  return radii;
+}
+
+namespace {
+
 // A line set of the given edges, vertices renumbered compactly; colour per edge.
 LineSet edge_lines(const HexMesh& mesh, const Vec3& origin, const std::vector<Edge>& edges,
                    const std::vector<Rgba8>& edge_colors, float width) {
@@ -295,6 +318,9 @@ std::vector<MarkerFan> marker_fans(const GlyphResult& glyphs, const OverlapRepor
   const ImagePlane plane = image_plane(camera);
   const bool has_worst = !glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0;
   const Vec3 worst = has_worst ? glyphs.clusters[0].position : Vec3{};
+  const double worst_radius =
+      has_worst ? displayed_glyph_radii(glyphs, displayed_glyph_scale(glyphs, camera, view_height, options.pixel_scale))[0]
+                : 0.0;
   auto in_plane = [&](const Vec3& v) { return std::array<double, 2>{dot(v, plane.right), dot(v, plane.up)}; };
   std::vector<MarkerFan> fans;
   for (const ScreenMarker& marker :
@@ -316,7 +342,7 @@ std::vector<MarkerFan> marker_fans(const GlyphResult& glyphs, const OverlapRepor
     fan.unit = unit;
     const double length = options.arrow_pixels * unit;
     // The worst glyph's disc, widened by an arrow head's half width.
-    const double clear = has_worst ? glyphs.clusters[0].radius + 7.0 * unit : 0.0;
+    const double clear = has_worst ? worst_radius + 7.0 * unit : 0.0;
     const std::array<double, 2> m = in_plane(marker.position - worst);
     const double m2 = m[0] * m[0] + m[1] * m[1];
     // The arrow on the ray marker − t d, t in [t0, t0 + length]: its start
@@ -433,15 +459,19 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
 
   // 4. Aggregated glyphs: the grey ones, then the coloured (ranked) ones
   // over them, so that no grey glyph hides a ranked one.
+  // Drawn at displayed_glyph_radii: #0 at least kWorstGlyphMinPixels, the
+  // grey ones smaller.
   SphereSet spheres, ranked;
   ranked.over_other_spheres = true;
   const Rgba8 neutral = to_rgba8(neutral_cluster_color());
+  const std::vector<double> shown =
+      displayed_glyph_radii(glyphs, displayed_glyph_scale(glyphs, camera, view_height, options.pixel_scale));
   for (const AggregatedGlyph& g : glyphs.clusters) {
     if (!(g.radius > 0.0)) continue;
     const Rgba8 color = to_rgba8(cluster_color(g.id, top));
     SphereSet& set = color == neutral ? spheres : ranked;
     set.centers.push_back(local(g.position));
-    set.radii.push_back(static_cast<float>(g.radius));
+    set.radii.push_back(static_cast<float>(shown[static_cast<std::size_t>(g.id)]));
     set.colors.push_back(color);
   }
   scene.spheres.push_back(std::move(spheres));
@@ -538,7 +568,8 @@ void draw_worst_glyph_ring(Image& figure, const ScreenDisc& worst, const Annotat
 
 // Legend: what each colour means (draw_legend shrinks it to the panel).
 void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapReport* overlap,
-                      const FigureLayout& layout, const AnnotationStyle& style, const MainViewOptions& options) {
+                      const FigureLayout& layout, const AnnotationStyle& style, const MainViewOptions& options,
+                      double glyph_scale) {
   const std::size_t listed = std::min<std::size_t>(
       glyphs.clusters.size(), static_cast<std::size_t>(labelled_cluster_count(glyphs.options.top_clusters)));
   std::vector<LegendLine> lines{{std::nullopt, "glyphs: worst clusters"}};
@@ -551,7 +582,9 @@ void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapRep
   }
   if (glyphs.clusters.size() > listed) {
     const std::size_t rest = glyphs.clusters.size() - listed;
-    lines.push_back({to_rgba8(neutral_cluster_color()), std::to_string(rest) + (rest == 1 ? " other cluster" : " other clusters")});
+    lines.push_back({to_rgba8(neutral_cluster_color()),
+                     std::to_string(rest) + (rest == 1 ? " other" : " others") + " (" +
+                         display_number(kGreyGlyphFactor, 2) + " size)"});
   }
   if (glyphs.clusters.empty())
     lines.push_back({options.background, "none: no quality below " + display_number(1.0 - glyphs.options.threshold, 3)});
@@ -560,6 +593,10 @@ void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapRep
                        ? "size = 1 - min quality + 0.1 per 10 vertices (paper)"
                        : "size = 1 - min quality",
                    1});
+  // The drawn scale (kWorstGlyphMinPixels), when it is not 1.
+  if (glyph_scale > 1.0)
+    lines.push_back({std::nullopt, "drawn x" + display_number(glyph_scale, 2) + " so #0 is " +
+                                       display_number(kWorstGlyphMinPixels, 2) + " px"});
   if (!glyphs.clusters.empty()) lines.push_back({std::nullopt, "label #k (n): rank k, n vertices"});
   // Findings and places by kind, as the markers count them: the "xN"
   // labels of the marker groups add up to the two findings counts.
@@ -602,20 +639,22 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
   MainViewLabels result;
   result.camera = camera;
   result.view = layout.view;
+  result.glyph_scale = displayed_glyph_scale(glyphs, camera, layout.view.height, scaled.pixel_scale);
+  const std::vector<double> shown = displayed_glyph_radii(glyphs, result.glyph_scale);
   // Obstacles: the glyphs (the 200 largest on screen: under the severity
   // rule the first 200 ranks) and the arrow fans.
   constexpr std::size_t kGlyphObstacles = 200;
   std::vector<std::pair<double, ScreenDisc>> glyph_discs;
   for (const AggregatedGlyph& g : glyphs.clusters) {
     if (!(g.radius > 0.0)) continue;
-    const ScreenDisc d = screen_of(g.position, g.radius);
+    const ScreenDisc d = screen_of(g.position, shown[static_cast<std::size_t>(g.id)]);
     if (on_screen(d) && d.radius >= 1.0) glyph_discs.push_back({d.radius, d});
   }
   std::stable_sort(glyph_discs.begin(), glyph_discs.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });
   if (glyph_discs.size() > kGlyphObstacles) glyph_discs.resize(kGlyphObstacles);
   if (!glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0)
-    result.worst_glyph = screen_of(glyphs.clusters[0].position, glyphs.clusters[0].radius);
+    result.worst_glyph = screen_of(glyphs.clusters[0].position, shown[0]);
   std::vector<ScreenDisc> fans;
   std::vector<MainViewLabel> markers;
   if (overlap) {
@@ -640,7 +679,7 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
       glyphs.clusters.size(), static_cast<std::size_t>(labelled_cluster_count(glyphs.options.top_clusters)));
   for (std::size_t i = 0; i < num_cluster_labels; ++i) {
     const AggregatedGlyph& g = glyphs.clusters[i];
-    const ScreenDisc disc = screen_of(g.position, g.radius);
+    const ScreenDisc disc = screen_of(g.position, shown[i]);
     if (!on_screen(disc)) continue;
     MainViewLabel label;
     label.kind = MainViewLabel::Kind::cluster;
@@ -756,7 +795,7 @@ Image render_main_view(const HexMesh& mesh, const Topology& topology, const Glyp
   const MainViewLabels labels = layout_main_view_labels(glyphs, overlap, camera, layout, style, scaled);
   draw_worst_glyph_ring(figure, labels.worst_glyph, style, scaled);
   draw_main_view_labels(figure, labels, style, scaled);
-  draw_main_legend(figure, glyphs, overlap, layout, style, options);
+  draw_main_legend(figure, glyphs, overlap, layout, style, options, labels.glyph_scale);
   return figure;
 }
 
