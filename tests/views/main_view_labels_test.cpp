@@ -27,12 +27,15 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 
 #include "hqview/glyph/glyphs.h"
+#include "hqview/image/colormap.h"
 #include "hqview/io/mesh_reader.h"
 #include "hqview/mesh/topology.h"
 #include "hqview/overlap/overlap.h"
 #include "hqview/quality/quality_field.h"
+#include "hqview/render/osmesa_renderer.h"
 #include "hqview/views/main_views.h"
 #include "support/fixtures.h"
 
@@ -147,6 +150,10 @@ void expect_clear_views(const Case& c, const char* name, bool expect_findings = 
         main_view_labels(c.mesh, c.topology, c.glyphs, &c.overlap, direction, options, &scene);
     ASSERT_FALSE(labels.labels.empty());
     const std::vector<ScreenDisc> discs = glyph_discs(scene, labels);
+    // Every on-screen cluster with an inverted vertex is ringed, no other.
+    std::size_t inverted = 0;
+    for (const AggregatedGlyph& g : c.glyphs.clusters) inverted += g.min_quality < 0.0 ? 1 : 0;
+    EXPECT_EQ(labels.inverted_glyphs.size(), inverted);
     EXPECT_EQ(discs.size(), c.glyphs.clusters.size());
     expect_sizes_by_severity(scene, discs, labels);
     for (const MainViewLabel& l : labels.labels) {
@@ -257,6 +264,65 @@ TEST(MainViewLabels, InjectedOverlapsAroundAnInvertedCorner) {
   // Without grouping, the markers would need far more labels than the limit.
   EXPECT_GT(c.overlap.markers.size(), 60u);
   expect_clear_views(c, "injected overlaps");
+}
+
+// View A rings the glyph of a cluster with an inverted vertex in the
+// inverted colour (issue 44: inverted clusters looked like poor ones). An
+// 8 x 8 x 2 grid whose top centre vertex is pushed down to z = 0.6 (below
+// the middle layer: inverted) or to z = 1.5 and 0.3 along x (poor, min
+// quality in [0, 0.5), not inverted): with the deep
+// dent at least half of the ring's circle, 1.5 px outside #0's disc, is
+// within 40 (RGB distance) of the inverted colour; with the shallow one no
+// pixel of the 3D area is.
+TEST(MainViewLabels, InvertedClustersWearARing) {
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  const Rgba8 inverted = to_rgba8(kInvertedColor);
+  auto near_inverted = [&](const Image& image, int x, int y) {
+    if (x < 0 || y < 0 || x >= image.width || y >= image.height) return false;
+    const std::uint8_t* p = image.rgba.data() + pixel_offset(image, x, y);
+    return std::hypot(p[0] - inverted.r, p[1] - inverted.g, p[2] - inverted.b) <= 40.0;
+  };
+  auto dented = [](double z, double shift) {
+    HexMesh mesh = test::box_grid(8, 8, 2);
+    Vec3& p = mesh.points[static_cast<std::size_t>(4 + 9 * (4 + 9 * 2))];
+    p.z = z;
+    p.x += shift;
+    return analyse(std::move(mesh));
+  };
+  const MainViewOptions options;  // 1600 x 1200: annotation scale 1
+  const Vec3 direction{1.0, -1.0, 1.5};
+  const Case deep = dented(0.6, 0.0);
+  ASSERT_LT(deep.glyphs.clusters.at(0).min_quality, 0.0);
+  const MainViewLabels labels =
+      main_view_labels(deep.mesh, deep.topology, deep.glyphs, nullptr, direction, options, nullptr);
+  ASSERT_EQ(labels.inverted_glyphs.size(), 1u);
+  const Image image = render_main_view(deep.mesh, deep.topology, deep.glyphs, nullptr, direction, options, *renderer);
+  const ScreenDisc& worst = labels.inverted_glyphs[0];
+  int on = 0;
+  constexpr int kSamples = 72;
+  for (int i = 0; i < kSamples; ++i) {
+    const double a = 2.0 * M_PI * i / kSamples, r = worst.radius + 1.5;
+    bool hit = false;
+    for (int dy = -1; dy <= 1 && !hit; ++dy)
+      for (int dx = -1; dx <= 1 && !hit; ++dx)
+        hit = near_inverted(image, static_cast<int>(std::lround(worst.x + r * std::cos(a))) + dx,
+                            static_cast<int>(std::lround(worst.y + r * std::sin(a))) + dy);
+    on += hit ? 1 : 0;
+  }
+  EXPECT_GE(on, kSamples / 2);
+  const Case shallow = dented(1.5, 0.3);
+  ASSERT_FALSE(shallow.glyphs.clusters.empty());
+  ASSERT_GE(shallow.glyphs.clusters[0].min_quality, 0.0);
+  const MainViewLabels shallow_labels =
+      main_view_labels(shallow.mesh, shallow.topology, shallow.glyphs, nullptr, direction, options, nullptr);
+  EXPECT_TRUE(shallow_labels.inverted_glyphs.empty());
+  const Image shallow_image =
+      render_main_view(shallow.mesh, shallow.topology, shallow.glyphs, nullptr, direction, options, *renderer);
+  int stray = 0;
+  for (int y = shallow_labels.view.y; y < shallow_labels.view.y + shallow_labels.view.height; ++y)
+    for (int x = shallow_labels.view.x; x < shallow_labels.view.x + shallow_labels.view.width; ++x)
+      stray += near_inverted(shallow_image, x, y) ? 1 : 0;
+  EXPECT_EQ(stray, 0);
 }
 
 // The shared meshes on which the labels were found wrong; the overlap check

@@ -550,12 +550,13 @@ void draw_main_view_labels(Image& figure, const MainViewLabels& labels, const An
 // A ring around cluster #0's glyph on screen (dark on a pale halo, a few
 // pixels outside its silhouette), so the worst place is found first even
 // where its glyph is small.
-void draw_worst_glyph_ring(Image& figure, const ScreenDisc& worst, const AnnotationStyle& style,
+void draw_worst_glyph_ring(Image& figure, const ScreenDisc& worst, bool is_inverted, const AnnotationStyle& style,
                            const MainViewOptions& options) {
   if (!(worst.radius > 0.0)) return;
   Rgba8 halo = options.background;
   halo.a = 255;
-  const double radius = worst.radius + 4.0 * style.scale;
+  // Outside the inverted ring (draw_inverted_glyph_rings) when #0 has one.
+  const double radius = worst.radius + (is_inverted ? 6.5 : 4.0) * style.scale;
   constexpr int kSegments = 96;
   for (int pass = 0; pass < 2; ++pass)
     for (int i = 0; i < kSegments; ++i) {
@@ -564,6 +565,27 @@ void draw_worst_glyph_ring(Image& figure, const ScreenDisc& worst, const Annotat
                 worst.y + radius * std::sin(a1), pass == 0 ? halo : style.text_color,
                 pass == 0 ? std::max(4.0, 5.0 * style.scale) : std::max(1.5, 2.2 * style.scale));
     }
+}
+
+// A ring in the inverted colour just outside each glyph of a cluster with an
+// inverted vertex (on a pale halo), so inverted clusters differ from merely
+// poor ones at a glance; cluster #0's dark ring goes outside it.
+void draw_inverted_glyph_rings(Image& figure, const std::vector<ScreenDisc>& inverted, const AnnotationStyle& style,
+                               const MainViewOptions& options) {
+  Rgba8 halo = options.background;
+  halo.a = 255;
+  const Rgba8 color = to_rgba8(kInvertedColor);
+  for (const ScreenDisc& d : inverted) {
+    const double radius = d.radius + 1.5 * style.scale;
+    const int segments = std::clamp(static_cast<int>(radius), 24, 96);
+    for (int pass = 0; pass < 2; ++pass)
+      for (int i = 0; i < segments; ++i) {
+        const double a0 = 2.0 * M_PI * i / segments, a1 = 2.0 * M_PI * (i + 1) / segments;
+        draw_line(figure, d.x + radius * std::cos(a0), d.y + radius * std::sin(a0), d.x + radius * std::cos(a1),
+                  d.y + radius * std::sin(a1), pass == 0 ? halo : color,
+                  pass == 0 ? std::max(4.0, 5.0 * style.scale) : std::max(2.0, 3.0 * style.scale));
+      }
+  }
 }
 
 // Legend: what each colour means (draw_legend shrinks it to the panel).
@@ -598,6 +620,8 @@ void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapRep
     lines.push_back({std::nullopt, "drawn x" + display_number(glyph_scale, 2) + " so #0 is " +
                                        display_number(kWorstGlyphMinPixels, 2) + " px"});
   if (!glyphs.clusters.empty()) lines.push_back({std::nullopt, "label #k (n): rank k, n vertices"});
+  if (!glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0)
+    lines.push_back({to_rgba8(kInvertedColor), "ring: inverted (min < 0)"});
   // Findings and places by kind, as the markers count them: the "xN"
   // labels of the marker groups add up to the two findings counts.
   std::size_t findings[2] = {0, 0};
@@ -649,6 +673,7 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
     if (!(g.radius > 0.0)) continue;
     const ScreenDisc d = screen_of(g.position, shown[static_cast<std::size_t>(g.id)]);
     if (on_screen(d) && d.radius >= 1.0) glyph_discs.push_back({d.radius, d});
+    if (on_screen(d) && g.min_quality < 0.0) result.inverted_glyphs.push_back(d);
   }
   std::stable_sort(glyph_discs.begin(), glyph_discs.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });
@@ -793,7 +818,9 @@ Image render_main_view(const HexMesh& mesh, const Topology& topology, const Glyp
   Image figure = render_figure(renderer, scene, camera, options.width, options.height, layout, options.title, style);
 
   const MainViewLabels labels = layout_main_view_labels(glyphs, overlap, camera, layout, style, scaled);
-  draw_worst_glyph_ring(figure, labels.worst_glyph, style, scaled);
+  draw_inverted_glyph_rings(figure, labels.inverted_glyphs, style, scaled);
+  draw_worst_glyph_ring(figure, labels.worst_glyph, !glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0,
+                        style, scaled);
   draw_main_view_labels(figure, labels, style, scaled);
   draw_main_legend(figure, glyphs, overlap, layout, style, options, labels.glyph_scale);
   return figure;

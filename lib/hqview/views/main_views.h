@@ -176,6 +176,9 @@ struct MainViewLabels {
   Camera camera;               // the camera and the figure's 3D area they were laid out for
   PixelRect view;
   double glyph_scale = 1.0;    // displayed_glyph_scale of this view
+  // The glyphs of the clusters with an inverted vertex (min quality < 0)
+  // on screen, by rank: render_main_view rings each in the inverted colour.
+  std::vector<ScreenDisc> inverted_glyphs;
 };
 
 // Where view A's labels go (pure; render_main_view draws them): one count
