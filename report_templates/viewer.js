@@ -77,7 +77,9 @@
   var clipping = [];
 
   // Boundary: two triangles per quad, unindexed so that a face field colours a quad flat.
-  var triPos = new Float32Array(nf * 18), triCol = new Float32Array(nf * 18);
+  // Each corner carries (x, below, undefined) of the shown field (setField)
+  // and the colour is looked up per fragment: mapped AFTER interpolation.
+  var triPos = new Float32Array(nf * 18), triMap = new Float32Array(nf * 18);
   var corners = [0, 1, 2, 0, 2, 3];
   for (var f = 0; f < nf; ++f)
     for (var c = 0; c < 6; ++c) {
@@ -86,12 +88,35 @@
     }
   var boundaryGeometry = new THREE.BufferGeometry();
   boundaryGeometry.setAttribute('position', new THREE.BufferAttribute(triPos, 3));
-  boundaryGeometry.setAttribute('color', new THREE.BufferAttribute(triCol, 3));
+  boundaryGeometry.setAttribute('hqMap', new THREE.BufferAttribute(triMap, 3));
   boundaryGeometry.setAttribute('normal', new THREE.BufferAttribute(quadNormals(triPos, nf), 3));
+  // The field's 256 colours as a 256 x 1 texture; the fragment shader looks
+  // up the interpolated x (index / 254 on texel centres, linear between
+  // neighbouring entries), so a face never shows a blend of two colours of
+  // the table that is not in it (the purple of inverted blue and orange).
+  // Where the interpolated 'undefined' or 'below' weight is over one half
+  // the fragment takes the 'no value' (255) or the inverted (0) entry: an
+  // inverted vertex keeps the inverted colour on the part of each triangle
+  // where its barycentric weight is above one half, as in the PNG overview
+  // (render/osmesa_renderer.cpp). Lighting multiplies the looked-up colour.
+  var lutBytes = new Uint8Array(256 * 4);
+  var lutTexture = new THREE.DataTexture(lutBytes, 256, 1, THREE.RGBAFormat);
+  lutTexture.magFilter = THREE.LinearFilter;
+  lutTexture.minFilter = THREE.LinearFilter;
+  lutTexture.generateMipmaps = false;
   var boundaryMaterial = new THREE.MeshLambertMaterial({
-    vertexColors: THREE.VertexColors, side: THREE.DoubleSide, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
+    side: THREE.DoubleSide, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
     clippingPlanes: clipping, transparent: true, depthWrite: false
   });
+  boundaryMaterial.onBeforeCompile = function (shader) {
+    shader.uniforms.hqLut = { value: lutTexture };
+    shader.vertexShader = 'attribute vec3 hqMap;\nvarying vec3 vHqMap;\n' +
+      shader.vertexShader.replace('#include <begin_vertex>', '#include <begin_vertex>\n  vHqMap = hqMap;');
+    shader.fragmentShader = 'uniform sampler2D hqLut;\nvarying vec3 vHqMap;\n' +
+      shader.fragmentShader.replace('#include <color_fragment>', [
+        'float hqIndex = vHqMap.z > 0.5 ? 255.0 : vHqMap.y > 0.5 ? 0.0 : clamp(vHqMap.x, 0.0, 1.0) * 254.0;',
+        'diffuseColor.rgb *= texture2D(hqLut, vec2((hqIndex + 0.5) / 256.0, 0.5)).rgb;'].join('\n'));
+  };
   var boundary = new THREE.Mesh(boundaryGeometry, boundaryMaterial);
   // The faces are see-through while there are glyphs inside (as view A's
   // wireframe is), opaque otherwise; the opacity slider changes it.
@@ -187,18 +212,32 @@
   // ---- colour fields ----
   var fieldSelect = document.getElementById('field');
   D.fields.forEach(function (fd, n) { fieldSelect.appendChild(el('option', { value: String(n) }, [fd.label])); });
+  // Per corner (x, below, undefined): x = index / 254 of the colour table; a
+  // quality index below 127 (quality < 0) is 'below' with x at quality 0
+  // (the map's end: a neighbour's colour never runs through the inverted
+  // entries), index 255 'undefined' with x at the field's neutral index.
+  function mapTriple(idx, isQuality) {
+    if (idx === 255) return [isQuality ? 1 : 127 / 254, 0, 1];
+    if (isQuality && idx < 127) return [127 / 254, 1, 0];
+    return [idx / 254, 0, 0];
+  }
   function setField(n) {
     var fd = D.fields[n], values = bytes(fd.values), lut = bytes(fd.lut);
-    for (var f = 0; f < nf; ++f)
-      for (var c = 0; c < 6; ++c) {
-        var idx = fd.per === 'vertex' ? values[quads[4 * f + corners[c]]] : values[f];
-        for (var k = 0; k < 3; ++k) triCol[18 * f + 3 * c + k] = lut[3 * idx + k] / 255;
-      }
-    boundaryGeometry.attributes.color.needsUpdate = true;
-    var bar = document.getElementById('legend-bar'), g = bar.getContext('2d'), img = g.createImageData(256, 1);
     // Quality fields show [0, 1] (below 0 is the one inverted colour); the
     // others their whole range.
     var isQuality = fd.id === 'vertex_quality' || fd.id === 'scaled_jacobian';
+    for (var f = 0; f < nf; ++f)
+      for (var c = 0; c < 6; ++c) {
+        var t = mapTriple(fd.per === 'vertex' ? values[quads[4 * f + corners[c]]] : values[f], isQuality);
+        for (var k = 0; k < 3; ++k) triMap[18 * f + 3 * c + k] = t[k];
+      }
+    boundaryGeometry.attributes.hqMap.needsUpdate = true;
+    for (var e = 0; e < 256; ++e) {
+      for (k = 0; k < 3; ++k) lutBytes[4 * e + k] = lut[3 * e + k];
+      lutBytes[4 * e + 3] = 255;
+    }
+    lutTexture.needsUpdate = true;
+    var bar = document.getElementById('legend-bar'), g = bar.getContext('2d'), img = g.createImageData(256, 1);
     var first = isQuality ? 127 : 0, last = isQuality || fd.id === 'boundary_error' ? 254 : 253;
     for (var i = 0; i < 256; ++i) {
       var j = Math.round(first + i / 255 * (last - first));

@@ -17,6 +17,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 
+import { ciede2000, labOf, selfCheck as colourScienceOk } from './colour_science.mjs';
 import { check as checkOnce, failures, launchBrowser, selectValue, setChecked } from './harness.mjs';
 
 const [hqview, sourceDir, outDir] = process.argv.slice(2);
@@ -32,17 +33,14 @@ function analyze(args) {
   execFileSync(hqview, ['analyze', ...args, '--data', 'csv,vtu.zlib', '--size', '640x480', '-j', '2', '--quiet'], { stdio: 'inherit' });
 }
 
-// An n x n x n grid whose central vertex (n/2, n/2, n/2) is pulled: 8
-// interior cells under the threshold, none on the boundary.
-function interiorBadMesh(file, n = 4) {
+// An n x n x n grid of unit cells written as Medit, vertex (i, j, k) at
+// place(i, j, k).
+function gridMesh(file, n, place) {
   const id = (i, j, k) => 1 + i + (n + 1) * (j + (n + 1) * k);
   let s = `MeshVersionFormatted 1\nDimension 3\nVertices\n${(n + 1) ** 3}\n`;
   for (let k = 0; k <= n; ++k)
     for (let j = 0; j <= n; ++j)
-      for (let i = 0; i <= n; ++i) {
-        const pulled = i === n / 2 && j === n / 2 && k === n / 2;
-        s += `${i + (pulled ? 0.85 : 0)} ${j + (pulled ? 0.85 : 0)} ${k + (pulled ? 0.85 : 0)} 0\n`;
-      }
+      for (let i = 0; i <= n; ++i) s += `${place(i, j, k).join(' ')} 0\n`;
   s += `Hexahedra\n${n ** 3}\n`;
   for (let k = 0; k < n; ++k)
     for (let j = 0; j < n; ++j)
@@ -50,6 +48,20 @@ function interiorBadMesh(file, n = 4) {
         s += `${id(i, j, k)} ${id(i + 1, j, k)} ${id(i + 1, j + 1, k)} ${id(i, j + 1, k)} ${id(i, j, k + 1)} ${id(i + 1, j, k + 1)} ${id(i + 1, j + 1, k + 1)} ${id(i, j + 1, k + 1)} 0\n`;
   fs.writeFileSync(file, s + 'End\n');
   return file;
+}
+// The central vertex (n/2, n/2, n/2) pulled: 8 interior cells under the
+// threshold, none on the boundary.
+function interiorBadMesh(file, n = 4) {
+  return gridMesh(file, n, (i, j, k) => {
+    const d = i === n / 2 && j === n / 2 && k === n / 2 ? 0.85 : 0;
+    return [i + d, j + d, k + d];
+  });
+}
+// A 4^3 grid whose top vertex (2, 2, 4) is pushed down to z = 2.5, below
+// the layer under it: that boundary vertex is inverted (its 4 cells' corner
+// there is negative), its 8 neighbours on the top are not.
+function dentedMesh(file) {
+  return gridMesh(file, 4, (i, j, k) => [i, j, i === 2 && j === 2 && k === 4 ? 2.5 : k]);
 }
 
 const bar = path.join(outDir, 'bar');
@@ -59,6 +71,8 @@ const tiny = path.join(outDir, 'tiny');
 analyze([interiorBadMesh(path.join(outDir, 'dense.mesh'), 28), '-o', tiny, '--viewer-max-mb', '0.01']);
 const inner = path.join(outDir, 'inner');
 analyze([interiorBadMesh(path.join(outDir, 'inner.mesh')), '-o', inner]);
+const dented = path.join(outDir, 'dented');
+analyze([dentedMesh(path.join(outDir, 'dented.mesh')), '-o', dented]);
 const evilName = `"q'&amp;<script>window.hqPwned=1<img src=x onerror="window.hqPwned=2">.mesh`;
 const evilDir = path.join(outDir, 'evil-input');
 fs.mkdirSync(evilDir, { recursive: true });
@@ -262,6 +276,101 @@ const near = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
   const row = face && csv.slice(1).map((l) => l.split(',')).find((r) => num(r[idCol]) === num(face.hex));
   check(face && row && near(num(face.sj), num(row[col])),
     `tiny budget: a click on a reduced face shows its hex's scaled Jacobian as cells.csv has it: ${JSON.stringify(face)} vs ${row && row[col]}`);
+  await page.close();
+}
+
+// ---- colour mapped after interpolation ----
+// Faces opaque, edges, glyphs and markers off, the dent seen from nearly above (its walls are steep): a
+// face-interior pixel (its 3x3 neighbourhood all drawn) must be a colour of
+// the vertex-quality table lit by the Lambert light, min(255, k * c) for a
+// table colour c (127..254: quality 0..1, 0: inverted, 255: no value) and
+// one k, within CIEDE2000 3; pixels next to an inverted-colour pixel may be
+// the antialiased seam's blends (at most 3 % of the interior). The inverted
+// colour is present at probes 15 % of the way from the inverted vertex to
+// the centre of each of its 4 faces (its barycentric weight there is over
+// 0.85). Colours mapped at the vertices and blended (the old viewer) put
+// the blue-orange purple over the faces and fail.
+{
+  check(colourScienceOk(), 'CIEDE2000 (tests/browser/colour_science.mjs) gives Sharma et al.\'s values');
+  const { page, problems } = await open(dented);
+  await page.evaluate(() => { document.getElementById('opacity').value = 100; document.getElementById('opacity').dispatchEvent(new Event('input')); });
+  for (const layer of ['#layer-glyphs', '#layer-edges', '#layer-markers', '#layer-intersecting']) await setChecked(page, layer, false);
+  await page.evaluate(() => {
+    const v = window.hqViewer, t = new window.THREE.Vector3(2, 2, 2);
+    v.controls.target.copy(t);
+    v.camera.position.copy(t).add(new window.THREE.Vector3(0.1, -0.15, 1).normalize().multiplyScalar(12));
+    v.camera.zoom = 1;
+    v.camera.lookAt(t);
+    v.camera.updateProjectionMatrix();
+    v.controls.update();
+  });
+  const shot = await page.evaluate(() => {
+    const v = window.hqViewer;
+    v.draw();
+    const gl = v.renderer.getContext(), w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
+    const px = new Uint8Array(w * h * 4);
+    gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    const lut = Array.from(atob(v.data.fields[0].lut), (c) => c.charCodeAt(0));
+    return { w, h, px: Array.from(px), lut, field: v.data.fields[0].id };
+  });
+  await page.screenshot({ path: path.join(outDir, 'dented_colour.png') });
+  const { w, h, px, lut } = shot;
+  const at = (x, y) => 4 * ((h - 1 - y) * w + x);  // y down, as on the page
+  const drawn = (x, y) => { const i = at(x, y); return px[i] < 250 || px[i + 1] < 250 || px[i + 2] < 250; };
+  const table = [0, 255];
+  for (let i = 127; i <= 254; ++i) table.push(i);
+  const tableColours = table.map((i) => [lut[3 * i], lut[3 * i + 1], lut[3 * i + 2]]);
+  const inverted = tableColours[0];
+  // The smallest CIEDE2000 from the pixel to min(255, k * c) over the colours
+  // c given, k fitted on the unclipped channels.
+  const memo = new Map();
+  function distance(p, colours, key) {
+    const id = key + p.join(',');
+    if (memo.has(id)) return memo.get(id);
+    const lp = labOf(p);
+    let best = Infinity;
+    for (const c of colours) {
+      let num = 0, den = 0;
+      for (let k = 0; k < 3; ++k) if (p[k] < 254) { num += p[k] * c[k]; den += c[k] * c[k]; }
+      const scale = den > 0 ? num / den : 1;
+      best = Math.min(best, ciede2000(lp, labOf(c.map((v) => Math.min(255, Math.round(scale * v))))));
+    }
+    memo.set(id, best);
+    return best;
+  }
+  const isInverted = (x, y) => { const i = at(x, y); return distance([px[i], px[i + 1], px[i + 2]], [inverted], 'i') <= 3; };
+  let interior = 0, offMap = 0, seam = 0, invertedPixels = 0;
+  for (let y = 1; y < h - 1; ++y)
+    for (let x = 1; x < w - 1; ++x) {
+      let inside = true;
+      for (let dy = -1; dy <= 1 && inside; ++dy) for (let dx = -1; dx <= 1 && inside; ++dx) inside = drawn(x + dx, y + dy);
+      if (!inside) continue;
+      interior += 1;
+      const i = at(x, y), p = [px[i], px[i + 1], px[i + 2]];
+      if (distance(p, tableColours, 't') <= 3) { if (isInverted(x, y)) invertedPixels += 1; continue; }
+      let nearInverted = false;
+      for (let dy = -1; dy <= 1; ++dy) for (let dx = -1; dx <= 1; ++dx) nearInverted ||= isInverted(x + dx, y + dy);
+      if (nearInverted) seam += 1; else offMap += 1;
+    }
+  check(shot.field === 'vertex_quality' && interior > 20000, `the dented grid fills the view (${interior} face-interior pixels)`);
+  check(offMap === 0 && seam <= 0.03 * interior,
+    `every face-interior pixel is a lit colour of the quality table (CIEDE2000 <= 3): ${offMap} off the table, ${seam} seam blends of ${interior}`);
+  // Probes around the inverted vertex (2, 2, 2.5) on its 4 top faces.
+  const dent = [2, 2, 2.5];
+  let probes = 0;
+  const box = await page.evaluate(() => { const r = window.hqViewer.renderer.domElement.getBoundingClientRect(); return [r.left, r.top]; });
+  for (const [cx, cy] of [[1.5, 1.5], [2.5, 1.5], [2.5, 2.5], [1.5, 2.5]]) {
+    const centre = [cx, cy, (2.5 + 4 + 4 + 4) / 4];  // three corners at z = 4, the dent's at 2.5
+    const probe = dent.map((v, k) => 0.85 * v + 0.15 * centre[k]);
+    const [sx, sy] = await projectToPage(page, probe);
+    const x = Math.round(sx - box[0]), y = Math.round(sy - box[1]);
+    let found = false;
+    for (let dy = -1; dy <= 1; ++dy) for (let dx = -1; dx <= 1; ++dx) found ||= isInverted(x + dx, y + dy);
+    if (found) probes += 1;
+  }
+  check(probes === 4 && invertedPixels > 0,
+    `the inverted colour is on the dent's 4 faces next to the inverted vertex (${probes} of 4 probes; ${invertedPixels} inverted pixels)`);
+  check(problems.length === 0, `no console error on the dented grid: ${problems.join('; ')}`);
   await page.close();
 }
 

@@ -81,7 +81,7 @@ TEST(DivergingColor, BlueWhiteRed) {
 // The perceptual rules (CIEDE2000 between the palette, the neutral grey,
 // the special colours and the quality map; colour vision deficiency) are
 // checked in tests/views/palette_test.cpp, which also knows the overlap
-// markers' colours; here: the palette is 10 distinct opaque colours, none
+// markers' colours; here: the palette is 8 distinct opaque colours, none
 // the neutral grey.
 TEST(ClusterColor, LabelledColoursAreDistinctAndNotNeutral) {
   std::set<std::tuple<int, int, int>> seen;
@@ -98,7 +98,7 @@ TEST(ClusterColor, OnlyTheTopClustersWearAColour) {
   for (int rank = 0; rank < 3; ++rank) EXPECT_TRUE(same(cluster_color(rank, 3), labelled_cluster_color(rank)));
   for (int rank : {3, 4, 9, 10, 500}) EXPECT_TRUE(same(cluster_color(rank, 3), neutral_cluster_color())) << rank;
   EXPECT_TRUE(same(cluster_color(-1, 3), neutral_cluster_color()));
-  // K beyond the palette: the first 10 are labelled, never a repeat.
+  // K beyond the palette: the first 8 are labelled, never a repeat.
   EXPECT_EQ(labelled_cluster_count(25), kLabelledClusterPaletteSize);
   EXPECT_TRUE(same(cluster_color(kLabelledClusterPaletteSize, 25), neutral_cluster_color()));
   EXPECT_EQ(labelled_cluster_count(0), 0);

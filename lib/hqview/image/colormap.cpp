@@ -47,29 +47,35 @@ constexpr std::array<Rgb, 11> kDivergingTable = {{
 
 // Labelled clusters: designed, not cycled (docs/analysis.md, "Colours").
 // Chosen on the sRGB grid of step 15 (levels 0, 15, ..., 255) among the
-// colours with CIE L* in [28, 78] (visible on white, distinct from black
-// when shaded) and chroma >= 25 that keep CIEDE2000 >= 20 from every sample of
-// the quality map, >= 15 from the inverted and undefined colours, the
-// neutral cluster grey, the overlap markers' colours, view A's wireframe and
-// white, and >= 8 from the inverted and overlap colours under simulated
-// protanopia, deuteranopia and tritanopia (Machado et al. 2009, severity 1);
-// then greedily, each the one farthest (smallest CIEDE2000 to all the above
-// and to the ones before it largest) among those >= 15 from the ones before
-// it, >= 8 from them under each simulation, and >= 10 from them when either
-// is shaded (the lit spheres' dark sides, 25-85 % light, and highlights), so
-// that a shaded sphere of one colour does not look like another and the
-// first K are the best separated K. palette_test checks the rules.
+// colours with CIE L* in [45, 80] (none dark: a small shaded glyph of a dark
+// colour reads as the near-black coincident-vertex arrows) and chroma >= 30
+// that keep CIEDE2000 >= 20 from every sample of the quality map, >= 40 from
+// the coincident-vertex colour, >= 22 from the inverted colour, >= 20 from
+// the intersection colours, >= 15 from the undefined and neutral greys,
+// view A's wireframe and white, and >= 8 from the inverted and overlap
+// colours under simulated protanopia, deuteranopia and tritanopia (Machado
+// et al. 2009, severity 1). Among those, 8 whose CIELCh hue angles differ
+// pairwise by >= 25 degrees (no two of one hue family: the palette of 10 had
+// three greens) and of which neither's shades (a lit sphere's dark side at
+// 25-85 % light, its highlight at 15-45 % white) come within 10 of the
+// other, with the smallest pairwise score min(CIEDE2000, 2 x the smallest
+// CIEDE2000 under the three simulations) largest (local search over swaps
+// from 6 greedy starts): pairwise CIEDE2000 >= 19.2, >= 9.4 under each
+// simulation (the palette of 10: 16.2 and 8.4). Ordered greedily, the first
+// the farthest from the special colours and the map, each next the farthest
+// from those before it, so the first K are the best separated K (the first
+// 6 >= 25 apart). Eight: the gamut left by the quality map (reds, oranges,
+// creams), the inverted blue-violet, the magentas and the greys holds no
+// more colours this far apart. palette_test checks the rules.
 constexpr std::array<Rgb, kLabelledClusterPaletteSize> kLabelledClusterTable = {{
-    hex(0x00d200),
-    hex(0x0087f0),
-    hex(0x2d4b00),
-    hex(0x009678),
-    hex(0xff96a5),
-    hex(0x876900),
-    hex(0x00b4d2),
-    hex(0x786996),
-    hex(0x87a569),
-    hex(0xc378a5),
+    hex(0x78c31e),
+    hex(0xf0a5d2),
+    hex(0x0078e1),
+    hex(0x877800),
+    hex(0xff1e69),
+    hex(0x3ca5a5),
+    hex(0x00d296),
+    hex(0xb487ff),
 }};
 // A light grey (#a0a0a0), calm among the coloured clusters: CIEDE2000 19
 // from the undefined grey (kUndefinedColor), 16 from the quality map's

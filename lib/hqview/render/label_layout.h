@@ -33,7 +33,9 @@ struct LabelLayoutOptions {
   double ring_step = 14.0;  // pixels between successive rings of candidates
   int rings = 24;           // rings tried before a label is given up
   // A label whose box is farther than this from its anchor disc gets a
-  // leader line (pixels).
+  // leader line (pixels); so does one that another obstacle disc comes
+  // within this distance of (nearer than its own anchor plus this), which
+  // would read as naming that one.
   double leader_distance = 10.0;
 };
 
@@ -47,16 +49,31 @@ struct PlacedLabel {
 // Places the labels in order. Candidates: 8 directions around the anchor
 // (right, upper right, lower right, left, upper left, lower left, above,
 // below: the box's nearest corner or edge centre at that point), first at
-// gap from the anchor disc, then on rings ring_step farther out. A candidate
+// gap from the anchor disc, then on rings ring_step farther out; of a ring's
+// free candidates the one with the most room to the other obstacle discs
+// (counted up to 3 leader distances; ties in that order). A candidate
 // is free when it lies inside bounds and overlaps no box placed before it,
-// no box in taken, and no obstacle disc (nor the anchor disc). A label with
-// no free candidate is nullopt (the caller says what was left out).
+// no box in taken, and no obstacle disc (nor the anchor disc). A candidate
+// needs a leader when its box is farther than leader_distance from the
+// anchor disc or another obstacle disc is not clearly farther (within the
+// anchor's gap + leader_distance: the label would read as that one's).
+// The first pass takes only clear candidates: not beside another disc
+// unless it has a leader, its leader crossing no earlier leader, no placed
+// box and no obstacle disc but its own anchor, its box crossed by no earlier
+// leader. When none is clear, the second pass lets the leader run over
+// other discs, and the third takes the first free place (with a leader
+// when it needs one). A label with no free candidate is
+// nullopt (the caller says what was left out). An obstacle at the anchor's
+// centre (the anchor's own glyph or fan) is the label's own.
 //   obstacles: discs no label may cover (glyphs), pixels.
 //   taken:     boxes already used (e.g. legend, earlier labels).
+//   earlier:   labels placed by an earlier call: their boxes are taken and
+//              their leaders count as the leaders of this call's labels.
 std::vector<std::optional<PlacedLabel>> place_labels(std::span<const LabelRequest> labels,
                                                      std::span<const ScreenDisc> obstacles,
                                                      std::span<const PixelRect> taken,
-                                                     const LabelLayoutOptions& options);
+                                                     const LabelLayoutOptions& options,
+                                                     std::span<const PlacedLabel> earlier = {});
 
 // A placement of box with a leader line from the anchor disc's edge
 // towards the box's point nearest the anchor's centre.
@@ -64,6 +81,11 @@ PlacedLabel with_leader(const ScreenDisc& anchor, const PixelRect& box);
 
 // Whether two boxes share interior pixels / a box meets a disc's interior.
 bool boxes_overlap(const PixelRect& a, const PixelRect& b);
+// Whether two leader lines cross (share a point; touching ends count).
+bool leaders_cross(const PlacedLabel& a, const PlacedLabel& b);
+// Whether a leader line passes through a box's / a disc's interior.
+bool leader_meets_box(const PlacedLabel& leader, const PixelRect& box);
+bool leader_meets_disc(const PlacedLabel& leader, const ScreenDisc& disc);
 bool box_meets_disc(const PixelRect& box, const ScreenDisc& disc);
 // Distance in pixels from a disc's edge to a box (0 when they meet).
 double disc_box_gap(const ScreenDisc& disc, const PixelRect& box);

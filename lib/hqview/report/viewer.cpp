@@ -89,10 +89,13 @@ std::vector<std::uint8_t> lut_of(auto&& color_of_index) {
   return rgb;
 }
 
-// Quality in [-1, 1] on indices 0..254 (the colour map of the PNG views).
+// Quality in [-1, 1] on indices 0..254 (the colour map of the PNG views):
+// 127 is 0; a quality below 0 takes at most 126, so a barely inverted vertex
+// (-0.002 would round to 127) keeps the inverted colour.
 std::uint8_t quality_index(double q) {
   if (!std::isfinite(q) || std::abs(q) >= kVerdictDegenerate) return kNoValue;
-  return static_cast<std::uint8_t>(std::lround((std::clamp(q, -1.0, 1.0) + 1.0) / 2.0 * 254.0));
+  const long i = std::lround((std::clamp(q, -1.0, 1.0) + 1.0) / 2.0 * 254.0);
+  return static_cast<std::uint8_t>(q < 0.0 ? std::min(i, 126L) : i);
 }
 double quality_of_index(int i) { return -1.0 + 2.0 * i / 254.0; }
 

@@ -29,6 +29,29 @@ double units_per_pixel(const Camera& camera, double depth, int view_height) {
   return height / std::max(1, view_height);
 }
 
+}  // namespace
+
+double displayed_glyph_scale(const GlyphResult& glyphs, const Camera& camera, int view_height, double pixel_scale) {
+  if (glyphs.clusters.empty() || !(glyphs.clusters[0].radius > 0.0)) return 1.0;
+  const AggregatedGlyph& worst = glyphs.clusters[0];
+  const double depth = std::max(dot(worst.position - camera.eye, forward_of(camera)), 1e-12);
+  const double pixels = worst.radius / units_per_pixel(camera, depth, view_height);
+  return std::max(1.0, kWorstGlyphMinPixels * pixel_scale / pixels);
+}
+
+std::vector<double> displayed_glyph_radii(const GlyphResult& glyphs, double scale) {
+  const Rgba8 neutral = to_rgba8(neutral_cluster_color());
+  std::vector<double> radii;
+  radii.reserve(glyphs.clusters.size());
+  for (const AggregatedGlyph& g : glyphs.clusters) {
+    const bool is_grey = to_rgba8(cluster_color(g.id, glyphs.options.top_clusters)) == neutral;
+    radii.push_back(g.radius * scale * (is_grey ? kGreyGlyphFactor : 1.0));
+  }
+  return radii;
+}
+
+namespace {
+
 // A line set of the given edges, vertices renumbered compactly; colour per edge.
 LineSet edge_lines(const HexMesh& mesh, const Vec3& origin, const std::vector<Edge>& edges,
                    const std::vector<Rgba8>& edge_colors, float width) {
@@ -295,6 +318,9 @@ std::vector<MarkerFan> marker_fans(const GlyphResult& glyphs, const OverlapRepor
   const ImagePlane plane = image_plane(camera);
   const bool has_worst = !glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0;
   const Vec3 worst = has_worst ? glyphs.clusters[0].position : Vec3{};
+  const double worst_radius =
+      has_worst ? displayed_glyph_radii(glyphs, displayed_glyph_scale(glyphs, camera, view_height, options.pixel_scale))[0]
+                : 0.0;
   auto in_plane = [&](const Vec3& v) { return std::array<double, 2>{dot(v, plane.right), dot(v, plane.up)}; };
   std::vector<MarkerFan> fans;
   for (const ScreenMarker& marker :
@@ -316,7 +342,7 @@ std::vector<MarkerFan> marker_fans(const GlyphResult& glyphs, const OverlapRepor
     fan.unit = unit;
     const double length = options.arrow_pixels * unit;
     // The worst glyph's disc, widened by an arrow head's half width.
-    const double clear = has_worst ? glyphs.clusters[0].radius + 7.0 * unit : 0.0;
+    const double clear = has_worst ? worst_radius + 7.0 * unit : 0.0;
     const std::array<double, 2> m = in_plane(marker.position - worst);
     const double m2 = m[0] * m[0] + m[1] * m[1];
     // The arrow on the ray marker − t d, t in [t0, t0 + length]: its start
@@ -433,15 +459,19 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
 
   // 4. Aggregated glyphs: the grey ones, then the coloured (ranked) ones
   // over them, so that no grey glyph hides a ranked one.
+  // Drawn at displayed_glyph_radii: #0 at least kWorstGlyphMinPixels, the
+  // grey ones smaller.
   SphereSet spheres, ranked;
   ranked.over_other_spheres = true;
   const Rgba8 neutral = to_rgba8(neutral_cluster_color());
+  const std::vector<double> shown =
+      displayed_glyph_radii(glyphs, displayed_glyph_scale(glyphs, camera, view_height, options.pixel_scale));
   for (const AggregatedGlyph& g : glyphs.clusters) {
     if (!(g.radius > 0.0)) continue;
     const Rgba8 color = to_rgba8(cluster_color(g.id, top));
     SphereSet& set = color == neutral ? spheres : ranked;
     set.centers.push_back(local(g.position));
-    set.radii.push_back(static_cast<float>(g.radius));
+    set.radii.push_back(static_cast<float>(shown[static_cast<std::size_t>(g.id)]));
     set.colors.push_back(color);
   }
   scene.spheres.push_back(std::move(spheres));
@@ -520,12 +550,13 @@ void draw_main_view_labels(Image& figure, const MainViewLabels& labels, const An
 // A ring around cluster #0's glyph on screen (dark on a pale halo, a few
 // pixels outside its silhouette), so the worst place is found first even
 // where its glyph is small.
-void draw_worst_glyph_ring(Image& figure, const ScreenDisc& worst, const AnnotationStyle& style,
+void draw_worst_glyph_ring(Image& figure, const ScreenDisc& worst, bool is_inverted, const AnnotationStyle& style,
                            const MainViewOptions& options) {
   if (!(worst.radius > 0.0)) return;
   Rgba8 halo = options.background;
   halo.a = 255;
-  const double radius = worst.radius + 4.0 * style.scale;
+  // Outside the inverted ring (draw_inverted_glyph_rings) when #0 has one.
+  const double radius = worst.radius + (is_inverted ? 6.5 : 4.0) * style.scale;
   constexpr int kSegments = 96;
   for (int pass = 0; pass < 2; ++pass)
     for (int i = 0; i < kSegments; ++i) {
@@ -536,9 +567,31 @@ void draw_worst_glyph_ring(Image& figure, const ScreenDisc& worst, const Annotat
     }
 }
 
+// A ring in the inverted colour just outside each glyph of a cluster with an
+// inverted vertex (on a pale halo), so inverted clusters differ from merely
+// poor ones at a glance; cluster #0's dark ring goes outside it.
+void draw_inverted_glyph_rings(Image& figure, const std::vector<ScreenDisc>& inverted, const AnnotationStyle& style,
+                               const MainViewOptions& options) {
+  Rgba8 halo = options.background;
+  halo.a = 255;
+  const Rgba8 color = to_rgba8(kInvertedColor);
+  for (const ScreenDisc& d : inverted) {
+    const double radius = d.radius + 1.5 * style.scale;
+    const int segments = std::clamp(static_cast<int>(radius), 24, 96);
+    for (int pass = 0; pass < 2; ++pass)
+      for (int i = 0; i < segments; ++i) {
+        const double a0 = 2.0 * M_PI * i / segments, a1 = 2.0 * M_PI * (i + 1) / segments;
+        draw_line(figure, d.x + radius * std::cos(a0), d.y + radius * std::sin(a0), d.x + radius * std::cos(a1),
+                  d.y + radius * std::sin(a1), pass == 0 ? halo : color,
+                  pass == 0 ? std::max(4.0, 5.0 * style.scale) : std::max(2.0, 3.0 * style.scale));
+      }
+  }
+}
+
 // Legend: what each colour means (draw_legend shrinks it to the panel).
 void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapReport* overlap,
-                      const FigureLayout& layout, const AnnotationStyle& style, const MainViewOptions& options) {
+                      const FigureLayout& layout, const AnnotationStyle& style, const MainViewOptions& options,
+                      double glyph_scale) {
   const std::size_t listed = std::min<std::size_t>(
       glyphs.clusters.size(), static_cast<std::size_t>(labelled_cluster_count(glyphs.options.top_clusters)));
   std::vector<LegendLine> lines{{std::nullopt, "glyphs: worst clusters"}};
@@ -551,7 +604,9 @@ void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapRep
   }
   if (glyphs.clusters.size() > listed) {
     const std::size_t rest = glyphs.clusters.size() - listed;
-    lines.push_back({to_rgba8(neutral_cluster_color()), std::to_string(rest) + (rest == 1 ? " other cluster" : " other clusters")});
+    lines.push_back({to_rgba8(neutral_cluster_color()),
+                     std::to_string(rest) + (rest == 1 ? " other" : " others") + " (" +
+                         display_number(kGreyGlyphFactor, 2) + " size)"});
   }
   if (glyphs.clusters.empty())
     lines.push_back({options.background, "none: no quality below " + display_number(1.0 - glyphs.options.threshold, 3)});
@@ -560,7 +615,13 @@ void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapRep
                        ? "size = 1 - min quality + 0.1 per 10 vertices (paper)"
                        : "size = 1 - min quality",
                    1});
+  // The drawn scale (kWorstGlyphMinPixels), when it is not 1.
+  if (glyph_scale > 1.0)
+    lines.push_back({std::nullopt, "drawn x" + display_number(glyph_scale, 2) + " so #0 is " +
+                                       display_number(kWorstGlyphMinPixels, 2) + " px"});
   if (!glyphs.clusters.empty()) lines.push_back({std::nullopt, "label #k (n): rank k, n vertices"});
+  if (!glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0)
+    lines.push_back({to_rgba8(kInvertedColor), "ring: inverted (min < 0)"});
   // Findings and places by kind, as the markers count them: the "xN"
   // labels of the marker groups add up to the two findings counts.
   std::size_t findings[2] = {0, 0};
@@ -600,20 +661,25 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
            d.y <= layout.view.y + layout.view.height;
   };
   MainViewLabels result;
+  result.camera = camera;
+  result.view = layout.view;
+  result.glyph_scale = displayed_glyph_scale(glyphs, camera, layout.view.height, scaled.pixel_scale);
+  const std::vector<double> shown = displayed_glyph_radii(glyphs, result.glyph_scale);
   // Obstacles: the glyphs (the 200 largest on screen: under the severity
   // rule the first 200 ranks) and the arrow fans.
   constexpr std::size_t kGlyphObstacles = 200;
   std::vector<std::pair<double, ScreenDisc>> glyph_discs;
   for (const AggregatedGlyph& g : glyphs.clusters) {
     if (!(g.radius > 0.0)) continue;
-    const ScreenDisc d = screen_of(g.position, g.radius);
+    const ScreenDisc d = screen_of(g.position, shown[static_cast<std::size_t>(g.id)]);
     if (on_screen(d) && d.radius >= 1.0) glyph_discs.push_back({d.radius, d});
+    if (on_screen(d) && g.min_quality < 0.0) result.inverted_glyphs.push_back(d);
   }
   std::stable_sort(glyph_discs.begin(), glyph_discs.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });
   if (glyph_discs.size() > kGlyphObstacles) glyph_discs.resize(kGlyphObstacles);
   if (!glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0)
-    result.worst_glyph = screen_of(glyphs.clusters[0].position, glyphs.clusters[0].radius);
+    result.worst_glyph = screen_of(glyphs.clusters[0].position, shown[0]);
   std::vector<ScreenDisc> fans;
   std::vector<MainViewLabel> markers;
   if (overlap) {
@@ -638,7 +704,7 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
       glyphs.clusters.size(), static_cast<std::size_t>(labelled_cluster_count(glyphs.options.top_clusters)));
   for (std::size_t i = 0; i < num_cluster_labels; ++i) {
     const AggregatedGlyph& g = glyphs.clusters[i];
-    const ScreenDisc disc = screen_of(g.position, g.radius);
+    const ScreenDisc disc = screen_of(g.position, shown[i]);
     if (!on_screen(disc)) continue;
     MainViewLabel label;
     label.kind = MainViewLabel::Kind::cluster;
@@ -670,13 +736,13 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
   all_obstacles.insert(all_obstacles.end(), fans.begin(), fans.end());
   std::vector<ScreenDisc> worst_only;
   if (result.worst_glyph.radius > 0.0) worst_only.push_back(result.worst_glyph);
-  std::vector<PixelRect> taken;
+  std::vector<PlacedLabel> earlier;
   for (MainViewLabel& label : order) {
     const int size = label.kind == MainViewLabel::Kind::cluster ? cluster_label_size(style) : marker_label_size(style);
     const LabelRequest request[] = {label_request(label.text, size, label.anchor, style)};
-    std::optional<PlacedLabel> placed = place_labels(request, all_obstacles, taken, options)[0];
+    std::optional<PlacedLabel> placed = place_labels(request, all_obstacles, {}, options, earlier)[0];
     if (!placed && label.kind == MainViewLabel::Kind::marker)
-      placed = place_labels(request, worst_only, taken, options)[0];
+      placed = place_labels(request, worst_only, {}, options, earlier)[0];
     if (!placed && label.kind == MainViewLabel::Kind::marker) {
       // No free place in the whole view: at the anchor's right, clamped to the view.
       PixelRect box{static_cast<int>(std::lround(label.anchor.x + label.anchor.radius)),
@@ -690,18 +756,8 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
       ++result.omitted_clusters;
       continue;
     }
-    // A label nearer to another glyph or fan than to its own anchor would
-    // read as that one's: it gets a leader line too.
-    if (!placed->has_leader) {
-      const double own = disc_box_gap(label.anchor, placed->box);
-      auto nearer = [&](const ScreenDisc& d) {
-        const bool is_own = d.x == label.anchor.x && d.y == label.anchor.y;
-        return !is_own && disc_box_gap(d, placed->box) < own;
-      };
-      if (std::any_of(all_obstacles.begin(), all_obstacles.end(), nearer)) *placed = with_leader(label.anchor, placed->box);
-    }
     label.placement = *placed;
-    taken.push_back(placed->box);
+    earlier.push_back(*placed);
     result.labels.push_back(label);
   }
   return result;
@@ -762,9 +818,11 @@ Image render_main_view(const HexMesh& mesh, const Topology& topology, const Glyp
   Image figure = render_figure(renderer, scene, camera, options.width, options.height, layout, options.title, style);
 
   const MainViewLabels labels = layout_main_view_labels(glyphs, overlap, camera, layout, style, scaled);
-  draw_worst_glyph_ring(figure, labels.worst_glyph, style, scaled);
+  draw_inverted_glyph_rings(figure, labels.inverted_glyphs, style, scaled);
+  draw_worst_glyph_ring(figure, labels.worst_glyph, !glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0,
+                        style, scaled);
   draw_main_view_labels(figure, labels, style, scaled);
-  draw_main_legend(figure, glyphs, overlap, layout, style, options);
+  draw_main_legend(figure, glyphs, overlap, layout, style, options, labels.glyph_scale);
   return figure;
 }
 

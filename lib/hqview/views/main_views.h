@@ -117,8 +117,9 @@ std::vector<ScreenMarker> group_markers_on_screen(std::span<const OverlapMarker>
 //                all others the neutral tone; the lower rank when both
 //                endpoints are marked);
 //   lines[2]     edges of intersecting cells, kIntersectionArrowColor;
-//   spheres[0]   aggregated glyphs: one per cluster, radius = its radius,
-//                colour = its cluster colour;
+//   spheres[0]   the grey aggregated glyphs, spheres[1] the coloured ones
+//                (drawn over them): one per cluster, radius as
+//                displayed_glyph_radii, colour = its cluster colour;
 //   overlay[0]   arrows, over everything (a marker inside a glyph still
 //                shows its arrows): per marker group (group_markers_on_screen
 //                with options.marker_merge_pixels and max_marker_groups)
@@ -139,6 +140,21 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
                        const OverlapReport* overlap, const Camera& camera, int view_height,
                        const MainViewOptions& options);
 
+// How view A draws the glyphs (issue 44: on a long model a glyph of one
+// mean edge is 10-15 pixels and cluster #0 does not stand out). Every
+// aggregated glyph is drawn scale times its radius, scale the smallest
+// factor >= 1 that makes cluster #0 at least kWorstGlyphMinPixels pixels
+// in radius (times pixel_scale: 1 at a 1200-pixel-high figure), so the
+// radii keep their ratios (size = severity) and #0 is the largest; the grey
+// (unlabelled) clusters are drawn kGreyGlyphFactor smaller still, so none
+// looks as big as a coloured one (grey ranks come after the coloured ones:
+// a worse cluster is never drawn smaller). report.json keeps the radii.
+inline constexpr double kWorstGlyphMinPixels = 24.0;
+inline constexpr double kGreyGlyphFactor = 0.6;
+double displayed_glyph_scale(const GlyphResult& glyphs, const Camera& camera, int view_height, double pixel_scale);
+// The drawn radius of each cluster (by rank), model units.
+std::vector<double> displayed_glyph_radii(const GlyphResult& glyphs, double scale);
+
 // Width / height of the 3D part of the figure render_main_view draws.
 double main_view_aspect(const MainViewOptions& options);
 
@@ -157,6 +173,12 @@ struct MainViewLabels {
   std::vector<MainViewLabel> labels;
   ScreenDisc worst_glyph;      // cluster #0 on screen (radius 0 without glyphs)
   Index omitted_clusters = 0;  // cluster labels with no free place (left out)
+  Camera camera;               // the camera and the figure's 3D area they were laid out for
+  PixelRect view;
+  double glyph_scale = 1.0;    // displayed_glyph_scale of this view
+  // The glyphs of the clusters with an inverted vertex (min quality < 0)
+  // on screen, by rank: render_main_view rings each in the inverted colour.
+  std::vector<ScreenDisc> inverted_glyphs;
 };
 
 // Where view A's labels go (pure; render_main_view draws them): one count
@@ -167,8 +189,10 @@ struct MainViewLabels {
 // first, then the marker groups (largest count first), then clusters #1 ..;
 // none overlaps another label, a glyph disc of the 200 largest clusters on
 // screen, or an arrow fan (its own too); a label farther than 10 pixels (at
-// 1200 px height) from its anchor, or nearer to another glyph disc or fan
-// than to its anchor, has a leader line. A marker label's anchor
+// 1200 px height) from its anchor, or with another glyph disc or fan within
+// its anchor's gap + 10 pixels, has a leader line; a label sits beside
+// another glyph or fan only with a leader, and leader lines cross no other
+// leader, label or glyph, when such a place exists (place_labels). A marker label's anchor
 // is its group's position (a 3-pixel disc at the fans' centre, where the
 // arrows point), so it sits just outside its own fan with a leader line to
 // the centre, never reading as the label of a neighbouring fan; it wears the
