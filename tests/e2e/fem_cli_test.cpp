@@ -136,6 +136,38 @@ TEST(FemCli, SameBytesForOneAndTwoThreadsAndBatchPassesSimulate) {
   EXPECT_EQ(read_report(dir / "batch" / bundle)["fem"], read_report(dir / "j1")["fem"]);
 }
 
+// --simulate draws panel P's two charts (views fem_correlation and
+// fem_error_scatter: report.json views, the files, index.html's panel);
+// without it they are left out.
+TEST(FemCli, SimulateDrawsPanelP) {
+  const fs::path dir = fresh_output_dir("fem_views");
+  const std::string box = write_box(dir / "box.mesh", 6, 0.3).string();
+  ASSERT_EQ(run_hqview({"analyze", box, "-o", (dir / "a").string(), "--simulate", "--views",
+                        "fem_correlation,fem_error_scatter,histogram", "--quiet"})
+                .exit_code,
+            0);
+  const json report = read_report(dir / "a");
+  std::vector<std::string> ids;
+  for (const json& v : report["views"]) ids.push_back(v["id"].get<std::string>());
+  EXPECT_EQ(ids, (std::vector<std::string>{"histogram", "histogram_log", "fem_correlation", "fem_error_scatter"}));
+  for (const char* f : {"views/fem_correlation.svg", "views/fem_correlation.png", "views/fem_error_scatter.svg",
+                        "views/fem_error_scatter.png"})
+    EXPECT_TRUE(fs::exists(dir / "a" / f)) << f;
+  // The chart names the metrics the report correlates.
+  const std::string svg = read_text(dir / "a/views/fem_correlation.svg");
+  EXPECT_NE(svg.find("<svg"), std::string::npos);
+  const std::string html = read_text(dir / "a/index.html");
+  EXPECT_NE(html.find("id=\"panel-p\""), std::string::npos);
+  EXPECT_NE(html.find("views/fem_error_scatter.svg"), std::string::npos);
+  ASSERT_EQ(run_hqview({"analyze", box, "-o", (dir / "b").string(), "--views", "fem_correlation,histogram", "--quiet"})
+                .exit_code,
+            0);
+  const json plain = read_report(dir / "b");
+  ASSERT_EQ(plain["views"].size(), 2u);  // histogram, histogram_log
+  EXPECT_EQ(plain["views"][0]["id"], "histogram");
+  EXPECT_EQ(read_text(dir / "b/index.html").find("panel-p"), std::string::npos);
+}
+
 // Spearman's rho written here (average ranks, Pearson of the ranks), not the library's.
 double test_spearman(const std::vector<double>& x, const std::vector<double>& y) {
   const auto ranks = [](const std::vector<double>& v) {
