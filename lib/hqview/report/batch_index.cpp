@@ -393,7 +393,12 @@ kainjow::mustache::data fem_correlation_data(const CollectionCorrelation& c) {
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   const auto strength = [&](std::size_t i) { return std::isfinite(c.rows[i].rho_h1) ? std::abs(c.rows[i].rho_h1) : -1.0; };
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return strength(a) > strength(b); });
-  const auto rho = [](double v) { return std::isfinite(v) ? display_number(v) : std::string("–"); };
+  const auto rho = [](double v) {
+    if (!std::isfinite(v)) return std::string("–");
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3f", v);  // as the per-mesh chart
+    return std::string(text);
+  };
   data rows = data::type::list;
   for (const std::size_t i : order) {
     const CollectionCorrelationRow& r = c.rows[i];
