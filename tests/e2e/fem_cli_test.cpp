@@ -257,6 +257,15 @@ TEST(FemCli, BatchCorrelatesErrorsWithMetricsAcrossMeshes) {
                   "fem.poisson.mean.h1_error<=baseline", "--gate", "fem.poisson.mean.l2_error<=1e-12"});
   EXPECT_EQ(r.exit_code, 1) << r.out << r.err;  // every mesh passes the first and fails the second
   EXPECT_NE(r.out.find("fem.poisson.mean.l2_error<=1e-12"), std::string::npos) << r.out;
+  // Shards merged: the same index.json bytes (the rows' metrics read back).
+  for (const char* shard : {"1/2", "2/2"})
+    ASSERT_EQ(run_hqview({"batch", (dir / "manifest.csv").string(), "-o", (dir / (std::string("s") + shard[0])).string(),
+                          "--no-render", "--simulate", "--quiet", "--shard", shard})
+                  .exit_code,
+              0);
+  ASSERT_EQ(run_hqview({"merge", (dir / "s1").string(), (dir / "s2").string(), "-o", (dir / "merged").string()}).exit_code,
+            0);
+  EXPECT_EQ(read_text(dir / "merged" / "index.json"), read_text(dir / "sim" / "index.json"));
   // Without --simulate: no metrics per row, no correlation, no fem columns.
   ASSERT_EQ(run_hqview({"batch", (dir / "manifest.csv").string(), "-o", (dir / "plain").string(), "--no-render",
                         "--quiet"})

@@ -52,11 +52,13 @@ CollectionCorrelation correlate_collection(const std::vector<BatchEntry>& entrie
         e.headline[h1_slot])
       meshes.push_back(&e);
   out.num_meshes = static_cast<int>(meshes.size());
-  // The metric names in first-seen order.
+  // The metric names in alphabetical order: index.json keeps a row's metrics
+  // by name, so a merge of shards (rows read back) gives the same order as one run.
   std::vector<std::string> names;
   for (const BatchEntry* e : meshes)
     for (const MeshMetricRange& m : e->metrics)
       if (std::find(names.begin(), names.end(), m.metric) == names.end()) names.push_back(m.metric);
+  std::sort(names.begin(), names.end());
   for (const std::string& name : names)
     for (const bool is_min : {true, false}) {
       std::vector<double> value, l2, h1;

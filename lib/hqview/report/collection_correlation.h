@@ -32,8 +32,7 @@ struct CollectionCorrelationRow {
 struct CollectionCorrelation {
   int num_meshes = 0;  // analysed meshes with a solved check
   int min_meshes = kMinCorrelationMeshes;
-  // Per metric (first-seen order of the entries' metric summaries: Verdict's
-  // order, then the element conditioning), min then mean.
+  // Per metric (alphabetical: the same after a merge of shards), min then mean.
   std::vector<CollectionCorrelationRow> rows;
 };
 
