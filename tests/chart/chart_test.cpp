@@ -264,6 +264,73 @@ TEST(MethodDistribution, OneDotPerValueAtItsHeightAndAMedianBar) {
   EXPECT_TRUE(has_text("a") && has_text("b") && has_text("2 meshes") && has_text("4 meshes"));
 }
 
+// One bar per metric with a rho, sorted by |rho| from the top, from the zero
+// line to rho on [-1, 1], blue for negative, orange for positive; a NaN rho
+// is named under the chart, not drawn.
+TEST(MetricCorrelation, BarsSortedByAbsoluteRhoFromTheZeroLine) {
+  const std::vector<std::string> metrics = {"a", "b", "c", "d"};
+  const std::vector<double> rho = {0.2, -0.8, std::nan(""), 0.5};
+  const Chart chart = metric_correlation_chart(metrics, rho, {900, 300, "t"});
+  ASSERT_EQ(chart.rects.size(), 9u + 3u + 2u);  // nine grid lines (under the bars), three bars, two key swatches
+  const ChartRect& plot = chart.plot;
+  const auto x_of = [&](double v) { return plot.x + plot.width * (v + 1.0) / 2.0; };
+  const double expected[] = {-0.8, 0.5, 0.2};  // b, d, a
+  for (int k = 0; k < 3; ++k) {
+    const ChartRect& bar = chart.rects[static_cast<std::size_t>(9 + k)];
+    EXPECT_TRUE(inside(plot, bar));
+    EXPECT_NEAR(std::min(bar.x, bar.x + bar.width), std::min(x_of(0.0), x_of(expected[k])), 1e-9);
+    EXPECT_NEAR(std::max(bar.x, bar.x + bar.width), std::max(x_of(0.0), x_of(expected[k])), 1e-9);
+    EXPECT_EQ(bar.fill.b > bar.fill.r, expected[k] < 0) << k;
+    if (k > 0) {
+      EXPECT_GT(bar.y, chart.rects[static_cast<std::size_t>(9 + k - 1)].y);
+    }
+  }
+  EXPECT_TRUE(has_text(chart, "-0.800") && has_text(chart, "0.500") && has_text(chart, "0.200"));
+  EXPECT_TRUE(has_text(chart, "no \u03c1 (constant on this mesh): c"));
+  EXPECT_FALSE(has_text(chart, "0.000"));
+}
+
+// Every hex with 0 < SJ <= 1 and a positive density lands in one cell of
+// the grid (the counts add up, whatever the number of hexes), at its
+// log-log position; the others are counted in the key.
+TEST(ErrorDensityScatter, EveryHexCountedInALogLogGrid) {
+  std::vector<double> sj, density;
+  for (int i = 0; i < 20000; ++i) {
+    const double t = (i % 1000 + 0.5) / 1000.0;
+    sj.push_back(0.05 + 0.95 * t);
+    density.push_back(1e-3 / sj.back());
+  }
+  sj.push_back(-0.5);  // inverted: left out
+  density.push_back(1.0);
+  sj.push_back(0.5);  // no density: left out
+  density.push_back(std::nan(""));
+  const Chart chart = error_density_scatter_chart(sj, density, {900, 560, "t"});
+  const ChartRect& plot = chart.plot;
+  std::size_t cells = 0;
+  for (const ChartRect& r : chart.rects)
+    if (inside(plot, r)) ++cells;
+  EXPECT_GT(cells, 50u);    // a curve of cells, not one dot
+  EXPECT_LT(cells, 2000u);  // not one rectangle per hex
+  bool key = false;
+  for (const ChartText& t : chart.texts)
+    key = key || (t.text.starts_with("hexes per 4-pixel cell: 1 to ") &&
+                  t.text.ends_with("; 20000 hexes, 2 left out (scaled Jacobian <= 0 or no density)"));
+  EXPECT_TRUE(key);
+  // Decades: x from 0.01 to 1, y from 1e-3 to 0.1.
+  EXPECT_TRUE(has_text(chart, "0.01") && has_text(chart, "1") && has_text(chart, "1e-3") && has_text(chart, "0.1"));
+  // The cell of SJ 1, density 1e-3 (x at the right end, y at the bottom).
+  bool corner = false;
+  for (const ChartRect& r : chart.rects)
+    corner = corner || (inside(plot, r) && r.x + r.width > plot.x + plot.width - 5 && r.y + r.height > plot.y + plot.height - 5);
+  EXPECT_TRUE(corner);
+  // The median curve falls (density ~ 1 / SJ).
+  const ChartPolyline* median = nullptr;
+  for (const ChartPolyline& l : chart.lines)
+    if (l.points.size() > 2) median = &l;
+  ASSERT_NE(median, nullptr);
+  EXPECT_GT(median->points.back().y, median->points.front().y);  // y down: the right end lower
+}
+
 }  // namespace hq
 
 namespace hq {

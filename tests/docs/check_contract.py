@@ -97,6 +97,10 @@ def main():
         f.write(os.path.join(examples, "ball.mesh") + ",m1,ball\n")
         f.write(os.path.join(examples, "twisted_bar.mesh") + ",m2,bar\n")
     run([hqview, "batch", "manifest.csv", "-o", "batch", "--no-render", "-q"], work)
+    # index.json's finite-element keys (meshes[].metrics, fem_correlation) exist with --simulate only.
+    with open(os.path.join(work, "manifest_simulate.csv"), "w") as f:
+        f.write("mesh,label,model\nbox.mesh,m3,box\n")
+    run([hqview, "batch", "manifest_simulate.csv", "-o", "batch_simulate", "--no-render", "--simulate", "-q"], work)
 
     with open(os.path.join(source, "docs", "contract.md"), encoding="utf-8") as f:
         contract = f.read()
@@ -114,7 +118,8 @@ def main():
     ok = not stray
     ok &= compare("report.json", contract_keys.report_keys(report) | contract_keys.stats_keys(report),
                   documented(contract, "report.json keys"), contract_keys.null_paths(report))
-    ok &= compare("index.json", contract_keys.index_keys(contract_keys.load(os.path.join(work, "batch", "index.json"))),
+    ok &= compare("index.json", contract_keys.index_keys(contract_keys.load(os.path.join(work, "batch", "index.json")))
+                  | contract_keys.index_keys(contract_keys.load(os.path.join(work, "batch_simulate", "index.json"))),
                   documented(contract, "index.json keys"))
     for name in ("cells.csv", "vertices.csv", "edges.csv"):
         with open(os.path.join(bundle, "data", name), newline="") as f:

@@ -98,6 +98,10 @@ def index_keys(index):
             return {path + "." + k for k in value}
         if path == "methods[].keys" and isinstance(value, dict):
             return {path + ".<key>." + member for v in value.values() for member in v}
+        if path == "meshes[].metrics" and isinstance(value, dict):  # per metric name (--simulate)
+            return {path + ".<metric>." + member for v in value.values() for member in v}
+        if path == "methods[].fem_correlation" and isinstance(value, dict):  # documented as fem_correlation
+            return {path}
         return None
 
     return dotted_paths(index, rule)

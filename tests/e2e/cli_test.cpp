@@ -169,6 +169,16 @@ TEST(Cli, MemoryEstimateCoversTheMeasuredPeak) {
       EXPECT_LE(peak, estimate) << mesh << (render ? " with views" : " without");
       EXPECT_LE(estimate, 4.0 * peak) << mesh << (render ? " with views" : " without");
     }
+    // --simulate (the finite-element check) without views, as a nightly batch runs it.
+    const CliResult r = run_hqview({"analyze", mesh.string(), "-o", (dir / "out").string(), "-j", "1", "-q",
+                                    "--no-render", "--simulate"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const json timings = json::parse(read_text(dir / "out/timings.json"));
+    const double peak = timings["stages"].back()["peak_rss_mb"].get<double>() * 1e6;
+    const auto estimate = static_cast<double>(estimate_mesh_memory(fs::file_size(mesh), false, true));
+    EXPECT_LE(peak, estimate) << mesh << " --simulate";
+    EXPECT_LE(estimate, 4.0 * peak) << mesh << " --simulate";
+    EXPECT_GT(estimate, static_cast<double>(estimate_mesh_memory(fs::file_size(mesh), false)));
   }
 }
 

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -133,6 +134,148 @@ TEST(FemCli, SameBytesForOneAndTwoThreadsAndBatchPassesSimulate) {
   const json index = json::parse(read_text(dir / "batch" / "index.json"));
   const std::string bundle = index["meshes"][0]["bundle"].get<std::string>();
   EXPECT_EQ(read_report(dir / "batch" / bundle)["fem"], read_report(dir / "j1")["fem"]);
+}
+
+// --simulate draws panel P's two charts (views fem_correlation and
+// fem_error_scatter: report.json views, the files, index.html's panel);
+// without it they are left out.
+TEST(FemCli, SimulateDrawsPanelP) {
+  const fs::path dir = fresh_output_dir("fem_views");
+  const std::string box = write_box(dir / "box.mesh", 6, 0.3).string();
+  ASSERT_EQ(run_hqview({"analyze", box, "-o", (dir / "a").string(), "--simulate", "--views",
+                        "fem_correlation,fem_error_scatter,histogram", "--quiet"})
+                .exit_code,
+            0);
+  const json report = read_report(dir / "a");
+  std::vector<std::string> ids;
+  for (const json& v : report["views"]) ids.push_back(v["id"].get<std::string>());
+  EXPECT_EQ(ids, (std::vector<std::string>{"histogram", "histogram_log", "fem_correlation", "fem_error_scatter"}));
+  for (const char* f : {"views/fem_correlation.svg", "views/fem_correlation.png", "views/fem_error_scatter.svg",
+                        "views/fem_error_scatter.png"})
+    EXPECT_TRUE(fs::exists(dir / "a" / f)) << f;
+  // The chart names the metrics the report correlates.
+  const std::string svg = read_text(dir / "a/views/fem_correlation.svg");
+  EXPECT_NE(svg.find("<svg"), std::string::npos);
+  const std::string html = read_text(dir / "a/index.html");
+  EXPECT_NE(html.find("id=\"panel-p\""), std::string::npos);
+  EXPECT_NE(html.find("views/fem_error_scatter.svg"), std::string::npos);
+  ASSERT_EQ(run_hqview({"analyze", box, "-o", (dir / "b").string(), "--views", "fem_correlation,histogram", "--quiet"})
+                .exit_code,
+            0);
+  const json plain = read_report(dir / "b");
+  ASSERT_EQ(plain["views"].size(), 2u);  // histogram, histogram_log
+  EXPECT_EQ(plain["views"][0]["id"], "histogram");
+  EXPECT_EQ(read_text(dir / "b/index.html").find("panel-p"), std::string::npos);
+}
+
+// Spearman's rho written here (average ranks, Pearson of the ranks), not the library's.
+double test_spearman(const std::vector<double>& x, const std::vector<double>& y) {
+  const auto ranks = [](const std::vector<double>& v) {
+    std::vector<double> r(v.size());
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      double below = 0, equal = 0;
+      for (double w : v) below += w < v[i], equal += w == v[i];
+      r[i] = below + (equal + 1) / 2;
+    }
+    return r;
+  };
+  const std::vector<double> a = ranks(x), b = ranks(y);
+  const double mean = (static_cast<double>(x.size()) + 1) / 2;
+  double sab = 0, saa = 0, sbb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    sab += (a[i] - mean) * (b[i] - mean);
+    saa += (a[i] - mean) * (a[i] - mean);
+    sbb += (b[i] - mean) * (b[i] - mean);
+  }
+  return sab / std::sqrt(saa * sbb);
+}
+
+// Batch with --simulate: the fem headline keys in index.json, index.html,
+// comparison.csv and --compare-keys; each mesh's metric min/mean and the
+// collection's Spearman correlations (checked against the bundles' own
+// values and a rank correlation written here); a method with fewer than 5
+// meshes gets nulls; diff gates on fem keys of two indexes; a batch without
+// --simulate has none of it.
+TEST(FemCli, BatchCorrelatesErrorsWithMetricsAcrossMeshes) {
+  const fs::path dir = fresh_output_dir("fem_collection");
+  const double shifts[] = {0.0, 0.1, 0.2, 0.3, 0.35, 0.4};
+  std::ofstream manifest(dir / "manifest.csv");
+  manifest << "mesh,label,model\n";
+  for (int i = 0; i < 6; ++i) {
+    const fs::path mesh = write_box(dir / ("box" + std::to_string(i) + ".mesh"), 6, shifts[i]);
+    manifest << mesh.string() << "," << (i < 3 ? "a" : "b") << ",m" << i % 3 << "\n";
+  }
+  manifest.close();
+  CliResult r = run_hqview({"batch", (dir / "manifest.csv").string(), "-o", (dir / "sim").string(), "--no-render",
+                            "--simulate", "--quiet", "--compare-keys",
+                            "quality.scaled_jacobian.min,fem.poisson.mean.h1_error,fem.poisson.scaled_matrix.condition"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json index = json::parse(read_text(dir / "sim" / "index.json"));
+  ASSERT_EQ(index["meshes"].size(), 6u);
+  std::vector<double> l2, h1, sj_min, sj_mean;
+  for (const json& m : index["meshes"]) {
+    const json report = read_report(dir / "sim" / m["bundle"].get<std::string>());
+    EXPECT_EQ(m["headline"]["fem.poisson.mean.h1_error"], report["fem"]["poisson"]["mean"]["h1_error"]);
+    EXPECT_EQ(m["headline"]["fem.poisson.mean.l2_error"], report["fem"]["poisson"]["mean"]["l2_error"]);
+    EXPECT_EQ(m["headline"]["fem.poisson.scaled_matrix.condition"], report["fem"]["poisson"]["scaled_matrix"]["condition"]);
+    EXPECT_EQ(m["headline"]["fem.element.num_invalid"], 0);
+    EXPECT_EQ(m["metrics"]["scaled_jacobian"]["min"], report["quality"]["metrics"]["scaled_jacobian"]["min"]);
+    EXPECT_EQ(m["metrics"]["fem_kappa"]["mean"], report["fem"]["element"]["kappa"]["mean"]);
+    l2.push_back(report["fem"]["poisson"]["mean"]["l2_error"].get<double>());
+    h1.push_back(report["fem"]["poisson"]["mean"]["h1_error"].get<double>());
+    sj_min.push_back(report["quality"]["metrics"]["scaled_jacobian"]["min"].get<double>());
+    sj_mean.push_back(report["quality"]["metrics"]["scaled_jacobian"]["mean"].get<double>());
+  }
+  // The more the vertex moves, the larger the error and the lower the min SJ.
+  EXPECT_LT(h1.front(), h1.back());
+  const json& c = index["fem_correlation"];
+  EXPECT_EQ(c["num_meshes"], 6);
+  EXPECT_EQ(c["min_meshes"], 5);
+  bool seen_min = false, seen_mean = false;
+  for (const json& row : c["metrics"]) {
+    if (row["metric"] != "scaled_jacobian") continue;
+    const bool is_min = row["stat"] == "min";
+    (is_min ? seen_min : seen_mean) = true;
+    EXPECT_EQ(row["num_meshes"], 6);
+    EXPECT_NEAR(row["rho_l2_error"].get<double>(), test_spearman(is_min ? sj_min : sj_mean, l2), 1e-12);
+    EXPECT_NEAR(row["rho_h1_error"].get<double>(), test_spearman(is_min ? sj_min : sj_mean, h1), 1e-12);
+  }
+  EXPECT_TRUE(seen_min && seen_mean);
+  EXPECT_LT(test_spearman(sj_min, h1), -0.5);  // the min SJ mostly ranks these meshes by their error
+  // A method of 3 meshes: too few, every rho null.
+  for (const json& m : index["methods"]) {
+    EXPECT_EQ(m["fem_correlation"]["num_meshes"], 3);
+    for (const json& row : m["fem_correlation"]["metrics"]) EXPECT_TRUE(row["rho_h1_error"].is_null()) << row;
+  }
+  const std::string html = read_text(dir / "sim" / "index.html");
+  EXPECT_NE(html.find("Which metrics predict the simulation error"), std::string::npos);
+  EXPECT_NE(html.find("<th>FEM H1 error</th>"), std::string::npos);
+  EXPECT_NE(html.find("FEM cond. (Jacobi)"), std::string::npos);  // a --compare-keys table
+  EXPECT_NE(read_text(dir / "sim" / "comparison.csv").find(",fem.poisson.mean.h1_error,"), std::string::npos);
+  // diff of two indexes gates on fem keys.
+  r = run_hqview({"diff", (dir / "sim" / "index.json").string(), (dir / "sim" / "index.json").string(), "--gate",
+                  "fem.poisson.mean.h1_error<=baseline", "--gate", "fem.poisson.mean.l2_error<=1e-12"});
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;  // every mesh passes the first and fails the second
+  EXPECT_NE(r.out.find("fem.poisson.mean.l2_error<=1e-12"), std::string::npos) << r.out;
+  // Shards merged: the same index.json bytes (the rows' metrics read back).
+  for (const char* shard : {"1/2", "2/2"})
+    ASSERT_EQ(run_hqview({"batch", (dir / "manifest.csv").string(), "-o", (dir / (std::string("s") + shard[0])).string(),
+                          "--no-render", "--simulate", "--quiet", "--shard", shard})
+                  .exit_code,
+              0);
+  ASSERT_EQ(run_hqview({"merge", (dir / "s1").string(), (dir / "s2").string(), "-o", (dir / "merged").string()}).exit_code,
+            0);
+  EXPECT_EQ(read_text(dir / "merged" / "index.json"), read_text(dir / "sim" / "index.json"));
+  // Without --simulate: no metrics per row, no correlation, no fem columns.
+  ASSERT_EQ(run_hqview({"batch", (dir / "manifest.csv").string(), "-o", (dir / "plain").string(), "--no-render",
+                        "--quiet"})
+                .exit_code,
+            0);
+  const json plain = json::parse(read_text(dir / "plain" / "index.json"));
+  EXPECT_FALSE(plain.contains("fem_correlation"));
+  EXPECT_FALSE(plain["meshes"][0].contains("metrics"));
+  EXPECT_TRUE(plain["meshes"][0]["headline"]["fem.poisson.mean.h1_error"].is_null());
+  EXPECT_EQ(read_text(dir / "plain" / "index.html").find("FEM H1 error"), std::string::npos);
 }
 
 }  // namespace

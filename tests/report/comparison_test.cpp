@@ -107,16 +107,28 @@ TEST(Comparison, CsvLongFormAndKeys) {
                                            "quality.scaled_jacobian.p05,quality.num_inverted,"
                                            "overlap.num_intersecting_cells,boundary_error.hausdorff.relative,"
                                            "structure.num_singular_edges_interior,"
-                                           "structure.num_singular_edges_boundary");
-  EXPECT_NE(csv.find("\n\"bun,ny \"\"x\"\"\",in,ec,a/bunny_in.mesh,ok,,100,-0.01,,,,,0.02,,\n"), std::string::npos)
+                                           "structure.num_singular_edges_boundary,fem.element.num_invalid,"
+                                           "fem.poisson.mean.l2_error,fem.poisson.mean.h1_error,"
+                                           "fem.poisson.scaled_matrix.condition");
+  EXPECT_NE(csv.find("\n\"bun,ny \"\"x\"\"\",in,ec,a/bunny_in.mesh,ok,,100,-0.01,,,,,0.02,,,,,,\n"),
+            std::string::npos)
       << csv;
-  EXPECT_NE(csv.find("\nkitten,out,ec,a/kitten_out.mesh,failed,,,,,,,,,,\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\nkitten,out,ec,a/kitten_out.mesh,failed,,,,,,,,,,,,,,\n"), std::string::npos) << csv;
   EXPECT_THROW(parse_comparison_keys("quality.nope"), ValueError);
   EXPECT_THROW(parse_comparison_keys(""), ValueError);
   // Default keys: the singular edges only when some row has them.
   EXPECT_EQ(default_comparison_keys(entries).size(), 6u);
   entries[1].headline[slot("structure.num_singular_edges_interior")] = 12;
   EXPECT_EQ(default_comparison_keys(entries).back().key, "structure.num_singular_edges_interior");
+  // The finite-element errors likewise (--simulate), lower is better.
+  entries[1].headline[slot("fem.poisson.mean.l2_error")] = 1e-4;
+  entries[1].headline[slot("fem.poisson.mean.h1_error")] = 0.02;
+  const std::vector<ComparisonKey> keys = default_comparison_keys(entries);
+  ASSERT_EQ(keys.size(), 9u);
+  EXPECT_EQ(keys[7].key, "fem.poisson.mean.l2_error");
+  EXPECT_EQ(keys[8].key, "fem.poisson.mean.h1_error");
+  EXPECT_EQ(keys[8].direction, -1);
+  EXPECT_EQ(parse_comparison_keys("fem.poisson.scaled_matrix.condition, fem.element.num_invalid").size(), 2u);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <map>
 
 #include "hqview/core/error.h"
@@ -506,6 +507,165 @@ Chart boundary_area_chart(std::span<const double> vertex_error, std::span<const 
                          kAxisColor,
                          ChartAnchor::left,
                          false});
+  return chart;
+}
+
+// ---- the finite-element check's charts (issue 48) ----
+
+namespace {
+
+constexpr Rgba8 kNegativeRhoColor{49, 104, 170, 255};  // higher value, lower error
+constexpr Rgba8 kPositiveRhoColor{205, 96, 40, 255};   // higher value, higher error
+
+// "0.01", "1", "1e-05": a decade's label.
+std::string decade_label(int k) {
+  if (k >= -2 && k <= 3) return format_tick(std::pow(10.0, k));
+  return "1e" + std::to_string(k);
+}
+
+}  // namespace
+
+Chart metric_correlation_chart(std::span<const std::string> metrics, std::span<const double> rho,
+                               const ChartOptions& options) {
+  std::vector<std::size_t> order, constant;
+  for (std::size_t i = 0; i < metrics.size() && i < rho.size(); ++i)
+    (std::isfinite(rho[i]) ? order : constant).push_back(i);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return std::abs(rho[a]) > std::abs(rho[b]); });
+  ChartOptions sized = options;
+  const double row = 20.0;
+  sized.height = std::max(options.height, static_cast<int>(120 + row * static_cast<double>(order.size())));
+  Chart chart = begin_chart(sized);
+  // Metric names left of the plot: a wider left margin.
+  ChartRect r = chart.plot;
+  const double names = 190.0;
+  r.x += names - 74.0;
+  r.width -= names - 74.0;
+  r.height = row * static_cast<double>(std::max<std::size_t>(1, order.size()));
+  chart.plot = r;
+  const auto x_of = [&](double v) { return r.x + r.width * (std::clamp(v, -1.0, 1.0) + 1.0) / 2.0; };
+  // The grid as 1-pixel rectangles, drawn before (under) the bars.
+  for (double t = -1.0; t <= 1.0001; t += 0.25) chart.rects.push_back({x_of(t) - 0.5, r.y, 1.0, r.height, kGridColor});
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const std::size_t i = order[k];
+    const double y = r.y + row * static_cast<double>(k);
+    const double x0 = x_of(0.0), x1 = x_of(rho[i]);
+    chart.rects.push_back({std::min(x0, x1), y + 3.0, std::max(1.0, std::abs(x1 - x0)), row - 6.0,
+                           rho[i] < 0 ? kNegativeRhoColor : kPositiveRhoColor});
+    chart.texts.push_back({{r.x - 8.0, y + row - 6.0}, metrics[i], kTickSize, {38, 38, 38, 255}, ChartAnchor::right,
+                           false});
+    const bool left = rho[i] < 0;
+    chart.texts.push_back({{x1 + (left ? -4.0 : 4.0), y + row - 6.0}, format_value(rho[i]), kTickSize - 1.0,
+                           kAxisColor, left ? ChartAnchor::right : ChartAnchor::left, false});
+  }
+  std::vector<std::pair<double, double>> x_ticks;
+  for (double t = -1.0; t <= 1.0001; t += 0.5) x_ticks.push_back({t, x_of(t)});
+  add_axes(chart, r, {}, x_ticks, "Spearman \u03c1 over the hexes: metric vs normalised error density", "");
+  chart.lines.push_back({{{x_of(0.0), r.y}, {x_of(0.0), r.y + r.height}}, kAxisColor, 1.0});
+  // The key, and the metrics that have no rho.
+  double ly = r.y + r.height + 62.0;
+  chart.rects.push_back({r.x, ly - 9.0, 14.0, 10.0, kNegativeRhoColor});
+  chart.texts.push_back({{r.x + 20.0, ly}, "\u03c1 < 0: a higher value, a lower error", kTickSize, kAxisColor,
+                         ChartAnchor::left, false});
+  chart.rects.push_back({r.x + 0.5 * r.width, ly - 9.0, 14.0, 10.0, kPositiveRhoColor});
+  chart.texts.push_back({{r.x + 0.5 * r.width + 20.0, ly}, "\u03c1 > 0: a higher value, a higher error", kTickSize,
+                         kAxisColor, ChartAnchor::left, false});
+  if (!constant.empty()) {
+    std::string text = "no \u03c1 (constant on this mesh):";
+    for (std::size_t i : constant) text += " " + metrics[i];
+    chart.texts.push_back({{16.0, ly + 22.0}, text, kTickSize, kAxisColor, ChartAnchor::left, false});
+  }
+  chart.height = static_cast<int>(ly + (constant.empty() ? 16.0 : 36.0));
+  return chart;
+}
+
+Chart error_density_scatter_chart(std::span<const double> scaled_jacobian, std::span<const double> error_density,
+                                  const ChartOptions& options) {
+  Chart chart = begin_chart(options);
+  ChartRect r = chart.plot;
+  r.height -= 30.0;  // room for the key under the x axis title
+  chart.plot = r;
+  std::vector<std::pair<double, double>> points;  // (log10 x, log10 y)
+  std::size_t left_out = 0;
+  for (std::size_t i = 0; i < scaled_jacobian.size() && i < error_density.size(); ++i) {
+    const double x = scaled_jacobian[i], y = error_density[i];
+    if (x > 0 && x <= 1 && y > 0 && std::isfinite(y))
+      points.push_back({std::log10(x), std::log10(y)});
+    else
+      ++left_out;
+  }
+  double x_lo = 0, y_lo = 0, y_hi = 1;
+  if (!points.empty()) {
+    x_lo = y_lo = std::numeric_limits<double>::infinity();
+    y_hi = -x_lo;
+    for (const auto& [x, y] : points) {
+      x_lo = std::min(x_lo, x);
+      y_lo = std::min(y_lo, y);
+      y_hi = std::max(y_hi, y);
+    }
+  }
+  // Whole decades; at least one on each axis.
+  x_lo = std::min(-1.0, std::floor(x_lo));
+  y_lo = std::floor(y_lo);
+  y_hi = std::max(y_lo + 1.0, std::ceil(y_hi));
+  const auto px = [&](double lx) { return r.x + r.width * (lx - x_lo) / (0.0 - x_lo); };
+  const auto py = [&](double ly) { return r.y + r.height * (1.0 - (ly - y_lo) / (y_hi - y_lo)); };
+  // Every hex counted in a grid of cells of `cell` pixels (deterministic,
+  // nothing sampled away), coloured by log count.
+  const double cell = 4.0;
+  const int nx = std::max(1, static_cast<int>(r.width / cell)), ny = std::max(1, static_cast<int>(r.height / cell));
+  std::vector<int> counts(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny), 0);
+  for (const auto& [x, y] : points) {
+    const int i = std::clamp(static_cast<int>((px(x) - r.x) / cell), 0, nx - 1);
+    const int j = std::clamp(static_cast<int>((py(y) - r.y) / cell), 0, ny - 1);
+    ++counts[static_cast<std::size_t>(j) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i)];
+  }
+  const int max_count = counts.empty() ? 1 : std::max(1, *std::max_element(counts.begin(), counts.end()));
+  const auto shade = [&](int c) {
+    const double t = max_count > 1 ? std::log(static_cast<double>(c)) / std::log(static_cast<double>(max_count)) : 1.0;
+    // Light blue (one hex) to dark navy (the most).
+    return Rgba8{static_cast<std::uint8_t>(150 - 130 * t), static_cast<std::uint8_t>(190 - 150 * t),
+                 static_cast<std::uint8_t>(235 - 115 * t), 255};
+  };
+  std::vector<std::pair<double, double>> x_ticks, y_ticks;
+  for (int k = static_cast<int>(x_lo); k <= 0; ++k) x_ticks.push_back({std::pow(10.0, k), px(k)});
+  for (int k = static_cast<int>(y_lo); k <= static_cast<int>(y_hi); ++k) y_ticks.push_back({std::pow(10.0, k), py(k)});
+  add_axes(chart, r, y_ticks, x_ticks, "scaled Jacobian per hex (log)", "normalised H1 error density (log)");
+  // Decade labels in readable form (add_axes printed %g).
+  for (ChartText& t : chart.texts)
+    for (int k = static_cast<int>(y_lo); k <= static_cast<int>(y_hi); ++k)
+      if (t.anchor == ChartAnchor::right && t.text == format_tick(std::pow(10.0, k))) t.text = decade_label(k);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      if (const int c = counts[static_cast<std::size_t>(j) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i)])
+        chart.rects.push_back({r.x + i * cell, r.y + j * cell, cell, cell, shade(c)});
+  // The median density of each of 16 equal log-x bins with at least 5 hexes.
+  const int bins = 16;
+  std::vector<std::vector<double>> by_bin(bins);
+  for (const auto& [x, y] : points)
+    by_bin[static_cast<std::size_t>(std::clamp(static_cast<int>((x - x_lo) / (0.0 - x_lo) * bins), 0, bins - 1))]
+        .push_back(y);
+  ChartPolyline median{{}, {205, 96, 40, 255}, 2.0};
+  for (int b = 0; b < bins; ++b) {
+    std::vector<double>& v = by_bin[static_cast<std::size_t>(b)];
+    if (v.size() < 5) continue;
+    std::sort(v.begin(), v.end());
+    const double m = v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+    median.points.push_back({px(x_lo + (b + 0.5) * (0.0 - x_lo) / bins), py(m)});
+  }
+  if (median.points.size() > 1) chart.lines.push_back(median);
+  const double ly = r.y + r.height + 70.0;
+  chart.rects.push_back({r.x, ly - 9.0, 10.0, 10.0, shade(1)});
+  chart.rects.push_back({r.x + 12.0, ly - 9.0, 10.0, 10.0, shade(max_count)});
+  chart.texts.push_back({{r.x + 28.0, ly},
+                         "hexes per 4-pixel cell: 1 to " + std::to_string(max_count) + " (log shade); " +
+                             std::to_string(points.size()) + " hexes" +
+                             (left_out ? ", " + std::to_string(left_out) + " left out (scaled Jacobian <= 0 or no density)"
+                                       : std::string()),
+                         kTickSize, kAxisColor, ChartAnchor::left, false});
+  chart.lines.push_back({{{r.x + 0.62 * r.width, ly - 4.0}, {r.x + 0.62 * r.width + 22.0, ly - 4.0}}, median.color, 2.0});
+  chart.texts.push_back({{r.x + 0.62 * r.width + 28.0, ly}, "median density per scaled Jacobian bin", kTickSize,
+                         kAxisColor, ChartAnchor::left, false});
   return chart;
 }
 

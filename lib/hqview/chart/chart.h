@@ -119,6 +119,22 @@ Chart boundary_area_chart(std::span<const double> vertex_error, std::span<const 
 Chart method_distribution_chart(std::span<const std::string> methods, std::span<const std::vector<double>> values,
                                 const ChartOptions& options);
 
+// --simulate: Spearman's rho over the hexes between the normalised error
+// density and each metric (fem.poisson.correlation), one horizontal bar per
+// metric sorted by |rho| (largest on top), on [-1, 1]; metrics whose rho is
+// NaN (constant on the mesh) are named under the chart.
+Chart metric_correlation_chart(std::span<const std::string> metrics, std::span<const double> rho,
+                               const ChartOptions& options);
+
+// --simulate: per hex the normalised error density against the scaled
+// Jacobian, both on log axes (whole decades; x up to 1). Every hex with
+// 0 < SJ <= 1 and a positive density is counted into a grid of 4-pixel
+// cells shaded by log count (so a mesh of millions of hexes draws the same
+// few thousand rectangles, the same for any thread count), with the median
+// density of 16 log-SJ bins as a curve; the others are counted in the key.
+Chart error_density_scatter_chart(std::span<const double> scaled_jacobian, std::span<const double> error_density,
+                                  const ChartOptions& options);
+
 // The chart as an SVG document / as a PNG-ready image (both from draw_chart).
 // Throws RenderError when Cairo fails.
 std::string chart_svg(const Chart& chart);

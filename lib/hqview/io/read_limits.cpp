@@ -86,7 +86,8 @@ std::uint64_t estimate_analysis_memory(std::uint64_t file_bytes, std::uint64_t n
   return saturating_add(bytes, saturating_mul(num_hexes, kBytesPerHex));
 }
 
-std::uint64_t estimate_mesh_memory(std::uint64_t file_bytes, bool is_rendering) {
+namespace {
+std::uint64_t analysis_peak_estimate(std::uint64_t file_bytes, bool is_rendering) {
   // Measured with /usr/bin/time on ../shared/data (Dolphin_padded, bunny_in,
   // warrior: 3-4 MB text files; hex_cube_coarse, 7 KB), one render thread
   // as in a batch of several workers: about 9-11 bytes of peak RSS per file
@@ -97,6 +98,18 @@ std::uint64_t estimate_mesh_memory(std::uint64_t file_bytes, bool is_rendering) 
   // 428-441 MB in all. Doubled for safety.
   if (!is_rendering) return saturating_add(saturating_mul(file_bytes, 20), std::uint64_t{16} << 20);
   return saturating_add(saturating_mul(file_bytes, 120), std::uint64_t{512} << 20);
+}
+}  // namespace
+
+std::uint64_t estimate_mesh_memory(std::uint64_t file_bytes, bool is_rendering, bool is_simulating) {
+  // --simulate: measured on Dolphin_padded refined once and twice (32.7 MB
+  // and about 260 MB of MEDIT text; 363,520 and 2,908,160 hexes), the check
+  // raises the peak by 5-6 bytes per file byte (the CSR matrix of 27
+  // non-zeros per free vertex, 12 bytes each, CG's vectors of three
+  // solutions, and per hex the error integrals, shares and density).
+  // Doubled for safety.
+  const std::uint64_t fem = is_simulating ? saturating_mul(file_bytes, 12) : 0;
+  return saturating_add(analysis_peak_estimate(file_bytes, is_rendering), fem);
 }
 
 std::string format_memory_size(std::uint64_t bytes) {

@@ -35,9 +35,11 @@ struct ReadLimits {
 std::uint64_t estimate_analysis_memory(std::uint64_t file_bytes, std::uint64_t num_vertices, std::uint64_t num_hexes);
 
 // Estimated peak memory (bytes) of analysing a mesh file of `file_bytes`
-// bytes, with or without the rendered views, before its counts are known:
-// what `batch` schedules meshes by (--memory-budget).
-std::uint64_t estimate_mesh_memory(std::uint64_t file_bytes, bool is_rendering);
+// bytes, with or without the rendered views, and with or without the
+// finite-element check (--simulate: its CSR matrix, CG vectors and per-hex
+// error fields), before its counts are known: what `batch` schedules
+// meshes by (--memory-budget).
+std::uint64_t estimate_mesh_memory(std::uint64_t file_bytes, bool is_rendering, bool is_simulating = false);
 
 // "512 MB", "1.5 GB", "3 TB" (binary units: 1 GB = 2^30 bytes), 3 significant digits.
 std::string format_memory_size(std::uint64_t bytes);

@@ -158,7 +158,7 @@ std::vector<BatchEntry> run_batch(const std::vector<BatchInput>& inputs, const B
     // A compare mesh is analysed in the same run: count its bytes too.
     if (!inputs[i].compare_file.empty())
       if (const auto other = fs::file_size(inputs[i].compare_file, ec); !ec) size += other;
-    cost[i] = estimate_mesh_memory(size, static_cast<bool>(options.make_renderer));
+    cost[i] = estimate_mesh_memory(size, static_cast<bool>(options.make_renderer), options.analyze.simulate);
   }
   const int workers = std::clamp(options.jobs, 1, std::max(1, static_cast<int>(inputs.size())));
   // Meshes analysed side by side each draw their views on one thread (their

@@ -20,6 +20,7 @@
 #include "hqview/report/atomic_file.h"
 #include "hqview/report/junit.h"
 #include "hqview/report/link_base.h"
+#include "hqview/report/collection_correlation.h"
 #include "hqview/report/comparison.h"
 #include "hqview/report/escape.h"
 #include "hqview/report/json_path.h"
@@ -37,7 +38,9 @@ constexpr int kIndexSchemaVersion = 1;
 // Column titles of the headline keys (kHeadlineKeys order).
 constexpr const char* kHeadlineTitles[] = {"#V",        "#H",        "min SJ",           "mean SJ",
                                            "p05 SJ",    "#inverted", "#intersecting",    "Hausdorff (rel.)",
-                                           "#singular interior edges", "#singular boundary edges"};
+                                           "#singular interior edges", "#singular boundary edges",
+                                           "#invalid elements", "FEM L2 error", "FEM H1 error",
+                                           "FEM cond. (Jacobi)"};
 static_assert(std::size(kHeadlineTitles) == kNumHeadlineKeys);
 
 std::string show(std::optional<double> v) { return v ? display_number(*v) : "–"; }
@@ -63,6 +66,24 @@ std::size_t headline_index(std::string_view key) {
   return kNumHeadlineKeys;
 }
 
+double number_or_nan(const json& v) { return v.is_number() ? v.get<double>() : std::numeric_limits<double>::quiet_NaN(); }
+
+bool has_fem_metrics(const std::vector<BatchEntry>& entries) {
+  return std::any_of(entries.begin(), entries.end(), [](const BatchEntry& e) { return !e.metrics.empty(); });
+}
+
+// index.json `fem_correlation` (collection_correlation.h).
+json correlation_json(const CollectionCorrelation& c) {
+  json rows = json::array();
+  for (const CollectionCorrelationRow& r : c.rows)
+    rows.push_back({{"metric", r.metric},
+                    {"stat", r.stat},
+                    {"rho_l2_error", number_or_null(r.rho_l2)},
+                    {"rho_h1_error", number_or_null(r.rho_h1)},
+                    {"num_meshes", r.num_meshes}});
+  return {{"num_meshes", c.num_meshes}, {"min_meshes", c.min_meshes}, {"metrics", std::move(rows)}};
+}
+
 bool has_labels(const std::vector<BatchEntry>& entries) {
   return std::any_of(entries.begin(), entries.end(), [](const BatchEntry& e) { return !e.label.empty(); });
 }
@@ -86,6 +107,7 @@ std::string_view to_string(BatchStatus status) {
 void fill_entry_from_report(BatchEntry& entry, const ReportDocument& report) {
   entry.sha256 = report.at("input").at("mesh").at("sha256").get<std::string>();
   for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) entry.headline[k] = json_number_at(report, kHeadlineKeys[k]);
+  entry.metrics = metric_summaries_from_report(report);
   entry.failed_gates.clear();
   bool passed = true;
   if (report.contains("gates") && report["gates"].is_object()) {
@@ -175,6 +197,12 @@ std::string batch_index_json(const std::vector<BatchEntry>& entries, const std::
     json headline = json::object();
     for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) headline[kHeadlineKeys[k]] = number_or_null(e.headline[k]);
     m["headline"] = std::move(headline);
+    if (!e.metrics.empty()) {  // a solved finite-element check only: other rows keep their bytes
+      json metrics = json::object();
+      for (const MeshMetricRange& s : e.metrics)
+        metrics[s.metric] = {{"min", number_or_null(s.min)}, {"mean", number_or_null(s.mean)}};
+      m["metrics"] = std::move(metrics);
+    }
     m["failed_gates"] = e.failed_gates;
     m["thumbnail"] = e.thumbnail.empty() ? json(nullptr) : json(e.thumbnail);
     meshes.push_back(std::move(m));
@@ -206,7 +234,8 @@ std::string batch_index_json(const std::vector<BatchEntry>& entries, const std::
     }
     return keys;
   };
-  for (const MethodSummary& m : summarize_methods(entries))
+  const bool any_fem = has_fem_metrics(entries);
+  for (const MethodSummary& m : summarize_methods(entries)) {
     methods.push_back({{"label", m.label},
                        {"num_meshes", m.num_meshes},
                        {"num_failed", m.num_failed},
@@ -216,7 +245,10 @@ std::string batch_index_json(const std::vector<BatchEntry>& entries, const std::
                        {"mean_mean_scaled_jacobian", number_or_null(m.mean_mean_scaled_jacobian)},
                        {"worst_min_scaled_jacobian", number_or_null(m.worst_min_scaled_jacobian)},
                        {"keys", key_aggregates(m.label)}});
+    if (any_fem) methods.back()["fem_correlation"] = correlation_json(correlate_collection(entries, m.label));
+  }
   j["methods"] = std::move(methods);
+  if (any_fem) j["fem_correlation"] = correlation_json(correlate_collection(entries));
   return j.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
 }
 
@@ -244,6 +276,9 @@ std::vector<BatchEntry> parse_batch_index_json(std::string_view text, const std:
           e.headline[k] = headline[kHeadlineKeys[k]].get<double>();
       if (m.contains("failed_gates")) e.failed_gates = m["failed_gates"].get<std::vector<std::string>>();
       if (m.contains("thumbnail") && m["thumbnail"].is_string()) e.thumbnail = m["thumbnail"].get<std::string>();
+      if (m.contains("metrics") && m["metrics"].is_object())
+        for (const auto& [metric, stats] : m["metrics"].items())
+          e.metrics.push_back({metric, number_or_nan(stats.at("min")), number_or_nan(stats.at("mean"))});
       entries.push_back(std::move(e));
     }
   } catch (const json::exception& e) {
@@ -350,6 +385,41 @@ kainjow::mustache::data comparison_data(const std::vector<BatchEntry>& entries, 
   return d;
 }
 
+// index.html's "Which metrics predict the simulation error" table: the rows
+// by |rho| with the H1 error, largest first (nulls last, then metric order).
+kainjow::mustache::data fem_correlation_data(const CollectionCorrelation& c) {
+  using kainjow::mustache::data;
+  std::vector<std::size_t> order(c.rows.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  const auto strength = [&](std::size_t i) { return std::isfinite(c.rows[i].rho_h1) ? std::abs(c.rows[i].rho_h1) : -1.0; };
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return strength(a) > strength(b); });
+  const auto rho = [](double v) {
+    if (!std::isfinite(v)) return std::string("–");
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3f", v);  // as the per-mesh chart
+    return std::string(text);
+  };
+  data rows = data::type::list;
+  for (const std::size_t i : order) {
+    const CollectionCorrelationRow& r = c.rows[i];
+    data row;
+    row.set("metric", r.metric);
+    row.set("stat", r.stat);
+    row.set("rho_l2", rho(r.rho_l2));
+    row.set("rho_h1", rho(r.rho_h1));
+    row.set("sort_l2", std::isfinite(r.rho_l2) ? format_double(r.rho_l2) : "");
+    row.set("sort_h1", std::isfinite(r.rho_h1) ? format_double(r.rho_h1) : "");
+    row.set("num_meshes", std::to_string(r.num_meshes));
+    rows.push_back(row);
+  }
+  data d;
+  d.set("rows", rows);
+  d.set("num_meshes", std::to_string(c.num_meshes));
+  d.set("min_meshes", std::to_string(c.min_meshes));
+  d.set("too_few", c.num_meshes < c.min_meshes);
+  return d;
+}
+
 // The order of index.html's mesh table: worst first (batch_index.h).
 int status_rank(BatchStatus s) {
   switch (s) {
@@ -414,6 +484,7 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
   page.set("has_thumbnail", any_thumbnail);
   static const std::size_t inverted_key = headline_index("quality.num_inverted");
   static const std::size_t min_sj_key = headline_index("quality.scaled_jacobian.min");
+  static const std::size_t invalid_key = headline_index("fem.element.num_invalid");
   data headers = data::type::list;
   for (std::size_t k = 0; k < kNumHeadlineKeys; ++k)
     if (shown[k]) headers.push_back(data("title", kHeadlineTitles[k]));
@@ -449,8 +520,8 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
       cell.set("text", show(e.headline[k]));
       // The sort key: the exact number, or empty (sorted last).
       cell.set("sort", e.headline[k] && std::isfinite(*e.headline[k]) ? format_double(*e.headline[k]) : "");
-      // Inverted hexes and a non-positive min SJ stand out.
-      const bool alert = e.headline[k] && ((k == inverted_key && *e.headline[k] > 0) ||
+      // Inverted hexes, a non-positive min SJ and invalid elements stand out.
+      const bool alert = e.headline[k] && (((k == inverted_key || k == invalid_key) && *e.headline[k] > 0) ||
                                            (k == min_sj_key && *e.headline[k] <= 0));
       cell.set("alert", alert);
       cells.push_back(cell);
@@ -481,6 +552,8 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
     method_rows.push_back(row);
   }
   page.set("methods", method_rows);
+  page.set("has_fem_correlation", has_fem_metrics(entries));
+  if (has_fem_metrics(entries)) page.set("fem_correlation", fem_correlation_data(correlate_collection(entries)));
   page.set("has_comparison", has_comparison(entries));
   if (has_comparison(entries))
     page.set("comparison", comparison_data(entries, keys ? *keys : default_comparison_keys(entries)));

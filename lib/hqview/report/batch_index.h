@@ -35,6 +35,11 @@ inline constexpr const char* kHeadlineKeys[] = {
     "boundary_error.hausdorff.relative",
     "structure.num_singular_edges_interior",
     "structure.num_singular_edges_boundary",
+    // The finite-element check (--simulate; null without it).
+    "fem.element.num_invalid",
+    "fem.poisson.mean.l2_error",
+    "fem.poisson.mean.h1_error",
+    "fem.poisson.scaled_matrix.condition",
 };
 inline constexpr std::size_t kNumHeadlineKeys = std::size(kHeadlineKeys);
 
@@ -44,6 +49,13 @@ struct PaperInfo {
   std::string title, year, doi;
   bool empty() const { return title.empty() && year.empty() && doi.empty(); }
   bool operator==(const PaperInfo&) const = default;
+};
+
+// A mesh's min and mean of one metric (collection_correlation.h); NaN: null.
+struct MeshMetricRange {
+  std::string metric;
+  double min = 0, mean = 0;
+  bool operator==(const MeshMetricRange&) const = default;
 };
 
 // One row of the index.
@@ -60,6 +72,10 @@ struct BatchEntry {
   std::vector<std::optional<double>> headline = std::vector<std::optional<double>>(kNumHeadlineKeys);
   std::vector<std::string> failed_gates;  // rules
   std::string thumbnail;  // the bundle's thumbnail view, relative to the bundle; empty: not rendered
+  // With a solved finite-element check only (else empty, and absent from
+  // index.json): every computed metric's min and mean, for the correlation
+  // across the collection (collection_correlation.h).
+  std::vector<MeshMetricRange> metrics;
   // Of this run only (not in index.json, so not after merge): every gate's
   // rule, value and outcome (OUT/junit.xml), and whether the failure was
   // the machine's (disk full, permission: batch exit code 5).

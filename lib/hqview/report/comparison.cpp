@@ -61,6 +61,10 @@ const std::vector<ComparisonKey>& comparison_keys() {
       {"boundary_error.hausdorff.relative", "Hausdorff (rel.)", -1},
       {"structure.num_singular_edges_interior", "#singular interior edges", -1},
       {"structure.num_singular_edges_boundary", "#singular boundary edges", -1},
+      {"fem.element.num_invalid", "#invalid elements", -1},
+      {"fem.poisson.mean.l2_error", "FEM L2 error", -1},
+      {"fem.poisson.mean.h1_error", "FEM H1 error", -1},
+      {"fem.poisson.scaled_matrix.condition", "FEM cond. (Jacobi)", -1},
   };
   return keys;
 }
@@ -72,7 +76,9 @@ std::vector<ComparisonKey> default_comparison_keys(const std::vector<BatchEntry>
         k.key == "quality.scaled_jacobian.mean" || k.key == "quality.num_inverted" ||
         k.key == "boundary_error.hausdorff.relative")
       keys.push_back(k);
-    if (k.key == "structure.num_singular_edges_interior" &&
+    // The singular edges and the finite-element errors only when some row has them.
+    if ((k.key == "structure.num_singular_edges_interior" || k.key == "fem.poisson.mean.l2_error" ||
+         k.key == "fem.poisson.mean.h1_error") &&
         std::any_of(entries.begin(), entries.end(), [&](const BatchEntry& e) { return value_of(e, k.key).has_value(); }))
       keys.push_back(k);
   }

@@ -111,6 +111,13 @@ const std::vector<PanelSpec>& index_panels() {
        "The corner scaled Jacobians at each chosen vertex, one bar per incident hex.", 'E'},
       {"panel-f", "F reference", "F · Reference",
        "The hex boundary against the reference surface (--reference), and the compared mesh (--compare).", 'F'},
+      {"panel-p", "P simulation", "P · Simulation: where the finite-element error is",
+       "With --simulate: the Poisson check's error density per hex (its H1 error over the a-priori factor h\u00b2 "
+       "|D\u00b2u|\u00b2, so it shows where the mesh is bad rather than where u curves). First, each metric's "
+       "Spearman \u03c1 with that density over the hexes, strongest first: the metrics that say where the error "
+       "is. Then every hex's density against its scaled Jacobian on log axes. Numbers: report.json fem.poisson; per "
+       "hex: data/cells.csv fem_error_density.",
+       'P'},
   };
   return panels;
 }

@@ -159,6 +159,8 @@ bool has_inputs(const Analysis& a, ViewNeeds needs) {
       return a.boundary_error && a.reference_surface && a.uv_atlas;
     case ViewNeeds::compare:
       return a.compare.has_value();
+    case ViewNeeds::simulation:
+      return a.poisson && a.poisson->skipped.empty() && !a.poisson->cell_error_density.empty();
   }
   return false;
 }
@@ -556,6 +558,27 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
     if (!slots[i].empty())
       views.push_back({std::string(kViews[i].id), std::string(kViews[i].title), std::move(slots[i])});
   return views;
+}
+
+// ---- --simulate: the finite-element check's charts (panel P) ----
+
+std::vector<ViewFile> build_fem_correlation(ViewContext& c) {
+  std::vector<std::string> metrics;
+  std::vector<double> rho;
+  for (const MetricCorrelation& m : c.a.fem_correlations) {
+    metrics.push_back(m.metric);
+    rho.push_back(m.correlation.rho);
+  }
+  if (metrics.empty()) return {};
+  return chart_files("fem_correlation",
+                     metric_correlation_chart(metrics, rho,
+                                              {900, 300, c.name + ": which metrics rank the hexes by FEM error"}));
+}
+
+std::vector<ViewFile> build_fem_error_scatter(ViewContext& c) {
+  return chart_files("fem_error_scatter",
+                     error_density_scatter_chart(c.a.field.cell_scaled_jacobian, c.a.poisson->cell_error_density,
+                                                 {900, 560, c.name + ": FEM error density against scaled Jacobian"}));
 }
 
 }  // namespace hq

@@ -55,12 +55,13 @@ using ViewBuilder = std::vector<ViewFile> (*)(ViewContext&);
 enum class ViewPage { index, boundary };
 
 // What a view needs beyond the mesh.
-enum class ViewNeeds { mesh, reference, uv_atlas, compare };  // uv_atlas: the reference and its atlas
+// simulation: a solved finite-element check (--simulate).
+enum class ViewNeeds { mesh, reference, uv_atlas, compare, simulation };  // uv_atlas: the reference and its atlas
 
 struct ViewSpec {
   std::string_view id;     // report.json views[].id
   std::string_view title;  // report.json views[].title
-  char panel;              // index.html panel 'A'..'F' (paper's letters), 'S' structure; 0 on boundary.html;
+  char panel;              // index.html panel 'A'..'F' (paper's letters), 'S' structure, 'P' simulation; 0 on boundary.html;
                            // 'T' the thumbnail (on the batch index only)
   int panel_order;         // position inside its panel or page
   ViewNeeds needs;
@@ -89,6 +90,8 @@ std::vector<ViewFile> build_sorted_quality(ViewContext&);
 std::vector<ViewFile> build_structure(ViewContext&);
 std::vector<ViewFile> build_size_gradation(ViewContext&);
 std::vector<ViewFile> build_thumbnail(ViewContext&);
+std::vector<ViewFile> build_fem_correlation(ViewContext&);
+std::vector<ViewFile> build_fem_error_scatter(ViewContext&);
 
 // Every view, in report order (the order they are drawn and listed).
 inline constexpr ViewSpec kViews[] = {
@@ -119,6 +122,10 @@ inline constexpr ViewSpec kViews[] = {
     {"structure", "Structure: the singularity graph by valence", 'S', 0, ViewNeeds::mesh, true, 12, build_structure},
     {"size_gradation", "Structure: size gradation on the boundary", 'S', 1, ViewNeeds::mesh, true, -1,
      build_size_gradation},
+    {"fem_correlation", "P: which metrics say where the simulation error is (Spearman \u03c1 per hex)", 'P', 0,
+     ViewNeeds::simulation, true, -1, build_fem_correlation},
+    {"fem_error_scatter", "P: error density against scaled Jacobian per hex (log-log)", 'P', 1,
+     ViewNeeds::simulation, true, -1, build_fem_error_scatter},
     // On no page of its own: the batch comparison's strip of thumbnails.
     {"thumbnail", "Thumbnail: the boundary by vertex quality, bounding-box frame", 'T', 0, ViewNeeds::mesh, true, -1,
      build_thumbnail},

@@ -1,0 +1,85 @@
+#include "hqview/report/collection_correlation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <span>
+
+#include "hqview/fem/metric_correlation.h"
+
+namespace hq {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+bool is_analysed(const BatchEntry& e) { return e.status == BatchStatus::ok || e.status == BatchStatus::gate_failed; }
+
+double number_or_nan(const ReportDocument& j, const char* key) {
+  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : kNaN;
+}
+
+std::size_t slot_of(std::string_view key) {
+  std::size_t k = 0;
+  while (k < kNumHeadlineKeys && key != kHeadlineKeys[k]) ++k;
+  return k;
+}
+
+}  // namespace
+
+std::vector<MeshMetricRange> metric_summaries_from_report(const ReportDocument& report) {
+  std::vector<MeshMetricRange> out;
+  if (!report.contains("fem") || !report["fem"].is_object()) return out;
+  const ReportDocument& fem = report["fem"];
+  if (!fem.contains("poisson") || !fem["poisson"].is_object() || !fem["poisson"]["skipped"].is_null()) return out;
+  if (report.contains("quality") && report["quality"].contains("metrics") && report["quality"]["metrics"].is_object())
+    for (const auto& [name, stats] : report["quality"]["metrics"].items())
+      if (stats.is_object()) out.push_back({name, number_or_nan(stats, "min"), number_or_nan(stats, "mean")});
+  if (fem.contains("element") && fem["element"].is_object())
+    for (const char* name : {"kappa", "lambda_max", "det_j_min"})
+      if (fem["element"].contains(name) && fem["element"][name].is_object())
+        out.push_back({std::string("fem_") + name, number_or_nan(fem["element"][name], "min"),
+                       number_or_nan(fem["element"][name], "mean")});
+  return out;
+}
+
+CollectionCorrelation correlate_collection(const std::vector<BatchEntry>& entries, const std::string& label) {
+  static const std::size_t l2_slot = slot_of("fem.poisson.mean.l2_error");
+  static const std::size_t h1_slot = slot_of("fem.poisson.mean.h1_error");
+  CollectionCorrelation out;
+  std::vector<const BatchEntry*> meshes;
+  for (const BatchEntry& e : entries)
+    if (is_analysed(e) && (label.empty() || e.label == label) && !e.metrics.empty() && e.headline[l2_slot] &&
+        e.headline[h1_slot])
+      meshes.push_back(&e);
+  out.num_meshes = static_cast<int>(meshes.size());
+  // The metric names in alphabetical order: index.json keeps a row's metrics
+  // by name, so a merge of shards (rows read back) gives the same order as one run.
+  std::vector<std::string> names;
+  for (const BatchEntry* e : meshes)
+    for (const MeshMetricRange& m : e->metrics)
+      if (std::find(names.begin(), names.end(), m.metric) == names.end()) names.push_back(m.metric);
+  std::sort(names.begin(), names.end());
+  for (const std::string& name : names)
+    for (const bool is_min : {true, false}) {
+      std::vector<double> value, l2, h1;
+      for (const BatchEntry* e : meshes)
+        for (const MeshMetricRange& m : e->metrics)
+          if (m.metric == name) {
+            value.push_back(is_min ? m.min : m.mean);
+            l2.push_back(*e->headline[l2_slot]);
+            h1.push_back(*e->headline[h1_slot]);
+          }
+      CollectionCorrelationRow row;
+      row.metric = name;
+      row.stat = is_min ? "min" : "mean";
+      const RankCorrelation a = spearman_correlation(std::span<const double>(value), std::span<const double>(l2));
+      const RankCorrelation b = spearman_correlation(std::span<const double>(value), std::span<const double>(h1));
+      row.num_meshes = static_cast<int>(a.count);
+      row.rho_l2 = a.count >= out.min_meshes ? a.rho : kNaN;
+      row.rho_h1 = b.count >= out.min_meshes ? b.rho : kNaN;
+      out.rows.push_back(std::move(row));
+    }
+  return out;
+}
+
+}  // namespace hq

@@ -1,0 +1,47 @@
+#pragma once
+// Across a collection: which geometric metrics predict the simulation error
+// of a mesh (Gao et al., "Evaluating Hex-mesh Quality Metrics via
+// Correlation Analysis", CGF 36(5), 2017). Over the meshes of a batch whose
+// finite-element check was solved (--simulate), Spearman's rank correlation
+// between each mesh's error figure (fem.poisson.mean.l2_error and .h1_error)
+// and its min and its mean of each metric (report.json quality.metrics.<m>,
+// and the element conditioning fem.element.kappa / lambda_max / det_j_min).
+// Null (NaN) when fewer than kMinCorrelationMeshes meshes have both values
+// or either side is constant over them. Pure; the entries' order (index.json,
+// sorted by path) does not change the result.
+
+#include <string>
+#include <vector>
+
+#include "hqview/report/batch_index.h"
+
+namespace hq {
+
+// Fewer meshes with both values: no correlation (rank correlations of a
+// handful of meshes say little; Gao et al. used dozens per dataset).
+inline constexpr int kMinCorrelationMeshes = 5;
+
+struct CollectionCorrelationRow {
+  std::string metric;  // a Verdict name, or fem_kappa, fem_lambda_max, fem_det_j_min
+  std::string stat;    // "min" or "mean"
+  double rho_l2 = 0;   // Spearman's rho with the mean relative L2 error; NaN: null
+  double rho_h1 = 0;   // with the mean relative H1 semi-norm error
+  int num_meshes = 0;  // meshes that entered (both errors and this value)
+};
+
+struct CollectionCorrelation {
+  int num_meshes = 0;  // analysed meshes with a solved check
+  int min_meshes = kMinCorrelationMeshes;
+  // Per metric (alphabetical: the same after a merge of shards), min then mean.
+  std::vector<CollectionCorrelationRow> rows;
+};
+
+// The metric summaries a batch row keeps for this (BatchEntry::metrics),
+// read from a report document: empty unless its fem.poisson was solved.
+std::vector<MeshMetricRange> metric_summaries_from_report(const ReportDocument& report);
+
+// Over the analysed (ok, gate_failed) entries with a solved check. `label`:
+// only that method's meshes; empty: all.
+CollectionCorrelation correlate_collection(const std::vector<BatchEntry>& entries, const std::string& label = "");
+
+}  // namespace hq
