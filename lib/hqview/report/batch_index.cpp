@@ -217,7 +217,7 @@ std::string batch_index_json(const std::vector<BatchEntry>& entries, const std::
                        {"worst_min_scaled_jacobian", number_or_null(m.worst_min_scaled_jacobian)},
                        {"keys", key_aggregates(m.label)}});
   j["methods"] = std::move(methods);
-  return j.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
+  return json_message_text(j).dump(2, ' ', false, json::error_handler_t::replace) + "\n";
 }
 
 std::vector<BatchEntry> parse_batch_index_json(std::string_view text, const std::string& name) {
@@ -486,6 +486,7 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
     page.set("comparison", comparison_data(entries, keys ? *keys : default_comparison_keys(entries)));
   mustache tmpl{std::string(report_template("batch_index.html.mustache"))};
   if (!tmpl.is_valid()) throw Error("batch index template: " + tmpl.error_message());
+  tmpl.set_custom_escape([](const std::string& s) { return html_escape(s); });
   return tmpl.render(page);
 }
 
