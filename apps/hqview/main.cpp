@@ -30,6 +30,7 @@
 
 #include "flags.h"
 #include "hqview/core/error.h"
+#include "hqview/core/message_text.h"
 #include "hqview/core/number_format.h"
 #include "hqview/core/progress.h"
 #include "hqview/core/stop.h"
@@ -44,6 +45,7 @@
 #include "hqview/report/batch_index.h"
 #include "hqview/report/bundle_writer.h"
 #include "hqview/report/comparison.h"
+#include "hqview/report/escape.h"
 #include "hqview/report/junit.h"
 #include "hqview/report/link_base.h"
 #include "hqview/report/report_json.h"
@@ -217,6 +219,12 @@ hq::AnalyzeOptions make_analyze_options(const AnalyzeArgs& args) {
   return options;
 }
 
+// Text from input (paths, error messages that quote a file, rules given on
+// the command line) as it is shown on standard error and output: bytes that
+// are not UTF-8 and control characters as \xhh (docs/contract.md,
+// "Messages are text").
+std::string shown(std::string_view text) { return hq::message_text(text); }
+
 // `hqview: STAGE: SECONDS s`, with the peak memory under --verbose.
 std::string stage_line(const hq::StageTime& t, bool with_memory) {
   std::string line = "hqview: " + t.name + ": " + hq::display_number(t.seconds, 3) + " s";
@@ -321,14 +329,15 @@ int run_analyze(const AnalyzeArgs& args) {
   hq::AnalyzeResult result = hq::analyze(options, renderer.get());
   result.model.analysis.timings.insert(result.model.analysis.timings.begin(), setup.begin(), setup.end());
   if (!args.quiet)
-    for (const std::string& w : result.model.analysis.warnings) std::cerr << "hqview: warning: " << w << "\n";
+    for (const std::string& w : result.model.analysis.warnings) std::cerr << "hqview: warning: " << shown(w) << "\n";
   hq::write_bundle(result.model, result.document, result.images, output, bundle);
   terminal.reset();  // the last stage line stays; the running line is cleared
   if (args.json == "-") std::cout << hq::report_json_text(result.document) << std::flush;
-  if (!args.quiet) std::cerr << "hqview: report written to " << (output / "index.html").string() << "\n";
+  if (!args.quiet) std::cerr << "hqview: report written to " << shown((output / "index.html").string()) << "\n";
   // Failing gates are printed even with --quiet: they explain exit code 1.
   for (const hq::GateResult& g : result.model.gates.results)
-    if (!g.passed) std::cerr << "hqview: gate failed: " << g.rule << " (value " << hq::format_double(g.value) << ")\n";
+    if (!g.passed)
+      std::cerr << "hqview: gate failed: " << shown(g.rule) << " (value " << hq::format_double(g.value) << ")\n";
   return result.model.gates.passed ? kOk : kGateFailed;
 }
 
@@ -387,14 +396,15 @@ class StderrProgress : public hq::BatchProgress {
       const int filled = total > 0 ? done * kWidth / total : kWidth;
       std::cerr << "\r\033[K[" << std::string(static_cast<std::size_t>(filled), '#')
                 << std::string(static_cast<std::size_t>(kWidth - filled), ' ') << "] " << done << "/" << total << " "
-                << entry.path << std::flush;
-      if (entry.status == hq::BatchStatus::failed) std::cerr << "\r\033[Khqview: failed: " << entry.error << "\n";
+                << shown(entry.path) << std::flush;
+      if (entry.status == hq::BatchStatus::failed)
+        std::cerr << "\r\033[Khqview: failed: " << shown(entry.error) << "\n";
       if (done == total) std::cerr << "\r\033[K";
     } else if (!quiet_ || entry.status == hq::BatchStatus::failed) {
       char time[32];
       std::snprintf(time, sizeof time, "%.2f s", seconds);
-      std::cerr << "hqview: [" << done << "/" << total << "] " << what << " " << entry.path << " (" << time << ")"
-                << (entry.error.empty() ? "" : ": " + entry.error) << "\n";
+      std::cerr << "hqview: [" << done << "/" << total << "] " << what << " " << shown(entry.path) << " (" << time
+                << ")" << (entry.error.empty() ? "" : ": " + shown(entry.error)) << "\n";
     }
   }
 
@@ -596,7 +606,7 @@ int run_batch_command(const BatchArgs& args, int jobs) {
                       {"compare", in.compare_file.string()},
                       {"up", in.up},
                       {"skipped", in.skip_reason}});
-    std::cout << rows.dump(1) << "\n";
+    std::cout << hq::json_message_text(rows).dump(1) << "\n";
     return kOk;
   }
   hq::check_batch_output_dir(options.output, options.force);
@@ -611,10 +621,10 @@ int run_batch_command(const BatchArgs& args, int jobs) {
   if (options.single_file != hq::SingleFile::none) hq::write_batch_single_file(options.output, options.link_base);
   if (!args.analysis.quiet)
     std::cerr << "hqview: " << entries.size() << " meshes; index written to "
-              << (options.output / "index.html").string() << "\n";
+              << shown((options.output / "index.html").string()) << "\n";
   for (const hq::BatchEntry& e : entries)
     for (const std::string& rule : e.failed_gates)
-      std::cerr << "hqview: gate failed: " << e.path << ": " << rule << "\n";
+      std::cerr << "hqview: gate failed: " << shown(e.path) << ": " << shown(rule) << "\n";
   return batch_exit_code(entries);
 }
 
@@ -627,7 +637,7 @@ int run_merge_command(const MergeArgs& args) {
   hq::write_batch_index(entries, HQVIEW_VERSION, args.output, keys ? &*keys : nullptr,
                         args.link_base.empty() ? "" : hq::normalize_link_base(args.link_base));
   std::cerr << "hqview: merged " << entries.size() << " meshes from " << shards.size() << " shards into "
-            << (fs::path(args.output) / "index.html").string() << "\n";
+            << shown((fs::path(args.output) / "index.html").string()) << "\n";
   return batch_exit_code(entries);
 }
 
@@ -657,11 +667,12 @@ int run_diff_command(const DiffArgs& args) {
     hq::write_file_atomically(args.markdown, hq::diff_markdown(diff, args.markdown_max_chars));
   }
   if (!args.junit.empty()) hq::write_file_atomically(args.junit, hq::junit_xml("hqview diff", hq::diff_junit_cases(diff)));
-  if (!args.quiet) std::cout << hq::diff_text(diff) << std::flush;
+  if (!args.quiet) std::cout << hq::message_text(hq::diff_text(diff), hq::LineBreaks::kept) << std::flush;
   for (const hq::DiffGateResult& g : diff.gates)
     if (!g.passed)
-      std::cerr << "hqview: gate failed: " << g.rule << (g.mesh.empty() ? "" : " [" + g.mesh + "]") << " (value "
-                << (g.value ? hq::format_double(*g.value) : std::string("none: the mesh failed")) << ")\n";
+      std::cerr << "hqview: gate failed: " << shown(g.rule) << (g.mesh.empty() ? "" : " [" + shown(g.mesh) + "]")
+                << " (value " << (g.value ? hq::format_double(*g.value) : std::string("none: the mesh failed"))
+                << ")\n";
   return diff.passed ? kOk : kGateFailed;
 }
 
@@ -710,7 +721,11 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);
+    // CLI11's message quotes the arguments: shown as text.
+    std::ostringstream out, err;
+    app.exit(e, out, err);
+    std::cout << hq::message_text(out.str(), hq::LineBreaks::kept);
+    std::cerr << hq::message_text(err.str(), hq::LineBreaks::kept);
     return kUsage;
   }
   if (show_version) {
@@ -736,9 +751,9 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     const int code = exit_code_of_current_exception();
     if (code == kInternal)
-      std::cerr << "hqview: internal error: " << e.what() << " (please report this)\n";
+      std::cerr << "hqview: internal error: " << shown(e.what()) << " (please report this)\n";
     else
-      std::cerr << "hqview: " << e.what() << "\n";
+      std::cerr << "hqview: " << shown(e.what()) << "\n";
     return code;
   }
 }

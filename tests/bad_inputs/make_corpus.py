@@ -211,3 +211,20 @@ for i in range(1500):
 put("medit_overlapping_stack.mesh",
     HEAD + f"Vertices {len(stack)}\n" + "".join(f"{text(x)} {text(y)} {text(z)} 0\n" for x, y, z in stack)
     + "Hexahedra 1500\n" + "".join(" ".join(str(8 * i + k + 1) for k in range(8)) + " 0\n" for i in range(1500)))
+
+# --- Messages are text (issue 46) -------------------------------------------
+# A byte that is not UTF-8 (0xA6) and ESC (0x1B) where each reader quotes the
+# file in its message: both shown as \xa6\x1b, never raw. The VTU closing
+# tag with a flipped byte is the case found by byte mutation.
+BAD = b"\xa6\x1b"
+put("medit_not_utf8_coordinate.mesh", (HEAD + VERTS).encode().replace(b"1 1 1 0", b"1 " + BAD + b" 1 0") + HEX.encode())
+put("vtk_not_utf8_dataset.vtk",
+    VTK_HEAD.encode().replace(b"UNSTRUCTURED_GRID", b"UNSTRUCTURED_" + BAD + b"GRID") + (VTK_POINTS + VTK_CELLS).encode())
+put("vtu_not_utf8_closing_tag.vtu", vtu(8, 1).encode().replace(b"</DataArray>", b"</D" + BAD + b"taArray>", 1))
+put("vtu_not_utf8_attribute.vtu", vtu(8, 1).encode().replace(b'format="ascii"', b'format="asc' + BAD + b'ii"', 1))
+put("gmsh_not_utf8_section.msh", (MSH_HEAD + MSH_NODES).encode().replace(b"$EndNodes", b"$End" + BAD + b"Nodes")
+    + MSH_ELEMENTS.encode())
+put("abaqus_not_utf8_node_id.inp",
+    ("*HEADING\ncube\n" + INP_NODES).encode() + b"*ELEMENT, TYPE=C3D8\n1, 1, 2, 3, 4, 5, 6, " + BAD + b", 8\n")
+put("ovm_not_utf8_keyword.ovm", b"OVM ASCII\nVert" + BAD + b"ices\n8\n0 0 0\n")
+put("exodus_not_utf8_variable_name.e", exodus()[:-20].replace(b"connect1", b"con" + BAD + b"ct1"))

@@ -162,8 +162,12 @@ TEST(TextScanner, FailThrowsParseErrorWithNameAndLine) {
 
 TEST(TextScanner, QuoteShortensAndEscapes) {
   EXPECT_EQ(quote("abc"), "'abc'");
-  EXPECT_EQ(quote(std::string_view("a\x01\xff", 3)), "'a\\x01\\xFF'");
+  EXPECT_EQ(quote(std::string_view("a\x01\xff", 3)), "'a\\x01\\xff'");
   EXPECT_EQ(quote(std::string(50, 'x')), "'" + std::string(40, 'x') + "...'");
+  // Valid UTF-8 is kept, never cut inside a character; invalid bytes, ESC as \xhh.
+  EXPECT_EQ(quote("caf\xc3\xa9 \xa6\x1b"), "'caf\xc3\xa9 \\xa6\\x1b'");
+  EXPECT_EQ(quote(std::string(39, 'x') + "\xc3\xa9yz"), "'" + std::string(39, 'x') + "...'");
+  EXPECT_EQ(quote(std::string(39, 'x') + "\xa6\xa6yz"), "'" + std::string(39, 'x') + "\\xa6...'");
 }
 
 TEST(TextScanner, CaseInsensitiveHelpers) {

@@ -46,9 +46,9 @@ void expect_nothing_found(const OverlapReport& r) {
   EXPECT_TRUE(r.markers.empty());
 }
 
-// The certificate's pairs equal the reference's and exhaustive mode's.
+// The certificate's pairs equal the references' and exhaustive mode's.
 void expect_matches_reference(const HexMesh& mesh, const std::string& what) {
-  const auto expected = test::reference_intersecting_pairs(mesh);
+  const auto expected = test::reference_all_pairs(mesh);
   EXPECT_EQ(test::pair_cells(run(mesh)), expected) << what << " (certificate)";
   EXPECT_EQ(test::pair_cells(run(mesh, OverlapMode::exhaustive)), expected) << what << " (exhaustive)";
 }
@@ -269,8 +269,95 @@ TEST(Overlap, UnreferencedVerticesAreIgnored) {
   EXPECT_TRUE(r.certified_clean);
 }
 
+// ---- Interiors that meet with no vertex inside (issue 46) -----------------
+
+// Unit cubes, each scaled by s and moved by d, as separate pieces (8 vertices each).
+HexMesh cubes(const std::vector<std::pair<double, Vec3>>& placed) {
+  HexMesh mesh;
+  const HexMesh cube = test::unit_cube();
+  for (const auto& [s, d] : placed) {
+    const Index base = mesh.num_vertices();
+    for (const Vec3& p : cube.points) mesh.points.push_back(s * p + d);
+    Hex h = cube.hexes[0];
+    for (Index& v : h) v += base;
+    mesh.hexes.push_back(h);
+  }
+  return mesh;
+}
+
+// Both modes list exactly the pair {0, 1}, or nothing.
+void expect_cubes(const HexMesh& mesh, bool intersect, const std::string& what) {
+  for (const OverlapMode mode : {OverlapMode::certificate, OverlapMode::exhaustive}) {
+    const OverlapReport r = run(mesh, mode);
+    const std::string where = what + " (" + std::string(overlap_mode_name(mode)) + ")";
+    if (intersect) {
+      ASSERT_EQ(test::pair_cells(r), (std::vector<std::array<Index, 2>>{{0, 1}})) << where;
+      EXPECT_EQ(r.num_intersecting_cells, 2) << where;
+      EXPECT_EQ(r.markers.size(), 1u) << where;
+    } else {
+      EXPECT_TRUE(r.intersecting_pairs.empty()) << where;
+      EXPECT_EQ(r.num_intersecting_cells, 0) << where;
+    }
+    EXPECT_EQ(test::pair_cells(r), test::reference_all_pairs(mesh)) << where;
+  }
+}
+
+TEST(Overlap, CubesShiftedAlongXOverlapWithNoVertexInside) {
+  // Volume 0.5 in common; every vertex of each lies on the other's boundary
+  // (top, bottom, front and back faces coplanar): the vertex test alone saw
+  // nothing.
+  const HexMesh mesh = cubes({{1.0, {0, 0, 0}}, {1.0, {0.5, 0, 0}}});
+  EXPECT_TRUE(test::reference_intersecting_pairs(mesh).empty());
+  expect_cubes(mesh, true, "shifted along x");
+  const OverlapReport r = run(mesh);
+  ASSERT_EQ(r.intersecting_pairs.size(), 1u);
+  EXPECT_EQ(r.intersecting_pairs[0].inside_vertex, kNoIndex);
+  // The arrow points into the common part [0.5, 1] x [0, 1]^2.
+  const Vec3 at = r.intersecting_pairs[0].position;
+  EXPECT_TRUE(at.x > 0.5 && at.x < 1 && at.y > 0 && at.y < 1 && at.z > 0 && at.z < 1) << at.x << " " << at.y;
+}
+
+TEST(Overlap, CubesShiftedAlongXAndYOverlapWithNoVertexInside) {
+  expect_cubes(cubes({{1.0, {0, 0, 0}}, {1.0, {0.5, 0.5, 0}}}), true, "shifted along x and y");
+  expect_cubes(cubes({{1.0, {0, 0, 0}}, {1.0, {0.25, 0.75, 0}}}), true, "shifted by 0.25, 0.75");
+  // Turned about z and scaled: a thin cross, vertices outside each other.
+  HexMesh cross = cubes({{1.0, {0, 0, 0}}, {1.0, {0, 0, 0}}});
+  for (Index v = 0; v < 8; ++v) {
+    Vec3& p = cross.points[v];
+    p = {p.x * 3 - 1, p.y * 0.2 + 0.4, p.z};
+    Vec3& q = cross.points[v + 8];
+    q = {q.x * 0.2 + 0.4, q.y * 3 - 1, q.z};
+  }
+  EXPECT_TRUE(test::reference_intersecting_pairs(cross).empty());
+  expect_cubes(cross, true, "a cross of two bars");
+}
+
+TEST(Overlap, CubeStrictlyInsideABiggerOneIntersects) {
+  // No face crosses another: the small cube's vertices are inside.
+  const HexMesh mesh = cubes({{3.0, {0, 0, 0}}, {1.0, {1, 1, 1}}});
+  expect_cubes(mesh, true, "inside");
+  EXPECT_NE(run(mesh).intersecting_pairs[0].inside_vertex, kNoIndex);
+}
+
+TEST(Overlap, CubesThatOnlyTouchDoNotIntersect) {
+  // A face in common: by vertex ids (12 points) and at coincident vertices
+  // (16 points); an edge in common; a shifted face contact (coplanar faces
+  // overlapping in part, volumes apart); a corner.
+  HexMesh shared_face = test::unit_cube();
+  const Index base = shared_face.num_vertices();
+  for (const Vec3& p : test::unit_cube().points) shared_face.points.push_back(p + Vec3{1, 0, 0});
+  shared_face.hexes.push_back({1, base + 1, base + 2, 2, 5, base + 5, base + 6, 6});
+  expect_cubes(shared_face, false, "a face shared by id");
+  expect_cubes(cubes({{1.0, {0, 0, 0}}, {1.0, {1, 0, 0}}}), false, "a face at coincident vertices");
+  expect_cubes(cubes({{1.0, {0, 0, 0}}, {1.0, {1, 1, 0}}}), false, "an edge");
+  expect_cubes(cubes({{1.0, {0, 0, 0}}, {1.0, {1, 0.5, 0.5}}}), false, "half a face");
+  expect_cubes(cubes({{1.0, {0, 0, 0}}, {1.0, {1, 1, 1}}}), false, "a corner");
+  expect_cubes(cubes({{1.0, {0, 0, 0}}, {1.0, {0.5, 0, 1}}}), false, "a face, shifted");
+}
+
 // Random meshes, from barely to strongly tangled: the certificate plus stage
-// G, exhaustive mode and the reference agree pair for pair.
+// G, exhaustive mode and the references (a vertex inside, interiors that meet
+// by construction) agree pair for pair.
 class RandomMeshes : public ::testing::TestWithParam<double> {};
 
 TEST_P(RandomMeshes, CertificateFindsExactlyTheReferencePairs) {
@@ -278,7 +365,7 @@ TEST_P(RandomMeshes, CertificateFindsExactlyTheReferencePairs) {
   int tangled = 0;
   for (std::uint64_t seed = 1; seed <= 24; ++seed) {
     const HexMesh mesh = test::jittered(grid(2 + static_cast<int>(seed % 3)), amplitude, seed);
-    const auto expected = test::reference_intersecting_pairs(mesh);
+    const auto expected = test::reference_all_pairs(mesh);
     const OverlapReport certificate = run(mesh);
     EXPECT_EQ(test::pair_cells(certificate), expected) << "amplitude " << amplitude << ", seed " << seed;
     EXPECT_EQ(test::pair_cells(run(mesh, OverlapMode::exhaustive)), expected)

@@ -3,6 +3,7 @@
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 
 #include <algorithm>
+#include <tuple>
 
 #include "hqview/core/hex_topology.h"
 
@@ -82,7 +83,134 @@ bool has_vertex_inside(const HexMesh& mesh, const RefCell& from, const RefCell& 
   return false;
 }
 
+using Tet = std::array<P, 4>;
+
+// The 24 tets of a hex with the face centres of the interior test (corners
+// sorted by position), and whether one of the id-sorted 24 is not positive.
+std::vector<Tet> positive_position_tets(const HexMesh& mesh, const Hex& hex) {
+  const auto& p = mesh.points;
+  const Vec3 centre =
+      (((p[hex[0]] + p[hex[1]]) + (p[hex[2]] + p[hex[3]])) + ((p[hex[4]] + p[hex[5]]) + (p[hex[6]] + p[hex[7]]))) *
+      0.125;
+  std::vector<Tet> tets;
+  for (const auto& face : kHexFaces) {
+    std::array<Vec3, 4> s;
+    for (int e = 0; e < 4; ++e) s[e] = p[hex[face[e]]];
+    std::sort(s.begin(), s.end(), [](const Vec3& u, const Vec3& v) {
+      return std::make_tuple(u.x, u.y, u.z) < std::make_tuple(v.x, v.y, v.z);
+    });
+    const P fc = exact(((s[0] + s[1]) + (s[2] + s[3])) * 0.25);
+    for (int e = 0; e < 4; ++e) {
+      const Tet t{exact(p[hex[face[(e + 1) % 4]]]), exact(p[hex[face[e]]]), fc, exact(centre)};
+      if (CGAL::orientation(t[0], t[1], t[2], t[3]) == CGAL::POSITIVE) tets.push_back(t);
+    }
+  }
+  return tets;
+}
+
+bool is_folded(const HexMesh& mesh, const Hex& hex) {
+  const auto& p = mesh.points;
+  const P centre = exact(
+      (((p[hex[0]] + p[hex[1]]) + (p[hex[2]] + p[hex[3]])) + ((p[hex[4]] + p[hex[5]]) + (p[hex[6]] + p[hex[7]]))) *
+      0.125);
+  for (const auto& face : kHexFaces) {
+    const P fc = exact(centre_of_face(mesh, {hex[face[0]], hex[face[1]], hex[face[2]], hex[face[3]]}));
+    for (int e = 0; e < 4; ++e)
+      if (CGAL::orientation(exact(p[hex[face[(e + 1) % 4]]]), exact(p[hex[face[e]]]), fc, centre) != CGAL::POSITIVE)
+        return true;
+  }
+  return false;
+}
+
+bool in_closed(const Tet& t, const P& x) { return !K::Tetrahedron_3(t[0], t[1], t[2], t[3]).has_on_unbounded_side(x); }
+
+// The points whose hull is the closed s ∩ t, and whether they span a volume.
+bool interiors_meet(const Tet& s, const Tet& t) {
+  if (!CGAL::do_intersect(K::Tetrahedron_3(s[0], s[1], s[2], s[3]), K::Tetrahedron_3(t[0], t[1], t[2], t[3])))
+    return false;
+  std::vector<P> points;
+  auto clip = [&](const Tet& a, const Tet& b) {
+    for (const P& x : a)
+      if (in_closed(b, x)) points.push_back(x);
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) {
+        const K::Segment_3 edge(a[i], a[j]);
+        for (int k = 0; k < 4; ++k) {
+          const K::Triangle_3 face(b[(k + 1) % 4], b[(k + 2) % 4], b[(k + 3) % 4]);
+          const auto hit = CGAL::intersection(edge, face);
+          if (!hit) continue;
+          if (const P* q = boost::get<P>(&*hit)) points.push_back(*q);
+          if (const K::Segment_3* g = boost::get<K::Segment_3>(&*hit)) {
+            points.push_back(g->source());
+            points.push_back(g->target());
+          }
+        }
+      }
+  };
+  clip(s, t);
+  clip(t, s);
+  // Affine rank 3: a tetrahedron among the points.
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    if (points[i] == points[0]) continue;
+    for (std::size_t j = i + 1; j < points.size(); ++j) {
+      if (CGAL::collinear(points[0], points[i], points[j])) continue;
+      for (std::size_t k = j + 1; k < points.size(); ++k)
+        if (!CGAL::coplanar(points[0], points[i], points[j], points[k])) return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace
+
+std::vector<std::array<Index, 2>> reference_interior_pairs(const HexMesh& mesh) {
+  const std::size_t n = mesh.hexes.size();
+  std::vector<std::vector<Tet>> tets(n);
+  std::vector<char> folded(n);
+  std::vector<Vec3> lo(n), hi(n);
+  for (std::size_t h = 0; h < n; ++h) {
+    lo[h] = hi[h] = mesh.points[mesh.hexes[h][0]];
+    for (Index v : mesh.hexes[h]) {
+      const Vec3& x = mesh.points[v];
+      lo[h] = {std::min(lo[h].x, x.x), std::min(lo[h].y, x.y), std::min(lo[h].z, x.z)};
+      hi[h] = {std::max(hi[h].x, x.x), std::max(hi[h].y, x.y), std::max(hi[h].z, x.z)};
+    }
+  }
+  for (std::size_t h = 0; h < n; ++h) {
+    tets[h] = positive_position_tets(mesh, mesh.hexes[h]);
+    folded[h] = is_folded(mesh, mesh.hexes[h]);
+  }
+  // Per vertex, the folded cells holding it.
+  std::vector<std::vector<Index>> folded_at(mesh.points.size());
+  for (std::size_t h = 0; h < n; ++h)
+    if (folded[h])
+      for (Index v : mesh.hexes[h]) folded_at[v].push_back(static_cast<Index>(h));
+  auto folded_near = [&](const Hex& hex) {
+    std::vector<Index> cells;
+    for (Index v : hex) cells.insert(cells.end(), folded_at[v].begin(), folded_at[v].end());
+    std::sort(cells.begin(), cells.end());
+    return cells;
+  };
+  std::vector<std::array<Index, 2>> pairs;
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = a + 1; b < n; ++b) {
+      const Hex &ha = mesh.hexes[a], &hb = mesh.hexes[b];
+      // Interiors that meet lie in both boxes' interiors (a shortcut only).
+      if (!(lo[a].x < hi[b].x && lo[b].x < hi[a].x && lo[a].y < hi[b].y && lo[b].y < hi[a].y && lo[a].z < hi[b].z &&
+            lo[b].z < hi[a].z))
+        continue;
+      if (std::any_of(ha.begin(), ha.end(), [&](Index v) { return std::find(hb.begin(), hb.end(), v) != hb.end(); }))
+        continue;
+      const std::vector<Index> fa = folded_near(ha), fb = folded_near(hb);
+      if (std::any_of(fb.begin(), fb.end(), [&](Index c) { return std::binary_search(fa.begin(), fa.end(), c); }))
+        continue;
+      bool meet = false;
+      for (std::size_t i = 0; i < tets[a].size() && !meet; ++i)
+        for (std::size_t j = 0; j < tets[b].size() && !meet; ++j) meet = interiors_meet(tets[a][i], tets[b][j]);
+      if (meet) pairs.push_back({static_cast<Index>(a), static_cast<Index>(b)});
+    }
+  return pairs;
+}
 
 std::vector<std::array<Index, 2>> reference_intersecting_pairs(const HexMesh& mesh) {
   std::vector<RefCell> cells;
@@ -93,6 +221,14 @@ std::vector<std::array<Index, 2>> reference_intersecting_pairs(const HexMesh& me
       if (cells[a].sorted_ids == cells[b].sorted_ids || has_vertex_inside(mesh, cells[a], cells[b]) ||
           has_vertex_inside(mesh, cells[b], cells[a]))
         pairs.push_back({static_cast<Index>(a), static_cast<Index>(b)});
+  return pairs;
+}
+
+std::vector<std::array<Index, 2>> reference_all_pairs(const HexMesh& mesh) {
+  std::vector<std::array<Index, 2>> pairs = reference_intersecting_pairs(mesh);
+  for (const auto& pair : reference_interior_pairs(mesh)) pairs.push_back(pair);
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   return pairs;
 }
 

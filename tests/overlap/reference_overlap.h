@@ -16,4 +16,17 @@ namespace hq::test {
 // O(#cells^2): for small meshes only.
 std::vector<std::array<Index, 2>> reference_intersecting_pairs(const HexMesh& mesh);
 
+// All pairs {a, b}, a < b, whose interiors meet by overlap.h's second test:
+// cells that share no vertex id and do not both touch one cell with a
+// non-positive tet, with positively oriented tets (face centres from the
+// corners sorted by position) whose interiors meet. Decided here by
+// construction, not by separating axes: the closed intersection of two tets
+// is the convex hull of the corners of each in the other and the crossings
+// of the edges of each with the triangles of the other (exact, Epeck); the
+// interiors meet when those points span a volume. Sorted. For small meshes.
+std::vector<std::array<Index, 2>> reference_interior_pairs(const HexMesh& mesh);
+
+// The union of both: what check_overlap must list. Sorted.
+std::vector<std::array<Index, 2>> reference_all_pairs(const HexMesh& mesh);
+
 }  // namespace hq::test

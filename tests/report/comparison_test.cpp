@@ -96,6 +96,7 @@ TEST(Comparison, MarkdownAndTexTables) {
   EXPECT_NE(tex.find("kitten & -- & failed & 0.3 \\\\"), std::string::npos) << tex;
   EXPECT_EQ(latex_escape("a_b & 50% #1 {x} ~ ^ \\ $"),
             "a\\_b \\& 50\\% \\#1 \\{x\\} \\textasciitilde{} \\textasciicircum{} \\textbackslash{} \\$");
+  EXPECT_EQ(latex_escape("D\xa6ta"), "D\\textbackslash{}xa6ta");
 }
 
 TEST(Comparison, CsvLongFormAndKeys) {
@@ -114,6 +115,10 @@ TEST(Comparison, CsvLongFormAndKeys) {
             std::string::npos)
       << csv;
   EXPECT_NE(csv.find("\nkitten,out,ec,a/kitten_out.mesh,failed,,,,,,,,,,,,,,\n"), std::string::npos) << csv;
+  // Text from input as message text: no raw byte, no line break from input.
+  entries[1].path = "a/kit\xa6\nten.mesh";
+  const std::string escaped = comparison_csv(entries);
+  EXPECT_NE(escaped.find("\nbunny,out,ec,a/kit\\xa6\\x0aten.mesh,ok,"), std::string::npos) << escaped;
   EXPECT_THROW(parse_comparison_keys("quality.nope"), ValueError);
   EXPECT_THROW(parse_comparison_keys(""), ValueError);
   // Default keys: the singular edges only when some row has them.

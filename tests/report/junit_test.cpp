@@ -44,10 +44,12 @@ TEST(Junit, OneCasePerMeshAndGateWithTheCounts) {
 }
 
 TEST(Junit, InputTextIsEscapedForXml) {
-  hq::BatchEntry e = entry("odd/<a href=\"x\">&'\x01\xff.mesh", hq::BatchStatus::failed);
+  hq::BatchEntry e = entry("odd/<a href=\"x\">&'\x01\xff\x1b\xef\xbf\xbe.mesh", hq::BatchStatus::failed);
   e.error = "line\nbreak";
   const std::string xml = hq::junit_xml("s<&>", hq::batch_junit_cases({e}));
-  EXPECT_NE(xml.find("name=\"odd/&lt;a href=&quot;x&quot;&gt;&amp;&apos;\xEF\xBF\xBD\xEF\xBF\xBD.mesh\""),
+  // Control characters and bytes that are not UTF-8 as \xhh (message_text);
+  // U+FFFE, valid UTF-8 but not an XML 1.0 character, as its bytes.
+  EXPECT_NE(xml.find("name=\"odd/&lt;a href=&quot;x&quot;&gt;&amp;&apos;\\x01\\xff\\x1b\\xef\\xbf\\xbe.mesh\""),
             std::string::npos)
       << xml;
   EXPECT_NE(xml.find("message=\"line&#10;break\""), std::string::npos) << xml;

@@ -45,7 +45,10 @@ TEST(MarkdownEscape, HandExamples) {
   EXPECT_EQ(markdown_escape("<b>&"), "&lt;b&gt;&amp;");
   EXPECT_EQ(markdown_escape("[x](javascript:y)"), "\\[x\\]\\(javascript\\:y\\)");
   EXPECT_EQ(markdown_escape("@team #1 | `c`"), "\\@team \\#1 \\| \\`c\\`");
-  EXPECT_EQ(markdown_escape("two\nlines\r\tend"), "two lines  end");
+  // Control characters and bytes that are not UTF-8 as \xhh (its backslash
+  // escaped: it reads "\x0a"), so a table row stays one row.
+  EXPECT_EQ(markdown_escape("two\nlines\r\tend"), "two\\\\x0alines\\\\x0d\\\\x09end");
+  EXPECT_EQ(markdown_escape("</D\xa6ta\x1b[2J>"), "&lt;\\/D\\\\xa6ta\\\\x1b\\[2J&gt;");
   EXPECT_EQ(markdown_escape("maillage é"), "maillage é");  // UTF-8 passes through
 }
 

@@ -11,6 +11,7 @@
 #include <map>
 
 #include "hqview/core/error.h"
+#include "hqview/core/message_text.h"
 #include "hqview/core/number_format.h"
 #include "hqview/image/colormap.h"
 
@@ -698,15 +699,18 @@ void draw_chart(cairo_t* cr, const Chart& chart) {
     cairo_save(cr);
     set_color(cr, t.color);
     cairo_set_font_size(cr, t.size);
+    // Cairo takes UTF-8 only (an error status else): input text (a mesh
+    // name) is shown as a message.
+    const std::string text = message_text(t.text);
     cairo_text_extents_t extents;
-    cairo_text_extents(cr, t.text.c_str(), &extents);
+    cairo_text_extents(cr, text.c_str(), &extents);
     cairo_translate(cr, t.at.x, t.at.y);
     if (t.is_vertical) cairo_rotate(cr, -M_PI / 2.0);
     const double shift = t.anchor == ChartAnchor::left     ? 0.0
                          : t.anchor == ChartAnchor::center ? -0.5 * extents.x_advance
                                                            : -extents.x_advance;
     cairo_move_to(cr, shift, 0.0);
-    cairo_show_text(cr, t.text.c_str());
+    cairo_show_text(cr, text.c_str());
     cairo_restore(cr);
   }
 }

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "hqview/core/message_text.h"
+
 namespace hq::detail {
 
 namespace {
@@ -24,20 +26,14 @@ bool istarts_with(std::string_view text, std::string_view prefix) {
 
 std::string quote(std::string_view token) {
   constexpr std::size_t kMaxShown = 40;
-  std::string out = "'";
-  for (std::size_t i = 0; i < token.size() && i < kMaxShown; ++i) {
-    const auto c = static_cast<unsigned char>(token[i]);
-    if (c >= 0x20 && c < 0x7f) {
-      out += static_cast<char>(c);
-    } else {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\x%02X", c);
-      out += buf;
-    }
+  std::size_t shown = std::min(token.size(), kMaxShown);
+  if (shown < token.size()) {
+    // A valid character that the limit would cut in two is left out whole.
+    std::size_t start = shown;
+    while (start > 0 && shown - start < 3 && (static_cast<unsigned char>(token[start]) & 0xC0) == 0x80) --start;
+    if (start < shown && start + utf8_sequence_length(token, start) > shown) shown = start;
   }
-  if (token.size() > kMaxShown) out += "...";
-  out += "'";
-  return out;
+  return "'" + message_text(token.substr(0, shown)) + (shown < token.size() ? "..." : "") + "'";
 }
 
 std::int64_t TextScanner::count_tokens_on_line() {

@@ -37,8 +37,9 @@ inline constexpr bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\
 bool iequals(std::string_view a, std::string_view b);
 // True when text starts with prefix, ignoring ASCII case.
 bool istarts_with(std::string_view text, std::string_view prefix);
-// A token for an error message: quoted, at most 40 characters (then "..."),
-// control and non-ASCII bytes written as \xHH.
+// A token for an error message: quoted, at most its first 40 bytes (then
+// "..."; never cut inside a UTF-8 character), as message_text (bytes that
+// are not UTF-8 and control characters written as \xhh).
 std::string quote(std::string_view token);
 
 class TextScanner {

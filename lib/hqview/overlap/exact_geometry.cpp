@@ -11,6 +11,8 @@
 #include "hqview/overlap/exact_geometry.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Exact_rational.h>
+#include <CGAL/Interval_nt.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -112,7 +114,158 @@ Hex sorted(Hex h) {
   return h;
 }
 
-CellPairTest test_cell_pair(const HexMesh& mesh, const Topology& topo, const TetPoints& tp, Index a, Index b) {
+// ---- Stage G: interiors that meet with no vertex inside -------------------
+
+// sign det[u1 - u0, v1 - v0, w1 - w0] of differences of input doubles, exact:
+// interval arithmetic, then rationals when the interval holds 0.
+template <class Number>
+Number det_of_differences(const std::array<const Vec3*, 6>& q) {
+  Number d[3][3];
+  for (int r = 0; r < 3; ++r)
+    for (int k = 0; k < 3; ++k) d[r][k] = Number((*q[2 * r + 1])[k]) - Number((*q[2 * r])[k]);
+  return d[0][0] * (d[1][1] * d[2][2] - d[1][2] * d[2][1]) - d[0][1] * (d[1][0] * d[2][2] - d[1][2] * d[2][0]) +
+         d[0][2] * (d[1][0] * d[2][1] - d[1][1] * d[2][0]);
+}
+
+int sign_det_of_differences(const Vec3& u0, const Vec3& u1, const Vec3& v0, const Vec3& v1, const Vec3& w0,
+                            const Vec3& w1) {
+  const std::array<const Vec3*, 6> q{&u0, &u1, &v0, &v1, &w0, &w1};
+  const CGAL::Interval_nt<true> approx = det_of_differences<CGAL::Interval_nt<true>>(q);
+  if (approx.inf() > 0) return 1;
+  if (approx.sup() < 0) return -1;
+  if (approx.inf() == 0 && approx.sup() == 0) return 0;  // the interval holds the exact value
+  return static_cast<int>(CGAL::sign(det_of_differences<CGAL::Exact_rational>(q)));
+}
+
+using TetCorners = std::array<Vec3, 4>;
+
+// A plane through a face of s has all of t on its other closed side.
+bool face_separates(const TetCorners& s, const TetCorners& t) {
+  for (std::size_t k = 0; k < 4; ++k) {
+    const Vec3 &f0 = s[(k + 1) % 4], &f1 = s[(k + 2) % 4], &f2 = s[(k + 3) % 4];
+    const int side = orient(f0, f1, f2, s[k]);  // not 0: s has volume
+    if (std::all_of(t.begin(), t.end(), [&](const Vec3& q) { return orient(f0, f1, f2, q) * side <= 0; })) return true;
+  }
+  return false;
+}
+
+// The interiors of two tets of non-zero volume meet. By the separating axis
+// theorem they do not exactly when a plane parallel to a face of one, or to
+// an edge of each (the facet normals of their Minkowski difference), has one
+// tet on each closed side; every side is an exact sign, so touching tets
+// (a shared face, edge or vertex, coplanar faces) never count.
+bool tet_interiors_meet(const TetCorners& s, const TetCorners& t) {
+  if (face_separates(s, t) || face_separates(t, s)) return false;
+  static constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  for (const auto& ea : kEdges)
+    for (const auto& eb : kEdges) {
+      // n = ea x eb; n . (q - p) for every corner p of s and q of t.
+      bool is_positive = false, is_negative = false;
+      for (std::size_t i = 0; i < 4 && !(is_positive && is_negative); ++i)
+        for (std::size_t j = 0; j < 4 && !(is_positive && is_negative); ++j) {
+          const int g = sign_det_of_differences(s[ea[0]], s[ea[1]], t[eb[0]], t[eb[1]], s[i], t[j]);
+          is_positive |= g > 0;
+          is_negative |= g < 0;
+        }
+      // One sign only: separated along n. None: n = 0 (parallel edges), no axis.
+      if (is_positive != is_negative) return false;
+    }
+  return true;
+}
+
+bool boxes_overlap_open(const Box3& a, const Box3& b) {
+  for (int i = 0; i < 3; ++i)
+    if (!(a.lo[i] < b.hi[i] && b.lo[i] < a.hi[i])) return false;
+  return true;
+}
+
+// The tets of positive volume of hex h for the test of interiors: its 24
+// tets, with each face centre taken from the face's corners sorted by
+// position (not by id), so two faces at one place whose vertex ids differ
+// (coincident vertices, reported by stage A) get the same centre and their
+// cells only touch. Negative tets are left out: there a cell's solid folds
+// over its neighbour by construction (stage C reports the cell), which is
+// not two cells overlapping.
+struct SolidTet {
+  TetCorners corners;
+  Box3 box;
+};
+
+std::vector<SolidTet> positive_tets(const HexMesh& mesh, const TetPoints& tp, Index h) {
+  const Hex& hex = mesh.hexes[static_cast<std::size_t>(h)];
+  const Vec3& centre = at(tp.points, tp.cell_base + h);
+  std::vector<SolidTet> tets;
+  for (int k = 0; k < 6; ++k) {
+    std::array<Vec3, 4> c;
+    for (int e = 0; e < 4; ++e) c[static_cast<std::size_t>(e)] = at(mesh.points, hex[kHexFaces[k][e]]);
+    std::array<Vec3, 4> s = c;
+    std::sort(s.begin(), s.end(), [](const Vec3& u, const Vec3& v) {
+      return u.x != v.x ? u.x < v.x : u.y != v.y ? u.y < v.y : u.z < v.z;
+    });
+    const Vec3 face = ((s[0] + s[1]) + (s[2] + s[3])) * 0.25;
+    for (std::size_t e = 0; e < 4; ++e) {
+      const TetCorners t{c[(e + 1) % 4], c[e], face, centre};
+      if (orient(t[0], t[1], t[2], t[3]) <= 0) continue;
+      Box3 box;
+      for (const Vec3& x : t) box.add(x);
+      tets.push_back({t, box});
+    }
+  }
+  return tets;
+}
+
+// Where the interiors of two cells meet: their solids' interiors intersect
+// exactly when the interiors of a tet of each do (the union of a solid's
+// tets of volume is dense in it). A point at the mean of the corners of the
+// first such pair (for the arrow), nullopt when none: the cells are
+// disjoint or only touch. Only tets whose box overlaps the other cell's box
+// with volume can meet it.
+std::optional<Vec3> interiors_meet(const HexMesh& mesh, const TetPoints& tp, Index a, const Box3& box_a, Index b,
+                                   const Box3& box_b) {
+  auto near = [](std::vector<SolidTet> tets, const Box3& other_box) {
+    std::erase_if(tets, [&](const SolidTet& t) { return !boxes_overlap_open(t.box, other_box); });
+    return tets;
+  };
+  const std::vector<SolidTet> from_a = near(positive_tets(mesh, tp, a), box_b);
+  if (from_a.empty()) return std::nullopt;
+  const std::vector<SolidTet> from_b = near(positive_tets(mesh, tp, b), box_a);
+  for (const SolidTet& s : from_a)
+    for (const SolidTet& t : from_b)
+      if (boxes_overlap_open(s.box, t.box) && tet_interiors_meet(s.corners, t.corners)) {
+        Vec3 sum{};
+        for (const Vec3& x : s.corners) sum = sum + x;
+        for (const Vec3& x : t.corners) sum = sum + x;
+        return sum * 0.125;
+      }
+  return std::nullopt;
+}
+
+bool share_a_vertex(const Hex& a, const Hex& b) {
+  return std::any_of(a.begin(), a.end(), [&](Index v) { return std::find(b.begin(), b.end(), v) != b.end(); });
+}
+
+// Some cell with a non-positive tet (folded) holds a vertex of a and one of b.
+bool touch_one_folded_cell(const Topology& topo, const std::vector<char>& folded, const Hex& a, const Hex& b) {
+  auto folded_cells_of = [&](const Hex& hex) {
+    std::vector<Index> cells;
+    for (Index v : hex)
+      for (Index i = topo.vertex_hex_offsets[static_cast<std::size_t>(v)];
+           i < topo.vertex_hex_offsets[static_cast<std::size_t>(v) + 1]; ++i) {
+        const Index c = topo.vertex_hexes[static_cast<std::size_t>(i)];
+        if (folded[static_cast<std::size_t>(c)]) cells.push_back(c);
+      }
+    std::sort(cells.begin(), cells.end());
+    return cells;
+  };
+  const std::vector<Index> of_a = folded_cells_of(a);
+  if (of_a.empty()) return false;
+  const std::vector<Index> of_b = folded_cells_of(b);
+  return std::any_of(of_b.begin(), of_b.end(),
+                     [&](Index c) { return std::binary_search(of_a.begin(), of_a.end(), c); });
+}
+
+CellPairTest test_cell_pair(const HexMesh& mesh, const Topology& topo, const TetPoints& tp, Index a, Index b,
+                            bool test_interiors, const std::vector<char>& folded) {
   const auto& p = tp.points;
   const Hex& hex_a = mesh.hexes[static_cast<std::size_t>(a)];
   const Hex& hex_b = mesh.hexes[static_cast<std::size_t>(b)];
@@ -133,9 +286,26 @@ CellPairTest test_cell_pair(const HexMesh& mesh, const Topology& topo, const Tet
     result.inside_vertex = vertex_inside(p, hex_a, hex_b, box_b, cell_tet_data(mesh, topo, tp, b));
   if (result.inside_vertex == kNoIndex && has_candidate(hex_b, hex_a, box_a))
     result.inside_vertex = vertex_inside(p, hex_b, hex_a, box_a, cell_tet_data(mesh, topo, tp, a));
-  if (result.inside_vertex == kNoIndex) return result;
-  result.intersect = true;
-  result.position = at(p, result.inside_vertex);
+  if (result.inside_vertex != kNoIndex) {
+    result.intersect = true;
+    result.position = at(p, result.inside_vertex);
+    return result;
+  }
+  // No vertex inside: the interiors may still meet (an edge or a face through
+  // the other cell, coplanar faces overlapping, cells crossing). Not tested
+  // on neighbours (cells that share a vertex) or on two cells that both
+  // touch a cell with a non-positive tet: there the tet solids overlap with
+  // no vertex inside by construction, at the fold of the tets of a thin
+  // twisted cell that is valid as a trilinear hex (Dolphin_padded's 32920
+  // between 32918 and 32922; docs/analysis.md "Overlap"), which stage C
+  // reports.
+  if (!test_interiors || share_a_vertex(hex_a, hex_b) || touch_one_folded_cell(topo, folded, hex_a, hex_b))
+    return result;
+  const std::optional<Vec3> where = interiors_meet(mesh, tp, a, box_a, b, box_b);
+  if (where) {
+    result.intersect = true;
+    result.position = *where;
+  }
   return result;
 }
 
@@ -428,12 +598,17 @@ std::optional<int> winding_behind_quad(const TetPoints& tp, const std::vector<Bo
 // ---- Stage G ----------------------------------------------------------------
 
 std::vector<CellPairTest> test_cell_pairs(const HexMesh& mesh, const Topology& topo, const TetPoints& tp,
-                                          const std::vector<std::array<Index, 2>>& pairs) {
+                                          const std::vector<std::array<Index, 2>>& pairs,
+                                          const std::vector<char>& flagged, const std::vector<char>& folded) {
   std::vector<CellPairTest> results(pairs.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pairs.size(), 256),
                     [&](const tbb::blocked_range<std::size_t>& r) {
-                      for (std::size_t i = r.begin(); i != r.end(); ++i)
-                        results[i] = test_cell_pair(mesh, topo, tp, pairs[i][0], pairs[i][1]);
+                      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                        const auto [a, b] = pairs[i];
+                        const bool test_interiors =
+                            flagged[static_cast<std::size_t>(a)] != 0 || flagged[static_cast<std::size_t>(b)] != 0;
+                        results[i] = test_cell_pair(mesh, topo, tp, a, b, test_interiors, folded);
+                      }
                     });
   return results;
 }

@@ -43,13 +43,22 @@ std::optional<int> winding_behind_quad(const TetPoints& tp, const std::vector<Bo
 
 // Stage G narrow phase, one result per pair (same order): do the cells
 // intersect (overlap.h's definition), and which vertex lies inside the other.
+// The exact test of interiors that meet with no vertex inside runs on the
+// pairs with a flagged cell (flagged: per cell, 0 or 1; pairs of two
+// unflagged cells, certified by stages A-F, get the vertex test only) that
+// share no vertex and do not both touch one folded cell (folded: per cell,
+// a non-positive tet).
 // TBB, deterministic.
 struct CellPairTest {
   bool intersect = false;
   Index inside_vertex = kNoIndex;
-  Vec3 position;  // inside_vertex's position; for duplicate cells, the first one's centre
+  // inside_vertex's position; for duplicate cells, the first one's centre;
+  // for interiors meeting with no vertex inside, the mean of the corners of
+  // the first two tets (one of each cell) whose interiors meet.
+  Vec3 position;
 };
 std::vector<CellPairTest> test_cell_pairs(const HexMesh& mesh, const Topology& topo, const TetPoints& tp,
-                                          const std::vector<std::array<Index, 2>>& pairs);
+                                          const std::vector<std::array<Index, 2>>& pairs,
+                                          const std::vector<char>& flagged, const std::vector<char>& folded);
 
 }  // namespace hq::detail

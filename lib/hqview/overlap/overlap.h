@@ -16,13 +16,16 @@
 // Two distinct cells intersect when a vertex of one that is not a vertex of
 // the other lies inside the other (the paper's test of every vertex against
 // every cell, made exact and fast), or when both have the same 8 vertices
-// (duplicates). Cells that only touch (a shared face, edge or vertex, a
-// vertex on another cell's face, two coincident vertices) do not intersect.
-// Every decision is exact: CGAL Epick predicates on the double points above.
-//
-// Overlaps without a penetrating vertex (an edge crossing a face) are not
-// listed as pairs, but never pass unnoticed: a mesh whose cells overlap in
-// any way fails the certificate (C-F name the cells).
+// (duplicates), or when their interiors meet with no vertex inside (two
+// cubes shifted along x: coplanar faces overlapping): a positive tet of
+// each with interiors in common (exact separating axes; face centres from
+// the corners sorted by position), tested on pairs with a cell set aside
+// by the certificate that share no vertex and do not both touch a cell
+// with a non-positive tet (there the 24-tet solids of valid trilinear hexes
+// overlap by construction; docs/analysis.md "Overlap"). Cells that only
+// touch (a shared face, edge or vertex, a vertex on another cell's face,
+// two coincident vertices) do not intersect. Every decision is exact: CGAL
+// Epick predicates on the double points above.
 //
 // Stages (ALGORITHMS.md §4):
 //   A coincident vertices   B zero-length edges   C exact orientation of the
@@ -37,7 +40,9 @@
 // with an embedded boundary do not overlap), so no vertex of a K' cell lies
 // inside another K' cell, and G on the pairs with a flagged cell finds
 // exactly the pairs an all-pairs test finds.
-// Exhaustive: G runs on every pair of cells whose boxes overlap.
+// Exhaustive: G's vertex test runs on every pair of cells whose boxes
+// overlap; A-F run to the end as in certificate mode (G's test of interiors
+// relies on them).
 
 #include <array>
 #include <cstdint>
@@ -85,9 +90,10 @@ struct CoincidentGroup {
 struct IntersectingPair {
   std::array<Index, 2> cells{};  // cells[0] < cells[1]
   // The lowest vertex of cells[0] inside cells[1], else the lowest of
-  // cells[1] inside cells[0]; kNoIndex for duplicate cells.
+  // cells[1] inside cells[0]; kNoIndex for duplicate cells and for
+  // interiors that meet with no vertex inside.
   Index inside_vertex = kNoIndex;
-  Vec3 position;  // where an arrow points: inside_vertex, else the cells' centre
+  Vec3 position;  // where an arrow points: inside_vertex, else into the common part (duplicates: the centre)
 };
 
 enum class MarkerKind { coincident, intersection };

@@ -10,6 +10,7 @@
 #include <mutex>
 
 #include "hqview/core/error.h"
+#include "hqview/core/message_text.h"
 #include "hqview/core/text.h"
 #include "hqview/image/colormap.h"
 
@@ -218,8 +219,11 @@ LineExtent lay_out(FT_Face face, std::string_view line, Visit&& visit) {
   long pen = 0;  // 26.6 fixed point
   FT_UInt previous = 0;
   bool any_ink = false;
-  for (std::size_t i = 0; i < line.size();) {
-    const FT_UInt glyph = FT_Get_Char_Index(face, next_code_point(line, i));
+  // Input text (a mesh name in a title) is drawn as a message: bytes that
+  // are not UTF-8 and control characters as \xHH, measured as drawn.
+  const std::string shown = message_text(line);
+  for (std::size_t i = 0; i < shown.size();) {
+    const FT_UInt glyph = FT_Get_Char_Index(face, next_code_point(shown, i));
     if (previous != 0 && glyph != 0 && FT_HAS_KERNING(face)) {
       FT_Vector k{};
       if (FT_Get_Kerning(face, previous, glyph, FT_KERNING_DEFAULT, &k) == 0) pen += k.x;

@@ -249,7 +249,7 @@ std::string batch_index_json(const std::vector<BatchEntry>& entries, const std::
   }
   j["methods"] = std::move(methods);
   if (any_fem) j["fem_correlation"] = correlation_json(correlate_collection(entries));
-  return j.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
+  return json_message_text(j).dump(2, ' ', false, json::error_handler_t::replace) + "\n";
 }
 
 std::vector<BatchEntry> parse_batch_index_json(std::string_view text, const std::string& name) {
@@ -559,6 +559,7 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
     page.set("comparison", comparison_data(entries, keys ? *keys : default_comparison_keys(entries)));
   mustache tmpl{std::string(report_template("batch_index.html.mustache"))};
   if (!tmpl.is_valid()) throw Error("batch index template: " + tmpl.error_message());
+  tmpl.set_custom_escape([](const std::string& s) { return html_escape(s); });
   return tmpl.render(page);
 }
 

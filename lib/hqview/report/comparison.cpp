@@ -6,6 +6,7 @@
 
 #include "hqview/chart/chart.h"
 #include "hqview/core/error.h"
+#include "hqview/core/message_text.h"
 #include "hqview/core/number_format.h"
 #include "hqview/core/text.h"
 #include "hqview/report/escape.h"
@@ -32,8 +33,9 @@ std::optional<double> median_of(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-std::string csv_field(std::string_view text) {
-  if (text.find_first_of(",\"\n\r") == std::string_view::npos) return std::string(text);
+std::string csv_field(std::string_view input) {
+  const std::string text = message_text(input);  // no line break or raw byte from input (docs/contract.md)
+  if (text.find_first_of(",\"") == std::string::npos) return text;
   std::string out = "\"";
   for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
   return out + "\"";

@@ -2,26 +2,32 @@
 
 #include <cctype>
 
+#include <nlohmann/json.hpp>
+
+#include "hqview/core/message_text.h"
+
 namespace hq {
 namespace {
 
-// One UTF-8 sequence starting at text[i] (its length), 0 when malformed.
-std::size_t utf8_length(std::string_view text, std::size_t i) {
-  const auto c = static_cast<unsigned char>(text[i]);
-  std::size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
-  if (n == 0 || i + n > text.size()) return 0;
-  for (std::size_t k = 1; k < n; ++k)
-    if ((static_cast<unsigned char>(text[i + k]) >> 6) != 0x2) return 0;
-  return n;
+// The five characters with a meaning in XML and HTML markup as entities (the
+// set mustache's own escape writes): true when c was one.
+bool append_entity(std::string& out, char c) {
+  switch (c) {
+    case '&': out += "&amp;"; return true;
+    case '<': out += "&lt;"; return true;
+    case '>': out += "&gt;"; return true;
+    case '"': out += "&quot;"; return true;
+    case '\'': out += "&apos;"; return true;
+    default: return false;
+  }
 }
 
 }  // namespace
 
-
 std::string markdown_escape(std::string_view text) {
   std::string out;
   out.reserve(text.size());
-  for (char c : text) {
+  for (char c : message_text(text)) {
     const auto u = static_cast<unsigned char>(c);
     if (c == '&')
       out += "&amp;";
@@ -58,44 +64,58 @@ std::string url_path(std::string_view path) {
 }
 
 std::string xml_escape(std::string_view text) {
+  const std::string message = message_text(text, LineBreaks::kept);
   std::string out;
-  out.reserve(text.size());
-  for (std::size_t i = 0; i < text.size();) {
-    const char c = text[i];
-    const std::size_t n = utf8_length(text, i);
-    if (n == 0) {
-      out += "\xEF\xBF\xBD";  // not UTF-8
-      ++i;
-      continue;
-    }
-    if (n == 1) {
-      switch (c) {
-        case '&': out += "&amp;"; break;
-        case '<': out += "&lt;"; break;
-        case '>': out += "&gt;"; break;
-        case '"': out += "&quot;"; break;
-        case '\'': out += "&apos;"; break;
-        case '\t': out += "&#9;"; break;
-        case '\n': out += "&#10;"; break;
-        case '\r': out += "&#13;"; break;
-        default:
-          if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F)
-            out += "\xEF\xBF\xBD";  // not allowed in XML 1.0
-          else
-            out += c;
-      }
+  out.reserve(message.size());
+  for (std::size_t i = 0; i < message.size(); ++i) {
+    const char c = message[i];
+    const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(message[k]); };
+    if (append_entity(out, c)) continue;
+    if (c == '\n') {
+      out += "&#10;";
+    } else if (byte(i) == 0xEF && i + 2 < message.size() && byte(i + 1) == 0xBF &&
+               (byte(i + 2) == 0xBE || byte(i + 2) == 0xBF)) {
+      // U+FFFE and U+FFFF (EF BF BE, EF BF BF): valid UTF-8, not XML 1.0 characters.
+      out += byte(i + 2) == 0xBE ? "\\xef\\xbf\\xbe" : "\\xef\\xbf\\xbf";
+      i += 2;
     } else {
-      out.append(text.substr(i, n));
+      out += c;
     }
-    i += n;
   }
   return out;
 }
 
+std::string html_escape(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : message_text(text))
+    if (!append_entity(out, c)) out += c;
+  return out;
+}
+
+template <class Json>
+Json json_message_text(const Json& value) {
+  if (value.is_string()) return message_text(value.template get_ref<const typename Json::string_t&>());
+  if (value.is_array()) {
+    Json out = Json::array();
+    for (const Json& element : value) out.push_back(json_message_text(element));
+    return out;
+  }
+  if (value.is_object()) {
+    Json out = Json::object();
+    for (auto it = value.begin(); it != value.end(); ++it) out[message_text(it.key())] = json_message_text(it.value());
+    return out;
+  }
+  return value;
+}
+
+template nlohmann::json json_message_text(const nlohmann::json&);
+template nlohmann::ordered_json json_message_text(const nlohmann::ordered_json&);
+
 
 std::string latex_escape(std::string_view text) {
   std::string out;
-  for (char ch : text) {
+  for (char ch : message_text(text)) {
     switch (ch) {
       case '\\': out += "\\textbackslash{}"; break;
       case '{': out += "\\{"; break;

@@ -12,6 +12,7 @@
 #include "hqview/core/number_format.h"
 #include "hqview/report/cluster_color.h"
 #include "hqview/report/compare_table.h"
+#include "hqview/report/escape.h"
 #include "hqview/report/report_templates.h"
 #include "hqview/views/views.h"
 
@@ -653,6 +654,7 @@ std::string index_html(const ReportModel& model) {
   set_overlap(page, model);
   mustache tmpl{std::string(report_template("index.html.mustache"))};
   if (!tmpl.is_valid()) throw Error("internal: index.html template: " + tmpl.error_message());
+  tmpl.set_custom_escape([](const std::string& s) { return html_escape(s); });
   return tmpl.render(page);
 }
 
@@ -756,6 +758,7 @@ std::string boundary_html(const ReportModel& model) {
 
   mustache tmpl{std::string(report_template("boundary.html.mustache"))};
   if (!tmpl.is_valid()) throw Error("internal: boundary.html template: " + tmpl.error_message());
+  tmpl.set_custom_escape([](const std::string& s) { return html_escape(s); });
   return tmpl.render(page);
 }
 

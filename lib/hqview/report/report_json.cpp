@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hqview/report/cluster_color.h"
+#include "hqview/report/escape.h"
 
 namespace hq {
 namespace {
@@ -475,7 +476,7 @@ ReportDocument report_document(const ReportModel& model) {
 void set_report_gates(ReportDocument& document, const GateSummary& gates) { document["gates"] = gates_json(gates); }
 
 std::string report_json_text(const ReportDocument& document) {
-  return document.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
+  return json_message_text(document).dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
 }
 
 std::string report_json(const ReportModel& model) { return report_json_text(report_document(model)); }

@@ -9,10 +9,12 @@
 #include <limits>
 
 #include "hqview/core/box3.h"
+#include "hqview/core/message_text.h"
 #include "hqview/core/number_format.h"
 #include "hqview/image/colormap.h"
 #include "hqview/quality/corner_jacobian.h"
 #include "hqview/report/cluster_color.h"
+#include "hqview/report/escape.h"
 #include "hqview/report/report_templates.h"
 #include "hqview/report/viewer_boundary.h"
 #include "hqview/views/boundary_views.h"
@@ -234,7 +236,7 @@ std::vector<ViewerFile> viewer_files(const ReportModel& model) {
   Json reduced = Json::array();
 
   Json d;
-  d["name"] = a.mesh_name();
+  d["name"] = message_text(a.mesh_name());  // the only text from input (docs/contract.md, "Messages are text")
   d["num_vertices"] = a.mesh_summary.num_vertices;
   d["num_hexes"] = a.mesh_summary.num_hexes;
   d["cell_data"] = cell_data_path(model.data);  // where every value of a hex is ("": --data none)
@@ -346,6 +348,7 @@ std::vector<ViewerFile> viewer_files(const ReportModel& model) {
   files.push_back({"viewer/OrbitControls.js", std::string(report_template("OrbitControls.js"))});
   files.push_back({"viewer/viewer.js", std::string(report_template("viewer.js"))});
   kainjow::mustache::mustache page{std::string(report_template("viewer.html.mustache"))};
+  page.set_custom_escape([](const std::string& s) { return html_escape(s); });
   kainjow::mustache::data data;
   data.set("name", a.mesh_name());
   data.set("tool_version", model.tool_version);
