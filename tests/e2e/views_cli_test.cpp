@@ -392,6 +392,30 @@ TEST(ViewsCli, UpKeepsATallBoxUprightInEveryView) {
   }
 }
 
+// --up auto: the armadillo (y-up, lying on its back with the default +z)
+// is drawn with +y up, its report says so; without auto there is no
+// up_auto key.
+TEST(ViewsCli, UpAutoStandsTheArmadilloOnItsFeet) {
+  const auto data = shared_data_dir();
+  if (!data) GTEST_SKIP() << "no shared data";
+  const fs::path mesh = *data / "meshes/livesu2016_skeleton/armadillo.mesh";
+  const fs::path dir = fresh_output_dir("views/up_auto");
+  CliResult r = run_hqview({"analyze", mesh.string(), "-o", (dir / "auto").string(), "--size", "320x240", "--up",
+                            "auto", "--views", "overview", "--no-overlap", "--data", "none", "--no-viewer"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json report = json::parse(read_text(dir / "auto" / "report.json"));
+  EXPECT_EQ(report["up_auto"]["axis"], "+y");
+  EXPECT_TRUE(report["up_auto"]["from_data"].get<bool>());
+  ASSERT_EQ(report["up_auto"]["candidates"].size(), 6u);
+  EXPECT_EQ(report["up_auto"]["candidates"][1]["up"], "+y");
+  EXPECT_TRUE(report["up_auto"]["candidates"][1]["rests"].get<bool>());
+  const json& camera = report["views"][0]["cameras"][0];
+  EXPECT_GT(camera["up"][1].get<double>(), 0.8);
+  r = run_hqview({"analyze", mesh.string(), "-o", (dir / "z").string(), "--no-render", "--no-overlap", "--data", "none"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(json::parse(read_text(dir / "z" / "report.json")).contains("up_auto"));
+}
+
 // A copy of an OFF surface with every vertex p -> f p + offset.
 fs::path scaled_off_copy(const fs::path& off, double f, Vec3 offset, const fs::path& out) {
   return transformed_off_copy(
