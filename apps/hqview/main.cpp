@@ -138,7 +138,7 @@ struct AnalyzeArgs {
   std::string compare_align = "auto";
   std::string reference_align = "none";
   double boundary_tolerance = 1e-4;  // --boundary-tolerance
-  std::string up{hq::kDefaultUpAxis};
+  std::string up = "auto";  // --up: per mesh by default (docs/analysis.md "Up axis: auto")
   bool no_viewer = false;
   std::string link_base;  // --link-base URL; empty: relative links
   std::string single_file;  // --single-file[=viewer]: "pages" or "viewer"; empty: no report.html

@@ -392,16 +392,16 @@ TEST(ViewsCli, UpKeepsATallBoxUprightInEveryView) {
   }
 }
 
-// --up auto: the armadillo (y-up, lying on its back with the default +z)
-// is drawn with +y up, its report says so; without auto there is no
-// up_auto key.
-TEST(ViewsCli, UpAutoStandsTheArmadilloOnItsFeet) {
+// --up auto, the default: the armadillo (y-up, lying on its back with +z)
+// is drawn with +y up and its report says so; with an axis given there is
+// no up_auto key.
+TEST(ViewsCli, UpAutoByDefaultStandsTheArmadilloOnItsFeet) {
   const auto data = shared_data_dir();
   if (!data) GTEST_SKIP() << "no shared data";
   const fs::path mesh = *data / "meshes/livesu2016_skeleton/armadillo.mesh";
   const fs::path dir = fresh_output_dir("views/up_auto");
-  CliResult r = run_hqview({"analyze", mesh.string(), "-o", (dir / "auto").string(), "--size", "320x240", "--up",
-                            "auto", "--views", "overview", "--no-overlap", "--data", "none", "--no-viewer"});
+  CliResult r = run_hqview({"analyze", mesh.string(), "-o", (dir / "auto").string(), "--size", "320x240", "--views",
+                            "overview", "--no-overlap", "--data", "none", "--no-viewer"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json report = json::parse(read_text(dir / "auto" / "report.json"));
   EXPECT_EQ(report["up_auto"]["axis"], "+y");
@@ -411,7 +411,8 @@ TEST(ViewsCli, UpAutoStandsTheArmadilloOnItsFeet) {
   EXPECT_TRUE(report["up_auto"]["candidates"][1]["rests"].get<bool>());
   const json& camera = report["views"][0]["cameras"][0];
   EXPECT_GT(camera["up"][1].get<double>(), 0.8);
-  r = run_hqview({"analyze", mesh.string(), "-o", (dir / "z").string(), "--no-render", "--no-overlap", "--data", "none"});
+  r = run_hqview(
+      {"analyze", mesh.string(), "-o", (dir / "z").string(), "--up", "+z", "--no-render", "--no-overlap", "--data", "none"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_FALSE(json::parse(read_text(dir / "z" / "report.json")).contains("up_auto"));
 }
