@@ -411,6 +411,10 @@ TEST(ViewsCli, UpAutoByDefaultStandsTheArmadilloOnItsFeet) {
   EXPECT_TRUE(report["up_auto"]["candidates"][1]["rests"].get<bool>());
   const json& camera = report["views"][0]["cameras"][0];
   EXPECT_GT(camera["up"][1].get<double>(), 0.8);
+  // The page's Inputs say which axis and why.
+  const std::string html = read_text(dir / "auto" / "index.html");
+  EXPECT_NE(html.find("up axis of the views</th><td class=\"text\">+y (--up auto: the pose it would rest in)"),
+            std::string::npos);
   r = run_hqview(
       {"analyze", mesh.string(), "-o", (dir / "z").string(), "--up", "+z", "--no-render", "--no-overlap", "--data", "none"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
