@@ -140,7 +140,7 @@ struct AnalyzeArgs {
   std::string compare_align = "auto";
   std::string reference_align = "none";
   double boundary_tolerance = 1e-4;  // --boundary-tolerance
-  std::string up{hq::kDefaultUpAxis};
+  std::string up = "auto";  // --up: per mesh by default (docs/analysis.md "Up axis: auto")
   bool no_viewer = false;
   std::string link_base;  // --link-base URL; empty: relative links
   std::string single_file;  // --single-file[=viewer]: "pages" or "viewer"; empty: no report.html
@@ -196,7 +196,8 @@ hq::AnalyzeOptions make_analyze_options(const AnalyzeArgs& args) {
   // known once the report is (analyze throws hq::ValueError then, no bundle).
   for (const std::string& rule : args.gates) options.gates.push_back(hq::parse_gate_rule(rule));
   parse_size(args.size, options.views.width, options.views.height);
-  options.views.up = parse_up(args.up);
+  options.up_auto = args.up == "auto";
+  if (!options.up_auto) options.views.up = parse_up(args.up);
   options.viewer = !args.no_viewer;
   options.data = hq::parse_data_formats(args.data);
   options.viewer_max_mb = args.viewer_max_mb;
@@ -423,9 +424,9 @@ std::uint64_t parse_memory_budget(const std::string& text) {
 // The analysis options `analyze` and `batch` share, registered once.
 void add_analysis_options(CLI::App* cmd, AnalyzeArgs& args) {
   cmd->add_option("--up", args.up,
-                  "The model axis drawn upwards in the 3D views and the UV map: +x -x +y -y +z -z; views look "
-                  "from 15-35 degrees above the horizon (given twice, the last wins; in batch, a manifest's up "
-                  "column wins)")
+                  "The model axis drawn upwards in the 3D views and the UV map: +x -x +y -y +z -z, or auto (per "
+                  "mesh, the axis it would rest on a table with; docs/analysis.md); views look from 15-35 degrees "
+                  "above the horizon (given twice, the last wins; in batch, a manifest's up column wins)")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast)
       ->capture_default_str();
   cmd->add_option("--data", args.data,

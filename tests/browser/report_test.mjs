@@ -92,7 +92,8 @@ async function checkPage(name, file) {
       check(fs.existsSync(target) && fs.statSync(target).isFile(), `${name}: link ${href} names a missing file`);
     }
   }
-  check((await page.$$('script')).length === 0, `${name}: has no <script> element`);
+  // The one script is the lightbox's, from the template.
+  check((await page.$$('script:not(#hq-lightbox)')).length === 0, `${name}: has no <script> element but the lightbox's`);
   await page.screenshot({ path: path.join(shots, `${name}.png`), fullPage: true });
   await page.waitForTimeout(100);
   for (const p of problems) check(false, `${name}: ${p}`);
@@ -236,6 +237,25 @@ if (hasHand) {
   check(widths.doc <= widths.view, `1400 px: page ${widths.doc} px wide`);
   // The comparison is on the page, both meshes' numbers side by side.
   check((await page.$$('#compare table.compare tbody tr')).length >= 10, '1400 px: the Comparison table has its rows');
+  // The lightbox: a click on a view shows its image at its natural size
+  // (so every legend at its drawn size); Esc closes it and the focus goes
+  // back to the view's link; Enter on a focused link opens it too.
+  const firstLink = 'figure .image > a';
+  await page.click(firstLink);
+  await page.waitForFunction(() => document.getElementById('lightbox').open && document.querySelector('#lightbox img').complete);
+  const shown = await page.$eval('#lightbox img', (i) => ({ w: i.clientWidth, n: i.naturalWidth, src: i.getAttribute('src') }));
+  const href = await page.$eval(firstLink, (a) => a.getAttribute('href'));
+  check(shown.src === href, `lightbox: shows ${shown.src}, the link's ${href}`);
+  check(shown.n > 0 && shown.w === shown.n, `lightbox: the image at its natural width (${shown.w} of ${shown.n} px)`);
+  await page.screenshot({ path: path.join(shots, 'full-index-1400px-lightbox.png') });
+  await page.keyboard.press('Escape');
+  check(!(await page.$eval('#lightbox', (d) => d.open)), 'lightbox: Esc closes it');
+  check(await page.$eval(firstLink, (a) => document.activeElement === a), 'lightbox: the focus is back on the view\'s link');
+  await page.keyboard.press('Enter');
+  check(await page.$eval('#lightbox', (d) => d.open), 'lightbox: Enter on the focused link opens it');
+  await page.click('#lightbox .lightbox-close');
+  check(!(await page.$eval('#lightbox', (d) => d.open)), 'lightbox: the close button closes it');
+  check(page.url().endsWith('index.html'), `lightbox: the page stayed (${page.url()})`);
   await page.screenshot({ path: path.join(shots, 'full-index-1400px.png'), fullPage: true });
   for (const p of problems) check(false, `full at 1400 px: ${p}`);
   await page.close();
@@ -259,7 +279,7 @@ for (const [name, file] of [['bar-index', path.join(bar, 'index.html')], ['ball-
   await page.waitForTimeout(200);
   const pwned = await page.evaluate(() => window.hqPwned);
   check(pwned === undefined, `a script from the file name ran (window.hqPwned = ${pwned})`);
-  check((await page.$$('script')).length === 0, 'evil: no <script> element');
+  check((await page.$$('script:not(#hq-lightbox)')).length === 0, 'evil: no <script> element but the lightbox\'s');
   const shown = await page.$eval('.subtitle .file', (e) => e.textContent);
   check(shown === evilName, `evil: the file name is shown literally (got ${JSON.stringify(shown)})`);
   const title = await page.title();

@@ -392,6 +392,35 @@ TEST(ViewsCli, UpKeepsATallBoxUprightInEveryView) {
   }
 }
 
+// --up auto, the default: the armadillo (y-up, lying on its back with +z)
+// is drawn with +y up and its report says so; with an axis given there is
+// no up_auto key.
+TEST(ViewsCli, UpAutoByDefaultStandsTheArmadilloOnItsFeet) {
+  const auto data = shared_data_dir();
+  if (!data) GTEST_SKIP() << "no shared data";
+  const fs::path mesh = *data / "meshes/livesu2016_skeleton/armadillo.mesh";
+  const fs::path dir = fresh_output_dir("views/up_auto");
+  CliResult r = run_hqview({"analyze", mesh.string(), "-o", (dir / "auto").string(), "--size", "320x240", "--views",
+                            "overview", "--no-overlap", "--data", "none", "--no-viewer"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json report = json::parse(read_text(dir / "auto" / "report.json"));
+  EXPECT_EQ(report["up_auto"]["axis"], "+y");
+  EXPECT_TRUE(report["up_auto"]["from_data"].get<bool>());
+  ASSERT_EQ(report["up_auto"]["candidates"].size(), 6u);
+  EXPECT_EQ(report["up_auto"]["candidates"][1]["up"], "+y");
+  EXPECT_TRUE(report["up_auto"]["candidates"][1]["rests"].get<bool>());
+  const json& camera = report["views"][0]["cameras"][0];
+  EXPECT_GT(camera["up"][1].get<double>(), 0.8);
+  // The page's Inputs say which axis and why.
+  const std::string html = read_text(dir / "auto" / "index.html");
+  EXPECT_NE(html.find("up axis of the views</th><td class=\"text\">+y (--up auto: the pose it would rest in)"),
+            std::string::npos);
+  r = run_hqview(
+      {"analyze", mesh.string(), "-o", (dir / "z").string(), "--up", "+z", "--no-render", "--no-overlap", "--data", "none"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(json::parse(read_text(dir / "z" / "report.json")).contains("up_auto"));
+}
+
 // A copy of an OFF surface with every vertex p -> f p + offset.
 fs::path scaled_off_copy(const fs::path& off, double f, Vec3 offset, const fs::path& out) {
   return transformed_off_copy(

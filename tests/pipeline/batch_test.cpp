@@ -84,11 +84,13 @@ TEST(Manifest, ErrorsNamePathAndLine) {
   EXPECT_THROW(parse_manifest("{", "m.json", "/d", true), ParseError);
 }
 
-// The up column (issue 45): an axis per mesh, in canonical form; empty: the
-// run's --up; anything else is refused with the row's line.
+// The up column (issue 45): an axis per mesh, in canonical form, or auto;
+// empty: the run's --up; anything else is refused with the row's line.
 TEST(Manifest, UpColumnPerMesh) {
-  const auto rows = parse_manifest("mesh,up\na.mesh,+y\nb.mesh,\nc.mesh, -X \nd.mesh,z\n", "m.csv", "/d", false);
-  ASSERT_EQ(rows.size(), 4u);
+  const auto rows =
+      parse_manifest("mesh,up\na.mesh,+y\nb.mesh,\nc.mesh, -X \nd.mesh,z\ne.mesh,Auto\n", "m.csv", "/d", false);
+  ASSERT_EQ(rows.size(), 5u);
+  EXPECT_EQ(rows[4].up, "auto");  // --up auto for this mesh
   EXPECT_EQ(rows[0].up, "+y");
   EXPECT_EQ(rows[1].up, "");
   EXPECT_EQ(rows[2].up, "-x");
@@ -103,7 +105,7 @@ TEST(Manifest, UpColumnPerMesh) {
     ADD_FAILURE() << "no ParseError";
   } catch (const ParseError& e) {
     EXPECT_EQ(e.line(), 3);
-    EXPECT_NE(std::string(e.what()).find("m.csv:3: up: expected one of +x -x +y -y +z -z"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("m.csv:3: up: expected one of +x -x +y -y +z -z auto"), std::string::npos)
         << e.what();
   }
   try {

@@ -6,6 +6,8 @@
 
 #include "hqview/core/error.h"
 
+#include <string>
+
 namespace hq {
 namespace {
 
@@ -118,6 +120,66 @@ TEST(DiffMarkdown, MarkerAndSizeCapKeepTheWorstRows) {
   EXPECT_NE(md.find(note), std::string::npos) << md.substr(md.size() - 300);
   // Kept drops in their original order, largest to smallest among the odd meshes kept.
   EXPECT_LT(md.find("| m7\\.mesh |"), md.find("| m299\\.mesh |"));
+}
+
+// Two report.json with their summaries: the side-by-side table of index.html's
+// Comparison (compare_table.h), baseline and current, and MESH2's when both
+// runs had --compare; values from the reports, differences by hand.
+std::string report_with(const char* mesh, int vertices, double min_sj, int inverted, const char* compare_block) {
+  return std::string(R"({"schema_version": 2, "input": {"mesh": {"path": "/d/)") + mesh +
+         R"("}, "compare": {"path": "/d/other.mesh"}}, "mesh": {"num_vertices": )" + std::to_string(vertices) +
+         R"(, "num_hexes": 10, "num_boundary_faces": 40, "bbox": {"diagonal": 2.5}, "edge_length": {"mean": 0.5}},
+  "quality": {"num_inverted": )" + std::to_string(inverted) + R"(, "scaled_jacobian": {"min": )" +
+         std::to_string(min_sj) + R"(, "mean": 0.8, "p05": 0.6, "num_inverted": )" + std::to_string(inverted) +
+         R"(, "num_degenerate": 0}, "vertex_quality": {"min": null}}, "compare": )" + compare_block + "}";
+}
+
+TEST(DiffReports, SideBySideHeadlineOfTwoReports) {
+  const char* compared = R"({"mesh": {"num_vertices": 1000, "num_hexes": 729}, "quality": {"scaled_jacobian": {"min": 0.9}}})";
+  const std::string a = report_with("a.mesh", 1200, 0.5, 0, "null");
+  const std::string b = report_with("b.mesh", 1350, 0.25, 3, compared);
+  const DiffResult d = diff_reports(a, b, {}, "", "");
+  ASSERT_EQ(d.side_by_side.size(), 1u);  // only b has a compare block
+  EXPECT_EQ(d.side_by_side[0].what, "mesh");
+  EXPECT_EQ(d.side_by_side[0].baseline_name, "a.mesh");
+  EXPECT_EQ(d.side_by_side[0].current_name, "b.mesh");
+  const std::vector<CompareTableRow>& rows = d.side_by_side[0].rows;
+  ASSERT_EQ(rows.size(), 11u);
+  EXPECT_EQ(rows[0].label, "vertices");
+  EXPECT_EQ(rows[0].mine, "1,200");
+  EXPECT_EQ(rows[0].theirs, "1,350");
+  EXPECT_EQ(rows[0].difference, "+150");
+  EXPECT_FALSE(rows[0].is_worse);
+  EXPECT_EQ(rows[2].label, "min scaled Jacobian");
+  EXPECT_EQ(rows[2].difference, "-0.25");
+  EXPECT_TRUE(rows[2].is_worse);
+  EXPECT_EQ(rows[5].label, "inverted hexes");
+  EXPECT_EQ(rows[5].difference, "+3");
+  EXPECT_TRUE(rows[5].is_worse);
+  EXPECT_EQ(rows[7].mine, "–");  // null in the report: unknown, no difference
+  EXPECT_EQ(rows[7].difference, "–");
+  EXPECT_EQ(rows[3].difference, "0");
+
+  const std::string text = diff_text(d);
+  EXPECT_EQ(text.find("mesh: a.mesh → b.mesh\n"), 0u) << text;
+  EXPECT_NE(text.find("  min scaled Jacobian         0.5     0.25       -0.25  worse\n"), std::string::npos) << text;
+  const std::string md = diff_markdown(d);
+  EXPECT_NE(md.find("### mesh: a\\.mesh → b\\.mesh\n\n| | baseline | current | difference |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| min scaled Jacobian | 0.5 | 0.25 | **-0.25** |"), std::string::npos) << md;
+
+  // Both with --compare: the second meshes side by side too.
+  const DiffResult both = diff_reports(report_with("a.mesh", 1200, 0.5, 0, compared),
+                                       report_with("b.mesh", 1200, 0.5, 0,
+                                                   R"({"mesh": {"num_vertices": 900, "num_hexes": 640}, "quality": {"scaled_jacobian": {"min": 0.95}}})"),
+                                       {}, "", "");
+  ASSERT_EQ(both.side_by_side.size(), 2u);
+  EXPECT_EQ(both.side_by_side[1].what, "compared mesh (--compare)");
+  EXPECT_EQ(both.side_by_side[1].rows[1].difference, "-89");
+  EXPECT_EQ(both.side_by_side[1].rows[2].difference, "+0.05");
+  EXPECT_FALSE(both.side_by_side[1].rows[2].is_worse);
+  EXPECT_NE(diff_markdown(both).find("### compared mesh (--compare): other\\.mesh → other\\.mesh"), std::string::npos);
+  // Excerpts without the summaries (kBase) get no table.
+  EXPECT_TRUE(diff_reports(kBase, kWorse, {}, "", "").side_by_side.empty());
 }
 
 }  // namespace

@@ -97,9 +97,17 @@ ReportModel linked_model() {
   return m;
 }
 
+// The pages' one script is the template's lightbox (issue 45): no input
+// text reaches a script element.
+bool only_the_lightbox_script(const std::string& html) {
+  const std::size_t first = html.find("<script");
+  return first != std::string::npos && html.compare(first, 25, "<script id=\"hq-lightbox\">") == 0 &&
+         html.find("<script", first + 1) == std::string::npos;
+}
+
 TEST(IndexHtml, InputTextIsEscapedAndNoScriptIsWritten) {
   const std::string html = index_html(linked_model());
-  EXPECT_EQ(html.find("<script"), std::string::npos);
+  EXPECT_TRUE(only_the_lightbox_script(html));
   EXPECT_EQ(html.find("<img src=x"), std::string::npos);
   EXPECT_EQ(html.find("<img src=y"), std::string::npos);
   const std::string shown =
@@ -230,7 +238,7 @@ TEST(BoundaryHtml, StatisticsViewsAndTheWayBack) {
   EXPECT_NE(html.find("ref&lt;&amp;&gt;.off"), std::string::npos);
   EXPECT_NE(html.find("&lt;b&gt;far&lt;/b&gt;"), std::string::npos);
   EXPECT_EQ(html.find("<b>"), std::string::npos);
-  EXPECT_EQ(html.find("<script"), std::string::npos);
+  EXPECT_TRUE(only_the_lightbox_script(html));
 }
 
 TEST(SummaryMarkdown, HeadlineGatesAndLinksWithInputEscaped) {

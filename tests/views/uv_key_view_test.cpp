@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
+
+#include "hqview/render/label_layout.h"
 
 #include "hqview/uv/uv_atlas.h"
 #include "support/surface_fixtures.h"
@@ -52,6 +55,58 @@ TEST(UvKey, NeighbouringChartIdsGetDistinctTints) {
     seen.insert(std::uint32_t(t.r) << 16 | std::uint32_t(t.g) << 8 | t.b);
   }
   EXPECT_EQ(seen.size(), 12u);
+}
+
+// Chart numbers never overlap (issue 45: on the hand's fingers 9, 10 and 11
+// were drawn on top of each other): each sits centred on its anchor when
+// that is free, else next to it (within the leader distance) or joined to
+// it by a leader line; the boxes are pairwise disjoint and inside the frame.
+void expect_disjoint_and_near(const std::vector<UvKeyNumberAnchor>& anchors, const std::vector<UvKeyNumber>& numbers,
+                              const PixelRect& frame, const AnnotationStyle& style) {
+  ASSERT_EQ(numbers.size(), anchors.size());
+  for (std::size_t i = 0; i < numbers.size(); ++i) {
+    const UvKeyNumber& n = numbers[i];
+    EXPECT_EQ(n.chart, anchors[i].chart);
+    ASSERT_TRUE(n.placed) << "chart " << n.chart;
+    EXPECT_GE(n.box.x, frame.x);
+    EXPECT_GE(n.box.y, frame.y);
+    EXPECT_LE(n.box.x + n.box.width, frame.x + frame.width);
+    EXPECT_LE(n.box.y + n.box.height, frame.y + frame.height);
+    for (std::size_t j = 0; j < i; ++j)
+      if (numbers[j].placed) EXPECT_FALSE(boxes_overlap(n.box, numbers[j].box)) << n.chart << " and " << numbers[j].chart;
+    const ScreenDisc anchor{double(n.anchor_x), double(n.anchor_y), 1.0};
+    const bool on_anchor = box_meets_disc(n.box, anchor);
+    if (!on_anchor && !n.has_leader) EXPECT_LE(disc_box_gap(anchor, n.box), 10.0 * style.scale) << n.chart;
+  }
+}
+
+TEST(UvKey, NumbersOfACrowdedFrameAreDisjointAndNextToTheirCharts) {
+  const AnnotationStyle style = annotation_style_for(1200);
+  const PixelRect frame{100, 50, 400, 300};
+  std::vector<UvKeyNumberAnchor> anchors;
+  for (Index c = 0; c < 30; ++c) anchors.push_back({c, 290 + static_cast<int>(c % 6) * 5, 190 + static_cast<int>(c / 6) * 5});
+  anchors.push_back({30, 498, 52});  // at the frame's corner: its box is moved inside
+  const std::vector<UvKeyNumber> numbers = place_uv_key_numbers(anchors, frame, 22, style);
+  expect_disjoint_and_near(anchors, numbers, frame, style);
+  // The first is centred on its anchor (nothing was in its way).
+  EXPECT_NEAR(numbers[0].box.x + numbers[0].box.width / 2.0, 290, 1.0);
+  EXPECT_NEAR(numbers[0].box.y + numbers[0].box.height / 2.0, 190, 1.0);
+  EXPECT_FALSE(numbers[0].has_leader);
+  int leaders = 0;
+  for (const UvKeyNumber& n : numbers) leaders += n.has_leader;
+  EXPECT_GT(leaders, 0);  // 30 numbers in a 25 x 20 px patch cannot all sit next to it
+}
+
+TEST(UvKey, NumbersOfARealAtlasInASmallFrameAreDisjoint) {
+  const TriSurface surface = test::icosphere(3);
+  const UvAtlas atlas = build_uv_atlas(surface, UvOptions{});
+  const AnnotationStyle style = annotation_style_for(1200);
+  const PixelRect frame{0, 0, 160, 160};
+  std::vector<UvKeyNumberAnchor> anchors;
+  for (const UvChartLabel& l : uv_chart_labels(surface, atlas))
+    anchors.push_back({l.chart, static_cast<int>(std::lround(l.uv[0] * 160)), static_cast<int>(std::lround((1 - l.uv[1]) * 160))});
+  ASSERT_GT(anchors.size(), 3u);
+  expect_disjoint_and_near(anchors, place_uv_key_numbers(anchors, frame, 22, style), frame, style);
 }
 
 }  // namespace

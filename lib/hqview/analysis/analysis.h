@@ -10,6 +10,7 @@
 #include "hqview/core/stage_times.h"
 
 #include "hqview/analysis/compare_alignment.h"
+#include "hqview/analysis/resting_up.h"
 #include "hqview/boundary/boundary_error.h"
 #include "hqview/fem/fem_element_field.h"
 #include "hqview/fem/metric_correlation.h"
@@ -62,6 +63,9 @@ struct Analysis {
   // --reference-align: how the reference was moved into the mesh's frame
   // before the boundary error (reference_surface is the moved surface).
   CompareAlignment reference_alignment{.requested = CompareAlign::none};
+
+  // --up auto: the resting up axis and its candidates (the views use its up).
+  std::optional<RestingUp> resting_up;
 
   // With --compare MESH2: MESH2 analysed the same way (quality only).
   struct Compared {

@@ -19,6 +19,11 @@ namespace hq {
 namespace fs = std::filesystem;
 namespace {
 
+// The up axis of every view: --up's, or the resting one under --up auto.
+Vec3 views_up(const Analysis& a, const AnalyzeOptions& options) {
+  return a.resting_up ? a.resting_up->up : options.views.up;
+}
+
 // One hex mesh from its file: the source opened once, then read.
 LoadedMesh load_mesh(const fs::path& path, const AnalyzeOptions& options, InputFile& input) {
   MeshSource source = open_mesh_source(path, options.mesh_format, options.read_limits);
@@ -286,12 +291,13 @@ void start_analysis(const AnalyzeOptions& options, AnalysisInProgress& out) {
   a.mesh = std::move(loaded.mesh);
   clock.start("topology");
   a.topology = build_topology(a.mesh);
+  if (options.up_auto) a.resting_up = choose_resting_up(a.mesh, a.topology);
   // The reference as soon as the boundary is known, so that its atlas runs
   // beside everything after.
   if (!options.reference_path.empty()) {
     clock.start("read reference");
     a.reference_surface = read_reference(a, options);
-    out.atlas = start_atlas(*a.reference_surface, options.views.up, out.cancel_atlas);
+    out.atlas = start_atlas(*a.reference_surface, views_up(a, options), out.cancel_atlas);
   }
   clock.stop();
   analyze_quality(a, options, clock);
@@ -329,6 +335,8 @@ AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
   model.data = options.data;
   AnalysisInProgress in_progress;
   start_analysis(options, in_progress);
+  ViewOptions views = options.views;
+  views.up = views_up(in_progress.analysis, options);
   if (renderer) {
     // The views that need no atlas are drawn while it is built.
     std::vector<StageTime> view_times;
@@ -337,8 +345,7 @@ AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
       const auto before_view = [&](ViewNeeds needs) {
         if (needs == ViewNeeds::uv_atlas) in_progress.finish_atlas(view_times, options.on_stage);
       };
-      add_views(render_views(in_progress.analysis, options.views, *renderer, &clock, before_view), options.views.up,
-                result);
+      add_views(render_views(in_progress.analysis, views, *renderer, &clock, before_view), views.up, result);
       in_progress.finish_atlas(view_times, options.on_stage);
     }
     in_progress.analysis.timings.insert(in_progress.analysis.timings.end(), view_times.begin(), view_times.end());
@@ -347,7 +354,7 @@ AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
   model.analysis = std::move(in_progress.analysis);
   model.has_viewer = renderer && options.viewer;
   model.viewer_max_mb = options.viewer_max_mb;
-  model.viewer_up = options.views.up;
+  model.viewer_up = views.up;
   // Gates read the finished report, so any numeric key can be gated on.
   {
     StageClock clock(model.analysis.timings, options.on_stage);

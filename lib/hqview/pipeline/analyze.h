@@ -38,6 +38,7 @@ struct AnalyzeOptions {
   BoundaryOptions boundary;                          // --boundary-tolerance (sampling_tolerance)
   std::string tool_version;
   ViewOptions views;                         // size, views to draw, focus vertices, up axis
+  bool up_auto = false;                      // --up auto: views.up is chosen per mesh (choose_resting_up)
   DataFormats data;                          // --data: the per-cell and per-vertex data files
   bool viewer = true;                        // viewer.html when views are drawn (--no-viewer: false)
   double viewer_max_mb = 25;                 // --viewer-max-mb

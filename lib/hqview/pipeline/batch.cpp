@@ -106,7 +106,13 @@ BatchEntry run_batch_mesh(const BatchInput& input, const BatchOptions& options, 
     analyze_options.mesh_path = input.mesh_file;
     analyze_options.reference_path = input.reference_file;
     analyze_options.compare_path = input.compare_file;
-    if (!input.up.empty()) analyze_options.views.up = *parse_up_axis(input.up);  // the manifest's up column
+    // The manifest's up column: an axis, or auto (the resting axis).
+    if (input.up == "auto") {
+      analyze_options.up_auto = true;
+    } else if (!input.up.empty()) {
+      analyze_options.up_auto = false;
+      analyze_options.views.up = *parse_up_axis(input.up);
+    }
     BundleOptions bundle;
     bundle.force = options.force;
     bundle.link_base = link_base_of(options.link_base, input.path);

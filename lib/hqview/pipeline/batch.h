@@ -34,7 +34,7 @@ struct BatchInput {
   std::string label;                     // method / algorithm, for the per-method comparison
   std::string model;                     // model name (rows of the method comparison); default: model_of_path
   std::string variant;                   // which mesh of the model and method; default: model_of_path
-  std::string up;                        // the manifest's up axis ("+y"; parse_up_axis); empty: the run's --up
+  std::string up;                        // the manifest's up axis ("+y"; parse_up_axis) or "auto"; empty: the run's --up
   PaperInfo paper;                       // the method's paper (HexaLab's index.json)
   std::string skip_reason;               // not empty: listed but not analysed (not a hex mesh)
 };

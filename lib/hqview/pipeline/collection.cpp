@@ -227,10 +227,11 @@ std::vector<BatchInput> parse_manifest(std::string_view text, const std::string&
                  const std::string& up) {
     // JSON rows have no line numbers: messages name the row instead.
     if (mesh.empty()) throw ParseError(name, is_json ? 0 : line, where(line) + "no mesh in this row");
+    const bool up_auto = lower(up) == "auto";
     const std::optional<Vec3> axis = parse_up_axis(lower(up));
-    if (!up.empty() && !axis)
+    if (!up.empty() && !axis && !up_auto)
       throw ParseError(name, is_json ? 0 : line,
-                       where(line) + "up: expected one of +x -x +y -y +z -z (or empty), got '" + up + "'");
+                       where(line) + "up: expected one of +x -x +y -y +z -z auto (or empty), got '" + up + "'");
     BatchInput input;
     input.path = manifest_key(mesh);
     input.mesh_file = resolve(base_dir, mesh);
@@ -242,7 +243,7 @@ std::vector<BatchInput> parse_manifest(std::string_view text, const std::string&
     const ModelAndVariant mv = model_of_path(mesh);
     input.model = model.empty() ? mv.model : model;
     input.variant = !variant.empty() || !model.empty() ? variant : mv.variant;
-    input.up = up.empty() ? std::string() : up_axis_name(*axis);
+    input.up = up.empty() ? std::string() : up_auto ? std::string("auto") : up_axis_name(*axis);
     inputs.push_back(std::move(input));
     lines.push_back(line);
   };

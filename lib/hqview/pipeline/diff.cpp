@@ -77,6 +77,36 @@ std::string show_delta(const DiffValue& d) {
   return buffer;
 }
 
+// A JSON member, or an empty object.
+const json& member(const json& j, const char* key) {
+  static const json kEmpty = json::object();
+  return j.is_object() && j.contains(key) && j[key].is_object() ? j[key] : kEmpty;
+}
+
+std::string file_name_at(const json& input) {
+  const json& path = input.is_object() && input.contains("path") ? input["path"] : json();
+  return path.is_string() ? fs::path(path.get<std::string>()).filename().string() : std::string("?");
+}
+
+// The side-by-side tables of two report.json (DiffResult::side_by_side).
+std::vector<DiffSideBySide> side_by_side_tables(const json& base, const json& cur) {
+  std::vector<DiffSideBySide> tables;
+  // Only reports with their summaries (not a hand-cut excerpt).
+  for (const json* j : {&base, &cur})
+    if (member(*j, "mesh").empty() || member(*j, "quality").empty()) return tables;
+  const json &bi = member(base, "input"), &ci = member(cur, "input");
+  tables.push_back({"mesh", file_name_at(member(bi, "mesh")), file_name_at(member(ci, "mesh")),
+                    compare_rows(compare_numbers(member(base, "mesh"), member(base, "quality")),
+                                 compare_numbers(member(cur, "mesh"), member(cur, "quality")))});
+  const json &bc = member(base, "compare"), &cc = member(cur, "compare");
+  if (!bc.empty() && !cc.empty())
+    tables.push_back({"compared mesh (--compare)", file_name_at(member(bi, "compare")),
+                      file_name_at(member(ci, "compare")),
+                      compare_rows(compare_numbers(member(bc, "mesh"), member(bc, "quality")),
+                                   compare_numbers(member(cc, "mesh"), member(cc, "quality")))});
+  return tables;
+}
+
 // A mesh of an index: its entry and, on demand, its bundle's report.json.
 struct IndexedMesh {
   const json* entry = nullptr;
@@ -202,6 +232,7 @@ DiffResult diff_reports(std::string_view baseline_text, std::string_view current
   };
 
   if (!result.is_index) {
+    result.side_by_side = side_by_side_tables(base, cur);
     std::map<std::string, double> b, c;
     flatten(base, "", b);
     flatten(cur, "", c);
@@ -303,7 +334,8 @@ struct MarkdownRow {
   std::string text;
 };
 
-enum MarkdownSection { kGates, kMeshes, kChanged, kCells, kNumSections };
+// kSideBySide + i: the i-th side-by-side table (at most two).
+enum MarkdownSection { kGates, kSideBySide, kSideBySide2, kMeshes, kChanged, kCells, kNumSections };
 
 // Relative size of a change: |current - baseline| / max(|baseline|, |current|);
 // 1 for a value that appeared or vanished.
@@ -329,6 +361,12 @@ std::vector<MarkdownRow> markdown_rows(const DiffResult& d) {
                         (d.is_index ? " " + markdown_escape(g.mesh) + " |" : "") + " " +
                         (g.value ? show(g.value) : "failed") + " | " + show(g.baseline) + " | " +
                         (g.value ? format_double(g.threshold) : "–") + " |\n"});
+  // The side-by-side rows are kept before any change row (rank 1).
+  for (std::size_t t = 0; t < d.side_by_side.size() && t < 2; ++t)
+    for (const CompareTableRow& r : d.side_by_side[t].rows)
+      rows.push_back({kSideBySide + static_cast<int>(t), 1, 0,
+                      "| " + r.label + " | " + r.mine + " | " + r.theirs + " | " +
+                          (r.is_worse ? "**" + r.difference + "**" : r.difference) + " |\n"});
   for (const std::string& m : d.new_meshes) rows.push_back({kMeshes, 3, 0, "- new mesh: " + markdown_escape(m) + "\n"});
   for (const std::string& m : d.vanished_meshes)
     rows.push_back({kMeshes, 1, 0, "- vanished mesh: " + markdown_escape(m) + "\n"});
@@ -354,8 +392,16 @@ std::vector<MarkdownRow> markdown_rows(const DiffResult& d) {
 }
 
 // The text around each section's rows (empty when the section has none kept).
-std::string section_head(int section, bool is_index) {
+std::string section_head(int section, const DiffResult& d) {
+  const bool is_index = d.is_index;
   switch (section) {
+    case kSideBySide:
+    case kSideBySide2:
+    {
+      const DiffSideBySide& t = d.side_by_side.at(static_cast<std::size_t>(section - kSideBySide));
+      return "\n### " + t.what + ": " + markdown_escape(t.baseline_name) + " → " + markdown_escape(t.current_name) +
+             "\n\n| | baseline | current | difference |\n|---|---:|---:|---:|\n";
+    }
     case kGates:
       return "| | rule |" + std::string(is_index ? " mesh |" : "") + " value | baseline | threshold |\n|---|---|" +
              (is_index ? "---|" : "") + "--:|--:|--:|\n";
@@ -370,7 +416,11 @@ std::string section_head(int section, bool is_index) {
   }
 }
 
-std::string section_tail(int section) { return section == kGates ? "\n" : ""; }
+std::string section_tail(int section) {
+  if (section == kSideBySide || section == kSideBySide2)
+    return "\nDifference = current - baseline (bold: current is worse).\n";
+  return section == kGates ? "\n" : "";
+}
 
 }  // namespace
 
@@ -390,7 +440,7 @@ std::string diff_markdown(const DiffResult& d, std::size_t max_chars) {
       bool any = false;
       for (std::size_t i = 0; i < rows.size(); ++i) {
         if (rows[i].section != s || !keep[i]) continue;
-        if (!any) md += section_head(s, d.is_index);
+        if (!any) md += section_head(s, d);
         any = true;
         md += rows[i].text;
       }
@@ -423,7 +473,7 @@ std::string diff_markdown(const DiffResult& d, std::size_t max_chars) {
     const int s = rows[i].section;
     const std::size_t extra =
         rows[i].text.size() +
-        (section_open[s] ? 0 : section_head(s, d.is_index).size() + section_tail(s).size());
+        (section_open[s] ? 0 : section_head(s, d).size() + section_tail(s).size());
     if (size + extra > max_chars) continue;
     size += extra;
     section_open[s] = 1;
@@ -433,8 +483,45 @@ std::string diff_markdown(const DiffResult& d, std::size_t max_chars) {
   return render(left_out);
 }
 
+namespace {
+
+// Characters on a terminal: UTF-8 code points (the tables' text is ASCII,
+// "–" and "→").
+std::size_t text_width(std::string_view s) {
+  return static_cast<std::size_t>(std::count_if(s.begin(), s.end(), [](char c) { return (c & 0xC0) != 0x80; }));
+}
+
+std::string padded(const std::string& s, std::size_t width, bool right) {
+  const std::string pad(width > text_width(s) ? width - text_width(s) : 0, ' ');
+  return right ? pad + s : s + pad;
+}
+
+// A side-by-side table as aligned columns: label, baseline, current,
+// difference (current - baseline), "worse" where current is worse.
+std::string side_by_side_text(const DiffSideBySide& t) {
+  std::size_t w[4] = {0, text_width("baseline"), text_width("current"), text_width("difference")};
+  for (const CompareTableRow& r : t.rows) {
+    w[0] = std::max(w[0], text_width(r.label));
+    w[1] = std::max(w[1], text_width(r.mine));
+    w[2] = std::max(w[2], text_width(r.theirs));
+    w[3] = std::max(w[3], text_width(r.difference));
+  }
+  std::string out = t.what + ": " + t.baseline_name + " → " + t.current_name + "\n  " + padded("", w[0], false) + "  " + padded("baseline", w[1], true) + "  " +
+                    padded("current", w[2], true) + "  " + padded("difference", w[3], true) + "\n";
+  for (const CompareTableRow& r : t.rows) {
+    std::string line = "  " + padded(r.label, w[0], false) + "  " + padded(r.mine, w[1], true) + "  " +
+                       padded(r.theirs, w[2], true) + "  " + padded(r.difference, w[3], true) +
+                       (r.is_worse ? "  worse" : "");
+    out += line + "\n";
+  }
+  return out + "\n";
+}
+
+}  // namespace
+
 std::string diff_text(const DiffResult& d) {
   std::string out;
+  for (const DiffSideBySide& t : d.side_by_side) out += side_by_side_text(t);
   for (const std::string& m : d.new_meshes) out += "new mesh: " + m + "\n";
   for (const std::string& m : d.vanished_meshes) out += "vanished mesh: " + m + "\n";
   for (const DiffStatusChange& s : d.status_changes)

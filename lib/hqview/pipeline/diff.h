@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "hqview/report/compare_table.h"
 #include "hqview/report/junit.h"
 
 #include "hqview/pipeline/gates.h"
@@ -54,8 +55,20 @@ struct DiffCellChange {
   bool is_better = false;
 };
 
+// Two report.json: a mesh's headline numbers side by side, baseline and
+// current, as index.html's Comparison table shows --compare (compare_table.h;
+// difference = current - baseline, is_worse: current is worse).
+struct DiffSideBySide {
+  std::string what;                          // "mesh", or "compared mesh (--compare)"
+  std::string baseline_name, current_name;  // the meshes' file names (not escaped)
+  std::vector<CompareTableRow> rows;
+};
+
 struct DiffResult {
   bool is_index = false;
+  // Two report.json: MESH's numbers; when both carry a compare block, also
+  // MESH2's (the second mesh of each run). Empty for two index.json.
+  std::vector<DiffSideBySide> side_by_side;
   std::vector<DiffCellChange> cells;  // index.json with methods: comparison cells that got better or worse
   std::vector<DiffValue> changed;  // keys whose value differs (or exists on one side only)
   std::vector<std::string> new_meshes;

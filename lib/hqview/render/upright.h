@@ -25,8 +25,9 @@ std::optional<Vec3> parse_up_axis(std::string_view name);
 // its components.
 std::string up_axis_name(const Vec3& up);
 
-// The default up axis (docs/analysis.md "Upright cameras": the shared meshes
-// were checked by eye).
+// The up axis of a view when none is chosen: the library's default and what
+// `--up auto` falls back to when no pose rests (the command line's default
+// is auto: docs/analysis.md "Up axis: auto").
 inline constexpr std::string_view kDefaultUpAxis = "+z";
 
 // The horizontal axis the front view's eye sits on: +z for a y-up model

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
 
 #include "hqview/core/number_format.h"
 
@@ -27,33 +29,76 @@ CompareTableRow number_row(const std::string& label, double mine, double theirs,
   return {label, display_number(mine), display_number(theirs), signed_number(theirs - mine), worse(mine, theirs, better)};
 }
 
-CompareTableRow count_row(const std::string& label, long long mine, long long theirs, Better better) {
-  return {label, display_count(mine), display_count(theirs), signed_count(theirs - mine),
-          worse(static_cast<double>(mine), static_cast<double>(theirs), better)};
+CompareTableRow count_row(const std::string& label, double mine, double theirs, Better better) {
+  const auto count = [](double v) { return std::isfinite(v) ? display_count(std::llround(v)) : std::string("–"); };
+  const bool known = std::isfinite(mine) && std::isfinite(theirs);
+  return {label, count(mine), count(theirs), known ? signed_count(std::llround(theirs) - std::llround(mine)) : "–",
+          worse(mine, theirs, better)};
+}
+
+// A number of a report.json object by path; NaN when missing or null.
+double number_at(const nlohmann::json& j, std::initializer_list<const char*> path) {
+  const nlohmann::json* node = &j;
+  for (const char* key : path) {
+    if (!node->is_object() || !node->contains(key)) return std::nan("");
+    node = &(*node)[key];
+  }
+  return node->is_number() ? node->get<double>() : std::nan("");
 }
 
 }  // namespace
 
-CompareTable compare_table(const Analysis& a) {
-  const Analysis::Compared& c = *a.compare;
-  const MeshSummary &m = a.mesh_summary, &n = c.mesh_summary;
-  const QualitySummary &q = a.quality, &r = c.quality;
-  CompareTable t;
-  t.mine_name = std::filesystem::path(a.mesh_input.path).filename().string();
-  t.theirs_name = std::filesystem::path(c.input.path).filename().string();
-  t.rows = {
+CompareNumbers compare_numbers(const MeshSummary& m, const QualitySummary& q) {
+  const auto count = [](auto v) { return static_cast<double>(v); };
+  return {count(m.num_vertices),
+          count(m.num_hexes),
+          q.scaled_jacobian.min,
+          q.scaled_jacobian.mean,
+          q.scaled_jacobian.p05,
+          count(q.scaled_jacobian.num_inverted),
+          count(q.scaled_jacobian.num_degenerate),
+          q.vertex_quality.min,
+          count(m.num_boundary_faces),
+          m.bbox_diagonal,
+          m.edge_length_mean};
+}
+
+CompareNumbers compare_numbers(const nlohmann::json& mesh, const nlohmann::json& quality) {
+  return {number_at(mesh, {"num_vertices"}),
+          number_at(mesh, {"num_hexes"}),
+          number_at(quality, {"scaled_jacobian", "min"}),
+          number_at(quality, {"scaled_jacobian", "mean"}),
+          number_at(quality, {"scaled_jacobian", "p05"}),
+          number_at(quality, {"scaled_jacobian", "num_inverted"}),
+          number_at(quality, {"scaled_jacobian", "num_degenerate"}),
+          number_at(quality, {"vertex_quality", "min"}),
+          number_at(mesh, {"num_boundary_faces"}),
+          number_at(mesh, {"bbox", "diagonal"}),
+          number_at(mesh, {"edge_length", "mean"})};
+}
+
+std::vector<CompareTableRow> compare_rows(const CompareNumbers& m, const CompareNumbers& n) {
+  return {
       count_row("vertices", m.num_vertices, n.num_vertices, Better::neither),
       count_row("hexahedra", m.num_hexes, n.num_hexes, Better::neither),
-      number_row("min scaled Jacobian", q.scaled_jacobian.min, r.scaled_jacobian.min, Better::higher),
-      number_row("mean scaled Jacobian", q.scaled_jacobian.mean, r.scaled_jacobian.mean, Better::higher),
-      number_row("p05 scaled Jacobian", q.scaled_jacobian.p05, r.scaled_jacobian.p05, Better::higher),
-      count_row("inverted hexes", q.scaled_jacobian.num_inverted, r.scaled_jacobian.num_inverted, Better::lower),
-      count_row("degenerate hexes", q.scaled_jacobian.num_degenerate, r.scaled_jacobian.num_degenerate, Better::lower),
-      number_row("min vertex quality", q.vertex_quality.min, r.vertex_quality.min, Better::higher),
+      number_row("min scaled Jacobian", m.sj_min, n.sj_min, Better::higher),
+      number_row("mean scaled Jacobian", m.sj_mean, n.sj_mean, Better::higher),
+      number_row("p05 scaled Jacobian", m.sj_p05, n.sj_p05, Better::higher),
+      count_row("inverted hexes", m.num_inverted, n.num_inverted, Better::lower),
+      count_row("degenerate hexes", m.num_degenerate, n.num_degenerate, Better::lower),
+      number_row("min vertex quality", m.vertex_quality_min, n.vertex_quality_min, Better::higher),
       count_row("boundary faces", m.num_boundary_faces, n.num_boundary_faces, Better::neither),
       number_row("bounding box diagonal", m.bbox_diagonal, n.bbox_diagonal, Better::neither),
       number_row("mean edge length", m.edge_length_mean, n.edge_length_mean, Better::neither),
   };
+}
+
+CompareTable compare_table(const Analysis& a) {
+  const Analysis::Compared& c = *a.compare;
+  CompareTable t;
+  t.mine_name = std::filesystem::path(a.mesh_input.path).filename().string();
+  t.theirs_name = std::filesystem::path(c.input.path).filename().string();
+  t.rows = compare_rows(compare_numbers(a.mesh_summary, a.quality), compare_numbers(c.mesh_summary, c.quality));
   t.alignment = alignment_description(c.alignment);
   return t;
 }

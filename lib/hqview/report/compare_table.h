@@ -3,7 +3,9 @@
 // their differences (MESH2 - MESH), for index.html and summary.md (the same
 // rows as report.json compare.headline and compare.differences, plus a few
 // mesh and quality numbers). Display text only: report.json keeps the values.
+// `diff` of two report.json shows the same rows for baseline and current.
 
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
@@ -24,6 +26,24 @@ struct CompareTable {
   std::vector<CompareTableRow> rows;
   std::string alignment;  // how the compare view places MESH2 ("" when as read)
 };
+
+// The numbers of one mesh the table shows; NaN: not known (a null or missing
+// key of a report.json). Counts are whole numbers.
+struct CompareNumbers {
+  double num_vertices = 0, num_hexes = 0;
+  double sj_min = 0, sj_mean = 0, sj_p05 = 0;
+  double num_inverted = 0, num_degenerate = 0;
+  double vertex_quality_min = 0;
+  double num_boundary_faces = 0;
+  double bbox_diagonal = 0, edge_length_mean = 0;
+};
+
+CompareNumbers compare_numbers(const MeshSummary& mesh, const QualitySummary& quality);
+// From a report.json's `mesh` and `quality` objects (or its compare block's).
+CompareNumbers compare_numbers(const nlohmann::json& mesh, const nlohmann::json& quality);
+
+// The rows, `theirs` - `mine` (is_worse: `theirs` is worse).
+std::vector<CompareTableRow> compare_rows(const CompareNumbers& mine, const CompareNumbers& theirs);
 
 // Precondition: analysis.compare holds a value.
 CompareTable compare_table(const Analysis& analysis);

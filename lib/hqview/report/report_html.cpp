@@ -10,6 +10,7 @@
 
 #include "hqview/core/error.h"
 #include "hqview/core/number_format.h"
+#include "hqview/render/upright.h"
 #include "hqview/report/cluster_color.h"
 #include "hqview/report/compare_table.h"
 #include "hqview/report/escape.h"
@@ -295,6 +296,14 @@ data input_rows(const ReportModel& model) {
   add("mesh", model.analysis.mesh_input);
   if (model.analysis.reference_input) add("reference", *model.analysis.reference_input);
   if (model.analysis.compare) add("compared mesh", model.analysis.compare->input);
+  // The views' up axis, and why (issue 45: --up auto picks it per mesh).
+  if (!model.views.empty())
+    rows.push_back(kv("up axis of the views", up_axis_name(model.viewer_up) +
+                                                  (model.analysis.resting_up
+                                                       ? (model.analysis.resting_up->from_data
+                                                              ? " (--up auto: the pose it would rest in)"
+                                                              : " (--up auto: no resting pose, the default)")
+                                                       : " (--up)")));
   rows.push_back(kv("HQView", model.tool_version));
   rows.push_back(kv("metric definitions", "Verdict 1.4.5 (hex), Si and Chen (IEEE VIS 2023) vertex quality"));
   return rows;

@@ -5,6 +5,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "hqview/render/upright.h"
 #include "hqview/report/cluster_color.h"
 #include "hqview/report/escape.h"
 
@@ -197,6 +198,17 @@ Json fem_json(const Analysis& a) {
 // compare.alignment, boundary_error.reference_alignment.
 // The rotation keys are added after the box rule's (auto's search: null
 // distances for none and bbox).
+// --up auto: the chosen axis and every candidate's numbers.
+Json up_auto_json(const RestingUp& r) {
+  Json candidates = Json::array();
+  for (const RestingCandidate& c : r.candidates)
+    candidates.push_back({{"up", up_axis_name(c.up)},
+                          {"support_area", number(c.support_area)},
+                          {"tip", number(c.tip)},
+                          {"rests", c.rests}});
+  return {{"axis", up_axis_name(r.up)}, {"from_data", r.from_data}, {"candidates", std::move(candidates)}};
+}
+
 Json alignment_json(const CompareAlignment& a) {
   const auto matrix = [](const Matrix3& m) {
     Json rows = Json::array();
@@ -446,6 +458,8 @@ ReportDocument report_document(const ReportModel& model) {
   if (model.analysis.fem_elements) j["fem"] = fem_json(model.analysis);
   j["boundary_error"] = model.analysis.boundary_error ? boundary_error_json(model) : Json(nullptr);
   j["compare"] = model.analysis.compare ? compare_json(j, *model.analysis.compare) : Json(nullptr);
+  // Only with --up auto: other reports keep their bytes.
+  if (model.analysis.resting_up) j["up_auto"] = up_auto_json(*model.analysis.resting_up);
   Json views = Json::array();
   for (const ViewEntry& v : model.views) {
     Json cameras = Json::array();

@@ -6,6 +6,7 @@
 
 #include "hqview/render/annotate.h"
 #include "hqview/render/camera.h"
+#include "hqview/render/label_layout.h"
 #include "hqview/render/upright.h"
 #include "hqview/views/overview_views.h"
 
@@ -118,14 +119,35 @@ std::vector<std::pair<Index, Vec3>> facing_anchors(const TriSurface& reference, 
   return anchors;
 }
 
-// A number centred at (x, y) of an image, on a pale box so it reads on any tint.
-void draw_number(Image& image, int x, int y, Index number, int size, const AnnotationStyle& style) {
-  const std::string text = std::to_string(number);
-  const PixelRect extent = text_extent(text, size, style);
+// The pale box a number is written in, centred at (x, y).
+PixelRect number_box(int x, int y, Index number, int size, const AnnotationStyle& style) {
+  const PixelRect extent = text_extent(std::to_string(number), size, style);
   const int pad = std::max(2, size / 5);
-  fill_rect(image, {x - extent.width / 2 - pad, y - size / 2 - pad, extent.width + 2 * pad, size + 2 * pad},
-            kLabelBox);
-  draw_text(image, x, y + size * 2 / 5, text, size, style, TextAnchor::center);
+  return {x - extent.width / 2 - pad, y - size / 2 - pad, extent.width + 2 * pad, size + 2 * pad};
+}
+
+bool inside(const PixelRect& box, const PixelRect& bounds) {
+  return box.x >= bounds.x && box.y >= bounds.y && box.x + box.width <= bounds.x + bounds.width &&
+         box.y + box.height <= bounds.y + bounds.height;
+}
+
+// A frame's numbers: leader lines first (a dark line on a pale halo, a dot
+// at the anchor), then the boxes, so no line crosses a number.
+void draw_numbers(Image& image, const std::vector<UvKeyNumber>& numbers, int size, const AnnotationStyle& style) {
+  for (const UvKeyNumber& n : numbers) {
+    if (!n.placed || !n.has_leader) continue;
+    const double cx = n.box.x + 0.5 * n.box.width, cy = n.box.y + 0.5 * n.box.height;
+    draw_line(image, n.anchor_x, n.anchor_y, cx, cy, kLabelBox, std::max(3.0, 4.0 * style.scale));
+    draw_line(image, n.anchor_x, n.anchor_y, cx, cy, kOutline, std::max(1.0, 1.6 * style.scale));
+    const int r = std::max(2, static_cast<int>(std::lround(3 * style.scale)));
+    fill_rect(image, {n.anchor_x - r, n.anchor_y - r, 2 * r + 1, 2 * r + 1}, kOutline);
+  }
+  for (const UvKeyNumber& n : numbers) {
+    if (!n.placed) continue;
+    fill_rect(image, n.box, kLabelBox);
+    draw_text(image, n.box.x + n.box.width / 2, n.box.y + n.box.height / 2 + size * 2 / 5,
+              std::to_string(n.chart), size, style, TextAnchor::center);
+  }
 }
 
 // Pixel of a world point in an image area drawn with `camera`.
@@ -209,6 +231,39 @@ std::vector<UvChartLabel> uv_chart_labels(const TriSurface& reference, const UvA
   return anchors;
 }
 
+std::vector<UvKeyNumber> place_uv_key_numbers(const std::vector<UvKeyNumberAnchor>& anchors, const PixelRect& bounds,
+                                              int text_size, const AnnotationStyle& style) {
+  LabelLayoutOptions options;
+  options.bounds = bounds;
+  options.gap = 2.0 * style.scale;
+  options.ring_step = 10.0 * style.scale;
+  options.rings = static_cast<int>(std::ceil(std::max(bounds.width, bounds.height) / options.ring_step));
+  options.leader_distance = 10.0 * style.scale;
+  std::vector<UvKeyNumber> numbers;
+  std::vector<PixelRect> taken;
+  for (const UvKeyNumberAnchor& a : anchors) {
+    UvKeyNumber n{a.chart, a.x, a.y};
+    const PixelRect centred = number_box(a.x, a.y, a.chart, text_size, style);
+    const bool free = inside(centred, bounds) && std::none_of(taken.begin(), taken.end(), [&](const PixelRect& t) {
+                        return boxes_overlap(t, centred);
+                      });
+    if (free) {
+      n.placed = true;
+      n.box = centred;
+    } else {
+      const LabelRequest request[] = {{ScreenDisc{double(a.x), double(a.y), 1.0}, centred.width, centred.height}};
+      if (const std::optional<PlacedLabel> p = place_labels(request, {}, taken, options)[0]) {
+        n.placed = true;
+        n.box = p->box;
+        n.has_leader = disc_box_gap(request[0].anchor, p->box) > options.leader_distance;
+      }
+    }
+    if (n.placed) taken.push_back(n.box);
+    numbers.push_back(n);
+  }
+  return numbers;
+}
+
 Image render_uv_key(const TriSurface& reference, const UvAtlas& atlas, const BoundaryViewOptions& options,
                     Renderer& renderer) {
   AnnotationStyle style = annotation_style_for(options.height);
@@ -234,10 +289,12 @@ Image render_uv_key(const TriSurface& reference, const UvAtlas& atlas, const Bou
     const Camera camera = fit_camera_to_points(points, direction, static_cast<double>(area.width) / area.height,
                                                {.up = options.up});
     paste(figure, renderer.render(scene3d, camera, area.width, area.height), area.x, area.y);
+    std::vector<UvKeyNumberAnchor> frame;
     for (const auto& [chart, position] : facing_anchors(reference, atlas, direction)) {
       const auto [x, y] = to_pixel(camera, area, position);
-      draw_number(figure, x, y, chart, number_size, style);
+      frame.push_back({chart, x, y});
     }
+    draw_numbers(figure, place_uv_key_numbers(frame, area, number_size, style), number_size, style);
     draw_text(figure, area.x + number_size / 2, area.y + number_size + 4, row == 0 ? "front" : "back",
               number_size, style);
   }
@@ -247,10 +304,12 @@ Image render_uv_key(const TriSurface& reference, const UvAtlas& atlas, const Bou
   Scene uv_scene = atlas_scene(reference, atlas);
   uv_scene.background = options.background;
   paste(figure, renderer.render(uv_scene, camera, uv_area.width, uv_area.height), uv_area.x, uv_area.y);
+  std::vector<UvKeyNumberAnchor> frame;
   for (const UvChartLabel& a : anchors) {
     const auto [x, y] = to_pixel(camera, uv_area, {a.uv[0], a.uv[1], 0.0});
-    draw_number(figure, x, y, a.chart, number_size, style);
+    frame.push_back({a.chart, x, y});
   }
+  draw_numbers(figure, place_uv_key_numbers(frame, uv_area, number_size, style), number_size, style);
   return figure;
 }
 

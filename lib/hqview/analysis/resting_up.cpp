@@ -1,0 +1,169 @@
+#include "hqview/analysis/resting_up.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+namespace hq {
+
+namespace {
+
+using Point2 = std::array<double, 2>;
+
+double cross2(const Point2& o, const Point2& a, const Point2& b) {
+  return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+}
+
+// The convex hull, counter-clockwise, without collinear points (Andrew's
+// monotone chain). Sorts `points`.
+std::vector<Point2> convex_hull(std::vector<Point2>& points) {
+  std::sort(points.begin(), points.end());
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  if (points.size() < 3) return points;
+  std::vector<Point2> hull(2 * points.size());
+  std::size_t k = 0;
+  for (const Point2& p : points) {
+    while (k >= 2 && cross2(hull[k - 2], hull[k - 1], p) <= 0.0) --k;
+    hull[k++] = p;
+  }
+  const std::size_t lower = k + 1;
+  for (std::size_t i = points.size() - 1; i-- > 0;) {
+    while (k >= lower && cross2(hull[k - 2], hull[k - 1], points[i]) <= 0.0) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k - 1);
+  return hull;
+}
+
+double polygon_area(const std::vector<Point2>& hull) {
+  double twice = 0.0;
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    const Point2& a = hull[i];
+    const Point2& b = hull[(i + 1) % hull.size()];
+    twice += a[0] * b[1] - a[1] * b[0];
+  }
+  return 0.5 * std::abs(twice);
+}
+
+double segment_distance(const Point2& p, const Point2& a, const Point2& b) {
+  const double dx = b[0] - a[0], dy = b[1] - a[1];
+  const double length2 = dx * dx + dy * dy;
+  double t = length2 > 0.0 ? ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / length2 : 0.0;
+  t = std::min(1.0, std::max(0.0, t));
+  return std::hypot(p[0] - (a[0] + t * dx), p[1] - (a[1] + t * dy));
+}
+
+// Distance from p to the hull's boundary, positive inside, negative outside.
+double signed_hull_distance(const Point2& p, const std::vector<Point2>& hull) {
+  if (hull.empty()) return -std::numeric_limits<double>::infinity();
+  if (hull.size() == 1) return -std::hypot(p[0] - hull[0][0], p[1] - hull[0][1]);
+  double distance = std::numeric_limits<double>::infinity();
+  bool inside = hull.size() >= 3;
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    const Point2& a = hull[i];
+    const Point2& b = hull[(i + 1) % hull.size()];
+    distance = std::min(distance, segment_distance(p, a, b));
+    if (cross2(a, b, p) < 0.0) inside = false;
+  }
+  return inside ? distance : -distance;
+}
+
+int axis_of(const Vec3& u) { return u.x != 0.0 ? 0 : u.y != 0.0 ? 1 : 2; }
+
+struct Solid {
+  Vec3 centre;
+  double volume = 0.0;
+  Vec3 lo, hi;
+};
+
+// Bounding box of the boundary, and the enclosed volume and its centroid
+// (tetrahedra from the box centre to each boundary triangle, two per quad).
+Solid solid_of(const HexMesh& mesh, const Topology& topology) {
+  Solid s;
+  const double inf = std::numeric_limits<double>::infinity();
+  s.lo = {inf, inf, inf};
+  s.hi = {-inf, -inf, -inf};
+  for (Index v : topology.boundary_vertices) {
+    const Vec3& p = mesh.points[static_cast<std::size_t>(v)];
+    for (int i = 0; i < 3; ++i) {
+      s.lo[i] = std::min(s.lo[i], p[i]);
+      s.hi[i] = std::max(s.hi[i], p[i]);
+    }
+  }
+  const Vec3 origin = 0.5 * (s.lo + s.hi);
+  Vec3 moment{0.0, 0.0, 0.0};
+  for (Index f : topology.boundary_faces) {
+    const Quad& q = topology.faces[static_cast<std::size_t>(f)];
+    std::array<Vec3, 4> p;
+    for (int i = 0; i < 4; ++i) p[i] = mesh.points[static_cast<std::size_t>(q[i])] - origin;
+    for (int t = 0; t < 2; ++t) {
+      const Vec3& a = p[0];
+      const Vec3& b = p[t + 1];
+      const Vec3& c = p[t + 2];
+      const double v = dot(a, cross(b, c)) / 6.0;
+      s.volume += v;
+      moment = moment + (v / 4.0) * (a + b + c);
+    }
+  }
+  s.centre = s.volume != 0.0 ? origin + (1.0 / s.volume) * moment : origin;
+  return s;
+}
+
+RestingCandidate evaluate(const HexMesh& mesh, const Topology& topology, const Solid& solid, const Vec3& up) {
+  RestingCandidate c;
+  c.up = up;
+  const int k = axis_of(up);
+  const double sign = up[k];
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  const double band = kRestingBaseBand * norm(solid.hi - solid.lo);
+  // Heights along up, the base at height 0.
+  const double base = sign > 0.0 ? solid.lo[k] : -solid.hi[k];
+  auto height = [&](const Vec3& p) { return sign * p[k] - base; };
+
+  std::vector<Point2> band_points;
+  for (Index v : topology.boundary_vertices) {
+    const Vec3& p = mesh.points[static_cast<std::size_t>(v)];
+    if (height(p) <= band) band_points.push_back({p[i], p[j]});
+  }
+  const std::vector<Point2> hull = convex_hull(band_points);
+  c.support_area = polygon_area(hull);
+
+  const double centre_height = height(solid.centre);
+  const double margin = signed_hull_distance({solid.centre[i], solid.centre[j]}, hull);
+  c.tip = centre_height > 0.0 ? margin / centre_height : (margin > 0.0 ? std::numeric_limits<double>::infinity() : -1.0);
+  c.rests = c.tip > -kRestingTipTolerance;
+  return c;
+}
+
+}  // namespace
+
+std::vector<Vec3> resting_up_candidates() {
+  return {{0.0, 0.0, 1.0}, {0.0, 1.0, 0.0}, {1.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, {0.0, -1.0, 0.0}, {-1.0, 0.0, 0.0}};
+}
+
+RestingUp choose_resting_up(const HexMesh& mesh, const Topology& topology) {
+  RestingUp result;
+  if (topology.boundary_faces.empty()) return result;
+  const Solid solid = solid_of(mesh, topology);
+  if (!(std::abs(solid.volume) > 0.0) || !std::isfinite(solid.volume) || !is_finite(solid.centre)) return result;
+  result.candidates.reserve(6);
+  for (const Vec3& up : resting_up_candidates()) result.candidates.push_back(evaluate(mesh, topology, solid, up));
+  double largest = 0.0;
+  for (const RestingCandidate& c : result.candidates)
+    if (c.rests) largest = std::max(largest, c.support_area);
+  if (!(largest > 0.0)) return result;
+  // The first resting candidate in the prior order whose support area is
+  // within the margin of the largest.
+  for (const RestingCandidate& c : result.candidates) {
+    if (c.rests && c.support_area * kRestingPriorMargin >= largest) {
+      result.up = c.up;
+      result.from_data = true;
+      break;
+    }
+  }
+  return result;
+}
+
+}  // namespace hq
