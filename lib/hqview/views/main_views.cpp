@@ -547,6 +547,14 @@ void draw_main_view_labels(Image& figure, const MainViewLabels& labels, const An
   }
 }
 
+// The radius (pixels) of the inverted ring around a glyph of radius pixels:
+// its halo (5 px wide at scale 1) begins 0.5 px outside the glyph, so the
+// ring never covers the glyph's rim (it did by 1 px: bunny_in's inverted #0
+// then looked 1 px smaller than #1, a worse cluster drawn smaller).
+double inverted_ring_radius(double radius, const AnnotationStyle& style) {
+  return radius + 0.5 + 0.5 * std::max(4.0, 5.0 * style.scale);
+}
+
 // A ring around cluster #0's glyph on screen (dark on a pale halo, a few
 // pixels outside its silhouette), so the worst place is found first even
 // where its glyph is small.
@@ -556,7 +564,9 @@ void draw_worst_glyph_ring(Image& figure, const ScreenDisc& worst, bool is_inver
   Rgba8 halo = options.background;
   halo.a = 255;
   // Outside the inverted ring (draw_inverted_glyph_rings) when #0 has one.
-  const double radius = worst.radius + (is_inverted ? 6.5 : 4.0) * style.scale;
+  const double radius =
+      (is_inverted ? inverted_ring_radius(worst.radius, style) + 5.0 * style.scale
+                   : worst.radius + 1.5 + 0.5 * std::max(4.0, 5.0 * style.scale));
   constexpr int kSegments = 96;
   for (int pass = 0; pass < 2; ++pass)
     for (int i = 0; i < kSegments; ++i) {
@@ -576,7 +586,7 @@ void draw_inverted_glyph_rings(Image& figure, const std::vector<ScreenDisc>& inv
   halo.a = 255;
   const Rgba8 color = to_rgba8(kInvertedColor);
   for (const ScreenDisc& d : inverted) {
-    const double radius = d.radius + 1.5 * style.scale;
+    const double radius = inverted_ring_radius(d.radius, style);
     const int segments = std::clamp(static_cast<int>(radius), 24, 96);
     for (int pass = 0; pass < 2; ++pass)
       for (int i = 0; i < segments; ++i) {
