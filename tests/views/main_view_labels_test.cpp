@@ -327,6 +327,26 @@ TEST(MainViewLabels, InvertedClustersWearARing) {
     on += hit ? 1 : 0;
   }
   EXPECT_GE(on, kSamples / 2);
+  // The legend names both rings with ring swatches (#0's dark ring in the
+  // text colour, the inverted one), unlike the filled near-black square of
+  // the coincident vertices.
+  const AnnotationStyle style;
+  const std::vector<LegendLine> legend = main_legend_lines(deep.glyphs, nullptr, style, options, labels.glyph_scale);
+  int rings = 0;
+  for (const LegendLine& line : legend) {
+    if (line.text == "ring: worst cluster #0") {
+      EXPECT_TRUE(line.ring);
+      EXPECT_EQ(line.swatch, style.text_color);
+      ++rings;
+    }
+    if (line.text == "ring: inverted (min < 0)") {
+      EXPECT_TRUE(line.ring);
+      EXPECT_EQ(line.swatch, inverted);
+      ++rings;
+    }
+    if (line.text.starts_with("coincident vertices")) EXPECT_FALSE(line.ring);
+  }
+  EXPECT_EQ(rings, 2);
   // The rings begin outside the glyph: its rim is not covered.
   EXPECT_EQ(background_inside_rim(image, worst, options.background), 0);
   const Case shallow = dented(1.5, 0.3);

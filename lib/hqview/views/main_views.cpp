@@ -598,10 +598,11 @@ void draw_inverted_glyph_rings(Image& figure, const std::vector<ScreenDisc>& inv
   }
 }
 
-// Legend: what each colour means (draw_legend shrinks it to the panel).
-void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapReport* overlap,
-                      const FigureLayout& layout, const AnnotationStyle& style, const MainViewOptions& options,
-                      double glyph_scale) {
+}  // namespace
+
+std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const OverlapReport* overlap,
+                                          const AnnotationStyle& style, const MainViewOptions& options,
+                                          double glyph_scale) {
   const std::size_t listed = std::min<std::size_t>(
       glyphs.clusters.size(), static_cast<std::size_t>(labelled_cluster_count(glyphs.options.top_clusters)));
   std::vector<LegendLine> lines{{std::nullopt, "glyphs: worst clusters"}};
@@ -627,11 +628,15 @@ void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapRep
                    1});
   // The drawn scale (kWorstGlyphMinPixels), when it is not 1.
   if (glyph_scale > 1.0)
-    lines.push_back({std::nullopt, "drawn x" + display_number(glyph_scale, 2) + " so #0 is " +
+    lines.push_back({std::nullopt, "drawn x" + display_number(glyph_scale, 2) + " so #0's radius is " +
                                        display_number(kWorstGlyphMinPixels, 2) + " px"});
   if (!glyphs.clusters.empty()) lines.push_back({std::nullopt, "label #k (n): rank k, n vertices"});
+  // The rings as the view draws them (draw_worst_glyph_ring,
+  // draw_inverted_glyph_rings): ring swatches, unlike the square ones.
+  if (!glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0)
+    lines.push_back({style.text_color, "ring: worst cluster #0", 0, true});
   if (!glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0)
-    lines.push_back({to_rgba8(kInvertedColor), "ring: inverted (min < 0)"});
+    lines.push_back({to_rgba8(kInvertedColor), "ring: inverted (min < 0)", 0, true});
   // Findings and places by kind, as the markers count them: the "xN"
   // labels of the marker groups add up to the two findings counts.
   std::size_t findings[2] = {0, 0};
@@ -647,7 +652,16 @@ void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapRep
   lines.push_back({kIntersectingCellColor, "intersecting cells: " + std::to_string(intersecting) + unchecked});
   if (overlap && !overlap->markers.empty()) lines.push_back({std::nullopt, "label xN: N of its colour's kind"});
   lines.push_back({kWireframeColor, "boundary edges"});
-  draw_legend(figure, layout.legend, lines, style);
+  return lines;
+}
+
+namespace {
+
+// Legend: what each colour means (draw_legend shrinks it to the panel).
+void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapReport* overlap,
+                      const FigureLayout& layout, const AnnotationStyle& style, const MainViewOptions& options,
+                      double glyph_scale) {
+  draw_legend(figure, layout.legend, main_legend_lines(glyphs, overlap, style, options, glyph_scale), style);
 }
 
 }  // namespace
