@@ -628,7 +628,7 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
                    1});
   // The drawn scale (kWorstGlyphMinPixels), when it is not 1.
   if (glyph_scale > 1.0)
-    lines.push_back({std::nullopt, "drawn x" + display_number(glyph_scale, 2) + " so #0's radius is " +
+    lines.push_back({std::nullopt, "drawn x" + display_number(glyph_scale, 2) + ": #0 radius " +
                                        display_number(kWorstGlyphMinPixels, 2) + " px"});
   if (!glyphs.clusters.empty()) lines.push_back({std::nullopt, "label #k (n): rank k, n vertices"});
   // The rings as the view draws them (draw_worst_glyph_ring,
