@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <vector>
+
 #include "hqview/core/error.h"
 #include "hqview/image/colormap.h"
 #include "support/image_probe.h"
@@ -114,6 +117,31 @@ TEST(ColorBar, SmallFigureLegendStaysInItsPanel) {
   const AnnotationStyle big = annotation_style_for(1200);
   const FigureLayout full = figure_layout(1600, 1200, true, color_bar_width(bar, big), big);
   EXPECT_EQ(color_bar_style_for(bar, big, full.legend).scale, big.scale);
+}
+
+// A ring swatch (view A's rings, issue 44) is a circle outline with the
+// background inside; a square swatch of nearly the same near-black (the
+// coincident-vertex arrows) is filled: the two differ by shape.
+TEST(Legend, RingSwatchIsHollow) {
+  const AnnotationStyle style;  // scale 1: 18 px swatches, 34 px pitch
+  Image image = make_image(300, 140, kWhite);
+  const Rgba8 ring{38, 38, 38, 255}, square{25, 25, 25, 255};
+  const std::vector<LegendLine> lines{{ring, "ring: worst cluster #0", 0, true}, {square, "coincident vertices"}};
+  draw_legend(image, {0, 0, 300, 140}, lines, style);
+  // Swatches: x [16, 34), bottoms at y 40 and 74.
+  auto near = [](const Rgba8& p, const Rgba8& c) { return std::abs(p.r - c.r) + std::abs(p.g - c.g) <= 20; };
+  EXPECT_EQ(pixel_at(image, 25, 31), kWhite) << "the ring's centre shows the background";
+  EXPECT_TRUE(near(pixel_at(image, 25, 65), square)) << "the square is filled";
+  int outline = 0;
+  for (int i = 0; i < 16; ++i) {
+    const double a = 2.0 * M_PI * i / 16;
+    outline += near(pixel_at(image, static_cast<int>(std::lround(25 + 7.5 * std::cos(a))),
+                             static_cast<int>(std::lround(31 + 7.5 * std::sin(a)))),
+                    ring)
+                   ? 1
+                   : 0;
+  }
+  EXPECT_GE(outline, 12) << "the ring's outline is drawn in its colour";
 }
 
 TEST(FigureLayout, PartsTileTheFigure) {

@@ -109,6 +109,23 @@ std::vector<ScreenDisc> glyph_discs(const Scene& scene, const MainViewLabels& la
   return discs;
 }
 
+// Pixels on the circle radius - 1.5 px inside a glyph's disc that show the
+// background (the rings' pale halo is the background colour): a ring drawn
+// over the glyph's rim makes the glyph look smaller than it is (bunny_in:
+// the inverted #0 looked 1 px smaller than #1). Of 72 samples.
+int background_inside_rim(const Image& image, const ScreenDisc& d, const Rgba8& background) {
+  int count = 0;
+  for (int i = 0; i < 72; ++i) {
+    const double a = 2.0 * M_PI * i / 72, r = d.radius - 1.0;
+    const int x = static_cast<int>(std::lround(d.x + r * std::cos(a))),
+              y = static_cast<int>(std::lround(d.y + r * std::sin(a)));
+    if (x < 0 || y < 0 || x >= image.width || y >= image.height) continue;
+    const std::uint8_t* p = image.rgba.data() + pixel_offset(image, x, y);
+    count += std::hypot(p[0] - background.r, p[1] - background.g, p[2] - background.b) <= 12.0 ? 1 : 0;
+  }
+  return count;
+}
+
 // Glyph sizes in the scene (issue 44): the grey glyphs (spheres[0]) and the
 // coloured ones (spheres[1]) are in rank order; their radii on screen never
 // grow with the rank (a worse cluster is never drawn smaller), #0 is at
@@ -271,7 +288,7 @@ TEST(MainViewLabels, InjectedOverlapsAroundAnInvertedCorner) {
 // 8 x 8 x 2 grid whose top centre vertex is pushed down to z = 0.6 (below
 // the middle layer: inverted) or to z = 1.5 and 0.3 along x (poor, min
 // quality in [0, 0.5), not inverted): with the deep
-// dent at least half of the ring's circle, 1.5 px outside #0's disc, is
+// dent at least half of the ring's circle, 3 px outside #0's disc, is
 // within 40 (RGB distance) of the inverted colour; with the shallow one no
 // pixel of the 3D area is.
 TEST(MainViewLabels, InvertedClustersWearARing) {
@@ -301,7 +318,7 @@ TEST(MainViewLabels, InvertedClustersWearARing) {
   int on = 0;
   constexpr int kSamples = 72;
   for (int i = 0; i < kSamples; ++i) {
-    const double a = 2.0 * M_PI * i / kSamples, r = worst.radius + 1.5;
+    const double a = 2.0 * M_PI * i / kSamples, r = worst.radius + 3.0;
     bool hit = false;
     for (int dy = -1; dy <= 1 && !hit; ++dy)
       for (int dx = -1; dx <= 1 && !hit; ++dx)
@@ -310,6 +327,28 @@ TEST(MainViewLabels, InvertedClustersWearARing) {
     on += hit ? 1 : 0;
   }
   EXPECT_GE(on, kSamples / 2);
+  // The legend names both rings with ring swatches (#0's dark ring in the
+  // text colour, the inverted one), unlike the filled near-black square of
+  // the coincident vertices.
+  const AnnotationStyle style;
+  const std::vector<LegendLine> legend = main_legend_lines(deep.glyphs, nullptr, style, options, labels.glyph_scale);
+  int rings = 0;
+  for (const LegendLine& line : legend) {
+    if (line.text == "ring: worst cluster #0") {
+      EXPECT_TRUE(line.ring);
+      EXPECT_EQ(line.swatch, style.text_color);
+      ++rings;
+    }
+    if (line.text == "ring: inverted (min < 0)") {
+      EXPECT_TRUE(line.ring);
+      EXPECT_EQ(line.swatch, inverted);
+      ++rings;
+    }
+    if (line.text.starts_with("coincident vertices")) EXPECT_FALSE(line.ring);
+  }
+  EXPECT_EQ(rings, 2);
+  // The rings begin outside the glyph: its rim is not covered.
+  EXPECT_EQ(background_inside_rim(image, worst, options.background), 0);
   const Case shallow = dented(1.5, 0.3);
   ASSERT_FALSE(shallow.glyphs.clusters.empty());
   ASSERT_GE(shallow.glyphs.clusters[0].min_quality, 0.0);
@@ -325,17 +364,46 @@ TEST(MainViewLabels, InvertedClustersWearARing) {
   EXPECT_EQ(stray, 0);
 }
 
-// The shared meshes on which the labels were found wrong; the overlap check
-// finds nothing there (so no marker labels).
+// The shared meshes on which the labels were found wrong (bunny_in: #1 was
+// drawn 1 px bigger than #0); the overlap check finds nothing there (so no
+// marker labels).
 TEST(MainViewLabels, SharedMeshesWithCrowdedGlyphs) {
   const auto data = test::shared_data_dir();
   if (!data) GTEST_SKIP() << "no ../shared/data";
   for (const char* file : {"meshes/livesu2016_skeleton/warrior.mesh", "meshes/gao2016_sweeping/hand7_1.mesh",
-                           "meshes/gao2016_sweeping/Dolphin_padded.mesh"}) {
+                           "meshes/gao2016_sweeping/Dolphin_padded.mesh", "meshes/livesu2015_edgecone/bunny_in.mesh"}) {
     const Case c = analyse(read_hex_mesh(*data / file).mesh);
     ASSERT_GT(c.glyphs.clusters.size(), 5u) << file;
     expect_clear_views(c, file, false);
   }
+}
+
+// bunny_in (the reviewer's case): in view A the inverted #0 (min -0.003)
+// was drawn 1 px smaller than #1 (min 0.023), its rim under the rings'
+// halo. Every glyph with a ring keeps its rim, and the drawn radii follow
+// the ranks.
+TEST(MainViewLabels, BunnyInWorstGlyphNotDrawnSmaller) {
+  const auto data = test::shared_data_dir();
+  if (!data) GTEST_SKIP() << "no ../shared/data";
+  const Case c = analyse(read_hex_mesh(*data / "meshes/livesu2015_edgecone/bunny_in.mesh").mesh);
+  ASSERT_LT(c.glyphs.clusters.at(0).min_quality, 0.0);
+  ASSERT_GT(c.glyphs.clusters.at(1).min_quality, 0.0);
+  const MainViewOptions options;
+  const std::vector<Vec3> points = main_view_points(c.mesh, c.topology, c.glyphs);
+  const std::vector<Vec3> directions =
+      choose_main_viewpoints(points, c.glyphs, main_view_aspect(options), 1, options.up, options.fov_y_degrees);
+  ASSERT_EQ(directions.size(), 1u);
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  Scene scene;
+  const MainViewLabels labels =
+      main_view_labels(c.mesh, c.topology, c.glyphs, &c.overlap, directions[0], options, &scene);
+  expect_sizes_by_severity(scene, glyph_discs(scene, labels), labels);
+  const Image image =
+      render_main_view(c.mesh, c.topology, c.glyphs, &c.overlap, directions[0], options, *renderer);
+  ASSERT_FALSE(labels.inverted_glyphs.empty());
+  EXPECT_EQ(background_inside_rim(image, labels.worst_glyph, options.background), 0);
+  for (const ScreenDisc& d : labels.inverted_glyphs)
+    EXPECT_EQ(background_inside_rim(image, d, options.background), 0) << d.x << ", " << d.y;
 }
 
 }  // namespace

@@ -5,7 +5,8 @@
 // Rules: the cluster colours, the neutral cluster grey, the undefined grey,
 // the inverted colour and the overlap colours differ pairwise by CIEDE2000
 // >= 15, and from the quality map (sampled densely) too; the critical pairs
-// (inverted and overlap colours against each cluster colour) keep >= 8
+// (inverted, overlap, neutral grey and undefined grey against each cluster
+// colour) keep >= 8
 // under simulated protanopia, deuteranopia and tritanopia.
 // Stricter rules for the cluster colours among themselves (issue 44's
 // second review: three greens, a dark green read as the coincident-vertex
@@ -144,6 +145,11 @@ TEST(Palette, FarFromTheQualityMap) {
 TEST(Palette, CriticalPairsSurviveColourVisionDeficiency) {
   std::vector<Named> critical = overlap_colors();
   critical.push_back({"inverted", to_rgba8(kInvertedColor)});
+  // The other colours of view A too (issue 44's third review: under
+  // protanopia #3ca5a5 was 4.2 from the "others" grey, #ff1e69 1.9 from the
+  // "no value" grey).
+  critical.push_back({"neutral cluster grey", to_rgba8(neutral_cluster_color())});
+  critical.push_back({"undefined", to_rgba8(kUndefinedColor)});
   for (const Named& c : cluster_colors())
     for (const Named& k : critical) EXPECT_GE(worst_cvd_delta_e(c.color, k.color), 8.0) << c.name << " vs " << k.name;
   // The cluster colours among themselves too (not a rule of the issue; the
@@ -218,6 +224,10 @@ TEST(Palette, TheOldPaletteFailsTheseRules) {
   const Rgba8 old_first{0x1f, 0x5f, 0xbf, 255};
   EXPECT_LT(delta_e(old_first, to_rgba8(kInvertedColor)), 15.5);
   EXPECT_LT(worst_cvd_delta_e(old_first, opaque(kIntersectingCellColor)), 8.0);
+  // And the palette of the second round: its #4 and #5 became the greys
+  // for protanopes.
+  EXPECT_LT(worst_cvd_delta_e({0xff, 0x1e, 0x69, 255}, to_rgba8(kUndefinedColor)), 8.0);
+  EXPECT_LT(worst_cvd_delta_e({0x3c, 0xa5, 0xa5, 255}, to_rgba8(neutral_cluster_color())), 8.0);
 }
 
 }  // namespace

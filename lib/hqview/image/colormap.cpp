@@ -64,7 +64,13 @@ constexpr std::array<Rgb, 11> kDivergingTable = {{
 // simulation (the palette of 10: 16.2 and 8.4). Ordered greedily, the first
 // the farthest from the special colours and the map, each next the farthest
 // from those before it, so the first K are the best separated K (the first
-// 6 >= 25 apart). Eight: the gamut left by the quality map (reds, oranges,
+// 6 >= 25 apart). Issue 44's third review: #4 #ff1e69 and #5 #3ca5a5 read
+// as the undefined and the neutral greys under protanopia (CIEDE2000 1.9 and
+// 4.2): replaced by #ff3c5a, #1e9678, and #6 by #69e1ff (a search over the
+// RGB grid in steps of 15 keeping #0-#3 and #7) so that every cluster colour keeps
+// >= 8.8 from both greys, the inverted and the overlap colours under each
+// simulation; pairwise now >= 20.0, >= 9.4 simulated, hues >= 26 deg
+// apart. Eight: the gamut left by the quality map (reds, oranges,
 // creams), the inverted blue-violet, the magentas and the greys holds no
 // more colours this far apart. palette_test checks the rules.
 constexpr std::array<Rgb, kLabelledClusterPaletteSize> kLabelledClusterTable = {{
@@ -72,9 +78,9 @@ constexpr std::array<Rgb, kLabelledClusterPaletteSize> kLabelledClusterTable = {
     hex(0xf0a5d2),
     hex(0x0078e1),
     hex(0x877800),
-    hex(0xff1e69),
-    hex(0x3ca5a5),
-    hex(0x00d296),
+    hex(0xff3c5a),
+    hex(0x1e9678),
+    hex(0x69e1ff),
     hex(0xb487ff),
 }};
 // A light grey (#a0a0a0), calm among the coloured clusters: CIEDE2000 19

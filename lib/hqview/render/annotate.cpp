@@ -469,7 +469,18 @@ void draw_legend(Image& image, const PixelRect& area, std::span<const LegendLine
     if (line.swatch) {
       Rgba8 color = *line.swatch;
       color.a = 255;
-      fill_rect(image, {x, y - swatch, swatch, swatch}, color);
+      if (line.ring) {
+        const double width = std::max(1.5, 3.0 * style.scale * fit);
+        const double cx = x + 0.5 * swatch, cy = y - 0.5 * swatch, r = 0.5 * (swatch - width);
+        constexpr int kSegments = 32;
+        for (int i = 0; i < kSegments; ++i) {
+          const double a0 = 2.0 * M_PI * i / kSegments, a1 = 2.0 * M_PI * (i + 1) / kSegments;
+          draw_line(image, cx + r * std::cos(a0), cy + r * std::sin(a0), cx + r * std::cos(a1), cy + r * std::sin(a1),
+                    color, width);
+        }
+      } else {
+        fill_rect(image, {x, y - swatch, swatch, swatch}, color);
+      }
       const int text_x = x + swatch + swatch / 2;
       draw_text(image, text_x, y - 2, ellipsize(line.text, text_size, right - text_x, style), text_size, style);
     } else {

@@ -122,11 +122,14 @@ struct LegendLine {
   std::optional<Rgba8> swatch;
   std::string text;
   int gap_halves = 0;
+  bool ring = false;  // swatch drawn as a hollow ring (as a view draws its rings), not a square
 };
 // Draws the lines from the top of area: 34-pixel pitch, 18-pixel swatches and
 // 19-pixel text at the style's scale, all shrunk together when the lines
 // would not fit the area's height; text too long for the width ends in
-// "...". Swatches are drawn opaque.
+// "...". Swatches are drawn opaque; a ring swatch is a circle outline
+// (3 px wide at scale 1) with the background inside, so it differs by shape
+// from any filled swatch of a similar colour.
 void draw_legend(Image& image, const PixelRect& area, std::span<const LegendLine> lines, const AnnotationStyle& style);
 
 }  // namespace hq

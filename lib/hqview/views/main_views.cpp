@@ -547,6 +547,14 @@ void draw_main_view_labels(Image& figure, const MainViewLabels& labels, const An
   }
 }
 
+// The radius (pixels) of the inverted ring around a glyph of radius pixels:
+// its halo (5 px wide at scale 1) begins 0.5 px outside the glyph, so the
+// ring never covers the glyph's rim (it did by 1 px: bunny_in's inverted #0
+// then looked 1 px smaller than #1, a worse cluster drawn smaller).
+double inverted_ring_radius(double radius, const AnnotationStyle& style) {
+  return radius + 0.5 + 0.5 * std::max(4.0, 5.0 * style.scale);
+}
+
 // A ring around cluster #0's glyph on screen (dark on a pale halo, a few
 // pixels outside its silhouette), so the worst place is found first even
 // where its glyph is small.
@@ -556,7 +564,9 @@ void draw_worst_glyph_ring(Image& figure, const ScreenDisc& worst, bool is_inver
   Rgba8 halo = options.background;
   halo.a = 255;
   // Outside the inverted ring (draw_inverted_glyph_rings) when #0 has one.
-  const double radius = worst.radius + (is_inverted ? 6.5 : 4.0) * style.scale;
+  const double radius =
+      (is_inverted ? inverted_ring_radius(worst.radius, style) + 5.0 * style.scale
+                   : worst.radius + 1.5 + 0.5 * std::max(4.0, 5.0 * style.scale));
   constexpr int kSegments = 96;
   for (int pass = 0; pass < 2; ++pass)
     for (int i = 0; i < kSegments; ++i) {
@@ -576,7 +586,7 @@ void draw_inverted_glyph_rings(Image& figure, const std::vector<ScreenDisc>& inv
   halo.a = 255;
   const Rgba8 color = to_rgba8(kInvertedColor);
   for (const ScreenDisc& d : inverted) {
-    const double radius = d.radius + 1.5 * style.scale;
+    const double radius = inverted_ring_radius(d.radius, style);
     const int segments = std::clamp(static_cast<int>(radius), 24, 96);
     for (int pass = 0; pass < 2; ++pass)
       for (int i = 0; i < segments; ++i) {
@@ -588,10 +598,11 @@ void draw_inverted_glyph_rings(Image& figure, const std::vector<ScreenDisc>& inv
   }
 }
 
-// Legend: what each colour means (draw_legend shrinks it to the panel).
-void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapReport* overlap,
-                      const FigureLayout& layout, const AnnotationStyle& style, const MainViewOptions& options,
-                      double glyph_scale) {
+}  // namespace
+
+std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const OverlapReport* overlap,
+                                          const AnnotationStyle& style, const MainViewOptions& options,
+                                          double glyph_scale) {
   const std::size_t listed = std::min<std::size_t>(
       glyphs.clusters.size(), static_cast<std::size_t>(labelled_cluster_count(glyphs.options.top_clusters)));
   std::vector<LegendLine> lines{{std::nullopt, "glyphs: worst clusters"}};
@@ -617,11 +628,15 @@ void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapRep
                    1});
   // The drawn scale (kWorstGlyphMinPixels), when it is not 1.
   if (glyph_scale > 1.0)
-    lines.push_back({std::nullopt, "drawn x" + display_number(glyph_scale, 2) + " so #0 is " +
+    lines.push_back({std::nullopt, "drawn x" + display_number(glyph_scale, 2) + ": #0 radius " +
                                        display_number(kWorstGlyphMinPixels, 2) + " px"});
   if (!glyphs.clusters.empty()) lines.push_back({std::nullopt, "label #k (n): rank k, n vertices"});
+  // The rings as the view draws them (draw_worst_glyph_ring,
+  // draw_inverted_glyph_rings): ring swatches, unlike the square ones.
+  if (!glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0)
+    lines.push_back({style.text_color, "ring: worst cluster #0", 0, true});
   if (!glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0)
-    lines.push_back({to_rgba8(kInvertedColor), "ring: inverted (min < 0)"});
+    lines.push_back({to_rgba8(kInvertedColor), "ring: inverted (min < 0)", 0, true});
   // Findings and places by kind, as the markers count them: the "xN"
   // labels of the marker groups add up to the two findings counts.
   std::size_t findings[2] = {0, 0};
@@ -637,7 +652,16 @@ void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapRep
   lines.push_back({kIntersectingCellColor, "intersecting cells: " + std::to_string(intersecting) + unchecked});
   if (overlap && !overlap->markers.empty()) lines.push_back({std::nullopt, "label xN: N of its colour's kind"});
   lines.push_back({kWireframeColor, "boundary edges"});
-  draw_legend(figure, layout.legend, lines, style);
+  return lines;
+}
+
+namespace {
+
+// Legend: what each colour means (draw_legend shrinks it to the panel).
+void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapReport* overlap,
+                      const FigureLayout& layout, const AnnotationStyle& style, const MainViewOptions& options,
+                      double glyph_scale) {
+  draw_legend(figure, layout.legend, main_legend_lines(glyphs, overlap, style, options, glyph_scale), style);
 }
 
 }  // namespace

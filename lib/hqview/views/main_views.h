@@ -155,6 +155,14 @@ double displayed_glyph_scale(const GlyphResult& glyphs, const Camera& camera, in
 // The drawn radius of each cluster (by rank), model units.
 std::vector<double> displayed_glyph_radii(const GlyphResult& glyphs, double scale);
 
+// The lines of view A's legend (draw_legend): the clusters, the size rule,
+// the rings (ring swatches: #0's dark ring in style.text_color, the
+// inverted ring), the findings and the boundary edges; glyph_scale as
+// displayed_glyph_scale.
+std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const OverlapReport* overlap,
+                                          const AnnotationStyle& style, const MainViewOptions& options,
+                                          double glyph_scale);
+
 // Width / height of the 3D part of the figure render_main_view draws.
 double main_view_aspect(const MainViewOptions& options);
 
