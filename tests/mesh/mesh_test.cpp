@@ -56,7 +56,8 @@ TEST(Mesh, HexMeshIsTheSameType) {
   const Mesh& same = mesh;
   EXPECT_EQ(num_cells(same), 1);
   EXPECT_EQ(hex_corners(same, 0)[6].x, 1.0);
-  for (const auto& source : same.source_index) EXPECT_TRUE(source.empty());  // built in code: none recorded
+  for (const auto& source : same.source_index) EXPECT_TRUE(source.empty());  // built in code: none stored
+  EXPECT_EQ(cell_source_index(same, CellKind::hex, 0), 1);                   // implicit: the 1-based position
 }
 
 }  // namespace

@@ -413,8 +413,9 @@ class MeditParser {
     }
   }
 
-  // A Hexahedra, Tetrahedra, Prisms or Pyramids section into its block, each
-  // entry's source index its 1-based position in the section. MEDIT lists a
+  // A Hexahedra, Tetrahedra, Prisms or Pyramids section into its block (one
+  // section per kind: each entry's source index, its 1-based position in the
+  // section, is its position in the block, left implicit). MEDIT lists a
   // prism's first triangle with its normal towards the second (P. L. George's
   // convention, as Gmsh): permuted to VTK's order.
   void read_volume_section(const SectionInfo& info, std::int64_t keyword_line) {
@@ -427,12 +428,8 @@ class MeditParser {
         if (kind() != info.cell_kind) return;
         auto& block = cell_block<kind()>(content_.mesh);
         read_elements<CellKindTable<kind()>::num_corners>(info, element_word(kind()), block);
-        std::vector<std::int64_t>& source = content_.mesh.source_index[k];
-        const std::size_t first = source.size();
-        source.resize(block.size());
-        for (std::size_t i = first; i < block.size(); ++i) source[i] = static_cast<std::int64_t>(i - first + 1);
         if constexpr (kind() == CellKind::wedge)
-          for (std::size_t i = first; i < block.size(); ++i) {
+          for (std::size_t i = 0; i < block.size(); ++i) {
             const auto wedge = block[i];
             for (int j = 0; j < 6; ++j) block[i][static_cast<std::size_t>(j)] = wedge[detail::kWedgeFlippedToVtk[j]];
           }

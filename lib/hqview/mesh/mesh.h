@@ -32,7 +32,10 @@ using Hex = CellCorners<CellKind::hex>;
 // MEDIT the 1-based entry of its section, VTK/VTU the 0-based cell id, Gmsh
 // the element tag, Abaqus the element label, Exodus the 1-based element id
 // over the blocks, OVM the 0-based polyhedron id. A block's source_index is
-// empty when the mesh was built in code; otherwise it has one entry per cell.
+// either empty, meaning each cell's 1-based position in its block (MEDIT,
+// whose one section per kind gives exactly that, and meshes built in code:
+// nothing is stored), or has one entry per cell. Read it through
+// cell_source_index().
 struct Mesh {
   std::vector<Vec3> points;
   std::vector<Hex> hexes;  // volume cells
@@ -70,6 +73,12 @@ constexpr const auto& cell_block(const Mesh& mesh) {
 template <class F>
 void for_each_block(const Mesh& mesh, F&& f) {
   for_each_cell_kind([&](auto kind) { f(kind, cell_block<kind()>(mesh)); });
+}
+
+// The source index of cell i of the block of `kind` (see Mesh::source_index).
+inline std::int64_t cell_source_index(const Mesh& mesh, CellKind kind, std::size_t i) {
+  const std::vector<std::int64_t>& stored = mesh.source_index[static_cast<std::size_t>(kind)];
+  return stored.empty() ? static_cast<std::int64_t>(i) + 1 : stored[i];
 }
 
 // The number of cells of one kind, and of all kinds.
