@@ -228,3 +228,29 @@ put("abaqus_not_utf8_node_id.inp",
     ("*HEADING\ncube\n" + INP_NODES).encode() + b"*ELEMENT, TYPE=C3D8\n1, 1, 2, 3, 4, 5, 6, " + BAD + b", 8\n")
 put("ovm_not_utf8_keyword.ovm", b"OVM ASCII\nVert" + BAD + b"ices\n8\n0 0 0\n")
 put("exodus_not_utf8_variable_name.e", exodus()[:-20].replace(b"connect1", b"con" + BAD + b"ct1"))
+# --- Cells other than hexahedra (issue 46): a cube plus a tetrahedron, a
+# wedge or a pyramid on top of it, each with one fault: a repeated node, a
+# node out of range, a node count that does not match the type; and a mesh
+# of tetrahedra only (read, but only hexahedra are analysed yet).
+APEX = [(0.5, 0.5, 1.5), (0, 0.5, 1.5), (1, 0.5, 1.5)]  # points 9, 10, 11 (1-based)
+PA = P + APEX
+VERTS_A = f"Vertices {len(PA)}\n" + "".join(f"{x} {y} {z} 0\n" for x, y, z in PA)
+put("medit_tet_repeated_vertex.mesh", HEAD + VERTS_A + HEX + "Tetrahedra 1\n5 6 9 9 0\nEnd\n")
+put("medit_prism_id_out_of_range.mesh", HEAD + VERTS_A + HEX + "Prisms 1\n5 8 10 6 7 12 0\nEnd\n")
+put("medit_tets_only.mesh", HEAD + VERTS_A + "Tetrahedra 1\n5 6 7 9 0\nEnd\n")
+VTK_POINTS_A = f"POINTS {len(PA)} double\n" + "".join(f"{x} {y} {z}\n" for x, y, z in PA)
+put("vtk_tet_wrong_point_count.vtk",
+    VTK_HEAD + VTK_POINTS_A + "CELLS 2 15\n8 0 1 2 3 4 5 6 7\n5 4 5 6 8 9\nCELL_TYPES 2\n12\n10\n")
+put("vtu_pyramid_repeated_point.vtu",
+    vtu(11, 2, "0 1 2 3 4 5 6 7 4 5 6 6 8", " ".join(f"{x} {y} {z}" for x, y, z in PA))
+    .replace(">8</DataArray>", ">8 13</DataArray>").replace(">12</DataArray>", ">12 14</DataArray>"))
+put("gmsh_wedge_wrong_node_count.msh",
+    MSH_HEAD + "$Nodes\n11\n" + "".join(f"{i + 1} {x} {y} {z}\n" for i, (x, y, z) in enumerate(PA)) + "$EndNodes\n"
+    + "$Elements\n2\n1 5 2 0 1 1 2 3 4 5 6 7 8\n2 6 2 0 1 5 6 10 8 7\n$EndElements\n")
+put("abaqus_c3d4_node_out_of_range.inp",
+    "*NODE\n" + "".join(f"{i + 1}, {x}, {y}, {z}\n" for i, (x, y, z) in enumerate(PA))
+    + "*ELEMENT, TYPE=C3D8\n1, 1, 2, 3, 4, 5, 6, 7, 8\n*ELEMENT, TYPE=C3D4\n2, 5, 6, 7, 12\n")
+# Six triangular half-faces: not a hexahedron, tetrahedron, wedge or pyramid.
+put("ovm_polyhedron_not_a_cell_kind.ovm",
+    "OVM ASCII\nVertices\n3\n0 0 0\n1 0 0\n0 1 0\nEdges\n3\n0 1\n1 2\n2 0\n"
+    "Faces\n1\n3 0 2 4\nPolyhedra\n1\n6 0 1 0 1 0 1\n")

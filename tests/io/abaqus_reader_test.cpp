@@ -34,8 +34,11 @@ TEST(AbaqusReader, NodesElementsAndContinuations) {
   ASSERT_EQ(loaded.mesh.hexes.size(), 2u);
   EXPECT_EQ(loaded.mesh.hexes[0], (Hex{0, 1, 2, 3, 4, 5, 6, 7}));
   EXPECT_EQ(loaded.mesh.hexes[1], (Hex{4, 5, 6, 7, 0, 1, 2, 3}));
+  EXPECT_EQ(loaded.mesh.tets, (std::vector<std::array<Index, 4>>{{0, 1, 2, 4}}));
+  EXPECT_EQ(loaded.mesh.source_index[static_cast<std::size_t>(CellKind::hex)], (std::vector<std::int64_t>{1, 2}));
+  EXPECT_EQ(loaded.mesh.source_index[static_cast<std::size_t>(CellKind::tet)], (std::vector<std::int64_t>{5}));
   ASSERT_EQ(loaded.warnings.size(), 1u);
-  EXPECT_EQ(loaded.warnings[0], "a.inp: 3 non-hexahedral elements skipped (types C3D4, S4R)");
+  EXPECT_EQ(loaded.warnings[0], "a.inp: 2 elements of unread types skipped (type S4R)");
 }
 
 TEST(AbaqusReader, Detection) {
@@ -65,8 +68,8 @@ TEST(AbaqusReader, Errors) {
             "e.inp:11: node 101 repeated (element 1)");
   EXPECT_EQ(error(kNodes + "*ELEMENT, TYPE=C3D8\n1, 101, 102, 103, 104,\n"),
             "e.inp:11: unexpected end of file in an element continued on the next line");
-  EXPECT_EQ(error(kNodes + "*ELEMENT, TYPE=C3D4\n1, 101, 102, 103, 104\n"),
-            "e.inp: no hexahedra (*ELEMENT, TYPE=C3D8, C3D8R or C3D8I): 1 element of type C3D4");
+  EXPECT_EQ(error(kNodes + "*ELEMENT, TYPE=S4R\n1, 101, 102, 103, 104\n"),
+            "e.inp: no volume elements (*ELEMENT, TYPE=C3D8, C3D8R, C3D4, C3D6, C3D5 ...): 1 element of type S4R");
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 
 #include "error_text.h"
 #include "hqview/io/mesh_reader.h"
+#include "hybrid_mesh_files.h"
 #include "temp_dir.h"
 
 namespace hq {
@@ -120,7 +121,52 @@ TEST(ExodusReader, Hex8BlocksAndSkippedBlocks) {
     EXPECT_EQ(loaded.mesh.hexes[0], (Hex{0, 1, 2, 3, 4, 5, 6, 7}));
     EXPECT_EQ(loaded.mesh.hexes[1], (Hex{4, 5, 6, 7, 0, 1, 2, 3}));
     ASSERT_EQ(loaded.warnings.size(), 1u);
-    EXPECT_EQ(loaded.warnings[0], "m.e: 2 non-hexahedral elements skipped (type QUAD4)");
+    EXPECT_EQ(loaded.warnings[0], "m.e: 2 elements of unread types skipped (type QUAD4)");
+  }
+}
+
+// The hybrid mesh of hybrid_mesh_files.h as Exodus blocks (HEX8, TETRA,
+// WEDGE in Exodus's order, PYRAMID): the same VTK-order cells as every other
+// format reads it to (cell_blocks_reading_test.cpp), each with a positive
+// volume, and source_index the element's 1-based id over the blocks.
+TEST(ExodusReader, HybridMeshReadsToTheSameCells) {
+  const test::HybridMesh m = test::hybrid_mesh();
+  std::vector<double> xyz;
+  for (const auto& p : m.points) xyz.insert(xyz.end(), p.begin(), p.end());
+  const std::vector<std::pair<int, std::string>> kinds = {{12, "HEX8"}, {10, "TETRA"}, {13, "WEDGE"}, {14, "PYRAMID"}};
+  std::vector<Block> blocks;
+  for (const auto& [type, name] : kinds) {
+    Block block{name, 0, {}};
+    for (const test::HybridCell& c : m.cells)
+      if (c.vtk_type == type) {
+        const std::vector<int> corners = test::file_order(c, true);
+        block.nodes_per_element = static_cast<int>(corners.size());
+        for (const int v : corners) block.connectivity.push_back(v + 1);
+      }
+    blocks.push_back(block);
+  }
+  TempDir dir("exodus_hybrid");
+  const LoadedMesh loaded = read_exodus(write_exodus(dir, xyz, blocks, false), "m.e");
+  std::vector<std::array<double, 3>> points;
+  for (const Vec3& p : loaded.mesh.points) points.push_back({p.x, p.y, p.z});
+  std::int64_t id = 0;
+  for (const auto& [type, name] : kinds) {
+    SCOPED_TRACE(name);
+    std::vector<std::vector<int>> expected, read;
+    for (const test::HybridCell& c : m.cells)
+      if (c.vtk_type == type) expected.push_back(c.vtk);
+    for_each_block(loaded.mesh, [&](auto kind, const auto& cells) {
+      if (cell_kind_vtk_type(kind()) == type)
+        for (const auto& cell : cells) read.emplace_back(cell.begin(), cell.end());
+    });
+    EXPECT_EQ(read, expected);
+    std::vector<std::int64_t> ids;
+    for (std::size_t i = 0; i < expected.size(); ++i) ids.push_back(++id);
+    for (const CellKind kind : kCellKinds)
+      if (cell_kind_vtk_type(kind) == type) {
+        EXPECT_EQ(loaded.mesh.source_index[static_cast<std::size_t>(kind)], ids);
+      }
+    for (const auto& cell : read) EXPECT_GT(test::split_volume(points, type, cell).min_tet, 0.0);
   }
 }
 
@@ -157,9 +203,9 @@ TEST(ExodusReader, Errors) {
             }),
             "m.e: node 1 repeated (connect1 element 1)");
   EXPECT_EQ(error_text<ParseError>([&] {
-              read_exodus(write_exodus(dir, kCube, {{"TETRA", 4, {1, 2, 3, 5}}}, false), "m.e");
+              read_exodus(write_exodus(dir, kCube, {{"QUAD4", 4, {1, 2, 3, 4}}}, false), "m.e");
             }),
-            "m.e: no hexahedra (HEX8 blocks) among 1 element of type TETRA");
+            "m.e: no volume elements (HEX8, TETRA, WEDGE or PYRAMID blocks) among 1 element of type QUAD4");
 }
 
 #endif

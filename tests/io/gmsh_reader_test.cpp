@@ -54,7 +54,7 @@ TEST(GmshReader, Ascii22) {
   const LoadedMesh loaded = read_gmsh(text, "a.msh");
   expect_cube(loaded, "gmsh-2.2-ascii");
   ASSERT_EQ(loaded.warnings.size(), 1u);
-  EXPECT_EQ(loaded.warnings[0], "a.msh: 2 non-hexahedral elements skipped (types 3, 15)");
+  EXPECT_EQ(loaded.warnings[0], "a.msh: 2 elements of unread types skipped (types 3, 15)");
 }
 
 TEST(GmshReader, Ascii41) {
@@ -69,7 +69,7 @@ TEST(GmshReader, Ascii41) {
   const LoadedMesh loaded = read_gmsh(text, "a.msh");
   expect_cube(loaded, "gmsh-4.1-ascii");
   ASSERT_EQ(loaded.warnings.size(), 1u);
-  EXPECT_EQ(loaded.warnings[0], "a.msh: 1 non-hexahedral element skipped (type 3)");
+  EXPECT_EQ(loaded.warnings[0], "a.msh: 1 element of unread types skipped (type 3)");
 }
 
 // Binary values in either byte order.
@@ -111,7 +111,7 @@ TEST(GmshReader, Binary22BothByteOrders) {
     const LoadedMesh loaded = read_gmsh(binary22(big_endian), "b.msh");
     expect_cube(loaded, "gmsh-2.2-binary");
     ASSERT_EQ(loaded.warnings.size(), 1u);
-    EXPECT_EQ(loaded.warnings[0], "b.msh: 2 non-hexahedral elements skipped (type 1)");
+    EXPECT_EQ(loaded.warnings[0], "b.msh: 2 elements of unread types skipped (type 1)");
   }
 }
 
@@ -139,7 +139,7 @@ TEST(GmshReader, Binary41) {
   const LoadedMesh loaded = read_gmsh(binary41(), "b.msh");
   expect_cube(loaded, "gmsh-4.1-binary");
   ASSERT_EQ(loaded.warnings.size(), 1u);
-  EXPECT_EQ(loaded.warnings[0], "b.msh: 1 non-hexahedral element skipped (type 15)");
+  EXPECT_EQ(loaded.warnings[0], "b.msh: 1 element of unread types skipped (type 15)");
 }
 
 TEST(GmshReader, Detection) {
@@ -175,7 +175,7 @@ TEST(GmshReader, Errors) {
   EXPECT_EQ(error(kFormat22 + nodes22_ascii() + "$Elements\n1\n1 5 0 10 20 30 40 50 60 70 80 90\n$EndElements\n"),
             "e.msh:17: expected 8 node tags for hexahedron 1, got 9");
   EXPECT_EQ(error(kFormat22 + nodes22_ascii() + "$Elements\n1\n1 3 0 10 20 30 40\n$EndElements\n"),
-            "e.msh:15: no hexahedra (element type 5) among 1 element of type 3");
+            "e.msh:15: no volume elements (types 4, 5, 6, 7) among 1 element of type 3");
   EXPECT_EQ(error("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 1 2\n3 1 0 3\n1\n2\n3\n"),
             "e.msh:6: node block 0 claims 3 nodes, 2 are left of the 2 in the header");
   // Binary: truncated data, at the section's line with the byte offset.

@@ -225,7 +225,7 @@ TEST(MeditReader, SkipsEveryOtherKnownSection) {
   EXPECT_TRUE(loaded.warnings.empty());
 }
 
-TEST(MeditReader, WarnsAboutSkippedVolumeElementsAndUnknownSections) {
+TEST(MeditReader, ReadsOtherVolumeElementsAndWarnsAboutUnknownSections) {
   const std::string text = kHeader + kVertices +
                            "Tetrahedra 2\n1 2 3 5 0\n2 3 4 9 0\n"
                            "Prisms 1\n1 2 3 5 6 7 0\n"
@@ -233,9 +233,13 @@ TEST(MeditReader, WarnsAboutSkippedVolumeElementsAndUnknownSections) {
                            kHex;
   const LoadedMesh loaded = read_medit(text, "m.mesh");
   EXPECT_EQ(loaded.mesh.hexes.size(), 1u);
-  ASSERT_EQ(loaded.warnings.size(), 2u);
+  // Tetrahedra as listed; a prism's corners 1-2 and 4-5 swapped into VTK's order.
+  EXPECT_EQ(loaded.mesh.tets, (std::vector<std::array<Index, 4>>{{0, 1, 2, 4}, {1, 2, 3, 8}}));
+  EXPECT_EQ(loaded.mesh.wedges, (std::vector<std::array<Index, 6>>{{0, 2, 1, 4, 6, 5}}));
+  EXPECT_TRUE(loaded.mesh.source_index[static_cast<std::size_t>(CellKind::tet)].empty());  // implicit: 1, 2
+  EXPECT_EQ(cell_source_index(loaded.mesh, CellKind::tet, 1), 2);
+  ASSERT_EQ(loaded.warnings.size(), 1u);
   EXPECT_EQ(loaded.warnings[0], "m.mesh: unknown section 'MyCustomData' (2 entries) skipped");
-  EXPECT_EQ(loaded.warnings[1], "m.mesh: 2 Tetrahedra, 1 Prisms skipped (only hexahedra are analysed)");
 }
 
 TEST(MeditReader, HexahedraBeforeVertices) {
@@ -362,8 +366,9 @@ TEST(MeditReaderErrors, SkippedSectionEntries) {
 
 TEST(MeditReaderErrors, MissingSectionsAndEmptyMeshes) {
   EXPECT_EQ(parse_error(kHeader + kHex), "m.mesh: no Vertices section");
-  EXPECT_EQ(parse_error(kHeader + kVertices), "m.mesh: no hexahedra");
-  EXPECT_EQ(parse_error(kHeader + kVertices + "Hexahedra 0\nEnd\n"), "m.mesh: no hexahedra");
+  EXPECT_EQ(parse_error(kHeader + kVertices), "m.mesh: no volume cells (Hexahedra, Tetrahedra, Prisms or Pyramids)");
+  EXPECT_EQ(parse_error(kHeader + kVertices + "Hexahedra 0\nEnd\n"),
+            "m.mesh: no volume cells (Hexahedra, Tetrahedra, Prisms or Pyramids)");
   EXPECT_EQ(parse_error(kHeader + "Vertices 0\n" + kHex),
             "m.mesh:5: vertex id 1 out of range [1, 0] (hexahedron 1 of 1)");
   EXPECT_EQ(parse_error(kHeader + kVertices + kHex + kVertices),

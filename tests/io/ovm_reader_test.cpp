@@ -244,7 +244,7 @@ TEST(OvmReader, Errors) {
   for (const int hf : w.cells[0]) first_cell += " " + std::to_string(hf);
   EXPECT_EQ(error(replace_line(first_cell + "\n", "5 0 2 4 6 8\n")),
             "e.ovm:" + std::to_string(cells_line + 2) +
-                ": polyhedron 0 has 5 half-faces: not a hexahedron (6 quadrilaterals)");
+                ": polyhedron 0 has 0 triangles and 5 quadrilaterals: not a hexahedron, tetrahedron, wedge or pyramid");
   // A half-face of the wrong side.
   std::string flipped = "6 1";
   for (std::size_t k = 1; k < 6; ++k) flipped += " " + std::to_string(w.cells[0][k]);
@@ -260,7 +260,7 @@ TEST(OvmReader, Errors) {
             "e.ovm:" + std::to_string(cells_line + 2) + ": half-face id 9999 out of range [0, " +
                 std::to_string(2 * w.faces.size()) + ") (polyhedron 0)");
   EXPECT_EQ(error("OVM ASCII\nVertices\n0\nEdges\n0\nFaces\n0\nPolyhedra\n0\n"),
-            "e.ovm:9: no hexahedra (no polyhedra)");
+            "e.ovm:9: no volume cells (no polyhedra)");
 }
 
 }  // namespace

@@ -179,7 +179,7 @@ TEST(VtkLegacyReader, AsciiAndBinaryOfTheSameContentGiveIdenticalMeshes) {
   for (const bool version5 : {false, true})
     for (const std::string point_type : {"double", "float"}) {
       VtkSpec spec = spec_of(mesh);
-      spec.cells.push_back({10, {0, 1, 3, 9}});  // skipped in both
+      spec.cells.push_back({10, {0, 1, 3, 9}});  // a tetrahedron in both
       spec.version5 = version5;
       spec.point_type = point_type;
       spec.trailer = "CELL_DATA 9\nSCALARS q float 1\nLOOKUP_TABLE default\n";
@@ -188,6 +188,9 @@ TEST(VtkLegacyReader, AsciiAndBinaryOfTheSameContentGiveIdenticalMeshes) {
       const LoadedMesh binary = read_vtk_legacy(write_vtk(spec), "m.vtk");
       EXPECT_EQ(ascii.mesh.points, binary.mesh.points);
       EXPECT_EQ(ascii.mesh.hexes, binary.mesh.hexes);
+      EXPECT_EQ(ascii.mesh.tets, binary.mesh.tets);
+      EXPECT_EQ(ascii.mesh.tets, (std::vector<std::array<Index, 4>>{{0, 1, 3, 9}}));
+      EXPECT_EQ(ascii.mesh.source_index, binary.mesh.source_index);
       EXPECT_EQ(ascii.warnings, binary.warnings);
       EXPECT_EQ(ascii.mesh.points.size(), 28u);
       EXPECT_EQ(ascii.mesh.hexes.size(), 8u);
@@ -209,7 +212,7 @@ TEST(VtkLegacyReader, VoxelsAreReorderedToHexahedronOrder) {
   }
 }
 
-TEST(VtkLegacyReader, MixedCellsAreSkippedWithOneWarning) {
+TEST(VtkLegacyReader, TetrahedraAreReadOtherCellsSkippedWithOneWarning) {
   VtkSpec spec = spec_of(test::unit_cube());
   spec.cells.push_back({10, {0, 1, 3, 4}});
   spec.cells.push_back({5, {0, 1, 2}});
@@ -218,12 +221,13 @@ TEST(VtkLegacyReader, MixedCellsAreSkippedWithOneWarning) {
   spec.cells.push_back({42, {2, 3, 0, 1, 2, 3, 4, 5, 6, 7}});  // polyhedron face stream, never checked as ids
   const LoadedMesh loaded = read_vtk_legacy(write_vtk(spec), "rockarm.vtk");
   EXPECT_EQ(loaded.mesh.hexes.size(), 1u);
+  EXPECT_EQ(loaded.mesh.tets, (std::vector<std::array<Index, 4>>{{0, 1, 3, 4}, {1, 2, 3, 6}}));
+  EXPECT_EQ(loaded.mesh.source_index[static_cast<std::size_t>(CellKind::tet)], (std::vector<std::int64_t>{1, 3}));
   ASSERT_EQ(loaded.warnings.size(), 1u);
-  EXPECT_EQ(loaded.warnings[0], "rockarm.vtk: 5 non-hexahedral cells skipped (types 5, 10, 23, 42)");
+  EXPECT_EQ(loaded.warnings[0], "rockarm.vtk: 3 cells of unread types skipped (types 5, 23, 42)");
 
   spec.cells.resize(2);
-  EXPECT_EQ(read_vtk_legacy(write_vtk(spec), "m.vtk").warnings,
-            std::vector<std::string>{"m.vtk: 1 non-hexahedral cell skipped (type 10)"});
+  EXPECT_TRUE(read_vtk_legacy(write_vtk(spec), "m.vtk").warnings.empty());
 }
 
 TEST(VtkLegacyReader, EightPointCellsWithAnotherTypeAreLoadedAsHexahedra) {
@@ -387,9 +391,9 @@ TEST(VtkLegacyReaderErrors, LegacyCells) {
             "m.vtk:15: point id -1 out of range (cell 0)");
   EXPECT_EQ(parse_error(head + "CELLS 1 9\n8 0 1 2 3 4 5 6 6\n" + kTypes), "m.vtk:15: point id 6 repeated (cell 0)");
   EXPECT_EQ(parse_error(head + "CELLS 1 8\n7 0 1 2 3 4 5 6\n" + kTypes),
-            "m.vtk:15: cell 0 has type 12 (hexahedron) but 7 points");
+            "m.vtk:15: cell 0 has type 12 (hexahedron) but 7 points, expected 8");
   EXPECT_EQ(parse_error(head + "CELLS 1 8\n7 0 1 2 3 4 5 6\nCELL_TYPES 1\n11\n"),
-            "m.vtk:15: cell 0 has type 11 (voxel) but 7 points");
+            "m.vtk:15: cell 0 has type 11 (voxel) but 7 points, expected 8");
 }
 
 TEST(VtkLegacyReaderErrors, CellTypes) {
@@ -399,11 +403,13 @@ TEST(VtkLegacyReaderErrors, CellTypes) {
   EXPECT_EQ(parse_error(head + "CELL_TYPES 1\n300\n"), "m.vtk:17: invalid cell type 300 (cell 0)");
   EXPECT_EQ(parse_error(head + "CELL_TYPES 2\n12\n"),
             "m.vtk:17: unexpected end of file, expected 2 values in CELL_TYPES, got 1");
-  EXPECT_EQ(parse_error(kHead + kPoints + "CELLS 1 5\n4 0 1 2 3\nCELL_TYPES 1\n10\n"),
-            "m.vtk: no hexahedra (1 cell of type 10)");
-  EXPECT_EQ(parse_error(kHead + kPoints + "CELLS 2 9\n4 0 1 2 3\n3 0 1 2\nCELL_TYPES 2\n10\n5\n"),
-            "m.vtk: no hexahedra (2 cells of types 5, 10)");
-  EXPECT_EQ(parse_error(kHead + kPoints + "CELLS 0 0\nCELL_TYPES 0\n"), "m.vtk: no hexahedra");
+  EXPECT_EQ(parse_error(kHead + kPoints + "CELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n"),
+            "m.vtk: no volume cells (1 cell of type 5)");
+  EXPECT_EQ(parse_error(kHead + kPoints + "CELLS 2 9\n4 0 1 2 3\n3 0 1 2\nCELL_TYPES 2\n9\n5\n"),
+            "m.vtk: no volume cells (2 cells of types 5, 9)");
+  EXPECT_EQ(parse_error(kHead + kPoints + "CELLS 0 0\nCELL_TYPES 0\n"), "m.vtk: no volume cells");
+  EXPECT_EQ(parse_error(kHead + kPoints + "CELLS 1 6\n5 0 1 2 3 4\nCELL_TYPES 1\n10\n"),
+            "m.vtk:15: cell 0 has type 10 (tetra) but 5 points, expected 4");
 }
 
 // The unit cube, ASCII 5.1.

@@ -168,7 +168,7 @@ TEST(VtuReader, VoxelIsReorderedAndOtherCellsSkipped) {
   ASSERT_EQ(loaded.mesh.hexes.size(), 1u);
   EXPECT_EQ(loaded.mesh.hexes[0], kIdentity);
   ASSERT_EQ(loaded.warnings.size(), 1u);
-  EXPECT_EQ(loaded.warnings[0], "v.vtu: 2 non-hexahedral cells skipped (types 5, 9)");
+  EXPECT_EQ(loaded.warnings[0], "v.vtu: 2 cells of unread types skipped (types 5, 9)");
 }
 
 // The cube's arrays as binary blocks, through `encode` (inline base64 or appended).
@@ -349,11 +349,13 @@ TEST(VtuReader, Errors) {
             "e.vtu:11: point id 8 out of range [0, 8) (cell 0) (DataArray 'connectivity')");
   EXPECT_EQ(error(ascii_cube("0 1 2 3 4 5 6 0")), "e.vtu:11: point id 0 repeated (cell 0) (DataArray 'connectivity')");
   EXPECT_EQ(error(ascii_cube("0 1 2 3 4 5 6", "7")),
-            "e.vtu:11: cell 0 has type 12 (hexahedron) but 7 points (DataArray 'connectivity')");
+            "e.vtu:11: cell 0 has type 12 (hexahedron) but 7 points, expected 8 (DataArray 'connectivity')");
   EXPECT_EQ(error(ascii_cube("0 1 2 3 4 5 6 7", "9")),
             "e.vtu:12: offset 9 of cell 0 is outside [0, 8] (DataArray 'offsets')");
   EXPECT_EQ(error(ascii_cube("0 1 2 3 4 5 6 7", "8", "12 12")), "e.vtu:13: more than 1 values (DataArray 'types')");
-  EXPECT_EQ(error(ascii_cube("0 1 2 3 4 5 6 7", "8", "10")), "e.vtu:3: no hexahedra (1 cell of type 10)");
+  EXPECT_EQ(error(ascii_cube("0 1 2 3 4 5 6 7", "8", "10")),
+            "e.vtu:11: cell 0 has type 10 (tetra) but 8 points, expected 4 (DataArray 'connectivity')");
+  EXPECT_EQ(error(ascii_cube("0 1 2 3 4 5 6 7", "8", "9")), "e.vtu:3: no volume cells (1 cell of type 9)");
   EXPECT_EQ(error(ascii_cube("0 1 2 3 4 5 6 7.5")),
             "e.vtu:11: expected an integer, got '7.5' (DataArray 'connectivity' value 7)");
   // Binary and appended data.

@@ -1,6 +1,7 @@
 #include "hqview/io/abaqus_reader.h"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -11,6 +12,7 @@
 
 #include "hqview/core/text.h"
 #include "hqview/core/types.h"
+#include "hqview/io/cell_reading.h"
 #include "hqview/io/text_scanner.h"
 
 namespace hq {
@@ -19,7 +21,30 @@ namespace {
 using detail::iequals;
 using detail::quote;
 
-constexpr std::string_view kHexTypes[] = {"C3D8", "C3D8R", "C3D8I", "C3D8H", "C3D8RH", "C3D8IH"};
+// The first-order volume element types read, by kind (Abaqus Analysis User's
+// Guide, "Three-dimensional solid element library": stress/displacement,
+// hybrid (H), coupled temperature-displacement (T), heat transfer (DC),
+// acoustic (AC), piezoelectric (E) and pore pressure (P) variants).
+struct ElementType {
+  std::string_view name;
+  CellKind kind;
+};
+constexpr ElementType kVolumeTypes[] = {
+    {"C3D8", CellKind::hex},    {"C3D8R", CellKind::hex},   {"C3D8I", CellKind::hex},
+    {"C3D8H", CellKind::hex},   {"C3D8RH", CellKind::hex},  {"C3D8IH", CellKind::hex},
+    {"C3D4", CellKind::tet},    {"C3D4H", CellKind::tet},   {"C3D4T", CellKind::tet},
+    {"C3D4E", CellKind::tet},   {"C3D4P", CellKind::tet},   {"DC3D4", CellKind::tet},
+    {"DC3D4E", CellKind::tet},  {"AC3D4", CellKind::tet},   {"C3D6", CellKind::wedge},
+    {"C3D6H", CellKind::wedge}, {"C3D6T", CellKind::wedge}, {"C3D6HT", CellKind::wedge},
+    {"C3D6E", CellKind::wedge}, {"DC3D6", CellKind::wedge}, {"DC3D6E", CellKind::wedge},
+    {"AC3D6", CellKind::wedge}, {"C3D5", CellKind::pyramid}, {"C3D5H", CellKind::pyramid},
+};
+
+const ElementType* find_volume_type(std::string_view name) {
+  for (const ElementType& type : kVolumeTypes)
+    if (type.name == name) return &type;
+  return nullptr;
+}
 
 std::string upper(std::string_view text) {
   std::string out(text);
@@ -34,9 +59,10 @@ class AbaqusParser {
       : bytes_(bytes), name_(name), limits_(limits) {}
 
   LoadedMesh parse() {
-    enum class Block { kNone, kNodes, kHexes, kOtherElements, kSkipped };
+    enum class Block { kNone, kNodes, kVolumeElements, kOtherElements, kSkipped };
     Block block = Block::kNone;
     std::string element_type;
+    CellKind kind = CellKind::hex;
     while (next_line()) {
       const std::string_view line = trim(line_);
       if (line.empty() || line.starts_with("**")) continue;
@@ -56,9 +82,9 @@ class AbaqusParser {
               element_type = upper(trim(part.substr(eq + 1)));
           }
           if (element_type.empty()) fail(line_number_, "*ELEMENT without TYPE=");
-          const bool is_hex =
-              std::find(std::begin(kHexTypes), std::end(kHexTypes), element_type) != std::end(kHexTypes);
-          block = is_hex ? Block::kHexes : Block::kOtherElements;
+          const ElementType* volume = find_volume_type(element_type);
+          if (volume != nullptr) kind = volume->kind;
+          block = volume != nullptr ? Block::kVolumeElements : Block::kOtherElements;
         } else if (keyword == "*INCLUDE") {
           fail(line_number_, "*INCLUDE is not supported: merge the included file into this one");
         } else {
@@ -72,8 +98,8 @@ class AbaqusParser {
         case Block::kNodes:
           read_node(line);
           break;
-        case Block::kHexes:
-          read_hex(line);
+        case Block::kVolumeElements:
+          read_cell(kind, line);
           break;
         case Block::kOtherElements: {
           // One element per record; a record continues while its lines end with ','.
@@ -135,49 +161,57 @@ class AbaqusParser {
     points_.push_back({xyz[0], xyz[1], xyz[2]});
   }
 
-  void read_hex(std::string_view line) {
+  // One element of a volume kind. Abaqus lists a C3D6 wedge's first triangle
+  // with its normal towards the second (face 1 = 1-2-3 faces inward, as a
+  // C3D8's face 1 = 1-2-3-4): permuted to VTK's order.
+  void read_cell(CellKind kind, std::string_view line) {
+    const int n = cell_kind_num_corners(kind);
     const std::int64_t first_line = line_number_;
     std::vector<std::string_view> fields = split(line);
     // A record continues while its line ends with a comma; the strings stay
     // views into bytes_.
-    while (trim(fields.back()).empty() && fields.size() < 10) {
+    while (trim(fields.back()).empty() && fields.size() < static_cast<std::size_t>(n) + 2) {
       fields.pop_back();
       if (!next_line()) fail(first_line, "unexpected end of file in an element continued on the next line");
       const std::vector<std::string_view> more = split(trim(line_));
       fields.insert(fields.end(), more.begin(), more.end());
     }
     if (!fields.empty() && trim(fields.back()).empty()) fields.pop_back();
-    if (fields.size() != 9)
-      fail(line_number_, "expected an element id and 8 node ids, got " + std::to_string(fields.size()) + " fields");
+    if (fields.size() != static_cast<std::size_t>(n) + 1)
+      fail(line_number_, "expected an element id and " + std::to_string(n) + " node ids, got " +
+                             std::to_string(fields.size()) + " fields");
     const auto id = parse_number<std::int64_t>(fields[0], "an element id");
-    Hex hex;
-    for (int j = 0; j < 8; ++j) {
+    std::array<Index, 8> corners{};
+    std::array<std::int64_t, 8> nodes{};
+    for (int j = 0; j < n; ++j) {
       const auto node = parse_number<std::int64_t>(fields[static_cast<std::size_t>(j) + 1], "a node id");
       const auto it = index_of_id_.find(node);
       if (it == index_of_id_.end())
         fail(line_number_, "node " + std::to_string(node) + " is not defined (element " + std::to_string(id) + ")");
-      for (int i = 0; i < j; ++i)
-        if (hex[i] == it->second)
-          fail(line_number_, "node " + std::to_string(node) + " repeated (element " + std::to_string(id) + ")");
-      hex[j] = it->second;
+      corners[static_cast<std::size_t>(j)] = it->second;
+      nodes[static_cast<std::size_t>(j)] = node;
     }
-    hexes_.push_back(hex);
+    if (const int j = detail::first_repeated(corners.data(), n); j >= 0)
+      fail(line_number_, "node " + std::to_string(nodes[static_cast<std::size_t>(j)]) + " repeated (element " +
+                             std::to_string(id) + ")");
+    detail::append_cell(mesh_, kind, corners.data(),
+                        kind == CellKind::wedge ? detail::kWedgeFlippedToVtk.data() : nullptr, id);
   }
 
   LoadedMesh build() {
     const SkippedCells skipped(skipped_by_type_);
-    if (hexes_.empty())
-      fail(0, "no hexahedra (*ELEMENT, TYPE=C3D8, C3D8R or C3D8I)" +
+    if (detail::num_volume_cells(mesh_) == 0)
+      fail(0, "no volume elements (*ELEMENT, TYPE=C3D8, C3D8R, C3D4, C3D6, C3D5 ...)" +
                   (skipped.count > 0 ? ": " + skipped.counted("element") : std::string()));
     // Abaqus declares no counts: the budget is checked once the file is read
     // (what reading allocates is bounded by the file's size), before the analysis.
     check_mesh_memory(limits_, name_, 0, bytes_.size(), static_cast<std::int64_t>(points_.size()),
-                      static_cast<std::int64_t>(hexes_.size()));
+                      detail::num_volume_cells(mesh_));
     LoadedMesh loaded;
     loaded.format = "abaqus";
     if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(name_, "element"));
-    loaded.mesh.points = std::move(points_);
-    loaded.mesh.hexes = std::move(hexes_);
+    mesh_.points = std::move(points_);
+    loaded.mesh = std::move(mesh_);
     return loaded;
   }
 
@@ -189,7 +223,7 @@ class AbaqusParser {
   std::int64_t line_number_ = 0;
   std::vector<Vec3> points_;
   std::unordered_map<std::int64_t, Index> index_of_id_;  // lookups only, never iterated
-  std::vector<Hex> hexes_;
+  Mesh mesh_;  // the volume blocks (points_ are moved in at the end)
   std::map<std::string, std::int64_t> skipped_by_type_;
 };
 

@@ -7,7 +7,9 @@
 // *NODE data lines: "id, x, y, z" (a missing y or z is 0, as in Abaqus).
 // *ELEMENT, TYPE=C3D8|C3D8R|C3D8I|C3D8H|C3D8RH|C3D8IH data lines: "id, n1,
 // ..., n8", continued on the next line when a line ends with a comma. The
-// C3D8 corner order is VTK_HEXAHEDRON's. Elements of other types are
+// C3D8 corner order is VTK_HEXAHEDRON's; the tetrahedron (C3D4 ...), wedge
+// (C3D6 ..., permuted to VTK's order) and pyramid (C3D5 ...) families are read
+// too (docs/formats.md lists the names; source_index: the element label). Elements of other types are
 // skipped with one warning counting them and listing their types; every
 // other keyword's data lines are skipped. Node ids may be any positive
 // integers, with gaps, in any order; nodes keep their file order (over all

@@ -1,10 +1,12 @@
 #include "hqview/io/exodus_reader.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +17,7 @@
 
 #include "hqview/core/shared_library.h"
 #include "hqview/core/types.h"
+#include "hqview/io/cell_reading.h"
 #include "hqview/io/netcdf_header.h"
 
 namespace hq {
@@ -178,6 +181,19 @@ std::string upper(std::string text) {
   return text;
 }
 
+// The kind of a block's elements: the elem_type names Exodus writers use
+// (HEX, HEX8; TETRA, TET4, TETRA4; WEDGE, WEDGE6; PYRAMID, PYRAMID5, PYRA)
+// with the linear node count; none for every other block. Exodus lists a
+// WEDGE's first triangle with its normal towards the second (side 4 is
+// 1-3-2): such wedges are permuted to VTK's order by the caller.
+std::optional<CellKind> exodus_volume_kind(const std::string& type, std::int64_t per_element) {
+  if (type.starts_with("HEX") && per_element == 8) return CellKind::hex;
+  if (type.starts_with("TET") && per_element == 4) return CellKind::tet;
+  if (type.starts_with("WEDGE") && per_element == 6) return CellKind::wedge;
+  if (type.starts_with("PYR") && per_element == 5) return CellKind::pyramid;
+  return std::nullopt;
+}
+
 }  // namespace
 
 bool exodus_available() { return true; }
@@ -236,6 +252,7 @@ LoadedMesh read_exodus(std::string_view bytes, const std::string& name, const Re
         std::clamp<std::int64_t>(file.dimension("num_el_in_blk" + std::to_string(b)), 0, kMaxIndexCount);
   check_mesh_memory(limits, name, 0, bytes.size(), num_nodes, num_elements_declared, "element");
   std::map<std::string, std::int64_t> skipped_by_type;
+  std::int64_t element_id = 0;  // 1-based over the blocks in order: Exodus's implicit element id
   for (std::int64_t b = 1; b <= num_blocks; ++b) {
     const std::string connect = "connect" + std::to_string(b);
     const int var = file.variable(connect);
@@ -243,30 +260,34 @@ LoadedMesh read_exodus(std::string_view bytes, const std::string& name, const Re
     const std::int64_t per_element = file.dimension("num_nod_per_el" + std::to_string(b));
     if (var < 0 || num_elements <= 0) continue;  // an empty block has no connectivity
     const std::string type = upper(file.text_attribute(var, "elem_type"));
-    if (!type.starts_with("HEX") || per_element != 8) {
+    const std::optional<CellKind> kind = exodus_volume_kind(type, per_element);
+    if (!kind) {
       skipped_by_type[type.empty() ? "?" : type] += num_elements;
+      element_id += num_elements;
       continue;
     }
-    const std::vector<long long> ids = file.integers(var, connect, static_cast<std::uint64_t>(num_elements) * 8u);
+    const int n = static_cast<int>(per_element);
+    const std::vector<long long> ids =
+        file.integers(var, connect, static_cast<std::uint64_t>(num_elements) * static_cast<std::uint64_t>(n));
     for (std::int64_t e = 0; e < num_elements; ++e) {
-      Hex hex;
-      for (int j = 0; j < 8; ++j) {
-        const long long id = ids[static_cast<std::size_t>(e * 8 + j)];
+      std::array<Index, 8> corners{};
+      for (int j = 0; j < n; ++j) {
+        const long long id = ids[static_cast<std::size_t>(e * n + j)];
         if (id < 1 || id > num_nodes)
           file.fail("node " + std::to_string(id) + " out of range [1, " + std::to_string(num_nodes) + "] (" + connect +
                     " element " + std::to_string(e + 1) + ")");
-        for (int i = 0; i < j; ++i)
-          if (hex[i] == static_cast<Index>(id - 1))
-            file.fail("node " + std::to_string(id) + " repeated (" + connect + " element " + std::to_string(e + 1) +
-                      ")");
-        hex[j] = static_cast<Index>(id - 1);
+        corners[static_cast<std::size_t>(j)] = static_cast<Index>(id - 1);
       }
-      loaded.mesh.hexes.push_back(hex);
+      if (const int j = detail::first_repeated(corners.data(), n); j >= 0)
+        file.fail("node " + std::to_string(corners[static_cast<std::size_t>(j)] + 1) + " repeated (" + connect +
+                  " element " + std::to_string(e + 1) + ")");
+      detail::append_cell(loaded.mesh, *kind, corners.data(),
+                          *kind == CellKind::wedge ? detail::kWedgeFlippedToVtk.data() : nullptr, ++element_id);
     }
   }
   const SkippedCells skipped(skipped_by_type);
-  if (loaded.mesh.hexes.empty())
-    file.fail("no hexahedra (HEX8 blocks)" +
+  if (detail::num_volume_cells(loaded.mesh) == 0)
+    file.fail("no volume elements (HEX8, TETRA, WEDGE or PYRAMID blocks)" +
               (skipped.count > 0 ? " among " + skipped.counted("element") : std::string()));
   if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(name, "element"));
   return loaded;

@@ -7,7 +7,9 @@
 // Read: the node coordinates (coord, or coordx / coordy / coordz; a
 // missing z is 0) in file order, and every element block whose elem_type
 // starts with "HEX" and has 8 nodes per element (connectN, 1-based node
-// indices; HEX8 corner order is VTK_HEXAHEDRON's). Other blocks are skipped
+// indices; HEX8 corner order is VTK_HEXAHEDRON's), and TET*, WEDGE* (permuted
+// to VTK's order) and PYR* blocks of 4, 6 and 5 nodes (source_index: the
+// 1-based element id over the blocks). Other blocks are skipped
 // with one warning counting their elements and listing their types. Node
 // and element number maps are not used: ids are file positions.
 //

@@ -6,11 +6,13 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
 #include "hqview/core/types.h"
+#include "hqview/io/cell_reading.h"
 #include "hqview/io/text_scanner.h"
 
 namespace hq {
@@ -19,7 +21,22 @@ namespace {
 using detail::quote;
 using detail::TextScanner;
 
-constexpr int kGmshHexahedron = 5;
+// The linear volume element types (GmshDefines.h: MSH_TET_4, MSH_HEX_8,
+// MSH_PRI_6, MSH_PYR_5) and the kind each is read as; none for the others.
+std::optional<CellKind> gmsh_volume_kind(std::int64_t type) {
+  switch (type) {
+    case 4:
+      return CellKind::tet;
+    case 5:
+      return CellKind::hex;
+    case 6:
+      return CellKind::wedge;
+    case 7:
+      return CellKind::pyramid;
+    default:
+      return std::nullopt;
+  }
+}
 
 // Nodes per Gmsh element type (gmsh's GmshDefines.h / the manual's list);
 // needed to step over binary elements. 0: unknown.
@@ -288,23 +305,26 @@ class GmshParser {
   }
 
   // --- elements ------------------------------------------------------------
-  // One hex given its node tags; where = line (ASCII) or byte offset (binary).
-  void add_hex(std::int64_t element_tag, const std::int64_t tags[8], std::int64_t where) {
+  // One volume element given its node tags in Gmsh's order; where = line
+  // (ASCII) or byte offset (binary). Gmsh's prism lists its first triangle
+  // with the normal towards the second: permuted to VTK's order.
+  void add_cell(CellKind kind, std::int64_t element_tag, const std::int64_t* tags, std::int64_t where) {
     const auto fail = [&](const std::string& message) {
       if (binary_) fail_binary(elements_line_, message, static_cast<std::size_t>(where));
       s_.fail_at(where, message);
     };
-    Hex hex;
-    for (int j = 0; j < 8; ++j) {
+    const int n = cell_kind_num_corners(kind);
+    std::array<Index, 8> corners{};
+    for (int j = 0; j < n; ++j) {
       const auto it = index_of_tag_.find(tags[j]);
       if (it == index_of_tag_.end())
         fail("node tag " + std::to_string(tags[j]) + " is not defined (element " + std::to_string(element_tag) + ")");
-      for (int i = 0; i < j; ++i)
-        if (hex[i] == it->second)
-          fail("node tag " + std::to_string(tags[j]) + " repeated (element " + std::to_string(element_tag) + ")");
-      hex[j] = it->second;
+      corners[static_cast<std::size_t>(j)] = it->second;
     }
-    hexes_.push_back(hex);
+    if (const int j = detail::first_repeated(corners.data(), n); j >= 0)
+      fail("node tag " + std::to_string(tags[j]) + " repeated (element " + std::to_string(element_tag) + ")");
+    detail::append_cell(mesh_, kind, corners.data(),
+                        kind == CellKind::wedge ? detail::kWedgeFlippedToVtk.data() : nullptr, element_tag);
   }
 
   void read_elements_v2() {
@@ -339,9 +359,9 @@ class GmshParser {
           const std::int64_t tag = binary_int(elements_line_);
           for (std::int64_t t = 0; t < num_tags; ++t) binary_int(elements_line_);
           std::int64_t nodes[8];
-          if (type == kGmshHexahedron) {
-            for (std::int64_t& node : nodes) node = binary_int(elements_line_);
-            add_hex(tag, nodes, static_cast<std::int64_t>(offset));
+          if (const std::optional<CellKind> kind = gmsh_volume_kind(type)) {
+            for (int j = 0; j < num_nodes; ++j) nodes[j] = binary_int(elements_line_);
+            add_cell(*kind, tag, nodes, static_cast<std::int64_t>(offset));
           } else {
             s_.read_bytes(static_cast<std::size_t>(4 * num_nodes));
             ++skipped_by_type_[type];
@@ -360,7 +380,8 @@ class GmshParser {
       std::int64_t num_tags = 0;
       if (!s_.skip_blank() || !s_.read_int(num_tags) || num_tags < 0)
         s_.fail("expected the number of tags of element " + std::to_string(tag));
-      if (type != kGmshHexahedron) {
+      const std::optional<CellKind> kind = gmsh_volume_kind(type);
+      if (!kind) {
         ++skipped_by_type_[type];
         s_.read_line();
         continue;
@@ -370,22 +391,22 @@ class GmshParser {
         if (!s_.skip_blank() || !s_.read_int(ignored))
           s_.fail("expected " + std::to_string(num_tags) + " tags for element " + std::to_string(tag));
       }
-      read_ascii_hex(tag, line);
+      read_ascii_cell(*kind, tag, line);
     }
   }
 
-  // The 8 node tags of a hex on the current line, then the end of the line.
-  void read_ascii_hex(std::int64_t tag, std::int64_t line) {
+  // The node tags of a volume element on the current line, then the end of the line.
+  void read_ascii_cell(CellKind kind, std::int64_t tag, std::int64_t line) {
+    const int n = cell_kind_num_corners(kind);
+    const std::string what = std::to_string(n) + " node tags for " + detail::cell_kind_noun(kind, 1) + " " +
+                             std::to_string(tag) + ", got ";
     std::int64_t nodes[8];
-    for (int j = 0; j < 8; ++j) {
-      if (!s_.skip_blank())
-        s_.fail("expected 8 node tags for hexahedron " + std::to_string(tag) + ", got " + std::to_string(j));
+    for (int j = 0; j < n; ++j) {
+      if (!s_.skip_blank()) s_.fail("expected " + what + std::to_string(j));
       if (!s_.read_int(nodes[j])) s_.fail("expected a node tag, got " + quote(s_.peek_token()));
     }
-    if (s_.skip_blank())
-      s_.fail("expected 8 node tags for hexahedron " + std::to_string(tag) + ", got " +
-              std::to_string(8 + s_.count_tokens_on_line()));
-    add_hex(tag, nodes, line);
+    if (s_.skip_blank()) s_.fail("expected " + what + std::to_string(n + s_.count_tokens_on_line()));
+    add_cell(kind, tag, nodes, line);
   }
 
   void read_elements_v4() {
@@ -430,23 +451,23 @@ class GmshParser {
         for (std::int64_t e = 0; e < count; ++e) {
           const std::size_t offset = s_.offset();
           const std::int64_t tag = binary_size(elements_line_);
-          if (type == kGmshHexahedron) {
+          if (const std::optional<CellKind> kind = gmsh_volume_kind(type)) {
             std::int64_t nodes[8];
-            for (std::int64_t& node : nodes) node = binary_size(elements_line_);
-            add_hex(tag, nodes, static_cast<std::int64_t>(offset));
+            for (int j = 0; j < num_nodes; ++j) nodes[j] = binary_size(elements_line_);
+            add_cell(*kind, tag, nodes, static_cast<std::int64_t>(offset));
           } else {
             s_.read_bytes(static_cast<std::size_t>(entry - size_t_size_));
           }
         }
-        if (type != kGmshHexahedron && count > 0) skipped_by_type_[type] += count;
+        if (!gmsh_volume_kind(type) && count > 0) skipped_by_type_[type] += count;
         continue;
       }
       if (!s_.finish_line()) s_.fail("unexpected " + quote(s_.peek_token()) + " after the element block header");
       for (std::int64_t e = 0; e < count; ++e) {
         const std::int64_t tag = read_int("an element tag");
         const std::int64_t line = s_.line();
-        if (type == kGmshHexahedron) {
-          read_ascii_hex(tag, line);
+        if (const std::optional<CellKind> kind = gmsh_volume_kind(type)) {
+          read_ascii_cell(*kind, tag, line);
         } else {
           s_.read_line();
           ++skipped_by_type_[type];
@@ -459,14 +480,14 @@ class GmshParser {
 
   LoadedMesh build() {
     const SkippedCells skipped(skipped_by_type_);
-    if (hexes_.empty())
-      s_.fail_at(elements_line_, "no hexahedra (element type 5)" +
+    if (detail::num_volume_cells(mesh_) == 0)
+      s_.fail_at(elements_line_, "no volume elements (types 4, 5, 6, 7)" +
                                      (skipped.count > 0 ? " among " + skipped.counted("element") : std::string()));
     LoadedMesh loaded;
     loaded.format = "gmsh-" + version_ + (binary_ ? "-binary" : "-ascii");
     if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(s_.name(), "element"));
-    loaded.mesh.points = std::move(points_);
-    loaded.mesh.hexes = std::move(hexes_);
+    mesh_.points = std::move(points_);
+    loaded.mesh = std::move(mesh_);
     return loaded;
   }
 
@@ -483,7 +504,7 @@ class GmshParser {
   std::vector<Vec3> points_;
   // Lookups only, never iterated: output order does not depend on hashing.
   std::unordered_map<std::int64_t, Index> index_of_tag_;
-  std::vector<Hex> hexes_;
+  Mesh mesh_;  // the volume blocks (points_ are moved in at the end)
   std::map<std::int64_t, std::int64_t> skipped_by_type_;
 };
 

@@ -4,12 +4,14 @@
 // order, detected from the format section's integer 1).
 //
 // Nodes keep their file order; node tags may be any non-negative integers,
-// in any order, with gaps. Elements of type 5 (8-node hexahedron, whose
-// corner order is VTK_HEXAHEDRON's) are loaded; other element types are
+// in any order, with gaps. Elements of types 5 (8-node hexahedron), 4
+// (tetrahedron) and 7 (pyramid), whose corner orders are VTK's, and 6
+// (prism, permuted to VTK_WEDGE's order) are loaded (source_index: the
+// element tag); other element types are
 // skipped with one warning counting them and listing their types. Sections
 // other than $MeshFormat, $Nodes and $Elements ($PhysicalNames, $Entities,
 // $NodeData, ...) are skipped up to their $End line; reading stops once
-// $Nodes and $Elements are in. Nodes unused by hexahedra are kept.
+// $Nodes and $Elements are in. Nodes unused by any element are kept.
 //
 // Throws ParseError "name:line: message" on malformed input: unknown
 // versions, bad counts (checked against the remaining bytes before any

@@ -12,6 +12,7 @@
 
 #include "hqview/core/error.h"
 #include "hqview/core/types.h"
+#include "hqview/io/cell_reading.h"
 #include "hqview/io/read_limits.h"
 #include "hqview/io/text_scanner.h"
 
@@ -21,13 +22,14 @@ namespace {
 using detail::quote;
 using detail::TextScanner;
 
-enum class SectionKind { kVersion, kDimension, kEnd, kVertices, kHexahedra, kTriangles, kSkipped, kVolume };
+enum class SectionKind { kVersion, kDimension, kEnd, kVertices, kVolume, kTriangles, kSkipped };
 
 struct SectionInfo {
   std::string_view keyword;
   SectionKind kind;
   int values_per_entry;    // numbers on each entry line
   std::string_view entry;  // what an entry line holds, for messages
+  CellKind cell_kind = CellKind::hex;  // kVolume: the block its entries go to
 };
 
 // libMeshb's keywords that occur in hex-meshing datasets, plus "Quads"
@@ -37,8 +39,8 @@ constexpr SectionInfo kSections[] = {
     {"Dimension", SectionKind::kDimension, 0, ""},
     {"End", SectionKind::kEnd, 0, ""},
     {"Vertices", SectionKind::kVertices, 4, "3 coordinates and a reference"},
-    {"Hexahedra", SectionKind::kHexahedra, 9, "8 vertex ids and a reference"},
-    {"Hexaedra", SectionKind::kHexahedra, 9, "8 vertex ids and a reference"},
+    {"Hexahedra", SectionKind::kVolume, 9, "8 vertex ids and a reference", CellKind::hex},
+    {"Hexaedra", SectionKind::kVolume, 9, "8 vertex ids and a reference", CellKind::hex},
     {"Triangles", SectionKind::kTriangles, 4, "3 vertex ids and a reference"},
     {"Quadrilaterals", SectionKind::kSkipped, 5, "4 vertex ids and a reference"},
     {"Quads", SectionKind::kSkipped, 5, "4 vertex ids and a reference"},
@@ -49,9 +51,9 @@ constexpr SectionInfo kSections[] = {
     {"RequiredEdges", SectionKind::kSkipped, 1, "an edge id"},
     {"RequiredTriangles", SectionKind::kSkipped, 1, "a triangle id"},
     {"RequiredQuadrilaterals", SectionKind::kSkipped, 1, "a quadrilateral id"},
-    {"Tetrahedra", SectionKind::kVolume, 5, "4 vertex ids and a reference"},
-    {"Prisms", SectionKind::kVolume, 7, "6 vertex ids and a reference"},
-    {"Pyramids", SectionKind::kVolume, 6, "5 vertex ids and a reference"},
+    {"Tetrahedra", SectionKind::kVolume, 5, "4 vertex ids and a reference", CellKind::tet},
+    {"Prisms", SectionKind::kVolume, 7, "6 vertex ids and a reference", CellKind::wedge},
+    {"Pyramids", SectionKind::kVolume, 6, "5 vertex ids and a reference", CellKind::pyramid},
     {"Normals", SectionKind::kSkipped, 3, "3 components"},
     {"Tangents", SectionKind::kSkipped, 3, "3 components"},
     {"NormalAtVertices", SectionKind::kSkipped, 2, "a vertex id and a normal id"},
@@ -84,7 +86,7 @@ struct EntryAt {
   }
 };
 
-enum class Target { kHexahedra, kTriangles };
+enum class Target { kVolumes, kTriangles };
 
 // Sections of at least this many entries are read in kEntryParts parts in
 // parallel (a fixed count, so the parts do not depend on the thread count).
@@ -92,11 +94,12 @@ constexpr std::int64_t kParallelEntriesMin = std::int64_t{1} << 15;
 constexpr std::int64_t kEntryParts = 8;
 
 struct MeditContent {
-  std::vector<Vec3> points;
+  Mesh mesh;                       // points and the volume blocks
   std::int64_t vertices_line = 0;  // 0 = no Vertices section yet
-  std::vector<Hex> hexes;
-  std::int64_t hexes_line = 0;
-  bool hexes_need_range_check = false;  // read before Vertices
+  // Per volume kind: the line of its section (0: none), and whether it was
+  // read before Vertices (its ids are range-checked at the end).
+  std::array<std::int64_t, kNumCellKinds> volume_line{};
+  std::array<bool, kNumCellKinds> volume_needs_range_check{};
   std::vector<std::array<Index, 3>> triangles;
   std::int64_t triangles_line = 0;
   bool triangles_need_range_check = false;
@@ -110,7 +113,6 @@ class MeditParser {
 
   MeditContent parse() {
     read_version();
-    std::string volume_skipped;
     while (s_.skip_space()) {
       const std::int64_t keyword_line = s_.line();
       const std::string_view token = s_.read_token();
@@ -121,7 +123,7 @@ class MeditParser {
       }
       switch (info->kind) {
         case SectionKind::kEnd:
-          return finish(volume_skipped);
+          return finish();
         case SectionKind::kVersion:
           s_.fail_at(keyword_line, "second MeshVersionFormatted keyword");
         case SectionKind::kDimension: {
@@ -133,12 +135,9 @@ class MeditParser {
         case SectionKind::kVertices:
           read_vertices(*info, keyword_line);
           break;
-        case SectionKind::kHexahedra:
-          if (target_ == Target::kHexahedra) {
-            if (content_.hexes_line != 0) duplicate(*info, keyword_line, content_.hexes_line);
-            content_.hexes_line = keyword_line;
-            content_.hexes_need_range_check = content_.vertices_line == 0;
-            read_elements<8>(*info, "hexahedron", content_.hexes);
+        case SectionKind::kVolume:
+          if (target_ == Target::kVolumes) {
+            read_volume_section(*info, keyword_line);
           } else {
             skip_section(*info);
           }
@@ -153,20 +152,12 @@ class MeditParser {
             skip_section(*info);
           }
           break;
-        case SectionKind::kVolume: {
-          const std::int64_t n = skip_section(*info);
-          if (n > 0 && target_ == Target::kHexahedra) {
-            if (!volume_skipped.empty()) volume_skipped += ", ";
-            volume_skipped += std::to_string(n) + " " + std::string(info->keyword);
-          }
-          break;
-        }
         case SectionKind::kSkipped:
           skip_section(*info);
           break;
       }
     }
-    return finish(volume_skipped);
+    return finish();
   }
 
  private:
@@ -317,9 +308,9 @@ class MeditParser {
     if (content_.vertices_line != 0) duplicate(info, keyword_line, content_.vertices_line);
     content_.vertices_line = keyword_line;
     const std::int64_t n = read_count(info.keyword, info.values_per_entry);
-    if (target_ == Target::kHexahedra) check_mesh_memory(limits_, s_.name(), value_line_, file_bytes_, n, -1);
-    content_.points.resize(static_cast<std::size_t>(n));
-    read_entries(n, content_.points, 0,
+    if (target_ == Target::kVolumes) check_mesh_memory(limits_, s_.name(), value_line_, file_bytes_, n, -1);
+    content_.mesh.points.resize(static_cast<std::size_t>(n));
+    read_entries(n, content_.mesh.points, 0,
                  [&](TextScanner& s, std::int64_t i) { return read_vertex(s, info, EntryAt{"vertex", "", i, n}); });
   }
 
@@ -327,11 +318,12 @@ class MeditParser {
   template <int N>
   void read_elements(const SectionInfo& info, const char* what, std::vector<std::array<Index, N>>& out) {
     const std::int64_t n = read_count(info.keyword, info.values_per_entry);
-    if (N == 8)
-      check_mesh_memory(limits_, s_.name(), value_line_, file_bytes_, static_cast<std::int64_t>(content_.points.size()),
-                        static_cast<std::int64_t>(out.size()) + n);
+    if (target_ == Target::kVolumes)  // every volume cell counted as a hexahedron
+      check_mesh_memory(limits_, s_.name(), value_line_, file_bytes_,
+                        static_cast<std::int64_t>(content_.mesh.points.size()),
+                        detail::num_volume_cells(content_.mesh) + n);
     const bool has_vertices = content_.vertices_line != 0;
-    const std::int64_t max_id = has_vertices ? static_cast<std::int64_t>(content_.points.size()) : kMaxIndexCount;
+    const std::int64_t max_id = has_vertices ? static_cast<std::int64_t>(content_.mesh.points.size()) : kMaxIndexCount;
     const std::size_t first = out.size();
     out.resize(first + static_cast<std::size_t>(n));
     read_entries(n, out, first, [&](TextScanner& s, std::int64_t i) {
@@ -382,10 +374,10 @@ class MeditParser {
                                 " entries) skipped");
   }
 
-  template <int N>
-  void check_ids_late(const std::vector<std::array<Index, N>>& elements, std::int64_t line, const char* what) {
+  template <class Elements>
+  void check_ids_late(const Elements& elements, std::int64_t line, const char* what) {
     const auto n = static_cast<std::int64_t>(elements.size());
-    const auto num_points = static_cast<Index>(content_.points.size());
+    const auto num_points = static_cast<Index>(content_.mesh.points.size());
     for (std::int64_t i = 0; i < n; ++i)
       for (const Index id : elements[static_cast<std::size_t>(i)])
         if (id >= num_points)
@@ -393,15 +385,56 @@ class MeditParser {
                                std::to_string(num_points) + "]" + EntryAt{what, "", i, n}.label());
   }
 
-  MeditContent finish(const std::string& volume_skipped) {
+  MeditContent finish() {
     if (content_.vertices_line == 0) s_.fail_at(0, "no Vertices section");
-    if (content_.hexes_need_range_check) check_ids_late<8>(content_.hexes, content_.hexes_line, "hexahedron");
-    if (content_.triangles_need_range_check) check_ids_late<3>(content_.triangles, content_.triangles_line, "triangle");
-    if (target_ == Target::kHexahedra && content_.hexes.empty()) s_.fail_at(0, "no hexahedra");
+    for_each_cell_kind([&](auto kind) {
+      const auto k = static_cast<std::size_t>(kind());
+      if (content_.volume_needs_range_check[k])
+        check_ids_late(cell_block<kind()>(content_.mesh), content_.volume_line[k],
+                       element_word(kind()));
+    });
+    if (content_.triangles_need_range_check) check_ids_late(content_.triangles, content_.triangles_line, "triangle");
+    if (target_ == Target::kVolumes && detail::num_volume_cells(content_.mesh) == 0)
+      s_.fail_at(0, "no volume cells (Hexahedra, Tetrahedra, Prisms or Pyramids)");
     if (target_ == Target::kTriangles && content_.triangles.empty()) s_.fail_at(0, "no triangles");
-    if (!volume_skipped.empty())
-      content_.warnings.push_back(s_.name() + ": " + volume_skipped + " skipped (only hexahedra are analysed)");
     return std::move(content_);
+  }
+
+  static const char* element_word(CellKind kind) {
+    switch (kind) {
+      case CellKind::tet:
+        return "tetrahedron";
+      case CellKind::wedge:
+        return "prism";
+      case CellKind::pyramid:
+        return "pyramid";
+      default:
+        return "hexahedron";
+    }
+  }
+
+  // A Hexahedra, Tetrahedra, Prisms or Pyramids section into its block (one
+  // section per kind: each entry's source index, its 1-based position in the
+  // section, is its position in the block, left implicit). MEDIT lists a
+  // prism's first triangle with its normal towards the second (P. L. George's
+  // convention, as Gmsh): permuted to VTK's order.
+  void read_volume_section(const SectionInfo& info, std::int64_t keyword_line) {
+    const auto k = static_cast<std::size_t>(info.cell_kind);
+    if (content_.volume_line[k] != 0) duplicate(info, keyword_line, content_.volume_line[k]);
+    content_.volume_line[k] = keyword_line;
+    content_.volume_needs_range_check[k] = content_.vertices_line == 0;
+    for_each_cell_kind([&](auto kind) {
+      if constexpr (CellKindTable<kind()>::dimension == 3) {
+        if (kind() != info.cell_kind) return;
+        auto& block = cell_block<kind()>(content_.mesh);
+        read_elements<CellKindTable<kind()>::num_corners>(info, element_word(kind()), block);
+        if constexpr (kind() == CellKind::wedge)
+          for (std::size_t i = 0; i < block.size(); ++i) {
+            const auto wedge = block[i];
+            for (int j = 0; j < 6; ++j) block[i][static_cast<std::size_t>(j)] = wedge[detail::kWedgeFlippedToVtk[j]];
+          }
+      }
+    });
   }
 
   TextScanner s_;
@@ -415,10 +448,9 @@ class MeditParser {
 }  // namespace
 
 LoadedMesh read_medit(std::string_view text, const std::string& name, const ReadLimits& limits) {
-  MeditContent content = MeditParser(text, name, Target::kHexahedra, limits).parse();
+  MeditContent content = MeditParser(text, name, Target::kVolumes, limits).parse();
   LoadedMesh loaded;
-  loaded.mesh.points = std::move(content.points);
-  loaded.mesh.hexes = std::move(content.hexes);
+  loaded.mesh = std::move(content.mesh);
   loaded.format = "medit";
   loaded.warnings = std::move(content.warnings);
   return loaded;
@@ -427,7 +459,7 @@ LoadedMesh read_medit(std::string_view text, const std::string& name, const Read
 TriSurface read_medit_triangles(std::string_view text, const std::string& name) {
   MeditContent content = MeditParser(text, name, Target::kTriangles).parse();
   TriSurface surface;
-  surface.points = std::move(content.points);
+  surface.points = std::move(content.mesh.points);
   surface.triangles = std::move(content.triangles);
   return surface;
 }

@@ -6,9 +6,11 @@
 // or the next one ("Vertices 425" / "Vertices\n425"), `#` comments, keywords
 // in any case, "Hexahedra" and the old spelling "Hexaedra", an optional End.
 // Vertices are "x y z ref" lines; Hexahedra "v1 .. v8 ref" with 1-based ids
-// in VTK_HEXAHEDRON order (returned 0-based). Every other known section
-// (Triangles, Quadrilaterals, non-standard Quads, Edges, Corners, Ridges,
-// Required*, Tetrahedra, Prisms, Pyramids, Normals, Tangents, NormalAt*, ...)
+// in VTK_HEXAHEDRON order (returned 0-based); Tetrahedra and Pyramids in
+// VTK's order, Prisms in P. L. George's (first triangle facing the second,
+// permuted to VTK_WEDGE's); source_index: the 1-based entry of the section.
+// Every other known section (Triangles, Quadrilaterals, non-standard Quads,
+// Edges, Corners, Ridges, Required*, Normals, Tangents, NormalAt*, ...)
 // is checked entry by entry and skipped; an unknown keyword followed by a
 // count is skipped one line per entry, with a warning.
 //
@@ -21,9 +23,9 @@
 // than the rest of the text could hold (checked before allocating), short or
 // long entry lines, non-numbers, NaN/Inf coordinates, vertex ids out of
 // range, a vertex repeated within one element, no Vertices section, no
-// hexahedra (line 0: "name: no hexahedra"). When Hexahedra come before
-// Vertices, ids are range-checked at the end and reported at the Hexahedra
-// keyword's line.
+// volume cells (line 0: "name: no volume cells (...)"). When a cell section
+// comes before Vertices, its ids are range-checked at the end and reported at
+// its keyword's line.
 
 #include <string>
 #include <string_view>
@@ -33,9 +35,8 @@
 
 namespace hq {
 
-// The hex mesh of a .mesh text. format = "medit". Warnings (prefixed with
-// name) for skipped volume elements (Tetrahedra, Prisms, Pyramids) and
-// unknown sections.
+// The mesh of a .mesh text (every volume block). format = "medit". Warnings
+// (prefixed with name) for unknown sections.
 // Throws ParseError for a file whose declared counts exceed limits (read_limits.h).
 LoadedMesh read_medit(std::string_view text, const std::string& name, const ReadLimits& limits = {});
 

@@ -13,6 +13,7 @@
 #include "hqview/core/error.h"
 #include "hqview/core/sha256.h"
 #include "hqview/io/abaqus_reader.h"
+#include "hqview/io/cell_reading.h"
 #include "hqview/io/exodus_reader.h"
 #include "hqview/io/gmsh_reader.h"
 #include "hqview/io/medit_reader.h"
@@ -191,9 +192,19 @@ void check_content_matches(const MeshFormat& format, const std::filesystem::path
                          " content (expected the extension " + std::string(content->extensions[0]) + ")");
 }
 
-// Every reader's mesh passes here: its coordinates must be analysable.
+// Every reader's mesh passes here: its coordinates must be analysable, and
+// the analysis reads the hexahedra only (for now): the other volume cells
+// are kept in their blocks, named in a warning, and a mesh without any
+// hexahedron is refused.
 LoadedMesh checked(LoadedMesh loaded, const std::string& name) {
   check_coordinate_magnitudes(loaded.mesh, name);
+  const std::string others = detail::non_hex_volume_counts(loaded.mesh);
+  if (loaded.mesh.hexes.empty())
+    throw ParseError(name, 0,
+                     "no hexahedra" + (others.empty() ? std::string()
+                                                      : " (" + others + " read; only hexahedra are analysed yet)"));
+  if (!others.empty())
+    loaded.warnings.push_back(name + ": " + others + " read but not analysed yet (only hexahedra are analysed)");
   return loaded;
 }
 

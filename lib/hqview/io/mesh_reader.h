@@ -27,17 +27,22 @@
 
 namespace hq {
 
+// A mesh as read: every block a reader reads (hexahedra, tetrahedra, wedges,
+// pyramids) with its source_index. read_hex_mesh() refuses a mesh without
+// hexahedra and warns about the other volume cells, which the analysis does
+// not read yet.
 struct LoadedMesh {
-  HexMesh mesh;
+  Mesh mesh;
   std::string format;                 // "medit", "vtk-legacy-ascii", "vtk-legacy-binary", ...
-  std::vector<std::string> warnings;  // e.g. "12 non-hexahedral cells skipped"
+  std::vector<std::string> warnings;  // e.g. "name: 12 cells of unread types skipped (type 5)"
 };
 
-// The cells a reader left out because they are not hexahedra, counted by the
-// format's type (a VTK/Gmsh number, an Abaqus or Exodus name), and the two
-// texts every reader words the same way: "3 cells of types 10, 12" for its
-// "no hexahedra" error and "NAME: 3 non-hexahedral cells skipped (types 10,
-// 12)" for the warning. `noun` is the format's word: "cell" or "element".
+// The cells a reader left out because it does not read their type (not a
+// hexahedron, tetrahedron, wedge or pyramid), counted by the format's type (a
+// VTK/Gmsh number, an Abaqus or Exodus name), and the two texts every reader
+// words the same way: "3 cells of types 5, 9" for its "no volume cells"
+// error and "NAME: 3 cells of unread types skipped (types 5, 9)" for the
+// warning. `noun` is the format's word: "cell" or "element".
 struct SkippedCells {
   std::int64_t count = 0;
   std::size_t num_types = 0;
@@ -59,7 +64,7 @@ struct SkippedCells {
     return std::to_string(count) + " " + noun + (count > 1 ? "s" : "") + " of " + type_word() + types;
   }
   std::string warning(const std::string& file, const char* noun) const {
-    return file + ": " + std::to_string(count) + " non-hexahedral " + noun + (count > 1 ? "s" : "") + " skipped (" +
+    return file + ": " + std::to_string(count) + " " + noun + (count > 1 ? "s" : "") + " of unread types skipped (" +
            type_word() + types + ")";
   }
 };
@@ -75,6 +80,12 @@ std::string read_file_bytes(const std::filesystem::path& path);
 // extension ("path: unknown mesh format '.xyz' (expected .mesh, ...)") and
 // ParseError for a malformed file or one whose content is recognisably
 // another format than its extension says.
+//
+// The analysis reads hexahedra only (for now): a mesh without any is refused
+// (ParseError "path: no hexahedra (4 tetrahedra read; only hexahedra are
+// analysed yet)"), and the other volume cells, kept in their blocks, are
+// named in a warning ("path: 2 tetrahedra, 1 wedge read but not analysed yet
+// (only hexahedra are analysed)").
 //
 // limits (read_limits.h): the file's size and the counts it declares are
 // checked against limits.max_memory before anything is allocated from them

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "hqview/core/types.h"
+#include "hqview/io/cell_reading.h"
 #include "hqview/io/text_scanner.h"
 
 namespace hq {
@@ -18,6 +19,18 @@ using detail::quote;
 using detail::TextScanner;
 
 using Quad = std::array<std::int64_t, 4>;
+
+constexpr const char* kNotACell = "not a hexahedron, tetrahedron, wedge or pyramid";
+
+// True when the first n entries of b are a cyclic rotation of a's (same orientation).
+bool same_cycle(const Quad& a, const Quad& b, int n) {
+  for (int r = 0; r < n; ++r) {
+    bool same = true;
+    for (int k = 0; k < n && same; ++k) same = a[k] == b[(r + k) % n];
+    if (same) return true;
+  }
+  return false;
+}
 
 // True when b is a cyclic rotation of a (same orientation).
 bool same_cycle(const Quad& a, const Quad& b) {
@@ -83,44 +96,59 @@ class OvmParser {
       for (std::size_t k = 0; k < halfedges.size(); ++k)
         if (to_vertex(halfedges[k]) != from_vertex(halfedges[(k + 1) % halfedges.size()]))
           s_.fail("the half-edges of face " + std::to_string(f) + " do not form a cycle");
-      // Quads only matter: other faces are kept as "not a quad" markers.
-      Quad quad{-1, -1, -1, -1};
-      if (valence == 4)
-        for (int k = 0; k < 4; ++k) quad[k] = from_vertex(halfedges[static_cast<std::size_t>(k)]);
-      faces_.push_back(quad);
+      // Triangles and quads only matter: other faces are kept as markers.
+      Quad face{-1, -1, -1, -1};
+      if (valence <= 4)
+        for (int k = 0; k < valence; ++k) face[k] = from_vertex(halfedges[static_cast<std::size_t>(k)]);
+      faces_.push_back(face);
       face_valences_.push_back(valence);
     }
 
     const std::int64_t num_cells = section("Polyhedra", 4);
     check_mesh_memory(limits_, s_.name(), s_.line(), file_bytes_, num_vertices, num_cells, "cell");
-    hexes_.reserve(static_cast<std::size_t>(num_cells));
     for (std::int64_t c = 0; c < num_cells; ++c) {
       const std::int64_t valence = read_int("a polyhedron valence", "polyhedron", c, num_cells);
       const std::int64_t line = s_.line();
-      if (valence != 6)
-        s_.fail("polyhedron " + std::to_string(c) + " has " + std::to_string(valence) +
-                " half-faces: not a hexahedron (6 quadrilaterals)");
-      std::array<Quad, 6> quads;
-      for (int k = 0; k < 6; ++k) {
+      if (valence < 4 || valence > 6)
+        s_.fail("polyhedron " + std::to_string(c) + " has " + std::to_string(valence) + " half-faces: " + kNotACell);
+      std::vector<Quad> faces;
+      int num_triangles = 0;
+      for (std::int64_t k = 0; k < valence; ++k) {
         const std::int64_t hf = read_int("a half-face id", "polyhedron", c, num_cells);
         if (hf < 0 || hf >= 2 * num_faces)
           s_.fail("half-face id " + std::to_string(hf) + " out of range [0, " + std::to_string(2 * num_faces) +
                   ") (polyhedron " + std::to_string(c) + ")");
         const auto f = static_cast<std::size_t>(hf / 2);
-        if (face_valences_[f] != 4)
-          s_.fail("polyhedron " + std::to_string(c) + " has a face with " + std::to_string(face_valences_[f]) +
-                  " edges (face " + std::to_string(f) + "): not a hexahedron");
+        const std::int64_t face_valence = face_valences_[f];
+        if (face_valence > 4)
+          s_.fail("polyhedron " + std::to_string(c) + " has a face with " + std::to_string(face_valence) +
+                  " edges (face " + std::to_string(f) + "): " + kNotACell);
         Quad q = faces_[f];
-        if (hf % 2 == 1) std::reverse(q.begin(), q.end());
-        quads[static_cast<std::size_t>(k)] = q;
+        if (hf % 2 == 1) std::reverse(q.begin(), q.begin() + face_valence);
+        num_triangles += face_valence == 3 ? 1 : 0;
+        faces.push_back(q);
       }
-      hexes_.push_back(rebuild_hex(quads, c, line));
+      const auto num_quads = static_cast<int>(valence) - num_triangles;
+      if (num_quads == 6) {
+        std::array<Quad, 6> quads;
+        std::copy(faces.begin(), faces.end(), quads.begin());
+        detail::append_cell<CellKind::hex>(mesh_, rebuild_hex(quads, c, line), c);
+      } else if (num_triangles == 4 && num_quads == 0) {
+        detail::append_cell<CellKind::tet>(mesh_, rebuild_cell<CellKind::tet>(faces, c, line), c);
+      } else if (num_triangles == 2 && num_quads == 3) {
+        detail::append_cell<CellKind::wedge>(mesh_, rebuild_cell<CellKind::wedge>(faces, c, line), c);
+      } else if (num_triangles == 4 && num_quads == 1) {
+        detail::append_cell<CellKind::pyramid>(mesh_, rebuild_cell<CellKind::pyramid>(faces, c, line), c);
+      } else {
+        s_.fail_at(line, "polyhedron " + std::to_string(c) + " has " + std::to_string(num_triangles) +
+                             " triangles and " + std::to_string(num_quads) + " quadrilaterals: " + kNotACell);
+      }
     }
-    if (hexes_.empty()) s_.fail("no hexahedra (no polyhedra)");
+    if (num_cells == 0) s_.fail("no volume cells (no polyhedra)");
     LoadedMesh loaded;
     loaded.format = "ovm-ascii";
-    loaded.mesh.points = std::move(points_);
-    loaded.mesh.hexes = std::move(hexes_);
+    mesh_.points = std::move(points_);
+    loaded.mesh = std::move(mesh_);
     return loaded;
   }
 
@@ -162,6 +190,85 @@ class OvmParser {
     double value = 0;
     if (!s_.read_double(value)) s_.fail("expected " + std::string(what) + ", got " + quote(s_.peek_token()));
     return value;
+  }
+
+  // A tetrahedron, wedge or pyramid in VTK order from its outward half-faces
+  // (triangles have -1 as their 4th entry); throws unless they are exactly
+  // the faces of that cell (CellKindTable<K>::faces), each once, outward.
+  // The base is the first triangle (tet, wedge) or the quad (pyramid): a
+  // tet's (0,2,1) and a wedge's (0,1,2) are outward, a pyramid's (0,3,2,1).
+  template <CellKind K>
+  CellCorners<K> rebuild_cell(const std::vector<Quad>& faces, std::int64_t c, std::int64_t line) const {
+    using Table = CellKindTable<K>;
+    const auto fail = [&](const std::string& why) {
+      s_.fail_at(line, "polyhedron " + std::to_string(c) + " is not a " + std::string(Table::name) + ": " + why);
+    };
+    const auto size_of = [](const Quad& f) { return f[3] < 0 ? 3 : 4; };
+    const auto contains = [&](const Quad& f, std::int64_t v) {
+      for (int k = 0; k < size_of(f); ++k)
+        if (f[static_cast<std::size_t>(k)] == v) return true;
+      return false;
+    };
+    const int base_size = K == CellKind::pyramid ? 4 : 3;
+    std::size_t b = 0;
+    while (size_of(faces[b]) != base_size) ++b;
+    const Quad& base = faces[b];
+    std::array<std::int64_t, Table::num_corners> h{};
+    if constexpr (K == CellKind::tet) {
+      h = {base[0], base[2], base[1], -1};
+    } else if constexpr (K == CellKind::pyramid) {
+      h = {base[0], base[3], base[2], base[1], -1};
+    } else {
+      h = {base[0], base[1], base[2], -1, -1, -1};
+    }
+    if constexpr (K == CellKind::tet || K == CellKind::pyramid) {
+      // The apex: the vertex of another face off the base.
+      for (const Quad& f : faces)
+        for (int k = 0; k < size_of(f); ++k)
+          if (!contains(base, f[static_cast<std::size_t>(k)])) h.back() = f[static_cast<std::size_t>(k)];
+    } else {
+      // Corner i+3: the neighbour of corner i along a quad's edge, off the base.
+      for (int i = 0; i < 3; ++i)
+        for (const Quad& f : faces) {
+          if (size_of(f) != 4) continue;
+          for (int k = 0; k < 4; ++k) {
+            if (f[static_cast<std::size_t>(k)] != h[static_cast<std::size_t>(i)]) continue;
+            for (const std::int64_t v : {f[static_cast<std::size_t>((k + 1) % 4)], f[static_cast<std::size_t>((k + 3) % 4)]})
+              if (!contains(base, v)) {
+                if (h[static_cast<std::size_t>(i) + 3] != -1 && h[static_cast<std::size_t>(i) + 3] != v)
+                  fail("corner " + std::to_string(h[static_cast<std::size_t>(i)]) + " has more than 3 neighbours");
+                h[static_cast<std::size_t>(i) + 3] = v;
+              }
+          }
+        }
+    }
+    for (std::size_t i = 0; i < h.size(); ++i) {
+      if (h[i] < 0) fail("its faces do not close up as a " + std::string(Table::name) + "'s");
+      for (std::size_t j = 0; j < i; ++j)
+        if (h[i] == h[j]) fail("vertex " + std::to_string(h[i]) + " is two of its corners");
+    }
+    // The outward faces of that cell must be the half-faces, each once.
+    std::array<bool, Table::faces.size()> used{};
+    for (const Quad& f : faces) {
+      bool found = false, is_flipped = false;
+      for (std::size_t k = 0; k < Table::faces.size() && !found; ++k) {
+        const CellFace& face = Table::faces[k];
+        if (face.size != size_of(f)) continue;
+        Quad expected{-1, -1, -1, -1}, reversed{-1, -1, -1, -1};
+        for (int j = 0; j < face.size; ++j) {
+          expected[static_cast<std::size_t>(j)] = h[static_cast<std::size_t>(face.v[static_cast<std::size_t>(j)])];
+          reversed[static_cast<std::size_t>(face.size - 1 - j)] = expected[static_cast<std::size_t>(j)];
+        }
+        if (!used[k] && same_cycle(expected, f, face.size)) used[k] = found = true;
+        is_flipped = is_flipped || same_cycle(reversed, f, face.size);
+      }
+      if (!found)
+        fail(is_flipped ? "its half-faces are not consistently oriented"
+                        : "its faces do not close up as a " + std::string(Table::name) + "'s");
+    }
+    CellCorners<K> cell;
+    for (std::size_t i = 0; i < h.size(); ++i) cell[i] = static_cast<Index>(h[i]);
+    return cell;
   }
 
   // Corners in VTK order from 6 outward-oriented quads; throws unless they
@@ -232,7 +339,7 @@ class OvmParser {
   std::vector<std::array<std::int64_t, 2>> edges_;
   std::vector<Quad> faces_;
   std::vector<std::int64_t> face_valences_;
-  std::vector<Hex> hexes_;
+  Mesh mesh_;  // the cell blocks (points_ are moved in at the end)
 };
 
 }  // namespace

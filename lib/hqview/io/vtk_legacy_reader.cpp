@@ -9,10 +9,12 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "hqview/core/types.h"
+#include "hqview/io/cell_reading.h"
 #include "hqview/io/read_limits.h"
 #include "hqview/io/text_scanner.h"
 #include "hqview/io/vtk_cells.h"
@@ -601,49 +603,49 @@ class VtkParser {
     std::map<int, std::int64_t> skipped_by_type;
     std::map<int, std::int64_t> mislabelled_by_type;
     std::vector<std::int64_t> mislabelled_cells;
-    std::vector<Hex>& hexes = loaded.mesh.hexes;
     for (std::int64_t c = 0; c < n; ++c) {
       const int type = types_[static_cast<std::size_t>(c)];
       const std::int64_t begin = cells_.offsets[static_cast<std::size_t>(c)];
       const std::int64_t k = cells_.offsets[static_cast<std::size_t>(c) + 1] - begin;
-      const bool is_hex_type = type == vtk::kHexahedron || type == vtk::kVoxel;
-      if (is_hex_type && k != 8)
+      std::optional<CellKind> kind = vtk::volume_kind(type);
+      // An 8-point cell whose type cannot have 8 points (HexaLab loads these
+      // as hexahedra; meshes in the wild rely on it).
+      const int type_points = k != 8 ? -1 : kind ? cell_kind_num_corners(*kind) : fixed_point_count(type);
+      const bool is_mislabelled = type_points >= 0 && type_points != 8;
+      if (kind && !is_mislabelled && k != cell_kind_num_corners(*kind))
         fail_cell(c, 0,
                   "cell " + std::to_string(c) + " has type " + std::to_string(type) + " (" +
-                      (type == vtk::kVoxel ? "voxel" : "hexahedron") + ") but " + std::to_string(k) + " points");
-      // An 8-point cell whose type cannot have 8 points (HexaLab loads these as hexahedra).
-      const int type_points = is_hex_type || k != 8 ? 8 : fixed_point_count(type);
-      const bool is_mislabelled = type_points >= 0 && type_points != 8;
-      if (!is_hex_type && !is_mislabelled) {
+                      vtk::volume_type_name(type) + ") but " + std::to_string(k) + " points, expected " +
+                      std::to_string(cell_kind_num_corners(*kind)));
+      if (!kind && !is_mislabelled) {
         ++skipped_by_type[type];
         continue;
       }
       if (is_mislabelled) {
+        kind = CellKind::hex;
         ++mislabelled_by_type[type];
         mislabelled_cells.push_back(c);
       }
-      Hex hex;
-      for (int j = 0; j < 8; ++j) {
+      std::array<Index, 8> ids{};
+      const int m = static_cast<int>(k);
+      for (int j = 0; j < m; ++j) {
         const Index id = cells_.connectivity[static_cast<std::size_t>(begin + j)];
         if (id >= num_points)
           fail_cell(c, j,
                     "point id " + std::to_string(id) + " out of range [0, " + std::to_string(num_points) + ") (cell " +
                         std::to_string(c) + ")");
-        for (int i = 0; i < j; ++i)
-          if (hex[i] == id)
-            fail_cell(c, j, "point id " + std::to_string(id) + " repeated (cell " + std::to_string(c) + ")");
-        hex[j] = id;
+        ids[static_cast<std::size_t>(j)] = id;
       }
-      if (type == vtk::kVoxel) {
-        const Hex voxel = hex;
-        for (int j = 0; j < 8; ++j) hex[j] = voxel[kVoxelToHex[j]];
-      }
-      hexes.push_back(hex);
+      if (const int j = detail::first_repeated(ids.data(), m); j >= 0)
+        fail_cell(c, j,
+                  "point id " + std::to_string(ids[static_cast<std::size_t>(j)]) + " repeated (cell " +
+                      std::to_string(c) + ")");
+      detail::append_cell(loaded.mesh, *kind, ids.data(), type == vtk::kVoxel ? kVoxelToHex.data() : nullptr, c);
     }
 
     const SkippedCells skipped(skipped_by_type);
-    if (hexes.empty())
-      s_.fail_at(0, "no hexahedra" + (skipped.count > 0 ? " (" + skipped.counted("cell") + ")" : std::string()));
+    if (detail::num_volume_cells(loaded.mesh) == 0)
+      s_.fail_at(0, "no volume cells" + (skipped.count > 0 ? " (" + skipped.counted("cell") + ")" : std::string()));
     if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(s_.name(), "cell"));
     if (!mislabelled_cells.empty()) {
       constexpr std::size_t kShown = 5;

@@ -9,12 +9,16 @@
 // order; FIELD and METADATA blocks are skipped; reading stops once POINTS,
 // CELLS and CELL_TYPES are in (CELL_DATA, POINT_DATA, ... are not read).
 //
-// Cells: type 12 (VTK_HEXAHEDRON) is loaded as is; type 11 (VTK_VOXEL) is
-// reordered to hexahedron order (voxel corners 2<->3 and 6<->7). A cell with
+// Cells: types 12 (VTK_HEXAHEDRON), 10 (tetra), 13 (wedge) and 14 (pyramid)
+// are loaded as they are into their blocks (source_index: the 0-based cell
+// id); type 11 (VTK_VOXEL) is reordered to hexahedron order (voxel corners
+// 2<->3 and 6<->7). A cell of those types with another point count is an
+// error ("cell 3 has type 10 (tetra) but 5 points, expected 4"), except that
+// a cell with
 // 8 points whose type has a fixed, different point count (e.g. 10, tetra) is
 // loaded as a hexahedron with one warning naming the mislabelled cells, as
 // HexaLab does; other cells are skipped with one warning counting them and
-// listing their types. Points unused by hexahedra are kept.
+// listing their types. Points unused by any cell are kept.
 //
 // Throws ParseError "name:line: message" on malformed input (see
 // read_medit for the list). Errors inside binary data are reported at the

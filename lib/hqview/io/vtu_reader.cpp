@@ -18,6 +18,7 @@
 #endif
 
 #include "hqview/core/types.h"
+#include "hqview/io/cell_reading.h"
 #include "hqview/io/text_scanner.h"
 #include "hqview/io/vtk_cells.h"
 #include "hqview/io/xml_parser.h"
@@ -475,7 +476,7 @@ class VtuParser {
     if (base + num_points > kMaxIndexCount)
       fail(piece, "more than " + std::to_string(kMaxIndexCount) + " points in all pieces");
     check_mesh_memory(limits_, name_, piece.line, bytes_.size(), base + num_points,
-                      static_cast<std::int64_t>(hexes_.size()) + num_cells, "cell");
+                      detail::num_volume_cells(mesh_) + num_cells, "cell");
 
     const XmlElement* points = child(piece, "Points");
     if (points == nullptr) {
@@ -519,31 +520,29 @@ class VtuParser {
                                 std::to_string(begin) + ", " + std::to_string(ids.size()) + "]");
       const std::int64_t type = types[static_cast<std::size_t>(c)];
       const std::int64_t cell = num_cells_ + c;
-      if (type != vtk::kHexahedron && type != vtk::kVoxel) {
+      const std::optional<CellKind> kind = vtk::volume_kind(type);
+      if (!kind) {
         ++skipped_by_type_[type];
         begin = end;
         continue;
       }
-      if (end - begin != 8)
+      const int num_corners = cell_kind_num_corners(*kind);
+      if (end - begin != num_corners)
         fail(ids_array, "cell " + std::to_string(cell) + " has type " + std::to_string(type) + " (" +
-                            (type == vtk::kVoxel ? "voxel" : "hexahedron") + ") but " + std::to_string(end - begin) +
-                            " points");
-      Hex hex;
-      for (int j = 0; j < 8; ++j) {
+                            vtk::volume_type_name(type) + ") but " + std::to_string(end - begin) +
+                            " points, expected " + std::to_string(num_corners));
+      std::array<Index, 8> corners{};
+      for (int j = 0; j < num_corners; ++j) {
         const std::int64_t id = ids[static_cast<std::size_t>(begin + j)];
         if (id < 0 || id >= num_points)
           fail(ids_array, "point id " + std::to_string(id) + " out of range [0, " + std::to_string(num_points) +
                               ") (cell " + std::to_string(cell) + ")");
-        for (int i = 0; i < j; ++i)
-          if (hex[i] == static_cast<Index>(base + id))
-            fail(ids_array, "point id " + std::to_string(id) + " repeated (cell " + std::to_string(cell) + ")");
-        hex[j] = static_cast<Index>(base + id);
+        corners[static_cast<std::size_t>(j)] = static_cast<Index>(base + id);
       }
-      if (type == vtk::kVoxel) {
-        const Hex voxel = hex;
-        for (int j = 0; j < 8; ++j) hex[j] = voxel[kVoxelToHex[j]];
-      }
-      hexes_.push_back(hex);
+      if (const int j = detail::first_repeated(corners.data(), num_corners); j >= 0)
+        fail(ids_array, "point id " + std::to_string(corners[static_cast<std::size_t>(j)] - base) + " repeated (cell " +
+                            std::to_string(cell) + ")");
+      detail::append_cell(mesh_, *kind, corners.data(), type == vtk::kVoxel ? kVoxelToHex.data() : nullptr, cell);
       begin = end;
     }
     num_cells_ += num_cells;
@@ -551,13 +550,13 @@ class VtuParser {
 
   LoadedMesh build(const XmlElement& grid) {
     const SkippedCells skipped(skipped_by_type_);
-    if (hexes_.empty())
-      fail(grid, "no hexahedra" + (skipped.count > 0 ? " (" + skipped.counted("cell") + ")" : std::string()));
+    if (detail::num_volume_cells(mesh_) == 0)
+      fail(grid, "no volume cells" + (skipped.count > 0 ? " (" + skipped.counted("cell") + ")" : std::string()));
     LoadedMesh loaded;
     loaded.format = "vtu-" + format_;
     if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(name_, "cell"));
-    loaded.mesh.points = std::move(points_);
-    loaded.mesh.hexes = std::move(hexes_);
+    mesh_.points = std::move(points_);
+    loaded.mesh = std::move(mesh_);
     return loaded;
   }
 
@@ -572,7 +571,7 @@ class VtuParser {
   std::size_t appended_offset_ = 0;  // 0: no AppendedData
   std::string format_;
   std::vector<Vec3> points_;
-  std::vector<Hex> hexes_;
+  Mesh mesh_;  // the volume blocks (points_ are moved in at the end)
   std::int64_t num_cells_ = 0;
   std::map<std::int64_t, std::int64_t> skipped_by_type_;
 };

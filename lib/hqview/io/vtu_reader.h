@@ -11,9 +11,11 @@
 // (offset into <AppendedData encoding="raw|base64">, whose content starts
 // after its '_'). Types Int8 ... UInt64, Float32, Float64.
 //
-// Cells: type 12 (VTK_HEXAHEDRON) as is, type 11 (VTK_VOXEL) reordered to
-// hexahedron order; other cells are skipped with one warning counting them
-// and listing their types. Points unused by hexahedra are kept.
+// Cells: types 12 (VTK_HEXAHEDRON), 10, 13 and 14 as they are, type 11
+// (VTK_VOXEL) reordered to hexahedron order (source_index: the 0-based cell
+// id over all pieces); one of these with another point count is an error;
+// other cells are skipped with one warning counting them and listing their
+// types. Points unused by any cell are kept.
 //
 // Throws ParseError "name:line: message" on malformed input; errors in
 // binary data are reported at the line of their DataArray with the byte

@@ -5,14 +5,11 @@
 #include <limits>
 #include <numbers>
 
+#include "hqview/core/hex_topology.h"
 #include "hqview/quality/hex_metrics.h"
 
 namespace hq {
 namespace {
-
-// VTK_HEXAHEDRON's 12 edges.
-constexpr int kHexEdges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
-                                  {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
 
 // Edge ids of Topology::edges (sorted by (a, b)) by vertex pair.
 class EdgeIndex {

@@ -24,7 +24,7 @@ namespace {
 
 namespace SMP = CGAL::Surface_mesh_parameterization;
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+using SurfaceMesh = CGAL::Surface_mesh<Kernel::Point_3>;
 
 // As-rigid-as-possible refinement of a disk's layout (the local/global
 // iterations of Liu et al., "A local/global approach to mesh
@@ -130,18 +130,18 @@ bool arap_refine(const std::vector<Vec3>& points, const std::vector<std::vector<
 }
 
 // Whether every face of the mesh is reached from the first across edges.
-bool is_connected(const Mesh& mesh) {
+bool is_connected(const SurfaceMesh& mesh) {
   if (mesh.number_of_faces() == 0) return true;
   std::vector<char> seen(mesh.number_of_faces(), 0);
-  std::vector<Mesh::Face_index> stack{*mesh.faces().begin()};
+  std::vector<SurfaceMesh::Face_index> stack{*mesh.faces().begin()};
   seen[stack.back().idx()] = 1;
   std::size_t reached = 1;
   while (!stack.empty()) {
-    const Mesh::Face_index f = stack.back();
+    const SurfaceMesh::Face_index f = stack.back();
     stack.pop_back();
-    for (Mesh::Halfedge_index h : CGAL::halfedges_around_face(mesh.halfedge(f), mesh)) {
-      const Mesh::Face_index g = mesh.face(mesh.opposite(h));
-      if (g == Mesh::null_face() || seen[g.idx()]) continue;
+    for (SurfaceMesh::Halfedge_index h : CGAL::halfedges_around_face(mesh.halfedge(f), mesh)) {
+      const SurfaceMesh::Face_index g = mesh.face(mesh.opposite(h));
+      if (g == SurfaceMesh::null_face() || seen[g.idx()]) continue;
       seen[g.idx()] = 1;
       ++reached;
       stack.push_back(g);
@@ -228,21 +228,21 @@ bool lscm_chart_layout(const TriSurface& surface, std::span<const Index> chart, 
   // triangles, or two of the same orientation), and a vertex whose faces
   // form two fans (which add_face may create) is found by counting the faces
   // around it against its corners.
-  Mesh mesh;
-  mesh.reserve(static_cast<Mesh::size_type>(points.size()), static_cast<Mesh::size_type>(2 * polygons.size()),
-               static_cast<Mesh::size_type>(polygons.size()));
+  SurfaceMesh mesh;
+  mesh.reserve(static_cast<SurfaceMesh::size_type>(points.size()), static_cast<SurfaceMesh::size_type>(2 * polygons.size()),
+               static_cast<SurfaceMesh::size_type>(polygons.size()));
   for (const Kernel::Point_3& p : points) mesh.add_vertex(p);
   {
-    std::vector<Mesh::Vertex_index> face(3);
+    std::vector<SurfaceMesh::Vertex_index> face(3);
     for (const auto& polygon : polygons) {
-      for (std::size_t k = 0; k < 3; ++k) face[k] = Mesh::Vertex_index(static_cast<Mesh::size_type>(polygon[k]));
-      if (CGAL::Euler::add_face(face, mesh) == Mesh::null_face()) return false;
+      for (std::size_t k = 0; k < 3; ++k) face[k] = SurfaceMesh::Vertex_index(static_cast<SurfaceMesh::size_type>(polygon[k]));
+      if (CGAL::Euler::add_face(face, mesh) == SurfaceMesh::null_face()) return false;
     }
     std::vector<std::size_t> corners_at(ids.size(), 0);
     for (std::size_t c = 0; c < nc; ++c) ++corners_at[vertex_of[c]];
-    for (Mesh::Vertex_index v : mesh.vertices()) {
+    for (SurfaceMesh::Vertex_index v : mesh.vertices()) {
       std::size_t faces = 0;
-      for (Mesh::Halfedge_index h : CGAL::halfedges_around_target(mesh.halfedge(v), mesh))
+      for (SurfaceMesh::Halfedge_index h : CGAL::halfedges_around_target(mesh.halfedge(v), mesh))
         faces += mesh.is_border(h) ? 0 : 1;
       if (faces != corners_at[v.idx()]) return false;
     }
@@ -253,7 +253,7 @@ bool lscm_chart_layout(const TriSurface& surface, std::span<const Index> chart, 
   const long euler = static_cast<long>(mesh.number_of_vertices()) - static_cast<long>(mesh.number_of_edges()) +
                      static_cast<long>(mesh.number_of_faces());
   if (euler != 1) return false;
-  Mesh::Halfedge_index border;
+  SurfaceMesh::Halfedge_index border;
   int cycles = 0;
   std::vector<char> seen(mesh.number_of_halfedges(), 0);
   for (auto h : mesh.halfedges()) {
@@ -264,24 +264,24 @@ bool lscm_chart_layout(const TriSurface& surface, std::span<const Index> chart, 
   }
   if (cycles != 1) return false;
 
-  auto uv_map = mesh.add_property_map<Mesh::Vertex_index, Kernel::Point_2>("v:uv").first;
+  auto uv_map = mesh.add_property_map<SurfaceMesh::Vertex_index, Kernel::Point_2>("v:uv").first;
   // SMP::parameterize numbers the vertices of the border's component (by a
   // search that keeps a std::set of faces), which for a connected chart is
   // every vertex in index order: a connected chart (checked by a walk over
   // face neighbours) is handed that numbering directly, the same system.
   if (is_connected(mesh)) {
-    auto index_map = mesh.add_property_map<Mesh::Vertex_index, int>("v:lscm_index", 0).first;
-    for (Mesh::Vertex_index v : mesh.vertices()) index_map[v] = static_cast<int>(v.idx());
-    auto parameterized = mesh.add_property_map<Mesh::Vertex_index, bool>("v:lscm_parameterized", false).first;
-    if (SMP::LSCM_parameterizer_3<Mesh>().parameterize(mesh, border, uv_map, index_map, parameterized) != SMP::OK)
+    auto index_map = mesh.add_property_map<SurfaceMesh::Vertex_index, int>("v:lscm_index", 0).first;
+    for (SurfaceMesh::Vertex_index v : mesh.vertices()) index_map[v] = static_cast<int>(v.idx());
+    auto parameterized = mesh.add_property_map<SurfaceMesh::Vertex_index, bool>("v:lscm_parameterized", false).first;
+    if (SMP::LSCM_parameterizer_3<SurfaceMesh>().parameterize(mesh, border, uv_map, index_map, parameterized) != SMP::OK)
       return false;
-  } else if (SMP::parameterize(mesh, SMP::LSCM_parameterizer_3<Mesh>(), border, uv_map) != SMP::OK) {
+  } else if (SMP::parameterize(mesh, SMP::LSCM_parameterizer_3<SurfaceMesh>(), border, uv_map) != SMP::OK) {
     return false;
   }
 
   std::vector<std::array<double, 2>> vertex_uv(ids.size());
   for (std::size_t v = 0; v < ids.size(); ++v) {
-    const Kernel::Point_2& p = uv_map[Mesh::Vertex_index(static_cast<Mesh::size_type>(v))];
+    const Kernel::Point_2& p = uv_map[SurfaceMesh::Vertex_index(static_cast<SurfaceMesh::size_type>(v))];
     vertex_uv[v] = {p.x(), p.y()};
   }
   // Corners of the chart triangles, scaled to the chart's 3D area.
