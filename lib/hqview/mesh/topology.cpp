@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
+#include "hqview/core/cell_kinds.h"
 #include "hqview/core/hex_topology.h"
 
 namespace hq {
@@ -161,7 +162,217 @@ void build_edges(const HexMesh& mesh, Topology& topo) {
   }
 }
 
+// ---- Across kinds ----
+
+Tri sorted_tri(Tri t) {
+  if (t[0] > t[1]) std::swap(t[0], t[1]);
+  if (t[1] > t[2]) std::swap(t[1], t[2]);
+  if (t[0] > t[1]) std::swap(t[0], t[1]);
+  return t;
+}
+
+// One face of a non-hex cell: its sorted ids (the key), its corners as the
+// cell's table gives them (outward), and the cell id.
+template <class Face>
+struct FaceUse {
+  Face key;
+  Face face;
+  Index cell;
+};
+
+// Calls on_quad(corners, cell) / on_tri(corners, cell) for every face of
+// every cell of a block of kind K, from the kind's CellKindTable.
+template <CellKind K, class Cells, class OnQuad, class OnTri>
+void for_each_cell_face(const Cells& cells, Index first_id, OnQuad&& on_quad, OnTri&& on_tri) {
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    const auto& cell = cells[c];
+    const Index id = first_id + static_cast<Index>(c);
+    for (const CellFace& f : CellKindTable<K>::faces) {
+      if (f.size == 4)
+        on_quad(Quad{cell[f.v[0]], cell[f.v[1]], cell[f.v[2]], cell[f.v[3]]}, id);
+      else
+        on_tri(Tri{cell[f.v[0]], cell[f.v[1]], cell[f.v[2]]}, id);
+    }
+  }
+}
+
+// Calls f(a, b) for every edge of every cell of a block of kind K.
+template <CellKind K, class Cells, class F>
+void for_each_cell_edge(const Cells& cells, F&& f) {
+  for (const auto& cell : cells)
+    for (const auto& e : CellKindTable<K>::edges) f(cell[e[0]], cell[e[1]]);
+}
+
+// Sorts uses by key (then cell, then position: deterministic) and returns
+// the start of each group of equal keys, plus a final end.
+template <class Face>
+std::vector<std::size_t> group_by_key(std::vector<FaceUse<Face>>& uses) {
+  std::sort(uses.begin(), uses.end(), [](const FaceUse<Face>& a, const FaceUse<Face>& b) {
+    return a.key != b.key ? a.key < b.key : a.cell != b.cell ? a.cell < b.cell : a.face < b.face;
+  });
+  std::vector<std::size_t> starts;
+  for (std::size_t i = 0; i < uses.size(); ++i)
+    if (i == 0 || uses[i].key != uses[i - 1].key) starts.push_back(i);
+  starts.push_back(uses.size());
+  return starts;
+}
+
+// The hex face whose sorted ids are `key`, or kNoIndex (topo.faces is
+// ordered by sorted ids).
+Index find_hex_face(const Topology& topo, const Quad& key) {
+  std::size_t lo = 0, hi = topo.faces.size();
+  while (lo < hi) {
+    const std::size_t mid = lo + (hi - lo) / 2;
+    if (sorted_quad(topo.faces[mid]) < key) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo < topo.faces.size() && sorted_quad(topo.faces[lo]) == key ? static_cast<Index>(lo) : kNoIndex;
+}
+
+// Matches the faces of the non-hex cells against each other and against the
+// hex faces; finds the non-conforming interfaces; rebuilds the boundary
+// (hex part filtered, non-hex faces added), boundary vertices, unreferenced
+// vertices and the edges' touches_non_hex flags.
+void match_across_kinds(const HexMesh& mesh, const NonHexBlocks& others, Topology& topo) {
+  const auto num_hexes = static_cast<Index>(mesh.hexes.size());
+  const Index first_tet = num_hexes;
+  const Index first_wedge = first_tet + static_cast<Index>(others.tets.size());
+  const Index first_pyramid = first_wedge + static_cast<Index>(others.wedges.size());
+
+  std::vector<FaceUse<Quad>> quads;
+  std::vector<FaceUse<Tri>> tris;
+  const auto on_quad = [&](const Quad& q, Index cell) { quads.push_back({sorted_quad(q), q, cell}); };
+  const auto on_tri = [&](const Tri& t, Index cell) { tris.push_back({sorted_tri(t), t, cell}); };
+  for_each_cell_face<CellKind::tet>(others.tets, first_tet, on_quad, on_tri);
+  for_each_cell_face<CellKind::wedge>(others.wedges, first_wedge, on_quad, on_tri);
+  for_each_cell_face<CellKind::pyramid>(others.pyramids, first_pyramid, on_quad, on_tri);
+  const std::vector<std::size_t> quad_groups = group_by_key(quads);
+  const std::vector<std::size_t> tri_groups = group_by_key(tris);
+
+  // Hex faces matched by a non-hex quad (or part of a non-conforming
+  // interface) leave the boundary.
+  std::vector<char> hex_face_covered(topo.faces.size(), 0);
+  // Non-hex quads used once over all kinds: candidates for the boundary.
+  std::vector<std::size_t> lone_quads;  // indices into quads
+  for (std::size_t g = 0; g + 1 < quad_groups.size(); ++g) {
+    const std::size_t begin = quad_groups[g], end = quad_groups[g + 1];
+    const Index hex_face = find_hex_face(topo, quads[begin].key);
+    const Index hex_uses = hex_face == kNoIndex ? 0 : topo.num_face_hexes(hex_face);
+    const auto total = static_cast<Index>(end - begin) + hex_uses;
+    if (hex_face != kNoIndex) hex_face_covered[static_cast<std::size_t>(hex_face)] = 1;
+    if (total == 1) lone_quads.push_back(begin);
+    if (total > 2) ++topo.num_non_manifold_faces_non_hex;
+  }
+  // Triangles used once: candidates for the boundary or an interface.
+  std::vector<std::size_t> lone_tris;  // indices into tris, ascending key
+  for (std::size_t g = 0; g + 1 < tri_groups.size(); ++g) {
+    const std::size_t count = tri_groups[g + 1] - tri_groups[g];
+    if (count == 1) lone_tris.push_back(tri_groups[g]);
+    if (count > 2) ++topo.num_non_manifold_faces_non_hex;
+  }
+  std::vector<char> tri_consumed(lone_tris.size(), 0);
+  const auto find_lone_tri = [&](const Tri& t) -> std::ptrdiff_t {
+    const Tri key = sorted_tri(t);
+    const auto it = std::lower_bound(lone_tris.begin(), lone_tris.end(), key,
+                                     [&](std::size_t i, const Tri& k) { return tris[i].key < k; });
+    if (it == lone_tris.end() || tris[*it].key != key || tri_consumed[static_cast<std::size_t>(it - lone_tris.begin())])
+      return -1;
+    return it - lone_tris.begin();
+  };
+  // A lone quad whose two halves along one diagonal are lone triangles.
+  const auto try_non_conforming = [&](const Quad& q, Index quad_cell) {
+    if (lone_tris.empty()) return false;
+    const std::array<std::array<Tri, 2>, 2> splits = {{{{{q[0], q[1], q[2]}, {q[0], q[2], q[3]}}},
+                                                       {{{q[0], q[1], q[3]}, {q[1], q[2], q[3]}}}}};
+    for (const auto& split : splits) {
+      const std::ptrdiff_t a = find_lone_tri(split[0]), b = find_lone_tri(split[1]);
+      if (a < 0 || b < 0) continue;
+      tri_consumed[static_cast<std::size_t>(a)] = tri_consumed[static_cast<std::size_t>(b)] = 1;
+      const FaceUse<Tri>& ta = tris[lone_tris[static_cast<std::size_t>(a)]];
+      const FaceUse<Tri>& tb = tris[lone_tris[static_cast<std::size_t>(b)]];
+      NonConformingFace nc{q, quad_cell};
+      const bool swap = tb.cell < ta.cell;
+      nc.triangle_cells = swap ? std::array<Index, 2>{tb.cell, ta.cell} : std::array<Index, 2>{ta.cell, tb.cell};
+      nc.triangles = swap ? std::array<Tri, 2>{tb.face, ta.face} : std::array<Tri, 2>{ta.face, tb.face};
+      topo.non_conforming_faces.push_back(nc);
+      return true;
+    }
+    return false;
+  };
+  // Hex boundary quads first (face ids ascend with sorted ids), then the
+  // non-hex lone quads; sorted by the quad's ids at the end.
+  std::vector<Index> hex_boundary;
+  hex_boundary.reserve(topo.boundary_faces.size());
+  for (Index f : topo.boundary_faces) {
+    const auto fi = static_cast<std::size_t>(f);
+    if (hex_face_covered[fi]) continue;
+    if (try_non_conforming(topo.faces[fi], topo.face_hexes[static_cast<std::size_t>(topo.face_hex_offsets[fi])]))
+      continue;
+    hex_boundary.push_back(f);
+  }
+  topo.boundary_faces = std::move(hex_boundary);
+  for (std::size_t i : lone_quads) {
+    if (try_non_conforming(quads[i].face, quads[i].cell)) continue;
+    topo.boundary_quads_non_hex.push_back(quads[i].face);
+    topo.boundary_quad_non_hex_cells.push_back(quads[i].cell);
+  }
+  std::sort(topo.non_conforming_faces.begin(), topo.non_conforming_faces.end(),
+            [](const NonConformingFace& a, const NonConformingFace& b) {
+              return sorted_quad(a.quad) < sorted_quad(b.quad);
+            });
+  for (std::size_t k = 0; k < lone_tris.size(); ++k) {
+    if (tri_consumed[k]) continue;
+    topo.boundary_triangles.push_back(tris[lone_tris[k]].face);
+    topo.boundary_triangle_cells.push_back(tris[lone_tris[k]].cell);
+  }
+
+  // Boundary vertices over every boundary face.
+  const std::size_t nv = mesh.points.size();
+  topo.is_boundary_vertex.assign(nv, 0);
+  const auto mark = [&](const auto& face) {
+    for (Index v : face) topo.is_boundary_vertex[static_cast<std::size_t>(v)] = 1;
+  };
+  for (Index f : topo.boundary_faces) mark(topo.faces[static_cast<std::size_t>(f)]);
+  for (const Quad& q : topo.boundary_quads_non_hex) mark(q);
+  for (const Tri& t : topo.boundary_triangles) mark(t);
+  topo.boundary_vertices.clear();
+  for (std::size_t v = 0; v < nv; ++v)
+    if (topo.is_boundary_vertex[v]) topo.boundary_vertices.push_back(static_cast<Index>(v));
+
+  // Vertices used by no cell of any kind.
+  std::vector<char> used(nv, 0);
+  const auto use = [&](const auto& cells) {
+    for (const auto& cell : cells)
+      for (Index v : cell) used[static_cast<std::size_t>(v)] = 1;
+  };
+  use(others.tets);
+  use(others.wedges);
+  use(others.pyramids);
+  std::erase_if(topo.unreferenced_vertices, [&](Index v) { return used[static_cast<std::size_t>(v)] != 0; });
+
+  // The hex edges that are also edges of a non-hex cell.
+  std::vector<Edge> non_hex_edges;
+  const auto add_edge = [&](Index a, Index b) { non_hex_edges.push_back(a < b ? Edge{a, b} : Edge{b, a}); };
+  for_each_cell_edge<CellKind::tet>(others.tets, add_edge);
+  for_each_cell_edge<CellKind::wedge>(others.wedges, add_edge);
+  for_each_cell_edge<CellKind::pyramid>(others.pyramids, add_edge);
+  std::sort(non_hex_edges.begin(), non_hex_edges.end());
+  non_hex_edges.erase(std::unique(non_hex_edges.begin(), non_hex_edges.end()), non_hex_edges.end());
+  topo.edge_touches_non_hex.assign(topo.edges.size(), 0);
+  std::size_t j = 0;
+  for (std::size_t i = 0; i < topo.edges.size(); ++i) {
+    while (j < non_hex_edges.size() && non_hex_edges[j] < topo.edges[i]) ++j;
+    if (j < non_hex_edges.size() && non_hex_edges[j] == topo.edges[i]) topo.edge_touches_non_hex[i] = 1;
+  }
+}
+
 }  // namespace
+
+Topology build_topology(const HexMesh& mesh, const NonHexBlocks& others) {
+  Topology topo = build_topology(mesh);
+  if (!others.empty()) match_across_kinds(mesh, others, topo);
+  return topo;
+}
 
 Topology build_topology(const HexMesh& mesh) {
   Topology topo;
