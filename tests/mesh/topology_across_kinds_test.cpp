@@ -199,6 +199,8 @@ TEST(TopologyAcrossKinds, QuadAgainstTwoTrianglesIsNonConforming) {
   const NonConformingFace& nc = topo.non_conforming_faces[0];
   EXPECT_EQ(nc.quad_cell, 0);
   EXPECT_EQ(nc.triangle_cells, (std::array<Index, 2>{1, 2}));
+  EXPECT_EQ(nc.quad_kind, CellKind::hex);
+  EXPECT_EQ(nc.triangle_kinds, (std::array<CellKind, 2>{CellKind::tet, CellKind::tet}));
   EXPECT_EQ(nc.quad, (Quad{4, 5, 6, 7}));  // the hex's top face, outward (+z)
   EXPECT_EQ(topo.boundary_faces.size(), 5u);
   // 2 x 4 faces: 4-6-apex shared by the tets, 4-5-6 and 4-6-7 on the quad.

@@ -178,6 +178,7 @@ struct FaceUse {
   Face key;
   Face face;
   Index cell;
+  CellKind kind;
 };
 
 // Calls on_quad(corners, cell) / on_tri(corners, cell) for every face of
@@ -234,6 +235,7 @@ Index find_hex_face(const Topology& topo, const Quad& key) {
 // (hex part filtered, non-hex faces added), boundary vertices, unreferenced
 // vertices and the edges' touches_non_hex flags.
 void match_across_kinds(const HexMesh& mesh, const NonHexBlocks& others, Topology& topo) {
+  topo.across_kinds = true;
   const auto num_hexes = static_cast<Index>(mesh.hexes.size());
   const Index first_tet = num_hexes;
   const Index first_wedge = first_tet + static_cast<Index>(others.tets.size());
@@ -241,11 +243,16 @@ void match_across_kinds(const HexMesh& mesh, const NonHexBlocks& others, Topolog
 
   std::vector<FaceUse<Quad>> quads;
   std::vector<FaceUse<Tri>> tris;
-  const auto on_quad = [&](const Quad& q, Index cell) { quads.push_back({sorted_quad(q), q, cell}); };
-  const auto on_tri = [&](const Tri& t, Index cell) { tris.push_back({sorted_tri(t), t, cell}); };
-  for_each_cell_face<CellKind::tet>(others.tets, first_tet, on_quad, on_tri);
-  for_each_cell_face<CellKind::wedge>(others.wedges, first_wedge, on_quad, on_tri);
-  for_each_cell_face<CellKind::pyramid>(others.pyramids, first_pyramid, on_quad, on_tri);
+  const auto collect = [&](CellKind kind) {
+    return std::pair{[&, kind](const Quad& q, Index cell) { quads.push_back({sorted_quad(q), q, cell, kind}); },
+                     [&, kind](const Tri& t, Index cell) { tris.push_back({sorted_tri(t), t, cell, kind}); }};
+  };
+  const auto [tet_quad, tet_tri] = collect(CellKind::tet);
+  for_each_cell_face<CellKind::tet>(others.tets, first_tet, tet_quad, tet_tri);
+  const auto [wedge_quad, wedge_tri] = collect(CellKind::wedge);
+  for_each_cell_face<CellKind::wedge>(others.wedges, first_wedge, wedge_quad, wedge_tri);
+  const auto [pyramid_quad, pyramid_tri] = collect(CellKind::pyramid);
+  for_each_cell_face<CellKind::pyramid>(others.pyramids, first_pyramid, pyramid_quad, pyramid_tri);
   const std::vector<std::size_t> quad_groups = group_by_key(quads);
   const std::vector<std::size_t> tri_groups = group_by_key(tris);
 
@@ -280,7 +287,7 @@ void match_across_kinds(const HexMesh& mesh, const NonHexBlocks& others, Topolog
     return it - lone_tris.begin();
   };
   // A lone quad whose two halves along one diagonal are lone triangles.
-  const auto try_non_conforming = [&](const Quad& q, Index quad_cell) {
+  const auto try_non_conforming = [&](const Quad& q, Index quad_cell, CellKind quad_kind) {
     if (lone_tris.empty()) return false;
     const std::array<std::array<Tri, 2>, 2> splits = {{{{{q[0], q[1], q[2]}, {q[0], q[2], q[3]}}},
                                                        {{{q[0], q[1], q[3]}, {q[1], q[2], q[3]}}}}};
@@ -290,9 +297,10 @@ void match_across_kinds(const HexMesh& mesh, const NonHexBlocks& others, Topolog
       tri_consumed[static_cast<std::size_t>(a)] = tri_consumed[static_cast<std::size_t>(b)] = 1;
       const FaceUse<Tri>& ta = tris[lone_tris[static_cast<std::size_t>(a)]];
       const FaceUse<Tri>& tb = tris[lone_tris[static_cast<std::size_t>(b)]];
-      NonConformingFace nc{q, quad_cell};
+      NonConformingFace nc{q, quad_cell, quad_kind};
       const bool swap = tb.cell < ta.cell;
       nc.triangle_cells = swap ? std::array<Index, 2>{tb.cell, ta.cell} : std::array<Index, 2>{ta.cell, tb.cell};
+      nc.triangle_kinds = swap ? std::array<CellKind, 2>{tb.kind, ta.kind} : std::array<CellKind, 2>{ta.kind, tb.kind};
       nc.triangles = swap ? std::array<Tri, 2>{tb.face, ta.face} : std::array<Tri, 2>{ta.face, tb.face};
       topo.non_conforming_faces.push_back(nc);
       return true;
@@ -306,13 +314,14 @@ void match_across_kinds(const HexMesh& mesh, const NonHexBlocks& others, Topolog
   for (Index f : topo.boundary_faces) {
     const auto fi = static_cast<std::size_t>(f);
     if (hex_face_covered[fi]) continue;
-    if (try_non_conforming(topo.faces[fi], topo.face_hexes[static_cast<std::size_t>(topo.face_hex_offsets[fi])]))
+    if (try_non_conforming(topo.faces[fi], topo.face_hexes[static_cast<std::size_t>(topo.face_hex_offsets[fi])],
+                           CellKind::hex))
       continue;
     hex_boundary.push_back(f);
   }
   topo.boundary_faces = std::move(hex_boundary);
   for (std::size_t i : lone_quads) {
-    if (try_non_conforming(quads[i].face, quads[i].cell)) continue;
+    if (try_non_conforming(quads[i].face, quads[i].cell, quads[i].kind)) continue;
     topo.boundary_quads_non_hex.push_back(quads[i].face);
     topo.boundary_quad_non_hex_cells.push_back(quads[i].cell);
   }

@@ -15,6 +15,7 @@
 #include <span>
 #include <vector>
 
+#include "hqview/core/cell_kinds.h"
 #include "hqview/core/types.h"
 #include "hqview/core/untouched_vector.h"
 #include "hqview/mesh/hex_mesh.h"
@@ -42,7 +43,9 @@ struct NonHexBlocks {
 struct NonConformingFace {
   Quad quad;                         // outward from quad_cell, in its corner order
   Index quad_cell = kNoIndex;
+  CellKind quad_kind = CellKind::hex;
   std::array<Index, 2> triangle_cells{kNoIndex, kNoIndex};  // ascending
+  std::array<CellKind, 2> triangle_kinds{CellKind::tet, CellKind::tet};
   std::array<Tri, 2> triangles{};    // outward from their cells
 };
 
@@ -70,6 +73,9 @@ struct Topology {
   std::vector<Index> unreferenced_vertices;  // vertices used by no cell (of any kind), ascending
 
   // ---- Across kinds (all empty for a pure-hex mesh) ----
+  // Built with non-hex volume cells (build_topology(mesh, others), others
+  // not empty).
+  bool across_kinds = false;
   // The boundary faces of non-hex cells (used once over all kinds), outward,
   // in their cell's corner order, ordered by sorted vertex ids; with the cell
   // id each comes from. The whole boundary is boundary_faces (hex quads) +
