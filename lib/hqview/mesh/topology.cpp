@@ -170,52 +170,113 @@ Tri sorted_tri(Tri t) {
   if (t[0] > t[1]) std::swap(t[0], t[1]);
   return t;
 }
+Quad sorted_face(const Quad& q) { return sorted_quad(q); }
+Tri sorted_face(const Tri& t) { return sorted_tri(t); }
 
-// One face of a non-hex cell: its sorted ids (the key), its corners as the
-// cell's table gives them (outward), and the cell id.
-template <class Face>
-struct FaceUse {
-  Face key;
-  Face face;
-  Index cell;
+// The faces with N corners of one non-hex block, as a run of half-faces:
+// half-face `begin + per_cell * c + i` is local face faces[i] of the
+// block's cell c (cell id first_cell + c).
+struct FaceRun {
   CellKind kind;
+  std::size_t begin;
+  Index first_cell;
+  int per_cell;
+  std::array<int, 5> faces;
 };
 
-// Calls on_quad(corners, cell) / on_tri(corners, cell) for every face of
-// every cell of a block of kind K, from the kind's CellKindTable.
-template <CellKind K, class Cells, class OnQuad, class OnTri>
-void for_each_cell_face(const Cells& cells, Index first_id, OnQuad&& on_quad, OnTri&& on_tri) {
-  for (std::size_t c = 0; c < cells.size(); ++c) {
-    const auto& cell = cells[c];
-    const Index id = first_id + static_cast<Index>(c);
-    for (const CellFace& f : CellKindTable<K>::faces) {
-      if (f.size == 4)
-        on_quad(Quad{cell[f.v[0]], cell[f.v[1]], cell[f.v[2]], cell[f.v[3]]}, id);
-      else
-        on_tri(Tri{cell[f.v[0]], cell[f.v[1]], cell[f.v[2]]}, id);
-    }
+// Every N-cornered face of the non-hex cells (half-faces), grouped by their
+// sorted vertex ids: compact (a key per half-face; corners and cells are
+// decoded from the runs), linear (bucketed by the smallest id, as the hex
+// faces, then each small bucket sorted in parallel), deterministic (ties in
+// half-face order: cell, then local face).
+template <int N>
+struct HalfFaces {
+  using Face = std::array<Index, N>;
+  const NonHexBlocks* blocks = nullptr;
+  std::vector<Face> keys;          // sorted ids, by half-face
+  std::vector<FaceRun> runs;
+  std::vector<Index> order;        // half-faces by key, then half-face
+  std::vector<std::size_t> groups; // starts of equal keys in `order`, then order.size()
+
+  template <CellKind K, class Cells>
+  void add(const Cells& cells, Index first_cell) {
+    FaceRun run{K, keys.size(), first_cell, 0, {}};
+    const auto& faces = CellKindTable<K>::faces;
+    for (int f = 0; f < static_cast<int>(faces.size()); ++f)
+      if (faces[static_cast<std::size_t>(f)].size == N) run.faces[static_cast<std::size_t>(run.per_cell++)] = f;
+    if (run.per_cell == 0 || cells.empty()) return;
+    runs.push_back(run);
+    const auto per_cell = static_cast<std::size_t>(run.per_cell);
+    keys.resize(run.begin + cells.size() * per_cell);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size()), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t c = r.begin(); c != r.end(); ++c)
+        for (std::size_t i = 0; i < per_cell; ++i) {
+          const CellFace& face = faces[static_cast<std::size_t>(run.faces[i])];
+          Face key;
+          for (int j = 0; j < N; ++j)
+            key[static_cast<std::size_t>(j)] = cells[c][static_cast<std::size_t>(face.v[static_cast<std::size_t>(j)])];
+          keys[run.begin + c * per_cell + i] = sorted_face(key);
+        }
+    });
   }
-}
+
+  void group(std::size_t num_vertices) {
+    std::vector<Index> offsets;
+    bucket_by_key(
+        keys.size(), num_vertices, [&](std::size_t h) { return keys[h][0]; }, offsets, order);
+    const auto less = [&](Index a, Index b) {
+      const Face &x = keys[static_cast<std::size_t>(a)], &y = keys[static_cast<std::size_t>(b)];
+      return x != y ? x < y : a < b;
+    };
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_vertices), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t v = r.begin(); v != r.end(); ++v)
+        if (offsets[v + 1] - offsets[v] > 1) std::sort(order.begin() + offsets[v], order.begin() + offsets[v + 1], less);
+    });
+    for (std::size_t i = 0; i < order.size(); ++i)
+      if (i == 0 || key(order[i]) != key(order[i - 1])) groups.push_back(i);
+    groups.push_back(order.size());
+  }
+
+  const Face& key(Index h) const { return keys[static_cast<std::size_t>(h)]; }
+  std::size_t num_groups() const { return groups.empty() ? 0 : groups.size() - 1; }
+  std::size_t group_size(std::size_t g) const { return groups[g + 1] - groups[g]; }
+  Index first_of(std::size_t g) const { return order[groups[g]]; }
+
+  const FaceRun& run_of(Index h) const {
+    std::size_t r = 0;
+    while (r + 1 < runs.size() && runs[r + 1].begin <= static_cast<std::size_t>(h)) ++r;
+    return runs[r];
+  }
+  // The cell id, kind and outward corners of half-face h.
+  Index cell(Index h) const {
+    const FaceRun& run = run_of(h);
+    return run.first_cell + static_cast<Index>((static_cast<std::size_t>(h) - run.begin) / static_cast<std::size_t>(run.per_cell));
+  }
+  CellKind kind(Index h) const { return run_of(h).kind; }
+  Face corners(Index h) const {
+    const FaceRun& run = run_of(h);
+    const std::size_t local = static_cast<std::size_t>(h) - run.begin;
+    const std::size_t c = local / static_cast<std::size_t>(run.per_cell);
+    const int f = run.faces[local % static_cast<std::size_t>(run.per_cell)];
+    Face out{};
+    const auto fill = [&](const auto& corners, const CellFace& face) {
+      for (int j = 0; j < N; ++j) out[static_cast<std::size_t>(j)] = corners[static_cast<std::size_t>(face.v[static_cast<std::size_t>(j)])];
+    };
+    if (run.kind == CellKind::tet)
+      fill(blocks->tets[c], CellKindTable<CellKind::tet>::faces[static_cast<std::size_t>(f)]);
+    else if (run.kind == CellKind::wedge)
+      fill(blocks->wedges[c], CellKindTable<CellKind::wedge>::faces[static_cast<std::size_t>(f)]);
+    else
+      fill(blocks->pyramids[c], CellKindTable<CellKind::pyramid>::faces[static_cast<std::size_t>(f)]);
+    return out;
+  }
+};
 
 // Calls f(a, b) for every edge of every cell of a block of kind K.
 template <CellKind K, class Cells, class F>
 void for_each_cell_edge(const Cells& cells, F&& f) {
   for (const auto& cell : cells)
     for (const auto& e : CellKindTable<K>::edges) f(cell[e[0]], cell[e[1]]);
-}
-
-// Sorts uses by key (then cell, then position: deterministic) and returns
-// the start of each group of equal keys, plus a final end.
-template <class Face>
-std::vector<std::size_t> group_by_key(std::vector<FaceUse<Face>>& uses) {
-  std::sort(uses.begin(), uses.end(), [](const FaceUse<Face>& a, const FaceUse<Face>& b) {
-    return a.key != b.key ? a.key < b.key : a.cell != b.cell ? a.cell < b.cell : a.face < b.face;
-  });
-  std::vector<std::size_t> starts;
-  for (std::size_t i = 0; i < uses.size(); ++i)
-    if (i == 0 || uses[i].key != uses[i - 1].key) starts.push_back(i);
-  starts.push_back(uses.size());
-  return starts;
 }
 
 // The hex face whose sorted ids are `key`, or kNoIndex (topo.faces is
@@ -236,53 +297,47 @@ Index find_hex_face(const Topology& topo, const Quad& key) {
 // vertices and the edges' touches_non_hex flags.
 void match_across_kinds(const HexMesh& mesh, const NonHexBlocks& others, Topology& topo) {
   topo.across_kinds = true;
+  const std::size_t nv = mesh.points.size();
   const auto num_hexes = static_cast<Index>(mesh.hexes.size());
   const Index first_tet = num_hexes;
   const Index first_wedge = first_tet + static_cast<Index>(others.tets.size());
   const Index first_pyramid = first_wedge + static_cast<Index>(others.wedges.size());
 
-  std::vector<FaceUse<Quad>> quads;
-  std::vector<FaceUse<Tri>> tris;
-  const auto collect = [&](CellKind kind) {
-    return std::pair{[&, kind](const Quad& q, Index cell) { quads.push_back({sorted_quad(q), q, cell, kind}); },
-                     [&, kind](const Tri& t, Index cell) { tris.push_back({sorted_tri(t), t, cell, kind}); }};
-  };
-  const auto [tet_quad, tet_tri] = collect(CellKind::tet);
-  for_each_cell_face<CellKind::tet>(others.tets, first_tet, tet_quad, tet_tri);
-  const auto [wedge_quad, wedge_tri] = collect(CellKind::wedge);
-  for_each_cell_face<CellKind::wedge>(others.wedges, first_wedge, wedge_quad, wedge_tri);
-  const auto [pyramid_quad, pyramid_tri] = collect(CellKind::pyramid);
-  for_each_cell_face<CellKind::pyramid>(others.pyramids, first_pyramid, pyramid_quad, pyramid_tri);
-  const std::vector<std::size_t> quad_groups = group_by_key(quads);
-  const std::vector<std::size_t> tri_groups = group_by_key(tris);
+  HalfFaces<4> quads;
+  HalfFaces<3> tris;
+  quads.blocks = tris.blocks = &others;
+  quads.add<CellKind::wedge>(others.wedges, first_wedge);
+  quads.add<CellKind::pyramid>(others.pyramids, first_pyramid);
+  tris.add<CellKind::tet>(others.tets, first_tet);
+  tris.add<CellKind::wedge>(others.wedges, first_wedge);
+  tris.add<CellKind::pyramid>(others.pyramids, first_pyramid);
+  tbb::parallel_invoke([&] { quads.group(nv); }, [&] { tris.group(nv); });
 
   // Hex faces matched by a non-hex quad (or part of a non-conforming
   // interface) leave the boundary.
   std::vector<char> hex_face_covered(topo.faces.size(), 0);
   // Non-hex quads used once over all kinds: candidates for the boundary.
-  std::vector<std::size_t> lone_quads;  // indices into quads
-  for (std::size_t g = 0; g + 1 < quad_groups.size(); ++g) {
-    const std::size_t begin = quad_groups[g], end = quad_groups[g + 1];
-    const Index hex_face = find_hex_face(topo, quads[begin].key);
+  std::vector<Index> lone_quads;  // half-faces, ascending key
+  for (std::size_t g = 0; g < quads.num_groups(); ++g) {
+    const Index hex_face = find_hex_face(topo, quads.key(quads.first_of(g)));
     const Index hex_uses = hex_face == kNoIndex ? 0 : topo.num_face_hexes(hex_face);
-    const auto total = static_cast<Index>(end - begin) + hex_uses;
+    const auto total = static_cast<Index>(quads.group_size(g)) + hex_uses;
     if (hex_face != kNoIndex) hex_face_covered[static_cast<std::size_t>(hex_face)] = 1;
-    if (total == 1) lone_quads.push_back(begin);
+    if (total == 1) lone_quads.push_back(quads.first_of(g));
     if (total > 2) ++topo.num_non_manifold_faces_non_hex;
   }
   // Triangles used once: candidates for the boundary or an interface.
-  std::vector<std::size_t> lone_tris;  // indices into tris, ascending key
-  for (std::size_t g = 0; g + 1 < tri_groups.size(); ++g) {
-    const std::size_t count = tri_groups[g + 1] - tri_groups[g];
-    if (count == 1) lone_tris.push_back(tri_groups[g]);
-    if (count > 2) ++topo.num_non_manifold_faces_non_hex;
+  std::vector<Index> lone_tris;  // half-faces, ascending key
+  for (std::size_t g = 0; g < tris.num_groups(); ++g) {
+    if (tris.group_size(g) == 1) lone_tris.push_back(tris.first_of(g));
+    if (tris.group_size(g) > 2) ++topo.num_non_manifold_faces_non_hex;
   }
   std::vector<char> tri_consumed(lone_tris.size(), 0);
   const auto find_lone_tri = [&](const Tri& t) -> std::ptrdiff_t {
     const Tri key = sorted_tri(t);
     const auto it = std::lower_bound(lone_tris.begin(), lone_tris.end(), key,
-                                     [&](std::size_t i, const Tri& k) { return tris[i].key < k; });
-    if (it == lone_tris.end() || tris[*it].key != key || tri_consumed[static_cast<std::size_t>(it - lone_tris.begin())])
+                                     [&](Index h, const Tri& k) { return tris.key(h) < k; });
+    if (it == lone_tris.end() || tris.key(*it) != key || tri_consumed[static_cast<std::size_t>(it - lone_tris.begin())])
       return -1;
     return it - lone_tris.begin();
   };
@@ -295,13 +350,12 @@ void match_across_kinds(const HexMesh& mesh, const NonHexBlocks& others, Topolog
       const std::ptrdiff_t a = find_lone_tri(split[0]), b = find_lone_tri(split[1]);
       if (a < 0 || b < 0) continue;
       tri_consumed[static_cast<std::size_t>(a)] = tri_consumed[static_cast<std::size_t>(b)] = 1;
-      const FaceUse<Tri>& ta = tris[lone_tris[static_cast<std::size_t>(a)]];
-      const FaceUse<Tri>& tb = tris[lone_tris[static_cast<std::size_t>(b)]];
+      Index ta = lone_tris[static_cast<std::size_t>(a)], tb = lone_tris[static_cast<std::size_t>(b)];
+      if (tris.cell(tb) < tris.cell(ta)) std::swap(ta, tb);
       NonConformingFace nc{q, quad_cell, quad_kind};
-      const bool swap = tb.cell < ta.cell;
-      nc.triangle_cells = swap ? std::array<Index, 2>{tb.cell, ta.cell} : std::array<Index, 2>{ta.cell, tb.cell};
-      nc.triangle_kinds = swap ? std::array<CellKind, 2>{tb.kind, ta.kind} : std::array<CellKind, 2>{ta.kind, tb.kind};
-      nc.triangles = swap ? std::array<Tri, 2>{tb.face, ta.face} : std::array<Tri, 2>{ta.face, tb.face};
+      nc.triangle_cells = {tris.cell(ta), tris.cell(tb)};
+      nc.triangle_kinds = {tris.kind(ta), tris.kind(tb)};
+      nc.triangles = {tris.corners(ta), tris.corners(tb)};
       topo.non_conforming_faces.push_back(nc);
       return true;
     }
@@ -320,10 +374,11 @@ void match_across_kinds(const HexMesh& mesh, const NonHexBlocks& others, Topolog
     hex_boundary.push_back(f);
   }
   topo.boundary_faces = std::move(hex_boundary);
-  for (std::size_t i : lone_quads) {
-    if (try_non_conforming(quads[i].face, quads[i].cell, quads[i].kind)) continue;
-    topo.boundary_quads_non_hex.push_back(quads[i].face);
-    topo.boundary_quad_non_hex_cells.push_back(quads[i].cell);
+  for (Index h : lone_quads) {
+    const Quad q = quads.corners(h);
+    if (try_non_conforming(q, quads.cell(h), quads.kind(h))) continue;
+    topo.boundary_quads_non_hex.push_back(q);
+    topo.boundary_quad_non_hex_cells.push_back(quads.cell(h));
   }
   std::sort(topo.non_conforming_faces.begin(), topo.non_conforming_faces.end(),
             [](const NonConformingFace& a, const NonConformingFace& b) {
@@ -331,12 +386,11 @@ void match_across_kinds(const HexMesh& mesh, const NonHexBlocks& others, Topolog
             });
   for (std::size_t k = 0; k < lone_tris.size(); ++k) {
     if (tri_consumed[k]) continue;
-    topo.boundary_triangles.push_back(tris[lone_tris[k]].face);
-    topo.boundary_triangle_cells.push_back(tris[lone_tris[k]].cell);
+    topo.boundary_triangles.push_back(tris.corners(lone_tris[k]));
+    topo.boundary_triangle_cells.push_back(tris.cell(lone_tris[k]));
   }
 
   // Boundary vertices over every boundary face.
-  const std::size_t nv = mesh.points.size();
   topo.is_boundary_vertex.assign(nv, 0);
   const auto mark = [&](const auto& face) {
     for (Index v : face) topo.is_boundary_vertex[static_cast<std::size_t>(v)] = 1;

@@ -122,8 +122,10 @@ Topology build_topology(const HexMesh& mesh);
 
 // The same with the mesh's non-hex volume cells: the hex tables as above,
 // then the faces of every kind matched (CellKindTable faces, by their sorted
-// vertex ids; O(F log F) in the F non-hex faces). With empty `others` this is
-// build_topology(mesh), byte for byte and at its speed.
+// vertex ids, bucketed by the smallest as the hex faces: linear in the
+// non-hex faces, plus a binary search among the hex faces per non-hex quad
+// and 4 among the triangles per hex boundary quad). With empty `others` this
+// is build_topology(mesh), byte for byte and at its speed.
 // Precondition: every id in every block is in [0, mesh.num_vertices()).
 Topology build_topology(const HexMesh& mesh, const NonHexBlocks& others);
 
