@@ -1,6 +1,12 @@
 // Corner scaled Jacobian throughput (hexes/s) on 1 and 2 threads against a
 // baseline: the direct per-corner formula (three square roots per corner,
 // one thread), the way the paper's reference implementation computes it.
+//
+// TopologySplitRefined (issue 46): build_topology of the 1->8 refined mesh
+// (363,520 hexes) split into 6 tets per hex along each hex's 0-6 diagonal
+// (2,181,120 tets, every face matched across the tet block), against the
+// hex topology of the same hexes in the same run; items are source hexes,
+// so the ratio column is the time ratio.
 
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
@@ -73,6 +79,35 @@ void BM_Topology_HQView(benchmark::State& state) {
     benchmark::DoNotOptimize(topo.edges.data());
   }
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(m.hexes.size()));
+}
+
+const hq::HexMesh& refined() {
+  static const hq::HexMesh m = hq::bench::refine_1_to_8(mesh());
+  return m;
+}
+
+void BM_TopologySplitRefined_HQView(benchmark::State& state) {
+  static constexpr int kKuhn[6][4] = {{0, 1, 2, 6}, {0, 2, 3, 6}, {0, 3, 7, 6},
+                                      {0, 7, 4, 6}, {0, 4, 5, 6}, {0, 5, 1, 6}};
+  hq::HexMesh points_only;
+  points_only.points = refined().points;
+  std::vector<std::array<hq::Index, 4>> tets;
+  tets.reserve(6 * refined().hexes.size());
+  for (const auto& h : refined().hexes)
+    for (const auto& t : kKuhn) tets.push_back({h[t[0]], h[t[1]], h[t[2]], h[t[3]]});
+  for (auto _ : state) {
+    auto topo = hq::build_topology(points_only, hq::NonHexBlocks{tets, {}, {}});
+    benchmark::DoNotOptimize(topo.boundary_triangles.data());
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(refined().hexes.size()));
+}
+
+void BM_TopologySplitRefined_BaselineHexTopology(benchmark::State& state) {
+  for (auto _ : state) {
+    auto topo = hq::build_topology(refined());
+    benchmark::DoNotOptimize(topo.edges.data());
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(refined().hexes.size()));
 }
 
 // Baseline of the quality field: the per-corner formula on one thread, the
@@ -172,6 +207,8 @@ BENCHMARK(BM_CornerSJ_BaselinePerCorner)->UseRealTime()->Unit(benchmark::kMicros
 BENCHMARK(BM_QualityField_HQView)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_QualityField_BaselineScatterMin)->UseRealTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Topology_HQView)->UseRealTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_TopologySplitRefined_HQView)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TopologySplitRefined_BaselineHexTopology)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Statistics_HQView)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Statistics_BaselineSort)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Topology_BaselineStdMap)->UseRealTime()->Unit(benchmark::kMicrosecond);

@@ -196,6 +196,9 @@ def compare(name, path, hqview, out):
     check(not differ, f"{name}: edges.csv: {len(differ)} rows differ from the oracle, e.g. {differ[:4]}")
     check(all((r["curve"] != "-1") == (r["singular"] == "1") for r in table),
           f"{name}: edges.csv: a singular edge without a curve, or a curve on a regular edge")
+    # Pure-hex meshes: no edge touches a non-hex cell.
+    check(report["num_edges_touching_non_hex"] == 0 and all(r["touches_non_hex"] == "0" for r in table),
+          f"{name}: a pure-hex mesh has edges touching non-hex cells")
     with open(os.path.join(bundle, "data", "vertices.csv"), newline="") as f:
         column = [r["singular"] == "1" for r in csv.DictReader(f)]
     check(column == list(vertex_singular), f"{name}: vertices.csv singular differs from the oracle")

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -260,6 +261,72 @@ TEST(Structure, BadInputIsCountedNotFatal) {
   s = structure_of(mesh);
   EXPECT_EQ(s.num_edges, 23);
   expect_map_counts(mesh, s, "duplicate");
+}
+
+
+// A 2 x 2 x 2 grid with a pyramid on each of its 4 top faces: the 12 hex
+// edges in the top plane are pyramid edges too. They are listed with
+// touches_non_hex, never singular or irregular, and kept out of the
+// singularity graph; every other edge is what the pure grid gives.
+TEST(Structure, EdgesTouchingPyramidsAreNeitherSingularNorRegular) {
+  const HexMesh grid = test::grid(2);
+  const HexStructure pure = structure_of(grid);
+  HexMesh mesh = grid;
+  std::vector<std::array<Index, 5>> pyramids;
+  for (const Hex& h : grid.hexes) {
+    if (grid.points[static_cast<std::size_t>(h[4])].z != 2.0) continue;
+    Vec3 c{};
+    for (int i = 4; i < 8; ++i) c = c + grid.points[static_cast<std::size_t>(h[i])];
+    mesh.points.push_back(0.25 * c + Vec3{0, 0, 0.5});
+    pyramids.push_back({h[4], h[5], h[6], h[7], static_cast<Index>(mesh.points.size() - 1)});
+  }
+  ASSERT_EQ(pyramids.size(), 4u);
+  const Topology topo = build_topology(mesh, NonHexBlocks{{}, {}, pyramids});
+  const HexStructure s = compute_structure(mesh, topo);
+  const auto on_top = [&](const Edge& e) {
+    return mesh.points[static_cast<std::size_t>(e[0])].z == 2.0 && mesh.points[static_cast<std::size_t>(e[1])].z == 2.0;
+  };
+  EXPECT_EQ(s.num_edges, pure.num_edges);
+  EXPECT_EQ(s.num_edges_touching_non_hex, 12);
+  EXPECT_EQ(pure.num_edges_touching_non_hex, 0);
+  std::map<Edge, StructureEdge> rows, pure_rows;
+  for (const StructureEdge& e : s.edges) rows[e.vertices] = e;
+  for (const StructureEdge& e : pure.edges) pure_rows[e.vertices] = e;
+  Index pure_singular_on_top = 0;
+  for (const auto& [v, e] : pure_rows) {
+    EXPECT_FALSE(e.touches_non_hex);
+    if (on_top(v)) {
+      pure_singular_on_top += e.singular;
+      continue;
+    }
+    ASSERT_TRUE(rows.count(v));
+    EXPECT_EQ(rows[v].singular, e.singular);
+    EXPECT_EQ(rows[v].valence, e.valence);
+    EXPECT_EQ(rows[v].kind, e.kind);
+    EXPECT_FALSE(rows[v].touches_non_hex);
+  }
+  Index touching = 0;
+  for (const auto& [v, e] : rows) {
+    EXPECT_EQ(e.touches_non_hex, on_top(v));
+    if (!e.touches_non_hex) continue;
+    ++touching;
+    EXPECT_FALSE(e.singular);
+    EXPECT_FALSE(e.irregular);
+    EXPECT_EQ(e.curve, kNoIndex);
+    EXPECT_EQ(e.valence, std::count_if(mesh.hexes.begin(), mesh.hexes.end(), [&](const Hex& h) {
+                return std::count(h.begin(), h.end(), v[0]) && std::count(h.begin(), h.end(), v[1]);
+              }));
+  }
+  EXPECT_EQ(touching, 12);
+  int on_boundary = 0;
+  for (const auto& [v, e] : rows) on_boundary += e.touches_non_hex && e.kind == EdgeKind::boundary;
+  // Every top edge is on the whole mesh's boundary: the 8 rim edges on a hex
+  // side quad and a pyramid triangle, the 4 through the centre in the valley
+  // between two pyramids' triangles.
+  EXPECT_EQ(on_boundary, 12);
+  EXPECT_EQ(s.num_singular_edges_boundary, pure.num_singular_edges_boundary - pure_singular_on_top);
+  EXPECT_EQ(s.num_singular_edges_interior, pure.num_singular_edges_interior);
+  EXPECT_EQ(s.num_nonmanifold_edges, 0);
 }
 
 }  // namespace

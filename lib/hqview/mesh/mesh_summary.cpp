@@ -8,9 +8,17 @@
 namespace hq {
 
 Box3 referenced_bounding_box(const HexMesh& mesh, const Topology& topo) {
+  // Every vertex but the unreferenced ones (ascending), which a hybrid
+  // mesh's non-hex cells may use.
   Box3 box;
-  for (std::size_t v = 0; v < mesh.points.size(); ++v)
-    if (topo.vertex_hex_offsets[v] != topo.vertex_hex_offsets[v + 1]) box.add(mesh.points[v]);
+  auto skip = topo.unreferenced_vertices.begin();
+  for (std::size_t v = 0; v < mesh.points.size(); ++v) {
+    if (skip != topo.unreferenced_vertices.end() && static_cast<std::size_t>(*skip) == v) {
+      ++skip;
+      continue;
+    }
+    box.add(mesh.points[v]);
+  }
   return box;
 }
 
@@ -19,9 +27,10 @@ MeshSummary summarize_mesh(const HexMesh& mesh, const Topology& topo) {
   s.num_vertices = mesh.num_vertices();
   s.num_hexes = mesh.num_hexes();
   s.num_unreferenced_vertices = static_cast<Index>(topo.unreferenced_vertices.size());
-  s.num_boundary_faces = static_cast<Index>(topo.boundary_faces.size());
+  s.num_boundary_faces = static_cast<Index>(num_boundary_faces_all_kinds(topo));
   s.num_boundary_vertices = static_cast<Index>(topo.boundary_vertices.size());
-  s.num_non_manifold_faces = static_cast<Index>(topo.non_manifold_faces.size());
+  s.num_non_manifold_faces = static_cast<Index>(topo.non_manifold_faces.size()) + topo.num_non_manifold_faces_non_hex;
+  s.num_non_conforming_faces = static_cast<Index>(topo.non_conforming_faces.size());
   const Box3 box = referenced_bounding_box(mesh, topo);
   if (!box.is_empty()) {
     s.bbox_min = box.lo;

@@ -15,15 +15,16 @@ struct MeshSummary {
   Index num_unreferenced_vertices = 0;
   Index num_boundary_faces = 0;
   Index num_boundary_vertices = 0;
-  Index num_non_manifold_faces = 0;
-  Vec3 bbox_min, bbox_max;  // of the vertices hexes use (stray points do not frame views)
+  Index num_non_manifold_faces = 0;     // faces used by more than two cells (of any kinds)
+  Index num_non_conforming_faces = 0;   // quads against two triangles (Topology::non_conforming_faces)
+  Vec3 bbox_min, bbox_max;  // of the vertices cells use (stray points do not frame views)
   double bbox_diagonal = 0;
   double edge_length_min = 0, edge_length_mean = 0, edge_length_max = 0;  // over topo.edges; 0 without edges
 };
 
 MeshSummary summarize_mesh(const HexMesh& mesh, const Topology& topo);
 
-// The box of the vertices hexes use (empty when none is).
+// The box of the vertices cells use (empty when none is).
 Box3 referenced_bounding_box(const HexMesh& mesh, const Topology& topo);
 
 }  // namespace hq

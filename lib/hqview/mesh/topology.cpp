@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
+#include "hqview/core/cell_kinds.h"
 #include "hqview/core/hex_topology.h"
 
 namespace hq {
@@ -161,7 +162,280 @@ void build_edges(const HexMesh& mesh, Topology& topo) {
   }
 }
 
+// ---- Across kinds ----
+
+Tri sorted_tri(Tri t) {
+  if (t[0] > t[1]) std::swap(t[0], t[1]);
+  if (t[1] > t[2]) std::swap(t[1], t[2]);
+  if (t[0] > t[1]) std::swap(t[0], t[1]);
+  return t;
+}
+Quad sorted_face(const Quad& q) { return sorted_quad(q); }
+Tri sorted_face(const Tri& t) { return sorted_tri(t); }
+
+// The faces with N corners of one non-hex block, as a run of half-faces:
+// half-face `begin + per_cell * c + i` is local face faces[i] of the
+// block's cell c (cell id first_cell + c).
+struct FaceRun {
+  CellKind kind;
+  std::size_t begin;
+  Index first_cell;
+  int per_cell;
+  std::array<int, 5> faces;
+};
+
+// Every N-cornered face of the non-hex cells (half-faces), grouped by their
+// sorted vertex ids: compact (a key per half-face; corners and cells are
+// decoded from the runs), linear (bucketed by the smallest id, as the hex
+// faces, then each small bucket sorted in parallel), deterministic (ties in
+// half-face order: cell, then local face).
+template <int N>
+struct HalfFaces {
+  using Face = std::array<Index, N>;
+  const NonHexBlocks* blocks = nullptr;
+  std::vector<Face> keys;          // sorted ids, by half-face
+  std::vector<FaceRun> runs;
+  std::vector<Index> order;        // half-faces by key, then half-face
+  std::vector<std::size_t> groups; // starts of equal keys in `order`, then order.size()
+
+  template <CellKind K, class Cells>
+  void add(const Cells& cells, Index first_cell) {
+    FaceRun run{K, keys.size(), first_cell, 0, {}};
+    const auto& faces = CellKindTable<K>::faces;
+    for (int f = 0; f < static_cast<int>(faces.size()); ++f)
+      if (faces[static_cast<std::size_t>(f)].size == N) run.faces[static_cast<std::size_t>(run.per_cell++)] = f;
+    if (run.per_cell == 0 || cells.empty()) return;
+    runs.push_back(run);
+    const auto per_cell = static_cast<std::size_t>(run.per_cell);
+    keys.resize(run.begin + cells.size() * per_cell);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size()), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t c = r.begin(); c != r.end(); ++c)
+        for (std::size_t i = 0; i < per_cell; ++i) {
+          const CellFace& face = faces[static_cast<std::size_t>(run.faces[i])];
+          Face key;
+          for (int j = 0; j < N; ++j)
+            key[static_cast<std::size_t>(j)] = cells[c][static_cast<std::size_t>(face.v[static_cast<std::size_t>(j)])];
+          keys[run.begin + c * per_cell + i] = sorted_face(key);
+        }
+    });
+  }
+
+  void group(std::size_t num_vertices) {
+    std::vector<Index> offsets;
+    bucket_by_key(
+        keys.size(), num_vertices, [&](std::size_t h) { return keys[h][0]; }, offsets, order);
+    const auto less = [&](Index a, Index b) {
+      const Face &x = keys[static_cast<std::size_t>(a)], &y = keys[static_cast<std::size_t>(b)];
+      return x != y ? x < y : a < b;
+    };
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_vertices), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t v = r.begin(); v != r.end(); ++v)
+        if (offsets[v + 1] - offsets[v] > 1) std::sort(order.begin() + offsets[v], order.begin() + offsets[v + 1], less);
+    });
+    for (std::size_t i = 0; i < order.size(); ++i)
+      if (i == 0 || key(order[i]) != key(order[i - 1])) groups.push_back(i);
+    groups.push_back(order.size());
+  }
+
+  const Face& key(Index h) const { return keys[static_cast<std::size_t>(h)]; }
+  std::size_t num_groups() const { return groups.empty() ? 0 : groups.size() - 1; }
+  std::size_t group_size(std::size_t g) const { return groups[g + 1] - groups[g]; }
+  Index first_of(std::size_t g) const { return order[groups[g]]; }
+
+  const FaceRun& run_of(Index h) const {
+    std::size_t r = 0;
+    while (r + 1 < runs.size() && runs[r + 1].begin <= static_cast<std::size_t>(h)) ++r;
+    return runs[r];
+  }
+  // The cell id, kind and outward corners of half-face h.
+  Index cell(Index h) const {
+    const FaceRun& run = run_of(h);
+    return run.first_cell + static_cast<Index>((static_cast<std::size_t>(h) - run.begin) / static_cast<std::size_t>(run.per_cell));
+  }
+  CellKind kind(Index h) const { return run_of(h).kind; }
+  Face corners(Index h) const {
+    const FaceRun& run = run_of(h);
+    const std::size_t local = static_cast<std::size_t>(h) - run.begin;
+    const std::size_t c = local / static_cast<std::size_t>(run.per_cell);
+    const int f = run.faces[local % static_cast<std::size_t>(run.per_cell)];
+    Face out{};
+    const auto fill = [&](const auto& corners, const CellFace& face) {
+      for (int j = 0; j < N; ++j) out[static_cast<std::size_t>(j)] = corners[static_cast<std::size_t>(face.v[static_cast<std::size_t>(j)])];
+    };
+    if (run.kind == CellKind::tet)
+      fill(blocks->tets[c], CellKindTable<CellKind::tet>::faces[static_cast<std::size_t>(f)]);
+    else if (run.kind == CellKind::wedge)
+      fill(blocks->wedges[c], CellKindTable<CellKind::wedge>::faces[static_cast<std::size_t>(f)]);
+    else
+      fill(blocks->pyramids[c], CellKindTable<CellKind::pyramid>::faces[static_cast<std::size_t>(f)]);
+    return out;
+  }
+};
+
+// Calls f(a, b) for every edge of every cell of a block of kind K.
+template <CellKind K, class Cells, class F>
+void for_each_cell_edge(const Cells& cells, F&& f) {
+  for (const auto& cell : cells)
+    for (const auto& e : CellKindTable<K>::edges) f(cell[e[0]], cell[e[1]]);
+}
+
+// The hex face whose sorted ids are `key`, or kNoIndex (topo.faces is
+// ordered by sorted ids).
+Index find_hex_face(const Topology& topo, const Quad& key) {
+  std::size_t lo = 0, hi = topo.faces.size();
+  while (lo < hi) {
+    const std::size_t mid = lo + (hi - lo) / 2;
+    if (sorted_quad(topo.faces[mid]) < key) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo < topo.faces.size() && sorted_quad(topo.faces[lo]) == key ? static_cast<Index>(lo) : kNoIndex;
+}
+
+// Matches the faces of the non-hex cells against each other and against the
+// hex faces; finds the non-conforming interfaces; rebuilds the boundary
+// (hex part filtered, non-hex faces added), boundary vertices, unreferenced
+// vertices and the edges' touches_non_hex flags.
+void match_across_kinds(const HexMesh& mesh, const NonHexBlocks& others, Topology& topo) {
+  topo.across_kinds = true;
+  const std::size_t nv = mesh.points.size();
+  const auto num_hexes = static_cast<Index>(mesh.hexes.size());
+  const Index first_tet = num_hexes;
+  const Index first_wedge = first_tet + static_cast<Index>(others.tets.size());
+  const Index first_pyramid = first_wedge + static_cast<Index>(others.wedges.size());
+
+  HalfFaces<4> quads;
+  HalfFaces<3> tris;
+  quads.blocks = tris.blocks = &others;
+  quads.add<CellKind::wedge>(others.wedges, first_wedge);
+  quads.add<CellKind::pyramid>(others.pyramids, first_pyramid);
+  tris.add<CellKind::tet>(others.tets, first_tet);
+  tris.add<CellKind::wedge>(others.wedges, first_wedge);
+  tris.add<CellKind::pyramid>(others.pyramids, first_pyramid);
+  tbb::parallel_invoke([&] { quads.group(nv); }, [&] { tris.group(nv); });
+
+  // Hex faces matched by a non-hex quad (or part of a non-conforming
+  // interface) leave the boundary.
+  std::vector<char> hex_face_covered(topo.faces.size(), 0);
+  // Non-hex quads used once over all kinds: candidates for the boundary.
+  std::vector<Index> lone_quads;  // half-faces, ascending key
+  for (std::size_t g = 0; g < quads.num_groups(); ++g) {
+    const Index hex_face = find_hex_face(topo, quads.key(quads.first_of(g)));
+    const Index hex_uses = hex_face == kNoIndex ? 0 : topo.num_face_hexes(hex_face);
+    const auto total = static_cast<Index>(quads.group_size(g)) + hex_uses;
+    if (hex_face != kNoIndex) hex_face_covered[static_cast<std::size_t>(hex_face)] = 1;
+    if (total == 1) lone_quads.push_back(quads.first_of(g));
+    if (total > 2) ++topo.num_non_manifold_faces_non_hex;
+  }
+  // Triangles used once: candidates for the boundary or an interface.
+  std::vector<Index> lone_tris;  // half-faces, ascending key
+  for (std::size_t g = 0; g < tris.num_groups(); ++g) {
+    if (tris.group_size(g) == 1) lone_tris.push_back(tris.first_of(g));
+    if (tris.group_size(g) > 2) ++topo.num_non_manifold_faces_non_hex;
+  }
+  std::vector<char> tri_consumed(lone_tris.size(), 0);
+  const auto find_lone_tri = [&](const Tri& t) -> std::ptrdiff_t {
+    const Tri key = sorted_tri(t);
+    const auto it = std::lower_bound(lone_tris.begin(), lone_tris.end(), key,
+                                     [&](Index h, const Tri& k) { return tris.key(h) < k; });
+    if (it == lone_tris.end() || tris.key(*it) != key || tri_consumed[static_cast<std::size_t>(it - lone_tris.begin())])
+      return -1;
+    return it - lone_tris.begin();
+  };
+  // A lone quad whose two halves along one diagonal are lone triangles.
+  const auto try_non_conforming = [&](const Quad& q, Index quad_cell, CellKind quad_kind) {
+    if (lone_tris.empty()) return false;
+    const std::array<std::array<Tri, 2>, 2> splits = {{{{{q[0], q[1], q[2]}, {q[0], q[2], q[3]}}},
+                                                       {{{q[0], q[1], q[3]}, {q[1], q[2], q[3]}}}}};
+    for (const auto& split : splits) {
+      const std::ptrdiff_t a = find_lone_tri(split[0]), b = find_lone_tri(split[1]);
+      if (a < 0 || b < 0) continue;
+      tri_consumed[static_cast<std::size_t>(a)] = tri_consumed[static_cast<std::size_t>(b)] = 1;
+      Index ta = lone_tris[static_cast<std::size_t>(a)], tb = lone_tris[static_cast<std::size_t>(b)];
+      if (tris.cell(tb) < tris.cell(ta)) std::swap(ta, tb);
+      NonConformingFace nc{q, quad_cell, quad_kind};
+      nc.triangle_cells = {tris.cell(ta), tris.cell(tb)};
+      nc.triangle_kinds = {tris.kind(ta), tris.kind(tb)};
+      nc.triangles = {tris.corners(ta), tris.corners(tb)};
+      topo.non_conforming_faces.push_back(nc);
+      return true;
+    }
+    return false;
+  };
+  // Hex boundary quads first (face ids ascend with sorted ids), then the
+  // non-hex lone quads; sorted by the quad's ids at the end.
+  std::vector<Index> hex_boundary;
+  hex_boundary.reserve(topo.boundary_faces.size());
+  for (Index f : topo.boundary_faces) {
+    const auto fi = static_cast<std::size_t>(f);
+    if (hex_face_covered[fi]) continue;
+    if (try_non_conforming(topo.faces[fi], topo.face_hexes[static_cast<std::size_t>(topo.face_hex_offsets[fi])],
+                           CellKind::hex))
+      continue;
+    hex_boundary.push_back(f);
+  }
+  topo.boundary_faces = std::move(hex_boundary);
+  for (Index h : lone_quads) {
+    const Quad q = quads.corners(h);
+    if (try_non_conforming(q, quads.cell(h), quads.kind(h))) continue;
+    topo.boundary_quads_non_hex.push_back(q);
+    topo.boundary_quad_non_hex_cells.push_back(quads.cell(h));
+  }
+  std::sort(topo.non_conforming_faces.begin(), topo.non_conforming_faces.end(),
+            [](const NonConformingFace& a, const NonConformingFace& b) {
+              return sorted_quad(a.quad) < sorted_quad(b.quad);
+            });
+  for (std::size_t k = 0; k < lone_tris.size(); ++k) {
+    if (tri_consumed[k]) continue;
+    topo.boundary_triangles.push_back(tris.corners(lone_tris[k]));
+    topo.boundary_triangle_cells.push_back(tris.cell(lone_tris[k]));
+  }
+
+  // Boundary vertices over every boundary face.
+  topo.is_boundary_vertex.assign(nv, 0);
+  const auto mark = [&](const auto& face) {
+    for (Index v : face) topo.is_boundary_vertex[static_cast<std::size_t>(v)] = 1;
+  };
+  for (Index f : topo.boundary_faces) mark(topo.faces[static_cast<std::size_t>(f)]);
+  for (const Quad& q : topo.boundary_quads_non_hex) mark(q);
+  for (const Tri& t : topo.boundary_triangles) mark(t);
+  topo.boundary_vertices.clear();
+  for (std::size_t v = 0; v < nv; ++v)
+    if (topo.is_boundary_vertex[v]) topo.boundary_vertices.push_back(static_cast<Index>(v));
+
+  // Vertices used by no cell of any kind.
+  std::vector<char> used(nv, 0);
+  const auto use = [&](const auto& cells) {
+    for (const auto& cell : cells)
+      for (Index v : cell) used[static_cast<std::size_t>(v)] = 1;
+  };
+  use(others.tets);
+  use(others.wedges);
+  use(others.pyramids);
+  std::erase_if(topo.unreferenced_vertices, [&](Index v) { return used[static_cast<std::size_t>(v)] != 0; });
+
+  // The hex edges that are also edges of a non-hex cell.
+  std::vector<Edge> non_hex_edges;
+  const auto add_edge = [&](Index a, Index b) { non_hex_edges.push_back(a < b ? Edge{a, b} : Edge{b, a}); };
+  for_each_cell_edge<CellKind::tet>(others.tets, add_edge);
+  for_each_cell_edge<CellKind::wedge>(others.wedges, add_edge);
+  for_each_cell_edge<CellKind::pyramid>(others.pyramids, add_edge);
+  std::sort(non_hex_edges.begin(), non_hex_edges.end());
+  non_hex_edges.erase(std::unique(non_hex_edges.begin(), non_hex_edges.end()), non_hex_edges.end());
+  topo.edge_touches_non_hex.assign(topo.edges.size(), 0);
+  std::size_t j = 0;
+  for (std::size_t i = 0; i < topo.edges.size(); ++i) {
+    while (j < non_hex_edges.size() && non_hex_edges[j] < topo.edges[i]) ++j;
+    if (j < non_hex_edges.size() && non_hex_edges[j] == topo.edges[i]) topo.edge_touches_non_hex[i] = 1;
+  }
+}
+
 }  // namespace
+
+Topology build_topology(const HexMesh& mesh, const NonHexBlocks& others) {
+  Topology topo = build_topology(mesh);
+  if (!others.empty()) match_across_kinds(mesh, others, topo);
+  return topo;
+}
 
 Topology build_topology(const HexMesh& mesh) {
   Topology topo;

@@ -2,11 +2,20 @@
 // Derived connectivity of a HexMesh, built once by build_topology() and then
 // read by every later stage. Flat CSR arrays, 0-based Index ids, all orders
 // deterministic (sorted by vertex ids, never by hash order).
+//
+// A hybrid mesh (tets, wedges, pyramids beside the hexes) keeps every hex
+// table below as the hex part's, with one change: a hex face matched by a
+// non-hex cell (a pyramid's base, a wedge's quad face, or two triangles of a
+// non-conforming interface) is no longer in boundary_faces. The rest of the
+// boundary, and the faces matched across kinds, are the additions under
+// "Across kinds"; on a pure-hex mesh they are empty and every other table is
+// what the hex-only build gives.
 
 #include <array>
 #include <span>
 #include <vector>
 
+#include "hqview/core/cell_kinds.h"
 #include "hqview/core/types.h"
 #include "hqview/core/untouched_vector.h"
 #include "hqview/mesh/hex_mesh.h"
@@ -14,7 +23,31 @@
 namespace hq {
 
 using Quad = std::array<Index, 4>;
+using Tri = std::array<Index, 3>;
 using Edge = std::array<Index, 2>;
+
+// The non-hex volume blocks of a mesh, corner ids in VTK order
+// (core/cell_kinds.h). Cell ids run over the blocks in CellKind order: hexes
+// [0, H), tets [H, H+T), wedges [H+T, H+T+W), pyramids after them.
+struct NonHexBlocks {
+  std::span<const std::array<Index, 4>> tets;
+  std::span<const std::array<Index, 6>> wedges;
+  std::span<const std::array<Index, 5>> pyramids;
+
+  bool empty() const { return tets.empty() && wedges.empty() && pyramids.empty(); }
+};
+
+// A topologically non-conforming interface: the quad face of one cell
+// against two triangle faces of other cells over the same four vertices
+// (split along one of its diagonals). Ids are cell ids over all blocks.
+struct NonConformingFace {
+  Quad quad;                         // outward from quad_cell, in its corner order
+  Index quad_cell = kNoIndex;
+  CellKind quad_kind = CellKind::hex;
+  std::array<Index, 2> triangle_cells{kNoIndex, kNoIndex};  // ascending
+  std::array<CellKind, 2> triangle_kinds{CellKind::tet, CellKind::tet};
+  std::array<Tri, 2> triangles{};    // outward from their cells
+};
 
 struct Topology {
   // vertex -> incident hexes: hexes of vertex v are
@@ -37,7 +70,29 @@ struct Topology {
   std::vector<Index> boundary_vertices;      // ascending vertex ids on a boundary face
   std::vector<char> is_boundary_vertex;      // num_vertices, 0/1
   std::vector<Edge> edges;                   // unique edges (a < b), ascending
-  std::vector<Index> unreferenced_vertices;  // vertices used by no hex, ascending
+  std::vector<Index> unreferenced_vertices;  // vertices used by no cell (of any kind), ascending
+
+  // ---- Across kinds (all empty for a pure-hex mesh) ----
+  // Built with non-hex volume cells (build_topology(mesh, others), others
+  // not empty).
+  bool across_kinds = false;
+  // The boundary faces of non-hex cells (used once over all kinds), outward,
+  // in their cell's corner order, ordered by sorted vertex ids; with the cell
+  // id each comes from. The whole boundary is boundary_faces (hex quads) +
+  // boundary_quads_non_hex + boundary_triangles.
+  std::vector<Quad> boundary_quads_non_hex;
+  std::vector<Index> boundary_quad_non_hex_cells;
+  std::vector<Tri> boundary_triangles;
+  std::vector<Index> boundary_triangle_cells;
+  // Quad-against-two-triangles interfaces (none of their faces is boundary),
+  // ordered by the quad's sorted vertex ids.
+  std::vector<NonConformingFace> non_conforming_faces;
+  // Faces (quad or triangle) used by more than two cells, at least one of
+  // them not a hex (the hex-only ones are non_manifold_faces).
+  Index num_non_manifold_faces_non_hex = 0;
+  // Per entry of `edges` (the hex part's edges): 1 when the edge is also an
+  // edge of a tet, wedge or pyramid. Empty for a pure-hex mesh.
+  std::vector<char> edge_touches_non_hex;
 
   // The hexes using vertex v, ascending.
   std::span<const Index> hexes_of(Index v) const {
@@ -50,12 +105,28 @@ struct Topology {
   }
 };
 
-// The unique edges of the boundary faces (a < b), ascending.
+// The unique edges of the boundary faces (a < b), ascending: of the hex
+// boundary quads only (what the hex views draw).
 std::vector<Edge> boundary_edges(const Topology& topology);
+
+// The number of boundary faces over all kinds: hex quads, non-hex quads and
+// triangles.
+inline std::size_t num_boundary_faces_all_kinds(const Topology& t) {
+  return t.boundary_faces.size() + t.boundary_quads_non_hex.size() + t.boundary_triangles.size();
+}
 
 // Builds every table above in O(#hexes) expected time.
 // Precondition: every id in mesh.hexes is in [0, mesh.num_vertices()) (the
 // readers guarantee it). Throws nothing.
 Topology build_topology(const HexMesh& mesh);
+
+// The same with the mesh's non-hex volume cells: the hex tables as above,
+// then the faces of every kind matched (CellKindTable faces, by their sorted
+// vertex ids, bucketed by the smallest as the hex faces: linear in the
+// non-hex faces, plus a binary search among the hex faces per non-hex quad
+// and 4 among the triangles per hex boundary quad). With empty `others` this
+// is build_topology(mesh), byte for byte and at its speed.
+// Precondition: every id in every block is in [0, mesh.num_vertices()).
+Topology build_topology(const HexMesh& mesh, const NonHexBlocks& others);
 
 }  // namespace hq

@@ -352,6 +352,7 @@ AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
   }
   in_progress.finish_atlas(in_progress.analysis.timings, options.on_stage);
   model.analysis = std::move(in_progress.analysis);
+  model.data.non_conforming_faces = model.analysis.topology.across_kinds;
   model.has_viewer = renderer && options.viewer;
   model.viewer_max_mb = options.viewer_max_mb;
   model.viewer_up = views.up;

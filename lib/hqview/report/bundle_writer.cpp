@@ -247,6 +247,8 @@ void write_bundle(const ReportModel& model, const ReportDocument& document, cons
           write_cells_csv(model, out, text);
         else if (f.path.starts_with("data/vertices."))
           write_vertices_csv(model, out, text);
+        else if (f.path == "data/non_conforming_faces.csv")
+          write_non_conforming_faces_csv(model, out);
         else
           write_edges_csv(model, out);
       });

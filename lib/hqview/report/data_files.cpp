@@ -47,6 +47,9 @@ std::vector<DataFile> data_files(const DataFormats& f) {
   if (f.csv) files.push_back({"data/vertices.csv", "csv", "one row per vertex"});
   if (f.csv_gz) files.push_back({"data/vertices.csv.gz", "csv.gz", "one row per vertex, gzip'ed"});
   files.push_back({"data/edges.csv", "csv", "one row per singular, irregular or non-manifold edge"});
+  if (f.non_conforming_faces)
+    files.push_back({"data/non_conforming_faces.csv", "csv",
+                     "one row per non-conforming face (a quad against two triangles) with its cells"});
   return files;
 }
 

@@ -16,6 +16,9 @@ struct DataFormats {
   bool csv = false;             // data/cells.csv, data/vertices.csv
   bool csv_gz = false;          // data/cells.csv.gz, data/vertices.csv.gz
   VtuData vtu = VtuData::zlib;  // data/annotated.vtu (zlib: vtkZLibDataCompressor)
+  // data/non_conforming_faces.csv: set by the pipeline for a mesh with
+  // non-hex volume cells (never by --data).
+  bool non_conforming_faces = false;
 };
 
 // The default: annotated.vtu, compressed; no per-cell text (docs/contract.md).
@@ -31,7 +34,8 @@ struct DataFile {
   std::string what;    // one line for the pages
 };
 
-// The bundle's data files in a fixed order (the VTU, cells, vertices, edges).
+// The bundle's data files in a fixed order (the VTU, cells, vertices, edges,
+// non-conforming faces).
 std::vector<DataFile> data_files(const DataFormats& formats);
 
 // The file the pages point to for every per-cell (per-vertex) value: the

@@ -151,7 +151,7 @@ const char* edge_kind_name(EdgeKind kind) {
 
 void write_edges_csv(const ReportModel& model, std::ostream& out) {
   const HexStructure& s = model.analysis.structure;
-  write_table(out, TextEncoding::plain, "edge,v0,v1,valence,kind,singular,ideal_valence,irregular,curve\n",
+  write_table(out, TextEncoding::plain, "edge,v0,v1,valence,kind,singular,ideal_valence,irregular,curve,touches_non_hex\n",
               s.edges.size(), [&](std::size_t first, std::size_t last, std::string& buffer) {
                 for (std::size_t i = first; i < last; ++i) {
                   const StructureEdge& e = s.edges[i];
@@ -163,8 +163,8 @@ void write_edges_csv(const ReportModel& model, std::ostream& out) {
                   buffer += ',';
                   buffer += edge_kind_name(e.kind);
                   buffer += e.singular ? ",1," : ",0,";
-                  // ideal_valence and irregular: boundary edges only.
-                  if (e.kind == EdgeKind::boundary) {
+                  // ideal_valence and irregular: boundary edges of the hex part only.
+                  if (e.kind == EdgeKind::boundary && !e.touches_non_hex) {
                     append_int(buffer, e.ideal_valence);
                     buffer += e.irregular ? ",1" : ",0";
                   } else {
@@ -172,6 +172,41 @@ void write_edges_csv(const ReportModel& model, std::ostream& out) {
                   }
                   buffer += ',';
                   append_int(buffer, e.curve == kNoIndex ? -1 : e.curve);
+                  buffer += e.touches_non_hex ? ",1\n" : ",0\n";
+                }
+              });
+}
+
+void write_non_conforming_faces_csv(const ReportModel& model, std::ostream& out) {
+  const std::vector<NonConformingFace>& faces = model.analysis.topology.non_conforming_faces;
+  write_table(out, TextEncoding::plain,
+              "face,v0,v1,v2,v3,split_v0,split_v1,quad_cell,quad_cell_type,triangle_cell_a,triangle_cell_a_type,"
+              "triangle_cell_b,triangle_cell_b_type\n",
+              faces.size(), [&](std::size_t first, std::size_t last, std::string& buffer) {
+                for (std::size_t i = first; i < last; ++i) {
+                  const NonConformingFace& f = faces[i];
+                  append_int(buffer, static_cast<long long>(i));
+                  for (Index v : f.quad) {
+                    buffer += ',';
+                    append_int(buffer, v);
+                  }
+                  // The diagonal the triangles share: the two ids in both, ascending.
+                  Tri a = f.triangles[0];
+                  std::sort(a.begin(), a.end());
+                  for (Index v : a)
+                    if (std::find(f.triangles[1].begin(), f.triangles[1].end(), v) != f.triangles[1].end()) {
+                      buffer += ',';
+                      append_int(buffer, v);
+                    }
+                  const auto cell = [&](Index id, CellKind kind) {
+                    buffer += ',';
+                    append_int(buffer, id);
+                    buffer += ',';
+                    buffer += cell_kind_name(kind);
+                  };
+                  cell(f.quad_cell, f.quad_kind);
+                  cell(f.triangle_cells[0], f.triangle_kinds[0]);
+                  cell(f.triangle_cells[1], f.triangle_kinds[1]);
                   buffer += '\n';
                 }
               });

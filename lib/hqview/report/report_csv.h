@@ -1,6 +1,6 @@
 #pragma once
-// data/cells.csv, data/vertices.csv and data/edges.csv (docs/contract.md
-// "CSV columns").
+// data/cells.csv, data/vertices.csv, data/edges.csv and
+// data/non_conforming_faces.csv (docs/contract.md "CSV columns").
 // Ids are 0-based in file order; floats shortest round-trip; a column whose
 // analysis stage has not run is written empty (never a made-up 0).
 
@@ -32,5 +32,8 @@ void write_vertices_csv(const ReportModel& model, std::ostream& out, TextEncodin
 // One row per singular, irregular or non-manifold edge (HexStructure::edges).
 void write_edges_csv(const ReportModel& model, std::ostream& out);
 const char* edge_kind_name(EdgeKind kind);
+// One row per non-conforming face (Topology::non_conforming_faces): a mesh
+// with non-hex cells only.
+void write_non_conforming_faces_csv(const ReportModel& model, std::ostream& out);
 
 }  // namespace hq

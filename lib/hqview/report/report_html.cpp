@@ -536,6 +536,8 @@ void set_mesh_rows(data& page, const MeshSummary& m) {
   mesh_rows.push_back(kv("boundary vertices", show_count(m.num_boundary_vertices)));
   mesh_rows.push_back(kv("unreferenced vertices", show_count(m.num_unreferenced_vertices)));
   mesh_rows.push_back(kv("faces shared by > 2 hexes", show_count(m.num_non_manifold_faces)));
+  if (m.num_non_conforming_faces > 0)  // hybrid meshes only: pure-hex pages keep their bytes
+    mesh_rows.push_back(kv("non-conforming faces (a quad against two triangles)", show_count(m.num_non_conforming_faces)));
   mesh_rows.push_back(kv("bounding box min", show_vec(m.bbox_min)));
   mesh_rows.push_back(kv("bounding box max", show_vec(m.bbox_max)));
   mesh_rows.push_back(kv("bounding box diagonal", show(m.bbox_diagonal)));

@@ -46,6 +46,7 @@ Json mesh_json(const MeshSummary& m) {
   j["num_boundary_faces"] = m.num_boundary_faces;
   j["num_boundary_vertices"] = m.num_boundary_vertices;
   j["num_non_manifold_faces"] = m.num_non_manifold_faces;
+  j["num_non_conforming_faces"] = m.num_non_conforming_faces;
   j["bbox"] = {{"min", vec3(m.bbox_min)}, {"max", vec3(m.bbox_max)}, {"diagonal", number(m.bbox_diagonal)}};
   j["edge_length"] = {
       {"min", number(m.edge_length_min)}, {"mean", number(m.edge_length_mean)}, {"max", number(m.edge_length_max)}};
@@ -133,6 +134,7 @@ Json structure_json(const HexStructure& s) {
           {"num_singular_edges_boundary", s.num_singular_edges_boundary},
           {"num_irregular_edges_boundary", s.num_irregular_edges_boundary},
           {"num_nonmanifold_edges", s.num_nonmanifold_edges},
+          {"num_edges_touching_non_hex", s.num_edges_touching_non_hex},
           {"singular_edges_by_valence", {{"interior", by_valence(s.interior_by_valence)},
                                          {"boundary", by_valence(s.boundary_by_valence)}}},
           {"num_singular_vertices", s.num_singular_vertices},

@@ -165,9 +165,28 @@ HexStructure compute_structure(const HexMesh& mesh, const Topology& topology) {
       ++num_faces[i];
     }
   }
+  // A hybrid mesh's other boundary faces: their hex edges touch non-hex
+  // cells, so only their interior/boundary kind is used.
+  const auto count_non_hex_face = [&](const auto& face) {
+    for (std::size_t c = 0; c < face.size(); ++c) {
+      const Index id = index.find(face[c], face[(c + 1) % face.size()]);
+      if (id != kNoIndex) ++num_faces[static_cast<std::size_t>(id)];
+    }
+  };
+  for (const Quad& q : topology.boundary_quads_non_hex) count_non_hex_face(q);
+  for (const Tri& t : topology.boundary_triangles) count_non_hex_face(t);
+  const bool hybrid = topology.edge_touches_non_hex.size() == ne;
   s.vertex_singular.assign(nv, 0);
   for (std::size_t i = 0; i < ne; ++i) {
     StructureEdge e{topology.edges[i], valence[i]};
+    if (hybrid && topology.edge_touches_non_hex[i]) {
+      e.touches_non_hex = true;
+      e.kind = num_faces[i] == 0 ? EdgeKind::interior : num_faces[i] == 2 ? EdgeKind::boundary : EdgeKind::nonmanifold;
+      s.num_nonmanifold_edges += e.kind == EdgeKind::nonmanifold;
+      ++s.num_edges_touching_non_hex;
+      s.edges.push_back(e);
+      continue;
+    }
     if (num_faces[i] == 0) {
       e.singular = e.valence != 4;
       if (e.singular) {

@@ -13,6 +13,11 @@
 //     without a node is one curve);
 //   - the size gradation of a hex is the largest ratio of its volume to a
 //     face neighbour's (or the inverse, so >= 1).
+// On a hybrid mesh all of this is the hex part's: valences count hexes, and
+// an edge of the hex part that is also an edge of a tet, wedge or pyramid
+// (Topology::edge_touches_non_hex) is neither singular nor regular nor
+// irregular: it is listed with touches_non_hex and counted apart (its kind
+// says whether it lies on the whole mesh's boundary).
 // Linear in the mesh: the valences come from Topology's sorted edges.
 
 #include <cstdint>
@@ -27,7 +32,8 @@ namespace hq {
 
 enum class EdgeKind : std::uint8_t { interior, boundary, nonmanifold };
 
-// An edge worth a row of data/edges.csv: singular, irregular or non-manifold.
+// An edge worth a row of data/edges.csv: singular, irregular, non-manifold
+// or touching a non-hex cell.
 struct StructureEdge {
   Edge vertices;  // a < b
   Index valence = 0;
@@ -36,6 +42,7 @@ struct StructureEdge {
   Index ideal_valence = 0;  // boundary edges: round(theta / 90 deg), at least 1; else 0
   bool irregular = false;   // boundary edges: valence != ideal_valence
   Index curve = kNoIndex;   // singular edges: their singular curve
+  bool touches_non_hex = false;  // also an edge of a tet, wedge or pyramid: never singular or irregular
 };
 
 struct HexStructure {
@@ -44,10 +51,12 @@ struct HexStructure {
   Index num_singular_edges_boundary = 0;
   Index num_irregular_edges_boundary = 0;
   Index num_nonmanifold_edges = 0;
+  Index num_edges_touching_non_hex = 0;  // hex edges that are also edges of non-hex cells
   std::map<Index, Index> interior_by_valence;  // singular interior edges: valence -> count
   std::map<Index, Index> boundary_by_valence;  // singular boundary edges: valence -> count
-  // Singular, irregular and non-manifold edges, ascending vertex pairs; the
-  // singular ones (interior and boundary) make the singularity graph.
+  // Singular, irregular, non-manifold and non-hex-touching edges, ascending
+  // vertex pairs; the singular ones (interior and boundary) make the
+  // singularity graph.
   std::vector<StructureEdge> edges;
   std::vector<char> vertex_singular;           // per vertex, 0/1
   Index num_singular_vertices = 0;
