@@ -155,34 +155,27 @@ constexpr void for_each_cell_kind(F&& f) {
   f(std::integral_constant<CellKind, CellKind::triangle>{});
 }
 
-// Run-time lookups over the same tables.
-constexpr std::string_view cell_kind_name(CellKind kind) {
-  std::string_view out;
+// Run-time lookups over the same tables: get(k) reads one field of the table
+// of kind k (a std::integral_constant), for the kind asked.
+template <class Get>
+constexpr auto cell_kind_lookup(CellKind kind, Get get) {
+  decltype(get(std::integral_constant<CellKind, CellKind::hex>{})) out{};
   for_each_cell_kind([&](auto k) {
-    if (k() == kind) out = CellKindTable<k()>::name;
+    if (k() == kind) out = get(k);
   });
   return out;
+}
+constexpr std::string_view cell_kind_name(CellKind kind) {
+  return cell_kind_lookup(kind, [](auto k) { return CellKindTable<k()>::name; });
 }
 constexpr int cell_kind_vtk_type(CellKind kind) {
-  int out = 0;
-  for_each_cell_kind([&](auto k) {
-    if (k() == kind) out = CellKindTable<k()>::vtk_type;
-  });
-  return out;
+  return cell_kind_lookup(kind, [](auto k) { return CellKindTable<k()>::vtk_type; });
 }
 constexpr int cell_kind_num_corners(CellKind kind) {
-  int out = 0;
-  for_each_cell_kind([&](auto k) {
-    if (k() == kind) out = CellKindTable<k()>::num_corners;
-  });
-  return out;
+  return cell_kind_lookup(kind, [](auto k) { return CellKindTable<k()>::num_corners; });
 }
 constexpr int cell_kind_dimension(CellKind kind) {
-  int out = 0;
-  for_each_cell_kind([&](auto k) {
-    if (k() == kind) out = CellKindTable<k()>::dimension;
-  });
-  return out;
+  return cell_kind_lookup(kind, [](auto k) { return CellKindTable<k()>::dimension; });
 }
 
 }  // namespace hq
