@@ -55,9 +55,9 @@ CliResult run_hqview(const std::vector<std::string>& args) {
   CliResult r;
   r.err = read_text(err);
   // Under the sanitizers, LeakSanitizer's tracer may crash at exit on its
-  // own (lsan_tracer_crashed): such a run is made once more, on that
-  // signature only.
-  if (lsan_tracer_crashed(r.err)) {
+  // own (lsan_tracer_crashed): such a run is made again, up to three more
+  // times (it crashed twice in a row once), on that signature only.
+  for (int retry = 0; retry < kLsanTracerRetries && lsan_tracer_crashed(r.err); ++retry) {
     std::cerr << "[ retried ] hqview: LeakSanitizer's tracer crashed at exit\n";
     status = std::system(command.c_str());
     r.err = read_text(err);
