@@ -347,6 +347,15 @@ TEST(MainViewLabels, InvertedClustersWearARing) {
     if (line.text.starts_with("coincident vertices")) EXPECT_FALSE(line.ring);
   }
   EXPECT_EQ(rings, 2);
+  // The clusters' coloured edge lines are named, with the count the view uses.
+  int edge_lines = 0;
+  for (const LegendLine& line : legend)
+    edge_lines += line.text == "lines: edges of " + std::to_string(options.cluster_edge_vertices) + " worst";
+  EXPECT_EQ(edge_lines, 1);
+  MainViewOptions no_edges = options;
+  no_edges.cluster_edge_vertices = 0;
+  for (const LegendLine& line : main_legend_lines(deep.glyphs, nullptr, style, no_edges, labels.glyph_scale))
+    EXPECT_FALSE(line.text.starts_with("lines: edges"));
   // The rings begin outside the glyph: its rim is not covered.
   EXPECT_EQ(background_inside_rim(image, worst, options.background), 0);
   const Case shallow = dented(1.5, 0.3);

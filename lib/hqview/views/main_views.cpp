@@ -631,6 +631,10 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
     lines.push_back({std::nullopt, "drawn x" + display_number(glyph_scale, 2) + ": #0 radius " +
                                        display_number(kWorstGlyphMinPixels, 2) + " px"});
   if (!glyphs.clusters.empty()) lines.push_back({std::nullopt, "label #k (n): rank k, n vertices"});
+  // The coloured edge lines that scene step 2 draws around each cluster's
+  // worst vertices: their colour is the cluster's, their meaning said here.
+  if (!glyphs.clusters.empty() && options.cluster_edge_vertices > 0)
+    lines.push_back({std::nullopt, "lines: edges of " + std::to_string(options.cluster_edge_vertices) + " worst"});
   // The rings as the view draws them (draw_worst_glyph_ring,
   // draw_inverted_glyph_rings): ring swatches, unlike the square ones.
   if (!glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0)
