@@ -101,5 +101,87 @@ TEST(LabelLayout, BoxAndDiscPredicates) {
   EXPECT_DOUBLE_EQ(disc_box_gap({5, 5, 4}, {0, 0, 10, 10}), 0.0);
 }
 
+
+PlacedLabel leader(double x0, double y0, double x1, double y1) {
+  PlacedLabel p;
+  p.has_leader = true;
+  p.leader_x0 = x0, p.leader_y0 = y0, p.leader_x1 = x1, p.leader_y1 = y1;
+  return p;
+}
+
+// The leader predicates against hand-drawn segments.
+TEST(LabelLayout, LeaderPredicatesByHand) {
+  // An X crosses; parallel and disjoint segments do not; a shared end counts.
+  EXPECT_TRUE(leaders_cross(leader(0, 0, 10, 10), leader(0, 10, 10, 0)));
+  EXPECT_FALSE(leaders_cross(leader(0, 0, 10, 0), leader(0, 5, 10, 5)));
+  EXPECT_FALSE(leaders_cross(leader(0, 0, 4, 4), leader(6, 0, 10, 4)));
+  EXPECT_TRUE(leaders_cross(leader(0, 0, 5, 5), leader(5, 5, 10, 0)));
+  PlacedLabel none = leader(0, 10, 10, 0);
+  none.has_leader = false;
+  EXPECT_FALSE(leaders_cross(leader(0, 0, 10, 10), none));
+  // A segment through a box's interior meets it; one that passes beside or
+  // stops short does not.
+  const PixelRect box{20, 20, 10, 10};
+  EXPECT_TRUE(leader_meets_box(leader(0, 25, 40, 25), box));
+  EXPECT_FALSE(leader_meets_box(leader(0, 35, 40, 35), box));
+  EXPECT_FALSE(leader_meets_box(leader(0, 25, 15, 25), box));
+  EXPECT_TRUE(leader_meets_box(leader(25, 0, 25, 22), box));
+  // A disc of radius 5 at (50, 50): the segment y = 53 passes 3 px from its
+  // centre (inside); y = 56 passes 6 px away (outside); a segment ending 7 px
+  // before the centre does not reach it.
+  const ScreenDisc disc{50, 50, 5};
+  EXPECT_TRUE(leader_meets_disc(leader(0, 53, 100, 53), disc));
+  EXPECT_FALSE(leader_meets_disc(leader(0, 56, 100, 56), disc));
+  EXPECT_FALSE(leader_meets_disc(leader(0, 50, 43, 50), disc));
+  EXPECT_TRUE(leader_meets_disc(leader(0, 50, 46, 50), disc));
+}
+
+// Crowded anchors in a row: every placed label is outside every glyph, no two
+// boxes overlap, no two leaders cross, no leader runs through another label's
+// box, and labels placed by an earlier call keep their boxes free.
+TEST(LabelLayout, CrowdedRowKeepsLeadersApartAndRespectsEarlierLabels) {
+  std::vector<ScreenDisc> glyphs;
+  std::vector<LabelRequest> requests;
+  for (int i = 0; i < 8; ++i) {
+    glyphs.push_back({200.0 + 18.0 * i, 200.0 + (i % 2) * 10.0, 8.0});
+    requests.push_back({glyphs.back(), 40, 14});
+  }
+  const LabelLayoutOptions options = options_for({0, 0, 600, 400});
+  // The first label alone, then the rest with it as "earlier".
+  const auto first = place_labels(std::span(requests).first(1), glyphs, {}, options);
+  ASSERT_TRUE(first[0].has_value());
+  const std::vector<PlacedLabel> earlier{*first[0]};
+  const auto rest = place_labels(std::span(requests).subspan(1), glyphs, {}, options, earlier);
+  std::vector<PlacedLabel> all = earlier;
+  for (const auto& p : rest) {
+    ASSERT_TRUE(p.has_value());
+    all.push_back(*p);
+  }
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    for (const ScreenDisc& g : glyphs) EXPECT_FALSE(box_meets_disc(all[i].box, g)) << "label " << i;
+    for (std::size_t j = i + 1; j < all.size(); ++j) {
+      EXPECT_FALSE(boxes_overlap(all[i].box, all[j].box)) << i << " " << j;
+      EXPECT_FALSE(leaders_cross(all[i], all[j])) << i << " " << j;
+    }
+    for (std::size_t j = 0; j < all.size(); ++j)
+      if (j != i) {
+        EXPECT_FALSE(leader_meets_box(all[i], all[j].box)) << i << " through " << j;
+      }
+  }
+  // The same request again: without `earlier` it takes the first label's
+  // very box (placement is deterministic); with it, another free box.
+  const auto again = place_labels(std::span(requests).first(1), glyphs, {}, options);
+  ASSERT_TRUE(again[0].has_value());
+  EXPECT_TRUE(boxes_overlap(again[0]->box, first[0]->box));
+  const auto after = place_labels(std::span(requests).first(1), glyphs, {}, options, earlier);
+  ASSERT_TRUE(after[0].has_value());
+  EXPECT_FALSE(boxes_overlap(after[0]->box, first[0]->box));
+  EXPECT_FALSE(leaders_cross(*after[0], *first[0]));
+  // A crowded row needs leaders for most of its labels.
+  int leaders = 0;
+  for (const PlacedLabel& p : all) leaders += p.has_leader ? 1 : 0;
+  EXPECT_GE(leaders, 4);
+}
+
 }  // namespace
 }  // namespace hq
