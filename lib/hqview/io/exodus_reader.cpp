@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -198,7 +199,17 @@ std::optional<CellKind> exodus_volume_kind(const std::string& type, std::int64_t
 
 bool exodus_available() { return true; }
 
+// netCDF-C is not thread-safe (its open-file table and HDF5 underneath are
+// global): a batch reads meshes on several threads, and two Exodus files read
+// at once crashed it (e2e.MessagesAreText, about 1 run in 40 under load). One
+// netCDF use at a time, from open to close.
+static std::mutex& netcdf_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
 LoadedMesh read_exodus(std::string_view bytes, const std::string& name, const ReadLimits& limits) {
+  const std::lock_guard lock(netcdf_mutex());
   const NcFile file(bytes, name);
   const std::int64_t num_nodes = file.required_dimension("num_nodes");
   const std::int64_t num_dim = file.required_dimension("num_dim");
