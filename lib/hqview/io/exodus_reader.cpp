@@ -274,7 +274,8 @@ LoadedMesh read_exodus(std::string_view bytes, const std::string& name, const Re
   // 1-based element number over the blocks to the id (Exodus II, "Element
   // Number Map"); without it the id is that number.
   std::vector<long long> id_map;
-  if (const int map = file.variable("elem_num_map"); map >= 0) {
+  const int map = file.variable("elem_num_map");
+  if (map >= 0) {
     const std::int64_t num_elem = std::max<std::int64_t>(file.dimension("num_elem"), 0);
     id_map = file.integers(map, "elem_num_map", static_cast<std::uint64_t>(num_elem));
   }
@@ -282,7 +283,7 @@ LoadedMesh read_exodus(std::string_view bytes, const std::string& name, const Re
   detail::CellNotes notes;
   std::int64_t element_number = 0;  // 1-based over the blocks in order: Exodus's implicit element id
   const auto element_id = [&](const std::string& connect, std::int64_t e) -> std::int64_t {
-    if (id_map.empty()) return element_number;
+    if (map < 0) return element_number;
     if (element_number > static_cast<std::int64_t>(id_map.size()))
       file.fail("elem_num_map has " + std::to_string(id_map.size()) + " entries, fewer than the blocks' elements (" +
                 connect + " element " + std::to_string(e + 1) + ")");
@@ -296,8 +297,10 @@ LoadedMesh read_exodus(std::string_view bytes, const std::string& name, const Re
     if (var < 0 || num_elements <= 0) continue;  // an empty block has no connectivity
     const std::string type = upper(file.text_attribute(var, "elem_type"));
     const std::optional<CellKind> kind = exodus_volume_kind(type, per_element);
+    const std::string count = std::to_string(per_element);
+    const std::string type_name = type.empty() || type.ends_with(count) ? type : type + " (" + count + " nodes)";
     if (!kind) {
-      skipped_by_type[type.empty() ? "?" : type] += num_elements;
+      skipped_by_type[type.empty() ? "?" : type_name] += num_elements;
       element_number += num_elements;
       continue;
     }
@@ -305,8 +308,6 @@ LoadedMesh read_exodus(std::string_view bytes, const std::string& name, const Re
     const int n = static_cast<int>(per_element);
     const int num_corners = cell_kind_num_corners(*kind);
     const bool is_higher_order = n > num_corners;
-    const std::string count = std::to_string(n);
-    const std::string type_name = type.ends_with(count) ? type : type + " (" + count + " nodes)";
     const int* to_vtk = *kind == CellKind::wedge ? detail::kWedgeFlippedToVtk.data() : nullptr;
     const std::vector<long long> ids =
         file.integers(var, connect, static_cast<std::uint64_t>(num_elements) * static_cast<std::uint64_t>(n));
