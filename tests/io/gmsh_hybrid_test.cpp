@@ -147,12 +147,13 @@ std::vector<std::vector<std::array<double, 3>>> cells_by_coordinates(const Mesh&
 
 // The hex-tet boxes made second order by Gmsh (-order 2: 27-node hexahedra,
 // 10-node tetrahedra, 14-node pyramids) read, in MSH 2.2, MSH 4.1, VTK (its
-// pyramids as 14-point VTK_PYRAMIDs) and Abaqus (C3D27, C3D10; Gmsh writes
-// no pyramids there), to the linear mesh's cells, all with positive volumes.
+// pyramids as 14-point VTK_PYRAMIDs), Abaqus (C3D27, C3D10) and MEDIT
+// (27-vertex Hexahedra, TetrahedraP2; Gmsh writes no pyramids in these two),
+// to the linear mesh's cells, all with positive volumes.
 TEST(GmshHybrid, SecondOrderMeshReadsToTheLinearMeshsCells) {
   const TempDir dir("gmsh_second_order");
   if (!run_gmsh(dir, kHexTetGeo, {"lin22.msh"}) ||
-      !run_gmsh(dir, kHexTetGeo, {"q22.msh", "q.msh", "q.vtk", "q.inp"}, "-order 2"))
+      !run_gmsh(dir, kHexTetGeo, {"q22.msh", "q.msh", "q.vtk", "q.inp", "q.mesh"}, "-order 2"))
     GTEST_SKIP() << "gmsh failed or is missing";
   std::ifstream in(dir.path() / "q22.msh");
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -162,10 +163,10 @@ TEST(GmshHybrid, SecondOrderMeshReadsToTheLinearMeshsCells) {
   EXPECT_GT(counts.at(11), 0);   // MSH_TET_10
   EXPECT_EQ(counts.count(4) + counts.count(5) + counts.count(7), 0u);
   const LoadedMesh linear = read_hex_mesh(dir.path() / "lin22.msh");
-  for (const char* file : {"q22.msh", "q.msh", "q.vtk", "q.inp"}) {
+  for (const char* file : {"q22.msh", "q.msh", "q.vtk", "q.inp", "q.mesh"}) {
     SCOPED_TRACE(file);
     const LoadedMesh loaded = read_hex_mesh(dir.path() / file);
-    const bool has_pyramids = std::string(file) != "q.inp";
+    const bool has_pyramids = std::string(file) != "q.inp" && std::string(file) != "q.mesh";
     for (const CellKind kind : {CellKind::hex, CellKind::tet, CellKind::pyramid}) {
       if (kind == CellKind::pyramid && !has_pyramids) continue;
       EXPECT_EQ(cells_by_coordinates(loaded.mesh, kind), cells_by_coordinates(linear.mesh, kind))

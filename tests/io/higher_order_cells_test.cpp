@@ -26,6 +26,7 @@
 #include "hqview/io/abaqus_reader.h"
 #include "hqview/io/cell_reading.h"
 #include "hqview/io/gmsh_reader.h"
+#include "hqview/io/medit_reader.h"
 #include "hqview/io/vtk_legacy_reader.h"
 #include "hqview/io/vtu_reader.h"
 #include "hybrid_mesh_files.h"
@@ -259,6 +260,40 @@ std::string write_abaqus(const HigherOrderMesh& m) {
   return s;
 }
 
+// MEDIT: hexahedra of 27 vertices as HexahedraQ2, of 20 in a Hexahedra
+// section (as Gmsh writes them), 10-vertex tetrahedra as TetrahedraP2;
+// prisms (flipped) and pyramids by their corners. Source index: the
+// 1-based entry of the section.
+std::string write_medit(const HigherOrderMesh& m) {
+  std::string s = "MeshVersionFormatted 2\nDimension 3\nVertices\n" + std::to_string(m.points.size()) + "\n";
+  for (const auto& p : m.points) s += test::coordinates(p) + " 0\n";
+  for (const int type : {12, 10, 13, 14}) {
+    std::string keyword, lines;
+    int n = 0;
+    for (const HigherOrderCell& c : m.cells) {
+      if (c.linear_type != type) continue;
+      std::vector<int> nodes = nodes_of(c, true);
+      if (type == 12) keyword = c.type.num_nodes == 27 ? "HexahedraQ2" : "Hexahedra";
+      if (type == 10) keyword = c.type.num_nodes == 10 ? "TetrahedraP2" : "Tetrahedra";
+      if (type == 13 || type == 14) {
+        keyword = type == 13 ? "Prisms" : "Pyramids";
+        nodes.resize(c.vtk.size());
+      }
+      lines += test::ids(nodes, 1) + " " + std::to_string(++n) + "\n";
+    }
+    s += keyword + "\n" + std::to_string(n) + "\n" + lines;
+  }
+  return s + "End\n";
+}
+
+std::int64_t section_entry(std::size_t e) {  // the hybrid mesh's cells, by kind, in file order
+  const test::HybridMesh m = test::hybrid_mesh();
+  std::int64_t i = 0;
+  for (std::size_t f = 0; f <= e; ++f)
+    if (m.cells[f].vtk_type == m.cells[e].vtk_type) ++i;
+  return i;
+}
+
 // The corners of a block of a read mesh.
 template <CellKind K>
 std::vector<std::vector<int>> corners_of(const Mesh& mesh) {
@@ -334,6 +369,13 @@ TEST(HigherOrderCells, QuadraticMeshInEveryFormatReadsToTheLinearCells) {
                                                         "only (2 of type C3D10M, 2 of type C3D15, 2 of type C3D20R" +
                                                         tail});
   }
+  {
+    const LoadedMesh loaded = read_medit(write_medit(q), "q.mesh");
+    expect_hybrid_cells(loaded.mesh, m, section_entry);
+    EXPECT_EQ(loaded.warnings, std::vector<std::string>{"q.mesh: 4 higher-order cells read by their corner nodes only "
+                                                        "(2 of type Hexahedra (20 vertices), 2 of type TetrahedraP2" +
+                                                        tail});
+  }
 }
 
 TEST(HigherOrderCells, FullSecondOrderAndLagrangeCellsReadToTheLinearCells) {
@@ -349,6 +391,14 @@ TEST(HigherOrderCells, FullSecondOrderAndLagrangeCellsReadToTheLinearCells) {
     expect_hybrid_cells(read_gmsh(write_gmsh22(q), "q.msh").mesh, m, gmsh_tag);
     expect_hybrid_cells(read_gmsh(write_gmsh22_binary(q), "q.msh").mesh, m, gmsh_tag);
     expect_hybrid_cells(read_abaqus(write_abaqus(q), "q.inp").mesh, m, abaqus_label);
+    if (what == "full") {
+      const LoadedMesh medit = read_medit(write_medit(q), "q.mesh");
+      expect_hybrid_cells(medit.mesh, m, section_entry);
+      EXPECT_EQ(medit.warnings, std::vector<std::string>{"q.mesh: 4 higher-order cells read by their corner nodes only "
+                                                         "(2 of type HexahedraQ2, 2 of type TetrahedraP2): their other "
+                                                         "nodes are ignored, so curved cells are measured as "
+                                                         "straight-sided ones"});
+    }
   }
   EXPECT_EQ(read_vtk_legacy(write_vtk(higher_order(m, full)), "q.vtk").warnings,
             std::vector<std::string>{"q.vtk: 7 higher-order cells read by their corner nodes only (2 of type 29, 2 of "
@@ -419,6 +469,20 @@ TEST(HigherOrderCells, BadHigherOrderCellsAreRefused) {
             "m.inp:8: expected an element id and 15 to 18 node ids, got 13 fields (C3D15V)");
   EXPECT_EQ(abaqus("*ELEMENT, TYPE=C3D10H\n1, 1, 2, 3, 4, 1, 2, 3, 4, 1, 5\n"),
             "m.inp:7: node 5 is not defined (element 1)");
+
+  const auto medit = [](const std::string& sections) {
+    return error_text<ParseError>([&] {
+      read_medit("MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n" + sections,
+                 "m.mesh");
+    });
+  };
+  EXPECT_EQ(medit("TetrahedraP2\n1\n1 2 3 4 1 2 3 4 1 2\nEnd\n"),
+            "m.mesh:11: expected 10 vertex ids and a reference, got 10 values (tetrahedron 1 of 1)");
+  EXPECT_EQ(medit("TetrahedraP2\n1\n1 2 3 4 1 2 3 4 1 5 0\n"),
+            "m.mesh:11: vertex id 5 out of range [1, 4] (tetrahedron 1 of 1)");
+  EXPECT_EQ(medit("TetrahedraP2\n1\n1 2 3 3 1 2 3 4 1 2 0\n"), "m.mesh:11: vertex id 3 repeated (tetrahedron 1 of 1)");
+  EXPECT_EQ(medit("Tetrahedra\n1\n1 2 3 4 0\nTetrahedraP2\n0\n"),
+            "m.mesh:12: TetrahedraP2 section beside the Tetrahedra section at line 9 (one section per cell kind)");
 }
 
 // --- collapsed hexahedra ------------------------------------------------------
