@@ -93,26 +93,34 @@ inline std::string higher_order_name(std::int64_t type, std::int64_t n) {
 // (HigherOrderDegrees); wedge (p+1)(p+2)/2 (q+1), or VTK's 21-point one;
 // pyramid (p+1)(p+2)(2p+3)/6.
 inline bool lagrange_point_count_ok(CellKind kind, std::int64_t n) {
-  for (std::int64_t p = 1; p <= 20; ++p) {
-    switch (kind) {
-      case CellKind::tet:
-        if (n == (p + 1) * (p + 2) * (p + 3) / 6 || n == 15) return true;
-        break;
-      case CellKind::pyramid:
+  constexpr std::int64_t kMaxOrder = 20;
+  const auto is_order_plus_one = [&](std::int64_t m) { return m >= 2 && m <= kMaxOrder + 1; };
+  switch (kind) {
+    case CellKind::tet:
+      if (n == 15) return true;
+      for (std::int64_t p = 1; p <= kMaxOrder; ++p)
+        if (n == (p + 1) * (p + 2) * (p + 3) / 6) return true;
+      return false;
+    case CellKind::pyramid:
+      for (std::int64_t p = 1; p <= kMaxOrder; ++p)
         if (n == (p + 1) * (p + 2) * (2 * p + 3) / 6) return true;
-        break;
-      case CellKind::wedge:
-        for (std::int64_t q = 1; q <= 20; ++q)
-          if (n == (p + 1) * (p + 2) / 2 * (q + 1) || n == 21) return true;
-        break;
-      default:
-        for (std::int64_t q = 1; q <= 20; ++q)
-          for (std::int64_t r = 1; r <= 20; ++r)
-            if (n == (p + 1) * (q + 1) * (r + 1)) return true;
-        break;
-    }
+      return false;
+    case CellKind::wedge:
+      if (n == 21) return true;
+      for (std::int64_t p = 1; p <= kMaxOrder; ++p) {
+        const std::int64_t triangle = (p + 1) * (p + 2) / 2;
+        if (n % triangle == 0 && is_order_plus_one(n / triangle)) return true;
+      }
+      return false;
+    default:  // a product of three factors in [2, 21]
+      for (std::int64_t a = 2; a <= kMaxOrder + 1; ++a) {
+        if (n % a != 0) continue;
+        const std::int64_t rest = n / a;
+        for (std::int64_t b = 2; b <= kMaxOrder + 1; ++b)
+          if (rest % b == 0 && is_order_plus_one(rest / b)) return true;
+      }
+      return false;
   }
-  return false;
 }
 
 // Whether a cell of a read volume type can have n points.
