@@ -637,6 +637,39 @@ TEST(CollapsedHexahedra, EveryFormatReadsThemAsTheirKind) {
             "c.inp:11: node 3 repeated (element 11)");
 }
 
+// MEDIT: collapsed entries of a Hexahedra section move to their kind's
+// block with their Hexahedra entry as source index, after the entries of
+// that kind's own section (a Prisms entry here); the hexahedra left keep
+// their entry numbers.
+TEST(CollapsedHexahedra, MeditHexahedraMoveToTheirKind) {
+  const std::vector<std::array<double, 3>> p = perturbed_cube();
+  std::string text = "MeshVersionFormatted 2\nDimension 3\nVertices\n8\n";
+  for (const auto& q : p) text += test::coordinates(q) + " 0\n";
+  text += "Prisms\n1\n1 2 3 5 6 7 0\nHexahedra\n4\n1 2 3 3 5 6 7 7 0\n1 2 3 4 5 6 7 8 0\n1 2 3 4 5 5 5 5 0\n"
+          "1 2 3 3 5 5 5 5 0\nEnd\n";
+  const LoadedMesh loaded = read_medit(text, "c.mesh");
+  ASSERT_EQ(loaded.mesh.hexes.size(), 1u);
+  ASSERT_EQ(loaded.mesh.wedges.size(), 2u);
+  ASSERT_EQ(loaded.mesh.pyramids.size(), 1u);
+  ASSERT_EQ(loaded.mesh.tets.size(), 1u);
+  // The Prisms entry (MEDIT's order, flipped) and the collapsed hexahedron give the same wedge.
+  EXPECT_EQ(loaded.mesh.wedges[0], (CellCorners<CellKind::wedge>{0, 2, 1, 4, 6, 5}));
+  EXPECT_EQ(loaded.mesh.wedges[1], (CellCorners<CellKind::wedge>{0, 2, 1, 4, 6, 5}));
+  EXPECT_EQ(loaded.mesh.pyramids[0], (CellCorners<CellKind::pyramid>{0, 1, 2, 3, 4}));
+  EXPECT_EQ(loaded.mesh.tets[0], (CellCorners<CellKind::tet>{0, 1, 2, 4}));
+  EXPECT_EQ(loaded.mesh.source_index[static_cast<std::size_t>(CellKind::hex)], (std::vector<std::int64_t>{2}));
+  EXPECT_EQ(loaded.mesh.source_index[static_cast<std::size_t>(CellKind::wedge)], (std::vector<std::int64_t>{1, 1}));
+  EXPECT_EQ(cell_source_index(loaded.mesh, CellKind::pyramid, 0), 3);
+  EXPECT_EQ(cell_source_index(loaded.mesh, CellKind::tet, 0), 4);
+  EXPECT_EQ(loaded.warnings, std::vector<std::string>{"c.mesh: 3 hexahedra with repeated corners read as the cells "
+                                                      "they collapse to (1 wedge, 1 pyramid, 1 tetrahedron): cells "
+                                                      "1, 3, 4"});
+  // Another repetition is refused as before.
+  text.replace(text.find("1 2 3 3 5 6 7 7 0"), 17, "1 2 3 3 5 6 7 1 0");
+  EXPECT_EQ(error_text<ParseError>([&] { read_medit(text, "c.mesh"); }),
+            "c.mesh:18: vertex id 3 repeated (hexahedron 1 of 4)");
+}
+
 // The collapse of a higher-order hexahedron's corners (a 20-node brick
 // degenerated to a wedge, as HyperMesh writes it: 1-based corners 2=3, 6=7)
 // and the collapsed hexahedra of a VTU, binary legacy VTK and a voxel.

@@ -280,7 +280,12 @@ class MeditParser {
     const int distinct = info.num_nodes > 0 ? cell_kind_num_corners(info.cell_kind) : N;  // P2, Q2: the corners
     for (int a = 1; a < distinct; ++a)
       for (int b = 0; b < a; ++b)
-        if (element[a] == element[b]) s.fail("vertex id " + std::to_string(element[a] + 1) + " repeated" + at.label());
+        if (element[a] == element[b]) {
+          // A hexahedron collapsed to another kind: moved to that kind's block at the end.
+          if constexpr (N == 8)
+            if (info.cell_kind == CellKind::hex && info.num_nodes == 0 && detail::collapse_hex(element)) return element;
+          s.fail("vertex id " + std::to_string(element[a] + 1) + " repeated" + at.label());
+        }
     return element;
   }
 
@@ -414,10 +419,43 @@ class MeditParser {
                        element_word(kind()));
     });
     if (content_.triangles_need_range_check) check_ids_late(content_.triangles, content_.triangles_line, "triangle");
+    move_collapsed_hexahedra();
     if (target_ == Target::kVolumes && detail::num_volume_cells(content_.mesh) == 0)
       s_.fail_at(0, "no volume cells (Hexahedra, Tetrahedra, Prisms or Pyramids)");
     if (target_ == Target::kTriangles && content_.triangles.empty()) s_.fail_at(0, "no triangles");
     return std::move(content_);
+  }
+
+  // The hexahedra whose repeated corners read_element() accepted as a
+  // collapse pattern go to the block of the kind they collapse to, with
+  // their Hexahedra entry as source index; the blocks they leave and join
+  // then store their source indices (the others keep their entry numbers).
+  void move_collapsed_hexahedra() {
+    Mesh& mesh = content_.mesh;
+    std::vector<std::pair<detail::CollapsedHex, std::int64_t>> moved;  // the cell, its Hexahedra entry
+    std::vector<std::int64_t> kept;
+    std::size_t out = 0;
+    for (std::size_t i = 0; i < mesh.hexes.size(); ++i) {
+      const Hex hex = mesh.hexes[i];
+      const std::optional<detail::CollapsedHex> collapsed =
+          detail::first_repeated(hex.data(), 8) >= 0 ? detail::collapse_hex(hex) : std::nullopt;
+      if (collapsed) {
+        moved.emplace_back(*collapsed, static_cast<std::int64_t>(i) + 1);
+      } else {
+        mesh.hexes[out++] = hex;
+        kept.push_back(static_cast<std::int64_t>(i) + 1);
+      }
+    }
+    if (moved.empty()) return;
+    mesh.hexes.resize(out);
+    mesh.source_index[static_cast<std::size_t>(CellKind::hex)] = std::move(kept);
+    for (const auto& [cell, entry] : moved) {
+      std::vector<std::int64_t>& sources = mesh.source_index[static_cast<std::size_t>(cell.kind)];
+      if (sources.empty())
+        for (std::int64_t j = 1; j <= num_cells_of(mesh, cell.kind); ++j) sources.push_back(j);
+      detail::append_cell(mesh, cell.kind, cell.corners.data(), nullptr, entry);
+      content_.notes.add_collapsed(cell.kind, entry);
+    }
   }
 
   static const char* element_word(CellKind kind) {
