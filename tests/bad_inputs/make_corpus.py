@@ -250,6 +250,21 @@ put("gmsh_wedge_wrong_node_count.msh",
 put("abaqus_c3d4_node_out_of_range.inp",
     "*NODE\n" + "".join(f"{i + 1}, {x}, {y}, {z}\n" for i, (x, y, z) in enumerate(PA))
     + "*ELEMENT, TYPE=C3D8\n1, 1, 2, 3, 4, 5, 6, 7, 8\n*ELEMENT, TYPE=C3D4\n2, 5, 6, 7, 12\n")
+# Higher-order cells with a node count that does not match their type, and
+# a hexahedron whose repeated node is not a collapse pattern (a collapsed
+# wedge, pyramid or tetrahedron is read; this is refused as before).
+put("vtk_quadratic_hex_wrong_point_count.vtk",
+    VTK_HEAD + VTK_POINTS_A + "CELLS 1 20\n19 0 1 2 3 4 5 6 7 8 9 10 0 1 2 3 4 5 6 7\nCELL_TYPES 1\n25\n")
+put("vtu_lagrange_wedge_wrong_point_count.vtu",
+    vtu(11, 2, "0 1 2 3 4 5 6 7 4 5 9 7 6 10 8", " ".join(f"{x} {y} {z}" for x, y, z in PA))
+    .replace(">8</DataArray>", ">8 15</DataArray>").replace(">12</DataArray>", ">12 73</DataArray>"))
+put("gmsh_tet10_wrong_node_count.msh",
+    MSH_HEAD + "$Nodes\n11\n" + "".join(f"{i + 1} {x} {y} {z}\n" for i, (x, y, z) in enumerate(PA)) + "$EndNodes\n"
+    + "$Elements\n2\n1 5 2 0 1 1 2 3 4 5 6 7 8\n2 11 2 0 1 5 6 7 9 1 2 3 4 5\n$EndElements\n")
+put("abaqus_c3d20_wrong_node_count.inp",
+    "*NODE\n" + "".join(f"{i + 1}, {x}, {y}, {z}\n" for i, (x, y, z) in enumerate(PA))
+    + "*ELEMENT, TYPE=C3D20\n1, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 1, 2, 3, 4, 5, 6, 7, 8\n")
+put("vtk_hex_repeated_not_collapse.vtk", VTK_HEAD + VTK_POINTS + "CELLS 1 9\n8 0 1 2 3 4 5 6 0\nCELL_TYPES 1\n12\n")
 # Six triangular half-faces: not a hexahedron, tetrahedron, wedge or pyramid.
 put("ovm_polyhedron_not_a_cell_kind.ovm",
     "OVM ASCII\nVertices\n3\n0 0 0\n1 0 0\n0 1 0\nEdges\n3\n0 1\n1 2\n2 0\n"

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <tuple>
 #include <vector>
 
 #ifdef HQ_HAVE_NETCDF
@@ -40,10 +41,12 @@ struct Block {
   std::vector<int> connectivity;  // 1-based
 };
 
-// Writes an Exodus-like classic netCDF file; returns its bytes.
+// Writes an Exodus-like classic netCDF file; returns its bytes. A non-empty
+// elem_num_map is written as Exodus's element number map (dimension
+// num_elem of its size).
 std::string write_exodus(const TempDir& dir, const std::vector<double>& xyz, const std::vector<Block>& blocks,
                          bool combined_coord, bool with_num_nodes = true, int create_mode = NC_CLOBBER,
-                         int num_steps = 0) {
+                         int num_steps = 0, const std::vector<int>& elem_num_map = {}) {
   const std::string path = (dir.path() / "m.e").string();
   int nc = 0;
   EXPECT_EQ(nc_create(path.c_str(), create_mode, &nc), NC_NOERR);
@@ -71,6 +74,12 @@ std::string write_exodus(const TempDir& dir, const std::vector<double>& xyz, con
       coord_vars.push_back(var);
     }
   }
+  int map_var = -1;
+  if (!elem_num_map.empty()) {
+    int dim_elem = 0;
+    nc_def_dim(nc, "num_elem", elem_num_map.size(), &dim_elem);
+    nc_def_var(nc, "elem_num_map", NC_INT, 1, &dim_elem, &map_var);
+  }
   std::vector<int> connect_vars;
   for (std::size_t b = 0; b < blocks.size(); ++b) {
     const std::string suffix = std::to_string(b + 1);
@@ -94,6 +103,7 @@ std::string write_exodus(const TempDir& dir, const std::vector<double>& xyz, con
     for (std::size_t d = 0; d < 3; ++d) nc_put_var_double(nc, coord_vars[d], by_dim.data() + d * n);
   }
   for (std::size_t b = 0; b < blocks.size(); ++b) nc_put_var_int(nc, connect_vars[b], blocks[b].connectivity.data());
+  if (map_var >= 0) nc_put_var_int(nc, map_var, elem_num_map.data());
   for (std::size_t step = 0; step < static_cast<std::size_t>(num_steps); ++step) {
     const double t = static_cast<double>(step);
     nc_put_var1_double(nc, time_var, &step, &t);
@@ -168,6 +178,119 @@ TEST(ExodusReader, HybridMeshReadsToTheSameCells) {
       }
     for (const auto& cell : read) EXPECT_GT(test::split_volume(points, type, cell).min_tet, 0.0);
   }
+}
+
+// Higher-order blocks (HEX20, TETRA10, WEDGE15, PYRAMID13; corners first,
+// then new nodes at the edge midpoints) read to the hybrid mesh's cells with
+// one warning, and with an elem_num_map the source index of each cell is
+// its entry there (the user's element id), skipped blocks counted in.
+TEST(ExodusReader, HigherOrderBlocksAndTheElementNumberMap) {
+  const test::HybridMesh m = test::hybrid_mesh();
+  std::vector<double> xyz;
+  for (const auto& p : m.points) xyz.insert(xyz.end(), p.begin(), p.end());
+  const std::vector<std::tuple<int, std::string, int>> kinds = {
+      {12, "HEX20", 20}, {10, "TETRA10", 10}, {13, "WEDGE15", 15}, {14, "PYRAMID13", 13}};
+  std::vector<Block> blocks = {{"QUAD4", 4, {1, 2, 5, 4}}};  // a skipped element first
+  for (const auto& [type, name, num_nodes] : kinds) {
+    Block block{name, num_nodes, {}};
+    for (const test::HybridCell& c : m.cells)
+      if (c.vtk_type == type) {
+        const std::vector<int> corners = test::file_order(c, true);
+        for (const int v : corners) block.connectivity.push_back(v + 1);
+        for (int j = static_cast<int>(corners.size()); j < num_nodes; ++j) {  // a new node at an edge's midpoint
+          const auto& a = m.points[static_cast<std::size_t>(corners[static_cast<std::size_t>(j % corners.size())])];
+          const auto& b = m.points[static_cast<std::size_t>(corners[static_cast<std::size_t>((j + 1) % corners.size())])];
+          for (int k = 0; k < 3; ++k) xyz.push_back((a[k] + b[k]) / 2);
+          block.connectivity.push_back(static_cast<int>(xyz.size() / 3));
+        }
+      }
+    blocks.push_back(block);
+  }
+  const std::vector<int> map = {7, 501, 502, 90, 91, 300, 301, 200};  // QUAD4, HEX20 x2, TETRA10 x2, WEDGE15 x2, PYRAMID13
+  TempDir dir("exodus_higher_order");
+  for (const bool with_map : {false, true}) {
+    SCOPED_TRACE(with_map ? "elem_num_map" : "no map");
+    const LoadedMesh loaded =
+        read_exodus(write_exodus(dir, xyz, blocks, false, true, NC_CLOBBER, 0, with_map ? map : std::vector<int>{}), "m.e");
+    std::vector<std::array<double, 3>> points;
+    for (const Vec3& p : loaded.mesh.points) points.push_back({p.x, p.y, p.z});
+    std::size_t position = 1;  // the QUAD4 is element 1
+    for (const auto& [type, name, num_nodes] : kinds) {
+      SCOPED_TRACE(name);
+      std::vector<std::vector<int>> expected, read;
+      for (const test::HybridCell& c : m.cells)
+        if (c.vtk_type == type) expected.push_back(c.vtk);
+      std::vector<std::int64_t> ids;
+      for (std::size_t i = 0; i < expected.size(); ++i, ++position)
+        ids.push_back(with_map ? map[position] : static_cast<std::int64_t>(position + 1));
+      for (const CellKind kind : kCellKinds)
+        if (cell_kind_vtk_type(kind) == type) {
+          for_each_block(loaded.mesh, [&](auto k, const auto& cells) {
+            if (k() == kind)
+              for (const auto& cell : cells) read.emplace_back(cell.begin(), cell.end());
+          });
+          std::vector<std::int64_t> source;
+          for (std::size_t i = 0; i < read.size(); ++i) source.push_back(cell_source_index(loaded.mesh, kind, i));
+          EXPECT_EQ(source, ids);
+        }
+      EXPECT_EQ(read, expected);
+      for (const auto& cell : read) EXPECT_GT(test::split_volume(points, type, cell).min_tet, 0.0);
+    }
+    EXPECT_EQ(loaded.warnings,
+              (std::vector<std::string>{"m.e: 1 element of unread types skipped (type QUAD4)",
+                                        "m.e: 7 higher-order elements read by their corner nodes only (2 of type "
+                                        "HEX20, 1 of type PYRAMID13, 2 of type TETRA10, 2 of type WEDGE15): their "
+                                        "other nodes are ignored, so curved cells are measured as straight-sided "
+                                        "ones"}));
+  }
+  // A map shorter than the blocks' elements (num_elem too small) is refused.
+  EXPECT_EQ(error_text<ParseError>([&] {
+              read_exodus(write_exodus(dir, kCube, {{"HEX8", 8, {1, 2, 3, 4, 5, 6, 7, 8, 5, 6, 7, 8, 1, 2, 3, 4}}}, false,
+                                       true, NC_CLOBBER, 0, {42}),
+                          "m.e");
+            }),
+            "m.e: elem_num_map has 1 entries, fewer than the blocks' elements (connect1 element 2)");
+}
+
+// HEX8 elements with repeated nodes in the collapse patterns (1-based: a
+// wedge 3=4, 7=8; a pyramid 5=6=7=8; a tetrahedron 3=4, 5=6=7=8) are read as
+// their kind with their element ids, and a HEX27 block named "HEX" by its
+// corners.
+TEST(ExodusReader, CollapsedHexahedraAndAHexBlockOf27Nodes) {
+  std::vector<double> xyz = kCube;
+  std::vector<int> hex27 = {1, 2, 3, 4, 5, 6, 7, 8};
+  for (int j = 8; j < 27; ++j) {  // the other nodes at the centre
+    for (int k = 0; k < 3; ++k) xyz.push_back(0.5);
+    hex27.push_back(static_cast<int>(xyz.size() / 3));
+  }
+  TempDir dir("exodus_collapsed");
+  const LoadedMesh loaded = read_exodus(
+      write_exodus(dir, xyz,
+                   {{"HEX8", 8, {1, 2, 3, 3, 5, 6, 7, 7, 1, 2, 3, 4, 5, 5, 5, 5, 1, 2, 3, 3, 5, 5, 5, 5}},
+                    {"HEX", 27, hex27}},
+                   false, true, NC_CLOBBER, 0, {10, 20, 30, 40}),
+      "m.e");
+  ASSERT_EQ(loaded.mesh.wedges.size(), 1u);
+  ASSERT_EQ(loaded.mesh.pyramids.size(), 1u);
+  ASSERT_EQ(loaded.mesh.tets.size(), 1u);
+  ASSERT_EQ(loaded.mesh.hexes.size(), 1u);
+  EXPECT_EQ(loaded.mesh.wedges[0], (CellCorners<CellKind::wedge>{0, 2, 1, 4, 6, 5}));
+  EXPECT_EQ(loaded.mesh.pyramids[0], (CellCorners<CellKind::pyramid>{0, 1, 2, 3, 4}));
+  EXPECT_EQ(loaded.mesh.tets[0], (CellCorners<CellKind::tet>{0, 1, 2, 4}));
+  EXPECT_EQ(loaded.mesh.hexes[0], (Hex{0, 1, 2, 3, 4, 5, 6, 7}));
+  EXPECT_EQ(cell_source_index(loaded.mesh, CellKind::wedge, 0), 10);
+  EXPECT_EQ(cell_source_index(loaded.mesh, CellKind::pyramid, 0), 20);
+  EXPECT_EQ(cell_source_index(loaded.mesh, CellKind::tet, 0), 30);
+  EXPECT_EQ(cell_source_index(loaded.mesh, CellKind::hex, 0), 40);
+  std::vector<std::array<double, 3>> points;
+  for (const Vec3& p : loaded.mesh.points) points.push_back({p.x, p.y, p.z});
+  EXPECT_GT(test::split_volume(points, 13, {0, 2, 1, 4, 6, 5}).min_tet, 0.0);
+  EXPECT_EQ(loaded.warnings,
+            (std::vector<std::string>{
+                "m.e: 1 higher-order element read by its corner nodes only (1 of type HEX (27 nodes)): its other "
+                "nodes are ignored, so curved cells are measured as straight-sided ones",
+                "m.e: 3 hexahedra with repeated corners read as the cells they collapse to (1 wedge, 1 pyramid, 1 "
+                "tetrahedron): elements 10, 20, 30"}));
 }
 
 // The header walk (netcdf_header.h) accepts what libnetcdf writes: classic,

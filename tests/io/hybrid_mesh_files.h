@@ -141,6 +141,19 @@ inline std::string write_vtk_legacy(const HybridMesh& m) {
   return s;
 }
 
+// A one-piece ASCII .vtu from its arrays' texts.
+inline std::string vtu_text(std::size_t num_points, std::size_t num_cells, const std::string& points,
+                            const std::string& connectivity, const std::string& offsets, const std::string& types) {
+  return "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
+         "<UnstructuredGrid>\n<Piece NumberOfPoints=\"" +
+         std::to_string(num_points) + "\" NumberOfCells=\"" + std::to_string(num_cells) +
+         "\">\n<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">" + points +
+         "</DataArray></Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">" +
+         connectivity + "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">" + offsets +
+         "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">" + types +
+         "</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+}
+
 inline std::string write_vtu(const HybridMesh& m) {
   std::string points, connectivity, offsets, types;
   for (const auto& p : m.points) points += coordinates(p) + " ";
@@ -151,14 +164,7 @@ inline std::string write_vtu(const HybridMesh& m) {
     offsets += std::to_string(offset) + " ";
     types += std::to_string(c.vtk_type) + " ";
   }
-  return "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
-         "<UnstructuredGrid>\n<Piece NumberOfPoints=\"" +
-         std::to_string(m.points.size()) + "\" NumberOfCells=\"" + std::to_string(m.cells.size()) +
-         "\">\n<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">" + points +
-         "</DataArray></Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">" +
-         connectivity + "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">" + offsets +
-         "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">" + types +
-         "</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+  return vtu_text(m.points.size(), m.cells.size(), points, connectivity, offsets, types);
 }
 
 inline int gmsh_type(int vtk_type) {

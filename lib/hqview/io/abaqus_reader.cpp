@@ -21,24 +21,58 @@ namespace {
 using detail::iequals;
 using detail::quote;
 
-// The first-order volume element types read, by kind (Abaqus Analysis User's
-// Guide, "Three-dimensional solid element library": stress/displacement,
-// hybrid (H), coupled temperature-displacement (T), heat transfer (DC),
-// acoustic (AC), piezoelectric (E) and pore pressure (P) variants).
+// The volume element types read, by kind (Abaqus Analysis User's Guide,
+// "Three-dimensional solid element library": stress/displacement, hybrid
+// (H), incompatible modes (I), modified (M), improved surface stress (S),
+// coupled temperature-displacement (T), heat transfer and mass diffusion
+// (DC), acoustic (AC), piezoelectric (E) and pore pressure (P) variants,
+// first and second order). Abaqus numbers the corner nodes first, then the
+// midside ones ("Triangular, tetrahedral, and wedge elements", "Solid
+// (continuum) elements"): a second-order element is read by its corners,
+// with min_nodes to max_nodes nodes in all (the variable-node C3D15V and
+// C3D27 may leave out their face and centre nodes). Abaqus has no
+// second-order pyramid: C3D5 and C3D5H are its only pyramids.
 struct ElementType {
   std::string_view name;
   CellKind kind;
+  int min_nodes;
+  int max_nodes;
 };
+// clang-format off
 constexpr ElementType kVolumeTypes[] = {
-    {"C3D8", CellKind::hex},    {"C3D8R", CellKind::hex},   {"C3D8I", CellKind::hex},
-    {"C3D8H", CellKind::hex},   {"C3D8RH", CellKind::hex},  {"C3D8IH", CellKind::hex},
-    {"C3D4", CellKind::tet},    {"C3D4H", CellKind::tet},   {"C3D4T", CellKind::tet},
-    {"C3D4E", CellKind::tet},   {"C3D4P", CellKind::tet},   {"DC3D4", CellKind::tet},
-    {"DC3D4E", CellKind::tet},  {"AC3D4", CellKind::tet},   {"C3D6", CellKind::wedge},
-    {"C3D6H", CellKind::wedge}, {"C3D6T", CellKind::wedge}, {"C3D6HT", CellKind::wedge},
-    {"C3D6E", CellKind::wedge}, {"DC3D6", CellKind::wedge}, {"DC3D6E", CellKind::wedge},
-    {"AC3D6", CellKind::wedge}, {"C3D5", CellKind::pyramid}, {"C3D5H", CellKind::pyramid},
+    {"C3D8", CellKind::hex, 8, 8},     {"C3D8R", CellKind::hex, 8, 8},    {"C3D8I", CellKind::hex, 8, 8},
+    {"C3D8H", CellKind::hex, 8, 8},    {"C3D8RH", CellKind::hex, 8, 8},   {"C3D8IH", CellKind::hex, 8, 8},
+    {"C3D8S", CellKind::hex, 8, 8},    {"C3D8HS", CellKind::hex, 8, 8},   {"C3D8T", CellKind::hex, 8, 8},
+    {"C3D8HT", CellKind::hex, 8, 8},   {"C3D8RT", CellKind::hex, 8, 8},   {"C3D8RHT", CellKind::hex, 8, 8},
+    {"C3D8E", CellKind::hex, 8, 8},    {"C3D8P", CellKind::hex, 8, 8},    {"C3D8PH", CellKind::hex, 8, 8},
+    {"C3D8RP", CellKind::hex, 8, 8},   {"C3D8RPH", CellKind::hex, 8, 8},  {"DC3D8", CellKind::hex, 8, 8},
+    {"DC3D8E", CellKind::hex, 8, 8},   {"AC3D8", CellKind::hex, 8, 8},
+    {"C3D4", CellKind::tet, 4, 4},     {"C3D4H", CellKind::tet, 4, 4},    {"C3D4T", CellKind::tet, 4, 4},
+    {"C3D4E", CellKind::tet, 4, 4},    {"C3D4P", CellKind::tet, 4, 4},    {"DC3D4", CellKind::tet, 4, 4},
+    {"DC3D4E", CellKind::tet, 4, 4},   {"AC3D4", CellKind::tet, 4, 4},
+    {"C3D6", CellKind::wedge, 6, 6},   {"C3D6H", CellKind::wedge, 6, 6},  {"C3D6T", CellKind::wedge, 6, 6},
+    {"C3D6HT", CellKind::wedge, 6, 6}, {"C3D6E", CellKind::wedge, 6, 6},  {"C3D6P", CellKind::wedge, 6, 6},
+    {"DC3D6", CellKind::wedge, 6, 6},  {"DC3D6E", CellKind::wedge, 6, 6}, {"AC3D6", CellKind::wedge, 6, 6},
+    {"C3D5", CellKind::pyramid, 5, 5}, {"C3D5H", CellKind::pyramid, 5, 5},
+    // Second order.
+    {"C3D20", CellKind::hex, 20, 20},   {"C3D20R", CellKind::hex, 20, 20},  {"C3D20H", CellKind::hex, 20, 20},
+    {"C3D20RH", CellKind::hex, 20, 20}, {"C3D20T", CellKind::hex, 20, 20},  {"C3D20HT", CellKind::hex, 20, 20},
+    {"C3D20RT", CellKind::hex, 20, 20}, {"C3D20RHT", CellKind::hex, 20, 20}, {"C3D20E", CellKind::hex, 20, 20},
+    {"C3D20RE", CellKind::hex, 20, 20}, {"C3D20P", CellKind::hex, 20, 20},  {"C3D20PH", CellKind::hex, 20, 20},
+    {"C3D20RP", CellKind::hex, 20, 20}, {"C3D20RPH", CellKind::hex, 20, 20}, {"DC3D20", CellKind::hex, 20, 20},
+    {"DC3D20E", CellKind::hex, 20, 20}, {"AC3D20", CellKind::hex, 20, 20},
+    {"C3D27", CellKind::hex, 21, 27},   {"C3D27H", CellKind::hex, 21, 27},  {"C3D27R", CellKind::hex, 21, 27},
+    {"C3D27RH", CellKind::hex, 21, 27},
+    {"C3D10", CellKind::tet, 10, 10},    {"C3D10H", CellKind::tet, 10, 10},   {"C3D10HS", CellKind::tet, 10, 10},
+    {"C3D10I", CellKind::tet, 10, 10},   {"C3D10M", CellKind::tet, 10, 10},   {"C3D10MH", CellKind::tet, 10, 10},
+    {"C3D10MT", CellKind::tet, 10, 10},  {"C3D10MHT", CellKind::tet, 10, 10}, {"C3D10E", CellKind::tet, 10, 10},
+    {"C3D10MP", CellKind::tet, 10, 10},  {"C3D10MPH", CellKind::tet, 10, 10}, {"DC3D10", CellKind::tet, 10, 10},
+    {"DC3D10E", CellKind::tet, 10, 10},  {"AC3D10", CellKind::tet, 10, 10},
+    {"C3D15", CellKind::wedge, 15, 15},  {"C3D15H", CellKind::wedge, 15, 15}, {"C3D15E", CellKind::wedge, 15, 15},
+    {"C3D15V", CellKind::wedge, 15, 18}, {"C3D15VH", CellKind::wedge, 15, 18}, {"DC3D15", CellKind::wedge, 15, 15},
+    {"DC3D15E", CellKind::wedge, 15, 15}, {"AC3D15", CellKind::wedge, 15, 15},
 };
+// clang-format on
 
 const ElementType* find_volume_type(std::string_view name) {
   for (const ElementType& type : kVolumeTypes)
@@ -62,7 +96,7 @@ class AbaqusParser {
     enum class Block { kNone, kNodes, kVolumeElements, kOtherElements, kSkipped };
     Block block = Block::kNone;
     std::string element_type;
-    CellKind kind = CellKind::hex;
+    const ElementType* volume = nullptr;
     while (next_line()) {
       const std::string_view line = trim(line_);
       if (line.empty() || line.starts_with("**")) continue;
@@ -82,8 +116,7 @@ class AbaqusParser {
               element_type = upper(trim(part.substr(eq + 1)));
           }
           if (element_type.empty()) fail(line_number_, "*ELEMENT without TYPE=");
-          const ElementType* volume = find_volume_type(element_type);
-          if (volume != nullptr) kind = volume->kind;
+          volume = find_volume_type(element_type);
           block = volume != nullptr ? Block::kVolumeElements : Block::kOtherElements;
         } else if (keyword == "*INCLUDE") {
           fail(line_number_, "*INCLUDE is not supported: merge the included file into this one");
@@ -99,7 +132,7 @@ class AbaqusParser {
           read_node(line);
           break;
         case Block::kVolumeElements:
-          read_cell(kind, line);
+          read_cell(*volume, line);
           break;
         case Block::kOtherElements: {
           // One element per record; a record continues while its lines end with ','.
@@ -161,41 +194,51 @@ class AbaqusParser {
     points_.push_back({xyz[0], xyz[1], xyz[2]});
   }
 
-  // One element of a volume kind. Abaqus lists a C3D6 wedge's first triangle
-  // with its normal towards the second (face 1 = 1-2-3 faces inward, as a
-  // C3D8's face 1 = 1-2-3-4): permuted to VTK's order.
-  void read_cell(CellKind kind, std::string_view line) {
+  // One element of a volume type. Abaqus lists a C3D6 wedge's first
+  // triangle with its normal towards the second (face 1 = 1-2-3 faces
+  // inward, as a C3D8's face 1 = 1-2-3-4): permuted to VTK's order. Every
+  // node must be defined; the corners, listed first, are kept.
+  void read_cell(const ElementType& type, std::string_view line) {
+    const CellKind kind = type.kind;
     const int n = cell_kind_num_corners(kind);
     const std::int64_t first_line = line_number_;
     std::vector<std::string_view> fields = split(line);
     // A record continues while its line ends with a comma; the strings stay
     // views into bytes_.
-    while (trim(fields.back()).empty() && fields.size() < static_cast<std::size_t>(n) + 2) {
+    while (trim(fields.back()).empty() && fields.size() < static_cast<std::size_t>(type.max_nodes) + 2) {
       fields.pop_back();
       if (!next_line()) fail(first_line, "unexpected end of file in an element continued on the next line");
       const std::vector<std::string_view> more = split(trim(line_));
       fields.insert(fields.end(), more.begin(), more.end());
     }
     if (!fields.empty() && trim(fields.back()).empty()) fields.pop_back();
-    if (fields.size() != static_cast<std::size_t>(n) + 1)
-      fail(line_number_, "expected an element id and " + std::to_string(n) + " node ids, got " +
-                             std::to_string(fields.size()) + " fields");
+    if (fields.size() < static_cast<std::size_t>(type.min_nodes) + 1 ||
+        fields.size() > static_cast<std::size_t>(type.max_nodes) + 1)
+      fail(line_number_, "expected an element id and " + std::to_string(type.min_nodes) +
+                             (type.max_nodes > type.min_nodes ? " to " + std::to_string(type.max_nodes) : "") +
+                             " node ids, got " + std::to_string(fields.size()) + " fields" +
+                             (type.min_nodes > n ? " (" + std::string(type.name) + ")" : ""));
     const auto id = parse_number<std::int64_t>(fields[0], "an element id");
     std::array<Index, 8> corners{};
     std::array<std::int64_t, 8> nodes{};
-    for (int j = 0; j < n; ++j) {
-      const auto node = parse_number<std::int64_t>(fields[static_cast<std::size_t>(j) + 1], "a node id");
+    for (std::size_t j = 0; j + 1 < fields.size(); ++j) {
+      const auto node = parse_number<std::int64_t>(fields[j + 1], "a node id");
       const auto it = index_of_id_.find(node);
       if (it == index_of_id_.end())
         fail(line_number_, "node " + std::to_string(node) + " is not defined (element " + std::to_string(id) + ")");
-      corners[static_cast<std::size_t>(j)] = it->second;
-      nodes[static_cast<std::size_t>(j)] = node;
+      if (j < static_cast<std::size_t>(n)) {
+        corners[j] = it->second;
+        nodes[j] = node;
+      }
     }
-    if (const int j = detail::first_repeated(corners.data(), n); j >= 0)
+    if (type.min_nodes > n) notes_.add_higher_order(std::string(type.name));
+    const int* to_vtk = kind == CellKind::wedge ? detail::kWedgeFlippedToVtk.data() : nullptr;
+    if (const int j = detail::first_repeated(corners.data(), n); j >= 0) {
+      if (kind == CellKind::hex && detail::append_collapsed_hex(mesh_, corners.data(), nullptr, id, notes_)) return;
       fail(line_number_, "node " + std::to_string(nodes[static_cast<std::size_t>(j)]) + " repeated (element " +
                              std::to_string(id) + ")");
-    detail::append_cell(mesh_, kind, corners.data(),
-                        kind == CellKind::wedge ? detail::kWedgeFlippedToVtk.data() : nullptr, id);
+    }
+    detail::append_cell(mesh_, kind, corners.data(), to_vtk, id);
   }
 
   LoadedMesh build() {
@@ -210,6 +253,7 @@ class AbaqusParser {
     LoadedMesh loaded;
     loaded.format = "abaqus";
     if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(name_, "element"));
+    notes_.append_warnings(name_, "element", loaded.warnings);
     mesh_.points = std::move(points_);
     loaded.mesh = std::move(mesh_);
     return loaded;
@@ -225,6 +269,7 @@ class AbaqusParser {
   std::unordered_map<std::int64_t, Index> index_of_id_;  // lookups only, never iterated
   Mesh mesh_;  // the volume blocks (points_ are moved in at the end)
   std::map<std::string, std::int64_t> skipped_by_type_;
+  detail::CellNotes notes_;
 };
 
 }  // namespace

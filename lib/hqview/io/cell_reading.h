@@ -3,7 +3,10 @@
 // blocks (mesh/mesh.h): appending a cell of a kind with its source index,
 // the corner permutation of the formats that list a wedge the other way
 // round, the check for repeated corners, and the words of the messages
-// ("2 tetrahedra, 1 wedge").
+// ("2 tetrahedra, 1 wedge"), the reading of hexahedra with repeated corners
+// in a collapse pattern as their collapsed kind, and the one warning per
+// file about such cells and about higher-order cells read by their corners
+// (CellNotes).
 //
 // Wedge orders (docs/formats.md): VTK (legacy, VTU), MEDIT and OVM's
 // reconstruction use VTK_WEDGE's order (the right-hand normal of the first
@@ -13,7 +16,10 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "hqview/core/cell_kinds.h"
 #include "hqview/core/types.h"
@@ -40,6 +46,68 @@ void append_cell(Mesh& mesh, CellKind kind, const Index* corners, const int* to_
 // The position j of the first id among ids[0..n) equal to an earlier one, -1
 // when all are distinct.
 int first_repeated(const Index* ids, int n);
+
+// A hexahedron (corners in VTK order) whose repeated corners follow one of
+// the collapse patterns that ANSYS, Abaqus, Exodus and HyperMesh writers use
+// for other kinds in an 8-node hexahedron, as that kind, corners in VTK
+// order; none for any other hexahedron (all corners distinct, or repeated
+// otherwise). With 1-based corners, the documented patterns are
+//   wedge:   3=4 and 7=8 (ANSYS "K,L and O,P"), or 2=3 and 6=7 (HyperMesh):
+//            two parallel edges of one face collapse, that face becoming an
+//            edge; 6 distinct corners;
+//   pyramid: 5=6=7=8, one face collapsed to the apex; 5 distinct corners;
+//   tet:     3=4 and 5=6=7=8 (ANSYS "K,L and M,N,O,P"); 4 distinct corners;
+// and each of them on any face: every rotation of the hexahedron (the 24
+// that keep its orientation) of those three. A rotation keeps the sign of
+// the volume, so a valid collapsed hexahedron gives a valid cell.
+struct CollapsedHex {
+  CellKind kind;
+  std::array<Index, 8> corners;  // the first num_corners(kind), VTK order
+};
+std::optional<CollapsedHex> collapse_hex(const std::array<Index, 8>& hex);
+
+// What a reader tells once per file about the cells it read in a way the
+// user should know of: higher-order cells (second-order, Lagrange, Bezier)
+// read by their corner nodes, counted by the format's type name, and
+// hexahedra with repeated corners read as their collapsed kind, counted by
+// kind with the first few of their source indices.
+class CellNotes {
+ public:
+  // Type names in their natural order: numbers by value ("9" before "24"),
+  // names alphabetically.
+  struct TypeOrder {
+    bool operator()(const std::string& a, const std::string& b) const {
+      const bool numbers = is_number(a) && is_number(b);
+      return numbers && a.size() != b.size() ? a.size() < b.size() : a < b;
+    }
+    static bool is_number(const std::string& s) {
+      return !s.empty() && s.find_first_not_of("0123456789") == std::string::npos;
+    }
+  };
+
+  void add_higher_order(const std::string& type, std::int64_t count = 1) { higher_order_[type] += count; }
+  void add_collapsed(CellKind kind, std::int64_t source_index);
+
+  // The warnings ("" none), `noun` the format's word ("cell", "element"):
+  //   "NAME: 12 second-order cells read by their corner nodes only (10 of type 24, 2 of type 25):
+  //    their other nodes are ignored, so curved cells are measured straight"
+  //   "NAME: 3 hexahedra with repeated corners read as the cells they collapse to (2 wedges,
+  //    1 tetrahedron): cells 4, 7, 9"
+  void append_warnings(const std::string& file, const char* noun, std::vector<std::string>& warnings) const;
+
+ private:
+  std::map<std::string, std::int64_t, TypeOrder> higher_order_;
+  std::array<std::int64_t, kNumCellKinds> collapsed_by_kind_{};
+  std::vector<std::int64_t> collapsed_sources_;  // the first kShownCollapsed
+  std::int64_t num_collapsed_ = 0;
+};
+
+// A hexahedron whose corners repeat: appends it as its collapsed kind
+// (collapse_hex), noted in `notes`, and returns true; false (nothing
+// appended) when the repetition is not a collapse pattern. `corners` in the
+// file's order, `to_vtk` (nullptr: none) as for append_cell.
+bool append_collapsed_hex(Mesh& mesh, const Index* corners, const int* to_vtk, std::int64_t source_index,
+                          CellNotes& notes);
 
 // The word for a kind's cells, singular or plural: "hexahedron",
 // "tetrahedra", "wedges", "pyramid", ...

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <initializer_list>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -184,14 +185,21 @@ std::string upper(std::string text) {
 
 // The kind of a block's elements: the elem_type names Exodus writers use
 // (HEX, HEX8; TETRA, TET4, TETRA4; WEDGE, WEDGE6; PYRAMID, PYRAMID5, PYRA)
-// with the linear node count; none for every other block. Exodus lists a
-// WEDGE's first triangle with its normal towards the second (side 4 is
-// 1-3-2): such wedges are permuted to VTK's order by the caller.
+// with a node count Exodus and IOSS define for that shape (SEACAS'
+// "Exodus Element Types"): hexahedra of 8, 9, 20 or 27 nodes,
+// tetrahedra of 4, 5, 8, 10, 11, 14 or 15, wedges of 6, 12, 15, 16, 18, 20
+// or 21 and pyramids of 5, 13, 14, 18 or 19; none for every other block.
+// The corners are listed first (Exodus follows PATRAN's element library).
+// Exodus lists a WEDGE's first triangle with its normal towards the second
+// (side 4 is 1-3-2): such wedges are permuted to VTK's order by the caller.
 std::optional<CellKind> exodus_volume_kind(const std::string& type, std::int64_t per_element) {
-  if (type.starts_with("HEX") && per_element == 8) return CellKind::hex;
-  if (type.starts_with("TET") && per_element == 4) return CellKind::tet;
-  if (type.starts_with("WEDGE") && per_element == 6) return CellKind::wedge;
-  if (type.starts_with("PYR") && per_element == 5) return CellKind::pyramid;
+  const auto one_of = [&](std::initializer_list<std::int64_t> counts) {
+    return std::find(counts.begin(), counts.end(), per_element) != counts.end();
+  };
+  if (type.starts_with("HEX") && one_of({8, 9, 20, 27})) return CellKind::hex;
+  if (type.starts_with("TET") && one_of({4, 5, 8, 10, 11, 14, 15})) return CellKind::tet;
+  if (type.starts_with("WEDGE") && one_of({6, 12, 15, 16, 18, 20, 21})) return CellKind::wedge;
+  if (type.starts_with("PYR") && one_of({5, 13, 14, 18, 19})) return CellKind::pyramid;
   return std::nullopt;
 }
 
@@ -262,8 +270,25 @@ LoadedMesh read_exodus(std::string_view bytes, const std::string& name, const Re
     num_elements_declared +=
         std::clamp<std::int64_t>(file.dimension("num_el_in_blk" + std::to_string(b)), 0, kMaxIndexCount);
   check_mesh_memory(limits, name, 0, bytes.size(), num_nodes, num_elements_declared, "element");
+  // The user's element ids: elem_num_map, when the file has one, maps the
+  // 1-based element number over the blocks to the id (Exodus II, "Element
+  // Number Map"); without it the id is that number.
+  std::vector<long long> id_map;
+  const int map = file.variable("elem_num_map");
+  if (map >= 0) {
+    const std::int64_t num_elem = std::max<std::int64_t>(file.dimension("num_elem"), 0);
+    id_map = file.integers(map, "elem_num_map", static_cast<std::uint64_t>(num_elem));
+  }
   std::map<std::string, std::int64_t> skipped_by_type;
-  std::int64_t element_id = 0;  // 1-based over the blocks in order: Exodus's implicit element id
+  detail::CellNotes notes;
+  std::int64_t element_number = 0;  // 1-based over the blocks in order: Exodus's implicit element id
+  const auto element_id = [&](const std::string& connect, std::int64_t e) -> std::int64_t {
+    if (map < 0) return element_number;
+    if (element_number > static_cast<std::int64_t>(id_map.size()))
+      file.fail("elem_num_map has " + std::to_string(id_map.size()) + " entries, fewer than the blocks' elements (" +
+                connect + " element " + std::to_string(e + 1) + ")");
+    return id_map[static_cast<std::size_t>(element_number - 1)];
+  };
   for (std::int64_t b = 1; b <= num_blocks; ++b) {
     const std::string connect = "connect" + std::to_string(b);
     const int var = file.variable(connect);
@@ -272,14 +297,21 @@ LoadedMesh read_exodus(std::string_view bytes, const std::string& name, const Re
     if (var < 0 || num_elements <= 0) continue;  // an empty block has no connectivity
     const std::string type = upper(file.text_attribute(var, "elem_type"));
     const std::optional<CellKind> kind = exodus_volume_kind(type, per_element);
+    const std::string count = std::to_string(per_element);
+    const std::string type_name = type.empty() || type.ends_with(count) ? type : type + " (" + count + " nodes)";
     if (!kind) {
-      skipped_by_type[type.empty() ? "?" : type] += num_elements;
-      element_id += num_elements;
+      skipped_by_type[type.empty() ? "?" : type_name] += num_elements;
+      element_number += num_elements;
       continue;
     }
+    // Every node is checked; the corners, listed first, are kept.
     const int n = static_cast<int>(per_element);
+    const int num_corners = cell_kind_num_corners(*kind);
+    const bool is_higher_order = n > num_corners;
+    const int* to_vtk = *kind == CellKind::wedge ? detail::kWedgeFlippedToVtk.data() : nullptr;
     const std::vector<long long> ids =
         file.integers(var, connect, static_cast<std::uint64_t>(num_elements) * static_cast<std::uint64_t>(n));
+    if (is_higher_order) notes.add_higher_order(type_name, num_elements);
     for (std::int64_t e = 0; e < num_elements; ++e) {
       std::array<Index, 8> corners{};
       for (int j = 0; j < n; ++j) {
@@ -287,13 +319,17 @@ LoadedMesh read_exodus(std::string_view bytes, const std::string& name, const Re
         if (id < 1 || id > num_nodes)
           file.fail("node " + std::to_string(id) + " out of range [1, " + std::to_string(num_nodes) + "] (" + connect +
                     " element " + std::to_string(e + 1) + ")");
-        corners[static_cast<std::size_t>(j)] = static_cast<Index>(id - 1);
+        if (j < num_corners) corners[static_cast<std::size_t>(j)] = static_cast<Index>(id - 1);
       }
-      if (const int j = detail::first_repeated(corners.data(), n); j >= 0)
+      ++element_number;
+      const std::int64_t source = element_id(connect, e);
+      if (const int j = detail::first_repeated(corners.data(), num_corners); j >= 0) {
+        if (*kind == CellKind::hex && detail::append_collapsed_hex(loaded.mesh, corners.data(), nullptr, source, notes))
+          continue;
         file.fail("node " + std::to_string(corners[static_cast<std::size_t>(j)] + 1) + " repeated (" + connect +
                   " element " + std::to_string(e + 1) + ")");
-      detail::append_cell(loaded.mesh, *kind, corners.data(),
-                          *kind == CellKind::wedge ? detail::kWedgeFlippedToVtk.data() : nullptr, ++element_id);
+      }
+      detail::append_cell(loaded.mesh, *kind, corners.data(), to_vtk, source);
     }
   }
   const SkippedCells skipped(skipped_by_type);
@@ -301,6 +337,7 @@ LoadedMesh read_exodus(std::string_view bytes, const std::string& name, const Re
     file.fail("no volume elements (HEX8, TETRA, WEDGE or PYRAMID blocks)" +
               (skipped.count > 0 ? " among " + skipped.counted("element") : std::string()));
   if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(name, "element"));
+  notes.append_warnings(name, "element", loaded.warnings);
   return loaded;
 }
 

@@ -6,12 +6,17 @@
 //
 // Read: the node coordinates (coord, or coordx / coordy / coordz; a
 // missing z is 0) in file order, and every element block whose elem_type
-// starts with "HEX" and has 8 nodes per element (connectN, 1-based node
-// indices; HEX8 corner order is VTK_HEXAHEDRON's), and TET*, WEDGE* (permuted
-// to VTK's order) and PYR* blocks of 4, 6 and 5 nodes (source_index: the
-// 1-based element id over the blocks). Other blocks are skipped
-// with one warning counting their elements and listing their types. Node
-// and element number maps are not used: ids are file positions.
+// starts with "HEX", "TET", "WEDGE" or "PYR" with a node count Exodus
+// defines for it (HEX8 ... HEX27, TETRA4 ... TETRA15, WEDGE6 ... WEDGE21,
+// PYRAMID5 ... PYRAMID19; connectN, 1-based node indices), by its corners,
+// listed first (HEX8 corner order is VTK_HEXAHEDRON's; wedges permuted to
+// VTK's order), with one warning naming the higher-order types. A HEX
+// element with repeated corners in a collapse pattern is read as the
+// wedge, pyramid or tetrahedron it collapses to (cell_reading.h). Other
+// blocks are skipped with one warning counting their elements and listing
+// their types. source_index: the element's entry in elem_num_map (the
+// user's element id) when the file has one, else its 1-based number over
+// the blocks. The node number map is not used: node ids are file positions.
 //
 // Throws ParseError "name: message" (no line numbers in a binary file) for
 // a file netCDF cannot open or that lacks Exodus dimensions or variables,

@@ -21,37 +21,57 @@ namespace {
 using detail::quote;
 using detail::TextScanner;
 
-// The linear volume element types (GmshDefines.h: MSH_TET_4, MSH_HEX_8,
-// MSH_PRI_6, MSH_PYR_5) and the kind each is read as; none for the others.
-std::optional<CellKind> gmsh_volume_kind(std::int64_t type) {
-  switch (type) {
-    case 4:
-      return CellKind::tet;
-    case 5:
-      return CellKind::hex;
-    case 6:
-      return CellKind::wedge;
-    case 7:
-      return CellKind::pyramid;
-    default:
-      return std::nullopt;
-  }
+// The volume element types read (GmshDefines.h; the manual's "MSH file
+// format"), the kind each is read as and its node count: the linear ones
+// (MSH_TET_4, MSH_HEX_8, MSH_PRI_6, MSH_PYR_5), and the complete
+// higher-order ones by their corner nodes, which Gmsh lists first in the
+// linear element's order (vertices, then edge, face and volume nodes):
+// tetrahedra of order 2 to 10 (MSH_TET_10 ... MSH_TET_286), hexahedra of
+// order 2 to 9 and the 20-node serendipity one (MSH_HEX_27, MSH_HEX_20,
+// MSH_HEX_64 ... MSH_HEX_1000), prisms (MSH_PRI_18, MSH_PRI_15, MSH_PRI_40
+// ... MSH_PRI_550) and pyramids (MSH_PYR_14, MSH_PYR_13, MSH_PYR_30 ...
+// MSH_PYR_385). The incomplete (serendipity) types of order 3 and more are
+// not read: their node counts changed between Gmsh versions.
+struct GmshVolumeType {
+  int type;
+  CellKind kind;
+  int num_nodes;
+};
+// clang-format off
+constexpr GmshVolumeType kGmshVolumeTypes[] = {
+    {4, CellKind::tet, 4}, {5, CellKind::hex, 8}, {6, CellKind::wedge, 6}, {7, CellKind::pyramid, 5},
+    {11, CellKind::tet, 10}, {29, CellKind::tet, 20}, {30, CellKind::tet, 35}, {31, CellKind::tet, 56},
+    {71, CellKind::tet, 84}, {72, CellKind::tet, 120}, {73, CellKind::tet, 165}, {74, CellKind::tet, 220},
+    {75, CellKind::tet, 286},
+    {12, CellKind::hex, 27}, {17, CellKind::hex, 20}, {92, CellKind::hex, 64}, {93, CellKind::hex, 125},
+    {94, CellKind::hex, 216}, {95, CellKind::hex, 343}, {96, CellKind::hex, 512}, {97, CellKind::hex, 729},
+    {98, CellKind::hex, 1000},
+    {13, CellKind::wedge, 18}, {18, CellKind::wedge, 15}, {90, CellKind::wedge, 40}, {91, CellKind::wedge, 75},
+    {106, CellKind::wedge, 126}, {107, CellKind::wedge, 196}, {108, CellKind::wedge, 288},
+    {109, CellKind::wedge, 405}, {110, CellKind::wedge, 550},
+    {14, CellKind::pyramid, 14}, {19, CellKind::pyramid, 13}, {118, CellKind::pyramid, 30},
+    {119, CellKind::pyramid, 55}, {120, CellKind::pyramid, 91}, {121, CellKind::pyramid, 140},
+    {122, CellKind::pyramid, 204}, {123, CellKind::pyramid, 285}, {124, CellKind::pyramid, 385},
+};
+// clang-format on
+
+const GmshVolumeType* gmsh_volume_type(std::int64_t type) {
+  for (const GmshVolumeType& entry : kGmshVolumeTypes)
+    if (entry.type == type) return &entry;
+  return nullptr;
 }
 
 // Nodes per Gmsh element type (gmsh's GmshDefines.h / the manual's list);
 // needed to step over binary elements. 0: unknown.
 // clang-format off
 int gmsh_node_count(std::int64_t type) {
+  if (const GmshVolumeType* volume = gmsh_volume_type(type)) return volume->num_nodes;
   switch (type) {
-    case 1: return 2;    case 2: return 3;    case 3: return 4;    case 4: return 4;
-    case 5: return 8;    case 6: return 6;    case 7: return 5;    case 8: return 3;
-    case 9: return 6;    case 10: return 9;   case 11: return 10;  case 12: return 27;
-    case 13: return 18;  case 14: return 14;  case 15: return 1;   case 16: return 8;
-    case 17: return 20;  case 18: return 15;  case 19: return 13;  case 20: return 9;
-    case 21: return 10;  case 22: return 12;  case 23: return 15;  case 24: return 15;
-    case 25: return 21;  case 26: return 4;   case 27: return 5;   case 28: return 6;
-    case 29: return 20;  case 30: return 35;  case 31: return 56;  case 92: return 64;
-    case 93: return 125;
+    case 1: return 2;    case 2: return 3;    case 3: return 4;    case 8: return 3;
+    case 9: return 6;    case 10: return 9;   case 15: return 1;   case 16: return 8;
+    case 20: return 9;   case 21: return 10;  case 22: return 12;  case 23: return 15;
+    case 24: return 15;  case 25: return 21;  case 26: return 4;   case 27: return 5;
+    case 28: return 6;
     default: return 0;
   }
 }
@@ -305,26 +325,34 @@ class GmshParser {
   }
 
   // --- elements ------------------------------------------------------------
-  // One volume element given its node tags in Gmsh's order; where = line
-  // (ASCII) or byte offset (binary). Gmsh's prism lists its first triangle
-  // with the normal towards the second: permuted to VTK's order.
-  void add_cell(CellKind kind, std::int64_t element_tag, const std::int64_t* tags, std::int64_t where) {
+  // One volume element given its node tags in Gmsh's order (n of them, the
+  // type's count); where = line (ASCII) or byte offset (binary). Every tag
+  // must be defined; the corners, listed first, are kept. Gmsh's prism
+  // lists its first triangle with the normal towards the second: permuted
+  // to VTK's order.
+  void add_cell(const GmshVolumeType& volume, std::int64_t element_tag, const std::int64_t* tags,
+                std::int64_t where) {
     const auto fail = [&](const std::string& message) {
       if (binary_) fail_binary(elements_line_, message, static_cast<std::size_t>(where));
       s_.fail_at(where, message);
     };
+    const CellKind kind = volume.kind;
     const int n = cell_kind_num_corners(kind);
     std::array<Index, 8> corners{};
-    for (int j = 0; j < n; ++j) {
+    for (int j = 0; j < volume.num_nodes; ++j) {
       const auto it = index_of_tag_.find(tags[j]);
       if (it == index_of_tag_.end())
         fail("node tag " + std::to_string(tags[j]) + " is not defined (element " + std::to_string(element_tag) + ")");
-      corners[static_cast<std::size_t>(j)] = it->second;
+      if (j < n) corners[static_cast<std::size_t>(j)] = it->second;
     }
-    if (const int j = detail::first_repeated(corners.data(), n); j >= 0)
+    if (volume.num_nodes > n) notes_.add_higher_order(std::to_string(volume.type));
+    const int* to_vtk = kind == CellKind::wedge ? detail::kWedgeFlippedToVtk.data() : nullptr;
+    if (const int j = detail::first_repeated(corners.data(), n); j >= 0) {
+      if (kind == CellKind::hex && detail::append_collapsed_hex(mesh_, corners.data(), nullptr, element_tag, notes_))
+        return;
       fail("node tag " + std::to_string(tags[j]) + " repeated (element " + std::to_string(element_tag) + ")");
-    detail::append_cell(mesh_, kind, corners.data(),
-                        kind == CellKind::wedge ? detail::kWedgeFlippedToVtk.data() : nullptr, element_tag);
+    }
+    detail::append_cell(mesh_, kind, corners.data(), to_vtk, element_tag);
   }
 
   void read_elements_v2() {
@@ -358,10 +386,10 @@ class GmshParser {
           const std::size_t offset = s_.offset();
           const std::int64_t tag = binary_int(elements_line_);
           for (std::int64_t t = 0; t < num_tags; ++t) binary_int(elements_line_);
-          std::int64_t nodes[8];
-          if (const std::optional<CellKind> kind = gmsh_volume_kind(type)) {
-            for (int j = 0; j < num_nodes; ++j) nodes[j] = binary_int(elements_line_);
-            add_cell(*kind, tag, nodes, static_cast<std::int64_t>(offset));
+          if (const GmshVolumeType* volume = gmsh_volume_type(type)) {
+            nodes_.resize(static_cast<std::size_t>(num_nodes));
+            for (int j = 0; j < num_nodes; ++j) nodes_[static_cast<std::size_t>(j)] = binary_int(elements_line_);
+            add_cell(*volume, tag, nodes_.data(), static_cast<std::int64_t>(offset));
           } else {
             s_.read_bytes(static_cast<std::size_t>(4 * num_nodes));
             ++skipped_by_type_[type];
@@ -380,8 +408,8 @@ class GmshParser {
       std::int64_t num_tags = 0;
       if (!s_.skip_blank() || !s_.read_int(num_tags) || num_tags < 0)
         s_.fail("expected the number of tags of element " + std::to_string(tag));
-      const std::optional<CellKind> kind = gmsh_volume_kind(type);
-      if (!kind) {
+      const GmshVolumeType* volume = gmsh_volume_type(type);
+      if (volume == nullptr) {
         ++skipped_by_type_[type];
         s_.read_line();
         continue;
@@ -391,22 +419,25 @@ class GmshParser {
         if (!s_.skip_blank() || !s_.read_int(ignored))
           s_.fail("expected " + std::to_string(num_tags) + " tags for element " + std::to_string(tag));
       }
-      read_ascii_cell(*kind, tag, line);
+      read_ascii_cell(*volume, tag, line);
     }
   }
 
   // The node tags of a volume element on the current line, then the end of the line.
-  void read_ascii_cell(CellKind kind, std::int64_t tag, std::int64_t line) {
-    const int n = cell_kind_num_corners(kind);
-    const std::string what = std::to_string(n) + " node tags for " + detail::cell_kind_noun(kind, 1) + " " +
-                             std::to_string(tag) + ", got ";
-    std::int64_t nodes[8];
+  void read_ascii_cell(const GmshVolumeType& volume, std::int64_t tag, std::int64_t line) {
+    const int n = volume.num_nodes;
+    const bool is_linear = n == cell_kind_num_corners(volume.kind);
+    const std::string what = std::to_string(n) + " node tags for " + detail::cell_kind_noun(volume.kind, 1) + " " +
+                             std::to_string(tag) + (is_linear ? "" : " (type " + std::to_string(volume.type) + ")") +
+                             ", got ";
+    nodes_.resize(static_cast<std::size_t>(n));
     for (int j = 0; j < n; ++j) {
       if (!s_.skip_blank()) s_.fail("expected " + what + std::to_string(j));
-      if (!s_.read_int(nodes[j])) s_.fail("expected a node tag, got " + quote(s_.peek_token()));
+      if (!s_.read_int(nodes_[static_cast<std::size_t>(j)]))
+        s_.fail("expected a node tag, got " + quote(s_.peek_token()));
     }
     if (s_.skip_blank()) s_.fail("expected " + what + std::to_string(n + s_.count_tokens_on_line()));
-    add_cell(kind, tag, nodes, line);
+    add_cell(volume, tag, nodes_.data(), line);
   }
 
   void read_elements_v4() {
@@ -451,23 +482,23 @@ class GmshParser {
         for (std::int64_t e = 0; e < count; ++e) {
           const std::size_t offset = s_.offset();
           const std::int64_t tag = binary_size(elements_line_);
-          if (const std::optional<CellKind> kind = gmsh_volume_kind(type)) {
-            std::int64_t nodes[8];
-            for (int j = 0; j < num_nodes; ++j) nodes[j] = binary_size(elements_line_);
-            add_cell(*kind, tag, nodes, static_cast<std::int64_t>(offset));
+          if (const GmshVolumeType* volume = gmsh_volume_type(type)) {
+            nodes_.resize(static_cast<std::size_t>(num_nodes));
+            for (int j = 0; j < num_nodes; ++j) nodes_[static_cast<std::size_t>(j)] = binary_size(elements_line_);
+            add_cell(*volume, tag, nodes_.data(), static_cast<std::int64_t>(offset));
           } else {
             s_.read_bytes(static_cast<std::size_t>(entry - size_t_size_));
           }
         }
-        if (!gmsh_volume_kind(type) && count > 0) skipped_by_type_[type] += count;
+        if (gmsh_volume_type(type) == nullptr && count > 0) skipped_by_type_[type] += count;
         continue;
       }
       if (!s_.finish_line()) s_.fail("unexpected " + quote(s_.peek_token()) + " after the element block header");
       for (std::int64_t e = 0; e < count; ++e) {
         const std::int64_t tag = read_int("an element tag");
         const std::int64_t line = s_.line();
-        if (const std::optional<CellKind> kind = gmsh_volume_kind(type)) {
-          read_ascii_cell(*kind, tag, line);
+        if (const GmshVolumeType* volume = gmsh_volume_type(type)) {
+          read_ascii_cell(*volume, tag, line);
         } else {
           s_.read_line();
           ++skipped_by_type_[type];
@@ -486,6 +517,7 @@ class GmshParser {
     LoadedMesh loaded;
     loaded.format = "gmsh-" + version_ + (binary_ ? "-binary" : "-ascii");
     if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(s_.name(), "element"));
+    notes_.append_warnings(s_.name(), "element", loaded.warnings);
     mesh_.points = std::move(points_);
     loaded.mesh = std::move(mesh_);
     return loaded;
@@ -506,6 +538,8 @@ class GmshParser {
   std::unordered_map<std::int64_t, Index> index_of_tag_;
   Mesh mesh_;  // the volume blocks (points_ are moved in at the end)
   std::map<std::int64_t, std::int64_t> skipped_by_type_;
+  detail::CellNotes notes_;
+  std::vector<std::int64_t> nodes_;  // the node tags of the element being read
 };
 
 }  // namespace

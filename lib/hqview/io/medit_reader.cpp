@@ -30,6 +30,7 @@ struct SectionInfo {
   int values_per_entry;    // numbers on each entry line
   std::string_view entry;  // what an entry line holds, for messages
   CellKind cell_kind = CellKind::hex;  // kVolume: the block its entries go to
+  int num_nodes = 0;                   // kVolume: vertex ids per entry when more than the corners (P2, Q2)
 };
 
 // libMeshb's keywords that occur in hex-meshing datasets, plus "Quads"
@@ -54,6 +55,10 @@ constexpr SectionInfo kSections[] = {
     {"Tetrahedra", SectionKind::kVolume, 5, "4 vertex ids and a reference", CellKind::tet},
     {"Prisms", SectionKind::kVolume, 7, "6 vertex ids and a reference", CellKind::wedge},
     {"Pyramids", SectionKind::kVolume, 6, "5 vertex ids and a reference", CellKind::pyramid},
+    // Second-order cells (libMeshb; Gmsh writes TetrahedraP2), read by their
+    // corners, which come first as Gmsh and the INRIA tools write them.
+    {"TetrahedraP2", SectionKind::kVolume, 11, "10 vertex ids and a reference", CellKind::tet, 10},
+    {"HexahedraQ2", SectionKind::kVolume, 28, "27 vertex ids and a reference", CellKind::hex, 27},
     {"Normals", SectionKind::kSkipped, 3, "3 components"},
     {"Tangents", SectionKind::kSkipped, 3, "3 components"},
     {"NormalAtVertices", SectionKind::kSkipped, 2, "a vertex id and a normal id"},
@@ -62,6 +67,14 @@ constexpr SectionInfo kSections[] = {
     {"TangentAtVertices", SectionKind::kSkipped, 2, "a vertex id and a tangent id"},
     {"TangentAtEdges", SectionKind::kSkipped, 3, "an edge id, an end and a tangent id"},
 };
+
+// Gmsh (4.8) writes its 27-node (and 20-node) hexahedra in a Hexahedra
+// section, 27 (20) vertex ids an entry: read so when the first entry has
+// that many values.
+constexpr SectionInfo kGmshHexahedra27 = {"Hexahedra", SectionKind::kVolume, 28, "27 vertex ids and a reference",
+                                          CellKind::hex, 27};
+constexpr SectionInfo kGmshHexahedra20 = {"Hexahedra", SectionKind::kVolume, 21, "20 vertex ids and a reference",
+                                          CellKind::hex, 20};
 
 const SectionInfo* find_section(std::string_view keyword) {
   for (const SectionInfo& info : kSections)
@@ -100,6 +113,8 @@ struct MeditContent {
   // read before Vertices (its ids are range-checked at the end).
   std::array<std::int64_t, kNumCellKinds> volume_line{};
   std::array<bool, kNumCellKinds> volume_needs_range_check{};
+  std::array<const SectionInfo*, kNumCellKinds> volume_section{};  // the section read into each block
+  detail::CellNotes notes;  // higher-order sections read by their corners
   std::vector<std::array<Index, 3>> triangles;
   std::int64_t triangles_line = 0;
   bool triangles_need_range_check = false;
@@ -137,7 +152,7 @@ class MeditParser {
           break;
         case SectionKind::kVolume:
           if (target_ == Target::kVolumes) {
-            read_volume_section(*info, keyword_line);
+            read_volume_section(info->cell_kind == CellKind::hex ? hexahedra_as_written(*info) : *info, keyword_line);
           } else {
             skip_section(*info);
           }
@@ -240,7 +255,8 @@ class MeditParser {
     return {xyz[0], xyz[1], xyz[2]};
   }
 
-  // One element entry: N distinct 1-based vertex ids in [1, max_id] and a reference.
+  // One element entry: N 1-based vertex ids in [1, max_id] and a reference,
+  // distinct (a second-order section's: its corners, listed first).
   template <int N>
   static std::array<Index, N> read_element(TextScanner& s, const SectionInfo& info, const EntryAt& at,
                                            std::int64_t max_id, bool has_vertices) {
@@ -261,9 +277,15 @@ class MeditParser {
     }
     read_reference(s, info, N, at);
     end_entry(s, info.entry, N + 1, at);
-    for (int a = 1; a < N; ++a)
+    const int distinct = info.num_nodes > 0 ? cell_kind_num_corners(info.cell_kind) : N;  // P2, Q2: the corners
+    for (int a = 1; a < distinct; ++a)
       for (int b = 0; b < a; ++b)
-        if (element[a] == element[b]) s.fail("vertex id " + std::to_string(element[a] + 1) + " repeated" + at.label());
+        if (element[a] == element[b]) {
+          // A hexahedron collapsed to another kind: moved to that kind's block at the end.
+          if constexpr (N == 8)
+            if (info.cell_kind == CellKind::hex && info.num_nodes == 0 && detail::collapse_hex(element)) return element;
+          s.fail("vertex id " + std::to_string(element[a] + 1) + " repeated" + at.label());
+        }
     return element;
   }
 
@@ -331,22 +353,25 @@ class MeditParser {
     });
   }
 
-  // Skips a known section entry by entry; returns its count.
+  // Skips a known section entry by entry; returns its count. Gmsh writes
+  // its second-order quadrilaterals (9 or 8 vertices) in a Quadrilaterals
+  // section and 3-vertex edges in an Edges section: when the first entry has
+  // that many values, every entry must.
   std::int64_t skip_section(const SectionInfo& info) {
     const std::int64_t n = read_count(info.keyword, info.values_per_entry);
+    const bool is_quad = info.keyword == "Quadrilaterals" || info.keyword == "Quads";
+    std::int64_t expected = info.values_per_entry;
     for (std::int64_t i = 0; i < n; ++i) {
       const EntryAt at{info.keyword, " entry", i, n};
-      if (!s_.skip_space())
-        s_.fail("unexpected end of file, expected " + std::string(info.entry) +
-                at.label());
+      const std::string entry =
+          expected == info.values_per_entry ? std::string(info.entry) : std::to_string(expected) + " values";
+      if (!s_.skip_space()) s_.fail("unexpected end of file, expected " + entry + at.label());
       double first = 0.0;
-      if (!s_.read_double(first))
-        s_.fail("expected " + std::string(info.entry) + ", got " + quote(s_.peek_token()) +
-                at.label());
+      if (!s_.read_double(first)) s_.fail("expected " + entry + ", got " + quote(s_.peek_token()) + at.label());
       const std::int64_t values = 1 + s_.count_tokens_on_line();
-      if (values != info.values_per_entry)
-        s_.fail("expected " + std::string(info.entry) + ", got " + std::to_string(values) + " values" +
-                at.label());
+      if (i == 0 && ((is_quad && (values == 9 || values == 10)) || (info.keyword == "Edges" && values == 4)))
+        expected = values;
+      if (values != expected) s_.fail("expected " + entry + ", got " + std::to_string(values) + " values" + at.label());
     }
     return n;
   }
@@ -394,10 +419,43 @@ class MeditParser {
                        element_word(kind()));
     });
     if (content_.triangles_need_range_check) check_ids_late(content_.triangles, content_.triangles_line, "triangle");
+    move_collapsed_hexahedra();
     if (target_ == Target::kVolumes && detail::num_volume_cells(content_.mesh) == 0)
       s_.fail_at(0, "no volume cells (Hexahedra, Tetrahedra, Prisms or Pyramids)");
     if (target_ == Target::kTriangles && content_.triangles.empty()) s_.fail_at(0, "no triangles");
     return std::move(content_);
+  }
+
+  // The hexahedra whose repeated corners read_element() accepted as a
+  // collapse pattern go to the block of the kind they collapse to, with
+  // their Hexahedra entry as source index; the blocks they leave and join
+  // then store their source indices (the others keep their entry numbers).
+  void move_collapsed_hexahedra() {
+    Mesh& mesh = content_.mesh;
+    std::vector<std::pair<detail::CollapsedHex, std::int64_t>> moved;  // the cell, its Hexahedra entry
+    std::vector<std::int64_t> kept;
+    std::size_t out = 0;
+    for (std::size_t i = 0; i < mesh.hexes.size(); ++i) {
+      const Hex hex = mesh.hexes[i];
+      const std::optional<detail::CollapsedHex> collapsed =
+          detail::first_repeated(hex.data(), 8) >= 0 ? detail::collapse_hex(hex) : std::nullopt;
+      if (collapsed) {
+        moved.emplace_back(*collapsed, static_cast<std::int64_t>(i) + 1);
+      } else {
+        mesh.hexes[out++] = hex;
+        kept.push_back(static_cast<std::int64_t>(i) + 1);
+      }
+    }
+    if (moved.empty()) return;
+    mesh.hexes.resize(out);
+    mesh.source_index[static_cast<std::size_t>(CellKind::hex)] = std::move(kept);
+    for (const auto& [cell, entry] : moved) {
+      std::vector<std::int64_t>& sources = mesh.source_index[static_cast<std::size_t>(cell.kind)];
+      if (sources.empty())
+        for (std::int64_t j = 1; j <= num_cells_of(mesh, cell.kind); ++j) sources.push_back(j);
+      detail::append_cell(mesh, cell.kind, cell.corners.data(), nullptr, entry);
+      content_.notes.add_collapsed(cell.kind, entry);
+    }
   }
 
   static const char* element_word(CellKind kind) {
@@ -413,6 +471,25 @@ class MeditParser {
     }
   }
 
+  // A hexahedra section's entries as Gmsh writes its second-order ones (27
+  // or 20 vertex ids and a reference on the first entry's line), else `info`;
+  // the scanner does not move.
+  const SectionInfo& hexahedra_as_written(const SectionInfo& info) {
+    if (info.num_nodes != 0) return info;
+    const TextScanner::Mark start{s_.offset(), s_.line()};
+    std::int64_t values = 0;
+    if (s_.skip_space() && s_.read_int(values) && s_.finish_line() && values > 0 && s_.skip_space()) {
+      s_.read_token();
+      values = 1 + s_.count_tokens_on_line();
+    } else {
+      values = 0;
+    }
+    s_.move_to(start);
+    return values == kGmshHexahedra27.values_per_entry   ? kGmshHexahedra27
+           : values == kGmshHexahedra20.values_per_entry ? kGmshHexahedra20
+                                                         : info;
+  }
+
   // A Hexahedra, Tetrahedra, Prisms or Pyramids section into its block (one
   // section per kind: each entry's source index, its 1-based position in the
   // section, is its position in the block, left implicit). MEDIT lists a
@@ -420,14 +497,46 @@ class MeditParser {
   // convention, as Gmsh): permuted to VTK's order.
   void read_volume_section(const SectionInfo& info, std::int64_t keyword_line) {
     const auto k = static_cast<std::size_t>(info.cell_kind);
-    if (content_.volume_line[k] != 0) duplicate(info, keyword_line, content_.volume_line[k]);
+    if (content_.volume_line[k] != 0) {
+      const SectionInfo& first = *content_.volume_section[k];
+      if (info.num_nodes == first.num_nodes) duplicate(info, keyword_line, content_.volume_line[k]);
+      s_.fail_at(keyword_line, std::string(info.keyword) + " section beside the " + std::string(first.keyword) +
+                                   " section at line " + std::to_string(content_.volume_line[k]) +
+                                   " (one section per cell kind)");
+    }
+    content_.volume_section[k] = &info;
+    // Only the corners are kept: the other ids are range-checked as they are read.
+    if (info.num_nodes > 0 && content_.vertices_line == 0)
+      s_.fail_at(keyword_line, std::string(info.keyword) + " section before the Vertices section");
     content_.volume_line[k] = keyword_line;
     content_.volume_needs_range_check[k] = content_.vertices_line == 0;
     for_each_cell_kind([&](auto kind) {
       if constexpr (CellKindTable<kind()>::dimension == 3) {
         if (kind() != info.cell_kind) return;
         auto& block = cell_block<kind()>(content_.mesh);
-        read_elements<CellKindTable<kind()>::num_corners>(info, element_word(kind()), block);
+        constexpr int kCorners = CellKindTable<kind()>::num_corners;
+        if (info.num_nodes == 10 || info.num_nodes == 20 || info.num_nodes == 27) {
+          const auto read_by_corners = [&](auto nodes) {
+            std::vector<std::array<Index, decltype(nodes)::value>> entries;
+            read_elements<decltype(nodes)::value>(info, element_word(kind()), entries);
+            block.reserve(entries.size());
+            for (const auto& entry : entries) {
+              CellCorners<kind()> corners;
+              std::copy(entry.begin(), entry.begin() + kCorners, corners.begin());
+              block.push_back(corners);
+            }
+            if (!entries.empty())
+              content_.notes.add_higher_order(
+                  std::string(info.keyword) +
+                      (info.keyword == "Hexahedra" ? " (" + std::to_string(info.num_nodes) + " vertices)" : ""),
+                  static_cast<std::int64_t>(entries.size()));
+          };
+          if (info.num_nodes == 10) read_by_corners(std::integral_constant<int, 10>{});
+          else if (info.num_nodes == 20) read_by_corners(std::integral_constant<int, 20>{});
+          else read_by_corners(std::integral_constant<int, 27>{});
+        } else {
+          read_elements<kCorners>(info, element_word(kind()), block);
+        }
         if constexpr (kind() == CellKind::wedge)
           for (std::size_t i = 0; i < block.size(); ++i) {
             const auto wedge = block[i];
@@ -453,6 +562,7 @@ LoadedMesh read_medit(std::string_view text, const std::string& name, const Read
   loaded.mesh = std::move(content.mesh);
   loaded.format = "medit";
   loaded.warnings = std::move(content.warnings);
+  content.notes.append_warnings(name, "cell", loaded.warnings);
   return loaded;
 }
 

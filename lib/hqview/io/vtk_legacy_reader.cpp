@@ -603,20 +603,21 @@ class VtkParser {
     std::map<int, std::int64_t> skipped_by_type;
     std::map<int, std::int64_t> mislabelled_by_type;
     std::vector<std::int64_t> mislabelled_cells;
+    detail::CellNotes notes;
     for (std::int64_t c = 0; c < n; ++c) {
       const int type = types_[static_cast<std::size_t>(c)];
       const std::int64_t begin = cells_.offsets[static_cast<std::size_t>(c)];
       const std::int64_t k = cells_.offsets[static_cast<std::size_t>(c) + 1] - begin;
+      const vtk::VolumeType* volume = vtk::find_volume_type(type);
       std::optional<CellKind> kind = vtk::volume_kind(type);
-      // An 8-point cell whose type cannot have 8 points (HexaLab loads these
-      // as hexahedra; meshes in the wild rely on it).
-      const int type_points = k != 8 ? -1 : kind ? cell_kind_num_corners(*kind) : fixed_point_count(type);
+      // An 8-point cell whose fixed-size type cannot have 8 points (HexaLab
+      // loads these as hexahedra; meshes in the wild rely on it).
+      const int type_points = k != 8 ? -1 : fixed_point_count(type);
       const bool is_mislabelled = type_points >= 0 && type_points != 8;
-      if (kind && !is_mislabelled && k != cell_kind_num_corners(*kind))
+      if (volume != nullptr && !is_mislabelled && !vtk::point_count_ok(*volume, k))
         fail_cell(c, 0,
-                  "cell " + std::to_string(c) + " has type " + std::to_string(type) + " (" +
-                      vtk::volume_type_name(type) + ") but " + std::to_string(k) + " points, expected " +
-                      std::to_string(cell_kind_num_corners(*kind)));
+                  "cell " + std::to_string(c) + " has type " + std::to_string(type) + " (" + volume->name + ") but " +
+                      std::to_string(k) + " points, expected " + vtk::expected_point_counts(*volume));
       if (!kind && !is_mislabelled) {
         ++skipped_by_type[type];
         continue;
@@ -625,28 +626,35 @@ class VtkParser {
         kind = CellKind::hex;
         ++mislabelled_by_type[type];
         mislabelled_cells.push_back(c);
+      } else if (k > cell_kind_num_corners(*kind)) {
+        notes.add_higher_order(vtk::higher_order_name(type, k));
       }
+      // Every point id is checked; the corners, listed first, are kept.
+      const int m = cell_kind_num_corners(*kind);
       std::array<Index, 8> ids{};
-      const int m = static_cast<int>(k);
-      for (int j = 0; j < m; ++j) {
+      for (std::int64_t j = 0; j < k; ++j) {
         const Index id = cells_.connectivity[static_cast<std::size_t>(begin + j)];
         if (id >= num_points)
           fail_cell(c, j,
                     "point id " + std::to_string(id) + " out of range [0, " + std::to_string(num_points) + ") (cell " +
                         std::to_string(c) + ")");
-        ids[static_cast<std::size_t>(j)] = id;
+        if (j < m) ids[static_cast<std::size_t>(j)] = id;
       }
-      if (const int j = detail::first_repeated(ids.data(), m); j >= 0)
+      const int* to_vtk = type == vtk::kVoxel ? kVoxelToHex.data() : nullptr;
+      if (const int j = detail::first_repeated(ids.data(), m); j >= 0) {
+        if (*kind == CellKind::hex && detail::append_collapsed_hex(loaded.mesh, ids.data(), to_vtk, c, notes)) continue;
         fail_cell(c, j,
                   "point id " + std::to_string(ids[static_cast<std::size_t>(j)]) + " repeated (cell " +
                       std::to_string(c) + ")");
-      detail::append_cell(loaded.mesh, *kind, ids.data(), type == vtk::kVoxel ? kVoxelToHex.data() : nullptr, c);
+      }
+      detail::append_cell(loaded.mesh, *kind, ids.data(), to_vtk, c);
     }
 
     const SkippedCells skipped(skipped_by_type);
     if (detail::num_volume_cells(loaded.mesh) == 0)
       s_.fail_at(0, "no volume cells" + (skipped.count > 0 ? " (" + skipped.counted("cell") + ")" : std::string()));
     if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(s_.name(), "cell"));
+    notes.append_warnings(s_.name(), "cell", loaded.warnings);
     if (!mislabelled_cells.empty()) {
       constexpr std::size_t kShown = 5;
       std::string cells;

@@ -520,29 +520,36 @@ class VtuParser {
                                 std::to_string(begin) + ", " + std::to_string(ids.size()) + "]");
       const std::int64_t type = types[static_cast<std::size_t>(c)];
       const std::int64_t cell = num_cells_ + c;
-      const std::optional<CellKind> kind = vtk::volume_kind(type);
-      if (!kind) {
+      const vtk::VolumeType* volume = vtk::find_volume_type(type);
+      if (volume == nullptr) {
         ++skipped_by_type_[type];
         begin = end;
         continue;
       }
-      const int num_corners = cell_kind_num_corners(*kind);
-      if (end - begin != num_corners)
-        fail(ids_array, "cell " + std::to_string(cell) + " has type " + std::to_string(type) + " (" +
-                            vtk::volume_type_name(type) + ") but " + std::to_string(end - begin) +
-                            " points, expected " + std::to_string(num_corners));
+      if (!vtk::point_count_ok(*volume, end - begin))
+        fail(ids_array, "cell " + std::to_string(cell) + " has type " + std::to_string(type) + " (" + volume->name +
+                            ") but " + std::to_string(end - begin) + " points, expected " +
+                            vtk::expected_point_counts(*volume));
+      if (end - begin > cell_kind_num_corners(volume->kind))
+        notes_.add_higher_order(vtk::higher_order_name(type, end - begin));
+      // Every point id is checked; the corners, listed first, are kept.
+      const int num_corners = cell_kind_num_corners(volume->kind);
       std::array<Index, 8> corners{};
-      for (int j = 0; j < num_corners; ++j) {
+      for (std::int64_t j = 0; j < end - begin; ++j) {
         const std::int64_t id = ids[static_cast<std::size_t>(begin + j)];
         if (id < 0 || id >= num_points)
           fail(ids_array, "point id " + std::to_string(id) + " out of range [0, " + std::to_string(num_points) +
                               ") (cell " + std::to_string(cell) + ")");
-        corners[static_cast<std::size_t>(j)] = static_cast<Index>(base + id);
+        if (j < num_corners) corners[static_cast<std::size_t>(j)] = static_cast<Index>(base + id);
       }
-      if (const int j = detail::first_repeated(corners.data(), num_corners); j >= 0)
-        fail(ids_array, "point id " + std::to_string(corners[static_cast<std::size_t>(j)] - base) + " repeated (cell " +
-                            std::to_string(cell) + ")");
-      detail::append_cell(mesh_, *kind, corners.data(), type == vtk::kVoxel ? kVoxelToHex.data() : nullptr, cell);
+      const int* to_vtk = type == vtk::kVoxel ? kVoxelToHex.data() : nullptr;
+      if (const int j = detail::first_repeated(corners.data(), num_corners); j >= 0) {
+        if (volume->kind != CellKind::hex || !detail::append_collapsed_hex(mesh_, corners.data(), to_vtk, cell, notes_))
+          fail(ids_array, "point id " + std::to_string(corners[static_cast<std::size_t>(j)] - base) +
+                              " repeated (cell " + std::to_string(cell) + ")");
+      } else {
+        detail::append_cell(mesh_, volume->kind, corners.data(), to_vtk, cell);
+      }
       begin = end;
     }
     num_cells_ += num_cells;
@@ -555,6 +562,7 @@ class VtuParser {
     LoadedMesh loaded;
     loaded.format = "vtu-" + format_;
     if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(name_, "cell"));
+    notes_.append_warnings(name_, "cell", loaded.warnings);
     mesh_.points = std::move(points_);
     loaded.mesh = std::move(mesh_);
     return loaded;
@@ -574,6 +582,7 @@ class VtuParser {
   Mesh mesh_;  // the volume blocks (points_ are moved in at the end)
   std::int64_t num_cells_ = 0;
   std::map<std::int64_t, std::int64_t> skipped_by_type_;
+  detail::CellNotes notes_;
 };
 
 }  // namespace
