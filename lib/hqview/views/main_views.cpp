@@ -676,7 +676,19 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
   lines.push_back({kIntersectingCellColor, "intersecting cells: " + std::to_string(intersecting) + unchecked});
   if (overlap && !overlap->markers.empty()) lines.push_back({std::nullopt, "label xN: N of its colour's kind"});
   lines.push_back({kWireframeColor, "boundary edges"});
-  if (!options.cell_kinds.empty()) lines.push_back({std::nullopt, options.cell_kinds});
+  // "cells: 64 hex, 484 tet, 16 pyramid" as a heading and one line per kind
+  // (one line would be cut in the legend's width).
+  if (!options.cell_kinds.empty()) {
+    std::string_view rest = options.cell_kinds;
+    const std::string_view heading = "cells: ";
+    if (rest.starts_with(heading)) rest.remove_prefix(heading.size());
+    lines.push_back({std::nullopt, "cells of the mesh", 1});
+    while (!rest.empty()) {
+      const std::size_t comma = rest.find(", ");
+      lines.push_back({std::nullopt, "  " + std::string(rest.substr(0, comma))});
+      rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 2);
+    }
+  }
   return lines;
 }
 
