@@ -286,6 +286,37 @@ TEST(HybridViews, ViewDOfAVertexSharedByHexTetAndPyramidShowsEveryCell) {
   EXPECT_EQ(cell_kinds_legend(mesh, ring), "cells: 4 hex, " + std::to_string(by_kind[CellKind::tet]) + " tet, 4 pyramid");
 }
 
+TEST(HybridViews, ViewCOfAClusterAtTheInterfaceDrawsEveryKind) {
+  if (!hex_tet()) GTEST_SKIP() << "gmsh failed or is missing";
+  const Mesh& mesh = *hex_tet();
+  const Topology topo = topology_of(mesh);
+  // One cluster: the centre of the shared face and a vertex of tets only.
+  Index centre = kNoIndex, tet_only = kNoIndex;
+  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+    const Vec3& p = mesh.points[i];
+    if (norm(p - Vec3{1.0, 0.5, 0.5}) < 1e-12) centre = static_cast<Index>(i);
+    if (tet_only == kNoIndex && p.x > 1.2 && topo.hexes_of(static_cast<Index>(i)).empty()) tet_only = static_cast<Index>(i);
+  }
+  ASSERT_NE(centre, kNoIndex);
+  ASSERT_NE(tet_only, kNoIndex);
+  GlyphResult glyphs;
+  glyphs.cluster_offsets = {0, 2};
+  glyphs.cluster_vertices = {std::min(centre, tet_only), std::max(centre, tet_only)};
+  glyphs.vertex_radius.assign(mesh.points.size(), 0.0);
+  glyphs.vertex_cluster.assign(mesh.points.size(), kNoIndex);
+  const std::vector<Index> cells = cluster_region(mesh, topo, glyphs, 0).cells;
+  std::set<Index> expected;
+  for (Index v : {centre, tet_only})
+    for (Index c : local_ring(mesh, topo, v)) expected.insert(c);
+  EXPECT_EQ(cells, std::vector<Index>(expected.begin(), expected.end()));
+  EXPECT_EQ(cluster_region(topo, glyphs, 0).cells.size(), 4u);  // the hex-only region: the 4 hexes
+  const Scene scene = build_cluster_scene(mesh, topo, std::vector<double>(mesh.points.size(), 0.2), glyphs, 0);
+  std::set<std::pair<Index, Index>> edges;
+  for (Index id : cells)
+    for_each_edge_of(volume_cell(mesh, id), [&](Index a, Index b) { edges.insert({std::min(a, b), std::max(a, b)}); });
+  EXPECT_EQ(scene.lines[1].indices.size(), 2 * edges.size());
+}
+
 TEST(HybridViews, LegendsNameTheKindsOfAHybridMeshOnly) {
   if (!hex_tet()) GTEST_SKIP() << "gmsh failed or is missing";
   const Mesh& mesh = *hex_tet();

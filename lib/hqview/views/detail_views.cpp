@@ -206,28 +206,85 @@ bool has_non_hex_cells(const HexMesh& mesh) {
 
 }  // namespace
 
+namespace {
+
+// vertex -> the tets, wedges and pyramids using it (cell ids over all
+// blocks, ascending), as CSR; empty for a mesh of hexes only.
+struct NonHexIncidence {
+  std::vector<Index> offsets, cells;
+  std::span<const Index> of(Index v) const {
+    if (offsets.empty()) return {};
+    return {cells.data() + offsets[static_cast<std::size_t>(v)], cells.data() + offsets[static_cast<std::size_t>(v) + 1]};
+  }
+};
+
+NonHexIncidence non_hex_incidence(const HexMesh& mesh) {
+  NonHexIncidence out;
+  const Index first = mesh.num_hexes(), end = num_volume_cells(mesh);
+  if (first == end) return out;
+  out.offsets.assign(mesh.points.size() + 1, 0);
+  for (Index c = first; c < end; ++c) {
+    const CellRef cell = volume_cell(mesh, c);
+    for (int i = 0; i < cell.num_corners; ++i) ++out.offsets[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>(i)]) + 1];
+  }
+  for (std::size_t v = 0; v < mesh.points.size(); ++v) out.offsets[v + 1] += out.offsets[v];
+  out.cells.resize(static_cast<std::size_t>(out.offsets.back()));
+  std::vector<Index> next(out.offsets.begin(), out.offsets.end() - 1);
+  for (Index c = first; c < end; ++c) {
+    const CellRef cell = volume_cell(mesh, c);
+    for (int i = 0; i < cell.num_corners; ++i)
+      out.cells[static_cast<std::size_t>(next[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>(i)])]++)] = c;
+  }
+  return out;
+}
+
+// The cells using the given vertices, every kind, ascending.
+ClusterRegion region_of(const HexMesh& mesh, const Topology& topology, const NonHexIncidence& others,
+                        std::span<const Index> vertices) {
+  IdSet cells(static_cast<std::size_t>(std::max<Index>(num_volume_cells(mesh), 0)));
+  for (Index v : vertices) {
+    for (Index h : topology.hexes_of(v)) cells.add(h);
+    for (Index c : others.of(v)) cells.add(c);
+  }
+  return {cells.ascending()};
+}
+
+std::span<const Index> cluster_members(const GlyphResult& glyphs, Index cluster) {
+  if (cluster < 0 || static_cast<std::size_t>(cluster) + 1 >= glyphs.cluster_offsets.size()) return {};
+  return {glyphs.cluster_vertices.data() + glyphs.cluster_offsets[static_cast<std::size_t>(cluster)],
+          glyphs.cluster_vertices.data() + glyphs.cluster_offsets[static_cast<std::size_t>(cluster) + 1]};
+}
+
+}  // namespace
+
 ClusterRegion cluster_region(const Topology& topology, const GlyphResult& glyphs, Index cluster) {
   ClusterRegion region;
   if (cluster < 0 || static_cast<std::size_t>(cluster) + 1 >= glyphs.cluster_offsets.size()) return region;
   IdSet cells(topology.hex_faces.size() / 6);
-  for (Index i = glyphs.cluster_offsets[static_cast<std::size_t>(cluster)];
-       i < glyphs.cluster_offsets[static_cast<std::size_t>(cluster) + 1]; ++i)
-    for (Index h : topology.hexes_of(glyphs.cluster_vertices[static_cast<std::size_t>(i)])) cells.add(h);
+  for (Index v : cluster_members(glyphs, cluster))
+    for (Index h : topology.hexes_of(v)) cells.add(h);
   region.cells = cells.ascending();
   return region;
 }
 
+ClusterRegion cluster_region(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs, Index cluster) {
+  return region_of(mesh, topology, non_hex_incidence(mesh), cluster_members(glyphs, cluster));
+}
+
 namespace {
 
-// Neighbours: the hexes sharing a vertex with a cluster cell (the cells
-// among them), ascending.
+// Neighbours: the cells (every kind) sharing a vertex with a cluster cell
+// (the cells among them), ascending.
 std::vector<Index> neighbour_cells(const HexMesh& mesh, const Topology& topology, const std::vector<Index>& cells) {
-  IdSet vertices(mesh.points.size()), neighbours(mesh.hexes.size());
-  for (Index c : cells)
-    for (Index v : mesh.hexes[static_cast<std::size_t>(c)])
-      if (vertices.add(v))
-        for (Index h : topology.hexes_of(v)) neighbours.add(h);
-  return neighbours.ascending();
+  const NonHexIncidence others = non_hex_incidence(mesh);
+  IdSet vertices(mesh.points.size());
+  std::vector<Index> distinct;
+  for (Index c : cells) {
+    const CellRef cell = volume_cell(mesh, c);
+    for (int i = 0; i < cell.num_corners; ++i)
+      if (vertices.add(cell.corners[static_cast<std::size_t>(i)])) distinct.push_back(cell.corners[static_cast<std::size_t>(i)]);
+  }
+  return region_of(mesh, topology, others, distinct).cells;
 }
 
 // View C's scene for the cluster's cells and the points of their distinct
@@ -274,17 +331,18 @@ Scene cluster_scene(const HexMesh& mesh, const Topology& topology, const std::ve
 
 Scene build_cluster_scene(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
                           const GlyphResult& glyphs, Index cluster) {
-  const ClusterRegion region = cluster_region(topology, glyphs, cluster);
+  const ClusterRegion region = cluster_region(mesh, topology, glyphs, cluster);
   return cluster_scene(mesh, topology, vertex_quality, glyphs, cluster, region.cells, cell_points(mesh, region.cells));
 }
 
 ClusterShot cluster_shot(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
                          const GlyphResult& glyphs, Index cluster, const DetailViewOptions& options) {
-  const Figure f = detail_figure(options);
-  const ClusterRegion region = cluster_region(topology, glyphs, cluster);
+  const ClusterRegion region = cluster_region(mesh, topology, glyphs, cluster);
+  ClusterShot shot;
+  if (has_non_hex_cells(mesh)) shot.cell_kinds = cell_kinds_legend(mesh, region.cells);
+  const Figure f = detail_figure(options, shot.cell_kinds);
   // The camera frames the cells' vertices and the extremes of every glyph.
   std::vector<Vec3> points = cell_points(mesh, region.cells);
-  ClusterShot shot;
   shot.scene = cluster_scene(mesh, topology, vertex_quality, glyphs, cluster, region.cells, points);
   std::vector<Vec3> centers;
   std::vector<double> radii;
@@ -306,8 +364,9 @@ ClusterShot cluster_shot(const HexMesh& mesh, const Topology& topology, const st
 }
 
 Image render_cluster_shot(const ClusterShot& shot, const DetailViewOptions& options, Renderer& renderer) {
-  const Figure f = detail_figure(options);
-  return compose(options, f, renderer.render(shot.scene, shot.camera, f.layout.view.width, f.layout.view.height));
+  const Figure f = detail_figure(options, shot.cell_kinds);
+  return compose(options, f, renderer.render(shot.scene, shot.camera, f.layout.view.width, f.layout.view.height),
+                 shot.cell_kinds);
 }
 
 Image render_cluster_view(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,

@@ -29,8 +29,12 @@ struct ClusterRegion {
   std::vector<Index> cells;
 };
 ClusterRegion cluster_region(const Topology& topology, const GlyphResult& glyphs, Index cluster);
+// The same over every kind: the hexes, tets, wedges and pyramids using a
+// member vertex (cell ids over all blocks, ascending); what view C draws.
+ClusterRegion cluster_region(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs, Index cluster);
 
-// View C's scene:
+// View C's scene (cells of every kind, each with its CellKindTable faces
+// and edges):
 //   lines[0]       edges of the neighbour cells, grey;
 //   lines[1]       edges of the cluster's cells, in the cluster's colour;
 //   spheres[0]     the cluster's glyphs, not aggregated: one per member at
@@ -53,6 +57,7 @@ Image render_cluster_view(const HexMesh& mesh, const Topology& topology, const s
 struct ClusterShot {
   Scene scene;
   Camera camera;
+  std::string cell_kinds;  // on a mesh with non-hex cells, the region's kinds (cell_kinds_legend) for the legend
 };
 ClusterShot cluster_shot(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
                          const GlyphResult& glyphs, Index cluster, const DetailViewOptions& options);

@@ -54,7 +54,7 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
 // over everything else (Scene::overlay), so that an interface inside the
 // model shows where it is; they are never part of the boundary.
 inline constexpr Rgba8 kNonConformingColor{0, 150, 110, 255};
-inline constexpr double kNonConformingFrame = 0.22;
+inline constexpr double kNonConformingFrame = 0.15;
 TriangleSet non_conforming_outlines(const HexMesh& mesh, const Topology& topology, const Vec3& origin);
 
 // The overview's legend: quality_color_bar(), plus on a hybrid mesh a
