@@ -53,7 +53,7 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
 // (kNonConformingFrame of the way from each corner to the face's centre),
 // over everything else (Scene::overlay), so that an interface inside the
 // model shows where it is; they are never part of the boundary.
-inline constexpr Rgba8 kNonConformingColor{0, 150, 110, 255};
+inline constexpr Rgba8 kNonConformingColor{125, 70, 20, 255};  // dark brown: in no palette of the overview or structure views
 inline constexpr double kNonConformingFrame = 0.15;
 TriangleSet non_conforming_outlines(const HexMesh& mesh, const Topology& topology, const Vec3& origin);
 
