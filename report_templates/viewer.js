@@ -63,6 +63,8 @@
   var quads = typed(Uint32Array, D.faces.quads), faceHex = typed(Uint32Array, D.faces.hex), nf = D.faces.count;
   var faceSj = typed(Float64Array, D.face_scaled_jacobian);
   var faceCorners = D.face_corners ? typed(Float32Array, D.face_corners) : null;
+  // Meshes of several kinds: each face's cell kind (absent: every face is a hex's).
+  var faceKind = D.faces.kind ? typed(Uint8Array, D.faces.kind) : null;
   var lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
   for (i = 0; i < nv; ++i)
     for (k = 0; k < 3; ++k) { lo[k] = Math.min(lo[k], pos[3 * i + k]); hi[k] = Math.max(hi[k], pos[3 * i + k]); }
@@ -383,7 +385,8 @@
   function showFace(f) {
     info.textContent = '';
     info.appendChild(el('table', { id: 'picked-face' }, [
-      row('hex', faceHex[f], 'data-hex'), row('scaled Jacobian', show(faceSj[f]), 'data-sj'),
+      faceKind ? row('cell', D.faces.kind_names[faceKind[f]] + ' ' + faceHex[f], 'data-cell') : row('hex', faceHex[f], 'data-hex'),
+      row('scaled Jacobian', show(faceSj[f]), 'data-sj'),
       row('boundary face', f, 'data-face')]));
     if (faceCorners) {
       var values = [];

@@ -7,7 +7,9 @@
 // a click on a face shows a hex whose scaled Jacobian is cells.csv's,
 // #cluster-K focuses cluster K, the glyph layer toggle changes the pixels,
 // the cut reveals an interior bad cell, a tiny --viewer-max-mb keeps every
-// glyph and every cell under the threshold, a hostile file name runs nothing.
+// glyph and every cell under the threshold, a hex next to a tet box draws
+// the tets' faces (points inside the box project onto the model, a click
+// there names a tet), a hostile file name runs nothing.
 //
 // usage: node viewer_test.mjs HQVIEW SOURCE_DIR OUT_DIR
 // exit 0 pass, 1 fail, 77 skipped (no Chromium).
@@ -79,6 +81,37 @@ fs.mkdirSync(evilDir, { recursive: true });
 fs.copyFileSync(example('twisted_bar.mesh'), path.join(evilDir, evilName));
 const evil = path.join(outDir, 'evil');
 analyze([path.join(evilDir, evilName), '-o', evil]);
+
+// A hex [0,1]^3 next to a tet box [1,2]x[0,1]^2 (6 tets around its
+// diagonal), legacy VTK: the tets' triangles are boundary faces the viewer
+// must draw (their x = 1 face, split in two against the hex's quad, is a
+// non-conforming interface: inside, not boundary).
+function hexTetBoxMesh(file) {
+  const points = [];
+  const id = (x, y, z) => {
+    const k = points.findIndex((p) => p[0] === x && p[1] === y && p[2] === z);
+    return k >= 0 ? k : points.push([x, y, z]) - 1;
+  };
+  const cells = [[12, [id(0, 0, 0), id(1, 0, 0), id(1, 1, 0), id(0, 1, 0), id(0, 0, 1), id(1, 0, 1), id(1, 1, 1), id(0, 1, 1)]]];
+  const c = (i, j, k) => id(1 + i, j, k);
+  for (const [a, b] of [[[1, 0, 0], [1, 1, 0]], [[1, 0, 0], [1, 0, 1]], [[0, 1, 0], [1, 1, 0]],
+    [[0, 1, 0], [0, 1, 1]], [[0, 0, 1], [1, 0, 1]], [[0, 0, 1], [0, 1, 1]]]) {
+    const t = [c(0, 0, 0), c(...a), c(...b), c(1, 1, 1)];
+    const P = t.map((v) => points[v]), d = (u, w) => [0, 1, 2].map((k) => u[k] - w[k]);
+    const [u, v, w] = [d(P[1], P[0]), d(P[2], P[0]), d(P[3], P[0])];
+    const det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
+    cells.push([10, det > 0 ? t : [t[0], t[2], t[1], t[3]]]);
+  }
+  let s = `# vtk DataFile Version 3.0\nhex and tet box\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS ${points.length} double\n`;
+  s += points.map((p) => p.join(' ')).join('\n') + '\n';
+  s += `CELLS ${cells.length} ${cells.reduce((n, [, v]) => n + 1 + v.length, 0)}\n`;
+  s += cells.map(([, v]) => `${v.length} ${v.join(' ')}`).join('\n') + '\n';
+  s += `CELL_TYPES ${cells.length}\n${cells.map(([t]) => t).join('\n')}\n`;
+  fs.writeFileSync(file, s);
+  return file;
+}
+const hybrid = path.join(outDir, 'hybrid');
+analyze([hexTetBoxMesh(path.join(outDir, 'hex_tet_box.vtk')), '-o', hybrid]);
 
 const browser = await launchBrowser(browserKind);
 
@@ -371,6 +404,47 @@ const near = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
   check(probes === 4 && invertedPixels > 0,
     `the inverted colour is on the dent's 4 faces next to the inverted vertex (${probes} of 4 probes; ${invertedPixels} inverted pixels)`);
   check(problems.length === 0, `no console error on the dented grid: ${problems.join('; ')}`);
+  await page.close();
+}
+
+// ---- a hex next to a tet box: the tets' faces are drawn ----
+// Points inside the tet box project onto the model, not the background
+// (the hex-only boundary left the box out: background there, or off the
+// view); a click there names a tet.
+{
+  const { page, problems } = await open(hybrid);
+  await page.evaluate(() => { document.getElementById('opacity').value = 100; document.getElementById('opacity').dispatchEvent(new Event('input')); });
+  for (const layer of ['#layer-glyphs', '#layer-markers']) await setChecked(page, layer, false);
+  const box = await page.evaluate(() => { const r = window.hqViewer.renderer.domElement.getBoundingClientRect(); return [r.left, r.top, r.width, r.height]; });
+  const probes = [[1.5, 0.5, 0.5], [1.25, 0.3, 0.7], [1.75, 0.7, 0.3], [1.8, 0.2, 0.8], [1.2, 0.8, 0.2]];
+  const shot = await page.evaluate(() => {
+    window.hqViewer.draw();
+    const gl = window.hqViewer.renderer.getContext(), w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
+    const px = new Uint8Array(w * h * 4);
+    gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    return { w, h, px: Array.from(px) };
+  });
+  let onModel = 0;
+  for (const p of probes) {
+    const [sx, sy] = await projectToPage(page, p);
+    const x = Math.round((sx - box[0]) * shot.w / box[2]), y = Math.round((sy - box[1]) * shot.h / box[3]);
+    let model = x >= 2 && y >= 2 && x < shot.w - 2 && y < shot.h - 2;
+    for (let dy = -2; dy <= 2 && model; ++dy)
+      for (let dx = -2; dx <= 2 && model; ++dx) {
+        const i = 4 * ((shot.h - 1 - (y + dy)) * shot.w + (x + dx));
+        model = shot.px[i] < 250 || shot.px[i + 1] < 250 || shot.px[i + 2] < 250;
+      }
+    if (model) onModel += 1;
+  }
+  await page.screenshot({ path: path.join(outDir, 'hybrid_viewer.png') });
+  check(onModel === probes.length, `every point inside the tet box projects onto the model (${onModel} of ${probes.length})`);
+  const [cx, cy] = await projectToPage(page, probes[0]);
+  await page.mouse.click(cx, cy);
+  const cell = await page.evaluate(() => document.querySelector('#picked-face [data-cell]')?.getAttribute('data-cell'));
+  check(/^tet \d+$/.test(cell || ''), `a click on the tet box names a tet (${cell})`);
+  const kinds = await page.evaluate(() => { const d = window.hqViewer.data; return { n: d.faces.count, names: d.faces.kind_names }; });
+  check(kinds.n === 5 + 10 && kinds.names && kinds.names[1] === 'tet', `the viewer's boundary: the hex's 5 quads and the tet box's 10 triangles (${JSON.stringify(kinds)})`);
+  check(problems.length === 0, `no console error on the hybrid mesh: ${problems.join('; ')}`);
   await page.close();
 }
 

@@ -19,6 +19,7 @@
 
 #include "hqview/io/mesh_reader.h"
 #include "hybrid_mesh_files.h"
+#include "support/gmsh_hybrid.h"
 #include "temp_dir.h"
 
 namespace hq {
@@ -77,26 +78,8 @@ void expect_counts_and_positive_volumes(const std::filesystem::path& path, const
   EXPECT_EQ(num_bad, 0);
 }
 
-// A 4x4x4 recombined transfinite box [0,1]^3 and an unstructured box
-// [1,2]x[0,1]^2 extruded from its x=1 face without layers.
-constexpr const char* kHexTetGeo = R"(
-Point(1) = {0, 0, 0, 0.25};
-l[] = Extrude {0, 1, 0} { Point{1}; Layers{4}; };
-s[] = Extrude {0, 0, 1} { Line{l[1]}; Layers{4}; Recombine; };
-v[] = Extrude {1, 0, 0} { Surface{s[1]}; Layers{4}; Recombine; };
-w[] = Extrude {1, 0, 0} { Surface{v[0]}; };
-)";
-
-// A transfinite recombined square next to a triangle, extruded in 3 layers.
-constexpr const char* kExtrudedGeo = R"(
-Point(1) = {0, 0, 0, 0.3}; Point(2) = {1, 0, 0, 0.3}; Point(3) = {1, 1, 0, 0.3};
-Point(4) = {0, 1, 0, 0.3}; Point(5) = {2, 0.5, 0, 0.3};
-Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1}; Line(5) = {2, 5}; Line(6) = {5, 3};
-Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
-Curve Loop(2) = {5, 6, -2}; Plane Surface(2) = {2};
-Transfinite Curve{1, 2, 3, 4} = 4; Transfinite Surface{1}; Recombine Surface{1};
-Extrude {0, 0, 1} { Surface{1, 2}; Layers{3}; Recombine; }
-)";
+using test::kExtrudedGeo;
+using test::kHexTetGeo;
 
 TEST(GmshHybrid, HexTetBoxesGetPyramids) {
   const TempDir dir("gmsh_hex_tet");

@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <limits>
 
+#include "hqview/mesh/boundary_polygons.h"
+
 namespace hq {
 
 namespace {
@@ -94,11 +96,12 @@ Solid solid_of(const HexMesh& mesh, const Topology& topology) {
   }
   const Vec3 origin = 0.5 * (s.lo + s.hi);
   Vec3 moment{0.0, 0.0, 0.0};
-  for (Index f : topology.boundary_faces) {
-    const Quad& q = topology.faces[static_cast<std::size_t>(f)];
+  // Every kind's boundary faces (a hybrid mesh's hex quads alone are not a
+  // closed surface); a pure-hex mesh sums exactly as before.
+  for (const BoundaryPolygon& face : boundary_polygons(topology)) {
     std::array<Vec3, 4> p;
-    for (int i = 0; i < 4; ++i) p[i] = mesh.points[static_cast<std::size_t>(q[i])] - origin;
-    for (int t = 0; t < 2; ++t) {
+    for (int i = 0; i < face.size; ++i) p[i] = mesh.points[static_cast<std::size_t>(face.v[static_cast<std::size_t>(i)])] - origin;
+    for (int t = 0; t < face.size - 2; ++t) {
       const Vec3& a = p[0];
       const Vec3& b = p[t + 1];
       const Vec3& c = p[t + 2];
@@ -145,7 +148,7 @@ std::vector<Vec3> resting_up_candidates() {
 
 RestingUp choose_resting_up(const HexMesh& mesh, const Topology& topology) {
   RestingUp result;
-  if (topology.boundary_faces.empty()) return result;
+  if (num_boundary_faces_all_kinds(topology) == 0) return result;
   const Solid solid = solid_of(mesh, topology);
   if (!(std::abs(solid.volume) > 0.0) || !std::isfinite(solid.volume) || !is_finite(solid.centre)) return result;
   result.candidates.reserve(6);

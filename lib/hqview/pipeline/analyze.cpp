@@ -210,7 +210,7 @@ void analyze_boundary_error(Analysis& a, const TriSurface& reference, const Anal
 void analyze_compare(Analysis& a, const AnalyzeOptions& options) {
   Analysis::Compared& c = a.compare.emplace();
   c.mesh = load_mesh(options.compare_path, options, c.input).mesh;
-  c.topology = build_topology(c.mesh);
+  c.topology = build_topology(c.mesh, NonHexBlocks{c.mesh.tets, c.mesh.wedges, c.mesh.pyramids});
   c.field = compute_quality(c.mesh, c.topology);
   c.mesh_summary = summarize_mesh(c.mesh, c.topology);
   c.quality = summarize_quality(c.mesh, c.field, options.worst_count);
@@ -290,7 +290,7 @@ void start_analysis(const AnalyzeOptions& options, AnalysisInProgress& out) {
   a.warnings = std::move(loaded.warnings);
   a.mesh = std::move(loaded.mesh);
   clock.start("topology");
-  a.topology = build_topology(a.mesh);
+  a.topology = build_topology(a.mesh, NonHexBlocks{a.mesh.tets, a.mesh.wedges, a.mesh.pyramids});
   if (options.up_auto) a.resting_up = choose_resting_up(a.mesh, a.topology);
   // The reference as soon as the boundary is known, so that its atlas runs
   // beside everything after.

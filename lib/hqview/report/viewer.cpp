@@ -12,6 +12,7 @@
 #include "hqview/core/message_text.h"
 #include "hqview/core/number_format.h"
 #include "hqview/image/colormap.h"
+#include "hqview/mesh/cell_faces.h"
 #include "hqview/quality/corner_jacobian.h"
 #include "hqview/report/cluster_color.h"
 #include "hqview/report/escape.h"
@@ -148,15 +149,35 @@ BoundaryData boundary_data(const Analysis& a, const ViewerBoundary& b, bool with
   out.vertices = quantised_positions(points);
   std::vector<std::uint32_t> face_hex(b.face_hex.begin(), b.face_hex.end());
   out.faces = {{"count", b.face_hex.size()}, {"quads", b64(b.quads)}, {"hex", b64(face_hex)}};
-  // Exact cell scaled Jacobian of each face's hex (the click shows it).
+  // On a mesh of several kinds, each face's cell kind (CellKind number) and
+  // the kinds' names: the click names the cell ("tet 70"). Absent on a
+  // pure-hex mesh, whose data keeps its bytes.
+  if (a.topology.across_kinds) {
+    std::vector<std::uint8_t> kinds;
+    for (Index h : b.face_hex)
+      kinds.push_back(static_cast<std::uint8_t>(h < a.mesh.num_hexes() ? CellKind::hex : volume_cell(a.mesh, h).kind));
+    out.faces["kind"] = b64(kinds);
+    Json names = Json::array();
+    for (CellKind kind : kCellKinds) names.push_back(std::string(cell_kind_name(kind)));
+    out.faces["kind_names"] = std::move(names);
+  }
+  // Exact cell scaled Jacobian of each face's hex (the click shows it); NaN
+  // for a cell the quality field does not cover (a non-hex cell while only
+  // hexes are analysed).
+  const auto of_cell = [](const std::vector<double>& values, Index cell, std::size_t per_cell, int k) {
+    const std::size_t i = per_cell * static_cast<std::size_t>(cell) + static_cast<std::size_t>(k);
+    return i < values.size() && static_cast<std::size_t>(cell) < values.size() / per_cell ? values[i] : std::nan("");
+  };
   std::vector<double> face_sj;
-  for (Index h : b.face_hex) face_sj.push_back(a.field.cell_scaled_jacobian[static_cast<std::size_t>(h)]);
+  for (Index h : b.face_hex) face_sj.push_back(of_cell(a.field.cell_scaled_jacobian, h, 1, 0));
   out.face_scaled_jacobian = b64(face_sj);
-  // The 8 corner scaled Jacobians of each face's hex (kCornerFrames order).
+  // The 8 corner scaled Jacobians of each face's hex (kCornerFrames order);
+  // NaN for a cell of another kind.
   std::vector<float> face_corners;
   for (Index h : b.face_hex)
     for (int c = 0; c < 8; ++c)
-      face_corners.push_back(static_cast<float>(a.field.corner_scaled_jacobian[8 * static_cast<std::size_t>(h) + c]));
+      face_corners.push_back(static_cast<float>(h < a.mesh.num_hexes() ? of_cell(a.field.corner_scaled_jacobian, h, 8, c)
+                                                                       : std::nan("")));
   out.face_corners = b64(face_corners);
 
   // Fields: vertex quality, the cell scaled Jacobian, the boundary error,
@@ -196,13 +217,13 @@ BoundaryData boundary_data(const Analysis& a, const ViewerBoundary& b, bool with
     const HexMetricInfo& info = hex_metric_info(metric);
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (Index h : b.face_hex) {
-      const double x = values[static_cast<std::size_t>(h)];
+      const double x = of_cell(values, h, 1, 0);
       if (std::isfinite(x) && std::abs(x) < kVerdictDegenerate) lo = std::min(lo, x), hi = std::max(hi, x);
     }
     if (!(lo <= hi)) continue;
     std::vector<std::uint8_t> idx;
     for (Index h : b.face_hex) {
-      const double x = values[static_cast<std::size_t>(h)];
+      const double x = of_cell(values, h, 1, 0);
       if (!std::isfinite(x) || std::abs(x) >= kVerdictDegenerate) idx.push_back(kNoValue);
       else if (x < info.acceptable_min || x > info.acceptable_max) idx.push_back(254);
       else idx.push_back(static_cast<std::uint8_t>(hi > lo ? std::lround((x - lo) / (hi - lo) * 253.0) : 0));
@@ -268,6 +289,14 @@ std::vector<ViewerFile> viewer_files(const ReportModel& model) {
                          {"position", vec(m.position)}, {"count", m.count}});
     for (std::size_t h = 0; h < a.overlap->cell_intersecting.size(); ++h) {
       if (!a.overlap->cell_intersecting[h]) continue;
+      if (h >= a.mesh.hexes.size()) {  // a tet, wedge or pyramid: its CellKindTable edges
+        if (static_cast<Index>(h) >= num_volume_cells(a.mesh)) break;
+        for_each_edge_of(volume_cell(a.mesh, static_cast<Index>(h)), [&](Index p, Index q) {
+          for (Index v : {p, q})
+            for (int c = 0; c < 3; ++c) intersecting.push_back(static_cast<float>(a.mesh.points[static_cast<std::size_t>(v)][c]));
+        });
+        continue;
+      }
       const Hex& hex = a.mesh.hexes[h];
       static constexpr int kEdges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
                                            {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};

@@ -8,6 +8,7 @@
 
 #include "hqview/analysis/analysis.h"
 #include "hqview/core/box3.h"
+#include "hqview/mesh/boundary_polygons.h"
 
 namespace hq {
 
@@ -17,9 +18,12 @@ ViewerBoundary viewer_boundary(const Analysis& a) {
   b.vertices = t.boundary_vertices;
   std::vector<std::uint32_t> slot(a.mesh.points.size(), 0);
   for (std::size_t i = 0; i < b.vertices.size(); ++i) slot[static_cast<std::size_t>(b.vertices[i])] = static_cast<std::uint32_t>(i);
-  for (Index f : t.boundary_faces) {
-    for (Index v : t.faces[static_cast<std::size_t>(f)]) b.quads.push_back(slot[static_cast<std::size_t>(v)]);
-    b.face_hex.push_back(t.face_hexes[static_cast<std::size_t>(t.face_hex_offsets[static_cast<std::size_t>(f)])]);
+  // Every kind's boundary faces (boundary_polygons: hex quads first, in
+  // their order, then the non-hex quads and the triangles).
+  for (const BoundaryPolygon& face : boundary_polygons(t)) {
+    for (int i = 0; i < 4; ++i)
+      b.quads.push_back(slot[static_cast<std::size_t>(face.v[static_cast<std::size_t>(std::min(i, face.size - 1))])]);
+    b.face_hex.push_back(face.cell);
   }
   b.num_source_faces = b.face_hex.size();
   return b;
@@ -29,6 +33,13 @@ namespace {
 
 // Lower is worse; a value that is not finite (no value, degenerate) is worst.
 double badness_key(double q) { return std::isfinite(q) ? q : -std::numeric_limits<double>::infinity(); }
+
+// A cell's key: a cell the values do not cover (a non-hex cell while only
+// hexes have a scaled Jacobian) is never preferred to one they cover.
+double cell_badness_key(const std::vector<double>& values, Index cell) {
+  return static_cast<std::size_t>(cell) < values.size() ? badness_key(values[static_cast<std::size_t>(cell)])
+                                                         : std::numeric_limits<double>::infinity();
+}
 
 ViewerBoundary cluster_on_grid(const ViewerBoundary& full, const std::vector<Vec3>& points,
                                const std::vector<double>& vertex_quality,
@@ -95,8 +106,8 @@ ViewerBoundary cluster_on_grid(const ViewerBoundary& full, const std::vector<Vec
       continue;
     }
     Kept& other = kept[it->second];
-    const double s = badness_key(cell_scaled_jacobian[static_cast<std::size_t>(hex)]);
-    const double t = badness_key(cell_scaled_jacobian[static_cast<std::size_t>(other.hex)]);
+    const double s = cell_badness_key(cell_scaled_jacobian, hex);
+    const double t = cell_badness_key(cell_scaled_jacobian, other.hex);
     if (s < t || (s == t && hex < other.hex)) other = {c, hex};
   }
 

@@ -22,12 +22,13 @@ struct Analysis;
 struct ViewerBoundary {
   std::vector<Index> vertices;       // mesh vertex ids (ascending when not reduced)
   std::vector<std::uint32_t> quads;  // 4 per face into `vertices`; a triangle repeats its last corner
-  std::vector<Index> face_hex;       // the hex of each face
+  std::vector<Index> face_hex;       // the cell of each face (id over all blocks, hexes first)
   std::size_t num_source_faces = 0;  // boundary faces of the mesh
   double cell_size = 0;              // the clustering grid's cell (0: not reduced)
 };
 
-// Every boundary face of the analysed mesh, as seen from outside.
+// Every boundary face of the analysed mesh over all kinds (boundary_polygons),
+// as seen from outside.
 ViewerBoundary viewer_boundary(const Analysis& analysis);
 
 // The boundary reduced to at most `max_faces` faces: the grid's cells start

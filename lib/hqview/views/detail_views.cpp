@@ -10,6 +10,8 @@
 #include "hqview/core/box3.h"
 #include "hqview/core/error.h"
 #include "hqview/image/colormap.h"
+#include "hqview/mesh/cell_faces.h"
+#include "hqview/quality/cell_corner_jacobian.h"
 #include "hqview/render/annotate.h"
 #include "hqview/render/label_layout.h"
 #include "hqview/views/main_views.h"
@@ -41,7 +43,7 @@ LineSet cell_edges(const HexMesh& mesh, const Topology& topology, const std::vec
   std::vector<std::uint64_t> keys;
   keys.reserve(24 * cells.size());
   for (Index c : cells)
-    for (int f = 0; f < 6; ++f) {
+    for (int f = 0; f < 6 && c < mesh.num_hexes(); ++f) {
       const Quad& q = topology.faces[static_cast<std::size_t>(topology.hex_faces[6 * static_cast<std::size_t>(c) + f])];
       for (int i = 0; i < 4; ++i) {
         const auto a = static_cast<std::uint32_t>(std::min(q[i], q[(i + 1) % 4]));
@@ -49,6 +51,19 @@ LineSet cell_edges(const HexMesh& mesh, const Topology& topology, const std::vec
         keys.push_back(std::uint64_t{a} << 32 | b);
       }
     }
+  // Cells of other kinds (ids past the hexes: view D's one ring): their
+  // faces' edges from CellKindTable.
+  const Index num_hexes = mesh.num_hexes();
+  for (Index c : cells) {
+    if (c < num_hexes) continue;
+    for_each_face_of(volume_cell(mesh, c), [&](const std::array<Index, 4>& v, int size) {
+      for (int i = 0; i < size; ++i) {
+        const Index x = v[static_cast<std::size_t>(i)], y = v[static_cast<std::size_t>((i + 1) % size)];
+        keys.push_back(std::uint64_t{static_cast<std::uint32_t>(std::min(x, y))} << 32 |
+                       static_cast<std::uint32_t>(std::max(x, y)));
+      }
+    });
+  }
   std::sort(keys.begin(), keys.end());
   keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
   LineSet lines;
@@ -72,7 +87,7 @@ TriangleSet outer_faces(const HexMesh& mesh, const Topology& topology, const std
   std::vector<std::uint8_t> uses(topology.faces.size(), 0);
   std::size_t first = uses.size(), last = 0;  // the range of faces used
   for (Index c : cells)
-    for (int f = 0; f < 6; ++f) {
+    for (int f = 0; f < 6 && c < mesh.num_hexes(); ++f) {
       const auto face = static_cast<std::size_t>(topology.hex_faces[6 * static_cast<std::size_t>(c) + f]);
       uses[face] = static_cast<std::uint8_t>(std::min(2, uses[face] + 1));
       first = std::min(first, face);
@@ -88,6 +103,20 @@ TriangleSet outer_faces(const HexMesh& mesh, const Topology& topology, const std
       set.colors.push_back(color);
     }
     set.indices.insert(set.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+  }
+  // Cells of other kinds: every face (a face shared with a hex is drawn
+  // twice: pale and translucent, that is fine).
+  for (Index c : cells) {
+    if (c < mesh.num_hexes()) continue;
+    for_each_face_of(volume_cell(mesh, c), [&](const std::array<Index, 4>& v, int size) {
+      const auto base = static_cast<std::uint32_t>(set.positions.size());
+      for (int i = 0; i < size; ++i) {
+        set.positions.push_back(to_vec3f(mesh.points[static_cast<std::size_t>(v[static_cast<std::size_t>(i)])] - origin));
+        set.colors.push_back(color);
+      }
+      set.indices.insert(set.indices.end(), {base, base + 1, base + 2});
+      if (size == 4) set.indices.insert(set.indices.end(), {base, base + 2, base + 3});
+    });
   }
   return set;
 }
@@ -123,9 +152,13 @@ class IdSet {
 std::vector<Vec3> cell_points(const HexMesh& mesh, const std::vector<Index>& cells) {
   IdSet vertices(mesh.points.size());
   std::vector<Vec3> points;
-  for (Index c : cells)
-    for (Index v : mesh.hexes[static_cast<std::size_t>(c)])
+  for (Index c : cells) {
+    const CellRef cell = volume_cell(mesh, c);
+    for (int i = 0; i < cell.num_corners; ++i) {
+      const Index v = cell.corners[static_cast<std::size_t>(i)];
       if (vertices.add(v)) points.push_back(mesh.points[static_cast<std::size_t>(v)]);
+    }
+  }
   return points;
 }
 
@@ -141,22 +174,85 @@ struct Figure {
   double aspect = 1.0;
 };
 
-Figure detail_figure(const DetailViewOptions& options) {
+// The detail views' legend: the quality colour bar, its title ending with
+// the kinds of the cells drawn (`kinds`, cell_kinds_legend) when not empty.
+ColorBar detail_color_bar(const std::string& kinds) {
+  ColorBar bar = quality_color_bar();
+  if (!kinds.empty()) bar.label += "\n" + kinds;
+  return bar;
+}
+
+Figure detail_figure(const DetailViewOptions& options, const std::string& kinds = {}) {
   Figure f;
   f.style = annotation_style_for(options.height);
   f.style.background = options.background;
   f.layout = figure_layout(options.width, options.height, !options.title.empty(),
-                           color_bar_width(quality_color_bar(), f.style), f.style);
+                           color_bar_width(detail_color_bar(kinds), f.style), f.style);
   f.aspect = static_cast<double>(std::max(1, f.layout.view.width)) / std::max(1, f.layout.view.height);
   return f;
 }
 
-Image compose(const DetailViewOptions& options, const Figure& f, const Image& view) {
+Image compose(const DetailViewOptions& options, const Figure& f, const Image& view, const std::string& kinds = {}) {
   Image figure = make_image(options.width, options.height, options.background);
   paste(figure, view, f.layout.view.x, f.layout.view.y);
   draw_title(figure, f.layout.title, options.title, f.style);
-  draw_color_bar(figure, f.layout.legend, quality_color_bar(), f.style);
+  draw_color_bar(figure, f.layout.legend, detail_color_bar(kinds), f.style);
   return figure;
+}
+
+bool has_non_hex_cells(const HexMesh& mesh) {
+  return !mesh.tets.empty() || !mesh.wedges.empty() || !mesh.pyramids.empty();
+}
+
+}  // namespace
+
+namespace {
+
+// vertex -> the tets, wedges and pyramids using it (cell ids over all
+// blocks, ascending), as CSR; empty for a mesh of hexes only.
+struct NonHexIncidence {
+  std::vector<Index> offsets, cells;
+  std::span<const Index> of(Index v) const {
+    if (offsets.empty()) return {};
+    return {cells.data() + offsets[static_cast<std::size_t>(v)], cells.data() + offsets[static_cast<std::size_t>(v) + 1]};
+  }
+};
+
+NonHexIncidence non_hex_incidence(const HexMesh& mesh) {
+  NonHexIncidence out;
+  const Index first = mesh.num_hexes(), end = num_volume_cells(mesh);
+  if (first == end) return out;
+  out.offsets.assign(mesh.points.size() + 1, 0);
+  for (Index c = first; c < end; ++c) {
+    const CellRef cell = volume_cell(mesh, c);
+    for (int i = 0; i < cell.num_corners; ++i) ++out.offsets[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>(i)]) + 1];
+  }
+  for (std::size_t v = 0; v < mesh.points.size(); ++v) out.offsets[v + 1] += out.offsets[v];
+  out.cells.resize(static_cast<std::size_t>(out.offsets.back()));
+  std::vector<Index> next(out.offsets.begin(), out.offsets.end() - 1);
+  for (Index c = first; c < end; ++c) {
+    const CellRef cell = volume_cell(mesh, c);
+    for (int i = 0; i < cell.num_corners; ++i)
+      out.cells[static_cast<std::size_t>(next[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>(i)])]++)] = c;
+  }
+  return out;
+}
+
+// The cells using the given vertices, every kind, ascending.
+ClusterRegion region_of(const HexMesh& mesh, const Topology& topology, const NonHexIncidence& others,
+                        std::span<const Index> vertices) {
+  IdSet cells(static_cast<std::size_t>(std::max<Index>(num_volume_cells(mesh), 0)));
+  for (Index v : vertices) {
+    for (Index h : topology.hexes_of(v)) cells.add(h);
+    for (Index c : others.of(v)) cells.add(c);
+  }
+  return {cells.ascending()};
+}
+
+std::span<const Index> cluster_members(const GlyphResult& glyphs, Index cluster) {
+  if (cluster < 0 || static_cast<std::size_t>(cluster) + 1 >= glyphs.cluster_offsets.size()) return {};
+  return {glyphs.cluster_vertices.data() + glyphs.cluster_offsets[static_cast<std::size_t>(cluster)],
+          glyphs.cluster_vertices.data() + glyphs.cluster_offsets[static_cast<std::size_t>(cluster) + 1]};
 }
 
 }  // namespace
@@ -165,24 +261,30 @@ ClusterRegion cluster_region(const Topology& topology, const GlyphResult& glyphs
   ClusterRegion region;
   if (cluster < 0 || static_cast<std::size_t>(cluster) + 1 >= glyphs.cluster_offsets.size()) return region;
   IdSet cells(topology.hex_faces.size() / 6);
-  for (Index i = glyphs.cluster_offsets[static_cast<std::size_t>(cluster)];
-       i < glyphs.cluster_offsets[static_cast<std::size_t>(cluster) + 1]; ++i)
-    for (Index h : topology.hexes_of(glyphs.cluster_vertices[static_cast<std::size_t>(i)])) cells.add(h);
+  for (Index v : cluster_members(glyphs, cluster))
+    for (Index h : topology.hexes_of(v)) cells.add(h);
   region.cells = cells.ascending();
   return region;
 }
 
+ClusterRegion cluster_region(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs, Index cluster) {
+  return region_of(mesh, topology, non_hex_incidence(mesh), cluster_members(glyphs, cluster));
+}
+
 namespace {
 
-// Neighbours: the hexes sharing a vertex with a cluster cell (the cells
-// among them), ascending.
+// Neighbours: the cells (every kind) sharing a vertex with a cluster cell
+// (the cells among them), ascending.
 std::vector<Index> neighbour_cells(const HexMesh& mesh, const Topology& topology, const std::vector<Index>& cells) {
-  IdSet vertices(mesh.points.size()), neighbours(mesh.hexes.size());
-  for (Index c : cells)
-    for (Index v : mesh.hexes[static_cast<std::size_t>(c)])
-      if (vertices.add(v))
-        for (Index h : topology.hexes_of(v)) neighbours.add(h);
-  return neighbours.ascending();
+  const NonHexIncidence others = non_hex_incidence(mesh);
+  IdSet vertices(mesh.points.size());
+  std::vector<Index> distinct;
+  for (Index c : cells) {
+    const CellRef cell = volume_cell(mesh, c);
+    for (int i = 0; i < cell.num_corners; ++i)
+      if (vertices.add(cell.corners[static_cast<std::size_t>(i)])) distinct.push_back(cell.corners[static_cast<std::size_t>(i)]);
+  }
+  return region_of(mesh, topology, others, distinct).cells;
 }
 
 // View C's scene for the cluster's cells and the points of their distinct
@@ -229,17 +331,18 @@ Scene cluster_scene(const HexMesh& mesh, const Topology& topology, const std::ve
 
 Scene build_cluster_scene(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
                           const GlyphResult& glyphs, Index cluster) {
-  const ClusterRegion region = cluster_region(topology, glyphs, cluster);
+  const ClusterRegion region = cluster_region(mesh, topology, glyphs, cluster);
   return cluster_scene(mesh, topology, vertex_quality, glyphs, cluster, region.cells, cell_points(mesh, region.cells));
 }
 
 ClusterShot cluster_shot(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
                          const GlyphResult& glyphs, Index cluster, const DetailViewOptions& options) {
-  const Figure f = detail_figure(options);
-  const ClusterRegion region = cluster_region(topology, glyphs, cluster);
+  const ClusterRegion region = cluster_region(mesh, topology, glyphs, cluster);
+  ClusterShot shot;
+  if (has_non_hex_cells(mesh)) shot.cell_kinds = cell_kinds_legend(mesh, region.cells);
+  const Figure f = detail_figure(options, shot.cell_kinds);
   // The camera frames the cells' vertices and the extremes of every glyph.
   std::vector<Vec3> points = cell_points(mesh, region.cells);
-  ClusterShot shot;
   shot.scene = cluster_scene(mesh, topology, vertex_quality, glyphs, cluster, region.cells, points);
   std::vector<Vec3> centers;
   std::vector<double> radii;
@@ -261,14 +364,48 @@ ClusterShot cluster_shot(const HexMesh& mesh, const Topology& topology, const st
 }
 
 Image render_cluster_shot(const ClusterShot& shot, const DetailViewOptions& options, Renderer& renderer) {
-  const Figure f = detail_figure(options);
-  return compose(options, f, renderer.render(shot.scene, shot.camera, f.layout.view.width, f.layout.view.height));
+  const Figure f = detail_figure(options, shot.cell_kinds);
+  return compose(options, f, renderer.render(shot.scene, shot.camera, f.layout.view.width, f.layout.view.height),
+                 shot.cell_kinds);
 }
 
 Image render_cluster_view(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
                           const GlyphResult& glyphs, Index cluster, const DetailViewOptions& options,
                           Renderer& renderer) {
   return render_cluster_shot(cluster_shot(mesh, topology, vertex_quality, glyphs, cluster, options), options, renderer);
+}
+
+namespace {
+
+// The corner scaled Jacobians of a non-hex volume cell (the quality
+// kernels' per-corner functions, cell_corner_jacobian.h), NaN where a corner
+// has no value (the pyramid's apex).
+std::array<double, 8> non_hex_corner_values(const HexMesh& mesh, const CellRef& cell) {
+  std::array<double, 8> out;
+  out.fill(std::nan(""));
+  const auto at = [&](int i) { return mesh.points[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>(i)])]; };
+  const auto copy = [&](const auto& values) {
+    for (std::size_t i = 0; i < values.value.size(); ++i) out[i] = values.value[i];
+  };
+  if (cell.kind == CellKind::tet) copy(tet_corner_scaled_jacobians({at(0), at(1), at(2), at(3)}));
+  else if (cell.kind == CellKind::wedge) copy(wedge_corner_scaled_jacobians({at(0), at(1), at(2), at(3), at(4), at(5)}));
+  else if (cell.kind == CellKind::pyramid) copy(pyramid_corner_scaled_jacobians({at(0), at(1), at(2), at(3), at(4)}));
+  return out;
+}
+
+}  // namespace
+
+std::vector<Index> non_hex_cells_of(const HexMesh& mesh, Index v) {
+  std::vector<Index> cells;
+  const std::array<Index, 5> start = volume_block_starts(mesh);
+  const auto scan = [&](const auto& block, Index first) {
+    for (std::size_t i = 0; i < block.size(); ++i)
+      if (std::find(block[i].begin(), block[i].end(), v) != block[i].end()) cells.push_back(first + static_cast<Index>(i));
+  };
+  scan(mesh.tets, start[1]);
+  scan(mesh.wedges, start[2]);
+  scan(mesh.pyramids, start[3]);
+  return cells;
 }
 
 std::vector<VertexCorner> vertex_corners(const HexMesh& mesh, const Topology& topology,
@@ -282,15 +419,36 @@ std::vector<VertexCorner> vertex_corners(const HexMesh& mesh, const Topology& to
       if (hex[i] == v)
         corners.push_back({h, i, corner_values[8 * static_cast<std::size_t>(h) + static_cast<std::size_t>(i)]});
   }
+  // Then the tets, wedges and pyramids (ascending cell id); a pyramid's apex
+  // has no corner value and no entry.
+  for (Index id : non_hex_cells_of(mesh, v)) {
+    const CellRef cell = volume_cell(mesh, id);
+    const std::array<double, 8> values = non_hex_corner_values(mesh, cell);
+    for (int i = 0; i < cell.num_corners; ++i)
+      if (cell.corners[static_cast<std::size_t>(i)] == v && !std::isnan(values[static_cast<std::size_t>(i)]))
+        corners.push_back({id, i, values[static_cast<std::size_t>(i)], cell.kind});
+  }
   return corners;
+}
+
+std::string cell_kinds_legend(const HexMesh& mesh, std::span<const Index> cells) {
+  std::array<std::int64_t, kNumCellKinds> count{};
+  const Index num_hexes = mesh.num_hexes();
+  for (Index c : cells) ++count[static_cast<std::size_t>(c < num_hexes ? CellKind::hex : volume_cell(mesh, c).kind)];
+  return cell_kinds_text(count);
 }
 
 namespace {
 
 Vec3 hex_centre(const HexMesh& mesh, Index h) {
   Vec3 c{};
-  for (const Vec3& p : hex_corners(mesh, h)) c = c + p;
-  return c / 8.0;
+  if (h < mesh.num_hexes()) {
+    for (const Vec3& p : hex_corners(mesh, h)) c = c + p;
+    return c / 8.0;
+  }
+  const CellRef cell = volume_cell(mesh, h);
+  for (int i = 0; i < cell.num_corners; ++i) c = c + mesh.points[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>(i)])];
+  return c / static_cast<double>(cell.num_corners);
 }
 
 double mean_edge_at(const HexMesh& mesh, const std::vector<VertexCorner>& corners, Index v) {
@@ -306,10 +464,20 @@ double mean_edge_at(const HexMesh& mesh, const std::vector<VertexCorner>& corner
 
 }  // namespace
 
+std::vector<Index> local_ring(const HexMesh& mesh, const Topology& topology, Index v) {
+  std::vector<Index> ring;
+  if (v < 0 || static_cast<std::size_t>(v) + 1 >= topology.vertex_hex_offsets.size()) return ring;
+  const std::span<const Index> hexes = topology.hexes_of(v);
+  ring.assign(hexes.begin(), hexes.end());
+  if (mesh.tets.empty() && mesh.wedges.empty() && mesh.pyramids.empty()) return ring;
+  const std::vector<Index> others = non_hex_cells_of(mesh, v);
+  ring.insert(ring.end(), others.begin(), others.end());
+  return ring;
+}
+
 Scene build_local_scene(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v) {
   const std::vector<VertexCorner> corners = vertex_corners(mesh, topology, corner_values, v);
-  std::vector<Index> ring;
-  for (const VertexCorner& c : corners) ring.push_back(c.hex);
+  const std::vector<Index> ring = local_ring(mesh, topology, v);
   Scene scene;
   const Vec3& p = mesh.points.at(static_cast<std::size_t>(v));
   scene.origin = p;
@@ -335,11 +503,11 @@ Scene build_local_scene(const HexMesh& mesh, const Topology& topology, std::span
 
 Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v,
                         const DetailViewOptions& options, Renderer& renderer) {
-  const Figure f = detail_figure(options);
+  const std::vector<Index> ring = local_ring(mesh, topology, v);
+  const std::string kinds = has_non_hex_cells(mesh) ? cell_kinds_legend(mesh, ring) : std::string();
+  const Figure f = detail_figure(options, kinds);
   const Scene scene = build_local_scene(mesh, topology, corner_values, v);
   const std::vector<VertexCorner> corners = vertex_corners(mesh, topology, corner_values, v);
-  std::vector<Index> ring;
-  for (const VertexCorner& c : corners) ring.push_back(c.hex);
   std::vector<Vec3> points = cell_points(mesh, ring);
   // Viewpoint: the one that separates the corner markers best.
   std::vector<Vec3> centers;
@@ -352,7 +520,7 @@ Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span
   const std::vector<Vec3> direction = choose_viewpoints(points, centers, radii, f.aspect, 1, options.up);
   const Camera camera =
       fit_camera_to_points(points, direction.at(0), f.aspect, {.up = options.up, .is_perspective = false});
-  Image figure = compose(options, f, renderer.render(scene, camera, f.layout.view.width, f.layout.view.height));
+  Image figure = compose(options, f, renderer.render(scene, camera, f.layout.view.width, f.layout.view.height), kinds);
   // Labels: each corner's value next to its marker, placed greedily
   // (place_labels) so that no label covers another or any marker; a label
   // that has to move away from its marker gets a leader line to it.
@@ -369,7 +537,8 @@ Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span
   std::vector<LabelRequest> requests;
   for (std::size_t i = 0; i < centers.size(); ++i) {
     // The hex id ties each marker to its bar in chart E.
-    texts.push_back(format_value(corners[i].value) + "  hex " + std::to_string(corners[i].hex));
+    texts.push_back(format_value(corners[i].value) + "  " + std::string(cell_kind_name(corners[i].kind)) + " " +
+                    std::to_string(corners[i].hex));
     const PixelRect extent = text_extent(texts.back(), size, label_style);
     requests.push_back({markers[i], extent.width + 4, static_cast<int>(std::lround(1.15 * size))});
   }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "hqview/glyph/glyphs.h"
+#include "hqview/core/cell_kinds.h"
 #include "hqview/image/image.h"
 #include "hqview/mesh/hex_mesh.h"
 #include "hqview/mesh/topology.h"
@@ -28,8 +29,12 @@ struct ClusterRegion {
   std::vector<Index> cells;
 };
 ClusterRegion cluster_region(const Topology& topology, const GlyphResult& glyphs, Index cluster);
+// The same over every kind: the hexes, tets, wedges and pyramids using a
+// member vertex (cell ids over all blocks, ascending); what view C draws.
+ClusterRegion cluster_region(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs, Index cluster);
 
-// View C's scene:
+// View C's scene (cells of every kind, each with its CellKindTable faces
+// and edges):
 //   lines[0]       edges of the neighbour cells, grey;
 //   lines[1]       edges of the cluster's cells, in the cluster's colour;
 //   spheres[0]     the cluster's glyphs, not aggregated: one per member at
@@ -52,6 +57,7 @@ Image render_cluster_view(const HexMesh& mesh, const Topology& topology, const s
 struct ClusterShot {
   Scene scene;
   Camera camera;
+  std::string cell_kinds;  // on a mesh with non-hex cells, the region's kinds (cell_kinds_legend) for the legend
 };
 ClusterShot cluster_shot(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
                          const GlyphResult& glyphs, Index cluster, const DetailViewOptions& options);
@@ -59,25 +65,44 @@ Image render_cluster_shot(const ClusterShot& shot, const DetailViewOptions& opti
 
 // The corners at vertex v: one per incident hex (ascending hex id), with its
 // corner scaled Jacobian read from corner_values (QualityField's
-// corner_scaled_jacobian: 8 per hex).
+// corner_scaled_jacobian: 8 per hex); then one per incident tet, wedge and
+// pyramid (ascending cell id), its value computed by the quality kernels'
+// per-corner functions (cell_corner_jacobian.h; a pyramid's apex has no
+// value and no entry).
 struct VertexCorner {
-  Index hex = 0;
-  int local = 0;     // corner index 0..7 of v in the hex
+  Index hex = 0;     // the cell id over all blocks (hexes first)
+  int local = 0;     // corner index of v in the cell (VTK order)
   double value = 0;  // corner scaled Jacobian
+  CellKind kind = CellKind::hex;
 };
 std::vector<VertexCorner> vertex_corners(const HexMesh& mesh, const Topology& topology,
                                          std::span<const double> corner_values, Index v);
 
+// The tets, wedges and pyramids using vertex v (cell ids over all blocks,
+// ascending): a scan of those blocks.
+std::vector<Index> non_hex_cells_of(const HexMesh& mesh, Index v);
+
+// View D's one ring: the hexes of v (ascending), then non_hex_cells_of(v).
+std::vector<Index> local_ring(const HexMesh& mesh, const Topology& topology, Index v);
+
+// "cells: 4 hex, 9 tet, 2 pyramid": the count of each kind among `cells`
+// (ids over all blocks), kinds in block order; empty for no cells.
+std::string cell_kinds_legend(const HexMesh& mesh, std::span<const Index> cells);
+
 // View D's scene:
-//   lines[0]       edges of the one-ring hexes, dark grey;
-//   spheres[0]     one marker per corner, 45% of the way from v
-//                  towards its hex's centre, coloured by quality_color(value);
+//   lines[0]       edges of the one-ring cells (local_ring: every kind,
+//                  each with its CellKindTable faces), dark grey;
+//   spheres[0]     one marker per corner (vertex_corners), 45% of the way
+//                  from v towards its cell's centre, coloured by
+//                  quality_color(value);
 //   spheres[1]     v itself, small, dark;
-//   translucent[0] the one-ring hexes' faces, pale.
+//   translucent[0] the one-ring cells' faces, pale.
 Scene build_local_scene(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v);
 
 // The figure of view D: the one ring framed, each corner marker labelled
-// with its value and its hex id (as in chart E), quality colour bar.
+// with its value, its cell's kind and id ("0.812  hex 12", as in chart E),
+// quality colour bar; on a mesh with non-hex cells the legend's title ends
+// with the ring's cell_kinds_legend.
 Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v,
                         const DetailViewOptions& options, Renderer& renderer);
 

@@ -11,6 +11,8 @@
 #include <numeric>
 
 #include "hqview/core/error.h"
+#include "hqview/mesh/boundary_polygons.h"
+#include "hqview/mesh/cell_faces.h"
 #include "hqview/core/number_format.h"
 #include "hqview/image/colormap.h"
 #include "hqview/render/annotate.h"
@@ -412,7 +414,7 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   auto local = [&](const Vec3& p) { return to_vec3f(p - scene.origin); };
 
   // 1. Boundary wireframe.
-  const std::vector<Edge> wire = boundary_edges(topology);
+  const std::vector<Edge> wire = boundary_edges_all_kinds(topology);
   scene.lines.push_back(
       edge_lines(mesh, scene.origin, wire, std::vector<Rgba8>(wire.size(), kWireframeColor), options.wire_width));
 
@@ -436,7 +438,9 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   // 3. Intersecting cells: translucent faces and their edges.
   TriangleSet cells;
   std::vector<Edge> cell_edges;
-  if (overlap && overlap->cell_intersecting.size() == mesh.hexes.size()) {
+  const std::size_t num_checked_cells = overlap ? overlap->cell_intersecting.size() : 0;
+  if (overlap && (num_checked_cells == mesh.hexes.size() ||
+                  num_checked_cells == static_cast<std::size_t>(num_volume_cells(mesh)))) {
     for (std::size_t c = 0; c < mesh.hexes.size(); ++c) {
       if (!overlap->cell_intersecting[c]) continue;
       for (int f = 0; f < 6; ++f) {
@@ -450,6 +454,22 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
         }
         cells.indices.insert(cells.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
       }
+    }
+    // Tets, wedges and pyramids (when the overlap stage checked them), each
+    // with its own faces (CellKindTable).
+    for (std::size_t c = mesh.hexes.size(); c < num_checked_cells; ++c) {
+      if (!overlap->cell_intersecting[c]) continue;
+      for_each_face_of(volume_cell(mesh, static_cast<Index>(c)), [&](const std::array<Index, 4>& v, int size) {
+        const auto base = static_cast<std::uint32_t>(cells.positions.size());
+        for (int i = 0; i < size; ++i) {
+          cells.positions.push_back(local(mesh.points[static_cast<std::size_t>(v[static_cast<std::size_t>(i)])]));
+          cells.colors.push_back(kIntersectingCellColor);
+          const Index a = v[static_cast<std::size_t>(i)], b = v[static_cast<std::size_t>((i + 1) % size)];
+          cell_edges.push_back({std::min(a, b), std::max(a, b)});
+        }
+        cells.indices.insert(cells.indices.end(), {base, base + 1, base + 2});
+        if (size == 4) cells.indices.insert(cells.indices.end(), {base, base + 2, base + 3});
+      });
     }
     std::sort(cell_edges.begin(), cell_edges.end());
     cell_edges.erase(std::unique(cell_edges.begin(), cell_edges.end()), cell_edges.end());
@@ -656,6 +676,19 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
   lines.push_back({kIntersectingCellColor, "intersecting cells: " + std::to_string(intersecting) + unchecked});
   if (overlap && !overlap->markers.empty()) lines.push_back({std::nullopt, "label xN: N of its colour's kind"});
   lines.push_back({kWireframeColor, "boundary edges"});
+  // "cells: 64 hex, 484 tet, 16 pyramid" as a heading and one line per kind
+  // (one line would be cut in the legend's width).
+  if (!options.cell_kinds.empty()) {
+    std::string_view rest = options.cell_kinds;
+    const std::string_view heading = "cells: ";
+    if (rest.starts_with(heading)) rest.remove_prefix(heading.size());
+    lines.push_back({std::nullopt, "cells of the mesh", 1});
+    while (!rest.empty()) {
+      const std::size_t comma = rest.find(", ");
+      lines.push_back({std::nullopt, "  " + std::string(rest.substr(0, comma))});
+      rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 2);
+    }
+  }
   return lines;
 }
 

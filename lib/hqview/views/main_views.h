@@ -51,6 +51,9 @@ struct MainViewOptions {
                                       // sets it to the figure's annotation scale (height / 1200)
   double fov_y_degrees = 30.0;
   Vec3 up{0.0, 0.0, 1.0};  // the model axis drawn upwards (--up)
+  // A legend line naming the mesh's cell kinds ("cells: 64 hex, 484 tet,
+  // 16 pyramid", mesh_kinds_text); empty (pure-hex meshes): no line.
+  std::string cell_kinds;
 };
 
 // The fraction of an aspect-sized image covered by the union of the spheres

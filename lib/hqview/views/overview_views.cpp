@@ -7,6 +7,7 @@
 
 #include "hqview/core/error.h"
 #include "hqview/image/colormap.h"
+#include "hqview/mesh/boundary_polygons.h"
 #include "hqview/render/annotate.h"
 #include "hqview/render/upright.h"
 
@@ -19,17 +20,13 @@ Vec3 view_direction_of(const OverviewOptions& options) {
 
 const Vec3& point(const HexMesh& mesh, Index v) { return mesh.points[static_cast<std::size_t>(v)]; }
 
-const Quad& boundary_quad(const Topology& topology, Index face) {
-  return topology.faces[static_cast<std::size_t>(face)];
-}
-
 }  // namespace
 
 std::vector<Vec3> boundary_points(const HexMesh& mesh, const Topology& topology) {
-  if (topology.boundary_faces.empty()) return mesh.points;
+  if (num_boundary_faces_all_kinds(topology) == 0) return mesh.points;
   std::vector<char> is_used(mesh.points.size(), 0);
-  for (Index face : topology.boundary_faces)
-    for (Index v : boundary_quad(topology, face)) is_used[static_cast<std::size_t>(v)] = 1;
+  for (const BoundaryPolygon& face : boundary_polygons(topology))
+    for (int i = 0; i < face.size; ++i) is_used[static_cast<std::size_t>(face.v[static_cast<std::size_t>(i)])] = 1;
   std::vector<Vec3> points;
   for (std::size_t v = 0; v < is_used.size(); ++v)
     if (is_used[v]) points.push_back(mesh.points[v]);
@@ -38,9 +35,9 @@ std::vector<Vec3> boundary_points(const HexMesh& mesh, const Topology& topology)
 
 Box3 boundary_bounding_box(const HexMesh& mesh, const Topology& topology) {
   Box3 box;
-  if (!topology.boundary_faces.empty()) {
-    for (Index face : topology.boundary_faces)
-      for (Index v : boundary_quad(topology, face)) box.add(point(mesh, v));
+  if (num_boundary_faces_all_kinds(topology) != 0) {
+    for (const BoundaryPolygon& face : boundary_polygons(topology))
+      for (int i = 0; i < face.size; ++i) box.add(point(mesh, face.v[static_cast<std::size_t>(i)]));
   } else {
     box = bounding_box(mesh.points);
   }
@@ -70,13 +67,31 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
   // renderers without per-fragment maps).
   TriangleSet faces;
   faces.color_map = {quality_map_samples(), kInvertedColor, kUndefinedColor};
-  const std::size_t num_faces = topology.boundary_faces.size();
+  const std::vector<BoundaryPolygon> polygons = boundary_polygons(topology);
+  const std::size_t num_faces = polygons.size();
   faces.positions.reserve(5 * num_faces);
   faces.normals.reserve(5 * num_faces);
   faces.colors.reserve(5 * num_faces);
   faces.indices.reserve(12 * num_faces);
-  for (Index face : topology.boundary_faces) {
-    const Quad& quad = boundary_quad(topology, face);
+  for (const BoundaryPolygon& polygon : polygons) {
+    const auto base = static_cast<std::uint32_t>(faces.positions.size());
+    if (polygon.size == 3) {
+      // A triangle (of a tet, wedge or pyramid): its 3 corners, one flat
+      // triangle; the per-fragment map gives it the same colours as a quad.
+      Vec3 p[3];
+      for (int i = 0; i < 3; ++i) p[i] = point(mesh, polygon.v[static_cast<std::size_t>(i)]);
+      const Vec3f normal = to_vec3f(normalized(cross(p[1] - p[0], p[2] - p[0])));
+      for (int i = 0; i < 3; ++i) {
+        const double q = vertex_quality[static_cast<std::size_t>(polygon.v[static_cast<std::size_t>(i)])];
+        faces.positions.push_back(local(p[i]));
+        faces.normals.push_back(normal);
+        faces.colors.push_back(color(q));
+        faces.scalars.push_back(static_cast<float>(q));
+      }
+      faces.indices.insert(faces.indices.end(), {base, base + 1, base + 2});
+      continue;
+    }
+    const Quad& quad = polygon.v;
     Vec3 p[4];
     double quality_sum = 0.0;
     int finite = 0;
@@ -92,7 +107,6 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
     // The diagonals' cross product: the area-weighted normal of a non-planar
     // quad, outward for an outward-oriented face.
     const Vec3f normal = to_vec3f(normalized(cross(p[2] - p[0], p[3] - p[1])));
-    const auto base = static_cast<std::uint32_t>(faces.positions.size());
     for (int i = 0; i < 4; ++i) {
       const double q = vertex_quality[static_cast<std::size_t>(quad[i])];
       faces.positions.push_back(local(p[i]));
@@ -118,7 +132,7 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
 
   // Boundary edges, each once, then the vertices they use renumbered
   // compactly in ascending id order.
-  const std::vector<Edge> edges = boundary_edges(topology);
+  const std::vector<Edge> edges = boundary_edges_all_kinds(topology);
 
   LineSet lines;
   lines.width = options.edge_width;
@@ -135,7 +149,49 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
   for (const Edge& e : edges)
     for (Index v : e) lines.indices.push_back(static_cast<std::uint32_t>(local_id[static_cast<std::size_t>(v)]));
   scene.lines.push_back(std::move(lines));
+  if (!topology.non_conforming_faces.empty()) scene.overlay.push_back(non_conforming_outlines(mesh, topology, scene.origin));
   return scene;
+}
+
+TriangleSet non_conforming_outlines(const HexMesh& mesh, const Topology& topology, const Vec3& origin) {
+  TriangleSet set;
+  set.is_lit = false;
+  for (const NonConformingFace& nc : topology.non_conforming_faces) {
+    Vec3 p[4], centre{};
+    for (int i = 0; i < 4; ++i) centre = centre + (p[i] = point(mesh, nc.quad[static_cast<std::size_t>(i)]));
+    centre = 0.25 * centre;
+    // A frame: each corner and its point kNonConformingFrame of the way
+    // towards the centre; 4 trapezoids of 2 triangles.
+    const auto base = static_cast<std::uint32_t>(set.positions.size());
+    for (int i = 0; i < 4; ++i) {
+      set.positions.push_back(to_vec3f(p[i] - origin));
+      set.positions.push_back(to_vec3f(p[i] + kNonConformingFrame * (centre - p[i]) - origin));
+    }
+    set.colors.assign(set.positions.size(), kNonConformingColor);
+    for (std::uint32_t i = 0; i < 4; ++i) {
+      const std::uint32_t o0 = base + 2 * i, i0 = o0 + 1, o1 = base + 2 * ((i + 1) % 4), i1 = o1 + 1;
+      set.indices.insert(set.indices.end(), {o0, o1, i1, o0, i1, i0});
+    }
+  }
+  return set;
+}
+
+ColorBar overview_color_bar(const Topology& topology, const std::vector<double>& vertex_quality) {
+  ColorBar bar = quality_color_bar();
+  // Only a hybrid mesh can have boundary vertices without a value (used by
+  // non-hex cells alone until their corners are analysed): a pure-hex
+  // legend keeps its bytes.
+  if (topology.across_kinds) {
+    bool undefined = false;
+    for (const BoundaryPolygon& face : boundary_polygons(topology))
+      for (int i = 0; i < face.size; ++i)
+        undefined = undefined || std::isnan(vertex_quality[static_cast<std::size_t>(face.v[static_cast<std::size_t>(i)])]);
+    if (undefined) bar.swatches.push_back({kUndefinedColor, "no value"});
+  }
+  if (!topology.non_conforming_faces.empty())
+    bar.swatches.push_back({to_color(kNonConformingColor),
+                            "non-conforming (" + std::to_string(topology.non_conforming_faces.size()) + ", inside)"});
+  return bar;
 }
 
 namespace {
@@ -184,7 +240,7 @@ Image render_quality_overview(const HexMesh& mesh, const Topology& topology, con
                       std::to_string(options.height));
   AnnotationStyle style = annotation_style_for(options.height);
   style.background = options.background;
-  const ColorBar bar = quality_color_bar();
+  const ColorBar bar = overview_color_bar(topology, vertex_quality);
   const FigureLayout layout =
       figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(bar, style), style);
 
@@ -207,7 +263,11 @@ Image render_compare_overview(const HexMesh& mesh, const Topology& topology, con
                               Renderer& renderer) {
   AnnotationStyle style = annotation_style_for(options.height);
   style.background = options.background;
-  const ColorBar bar = quality_color_bar();
+  ColorBar bar = overview_color_bar(topology, vertex_quality);
+  for (ColorBarSwatch& swatch : overview_color_bar(other_topology, other_vertex_quality).swatches)
+    if (std::none_of(bar.swatches.begin(), bar.swatches.end(),
+                     [&](const ColorBarSwatch& s) { return s.label == swatch.label; }))
+      bar.swatches.push_back(std::move(swatch));
   const FigureLayout layout =
       figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(bar, style), style);
   const int half = std::max(1, layout.view.width / 2);

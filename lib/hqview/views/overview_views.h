@@ -28,8 +28,9 @@ struct OverviewOptions {
   float edge_width = 1.0f;            // in output pixels
 };
 
-// The overview's 3D content: every boundary face (Topology::boundary_faces)
-// as 4 triangles around its centre, so that the quality of the 4 corners
+// The overview's 3D content: every boundary face over all kinds
+// (boundary_polygons: hex quads, non-hex quads, triangles); a quad as 4
+// triangles around its centre, a triangle as itself, so that the quality of the 4 corners
 // blends without a diagonal artefact, flat-shaded with the quad's normal,
 // with scalars = vertex quality (the centre: the mean of its corners') and the
 // quality map (quality_map_samples, kInvertedColor below 0, kUndefinedColor
@@ -38,13 +39,28 @@ struct OverviewOptions {
 // colour in the part of its faces nearest to it (colors: quality_color per
 // vertex, the same values; a caller that recolours the faces must clear
 // scalars, which win over colors); then the unique boundary edges as lines
-// in options.edge_color. The scene's origin is the centre of the boundary's
-// bounding box.
+// in options.edge_color (boundary_edges_all_kinds); the non-conforming faces'
+// outlines in scene.overlay (none on a pure-hex mesh). The scene's origin is
+// the centre of the boundary's bounding box.
 //   vertex_quality: mesh.num_vertices() values (min corner scaled Jacobian,
 //                   NaN for vertices no hex uses).
 // Throws Error when vertex_quality has the wrong size.
 Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology,
                                    const std::vector<double>& vertex_quality, const OverviewOptions& options);
+
+// Non-conforming faces (Topology::non_conforming_faces: a quad against two
+// triangles, inside the mesh) are drawn in this colour as an outline frame
+// (kNonConformingFrame of the way from each corner to the face's centre),
+// over everything else (Scene::overlay), so that an interface inside the
+// model shows where it is; they are never part of the boundary.
+inline constexpr Rgba8 kNonConformingColor{125, 70, 20, 255};  // dark brown: in no palette of the overview or structure views
+inline constexpr double kNonConformingFrame = 0.15;
+TriangleSet non_conforming_outlines(const HexMesh& mesh, const Topology& topology, const Vec3& origin);
+
+// The overview's legend: quality_color_bar(), plus on a hybrid mesh a
+// "no value" swatch when a boundary vertex has no quality (NaN) and a
+// "non-conforming (N, inside)" swatch when the mesh has such faces.
+ColorBar overview_color_bar(const Topology& topology, const std::vector<double>& vertex_quality);
 
 // The positions of the boundary faces' vertices, each once, in vertex id
 // order (all points when there is no boundary face).

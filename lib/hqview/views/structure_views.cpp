@@ -7,6 +7,8 @@
 #include "hqview/core/error.h"
 #include "hqview/core/number_format.h"
 #include "hqview/image/colormap.h"
+#include "hqview/mesh/boundary_polygons.h"
+#include "hqview/mesh/cell_faces.h"
 #include "hqview/render/annotate.h"
 #include "hqview/render/camera.h"
 #include "hqview/render/upright.h"
@@ -40,22 +42,26 @@ void check_size(const StructureViewOptions& options) {
                       std::to_string(options.height));
 }
 
-// The boundary faces as two triangles each, one colour per face, flat.
-TriangleSet boundary_faces(const HexMesh& mesh, const Topology& topology, const Vec3& origin, auto color_of_face) {
+// The boundary faces over all kinds (boundary_polygons), a quad as two
+// triangles, a triangle as itself, one colour per face (color_of_cell of the
+// face's cell id), flat.
+TriangleSet boundary_faces(const HexMesh& mesh, const Topology& topology, const Vec3& origin, auto color_of_cell) {
   TriangleSet set;
-  const std::size_t n = topology.boundary_faces.size();
+  const std::vector<BoundaryPolygon> polygons = boundary_polygons(topology);
+  const std::size_t n = polygons.size();
   set.positions.reserve(4 * n);
   set.colors.reserve(4 * n);
   set.indices.reserve(6 * n);
-  for (Index face : topology.boundary_faces) {
-    const Quad& q = topology.faces[static_cast<std::size_t>(face)];
+  for (const BoundaryPolygon& face : polygons) {
     const auto base = static_cast<std::uint32_t>(set.positions.size());
-    const Rgba8 color = color_of_face(face);
-    for (Index v : q) {
-      set.positions.push_back(to_vec3f(point(mesh, v) - origin));
+    const Rgba8 color = color_of_cell(face.cell);
+    for (int i = 0; i < face.size; ++i) {
+      set.positions.push_back(to_vec3f(point(mesh, face.v[static_cast<std::size_t>(i)]) - origin));
       set.colors.push_back(color);
     }
-    for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) set.indices.push_back(base + i);
+    for (std::uint32_t i : {0u, 1u, 2u}) set.indices.push_back(base + i);
+    if (face.size == 4)
+      for (std::uint32_t i : {0u, 2u, 3u}) set.indices.push_back(base + i);
   }
   return set;
 }
@@ -132,6 +138,19 @@ Scene build_singularity_scene(const HexMesh& mesh, const Topology& topology, con
     }
   scene.spheres.push_back(std::move(nodes));
   scene.translucent.push_back(boundary_faces(mesh, topology, scene.origin, [](Index) { return kVeilColor; }));
+  // Non-conforming interfaces (inside the mesh): opaque, under the veil.
+  if (!topology.non_conforming_faces.empty()) {
+    TriangleSet faces;
+    for (const NonConformingFace& nc : topology.non_conforming_faces) {
+      const auto base = static_cast<std::uint32_t>(faces.positions.size());
+      for (Index v : nc.quad) {
+        faces.positions.push_back(to_vec3f(point(mesh, v) - scene.origin));
+        faces.colors.push_back(kNonConformingColor);
+      }
+      faces.indices.insert(faces.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+    }
+    scene.triangles.push_back(std::move(faces));
+  }
   return scene;
 }
 
@@ -186,6 +205,13 @@ Image render_singularity_view(const HexMesh& mesh, const Topology& topology, con
   if (structure.num_nonmanifold_edges > 0)
     lines.push_back({std::nullopt, "non-manifold edges: " + std::to_string(structure.num_nonmanifold_edges)});
   lines.push_back({Rgba8{176, 182, 194, 255}, "boundary (translucent)", 1});
+  if (!topology.non_conforming_faces.empty())
+    lines.push_back({kNonConformingColor,
+                     "non-conforming faces: " + std::to_string(topology.non_conforming_faces.size())});
+  if (const std::string kinds = mesh_kinds_text(mesh); !kinds.empty()) {
+    lines.push_back({std::nullopt, kinds, 1});
+    lines.push_back({std::nullopt, "graph of the hex part"});
+  }
   draw_legend(figure, layout.legend, lines, style);
   return figure;
 }
@@ -226,6 +252,7 @@ Image render_gradation_view(const HexMesh& mesh, const Topology& topology, const
   for (int i = 0; i <= 32; ++i) bar.colors.push_back(gradation_color(std::exp2(2.0 * i / 32.0)));
   bar.ticks = {{0.0, "1"}, {std::log2(1.5), "1.5"}, {1.0, "2"}, {std::log2(3.0), "3"}, {2.0, ">= 4"}};
   bar.swatches = {{kUndefinedColor, "undefined"}};
+  if (const std::string kinds = mesh_kinds_text(mesh); !kinds.empty()) bar.label += "\n" + kinds;
   const FigureLayout layout =
       figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(bar, style), style);
   const double aspect = static_cast<double>(layout.view.width) / std::max(1, layout.view.height);
@@ -235,13 +262,16 @@ Image render_gradation_view(const HexMesh& mesh, const Topology& topology, const
   Scene scene;
   scene.origin = 0.5 * (box.lo + box.hi);
   scene.background = options.background;
-  scene.triangles.push_back(boundary_faces(mesh, topology, scene.origin, [&](Index face) {
-    const Index h = topology.face_hexes[static_cast<std::size_t>(topology.face_hex_offsets[static_cast<std::size_t>(face)])];
-    return to_rgba8(gradation_color(structure.cell_gradation[static_cast<std::size_t>(h)]));
+  scene.triangles.push_back(boundary_faces(mesh, topology, scene.origin, [&](Index cell) {
+    // Cells of other kinds have no gradation (yet): the undefined colour.
+    const double g = static_cast<std::size_t>(cell) < structure.cell_gradation.size()
+                         ? structure.cell_gradation[static_cast<std::size_t>(cell)]
+                         : std::nan("");
+    return to_rgba8(gradation_color(g));
   }));
   LineSet edges;
   edges.width = static_cast<float>(std::max(1.0, style.scale));
-  for (const Edge& e : boundary_edges(topology))
+  for (const Edge& e : boundary_edges_all_kinds(topology))
     for (Index v : e) {
       edges.indices.push_back(static_cast<std::uint32_t>(edges.positions.size()));
       edges.positions.push_back(to_vec3f(point(mesh, v) - scene.origin));

@@ -22,6 +22,7 @@
 #include "hqview/core/progress.h"
 #include "hqview/core/stop.h"
 #include "hqview/image/png.h"
+#include "hqview/mesh/cell_faces.h"
 #include "hqview/render/upright.h"
 #include "hqview/views/boundary_views.h"
 #include "hqview/views/detail_views.h"
@@ -121,7 +122,7 @@ std::vector<ViewFile> chart_files(const std::string& name, const Chart& chart) {
 }
 
 // D and E: the worst vertex of each top cluster, then the focus vertices;
-// vertices no hex uses are left out.
+// vertices no cell uses are left out.
 std::vector<Index> choose_local_vertices(const ViewContext& c) {
   const GlyphResult& glyphs = *c.glyphs;
   const std::vector<double>& quality = c.quality();
@@ -144,7 +145,8 @@ std::vector<Index> choose_local_vertices(const ViewContext& c) {
   const Topology& topology = c.a.topology;
   std::erase_if(vertices, [&](Index v) {
     return topology.vertex_hex_offsets[static_cast<std::size_t>(v)] ==
-           topology.vertex_hex_offsets[static_cast<std::size_t>(v) + 1];
+               topology.vertex_hex_offsets[static_cast<std::size_t>(v) + 1] &&
+           non_hex_cells_of(c.a.mesh, v).empty();
   });
   return vertices;
 }
@@ -178,6 +180,7 @@ std::vector<ViewFile> build_overview(ViewContext& c) {
 
 std::vector<ViewFile> build_main(ViewContext& c) {
   auto main = sized<MainViewOptions>(c);
+  main.cell_kinds = mesh_kinds_text(c.a.mesh);
   const std::vector<Vec3> points = main_view_points(c.a.mesh, c.a.topology, *c.glyphs);
   main.title = "-";  // the layout of a titled figure
   const double aspect = main_view_aspect(main);
@@ -220,13 +223,14 @@ std::vector<ViewFile> build_clusters(ViewContext& c) {
 
 std::vector<ViewFile> build_local(ViewContext& c) {
   auto detail = sized<DetailViewOptions>(c);
+  const bool hybrid = !c.a.mesh.tets.empty() || !c.a.mesh.wedges.empty() || !c.a.mesh.pyramids.empty();
   std::vector<ViewFile> files;
   for (Index v : c.local_vertices) {
     // Named by its cluster: the local vertex of a lower-ranked cluster is
     // not read as cluster #0's worst.
     const Index cluster = c.cluster_of(v);
     detail.title = c.name + ": " + (cluster == kNoIndex ? std::string() : "cluster #" + std::to_string(cluster) + ", ") +
-                   "vertex " + std::to_string(v) + ", its hexes and their corner scaled Jacobians";
+                   "vertex " + std::to_string(v) + (hybrid ? ", its cells" : ", its hexes") + " and their corner scaled Jacobians";
     Image image = render_local_view(c.a.mesh, c.a.topology, c.a.field.corner_scaled_jacobian, v, detail, c.renderer);
     files.push_back(framed("views/local_v" + std::to_string(v) + ".png", std::move(image), c));
     files.back().cluster = c.cluster_of(v);
@@ -242,7 +246,7 @@ std::vector<ViewFile> build_corners(ViewContext& c) {
     std::vector<std::string> labels;
     for (const VertexCorner& corner : vertex_corners(c.a.mesh, c.a.topology, c.a.field.corner_scaled_jacobian, v)) {
       values.push_back(corner.value);
-      labels.push_back("hex " + std::to_string(corner.hex));
+      labels.push_back(std::string(cell_kind_name(corner.kind)) + " " + std::to_string(corner.hex));
     }
     const Chart chart = corner_chart(values, labels,
                                      {std::max(480, 90 * static_cast<int>(values.size()) + 120), 420,
