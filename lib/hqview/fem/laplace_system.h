@@ -15,18 +15,22 @@
 
 namespace hq {
 
-// Compressed sparse rows; columns ascending within a row.
+// A symmetric matrix as the compressed sparse rows of its upper triangle:
+// row r holds the columns >= r, ascending (the diagonal first).
+// symmetric_product.h multiplies it.
 struct CsrMatrix {
   std::vector<std::int64_t> offsets;  // rows + 1
   std::vector<Index> columns;
   std::vector<double> values;
+  std::size_t bandwidth = 0;   // max over the entries of column - row
+  std::size_t chunk_rows = 0;  // the product's fixed row chunks: >= bandwidth
   std::size_t num_rows() const { return offsets.empty() ? 0 : offsets.size() - 1; }
 };
 
 struct LaplaceSystem {
-  CsrMatrix matrix;               // K_ff (model units), symmetric positive definite on a valid mesh
+  CsrMatrix matrix;               // K_ff (model units, upper triangle), symmetric positive definite on a valid mesh
   std::vector<double> diagonal;   // its diagonal
-  std::vector<Index> row_vertex;  // row -> vertex id (ascending)
+  std::vector<Index> row_vertex;  // row -> vertex id (reverse Cuthill-McKee order: neighbours get near rows)
   std::vector<Index> vertex_row;  // vertex -> row, kNoIndex for a boundary or unused vertex
   int num_rhs = 0;
   std::vector<double> rhs;        // rows x num_rhs, rhs[row * num_rhs + s] = -(K_fb g_s)
@@ -38,7 +42,8 @@ struct LaplaceSystem {
 LaplaceSystem assemble_laplace_system(const HexMesh& mesh, const Topology& topology,
                                       const std::vector<double>& dirichlet, int num_rhs);
 
-// y = A x for k interleaved columns (x, y: rows x k). Parallel over rows.
+// y = A x for k (1 to 4) interleaved columns (x, y: rows x k), A from its
+// upper triangle (symmetric_product.h): the same bits for any thread count.
 void multiply(const CsrMatrix& a, const std::vector<double>& x, std::vector<double>& y, int k);
 
 }  // namespace hq

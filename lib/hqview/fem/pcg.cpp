@@ -1,11 +1,13 @@
 #include "hqview/fem/pcg.h"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
 #include "hqview/core/stop.h"
 #include "hqview/fem/fixed_chunks.h"
+#include "hqview/fem/symmetric_product.h"
 
 namespace hq {
 namespace {
@@ -24,38 +26,50 @@ Sums column_dots(const std::vector<double>& a, const std::vector<double>& b, std
   });
 }
 
-// q = A p for K interleaved columns, and per column p . q (fixed chunks).
+using Mask = std::array<bool, kMaxColumns>;
+
+// r -= alpha q for the columns that stepped, and per column (r, r) and
+// (r, D^-1 r) (the second in s[kMaxColumns + c]). K: columns of the layout.
 template <std::size_t K>
-Sums multiply_and_dot(const CsrMatrix& a, const std::vector<double>& p, std::vector<double>& q) {
-  return detail::sum_fem_chunks<kMaxColumns>(a.num_rows(), [&](std::size_t first, std::size_t last) {
-    Sums s{};
-    for (std::size_t r = first; r < last; ++r) {
-      std::array<double, K> sum{};
-      for (std::int64_t e = a.offsets[r]; e < a.offsets[r + 1]; ++e) {
-        const double v = a.values[static_cast<std::size_t>(e)];
-        const double* pc = p.data() + static_cast<std::size_t>(a.columns[static_cast<std::size_t>(e)]) * K;
-        for (std::size_t c = 0; c < K; ++c) sum[c] += v * pc[c];
-      }
+std::array<double, 2 * kMaxColumns> update_residual(std::vector<double>& r, const std::vector<double>& q,
+                                                    const std::vector<double>& inverse_diagonal,
+                                                    const std::array<double, kMaxColumns>& alpha, const Mask& stepped) {
+  const bool all = std::all_of(stepped.begin(), stepped.begin() + K, [](bool b) { return b; });
+  return detail::sum_fem_chunks<2 * kMaxColumns>(inverse_diagonal.size(), [&](std::size_t first, std::size_t last) {
+    std::array<double, 2 * kMaxColumns> s{};
+    for (std::size_t i = first; i < last; ++i) {
+      const double d = inverse_diagonal[i];
       for (std::size_t c = 0; c < K; ++c) {
-        q[r * K + c] = sum[c];
-        s[c] += p[r * K + c] * sum[c];
+        if (!all && !stepped[c]) continue;
+        const std::size_t j = i * K + c;
+        const double rj = r[j] - alpha[c] * q[j];
+        r[j] = rj;
+        s[c] += rj * rj;
+        s[kMaxColumns + c] += rj * (rj * d);
       }
     }
     return s;
   });
 }
 
-Sums multiply_and_dot(const CsrMatrix& a, const std::vector<double>& p, std::vector<double>& q, int k) {
-  switch (k) {
-    case 1:
-      return multiply_and_dot<1>(a, p, q);
-    case 2:
-      return multiply_and_dot<2>(a, p, q);
-    case 3:
-      return multiply_and_dot<3>(a, p, q);
-    default:
-      return multiply_and_dot<4>(a, p, q);
-  }
+// x += alpha p for the columns that stepped, then p = D^-1 r + beta p for
+// those still active.
+template <std::size_t K>
+void update_iterate(std::vector<double>& x, std::vector<double>& p, const std::vector<double>& r,
+                    const std::vector<double>& inverse_diagonal, const std::array<double, kMaxColumns>& alpha,
+                    const std::array<double, kMaxColumns>& beta, const Mask& stepped, const Mask& active) {
+  const bool all = std::all_of(stepped.begin(), stepped.begin() + K, [](bool b) { return b; }) &&
+                   std::all_of(active.begin(), active.begin() + K, [](bool b) { return b; });
+  detail::for_fem_chunks(inverse_diagonal.size(), [&](std::size_t first, std::size_t last) {
+    for (std::size_t i = first; i < last; ++i) {
+      const double d = inverse_diagonal[i];
+      for (std::size_t c = 0; c < K; ++c) {
+        const std::size_t j = i * K + c;
+        if (all || stepped[c]) x[j] += alpha[c] * p[j];
+        if (all || active[c]) p[j] = r[j] * d + beta[c] * p[j];
+      }
+    }
+  });
 }
 
 // Ritz values of the symmetric tridiagonal (diag, sub).
@@ -70,24 +84,24 @@ RitzExtremes tridiagonal_extremes(const std::vector<double>& diag, const std::ve
   return {solver.eigenvalues().minCoeff(), solver.eigenvalues().maxCoeff()};
 }
 
-}  // namespace
-
-PcgResult solve_pcg(const CsrMatrix& a, const std::vector<double>& diagonal, const std::vector<double>& b, int k,
+template <std::size_t K>
+PcgResult solve_pcg(const CsrMatrix& a, const std::vector<double>& diagonal, const std::vector<double>& b,
                     const PcgOptions& options) {
-  const std::size_t rows = a.num_rows(), uk = static_cast<std::size_t>(k), n = rows * uk;
+  const std::size_t rows = a.num_rows(), n = rows * K;
   PcgResult out;
   out.x.assign(n, 0.0);
-  out.columns.resize(uk);
-  std::vector<double> r = b, z(n), p(n), q(n);
+  out.columns.resize(K);
+  std::vector<double> inverse_diagonal(rows);
+  for (std::size_t i = 0; i < rows; ++i) inverse_diagonal[i] = 1.0 / diagonal[i];
+  std::vector<double> r = b, p(n), q(n), overflow(n, 0.0);
   for (std::size_t i = 0; i < rows; ++i)
-    for (std::size_t c = 0; c < uk; ++c) z[i * uk + c] = r[i * uk + c] / diagonal[i];
-  p = z;
-  const Sums bb = column_dots(b, b, rows, k);
-  Sums rz = column_dots(r, z, rows, k);
-  std::array<bool, kMaxColumns> active{};
+    for (std::size_t c = 0; c < K; ++c) p[i * K + c] = r[i * K + c] * inverse_diagonal[i];
+  const Sums bb = column_dots(b, b, rows, K);
+  Sums rz = column_dots(r, p, rows, K);
+  Mask active{}, stepped{};
   std::array<double, kMaxColumns> target{};
   std::array<RitzExtremes, kMaxColumns> last_ritz{};
-  for (std::size_t c = 0; c < uk; ++c) {
+  for (std::size_t c = 0; c < K; ++c) {
     target[c] = options.tolerance * std::sqrt(bb[c]);
     active[c] = bb[c] > 0;
     out.columns[c].converged = !active[c];
@@ -109,41 +123,28 @@ PcgResult solve_pcg(const CsrMatrix& a, const std::vector<double>& diagonal, con
     return settled;
   };
   for (int it = 0; it < max_iterations; ++it) {
-    bool any = false;
-    for (std::size_t c = 0; c < uk; ++c) any = any || active[c];
-    if (!any) break;
+    if (std::none_of(active.begin(), active.begin() + K, [](bool x) { return x; })) break;
     stop::check();  // a signal or --mesh-timeout lands between iterations
-    const Sums pq = multiply_and_dot(a, p, q, k);
+    const std::array<double, K> pq = detail::symmetric_product<K>(a, p.data(), q.data(), overflow.data(), p.data());
     std::array<double, kMaxColumns> alpha{};
-    for (std::size_t c = 0; c < uk; ++c) {
+    for (std::size_t c = 0; c < K; ++c) {
+      stepped[c] = false;
       if (!active[c]) continue;
       if (!(pq[c] > 0) || !std::isfinite(pq[c])) {  // not positive definite along p (or at rounding level): stop
         active[c] = false;
         continue;
       }
+      stepped[c] = true;
       alpha[c] = rz[c] / pq[c];
       out.columns[c].alphas.push_back(alpha[c]);
       ++out.columns[c].lanczos_steps;
       if (!out.columns[c].converged) ++out.columns[c].iterations;
     }
-    // x += alpha p; r -= alpha q; z = D^-1 r; and the new (r, r), (r, z).
-    const auto sums = detail::sum_fem_chunks<2 * kMaxColumns>(rows, [&](std::size_t first, std::size_t last) {
-      std::array<double, 2 * kMaxColumns> s{};
-      for (std::size_t i = first; i < last; ++i)
-        for (std::size_t c = 0; c < uk; ++c) {
-          if (!active[c]) continue;
-          const std::size_t j = i * uk + c;
-          out.x[j] += alpha[c] * p[j];
-          r[j] -= alpha[c] * q[j];
-          z[j] = r[j] / diagonal[i];
-          s[c] += r[j] * r[j];
-          s[kMaxColumns + c] += r[j] * z[j];
-        }
-      return s;
-    });
+    // r -= alpha q, and the new (r, r), (r, D^-1 r).
+    const auto sums = update_residual<K>(r, q, inverse_diagonal, alpha, stepped);
     std::array<double, kMaxColumns> beta{};
-    for (std::size_t c = 0; c < uk; ++c) {
-      if (!active[c]) continue;
+    for (std::size_t c = 0; c < K; ++c) {
+      if (!stepped[c]) continue;
       PcgColumn& column = out.columns[c];
       column.relative_residual = std::sqrt(sums[c] / bb[c]);
       if (!column.converged) column.converged = std::sqrt(sums[c]) <= target[c];
@@ -155,13 +156,26 @@ PcgResult solve_pcg(const CsrMatrix& a, const std::vector<double>& diagonal, con
       rz[c] = sums[kMaxColumns + c];
       column.betas.push_back(beta[c]);
     }
-    detail::for_fem_chunks(rows, [&](std::size_t first, std::size_t last) {
-      for (std::size_t i = first; i < last; ++i)
-        for (std::size_t c = 0; c < uk; ++c)
-          if (active[c]) p[i * uk + c] = z[i * uk + c] + beta[c] * p[i * uk + c];
-    });
+    // x += alpha p (with the p alpha was for), then p = D^-1 r + beta p.
+    update_iterate<K>(out.x, p, r, inverse_diagonal, alpha, beta, stepped, active);
   }
   return out;
+}
+
+}  // namespace
+
+PcgResult solve_pcg(const CsrMatrix& a, const std::vector<double>& diagonal, const std::vector<double>& b, int k,
+                    const PcgOptions& options) {
+  switch (k) {
+    case 1:
+      return solve_pcg<1>(a, diagonal, b, options);
+    case 2:
+      return solve_pcg<2>(a, diagonal, b, options);
+    case 3:
+      return solve_pcg<3>(a, diagonal, b, options);
+    default:
+      return solve_pcg<4>(a, diagonal, b, options);
+  }
 }
 
 RitzExtremes cg_ritz_extremes(const PcgColumn& column) {
@@ -174,13 +188,14 @@ RitzExtremes cg_ritz_extremes(const PcgColumn& column) {
   return tridiagonal_extremes(diag, sub);
 }
 
-double lanczos_largest_eigenvalue(const CsrMatrix& a, int steps) {
+double lanczos_largest_eigenvalue(const CsrMatrix& a, int steps, const std::vector<Index>& row_ids) {
   const std::size_t n = a.num_rows();
   if (n == 0 || steps <= 0) return 0;
-  // A fixed start (splitmix64 of the row), normalised.
+  // A fixed start (splitmix64 of the row's id), normalised.
   std::vector<double> v(n), v_prev(n, 0.0), w(n);
   for (std::size_t i = 0; i < n; ++i) {
-    std::uint64_t z = (i + 1) * 0x9e3779b97f4a7c15ULL;
+    const std::uint64_t id = row_ids.size() == n ? static_cast<std::uint64_t>(row_ids[i]) : i;
+    std::uint64_t z = (id + 1) * 0x9e3779b97f4a7c15ULL;
     z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
     z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
     z ^= z >> 31;

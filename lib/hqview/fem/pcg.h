@@ -3,8 +3,12 @@
 // (one sparse product per iteration serves all columns; each column keeps
 // its own scalars and stops at ||r||_2 <= tolerance ||b||_2), with the
 // Lanczos coefficients of each run, and a few plain Lanczos steps for the
-// largest eigenvalue of a matrix. Every dot product is a fixed-chunk sum
-// (fixed_chunks.h): the iterates have the same bits for any thread count.
+// largest eigenvalue of a matrix. The matrix is read from its upper
+// triangle (symmetric_product.h, with p . Ap fused in); an iteration is that
+// product and two vector passes (r -= alpha q with the new dots; x += alpha p
+// with p = D^-1 r + beta p; D^-1 r is never stored). Every dot product is a
+// fixed-chunk sum (fixed_chunks.h): the iterates have the same bits for any
+// thread count.
 //
 // Lanczos from CG (Saad, "Iterative Methods for Sparse Linear Systems",
 // 2nd ed., 6.7.3): with CG's alpha_j, beta_j the tridiagonal T has
@@ -61,6 +65,8 @@ RitzExtremes cg_ritz_extremes(const PcgColumn& column);
 // The largest Ritz value after `steps` Lanczos steps on A (no
 // reorthogonalisation: three vectors in memory), from a fixed
 // pseudo-random start: a lower bound of lambda_max(A) that converges fast.
-double lanczos_largest_eigenvalue(const CsrMatrix& a, int steps);
+// The start's entry of a row is a hash of row_ids[row] (of the row number
+// when row_ids is empty), so that a renumbering of the rows keeps the start.
+double lanczos_largest_eigenvalue(const CsrMatrix& a, int steps, const std::vector<Index>& row_ids = {});
 
 }  // namespace hq

@@ -82,7 +82,7 @@ void estimate_eigenvalues(const LaplaceSystem& system, const PcgResult& pcg, con
   out.scaled_condition = out.scaled_lambda_max / out.scaled_lambda_min;
   out.stiffness_lanczos_steps = static_cast<int>(
       std::min<std::size_t>(static_cast<std::size_t>(options.stiffness_lanczos_steps), system.row_vertex.size()));
-  out.stiffness_lambda_max = lanczos_largest_eigenvalue(system.matrix, out.stiffness_lanczos_steps);
+  out.stiffness_lambda_max = lanczos_largest_eigenvalue(system.matrix, out.stiffness_lanczos_steps, system.row_vertex);
   out.max_hexes_at_vertex = system.max_hexes_at_vertex;
   out.fried_bound = static_cast<double>(system.max_hexes_at_vertex) * elements.max_lambda_max;
 }

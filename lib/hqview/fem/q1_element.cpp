@@ -49,8 +49,23 @@ Q1PointData q1_point(const Q1Corners& p, const Q1Reference& ref) {
 Q1PointData q1_point(const Q1Corners& p, const Vec3& xi) { return q1_point(p, q1_reference(xi)); }
 
 std::array<double, 8> q1_gauss_det_j(const Q1Corners& p) {
+  // The columns of J as q1_point sums them (the same bits), without the
+  // shape gradients it also computes.
+  static const std::array<std::array<Vec3, 8>, 8> ref_grad = [] {
+    std::array<std::array<Vec3, 8>, 8> t;
+    for (int g = 0; g < 8; ++g) t[g] = q1_reference(gauss2_point(g)).grad;
+    return t;
+  }();
   std::array<double, 8> out;
-  for (int g = 0; g < 8; ++g) out[g] = q1_point(p, gauss2_point(g)).det_j;
+  for (int g = 0; g < 8; ++g) {
+    Vec3 a, b, c;
+    for (int i = 0; i < 8; ++i) {
+      a = a + ref_grad[g][i].x * p[i];
+      b = b + ref_grad[g][i].y * p[i];
+      c = c + ref_grad[g][i].z * p[i];
+    }
+    out[g] = det(a, b, c);
+  }
   return out;
 }
 

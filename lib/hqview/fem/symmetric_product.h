@@ -1,0 +1,134 @@
+#pragma once
+// y = A x for a symmetric matrix stored as its upper triangle (CsrMatrix,
+// laplace_system.h: each row's columns >= the row, the diagonal first), for
+// K interleaved columns, with the per-column dots (w, y) fused in: half the
+// matrix bytes of a full CSR product, which is what a CG iteration on a
+// hex mesh's Laplace matrix spends most of its time reading.
+//
+// Row r gathers A_rj x_j (j >= r) and scatters A_rj x_r into y_j (j > r).
+// Rows go in fixed chunks of a.chunk_rows (at least the bandwidth, so a
+// chunk's scatters land in its own rows or the next chunk's first ones):
+// pass 1, in parallel over chunks, writes a chunk's own rows to y and its
+// scatters past its end to `overflow`; pass 2 adds the overflow into the
+// next chunk's first rows. Each y_j is summed in one fixed order (the
+// scatters of the earlier rows of its chunk in row order, its own row,
+// then the previous chunk's scatters), and the dots are fixed-chunk sums:
+// the same bits for any thread count.
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstring>
+#include <vector>
+
+#include "hqview/fem/laplace_system.h"
+
+namespace hq::detail {
+
+// Two doubles as one value (GCC/Clang vector extension: SSE2 on x86-64,
+// NEON on ARM; the same IEEE products and sums as scalar code, so the same bits).
+using Pair = double __attribute__((vector_size(16)));
+
+inline Pair load_pair(const double* p) {
+  Pair v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+inline void store_pair(double* p, Pair v) { std::memcpy(p, &v, sizeof v); }
+
+// One row of the three-column product: columns 0 and 1 as a pair, column 2
+// alone (the same operations, in the same order, as the generic loop).
+inline void row_product_3(const double* values, const Index* columns, std::size_t begin, std::size_t end, std::size_t r,
+                          std::size_t last, const double* x, double* y, double* overflow, double sum[3]) {
+  const Pair xr01 = load_pair(x + r * 3);
+  const double xr2 = x[r * 3 + 2];
+  Pair sum01 = load_pair(sum);
+  double sum2 = sum[2];
+  for (std::size_t e = begin; e < end; ++e) {
+    const double v = values[e];
+    const std::size_t j = static_cast<std::size_t>(columns[e]);
+    const double* xj = x + j * 3;
+    sum01 += v * load_pair(xj);
+    sum2 += v * xj[2];
+    if (j == r) continue;
+    double* target = (j < last ? y : overflow) + j * 3;
+    store_pair(target, load_pair(target) + v * xr01);
+    target[2] += v * xr2;
+  }
+  store_pair(sum, sum01);
+  sum[2] = sum2;
+}
+
+// `overflow`: a.num_rows() * K zeros, left zeros. `w`: the vector the dots
+// take y against (rows x K; may be x itself).
+template <std::size_t K>
+std::array<double, K> symmetric_product(const CsrMatrix& a, const double* x, double* y, double* overflow,
+                                        const double* w) {
+  const std::size_t n = a.num_rows();
+  // A chunk narrower than the band (never so from assemble_laplace_system) is one chunk.
+  const std::size_t chunk = std::max<std::size_t>(1, a.chunk_rows >= a.bandwidth ? a.chunk_rows : n);
+  const std::size_t num_chunks = (n + chunk - 1) / chunk, band = std::min(chunk, a.bandwidth);
+  std::vector<std::array<double, K>> partial(num_chunks), partial_head(num_chunks);
+  const Index* columns = a.columns.data();
+  const double* values = a.values.data();
+  // Pass 1: the chunk's rows; the dots of the rows no earlier chunk reaches.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_chunks), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t c = range.begin(); c != range.end(); ++c) {
+      const std::size_t first = c * chunk, last = std::min(n, first + chunk);
+      const std::size_t head_end = c == 0 ? first : std::min(last, first + band);
+      std::fill(y + first * K, y + last * K, 0.0);
+      std::array<double, K> dots{};
+      for (std::size_t r = first; r < last; ++r) {
+        const std::size_t begin = static_cast<std::size_t>(a.offsets[r]),
+                          end = static_cast<std::size_t>(a.offsets[r + 1]);
+        const double* xr = x + r * K;
+        std::array<double, K> sum{};
+        for (std::size_t s = 0; s < K; ++s) sum[s] = y[r * K + s];
+        if constexpr (K == 3) {
+          row_product_3(values, columns, begin, end, r, last, x, y, overflow, sum.data());
+        } else {
+          for (std::size_t e = begin; e < end; ++e) {
+            const double v = values[e];
+            const std::size_t j = static_cast<std::size_t>(columns[e]);
+            const double* xj = x + j * K;
+            for (std::size_t s = 0; s < K; ++s) sum[s] += v * xj[s];
+            if (j == r) continue;
+            double* target = (j < last ? y : overflow) + j * K;
+            for (std::size_t s = 0; s < K; ++s) target[s] += v * xr[s];
+          }
+        }
+        for (std::size_t s = 0; s < K; ++s) {
+          y[r * K + s] = sum[s];
+          if (r >= head_end) dots[s] += w[r * K + s] * sum[s];
+        }
+      }
+      partial[c] = dots;
+    }
+  });
+  // Pass 2: the previous chunk's scatters into a chunk's first rows, and their dots.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_chunks), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t c = range.begin(); c != range.end(); ++c) {
+      const std::size_t first = c * chunk, last = std::min(n, first + chunk);
+      const std::size_t head_end = c == 0 ? first : std::min(last, first + band);
+      std::array<double, K> dots{};
+      for (std::size_t r = first; r < head_end; ++r)
+        for (std::size_t s = 0; s < K; ++s) {
+          const std::size_t i = r * K + s;
+          y[i] += overflow[i];
+          overflow[i] = 0;
+          dots[s] += w[i] * y[i];
+        }
+      partial_head[c] = dots;
+    }
+  });
+  std::array<double, K> total{};
+  for (std::size_t c = 0; c < num_chunks; ++c)
+    for (std::size_t s = 0; s < K; ++s) total[s] += partial_head[c][s] + partial[c][s];
+  return total;
+}
+
+}  // namespace hq::detail
