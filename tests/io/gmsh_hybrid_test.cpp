@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "gmsh_run.h"
 #include "hqview/io/mesh_reader.h"
 #include "hybrid_mesh_files.h"
 #include "temp_dir.h"
@@ -22,6 +23,8 @@
 namespace hq {
 namespace {
 
+using test::kHexTetGeo;
+using test::run_gmsh;
 using test::TempDir;
 
 // Element counts by Gmsh type of an ASCII MSH 2.2 file ("tag type ntags ...").
@@ -42,18 +45,6 @@ std::map<int, int> msh22_type_counts(const std::string& text) {
   return counts;
 }
 
-// Runs gmsh on a .geo text; returns false when gmsh is missing or fails.
-bool run_gmsh(const TempDir& dir, const std::string& geo, const std::vector<std::string>& outputs) {
-  const auto geo_path = dir.write("m.geo", geo);
-  for (const std::string& output : outputs) {
-    const std::string format = output.ends_with("22.msh") ? " -format msh22" : output.ends_with(".msh") ? " -format msh41" : "";
-    const std::string command = std::string(HQ_GMSH) + " -3 -nt 1 " + geo_path.string() + format + " -o " +
-                                (dir.path() / output).string() + " > " + (dir.path() / "gmsh.log").string() + " 2>&1";
-    if (std::system(command.c_str()) != 0) return false;
-  }
-  return true;
-}
-
 void expect_counts_and_positive_volumes(const std::filesystem::path& path, const std::map<int, int>& counts) {
   SCOPED_TRACE(path.filename().string());
   const LoadedMesh loaded = read_hex_mesh(path);
@@ -72,16 +63,6 @@ void expect_counts_and_positive_volumes(const std::filesystem::path& path, const
   });
   EXPECT_EQ(num_bad, 0);
 }
-
-// A 4x4x4 recombined transfinite box [0,1]^3 and an unstructured box
-// [1,2]x[0,1]^2 extruded from its x=1 face without layers.
-constexpr const char* kHexTetGeo = R"(
-Point(1) = {0, 0, 0, 0.25};
-l[] = Extrude {0, 1, 0} { Point{1}; Layers{4}; };
-s[] = Extrude {0, 0, 1} { Line{l[1]}; Layers{4}; Recombine; };
-v[] = Extrude {1, 0, 0} { Surface{s[1]}; Layers{4}; Recombine; };
-w[] = Extrude {1, 0, 0} { Surface{v[0]}; };
-)";
 
 // A transfinite recombined square next to a triangle, extruded in 3 layers.
 constexpr const char* kExtrudedGeo = R"(

@@ -266,7 +266,7 @@ std::vector<ViewerFile> viewer_files(const ReportModel& model) {
     for (const OverlapMarker& m : a.overlap->markers)
       markers.push_back({{"kind", m.kind == MarkerKind::coincident ? "coincident" : "intersection"},
                          {"position", vec(m.position)}, {"count", m.count}});
-    for (std::size_t h = 0; h < a.overlap->cell_intersecting.size(); ++h) {
+    for (std::size_t h = 0; h < std::min(a.overlap->cell_intersecting.size(), a.mesh.hexes.size()); ++h) {
       if (!a.overlap->cell_intersecting[h]) continue;
       const Hex& hex = a.mesh.hexes[h];
       static constexpr int kEdges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
