@@ -210,6 +210,7 @@ std::vector<Index> find_same_winding_faces(const Mesh& mesh, const Topology& top
 // adjacent; whole keys are compared only between neighbours.
 std::vector<Index> find_duplicate_cells(const VolumeCells& cells, std::vector<char>& flagged) {
   const auto nh = static_cast<std::size_t>(cells.size());
+  const std::vector<Hex>& mesh_hexes = cells.mesh->hexes;
   struct Key {
     std::uint64_t hash;
     Index cell;
@@ -220,11 +221,16 @@ std::vector<Index> find_duplicate_cells(const VolumeCells& cells, std::vector<ch
   std::vector<Key> keys(nh);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nh, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t h = r.begin(); h != r.end(); ++h) {
-      const CellCornerIds c = cells.corners(static_cast<Index>(h));
       Hex& k = sorted[h];
-      k.fill(kNoIndex);
-      std::copy(c.begin(), c.end(), k.begin());
-      std::sort(k.begin(), k.begin() + c.n);
+      if (h < mesh_hexes.size()) {  // a hex: all 8 slots
+        k = mesh_hexes[h];
+        std::sort(k.begin(), k.end());
+      } else {
+        const CellCornerIds c = cells.corners(static_cast<Index>(h));
+        k.fill(kNoIndex);
+        std::copy(c.begin(), c.end(), k.begin());
+        std::sort(k.begin(), k.begin() + c.n);
+      }
       std::uint64_t hash = 0x9E3779B97F4A7C15ULL;
       for (Index v : k) hash = (hash ^ static_cast<std::uint32_t>(v)) * 0xFF51AFD7ED558CCDULL;
       keys[h] = {hash ^ (hash >> 29), static_cast<Index>(h)};

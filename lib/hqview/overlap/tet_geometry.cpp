@@ -40,8 +40,16 @@ TetPoints build_tet_points(const VolumeCells& cells, const Topology& topo) {
     for (std::size_t f = r.begin(); f != r.end(); ++f) tp.points[nv + f] = face_centre(mesh, topo.faces[f]);
   });
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t c = r.begin(); c != r.end(); ++c)
-      tp.points[nv + nf + c] = cell_centre(mesh, cells.corners(static_cast<Index>(c)));
+    for (std::size_t c = r.begin(); c != r.end(); ++c) {
+      if (c < mesh.hexes.size()) {  // hexes first: no kind lookup
+        CellCornerIds hex;
+        hex.n = 8;
+        std::copy(mesh.hexes[c].begin(), mesh.hexes[c].end(), hex.v.begin());
+        tp.points[nv + nf + c] = cell_centre(mesh, hex);
+      } else {
+        tp.points[nv + nf + c] = cell_centre(mesh, cells.corners(static_cast<Index>(c)));
+      }
+    }
   });
   const std::size_t quads = nv + nf + nc;
   for (std::size_t w = 0; w < nw; ++w) {

@@ -134,7 +134,7 @@ struct SolidTets {
 
 // Cell `local` of the block of kind K, whose id over the blocks is `cell`.
 template <CellKind K>
-SolidTets kind_solid_tets(const CellCorners<K>& c, Index local, Index cell, const Topology& topo, const TetPoints& tp,
+[[gnu::always_inline]] inline SolidTets kind_solid_tets(const CellCorners<K>& c, Index local, Index cell, const Topology& topo, const TetPoints& tp,
                           Index num_wedges) {
   using Table = CellKindTable<K>;
   SolidTets out;
