@@ -1,7 +1,8 @@
 // Overlap across cell kinds (issue 46): cells of every kind as their
 // triangle and quad faces. Hand-built meshes whose answers are worked out
 // below (a tet through a tet, a tangled tet, a pyramid's apex in a
-// neighbouring hex, a wedge through a tet, touching across kinds), and a
+// neighbouring hex, an inverted wedge in the hex beside it, a wedge through
+// a tet, touching across kinds), and a
 // conforming hex-pyramid-tet mesh made by Debian's Gmsh, clean and with one
 // vertex dragged through its neighbours, checked against an independent
 // test: each cell as the intersection of its faces' half-spaces, a vertex
@@ -174,6 +175,30 @@ TEST(OverlapKinds, PyramidApexInANeighbouringHex) {
   const OverlapReport r = run(mesh);
   EXPECT_EQ(r.inverted_cells, std::vector<Index>{3});
   EXPECT_EQ(r.intersecting_pairs[0].inside_vertex, apex);
+}
+
+// A wedge on hex A's face x = 1 (A's corners 1, 5, 6, 2; its triangles in
+// the planes y = 0 and y = 1): clean and certified. Its corner (2, 1, 0)
+// pushed to (0.5, 0.8, 0.3), inside A: the corner frame there turns
+// negative (det -0.7 by hand), so the wedge is inverted, and it intersects
+// A with that corner inside.
+TEST(OverlapKinds, InvertedWedgeIntersectsTheHexBesideIt) {
+  Mesh mesh = unit_hex();
+  const Index b0 = add_point(mesh, {2, 0, 0}), b1 = add_point(mesh, {2, 1, 0});
+  mesh.wedges.push_back({1, b0, 5, 2, b1, 6});
+  ASSERT_GT(split_volume(mesh, 13, {1, b0, 5, 2, b1, 6}), 0);
+  {
+    const OverlapReport r = run(mesh);
+    EXPECT_TRUE(r.certified_clean);
+    EXPECT_TRUE(r.intersecting_pairs.empty());
+  }
+  mesh.points[static_cast<std::size_t>(b1)] = {0.5, 0.8, 0.3};
+  expect_pairs(mesh, {{0, 1}}, "wedge corner in the hex");
+  const OverlapReport r = run(mesh);
+  EXPECT_EQ(r.inverted_cells, std::vector<Index>{1});
+  ASSERT_EQ(r.intersecting_pairs.size(), 1u);
+  EXPECT_EQ(r.intersecting_pairs[0].inside_vertex, b1);
+  EXPECT_EQ(r.intersecting_pairs[0].kinds, (std::array<CellKind, 2>{CellKind::hex, CellKind::wedge}));
 }
 
 // A wedge as a long bar along z (triangle of side 0.2 at the origin) through
