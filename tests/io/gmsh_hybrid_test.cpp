@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "gmsh_run.h"
 #include "hqview/io/mesh_reader.h"
 #include "hybrid_mesh_files.h"
 #include "support/gmsh_hybrid.h"
@@ -25,6 +26,8 @@
 namespace hq {
 namespace {
 
+using test::kHexTetGeo;
+using test::run_gmsh;
 using test::TempDir;
 
 // Element counts by Gmsh type of an ASCII MSH 2.2 file ("tag type ntags ...").
@@ -43,20 +46,6 @@ std::map<int, int> msh22_type_counts(const std::string& text) {
     ++counts[type];
   }
   return counts;
-}
-
-// Runs gmsh on a .geo text; returns false when gmsh is missing or fails.
-// `options` go before the output (e.g. "-order 2").
-bool run_gmsh(const TempDir& dir, const std::string& geo, const std::vector<std::string>& outputs,
-              const std::string& options = "") {
-  const auto geo_path = dir.write("m.geo", geo);
-  for (const std::string& output : outputs) {
-    const std::string format = output.ends_with("22.msh") ? " -format msh22" : output.ends_with(".msh") ? " -format msh41" : "";
-    const std::string command = std::string(HQ_GMSH) + " -3 -nt 1 " + options + " " + geo_path.string() + format + " -o " +
-                                (dir.path() / output).string() + " > " + (dir.path() / "gmsh.log").string() + " 2>&1";
-    if (std::system(command.c_str()) != 0) return false;
-  }
-  return true;
 }
 
 void expect_counts_and_positive_volumes(const std::filesystem::path& path, const std::map<int, int>& counts) {
@@ -79,7 +68,6 @@ void expect_counts_and_positive_volumes(const std::filesystem::path& path, const
 }
 
 using test::kExtrudedGeo;
-using test::kHexTetGeo;
 
 TEST(GmshHybrid, HexTetBoxesGetPyramids) {
   const TempDir dir("gmsh_hex_tet");

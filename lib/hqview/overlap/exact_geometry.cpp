@@ -66,19 +66,28 @@ bool on_triangle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& x) {
   return Triangle3(pa, pb, pc).has_on(px);
 }
 
-std::array<TetData, 24> cell_tet_data(const HexMesh& mesh, const Topology& topo, const TetPoints& tp, Index h) {
-  std::array<TetData, 24> data;
-  const auto tets = hex_tets(mesh, topo, tp, h);
-  for (std::size_t i = 0; i < 24; ++i) {
-    data[i].ids = tets[i];
-    data[i].sign = orient(tp.points, tets[i]);
+// The tets of a cell's solid (at most 24) with their orientations.
+struct CellTets {
+  std::array<TetData, 24> tets;
+  int n = 0;
+  const TetData* begin() const { return tets.data(); }
+  const TetData* end() const { return tets.data() + n; }
+};
+
+CellTets cell_tet_data(const VolumeCells& cells, const Topology& topo, const TetPoints& tp, Index c) {
+  CellTets data;
+  const SolidTets solid = cell_solid_tets(cells, topo, tp, c);
+  data.n = solid.n;
+  for (std::size_t i = 0; i < static_cast<std::size_t>(solid.n); ++i) {
+    data.tets[i].ids = solid.tets[i];
+    data.tets[i].sign = orient(tp.points, solid.tets[i]);
   }
   return data;
 }
 
 // Inside = in one of the cell's closed tets of non-zero volume and on none of
-// its 24 boundary triangles: the interior of its solid.
-bool inside_cell(const std::vector<Vec3>& p, const std::array<TetData, 24>& cell, const Vec3& x) {
+// its boundary triangles: the interior of its solid.
+bool inside_cell(const std::vector<Vec3>& p, const CellTets& cell, const Vec3& x) {
   bool covered = false;
   for (const TetData& t : cell)
     if (t.sign != 0 && in_closed_tet(p, t, x)) {
@@ -86,7 +95,7 @@ bool inside_cell(const std::vector<Vec3>& p, const std::array<TetData, 24>& cell
       break;
     }
   if (!covered) return false;
-  for (const TetData& t : cell)  // (p_j, p_i, c_f, c_h): boundary triangle (p_i, p_j, c_f)
+  for (const TetData& t : cell)  // (p_j, p_i, c_f, c_h): boundary triangle (p_i, p_j, c_f); (p1, p0, p2, c_h): (p0, p1, p2)
     if (on_triangle(at(p, t.ids[1]), at(p, t.ids[0]), at(p, t.ids[2]), x)) return false;
   return true;
 }
@@ -97,21 +106,21 @@ bool strictly_inside_box(const Box3& b, const Vec3& x) {
   return true;
 }
 
-// The lowest vertex of hex `from` that is not a vertex of `to` and lies inside it.
-Index vertex_inside(const std::vector<Vec3>& p, const Hex& from, const Hex& to, const Box3& to_box,
-                    const std::array<TetData, 24>& to_tets) {
-  Hex ids = from;
-  std::sort(ids.begin(), ids.end());
-  for (Index v : ids) {
-    if (std::find(to.begin(), to.end(), v) != to.end()) continue;
+bool has_corner(const CellCornerIds& c, Index v) { return std::find(c.begin(), c.end(), v) != c.end(); }
+
+CellCornerIds sorted(CellCornerIds c) {
+  std::sort(c.v.begin(), c.v.begin() + c.n);
+  return c;
+}
+
+// The lowest vertex of cell `from` that is not a vertex of `to` and lies inside it.
+Index vertex_inside(const std::vector<Vec3>& p, const CellCornerIds& from, const CellCornerIds& to,
+                    const Box3& to_box, const CellTets& to_tets) {
+  for (Index v : sorted(from)) {
+    if (has_corner(to, v)) continue;
     if (strictly_inside_box(to_box, at(p, v)) && inside_cell(p, to_tets, at(p, v))) return v;
   }
   return kNoIndex;
-}
-
-Hex sorted(Hex h) {
-  std::sort(h.begin(), h.end());
-  return h;
 }
 
 // ---- Stage G: interiors that meet with no vertex inside -------------------
@@ -179,8 +188,8 @@ bool boxes_overlap_open(const Box3& a, const Box3& b) {
   return true;
 }
 
-// The tets of positive volume of hex h for the test of interiors: its 24
-// tets, with each face centre taken from the face's corners sorted by
+// The tets of positive volume of cell c for the test of interiors: its
+// solid's tets, with each quad's centre taken from the face's corners sorted by
 // position (not by id), so two faces at one place whose vertex ids differ
 // (coincident vertices, reported by stage A) get the same centre and their
 // cells only touch. Negative tets are left out: there a cell's solid folds
@@ -191,25 +200,33 @@ struct SolidTet {
   Box3 box;
 };
 
-std::vector<SolidTet> positive_tets(const HexMesh& mesh, const TetPoints& tp, Index h) {
-  const Hex& hex = mesh.hexes[static_cast<std::size_t>(h)];
-  const Vec3& centre = at(tp.points, tp.cell_base + h);
+std::vector<SolidTet> positive_tets(const VolumeCells& cells, const TetPoints& tp, Index cell) {
+  const CellCornerIds corners = cells.corners(cell);
+  const Vec3& centre = at(tp.points, tp.cell_base + cell);
   std::vector<SolidTet> tets;
-  for (int k = 0; k < 6; ++k) {
+  const auto keep_if_positive = [&](const TetCorners& t) {
+    if (orient(t[0], t[1], t[2], t[3]) <= 0) return;
+    Box3 box;
+    for (const Vec3& x : t) box.add(x);
+    tets.push_back({t, box});
+  };
+  const KindFaces faces = kind_faces(corners.kind);
+  for (int k = 0; k < faces.n; ++k) {
+    const CellFace& f = faces.faces[k];
     std::array<Vec3, 4> c;
-    for (int e = 0; e < 4; ++e) c[static_cast<std::size_t>(e)] = at(mesh.points, hex[kHexFaces[k][e]]);
+    for (int e = 0; e < f.size; ++e)
+      c[static_cast<std::size_t>(e)] =
+          at(cells.mesh->points, corners.v[static_cast<std::size_t>(f.v[static_cast<std::size_t>(e)])]);
+    if (f.size == 3) {
+      keep_if_positive({c[1], c[0], c[2], centre});
+      continue;
+    }
     std::array<Vec3, 4> s = c;
     std::sort(s.begin(), s.end(), [](const Vec3& u, const Vec3& v) {
       return u.x != v.x ? u.x < v.x : u.y != v.y ? u.y < v.y : u.z < v.z;
     });
     const Vec3 face = ((s[0] + s[1]) + (s[2] + s[3])) * 0.25;
-    for (std::size_t e = 0; e < 4; ++e) {
-      const TetCorners t{c[(e + 1) % 4], c[e], face, centre};
-      if (orient(t[0], t[1], t[2], t[3]) <= 0) continue;
-      Box3 box;
-      for (const Vec3& x : t) box.add(x);
-      tets.push_back({t, box});
-    }
+    for (std::size_t e = 0; e < 4; ++e) keep_if_positive({c[(e + 1) % 4], c[e], face, centre});
   }
   return tets;
 }
@@ -220,15 +237,15 @@ std::vector<SolidTet> positive_tets(const HexMesh& mesh, const TetPoints& tp, In
 // first such pair (for the arrow), nullopt when none: the cells are
 // disjoint or only touch. Only tets whose box overlaps the other cell's box
 // with volume can meet it.
-std::optional<Vec3> interiors_meet(const HexMesh& mesh, const TetPoints& tp, Index a, const Box3& box_a, Index b,
+std::optional<Vec3> interiors_meet(const VolumeCells& cells, const TetPoints& tp, Index a, const Box3& box_a, Index b,
                                    const Box3& box_b) {
   auto near = [](std::vector<SolidTet> tets, const Box3& other_box) {
     std::erase_if(tets, [&](const SolidTet& t) { return !boxes_overlap_open(t.box, other_box); });
     return tets;
   };
-  const std::vector<SolidTet> from_a = near(positive_tets(mesh, tp, a), box_b);
+  const std::vector<SolidTet> from_a = near(positive_tets(cells, tp, a), box_b);
   if (from_a.empty()) return std::nullopt;
-  const std::vector<SolidTet> from_b = near(positive_tets(mesh, tp, b), box_a);
+  const std::vector<SolidTet> from_b = near(positive_tets(cells, tp, b), box_a);
   for (const SolidTet& s : from_a)
     for (const SolidTet& t : from_b)
       if (boxes_overlap_open(s.box, t.box) && tet_interiors_meet(s.corners, t.corners)) {
@@ -240,18 +257,18 @@ std::optional<Vec3> interiors_meet(const HexMesh& mesh, const TetPoints& tp, Ind
   return std::nullopt;
 }
 
-bool share_a_vertex(const Hex& a, const Hex& b) {
-  return std::any_of(a.begin(), a.end(), [&](Index v) { return std::find(b.begin(), b.end(), v) != b.end(); });
+bool share_a_vertex(const CellCornerIds& a, const CellCornerIds& b) {
+  return std::any_of(a.begin(), a.end(), [&](Index v) { return has_corner(b, v); });
 }
 
 // Some cell with a non-positive tet (folded) holds a vertex of a and one of b.
-bool touch_one_folded_cell(const Topology& topo, const std::vector<char>& folded, const Hex& a, const Hex& b) {
-  auto folded_cells_of = [&](const Hex& hex) {
+bool touch_one_folded_cell(const VertexCells& vertex_cells, const std::vector<char>& folded, const CellCornerIds& a,
+                           const CellCornerIds& b) {
+  auto folded_cells_of = [&](const CellCornerIds& corners) {
     std::vector<Index> cells;
-    for (Index v : hex)
-      for (Index i = topo.vertex_hex_offsets[static_cast<std::size_t>(v)];
-           i < topo.vertex_hex_offsets[static_cast<std::size_t>(v) + 1]; ++i) {
-        const Index c = topo.vertex_hexes[static_cast<std::size_t>(i)];
+    for (Index v : corners)
+      for (Index i = vertex_cells.begin(v); i < vertex_cells.end(v); ++i) {
+        const Index c = vertex_cells.cell(i);
         if (folded[static_cast<std::size_t>(c)]) cells.push_back(c);
       }
     std::sort(cells.begin(), cells.end());
@@ -264,28 +281,27 @@ bool touch_one_folded_cell(const Topology& topo, const std::vector<char>& folded
                      [&](Index c) { return std::binary_search(of_a.begin(), of_a.end(), c); });
 }
 
-CellPairTest test_cell_pair(const HexMesh& mesh, const Topology& topo, const TetPoints& tp, Index a, Index b,
-                            bool test_interiors, const std::vector<char>& folded) {
+CellPairTest test_cell_pair(const VolumeCells& cells, const VertexCells& vertex_cells, const Topology& topo,
+                            const TetPoints& tp, Index a, Index b, bool test_interiors, const std::vector<char>& folded) {
   const auto& p = tp.points;
-  const Hex& hex_a = mesh.hexes[static_cast<std::size_t>(a)];
-  const Hex& hex_b = mesh.hexes[static_cast<std::size_t>(b)];
+  const CellCornerIds hex_a = cells.corners(a), hex_b = cells.corners(b);
   CellPairTest result;
-  if (sorted(hex_a) == sorted(hex_b)) {  // duplicates: the same solid twice
+  if (hex_a.n == hex_b.n && sorted(hex_a).v == sorted(hex_b).v) {  // duplicates: the same solid twice
     result.intersect = true;
     result.position = at(p, tp.cell_base + a);
     return result;
   }
   // A vertex inside a cell lies strictly inside its box: most vertices stop here.
-  const Box3 box_a = box_of(p, hex_a.data(), 8), box_b = box_of(p, hex_b.data(), 8);
-  auto has_candidate = [&](const Hex& from, const Hex& to, const Box3& to_box) {
+  const Box3 box_a = box_of(p, hex_a.v.data(), hex_a.n), box_b = box_of(p, hex_b.v.data(), hex_b.n);
+  auto has_candidate = [&](const CellCornerIds& from, const CellCornerIds& to, const Box3& to_box) {
     for (Index v : from)
-      if (std::find(to.begin(), to.end(), v) == to.end() && strictly_inside_box(to_box, at(p, v))) return true;
+      if (!has_corner(to, v) && strictly_inside_box(to_box, at(p, v))) return true;
     return false;
   };
   if (has_candidate(hex_a, hex_b, box_b))
-    result.inside_vertex = vertex_inside(p, hex_a, hex_b, box_b, cell_tet_data(mesh, topo, tp, b));
+    result.inside_vertex = vertex_inside(p, hex_a, hex_b, box_b, cell_tet_data(cells, topo, tp, b));
   if (result.inside_vertex == kNoIndex && has_candidate(hex_b, hex_a, box_a))
-    result.inside_vertex = vertex_inside(p, hex_b, hex_a, box_a, cell_tet_data(mesh, topo, tp, a));
+    result.inside_vertex = vertex_inside(p, hex_b, hex_a, box_a, cell_tet_data(cells, topo, tp, a));
   if (result.inside_vertex != kNoIndex) {
     result.intersect = true;
     result.position = at(p, result.inside_vertex);
@@ -299,9 +315,9 @@ CellPairTest test_cell_pair(const HexMesh& mesh, const Topology& topo, const Tet
   // twisted cell that is valid as a trilinear hex (Dolphin_padded's 32920
   // between 32918 and 32922; docs/analysis.md "Overlap"), which stage C
   // reports.
-  if (!test_interiors || share_a_vertex(hex_a, hex_b) || touch_one_folded_cell(topo, folded, hex_a, hex_b))
+  if (!test_interiors || share_a_vertex(hex_a, hex_b) || touch_one_folded_cell(vertex_cells, folded, hex_a, hex_b))
     return result;
-  const std::optional<Vec3> where = interiors_meet(mesh, tp, a, box_a, b, box_b);
+  const std::optional<Vec3> where = interiors_meet(cells, tp, a, box_a, b, box_b);
   if (where) {
     result.intersect = true;
     result.position = *where;
@@ -447,28 +463,37 @@ bool triangles_meet_improperly(const std::vector<Vec3>& p, const Triangle& a, co
 
 // ---- Stage C ----------------------------------------------------------------
 
-std::vector<std::uint8_t> classify_cell_orientations(const HexMesh& mesh, const Topology& topo, const TetPoints& tp) {
-  const std::size_t nh = mesh.hexes.size();
-  std::vector<std::uint8_t> out(nh, 0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nh, 1024), [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t h = range.begin(); h != range.end(); ++h) {
-      std::uint8_t flags = 0;
-      const auto tets = hex_tets(mesh, topo, tp, static_cast<Index>(h));
-      for (std::size_t t = 0; t < 24; ++t) {
-        const int s = orient(tp.points, tets[t]);
-        if (s < 0) flags |= kTetNegative;
-        if (s == 0) flags |= kTetFlat;
-      }
-      const Hex& hex = mesh.hexes[h];
-      for (int i = 0; i < 8; ++i) {
-        const auto& f = kCornerFrames[static_cast<std::size_t>(i)];
-        const int s = orient(
-            at(tp.points, hex[static_cast<std::size_t>(i)]), at(tp.points, hex[static_cast<std::size_t>(f[0])]),
-            at(tp.points, hex[static_cast<std::size_t>(f[1])]), at(tp.points, hex[static_cast<std::size_t>(f[2])]));
-        if (s < 0) flags |= kCornerNegative;
-        if (s == 0) flags |= kCornerFlat;
-      }
-      out[h] = flags;
+std::vector<std::uint8_t> classify_cell_orientations(const VolumeCells& cells, const Topology& topo,
+                                                     const TetPoints& tp) {
+  std::vector<std::uint8_t> out(static_cast<std::size_t>(cells.size()), 0);
+  // One loop per kind, over its corner frames (the pyramid's apex has none).
+  for_each_cell_kind([&](auto kind) {
+    using Table = CellKindTable<kind()>;
+    if constexpr (Table::dimension == 3) {
+      const auto& block = cell_block<kind()>(*cells.mesh);
+      const Index first = cells.first[static_cast<std::size_t>(kind())];
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, block.size(), 1024), [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+          std::uint8_t flags = 0;
+          const SolidTets tets = kind_solid_tets<kind()>(block[i], static_cast<Index>(i), first + static_cast<Index>(i),
+                                                         topo, tp, static_cast<Index>(cells.mesh->wedges.size()));
+          for (std::size_t t = 0; t < static_cast<std::size_t>(tets.n); ++t) {
+            const int s = orient(tp.points, tets.tets[t]);
+            if (s < 0) flags |= kTetNegative;
+            if (s == 0) flags |= kTetFlat;
+          }
+          const auto& cell = block[i];
+          for (std::size_t c = 0; c < Table::corner_frames.size(); ++c) {
+            const auto& f = Table::corner_frames[c];
+            const int s = orient(at(tp.points, cell[c]), at(tp.points, cell[static_cast<std::size_t>(f[0])]),
+                                 at(tp.points, cell[static_cast<std::size_t>(f[1])]),
+                                 at(tp.points, cell[static_cast<std::size_t>(f[2])]));
+            if (s < 0) flags |= kCornerNegative;
+            if (s == 0) flags |= kCornerFlat;
+          }
+          out[static_cast<std::size_t>(first) + i] = flags;
+        }
+      });
     }
   });
   return out;
@@ -476,25 +501,28 @@ std::vector<std::uint8_t> classify_cell_orientations(const HexMesh& mesh, const 
 
 // ---- Stage E ----------------------------------------------------------------
 
-QuadPairs intersecting_quad_pairs(const TetPoints& tp, const std::vector<BoundaryQuad>& quads, std::int64_t max_pairs) {
+FacePairs intersecting_face_pairs(const TetPoints& tp, const std::vector<BoundaryFace>& quads, std::int64_t max_pairs) {
   const auto& p = tp.points;
   std::vector<Triangle> triangles;
   std::vector<Index> triangle_quad;
   std::vector<Box3> boxes;
-  // A quad's triangles are consecutive: the groups of the box search.
+  // A face's triangles are consecutive: the groups of the box search.
   std::vector<Index> first_triangle(quads.size() + 1, 0);
   triangles.reserve(4 * quads.size());
   for (std::size_t q = 0; q < quads.size(); ++q) {
-    for (int e = 0; e < 4; ++e) {
-      const Triangle t = fan_triangle(tp, quads[q], e);
-      if (CGAL::collinear(point(at(p, t[0])), point(at(p, t[1])), point(at(p, t[2])))) continue;
-      triangles.push_back(t);
-      triangle_quad.push_back(static_cast<Index>(q));
-      boxes.push_back(box_of(p, t.data(), 3));
+    const BoundaryFace& face = quads[q];
+    const int n = face.num_fan_triangles();
+    for (int e = 0; e < n; ++e) {
+      const Triangle t = fan_triangle(face, e);
+      if (!CGAL::collinear(point(at(p, t[0])), point(at(p, t[1])), point(at(p, t[2])))) {
+        triangles.push_back(t);
+        triangle_quad.push_back(static_cast<Index>(q));
+        boxes.push_back(box_of(p, t.data(), 3));
+      }
     }
     first_triangle[q + 1] = static_cast<Index>(triangles.size());
   }
-  QuadPairs result;
+  FacePairs result;
   result.budget = grouped_box_self_pairs(boxes, first_triangle, max_pairs);
   const std::vector<std::array<Index, 2>> candidates = std::move(result.budget.pairs);
   result.budget.pairs = {};
@@ -519,60 +547,111 @@ QuadPairs intersecting_quad_pairs(const TetPoints& tp, const std::vector<Boundar
 
 // ---- Stage F ----------------------------------------------------------------
 
-std::optional<int> winding_behind_quad(const TetPoints& tp, const std::vector<BoundaryQuad>& quads, Index q,
+// A point taken exactly as the mean of 1 or 3 input points: a quad's face
+// centre (itself a double point), a triangle's centroid (not one).
+struct MeanPoint {
+  std::array<const Vec3*, 3> of{};
+  int n = 1;
+};
+
+template <class Number>
+Number det_of_means(const std::array<MeanPoint, 4>& q) {
+  std::array<std::array<Number, 3>, 4> x;
+  for (std::size_t i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) {
+      Number sum((*q[i].of[0])[k]);
+      for (int m = 1; m < q[i].n; ++m) sum = sum + Number((*q[i].of[static_cast<std::size_t>(m)])[k]);
+      x[i][static_cast<std::size_t>(k)] = q[i].n == 1 ? sum : sum / Number(q[i].n);
+    }
+  Number d[3][3];
+  for (std::size_t r = 0; r < 3; ++r)
+    for (std::size_t k = 0; k < 3; ++k) d[r][k] = x[r + 1][k] - x[0][k];
+  return d[0][0] * (d[1][1] * d[2][2] - d[1][2] * d[2][1]) - d[0][1] * (d[1][0] * d[2][2] - d[1][2] * d[2][0]) +
+         d[0][2] * (d[1][0] * d[2][1] - d[1][1] * d[2][0]);
+}
+
+// orient() of four mean points, exact: CGAL's predicate when all are
+// input points, else intervals, then rationals when the interval holds 0.
+int orient(const MeanPoint& a, const MeanPoint& b, const MeanPoint& c, const MeanPoint& d) {
+  if (a.n == 1 && b.n == 1 && c.n == 1 && d.n == 1) return orient(*a.of[0], *b.of[0], *c.of[0], *d.of[0]);
+  const std::array<MeanPoint, 4> q{a, b, c, d};
+  const CGAL::Interval_nt<true> approx = det_of_means<CGAL::Interval_nt<true>>(q);
+  if (approx.inf() > 0) return 1;
+  if (approx.sup() < 0) return -1;
+  return static_cast<int>(CGAL::sign(det_of_means<CGAL::Exact_rational>(q)));
+}
+
+MeanPoint mean_of(const Vec3& x) { return {{&x, nullptr, nullptr}, 1}; }
+
+std::optional<int> winding_behind_face(const TetPoints& tp, const std::vector<BoundaryFace>& quads, Index q,
                                        const Box3& bounds) {
   const auto& p = tp.points;
-  const BoundaryQuad& quad = quads[static_cast<std::size_t>(q)];
-  const Index cf = tp.face_base + quad.face, ch = tp.cell_base + quad.cell;
-  const Vec3& start = at(p, cf);
+  const BoundaryFace& quad = quads[static_cast<std::size_t>(q)];
+  const bool is_quad = quad.centre != kNoIndex;
+  const int size = quad.size();
+  const Index ch = tp.cell_base + quad.cell;
+  const auto pt = [&](Index i) { return mean_of(at(p, i)); };
+  const Vec3 &c0 = at(p, quad.corners[0]), &c1 = at(p, quad.corners[1]), &c2 = at(p, quad.corners[2]);
+  // The start: the face centre, on every triangle of the fan; a triangle's
+  // centroid, exactly (its double value is only used to aim the ray).
+  const MeanPoint start = is_quad ? pt(quad.centre) : MeanPoint{{&c0, &c1, &c2}, 3};
+  const Vec3 start_near = is_quad ? at(p, quad.centre) : (c0 + c1 + c2) / 3.0;
+  Box3 start_box;
+  if (is_quad) {
+    start_box.add(start_near);
+  } else {
+    for (const Vec3* c : start.of) start_box.add(*c);
+  }
   double extent = 1.0;
   for (std::size_t a = 0; a < 3; ++a)
     extent = std::max({extent, bounds.hi[a] - bounds.lo[a], std::abs(bounds.lo[a]), std::abs(bounds.hi[a])});
-  // Barycentric weights of the ray's aim inside a tet (p_j, p_i, c_f, c_h),
-  // tried in turn on each of the fan's 4 tets until a ray meets no edge,
-  // vertex or plane degenerately.
+  // Barycentric weights of the ray's aim on a triangle (p_j, p_i, c_h) of a
+  // tet of the face, tried in turn on each of its edges until a ray meets
+  // no edge, vertex or plane degenerately.
   static constexpr double kWeights[][3] = {{1, 1, 1}, {1, 1, 2}, {2, 1, 1}, {1, 2, 1}, {3, 2, 1}, {1, 3, 2}, {2, 1, 3}};
-  constexpr int kAttempts = 4 * static_cast<int>(std::size(kWeights));
-  for (int attempt = 0; attempt < kAttempts; ++attempt) {
-    const int e = attempt % 4;
-    const double* w = kWeights[attempt / 4];
-    const Index a = quad.corners[static_cast<std::size_t>((e + 1) % 4)], b = quad.corners[static_cast<std::size_t>(e)];
-    const int sigma = orient(at(p, a), at(p, b), start, at(p, ch));
+  const int attempts = size * static_cast<int>(std::size(kWeights));
+  for (int attempt = 0; attempt < attempts; ++attempt) {
+    const int e = attempt % size;
+    const double* w = kWeights[attempt / size];
+    const Index a = quad.corners[static_cast<std::size_t>((e + 1) % size)], b = quad.corners[static_cast<std::size_t>(e)];
+    // The tet whose interior the ray must enter: (p_j, p_i, c_f, c_h) of a
+    // quad, the triangle's (p1, p0, p2, c_h).
+    const int sigma = is_quad ? orient(pt(a), pt(b), start, pt(ch)) : orient(c1, c0, c2, at(p, ch));
     if (sigma == 0) return std::nullopt;
     const Vec3 aim = (at(p, a) * w[0] + at(p, b) * w[1] + at(p, ch) * w[2]) / (w[0] + w[1] + w[2]);
-    const Vec3 d = aim - start;
+    const Vec3 d = aim - start_near;
     const double length = norm(d);
     if (!(length > 0.0)) continue;
-    const Vec3 end = start + d * (4.0 * extent / length);
+    const Vec3 end = start_near + d * (4.0 * extent / length);
     bool outside = false;
     for (std::size_t i = 0; i < 3; ++i)
       outside = outside || end[static_cast<int>(i)] < bounds.lo[i] || end[static_cast<int>(i)] > bounds.hi[i];
     if (!outside || !is_finite(end)) continue;
-    // The ray must leave the face centre into the tet, i.e. into the cell
-    // side, and must not lie in the plane of any triangle of its own fan.
-    if (orient(end, at(p, b), start, at(p, ch)) != sigma || orient(at(p, a), end, start, at(p, ch)) != sigma ||
-        orient(at(p, a), at(p, b), start, end) != sigma)
+    // The ray must leave the start into the tet, i.e. into the cell side,
+    // and must not lie in the plane of any triangle of its own fan.
+    if (is_quad ? (orient(pt(a), pt(b), start, mean_of(end)) != sigma ||
+                   orient(mean_of(end), pt(b), start, pt(ch)) != sigma ||
+                   orient(pt(a), mean_of(end), start, pt(ch)) != sigma)
+                : orient(c1, c0, c2, end) != sigma)
       continue;
     bool degenerate = false;
-    for (int k = 0; k < 4 && !degenerate; ++k) {
-      const Triangle t = fan_triangle(tp, quad, k);
+    for (int k = 0; k < quad.num_fan_triangles() && !degenerate; ++k) {
+      const Triangle t = fan_triangle(quad, k);
       degenerate = orient(at(p, t[0]), at(p, t[1]), at(p, t[2]), end) == 0;
     }
     if (degenerate) continue;
 
-    Box3 ray_box;
-    for (std::size_t i = 0; i < 3; ++i) {
-      ray_box.lo[i] = std::min(start[static_cast<int>(i)], end[static_cast<int>(i)]);
-      ray_box.hi[i] = std::max(start[static_cast<int>(i)], end[static_cast<int>(i)]);
-    }
+    Box3 ray_box = start_box;
+    ray_box.add(end);
     int winding = 0;
     for (std::size_t other = 0; other < quads.size() && !degenerate; ++other) {
       if (static_cast<Index>(other) == q) continue;
-      for (int k = 0; k < 4 && !degenerate; ++k) {
-        const Triangle t = fan_triangle(tp, quads[other], k);
+      for (int k = 0; k < quads[other].num_fan_triangles() && !degenerate; ++k) {
+        const Triangle t = fan_triangle(quads[other], k);
         if (!boxes_overlap_closed(box_of(p, t.data(), 3), ray_box)) continue;
         const Vec3 &t0 = at(p, t[0]), &t1 = at(p, t[1]), &t2 = at(p, t[2]);
-        const int s_start = orient(t0, t1, t2, start), s_end = orient(t0, t1, t2, end);
+        const MeanPoint m0 = mean_of(t0), m1 = mean_of(t1), m2 = mean_of(t2), me = mean_of(end);
+        const int s_start = orient(m0, m1, m2, start), s_end = orient(t0, t1, t2, end);
         if (s_start == 0 && s_end == 0) {
           degenerate = true;  // the ray lies in the triangle's plane
           break;
@@ -580,7 +659,7 @@ std::optional<int> winding_behind_quad(const TetPoints& tp, const std::vector<Bo
         // Touching the plane at an end is no crossing: the start lies on no
         // other fan (stage E) and the end is outside the bounds.
         if (s_start == 0 || s_end == 0 || s_start == s_end) continue;
-        const int e1 = orient(start, end, t0, t1), e2 = orient(start, end, t1, t2), e3 = orient(start, end, t2, t0);
+        const int e1 = orient(start, me, m0, m1), e2 = orient(start, me, m1, m2), e3 = orient(start, me, m2, m0);
         if ((e1 > 0 && e2 > 0 && e3 > 0) || (e1 < 0 && e2 < 0 && e3 < 0)) {
           // Leaving the triangle's back (cell) side towards infinity: the
           // winding number drops by one on the way out.
@@ -597,7 +676,8 @@ std::optional<int> winding_behind_quad(const TetPoints& tp, const std::vector<Bo
 
 // ---- Stage G ----------------------------------------------------------------
 
-std::vector<CellPairTest> test_cell_pairs(const HexMesh& mesh, const Topology& topo, const TetPoints& tp,
+std::vector<CellPairTest> test_cell_pairs(const VolumeCells& cells, const VertexCells& vertex_cells,
+                                          const Topology& topo, const TetPoints& tp,
                                           const std::vector<std::array<Index, 2>>& pairs,
                                           const std::vector<char>& flagged, const std::vector<char>& folded) {
   std::vector<CellPairTest> results(pairs.size());
@@ -607,7 +687,7 @@ std::vector<CellPairTest> test_cell_pairs(const HexMesh& mesh, const Topology& t
                         const auto [a, b] = pairs[i];
                         const bool test_interiors =
                             flagged[static_cast<std::size_t>(a)] != 0 || flagged[static_cast<std::size_t>(b)] != 0;
-                        results[i] = test_cell_pair(mesh, topo, tp, a, b, test_interiors, folded);
+                        results[i] = test_cell_pair(cells, vertex_cells, topo, tp, a, b, test_interiors, folded);
                       }
                     });
   return results;

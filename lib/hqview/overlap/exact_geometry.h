@@ -9,36 +9,38 @@
 
 #include "hqview/core/types.h"
 #include "hqview/core/vec3.h"
-#include "hqview/mesh/hex_mesh.h"
 #include "hqview/mesh/topology.h"
 #include "hqview/overlap/box_pairs.h"
 #include "hqview/overlap/tet_geometry.h"
 
 namespace hq::detail {
 
-// Stage C: CellOrientation flags (overlap.h) of every cell, from the exact
-// orientation of its 24 tets and 8 corner tets. TBB, deterministic.
-std::vector<std::uint8_t> classify_cell_orientations(const HexMesh& mesh, const Topology& topo, const TetPoints& tp);
+// Stage C: CellOrientation flags (overlap.h) of every cell (any kind), from
+// the exact orientation of its solid's tets and of its corner tets (the
+// corner frames of its kind). TBB, deterministic.
+std::vector<std::uint8_t> classify_cell_orientations(const VolumeCells& cells, const Topology& topo,
+                                                     const TetPoints& tp);
 
-// Stage E: pairs {i, j} (i <= j, indices into quads) whose fans intersect
-// other than in the vertices and edges they share by id; i == j when a fan
-// folds onto itself. Triangles with collinear corners are skipped (their
-// cells are flagged by stage C). Sorted.
-// At most max_pairs candidate triangle pairs are tested: beyond, the result
-// is empty and budget.is_complete false (box_pairs.h).
-struct QuadPairs {
+// Stage E: pairs {i, j} (i <= j, indices into faces) whose fans (a quad's 4
+// triangles, a triangle itself) intersect other than in the vertices and
+// edges they share by id; i == j when a fan folds onto itself. Triangles
+// with collinear corners are skipped (their cells are flagged by stage C).
+// Sorted. At most max_pairs candidate triangle pairs are tested: beyond,
+// the result is empty and budget.is_complete false (box_pairs.h).
+struct FacePairs {
   std::vector<std::array<Index, 2>> pairs;
   BoxPairs budget;  // its pairs are cleared; is_complete, num_found, is_count_exact
 };
-QuadPairs intersecting_quad_pairs(const TetPoints& tp, const std::vector<BoundaryQuad>& quads, std::int64_t max_pairs);
+FacePairs intersecting_face_pairs(const TetPoints& tp, const std::vector<BoundaryFace>& faces, std::int64_t max_pairs);
 
 // Stage F: the winding number of the closed surface made of all the fans of
-// `quads`, at points just behind the fan of quads[q] (its cell's side),
-// counted exactly along a ray from that fan's centre. `bounds` must contain
-// every fan. nullopt when no ray avoided every degenerate contact (the caller
-// then treats the sheet as not certified). Assumes the quads' tets are
-// positively oriented and no other fan meets the face centre.
-std::optional<int> winding_behind_quad(const TetPoints& tp, const std::vector<BoundaryQuad>& quads, Index q,
+// `faces`, at points just behind faces[q] (its cell's side), counted exactly
+// along a ray from its centre (a quad's face centre; a triangle's centroid,
+// taken exactly in rational arithmetic). `bounds` must contain every fan.
+// nullopt when no ray avoided every degenerate contact (the caller then
+// treats the sheet as not certified). Assumes the faces' tets are
+// positively oriented and no other fan meets the start.
+std::optional<int> winding_behind_face(const TetPoints& tp, const std::vector<BoundaryFace>& faces, Index q,
                                        const Box3& bounds);
 
 // Stage G narrow phase, one result per pair (same order): do the cells
@@ -47,7 +49,7 @@ std::optional<int> winding_behind_quad(const TetPoints& tp, const std::vector<Bo
 // pairs with a flagged cell (flagged: per cell, 0 or 1; pairs of two
 // unflagged cells, certified by stages A-F, get the vertex test only) that
 // share no vertex and do not both touch one folded cell (folded: per cell,
-// a non-positive tet).
+// a non-positive tet). Cells of any kind; ids over the blocks.
 // TBB, deterministic.
 struct CellPairTest {
   bool intersect = false;
@@ -57,7 +59,8 @@ struct CellPairTest {
   // the first two tets (one of each cell) whose interiors meet.
   Vec3 position;
 };
-std::vector<CellPairTest> test_cell_pairs(const HexMesh& mesh, const Topology& topo, const TetPoints& tp,
+std::vector<CellPairTest> test_cell_pairs(const VolumeCells& cells, const VertexCells& vertex_cells,
+                                          const Topology& topo, const TetPoints& tp,
                                           const std::vector<std::array<Index, 2>>& pairs,
                                           const std::vector<char>& flagged, const std::vector<char>& folded);
 

@@ -1,6 +1,5 @@
 #include "hqview/overlap/overlap.h"
 
-#include "hqview/mesh/mesh_summary.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -16,14 +15,18 @@
 #include "hqview/core/hex_topology.h"
 #include "hqview/core/progress.h"
 #include "hqview/overlap/box_pairs.h"
+#include "hqview/overlap/cell_faces.h"
 #include "hqview/overlap/exact_geometry.h"
 #include "hqview/overlap/tet_geometry.h"
 
 namespace hq {
 namespace {
 
-using detail::BoundaryQuad;
+using detail::BoundaryFace;
+using detail::CellCornerIds;
 using detail::TetPoints;
+using detail::VertexCells;
+using detail::VolumeCells;
 
 // E/F passes before the certificate gives up on the unflagged part and hands
 // every cell to G (correct, only slower). Real defects settle in 2-3 passes.
@@ -55,21 +58,25 @@ struct UnionFind {
   }
 };
 
-bool is_referenced(const Topology& topo, std::size_t v) {
-  return topo.vertex_hex_offsets[v] != topo.vertex_hex_offsets[v + 1];
+// Used by a volume cell of any kind.
+bool is_referenced(const VertexCells& vertex_cells, std::size_t v) {
+  return vertex_cells.begin(static_cast<Index>(v)) != vertex_cells.end(static_cast<Index>(v));
 }
 
-double referenced_bbox_diagonal(const HexMesh& mesh, const Topology& topo) {
-  return referenced_bounding_box(mesh, topo).diagonal();
+double referenced_bbox_diagonal(const Mesh& mesh, const VertexCells& vertex_cells) {
+  Box3 box;
+  for (std::size_t v = 0; v < mesh.points.size(); ++v)
+    if (is_referenced(vertex_cells, v)) box.add(mesh.points[v]);
+  return box.diagonal();
 }
 
 // ---- A. Coincident vertices ---------------------------------------------------
 
-void find_coincident_vertices(const HexMesh& mesh, const Topology& topo, double tolerance, OverlapReport& r) {
+void find_coincident_vertices(const Mesh& mesh, const VertexCells& vertex_cells, double tolerance, OverlapReport& r) {
   const auto& p = mesh.points;
   std::vector<Index> vertices;
   for (std::size_t v = 0; v < p.size(); ++v)
-    if (is_referenced(topo, v)) vertices.push_back(static_cast<Index>(v));
+    if (is_referenced(vertex_cells, v)) vertices.push_back(static_cast<Index>(v));
   UnionFind sets(p.size());
   bool any_coincident = false;
 
@@ -142,29 +149,49 @@ void find_coincident_vertices(const HexMesh& mesh, const Topology& topo, double 
 
 // ---- D. Face map ----------------------------------------------------------------
 
+// The unique edges (a < b) of every volume cell of a mesh that is not pure
+// hex, ascending (a pure-hex mesh uses the topology's).
+std::vector<Edge> non_hex_and_hex_edges(const VolumeCells& cells, const Topology& topo) {
+  std::vector<Edge> edges = topo.edges;
+  const auto add = [&](const auto& block, const auto& table_edges) {
+    for (const auto& cell : block)
+      for (const auto& e : table_edges) {
+        const Index a = cell[static_cast<std::size_t>(e[0])], b = cell[static_cast<std::size_t>(e[1])];
+        edges.push_back(a < b ? Edge{a, b} : Edge{b, a});
+      }
+  };
+  add(cells.mesh->tets, CellKindTable<CellKind::tet>::edges);
+  add(cells.mesh->wedges, CellKindTable<CellKind::wedge>::edges);
+  add(cells.mesh->pyramids, CellKindTable<CellKind::pyramid>::edges);
+  tbb::parallel_sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
+
 int local_face(const Topology& topo, Index h, Index face) {
   for (int k = 0; k < 6; ++k)
     if (topo.hex_faces[6 * sz(h) + static_cast<std::size_t>(k)] == face) return k;
   return -1;
 }
 
-Quad local_quad(const HexMesh& mesh, Index h, int k) {
+Quad local_quad(const Mesh& mesh, Index h, int k) {
   const Hex& hex = mesh.hexes[sz(h)];
   const auto& f = kHexFaces[static_cast<std::size_t>(k)];
   return {hex[sz(f[0])], hex[sz(f[1])], hex[sz(f[2])], hex[sz(f[3])]};
 }
 
 // b runs through a's cycle backwards: the two cells lie on opposite sides.
-bool opposite_winding(const Quad& a, const Quad& b) {
-  const auto it = std::find(b.begin(), b.end(), a[0]);
-  if (it == b.end()) return false;
+// Cycles of n = 3 or 4 corners.
+bool opposite_winding(const Quad& a, const Quad& b, std::size_t n = 4) {
+  const auto it = std::find(b.begin(), b.begin() + static_cast<std::ptrdiff_t>(n), a[0]);
+  if (it == b.begin() + static_cast<std::ptrdiff_t>(n)) return false;
   const auto j = static_cast<std::size_t>(it - b.begin());
-  for (std::size_t m = 1; m < 4; ++m)
-    if (b[(j + 4 - m) % 4] != a[m]) return false;
+  for (std::size_t m = 1; m < n; ++m)
+    if (b[(j + n - m) % n] != a[m]) return false;
   return true;
 }
 
-std::vector<Index> find_same_winding_faces(const HexMesh& mesh, const Topology& topo) {
+std::vector<Index> find_same_winding_faces(const Mesh& mesh, const Topology& topo) {
   std::vector<Index> faces;
   for (std::size_t f = 0; f < topo.faces.size(); ++f) {
     if (topo.num_face_hexes(static_cast<Index>(f)) != 2) continue;
@@ -181,19 +208,29 @@ std::vector<Index> find_same_winding_faces(const HexMesh& mesh, const Topology& 
 // ordered by a hash of their sorted vertex ids (then the ids, then the cell:
 // a total order, the same for any thread count), so equal sets are
 // adjacent; whole keys are compared only between neighbours.
-std::vector<Index> find_duplicate_cells(const HexMesh& mesh, std::vector<char>& flagged) {
-  const std::size_t nh = mesh.hexes.size();
+std::vector<Index> find_duplicate_cells(const VolumeCells& cells, std::vector<char>& flagged) {
+  const auto nh = static_cast<std::size_t>(cells.size());
+  const std::vector<Hex>& mesh_hexes = cells.mesh->hexes;
   struct Key {
     std::uint64_t hash;
     Index cell;
   };
+  // Sorted corner ids, padded with kNoIndex after a cell's n corners (so
+  // cells of different kinds never compare equal).
   std::vector<Hex> sorted(nh);
   std::vector<Key> keys(nh);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nh, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t h = r.begin(); h != r.end(); ++h) {
       Hex& k = sorted[h];
-      k = mesh.hexes[h];
-      std::sort(k.begin(), k.end());
+      if (h < mesh_hexes.size()) {  // a hex: all 8 slots
+        k = mesh_hexes[h];
+        std::sort(k.begin(), k.end());
+      } else {
+        const CellCornerIds c = cells.corners(static_cast<Index>(h));
+        k.fill(kNoIndex);
+        std::copy(c.begin(), c.end(), k.begin());
+        std::sort(k.begin(), k.begin() + c.n);
+      }
       std::uint64_t hash = 0x9E3779B97F4A7C15ULL;
       for (Index v : k) hash = (hash ^ static_cast<std::uint32_t>(v)) * 0xFF51AFD7ED558CCDULL;
       keys[h] = {hash ^ (hash >> 29), static_cast<Index>(h)};
@@ -217,9 +254,9 @@ std::vector<Index> find_duplicate_cells(const HexMesh& mesh, std::vector<char>& 
 
 // ---- E/F. The boundary of the unflagged cells -------------------------------------
 
-std::vector<BoundaryQuad> boundary_of_unflagged(const HexMesh& mesh, const Topology& topo,
+std::vector<BoundaryFace> boundary_of_unflagged(const Mesh& mesh, const Topology& topo, const TetPoints& tp,
                                                 const std::vector<char>& flagged) {
-  std::vector<BoundaryQuad> quads;
+  std::vector<BoundaryFace> quads;
   for (std::size_t f = 0; f < topo.faces.size(); ++f) {
     Index owner = kNoIndex;
     int count = 0;
@@ -232,20 +269,62 @@ std::vector<BoundaryQuad> boundary_of_unflagged(const HexMesh& mesh, const Topol
     }
     if (count != 1) continue;
     const int k = local_face(topo, owner, static_cast<Index>(f));
-    quads.push_back({static_cast<Index>(f), owner, local_quad(mesh, owner, k)});
+    quads.push_back({static_cast<Index>(f), owner, local_quad(mesh, owner, k), tp.face_base + static_cast<Index>(f)});
   }
   return quads;
+}
+
+// ---- D, E/F on a mesh with cells of other kinds: the face map of every cell ----
+
+struct MixedFaces {
+  std::vector<Index> non_manifold_faces;  // map face ids, ascending
+  std::vector<Index> same_winding_faces;
+};
+
+MixedFaces check_mixed_faces(const VolumeCells& cells, const detail::CellFaceMap& map) {
+  MixedFaces out;
+  for (Index f = 0; f < map.num_faces(); ++f) {
+    const Index n = map.offsets[sz(f) + 1] - map.offsets[sz(f)];
+    if (n > 2) out.non_manifold_faces.push_back(f);
+    if (n != 2) continue;
+    const detail::FaceUse u1 = map.uses[sz(map.offsets[sz(f)])], u2 = map.uses[sz(map.offsets[sz(f)]) + 1];
+    const auto a = detail::local_face_corners(cells.corners(u1.cell), u1.local);
+    const auto b = detail::local_face_corners(cells.corners(u2.cell), u2.local);
+    if (!opposite_winding(a, b, a[3] == kNoIndex ? 3 : 4)) out.same_winding_faces.push_back(f);
+  }
+  return out;
+}
+
+std::vector<BoundaryFace> mixed_boundary_of_unflagged(const VolumeCells& cells, const Topology& topo,
+                                                      const TetPoints& tp, const detail::CellFaceMap& map,
+                                                      const std::vector<char>& flagged) {
+  std::vector<BoundaryFace> faces;
+  for (Index f = 0; f < map.num_faces(); ++f) {
+    const detail::FaceUse* owner = nullptr;
+    int count = 0;
+    for (Index i = map.offsets[sz(f)]; i < map.offsets[sz(f) + 1]; ++i)
+      if (!flagged[sz(map.uses[sz(i)].cell)]) {
+        owner = &map.uses[sz(i)];
+        ++count;
+      }
+    if (count != 1) continue;
+    const CellCornerIds c = cells.corners(owner->cell);
+    const auto corners = detail::local_face_corners(c, owner->local);
+    const Index centre = corners[3] == kNoIndex ? kNoIndex : detail::quad_centre_id(topo, tp, cells, c, owner->local);
+    faces.push_back({f, owner->cell, corners, centre});
+  }
+  return faces;
 }
 
 // Sheets: quads connected across edges that exactly two quads share (a
 // consistently oriented piece of surface). Returns the sheet of every quad;
 // sheets are numbered by their first quad.
-std::vector<Index> find_sheets(const std::vector<BoundaryQuad>& quads, Index& num_sheets) {
+std::vector<Index> find_sheets(const std::vector<BoundaryFace>& quads, Index& num_sheets) {
   std::vector<std::tuple<Index, Index, Index>> edges;
   edges.reserve(4 * quads.size());
   for (std::size_t q = 0; q < quads.size(); ++q)
-    for (std::size_t e = 0; e < 4; ++e) {
-      const Index a = quads[q].corners[e], b = quads[q].corners[(e + 1) % 4];
+    for (std::size_t e = 0, n = static_cast<std::size_t>(quads[q].size()); e < n; ++e) {
+      const Index a = quads[q].corners[e], b = quads[q].corners[(e + 1) % n];
       edges.emplace_back(std::min(a, b), std::max(a, b), static_cast<Index>(q));
     }
   std::sort(edges.begin(), edges.end());
@@ -267,11 +346,11 @@ std::vector<Index> find_sheets(const std::vector<BoundaryQuad>& quads, Index& nu
   return sheet;
 }
 
-Box3 bounds_of(const TetPoints& tp, const std::vector<BoundaryQuad>& quads) {
+Box3 bounds_of(const TetPoints& tp, const std::vector<BoundaryFace>& quads) {
   Box3 b;
-  for (const BoundaryQuad& q : quads)
-    for (int e = 0; e < 4; ++e) {
-      const auto t = detail::fan_triangle(tp, q, e);
+  for (const BoundaryFace& q : quads)
+    for (int e = 0; e < q.num_fan_triangles(); ++e) {
+      const auto t = detail::fan_triangle(q, e);
       for (Index id : t) b.add(tp.points[sz(id)]);
     }
   return b;
@@ -297,9 +376,9 @@ void record_over_budget(OverlapReport& r, const char* stage, std::int64_t budget
   r.is_untested_count_exact = pairs.is_count_exact;
 }
 
-BoundaryCheck check_boundary(const TetPoints& tp, const std::vector<BoundaryQuad>& quads, std::int64_t max_pairs) {
+BoundaryCheck check_boundary(const TetPoints& tp, const std::vector<BoundaryFace>& quads, std::int64_t max_pairs) {
   BoundaryCheck check;
-  detail::QuadPairs pairs = detail::intersecting_quad_pairs(tp, quads, max_pairs);
+  detail::FacePairs pairs = detail::intersecting_face_pairs(tp, quads, max_pairs);
   check.intersecting = std::move(pairs.pairs);
   check.budget = pairs.budget;
   if (!check.budget.is_complete || quads.empty()) return check;
@@ -313,7 +392,7 @@ BoundaryCheck check_boundary(const TetPoints& tp, const std::vector<BoundaryQuad
   const std::size_t computed = std::min<std::size_t>(affordable, sz(num_sheets));
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, computed, 1), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t s = r.begin(); s != r.end(); ++s) {
-      const auto w = detail::winding_behind_quad(tp, quads, first[s], bounds);
+      const auto w = detail::winding_behind_face(tp, quads, first[s], bounds);
       bad[s] = !(w && *w == 1);
     }
   });
@@ -353,27 +432,29 @@ void build_markers(OverlapReport& r) {
 
 }  // namespace
 
-OverlapReport check_overlap(const HexMesh& mesh, const Topology& topo, const OverlapOptions& options) {
+OverlapReport check_overlap(const Mesh& mesh, const Topology& topo, const OverlapOptions& options) {
   OverlapReport r;
   r.mode = options.mode;
-  const std::size_t nh = mesh.hexes.size();
+  const VolumeCells cells(mesh);
+  const auto nh = static_cast<std::size_t>(cells.size());  // volume cells of every kind
   const auto& p = mesh.points;
+  const VertexCells vertex_cells = detail::build_vertex_cells(cells, topo);
   r.coincident_tolerance =
-      options.coincident_eps > 0.0 ? options.coincident_eps * referenced_bbox_diagonal(mesh, topo) : 0.0;
+      options.coincident_eps > 0.0 ? options.coincident_eps * referenced_bbox_diagonal(mesh, vertex_cells) : 0.0;
   std::vector<char> flagged(nh, 0);
   auto flag_vertex_cells = [&](Index v) {
-    for (Index i = topo.vertex_hex_offsets[sz(v)]; i < topo.vertex_hex_offsets[sz(v) + 1]; ++i)
-      flagged[sz(topo.vertex_hexes[sz(i)])] = 1;
+    for (Index i = vertex_cells.begin(v); i < vertex_cells.end(v); ++i) flagged[sz(vertex_cells.cell(i))] = 1;
   };
 
   // The progress bar: steps A-B, C, D, E-F, G of the paper's order.
   progress::set_total(5);
   // A, B.
-  find_coincident_vertices(mesh, topo, r.coincident_tolerance, r);
+  find_coincident_vertices(mesh, vertex_cells, r.coincident_tolerance, r);
   for (const CoincidentGroup& g : r.coincident_groups)
     for (Index v : g.vertices) flag_vertex_cells(v);
   const double tol2 = r.coincident_tolerance * r.coincident_tolerance;
-  for (const Edge& e : topo.edges) {
+  const std::vector<Edge> mixed_edges = cells.is_pure_hex() ? std::vector<Edge>{} : non_hex_and_hex_edges(cells, topo);
+  for (const Edge& e : cells.is_pure_hex() ? topo.edges : mixed_edges) {
     const Vec3 d = p[sz(e[1])] - p[sz(e[0])];
     if (tol2 > 0.0 ? squared_norm(d) <= tol2 : d == Vec3{}) {
       r.zero_length_edges.push_back(e);
@@ -383,8 +464,8 @@ OverlapReport check_overlap(const HexMesh& mesh, const Topology& topo, const Ove
 
   progress::add_done(1);
   // C.
-  const TetPoints tp = detail::build_tet_points(mesh, topo);
-  r.cell_orientation = detail::classify_cell_orientations(mesh, topo, tp);
+  const TetPoints tp = detail::build_tet_points(cells, topo);
+  r.cell_orientation = detail::classify_cell_orientations(cells, topo, tp);
   for (std::size_t h = 0; h < nh; ++h) {
     const std::uint8_t f = r.cell_orientation[h];
     if (f & kCornerNegative)
@@ -396,22 +477,39 @@ OverlapReport check_overlap(const HexMesh& mesh, const Topology& topo, const Ove
   }
 
   progress::add_done(1);
-  // D.
-  r.non_manifold_faces = topo.non_manifold_faces;
-  r.same_winding_faces = find_same_winding_faces(mesh, topo);
-  for (const auto* faces : {&r.non_manifold_faces, &r.same_winding_faces})
-    for (Index f : *faces)
-      for (Index i = topo.face_hex_offsets[sz(f)]; i < topo.face_hex_offsets[sz(f) + 1]; ++i)
-        flagged[sz(topo.face_hexes[sz(i)])] = 1;
-  r.duplicate_cells = find_duplicate_cells(mesh, flagged);
+  // D. A pure-hex mesh reads the hex topology's faces; any other the face
+  // map of every cell.
+  detail::CellFaceMap face_map;
+  if (cells.is_pure_hex()) {
+    r.non_manifold_faces = topo.non_manifold_faces;
+    r.same_winding_faces = find_same_winding_faces(mesh, topo);
+    for (const auto* faces : {&r.non_manifold_faces, &r.same_winding_faces})
+      for (Index f : *faces)
+        for (Index i = topo.face_hex_offsets[sz(f)]; i < topo.face_hex_offsets[sz(f) + 1]; ++i)
+          flagged[sz(topo.face_hexes[sz(i)])] = 1;
+  } else {
+    face_map = detail::build_cell_face_map(cells);
+    MixedFaces faces = check_mixed_faces(cells, face_map);
+    r.non_manifold_faces = std::move(faces.non_manifold_faces);
+    r.same_winding_faces = std::move(faces.same_winding_faces);
+    for (const auto* list : {&r.non_manifold_faces, &r.same_winding_faces})
+      for (Index f : *list)
+        for (Index i = face_map.offsets[sz(f)]; i < face_map.offsets[sz(f) + 1]; ++i)
+          flagged[sz(face_map.uses[sz(i)].cell)] = 1;
+  }
+  r.duplicate_cells = find_duplicate_cells(cells, flagged);
   const bool clean_a_to_d = std::find(flagged.begin(), flagged.end(), 1) == flagged.end();
 
   progress::add_done(1);
   // E, F on the boundary of the unflagged cells K', until K' is certified.
   for (int round = 0;; ++round) {
-    const std::vector<BoundaryQuad> quads = boundary_of_unflagged(mesh, topo, flagged);
-    // E tests the quads' fan triangles: 4 per quad.
-    const std::int64_t budget = pair_budget(options, 4 * quads.size());
+    const std::vector<BoundaryFace> quads = cells.is_pure_hex()
+                                                ? boundary_of_unflagged(mesh, topo, tp, flagged)
+                                                : mixed_boundary_of_unflagged(cells, topo, tp, face_map, flagged);
+    // E tests the faces' fan triangles: 4 per quad, 1 per triangle.
+    std::size_t num_triangles = 0;
+    for (const BoundaryFace& q : quads) num_triangles += static_cast<std::size_t>(q.num_fan_triangles());
+    const std::int64_t budget = pair_budget(options, num_triangles);
     const BoundaryCheck check = check_boundary(tp, quads, budget);
     r.certificate_rounds = round + 1;
     if (!check.budget.is_complete) {  // nothing is known of this boundary: every cell goes to G
@@ -451,7 +549,14 @@ OverlapReport check_overlap(const HexMesh& mesh, const Topology& topo, const Ove
   std::vector<std::array<Index, 2>> candidates;
   if (options.mode == OverlapMode::exhaustive || !flagged_cells.empty()) {
     std::vector<Box3> boxes(nh);
-    for (std::size_t h = 0; h < nh; ++h) boxes[h] = detail::box_of(p, mesh.hexes[h].data(), 8);
+    if (cells.is_pure_hex()) {
+      for (std::size_t h = 0; h < nh; ++h) boxes[h] = detail::box_of(p, mesh.hexes[h].data(), 8);
+    } else {
+      for (std::size_t h = 0; h < nh; ++h) {
+        const CellCornerIds c = cells.corners(static_cast<Index>(h));
+        boxes[h] = detail::box_of(p, c.v.data(), c.n);
+      }
+    }
     const std::int64_t budget = pair_budget(options, nh);
     detail::BoxPairs pairs = options.mode == OverlapMode::exhaustive
                                  ? detail::box_self_pairs(boxes, detail::BoxContact::open, budget)
@@ -464,11 +569,17 @@ OverlapReport check_overlap(const HexMesh& mesh, const Topology& topo, const Ove
   r.num_candidate_pairs = static_cast<std::int64_t>(candidates.size());
   std::vector<char> folded(nh, 0);
   for (std::size_t h = 0; h < nh; ++h) folded[h] = (r.cell_orientation[h] & (kTetNegative | kTetFlat)) != 0;
-  const auto tests = detail::test_cell_pairs(mesh, topo, tp, candidates, flagged, folded);
+  const auto tests = detail::test_cell_pairs(cells, vertex_cells, topo, tp, candidates, flagged, folded);
   r.cell_intersecting.assign(nh, 0);
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     if (!tests[i].intersect) continue;
-    r.intersecting_pairs.push_back({candidates[i], tests[i].inside_vertex, tests[i].position});
+    IntersectingPair pair{candidates[i], tests[i].inside_vertex, tests[i].position, {}, {}};
+    for (std::size_t k = 0; k < 2; ++k) {
+      const CellCornerIds c = cells.corners(candidates[i][k]);
+      pair.kinds[k] = c.kind;
+      pair.source_indices[k] = cell_source_index(mesh, c.kind, static_cast<std::size_t>(c.local));
+    }
+    r.intersecting_pairs.push_back(pair);
     r.cell_intersecting[sz(candidates[i][0])] = r.cell_intersecting[sz(candidates[i][1])] = 1;
   }
   r.num_intersecting_cells = static_cast<Index>(std::count(r.cell_intersecting.begin(), r.cell_intersecting.end(), 1));

@@ -1,7 +1,9 @@
 #pragma once
-// Overlapping vertices and intersecting cells (paper goal G2; ALGORITHMS.md §4).
+// Overlapping vertices and intersecting cells (paper goal G2; ALGORITHMS.md §4),
+// over the volume cells of every kind (hexes, tets, wedges, pyramids; cell
+// ids over the blocks as Mesh numbers them).
 //
-// Geometry every stage shares (the "24-tet solid" of a hex):
+// Geometry every stage shares (the "24-tet solid" of a hex; every kind the same way):
 //   face centre  c_f = ((p_a + p_b) + (p_c + p_d)) * 0.25, a < b < c < d the
 //                face's sorted vertex ids, so both cells of a face get the
 //                same double point;
@@ -11,12 +13,16 @@
 //                the tet (p_j, p_i, c_f, c_h): positively oriented in a valid hex.
 // The solid of a hex is the union of its 24 closed tets; a point is inside
 // the cell when it lies in one of those tets with non-zero volume and on
-// none of its 24 boundary triangles.
+// none of its 24 boundary triangles. Any kind: each face (CellKindTable,
+// outward) gives tets joined to the cell centre (the mean of its corners):
+// a quad its 4 fan tets as above, a triangle (p0, p1, p2) the one tet
+// (p1, p0, p2, c_h). A tet's solid is itself (4 tets around its centre), a
+// wedge's 14 tets, a pyramid's 8.
 //
 // Two distinct cells intersect when a vertex of one that is not a vertex of
 // the other lies inside the other (the paper's test of every vertex against
-// every cell, made exact and fast), or when both have the same 8 vertices
-// (duplicates), or when their interiors meet with no vertex inside (two
+// every cell, made exact and fast), or when both have the same vertices
+// (duplicates, of one kind), or when their interiors meet with no vertex inside (two
 // cubes shifted along x: coplanar faces overlapping): a positive tet of
 // each with interiors in common (exact separating axes; face centres from
 // the corners sorted by position), tested on pairs with a cell set aside
@@ -52,7 +58,8 @@
 
 #include "hqview/core/types.h"
 #include "hqview/core/vec3.h"
-#include "hqview/mesh/hex_mesh.h"
+#include "hqview/core/cell_kinds.h"
+#include "hqview/mesh/mesh.h"
 #include "hqview/mesh/topology.h"
 
 namespace hq {
@@ -94,6 +101,8 @@ struct IntersectingPair {
   // interiors that meet with no vertex inside.
   Index inside_vertex = kNoIndex;
   Vec3 position;  // where an arrow points: inside_vertex, else into the common part (duplicates: the centre)
+  std::array<CellKind, 2> kinds{};               // of cells[0], cells[1]
+  std::array<std::int64_t, 2> source_indices{};  // cell_source_index() of each (its file's numbering)
 };
 
 enum class MarkerKind { coincident, intersection };
@@ -111,10 +120,10 @@ struct OverlapMarker {
 
 // Stage C's verdict on one cell (bit flags).
 enum CellOrientation : std::uint8_t {
-  kTetNegative = 1,     // one of the 24 tets is negatively oriented
-  kTetFlat = 2,         // one of the 24 tets has zero volume
-  kCornerNegative = 4,  // one of the 8 corner tets (corner frames) is negative
-  kCornerFlat = 8,      // one of the 8 corner tets has zero volume
+  kTetNegative = 1,     // one of the solid's tets (24 of a hex) is negatively oriented
+  kTetFlat = 2,         // one of the solid's tets has zero volume
+  kCornerNegative = 4,  // one of the corner tets (its kind's corner frames, 8 of a hex) is negative
+  kCornerFlat = 8,      // one of the corner tets has zero volume
 };
 
 struct OverlapReport {
@@ -127,16 +136,21 @@ struct OverlapReport {
   Index num_coincident_vertices = 0;           // vertices in some group
   // B. Unique edges (a < b) of zero length, ascending.
   std::vector<Edge> zero_length_edges;
-  // C. Per cell, CellOrientation flags. Inverted: a corner tet is negatively
-  // oriented (the exact sign of a corner Jacobian); degenerate: not inverted,
-  // a corner tet is flat. Cells whose 24 tets are not all positive are not
-  // certified (thin twisted cells can be valid and still fail this). Ascending ids.
+  // C. Per volume cell (ids over the blocks), CellOrientation flags.
+  // Inverted: a corner tet is negatively oriented (the exact sign of a
+  // corner Jacobian; a pyramid's four base corners, whose frames reach the
+  // apex); degenerate: not inverted, a corner tet is flat. Cells whose solid
+  // tets are not all positive are not certified (thin twisted cells can be
+  // valid and still fail this). Ascending ids.
   std::vector<std::uint8_t> cell_orientation;
   std::vector<Index> inverted_cells;
   std::vector<Index> degenerate_cells;
   std::vector<Index> nonpositive_tet_cells;
-  // D. Face ids ascending; duplicate cells: cells whose 8 vertex ids (as a
-  // set) repeat those of a lower-numbered cell.
+  // D. Face ids ascending: the topology's (hex faces) on a pure-hex mesh;
+  // otherwise the index of the face among the unique faces of all volume
+  // cells (quads and triangles) in the order of their sorted vertex ids.
+  // Duplicate cells: cells whose vertex ids (as a set) repeat those of a
+  // lower-numbered cell.
   std::vector<Index> non_manifold_faces;
   std::vector<Index> same_winding_faces;  // 2 cells, not opposite windings
   std::vector<Index> duplicate_cells;
@@ -150,7 +164,7 @@ struct OverlapReport {
   Index num_nested_shells = 0;
   // G.
   std::vector<IntersectingPair> intersecting_pairs;  // sorted by cells
-  std::vector<char> cell_intersecting;               // num_hexes, 0/1
+  std::vector<char> cell_intersecting;               // per volume cell (ids over the blocks), 0/1
   Index num_intersecting_cells = 0;
   std::vector<OverlapMarker> markers;  // coincident groups, then intersections
 
@@ -170,9 +184,12 @@ struct OverlapReport {
   int certificate_rounds = 0;            // E/F passes until the unflagged part was certified
 };
 
-// Runs stages A-G. mesh and topo must belong together (build_topology(mesh)).
+// Runs stages A-G on every volume cell of the mesh (all blocks; surface
+// cells are not volume and are ignored). mesh and topo must belong together
+// (build_topology(mesh), with or without the non-hex blocks: only its hex
+// tables are read).
 // Deterministic: every list is sorted, and the result is the same for any
 // number of TBB threads. Throws nothing but std::bad_alloc.
-OverlapReport check_overlap(const HexMesh& mesh, const Topology& topo, const OverlapOptions& options);
+OverlapReport check_overlap(const Mesh& mesh, const Topology& topo, const OverlapOptions& options);
 
 }  // namespace hq

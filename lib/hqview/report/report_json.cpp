@@ -340,8 +340,10 @@ Json overlap_json(const OverlapReport& o) {
   for (std::size_t i = 0; i < listed(o.intersecting_pairs.size()); ++i) {
     const IntersectingPair& p = o.intersecting_pairs[i];
     pairs.push_back(p.cells);
-    detail.push_back(
-        {{"cells", p.cells}, {"inside_vertex", p.inside_vertex == kNoIndex ? Json(nullptr) : Json(p.inside_vertex)}});
+    detail.push_back({{"cells", p.cells},
+                      {"inside_vertex", p.inside_vertex == kNoIndex ? Json(nullptr) : Json(p.inside_vertex)},
+                      {"kinds", {cell_kind_name(p.kinds[0]), cell_kind_name(p.kinds[1])}},
+                      {"source_indices", p.source_indices}});
   }
   j["intersecting_pairs"] = std::move(pairs);
   Json markers = Json::array();

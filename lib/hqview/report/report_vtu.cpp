@@ -102,7 +102,8 @@ void check_sizes(const ReportModel& model) {
   }
   if (model.analysis.overlap) {
     require_size(model.analysis.overlap->vertex_coincident_group, nv, "vertex_coincident_group");
-    require_size(model.analysis.overlap->cell_intersecting, nc, "cell_intersecting");
+    if (model.analysis.overlap->cell_intersecting.size() < nc)  // one per volume cell, hexes first: at least nc
+      require_size(model.analysis.overlap->cell_intersecting, nc, "cell_intersecting");
   }
   if (model.analysis.boundary_error)
     require_size(model.analysis.boundary_error->vertex_error, nv, "boundary vertex_error");

@@ -287,7 +287,7 @@ std::vector<ViewerFile> viewer_files(const ReportModel& model) {
     for (const OverlapMarker& m : a.overlap->markers)
       markers.push_back({{"kind", m.kind == MarkerKind::coincident ? "coincident" : "intersection"},
                          {"position", vec(m.position)}, {"count", m.count}});
-    for (std::size_t h = 0; h < a.overlap->cell_intersecting.size(); ++h) {
+    for (std::size_t h = 0; h < std::min(a.overlap->cell_intersecting.size(), a.mesh.hexes.size()); ++h) {
       if (!a.overlap->cell_intersecting[h]) continue;
       if (h >= a.mesh.hexes.size()) {  // a tet, wedge or pyramid: its CellKindTable edges
         if (static_cast<Index>(h) >= num_volume_cells(a.mesh)) break;
