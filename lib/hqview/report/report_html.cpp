@@ -663,6 +663,7 @@ std::string index_html(const ReportModel& model) {
   set_mesh_rows(page, model.analysis.mesh_summary);
   set_glyphs(page, model, index, cluster_rows);
   set_overlap(page, model);
+  page.set("lightbox", std::string(report_template("lightbox.html")));
   mustache tmpl{std::string(report_template("index.html.mustache"))};
   if (!tmpl.is_valid()) throw Error("internal: index.html template: " + tmpl.error_message());
   tmpl.set_custom_escape([](const std::string& s) { return html_escape(s); });
@@ -767,6 +768,7 @@ std::string boundary_html(const ReportModel& model) {
   page.set("has_warnings", !e.warnings.empty());
   page.set("inputs", input_rows(model));
 
+  page.set("lightbox", std::string(report_template("lightbox.html")));
   mustache tmpl{std::string(report_template("boundary.html.mustache"))};
   if (!tmpl.is_valid()) throw Error("internal: boundary.html template: " + tmpl.error_message());
   tmpl.set_custom_escape([](const std::string& s) { return html_escape(s); });
