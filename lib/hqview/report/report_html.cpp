@@ -347,8 +347,8 @@ void set_headline(data& page, const ReportModel& model) {
   data headline{data::type::list};
   headline.push_back(card("vertices", show_count(m.num_vertices)));
   headline.push_back(card("hexahedra", show_count(m.num_hexes)));
-  headline.push_back(card("min scaled Jacobian", show(q.scaled_jacobian.min), q.scaled_jacobian.min <= 0));
-  headline.push_back(card("mean scaled Jacobian", show(q.scaled_jacobian.mean)));
+  headline.push_back(card("min scaled Jacobian (per hex)", show(q.scaled_jacobian.min), q.scaled_jacobian.min <= 0));
+  headline.push_back(card("mean scaled Jacobian (per hex)", show(q.scaled_jacobian.mean)));
   headline.push_back(
       card("inverted hexes", show_count(q.scaled_jacobian.num_inverted), q.scaled_jacobian.num_inverted > 0));
   if (model.analysis.overlap)
@@ -364,7 +364,7 @@ void set_headline(data& page, const ReportModel& model) {
     headline.push_back(hausdorff);
   }
   headline.push_back(
-      card("degenerate hexes", show_count(q.scaled_jacobian.num_degenerate), q.scaled_jacobian.num_degenerate > 0));
+      card("degenerate hexes (a zero-length edge)", show_count(q.scaled_jacobian.num_degenerate), q.scaled_jacobian.num_degenerate > 0));
   headline.push_back(card("min vertex quality", show(q.vertex_quality.min), q.vertex_quality.min <= 0));
   if (model.analysis.overlap && model.analysis.overlap->num_coincident_vertices > 0)
     headline.push_back(card("coincident vertices", show_count(model.analysis.overlap->num_coincident_vertices), true));
