@@ -104,9 +104,37 @@ TEST(OverviewViewpoint, TurnsToAnInvertedDentTheThreeQuarterViewHides) {
     const Seen s = look(transformed(dented_grid(), copy.f, copy.mirrors), {0.0, 0.0, 1.0});
     EXPECT_EQ(s.three_quarter, 0) << "the dent must be out of the three-quarter view's sight for this test";
     EXPECT_FALSE(s.eye.is_default);
-    EXPECT_GT(s.chosen, 200) << "inverted pixels in the overview from "
+    EXPECT_GT(s.chosen, 1000) << "inverted pixels in the overview from "
                              << view_azimuth_degrees(s.eye.direction, {0, 0, 1}) << " deg azimuth";
     EXPECT_GT(s.eye.chosen_area, 0.0);
+  }
+}
+
+// An L (an 8 x 8 x 4 grid without its i, j >= 3 hexes) with an inverted
+// dent on the inner face of its long leg (y = 3, facing +y): the other leg
+// hides it from many eyes that face it (the Gmsh bracket of docs/analysis.md,
+// where an orthographic score picked an eye the perspective overview did
+// not see it from).
+HexMesh dented_l() {
+  HexMesh mesh = test::box_grid(8, 8, 4);
+  std::erase_if(mesh.hexes, [&](const auto& h) {
+    const Vec3& p = mesh.points[static_cast<std::size_t>(h[0])];
+    return p.x >= 3.0 && p.y >= 3.0;
+  });
+  for (Vec3& p : mesh.points)
+    if (p.y == 3.0 && p.x == 6.0 && p.z == 2.0) p.y -= 1.6;
+  return mesh;
+}
+
+TEST(OverviewViewpoint, TurnsToADentInTheInnerCornerOfAnL) {
+  for (const bool mirrored : {false, true}) {
+    SCOPED_TRACE(mirrored ? "mirrored" : "as built");
+    const Seen s = look(mirrored ? transformed(dented_l(), [](const Vec3& p) { return Vec3{-p.x, p.y, p.z}; }, true)
+                                 : dented_l(),
+                        {0.0, 0.0, 1.0});
+    EXPECT_EQ(s.three_quarter, 0);
+    EXPECT_GT(s.chosen, 400) << "from azimuth " << view_azimuth_degrees(s.eye.direction, {0, 0, 1}) << ", elevation "
+                             << view_elevation_degrees(s.eye.direction, {0, 0, 1});
   }
 }
 
@@ -128,7 +156,7 @@ TEST(OverviewViewpoint, KeepsTheThreeQuarterViewWhenItShowsTheWorst) {
   const std::vector<Index> cluster{0};
   const WorstFaces worst = worst_boundary_faces(topology, compute_quality(clean, topology).vertex_quality, cluster);
   EXPECT_EQ(worst.kind, WorstFaces::Kind::worst_cluster);
-  EXPECT_EQ(std::count(worst.flagged.begin(), worst.flagged.end(), 1), 3);  // the corner's three faces
+  EXPECT_EQ(std::count_if(worst.flagged.begin(), worst.flagged.end(), [](char f) { return f != 0; }), 3);  // the corner's three faces
 }
 
 TEST(OverviewViewpoint, RockarmShowsItsInvertedHexesUnderAutoUp) {
@@ -140,7 +168,7 @@ TEST(OverviewViewpoint, RockarmShowsItsInvertedHexesUnderAutoUp) {
   // The three-quarter view of its resting axis hides them (the reviewer's
   // finding of issue 45b); the chosen eye shows them.
   EXPECT_EQ(s.three_quarter, 0) << "up " << up_axis_name(up);
-  EXPECT_GT(s.chosen, 300) << "rockarm's inverted hexes in its overview (up " << up_axis_name(up) << ")";
+  EXPECT_GT(s.chosen, 500) << "rockarm's inverted hexes in its overview (up " << up_axis_name(up) << ")";
 }
 
 }  // namespace

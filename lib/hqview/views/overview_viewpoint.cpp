@@ -20,13 +20,14 @@ WorstFaces worst_boundary_faces(const Topology& topology, std::span<const double
   out.flagged.assign(n, 0);
   auto flag_if = [&](auto&& is_worst) {
     bool any = false;
-    for (std::size_t i = 0; i < n; ++i)
-      for (Index v : topology.faces[static_cast<std::size_t>(topology.boundary_faces[i])])
-        if (is_worst(v)) {
-          out.flagged[i] = 1;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Quad& q = topology.faces[static_cast<std::size_t>(topology.boundary_faces[i])];
+      for (int k = 0; k < 4; ++k)
+        if (is_worst(q[static_cast<std::size_t>(k)])) {
+          out.flagged[i] = static_cast<char>(out.flagged[i] | (1 << k));
           any = true;
-          break;
         }
+    }
     return any;
   };
   if (flag_if([&](Index v) {
@@ -53,6 +54,9 @@ WorstFaces worst_boundary_faces(const Topology& topology, std::span<const double
 
 namespace {
 
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDepthTolerance = 0.01;  // of the boundary's depth range along the view
+
 // Edge function: twice the signed area of (a, b, p) in the grid plane.
 double edge(double ax, double ay, double bx, double by, double px, double py) {
   return (bx - ax) * (py - ay) - (by - ay) * (px - ax);
@@ -62,14 +66,19 @@ double edge(double ax, double ay, double bx, double by, double px, double py) {
 
 double visible_flagged_area(const HexMesh& mesh, const Topology& topology, std::span<const char> flagged,
                             const Vec3& direction, const Vec3& up) {
+  // The overview's own camera (perspective, fitted to the boundary), so
+  // that what is in sight here is in sight there.
   const std::vector<Vec3> points = boundary_points(mesh, topology);
-  const Camera camera = fit_camera_to_points(points, direction, 1.0, {.up = up, .is_perspective = false});
+  const Camera camera = fit_camera_to_points(points, direction, 1.0, {.up = up});
   const Mat4 to_ndc = projection_matrix(camera, 1.0) * view_matrix(camera);
+  const Vec3 forward = normalized(camera.target - camera.eye);
   constexpr int g = kViewpointGrid;
-  // Grid coordinates (x, y in cells, z the NDC depth) of each face corner.
+  // Grid coordinates (x, y in cells) and the distance along the view
+  // direction (z, model units) of each face corner.
   auto grid_of = [&](Index v) {
-    const Vec3 ndc = transform_point(to_ndc, mesh.points[static_cast<std::size_t>(v)]);
-    return Vec3{0.5 * (ndc.x + 1.0) * g, 0.5 * (ndc.y + 1.0) * g, ndc.z};
+    const Vec3& p = mesh.points[static_cast<std::size_t>(v)];
+    const Vec3 ndc = transform_point(to_ndc, p);
+    return Vec3{0.5 * (ndc.x + 1.0) * g, 0.5 * (ndc.y + 1.0) * g, dot(p - camera.eye, forward)};
   };
   std::vector<double> depth(static_cast<std::size_t>(g) * g, std::numeric_limits<double>::infinity());
   auto cell = [&](double x, double y) {
@@ -78,9 +87,14 @@ double visible_flagged_area(const HexMesh& mesh, const Topology& topology, std::
     return static_cast<std::size_t>(cy) * g + static_cast<std::size_t>(cx);
   };
   // 1. The depth buffer of every boundary face (two triangles each), sampled at cell centres.
+  double nearest = std::numeric_limits<double>::infinity(), farthest = -nearest;
   for (Index face : topology.boundary_faces) {
     const Quad& q = topology.faces[static_cast<std::size_t>(face)];
     const Vec3 p[4] = {grid_of(q[0]), grid_of(q[1]), grid_of(q[2]), grid_of(q[3])};
+    for (const Vec3& c : p) {
+      nearest = std::min(nearest, c.z);
+      farthest = std::max(farthest, c.z);
+    }
     for (const auto& t : {std::array<int, 3>{0, 1, 2}, std::array<int, 3>{0, 2, 3}}) {
       const Vec3 &a = p[t[0]], &b = p[t[1]], &c = p[t[2]];
       const double area = edge(a.x, a.y, b.x, b.y, c.x, c.y);
@@ -102,22 +116,33 @@ double visible_flagged_area(const HexMesh& mesh, const Topology& topology, std::
     }
   }
   // 2. Each flagged face whose centre is not behind the nearest surface
-  // there (within 1 % of the depth range: the face itself, or a neighbour
-  // at its depth when it covers no cell centre) counts its projected area.
-  constexpr double kDepthTolerance = 0.02;  // of the NDC depth range [-1, 1]
-  const double cell_side = camera.ortho_height / g;  // model units
+  // there (within kDepthTolerance of the boundary's depth range: the face
+  // itself, or a neighbour at its depth when it covers no cell centre)
+  // counts its projected area, in model units at the camera's target.
+  const double tolerance = kDepthTolerance * std::max(farthest - nearest, 0.0);
+  const double frame = 2.0 * norm(camera.target - camera.eye) * std::tan(0.5 * camera.fov_y_degrees * kPi / 180.0);
+  const double cell_side = frame / g;
   double area = 0.0;
   for (std::size_t i = 0; i < topology.boundary_faces.size(); ++i) {
     if (!flagged[i]) continue;
     const Quad& q = topology.faces[static_cast<std::size_t>(topology.boundary_faces[i])];
     const Vec3 p[4] = {grid_of(q[0]), grid_of(q[1]), grid_of(q[2]), grid_of(q[3])};
-    const Vec3 centre = 0.25 * (p[0] + p[1] + p[2] + p[3]);
-    if (!std::isfinite(centre.x) || !std::isfinite(centre.y) || !std::isfinite(centre.z)) continue;
-    if (centre.z > depth[cell(centre.x, centre.y)] + kDepthTolerance) continue;
     // The projected quad's area, half the cross product of its diagonals.
     const double cells =
         0.5 * std::abs((p[2].x - p[0].x) * (p[3].y - p[1].y) - (p[2].y - p[0].y) * (p[3].x - p[1].x));
-    area += cells * cell_side * cell_side;
+    Vec3 centre3;
+    for (Index v : q) centre3 = centre3 + 0.25 * mesh.points[static_cast<std::size_t>(v)];
+    for (int k = 0; k < 4; ++k) {
+      if (!(flagged[i] & (1 << k))) continue;
+      // The corner's share of the face (where the overview paints its
+      // colour), sampled three quarters of the way from the centre to it.
+      const Vec3 model = centre3 + 0.75 * (mesh.points[static_cast<std::size_t>(q[static_cast<std::size_t>(k)])] - centre3);
+      const Vec3 ndc = transform_point(to_ndc, model);
+      const Vec3 at{0.5 * (ndc.x + 1.0) * g, 0.5 * (ndc.y + 1.0) * g, dot(model - camera.eye, forward)};
+      if (!std::isfinite(at.x) || !std::isfinite(at.y) || at.x < 0 || at.y < 0 || at.x >= g || at.y >= g) continue;
+      if (at.z > depth[cell(at.x, at.y)] + tolerance) continue;
+      area += 0.125 * cells * cell_side * cell_side;
+    }
   }
   return area;
 }

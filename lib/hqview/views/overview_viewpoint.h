@@ -15,7 +15,8 @@
 
 namespace hq {
 
-// What the overview aims at: one flag per topology.boundary_faces entry.
+// What the overview aims at: per topology.boundary_faces entry, a bit mask
+// of its worst corners (bit k: corner k of the face's quad), 0 for none.
 struct WorstFaces {
   std::vector<char> flagged;
   enum class Kind { none, inverted, worst_cluster } kind = Kind::none;
@@ -27,12 +28,15 @@ struct WorstFaces {
 WorstFaces worst_boundary_faces(const Topology& topology, std::span<const double> vertex_quality,
                                 std::span<const Index> worst_cluster);
 
-// The area (model units squared, projected orthographically along
-// direction) of the flagged boundary faces that are in sight from
-// direction: a face counts with its whole projected area when its centre
-// passes a depth test against all boundary faces, rasterised on a
-// kViewpointGrid x kViewpointGrid grid framing the boundary (a face smaller
-// than a cell counts too).
+// The area (model units squared at the camera's target) of the flagged
+// corners' parts of the boundary faces that are in sight from direction,
+// through the overview's camera (perspective, fitted to the boundary): a
+// flagged corner counts an eighth of its face's projected area (the part
+// the overview paints in that corner's colour) when the point three
+// quarters of the way from the face's centre to it passes a depth test (1 %
+// of the boundary's depth range as tolerance) against all boundary faces,
+// rasterised on a kViewpointGrid x kViewpointGrid grid framing the boundary
+// (a face smaller than a cell counts too).
 inline constexpr int kViewpointGrid = 200;
 double visible_flagged_area(const HexMesh& mesh, const Topology& topology, std::span<const char> flagged,
                             const Vec3& direction, const Vec3& up);
