@@ -189,7 +189,7 @@ TEST(ReportPages, CardsTablesAndDiffAgreeWithReportJsonAndNameTheirQuantity) {
   };
   EXPECT_NEAR(std::stod(card("mean scaled Jacobian (per hex)")), q["scaled_jacobian"]["mean"].get<double>(), 5e-6);
   EXPECT_NEAR(std::stod(card("min scaled Jacobian (per hex)")), q["scaled_jacobian"]["min"].get<double>(), 5e-6);
-  EXPECT_EQ(card("degenerate hexes (a zero-length edge)"), "0");
+  EXPECT_EQ(card("degenerate hexes (a zero-length edge or axis)"), "0");
   // The metric table: condition's last cell, under "undefined (1e30)".
   EXPECT_NE(html.find(">undefined (1e30)</th>"), std::string::npos);
   const std::size_t row = html.find("<th scope=\"row\">condition</th>");

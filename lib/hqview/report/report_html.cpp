@@ -364,7 +364,7 @@ void set_headline(data& page, const ReportModel& model) {
     headline.push_back(hausdorff);
   }
   headline.push_back(
-      card("degenerate hexes (a zero-length edge)", show_count(q.scaled_jacobian.num_degenerate), q.scaled_jacobian.num_degenerate > 0));
+      card("degenerate hexes (a zero-length edge or axis)", show_count(q.scaled_jacobian.num_degenerate), q.scaled_jacobian.num_degenerate > 0));
   headline.push_back(card("min vertex quality", show(q.vertex_quality.min), q.vertex_quality.min <= 0));
   if (model.analysis.overlap && model.analysis.overlap->num_coincident_vertices > 0)
     headline.push_back(card("coincident vertices", show_count(model.analysis.overlap->num_coincident_vertices), true));
