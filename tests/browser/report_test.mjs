@@ -201,6 +201,28 @@ if (hasHand) {
   await (await checkPage('hand-boundary', path.join(hand, 'boundary.html'))).close();
 }
 
+// The open lightbox shows the link's image whole across the window (the
+// legend is at its right) and, when it fits, whole in height too, with the
+// legend text (the measure of the 1400 px check below: a rendered view's
+// 19 px per 1200 px of height, at least 11) at least 11 px on the screen.
+async function checkLightboxFits(page, href, what) {
+  await page.waitForFunction(() => { const i = document.querySelector('#lightbox img'); return i && i.complete && i.clientWidth > 0; });
+  const g = await page.$eval('#lightbox img', (i) => {
+    const r = i.getBoundingClientRect();
+    const box = document.getElementById('lightbox');
+    return { src: i.getAttribute('src'), w: r.width, h: r.height, n: i.naturalWidth, nh: i.naturalHeight, left: r.left,
+      right: r.right, top: r.top, bottom: r.bottom, vw: innerWidth, vh: innerHeight, scrolls: box.scrollHeight > box.clientHeight + 1 };
+  });
+  check(g.src === href, `${what}: shows ${g.src}, the link's ${href}`);
+  const legend = (g.w / g.n) * Math.max(11, 19 * g.nh / 1200);
+  check(legend >= 11 - 0.05, `${what}: legend text ${legend.toFixed(1)} px on screen (shown ${g.w.toFixed(0)} of ${g.n} px)`);
+  check(g.left >= -0.5 && g.right <= g.vw + 0.5, `${what}: the image spans ${g.left.toFixed(0)}-${g.right.toFixed(0)} px of a ${g.vw} px window`);
+  const fitsAtReadable = g.nh * Math.min(1, 11 / Math.max(11, 19 * g.nh / 1200)) <= g.vh - 8;
+  if (fitsAtReadable) check(g.top >= -0.5 && g.bottom <= g.vh + 0.5, `${what}: the image spans ${g.top.toFixed(0)}-${g.bottom.toFixed(0)} px of a ${g.vh} px high window`);
+  else check(g.scrolls, `${what}: taller than the window at a readable scale, and the lightbox scrolls`);
+  check(g.w <= g.n + 0.5, `${what}: never enlarged (${g.w.toFixed(0)} of ${g.n} px)`);
+}
+
 // ---- 1400 px: every legend readable, corner charts at one bar width, tables fit (issue 45) ----
 {
   const { page, problems } = await open(path.join(full, 'index.html'), { width: 1400, height: 1000 });
@@ -243,11 +265,21 @@ if (hasHand) {
   const firstLink = 'figure .image > a';
   await page.click(firstLink);
   await page.waitForFunction(() => document.getElementById('lightbox').open && document.querySelector('#lightbox img').complete);
-  const shown = await page.$eval('#lightbox img', (i) => ({ w: i.clientWidth, n: i.naturalWidth, src: i.getAttribute('src') }));
   const href = await page.$eval(firstLink, (a) => a.getAttribute('href'));
-  check(shown.src === href, `lightbox: shows ${shown.src}, the link's ${href}`);
-  check(shown.n > 0 && shown.w === shown.n, `lightbox: the image at its natural width (${shown.w} of ${shown.n} px)`);
+  await checkLightboxFits(page, href, 'lightbox at 1400 x 1000');
   await page.screenshot({ path: path.join(shots, 'full-index-1400px-lightbox.png') });
+  // "1:1" shows the natural size (scrolling), a second press fits again.
+  await page.click('#lightbox .lightbox-zoom');
+  const natural = await page.$eval('#lightbox img', (i) => ({ w: i.clientWidth, n: i.naturalWidth }));
+  check(natural.w === natural.n, `lightbox 1:1: the image at its natural width (${natural.w} of ${natural.n} px)`);
+  check(await page.$eval('#lightbox', (d) => d.open), 'lightbox: 1:1 leaves it open');
+  await page.click('#lightbox .lightbox-zoom');
+  await checkLightboxFits(page, href, 'lightbox after 1:1 twice');
+  // A short window: fitting the height would shrink the legend under 11 px,
+  // so the image keeps the readable scale and the dialog scrolls.
+  await page.setViewportSize({ width: 1400, height: 500 });
+  await checkLightboxFits(page, href, 'lightbox at 1400 x 500');
+  await page.setViewportSize({ width: 1400, height: 1000 });
   await page.keyboard.press('Escape');
   check(!(await page.$eval('#lightbox', (d) => d.open)), 'lightbox: Esc closes it');
   check(await page.$eval(firstLink, (a) => document.activeElement === a), 'lightbox: the focus is back on the view\'s link');
@@ -259,6 +291,38 @@ if (hasHand) {
   await page.screenshot({ path: path.join(shots, 'full-index-1400px.png'), fullPage: true });
   for (const p of problems) check(false, `full at 1400 px: ${p}`);
   await page.close();
+}
+
+// ---- the batch index: its thumbnails open in the same lightbox (issue 45) ----
+{
+  const collection = path.join(outDir, 'collection');
+  fs.mkdirSync(collection, { recursive: true });
+  for (const f of ['ball.mesh', 'twisted_bar.mesh']) fs.copyFileSync(example(f), path.join(collection, f));
+  const batchOut = path.join(outDir, 'batch');
+  execFileSync(hqview, ['batch', collection, '-o', batchOut, '--views', 'thumbnail', '--no-viewer', '--no-overlap',
+    '--data', 'none', '-j', '2', '-q'], { stdio: 'inherit' });
+  const { page, problems } = await open(path.join(batchOut, 'index.html'), { width: 1400, height: 1000 });
+  const links = await page.$$eval('a[data-lightbox]', (as) => as.map((a) => ({ href: a.getAttribute('href'), image: a.getAttribute('data-lightbox') })));
+  check(links.length === 2, `batch index: 2 thumbnails open in the lightbox (${links.length})`);
+  const first = '#mesh-table a[data-lightbox]';
+  const image = await page.$eval(first, (a) => a.getAttribute('data-lightbox'));
+  check(/\/views\/thumbnail\.png$/.test(image), `batch index: the lightbox image is the thumbnail (${image})`);
+  await page.click(first);
+  await page.waitForFunction(() => document.getElementById('lightbox').open);
+  await checkLightboxFits(page, image, 'batch index lightbox');
+  await page.screenshot({ path: path.join(shots, 'batch-index-1400px-lightbox.png') });
+  check(page.url().endsWith('index.html') && !page.url().includes('.mesh/'), `batch index: the page stayed (${page.url()})`);
+  await page.keyboard.press('Escape');
+  check(!(await page.$eval('#lightbox', (d) => d.open)), 'batch index lightbox: Esc closes it');
+  check(await page.$eval(first, (a) => document.activeElement === a), 'batch index lightbox: the focus is back on the thumbnail');
+  // One code: the script and style are those of a mesh's index.html.
+  const batchCode = await page.$eval('#hq-lightbox', (e) => e.textContent + document.getElementById('hq-lightbox-style').textContent);
+  for (const p of problems) check(false, `batch index: ${p}`);
+  await page.close();
+  const other = await open(path.join(full, 'index.html'));
+  const pageCode = await other.page.$eval('#hq-lightbox', (e) => e.textContent + document.getElementById('hq-lightbox-style').textContent);
+  check(batchCode === pageCode, 'batch index: the lightbox code is index.html\'s');
+  await other.page.close();
 }
 
 // ---- narrow screen: no horizontal overflow ----

@@ -329,11 +329,13 @@ TEST_F(Comparison, ManifestTablesEqualTheReportsAndBoldTheBest) {
                                        "--views", "thumbnail", "--no-overlap", "--no-viewer", "-q"});
   ASSERT_EQ(thumbs.exit_code, 0) << thumbs.err;
   const std::string page = read_text(dir / "thumbs/index.html");
-  int images = 0;
-  for (std::size_t at = page.find("/views/thumbnail.png\""); at != std::string::npos;
-       at = page.find("/views/thumbnail.png\"", at + 1))
-    ++images;
-  EXPECT_EQ(images, 14);  // one per cell of the comparison, one per row of the mesh table
+  auto count = [&](const std::string& s) {
+    int n = 0;
+    for (std::size_t at = page.find(s); at != std::string::npos; at = page.find(s, at + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(count("/views/thumbnail.png\" alt="), 14);  // one per cell of the comparison, one per row of the mesh table
+  EXPECT_EQ(count("\" data-lightbox=\""), 14);           // each opens in the lightbox
   for (const json& m : read_json(dir / "thumbs/index.json")["meshes"]) {
     ASSERT_EQ(m["thumbnail"], "views/thumbnail.png") << m["path"];
     const fs::path bundle = dir / "thumbs" / m["bundle"].get<std::string>();

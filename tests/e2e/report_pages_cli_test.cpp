@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.h"
@@ -156,5 +157,79 @@ TEST(ReportPages, OutputOnAFileOrAForeignDirectoryNeedsForce) {
   EXPECT_EQ(entries, (std::vector<std::string>{"file.txt", "photos"}));
 }
 
+
+// Issue 45c: the same quantity under the same number everywhere, and each
+// ambiguous one named. The twisted bar's 6 inverted hexes have no zero-length
+// edge (degenerate hexes 0) but Verdict's condition is undefined (1e30) for
+// them (quality.metrics.condition.num_degenerate 6); the per-hex, per-corner
+// and per-vertex scaled Jacobian means differ. index.html's cards and metric
+// table, summary.md and `hqview diff` must give report.json's values with
+// labels that say which quantity each is.
+TEST(ReportPages, CardsTablesAndDiffAgreeWithReportJsonAndNameTheirQuantity) {
+  const fs::path dir = fresh_output_dir("pages_quantities");
+  for (const char* mesh : {"ball.mesh", "twisted_bar.mesh"}) {
+    const CliResult r = run_hqview({"analyze", example(mesh).string(), "--views", "histogram", "--no-viewer", "--data",
+                                    "none", "-o", (dir / mesh).string(), "-q"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  const nlohmann::json report = nlohmann::json::parse(read_text(dir / "twisted_bar.mesh/report.json"));
+  const nlohmann::json& q = report["quality"];
+  ASSERT_EQ(q["scaled_jacobian"]["num_degenerate"], 0);
+  ASSERT_GT(q["metrics"]["condition"]["num_degenerate"].get<int>(), 0);
+  ASSERT_NE(q["scaled_jacobian"]["mean"], q["corner_scaled_jacobian"]["mean"]);
+
+  // index.html: a card's value is the text before its label.
+  const std::string html = read_text(dir / "twisted_bar.mesh/index.html");
+  auto card = [&](const std::string& label) {
+    const std::size_t at = html.find("</div><div class=\"label\">" + label + "</div>");
+    EXPECT_NE(at, std::string::npos) << "no card " << label;
+    if (at == std::string::npos) return std::string();
+    const std::size_t from = html.rfind('>', at - 1) + 1;
+    return html.substr(from, at - from);
+  };
+  EXPECT_NEAR(std::stod(card("mean scaled Jacobian (per hex)")), q["scaled_jacobian"]["mean"].get<double>(), 5e-6);
+  EXPECT_NEAR(std::stod(card("min scaled Jacobian (per hex)")), q["scaled_jacobian"]["min"].get<double>(), 5e-6);
+  EXPECT_EQ(card("degenerate hexes (a zero-length edge or axis)"), "0");
+  // The metric table: condition's last cell, under "undefined" (its title: Verdict's 1e30).
+  EXPECT_NE(html.find("Verdict returns 1e30 for the metric"), std::string::npos);
+  EXPECT_NE(html.find(">undefined</th>"), std::string::npos);
+  const std::size_t row = html.find("<th scope=\"row\">condition</th>");
+  ASSERT_NE(row, std::string::npos);
+  const std::size_t end = html.find("</tr>", row);
+  const std::size_t last = html.rfind("<td>", end) + 4;
+  EXPECT_EQ(html.substr(last, html.find("</td>", last) - last),
+            std::to_string(q["metrics"]["condition"]["num_degenerate"].get<int>()));
+
+  const std::string summary = read_text(dir / "twisted_bar.mesh/summary.md");
+  EXPECT_NE(summary.find("| min scaled Jacobian (per hex) | mean scaled Jacobian (per hex) |"), std::string::npos);
+
+  // hqview diff: the changed keys with report.json's values and, for the
+  // ambiguous ones, their quantity.
+  const CliResult d = run_hqview({"diff", (dir / "ball.mesh").string(), (dir / "twisted_bar.mesh").string()});
+  const nlohmann::json base = nlohmann::json::parse(read_text(dir / "ball.mesh/report.json"));
+  auto line_of = [&](const std::string& key) {
+    const std::size_t at = d.out.find("\n" + key + ": ");
+    EXPECT_NE(at, std::string::npos) << key << " not in\n" << d.out;
+    return at == std::string::npos ? std::string() : d.out.substr(at + 1, d.out.find('\n', at + 1) - at - 1);
+  };
+  const std::string condition = line_of("quality.metrics.condition.num_degenerate");
+  EXPECT_EQ(condition.substr(0, condition.find(" (")),
+            "quality.metrics.condition.num_degenerate: " +
+                std::to_string(base["quality"]["metrics"]["condition"]["num_degenerate"].get<int>()) + " -> " +
+                std::to_string(q["metrics"]["condition"]["num_degenerate"].get<int>()));
+  EXPECT_NE(condition.find("[hexes where Verdict's condition is undefined (1e30"), std::string::npos) << condition;
+  EXPECT_NE(line_of("quality.corner_scaled_jacobian.mean").find("[per corner"), std::string::npos);
+  EXPECT_NE(line_of("quality.vertex_quality.mean").find("[per vertex"), std::string::npos);
+  EXPECT_NE(line_of("quality.scaled_jacobian.mean").find("[per hex"), std::string::npos);
+  // The headline table's mean scaled Jacobian is the per-hex one, and says so.
+  const std::size_t mean_row = d.out.find("  mean scaled Jacobian ");
+  ASSERT_NE(mean_row, std::string::npos);
+  std::istringstream cells(d.out.substr(mean_row + 23, d.out.find('\n', mean_row) - mean_row - 23));
+  double baseline = 0.0, current = 0.0;
+  cells >> baseline >> current;
+  EXPECT_NEAR(baseline, base["quality"]["scaled_jacobian"]["mean"].get<double>(), 5e-6);
+  EXPECT_NEAR(current, q["scaled_jacobian"]["mean"].get<double>(), 5e-6);
+  EXPECT_NE(d.out.find("(scaled Jacobian: per hex"), std::string::npos);
+}
 }  // namespace
 }  // namespace hq::test

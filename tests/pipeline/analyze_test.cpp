@@ -79,8 +79,9 @@ std::map<std::string, std::size_t> first_frames(const AnalyzeResult& result) {
         std::any_of(v.files.begin(), v.files.end(), [](const std::string& f) { return f.ends_with(".svg"); });
     if (is_chart) continue;
     first[v.id] = frame;
-    // compare: two meshes; uv_key: front, back and the atlas.
-    frame += v.id == "compare" ? 2 : v.id == "uv_key" ? 3 : v.files.size();
+    // compare: two meshes; uv_key: front, back and the atlas, each then
+    // again in chart-id colours (where its numbers may go).
+    frame += v.id == "compare" ? 2 : v.id == "uv_key" ? 6 : v.files.size();
   }
   first["(end)"] = frame;
   return first;

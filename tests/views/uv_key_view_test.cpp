@@ -8,9 +8,13 @@
 #include <set>
 
 #include "hqview/render/label_layout.h"
+#include "hqview/render/osmesa_renderer.h"
+#include "support/fixtures.h"
+#include <memory>
 
 #include "hqview/uv/uv_atlas.h"
 #include "support/surface_fixtures.h"
+#include "uv_key_checks.h"
 
 namespace hq {
 namespace {
@@ -72,11 +76,16 @@ void expect_disjoint_and_near(const std::vector<UvKeyNumberAnchor>& anchors, con
     EXPECT_GE(n.box.y, frame.y);
     EXPECT_LE(n.box.x + n.box.width, frame.x + frame.width);
     EXPECT_LE(n.box.y + n.box.height, frame.y + frame.height);
-    for (std::size_t j = 0; j < i; ++j)
-      if (numbers[j].placed) EXPECT_FALSE(boxes_overlap(n.box, numbers[j].box)) << n.chart << " and " << numbers[j].chart;
+    for (std::size_t j = 0; j < i; ++j) {
+      if (numbers[j].placed) {
+        EXPECT_FALSE(boxes_overlap(n.box, numbers[j].box)) << n.chart << " and " << numbers[j].chart;
+      }
+    }
     const ScreenDisc anchor{double(n.anchor_x), double(n.anchor_y), 1.0};
     const bool on_anchor = box_meets_disc(n.box, anchor);
-    if (!on_anchor && !n.has_leader) EXPECT_LE(disc_box_gap(anchor, n.box), 10.0 * style.scale) << n.chart;
+    if (!on_anchor && !n.has_leader) {
+      EXPECT_LE(disc_box_gap(anchor, n.box), 10.0 * style.scale) << n.chart;
+    }
   }
 }
 
@@ -107,6 +116,18 @@ TEST(UvKey, NumbersOfARealAtlasInASmallFrameAreDisjoint) {
     anchors.push_back({l.chart, static_cast<int>(std::lround(l.uv[0] * 160)), static_cast<int>(std::lround((1 - l.uv[1]) * 160))});
   ASSERT_GT(anchors.size(), 3u);
   expect_disjoint_and_near(anchors, place_uv_key_numbers(anchors, frame, 22, style), frame, style);
+}
+
+}  // namespace
+}  // namespace hq
+
+namespace hq {
+namespace {
+
+TEST(UvKeyFigure, NumbersLieOnTheirChartsOrLeadToThem) {
+  const TriSurface surface = test::icosphere(3);
+  const UvAtlas atlas = build_uv_atlas(surface, UvOptions{});
+  expect_numbers_on_their_charts(surface, atlas, atlas.num_charts);
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include "hqview/report/comparison.h"
 #include "hqview/report/escape.h"
 #include "hqview/report/json_path.h"
+#include "hqview/report/key_quantity.h"
 
 namespace hq {
 namespace fs = std::filesystem;
@@ -514,6 +515,9 @@ std::string side_by_side_text(const DiffSideBySide& t) {
                        (r.is_worse ? "  worse" : "");
     out += line + "\n";
   }
+  // The rows' quantities, where their names are ambiguous (key_quantity.h).
+  out += "  (scaled Jacobian: " + key_quantity("quality.scaled_jacobian.min") +
+         "; degenerate hexes: " + key_quantity("quality.num_degenerate") + ")\n";
   return out + "\n";
 }
 
@@ -528,7 +532,7 @@ std::string diff_text(const DiffResult& d) {
     out += s.mesh + ": status " + s.baseline + " -> " + s.current + "\n";
   for (const DiffValue& v : d.changed)
     out += (v.mesh.empty() ? "" : v.mesh + ": ") + v.key + ": " + show(v.baseline) + " -> " + show(v.current) + " (" +
-           show_delta(v) + ")\n";
+           show_delta(v) + ")" + (key_quantity(v.key).empty() ? "" : "  [" + key_quantity(v.key) + "]") + "\n";
   for (const DiffCellChange& c : d.cells)
     out += std::string(c.is_better ? "better: " : "worse: ") + c.model + " · " + c.method +
            (c.variant.empty() ? "" : " · " + c.variant) + ": " + c.key + ": " + format_double(c.baseline) + " -> " +

@@ -557,6 +557,7 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
   page.set("has_comparison", has_comparison(entries));
   if (has_comparison(entries))
     page.set("comparison", comparison_data(entries, keys ? *keys : default_comparison_keys(entries)));
+  page.set("lightbox", std::string(report_template("lightbox.html")));
   mustache tmpl{std::string(report_template("batch_index.html.mustache"))};
   if (!tmpl.is_valid()) throw Error("batch index template: " + tmpl.error_message());
   tmpl.set_custom_escape([](const std::string& s) { return html_escape(s); });

@@ -347,8 +347,8 @@ void set_headline(data& page, const ReportModel& model) {
   data headline{data::type::list};
   headline.push_back(card("vertices", show_count(m.num_vertices)));
   headline.push_back(card("hexahedra", show_count(m.num_hexes)));
-  headline.push_back(card("min scaled Jacobian", show(q.scaled_jacobian.min), q.scaled_jacobian.min <= 0));
-  headline.push_back(card("mean scaled Jacobian", show(q.scaled_jacobian.mean)));
+  headline.push_back(card("min scaled Jacobian (per hex)", show(q.scaled_jacobian.min), q.scaled_jacobian.min <= 0));
+  headline.push_back(card("mean scaled Jacobian (per hex)", show(q.scaled_jacobian.mean)));
   headline.push_back(
       card("inverted hexes", show_count(q.scaled_jacobian.num_inverted), q.scaled_jacobian.num_inverted > 0));
   if (model.analysis.overlap)
@@ -364,7 +364,7 @@ void set_headline(data& page, const ReportModel& model) {
     headline.push_back(hausdorff);
   }
   headline.push_back(
-      card("degenerate hexes", show_count(q.scaled_jacobian.num_degenerate), q.scaled_jacobian.num_degenerate > 0));
+      card("degenerate hexes (a zero-length edge or axis)", show_count(q.scaled_jacobian.num_degenerate), q.scaled_jacobian.num_degenerate > 0));
   headline.push_back(card("min vertex quality", show(q.vertex_quality.min), q.vertex_quality.min <= 0));
   if (model.analysis.overlap && model.analysis.overlap->num_coincident_vertices > 0)
     headline.push_back(card("coincident vertices", show_count(model.analysis.overlap->num_coincident_vertices), true));
@@ -663,6 +663,7 @@ std::string index_html(const ReportModel& model) {
   set_mesh_rows(page, model.analysis.mesh_summary);
   set_glyphs(page, model, index, cluster_rows);
   set_overlap(page, model);
+  page.set("lightbox", std::string(report_template("lightbox.html")));
   mustache tmpl{std::string(report_template("index.html.mustache"))};
   if (!tmpl.is_valid()) throw Error("internal: index.html template: " + tmpl.error_message());
   tmpl.set_custom_escape([](const std::string& s) { return html_escape(s); });
@@ -767,6 +768,7 @@ std::string boundary_html(const ReportModel& model) {
   page.set("has_warnings", !e.warnings.empty());
   page.set("inputs", input_rows(model));
 
+  page.set("lightbox", std::string(report_template("lightbox.html")));
   mustache tmpl{std::string(report_template("boundary.html.mustache"))};
   if (!tmpl.is_valid()) throw Error("internal: boundary.html template: " + tmpl.error_message());
   tmpl.set_custom_escape([](const std::string& s) { return html_escape(s); });

@@ -51,7 +51,7 @@ std::string summary_markdown(const ReportModel& model, const std::string& link_b
   md += "## HQView: " + markdown_escape(name) + "\n\n";
 
   // The papers' headline row.
-  std::string header = "| #V | #H | min scaled Jacobian | mean scaled Jacobian | #inverted | overlapping hexes |";
+  std::string header = "| #V | #H | min scaled Jacobian (per hex) | mean scaled Jacobian (per hex) | #inverted | overlapping hexes |";
   std::string align = "|---:|---:|---:|---:|---:|---:|";
   std::string row = "| " + std::to_string(m.num_vertices) + " | " + std::to_string(m.num_hexes) + " | " +
                     show(q.scaled_jacobian.min) + " | " + show(q.scaled_jacobian.mean) + " | " +

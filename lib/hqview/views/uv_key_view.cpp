@@ -79,46 +79,6 @@ Scene atlas_scene(const TriSurface& reference, const UvAtlas& atlas) {
   return scene;
 }
 
-// Per chart, where its number goes in a 3D view along `direction`: the
-// chart's triangle facing the eye (normal within 70 degrees of it) nearest
-// the area centroid of the chart's facing triangles; none when less than 2 %
-// of the chart faces the eye. (Not an occlusion test: a number may sit on a
-// part hidden behind another.)
-std::vector<std::pair<Index, Vec3>> facing_anchors(const TriSurface& reference, const UvAtlas& atlas,
-                                                   const Vec3& direction) {
-  const std::size_t n = std::min(atlas.triangle_chart.size(), reference.triangles.size());
-  const Vec3 to_eye = normalized(-direction);
-  const std::size_t charts = static_cast<std::size_t>(atlas.num_charts);
-  std::vector<double> area(charts, 0.0), facing(charts, 0.0);
-  std::vector<Vec3> sum(charts);
-  for (std::size_t t = 0; t < n; ++t) {
-    const std::size_t c = static_cast<std::size_t>(atlas.triangle_chart[t]);
-    const Vec3 &a = corner(reference, t, 0), &b = corner(reference, t, 1), &q = corner(reference, t, 2);
-    const Vec3 normal = cross(b - a, q - a);
-    const double w = 0.5 * norm(normal);
-    area[c] += w;
-    if (dot(normalized(normal), to_eye) < 0.34) continue;
-    facing[c] += w;
-    sum[c] = sum[c] + (w / 3.0) * (a + b + q);
-  }
-  std::vector<double> best(charts, INFINITY);
-  std::vector<std::pair<Index, Vec3>> anchors(charts, {kNoIndex, Vec3{}});
-  for (std::size_t t = 0; t < n; ++t) {
-    const std::size_t c = static_cast<std::size_t>(atlas.triangle_chart[t]);
-    if (!(facing[c] > 0.02 * area[c])) continue;
-    const Vec3 &a = corner(reference, t, 0), &b = corner(reference, t, 1), &q = corner(reference, t, 2);
-    if (dot(normalized(cross(b - a, q - a)), to_eye) < 0.34) continue;
-    const Vec3 m = (a + b + q) / 3.0;
-    const double d = squared_norm(m - sum[c] / facing[c]);
-    if (d < best[c]) {
-      best[c] = d;
-      anchors[c] = {static_cast<Index>(c), m};
-    }
-  }
-  std::erase_if(anchors, [](const auto& a) { return a.first == kNoIndex; });
-  return anchors;
-}
-
 // The pale box a number is written in, centred at (x, y).
 PixelRect number_box(int x, int y, Index number, int size, const AnnotationStyle& style) {
   const PixelRect extent = text_extent(std::to_string(number), size, style);
@@ -150,11 +110,28 @@ void draw_numbers(Image& image, const std::vector<UvKeyNumber>& numbers, int siz
   }
 }
 
-// Pixel of a world point in an image area drawn with `camera`.
-std::array<int, 2> to_pixel(const Camera& camera, const PixelRect& area, const Vec3& p) {
-  const Vec3 ndc = project_to_ndc(camera, static_cast<double>(area.width) / area.height, p);
-  return {area.x + static_cast<int>(std::lround((ndc.x + 1.0) * 0.5 * area.width)),
-          area.y + static_cast<int>(std::lround((1.0 - ndc.y) * 0.5 * area.height))};
+// A scene of reference_scene or atlas_scene recoloured for chart_ids: each
+// triangle in its chart's id colour, unlit, no outlines.
+void as_id_scene(Scene& scene, const UvAtlas& atlas) {
+  TriangleSet& tris = scene.triangles.front();
+  for (std::size_t i = 0; i < tris.colors.size(); ++i) tris.colors[i] = chart_id_color(atlas.triangle_chart[i / 3]);
+  tris.scalars.clear();
+  tris.is_lit = false;
+  scene.lines.clear();
+  scene.background = {255, 255, 255, 255};
+}
+
+// Numbers a frame (area of the figure) from its id frame: in a 3D frame a
+// chart needs 20 pixels (at 1200 px height) to get a number there, in the
+// atlas (which shows every chart) one.
+void number_frame(Image& figure, const PixelRect& area, const Image& id_frame, int number_size,
+                  const AnnotationStyle& style, bool is_atlas, std::vector<UvKeyFrame>* frames) {
+  ChartIdImage ids = chart_ids(id_frame);
+  const int min_pixels = is_atlas ? 1 : std::max(4, static_cast<int>(std::lround(20 * style.scale * style.scale)));
+  std::vector<UvKeyNumber> numbers =
+      place_uv_key_numbers(visible_chart_anchors(ids, area.x, area.y, min_pixels), area, number_size, style);
+  draw_numbers(figure, numbers, number_size, style);
+  if (frames) frames->push_back({area, std::move(ids), std::move(numbers)});
 }
 
 }  // namespace
@@ -231,6 +208,82 @@ std::vector<UvChartLabel> uv_chart_labels(const TriSurface& reference, const UvA
   return anchors;
 }
 
+Rgba8 chart_id_color(Index chart) {
+  const auto code = static_cast<std::uint32_t>(chart) + 1u;  // 0: no chart
+  return {static_cast<std::uint8_t>(code & 0xFFu), static_cast<std::uint8_t>((code >> 8) & 0xFFu),
+          static_cast<std::uint8_t>((code >> 16) & 0x7Fu), 255};
+}
+
+ChartIdImage chart_ids(const Image& id_frame) {
+  ChartIdImage out;
+  out.width = id_frame.width;
+  out.height = id_frame.height;
+  const std::size_t n = static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height);
+  std::vector<std::uint32_t> code(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint8_t* p = &id_frame.rgba[4 * i];
+    // The background (white) and any blend with it have the high bit of blue set or are not opaque.
+    code[i] = p[2] >= 0x80 || p[3] != 255 ? 0u : std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16;
+  }
+  out.ids.assign(n, kNoIndex);
+  for (int y = 1; y + 1 < out.height; ++y)
+    for (int x = 1; x + 1 < out.width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * out.width + x;
+      const std::uint32_t c = code[i];
+      if (c == 0 || code[i - 1] != c || code[i + 1] != c || code[i - out.width] != c || code[i + out.width] != c)
+        continue;
+      out.ids[i] = static_cast<Index>(c - 1);
+    }
+  return out;
+}
+
+std::vector<UvKeyNumberAnchor> visible_chart_anchors(const ChartIdImage& ids, int x0, int y0, int min_pixels) {
+  const int w = ids.width, h = ids.height;
+  // Chessboard distance to the nearest pixel of another id (kNoIndex and
+  // outside the frame included): 1 on a chart's edge; two passes.
+  constexpr int kFar = 1 << 29;
+  std::vector<int> d(ids.ids.size());
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const Index c = ids.at(x, y);
+      d[static_cast<std::size_t>(y) * w + x] = c == kNoIndex ? 0 : kFar;
+    }
+  auto relax = [&](int x, int y, int dx, int dy) {
+    int& here = d[static_cast<std::size_t>(y) * w + x];
+    if (here == 0) return;
+    const int nx = x + dx, ny = y + dy;
+    const int there = nx < 0 || ny < 0 || nx >= w || ny >= h || ids.at(nx, ny) != ids.at(x, y)
+                          ? 0
+                          : d[static_cast<std::size_t>(ny) * w + nx];
+    here = std::min(here, there + 1);
+  };
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (const auto& [dx, dy] : {std::pair{-1, -1}, std::pair{0, -1}, std::pair{1, -1}, std::pair{-1, 0}}) relax(x, y, dx, dy);
+  for (int y = h - 1; y >= 0; --y)
+    for (int x = w - 1; x >= 0; --x)
+      for (const auto& [dx, dy] : {std::pair{1, 1}, std::pair{0, 1}, std::pair{-1, 1}, std::pair{1, 0}}) relax(x, y, dx, dy);
+  struct Best {
+    int count = 0, room = 0, x = 0, y = 0;
+  };
+  std::vector<Best> best;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const Index c = ids.at(x, y);
+      if (c == kNoIndex) continue;
+      if (static_cast<std::size_t>(c) >= best.size()) best.resize(static_cast<std::size_t>(c) + 1);
+      Best& b = best[static_cast<std::size_t>(c)];
+      ++b.count;
+      const int r = d[static_cast<std::size_t>(y) * w + x];
+      if (r > b.room) b = {b.count, r, x, y};
+    }
+  std::vector<UvKeyNumberAnchor> anchors;
+  for (std::size_t c = 0; c < best.size(); ++c)
+    if (best[c].count >= min_pixels)
+      anchors.push_back({static_cast<Index>(c), x0 + best[c].x, y0 + best[c].y, best[c].room});
+  return anchors;
+}
+
 std::vector<UvKeyNumber> place_uv_key_numbers(const std::vector<UvKeyNumberAnchor>& anchors, const PixelRect& bounds,
                                               int text_size, const AnnotationStyle& style) {
   LabelLayoutOptions options;
@@ -242,11 +295,15 @@ std::vector<UvKeyNumber> place_uv_key_numbers(const std::vector<UvKeyNumberAncho
   std::vector<UvKeyNumber> numbers;
   std::vector<PixelRect> taken;
   for (const UvKeyNumberAnchor& a : anchors) {
-    UvKeyNumber n{a.chart, a.x, a.y};
+    UvKeyNumber n;
+    n.chart = a.chart;
+    n.anchor_x = a.x;
+    n.anchor_y = a.y;
     const PixelRect centred = number_box(a.x, a.y, a.chart, text_size, style);
-    const bool free = inside(centred, bounds) && std::none_of(taken.begin(), taken.end(), [&](const PixelRect& t) {
-                        return boxes_overlap(t, centred);
-                      });
+    // The centred box on the chart's own pixels (UvKeyNumberAnchor::room).
+    const bool fits = 2LL * a.room > std::max(centred.width, centred.height) + 1LL;
+    const bool free = fits && inside(centred, bounds) &&
+                      std::none_of(taken.begin(), taken.end(), [&](const PixelRect& t) { return boxes_overlap(t, centred); });
     if (free) {
       n.placed = true;
       n.box = centred;
@@ -255,7 +312,9 @@ std::vector<UvKeyNumber> place_uv_key_numbers(const std::vector<UvKeyNumberAncho
       if (const std::optional<PlacedLabel> p = place_labels(request, {}, taken, options)[0]) {
         n.placed = true;
         n.box = p->box;
-        n.has_leader = disc_box_gap(request[0].anchor, p->box) > options.leader_distance;
+        // Off its anchor the box may cover other charts: a leader (and the
+        // dot at the anchor) says which chart it names, however short.
+        n.has_leader = true;
       }
     }
     if (n.placed) taken.push_back(n.box);
@@ -265,7 +324,7 @@ std::vector<UvKeyNumber> place_uv_key_numbers(const std::vector<UvKeyNumberAncho
 }
 
 Image render_uv_key(const TriSurface& reference, const UvAtlas& atlas, const BoundaryViewOptions& options,
-                    Renderer& renderer) {
+                    Renderer& renderer, std::vector<UvKeyFrame>* frames) {
   AnnotationStyle style = annotation_style_for(options.height);
   style.background = options.background;
   // Layout: the title on top; the left half two 3D views (front over back),
@@ -274,13 +333,15 @@ Image render_uv_key(const TriSurface& reference, const UvAtlas& atlas, const Bou
   Image figure = make_image(options.width, options.height, options.background);
   if (!options.title.empty()) draw_title(figure, layout.title, options.title, style);
   const int number_size = std::max(style.min_text_size, static_cast<int>(std::lround(22 * style.scale)));
-  const std::vector<UvChartLabel> anchors = uv_chart_labels(reference, atlas);
 
   Box3 box;
   for (const auto& t : reference.triangles)
     for (Index v : t) box.add(reference.points[static_cast<std::size_t>(v)]);
   const Vec3 origin = 0.5 * (box.lo + box.hi);
   const Scene scene3d = reference_scene(reference, atlas, origin);
+  Scene id3d = reference_scene(reference, atlas, origin);
+  as_id_scene(id3d, atlas);
+  if (frames) frames->clear();
   std::vector<Vec3> points(reference.points.begin(), reference.points.end());
   const int half = layout.view.height / 2;
   for (int row = 0; row < 2; ++row) {
@@ -289,12 +350,8 @@ Image render_uv_key(const TriSurface& reference, const UvAtlas& atlas, const Bou
     const Camera camera = fit_camera_to_points(points, direction, static_cast<double>(area.width) / area.height,
                                                {.up = options.up});
     paste(figure, renderer.render(scene3d, camera, area.width, area.height), area.x, area.y);
-    std::vector<UvKeyNumberAnchor> frame;
-    for (const auto& [chart, position] : facing_anchors(reference, atlas, direction)) {
-      const auto [x, y] = to_pixel(camera, area, position);
-      frame.push_back({chart, x, y});
-    }
-    draw_numbers(figure, place_uv_key_numbers(frame, area, number_size, style), number_size, style);
+    number_frame(figure, area, renderer.render(id3d, camera, area.width, area.height), number_size, style, false,
+                 frames);
     draw_text(figure, area.x + number_size / 2, area.y + number_size + 4, row == 0 ? "front" : "back",
               number_size, style);
   }
@@ -304,12 +361,10 @@ Image render_uv_key(const TriSurface& reference, const UvAtlas& atlas, const Bou
   Scene uv_scene = atlas_scene(reference, atlas);
   uv_scene.background = options.background;
   paste(figure, renderer.render(uv_scene, camera, uv_area.width, uv_area.height), uv_area.x, uv_area.y);
-  std::vector<UvKeyNumberAnchor> frame;
-  for (const UvChartLabel& a : anchors) {
-    const auto [x, y] = to_pixel(camera, uv_area, {a.uv[0], a.uv[1], 0.0});
-    frame.push_back({a.chart, x, y});
-  }
-  draw_numbers(figure, place_uv_key_numbers(frame, uv_area, number_size, style), number_size, style);
+  Scene uv_ids = atlas_scene(reference, atlas);
+  as_id_scene(uv_ids, atlas);
+  number_frame(figure, uv_area, renderer.render(uv_ids, camera, uv_area.width, uv_area.height), number_size, style,
+               true, frames);
   return figure;
 }
 

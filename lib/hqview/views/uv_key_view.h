@@ -45,12 +45,20 @@ std::vector<UvChartLabel> uv_chart_labels(const TriSurface& reference, const UvA
 // that box is inside `bounds` and overlaps no box placed before it; else it
 // goes to the first free place around the anchor (render/label_layout's
 // candidates: 8 directions, rings farther out) with a leader line back to
-// the anchor when more than 10 px (at 1200 px height) away. Numbers are
+// the anchor and a dot on it (however short: beside its anchor, the box may
+// lie on another chart). A box centred on its anchor must also lie on the
+// anchor's chart (room below). Numbers are
 // placed in the anchors' order; one with no free place in the frame is left
 // out (placed false). The boxes of placed numbers are pairwise disjoint.
 struct UvKeyNumberAnchor {
   Index chart = 0;
   int x = 0, y = 0;  // the anchor pixel, on the chart
+  // The chart's room around the anchor: the box centred on it lies on the
+  // chart's own pixels when its half width and half height are < room
+  // (chessboard distance to the nearest pixel of anything else). A number
+  // whose centred box does not fit is placed beside it with a leader line,
+  // whatever the distance, so that it never reads as another chart's.
+  int room = 1 << 30;
 };
 struct UvKeyNumber {
   Index chart = 0;
@@ -62,9 +70,41 @@ struct UvKeyNumber {
 std::vector<UvKeyNumber> place_uv_key_numbers(const std::vector<UvKeyNumberAnchor>& anchors, const PixelRect& bounds,
                                               int text_size, const AnnotationStyle& style);
 
-// The figure: options.width x options.height, title on top. Throws
-// RenderError from the renderer or the font.
+// Which chart each pixel of a frame shows: the frame drawn unlit, without
+// outlines, each chart in chart_id_color; a pixel is its chart's only when it
+// and its 4 neighbours have that exact colour (supersampled edges blend),
+// else kNoIndex (also the background and other charts' blends).
+Rgba8 chart_id_color(Index chart);
+struct ChartIdImage {
+  int width = 0, height = 0;
+  std::vector<Index> ids;  // row-major, top row first
+  Index at(int x, int y) const {
+    return x < 0 || y < 0 || x >= width || y >= height ? kNoIndex
+                                                       : ids[static_cast<std::size_t>(y) * width + x];
+  }
+};
+ChartIdImage chart_ids(const Image& id_frame);
+
+// Per chart with at least min_pixels pixels in the frame, the anchor of its
+// number: its pixel farthest (chessboard distance) from any other pixel
+// (the first in row order of those), with that distance as room; offset by
+// (x0, y0), the frame's place in the figure. Chart order.
+std::vector<UvKeyNumberAnchor> visible_chart_anchors(const ChartIdImage& ids, int x0, int y0, int min_pixels);
+
+// What a frame of the figure shows (for tests): its place, its chart ids,
+// its numbers.
+struct UvKeyFrame {
+  PixelRect area;
+  ChartIdImage ids;
+  std::vector<UvKeyNumber> numbers;
+};
+
+// The figure: options.width x options.height, title on top; each frame's
+// numbers anchored by visible_chart_anchors on the frame's chart ids (so a
+// number names a chart the eye sees, not one hidden behind another). Throws
+// RenderError from the renderer or the font. frames: when given, the three
+// frames (front, back, atlas).
 Image render_uv_key(const TriSurface& reference, const UvAtlas& atlas, const BoundaryViewOptions& options,
-                    Renderer& renderer);
+                    Renderer& renderer, std::vector<UvKeyFrame>* frames = nullptr);
 
 }  // namespace hq

@@ -27,6 +27,7 @@
 #include "hqview/views/boundary_views.h"
 #include "hqview/views/detail_views.h"
 #include "hqview/views/main_views.h"
+#include "hqview/views/overview_viewpoint.h"
 #include "hqview/views/overview_views.h"
 #include "hqview/views/structure_views.h"
 #include "hqview/views/uv_key_view.h"
@@ -53,6 +54,7 @@ struct ViewContext {
   std::size_t num_top = 0;            // clusters with a C view
   std::vector<Index> local_vertices;  // views D and E
   const FrameRecord* last_frame = nullptr;  // the frame rendered last
+  OverviewViewpoint overview_viewpoint{};   // the overview's and thumbnail's eye (overview_viewpoint.h)
 
   Index cluster_of(Index v) const { return glyphs->vertex_cluster[static_cast<std::size_t>(v)]; }
   const std::vector<double>& quality() const { return a.field.vertex_quality; }
@@ -174,6 +176,11 @@ bool has_inputs(const Analysis& a, ViewNeeds needs) {
 std::vector<ViewFile> build_overview(ViewContext& c) {
   auto overview = sized<OverviewOptions>(c);
   overview.title = c.name + ": vertex quality on the boundary";
+  const OverviewViewpoint& eye = c.overview_viewpoint;
+  overview.view_direction = eye.direction;
+  if (!eye.is_default)
+    overview.title += " (from " + viewpoint_name(eye.direction, overview.up) + ", the side showing the " +
+                      (eye.target == WorstFaces::Kind::inverted ? "inverted hexes" : "worst cluster") + ")";
   Image image = render_quality_overview(c.a.mesh, c.a.topology, c.quality(), overview, c.renderer);
   return {framed("views/overview.png", std::move(image), c)};
 }
@@ -401,7 +408,8 @@ std::vector<ViewFile> build_size_gradation(ViewContext& c) {
 }
 
 // 320 x 240, no title, legend or edges: the boundary coloured by vertex quality
-// from the three-quarter view of --up, the camera fitted to the boundary's
+// from the overview's eye (the three-quarter view of --up unless the worst
+// region is out of its sight: overview_viewpoint.h), the camera fitted to the boundary's
 // bounding box, so that every mesh of a model is framed alike whoever
 // renders it (a shard, one job per mesh).
 std::vector<ViewFile> build_thumbnail(ViewContext& c) {
@@ -409,7 +417,7 @@ std::vector<ViewFile> build_thumbnail(ViewContext& c) {
   options.up = c.options.up;
   const int width = 320, height = 240;
   const Box3 box = boundary_bounding_box(c.a.mesh, c.a.topology);
-  const Camera camera = fit_camera(box.lo, box.hi, three_quarter_view(options.up), static_cast<double>(width) / height,
+  const Camera camera = fit_camera(box.lo, box.hi, c.overview_viewpoint.direction, static_cast<double>(width) / height,
                                    {.up = options.up});
   Scene scene = build_quality_overview_scene(c.a.mesh, c.a.topology, c.quality(), options);
   scene.lines.clear();  // at 320 pixels the edges of a real mesh are a grey smear
@@ -470,6 +478,20 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
   shared.num_top = std::min<std::size_t>(static_cast<std::size_t>(std::max(0, shared.glyphs->options.top_clusters)),
                                          shared.glyphs->clusters.size());
   shared.local_vertices = choose_local_vertices(shared);
+  // The overview's and thumbnail's eye, once for both.
+  shared.overview_viewpoint.direction = three_quarter_view(options.up);
+  if (std::any_of(wanted.begin(), wanted.end(),
+                  [](std::size_t i) { return kViews[i].id == "overview" || kViews[i].id == "thumbnail"; })) {
+    const GlyphResult& g = *shared.glyphs;
+    std::span<const Index> worst_cluster;
+    if (!g.clusters.empty() && g.cluster_offsets.size() > 1)
+      worst_cluster = std::span<const Index>(g.cluster_vertices).subspan(
+          static_cast<std::size_t>(g.cluster_offsets[0]),
+          static_cast<std::size_t>(g.cluster_offsets[1] - g.cluster_offsets[0]));
+    shared.overview_viewpoint = choose_overview_viewpoint(
+        analysis.mesh, analysis.topology, worst_boundary_faces(analysis.topology, shared.quality(), worst_cluster),
+        options.up);
+  }
 
   // Taking the next view, before_view, the clock and the encoding tasks'
   // submission happen under this lock.
@@ -479,7 +501,7 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
   auto work = [&](Renderer& inner, bool is_second) {
     RecordingRenderer renderer(inner);
     ViewContext context{analysis, options, renderer, shared.name, {}, shared.glyphs, shared.num_top,
-                        shared.local_vertices, &renderer.last_frame};
+                        shared.local_vertices, &renderer.last_frame, shared.overview_viewpoint};
     for (;;) {
       std::size_t i = 0;
       {
