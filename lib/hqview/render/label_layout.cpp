@@ -143,11 +143,14 @@ std::vector<std::optional<PlacedLabel>> place_labels(std::span<const LabelReques
     boxes.push_back(l.box);
     if (l.has_leader) leaders.push_back(l);
   }
-  auto is_own = [](const ScreenDisc& d, const ScreenDisc& anchor) { return d.x == anchor.x && d.y == anchor.y; };
+  auto is_own = [](const ScreenDisc& d, const ScreenDisc& anchor) {
+    return anchor.id >= 0 ? d.id == anchor.id : d.x == anchor.x && d.y == anchor.y;
+  };
   // The placement of box (with a leader when it needs one), or nullopt when
   // it is not free or not as clear as the pass asks (pass 0: clear; 1: its
   // leader may run over glyphs; 2: any free place).
-  auto candidate = [&](const PixelRect& box, const ScreenDisc& anchor, int pass) -> std::optional<PlacedLabel> {
+  auto candidate = [&](const PixelRect& box, const LabelRequest& request, int pass) -> std::optional<PlacedLabel> {
+    const ScreenDisc& anchor = request.anchor;
     if (!inside(box, options.bounds) || box_meets_disc(box, anchor)) return std::nullopt;
     if (std::any_of(boxes.begin(), boxes.end(), [&](const PixelRect& b) { return boxes_overlap(box, b); }))
       return std::nullopt;
@@ -158,7 +161,9 @@ std::vector<std::optional<PlacedLabel>> place_labels(std::span<const LabelReques
     const bool is_beside_other = std::any_of(obstacles.begin(), obstacles.end(), [&](const ScreenDisc& d) {
       return !is_own(d, anchor) && disc_box_gap(d, box) < own + options.leader_distance;
     });
-    const PlacedLabel result = is_far || is_beside_other ? with_leader(anchor, box) : PlacedLabel{box};
+    const PlacedLabel result = is_far || is_beside_other || request.always_leader
+                                   ? with_leader(request.leader_from.value_or(anchor), box)
+                                   : PlacedLabel{box};
     if (pass == 2) return result;
     // Clear: a label beside another disc only when far enough to need a
     // leader anyway (a stub leader beside two glyphs says little).
@@ -187,7 +192,7 @@ std::vector<std::optional<PlacedLabel>> place_labels(std::span<const LabelReques
         for (const auto& d : kDirections) {
           const PixelRect box =
               box_at(label.anchor.x + d[0] * distance, label.anchor.y + d[1] * distance, d, label.width, label.height);
-          const std::optional<PlacedLabel> c = candidate(box, label.anchor, pass);
+          const std::optional<PlacedLabel> c = candidate(box, label, pass);
           if (!c) continue;
           double room = 3.0 * options.leader_distance;
           for (const ScreenDisc& o : obstacles)

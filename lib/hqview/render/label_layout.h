@@ -7,6 +7,7 @@
 // cannot sit next to its anchor moves outwards and gets a leader line.
 // Pure geometry on pixel coordinates; nothing here draws.
 
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <vector>
@@ -16,15 +17,25 @@
 namespace hq {
 
 // A disc on screen, pixels (a glyph's silhouette, an anchor's marker).
+// id: whose disc it is (>= 0), so that an obstacle with its label's anchor
+// id is that label's own (its glyph, its fan); -1: no id (then an obstacle
+// centred exactly on the anchor is its own).
 struct ScreenDisc {
   double x = 0, y = 0, radius = 0;
+  std::int64_t id = -1;
 };
 
 // One label to place: its anchor (a disc: the label stays outside it) and
-// its box size in pixels.
+// its box size in pixels. leader_from: where its leader line starts (a disc
+// inside the visible part of a partly hidden glyph: the leader begins on
+// its edge, so it ends on what the reader sees); none: the anchor.
+// always_leader: the label gets a leader wherever it sits (its glyph is
+// mostly hidden, so a label merely beside it would not say which it names).
 struct LabelRequest {
   ScreenDisc anchor;
   int width = 0, height = 0;
+  std::optional<ScreenDisc> leader_from = std::nullopt;
+  bool always_leader = false;
 };
 
 struct LabelLayoutOptions {
@@ -63,8 +74,9 @@ struct PlacedLabel {
 // leader. When none is clear, the second pass lets the leader run over
 // other discs, and the third takes the first free place (with a leader
 // when it needs one). A label with no free candidate is
-// nullopt (the caller says what was left out). An obstacle at the anchor's
-// centre (the anchor's own glyph or fan) is the label's own.
+// nullopt (the caller says what was left out). An obstacle with the
+// anchor's id (ScreenDisc::id) is the label's own (its glyph or fan): the
+// label may be beside it and its leader may cross it.
 //   obstacles: discs no label may cover (glyphs), pixels.
 //   taken:     boxes already used (e.g. legend, earlier labels).
 //   earlier:   labels placed by an earlier call: their boxes are taken and
