@@ -731,7 +731,9 @@ struct VisibleGlyph {
   bool is_mostly_hidden = false;
 };
 
-VisibleGlyph visible_glyph(const IdImage& ids, std::uint32_t id, const ScreenDisc& disc) {
+// lines_hide: edge lines over the glyph count as hiding it (else as part
+// of it: the leader's start then slides past them, slide_leader_start).
+VisibleGlyph visible_glyph(const IdImage& ids, std::uint32_t id, const ScreenDisc& disc, bool lines_hide) {
   VisibleGlyph result;
   // The disc's box and a 2-pixel margin (beyond the id image: background).
   const int left = static_cast<int>(std::floor(disc.x - disc.radius)) - 2;
@@ -739,26 +741,32 @@ VisibleGlyph visible_glyph(const IdImage& ids, std::uint32_t id, const ScreenDis
   const int w = static_cast<int>(std::ceil(disc.x + disc.radius)) + 3 - left;
   const int h = static_cast<int>(std::ceil(disc.y + disc.radius)) + 3 - top;
   if (w <= 0 || h <= 0 || static_cast<double>(w) * h > 4.0e7) return result;
+  // own: pixels showing the glyph, or an edge line over it (a line of 1-3
+  // px crossing a glyph does not hide it: the leader's start slides past it,
+  // slide_leader_start); others: the rest of the box.
   std::vector<std::uint8_t> own(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
-  std::vector<std::array<int, 2>> others;  // pixels of the box not showing the glyph
+  std::vector<std::array<int, 2>> others;
   for (int v = 0; v < h; ++v)
     for (int u = 0; u < w; ++u) {
-      const bool is_own = ids.at(left + u, top + v, kIdBackground) == id;
+      const std::uint32_t at = ids.at(left + u, top + v, kIdBackground);
+      const bool is_on_disc = std::hypot(left + u + 0.5 - disc.x, top + v + 0.5 - disc.y) < disc.radius - 0.5;
+      const bool is_own = at == id || (!lines_hide && at == kIdEdge && is_on_disc);
       own[static_cast<std::size_t>(v) * static_cast<std::size_t>(w) + static_cast<std::size_t>(u)] = is_own ? 1 : 0;
-      if (is_own) ++result.pixels;
-      else others.push_back({left + u, top + v});
+      if (at == id) ++result.pixels;
+      if (!is_own) others.push_back({left + u, top + v});
     }
   if (result.pixels == 0) return result;
   // Distance from (x, y) to the centre of the nearest pixel not showing the
   // glyph: a disc of that radius less 1 px about (x, y) covers only pixels
-  // that show it (a point of it is within 0.71 px of its pixel's centre).
+  // that show it or a line over it (a point of it is within 0.71 px of its
+  // pixel's centre).
   auto clearance = [&](double x, double y) {
     double best = std::numeric_limits<double>::infinity();
     for (const auto& p : others) best = std::min(best, std::hypot(p[0] + 0.5 - x, p[1] + 0.5 - y));
     return best;
   };
   const auto id_at = [&](double x, double y) { return ids.at(static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y))); };
-  if (id_at(disc.x, disc.y) == id) {
+  if (id_at(disc.x, disc.y) == id || (!lines_hide && id_at(disc.x, disc.y) == kIdEdge)) {
     const double d = clearance(disc.x, disc.y);
     if (d >= 0.5 * disc.radius) {
       result.leader_from = {disc.x, disc.y, std::max(0.0, d - 1.0), disc.id};
@@ -814,6 +822,40 @@ VisibleGlyph visible_glyph(const IdImage& ids, std::uint32_t id, const ScreenDis
 
 void mark_drawn(IdImage& ids, const MainViewLabels& labels, const GlyphResult& glyphs, AnnotationStyle style,
                 MainViewOptions scaled, bool is_labels);
+
+// Moves a leader's start along the leader towards its leader_from centre,
+// in 0.25 px steps, until it lies on a pixel showing glyph id (past an edge
+// line over the glyph); when the leader runs along such a line, to the
+// centre of the nearest pixel showing it within 4 px; else false.
+bool slide_leader_start(PlacedLabel& p, const ScreenDisc& from, const IdImage& ids, std::uint32_t id) {
+  if (!p.has_leader) return true;
+  const double x0 = p.leader_x0, y0 = p.leader_y0;
+  const double dx = from.x - p.leader_x0, dy = from.y - p.leader_y0;
+  const double length = std::hypot(dx, dy);
+  const int steps = static_cast<int>(std::floor(length / 0.25));
+  for (int i = 0; i <= steps; ++i) {
+    const double t = length > 0.0 ? 0.25 * i / length : 0.0;
+    const double x = p.leader_x0 + t * dx, y = p.leader_y0 + t * dy;
+    if (ids.at(static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y))) == id) {
+      p.leader_x0 = x;
+      p.leader_y0 = y;
+      return true;
+    }
+  }
+  double best = 4.0;
+  bool found = false;
+  for (int v = static_cast<int>(std::floor(y0)) - 4; v <= static_cast<int>(std::floor(y0)) + 4; ++v)
+    for (int u = static_cast<int>(std::floor(x0)) - 4; u <= static_cast<int>(std::floor(x0)) + 4; ++u) {
+      const double d = std::hypot(u + 0.5 - x0, v + 0.5 - y0);
+      if (d <= best && ids.at(u, v) == id) {
+        best = d;
+        p.leader_x0 = u + 0.5;
+        p.leader_y0 = v + 0.5;
+        found = true;
+      }
+    }
+  return found;
+}
 
 // Ids of the arrow fans' discs among the glyphs' (ranks) in place_labels.
 constexpr std::int64_t kFanIdBase = std::int64_t{1} << 40;
@@ -901,7 +943,7 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
     label.color = style.text_color;
     label.anchor = disc;
     if (!seen.empty()) {
-      const VisibleGlyph visible = visible_glyph(seen, kIdGlyph + static_cast<std::uint32_t>(g.id), disc);
+      const VisibleGlyph visible = visible_glyph(seen, kIdGlyph + static_cast<std::uint32_t>(g.id), disc, false);
       if (visible.pixels == 0) {
         result.hidden_clusters.push_back(g.id);
         continue;
@@ -954,6 +996,21 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
     if (!placed) {
       ++result.omitted_clusters;
       continue;
+    }
+    if (label.kind == MainViewLabel::Kind::cluster && placed && label.leader_from && !seen.empty()) {
+      const auto own = kIdGlyph + static_cast<std::uint32_t>(label.cluster);
+      if (!slide_leader_start(*placed, *label.leader_from, seen, own)) {
+        // The leader runs along a line over the glyph: placed again from
+        // the glyph's pixels that no line covers.
+        const VisibleGlyph strict = visible_glyph(seen, own, label.anchor, true);
+        label.leader_from = request[0].leader_from = strict.leader_from;
+        label.always_leader = request[0].always_leader = strict.is_mostly_hidden;
+        placed = place_labels(request, all_obstacles, {}, options, earlier)[0];
+        if (!placed) {
+          ++result.omitted_clusters;
+          continue;
+        }
+      }
     }
     label.placement = *placed;
     earlier.push_back(*placed);
