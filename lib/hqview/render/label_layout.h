@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <unordered_map>
 #include <vector>
 
 #include "hqview/render/annotate.h"
@@ -86,6 +87,32 @@ std::vector<std::optional<PlacedLabel>> place_labels(std::span<const LabelReques
                                                      std::span<const PixelRect> taken,
                                                      const LabelLayoutOptions& options,
                                                      std::span<const PlacedLabel> earlier = {});
+
+// The greedy placement one label at a time (place_labels is a loop over
+// it): the boxes and leaders placed so far in a grid of 64-pixel cells, so
+// a label's checks look at its neighbourhood only (near-linear in the
+// labels), and each candidate checked once for all three passes.
+class LabelPlacer {
+ public:
+  LabelPlacer(std::span<const PixelRect> taken, const LabelLayoutOptions& options);
+  // Where label goes among obstacles (place_labels' rules), given what was
+  // added so far; nullopt when there is no free place. Adds nothing.
+  std::optional<PlacedLabel> place(const LabelRequest& label, std::span<const ScreenDisc> obstacles) const;
+  // A placed label: its box is taken, its leader counts for later labels.
+  void add(const PlacedLabel& label);
+
+ private:
+  void add_box(const PixelRect& box);
+  template <class Pred>
+  bool any_box_near(double x0, double y0, double x1, double y1, Pred&& pred) const;
+  template <class Pred>
+  bool any_leader_near(double x0, double y0, double x1, double y1, Pred&& pred) const;
+
+  LabelLayoutOptions options_;
+  std::vector<PixelRect> boxes_;
+  std::vector<PlacedLabel> leaders_;
+  std::unordered_map<std::int64_t, std::vector<std::uint32_t>> box_cells_, leader_cells_;
+};
 
 // A placement of box with a leader line from the anchor disc's edge
 // towards the box's point nearest the anchor's centre.

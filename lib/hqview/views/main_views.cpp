@@ -975,19 +975,18 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
   all_obstacles.insert(all_obstacles.end(), fans.begin(), fans.end());
   std::vector<ScreenDisc> worst_only;
   if (result.worst_glyph.radius > 0.0) worst_only.push_back(result.worst_glyph);
-  std::vector<PlacedLabel> earlier;
+  LabelPlacer placer({}, options);
   for (MainViewLabel& label : order) {
     const int size = label.kind == MainViewLabel::Kind::cluster ? cluster_label_size(style) : marker_label_size(style);
-    LabelRequest request[] = {label_request(label.text, size, label.anchor, style)};
-    request[0].leader_from = label.leader_from;
-    request[0].always_leader = label.always_leader;
-    std::optional<PlacedLabel> placed = place_labels(request, all_obstacles, {}, options, earlier)[0];
-    if (!placed && label.kind == MainViewLabel::Kind::marker)
-      placed = place_labels(request, worst_only, {}, options, earlier)[0];
+    LabelRequest request = label_request(label.text, size, label.anchor, style);
+    request.leader_from = label.leader_from;
+    request.always_leader = label.always_leader;
+    std::optional<PlacedLabel> placed = placer.place(request, all_obstacles);
+    if (!placed && label.kind == MainViewLabel::Kind::marker) placed = placer.place(request, worst_only);
     if (!placed && label.kind == MainViewLabel::Kind::marker) {
       // No free place in the whole view: at the anchor's right, clamped to the view.
       PixelRect box{static_cast<int>(std::lround(label.anchor.x + label.anchor.radius)),
-                    static_cast<int>(std::lround(label.anchor.y)), request[0].width, request[0].height};
+                    static_cast<int>(std::lround(label.anchor.y)), request.width, request.height};
       box.x = std::clamp(box.x, layout.view.x, layout.view.x + layout.view.width - box.width);
       box.y = std::clamp(box.y, layout.view.y, layout.view.y + layout.view.height - box.height);
       placed = PlacedLabel{box};
@@ -1003,9 +1002,9 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
         // The leader runs along a line over the glyph: placed again from
         // the glyph's pixels that no line covers.
         const VisibleGlyph strict = visible_glyph(seen, own, label.anchor, true);
-        label.leader_from = request[0].leader_from = strict.leader_from;
-        label.always_leader = request[0].always_leader = strict.is_mostly_hidden;
-        placed = place_labels(request, all_obstacles, {}, options, earlier)[0];
+        label.leader_from = request.leader_from = strict.leader_from;
+        label.always_leader = request.always_leader = strict.is_mostly_hidden;
+        placed = placer.place(request, all_obstacles);
         if (!placed) {
           ++result.omitted_clusters;
           continue;
@@ -1013,7 +1012,7 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
       }
     }
     label.placement = *placed;
-    earlier.push_back(*placed);
+    placer.add(*placed);
     result.labels.push_back(label);
   }
   result.ids = std::move(seen);
