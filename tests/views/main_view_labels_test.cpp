@@ -510,5 +510,54 @@ TEST(MainViewLabels, BunnyInWorstGlyphNotDrawnSmaller) {
     EXPECT_EQ(background_inside_rim(image, d, options.background), 0) << d.x << ", " << d.y;
 }
 
+// A labelled cluster whose glyph shows no pixel gets no label and its legend
+// line says so: an 8 x 8 x 2 grid with two dents on top (its vertex (4, 4)
+// pushed below the middle layer, (1, 1) pushed down and sideways: two
+// clusters), its id image with cluster #1's pixels turned into edge pixels
+// (as if lines hid all of it), laid out again.
+TEST(MainViewLabels, AClusterWhoseGlyphShowsNoPixelGetsNoLabel) {
+  HexMesh mesh = test::box_grid(8, 8, 2);
+  mesh.points[static_cast<std::size_t>(4 + 9 * (4 + 9 * 2))].z = 0.6;
+  Vec3& poor = mesh.points[static_cast<std::size_t>(1 + 9 * (1 + 9 * 2))];
+  poor.z = 1.5;
+  poor.x += 0.3;
+  const Case c = analyse(std::move(mesh));
+  ASSERT_GE(c.glyphs.clusters.size(), 2u);
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  const MainViewOptions options;
+  const std::vector<Vec3> directions = choose_main_viewpoints(main_view_points(c.mesh, c.topology, c.glyphs), c.glyphs,
+                                                              main_view_aspect(options), 1, options.up,
+                                                              options.fov_y_degrees);
+  const MainViewLabels labels =
+      main_view_labels(c.mesh, c.topology, c.glyphs, &c.overlap, directions.at(0), options, nullptr, renderer.get());
+  ASSERT_TRUE(labels.hidden_clusters.empty());
+  Index hidden = kNoIndex;
+  for (const MainViewLabel& l : labels.labels)
+    if (l.kind == MainViewLabel::Kind::cluster && l.cluster > 0) hidden = l.cluster;
+  ASSERT_NE(hidden, kNoIndex);
+  IdImage ids = labels.ids;
+  std::replace(ids.ids.begin(), ids.ids.end(), kIdGlyph + static_cast<std::uint32_t>(hidden), kIdEdge);
+  AnnotationStyle style = annotation_style_for(options.height);
+  style.background = options.background;
+  const FigureLayout layout = figure_layout(options.width, options.height, !options.title.empty(),
+                                            static_cast<int>(std::lround(340 * style.scale)), style);
+  ASSERT_EQ(layout.view.x, labels.view.x);
+  ASSERT_EQ(layout.view.width, labels.view.width);
+  MainViewOptions scaled = options;
+  scaled.pixel_scale = style.scale;
+  const MainViewLabels again = layout_main_view_labels(c.glyphs, &c.overlap, labels.camera, layout, style, scaled, &ids);
+  EXPECT_EQ(again.hidden_clusters, std::vector<Index>{hidden});
+  for (const MainViewLabel& l : again.labels) EXPECT_FALSE(l.kind == MainViewLabel::Kind::cluster && l.cluster == hidden);
+  EXPECT_EQ(again.labels.size() + 1, labels.labels.size());
+  int said = 0;
+  for (const LegendLine& line : main_legend_lines(c.glyphs, &c.overlap, style, options, again.glyph_scale,
+                                                  again.hidden_clusters))
+    if (line.text.starts_with("#" + std::to_string(hidden) + " ")) {
+      EXPECT_TRUE(line.text.ends_with(", hidden")) << line.text;
+      ++said;
+    }
+  EXPECT_EQ(said, 1);
+}
+
 }  // namespace
 }  // namespace hq
