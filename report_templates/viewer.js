@@ -153,17 +153,49 @@
   }));
   scene.add(edges);
 
-  // Glyphs: one sphere per listed cluster in its colour.
-  var glyphs = new THREE.Group(), sphere = new THREE.SphereGeometry(1, 24, 16);
+  // Glyphs: one sphere per listed cluster in its colour; as in view A the
+  // grey (unlabelled) ones are drawn at 0.6 of their radius, a ring in the
+  // inverted colour goes round each cluster with an inverted vertex
+  // (min < 0) and a dark ring round cluster #0, outside it, each on a white
+  // halo. The rings face the camera (turned in draw()).
+  var kGreyGlyphFactor = 0.6, kDarkRing = '#262626';
+  var glyphs = new THREE.Group(), sphere = new THREE.SphereGeometry(1, 24, 16), rings = [];
+  var invertedColor = (function () {
+    var lut = bytes(D.fields[0].lut), h = '#';
+    for (var q = 0; q < 3; ++q) h += (lut[q] < 16 ? '0' : '') + lut[q].toString(16);
+    return h;
+  })();
+  // A ring from inner to outer times the glyph's radius, on a white halo 0.06 wider each side.
+  function addRing(group, r, inner, outer, color, order) {
+    [[inner - 0.06, outer + 0.06, '#ffffff', order], [inner, outer, color, order + 1]].forEach(function (d) {
+      var ring = new THREE.Mesh(new THREE.RingGeometry(d[0], d[1], 64),
+        new THREE.MeshBasicMaterial({ color: new THREE.Color(d[2]), side: THREE.DoubleSide, depthWrite: false }));
+      ring.renderOrder = d[3];
+      ring.scale.set(r, r, r);
+      ring.userData.ring = true;
+      group.add(ring);
+    });
+  }
   D.clusters.forEach(function (cl) {
+    var g = new THREE.Group();
+    g.position.set(cl.position[0], cl.position[1], cl.position[2]);
+    var r = Math.max(cl.radius, 1e-6 * diagonal) * (cl.is_top ? 1 : kGreyGlyphFactor);
     var m = new THREE.Mesh(sphere, new THREE.MeshLambertMaterial({ color: new THREE.Color(cl.color) }));
-    m.position.set(cl.position[0], cl.position[1], cl.position[2]);
-    var r = Math.max(cl.radius, 1e-6 * diagonal);
     m.scale.set(r, r, r);
     m.userData.cluster = cl;
-    glyphs.add(m);
+    g.add(m);
+    var inverted = cl.min_quality < 0;
+    if (inverted) addRing(g, r, 1.12, 1.3, invertedColor, 2);
+    if (cl.id === 0) addRing(g, r, inverted ? 1.42 : 1.12, inverted ? 1.54 : 1.24, kDarkRing, 4);
+    if (g.children.length > 1) rings.push(g);
+    glyphs.add(g);
   });
   scene.add(glyphs);
+  // The glyph spheres (picking): each group's first child.
+  var glyphSpheres = glyphs.children.map(function (g) { return g.children[0]; });
+  function faceRings() {
+    rings.forEach(function (g) { g.quaternion.copy(camera.quaternion); });
+  }
 
   // Overlap markers and intersecting cells.
   var markers = new THREE.Group(), markerRadius = 0.012 * diagonal;
@@ -317,7 +349,7 @@
     n.setComponent(axis, eyeSide >= 0 ? -1 : 1);
     cut.set(n, eyeSide >= 0 ? at : -at);
   }
-  function draw() { orientCut(); renderer.render(scene, camera); }
+  function draw() { orientCut(); faceRings(); renderer.render(scene, camera); }
   // The light moves with the camera: from above-left of the eye.
   camera.add(light);
   camera.add(light.target);
@@ -405,7 +437,7 @@
         return clipping.length === 0 || clipping[0].distanceToPoint(hit.point) >= 0;
       });
     }
-    var glyphHits = glyphs.visible ? hitsOf(glyphs.children) : [];
+    var glyphHits = glyphs.visible ? hitsOf(glyphSpheres) : [];
     if (glyphHits.length) { showCluster(glyphHits[0].object.userData.cluster); return; }
     var faceHits = boundary.visible ? hitsOf([boundary]) : [];
     if (faceHits.length) { showFace(Math.floor(faceHits[0].faceIndex / 2)); return; }
@@ -449,8 +481,17 @@
   if (others) {
     var grey = D.clusters.filter(function (cl) { return !cl.is_top; })[0].color, sw = el('span', { class: 'swatch' });
     sw.style.background = grey;
-    legend.appendChild(el('div', {}, [sw, others + ' other clusters']));
+    legend.appendChild(el('div', {}, [sw, others + ' other clusters (0.6 size)']));
   }
+  // The rings, with ring swatches (view A's legend says the same).
+  function ringEntry(color, label, id) {
+    var sw = el('span', { class: 'swatch ring' });
+    sw.style.borderColor = color;
+    legend.appendChild(el('div', { id: id }, [sw, label]));
+  }
+  if (D.clusters.length) ringEntry(kDarkRing, 'ring: worst cluster #0', 'legend-ring-worst');
+  if (D.clusters.some(function (cl) { return cl.min_quality < 0; }))
+    ringEntry(invertedColor, 'ring: inverted (min < 0)', 'legend-ring-inverted');
   if (!D.clusters.length) legend.appendChild(text('no glyph: every vertex is above the threshold'));
 
   var reduced = document.getElementById('reduced');

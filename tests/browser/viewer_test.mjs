@@ -9,7 +9,9 @@
 // the cut reveals an interior bad cell, a tiny --viewer-max-mb keeps every
 // glyph and every cell under the threshold, a hex next to a tet box draws
 // the tets' faces (points inside the box project onto the model, a click
-// there names a tet), a hostile file name runs nothing.
+// there names a tet), a hostile file name runs nothing, an inverted cluster
+// #0 wears the inverted ring and the dark ring and a grey glyph is drawn at
+// 0.6 of its radius (pixels at projected positions).
 //
 // usage: node viewer_test.mjs HQVIEW SOURCE_DIR OUT_DIR
 // exit 0 pass, 1 fail, 77 skipped (no Chromium).
@@ -75,6 +77,17 @@ const inner = path.join(outDir, 'inner');
 analyze([interiorBadMesh(path.join(outDir, 'inner.mesh')), '-o', inner]);
 const dented = path.join(outDir, 'dented');
 analyze([dentedMesh(path.join(outDir, 'dented.mesh')), '-o', dented]);
+// Rings and grey glyphs (issue 44, as view A draws them): a 6^3 grid with
+// its top vertex (2, 2, 6) pushed below the layer under it (inverted:
+// cluster #0) and its top vertex (5, 5, 6) moved by 0.4 along x and y (a
+// poor cluster, min 0.33, not inverted), analysed with --top-clusters 1 so
+// that the second is grey.
+const ringed = path.join(outDir, 'ringed');
+analyze([gridMesh(path.join(outDir, 'ringed.mesh'), 6, (i, j, k) => {
+  if (k === 6 && i === 2 && j === 2) return [i, j, 4.6];
+  if (k === 6 && i === 5 && j === 5) return [i + 0.4, j + 0.4, k];
+  return [i, j, k];
+}), '-o', ringed, '--top-clusters', '1']);
 const evilName = `"q'&amp;<script>window.hqPwned=1<img src=x onerror="window.hqPwned=2">.mesh`;
 const evilDir = path.join(outDir, 'evil-input');
 fs.mkdirSync(evilDir, { recursive: true });
@@ -153,6 +166,18 @@ async function pixels(page) {
       sum = (sum * 31 + px[i] + 7 * px[i + 1] + 13 * px[i + 2]) % 1000000007;
     }
     return { nonWhite, warm, sum };
+  });
+}
+
+// The drawn frame: drawing-buffer size and RGBA bytes, rows bottom-up.
+async function frameOf(page) {
+  return page.evaluate(() => {
+    const v = window.hqViewer;
+    v.draw();
+    const gl = v.renderer.getContext(), w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
+    const px = new Uint8Array(w * h * 4);
+    gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    return { w, h, px: Array.from(px) };
   });
 }
 
@@ -337,15 +362,13 @@ const near = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
     v.camera.updateProjectionMatrix();
     v.controls.update();
   });
-  const shot = await page.evaluate(() => {
-    const v = window.hqViewer;
-    v.draw();
-    const gl = v.renderer.getContext(), w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
-    const px = new Uint8Array(w * h * 4);
-    gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
-    const lut = Array.from(atob(v.data.fields[0].lut), (c) => c.charCodeAt(0));
-    return { w, h, px: Array.from(px), lut, field: v.data.fields[0].id };
-  });
+  const shot = {
+    ...(await frameOf(page)),
+    ...(await page.evaluate(() => {
+      const v = window.hqViewer;
+      return { lut: Array.from(atob(v.data.fields[0].lut), (c) => c.charCodeAt(0)), field: v.data.fields[0].id };
+    }))
+  };
   await page.screenshot({ path: path.join(outDir, 'dented_colour.png') });
   const { w, h, px, lut } = shot;
   const at = (x, y) => 4 * ((h - 1 - y) * w + x);  // y down, as on the page
@@ -445,6 +468,86 @@ const near = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
   const kinds = await page.evaluate(() => { const d = window.hqViewer.data; return { n: d.faces.count, names: d.faces.kind_names }; });
   check(kinds.n === 5 + 10 && kinds.names && kinds.names[1] === 'tet', `the viewer's boundary: the hex's 5 quads and the tet box's 10 triangles (${JSON.stringify(kinds)})`);
   check(problems.length === 0, `no console error on the hybrid mesh: ${problems.join('; ')}`);
+  await page.close();
+}
+
+// ---- rings and grey glyphs ----
+// Cluster #0 (inverted) wears a ring in the inverted colour (the field's
+// table entry 0) and, outside it, the dark ring of the worst cluster; the
+// grey cluster's glyph is drawn at 0.6 of its radius: pixels at the
+// projected positions, with the faces, edges and markers hidden. Without
+// the rings the circles at 1.21 and 1.48 glyph radii are white; without the
+// 0.6 the grey glyph's row spans its full diameter.
+{
+  const { page, problems } = await open(ringed);
+  for (const layer of ['#layer-boundary', '#layer-edges', '#layer-markers', '#layer-intersecting', '#layer-low'])
+    await setChecked(page, layer, false);
+  // From straight above the grid's centre, both glyphs apart.
+  await page.evaluate(() => {
+    const v = window.hqViewer, t = new window.THREE.Vector3(3, 3, 5);
+    v.controls.target.copy(t);
+    v.camera.up.set(0, 1, 0);
+    v.camera.position.copy(t).add(new window.THREE.Vector3(0, 0, 14));
+    v.camera.zoom = 1;
+    v.camera.lookAt(t);
+    v.camera.updateProjectionMatrix();
+    v.controls.update();
+  });
+  const info = { ...(await frameOf(page)), ...(await page.evaluate(() => {
+    const v = window.hqViewer;
+    const r = v.renderer.domElement.getBoundingClientRect();
+    const lut = Array.from(atob(v.data.fields[0].lut), (c) => c.charCodeAt(0)).slice(0, 3);
+    const right = new window.THREE.Vector3().setFromMatrixColumn(v.camera.matrixWorld, 0).toArray();
+    const legend = ['legend-ring-worst', 'legend-ring-inverted'].map((id) => {
+      const e = document.getElementById(id);
+      return e ? { text: e.textContent, border: getComputedStyle(e.querySelector('.swatch')).borderTopColor } : null;
+    });
+    return { rect: [r.left, r.top, r.width, r.height], lut, right, clusters: v.data.clusters, legend,
+             others: document.getElementById('clusters').textContent };
+  })) };
+  await page.screenshot({ path: path.join(outDir, 'ringed.png') });
+  const { w, h, px, rect, lut, right, clusters } = info;
+  const scale = w / rect[2];  // drawing-buffer pixels per CSS pixel
+  const rgb = (x, y) => { const i = 4 * ((h - 1 - Math.round(y)) * w + Math.round(x)); return [px[i], px[i + 1], px[i + 2]]; };
+  const dist = (p, q) => Math.hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]);
+  // A glyph's centre and its radius (model units) in drawing-buffer pixels.
+  async function onScreen(cl, radius) {
+    const c = await projectToPage(page, cl.position);
+    const e = await projectToPage(page, cl.position.map((v, k) => v + radius * right[k]));
+    return { x: (c[0] - rect[0]) * scale, y: (c[1] - rect[1]) * scale, r: Math.hypot(e[0] - c[0], e[1] - c[1]) * scale };
+  }
+  const worst = clusters.find((cl) => cl.id === 0), grey = clusters.find((cl) => !cl.is_top);
+  check(worst && worst.min_quality < 0 && grey && grey.min_quality >= 0, `the ringed grid has an inverted #0 and a grey cluster (${clusters.length} clusters)`);
+  const g0 = await onScreen(worst, worst.radius);
+  function onCircle(g, f, colour) {
+    let on = 0;
+    for (let a = 0; a < 48; ++a) {
+      const t = 2 * Math.PI * a / 48;
+      on += dist(rgb(g.x + f * g.r * Math.cos(t), g.y + f * g.r * Math.sin(t)), colour) <= 40 ? 1 : 0;
+    }
+    return on;
+  }
+  const invertedOn = onCircle(g0, 1.21, lut), darkOn = onCircle(g0, 1.48, [38, 38, 38]);
+  check(g0.r > 15 && invertedOn >= 40, `#0 wears the inverted ring (${invertedOn} of 48 samples at 1.21 r = ${(1.21 * g0.r).toFixed(1)} px)`);
+  check(darkOn >= 40, `#0 wears the dark ring outside it (${darkOn} of 48 samples at 1.48 r)`);
+  // The grey glyph: the drawn extent along its row and column through the centre.
+  const gg = await onScreen(grey, grey.radius);
+  const background = rgb(2, 2);  // a corner: nothing is drawn there
+  const white = (x, y) => dist(rgb(x, y), background) <= 8;
+  let extent = 0;
+  for (const [dx, dy] of [[1, 0], [-1, 0], [0, 1], [0, -1]]) {
+    let d = 0;
+    while (d < 2 * gg.r && !white(gg.x + dx * (d + 1), gg.y + dy * (d + 1))) d += 1;
+    extent += d / 4;
+  }
+  check(gg.r > 15 && Math.abs(extent - 0.6 * gg.r) <= 0.1 * gg.r + 2,
+    `the grey glyph is drawn at 0.6 of its radius (${extent.toFixed(1)} px of ${gg.r.toFixed(1)} px, expected ${(0.6 * gg.r).toFixed(1)})`);
+  check(info.legend[0] && /worst cluster #0/.test(info.legend[0].text) && info.legend[0].border === 'rgb(38, 38, 38)',
+    `the legend names #0's dark ring with a dark ring swatch (${JSON.stringify(info.legend[0])})`);
+  check(info.legend[1] && /inverted/.test(info.legend[1].text) && info.legend[1].border === `rgb(${lut.join(', ')})`,
+    `the legend names the inverted ring in the inverted colour (${JSON.stringify(info.legend[1])})`);
+  check(/other clusters? \(0\.6 size\)/.test(info.others), 'the legend says the grey glyphs are drawn at 0.6 size');
+  check(problems.length === 0, `no console error on the ringed grid: ${problems.join('; ')}`);
   await page.close();
 }
 

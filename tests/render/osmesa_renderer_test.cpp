@@ -177,6 +177,54 @@ TEST(OsmesaRenderer, OverlayShowsOverCloserGeometryAndHidesOnlyItself) {
   EXPECT_EQ(pixel_at(image, 50, 80), (Rgba8{0, 0, 0, 255})) << "background below the triangles";
 }
 
+// render_ids (issue 44's id image): two spheres, the nearer (id 7, z = 0.5)
+// over the left part of the farther (id 600000, z = 0), a line in front
+// (id 2) and an overlay triangle (id 3) behind everything: each pixel holds
+// the id seen there exactly (no lighting, blending or filtering mixes two
+// ids), the translucent set is left out and the background keeps its id.
+TEST(OsmesaRenderer, IdImagesHoldTheVisibleIdExactly) {
+  Scene scene;
+  scene.background = id_color(0);
+  SphereSet spheres;
+  spheres.centers = {{0.3f, 0, 0}, {-0.3f, 0, 0.5f}};
+  spheres.radii = {0.6f, 0.4f};
+  spheres.colors = {id_color(600000), id_color(7)};
+  scene.spheres.push_back(spheres);
+  LineSet line;
+  line.positions = {{-1, -0.8f, 0.9f}, {1, -0.8f, 0.9f}};
+  line.colors = {id_color(2), id_color(2)};
+  line.indices = {0, 1};
+  line.width = 3.0f;
+  scene.lines.push_back(line);
+  TriangleSet glass = one_triangle({9, 9, 9, 40}).triangles[0];
+  for (Vec3f& p : glass.positions) p.z = 1.0f;
+  scene.translucent.push_back(glass);
+  TriangleSet overlay;
+  overlay.positions = {{0.8f, 0.8f, -1}, {1, 0.8f, -1}, {0.9f, 1, -1}};
+  overlay.colors.assign(3, id_color(3));
+  overlay.indices = {0, 1, 2};
+  scene.overlay.push_back(overlay);
+  const IdImage ids = renderer().render_ids(scene, front_camera(), 110, 110);
+  ASSERT_EQ(ids.width, 110);
+  ASSERT_EQ(ids.height, 110);
+  // x = -0.3 is column 40, x = 0.6 column 85, y = 0 row 55, y = -0.8 row 95,
+  // (0.9, 0.9) pixel (100, 10) (50 px per model unit).
+  EXPECT_EQ(ids.at(40, 55), 7u);
+  EXPECT_EQ(ids.at(85, 55), 600000u);
+  EXPECT_EQ(ids.at(55, 95), 2u);
+  EXPECT_EQ(ids.at(100, 12), 3u);
+  EXPECT_EQ(ids.at(5, 5), 0u);
+  // Every pixel is one of the ids drawn: none is a blend.
+  for (std::uint32_t id : ids.ids) EXPECT_TRUE(id == 0 || id == 2 || id == 3 || id == 7 || id == 600000) << id;
+  // The near sphere's pixels form its disc (radius 20 px) less nothing.
+  const auto near = static_cast<int>(std::count(ids.ids.begin(), ids.ids.end(), 7u));
+  EXPECT_NEAR(near, M_PI * 20 * 20, 40);
+  // The image render of the same scene is unchanged by an id render.
+  const Image before = renderer().render(scene, front_camera(), 110, 110);
+  (void)renderer().render_ids(scene, front_camera(), 110, 110);
+  EXPECT_EQ(before.rgba, renderer().render(scene, front_camera(), 110, 110).rgba);
+}
+
 TEST(OsmesaRenderer, RejectsBadInput) {
   EXPECT_THROW(renderer().render(Scene{}, front_camera(), 0, 10), RenderError);
   Scene scene = one_triangle({1, 2, 3, 255});

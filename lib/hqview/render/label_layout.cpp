@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 
 namespace hq {
 
@@ -131,76 +132,160 @@ PlacedLabel with_leader(const ScreenDisc& anchor, const PixelRect& box) {
   return result;
 }
 
+namespace {
+
+// Cell of the placed-things grid holding pixel coordinate v.
+constexpr int kGridCell = 64;
+int grid_cell(double v) { return static_cast<int>(std::floor(v / kGridCell)); }
+std::int64_t grid_key(int cx, int cy) {
+  return (static_cast<std::int64_t>(cx) << 32) ^ static_cast<std::int64_t>(static_cast<std::uint32_t>(cy));
+}
+
+}  // namespace
+
+LabelPlacer::LabelPlacer(std::span<const PixelRect> taken, const LabelLayoutOptions& options) : options_(options) {
+  for (const PixelRect& b : taken) add_box(b);
+}
+
+// Calls f(cell key) for every grid cell the rectangle [x0, x1] x [y0, y1] meets.
+template <class F>
+void for_cells(double x0, double y0, double x1, double y1, F&& f) {
+  for (int cy = grid_cell(std::min(y0, y1)); cy <= grid_cell(std::max(y0, y1)); ++cy)
+    for (int cx = grid_cell(std::min(x0, x1)); cx <= grid_cell(std::max(x0, x1)); ++cx) f(grid_key(cx, cy));
+}
+
+void LabelPlacer::add_box(const PixelRect& box) {
+  const auto i = static_cast<std::uint32_t>(boxes_.size());
+  boxes_.push_back(box);
+  for_cells(box.x, box.y, box.x + box.width, box.y + box.height, [&](std::int64_t k) { box_cells_[k].push_back(i); });
+}
+
+void LabelPlacer::add(const PlacedLabel& label) {
+  add_box(label.box);
+  if (!label.has_leader) return;
+  const auto i = static_cast<std::uint32_t>(leaders_.size());
+  leaders_.push_back(label);
+  for_cells(label.leader_x0, label.leader_y0, label.leader_x1, label.leader_y1,
+            [&](std::int64_t k) { leader_cells_[k].push_back(i); });
+}
+
+// Whether any item of items registered in cells near [x0, x1] x [y0, y1]
+// satisfies pred.
+template <class T, class Pred>
+bool any_near(const std::unordered_map<std::int64_t, std::vector<std::uint32_t>>& cells, const std::vector<T>& items,
+              double x0, double y0, double x1, double y1, Pred&& pred) {
+  bool found = false;
+  for_cells(x0, y0, x1, y1, [&](std::int64_t k) {
+    if (found) return;
+    const auto it = cells.find(k);
+    if (it == cells.end()) return;
+    for (std::uint32_t i : it->second)
+      if (pred(items[i])) {
+        found = true;
+        return;
+      }
+  });
+  return found;
+}
+
+template <class Pred>
+bool LabelPlacer::any_box_near(double x0, double y0, double x1, double y1, Pred&& pred) const {
+  return any_near(box_cells_, boxes_, x0, y0, x1, y1, pred);
+}
+
+template <class Pred>
+bool LabelPlacer::any_leader_near(double x0, double y0, double x1, double y1, Pred&& pred) const {
+  return any_near(leader_cells_, leaders_, x0, y0, x1, y1, pred);
+}
+
+std::optional<PlacedLabel> LabelPlacer::place(const LabelRequest& label, std::span<const ScreenDisc> obstacles) const {
+  const ScreenDisc& anchor = label.anchor;
+  auto is_own = [&](const ScreenDisc& d) {
+    return anchor.id >= 0 ? d.id == anchor.id : d.x == anchor.x && d.y == anchor.y;
+  };
+  // A candidate, checked once: its placement (with a leader when it needs
+  // one) and the first pass that takes it (0: clear; 1: its leader may run
+  // over glyphs; 2: any free place; 3: not free).
+  struct Candidate {
+    int pass = 3;
+    double room = 0.0;
+    PlacedLabel placement;
+  };
+  auto evaluate = [&](const PixelRect& box) {
+    Candidate c;
+    if (!inside(box, options_.bounds) || box_meets_disc(box, anchor)) return c;
+    const double bx1 = box.x + box.width, by1 = box.y + box.height;
+    if (any_box_near(box.x, box.y, bx1, by1, [&](const PixelRect& b) { return boxes_overlap(box, b); })) return c;
+    if (std::any_of(obstacles.begin(), obstacles.end(), [&](const ScreenDisc& d) { return box_meets_disc(box, d); }))
+      return c;
+    const double own = disc_box_gap(anchor, box);
+    const bool is_far = own > options_.leader_distance;
+    const bool is_beside_other = std::any_of(obstacles.begin(), obstacles.end(), [&](const ScreenDisc& d) {
+      return !is_own(d) && disc_box_gap(d, box) < own + options_.leader_distance;
+    });
+    c.placement = is_far || is_beside_other || label.always_leader
+                      ? with_leader(label.leader_from.value_or(anchor), box)
+                      : PlacedLabel{box};
+    c.room = 3.0 * options_.leader_distance;
+    for (const ScreenDisc& o : obstacles)
+      if (!is_own(o)) c.room = std::min(c.room, disc_box_gap(o, box));
+    c.pass = 2;
+    // Clear: a label beside another disc only when far enough to need a
+    // leader anyway (a stub leader beside two glyphs says little).
+    if (is_beside_other && !is_far) return c;
+    const PlacedLabel& r = c.placement;
+    if (any_leader_near(box.x, box.y, bx1, by1, [&](const PlacedLabel& l) { return leader_meets_box(l, box); }))
+      return c;
+    if (r.has_leader) {
+      if (any_leader_near(r.leader_x0, r.leader_y0, r.leader_x1, r.leader_y1,
+                          [&](const PlacedLabel& l) { return leaders_cross(l, r); }))
+        return c;
+      if (any_box_near(r.leader_x0, r.leader_y0, r.leader_x1, r.leader_y1,
+                       [&](const PixelRect& b) { return leader_meets_box(r, b); }))
+        return c;
+      c.pass = 1;
+      if (std::any_of(obstacles.begin(), obstacles.end(),
+                      [&](const ScreenDisc& d) { return !is_own(d) && leader_meets_disc(r, d); }))
+        return c;
+    }
+    c.pass = 0;
+    return c;
+  };
+  // The rings' candidates, evaluated as the passes first reach them.
+  std::vector<std::array<Candidate, kDirections.size()>> rings;
+  for (int pass = 0; pass < 3; ++pass)
+    for (int ring = 0; ring <= options_.rings; ++ring) {
+      if (static_cast<std::size_t>(ring) == rings.size()) {
+        const double distance = anchor.radius + options_.gap + ring * options_.ring_step;
+        rings.emplace_back();
+        for (std::size_t k = 0; k < kDirections.size(); ++k) {
+          const auto& d = kDirections[k];
+          rings.back()[k] = evaluate(box_at(anchor.x + d[0] * distance, anchor.y + d[1] * distance, d, label.width,
+                                            label.height));
+        }
+      }
+      // Of the ring's candidates this pass takes, the one farthest from the
+      // other discs (up to 3 leader distances; ties: the order of
+      // kDirections), so a label leans away from its neighbours' glyphs.
+      const Candidate* best = nullptr;
+      for (const Candidate& c : rings[static_cast<std::size_t>(ring)])
+        if (c.pass <= pass && (!best || c.room > best->room)) best = &c;
+      if (best) return best->placement;
+    }
+  return std::nullopt;
+}
+
 std::vector<std::optional<PlacedLabel>> place_labels(std::span<const LabelRequest> labels,
                                                      std::span<const ScreenDisc> obstacles,
                                                      std::span<const PixelRect> taken,
                                                      const LabelLayoutOptions& options,
                                                      std::span<const PlacedLabel> earlier) {
+  LabelPlacer placer(taken, options);
+  for (const PlacedLabel& l : earlier) placer.add(l);
   std::vector<std::optional<PlacedLabel>> placed(labels.size());
-  std::vector<PixelRect> boxes(taken.begin(), taken.end());
-  std::vector<PlacedLabel> leaders;
-  for (const PlacedLabel& l : earlier) {
-    boxes.push_back(l.box);
-    if (l.has_leader) leaders.push_back(l);
-  }
-  auto is_own = [](const ScreenDisc& d, const ScreenDisc& anchor) { return d.x == anchor.x && d.y == anchor.y; };
-  // The placement of box (with a leader when it needs one), or nullopt when
-  // it is not free or not as clear as the pass asks (pass 0: clear; 1: its
-  // leader may run over glyphs; 2: any free place).
-  auto candidate = [&](const PixelRect& box, const ScreenDisc& anchor, int pass) -> std::optional<PlacedLabel> {
-    if (!inside(box, options.bounds) || box_meets_disc(box, anchor)) return std::nullopt;
-    if (std::any_of(boxes.begin(), boxes.end(), [&](const PixelRect& b) { return boxes_overlap(box, b); }))
-      return std::nullopt;
-    if (std::any_of(obstacles.begin(), obstacles.end(), [&](const ScreenDisc& d) { return box_meets_disc(box, d); }))
-      return std::nullopt;
-    const double own = disc_box_gap(anchor, box);
-    const bool is_far = own > options.leader_distance;
-    const bool is_beside_other = std::any_of(obstacles.begin(), obstacles.end(), [&](const ScreenDisc& d) {
-      return !is_own(d, anchor) && disc_box_gap(d, box) < own + options.leader_distance;
-    });
-    const PlacedLabel result = is_far || is_beside_other ? with_leader(anchor, box) : PlacedLabel{box};
-    if (pass == 2) return result;
-    // Clear: a label beside another disc only when far enough to need a
-    // leader anyway (a stub leader beside two glyphs says little).
-    if (is_beside_other && !is_far) return std::nullopt;
-    for (const PlacedLabel& l : leaders)
-      if (leader_meets_box(l, box) || leaders_cross(l, result)) return std::nullopt;
-    if (result.has_leader) {
-      if (std::any_of(boxes.begin(), boxes.end(), [&](const PixelRect& b) { return leader_meets_box(result, b); }))
-        return std::nullopt;
-      if (pass == 0 && std::any_of(obstacles.begin(), obstacles.end(), [&](const ScreenDisc& d) {
-            return !is_own(d, anchor) && leader_meets_disc(result, d);
-          }))
-        return std::nullopt;
-    }
-    return result;
-  };
   for (std::size_t i = 0; i < labels.size(); ++i) {
-    const LabelRequest& label = labels[i];
-    for (int pass = 0; pass < 3 && !placed[i]; ++pass)
-      for (int ring = 0; ring <= options.rings && !placed[i]; ++ring) {
-        const double distance = label.anchor.radius + options.gap + ring * options.ring_step;
-        // Of the ring's free candidates, the one farthest from the other
-        // discs (up to 3 leader distances; ties: the order of kDirections),
-        // so a label leans away from its neighbours' glyphs.
-        double best_room = -1.0;
-        for (const auto& d : kDirections) {
-          const PixelRect box =
-              box_at(label.anchor.x + d[0] * distance, label.anchor.y + d[1] * distance, d, label.width, label.height);
-          const std::optional<PlacedLabel> c = candidate(box, label.anchor, pass);
-          if (!c) continue;
-          double room = 3.0 * options.leader_distance;
-          for (const ScreenDisc& o : obstacles)
-            if (!is_own(o, label.anchor)) room = std::min(room, disc_box_gap(o, box));
-          if (room > best_room) {
-            best_room = room;
-            placed[i] = c;
-          }
-        }
-      }
-    if (!placed[i]) continue;
-    boxes.push_back(placed[i]->box);
-    if (placed[i]->has_leader) leaders.push_back(*placed[i]);
+    placed[i] = placer.place(labels[i], obstacles);
+    if (placed[i]) placer.add(*placed[i]);
   }
   return placed;
 }

@@ -7,8 +7,10 @@
 // cannot sit next to its anchor moves outwards and gets a leader line.
 // Pure geometry on pixel coordinates; nothing here draws.
 
+#include <cstdint>
 #include <optional>
 #include <span>
+#include <unordered_map>
 #include <vector>
 
 #include "hqview/render/annotate.h"
@@ -16,15 +18,25 @@
 namespace hq {
 
 // A disc on screen, pixels (a glyph's silhouette, an anchor's marker).
+// id: whose disc it is (>= 0), so that an obstacle with its label's anchor
+// id is that label's own (its glyph, its fan); -1: no id (then an obstacle
+// centred exactly on the anchor is its own).
 struct ScreenDisc {
   double x = 0, y = 0, radius = 0;
+  std::int64_t id = -1;
 };
 
 // One label to place: its anchor (a disc: the label stays outside it) and
-// its box size in pixels.
+// its box size in pixels. leader_from: where its leader line starts (a disc
+// inside the visible part of a partly hidden glyph: the leader begins on
+// its edge, so it ends on what the reader sees); none: the anchor.
+// always_leader: the label gets a leader wherever it sits (its glyph is
+// mostly hidden, so a label merely beside it would not say which it names).
 struct LabelRequest {
   ScreenDisc anchor;
   int width = 0, height = 0;
+  std::optional<ScreenDisc> leader_from = std::nullopt;
+  bool always_leader = false;
 };
 
 struct LabelLayoutOptions {
@@ -63,8 +75,9 @@ struct PlacedLabel {
 // leader. When none is clear, the second pass lets the leader run over
 // other discs, and the third takes the first free place (with a leader
 // when it needs one). A label with no free candidate is
-// nullopt (the caller says what was left out). An obstacle at the anchor's
-// centre (the anchor's own glyph or fan) is the label's own.
+// nullopt (the caller says what was left out). An obstacle with the
+// anchor's id (ScreenDisc::id) is the label's own (its glyph or fan): the
+// label may be beside it and its leader may cross it.
 //   obstacles: discs no label may cover (glyphs), pixels.
 //   taken:     boxes already used (e.g. legend, earlier labels).
 //   earlier:   labels placed by an earlier call: their boxes are taken and
@@ -74,6 +87,32 @@ std::vector<std::optional<PlacedLabel>> place_labels(std::span<const LabelReques
                                                      std::span<const PixelRect> taken,
                                                      const LabelLayoutOptions& options,
                                                      std::span<const PlacedLabel> earlier = {});
+
+// The greedy placement one label at a time (place_labels is a loop over
+// it): the boxes and leaders placed so far in a grid of 64-pixel cells, so
+// a label's checks look at its neighbourhood only (near-linear in the
+// labels), and each candidate checked once for all three passes.
+class LabelPlacer {
+ public:
+  LabelPlacer(std::span<const PixelRect> taken, const LabelLayoutOptions& options);
+  // Where label goes among obstacles (place_labels' rules), given what was
+  // added so far; nullopt when there is no free place. Adds nothing.
+  std::optional<PlacedLabel> place(const LabelRequest& label, std::span<const ScreenDisc> obstacles) const;
+  // A placed label: its box is taken, its leader counts for later labels.
+  void add(const PlacedLabel& label);
+
+ private:
+  void add_box(const PixelRect& box);
+  template <class Pred>
+  bool any_box_near(double x0, double y0, double x1, double y1, Pred&& pred) const;
+  template <class Pred>
+  bool any_leader_near(double x0, double y0, double x1, double y1, Pred&& pred) const;
+
+  LabelLayoutOptions options_;
+  std::vector<PixelRect> boxes_;
+  std::vector<PlacedLabel> leaders_;
+  std::unordered_map<std::int64_t, std::vector<std::uint32_t>> box_cells_, leader_cells_;
+};
 
 // A placement of box with a leader line from the anchor disc's edge
 // towards the box's point nearest the anchor's centre.

@@ -158,7 +158,9 @@ out vec3 eye_point;
 flat out vec3 eye_center;
 flat out float radius;
 flat out vec3 linear_color;
+flat out vec4 flat_color;
 void main() {
+  flat_color = color;
   vec3 c = (model_view * vec4(center, 1.0)).xyz;
   float r = corner_radius.z;
   vec3 axis = is_perspective ? normalize(-c) : vec3(0.0, 0.0, 1.0);
@@ -181,8 +183,10 @@ constexpr const char* kSphereFragmentShader = R"(in vec3 eye_point;
 flat in vec3 eye_center;
 flat in float radius;
 flat in vec3 linear_color;
+flat in vec4 flat_color;
 uniform mat4 projection;
 uniform bool is_perspective;
+uniform bool is_flat;  // id images: the colour as given, unlit
 uniform vec3 light_direction;
 uniform float ambient;
 out vec4 fragment_color;
@@ -198,6 +202,10 @@ void main() {
   vec3 n = (hit - eye_center) / radius;
   vec4 clip = projection * vec4(hit, 1.0);
   gl_FragDepth = clamp(0.5 * clip.z / clip.w + 0.5, 0.0, 1.0);
+  if (is_flat) {
+    fragment_color = vec4(flat_color.rgb, 1.0);
+    return;
+  }
   float diffuse = max(dot(n, light_direction), 0.0);
   float shade = ambient + (1.0 - ambient) * diffuse;
   // A small highlight makes spheres read as round at a glance.
@@ -372,6 +380,31 @@ class OsmesaRenderer final : public Renderer {
   OsmesaRenderer& operator=(const OsmesaRenderer&) = delete;
 
   Image render(const Scene& scene, const Camera& camera, int width, int height) override {
+    id_mode_ = false;
+    draw_frame(scene, camera, width, height);
+    Image image = resolve(width, height);
+    check_gl("reading the image back");
+    return image;
+  }
+
+  IdImage render_ids(const Scene& scene, const Camera& camera, int width, int height) override {
+    id_mode_ = true;
+    try {
+      draw_frame(scene, camera, width, height);
+    } catch (...) {
+      id_mode_ = false;
+      throw;
+    }
+    id_mode_ = false;
+    IdImage ids = resolve_ids(width, height);
+    check_gl("reading the id image back");
+    return ids;
+  }
+
+ private:
+  // Draws the frame into the supersampled framebuffer (id_mode_: unlit,
+  // unblended, translucent sets left out).
+  void draw_frame(const Scene& scene, const Camera& camera, int width, int height) {
     stop::check();
     if (width <= 0 || height <= 0)
       throw RenderError("image size must be positive, got " + std::to_string(width) + "x" + std::to_string(height));
@@ -421,7 +454,7 @@ class OsmesaRenderer final : public Renderer {
     draw_triangles(scene.triangles, model_view, projection, nullptr);
     draw_spheres(scene, model_view, projection, camera.is_perspective);
     draw_lines(scene, model_view, projection);
-    if (!scene.translucent.empty()) {
+    if (!scene.translucent.empty() && !id_mode_) {
       // Blended over everything, without depth writes, back to front.
       gl.Enable(GL_BLEND);
       gl.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
@@ -436,13 +469,8 @@ class OsmesaRenderer final : public Renderer {
       draw_triangles(scene.overlay, model_view, projection, nullptr);
     }
     check_gl("drawing");
-
-    Image image = resolve(width, height);
-    check_gl("reading the image back");
-    return image;
   }
 
- private:
   void make_current() {
     if (!gl.MakeCurrent(context_, default_buffer_.data(), GL_UNSIGNED_BYTE, kDefaultSize, kDefaultSize))
       throw RenderError("cannot make the OSMesa context current");
@@ -542,6 +570,7 @@ class OsmesaRenderer final : public Renderer {
     gl.UseProgram(sphere_program_);
     set_matrices(sphere_program_, model_view, projection);
     gl.Uniform1i(gl.GetUniformLocation(sphere_program_, "is_perspective"), is_perspective ? 1 : 0);
+    gl.Uniform1i(gl.GetUniformLocation(sphere_program_, "is_flat"), id_mode_ ? 1 : 0);
     set_light(sphere_program_);
     gl.Disable(GL_BLEND);
     static constexpr float kCorners[4][2] = {{-1.0f, -1.0f}, {1.0f, -1.0f}, {1.0f, 1.0f}, {-1.0f, 1.0f}};
@@ -613,7 +642,7 @@ class OsmesaRenderer final : public Renderer {
         gl.DisableVertexAttribArray(kNormalAttribute);
       }
       gl.Uniform1i(gl.GetUniformLocation(triangle_program_, "use_vertex_normals"), use_normals ? 1 : 0);
-      gl.Uniform1i(gl.GetUniformLocation(triangle_program_, "is_lit"), set.is_lit ? 1 : 0);
+      gl.Uniform1i(gl.GetUniformLocation(triangle_program_, "is_lit"), set.is_lit && !id_mode_ ? 1 : 0);
       set_scalars(set);
       // One colour for the whole set (translucent hulls, arrows, the grey
       // boundary of view F): linearised once here instead of per fragment.
@@ -644,7 +673,7 @@ class OsmesaRenderer final : public Renderer {
   // otherwise): per vertex (scalar, below weight, undefined weight) as
   // map_fragment_color (scene.h) reads them, the samples as uniforms.
   void set_scalars(const TriangleSet& set) {
-    const bool has_scalars = !set.scalars.empty();
+    const bool has_scalars = !set.scalars.empty() && !id_mode_;
     gl.Uniform1i(gl.GetUniformLocation(triangle_program_, "has_scalars"), has_scalars ? 1 : 0);
     if (!has_scalars) {
       gl.DisableVertexAttribArray(kScalarAttribute);
@@ -674,7 +703,8 @@ class OsmesaRenderer final : public Renderer {
                   const std::array<float, 16>& projection) {
     gl.UseProgram(line_program_);
     set_matrices(line_program_, model_view, projection);
-    gl.Enable(GL_BLEND);
+    if (id_mode_) gl.Disable(GL_BLEND);
+    else gl.Enable(GL_BLEND);
     gl.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     for (const LineSet& set : scene.lines) {
       stop::check();
@@ -687,16 +717,48 @@ class OsmesaRenderer final : public Renderer {
     gl.Disable(GL_BLEND);
   }
 
-  // Reads the supersampled frame back (on llvmpipe a plain copy, far
-  // cheaper than a GPU-side downsampling blit) and box-filters it down.
-  Image resolve(int width, int height) {
+  // Reads the supersampled frame back into supersampled_pixels_ (on
+  // llvmpipe a plain copy, far cheaper than a GPU-side downsampling blit).
+  void read_back(int width, int height) {
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, supersampled_framebuffer_);
     gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
     const int ss_width = kSupersampling * width, ss_height = kSupersampling * height;
     supersampled_pixels_.resize(4 * static_cast<std::size_t>(ss_width) * static_cast<std::size_t>(ss_height));
     gl.ReadPixels(0, 0, ss_width, ss_height, GL_RGBA, GL_UNSIGNED_BYTE, supersampled_pixels_.data());
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  }
+
+  // The frame read back and box-filtered down.
+  Image resolve(int width, int height) {
+    read_back(width, height);
     return box_filter_2x2(supersampled_pixels_, width, height);
+  }
+
+  // The id frame read back: each output pixel (rows top-down) the id of
+  // most of its 2x2 samples, the first sample's on a tie.
+  IdImage resolve_ids(int width, int height) {
+    read_back(width, height);
+    static_assert(kSupersampling == 2);
+    IdImage ids{width, height, 0, 0,
+                std::vector<std::uint32_t>(static_cast<std::size_t>(width) * static_cast<std::size_t>(height))};
+    const std::size_t ss_row = 8 * static_cast<std::size_t>(width);
+    auto sample = [&](const std::uint8_t* p) { return id_of(Rgba8{p[0], p[1], p[2], 255}); };
+    for (int y = 0; y < height; ++y) {
+      const std::uint8_t* r0 = supersampled_pixels_.data() + ss_row * (2 * static_cast<std::size_t>(height - 1 - y));
+      const std::uint8_t* r1 = r0 + ss_row;
+      for (int x = 0; x < width; ++x) {
+        const std::size_t i = 8 * static_cast<std::size_t>(x);
+        const std::uint32_t s[4] = {sample(r1 + i), sample(r1 + i + 4), sample(r0 + i), sample(r0 + i + 4)};
+        std::uint32_t best = s[0];
+        int best_count = 0;
+        for (int a = 0; a < 4; ++a) {
+          const int count = static_cast<int>(std::count(s, s + 4, s[a]));
+          if (count > best_count) best = s[a], best_count = count;
+        }
+        ids.ids[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] = best;
+      }
+    }
+    return ids;
   }
 
   // OSMesa needs a client buffer to make a context current; every frame is
@@ -716,6 +778,7 @@ class OsmesaRenderer final : public Renderer {
   int framebuffer_width_ = 0, framebuffer_height_ = 0;
   GLint max_renderbuffer_size_ = 0;
   float max_line_width_ = 1.0f;
+  bool id_mode_ = false;  // the frame being drawn is an id image (render_ids)
 };
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <numeric>
 
@@ -41,14 +42,20 @@ double displayed_glyph_scale(const GlyphResult& glyphs, const Camera& camera, in
   return std::max(1.0, kWorstGlyphMinPixels * pixel_scale / pixels);
 }
 
+namespace {
+
+// Whether view A draws a cluster's glyph grey (unlabelled; scene spheres[0]).
+bool is_grey_glyph(const AggregatedGlyph& g, const GlyphResult& glyphs) {
+  return to_rgba8(cluster_color(g.id, glyphs.options.top_clusters)) == to_rgba8(neutral_cluster_color());
+}
+
+}  // namespace
+
 std::vector<double> displayed_glyph_radii(const GlyphResult& glyphs, double scale) {
-  const Rgba8 neutral = to_rgba8(neutral_cluster_color());
   std::vector<double> radii;
   radii.reserve(glyphs.clusters.size());
-  for (const AggregatedGlyph& g : glyphs.clusters) {
-    const bool is_grey = to_rgba8(cluster_color(g.id, glyphs.options.top_clusters)) == neutral;
-    radii.push_back(g.radius * scale * (is_grey ? kGreyGlyphFactor : 1.0));
-  }
+  for (const AggregatedGlyph& g : glyphs.clusters)
+    radii.push_back(g.radius * scale * (is_grey_glyph(g, glyphs) ? kGreyGlyphFactor : 1.0));
   return radii;
 }
 
@@ -483,13 +490,12 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   // grey ones smaller.
   SphereSet spheres, ranked;
   ranked.over_other_spheres = true;
-  const Rgba8 neutral = to_rgba8(neutral_cluster_color());
   const std::vector<double> shown =
       displayed_glyph_radii(glyphs, displayed_glyph_scale(glyphs, camera, view_height, options.pixel_scale));
   for (const AggregatedGlyph& g : glyphs.clusters) {
     if (!(g.radius > 0.0)) continue;
     const Rgba8 color = to_rgba8(cluster_color(g.id, top));
-    SphereSet& set = color == neutral ? spheres : ranked;
+    SphereSet& set = is_grey_glyph(g, glyphs) ? spheres : ranked;
     set.centers.push_back(local(g.position));
     set.radii.push_back(static_cast<float>(shown[static_cast<std::size_t>(g.id)]));
     set.colors.push_back(color);
@@ -511,6 +517,51 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   scene.overlay.push_back(std::move(arrows));
   scene.translucent.push_back(std::move(cells));
   return scene;
+}
+
+IdImage main_view_id_image(Renderer& renderer, const Scene& scene, const GlyphResult& glyphs, const Camera& camera,
+                           const PixelRect& view, bool with_markers) {
+  if (scene.spheres.size() != 2) throw RenderError("main_view_id_image needs view A's scene");
+  Scene coded;
+  coded.origin = scene.origin;
+  coded.background = id_color(kIdBackground);
+  for (const TriangleSet& set : scene.triangles) {
+    TriangleSet flat = set;
+    flat.scalars.clear();
+    flat.colors.assign(set.positions.size(), id_color(kIdEdge));
+    coded.triangles.push_back(std::move(flat));
+  }
+  // Lines: the segments drawn at least half opaque at both ends.
+  for (const LineSet& set : scene.lines) {
+    LineSet opaque;
+    opaque.width = set.width;
+    opaque.positions = set.positions;
+    opaque.colors.assign(set.positions.size(), id_color(kIdEdge));
+    for (std::size_t i = 0; i + 1 < set.indices.size(); i += 2)
+      if (set.colors[set.indices[i]].a >= 128 && set.colors[set.indices[i + 1]].a >= 128)
+        opaque.indices.insert(opaque.indices.end(), {set.indices[i], set.indices[i + 1]});
+    coded.lines.push_back(std::move(opaque));
+  }
+  // Spheres: in build_main_scene's order (grey ones, then coloured ones, by rank).
+  coded.spheres = scene.spheres;
+  std::size_t next[2] = {0, 0};
+  for (const AggregatedGlyph& g : glyphs.clusters) {
+    if (!(g.radius > 0.0)) continue;
+    const std::size_t set = is_grey_glyph(g, glyphs) ? 0 : 1;
+    if (next[set] >= coded.spheres[set].colors.size()) throw RenderError("main_view_id_image: scene and glyphs differ");
+    coded.spheres[set].colors[next[set]++] = id_color(kIdGlyph + static_cast<std::uint32_t>(g.id));
+  }
+  if (with_markers)
+    for (const TriangleSet& set : scene.overlay) {
+      TriangleSet flat = set;
+      flat.scalars.clear();
+      flat.colors.assign(set.positions.size(), id_color(kIdMarker));
+      coded.overlay.push_back(std::move(flat));
+    }
+  IdImage ids = renderer.render_ids(coded, camera, view.width, view.height);
+  ids.x0 = view.x;
+  ids.y0 = view.y;
+  return ids;
 }
 
 namespace {
@@ -622,7 +673,7 @@ void draw_inverted_glyph_rings(Image& figure, const std::vector<ScreenDisc>& inv
 
 std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const OverlapReport* overlap,
                                           const AnnotationStyle& style, const MainViewOptions& options,
-                                          double glyph_scale) {
+                                          double glyph_scale, std::span<const Index> hidden) {
   const std::size_t listed = std::min<std::size_t>(
       glyphs.clusters.size(), static_cast<std::size_t>(labelled_cluster_count(glyphs.options.top_clusters)));
   std::vector<LegendLine> lines{{std::nullopt, "glyphs: worst clusters"}};
@@ -631,7 +682,8 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
     // As the label reads, then the key number (short: a long line is cut).
     lines.push_back({to_rgba8(cluster_color(g.id, glyphs.options.top_clusters)),
                      "#" + std::to_string(g.id) + " (" + std::to_string(g.size) + ")  min " +
-                         display_number(g.min_quality, 3)});
+                         display_number(g.min_quality, 3) +
+                         (std::find(hidden.begin(), hidden.end(), g.id) != hidden.end() ? ", hidden" : "")});
   }
   if (glyphs.clusters.size() > listed) {
     const std::size_t rest = glyphs.clusters.size() - listed;
@@ -697,15 +749,155 @@ namespace {
 // Legend: what each colour means (draw_legend shrinks it to the panel).
 void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapReport* overlap,
                       const FigureLayout& layout, const AnnotationStyle& style, const MainViewOptions& options,
-                      double glyph_scale) {
-  draw_legend(figure, layout.legend, main_legend_lines(glyphs, overlap, style, options, glyph_scale), style);
+                      double glyph_scale, std::span<const Index> hidden) {
+  draw_legend(figure, layout.legend, main_legend_lines(glyphs, overlap, style, options, glyph_scale, hidden), style);
 }
+
+}  // namespace
+
+namespace {
+
+// The visible part of a glyph in an id image (layout_main_view_labels).
+struct VisibleGlyph {
+  std::size_t pixels = 0;  // pixels showing the glyph
+  ScreenDisc leader_from;  // where a leader to it starts (inside its visible pixels)
+  bool is_mostly_hidden = false;
+};
+
+// lines_hide: edge lines over the glyph count as hiding it (else as part
+// of it: the leader's start then slides past them, slide_leader_start).
+VisibleGlyph visible_glyph(const IdImage& ids, std::uint32_t id, const ScreenDisc& disc, bool lines_hide) {
+  VisibleGlyph result;
+  // The disc's box and a 2-pixel margin (beyond the id image: background).
+  const int left = static_cast<int>(std::floor(disc.x - disc.radius)) - 2;
+  const int top = static_cast<int>(std::floor(disc.y - disc.radius)) - 2;
+  const int w = static_cast<int>(std::ceil(disc.x + disc.radius)) + 3 - left;
+  const int h = static_cast<int>(std::ceil(disc.y + disc.radius)) + 3 - top;
+  if (w <= 0 || h <= 0 || static_cast<double>(w) * h > 4.0e7) return result;
+  // own: pixels showing the glyph, or an edge line over it (a line of 1-3
+  // px crossing a glyph does not hide it: the leader's start slides past it,
+  // slide_leader_start); others: the rest of the box.
+  std::vector<std::uint8_t> own(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+  std::vector<std::array<int, 2>> others;
+  for (int v = 0; v < h; ++v)
+    for (int u = 0; u < w; ++u) {
+      const std::uint32_t at = ids.at(left + u, top + v, kIdBackground);
+      const bool is_on_disc = std::hypot(left + u + 0.5 - disc.x, top + v + 0.5 - disc.y) < disc.radius - 0.5;
+      const bool is_own = at == id || (!lines_hide && at == kIdEdge && is_on_disc);
+      own[static_cast<std::size_t>(v) * static_cast<std::size_t>(w) + static_cast<std::size_t>(u)] = is_own ? 1 : 0;
+      if (at == id) ++result.pixels;
+      if (!is_own) others.push_back({left + u, top + v});
+    }
+  if (result.pixels == 0) return result;
+  // Distance from (x, y) to the centre of the nearest pixel not showing the
+  // glyph: a disc of that radius less 1 px about (x, y) covers only pixels
+  // that show it or a line over it (a point of it is within 0.71 px of its
+  // pixel's centre).
+  auto clearance = [&](double x, double y) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& p : others) best = std::min(best, std::hypot(p[0] + 0.5 - x, p[1] + 0.5 - y));
+    return best;
+  };
+  const auto id_at = [&](double x, double y) { return ids.at(static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y))); };
+  if (id_at(disc.x, disc.y) == id || (!lines_hide && id_at(disc.x, disc.y) == kIdEdge)) {
+    const double d = clearance(disc.x, disc.y);
+    if (d >= 0.5 * disc.radius) {
+      result.leader_from = {disc.x, disc.y, std::max(0.0, d - 1.0), disc.id};
+      return result;
+    }
+  }
+  // Mostly hidden: about the visible pixel farthest from the others
+  // (a 3-4 chamfer distance; ties: nearest the glyph's centre, then the
+  // first in rows).
+  constexpr int kFar = 1 << 28;
+  std::vector<int> dist(own.size());
+  for (std::size_t i = 0; i < own.size(); ++i) dist[i] = own[i] ? kFar : 0;
+  auto at = [&](int u, int v) -> int& { return dist[static_cast<std::size_t>(v) * static_cast<std::size_t>(w) + static_cast<std::size_t>(u)]; };
+  for (int v = 0; v < h; ++v)
+    for (int u = 0; u < w; ++u) {
+      int& d = at(u, v);
+      if (d == 0) continue;
+      if (u > 0) d = std::min(d, at(u - 1, v) + 3);
+      if (v > 0) {
+        d = std::min(d, at(u, v - 1) + 3);
+        if (u > 0) d = std::min(d, at(u - 1, v - 1) + 4);
+        if (u + 1 < w) d = std::min(d, at(u + 1, v - 1) + 4);
+      }
+    }
+  for (int v = h - 1; v >= 0; --v)
+    for (int u = w - 1; u >= 0; --u) {
+      int& d = at(u, v);
+      if (d == 0) continue;
+      if (u + 1 < w) d = std::min(d, at(u + 1, v) + 3);
+      if (v + 1 < h) {
+        d = std::min(d, at(u, v + 1) + 3);
+        if (u + 1 < w) d = std::min(d, at(u + 1, v + 1) + 4);
+        if (u > 0) d = std::min(d, at(u - 1, v + 1) + 4);
+      }
+    }
+  int best_u = -1, best_v = -1;
+  double best_centre = 0.0;
+  for (int v = 0; v < h; ++v)
+    for (int u = 0; u < w; ++u) {
+      if (at(u, v) == 0) continue;
+      const double centre = std::hypot(left + u + 0.5 - disc.x, top + v + 0.5 - disc.y);
+      if (best_u < 0 || at(u, v) > at(best_u, best_v) || (at(u, v) == at(best_u, best_v) && centre < best_centre)) {
+        best_u = u;
+        best_v = v;
+        best_centre = centre;
+      }
+    }
+  const double x = left + best_u + 0.5, y = top + best_v + 0.5;
+  result.leader_from = {x, y, std::max(0.0, clearance(x, y) - 1.0), disc.id};
+  result.is_mostly_hidden = true;
+  return result;
+}
+
+void mark_drawn(IdImage& ids, const MainViewLabels& labels, const GlyphResult& glyphs, AnnotationStyle style,
+                MainViewOptions scaled, bool is_labels);
+
+// Moves a leader's start along the leader towards its leader_from centre,
+// in 0.25 px steps, until it lies on a pixel showing glyph id (past an edge
+// line over the glyph); when the leader runs along such a line, to the
+// centre of the nearest pixel showing it within 4 px; else false.
+bool slide_leader_start(PlacedLabel& p, const ScreenDisc& from, const IdImage& ids, std::uint32_t id) {
+  if (!p.has_leader) return true;
+  const double x0 = p.leader_x0, y0 = p.leader_y0;
+  const double dx = from.x - p.leader_x0, dy = from.y - p.leader_y0;
+  const double length = std::hypot(dx, dy);
+  const int steps = static_cast<int>(std::floor(length / 0.25));
+  for (int i = 0; i <= steps; ++i) {
+    const double t = length > 0.0 ? 0.25 * i / length : 0.0;
+    const double x = p.leader_x0 + t * dx, y = p.leader_y0 + t * dy;
+    if (ids.at(static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y))) == id) {
+      p.leader_x0 = x;
+      p.leader_y0 = y;
+      return true;
+    }
+  }
+  double best = 4.0;
+  bool found = false;
+  for (int v = static_cast<int>(std::floor(y0)) - 4; v <= static_cast<int>(std::floor(y0)) + 4; ++v)
+    for (int u = static_cast<int>(std::floor(x0)) - 4; u <= static_cast<int>(std::floor(x0)) + 4; ++u) {
+      const double d = std::hypot(u + 0.5 - x0, v + 0.5 - y0);
+      if (d <= best && ids.at(u, v) == id) {
+        best = d;
+        p.leader_x0 = u + 0.5;
+        p.leader_y0 = v + 0.5;
+        found = true;
+      }
+    }
+  return found;
+}
+
+// Ids of the arrow fans' discs among the glyphs' (ranks) in place_labels.
+constexpr std::int64_t kFanIdBase = std::int64_t{1} << 40;
 
 }  // namespace
 
 MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapReport* overlap, const Camera& camera,
                                        const FigureLayout& layout, const AnnotationStyle& style,
-                                       const MainViewOptions& scaled) {
+                                       const MainViewOptions& scaled, const IdImage* ids) {
   const double aspect = static_cast<double>(layout.view.width) / static_cast<double>(std::max(1, layout.view.height));
   const ImagePlane plane = image_plane(camera);
   // Figure pixels of a model point, and model units per pixel there.
@@ -732,7 +924,8 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
   std::vector<std::pair<double, ScreenDisc>> glyph_discs;
   for (const AggregatedGlyph& g : glyphs.clusters) {
     if (!(g.radius > 0.0)) continue;
-    const ScreenDisc d = screen_of(g.position, shown[static_cast<std::size_t>(g.id)]);
+    ScreenDisc d = screen_of(g.position, shown[static_cast<std::size_t>(g.id)]);
+    d.id = g.id;
     if (on_screen(d) && d.radius >= 1.0) glyph_discs.push_back({d.radius, d});
     if (on_screen(d) && g.min_quality < 0.0) result.inverted_glyphs.push_back(d);
   }
@@ -741,11 +934,19 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
   if (glyph_discs.size() > kGlyphObstacles) glyph_discs.resize(kGlyphObstacles);
   if (!glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0)
     result.worst_glyph = screen_of(glyphs.clusters[0].position, shown[0]);
+  result.worst_glyph.id = 0;
+  // What the labels see: the id image with the rings drawn over it.
+  IdImage seen;
+  if (ids && !ids->empty()) {
+    seen = *ids;
+    mark_drawn(seen, result, glyphs, style, scaled, false);
+  }
   std::vector<ScreenDisc> fans;
   std::vector<MainViewLabel> markers;
   if (overlap) {
     for (const MarkerFan& fan : marker_fans(glyphs, *overlap, camera, layout.view.height, scaled)) {
-      const ScreenDisc disc = screen_of(fan.group.position, fan.reach + 6.5 * fan.unit);
+      ScreenDisc disc = screen_of(fan.group.position, fan.reach + 6.5 * fan.unit);
+      disc.id = kFanIdBase + static_cast<std::int64_t>(fans.size());
       fans.push_back(disc);
       MainViewLabel label;
       label.kind = MainViewLabel::Kind::marker;
@@ -754,7 +955,7 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
       label.color = fan.group.kind == MarkerKind::intersection ? kIntersectionArrowColor : kCoincidentArrowColor;
       // Anchored where its arrows point; its own fan is an obstacle, so
       // the label sits next to the fan with a leader line to its centre.
-      label.anchor = ScreenDisc{disc.x, disc.y, 3.0 * style.scale};
+      label.anchor = ScreenDisc{disc.x, disc.y, 3.0 * style.scale, disc.id};
       markers.push_back(label);
     }
     std::stable_sort(markers.begin(), markers.end(),
@@ -765,7 +966,8 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
       glyphs.clusters.size(), static_cast<std::size_t>(labelled_cluster_count(glyphs.options.top_clusters)));
   for (std::size_t i = 0; i < num_cluster_labels; ++i) {
     const AggregatedGlyph& g = glyphs.clusters[i];
-    const ScreenDisc disc = screen_of(g.position, shown[i]);
+    ScreenDisc disc = screen_of(g.position, shown[i]);
+    disc.id = g.id;
     if (!on_screen(disc)) continue;
     MainViewLabel label;
     label.kind = MainViewLabel::Kind::cluster;
@@ -773,6 +975,15 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
     label.text = "#" + std::to_string(g.id) + " (" + std::to_string(g.size) + ")";
     label.color = style.text_color;
     label.anchor = disc;
+    if (!seen.empty()) {
+      const VisibleGlyph visible = visible_glyph(seen, kIdGlyph + static_cast<std::uint32_t>(g.id), disc, false);
+      if (visible.pixels == 0) {
+        result.hidden_clusters.push_back(g.id);
+        continue;
+      }
+      label.leader_from = visible.leader_from;
+      label.always_leader = visible.is_mostly_hidden;
+    }
     clusters.push_back(label);
   }
   // Order: cluster #0, the marker groups, the other clusters.
@@ -797,17 +1008,18 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
   all_obstacles.insert(all_obstacles.end(), fans.begin(), fans.end());
   std::vector<ScreenDisc> worst_only;
   if (result.worst_glyph.radius > 0.0) worst_only.push_back(result.worst_glyph);
-  std::vector<PlacedLabel> earlier;
+  LabelPlacer placer({}, options);
   for (MainViewLabel& label : order) {
     const int size = label.kind == MainViewLabel::Kind::cluster ? cluster_label_size(style) : marker_label_size(style);
-    const LabelRequest request[] = {label_request(label.text, size, label.anchor, style)};
-    std::optional<PlacedLabel> placed = place_labels(request, all_obstacles, {}, options, earlier)[0];
-    if (!placed && label.kind == MainViewLabel::Kind::marker)
-      placed = place_labels(request, worst_only, {}, options, earlier)[0];
+    LabelRequest request = label_request(label.text, size, label.anchor, style);
+    request.leader_from = label.leader_from;
+    request.always_leader = label.always_leader;
+    std::optional<PlacedLabel> placed = placer.place(request, all_obstacles);
+    if (!placed && label.kind == MainViewLabel::Kind::marker) placed = placer.place(request, worst_only);
     if (!placed && label.kind == MainViewLabel::Kind::marker) {
       // No free place in the whole view: at the anchor's right, clamped to the view.
       PixelRect box{static_cast<int>(std::lround(label.anchor.x + label.anchor.radius)),
-                    static_cast<int>(std::lround(label.anchor.y)), request[0].width, request[0].height};
+                    static_cast<int>(std::lround(label.anchor.y)), request.width, request.height};
       box.x = std::clamp(box.x, layout.view.x, layout.view.x + layout.view.width - box.width);
       box.y = std::clamp(box.y, layout.view.y, layout.view.y + layout.view.height - box.height);
       placed = PlacedLabel{box};
@@ -817,10 +1029,26 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
       ++result.omitted_clusters;
       continue;
     }
+    if (label.kind == MainViewLabel::Kind::cluster && placed && label.leader_from && !seen.empty()) {
+      const auto own = kIdGlyph + static_cast<std::uint32_t>(label.cluster);
+      if (!slide_leader_start(*placed, *label.leader_from, seen, own)) {
+        // The leader runs along a line over the glyph: placed again from
+        // the glyph's pixels that no line covers.
+        const VisibleGlyph strict = visible_glyph(seen, own, label.anchor, true);
+        label.leader_from = request.leader_from = strict.leader_from;
+        label.always_leader = request.always_leader = strict.is_mostly_hidden;
+        placed = placer.place(request, all_obstacles);
+        if (!placed) {
+          ++result.omitted_clusters;
+          continue;
+        }
+      }
+    }
     label.placement = *placed;
-    earlier.push_back(*placed);
+    placer.add(*placed);
     result.labels.push_back(label);
   }
+  result.ids = std::move(seen);
   return result;
 }
 
@@ -854,12 +1082,73 @@ MainViewFrame main_view_frame(const HexMesh& mesh, const Topology& topology, con
 
 }  // namespace
 
+namespace {
+
+// View A's scene as render_main_view draws it: the wireframe fades when
+// dense on screen, so glyphs and clusters stay readable.
+Scene main_view_scene(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
+                      const OverlapReport* overlap, const MainViewFrame& f) {
+  Scene scene = build_main_scene(mesh, topology, glyphs, overlap, f.camera, f.layout.view.height, f.scaled);
+  const double pixels =
+      median_edge_pixels(scene.lines[0], scene.origin, f.camera, f.layout.view.width, f.layout.view.height);
+  const double opacity = std::clamp(pixels / 10.0, 0.2, 0.85);
+  for (Rgba8& c : scene.lines[0].colors) c.a = static_cast<std::uint8_t>(std::lround(255.0 * opacity));
+  return scene;
+}
+
+// The rings render_main_view draws around the glyphs.
+void draw_glyph_rings(Image& figure, const MainViewLabels& labels, const GlyphResult& glyphs,
+                      const AnnotationStyle& style, const MainViewOptions& scaled) {
+  draw_inverted_glyph_rings(figure, labels.inverted_glyphs, style, scaled);
+  draw_worst_glyph_ring(figure, labels.worst_glyph, !glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0,
+                        style, scaled);
+}
+
+// Marks kIdAnnotation where the rings (and with is_labels the leader lines
+// and label boxes) are drawn: the same drawing in white on black, a pixel
+// at least half white is covered.
+void mark_drawn(IdImage& ids, const MainViewLabels& labels, const GlyphResult& glyphs, AnnotationStyle style,
+                MainViewOptions scaled, bool is_labels) {
+  const Rgba8 white{255, 255, 255, 255};
+  style.text_color = white;
+  scaled.background = white;
+  MainViewLabels white_labels;
+  if (is_labels) white_labels.labels = labels.labels;
+  for (MainViewLabel& l : white_labels.labels) l.color = white;
+  white_labels.worst_glyph = labels.worst_glyph;
+  white_labels.inverted_glyphs = labels.inverted_glyphs;
+  Image mask = make_image(std::max(1, ids.x0 + ids.width), std::max(1, ids.y0 + ids.height), Rgba8{0, 0, 0, 255});
+  draw_glyph_rings(mask, white_labels, glyphs, style, scaled);
+  draw_main_view_labels(mask, white_labels, style, scaled);
+  for (int y = 0; y < ids.height; ++y)
+    for (int x = 0; x < ids.width; ++x) {
+      const int fx = x + ids.x0, fy = y + ids.y0;
+      if (fx < 0 || fy < 0 || fx >= mask.width || fy >= mask.height) continue;
+      if (mask.rgba[pixel_offset(mask, fx, fy)] >= 128)
+        ids.ids[static_cast<std::size_t>(y) * static_cast<std::size_t>(ids.width) + static_cast<std::size_t>(x)] =
+            kIdAnnotation;
+    }
+}
+
+}  // namespace
+
+void mark_main_view_annotations(IdImage& ids, const MainViewLabels& labels, const GlyphResult& glyphs,
+                                const MainViewOptions& options) {
+  AnnotationStyle style = annotation_style_for(options.height);
+  MainViewOptions scaled = options;
+  scaled.pixel_scale = style.scale;
+  mark_drawn(ids, labels, glyphs, style, scaled, true);
+}
+
 MainViewLabels main_view_labels(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                                 const OverlapReport* overlap, const Vec3& view_direction,
-                                const MainViewOptions& options, Scene* scene) {
+                                const MainViewOptions& options, Scene* scene, Renderer* renderer) {
   const MainViewFrame f = main_view_frame(mesh, topology, glyphs, view_direction, options);
-  if (scene) *scene = build_main_scene(mesh, topology, glyphs, overlap, f.camera, f.layout.view.height, f.scaled);
-  return layout_main_view_labels(glyphs, overlap, f.camera, f.layout, f.style, f.scaled);
+  Scene drawn = main_view_scene(mesh, topology, glyphs, overlap, f);
+  IdImage ids;
+  if (renderer) ids = main_view_id_image(*renderer, drawn, glyphs, f.camera, f.layout.view, true);
+  if (scene) *scene = std::move(drawn);
+  return layout_main_view_labels(glyphs, overlap, f.camera, f.layout, f.style, f.scaled, ids.empty() ? nullptr : &ids);
 }
 
 Image render_main_view(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
@@ -870,20 +1159,17 @@ Image render_main_view(const HexMesh& mesh, const Topology& topology, const Glyp
   const FigureLayout& layout = frame.layout;
   const Camera& camera = frame.camera;
   const MainViewOptions& scaled = frame.scaled;
-  Scene scene = build_main_scene(mesh, topology, glyphs, overlap, camera, layout.view.height, scaled);
-  // The wireframe fades when dense on screen, so glyphs and clusters stay readable.
-  const double pixels = median_edge_pixels(scene.lines[0], scene.origin, camera, layout.view.width, layout.view.height);
-  const double opacity = std::clamp(pixels / 10.0, 0.2, 0.85);
-  for (Rgba8& c : scene.lines[0].colors) c.a = static_cast<std::uint8_t>(std::lround(255.0 * opacity));
+  const Scene scene = main_view_scene(mesh, topology, glyphs, overlap, frame);
 
   Image figure = render_figure(renderer, scene, camera, options.width, options.height, layout, options.title, style);
 
-  const MainViewLabels labels = layout_main_view_labels(glyphs, overlap, camera, layout, style, scaled);
-  draw_inverted_glyph_rings(figure, labels.inverted_glyphs, style, scaled);
-  draw_worst_glyph_ring(figure, labels.worst_glyph, !glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0,
-                        style, scaled);
+  // Labels placed on what is visible (each points at its own glyph's pixels).
+  const IdImage ids = main_view_id_image(renderer, scene, glyphs, camera, layout.view, true);
+  const MainViewLabels labels =
+      layout_main_view_labels(glyphs, overlap, camera, layout, style, scaled, ids.empty() ? nullptr : &ids);
+  draw_glyph_rings(figure, labels, glyphs, style, scaled);
   draw_main_view_labels(figure, labels, style, scaled);
-  draw_main_legend(figure, glyphs, overlap, layout, style, options, labels.glyph_scale);
+  draw_main_legend(figure, glyphs, overlap, layout, style, options, labels.glyph_scale, labels.hidden_clusters);
   return figure;
 }
 

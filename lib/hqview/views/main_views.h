@@ -16,6 +16,7 @@
 #include "hqview/overlap/overlap.h"
 #include "hqview/render/annotate.h"
 #include "hqview/render/camera.h"
+#include "hqview/render/id_image.h"
 #include "hqview/render/label_layout.h"
 #include "hqview/render/renderer.h"
 #include "hqview/render/scene.h"
@@ -162,9 +163,10 @@ std::vector<double> displayed_glyph_radii(const GlyphResult& glyphs, double scal
 // the rings (ring swatches: #0's dark ring in style.text_color, the
 // inverted ring), the findings and the boundary edges; glyph_scale as
 // displayed_glyph_scale.
+// A cluster in hidden (MainViewLabels::hidden_clusters) reads "…, hidden".
 std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const OverlapReport* overlap,
                                           const AnnotationStyle& style, const MainViewOptions& options,
-                                          double glyph_scale);
+                                          double glyph_scale, std::span<const Index> hidden = {});
 
 // Width / height of the 3D part of the figure render_main_view draws.
 double main_view_aspect(const MainViewOptions& options);
@@ -178,6 +180,10 @@ struct MainViewLabel {
   Index count = 0;           // findings (marker labels)
   Rgba8 color;               // text colour
   ScreenDisc anchor;         // the glyph's disc, or a 3-pixel disc at the marker group's position
+  // Where its leader starts (inside its glyph's visible pixels; none: the
+  // anchor's edge) and whether it always has one (its glyph mostly hidden).
+  std::optional<ScreenDisc> leader_from;
+  bool always_leader = false;
   PlacedLabel placement;
 };
 struct MainViewLabels {
@@ -190,7 +196,33 @@ struct MainViewLabels {
   // The glyphs of the clusters with an inverted vertex (min quality < 0)
   // on screen, by rank: render_main_view rings each in the inverted colour.
   std::vector<ScreenDisc> inverted_glyphs;
+  // Ranks of the labelled clusters on screen whose glyph shows no pixel
+  // (hidden behind other glyphs, edges or arrows): they get no label (it
+  // would point at something else) and the legend says "hidden".
+  std::vector<Index> hidden_clusters;
+  // The id image the labels were placed on (main_view_id_image with the
+  // markers, the rings marked kIdAnnotation); empty when placed without one.
+  IdImage ids;
 };
+
+// View A's id image (issue 44: each label points at a visible part of its
+// own glyph): scene (as render_main_view draws it) drawn through camera by
+// renderer.render_ids into the figure's 3D area view, each pixel
+//   kIdGlyph + rank  a glyph (grey or coloured);
+//   kIdEdge          a line drawn at least half opaque (the faded wireframe
+//                    and the translucent cells do not hide what is behind);
+//   kIdMarker        an overlap arrow (with_markers; otherwise left out);
+//   kIdBackground    nothing.
+// Empty when the renderer draws no id images.
+inline constexpr std::uint32_t kIdBackground = 0, kIdEdge = 1, kIdMarker = 2, kIdAnnotation = 3, kIdGlyph = 16;
+IdImage main_view_id_image(Renderer& renderer, const Scene& scene, const GlyphResult& glyphs, const Camera& camera,
+                           const PixelRect& view, bool with_markers);
+
+// Marks kIdAnnotation on ids where render_main_view draws over the 3D
+// view: the rings, the leader lines and the label boxes (the pixels those
+// drawings cover at least half).
+void mark_main_view_annotations(IdImage& ids, const MainViewLabels& labels, const GlyphResult& glyphs,
+                                const MainViewOptions& options);
 
 // Where view A's labels go (pure; render_main_view draws them): one count
 // label per marker group (group_markers_on_screen; their counts add up to
@@ -211,15 +243,23 @@ struct MainViewLabels {
 // finds no such place is placed ignoring the other glyphs (never the worst
 // one), so the counts always add up; a cluster label that finds none is left
 // out (omitted_clusters).
+// With ids (main_view_id_image; the rings are drawn over it first), a
+// cluster label points at a visible part of its own glyph: its leader starts 1 px inside the largest disc of the
+// glyph's visible pixels about the glyph's centre when that disc has at
+// least half the glyph's radius, else about the visible pixel farthest from
+// any other (the glyph is mostly hidden: then the label always has a
+// leader); a cluster whose glyph shows no pixel gets no label
+// (hidden_clusters).
 MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapReport* overlap, const Camera& camera,
                                        const FigureLayout& layout, const AnnotationStyle& style,
-                                       const MainViewOptions& scaled);
+                                       const MainViewOptions& scaled, const IdImage* ids = nullptr);
 
 // The labels render_main_view draws for view_direction (and, when scene is
-// not null, the scene it draws), figure pixels.
+// not null, the scene it draws), figure pixels; placed on the id image when
+// renderer is not null (as render_main_view does), else without one.
 MainViewLabels main_view_labels(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                                 const OverlapReport* overlap, const Vec3& view_direction,
-                                const MainViewOptions& options, Scene* scene = nullptr);
+                                const MainViewOptions& options, Scene* scene = nullptr, Renderer* renderer = nullptr);
 
 // The figure: title, the 3D view, the labels (layout_main_view_labels:
 // every marker group with its number of findings "xN", the worst clusters

@@ -71,6 +71,9 @@ class RecordingRenderer final : public Renderer {
     last_frame = {camera, static_cast<double>(width) / static_cast<double>(std::max(height, 1)), width, height};
     return inner_.render(scene, camera, width, height);
   }
+  IdImage render_ids(const Scene& scene, const Camera& camera, int width, int height) override {
+    return inner_.render_ids(scene, camera, width, height);
+  }
   FrameRecord last_frame;
 
  private:
