@@ -212,7 +212,7 @@ TEST(FemCli, BatchCorrelatesErrorsWithMetricsAcrossMeshes) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json index = json::parse(read_text(dir / "sim" / "index.json"));
   ASSERT_EQ(index["meshes"].size(), 6u);
-  std::vector<double> l2, h1, sj_min, sj_mean;
+  std::vector<double> l2, h1, sj_min, sj_mean, er_max, hexes;
   for (const json& m : index["meshes"]) {
     const json report = read_report(dir / "sim" / m["bundle"].get<std::string>());
     EXPECT_EQ(m["headline"]["fem.poisson.mean.h1_error"], report["fem"]["poisson"]["mean"]["h1_error"]);
@@ -225,22 +225,44 @@ TEST(FemCli, BatchCorrelatesErrorsWithMetricsAcrossMeshes) {
     h1.push_back(report["fem"]["poisson"]["mean"]["h1_error"].get<double>());
     sj_min.push_back(report["quality"]["metrics"]["scaled_jacobian"]["min"].get<double>());
     sj_mean.push_back(report["quality"]["metrics"]["scaled_jacobian"]["mean"].get<double>());
+    er_max.push_back(report["quality"]["metrics"]["edge_ratio"]["max"].get<double>());
+    EXPECT_EQ(m["metrics"]["edge_ratio"]["max"], report["quality"]["metrics"]["edge_ratio"]["max"]);
+    hexes.push_back(report["mesh"]["num_hexes"].get<double>());
   }
   // The more the vertex moves, the larger the error and the lower the min SJ.
   EXPECT_LT(h1.front(), h1.back());
   const json& c = index["fem_correlation"];
   EXPECT_EQ(c["num_meshes"], 6);
   EXPECT_EQ(c["min_meshes"], 5);
-  bool seen_min = false, seen_mean = false;
+  bool seen_min = false, seen_mean = false, seen_edge_ratio = false, seen_baseline = false;
   for (const json& row : c["metrics"]) {
+    // The worst of a lower-is-better metric is its max (the first version
+    // took every metric's min: the best hex of edge_ratio).
+    if (row["metric"] == "edge_ratio" && row["stat"] == "worst") {
+      seen_edge_ratio = true;
+      EXPECT_EQ(row["direction"], "lower is better");
+      EXPECT_NEAR(row["rho_h1_error"].get<double>(), test_spearman(er_max, h1), 1e-12);
+    }
+    if (row["metric"] == "num_hexes") {
+      seen_baseline = true;
+      EXPECT_EQ(row["stat"], "count");
+      EXPECT_TRUE(row["rho_h1_error"].is_null());  // every box has 216 hexes: constant
+    }
     if (row["metric"] != "scaled_jacobian") continue;
-    const bool is_min = row["stat"] == "min";
+    EXPECT_EQ(row["direction"], "higher is better");
+    // Exact permutation p of 6 meshes: a multiple of 1/720, at least 2/720.
+    if (row["p_h1_error"].is_number()) {
+      const double p = row["p_h1_error"].get<double>() * 720;
+      EXPECT_NEAR(p, std::round(p), 1e-9);
+      EXPECT_GE(p, 2 - 1e-9);
+    }
+    const bool is_min = row["stat"] == "worst";
     (is_min ? seen_min : seen_mean) = true;
     EXPECT_EQ(row["num_meshes"], 6);
     EXPECT_NEAR(row["rho_l2_error"].get<double>(), test_spearman(is_min ? sj_min : sj_mean, l2), 1e-12);
     EXPECT_NEAR(row["rho_h1_error"].get<double>(), test_spearman(is_min ? sj_min : sj_mean, h1), 1e-12);
   }
-  EXPECT_TRUE(seen_min && seen_mean);
+  EXPECT_TRUE(seen_min && seen_mean && seen_edge_ratio && seen_baseline);
   EXPECT_LT(test_spearman(sj_min, h1), -0.5);  // the min SJ mostly ranks these meshes by their error
   // A method of 3 meshes: too few, every rho null.
   for (const json& m : index["methods"]) {
@@ -248,8 +270,8 @@ TEST(FemCli, BatchCorrelatesErrorsWithMetricsAcrossMeshes) {
     for (const json& row : m["fem_correlation"]["metrics"]) EXPECT_TRUE(row["rho_h1_error"].is_null()) << row;
   }
   const std::string html = read_text(dir / "sim" / "index.html");
-  EXPECT_NE(html.find("Which metrics predict the simulation error"), std::string::npos);
-  EXPECT_NE(html.find("<th>FEM H1 error</th>"), std::string::npos);
+  EXPECT_NE(html.find("Which metrics rank these meshes by their simulation error"), std::string::npos);
+  EXPECT_NE(html.find("<th>FEM H1 error (rel., semi-norm)</th>"), std::string::npos);
   EXPECT_NE(html.find("FEM cond. (Jacobi)"), std::string::npos);  // a --compare-keys table
   EXPECT_NE(read_text(dir / "sim" / "comparison.csv").find(",fem.poisson.mean.h1_error,"), std::string::npos);
   // diff of two indexes gates on fem keys.
