@@ -143,13 +143,26 @@ TEST(FemCli, SimulateDrawsPanelP) {
   const fs::path dir = fresh_output_dir("fem_views");
   const std::string box = write_box(dir / "box.mesh", 6, 0.3).string();
   ASSERT_EQ(run_hqview({"analyze", box, "-o", (dir / "a").string(), "--simulate", "--views",
-                        "fem_correlation,fem_error_scatter,histogram", "--quiet"})
+                        "fem_correlation,fem_error_scatter,fem_error_density,histogram", "--quiet", "-j1"})
                 .exit_code,
             0);
   const json report = read_report(dir / "a");
   std::vector<std::string> ids;
   for (const json& v : report["views"]) ids.push_back(v["id"].get<std::string>());
-  EXPECT_EQ(ids, (std::vector<std::string>{"histogram", "histogram_log", "fem_correlation", "fem_error_scatter"}));
+  EXPECT_EQ(ids, (std::vector<std::string>{"histogram", "histogram_log", "fem_correlation", "fem_error_scatter",
+                                           "fem_error_density"}));
+  // The 3D error density view: two figures with their cameras, the same
+  // bytes for -j1 and -j2, and a field of the viewer.
+  EXPECT_EQ(report["views"][4]["files"],
+            json::array({"views/fem_error_density.png", "views/fem_error_density_cells.png"}));
+  EXPECT_FALSE(report["views"][4]["cameras"][0].is_null());
+  ASSERT_EQ(run_hqview({"analyze", box, "-o", (dir / "a2").string(), "--simulate", "--views", "fem_error_density",
+                        "--quiet", "-j2"})
+                .exit_code,
+            0);
+  for (const char* f : {"views/fem_error_density.png", "views/fem_error_density_cells.png", "viewer/data.js"})
+    EXPECT_EQ(read_text(dir / "a" / f), read_text(dir / "a2" / f)) << f << " differs between -j1 and -j2";
+  EXPECT_NE(read_text(dir / "a/viewer/data.js").find("\"id\":\"fem_error_density\""), std::string::npos);
   for (const char* f : {"views/fem_correlation.svg", "views/fem_correlation.png", "views/fem_error_scatter.svg",
                         "views/fem_error_scatter.png"})
     EXPECT_TRUE(fs::exists(dir / "a" / f)) << f;
@@ -166,6 +179,8 @@ TEST(FemCli, SimulateDrawsPanelP) {
   ASSERT_EQ(plain["views"].size(), 2u);  // histogram, histogram_log
   EXPECT_EQ(plain["views"][0]["id"], "histogram");
   EXPECT_EQ(read_text(dir / "b/index.html").find("panel-p"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / "b/views/fem_error_density.png"));
+  EXPECT_EQ(read_text(dir / "b/viewer/data.js").find("fem_error_density"), std::string::npos);
 }
 
 // Spearman's rho written here (average ranks, Pearson of the ranks), not the library's.
