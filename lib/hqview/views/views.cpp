@@ -606,9 +606,9 @@ std::vector<ViewFile> build_fem_error_density(ViewContext& c) {
       error_density_cells(c.a.field.cell_scaled_jacobian, p.cell_error_density, options);
   std::size_t low = 0;
   for (Index h : cells) low += c.a.field.cell_scaled_jacobian[static_cast<std::size_t>(h)] < options.quality_threshold;
-  options.title = c.name + ": " + std::to_string(low) + " hexes with scaled Jacobian < " +
-                  display_number(options.quality_threshold, 3) + " and the densest 1% (" +
-                  std::to_string(cells.size()) + " in all), by FEM error density, inside the boundary";
+  options.title = c.name + ": by FEM error density, the " + std::to_string(low) + " hexes with scaled Jacobian < " +
+                  display_number(options.quality_threshold, 3) + " and " + std::to_string(cells.size() - low) +
+                  " more of the densest 1%, inside the boundary";
   files.push_back(framed("views/fem_error_density_cells.png",
                          render_error_density_cells(c.a.mesh, c.a.topology, p.cell_error_density,
                                                     c.a.field.cell_scaled_jacobian, direction, options, c.renderer),
