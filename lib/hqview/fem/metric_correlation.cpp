@@ -97,7 +97,6 @@ RankCorrelationTest spearman_test(std::span<const double> x, std::span<const dou
 
 int metric_direction(std::string_view metric) {
   if (metric == "fem_kappa") return -1;
-  if (metric == "fem_det_j_min") return +1;
   const std::optional<HexMetric> m = hex_metric_from_name(metric);
   if (!m) return 0;
   const HexMetricInfo& info = hex_metric_info(*m);

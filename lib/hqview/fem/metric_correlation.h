@@ -43,8 +43,8 @@ RankCorrelationTest spearman_test(std::span<const double> x, std::span<const dou
 // shape metrics, nodal_jacobian_ratio) has its ideal there, higher is better;
 // an unbounded one (volume, dimension, jacobian) is a size, neither; every
 // other (edge and aspect ratios, skews, taper, oddy, condition) is lower is
-// better. fem_kappa: lower; fem_det_j_min: higher (<= 0 is invalid);
-// fem_lambda_max: neither (it scales with the length). 0 for other names.
+// better. fem_kappa: lower; fem_lambda_max and fem_det_j_min: neither (they
+// scale with the size: across meshes they rank resolution). 0 for other names.
 int metric_direction(std::string_view metric);
 
 struct MetricCorrelation {
