@@ -300,7 +300,7 @@ TEST(ErrorDensityScatter, EveryHexCountedInALogLogGrid) {
     sj.push_back(0.05 + 0.95 * t);
     density.push_back(1e-3 / sj.back());
   }
-  sj.push_back(-0.5);  // inverted: left out
+  sj.push_back(-0.5);  // inverted: in the strip at the left
   density.push_back(1.0);
   sj.push_back(0.5);  // no density: left out
   density.push_back(std::nan(""));
@@ -314,8 +314,15 @@ TEST(ErrorDensityScatter, EveryHexCountedInALogLogGrid) {
   bool key = false;
   for (const ChartText& t : chart.texts)
     key = key || (t.text.starts_with("hexes per 4-pixel cell: 1 to ") &&
-                  t.text.ends_with("; 20000 hexes, 2 left out (scaled Jacobian <= 0 or no density)"));
+                  t.text.ends_with("; 20001 hexes, 1 with SJ \u2264 0 in the strip at left, 1 left out (no density)"));
   EXPECT_TRUE(key);
+  // The inverted hex: a cell in the labelled strip left of the log plot, at
+  // the top (density 1, the y axis's top decade); the first version dropped it.
+  EXPECT_TRUE(has_text(chart, "SJ \u2264 0"));
+  bool in_strip = false;
+  for (const ChartRect& r : chart.rects)
+    in_strip = in_strip || (r.x + r.width < plot.x && r.height <= 4.0 && r.y < plot.y + 5.0 && r.fill.r < 200);
+  EXPECT_TRUE(in_strip);
   // Decades: x from 0.01 to 1, y from 1e-3 to 0.1.
   EXPECT_TRUE(has_text(chart, "0.01") && has_text(chart, "1") && has_text(chart, "1e-3") && has_text(chart, "0.1"));
   // The cell of SJ 1, density 1e-3 (x at the right end, y at the bottom).

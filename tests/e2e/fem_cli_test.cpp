@@ -143,13 +143,26 @@ TEST(FemCli, SimulateDrawsPanelP) {
   const fs::path dir = fresh_output_dir("fem_views");
   const std::string box = write_box(dir / "box.mesh", 6, 0.3).string();
   ASSERT_EQ(run_hqview({"analyze", box, "-o", (dir / "a").string(), "--simulate", "--views",
-                        "fem_correlation,fem_error_scatter,histogram", "--quiet"})
+                        "fem_correlation,fem_error_scatter,fem_error_density,histogram", "--quiet", "-j1"})
                 .exit_code,
             0);
   const json report = read_report(dir / "a");
   std::vector<std::string> ids;
   for (const json& v : report["views"]) ids.push_back(v["id"].get<std::string>());
-  EXPECT_EQ(ids, (std::vector<std::string>{"histogram", "histogram_log", "fem_correlation", "fem_error_scatter"}));
+  EXPECT_EQ(ids, (std::vector<std::string>{"histogram", "histogram_log", "fem_correlation", "fem_error_scatter",
+                                           "fem_error_density"}));
+  // The 3D error density view: two figures with their cameras, the same
+  // bytes for -j1 and -j2, and a field of the viewer.
+  EXPECT_EQ(report["views"][4]["files"],
+            json::array({"views/fem_error_density.png", "views/fem_error_density_cells.png"}));
+  EXPECT_FALSE(report["views"][4]["cameras"][0].is_null());
+  ASSERT_EQ(run_hqview({"analyze", box, "-o", (dir / "a2").string(), "--simulate", "--views", "fem_error_density",
+                        "--quiet", "-j2"})
+                .exit_code,
+            0);
+  for (const char* f : {"views/fem_error_density.png", "views/fem_error_density_cells.png", "viewer/data.js"})
+    EXPECT_EQ(read_text(dir / "a" / f), read_text(dir / "a2" / f)) << f << " differs between -j1 and -j2";
+  EXPECT_NE(read_text(dir / "a/viewer/data.js").find("\"id\":\"fem_error_density\""), std::string::npos);
   for (const char* f : {"views/fem_correlation.svg", "views/fem_correlation.png", "views/fem_error_scatter.svg",
                         "views/fem_error_scatter.png"})
     EXPECT_TRUE(fs::exists(dir / "a" / f)) << f;
@@ -166,6 +179,8 @@ TEST(FemCli, SimulateDrawsPanelP) {
   ASSERT_EQ(plain["views"].size(), 2u);  // histogram, histogram_log
   EXPECT_EQ(plain["views"][0]["id"], "histogram");
   EXPECT_EQ(read_text(dir / "b/index.html").find("panel-p"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / "b/views/fem_error_density.png"));
+  EXPECT_EQ(read_text(dir / "b/viewer/data.js").find("fem_error_density"), std::string::npos);
 }
 
 // Spearman's rho written here (average ranks, Pearson of the ranks), not the library's.
@@ -212,7 +227,7 @@ TEST(FemCli, BatchCorrelatesErrorsWithMetricsAcrossMeshes) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json index = json::parse(read_text(dir / "sim" / "index.json"));
   ASSERT_EQ(index["meshes"].size(), 6u);
-  std::vector<double> l2, h1, sj_min, sj_mean;
+  std::vector<double> l2, h1, sj_min, sj_mean, er_max, hexes;
   for (const json& m : index["meshes"]) {
     const json report = read_report(dir / "sim" / m["bundle"].get<std::string>());
     EXPECT_EQ(m["headline"]["fem.poisson.mean.h1_error"], report["fem"]["poisson"]["mean"]["h1_error"]);
@@ -225,22 +240,44 @@ TEST(FemCli, BatchCorrelatesErrorsWithMetricsAcrossMeshes) {
     h1.push_back(report["fem"]["poisson"]["mean"]["h1_error"].get<double>());
     sj_min.push_back(report["quality"]["metrics"]["scaled_jacobian"]["min"].get<double>());
     sj_mean.push_back(report["quality"]["metrics"]["scaled_jacobian"]["mean"].get<double>());
+    er_max.push_back(report["quality"]["metrics"]["edge_ratio"]["max"].get<double>());
+    EXPECT_EQ(m["metrics"]["edge_ratio"]["max"], report["quality"]["metrics"]["edge_ratio"]["max"]);
+    hexes.push_back(report["mesh"]["num_hexes"].get<double>());
   }
   // The more the vertex moves, the larger the error and the lower the min SJ.
   EXPECT_LT(h1.front(), h1.back());
   const json& c = index["fem_correlation"];
   EXPECT_EQ(c["num_meshes"], 6);
   EXPECT_EQ(c["min_meshes"], 5);
-  bool seen_min = false, seen_mean = false;
+  bool seen_min = false, seen_mean = false, seen_edge_ratio = false, seen_baseline = false;
   for (const json& row : c["metrics"]) {
+    // The worst of a lower-is-better metric is its max (the first version
+    // took every metric's min: the best hex of edge_ratio).
+    if (row["metric"] == "edge_ratio" && row["stat"] == "worst") {
+      seen_edge_ratio = true;
+      EXPECT_EQ(row["direction"], "lower is better");
+      EXPECT_NEAR(row["rho_h1_error"].get<double>(), test_spearman(er_max, h1), 1e-12);
+    }
+    if (row["metric"] == "num_hexes") {
+      seen_baseline = true;
+      EXPECT_EQ(row["stat"], "count");
+      EXPECT_TRUE(row["rho_h1_error"].is_null());  // every box has 216 hexes: constant
+    }
     if (row["metric"] != "scaled_jacobian") continue;
-    const bool is_min = row["stat"] == "min";
+    EXPECT_EQ(row["direction"], "higher is better");
+    // Exact permutation p of 6 meshes: a multiple of 1/720, at least 2/720.
+    if (row["p_h1_error"].is_number()) {
+      const double p = row["p_h1_error"].get<double>() * 720;
+      EXPECT_NEAR(p, std::round(p), 1e-9);
+      EXPECT_GE(p, 2 - 1e-9);
+    }
+    const bool is_min = row["stat"] == "worst";
     (is_min ? seen_min : seen_mean) = true;
     EXPECT_EQ(row["num_meshes"], 6);
     EXPECT_NEAR(row["rho_l2_error"].get<double>(), test_spearman(is_min ? sj_min : sj_mean, l2), 1e-12);
     EXPECT_NEAR(row["rho_h1_error"].get<double>(), test_spearman(is_min ? sj_min : sj_mean, h1), 1e-12);
   }
-  EXPECT_TRUE(seen_min && seen_mean);
+  EXPECT_TRUE(seen_min && seen_mean && seen_edge_ratio && seen_baseline);
   EXPECT_LT(test_spearman(sj_min, h1), -0.5);  // the min SJ mostly ranks these meshes by their error
   // A method of 3 meshes: too few, every rho null.
   for (const json& m : index["methods"]) {
@@ -248,8 +285,8 @@ TEST(FemCli, BatchCorrelatesErrorsWithMetricsAcrossMeshes) {
     for (const json& row : m["fem_correlation"]["metrics"]) EXPECT_TRUE(row["rho_h1_error"].is_null()) << row;
   }
   const std::string html = read_text(dir / "sim" / "index.html");
-  EXPECT_NE(html.find("Which metrics predict the simulation error"), std::string::npos);
-  EXPECT_NE(html.find("<th>FEM H1 error</th>"), std::string::npos);
+  EXPECT_NE(html.find("Which metrics rank these meshes by their simulation error"), std::string::npos);
+  EXPECT_NE(html.find("<th>FEM H1 error (rel., semi-norm)</th>"), std::string::npos);
   EXPECT_NE(html.find("FEM cond. (Jacobi)"), std::string::npos);  // a --compare-keys table
   EXPECT_NE(read_text(dir / "sim" / "comparison.csv").find(",fem.poisson.mean.h1_error,"), std::string::npos);
   // diff of two indexes gates on fem keys.

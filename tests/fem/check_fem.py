@@ -197,6 +197,11 @@ def check_elements(name, points, hexes, report, cells):
     num_invalid = int((~valid).sum())
     check(report["fem"]["element"]["num_invalid"] == num_invalid,
           f"{name}: num_invalid {report['fem']['element']['num_invalid']} != {num_invalid}")
+    # Not invertible: det J <= 0 at a corner (xi = +-1) or invalid.
+    corner_det = np.linalg.det(jacobians(points[hexes], reference_gradients(SIGNS)[0]))
+    num_not_invertible = int((~valid | np.any(corner_det <= 0, axis=1)).sum())
+    check(report["fem"]["element"]["num_not_invertible"] == num_not_invertible,
+          f"{name}: num_not_invertible {report['fem']['element']['num_not_invertible']} != {num_not_invertible}")
     ev = np.linalg.eigvalsh(k[valid])
     kappa = ev[:, 7] / ev[:, 1]
     hq_kappa, hq_lmax = column(cells, "fem_kappa"), column(cells, "fem_lambda_max")

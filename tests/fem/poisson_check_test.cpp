@@ -8,7 +8,9 @@
 #include <numbers>
 
 #include "hqview/fem/laplace_system.h"
+#include "hqview/fem/metric_correlation.h"
 #include "hqview/fem/pcg.h"
+#include "hqview/quality/corner_jacobian.h"
 #include "support/fixtures.h"
 
 namespace hq {
@@ -150,6 +152,44 @@ TEST(PoissonCheck, PerHexSharesAndDensity) {
   for (Index v : mesh.hexes[worst]) touches = touches || static_cast<std::size_t>(v) == moved;
   EXPECT_TRUE(touches) << "the densest hex " << worst << " does not use the moved vertex";
   EXPECT_EQ(c.error_density_stats.count, static_cast<std::int64_t>(mesh.hexes.size()));
+}
+
+// The density shows where the mesh is bad: on a 12^3 box whose interior
+// vertices near the centre moved by up to 0.3 h, the hexes using a moved
+// vertex have a higher density than the rest, and across all hexes the
+// density falls as the scaled Jacobian rises (Spearman rho < 0). With h_e the
+// hex's diameter (the first version: it grows with distortion and divides
+// the shape's effect out) the median ratio is 0.95 and rho(SJ) +0.08.
+TEST(PoissonCheck, DensityIsHigherWhereTheMeshIsBad) {
+  const int n = 12;
+  HexMesh mesh = unit_box(n);
+  std::vector<char> moved(mesh.points.size(), 0);
+  for (std::size_t v = 0; v < mesh.points.size(); ++v) {
+    Vec3& p = mesh.points[v];
+    if (std::abs(p.x - 0.5) < 0.2 && std::abs(p.y - 0.5) < 0.2 && std::abs(p.z - 0.5) < 0.2) {
+      for (int a = 0; a < 3; ++a) {
+        const double t = std::sin(12.9898 * static_cast<double>(v) + 78.233 * a) * 43758.5453;
+        p[a] += 0.3 * 2 * (t - std::floor(t) - 0.5) / n;
+      }
+      moved[v] = 1;
+    }
+  }
+  const PoissonCheck c = check(mesh);
+  ASSERT_TRUE(c.skipped.empty()) << c.skipped;
+  std::vector<double> in_region, elsewhere, sj;
+  for (std::size_t h = 0; h < mesh.hexes.size(); ++h) {
+    bool uses_moved = false;
+    for (Index v : mesh.hexes[h]) uses_moved = uses_moved || moved[static_cast<std::size_t>(v)];
+    (uses_moved ? in_region : elsewhere).push_back(c.cell_error_density[h]);
+    sj.push_back(hex_scaled_jacobian(hex_corners(mesh, static_cast<Index>(h))));
+  }
+  ASSERT_GT(in_region.size(), 100u);
+  const auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  EXPECT_GT(median(in_region), 1.15 * median(elsewhere));
+  EXPECT_LT(spearman_correlation(c.cell_error_density, sj).rho, -0.1);
 }
 
 TEST(PoissonCheck, SkipsInvalidAndOneLayerMeshes) {

@@ -85,12 +85,36 @@ TEST(Q1Element, DistortedAndInvalidElements) {
   EXPECT_FALSE(q1_conditioning(flat).is_valid);
 }
 
+// A corner pushed to the cube's centre: det J > 0 at every Gauss point (a
+// valid Q1 element: its K_e is positive semi-definite), but the corner's
+// edges (1/2)(1, -1, -1), (1/2)(-1, 1, -1), (1/2)(-1, -1, 1) have det -1/2,
+// so det J there is -1/16: the trilinear map folds over near that corner.
+// num_invalid (the Gauss points) misses it; num_not_invertible counts it.
+TEST(FemElementField, CountsHexesWithANegativeCornerAsNotInvertible) {
+  Q1Corners p = test::cube_corners();
+  p[0] = {0.5, 0.5, 0.5};
+  const Q1Conditioning c = q1_conditioning(p);
+  EXPECT_TRUE(c.is_valid);
+  EXPECT_GT(c.det_j_min, 0.008);
+  EXPECT_NEAR(c.corner_det_j_min, -0.0625, 1e-15);
+  EXPECT_FALSE(c.is_invertible);
+  EXPECT_GT(c.eigenvalues[1], 0);  // still SPD off the constants
+  EXPECT_TRUE(q1_conditioning(test::cube_corners()).is_invertible);
+  HexMesh mesh = test::grid(1);
+  mesh.points[static_cast<std::size_t>(mesh.hexes[0][0])] = p[0];
+  const FemElementField f = compute_fem_elements(mesh);
+  EXPECT_EQ(f.num_invalid, 0);
+  EXPECT_EQ(f.num_not_invertible, 1);
+  EXPECT_EQ(compute_fem_elements(test::grid(2)).num_not_invertible, 0);
+}
+
 TEST(FemElementField, CountsInvalidHexesAndKeepsFriedFactor) {
   HexMesh mesh = test::grid(3);
   mesh.points[static_cast<std::size_t>(mesh.hexes[13][6])] = {0.9, 0.9, 0.9};  // the centre hex turns over
   const FemElementField f = compute_fem_elements(mesh);
   ASSERT_EQ(f.kappa.size(), 27u);
   EXPECT_GE(f.num_invalid, 1);
+  EXPECT_GE(f.num_not_invertible, f.num_invalid);  // an invalid hex is not invertible either
   EXPECT_TRUE(std::isnan(f.kappa[13]));
   EXPECT_LE(f.det_j_min[13], 0);
   EXPECT_EQ(f.kappa_stats.count + f.num_invalid, 27);

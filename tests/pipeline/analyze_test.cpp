@@ -135,12 +135,12 @@ TEST(AnalyzePipeline, ReferenceAndCompareViewsWithAMockRenderer) {
   const Analysis& a = result.model.analysis;
   ASSERT_TRUE(a.reference_surface && a.boundary_error && a.uv_atlas && a.compare);
   EXPECT_EQ(ids_of(result), expected_ids(true, true));
-  // Every view of the table but panel P's two, which need a solved
+  // Every view of the table but panel P's three, which need a solved
   // finite-element check (--simulate; the ball's inverted hexes skip it).
-  EXPECT_EQ(ids_of(result).size(), std::size(kViews) - 2) << "every view of the table";
+  EXPECT_EQ(ids_of(result).size(), std::size(kViews) - 3) << "every view of the table";
   EXPECT_EQ(std::count_if(std::begin(kViews), std::end(kViews),
                           [](const ViewSpec& v) { return v.needs == ViewNeeds::simulation; }),
-            2);
+            3);
 
   const auto first = first_frames(result);
   ASSERT_EQ(renderer.scenes.size(), first.at("(end)"));

@@ -584,19 +584,28 @@ Chart error_density_scatter_chart(std::span<const double> scaled_jacobian, std::
                                   const ChartOptions& options) {
   Chart chart = begin_chart(options);
   ChartRect r = chart.plot;
-  r.height -= 30.0;  // room for the key under the x axis title
+  r.height -= 50.0;  // room for the two key lines under the x axis title
+  // The strip for SJ <= 0 at the left (a log axis has no place for them),
+  // then a gap, then the log plot.
+  const double strip_width = 56.0, strip_gap = 14.0;
+  const ChartRect strip{r.x, r.y, strip_width, r.height, {}};
+  r.x += strip_width + strip_gap;
+  r.width -= strip_width + strip_gap;
   chart.plot = r;
   std::vector<std::pair<double, double>> points;  // (log10 x, log10 y)
+  std::vector<double> inverted;                   // log10 y of the hexes with SJ <= 0
   std::size_t left_out = 0;
   for (std::size_t i = 0; i < scaled_jacobian.size() && i < error_density.size(); ++i) {
     const double x = scaled_jacobian[i], y = error_density[i];
-    if (x > 0 && x <= 1 && y > 0 && std::isfinite(y))
-      points.push_back({std::log10(x), std::log10(y)});
-    else
+    if (!(y > 0 && std::isfinite(y)) || std::isnan(x) || x > 1 + 1e-12)
       ++left_out;
+    else if (x <= 0)
+      inverted.push_back(std::log10(y));
+    else
+      points.push_back({std::log10(std::min(x, 1.0)), std::log10(y)});
   }
   double x_lo = 0, y_lo = 0, y_hi = 1;
-  if (!points.empty()) {
+  if (!points.empty() || !inverted.empty()) {
     x_lo = y_lo = std::numeric_limits<double>::infinity();
     y_hi = -x_lo;
     for (const auto& [x, y] : points) {
@@ -604,6 +613,11 @@ Chart error_density_scatter_chart(std::span<const double> scaled_jacobian, std::
       y_lo = std::min(y_lo, y);
       y_hi = std::max(y_hi, y);
     }
+    for (const double y : inverted) {
+      y_lo = std::min(y_lo, y);
+      y_hi = std::max(y_hi, y);
+    }
+    if (points.empty()) x_lo = -1.0;
   }
   // Whole decades; at least one on each axis.
   x_lo = std::min(-1.0, std::floor(x_lo));
@@ -621,7 +635,12 @@ Chart error_density_scatter_chart(std::span<const double> scaled_jacobian, std::
     const int j = std::clamp(static_cast<int>((py(y) - r.y) / cell), 0, ny - 1);
     ++counts[static_cast<std::size_t>(j) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i)];
   }
-  const int max_count = counts.empty() ? 1 : std::max(1, *std::max_element(counts.begin(), counts.end()));
+  // The strip: one column of cells, by density only.
+  std::vector<int> strip_counts(static_cast<std::size_t>(ny), 0);
+  for (const double y : inverted)
+    ++strip_counts[static_cast<std::size_t>(std::clamp(static_cast<int>((py(y) - r.y) / cell), 0, ny - 1))];
+  int max_count = counts.empty() ? 1 : std::max(1, *std::max_element(counts.begin(), counts.end()));
+  for (const int c : strip_counts) max_count = std::max(max_count, c);
   const auto shade = [&](int c) {
     const double t = max_count > 1 ? std::log(static_cast<double>(c)) / std::log(static_cast<double>(max_count)) : 1.0;
     // Light blue (one hex) to dark navy (the most).
@@ -631,7 +650,9 @@ Chart error_density_scatter_chart(std::span<const double> scaled_jacobian, std::
   std::vector<std::pair<double, double>> x_ticks, y_ticks;
   for (int k = static_cast<int>(x_lo); k <= 0; ++k) x_ticks.push_back({std::pow(10.0, k), px(k)});
   for (int k = static_cast<int>(y_lo); k <= static_cast<int>(y_hi); ++k) y_ticks.push_back({std::pow(10.0, k), py(k)});
-  add_axes(chart, r, y_ticks, x_ticks, "scaled Jacobian per hex (log)", "normalised H1 error density (log)");
+  // The axes frame the strip too: the y ticks and title left of it.
+  add_axes(chart, {strip.x, r.y, r.x + r.width - strip.x, r.height, {}}, y_ticks, x_ticks,
+           "scaled Jacobian per hex (log; SJ \u2264 0 in the strip)", "normalised H1 error density (log)");
   // Decade labels in readable form (add_axes printed %g).
   for (ChartText& t : chart.texts)
     for (int k = static_cast<int>(y_lo); k <= static_cast<int>(y_hi); ++k)
@@ -640,6 +661,18 @@ Chart error_density_scatter_chart(std::span<const double> scaled_jacobian, std::
     for (int i = 0; i < nx; ++i)
       if (const int c = counts[static_cast<std::size_t>(j) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i)])
         chart.rects.push_back({r.x + i * cell, r.y + j * cell, cell, cell, shade(c)});
+  // The strip: a pale violet band (the inverted colour's hue), its hexes as
+  // full-width cells in the same shades, its label under it where the x
+  // ticks are, and the count inside at the top.
+  chart.rects.push_back({strip.x, strip.y, strip.width, strip.height, {236, 233, 252, 255}});
+  for (int j = 0; j < ny; ++j)
+    if (const int c = strip_counts[static_cast<std::size_t>(j)])
+      chart.rects.push_back({strip.x + 4.0, r.y + j * cell, strip.width - 8.0, cell, shade(c)});
+  chart.texts.push_back({{strip.x + 0.5 * strip.width, r.y + r.height + 18.0}, "SJ \u2264 0", kTickSize,
+                         {61, 51, 235, 255}, ChartAnchor::center, false});
+  chart.texts.push_back({{strip.x + 0.5 * strip.width, r.y + 14.0},
+                         inverted.empty() ? "none" : std::to_string(inverted.size()), kTickSize, kAxisColor,
+                         ChartAnchor::center, false});
   // The median density of each of 16 equal log-x bins with at least 5 hexes.
   const int bins = 16;
   std::vector<std::vector<double>> by_bin(bins);
@@ -660,12 +693,12 @@ Chart error_density_scatter_chart(std::span<const double> scaled_jacobian, std::
   chart.rects.push_back({r.x + 12.0, ly - 9.0, 10.0, 10.0, shade(max_count)});
   chart.texts.push_back({{r.x + 28.0, ly},
                          "hexes per 4-pixel cell: 1 to " + std::to_string(max_count) + " (log shade); " +
-                             std::to_string(points.size()) + " hexes" +
-                             (left_out ? ", " + std::to_string(left_out) + " left out (scaled Jacobian <= 0 or no density)"
-                                       : std::string()),
+                             std::to_string(points.size() + inverted.size()) + " hexes, " +
+                             std::to_string(inverted.size()) + " with SJ \u2264 0 in the strip at left" +
+                             (left_out ? ", " + std::to_string(left_out) + " left out (no density)" : std::string()),
                          kTickSize, kAxisColor, ChartAnchor::left, false});
-  chart.lines.push_back({{{r.x + 0.62 * r.width, ly - 4.0}, {r.x + 0.62 * r.width + 22.0, ly - 4.0}}, median.color, 2.0});
-  chart.texts.push_back({{r.x + 0.62 * r.width + 28.0, ly}, "median density per scaled Jacobian bin", kTickSize,
+  chart.lines.push_back({{{r.x, ly + 16.0}, {r.x + 22.0, ly + 16.0}}, median.color, 2.0});
+  chart.texts.push_back({{r.x + 28.0, ly + 20.0}, "median density per scaled Jacobian bin (SJ > 0)", kTickSize,
                          kAxisColor, ChartAnchor::left, false});
   return chart;
 }

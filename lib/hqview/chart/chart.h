@@ -131,7 +131,10 @@ Chart metric_correlation_chart(std::span<const std::string> metrics, std::span<c
 // 0 < SJ <= 1 and a positive density is counted into a grid of 4-pixel
 // cells shaded by log count (so a mesh of millions of hexes draws the same
 // few thousand rectangles, the same for any thread count), with the median
-// density of 16 log-SJ bins as a curve; the others are counted in the key.
+// density of 16 log-SJ bins as a curve. Hexes with SJ <= 0 (inverted
+// corners; a log axis has no place for them) are counted by density into a
+// pale violet strip at the left labelled "SJ <= 0" with their number
+// ("none" when there are none); hexes without a density are counted in the key.
 Chart error_density_scatter_chart(std::span<const double> scaled_jacobian, std::span<const double> error_density,
                                   const ChartOptions& options);
 

@@ -16,6 +16,7 @@ FemElementField compute_fem_elements(const HexMesh& mesh) {
   f.lambda_max.resize(n);
   f.det_j_min.resize(n);
   f.det_j_max.resize(n);
+  std::vector<char> invertible(n, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t h = r.begin(); h != r.end(); ++h) {
       const Q1Conditioning c = q1_conditioning(hex_corners(mesh, static_cast<Index>(h)));
@@ -23,9 +24,11 @@ FemElementField compute_fem_elements(const HexMesh& mesh) {
       f.lambda_max[h] = c.lambda_max;
       f.det_j_min[h] = c.det_j_min;
       f.det_j_max[h] = c.det_j_max;
+      invertible[h] = c.is_invertible ? 1 : 0;
     }
   });
   for (std::size_t h = 0; h < n; ++h) {
+    if (!invertible[h]) ++f.num_not_invertible;
     if (std::isnan(f.kappa[h]))
       ++f.num_invalid;
     else

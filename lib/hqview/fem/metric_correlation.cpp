@@ -7,6 +7,8 @@
 #include <limits>
 #include <numeric>
 
+#include <boost/math/special_functions/beta.hpp>
+
 #include "hqview/quality/hex_metrics.h"
 
 namespace hq {
@@ -42,7 +44,65 @@ double rank_pearson(const std::vector<double>& ra, const std::vector<double>& rb
   return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : std::numeric_limits<double>::quiet_NaN();
 }
 
+// The usable pairs.
+void usable_pairs(std::span<const double> x, std::span<const double> y, std::vector<double>& a,
+                  std::vector<double>& b) {
+  for (std::size_t i = 0; i < std::min(x.size(), y.size()); ++i)
+    if (is_usable(x[i]) && is_usable(y[i])) {
+      a.push_back(x[i]);
+      b.push_back(y[i]);
+    }
+}
+
 }  // namespace
+
+RankCorrelationTest spearman_test(std::span<const double> x, std::span<const double> y) {
+  std::vector<double> a, b;
+  usable_pairs(x, y, a, b);
+  RankCorrelationTest out;
+  const std::size_t n = a.size();
+  out.correlation.count = static_cast<std::int64_t>(n);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (n < 3) {
+    out.correlation.rho = out.p_value = nan;
+    return out;
+  }
+  const std::vector<double> ra = average_ranks(a);
+  std::vector<double> rb = average_ranks(b);
+  const double rho = rank_pearson(ra, rb);
+  out.correlation.rho = rho;
+  if (!std::isfinite(rho)) {
+    out.p_value = nan;
+    return out;
+  }
+  if (n <= static_cast<std::size_t>(kExactSpearmanMaxCount)) {
+    // Every distinct arrangement of the y ranks (each stands for the same
+    // number of permutations, so counting them gives the permutation p).
+    std::sort(rb.begin(), rb.end());
+    std::int64_t total = 0, as_extreme = 0;
+    const double bound = std::abs(rho) - 1e-12;
+    do {
+      ++total;
+      as_extreme += std::abs(rank_pearson(ra, rb)) >= bound;
+    } while (std::next_permutation(rb.begin(), rb.end()));
+    out.p_value = static_cast<double>(as_extreme) / static_cast<double>(total);
+    return out;
+  }
+  const double df = static_cast<double>(n) - 2.0;
+  const double r2 = std::min(rho * rho, 1.0);
+  // Two-sided p = I_{df / (df + t^2)}(df / 2, 1 / 2), df / (df + t^2) = 1 - rho^2.
+  out.p_value = r2 >= 1.0 ? 0.0 : boost::math::ibeta(0.5 * df, 0.5, 1.0 - r2);
+  return out;
+}
+
+int metric_direction(std::string_view metric) {
+  if (metric == "fem_kappa") return -1;
+  const std::optional<HexMetric> m = hex_metric_from_name(metric);
+  if (!m) return 0;
+  const HexMetricInfo& info = hex_metric_info(*m);
+  if (std::isinf(info.acceptable_max)) return 0;
+  return info.acceptable_max == 1.0 ? +1 : -1;
+}
 
 RankCorrelation spearman_correlation(std::span<const double> x, std::span<const double> y) {
   std::vector<double> a, b;

@@ -23,6 +23,30 @@ struct RankCorrelation {
 };
 RankCorrelation spearman_correlation(std::span<const double> x, std::span<const double> y);
 
+// Spearman's rho with its two-sided p-value under the null of no
+// association: exact (every arrangement of the y ranks against the x ranks,
+// ties kept) for count <= kExactSpearmanMaxCount; above, the t
+// approximation t = rho sqrt((n - 2) / (1 - rho^2)) with n - 2 degrees of
+// freedom (Zar, "Significance testing of the Spearman rank correlation
+// coefficient", JASA 67, 1972: close to the exact value from n of about 10).
+// p is NaN when rho is.
+inline constexpr int kExactSpearmanMaxCount = 8;
+struct RankCorrelationTest {
+  RankCorrelation correlation;
+  double p_value = 0;
+};
+RankCorrelationTest spearman_test(std::span<const double> x, std::span<const double> y);
+
+// Which way a metric's value is better (+1 higher, -1 lower, 0 neither: a
+// size), from Verdict's acceptable ranges (hex_metric_info): a range ending at
+// 1 (scaled Jacobian, shape, stretch, diagonal, distortion, the size-weighted
+// shape metrics, nodal_jacobian_ratio) has its ideal there, higher is better;
+// an unbounded one (volume, dimension, jacobian) is a size, neither; every
+// other (edge and aspect ratios, skews, taper, oddy, condition) is lower is
+// better. fem_kappa: lower; fem_lambda_max and fem_det_j_min: neither (they
+// scale with the size: across meshes they rank resolution). 0 for other names.
+int metric_direction(std::string_view metric);
+
 struct MetricCorrelation {
   std::string metric;  // a Verdict name, or fem_kappa / fem_lambda_max / fem_det_j_min
   RankCorrelation correlation;

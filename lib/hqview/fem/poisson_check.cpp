@@ -20,14 +20,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 const std::array<double, 3> kGauss3Points = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)};
 constexpr std::array<double, 3> kGauss3Weights = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
 
-// The hex's largest corner-to-corner distance.
-double hex_diameter(const Q1Corners& p) {
-  double d2 = 0;
-  for (int i = 0; i < 8; ++i)
-    for (int j = i + 1; j < 8; ++j) d2 = std::max(d2, squared_norm(p[i] - p[j]));
-  return std::sqrt(d2);
-}
-
 // Phase: the unknown vertices' values from the solve, the boundary's from u.
 std::vector<double> nodal_solution(const LaplaceSystem& system, const PcgResult& pcg, std::vector<double> boundary,
                                    int k) {
@@ -108,8 +100,11 @@ void fill_cell_fields(const HexMesh& mesh, const Q1FieldErrors& errors, const Po
       }
       out.cell_l2_share[h] = l2 / static_cast<double>(k);
       out.cell_h1_share[h] = h1 / static_cast<double>(k);
-      const double diameter = hex_diameter(p);
-      const double denominator = errors.volume[h] * diameter * diameter * factor;
+      // h_e = |e|^(1/3), the side of the cube of the hex's volume: free of
+      // its shape, so the shape's effect stays in the density (the diameter
+      // grows with distortion and divided it out: docs/analysis.md).
+      const double size = std::cbrt(errors.volume[h]);
+      const double denominator = errors.volume[h] * size * size * factor;
       if (denominator > 0) out.cell_error_density[h] = h1_sum / denominator;
     }
   });

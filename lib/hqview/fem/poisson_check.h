@@ -62,7 +62,8 @@ struct PoissonCheck {
   // Per hex (#hexes when solved, else empty): mean over the solutions of the
   // hex's share of the squared L2 and H1 errors (each sums to 1), and the
   // normalised error density sum_s |u_h - u|^2_{H1(e)} / (|e| h_e^2 sum_s |D^2 u_s(x_e)|^2),
-  // h_e the hex's diameter, x_e the mean of its corners (NaN for |e| <= 0).
+  // h_e = |e|^(1/3) (the side of the cube of the hex's volume), x_e the mean
+  // of its corners (NaN for |e| <= 0).
   std::vector<double> cell_l2_share, cell_h1_share, cell_error_density;
   Statistics error_density_stats;
 };

@@ -113,6 +113,10 @@ Q1Conditioning q1_conditioning(const Q1Corners& p) {
   }
   // NaN coordinates make every comparison false: not valid.
   c.is_valid = c.det_j_min > 0 && std::isfinite(c.det_j_max);
+  c.corner_det_j_min = std::numeric_limits<double>::infinity();
+  for (const auto& corner : kQ1CornerSigns)
+    c.corner_det_j_min = std::min(c.corner_det_j_min, q1_point(p, Vec3{corner[0], corner[1], corner[2]}).det_j);
+  c.is_invertible = c.corner_det_j_min > 0 && c.is_valid;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   if (!c.is_valid) {
     c.eigenvalues.fill(nan);

@@ -62,6 +62,12 @@ Q1Matrix q1_laplace_stiffness(const Q1Corners& p);
 struct Q1Conditioning {
   double det_j_min = 0, det_j_max = 0;  // over the 8 Gauss points
   bool is_valid = false;                // every Gauss-point det J > 0
+  // det J at the 8 corners (xi = +-1): the determinant of the corner's three
+  // edge vectors / 8. The trilinear map is invertible on the closed cube only
+  // if all are > 0 (a necessary condition); a hex valid at its Gauss points
+  // can still have a corner <= 0.
+  double corner_det_j_min = 0;
+  bool is_invertible = false;  // every corner det J > 0
   // Eigenvalues of K_e, ascending (the first is the constants' 0 up to
   // rounding); NaN when not valid.
   std::array<double, 8> eigenvalues{};

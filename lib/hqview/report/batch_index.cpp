@@ -39,7 +39,9 @@ constexpr int kIndexSchemaVersion = 1;
 constexpr const char* kHeadlineTitles[] = {"#V",        "#H",        "min SJ",           "mean SJ",
                                            "p05 SJ",    "#inverted", "#intersecting",    "Hausdorff (rel.)",
                                            "#singular interior edges", "#singular boundary edges",
-                                           "#invalid elements", "FEM L2 error", "FEM H1 error",
+                                           "#invalid Q1 elements (Gauss det J \u2264 0)",
+                                           "#non-invertible maps (corner det J \u2264 0)", "FEM L2 error (rel.)",
+                                           "FEM H1 error (rel., semi-norm)",
                                            "FEM cond. (Jacobi)"};
 static_assert(std::size(kHeadlineTitles) == kNumHeadlineKeys);
 
@@ -66,6 +68,8 @@ std::size_t headline_index(std::string_view key) {
   return kNumHeadlineKeys;
 }
 
+constexpr double kNaNValue = std::numeric_limits<double>::quiet_NaN();
+
 double number_or_nan(const json& v) { return v.is_number() ? v.get<double>() : std::numeric_limits<double>::quiet_NaN(); }
 
 bool has_fem_metrics(const std::vector<BatchEntry>& entries) {
@@ -78,8 +82,11 @@ json correlation_json(const CollectionCorrelation& c) {
   for (const CollectionCorrelationRow& r : c.rows)
     rows.push_back({{"metric", r.metric},
                     {"stat", r.stat},
+                    {"direction", r.direction > 0 ? "higher is better" : r.direction < 0 ? "lower is better" : "none"},
                     {"rho_l2_error", number_or_null(r.rho_l2)},
+                    {"p_l2_error", number_or_null(r.p_l2)},
                     {"rho_h1_error", number_or_null(r.rho_h1)},
+                    {"p_h1_error", number_or_null(r.p_h1)},
                     {"num_meshes", r.num_meshes}});
   return {{"num_meshes", c.num_meshes}, {"min_meshes", c.min_meshes}, {"metrics", std::move(rows)}};
 }
@@ -200,7 +207,8 @@ std::string batch_index_json(const std::vector<BatchEntry>& entries, const std::
     if (!e.metrics.empty()) {  // a solved finite-element check only: other rows keep their bytes
       json metrics = json::object();
       for (const MeshMetricRange& s : e.metrics)
-        metrics[s.metric] = {{"min", number_or_null(s.min)}, {"mean", number_or_null(s.mean)}};
+        metrics[s.metric] = {
+            {"min", number_or_null(s.min)}, {"mean", number_or_null(s.mean)}, {"max", number_or_null(s.max)}};
       m["metrics"] = std::move(metrics);
     }
     m["failed_gates"] = e.failed_gates;
@@ -278,7 +286,8 @@ std::vector<BatchEntry> parse_batch_index_json(std::string_view text, const std:
       if (m.contains("thumbnail") && m["thumbnail"].is_string()) e.thumbnail = m["thumbnail"].get<std::string>();
       if (m.contains("metrics") && m["metrics"].is_object())
         for (const auto& [metric, stats] : m["metrics"].items())
-          e.metrics.push_back({metric, number_or_nan(stats.at("min")), number_or_nan(stats.at("mean"))});
+          e.metrics.push_back({metric, number_or_nan(stats.at("min")), number_or_nan(stats.at("mean")),
+                               stats.contains("max") ? number_or_nan(stats["max"]) : kNaNValue});
       entries.push_back(std::move(e));
     }
   } catch (const json::exception& e) {
@@ -385,7 +394,7 @@ kainjow::mustache::data comparison_data(const std::vector<BatchEntry>& entries, 
   return d;
 }
 
-// index.html's "Which metrics predict the simulation error" table: the rows
+// index.html's "Which metrics rank these meshes by their simulation error" table: the rows
 // by |rho| with the H1 error, largest first (nulls last, then metric order).
 kainjow::mustache::data fem_correlation_data(const CollectionCorrelation& c) {
   using kainjow::mustache::data;
@@ -399,16 +408,29 @@ kainjow::mustache::data fem_correlation_data(const CollectionCorrelation& c) {
     std::snprintf(text, sizeof text, "%.3f", v);  // as the per-mesh chart
     return std::string(text);
   };
+  // p to 3 significant digits; "not significant" above 0.05.
+  const auto p_text = [](double p) {
+    if (!std::isfinite(p)) return std::string("–");
+    char text[48];
+    std::snprintf(text, sizeof text, p < 1e-3 ? "%.1e" : "%.3g", p);
+    return std::string(text) + (p > 0.05 ? " (not significant)" : "");
+  };
   data rows = data::type::list;
   for (const std::size_t i : order) {
     const CollectionCorrelationRow& r = c.rows[i];
     data row;
     row.set("metric", r.metric);
     row.set("stat", r.stat);
+    row.set("direction", r.direction > 0 ? "higher is better" : r.direction < 0 ? "lower is better" : "–");
     row.set("rho_l2", rho(r.rho_l2));
     row.set("rho_h1", rho(r.rho_h1));
+    row.set("p_l2", p_text(r.p_l2));
+    row.set("p_h1", p_text(r.p_h1));
     row.set("sort_l2", std::isfinite(r.rho_l2) ? format_double(r.rho_l2) : "");
     row.set("sort_h1", std::isfinite(r.rho_h1) ? format_double(r.rho_h1) : "");
+    row.set("sort_p_l2", std::isfinite(r.p_l2) ? format_double(r.p_l2) : "");
+    row.set("sort_p_h1", std::isfinite(r.p_h1) ? format_double(r.p_h1) : "");
+    row.set("baseline", r.metric == "num_hexes");
     row.set("num_meshes", std::to_string(r.num_meshes));
     rows.push_back(row);
   }
@@ -485,6 +507,7 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
   static const std::size_t inverted_key = headline_index("quality.num_inverted");
   static const std::size_t min_sj_key = headline_index("quality.scaled_jacobian.min");
   static const std::size_t invalid_key = headline_index("fem.element.num_invalid");
+  static const std::size_t not_invertible_key = headline_index("fem.element.num_not_invertible");
   data headers = data::type::list;
   for (std::size_t k = 0; k < kNumHeadlineKeys; ++k)
     if (shown[k]) headers.push_back(data("title", kHeadlineTitles[k]));
@@ -521,7 +544,7 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
       // The sort key: the exact number, or empty (sorted last).
       cell.set("sort", e.headline[k] && std::isfinite(*e.headline[k]) ? format_double(*e.headline[k]) : "");
       // Inverted hexes, a non-positive min SJ and invalid elements stand out.
-      const bool alert = e.headline[k] && (((k == inverted_key || k == invalid_key) && *e.headline[k] > 0) ||
+      const bool alert = e.headline[k] && (((k == inverted_key || k == invalid_key || k == not_invertible_key) && *e.headline[k] > 0) ||
                                            (k == min_sj_key && *e.headline[k] <= 0));
       cell.set("alert", alert);
       cells.push_back(cell);

@@ -37,6 +37,7 @@ inline constexpr const char* kHeadlineKeys[] = {
     "structure.num_singular_edges_boundary",
     // The finite-element check (--simulate; null without it).
     "fem.element.num_invalid",
+    "fem.element.num_not_invertible",
     "fem.poisson.mean.l2_error",
     "fem.poisson.mean.h1_error",
     "fem.poisson.scaled_matrix.condition",
@@ -54,7 +55,7 @@ struct PaperInfo {
 // A mesh's min and mean of one metric (collection_correlation.h); NaN: null.
 struct MeshMetricRange {
   std::string metric;
-  double min = 0, mean = 0;
+  double min = 0, mean = 0, max = 0;
   bool operator==(const MeshMetricRange&) const = default;
 };
 

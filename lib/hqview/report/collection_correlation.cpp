@@ -33,12 +33,13 @@ std::vector<MeshMetricRange> metric_summaries_from_report(const ReportDocument& 
   if (!fem.contains("poisson") || !fem["poisson"].is_object() || !fem["poisson"]["skipped"].is_null()) return out;
   if (report.contains("quality") && report["quality"].contains("metrics") && report["quality"]["metrics"].is_object())
     for (const auto& [name, stats] : report["quality"]["metrics"].items())
-      if (stats.is_object()) out.push_back({name, number_or_nan(stats, "min"), number_or_nan(stats, "mean")});
+      if (stats.is_object())
+        out.push_back({name, number_or_nan(stats, "min"), number_or_nan(stats, "mean"), number_or_nan(stats, "max")});
   if (fem.contains("element") && fem["element"].is_object())
     for (const char* name : {"kappa", "lambda_max", "det_j_min"})
       if (fem["element"].contains(name) && fem["element"][name].is_object())
         out.push_back({std::string("fem_") + name, number_or_nan(fem["element"][name], "min"),
-                       number_or_nan(fem["element"][name], "mean")});
+                       number_or_nan(fem["element"][name], "mean"), number_or_nan(fem["element"][name], "max")});
   return out;
 }
 
@@ -59,26 +60,45 @@ CollectionCorrelation correlate_collection(const std::vector<BatchEntry>& entrie
     for (const MeshMetricRange& m : e->metrics)
       if (std::find(names.begin(), names.end(), m.metric) == names.end()) names.push_back(m.metric);
   std::sort(names.begin(), names.end());
-  for (const std::string& name : names)
-    for (const bool is_min : {true, false}) {
+  const auto add_row = [&](std::string metric, std::string stat, int direction, const std::vector<double>& value,
+                           const std::vector<double>& l2, const std::vector<double>& h1) {
+    CollectionCorrelationRow row;
+    row.metric = std::move(metric);
+    row.stat = std::move(stat);
+    row.direction = direction;
+    const RankCorrelationTest a = spearman_test(std::span<const double>(value), std::span<const double>(l2));
+    const RankCorrelationTest b = spearman_test(std::span<const double>(value), std::span<const double>(h1));
+    row.num_meshes = static_cast<int>(a.correlation.count);
+    const bool enough_l2 = a.correlation.count >= out.min_meshes, enough_h1 = b.correlation.count >= out.min_meshes;
+    row.rho_l2 = enough_l2 ? a.correlation.rho : kNaN;
+    row.p_l2 = enough_l2 ? a.p_value : kNaN;
+    row.rho_h1 = enough_h1 ? b.correlation.rho : kNaN;
+    row.p_h1 = enough_h1 ? b.p_value : kNaN;
+    out.rows.push_back(std::move(row));
+  };
+  for (const std::string& name : names) {
+    const int direction = metric_direction(name);
+    for (const bool is_worst : {true, false}) {
       std::vector<double> value, l2, h1;
       for (const BatchEntry* e : meshes)
         for (const MeshMetricRange& m : e->metrics)
           if (m.metric == name) {
-            value.push_back(is_min ? m.min : m.mean);
+            value.push_back(!is_worst ? m.mean : direction < 0 ? m.max : m.min);
             l2.push_back(*e->headline[l2_slot]);
             h1.push_back(*e->headline[h1_slot]);
           }
-      CollectionCorrelationRow row;
-      row.metric = name;
-      row.stat = is_min ? "min" : "mean";
-      const RankCorrelation a = spearman_correlation(std::span<const double>(value), std::span<const double>(l2));
-      const RankCorrelation b = spearman_correlation(std::span<const double>(value), std::span<const double>(h1));
-      row.num_meshes = static_cast<int>(a.count);
-      row.rho_l2 = a.count >= out.min_meshes ? a.rho : kNaN;
-      row.rho_h1 = b.count >= out.min_meshes ? b.rho : kNaN;
-      out.rows.push_back(std::move(row));
+      add_row(name, !is_worst ? "mean" : direction != 0 ? "worst" : "min", direction, value, l2, h1);
     }
+  }
+  static const std::size_t hexes_slot = slot_of("mesh.num_hexes");
+  std::vector<double> value, l2, h1;
+  for (const BatchEntry* e : meshes)
+    if (e->headline[hexes_slot]) {
+      value.push_back(*e->headline[hexes_slot]);
+      l2.push_back(*e->headline[l2_slot]);
+      h1.push_back(*e->headline[h1_slot]);
+    }
+  if (!meshes.empty()) add_row("num_hexes", "count", 0, value, l2, h1);
   return out;
 }
 

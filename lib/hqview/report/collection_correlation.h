@@ -4,11 +4,17 @@
 // Correlation Analysis", CGF 36(5), 2017). Over the meshes of a batch whose
 // finite-element check was solved (--simulate), Spearman's rank correlation
 // between each mesh's error figure (fem.poisson.mean.l2_error and .h1_error)
-// and its min and its mean of each metric (report.json quality.metrics.<m>,
-// and the element conditioning fem.element.kappa / lambda_max / det_j_min).
-// Null (NaN) when fewer than kMinCorrelationMeshes meshes have both values
-// or either side is constant over them. Pure; the entries' order (index.json,
-// sorted by path) does not change the result.
+// and its worst and its mean of each metric (report.json quality.metrics.<m>,
+// and the element conditioning fem.element.kappa / lambda_max / det_j_min):
+// the worst is the min of a higher-is-better metric and the max of a
+// lower-is-better one (metric_direction); a metric with no direction (a
+// size) gives its min. A baseline row correlates the hex count
+// (mesh.num_hexes): a metric that ranks the meshes no better than their
+// resolution says little. Each rho has its two-sided p-value (spearman_test:
+// exact permutation up to 8 meshes, the t approximation above). Null (NaN)
+// when fewer than kMinCorrelationMeshes meshes have both values or either
+// side is constant over them. Pure; the entries' order (index.json, sorted
+// by path) does not change the result.
 
 #include <string>
 #include <vector>
@@ -22,17 +28,21 @@ namespace hq {
 inline constexpr int kMinCorrelationMeshes = 5;
 
 struct CollectionCorrelationRow {
-  std::string metric;  // a Verdict name, or fem_kappa, fem_lambda_max, fem_det_j_min
-  std::string stat;    // "min" or "mean"
+  std::string metric;  // a Verdict name, or fem_kappa, fem_lambda_max, fem_det_j_min; num_hexes (the baseline)
+  std::string stat;    // "worst", "min" (no direction), "mean", or "count" (num_hexes)
+  int direction = 0;   // metric_direction: +1 higher is better, -1 lower, 0 neither
   double rho_l2 = 0;   // Spearman's rho with the mean relative L2 error; NaN: null
+  double p_l2 = 0;     // its two-sided p-value; NaN: null
   double rho_h1 = 0;   // with the mean relative H1 semi-norm error
+  double p_h1 = 0;
   int num_meshes = 0;  // meshes that entered (both errors and this value)
 };
 
 struct CollectionCorrelation {
   int num_meshes = 0;  // analysed meshes with a solved check
   int min_meshes = kMinCorrelationMeshes;
-  // Per metric (alphabetical: the same after a merge of shards), min then mean.
+  // Per metric (alphabetical: the same after a merge of shards), worst (or
+  // min) then mean; then the baseline num_hexes.
   std::vector<CollectionCorrelationRow> rows;
 };
 

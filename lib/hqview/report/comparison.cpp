@@ -63,9 +63,10 @@ const std::vector<ComparisonKey>& comparison_keys() {
       {"boundary_error.hausdorff.relative", "Hausdorff (rel.)", -1},
       {"structure.num_singular_edges_interior", "#singular interior edges", -1},
       {"structure.num_singular_edges_boundary", "#singular boundary edges", -1},
-      {"fem.element.num_invalid", "#invalid elements", -1},
-      {"fem.poisson.mean.l2_error", "FEM L2 error", -1},
-      {"fem.poisson.mean.h1_error", "FEM H1 error", -1},
+      {"fem.element.num_invalid", "#invalid Q1 elements (Gauss det J \u2264 0)", -1},
+      {"fem.element.num_not_invertible", "#non-invertible maps (corner det J \u2264 0)", -1},
+      {"fem.poisson.mean.l2_error", "FEM L2 error (rel.)", -1},
+      {"fem.poisson.mean.h1_error", "FEM H1 error (rel., semi-norm)", -1},
       {"fem.poisson.scaled_matrix.condition", "FEM cond. (Jacobi)", -1},
   };
   return keys;

@@ -115,7 +115,7 @@ const std::vector<PanelSpec>& index_panels() {
        "The hex boundary against the reference surface (--reference), and the compared mesh (--compare).", 'F'},
       {"panel-p", "P simulation", "P · Simulation: where the finite-element error is",
        "With --simulate: the Poisson check's error density per hex (its H1 error over the a-priori factor h\u00b2 "
-       "|D\u00b2u|\u00b2, so it shows where the mesh is bad rather than where u curves). First, each metric's "
+       "|D\u00b2u|\u00b2, h = the cube root of the hex's volume, so it shows where the mesh is bad rather than where u curves). First, each metric's "
        "Spearman \u03c1 with that density over the hexes, strongest first: the metrics that say where the error "
        "is. Then every hex's density against its scaled Jacobian on log axes. Numbers: report.json fem.poisson; per "
        "hex: data/cells.csv fem_error_density.",
@@ -366,6 +366,16 @@ void set_headline(data& page, const ReportModel& model) {
   headline.push_back(
       card("degenerate hexes (a zero-length edge or axis)", show_count(q.scaled_jacobian.num_degenerate), q.scaled_jacobian.num_degenerate > 0));
   headline.push_back(card("min vertex quality", show(q.vertex_quality.min), q.vertex_quality.min <= 0));
+  if (model.analysis.fem_elements) {
+    // The count (a Gauss-point det J <= 0: not a valid Q1 element,
+    // nothing is solved) beside the stricter one (a corner det J <= 0: the
+    // trilinear map folds over; still solved when the Gauss points are positive).
+    const FemElementField& f = *model.analysis.fem_elements;
+    headline.push_back(card("invalid Q1 elements (a Gauss-point det J \u2264 0: not solved)",
+                            show_count(f.num_invalid), f.num_invalid > 0));
+    headline.push_back(card("non-invertible trilinear maps (a corner det J \u2264 0; solved if Gauss points > 0)",
+                            show_count(f.num_not_invertible), f.num_not_invertible > 0));
+  }
   if (model.analysis.overlap && model.analysis.overlap->num_coincident_vertices > 0)
     headline.push_back(card("coincident vertices", show_count(model.analysis.overlap->num_coincident_vertices), true));
   page.set("headline", headline);

@@ -189,6 +189,7 @@ Json fem_poisson_json(const PoissonCheck& p, const std::vector<MetricCorrelation
 Json fem_json(const Analysis& a) {
   const FemElementField& e = *a.fem_elements;
   Json element = {{"num_invalid", e.num_invalid},
+                  {"num_not_invertible", e.num_not_invertible},
                   {"kappa", stats_json(e.kappa_stats, false)},
                   {"lambda_max", stats_json(e.lambda_max_stats, false)},
                   {"det_j_min", stats_json(e.det_j_min_stats, true)},

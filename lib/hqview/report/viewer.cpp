@@ -19,6 +19,7 @@
 #include "hqview/report/report_templates.h"
 #include "hqview/report/viewer_boundary.h"
 #include "hqview/views/boundary_views.h"
+#include "hqview/views/error_density_views.h"
 
 namespace hq {
 
@@ -206,6 +207,28 @@ BoundaryData boundary_data(const Analysis& a, const ViewerBoundary& b, bool with
     const auto lut = lut_of([](int i) { return i == kNoValue ? kUndefinedColor : diverging_color(-1.0 + 2.0 * i / 254.0); });
     out.fields.push_back(field_json("boundary_error", "signed boundary error (+ outside the reference), model units",
                                     "vertex", e, lut, -s, s, Json::array()));
+  }
+  if (a.poisson && a.poisson->cell_error_density.size() == a.mesh.hexes.size()) {
+    // --simulate: the error density of each face's hex, indices 0..253 on
+    // the log scale of view fem_error_density (error_density_views.h).
+    const std::vector<double>& density = a.poisson->cell_error_density;
+    const ErrorDensityScale scale = error_density_scale(density);
+    const double span = std::log10(scale.hi) - std::log10(scale.lo);
+    std::vector<std::uint8_t> e;
+    for (Index h : b.face_hex) {
+      const double x = density[static_cast<std::size_t>(h)];
+      e.push_back(std::isfinite(x) && x > 0
+                      ? static_cast<std::uint8_t>(std::lround(
+                            std::clamp((std::log10(x) - std::log10(scale.lo)) / span, 0.0, 1.0) * 253.0))
+                      : kNoValue);
+    }
+    const auto lut = lut_of([&](int i) {
+      return i == kNoValue ? kUndefinedColor
+                           : error_density_color(std::pow(10.0, std::log10(scale.lo) + span * i / 253.0), scale);
+    });
+    out.fields.push_back(field_json("fem_error_density",
+                                    "FEM error density of the face's hex (normalised H1 error, no unit; log scale)",
+                                    "face", e, lut, scale.lo, scale.hi, Json::array()));
   }
   if (!with_metrics) return out;
   // Metrics: indices 0..253 over [min, max] of the faces' cells, 254 outside

@@ -26,6 +26,7 @@
 #include "hqview/render/upright.h"
 #include "hqview/views/boundary_views.h"
 #include "hqview/views/detail_views.h"
+#include "hqview/views/error_density_views.h"
 #include "hqview/views/main_views.h"
 #include "hqview/views/overview_viewpoint.h"
 #include "hqview/views/overview_views.h"
@@ -608,6 +609,40 @@ std::vector<ViewFile> build_fem_error_scatter(ViewContext& c) {
   return chart_files("fem_error_scatter",
                      error_density_scatter_chart(c.a.field.cell_scaled_jacobian, c.a.poisson->cell_error_density,
                                                  {900, 560, c.name + ": FEM error density against scaled Jacobian"}));
+}
+
+// Two figures from one viewpoint facing the densest hexes: the boundary, and
+// the cells under the quality threshold (1 - the glyph threshold, as the
+// viewer's low cells) with the densest 1% inside the translucent boundary.
+std::vector<ViewFile> build_fem_error_density(ViewContext& c) {
+  const PoissonCheck& p = *c.a.poisson;
+  if (p.cell_error_density.size() != c.a.mesh.hexes.size()) return {};
+  auto options = sized<ErrorDensityViewOptions>(c);
+  options.quality_threshold = 1.0 - (c.a.glyphs ? c.a.glyphs->options.threshold : 0.5);
+  const Vec3 direction = choose_error_density_viewpoint(c.a.mesh, c.a.topology, p.cell_error_density, options);
+  std::size_t worst = 0;
+  for (std::size_t h = 1; h < p.cell_error_density.size(); ++h)
+    if (p.cell_error_density[h] > p.cell_error_density[worst]) worst = h;
+  options.title = c.name + ": FEM error density on the boundary hexes (max " +
+                  display_number(p.error_density_stats.max, 3) + " at hex " + std::to_string(worst) + ", median " +
+                  display_number(p.error_density_stats.p50, 3) + ")";
+  std::vector<ViewFile> files;
+  files.push_back(framed("views/fem_error_density.png",
+                         render_error_density_boundary(c.a.mesh, c.a.topology, p.cell_error_density, direction,
+                                                       options, c.renderer),
+                         c));
+  const std::vector<Index> cells =
+      error_density_cells(c.a.field.cell_scaled_jacobian, p.cell_error_density, options);
+  std::size_t low = 0;
+  for (Index h : cells) low += c.a.field.cell_scaled_jacobian[static_cast<std::size_t>(h)] < options.quality_threshold;
+  options.title = c.name + ": by FEM error density, the " + std::to_string(low) + " hexes with scaled Jacobian < " +
+                  display_number(options.quality_threshold, 3) + " and " + std::to_string(cells.size() - low) +
+                  " more of the densest 1%, inside the boundary";
+  files.push_back(framed("views/fem_error_density_cells.png",
+                         render_error_density_cells(c.a.mesh, c.a.topology, p.cell_error_density,
+                                                    c.a.field.cell_scaled_jacobian, direction, options, c.renderer),
+                         c));
+  return files;
 }
 
 }  // namespace hq

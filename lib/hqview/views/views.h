@@ -92,6 +92,7 @@ std::vector<ViewFile> build_size_gradation(ViewContext&);
 std::vector<ViewFile> build_thumbnail(ViewContext&);
 std::vector<ViewFile> build_fem_correlation(ViewContext&);
 std::vector<ViewFile> build_fem_error_scatter(ViewContext&);
+std::vector<ViewFile> build_fem_error_density(ViewContext&);
 
 // Every view, in report order (the order they are drawn and listed).
 inline constexpr ViewSpec kViews[] = {
@@ -126,6 +127,8 @@ inline constexpr ViewSpec kViews[] = {
      ViewNeeds::simulation, true, -1, build_fem_correlation},
     {"fem_error_scatter", "P: error density against scaled Jacobian per hex (log-log)", 'P', 1,
      ViewNeeds::simulation, true, -1, build_fem_error_scatter},
+    {"fem_error_density", "P: the boundary and the low-quality cells coloured by FEM error density", 'P', 2,
+     ViewNeeds::simulation, true, -1, build_fem_error_density},
     // On no page of its own: the batch comparison's strip of thumbnails.
     {"thumbnail", "Thumbnail: the boundary by vertex quality, bounding-box frame", 'T', 0, ViewNeeds::mesh, true, -1,
      build_thumbnail},
