@@ -17,6 +17,7 @@
 
 #include "hqview/io/mesh_reader.h"
 #include "hybrid_mesh_files.h"
+#include "io/gmsh_run.h"
 #include "temp_dir.h"
 
 namespace hq {
@@ -24,34 +25,10 @@ namespace {
 
 using test::TempDir;
 
-// Element counts by Gmsh type of an ASCII MSH 2.2 file ("tag type ntags ...").
-std::map<int, int> msh22_type_counts(const std::string& text) {
-  std::map<int, int> counts;
-  std::istringstream in(text.substr(text.find("$Elements")));
-  std::string keyword;
-  int n = 0;
-  in >> keyword >> n;
-  std::string line;
-  std::getline(in, line);
-  for (int e = 0; e < n && std::getline(in, line); ++e) {
-    std::istringstream fields(line);
-    int tag = 0, type = 0;
-    fields >> tag >> type;
-    ++counts[type];
-  }
-  return counts;
-}
+using test::msh22_type_counts;
 
-// Runs gmsh on a .geo text; returns false when gmsh is missing or fails.
 bool run_gmsh(const TempDir& dir, const std::string& geo, const std::vector<std::string>& outputs) {
-  const auto geo_path = dir.write("m.geo", geo);
-  for (const std::string& output : outputs) {
-    const std::string format = output.ends_with("22.msh") ? " -format msh22" : output.ends_with(".msh") ? " -format msh41" : "";
-    const std::string command = std::string(HQ_GMSH) + " -3 -nt 1 " + geo_path.string() + format + " -o " +
-                                (dir.path() / output).string() + " > " + (dir.path() / "gmsh.log").string() + " 2>&1";
-    if (std::system(command.c_str()) != 0) return false;
-  }
-  return true;
+  return test::run_gmsh(HQ_GMSH, dir, geo, outputs);
 }
 
 void expect_counts_and_positive_volumes(const std::filesystem::path& path, const std::map<int, int>& counts) {

@@ -94,19 +94,22 @@ Solid solid_of(const HexMesh& mesh, const Topology& topology) {
   }
   const Vec3 origin = 0.5 * (s.lo + s.hi);
   Vec3 moment{0.0, 0.0, 0.0};
-  for (Index f : topology.boundary_faces) {
-    const Quad& q = topology.faces[static_cast<std::size_t>(f)];
-    std::array<Vec3, 4> p;
-    for (int i = 0; i < 4; ++i) p[i] = mesh.points[static_cast<std::size_t>(q[i])] - origin;
-    for (int t = 0; t < 2; ++t) {
-      const Vec3& a = p[0];
-      const Vec3& b = p[t + 1];
-      const Vec3& c = p[t + 2];
-      const double v = dot(a, cross(b, c)) / 6.0;
-      s.volume += v;
-      moment = moment + (v / 4.0) * (a + b + c);
-    }
-  }
+  // Every boundary face of every kind: hex quads, other quads, triangles.
+  const auto add_triangle = [&](Index ia, Index ib, Index ic) {
+    const Vec3 a = mesh.points[static_cast<std::size_t>(ia)] - origin;
+    const Vec3 b = mesh.points[static_cast<std::size_t>(ib)] - origin;
+    const Vec3 c = mesh.points[static_cast<std::size_t>(ic)] - origin;
+    const double v = dot(a, cross(b, c)) / 6.0;
+    s.volume += v;
+    moment = moment + (v / 4.0) * (a + b + c);
+  };
+  const auto add_quad = [&](const Quad& q) {
+    add_triangle(q[0], q[1], q[2]);
+    add_triangle(q[0], q[2], q[3]);
+  };
+  for (Index f : topology.boundary_faces) add_quad(topology.faces[static_cast<std::size_t>(f)]);
+  for (const Quad& q : topology.boundary_quads_non_hex) add_quad(q);
+  for (const Tri& t : topology.boundary_triangles) add_triangle(t[0], t[1], t[2]);
   s.centre = s.volume != 0.0 ? origin + (1.0 / s.volume) * moment : origin;
   return s;
 }
@@ -145,7 +148,7 @@ std::vector<Vec3> resting_up_candidates() {
 
 RestingUp choose_resting_up(const HexMesh& mesh, const Topology& topology) {
   RestingUp result;
-  if (topology.boundary_faces.empty()) return result;
+  if (num_boundary_faces_all_kinds(topology) == 0) return result;
   const Solid solid = solid_of(mesh, topology);
   if (!(std::abs(solid.volume) > 0.0) || !std::isfinite(solid.volume) || !is_finite(solid.centre)) return result;
   result.candidates.reserve(6);

@@ -339,18 +339,43 @@ void set_header(data& page, const ReportModel& model) {
   page.set("inputs", input_rows(model));
 }
 
+// "125 hex · 300 tet · 20 pyramid": the kinds present.
+std::string cells_by_kind_text(const CellComposition& c) {
+  std::string text;
+  for (int k = 0; k < kNumVolumeKinds; ++k) {
+    if (c.count[static_cast<std::size_t>(k)] == 0) continue;
+    if (!text.empty()) text += " · ";
+    text += show_count(c.count[static_cast<std::size_t>(k)]) + " " + std::string(cell_kind_name(static_cast<CellKind>(k)));
+  }
+  return text;
+}
+
 // The papers' headline: #V, #H, min and mean scaled Jacobian, #inverted,
 // overlaps, Hausdorff distance (% of the reference's bbox diagonal).
 void set_headline(data& page, const ReportModel& model) {
   const MeshSummary& m = model.analysis.mesh_summary;
   const QualitySummary& q = model.analysis.quality;
   data headline{data::type::list};
+  const CellComposition& c = model.analysis.composition;
+  // A hybrid mesh names its cells by kind and counts over all of them.
+  const bool hybrid = c.num_cells > c.count[0];
   headline.push_back(card("vertices", show_count(m.num_vertices)));
-  headline.push_back(card("hexahedra", show_count(m.num_hexes)));
-  headline.push_back(card("min scaled Jacobian", show(q.scaled_jacobian.min), q.scaled_jacobian.min <= 0));
-  headline.push_back(card("mean scaled Jacobian", show(q.scaled_jacobian.mean)));
-  headline.push_back(
-      card("inverted hexes", show_count(q.scaled_jacobian.num_inverted), q.scaled_jacobian.num_inverted > 0));
+  if (hybrid) {
+    headline.push_back(card("cells", show_count(c.num_cells)));
+    headline.push_back(card("cells by kind", cells_by_kind_text(c)));
+    headline.push_back(card("hex fraction (by count / by volume)",
+                            (c.hex_fraction ? show(*c.hex_fraction) : std::string("-")) + " / " +
+                                (c.hex_volume_fraction ? show(*c.hex_volume_fraction) : std::string("-"))));
+    headline.push_back(card("min scaled Jacobian (all cells)", show(q.scaled_jacobian.min), q.scaled_jacobian.min <= 0));
+    headline.push_back(card("mean scaled Jacobian (all cells)", show(q.scaled_jacobian.mean)));
+    headline.push_back(card("inverted cells", show_count(q.num_inverted), q.num_inverted > 0));
+  } else {
+    headline.push_back(card("hexahedra", show_count(m.num_hexes)));
+    headline.push_back(card("min scaled Jacobian", show(q.scaled_jacobian.min), q.scaled_jacobian.min <= 0));
+    headline.push_back(card("mean scaled Jacobian", show(q.scaled_jacobian.mean)));
+    headline.push_back(
+        card("inverted hexes", show_count(q.scaled_jacobian.num_inverted), q.scaled_jacobian.num_inverted > 0));
+  }
   if (model.analysis.overlap)
     headline.push_back(card("overlapping hexes", show_count(model.analysis.overlap->num_intersecting_cells),
                             model.analysis.overlap->num_intersecting_cells > 0));
@@ -363,8 +388,8 @@ void set_headline(data& page, const ReportModel& model) {
     hausdorff.set("href", "boundary.html");
     headline.push_back(hausdorff);
   }
-  headline.push_back(
-      card("degenerate hexes", show_count(q.scaled_jacobian.num_degenerate), q.scaled_jacobian.num_degenerate > 0));
+  headline.push_back(card(hybrid ? "degenerate cells" : "degenerate hexes", show_count(q.scaled_jacobian.num_degenerate),
+                          q.scaled_jacobian.num_degenerate > 0));
   headline.push_back(card("min vertex quality", show(q.vertex_quality.min), q.vertex_quality.min <= 0));
   if (model.analysis.overlap && model.analysis.overlap->num_coincident_vertices > 0)
     headline.push_back(card("coincident vertices", show_count(model.analysis.overlap->num_coincident_vertices), true));
