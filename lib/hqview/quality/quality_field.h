@@ -64,7 +64,8 @@ inline bool cell_is_degenerate(const QualityField& q, std::size_t c) {
   return q.cell_scaled_jacobian[c] >= kVerdictDegenerate || q.corner_degenerate_mask[c] != 0;
 }
 inline bool cell_is_inverted(const QualityField& q, std::size_t c) {
-  if (c >= q.num_hexes) return q.non_hex_validity[c - q.num_hexes] == CellValidity::inverted;
+  if (c >= q.num_hexes && c - q.num_hexes < q.non_hex_validity.size())
+    return q.non_hex_validity[c - q.num_hexes] == CellValidity::inverted;
   return !cell_is_degenerate(q, c) && q.cell_scaled_jacobian[c] <= 0.0;
 }
 
