@@ -339,17 +339,6 @@ void set_header(data& page, const ReportModel& model) {
   page.set("inputs", input_rows(model));
 }
 
-// "125 hex · 300 tet · 20 pyramid": the kinds present.
-std::string cells_by_kind_text(const CellComposition& c) {
-  std::string text;
-  for (int k = 0; k < kNumVolumeKinds; ++k) {
-    if (c.count[static_cast<std::size_t>(k)] == 0) continue;
-    if (!text.empty()) text += " · ";
-    text += show_count(c.count[static_cast<std::size_t>(k)]) + " " + std::string(cell_kind_name(static_cast<CellKind>(k)));
-  }
-  return text;
-}
-
 // The papers' headline: #V, #H, min and mean scaled Jacobian, #inverted,
 // overlaps, Hausdorff distance (% of the reference's bbox diagonal).
 void set_headline(data& page, const ReportModel& model) {
@@ -362,10 +351,13 @@ void set_headline(data& page, const ReportModel& model) {
   headline.push_back(card("vertices", show_count(m.num_vertices)));
   if (hybrid) {
     headline.push_back(card("cells", show_count(c.num_cells)));
-    headline.push_back(card("cells by kind", cells_by_kind_text(c)));
-    headline.push_back(card("hex fraction (by count / by volume)",
-                            (c.hex_fraction ? show(*c.hex_fraction) : std::string("-")) + " / " +
-                                (c.hex_volume_fraction ? show(*c.hex_volume_fraction) : std::string("-"))));
+    // One card per kind present, then the two hex fractions.
+    static constexpr const char* kKindLabels[kNumVolumeKinds] = {"hexahedra", "tetrahedra", "wedges", "pyramids"};
+    for (std::size_t k = 0; k < kNumVolumeKinds; ++k)
+      if (c.count[k] > 0) headline.push_back(card(kKindLabels[k], show_count(c.count[k])));
+    headline.push_back(card("hex fraction (by count)", c.hex_fraction ? show(*c.hex_fraction) : std::string("–")));
+    headline.push_back(
+        card("hex fraction (by volume)", c.hex_volume_fraction ? show(*c.hex_volume_fraction) : std::string("–")));
     headline.push_back(card("min scaled Jacobian (all cells)", show(q.scaled_jacobian.min), q.scaled_jacobian.min <= 0));
     headline.push_back(card("mean scaled Jacobian (all cells)", show(q.scaled_jacobian.mean)));
     headline.push_back(card("inverted cells", show_count(q.num_inverted), q.num_inverted > 0));
@@ -549,10 +541,16 @@ void set_worst(data& page, const QualitySummary& q, const PanelIndex& index) {
   for (const WorstCell& w : q.worst_cells) {
     data d;
     d.set("cell", std::to_string(w.cell));
+    d.set("kind", std::string(cell_kind_name(w.kind)));
+    d.set("source_index", std::to_string(w.source_index));  // its number in the file (mesh.h)
     d.set("scaled_jacobian", w.scaled_jacobian >= 1e30 ? "degenerate" : show(w.scaled_jacobian));
     worst_cells.push_back(d);
   }
   page.set("worst_cells", worst_cells);
+  // The kind column on a mesh with other kinds than hexahedra.
+  page.set("worst_cells_hybrid", std::any_of(q.worst_cells.begin(), q.worst_cells.end(),
+                                             [](const WorstCell& w) { return w.kind != CellKind::hex; }) ||
+                                     q.scaled_jacobian.count > static_cast<std::int64_t>(q.by_kind.empty() ? 0 : q.by_kind[0].count));
 }
 
 void set_mesh_rows(data& page, const MeshSummary& m) {
