@@ -91,12 +91,11 @@ void BM_TopologySplitRefined_HQView(benchmark::State& state) {
                                       {0, 7, 4, 6}, {0, 4, 5, 6}, {0, 5, 1, 6}};
   hq::HexMesh points_only;
   points_only.points = refined().points;
-  std::vector<std::array<hq::Index, 4>> tets;
-  tets.reserve(6 * refined().hexes.size());
+  points_only.tets.reserve(6 * refined().hexes.size());
   for (const auto& h : refined().hexes)
-    for (const auto& t : kKuhn) tets.push_back({h[t[0]], h[t[1]], h[t[2]], h[t[3]]});
+    for (const auto& t : kKuhn) points_only.tets.push_back({h[t[0]], h[t[1]], h[t[2]], h[t[3]]});
   for (auto _ : state) {
-    auto topo = hq::build_topology(points_only, hq::NonHexBlocks{tets, {}, {}});
+    auto topo = hq::build_topology(points_only);
     benchmark::DoNotOptimize(topo.boundary_triangles.data());
   }
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(refined().hexes.size()));

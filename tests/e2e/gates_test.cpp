@@ -172,7 +172,10 @@ TEST(Metrics, HeadlineComesFirstAndCellsCsvHasEveryVerdictColumn) {
                            "fem_det_j_max",
                            "fem_l2_error_share",
                            "fem_h1_error_share",
-                           "fem_error_density"})
+                           "fem_error_density",
+                           // Where the cell is (issue 46): its kind and its number in the file.
+                           "cell_type",
+                           "source_index"})
     expected.push_back(name);
   EXPECT_EQ(read_csv(out / "data/cells.csv").at(0), expected);
   EXPECT_FALSE(report.contains("fem"));

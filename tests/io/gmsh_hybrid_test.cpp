@@ -30,23 +30,7 @@ using test::kHexTetGeo;
 using test::run_gmsh;
 using test::TempDir;
 
-// Element counts by Gmsh type of an ASCII MSH 2.2 file ("tag type ntags ...").
-std::map<int, int> msh22_type_counts(const std::string& text) {
-  std::map<int, int> counts;
-  std::istringstream in(text.substr(text.find("$Elements")));
-  std::string keyword;
-  int n = 0;
-  in >> keyword >> n;
-  std::string line;
-  std::getline(in, line);
-  for (int e = 0; e < n && std::getline(in, line); ++e) {
-    std::istringstream fields(line);
-    int tag = 0, type = 0;
-    fields >> tag >> type;
-    ++counts[type];
-  }
-  return counts;
-}
+using test::msh22_type_counts;
 
 void expect_counts_and_positive_volumes(const std::filesystem::path& path, const std::map<int, int>& counts) {
   SCOPED_TRACE(path.filename().string());

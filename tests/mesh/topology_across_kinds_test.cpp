@@ -23,6 +23,7 @@
 
 #include "hqview/core/vec3.h"
 #include "hqview/mesh/topology.h"
+#include "io/gmsh_run.h"
 #include "support/fixtures.h"
 
 namespace hq {
@@ -38,8 +39,15 @@ struct Hybrid {
   std::vector<Tet> tets;
   std::vector<Wedge> wedges;
   std::vector<Pyramid> pyramids;
-  NonHexBlocks blocks() const { return {tets, wedges, pyramids}; }
-  Topology topology() const { return build_topology(hex, blocks()); }
+  // The whole mesh: the hex part's points and hexes with the other blocks.
+  Mesh mesh() const {
+    Mesh m = hex;
+    m.tets = tets;
+    m.wedges = wedges;
+    m.pyramids = pyramids;
+    return m;
+  }
+  Topology topology() const { return build_topology(mesh()); }
   Index add(Vec3 p) {
     hex.points.push_back(p);
     return static_cast<Index>(hex.points.size() - 1);
@@ -108,7 +116,10 @@ Tet valid_tet(const HexMesh& mesh, Tet t) {
 
 TEST(TopologyAcrossKinds, PureHexWithNoOtherCellsIsTheHexOnlyBuild) {
   const HexMesh mesh = test::box_grid(3, 2, 4);
-  const Topology a = build_topology(mesh), b = build_topology(mesh, NonHexBlocks{});
+  // Surface blocks are not read: a quad beside the hexes changes nothing.
+  Mesh with_quad = mesh;
+  with_quad.quads.push_back({0, 1, 2, 3});
+  const Topology a = build_topology(mesh), b = build_topology(with_quad);
   EXPECT_TRUE(std::equal(a.faces.begin(), a.faces.end(), b.faces.begin(), b.faces.end()));
   EXPECT_EQ(a.boundary_faces, b.boundary_faces);
   EXPECT_EQ(a.boundary_vertices, b.boundary_vertices);
@@ -367,16 +378,7 @@ std::tuple<Topology, std::size_t, std::size_t> topology_against_file(const MshFi
   return {std::move(topo), quads, tris};
 }
 
-// Two unit squares side by side in z = 0: surface 1 [0,1]^2, surface 2
-// [1,2] x [0,1], sharing line 2 (x = 1); points with the size lc.
-constexpr const char* kTwoSquares = R"(
-Point(1)={0,0,0,lc}; Point(2)={1,0,0,lc}; Point(3)={1,1,0,lc}; Point(4)={0,1,0,lc};
-Point(5)={2,0,0,lc}; Point(6)={2,1,0,lc};
-Line(1)={1,2}; Line(2)={2,3}; Line(3)={3,4}; Line(4)={4,1};
-Line(5)={2,5}; Line(6)={5,6}; Line(7)={6,3};
-Curve Loop(1)={1,2,3,4}; Plane Surface(1)={1};
-Curve Loop(2)={5,6,7,-2}; Plane Surface(2)={2};
-)";
+using test::kTwoSquares;
 
 // A transfinite recombined box [0,1]^3 (125 hexes) next to a tetrahedral box
 // [1,2] x [0,1]^2 sharing the face x = 1: Gmsh puts a pyramid on each quad.

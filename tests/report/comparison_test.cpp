@@ -111,11 +111,14 @@ TEST(Comparison, CsvLongFormAndKeys) {
                                            "structure.num_singular_edges_boundary,fem.element.num_invalid,"
                                            "fem.element.num_not_invertible,"
                                            "fem.poisson.mean.l2_error,fem.poisson.mean.h1_error,"
-                                           "fem.poisson.scaled_matrix.condition");
-  EXPECT_NE(csv.find("\n\"bun,ny \"\"x\"\"\",in,ec,a/bunny_in.mesh,ok,,100,-0.01,,,,,0.02,,,,,,,\n"),
+                                           "fem.poisson.scaled_matrix.condition,headline.num_cells,"
+                                           "headline.num_cells_by_kind.tet,headline.num_cells_by_kind.wedge,"
+                                           "headline.num_cells_by_kind.pyramid,headline.hex_fraction,"
+                                           "headline.hex_volume_fraction");
+  EXPECT_NE(csv.find("\n\"bun,ny \"\"x\"\"\",in,ec,a/bunny_in.mesh,ok,,100,-0.01,,,,,0.02,,,,,,,,,,,,,\n"),
             std::string::npos)
       << csv;
-  EXPECT_NE(csv.find("\nkitten,out,ec,a/kitten_out.mesh,failed,,,,,,,,,,,,,,,\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\nkitten,out,ec,a/kitten_out.mesh,failed,,,,,,,,,,,,,,,,,,,,,\n"), std::string::npos) << csv;
   // Text from input as message text: no raw byte, no line break from input.
   entries[1].path = "a/kit\xa6\nten.mesh";
   const std::string escaped = comparison_csv(entries);

@@ -17,8 +17,8 @@ TEST(NonConformingCsv, OneRowPerFaceWithItsCellsAndDiagonal) {
   HexMesh& mesh = model.analysis.mesh;
   mesh = test::unit_cube();
   mesh.points.push_back({0.5, 0.5, 2.0});                                   // 8, the apex
-  const std::vector<std::array<Index, 4>> tets = {{4, 5, 6, 8}, {4, 6, 7, 8}};  // split along 4-6
-  model.analysis.topology = build_topology(mesh, NonHexBlocks{tets, {}, {}});
+  mesh.tets = {{4, 5, 6, 8}, {4, 6, 7, 8}};  // split along 4-6
+  model.analysis.topology = build_topology(mesh);
   std::ostringstream out;
   write_non_conforming_faces_csv(model, out);
   EXPECT_EQ(out.str(),

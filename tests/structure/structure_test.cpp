@@ -281,7 +281,8 @@ TEST(Structure, EdgesTouchingPyramidsAreNeitherSingularNorRegular) {
     pyramids.push_back({h[4], h[5], h[6], h[7], static_cast<Index>(mesh.points.size() - 1)});
   }
   ASSERT_EQ(pyramids.size(), 4u);
-  const Topology topo = build_topology(mesh, NonHexBlocks{{}, {}, pyramids});
+  mesh.pyramids = pyramids;
+  const Topology topo = build_topology(mesh);
   const HexStructure s = compute_structure(mesh, topo);
   const auto on_top = [&](const Edge& e) {
     return mesh.points[static_cast<std::size_t>(e[0])].z == 2.0 && mesh.points[static_cast<std::size_t>(e[1])].z == 2.0;

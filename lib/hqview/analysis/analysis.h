@@ -21,6 +21,8 @@
 #include "hqview/mesh/mesh_summary.h"
 #include "hqview/mesh/topology.h"
 #include "hqview/overlap/overlap.h"
+#include "hqview/quality/cell_composition.h"
+#include "hqview/quality/cell_metric_field.h"
 #include "hqview/quality/hex_metric_field.h"
 #include "hqview/quality/quality_field.h"
 #include "hqview/quality/quality_summary.h"
@@ -38,7 +40,13 @@ struct Analysis {
   Topology topology;
   QualityField field;      // corner scaled Jacobians, vertex quality, cell scaled Jacobian
   HexMetricField metrics;  // the Verdict metrics per hex (cells.csv columns)
+  // The other volume blocks' Verdict metrics (tets, wedges, pyramids with
+  // cells, in CellKind order). Once summarised (quality.by_kind), only the
+  // metrics that have a cells.csv column (a hex metric's name) keep their
+  // values, and the corner arrays (in `field`) are dropped.
+  std::vector<CellBlockMetricField> cell_metrics;
   MeshSummary mesh_summary;
+  CellComposition composition;  // cells and volume by kind, hex fractions (headline)
   QualitySummary quality;
   // Edge valences, singular edges and vertices, the singularity graph, size gradation.
   HexStructure structure;
@@ -71,6 +79,7 @@ struct Analysis {
   struct Compared {
     InputFile input;
     MeshSummary mesh_summary;
+    CellComposition composition;
     QualitySummary quality;
     HexMesh mesh;
     Topology topology;

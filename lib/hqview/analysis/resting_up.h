@@ -60,7 +60,7 @@ struct RestingUp {
 // The six candidates in the prior order.
 std::vector<Vec3> resting_up_candidates();
 
-// The resting up axis of the solid bounded by the mesh's boundary faces
+// The resting up axis of the solid bounded by the mesh's boundary faces of every kind
 // (oriented outward, as build_topology gives them). A mesh without boundary
 // faces or without volume gets +z, from_data false.
 RestingUp choose_resting_up(const HexMesh& mesh, const Topology& topology);

@@ -216,6 +216,11 @@ PoissonCheck run_poisson_check(const HexMesh& mesh, const Topology& topology, co
     out.skipped = "the check takes 1 to 4 solutions";
     return out;
   }
+  // Q1 elements only: a hex-dominant mesh's hexes alone are not the domain.
+  if (!mesh.tets.empty() || !mesh.wedges.empty() || !mesh.pyramids.empty()) {
+    out.skipped = "the mesh has cells other than hexahedra (the check solves on Q1 hexahedra only)";
+    return out;
+  }
   if (elements.num_invalid > 0) {
     out.skipped = std::to_string(elements.num_invalid) + (elements.num_invalid == 1 ? " hex is" : " hexes are") +
                   " not a valid trilinear element (a Gauss-point det J <= 0)";

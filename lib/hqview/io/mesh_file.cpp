@@ -193,18 +193,12 @@ void check_content_matches(const MeshFormat& format, const std::filesystem::path
 }
 
 // Every reader's mesh passes here: its coordinates must be analysable, and
-// the analysis reads the hexahedra only (for now): the other volume cells
-// are kept in their blocks, named in a warning, and a mesh without any
-// hexahedron is refused.
+// a mesh without any volume cell (hexahedron, tetrahedron, wedge, pyramid)
+// is refused.
 LoadedMesh checked(LoadedMesh loaded, const std::string& name) {
   check_coordinate_magnitudes(loaded.mesh, name);
-  const std::string others = detail::non_hex_volume_counts(loaded.mesh);
-  if (loaded.mesh.hexes.empty())
-    throw ParseError(name, 0,
-                     "no hexahedra" + (others.empty() ? std::string()
-                                                      : " (" + others + " read; only hexahedra are analysed yet)"));
-  if (!others.empty())
-    loaded.warnings.push_back(name + ": " + others + " read but not analysed yet (only hexahedra are analysed)");
+  if (loaded.mesh.hexes.empty() && detail::non_hex_volume_counts(loaded.mesh).empty())
+    throw ParseError(name, 0, "no hexahedra");
   return loaded;
 }
 

@@ -81,11 +81,8 @@ std::string read_file_bytes(const std::filesystem::path& path);
 // ParseError for a malformed file or one whose content is recognisably
 // another format than its extension says.
 //
-// The analysis reads hexahedra only (for now): a mesh without any is refused
-// (ParseError "path: no hexahedra (4 tetrahedra read; only hexahedra are
-// analysed yet)"), and the other volume cells, kept in their blocks, are
-// named in a warning ("path: 2 tetrahedra, 1 wedge read but not analysed yet
-// (only hexahedra are analysed)").
+// Every volume cell is read into its block and analysed; a mesh without any
+// volume cell is refused (ParseError "path: no hexahedra").
 //
 // limits (read_limits.h): the file's size and the counts it declares are
 // checked against limits.max_memory before anything is allocated from them

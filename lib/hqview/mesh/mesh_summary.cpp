@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "hqview/core/box3.h"
 
@@ -37,16 +38,33 @@ MeshSummary summarize_mesh(const HexMesh& mesh, const Topology& topo) {
     s.bbox_max = box.hi;
   }
   s.bbox_diagonal = norm(s.bbox_max - s.bbox_min);
-  if (!topo.edges.empty()) {
+  // Over every edge: the hex part's (topo.edges) and, on a hybrid mesh, the
+  // other cells' edges too.
+  std::vector<Edge> hybrid_edges;
+  if (topo.across_kinds) {
+    hybrid_edges.assign(topo.edges.begin(), topo.edges.end());
+    for_each_block(mesh, [&](auto kind, const auto& cells) {
+      if constexpr (kind() != CellKind::hex && CellKindTable<kind()>::dimension == 3)
+        for (const auto& cell : cells)
+          for (const auto& e : CellKindTable<kind()>::edges) {
+            const Index a = cell[static_cast<std::size_t>(e[0])], b = cell[static_cast<std::size_t>(e[1])];
+            hybrid_edges.push_back(a < b ? Edge{a, b} : Edge{b, a});
+          }
+    });
+    std::sort(hybrid_edges.begin(), hybrid_edges.end());
+    hybrid_edges.erase(std::unique(hybrid_edges.begin(), hybrid_edges.end()), hybrid_edges.end());
+  }
+  const std::vector<Edge>& edges = topo.across_kinds ? hybrid_edges : topo.edges;
+  if (!edges.empty()) {
     double sum = 0.0;
     s.edge_length_min = INFINITY;
-    for (const Edge& e : topo.edges) {
+    for (const Edge& e : edges) {
       const double l = norm(mesh.points[e[1]] - mesh.points[e[0]]);
       s.edge_length_min = std::min(s.edge_length_min, l);
       s.edge_length_max = std::max(s.edge_length_max, l);
       sum += l;
     }
-    s.edge_length_mean = sum / static_cast<double>(topo.edges.size());
+    s.edge_length_mean = sum / static_cast<double>(edges.size());
   }
   return s;
 }

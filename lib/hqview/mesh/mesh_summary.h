@@ -19,7 +19,7 @@ struct MeshSummary {
   Index num_non_conforming_faces = 0;   // quads against two triangles (Topology::non_conforming_faces)
   Vec3 bbox_min, bbox_max;  // of the vertices cells use (stray points do not frame views)
   double bbox_diagonal = 0;
-  double edge_length_min = 0, edge_length_mean = 0, edge_length_max = 0;  // over topo.edges; 0 without edges
+  double edge_length_min = 0, edge_length_mean = 0, edge_length_max = 0;  // over every unique edge of every volume cell; 0 without edges
 };
 
 MeshSummary summarize_mesh(const HexMesh& mesh, const Topology& topo);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <span>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -12,6 +13,17 @@
 
 namespace hq {
 namespace {
+
+// The non-hex volume blocks of a mesh, corner ids in VTK order
+// (core/cell_kinds.h). Cell ids run over the blocks in CellKind order: hexes
+// [0, H), tets [H, H+T), wedges [H+T, H+T+W), pyramids after them.
+struct NonHexBlocks {
+  std::span<const std::array<Index, 4>> tets;
+  std::span<const std::array<Index, 6>> wedges;
+  std::span<const std::array<Index, 5>> pyramids;
+
+  bool empty() const { return tets.empty() && wedges.empty() && pyramids.empty(); }
+};
 
 // Counting sort of items by a key in [0, num_keys): returns CSR offsets and
 // the item order. Stable, so ties keep their input order.
@@ -431,17 +443,13 @@ void match_across_kinds(const HexMesh& mesh, const NonHexBlocks& others, Topolog
 
 }  // namespace
 
-Topology build_topology(const HexMesh& mesh, const NonHexBlocks& others) {
-  Topology topo = build_topology(mesh);
-  if (!others.empty()) match_across_kinds(mesh, others, topo);
-  return topo;
-}
-
-Topology build_topology(const HexMesh& mesh) {
+Topology build_topology(const Mesh& mesh) {
   Topology topo;
   // Three independent parts, each filling its own members.
   tbb::parallel_invoke([&] { build_vertex_hexes(mesh, topo); }, [&] { build_faces(mesh, topo); },
                        [&] { build_edges(mesh, topo); });
+  const NonHexBlocks others{mesh.tets, mesh.wedges, mesh.pyramids};
+  if (!others.empty()) match_across_kinds(mesh, others, topo);
   return topo;
 }
 

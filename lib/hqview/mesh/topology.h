@@ -26,17 +26,6 @@ using Quad = std::array<Index, 4>;
 using Tri = std::array<Index, 3>;
 using Edge = std::array<Index, 2>;
 
-// The non-hex volume blocks of a mesh, corner ids in VTK order
-// (core/cell_kinds.h). Cell ids run over the blocks in CellKind order: hexes
-// [0, H), tets [H, H+T), wedges [H+T, H+T+W), pyramids after them.
-struct NonHexBlocks {
-  std::span<const std::array<Index, 4>> tets;
-  std::span<const std::array<Index, 6>> wedges;
-  std::span<const std::array<Index, 5>> pyramids;
-
-  bool empty() const { return tets.empty() && wedges.empty() && pyramids.empty(); }
-};
-
 // A topologically non-conforming interface: the quad face of one cell
 // against two triangle faces of other cells over the same four vertices
 // (split along one of its diagonals). Ids are cell ids over all blocks.
@@ -73,8 +62,7 @@ struct Topology {
   std::vector<Index> unreferenced_vertices;  // vertices used by no cell (of any kind), ascending
 
   // ---- Across kinds (all empty for a pure-hex mesh) ----
-  // Built with non-hex volume cells (build_topology(mesh, others), others
-  // not empty).
+  // Set when the mesh has tets, wedges or pyramids.
   bool across_kinds = false;
   // The boundary faces of non-hex cells (used once over all kinds), outward,
   // in their cell's corner order, ordered by sorted vertex ids; with the cell
@@ -115,18 +103,16 @@ inline std::size_t num_boundary_faces_all_kinds(const Topology& t) {
   return t.boundary_faces.size() + t.boundary_quads_non_hex.size() + t.boundary_triangles.size();
 }
 
-// Builds every table above in O(#hexes) expected time.
-// Precondition: every id in mesh.hexes is in [0, mesh.num_vertices()) (the
-// readers guarantee it). Throws nothing.
-Topology build_topology(const HexMesh& mesh);
-
-// The same with the mesh's non-hex volume cells: the hex tables as above,
-// then the faces of every kind matched (CellKindTable faces, by their sorted
+// Builds every table above from the mesh's volume blocks: the hex tables in
+// O(#hexes) expected time; then, when the mesh has tets, wedges or pyramids,
+// the faces of every kind matched (CellKindTable faces, by their sorted
 // vertex ids, bucketed by the smallest as the hex faces: linear in the
 // non-hex faces, plus a binary search among the hex faces per non-hex quad
-// and 4 among the triangles per hex boundary quad). With empty `others` this
-// is build_topology(mesh), byte for byte and at its speed.
-// Precondition: every id in every block is in [0, mesh.num_vertices()).
-Topology build_topology(const HexMesh& mesh, const NonHexBlocks& others);
+// and 4 among the triangles per hex boundary quad). A mesh with hexes only
+// takes the hex path alone: the same tables, byte for byte, at its speed.
+// Quads and triangles (surface blocks) are not read.
+// Precondition: every id in every block is in [0, mesh.num_vertices()) (the
+// readers guarantee it). Throws nothing.
+Topology build_topology(const Mesh& mesh);
 
 }  // namespace hq

@@ -52,6 +52,27 @@ auto timed(double& seconds, F f) {
   };
 }
 
+// The Verdict metrics of the tets, wedges and pyramids, one block per kind
+// present.
+std::vector<CellBlockMetricField> compute_non_hex_metrics(const Mesh& mesh) {
+  std::vector<CellBlockMetricField> out;
+  if (!mesh.tets.empty()) out.push_back(compute_tet_block_metrics(mesh.points, mesh.tets));
+  if (!mesh.wedges.empty()) out.push_back(compute_wedge_block_metrics(mesh.points, mesh.wedges));
+  if (!mesh.pyramids.empty()) out.push_back(compute_pyramid_block_metrics(mesh.points, mesh.pyramids));
+  return out;
+}
+
+// Once summarised, a block keeps the values of the metrics that have a
+// cells.csv column (those named as a hex metric) and nothing else.
+void keep_cell_metric_columns(std::vector<CellBlockMetricField>& blocks) {
+  for (CellBlockMetricField& b : blocks) {
+    for (std::size_t m = 0; m < b.names.size(); ++m)
+      if (!hex_metric_from_name(b.names[m])) std::vector<double>().swap(b.values[m]);
+    std::vector<double>().swap(b.corner_scaled_jacobian);
+    std::vector<std::uint8_t>().swap(b.corner_degenerate_mask);
+  }
+}
+
 // The finite-element check: the element conditioning, then with --simulate
 // the Poisson check and its correlations with the metrics (after the
 // metrics, so that the overlap scratch is gone on large meshes).
@@ -74,6 +95,7 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
   clock.start("quality");
   a.field = compute_quality(a.mesh, a.topology);
   a.mesh_summary = summarize_mesh(a.mesh, a.topology);
+  a.composition = compute_cell_composition(a.mesh);
   // Beside the overlap stage: the structure (the singularity graph: one
   // sequential pass over the edges) always, and on meshes up to
   // kMetricsBesideOverlapMaxHexes the metrics and their summaries; each is
@@ -81,13 +103,18 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
   // progress bar (the overlap stage does).
   const bool metrics_beside = options.overlap && a.mesh.hexes.size() <= kMetricsBesideOverlapMaxHexes;
   std::vector<MetricSummary> metric_summaries;
+  std::vector<KindQualitySummary> by_kind;
   double structure_seconds = 0, metrics_seconds = 0, metric_summaries_seconds = 0;
   const auto structure = timed(structure_seconds, [&] { a.structure = compute_structure(a.mesh, a.topology); });
   const auto metrics = timed(metrics_seconds, [&] {
     a.metrics = compute_hex_metrics(a.mesh, options.metrics, metrics_beside ? progress::Reporting::silent : progress::Reporting::report);
+    a.cell_metrics = compute_non_hex_metrics(a.mesh);
   });
-  const auto summarize_metrics =
-      timed(metric_summaries_seconds, [&] { metric_summaries = summarize_hex_metrics(a.metrics); });
+  const auto summarize_metrics = timed(metric_summaries_seconds, [&] {
+    metric_summaries = summarize_hex_metrics(a.metrics);
+    by_kind = summarize_by_kind(a.mesh, a.field, metric_summaries, a.cell_metrics);
+    keep_cell_metric_columns(a.cell_metrics);
+  });
   const auto concurrent = [&](const char* name, double seconds) {
     a.timings.push_back({name, seconds, peak_rss_bytes(), true});
     if (options.on_stage) options.on_stage(a.timings.back());
@@ -123,6 +150,7 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
     tbb::parallel_invoke([&] { a.quality = summarize_quality(a.mesh, a.field, options.worst_count); },
                          summarize_metrics);
   a.quality.metrics = std::move(metric_summaries);
+  a.quality.by_kind = std::move(by_kind);
   if (!options.overlap) {
     clock.start("structure");
     structure();
@@ -210,9 +238,10 @@ void analyze_boundary_error(Analysis& a, const TriSurface& reference, const Anal
 void analyze_compare(Analysis& a, const AnalyzeOptions& options) {
   Analysis::Compared& c = a.compare.emplace();
   c.mesh = load_mesh(options.compare_path, options, c.input).mesh;
-  c.topology = build_topology(c.mesh, NonHexBlocks{c.mesh.tets, c.mesh.wedges, c.mesh.pyramids});
+  c.topology = build_topology(c.mesh);
   c.field = compute_quality(c.mesh, c.topology);
   c.mesh_summary = summarize_mesh(c.mesh, c.topology);
+  c.composition = compute_cell_composition(c.mesh);
   c.quality = summarize_quality(c.mesh, c.field, options.worst_count);
   c.quality.metrics = summarize_hex_metrics(compute_hex_metrics(c.mesh, options.metrics));
   c.alignment = align_compare_mesh(a.mesh, a.topology, c.mesh, c.topology, options.compare_align);
@@ -290,7 +319,7 @@ void start_analysis(const AnalyzeOptions& options, AnalysisInProgress& out) {
   a.warnings = std::move(loaded.warnings);
   a.mesh = std::move(loaded.mesh);
   clock.start("topology");
-  a.topology = build_topology(a.mesh, NonHexBlocks{a.mesh.tets, a.mesh.wedges, a.mesh.pyramids});
+  a.topology = build_topology(a.mesh);
   if (options.up_auto) a.resting_up = choose_resting_up(a.mesh, a.topology);
   // The reference as soon as the boundary is known, so that its atlas runs
   // beside everything after.
@@ -306,7 +335,8 @@ void start_analysis(const AnalyzeOptions& options, AnalysisInProgress& out) {
   clock.stop();
   if (!a.topology.unreferenced_vertices.empty())
     a.warnings.push_back(std::to_string(a.topology.unreferenced_vertices.size()) +
-                         " vertices are used by no hexahedron (ignored by the analysis)");
+                         (a.topology.across_kinds ? " vertices are used by no cell (ignored by the analysis)"
+                                                  : " vertices are used by no hexahedron (ignored by the analysis)"));
   if (a.reference_surface) {
     clock.start("boundary error");
     analyze_boundary_error(a, *a.reference_surface, options);

@@ -1,5 +1,7 @@
 #include "hqview/pipeline/gates.h"
 
+#include <limits>
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -79,18 +81,39 @@ std::string available_keys(const ReportDocument& node) {
   return "keys: " + list;
 }
 
-double lookup(const GateRule& rule, const ReportDocument& report) {
+// A null under quality.by_kind.<kind> of a kind with no cell: the note a
+// passing rule carries, else empty.
+std::string absent_kind_note(const GateRule& rule, const ReportDocument& report) {
+  if (rule.path.size() < 3 || rule.path[0] != "quality" || rule.path[1] != "by_kind") return {};
+  const std::vector<std::string> count_path = {"quality", "by_kind", rule.path[2], "count"};
+  const ReportDocument* count = find_json_path(report, std::span<const std::string>(count_path));
+  if (count == nullptr || !count->is_number() || count->get<double>() != 0) return {};
+  return "no " + rule.path[2] + " in the mesh";
+}
+
+// The value a rule reads; NaN with `note` set for a null of an absent kind.
+double lookup(const GateRule& rule, const ReportDocument& report, std::string& note) {
   std::size_t depth = 0;
   const ReportDocument* node = find_json_path(report, std::span<const std::string>(rule.path), &depth);
   if (node == nullptr) {
     const std::vector<std::string> found(rule.path.begin(), rule.path.begin() + static_cast<std::ptrdiff_t>(depth));
     const ReportDocument* parent = find_json_path(report, std::span<const std::string>(found));
+    // Under a null of an absent kind (quality.by_kind.pyramid.metrics.shape is
+    // null, so its .min is not there): no value, with the note.
+    if (parent != nullptr && parent->is_null()) {
+      note = absent_kind_note(rule, report);
+      if (!note.empty()) return std::numeric_limits<double>::quiet_NaN();
+    }
     const std::string where = depth == 0 ? "report.json" : "'" + joined(rule.path, depth) + "'";
     const bool metric = depth == 2 && rule.path[0] == "quality" && rule.path[1] == "metrics";
     throw ValueError("--gate '" + rule.text + "': report.json has no '" + rule.path[depth] + "' under " + where + " (" +
                      available_keys(*parent) + ")" + (metric ? "; was it left out by --metrics?" : ""));
   }
   if (node->is_number()) return node->get<double>();
+  if (node->is_null()) {
+    note = absent_kind_note(rule, report);
+    if (!note.empty()) return std::numeric_limits<double>::quiet_NaN();
+  }
   const std::string type = node->type_name();
   const std::string what =
       node->is_null() ? "null (not computed for this input)" : (type[0] == 'a' || type[0] == 'o' ? "an " : "a ") + type;
@@ -149,9 +172,12 @@ bool gate_holds(double value, GateOp op, double threshold) {
 GateSummary evaluate_gates(const std::vector<GateRule>& rules, const ReportDocument& report) {
   GateSummary summary;
   for (const GateRule& rule : rules) {
-    const double value = lookup(rule, report);
-    const bool passed = gate_holds(value, rule.op, rule.threshold);
-    summary.results.push_back({rule.text, value, passed});
+    std::string note;
+    const double value = lookup(rule, report, note);
+    // A rule on a kind the mesh has none of holds vacuously (every one of
+    // its cells satisfies it): it passes, with a note.
+    const bool passed = note.empty() ? gate_holds(value, rule.op, rule.threshold) : true;
+    summary.results.push_back({rule.text, value, passed, std::move(note)});
     summary.passed = summary.passed && passed;
   }
   return summary;

@@ -8,8 +8,96 @@
 #include <tbb/parallel_for.h>
 
 #include "hqview/quality/corner_jacobian.h"
+#include "hqview/quality/pyramid_metrics.h"
+#include "hqview/quality/tet_metrics.h"
+#include "hqview/quality/wedge_metrics.h"
 
 namespace hq {
+namespace {
+
+// The kernels of one non-hex volume kind: corner values, Verdict's scaled
+// Jacobian, validity.
+template <CellKind K>
+struct VolumeKernels;
+template <>
+struct VolumeKernels<CellKind::tet> {
+  static auto corners(const std::array<Vec3, 4>& p) { return tet_corner_scaled_jacobians(p); }
+  static double scaled_jacobian(const std::array<Vec3, 4>& p) { return tet_scaled_jacobian(p); }
+  static CellValidity validity(const std::array<Vec3, 4>& p) { return tet_validity(p); }
+};
+template <>
+struct VolumeKernels<CellKind::wedge> {
+  static auto corners(const std::array<Vec3, 6>& p) { return wedge_corner_scaled_jacobians(p); }
+  static double scaled_jacobian(const std::array<Vec3, 6>& p) { return wedge_metric(WedgeMetric::scaled_jacobian, p); }
+  static CellValidity validity(const std::array<Vec3, 6>& p) { return wedge_validity(p); }
+};
+template <>
+struct VolumeKernels<CellKind::pyramid> {
+  static auto corners(const std::array<Vec3, 5>& p) { return pyramid_corner_scaled_jacobians(p); }
+  static double scaled_jacobian(const std::array<Vec3, 5>& p) {
+    return pyramid_metric(PyramidMetric::scaled_jacobian, p);
+  }
+  static CellValidity validity(const std::array<Vec3, 5>& p) { return pyramid_validity(p); }
+};
+
+template <class F>
+void for_each_volume_kind(F&& f) {
+  for_each_cell_kind([&](auto kind) {
+    if constexpr (CellKindTable<kind()>::dimension == 3) f(kind);
+  });
+}
+
+// The corners, scaled Jacobian and validity of every cell of the non-hex
+// block of kind K, cell ids from first_cell.
+template <CellKind K>
+void compute_block(const Mesh& mesh, std::size_t first_cell, QualityField& q) {
+  const auto& cells = cell_block<K>(mesh);
+  constexpr int N = CellKindTable<K>::num_corners;
+  constexpr int C = kCornerValuesPerCell<K>;
+  const std::size_t corner0 = q.corner_begin[static_cast<std::size_t>(K)];
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t c = r.begin(); c != r.end(); ++c) {
+      std::array<Vec3, N> p;
+      for (int i = 0; i < N; ++i) p[i] = mesh.points[static_cast<std::size_t>(cells[c][i])];
+      const auto k = VolumeKernels<K>::corners(p);
+      for (int i = 0; i < C; ++i) q.corner_scaled_jacobian[corner0 + C * c + static_cast<std::size_t>(i)] = k.value[i];
+      q.corner_degenerate_mask[first_cell + c] = k.degenerate_mask;
+      q.cell_scaled_jacobian[first_cell + c] = VolumeKernels<K>::scaled_jacobian(p);
+      q.non_hex_validity[first_cell + c - q.num_hexes] = VolumeKernels<K>::validity(p);
+    }
+  });
+}
+
+// The non-hex corners into vertex quality (a min, in any order the same).
+// A pyramid apex that has no corner value from any cell takes the lowest
+// base corner of its pyramids.
+void add_non_hex_vertex_quality(const Mesh& mesh, QualityField& q) {
+  auto lower = [&](Index v, double value) {
+    double& w = q.vertex_quality[static_cast<std::size_t>(v)];
+    if (std::isnan(w) || value < w) w = value;
+  };
+  for_each_volume_kind([&](auto kind) {
+    if constexpr (kind() != CellKind::hex) {
+      constexpr int C = kCornerValuesPerCell<kind()>;
+      const std::size_t corner0 = q.corner_begin[static_cast<std::size_t>(kind())];
+      const auto& cells = cell_block<kind()>(mesh);
+      for (std::size_t c = 0; c < cells.size(); ++c)
+        for (int i = 0; i < C; ++i) lower(cells[c][i], q.corner_scaled_jacobian[corner0 + C * c + static_cast<std::size_t>(i)]);
+    }
+  });
+  std::vector<double> apex(mesh.pyramids.empty() ? 0 : mesh.points.size(), std::numeric_limits<double>::quiet_NaN());
+  const std::size_t corner0 = q.corner_begin[static_cast<std::size_t>(CellKind::pyramid)];
+  for (std::size_t c = 0; c < mesh.pyramids.size(); ++c) {
+    const double* base = q.corner_scaled_jacobian.data() + corner0 + 4 * c;
+    const double lowest = *std::min_element(base, base + 4);
+    double& a = apex[static_cast<std::size_t>(mesh.pyramids[c][4])];
+    if (std::isnan(a) || lowest < a) a = lowest;
+  }
+  for (std::size_t v = 0; v < apex.size(); ++v)
+    if (!std::isnan(apex[v]) && std::isnan(q.vertex_quality[v])) q.vertex_quality[v] = apex[v];
+}
+
+}  // namespace
 
 void compute_corner_scaled_jacobians(const HexMesh& mesh, std::span<double> out, std::span<std::uint8_t> mask) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.hexes.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -21,16 +109,36 @@ void compute_corner_scaled_jacobians(const HexMesh& mesh, std::span<double> out,
   });
 }
 
-QualityField compute_quality(const HexMesh& mesh, const Topology& topo) {
+CellRef cell_ref(const Mesh& mesh, std::size_t c) { return volume_cell(mesh, static_cast<Index>(c)); }
+
+QualityField compute_quality(const Mesh& mesh, const Topology& topo) {
   const std::size_t nh = mesh.hexes.size();
   const std::size_t nv = mesh.points.size();
+  const auto nc = static_cast<std::size_t>(num_volume_cells(mesh));
   QualityField q;
-  q.corner_scaled_jacobian.resize(8 * nh);
-  q.corner_degenerate_mask.resize(nh);
-  q.cell_scaled_jacobian.resize(nh);
-  compute_corner_scaled_jacobians(mesh, q.corner_scaled_jacobian, q.corner_degenerate_mask);
+  q.num_hexes = nh;
+  std::size_t corners = 0;
+  for_each_cell_kind([&](auto kind) {
+    q.corner_begin[static_cast<std::size_t>(kind())] = corners;
+    if constexpr (CellKindTable<kind()>::dimension == 3)
+      corners += kCornerValuesPerCell<kind()> * cell_block<kind()>(mesh).size();
+  });
+  q.corner_begin[kNumCellKinds] = corners;
+  q.corner_scaled_jacobian.resize(corners);
+  q.corner_degenerate_mask.resize(nc);
+  q.cell_scaled_jacobian.resize(nc);
+  q.non_hex_validity.resize(nc - nh);
+  compute_corner_scaled_jacobians(mesh, std::span<double>(q.corner_scaled_jacobian).first(8 * nh),
+                                  std::span<std::uint8_t>(q.corner_degenerate_mask).first(nh));
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nh, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t h = r.begin(); h != r.end(); ++h) q.cell_scaled_jacobian[h] = hex_scaled_jacobian(hex_corners(mesh, static_cast<Index>(h)));
+  });
+  std::size_t first_cell = nh;
+  for_each_volume_kind([&](auto kind) {
+    if constexpr (kind() != CellKind::hex) {
+      compute_block<kind()>(mesh, first_cell, q);
+      first_cell += cell_block<kind()>(mesh).size();
+    }
   });
 
   q.vertex_quality.assign(nv, std::numeric_limits<double>::quiet_NaN());
@@ -46,6 +154,7 @@ QualityField compute_quality(const HexMesh& mesh, const Topology& topo) {
       if (std::isfinite(quality)) q.vertex_quality[v] = quality;
     }
   });
+  if (nc > nh) add_non_hex_vertex_quality(mesh, q);
   return q;
 }
 

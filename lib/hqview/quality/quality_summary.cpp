@@ -8,6 +8,9 @@
 #include <tbb/parallel_invoke.h>
 
 #include "hqview/quality/corner_jacobian.h"
+#include "hqview/quality/pyramid_metrics.h"
+#include "hqview/quality/tet_metrics.h"
+#include "hqview/quality/wedge_metrics.h"
 
 namespace hq {
 namespace {
@@ -28,9 +31,21 @@ QualitySummary summarize_quality(const HexMesh& mesh, const QualityField& field,
   // A corner with a zero-length edge is degenerate: counted, kept out of the
   // distribution (its value 0 still reaches vertex quality).
   std::vector<std::uint8_t> corner_flags(field.corner_scaled_jacobian.size());
-  for (std::size_t h = 0; h < field.corner_degenerate_mask.size(); ++h)
+  for (std::size_t h = 0; h < field.num_hexes; ++h)
     for (int i = 0; i < 8; ++i)
       corner_flags[8 * h + static_cast<std::size_t>(i)] = (field.corner_degenerate_mask[h] >> i) & 1u;
+  std::size_t first_cell = field.num_hexes;
+  for_each_cell_kind([&](auto kind) {
+    if constexpr (kind() != CellKind::hex && CellKindTable<kind()>::dimension == 3) {
+      constexpr std::size_t C = kCornerValuesPerCell<kind()>;
+      const std::size_t n = cell_block<kind()>(mesh).size();
+      const std::size_t corner0 = field.corner_begin[static_cast<std::size_t>(kind())];
+      for (std::size_t c = 0; c < n; ++c)
+        for (std::size_t i = 0; i < C; ++i)
+          corner_flags[corner0 + C * c + i] = (field.corner_degenerate_mask[first_cell + c] >> i) & 1u;
+      first_cell += n;
+    }
+  });
   // Three independent sorts (the corners': 8 values per hex) run at once.
   tbb::parallel_invoke(
       [&] { q.scaled_jacobian = compute_statistics(field.cell_scaled_jacobian, options); },
@@ -38,8 +53,14 @@ QualitySummary summarize_quality(const HexMesh& mesh, const QualityField& field,
       [&] { q.vertex_quality = compute_statistics(field.vertex_quality, options); });
 
   // The headline's cell counts (Verdict metrics: summarize_hex_metrics).
-  q.num_inverted = q.scaled_jacobian.num_inverted;
+  // Hexes by their scaled Jacobian (<= 0, not Verdict's sentinel), every
+  // other kind by its own rule (a pyramid's Verdict value is never < 0).
   q.num_degenerate = q.scaled_jacobian.num_degenerate;
+  for (std::size_t h = 0; h < field.num_hexes; ++h) {
+    const double v = field.cell_scaled_jacobian[h];
+    q.num_inverted += v <= 0.0 && !is_verdict_sentinel(v);
+  }
+  for (CellValidity o : field.non_hex_validity) q.num_inverted += is_inverted(o);
 
   // Worst vertices: lowest quality first, ties by id; unreferenced ones skipped.
   std::vector<Index> vertices;
@@ -55,19 +76,41 @@ QualitySummary summarize_quality(const HexMesh& mesh, const QualityField& field,
     q.worst_vertices.push_back({vertices[i], field.vertex_quality[vertices[i]], mesh.points[vertices[i]]});
 
   // Worst cells: degenerate (1e30) cells first, they are the worst of all,
-  // then ascending scaled Jacobian, ties by id.
+  // then ascending scaled Jacobian, ties by id. An inverted cell of another
+  // kind whose Verdict value is not negative (a pyramid's is 0 when
+  // inverted) ranks by its lowest corner.
   std::vector<Index> cells(field.cell_scaled_jacobian.size());
   std::iota(cells.begin(), cells.end(), 0);
-  auto rank = [&](Index c) {
+  auto rank = [&](Index c) -> double {
     const double v = field.cell_scaled_jacobian[c];
-    return v >= kVerdictDegenerate ? -INFINITY : v;
+    if (v >= kVerdictDegenerate) return -INFINITY;
+    const auto cell = static_cast<std::size_t>(c);
+    if (cell >= field.num_hexes && is_inverted(field.non_hex_validity[cell - field.num_hexes]) && v >= 0) {
+      const CellRef ref = cell_ref(mesh, cell);
+      double lowest = v;
+      for_each_cell_kind([&](auto kind) {
+        if constexpr (kind() != CellKind::hex && CellKindTable<kind()>::dimension == 3) {
+          if (kind() != ref.kind) return;
+          constexpr std::size_t C = kCornerValuesPerCell<kind()>;
+          const double* k = field.corner_scaled_jacobian.data() + field.corner_begin[static_cast<std::size_t>(kind())] +
+                            C * ref.index;
+          lowest = std::min(lowest, *std::min_element(k, k + C));
+        }
+      });
+      return lowest;
+    }
+    return v;
   };
   const std::size_t nc = std::min<std::size_t>(static_cast<std::size_t>(worst_count), cells.size());
   std::partial_sort(cells.begin(), cells.begin() + static_cast<std::ptrdiff_t>(nc), cells.end(), [&](Index a, Index b) {
     const double ra = rank(a), rb = rank(b);
     return ra != rb ? ra < rb : a < b;
   });
-  for (std::size_t i = 0; i < nc; ++i) q.worst_cells.push_back({cells[i], field.cell_scaled_jacobian[cells[i]]});
+  for (std::size_t i = 0; i < nc; ++i) {
+    const CellRef ref = cell_ref(mesh, static_cast<std::size_t>(cells[i]));
+    q.worst_cells.push_back({cells[i], field.cell_scaled_jacobian[cells[i]], ref.kind,
+                             cell_source_index(mesh, ref.kind, ref.index)});
+  }
   return q;
 }
 
@@ -95,6 +138,75 @@ std::vector<MetricSummary> summarize_hex_metrics(const HexMetricField& field) {
     for (double v : field.of(m))
       if (!is_verdict_sentinel(v) && v >= info.acceptable_min && v <= info.acceptable_max) ++inside;
     s.fraction_acceptable = s.stats.count > 0 ? static_cast<double>(inside) / static_cast<double>(s.stats.count) : 0.0;
+  });
+  return out;
+}
+
+}  // namespace hq
+
+namespace hq {
+
+std::vector<std::string_view> volume_kind_metric_names(CellKind kind) {
+  std::vector<std::string_view> names;
+  switch (kind) {
+    case CellKind::hex:
+      for (int m = 0; m < kNumHexMetrics; ++m) names.push_back(hex_metric_info(static_cast<HexMetric>(m)).name);
+      break;
+    case CellKind::tet:
+      for (int m = 0; m < kNumTetMetrics; ++m) names.push_back(tet_metric_info(static_cast<TetMetric>(m)).name);
+      break;
+    case CellKind::wedge:
+      for (int m = 0; m < kNumWedgeMetrics; ++m) names.push_back(wedge_metric_info(static_cast<WedgeMetric>(m)).name);
+      break;
+    case CellKind::pyramid:
+      for (int m = 0; m < kNumPyramidMetrics; ++m)
+        names.push_back(pyramid_metric_info(static_cast<PyramidMetric>(m)).name);
+      break;
+    default:
+      return names;
+  }
+  names.push_back("corner_scaled_jacobian");
+  return names;
+}
+
+std::vector<KindQualitySummary> summarize_by_kind(const Mesh& mesh, const QualityField& field,
+                                                  const std::vector<MetricSummary>& hex_metrics,
+                                                  const std::vector<CellBlockMetricField>& blocks) {
+  std::vector<KindQualitySummary> out;
+  for_each_cell_kind([&](auto kind) {
+    if constexpr (CellKindTable<kind()>::dimension == 3) {
+      KindQualitySummary& k = out.emplace_back();
+      k.kind = kind();
+      k.count = static_cast<std::int64_t>(cell_block<kind()>(mesh).size());
+      if (k.count == 0) return;
+      if constexpr (kind() == CellKind::hex) {
+        k.metrics = hex_metrics;
+        const std::size_t nh = field.num_hexes;
+        std::vector<std::uint8_t> flags(8 * nh);
+        for (std::size_t h = 0; h < nh; ++h) {
+          for (std::size_t i = 0; i < 8; ++i) flags[8 * h + i] = (field.corner_degenerate_mask[h] >> i) & 1u;
+          const double v = field.cell_scaled_jacobian[h];
+          k.num_inverted += v <= 0.0 && !is_verdict_sentinel(v);
+        }
+        StatisticsOptions options;
+        options.histogram_min = -1.0;
+        options.histogram_max = 1.0;
+        MetricSummary& corners = k.metrics.emplace_back();
+        corners.name = "corner_scaled_jacobian";
+        corners.stats = compute_statistics(std::span<const double>(field.corner_scaled_jacobian).first(8 * nh), options, flags);
+      } else {
+        const auto block = std::find_if(blocks.begin(), blocks.end(),
+                                        [&](const CellBlockMetricField& b) { return b.kind == kind(); });
+        if (block == blocks.end()) return;
+        k.num_inverted = block->num_inverted;
+        k.num_flat = block->num_flat;
+        for (CellMetricSummary& m : summarize_cell_block(*block)) {
+          MetricSummary& s = k.metrics.emplace_back();
+          s.name = std::move(m.name);
+          s.stats = std::move(m.stats);
+        }
+      }
+    }
   });
   return out;
 }

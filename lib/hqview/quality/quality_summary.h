@@ -5,11 +5,13 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "hqview/core/types.h"
 #include "hqview/core/vec3.h"
 #include "hqview/mesh/hex_mesh.h"
+#include "hqview/quality/cell_metric_field.h"
 #include "hqview/quality/hex_metric_field.h"
 #include "hqview/quality/quality_field.h"
 #include "hqview/quality/statistics.h"
@@ -23,8 +25,10 @@ struct WorstVertex {
 };
 
 struct WorstCell {
-  Index cell = 0;
-  double scaled_jacobian = 0;
+  Index cell = 0;  // cell id over every volume kind (hexes first)
+  double scaled_jacobian = 0;  // Verdict's, of its kind
+  CellKind kind = CellKind::hex;
+  std::int64_t source_index = 0;  // where it is in its file (mesh.h)
 };
 
 // A Verdict metric's statistics with its acceptable range.
@@ -35,13 +39,29 @@ struct MetricSummary {
   double fraction_acceptable = 0;  // of the non-degenerate cells
 };
 
-struct QualitySummary {
-  std::int64_t num_inverted = 0;      // cells with scaled Jacobian <= 0
-  std::int64_t num_degenerate = 0;    // cells with Verdict's 1e30 scaled Jacobian
-  Statistics scaled_jacobian;         // per hex, Verdict
-  Statistics corner_scaled_jacobian;  // 8 per hex
-  Statistics vertex_quality;          // per referenced vertex
+// report.json quality.by_kind.<kind>: one volume kind's cells.
+struct KindQualitySummary {
+  CellKind kind = CellKind::hex;
+  std::int64_t count = 0;
+  std::int64_t num_inverted = 0;  // by the kind's rule (QualitySummary::num_inverted)
+  std::int64_t num_flat = 0;      // non-hex kinds: no corner determinant < 0, one = 0
+  // Every Verdict metric of the kind, in its table's order (hex:
+  // HexMetric order, those computed), then "corner_scaled_jacobian".
   std::vector<MetricSummary> metrics;
+};
+
+struct QualitySummary {
+  // Over every volume cell: hexes with scaled Jacobian <= 0 (not degenerate),
+  // other kinds inverted by their kind's rule (cell_corner_jacobian.h).
+  std::int64_t num_inverted = 0;
+  std::int64_t num_degenerate = 0;    // cells with Verdict's 1e30 scaled Jacobian
+  Statistics scaled_jacobian;         // per cell, Verdict's of its kind
+  Statistics corner_scaled_jacobian;  // every corner value (8 per hex, 4 per tet, 6 per wedge, 4 per pyramid)
+  Statistics vertex_quality;          // per referenced vertex
+  std::vector<MetricSummary> metrics;  // the hexes' Verdict metrics
+  // hex, tet, wedge, pyramid in CellKind order (summarize_by_kind); empty
+  // until filled.
+  std::vector<KindQualitySummary> by_kind;
   std::vector<WorstVertex> worst_vertices;
   std::vector<WorstCell> worst_cells;
 };
@@ -59,5 +79,16 @@ QualitySummary summarize_quality(const HexMesh& mesh, const QualityField& field,
 // non-degenerate count). Histograms: 20 bins over [-1, 1] for
 // scaled_jacobian, over [min, max] otherwise.
 std::vector<MetricSummary> summarize_hex_metrics(const HexMetricField& field);
+
+// The names of every Verdict metric of a volume kind in its table's order,
+// then "corner_scaled_jacobian" (the keys of quality.by_kind.<kind>.metrics).
+std::vector<std::string_view> volume_kind_metric_names(CellKind kind);
+
+// by_kind: the hexes from `hex_metrics` (summarize_hex_metrics) and the
+// corner values of `field`, every other volume kind from its block
+// (summarize_cell_block); a kind without cells has count 0 and no metrics.
+std::vector<KindQualitySummary> summarize_by_kind(const Mesh& mesh, const QualityField& field,
+                                                  const std::vector<MetricSummary>& hex_metrics,
+                                                  const std::vector<CellBlockMetricField>& blocks);
 
 }  // namespace hq

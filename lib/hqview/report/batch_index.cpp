@@ -42,7 +42,8 @@ constexpr const char* kHeadlineTitles[] = {"#V",        "#H",        "min SJ",  
                                            "#invalid Q1 elements (Gauss det J \u2264 0)",
                                            "#non-invertible maps (corner det J \u2264 0)", "FEM L2 error (rel.)",
                                            "FEM H1 error (rel., semi-norm)",
-                                           "FEM cond. (Jacobi)"};
+                                           "FEM cond. (Jacobi)", "#cells", "#tet", "#wedge", "#pyramid",
+                                           "hex fraction", "hex fraction (volume)"};
 static_assert(std::size(kHeadlineTitles) == kNumHeadlineKeys);
 
 std::string show(std::optional<double> v) { return v ? display_number(*v) : "–"; }
@@ -491,8 +492,15 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
   // has no Hausdorff distance; a directory has no labels).
   std::vector<bool> shown(kNumHeadlineKeys, false);
   bool any_label = false, any_model = false, any_variant = false, any_detail = false, any_thumbnail = false;
+  // The composition columns only when some mesh is not pure-hex.
+  static const std::size_t hex_fraction_key = headline_index("headline.hex_fraction");
+  static const std::size_t first_composition_key = headline_index("headline.num_cells");
+  const bool any_hybrid = std::any_of(entries.begin(), entries.end(), [](const BatchEntry& e) {
+    return e.headline[hex_fraction_key].has_value() && *e.headline[hex_fraction_key] != 1.0;
+  });
   for (const BatchEntry& e : entries) {
-    for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) shown[k] = shown[k] || e.headline[k].has_value();
+    for (std::size_t k = 0; k < kNumHeadlineKeys; ++k)
+      shown[k] = shown[k] || (e.headline[k].has_value() && (k < first_composition_key || any_hybrid));
     any_label = any_label || !e.label.empty();
     any_model = any_model || !e.model.empty();
     any_variant = any_variant || !e.variant.empty();

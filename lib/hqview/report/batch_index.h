@@ -41,6 +41,13 @@ inline constexpr const char* kHeadlineKeys[] = {
     "fem.poisson.mean.l2_error",
     "fem.poisson.mean.h1_error",
     "fem.poisson.scaled_matrix.condition",
+    // What the mesh is made of (issue 46; null in a report of an earlier HQView).
+    "headline.num_cells",
+    "headline.num_cells_by_kind.tet",
+    "headline.num_cells_by_kind.wedge",
+    "headline.num_cells_by_kind.pyramid",
+    "headline.hex_fraction",
+    "headline.hex_volume_fraction",
 };
 inline constexpr std::size_t kNumHeadlineKeys = std::size(kHeadlineKeys);
 

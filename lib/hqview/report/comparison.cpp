@@ -68,6 +68,12 @@ const std::vector<ComparisonKey>& comparison_keys() {
       {"fem.poisson.mean.l2_error", "FEM L2 error (rel.)", -1},
       {"fem.poisson.mean.h1_error", "FEM H1 error (rel., semi-norm)", -1},
       {"fem.poisson.scaled_matrix.condition", "FEM cond. (Jacobi)", -1},
+      {"headline.num_cells", "#cells", 0},
+      {"headline.num_cells_by_kind.tet", "#tet", 0},
+      {"headline.num_cells_by_kind.wedge", "#wedge", 0},
+      {"headline.num_cells_by_kind.pyramid", "#pyramid", 0},
+      {"headline.hex_fraction", "hex fraction", +1},
+      {"headline.hex_volume_fraction", "hex fraction (volume)", +1},
   };
   return keys;
 }

@@ -8,6 +8,7 @@
 
 #include "hqview/core/number_format.h"
 #include "hqview/quality/corner_jacobian.h"
+#include "hqview/report/cell_rows.h"
 #include "hqview/report/deflate.h"
 #include "hqview/report/ordered_chunks.h"
 
@@ -44,61 +45,65 @@ void write_cells_csv(const ReportModel& model, std::ostream& out, TextEncoding e
   // Then every Verdict metric but scaled_jacobian (already the second
   // column), in HexMetric order; a metric left out by --metrics keeps its
   // column, empty, so the header never changes.
-  std::vector<const std::vector<double>*> metric_columns;
+  // A non-hex cell fills the columns its kind shares a Verdict name with.
   for (int m = 0; m < kNumHexMetrics; ++m) {
     if (static_cast<HexMetric>(m) == HexMetric::scaled_jacobian) continue;
     header += ',';
     header += hex_metric_name(static_cast<HexMetric>(m));
-    metric_columns.push_back(&model.analysis.metrics.of(static_cast<HexMetric>(m)));
   }
   header += ",inverted,degenerate,intersecting,size_gradation";
   // The finite-element check's columns, empty when it did not run (element
   // conditioning: --simulate or --metrics fem_element; the rest: --simulate).
   header += ",fem_kappa,fem_lambda_max,fem_det_j_min,fem_det_j_max,fem_l2_error_share,fem_h1_error_share,"
             "fem_error_density\n";
+  // Then where the cell is: its kind and its index in its file.
+  header.back() = ',';
+  header += "cell_type,source_index\n";
   const std::optional<FemElementField>& fem = model.analysis.fem_elements;
   const bool has_poisson = model.analysis.poisson && model.analysis.poisson->skipped.empty();
   const QualityField& q = model.analysis.field;
-  write_table(out, encoding, header, model.analysis.mesh.hexes.size(),
-              [&](std::size_t first, std::size_t last, std::string& buffer) {
-                for (std::size_t h = first; h < last; ++h) {
-                  append_int(buffer, static_cast<long long>(h));
-                  buffer += ',';
-                  const double sj = q.cell_scaled_jacobian[h];
-                  append_double(buffer, sj);
-                  for (int i = 0; i < 8; ++i) {
-                    buffer += ',';
-                    append_double(buffer, q.corner_scaled_jacobian[8 * h + static_cast<std::size_t>(i)]);
-                  }
-                  for (const std::vector<double>* column : metric_columns) {
-                    buffer += ',';
-                    if (!column->empty()) append_double(buffer, (*column)[h]);
-                  }
-                  buffer += cell_is_inverted(q, h) ? ",1" : ",0";
-                  buffer += cell_is_degenerate(q, h) ? ",1" : ",0";
-                  // intersecting: 0/1 from the overlap stage, empty with --no-overlap.
-                  buffer += ',';
-                  if (model.analysis.overlap) buffer += model.analysis.overlap->cell_intersecting[h] ? '1' : '0';
-                  // size_gradation: empty for a hex without a positive volume or a face
-                  // neighbour of positive volume.
-                  buffer += ',';
-                  append_double(buffer, model.analysis.structure.cell_gradation[h]);
-                  for (const std::vector<double>* column :
-                       {fem ? &fem->kappa : nullptr, fem ? &fem->lambda_max : nullptr, fem ? &fem->det_j_min : nullptr,
-                        fem ? &fem->det_j_max : nullptr}) {
-                    buffer += ',';
-                    if (column) append_double(buffer, (*column)[h]);
-                  }
-                  for (const std::vector<double>* column :
-                       {has_poisson ? &model.analysis.poisson->cell_l2_share : nullptr,
-                        has_poisson ? &model.analysis.poisson->cell_h1_share : nullptr,
-                        has_poisson ? &model.analysis.poisson->cell_error_density : nullptr}) {
-                    buffer += ',';
-                    if (column) append_double(buffer, (*column)[h]);
-                  }
-                  buffer += '\n';
-                }
-              });
+  const CellRows rows(model.analysis);
+  const std::size_t nh = rows.num_hexes();
+  write_table(out, encoding, header, rows.num_cells(), [&](std::size_t first, std::size_t last, std::string& buffer) {
+    for (std::size_t c = first; c < last; ++c) {
+      append_int(buffer, static_cast<long long>(c));
+      buffer += ',';
+      append_double(buffer, q.cell_scaled_jacobian[c]);
+      // corner_sj_i: the kind's corners in its corner_frames order, empty past them.
+      for (int i = 0; i < 8; ++i) {
+        buffer += ',';
+        append_double(buffer, rows.corner(c, i));
+      }
+      for (int m = 0; m < kNumHexMetrics; ++m) {
+        if (static_cast<HexMetric>(m) == HexMetric::scaled_jacobian) continue;
+        buffer += ',';
+        append_double(buffer, rows.metric(m, c));
+      }
+      buffer += cell_is_inverted(q, c) ? ",1" : ",0";
+      buffer += cell_is_degenerate(q, c) ? ",1" : ",0";
+      // intersecting: 0/1 from the overlap stage, empty with --no-overlap and
+      // for a non-hex cell (the overlap stage checks hexes).
+      buffer += ',';
+      if (model.analysis.overlap && c < nh) buffer += model.analysis.overlap->cell_intersecting[c] ? '1' : '0';
+      // size_gradation: empty for a hex without a positive volume or a face
+      // neighbour of positive volume, and for a non-hex cell.
+      buffer += ',';
+      append_double(buffer, CellRows::hex_only(model.analysis.structure.cell_gradation, c, nh));
+      for (const std::vector<double>* column :
+           {fem ? &fem->kappa : nullptr, fem ? &fem->lambda_max : nullptr, fem ? &fem->det_j_min : nullptr,
+            fem ? &fem->det_j_max : nullptr, has_poisson ? &model.analysis.poisson->cell_l2_share : nullptr,
+            has_poisson ? &model.analysis.poisson->cell_h1_share : nullptr,
+            has_poisson ? &model.analysis.poisson->cell_error_density : nullptr}) {
+        buffer += ',';
+        if (column) append_double(buffer, CellRows::hex_only(*column, c, nh));
+      }
+      buffer += ',';
+      buffer += cell_kind_name(rows.ref(c).kind);
+      buffer += ',';
+      append_int(buffer, static_cast<long long>(rows.source_index(c)));
+      buffer += '\n';
+    }
+  });
 }
 
 void write_vertices_csv(const ReportModel& model, std::ostream& out, TextEncoding encoding) {

@@ -13,14 +13,7 @@
 namespace hq {
 
 // The `degenerate` and `inverted` columns (also annotated.vtu's arrays):
-// degenerate for Verdict's 1e30 scaled Jacobian or a corner with a
-// zero-length edge; inverted for a non-degenerate cell with scaled Jacobian <= 0.
-inline bool cell_is_degenerate(const QualityField& q, std::size_t h) {
-  return q.cell_scaled_jacobian[h] >= kVerdictDegenerate || q.corner_degenerate_mask[h] != 0;
-}
-inline bool cell_is_inverted(const QualityField& q, std::size_t h) {
-  return !cell_is_degenerate(q, h) && q.cell_scaled_jacobian[h] <= 0.0;
-}
+// cell_is_degenerate and cell_is_inverted (quality_field.h).
 
 // plain: the CSV text; gzip: the same bytes gzip'ed, as concatenated gzip
 // members of a fixed number of rows each (the same file for any -j).

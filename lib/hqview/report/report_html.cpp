@@ -345,12 +345,29 @@ void set_headline(data& page, const ReportModel& model) {
   const MeshSummary& m = model.analysis.mesh_summary;
   const QualitySummary& q = model.analysis.quality;
   data headline{data::type::list};
+  const CellComposition& c = model.analysis.composition;
+  // A hybrid mesh names its cells by kind and counts over all of them.
+  const bool hybrid = c.num_cells > c.count[0];
   headline.push_back(card("vertices", show_count(m.num_vertices)));
-  headline.push_back(card("hexahedra", show_count(m.num_hexes)));
-  headline.push_back(card("min scaled Jacobian (per hex)", show(q.scaled_jacobian.min), q.scaled_jacobian.min <= 0));
-  headline.push_back(card("mean scaled Jacobian (per hex)", show(q.scaled_jacobian.mean)));
-  headline.push_back(
-      card("inverted hexes", show_count(q.scaled_jacobian.num_inverted), q.scaled_jacobian.num_inverted > 0));
+  if (hybrid) {
+    headline.push_back(card("cells", show_count(c.num_cells)));
+    // One card per kind present, then the two hex fractions.
+    static constexpr const char* kKindLabels[kNumVolumeKinds] = {"hexahedra", "tetrahedra", "wedges", "pyramids"};
+    for (std::size_t k = 0; k < kNumVolumeKinds; ++k)
+      if (c.count[k] > 0) headline.push_back(card(kKindLabels[k], show_count(c.count[k])));
+    headline.push_back(card("hex fraction (by count)", c.hex_fraction ? show(*c.hex_fraction) : std::string("–")));
+    headline.push_back(
+        card("hex fraction (by volume)", c.hex_volume_fraction ? show(*c.hex_volume_fraction) : std::string("–")));
+    headline.push_back(card("min scaled Jacobian (per cell, all kinds)", show(q.scaled_jacobian.min), q.scaled_jacobian.min <= 0));
+    headline.push_back(card("mean scaled Jacobian (per cell, all kinds)", show(q.scaled_jacobian.mean)));
+    headline.push_back(card("inverted cells", show_count(q.num_inverted), q.num_inverted > 0));
+  } else {
+    headline.push_back(card("hexahedra", show_count(m.num_hexes)));
+    headline.push_back(card("min scaled Jacobian (per hex)", show(q.scaled_jacobian.min), q.scaled_jacobian.min <= 0));
+    headline.push_back(card("mean scaled Jacobian (per hex)", show(q.scaled_jacobian.mean)));
+    headline.push_back(
+        card("inverted hexes", show_count(q.scaled_jacobian.num_inverted), q.scaled_jacobian.num_inverted > 0));
+  }
   if (model.analysis.overlap)
     headline.push_back(card("overlapping hexes", show_count(model.analysis.overlap->num_intersecting_cells),
                             model.analysis.overlap->num_intersecting_cells > 0));
@@ -363,8 +380,8 @@ void set_headline(data& page, const ReportModel& model) {
     hausdorff.set("href", "boundary.html");
     headline.push_back(hausdorff);
   }
-  headline.push_back(
-      card("degenerate hexes (a zero-length edge or axis)", show_count(q.scaled_jacobian.num_degenerate), q.scaled_jacobian.num_degenerate > 0));
+  headline.push_back(card(hybrid ? "degenerate cells (a zero-length edge or axis)" : "degenerate hexes (a zero-length edge or axis)",
+                          show_count(q.scaled_jacobian.num_degenerate), q.scaled_jacobian.num_degenerate > 0));
   headline.push_back(card("min vertex quality", show(q.vertex_quality.min), q.vertex_quality.min <= 0));
   if (model.analysis.fem_elements) {
     // The count (a Gauss-point det J <= 0: not a valid Q1 element,
@@ -534,10 +551,16 @@ void set_worst(data& page, const QualitySummary& q, const PanelIndex& index) {
   for (const WorstCell& w : q.worst_cells) {
     data d;
     d.set("cell", std::to_string(w.cell));
+    d.set("kind", std::string(cell_kind_name(w.kind)));
+    d.set("source_index", std::to_string(w.source_index));  // its number in the file (mesh.h)
     d.set("scaled_jacobian", w.scaled_jacobian >= 1e30 ? "degenerate" : show(w.scaled_jacobian));
     worst_cells.push_back(d);
   }
   page.set("worst_cells", worst_cells);
+  // The kind column on a mesh with other kinds than hexahedra.
+  page.set("worst_cells_hybrid", std::any_of(q.worst_cells.begin(), q.worst_cells.end(),
+                                             [](const WorstCell& w) { return w.kind != CellKind::hex; }) ||
+                                     q.scaled_jacobian.count > static_cast<std::int64_t>(q.by_kind.empty() ? 0 : q.by_kind[0].count));
 }
 
 void set_mesh_rows(data& page, const MeshSummary& m) {

@@ -87,6 +87,26 @@ Json glyphs_json(const GlyphResult& g) {
   return j;
 }
 
+// quality.by_kind: hex, tet, wedge, pyramid, each with its count and every
+// Verdict metric of the kind (null statistics when the kind has no cell).
+Json by_kind_json(const std::vector<KindQualitySummary>& by_kind) {
+  Json j = Json::object();
+  for (const KindQualitySummary& k : by_kind) {
+    Json kj;
+    kj["count"] = k.count;
+    kj["num_inverted"] = k.num_inverted;
+    kj["num_flat"] = k.num_flat;
+    Json metrics = Json::object();
+    if (k.count == 0)
+      for (const std::string_view name : volume_kind_metric_names(k.kind)) metrics[std::string(name)] = nullptr;
+    for (const MetricSummary& m : k.metrics)
+      metrics[m.name] = stats_json(m.stats, m.name == "scaled_jacobian" || m.name == "corner_scaled_jacobian");
+    kj["metrics"] = std::move(metrics);
+    j[std::string(cell_kind_name(k.kind))] = std::move(kj);
+  }
+  return j;
+}
+
 Json quality_json(const QualitySummary& q) {
   Json j;
   // Cell counts first: the numbers CI gates read most (`quality.num_inverted==0`).
@@ -109,8 +129,12 @@ Json quality_json(const QualitySummary& q) {
   j["worst_vertices"] = std::move(worst_vertices);
   Json worst_cells = Json::array();
   for (const WorstCell& w : q.worst_cells)
-    worst_cells.push_back({{"cell", w.cell}, {"scaled_jacobian", number(w.scaled_jacobian)}});
+    worst_cells.push_back({{"cell", w.cell},
+                           {"scaled_jacobian", number(w.scaled_jacobian)},
+                           {"kind", cell_kind_name(w.kind)},
+                           {"source_index", w.source_index}});
   j["worst_cells"] = std::move(worst_cells);
+  j["by_kind"] = by_kind_json(q.by_kind);
   return j;
 }
 
@@ -396,6 +420,14 @@ void numeric_leaves(const Json& from, const std::string& prefix, std::vector<std
   }
 }
 
+// headline additions: cells by kind and the hex fractions.
+void add_composition(Json& headline, const CellComposition& c) {
+  headline["num_cells"] = c.num_cells;
+  headline["num_cells_by_kind"] = {{"hex", c.count[0]}, {"tet", c.count[1]}, {"wedge", c.count[2]}, {"pyramid", c.count[3]}};
+  headline["hex_fraction"] = c.hex_fraction ? number(*c.hex_fraction) : Json(nullptr);
+  headline["hex_volume_fraction"] = c.hex_volume_fraction ? number(*c.hex_volume_fraction) : Json(nullptr);
+}
+
 // compare: MESH2's headline, mesh and quality summaries (as for MESH), and
 // differences{key: MESH2 - MESH} for every number both have (keys as in gates).
 Json compare_json(const Json& report, const Analysis::Compared& c) {
@@ -405,6 +437,7 @@ Json compare_json(const Json& report, const Analysis::Compared& c) {
                    {"min_scaled_jacobian", number(c.quality.scaled_jacobian.min)},
                    {"mean_scaled_jacobian", number(c.quality.scaled_jacobian.mean)},
                    {"num_inverted", c.quality.num_inverted}};
+  add_composition(j["headline"], c.composition);
   j["mesh"] = mesh_json(c.mesh_summary);
   j["quality"] = quality_json(c.quality);
   Json differences = Json::object();
@@ -423,8 +456,10 @@ Json compare_json(const Json& report, const Analysis::Compared& c) {
 
 Json gates_json(const GateSummary& gates) {
   Json results = Json::array();
-  for (const GateResult& g : gates.results)
+  for (const GateResult& g : gates.results) {
     results.push_back({{"rule", g.rule}, {"value", number(g.value)}, {"passed", g.passed}});
+    if (!g.note.empty()) results.back()["note"] = g.note;
+  }
   return {{"passed", gates.passed}, {"results", std::move(results)}};
 }
 
@@ -441,6 +476,7 @@ ReportDocument report_document(const ReportModel& model) {
                    {"min_scaled_jacobian", number(model.analysis.quality.scaled_jacobian.min)},
                    {"mean_scaled_jacobian", number(model.analysis.quality.scaled_jacobian.mean)},
                    {"num_inverted", model.analysis.quality.num_inverted}};
+  add_composition(j["headline"], model.analysis.composition);
   j["input"] = {{"mesh",
                  {{"path", model.analysis.mesh_input.path},
                   {"format", model.analysis.mesh_input.format},

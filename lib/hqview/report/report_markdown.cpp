@@ -68,6 +68,15 @@ std::string summary_markdown(const ReportModel& model, const std::string& link_b
            " % |";
   }
   md += header + "\n" + align + "\n" + row + "\n\n";
+  // A hybrid mesh: its cells by kind, the hex fractions and the inverted
+  // cells of every kind (#inverted above counts the scaled Jacobian <= 0).
+  if (const CellComposition& c = model.analysis.composition; c.num_cells > c.count[0]) {
+    md += "Cells: " + std::to_string(c.num_cells) + " (hex " + std::to_string(c.count[0]) + ", tet " +
+          std::to_string(c.count[1]) + ", wedge " + std::to_string(c.count[2]) + ", pyramid " +
+          std::to_string(c.count[3]) + "); hex fraction " + (c.hex_fraction ? show(*c.hex_fraction) : "-") +
+          " by count, " + (c.hex_volume_fraction ? show(*c.hex_volume_fraction) : "-") + " by volume; inverted cells " +
+          std::to_string(q.num_inverted) + "\n\n";
+  }
   if (q.scaled_jacobian.num_degenerate > 0)
     md += "Degenerate hexes (Verdict's 1e30): " + std::to_string(q.scaled_jacobian.num_degenerate) + "\n\n";
   if (model.analysis.glyphs)

@@ -16,8 +16,11 @@ namespace hq {
 // One `--gate` rule's outcome (report.json `gates.results`).
 struct GateResult {
   std::string rule;
-  double value = 0;  // the report value the rule read
+  double value = 0;  // the report value the rule read; NaN (null) when it has none
   bool passed = true;
+  // Why a rule passed without a value: it reads quality.by_kind.<kind> of a
+  // kind the mesh has no cell of ("no tet in the mesh"); empty otherwise.
+  std::string note;
 };
 
 struct GateSummary {

@@ -20,6 +20,7 @@
 #include "hqview/io/vtk_cells.h"
 #include "hqview/quality/hex_metrics.h"
 #include "hqview/report/deflate.h"
+#include "hqview/report/cell_rows.h"
 #include "hqview/report/report_csv.h"
 
 #include <tbb/parallel_pipeline.h>
@@ -88,11 +89,12 @@ void require_size(const Vector& v, std::size_t expected, const char* what) {
 
 void check_sizes(const ReportModel& model) {
   const std::size_t nv = model.analysis.mesh.points.size(), nc = model.analysis.mesh.hexes.size();
+  const auto num_cells = static_cast<std::size_t>(num_volume_cells(model.analysis.mesh));
   const QualityField& q = model.analysis.field;
   require_size(q.vertex_quality, nv, "vertex_quality");
-  require_size(q.cell_scaled_jacobian, nc, "cell_scaled_jacobian");
-  require_size(q.corner_scaled_jacobian, 8 * nc, "corner_scaled_jacobian");
-  require_size(q.corner_degenerate_mask, nc, "corner_degenerate_mask");
+  require_size(q.cell_scaled_jacobian, num_cells, "cell_scaled_jacobian");
+  require_size(q.corner_scaled_jacobian, q.corner_begin[kNumCellKinds], "corner_scaled_jacobian");
+  require_size(q.corner_degenerate_mask, num_cells, "corner_degenerate_mask");
   require_size(model.analysis.topology.is_boundary_vertex, nv, "is_boundary_vertex");
   for (const std::vector<double>& values : model.analysis.metrics.values)
     if (!values.empty()) require_size(values, nc, "a metric");
@@ -119,7 +121,6 @@ void check_sizes(const ReportModel& model) {
 std::vector<VtuArray> build_arrays(const ReportModel& model) {
   check_sizes(model);
   const std::size_t num_points = model.analysis.mesh.points.size();
-  const std::size_t num_cells = model.analysis.mesh.hexes.size();
   const QualityField& q = model.analysis.field;
   std::vector<VtuArray> arrays;
 
@@ -144,57 +145,97 @@ std::vector<VtuArray> build_arrays(const ReportModel& model) {
     return model.analysis.structure.vertex_singular[v] != 0 ? 1 : 0;
   }));
 
-  // CellData: the columns of cells.csv, plus min_corner_sj.
+  // CellData: the columns of cells.csv, plus min_corner_sj, for every
+  // volume cell (hexes, then tets, wedges, pyramids); a value a cell's kind
+  // does not have is NaN (cell_rows.h).
+  // Shared by the arrays' fill functions, which run after this returns.
+  const auto rows = std::make_shared<const CellRows>(model.analysis);
+  const std::size_t num_cells = rows->num_cells();
+  const std::size_t nh = rows->num_hexes();
   arrays.push_back(copy_array("CellData", "scaled_jacobian", q.cell_scaled_jacobian));
-  for (std::size_t i = 0; i < 8; ++i) {
+  for (int i = 0; i < 8; ++i) {
     arrays.push_back(make_array<double>("CellData", "corner_sj_" + std::to_string(i), 1, num_cells,
-                                        [&q, i](std::size_t h) { return q.corner_scaled_jacobian[8 * h + i]; }));
+                                        [rows, i](std::size_t c) { return rows->corner(c, i); }));
   }
-  arrays.push_back(make_array<double>("CellData", "min_corner_sj", 1, num_cells, [&q](std::size_t h) {
-    const double* corners = q.corner_scaled_jacobian.data() + 8 * h;
-    return *std::min_element(corners, corners + 8);
+  arrays.push_back(make_array<double>("CellData", "min_corner_sj", 1, num_cells, [rows](std::size_t c) {
+    double lowest = rows->corner(c, 0);
+    for (int i = 1; i < rows->num_corner_values(c); ++i) lowest = std::min(lowest, rows->corner(c, i));
+    return lowest;
   }));
   for (int m = 0; m < kNumHexMetrics; ++m) {
     const auto metric = static_cast<HexMetric>(m);
-    const std::vector<double>& values = model.analysis.metrics.of(metric);
-    if (metric == HexMetric::scaled_jacobian || values.empty()) continue;
-    arrays.push_back(copy_array("CellData", std::string(hex_metric_name(metric)), values));
+    if (metric == HexMetric::scaled_jacobian || model.analysis.metrics.of(metric).empty()) continue;
+    arrays.push_back(make_array<double>("CellData", std::string(hex_metric_name(metric)), 1, num_cells,
+                                        [rows, m](std::size_t c) { return rows->metric(m, c); }));
   }
   arrays.push_back(make_array<std::uint8_t>("CellData", "inverted", 1, num_cells,
-                                            [&q](std::size_t h) { return cell_is_inverted(q, h) ? 1 : 0; }));
+                                            [&q](std::size_t c) { return cell_is_inverted(q, c) ? 1 : 0; }));
   arrays.push_back(make_array<std::uint8_t>("CellData", "degenerate", 1, num_cells,
-                                            [&q](std::size_t h) { return cell_is_degenerate(q, h) ? 1 : 0; }));
+                                            [&q](std::size_t c) { return cell_is_degenerate(q, c) ? 1 : 0; }));
   if (model.analysis.overlap) {
+    // The overlap stage checks hexes: 0 for the other cells.
     const std::vector<char>& intersecting = model.analysis.overlap->cell_intersecting;
-    arrays.push_back(make_array<std::uint8_t>("CellData", "intersecting", 1, num_cells,
-                                              [&intersecting](std::size_t h) { return intersecting[h] != 0 ? 1 : 0; }));
+    arrays.push_back(make_array<std::uint8_t>("CellData", "intersecting", 1, num_cells, [&intersecting, nh](std::size_t c) {
+      return c < nh && intersecting[c] != 0 ? 1 : 0;
+    }));
   }
-  arrays.push_back(copy_array("CellData", "size_gradation", model.analysis.structure.cell_gradation));
+  const auto hex_only = [&](const char* name, const std::vector<double>& values) {
+    return make_array<double>("CellData", name, 1, num_cells,
+                              [&values, nh](std::size_t c) { return CellRows::hex_only(values, c, nh); });
+  };
+  arrays.push_back(hex_only("size_gradation", model.analysis.structure.cell_gradation));
   if (const auto& fem = model.analysis.fem_elements) {
-    arrays.push_back(copy_array("CellData", "fem_kappa", fem->kappa));
-    arrays.push_back(copy_array("CellData", "fem_lambda_max", fem->lambda_max));
-    arrays.push_back(copy_array("CellData", "fem_det_j_min", fem->det_j_min));
-    arrays.push_back(copy_array("CellData", "fem_det_j_max", fem->det_j_max));
+    arrays.push_back(hex_only("fem_kappa", fem->kappa));
+    arrays.push_back(hex_only("fem_lambda_max", fem->lambda_max));
+    arrays.push_back(hex_only("fem_det_j_min", fem->det_j_min));
+    arrays.push_back(hex_only("fem_det_j_max", fem->det_j_max));
   }
   if (const auto& poisson = model.analysis.poisson; poisson && poisson->skipped.empty()) {
-    arrays.push_back(copy_array("CellData", "fem_l2_error_share", poisson->cell_l2_share));
-    arrays.push_back(copy_array("CellData", "fem_h1_error_share", poisson->cell_h1_share));
-    arrays.push_back(copy_array("CellData", "fem_error_density", poisson->cell_error_density));
+    arrays.push_back(hex_only("fem_l2_error_share", poisson->cell_l2_share));
+    arrays.push_back(hex_only("fem_h1_error_share", poisson->cell_h1_share));
+    arrays.push_back(hex_only("fem_error_density", poisson->cell_error_density));
   }
+  // Where each cell is in its file (mesh.h, source_index); its kind is
+  // Cells/types (cells.csv cell_type).
+  arrays.push_back(make_array<std::int64_t>("CellData", "source_index", 1, num_cells,
+                                              [rows](std::size_t c) { return rows->source_index(c); }));
 
-  // Points and Cells.
+  // Points and Cells, each cell with its native VTK type and corners (VTK order).
   const std::vector<Vec3>& points = model.analysis.mesh.points;
   arrays.push_back(make_array<double>("Points", "Points", 3, 3 * num_points, [&points](std::size_t i) {
     const Vec3& p = points[i / 3];
     return i % 3 == 0 ? p.x : i % 3 == 1 ? p.y : p.z;
   }));
-  const std::vector<Hex>& hexes = model.analysis.mesh.hexes;
-  arrays.push_back(make_array<std::int64_t>("Cells", "connectivity", 1, 8 * num_cells,
-                                            [&hexes](std::size_t i) { return hexes[i / 8][i % 8]; }));
-  arrays.push_back(make_array<std::int64_t>("Cells", "offsets", 1, num_cells,
-                                            [](std::size_t h) { return static_cast<std::int64_t>(8 * (h + 1)); }));
-  arrays.push_back(make_array<std::uint8_t>("Cells", "types", 1, num_cells,
-                                            [](std::size_t) { return static_cast<std::uint8_t>(vtk::kHexahedron); }));
+  const Mesh& mesh = model.analysis.mesh;
+  if (num_cells == nh) {
+    const std::vector<Hex>& hexes = mesh.hexes;
+    arrays.push_back(make_array<std::int64_t>("Cells", "connectivity", 1, 8 * num_cells,
+                                              [&hexes](std::size_t i) { return hexes[i / 8][i % 8]; }));
+    arrays.push_back(make_array<std::int64_t>("Cells", "offsets", 1, num_cells,
+                                              [](std::size_t h) { return static_cast<std::int64_t>(8 * (h + 1)); }));
+    arrays.push_back(make_array<std::uint8_t>("Cells", "types", 1, num_cells,
+                                              [](std::size_t) { return static_cast<std::uint8_t>(vtk::kHexahedron); }));
+  } else {
+    // Mixed: the flat connectivity and offsets are laid out once.
+    auto connectivity = std::make_shared<std::vector<std::int64_t>>();
+    auto offsets = std::make_shared<std::vector<std::int64_t>>();
+    auto types = std::make_shared<std::vector<std::uint8_t>>();
+    for_each_block(mesh, [&](auto kind, const auto& cells) {
+      if constexpr (CellKindTable<kind()>::dimension == 3) {
+        for (const auto& cell : cells) {
+          for (Index v : cell) connectivity->push_back(v);
+          offsets->push_back(static_cast<std::int64_t>(connectivity->size()));
+          types->push_back(static_cast<std::uint8_t>(CellKindTable<kind()>::vtk_type));
+        }
+      }
+    });
+    arrays.push_back(make_array<std::int64_t>("Cells", "connectivity", 1, connectivity->size(),
+                                              [connectivity](std::size_t i) { return (*connectivity)[i]; }));
+    arrays.push_back(make_array<std::int64_t>("Cells", "offsets", 1, offsets->size(),
+                                              [offsets](std::size_t i) { return (*offsets)[i]; }));
+    arrays.push_back(make_array<std::uint8_t>("Cells", "types", 1, types->size(),
+                                              [types](std::size_t i) { return (*types)[i]; }));
+  }
 
   std::uint64_t offset = 0;
   for (VtuArray& a : arrays) {
@@ -230,7 +271,7 @@ std::string xml_header(const ReportModel& model, const std::vector<VtuArray>& ar
       ">\n"
       "  <UnstructuredGrid>\n";
   xml += "    <Piece NumberOfPoints=\"" + std::to_string(model.analysis.mesh.points.size()) + "\" NumberOfCells=\"" +
-         std::to_string(model.analysis.mesh.hexes.size()) + "\">\n";
+         std::to_string(num_volume_cells(model.analysis.mesh)) + "\">\n";
   // ParaView colours by the active scalars when a file is opened.
   const std::pair<const char*, const char*> sections[] = {{"PointData", " Scalars=\"quality\""},
                                                           {"CellData", " Scalars=\"scaled_jacobian\""},

@@ -368,15 +368,19 @@ std::vector<ViewFile> build_boundary_area(ViewContext& c) {
                                          {"hex boundary samples", "% of diagonal"}));
 }
 
+// "hex", or "cell" on a mesh with other volume cells (the per-cell fields
+// cover every kind).
+static std::string cell_word(const Analysis& a) { return a.field.cell_scaled_jacobian.size() > a.mesh.hexes.size() ? "cell" : "hex"; }
+
 std::vector<ViewFile> build_histogram(ViewContext& c) {
   return chart_files("histogram", quality_histogram_chart(c.a.field.cell_scaled_jacobian, false,
-                                                          {800, 460, c.name + ": scaled Jacobian per hex"}));
+                                                          {800, 460, c.name + ": scaled Jacobian per " + cell_word(c.a)}));
 }
 
 std::vector<ViewFile> build_histogram_log(ViewContext& c) {
   return chart_files("histogram_log",
                      quality_histogram_chart(c.a.field.cell_scaled_jacobian, true,
-                                             {800, 460, c.name + ": scaled Jacobian per hex (log scale)"}));
+                                             {800, 460, c.name + ": scaled Jacobian per " + cell_word(c.a) + " (log scale)"}));
 }
 
 std::vector<ViewFile> build_sorted_quality(ViewContext& c) {
@@ -444,6 +448,14 @@ std::vector<const ViewSpec*> views_of_panel(char panel) {
   std::stable_sort(views.begin(), views.end(),
                    [](const ViewSpec* x, const ViewSpec* y) { return x->panel_order < y->panel_order; });
   return views;
+}
+
+// A view's title; "per hex" reads "per cell" on a mesh with other volume
+// cells (the per-cell fields cover every kind).
+static std::string view_title(std::string_view title, const Analysis& a) {
+  std::string t(title);
+  if (const auto at = t.find("per hex"); at != std::string::npos && cell_word(a) == "cell") t.replace(at, 7, "per cell");
+  return t;
 }
 
 std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptions& options, Renderer& base_renderer,
@@ -586,11 +598,12 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
   std::vector<RenderedView> views;
   for (std::size_t i = 0; i < std::size(kViews); ++i)
     if (!slots[i].empty())
-      views.push_back({std::string(kViews[i].id), std::string(kViews[i].title), std::move(slots[i])});
+      views.push_back({std::string(kViews[i].id), view_title(kViews[i].title, analysis), std::move(slots[i])});
   return views;
 }
 
 // ---- --simulate: the finite-element check's charts (panel P) ----
+
 
 std::vector<ViewFile> build_fem_correlation(ViewContext& c) {
   std::vector<std::string> metrics;
