@@ -39,7 +39,8 @@ def report_rule(path, value):
     listed once, by stats_keys()); compare.headline, compare.mesh and
     compare.quality one path each (their members must be those of the
     top-level headline, mesh and quality: compare_mirrors()); the metric
-    names under quality.metrics are `<metric>`, the keys of
+    names under quality.metrics are `<metric>`, quality.by_kind's
+    `<kind>.<member>` and `<kind>.metrics.<name>`, the keys of
     compare.differences `<key>`."""
     if is_stats(value) or path in ("compare.headline", "compare.mesh", "compare.quality"):
         return {path}
@@ -51,6 +52,12 @@ def report_rule(path, value):
         return {path + ".<metric>"} if value else set()
     if path == "fem.poisson.solutions" and isinstance(value, dict):
         return {f"{path}.<solution>.{k}" for v in value.values() for k in v}
+    if path == "quality.by_kind" and isinstance(value, dict):
+        keys = {path}
+        for v in value.values():
+            for k, member in v.items():
+                keys.add(f"{path}.<kind>.metrics.<name>" if k == "metrics" else f"{path}.<kind>.{k}")
+        return keys
     if path.endswith("quality.metrics") and isinstance(value, dict):
         return {path + ".<metric>"} if value else set()
     return None

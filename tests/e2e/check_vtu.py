@@ -134,7 +134,7 @@ def check_bundle(bundle):
     cell_data, point_data = grid.GetCellData(), grid.GetPointData()
     cell_names = {cell_data.GetArrayName(i) for i in range(cell_data.GetNumberOfArrays())}
     point_names = {point_data.GetArrayName(i) for i in range(point_data.GetNumberOfArrays())}
-    expected_cells = (set(cell_header) - {"cell"}) | {"min_corner_sj"}
+    expected_cells = (set(cell_header) - {"cell", "cell_type"}) | {"min_corner_sj"}
     # A column left empty in every row (metric not computed, stage skipped) has no array.
     empty_cell_columns = {n for c, n in enumerate(cell_header) if all(r[c] == "" for r in cell_rows)}
     empty_point_columns = {n for c, n in enumerate(vertex_header) if all(r[c] == "" for r in vertex_rows)}
@@ -154,7 +154,12 @@ def check_bundle(bundle):
     worst_vertices = [w["vertex"] for w in report["quality"]["worst_vertices"]]
     cell_ids = sample_ids(num_cells, worst_cells)
     vertex_ids = sample_ids(num_points, worst_vertices)
-    compare_rows(label, cell_header, cell_rows, {"cell"} | empty_cell_columns, cell_data, cell_ids)
+    compare_rows(label, cell_header, cell_rows, {"cell", "cell_type"} | empty_cell_columns, cell_data, cell_ids)
+    # cells.csv's cell_type is the VTU's cell type (hex 12, tet 10, wedge 13, pyramid 14), not an array.
+    type_column = cell_header.index("cell_type")
+    vtk_type = {"hex": 12, "tet": 10, "wedge": 13, "pyramid": 14}
+    check(all(vtk_type.get(cell_rows[i][type_column]) == types[i] for i in range(min(len(types), len(cell_rows)))),
+          f"{label}: cells.csv cell_type differs from the VTU's cell types")
     compare_rows(label, vertex_header, vertex_rows, {"vertex", "x", "y", "z"} | empty_point_columns, point_data,
                  vertex_ids)
     corners = [vtk_to_numpy(cell_data.GetArray(f"corner_sj_{k}")) for k in range(8)]
