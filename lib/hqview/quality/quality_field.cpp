@@ -109,7 +109,6 @@ void compute_corner_scaled_jacobians(const HexMesh& mesh, std::span<double> out,
   });
 }
 
-CellRef cell_ref(const Mesh& mesh, std::size_t c) { return volume_cell(mesh, static_cast<Index>(c)); }
 
 QualityField compute_quality(const Mesh& mesh, const Topology& topo) {
   const std::size_t nh = mesh.hexes.size();

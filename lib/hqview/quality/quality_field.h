@@ -70,8 +70,4 @@ inline bool cell_is_inverted(const QualityField& q, std::size_t c) {
   return !cell_is_degenerate(q, c) && q.cell_scaled_jacobian[c] <= 0.0;
 }
 
-// The kind of cell id c, its index in its block and its corners
-// (mesh/cell_faces.h volume_cell).
-CellRef cell_ref(const Mesh& mesh, std::size_t c);
-
 }  // namespace hq

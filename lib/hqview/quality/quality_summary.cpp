@@ -86,7 +86,7 @@ QualitySummary summarize_quality(const HexMesh& mesh, const QualityField& field,
     if (v >= kVerdictDegenerate) return -INFINITY;
     const auto cell = static_cast<std::size_t>(c);
     if (cell >= field.num_hexes && is_inverted(field.non_hex_validity[cell - field.num_hexes]) && v >= 0) {
-      const CellRef ref = cell_ref(mesh, cell);
+      const CellRef ref = volume_cell(mesh, c);
       double lowest = v;
       for_each_cell_kind([&](auto kind) {
         if constexpr (kind() != CellKind::hex && CellKindTable<kind()>::dimension == 3) {
@@ -107,7 +107,7 @@ QualitySummary summarize_quality(const HexMesh& mesh, const QualityField& field,
     return ra != rb ? ra < rb : a < b;
   });
   for (std::size_t i = 0; i < nc; ++i) {
-    const CellRef ref = cell_ref(mesh, static_cast<std::size_t>(cells[i]));
+    const CellRef ref = volume_cell(mesh, static_cast<Index>(cells[i]));
     q.worst_cells.push_back({cells[i], field.cell_scaled_jacobian[cells[i]], ref.kind,
                              cell_source_index(mesh, ref.kind, ref.index)});
   }

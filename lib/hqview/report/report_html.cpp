@@ -369,10 +369,10 @@ void set_headline(data& page, const ReportModel& model) {
         card("inverted hexes", show_count(q.scaled_jacobian.num_inverted), q.scaled_jacobian.num_inverted > 0));
   }
   if (model.analysis.overlap)
-    headline.push_back(card("overlapping hexes", show_count(model.analysis.overlap->num_intersecting_cells),
+    headline.push_back(card(hybrid ? "overlapping cells" : "overlapping hexes", show_count(model.analysis.overlap->num_intersecting_cells),
                             model.analysis.overlap->num_intersecting_cells > 0));
   else
-    headline.push_back(card("overlapping hexes", "not checked"));
+    headline.push_back(card(hybrid ? "overlapping cells" : "overlapping hexes", "not checked"));
   if (model.analysis.boundary_error) {
     const BoundaryError& e = *model.analysis.boundary_error;
     data hausdorff = card("Hausdorff distance (sampled, symmetric), % of bbox diagonal",
