@@ -7,11 +7,18 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <numbers>
+#include <string>
 #include <tuple>
 #include <vector>
+
+#include "io/temp_dir.h"
 
 namespace hq {
 namespace {
@@ -350,6 +357,129 @@ TEST(QuadStructure, TrianglesAndNonManifoldEdgesLeaveVerticesUnclassified) {
   EXPECT_EQ(s.num_nonmanifold_edges, 1);
   for (const Index v : {0, 1, 4}) EXPECT_EQ(s.vertex_kind[static_cast<std::size_t>(v)], QuadVertexKind::unclassified);
   EXPECT_EQ(s.num_irregular, 0);
+}
+
+// A real quad mesh made by Debian's Gmsh (Mesh.Algorithm 6 and Recombine
+// Surface, built-in kernel) on a 2 x 1 rectangle with a rectangular hole,
+// read from its MEDIT file by a parse of its own. Properties:
+//   - discrete Gauss-Bonnet: sum over interior vertices of (4 - valence)
+//     plus over boundary vertices of (2 - valence) is 4 chi (an annulus: 0);
+//   - the square's 4 convex corners have ideal valence 1, the hole's 4
+//     concave ones 3, every other boundary vertex 2;
+//   - every separatrix is a straight line: consecutive vertices share a quad
+//     edge, each vertex inside it is a regular interior vertex where the
+//     edges in and out lie on no common quad, and it ends at an irregular or
+//     a boundary vertex; no edge is in two separatrices;
+//   - quads across an untraced interior edge are in one patch, and each
+//     patch is bounded by traced and boundary edges only (so the patch
+//     count is the number of components).
+std::vector<std::string> words_of(const std::string& text) {
+  std::vector<std::string> words;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+    std::size_t j = i;
+    while (j < text.size() && !std::isspace(static_cast<unsigned char>(text[j]))) ++j;
+    if (j > i) words.push_back(text.substr(i, j - i));
+    i = j;
+  }
+  return words;
+}
+
+TEST(QuadStructure, GmshRecombinedMeshWithAHole) {
+  test::TempDir dir("quad_structure");
+  const std::string geo = R"(lc = 0.12;
+Point(1)={0,0,0,lc}; Point(2)={2,0,0,lc}; Point(3)={2,1,0,lc}; Point(4)={0,1,0,lc};
+Point(5)={0.5,0.3,0,lc}; Point(6)={0.8,0.3,0,lc}; Point(7)={0.8,0.7,0,lc}; Point(8)={0.5,0.7,0,lc};
+Line(1)={1,2}; Line(2)={2,3}; Line(3)={3,4}; Line(4)={4,1};
+Line(5)={5,6}; Line(6)={6,7}; Line(7)={7,8}; Line(8)={8,5};
+Curve Loop(1)={1,2,3,4}; Curve Loop(2)={5,6,7,8}; Plane Surface(1)={1,2};
+Mesh.Algorithm = 6; Recombine Surface{1};
+)";
+  const auto geo_path = dir.write("m.geo", geo);
+  const std::string command = std::string(HQ_GMSH) + " -2 -nt 1 " + geo_path.string() + " -o " +
+                              (dir.path() / "m.mesh").string() + " > " + (dir.path() / "log").string() + " 2>&1";
+  if (std::system(command.c_str()) != 0) GTEST_SKIP() << "gmsh not available or failed: " << command;
+  std::ifstream in(dir.path() / "m.mesh");
+  const std::vector<std::string> w = words_of(std::string(std::istreambuf_iterator<char>(in), {}));
+  Mesh mesh;
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    if (w[i] == "Vertices") {
+      const int n = std::stoi(w[++i]);
+      for (int k = 0; k < n; ++k, i += 4)
+        mesh.points.push_back({std::stod(w[i + 1]), std::stod(w[i + 2]), std::stod(w[i + 3])});
+    } else if (w[i] == "Quadrilaterals") {
+      const int n = std::stoi(w[++i]);
+      for (int k = 0; k < n; ++k, i += 5)
+        mesh.quads.push_back(
+            {std::stoi(w[i + 1]) - 1, std::stoi(w[i + 2]) - 1, std::stoi(w[i + 3]) - 1, std::stoi(w[i + 4]) - 1});
+    }
+  }
+  ASSERT_GT(mesh.quads.size(), 100u);
+  const QuadStructure s = compute_quad_structure(mesh);
+  EXPECT_EQ(s.num_unclassified, 0);
+  EXPECT_EQ(s.num_nonmanifold_edges, 0);
+  EXPECT_GT(s.num_irregular, 0);  // a recombined mesh is not a grid
+  int gauss_bonnet = 0, convex = 0, concave = 0;
+  for (std::size_t v = 0; v < mesh.points.size(); ++v) {
+    if (s.vertex_kind[v] == QuadVertexKind::interior) gauss_bonnet += 4 - s.valence[v];
+    if (s.vertex_kind[v] != QuadVertexKind::boundary) continue;
+    gauss_bonnet += 2 - s.valence[v];
+    const Vec3& p = mesh.points[v];
+    const bool outer_corner = (p.x == 0 || p.x == 2) && (p.y == 0 || p.y == 1);
+    const bool hole_corner = (p.x == 0.5 || p.x == 0.8) && (p.y == 0.3 || p.y == 0.7);
+    convex += outer_corner;
+    concave += hole_corner;
+    EXPECT_EQ(s.ideal_valence[v], outer_corner ? 1 : hole_corner ? 3 : 2) << p.x << " " << p.y;
+  }
+  EXPECT_EQ(gauss_bonnet, 0);
+  EXPECT_EQ(convex, 4);
+  EXPECT_EQ(concave, 4);
+  // Edges of the quads, and which quads hold them.
+  std::map<std::pair<Index, Index>, std::vector<Index>> edge_quads;
+  for (std::size_t q = 0; q < mesh.quads.size(); ++q)
+    for (int k = 0; k < 4; ++k) {
+      const Index a = mesh.quads[q][k], b = mesh.quads[q][(k + 1) % 4];
+      edge_quads[{std::min(a, b), std::max(a, b)}].push_back(static_cast<Index>(q));
+    }
+  const auto key = [](Index a, Index b) { return std::pair{std::min(a, b), std::max(a, b)}; };
+  std::map<std::pair<Index, Index>, int> traced;
+  ASSERT_GT(s.num_separatrices, 0);
+  for (Index k = 0; k < s.num_separatrices; ++k) {
+    const auto first = static_cast<std::size_t>(s.separatrix_offsets[static_cast<std::size_t>(k)]);
+    const auto last = static_cast<std::size_t>(s.separatrix_offsets[static_cast<std::size_t>(k) + 1]);
+    ASSERT_GE(last - first, 2u);
+    EXPECT_TRUE(s.irregular[static_cast<std::size_t>(s.separatrix_vertices[first])]);
+    for (std::size_t i = first; i + 1 < last; ++i) {
+      const auto e = key(s.separatrix_vertices[i], s.separatrix_vertices[i + 1]);
+      ASSERT_TRUE(edge_quads.count(e)) << "not an edge";
+      ++traced[e];
+      if (i == first) continue;
+      const auto v = static_cast<std::size_t>(s.separatrix_vertices[i]);
+      EXPECT_EQ(s.vertex_kind[v], QuadVertexKind::interior);
+      EXPECT_EQ(s.valence[v], 4);
+      EXPECT_FALSE(s.irregular[v]);
+      for (const Index q : edge_quads[key(s.separatrix_vertices[i - 1], s.separatrix_vertices[i])])
+        for (const Index r : edge_quads[e]) EXPECT_NE(q, r) << "a turn, not a straight line";
+    }
+    const auto end = static_cast<std::size_t>(s.separatrix_vertices[last - 1]);
+    EXPECT_TRUE(s.irregular[end] || s.vertex_kind[end] == QuadVertexKind::boundary);
+  }
+  EXPECT_EQ(static_cast<std::int64_t>(traced.size()), s.num_traced_edges);
+  for (const auto& [edge, count] : traced) EXPECT_EQ(count, 1);
+  for (const auto& [edge, quads] : edge_quads) {
+    if (quads.size() != 2) continue;
+    const bool same =
+        s.quad_patch[static_cast<std::size_t>(quads[0])] == s.quad_patch[static_cast<std::size_t>(quads[1])];
+    if (!traced.count(edge)) {
+      EXPECT_TRUE(same);
+    }
+  }
+  EXPECT_GT(s.num_patches, 1);
+  RecordProperty("quads", static_cast<int>(mesh.quads.size()));
+  RecordProperty("irregular", s.num_irregular);
+  RecordProperty("separatrices", s.num_separatrices);
+  RecordProperty("patches", s.num_patches);
 }
 
 }  // namespace
