@@ -17,6 +17,9 @@ std::uint64_t edge_key(Index a, Index b) {
   return std::uint64_t{lo} << 32 | hi;
 }
 
+// The place of corner (or edge) k of quad q in per-corner arrays.
+std::size_t slot(Index q, int k) { return 4 * static_cast<std::size_t>(q) + static_cast<std::size_t>(k); }
+
 // The quads' unique edges: quad_edge[4 q + k] is the edge from corner k to
 // corner k + 1 of quad q; edge_quads[e] how many quads hold edge e (1
 // boundary, 2 interior, more non-manifold); edge_ends[e] its vertices.
@@ -171,7 +174,7 @@ class QuadStructureBuilder {
          ++i) {
       const auto [q, k] = vq_.corners[static_cast<std::size_t>(i)];
       for (const int local : {k, (k + 3) % 4}) {
-        const Index e = edges_.quad_edge[static_cast<std::size_t>(4 * q + local)];
+        const Index e = edges_.quad_edge[slot(q, local)];
         if (std::find(out.begin(), out.end(), e) == out.end()) out.push_back(e);
       }
     }
@@ -190,10 +193,8 @@ class QuadStructureBuilder {
       const Quad& quad = mesh_.quads[static_cast<std::size_t>(q)];
       if (std::find(quad.begin(), quad.end(), a) != quad.end()) continue;
       if (num_seen > 2) return kNoIndex;
-      seen[static_cast<std::size_t>(num_seen++)] = {quad[(k + 1) % 4],
-                                                    edges_.quad_edge[static_cast<std::size_t>(4 * q + k)]};
-      seen[static_cast<std::size_t>(num_seen++)] = {quad[(k + 3) % 4],
-                                                    edges_.quad_edge[static_cast<std::size_t>(4 * q + (k + 3) % 4)]};
+      seen[static_cast<std::size_t>(num_seen++)] = {quad[(k + 1) % 4], edges_.quad_edge[slot(q, k)]};
+      seen[static_cast<std::size_t>(num_seen++)] = {quad[(k + 3) % 4], edges_.quad_edge[slot(q, (k + 3) % 4)]};
     }
     if (num_seen != 4) return kNoIndex;
     for (int i = 0; i < 2; ++i)
