@@ -141,5 +141,24 @@ cols = [list(map(float, c)) for c in zip(*P)]
 connect = ("connect1", [3, 4], 4, "i", list(range(1, 9)), {"elem_type": "HEX8"})
 put("exodus", "cube_coordxyz.e", cdf1(dims, [(n, [0], 6, "d", cols[k], {}) for k, n in enumerate(("coordx", "coordy", "coordz"))] + [connect]))
 put("exodus", "cube_coord.e", cdf1(dims, [("coord", [1, 0], 6, "d", cols[0] + cols[1] + cols[2], {}), connect]))
+
+# OBJ, OFF, PLY (polygon_reader.h): a quad, a triangle and a pentagon
+Q = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (2, 0, 0)]
+put("obj", "quads.obj", "".join(f"v {x} {y} {z}\n" for x, y, z in Q) + "vt 0 0\nvn 0 0 1\n"
+    "f 1 2/1 3//1 4/1/1\nf -4 5 -3\nf 1 2 5 \\\n 3 4\n")
+put("off", "quads.off", "COFF\n5 3 0\n" + "".join(f"{x} {y} {z} 1 0 0 1\n" for x, y, z in Q) +
+    "4 0 1 2 3\n3 1 4 2 0.5 0.5 0.5\n5 0 1 4 2 3\n")
+for fmt in ("ascii", "binary_little_endian", "binary_big_endian"):
+    head = (f"ply\nformat {fmt} 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\n"
+            "element face 2\nproperty list uchar int vertex_indices\nend_header\n").encode()
+    faces = [[0, 1, 2, 3], [1, 4, 2]]
+    if fmt == "ascii":
+        body = "".join(f"{x} {y} {z}\n" for x, y, z in Q) + "".join(f"{len(f)} " + " ".join(map(str, f)) + "\n" for f in faces)
+        put("ply", "quads_ascii.ply", head + body.encode())
+    else:
+        e = "<" if fmt == "binary_little_endian" else ">"
+        body = b"".join(struct.pack(e + "3f", *p) for p in Q)
+        body += b"".join(struct.pack(e + "B%di" % len(f), len(f), *f) for f in faces)
+        put("ply", f"quads_{fmt}.ply", head + body)
 PY
 for d in "$out"/*/; do echo "corpus: $(basename "$d"): $(ls "$d" | wc -l) files" >&2; done

@@ -268,3 +268,20 @@ put("vtk_hex_repeated_not_collapse.vtk", VTK_HEAD + VTK_POINTS + "CELLS 1 9\n8 0
 put("ovm_polyhedron_not_a_cell_kind.ovm",
     "OVM ASCII\nVertices\n3\n0 0 0\n1 0 0\n0 1 0\nEdges\n3\n0 1\n1 2\n2 0\n"
     "Faces\n1\n3 0 2 4\nPolyhedra\n1\n6 0 1 0 1 0 1\n")
+
+# --- OBJ, OFF, PLY surface meshes (polygon_reader.h) --------------------------
+SQ = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)]
+OBJ_V = "".join(f"v {x} {y} {z}\n" for x, y, z in SQ)
+put("obj_id_out_of_range.obj", OBJ_V + "f 1 2 3 9\n")
+put("obj_negative_id_before_vertices.obj", "v 0 0 0\nf -1 -2 -3\n" + OBJ_V)
+put("obj_nan.obj", OBJ_V.replace("v 1 1 0", "v 1 nan 0") + "f 1 2 3 4\n")
+put("obj_not_utf8_corner.obj", OBJ_V.encode() + b"f 1 2 3 \xa6\x1b\n")
+put("off_claims_1e9.off", "OFF\n2000000000 1 0\n0 0 0\n")
+put("off_truncated_mid_faces.off", "OFF\n4 2 0\n" + "".join(f"{x} {y} {z}\n" for x, y, z in SQ) + "4 0 1 2 3\n3 0 1")
+put("off_binary.off", b"OFF BINARY\n" + struct.pack(">3i", 4, 1, 0) + b"\0" * 16)
+PLY_HEAD = ("ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+            "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n").encode()
+PLY_BODY = b"".join(struct.pack("<3f", *p) for p in SQ) + struct.pack("<B4i", 4, 0, 1, 2, 3)
+put("ply_truncated_binary.ply", PLY_HEAD + PLY_BODY[:-1])
+put("ply_claims_1e9_faces.ply", PLY_HEAD.replace(b"element face 1", b"element face 1000000000") + PLY_BODY)
+put("ply_id_out_of_range.ply", PLY_HEAD + PLY_BODY[:-4] + struct.pack("<i", 4))

@@ -75,8 +75,12 @@ TEST(ReadHexMesh, FromBytesAlreadyRead) {
   EXPECT_EQ(loaded.format, "vtk-legacy-ascii");
   EXPECT_EQ(loaded.mesh.hexes.size(), 1u);
   EXPECT_EQ(read_hex_mesh("m.mesh", kMedit).format, "medit");
-  EXPECT_EQ(error_text<InputError>([] { read_hex_mesh("m.obj", kMedit); }),
-            "m.obj: unknown mesh format '.obj' (expected .mesh, .vtk, .vtu, .msh, .ovm, .inp, .e or .exo)");
+  EXPECT_EQ(error_text<InputError>([] { read_hex_mesh("m.stl", kMedit); }),
+            "m.stl: unknown mesh format '.stl' (expected .mesh, .vtk, .vtu, .msh, .ovm, .inp, .e or .exo, or a surface "
+            ".obj, .off or .ply)");
+  // A .obj is a surface mesh now (polygon_reader.h): MEDIT content in it is refused as such.
+  EXPECT_EQ(error_text<ParseError>([] { read_hex_mesh("m.obj", kMedit); }),
+            "m.obj: a .obj file with MEDIT (.mesh) content (expected the extension .mesh)");
   EXPECT_EQ(error_text<ParseError>([] { read_hex_mesh("dir/m.mesh", "MeshVersionFormatted 1\nVertices -3\n"); }),
             "dir/m.mesh:2: negative number of Vertices: -3");
 }
@@ -88,14 +92,14 @@ TEST(ReadHexMesh, ExtensionErrors) {
   };
   const auto xyz = dir.write("m.xyz", kMedit);
   EXPECT_EQ(error(xyz),
-            xyz.string() + ": unknown mesh format '.xyz' (expected .mesh, .vtk, .vtu, .msh, .ovm, .inp, .e or .exo)");
+            xyz.string() + ": unknown mesh format '.xyz' (expected .mesh, .vtk, .vtu, .msh, .ovm, .inp, .e or .exo, or a surface .obj, .off or .ply)");
   const auto meshb = dir.write("m.meshb", kMedit);
   EXPECT_EQ(
       error(meshb),
-      meshb.string() + ": unknown mesh format '.meshb' (expected .mesh, .vtk, .vtu, .msh, .ovm, .inp, .e or .exo)");
+      meshb.string() + ": unknown mesh format '.meshb' (expected .mesh, .vtk, .vtu, .msh, .ovm, .inp, .e or .exo, or a surface .obj, .off or .ply)");
   const auto none = dir.write("mesh", kMedit);
   EXPECT_EQ(error(none),
-            none.string() + ": no file extension (expected .mesh, .vtk, .vtu, .msh, .ovm, .inp, .e or .exo)");
+            none.string() + ": no file extension (expected .mesh, .vtk, .vtu, .msh, .ovm, .inp, .e or .exo, or a surface .obj, .off or .ply)");
   const auto missing = dir.path() / "missing.vtk";
   EXPECT_EQ(error(missing), missing.string() + ": cannot open: No such file or directory");
 }
@@ -169,10 +173,10 @@ TEST(ReadHexMesh, FormatOverride) {
   EXPECT_EQ(error_text<ParseError>([] { read_hex_mesh_as("m.vtu", kMedit, "vtu"); }),
             "m.vtu:1: text before the root element");  // the chosen reader's own error
   EXPECT_EQ(error_text<ValueError>([] { read_hex_mesh_as("m.vtk", kVtk, "stl"); }),
-            "unknown mesh format 'stl' (expected mesh, vtk, vtu, msh, ovm, exodus, inp)");
+            "unknown mesh format 'stl' (expected mesh, vtk, vtu, msh, ovm, exodus, inp, obj, off, ply)");
   TempDir dir("file");
   EXPECT_EQ(read_hex_mesh_as(dir.write("cube.dat", kAbaqus), "inp").format, "abaqus");
-  EXPECT_EQ(mesh_format_names(), "mesh, vtk, vtu, msh, ovm, exodus, inp");
+  EXPECT_EQ(mesh_format_names(), "mesh, vtk, vtu, msh, ovm, exodus, inp, obj, off, ply");
 }
 
 TEST(ReadHexMesh, DetectsFormatsByContent) {

@@ -17,6 +17,7 @@
 #include "hqview/io/medit_reader.h"
 #include "hqview/io/mesh_reader.h"
 #include "hqview/io/ovm_reader.h"
+#include "hqview/io/polygon_reader.h"
 #include "hqview/io/vtk_legacy_reader.h"
 #include "hqview/io/vtu_reader.h"
 
@@ -272,6 +273,51 @@ TEST(ParserRobustness, AbaqusAndOvm) {
       kAbaqus, [](const std::string& s) { read_abaqus(s, "m.inp"); }, 13);
   check_mutations(
       kOvm, [](const std::string& s) { read_ovm(s, "m.ovm"); }, 14);
+}
+
+// A quad, a triangle, a pentagon: every corner form of OBJ, colours in OFF,
+// extra properties and elements in PLY (ASCII and binary).
+const std::string kObj =
+    "# c\nv 0 0 0\nv 1 0 0\nv 1 1 0 1 0 0\nv 0 1 0\nv 2 0 0\nvt 0 0\nvn 0 0 1\n"
+    "f 1 2/1 3//1 4/1/1\nf -4 5 -3\nf 1 2 5 \\\n 3 4\nl 1 2\n";
+const std::string kOff = "COFF\n5 3 0\n0 0 0 1 0 0 1\n1 0 0 1 0 0 1\n1 1 0 1 0 0 1\n0 1 0 1 0 0 1\n2 0 0 1 0 0 1\n"
+                         "4 0 1 2 3\n3 1 4 2 0.5 0.5 0.5\n5 0 1 4 2 3\n";
+std::string ply(bool binary) {
+  std::string s = std::string("ply\nformat ") + (binary ? "binary_little_endian" : "ascii") +
+                  " 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\n"
+                  "property uchar red\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n";
+  const float xyz[5][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 0}};
+  const std::vector<std::vector<std::int32_t>> faces = {{0, 1, 2, 3}, {1, 4, 2}};
+  for (const auto& p : xyz) {
+    if (binary) {
+      s.append(reinterpret_cast<const char*>(p), sizeof p);
+      s += '\x07';
+    } else {
+      s += std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) + " 7\n";
+    }
+  }
+  for (const auto& f : faces) {
+    if (binary) {
+      s += static_cast<char>(f.size());
+      s.append(reinterpret_cast<const char*>(f.data()), f.size() * 4);
+    } else {
+      s += std::to_string(f.size());
+      for (const auto v : f) s += " " + std::to_string(v);
+      s += "\n";
+    }
+  }
+  return s;
+}
+
+TEST(ParserRobustness, PolygonMeshes) {
+  check_mutations(
+      kObj, [](const std::string& s) { read_obj(s, "m.obj"); }, 15);
+  check_mutations(
+      kOff, [](const std::string& s) { read_off(s, "m.off"); }, 16);
+  check_mutations(
+      ply(false), [](const std::string& s) { read_ply(s, "m.ply"); }, 17);
+  check_mutations(
+      ply(true), [](const std::string& s) { read_ply(s, "m.ply"); }, 18);
 }
 
 }  // namespace

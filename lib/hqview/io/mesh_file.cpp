@@ -20,6 +20,7 @@
 #include "hqview/io/mesh_reader.h"
 #include "hqview/io/mesh_source.h"
 #include "hqview/io/ovm_reader.h"
+#include "hqview/io/polygon_reader.h"
 #include "hqview/io/read_limits.h"
 #include "hqview/io/text_scanner.h"
 #include "hqview/io/vtk_legacy_reader.h"
@@ -83,18 +84,11 @@ bool looks_like_vtk(std::string_view bytes) { return detail::istarts_with(bytes,
 
 // MeshVersionFormatted after blanks and # comment lines.
 bool looks_like_medit(std::string_view bytes) {
-  std::size_t i = 0;
-  while (i < bytes.size()) {
-    if (detail::is_space(bytes[i])) {
-      ++i;
-    } else if (bytes[i] == '#') {
-      while (i < bytes.size() && bytes[i] != '\n') ++i;
-    } else {
-      return detail::istarts_with(bytes.substr(i), "MeshVersionFormatted");
-    }
-  }
-  return false;
+  return detail::istarts_with(detail::after_blanks_and_comments(bytes), "MeshVersionFormatted");
 }
+
+// OBJ has no signature: only its extension names it.
+bool looks_like_obj(std::string_view) { return false; }
 
 // netCDF classic / 64-bit offset / HDF5 (netCDF-4) signatures: Exodus II.
 bool looks_like_exodus(std::string_view bytes) {
@@ -111,22 +105,29 @@ struct MeshFormat {
   bool (*looks_like)(std::string_view);
   Reader read;
   bool is_text_only;  // no binary variant: a NUL byte anywhere is binary data
+  bool is_polygon;    // a polygon (surface) format: not picked from a directory of hex meshes
 };
 
 // Detection order matters only for content that two formats could claim:
 // none of these signatures overlap, except that Abaqus's (a line starting
-// with '*') is checked after the others.
+// with '*') is checked after the others (OFF's and PLY's first words are
+// never an Abaqus keyword). OBJ, OFF and PLY are surface
+// (polygon) meshes (polygon_reader.h).
 constexpr MeshFormat kFormats[] = {
-    {"mesh", "MEDIT (.mesh)", {".mesh", ""}, looks_like_medit, read_medit, true},
-    {"vtk", "legacy VTK", {".vtk", ""}, looks_like_vtk, read_vtk_legacy, false},
-    {"vtu", "VTK XML", {".vtu", ""}, looks_like_vtu, read_vtu, false},
-    {"msh", "Gmsh", {".msh", ""}, looks_like_gmsh, read_gmsh, false},
-    {"ovm", "OpenVolumeMesh", {".ovm", ""}, looks_like_ovm, read_ovm, false},  // refuses OVM BINARY itself
-    {"exodus", "Exodus II (netCDF)", {".e", ".exo"}, looks_like_exodus, read_exodus, false},
-    {"inp", "Abaqus", {".inp", ""}, looks_like_abaqus, read_abaqus, true},
+    {"mesh", "MEDIT (.mesh)", {".mesh", ""}, looks_like_medit, read_medit, true, false},
+    {"vtk", "legacy VTK", {".vtk", ""}, looks_like_vtk, read_vtk_legacy, false, false},
+    {"vtu", "VTK XML", {".vtu", ""}, looks_like_vtu, read_vtu, false, false},
+    {"msh", "Gmsh", {".msh", ""}, looks_like_gmsh, read_gmsh, false, false},
+    {"ovm", "OpenVolumeMesh", {".ovm", ""}, looks_like_ovm, read_ovm, false, false},  // refuses OVM BINARY itself
+    {"exodus", "Exodus II (netCDF)", {".e", ".exo"}, looks_like_exodus, read_exodus, false, false},
+    {"inp", "Abaqus", {".inp", ""}, looks_like_abaqus, read_abaqus, true, false},
+    {"obj", "OBJ (Wavefront)", {".obj", ""}, looks_like_obj, read_obj, true, true},
+    {"off", "OFF", {".off", ""}, looks_like_off, read_off, false, true},  // refuses OFF BINARY itself
+    {"ply", "PLY", {".ply", ""}, looks_like_ply, read_ply, false, true},
 };
 
-constexpr std::string_view kExpected = "expected .mesh, .vtk, .vtu, .msh, .ovm, .inp, .e or .exo";
+constexpr std::string_view kExpected =
+    "expected .mesh, .vtk, .vtu, .msh, .ovm, .inp, .e or .exo, or a surface .obj, .off or .ply";
 
 const MeshFormat* format_by_extension(const std::string& ext) {
   if (ext.empty()) return nullptr;
@@ -240,7 +241,8 @@ std::string read_mesh_bytes(const MeshFormat& format, const std::filesystem::pat
 }  // namespace
 
 bool has_hex_mesh_extension(const std::filesystem::path& path) {
-  return format_by_extension(detail::lowercase_extension(path)) != nullptr;
+  const MeshFormat* format = format_by_extension(detail::lowercase_extension(path));
+  return format != nullptr && !format->is_polygon;
 }
 
 std::string mesh_format_names() {

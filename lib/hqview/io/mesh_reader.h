@@ -13,6 +13,7 @@
 // gmsh_reader.h (read_gmsh), abaqus_reader.h (read_abaqus), ovm_reader.h
 // (read_ovm), exodus_reader.h (read_exodus, when built with netCDF).
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -35,6 +36,10 @@ struct LoadedMesh {
   Mesh mesh;
   std::string format;                 // "medit", "vtk-legacy-ascii", "vtk-legacy-binary", ...
   std::vector<std::string> warnings;  // e.g. "name: 12 cells of unread types skipped (type 5)"
+  // Polygon readers (polygon_reader.h): the edges of the polygons of more
+  // than 4 vertices they skipped, each as (a, b) with a < b, ascending,
+  // unique. Holes left by the reader, not the surface's boundary.
+  std::vector<std::array<Index, 2>> hole_edges;
 };
 
 // The cells a reader left out because it does not read their type (not a
@@ -74,9 +79,11 @@ struct SkippedCells {
 // directory, fifo or device (never blocks on a fifo).
 std::string read_file_bytes(const std::filesystem::path& path);
 
-// A hex mesh file by its extension, in any case: .mesh (MEDIT), .vtk
+// A mesh file by its extension, in any case: .mesh (MEDIT), .vtk
 // (legacy VTK), .vtu (VTK XML), .msh (Gmsh), .ovm (OpenVolumeMesh), .inp
-// (Abaqus), .e or .exo (Exodus II). Throws InputError for an unknown
+// (Abaqus), .e or .exo (Exodus II), and the surface (polygon) meshes .obj,
+// .off, .ply (polygon_reader.h; reference surfaces of these extensions go
+// through read_surface() instead). Throws InputError for an unknown
 // extension ("path: unknown mesh format '.xyz' (expected .mesh, ...)") and
 // ParseError for a malformed file or one whose content is recognisably
 // another format than its extension says.
@@ -102,16 +109,18 @@ LoadedMesh read_hex_mesh_as(const std::filesystem::path& path, std::string_view 
 LoadedMesh read_hex_mesh_as(const std::filesystem::path& path, std::string_view bytes, std::string_view format,
                             const ReadLimits& limits = {});
 
-// True when path's extension (any case) is one read_hex_mesh() dispatches on.
+// True when path's extension (any case) is a volume mesh format
+// read_hex_mesh() dispatches on: not .obj, .off or .ply, which a directory
+// of hex meshes holds as reference surfaces (batch DIR picks hex meshes).
 bool has_hex_mesh_extension(const std::filesystem::path& path);
 
 // The format names --format accepts, comma-separated: "mesh, vtk, vtu, msh,
-// ovm, exodus, inp".
+// ovm, exodus, inp, obj, off, ply".
 std::string mesh_format_names();
 
 // The format name whose signature the content has ("" when none does):
 // MeshVersionFormatted, "# vtk DataFile", <VTKFile, $MeshFormat, OVM ASCII,
-// a netCDF/HDF5 signature, an Abaqus keyword line.
+// a netCDF/HDF5 signature, an Abaqus keyword line, an OFF keyword, "ply".
 std::string detect_mesh_format(std::string_view bytes);
 
 // True when this build reads Exodus II files (built with netCDF).

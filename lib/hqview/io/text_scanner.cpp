@@ -24,6 +24,20 @@ bool istarts_with(std::string_view text, std::string_view prefix) {
   return text.size() >= prefix.size() && iequals(text.substr(0, prefix.size()), prefix);
 }
 
+std::string_view after_blanks_and_comments(std::string_view text) {
+  std::size_t i = 0;
+  while (i < text.size()) {
+    if (is_space(text[i])) {
+      ++i;
+    } else if (text[i] == '#') {
+      while (i < text.size() && text[i] != '\n') ++i;
+    } else {
+      break;
+    }
+  }
+  return text.substr(i);
+}
+
 std::string quote(std::string_view token) {
   constexpr std::size_t kMaxShown = 40;
   std::size_t shown = std::min(token.size(), kMaxShown);

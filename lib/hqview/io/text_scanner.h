@@ -37,6 +37,10 @@ inline constexpr bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\
 bool iequals(std::string_view a, std::string_view b);
 // True when text starts with prefix, ignoring ASCII case.
 bool istarts_with(std::string_view text, std::string_view prefix);
+// text from its first character that is neither whitespace nor in a `#`
+// comment line (empty when there is none): where a format's signature is
+// looked for.
+std::string_view after_blanks_and_comments(std::string_view text);
 // A token for an error message: quoted, at most its first 40 bytes (then
 // "..."; never cut inside a UTF-8 character), as message_text (bytes that
 // are not UTF-8 and control characters written as \xhh).
