@@ -78,6 +78,17 @@ analyze([gridMesh(path.join(outDir, 'ringed.mesh'), 6, (i, j, k) => {
   return [i, j, k];
 }), '-o', path.join(outDir, 'ringed'), '--top-clusters', '1']);
 
+// A legacy VTK file of points and cells [VTK cell type, point indices].
+function writeVtk(file, title, points, cells) {
+  let s = `# vtk DataFile Version 3.0\n${title}\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS ${points.length} double\n`;
+  s += points.map((p) => p.join(' ')).join('\n') + '\n';
+  s += `CELLS ${cells.length} ${cells.reduce((n, [, v]) => n + 1 + v.length, 0)}\n`;
+  s += cells.map(([, v]) => `${v.length} ${v.join(' ')}`).join('\n') + '\n';
+  s += `CELL_TYPES ${cells.length}\n${cells.map(([t]) => t).join('\n')}\n`;
+  fs.writeFileSync(file, s);
+  return file;
+}
+
 // A hex [0,1]^3 next to a tet box [1,2]x[0,1]^2 (6 tets around its
 // diagonal), legacy VTK: the tets' triangles are boundary faces the viewer
 // must draw (their x = 1 face, split in two against the hex's quad, is a
@@ -98,14 +109,27 @@ function hexTetBoxMesh(file) {
     const det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
     cells.push([10, det > 0 ? t : [t[0], t[2], t[1], t[3]]]);
   }
-  let s = `# vtk DataFile Version 3.0\nhex and tet box\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS ${points.length} double\n`;
-  s += points.map((p) => p.join(' ')).join('\n') + '\n';
-  s += `CELLS ${cells.length} ${cells.reduce((n, [, v]) => n + 1 + v.length, 0)}\n`;
-  s += cells.map(([, v]) => `${v.length} ${v.join(' ')}`).join('\n') + '\n';
-  s += `CELL_TYPES ${cells.length}\n${cells.map(([t]) => t).join('\n')}\n`;
-  fs.writeFileSync(file, s);
-  return file;
+  return writeVtk(file, 'hex and tet box', points, cells);
 }
 analyze([hexTetBoxMesh(path.join(outDir, 'hex_tet_box.vtk')), '-o', path.join(outDir, 'hybrid')]);
+
+// One poor cell of each kind, apart (a hex with a top corner pushed down, a
+// flat tet, a wedge with a top corner pushed down, a flat pyramid), and two
+// unit hexes that intersect: the cut draws every kind, the legend has an
+// entry for the overlap markers and the intersecting cells (issue 44).
+function kindsMesh(file) {
+  const points = [], cells = [];
+  const add = (type, corners) => { cells.push([type, corners.map((p) => points.push(p) - 1)]); };
+  add(12, [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, -0.2], [0, 1, 1]]);
+  add(10, [[3, 0, 0], [4, 0, 0], [3, 1, 0], [3.3, 0.3, 0.08]]);
+  add(13, [[6, 0, 0], [7, 0, 0], [6, 1, 0], [6, 0, 1], [7, 0, 1], [6.1, 0.9, 0.1]]);
+  add(14, [[9, 0, 0], [10, 0, 0], [10, 1, 0], [9, 1, 0], [9.5, 0.5, 0.05]]);
+  const cube = (x, y, z) => [[x, y, z], [x + 1, y, z], [x + 1, y + 1, z], [x, y + 1, z],
+    [x, y, z + 1], [x + 1, y, z + 1], [x + 1, y + 1, z + 1], [x, y + 1, z + 1]];
+  add(12, cube(12, 0, 0));
+  add(12, cube(12.5, 0.5, 0.5));
+  return writeVtk(file, 'one cell of each kind', points, cells);
+}
+analyze([kindsMesh(path.join(outDir, 'kinds.vtk')), '-o', path.join(outDir, 'kinds')]);
 
 console.log(`viewer bundles made in ${((Date.now() - started) / 1000).toFixed(1)} s`);

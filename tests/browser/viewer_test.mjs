@@ -33,10 +33,10 @@ const check = (condition, message) => checkOnce(condition, message, true);
 // The bundles (viewer_bundles.mjs, the CTest fixture browser.viewer.bundles).
 const bundle = (name) => path.join(bundleDir, name);
 const bar = bundle('bar'), tiny = bundle('tiny'), inner = bundle('inner'), dented = bundle('dented');
-const ringed = bundle('ringed'), hybrid = bundle('hybrid');
+const ringed = bundle('ringed'), hybrid = bundle('hybrid'), kinds = bundle('kinds');
 // The bar's mesh file name (viewer_bundles.mjs copies twisted_bar.mesh to it).
 const evilName = `"q'&amp;<script>window.hqPwned=1<img src=x onerror="window.hqPwned=2">.mesh`;
-for (const b of [bar, tiny, inner, dented, ringed, hybrid])
+for (const b of [bar, tiny, inner, dented, ringed, hybrid, kinds])
   if (!fs.existsSync(path.join(b, 'viewer.html'))) {
     console.log(`FAIL: ${b}/viewer.html is missing: run viewer_bundles.mjs first (ctest runs browser.viewer.bundles)`);
     process.exit(1);
@@ -102,6 +102,31 @@ async function frameOf(page) {
     return { w, h, b64: btoa(s) };
   });
   return { w: f.w, h: f.h, px: Buffer.from(f.b64, 'base64') };
+}
+
+// Every colour the scene draws has a legend entry (issue 44): the colour of
+// each visible object's material (but the field-coloured faces and cut
+// cells, whose colours are the bar's, and the white halos, the background's)
+// against the side panel's swatches (filled: background, ring: border).
+async function legendGaps(page) {
+  return page.evaluate(() => {
+    const v = window.hqViewer, drawn = new Set(), legend = new Set();
+    v.draw();
+    v.scene.traverseVisible((o) => {
+      if (!o.material || !o.material.color || o.userData.legend === 'field') return;
+      const hex = '#' + o.material.color.getHexString();
+      if (hex !== '#ffffff') drawn.add(hex);
+    });
+    const toHex = (css) => {
+      const m = /rgba?\((\d+), (\d+), (\d+)(, ([\d.]+))?\)/.exec(css);
+      return m && m[5] !== '0' ? '#' + [m[1], m[2], m[3]].map((x) => Number(x).toString(16).padStart(2, '0')).join('') : null;
+    };
+    for (const sw of document.querySelectorAll('#side .swatch')) {
+      const st = getComputedStyle(sw);
+      for (const c of [st.backgroundColor, st.borderTopColor]) { const h = toHex(c); if (h) legend.add(h); }
+    }
+    return { drawn: [...drawn], missing: [...drawn].filter((c) => !legend.has(c)) };
+  });
 }
 
 // A section of the test. Firefox runs only the sections whose result can
@@ -403,6 +428,30 @@ await section('hex and tets', CHROMIUM_ONLY, async () => {
   check(/^tet \d+$/.test(cell || ''), `a click on the tet box names a tet (${cell})`);
   const kinds = await page.evaluate(() => { const d = window.hqViewer.data; return { n: d.faces.count, names: d.faces.kind_names }; });
   check(kinds.n === 5 + 10 && kinds.names && kinds.names[1] === 'tet', `the viewer's boundary: the hex's 5 quads and the tet box's 10 triangles (${JSON.stringify(kinds)})`);
+  // The non-conforming x = 1 face (the hex's quad against two of the tets'
+  // triangles, inside the model): its frame in the overview's colour at
+  // probes 0.075 of the way in from each edge's middle, over the opaque
+  // faces; and a legend entry with its count and that colour.
+  await setChecked(page, '#layer-edges', false);
+  const nc = await frameOf(page);
+  const ncColour = await page.evaluate(() => window.hqViewer.data.colors.non_conforming);
+  const want = [1, 3, 5].map((i) => parseInt(ncColour.slice(i, i + 2), 16));
+  let onFrame = 0;
+  for (const p of [[1, 0.5, 0.0375], [1, 0.5, 0.9625], [1, 0.0375, 0.5], [1, 0.9625, 0.5]]) {
+    const [sx, sy] = await projectToPage(page, p);
+    const x = Math.round((sx - box[0]) * nc.w / box[2]), y = Math.round((sy - box[1]) * nc.h / box[3]);
+    const i = 4 * ((nc.h - 1 - y) * nc.w + x);
+    if (Math.hypot(nc.px[i] - want[0], nc.px[i + 1] - want[1], nc.px[i + 2] - want[2]) <= 30) onFrame += 1;
+  }
+  check(onFrame === 4, `the non-conforming face's frame is drawn in ${ncColour} (${onFrame} of 4 probes)`);
+  const ncLegend = await page.evaluate(() => {
+    const e = document.querySelector('[data-legend="non_conforming"]');
+    return e ? { text: e.textContent, colour: getComputedStyle(e.querySelector('.swatch')).backgroundColor } : null;
+  });
+  check(ncLegend && /^1 non-conforming face/.test(ncLegend.text) && ncLegend.colour === `rgb(${want.join(', ')})`,
+    `the legend has the non-conforming face with its count and colour (${JSON.stringify(ncLegend)})`);
+  const hybridGaps = await legendGaps(page);
+  check(hybridGaps.missing.length === 0, `every colour drawn on the hybrid mesh has a legend swatch (missing ${hybridGaps.missing})`);
   check(problems.length === 0, `no console error on the hybrid mesh: ${problems.join('; ')}`);
   await page.close();
 });
@@ -455,11 +504,12 @@ await section('rings', BOTH, async () => {
   const worst = clusters.find((cl) => cl.id === 0), grey = clusters.find((cl) => !cl.is_top);
   check(worst && worst.min_quality < 0 && grey && grey.min_quality >= 0, `the ringed grid has an inverted #0 and a grey cluster (${clusters.length} clusters)`);
   const g0 = await onScreen(worst, worst.radius);
-  function onCircle(g, f, colour) {
+  // Samples of 48 on the circle at f glyph radii within 40 of colour (in the frame read by get).
+  function onCircle(g, f, colour, get = rgb) {
     let on = 0;
     for (let a = 0; a < 48; ++a) {
       const t = 2 * Math.PI * a / 48;
-      on += dist(rgb(g.x + f * g.r * Math.cos(t), g.y + f * g.r * Math.sin(t)), colour) <= 40 ? 1 : 0;
+      on += dist(get(g.x + f * g.r * Math.cos(t), g.y + f * g.r * Math.sin(t)), colour) <= 40 ? 1 : 0;
     }
     return on;
   }
@@ -483,10 +533,92 @@ await section('rings', BOTH, async () => {
   check(info.legend[1] && /inverted/.test(info.legend[1].text) && info.legend[1].border === `rgb(${lut.join(', ')})`,
     `the legend names the inverted ring in the inverted colour (${JSON.stringify(info.legend[1])})`);
   check(/other clusters? \(0\.6 size\)/.test(info.others), 'the legend says the grey glyphs are drawn at 0.6 size');
+  // The see-through faces back on (35 %, the default): #0's glyph lies under
+  // the top faces, and the rings keep their colours (before issue 44's fix
+  // they were drawn before the faces and came out washed: 0 of 48).
+  await setChecked(page, '#layer-boundary', true);
+  const faced = await frameOf(page);
+  const rgbF = (x, y) => { const i = 4 * ((faced.h - 1 - Math.round(y)) * faced.w + Math.round(x)); return [faced.px[i], faced.px[i + 1], faced.px[i + 2]]; };
+  const invF = onCircle(g0, 1.21, lut, rgbF), darkF = onCircle(g0, 1.48, [38, 38, 38], rgbF);
+  check(invF >= 40 && darkF >= 40, `with the see-through faces over #0 its rings keep their colours (inverted ${invF}, dark ${darkF} of 48)`);
+  // The #k label: view A's text "#0 (n)" (report.json's id and size) beside
+  // #0's glyph, outside its rings and within 24 px of them; the grey
+  // cluster has none.
+  const report = JSON.parse(fs.readFileSync(path.join(ringed, 'report.json'), 'utf8'));
+  const labels = await page.evaluate(() => [...document.querySelectorAll('.glyph-label')].map((e) => {
+    const r = e.getBoundingClientRect();
+    return { k: e.getAttribute('data-cluster'), text: e.textContent, hidden: e.hidden, box: [r.left, r.top, r.right, r.bottom] };
+  }));
+  const c0 = report.glyphs.clusters[0];
+  const l0 = labels.find((l) => l.k === '0');
+  const cx = rect[0] + g0.x / scale, cy = rect[1] + g0.y / scale, ringOut = 1.54 * g0.r / scale;
+  const gap = l0 && Math.hypot(Math.max(l0.box[0] - cx, 0, cx - l0.box[2]), Math.max(l0.box[1] - cy, 0, cy - l0.box[3]));
+  check(labels.length === 1 && l0 && !l0.hidden && l0.text === `#0 (${c0.size})`,
+    `one label, #0's, reads "#0 (${c0.size})" as view A's (${JSON.stringify(labels)})`);
+  check(l0 && gap >= ringOut && gap <= ringOut + 24,
+    `#0's label sits beside its glyph outside the rings (${gap && gap.toFixed(1)} px from the centre, rings end at ${ringOut.toFixed(1)} px)`);
+  const gaps = await legendGaps(page);
+  check(gaps.missing.length === 0 && gaps.drawn.length >= 4, `every colour drawn on the ringed grid has a legend swatch (drawn ${gaps.drawn}; missing ${gaps.missing})`);
+  await page.screenshot({ path: path.join(outDir, 'ringed_faces.png') });
   check(problems.length === 0, `no console error on the ringed grid: ${problems.join('; ')}`);
   await page.close();
 });
 
+// ---- the cut draws cells of every kind; overlap colours in the legend ----
+// One poor hex, tet, wedge and pyramid (viewer_bundles.mjs kindsMesh): all
+// four are cells under the threshold, and with the boundary off and the cut
+// keeping everything, each cell's centroid projects onto a drawn pixel (the
+// hex-only cut drew none of the other three). The two intersecting hexes'
+// markers and edges have legend swatches.
+await section('cut of every kind', CHROMIUM_ONLY, async () => {
+  const { page, problems } = await open(bundle('kinds'));
+  for (const layer of ['#layer-boundary', '#layer-edges', '#layer-glyphs', '#layer-markers', '#layer-intersecting'])
+    await setChecked(page, layer, false);
+  const cells = await page.evaluate(() => {
+    const L = window.hqViewer.data.low_cells, kinds = Array.from(atob(L.kinds), (c) => c.charCodeAt(0));
+    const b = atob(L.corners), f = new Float32Array(new Uint8Array(Array.from(b, (c) => c.charCodeAt(0))).buffer);
+    const out = [];
+    let o = 0;
+    for (const k of kinds) {
+      const n = L.kind_faces.corners[k], c = [0, 0, 0];
+      for (let i = 0; i < n; ++i) for (let j = 0; j < 3; ++j) c[j] += f[o + 3 * i + j] / n;
+      out.push({ kind: L.kind_faces.names[k], centroid: c });
+      o += 3 * n;
+    }
+    return out;
+  });
+  check(cells.map((c) => c.kind).sort().join() === 'hex,pyramid,tet,wedge', `the cells under the threshold are one of each kind (${cells.map((c) => c.kind)})`);
+  // The cut across the axis the eye looks along most, at the end that keeps every cell.
+  const axis = await page.evaluate(() => {
+    const d = window.hqViewer.camera.position.clone().sub(window.hqViewer.controls.target).toArray();
+    const a = d.map(Math.abs).indexOf(Math.max(...d.map(Math.abs)));
+    return { axis: String(a), keepAll: d[a] >= 0 ? 1000 : 0 };
+  });
+  await selectValue(page, '#cut-axis', axis.axis);
+  await page.evaluate((v) => { const s = document.getElementById('cut'); s.value = v; s.dispatchEvent(new Event('input')); }, axis.keepAll);
+  const shot = await frameOf(page);
+  const box = await page.evaluate(() => { const r = window.hqViewer.renderer.domElement.getBoundingClientRect(); return [r.left, r.top, r.width, r.height]; });
+  const drawnKinds = [];
+  for (const c of cells) {
+    const [sx, sy] = await projectToPage(page, c.centroid);
+    const x = Math.round((sx - box[0]) * shot.w / box[2]), y = Math.round((sy - box[1]) * shot.h / box[3]);
+    const i = 4 * ((shot.h - 1 - y) * shot.w + x);
+    if (shot.px[i] < 245 || shot.px[i + 1] < 245 || shot.px[i + 2] < 245) drawnKinds.push(c.kind);
+  }
+  await page.screenshot({ path: path.join(outDir, 'kinds_cut.png') });
+  check(drawnKinds.length === 4, `the cut draws every kind's cell under the threshold (drawn: ${drawnKinds})`);
+  const note = await page.evaluate(() => document.getElementById('cut-note').textContent);
+  check(/\(1 hex, 1 tet, 1 wedge, 1 pyramid\)/.test(note), `the cut's note names the kinds ("${note}")`);
+  // Every layer back on: the overlap colours have legend entries.
+  for (const layer of ['#layer-boundary', '#layer-edges', '#layer-glyphs', '#layer-markers', '#layer-intersecting'])
+    await setChecked(page, layer, true);
+  const gaps = await legendGaps(page);
+  const colours = await page.evaluate(() => window.hqViewer.data.colors);
+  check(gaps.missing.length === 0 && gaps.drawn.includes(colours.intersecting_cells) && gaps.drawn.includes(colours.intersection),
+    `every colour drawn with overlap findings has a legend swatch (drawn ${gaps.drawn}; missing ${gaps.missing})`);
+  check(problems.length === 0, `no console error on the cells of every kind: ${problems.join('; ')}`);
+  await page.close();
+});
 
 await browser.close();
 console.log(`sections: ${timings.join(', ')}`);
