@@ -420,7 +420,7 @@
   // each labelled cluster (the first labelled_clusters ranks, the coloured
   // ones), placed again at every frame: the first of 8 places round the
   // glyph (outside its rings) that overlaps no label placed before it (rank
-  // order) and no other labelled glyph's disc, else the first place.
+  // order) and no other labelled glyph or its rings, else the first place.
   var labelLayer = el('div', { id: 'glyph-labels' });
   view.appendChild(labelLayer);
   var labels = D.clusters.slice(0, labelled).map(function (cl) {
@@ -449,7 +449,7 @@
       for (i = 0; i < discs.length; ++i) {
         if (i === self) continue;
         var d = discs[i], cx = Math.max(b[0], Math.min(d.x, b[2])), cy = Math.max(b[1], Math.min(d.y, b[3]));
-        if (Math.hypot(cx - d.x, cy - d.y) < d.r) return false;
+        if (Math.hypot(cx - d.x, cy - d.y) < d.outer) return false;  // its glyph and rings
       }
       return true;
     }
@@ -517,13 +517,16 @@
     });
     row.appendChild(list);
   }
+  function counted(n, one, many) { return n + ' ' + (n === 1 ? one : many); }
   var byKind = { coincident: 0, intersection: 0 };
   D.markers.forEach(function (mk) { byKind[mk.kind === 'coincident' ? 'coincident' : 'intersection'] += 1; });
   layerLegend('layer-edges', [['#' + edges.material.color.getHexString(), 'edges', 'edges']]);
-  layerLegend('layer-markers', [[colors.coincident, byKind.coincident + ' coincident-vertex markers', 'coincident'],
-    [colors.intersection, byKind.intersection + ' intersecting-pair markers', 'intersection']]);
-  layerLegend('layer-intersecting', [[colors.intersecting_cells, (D.num_intersecting_cells || 0) + ' intersecting cells (edges)', 'intersecting_cells']]);
-  layerLegend('layer-nonconforming', [[colors.non_conforming, NC.count + ' non-conforming faces (inside: quad against two triangles; frame and diagonal drawn over the model)', 'non_conforming']]);
+  layerLegend('layer-markers', [[colors.coincident, counted(byKind.coincident, 'coincident-vertex marker', 'coincident-vertex markers'), 'coincident'],
+    [colors.intersection, counted(byKind.intersection, 'intersecting-pair marker', 'intersecting-pair markers'), 'intersection']]);
+  layerLegend('layer-intersecting', [[colors.intersecting_cells,
+    counted(D.num_intersecting_cells || 0, 'intersecting cell', 'intersecting cells') + ' (edges)', 'intersecting_cells']]);
+  layerLegend('layer-nonconforming', [[colors.non_conforming, counted(NC.count, 'non-conforming face', 'non-conforming faces') +
+    ' (inside: a quad against two triangles; frame and diagonal drawn over the model)', 'non_conforming']]);
   if (NC.count === 0) document.getElementById('layer-nonconforming').parentNode.style.display = 'none';
   var axisSelect = document.getElementById('cut-axis'), slider = document.getElementById('cut');
   function updateCut() {
