@@ -120,6 +120,7 @@
         'diffuseColor.rgb *= texture2D(hqLut, vec2((hqIndex + 0.5) / 256.0, 0.5)).rgb;'].join('\n'));
   };
   var boundary = new THREE.Mesh(boundaryGeometry, boundaryMaterial);
+  boundary.userData.legend = 'field';  // its colours are the field's bar and entries
   // The faces are see-through while there are glyphs inside (as view A's
   // wireframe is), opaque otherwise; the opacity slider changes it.
   var opacity = document.getElementById('opacity');
@@ -158,7 +159,13 @@
   // inverted colour goes round each cluster with an inverted vertex
   // (min < 0) and a dark ring round cluster #0, outside it, each on a white
   // halo. The rings face the camera (turned in draw()).
-  var kGreyGlyphFactor = 0.6, kDarkRing = '#262626';
+  // Draw order (issue 44): the see-through faces write no depth, and what
+  // three.js draws before them is washed out by them. The spheres go after
+  // the faces (transparent pass, opacity 1, renderOrder 5: their own colour,
+  // still hidden by opaque faces), the rings after everything with no depth
+  // test (renderOrder 20+: an overlay, as view A draws them).
+  var kGreyGlyphFactor = 0.6, colors = D.colors, kDarkRing = colors.worst_ring;
+  var labelled = D.labelled_clusters === undefined ? D.top_clusters || 0 : D.labelled_clusters;
   var glyphs = new THREE.Group(), sphere = new THREE.SphereGeometry(1, 24, 16), rings = [];
   var invertedColor = (function () {
     var lut = bytes(D.fields[0].lut), h = '#';
@@ -169,24 +176,26 @@
   function addRing(group, r, inner, outer, color, order) {
     [[inner - 0.06, outer + 0.06, '#ffffff', order], [inner, outer, color, order + 1]].forEach(function (d) {
       var ring = new THREE.Mesh(new THREE.RingGeometry(d[0], d[1], 64),
-        new THREE.MeshBasicMaterial({ color: new THREE.Color(d[2]), side: THREE.DoubleSide, depthWrite: false }));
+        new THREE.MeshBasicMaterial({ color: new THREE.Color(d[2]), side: THREE.DoubleSide, depthWrite: false,
+          depthTest: false, transparent: true }));
       ring.renderOrder = d[3];
       ring.scale.set(r, r, r);
       ring.userData.ring = true;
       group.add(ring);
     });
   }
-  D.clusters.forEach(function (cl) {
+  D.clusters.forEach(function (cl, rank) {
     var g = new THREE.Group();
     g.position.set(cl.position[0], cl.position[1], cl.position[2]);
-    var r = Math.max(cl.radius, 1e-6 * diagonal) * (cl.is_top ? 1 : kGreyGlyphFactor);
-    var m = new THREE.Mesh(sphere, new THREE.MeshLambertMaterial({ color: new THREE.Color(cl.color) }));
+    var r = Math.max(cl.radius, 1e-6 * diagonal) * (rank < labelled ? 1 : kGreyGlyphFactor);
+    var m = new THREE.Mesh(sphere, new THREE.MeshLambertMaterial({ color: new THREE.Color(cl.color), transparent: true, opacity: 1 }));
+    m.renderOrder = 5;
     m.scale.set(r, r, r);
     m.userData.cluster = cl;
     g.add(m);
     var inverted = cl.min_quality < 0;
-    if (inverted) addRing(g, r, 1.12, 1.3, invertedColor, 2);
-    if (cl.id === 0) addRing(g, r, inverted ? 1.42 : 1.12, inverted ? 1.54 : 1.24, kDarkRing, 4);
+    if (inverted) addRing(g, r, 1.12, 1.3, invertedColor, 20);
+    if (cl.id === 0) addRing(g, r, inverted ? 1.42 : 1.12, inverted ? 1.54 : 1.24, kDarkRing, 22);
     if (g.children.length > 1) rings.push(g);
     glyphs.add(g);
   });
@@ -200,7 +209,7 @@
   // Overlap markers and intersecting cells.
   var markers = new THREE.Group(), markerRadius = 0.012 * diagonal;
   D.markers.forEach(function (mk) {
-    var m = new THREE.Mesh(sphere, new THREE.MeshBasicMaterial({ color: mk.kind === 'coincident' ? 0x191919 : 0x8e1a7e }));
+    var m = new THREE.Mesh(sphere, new THREE.MeshBasicMaterial({ color: new THREE.Color(mk.kind === 'coincident' ? colors.coincident : colors.intersection) }));
     m.position.set(mk.position[0], mk.position[1], mk.position[2]);
     m.scale.set(markerRadius, markerRadius, markerRadius);
     m.userData.marker = mk;
@@ -209,37 +218,93 @@
   scene.add(markers);
   var intersectingGeometry = new THREE.BufferGeometry();
   intersectingGeometry.setAttribute('position', new THREE.BufferAttribute(typed(Float32Array, D.intersecting_edges), 3));
-  var intersecting = new THREE.LineSegments(intersectingGeometry, new THREE.LineBasicMaterial({ color: 0xe7298a }));
+  var intersecting = new THREE.LineSegments(intersectingGeometry, new THREE.LineBasicMaterial({ color: new THREE.Color(colors.intersecting_cells) }));
   scene.add(intersecting);
 
-  // Cells under the threshold: their 6 faces, coloured by the cell scaled
-  // Jacobian; shown while a cut is active (the boundary hides them otherwise).
+  // Non-conforming faces (a hex's quad against two triangles, inside the
+  // mesh): the overview's frame (0.15 of the way from each corner to the
+  // centre) and the triangles' edges (their diagonal is the cause), unlit,
+  // over everything as the overview draws them (no depth test).
+  var NC = D.non_conforming || { count: 0, quads: '', triangles: '' };
+  var ncQuads = typed(Float32Array, NC.quads), ncTris = typed(Float32Array, NC.triangles), ncFrame = [], ncLines = [];
+  for (f = 0; f < NC.count; ++f) {
+    var pq = [], mid = [0, 0, 0];
+    for (c = 0; c < 4; ++c) {
+      pq.push([ncQuads[12 * f + 3 * c], ncQuads[12 * f + 3 * c + 1], ncQuads[12 * f + 3 * c + 2]]);
+      for (k = 0; k < 3; ++k) mid[k] += pq[c][k] / 4;
+    }
+    var inner = pq.map(function (pt) { return pt.map(function (x, k) { return x + 0.15 * (mid[k] - x); }); });
+    for (c = 0; c < 4; ++c) {
+      var n1 = (c + 1) % 4;
+      [pq[c], pq[n1], inner[n1], pq[c], inner[n1], inner[c]].forEach(function (pt) { ncFrame.push(pt[0], pt[1], pt[2]); });
+    }
+    for (var t2 = 0; t2 < 2; ++t2)
+      for (c = 0; c < 3; ++c)
+        for (var e2 = 0; e2 < 2; ++e2) {
+          var o2 = 18 * f + 9 * t2 + 3 * ((c + e2) % 3);
+          ncLines.push(ncTris[o2], ncTris[o2 + 1], ncTris[o2 + 2]);
+        }
+  }
+  var nonConforming = new THREE.Group();
+  if (NC.count) {
+    var ncColor = new THREE.Color(colors.non_conforming);
+    var frameGeometry = new THREE.BufferGeometry();
+    frameGeometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(ncFrame), 3));
+    var frameMesh = new THREE.Mesh(frameGeometry, new THREE.MeshBasicMaterial({ color: ncColor, side: THREE.DoubleSide,
+      depthTest: false, depthWrite: false, transparent: true }));
+    var lineGeometry = new THREE.BufferGeometry();
+    lineGeometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(ncLines), 3));
+    var ncEdges = new THREE.LineSegments(lineGeometry, new THREE.LineBasicMaterial({ color: ncColor, depthTest: false, transparent: true }));
+    frameMesh.renderOrder = 15; ncEdges.renderOrder = 15;
+    nonConforming.add(frameMesh);
+    nonConforming.add(ncEdges);
+  }
+  scene.add(nonConforming);
+
+  // Cells under the threshold, of every kind: their faces (the kind's face
+  // table, L.kind_faces, from the C++ cell tables), coloured by the cell
+  // scaled Jacobian; shown while a cut is active (the boundary hides them
+  // otherwise). A triangle is drawn as a quad that repeats its last corner.
   var L = D.low_cells, lowCorners = typed(Float32Array, L.corners), lowSj = typed(Float64Array, L.scaled_jacobian);
-  var lowIds = typed(Uint32Array, L.ids);
-  var hexFaces = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]];
-  var lowPos = new Float32Array(L.count * 6 * 18), lowCol = new Float32Array(L.count * 6 * 18);
+  var lowKinds = L.kinds ? typed(Uint8Array, L.kinds) : new Uint8Array(L.count);
+  var kindFaces = L.kind_faces ? L.kind_faces.faces : [[[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]]];
+  var kindCorners = L.kind_faces ? L.kind_faces.corners : [8];
+  var lowFaces = 0;
+  for (var h = 0; h < L.count; ++h) lowFaces += kindFaces[lowKinds[h]].length;
+  var lowPos = new Float32Array(lowFaces * 18), lowCol = new Float32Array(lowFaces * 18);
   var sjField = D.fields.filter(function (fd) { return fd.id === 'scaled_jacobian'; })[0];
   var sjLut = bytes(sjField.lut);
   function qualityIndex(s) {
     if (!isFinite(s) || Math.abs(s) >= 1e30) return 255;
     return Math.round((Math.min(1, Math.max(-1, s)) + 1) / 2 * 254);
   }
-  for (var h = 0; h < L.count; ++h) {
-    var qi = qualityIndex(lowSj[h]);
-    for (var fc = 0; fc < 6; ++fc)
+  var o = 0;  // the cell's first corner in lowCorners (floats)
+  for (h = 0, lowFaces = 0; h < L.count; ++h) {
+    var qi = qualityIndex(lowSj[h]), cellFaces = kindFaces[lowKinds[h]];
+    for (var fc = 0; fc < cellFaces.length; ++fc, ++lowFaces) {
+      var fv = cellFaces[fc].length === 4 ? cellFaces[fc] : cellFaces[fc].concat([cellFaces[fc][2]]);
       for (c = 0; c < 6; ++c) {
-        var corner = hexFaces[fc][corners[c]], o = ((h * 6 + fc) * 6 + c) * 3;
+        var corner = fv[corners[c]], out = (lowFaces * 6 + c) * 3;
         for (k = 0; k < 3; ++k) {
-          lowPos[o + k] = lowCorners[24 * h + 3 * corner + k];
-          lowCol[o + k] = sjLut[3 * qi + k] / 255;
+          lowPos[out + k] = lowCorners[o + 3 * corner + k];
+          lowCol[out + k] = sjLut[3 * qi + k] / 255;
         }
       }
+    }
+    o += 3 * kindCorners[lowKinds[h]];
   }
+  // " (3 hex, 1 tet)" on a mesh whose cells under the threshold are of several kinds.
+  var lowKindCount = [], lowKindsText = '';
+  for (h = 0; h < L.count; ++h) lowKindCount[lowKinds[h]] = (lowKindCount[lowKinds[h]] || 0) + 1;
+  if (L.kind_faces && lowKindCount.filter(Boolean).length > 1)
+    lowKindsText = ' (' + lowKindCount.map(function (n, kd) { return n ? n + ' ' + L.kind_faces.names[kd] : ''; })
+      .filter(Boolean).join(', ') + ')';
   var lowGeometry = new THREE.BufferGeometry();
   lowGeometry.setAttribute('position', new THREE.BufferAttribute(lowPos, 3));
   lowGeometry.setAttribute('color', new THREE.BufferAttribute(lowCol, 3));
-  lowGeometry.setAttribute('normal', new THREE.BufferAttribute(quadNormals(lowPos, L.count * 6), 3));
+  lowGeometry.setAttribute('normal', new THREE.BufferAttribute(quadNormals(lowPos, lowFaces), 3));
   var low = new THREE.Mesh(lowGeometry, new THREE.MeshLambertMaterial({ vertexColors: THREE.VertexColors, side: THREE.DoubleSide, clippingPlanes: clipping }));
+  low.userData.legend = 'field';  // the quality colours of the bar
   low.visible = false;
   scene.add(low);
 
@@ -349,7 +414,66 @@
     n.setComponent(axis, eyeSide >= 0 ? -1 : 1);
     cut.set(n, eyeSide >= 0 ? at : -at);
   }
-  function draw() { orientCut(); faceRings(); renderer.render(scene, camera); }
+  // ---- #k labels (issue 44) ----
+  // View A's labels in the viewer: "#k (n)", the cluster's rank and member
+  // count (report.json glyphs.clusters id and size), beside the glyph of
+  // each labelled cluster (the first labelled_clusters ranks, the coloured
+  // ones), placed again at every frame: the first of 8 places round the
+  // glyph (outside its rings) that overlaps no label placed before it (rank
+  // order) and no other labelled glyph or its rings, else the first place.
+  var labelLayer = el('div', { id: 'glyph-labels' });
+  view.appendChild(labelLayer);
+  var labels = D.clusters.slice(0, labelled).map(function (cl) {
+    var e = el('div', { class: 'glyph-label', 'data-cluster': String(cl.id) }, ['#' + cl.id + ' (' + cl.size + ')']);
+    e.style.borderLeftColor = cl.color;
+    labelLayer.appendChild(e);
+    return { cl: cl, e: e };
+  });
+  function placeLabels() {
+    labelLayer.hidden = !glyphs.visible;
+    if (!glyphs.visible || !labels.length) return;
+    var w = view.clientWidth, hgt = view.clientHeight;
+    var pxPerUnit = hgt * camera.zoom / (camera.top - camera.bottom);
+    var discs = labels.map(function (l) {
+      var p = new THREE.Vector3().fromArray(l.cl.position).project(camera), r = l.cl.radius * pxPerUnit;
+      // Outside the rings (1.54 r at most) and their halo.
+      var outer = r * (l.cl.id === 0 ? (l.cl.min_quality < 0 ? 1.6 : 1.3) : l.cl.min_quality < 0 ? 1.36 : 1) + 3;
+      return { x: (p.x + 1) / 2 * w, y: (1 - p.y) / 2 * hgt, r: r, outer: outer, z: p.z };
+    });
+    var placed = [];
+    function free(b, self) {
+      for (var i = 0; i < placed.length; ++i) {
+        var q = placed[i];
+        if (b[0] < q[2] && q[0] < b[2] && b[1] < q[3] && q[1] < b[3]) return false;
+      }
+      for (i = 0; i < discs.length; ++i) {
+        if (i === self) continue;
+        var d = discs[i], cx = Math.max(b[0], Math.min(d.x, b[2])), cy = Math.max(b[1], Math.min(d.y, b[3]));
+        if (Math.hypot(cx - d.x, cy - d.y) < d.outer) return false;  // its glyph and rings
+      }
+      return true;
+    }
+    labels.forEach(function (l, i) {
+      var d = discs[i], lw = l.e.offsetWidth, lh = l.e.offsetHeight;
+      var shown = Math.abs(d.z) <= 1 && d.x >= 0 && d.x <= w && d.y >= 0 && d.y <= hgt;
+      l.e.hidden = !shown;
+      if (!shown) return;
+      var o = d.outer, s = 0.71 * o;
+      var spots = [[d.x + o, d.y - lh / 2], [d.x + s, d.y - s - lh], [d.x - lw / 2, d.y - o - lh], [d.x - s - lw, d.y - s - lh],
+        [d.x - o - lw, d.y - lh / 2], [d.x - s - lw, d.y + s], [d.x - lw / 2, d.y + o], [d.x + s, d.y + s]];
+      var box = null;
+      for (var k = 0; k < spots.length && !box; ++k) {
+        var b = [spots[k][0], spots[k][1], spots[k][0] + lw, spots[k][1] + lh];
+        if (free(b, i)) box = b;
+      }
+      box = box || [spots[0][0], spots[0][1], spots[0][0] + lw, spots[0][1] + lh];
+      placed.push(box);
+      l.e.style.left = Math.round(box[0]) + 'px';
+      l.e.style.top = Math.round(box[1]) + 'px';
+    });
+  }
+
+  function draw() { orientCut(); faceRings(); renderer.render(scene, camera); placeLabels(); }
   // The light moves with the camera: from above-left of the eye.
   camera.add(light);
   camera.add(light.target);
@@ -375,6 +499,35 @@
   layer('layer-glyphs', glyphs);
   layer('layer-markers', markers);
   layer('layer-intersecting', intersecting);
+  layer('layer-nonconforming', nonConforming);
+  // Every colour drawn has a legend entry (issue 44): a swatch beside each
+  // layer of one colour, with its count (the quality colours of the faces
+  // and of the cut's cells are the bar's).
+  function swatch(color, ring) {
+    var sw = el('span', { class: ring ? 'swatch ring' : 'swatch' });
+    if (ring) sw.style.borderColor = color; else sw.style.background = color;
+    return sw;
+  }
+  function layerLegend(id, entries) {
+    var row = document.getElementById(id).parentNode, list = el('div', { class: 'layer-legend' });
+    entries.forEach(function (e) {
+      var entry = el('div', { 'data-legend': e[2] }, [swatch(e[0]), e[1]]);
+      if (/^0 /.test(e[1])) entry.style.opacity = 0.5;  // nothing of it drawn
+      list.appendChild(entry);
+    });
+    row.appendChild(list);
+  }
+  function counted(n, one, many) { return n + ' ' + (n === 1 ? one : many); }
+  var byKind = { coincident: 0, intersection: 0 };
+  D.markers.forEach(function (mk) { byKind[mk.kind === 'coincident' ? 'coincident' : 'intersection'] += 1; });
+  layerLegend('layer-edges', [['#' + edges.material.color.getHexString(), 'edges', 'edges']]);
+  layerLegend('layer-markers', [[colors.coincident, counted(byKind.coincident, 'coincident-vertex marker', 'coincident-vertex markers'), 'coincident'],
+    [colors.intersection, counted(byKind.intersection, 'intersecting-pair marker', 'intersecting-pair markers'), 'intersection']]);
+  layerLegend('layer-intersecting', [[colors.intersecting_cells,
+    counted(D.num_intersecting_cells || 0, 'intersecting cell', 'intersecting cells') + ' (edges)', 'intersecting_cells']]);
+  layerLegend('layer-nonconforming', [[colors.non_conforming, counted(NC.count, 'non-conforming face', 'non-conforming faces') +
+    ' (inside: a quad against two triangles; frame and diagonal drawn over the model)', 'non_conforming']]);
+  if (NC.count === 0) document.getElementById('layer-nonconforming').parentNode.style.display = 'none';
   var axisSelect = document.getElementById('cut-axis'), slider = document.getElementById('cut');
   function updateCut() {
     var axis = Number(axisSelect.value);
@@ -382,7 +535,7 @@
     if (axis >= 0) clipping.push(cut);
     low.visible = axis >= 0 && document.getElementById('layer-low').checked;
     document.getElementById('cut-note').textContent = axis >= 0
-      ? L.count + ' cells with scaled Jacobian under ' + show(L.threshold) + ' drawn inside'
+      ? L.count + ' cells with scaled Jacobian under ' + show(L.threshold) + ' drawn inside' + lowKindsText
       : '';
     [boundaryMaterial, edges.material, low.material].forEach(function (m) { m.needsUpdate = true; });
     draw();

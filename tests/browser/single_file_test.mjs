@@ -131,7 +131,8 @@ async function open(file, allowed) {
   await page.evaluate(() => document.getElementById('boundary').scrollIntoView());
   await page.screenshot({ path: path.join(shots, 'ball_report_boundary.png') });
   await page.evaluate(() => document.getElementById('viewer').scrollIntoView());
-  await page.waitForTimeout(1500);
+  // The viewer has drawn when it is ready (it draws before setting ready): no fixed 1.5 s wait.
+  if (frame) await frame.waitForFunction(() => window.hqViewer && window.hqViewer.ready, null, { timeout: 30000 }).catch(() => {});
   await page.screenshot({ path: path.join(shots, 'ball_report_viewer.png') });
   await page.close();
 }

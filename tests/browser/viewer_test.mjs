@@ -13,10 +13,10 @@
 // #0 wears the inverted ring and the dark ring and a grey glyph is drawn at
 // 0.6 of its radius (pixels at projected positions).
 //
-// usage: node viewer_test.mjs HQVIEW SOURCE_DIR OUT_DIR
+// usage: node viewer_test.mjs HQVIEW SOURCE_DIR OUT_DIR BUNDLE_DIR (the bundles of
+// viewer_bundles.mjs)
 // exit 0 pass, 1 fail, 77 skipped (no Chromium).
 
-import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
@@ -24,107 +24,25 @@ import { pathToFileURL } from 'node:url';
 import { ciede2000, labOf, selfCheck as colourScienceOk } from './colour_science.mjs';
 import { check as checkOnce, failures, launchBrowser, selectValue, setChecked } from './harness.mjs';
 
-const [hqview, sourceDir, outDir] = process.argv.slice(2);
+const [hqview, sourceDir, outDir, bundleDir] = process.argv.slice(2);
 // chromium (the default) or firefox (run_browser_test.sh --firefox).
 const browserKind = process.env.HQVIEW_VIEWER_BROWSER || 'chromium';
 console.log(`viewer test in ${browserKind}`);
 const check = (condition, message) => checkOnce(condition, message, true);
 
+// The bundles (viewer_bundles.mjs, the CTest fixture browser.viewer.bundles).
+const bundle = (name) => path.join(bundleDir, name);
+const bar = bundle('bar'), tiny = bundle('tiny'), inner = bundle('inner'), dented = bundle('dented');
+const ringed = bundle('ringed'), hybrid = bundle('hybrid'), kinds = bundle('kinds');
+// The bar's mesh file name (viewer_bundles.mjs copies twisted_bar.mesh to it).
+const evilName = `"q'&amp;<script>window.hqPwned=1<img src=x onerror="window.hqPwned=2">.mesh`;
+for (const b of [bar, tiny, inner, dented, ringed, hybrid, kinds])
+  if (!fs.existsSync(path.join(b, 'viewer.html'))) {
+    console.log(`FAIL: ${b}/viewer.html is missing: run viewer_bundles.mjs first (ctest runs browser.viewer.bundles)`);
+    process.exit(1);
+  }
 fs.rmSync(outDir, { recursive: true, force: true });
 fs.mkdirSync(outDir, { recursive: true });
-const example = (name) => path.join(sourceDir, 'examples', name);
-function analyze(args) {
-  execFileSync(hqview, ['analyze', ...args, '--data', 'csv,vtu.zlib', '--size', '640x480', '-j', '2', '--quiet'], { stdio: 'inherit' });
-}
-
-// An n x n x n grid of unit cells written as Medit, vertex (i, j, k) at
-// place(i, j, k).
-function gridMesh(file, n, place) {
-  const id = (i, j, k) => 1 + i + (n + 1) * (j + (n + 1) * k);
-  let s = `MeshVersionFormatted 1\nDimension 3\nVertices\n${(n + 1) ** 3}\n`;
-  for (let k = 0; k <= n; ++k)
-    for (let j = 0; j <= n; ++j)
-      for (let i = 0; i <= n; ++i) s += `${place(i, j, k).join(' ')} 0\n`;
-  s += `Hexahedra\n${n ** 3}\n`;
-  for (let k = 0; k < n; ++k)
-    for (let j = 0; j < n; ++j)
-      for (let i = 0; i < n; ++i)
-        s += `${id(i, j, k)} ${id(i + 1, j, k)} ${id(i + 1, j + 1, k)} ${id(i, j + 1, k)} ${id(i, j, k + 1)} ${id(i + 1, j, k + 1)} ${id(i + 1, j + 1, k + 1)} ${id(i, j + 1, k + 1)} 0\n`;
-  fs.writeFileSync(file, s + 'End\n');
-  return file;
-}
-// The central vertex (n/2, n/2, n/2) pulled: 8 interior cells under the
-// threshold, none on the boundary.
-function interiorBadMesh(file, n = 4) {
-  return gridMesh(file, n, (i, j, k) => {
-    const d = i === n / 2 && j === n / 2 && k === n / 2 ? 0.85 : 0;
-    return [i + d, j + d, k + d];
-  });
-}
-// A 4^3 grid whose top vertex (2, 2, 4) is pushed down to z = 2.5, below
-// the layer under it: that boundary vertex is inverted (its 4 cells' corner
-// there is negative), its 8 neighbours on the top are not.
-function dentedMesh(file) {
-  return gridMesh(file, 4, (i, j, k) => [i, j, i === 2 && j === 2 && k === 4 ? 2.5 : k]);
-}
-
-const bar = path.join(outDir, 'bar');
-analyze([example('twisted_bar.mesh'), '-o', bar]);
-const tiny = path.join(outDir, 'tiny');
-// 28^3 cells, 4,704 boundary faces: the tiny budget reduces the boundary too.
-analyze([interiorBadMesh(path.join(outDir, 'dense.mesh'), 28), '-o', tiny, '--viewer-max-mb', '0.01']);
-const inner = path.join(outDir, 'inner');
-analyze([interiorBadMesh(path.join(outDir, 'inner.mesh')), '-o', inner]);
-const dented = path.join(outDir, 'dented');
-analyze([dentedMesh(path.join(outDir, 'dented.mesh')), '-o', dented]);
-// Rings and grey glyphs (issue 44, as view A draws them): a 6^3 grid with
-// its top vertex (2, 2, 6) pushed below the layer under it (inverted:
-// cluster #0) and its top vertex (5, 5, 6) moved by 0.4 along x and y (a
-// poor cluster, min 0.33, not inverted), analysed with --top-clusters 1 so
-// that the second is grey.
-const ringed = path.join(outDir, 'ringed');
-analyze([gridMesh(path.join(outDir, 'ringed.mesh'), 6, (i, j, k) => {
-  if (k === 6 && i === 2 && j === 2) return [i, j, 4.6];
-  if (k === 6 && i === 5 && j === 5) return [i + 0.4, j + 0.4, k];
-  return [i, j, k];
-}), '-o', ringed, '--top-clusters', '1']);
-const evilName = `"q'&amp;<script>window.hqPwned=1<img src=x onerror="window.hqPwned=2">.mesh`;
-const evilDir = path.join(outDir, 'evil-input');
-fs.mkdirSync(evilDir, { recursive: true });
-fs.copyFileSync(example('twisted_bar.mesh'), path.join(evilDir, evilName));
-const evil = path.join(outDir, 'evil');
-analyze([path.join(evilDir, evilName), '-o', evil]);
-
-// A hex [0,1]^3 next to a tet box [1,2]x[0,1]^2 (6 tets around its
-// diagonal), legacy VTK: the tets' triangles are boundary faces the viewer
-// must draw (their x = 1 face, split in two against the hex's quad, is a
-// non-conforming interface: inside, not boundary).
-function hexTetBoxMesh(file) {
-  const points = [];
-  const id = (x, y, z) => {
-    const k = points.findIndex((p) => p[0] === x && p[1] === y && p[2] === z);
-    return k >= 0 ? k : points.push([x, y, z]) - 1;
-  };
-  const cells = [[12, [id(0, 0, 0), id(1, 0, 0), id(1, 1, 0), id(0, 1, 0), id(0, 0, 1), id(1, 0, 1), id(1, 1, 1), id(0, 1, 1)]]];
-  const c = (i, j, k) => id(1 + i, j, k);
-  for (const [a, b] of [[[1, 0, 0], [1, 1, 0]], [[1, 0, 0], [1, 0, 1]], [[0, 1, 0], [1, 1, 0]],
-    [[0, 1, 0], [0, 1, 1]], [[0, 0, 1], [1, 0, 1]], [[0, 0, 1], [0, 1, 1]]]) {
-    const t = [c(0, 0, 0), c(...a), c(...b), c(1, 1, 1)];
-    const P = t.map((v) => points[v]), d = (u, w) => [0, 1, 2].map((k) => u[k] - w[k]);
-    const [u, v, w] = [d(P[1], P[0]), d(P[2], P[0]), d(P[3], P[0])];
-    const det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
-    cells.push([10, det > 0 ? t : [t[0], t[2], t[1], t[3]]]);
-  }
-  let s = `# vtk DataFile Version 3.0\nhex and tet box\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS ${points.length} double\n`;
-  s += points.map((p) => p.join(' ')).join('\n') + '\n';
-  s += `CELLS ${cells.length} ${cells.reduce((n, [, v]) => n + 1 + v.length, 0)}\n`;
-  s += cells.map(([, v]) => `${v.length} ${v.join(' ')}`).join('\n') + '\n';
-  s += `CELL_TYPES ${cells.length}\n${cells.map(([t]) => t).join('\n')}\n`;
-  fs.writeFileSync(file, s);
-  return file;
-}
-const hybrid = path.join(outDir, 'hybrid');
-analyze([hexTetBoxMesh(path.join(outDir, 'hex_tet_box.vtk')), '-o', hybrid]);
 
 const browser = await launchBrowser(browserKind);
 
@@ -169,23 +87,68 @@ async function pixels(page) {
   });
 }
 
-// The drawn frame: drawing-buffer size and RGBA bytes, rows bottom-up.
+// The drawn frame: drawing-buffer size and RGBA bytes, rows bottom-up. The
+// bytes cross from the page as one base64 string (a JSON array of 3.8
+// million numbers took about 20 s per frame under load).
 async function frameOf(page) {
-  return page.evaluate(() => {
+  const f = await page.evaluate(() => {
     const v = window.hqViewer;
     v.draw();
     const gl = v.renderer.getContext(), w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
     const px = new Uint8Array(w * h * 4);
     gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
-    return { w, h, px: Array.from(px) };
+    let s = '';
+    for (let i = 0; i < px.length; i += 0x8000) s += String.fromCharCode.apply(null, px.subarray(i, i + 0x8000));
+    return { w, h, b64: btoa(s) };
   });
+  return { w: f.w, h: f.h, px: Buffer.from(f.b64, 'base64') };
+}
+
+// Every colour the scene draws has a legend entry (issue 44): the colour of
+// each visible object's material (but the field-coloured faces and cut
+// cells, whose colours are the bar's, and the white halos, the background's)
+// against the side panel's swatches (filled: background, ring: border).
+async function legendGaps(page) {
+  return page.evaluate(() => {
+    const v = window.hqViewer, drawn = new Set(), legend = new Set();
+    v.draw();
+    v.scene.traverseVisible((o) => {
+      if (!o.material || !o.material.color || o.userData.legend === 'field') return;
+      const hex = '#' + o.material.color.getHexString();
+      if (hex !== '#ffffff') drawn.add(hex);
+    });
+    const toHex = (css) => {
+      const m = /rgba?\((\d+), (\d+), (\d+)(, ([\d.]+))?\)/.exec(css);
+      return m && m[5] !== '0' ? '#' + [m[1], m[2], m[3]].map((x) => Number(x).toString(16).padStart(2, '0')).join('') : null;
+    };
+    for (const sw of document.querySelectorAll('#side .swatch')) {
+      const st = getComputedStyle(sw);
+      for (const c of [st.backgroundColor, st.borderTopColor]) { const h = toHex(c); if (h) legend.add(h); }
+    }
+    return { drawn: [...drawn], missing: [...drawn].filter((c) => !legend.has(c)) };
+  });
+}
+
+// A section of the test. Firefox runs only the sections whose result can
+// depend on the browser engine (docs/testing.md, "The viewer in two
+// browsers"): WebGL drawing, shaders and read-back pixels, pointer events
+// and picking, CSS layout of the canvas and the labels, the HTML parser's
+// handling of a hostile name, request interception. The others read data
+// the page decodes in plain JavaScript and run in Chromium only.
+const BOTH = 'both', CHROMIUM_ONLY = 'chromium';
+const timings = [];
+async function section(name, where, body) {
+  if (where === CHROMIUM_ONLY && browserKind !== 'chromium') return;
+  const t = Date.now();
+  await body();
+  timings.push(`${name} ${((Date.now() - t) / 1000).toFixed(1)} s`);
 }
 
 const num = (s) => Number(s);
 const near = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
 
 // ---- the twisted bar ----
-{
+await section('bar', BOTH, async () => {
   const report = JSON.parse(fs.readFileSync(path.join(bar, 'report.json'), 'utf8'));
   const { page, problems, network } = await open(bar);
   await page.screenshot({ path: path.join(outDir, 'bar_viewer.png') });
@@ -222,13 +185,17 @@ const near = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
   const c0 = header.indexOf('corner_sj_0');
   check(face && row && face.corners.length === 8 && face.corners.every((v, i) => Math.abs(v - num(row[c0 + i])) <= 1e-5),
     `the face's hex corners are cells.csv's corner_sj_0..7: ${face && face.corners}`);
+  // The bar's file name is hostile (viewer_bundles.mjs): shown as text, never run.
+  const r = await page.evaluate(() => ({ pwned: window.hqPwned, h1: document.querySelector('h1').textContent }));
+  check(r.pwned === undefined, 'the hostile file name runs no script in the viewer');
+  check(r.h1 === evilName, `the viewer shows the file name literally (${r.h1})`);
   check(problems.length === 0, `no console error on the bar's viewer: ${problems.join('; ')}`);
   check(network() === 0, `no request leaves file:// (${network()} aborted)`);
   await page.close();
-}
+});
 
 // ---- the reset view is view A ----
-{
+await section('reset view', BOTH, async () => {
   const report = JSON.parse(fs.readFileSync(path.join(bar, 'report.json'), 'utf8'));
   const [w, h] = report.views.find((v) => v.id === 'main').cameras[0].pixels;
   // The side panel is 320 px wide: the canvas gets view A's 3D area's size.
@@ -269,10 +236,10 @@ const near = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
   check(!overlap.error && overlap.iou >= 0.9, `the reset view's silhouette overlaps view A's (intersection over union ${JSON.stringify(overlap)})`);
   await page.screenshot({ path: path.join(outDir, 'bar_reset.png') });
   await page.close();
-}
+});
 
 // ---- #cluster-K ----
-{
+await section('#cluster-K', CHROMIUM_ONLY, async () => {
   const report = JSON.parse(fs.readFileSync(path.join(bar, 'report.json'), 'utf8'));
   const k = report.glyphs.clusters[report.glyphs.clusters.length - 1].id;
   const { page, problems } = await open(bar, `#cluster-${k}`);
@@ -283,10 +250,10 @@ const near = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
   check(target.every((v, i) => Math.abs(v - pos[i]) < 1e-6), `#cluster-${k} turns about the cluster`);
   check(problems.length === 0, `no console error with a fragment: ${problems.join('; ')}`);
   await page.close();
-}
+});
 
 // ---- the cut reveals the interior bad cells ----
-{
+await section('cut', BOTH, async () => {
   const { page, problems } = await open(inner);
   const count = await page.evaluate(() => window.hqViewer.data.low_cells.count);
   check(count === 8, `the 8 interior cells around the pulled vertex are the cells under the threshold (${count})`);
@@ -306,10 +273,10 @@ const near = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
   check(open_.warm > closed.warm + 200, `the cut shows the bad interior cells (warm pixels ${closed.warm} -> ${open_.warm})`);
   check(problems.length === 0, `no console error on the cut: ${problems.join('; ')}`);
   await page.close();
-}
+});
 
 // ---- a tiny budget keeps every glyph and every cell under the threshold ----
-{
+await section('tiny budget', CHROMIUM_ONLY, async () => {
   const report = JSON.parse(fs.readFileSync(path.join(tiny, 'report.json'), 'utf8'));
   const { page } = await open(tiny);
   const d = await page.evaluate(() => ({ clusters: window.hqViewer.data.clusters.length, low: window.hqViewer.data.low_cells.count,
@@ -322,7 +289,7 @@ const near = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
   check(/Reduced/.test(d.note), `tiny budget: the page says what was reduced ("${d.note.slice(0, 80)}")`);
   // The boundary is drawn reduced, and a face still names its own hex.
   const faces = await page.evaluate(() => window.hqViewer.data.faces.count);
-  check(faces < 6 * 28 * 28 && /boundary is drawn with/.test(d.note), `tiny budget: the boundary is reduced (${faces} of ${6 * 28 * 28} faces)`);
+  check(faces < 6 * 20 * 20 && /boundary is drawn with/.test(d.note), `tiny budget: the boundary is reduced (${faces} of ${6 * 20 * 20} faces)`);
   const box = await page.evaluate(() => { const r = window.hqViewer.renderer.domElement.getBoundingClientRect(); return [r.left, r.top, r.width, r.height]; });
   await setChecked(page, '#layer-glyphs', false);  // the central cluster's glyph would take the click
   await page.mouse.click(box[0] + box[2] / 2, box[1] + box[3] / 2);
@@ -335,7 +302,7 @@ const near = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
   check(face && row && near(num(face.sj), num(row[col])),
     `tiny budget: a click on a reduced face shows its hex's scaled Jacobian as cells.csv has it: ${JSON.stringify(face)} vs ${row && row[col]}`);
   await page.close();
-}
+});
 
 // ---- colour mapped after interpolation ----
 // Faces opaque, edges, glyphs and markers off, the dent seen from nearly above (its walls are steep): a
@@ -348,7 +315,7 @@ const near = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
 // the centre of each of its 4 faces (its barycentric weight there is over
 // 0.85). Colours mapped at the vertices and blended (the old viewer) put
 // the blue-orange purple over the faces and fail.
-{
+await section('colour after interpolation', BOTH, async () => {
   check(colourScienceOk(), 'CIEDE2000 (tests/browser/colour_science.mjs) gives Sharma et al.\'s values');
   const { page, problems } = await open(dented);
   await page.evaluate(() => { document.getElementById('opacity').value = 100; document.getElementById('opacity').dispatchEvent(new Event('input')); });
@@ -428,25 +395,19 @@ const near = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
     `the inverted colour is on the dent's 4 faces next to the inverted vertex (${probes} of 4 probes; ${invertedPixels} inverted pixels)`);
   check(problems.length === 0, `no console error on the dented grid: ${problems.join('; ')}`);
   await page.close();
-}
+});
 
 // ---- a hex next to a tet box: the tets' faces are drawn ----
 // Points inside the tet box project onto the model, not the background
 // (the hex-only boundary left the box out: background there, or off the
 // view); a click there names a tet.
-{
+await section('hex and tets', CHROMIUM_ONLY, async () => {
   const { page, problems } = await open(hybrid);
   await page.evaluate(() => { document.getElementById('opacity').value = 100; document.getElementById('opacity').dispatchEvent(new Event('input')); });
   for (const layer of ['#layer-glyphs', '#layer-markers']) await setChecked(page, layer, false);
   const box = await page.evaluate(() => { const r = window.hqViewer.renderer.domElement.getBoundingClientRect(); return [r.left, r.top, r.width, r.height]; });
   const probes = [[1.5, 0.5, 0.5], [1.25, 0.3, 0.7], [1.75, 0.7, 0.3], [1.8, 0.2, 0.8], [1.2, 0.8, 0.2]];
-  const shot = await page.evaluate(() => {
-    window.hqViewer.draw();
-    const gl = window.hqViewer.renderer.getContext(), w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
-    const px = new Uint8Array(w * h * 4);
-    gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
-    return { w, h, px: Array.from(px) };
-  });
+  const shot = await frameOf(page);
   let onModel = 0;
   for (const p of probes) {
     const [sx, sy] = await projectToPage(page, p);
@@ -467,9 +428,33 @@ const near = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
   check(/^tet \d+$/.test(cell || ''), `a click on the tet box names a tet (${cell})`);
   const kinds = await page.evaluate(() => { const d = window.hqViewer.data; return { n: d.faces.count, names: d.faces.kind_names }; });
   check(kinds.n === 5 + 10 && kinds.names && kinds.names[1] === 'tet', `the viewer's boundary: the hex's 5 quads and the tet box's 10 triangles (${JSON.stringify(kinds)})`);
+  // The non-conforming x = 1 face (the hex's quad against two of the tets'
+  // triangles, inside the model): its frame in the overview's colour at
+  // probes 0.075 of the way in from each edge's middle, over the opaque
+  // faces; and a legend entry with its count and that colour.
+  await setChecked(page, '#layer-edges', false);
+  const nc = await frameOf(page);
+  const ncColour = await page.evaluate(() => window.hqViewer.data.colors.non_conforming);
+  const want = [1, 3, 5].map((i) => parseInt(ncColour.slice(i, i + 2), 16));
+  let onFrame = 0;
+  for (const p of [[1, 0.5, 0.0375], [1, 0.5, 0.9625], [1, 0.0375, 0.5], [1, 0.9625, 0.5]]) {
+    const [sx, sy] = await projectToPage(page, p);
+    const x = Math.round((sx - box[0]) * nc.w / box[2]), y = Math.round((sy - box[1]) * nc.h / box[3]);
+    const i = 4 * ((nc.h - 1 - y) * nc.w + x);
+    if (Math.hypot(nc.px[i] - want[0], nc.px[i + 1] - want[1], nc.px[i + 2] - want[2]) <= 30) onFrame += 1;
+  }
+  check(onFrame === 4, `the non-conforming face's frame is drawn in ${ncColour} (${onFrame} of 4 probes)`);
+  const ncLegend = await page.evaluate(() => {
+    const e = document.querySelector('[data-legend="non_conforming"]');
+    return e ? { text: e.textContent, colour: getComputedStyle(e.querySelector('.swatch')).backgroundColor } : null;
+  });
+  check(ncLegend && /^1 non-conforming face/.test(ncLegend.text) && ncLegend.colour === `rgb(${want.join(', ')})`,
+    `the legend has the non-conforming face with its count and colour (${JSON.stringify(ncLegend)})`);
+  const hybridGaps = await legendGaps(page);
+  check(hybridGaps.missing.length === 0, `every colour drawn on the hybrid mesh has a legend swatch (missing ${hybridGaps.missing})`);
   check(problems.length === 0, `no console error on the hybrid mesh: ${problems.join('; ')}`);
   await page.close();
-}
+});
 
 // ---- rings and grey glyphs ----
 // Cluster #0 (inverted) wears a ring in the inverted colour (the field's
@@ -478,7 +463,7 @@ const near = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
 // projected positions, with the faces, edges and markers hidden. Without
 // the rings the circles at 1.21 and 1.48 glyph radii are white; without the
 // 0.6 the grey glyph's row spans its full diameter.
-{
+await section('rings', BOTH, async () => {
   const { page, problems } = await open(ringed);
   for (const layer of ['#layer-boundary', '#layer-edges', '#layer-markers', '#layer-intersecting', '#layer-low'])
     await setChecked(page, layer, false);
@@ -519,11 +504,12 @@ const near = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
   const worst = clusters.find((cl) => cl.id === 0), grey = clusters.find((cl) => !cl.is_top);
   check(worst && worst.min_quality < 0 && grey && grey.min_quality >= 0, `the ringed grid has an inverted #0 and a grey cluster (${clusters.length} clusters)`);
   const g0 = await onScreen(worst, worst.radius);
-  function onCircle(g, f, colour) {
+  // Samples of 48 on the circle at f glyph radii within 40 of colour (in the frame read by get).
+  function onCircle(g, f, colour, get = rgb) {
     let on = 0;
     for (let a = 0; a < 48; ++a) {
       const t = 2 * Math.PI * a / 48;
-      on += dist(rgb(g.x + f * g.r * Math.cos(t), g.y + f * g.r * Math.sin(t)), colour) <= 40 ? 1 : 0;
+      on += dist(get(g.x + f * g.r * Math.cos(t), g.y + f * g.r * Math.sin(t)), colour) <= 40 ? 1 : 0;
     }
     return on;
   }
@@ -547,21 +533,95 @@ const near = (a, b) => Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
   check(info.legend[1] && /inverted/.test(info.legend[1].text) && info.legend[1].border === `rgb(${lut.join(', ')})`,
     `the legend names the inverted ring in the inverted colour (${JSON.stringify(info.legend[1])})`);
   check(/other clusters? \(0\.6 size\)/.test(info.others), 'the legend says the grey glyphs are drawn at 0.6 size');
+  // The see-through faces back on (35 %, the default): #0's glyph lies under
+  // the top faces, and the rings keep their colours (before issue 44's fix
+  // they were drawn before the faces and came out washed: 0 of 48).
+  await setChecked(page, '#layer-boundary', true);
+  const faced = await frameOf(page);
+  const rgbF = (x, y) => { const i = 4 * ((faced.h - 1 - Math.round(y)) * faced.w + Math.round(x)); return [faced.px[i], faced.px[i + 1], faced.px[i + 2]]; };
+  const invF = onCircle(g0, 1.21, lut, rgbF), darkF = onCircle(g0, 1.48, [38, 38, 38], rgbF);
+  check(invF >= 40 && darkF >= 40, `with the see-through faces over #0 its rings keep their colours (inverted ${invF}, dark ${darkF} of 48)`);
+  // The #k label: view A's text "#0 (n)" (report.json's id and size) beside
+  // #0's glyph, outside its rings and within 24 px of them; the grey
+  // cluster has none.
+  const report = JSON.parse(fs.readFileSync(path.join(ringed, 'report.json'), 'utf8'));
+  const labels = await page.evaluate(() => [...document.querySelectorAll('.glyph-label')].map((e) => {
+    const r = e.getBoundingClientRect();
+    return { k: e.getAttribute('data-cluster'), text: e.textContent, hidden: e.hidden, box: [r.left, r.top, r.right, r.bottom] };
+  }));
+  const c0 = report.glyphs.clusters[0];
+  const l0 = labels.find((l) => l.k === '0');
+  const cx = rect[0] + g0.x / scale, cy = rect[1] + g0.y / scale, ringOut = 1.54 * g0.r / scale;
+  const gap = l0 && Math.hypot(Math.max(l0.box[0] - cx, 0, cx - l0.box[2]), Math.max(l0.box[1] - cy, 0, cy - l0.box[3]));
+  check(labels.length === 1 && l0 && !l0.hidden && l0.text === `#0 (${c0.size})`,
+    `one label, #0's, reads "#0 (${c0.size})" as view A's (${JSON.stringify(labels)})`);
+  check(l0 && gap >= ringOut && gap <= ringOut + 24,
+    `#0's label sits beside its glyph outside the rings (${gap && gap.toFixed(1)} px from the centre, rings end at ${ringOut.toFixed(1)} px)`);
+  const gaps = await legendGaps(page);
+  check(gaps.missing.length === 0 && gaps.drawn.length >= 4, `every colour drawn on the ringed grid has a legend swatch (drawn ${gaps.drawn}; missing ${gaps.missing})`);
+  await page.screenshot({ path: path.join(outDir, 'ringed_faces.png') });
   check(problems.length === 0, `no console error on the ringed grid: ${problems.join('; ')}`);
   await page.close();
-}
+});
 
-// ---- a hostile file name ----
-{
-  const { page, problems } = await open(evil);
-  const r = await page.evaluate(() => ({ pwned: window.hqPwned, h1: document.querySelector('h1').textContent, title: document.title }));
-  check(r.pwned === undefined, 'the hostile file name runs no script in the viewer');
-  check(r.h1 === evilName, `the viewer shows the file name literally (${r.h1})`);
-  check(problems.length === 0, `no console error on the hostile name: ${problems.join('; ')}`);
+// ---- the cut draws cells of every kind; overlap colours in the legend ----
+// One poor hex, tet, wedge and pyramid (viewer_bundles.mjs kindsMesh): all
+// four are cells under the threshold, and with the boundary off and the cut
+// keeping everything, each cell's centroid projects onto a drawn pixel (the
+// hex-only cut drew none of the other three). The two intersecting hexes'
+// markers and edges have legend swatches.
+await section('cut of every kind', CHROMIUM_ONLY, async () => {
+  const { page, problems } = await open(bundle('kinds'));
+  for (const layer of ['#layer-boundary', '#layer-edges', '#layer-glyphs', '#layer-markers', '#layer-intersecting'])
+    await setChecked(page, layer, false);
+  const cells = await page.evaluate(() => {
+    const L = window.hqViewer.data.low_cells, kinds = Array.from(atob(L.kinds), (c) => c.charCodeAt(0));
+    const b = atob(L.corners), f = new Float32Array(new Uint8Array(Array.from(b, (c) => c.charCodeAt(0))).buffer);
+    const out = [];
+    let o = 0;
+    for (const k of kinds) {
+      const n = L.kind_faces.corners[k], c = [0, 0, 0];
+      for (let i = 0; i < n; ++i) for (let j = 0; j < 3; ++j) c[j] += f[o + 3 * i + j] / n;
+      out.push({ kind: L.kind_faces.names[k], centroid: c });
+      o += 3 * n;
+    }
+    return out;
+  });
+  check(cells.map((c) => c.kind).sort().join() === 'hex,pyramid,tet,wedge', `the cells under the threshold are one of each kind (${cells.map((c) => c.kind)})`);
+  // The cut across the axis the eye looks along most, at the end that keeps every cell.
+  const axis = await page.evaluate(() => {
+    const d = window.hqViewer.camera.position.clone().sub(window.hqViewer.controls.target).toArray();
+    const a = d.map(Math.abs).indexOf(Math.max(...d.map(Math.abs)));
+    return { axis: String(a), keepAll: d[a] >= 0 ? 1000 : 0 };
+  });
+  await selectValue(page, '#cut-axis', axis.axis);
+  await page.evaluate((v) => { const s = document.getElementById('cut'); s.value = v; s.dispatchEvent(new Event('input')); }, axis.keepAll);
+  const shot = await frameOf(page);
+  const box = await page.evaluate(() => { const r = window.hqViewer.renderer.domElement.getBoundingClientRect(); return [r.left, r.top, r.width, r.height]; });
+  const drawnKinds = [];
+  for (const c of cells) {
+    const [sx, sy] = await projectToPage(page, c.centroid);
+    const x = Math.round((sx - box[0]) * shot.w / box[2]), y = Math.round((sy - box[1]) * shot.h / box[3]);
+    const i = 4 * ((shot.h - 1 - y) * shot.w + x);
+    if (shot.px[i] < 245 || shot.px[i + 1] < 245 || shot.px[i + 2] < 245) drawnKinds.push(c.kind);
+  }
+  await page.screenshot({ path: path.join(outDir, 'kinds_cut.png') });
+  check(drawnKinds.length === 4, `the cut draws every kind's cell under the threshold (drawn: ${drawnKinds})`);
+  const note = await page.evaluate(() => document.getElementById('cut-note').textContent);
+  check(/\(1 hex, 1 tet, 1 wedge, 1 pyramid\)/.test(note), `the cut's note names the kinds ("${note}")`);
+  // Every layer back on: the overlap colours have legend entries.
+  for (const layer of ['#layer-boundary', '#layer-edges', '#layer-glyphs', '#layer-markers', '#layer-intersecting'])
+    await setChecked(page, layer, true);
+  const gaps = await legendGaps(page);
+  const colours = await page.evaluate(() => window.hqViewer.data.colors);
+  check(gaps.missing.length === 0 && gaps.drawn.includes(colours.intersecting_cells) && gaps.drawn.includes(colours.intersection),
+    `every colour drawn with overlap findings has a legend swatch (drawn ${gaps.drawn}; missing ${gaps.missing})`);
+  check(problems.length === 0, `no console error on the cells of every kind: ${problems.join('; ')}`);
   await page.close();
-}
+});
 
 await browser.close();
+console.log(`sections: ${timings.join(', ')}`);
 if (failures.length) {
   console.log(`${failures.length} failure(s)`);
   process.exit(1);

@@ -11,10 +11,15 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <set>
 
 #include "hqview/glyph/glyphs.h"
+#include "hqview/image/colormap.h"
+#include "hqview/mesh/cell_faces.h"
+#include "hqview/views/main_views.h"
+#include "hqview/views/overview_views.h"
 #include "hqview/mesh/topology.h"
 #include "hqview/quality/hex_metric_field.h"
 #include "hqview/quality/quality_field.h"
@@ -226,6 +231,89 @@ TEST(Viewer, OverTheBudgetTheBoundaryIsReducedNeverGlyphsOrBadCells) {
   for (const json& r : tiny["reduced"]) says |= r.get<std::string>().find("the boundary is drawn with") != std::string::npos;
   EXPECT_TRUE(says) << tiny["reduced"].dump();
   EXPECT_EQ(data_of(model), tiny);
+}
+
+// Issue 44: a hex with two tets against its x = 1 quad (a non-conforming
+// face), and apart a flat wedge and a flat pyramid. data.js has every kind's
+// cell under the threshold with its own corners and its kind's faces, the
+// non-conforming face's quad and triangles, and the overlay colours of the
+// PNG views' constants.
+TEST(Viewer, CellsOfEveryKindTheNonConformingFaceAndTheViewsColours) {
+  ReportModel model;
+  Mesh& mesh = model.analysis.mesh;
+  const auto add = [&](Vec3 p) { mesh.points.push_back(p); return static_cast<Index>(mesh.points.size() - 1); };
+  mesh.hexes.push_back({add({0, 0, 0}), add({1, 0, 0}), add({1, 1, 0}), add({0, 1, 0}), add({0, 0, 1}), add({1, 0, 1}),
+                        add({1, 1, 1}), add({0, 1, 1})});
+  const Index apex = add({2, 0.5, 0.5});
+  const auto tet = [&](Index a, Index b, Index c) {
+    const Vec3 u = mesh.points[static_cast<std::size_t>(b)] - mesh.points[static_cast<std::size_t>(a)],
+               v = mesh.points[static_cast<std::size_t>(c)] - mesh.points[static_cast<std::size_t>(a)],
+               w = mesh.points[static_cast<std::size_t>(apex)] - mesh.points[static_cast<std::size_t>(a)];
+    const double det = dot(u, cross(v, w));
+    mesh.tets.push_back(det > 0 ? CellCorners<CellKind::tet>{a, b, c, apex} : CellCorners<CellKind::tet>{a, c, b, apex});
+  };
+  tet(1, 2, 6);  // the quad 1 2 6 5 split along 1-6
+  tet(1, 6, 5);
+  mesh.wedges.push_back({add({6, 0, 0}), add({7, 0, 0}), add({6, 1, 0}), add({6, 0, 1}), add({7, 0, 1}), add({6.1, 0.9, 0.1})});
+  mesh.pyramids.push_back({add({9, 0, 0}), add({10, 0, 0}), add({10, 1, 0}), add({9, 1, 0}), add({9.5, 0.5, 0.05})});
+  Analysis& a = model.analysis;
+  a.topology = build_topology(mesh);
+  a.field = compute_quality(mesh, a.topology);
+  a.glyphs = compute_glyphs(mesh.points, a.field.vertex_quality, 1.0, GlyphOptions{});
+  model.has_viewer = true;
+  ASSERT_EQ(a.topology.non_conforming_faces.size(), 1u);
+  const json d = data_of(model);
+
+  const json& low = d["low_cells"];
+  const auto ids = array_of<std::uint32_t>(low["ids"]);
+  const auto kinds = array_of<std::uint8_t>(low["kinds"]);
+  const auto corners = array_of<float>(low["corners"]);
+  ASSERT_EQ(ids.size(), low["count"].get<std::size_t>());
+  ASSERT_EQ(kinds.size(), ids.size());
+  std::set<int> seen;
+  std::size_t o = 0;
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    const CellRef cell = volume_cell(mesh, static_cast<Index>(ids[i]));
+    EXPECT_EQ(kinds[i], static_cast<std::uint8_t>(cell.kind));
+    EXPECT_LT(a.field.cell_scaled_jacobian[ids[i]], 1.0 - a.glyphs->options.threshold);
+    seen.insert(kinds[i]);
+    ASSERT_EQ(low["kind_faces"]["corners"][kinds[i]].get<int>(), cell.num_corners);
+    for (int c = 0; c < cell.num_corners; ++c)
+      for (int k = 0; k < 3; ++k)
+        EXPECT_EQ(corners[o + 3 * static_cast<std::size_t>(c) + static_cast<std::size_t>(k)],
+                  static_cast<float>(mesh.points[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>(c)])][k]));
+    o += 3 * static_cast<std::size_t>(cell.num_corners);
+  }
+  EXPECT_EQ(o, corners.size());
+  EXPECT_TRUE(seen.count(static_cast<int>(CellKind::wedge)) && seen.count(static_cast<int>(CellKind::pyramid)));
+  // The face tables: the kinds' faces as CellKindTable has them (a hex's 6 quads, a pyramid's 4 triangles and base).
+  EXPECT_EQ(low["kind_faces"]["faces"][0].size(), 6u);
+  EXPECT_EQ(low["kind_faces"]["faces"][1].size(), 4u);
+  EXPECT_EQ(low["kind_faces"]["faces"][2].size(), 5u);
+  EXPECT_EQ(low["kind_faces"]["faces"][3].size(), 5u);
+  EXPECT_EQ(low["kind_faces"]["faces"][0][0], json::array({0, 3, 2, 1}));
+  EXPECT_EQ(low["kind_faces"]["names"][3], "pyramid");
+
+  ASSERT_EQ(d["non_conforming"]["count"].get<std::size_t>(), 1u);
+  const auto quad = array_of<float>(d["non_conforming"]["quads"]);
+  const auto tris = array_of<float>(d["non_conforming"]["triangles"]);
+  ASSERT_EQ(quad.size(), 12u);
+  ASSERT_EQ(tris.size(), 18u);
+  for (float x : quad) EXPECT_TRUE(x == 0.0f || x == 1.0f);
+  for (std::size_t c = 0; c < 4; ++c) EXPECT_EQ(quad[3 * c], 1.0f);  // the x = 1 face
+  for (std::size_t c = 0; c < 6; ++c) EXPECT_EQ(tris[3 * c], 1.0f);
+
+  const auto hex = [](Rgba8 c) {
+    char t[8];
+    std::snprintf(t, sizeof t, "#%02x%02x%02x", c.r, c.g, c.b);
+    return std::string(t);
+  };
+  EXPECT_EQ(d["colors"]["coincident"], hex(kCoincidentArrowColor));
+  EXPECT_EQ(d["colors"]["intersection"], hex(kIntersectionArrowColor));
+  EXPECT_EQ(d["colors"]["intersecting_cells"], hex(kIntersectingCellColor));
+  EXPECT_EQ(d["colors"]["non_conforming"], hex(kNonConformingColor));
+  EXPECT_EQ(d["colors"]["worst_ring"], hex(AnnotationStyle{}.text_color));
+  EXPECT_EQ(d["labelled_clusters"].get<std::int64_t>(), labelled_cluster_count(a.glyphs->options.top_clusters));
 }
 
 TEST(Viewer, TheNameReachesThePageOnlyEscaped) {

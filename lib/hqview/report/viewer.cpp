@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 
 #include "hqview/core/box3.h"
@@ -20,6 +21,8 @@
 #include "hqview/report/viewer_boundary.h"
 #include "hqview/views/boundary_views.h"
 #include "hqview/views/error_density_views.h"
+#include "hqview/views/main_views.h"
+#include "hqview/views/overview_views.h"
 
 namespace hq {
 
@@ -80,6 +83,60 @@ std::string b64(const std::vector<T>& v) {
 }
 
 Json vec(const Vec3& p) { return Json::array({p.x, p.y, p.z}); }
+
+std::string hex_color(const Rgba8& c) {
+  char text[8];
+  std::snprintf(text, sizeof text, "#%02x%02x%02x", c.r, c.g, c.b);
+  return text;
+}
+
+// The colours of the viewer's overlays, read from the constants the PNG
+// views draw with (views/main_views.h, views/overview_views.h, view A's
+// ring in AnnotationStyle's text colour), so the viewer keeps no copy.
+Json overlay_colors() {
+  return {{"coincident", hex_color(kCoincidentArrowColor)},
+          {"intersection", hex_color(kIntersectionArrowColor)},
+          {"intersecting_cells", hex_color(kIntersectingCellColor)},
+          {"non_conforming", hex_color(kNonConformingColor)},
+          {"worst_ring", hex_color(AnnotationStyle{}.text_color)}};
+}
+
+// The faces of each volume kind (CellKindTable, outward), by CellKind
+// number: local corner numbers, 3 or 4 per face; and each kind's corner
+// count and name. The viewer draws a cell of any kind from its corners with these.
+Json kind_faces_json() {
+  Json faces = Json::array(), corners = Json::array(), names = Json::array();
+  for_each_cell_kind([&](auto kind) {
+    if constexpr (CellKindTable<kind()>::dimension == 3) {
+      Json list = Json::array();
+      for (const CellFace& f : CellKindTable<kind()>::faces) {
+        Json face = Json::array();
+        for (int i = 0; i < f.size; ++i) face.push_back(f.v[static_cast<std::size_t>(i)]);
+        list.push_back(std::move(face));
+      }
+      faces.push_back(std::move(list));
+      corners.push_back(CellKindTable<kind()>::num_corners);
+      names.push_back(std::string(cell_kind_name(kind())));
+    }
+  });
+  return {{"faces", std::move(faces)}, {"corners", std::move(corners)}, {"names", std::move(names)}};
+}
+
+// The non-conforming faces (Topology::non_conforming_faces): each quad's 4
+// corners and its two triangles' 3 corners (float32 xyz), so the viewer
+// draws the frame the overview draws and the triangles' diagonal.
+Json non_conforming_json(const Analysis& a) {
+  std::vector<float> quads, triangles;
+  const auto put = [&](std::vector<float>& out, Index v) {
+    for (int c = 0; c < 3; ++c) out.push_back(static_cast<float>(a.mesh.points[static_cast<std::size_t>(v)][c]));
+  };
+  for (const NonConformingFace& nc : a.topology.non_conforming_faces) {
+    for (Index v : nc.quad) put(quads, v);
+    for (const Tri& t : nc.triangles)
+      for (Index v : t) put(triangles, v);
+  }
+  return {{"count", a.topology.non_conforming_faces.size()}, {"quads", b64(quads)}, {"triangles", b64(triangles)}};
+}
 
 // Colour tables: 256 RGB triples; index 255 is "no value".
 constexpr std::uint8_t kNoValue = 255;
@@ -299,6 +356,7 @@ std::vector<ViewerFile> viewer_files(const ReportModel& model) {
                           {"color", cluster_color_hex(g.id, k)}, {"is_top", static_cast<std::int64_t>(i) < k}});
     }
     d["top_clusters"] = k;
+    d["labelled_clusters"] = labelled_cluster_count(k);  // #k labels, as view A's
     d["glyph_threshold"] = a.glyphs->options.threshold;
   }
   d["clusters"] = std::move(clusters);
@@ -331,24 +389,32 @@ std::vector<ViewerFile> viewer_files(const ReportModel& model) {
   }
   d["markers"] = std::move(markers);
   d["intersecting_edges"] = b64(intersecting);
+  d["num_intersecting_cells"] = a.overlap ? a.overlap->num_intersecting_cells : 0;
+  d["non_conforming"] = non_conforming_json(a);
+  d["colors"] = overlay_colors();
 
-  // Interior cells under the glyph threshold (cell scaled Jacobian below
-  // 1 - T): drawn by the cut, never reduced.
+  // Cells under the glyph threshold (cell scaled Jacobian below 1 - T), of
+  // every kind: drawn by the cut, never reduced.
   {
     const double t = a.glyphs ? a.glyphs->options.threshold : 0.5;
     std::vector<std::uint32_t> ids;
+    std::vector<std::uint8_t> kinds;
     std::vector<float> corners;
     std::vector<double> sj;
-    for (std::size_t h = 0; h < a.mesh.hexes.size(); ++h) {
-      const double s = a.field.cell_scaled_jacobian[h];
+    const Index cells = std::min<Index>(num_volume_cells(a.mesh), static_cast<Index>(a.field.cell_scaled_jacobian.size()));
+    for (Index h = 0; h < cells; ++h) {
+      const double s = a.field.cell_scaled_jacobian[static_cast<std::size_t>(h)];
       if (!(s < 1.0 - t) && std::abs(s) < kVerdictDegenerate) continue;
+      const CellRef cell = volume_cell(a.mesh, h);
       ids.push_back(static_cast<std::uint32_t>(h));
+      kinds.push_back(static_cast<std::uint8_t>(cell.kind));
       sj.push_back(s);
-      for (Index v : a.mesh.hexes[h])
-        for (int c = 0; c < 3; ++c) corners.push_back(static_cast<float>(a.mesh.points[static_cast<std::size_t>(v)][c]));
+      for (int i = 0; i < cell.num_corners; ++i)
+        for (int c = 0; c < 3; ++c)
+          corners.push_back(static_cast<float>(a.mesh.points[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>(i)])][c]));
     }
-    d["low_cells"] = {{"count", ids.size()}, {"threshold", 1.0 - t}, {"ids", b64(ids)}, {"corners", b64(corners)},
-                      {"scaled_jacobian", b64(sj)}};
+    d["low_cells"] = {{"count", ids.size()}, {"threshold", 1.0 - t}, {"ids", b64(ids)}, {"kinds", b64(kinds)},
+                      {"corners", b64(corners)}, {"scaled_jacobian", b64(sj)}, {"kind_faces", kind_faces_json()}};
   }
   d["camera"] = camera_of_view_a(model);
 
