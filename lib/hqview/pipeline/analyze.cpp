@@ -409,7 +409,8 @@ void start_analysis(const AnalyzeOptions& options, AnalysisInProgress& out) {
   clock.stop();
   if (!a.topology.unreferenced_vertices.empty())
     a.warnings.push_back(std::to_string(a.topology.unreferenced_vertices.size()) +
-                         (a.topology.across_kinds ? " vertices are used by no cell (ignored by the analysis)"
+                         (a.topology.across_kinds || is_surface_mesh(a.mesh)
+                              ? " vertices are used by no cell (ignored by the analysis)"
                                                   : " vertices are used by no hexahedron (ignored by the analysis)"));
   if (a.reference_surface) {
     clock.start("boundary error");
