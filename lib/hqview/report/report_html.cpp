@@ -529,7 +529,9 @@ void set_statistics(data& page, const QualitySummary& q, bool is_surface) {
     metrics.push_back(d);
   }
   page.set("metrics", metrics);
-  page.set("has_metrics", !q.metrics.empty());
+  // A surface mesh has no hexes: its quad and triangle metrics are in
+  // report.json quality.by_kind (no table here yet).
+  page.set("has_metrics", !q.metrics.empty() && !is_surface);
 }
 
 void set_gates(data& page, const GateSummary& gate_summary) {
