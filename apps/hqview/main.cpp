@@ -135,6 +135,7 @@ using namespace hqcli;
 struct AnalyzeArgs {
   std::string mesh;
   std::string format;
+  std::string dimension = "auto";  // --dimension: auto, volume, surface
   std::string reference;
   std::string compare;
   std::string compare_align = "auto";
@@ -217,6 +218,9 @@ hq::AnalyzeOptions make_analyze_options(const AnalyzeArgs& args) {
   options.overlap = parse_overlap(args.overlap, args.coincident_eps, args.no_overlap);
   options.read_limits.max_memory =
       args.max_memory.empty() ? hq::default_max_memory() : parse_memory_size(args.max_memory, "--max-memory");
+  options.read_limits.dimension = args.dimension == "volume"    ? hq::MeshDimension::volume
+                                  : args.dimension == "surface" ? hq::MeshDimension::surface
+                                                                : hq::MeshDimension::automatic;
   return options;
 }
 
@@ -467,6 +471,12 @@ void add_analysis_options(CLI::App* cmd, AnalyzeArgs& args) {
       ->check(CLI::IsMember({"auto", "bbox", "none"}));
   cmd->add_option("--format", args.format,
                   "Read meshes as this format whatever their extension: " + hq::mesh_format_names());
+  cmd->add_option("--dimension", args.dimension,
+                  "Which cells to analyse: auto (a file with volume cells is a volume mesh, its quadrilaterals and "
+                  "triangles boundary faces; a file with only quadrilaterals and triangles is a surface mesh), "
+                  "volume, surface")
+      ->check(CLI::IsMember({"auto", "volume", "surface"}))
+      ->capture_default_str();
   cmd->add_option("--size", args.size, "Image size WIDTHxHEIGHT")->capture_default_str();
   cmd->add_flag("--no-render", args.no_render, "Skip the rendered views");
   std::string view_ids;  // from the table of views, so the help never goes stale

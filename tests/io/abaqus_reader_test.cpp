@@ -68,8 +68,8 @@ TEST(AbaqusReader, Errors) {
             "e.inp:11: node 101 repeated (element 1)");
   EXPECT_EQ(error(kNodes + "*ELEMENT, TYPE=C3D8\n1, 101, 102, 103, 104,\n"),
             "e.inp:11: unexpected end of file in an element continued on the next line");
-  EXPECT_EQ(error(kNodes + "*ELEMENT, TYPE=S4R\n1, 101, 102, 103, 104\n"),
-            "e.inp: no volume elements (*ELEMENT, TYPE=C3D8, C3D8R, C3D4, C3D6, C3D5 ...): 1 element of type S4R");
+  EXPECT_EQ(error(kNodes + "*ELEMENT, TYPE=B31\n1, 101, 102\n"),
+            "e.inp: no volume elements (*ELEMENT, TYPE=C3D8, C3D8R, C3D4, C3D6, C3D5 ...): 1 element of type B31");
 }
 
 }  // namespace

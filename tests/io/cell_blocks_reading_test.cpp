@@ -151,8 +151,8 @@ TEST(CellBlocksReading, TetrahedraOnlyAreReadAndAMeshWithoutVolumeCellsIsRefused
   EXPECT_EQ(read_hex_mesh(path).mesh.tets.size(), 1u);
   const auto none = dir.write("n.vtk",
                               "# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n"
-                              "0 0 0 1 0 0 0 1 0 0 0 1\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n");
-  EXPECT_EQ(error_text<ParseError>([&] { read_hex_mesh(none); }), none.string() + ": no volume cells (1 cell of type 5)");
+                              "0 0 0 1 0 0 0 1 0 0 0 1\nCELLS 1 3\n2 0 1\nCELL_TYPES 1\n3\n");
+  EXPECT_EQ(error_text<ParseError>([&] { read_hex_mesh(none); }), none.string() + ": no volume cells (1 cell of type 3)");
   // The reader itself reads the tetrahedron.
   const LoadedMesh loaded = read_vtk_legacy(tet_only, "t.vtk");
   ASSERT_EQ(loaded.mesh.tets.size(), 1u);

@@ -174,8 +174,8 @@ TEST(GmshReader, Errors) {
             "e.msh:17: expected 8 node tags for hexahedron 1, got 7");
   EXPECT_EQ(error(kFormat22 + nodes22_ascii() + "$Elements\n1\n1 5 0 10 20 30 40 50 60 70 80 90\n$EndElements\n"),
             "e.msh:17: expected 8 node tags for hexahedron 1, got 9");
-  EXPECT_EQ(error(kFormat22 + nodes22_ascii() + "$Elements\n1\n1 3 0 10 20 30 40\n$EndElements\n"),
-            "e.msh:15: no volume elements (types 4, 5, 6, 7) among 1 element of type 3");
+  EXPECT_EQ(error(kFormat22 + nodes22_ascii() + "$Elements\n1\n1 1 0 10 20\n$EndElements\n"),
+            "e.msh:15: no volume elements (types 4, 5, 6, 7) among 1 element of type 1");
   EXPECT_EQ(error("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 1 2\n3 1 0 3\n1\n2\n3\n"),
             "e.msh:6: node block 0 claims 3 nodes, 2 are left of the 2 in the header");
   // Binary: truncated data, at the section's line with the byte offset.

@@ -403,10 +403,11 @@ TEST(VtkLegacyReaderErrors, CellTypes) {
   EXPECT_EQ(parse_error(head + "CELL_TYPES 1\n300\n"), "m.vtk:17: invalid cell type 300 (cell 0)");
   EXPECT_EQ(parse_error(head + "CELL_TYPES 2\n12\n"),
             "m.vtk:17: unexpected end of file, expected 2 values in CELL_TYPES, got 1");
-  EXPECT_EQ(parse_error(kHead + kPoints + "CELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n"),
-            "m.vtk: no volume cells (1 cell of type 5)");
-  EXPECT_EQ(parse_error(kHead + kPoints + "CELLS 2 9\n4 0 1 2 3\n3 0 1 2\nCELL_TYPES 2\n9\n5\n"),
-            "m.vtk: no volume cells (2 cells of types 5, 9)");
+  // Only surface cells: a surface mesh (surface_mesh_reading_test); a line
+  // is neither.
+  EXPECT_EQ(read_vtk_legacy(kHead + kPoints + "CELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n", "m.vtk").mesh.triangles.size(), 1u);
+  EXPECT_EQ(parse_error(kHead + kPoints + "CELLS 2 7\n2 0 1\n3 0 1 2\nCELL_TYPES 2\n3\n4\n"),
+            "m.vtk: no volume cells (2 cells of types 3, 4)");
   EXPECT_EQ(parse_error(kHead + kPoints + "CELLS 0 0\nCELL_TYPES 0\n"), "m.vtk: no volume cells");
   EXPECT_EQ(parse_error(kHead + kPoints + "CELLS 1 6\n5 0 1 2 3 4\nCELL_TYPES 1\n10\n"),
             "m.vtk:15: cell 0 has type 10 (tetra) but 5 points, expected 4");

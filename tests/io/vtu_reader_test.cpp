@@ -355,7 +355,8 @@ TEST(VtuReader, Errors) {
   EXPECT_EQ(error(ascii_cube("0 1 2 3 4 5 6 7", "8", "12 12")), "e.vtu:13: more than 1 values (DataArray 'types')");
   EXPECT_EQ(error(ascii_cube("0 1 2 3 4 5 6 7", "8", "10")),
             "e.vtu:11: cell 0 has type 10 (tetra) but 8 points, expected 4 (DataArray 'connectivity')");
-  EXPECT_EQ(error(ascii_cube("0 1 2 3 4 5 6 7", "8", "9")), "e.vtu:3: no volume cells (1 cell of type 9)");
+  EXPECT_EQ(error(ascii_cube("0 1 2 3 4 5 6 7", "8", "9")), "e.vtu:3: cell 0 has type 9 but 8 points");
+  EXPECT_EQ(error(ascii_cube("0 1 2 3 4 5 6 7", "8", "4")), "e.vtu:3: no volume cells (1 cell of type 4)");
   EXPECT_EQ(error(ascii_cube("0 1 2 3 4 5 6 7.5")),
             "e.vtu:11: expected an integer, got '7.5' (DataArray 'connectivity' value 7)");
   // Binary and appended data.

@@ -72,10 +72,50 @@ constexpr ElementType kVolumeTypes[] = {
     {"C3D15V", CellKind::wedge, 15, 18}, {"C3D15VH", CellKind::wedge, 15, 18}, {"DC3D15", CellKind::wedge, 15, 15},
     {"DC3D15E", CellKind::wedge, 15, 15}, {"AC3D15", CellKind::wedge, 15, 15},
 };
+
+// The surface element types read (a file without volume elements is a
+// surface mesh), from the Abaqus Analysis User's Guide's "Plane stress",
+// "Plane strain", "Conventional shell", "Membrane", "Surface" and "Rigid"
+// element libraries and their heat-transfer (DC2D, DS) and coupled
+// temperature-displacement (T) variants: 4-node quadrilaterals (S4, S4R,
+// CPS4, CPE4, ...), 3-node triangles (S3, S3R, CPS3, CPE3, ...), and the
+// second-order ones by their corners (listed first): 8-node quadrilaterals
+// (S8R, CPS8, CPE8, ...), 9-node S9R5, 6-node triangles (STRI65, CPS6,
+// CPE6, ...). Axisymmetric elements (CAX) are left out: their plane is a
+// section of a body of revolution, not the mesh.
+constexpr ElementType kSurfaceTypes[] = {
+    {"S4", CellKind::quad, 4, 4},      {"S4R", CellKind::quad, 4, 4},     {"S4R5", CellKind::quad, 4, 4},
+    {"S4RS", CellKind::quad, 4, 4},    {"S4RSW", CellKind::quad, 4, 4},   {"S4T", CellKind::quad, 4, 4},
+    {"S4RT", CellKind::quad, 4, 4},    {"M3D4", CellKind::quad, 4, 4},    {"M3D4R", CellKind::quad, 4, 4},
+    {"R3D4", CellKind::quad, 4, 4},    {"SFM3D4", CellKind::quad, 4, 4},  {"SFM3D4R", CellKind::quad, 4, 4},
+    {"DS4", CellKind::quad, 4, 4},     {"CPS4", CellKind::quad, 4, 4},    {"CPS4R", CellKind::quad, 4, 4},
+    {"CPS4I", CellKind::quad, 4, 4},   {"CPS4T", CellKind::quad, 4, 4},   {"CPS4RT", CellKind::quad, 4, 4},
+    {"CPE4", CellKind::quad, 4, 4},    {"CPE4R", CellKind::quad, 4, 4},   {"CPE4I", CellKind::quad, 4, 4},
+    {"CPE4H", CellKind::quad, 4, 4},   {"CPE4RH", CellKind::quad, 4, 4},  {"CPE4IH", CellKind::quad, 4, 4},
+    {"CPE4T", CellKind::quad, 4, 4},   {"CPE4RT", CellKind::quad, 4, 4},  {"CPEG4", CellKind::quad, 4, 4},
+    {"CPEG4R", CellKind::quad, 4, 4},  {"DC2D4", CellKind::quad, 4, 4},
+    {"S3", CellKind::triangle, 3, 3},  {"S3R", CellKind::triangle, 3, 3}, {"S3RS", CellKind::triangle, 3, 3},
+    {"S3T", CellKind::triangle, 3, 3}, {"S3RT", CellKind::triangle, 3, 3}, {"STRI3", CellKind::triangle, 3, 3},
+    {"M3D3", CellKind::triangle, 3, 3}, {"R3D3", CellKind::triangle, 3, 3}, {"SFM3D3", CellKind::triangle, 3, 3},
+    {"DS3", CellKind::triangle, 3, 3}, {"CPS3", CellKind::triangle, 3, 3}, {"CPS3T", CellKind::triangle, 3, 3},
+    {"CPE3", CellKind::triangle, 3, 3}, {"CPE3H", CellKind::triangle, 3, 3}, {"CPE3T", CellKind::triangle, 3, 3},
+    {"CPEG3", CellKind::triangle, 3, 3}, {"DC2D3", CellKind::triangle, 3, 3},
+    {"S8R", CellKind::quad, 8, 8},     {"S8R5", CellKind::quad, 8, 8},    {"S8RT", CellKind::quad, 8, 8},
+    {"M3D8", CellKind::quad, 8, 8},    {"M3D8R", CellKind::quad, 8, 8},   {"CPS8", CellKind::quad, 8, 8},
+    {"CPS8R", CellKind::quad, 8, 8},   {"CPE8", CellKind::quad, 8, 8},    {"CPE8R", CellKind::quad, 8, 8},
+    {"CPE8H", CellKind::quad, 8, 8},   {"CPE8RH", CellKind::quad, 8, 8},  {"DC2D8", CellKind::quad, 8, 8},
+    {"S9R5", CellKind::quad, 9, 9},    {"M3D9", CellKind::quad, 9, 9},    {"M3D9R", CellKind::quad, 9, 9},
+    {"STRI65", CellKind::triangle, 6, 6}, {"M3D6", CellKind::triangle, 6, 6}, {"CPS6", CellKind::triangle, 6, 6},
+    {"CPS6M", CellKind::triangle, 6, 6}, {"CPE6", CellKind::triangle, 6, 6}, {"CPE6M", CellKind::triangle, 6, 6},
+    {"CPE6H", CellKind::triangle, 6, 6}, {"DC2D6", CellKind::triangle, 6, 6},
+};
 // clang-format on
 
-const ElementType* find_volume_type(std::string_view name) {
+// The type of that name, volume or surface; nullptr for every other type.
+const ElementType* find_element_type(std::string_view name) {
   for (const ElementType& type : kVolumeTypes)
+    if (type.name == name) return &type;
+  for (const ElementType& type : kSurfaceTypes)
     if (type.name == name) return &type;
   return nullptr;
 }
@@ -116,7 +156,7 @@ class AbaqusParser {
               element_type = upper(trim(part.substr(eq + 1)));
           }
           if (element_type.empty()) fail(line_number_, "*ELEMENT without TYPE=");
-          volume = find_volume_type(element_type);
+          volume = find_element_type(element_type);
           block = volume != nullptr ? Block::kVolumeElements : Block::kOtherElements;
         } else if (keyword == "*INCLUDE") {
           fail(line_number_, "*INCLUDE is not supported: merge the included file into this one");
@@ -219,6 +259,7 @@ class AbaqusParser {
                              " node ids, got " + std::to_string(fields.size()) + " fields" +
                              (type.min_nodes > n ? " (" + std::string(type.name) + ")" : ""));
     const auto id = parse_number<std::int64_t>(fields[0], "an element id");
+    if (cell_kind_dimension(kind) == 2) return read_surface_cell(type, id, fields);
     std::array<Index, 8> corners{};
     std::array<std::int64_t, 8> nodes{};
     for (std::size_t j = 0; j + 1 < fields.size(); ++j) {
@@ -241,19 +282,51 @@ class AbaqusParser {
     detail::append_cell(mesh_, kind, corners.data(), to_vtk, id);
   }
 
+  // A surface element (kSurfaceTypes) into the surface blocks beside the
+  // volume ones (detail::SurfaceCells: where = its line).
+  void read_surface_cell(const ElementType& type, std::int64_t id, const std::vector<std::string_view>& fields) {
+    ++surface_.types[std::string(type.name)];
+    const int n = cell_kind_num_corners(type.kind);
+    std::array<Index, 4> corners{};
+    for (std::size_t j = 0; j + 1 < fields.size(); ++j) {
+      const auto node = parse_number<std::int64_t>(fields[j + 1], "a node id");
+      const auto it = index_of_id_.find(node);
+      if (it == index_of_id_.end()) {
+        surface_.set_bad(line_number_, 0,
+                         "node " + std::to_string(node) + " is not defined (element " + std::to_string(id) + ")");
+        return;
+      }
+      if (j < static_cast<std::size_t>(n)) corners[j] = it->second;
+    }
+    if (type.min_nodes > n) surface_.higher_order.add_higher_order(std::string(type.name));
+    surface_.notes.append(mesh_, type.kind, corners.data(), id);
+  }
+
   LoadedMesh build() {
+    std::int64_t num_volume_dropped = 0;
+    const bool is_surface =
+        detail::keep_dimension(mesh_, limits_.dimension, skipped_by_type_, surface_.types, num_volume_dropped);
+    if (is_surface && surface_.has_bad()) fail(surface_.bad_where, surface_.bad_message);
     const SkippedCells skipped(skipped_by_type_);
-    if (detail::num_volume_cells(mesh_) == 0)
+    if (is_surface && detail::num_surface_cells(mesh_) == 0)
+      fail(0, surface_.notes.no_cells_message() +
+                  (skipped.count > 0 ? ": " + skipped.counted("element") : std::string()));
+    if (!is_surface && detail::num_volume_cells(mesh_) == 0)
       fail(0, "no volume elements (*ELEMENT, TYPE=C3D8, C3D8R, C3D4, C3D6, C3D5 ...)" +
                   (skipped.count > 0 ? ": " + skipped.counted("element") : std::string()));
     // Abaqus declares no counts: the budget is checked once the file is read
     // (what reading allocates is bounded by the file's size), before the analysis.
     check_mesh_memory(limits_, name_, 0, bytes_.size(), static_cast<std::int64_t>(points_.size()),
-                      detail::num_volume_cells(mesh_));
+                      is_surface ? detail::num_surface_cells(mesh_) : detail::num_volume_cells(mesh_));
     LoadedMesh loaded;
     loaded.format = "abaqus";
+    if (num_volume_dropped > 0)
+      loaded.warnings.push_back(detail::volume_dropped_warning(name_, num_volume_dropped, "element"));
     if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(name_, "element"));
-    notes_.append_warnings(name_, "element", loaded.warnings);
+    if (is_surface)
+      surface_.append_warnings(name_, "element", loaded.warnings);
+    else
+      notes_.append_warnings(name_, "element", loaded.warnings);
     mesh_.points = std::move(points_);
     loaded.mesh = std::move(mesh_);
     return loaded;
@@ -267,7 +340,8 @@ class AbaqusParser {
   std::int64_t line_number_ = 0;
   std::vector<Vec3> points_;
   std::unordered_map<std::int64_t, Index> index_of_id_;  // lookups only, never iterated
-  Mesh mesh_;  // the volume blocks (points_ are moved in at the end)
+  Mesh mesh_;  // the cell blocks (points_ are moved in at the end)
+  detail::SurfaceCells<std::string> surface_;
   std::map<std::string, std::int64_t> skipped_by_type_;
   detail::CellNotes notes_;
 };

@@ -175,4 +175,66 @@ std::int64_t num_volume_cells(const Mesh& mesh) {
   return static_cast<std::int64_t>(mesh.hexes.size() + mesh.tets.size() + mesh.wedges.size() + mesh.pyramids.size());
 }
 
+std::string surface_counts(const Mesh& mesh) {
+  std::string text;
+  for (const CellKind kind : {CellKind::quad, CellKind::triangle}) {
+    const std::int64_t n = num_cells_of(mesh, kind);
+    if (n == 0) continue;
+    if (!text.empty()) text += ", ";
+    text += std::to_string(n) + " " + cell_kind_noun(kind, n);
+  }
+  return text;
+}
+
+std::string volume_dropped_warning(const std::string& file, std::int64_t count, const char* noun) {
+  return file + ": " + std::to_string(count) + " volume " + noun + (count > 1 ? "s" : "") +
+         " left out (--dimension surface)";
+}
+
+bool SurfaceNotes::append(Mesh& mesh, CellKind kind, const Index* corners, std::int64_t source_index) {
+  const int n = cell_kind_num_corners(kind);
+  if (first_repeated(corners, n) < 0) {
+    append_cell(mesh, kind, corners, nullptr, source_index);
+    return true;
+  }
+  if (kind == CellKind::quad) {
+    // One collapsed edge (i, i+1): the other three corners, in their order.
+    for (int i = 0; i < 4; ++i) {
+      const Index t[3] = {corners[(i + 1) % 4], corners[(i + 2) % 4], corners[(i + 3) % 4]};
+      if (corners[i] == t[0] && first_repeated(t, 3) < 0) {
+        append_cell(mesh, CellKind::triangle, t, nullptr, source_index);
+        if (collapsed_sources_.size() < kShownCollapsed) collapsed_sources_.push_back(source_index);
+        ++num_collapsed_;
+        return true;
+      }
+    }
+  }
+  if (left_out_sources_.size() < kShownCollapsed) left_out_sources_.push_back(source_index);
+  ++num_left_out_;
+  return false;
+}
+
+void SurfaceNotes::append_warnings(const std::string& file, const char* noun, std::vector<std::string>& warnings) const {
+  const auto listed = [&](const std::vector<std::int64_t>& sources, std::int64_t total) {
+    std::string text = std::string(noun) + (total > 1 ? "s " : " ");
+    for (std::size_t i = 0; i < sources.size(); ++i) text += (i ? ", " : "") + std::to_string(sources[i]);
+    if (total > static_cast<std::int64_t>(sources.size()))
+      text += " and " + std::to_string(total - static_cast<std::int64_t>(sources.size())) + " more";
+    return text;
+  };
+  if (num_collapsed_ > 0)
+    warnings.push_back(file + ": " + std::to_string(num_collapsed_) + " " + cell_kind_noun(CellKind::quad, num_collapsed_) +
+                       " with a repeated corner read as " + (num_collapsed_ > 1 ? "" : "a ") +
+                       cell_kind_noun(CellKind::triangle, num_collapsed_) + ": " +
+                       listed(collapsed_sources_, num_collapsed_));
+  if (num_left_out_ > 0)
+    warnings.push_back(file + ": " + std::to_string(num_left_out_) + " surface " + noun + (num_left_out_ > 1 ? "s" : "") +
+                       " with repeated corners left out (no area): " + listed(left_out_sources_, num_left_out_));
+}
+
+std::string SurfaceNotes::no_cells_message() const {
+  return num_left_out_ > 0 ? "no surface cells with an area (every quadrilateral and triangle repeats a corner)"
+                           : "no surface cells (quadrilaterals or triangles)";
+}
+
 }  // namespace hq::detail

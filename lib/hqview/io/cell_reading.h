@@ -23,6 +23,7 @@
 
 #include "hqview/core/cell_kinds.h"
 #include "hqview/core/types.h"
+#include "hqview/io/read_limits.h"
 #include "hqview/mesh/mesh.h"
 
 namespace hq::detail {
@@ -109,6 +110,77 @@ class CellNotes {
 bool append_collapsed_hex(Mesh& mesh, const Index* corners, const int* to_vtk, std::int64_t source_index,
                           CellNotes& notes);
 
+// The surface cells (quadrilaterals, triangles) of a file, and how the ones
+// with repeated corners were read: a quadrilateral with one collapsed edge
+// (two neighbouring corners equal, 3 distinct) is read as its triangle; any
+// other repetition (a triangle with two equal corners, a quadrilateral with
+// opposite corners equal or 2 distinct) leaves the cell out. Told once per
+// file (append_warnings), only when the mesh is read as a surface.
+class SurfaceNotes {
+ public:
+  // Appends a surface cell of `kind` (quad or triangle) from its corners in
+  // VTK order; returns false when it was left out.
+  bool append(Mesh& mesh, CellKind kind, const Index* corners, std::int64_t source_index);
+
+  //   "NAME: 2 quadrilaterals with a repeated corner read as triangles: cells 4, 7"
+  //   "NAME: 1 surface cell with repeated corners left out (no area): cell 9"
+  void append_warnings(const std::string& file, const char* noun, std::vector<std::string>& warnings) const;
+
+  std::int64_t num_left_out() const { return num_left_out_; }
+
+  // The reason of a surface mesh without cells: "no surface cells
+  // (quadrilaterals or triangles)", or, when every one was left out, "no
+  // surface cells with an area (every quadrilateral and triangle repeats a
+  // corner)".
+  std::string no_cells_message() const;
+
+ private:
+  std::vector<std::int64_t> collapsed_sources_, left_out_sources_;  // the first few
+  std::int64_t num_collapsed_ = 0, num_left_out_ = 0;
+};
+
+// What a reader keeps about the surface cells of a file while it reads the
+// volume cells (both go into the mesh's blocks; keep_dimension decides which
+// stay): their count by the format's type, how repeated corners and
+// higher-order cells were read, and the first malformed one (a node
+// undefined or out of range, a point count its type cannot have), which
+// fails the read only when the mesh is a surface (a volume mesh skips
+// surface cells unread, as before surface meshes were read). `where` is the
+// reader's location of the bad cell (a line, a byte offset, ...).
+template <class Type>
+struct SurfaceCells {
+  std::map<Type, std::int64_t> types;
+  SurfaceNotes notes;
+  CellNotes higher_order;
+  std::int64_t bad_where = -1, bad_detail = 0;
+  std::string bad_message;
+
+  bool has_bad() const { return !bad_message.empty(); }
+  void set_bad(std::int64_t where, std::int64_t detail, std::string message) {
+    if (has_bad()) return;
+    bad_where = where;
+    bad_detail = detail;
+    bad_message = std::move(message);
+  }
+  // The warnings of a surface mesh: higher-order cells, repeated corners.
+  void append_warnings(const std::string& file, const char* noun, std::vector<std::string>& warnings) const {
+    higher_order.append_warnings(file, noun, warnings);
+    notes.append_warnings(file, noun, warnings);
+  }
+};
+
+// After a reader has read every cell: keeps the blocks of the dimension the
+// mesh is read as (`dimension`, ReadLimits) and returns true for a surface
+// mesh. `surface_types` counts the file's surface cells by the format's type
+// (read or left out by SurfaceNotes). A volume mesh drops the surface blocks
+// and counts their types into `skipped` (the "cells of unread types skipped"
+// warning, as before surface meshes were read); a surface mesh drops the
+// volume blocks, and `num_volume_dropped` is how many (with --dimension
+// surface on a file that has them).
+template <class Type>
+bool keep_dimension(Mesh& mesh, MeshDimension dimension, std::map<Type, std::int64_t>& skipped,
+                    const std::map<Type, std::int64_t>& surface_types, std::int64_t& num_volume_dropped);
+
 // The word for a kind's cells, singular or plural: "hexahedron",
 // "tetrahedra", "wedges", "pyramid", ...
 std::string cell_kind_noun(CellKind kind, std::int64_t count);
@@ -119,5 +191,41 @@ std::string non_hex_volume_counts(const Mesh& mesh);
 
 // The number of volume cells (hexahedra, tetrahedra, wedges, pyramids).
 std::int64_t num_volume_cells(const Mesh& mesh);
+
+// The number of surface cells (quadrilaterals, triangles).
+inline std::int64_t num_surface_cells(const Mesh& mesh) {
+  return static_cast<std::int64_t>(mesh.quads.size() + mesh.triangles.size());
+}
+
+// "36 quadrilaterals, 4 triangles": the non-empty surface blocks.
+std::string surface_counts(const Mesh& mesh);
+
+// The warning of --dimension surface on a file with volume cells:
+// "NAME: 12 volume cells left out (--dimension surface)".
+std::string volume_dropped_warning(const std::string& file, std::int64_t count, const char* noun);
+
+template <class Type>
+bool keep_dimension(Mesh& mesh, MeshDimension dimension, std::map<Type, std::int64_t>& skipped,
+                    const std::map<Type, std::int64_t>& surface_types, std::int64_t& num_volume_dropped) {
+  const bool is_surface = dimension == MeshDimension::surface ||
+                          (dimension == MeshDimension::automatic && num_volume_cells(mesh) == 0 && !surface_types.empty());
+  num_volume_dropped = 0;
+  if (is_surface) {
+    num_volume_dropped = num_volume_cells(mesh);
+    for (const CellKind kind : {CellKind::hex, CellKind::tet, CellKind::wedge, CellKind::pyramid})
+      mesh.source_index[static_cast<std::size_t>(kind)].clear();
+    mesh.hexes.clear();
+    mesh.tets.clear();
+    mesh.wedges.clear();
+    mesh.pyramids.clear();
+  } else {
+    for (const CellKind kind : {CellKind::quad, CellKind::triangle})
+      mesh.source_index[static_cast<std::size_t>(kind)].clear();
+    mesh.quads.clear();
+    mesh.triangles.clear();
+    for (const auto& [type, n] : surface_types) skipped[type] += n;
+  }
+  return is_surface;
+}
 
 }  // namespace hq::detail

@@ -21,7 +21,7 @@ namespace {
 using detail::quote;
 using detail::TextScanner;
 
-// The volume element types read (GmshDefines.h; the manual's "MSH file
+// The element types read (GmshDefines.h; the manual's "MSH file
 // format"), the kind each is read as and its node count: the linear ones
 // (MSH_TET_4, MSH_HEX_8, MSH_PRI_6, MSH_PYR_5), and the complete
 // higher-order ones by their corner nodes, which Gmsh lists first in the
@@ -32,13 +32,13 @@ using detail::TextScanner;
 // ... MSH_PRI_550) and pyramids (MSH_PYR_14, MSH_PYR_13, MSH_PYR_30 ...
 // MSH_PYR_385). The incomplete (serendipity) types of order 3 and more are
 // not read: their node counts changed between Gmsh versions.
-struct GmshVolumeType {
+struct GmshCellType {
   int type;
   CellKind kind;
   int num_nodes;
 };
 // clang-format off
-constexpr GmshVolumeType kGmshVolumeTypes[] = {
+constexpr GmshCellType kGmshCellTypes[] = {
     {4, CellKind::tet, 4}, {5, CellKind::hex, 8}, {6, CellKind::wedge, 6}, {7, CellKind::pyramid, 5},
     {11, CellKind::tet, 10}, {29, CellKind::tet, 20}, {30, CellKind::tet, 35}, {31, CellKind::tet, 56},
     {71, CellKind::tet, 84}, {72, CellKind::tet, 120}, {73, CellKind::tet, 165}, {74, CellKind::tet, 220},
@@ -52,11 +52,16 @@ constexpr GmshVolumeType kGmshVolumeTypes[] = {
     {14, CellKind::pyramid, 14}, {19, CellKind::pyramid, 13}, {118, CellKind::pyramid, 30},
     {119, CellKind::pyramid, 55}, {120, CellKind::pyramid, 91}, {121, CellKind::pyramid, 140},
     {122, CellKind::pyramid, 204}, {123, CellKind::pyramid, 285}, {124, CellKind::pyramid, 385},
+    // Surface elements (a file without volume elements is a surface mesh):
+    // triangles 2 (MSH_TRI_3), 9 (6 nodes), 20 (9), 21 (10); quadrangles 3
+    // (MSH_QUA_4), 10 (9 nodes), 16 (8), by their corners, listed first.
+    {2, CellKind::triangle, 3}, {9, CellKind::triangle, 6}, {20, CellKind::triangle, 9}, {21, CellKind::triangle, 10},
+    {3, CellKind::quad, 4}, {10, CellKind::quad, 9}, {16, CellKind::quad, 8},
 };
 // clang-format on
 
-const GmshVolumeType* gmsh_volume_type(std::int64_t type) {
-  for (const GmshVolumeType& entry : kGmshVolumeTypes)
+const GmshCellType* gmsh_cell_type(std::int64_t type) {
+  for (const GmshCellType& entry : kGmshCellTypes)
     if (entry.type == type) return &entry;
   return nullptr;
 }
@@ -65,7 +70,7 @@ const GmshVolumeType* gmsh_volume_type(std::int64_t type) {
 // needed to step over binary elements. 0: unknown.
 // clang-format off
 int gmsh_node_count(std::int64_t type) {
-  if (const GmshVolumeType* volume = gmsh_volume_type(type)) return volume->num_nodes;
+  if (const GmshCellType* volume = gmsh_cell_type(type)) return volume->num_nodes;
   switch (type) {
     case 1: return 2;    case 2: return 3;    case 3: return 4;    case 8: return 3;
     case 9: return 6;    case 10: return 9;   case 15: return 1;   case 16: return 8;
@@ -330,13 +335,14 @@ class GmshParser {
   // must be defined; the corners, listed first, are kept. Gmsh's prism
   // lists its first triangle with the normal towards the second: permuted
   // to VTK's order.
-  void add_cell(const GmshVolumeType& volume, std::int64_t element_tag, const std::int64_t* tags,
+  void add_cell(const GmshCellType& volume, std::int64_t element_tag, const std::int64_t* tags,
                 std::int64_t where) {
     const auto fail = [&](const std::string& message) {
       if (binary_) fail_binary(elements_line_, message, static_cast<std::size_t>(where));
       s_.fail_at(where, message);
     };
     const CellKind kind = volume.kind;
+    if (cell_kind_dimension(kind) == 2) return add_surface_cell(volume, element_tag, tags, where);
     const int n = cell_kind_num_corners(kind);
     std::array<Index, 8> corners{};
     for (int j = 0; j < volume.num_nodes; ++j) {
@@ -353,6 +359,26 @@ class GmshParser {
       fail("node tag " + std::to_string(tags[j]) + " repeated (element " + std::to_string(element_tag) + ")");
     }
     detail::append_cell(mesh_, kind, corners.data(), to_vtk, element_tag);
+  }
+
+  // A surface element into the surface blocks beside the volume ones
+  // (detail::SurfaceCells: where = its line or byte offset).
+  void add_surface_cell(const GmshCellType& surface, std::int64_t element_tag, const std::int64_t* tags,
+                        std::int64_t where) {
+    ++surface_.types[surface.type];
+    const int n = cell_kind_num_corners(surface.kind);
+    std::array<Index, 4> corners{};
+    for (int j = 0; j < surface.num_nodes; ++j) {
+      const auto it = index_of_tag_.find(tags[j]);
+      if (it == index_of_tag_.end()) {
+        surface_.set_bad(where, 0, "node tag " + std::to_string(tags[j]) + " is not defined (element " +
+                                       std::to_string(element_tag) + ")");
+        return;
+      }
+      if (j < n) corners[static_cast<std::size_t>(j)] = it->second;
+    }
+    if (surface.num_nodes > n) surface_.higher_order.add_higher_order(std::to_string(surface.type));
+    surface_.notes.append(mesh_, surface.kind, corners.data(), element_tag);
   }
 
   void read_elements_v2() {
@@ -386,7 +412,7 @@ class GmshParser {
           const std::size_t offset = s_.offset();
           const std::int64_t tag = binary_int(elements_line_);
           for (std::int64_t t = 0; t < num_tags; ++t) binary_int(elements_line_);
-          if (const GmshVolumeType* volume = gmsh_volume_type(type)) {
+          if (const GmshCellType* volume = gmsh_cell_type(type)) {
             nodes_.resize(static_cast<std::size_t>(num_nodes));
             for (int j = 0; j < num_nodes; ++j) nodes_[static_cast<std::size_t>(j)] = binary_int(elements_line_);
             add_cell(*volume, tag, nodes_.data(), static_cast<std::int64_t>(offset));
@@ -408,7 +434,7 @@ class GmshParser {
       std::int64_t num_tags = 0;
       if (!s_.skip_blank() || !s_.read_int(num_tags) || num_tags < 0)
         s_.fail("expected the number of tags of element " + std::to_string(tag));
-      const GmshVolumeType* volume = gmsh_volume_type(type);
+      const GmshCellType* volume = gmsh_cell_type(type);
       if (volume == nullptr) {
         ++skipped_by_type_[type];
         s_.read_line();
@@ -424,7 +450,7 @@ class GmshParser {
   }
 
   // The node tags of a volume element on the current line, then the end of the line.
-  void read_ascii_cell(const GmshVolumeType& volume, std::int64_t tag, std::int64_t line) {
+  void read_ascii_cell(const GmshCellType& volume, std::int64_t tag, std::int64_t line) {
     const int n = volume.num_nodes;
     const bool is_linear = n == cell_kind_num_corners(volume.kind);
     const std::string what = std::to_string(n) + " node tags for " + detail::cell_kind_noun(volume.kind, 1) + " " +
@@ -482,7 +508,7 @@ class GmshParser {
         for (std::int64_t e = 0; e < count; ++e) {
           const std::size_t offset = s_.offset();
           const std::int64_t tag = binary_size(elements_line_);
-          if (const GmshVolumeType* volume = gmsh_volume_type(type)) {
+          if (const GmshCellType* volume = gmsh_cell_type(type)) {
             nodes_.resize(static_cast<std::size_t>(num_nodes));
             for (int j = 0; j < num_nodes; ++j) nodes_[static_cast<std::size_t>(j)] = binary_size(elements_line_);
             add_cell(*volume, tag, nodes_.data(), static_cast<std::int64_t>(offset));
@@ -490,14 +516,14 @@ class GmshParser {
             s_.read_bytes(static_cast<std::size_t>(entry - size_t_size_));
           }
         }
-        if (gmsh_volume_type(type) == nullptr && count > 0) skipped_by_type_[type] += count;
+        if (gmsh_cell_type(type) == nullptr && count > 0) skipped_by_type_[type] += count;
         continue;
       }
       if (!s_.finish_line()) s_.fail("unexpected " + quote(s_.peek_token()) + " after the element block header");
       for (std::int64_t e = 0; e < count; ++e) {
         const std::int64_t tag = read_int("an element tag");
         const std::int64_t line = s_.line();
-        if (const GmshVolumeType* volume = gmsh_volume_type(type)) {
+        if (const GmshCellType* volume = gmsh_cell_type(type)) {
           read_ascii_cell(*volume, tag, line);
         } else {
           s_.read_line();
@@ -510,14 +536,29 @@ class GmshParser {
   }
 
   LoadedMesh build() {
+    std::int64_t num_volume_dropped = 0;
+    const bool is_surface =
+        detail::keep_dimension(mesh_, limits_.dimension, skipped_by_type_, surface_.types, num_volume_dropped);
+    if (is_surface && surface_.has_bad()) {
+      if (binary_) fail_binary(elements_line_, surface_.bad_message, static_cast<std::size_t>(surface_.bad_where));
+      s_.fail_at(surface_.bad_where, surface_.bad_message);
+    }
     const SkippedCells skipped(skipped_by_type_);
-    if (detail::num_volume_cells(mesh_) == 0)
+    if (is_surface && detail::num_surface_cells(mesh_) == 0)
+      s_.fail_at(elements_line_, surface_.notes.no_cells_message() +
+                                     (skipped.count > 0 ? " among " + skipped.counted("element") : std::string()));
+    if (!is_surface && detail::num_volume_cells(mesh_) == 0)
       s_.fail_at(elements_line_, "no volume elements (types 4, 5, 6, 7)" +
                                      (skipped.count > 0 ? " among " + skipped.counted("element") : std::string()));
     LoadedMesh loaded;
     loaded.format = "gmsh-" + version_ + (binary_ ? "-binary" : "-ascii");
+    if (num_volume_dropped > 0)
+      loaded.warnings.push_back(detail::volume_dropped_warning(s_.name(), num_volume_dropped, "element"));
     if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(s_.name(), "element"));
-    notes_.append_warnings(s_.name(), "element", loaded.warnings);
+    if (is_surface)
+      surface_.append_warnings(s_.name(), "element", loaded.warnings);
+    else
+      notes_.append_warnings(s_.name(), "element", loaded.warnings);
     mesh_.points = std::move(points_);
     loaded.mesh = std::move(mesh_);
     return loaded;
@@ -538,6 +579,7 @@ class GmshParser {
   std::unordered_map<std::int64_t, Index> index_of_tag_;
   Mesh mesh_;  // the volume blocks (points_ are moved in at the end)
   std::map<std::int64_t, std::int64_t> skipped_by_type_;
+  detail::SurfaceCells<std::int64_t> surface_;
   detail::CellNotes notes_;
   std::vector<std::int64_t> nodes_;  // the node tags of the element being read
 };

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,7 +23,7 @@ namespace {
 using detail::quote;
 using detail::TextScanner;
 
-enum class SectionKind { kVersion, kDimension, kEnd, kVertices, kVolume, kTriangles, kSkipped };
+enum class SectionKind { kVersion, kDimension, kEnd, kVertices, kVolume, kTriangles, kQuadrilaterals, kSkipped };
 
 struct SectionInfo {
   std::string_view keyword;
@@ -42,9 +43,9 @@ constexpr SectionInfo kSections[] = {
     {"Vertices", SectionKind::kVertices, 4, "3 coordinates and a reference"},
     {"Hexahedra", SectionKind::kVolume, 9, "8 vertex ids and a reference", CellKind::hex},
     {"Hexaedra", SectionKind::kVolume, 9, "8 vertex ids and a reference", CellKind::hex},
-    {"Triangles", SectionKind::kTriangles, 4, "3 vertex ids and a reference"},
-    {"Quadrilaterals", SectionKind::kSkipped, 5, "4 vertex ids and a reference"},
-    {"Quads", SectionKind::kSkipped, 5, "4 vertex ids and a reference"},
+    {"Triangles", SectionKind::kTriangles, 4, "3 vertex ids and a reference", CellKind::triangle},
+    {"Quadrilaterals", SectionKind::kQuadrilaterals, 5, "4 vertex ids and a reference", CellKind::quad},
+    {"Quads", SectionKind::kQuadrilaterals, 5, "4 vertex ids and a reference", CellKind::quad},
     {"Edges", SectionKind::kSkipped, 3, "2 vertex ids and a reference"},
     {"Corners", SectionKind::kSkipped, 1, "a vertex id"},
     {"RequiredVertices", SectionKind::kSkipped, 1, "a vertex id"},
@@ -117,6 +118,15 @@ struct MeditContent {
   detail::CellNotes notes;  // higher-order sections read by their corners
   std::vector<std::array<Index, 3>> triangles;
   std::int64_t triangles_line = 0;
+  // Target::kVolumes: the Quadrilaterals (Quads) and Triangles entries as
+  // written (1-based ids, unchecked), for a surface mesh; a volume mesh
+  // leaves them unread, as boundary faces.
+  struct SurfaceEntry {
+    std::array<std::int64_t, 4> ids;  // a triangle's first 3
+    std::int64_t line;
+  };
+  std::array<std::vector<SurfaceEntry>, 2> surface_entries;  // quadrilaterals, triangles
+  std::map<std::string, std::int64_t> surface_sections;      // entries by section keyword
   bool triangles_need_range_check = false;
   std::vector<std::string> warnings;
 };
@@ -157,8 +167,16 @@ class MeditParser {
             skip_section(*info);
           }
           break;
+        case SectionKind::kQuadrilaterals:
+          if (target_ == Target::kVolumes && limits_.dimension != MeshDimension::volume)
+            read_surface_section(*info);
+          else
+            skip_section(*info);
+          break;
         case SectionKind::kTriangles:
-          if (target_ == Target::kTriangles) {
+          if (target_ == Target::kVolumes && limits_.dimension != MeshDimension::volume) {
+            read_surface_section(*info);
+          } else if (target_ == Target::kTriangles) {
             if (content_.triangles_line != 0) duplicate(*info, keyword_line, content_.triangles_line);
             content_.triangles_line = keyword_line;
             content_.triangles_need_range_check = content_.vertices_line == 0;
@@ -376,6 +394,33 @@ class MeditParser {
     return n;
   }
 
+  // The entries of a Quadrilaterals or Triangles section as written (their
+  // ids checked once the mesh is known to be a surface: surface_cells()).
+  // As skip_section, Gmsh's second-order quadrilaterals (9 or 8 vertices)
+  // are read by their corners.
+  void read_surface_section(const SectionInfo& info) {
+    const std::int64_t n = read_count(info.keyword, info.values_per_entry);
+    const bool is_quad = info.cell_kind == CellKind::quad;
+    const int corners = is_quad ? 4 : 3;
+    auto& entries = content_.surface_entries[is_quad ? 0 : 1];
+    content_.surface_sections[std::string(info.keyword)] += n;
+    std::int64_t expected = info.values_per_entry;
+    for (std::int64_t i = 0; i < n; ++i) {
+      const EntryAt at{info.keyword, " entry", i, n};
+      if (!s_.skip_space()) s_.fail("unexpected end of file, expected " + std::string(info.entry) + at.label());
+      MeditContent::SurfaceEntry entry{{0, 0, 0, 0}, s_.line()};
+      for (int k = 0; k < corners; ++k)
+        if (!s_.skip_blank() || !s_.read_int(entry.ids[static_cast<std::size_t>(k)]))
+          s_.fail("expected " + std::string(info.entry) + ", got " + quote(s_.peek_token()) + at.label());
+      const std::int64_t values = corners + s_.count_tokens_on_line();
+      if (i == 0 && is_quad && (values == 9 || values == 10)) expected = values;
+      if (values != expected)
+        s_.fail("expected " + (expected == info.values_per_entry ? std::string(info.entry) : std::to_string(expected) + " values") +
+                ", got " + std::to_string(values) + " values" + at.label());
+      entries.push_back(entry);
+    }
+  }
+
   // An unknown keyword must be followed by an entry count; its entries are
   // skipped one non-blank line each.
   void skip_unknown_section(std::string_view keyword, std::int64_t keyword_line) {
@@ -420,10 +465,46 @@ class MeditParser {
     });
     if (content_.triangles_need_range_check) check_ids_late(content_.triangles, content_.triangles_line, "triangle");
     move_collapsed_hexahedra();
+    if (target_ == Target::kVolumes && keep_surface()) return std::move(content_);
     if (target_ == Target::kVolumes && detail::num_volume_cells(content_.mesh) == 0)
       s_.fail_at(0, "no volume cells (Hexahedra, Tetrahedra, Prisms or Pyramids)");
     if (target_ == Target::kTriangles && content_.triangles.empty()) s_.fail_at(0, "no triangles");
     return std::move(content_);
+  }
+
+  // When the mesh is a surface (detail::keep_dimension): its volume blocks
+  // dropped, the Quadrilaterals and Triangles entries checked and read
+  // (source index: the 1-based entry of its section), true.
+  bool keep_surface() {
+    Mesh& mesh = content_.mesh;
+    std::map<std::string, std::int64_t> unused;
+    std::int64_t num_volume_dropped = 0;
+    if (!detail::keep_dimension(mesh, limits_.dimension, unused, content_.surface_sections, num_volume_dropped))
+      return false;
+    if (num_volume_dropped > 0)
+      content_.warnings.push_back(detail::volume_dropped_warning(s_.name(), num_volume_dropped, "cell"));
+    const auto num_points = static_cast<std::int64_t>(mesh.points.size());
+    for (int block = 0; block < 2; ++block) {
+      const CellKind kind = block == 0 ? CellKind::quad : CellKind::triangle;
+      const auto& entries = content_.surface_entries[static_cast<std::size_t>(block)];
+      const auto n = static_cast<std::int64_t>(entries.size());
+      for (std::int64_t i = 0; i < n; ++i) {
+        const MeditContent::SurfaceEntry& e = entries[static_cast<std::size_t>(i)];
+        std::array<Index, 4> ids{};
+        for (int k = 0; k < cell_kind_num_corners(kind); ++k) {
+          const std::int64_t id = e.ids[static_cast<std::size_t>(k)];
+          if (id < 1 || id > num_points)
+            s_.fail_at(e.line, "vertex id " + std::to_string(id) + " out of range [1, " + std::to_string(num_points) +
+                                   "]" + EntryAt{element_word(kind), "", i, n}.label());
+          ids[static_cast<std::size_t>(k)] = static_cast<Index>(id - 1);
+        }
+        surface_notes_.append(mesh, kind, ids.data(), i + 1);
+      }
+    }
+    if (detail::num_surface_cells(mesh) == 0)
+      s_.fail_at(0, surface_notes_.no_cells_message());
+    surface_notes_.append_warnings(s_.name(), "cell", content_.warnings);
+    return true;
   }
 
   // The hexahedra whose repeated corners read_element() accepted as a
@@ -466,6 +547,10 @@ class MeditParser {
         return "prism";
       case CellKind::pyramid:
         return "pyramid";
+      case CellKind::quad:
+        return "quadrilateral";
+      case CellKind::triangle:
+        return "triangle";
       default:
         return "hexahedron";
     }
@@ -552,6 +637,7 @@ class MeditParser {
   std::uint64_t file_bytes_;
   std::int64_t value_line_ = 0;  // line of the last read_value()
   MeditContent content_;
+  detail::SurfaceNotes surface_notes_;
 };
 
 }  // namespace

@@ -194,12 +194,11 @@ void check_content_matches(const MeshFormat& format, const std::filesystem::path
 }
 
 // Every reader's mesh passes here: its coordinates must be analysable, and
-// a mesh without any volume cell (hexahedron, tetrahedron, wedge, pyramid)
-// is refused.
+// a mesh without any cell (a volume cell, or a surface mesh's quadrilateral
+// or triangle) is refused.
 LoadedMesh checked(LoadedMesh loaded, const std::string& name) {
   check_coordinate_magnitudes(loaded.mesh, name);
-  if (loaded.mesh.hexes.empty() && detail::non_hex_volume_counts(loaded.mesh).empty())
-    throw ParseError(name, 0, "no hexahedra");
+  if (num_cells(loaded.mesh) == 0) throw ParseError(name, 0, "no hexahedra");
   return loaded;
 }
 

@@ -23,8 +23,15 @@ namespace hq {
 // memory.max, v1 memory.limit_in_bytes). 0 when neither is known.
 std::uint64_t default_max_memory();
 
+// Which cells a mesh is read with (--dimension): `automatic` reads a file
+// with volume cells as a volume mesh (its quadrilaterals and triangles left
+// out, as boundary faces) and a file with only surface cells (quadrilaterals,
+// triangles) as a surface mesh; `volume` and `surface` force either.
+enum class MeshDimension : std::uint8_t { automatic, volume, surface };
+
 struct ReadLimits {
   std::uint64_t max_memory = default_max_memory();  // bytes; 0: no limit
+  MeshDimension dimension = MeshDimension::automatic;  // not a limit: what every reader keeps
 };
 
 // Estimated peak bytes of `hqview analyze` on a mesh: the file's bytes

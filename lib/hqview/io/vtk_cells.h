@@ -143,6 +143,59 @@ inline std::string expected_point_counts(const VolumeType& entry) {
   return text + "... (a " + std::string(entry.name) + "'s)";
 }
 
+// The surface cell types read (a file with no volume cell is a surface mesh;
+// io/cell_reading.h keep_dimension): triangle 5, quad 9, pixel 8 (corners
+// x fastest, reordered like a voxel), polygon 7 with 3 or 4 points (more:
+// left out, counted by its type), and the quadratic triangle 22 (6 points),
+// quadratic quad 23 (8), biquadratic quad 28 (9) and biquadratic triangle 34
+// (7) by their corners, listed first.
+inline constexpr int kTriangle = 5;
+inline constexpr int kPolygon = 7;
+inline constexpr int kPixel = 8;
+inline constexpr int kQuad = 9;
+struct SurfaceType {
+  int type;
+  CellKind kind;
+  int num_points;  // 0: polygon (3 or 4 points)
+};
+inline constexpr SurfaceType kSurfaceTypes[] = {
+    {kTriangle, CellKind::triangle, 3}, {kPixel, CellKind::quad, 4}, {kQuad, CellKind::quad, 4},
+    {22, CellKind::triangle, 6},        {23, CellKind::quad, 8},     {28, CellKind::quad, 9},
+    {34, CellKind::triangle, 7},        {kPolygon, CellKind::quad, 0},
+};
+
+// The kind a surface cell of `type` with n points is read as; none when the
+// type is not a surface type read, or for a polygon of other than 3 or 4
+// points. Sets `point_count_wrong` when the type is read but cannot have n
+// points.
+inline std::optional<CellKind> surface_kind(std::int64_t type, std::int64_t n, bool& point_count_wrong) {
+  point_count_wrong = false;
+  for (const SurfaceType& entry : kSurfaceTypes) {
+    if (entry.type != type) continue;
+    if (entry.num_points == 0) {
+      if (n == 3) return CellKind::triangle;
+      if (n == 4) return CellKind::quad;
+      return std::nullopt;
+    }
+    if (n != entry.num_points) {
+      point_count_wrong = true;
+      return std::nullopt;
+    }
+    return entry.kind;
+  }
+  return std::nullopt;
+}
+
+// Whether `type` is a surface type (of any point count).
+inline bool is_surface_type(std::int64_t type) {
+  for (const SurfaceType& entry : kSurfaceTypes)
+    if (entry.type == type) return true;
+  return false;
+}
+
+// Pixel corner order (x fastest, then y) to quad order.
+inline constexpr std::array<int, 4> kPixelToQuad = {0, 1, 3, 2};
+
 // Voxel corner order (x fastest, then y, then z) to hexahedron order.
 inline constexpr std::array<int, 8> kVoxelToHex = {0, 1, 3, 2, 4, 5, 7, 6};
 

@@ -595,12 +595,47 @@ class VtkParser {
     s_.fail_at(location, message);
   }
 
+  // A surface cell read into the mesh's surface blocks beside the volume
+  // cells (detail::SurfaceCells): where = its cell id, detail = the point.
+  using SurfaceCells = detail::SurfaceCells<int>;
+
+  void read_surface_cell(Mesh& mesh, std::int64_t c, int type, std::int64_t begin, std::int64_t k,
+                         std::map<int, std::int64_t>& skipped_by_type, SurfaceCells& surface) const {
+    bool is_count_wrong = false;
+    const std::optional<CellKind> kind = vtk::surface_kind(type, k, is_count_wrong);
+    if (!kind && !is_count_wrong) {  // a polygon of more than 4 points
+      ++skipped_by_type[type];
+      return;
+    }
+    ++surface.types[type];
+    const auto bad = [&](std::int64_t j, std::string message) { surface.set_bad(c, j, std::move(message)); };
+    if (!kind) {
+      bad(0, "cell " + std::to_string(c) + " has type " + std::to_string(type) + " but " + std::to_string(k) + " points");
+      return;
+    }
+    const int m = cell_kind_num_corners(*kind);
+    std::array<Index, 4> ids{};
+    for (std::int64_t j = 0; j < k; ++j) {
+      const Index id = cells_.connectivity[static_cast<std::size_t>(begin + j)];
+      if (id >= static_cast<Index>(points_.size())) {
+        bad(j, "point id " + std::to_string(id) + " out of range [0, " + std::to_string(points_.size()) + ") (cell " +
+                   std::to_string(c) + ")");
+        return;
+      }
+      if (j < m) ids[static_cast<std::size_t>(j)] = id;
+    }
+    if (type == vtk::kPixel) ids = {ids[0], ids[1], ids[3], ids[2]};
+    if (k > m) surface.higher_order.add_higher_order(std::to_string(type));
+    surface.notes.append(mesh, *kind, ids.data(), c);
+  }
+
   LoadedMesh build() {
     LoadedMesh loaded;
     loaded.format = binary_ ? "vtk-legacy-binary" : "vtk-legacy-ascii";
     const std::int64_t n = cells_.count();
     const auto num_points = static_cast<std::int64_t>(points_.size());
     std::map<int, std::int64_t> skipped_by_type;
+    SurfaceCells surface;
     std::map<int, std::int64_t> mislabelled_by_type;
     std::vector<std::int64_t> mislabelled_cells;
     detail::CellNotes notes;
@@ -618,6 +653,10 @@ class VtkParser {
         fail_cell(c, 0,
                   "cell " + std::to_string(c) + " has type " + std::to_string(type) + " (" + volume->name + ") but " +
                       std::to_string(k) + " points, expected " + vtk::expected_point_counts(*volume));
+      if (!kind && !is_mislabelled && vtk::is_surface_type(type)) {
+        read_surface_cell(loaded.mesh, c, type, begin, k, skipped_by_type, surface);
+        continue;
+      }
       if (!kind && !is_mislabelled) {
         ++skipped_by_type[type];
         continue;
@@ -650,11 +689,23 @@ class VtkParser {
       detail::append_cell(loaded.mesh, *kind, ids.data(), to_vtk, c);
     }
 
+    std::int64_t num_volume_dropped = 0;
+    const bool is_surface = detail::keep_dimension(loaded.mesh, limits_.dimension, skipped_by_type, surface.types,
+                                                   num_volume_dropped);
+    if (is_surface && surface.has_bad()) fail_cell(surface.bad_where, surface.bad_detail, surface.bad_message);
     const SkippedCells skipped(skipped_by_type);
-    if (detail::num_volume_cells(loaded.mesh) == 0)
+    if (is_surface && detail::num_surface_cells(loaded.mesh) == 0)
+      s_.fail_at(0, surface.notes.no_cells_message() +
+                        (skipped.count > 0 ? " (" + skipped.counted("cell") + ")" : std::string()));
+    if (!is_surface && detail::num_volume_cells(loaded.mesh) == 0)
       s_.fail_at(0, "no volume cells" + (skipped.count > 0 ? " (" + skipped.counted("cell") + ")" : std::string()));
+    if (num_volume_dropped > 0) loaded.warnings.push_back(detail::volume_dropped_warning(s_.name(), num_volume_dropped, "cell"));
     if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(s_.name(), "cell"));
-    notes.append_warnings(s_.name(), "cell", loaded.warnings);
+    if (is_surface) {
+      surface.append_warnings(s_.name(), "cell", loaded.warnings);
+    } else {
+      notes.append_warnings(s_.name(), "cell", loaded.warnings);
+    }
     if (!mislabelled_cells.empty()) {
       constexpr std::size_t kShown = 5;
       std::string cells;

@@ -521,6 +521,11 @@ class VtuParser {
       const std::int64_t type = types[static_cast<std::size_t>(c)];
       const std::int64_t cell = num_cells_ + c;
       const vtk::VolumeType* volume = vtk::find_volume_type(type);
+      if (volume == nullptr && vtk::is_surface_type(type)) {
+        read_surface_cell(type, cell, ids, begin, end, base, num_points);
+        begin = end;
+        continue;
+      }
       if (volume == nullptr) {
         ++skipped_by_type_[type];
         begin = end;
@@ -555,14 +560,57 @@ class VtuParser {
     num_cells_ += num_cells;
   }
 
+  // A surface cell (vtk::kSurfaceTypes) into the surface blocks beside the
+  // volume cells (detail::SurfaceCells: where = its cell id).
+  void read_surface_cell(std::int64_t type, std::int64_t cell, const std::vector<std::int64_t>& ids, std::int64_t begin,
+                         std::int64_t end, std::int64_t base, std::int64_t num_points) {
+    bool is_count_wrong = false;
+    const std::optional<CellKind> kind = vtk::surface_kind(type, end - begin, is_count_wrong);
+    if (!kind && !is_count_wrong) {  // a polygon of more than 4 points
+      ++skipped_by_type_[type];
+      return;
+    }
+    ++surface_.types[type];
+    if (!kind) {
+      surface_.set_bad(cell, 0, "cell " + std::to_string(cell) + " has type " + std::to_string(type) + " but " +
+                                    std::to_string(end - begin) + " points");
+      return;
+    }
+    const int m = cell_kind_num_corners(*kind);
+    std::array<Index, 4> corners{};
+    for (std::int64_t j = 0; j < end - begin; ++j) {
+      const std::int64_t id = ids[static_cast<std::size_t>(begin + j)];
+      if (id < 0 || id >= num_points) {
+        surface_.set_bad(cell, j, "point id " + std::to_string(id) + " out of range [0, " + std::to_string(num_points) +
+                                      ") (cell " + std::to_string(cell) + ")");
+        return;
+      }
+      if (j < m) corners[static_cast<std::size_t>(j)] = static_cast<Index>(base + id);
+    }
+    if (type == vtk::kPixel) corners = {corners[0], corners[1], corners[3], corners[2]};
+    if (end - begin > m) surface_.higher_order.add_higher_order(std::to_string(type));
+    surface_.notes.append(mesh_, *kind, corners.data(), cell);
+  }
+
   LoadedMesh build(const XmlElement& grid) {
+    std::int64_t num_volume_dropped = 0;
+    const bool is_surface =
+        detail::keep_dimension(mesh_, limits_.dimension, skipped_by_type_, surface_.types, num_volume_dropped);
+    if (is_surface && surface_.has_bad()) fail(grid, surface_.bad_message);
     const SkippedCells skipped(skipped_by_type_);
-    if (detail::num_volume_cells(mesh_) == 0)
+    if (is_surface && detail::num_surface_cells(mesh_) == 0)
+      fail(grid, surface_.notes.no_cells_message() +
+                     (skipped.count > 0 ? " (" + skipped.counted("cell") + ")" : std::string()));
+    if (!is_surface && detail::num_volume_cells(mesh_) == 0)
       fail(grid, "no volume cells" + (skipped.count > 0 ? " (" + skipped.counted("cell") + ")" : std::string()));
     LoadedMesh loaded;
     loaded.format = "vtu-" + format_;
+    if (num_volume_dropped > 0) loaded.warnings.push_back(detail::volume_dropped_warning(name_, num_volume_dropped, "cell"));
     if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(name_, "cell"));
-    notes_.append_warnings(name_, "cell", loaded.warnings);
+    if (is_surface)
+      surface_.append_warnings(name_, "cell", loaded.warnings);
+    else
+      notes_.append_warnings(name_, "cell", loaded.warnings);
     mesh_.points = std::move(points_);
     loaded.mesh = std::move(mesh_);
     return loaded;
@@ -583,6 +631,7 @@ class VtuParser {
   std::int64_t num_cells_ = 0;
   std::map<std::int64_t, std::int64_t> skipped_by_type_;
   detail::CellNotes notes_;
+  detail::SurfaceCells<std::int64_t> surface_;
 };
 
 }  // namespace

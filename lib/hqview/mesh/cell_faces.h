@@ -35,22 +35,39 @@ inline std::array<Index, 5> volume_block_starts(const Mesh& mesh) {
 // The number of volume cells (every block but the surface ones).
 inline Index num_volume_cells(const Mesh& mesh) { return volume_block_starts(mesh)[4]; }
 
+namespace detail {
+// The CellRef of cell `id` of `block` (of `kind`), whose first cell id is `first`.
+template <class Block>
+CellRef block_cell(CellKind kind, const Block& block, Index first, Index id) {
+  CellRef ref;
+  ref.kind = kind;
+  ref.index = static_cast<std::size_t>(id - first);
+  const auto& cell = block[ref.index];
+  ref.num_corners = static_cast<int>(cell.size());
+  for (std::size_t i = 0; i < cell.size(); ++i) ref.corners[i] = cell[i];
+  return ref;
+}
+}  // namespace detail
+
 // Cell `id` over the volume blocks. Precondition: 0 <= id < num_volume_cells(mesh).
 inline CellRef volume_cell(const Mesh& mesh, Index id) {
   const std::array<Index, 5> start = volume_block_starts(mesh);
   CellRef ref;
-  const auto fill = [&](CellKind kind, const auto& block, Index first) {
-    ref.kind = kind;
-    ref.index = static_cast<std::size_t>(id - first);
-    const auto& cell = block[ref.index];
-    ref.num_corners = static_cast<int>(cell.size());
-    for (std::size_t i = 0; i < cell.size(); ++i) ref.corners[i] = cell[i];
-  };
+  const auto fill = [&](CellKind kind, const auto& block, Index first) { ref = detail::block_cell(kind, block, first, id); };
   if (id < start[1]) fill(CellKind::hex, mesh.hexes, start[0]);
   else if (id < start[2]) fill(CellKind::tet, mesh.tets, start[1]);
   else if (id < start[3]) fill(CellKind::wedge, mesh.wedges, start[2]);
   else fill(CellKind::pyramid, mesh.pyramids, start[3]);
   return ref;
+}
+
+// Cell `id` over every block (volume blocks, then quads and triangles: a
+// surface mesh's cells). Precondition: 0 <= id < num_cells(mesh).
+inline CellRef any_cell(const Mesh& mesh, Index id) {
+  if (id < num_volume_cells(mesh)) return volume_cell(mesh, id);
+  const Index quads = num_volume_cells(mesh), triangles = quads + static_cast<Index>(mesh.quads.size());
+  return id < triangles ? detail::block_cell(CellKind::quad, mesh.quads, quads, id)
+                        : detail::block_cell(CellKind::triangle, mesh.triangles, triangles, id);
 }
 
 // Calls f(corner ids, size) for each face of the cell (CellKindTable order,

@@ -85,6 +85,13 @@ inline std::int64_t cell_source_index(const Mesh& mesh, CellKind kind, std::size
 std::int64_t num_cells_of(const Mesh& mesh, CellKind kind);
 std::int64_t num_cells(const Mesh& mesh);
 
+// A surface mesh: quads or triangles and no volume cell (a reader keeps one
+// or the other: io/cell_reading.h keep_dimension).
+inline bool is_surface_mesh(const Mesh& mesh) {
+  return mesh.hexes.empty() && mesh.tets.empty() && mesh.wedges.empty() && mesh.pyramids.empty() &&
+         (!mesh.quads.empty() || !mesh.triangles.empty());
+}
+
 // The 8 corner positions of hex h.
 inline std::array<Vec3, 8> hex_corners(const Mesh& mesh, Index h) {
   std::array<Vec3, 8> p;

@@ -32,6 +32,10 @@ MeshSummary summarize_mesh(const HexMesh& mesh, const Topology& topo) {
   s.num_boundary_vertices = static_cast<Index>(topo.boundary_vertices.size());
   s.num_non_manifold_faces = static_cast<Index>(topo.non_manifold_faces.size()) + topo.num_non_manifold_faces_non_hex;
   s.num_non_conforming_faces = static_cast<Index>(topo.non_conforming_faces.size());
+  s.is_surface = is_surface_mesh(mesh);
+  s.num_boundary_edges = topo.surface.num_boundary_edges;
+  s.num_non_manifold_edges = topo.surface.num_non_manifold_edges;
+  s.num_reversed_faces = topo.surface.num_reversed;
   const Box3 box = referenced_bounding_box(mesh, topo);
   if (!box.is_empty()) {
     s.bbox_min = box.lo;

@@ -1,10 +1,13 @@
 #pragma once
 // report.json `mesh`: counts, bounding box and edge lengths of a hex mesh.
 
+#include <optional>
+
 #include "hqview/core/box3.h"
 #include "hqview/core/types.h"
 #include "hqview/core/vec3.h"
 #include "hqview/mesh/hex_mesh.h"
+#include "hqview/mesh/planarity.h"
 #include "hqview/mesh/topology.h"
 
 namespace hq {
@@ -19,7 +22,13 @@ struct MeshSummary {
   Index num_non_conforming_faces = 0;   // quads against two triangles (Topology::non_conforming_faces)
   Vec3 bbox_min, bbox_max;  // of the vertices cells use (stray points do not frame views)
   double bbox_diagonal = 0;
-  double edge_length_min = 0, edge_length_mean = 0, edge_length_max = 0;  // over every unique edge of every volume cell; 0 without edges
+  double edge_length_min = 0, edge_length_mean = 0, edge_length_max = 0;  // over every unique edge of every cell; 0 without edges
+  // A surface mesh (quads and triangles; mesh.h is_surface_mesh): its
+  // boundary and non-manifold edges, its faces reversed against their
+  // neighbours (SurfaceTopology) and, filled by the pipeline, its plane.
+  bool is_surface = false;
+  Index num_boundary_edges = 0, num_non_manifold_edges = 0, num_reversed_faces = 0;
+  std::optional<Planarity> planarity;
 };
 
 MeshSummary summarize_mesh(const HexMesh& mesh, const Topology& topo);

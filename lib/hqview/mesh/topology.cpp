@@ -441,6 +441,29 @@ void match_across_kinds(const HexMesh& mesh, const NonHexBlocks& others, Topolog
   }
 }
 
+// A surface mesh: its edges, boundary vertices (on an edge used by one
+// face) and unreferenced vertices from the quads and triangles.
+void add_surface_topology(const Mesh& mesh, Topology& topo) {
+  topo.surface = build_surface_topology(mesh);
+  const SurfaceTopology& s = topo.surface;
+  topo.edges = s.edges;
+  const std::size_t nv = mesh.points.size();
+  topo.is_boundary_vertex.assign(nv, 0);
+  for (std::size_t e = 0; e < s.edges.size(); ++e)
+    if (s.edge_num_faces[e] == 1)
+      for (Index v : s.edges[e]) topo.is_boundary_vertex[static_cast<std::size_t>(v)] = 1;
+  topo.boundary_vertices.clear();
+  for (std::size_t v = 0; v < nv; ++v)
+    if (topo.is_boundary_vertex[v]) topo.boundary_vertices.push_back(static_cast<Index>(v));
+  std::vector<char> used(nv, 0);
+  for_each_surface_cell(mesh, [&](const std::array<Index, 4>& c, int size) {
+    for (int i = 0; i < size; ++i) used[static_cast<std::size_t>(c[static_cast<std::size_t>(i)])] = 1;
+  });
+  topo.unreferenced_vertices.clear();
+  for (std::size_t v = 0; v < nv; ++v)
+    if (!used[v]) topo.unreferenced_vertices.push_back(static_cast<Index>(v));
+}
+
 }  // namespace
 
 Topology build_topology(const Mesh& mesh) {
@@ -450,6 +473,8 @@ Topology build_topology(const Mesh& mesh) {
                        [&] { build_edges(mesh, topo); });
   const NonHexBlocks others{mesh.tets, mesh.wedges, mesh.pyramids};
   if (!others.empty()) match_across_kinds(mesh, others, topo);
+  if (mesh.hexes.empty() && others.empty() && (!mesh.quads.empty() || !mesh.triangles.empty()))
+    add_surface_topology(mesh, topo);
   return topo;
 }
 

@@ -19,6 +19,7 @@
 #include "hqview/core/types.h"
 #include "hqview/core/untouched_vector.h"
 #include "hqview/mesh/hex_mesh.h"
+#include "hqview/mesh/surface_topology.h"
 
 namespace hq {
 
@@ -82,6 +83,14 @@ struct Topology {
   // edge of a tet, wedge or pyramid. Empty for a pure-hex mesh.
   std::vector<char> edge_touches_non_hex;
 
+  // ---- A surface mesh (quads and triangles, no volume cell) ----
+  // Its edges, boundary and non-manifold edges and reversed faces; empty for
+  // a volume mesh. A surface mesh's `edges` are its edges, its
+  // boundary_vertices those on an edge used by one face, its
+  // unreferenced_vertices those no quad or triangle uses; every hex table
+  // above is empty.
+  SurfaceTopology surface;
+
   // The hexes using vertex v, ascending.
   std::span<const Index> hexes_of(Index v) const {
     return {vertex_hexes.data() + vertex_hex_offsets[static_cast<std::size_t>(v)],
@@ -110,7 +119,8 @@ inline std::size_t num_boundary_faces_all_kinds(const Topology& t) {
 // non-hex faces, plus a binary search among the hex faces per non-hex quad
 // and 4 among the triangles per hex boundary quad). A mesh with hexes only
 // takes the hex path alone: the same tables, byte for byte, at its speed.
-// Quads and triangles (surface blocks) are not read.
+// Quads and triangles (surface blocks) are read only when the mesh has no
+// volume cell (a surface mesh: the `surface` part above).
 // Precondition: every id in every block is in [0, mesh.num_vertices()) (the
 // readers guarantee it). Throws nothing.
 Topology build_topology(const Mesh& mesh);

@@ -12,6 +12,7 @@
 #include "hqview/core/stop.h"
 #include "hqview/io/mesh_reader.h"
 #include "hqview/io/mesh_source.h"
+#include "hqview/mesh/planarity.h"
 #include "hqview/quality/quality_summary.h"
 #include "hqview/render/upright.h"
 
@@ -52,14 +53,65 @@ auto timed(double& seconds, F f) {
   };
 }
 
-// The Verdict metrics of the tets, wedges and pyramids, one block per kind
-// present.
-std::vector<CellBlockMetricField> compute_non_hex_metrics(const Mesh& mesh) {
+// The Verdict metrics of the tets, wedges and pyramids, or of a surface
+// mesh's quads and triangles, one block per kind present. A surface block's
+// inverted and flat counts are the quality field's (quality_field.h: against
+// the plane of a planar mesh, else by orientation against the neighbours).
+std::vector<CellBlockMetricField> compute_non_hex_metrics(const Mesh& mesh, const QualityField& field,
+                                                          const SurfaceOrientation& surface) {
   std::vector<CellBlockMetricField> out;
   if (!mesh.tets.empty()) out.push_back(compute_tet_block_metrics(mesh.points, mesh.tets));
   if (!mesh.wedges.empty()) out.push_back(compute_wedge_block_metrics(mesh.points, mesh.wedges));
   if (!mesh.pyramids.empty()) out.push_back(compute_pyramid_block_metrics(mesh.points, mesh.pyramids));
+  std::size_t first = static_cast<std::size_t>(num_volume_cells(mesh)) - field.num_hexes;
+  const auto surface_block = [&](CellBlockMetricField block) {
+    block.num_inverted = block.num_flat = 0;
+    for (std::size_t c = 0; c < static_cast<std::size_t>(block.count); ++c) {
+      block.validity[c] = field.non_hex_validity[first + c];
+      block.num_inverted += block.validity[c] == CellValidity::inverted;
+      block.num_flat += block.validity[c] == CellValidity::flat;
+    }
+    first += static_cast<std::size_t>(block.count);
+    out.push_back(std::move(block));
+  };
+  if (!mesh.quads.empty()) surface_block(compute_quad_block_metrics(mesh.points, mesh.quads, surface.plane_normal));
+  if (!mesh.triangles.empty())
+    surface_block(compute_triangle_block_metrics(mesh.points, mesh.triangles, surface.plane_normal));
   return out;
+}
+
+// A surface mesh's plane and orientation (planarity.h, SurfaceTopology);
+// nothing for a volume mesh.
+SurfaceOrientation surface_orientation(const Analysis& a, std::optional<Planarity>& planarity) {
+  SurfaceOrientation out;
+  if (!is_surface_mesh(a.mesh)) return out;
+  const Box3 box = referenced_bounding_box(a.mesh, a.topology);
+  planarity = measure_planarity(a.mesh, box.is_empty() ? 0.0 : norm(box.hi - box.lo));
+  if (planarity->is_planar)
+    out.plane_normal = planarity->normal;
+  else
+    out.is_reversed = a.topology.surface.is_reversed;
+  return out;
+}
+
+// What a surface mesh's analysis leaves out this release, and its faces of
+// zero area and non-manifold edges, as warnings.
+void add_surface_warnings(Analysis& a, const AnalyzeOptions& options) {
+  if (!is_surface_mesh(a.mesh)) return;
+  const SurfaceTopology& s = a.topology.surface;
+  if (s.num_non_manifold_edges > 0)
+    a.warnings.push_back(std::to_string(s.num_non_manifold_edges) + " non-manifold edge" +
+                         (s.num_non_manifold_edges > 1 ? "s" : "") +
+                         " (used by more than two faces): the orientation is not propagated across " +
+                         (s.num_non_manifold_edges > 1 ? "them" : "it"));
+  std::int64_t zero_area = 0;
+  for (const CellBlockMetricField& b : a.cell_metrics)
+    if (const std::vector<double>* area = b.of("area"))
+      for (double v : *area) zero_area += v == 0.0;
+  if (zero_area > 0)
+    a.warnings.push_back(std::to_string(zero_area) + " face" + (zero_area > 1 ? "s" : "") +
+                         " of zero area (Verdict's area 0)");
+  if (options.overlap) a.warnings.push_back("overlap is not checked on surface meshes yet (report.json overlap is null)");
 }
 
 // Once summarised, a block keeps the values of the metrics that have a
@@ -93,33 +145,47 @@ void analyze_fem(Analysis& a, const AnalyzeOptions& options, StageClock& clock) 
 
 void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clock) {
   clock.start("quality");
-  a.field = compute_quality(a.mesh, a.topology);
+  const bool is_surface = is_surface_mesh(a.mesh);
+  std::optional<Planarity> planarity;
+  const SurfaceOrientation surface = surface_orientation(a, planarity);
+  a.field = compute_quality(a.mesh, a.topology, surface);
   a.mesh_summary = summarize_mesh(a.mesh, a.topology);
+  a.mesh_summary.planarity = planarity;
   a.composition = compute_cell_composition(a.mesh);
   // Beside the overlap stage: the structure (the singularity graph: one
   // sequential pass over the edges) always, and on meshes up to
   // kMetricsBesideOverlapMaxHexes the metrics and their summaries; each is
   // listed as a concurrent stage. Beside it, the metrics do not draw the
   // progress bar (the overlap stage does).
-  const bool metrics_beside = options.overlap && a.mesh.hexes.size() <= kMetricsBesideOverlapMaxHexes;
+  const bool metrics_beside = options.overlap && !is_surface && a.mesh.hexes.size() <= kMetricsBesideOverlapMaxHexes;
   std::vector<MetricSummary> metric_summaries;
   std::vector<KindQualitySummary> by_kind;
   double structure_seconds = 0, metrics_seconds = 0, metric_summaries_seconds = 0;
-  const auto structure = timed(structure_seconds, [&] { a.structure = compute_structure(a.mesh, a.topology); });
+  // A surface mesh's structure and overlap are not computed this release
+  // (add_surface_warnings).
+  const auto structure = timed(structure_seconds, [&] {
+    if (!is_surface) {
+      a.structure = compute_structure(a.mesh, a.topology);
+    } else {
+      a.structure = HexStructure{};
+      a.structure.vertex_singular.assign(a.mesh.points.size(), 0);
+    }
+  });
   const auto metrics = timed(metrics_seconds, [&] {
     a.metrics = compute_hex_metrics(a.mesh, options.metrics, metrics_beside ? progress::Reporting::silent : progress::Reporting::report);
-    a.cell_metrics = compute_non_hex_metrics(a.mesh);
+    a.cell_metrics = compute_non_hex_metrics(a.mesh, a.field, surface);
   });
   const auto summarize_metrics = timed(metric_summaries_seconds, [&] {
     metric_summaries = summarize_hex_metrics(a.metrics);
     by_kind = summarize_by_kind(a.mesh, a.field, metric_summaries, a.cell_metrics);
+    if (is_surface) add_surface_warnings(a, options);
     keep_cell_metric_columns(a.cell_metrics);
   });
   const auto concurrent = [&](const char* name, double seconds) {
     a.timings.push_back({name, seconds, peak_rss_bytes(), true});
     if (options.on_stage) options.on_stage(a.timings.back());
   };
-  if (options.overlap) {
+  if (options.overlap && !is_surface) {
     clock.start("overlap");
     const auto overlap = [&] { a.overlap = check_overlap(a.mesh, a.topology, *options.overlap); };
     if (metrics_beside)
@@ -151,7 +217,7 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
                          summarize_metrics);
   a.quality.metrics = std::move(metric_summaries);
   a.quality.by_kind = std::move(by_kind);
-  if (!options.overlap) {
+  if (!options.overlap || is_surface) {
     clock.start("structure");
     structure();
   }
@@ -238,6 +304,8 @@ void analyze_boundary_error(Analysis& a, const TriSurface& reference, const Anal
 void analyze_compare(Analysis& a, const AnalyzeOptions& options) {
   Analysis::Compared& c = a.compare.emplace();
   c.mesh = load_mesh(options.compare_path, options, c.input).mesh;
+  if (is_surface_mesh(c.mesh))
+    throw InputError(options.compare_path.string() + ": --compare: surface meshes are not compared yet (run without it)");
   c.topology = build_topology(c.mesh);
   c.field = compute_quality(c.mesh, c.topology);
   c.mesh_summary = summarize_mesh(c.mesh, c.topology);
@@ -320,7 +388,13 @@ void start_analysis(const AnalyzeOptions& options, AnalysisInProgress& out) {
   a.mesh = std::move(loaded.mesh);
   clock.start("topology");
   a.topology = build_topology(a.mesh);
-  if (options.up_auto) a.resting_up = choose_resting_up(a.mesh, a.topology);
+  const bool is_surface = is_surface_mesh(a.mesh);
+  if (options.up_auto && !is_surface) a.resting_up = choose_resting_up(a.mesh, a.topology);
+  if (is_surface && !options.reference_path.empty())
+    throw InputError(options.reference_path.string() +
+                     ": --reference: the boundary error of surface meshes is not computed yet (run without it)");
+  if (is_surface && !options.compare_path.empty())
+    throw InputError(options.compare_path.string() + ": --compare: surface meshes are not compared yet (run without it)");
   // The reference as soon as the boundary is known, so that its atlas runs
   // beside everything after.
   if (!options.reference_path.empty()) {
@@ -335,7 +409,8 @@ void start_analysis(const AnalyzeOptions& options, AnalysisInProgress& out) {
   clock.stop();
   if (!a.topology.unreferenced_vertices.empty())
     a.warnings.push_back(std::to_string(a.topology.unreferenced_vertices.size()) +
-                         (a.topology.across_kinds ? " vertices are used by no cell (ignored by the analysis)"
+                         (a.topology.across_kinds || is_surface_mesh(a.mesh)
+                              ? " vertices are used by no cell (ignored by the analysis)"
                                                   : " vertices are used by no hexahedron (ignored by the analysis)"));
   if (a.reference_surface) {
     clock.start("boundary error");
@@ -367,6 +442,11 @@ AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
   start_analysis(options, in_progress);
   ViewOptions views = options.views;
   views.up = views_up(in_progress.analysis, options);
+  if (renderer && is_surface_mesh(in_progress.analysis.mesh)) {
+    in_progress.analysis.warnings.push_back(
+        "the views of surface meshes are not drawn yet (report.json, the CSV files and annotated.vtu are written)");
+    renderer = nullptr;
+  }
   if (renderer) {
     // The views that need no atlas are drawn while it is built.
     std::vector<StageTime> view_times;

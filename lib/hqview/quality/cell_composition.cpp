@@ -45,7 +45,11 @@ CellComposition compute_cell_composition(const Mesh& mesh) {
       c.num_cells += c.count[k];
     }
   });
+  // The fractions are of the volume cells (none for a surface mesh).
   if (c.num_cells > 0) c.hex_fraction = static_cast<double>(c.count[0]) / static_cast<double>(c.num_cells);
+  c.num_quads = static_cast<std::int64_t>(mesh.quads.size());
+  c.num_triangles = static_cast<std::int64_t>(mesh.triangles.size());
+  c.num_cells += c.num_quads + c.num_triangles;
   const double total = c.volume[0] + c.volume[1] + c.volume[2] + c.volume[3];
   if (total > 0) c.hex_volume_fraction = c.volume[0] / total;
   return c;

@@ -17,7 +17,9 @@ struct CellComposition {
   // Sum of |Verdict's volume| of the cells of the kind (model units cubed;
   // an inverted or tangled cell still takes up space, so it counts positive).
   std::array<double, kNumVolumeKinds> volume{};
-  std::int64_t num_cells = 0;
+  // A surface mesh's cells (no volume cell; mesh.h is_surface_mesh).
+  std::int64_t num_quads = 0, num_triangles = 0;
+  std::int64_t num_cells = 0;  // every cell, volume or surface
   // hexes / all volume cells; none without a cell.
   std::optional<double> hex_fraction;
   // hex volume / the volume of every cell; none when that total is not > 0.

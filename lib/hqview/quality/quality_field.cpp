@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -40,17 +41,38 @@ struct VolumeKernels<CellKind::pyramid> {
   static CellValidity validity(const std::array<Vec3, 5>& p) { return pyramid_validity(p); }
 };
 
+// Surface kinds: corners signed against the surface's normal (a planar
+// mesh's plane) or each cell's own; the cell's value is its lowest corner
+// (Verdict's scaled Jacobian when the cell is measured against its own
+// normal; negative for a cell reversed against the plane); validity by the
+// same normal (a surface that is not planar: SurfaceOrientation decides
+// inverted).
+template <>
+struct VolumeKernels<CellKind::quad> {
+  static auto corners(const std::array<Vec3, 4>& p, const std::optional<Vec3>& n) { return quad_corner_scaled_jacobians(p, n); }
+  static CellValidity validity(const std::array<Vec3, 4>& p, const std::optional<Vec3>& n) { return quad_validity(p, n); }
+};
+template <>
+struct VolumeKernels<CellKind::triangle> {
+  static auto corners(const std::array<Vec3, 3>& p, const std::optional<Vec3>& n) {
+    return triangle_corner_scaled_jacobians(p, n);
+  }
+  static CellValidity validity(const std::array<Vec3, 3>& p, const std::optional<Vec3>& n) {
+    return triangle_validity(p, n);
+  }
+};
+
+// Every kind with cells (a mesh holds volume or surface cells, never both
+// in the analysis: io/cell_reading.h keep_dimension).
 template <class F>
-void for_each_volume_kind(F&& f) {
-  for_each_cell_kind([&](auto kind) {
-    if constexpr (CellKindTable<kind()>::dimension == 3) f(kind);
-  });
+void for_each_analysed_kind(F&& f) {
+  for_each_cell_kind([&](auto kind) { f(kind); });
 }
 
 // The corners, scaled Jacobian and validity of every cell of the non-hex
 // block of kind K, cell ids from first_cell.
 template <CellKind K>
-void compute_block(const Mesh& mesh, std::size_t first_cell, QualityField& q) {
+void compute_block(const Mesh& mesh, std::size_t first_cell, QualityField& q, const SurfaceOrientation& surface) {
   const auto& cells = cell_block<K>(mesh);
   constexpr int N = CellKindTable<K>::num_corners;
   constexpr int C = kCornerValuesPerCell<K>;
@@ -59,11 +81,27 @@ void compute_block(const Mesh& mesh, std::size_t first_cell, QualityField& q) {
     for (std::size_t c = r.begin(); c != r.end(); ++c) {
       std::array<Vec3, N> p;
       for (int i = 0; i < N; ++i) p[i] = mesh.points[static_cast<std::size_t>(cells[c][i])];
-      const auto k = VolumeKernels<K>::corners(p);
-      for (int i = 0; i < C; ++i) q.corner_scaled_jacobian[corner0 + C * c + static_cast<std::size_t>(i)] = k.value[i];
-      q.corner_degenerate_mask[first_cell + c] = k.degenerate_mask;
-      q.cell_scaled_jacobian[first_cell + c] = VolumeKernels<K>::scaled_jacobian(p);
-      q.non_hex_validity[first_cell + c - q.num_hexes] = VolumeKernels<K>::validity(p);
+      if constexpr (CellKindTable<K>::dimension == 3) {
+        const auto k = VolumeKernels<K>::corners(p);
+        for (int i = 0; i < C; ++i) q.corner_scaled_jacobian[corner0 + C * c + static_cast<std::size_t>(i)] = k.value[i];
+        q.corner_degenerate_mask[first_cell + c] = k.degenerate_mask;
+        q.cell_scaled_jacobian[first_cell + c] = VolumeKernels<K>::scaled_jacobian(p);
+        q.non_hex_validity[first_cell + c - q.num_hexes] = VolumeKernels<K>::validity(p);
+      } else {
+        const auto k = VolumeKernels<K>::corners(p, surface.plane_normal);
+        for (int i = 0; i < C; ++i) q.corner_scaled_jacobian[corner0 + C * c + static_cast<std::size_t>(i)] = k.value[i];
+        q.corner_degenerate_mask[first_cell + c] = k.degenerate_mask;
+        q.cell_scaled_jacobian[first_cell + c] = *std::min_element(k.value.begin(), k.value.end());
+        CellValidity validity = VolumeKernels<K>::validity(p, surface.plane_normal);
+        if (!surface.plane_normal) {
+          // Not planar: inverted = reversed against the neighbours; a folded
+          // (concave) cell is bad, not inverted.
+          const bool reversed = first_cell + c < surface.is_reversed.size() && surface.is_reversed[first_cell + c];
+          validity = reversed ? CellValidity::inverted
+                              : (validity == CellValidity::inverted ? CellValidity::valid : validity);
+        }
+        q.non_hex_validity[first_cell + c - q.num_hexes] = validity;
+      }
     }
   });
 }
@@ -76,7 +114,7 @@ void add_non_hex_vertex_quality(const Mesh& mesh, QualityField& q) {
     double& w = q.vertex_quality[static_cast<std::size_t>(v)];
     if (std::isnan(w) || value < w) w = value;
   };
-  for_each_volume_kind([&](auto kind) {
+  for_each_analysed_kind([&](auto kind) {
     if constexpr (kind() != CellKind::hex) {
       constexpr int C = kCornerValuesPerCell<kind()>;
       const std::size_t corner0 = q.corner_begin[static_cast<std::size_t>(kind())];
@@ -110,17 +148,16 @@ void compute_corner_scaled_jacobians(const HexMesh& mesh, std::span<double> out,
 }
 
 
-QualityField compute_quality(const Mesh& mesh, const Topology& topo) {
+QualityField compute_quality(const Mesh& mesh, const Topology& topo, const SurfaceOrientation& surface) {
   const std::size_t nh = mesh.hexes.size();
   const std::size_t nv = mesh.points.size();
-  const auto nc = static_cast<std::size_t>(num_volume_cells(mesh));
+  const auto nc = static_cast<std::size_t>(num_cells(mesh));
   QualityField q;
   q.num_hexes = nh;
   std::size_t corners = 0;
   for_each_cell_kind([&](auto kind) {
     q.corner_begin[static_cast<std::size_t>(kind())] = corners;
-    if constexpr (CellKindTable<kind()>::dimension == 3)
-      corners += kCornerValuesPerCell<kind()> * cell_block<kind()>(mesh).size();
+    corners += kCornerValuesPerCell<kind()> * cell_block<kind()>(mesh).size();
   });
   q.corner_begin[kNumCellKinds] = corners;
   q.corner_scaled_jacobian.resize(corners);
@@ -133,9 +170,9 @@ QualityField compute_quality(const Mesh& mesh, const Topology& topo) {
     for (std::size_t h = r.begin(); h != r.end(); ++h) q.cell_scaled_jacobian[h] = hex_scaled_jacobian(hex_corners(mesh, static_cast<Index>(h)));
   });
   std::size_t first_cell = nh;
-  for_each_volume_kind([&](auto kind) {
+  for_each_analysed_kind([&](auto kind) {
     if constexpr (kind() != CellKind::hex) {
-      compute_block<kind()>(mesh, first_cell, q);
+      compute_block<kind()>(mesh, first_cell, q, surface);
       first_cell += cell_block<kind()>(mesh).size();
     }
   });

@@ -1,11 +1,12 @@
 #pragma once
-// Mesh-wide quality fields over every volume cell (hexes, tets, wedges,
-// pyramids): per-corner and per-cell scaled Jacobians and the per-vertex
+// Mesh-wide quality fields over every cell (hexes, tets, wedges, pyramids;
+// or a surface mesh's quads and triangles): per-corner and per-cell scaled Jacobians and the per-vertex
 // quality Jm (the paper's one-ring rule: min corner scaled Jacobian over the
 // corners of the incident cells at that vertex, of any kind).
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -55,7 +56,22 @@ void compute_corner_scaled_jacobians(const HexMesh& mesh, std::span<double> out,
 // results for any thread count (each entry is written by one task; the
 // non-hex corners reach vertex quality by a min, which is order-free). A
 // pure-hex mesh gets exactly the hex-only fields.
-QualityField compute_quality(const Mesh& mesh, const Topology& topo);
+//
+// A surface mesh (quads and triangles; docs/analysis.md, "Surface meshes")
+// has its cells after the (empty) volume blocks, quads then triangles: each
+// corner signed against `surface.plane_normal` when the mesh is planar (a
+// cell reversed or folded against the plane is negative and inverted), else
+// against the cell's own normal (Verdict's), a cell then inverted when
+// `surface.is_reversed` says its orientation disagrees with its
+// neighbours'. A surface cell's cell_scaled_jacobian is its lowest corner:
+// Verdict's scaled Jacobian for every cell measured against its own normal
+// or one that agrees with the plane's (except Verdict's P3 == P2 quad), and
+// negative for a reversed one.
+struct SurfaceOrientation {
+  std::optional<Vec3> plane_normal;  // unit; a planar surface's (planarity.h)
+  std::vector<char> is_reversed;     // per surface cell (SurfaceTopology); empty: none
+};
+QualityField compute_quality(const Mesh& mesh, const Topology& topo, const SurfaceOrientation& surface = {});
 
 // Whether cell c (a cell id over all volume kinds) is degenerate (Verdict's
 // 1e30 scaled Jacobian, or a corner with a zero-length edge) and inverted:

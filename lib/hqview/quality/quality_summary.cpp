@@ -9,7 +9,9 @@
 
 #include "hqview/quality/corner_jacobian.h"
 #include "hqview/quality/pyramid_metrics.h"
+#include "hqview/quality/quad_metrics.h"
 #include "hqview/quality/tet_metrics.h"
+#include "hqview/quality/triangle_metrics.h"
 #include "hqview/quality/wedge_metrics.h"
 
 namespace hq {
@@ -36,7 +38,7 @@ QualitySummary summarize_quality(const HexMesh& mesh, const QualityField& field,
       corner_flags[8 * h + static_cast<std::size_t>(i)] = (field.corner_degenerate_mask[h] >> i) & 1u;
   std::size_t first_cell = field.num_hexes;
   for_each_cell_kind([&](auto kind) {
-    if constexpr (kind() != CellKind::hex && CellKindTable<kind()>::dimension == 3) {
+    if constexpr (kind() != CellKind::hex) {
       constexpr std::size_t C = kCornerValuesPerCell<kind()>;
       const std::size_t n = cell_block<kind()>(mesh).size();
       const std::size_t corner0 = field.corner_begin[static_cast<std::size_t>(kind())];
@@ -86,10 +88,10 @@ QualitySummary summarize_quality(const HexMesh& mesh, const QualityField& field,
     if (v >= kVerdictDegenerate) return -INFINITY;
     const auto cell = static_cast<std::size_t>(c);
     if (cell >= field.num_hexes && is_inverted(field.non_hex_validity[cell - field.num_hexes]) && v >= 0) {
-      const CellRef ref = volume_cell(mesh, c);
+      const CellRef ref = any_cell(mesh, c);
       double lowest = v;
       for_each_cell_kind([&](auto kind) {
-        if constexpr (kind() != CellKind::hex && CellKindTable<kind()>::dimension == 3) {
+        if constexpr (kind() != CellKind::hex) {
           if (kind() != ref.kind) return;
           constexpr std::size_t C = kCornerValuesPerCell<kind()>;
           const double* k = field.corner_scaled_jacobian.data() + field.corner_begin[static_cast<std::size_t>(kind())] +
@@ -107,7 +109,7 @@ QualitySummary summarize_quality(const HexMesh& mesh, const QualityField& field,
     return ra != rb ? ra < rb : a < b;
   });
   for (std::size_t i = 0; i < nc; ++i) {
-    const CellRef ref = volume_cell(mesh, static_cast<Index>(cells[i]));
+    const CellRef ref = any_cell(mesh, static_cast<Index>(cells[i]));
     q.worst_cells.push_back({cells[i], field.cell_scaled_jacobian[cells[i]], ref.kind,
                              cell_source_index(mesh, ref.kind, ref.index)});
   }
@@ -162,8 +164,13 @@ std::vector<std::string_view> volume_kind_metric_names(CellKind kind) {
       for (int m = 0; m < kNumPyramidMetrics; ++m)
         names.push_back(pyramid_metric_info(static_cast<PyramidMetric>(m)).name);
       break;
-    default:
-      return names;
+    case CellKind::quad:
+      for (int m = 0; m < kNumQuadMetrics; ++m) names.push_back(quad_metric_info(static_cast<QuadMetric>(m)).name);
+      break;
+    case CellKind::triangle:
+      for (int m = 0; m < kNumTriangleMetrics; ++m)
+        names.push_back(triangle_metric_info(static_cast<TriangleMetric>(m)).name);
+      break;
   }
   names.push_back("corner_scaled_jacobian");
   return names;
@@ -172,9 +179,12 @@ std::vector<std::string_view> volume_kind_metric_names(CellKind kind) {
 std::vector<KindQualitySummary> summarize_by_kind(const Mesh& mesh, const QualityField& field,
                                                   const std::vector<MetricSummary>& hex_metrics,
                                                   const std::vector<CellBlockMetricField>& blocks) {
+  // A volume mesh lists the volume kinds, a surface mesh (no volume cell,
+  // some quad or triangle) the surface kinds.
+  const bool is_surface = is_surface_mesh(mesh);
   std::vector<KindQualitySummary> out;
   for_each_cell_kind([&](auto kind) {
-    if constexpr (CellKindTable<kind()>::dimension == 3) {
+    if ((CellKindTable<kind()>::dimension == 2) == is_surface) {
       KindQualitySummary& k = out.emplace_back();
       k.kind = kind();
       k.count = static_cast<std::int64_t>(cell_block<kind()>(mesh).size());

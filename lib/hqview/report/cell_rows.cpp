@@ -3,12 +3,11 @@
 namespace hq {
 
 CellRows::CellRows(const Analysis& a) : a_(a) {
-  const std::array<std::size_t, kNumVolumeKinds> counts = {a.mesh.hexes.size(), a.mesh.tets.size(),
-                                                           a.mesh.wedges.size(), a.mesh.pyramids.size()};
+  std::array<std::size_t, kNumCellKinds> counts{};
+  for (CellKind kind : kCellKinds) counts[static_cast<std::size_t>(kind)] = static_cast<std::size_t>(num_cells_of(a.mesh, kind));
   for (std::size_t k = 0; k < counts.size(); ++k) first_[k + 1] = first_[k] + counts[k];
   for (const CellBlockMetricField& block : a.cell_metrics) {
     const auto k = static_cast<std::size_t>(block.kind);
-    if (k >= kNumVolumeKinds) continue;
     for (int m = 0; m < kNumHexMetrics; ++m) {
       const std::vector<double>* values = block.of(hex_metric_name(static_cast<HexMetric>(m)));
       if (values && values->size() == counts[k]) columns_[k][static_cast<std::size_t>(m)] = values;
@@ -20,8 +19,7 @@ int CellRows::num_corner_values(std::size_t c) const {
   int n = 0;
   const CellKind kind = ref(c).kind;
   for_each_cell_kind([&](auto k) {
-    if constexpr (CellKindTable<k()>::dimension == 3)
-      if (k() == kind) n = kCornerValuesPerCell<k()>;
+    if (k() == kind) n = kCornerValuesPerCell<k()>;
   });
   return n;
 }

@@ -1,6 +1,7 @@
 #pragma once
-// The per-cell values cells.csv and annotated.vtu write, for every volume
-// cell in cell-id order (hexes, then tets, wedges, pyramids; mesh.h): its
+// The per-cell values cells.csv and annotated.vtu write, for every cell in
+// cell-id order (hexes, then tets, wedges, pyramids; a surface mesh's quads
+// and triangles; mesh.h): its
 // kind, source index, corner values and the value of each cells.csv metric
 // column. A hex-only result (the Verdict hex metrics a non-hex kind does not
 // share, size gradation, the finite-element check) has no value for a
@@ -21,7 +22,7 @@ class CellRows {
  public:
   explicit CellRows(const Analysis& a);
 
-  std::size_t num_cells() const { return first_[kNumVolumeKinds]; }
+  std::size_t num_cells() const { return first_[kNumCellKinds]; }
   std::size_t num_hexes() const { return first_[1]; }
   CellRef ref(std::size_t c) const {
     int k = 0;
@@ -46,10 +47,10 @@ class CellRows {
 
  private:
   const Analysis& a_;
-  std::array<std::size_t, kNumVolumeKinds + 1> first_{};
-  // Per non-hex kind (tet, wedge, pyramid) and hex metric: the kind's values of
-  // that name, or nullptr.
-  std::array<std::array<const std::vector<double>*, kNumHexMetrics>, kNumVolumeKinds> columns_{};
+  std::array<std::size_t, kNumCellKinds + 1> first_{};
+  // Per non-hex kind (tet, wedge, pyramid, quad, triangle) and hex metric: the
+  // kind's values of that name, or nullptr.
+  std::array<std::array<const std::vector<double>*, kNumHexMetrics>, kNumCellKinds> columns_{};
 };
 
 }  // namespace hq

@@ -349,7 +349,16 @@ void set_headline(data& page, const ReportModel& model) {
   // A hybrid mesh names its cells by kind and counts over all of them.
   const bool hybrid = c.num_cells > c.count[0];
   headline.push_back(card("vertices", show_count(m.num_vertices)));
-  if (hybrid) {
+  if (m.is_surface) {
+    // A surface mesh: its faces by kind, its plane, its cells' numbers.
+    headline.push_back(card("cells", show_count(c.num_cells)));
+    if (c.num_quads > 0) headline.push_back(card("quads", show_count(c.num_quads)));
+    if (c.num_triangles > 0) headline.push_back(card("triangles", show_count(c.num_triangles)));
+    headline.push_back(card("surface", m.planarity && m.planarity->is_planar ? "planar" : "not planar"));
+    headline.push_back(card("min scaled Jacobian (per cell)", show(q.scaled_jacobian.min), q.scaled_jacobian.min <= 0));
+    headline.push_back(card("mean scaled Jacobian (per cell)", show(q.scaled_jacobian.mean)));
+    headline.push_back(card("inverted cells", show_count(q.num_inverted), q.num_inverted > 0));
+  } else if (hybrid) {
     headline.push_back(card("cells", show_count(c.num_cells)));
     // One card per kind present, then the two hex fractions.
     static constexpr const char* kKindLabels[kNumVolumeKinds] = {"hexahedra", "tetrahedra", "wedges", "pyramids"};
@@ -487,10 +496,16 @@ void set_structure(data& page, const HexStructure& s) {
 }
 
 // The statistics of the Jacobian fields and of every Verdict metric.
-void set_statistics(data& page, const QualitySummary& q) {
+void set_statistics(data& page, const QualitySummary& q, bool is_surface) {
   data stats{data::type::list};
-  stats.push_back(stats_row("cell scaled Jacobian", "Verdict: min over centre and 8 corner frames", q.scaled_jacobian));
-  stats.push_back(stats_row("corner scaled Jacobian", "all 8 corners of every hex", q.corner_scaled_jacobian));
+  // A surface mesh's cells: signed corners (docs/analysis.md, "Surface meshes").
+  stats.push_back(stats_row("cell scaled Jacobian",
+                            is_surface ? "lowest signed corner (against the plane of a planar mesh)"
+                                       : "Verdict: min over centre and 8 corner frames",
+                            q.scaled_jacobian));
+  stats.push_back(stats_row("corner scaled Jacobian",
+                            is_surface ? "4 corners of every quad, 3 of every triangle" : "all 8 corners of every hex",
+                            q.corner_scaled_jacobian));
   stats.push_back(stats_row("vertex quality", "min corner value at the vertex", q.vertex_quality));
   page.set("stats", stats);
 
@@ -514,7 +529,9 @@ void set_statistics(data& page, const QualitySummary& q) {
     metrics.push_back(d);
   }
   page.set("metrics", metrics);
-  page.set("has_metrics", !q.metrics.empty());
+  // A surface mesh has no hexes: its quad and triangle metrics are in
+  // report.json quality.by_kind (no table here yet).
+  page.set("has_metrics", !q.metrics.empty() && !is_surface);
 }
 
 void set_gates(data& page, const GateSummary& gate_summary) {
@@ -689,7 +706,8 @@ std::string index_html(const ReportModel& model) {
   set_headline(page, model);
   set_panels(page, model, index);
   set_comparison(page, model);
-  set_statistics(page, model.analysis.quality);
+  set_statistics(page, model.analysis.quality, model.analysis.mesh_summary.is_surface);
+  page.set("is_surface", model.analysis.mesh_summary.is_surface);
   set_structure(page, model.analysis.structure);
   set_gates(page, model.gates);
   set_worst(page, model.analysis.quality, index);

@@ -50,6 +50,14 @@ Json mesh_json(const MeshSummary& m) {
   j["bbox"] = {{"min", vec3(m.bbox_min)}, {"max", vec3(m.bbox_max)}, {"diagonal", number(m.bbox_diagonal)}};
   j["edge_length"] = {
       {"min", number(m.edge_length_min)}, {"mean", number(m.edge_length_mean)}, {"max", number(m.edge_length_max)}};
+  // Surface meshes (issue 47); null for a volume mesh's surface-only keys.
+  j["dimension"] = m.is_surface ? "surface" : "volume";
+  j["planar"] = m.planarity ? Json(m.planarity->is_planar) : Json(nullptr);
+  j["planarity"] = m.planarity ? number(m.planarity->planarity) : Json(nullptr);
+  j["plane_normal"] = m.planarity && m.planarity->is_planar ? vec3(m.planarity->normal) : Json(nullptr);
+  j["num_boundary_edges"] = m.is_surface ? Json(m.num_boundary_edges) : Json(nullptr);
+  j["num_non_manifold_edges"] = m.is_surface ? Json(m.num_non_manifold_edges) : Json(nullptr);
+  j["num_reversed_faces"] = m.is_surface ? Json(m.num_reversed_faces) : Json(nullptr);
   return j;
 }
 
@@ -423,7 +431,8 @@ void numeric_leaves(const Json& from, const std::string& prefix, std::vector<std
 // headline additions: cells by kind and the hex fractions.
 void add_composition(Json& headline, const CellComposition& c) {
   headline["num_cells"] = c.num_cells;
-  headline["num_cells_by_kind"] = {{"hex", c.count[0]}, {"tet", c.count[1]}, {"wedge", c.count[2]}, {"pyramid", c.count[3]}};
+  headline["num_cells_by_kind"] = {{"hex", c.count[0]},     {"tet", c.count[1]},           {"wedge", c.count[2]},
+                                   {"pyramid", c.count[3]}, {"quad", c.num_quads}, {"triangle", c.num_triangles}};
   headline["hex_fraction"] = c.hex_fraction ? number(*c.hex_fraction) : Json(nullptr);
   headline["hex_volume_fraction"] = c.hex_volume_fraction ? number(*c.hex_volume_fraction) : Json(nullptr);
 }
@@ -494,7 +503,8 @@ ReportDocument report_document(const ReportModel& model) {
   // Stages of later releases; null until computed.
   j["glyphs"] = model.analysis.glyphs ? glyphs_json(*model.analysis.glyphs) : Json(nullptr);
   j["overlap"] = model.analysis.overlap ? overlap_json(*model.analysis.overlap) : Json(nullptr);
-  j["structure"] = structure_json(model.analysis.structure);
+  // A surface mesh's structure (irregular vertices, separatrices) is not computed yet: null.
+  j["structure"] = model.analysis.mesh_summary.is_surface ? Json(nullptr) : structure_json(model.analysis.structure);
   // Only when asked for (--simulate, --metrics fem_element): other reports keep their bytes.
   if (model.analysis.fem_elements) j["fem"] = fem_json(model.analysis);
   j["boundary_error"] = model.analysis.boundary_error ? boundary_error_json(model) : Json(nullptr);

@@ -51,9 +51,15 @@ std::string summary_markdown(const ReportModel& model, const std::string& link_b
   md += "## HQView: " + markdown_escape(name) + "\n\n";
 
   // The papers' headline row.
-  std::string header = "| #V | #H | min scaled Jacobian (per hex) | mean scaled Jacobian (per hex) | #inverted | overlapping hexes |";
+  // A surface mesh (quads, triangles) counts its cells.
+  const CellComposition& composition = model.analysis.composition;
+  std::string header = m.is_surface ? "| #V | #cells | min scaled Jacobian (per cell) | mean scaled Jacobian (per cell) | "
+                                      "#inverted | overlapping cells |"
+                                    : "| #V | #H | min scaled Jacobian (per hex) | mean scaled Jacobian (per hex) | "
+                                      "#inverted | overlapping hexes |";
   std::string align = "|---:|---:|---:|---:|---:|---:|";
-  std::string row = "| " + std::to_string(m.num_vertices) + " | " + std::to_string(m.num_hexes) + " | " +
+  std::string row = "| " + std::to_string(m.num_vertices) + " | " +
+                    std::to_string(m.is_surface ? composition.num_cells : m.num_hexes) + " | " +
                     show(q.scaled_jacobian.min) + " | " + show(q.scaled_jacobian.mean) + " | " +
                     std::to_string(q.scaled_jacobian.num_inverted) + " | " +
                     (model.analysis.overlap ? std::to_string(model.analysis.overlap->num_intersecting_cells)
@@ -70,7 +76,15 @@ std::string summary_markdown(const ReportModel& model, const std::string& link_b
   md += header + "\n" + align + "\n" + row + "\n\n";
   // A hybrid mesh: its cells by kind, the hex fractions and the inverted
   // cells of every kind (#inverted above counts the scaled Jacobian <= 0).
-  if (const CellComposition& c = model.analysis.composition; c.num_cells > c.count[0]) {
+  if (m.is_surface) {
+    md += "Surface mesh: " + std::to_string(composition.num_quads) + " quads, " +
+          std::to_string(composition.num_triangles) + " triangles; " +
+          (m.planarity && m.planarity->is_planar ? "planar" : "not planar") + " (planarity " +
+          show(m.planarity ? m.planarity->planarity : 0.0) + "); inverted cells " + std::to_string(q.num_inverted) +
+          "; boundary edges " + std::to_string(m.num_boundary_edges) + ", non-manifold edges " +
+          std::to_string(m.num_non_manifold_edges) + ", reversed faces " + std::to_string(m.num_reversed_faces) +
+          "\n\n";
+  } else if (const CellComposition& c = composition; c.num_cells > c.count[0]) {
     md += "Cells: " + std::to_string(c.num_cells) + " (hex " + std::to_string(c.count[0]) + ", tet " +
           std::to_string(c.count[1]) + ", wedge " + std::to_string(c.count[2]) + ", pyramid " +
           std::to_string(c.count[3]) + "); hex fraction " + (c.hex_fraction ? show(*c.hex_fraction) : "-") +

@@ -89,7 +89,7 @@ void require_size(const Vector& v, std::size_t expected, const char* what) {
 
 void check_sizes(const ReportModel& model) {
   const std::size_t nv = model.analysis.mesh.points.size(), nc = model.analysis.mesh.hexes.size();
-  const auto num_cells = static_cast<std::size_t>(num_volume_cells(model.analysis.mesh));
+  const auto num_cells = static_cast<std::size_t>(hq::num_cells(model.analysis.mesh));
   const QualityField& q = model.analysis.field;
   require_size(q.vertex_quality, nv, "vertex_quality");
   require_size(q.cell_scaled_jacobian, num_cells, "cell_scaled_jacobian");
@@ -221,12 +221,10 @@ std::vector<VtuArray> build_arrays(const ReportModel& model) {
     auto offsets = std::make_shared<std::vector<std::int64_t>>();
     auto types = std::make_shared<std::vector<std::uint8_t>>();
     for_each_block(mesh, [&](auto kind, const auto& cells) {
-      if constexpr (CellKindTable<kind()>::dimension == 3) {
-        for (const auto& cell : cells) {
-          for (Index v : cell) connectivity->push_back(v);
-          offsets->push_back(static_cast<std::int64_t>(connectivity->size()));
-          types->push_back(static_cast<std::uint8_t>(CellKindTable<kind()>::vtk_type));
-        }
+      for (const auto& cell : cells) {
+        for (Index v : cell) connectivity->push_back(v);
+        offsets->push_back(static_cast<std::int64_t>(connectivity->size()));
+        types->push_back(static_cast<std::uint8_t>(CellKindTable<kind()>::vtk_type));
       }
     });
     arrays.push_back(make_array<std::int64_t>("Cells", "connectivity", 1, connectivity->size(),
@@ -271,7 +269,7 @@ std::string xml_header(const ReportModel& model, const std::vector<VtuArray>& ar
       ">\n"
       "  <UnstructuredGrid>\n";
   xml += "    <Piece NumberOfPoints=\"" + std::to_string(model.analysis.mesh.points.size()) + "\" NumberOfCells=\"" +
-         std::to_string(num_volume_cells(model.analysis.mesh)) + "\">\n";
+         std::to_string(hq::num_cells(model.analysis.mesh)) + "\">\n";
   // ParaView colours by the active scalars when a file is opened.
   const std::pair<const char*, const char*> sections[] = {{"PointData", " Scalars=\"quality\""},
                                                           {"CellData", " Scalars=\"scaled_jacobian\""},

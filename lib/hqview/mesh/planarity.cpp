@@ -1,0 +1,75 @@
+#include "hqview/mesh/planarity.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+
+#include "hqview/mesh/surface_topology.h"
+
+namespace hq {
+namespace {
+
+// The side the faces' own normals point to, against n: +1 when more point
+// along n than against it (quads decide; triangles when there is no quad),
+// -1 when fewer, 0 on a tie.
+int majority_side(const Mesh& mesh, const Vec3& n) {
+  long along = 0, against = 0;
+  const bool quads = !mesh.quads.empty();
+  for_each_surface_cell(mesh, [&](const std::array<Index, 4>& c, int size) {
+    if (quads != (size == 4)) return;
+    const auto p = [&](int i) { return mesh.points[static_cast<std::size_t>(c[static_cast<std::size_t>(i)])]; };
+    // The area vector: (P2 - P0) x (P3 - P1) for a quad, (P1 - P0) x (P2 - P0) for a triangle.
+    const Vec3 area = size == 4 ? cross(p(2) - p(0), p(3) - p(1)) : cross(p(1) - p(0), p(2) - p(0));
+    const double s = dot(area, n);
+    if (s > 0) ++along;
+    if (s < 0) ++against;
+  });
+  return along > against ? 1 : along < against ? -1 : 0;
+}
+
+}  // namespace
+
+Planarity measure_planarity(const Mesh& mesh, double diagonal) {
+  Planarity out;
+  std::vector<char> used(mesh.points.size(), 0);
+  for_each_surface_cell(mesh, [&](const std::array<Index, 4>& c, int size) {
+    for (int i = 0; i < size; ++i) used[static_cast<std::size_t>(c[static_cast<std::size_t>(i)])] = 1;
+  });
+  std::size_t n = 0;
+  Vec3 sum;
+  for (std::size_t v = 0; v < used.size(); ++v)
+    if (used[v]) {
+      sum = sum + mesh.points[v];
+      ++n;
+    }
+  if (n == 0) {
+    out.is_planar = true;
+    return out;
+  }
+  out.centroid = sum / static_cast<double>(n);
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (std::size_t v = 0; v < used.size(); ++v)
+    if (used[v]) {
+      const Vec3 d = mesh.points[v] - out.centroid;
+      const Eigen::Vector3d e(d.x, d.y, d.z);
+      covariance += e * e.transpose();
+    }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+  const Eigen::Vector3d e = solver.eigenvectors().col(0);  // smallest eigenvalue first
+  Vec3 normal{e.x(), e.y(), e.z()};
+  // A sign that does not depend on the solver: the largest component positive.
+  const double largest = std::abs(normal.x) >= std::abs(normal.y) && std::abs(normal.x) >= std::abs(normal.z) ? normal.x
+                         : std::abs(normal.y) >= std::abs(normal.z)                                          ? normal.y
+                                                                                                              : normal.z;
+  if (largest < 0) normal = -normal;
+  if (majority_side(mesh, normal) < 0) normal = -normal;
+  out.normal = normal;
+  for (std::size_t v = 0; v < used.size(); ++v)
+    if (used[v]) out.max_distance = std::max(out.max_distance, std::abs(dot(mesh.points[v] - out.centroid, normal)));
+  out.planarity = diagonal > 0 ? out.max_distance / diagonal : 0.0;
+  out.is_planar = out.planarity <= kPlanarTolerance;
+  return out;
+}
+
+}  // namespace hq
