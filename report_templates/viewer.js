@@ -266,7 +266,7 @@
   scene.add(markers);
   var intersectingGeometry = new THREE.BufferGeometry();
   intersectingGeometry.setAttribute('position', new THREE.BufferAttribute(typed(Float32Array, D.intersecting_edges), 3));
-  var intersecting = new THREE.LineSegments(intersectingGeometry, new THREE.LineBasicMaterial({ color: new THREE.Color(colors.intersecting_cells) }));
+  var intersecting = new THREE.LineSegments(intersectingGeometry, new THREE.LineBasicMaterial({ color: new THREE.Color(colors.intersecting_cells), clippingPlanes: clipping }));
   intersecting.userData.empty = intersectingGeometry.attributes.position.count === 0;
   intersecting.visible = !intersecting.userData.empty;
   scene.add(intersecting);
@@ -646,6 +646,7 @@
       ? L.count + ' cells with scaled Jacobian under ' + show(L.threshold) + lowKindsText + '; ' + drawn + ' drawn inside (the kinds ticked below)'
       : '';
     document.getElementById('cut-legend').hidden = axis < 0;
+    lowKindBoxes.hidden = axis < 0;
     scene.traverse(function (o) { if (o.material) o.material.needsUpdate = true; });
     draw();
   }
