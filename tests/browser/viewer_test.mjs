@@ -653,6 +653,18 @@ await section('rings', BOTH, async () => {
   const gaps = await legendGaps(page);
   check(gaps.missing.length === 0 && gaps.drawn.length >= 4, `every colour drawn on the ringed grid has a legend swatch (drawn ${gaps.drawn}; missing ${gaps.missing})`);
   await page.screenshot({ path: path.join(outDir, 'ringed_faces.png') });
+  // The cut clips the glyphs, their rings and labels (issue 44 review: they
+  // hung outside the cut model): a cut across z at the grid's bottom, seen
+  // from above, removes everything; #0's centre and ring pixels are then the
+  // background and its label is hidden.
+  await selectValue(page, '#cut-axis', '2');
+  await page.evaluate(() => { const e = document.getElementById('cut'); e.value = 0; e.dispatchEvent(new Event('input')); });
+  const cutShot = await frameOf(page);
+  const rgbC = (x, y) => { const i = 4 * ((cutShot.h - 1 - Math.round(y)) * cutShot.w + Math.round(x)); return [cutShot.px[i], cutShot.px[i + 1], cutShot.px[i + 2]]; };
+  const cutLabel = await page.evaluate(() => document.querySelector('.glyph-label[data-cluster="0"]').hidden);
+  const ringLeft = onCircle(g0, at(g0, 4), lut, rgbC);
+  check(dist(rgbC(g0.x, g0.y), [255, 255, 255]) <= 8 && ringLeft === 0 && cutLabel,
+    `a cut that removes #0's centre removes its glyph, ring and label (centre ${rgbC(g0.x, g0.y)}, ring ${ringLeft} of 48, label hidden ${cutLabel})`);
   check(problems.length === 0, `no console error on the ringed grid: ${problems.join('; ')}`);
   await page.close();
 });
