@@ -172,44 +172,92 @@
     for (var q = 0; q < 3; ++q) h += (lut[q] < 16 ? '0' : '') + lut[q].toString(16);
     return h;
   })();
-  // A ring from inner to outer times the glyph's radius, on a white halo 0.06 wider each side.
-  function addRing(group, r, inner, outer, color, order) {
-    [[inner - 0.06, outer + 0.06, '#ffffff', order], [inner, outer, color, order + 1]].forEach(function (d) {
-      var ring = new THREE.Mesh(new THREE.RingGeometry(d[0], d[1], 64),
-        new THREE.MeshBasicMaterial({ color: new THREE.Color(d[2]), side: THREE.DoubleSide, depthWrite: false,
-          depthTest: false, transparent: true }));
+  // Rings (issue 44 review): a fixed width on screen, whatever the glyph's
+  // size or the zoom: from inner to outer CSS pixels outside the drawn
+  // glyph radius, on a white halo of kHaloPx each side; the positions are
+  // rewritten at every frame (sizeRings) from the pixels per model unit.
+  var kRingPx = { inverted: [2, 6], worstOutside: [8, 12], worst: [2, 6] }, kHaloPx = 1;
+  function ringGeometry() {
+    var gm = new THREE.BufferGeometry(), n = 64, index = [];
+    gm.setAttribute('position', new THREE.BufferAttribute(new Float32Array(6 * (n + 1)), 3));
+    for (var i = 0; i < n; ++i) index.push(2 * i, 2 * i + 1, 2 * i + 2, 2 * i + 1, 2 * i + 3, 2 * i + 2);
+    gm.setIndex(index);
+    return gm;
+  }
+  function addRing(group, r, px, color, order) {
+    [[px[0] - kHaloPx, px[1] + kHaloPx, '#ffffff', order], [px[0], px[1], color, order + 1]].forEach(function (d) {
+      var ring = new THREE.Mesh(ringGeometry(), new THREE.MeshBasicMaterial({ color: new THREE.Color(d[2]),
+        side: THREE.DoubleSide, depthWrite: false, depthTest: false, transparent: true, clippingPlanes: clipping }));
       ring.renderOrder = d[3];
-      ring.scale.set(r, r, r);
-      ring.userData.ring = true;
+      ring.userData.ring = { r: r, inner: d[0], outer: d[1] };
       group.add(ring);
     });
   }
+  function sizeRings(pxPerUnit) {
+    rings.forEach(function (g) {
+      g.children.forEach(function (ring) {
+        var d = ring.userData.ring;
+        if (!d) return;
+        var a = d.r + d.inner / pxPerUnit, b = d.r + d.outer / pxPerUnit, p = ring.geometry.attributes.position;
+        for (var i = 0; i <= 64; ++i) {
+          var t = 2 * Math.PI * i / 64, x = Math.cos(t), y = Math.sin(t);
+          p.setXYZ(2 * i, a * x, a * y, 0);
+          p.setXYZ(2 * i + 1, b * x, b * y, 0);
+        }
+        p.needsUpdate = true;
+        ring.geometry.computeBoundingSphere();
+      });
+    });
+  }
+  // Glyph size on screen (issue 44 review): the drawn radii keep report.json's
+  // ratios but are scaled down so that the largest is at most
+  // kMaxGlyphFraction of the bounding diagonal, and the spheres are
+  // see-through (kGlyphOpacity) so that the inverted surface colour and the
+  // overlap markers inside them show.
+  var kMaxGlyphFraction = 0.03, kGlyphOpacity = 0.55;
+  var largestRadius = D.clusters.reduce(function (m, cl) { return Math.max(m, cl.radius); }, 0);
+  var glyphScale = largestRadius > kMaxGlyphFraction * diagonal ? kMaxGlyphFraction * diagonal / largestRadius : 1;
   D.clusters.forEach(function (cl, rank) {
     var g = new THREE.Group();
     g.position.set(cl.position[0], cl.position[1], cl.position[2]);
-    var r = Math.max(cl.radius, 1e-6 * diagonal) * (rank < labelled ? 1 : kGreyGlyphFactor);
-    var m = new THREE.Mesh(sphere, new THREE.MeshLambertMaterial({ color: new THREE.Color(cl.color), transparent: true, opacity: 1 }));
+    var r = Math.max(cl.radius * glyphScale, 1e-6 * diagonal) * (rank < labelled ? 1 : kGreyGlyphFactor);
+    var m = new THREE.Mesh(sphere, new THREE.MeshLambertMaterial({ color: new THREE.Color(cl.color), transparent: true,
+      opacity: kGlyphOpacity, depthWrite: false, clippingPlanes: clipping }));
     m.renderOrder = 5;
     m.scale.set(r, r, r);
     m.userData.cluster = cl;
+    m.userData.drawnRadius = r;
     g.add(m);
+    g.userData.cluster = cl;
+    g.userData.drawnRadius = r;
     var inverted = cl.min_quality < 0;
-    if (inverted) addRing(g, r, 1.12, 1.3, invertedColor, 20);
-    if (cl.id === 0) addRing(g, r, inverted ? 1.42 : 1.12, inverted ? 1.54 : 1.24, kDarkRing, 22);
+    if (inverted) addRing(g, r, kRingPx.inverted, invertedColor, 20);
+    if (cl.id === 0) addRing(g, r, inverted ? kRingPx.worstOutside : kRingPx.worst, kDarkRing, 22);
     if (g.children.length > 1) rings.push(g);
     glyphs.add(g);
   });
   scene.add(glyphs);
   // The glyph spheres (picking): each group's first child.
   var glyphSpheres = glyphs.children.map(function (g) { return g.children[0]; });
+  // Pixels per model unit of the orthographic camera.
+  function pxPerUnit() { return Math.max(1, view.clientHeight) * camera.zoom / (camera.top - camera.bottom); }
   function faceRings() {
-    rings.forEach(function (g) { g.quaternion.copy(camera.quaternion); });
+    rings.forEach(function (g) {
+      g.quaternion.copy(camera.quaternion);
+      // A ring whose glyph centre the cut removes goes with it.
+      g.children.forEach(function (ring) { if (ring.userData.ring) ring.visible = clipping.length === 0 || clipping[0].distanceToPoint(g.position) >= 0; });
+    });
+    sizeRings(pxPerUnit());
   }
 
   // Overlap markers and intersecting cells.
   var markers = new THREE.Group(), markerRadius = 0.012 * diagonal;
   D.markers.forEach(function (mk) {
-    var m = new THREE.Mesh(sphere, new THREE.MeshBasicMaterial({ color: new THREE.Color(mk.kind === 'coincident' ? colors.coincident : colors.intersection) }));
+    // An overlay (issue 44 review): after the see-through faces and the
+    // glyphs, no depth test, so neither washes it nor hides it.
+    var m = new THREE.Mesh(sphere, new THREE.MeshBasicMaterial({ color: new THREE.Color(mk.kind === 'coincident' ? colors.coincident : colors.intersection),
+      depthTest: false, depthWrite: false, transparent: true, clippingPlanes: clipping }));
+    m.renderOrder = 26;
     m.position.set(mk.position[0], mk.position[1], mk.position[2]);
     m.scale.set(markerRadius, markerRadius, markerRadius);
     m.userData.marker = mk;
@@ -218,7 +266,9 @@
   scene.add(markers);
   var intersectingGeometry = new THREE.BufferGeometry();
   intersectingGeometry.setAttribute('position', new THREE.BufferAttribute(typed(Float32Array, D.intersecting_edges), 3));
-  var intersecting = new THREE.LineSegments(intersectingGeometry, new THREE.LineBasicMaterial({ color: new THREE.Color(colors.intersecting_cells) }));
+  var intersecting = new THREE.LineSegments(intersectingGeometry, new THREE.LineBasicMaterial({ color: new THREE.Color(colors.intersecting_cells), clippingPlanes: clipping }));
+  intersecting.userData.empty = intersectingGeometry.attributes.position.count === 0;
+  intersecting.visible = !intersecting.userData.empty;
   scene.add(intersecting);
 
   // Non-conforming faces (a hex's quad against two triangles, inside the
@@ -250,14 +300,21 @@
     var ncColor = new THREE.Color(colors.non_conforming);
     var frameGeometry = new THREE.BufferGeometry();
     frameGeometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(ncFrame), 3));
-    var frameMesh = new THREE.Mesh(frameGeometry, new THREE.MeshBasicMaterial({ color: ncColor, side: THREE.DoubleSide,
-      depthTest: false, depthWrite: false, transparent: true }));
     var lineGeometry = new THREE.BufferGeometry();
     lineGeometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(ncLines), 3));
-    var ncEdges = new THREE.LineSegments(lineGeometry, new THREE.LineBasicMaterial({ color: ncColor, depthTest: false, transparent: true }));
-    frameMesh.renderOrder = 15; ncEdges.renderOrder = 15;
-    nonConforming.add(frameMesh);
-    nonConforming.add(ncEdges);
+    // Twice (issue 44 review): the parts behind opaque faces faint (no depth
+    // test, kNcHiddenOpacity), then the visible parts full (depth test), so
+    // the hidden edges no longer read as a slab standing out of the face.
+    var kNcHiddenOpacity = 0.3;
+    [[false, kNcHiddenOpacity, 15], [true, 1, 16]].forEach(function (d) {
+      var frameMesh = new THREE.Mesh(frameGeometry, new THREE.MeshBasicMaterial({ color: ncColor, side: THREE.DoubleSide,
+        depthTest: d[0], depthWrite: false, transparent: true, opacity: d[1], polygonOffset: true, polygonOffsetFactor: -2, polygonOffsetUnits: -2 }));
+      var ncEdges = new THREE.LineSegments(lineGeometry, new THREE.LineBasicMaterial({ color: ncColor, depthTest: d[0], transparent: true, opacity: d[1] }));
+      frameMesh.renderOrder = d[2]; ncEdges.renderOrder = d[2];
+      frameMesh.userData.hiddenPart = !d[0]; ncEdges.userData.hiddenPart = !d[0];
+      nonConforming.add(frameMesh);
+      nonConforming.add(ncEdges);
+    });
   }
   scene.add(nonConforming);
 
@@ -299,14 +356,42 @@
   if (L.kind_faces && lowKindCount.filter(Boolean).length > 1)
     lowKindsText = ' (' + lowKindCount.map(function (n, kd) { return n ? n + ' ' + L.kind_faces.names[kd] : ''; })
       .filter(Boolean).join(', ') + ')';
-  var lowGeometry = new THREE.BufferGeometry();
-  lowGeometry.setAttribute('position', new THREE.BufferAttribute(lowPos, 3));
-  lowGeometry.setAttribute('color', new THREE.BufferAttribute(lowCol, 3));
-  lowGeometry.setAttribute('normal', new THREE.BufferAttribute(quadNormals(lowPos, lowFaces), 3));
-  var low = new THREE.Mesh(lowGeometry, new THREE.MeshLambertMaterial({ vertexColors: THREE.VertexColors, side: THREE.DoubleSide, clippingPlanes: clipping }));
-  low.userData.legend = 'field';  // the quality colours of the bar
+  // One mesh per cell kind, each with a check box (issue 44 review: one
+  // threshold floods a Delaunay tet region, whose tets sit well under 0.5):
+  // on a mesh with hexes under the threshold only the hexes are shown at
+  // first, otherwise every kind; the note gives every kind's count.
+  var lowNormals = quadNormals(lowPos, lowFaces), low = new THREE.Group(), lowByKind = [], lowKindBoxes = document.getElementById('cut-kinds');
+  var faceStart = 0, kindNames = L.kind_faces ? L.kind_faces.names : ['hex'];
+  for (h = 0; h < L.count; ) {
+    var kd = lowKinds[h], first = faceStart;
+    for (; h < L.count && lowKinds[h] === kd; ++h) faceStart += kindFaces[kd].length;
+    var gm = new THREE.BufferGeometry();
+    gm.setAttribute('position', new THREE.BufferAttribute(lowPos.subarray(18 * first, 18 * faceStart), 3));
+    gm.setAttribute('color', new THREE.BufferAttribute(lowCol.subarray(18 * first, 18 * faceStart), 3));
+    gm.setAttribute('normal', new THREE.BufferAttribute(lowNormals.subarray(18 * first, 18 * faceStart), 3));
+    var part = new THREE.Mesh(gm, new THREE.MeshLambertMaterial({ vertexColors: THREE.VertexColors, side: THREE.DoubleSide, clippingPlanes: clipping }));
+    part.userData.legend = 'field';  // the quality colours of the bar
+    part.userData.kind = kd;
+    low.add(part);
+  }
+  var kindShown = {};
+  lowKindCount.forEach(function (n, kd) {
+    if (!n) return;
+    kindShown[kd] = !lowKindCount[0] || kd === 0;
+    var box = el('input', { type: 'checkbox', 'data-kind': kindNames[kd] });
+    box.checked = kindShown[kd];
+    box.addEventListener('change', function () { kindShown[kd] = box.checked; updateCut(); });
+    lowKindBoxes.appendChild(el('label', { class: 'kind' }, [box, ' ' + n + ' ' + kindNames[kd]]));
+  });
   low.visible = false;
   scene.add(low);
+  var kCutPlaneColor = '#6b6b6b';
+  // The cut plane's outline: the plane's rectangle across the bounding box.
+  var planeGeometry = new THREE.BufferGeometry();
+  planeGeometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(12), 3));
+  var planeOutline = new THREE.LineLoop(planeGeometry, new THREE.LineBasicMaterial({ color: new THREE.Color(kCutPlaneColor) }));
+  planeOutline.visible = false;
+  scene.add(planeOutline);
 
   // ---- colour fields ----
   var fieldSelect = document.getElementById('field');
@@ -357,6 +442,9 @@
     draw();
   }
   fieldSelect.addEventListener('change', function () { setField(Number(fieldSelect.value)); });
+  // The whole name under the box (a select cannot wrap its text).
+  function nameField() { document.getElementById('field-name').textContent = D.fields[Number(fieldSelect.value)].label; }
+  fieldSelect.addEventListener('change', nameField);
 
   // ---- camera ----
   var camera = new THREE.OrthographicCamera(-1, 1, 1, -1, 1e-4 * diagonal, 100 * diagonal);
@@ -413,6 +501,14 @@
     var n = new THREE.Vector3(0, 0, 0);
     n.setComponent(axis, eyeSide >= 0 ? -1 : 1);
     cut.set(n, eyeSide >= 0 ? at : -at);
+    var u = (axis + 1) % 3, w = (axis + 2) % 3, p = planeGeometry.attributes.position;
+    [[lo[u], lo[w]], [hi[u], lo[w]], [hi[u], hi[w]], [lo[u], hi[w]]].forEach(function (uv, i) {
+      var pt = [0, 0, 0];
+      pt[axis] = at; pt[u] = uv[0]; pt[w] = uv[1];
+      p.setXYZ(i, pt[0], pt[1], pt[2]);
+    });
+    p.needsUpdate = true;
+    planeGeometry.computeBoundingSphere();
   }
   // ---- #k labels (issue 44) ----
   // View A's labels in the viewer: "#k (n)", the cluster's rank and member
@@ -433,12 +529,14 @@
     labelLayer.hidden = !glyphs.visible;
     if (!glyphs.visible || !labels.length) return;
     var w = view.clientWidth, hgt = view.clientHeight;
-    var pxPerUnit = hgt * camera.zoom / (camera.top - camera.bottom);
-    var discs = labels.map(function (l) {
-      var p = new THREE.Vector3().fromArray(l.cl.position).project(camera), r = l.cl.radius * pxPerUnit;
-      // Outside the rings (1.54 r at most) and their halo.
-      var outer = r * (l.cl.id === 0 ? (l.cl.min_quality < 0 ? 1.6 : 1.3) : l.cl.min_quality < 0 ? 1.36 : 1) + 3;
-      return { x: (p.x + 1) / 2 * w, y: (1 - p.y) / 2 * hgt, r: r, outer: outer, z: p.z };
+    var ppu = pxPerUnit();
+    var discs = labels.map(function (l, i) {
+      var p = new THREE.Vector3().fromArray(l.cl.position).project(camera), r = glyphs.children[i].userData.drawnRadius * ppu;
+      // Outside the rings (fixed pixels outside the glyph) and their halo.
+      var ringPx = l.cl.id === 0 ? (l.cl.min_quality < 0 ? kRingPx.worstOutside[1] : kRingPx.worst[1]) : l.cl.min_quality < 0 ? kRingPx.inverted[1] : 0;
+      var outer = r + ringPx + kHaloPx + 2;
+      var cutAway = clipping.length > 0 && clipping[0].distanceToPoint(glyphs.children[i].position) < 0;
+      return { x: (p.x + 1) / 2 * w, y: (1 - p.y) / 2 * hgt, r: r, outer: outer, z: p.z, cutAway: cutAway };
     });
     var placed = [];
     function free(b, self) {
@@ -455,7 +553,7 @@
     }
     labels.forEach(function (l, i) {
       var d = discs[i], lw = l.e.offsetWidth, lh = l.e.offsetHeight;
-      var shown = Math.abs(d.z) <= 1 && d.x >= 0 && d.x <= w && d.y >= 0 && d.y <= hgt;
+      var shown = !d.cutAway && Math.abs(d.z) <= 1 && d.x >= 0 && d.x <= w && d.y >= 0 && d.y <= hgt;
       l.e.hidden = !shown;
       if (!shown) return;
       var o = d.outer, s = 0.71 * o;
@@ -485,7 +583,7 @@
   // ---- layers and the cut ----
   function layer(id, object) {
     var box = document.getElementById(id);
-    box.addEventListener('change', function () { object.visible = box.checked; updateCut(); });
+    box.addEventListener('change', function () { object.visible = box.checked && !object.userData.empty; updateCut(); });
   }
   layer('layer-boundary', boundary);
   layer('layer-edges', edges);
@@ -510,9 +608,11 @@
   }
   function layerLegend(id, entries) {
     var row = document.getElementById(id).parentNode, list = el('div', { class: 'layer-legend' });
+    // A layer with nothing in it: no row at all (issue 44 review), and nothing drawn.
+    if (entries.every(function (e) { return /^0 /.test(e[1]); })) { row.style.display = 'none'; return; }
     entries.forEach(function (e) {
       var entry = el('div', { 'data-legend': e[2] }, [swatch(e[0]), e[1]]);
-      if (/^0 /.test(e[1])) entry.style.opacity = 0.5;  // nothing of it drawn
+      if (/^0 /.test(e[1])) return;  // nothing of it drawn: no row (issue 44 review)
       list.appendChild(entry);
     });
     row.appendChild(list);
@@ -521,23 +621,33 @@
   var byKind = { coincident: 0, intersection: 0 };
   D.markers.forEach(function (mk) { byKind[mk.kind === 'coincident' ? 'coincident' : 'intersection'] += 1; });
   layerLegend('layer-edges', [['#' + edges.material.color.getHexString(), 'edges', 'edges']]);
-  layerLegend('layer-markers', [[colors.coincident, counted(byKind.coincident, 'coincident-vertex marker', 'coincident-vertex markers'), 'coincident'],
-    [colors.intersection, counted(byKind.intersection, 'intersecting-pair marker', 'intersecting-pair markers'), 'intersection']]);
+  // A marker stands for a group (report.json overlap.markers[].count): of
+  // coincident vertices, or of intersecting cell pairs.
+  var grouped = { coincident: 0, intersection: 0 };
+  D.markers.forEach(function (mk) { grouped[mk.kind === 'coincident' ? 'coincident' : 'intersection'] += mk.count || 0; });
+  layerLegend('layer-markers', [[colors.coincident, counted(byKind.coincident, 'marker', 'markers') + ' of ' +
+      counted(grouped.coincident, 'coincident vertex', 'coincident vertices') + ' (one per group)', 'coincident'],
+    [colors.intersection, counted(byKind.intersection, 'marker', 'markers') + ' of ' +
+      counted(grouped.intersection, 'intersecting cell pair', 'intersecting cell pairs') + ' (one per group)', 'intersection']]);
   layerLegend('layer-intersecting', [[colors.intersecting_cells,
     counted(D.num_intersecting_cells || 0, 'intersecting cell', 'intersecting cells') + ' (edges)', 'intersecting_cells']]);
   layerLegend('layer-nonconforming', [[colors.non_conforming, counted(NC.count, 'non-conforming face', 'non-conforming faces') +
-    ' (inside: a quad against two triangles; frame and diagonal drawn over the model)', 'non_conforming']]);
-  if (NC.count === 0) document.getElementById('layer-nonconforming').parentNode.style.display = 'none';
+    ' (inside: a quad against two triangles; frame and diagonal drawn over the model, faint where hidden)', 'non_conforming']]);
   var axisSelect = document.getElementById('cut-axis'), slider = document.getElementById('cut');
   function updateCut() {
     var axis = Number(axisSelect.value);
     clipping.length = 0;
     if (axis >= 0) clipping.push(cut);
     low.visible = axis >= 0 && document.getElementById('layer-low').checked;
+    planeOutline.visible = axis >= 0;
+    var drawn = 0;
+    low.children.forEach(function (part) { part.visible = !!kindShown[part.userData.kind]; if (part.visible) drawn += lowKindCount[part.userData.kind]; });
     document.getElementById('cut-note').textContent = axis >= 0
-      ? L.count + ' cells with scaled Jacobian under ' + show(L.threshold) + ' drawn inside' + lowKindsText
+      ? L.count + ' cells with scaled Jacobian under ' + show(L.threshold) + lowKindsText + '; ' + drawn + ' drawn inside (the kinds ticked below)'
       : '';
-    [boundaryMaterial, edges.material, low.material].forEach(function (m) { m.needsUpdate = true; });
+    document.getElementById('cut-legend').hidden = axis < 0;
+    lowKindBoxes.hidden = axis < 0;
+    scene.traverse(function (o) { if (o.material) o.material.needsUpdate = true; });
     draw();
   }
   axisSelect.addEventListener('change', updateCut);
@@ -629,12 +739,12 @@
     if (!cl.is_top) { others += 1; return; }
     var sw = el('span', { class: 'swatch' });
     sw.style.background = cl.color;
-    legend.appendChild(el('a', { href: '#cluster-' + cl.id }, [sw, '#' + cl.id + '  ' + cl.size + ' vertices, min ' + show(cl.min_quality)]));
+    legend.appendChild(el('a', { href: '#cluster-' + cl.id }, [sw, '#' + cl.id + '  ' + counted(cl.size, 'vertex', 'vertices') + ', min ' + show(Number(cl.min_quality.toPrecision(3)))]));
   });
   if (others) {
     var grey = D.clusters.filter(function (cl) { return !cl.is_top; })[0].color, sw = el('span', { class: 'swatch' });
     sw.style.background = grey;
-    legend.appendChild(el('div', {}, [sw, others + ' other clusters (0.6 size)']));
+    legend.appendChild(el('div', {}, [sw, counted(others, 'other cluster', 'other clusters') + ': smaller grey spheres (0.6 of their radius)']));
   }
   // The rings, with ring swatches (view A's legend says the same).
   function ringEntry(color, label, id) {
@@ -646,12 +756,18 @@
   if (D.clusters.some(function (cl) { return cl.min_quality < 0; }))
     ringEntry(invertedColor, 'ring: inverted (min < 0)', 'legend-ring-inverted');
   if (!D.clusters.length) legend.appendChild(text('no glyph: every vertex is above the threshold'));
+  else legend.appendChild(el('div', { id: 'legend-label-rule', class: 'small' }, ['label: #rank (vertices in the cluster)' +
+    (glyphScale < 1 ? '; glyphs drawn at ' + show(Number(glyphScale.toPrecision(3))) + ' of their radius (largest = ' +
+      kMaxGlyphFraction * 100 + ' % of the model diagonal)' : '')]));
 
   var reduced = document.getElementById('reduced');
   D.reduced.forEach(function (r) { reduced.appendChild(el('p', { class: 'note' }, ['Reduced: ' + r])); });
 
   setField(0);
+  nameField();
+  updateCut();
   reset();
   focusFromHash();
-  window.hqViewer = { camera: camera, renderer: renderer, scene: scene, controls: controls, data: D, draw: draw, ready: true };
+  window.hqViewer = { camera: camera, renderer: renderer, scene: scene, controls: controls, data: D, draw: draw,
+    glyphScale: glyphScale, ringPx: kRingPx, ready: true };
 })();

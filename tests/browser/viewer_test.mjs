@@ -152,6 +152,56 @@ await section('bar', BOTH, async () => {
   const report = JSON.parse(fs.readFileSync(path.join(bar, 'report.json'), 'utf8'));
   const { page, problems, network } = await open(bar);
   await page.screenshot({ path: path.join(outDir, 'bar_viewer.png') });
+  // Glyph size on screen (issue 44 review): the drawn radii keep report.json's
+  // ratios, the largest at most 3 % of the bounding diagonal (the bar's #0
+  // is bigger in report.json: the old viewer drew it wider than the bar).
+  const sized = await page.evaluate(() => {
+    const v = window.hqViewer, V = v.data.vertices, q = Array.from(atob(V.quantised), (c) => c.charCodeAt(0));
+    const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+    for (let i = 0; i < V.count; ++i)
+      for (let k = 0; k < 3; ++k) {
+        const x = V.lo[k] + (q[6 * i + 2 * k] | (q[6 * i + 2 * k + 1] << 8)) * V.step[k];
+        lo[k] = Math.min(lo[k], x); hi[k] = Math.max(hi[k], x);
+      }
+    const spheres = [];
+    v.scene.traverse((o) => { if (o.userData.cluster && o.isMesh) spheres.push({ id: o.userData.cluster.id, top: o.userData.cluster.is_top, radius: o.userData.cluster.radius, drawn: o.scale.x }); });
+    return { diagonal: Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]), spheres };
+  });
+  const cap = 0.03 * sized.diagonal, tops = sized.spheres.filter((g) => g.top), biggest = Math.max(...tops.map((g) => g.radius));
+  check(biggest > cap && sized.spheres.every((g) => g.drawn <= cap * (1 + 1e-6)) &&
+    tops.every((g) => Math.abs(g.drawn / g.radius - cap / biggest) <= 1e-6 * cap / biggest),
+    `glyphs are drawn at most 3 % of the diagonal (${cap.toFixed(4)}), in report.json's ratios: ${JSON.stringify(sized.spheres.slice(0, 4))}`);
+  // The overlap markers are drawn over everything (issue 44 review: 7 of the
+  // bar's 8 were hidden inside #0's opaque glyph): each marker's centre pixel
+  // is the marker colour.
+  const shot0 = await frameOf(page);
+  const rect0 = await page.evaluate(() => { const r = window.hqViewer.renderer.domElement.getBoundingClientRect(); return [r.left, r.top, r.width, r.height]; });
+  const markerColour = await page.evaluate(() => window.hqViewer.data.colors.intersection);
+  const mc = [1, 3, 5].map((i) => parseInt(markerColour.slice(i, i + 2), 16));
+  let markersSeen = 0;
+  for (const mk of report.overlap.markers) {
+    const [sx, sy] = await projectToPage(page, mk.position);
+    const px = Math.round((sx - rect0[0]) * shot0.w / rect0[2]), py = Math.round((sy - rect0[1]) * shot0.h / rect0[3]);
+    const i = 4 * ((shot0.h - 1 - py) * shot0.w + px);
+    if (Math.hypot(shot0.px[i] - mc[0], shot0.px[i + 1] - mc[1], shot0.px[i + 2] - mc[2]) <= 40) markersSeen += 1;
+  }
+  check(report.overlap.markers.length === 8 && markersSeen === 8, `every overlap marker shows in its colour (${markersSeen} of ${report.overlap.markers.length})`);
+  // The legend says what a marker is (a group of pairs) and counts the pairs
+  // as report.json does; a layer with nothing drawn has no row.
+  const markerLegend = await page.evaluate(() => ({
+    pairs: document.querySelector('[data-legend=intersection]')?.textContent,
+    coincident: document.querySelector('[data-legend=coincident]') !== null,
+    field: document.getElementById('field-name').textContent,
+    option: document.getElementById('field').selectedOptions[0].textContent,
+    fieldFits: document.getElementById('field-name').scrollWidth <= document.getElementById('side').clientWidth,
+    title: document.title }));
+  const pairSum = report.overlap.markers.reduce((a, m) => a + m.count, 0);
+  check(pairSum === report.overlap.num_intersecting_pairs && markerLegend.pairs === `8 markers of ${pairSum} intersecting cell pairs (one per group)`,
+    `the marker legend counts groups and pairs (${markerLegend.pairs}; report.json ${report.overlap.num_intersecting_pairs} pairs)`);
+  check(!markerLegend.coincident, 'no legend row for coincident-vertex markers: there are none');
+  check(markerLegend.field === markerLegend.option && markerLegend.fieldFits,
+    `the colour field's whole name is shown under its box (${markerLegend.field})`);
+  check(markerLegend.title.startsWith(evilName), `the page title holds the literal file name, not escaped twice (${markerLegend.title})`);
   const worst = report.glyphs.clusters[0];
   const [x, y] = await projectToPage(page, worst.position);
   await page.mouse.click(x, y);
@@ -436,14 +486,24 @@ await section('hex and tets', CHROMIUM_ONLY, async () => {
   const nc = await frameOf(page);
   const ncColour = await page.evaluate(() => window.hqViewer.data.colors.non_conforming);
   const want = [1, 3, 5].map((i) => parseInt(ncColour.slice(i, i + 2), 16));
+  // The face is inside the model, behind the opaque faces: its frame is
+  // drawn faint there (issue 44 review: drawn as heavy as a visible one it
+  // read as a slab standing out of the front face): at each probe the frame
+  // changes the pixel, towards its colour, but not to it.
+  await setChecked(page, '#layer-nonconforming', false);
+  const bare = await frameOf(page);
+  await setChecked(page, '#layer-nonconforming', true);
   let onFrame = 0;
+  const seen = [];
   for (const p of [[1, 0.5, 0.0375], [1, 0.5, 0.9625], [1, 0.0375, 0.5], [1, 0.9625, 0.5]]) {
     const [sx, sy] = await projectToPage(page, p);
     const x = Math.round((sx - box[0]) * nc.w / box[2]), y = Math.round((sy - box[1]) * nc.h / box[3]);
     const i = 4 * ((nc.h - 1 - y) * nc.w + x);
-    if (Math.hypot(nc.px[i] - want[0], nc.px[i + 1] - want[1], nc.px[i + 2] - want[2]) <= 30) onFrame += 1;
+    const d = (a) => Math.hypot(a[i] - want[0], a[i + 1] - want[1], a[i + 2] - want[2]);
+    seen.push([nc.px[i], nc.px[i + 1], nc.px[i + 2]]);
+    if (d(nc.px) < d(bare.px) - 15 && d(nc.px) > 40) onFrame += 1;
   }
-  check(onFrame === 4, `the non-conforming face's frame is drawn in ${ncColour} (${onFrame} of 4 probes)`);
+  check(onFrame === 4, `the non-conforming face's hidden frame is drawn faint in ${ncColour} (${onFrame} of 4 probes: ${JSON.stringify(seen)})`);
   const ncLegend = await page.evaluate(() => {
     const e = document.querySelector('[data-legend="non_conforming"]');
     return e ? { text: e.textContent, colour: getComputedStyle(e.querySelector('.swatch')).backgroundColor } : null;
@@ -458,11 +518,13 @@ await section('hex and tets', CHROMIUM_ONLY, async () => {
 
 // ---- rings and grey glyphs ----
 // Cluster #0 (inverted) wears a ring in the inverted colour (the field's
-// table entry 0) and, outside it, the dark ring of the worst cluster; the
-// grey cluster's glyph is drawn at 0.6 of its radius: pixels at the
-// projected positions, with the faces, edges and markers hidden. Without
-// the rings the circles at 1.21 and 1.48 glyph radii are white; without the
-// 0.6 the grey glyph's row spans its full diameter.
+// table entry 0) and, outside it, the dark ring of the worst cluster, each
+// a fixed number of pixels outside the drawn glyph (2-6 and 8-12 px)
+// whatever the zoom; the grey cluster's glyph is drawn at 0.6 of its radius:
+// pixels at the projected positions, with the faces, edges and markers
+// hidden. Without the rings those circles are white; rings that scale with
+// the glyph (before the issue 44 review) are 3 times as wide at zoom 3;
+// without the 0.6 the grey glyph's row spans its full diameter.
 await section('rings', BOTH, async () => {
   const { page, problems } = await open(ringed);
   for (const layer of ['#layer-boundary', '#layer-edges', '#layer-markers', '#layer-intersecting', '#layer-low'])
@@ -473,7 +535,7 @@ await section('rings', BOTH, async () => {
     v.controls.target.copy(t);
     v.camera.up.set(0, 1, 0);
     v.camera.position.copy(t).add(new window.THREE.Vector3(0, 0, 14));
-    v.camera.zoom = 1;
+    v.camera.zoom = 2;
     v.camera.lookAt(t);
     v.camera.updateProjectionMatrix();
     v.controls.update();
@@ -488,7 +550,7 @@ await section('rings', BOTH, async () => {
       return e ? { text: e.textContent, border: getComputedStyle(e.querySelector('.swatch')).borderTopColor } : null;
     });
     return { rect: [r.left, r.top, r.width, r.height], lut, right, clusters: v.data.clusters, legend,
-             others: document.getElementById('clusters').textContent };
+             others: document.getElementById('clusters').textContent, glyphScale: v.glyphScale };
   })) };
   await page.screenshot({ path: path.join(outDir, 'ringed.png') });
   const { w, h, px, rect, lut, right, clusters } = info;
@@ -503,7 +565,7 @@ await section('rings', BOTH, async () => {
   }
   const worst = clusters.find((cl) => cl.id === 0), grey = clusters.find((cl) => !cl.is_top);
   check(worst && worst.min_quality < 0 && grey && grey.min_quality >= 0, `the ringed grid has an inverted #0 and a grey cluster (${clusters.length} clusters)`);
-  const g0 = await onScreen(worst, worst.radius);
+  const g0 = await onScreen(worst, worst.radius * info.glyphScale);
   // Samples of 48 on the circle at f glyph radii within 40 of colour (in the frame read by get).
   function onCircle(g, f, colour, get = rgb) {
     let on = 0;
@@ -513,11 +575,24 @@ await section('rings', BOTH, async () => {
     }
     return on;
   }
-  const invertedOn = onCircle(g0, 1.21, lut), darkOn = onCircle(g0, 1.48, [38, 38, 38]);
-  check(g0.r > 15 && invertedOn >= 40, `#0 wears the inverted ring (${invertedOn} of 48 samples at 1.21 r = ${(1.21 * g0.r).toFixed(1)} px)`);
-  check(darkOn >= 40, `#0 wears the dark ring outside it (${darkOn} of 48 samples at 1.48 r)`);
+  // f glyph radii for the circle d pixels outside the glyph.
+  const at = (g, d) => 1 + d / g.r;
+  const invertedOn = onCircle(g0, at(g0, 4), lut), darkOn = onCircle(g0, at(g0, 10), [38, 38, 38]);
+  check(g0.r > 15 && invertedOn >= 40, `#0 wears the inverted ring (${invertedOn} of 48 samples 4 px outside its glyph of ${g0.r.toFixed(1)} px)`);
+  check(darkOn >= 40, `#0 wears the dark ring outside it (${darkOn} of 48 samples 10 px outside the glyph)`);
+  // The inverted ring's width along 8 rays: the pixels within 40 of its colour.
+  function ringWidth(g, colour, get = rgb) {
+    let sum = 0;
+    for (let a = 0; a < 8; ++a) {
+      const t = 2 * Math.PI * a / 8;
+      for (let d = 0; d < 40; ++d)
+        sum += dist(get(g.x + (g.r + d) * Math.cos(t), g.y + (g.r + d) * Math.sin(t)), colour) <= 40 ? 1 : 0;
+    }
+    return sum / 8;
+  }
+  const width4 = ringWidth(g0, lut);
   // The grey glyph: the drawn extent along its row and column through the centre.
-  const gg = await onScreen(grey, grey.radius);
+  const gg = await onScreen(grey, grey.radius * info.glyphScale);
   const background = rgb(2, 2);  // a corner: nothing is drawn there
   const white = (x, y) => dist(rgb(x, y), background) <= 8;
   let extent = 0;
@@ -532,14 +607,32 @@ await section('rings', BOTH, async () => {
     `the legend names #0's dark ring with a dark ring swatch (${JSON.stringify(info.legend[0])})`);
   check(info.legend[1] && /inverted/.test(info.legend[1].text) && info.legend[1].border === `rgb(${lut.join(', ')})`,
     `the legend names the inverted ring in the inverted colour (${JSON.stringify(info.legend[1])})`);
-  check(/other clusters? \(0\.6 size\)/.test(info.others), 'the legend says the grey glyphs are drawn at 0.6 size');
+  check(/other clusters?: smaller grey spheres \(0\.6 of their radius\)/.test(info.others), 'the legend says the grey glyphs are drawn at 0.6 of their radius');
+  // Zoom 6 (3 times): the glyph 3 times as large, the ring as wide.
+  const aim = async (zoom, p) => page.evaluate(([zoom, p]) => {
+    const v = window.hqViewer, t = new window.THREE.Vector3(p[0], p[1], 5);
+    v.controls.target.copy(t);
+    v.camera.position.copy(t).add(new window.THREE.Vector3(0, 0, 14));
+    v.camera.zoom = zoom;
+    v.camera.lookAt(t);
+    v.camera.updateProjectionMatrix();
+    v.controls.update();
+  }, [zoom, p]);
+  await aim(6, worst.position);
+  const zoomed = await frameOf(page);
+  const rgbZ = (x, y) => { const i = 4 * ((zoomed.h - 1 - Math.round(y)) * zoomed.w + Math.round(x)); return [zoomed.px[i], zoomed.px[i + 1], zoomed.px[i + 2]]; };
+  const g0z = await onScreen(worst, worst.radius * info.glyphScale);
+  const width12 = ringWidth(g0z, lut, rgbZ);
+  check(width4 >= 3 && width4 <= 6 && width12 >= 3 && width12 <= 6 && g0z.r > 2.5 * g0.r,
+    `the inverted ring is a fixed 4 px wide at every zoom (${width4} px round a ${g0.r.toFixed(1)} px glyph, ${width12} px round ${g0z.r.toFixed(1)} px)`);
+  await aim(2, [3, 3]);
   // The see-through faces back on (35 %, the default): #0's glyph lies under
   // the top faces, and the rings keep their colours (before issue 44's fix
   // they were drawn before the faces and came out washed: 0 of 48).
   await setChecked(page, '#layer-boundary', true);
   const faced = await frameOf(page);
   const rgbF = (x, y) => { const i = 4 * ((faced.h - 1 - Math.round(y)) * faced.w + Math.round(x)); return [faced.px[i], faced.px[i + 1], faced.px[i + 2]]; };
-  const invF = onCircle(g0, 1.21, lut, rgbF), darkF = onCircle(g0, 1.48, [38, 38, 38], rgbF);
+  const invF = onCircle(g0, at(g0, 4), lut, rgbF), darkF = onCircle(g0, at(g0, 10), [38, 38, 38], rgbF);
   check(invF >= 40 && darkF >= 40, `with the see-through faces over #0 its rings keep their colours (inverted ${invF}, dark ${darkF} of 48)`);
   // The #k label: view A's text "#0 (n)" (report.json's id and size) beside
   // #0's glyph, outside its rings and within 24 px of them; the grey
@@ -551,7 +644,7 @@ await section('rings', BOTH, async () => {
   }));
   const c0 = report.glyphs.clusters[0];
   const l0 = labels.find((l) => l.k === '0');
-  const cx = rect[0] + g0.x / scale, cy = rect[1] + g0.y / scale, ringOut = 1.54 * g0.r / scale;
+  const cx = rect[0] + g0.x / scale, cy = rect[1] + g0.y / scale, ringOut = (g0.r + 12) / scale;
   const gap = l0 && Math.hypot(Math.max(l0.box[0] - cx, 0, cx - l0.box[2]), Math.max(l0.box[1] - cy, 0, cy - l0.box[3]));
   check(labels.length === 1 && l0 && !l0.hidden && l0.text === `#0 (${c0.size})`,
     `one label, #0's, reads "#0 (${c0.size})" as view A's (${JSON.stringify(labels)})`);
@@ -560,6 +653,18 @@ await section('rings', BOTH, async () => {
   const gaps = await legendGaps(page);
   check(gaps.missing.length === 0 && gaps.drawn.length >= 4, `every colour drawn on the ringed grid has a legend swatch (drawn ${gaps.drawn}; missing ${gaps.missing})`);
   await page.screenshot({ path: path.join(outDir, 'ringed_faces.png') });
+  // The cut clips the glyphs, their rings and labels (issue 44 review: they
+  // hung outside the cut model): a cut across z at the grid's bottom, seen
+  // from above, removes everything; #0's centre and ring pixels are then the
+  // background and its label is hidden.
+  await selectValue(page, '#cut-axis', '2');
+  await page.evaluate(() => { const e = document.getElementById('cut'); e.value = 0; e.dispatchEvent(new Event('input')); });
+  const cutShot = await frameOf(page);
+  const rgbC = (x, y) => { const i = 4 * ((cutShot.h - 1 - Math.round(y)) * cutShot.w + Math.round(x)); return [cutShot.px[i], cutShot.px[i + 1], cutShot.px[i + 2]]; };
+  const cutLabel = await page.evaluate(() => document.querySelector('.glyph-label[data-cluster="0"]').hidden);
+  const ringLeft = onCircle(g0, at(g0, 4), lut, rgbC);
+  check(dist(rgbC(g0.x, g0.y), [255, 255, 255]) <= 8 && ringLeft === 0 && cutLabel,
+    `a cut that removes #0's centre removes its glyph, ring and label (centre ${rgbC(g0.x, g0.y)}, ring ${ringLeft} of 48, label hidden ${cutLabel})`);
   check(problems.length === 0, `no console error on the ringed grid: ${problems.join('; ')}`);
   await page.close();
 });
@@ -596,19 +701,38 @@ await section('cut of every kind', CHROMIUM_ONLY, async () => {
   });
   await selectValue(page, '#cut-axis', axis.axis);
   await page.evaluate((v) => { const s = document.getElementById('cut'); s.value = v; s.dispatchEvent(new Event('input')); }, axis.keepAll);
-  const shot = await frameOf(page);
   const box = await page.evaluate(() => { const r = window.hqViewer.renderer.domElement.getBoundingClientRect(); return [r.left, r.top, r.width, r.height]; });
-  const drawnKinds = [];
-  for (const c of cells) {
-    const [sx, sy] = await projectToPage(page, c.centroid);
-    const x = Math.round((sx - box[0]) * shot.w / box[2]), y = Math.round((sy - box[1]) * shot.h / box[3]);
-    const i = 4 * ((shot.h - 1 - y) * shot.w + x);
-    if (shot.px[i] < 245 || shot.px[i + 1] < 245 || shot.px[i + 2] < 245) drawnKinds.push(c.kind);
+  async function kindsDrawn() {
+    const shot = await frameOf(page), drawnKinds = [];
+    for (const c of cells) {
+      const [sx, sy] = await projectToPage(page, c.centroid);
+      const x = Math.round((sx - box[0]) * shot.w / box[2]), y = Math.round((sy - box[1]) * shot.h / box[3]);
+      const i = 4 * ((shot.h - 1 - y) * shot.w + x);
+      if (shot.px[i] < 245 || shot.px[i + 1] < 245 || shot.px[i + 2] < 245) drawnKinds.push(c.kind);
+    }
+    return drawnKinds;
   }
+  // With hexes among the cells under the threshold, only the hexes at first
+  // (issue 44 review: a Delaunay tet region floods the cut); each kind has a
+  // check box with its count.
+  const first = await kindsDrawn();
+  const boxes = await page.evaluate(() => [...document.querySelectorAll('#cut-kinds input')].map((b) => b.parentNode.textContent.trim() + (b.checked ? ' on' : ' off')));
+  check(first.join() === 'hex' && boxes.join() === '1 hex on,1 tet off,1 wedge off,1 pyramid off',
+    `the cut first draws the hexes only, with a box per kind (drawn: ${first}; boxes: ${boxes})`);
+  for (const kd of ['tet', 'wedge', 'pyramid']) await setChecked(page, `#cut-kinds input[data-kind=${kd}]`, true);
+  const drawnKinds = await kindsDrawn();
   await page.screenshot({ path: path.join(outDir, 'kinds_cut.png') });
-  check(drawnKinds.length === 4, `the cut draws every kind's cell under the threshold (drawn: ${drawnKinds})`);
+  check(drawnKinds.length === 4, `the cut draws every kind's cell under the threshold once ticked (drawn: ${drawnKinds})`);
   const note = await page.evaluate(() => document.getElementById('cut-note').textContent);
-  check(/\(1 hex, 1 tet, 1 wedge, 1 pyramid\)/.test(note), `the cut's note names the kinds ("${note}")`);
+  check(/\(1 hex, 1 tet, 1 wedge, 1 pyramid\); 4 drawn/.test(note), `the cut's note names the kinds and the drawn count ("${note}")`);
+  // The cut plane's outline is drawn, in a colour with a swatch.
+  const outline = await page.evaluate(() => {
+    let o = null;
+    window.hqViewer.scene.traverseVisible((x) => { if (x.isLineLoop) o = '#' + x.material.color.getHexString(); });
+    return o;
+  });
+  const cutGaps = await legendGaps(page);
+  check(outline && cutGaps.drawn.includes(outline) && cutGaps.missing.length === 0, `the cut plane's outline is drawn with a legend swatch (${outline}; missing ${cutGaps.missing})`);
   // Every layer back on: the overlap colours have legend entries.
   for (const layer of ['#layer-boundary', '#layer-edges', '#layer-glyphs', '#layer-markers', '#layer-intersecting'])
     await setChecked(page, layer, true);
