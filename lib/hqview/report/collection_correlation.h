@@ -35,6 +35,9 @@ struct CollectionCorrelationRow {
   double p_l2 = 0;     // its two-sided p-value; NaN: null
   double rho_h1 = 0;   // with the mean relative H1 semi-norm error
   double p_h1 = 0;
+  // Benjamini-Hochberg q of p_l2 (p_h1) over the table's rows (the baseline
+  // included); NaN: null.
+  double q_l2 = 0, q_h1 = 0;
   int num_meshes = 0;  // meshes that entered (both errors and this value)
 };
 
