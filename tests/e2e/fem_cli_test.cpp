@@ -278,6 +278,18 @@ TEST(FemCli, BatchCorrelatesErrorsWithMetricsAcrossMeshes) {
     EXPECT_NEAR(row["rho_h1_error"].get<double>(), test_spearman(is_min ? sj_min : sj_mean, h1), 1e-12);
   }
   EXPECT_TRUE(seen_min && seen_mean && seen_edge_ratio && seen_baseline);
+  // q: Benjamini-Hochberg over the rows' p (recomputed here from the p's).
+  std::vector<std::pair<double, double>> pq;  // (p, q) of the H1 column
+  for (const json& row : c["metrics"])
+    if (row["p_h1_error"].is_number()) pq.push_back({row["p_h1_error"].get<double>(), row["q_h1_error"].get<double>()});
+    else EXPECT_TRUE(row["q_h1_error"].is_null());
+  std::sort(pq.begin(), pq.end());
+  for (std::size_t i = 0; i < pq.size(); ++i) {
+    double expected = 1.0;
+    for (std::size_t j = i; j < pq.size(); ++j)
+      expected = std::min(expected, pq[j].first * static_cast<double>(pq.size()) / static_cast<double>(j + 1));
+    EXPECT_NEAR(pq[i].second, expected, 1e-12) << i;
+  }
   EXPECT_LT(test_spearman(sj_min, h1), -0.5);  // the min SJ mostly ranks these meshes by their error
   // A method of 3 meshes: too few, every rho null.
   for (const json& m : index["methods"]) {

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string_view>
 
 namespace hq {
 namespace {
@@ -30,6 +31,102 @@ TEST(Spearman, SkipsUnusablePairsAndConstants) {
   EXPECT_DOUBLE_EQ(r.rho, 1.0);
   EXPECT_TRUE(std::isnan(spearman_correlation(std::vector<double>{1, 2, 3}, std::vector<double>{7, 7, 7}).rho));
   EXPECT_TRUE(std::isnan(spearman_correlation(std::vector<double>{1, 2}, std::vector<double>{1, 2}).rho));
+}
+
+// The partial correlation from the formula equals the Pearson correlation
+// of the residuals of x and y after a least-squares line on z (computed
+// here by regression, another route); NaN when a side ranks as z.
+TEST(PartialRankCorrelation, EqualsTheCorrelationOfRegressionResiduals) {
+  const std::vector<double> x = {3, 1, 4, 1.5, 5, 9, 2, 6, 5.5, 3.5}, y = {2, 7, 1, 8, 2.5, 8.5, 1.8, 2.8, 4.5, 9},
+                            z = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10};
+  // Ranks (no ties among x, y; z is its own rank).
+  const auto ranks = [](const std::vector<double>& v) {
+    std::vector<double> r(v.size());
+    for (std::size_t i = 0; i < v.size(); ++i)
+      for (std::size_t j = 0; j < v.size(); ++j) r[i] += v[j] <= v[i] ? 1.0 : 0.0;
+    return r;
+  };
+  const std::vector<double> rx = ranks(x), ry = ranks(y), rz = ranks(z);
+  const auto residual = [&](const std::vector<double>& a) {
+    double ma = 0, mz = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) ma += a[i] / a.size(), mz += rz[i] / a.size();
+    double saz = 0, szz = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) saz += (a[i] - ma) * (rz[i] - mz), szz += (rz[i] - mz) * (rz[i] - mz);
+    std::vector<double> e(a.size());
+    for (std::size_t i = 0; i < a.size(); ++i) e[i] = a[i] - ma - saz / szz * (rz[i] - mz);
+    return e;
+  };
+  const std::vector<double> ex = residual(rx), ey = residual(ry);
+  double sxy = 0, sxx = 0, syy = 0;
+  for (std::size_t i = 0; i < ex.size(); ++i) sxy += ex[i] * ey[i], sxx += ex[i] * ex[i], syy += ey[i] * ey[i];
+  const double expected = sxy / std::sqrt(sxx * syy);
+  const double got = partial_rank_correlation(spearman_correlation(x, y).rho, spearman_correlation(x, z).rho,
+                                              spearman_correlation(y, z).rho);
+  EXPECT_NEAR(got, expected, 1e-12);
+  EXPECT_GT(std::abs(got - spearman_correlation(x, y).rho), 0.05);  // the control moved it
+  EXPECT_TRUE(std::isnan(partial_rank_correlation(0.3, 1.0, 0.2)));
+  EXPECT_TRUE(std::isnan(partial_rank_correlation(0.3, 0.2, -0.9995)));
+}
+
+// correlate_metrics' shared-rank path gives what spearman_correlation and
+// partial_rank_correlation give one by one; a metric with a sentinel takes
+// the pairwise path; the size itself has no partial rho.
+TEST(CorrelateMetrics, PartialGivenSizeAsComputedOneByOne) {
+  const std::size_t n = 200;
+  std::vector<double> density(n), size(n), skew(n), volume(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double a = std::sin(1.7 * static_cast<double>(i)), b = std::cos(0.37 * static_cast<double>(i * i));
+    size[i] = 1.0 + 0.5 * a;
+    volume[i] = size[i] * size[i] * size[i];
+    skew[i] = 0.5 + 0.4 * b;
+    density[i] = size[i] * (1.0 + skew[i]) + 0.1 * std::sin(3.1 * static_cast<double>(i));
+  }
+  density[7] = std::nan("");
+  HexMetricField metrics;
+  metrics.values[static_cast<std::size_t>(HexMetric::skew)] = skew;
+  metrics.values[static_cast<std::size_t>(HexMetric::volume)] = volume;
+  std::vector<double> shear = skew;
+  shear[11] = 1e30;  // a sentinel: the pairwise path
+  metrics.values[static_cast<std::size_t>(HexMetric::shear)] = shear;
+  FemElementField elements;
+  elements.kappa = elements.lambda_max = elements.det_j_min = skew;
+  const std::vector<MetricCorrelation> c = correlate_metrics(density, metrics, elements, size);
+  const auto find = [&](std::string_view name) {
+    for (const MetricCorrelation& m : c)
+      if (m.metric == name) return m;
+    ADD_FAILURE() << name;
+    return MetricCorrelation{};
+  };
+  const double r_ds = spearman_correlation(density, size).rho;
+  const MetricCorrelation s = find("skew");
+  EXPECT_DOUBLE_EQ(s.correlation.rho, spearman_correlation(density, skew).rho);
+  // Over the hexes with a density (#7 has none).
+  std::vector<double> skew_used = skew, size_used = size;
+  skew_used[7] = size_used[7] = std::nan("");
+  EXPECT_NEAR(s.rho_given_size,
+              partial_rank_correlation(s.correlation.rho, r_ds, spearman_correlation(skew_used, size_used).rho),
+              1e-14);
+  EXPECT_GT(s.rho_given_size, s.correlation.rho);  // the size hid part of it
+  const MetricCorrelation sh = find("shear");
+  EXPECT_EQ(sh.correlation.count, static_cast<std::int64_t>(n - 2));
+  EXPECT_TRUE(std::isfinite(sh.rho_given_size));
+  EXPECT_TRUE(std::isnan(find("volume").rho_given_size));  // ranks as the size
+  EXPECT_NEAR(size_correlation(density, size).rho, r_ds, 1e-15);
+  // Without sizes: no partial rho.
+  EXPECT_TRUE(std::isnan(correlate_metrics(density, metrics, elements)[0].rho_given_size));
+}
+
+// By hand: m = 4 finite p sorted 0.01, 0.03, 0.04, 0.5 give m p / rank
+// 0.04, 0.06, 0.0533, 0.5, then the running min from the top.
+TEST(BenjaminiHochberg, HandComputed) {
+  const std::vector<double> q = benjamini_hochberg(std::vector<double>{0.01, 0.04, 0.03, std::nan(""), 0.5});
+  ASSERT_EQ(q.size(), 5u);
+  EXPECT_DOUBLE_EQ(q[0], 0.04);
+  EXPECT_DOUBLE_EQ(q[1], 4 * 0.04 / 3);
+  EXPECT_DOUBLE_EQ(q[2], 4 * 0.04 / 3);
+  EXPECT_TRUE(std::isnan(q[3]));
+  EXPECT_DOUBLE_EQ(q[4], 0.5);
+  EXPECT_DOUBLE_EQ(benjamini_hochberg(std::vector<double>{0.9, 0.8})[0], 0.9);
 }
 
 // p-values against scipy (tests/fem: brute force over itertools.permutations

@@ -11,6 +11,7 @@
 #include "hqview/fem/metric_correlation.h"
 #include "hqview/fem/pcg.h"
 #include "hqview/quality/corner_jacobian.h"
+#include "hqview/quality/hex_metrics.h"
 #include "support/fixtures.h"
 
 namespace hq {
@@ -190,6 +191,15 @@ TEST(PoissonCheck, DensityIsHigherWhereTheMeshIsBad) {
   };
   EXPECT_GT(median(in_region), 1.15 * median(elsewhere));
   EXPECT_LT(spearman_correlation(c.cell_error_density, sj).rho, -0.1);
+  // h_e = |e|^(1/3) per hex (the volume the errors integrate), and the
+  // scaled Jacobian still ranks the density with the size held fixed.
+  ASSERT_EQ(c.cell_size.size(), mesh.hexes.size());
+  for (std::size_t h = 0; h < mesh.hexes.size(); h += 97)
+    EXPECT_NEAR(c.cell_size[h], std::cbrt(hex_volume(hex_corners(mesh, static_cast<Index>(h)))), 1e-12);
+  EXPECT_DOUBLE_EQ(c.size_correlation, spearman_correlation(c.cell_error_density, c.cell_size).rho);
+  EXPECT_LT(partial_rank_correlation(spearman_correlation(c.cell_error_density, sj).rho, c.size_correlation,
+                                     spearman_correlation(sj, c.cell_size).rho),
+            -0.1);
 }
 
 TEST(PoissonCheck, SkipsInvalidAndOneLayerMeshes) {

@@ -12,40 +12,83 @@
 #include "hqview/fem/poisson_check.h"
 #include "hqview/image/colormap.h"
 #include "hqview/render/osmesa_renderer.h"
+#include "hqview/views/boundary_views.h"
 #include "support/fixtures.h"
 #include "support/image_probe.h"
 
 namespace hq {
 namespace {
 
-// Redness r / (b + 1): the diffuse shading scales a face's r, g, b alike, so
-// this ratio keeps where on the map (pale blue-grey low, red high) a pixel is.
+// Redness r / (b + 1): where on the map (pale blue-grey low, red high) a
+// pixel is.
 double redness(Rgba8 c) { return c.r / (c.b + 1.0); }
-double redness(Color c) { return redness(to_rgba8(c)); }
 
+// One fixed log range for every mesh, 0.01 to 10 (clamped outside), so a
+// colour means the same density on any mesh; the legend marks the mesh's max.
 TEST(ErrorDensityView, LogScaleHighIsTheMapsRedEnd) {
   const std::vector<double> d = {1e-3, 1e-2, 0.1, std::nan(""), -1.0, 0.05};
   const ErrorDensityScale s = error_density_scale(d);
-  EXPECT_DOUBLE_EQ(s.hi, 0.1);
-  EXPECT_DOUBLE_EQ(s.lo, 1e-3);
-  EXPECT_EQ(to_rgba8(error_density_color(0.1, s)), to_rgba8(sample_quality_map(0.0)));
+  EXPECT_DOUBLE_EQ(s.hi, 10.0);
+  EXPECT_DOUBLE_EQ(s.lo, 1e-2);
+  EXPECT_DOUBLE_EQ(s.max, 0.1);
+  EXPECT_EQ(to_rgba8(error_density_color(10.0, s)), to_rgba8(sample_quality_map(0.0)));
+  EXPECT_EQ(to_rgba8(error_density_color(50.0, s)), to_rgba8(sample_quality_map(0.0)));  // clamped
+  EXPECT_EQ(to_rgba8(error_density_color(1e-2, s)), to_rgba8(sample_quality_map(1.0)));
   EXPECT_EQ(to_rgba8(error_density_color(1e-3, s)), to_rgba8(sample_quality_map(1.0)));
-  EXPECT_EQ(to_rgba8(error_density_color(1e-2, s)), to_rgba8(sample_quality_map(0.5)));  // log: the middle
+  EXPECT_EQ(to_rgba8(error_density_color(std::sqrt(10.0) / 10.0, s)), to_rgba8(sample_quality_map(0.5)));  // log: the middle
   EXPECT_EQ(to_rgba8(error_density_color(std::nan(""), s)), to_rgba8(kUndefinedColor));
   const ColorBar bar = error_density_color_bar(s);
-  EXPECT_DOUBLE_EQ(bar.min_value, -3.0);
-  EXPECT_DOUBLE_EQ(bar.max_value, -1.0);
-  ASSERT_EQ(bar.ticks.size(), 3u);  // 0.001, 0.01, 0.1 (max)
-  EXPECT_EQ(bar.ticks[1].label, "0.01");
+  EXPECT_DOUBLE_EQ(bar.min_value, -2.0);
+  EXPECT_DOUBLE_EQ(bar.max_value, 1.0);
+  // <= 0.01, 1 (0.1 crowds the max), >= 10, the max at log10 0.1.
+  std::vector<std::string> labels;
+  for (const ColorBarTick& t : bar.ticks) labels.push_back(t.label);
+  EXPECT_EQ(labels, (std::vector<std::string>{"\u2264 0.01", "1", "\u2265 10", "mesh max 0.1"}));
+  EXPECT_DOUBLE_EQ(bar.ticks.back().value, -1.0);
+  // Two meshes: the same density, the same colour.
+  EXPECT_EQ(to_rgba8(error_density_color(0.3, error_density_scale(std::vector<double>{0.3, 2.0}))),
+            to_rgba8(error_density_color(0.3, error_density_scale(std::vector<double>{0.3, 0.31}))));
 }
 
-TEST(ErrorDensityView, CellsUnderTheThresholdAndTheDensest) {
-  const std::vector<double> sj = {0.9, 0.3, 0.95, 0.8, 1e30};
-  const std::vector<double> d = {0.1, 0.2, 0.9, 0.3, 0.1};
+// The cells figure draws the densest 1% by density alone (at least one, at
+// most max_cells), ascending ids; ties by id.
+TEST(ErrorDensityView, CellsAreTheDensestCapped) {
+  std::vector<double> d(1000);
+  for (std::size_t i = 0; i < d.size(); ++i) d[i] = 1.0 + static_cast<double>((i * 7919) % 1000);
+  d[5] = std::nan("");
   ErrorDensityViewOptions o;
-  o.quality_threshold = 0.5;
-  o.densest_fraction = 0.01;  // one hex: #2
-  EXPECT_EQ(error_density_cells(sj, d, o), (std::vector<Index>{1, 2, 4}));
+  o.densest_fraction = 0.01;  // 9 of the 999 usable
+  std::vector<Index> expected;
+  for (std::size_t i = 0; i < d.size(); ++i)
+    if (d[i] > 991.0) expected.push_back(static_cast<Index>(i));
+  EXPECT_EQ(error_density_cells(d, o), expected);
+  o.max_cells = 3;  // the three largest: 1000, 999, 998
+  std::vector<Index> top;
+  for (std::size_t i = 0; i < d.size(); ++i)
+    if (d[i] >= 998.0) top.push_back(static_cast<Index>(i));
+  EXPECT_EQ(error_density_cells(d, o), top);
+  o.densest_fraction = 0;  // still one
+  EXPECT_EQ(error_density_cells(d, o).size(), 1u);
+}
+
+// The worst hex and whether it has a boundary face: a 3^3 grid's centre
+// hex (13) is its only interior one.
+TEST(ErrorDensityView, WorstHexKnowsWhetherItIsOnTheBoundary) {
+  const HexMesh mesh = test::grid(3);
+  const Topology topology = build_topology(mesh);
+  std::vector<double> d(27, 0.1);
+  d[13] = 5.0;
+  d[4] = 2.0;
+  ErrorDensityWorst w = error_density_worst(topology, d);
+  EXPECT_EQ(w.hex, 13);
+  EXPECT_DOUBLE_EQ(w.density, 5.0);
+  EXPECT_FALSE(w.on_boundary);
+  EXPECT_DOUBLE_EQ(w.boundary_max, 2.0);
+  d[4] = 9.0;
+  w = error_density_worst(topology, d);
+  EXPECT_EQ(w.hex, 4);
+  EXPECT_TRUE(w.on_boundary);
+  EXPECT_DOUBLE_EQ(w.boundary_max, 9.0);
 }
 
 // A 10^3 unit box whose interior vertices with z >= 0.6 and x, y in
@@ -85,6 +128,7 @@ TEST(ErrorDensityView, TheBadRegionCarriesTheHighEndOfTheMap) {
       projection_matrix(camera, static_cast<double>(view.width) / view.height) * view_matrix(camera);
   const ErrorDensityScale scale = error_density_scale(density);
   std::vector<double> region, rest;
+  std::size_t matching = 0;
   for (Index face : topology.boundary_faces) {
     const Quad& q = topology.faces[static_cast<std::size_t>(face)];
     Vec3 c;
@@ -99,18 +143,36 @@ TEST(ErrorDensityView, TheBadRegionCarriesTheHighEndOfTheMap) {
     const Index h = topology.face_hexes[static_cast<std::size_t>(topology.face_hex_offsets[static_cast<std::size_t>(face)])];
     bool bad = false;
     for (Index v : mesh.hexes[static_cast<std::size_t>(h)]) bad = bad || moved[static_cast<std::size_t>(v)];
-    (bad ? region : rest).push_back(redness(test::pixel_at(image, x, y)));
+    const Rgba8 pixel = test::pixel_at(image, x, y), expected = to_rgba8(error_density_color(density[static_cast<std::size_t>(h)], scale));
+    if (std::abs(pixel.r - expected.r) <= 3 && std::abs(pixel.g - expected.g) <= 3 && std::abs(pixel.b - expected.b) <= 3)
+      ++matching;
+    (bad ? region : rest).push_back(redness(pixel));
   }
   ASSERT_GE(region.size(), 9u);
   ASSERT_GE(rest.size(), 100u);
+  // Unlit faces: each visible face's centre pixel is its hex's legend colour.
+  EXPECT_GE(matching, (region.size() + rest.size()) * 95 / 100) << matching;
   const auto median = [](std::vector<double> v) {
     std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
     return v[v.size() / 2];
   };
-  // The region's pixels sit in the upper half of the map (redder than its
-  // middle, t = 0.5) and redder than the rest's.
-  EXPECT_GT(median(region), redness(sample_quality_map(0.5))) << median(region) << " vs " << median(rest);
-  EXPECT_GT(median(region), 1.25 * median(rest)) << median(region) << " vs " << median(rest);
+  // The region's pixels are redder than the rest's.
+  EXPECT_GT(median(region), 1.08 * median(rest)) << median(region) << " vs " << median(rest);
+  // The densest hex is ringed: ring-coloured pixels around its projection.
+  const ErrorDensityWorst worst = error_density_worst(topology, density);
+  ASSERT_NE(worst.hex, kNoIndex);
+  Vec3 centre;
+  for (Index v : mesh.hexes[static_cast<std::size_t>(worst.hex)]) centre = centre + mesh.points[static_cast<std::size_t>(v)] / 8.0;
+  const Vec3 ndc = transform_point(to_ndc, centre);
+  const int cx = view.x + static_cast<int>(std::lround((ndc.x + 1) / 2 * view.width));
+  const int cy = view.y + static_cast<int>(std::lround((1 - ndc.y) / 2 * view.height));
+  int ring = 0;
+  for (int y = cy - 60; y <= cy + 60; ++y)
+    for (int x = cx - 60; x <= cx + 60; ++x)
+      if (x >= 0 && y >= 0 && x < image.width && y < image.height && test::pixel_at(image, x, y) == kWorstMarkerColor &&
+          std::hypot(x - cx, y - cy) > 8)
+        ++ring;
+  EXPECT_GT(ring, 60) << "no ring about hex " << worst.hex;
   (void)scale;
 }
 

@@ -517,6 +517,7 @@ namespace {
 
 constexpr Rgba8 kNegativeRhoColor{49, 104, 170, 255};  // higher value, lower error
 constexpr Rgba8 kPositiveRhoColor{205, 96, 40, 255};   // higher value, higher error
+constexpr Rgba8 kPartialRhoColor{20, 20, 24, 255};     // the partial rho given the size
 
 // "0.01", "1", "1e-05": a decade's label.
 std::string decade_label(int k) {
@@ -527,7 +528,8 @@ std::string decade_label(int k) {
 }  // namespace
 
 Chart metric_correlation_chart(std::span<const std::string> metrics, std::span<const double> rho,
-                               const ChartOptions& options) {
+                               const ChartOptions& options, std::span<const double> rho_given_size,
+                               std::span<const char> is_size, std::int64_t count) {
   std::vector<std::size_t> order, constant;
   for (std::size_t i = 0; i < metrics.size() && i < rho.size(); ++i)
     (std::isfinite(rho[i]) ? order : constant).push_back(i);
@@ -553,15 +555,28 @@ Chart metric_correlation_chart(std::span<const std::string> metrics, std::span<c
     const double x0 = x_of(0.0), x1 = x_of(rho[i]);
     chart.rects.push_back({std::min(x0, x1), y + 3.0, std::max(1.0, std::abs(x1 - x0)), row - 6.0,
                            rho[i] < 0 ? kNegativeRhoColor : kPositiveRhoColor});
-    chart.texts.push_back({{r.x - 8.0, y + row - 6.0}, metrics[i], kTickSize, {38, 38, 38, 255}, ChartAnchor::right,
-                           false});
+    const bool size = i < is_size.size() && is_size[i];
+    chart.texts.push_back({{r.x - 8.0, y + row - 6.0}, metrics[i] + (size ? " (size)" : ""), kTickSize,
+                           size ? kAxisColor : Rgba8{38, 38, 38, 255}, ChartAnchor::right, false});
     const bool left = rho[i] < 0;
     chart.texts.push_back({{x1 + (left ? -4.0 : 4.0), y + row - 6.0}, format_value(rho[i]), kTickSize - 1.0,
                            kAxisColor, left ? ChartAnchor::right : ChartAnchor::left, false});
   }
+  // The partial rho given the size: a dark tick across each row, over the bars.
+  bool any_partial = false;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const std::size_t i = order[k];
+    if (i >= rho_given_size.size() || !std::isfinite(rho_given_size[i])) continue;
+    any_partial = true;
+    chart.rects.push_back({x_of(rho_given_size[i]) - 1.5, r.y + row * static_cast<double>(k) + 1.0, 3.0, row - 2.0,
+                           kPartialRhoColor});
+  }
   std::vector<std::pair<double, double>> x_ticks;
   for (double t = -1.0; t <= 1.0001; t += 0.5) x_ticks.push_back({t, x_of(t)});
-  add_axes(chart, r, {}, x_ticks, "Spearman \u03c1 over the hexes: metric vs normalised error density", "");
+  add_axes(chart, r, {}, x_ticks,
+           "Spearman \u03c1 over the " + (count > 0 ? std::to_string(count) + " " : std::string()) +
+               "hexes: metric vs normalised error density",
+           "");
   chart.lines.push_back({{{x_of(0.0), r.y}, {x_of(0.0), r.y + r.height}}, kAxisColor, 1.0});
   // The key, and the metrics that have no rho.
   double ly = r.y + r.height + 62.0;
@@ -571,6 +586,14 @@ Chart metric_correlation_chart(std::span<const std::string> metrics, std::span<c
   chart.rects.push_back({r.x + 0.5 * r.width, ly - 9.0, 14.0, 10.0, kPositiveRhoColor});
   chart.texts.push_back({{r.x + 0.5 * r.width + 20.0, ly}, "\u03c1 > 0: a higher value, a higher error", kTickSize,
                          kAxisColor, ChartAnchor::left, false});
+  if (any_partial) {
+    ly += 22.0;
+    chart.rects.push_back({r.x + 5.5, ly - 11.0, 3.0, 14.0, kPartialRhoColor});
+    chart.texts.push_back({{r.x + 20.0, ly},
+                           "partial \u03c1 given the hex size h_e (what the metric adds to the size; "
+                           "none where the metric ranks as the size)",
+                           kTickSize, kAxisColor, ChartAnchor::left, false});
+  }
   if (!constant.empty()) {
     std::string text = "no \u03c1 (constant on this mesh):";
     for (std::size_t i : constant) text += " " + metrics[i];

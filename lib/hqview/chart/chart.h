@@ -122,9 +122,14 @@ Chart method_distribution_chart(std::span<const std::string> methods, std::span<
 // --simulate: Spearman's rho over the hexes between the normalised error
 // density and each metric (fem.poisson.correlation), one horizontal bar per
 // metric sorted by |rho| (largest on top), on [-1, 1]; metrics whose rho is
-// NaN (constant on the mesh) are named under the chart.
+// NaN (constant on the mesh) are named under the chart. With
+// rho_given_size: a dark tick on each row at the partial rho given the hex
+// size (fem.poisson.correlation_given_size; none where NaN), in the key.
+// is_size[i]: metric i measures size (no better direction), its name gets
+// " (size)". count > 0: the number of hexes, in the axis title.
 Chart metric_correlation_chart(std::span<const std::string> metrics, std::span<const double> rho,
-                               const ChartOptions& options);
+                               const ChartOptions& options, std::span<const double> rho_given_size = {},
+                               std::span<const char> is_size = {}, std::int64_t count = 0);
 
 // --simulate: per hex the normalised error density against the scaled
 // Jacobian, both on log axes (whole decades; x up to 1). Every hex with

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <utility>
 
 #include <boost/math/special_functions/beta.hpp>
 
@@ -18,15 +19,17 @@ bool is_usable(double v) { return std::isfinite(v) && !is_verdict_sentinel(v); }
 
 // Ranks 1..n, ties sharing their mean rank.
 std::vector<double> average_ranks(const std::vector<double>& values) {
-  std::vector<std::size_t> order(values.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return values[a] < values[b]; });
+  // (value, index) pairs sorted directly: no indirect comparisons. A tie
+  // group's members share one rank, so their order does not matter.
+  std::vector<std::pair<double, std::size_t>> sorted(values.size());
+  for (std::size_t i = 0; i < values.size(); ++i) sorted[i] = {values[i], i};
+  std::sort(sorted.begin(), sorted.end());
   std::vector<double> ranks(values.size());
-  for (std::size_t i = 0; i < order.size();) {
+  for (std::size_t i = 0; i < sorted.size();) {
     std::size_t j = i;
-    while (j + 1 < order.size() && values[order[j + 1]] == values[order[i]]) ++j;
+    while (j + 1 < sorted.size() && sorted[j + 1].first == sorted[i].first) ++j;
     const double rank = 0.5 * static_cast<double>(i + j) + 1.0;
-    for (std::size_t t = i; t <= j; ++t) ranks[order[t]] = rank;
+    for (std::size_t t = i; t <= j; ++t) ranks[sorted[t].second] = rank;
     i = j + 1;
   }
   return ranks;
@@ -95,6 +98,21 @@ RankCorrelationTest spearman_test(std::span<const double> x, std::span<const dou
   return out;
 }
 
+std::vector<double> benjamini_hochberg(std::span<const double> p) {
+  std::vector<double> q(p.size(), std::numeric_limits<double>::quiet_NaN());
+  std::vector<std::pair<double, std::size_t>> sorted;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (std::isfinite(p[i])) sorted.push_back({p[i], i});
+  std::sort(sorted.begin(), sorted.end());
+  const double m = static_cast<double>(sorted.size());
+  double running = 1.0;
+  for (std::size_t k = sorted.size(); k-- > 0;) {
+    running = std::min(running, m * sorted[k].first / static_cast<double>(k + 1));
+    q[sorted[k].second] = running;
+  }
+  return q;
+}
+
 int metric_direction(std::string_view metric) {
   if (metric == "fem_kappa") return -1;
   const std::optional<HexMetric> m = hex_metric_from_name(metric);
@@ -117,47 +135,104 @@ RankCorrelation spearman_correlation(std::span<const double> x, std::span<const 
   return out;
 }
 
+double partial_rank_correlation(double r_xy, double r_xz, double r_yz) {
+  // A side that ranks (almost) as z leaves nothing to correlate: NaN, not noise.
+  if (!(std::abs(r_xz) < kPartialMaxAbsRho) || !(std::abs(r_yz) < kPartialMaxAbsRho) || !std::isfinite(r_xy))
+    return std::numeric_limits<double>::quiet_NaN();
+  const double denominator = (1.0 - r_xz * r_xz) * (1.0 - r_yz * r_yz);
+  return std::clamp((r_xy - r_xz * r_yz) / std::sqrt(denominator), -1.0, 1.0);
+}
+
+RankCorrelation size_correlation(std::span<const double> error_density, std::span<const double> cell_size) {
+  if (cell_size.empty()) return {std::numeric_limits<double>::quiet_NaN(), 0};
+  return spearman_correlation(error_density, cell_size);
+}
+
+namespace {
+
+// rho(x, y) and the partial rho given z over the hexes where all three are usable.
+MetricCorrelation correlate_three(std::span<const double> x, std::span<const double> y, std::span<const double> z) {
+  MetricCorrelation out;
+  out.correlation = spearman_correlation(x, y);
+  out.rho_given_size = std::numeric_limits<double>::quiet_NaN();
+  if (z.empty()) return out;
+  std::vector<double> a, b, c;
+  for (std::size_t i = 0; i < std::min({x.size(), y.size(), z.size()}); ++i)
+    if (is_usable(x[i]) && is_usable(y[i]) && is_usable(z[i])) {
+      a.push_back(x[i]);
+      b.push_back(y[i]);
+      c.push_back(z[i]);
+    }
+  if (a.size() < 4) return out;
+  const std::vector<double> ra = average_ranks(a), rb = average_ranks(b), rc = average_ranks(c);
+  out.rho_given_size = partial_rank_correlation(rank_pearson(ra, rb), rank_pearson(ra, rc), rank_pearson(rb, rc));
+  return out;
+}
+
+}  // namespace
+
 std::vector<MetricCorrelation> correlate_metrics(std::span<const double> error_density, const HexMetricField& metrics,
-                                                 const FemElementField& elements) {
+                                                 const FemElementField& elements, std::span<const double> cell_size) {
   std::vector<MetricCorrelation> out;
   std::vector<const std::vector<double>*> columns;
   for (int m = 0; m < kNumHexMetrics; ++m) {
     const auto metric = static_cast<HexMetric>(m);
     if (metrics.of(metric).empty()) continue;
-    out.push_back({std::string(hex_metric_name(metric)), {}});
+    out.push_back({std::string(hex_metric_name(metric)), {}, 0});
     columns.push_back(&metrics.of(metric));
   }
-  out.push_back({"fem_kappa", {}});
+  out.push_back({"fem_kappa", {}, 0});
   columns.push_back(&elements.kappa);
-  out.push_back({"fem_lambda_max", {}});
+  out.push_back({"fem_lambda_max", {}, 0});
   columns.push_back(&elements.lambda_max);
-  out.push_back({"fem_det_j_min", {}});
+  out.push_back({"fem_det_j_min", {}, 0});
   columns.push_back(&elements.det_j_min);
-  // The density's ranks once, over the hexes where it is usable; a metric
-  // usable on all of them reuses them (the same numbers as spearman_correlation).
+  // The density's ranks (and the size's) once, over the hexes where the
+  // density (and the size) is usable; a metric usable on all of them reuses
+  // them (the same numbers as spearman_correlation / correlate_three).
+  const bool has_size = cell_size.size() == error_density.size() && !cell_size.empty();
   std::vector<std::size_t> hexes;
-  std::vector<double> density;
+  std::vector<double> density, size;
+  bool size_usable = has_size;
   for (std::size_t h = 0; h < error_density.size(); ++h)
     if (is_usable(error_density[h])) {
       hexes.push_back(h);
       density.push_back(error_density[h]);
+      if (has_size) {
+        size.push_back(cell_size[h]);
+        size_usable = size_usable && is_usable(cell_size[h]);
+      }
     }
   const std::vector<double> density_ranks = average_ranks(density);
+  const std::vector<double> size_ranks = size_usable ? average_ranks(size) : std::vector<double>{};
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double density_size = size_usable && hexes.size() >= 4 ? rank_pearson(density_ranks, size_ranks) : nan;
   tbb::parallel_for(std::size_t{0}, out.size(), [&](std::size_t i) {
     const std::vector<double>& metric = *columns[i];
     std::vector<double> values(hexes.size());
-    bool all_usable = metric.size() == error_density.size();
+    bool all_usable = metric.size() == error_density.size() && (size_usable || !has_size);
     for (std::size_t j = 0; j < hexes.size() && all_usable; ++j) {
       values[j] = metric[hexes[j]];
       all_usable = is_usable(values[j]);
     }
     if (!all_usable) {
-      out[i].correlation = spearman_correlation(error_density, metric);
+      const MetricCorrelation three =
+          correlate_three(error_density, metric, has_size ? cell_size : std::span<const double>{});
+      out[i].correlation = three.correlation;
+      out[i].rho_given_size = three.rho_given_size;
       return;
     }
     out[i].correlation.count = static_cast<std::int64_t>(hexes.size());
-    out[i].correlation.rho = hexes.size() < 3 ? std::numeric_limits<double>::quiet_NaN()
-                                              : rank_pearson(density_ranks, average_ranks(values));
+    out[i].rho_given_size = nan;
+    if (hexes.size() < 3) {
+      out[i].correlation.rho = nan;
+      return;
+    }
+    const std::vector<double> metric_ranks = average_ranks(values);
+    out[i].correlation.rho = rank_pearson(density_ranks, metric_ranks);
+    if (size_usable && hexes.size() >= 4)
+      out[i].rho_given_size =
+          partial_rank_correlation(out[i].correlation.rho, rank_pearson(metric_ranks, size_ranks), density_size);
   });
   return out;
 }

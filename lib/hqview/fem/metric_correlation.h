@@ -37,6 +37,13 @@ struct RankCorrelationTest {
 };
 RankCorrelationTest spearman_test(std::span<const double> x, std::span<const double> y);
 
+// Benjamini-Hochberg adjusted p-values (q-values; Benjamini and Hochberg,
+// JRSS B 57, 1995) of a family of tests: with the m finite p sorted
+// ascending, q_(i) = min over j >= i of m p_(j) / j, at most 1; NaN stays
+// NaN and does not count in m. A row with q <= 0.05 is a discovery at a false
+// discovery rate of 5 % over the family.
+std::vector<double> benjamini_hochberg(std::span<const double> p);
+
 // Which way a metric's value is better (+1 higher, -1 lower, 0 neither: a
 // size), from Verdict's acceptable ranges (hex_metric_info): a range ending at
 // 1 (scaled Jacobian, shape, stretch, diagonal, distortion, the size-weighted
@@ -50,11 +57,31 @@ int metric_direction(std::string_view metric);
 struct MetricCorrelation {
   std::string metric;  // a Verdict name, or fem_kappa / fem_lambda_max / fem_det_j_min
   RankCorrelation correlation;
+  // The partial Spearman correlation given the hex size (partial_rank_correlation
+  // with z = the size's ranks, over the hexes where all three are usable):
+  // what the metric says about the density beyond what the size says. NaN
+  // without sizes, or when the metric or the density ranks exactly as the size.
+  double rho_given_size = 0;
 };
+
+// The partial correlation of x and y given z from the three pairwise
+// correlations: (r_xy - r_xz r_yz) / sqrt((1 - r_xz^2)(1 - r_yz^2)) (on
+// ranks: the partial Spearman correlation; Conover, "Practical
+// Nonparametric Statistics", 3rd ed., 5.4). NaN when |r_xz| or |r_yz| is
+// at least kPartialMaxAbsRho (a side that ranks almost as z: the volume
+// against the size) or any is NaN.
+inline constexpr double kPartialMaxAbsRho = 0.999;
+double partial_rank_correlation(double r_xy, double r_xz, double r_yz);
 
 // The computed Verdict metrics in HexMetric order, then the element
 // conditioning's kappa, lambda_max and det_j_min; parallel over metrics.
+// `cell_size` (per hex, may be empty): the size the partial correlations
+// control for (the Poisson check's h_e = |e|^(1/3)).
 std::vector<MetricCorrelation> correlate_metrics(std::span<const double> error_density, const HexMetricField& metrics,
-                                                 const FemElementField& elements);
+                                                 const FemElementField& elements,
+                                                 std::span<const double> cell_size = {});
+
+// Spearman's rho between the error density and the hex size (NaN without sizes).
+RankCorrelation size_correlation(std::span<const double> error_density, std::span<const double> cell_size);
 
 }  // namespace hq

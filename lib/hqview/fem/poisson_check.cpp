@@ -7,6 +7,7 @@
 #include "hqview/core/box3.h"
 #include "hqview/fem/fixed_chunks.h"
 #include "hqview/fem/laplace_system.h"
+#include "hqview/fem/metric_correlation.h"
 #include "hqview/fem/pcg.h"
 #include "hqview/fem/q1_element.h"
 
@@ -86,6 +87,7 @@ void fill_cell_fields(const HexMesh& mesh, const Q1FieldErrors& errors, const Po
   out.cell_l2_share.assign(n, 0.0);
   out.cell_h1_share.assign(n, 0.0);
   out.cell_error_density.assign(n, kNaN);
+  out.cell_size.assign(n, kNaN);
   detail::for_fem_chunks(n, [&](std::size_t first, std::size_t last) {
     for (std::size_t h = first; h < last; ++h) {
       double l2 = 0, h1 = 0, h1_sum = 0, factor = 0;
@@ -104,11 +106,13 @@ void fill_cell_fields(const HexMesh& mesh, const Q1FieldErrors& errors, const Po
       // its shape, so the shape's effect stays in the density (the diameter
       // grows with distortion and divided it out: docs/analysis.md).
       const double size = std::cbrt(errors.volume[h]);
+      out.cell_size[h] = size;
       const double denominator = errors.volume[h] * size * size * factor;
       if (denominator > 0) out.cell_error_density[h] = h1_sum / denominator;
     }
   });
   out.error_density_stats = compute_statistics(out.cell_error_density);
+  out.size_correlation = size_correlation(out.cell_error_density, out.cell_size).rho;
 }
 
 }  // namespace
@@ -156,26 +160,44 @@ Q1FieldErrors q1_field_errors(const HexMesh& mesh, const std::vector<double>& no
         weight[static_cast<std::size_t>(9 * i + 3 * j + l)] = kGauss3Weights[i] * kGauss3Weights[j] * kGauss3Weights[l];
       }
   detail::for_fem_chunks(n, [&](std::size_t first, std::size_t last) {
+    std::vector<double> corner_values(8 * k);  // [a * k + s]
     for (std::size_t h = first; h < last; ++h) {
       const Hex& hex = mesh.hexes[h];
       const Q1Corners p = hex_corners(mesh, static_cast<Index>(h));
+      for (int a = 0; a < 8; ++a)
+        for (std::size_t s = 0; s < k; ++s)
+          corner_values[static_cast<std::size_t>(a) * k + s] = nodal[static_cast<std::size_t>(hex[a]) * k + s];
       for (std::size_t g = 0; g < 27; ++g) {
-        const Q1PointData d = q1_point(p, reference[g]);
+        const Q1Reference& ref = reference[g];
+        // The map's Jacobian columns and the point (as q1_point), without
+        // the 8 physical shape gradients: grad u_h = J^-T (reference
+        // gradient of u_h), one 3 x 3 map per solution.
+        Vec3 ja, jb, jc, position;
+        for (int a = 0; a < 8; ++a) {
+          ja = ja + ref.grad[a].x * p[a];
+          jb = jb + ref.grad[a].y * p[a];
+          jc = jc + ref.grad[a].z * p[a];
+          position = position + ref.shape[a] * p[a];
+        }
+        const double det_j = det(ja, jb, jc);
+        const Vec3 bc = cross(jb, jc), ca = cross(jc, ja), ab = cross(ja, jb);
+        const double inverse = det_j != 0 ? 1.0 / det_j : 0.0;
         // |det J|: a valid element can still turn over between its 2-point
         // Gauss points; the squared errors stay non-negative.
-        const double w = weight[g] * std::abs(d.det_j);
+        const double w = weight[g] * std::abs(det_j);
         e.volume[h] += w;
         for (std::size_t s = 0; s < k; ++s) {
           double uh = 0;
-          Vec3 grad_uh;
+          Vec3 ref_grad_uh;
           for (int a = 0; a < 8; ++a) {
-            const double value = nodal[static_cast<std::size_t>(hex[a]) * k + s];
-            uh += d.shape[a] * value;
-            grad_uh = grad_uh + value * d.grad[a];
+            const double value = corner_values[static_cast<std::size_t>(a) * k + s];
+            uh += ref.shape[a] * value;
+            ref_grad_uh = ref_grad_uh + value * ref.grad[a];
           }
+          const Vec3 grad_uh = inverse * (ref_grad_uh.x * bc + ref_grad_uh.y * ca + ref_grad_uh.z * ab);
           double u;
           Vec3 grad_u;
-          solution_value_and_gradient(solutions[s], normalization, d.position, u, grad_u);
+          solution_value_and_gradient(solutions[s], normalization, position, u, grad_u);
           e.l2_squared[h * k + s] += w * (uh - u) * (uh - u);
           e.h1_squared[h * k + s] += w * squared_norm(grad_uh - grad_u);
           u_squared[h * k + s] += w * u * u;

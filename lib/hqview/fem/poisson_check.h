@@ -65,6 +65,12 @@ struct PoissonCheck {
   // h_e = |e|^(1/3) (the side of the cube of the hex's volume), x_e the mean
   // of its corners (NaN for |e| <= 0).
   std::vector<double> cell_l2_share, cell_h1_share, cell_error_density;
+  // Per hex (#hexes when solved): h_e = |e|^(1/3), model units (the size the
+  // density divides by; metric_correlation.h controls for it).
+  std::vector<double> cell_size;
+  // Spearman's rho over the hexes between the error density and h_e: how much
+  // of the density's ranking is the hex size (metric_correlation.h).
+  double size_correlation = 0;
   Statistics error_density_stats;
 };
 

@@ -69,6 +69,29 @@ std::array<double, 8> q1_gauss_det_j(const Q1Corners& p) {
   return out;
 }
 
+double q1_corner_det_j_min(const Q1Corners& p) {
+  // At corner i, dN_j/dxi is +-1/2 for i and its neighbour along xi and 0
+  // for the others, so J's first column is (P_{i+x} - P_{i-x}) / 2 along that
+  // edge (the same bits as q1_point's sums, whose other terms are zeros).
+  double out = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 8; ++i) {
+    std::array<Vec3, 3> column;
+    for (int axis = 0; axis < 3; ++axis) {
+      int low = i, high = i;
+      for (int j = 0; j < 8; ++j) {
+        bool same = true;
+        for (int t = 0; t < 3; ++t)
+          if (t != axis && kQ1CornerSigns[j][t] != kQ1CornerSigns[i][t]) same = false;
+        if (!same || j == i) continue;
+        (kQ1CornerSigns[j][axis] > 0 ? high : low) = j;
+      }
+      column[axis] = 0.5 * p[high] + -0.5 * p[low];
+    }
+    out = std::min(out, det(column[0], column[1], column[2]));
+  }
+  return out;
+}
+
 Q1Matrix q1_laplace_stiffness(const Q1Corners& p) {
   // dN_i/dxi at the 8 Gauss points, computed once.
   static const std::array<std::array<Vec3, 8>, 8> ref_grad = [] {
@@ -113,9 +136,7 @@ Q1Conditioning q1_conditioning(const Q1Corners& p) {
   }
   // NaN coordinates make every comparison false: not valid.
   c.is_valid = c.det_j_min > 0 && std::isfinite(c.det_j_max);
-  c.corner_det_j_min = std::numeric_limits<double>::infinity();
-  for (const auto& corner : kQ1CornerSigns)
-    c.corner_det_j_min = std::min(c.corner_det_j_min, q1_point(p, Vec3{corner[0], corner[1], corner[2]}).det_j);
+  c.corner_det_j_min = q1_corner_det_j_min(p);
   c.is_invertible = c.corner_det_j_min > 0 && c.is_valid;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   if (!c.is_valid) {

@@ -53,6 +53,10 @@ Q1PointData q1_point(const Q1Corners& p, const Q1Reference& ref);
 // det J at the 2 x 2 x 2 Gauss points (+-1/sqrt 3), in kQ1CornerSigns order.
 std::array<double, 8> q1_gauss_det_j(const Q1Corners& p);
 
+// The smallest det J at the 8 corners (xi = +-1): the determinant of each
+// corner's three edge vectors / 8 (model units^3).
+double q1_corner_det_j_min(const Q1Corners& p);
+
 // K_e by 2 x 2 x 2 Gauss-Legendre (weights 1), det J taken with its sign
 // (an inverted element gives a negative definite part; callers check
 // q1_gauss_det_j first).

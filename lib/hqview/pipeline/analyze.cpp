@@ -137,7 +137,8 @@ void analyze_fem(Analysis& a, const AnalyzeOptions& options, StageClock& clock) 
     a.poisson = run_poisson_check(a.mesh, a.topology, *a.fem_elements);
     if (a.poisson->skipped.empty()) {
       clock.start("fem correlations");
-      a.fem_correlations = correlate_metrics(a.poisson->cell_error_density, a.metrics, *a.fem_elements);
+      a.fem_correlations = correlate_metrics(a.poisson->cell_error_density, a.metrics, *a.fem_elements,
+                                             a.poisson->cell_size);
     }
   }
   clock.stop();

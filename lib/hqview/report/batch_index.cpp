@@ -88,6 +88,8 @@ json correlation_json(const CollectionCorrelation& c) {
                     {"p_l2_error", number_or_null(r.p_l2)},
                     {"rho_h1_error", number_or_null(r.rho_h1)},
                     {"p_h1_error", number_or_null(r.p_h1)},
+                    {"q_l2_error", number_or_null(r.q_l2)},
+                    {"q_h1_error", number_or_null(r.q_h1)},
                     {"num_meshes", r.num_meshes}});
   return {{"num_meshes", c.num_meshes}, {"min_meshes", c.min_meshes}, {"metrics", std::move(rows)}};
 }
@@ -409,12 +411,20 @@ kainjow::mustache::data fem_correlation_data(const CollectionCorrelation& c) {
     std::snprintf(text, sizeof text, "%.3f", v);  // as the per-mesh chart
     return std::string(text);
   };
-  // p to 3 significant digits; "not significant" above 0.05.
+  // p (and q) to 3 significant digits.
   const auto p_text = [](double p) {
     if (!std::isfinite(p)) return std::string("–");
     char text[48];
     std::snprintf(text, sizeof text, p < 1e-3 ? "%.1e" : "%.3g", p);
-    return std::string(text) + (p > 0.05 ? " (not significant)" : "");
+    return std::string(text);
+  };
+  // The sign a metric's worst should have if it said "worse mesh, higher
+  // error": a higher-is-better metric's min falls as the error rises (rho <
+  // 0), a lower-is-better one's max rises (rho > 0). " ✗" where rho has the
+  // other sign.
+  const auto wrong_way = [](const CollectionCorrelationRow& r, double rho_value) {
+    if (r.direction == 0 || !std::isfinite(rho_value) || rho_value == 0) return false;
+    return (rho_value < 0) != (r.direction > 0);
   };
   data rows = data::type::list;
   for (const std::size_t i : order) {
@@ -423,10 +433,16 @@ kainjow::mustache::data fem_correlation_data(const CollectionCorrelation& c) {
     row.set("metric", r.metric);
     row.set("stat", r.stat);
     row.set("direction", r.direction > 0 ? "higher is better" : r.direction < 0 ? "lower is better" : "–");
-    row.set("rho_l2", rho(r.rho_l2));
-    row.set("rho_h1", rho(r.rho_h1));
+    row.set("rho_l2", rho(r.rho_l2) + (wrong_way(r, r.rho_l2) ? " \u2717" : ""));
+    row.set("rho_h1", rho(r.rho_h1) + (wrong_way(r, r.rho_h1) ? " \u2717" : ""));
     row.set("p_l2", p_text(r.p_l2));
     row.set("p_h1", p_text(r.p_h1));
+    row.set("q_l2", p_text(r.q_l2));
+    row.set("q_h1", p_text(r.q_h1));
+    row.set("sort_q_l2", std::isfinite(r.q_l2) ? format_double(r.q_l2) : "");
+    row.set("sort_q_h1", std::isfinite(r.q_h1) ? format_double(r.q_h1) : "");
+    // Greyed: neither error's q reaches 0.05 (no discovery at a 5 % false discovery rate).
+    row.set("not_significant", !(r.q_l2 <= 0.05) && !(r.q_h1 <= 0.05));
     row.set("sort_l2", std::isfinite(r.rho_l2) ? format_double(r.rho_l2) : "");
     row.set("sort_h1", std::isfinite(r.rho_h1) ? format_double(r.rho_h1) : "");
     row.set("sort_p_l2", std::isfinite(r.p_l2) ? format_double(r.p_l2) : "");

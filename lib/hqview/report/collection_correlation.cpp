@@ -99,6 +99,17 @@ CollectionCorrelation correlate_collection(const std::vector<BatchEntry>& entrie
       h1.push_back(*e->headline[h1_slot]);
     }
   if (!meshes.empty()) add_row("num_hexes", "count", 0, value, l2, h1);
+  // The family's false discovery rate: one q per p, per error.
+  std::vector<double> p_l2, p_h1;
+  for (const CollectionCorrelationRow& r : out.rows) {
+    p_l2.push_back(r.p_l2);
+    p_h1.push_back(r.p_h1);
+  }
+  const std::vector<double> q_l2 = benjamini_hochberg(p_l2), q_h1 = benjamini_hochberg(p_h1);
+  for (std::size_t i = 0; i < out.rows.size(); ++i) {
+    out.rows[i].q_l2 = q_l2[i];
+    out.rows[i].q_h1 = q_h1[i];
+  }
   return out;
 }
 

@@ -11,7 +11,8 @@
 // size) gives its min. A baseline row correlates the hex count
 // (mesh.num_hexes): a metric that ranks the meshes no better than their
 // resolution says little. Each rho has its two-sided p-value (spearman_test:
-// exact permutation up to 8 meshes, the t approximation above). Null (NaN)
+// exact permutation up to 8 meshes, the t approximation above) and its
+// Benjamini-Hochberg q over the table's rows (metric_correlation.h). Null (NaN)
 // when fewer than kMinCorrelationMeshes meshes have both values or either
 // side is constant over them. Pure; the entries' order (index.json, sorted
 // by path) does not change the result.
@@ -35,6 +36,9 @@ struct CollectionCorrelationRow {
   double p_l2 = 0;     // its two-sided p-value; NaN: null
   double rho_h1 = 0;   // with the mean relative H1 semi-norm error
   double p_h1 = 0;
+  // Benjamini-Hochberg q of p_l2 (p_h1) over the table's rows (the baseline
+  // included); NaN: null.
+  double q_l2 = 0, q_h1 = 0;
   int num_meshes = 0;  // meshes that entered (both errors and this value)
 };
 

@@ -192,8 +192,11 @@ Json fem_poisson_json(const PoissonCheck& p, const std::vector<MetricCorrelation
                          {"lanczos_steps", s.lanczos_steps},
                          {"converged", s.converged},
                          {"relative_residual", number(s.relative_residual)}};
-  Json correlation = Json::object();
-  for (const MetricCorrelation& c : correlations) correlation[c.metric] = number(c.correlation.rho);
+  Json correlation = Json::object(), given_size = Json::object();
+  for (const MetricCorrelation& c : correlations) {
+    correlation[c.metric] = number(c.correlation.rho);
+    given_size[c.metric] = number(c.rho_given_size);
+  }
   return {{"skipped", solved ? Json(nullptr) : Json(p.skipped)},
           {"num_free_vertices", p.num_free_vertices},
           {"min_free_vertices", p.min_free_vertices},
@@ -215,7 +218,9 @@ Json fem_poisson_json(const PoissonCheck& p, const std::vector<MetricCorrelation
             {"fried_bound", value(p.fried_bound)},
             {"max_hexes_at_vertex", solved ? Json(p.max_hexes_at_vertex) : Json(nullptr)}}},
           {"error_density", solved ? stats_json(p.error_density_stats, false) : Json(nullptr)},
-          {"correlation", solved ? std::move(correlation) : Json(nullptr)}};
+          {"correlation", solved ? std::move(correlation) : Json(nullptr)},
+          {"size_correlation", value(p.size_correlation)},
+          {"correlation_given_size", solved ? std::move(given_size) : Json(nullptr)}};
 }
 
 Json fem_json(const Analysis& a) {

@@ -47,6 +47,8 @@ TriangleSet patch_triangles(const std::vector<BoundaryError::ErrorPatch>& patche
   return set;
 }
 
+}  // namespace
+
 // The marker's ring: an annulus of kWorstMarkerColor on a white halo, solid
 // when the sample faces the camera, dashed (every other 30 degrees) when it
 // faces away (it lies on the far side of the model).
@@ -89,6 +91,8 @@ void draw_worst_label(Image& figure, const PixelRect& view, double cx, double cy
   fill_rect(figure, {x - 3, y - size - 1, extent.width + 6, size + 6}, {255, 255, 255, 230});
   draw_text(figure, x, y, label, size, style);
 }
+
+namespace {
 
 // A 3D error figure: the scene from view_direction, the camera fitted to
 // `points`, the shared colour bar with the marker's entry, the marker on the

@@ -2,23 +2,29 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "hqview/core/box3.h"
+#include "hqview/core/number_format.h"
 #include "hqview/core/error.h"
 #include "hqview/core/hex_topology.h"
 #include "hqview/image/colormap.h"
 #include "hqview/quality/hex_metrics.h"
 #include "hqview/render/upright.h"
+#include "hqview/views/boundary_views.h"
 #include "hqview/views/main_views.h"
 #include "hqview/views/overview_views.h"
 
 namespace hq {
 namespace {
 
-constexpr Rgba8 kVeilColor{176, 182, 194, 56};       // the translucent boundary of the cells figure
+// The translucent boundary of the cells figure: blue-green, off the map
+// (whose low end is a pale blue-grey), so "not drawn" never reads as "low".
+constexpr Rgba8 kVeilColor{64, 168, 156, 52};
 constexpr Rgba8 kBoundaryEdgeColor{40, 40, 46, 70};  // faint boundary edges over the colours
-constexpr Rgba8 kCellEdgeColor{30, 30, 36, 255};     // edges of the drawn cells
+constexpr Rgba8 kCellEdgeColor{110, 110, 116, 255};    // edges of the drawn cells
+constexpr Rgba8 kLowCellEdgeColor{0, 0, 0, 255};        // ... of those with scaled Jacobian below the threshold
 constexpr double kFovY = 30.0;
 
 const Vec3& point(const HexMesh& mesh, Index v) { return mesh.points[static_cast<std::size_t>(v)]; }
@@ -35,13 +41,15 @@ void check_sizes(const HexMesh& mesh, std::span<const double> field, const char*
                 std::to_string(mesh.hexes.size()) + " hexes");
 }
 
-// The hexes in the densest `fraction` (at least one), ascending ids.
-std::vector<Index> densest_hexes(std::span<const double> density, double fraction) {
+// The hexes in the densest `fraction` (at least one, at most max_count), ascending ids.
+std::vector<Index> densest_hexes(std::span<const double> density, double fraction,
+                                 std::size_t max_count = static_cast<std::size_t>(-1)) {
   std::vector<Index> order;
   for (std::size_t h = 0; h < density.size(); ++h)
     if (is_positive(density[h])) order.push_back(static_cast<Index>(h));
   if (order.empty()) return order;
-  const auto keep = std::max<std::size_t>(1, static_cast<std::size_t>(fraction * static_cast<double>(order.size())));
+  const auto keep = std::max<std::size_t>(
+      1, std::min(max_count, static_cast<std::size_t>(fraction * static_cast<double>(order.size()))));
   std::stable_sort(order.begin(), order.end(), [&](Index a, Index b) {
     return density[static_cast<std::size_t>(a)] > density[static_cast<std::size_t>(b)];
   });
@@ -66,32 +74,22 @@ struct Figure {
 
 Figure begin_figure(const HexMesh& mesh, const Topology& topology, const ErrorDensityScale& scale,
                     const Vec3& view_direction, const ErrorDensityViewOptions& options) {
-  if (options.width <= 0 || options.height <= 0)
-    throw RenderError("error density view size must be positive, got " + std::to_string(options.width) + "x" +
-                      std::to_string(options.height));
   Figure f;
-  f.style = annotation_style_for(options.height);
-  f.style.background = options.background;
   f.bar = error_density_color_bar(scale);
-  f.layout = figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(f.bar, f.style),
-                           f.style);
-  const double aspect = static_cast<double>(f.layout.view.width) / std::max(1, f.layout.view.height);
-  f.camera = fit_camera_to_points(boundary_points(mesh, topology), view_direction, aspect,
-                                  {.up = options.up, .fov_y_degrees = kFovY, .is_perspective = false});
+  FigureFrame3d frame = figure_frame_3d(
+      "error density view", options.width, options.height, options.background,
+      [&](const AnnotationStyle& style) {
+        return figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(f.bar, style),
+                             style);
+      },
+      boundary_points(mesh, topology), view_direction, options.up, kFovY);
+  f.style = frame.style;
+  f.layout = frame.layout;
+  f.camera = frame.camera;
   const Box3 box = boundary_bounding_box(mesh, topology);
   f.scene.origin = 0.5 * (box.lo + box.hi);
   f.scene.background = options.background;
   return f;
-}
-
-Image finish_figure(Figure& f, const ErrorDensityViewOptions& options, Renderer& renderer, Camera* camera,
-                    PixelRect* view) {
-  Image figure = render_figure(renderer, f.scene, f.camera, options.width, options.height, f.layout, options.title,
-                               f.style);
-  draw_color_bar(figure, f.layout.legend, f.bar, f.style);
-  if (camera) *camera = f.camera;
-  if (view) *view = f.layout.view;
-  return figure;
 }
 
 // Quads as two flat triangles each, one colour per quad.
@@ -102,6 +100,57 @@ void add_quad(TriangleSet& set, const HexMesh& mesh, const Vec3& origin, const s
     set.colors.push_back(color);
   }
   for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) set.indices.push_back(base + i);
+}
+
+// The densest hex drawn over everything (opaque overlay): an interior one
+// shows through the boundary, and in the cells figure through the other cells.
+void add_worst_overlay(Figure& f, const HexMesh& mesh, const ErrorDensityWorst& worst, const ErrorDensityScale& scale) {
+  if (worst.hex == kNoIndex) return;
+  const Hex& hex = mesh.hexes[static_cast<std::size_t>(worst.hex)];
+  TriangleSet faces;
+  faces.is_lit = false;
+  const Rgba8 color = to_rgba8(error_density_color(worst.density, scale));
+  for (const auto& face : kHexFaces)
+    add_quad(faces, mesh, f.scene.origin, {hex[face[0]], hex[face[1]], hex[face[2]], hex[face[3]]}, color);
+  f.scene.overlay.push_back(std::move(faces));
+}
+
+// The ring about the densest hex (its projected corners plus a margin),
+// dashed when it is inside, and its label: "max 11.4, hex 24347 (interior)".
+void draw_worst_marker(Image& figure, const Figure& f, const HexMesh& mesh, const ErrorDensityWorst& worst) {
+  if (worst.hex == kNoIndex) return;
+  const PixelRect& view = f.layout.view;
+  const double aspect = static_cast<double>(view.width) / std::max(1, view.height);
+  const auto to_pixel = [&](const Vec3& p, double& x, double& y) {
+    const Vec3 ndc = project_to_ndc(f.camera, aspect, p);
+    x = view.x + 0.5 * (ndc.x + 1.0) * view.width;
+    y = view.y + 0.5 * (1.0 - ndc.y) * view.height;
+    return std::isfinite(ndc.x) && std::isfinite(ndc.y);
+  };
+  double cx = 0, cy = 0;
+  if (!to_pixel(hex_center(mesh, worst.hex), cx, cy)) return;
+  double radius = 0;
+  for (Index v : mesh.hexes[static_cast<std::size_t>(worst.hex)]) {
+    double x = 0, y = 0;
+    if (to_pixel(point(mesh, v), x, y)) radius = std::max(radius, std::hypot(x - cx, y - cy));
+  }
+  radius = std::max(radius + 6.0 * f.style.scale, 16.0 * f.style.scale);
+  draw_ring(figure, cx, cy, radius, std::max(2.0, 3.0 * f.style.scale), !worst.on_boundary);
+  draw_worst_label(figure, view, cx, cy, radius,
+                   "max " + display_number(worst.density, 3) + ", hex " + std::to_string(worst.hex) +
+                       (worst.on_boundary ? " (on the boundary)" : " (interior, seen through)"),
+                   f.style);
+}
+
+Image finish_figure(Figure& f, const HexMesh& mesh, const ErrorDensityWorst& worst,
+                    const ErrorDensityViewOptions& options, Renderer& renderer, Camera* camera, PixelRect* view) {
+  Image figure = render_figure(renderer, f.scene, f.camera, options.width, options.height, f.layout, options.title,
+                               f.style);
+  draw_color_bar(figure, f.layout.legend, f.bar, f.style);
+  draw_worst_marker(figure, f, mesh, worst);
+  if (camera) *camera = f.camera;
+  if (view) *view = f.layout.view;
+  return figure;
 }
 
 LineSet boundary_edge_lines(const HexMesh& mesh, const Topology& topology, const Vec3& origin, Rgba8 color,
@@ -120,15 +169,10 @@ LineSet boundary_edge_lines(const HexMesh& mesh, const Topology& topology, const
 }  // namespace
 
 ErrorDensityScale error_density_scale(std::span<const double> density) {
-  std::vector<double> values;
-  for (double d : density)
-    if (is_positive(d)) values.push_back(d);
   ErrorDensityScale s;
-  if (values.empty()) return s;
-  std::sort(values.begin(), values.end());
-  s.hi = values.back();
-  s.lo = std::max(values[static_cast<std::size_t>(0.01 * static_cast<double>(values.size() - 1))], s.hi * 1e-4);
-  if (!(s.hi > s.lo)) s.lo = s.hi / 10.0;
+  s.max = std::numeric_limits<double>::quiet_NaN();
+  for (double d : density)
+    if (is_positive(d) && !(d <= s.max)) s.max = d;
   return s;
 }
 
@@ -140,7 +184,8 @@ Color error_density_color(double density, const ErrorDensityScale& scale) {
 
 ColorBar error_density_color_bar(const ErrorDensityScale& scale) {
   ColorBar bar;
-  bar.label = "FEM error density\n(H1 error / a-priori\nh\u00b2|D\u00b2u|\u00b2, no unit; log)";
+  bar.label =
+      "FEM error density\n|u\u2212u_h|\u00b2_H1(e) / (|e| h_e\u00b2 |D\u00b2u|\u00b2),\nh_e = |e|^(1/3); no unit;\nlog, one range for all meshes";
   bar.min_value = std::log10(scale.lo);
   bar.max_value = std::log10(scale.hi);
   for (int i = 0; i <= 32; ++i)
@@ -151,29 +196,42 @@ ColorBar error_density_color_bar(const ErrorDensityScale& scale) {
     std::snprintf(text, sizeof text, "%.2g", v);
     return std::string(text);
   };
-  bar.ticks.push_back({bar.min_value, label(scale.lo)});
+  bar.ticks.push_back({bar.min_value, "\u2264 " + label(scale.lo)});
   const double span = bar.max_value - bar.min_value;
+  const bool has_max = std::isfinite(scale.max) && scale.max > 0;
+  const double max_at = has_max ? std::clamp(std::log10(scale.max), bar.min_value, bar.max_value) : 0.0;
   for (int k = static_cast<int>(std::ceil(bar.min_value)); k <= static_cast<int>(std::floor(bar.max_value)); ++k)
-    // Decades not crowding an end's label.
-    if (k - bar.min_value > 0.08 * span && bar.max_value - k > 0.08 * span)
+    // Decades not crowding an end's label or the max's.
+    if (k - bar.min_value > 0.08 * span && bar.max_value - k > 0.08 * span &&
+        !(has_max && std::abs(k - max_at) < 0.08 * span))
       bar.ticks.push_back({static_cast<double>(k), label(std::pow(10.0, k))});
-  bar.ticks.push_back({bar.max_value, label(scale.hi) + " (max)"});
+  const bool max_at_top = has_max && bar.max_value - max_at < 0.08 * span;
+  bar.ticks.push_back({bar.max_value, "\u2265 " + label(scale.hi) + (max_at_top ? ", mesh max " + label(scale.max) : "")});
+  if (has_max && !max_at_top) bar.ticks.push_back({max_at, "mesh max " + label(scale.max)});
   bar.swatches = {{kUndefinedColor, "undefined"}};
   return bar;
 }
 
-std::vector<Index> error_density_cells(std::span<const double> cell_scaled_jacobian, std::span<const double> density,
-                                       const ErrorDensityViewOptions& options) {
-  std::vector<char> chosen(density.size(), 0);
-  for (std::size_t h = 0; h < density.size() && h < cell_scaled_jacobian.size(); ++h) {
-    const double s = cell_scaled_jacobian[h];
-    if (s < options.quality_threshold || is_verdict_sentinel(s)) chosen[h] = 1;
+ErrorDensityWorst error_density_worst(const Topology& topology, std::span<const double> density) {
+  ErrorDensityWorst w;
+  w.boundary_max = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t h = 0; h < density.size(); ++h)
+    if (is_positive(density[h]) && (w.hex == kNoIndex || density[h] > w.density)) {
+      w.hex = static_cast<Index>(h);
+      w.density = density[h];
+    }
+  for (Index face : topology.boundary_faces) {
+    const Index h = face_hex(topology, face);
+    if (static_cast<std::size_t>(h) >= density.size()) continue;
+    const double d = density[static_cast<std::size_t>(h)];
+    if (h == w.hex) w.on_boundary = true;
+    if (is_positive(d) && !(d <= w.boundary_max)) w.boundary_max = d;
   }
-  for (Index h : densest_hexes(density, options.densest_fraction)) chosen[static_cast<std::size_t>(h)] = 1;
-  std::vector<Index> cells;
-  for (std::size_t h = 0; h < chosen.size(); ++h)
-    if (chosen[h]) cells.push_back(static_cast<Index>(h));
-  return cells;
+  return w;
+}
+
+std::vector<Index> error_density_cells(std::span<const double> density, const ErrorDensityViewOptions& options) {
+  return densest_hexes(density, options.densest_fraction, std::max<std::size_t>(1, options.max_cells));
 }
 
 Vec3 choose_error_density_viewpoint(const HexMesh& mesh, const Topology& topology, std::span<const double> density,
@@ -198,14 +256,19 @@ Image render_error_density_boundary(const HexMesh& mesh, const Topology& topolog
   check_sizes(mesh, density, "error density");
   const ErrorDensityScale scale = error_density_scale(density);
   Figure f = begin_figure(mesh, topology, scale, view_direction, options);
+  const ErrorDensityWorst worst = error_density_worst(topology, density);
   TriangleSet faces;
+  faces.is_lit = false;  // the legend's colours exactly; the edges give the shape
   for (Index face : topology.boundary_faces)
     add_quad(faces, mesh, f.scene.origin, topology.faces[static_cast<std::size_t>(face)],
              to_rgba8(error_density_color(density[static_cast<std::size_t>(face_hex(topology, face))], scale)));
   f.scene.triangles.push_back(std::move(faces));
   f.scene.lines.push_back(boundary_edge_lines(mesh, topology, f.scene.origin, kBoundaryEdgeColor,
                                               static_cast<float>(std::max(1.0, f.style.scale))));
-  return finish_figure(f, options, renderer, camera, view);
+  // An interior max shows through the boundary (a boundary one is drawn already).
+  if (!worst.on_boundary) add_worst_overlay(f, mesh, worst, scale);
+  f.bar.swatches.push_back({Color{0.08, 0.08, 0.08}, "ring: max (dashed: interior)"});
+  return finish_figure(f, mesh, worst, options, renderer, camera, view);
 }
 
 Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, std::span<const double> density,
@@ -216,28 +279,40 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   check_sizes(mesh, cell_scaled_jacobian, "cell scaled Jacobian");
   const ErrorDensityScale scale = error_density_scale(density);
   Figure f = begin_figure(mesh, topology, scale, view_direction, options);
+  const ErrorDensityWorst worst = error_density_worst(topology, density);
   TriangleSet veil;
   for (Index face : topology.boundary_faces)
     add_quad(veil, mesh, f.scene.origin, topology.faces[static_cast<std::size_t>(face)], kVeilColor);
   f.scene.translucent.push_back(std::move(veil));
   TriangleSet cells;
-  LineSet edges;
+  cells.is_lit = false;
+  LineSet low_edges, edges;
   edges.width = static_cast<float>(std::max(1.0, f.style.scale));
-  for (Index h : error_density_cells(cell_scaled_jacobian, density, options)) {
+  low_edges.width = static_cast<float>(std::max(2.0, 2.5 * f.style.scale));
+  for (Index h : error_density_cells(density, options)) {
     const Hex& hex = mesh.hexes[static_cast<std::size_t>(h)];
     const Rgba8 color = to_rgba8(error_density_color(density[static_cast<std::size_t>(h)], scale));
     for (const auto& face : kHexFaces)
       add_quad(cells, mesh, f.scene.origin, {hex[face[0]], hex[face[1]], hex[face[2]], hex[face[3]]}, color);
+    const double sj = cell_scaled_jacobian[static_cast<std::size_t>(h)];
+    const bool low = sj < options.quality_threshold || is_verdict_sentinel(sj);
+    LineSet& set = low ? low_edges : edges;
     for (const auto& e : kHexEdges)
       for (int c : e) {
-        edges.indices.push_back(static_cast<std::uint32_t>(edges.positions.size()));
-        edges.positions.push_back(to_vec3f(point(mesh, hex[c]) - f.scene.origin));
-        edges.colors.push_back(kCellEdgeColor);
+        set.indices.push_back(static_cast<std::uint32_t>(set.positions.size()));
+        set.positions.push_back(to_vec3f(point(mesh, hex[c]) - f.scene.origin));
+        set.colors.push_back(low ? kLowCellEdgeColor : kCellEdgeColor);
       }
   }
   f.scene.triangles.push_back(std::move(cells));
   f.scene.lines.push_back(std::move(edges));
-  return finish_figure(f, options, renderer, camera, view);
+  f.scene.lines.push_back(std::move(low_edges));
+  add_worst_overlay(f, mesh, worst, scale);
+  f.bar.swatches.push_back({Color{0.08, 0.08, 0.08}, "ring: max (dashed: interior)"});
+  f.bar.swatches.push_back({to_color(Rgba8{160, 208, 202, 255}), "boundary (veil)"});
+  f.bar.swatches.push_back(
+      {to_color(kLowCellEdgeColor), "thick edge: SJ < " + display_number(options.quality_threshold, 3)});
+  return finish_figure(f, mesh, worst, options, renderer, camera, view);
 }
 
 }  // namespace hq

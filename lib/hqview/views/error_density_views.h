@@ -6,14 +6,18 @@
 // simulates worst are the conspicuous ones), with its legend.
 //   - Boundary figure: every boundary face coloured by its hex's density,
 //     faint boundary edges.
-//   - Cells figure: the cells under the quality threshold (cell scaled
-//     Jacobian below it) and the densest 1% of the hexes, opaque, coloured
-//     by density with dark edges, inside the boundary drawn as a translucent
-//     grey veil: where the bad cells are and how much error they carry,
-//     also when they are inside.
-// Both from one upright, orthographic viewpoint: the one that shows the most
-// of the densest 1% of the hexes (choose_viewpoints), so the worst region
-// faces the camera.
+//   - Cells figure: the densest 1% of the hexes (at most 300), opaque,
+//     coloured by density, black edges where the cell scaled Jacobian is
+//     below the quality threshold (grey otherwise), inside the boundary
+//     drawn as a translucent blue-green veil (off the map, its own legend
+//     swatch): where the worst cells are, also when they are inside.
+// Faces unlit (the legend's colours exactly; edges give the depth). In both,
+// the densest hex is ringed and labelled with its value and whether it is on
+// the boundary (the ring dashed when it is inside); an interior one is drawn
+// over everything in the boundary figure, and in the cells figure it always is. Both from one upright,
+// orthographic viewpoint: the one that shows the most of the densest 1% of
+// the hexes (choose_viewpoints), so the worst region faces the camera. The
+// colour range is the mesh's own (the legend says so).
 
 #include <span>
 #include <string>
@@ -29,35 +33,51 @@
 
 namespace hq {
 
-// The colour scale: log10 of the density from lo to hi (both > 0).
+// The colour scale: log10 of the density from lo to hi (both > 0), the same
+// for every mesh (a colour means the same density on any mesh, so a good
+// mesh stays pale and pages side by side compare; 1 = an H1 error equal to
+// the a-priori estimate with constant 1), values outside clamped to the
+// ends; max: the mesh's largest density (NaN for none), marked on the legend.
+inline constexpr double kErrorDensityLo = 1e-2, kErrorDensityHi = 10.0;
 struct ErrorDensityScale {
-  double lo = 1e-3, hi = 1.0;
+  double lo = kErrorDensityLo, hi = kErrorDensityHi;
+  double max = 0;
 };
-// lo: the 1st percentile of the positive finite densities (at least hi /
-// 1e4), hi: their max (a decade above lo when all are equal); the default
-// for none.
 ErrorDensityScale error_density_scale(std::span<const double> density);
 // sample_quality_map(1 - t), t = (log10 d - log10 lo) / (log10 hi - log10 lo)
 // clamped to [0, 1]; kUndefinedColor for NaN or d <= 0.
 Color error_density_color(double density, const ErrorDensityScale& scale);
-// Its legend: the map over log10 [lo, hi], ticks at the ends and the whole
-// decades between, an "undefined" swatch.
+// Its legend: the map over log10 [lo, hi], ticks at the ends ("<= lo",
+// ">= hi"), the whole decades between and the mesh's max ("max 2.2") when
+// finite (decades crowding it dropped), an "undefined" swatch.
 ColorBar error_density_color_bar(const ErrorDensityScale& scale);
+
+// The hex of largest density (the first on ties; kNoIndex when none has a
+// positive density), whether it has a boundary face, and the largest density
+// of a hex with a boundary face (NaN when none).
+struct ErrorDensityWorst {
+  Index hex = kNoIndex;
+  double density = 0;
+  bool on_boundary = false;
+  double boundary_max = 0;
+};
+ErrorDensityWorst error_density_worst(const Topology& topology, std::span<const double> density);
 
 struct ErrorDensityViewOptions {
   int width = 1600;  // figure size in pixels, legend and title included
   int height = 1200;
   std::string title;  // empty: no title band
   Vec3 up{0.0, 0.0, 1.0};  // the model axis drawn upwards (--up)
-  double quality_threshold = 0.5;  // cells figure: cells with scaled Jacobian below it
-  double densest_fraction = 0.01;  // and this fraction of the densest hexes (at least 1)
+  double quality_threshold = 0.5;  // cells figure: drawn cells with scaled Jacobian below it get black edges
+  double densest_fraction = 0.01;  // cells figure: this fraction of the densest hexes (at least 1) ...
+  std::size_t max_cells = 300;     // ... and at most this many
   Rgba8 background{255, 255, 255, 255};
 };
 
-// The hexes of the cells figure, ascending: scaled Jacobian below the
-// threshold (or a Verdict sentinel), or among the densest (ties by id).
-std::vector<Index> error_density_cells(std::span<const double> cell_scaled_jacobian, std::span<const double> density,
-                                       const ErrorDensityViewOptions& options);
+// The hexes of the cells figure, ascending: the densest densest_fraction
+// (at least 1, at most max_cells; ties by id). Selected by the density
+// alone, so the figure does not assume which metric predicts it.
+std::vector<Index> error_density_cells(std::span<const double> density, const ErrorDensityViewOptions& options);
 
 // The upright direction that shows the most of the densest hexes.
 Vec3 choose_error_density_viewpoint(const HexMesh& mesh, const Topology& topology, std::span<const double> density,

@@ -1064,17 +1064,14 @@ struct MainViewFrame {
 
 MainViewFrame main_view_frame(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                               const Vec3& view_direction, const MainViewOptions& options) {
-  if (options.width <= 0 || options.height <= 0)
-    throw RenderError("main view size must be positive, got " + std::to_string(options.width) + "x" +
-                      std::to_string(options.height));
+  FigureFrame3d f = figure_frame_3d(
+      "main view", options.width, options.height, options.background,
+      [&](const AnnotationStyle& style) { return main_layout(options, style); }, main_view_points(mesh, topology, glyphs),
+      view_direction, options.up, options.fov_y_degrees);
   MainViewFrame frame;
-  frame.style = annotation_style_for(options.height);
-  frame.style.background = options.background;
-  frame.layout = main_layout(options, frame.style);
-  const double aspect = static_cast<double>(frame.layout.view.width) / static_cast<double>(frame.layout.view.height);
-  frame.camera =
-      fit_camera_to_points(main_view_points(mesh, topology, glyphs), view_direction, aspect,
-                           {.up = options.up, .fov_y_degrees = options.fov_y_degrees, .is_perspective = false});
+  frame.style = f.style;
+  frame.layout = f.layout;
+  frame.camera = f.camera;
   frame.scaled = options;
   frame.scaled.pixel_scale = frame.style.scale;
   return frame;

@@ -22,6 +22,22 @@ const Vec3& point(const HexMesh& mesh, Index v) { return mesh.points[static_cast
 
 }  // namespace
 
+FigureFrame3d figure_frame_3d(const std::string& what, int width, int height, Rgba8 background,
+                              const std::function<FigureLayout(const AnnotationStyle&)>& make_layout,
+                              std::span<const Vec3> points, const Vec3& view_direction, const Vec3& up,
+                              double fov_y_degrees) {
+  if (width <= 0 || height <= 0)
+    throw RenderError(what + " size must be positive, got " + std::to_string(width) + "x" + std::to_string(height));
+  FigureFrame3d f;
+  f.style = annotation_style_for(height);
+  f.style.background = background;
+  f.layout = make_layout(f.style);
+  const double aspect = static_cast<double>(f.layout.view.width) / std::max(1, f.layout.view.height);
+  f.camera = fit_camera_to_points(points, view_direction, aspect,
+                                  {.up = up, .fov_y_degrees = fov_y_degrees, .is_perspective = false});
+  return f;
+}
+
 std::vector<Vec3> boundary_points(const HexMesh& mesh, const Topology& topology) {
   if (num_boundary_faces_all_kinds(topology) == 0) return mesh.points;
   std::vector<char> is_used(mesh.points.size(), 0);

@@ -3,6 +3,8 @@
 // boundary edges on top, a colour bar and a title. The first image of the
 // report.
 
+#include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -69,6 +71,21 @@ std::vector<Vec3> boundary_points(const HexMesh& mesh, const Topology& topology)
 // Bounding box of the boundary faces' vertices (all points when there is no
 // boundary face); lo = hi = (0, 0, 0) for an empty mesh.
 Box3 boundary_bounding_box(const HexMesh& mesh, const Topology& topology);
+
+// A 3D figure's frame: the annotation style for its height (on
+// `background`), its layout (make_layout of that style) and the orthographic
+// camera fitted to `points` from view_direction, upright along `up`, for the
+// layout's view. Throws RenderError "<what> size must be positive" for a
+// width or height <= 0.
+struct FigureFrame3d {
+  AnnotationStyle style;
+  FigureLayout layout;
+  Camera camera;
+};
+FigureFrame3d figure_frame_3d(const std::string& what, int width, int height, Rgba8 background,
+                              const std::function<FigureLayout(const AnnotationStyle&)>& make_layout,
+                              std::span<const Vec3> points, const Vec3& view_direction, const Vec3& up,
+                              double fov_y_degrees);
 
 // A figure of width x height in style.background: the scene rendered into
 // layout.view, the title in layout.title (the legend is the caller's).

@@ -607,15 +607,19 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
 
 std::vector<ViewFile> build_fem_correlation(ViewContext& c) {
   std::vector<std::string> metrics;
-  std::vector<double> rho;
+  std::vector<double> rho, given_size;
+  std::vector<char> is_size;
   for (const MetricCorrelation& m : c.a.fem_correlations) {
     metrics.push_back(m.metric);
     rho.push_back(m.correlation.rho);
+    given_size.push_back(m.rho_given_size);
+    is_size.push_back(metric_direction(m.metric) == 0 ? 1 : 0);
   }
   if (metrics.empty()) return {};
   return chart_files("fem_correlation",
                      metric_correlation_chart(metrics, rho,
-                                              {900, 300, c.name + ": which metrics rank the hexes by FEM error"}));
+                                              {900, 300, c.name + ": which metrics rank the hexes by FEM error"},
+                                              given_size, is_size, c.a.poisson->error_density_stats.count));
 }
 
 std::vector<ViewFile> build_fem_error_scatter(ViewContext& c) {
@@ -633,24 +637,29 @@ std::vector<ViewFile> build_fem_error_density(ViewContext& c) {
   auto options = sized<ErrorDensityViewOptions>(c);
   options.quality_threshold = 1.0 - (c.a.glyphs ? c.a.glyphs->options.threshold : 0.5);
   const Vec3 direction = choose_error_density_viewpoint(c.a.mesh, c.a.topology, p.cell_error_density, options);
-  std::size_t worst = 0;
-  for (std::size_t h = 1; h < p.cell_error_density.size(); ++h)
-    if (p.cell_error_density[h] > p.cell_error_density[worst]) worst = h;
-  options.title = c.name + ": FEM error density on the boundary hexes (max " +
-                  display_number(p.error_density_stats.max, 3) + " at hex " + std::to_string(worst) + ", median " +
-                  display_number(p.error_density_stats.p50, 3) + ")";
+  const ErrorDensityWorst worst = error_density_worst(c.a.topology, p.cell_error_density);
+  // Where the max is (the ring says it too), then the boundary's own max.
+  const std::string max_text =
+      worst.hex == kNoIndex ? std::string("no density")
+                            : "mesh max " + display_number(worst.density, 3) + " at hex " + std::to_string(worst.hex) +
+                                  (worst.on_boundary ? " (on the boundary)" : " (interior, ringed)");
+  options.title = c.name + ": FEM error density, boundary faces; " + max_text +
+                  (worst.on_boundary || !std::isfinite(worst.boundary_max)
+                       ? std::string()
+                       : ", boundary max " + display_number(worst.boundary_max, 3)) +
+                  ", median " + display_number(p.error_density_stats.p50, 3);
   std::vector<ViewFile> files;
   files.push_back(framed("views/fem_error_density.png",
                          render_error_density_boundary(c.a.mesh, c.a.topology, p.cell_error_density, direction,
                                                        options, c.renderer),
                          c));
-  const std::vector<Index> cells =
-      error_density_cells(c.a.field.cell_scaled_jacobian, p.cell_error_density, options);
+  const std::vector<Index> cells = error_density_cells(p.cell_error_density, options);
   std::size_t low = 0;
   for (Index h : cells) low += c.a.field.cell_scaled_jacobian[static_cast<std::size_t>(h)] < options.quality_threshold;
-  options.title = c.name + ": by FEM error density, the " + std::to_string(low) + " hexes with scaled Jacobian < " +
-                  display_number(options.quality_threshold, 3) + " and " + std::to_string(cells.size() - low) +
-                  " more of the densest 1%, inside the boundary";
+  options.title = c.name + ": the " + std::to_string(cells.size()) + " densest hexes (top 1%" +
+                  (cells.size() >= options.max_cells ? ", at most " + std::to_string(options.max_cells) : "") +
+                  "), " + std::to_string(low) + " with scaled Jacobian < " +
+                  display_number(options.quality_threshold, 3) + "; " + max_text;
   files.push_back(framed("views/fem_error_density_cells.png",
                          render_error_density_cells(c.a.mesh, c.a.topology, p.cell_error_density,
                                                     c.a.field.cell_scaled_jacobian, direction, options, c.renderer),
