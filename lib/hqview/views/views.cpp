@@ -333,7 +333,7 @@ std::vector<ViewFile> build_uv_error(ViewContext& c) {
 std::vector<ViewFile> build_uv_key(ViewContext& c) {
   auto b = sized<BoundaryViewOptions>(c);
   b.title = c.name + ": UV key, the reference's " + std::to_string(c.a.uv_atlas->num_charts) +
-            " charts numbered (front, back; the atlas as the UV error map lays it out)";
+            " charts numbered (two opposite sides; the atlas as the UV error map lays it out)";
   return {{"views/uv_key.png", render_uv_key(*c.a.reference_surface, *c.a.uv_atlas, b, c.renderer), {}}};
 }
 
