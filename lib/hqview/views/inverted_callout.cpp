@@ -105,8 +105,8 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
   const Projector project{projection_matrix(camera, aspect) * view_matrix(camera), view};
   const Index num_cells = num_volume_cells(mesh);
 
-  // 1. Each cell's projected centre, in grid squares of 3 min_radius.
-  const double square = std::max(1.0, 3.0 * min_radius);
+  // 1. Each cell's projected centre, in grid squares of 2 min_radius.
+  const double square = std::max(1.0, 2.0 * min_radius);
   std::map<std::pair<long, long>, int> square_of;  // occupied square -> its index
   std::vector<std::pair<long, long>> squares;
   std::vector<int> cell_square;

@@ -43,7 +43,7 @@ struct InvertedCallout {
 
 // Groups the inverted cells (ids over all volume cells, mesh/cell_faces.h) by
 // where they project: cells whose centres fall into touching squares of a
-// grid of 3 min_radius pixels form one group, and so do cells that share a
+// grid of 2 min_radius pixels form one group, and so do cells that share a
 // vertex. Each group's ring is centred
 // on the mean of its cells' projected centres and encloses their projected
 // corners (plus a margin), at least min_radius and at most 0.45 of the
