@@ -540,7 +540,7 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
     any_label = any_label || !e.label.empty();
     any_model = any_model || !e.model.empty();
     any_variant = any_variant || !e.variant.empty();
-    any_detail = any_detail || !e.error.empty() || !e.failed_gates.empty() || !e.warnings.empty();
+    any_detail = any_detail || !e.error.empty() || !e.failed_gates.empty();
     any_thumbnail = any_thumbnail || (!e.bundle.empty() && !e.thumbnail.empty());
   }
   page.set("has_label", any_label);
@@ -593,7 +593,11 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
     row.set("lightbox_src", lightbox_url(e));
     std::string detail = e.error;
     for (const std::string& g : e.failed_gates) detail += (detail.empty() ? "" : "; ") + g;
-    for (const std::string& w : e.warnings) detail += (detail.empty() ? "warning: " : "; warning: ") + relative_warning(w, e.path);
+    // Input warnings under the mesh's path (the details column is for errors and gates).
+    std::string warning;
+    for (const std::string& w : e.warnings) warning += (warning.empty() ? "warning: " : "; warning: ") + relative_warning(w, e.path);
+    row.set("warning", warning);
+    row.set("has_warning", !warning.empty());
     row.set("detail", detail);
     data cells = data::type::list;
     for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) {
