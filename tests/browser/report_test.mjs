@@ -257,6 +257,14 @@ async function checkLightboxFits(page, href, what) {
   check(wide.length === 0, `1400 px: tables wider than the column: ${wide.join(', ')}`);
   const widths = await page.evaluate(() => ({ doc: document.documentElement.scrollWidth, view: innerWidth }));
   check(widths.doc <= widths.view, `1400 px: page ${widths.doc} px wide`);
+  // The headline cards in one row, and the first figure (the overview)
+  // starting on the first screen (issue 45d).
+  const cards = await page.$$eval('.headline .card', (cs) => cs.map((c) => c.getBoundingClientRect().top));
+  check(cards.length >= 8 && cards.every((t) => t === cards[0]), `1400 px: the ${cards.length} cards in one row (tops ${cards.join(', ')})`);
+  const overflowing = await page.$$eval('.headline .card .value', (vs) => vs.filter((v) => v.scrollWidth > v.parentElement.clientWidth).map((v) => v.textContent));
+  check(overflowing.length === 0, `1400 px: card values wider than their cards: ${overflowing.join(', ')}`);
+  const firstFigure = await page.$eval('figure img', (i) => ({ src: i.getAttribute('src'), top: i.getBoundingClientRect().top }));
+  check(firstFigure.src === 'views/overview.png' && firstFigure.top < 500, `1400 px: the overview first, at ${firstFigure.top.toFixed(0)} px (${firstFigure.src})`);
   // The comparison is on the page, both meshes' numbers side by side.
   check((await page.$$('#compare table.compare tbody tr')).length >= 10, '1400 px: the Comparison table has its rows');
   // The lightbox: a click on a view shows its image at its natural size
@@ -299,14 +307,17 @@ async function checkLightboxFits(page, href, what) {
   fs.mkdirSync(collection, { recursive: true });
   for (const f of ['ball.mesh', 'twisted_bar.mesh']) fs.copyFileSync(example(f), path.join(collection, f));
   const batchOut = path.join(outDir, 'batch');
-  execFileSync(hqview, ['batch', collection, '-o', batchOut, '--views', 'thumbnail', '--no-viewer', '--no-overlap',
+  execFileSync(hqview, ['batch', collection, '-o', batchOut, '--views', 'thumbnail,overview', '--no-viewer', '--no-overlap',
     '--data', 'none', '-j', '2', '-q'], { stdio: 'inherit' });
   const { page, problems } = await open(path.join(batchOut, 'index.html'), { width: 1400, height: 1000 });
   const links = await page.$$eval('a[data-lightbox]', (as) => as.map((a) => ({ href: a.getAttribute('href'), image: a.getAttribute('data-lightbox') })));
   check(links.length === 2, `batch index: 2 thumbnails open in the lightbox (${links.length})`);
   const first = '#mesh-table a[data-lightbox]';
   const image = await page.$eval(first, (a) => a.getAttribute('data-lightbox'));
-  check(/\/views\/thumbnail\.png$/.test(image), `batch index: the lightbox image is the thumbnail (${image})`);
+  check(/\/views\/overview\.png$/.test(image), `batch index: the lightbox image is the overview (${image})`);
+  // ball.mesh (14 inverted hexes) is not "ok", and its row is tinted.
+  const ballRow = await page.$eval('#mesh-table tbody tr:first-child', (r) => ({ cls: r.className, status: r.querySelector('td.status').textContent }));
+  check(ballRow.cls.includes('finding') && ballRow.status === '⚠ inverted', `batch index: ball.mesh's row says ${ballRow.status} (${ballRow.cls})`);
   await page.click(first);
   await page.waitForFunction(() => document.getElementById('lightbox').open);
   await checkLightboxFits(page, image, 'batch index lightbox');

@@ -225,6 +225,46 @@ TEST(BatchIndex, MeshTableHasNoEmptyColumns) {
   EXPECT_EQ(count(rows, "</td>"), 2 * count(head, "</th>"));
 }
 
+// An "ok" run of a mesh with inverted or intersecting cells or an input
+// warning does not read "ok" (issue 45d): the status says what was found,
+// the row is tinted, the header counts it; the warning shows with the
+// batch's path; the thumbnail opens the overview; index.json keeps both.
+TEST(BatchIndex, StatusAgreesWithFindingsAndLightboxOpensTheOverview) {
+  auto key = [](std::string_view k) {
+    return static_cast<std::size_t>(std::find(std::begin(kHeadlineKeys), std::end(kHeadlineKeys), k) - std::begin(kHeadlineKeys));
+  };
+  const std::size_t inverted = key("quality.num_inverted"), intersecting = key("overlap.num_intersecting_cells");
+  BatchEntry clean = entry("a.mesh", BatchStatus::ok);
+  clean.headline[inverted] = 0;
+  clean.headline[intersecting] = 0;
+  BatchEntry bad = entry("b.mesh", BatchStatus::ok);
+  bad.headline[inverted] = 11;
+  bad.headline[intersecting] = 22;
+  bad.thumbnail = "views/thumbnail.png";
+  bad.overview = "views/overview.png";
+  BatchEntry warned = entry("m/c.vtk", BatchStatus::ok);
+  warned.headline[inverted] = 0;
+  warned.warnings = {"/abs/data/m/c.vtk: 68 cells with 8 points but a non-hexahedral type (10) loaded as hexahedra"};
+  const std::string html = batch_index_html({clean, bad, warned}, "9.9.9");
+  const std::string table = html.substr(html.find("id=\"mesh-table\""));
+  EXPECT_NE(table.find("<tr class=\"ok finding\">"), std::string::npos);
+  EXPECT_NE(table.find(">⚠ inverted, intersecting<"), std::string::npos);
+  EXPECT_NE(table.find(">⚠ input warning<"), std::string::npos);
+  EXPECT_NE(table.find("<tr class=\"ok\">"), std::string::npos) << "the clean row";
+  EXPECT_NE(table.find("status\">ok<"), std::string::npos);
+  EXPECT_NE(table.find("warning: m/c.vtk: 68 cells with 8 points"), std::string::npos);
+  EXPECT_EQ(table.find("/abs/data"), std::string::npos);
+  EXPECT_NE(html.find("2 with inverted or intersecting cells or input warnings (1 with input warnings)"),
+            std::string::npos);
+  EXPECT_NE(table.find("data-lightbox=\"b.mesh/views/overview.png\"><img src=\"b.mesh/views/thumbnail.png\""),
+            std::string::npos);
+  const std::vector<BatchEntry> back = parse_batch_index_json(batch_index_json({clean, bad, warned}, "9.9.9"), "i");
+  ASSERT_EQ(back.size(), 3u);
+  EXPECT_EQ(back[1].overview, "views/overview.png");
+  EXPECT_EQ(back[2].warnings, warned.warnings);
+  EXPECT_EQ(batch_index_html(back, "9.9.9"), html) << "merge gives the same page";
+}
+
 TEST(BatchIndex, MethodsComparePerLabel) {
   const auto methods =
       summarize_methods({entry("a", BatchStatus::ok, "m1", 0.25), entry("b", BatchStatus::failed, "m1"),

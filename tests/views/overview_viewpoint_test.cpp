@@ -157,6 +157,18 @@ TEST(OverviewViewpoint, KeepsTheThreeQuarterViewWhenItShowsTheWorst) {
   const WorstFaces worst = worst_boundary_faces(topology, compute_quality(clean, topology).vertex_quality, cluster);
   EXPECT_EQ(worst.kind, WorstFaces::Kind::worst_cluster);
   EXPECT_EQ(std::count_if(worst.flagged.begin(), worst.flagged.end(), [](char f) { return f != 0; }), 3);  // the corner's three faces
+  // A worst cluster on the hidden +y face, whose top edge the three-quarter
+  // view sees: kept (issue 45d), though an eye from +y sees much more of it.
+  std::vector<Index> far_side;
+  for (std::size_t v = 0; v < clean.points.size(); ++v)
+    if (clean.points[v].y == 3.0) far_side.push_back(static_cast<Index>(v));
+  const WorstFaces side = worst_boundary_faces(topology, compute_quality(clean, topology).vertex_quality, far_side);
+  ASSERT_EQ(side.kind, WorstFaces::Kind::worst_cluster);
+  const OverviewViewpoint kept = choose_overview_viewpoint(clean, topology, side, {0.0, 0.0, 1.0});
+  EXPECT_TRUE(kept.is_default);
+  EXPECT_GT(kept.default_area, 0.0);
+  EXPECT_GT(visible_flagged_area(clean, topology, side.flagged, Vec3{0, -1, -0.3}, {0.0, 0.0, 1.0}),
+            2.0 * kept.default_area);
 }
 
 TEST(OverviewViewpoint, RockarmShowsItsInvertedHexesUnderAutoUp) {

@@ -132,3 +132,39 @@ TEST(UvKeyFigure, NumbersLieOnTheirChartsOrLeadToThem) {
 
 }  // namespace
 }  // namespace hq
+
+namespace hq {
+namespace {
+
+// Issue 45d: a chart in several pieces in the atlas is numbered on each:
+// two 100 x 100 squares of chart 3 joined by a 4-pixel neck (lobes), a
+// third square apart (an island), and a 2 x 2 speck (under 2 %: none).
+TEST(UvKeyAnchors, EveryIslandAndLobeOfAChartInTheAtlasIsNumbered) {
+  ChartIdImage ids;
+  ids.width = 400;
+  ids.height = 150;
+  ids.ids.assign(static_cast<std::size_t>(ids.width) * ids.height, kNoIndex);
+  auto fill = [&](int x0, int y0, int w, int h) {
+    for (int y = y0; y < y0 + h; ++y)
+      for (int x = x0; x < x0 + w; ++x) ids.ids[static_cast<std::size_t>(y) * ids.width + x] = 3;
+  };
+  fill(10, 20, 100, 100);
+  fill(110, 68, 20, 4);  // the neck
+  fill(130, 20, 100, 100);
+  fill(260, 20, 100, 100);
+  fill(380, 140, 2, 2);
+  const std::vector<UvKeyNumberAnchor> one = visible_chart_anchors(ids, 0, 0, 1);
+  ASSERT_EQ(one.size(), 1u) << "without islands: one number per chart";
+  const std::vector<UvKeyNumberAnchor> all = visible_chart_anchors(ids, 0, 0, 1, true);
+  ASSERT_EQ(all.size(), 3u);
+  std::set<int> squares;
+  for (const UvKeyNumberAnchor& a : all) {
+    EXPECT_EQ(a.chart, 3);
+    EXPECT_GE(a.room, 40) << "anchored inside a square, not on the neck";
+    squares.insert(a.x < 110 ? 0 : a.x < 240 ? 1 : 2);
+  }
+  EXPECT_EQ(squares.size(), 3u) << "one number on each square";
+}
+
+}  // namespace
+}  // namespace hq

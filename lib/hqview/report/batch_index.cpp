@@ -48,6 +48,28 @@ static_assert(std::size(kHeadlineTitles) == kNumHeadlineKeys);
 
 std::string show(std::optional<double> v) { return v ? display_number(*v) : "–"; }
 
+// The thumbnail's URL from the batch index.
+std::string row_thumbnail(const BatchEntry& e) {
+  return !e.bundle.empty() && !e.thumbnail.empty() ? url_path(e.bundle) + "/" + url_path(e.thumbnail) : "";
+}
+
+// What the lightbox opens: the overview (1600 x 1200, with its legend),
+// else the thumbnail.
+std::string lightbox_url(const BatchEntry& e) {
+  return !e.bundle.empty() && !e.overview.empty() ? url_path(e.bundle) + "/" + url_path(e.overview) : row_thumbnail(e);
+}
+
+// A warning as the batch index shows it: the mesh's path as the batch
+// names it (relative to the batch input) in place of the absolute path the
+// reader wrote ("/work/data/meshes/a.vtk: 68 cells ..." -> "meshes/a.vtk: 68 cells ...").
+std::string relative_warning(const std::string& warning, const std::string& path) {
+  const std::string key = "/" + path + ":";
+  const std::size_t at = warning.find(key);
+  if (path.empty() || at == std::string::npos || warning.find(':') < at) return warning;
+  return warning.substr(at + 1);
+}
+
+
 json number_or_null(std::optional<double> v) {
   if (!v || !std::isfinite(*v)) return nullptr;
   // Counts stay integers in the JSON.
@@ -128,10 +150,17 @@ void fill_entry_from_report(BatchEntry& entry, const ReportDocument& report) {
   entry.status = passed ? BatchStatus::ok : BatchStatus::gate_failed;
   entry.error.clear();
   entry.thumbnail.clear();
+  entry.overview.clear();
   if (report.contains("views") && report["views"].is_array())
-    for (const ReportDocument& v : report["views"])
-      if (v.value("id", "") == "thumbnail" && v.contains("files") && v["files"].is_array() && !v["files"].empty())
-        entry.thumbnail = v["files"][0].get<std::string>();
+    for (const ReportDocument& v : report["views"]) {
+      if (!v.contains("files") || !v["files"].is_array() || v["files"].empty() || !v["files"][0].is_string()) continue;
+      if (v.value("id", "") == "thumbnail") entry.thumbnail = v["files"][0].get<std::string>();
+      if (v.value("id", "") == "overview") entry.overview = v["files"][0].get<std::string>();
+    }
+  entry.warnings.clear();
+  if (report.contains("warnings") && report["warnings"].is_array())
+    for (const ReportDocument& w : report["warnings"])
+      if (w.is_string()) entry.warnings.push_back(w.get<std::string>());
 }
 
 std::vector<MethodSummary> summarize_methods(const std::vector<BatchEntry>& entries) {
@@ -216,6 +245,8 @@ std::string batch_index_json(const std::vector<BatchEntry>& entries, const std::
     }
     m["failed_gates"] = e.failed_gates;
     m["thumbnail"] = e.thumbnail.empty() ? json(nullptr) : json(e.thumbnail);
+    m["overview"] = e.overview.empty() ? json(nullptr) : json(e.overview);
+    m["warnings"] = e.warnings;
     meshes.push_back(std::move(m));
   }
   j["meshes"] = std::move(meshes);
@@ -287,6 +318,10 @@ std::vector<BatchEntry> parse_batch_index_json(std::string_view text, const std:
           e.headline[k] = headline[kHeadlineKeys[k]].get<double>();
       if (m.contains("failed_gates")) e.failed_gates = m["failed_gates"].get<std::vector<std::string>>();
       if (m.contains("thumbnail") && m["thumbnail"].is_string()) e.thumbnail = m["thumbnail"].get<std::string>();
+      if (m.contains("overview") && m["overview"].is_string()) e.overview = m["overview"].get<std::string>();
+      if (m.contains("warnings") && m["warnings"].is_array())
+        for (const json& w : m["warnings"])
+          if (w.is_string()) e.warnings.push_back(w.get<std::string>());
       if (m.contains("metrics") && m["metrics"].is_object())
         for (const auto& [metric, stats] : m["metrics"].items())
           e.metrics.push_back({metric, number_or_nan(stats.at("min")), number_or_nan(stats.at("mean")),
@@ -373,7 +408,8 @@ kainjow::mustache::data comparison_data(const std::vector<BatchEntry>& entries, 
       const bool has = e && !e->bundle.empty() && !e->thumbnail.empty();
       any_thumbnail = any_thumbnail || has;
       x.set("has_image", has);
-      x.set("image", has ? url_path(e->bundle) + "/" + url_path(e->thumbnail) : "");
+      x.set("image", has ? row_thumbnail(*e) : "");
+      x.set("lightbox", has ? lightbox_url(*e) : "");
       x.set("link", has ? url_path(e->bundle) + "/index.html" : "");
       x.set("alt", e ? e->path : "");
       x.set("text", e ? (e->status == BatchStatus::failed ? "failed" : "not rendered") : "–");
@@ -536,7 +572,8 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
   for (std::size_t k = 0; k < kNumHeadlineKeys; ++k)
     if (shown[k]) headers.push_back(data("title", kHeadlineTitles[k]));
   page.set("headline_columns", headers);
-  int failed = 0, gate_failed = 0;
+  static const std::size_t intersecting_key = headline_index("overlap.num_intersecting_cells");
+  int failed = 0, gate_failed = 0, with_findings = 0, with_warnings = 0;
   data rows = data::type::list;
   for (const std::size_t i : worst_first_order(entries)) {
     const BatchEntry& e = entries[i];
@@ -547,18 +584,36 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
     row.set("label", e.label);
     row.set("model", e.model);
     row.set("variant", e.variant);
-    row.set("status", std::string(to_string(e.status)));
+    // What the row shows beyond its run's status: inverted or intersecting
+    // cells and input warnings (an "ok" run of a broken mesh is not "ok").
+    std::string findings;
+    auto find = [&](bool found, const char* what) {
+      if (found) findings += (findings.empty() ? "" : ", ") + std::string(what);
+    };
+    find(e.headline[inverted_key] && *e.headline[inverted_key] > 0, "inverted");
+    find(e.headline[intersecting_key] && *e.headline[intersecting_key] > 0, "intersecting");
+    find(!e.warnings.empty(), "input warning");
+    with_findings += !findings.empty() && e.status != BatchStatus::failed && e.status != BatchStatus::skipped;
+    with_warnings += !e.warnings.empty();
+    row.set("status", std::string(to_string(e.status)) + (findings.empty() ? "" : " finding"));
     row.set("status_text", e.status == BatchStatus::failed        ? "✗ failed"
                            : e.status == BatchStatus::gate_failed ? "✗ gate failed"
                            : e.status == BatchStatus::skipped     ? "skipped"
-                                                                  : "ok");
+                           : findings.empty()                     ? "ok"
+                                                                  : "⚠ " + findings);
     row.set("has_bundle", !e.bundle.empty());
     row.set("link", url_path(e.bundle) + "/index.html");
     const bool has_thumbnail = !e.bundle.empty() && !e.thumbnail.empty();
     row.set("has_thumbnail_image", has_thumbnail);
-    row.set("thumbnail_src", has_thumbnail ? url_path(e.bundle) + "/" + url_path(e.thumbnail) : "");
+    row.set("thumbnail_src", row_thumbnail(e));
+    row.set("lightbox_src", lightbox_url(e));
     std::string detail = e.error;
     for (const std::string& g : e.failed_gates) detail += (detail.empty() ? "" : "; ") + g;
+    // Input warnings under the mesh's path (the details column is for errors and gates).
+    std::string warning;
+    for (const std::string& w : e.warnings) warning += (warning.empty() ? "warning: " : "; warning: ") + relative_warning(w, e.path);
+    row.set("warning", warning);
+    row.set("has_warning", !warning.empty());
     row.set("detail", detail);
     data cells = data::type::list;
     for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) {
@@ -580,6 +635,8 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
   page.set("num_meshes", std::to_string(entries.size()));
   page.set("num_failed", std::to_string(failed));
   page.set("num_gate_failed", std::to_string(gate_failed));
+  page.set("num_with_findings", std::to_string(with_findings));
+  if (with_warnings > 0) page.set("num_with_warnings", std::to_string(with_warnings));
   const auto skipped = std::count_if(entries.begin(), entries.end(),
                                      [](const BatchEntry& e) { return e.status == BatchStatus::skipped; });
   if (skipped > 0) page.set("num_skipped", std::to_string(skipped));

@@ -80,6 +80,8 @@ struct BatchEntry {
   std::vector<std::optional<double>> headline = std::vector<std::optional<double>>(kNumHeadlineKeys);
   std::vector<std::string> failed_gates;  // rules
   std::string thumbnail;  // the bundle's thumbnail view, relative to the bundle; empty: not rendered
+  std::string overview;   // the bundle's overview view (the batch lightbox shows it); empty: not rendered
+  std::vector<std::string> warnings;  // report.json warnings (input integrity: cells read as another kind ...)
   // With a solved finite-element check only (else empty, and absent from
   // index.json): every computed metric's min and mean, for the correlation
   // across the collection (collection_correlation.h).

@@ -86,9 +86,10 @@ struct PanelSpec {
 
 const std::vector<PanelSpec>& index_panels() {
   static const std::vector<PanelSpec> panels{
-      {"panel-a", "A main", "A · Main view: glyphs, clusters and overlaps",
-       "Sphere glyphs sit on bad vertices (the lower the quality, the larger), merged where they overlap; the worst "
-       "clusters each have a colour, all others are grey; arrows point at overlapping elements. The overview colours the boundary by vertex quality.",
+      {"panel-a", "A main", "A · Overview and main view: vertex quality, glyphs, clusters and overlaps",
+       "First the overview: the boundary coloured by vertex quality, a ring around the inverted hexes (dashed when "
+       "they are inside or out of sight). Then sphere glyphs sit on bad vertices (the lower the quality, the larger), merged where they overlap; the worst "
+       "clusters each have a colour, all others are grey; arrows point at overlapping elements.",
        'A'},
       {"panel-s", "S structure", "S · Structure: singularity graph and size gradation",
        "The singular edges (an interior edge without 4 hexes, a boundary edge without 2) coloured by valence, inside "

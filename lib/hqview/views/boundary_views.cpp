@@ -8,6 +8,7 @@
 
 #include "hqview/core/number_format.h"
 #include "hqview/image/colormap.h"
+#include "hqview/views/inverted_callout.h"
 #include "hqview/views/overview_views.h"
 
 namespace hq {
@@ -48,26 +49,6 @@ TriangleSet patch_triangles(const std::vector<BoundaryError::ErrorPatch>& patche
 }
 
 }  // namespace
-
-// The marker's ring: an annulus of kWorstMarkerColor on a white halo, solid
-// when the sample faces the camera, dashed (every other 30 degrees) when it
-// faces away (it lies on the far side of the model).
-void draw_ring(Image& image, double cx, double cy, double radius, double thickness, bool dashed) {
-  const Rgba8 halo{255, 255, 255, 255};
-  const int r = static_cast<int>(std::ceil(radius + 2 * thickness)) + 1;
-  for (int y = static_cast<int>(cy) - r; y <= static_cast<int>(cy) + r; ++y)
-    for (int x = static_cast<int>(cx) - r; x <= static_cast<int>(cx) + r; ++x) {
-      if (x < 0 || y < 0 || x >= image.width || y >= image.height) continue;
-      const double dx = x + 0.5 - cx, dy = y + 0.5 - cy, d = std::hypot(dx, dy);
-      const double off = std::abs(d - radius);
-      if (off > thickness) continue;
-      const bool core = off <= 0.5 * thickness;
-      const double angle = std::atan2(dy, dx) * 180.0 / 3.14159265358979323846 + 180.0;
-      if (dashed && static_cast<int>(angle / 30.0) % 2 == 1) continue;
-      const Rgba8 c = core ? kWorstMarkerColor : halo;
-      std::copy_n(&c.r, 4, &image.rgba[pixel_offset(image, x, y)]);
-    }
-}
 
 // The marker's label: "max |error| +10.2 % (1.36)", right of the ring (left
 // when it would leave the view; above or below it when neither side has
@@ -113,7 +94,8 @@ Image render_error_figure(Scene scene, const std::vector<Vec3>& points, const Bo
       const double cy = frame.layout.view.y + 0.5 * (1.0 - ndc.y) * frame.layout.view.height;
       const double radius = std::max(8.0, 22.0 * frame.style.scale), thickness = std::max(2.0, 4.0 * frame.style.scale);
       const bool facing = dot(worst.normal, frame.camera.eye - worst.position) >= 0.0;
-      draw_ring(figure, cx, cy, radius, thickness, !facing);
+      // Solid when the sample faces the camera, dashed when it lies on the far side.
+      draw_marker_ring(figure, cx, cy, radius, thickness, !facing, kWorstMarkerColor);
       draw_worst_label(figure, frame.layout.view, cx, cy, radius,
                        "max |error| " + signed_percent_label(worst.error, error.reference_bbox_diagonal) +
                            (facing ? "" : ", far side"),

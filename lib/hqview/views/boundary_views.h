@@ -53,10 +53,6 @@ ColorBar error_color_bar(double scale, double diagonal);
 // The marker of the boundary_error and reference_error views: a dark ring
 // on a white halo with the value beside it, and a legend swatch.
 inline constexpr Rgba8 kWorstMarkerColor{20, 20, 20, 255};
-// The marker's ring: an annulus of kWorstMarkerColor on a white halo
-// centred at (cx, cy) pixels, dashed (every other 30 degrees) for a place
-// the camera cannot see (the far side, or inside).
-void draw_ring(Image& image, double cx, double cy, double radius, double thickness, bool dashed);
 // The marker's label right of the ring (left when it would leave the view;
 // above or below it when neither side has room), on a pale box, inside `view`.
 void draw_worst_label(Image& figure, const PixelRect& view, double cx, double cy, double radius,

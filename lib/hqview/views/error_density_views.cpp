@@ -13,6 +13,7 @@
 #include "hqview/quality/hex_metrics.h"
 #include "hqview/render/upright.h"
 #include "hqview/views/boundary_views.h"
+#include "hqview/views/inverted_callout.h"
 #include "hqview/views/main_views.h"
 #include "hqview/views/overview_views.h"
 
@@ -135,7 +136,7 @@ void draw_worst_marker(Image& figure, const Figure& f, const HexMesh& mesh, cons
     if (to_pixel(point(mesh, v), x, y)) radius = std::max(radius, std::hypot(x - cx, y - cy));
   }
   radius = std::max(radius + 6.0 * f.style.scale, 16.0 * f.style.scale);
-  draw_ring(figure, cx, cy, radius, std::max(2.0, 3.0 * f.style.scale), !worst.on_boundary);
+  draw_marker_ring(figure, cx, cy, radius, std::max(2.0, 3.0 * f.style.scale), !worst.on_boundary, kWorstMarkerColor);
   draw_worst_label(figure, view, cx, cy, radius,
                    "max " + display_number(worst.density, 3) + ", hex " + std::to_string(worst.hex) +
                        (worst.on_boundary ? " (on the boundary)" : " (interior, seen through)"),

@@ -170,7 +170,11 @@ OverviewViewpoint choose_overview_viewpoint(const HexMesh& mesh, const Topology&
     score = scores(candidates);
   }
   const auto best = static_cast<std::size_t>(std::max_element(score.begin(), score.end()) - score.begin());
-  if (score[best] <= 0.0 || out.default_area >= kKeepDefaultFraction * score[best]) return out;
+  // Inverted cells turn the eye by the fraction rule; a worst cluster (no
+  // inverted corner) only when the three-quarter view shows none of it.
+  const bool keep = worst.kind == WorstFaces::Kind::worst_cluster ? out.default_area > 0.0
+                                                                   : out.default_area >= kKeepDefaultFraction * score[best];
+  if (score[best] <= 0.0 || keep) return out;
   out.direction = candidates[best];
   out.is_default = false;
   out.chosen_area = score[best];

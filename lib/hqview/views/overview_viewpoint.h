@@ -46,8 +46,11 @@ double visible_flagged_area(const HexMesh& mesh, const Topology& topology, std::
 // face, below_view_candidates(up). The best is the first candidate of the
 // largest visible_flagged_area. The three-quarter view is kept when no
 // face is flagged, when nothing flagged is visible from any candidate, or
-// when it shows at least kKeepDefaultFraction of the best's area; else the
-// best is taken. Deterministic (one task per candidate, fixed order).
+// when it shows at least kKeepDefaultFraction of the best's area (inverted
+// corners) or any of it (the worst cluster: a softer target, and the
+// three-quarter view is the pose a reader recognises: Dolphin_padded's
+// flukes seen end-on made an unrecognisable thumbnail); else the best is
+// taken. Deterministic (one task per candidate, fixed order).
 inline constexpr double kKeepDefaultFraction = 0.5;
 struct OverviewViewpoint {
   Vec3 direction;             // from the eye towards the model

@@ -10,6 +10,7 @@
 #include "hqview/mesh/boundary_polygons.h"
 #include "hqview/render/annotate.h"
 #include "hqview/render/upright.h"
+#include "hqview/views/inverted_callout.h"
 
 namespace hq {
 namespace {
@@ -256,7 +257,8 @@ Image render_quality_overview(const HexMesh& mesh, const Topology& topology, con
                       std::to_string(options.height));
   AnnotationStyle style = annotation_style_for(options.height);
   style.background = options.background;
-  const ColorBar bar = overview_color_bar(topology, vertex_quality);
+  ColorBar bar = overview_color_bar(topology, vertex_quality);
+  if (!options.inverted_cells.empty()) bar.swatches.push_back({to_color(kCalloutColor), "ring: inverted " + options.cell_noun + (options.cell_noun == "hex" ? "es" : "s")});
   const FigureLayout layout =
       figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(bar, style), style);
 
@@ -270,6 +272,13 @@ Image render_quality_overview(const HexMesh& mesh, const Topology& topology, con
 
   Image figure = render_figure(renderer, scene, camera, options.width, options.height, layout, options.title, style);
   draw_color_bar(figure, layout.legend, bar, style);
+  if (!options.inverted_cells.empty()) {
+    const double min_radius = std::max(10.0, 26.0 * style.scale), thickness = std::max(2.0, 4.0 * style.scale);
+    const std::vector<InvertedCallout> callouts = inverted_callouts(
+        mesh, topology, options.inverted_cells, vertex_quality, camera, layout.view, min_radius, renderer);
+    draw_inverted_callouts(figure, layout.view, callouts, options.cell_noun, thickness,
+                           std::max(style.min_text_size, static_cast<int>(std::lround(20.0 * style.scale))), style);
+  }
   return figure;
 }
 

@@ -28,6 +28,10 @@ struct OverviewOptions {
   Rgba8 background{255, 255, 255, 255};
   Rgba8 edge_color{40, 40, 46, 255};  // boundary edges
   float edge_width = 1.0f;            // in output pixels
+  // The inverted cells (ids over all volume cells): ringed where they are
+  // (inverted_callout.h), with a legend entry; none: no rings.
+  std::vector<Index> inverted_cells;
+  std::string cell_noun = "hex";  // "hex" or "cell": the rings' labels and legend entry
 };
 
 // The overview's 3D content: every boundary face over all kinds
@@ -94,7 +98,8 @@ Image render_figure(Renderer& renderer, const Scene& scene, const Camera& camera
 
 // The overview figure: options.width x options.height, the 3D view on the
 // left framing the boundary vertices tightly (fit_camera_to_points), the quality colour bar on the
-// right, the title on top. Boundary edges fade (down to 30% opacity) when
+// right, the title on top; each group of options.inverted_cells ringed and
+// labelled (inverted_callout.h), the legend saying so. Boundary edges fade (down to 30% opacity) when
 // the median edge is shorter than 8 pixels on screen. Throws RenderError
 // from the renderer or when the font is missing, Error when vertex_quality
 // has the wrong size.

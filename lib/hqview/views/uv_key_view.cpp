@@ -8,6 +8,8 @@
 #include "hqview/render/camera.h"
 #include "hqview/render/label_layout.h"
 #include "hqview/render/upright.h"
+#include "hqview/views/inverted_callout.h"
+#include "hqview/views/main_views.h"
 #include "hqview/views/overview_views.h"
 
 namespace hq {
@@ -128,9 +130,25 @@ void number_frame(Image& figure, const PixelRect& area, const Image& id_frame, i
                   const AnnotationStyle& style, bool is_atlas, std::vector<UvKeyFrame>* frames) {
   ChartIdImage ids = chart_ids(id_frame);
   const int min_pixels = is_atlas ? 1 : std::max(4, static_cast<int>(std::lround(20 * style.scale * style.scale)));
-  std::vector<UvKeyNumber> numbers =
-      place_uv_key_numbers(visible_chart_anchors(ids, area.x, area.y, min_pixels), area, number_size, style);
+  const std::vector<UvKeyNumberAnchor> anchors = visible_chart_anchors(ids, area.x, area.y, min_pixels, is_atlas);
+  std::vector<UvKeyNumber> numbers = place_uv_key_numbers(anchors, area, number_size, style);
+  // A sliver in the atlas (no pixel 3 px from anything else: a 1-2 px
+  // smudge beside a bigger chart) is ringed, so that its number's dot reads
+  // as naming what is inside the ring, not the chart next to it.
+  bool any_sliver = false;
+  if (is_atlas)
+    for (std::size_t i = 0; i < anchors.size() && i < numbers.size(); ++i)
+      if (numbers[i].placed && anchors[i].room <= kSliverRoom) {
+        draw_marker_ring(figure, anchors[i].x + 0.5, anchors[i].y + 0.5, std::max(6.0, 10.0 * style.scale),
+                         std::max(1.5, 2.5 * style.scale), false, {90, 90, 90, 255});
+        any_sliver = true;
+      }
   draw_numbers(figure, numbers, number_size, style);
+  if (any_sliver) {
+    const int size = std::max(style.min_text_size, static_cast<int>(std::lround(16 * style.scale)));
+    draw_text(figure, area.x + area.width / 2, area.y + area.height - size / 2, "ringed: a chart too thin to see here",
+              size, style, TextAnchor::center);
+  }
   if (frames) frames->push_back({area, std::move(ids), std::move(numbers)});
 }
 
@@ -237,7 +255,8 @@ ChartIdImage chart_ids(const Image& id_frame) {
   return out;
 }
 
-std::vector<UvKeyNumberAnchor> visible_chart_anchors(const ChartIdImage& ids, int x0, int y0, int min_pixels) {
+std::vector<UvKeyNumberAnchor> visible_chart_anchors(const ChartIdImage& ids, int x0, int y0, int min_pixels,
+                                                     bool islands) {
   const int w = ids.width, h = ids.height;
   // Chessboard distance to the nearest pixel of another id (kNoIndex and
   // outside the frame included): 1 on a chart's edge; two passes.
@@ -266,21 +285,122 @@ std::vector<UvKeyNumberAnchor> visible_chart_anchors(const ChartIdImage& ids, in
   struct Best {
     int count = 0, room = 0, x = 0, y = 0;
   };
+  // Per island (4-connected pixels of one chart; with islands = false, per
+  // chart) its size and its pixel of most room.
+  std::vector<int> island(ids.ids.size(), -1);
   std::vector<Best> best;
+  std::vector<Index> chart_of;
+  std::vector<std::size_t> stack;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      const Index c = ids.at(x, y);
-      if (c == kNoIndex) continue;
-      if (static_cast<std::size_t>(c) >= best.size()) best.resize(static_cast<std::size_t>(c) + 1);
-      Best& b = best[static_cast<std::size_t>(c)];
+      const std::size_t at = static_cast<std::size_t>(y) * w + x;
+      const Index c = ids.ids[at];
+      if (c == kNoIndex || island[at] >= 0) continue;
+      if (!islands) {  // one "island" per chart, numbered by the chart
+        if (static_cast<std::size_t>(c) >= best.size()) best.resize(static_cast<std::size_t>(c) + 1), chart_of.resize(best.size());
+        chart_of[static_cast<std::size_t>(c)] = c;
+        island[at] = static_cast<int>(c);
+        continue;
+      }
+      const int k = static_cast<int>(best.size());
+      best.emplace_back();
+      chart_of.push_back(c);
+      island[at] = k;
+      stack.assign(1, at);
+      while (!stack.empty()) {
+        const std::size_t p = stack.back();
+        stack.pop_back();
+        const int px = static_cast<int>(p % w), py = static_cast<int>(p / w);
+        for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
+          const int nx = px + dx, ny = py + dy;
+          if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+          const std::size_t q = static_cast<std::size_t>(ny) * w + nx;
+          if (island[q] < 0 && ids.ids[q] == c) island[q] = k, stack.push_back(q);
+        }
+      }
+    }
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::size_t at = static_cast<std::size_t>(y) * w + x;
+      if (ids.ids[at] == kNoIndex) continue;
+      Best& b = best[static_cast<std::size_t>(island[at])];
       ++b.count;
-      const int r = d[static_cast<std::size_t>(y) * w + x];
+      const int r = d[at];
       if (r > b.room) b = {b.count, r, x, y};
     }
+  // A chart's total and its largest island.
+  std::vector<int> total, largest;
+  for (std::size_t k = 0; k < best.size(); ++k) {
+    if (best[k].count == 0) continue;
+    const auto c = static_cast<std::size_t>(chart_of[k]);
+    if (c >= total.size()) total.resize(c + 1, 0), largest.resize(c + 1, -1);
+    total[c] += best[k].count;
+    if (largest[c] < 0 || best[k].count > best[static_cast<std::size_t>(largest[c])].count) largest[c] = static_cast<int>(k);
+  }
   std::vector<UvKeyNumberAnchor> anchors;
-  for (std::size_t c = 0; c < best.size(); ++c)
-    if (best[c].count >= min_pixels)
-      anchors.push_back({static_cast<Index>(c), x0 + best[c].x, y0 + best[c].y, best[c].room});
+  for (std::size_t c = 0; c < total.size(); ++c) {
+    if (largest[c] < 0 || total[c] < min_pixels) continue;
+    // The largest island first, then the others of at least kIslandFraction
+    // of the chart (and min_pixels), in row order of their first pixel.
+    const Best& b = best[static_cast<std::size_t>(largest[c])];
+    anchors.push_back({static_cast<Index>(c), x0 + b.x, y0 + b.y, b.room});
+    for (std::size_t k = 0; k < best.size(); ++k)
+      if (static_cast<int>(k) != largest[c] && static_cast<std::size_t>(chart_of[k]) == c &&
+          best[k].count >= std::max<double>(min_pixels, kIslandFraction * total[c]))
+        anchors.push_back({static_cast<Index>(c), x0 + best[k].x, y0 + best[k].y, best[k].room});
+  }
+  if (!islands) return anchors;
+  // Lobes: per chart, the parts of its pixels of at least R room (R =
+  // kLobeRoom, or kLobeFraction of the chart's most room if more) that are
+  // not 8-connected to each other: pieces joined to the rest by a neck
+  // thinner than 2R. Each lobe without an anchor gets one at its roomiest
+  // pixel (up to kMaxLobes per chart).
+  std::vector<int> most(total.size(), 0);
+  for (std::size_t at = 0; at < ids.ids.size(); ++at)
+    if (ids.ids[at] != kNoIndex) most[static_cast<std::size_t>(ids.ids[at])] = std::max(most[static_cast<std::size_t>(ids.ids[at])], d[at]);
+  auto reach = [&](Index c) { return std::max(kLobeRoom, static_cast<int>(kLobeFraction * most[static_cast<std::size_t>(c)])); };
+  std::vector<int> lobe(ids.ids.size(), -1);
+  std::vector<Best> lobes;
+  std::vector<Index> lobe_chart;
+  for (std::size_t start = 0; start < ids.ids.size(); ++start) {
+    const Index c = ids.ids[start];
+    if (c == kNoIndex || lobe[start] >= 0 || d[start] < reach(c)) continue;
+    const int k = static_cast<int>(lobes.size());
+    lobes.push_back({0, d[start], static_cast<int>(start % w), static_cast<int>(start / w)});
+    lobe_chart.push_back(c);
+    lobe[start] = k;
+    stack.assign(1, start);
+    while (!stack.empty()) {
+      const std::size_t p = stack.back();
+      stack.pop_back();
+      ++lobes.back().count;
+      const int px = static_cast<int>(p % w), py = static_cast<int>(p / w);
+      if (d[p] > lobes.back().room) lobes.back() = {lobes.back().count, d[p], px, py};
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int nx = px + dx, ny = py + dy;
+          if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+          const std::size_t q = static_cast<std::size_t>(ny) * w + nx;
+          if (lobe[q] < 0 && ids.ids[q] == c && d[q] >= reach(c)) lobe[q] = k, stack.push_back(q);
+        }
+    }
+  }
+  std::vector<int> extra(total.size(), 0);
+  std::vector<char> has_anchor(lobes.size(), 0);
+  for (const UvKeyNumberAnchor& a : anchors) {
+    const int k = lobe[static_cast<std::size_t>(a.y - y0) * w + static_cast<std::size_t>(a.x - x0)];
+    if (k >= 0) has_anchor[static_cast<std::size_t>(k)] = 1;
+  }
+  const std::size_t before = anchors.size();
+  for (std::size_t k = 0; k < lobes.size(); ++k) {
+    const auto c = static_cast<std::size_t>(lobe_chart[k]);
+    if (has_anchor[k] || extra[c] == kMaxLobes) continue;
+    ++extra[c];
+    anchors.push_back({lobe_chart[k], x0 + lobes[k].x, y0 + lobes[k].y, lobes[k].room});
+  }
+  // In chart order, as without lobes.
+  std::stable_sort(anchors.begin() + static_cast<std::ptrdiff_t>(before), anchors.end(),
+                   [](const UvKeyNumberAnchor& x, const UvKeyNumberAnchor& y) { return x.chart < y.chart; });
   return anchors;
 }
 
@@ -352,8 +472,11 @@ Image render_uv_key(const TriSurface& reference, const UvAtlas& atlas, const Bou
     paste(figure, renderer.render(scene3d, camera, area.width, area.height), area.x, area.y);
     number_frame(figure, area, renderer.render(id3d, camera, area.width, area.height), number_size, style, false,
                  frames);
-    draw_text(figure, area.x + number_size / 2, area.y + number_size + 4, row == 0 ? "front" : "back",
-              number_size, style);
+    // Named by the eye (the three-quarter view of --up and its opposite), not
+    // "front" / "back": the model's own front is unknown (the kitten's
+    // "front" showed the back of its head).
+    draw_text(figure, area.x + number_size / 2, area.y + number_size + 4,
+              (row == 0 ? "" : "opposite side: ") + viewpoint_name(direction, options.up), number_size, style);
   }
   // The atlas, framed as the UV error map frames it.
   const PixelRect uv_area{layout.legend.x, layout.view.y, layout.legend.width, layout.view.height};

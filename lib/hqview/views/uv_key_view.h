@@ -88,8 +88,24 @@ ChartIdImage chart_ids(const Image& id_frame);
 // Per chart with at least min_pixels pixels in the frame, the anchor of its
 // number: its pixel farthest (chessboard distance) from any other pixel
 // (the first in row order of those), with that distance as room; offset by
-// (x0, y0), the frame's place in the figure. Chart order.
-std::vector<UvKeyNumberAnchor> visible_chart_anchors(const ChartIdImage& ids, int x0, int y0, int min_pixels);
+// (x0, y0), the frame's place in the figure. Chart order. With islands (the
+// atlas, where a chart can lie in several pieces): the anchor of the
+// chart's largest island (4-connected pixels), then one for each other
+// island of at least kIslandFraction of the chart's pixels (and
+// min_pixels), then (after every chart's) one for each lobe without an
+// anchor (up to kMaxLobes per chart): the parts of the chart's pixels of
+// at least R room (kLobeRoom, or kLobeFraction of the chart's most room if
+// more) that are not 8-connected, i.e. pieces joined to the rest by a neck
+// thinner than 2R; so that no piece of a chart is left unnumbered.
+inline constexpr double kIslandFraction = 0.02;
+inline constexpr int kLobeRoom = 32;
+inline constexpr double kLobeFraction = 0.3;
+inline constexpr int kMaxLobes = 3;
+// An atlas chart whose anchor has at most this room (UvKeyNumberAnchor) is a
+// sliver: ringed in the figure, with a note under the atlas.
+inline constexpr int kSliverRoom = 2;
+std::vector<UvKeyNumberAnchor> visible_chart_anchors(const ChartIdImage& ids, int x0, int y0, int min_pixels,
+                                                     bool islands = false);
 
 // What a frame of the figure shows (for tests): its place, its chart ids,
 // its numbers.

@@ -21,12 +21,15 @@
 #include "hqview/core/number_format.h"
 #include "hqview/core/progress.h"
 #include "hqview/core/stop.h"
+#include "hqview/quality/cell_corner_jacobian.h"
+#include "hqview/quality/hex_metrics.h"
 #include "hqview/image/png.h"
 #include "hqview/mesh/cell_faces.h"
 #include "hqview/render/upright.h"
 #include "hqview/views/boundary_views.h"
 #include "hqview/views/detail_views.h"
 #include "hqview/views/error_density_views.h"
+#include "hqview/views/inverted_callout.h"
 #include "hqview/views/main_views.h"
 #include "hqview/views/overview_viewpoint.h"
 #include "hqview/views/overview_views.h"
@@ -56,6 +59,7 @@ struct ViewContext {
   std::vector<Index> local_vertices;  // views D and E
   const FrameRecord* last_frame = nullptr;  // the frame rendered last
   OverviewViewpoint overview_viewpoint{};   // the overview's and thumbnail's eye (overview_viewpoint.h)
+  std::vector<Index> inverted_cells;        // ringed on the overview and thumbnail (inverted_callout.h)
 
   Index cluster_of(Index v) const { return glyphs->vertex_cluster[static_cast<std::size_t>(v)]; }
   const std::vector<double>& quality() const { return a.field.vertex_quality; }
@@ -101,6 +105,24 @@ Options sized(const ViewContext& c) {
   o.up = c.options.up;
   return o;
 }
+
+// The inverted cells as the headline counts them (quality_summary.cpp):
+// hexes of scaled Jacobian <= 0 (not Verdict's sentinel), other kinds by
+// their own rule.
+std::vector<Index> inverted_cell_ids(const QualityField& field) {
+  std::vector<Index> cells;
+  for (std::size_t h = 0; h < field.num_hexes && h < field.cell_scaled_jacobian.size(); ++h) {
+    const double v = field.cell_scaled_jacobian[h];
+    if (v <= 0.0 && !is_verdict_sentinel(v)) cells.push_back(static_cast<Index>(h));
+  }
+  for (std::size_t i = 0; i < field.non_hex_validity.size(); ++i)
+    if (is_inverted(field.non_hex_validity[i])) cells.push_back(static_cast<Index>(field.num_hexes + i));
+  return cells;
+}
+
+// "hex", or "cell" on a mesh with other volume cells (the per-cell fields
+// cover every kind).
+static std::string cell_word(const Analysis& a) { return a.field.cell_scaled_jacobian.size() > a.mesh.hexes.size() ? "cell" : "hex"; }
 
 // A 3D view's file: its image and the camera that drew it.
 ViewFile framed(std::string relative_path, Image image, const ViewContext& c) {
@@ -182,6 +204,8 @@ std::vector<ViewFile> build_overview(ViewContext& c) {
   overview.title = c.name + ": vertex quality on the boundary";
   const OverviewViewpoint& eye = c.overview_viewpoint;
   overview.view_direction = eye.direction;
+  overview.inverted_cells = c.inverted_cells;
+  overview.cell_noun = cell_word(c.a);
   if (!eye.is_default)
     overview.title += " (from " + viewpoint_name(eye.direction, overview.up) + ", the side showing the " +
                       (eye.target == WorstFaces::Kind::inverted ? "inverted hexes" : "worst cluster") + ")";
@@ -309,7 +333,7 @@ std::vector<ViewFile> build_uv_error(ViewContext& c) {
 std::vector<ViewFile> build_uv_key(ViewContext& c) {
   auto b = sized<BoundaryViewOptions>(c);
   b.title = c.name + ": UV key, the reference's " + std::to_string(c.a.uv_atlas->num_charts) +
-            " charts numbered (front, back; the atlas as the UV error map lays it out)";
+            " charts numbered (two opposite sides; the atlas as the UV error map lays it out)";
   return {{"views/uv_key.png", render_uv_key(*c.a.reference_surface, *c.a.uv_atlas, b, c.renderer), {}}};
 }
 
@@ -367,10 +391,6 @@ std::vector<ViewFile> build_boundary_area(ViewContext& c) {
                                          {900, 500, c.name + ": boundary area outside / inside the reference"},
                                          {"hex boundary samples", "% of diagonal"}));
 }
-
-// "hex", or "cell" on a mesh with other volume cells (the per-cell fields
-// cover every kind).
-static std::string cell_word(const Analysis& a) { return a.field.cell_scaled_jacobian.size() > a.mesh.hexes.size() ? "cell" : "hex"; }
 
 std::vector<ViewFile> build_histogram(ViewContext& c) {
   return chart_files("histogram", quality_histogram_chart(c.a.field.cell_scaled_jacobian, false,
@@ -430,6 +450,11 @@ std::vector<ViewFile> build_thumbnail(ViewContext& c) {
   Scene scene = build_quality_overview_scene(c.a.mesh, c.a.topology, c.quality(), options);
   scene.lines.clear();  // at 320 pixels the edges of a real mesh are a grey smear
   Image image = c.renderer.render(scene, camera, width, height);
+  // Rings sized for the batch index, which shows the thumbnail at half size.
+  const PixelRect view{0, 0, width, height};
+  const std::vector<InvertedCallout> callouts =
+      inverted_callouts(c.a.mesh, c.a.topology, c.inverted_cells, c.quality(), camera, view, 16.0, c.renderer);
+  draw_inverted_callouts(image, view, callouts, "", 3.0, 18, annotation_style_for(height));
   return {framed("views/thumbnail.png", std::move(image), c)};
 }
 
@@ -487,7 +512,7 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
   tbb::task_group encoding;
   const WaitOnExit wait_for_encoding{encoding};
 
-  ViewContext shared{analysis, options, base_renderer, analysis.mesh_name(), {}, nullptr, 0, {}, nullptr};
+  ViewContext shared{analysis, options, base_renderer, analysis.mesh_name(), {}, nullptr, 0, {}, nullptr, {}, {}};
   if (!analysis.glyphs) shared.no_glyphs.vertex_cluster.assign(analysis.mesh.points.size(), kNoIndex);
   shared.glyphs = analysis.glyphs ? &*analysis.glyphs : &shared.no_glyphs;
   // The top clusters (C views; their worst vertices get D and E): as the glyph stage was asked.
@@ -507,6 +532,7 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
     shared.overview_viewpoint = choose_overview_viewpoint(
         analysis.mesh, analysis.topology, worst_boundary_faces(analysis.topology, shared.quality(), worst_cluster),
         options.up);
+    shared.inverted_cells = inverted_cell_ids(analysis.field);
   }
 
   // Taking the next view, before_view, the clock and the encoding tasks'
@@ -517,7 +543,8 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
   auto work = [&](Renderer& inner, bool is_second) {
     RecordingRenderer renderer(inner);
     ViewContext context{analysis, options, renderer, shared.name, {}, shared.glyphs, shared.num_top,
-                        shared.local_vertices, &renderer.last_frame, shared.overview_viewpoint};
+                        shared.local_vertices, &renderer.last_frame, shared.overview_viewpoint,
+                        shared.inverted_cells};
     for (;;) {
       std::size_t i = 0;
       {

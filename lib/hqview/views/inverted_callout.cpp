@@ -1,0 +1,291 @@
+#include "hqview/views/inverted_callout.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <unordered_map>
+
+#include "hqview/mesh/boundary_polygons.h"
+#include "hqview/mesh/cell_faces.h"
+#include "hqview/render/id_image.h"
+#include "hqview/render/label_layout.h"
+#include "hqview/render/scene.h"
+
+namespace hq {
+namespace {
+
+constexpr std::uint32_t kIdNothing = 0;               // background
+constexpr std::uint32_t kIdOccluder = kMaxId;         // boundary not painted inverted
+constexpr double kPi = 3.14159265358979323846;
+
+struct Projector {
+  Mat4 to_ndc;
+  PixelRect view;
+  // Figure pixels of a model point.
+  Vec3 operator()(const Vec3& p) const {
+    const Vec3 ndc = transform_point(to_ndc, p);
+    return {view.x + 0.5 * (ndc.x + 1.0) * view.width, view.y + 0.5 * (1.0 - ndc.y) * view.height, 0.0};
+  }
+};
+
+// The id image's scene: every boundary face, flat, in kIdOccluder, except
+// that a face with an inverted corner is split as the overview paints it:
+// each triangle of its fan (corner, next corner, centre; a triangle face is
+// its own fan) into the 3 parts nearest its vertices (each vertex and the
+// midpoints of its two edges) and the middle; a part nearest an inverted
+// vertex (the centre: when the corners' mean is < 0) carries that vertex's
+// group + 1.
+Scene id_scene(const HexMesh& mesh, const Topology& topology, std::span<const double> vertex_quality,
+               const std::vector<int>& vertex_group, const Vec3& origin) {
+  Scene scene;
+  scene.origin = origin;
+  scene.background = id_color(kIdNothing);
+  TriangleSet set;
+  set.is_lit = false;
+  auto add = [&](const Vec3& a, const Vec3& b, const Vec3& c, std::uint32_t id) {
+    const auto base = static_cast<std::uint32_t>(set.positions.size());
+    for (const Vec3* p : {&a, &b, &c}) {
+      set.positions.push_back(to_vec3f(*p - origin));
+      set.colors.push_back(id_color(id));
+    }
+    set.indices.insert(set.indices.end(), {base, base + 1, base + 2});
+  };
+  auto id_of_group = [](int g) { return g < 0 ? kIdOccluder : static_cast<std::uint32_t>(g + 1); };
+  auto split = [&](const Vec3& a, const Vec3& b, const Vec3& c, int ga, int gb, int gc) {
+    const Vec3 ab = 0.5 * (a + b), bc = 0.5 * (b + c), ca = 0.5 * (c + a);
+    add(a, ab, ca, id_of_group(ga));
+    add(b, bc, ab, id_of_group(gb));
+    add(c, ca, bc, id_of_group(gc));
+    add(ab, bc, ca, kIdOccluder);
+  };
+  for (const BoundaryPolygon& face : boundary_polygons(topology)) {
+    std::array<Vec3, 4> p;
+    std::array<int, 4> g{-1, -1, -1, -1};
+    int first = -1;
+    for (int i = 0; i < face.size; ++i) {
+      const auto v = static_cast<std::size_t>(face.v[static_cast<std::size_t>(i)]);
+      p[static_cast<std::size_t>(i)] = mesh.points[v];
+      if (v < vertex_group.size()) g[static_cast<std::size_t>(i)] = vertex_group[v];
+      if (first < 0) first = g[static_cast<std::size_t>(i)];
+    }
+    if (face.size == 3) {
+      if (first < 0) add(p[0], p[1], p[2], kIdOccluder);
+      else split(p[0], p[1], p[2], g[0], g[1], g[2]);
+      continue;
+    }
+    if (first < 0) {
+      add(p[0], p[1], p[2], kIdOccluder);
+      add(p[0], p[2], p[3], kIdOccluder);
+      continue;
+    }
+    double sum = 0.0;
+    int finite = 0;
+    for (int i = 0; i < 4; ++i) {
+      const double q = vertex_quality[static_cast<std::size_t>(face.v[static_cast<std::size_t>(i)])];
+      if (!std::isnan(q)) sum += q, ++finite;
+    }
+    const Vec3 centre = 0.25 * (p[0] + p[1] + p[2] + p[3]);
+    const int gc = finite > 0 && sum / finite < 0.0 ? first : -1;
+    for (std::size_t i = 0; i < 4; ++i) split(p[i], p[(i + 1) % 4], centre, g[i], g[(i + 1) % 4], gc);
+  }
+  scene.triangles.push_back(std::move(set));
+  return scene;
+}
+
+}  // namespace
+
+std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topology& topology,
+                                               std::span<const Index> inverted_cells,
+                                               std::span<const double> vertex_quality, const Camera& camera,
+                                               const PixelRect& view, double min_radius, Renderer& renderer) {
+  if (inverted_cells.empty() || view.width <= 0 || view.height <= 0) return {};
+  const double aspect = static_cast<double>(view.width) / view.height;
+  const Projector project{projection_matrix(camera, aspect) * view_matrix(camera), view};
+  const Index num_cells = num_volume_cells(mesh);
+
+  // 1. Each cell's projected centre, in grid squares of 2 min_radius.
+  const double square = std::max(1.0, 2.0 * min_radius);
+  std::map<std::pair<long, long>, int> square_of;  // occupied square -> its index
+  std::vector<std::pair<long, long>> squares;
+  std::vector<int> cell_square;
+  std::vector<Index> cells;
+  std::vector<Vec3> centres;  // projected
+  for (Index c : inverted_cells) {
+    if (c < 0 || c >= num_cells) continue;
+    const CellRef ref = volume_cell(mesh, c);
+    Vec3 centre;
+    for (int i = 0; i < ref.num_corners; ++i)
+      centre = centre + mesh.points[static_cast<std::size_t>(ref.corners[static_cast<std::size_t>(i)])];
+    const Vec3 s = project((1.0 / ref.num_corners) * centre);
+    if (!std::isfinite(s.x) || !std::isfinite(s.y)) continue;
+    const std::pair<long, long> key{std::lround(std::floor(s.x / square)), std::lround(std::floor(s.y / square))};
+    const auto [it, added] = square_of.emplace(key, static_cast<int>(squares.size()));
+    if (added) squares.push_back(key);
+    cell_square.push_back(it->second);
+    cells.push_back(c);
+    centres.push_back(s);
+  }
+  if (cells.empty()) return {};
+
+  // 2. Touching occupied squares (8-neighbourhood), and the squares of cells
+  // that share a vertex, form one group (union-find over the squares).
+  std::vector<int> parent(squares.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int i) {
+    while (parent[static_cast<std::size_t>(i)] != i)
+      i = parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+    return i;
+  };
+  for (std::size_t i = 0; i < squares.size(); ++i)
+    for (long dy = -1; dy <= 1; ++dy)
+      for (long dx = -1; dx <= 1; ++dx) {
+        const auto it = square_of.find({squares[i].first + dx, squares[i].second + dy});
+        if (it == square_of.end()) continue;
+        const int a = find(static_cast<int>(i)), b = find(it->second);
+        if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+      }
+  {
+    std::unordered_map<Index, int> square_of_vertex;
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      const CellRef ref = volume_cell(mesh, cells[i]);
+      for (int k = 0; k < ref.num_corners; ++k) {
+        const auto [it, added] = square_of_vertex.emplace(ref.corners[static_cast<std::size_t>(k)], cell_square[i]);
+        if (added) continue;
+        const int a = find(cell_square[i]), b = find(it->second);
+        if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+      }
+    }
+  }
+  // Groups numbered in the order of their first cell.
+  std::vector<int> group_of_root(squares.size(), -1);
+  std::vector<int> cell_group(cells.size());
+  int num_groups = 0;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    int& g = group_of_root[static_cast<std::size_t>(find(cell_square[i]))];
+    if (g < 0) g = num_groups++;
+    cell_group[i] = g;
+  }
+
+  // 3. Each group's centre (the mean of its cells' projected centres) and
+  // radius (to its farthest projected corner); its inverted corners' vertices.
+  std::vector<InvertedCallout> groups(static_cast<std::size_t>(num_groups));
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    InvertedCallout& g = groups[static_cast<std::size_t>(cell_group[i])];
+    ++g.num_cells;
+    g.x += centres[i].x;
+    g.y += centres[i].y;
+  }
+  for (InvertedCallout& g : groups) g.x /= g.num_cells, g.y /= g.num_cells;
+  std::vector<double> reach(groups.size(), 0.0);
+  std::vector<int> vertex_group(mesh.points.size(), -1);
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const auto g = static_cast<std::size_t>(cell_group[i]);
+    const CellRef ref = volume_cell(mesh, cells[i]);
+    for (int k = 0; k < ref.num_corners; ++k) {
+      const auto v = static_cast<std::size_t>(ref.corners[static_cast<std::size_t>(k)]);
+      const Vec3 s = project(mesh.points[v]);
+      if (std::isfinite(s.x) && std::isfinite(s.y)) reach[g] = std::max(reach[g], std::hypot(s.x - groups[g].x, s.y - groups[g].y));
+      if (v < vertex_quality.size() && vertex_quality[v] < 0.0 && vertex_group[v] < 0)
+        vertex_group[v] = static_cast<int>(g);
+    }
+  }
+  const double max_radius = std::max(min_radius, 0.45 * std::min(view.width, view.height));
+  for (std::size_t g = 0; g < groups.size(); ++g)
+    groups[g].radius = std::clamp(reach[g] + 0.3 * min_radius, min_radius, max_radius);
+
+  // 4. On the boundary, and in sight: the id image.
+  for (const BoundaryPolygon& face : boundary_polygons(topology))
+    for (int i = 0; i < face.size; ++i) {
+      const int g = vertex_group[static_cast<std::size_t>(face.v[static_cast<std::size_t>(i)])];
+      if (g >= 0) groups[static_cast<std::size_t>(g)].on_boundary = true;
+    }
+  if (std::any_of(groups.begin(), groups.end(), [](const InvertedCallout& c) { return c.on_boundary; })) {
+    const IdImage ids = renderer.render_ids(id_scene(mesh, topology, vertex_quality, vertex_group, camera.target),
+                                            camera, view.width, view.height);
+    for (std::uint32_t id : ids.ids)
+      if (id != kIdNothing && id != kIdOccluder && id <= static_cast<std::uint32_t>(num_groups))
+        ++groups[id - 1].visible_pixels;
+  }
+
+  // 5. The largest groups first (stable: ties keep the first cell's order).
+  std::stable_sort(groups.begin(), groups.end(),
+                   [](const InvertedCallout& a, const InvertedCallout& b) { return a.num_cells > b.num_cells; });
+  if (groups.size() > static_cast<std::size_t>(kMaxInvertedCallouts)) {
+    int more = 0;
+    for (std::size_t g = kMaxInvertedCallouts; g < groups.size(); ++g) more += groups[g].num_cells;
+    groups.resize(kMaxInvertedCallouts);
+    groups.back().num_more_cells = more;
+  }
+  return groups;
+}
+
+std::string inverted_callout_label(const InvertedCallout& c, const std::string& noun, double view_area) {
+  std::string label = std::to_string(c.num_cells) + " inverted";
+  if (!noun.empty()) label += " " + noun + (c.num_cells == 1 ? "" : noun == "hex" ? "es" : "s");
+  if (!c.on_boundary) label += ", inside";
+  else if (c.visible_pixels == 0) label += ", hidden";
+  else if (static_cast<double>(c.visible_pixels) < kSmallInvertedFraction * view_area) label += " (small)";
+  if (c.num_more_cells > 0) label += "; +" + std::to_string(c.num_more_cells) + " more";
+  return label;
+}
+
+void draw_marker_ring(Image& image, double cx, double cy, double radius, double thickness, bool dashed, Rgba8 color) {
+  const Rgba8 halo{255, 255, 255, 255};
+  const int r = static_cast<int>(std::ceil(radius + 2 * thickness)) + 1;
+  for (int y = static_cast<int>(cy) - r; y <= static_cast<int>(cy) + r; ++y)
+    for (int x = static_cast<int>(cx) - r; x <= static_cast<int>(cx) + r; ++x) {
+      if (x < 0 || y < 0 || x >= image.width || y >= image.height) continue;
+      const double dx = x + 0.5 - cx, dy = y + 0.5 - cy, d = std::hypot(dx, dy);
+      const double off = std::abs(d - radius);
+      if (off > thickness) continue;
+      const bool core = off <= 0.5 * thickness;
+      const double angle = std::atan2(dy, dx) * 180.0 / kPi + 180.0;
+      if (dashed && static_cast<int>(angle / 30.0) % 2 == 1) continue;
+      const Rgba8 c = core ? color : halo;
+      std::copy_n(&c.r, 4, &image.rgba[pixel_offset(image, x, y)]);
+    }
+}
+
+void draw_inverted_callouts(Image& figure, const PixelRect& view, std::span<const InvertedCallout> callouts,
+                            const std::string& noun, double thickness, int text_size, const AnnotationStyle& style) {
+  for (const InvertedCallout& c : callouts)
+    draw_marker_ring(figure, c.x, c.y, c.radius, thickness, !callout_in_sight(c), kCalloutColor);
+  if (text_size <= 0) return;
+  const double area = static_cast<double>(view.width) * view.height;
+  const Rgba8 line{70, 70, 70, 255};  // the labels' leaders and frames: not the ring's colour
+  std::vector<LabelRequest> requests;
+  std::vector<ScreenDisc> rings;
+  std::vector<std::string> texts;
+  for (std::size_t i = 0; i < callouts.size(); ++i) {
+    const InvertedCallout& c = callouts[i];
+    texts.push_back(inverted_callout_label(c, noun, area));
+    const PixelRect extent = text_extent(texts.back(), text_size, style);
+    const ScreenDisc disc{c.x, c.y, c.radius + thickness, static_cast<std::int64_t>(i)};
+    rings.push_back(disc);
+    requests.push_back({disc, extent.width + 8, text_size + 8});
+  }
+  LabelLayoutOptions layout;
+  layout.bounds = {view.x + 2, view.y + 2, view.width - 4, view.height - 4};
+  layout.gap = 6.0;
+  layout.ring_step = std::max(8.0, 0.8 * text_size);
+  const std::vector<std::optional<PlacedLabel>> placed = place_labels(requests, rings, {}, layout);
+  for (std::size_t i = 0; i < placed.size(); ++i) {
+    if (!placed[i]) continue;
+    const PlacedLabel& p = *placed[i];
+    if (p.has_leader) {
+      draw_line(figure, p.leader_x0, p.leader_y0, p.leader_x1, p.leader_y1, {255, 255, 255, 255}, thickness + 2.0);
+      draw_line(figure, p.leader_x0, p.leader_y0, p.leader_x1, p.leader_y1, line, 0.5 * thickness + 0.5);
+    }
+    fill_rect(figure, p.box, {255, 255, 255, 255});
+    fill_rect(figure, {p.box.x, p.box.y, p.box.width, 1}, line);
+    fill_rect(figure, {p.box.x, p.box.y + p.box.height - 1, p.box.width, 1}, line);
+    fill_rect(figure, {p.box.x, p.box.y, 1, p.box.height}, line);
+    fill_rect(figure, {p.box.x + p.box.width - 1, p.box.y, 1, p.box.height}, line);
+    draw_text(figure, p.box.x + 4, p.box.y + 4 + static_cast<int>(std::lround(0.8 * text_size)), texts[i], text_size,
+              style);
+  }
+}
+
+}  // namespace hq

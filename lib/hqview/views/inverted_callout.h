@@ -1,0 +1,81 @@
+#pragma once
+// Where the inverted cells are, on the overview and the thumbnail (issue 45):
+// an inverted hex inside the volume, on the far side of the model or only a
+// few pixels wide shows no blue, so a picture of a mesh with 14 inverted
+// hexes can look healthy. Each group of inverted cells that lie together on
+// screen gets a ring (sized in screen pixels, at least min_radius, so that
+// it survives the thumbnail's scaling down), and on the overview a label
+// with a leader: "14 inverted hexes, inside" says how many and why no blue
+// shows. The ring is solid when the group's inverted colour is in sight,
+// dashed when it is not (inside the volume or hidden behind the model).
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "hqview/image/image.h"
+#include "hqview/mesh/hex_mesh.h"
+#include "hqview/mesh/topology.h"
+#include "hqview/render/annotate.h"
+#include "hqview/render/camera.h"
+#include "hqview/render/renderer.h"
+
+namespace hq {
+
+// The ring's colour (with a white halo): dark, in neither the quality map
+// nor the inverted colour.
+inline constexpr Rgba8 kCalloutColor{20, 20, 20, 255};
+// At most this many rings (the groups with the most cells first); the rest
+// are named in the last label ("+N more").
+inline constexpr int kMaxInvertedCallouts = 4;
+// A group whose inverted colour covers fewer pixels than this fraction of the
+// view's area counts as small ("(small)" in its label).
+inline constexpr double kSmallInvertedFraction = 2e-4;
+
+struct InvertedCallout {
+  double x = 0, y = 0;        // ring centre, figure pixels
+  double radius = 0;          // ring radius, pixels
+  int num_cells = 0;          // inverted cells in the group
+  long visible_pixels = 0;    // view pixels where the overview paints their inverted corners, depth-tested
+  bool on_boundary = false;   // some corner of theirs on the boundary is inverted (vertex quality < 0)
+  int num_more_cells = 0;     // inverted cells of groups left without a ring (the last callout only)
+};
+
+// Groups the inverted cells (ids over all volume cells, mesh/cell_faces.h) by
+// where they project: cells whose centres fall into touching squares of a
+// grid of 2 min_radius pixels form one group, and so do cells that share a
+// vertex. Each group's ring is centred
+// on the mean of its cells' projected centres and encloses their projected
+// corners (plus a margin), at least min_radius and at most 0.45 of the
+// view's smaller side. visible_pixels comes from an id
+// image of the boundary drawn with the camera into view (the part of each
+// face the overview paints in an inverted corner's colour carries that
+// corner's group): 0 when the renderer draws no id images. Groups in
+// descending cell count (ties: the first cell id), at most
+// kMaxInvertedCallouts. Deterministic.
+std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topology& topology,
+                                               std::span<const Index> inverted_cells,
+                                               std::span<const double> vertex_quality, const Camera& camera,
+                                               const PixelRect& view, double min_radius, Renderer& renderer);
+
+// "14 inverted hexes" (noun: "hex" or "cell", made plural but for 1; empty:
+// "14 inverted"), then ", inside" (no
+// inverted corner on the boundary), ", hidden" (on the boundary, none in
+// sight) or " (small)" (fewer pixels than kSmallInvertedFraction of
+// view_area); then "; +N more" for the cells without a ring.
+std::string inverted_callout_label(const InvertedCallout& callout, const std::string& noun, double view_area);
+// Whether the ring is drawn solid: some of the group's inverted colour is in sight.
+inline bool callout_in_sight(const InvertedCallout& c) { return c.visible_pixels > 0; }
+
+// Draws each callout's ring (kCalloutColor core of `thickness` pixels on a
+// white halo; dashed when not in sight) and, with labels (text_size > 0),
+// its label on a pale box placed beside the ring inside view
+// (label_layout.h; a leader when it has to move away).
+void draw_inverted_callouts(Image& figure, const PixelRect& view, std::span<const InvertedCallout> callouts,
+                            const std::string& noun, double thickness, int text_size, const AnnotationStyle& style);
+
+// A ring: an annulus of `color` (core thickness / 2 either side of radius)
+// on a white halo (as wide again), solid or dashed (every other 30 degrees).
+void draw_marker_ring(Image& image, double cx, double cy, double radius, double thickness, bool dashed, Rgba8 color);
+
+}  // namespace hq
