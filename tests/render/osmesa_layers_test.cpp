@@ -141,7 +141,11 @@ TEST(SphereImpostor, FirstOnTopDrawsBySetOrderNotDepthAndCoversUnderLines) {
     ranked.centers = {{-0.3f, 0, -1}, {0.3f, 0, 1}};  // red farther, blue nearer
     ranked.radii = {0.6f, 0.6f};
     ranked.colors = {{220, 30, 30, 255}, {30, 30, 220, 255}};
-    scene.spheres = {ranked};
+    SphereSet grey;  // nearer than both, a plain set: the ranked ones cover it
+    grey.centers = {{0.0f, 0.0f, 2.0f}};
+    grey.radii = {0.3f};
+    grey.colors = {{128, 128, 128, 255}};
+    scene.spheres = {grey, ranked};
     for (bool under : {true, false}) {
       LineSet line;
       line.positions = {{-2, 0.3f, 3}, {2, 0.3f, 3}};

@@ -729,7 +729,7 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
   // Mostly inverted: the glyphs mark the orientation, not a local defect.
   if (!options.orientation_note.empty()) {
     lines.push_back({to_rgba8(kInvertedColor), options.orientation_note, 0});
-    lines.push_back({std::nullopt, "  mirrored, or reversed node order?"});
+    lines.push_back({std::nullopt, "  mirrored? reversed nodes?"});
   }
   lines.push_back({std::nullopt, "glyphs: worst clusters", options.orientation_note.empty() ? 0 : 1});
   for (std::size_t i = 0; i < listed; ++i) {
