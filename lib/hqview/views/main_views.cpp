@@ -692,7 +692,11 @@ void draw_worst_glyph_ring(Image& figure, const ScreenDisc& worst, bool is_inver
 // A ring in the inverted colour just outside each glyph of a cluster with an
 // inverted vertex (on a pale halo), so inverted clusters differ from merely
 // poor ones at a glance; cluster #0's dark ring goes outside it.
-void draw_inverted_glyph_rings(Image& figure, const std::vector<ScreenDisc>& inverted, const AnnotationStyle& style,
+// A ring's stretch inside a coloured glyph ranked before its own is left
+// out (that glyph is drawn over it: a grey glyph's ring over a coloured
+// one read as the grey glyph in front).
+void draw_inverted_glyph_rings(Image& figure, const std::vector<ScreenDisc>& inverted,
+                               const std::vector<ScreenDisc>& coloured, const AnnotationStyle& style,
                                const MainViewOptions& options) {
   Rgba8 halo = options.background;
   halo.a = 255;
@@ -703,6 +707,11 @@ void draw_inverted_glyph_rings(Image& figure, const std::vector<ScreenDisc>& inv
     for (int pass = 0; pass < 2; ++pass)
       for (int i = 0; i < segments; ++i) {
         const double a0 = 2.0 * M_PI * i / segments, a1 = 2.0 * M_PI * (i + 1) / segments;
+        const double am = 0.5 * (a0 + a1), mx = d.x + radius * std::cos(am), my = d.y + radius * std::sin(am);
+        if (std::any_of(coloured.begin(), coloured.end(), [&](const ScreenDisc& c) {
+              return c.id < d.id && std::hypot(mx - c.x, my - c.y) < c.radius;
+            }))
+          continue;
         draw_line(figure, d.x + radius * std::cos(a0), d.y + radius * std::sin(a0), d.x + radius * std::cos(a1),
                   d.y + radius * std::sin(a1), pass == 0 ? halo : color,
                   pass == 0 ? inverted_halo_width(style) : std::max(2.0, 3.0 * style.scale));
@@ -984,6 +993,7 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
     d.id = g.id;
     if (on_screen(d) && d.radius >= 1.0) glyph_discs.push_back({d.radius, d});
     if (on_screen(d) && g.min_quality < 0.0) result.inverted_glyphs.push_back(d);
+    if (on_screen(d) && !is_grey_glyph(g, glyphs)) result.coloured_glyphs.push_back(d);
   }
   std::stable_sort(glyph_discs.begin(), glyph_discs.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });
@@ -1164,7 +1174,7 @@ Scene main_view_scene(const HexMesh& mesh, const Topology& topology, const Glyph
 // The rings render_main_view draws around the glyphs.
 void draw_glyph_rings(Image& figure, const MainViewLabels& labels, const GlyphResult& glyphs,
                       const AnnotationStyle& style, const MainViewOptions& scaled) {
-  draw_inverted_glyph_rings(figure, labels.inverted_glyphs, style, scaled);
+  draw_inverted_glyph_rings(figure, labels.inverted_glyphs, labels.coloured_glyphs, style, scaled);
   draw_worst_glyph_ring(figure, labels.worst_glyph, !glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0,
                         style, scaled);
 }
@@ -1182,6 +1192,7 @@ void mark_drawn(IdImage& ids, const MainViewLabels& labels, const GlyphResult& g
   for (MainViewLabel& l : white_labels.labels) l.color = white;
   white_labels.worst_glyph = labels.worst_glyph;
   white_labels.inverted_glyphs = labels.inverted_glyphs;
+  white_labels.coloured_glyphs = labels.coloured_glyphs;
   Image mask = make_image(std::max(1, ids.x0 + ids.width), std::max(1, ids.y0 + ids.height), Rgba8{0, 0, 0, 255});
   draw_glyph_rings(mask, white_labels, glyphs, style, scaled);
   draw_main_view_labels(mask, white_labels, style, scaled);

@@ -207,6 +207,9 @@ struct MainViewLabels {
   // The glyphs of the clusters with an inverted vertex (min quality < 0)
   // on screen, by rank: render_main_view rings each in the inverted colour.
   std::vector<ScreenDisc> inverted_glyphs;
+  // The coloured (labelled) glyphs on screen, by rank: drawn over every
+  // glyph ranked after them, they hide those glyphs' rings too.
+  std::vector<ScreenDisc> coloured_glyphs;
   // Ranks of the labelled clusters on screen whose glyph shows no pixel
   // (hidden behind other glyphs, edges or arrows): they get no label (it
   // would point at something else) and the legend says "hidden".
