@@ -504,8 +504,9 @@ void add_analysis_options(CLI::App* cmd, AnalyzeArgs& args) {
                   "No glyph where 1 - vertex quality is at or below T (0 to 2)")
       ->capture_default_str();
   cmd->add_option("--glyph-size", args.glyph_size,
-                  "Aggregated glyph radius: severity ((1 - min quality) * rmax; the member count is in the labels) "
-                  "or paper (HQViewer's: + 0.1 * rmax per 10 members, up to + rmax)")
+                  "Aggregated glyphs: severity (clusters within 2 radii of their worst vertex, the glyph there, "
+                  "radius (1 - min quality) * rmax; the member count is in the labels) or paper (HQViewer's clusters "
+                  "and radius: + 0.1 * rmax per 10 members, up to + rmax)")
       ->check(CLI::IsMember({"severity", "paper"}))
       ->capture_default_str();
   cmd->add_option("--top-clusters", args.top_clusters, "Glyph clusters that get detail views (the worst K)")

@@ -1,9 +1,13 @@
 // cluster_glyphs() against an all-pairs reference written here: random point
 // sets with random radii (wide, narrow, bimodal; exact ties at ri + rj;
 // coincident points), every real mesh of ../shared/data, and every thread
-// count.
+// count. bound_glyph_clusters() (the default clusters since issue 44's
+// fifth round) against a reference written from its definition, a chain
+// computed by hand, and its properties (extent, connectivity, a refinement
+// of the components).
 
 #include "hqview/glyph/glyph_clusters.h"
+#include "hqview/glyph/bounded_clusters.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -14,6 +18,7 @@
 #include <filesystem>
 #include <limits>
 #include <numeric>
+#include <queue>
 #include <random>
 
 #include "hqview/core/error.h"
@@ -61,6 +66,53 @@ std::vector<Index> all_pairs_clusters(std::span<const Vec3> p, std::span<const d
   return label;
 }
 
+// The bounded clusters by their definition (bounded_clusters.h), without
+// components or a grid: glyphs in turn by radius (largest first, then the
+// smallest id) seed a cluster of the glyphs not taken yet that lie strictly
+// within reach · r_seed of the seed and are reached from it through
+// overlapping pairs of such glyphs. Numbered by smallest member.
+std::vector<Index> bounded_reference(std::span<const Vec3> p, std::span<const double> r, double reach) {
+  const std::size_t n = p.size();
+  auto has_glyph = [&](std::size_t i) { return std::isfinite(r[i]) && r[i] > 0.0; };
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < n; ++i)
+    if (has_glyph(i)) order.push_back(i);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return r[a] > r[b]; });
+  std::vector<Index> seed_of(n, kNoIndex);
+  for (std::size_t s : order) {
+    if (seed_of[s] != kNoIndex) continue;
+    const double ball = reach * r[s];
+    std::vector<std::size_t> candidates;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (i == s || !has_glyph(i) || seed_of[i] != kNoIndex) continue;
+      const double dx = p[i].x - p[s].x, dy = p[i].y - p[s].y, dz = p[i].z - p[s].z;
+      if (dx * dx + dy * dy + dz * dz < ball * ball) candidates.push_back(i);
+    }
+    std::queue<std::size_t> queue;
+    queue.push(s);
+    seed_of[s] = static_cast<Index>(s);
+    while (!queue.empty()) {
+      const std::size_t g = queue.front();
+      queue.pop();
+      for (std::size_t c : candidates)
+        if (seed_of[c] == kNoIndex && glyphs_overlap(p[g], r[g], p[c], r[c])) {
+          seed_of[c] = static_cast<Index>(s);
+          queue.push(c);
+        }
+    }
+  }
+  // Renumber by smallest member.
+  std::vector<Index> label(n, kNoIndex), number(n, kNoIndex);
+  Index next = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (seed_of[i] == kNoIndex) continue;
+    const auto s = static_cast<std::size_t>(seed_of[i]);
+    if (number[s] == kNoIndex) number[s] = next++;
+    label[i] = number[s];
+  }
+  return label;
+}
+
 // The CSR part must agree with point_cluster.
 void expect_consistent(const GlyphClusters& c, std::size_t num_points) {
   ASSERT_EQ(c.point_cluster.size(), num_points);
@@ -96,6 +148,35 @@ void expect_matches_all_pairs(std::span<const Vec3> p, std::span<const double> r
                     << expected[i];
     }
   EXPECT_EQ(mismatches, 0u) << what;
+}
+
+// bound_glyph_clusters against the reference, and its properties: every
+// member within reach · r of its cluster's largest glyph, each cluster
+// inside one component (a refinement), the components' glyphs all kept.
+void expect_bounded_matches_reference(std::span<const Vec3> p, std::span<const double> r, const std::string& what,
+                                      double reach = kClusterReach) {
+  const GlyphClusters components = cluster_glyphs(p, r);
+  const GlyphClusters c = bound_glyph_clusters(components, p, r, reach);
+  expect_consistent(c, p.size());
+  const std::vector<Index> expected = bounded_reference(p, r, reach);
+  std::size_t mismatches = 0;
+  for (std::size_t i = 0; i < expected.size(); ++i)
+    if (c.point_cluster[i] != expected[i] && mismatches++ < 5) {
+      ADD_FAILURE() << what << ": point " << i << " in bounded cluster " << c.point_cluster[i]
+                    << ", the reference says " << expected[i];
+    }
+  EXPECT_EQ(mismatches, 0u) << what;
+  for (Index k = 0; k < c.num_clusters(); ++k) {
+    const std::span<const Index> m(c.members.data() + c.offsets[k], static_cast<std::size_t>(c.offsets[k + 1] - c.offsets[k]));
+    std::size_t seed = static_cast<std::size_t>(m[0]);
+    for (Index v : m)
+      if (r[static_cast<std::size_t>(v)] > r[seed]) seed = static_cast<std::size_t>(v);
+    for (Index v : m) {
+      const Vec3 d = p[static_cast<std::size_t>(v)] - p[seed];
+      EXPECT_LT(std::sqrt(squared_norm(d)), reach * r[seed] * (1 + 1e-12) + 1e-300) << what << ": cluster " << k;
+      EXPECT_EQ(components.point_cluster[static_cast<std::size_t>(v)], components.point_cluster[seed]) << what;
+    }
+  }
 }
 
 enum class RadiusLaw { kUniform, kNarrow, kLogUniform, kBimodal, kWithHoles };
@@ -154,6 +235,85 @@ TEST(GlyphClusters, RandomSetsMatchAllPairs) {
                                      " n " + std::to_string(n) + " box " + std::to_string(box));
         ++seed;
       }
+}
+
+TEST(GlyphClusters, BoundedRandomSetsMatchTheReference) {
+  const RadiusLaw laws[] = {RadiusLaw::kUniform, RadiusLaw::kNarrow, RadiusLaw::kLogUniform, RadiusLaw::kBimodal,
+                            RadiusLaw::kWithHoles};
+  std::uint64_t seed = 1001;
+  for (RadiusLaw law : laws)
+    for (int n : {1, 2, 7, 60, 500, 2000})
+      for (double box : {3.0, 12.0, 40.0}) {
+        const RandomSet s = random_set(seed, n, law, box);
+        const std::string what = "seed " + std::to_string(seed) + " law " + std::to_string(static_cast<int>(law)) +
+                                 " n " + std::to_string(n) + " box " + std::to_string(box);
+        expect_bounded_matches_reference(s.points, s.radii, what);
+        if (n == 500) expect_bounded_matches_reference(s.points, s.radii, what + " reach 3.5", 3.5);
+        ++seed;
+      }
+  // Integer lattices with radii in eighths: exact ties at the ball's edge
+  // (reach · r) and at ri + rj, and coincident points.
+  for (std::uint64_t lattice = 1; lattice <= 15; ++lattice) {
+    std::mt19937_64 rng(lattice);
+    const int n = 50 + static_cast<int>(rng() % 800), side = 3 + static_cast<int>(rng() % 10);
+    std::vector<Vec3> points;
+    std::vector<double> radii;
+    for (int i = 0; i < n; ++i) {
+      points.push_back({double(rng() % side), double(rng() % side), double(rng() % side)});
+      radii.push_back(static_cast<double>(rng() % 9) / 8.0);
+    }
+    expect_bounded_matches_reference(points, radii, "lattice " + std::to_string(lattice));
+  }
+}
+
+TEST(GlyphClusters, BoundedChainComputedByHand) {
+  // Ten equal glyphs (r = 1) on a line, 1.5 apart: one component (1.5 < 2),
+  // the chain issue 44's review saw across bunny_in. Seeds by smallest id:
+  // point 0's ball (radius 2) holds point 1 (1.5) but not point 2 (3), so
+  // the clusters are {0, 1}, {2, 3}, ..., {8, 9}.
+  std::vector<Vec3> points;
+  std::vector<double> radii(10, 1.0);
+  for (int i = 0; i < 10; ++i) points.push_back({1.5 * i, 0, 0});
+  const GlyphClusters components = cluster_glyphs(points, radii);
+  EXPECT_EQ(components.num_clusters(), 1);
+  const GlyphClusters c = bound_glyph_clusters(components, points, radii);
+  EXPECT_EQ(c.point_cluster, (std::vector<Index>{0, 0, 1, 1, 2, 2, 3, 3, 4, 4}));
+  // A worse glyph (r = 2) at point 5 seeds first: its ball (radius 4) holds
+  // points 3, 4, 6, 7 (3 and 7 at 3.0, 2 and 8 at 4.5); it reaches 4 and 6
+  // directly (1.5 < 3), 3 and 7 through them. Then {0, 1}, {2}, {8, 9}.
+  radii[5] = 2.0;
+  const GlyphClusters worse = bound_glyph_clusters(cluster_glyphs(points, radii), points, radii);
+  EXPECT_EQ(worse.point_cluster, (std::vector<Index>{0, 0, 1, 2, 2, 2, 2, 2, 3, 3}));
+  // A glyph inside the ball that the seed reaches only through a glyph
+  // outside it stays out. Seed 0 (r 1) at the origin, ball radius 2;
+  // 1 (r 0.6) at (1.5, 0) overlaps it (1.5 < 1.6); 2 (r 0.7) at (2.4, 0.8)
+  // is outside the ball (2.53) and overlaps 1 (1.204 < 1.3); 3 (r 0.45) at
+  // (1.4, 1.3) is inside the ball (1.91) but overlaps neither 0 (1.91 >
+  // 1.45) nor 1 (1.3 > 1.05), only 2 (1.118 < 1.15). One component; the
+  // clusters {0, 1} and, seeded by 2 (ball 1.4), {2, 3}.
+  const std::vector<Vec3> hook{{0, 0, 0}, {1.5, 0, 0}, {2.4, 0.8, 0}, {1.4, 1.3, 0}};
+  const std::vector<double> hook_r{1.0, 0.6, 0.7, 0.45};
+  EXPECT_EQ(cluster_glyphs(hook, hook_r).num_clusters(), 1);
+  const GlyphClusters h = bound_glyph_clusters(cluster_glyphs(hook, hook_r), hook, hook_r);
+  EXPECT_EQ(h.point_cluster, (std::vector<Index>{0, 0, 1, 1}));
+  expect_bounded_matches_reference(hook, hook_r, "hook");
+  EXPECT_THROW(bound_glyph_clusters(components, points, radii, 0.0), Error);
+  EXPECT_THROW(bound_glyph_clusters(components, points, std::vector<double>(3, 1.0)), Error);
+}
+
+TEST(GlyphClusters, BoundedIdenticalForEveryThreadCount) {
+  const RandomSet s = random_set(4242, 20000, RadiusLaw::kNarrow, 20.0);
+  tbb::global_control allow(tbb::global_control::max_allowed_parallelism, 8);
+  const GlyphClusters components = cluster_glyphs(s.points, s.radii);
+  GlyphClusters reference;
+  tbb::task_arena(1).execute([&] { reference = bound_glyph_clusters(components, s.points, s.radii); });
+  EXPECT_GT(reference.num_clusters(), components.num_clusters());
+  for (int threads : {2, 4, 8}) {
+    GlyphClusters c;
+    tbb::task_arena(threads).execute([&] { c = bound_glyph_clusters(components, s.points, s.radii); });
+    EXPECT_EQ(c.point_cluster, reference.point_cluster) << threads;
+    EXPECT_EQ(c.members, reference.members) << threads;
+  }
 }
 
 TEST(GlyphClusters, ExactTiesDoNotOverlap) {
@@ -345,6 +505,8 @@ TEST(GlyphClusters, RealMeshesMatchAllPairs) {
         if (c > s.threshold) radii[v] = c * s.rmax * mean_edge, ++glyphs;
       }
       if (glyphs > kMaxGlyphs) continue;
+      if (s.threshold == 0.5 && s.rmax == 1.0)  // the default setting
+        expect_bounded_matches_reference(mesh.points, radii, file.filename().string() + " bounded");
       expect_matches_all_pairs(
           mesh.points, radii,
           file.filename().string() + " threshold " + std::to_string(s.threshold) + " rmax " + std::to_string(s.rmax));

@@ -125,6 +125,55 @@ TEST(SphereImpostor, ASetOverOtherSpheresShowsInFrontOfCloserOnes) {
   }
 }
 
+TEST(SphereImpostor, FirstOnTopDrawsBySetOrderNotDepthAndCoversUnderLines) {
+  // Issue 44's fifth round (warrior: the worst glyph half hidden by a nearer,
+  // less severe one): a set with first_on_top draws its first sphere over
+  // the others whatever their depth. Red (first) behind blue (second) and
+  // overlapping it on screen: red shows at the overlap. A line in front of
+  // both, flagged under_ranked_spheres, is covered by them; the same line
+  // unflagged shows.
+  for (bool first_on_top : {false, true}) {
+    Scene scene;
+    scene.background = kBlack;
+    SphereSet ranked;
+    ranked.over_other_spheres = true;
+    ranked.first_on_top = first_on_top;
+    ranked.centers = {{-0.3f, 0, -1}, {0.3f, 0, 1}};  // red farther, blue nearer
+    ranked.radii = {0.6f, 0.6f};
+    ranked.colors = {{220, 30, 30, 255}, {30, 30, 220, 255}};
+    SphereSet grey;  // nearer than both, a plain set: the ranked ones cover it
+    grey.centers = {{0.0f, 0.0f, 2.0f}};
+    grey.radii = {0.3f};
+    grey.colors = {{128, 128, 128, 255}};
+    scene.spheres = {grey, ranked};
+    for (bool under : {true, false}) {
+      LineSet line;
+      line.positions = {{-2, 0.3f, 3}, {2, 0.3f, 3}};
+      line.colors = {{20, 200, 20, 255}, {20, 200, 20, 255}};
+      line.indices = {0, 1};
+      line.width = 3.0f;
+      line.under_ranked_spheres = under;
+      scene.lines = {line};
+      const Image image = renderer().render(scene, front_camera(false), 80, 80);
+      // (40, 40) is inside both discs.
+      if (first_on_top) {
+        EXPECT_TRUE(is_reddish(pixel_at(image, 40, 40))) << "the first sphere on top";
+      } else {
+        EXPECT_FALSE(is_reddish(pixel_at(image, 40, 40))) << "back to front: the nearer blue one on top";
+      }
+      // The line crosses the spheres at y = 0.3 (a pixel row above the centre).
+      int green = 0;
+      for (int x = 30; x <= 50; ++x)
+        for (int y = 30; y <= 40; ++y) green += pixel_at(image, x, y).g > 150 ? 1 : 0;
+      if (under) {
+        EXPECT_EQ(green, 0) << "a line under the ranked spheres is covered";
+      } else {
+        EXPECT_GT(green, 10) << "a line in front shows";
+      }
+    }
+  }
+}
+
 TEST(Arrow, PointsTheRightWay) {
   Scene scene;
   scene.background = kBlack;

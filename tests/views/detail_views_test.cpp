@@ -1,6 +1,7 @@
 // Scenes of the detail views (C, D) and of the boundary error views, without OpenGL.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -155,6 +156,41 @@ TEST(LocalView, OneMarkerPerCornerColouredByItsValue) {
   // Markers sit inside their hexes, around v (the scene's origin).
   for (const Vec3f& p : scene.spheres[0].centers) EXPECT_GT(std::hypot(p.x, p.y, p.z), 0.1);
   EXPECT_EQ(scene.lines[0].indices.size() / 2, 54u);
+}
+
+// View D's size is severity, as view A's (issue 44's fifth round: a
+// -0.060 and a 0.201 corner were drawn the same size): the interior vertex
+// of a 3^3 grid moved (0.45, 0.35, 0.3) of an edge, its 8 corners of
+// different values; each marker's radius is 0.1 x the mean distance to the
+// cells' centres x (1 - SJ) clamped to [0.25, 2], so a worse corner is never
+// drawn smaller and the ratio of two is the ratio of their (1 - SJ).
+TEST(LocalView, MarkerSizeIsOneMinusTheCornerValue) {
+  HexMesh mesh = test::grid(3);
+  const Topology topology = build_topology(mesh);
+  const Index v = interior_vertex(mesh, topology);
+  mesh.points[static_cast<std::size_t>(v)] = mesh.points[static_cast<std::size_t>(v)] + Vec3{0.45, 0.35, 0.3};
+  const QualityField field = compute_quality(mesh, topology);
+  const auto corners = vertex_corners(mesh, topology, field.corner_scaled_jacobian, v);
+  const Scene scene = build_local_scene(mesh, topology, field.corner_scaled_jacobian, v);
+  ASSERT_EQ(scene.spheres[0].radii.size(), corners.size());
+  double lo = 1e9, hi = -1e9;
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    lo = std::min(lo, corners[i].value);
+    hi = std::max(hi, corners[i].value);
+    for (std::size_t j = 0; j < corners.size(); ++j)
+      if (corners[i].value < corners[j].value) {
+        EXPECT_GE(scene.spheres[0].radii[i], scene.spheres[0].radii[j]) << i << " " << j;
+      }
+    const double c = std::clamp(1.0 - corners[i].value, 0.25, 2.0);
+    EXPECT_NEAR(scene.spheres[0].radii[i] / scene.spheres[0].radii[0],
+                c / std::clamp(1.0 - corners[0].value, 0.25, 2.0), 1e-5);
+  }
+  EXPECT_LT(lo, 0.5);
+  EXPECT_GT(hi - lo, 0.2) << "corners of different values";
+  EXPECT_EQ(local_marker_radius(-1.0, 2.0), 0.4);
+  EXPECT_EQ(local_marker_radius(1.0, 2.0), 0.05);
+  EXPECT_EQ(local_marker_radius(std::nan(""), 2.0), 0.05);
+  EXPECT_EQ(local_marker_radius(-5.0, 2.0), 0.4);
 }
 
 TEST(BoundaryErrorView, ColoursFollowTheSignedErrorOfEachSampleSymmetrically) {

@@ -14,9 +14,11 @@
 //   id image of what is drawn (main_view_id_image): its leader starts on a
 //   pixel showing that glyph, or, without a leader, it is within 14 px of
 //   one; a cluster left unlabelled as hidden shows no pixel;
-// - the worst cluster's glyph keeps at least half of the pixels it shows
-//   without the markers once arrows, rings, leaders and labels are drawn
-//   (id images);
+// - the worst cluster's glyph keeps at least 3/4 of its disc once arrows,
+//   rings, leaders and labels are drawn, and no other glyph nor arrow
+//   shows inside it (id images; issue 44's fifth round: #0 is drawn on top);
+// - no leader runs over a glyph ranked before its own label's (a marker
+//   label's: #0), in the id image;
 // - every glyph of the scene, projected here with the labels' camera: no
 //   label box meets a glyph disc; a label without a leader is within 10
 //   pixels of its own glyph and every other glyph disc is at least 10
@@ -32,7 +34,9 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
+#include "hqview/core/box3.h"
 #include "hqview/glyph/glyphs.h"
 #include "hqview/image/colormap.h"
 #include "hqview/io/mesh_reader.h"
@@ -64,11 +68,25 @@ Case analyse(HexMesh mesh) {
   return c;
 }
 
+// Adds a sheared hex (scaled Jacobian 0.23 at every corner with height 0.3,
+// 0.08 with 0.1: a poor cluster) of edge `size` whose first corner is at
+// `base`.
+void add_sheared_hex(HexMesh& mesh, const Vec3& base, double size, double height = 0.3) {
+  const Vec3 a{size, 0, 0}, b{0, size, 0}, up{0.9 * size, 0.9 * size, height * size};
+  const Vec3 corners[8] = {base, base + a, base + a + b, base + b, base + up, base + a + up, base + a + b + up, base + b + up};
+  std::array<Index, 8> hex{};
+  for (int k = 0; k < 8; ++k) {
+    hex[static_cast<std::size_t>(k)] = static_cast<Index>(mesh.points.size());
+    mesh.points.push_back(corners[k]);
+  }
+  mesh.hexes.push_back(hex);
+}
+
 // A 24 x 24 x 2 grid of unit hexes; its top centre vertex pushed below the
 // middle layer (the 4 top cells around it invert); 60 hexes added, each a
 // copy of a top cell shifted by (0.3, 0.3, 0.2) (it intersects its original
 // and neighbours), 8 of them around the dent and the rest spread over the
-// top.
+// top; and a sheared hex floating above the dent.
 HexMesh injected_overlaps() {
   HexMesh mesh = test::box_grid(24, 24, 2);
   const auto point_id = [](int i, int j, int k) { return static_cast<Index>(i + 25 * (j + 25 * k)); };
@@ -87,6 +105,10 @@ HexMesh injected_overlaps() {
     }
     mesh.hexes.push_back(copy);
   }
+  // A sheared hex floating 4.5 above the dent (scaled Jacobian 0.23 at every
+  // corner: a poor cluster of its own, too far from the dent's to join
+  // it): from above, its glyphs lie in front of #0's.
+  add_sheared_hex(mesh, Vec3{12.0, 12.0, 5.5}, 1.0);
   return mesh;
 }
 
@@ -201,7 +223,57 @@ std::size_t count_id(const IdImage& ids, std::uint32_t id) {
   return static_cast<std::size_t>(std::count(ids.ids.begin(), ids.ids.end(), id));
 }
 
-void expect_clear_views(const Case& c, const char* name, bool expect_findings = true) {
+// Pixels inside the worst glyph's disc (less 1.5 px: its antialiased rim)
+// that show another glyph or an arrow (issue 44's fifth round: warrior's
+// #0 was half covered by #1, drawn back to front by depth; #0 is now drawn
+// on top of every glyph, and no arrow crosses it).
+std::size_t worst_disc_covered(const IdImage& ids, const ScreenDisc& worst) {
+  std::size_t covered = 0;
+  const double r = worst.radius - 1.5;
+  for (int y = static_cast<int>(std::floor(worst.y - r)); y <= static_cast<int>(std::ceil(worst.y + r)); ++y)
+    for (int x = static_cast<int>(std::floor(worst.x - r)); x <= static_cast<int>(std::ceil(worst.x + r)); ++x) {
+      if (std::hypot(x + 0.5 - worst.x, y + 0.5 - worst.y) >= r) continue;
+      const std::uint32_t at = ids.at(x, y);
+      covered += (at > kIdGlyph || at == kIdMarker) ? 1 : 0;
+    }
+  return covered;
+}
+
+// Leaders that run over a glyph ranked before their own (a marker label's:
+// #0) in the id image, "#6 (1) over #0" each: the pixels along the leader,
+// every 0.5 px, that show such a glyph (issue 44's fifth round: warrior's
+// "#6 (1)" leader ran straight through #0 and #1). One pixel is allowed
+// (the rim of a glyph the leader passes just outside of).
+std::vector<std::string> leaders_over_higher_ranks(const MainViewLabels& labels, const IdImage& ids) {
+  std::vector<std::string> wrong;
+  for (const MainViewLabel& l : labels.labels) {
+    const PlacedLabel& p = l.placement;
+    if (!p.has_leader) continue;
+    const std::uint32_t below = kIdGlyph + static_cast<std::uint32_t>(l.kind == MainViewLabel::Kind::cluster ? l.cluster : 1);
+    const double length = std::hypot(p.leader_x1 - p.leader_x0, p.leader_y1 - p.leader_y0);
+    std::vector<std::pair<int, int>> hits;
+    std::uint32_t first = 0;
+    for (int i = 0; i <= static_cast<int>(2.0 * length); ++i) {
+      const double t = length > 0.0 ? 0.5 * i / length : 0.0;
+      const int x = static_cast<int>(std::floor(p.leader_x0 + t * (p.leader_x1 - p.leader_x0)));
+      const int y = static_cast<int>(std::floor(p.leader_y0 + t * (p.leader_y1 - p.leader_y0)));
+      const std::uint32_t at = ids.at(x, y);
+      if (at >= kIdGlyph && at < below && std::find(hits.begin(), hits.end(), std::make_pair(x, y)) == hits.end()) {
+        if (hits.empty()) first = at;
+        hits.push_back({x, y});
+      }
+    }
+    // A marker group inside #0's disc: its leader cannot but start over #0.
+    const bool starts_in_worst = std::hypot(p.leader_x0 - labels.worst_glyph.x, p.leader_y0 - labels.worst_glyph.y) <
+                                 labels.worst_glyph.radius;
+    if (hits.size() > 1 && !(first == kIdGlyph && starts_in_worst))
+      wrong.push_back(l.text + " over #" + std::to_string(first - kIdGlyph));
+  }
+  return wrong;
+}
+
+void expect_clear_views(const Case& c, const char* name, bool expect_findings = true,
+                        std::optional<Vec3> extra_direction = std::nullopt) {
   const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
   const MainViewOptions options;  // 1600 x 1200
   Index findings[2] = {0, 0};  // coincident vertices, intersecting pairs
@@ -214,7 +286,9 @@ void expect_clear_views(const Case& c, const char* name, bool expect_findings = 
       choose_main_viewpoints(points, c.glyphs, main_view_aspect(options), 2, options.up, options.fov_y_degrees);
   ASSERT_EQ(directions.size(), 2u);
   const double scale = 1.0;  // annotation scale of a 1200-pixel-high figure
-  for (const Vec3& direction : directions) {
+  std::vector<Vec3> all_directions = directions;
+  if (extra_direction) all_directions.push_back(*extra_direction);
+  for (const Vec3& direction : all_directions) {
     SCOPED_TRACE(std::string(name) + " from " + viewpoint_name(direction, options.up));
     Scene scene;
     const MainViewLabels labels =
@@ -226,17 +300,20 @@ void expect_clear_views(const Case& c, const char* name, bool expect_findings = 
     for (const std::string& w : labels_off_their_glyph(labels, labels.ids)) ADD_FAILURE() << w;
     for (Index hidden : labels.hidden_clusters)
       EXPECT_EQ(count_id(labels.ids, kIdGlyph + static_cast<std::uint32_t>(hidden)), 0u) << "#" << hidden;
-    // The worst cluster's glyph keeps at least half of the pixels it shows
-    // without the markers once the arrows, rings, leaders and labels are drawn.
-    if (!c.glyphs.clusters.empty()) {
-      const MainViewFrameForTest f{labels.camera, labels.view};
-      const IdImage bare = main_view_id_image(*renderer, scene, c.glyphs, f.camera, f.view, false);
+    // The worst cluster's glyph keeps at least 3/4 of its disc once the
+    // arrows, rings, leaders and labels are drawn (before issue 44's fifth
+    // round this compared with the pixels it showed without the markers,
+    // which a glyph already hidden by another passed), and no other glyph
+    // nor arrow shows inside its disc.
+    if (!c.glyphs.clusters.empty() && labels.worst_glyph.radius > 0.0) {
       IdImage drawn = labels.ids;
       mark_main_view_annotations(drawn, labels, c.glyphs, options);
-      const std::size_t before = count_id(bare, kIdGlyph), after = count_id(drawn, kIdGlyph);
-      EXPECT_GT(before, 0u);
-      EXPECT_GE(2 * after, before) << "the worst glyph shows " << after << " of " << before << " pixels";
+      const double disc = M_PI * labels.worst_glyph.radius * labels.worst_glyph.radius;
+      const std::size_t after = count_id(drawn, kIdGlyph);
+      EXPECT_GE(static_cast<double>(after), 0.75 * disc) << "the worst glyph shows " << after << " pixels of a disc of " << disc;
+      EXPECT_LE(worst_disc_covered(labels.ids, labels.worst_glyph), 2u) << "another glyph or an arrow over #0";
     }
+    for (const std::string& w : leaders_over_higher_ranks(labels, labels.ids)) ADD_FAILURE() << w;
     const std::vector<ScreenDisc> discs = glyph_discs(scene, labels);
     // Every on-screen cluster with an inverted vertex is ringed, no other.
     std::size_t inverted = 0;
@@ -250,9 +327,9 @@ void expect_clear_views(const Case& c, const char* name, bool expect_findings = 
       for (const ScreenDisc& d : discs) {
         const bool is_own = l.kind == MainViewLabel::Kind::cluster && std::abs(d.x - l.anchor.x) < 0.5 &&
                             std::abs(d.y - l.anchor.y) < 0.5;
-        // The 200 largest discs are obstacles: smaller ones than 1 pixel
-        // and those beyond the 200th are not asserted on.
-        if (d.radius < 1.0 || (discs.size() > 200 && d.radius < 3.0)) continue;
+        // The 1,000 largest discs are obstacles: smaller ones than 1 pixel
+        // and those beyond the 1,000th are not asserted on.
+        if (d.radius < 1.0 || (discs.size() > 1000 && d.radius < 3.0)) continue;
         EXPECT_FALSE(box_meets_disc(b, ScreenDisc{d.x, d.y, d.radius - 0.5})) << l.text << " covers a glyph";
         if (!is_own && !l.placement.has_leader)
           EXPECT_GE(disc_box_gap(d, b), own + 10.0 * 0.999) << l.text << " without a leader beside another glyph";
@@ -328,10 +405,23 @@ TEST(MainViewLabels, OverlappingStack) {
       Vec3& p = mesh.points[static_cast<std::size_t>(v)];
       p = p + static_cast<double>(i) * Vec3{0.013, 0.009, 0.005};
     }
+  // The stack's cubes are perfect: a badly sheared hex beside it makes a
+  // worst cluster, and a milder one floating above that (its own poor
+  // cluster, 2.3 of #0's radii up: beyond #0's cluster) lies, from nearly
+  // straight above, in front of #0's glyph (drawn back to front by depth
+  // before issue 44's fifth round, it covered #0).
+  Box3 box;
+  for (const Vec3& p : mesh.points) box.add(p);
+  add_sheared_hex(mesh, box.hi + Vec3{2.0, 2.0, -1.0}, 1.0, 0.1);
+  const Case first = analyse(mesh);
+  ASSERT_FALSE(first.glyphs.clusters.empty());
+  const AggregatedGlyph& worst = first.glyphs.clusters[0];
+  add_sheared_hex(mesh, worst.position + Vec3{0, 0, 2.3 * worst.radius}, first.glyphs.rmax);
   const Case c = analyse(std::move(mesh));
   EXPECT_FALSE(c.overlap.is_over_budget);
   EXPECT_EQ(c.overlap.num_intersecting_cells, 50);
-  expect_clear_views(c, "overlapping stack");
+  EXPECT_EQ(c.glyphs.clusters[0].position, worst.position);
+  expect_clear_views(c, "overlapping stack", true, Vec3{0.1, 0.15, -1.0});
 }
 
 TEST(MainViewLabels, InjectedOverlapsAroundAnInvertedCorner) {
@@ -341,7 +431,10 @@ TEST(MainViewLabels, InjectedOverlapsAroundAnInvertedCorner) {
   EXPECT_GT(c.overlap.num_intersecting_cells, 60);
   // Without grouping, the markers would need far more labels than the limit.
   EXPECT_GT(c.overlap.markers.size(), 60u);
-  expect_clear_views(c, "injected overlaps");
+  // Also from nearly straight above, where the shifted copies' glyphs on
+  // top lie in front of the dent's #0 (drawn back to front by depth before
+  // issue 44's fifth round, they covered it).
+  expect_clear_views(c, "injected overlaps", true, Vec3{0.1, 0.15, -1.0});
 }
 
 // View A rings the glyph of a cluster with an inverted vertex in the
@@ -451,9 +544,10 @@ TEST(MainViewLabels, SharedMeshesWithCrowdedGlyphs) {
 // The placement without the id image (main before issue 44d) lets leaders
 // end off their glyph on warrior and Dolphin_padded: on the background or an
 // edge line just outside the glyph's silhouette, and on another glyph drawn
-// in front of their own (the reviewer's Dolphin "#7 (10)" on #5; also #4 on
-// #7, #2 on #3 from the first and second viewpoints): the check above
-// catches it; with the id image nothing is left.
+// in front of their own (the reviewer's Dolphin "#7 (10)" on #5, with the
+// connected clusters and 8 colours of then; with the bounded clusters and 6
+// colours others): the check above catches it; with the id image nothing
+// is left.
 TEST(MainViewLabels, PlacementWithoutIdImageMisnamesGlyphs) {
   const auto data = test::shared_data_dir();
   if (!data) GTEST_SKIP() << "no ../shared/data";
@@ -478,7 +572,6 @@ TEST(MainViewLabels, PlacementWithoutIdImageMisnamesGlyphs) {
   }
   EXPECT_EQ(wrong_with, 0u);
   EXPECT_GE(wrong_without, 10u);
-  EXPECT_NE(std::find(on_other.begin(), on_other.end(), "#7 on #5"), on_other.end());
   EXPECT_GE(on_other.size(), 3u);
 }
 

@@ -15,6 +15,7 @@
 
 #include "hqview/core/box3.h"
 #include "hqview/core/error.h"
+#include "hqview/glyph/cell_keys.h"
 
 namespace hq {
 namespace {
@@ -23,9 +24,11 @@ namespace {
 // sized for, so that rounding in the cell coordinates (about 1e-9 of a cell)
 // can never put two overlapping glyphs two cells apart.
 constexpr double kCellMargin = 1e-6;
-// Cell coordinates are packed into 21 bits per axis of a 63-bit key.
-constexpr int kAxisBits = 21;
-constexpr std::int64_t kMaxCellCoord = (std::int64_t{1} << 20) - 1;
+// Cell coordinates are packed into 21 bits per axis of a 63-bit key (cell_keys.h).
+using glyph_cells::cell_coord;
+using glyph_cells::cell_coords;
+using glyph_cells::cell_key;
+using glyph_cells::kMaxCellCoord;
 // Glyphs above this radius percentile (or above a quarter of the largest
 // radius) search a box around themselves instead of setting the cell size.
 constexpr double kSmallRadiusQuantile = 0.99;
@@ -70,23 +73,6 @@ class ConcurrentUnionFind {
  private:
   std::unique_ptr<std::atomic<Index>[]> parent_;
 };
-
-std::int64_t cell_coord(double u) {
-  if (!(u > 0.0)) return 0;  // also NaN
-  if (u >= static_cast<double>(kMaxCellCoord)) return kMaxCellCoord;
-  return static_cast<std::int64_t>(u);
-}
-
-std::uint64_t cell_key(std::int64_t x, std::int64_t y, std::int64_t z) {
-  return static_cast<std::uint64_t>(x) | (static_cast<std::uint64_t>(y) << kAxisBits) |
-         (static_cast<std::uint64_t>(z) << (2 * kAxisBits));
-}
-
-std::array<std::int64_t, 3> cell_coords(std::uint64_t key) {
-  constexpr std::uint64_t mask = (std::uint64_t{1} << kAxisBits) - 1;
-  return {static_cast<std::int64_t>(key & mask), static_cast<std::int64_t>((key >> kAxisBits) & mask),
-          static_cast<std::int64_t>(key >> (2 * kAxisBits))};
-}
 
 // Open-addressing map from occupied cell keys to cell numbers (built once,
 // then only read, so lookups need no synchronisation).

@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include "hqview/core/error.h"
+#include "hqview/glyph/bounded_clusters.h"
 #include "hqview/glyph/glyph_clusters.h"
 
 namespace hq {
@@ -46,18 +47,25 @@ AggregatedGlyph aggregate_glyph(std::span<const Index> members, std::span<const 
     sum = sum + points[static_cast<std::size_t>(v)];
     min_quality = std::min(min_quality, vertex_quality[static_cast<std::size_t>(v)]);
   }
-  const Vec3 mean = sum / static_cast<double>(members.size());
-  Index nearest = members[0];
-  double nearest_distance = squared_norm(points[static_cast<std::size_t>(nearest)] - mean);
-  for (Index v : members) {
-    const double d = squared_norm(points[static_cast<std::size_t>(v)] - mean);
-    if (d < nearest_distance || (d == nearest_distance && v < nearest)) {
-      nearest = v;
-      nearest_distance = d;
+  Index at = members[0];
+  if (size_rule == GlyphSizeRule::kPaper) {
+    // HQViewer: the member nearest to the members' mean.
+    const Vec3 mean = sum / static_cast<double>(members.size());
+    double nearest_distance = squared_norm(points[static_cast<std::size_t>(at)] - mean);
+    for (Index v : members) {
+      const double d = squared_norm(points[static_cast<std::size_t>(v)] - mean);
+      if (d < nearest_distance || (d == nearest_distance && v < at)) {
+        at = v;
+        nearest_distance = d;
+      }
     }
+  } else {
+    // The worst member (members ascend, so the first of equal ones).
+    for (Index v : members)
+      if (vertex_quality[static_cast<std::size_t>(v)] < vertex_quality[static_cast<std::size_t>(at)]) at = v;
   }
-  glyph.representative_vertex = nearest;
-  glyph.position = points[static_cast<std::size_t>(nearest)];
+  glyph.representative_vertex = at;
+  glyph.position = points[static_cast<std::size_t>(at)];
   glyph.min_quality = min_quality;
   // The largest member ratio is the ratio of the smallest quality (1 − x is
   // monotone in floating point too).
@@ -76,7 +84,11 @@ GlyphResult compute_glyphs(std::span<const Vec3> points, std::span<const double>
   result.options = options;
   result.rmax = resolve_rmax(options, mean_edge_length);
   result.vertex_radius = glyph_radii(vertex_quality, result.rmax, options.threshold);
-  const GlyphClusters clusters = cluster_glyphs(points, result.vertex_radius);
+  // Severity: the overlap components split into clusters around their worst
+  // glyphs (bounded_clusters.h); paper: HQViewer's components as they are.
+  GlyphClusters clusters = cluster_glyphs(points, result.vertex_radius);
+  if (options.size_rule == GlyphSizeRule::kSeverity)
+    clusters = bound_glyph_clusters(clusters, points, result.vertex_radius, options.cluster_reach);
   // A radius that is not a positive finite number (rmax 0 or absurdly large)
   // is no glyph for the clustering: keep the two consistent.
   for (std::size_t v = 0; v < points.size(); ++v)

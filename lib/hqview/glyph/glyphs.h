@@ -6,16 +6,20 @@
 // c is above the threshold, a sphere glyph of radius c · rmax, so that a tiny
 // bad element is as visible as a large one. Overlapping glyphs
 // (glyph_clusters.h) form clusters; each cluster is drawn as one aggregated
-// glyph, placed at the member closest to the members' mean position (ties:
-// the smallest vertex id), with radius = ratio · rmax where ratio is, by the
-// size rule (GlyphSizeRule):
-// - severity (default): the largest member ratio, 1 − min quality, so that a
-//   worse cluster is never drawn smaller than a better one; the cluster's
-//   size is told by its member count (labels, table), not by its radius;
-// - paper: the largest member ratio + a size bonus of 0.1 per 10 members
-//   (the bonus at most 1.0: the rule of the paper's reference
-//   implementation, HQViewer), so a large mild cluster can outgrow a small
-//   severe one. Clusters are
+// glyph with radius = ratio · rmax. By the size rule (GlyphSizeRule):
+// - severity (default): the overlap components are split into clusters of
+//   bounded extent around their worst glyphs (bounded_clusters.h: every
+//   member within cluster_reach · r of the worst one), so that a band of bad
+//   vertices does not chain into one cluster across the model; the glyph
+//   sits at the worst member (min quality, ties: the smallest vertex id);
+//   ratio = the largest member ratio, 1 − min quality, so that a worse
+//   cluster is never drawn smaller than a better one; the cluster's size is
+//   told by its member count (labels, table), not by its radius;
+// - paper: HQViewer's aggregated glyphs: the overlap components as they
+//   are, the glyph at the member closest to the members' mean position
+//   (ties: the smallest vertex id), ratio = the largest member ratio + a
+//   size bonus of 0.1 per 10 members (the bonus at most 1.0), so a large
+//   mild cluster can outgrow a small severe one. Clusters are
 // ranked worst first: by min quality, then by size (larger first), then by
 // smallest member vertex id; a cluster's id is its rank.
 
@@ -57,6 +61,9 @@ struct GlyphOptions {
   int top_clusters = 8;
   // The aggregated glyphs' size rule (--glyph-size).
   GlyphSizeRule size_rule = GlyphSizeRule::kSeverity;
+  // Under kSeverity: a cluster's members lie within this many times its
+  // worst glyph's radius of it (bounded_clusters.h; kClusterReach = 2).
+  double cluster_reach = 2.0;
 };
 
 struct AggregatedGlyph {
@@ -103,9 +110,10 @@ std::vector<double> glyph_radii(std::span<const double> vertex_quality, double r
 // The aggregated glyph of one cluster (id left 0).
 //   members:        the cluster's vertex ids, ascending, not empty.
 //   points:         all vertex positions; vertex_quality: all Jm.
-// Position: the member nearest to the mean of the members' positions (summed
-// in ascending id order), ties to the smallest id.
-//   size_rule:      how the ratio is made (GlyphSizeRule).
+// Position: under kSeverity the worst member (min quality, ties to the
+// smallest id); under kPaper the member nearest to the mean of the members'
+// positions (summed in ascending id order), ties to the smallest id.
+//   size_rule:      how the position and ratio are made (GlyphSizeRule).
 AggregatedGlyph aggregate_glyph(std::span<const Index> members, std::span<const Vec3> points,
                                 std::span<const double> vertex_quality, double rmax,
                                 GlyphSizeRule size_rule = GlyphSizeRule::kSeverity);

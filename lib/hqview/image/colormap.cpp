@@ -82,15 +82,24 @@ constexpr std::array<Rgb, 11> kDivergingTable = {{
 // keep >= 11.2 apart under both (were 9.8: #0 and #4), the first 4 >= 17.3,
 // and neighbouring ranks differ by >= 9 in L* (were 0.6), so that ranks
 // that sit together differ in lightness as well as hue.
+// Issue 44's fifth round: #0 lime and red #6 sent the eye to #6, and under
+// protanopia #1/#7 (#0078e1, #b487ff: 9.4) and #4/#6 (#1e9678, #ff3c5a:
+// 10.9) looked alike. Now #0 is the red, the most alarming colour (the
+// quality map's "bad" hue family, CIE chroma 79), and the two colours
+// whose simulated twin is another palette colour (#b487ff of the blue,
+// #f0a5d2 of the cyan: 9.6) are dropped: 6 colours, ordered (of all 120
+// with #0 red) by the smallest simulated CIEDE2000 (protanopia and
+// deuteranopia) among the first 3 ranks and the grey (20.2), then the first
+// 4 and 5. Among #1-#5 and the grey every pair keeps >= 11.2 simulated
+// (was 9.4); the pairs under 12 all involve #0, which wears the dark ring
+// and is the largest glyph (#5 lime 9.8, #4 teal 10.9).
 constexpr std::array<Rgb, kLabelledClusterPaletteSize> kLabelledClusterTable = {{
-    hex(0x78c31e),
+    hex(0xff3c5a),
     hex(0x0078e1),
     hex(0x69e1ff),
     hex(0x877800),
     hex(0x1e9678),
-    hex(0xf0a5d2),
-    hex(0xff3c5a),
-    hex(0xb487ff),
+    hex(0x78c31e),
 }};
 // A light grey (#a0a0a0), calm among the coloured clusters: CIEDE2000 19
 // from the undefined grey (kUndefinedColor), 16 from the quality map's

@@ -48,11 +48,11 @@ Color diverging_color(double t);
 
 // Colours of glyph clusters (ranked 0 = worst). The labelled clusters, the
 // first labelled_cluster_count(K) ranks, each get their own colour of a
-// 8-colour palette chosen away from the quality map (reds, oranges,
-// creams), the inverted and overlap colours and grey; every other cluster
-// wears the one neutral tone, so a colour in a picture always means one
-// legend entry.
-inline constexpr int kLabelledClusterPaletteSize = 8;
+// 6-colour palette chosen away from the quality map (reds, oranges,
+// creams), the inverted and overlap colours and grey, #0 the red; every
+// other cluster wears the one neutral tone, so a colour in a picture always
+// means one legend entry.
+inline constexpr int kLabelledClusterPaletteSize = 6;
 inline constexpr std::int64_t labelled_cluster_count(std::int64_t top_clusters) {
   return top_clusters < 0 ? 0 : (top_clusters > kLabelledClusterPaletteSize ? kLabelledClusterPaletteSize : top_clusters);
 }

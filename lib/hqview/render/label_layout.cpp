@@ -229,20 +229,39 @@ std::optional<PlacedLabel> LabelPlacer::place(const LabelRequest& label, std::sp
     c.room = 3.0 * options_.leader_distance;
     for (const ScreenDisc& o : obstacles)
       if (!is_own(o)) c.room = std::min(c.room, disc_box_gap(o, box));
+    const PlacedLabel& r = c.placement;
+    // Never (any pass): a leader over a protected disc; with strict_leaders
+    // over another leader either.
+    if (r.has_leader) {
+      if (label.strict_leaders && any_leader_near(r.leader_x0, r.leader_y0, r.leader_x1, r.leader_y1,
+                                                  [&](const PlacedLabel& l) { return leaders_cross(l, r); }))
+        return c;
+      // (A protected disc holding the leader's start, e.g. a marker group
+      // inside #0, cannot be avoided: it does not count.)
+      if (std::any_of(obstacles.begin(), obstacles.end(), [&](const ScreenDisc& d) {
+            return d.id >= 0 && d.id < label.protect_below && !is_own(d) && leader_meets_disc(r, d) &&
+                   std::hypot(r.leader_x0 - d.x, r.leader_y0 - d.y) >= d.radius;
+          }))
+        return c;
+    }
+    // With strict_leaders: nor a leader through a placed label, nor a box
+    // over a placed leader.
+    const bool box_crossed =
+        any_leader_near(box.x, box.y, bx1, by1, [&](const PlacedLabel& l) { return leader_meets_box(l, box); });
+    const bool leader_through_box =
+        r.has_leader && any_box_near(r.leader_x0, r.leader_y0, r.leader_x1, r.leader_y1,
+                                     [&](const PixelRect& b) { return leader_meets_box(r, b); });
+    if (label.strict_leaders && (box_crossed || leader_through_box)) return c;
     c.pass = 2;
     // Clear: a label beside another disc only when far enough to need a
     // leader anyway (a stub leader beside two glyphs says little).
     if (is_beside_other && !is_far) return c;
-    const PlacedLabel& r = c.placement;
-    if (any_leader_near(box.x, box.y, bx1, by1, [&](const PlacedLabel& l) { return leader_meets_box(l, box); }))
-      return c;
+    if (box_crossed) return c;
     if (r.has_leader) {
       if (any_leader_near(r.leader_x0, r.leader_y0, r.leader_x1, r.leader_y1,
                           [&](const PlacedLabel& l) { return leaders_cross(l, r); }))
         return c;
-      if (any_box_near(r.leader_x0, r.leader_y0, r.leader_x1, r.leader_y1,
-                       [&](const PixelRect& b) { return leader_meets_box(r, b); }))
-        return c;
+      if (leader_through_box) return c;
       c.pass = 1;
       if (std::any_of(obstacles.begin(), obstacles.end(),
                       [&](const ScreenDisc& d) { return !is_own(d) && leader_meets_disc(r, d); }))

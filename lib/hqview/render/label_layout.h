@@ -32,11 +32,19 @@ struct ScreenDisc {
 // its edge, so it ends on what the reader sees); none: the anchor.
 // always_leader: the label gets a leader wherever it sits (its glyph is
 // mostly hidden, so a label merely beside it would not say which it names).
+// protect_below: the obstacle discs with 0 <= id < protect_below (the
+// glyphs ranked before this label's, issue 44) are never crossed by its
+// leader, in any pass (unless the leader starts inside one); 0: none.
 struct LabelRequest {
   ScreenDisc anchor;
   int width = 0, height = 0;
   std::optional<ScreenDisc> leader_from = std::nullopt;
   bool always_leader = false;
+  std::int64_t protect_below = 0;
+  // Its leader never crosses an earlier leader or a placed box, nor its box
+  // an earlier leader, in any pass (view A, issue 44's fifth round);
+  // false: only the first two passes keep to that.
+  bool strict_leaders = false;
 };
 
 struct LabelLayoutOptions {
@@ -74,7 +82,10 @@ struct PlacedLabel {
 // box and no obstacle disc but its own anchor, its box crossed by no earlier
 // leader. When none is clear, the second pass lets the leader run over
 // other discs, and the third takes the first free place (with a leader
-// when it needs one). A label with no free candidate is
+// when it needs one). In every pass a leader crosses no protected disc
+// (LabelRequest::protect_below), and with LabelRequest::strict_leaders no
+// earlier leader or placed box, nor a box an earlier leader. A label with no free
+// candidate is
 // nullopt (the caller says what was left out). An obstacle with the
 // anchor's id (ScreenDisc::id) is the label's own (its glyph or fan): the
 // label may be beside it and its leader may cross it.

@@ -452,8 +452,12 @@ class OsmesaRenderer final : public Renderer {
     const auto projection = to_float(projection_matrix(camera, aspect));
 
     draw_triangles(scene.triangles, model_view, projection, nullptr);
-    draw_spheres(scene, model_view, projection, camera.is_perspective);
-    draw_lines(scene, model_view, projection);
+    // Spheres, the lines under the ranked spheres, the ranked (over other)
+    // spheres, the other lines (scene.h, draw order).
+    draw_spheres(scene, model_view, projection, camera.is_perspective, false);
+    draw_lines(scene, model_view, projection, true);
+    draw_spheres(scene, model_view, projection, camera.is_perspective, true);
+    draw_lines(scene, model_view, projection, false);
     if (!scene.translucent.empty() && !id_mode_) {
       // Blended over everything, without depth writes, back to front.
       gl.Enable(GL_BLEND);
@@ -565,8 +569,11 @@ class OsmesaRenderer final : public Renderer {
   }
 
   void draw_spheres(const Scene& scene, const std::array<float, 16>& model_view,
-                    const std::array<float, 16>& projection, bool is_perspective) {
-    if (sphere_count(scene) == 0) return;
+                    const std::array<float, 16>& projection, bool is_perspective, bool over) {
+    if (std::none_of(scene.spheres.begin(), scene.spheres.end(), [&](const SphereSet& set) {
+          return set.over_other_spheres == over && !set.centers.empty();
+        }))
+      return;
     gl.UseProgram(sphere_program_);
     set_matrices(sphere_program_, model_view, projection);
     gl.Uniform1i(gl.GetUniformLocation(sphere_program_, "is_perspective"), is_perspective ? 1 : 0);
@@ -574,12 +581,11 @@ class OsmesaRenderer final : public Renderer {
     set_light(sphere_program_);
     gl.Disable(GL_BLEND);
     static constexpr float kCorners[4][2] = {{-1.0f, -1.0f}, {1.0f, -1.0f}, {1.0f, 1.0f}, {-1.0f, 1.0f}};
-    // Sets over the others last, back to front (eye z ascending), depth test off.
+    // Sets over the others (over == true): back to front (eye z ascending)
+    // or first on top, depth test off.
     std::vector<const SphereSet*> order;
     for (const SphereSet& set : scene.spheres)
-      if (!set.over_other_spheres) order.push_back(&set);
-    for (const SphereSet& set : scene.spheres)
-      if (set.over_other_spheres) order.push_back(&set);
+      if (set.over_other_spheres == over) order.push_back(&set);
     auto eye_z = [&](const Vec3f& c) { return model_view[2] * c.x + model_view[6] * c.y + model_view[10] * c.z; };
     for (const SphereSet* set_pointer : order) {
       const SphereSet& set = *set_pointer;
@@ -589,8 +595,12 @@ class OsmesaRenderer final : public Renderer {
       std::vector<std::size_t> sphere_order(n);
       for (std::size_t i = 0; i < n; ++i) sphere_order[i] = i;
       if (set.over_other_spheres) {
-        std::stable_sort(sphere_order.begin(), sphere_order.end(),
-                         [&](std::size_t a, std::size_t b) { return eye_z(set.centers[a]) < eye_z(set.centers[b]); });
+        if (set.first_on_top)
+          std::reverse(sphere_order.begin(), sphere_order.end());
+        else
+          std::stable_sort(sphere_order.begin(), sphere_order.end(), [&](std::size_t a, std::size_t b) {
+            return eye_z(set.centers[a]) < eye_z(set.centers[b]);
+          });
         gl.DepthFunc(GL_ALWAYS);
       }
       std::vector<Vec3f> centers(4 * n), corners(4 * n);
@@ -699,8 +709,13 @@ class OsmesaRenderer final : public Renderer {
     gl.Uniform3f(gl.GetUniformLocation(triangle_program_, "map_undefined"), undefined.r, undefined.g, undefined.b);
   }
 
+  // The line sets with under_ranked_spheres == under.
   void draw_lines(const Scene& scene, const std::array<float, 16>& model_view,
-                  const std::array<float, 16>& projection) {
+                  const std::array<float, 16>& projection, bool under) {
+    if (std::none_of(scene.lines.begin(), scene.lines.end(), [&](const LineSet& set) {
+          return set.under_ranked_spheres == under && !set.indices.empty();
+        }))
+      return;
     gl.UseProgram(line_program_);
     set_matrices(line_program_, model_view, projection);
     if (id_mode_) gl.Disable(GL_BLEND);
@@ -708,7 +723,7 @@ class OsmesaRenderer final : public Renderer {
     gl.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     for (const LineSet& set : scene.lines) {
       stop::check();
-      if (set.indices.empty()) continue;
+      if (set.indices.empty() || set.under_ranked_spheres != under) continue;
       bind_positions_and_colors(set.positions, set.colors);
       gl.LineWidth(std::clamp(set.width * static_cast<float>(kSupersampling), 1.0f, max_line_width_));
       upload(GL_ELEMENT_ARRAY_BUFFER, index_buffer_, set.indices);

@@ -14,7 +14,9 @@
 //   2. spheres     ray-cast impostors (vertex glyphs): one camera-facing
 //                  quad per sphere, each fragment intersects its ray with
 //                  the sphere, shades it and writes the sphere's true depth;
-//   3. lines       on top of coincident triangles;
+//   3. lines       on top of coincident triangles (a set with
+//                  under_ranked_spheres is drawn before the spheres with
+//                  over_other_spheres, which cover it);
 //   4. translucent triangles blended over everything else without depth
 //                  writes, all triangles of a set sorted back to front for
 //                  the camera (back_to_front_order, scene_shapes.h);
@@ -86,6 +88,10 @@ struct LineSet {
   std::vector<Rgba8> colors;           // #V, alpha < 255 blends over what is behind
   std::vector<std::uint32_t> indices;  // 2 * #segments, ids in [0, #V)
   float width = 1.0f;                  // in output pixels
+  // Drawn after the other spheres but before the over_other_spheres sets,
+  // which then cover it (view A's boundary wireframe: no veil over the
+  // ranked glyphs).
+  bool under_ranked_spheres = false;
 };
 
 // Spheres (glyphs): centre, radius (model units, > 0) and colour each.
@@ -98,6 +104,11 @@ struct SphereSet {
   // their depth (lines and translucent faces in front of them show): view
   // A's ranked glyphs, which the many grey ones must not hide.
   bool over_other_spheres = false;
+  // With over_other_spheres: drawn in the reverse of the set's order, so its
+  // first sphere is on top of the others whatever their depth (view A: the
+  // worst cluster's glyph is never hidden by a less severe one), instead of
+  // back to front.
+  bool first_on_top = false;
 };
 
 struct Scene {

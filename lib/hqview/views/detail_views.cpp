@@ -464,6 +464,13 @@ double mean_edge_at(const HexMesh& mesh, const std::vector<VertexCorner>& corner
 
 }  // namespace
 
+double local_marker_radius(double scaled_jacobian, double size) {
+  // Size is severity, as in view A: (1 − SJ), at least a quarter (a good
+  // corner stays visible), at most 2 (SJ = −1); NaN as a quarter.
+  const double c = 1.0 - scaled_jacobian;
+  return 0.1 * size * (c >= 0.25 ? std::min(c, 2.0) : 0.25);
+}
+
 std::vector<Index> local_ring(const HexMesh& mesh, const Topology& topology, Index v) {
   std::vector<Index> ring;
   if (v < 0 || static_cast<std::size_t>(v) + 1 >= topology.vertex_hex_offsets.size()) return ring;
@@ -487,7 +494,7 @@ Scene build_local_scene(const HexMesh& mesh, const Topology& topology, std::span
   for (const VertexCorner& c : corners) {
     const Vec3 at = p + 0.45 * (hex_centre(mesh, c.hex) - p);
     markers.centers.push_back(to_vec3f(at - scene.origin));
-    markers.radii.push_back(static_cast<float>(0.1 * size));
+    markers.radii.push_back(static_cast<float>(local_marker_radius(c.value, size)));
     markers.colors.push_back(to_rgba8(quality_color(c.value)));
   }
   centre.centers.push_back({0.0f, 0.0f, 0.0f});
@@ -504,7 +511,9 @@ Scene build_local_scene(const HexMesh& mesh, const Topology& topology, std::span
 Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v,
                         const DetailViewOptions& options, Renderer& renderer) {
   const std::vector<Index> ring = local_ring(mesh, topology, v);
-  const std::string kinds = has_non_hex_cells(mesh) ? cell_kinds_legend(mesh, ring) : std::string();
+  // Under the colour bar: the markers' size rule, then the cells' kinds.
+  const std::string kinds = std::string(kLocalMarkerSizeLegend) +
+                            (has_non_hex_cells(mesh) ? "\n" + cell_kinds_legend(mesh, ring) : std::string());
   const Figure f = detail_figure(options, kinds);
   const Scene scene = build_local_scene(mesh, topology, corner_values, v);
   const std::vector<VertexCorner> corners = vertex_corners(mesh, topology, corner_values, v);

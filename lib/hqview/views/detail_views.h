@@ -89,20 +89,29 @@ std::vector<Index> local_ring(const HexMesh& mesh, const Topology& topology, Ind
 // (ids over all blocks), kinds in block order; empty for no cells.
 std::string cell_kinds_legend(const HexMesh& mesh, std::span<const Index> cells);
 
+// View D's corner marker radius (model units) for a corner's scaled
+// Jacobian: size is severity, as in view A (issue 44): 0.1 · size · (1 − SJ),
+// (1 − SJ) clamped to [0.25, 2] (NaN: 0.25). The legend says so
+// (kLocalMarkerSizeLegend, under the colour bar).
+double local_marker_radius(double scaled_jacobian, double size);
+inline constexpr const char* kLocalMarkerSizeLegend = "marker size = 1 - SJ";
+
 // View D's scene:
 //   lines[0]       edges of the one-ring cells (local_ring: every kind,
 //                  each with its CellKindTable faces), dark grey;
 //   spheres[0]     one marker per corner (vertex_corners), 45% of the way
 //                  from v towards its cell's centre, coloured by
-//                  quality_color(value);
+//                  quality_color(value), radius local_marker_radius(value,
+//                  the mean distance from v to its cells' centres);
 //   spheres[1]     v itself, small, dark;
 //   translucent[0] the one-ring cells' faces, pale.
 Scene build_local_scene(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v);
 
 // The figure of view D: the one ring framed, each corner marker labelled
 // with its value, its cell's kind and id ("0.812  hex 12", as in chart E),
-// quality colour bar; on a mesh with non-hex cells the legend's title ends
-// with the ring's cell_kinds_legend.
+// quality colour bar with kLocalMarkerSizeLegend under its title; on a mesh
+// with non-hex cells the legend's title ends with the ring's
+// cell_kinds_legend.
 Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v,
                         const DetailViewOptions& options, Renderer& renderer);
 

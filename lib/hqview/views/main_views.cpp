@@ -393,7 +393,12 @@ std::vector<MarkerFan> marker_fans(const GlyphResult& glyphs, const OverlapRepor
 std::vector<std::uint8_t> worst_cluster_vertices(const GlyphResult& glyphs, int per_cluster) {
   std::vector<std::uint8_t> marked(glyphs.vertex_cluster.size(), 0);
   std::vector<Index> members;
-  for (std::size_t c = 0; c + 1 < glyphs.cluster_offsets.size(); ++c) {
+  // The coloured (labelled) clusters only: the grey ones' edges, hundreds
+  // with bounded clusters, would veil the model (issue 44's fifth round).
+  const std::size_t coloured = std::min<std::size_t>(
+      glyphs.cluster_offsets.empty() ? 0 : glyphs.cluster_offsets.size() - 1,
+      static_cast<std::size_t>(labelled_cluster_count(glyphs.options.top_clusters)));
+  for (std::size_t c = 0; c < coloured; ++c) {
     members.assign(glyphs.cluster_vertices.begin() + glyphs.cluster_offsets[c],
                    glyphs.cluster_vertices.begin() + glyphs.cluster_offsets[c + 1]);
     const auto keep = std::min<std::size_t>(members.size(), static_cast<std::size_t>(std::max(per_cluster, 0)));
@@ -424,6 +429,7 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   const std::vector<Edge> wire = boundary_edges_all_kinds(topology);
   scene.lines.push_back(
       edge_lines(mesh, scene.origin, wire, std::vector<Rgba8>(wire.size(), kWireframeColor), options.wire_width));
+  scene.lines.back().under_ranked_spheres = true;  // no veil over the coloured glyphs
 
   // 2. Cluster edges: around each cluster's worst vertices only (a cluster
   // of thousands of vertices would paint over the model), in its colour.
@@ -431,16 +437,34 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   const std::vector<std::uint8_t> marked = worst_cluster_vertices(glyphs, options.cluster_edge_vertices);
   std::vector<Edge> cluster_edges;
   std::vector<Rgba8> cluster_colors;
-  for (const Edge& e : topology.edges) {
+  // An edge with a marked end, in the colour of its marked ends' lower rank.
+  auto add_cluster_edge = [&](const Edge& e) {
     const bool ma = marked[static_cast<std::size_t>(e[0])] != 0, mb = marked[static_cast<std::size_t>(e[1])] != 0;
-    if (!ma && !mb) continue;
+    if (!ma && !mb) return;
     const Index ca = ma ? glyphs.vertex_cluster[static_cast<std::size_t>(e[0])] : kNoIndex;
     const Index cb = mb ? glyphs.vertex_cluster[static_cast<std::size_t>(e[1])] : kNoIndex;
     const Index c = ca == kNoIndex ? cb : (cb == kNoIndex ? ca : std::min(ca, cb));
     cluster_edges.push_back(e);
     cluster_colors.push_back(to_rgba8(cluster_color(c, top)));
+  };
+  for (const Edge& e : topology.edges) add_cluster_edge(e);
+  // The tets', wedges' and pyramids' edges too (topology.edges holds the
+  // hexes' only): every kind's edges around the worst vertices.
+  if (topology.across_kinds) {
+    std::vector<Edge> other;
+    const auto cells = static_cast<std::size_t>(num_volume_cells(mesh));
+    for (std::size_t c = mesh.hexes.size(); c < cells; ++c)
+      for_each_edge_of(volume_cell(mesh, static_cast<Index>(c)), [&](Index a, Index b) {
+        if (marked[static_cast<std::size_t>(a)] || marked[static_cast<std::size_t>(b)])
+          other.push_back({std::min(a, b), std::max(a, b)});
+      });
+    std::sort(other.begin(), other.end());
+    other.erase(std::unique(other.begin(), other.end()), other.end());
+    for (const Edge& e : other)
+      if (!std::binary_search(topology.edges.begin(), topology.edges.end(), e)) add_cluster_edge(e);
   }
   scene.lines.push_back(edge_lines(mesh, scene.origin, cluster_edges, cluster_colors, options.cluster_edge_width));
+  scene.lines.back().under_ranked_spheres = true;  // around the coloured glyphs, not over them
 
   // 3. Intersecting cells: translucent faces and their edges.
   TriangleSet cells;
@@ -490,6 +514,7 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   // grey ones smaller.
   SphereSet spheres, ranked;
   ranked.over_other_spheres = true;
+  ranked.first_on_top = true;  // by rank: #0 on top of every other glyph
   const std::vector<double> shown =
       displayed_glyph_radii(glyphs, displayed_glyph_scale(glyphs, camera, view_height, options.pixel_scale));
   for (const AggregatedGlyph& g : glyphs.clusters) {
@@ -535,6 +560,7 @@ IdImage main_view_id_image(Renderer& renderer, const Scene& scene, const GlyphRe
   for (const LineSet& set : scene.lines) {
     LineSet opaque;
     opaque.width = set.width;
+    opaque.under_ranked_spheres = set.under_ranked_spheres;
     opaque.positions = set.positions;
     opaque.colors.assign(set.positions.size(), id_color(kIdEdge));
     for (std::size_t i = 0; i + 1 < set.indices.size(); i += 2)
@@ -618,12 +644,30 @@ void draw_main_view_labels(Image& figure, const MainViewLabels& labels, const An
   }
 }
 
+// The inverted ring's halo width (pixels): 10 at scale 1, so that the 3 px
+// ring in its middle keeps a 3.5 px pale gap from the glyph (with a 1 px
+// gap a blue ring on a blue glyph read as its rim: issue 44's fifth round).
+double inverted_halo_width(const AnnotationStyle& style) { return std::max(8.0, 10.0 * style.scale); }
+
 // The radius (pixels) of the inverted ring around a glyph of radius pixels:
-// its halo (5 px wide at scale 1) begins 0.5 px outside the glyph, so the
-// ring never covers the glyph's rim (it did by 1 px: bunny_in's inverted #0
-// then looked 1 px smaller than #1, a worse cluster drawn smaller).
+// its halo begins 0.5 px outside the glyph, so the ring never covers the
+// glyph's rim (it did by 1 px: bunny_in's inverted #0 then looked 1 px
+// smaller than #1, a worse cluster drawn smaller).
 double inverted_ring_radius(double radius, const AnnotationStyle& style) {
-  return radius + 0.5 + 0.5 * std::max(4.0, 5.0 * style.scale);
+  return radius + 0.5 + 0.5 * inverted_halo_width(style);
+}
+
+// The radius (pixels) of #0's dark ring around its glyph of radius pixels:
+// outside the inverted ring (draw_inverted_glyph_rings) when #0 has one.
+double worst_ring_radius(double radius, bool is_inverted, const AnnotationStyle& style) {
+  return is_inverted ? inverted_ring_radius(radius, style) + 0.5 * inverted_halo_width(style) + 2.0 * style.scale
+                     : radius + 1.5 + 0.5 * std::max(4.0, 5.0 * style.scale);
+}
+
+// How far #0's rings reach (pixels; their halo's outer edge): no label or
+// leader of another cluster crosses them.
+double worst_rings_extent(double radius, bool is_inverted, const AnnotationStyle& style) {
+  return worst_ring_radius(radius, is_inverted, style) + 0.5 * std::max(4.0, 5.0 * style.scale);
 }
 
 // A ring around cluster #0's glyph on screen (dark on a pale halo, a few
@@ -634,10 +678,7 @@ void draw_worst_glyph_ring(Image& figure, const ScreenDisc& worst, bool is_inver
   if (!(worst.radius > 0.0)) return;
   Rgba8 halo = options.background;
   halo.a = 255;
-  // Outside the inverted ring (draw_inverted_glyph_rings) when #0 has one.
-  const double radius =
-      (is_inverted ? inverted_ring_radius(worst.radius, style) + 5.0 * style.scale
-                   : worst.radius + 1.5 + 0.5 * std::max(4.0, 5.0 * style.scale));
+  const double radius = worst_ring_radius(worst.radius, is_inverted, style);
   constexpr int kSegments = 96;
   for (int pass = 0; pass < 2; ++pass)
     for (int i = 0; i < kSegments; ++i) {
@@ -651,7 +692,11 @@ void draw_worst_glyph_ring(Image& figure, const ScreenDisc& worst, bool is_inver
 // A ring in the inverted colour just outside each glyph of a cluster with an
 // inverted vertex (on a pale halo), so inverted clusters differ from merely
 // poor ones at a glance; cluster #0's dark ring goes outside it.
-void draw_inverted_glyph_rings(Image& figure, const std::vector<ScreenDisc>& inverted, const AnnotationStyle& style,
+// A ring's stretch inside a coloured glyph ranked before its own is left
+// out (that glyph is drawn over it: a grey glyph's ring over a coloured
+// one read as the grey glyph in front).
+void draw_inverted_glyph_rings(Image& figure, const std::vector<ScreenDisc>& inverted,
+                               const std::vector<ScreenDisc>& coloured, const AnnotationStyle& style,
                                const MainViewOptions& options) {
   Rgba8 halo = options.background;
   halo.a = 255;
@@ -662,21 +707,40 @@ void draw_inverted_glyph_rings(Image& figure, const std::vector<ScreenDisc>& inv
     for (int pass = 0; pass < 2; ++pass)
       for (int i = 0; i < segments; ++i) {
         const double a0 = 2.0 * M_PI * i / segments, a1 = 2.0 * M_PI * (i + 1) / segments;
+        const double am = 0.5 * (a0 + a1), mx = d.x + radius * std::cos(am), my = d.y + radius * std::sin(am);
+        if (std::any_of(coloured.begin(), coloured.end(), [&](const ScreenDisc& c) {
+              return c.id < d.id && std::hypot(mx - c.x, my - c.y) < c.radius;
+            }))
+          continue;
         draw_line(figure, d.x + radius * std::cos(a0), d.y + radius * std::sin(a0), d.x + radius * std::cos(a1),
                   d.y + radius * std::sin(a1), pass == 0 ? halo : color,
-                  pass == 0 ? std::max(4.0, 5.0 * style.scale) : std::max(2.0, 3.0 * style.scale));
+                  pass == 0 ? inverted_halo_width(style) : std::max(2.0, 3.0 * style.scale));
       }
   }
 }
 
 }  // namespace
 
+std::string mostly_inverted_note(const QualityField& quality) {
+  const std::size_t cells = quality.cell_scaled_jacobian.size();
+  std::size_t inverted = 0;
+  for (std::size_t c = 0; c < cells; ++c) inverted += cell_is_inverted(quality, c);
+  if (cells == 0 || 2 * inverted <= cells) return {};
+  return "inverted: " + std::to_string(inverted) + " of " + std::to_string(cells) + " cells";
+}
+
 std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const OverlapReport* overlap,
                                           const AnnotationStyle& style, const MainViewOptions& options,
                                           double glyph_scale, std::span<const Index> hidden) {
   const std::size_t listed = std::min<std::size_t>(
       glyphs.clusters.size(), static_cast<std::size_t>(labelled_cluster_count(glyphs.options.top_clusters)));
-  std::vector<LegendLine> lines{{std::nullopt, "glyphs: worst clusters"}};
+  std::vector<LegendLine> lines;
+  // Mostly inverted: the glyphs mark the orientation, not a local defect.
+  if (!options.orientation_note.empty()) {
+    lines.push_back({to_rgba8(kInvertedColor), options.orientation_note, 0});
+    lines.push_back({std::nullopt, "  mirrored? reversed nodes?"});
+  }
+  lines.push_back({std::nullopt, "glyphs: worst clusters", options.orientation_note.empty() ? 0 : 1});
   for (std::size_t i = 0; i < listed; ++i) {
     const AggregatedGlyph& g = glyphs.clusters[i];
     // As the label reads, then the key number (short: a long line is cut).
@@ -918,9 +982,10 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
   result.view = layout.view;
   result.glyph_scale = displayed_glyph_scale(glyphs, camera, layout.view.height, scaled.pixel_scale);
   const std::vector<double> shown = displayed_glyph_radii(glyphs, result.glyph_scale);
-  // Obstacles: the glyphs (the 200 largest on screen: under the severity
-  // rule the first 200 ranks) and the arrow fans.
-  constexpr std::size_t kGlyphObstacles = 200;
+  // Obstacles: the glyphs (the 1,000 largest on screen: under the severity
+  // rule the first 1,000 ranks; bounded clusters are many, bunny_in 467)
+  // and the arrow fans.
+  constexpr std::size_t kGlyphObstacles = 1000;
   std::vector<std::pair<double, ScreenDisc>> glyph_discs;
   for (const AggregatedGlyph& g : glyphs.clusters) {
     if (!(g.radius > 0.0)) continue;
@@ -928,6 +993,7 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
     d.id = g.id;
     if (on_screen(d) && d.radius >= 1.0) glyph_discs.push_back({d.radius, d});
     if (on_screen(d) && g.min_quality < 0.0) result.inverted_glyphs.push_back(d);
+    if (on_screen(d) && !is_grey_glyph(g, glyphs)) result.coloured_glyphs.push_back(d);
   }
   std::stable_sort(glyph_discs.begin(), glyph_discs.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });
@@ -1004,7 +1070,13 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
   options.leader_distance = 10.0 * style.scale;
   std::vector<ScreenDisc> all_obstacles;
   for (const auto& g : glyph_discs) all_obstacles.push_back(g.second);
-  if (result.worst_glyph.radius > 0.0) all_obstacles.push_back(result.worst_glyph);
+  if (result.worst_glyph.radius > 0.0) {
+    all_obstacles.push_back(result.worst_glyph);
+    // #0's rings too: no other label or leader crosses them.
+    ScreenDisc rings = result.worst_glyph;
+    rings.radius = worst_rings_extent(rings.radius, glyphs.clusters[0].min_quality < 0.0, style);
+    all_obstacles.push_back(rings);
+  }
   all_obstacles.insert(all_obstacles.end(), fans.begin(), fans.end());
   std::vector<ScreenDisc> worst_only;
   if (result.worst_glyph.radius > 0.0) worst_only.push_back(result.worst_glyph);
@@ -1014,6 +1086,9 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
     LabelRequest request = label_request(label.text, size, label.anchor, style);
     request.leader_from = label.leader_from;
     request.always_leader = label.always_leader;
+    // No leader crosses a glyph ranked before its own (a marker's: #0).
+    request.protect_below = label.kind == MainViewLabel::Kind::cluster ? label.cluster : 1;
+    request.strict_leaders = true;
     std::optional<PlacedLabel> placed = placer.place(request, all_obstacles);
     if (!placed && label.kind == MainViewLabel::Kind::marker) placed = placer.place(request, worst_only);
     if (!placed && label.kind == MainViewLabel::Kind::marker) {
@@ -1096,7 +1171,7 @@ Scene main_view_scene(const HexMesh& mesh, const Topology& topology, const Glyph
 // The rings render_main_view draws around the glyphs.
 void draw_glyph_rings(Image& figure, const MainViewLabels& labels, const GlyphResult& glyphs,
                       const AnnotationStyle& style, const MainViewOptions& scaled) {
-  draw_inverted_glyph_rings(figure, labels.inverted_glyphs, style, scaled);
+  draw_inverted_glyph_rings(figure, labels.inverted_glyphs, labels.coloured_glyphs, style, scaled);
   draw_worst_glyph_ring(figure, labels.worst_glyph, !glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0,
                         style, scaled);
 }
@@ -1114,6 +1189,7 @@ void mark_drawn(IdImage& ids, const MainViewLabels& labels, const GlyphResult& g
   for (MainViewLabel& l : white_labels.labels) l.color = white;
   white_labels.worst_glyph = labels.worst_glyph;
   white_labels.inverted_glyphs = labels.inverted_glyphs;
+  white_labels.coloured_glyphs = labels.coloured_glyphs;
   Image mask = make_image(std::max(1, ids.x0 + ids.width), std::max(1, ids.y0 + ids.height), Rgba8{0, 0, 0, 255});
   draw_glyph_rings(mask, white_labels, glyphs, style, scaled);
   draw_main_view_labels(mask, white_labels, style, scaled);

@@ -14,6 +14,7 @@
 #include "hqview/mesh/hex_mesh.h"
 #include "hqview/mesh/topology.h"
 #include "hqview/overlap/overlap.h"
+#include "hqview/quality/quality_field.h"
 #include "hqview/render/annotate.h"
 #include "hqview/render/camera.h"
 #include "hqview/render/id_image.h"
@@ -55,7 +56,16 @@ struct MainViewOptions {
   // A legend line naming the mesh's cell kinds ("cells: 64 hex, 484 tet,
   // 16 pyramid", mesh_kinds_text); empty (pure-hex meshes): no line.
   std::string cell_kinds;
+  // A legend line for a mesh whose cells are mostly inverted
+  // (mostly_inverted_note); empty: none.
+  std::string orientation_note;
 };
+
+// "inverted: 1200 of 1200 cells" when more than half of the volume cells
+// are inverted (cell_is_inverted): a mirrored mesh, or one with reversed
+// node order, whose glyphs then mark every cell, not a local defect; the
+// legend says so (issue 44's fifth round). Empty otherwise.
+std::string mostly_inverted_note(const QualityField& quality);
 
 // The fraction of an aspect-sized image covered by the union of the spheres
 // seen through camera (rasterised on a grid of about 40k cells). Spheres
@@ -114,12 +124,12 @@ std::vector<ScreenMarker> group_markers_on_screen(std::span<const OverlapMarker>
 // View A's scene for a camera (arrows are laid out in its image plane and
 // sized for an image view_height pixels high):
 //   lines[0]     unique boundary edges, kWireframeColor;
-//   lines[1]     every mesh edge with an endpoint among the
-//                options.cluster_edge_vertices worst vertices (largest glyph
-//                radius) of its cluster, in that cluster's colour
-//                (cluster_color(rank, K): the K labelled clusters their own,
-//                all others the neutral tone; the lower rank when both
-//                endpoints are marked);
+//   lines[1]     every mesh edge (of any cell kind) with an endpoint among
+//                the options.cluster_edge_vertices worst vertices (largest
+//                glyph radius) of a coloured cluster (worst_cluster_vertices),
+//                in that cluster's colour (cluster_color(rank, K); the lower
+//                rank when both endpoints are marked), drawn under the
+//                coloured glyphs (LineSet::under_ranked_spheres, as lines[0]);
 //   lines[2]     edges of intersecting cells, kIntersectionArrowColor;
 //   spheres[0]   the grey aggregated glyphs, spheres[1] the coloured ones
 //                (drawn over them): one per cluster, radius as
@@ -137,7 +147,8 @@ std::vector<ScreenMarker> group_markers_on_screen(std::span<const OverlapMarker>
 //   translucent[0] the faces of the intersecting cells.
 // overlap may be null (no arrows, no intersecting cells).
 // 1 for the per_cluster worst members (largest glyph radius, then lowest
-// id) of every cluster, per mesh vertex.
+// id) of every coloured cluster (the first labelled_cluster_count(K)
+// ranks), per mesh vertex.
 std::vector<std::uint8_t> worst_cluster_vertices(const GlyphResult& glyphs, int per_cluster);
 
 Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
@@ -196,6 +207,9 @@ struct MainViewLabels {
   // The glyphs of the clusters with an inverted vertex (min quality < 0)
   // on screen, by rank: render_main_view rings each in the inverted colour.
   std::vector<ScreenDisc> inverted_glyphs;
+  // The coloured (labelled) glyphs on screen, by rank: drawn over every
+  // glyph ranked after them, they hide those glyphs' rings too.
+  std::vector<ScreenDisc> coloured_glyphs;
   // Ranks of the labelled clusters on screen whose glyph shows no pixel
   // (hidden behind other glyphs, edges or arrows): they get no label (it
   // would point at something else) and the legend says "hidden".

@@ -216,6 +216,7 @@ std::vector<ViewFile> build_overview(ViewContext& c) {
 std::vector<ViewFile> build_main(ViewContext& c) {
   auto main = sized<MainViewOptions>(c);
   main.cell_kinds = mesh_kinds_text(c.a.mesh);
+  main.orientation_note = mostly_inverted_note(c.a.field);
   const std::vector<Vec3> points = main_view_points(c.a.mesh, c.a.topology, *c.glyphs);
   main.title = "-";  // the layout of a titled figure
   const double aspect = main_view_aspect(main);
