@@ -30,14 +30,20 @@ CellFaceMap build_cell_face_map(const VolumeCells& cells) {
       }
     }
   });
+  // Keys compared inline, component by component (std::array's operators
+  // call memcmp, which cost most of this sort).
+  const auto same_key = [](const Entry& a, const Entry& b) {
+    return a.key[0] == b.key[0] && a.key[1] == b.key[1] && a.key[2] == b.key[2] && a.key[3] == b.key[3];
+  };
   tbb::parallel_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
-    if (a.key != b.key) return a.key < b.key;
+    for (std::size_t i = 0; i < 4; ++i)
+      if (a.key[i] != b.key[i]) return a.key[i] < b.key[i];
     return a.use.cell != b.use.cell ? a.use.cell < b.use.cell : a.use.local < b.use.local;
   });
   CellFaceMap map;
   map.uses.reserve(entries.size());
   for (std::size_t i = 0; i < entries.size(); ++i) {
-    if (i == 0 || entries[i].key != entries[i - 1].key) map.offsets.push_back(static_cast<Index>(i));
+    if (i == 0 || !same_key(entries[i], entries[i - 1])) map.offsets.push_back(static_cast<Index>(i));
     map.uses.push_back(entries[i].use);
   }
   map.offsets.push_back(static_cast<Index>(entries.size()));

@@ -32,15 +32,16 @@ LoadedMesh load_mesh(const fs::path& path, const AnalyzeOptions& options, InputF
   return loaded;
 }
 
-// Meshes of up to this many hexes get their metrics and the metrics'
+// Meshes of up to this many volume cells get their metrics and the metrics'
 // summaries computed beside the overlap stage, whose box search and sorts
 // run largely on one core (363,520 hexes: the whole run 1.42 -> 1.35 s on 2
 // cores, medians of 5 interleaved runs). Larger meshes compute them after
 // it, so that the overlap scratch (the tetrahedra's points, 24 bytes per
 // vertex, face and hex) is freed before the metric arrays (176 bytes per
 // hex) exist and the two never add up in the peak memory (2,908,160 hexes:
-// 1.77 GB).
-constexpr std::size_t kMetricsBesideOverlapMaxHexes = 1'000'000;
+// 1.77 GB). Counted over every volume cell: 2,181,120 tets (the 363,520
+// hexes split 6 each) compute theirs after the overlap stage too.
+constexpr std::size_t kMetricsBesideOverlapMaxCells = 1'000'000;
 
 // f, timed into `seconds`: for stages that run beside another one.
 template <class F>
@@ -52,26 +53,9 @@ auto timed(double& seconds, F f) {
   };
 }
 
-// The Verdict metrics of the tets, wedges and pyramids, one block per kind
-// present.
-std::vector<CellBlockMetricField> compute_non_hex_metrics(const Mesh& mesh) {
-  std::vector<CellBlockMetricField> out;
-  if (!mesh.tets.empty()) out.push_back(compute_tet_block_metrics(mesh.points, mesh.tets));
-  if (!mesh.wedges.empty()) out.push_back(compute_wedge_block_metrics(mesh.points, mesh.wedges));
-  if (!mesh.pyramids.empty()) out.push_back(compute_pyramid_block_metrics(mesh.points, mesh.pyramids));
-  return out;
-}
-
-// Once summarised, a block keeps the values of the metrics that have a
-// cells.csv column (those named as a hex metric) and nothing else.
-void keep_cell_metric_columns(std::vector<CellBlockMetricField>& blocks) {
-  for (CellBlockMetricField& b : blocks) {
-    for (std::size_t m = 0; m < b.names.size(); ++m)
-      if (!hex_metric_from_name(b.names[m])) std::vector<double>().swap(b.values[m]);
-    std::vector<double>().swap(b.corner_scaled_jacobian);
-    std::vector<std::uint8_t>().swap(b.corner_degenerate_mask);
-  }
-}
+// Whether a block of another kind keeps a metric's values once summarised:
+// those that have a cells.csv column (named as a hex metric).
+bool has_cell_column(std::string_view metric) { return hex_metric_from_name(metric).has_value(); }
 
 // The finite-element check: the element conditioning, then with --simulate
 // the Poisson check and its correlations with the metrics (after the
@@ -98,22 +82,26 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
   a.composition = compute_cell_composition(a.mesh);
   // Beside the overlap stage: the structure (the singularity graph: one
   // sequential pass over the edges) always, and on meshes up to
-  // kMetricsBesideOverlapMaxHexes the metrics and their summaries; each is
+  // kMetricsBesideOverlapMaxCells the metrics and their summaries; each is
   // listed as a concurrent stage. Beside it, the metrics do not draw the
   // progress bar (the overlap stage does).
-  const bool metrics_beside = options.overlap && a.mesh.hexes.size() <= kMetricsBesideOverlapMaxHexes;
+  const bool metrics_beside = options.overlap && a.field.cell_scaled_jacobian.size() <= kMetricsBesideOverlapMaxCells;
   std::vector<MetricSummary> metric_summaries;
+  std::vector<SummarizedCellBlock> non_hex_blocks;
   std::vector<KindQualitySummary> by_kind;
   double structure_seconds = 0, metrics_seconds = 0, metric_summaries_seconds = 0;
   const auto structure = timed(structure_seconds, [&] { a.structure = compute_structure(a.mesh, a.topology); });
   const auto metrics = timed(metrics_seconds, [&] {
     a.metrics = compute_hex_metrics(a.mesh, options.metrics, metrics_beside ? progress::Reporting::silent : progress::Reporting::report);
-    a.cell_metrics = compute_non_hex_metrics(a.mesh);
+    // The other kinds' metrics are summarised as they are computed (one
+    // column at a time), keeping only the cells.csv columns.
+    non_hex_blocks = summarize_non_hex_blocks(a.mesh, a.field, has_cell_column);
   });
   const auto summarize_metrics = timed(metric_summaries_seconds, [&] {
     metric_summaries = summarize_hex_metrics(a.metrics);
-    by_kind = summarize_by_kind(a.mesh, a.field, metric_summaries, a.cell_metrics);
-    keep_cell_metric_columns(a.cell_metrics);
+    by_kind = summarize_by_kind(a.mesh, a.field, metric_summaries, non_hex_blocks);
+    a.cell_metrics.clear();
+    for (SummarizedCellBlock& block : non_hex_blocks) a.cell_metrics.push_back(std::move(block.field));
   });
   const auto concurrent = [&](const char* name, double seconds) {
     a.timings.push_back({name, seconds, peak_rss_bytes(), true});
