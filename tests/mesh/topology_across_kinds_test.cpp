@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -53,6 +54,23 @@ struct Hybrid {
     return static_cast<Index>(hex.points.size() - 1);
   }
 };
+
+// Every edge of every volume cell once (a < b), ascending: sorted and
+// deduplicated whole, the way the topology did before it bucketed them.
+std::vector<Edge> every_edge_once(const Mesh& mesh) {
+  std::vector<Edge> edges;
+  for_each_block(mesh, [&](auto kind, const auto& cells) {
+    if constexpr (CellKindTable<kind()>::dimension == 3)
+      for (const auto& cell : cells)
+        for (const auto& e : CellKindTable<kind()>::edges) {
+          const Index a = cell[static_cast<std::size_t>(e[0])], b = cell[static_cast<std::size_t>(e[1])];
+          edges.push_back({std::min(a, b), std::max(a, b)});
+        }
+  });
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
 
 double signed_volume6(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   return dot(cross(b - a, c - a), d - a);
@@ -128,6 +146,7 @@ TEST(TopologyAcrossKinds, PureHexWithNoOtherCellsIsTheHexOnlyBuild) {
   EXPECT_TRUE(b.boundary_quads_non_hex.empty());
   EXPECT_TRUE(b.non_conforming_faces.empty());
   EXPECT_TRUE(b.edge_touches_non_hex.empty());
+  EXPECT_TRUE(b.all_edges.empty());  // `edges` is every edge
   EXPECT_EQ(b.num_non_manifold_faces_non_hex, 0);
 }
 
@@ -168,6 +187,8 @@ TEST(TopologyAcrossKinds, HexPyramidTetsConforming) {
     touching += topo.edge_touches_non_hex[i];
   }
   EXPECT_EQ(touching, 4);
+  EXPECT_EQ(topo.all_edges, every_edge_once(m.mesh()));
+  EXPECT_EQ(topo.all_edges.size(), 12u + 4u + 3u + 3u);  // the hex's, the pyramid's 4 to the apex, 3 new per tet
 }
 
 // A column of three wedges over the triangle (0,0)-(1,0)-(0,1), beside a
@@ -266,6 +287,13 @@ TEST(TopologyAcrossKinds, KuhnTetGridBesideHexGridHasTheInterfaceNonConforming) 
     expect_closed_and_oriented(topo);
     EXPECT_NEAR(enclosed_volume(m.hex, topo), 2.0 * n * n * n, 1e-9);
     EXPECT_EQ(topo.num_non_manifold_faces_non_hex, 0);
+    EXPECT_EQ(topo.all_edges, every_edge_once(m.mesh())) << n;
+    // Either way, a tet-only mesh's edges are its own (no hex edges at all).
+    Mesh tets_only = m.mesh();
+    tets_only.hexes.clear();
+    const Topology t = build_topology(tets_only);
+    EXPECT_TRUE(t.edges.empty());
+    EXPECT_EQ(t.all_edges, every_edge_once(tets_only)) << n;
   }
 }
 

@@ -41,9 +41,10 @@ struct Analysis {
   QualityField field;      // corner scaled Jacobians, vertex quality, cell scaled Jacobian
   HexMetricField metrics;  // the Verdict metrics per hex (cells.csv columns)
   // The other volume blocks' Verdict metrics (tets, wedges, pyramids with
-  // cells, in CellKind order). Once summarised (quality.by_kind), only the
-  // metrics that have a cells.csv column (a hex metric's name) keep their
-  // values, and the corner arrays (in `field`) are dropped.
+  // cells, in CellKind order), summarised as they were computed
+  // (quality.by_kind): only the metrics that have a cells.csv column (a hex
+  // metric's name) keep their values; the corner values and validity are
+  // `field`'s.
   std::vector<CellBlockMetricField> cell_metrics;
   MeshSummary mesh_summary;
   CellComposition composition;  // cells and volume by kind, hex fractions (headline)

@@ -42,23 +42,9 @@ MeshSummary summarize_mesh(const HexMesh& mesh, const Topology& topo) {
     s.bbox_max = box.hi;
   }
   s.bbox_diagonal = norm(s.bbox_max - s.bbox_min);
-  // Over every edge: the hex part's (topo.edges) and, on a hybrid mesh, the
-  // other cells' edges too.
-  std::vector<Edge> hybrid_edges;
-  if (topo.across_kinds) {
-    hybrid_edges.assign(topo.edges.begin(), topo.edges.end());
-    for_each_block(mesh, [&](auto kind, const auto& cells) {
-      if constexpr (kind() != CellKind::hex && CellKindTable<kind()>::dimension == 3)
-        for (const auto& cell : cells)
-          for (const auto& e : CellKindTable<kind()>::edges) {
-            const Index a = cell[static_cast<std::size_t>(e[0])], b = cell[static_cast<std::size_t>(e[1])];
-            hybrid_edges.push_back(a < b ? Edge{a, b} : Edge{b, a});
-          }
-    });
-    std::sort(hybrid_edges.begin(), hybrid_edges.end());
-    hybrid_edges.erase(std::unique(hybrid_edges.begin(), hybrid_edges.end()), hybrid_edges.end());
-  }
-  const std::vector<Edge>& edges = topo.across_kinds ? hybrid_edges : topo.edges;
+  // Over every edge: the hex part's (topo.edges) and, on a hybrid mesh,
+  // every kind's (topo.all_edges, the same ascending order).
+  const std::vector<Edge>& edges = topo.across_kinds ? topo.all_edges : topo.edges;
   if (!edges.empty()) {
     double sum = 0.0;
     s.edge_length_min = INFINITY;

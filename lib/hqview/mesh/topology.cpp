@@ -1,6 +1,7 @@
 #include "hqview/mesh/topology.h"
 
 #include <algorithm>
+#include <iterator>
 #include <numeric>
 #include <span>
 
@@ -182,6 +183,13 @@ Tri sorted_tri(Tri t) {
   if (t[0] > t[1]) std::swap(t[0], t[1]);
   return t;
 }
+// Equal sorted ids, compared inline (std::array's == calls memcmp).
+template <std::size_t N>
+bool same_face(const std::array<Index, N>& x, const std::array<Index, N>& y) {
+  for (std::size_t i = 0; i < N; ++i)
+    if (x[i] != y[i]) return false;
+  return true;
+}
 Quad sorted_face(const Quad& q) { return sorted_quad(q); }
 Tri sorted_face(const Tri& t) { return sorted_tri(t); }
 
@@ -236,16 +244,20 @@ struct HalfFaces {
     std::vector<Index> offsets;
     bucket_by_key(
         keys.size(), num_vertices, [&](std::size_t h) { return keys[h][0]; }, offsets, order);
+    // Within a bucket every key starts with the bucket's vertex. Compared
+    // inline, component by component (std::array's operators call memcmp).
     const auto less = [&](Index a, Index b) {
       const Face &x = keys[static_cast<std::size_t>(a)], &y = keys[static_cast<std::size_t>(b)];
-      return x != y ? x < y : a < b;
+      for (std::size_t i = 1; i < N; ++i)
+        if (x[i] != y[i]) return x[i] < y[i];
+      return a < b;
     };
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_vertices), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t v = r.begin(); v != r.end(); ++v)
         if (offsets[v + 1] - offsets[v] > 1) std::sort(order.begin() + offsets[v], order.begin() + offsets[v + 1], less);
     });
     for (std::size_t i = 0; i < order.size(); ++i)
-      if (i == 0 || key(order[i]) != key(order[i - 1])) groups.push_back(i);
+      if (i == 0 || !same_face(key(order[i]), key(order[i - 1]))) groups.push_back(i);
     groups.push_back(order.size());
   }
 
@@ -289,6 +301,49 @@ template <CellKind K, class Cells, class F>
 void for_each_cell_edge(const Cells& cells, F&& f) {
   for (const auto& cell : cells)
     for (const auto& e : CellKindTable<K>::edges) f(cell[e[0]], cell[e[1]]);
+}
+
+// The unique edges (a < b) of every tet, wedge and pyramid, ascending:
+// each cell edge counted into the bucket of its smaller vertex and its other
+// vertex scattered there (linear, in cell order), then each small bucket
+// sorted and deduplicated and the buckets' runs placed by a prefix sum of
+// their distinct counts (both in parallel; the result does not depend on
+// the thread count). Memory: one vertex id per cell edge, not a sorted
+// array of whole edges.
+std::vector<Edge> unique_non_hex_edges(const NonHexBlocks& others, std::size_t num_vertices) {
+  const auto for_each_edge = [&](auto&& f) {
+    for_each_cell_edge<CellKind::tet>(others.tets, f);
+    for_each_cell_edge<CellKind::wedge>(others.wedges, f);
+    for_each_cell_edge<CellKind::pyramid>(others.pyramids, f);
+  };
+  std::vector<Index> offsets(num_vertices + 1, 0);
+  for_each_edge([&](Index a, Index b) { ++offsets[static_cast<std::size_t>(std::min(a, b)) + 1]; });
+  std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
+  std::vector<Index> other(static_cast<std::size_t>(offsets[num_vertices]));
+  {
+    std::vector<Index> cursor(offsets.begin(), offsets.end() - 1);
+    for_each_edge([&](Index a, Index b) {
+      if (b < a) std::swap(a, b);
+      other[static_cast<std::size_t>(cursor[static_cast<std::size_t>(a)]++)] = b;
+    });
+  }
+  std::vector<Index> first_edge(num_vertices + 1, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_vertices), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t v = r.begin(); v != r.end(); ++v) {
+      const auto begin = other.begin() + offsets[v], end = other.begin() + offsets[v + 1];
+      std::sort(begin, end);
+      first_edge[v + 1] = static_cast<Index>(std::unique(begin, end) - begin);
+    }
+  });
+  std::partial_sum(first_edge.begin(), first_edge.end(), first_edge.begin());
+  std::vector<Edge> edges(static_cast<std::size_t>(first_edge[num_vertices]));
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_vertices), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t v = r.begin(); v != r.end(); ++v)
+      for (Index k = 0; k < first_edge[v + 1] - first_edge[v]; ++k)
+        edges[static_cast<std::size_t>(first_edge[v] + k)] = {static_cast<Index>(v),
+                                                              other[static_cast<std::size_t>(offsets[v] + k)]};
+  });
+  return edges;
 }
 
 // The hex face whose sorted ids are `key`, or kNoIndex (topo.faces is
@@ -425,14 +480,13 @@ void match_across_kinds(const HexMesh& mesh, const NonHexBlocks& others, Topolog
   use(others.pyramids);
   std::erase_if(topo.unreferenced_vertices, [&](Index v) { return used[static_cast<std::size_t>(v)] != 0; });
 
-  // The hex edges that are also edges of a non-hex cell.
-  std::vector<Edge> non_hex_edges;
-  const auto add_edge = [&](Index a, Index b) { non_hex_edges.push_back(a < b ? Edge{a, b} : Edge{b, a}); };
-  for_each_cell_edge<CellKind::tet>(others.tets, add_edge);
-  for_each_cell_edge<CellKind::wedge>(others.wedges, add_edge);
-  for_each_cell_edge<CellKind::pyramid>(others.pyramids, add_edge);
-  std::sort(non_hex_edges.begin(), non_hex_edges.end());
-  non_hex_edges.erase(std::unique(non_hex_edges.begin(), non_hex_edges.end()), non_hex_edges.end());
+  // Every edge over all kinds, and the hex edges that are also edges of a
+  // non-hex cell.
+  const std::vector<Edge> non_hex_edges = unique_non_hex_edges(others, nv);
+  topo.all_edges.clear();
+  topo.all_edges.reserve(topo.edges.size() + non_hex_edges.size());
+  std::set_union(topo.edges.begin(), topo.edges.end(), non_hex_edges.begin(), non_hex_edges.end(),
+                 std::back_inserter(topo.all_edges));
   topo.edge_touches_non_hex.assign(topo.edges.size(), 0);
   std::size_t j = 0;
   for (std::size_t i = 0; i < topo.edges.size(); ++i) {

@@ -82,6 +82,11 @@ struct Topology {
   // Per entry of `edges` (the hex part's edges): 1 when the edge is also an
   // edge of a tet, wedge or pyramid. Empty for a pure-hex mesh.
   std::vector<char> edge_touches_non_hex;
+  // The unique edges (a < b) of every volume cell of any kind, ascending
+  // (`edges` and the other cells' edges): what the edge lengths and the
+  // overlap's zero-length edges read on such a mesh. Empty for a pure-hex
+  // mesh (`edges` is that mesh's every edge).
+  std::vector<Edge> all_edges;
 
   // ---- A surface mesh (quads and triangles, no volume cell) ----
   // Its edges, boundary and non-manifold edges and reversed faces; empty for

@@ -575,9 +575,16 @@ Number det_of_means(const std::array<MeanPoint, 4>& q) {
 int orient(const MeanPoint& a, const MeanPoint& b, const MeanPoint& c, const MeanPoint& d) {
   if (a.n == 1 && b.n == 1 && c.n == 1 && d.n == 1) return orient(*a.of[0], *b.of[0], *c.of[0], *d.of[0]);
   const std::array<MeanPoint, 4> q{a, b, c, d};
-  const CGAL::Interval_nt<true> approx = det_of_means<CGAL::Interval_nt<true>>(q);
-  if (approx.inf() > 0) return 1;
-  if (approx.sup() < 0) return -1;
+  {
+    // The rounding mode set upward once for the whole determinant, and the
+    // unprotected intervals under it: the very intervals the protected ones
+    // give (each of their operations sets and restores the mode, which cost
+    // most of stage F on a tet mesh's boundary triangles).
+    const CGAL::Protect_FPU_rounding<true> upward;
+    const CGAL::Interval_nt<false> approx = det_of_means<CGAL::Interval_nt<false>>(q);
+    if (approx.inf() > 0) return 1;
+    if (approx.sup() < 0) return -1;
+  }
   return static_cast<int>(CGAL::sign(det_of_means<CGAL::Exact_rational>(q)));
 }
 

@@ -453,8 +453,12 @@ OverlapReport check_overlap(const Mesh& mesh, const Topology& topo, const Overla
   for (const CoincidentGroup& g : r.coincident_groups)
     for (Index v : g.vertices) flag_vertex_cells(v);
   const double tol2 = r.coincident_tolerance * r.coincident_tolerance;
-  const std::vector<Edge> mixed_edges = cells.is_pure_hex() ? std::vector<Edge>{} : non_hex_and_hex_edges(cells, topo);
-  for (const Edge& e : cells.is_pure_hex() ? topo.edges : mixed_edges) {
+  // Every edge: the hex topology's on a pure-hex mesh, the topology's edges
+  // over all kinds on any other (or, from a topology of the hexes alone,
+  // gathered here).
+  const std::vector<Edge> mixed_edges =
+      cells.is_pure_hex() || topo.across_kinds ? std::vector<Edge>{} : non_hex_and_hex_edges(cells, topo);
+  for (const Edge& e : cells.is_pure_hex() ? topo.edges : topo.across_kinds ? topo.all_edges : mixed_edges) {
     const Vec3 d = p[sz(e[1])] - p[sz(e[0])];
     if (tol2 > 0.0 ? squared_norm(d) <= tol2 : d == Vec3{}) {
       r.zero_length_edges.push_back(e);

@@ -33,15 +33,16 @@ LoadedMesh load_mesh(const fs::path& path, const AnalyzeOptions& options, InputF
   return loaded;
 }
 
-// Meshes of up to this many hexes get their metrics and the metrics'
+// Meshes of up to this many volume cells get their metrics and the metrics'
 // summaries computed beside the overlap stage, whose box search and sorts
 // run largely on one core (363,520 hexes: the whole run 1.42 -> 1.35 s on 2
 // cores, medians of 5 interleaved runs). Larger meshes compute them after
 // it, so that the overlap scratch (the tetrahedra's points, 24 bytes per
 // vertex, face and hex) is freed before the metric arrays (176 bytes per
 // hex) exist and the two never add up in the peak memory (2,908,160 hexes:
-// 1.77 GB).
-constexpr std::size_t kMetricsBesideOverlapMaxHexes = 1'000'000;
+// 1.77 GB). Counted over every volume cell: 2,181,120 tets (the 363,520
+// hexes split 6 each) compute theirs after the overlap stage too.
+constexpr std::size_t kMetricsBesideOverlapMaxCells = 1'000'000;
 
 // f, timed into `seconds`: for stages that run beside another one.
 template <class F>
@@ -53,16 +54,20 @@ auto timed(double& seconds, F f) {
   };
 }
 
-// The Verdict metrics of the tets, wedges and pyramids, or of a surface
-// mesh's quads and triangles, one block per kind present. A surface block's
-// inverted and flat counts are the quality field's (quality_field.h: against
-// the plane of a planar mesh, else by orientation against the neighbours).
-std::vector<CellBlockMetricField> compute_non_hex_metrics(const Mesh& mesh, const QualityField& field,
+// Whether a block of another kind keeps a metric's values once summarised:
+// those that have a cells.csv column (named as a hex metric).
+bool has_cell_column(std::string_view metric) { return hex_metric_from_name(metric).has_value(); }
+
+// The Verdict metrics of a surface mesh's quads and triangles, one block per
+// kind present, each with its summaries (summarize_cell_block; the volume
+// kinds are summarised as they are computed: summarize_non_hex_blocks). A
+// block keeps every column until keep_cell_metric_columns (the surface
+// warnings read its areas). Its inverted and flat counts are the quality
+// field's (quality_field.h: against the plane of a planar mesh, else by
+// orientation against the neighbours).
+std::vector<SummarizedCellBlock> summarize_surface_blocks(const Mesh& mesh, const QualityField& field,
                                                           const SurfaceOrientation& surface) {
-  std::vector<CellBlockMetricField> out;
-  if (!mesh.tets.empty()) out.push_back(compute_tet_block_metrics(mesh.points, mesh.tets));
-  if (!mesh.wedges.empty()) out.push_back(compute_wedge_block_metrics(mesh.points, mesh.wedges));
-  if (!mesh.pyramids.empty()) out.push_back(compute_pyramid_block_metrics(mesh.points, mesh.pyramids));
+  std::vector<SummarizedCellBlock> out;
   std::size_t first = static_cast<std::size_t>(num_volume_cells(mesh)) - field.num_hexes;
   const auto surface_block = [&](CellBlockMetricField block) {
     block.num_inverted = block.num_flat = 0;
@@ -72,7 +77,9 @@ std::vector<CellBlockMetricField> compute_non_hex_metrics(const Mesh& mesh, cons
       block.num_flat += block.validity[c] == CellValidity::flat;
     }
     first += static_cast<std::size_t>(block.count);
-    out.push_back(std::move(block));
+    SummarizedCellBlock& summarized = out.emplace_back();
+    summarized.summaries = summarize_cell_block(block);
+    summarized.field = std::move(block);
   };
   if (!mesh.quads.empty()) surface_block(compute_quad_block_metrics(mesh.points, mesh.quads, surface.plane_normal));
   if (!mesh.triangles.empty())
@@ -155,11 +162,13 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
   a.composition = compute_cell_composition(a.mesh);
   // Beside the overlap stage: the structure (the singularity graph: one
   // sequential pass over the edges) always, and on meshes up to
-  // kMetricsBesideOverlapMaxHexes the metrics and their summaries; each is
+  // kMetricsBesideOverlapMaxCells the metrics and their summaries; each is
   // listed as a concurrent stage. Beside it, the metrics do not draw the
   // progress bar (the overlap stage does).
-  const bool metrics_beside = options.overlap && !is_surface && a.mesh.hexes.size() <= kMetricsBesideOverlapMaxHexes;
+  const bool metrics_beside =
+      options.overlap && !is_surface && a.field.cell_scaled_jacobian.size() <= kMetricsBesideOverlapMaxCells;
   std::vector<MetricSummary> metric_summaries;
+  std::vector<SummarizedCellBlock> non_hex_blocks;
   std::vector<KindQualitySummary> by_kind;
   double structure_seconds = 0, metrics_seconds = 0, metric_summaries_seconds = 0;
   // A surface mesh's structure and overlap are not computed this release
@@ -174,11 +183,16 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
   });
   const auto metrics = timed(metrics_seconds, [&] {
     a.metrics = compute_hex_metrics(a.mesh, options.metrics, metrics_beside ? progress::Reporting::silent : progress::Reporting::report);
-    a.cell_metrics = compute_non_hex_metrics(a.mesh, a.field, surface);
+    // The volume kinds' metrics are summarised as they are computed (one
+    // column at a time), keeping only the cells.csv columns.
+    non_hex_blocks = is_surface ? summarize_surface_blocks(a.mesh, a.field, surface)
+                                : summarize_non_hex_blocks(a.mesh, a.field, has_cell_column);
   });
   const auto summarize_metrics = timed(metric_summaries_seconds, [&] {
     metric_summaries = summarize_hex_metrics(a.metrics);
-    by_kind = summarize_by_kind(a.mesh, a.field, metric_summaries, a.cell_metrics);
+    by_kind = summarize_by_kind(a.mesh, a.field, metric_summaries, non_hex_blocks);
+    a.cell_metrics.clear();
+    for (SummarizedCellBlock& block : non_hex_blocks) a.cell_metrics.push_back(std::move(block.field));
     if (is_surface) add_surface_warnings(a, options);
     keep_cell_metric_columns(a.cell_metrics);
   });

@@ -1,5 +1,7 @@
 #include "hqview/quality/cell_metric_field.h"
 
+#include <algorithm>
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -14,6 +16,14 @@ namespace {
 
 constexpr std::size_t kGrain = 1024;
 
+// Metrics computed per pass of summarize_cell_block_metrics: that many
+// columns (8 bytes per cell each) alive at once beside the kept ones.
+constexpr int kMetricsPerPass = 4;
+
+// The corner values a cell of kind K has (a pyramid: its 4 base corners).
+template <CellKind K>
+constexpr int kNumCornerValues = static_cast<int>(CellKindTable<K>::corner_frames.size());
+
 template <typename Body>
 void for_each_cell(std::size_t count, const Body& body) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -21,51 +31,152 @@ void for_each_cell(std::size_t count, const Body& body) {
   });
 }
 
-// What the block loop needs of a kind: its metric table and kernels.
-template <std::size_t N, int M, class Info, class Size, class Metrics, class Corners, class Orient>
-CellBlockMetricField compute_block(CellKind kind, std::span<const Vec3> points,
-                                   std::span<const std::array<Index, N>> cells, const Info& info, const Size& size,
-                                   const Metrics& metrics, const Corners& corners, const Orient& orient) {
+// The kernels of one kind: its metric table, its Verdict size (the
+// reference of its size metrics), every metric at once or one by one (the
+// same values: each kind's all-at-once kernel is its one-metric kernel in a
+// loop), its corner values and validity (surface kinds against `normal`).
+template <CellKind K>
+struct BlockKernels;
+template <>
+struct BlockKernels<CellKind::tet> {
+  using Corners = TetCorners;
+  static constexpr int num_metrics = kNumTetMetrics;
+  static std::string_view name(int m) { return tet_metric_info(TetMetric(m)).name; }
+  static double size(const Corners& p) { return tet_volume(p); }
+  static auto metrics(const Corners& p, double average) { return tet_metrics(p, average); }
+  static double metric(int m, const Corners& p, double average) { return tet_metric(TetMetric(m), p, average); }
+  static auto corners(const Corners& p, const std::optional<Vec3>&) { return tet_corner_scaled_jacobians(p); }
+  static CellValidity validity(const Corners& p, const std::optional<Vec3>&) { return tet_validity(p); }
+};
+template <>
+struct BlockKernels<CellKind::wedge> {
+  using Corners = WedgeCorners;
+  static constexpr int num_metrics = kNumWedgeMetrics;
+  static std::string_view name(int m) { return wedge_metric_info(WedgeMetric(m)).name; }
+  static double size(const Corners& p) { return wedge_metric(WedgeMetric::volume, p); }
+  static auto metrics(const Corners& p, double average) { return wedge_metrics(p, average); }
+  static double metric(int m, const Corners& p, double average) { return wedge_metric(WedgeMetric(m), p, average); }
+  static auto corners(const Corners& p, const std::optional<Vec3>&) { return wedge_corner_scaled_jacobians(p); }
+  static CellValidity validity(const Corners& p, const std::optional<Vec3>&) { return wedge_validity(p); }
+};
+template <>
+struct BlockKernels<CellKind::pyramid> {
+  using Corners = PyramidCorners;
+  static constexpr int num_metrics = kNumPyramidMetrics;
+  static std::string_view name(int m) { return pyramid_metric_info(PyramidMetric(m)).name; }
+  static double size(const Corners& p) { return pyramid_metric(PyramidMetric::volume, p); }
+  static auto metrics(const Corners& p, double average) { return pyramid_metrics(p, average); }
+  static double metric(int m, const Corners& p, double average) { return pyramid_metric(PyramidMetric(m), p, average); }
+  static auto corners(const Corners& p, const std::optional<Vec3>&) { return pyramid_corner_scaled_jacobians(p); }
+  static CellValidity validity(const Corners& p, const std::optional<Vec3>&) { return pyramid_validity(p); }
+};
+template <>
+struct BlockKernels<CellKind::quad> {
+  using Corners = QuadCorners;
+  static constexpr int num_metrics = kNumQuadMetrics;
+  static std::string_view name(int m) { return quad_metric_info(QuadMetric(m)).name; }
+  static double size(const Corners& p) { return quad_metric(QuadMetric::area, p, 0.0); }
+  static auto metrics(const Corners& p, double average) { return quad_metrics(p, average); }
+  static double metric(int m, const Corners& p, double average) { return quad_metric(QuadMetric(m), p, average); }
+  static auto corners(const Corners& p, const std::optional<Vec3>& n) { return quad_corner_scaled_jacobians(p, n); }
+  static CellValidity validity(const Corners& p, const std::optional<Vec3>& n) { return quad_validity(p, n); }
+};
+template <>
+struct BlockKernels<CellKind::triangle> {
+  using Corners = TriangleCorners;
+  static constexpr int num_metrics = kNumTriangleMetrics;
+  static std::string_view name(int m) { return triangle_metric_info(TriangleMetric(m)).name; }
+  static double size(const Corners& p) { return triangle_area(p); }
+  static auto metrics(const Corners& p, double average) { return triangle_metrics(p, average); }
+  static double metric(int m, const Corners& p, double average) {
+    return triangle_metric(TriangleMetric(m), p, average);
+  }
+  static auto corners(const Corners& p, const std::optional<Vec3>& n) { return triangle_corner_scaled_jacobians(p, n); }
+  static CellValidity validity(const Corners& p, const std::optional<Vec3>& n) { return triangle_validity(p, n); }
+};
+
+template <CellKind K>
+using BlockCells = std::span<const std::array<Index, CellKindTable<K>::num_corners>>;
+
+template <CellKind K>
+typename BlockKernels<K>::Corners corners_of(std::span<const Vec3> points, BlockCells<K> cells, std::size_t c) {
+  typename BlockKernels<K>::Corners p;
+  for (std::size_t i = 0; i < p.size(); ++i) p[i] = points[static_cast<std::size_t>(cells[c][i])];
+  return p;
+}
+
+// The block's count, names and mean size (pass 1: the sizes, summed in id
+// order: the same bytes for any thread count; the size metrics need it
+// first); values left empty.
+template <CellKind K>
+CellBlockMetricField start_block(std::span<const Vec3> points, BlockCells<K> cells) {
+  using Kernels = BlockKernels<K>;
   const std::size_t n = cells.size();
   CellBlockMetricField field;
-  field.kind = kind;
+  field.kind = K;
   field.count = static_cast<std::int64_t>(n);
-  for (int m = 0; m < M; ++m) field.names.push_back(info(m));
-  field.values.assign(M, std::vector<double>(n));
-  auto corners_of = [&](std::size_t c) {
-    std::array<Vec3, N> p;
-    for (std::size_t i = 0; i < N; ++i) p[i] = points[static_cast<std::size_t>(cells[c][i])];
-    return p;
-  };
-
-  // Pass 1: the sizes and their mean (the size metrics need it first).
+  for (int m = 0; m < Kernels::num_metrics; ++m) field.names.push_back(Kernels::name(m));
+  field.values.resize(Kernels::num_metrics);
+  field.corners_per_cell = kNumCornerValues<K>;
   std::vector<double> sizes(n);
-  for_each_cell(n, [&](std::size_t c) { sizes[c] = size(corners_of(c)); });
+  for_each_cell(n, [&](std::size_t c) { sizes[c] = Kernels::size(corners_of<K>(points, cells, c)); });
   double sum = 0;
-  for (double s : sizes) sum += s;  // in id order: the same bytes for any thread count
+  for (double s : sizes) sum += s;
   field.average_size = n > 0 ? sum / static_cast<double>(n) : 0.0;
+  return field;
+}
 
+template <CellKind K>
+CellBlockMetricField compute_block(std::span<const Vec3> points, BlockCells<K> cells,
+                                   const std::optional<Vec3>& normal = std::nullopt) {
+  using Kernels = BlockKernels<K>;
+  constexpr int M = Kernels::num_metrics;
+  constexpr int C = kNumCornerValues<K>;
+  const std::size_t n = cells.size();
+  CellBlockMetricField field = start_block<K>(points, cells);
+  for (std::vector<double>& v : field.values) v.resize(n);
   // Pass 2: every metric, the corners and the orientation of each cell.
-  using CornerValues = decltype(corners(std::array<Vec3, N>{}));
-  constexpr int C = static_cast<int>(std::tuple_size_v<decltype(CornerValues::value)>);
-  field.corners_per_cell = C;
   field.corner_scaled_jacobian.resize(n * C);
   field.corner_degenerate_mask.resize(n);
   field.validity.resize(n);
   for_each_cell(n, [&](std::size_t c) {
-    const auto p = corners_of(c);
-    const auto v = metrics(p, field.average_size);
+    const auto p = corners_of<K>(points, cells, c);
+    const auto v = Kernels::metrics(p, field.average_size);
     for (int m = 0; m < M; ++m) field.values[static_cast<std::size_t>(m)][c] = v[static_cast<std::size_t>(m)];
-    const auto k = corners(p);
+    const auto k = Kernels::corners(p, normal);
     for (int i = 0; i < C; ++i) field.corner_scaled_jacobian[c * C + static_cast<std::size_t>(i)] = k.value[i];
     field.corner_degenerate_mask[c] = k.degenerate_mask;
-    field.validity[c] = orient(p);
+    field.validity[c] = Kernels::validity(p, normal);
   });
   for (CellValidity o : field.validity) {
     field.num_inverted += o == CellValidity::inverted;
     field.num_flat += o == CellValidity::flat;
   }
   return field;
+}
+
+// The histogram range of a metric's statistics: [-1, 1] for
+// scaled_jacobian, [min, max] otherwise.
+StatisticsOptions metric_statistics_options(std::string_view name) {
+  StatisticsOptions options;
+  if (name == "scaled_jacobian") {
+    options.histogram_min = -1.0;
+    options.histogram_max = 1.0;
+  }
+  return options;
+}
+
+// The statistics of every corner value, degenerate corners left out
+// (histogram over [-1, 1]).
+CellMetricSummary corner_summary(std::span<const double> values, std::span<const std::uint8_t> masks, int C) {
+  const auto per_cell = static_cast<std::size_t>(C);
+  std::vector<std::uint8_t> degenerate(values.size());
+  for (std::size_t c = 0; c < masks.size(); ++c)
+    for (std::size_t i = 0; i < per_cell; ++i) degenerate[c * per_cell + i] = (masks[c] >> i) & 1u;
+  StatisticsOptions options;
+  options.histogram_min = -1.0;
+  options.histogram_max = 1.0;
+  return {"corner_scaled_jacobian", compute_statistics(values, options, degenerate)};
 }
 
 }  // namespace
@@ -78,76 +189,86 @@ const std::vector<double>* CellBlockMetricField::of(std::string_view name) const
 
 CellBlockMetricField compute_tet_block_metrics(std::span<const Vec3> points,
                                                std::span<const std::array<Index, 4>> tets) {
-  return compute_block<4, kNumTetMetrics>(
-      CellKind::tet, points, tets, [](int m) { return tet_metric_info(TetMetric(m)).name; },
-      [](const TetCorners& p) { return tet_volume(p); },
-      [](const TetCorners& p, double average) { return tet_metrics(p, average); },
-      [](const TetCorners& p) { return tet_corner_scaled_jacobians(p); },
-      [](const TetCorners& p) { return tet_validity(p); });
+  return compute_block<CellKind::tet>(points, tets);
 }
 
 CellBlockMetricField compute_wedge_block_metrics(std::span<const Vec3> points,
                                                  std::span<const std::array<Index, 6>> wedges) {
-  return compute_block<6, kNumWedgeMetrics>(
-      CellKind::wedge, points, wedges, [](int m) { return wedge_metric_info(WedgeMetric(m)).name; },
-      [](const WedgeCorners& p) { return wedge_metric(WedgeMetric::volume, p); },
-      [](const WedgeCorners& p, double average) { return wedge_metrics(p, average); },
-      [](const WedgeCorners& p) { return wedge_corner_scaled_jacobians(p); },
-      [](const WedgeCorners& p) { return wedge_validity(p); });
+  return compute_block<CellKind::wedge>(points, wedges);
 }
 
 CellBlockMetricField compute_pyramid_block_metrics(std::span<const Vec3> points,
                                                    std::span<const std::array<Index, 5>> pyramids) {
-  return compute_block<5, kNumPyramidMetrics>(
-      CellKind::pyramid, points, pyramids, [](int m) { return pyramid_metric_info(PyramidMetric(m)).name; },
-      [](const PyramidCorners& p) { return pyramid_metric(PyramidMetric::volume, p); },
-      [](const PyramidCorners& p, double average) { return pyramid_metrics(p, average); },
-      [](const PyramidCorners& p) { return pyramid_corner_scaled_jacobians(p); },
-      [](const PyramidCorners& p) { return pyramid_validity(p); });
+  return compute_block<CellKind::pyramid>(points, pyramids);
 }
 
 CellBlockMetricField compute_quad_block_metrics(std::span<const Vec3> points,
                                                 std::span<const std::array<Index, 4>> quads,
                                                 const std::optional<Vec3>& normal) {
-  return compute_block<4, kNumQuadMetrics>(
-      CellKind::quad, points, quads, [](int m) { return quad_metric_info(QuadMetric(m)).name; },
-      [](const QuadCorners& p) { return quad_metric(QuadMetric::area, p, 0.0); },
-      [](const QuadCorners& p, double average) { return quad_metrics(p, average); },
-      [&](const QuadCorners& p) { return quad_corner_scaled_jacobians(p, normal); },
-      [&](const QuadCorners& p) { return quad_validity(p, normal); });
+  return compute_block<CellKind::quad>(points, quads, normal);
 }
 
 CellBlockMetricField compute_triangle_block_metrics(std::span<const Vec3> points,
                                                     std::span<const std::array<Index, 3>> triangles,
                                                     const std::optional<Vec3>& normal) {
-  return compute_block<3, kNumTriangleMetrics>(
-      CellKind::triangle, points, triangles, [](int m) { return triangle_metric_info(TriangleMetric(m)).name; },
-      [](const TriangleCorners& p) { return triangle_area(p); },
-      [](const TriangleCorners& p, double average) { return triangle_metrics(p, average); },
-      [&](const TriangleCorners& p) { return triangle_corner_scaled_jacobians(p, normal); },
-      [&](const TriangleCorners& p) { return triangle_validity(p, normal); });
+  return compute_block<CellKind::triangle>(points, triangles, normal);
 }
+
+template <CellKind K>
+SummarizedCellBlock summarize_cell_block_metrics(std::span<const Vec3> points,
+                                                 std::span<const std::array<Index, CellKindTable<K>::num_corners>> cells,
+                                                 const BlockCornerValues& corners,
+                                                 const std::function<bool(std::string_view)>& keep) {
+  using Kernels = BlockKernels<K>;
+  constexpr int M = Kernels::num_metrics;
+  const std::size_t n = cells.size();
+  SummarizedCellBlock out;
+  out.field = start_block<K>(points, cells);
+  CellBlockMetricField& field = out.field;
+  for (CellValidity o : corners.validity) {
+    field.num_inverted += o == CellValidity::inverted;
+    field.num_flat += o == CellValidity::flat;
+  }
+  out.summaries.resize(M + 1);
+  // kMetricsPerPass metrics per pass over the cells (one gather of each
+  // cell's corners for all of them), then their summaries (one task each).
+  for (int first = 0; first < M; first += kMetricsPerPass) {
+    const int count = std::min(kMetricsPerPass, M - first);
+    std::array<std::vector<double>, kMetricsPerPass> columns;
+    for (int j = 0; j < count; ++j) columns[static_cast<std::size_t>(j)].resize(n);
+    for_each_cell(n, [&](std::size_t c) {
+      const auto p = corners_of<K>(points, cells, c);
+      for (int j = 0; j < count; ++j)
+        columns[static_cast<std::size_t>(j)][c] = Kernels::metric(first + j, p, field.average_size);
+    });
+    tbb::parallel_for(0, count, [&](int j) {
+      const auto m = static_cast<std::size_t>(first + j);
+      std::vector<double>& column = columns[static_cast<std::size_t>(j)];
+      out.summaries[m] = {std::string(field.names[m]), compute_statistics(column, metric_statistics_options(field.names[m]))};
+      if (keep(field.names[m])) field.values[m] = std::move(column);
+    });
+  }
+  out.summaries[M] = corner_summary(corners.scaled_jacobian, corners.degenerate_mask, kNumCornerValues<K>);
+  return out;
+}
+
+#define HQ_INSTANTIATE_SUMMARIZE(K)                                                                               \
+  template SummarizedCellBlock summarize_cell_block_metrics<K>(                                                   \
+      std::span<const Vec3>, std::span<const std::array<Index, CellKindTable<K>::num_corners>>,                   \
+      const BlockCornerValues&, const std::function<bool(std::string_view)>&);
+HQ_INSTANTIATE_SUMMARIZE(CellKind::tet)
+HQ_INSTANTIATE_SUMMARIZE(CellKind::wedge)
+HQ_INSTANTIATE_SUMMARIZE(CellKind::pyramid)
+HQ_INSTANTIATE_SUMMARIZE(CellKind::quad)
+HQ_INSTANTIATE_SUMMARIZE(CellKind::triangle)
+#undef HQ_INSTANTIATE_SUMMARIZE
 
 std::vector<CellMetricSummary> summarize_cell_block(const CellBlockMetricField& field) {
   std::vector<CellMetricSummary> out;
-  for (std::size_t m = 0; m < field.names.size(); ++m) {
-    StatisticsOptions options;
-    if (field.names[m] == "scaled_jacobian") {
-      options.histogram_min = -1.0;
-      options.histogram_max = 1.0;
-    }
-    out.push_back({std::string(field.names[m]), compute_statistics(field.values[m], options)});
-  }
-  // Every corner value, degenerate corners left out.
-  const std::size_t C = static_cast<std::size_t>(field.corners_per_cell);
-  std::vector<std::uint8_t> degenerate(field.corner_scaled_jacobian.size());
-  for (std::size_t c = 0; c < field.corner_degenerate_mask.size(); ++c)
-    for (std::size_t i = 0; i < C; ++i) degenerate[c * C + i] = (field.corner_degenerate_mask[c] >> i) & 1u;
-  StatisticsOptions corner_options;
-  corner_options.histogram_min = -1.0;
-  corner_options.histogram_max = 1.0;
-  out.push_back(
-      {"corner_scaled_jacobian", compute_statistics(field.corner_scaled_jacobian, corner_options, degenerate)});
+  for (std::size_t m = 0; m < field.names.size(); ++m)
+    out.push_back(
+        {std::string(field.names[m]), compute_statistics(field.values[m], metric_statistics_options(field.names[m]))});
+  out.push_back(corner_summary(field.corner_scaled_jacobian, field.corner_degenerate_mask, field.corners_per_cell));
   return out;
 }
 

@@ -176,9 +176,30 @@ std::vector<std::string_view> volume_kind_metric_names(CellKind kind) {
   return names;
 }
 
+std::vector<SummarizedCellBlock> summarize_non_hex_blocks(const Mesh& mesh, const QualityField& field,
+                                                          const std::function<bool(std::string_view)>& keep) {
+  std::vector<SummarizedCellBlock> out;
+  std::size_t first_cell = field.num_hexes;
+  for_each_block(mesh, [&](auto kind, const auto& cells) {
+    if constexpr (kind() != CellKind::hex && CellKindTable<kind()>::dimension == 3) {
+      const std::size_t n = cells.size();
+      if (n > 0) {
+        constexpr std::size_t C = kCornerValuesPerCell<kind()>;
+        const BlockCornerValues corners{
+            std::span<const double>(field.corner_scaled_jacobian).subspan(field.corner_begin[static_cast<std::size_t>(kind())], C * n),
+            std::span<const std::uint8_t>(field.corner_degenerate_mask).subspan(first_cell, n),
+            std::span<const CellValidity>(field.non_hex_validity).subspan(first_cell - field.num_hexes, n)};
+        out.push_back(summarize_cell_block_metrics<kind()>(mesh.points, cells, corners, keep));
+      }
+      first_cell += n;
+    }
+  });
+  return out;
+}
+
 std::vector<KindQualitySummary> summarize_by_kind(const Mesh& mesh, const QualityField& field,
                                                   const std::vector<MetricSummary>& hex_metrics,
-                                                  const std::vector<CellBlockMetricField>& blocks) {
+                                                  const std::vector<SummarizedCellBlock>& blocks) {
   // A volume mesh lists the volume kinds, a surface mesh (no volume cell,
   // some quad or triangle) the surface kinds.
   const bool is_surface = is_surface_mesh(mesh);
@@ -206,14 +227,14 @@ std::vector<KindQualitySummary> summarize_by_kind(const Mesh& mesh, const Qualit
         corners.stats = compute_statistics(std::span<const double>(field.corner_scaled_jacobian).first(8 * nh), options, flags);
       } else {
         const auto block = std::find_if(blocks.begin(), blocks.end(),
-                                        [&](const CellBlockMetricField& b) { return b.kind == kind(); });
+                                        [&](const SummarizedCellBlock& b) { return b.field.kind == kind(); });
         if (block == blocks.end()) return;
-        k.num_inverted = block->num_inverted;
-        k.num_flat = block->num_flat;
-        for (CellMetricSummary& m : summarize_cell_block(*block)) {
+        k.num_inverted = block->field.num_inverted;
+        k.num_flat = block->field.num_flat;
+        for (const CellMetricSummary& m : block->summaries) {
           MetricSummary& s = k.metrics.emplace_back();
-          s.name = std::move(m.name);
-          s.stats = std::move(m.stats);
+          s.name = m.name;
+          s.stats = m.stats;
         }
       }
     }
