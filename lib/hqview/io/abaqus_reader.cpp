@@ -13,6 +13,7 @@
 #include "hqview/core/text.h"
 #include "hqview/core/types.h"
 #include "hqview/io/cell_reading.h"
+#include "hqview/mesh/cell_faces.h"
 #include "hqview/io/text_scanner.h"
 
 namespace hq {
@@ -243,13 +244,13 @@ class AbaqusParser {
 
   LoadedMesh build() {
     const SkippedCells skipped(skipped_by_type_);
-    if (detail::num_volume_cells(mesh_) == 0)
+    if (num_volume_cells(mesh_) == 0)
       fail(0, "no volume elements (*ELEMENT, TYPE=C3D8, C3D8R, C3D4, C3D6, C3D5 ...)" +
                   (skipped.count > 0 ? ": " + skipped.counted("element") : std::string()));
     // Abaqus declares no counts: the budget is checked once the file is read
     // (what reading allocates is bounded by the file's size), before the analysis.
     check_mesh_memory(limits_, name_, 0, bytes_.size(), static_cast<std::int64_t>(points_.size()),
-                      detail::num_volume_cells(mesh_));
+                      num_volume_cells(mesh_));
     LoadedMesh loaded;
     loaded.format = "abaqus";
     if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(name_, "element"));

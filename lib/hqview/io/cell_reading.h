@@ -117,7 +117,4 @@ std::string cell_kind_noun(CellKind kind, std::int64_t count);
 // than hexahedra, "" when there are none.
 std::string non_hex_volume_counts(const Mesh& mesh);
 
-// The number of volume cells (hexahedra, tetrahedra, wedges, pyramids).
-std::int64_t num_volume_cells(const Mesh& mesh);
-
 }  // namespace hq::detail

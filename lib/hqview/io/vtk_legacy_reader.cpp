@@ -15,6 +15,7 @@
 
 #include "hqview/core/types.h"
 #include "hqview/io/cell_reading.h"
+#include "hqview/mesh/cell_faces.h"
 #include "hqview/io/read_limits.h"
 #include "hqview/io/text_scanner.h"
 #include "hqview/io/vtk_cells.h"
@@ -651,9 +652,11 @@ class VtkParser {
     }
 
     const SkippedCells skipped(skipped_by_type);
-    if (detail::num_volume_cells(loaded.mesh) == 0)
+    if (num_volume_cells(loaded.mesh) == 0)
       s_.fail_at(0, "no volume cells" + (skipped.count > 0 ? " (" + skipped.counted("cell") + ")" : std::string()));
-    if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(s_.name(), "cell"));
+    if (skipped.count > 0)
+      (SkippedCells::all_types(skipped_by_type, vtk::is_lower_dimensional_type) ? loaded.notes : loaded.warnings)
+          .push_back(skipped.warning(s_.name(), "cell"));
     notes.append_warnings(s_.name(), "cell", loaded.warnings);
     if (!mislabelled_cells.empty()) {
       constexpr std::size_t kShown = 5;
