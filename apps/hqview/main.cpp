@@ -333,8 +333,10 @@ int run_analyze(const AnalyzeArgs& args) {
   }
   hq::AnalyzeResult result = hq::analyze(options, renderer.get());
   result.model.analysis.timings.insert(result.model.analysis.timings.begin(), setup.begin(), setup.end());
-  if (!args.quiet)
+  if (!args.quiet) {
+    for (const std::string& n : result.model.analysis.notes) std::cerr << "hqview: note: " << shown(n) << "\n";
     for (const std::string& w : result.model.analysis.warnings) std::cerr << "hqview: warning: " << shown(w) << "\n";
+  }
   hq::write_bundle(result.model, result.document, result.images, output, bundle);
   terminal.reset();  // the last stage line stays; the running line is cleared
   if (args.json == "-") std::cout << hq::report_json_text(result.document) << std::flush;

@@ -7,12 +7,16 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <string>
+#include <tuple>
 
 #include "hqview/analysis/compare_alignment.h"
 #include "hqview/io/mesh_reader.h"
+#include "hqview/quality/cell_volume.h"
 #include "hqview/render/upright.h"
+#include "io/gmsh_run.h"
 #include "support/fixtures.h"
 
 namespace hq {
@@ -129,6 +133,140 @@ TEST(RestingUp, NoBoundaryOrNoVolumeIsTheDefault) {
   HexMesh squashed = test::box_grid(2, 2, 2);
   for (Vec3& p : squashed.points) p.z = 0.0;
   EXPECT_FALSE(choose_resting_up(squashed, build_topology(squashed)).from_data);
+}
+
+// ---- Hybrid boundaries: the rule reads every boundary face kind ----------
+
+// Corner i of the unit voxel at `lo` (VTK hex order: the bottom 0-3 counter-
+// clockwise from above, the top 4-7 over them).
+Vec3 voxel_corner(const Vec3& lo, int i) {
+  static constexpr std::array<std::array<int, 3>, 8> kOffsets = {
+      {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}};
+  return lo + Vec3{double(kOffsets[i][0]), double(kOffsets[i][1]), double(kOffsets[i][2])};
+}
+
+// `mesh` with the hexes that `to_tets` picks split into the 6 Kuhn tets of
+// the voxel (conforming between such voxels; against a hex a quad meets two
+// triangles: a non-conforming interface, kept out of the boundary) and those
+// `to_wedges` picks into 2 wedges over the bottom's 0-2 diagonal. Every cell
+// made positive (its corners reordered when Verdict's volume is negative).
+HexMesh split(const HexMesh& mesh, const std::function<bool(const Vec3&)>& to_tets,
+              const std::function<bool(const Vec3&)>& to_wedges) {
+  HexMesh out;
+  out.points = mesh.points;
+  const auto at = [&](Index v) { return out.points[static_cast<std::size_t>(v)]; };
+  for (const Hex& h : mesh.hexes) {
+    const Vec3 lo = at(h[0]);
+    if (to_tets(lo)) {
+      // The path 0 -> 0 + e_a -> 0 + e_a + e_b -> 6 for each order (a, b, c) of the axes.
+      static constexpr std::array<std::array<int, 2>, 6> kPaths = {
+          {{1, 2}, {1, 5}, {3, 2}, {3, 7}, {4, 5}, {4, 7}}};
+      for (const auto& [a, b] : kPaths) {
+        std::array<Index, 4> t = {h[0], h[static_cast<std::size_t>(a)], h[static_cast<std::size_t>(b)], h[6]};
+        if (cell_volume<CellKind::tet>({at(t[0]), at(t[1]), at(t[2]), at(t[3])}) < 0) std::swap(t[1], t[2]);
+        out.tets.push_back(t);
+      }
+    } else if (to_wedges(lo)) {
+      for (const std::array<int, 6>& w : {std::array<int, 6>{0, 1, 2, 4, 5, 6}, std::array<int, 6>{0, 2, 3, 4, 6, 7}}) {
+        std::array<Index, 6> c;
+        for (int i = 0; i < 6; ++i) c[static_cast<std::size_t>(i)] = h[static_cast<std::size_t>(w[static_cast<std::size_t>(i)])];
+        std::array<Vec3, 6> p;
+        for (int i = 0; i < 6; ++i) p[static_cast<std::size_t>(i)] = at(c[static_cast<std::size_t>(i)]);
+        if (cell_volume<CellKind::wedge>(p) < 0) {
+          std::swap(c[1], c[2]);
+          std::swap(c[4], c[5]);
+        }
+        out.wedges.push_back(c);
+      }
+    } else {
+      out.hexes.push_back(h);
+    }
+  }
+  return out;
+}
+
+// The lamp with its column in tets, and the dustpan with its lip in wedges.
+HexMesh hybrid_lamp() {
+  return split(lamp(), [](const Vec3& lo) { return lo.z >= 1; }, [](const Vec3&) { return false; });
+}
+HexMesh hybrid_dustpan() {
+  return split(dustpan(), [](const Vec3&) { return false; }, [](const Vec3& lo) { return lo.z >= 1; });
+}
+
+TEST(RestingUp, HybridLampAndDustpanRestAsTheirHexCopiesUnderEveryTurn) {
+  for (const auto& [name, hex, hybrid] : {std::tuple{"lamp", lamp(), hybrid_lamp()},
+                                          std::tuple{"dustpan", dustpan(), hybrid_dustpan()}}) {
+    // The hybrid boundary: hex quads, and the column's triangles or the lip's
+    // wedge quads and triangles; the interfaces are non-conforming, not boundary.
+    const Topology topology = build_topology(hybrid);
+    EXPECT_FALSE(topology.boundary_faces.empty()) << name;
+    EXPECT_FALSE(topology.boundary_triangles.empty()) << name;
+    EXPECT_EQ(topology.non_conforming_faces.size(), name == std::string("lamp") ? 4u : 6u) << name;
+    // Every candidate as on the all-hex solid: the same support polygons
+    // (no vertex was added) and the same enclosed solid.
+    const RestingUp a = choose_resting_up(hex, build_topology(hex)), b = choose_resting_up(hybrid, topology);
+    EXPECT_EQ(b.up, a.up) << name;
+    ASSERT_EQ(b.candidates.size(), 6u);
+    for (std::size_t i = 0; i < 6; ++i) {
+      EXPECT_DOUBLE_EQ(b.candidates[i].support_area, a.candidates[i].support_area) << name << " " << i;
+      EXPECT_NEAR(b.candidates[i].tip, a.candidates[i].tip, 1e-12) << name << " " << i;
+    }
+    for (const Matrix3& rotation : axis_rotations())
+      for (const double mirror : {1.0, -1.0}) {
+        Matrix3 m = rotation;
+        for (double& x : m[0]) x *= mirror;
+        EXPECT_EQ(choose(transformed(hybrid, m)), exact(m * Vec3{0, 0, 1}))
+            << name << " turned to " << up_axis_name(exact(m * Vec3{0, 0, 1})) << " mirror " << mirror;
+      }
+  }
+  // Read without its tets the lamp would be its slab alone: upside down it
+  // would rest on the slab's 6 x 6 top, not on the column's 2 x 2 end.
+  EXPECT_DOUBLE_EQ(choose_resting_up(hybrid_lamp(), build_topology(hybrid_lamp())).candidates[3].support_area, 4.0);
+}
+
+// A Gmsh hex-tet tower (the block [0,1.5]^2 x [0,1.5] of 27 recombined hexes,
+// an unstructured tet roof to z = 2.7, pyramids between), as read and
+// turned: the six candidates by hand. It stands on +z on 1.5 x 1.5 = 2.25
+// (centre (0.75, 0.75, 1.35): tip 0.75 / 1.35) and lies on a side on
+// 1.5 x 2.7 = 4.05 (tip 0.75 / 0.75): 4.05 / 2.25 = 1.8 is more than the
+// prior margin 1.5, so auto lays it on +y, as it lays the all-hex box_grid(4,
+// 2, 4) on its larger face: the rule's choice for any slender solid, not a
+// defect of hybrid boundaries (the all-hex tower gives the same candidates).
+TEST(RestingUp, GmshHexTetTowerCandidatesByHand) {
+  const test::TempDir dir("resting_up_tower");
+  const std::string block = R"(
+Point(1) = {0, 0, 0, 0.2};
+l[] = Extrude {1.5, 0, 0} { Point{1}; Layers{3}; };
+s[] = Extrude {0, 1.5, 0} { Line{l[1]}; Layers{3}; Recombine; };
+v[] = Extrude {0, 0, 1.5} { Surface{s[1]}; Layers{3}; Recombine; };
+)";
+  if (!test::run_gmsh(dir, block + "w[] = Extrude {0, 0, 1.2} { Surface{v[0]}; };\n", {"hybrid.msh"}) ||
+      !test::run_gmsh(dir, block + "w[] = Extrude {0, 0, 1.2} { Surface{v[0]}; Layers{2}; Recombine; };\n",
+                      {"hex.msh"}))
+    GTEST_SKIP() << "gmsh missing or failed";
+  const HexMesh hybrid = read_hex_mesh(dir.path() / "hybrid.msh").mesh;
+  const HexMesh hex = read_hex_mesh(dir.path() / "hex.msh").mesh;
+  ASSERT_EQ(hybrid.hexes.size(), 27u);
+  ASSERT_GT(hybrid.tets.size(), 100u);
+  ASSERT_GT(hybrid.pyramids.size(), 0u);
+  ASSERT_EQ(hex.hexes.size(), 45u);
+  const RestingUp a = choose_resting_up(hex, build_topology(hex)), b = choose_resting_up(hybrid, build_topology(hybrid));
+  // +z +y +x -z -y -x: areas and tips by hand.
+  const std::array<double, 6> area = {2.25, 4.05, 4.05, 2.25, 4.05, 4.05};
+  const std::array<double, 6> tip = {0.75 / 1.35, 1.0, 1.0, 0.75 / 1.35, 1.0, 1.0};
+  for (const RestingUp* r : {&a, &b}) {
+    ASSERT_EQ(r->candidates.size(), 6u);
+    for (std::size_t i = 0; i < 6; ++i) {
+      EXPECT_NEAR(r->candidates[i].support_area, area[i], 1e-9) << i;
+      EXPECT_NEAR(r->candidates[i].tip, tip[i], 1e-9) << i;
+    }
+    EXPECT_EQ(r->up, (Vec3{0, 1, 0}));
+  }
+  // Turned so that the tower lies along x: it rests on -z... any side; the
+  // prior picks the first side in +z +y +x -z -y -x order, as for the hex copy.
+  const Matrix3 turn_y{{{0, 0, 1}, {0, 1, 0}, {-1, 0, 0}}};  // z -> x
+  EXPECT_EQ(choose(transformed(hybrid, turn_y)), choose(transformed(hex, turn_y)));
+  EXPECT_EQ(choose(transformed(hybrid, turn_y)), (Vec3{0, 0, 1}));
 }
 
 // bunny_in (z-up) and armadillo (y-up): "longest axis" and "heavier side

@@ -182,5 +182,87 @@ TEST(DiffReports, SideBySideHeadlineOfTwoReports) {
   EXPECT_TRUE(diff_reports(kBase, kWorse, {}, "", "").side_by_side.empty());
 }
 
+// An earlier HQView's report or index against a newer one: the keys only
+// the newer one writes are added keys, not values changed from null; a key
+// under a null parent (`compare: null`) that gets a number is a change.
+TEST(DiffReports, KeysOnOneSideOnlyAreAddedOrRemovedNotChanged) {
+  const char* old_report = R"({"schema_version": 2, "headline": {"num_vertices": 8, "num_hexes": 1},
+    "quality": {"num_inverted": 0}, "compare": null})";
+  const char* new_report = R"({"schema_version": 2, "headline": {"num_vertices": 8, "num_hexes": 1, "num_cells": 1,
+    "num_cells_by_kind": {"hex": 1, "tet": 0}, "hex_fraction": 1, "hex_volume_fraction": null},
+    "quality": {"num_inverted": 0}, "compare": {"mesh": {"num_vertices": 9}}})";
+  const DiffResult d = diff_reports(old_report, new_report, {}, "", "");
+  std::vector<std::string> added;
+  for (const DiffValue& v : d.added) added.push_back(v.key);
+  EXPECT_EQ(added, (std::vector<std::string>{"headline.hex_fraction", "headline.num_cells",
+                                             "headline.num_cells_by_kind.hex", "headline.num_cells_by_kind.tet"}));
+  ASSERT_EQ(d.changed.size(), 1u);  // compare was null
+  EXPECT_EQ(d.changed[0].key, "compare.mesh.num_vertices");
+  EXPECT_TRUE(d.removed.empty());
+  const std::string text = diff_text(d);
+  EXPECT_NE(text.find("added key: headline.num_cells = 1\n"), std::string::npos) << text;
+  EXPECT_EQ(text.find("headline.num_cells: "), std::string::npos) << text;  // not as a change
+  const std::string md = diff_markdown(d);
+  EXPECT_NE(md.find("1 values changed, 4 keys added"), std::string::npos) << md;
+  EXPECT_NE(md.find("### Keys on one side only"), std::string::npos) << md;
+  EXPECT_NE(md.find("- added: `headline.num_cells`\n"), std::string::npos) << md;
+  // The other way round: removed.
+  const DiffResult back = diff_reports(new_report, old_report, {}, "", "");
+  EXPECT_EQ(back.removed.size(), 4u);
+  EXPECT_TRUE(back.added.empty());
+  EXPECT_NE(diff_text(back).find("removed key: headline.num_cells_by_kind.tet = 0\n"), std::string::npos);
+
+  // Two indexes: the composition keys of every mesh, once per key with the
+  // number of meshes; a null composition key (a failed mesh) against a
+  // number stays a change.
+  const char* old_index = R"({"meshes": [
+    {"path": "a.mesh", "status": "ok", "bundle": "a", "headline": {"mesh.num_hexes": 8}},
+    {"path": "b.mesh", "status": "ok", "bundle": "b", "headline": {"mesh.num_hexes": 9, "headline.num_cells": null}}]})";
+  const char* new_index = R"({"meshes": [
+    {"path": "a.mesh", "status": "ok", "bundle": "a", "headline": {"mesh.num_hexes": 8, "headline.num_cells": 8, "headline.hex_fraction": 1}},
+    {"path": "b.mesh", "status": "ok", "bundle": "b", "headline": {"mesh.num_hexes": 9, "headline.num_cells": 9, "headline.hex_fraction": 1}}]})";
+  const DiffResult i = diff_reports(old_index, new_index, {}, "/none", "/none");
+  EXPECT_EQ(i.added.size(), 3u);  // a: two keys, b: hex_fraction
+  ASSERT_EQ(i.changed.size(), 1u);
+  EXPECT_EQ(i.changed[0].mesh, "b.mesh");
+  EXPECT_EQ(i.changed[0].key, "headline.num_cells");
+  const std::string itext = diff_text(i);
+  EXPECT_NE(itext.find("added key: headline.hex_fraction (2 meshes)\n"), std::string::npos) << itext;
+  EXPECT_NE(itext.find("added key: headline.num_cells (1 mesh)\n"), std::string::npos) << itext;
+  EXPECT_NE(diff_markdown(i).find("- added: `headline.hex_fraction` (2 meshes)"), std::string::npos);
+}
+
+// The side-by-side table of two hybrid reports gains the composition rows
+// (from headline), a lower hex fraction is worse; pure-hex reports keep
+// their 11 rows (tested above).
+TEST(DiffReports, SideBySideOfHybridReportsShowsTheComposition) {
+  const auto hybrid = [](int tets, double fraction, double volume_fraction) {
+    return std::string(R"({"schema_version": 2, "input": {"mesh": {"path": "/d/h.msh"}},
+      "headline": {"num_cells": )") + std::to_string(10 + tets) + R"(, "num_cells_by_kind": {"hex": 10, "tet": )" +
+           std::to_string(tets) + R"(, "wedge": 0, "pyramid": 4}, "hex_fraction": )" + std::to_string(fraction) +
+           R"(, "hex_volume_fraction": )" + std::to_string(volume_fraction) + R"(},
+      "mesh": {"num_vertices": 50, "num_hexes": 10}, "quality": {"scaled_jacobian": {"min": 0.5}}})";
+  };
+  const DiffResult d = diff_reports(hybrid(20, 0.25, 0.5), hybrid(26, 0.2, 0.5), {}, "", "");
+  ASSERT_EQ(d.side_by_side.size(), 1u);
+  const std::vector<CompareTableRow>& rows = d.side_by_side[0].rows;
+  ASSERT_EQ(rows.size(), 17u);
+  EXPECT_EQ(rows[2].label, "cells (every kind)");
+  EXPECT_EQ(rows[2].difference, "+6");
+  EXPECT_EQ(rows[3].label, "tetrahedra");
+  EXPECT_EQ(rows[3].mine, "20");
+  EXPECT_EQ(rows[3].theirs, "26");
+  EXPECT_EQ(rows[4].label, "wedges");
+  EXPECT_EQ(rows[4].difference, "0");
+  EXPECT_EQ(rows[5].label, "pyramids");
+  EXPECT_EQ(rows[6].label, "hex fraction (by count)");
+  EXPECT_EQ(rows[6].difference, "-0.05");
+  EXPECT_TRUE(rows[6].is_worse);
+  EXPECT_EQ(rows[7].label, "hex fraction (by volume)");
+  EXPECT_EQ(rows[7].difference, "0");
+  EXPECT_EQ(rows[11].label, "inverted cells");
+  EXPECT_NE(diff_markdown(d).find("| hex fraction (by count) | 0.25 | 0.2 | **-0.05** |"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace hq

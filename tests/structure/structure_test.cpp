@@ -6,9 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 
+#include "hqview/quality/cell_volume.h"
 #include "hqview/quality/hex_metrics.h"
 
 #include "hqview/io/mesh_reader.h"
@@ -80,6 +82,130 @@ TEST(Structure, GradationIsTheLargestVolumeRatioToAFaceNeighbour) {
   EXPECT_NEAR(s.cell_gradation[2], 4.0, 1e-12);
   EXPECT_EQ(s.num_gradation_above_2, 2);
   EXPECT_EQ(s.num_gradation_above_4, 0);  // strictly above
+}
+
+// ---- Hybrid meshes: size gradation across kinds, nodes at the interface ----
+
+// The point's id in `mesh`, added when new.
+Index point_id(Mesh& mesh, const Vec3& p) {
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    if (norm(mesh.points[i] - p) < 1e-12) return static_cast<Index>(i);
+  mesh.points.push_back(p);
+  return static_cast<Index>(mesh.points.size() - 1);
+}
+
+// Appends a cell of kind K over the given corner positions, reordered
+// (two corners of its first face swapped, and of its second for a wedge)
+// when Verdict's volume comes out negative.
+template <CellKind K>
+void add_cell(Mesh& mesh, std::array<Vec3, CellKindTable<K>::num_corners> p) {
+  if (cell_volume<K>(p) < 0) {
+    std::swap(p[1], p[2]);
+    if constexpr (K == CellKind::wedge) std::swap(p[4], p[5]);
+  }
+  std::array<Index, CellKindTable<K>::num_corners> ids;
+  for (std::size_t i = 0; i < p.size(); ++i) ids[i] = point_id(mesh, p[i]);
+  cell_block<K>(mesh).push_back(ids);
+}
+
+// The unit cube [0,1]^3 (cell 0); on its top the regular pyramid of unit
+// edges (cell 3: apex at height 1/sqrt 2), on the pyramid's y = 0 side the
+// regular tet of unit edges with its apex pushed out to `tet_scale` times
+// its height (cell 1); on the cube's x = 1 side the right prism over an
+// equilateral triangle of unit edges (cell 2). Sizes V / V1 (cell_volume.h):
+// cube 1, pyramid 1, wedge 1, tet tet_scale.
+Mesh kinds_tower(double tet_scale) {
+  Mesh mesh;
+  const std::array<Vec3, 8> c = {Vec3{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  add_cell<CellKind::hex>(mesh, c);
+  const Vec3 apex{0.5, 0.5, 1 + 1 / std::sqrt(2.0)};
+  // The pyramid's side triangle (4, 5, apex) is equilateral; the regular tet
+  // on it has its fourth corner at the centroid plus sqrt(2/3) along the
+  // outward normal.
+  const Vec3 a = c[4], b = c[5];
+  const Vec3 centroid = (1.0 / 3.0) * (a + b + apex);
+  Vec3 normal = normalized(cross(b - a, apex - a));
+  if (dot(normal, Vec3{0, -1, 0}) < 0) normal = -1.0 * normal;
+  add_cell<CellKind::tet>(mesh, {a, b, apex, centroid + tet_scale * std::sqrt(2.0 / 3.0) * normal});
+  // The prism: the cube's x = 1 face is its quad face (1, 2, 6, 5): the
+  // triangles (1, 2, q) and (5, 6, q') with q at x = 1 + sqrt(3)/2.
+  const double ridge = 1 + std::sqrt(3.0) / 2;
+  add_cell<CellKind::wedge>(mesh, {c[1], c[2], Vec3{ridge, 0.5, 0}, c[5], c[6], Vec3{ridge, 0.5, 1}});
+  add_cell<CellKind::pyramid>(mesh, {c[4], c[5], c[6], c[7], apex});
+  return mesh;
+}
+
+TEST(HybridGradation, RegularCellsOfEachKindGradeOneAndATetTwiceAsLargeTwo) {
+  const Mesh regular = kinds_tower(1.0);
+  ASSERT_EQ(regular.tets.size() + regular.wedges.size() + regular.pyramids.size(), 3u);
+  const HexStructure r = structure_of(regular);
+  ASSERT_EQ(r.cell_gradation.size(), 4u);  // hex, tet, wedge, pyramid (cell ids)
+  for (std::size_t c = 0; c < 4; ++c) EXPECT_NEAR(r.cell_gradation[c], 1.0, 1e-12) << c;
+  // The tet twice as high: size 2 against the pyramid's 1.
+  const HexStructure t = structure_of(kinds_tower(2.0));
+  EXPECT_NEAR(t.cell_gradation[0], 1.0, 1e-12);  // the cube: pyramid 1, wedge 1
+  EXPECT_NEAR(t.cell_gradation[1], 2.0, 1e-12);  // the tet
+  EXPECT_NEAR(t.cell_gradation[2], 1.0, 1e-12);  // the wedge: only the cube
+  EXPECT_NEAR(t.cell_gradation[3], 2.0, 1e-12);  // the pyramid: the tet
+  EXPECT_EQ(t.gradation.count, 4);
+  EXPECT_EQ(t.num_gradation_above_2, 0);  // strictly above
+}
+
+// The unit cube beside the 6 Kuhn tets of [1,2] x [0,1]^2 (the path x, y, z
+// in every order): the shared x = 1 face is the cube's quad against two
+// tet triangles (non-conforming). A Kuhn tet has volume 1/6, size
+// (1/6) / (sqrt 2 / 12) = sqrt 2: the cube and the two tets on the
+// interface grade sqrt 2, the other four tets (only tet neighbours) 1.
+Mesh cube_and_kuhn_tets() {
+  Mesh mesh;
+  const auto corner = [](double x0, int i) {
+    static constexpr std::array<std::array<int, 3>, 8> k = {
+        {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}};
+    return Vec3{x0 + k[static_cast<std::size_t>(i)][0], double(k[static_cast<std::size_t>(i)][1]),
+                double(k[static_cast<std::size_t>(i)][2])};
+  };
+  std::array<Vec3, 8> cube;
+  for (int i = 0; i < 8; ++i) cube[static_cast<std::size_t>(i)] = corner(0, i);
+  add_cell<CellKind::hex>(mesh, cube);
+  for (const auto& [a, b] : std::array<std::array<int, 2>, 6>{{{1, 2}, {1, 5}, {3, 2}, {3, 7}, {4, 5}, {4, 7}}})
+    add_cell<CellKind::tet>(mesh, {corner(1, 0), corner(1, a), corner(1, b), corner(1, 6)});
+  return mesh;
+}
+
+TEST(HybridGradation, ANonConformingInterfaceComparesTheQuadsCellWithItsTriangles) {
+  const Mesh mesh = cube_and_kuhn_tets();
+  const Topology topology = build_topology(mesh);
+  ASSERT_EQ(topology.non_conforming_faces.size(), 1u);
+  const HexStructure s = compute_structure(mesh, topology);
+  ASSERT_EQ(s.cell_gradation.size(), 7u);
+  EXPECT_NEAR(s.cell_gradation[0], std::sqrt(2.0), 1e-12);
+  int at_interface = 0;
+  for (Index t : topology.non_conforming_faces[0].triangle_cells) {
+    EXPECT_NEAR(s.cell_gradation[static_cast<std::size_t>(t)], std::sqrt(2.0), 1e-12) << t;
+    ++at_interface;
+  }
+  EXPECT_EQ(at_interface, 2);
+  int ones = 0;
+  for (std::size_t c = 1; c < 7; ++c) ones += std::abs(s.cell_gradation[c] - 1.0) < 1e-12;
+  EXPECT_EQ(ones, 4);
+}
+
+// The same mesh's hex part: its 4 edges on the x = 1 face touch tets; the
+// other 8 are boundary edges of valence 1. The corners at x = 0 join 3
+// singular edges (nodes); those at x = 1 one (where the hex part ends:
+// interface ends, not nodes). Curves: the 4 edges of x = 0 and the 4 along x.
+TEST(HybridStructure, CurvesCutAtTheNonHexCellsEndWithoutANode) {
+  const HexStructure s = structure_of(cube_and_kuhn_tets());
+  EXPECT_EQ(s.num_edges_touching_non_hex, 4);
+  EXPECT_EQ(s.num_singular_edges_boundary, 8);
+  EXPECT_EQ(s.nodes.size(), 4u);
+  for (Index v : s.nodes) EXPECT_EQ(cube_and_kuhn_tets().points[static_cast<std::size_t>(v)].x, 0.0);
+  EXPECT_EQ(s.num_interface_ends, 4);
+  EXPECT_EQ(s.num_curves, 8);
+  for (Index length : s.curve_lengths) EXPECT_EQ(length, 1);
+  // A pure-hex mesh has no interface end (a unit cube: 8 nodes).
+  EXPECT_EQ(structure_of(test::unit_cube()).num_interface_ends, 0);
+  EXPECT_EQ(structure_of(test::unit_cube()).nodes.size(), 8u);
 }
 
 // A hex ball of 7 blocks: an n^3 grid of the cube [-1, 1]^3 and, on each of

@@ -209,7 +209,21 @@ TEST(HybridViews, NonConformingFaceIsOutlinedAndOutOfTheBoundary) {
   quality[8] = std::nan("");  // used by the tets only
   const Scene scene = build_quality_overview_scene(mesh, topo, quality, {});
   ASSERT_EQ(scene.overlay.size(), 1u);
-  EXPECT_EQ(scene.overlay[0].positions.size(), 8u);  // a frame: 4 outer and 4 inner corners
+  // A frame (4 outer and 4 inner corners), then the dashes of the diagonal
+  // the two triangles share, 4 corners each, every one within the frame's
+  // depth of that diagonal's line.
+  ASSERT_EQ(scene.overlay[0].positions.size(), 8u + 4u * kNonConformingDashes);
+  const NonConformingFace& nc = topo.non_conforming_faces.at(0);
+  std::vector<Index> shared;
+  for (Index w : nc.triangles[0])
+    if (std::find(nc.triangles[1].begin(), nc.triangles[1].end(), w) != nc.triangles[1].end()) shared.push_back(w);
+  ASSERT_EQ(shared.size(), 2u);
+  const Vec3 d0 = mesh.points[static_cast<std::size_t>(shared[0])], d1 = mesh.points[static_cast<std::size_t>(shared[1])];
+  for (std::size_t i = 8; i < scene.overlay[0].positions.size(); ++i) {
+    const Vec3f& q = scene.overlay[0].positions[i];
+    const Vec3 p = scene.origin + Vec3{q.x, q.y, q.z};
+    EXPECT_LT(norm(cross(p - d0, normalized(d1 - d0))), kNonConformingFrame) << i;
+  }
   const ColorBar bar = overview_color_bar(topo, quality);
   std::vector<std::string> labels;
   for (const ColorBarSwatch& s : bar.swatches) labels.push_back(s.label);
@@ -286,7 +300,25 @@ TEST(HybridViews, ViewDOfAVertexSharedByHexTetAndPyramidShowsEveryCell) {
         for (int j = i + 1; j < 4; ++j) add(k[i], k[j]);
     }
   }
-  EXPECT_EQ(scene.lines[0].indices.size(), 2 * edges.size());
+  // One line set per kind (hex, tet, pyramid) in the kind's ring colour: the
+  // union of their segments is every ring edge, each set's edges its kind's.
+  ASSERT_EQ(scene.lines.size(), 3u);
+  std::set<std::pair<Index, Index>> drawn;
+  for (const LineSet& set : scene.lines)
+    for (std::size_t i = 0; i < set.indices.size(); i += 2) {
+      const Vec3f& a = set.positions[set.indices[i]];
+      const Vec3f& b = set.positions[set.indices[i + 1]];
+      Index ia = kNoIndex, ib = kNoIndex;
+      for (std::size_t w = 0; w < mesh.points.size(); ++w) {
+        const Vec3 p = mesh.points[w] - scene.origin;
+        if (norm(p - Vec3{a.x, a.y, a.z}) < 1e-6) ia = static_cast<Index>(w);
+        if (norm(p - Vec3{b.x, b.y, b.z}) < 1e-6) ib = static_cast<Index>(w);
+      }
+      drawn.insert({std::min(ia, ib), std::max(ia, ib)});
+    }
+  EXPECT_EQ(drawn, edges);
+  EXPECT_EQ(scene.lines[1].colors.front(), cell_kind_edge_color(CellKind::tet));
+  EXPECT_EQ(scene.lines[2].colors.front(), cell_kind_edge_color(CellKind::pyramid));
   EXPECT_EQ(cell_kinds_legend(mesh, ring), "cells: 4 hex, " + std::to_string(by_kind[CellKind::tet]) + " tet, 4 pyramid");
 }
 
@@ -327,23 +359,77 @@ TEST(HybridViews, LegendsNameTheKindsOfAHybridMeshOnly) {
   const std::string kinds = mesh_kinds_text(mesh);
   EXPECT_EQ(kinds, "cells: 64 hex, " + std::to_string(mesh.tets.size()) + " tet, 16 pyramid");
   EXPECT_EQ(mesh_kinds_text(hex_box(2, 2, 2, 1, 1, 1)), "");
-  // View A's legend: a heading and one line per kind.
+  // View A's legend: a heading and one line per kind, with its edge colour.
   GlyphResult glyphs;
   MainViewOptions options;
   options.cell_kinds = kinds;
   const AnnotationStyle style = annotation_style_for(1200);
-  std::vector<std::string> texts;
-  for (const LegendLine& line : main_legend_lines(glyphs, nullptr, style, options, 1.0)) texts.push_back(line.text);
-  const auto at = std::find(texts.begin(), texts.end(), "cells of the mesh");
-  ASSERT_NE(at, texts.end());
-  ASSERT_GE(texts.end() - at, 4);
-  EXPECT_EQ(at[1], "  64 hex");
-  EXPECT_EQ(at[2], "  " + std::to_string(mesh.tets.size()) + " tet");
-  EXPECT_EQ(at[3], "  16 pyramid");
+  const std::vector<LegendLine> lines = main_legend_lines(glyphs, nullptr, style, options, 1.0);
+  const auto at = std::find_if(lines.begin(), lines.end(),
+                               [](const LegendLine& l) { return l.text == "cells of the mesh (edge colour)"; });
+  ASSERT_NE(at, lines.end());
+  ASSERT_GE(lines.end() - at, 4);
+  EXPECT_EQ(at[1].text, "64 hex");
+  EXPECT_EQ(at[2].text, std::to_string(mesh.tets.size()) + " tet");
+  EXPECT_EQ(at[3].text, "16 pyramid");
+  EXPECT_EQ(at[1].swatch, std::optional<Rgba8>(kWireframeColor));
+  EXPECT_EQ(at[2].swatch, std::optional<Rgba8>(cell_kind_edge_color(CellKind::tet)));
+  EXPECT_EQ(at[3].swatch, std::optional<Rgba8>(cell_kind_edge_color(CellKind::pyramid)));
+  // The four colours differ from each other.
+  std::set<std::array<int, 3>> distinct;
+  for (CellKind k : {CellKind::hex, CellKind::tet, CellKind::wedge, CellKind::pyramid}) {
+    const Rgba8 c = cell_kind_edge_color(k);
+    distinct.insert({c.r, c.g, c.b});
+  }
+  EXPECT_EQ(distinct.size(), 4u);
   options.cell_kinds.clear();
-  texts.clear();
-  for (const LegendLine& line : main_legend_lines(glyphs, nullptr, style, options, 1.0)) texts.push_back(line.text);
-  EXPECT_EQ(std::find(texts.begin(), texts.end(), "cells of the mesh"), texts.end());
+  for (const LegendLine& line : main_legend_lines(glyphs, nullptr, style, options, 1.0))
+    EXPECT_EQ(line.text.find("cells of the mesh"), std::string::npos);
+}
+
+// View A's wireframe on a hybrid mesh: each boundary edge in the colour of
+// its faces' kind (the rarer kind winning on an edge between kinds),
+// counted against the boundary polygons here; a pure-hex mesh all grey.
+TEST(HybridViews, ViewAWireframeColoursEdgesByKind) {
+  if (!hex_tet()) GTEST_SKIP() << "gmsh failed or is missing";
+  const Mesh& mesh = *hex_tet();
+  const Topology topo = topology_of(mesh);
+  const std::array<Index, 5> start = volume_block_starts(mesh);
+  std::map<std::pair<Index, Index>, int> rank;  // 0 hex .. 3 pyramid
+  for (const BoundaryPolygon& f : boundary_polygons(topo)) {
+    const int kind = f.cell < start[1] ? 0 : f.cell < start[2] ? 1 : f.cell < start[3] ? 2 : 3;
+    for (int i = 0; i < f.size; ++i) {
+      const Index a = f.v[static_cast<std::size_t>(i)], b = f.v[static_cast<std::size_t>((i + 1) % f.size)];
+      int& r = rank[{std::min(a, b), std::max(a, b)}];
+      r = std::max(r, kind);
+    }
+  }
+  std::map<int, std::size_t> expected;
+  for (const auto& [e, r] : rank) ++expected[r];
+  ASSERT_GT(expected[0], 0u);
+  ASSERT_GT(expected[1], 0u);  // the tets' boundary (Gmsh's pyramids stay inside)
+  GlyphResult glyphs;
+  glyphs.vertex_cluster.assign(mesh.points.size(), kNoIndex);
+  glyphs.vertex_radius.assign(mesh.points.size(), 0.0);
+  glyphs.cluster_offsets = {0};
+  Camera camera;
+  const Scene scene = build_main_scene(mesh, topo, glyphs, nullptr, camera, 1200, MainViewOptions{});
+  const LineSet& wire = scene.lines.at(0);
+  std::map<int, std::size_t> drawn;
+  for (std::size_t i = 0; i < wire.indices.size(); i += 2) {
+    const Rgba8 c = wire.colors[wire.indices[i]];
+    for (int k = 0; k < 4; ++k)
+      if (c == cell_kind_edge_color(static_cast<CellKind>(k))) ++drawn[k];
+  }
+  EXPECT_EQ(drawn, expected);
+  const Mesh box = hex_box(2, 2, 2, 1, 1, 1);
+  const Topology box_topo = topology_of(box);
+  GlyphResult none;
+  none.vertex_cluster.assign(box.points.size(), kNoIndex);
+  none.vertex_radius.assign(box.points.size(), 0.0);
+  none.cluster_offsets = {0};
+  const Scene box_scene = build_main_scene(box, box_topo, none, nullptr, camera, 1200, MainViewOptions{});
+  for (const Rgba8& c : box_scene.lines.at(0).colors) EXPECT_EQ(c, kWireframeColor);
 }
 
 }  // namespace

@@ -41,6 +41,16 @@ TEST(StructureViews, TheSixClassesHaveDistinctColoursNoneGrey) {
   EXPECT_EQ(singular_class(e), SingularClass::boundary_3_plus);
 }
 
+// One hex: a fifth of its edge would be a fifth of the model; the radius is
+// capped at 0.02 of the boundary's diagonal (sqrt 3).
+TEST(StructureViews, NodeSpheresOfACoarseMeshAreCappedByItsSize) {
+  const HexMesh mesh = test::unit_cube();
+  const Topology topology = build_topology(mesh);
+  const Scene scene = build_singularity_scene(mesh, topology, compute_structure(mesh, topology), {});
+  ASSERT_EQ(sphere_count(scene), 8u);
+  EXPECT_FLOAT_EQ(scene.spheres[0].radii[0], static_cast<float>(0.02 * std::sqrt(3.0)));
+}
+
 TEST(StructureViews, AGridShowsItsTwelveBoxEdgesAndEightNodes) {
   const HexMesh mesh = test::grid(3);
   const Topology topology = build_topology(mesh);
@@ -59,7 +69,8 @@ TEST(StructureViews, AGridShowsItsTwelveBoxEdgesAndEightNodes) {
     EXPECT_GE(on_faces, 2) << i;
   }
   ASSERT_EQ(sphere_count(scene), 8u);
-  EXPECT_FLOAT_EQ(scene.spheres[0].radii[0], 0.2f);  // 0.2 of the unit edge
+  // 0.2 of the unit edge, capped at 0.02 of the diagonal 3 sqrt 3 (a coarse grid).
+  EXPECT_FLOAT_EQ(scene.spheres[0].radii[0], static_cast<float>(std::min(0.2, 0.02 * 3 * std::sqrt(3.0))));
   ASSERT_EQ(scene.translucent.size(), 1u);
   EXPECT_EQ(scene.translucent[0].indices.size(), 54u * 6u);
   for (const Rgba8& c : scene.translucent[0].colors) EXPECT_LT(c.a, 128);

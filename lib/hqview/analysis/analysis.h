@@ -34,6 +34,10 @@ namespace hq {
 struct Analysis {
   InputFile mesh_input;
   std::vector<std::string> warnings;  // from the readers and the analysis, in stage order
+  // The readers' notes (LoadedMesh::notes: lower-dimensional cells skipped):
+  // information, shown apart from the warnings on the pages; report.json
+  // lists them first under `warnings`.
+  std::vector<std::string> notes;
   std::vector<StageTime> timings;     // wall times of the stages run (timings.json; never in report.json)
 
   HexMesh mesh;

@@ -13,6 +13,7 @@
 #include "hqview/core/text.h"
 #include "hqview/core/types.h"
 #include "hqview/io/cell_reading.h"
+#include "hqview/mesh/cell_faces.h"
 #include "hqview/io/text_scanner.h"
 
 namespace hq {
@@ -311,13 +312,13 @@ class AbaqusParser {
     if (is_surface && detail::num_surface_cells(mesh_) == 0)
       fail(0, surface_.notes.no_cells_message() +
                   (skipped.count > 0 ? ": " + skipped.counted("element") : std::string()));
-    if (!is_surface && detail::num_volume_cells(mesh_) == 0)
+    if (!is_surface && num_volume_cells(mesh_) == 0)
       fail(0, "no volume elements (*ELEMENT, TYPE=C3D8, C3D8R, C3D4, C3D6, C3D5 ...)" +
                   (skipped.count > 0 ? ": " + skipped.counted("element") : std::string()));
     // Abaqus declares no counts: the budget is checked once the file is read
     // (what reading allocates is bounded by the file's size), before the analysis.
     check_mesh_memory(limits_, name_, 0, bytes_.size(), static_cast<std::int64_t>(points_.size()),
-                      is_surface ? detail::num_surface_cells(mesh_) : detail::num_volume_cells(mesh_));
+                      is_surface ? detail::num_surface_cells(mesh_) : num_volume_cells(mesh_));
     LoadedMesh loaded;
     loaded.format = "abaqus";
     if (num_volume_dropped > 0)

@@ -171,10 +171,6 @@ std::string non_hex_volume_counts(const Mesh& mesh) {
   return text;
 }
 
-std::int64_t num_volume_cells(const Mesh& mesh) {
-  return static_cast<std::int64_t>(mesh.hexes.size() + mesh.tets.size() + mesh.wedges.size() + mesh.pyramids.size());
-}
-
 std::string surface_counts(const Mesh& mesh) {
   std::string text;
   for (const CellKind kind : {CellKind::quad, CellKind::triangle}) {

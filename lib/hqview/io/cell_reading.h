@@ -24,6 +24,7 @@
 #include "hqview/core/cell_kinds.h"
 #include "hqview/core/types.h"
 #include "hqview/io/read_limits.h"
+#include "hqview/mesh/cell_faces.h"
 #include "hqview/mesh/mesh.h"
 
 namespace hq::detail {
@@ -188,9 +189,6 @@ std::string cell_kind_noun(CellKind kind, std::int64_t count);
 // "2 tetrahedra, 1 wedge, 3 pyramids": the non-empty volume blocks other
 // than hexahedra, "" when there are none.
 std::string non_hex_volume_counts(const Mesh& mesh);
-
-// The number of volume cells (hexahedra, tetrahedra, wedges, pyramids).
-std::int64_t num_volume_cells(const Mesh& mesh);
 
 // The number of surface cells (quadrilaterals, triangles).
 inline std::int64_t num_surface_cells(const Mesh& mesh) {

@@ -20,6 +20,7 @@
 #include "hqview/core/shared_library.h"
 #include "hqview/core/types.h"
 #include "hqview/io/cell_reading.h"
+#include "hqview/mesh/cell_faces.h"
 #include "hqview/io/netcdf_header.h"
 
 namespace hq {
@@ -333,7 +334,7 @@ LoadedMesh read_exodus(std::string_view bytes, const std::string& name, const Re
     }
   }
   const SkippedCells skipped(skipped_by_type);
-  if (detail::num_volume_cells(loaded.mesh) == 0)
+  if (num_volume_cells(loaded.mesh) == 0)
     file.fail("no volume elements (HEX8, TETRA, WEDGE or PYRAMID blocks)" +
               (skipped.count > 0 ? " among " + skipped.counted("element") : std::string()));
   if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(name, "element"));

@@ -13,6 +13,7 @@
 
 #include "hqview/core/types.h"
 #include "hqview/io/cell_reading.h"
+#include "hqview/mesh/cell_faces.h"
 #include "hqview/io/text_scanner.h"
 
 namespace hq {
@@ -59,6 +60,20 @@ constexpr GmshCellType kGmshCellTypes[] = {
     {3, CellKind::quad, 4}, {10, CellKind::quad, 9}, {16, CellKind::quad, 8},
 };
 // clang-format on
+
+// Gmsh's element types of dimension 0-2: points (15), lines (1, 8, 26-28),
+// triangles (2, 9, 20-25) and quads (3, 10, 16, 36-41): physical groups'
+// boundary elements, skipped as a note.
+bool is_lower_dimensional_gmsh_type(std::int64_t type) {
+  switch (type) {
+    case 1: case 2: case 3: case 8: case 9: case 10: case 15: case 16:
+    case 20: case 21: case 22: case 23: case 24: case 25: case 26: case 27: case 28:
+    case 36: case 37: case 38: case 39: case 40: case 41:
+      return true;
+    default:
+      return false;
+  }
+}
 
 const GmshCellType* gmsh_cell_type(std::int64_t type) {
   for (const GmshCellType& entry : kGmshCellTypes)
@@ -547,14 +562,16 @@ class GmshParser {
     if (is_surface && detail::num_surface_cells(mesh_) == 0)
       s_.fail_at(elements_line_, surface_.notes.no_cells_message() +
                                      (skipped.count > 0 ? " among " + skipped.counted("element") : std::string()));
-    if (!is_surface && detail::num_volume_cells(mesh_) == 0)
+    if (!is_surface && num_volume_cells(mesh_) == 0)
       s_.fail_at(elements_line_, "no volume elements (types 4, 5, 6, 7)" +
                                      (skipped.count > 0 ? " among " + skipped.counted("element") : std::string()));
     LoadedMesh loaded;
     loaded.format = "gmsh-" + version_ + (binary_ ? "-binary" : "-ascii");
     if (num_volume_dropped > 0)
       loaded.warnings.push_back(detail::volume_dropped_warning(s_.name(), num_volume_dropped, "element"));
-    if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(s_.name(), "element"));
+    if (skipped.count > 0)
+      (SkippedCells::all_types(skipped_by_type_, is_lower_dimensional_gmsh_type) ? loaded.notes : loaded.warnings)
+          .push_back(skipped.warning(s_.name(), "element"));
     if (is_surface)
       surface_.append_warnings(s_.name(), "element", loaded.warnings);
     else

@@ -14,6 +14,7 @@
 #include "hqview/core/error.h"
 #include "hqview/core/types.h"
 #include "hqview/io/cell_reading.h"
+#include "hqview/mesh/cell_faces.h"
 #include "hqview/io/read_limits.h"
 #include "hqview/io/text_scanner.h"
 
@@ -361,7 +362,7 @@ class MeditParser {
     if (target_ == Target::kVolumes)  // every volume cell counted as a hexahedron
       check_mesh_memory(limits_, s_.name(), value_line_, file_bytes_,
                         static_cast<std::int64_t>(content_.mesh.points.size()),
-                        detail::num_volume_cells(content_.mesh) + n);
+                        num_volume_cells(content_.mesh) + n);
     const bool has_vertices = content_.vertices_line != 0;
     const std::int64_t max_id = has_vertices ? static_cast<std::int64_t>(content_.mesh.points.size()) : kMaxIndexCount;
     const std::size_t first = out.size();
@@ -466,7 +467,7 @@ class MeditParser {
     if (content_.triangles_need_range_check) check_ids_late(content_.triangles, content_.triangles_line, "triangle");
     move_collapsed_hexahedra();
     if (target_ == Target::kVolumes && keep_surface()) return std::move(content_);
-    if (target_ == Target::kVolumes && detail::num_volume_cells(content_.mesh) == 0)
+    if (target_ == Target::kVolumes && num_volume_cells(content_.mesh) == 0)
       s_.fail_at(0, "no volume cells (Hexahedra, Tetrahedra, Prisms or Pyramids)");
     if (target_ == Target::kTriangles && content_.triangles.empty()) s_.fail_at(0, "no triangles");
     return std::move(content_);

@@ -40,6 +40,10 @@ struct LoadedMesh {
   // than 4 vertices they skipped, each as (a, b) with a < b, ascending,
   // unique. Holes left by the reader, not the surface's boundary.
   std::vector<std::array<Index, 2>> hole_edges;
+  // Information, not a warning: the lower-dimensional cells skipped (a Gmsh
+  // or VTK file's boundary triangles, edges and points, which a volume
+  // mesh's file carries for its physical groups), worded as the warning.
+  std::vector<std::string> notes;
 };
 
 // The cells a reader left out because it does not read their type (not a
@@ -67,6 +71,14 @@ struct SkippedCells {
   std::string type_word() const { return num_types > 1 ? "types " : "type "; }
   std::string counted(const char* noun) const {
     return std::to_string(count) + " " + noun + (count > 1 ? "s" : "") + " of " + type_word() + types;
+  }
+  // True when every skipped type passes is_lower_dimensional (the format's
+  // points, lines, triangles and quads): the skip is a note, not a warning.
+  template <class Type, class Predicate>
+  static bool all_types(const std::map<Type, std::int64_t>& by_type, Predicate is_lower_dimensional) {
+    for (const auto& [type, n] : by_type)
+      if (!is_lower_dimensional(type)) return false;
+    return true;
   }
   std::string warning(const std::string& file, const char* noun) const {
     return file + ": " + std::to_string(count) + " " + noun + (count > 1 ? "s" : "") + " of unread types skipped (" +

@@ -63,6 +63,19 @@ inline constexpr VolumeType kVolumeTypes[] = {
 };
 
 // The entry of a volume type read; nullptr for every other type.
+// VTK's cell types of dimension 0-2 (vertex, lines, triangles, polygons,
+// pixels, quads, linear to Lagrange and Bezier): a file skips them as notes.
+inline bool is_lower_dimensional_type(std::int64_t type) {
+  switch (type) {
+    case 1: case 2: case 3: case 4: case 5: case 6: case 7: case 8: case 9:
+    case 21: case 22: case 23: case 28: case 30: case 34: case 35: case 36:
+    case 68: case 69: case 70: case 75: case 76: case 77:
+      return true;
+    default:
+      return false;
+  }
+}
+
 inline const VolumeType* find_volume_type(std::int64_t type) {
   for (const VolumeType& entry : kVolumeTypes)
     if (entry.type == type) return &entry;

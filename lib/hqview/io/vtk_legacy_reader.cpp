@@ -15,6 +15,7 @@
 
 #include "hqview/core/types.h"
 #include "hqview/io/cell_reading.h"
+#include "hqview/mesh/cell_faces.h"
 #include "hqview/io/read_limits.h"
 #include "hqview/io/text_scanner.h"
 #include "hqview/io/vtk_cells.h"
@@ -697,10 +698,12 @@ class VtkParser {
     if (is_surface && detail::num_surface_cells(loaded.mesh) == 0)
       s_.fail_at(0, surface.notes.no_cells_message() +
                         (skipped.count > 0 ? " (" + skipped.counted("cell") + ")" : std::string()));
-    if (!is_surface && detail::num_volume_cells(loaded.mesh) == 0)
+    if (!is_surface && num_volume_cells(loaded.mesh) == 0)
       s_.fail_at(0, "no volume cells" + (skipped.count > 0 ? " (" + skipped.counted("cell") + ")" : std::string()));
     if (num_volume_dropped > 0) loaded.warnings.push_back(detail::volume_dropped_warning(s_.name(), num_volume_dropped, "cell"));
-    if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(s_.name(), "cell"));
+    if (skipped.count > 0)
+      (SkippedCells::all_types(skipped_by_type, vtk::is_lower_dimensional_type) ? loaded.notes : loaded.warnings)
+          .push_back(skipped.warning(s_.name(), "cell"));
     if (is_surface) {
       surface.append_warnings(s_.name(), "cell", loaded.warnings);
     } else {

@@ -19,6 +19,7 @@
 
 #include "hqview/core/types.h"
 #include "hqview/io/cell_reading.h"
+#include "hqview/mesh/cell_faces.h"
 #include "hqview/io/text_scanner.h"
 #include "hqview/io/vtk_cells.h"
 #include "hqview/io/xml_parser.h"
@@ -476,7 +477,7 @@ class VtuParser {
     if (base + num_points > kMaxIndexCount)
       fail(piece, "more than " + std::to_string(kMaxIndexCount) + " points in all pieces");
     check_mesh_memory(limits_, name_, piece.line, bytes_.size(), base + num_points,
-                      detail::num_volume_cells(mesh_) + num_cells, "cell");
+                      num_volume_cells(mesh_) + num_cells, "cell");
 
     const XmlElement* points = child(piece, "Points");
     if (points == nullptr) {
@@ -601,12 +602,14 @@ class VtuParser {
     if (is_surface && detail::num_surface_cells(mesh_) == 0)
       fail(grid, surface_.notes.no_cells_message() +
                      (skipped.count > 0 ? " (" + skipped.counted("cell") + ")" : std::string()));
-    if (!is_surface && detail::num_volume_cells(mesh_) == 0)
+    if (!is_surface && num_volume_cells(mesh_) == 0)
       fail(grid, "no volume cells" + (skipped.count > 0 ? " (" + skipped.counted("cell") + ")" : std::string()));
     LoadedMesh loaded;
     loaded.format = "vtu-" + format_;
     if (num_volume_dropped > 0) loaded.warnings.push_back(detail::volume_dropped_warning(name_, num_volume_dropped, "cell"));
-    if (skipped.count > 0) loaded.warnings.push_back(skipped.warning(name_, "cell"));
+    if (skipped.count > 0)
+      (SkippedCells::all_types(skipped_by_type_, vtk::is_lower_dimensional_type) ? loaded.notes : loaded.warnings)
+          .push_back(skipped.warning(name_, "cell"));
     if (is_surface)
       surface_.append_warnings(name_, "cell", loaded.warnings);
     else

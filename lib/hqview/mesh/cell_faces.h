@@ -32,8 +32,13 @@ inline std::array<Index, 5> volume_block_starts(const Mesh& mesh) {
   return {0, h, h + t, h + t + w, h + t + w + p};
 }
 
-// The number of volume cells (every block but the surface ones).
-inline Index num_volume_cells(const Mesh& mesh) { return volume_block_starts(mesh)[4]; }
+// The number of volume cells (every block but the surface ones), summed in
+// 64 bits: the readers add a declared count to it before checking the
+// memory budget, so the sum must not overflow Index.
+inline std::int64_t num_volume_cells(const Mesh& mesh) {
+  return static_cast<std::int64_t>(mesh.hexes.size()) + static_cast<std::int64_t>(mesh.tets.size()) +
+         static_cast<std::int64_t>(mesh.wedges.size()) + static_cast<std::int64_t>(mesh.pyramids.size());
+}
 
 namespace detail {
 // The CellRef of cell `id` of `block` (of `kind`), whose first cell id is `first`.

@@ -25,9 +25,12 @@ Box3 referenced_bounding_box(const HexMesh& mesh, const Topology& topo) {
 
 MeshSummary summarize_mesh(const HexMesh& mesh, const Topology& topo) {
   MeshSummary s;
-  s.num_vertices = mesh.num_vertices();
-  s.num_hexes = mesh.num_hexes();
+  // A vertex is a corner of a cell: nodes no cell uses (a second-order
+  // cell's mid-edge and face nodes, read by its corners; stray nodes) are
+  // counted apart.
   s.num_unreferenced_vertices = static_cast<Index>(topo.unreferenced_vertices.size());
+  s.num_vertices = mesh.num_vertices() - s.num_unreferenced_vertices;
+  s.num_hexes = mesh.num_hexes();
   s.num_boundary_faces = static_cast<Index>(num_boundary_faces_all_kinds(topo));
   s.num_boundary_vertices = static_cast<Index>(topo.boundary_vertices.size());
   s.num_non_manifold_faces = static_cast<Index>(topo.non_manifold_faces.size()) + topo.num_non_manifold_faces_non_hex;

@@ -13,9 +13,9 @@
 namespace hq {
 
 struct MeshSummary {
-  Index num_vertices = 0;
+  Index num_vertices = 0;               // points some cell uses as a corner
   Index num_hexes = 0;
-  Index num_unreferenced_vertices = 0;
+  Index num_unreferenced_vertices = 0;  // points no cell uses (mid-edge nodes of second-order cells, strays)
   Index num_boundary_faces = 0;
   Index num_boundary_vertices = 0;
   Index num_non_manifold_faces = 0;     // faces used by more than two cells (of any kinds)

@@ -400,6 +400,7 @@ void start_analysis(const AnalyzeOptions& options, AnalysisInProgress& out) {
   clock.start("read");
   LoadedMesh loaded = load_mesh(options.mesh_path, options, a.mesh_input);
   a.warnings = std::move(loaded.warnings);
+  a.notes = std::move(loaded.notes);
   a.mesh = std::move(loaded.mesh);
   clock.start("topology");
   a.topology = build_topology(a.mesh);
@@ -424,8 +425,8 @@ void start_analysis(const AnalyzeOptions& options, AnalysisInProgress& out) {
   clock.stop();
   if (!a.topology.unreferenced_vertices.empty())
     a.warnings.push_back(std::to_string(a.topology.unreferenced_vertices.size()) +
-                         (a.topology.across_kinds || is_surface_mesh(a.mesh)
-                              ? " vertices are used by no cell (ignored by the analysis)"
+                         (a.topology.across_kinds || is_surface_mesh(a.mesh) ? " nodes are no cell's corner (ignored by the analysis and not counted as "
+                                                    "vertices; a higher-order cell's mid-edge and face nodes are such nodes)"
                                                   : " vertices are used by no hexahedron (ignored by the analysis)"));
   if (a.reference_surface) {
     clock.start("boundary error");

@@ -42,15 +42,41 @@ std::string join(const std::vector<std::string>& path) {
 
 // Numeric leaves of a report, by dotted path; arrays (histograms, lists of
 // clusters, worst cells) are left out: their entries have no stable identity.
-void flatten(const json& j, const std::string& prefix, std::map<std::string, double>& out) {
+// `present`: every leaf path, whatever its value (null, a string, an array),
+// to tell a key that is null from a key that is absent.
+void flatten(const json& j, const std::string& prefix, std::map<std::string, double>& out,
+             std::set<std::string>& present) {
   for (auto it = j.begin(); it != j.end(); ++it) {
     const std::string key = prefix.empty() ? it.key() : prefix + "." + it.key();
     if (key == "schema_version") continue;
-    if (it->is_object())
-      flatten(*it, key, out);
-    else if (it->is_number())
-      out[key] = it->get<double>();
+    if (it->is_object()) {
+      flatten(*it, key, out, present);
+      continue;
+    }
+    present.insert(key);
+    if (it->is_number()) out[key] = it->get<double>();
   }
+}
+
+// Whether a report has `key`: the key itself, or one of its dotted
+// prefixes as a leaf (`compare: null` holds `compare.mesh.num_vertices` as
+// null: a changed value when the other side has a number there, not a key
+// added by another HQView version).
+bool has_path(const std::set<std::string>& present, const std::string& key) {
+  for (std::size_t dot = key.find('.'); dot != std::string::npos; dot = key.find('.', dot + 1))
+    if (present.count(key.substr(0, dot))) return true;
+  return present.count(key) > 0;
+}
+
+// Files `key`'s two values: a key on one side only is added or removed, a
+// value that differs (a number against null too) changed.
+void file_difference(DiffResult& result, const std::string& mesh, const std::string& key,
+                     std::optional<double> baseline, std::optional<double> current, bool is_in_baseline,
+                     bool is_in_current) {
+  if (baseline == current) return;
+  if (!is_in_baseline) result.added.push_back({mesh, key, baseline, current});
+  else if (!is_in_current) result.removed.push_back({mesh, key, baseline, current});
+  else result.changed.push_back({mesh, key, baseline, current});
 }
 
 json parse_or_throw(std::string_view text, const std::string& what) {
@@ -97,14 +123,14 @@ std::vector<DiffSideBySide> side_by_side_tables(const json& base, const json& cu
     if (member(*j, "mesh").empty() || member(*j, "quality").empty()) return tables;
   const json &bi = member(base, "input"), &ci = member(cur, "input");
   tables.push_back({"mesh", file_name_at(member(bi, "mesh")), file_name_at(member(ci, "mesh")),
-                    compare_rows(compare_numbers(member(base, "mesh"), member(base, "quality")),
-                                 compare_numbers(member(cur, "mesh"), member(cur, "quality")))});
+                    compare_rows(compare_numbers(member(base, "headline"), member(base, "mesh"), member(base, "quality")),
+                                 compare_numbers(member(cur, "headline"), member(cur, "mesh"), member(cur, "quality")))});
   const json &bc = member(base, "compare"), &cc = member(cur, "compare");
   if (!bc.empty() && !cc.empty())
     tables.push_back({"compared mesh (--compare)", file_name_at(member(bi, "compare")),
                       file_name_at(member(ci, "compare")),
-                      compare_rows(compare_numbers(member(bc, "mesh"), member(bc, "quality")),
-                                   compare_numbers(member(cc, "mesh"), member(cc, "quality")))});
+                      compare_rows(compare_numbers(member(bc, "headline"), member(bc, "mesh"), member(bc, "quality")),
+                                   compare_numbers(member(cc, "headline"), member(cc, "mesh"), member(cc, "quality")))});
   return tables;
 }
 
@@ -235,8 +261,9 @@ DiffResult diff_reports(std::string_view baseline_text, std::string_view current
   if (!result.is_index) {
     result.side_by_side = side_by_side_tables(base, cur);
     std::map<std::string, double> b, c;
-    flatten(base, "", b);
-    flatten(cur, "", c);
+    std::set<std::string> in_base, in_cur;
+    flatten(base, "", b, in_base);
+    flatten(cur, "", c, in_cur);
     std::set<std::string> keys;
     for (const auto& [k, v] : b) keys.insert(k);
     for (const auto& [k, v] : c) keys.insert(k);
@@ -245,7 +272,7 @@ DiffResult diff_reports(std::string_view baseline_text, std::string_view current
       const auto ci = c.find(k);
       const std::optional<double> bv = bi == b.end() ? std::nullopt : std::optional<double>(bi->second);
       const std::optional<double> cv = ci == c.end() ? std::nullopt : std::optional<double>(ci->second);
-      if (bv != cv) result.changed.push_back({"", k, bv, cv});
+      file_difference(result, "", k, bv, cv, has_path(in_base, k), has_path(in_cur, k));
     }
     for (std::size_t g = 0; g < gates.size(); ++g)
       evaluate("", g, lookup(base, gates[g].rule.path), lookup(cur, gates[g].rule.path), false);
@@ -277,9 +304,7 @@ DiffResult diff_reports(std::string_view baseline_text, std::string_view current
         for (auto it = bh.begin(); it != bh.end(); ++it) keys.insert(it.key());
         for (auto it = ch.begin(); it != ch.end(); ++it) keys.insert(it.key());
         for (const std::string& k : keys) {
-          const auto bv = lookup(bh, {k});
-          const auto cv = lookup(ch, {k});
-          if (bv != cv) result.changed.push_back({path, k, bv, cv});
+          file_difference(result, path, k, lookup(bh, {k}), lookup(ch, {k}), bh.contains(k), ch.contains(k));
         }
       }
       const bool baseline_failed = bs == "failed";
@@ -336,7 +361,7 @@ struct MarkdownRow {
 };
 
 // kSideBySide + i: the i-th side-by-side table (at most two).
-enum MarkdownSection { kGates, kSideBySide, kSideBySide2, kMeshes, kChanged, kCells, kNumSections };
+enum MarkdownSection { kGates, kSideBySide, kSideBySide2, kMeshes, kChanged, kCells, kKeys, kNumSections };
 
 // Relative size of a change: |current - baseline| / max(|baseline|, |current|);
 // 1 for a value that appeared or vanished.
@@ -345,6 +370,14 @@ double relative_change(std::optional<double> baseline, std::optional<double> cur
   const double scale = std::max(std::fabs(*baseline), std::fabs(*current));
   if (!(scale > 0) || !std::isfinite(scale)) return 0;
   return std::fabs(*current - *baseline) / scale;
+}
+
+// The distinct keys of `values` in key order, each with the number of
+// meshes (entries) that have it.
+std::map<std::string, std::size_t> keys_with_meshes(const std::vector<DiffValue>& values) {
+  std::map<std::string, std::size_t> keys;
+  for (const DiffValue& v : values) ++keys[v.key];
+  return keys;
 }
 
 // +1 when higher is better, -1 lower, 0 unknown (the comparison keys' directions).
@@ -384,6 +417,15 @@ std::vector<MarkdownRow> markdown_rows(const DiffResult& d) {
                     "| " + (d.is_index ? markdown_escape(v.mesh) + " | " : "") + "`" + v.key + "` | " +
                         show(v.baseline) + " | " + show(v.current) + " | " + show_delta(v) + " |\n"});
   }
+  // Keys on one side only, once each (over the meshes of two indexes): what
+  // an earlier HQView did not write is not a change of value; left out first.
+  for (const auto& [what, keys] : {std::pair{"added", &d.added}, std::pair{"removed", &d.removed}})
+    for (const auto& [key, meshes] : keys_with_meshes(*keys))
+      rows.push_back({kKeys, 6, 0,
+                      std::string("- ") + what + ": `" + key + "`" +
+                          (d.is_index ? " (" + std::to_string(meshes) + (meshes == 1 ? " mesh)" : " meshes)")
+                                      : std::string()) +
+                          "\n"});
   for (const DiffCellChange& c : d.cells)
     rows.push_back({kCells, c.is_better ? 4 : 2, relative_change(c.baseline, c.current),
                     std::string("| ") + (c.is_better ? "better" : "**worse**") + " | " + markdown_escape(c.model) +
@@ -412,6 +454,9 @@ std::string section_head(int section, const DiffResult& d) {
     case kCells:
       return "\n### Methods compared: cells that moved\n\n| | model | method | key | baseline | current |\n"
              "|---|---|---|---|--:|--:|\n";
+    case kKeys:
+      return "\n### Keys on one side only\n\nWritten by a different HQView version (report.json keys in "
+             "docs/contract.md, changes in CHANGELOG.md): not changes of value.\n\n";
     default:
       return "";
   }
@@ -429,6 +474,9 @@ std::string diff_markdown(const DiffResult& d, std::size_t max_chars) {
   std::string head = std::string(kDiffMarkdownMarker) + "\n## HQView diff: ";
   head += d.passed ? "gates passed" : "**gates failed**";
   head += ", " + std::to_string(d.changed.size()) + " values changed";
+  const std::size_t added = keys_with_meshes(d.added).size(), removed = keys_with_meshes(d.removed).size();
+  if (added > 0) head += ", " + std::to_string(added) + (added == 1 ? " key added" : " keys added");
+  if (removed > 0) head += ", " + std::to_string(removed) + (removed == 1 ? " key removed" : " keys removed");
   if (d.is_index)
     head += ", " + std::to_string(d.new_meshes.size()) + " new, " + std::to_string(d.vanished_meshes.size()) +
             " vanished meshes";
@@ -533,6 +581,16 @@ std::string diff_text(const DiffResult& d) {
   for (const DiffValue& v : d.changed)
     out += (v.mesh.empty() ? "" : v.mesh + ": ") + v.key + ": " + show(v.baseline) + " -> " + show(v.current) + " (" +
            show_delta(v) + ")" + (key_quantity(v.key).empty() ? "" : "  [" + key_quantity(v.key) + "]") + "\n";
+  // Keys on one side only: once per key over an index's meshes; with the
+  // value in two report.json.
+  for (const auto& [what, values] : {std::pair{"added key: ", &d.added}, std::pair{"removed key: ", &d.removed}}) {
+    if (d.is_index) {
+      for (const auto& [key, meshes] : keys_with_meshes(*values))
+        out += what + key + " (" + std::to_string(meshes) + (meshes == 1 ? " mesh)" : " meshes)") + "\n";
+    } else {
+      for (const DiffValue& v : *values) out += what + v.key + " = " + show(v.current ? v.current : v.baseline) + "\n";
+    }
+  }
   for (const DiffCellChange& c : d.cells)
     out += std::string(c.is_better ? "better: " : "worse: ") + c.model + " · " + c.method +
            (c.variant.empty() ? "" : " · " + c.variant) + ": " + c.key + ": " + format_double(c.baseline) + " -> " +

@@ -70,7 +70,13 @@ struct DiffResult {
   // MESH2's (the second mesh of each run). Empty for two index.json.
   std::vector<DiffSideBySide> side_by_side;
   std::vector<DiffCellChange> cells;  // index.json with methods: comparison cells that got better or worse
-  std::vector<DiffValue> changed;  // keys whose value differs (or exists on one side only)
+  std::vector<DiffValue> changed;  // keys whose value differs (a number against null counts)
+  // Keys that exist on one side only (an earlier or a later HQView wrote the
+  // other report): the numbers of `current` whose key BASELINE lacks
+  // altogether (baseline nullopt), and the numbers of BASELINE whose key
+  // CURRENT lacks (current nullopt); a key present but null is in `changed`.
+  std::vector<DiffValue> added;
+  std::vector<DiffValue> removed;
   std::vector<std::string> new_meshes;
   std::vector<std::string> vanished_meshes;
   std::vector<DiffStatusChange> status_changes;

@@ -6,23 +6,9 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "hqview/quality/hex_metrics.h"
-#include "hqview/quality/pyramid_metrics.h"
-#include "hqview/quality/tet_metrics.h"
-#include "hqview/quality/wedge_metrics.h"
+#include "hqview/quality/cell_volume.h"
 
 namespace hq {
-namespace {
-
-template <CellKind K>
-double volume_of(const std::array<Vec3, CellKindTable<K>::num_corners>& p) {
-  if constexpr (K == CellKind::hex) return hex_volume(p);
-  else if constexpr (K == CellKind::tet) return tet_volume(p);
-  else if constexpr (K == CellKind::wedge) return wedge_metric(WedgeMetric::volume, p);
-  else return pyramid_metric(PyramidMetric::volume, p);
-}
-
-}  // namespace
 
 CellComposition compute_cell_composition(const Mesh& mesh) {
   CellComposition c;
@@ -36,7 +22,7 @@ CellComposition compute_cell_composition(const Mesh& mesh) {
                           for (std::size_t i = r.begin(); i != r.end(); ++i) {
                             std::array<Vec3, N> p;
                             for (int k = 0; k < N; ++k) p[k] = mesh.points[static_cast<std::size_t>(cells[i][k])];
-                            volumes[i] = volume_of<kind()>(p);
+                            volumes[i] = cell_volume<kind()>(p);
                           }
                         });
       const auto k = static_cast<std::size_t>(kind());

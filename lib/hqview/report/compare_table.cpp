@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "hqview/core/number_format.h"
 
@@ -46,12 +47,23 @@ double number_at(const nlohmann::json& j, std::initializer_list<const char*> pat
   return node->is_number() ? node->get<double>() : std::nan("");
 }
 
+bool has_non_hex_cells(const CompareNumbers& n) {
+  return n.num_tets > 0 || n.num_wedges > 0 || n.num_pyramids > 0;  // false on NaN
+}
+
 }  // namespace
 
-CompareNumbers compare_numbers(const MeshSummary& m, const QualitySummary& q) {
+CompareNumbers compare_numbers(const MeshSummary& m, const QualitySummary& q, const CellComposition& c) {
   const auto count = [](auto v) { return static_cast<double>(v); };
+  const auto fraction = [](const std::optional<double>& f) { return f ? *f : std::nan(""); };
   return {count(m.num_vertices),
           count(m.num_hexes),
+          count(c.num_cells),
+          count(c.count[1]),
+          count(c.count[2]),
+          count(c.count[3]),
+          fraction(c.hex_fraction),
+          fraction(c.hex_volume_fraction),
           q.scaled_jacobian.min,
           q.scaled_jacobian.mean,
           q.scaled_jacobian.p05,
@@ -63,9 +75,16 @@ CompareNumbers compare_numbers(const MeshSummary& m, const QualitySummary& q) {
           m.edge_length_mean};
 }
 
-CompareNumbers compare_numbers(const nlohmann::json& mesh, const nlohmann::json& quality) {
+CompareNumbers compare_numbers(const nlohmann::json& headline, const nlohmann::json& mesh,
+                               const nlohmann::json& quality) {
   return {number_at(mesh, {"num_vertices"}),
           number_at(mesh, {"num_hexes"}),
+          number_at(headline, {"num_cells"}),
+          number_at(headline, {"num_cells_by_kind", "tet"}),
+          number_at(headline, {"num_cells_by_kind", "wedge"}),
+          number_at(headline, {"num_cells_by_kind", "pyramid"}),
+          number_at(headline, {"hex_fraction"}),
+          number_at(headline, {"hex_volume_fraction"}),
           number_at(quality, {"scaled_jacobian", "min"}),
           number_at(quality, {"scaled_jacobian", "mean"}),
           number_at(quality, {"scaled_jacobian", "p05"}),
@@ -78,19 +97,33 @@ CompareNumbers compare_numbers(const nlohmann::json& mesh, const nlohmann::json&
 }
 
 std::vector<CompareTableRow> compare_rows(const CompareNumbers& m, const CompareNumbers& n) {
-  return {
+  std::vector<CompareTableRow> rows = {
       count_row("vertices", m.num_vertices, n.num_vertices, Better::neither),
       count_row("hexahedra", m.num_hexes, n.num_hexes, Better::neither),
+  };
+  const bool is_hybrid = has_non_hex_cells(m) || has_non_hex_cells(n);
+  if (is_hybrid) {
+    rows.push_back(count_row("cells (every kind)", m.num_cells, n.num_cells, Better::neither));
+    rows.push_back(count_row("tetrahedra", m.num_tets, n.num_tets, Better::neither));
+    rows.push_back(count_row("wedges", m.num_wedges, n.num_wedges, Better::neither));
+    rows.push_back(count_row("pyramids", m.num_pyramids, n.num_pyramids, Better::neither));
+    rows.push_back(number_row("hex fraction (by count)", m.hex_fraction, n.hex_fraction, Better::higher));
+    rows.push_back(number_row("hex fraction (by volume)", m.hex_volume_fraction, n.hex_volume_fraction, Better::higher));
+  }
+  const std::vector<CompareTableRow> quality_rows = {
       number_row("min scaled Jacobian", m.sj_min, n.sj_min, Better::higher),
       number_row("mean scaled Jacobian", m.sj_mean, n.sj_mean, Better::higher),
       number_row("p05 scaled Jacobian", m.sj_p05, n.sj_p05, Better::higher),
-      count_row("inverted hexes", m.num_inverted, n.num_inverted, Better::lower),
-      count_row("degenerate hexes", m.num_degenerate, n.num_degenerate, Better::lower),
+      // The scaled Jacobian's statistics run over every cell of every kind.
+      count_row(is_hybrid ? "inverted cells" : "inverted hexes", m.num_inverted, n.num_inverted, Better::lower),
+      count_row(is_hybrid ? "degenerate cells" : "degenerate hexes", m.num_degenerate, n.num_degenerate, Better::lower),
       number_row("min vertex quality", m.vertex_quality_min, n.vertex_quality_min, Better::higher),
       count_row("boundary faces", m.num_boundary_faces, n.num_boundary_faces, Better::neither),
       number_row("bounding box diagonal", m.bbox_diagonal, n.bbox_diagonal, Better::neither),
       number_row("mean edge length", m.edge_length_mean, n.edge_length_mean, Better::neither),
   };
+  rows.insert(rows.end(), quality_rows.begin(), quality_rows.end());
+  return rows;
 }
 
 CompareTable compare_table(const Analysis& a) {
@@ -98,7 +131,8 @@ CompareTable compare_table(const Analysis& a) {
   CompareTable t;
   t.mine_name = std::filesystem::path(a.mesh_input.path).filename().string();
   t.theirs_name = std::filesystem::path(c.input.path).filename().string();
-  t.rows = compare_rows(compare_numbers(a.mesh_summary, a.quality), compare_numbers(c.mesh_summary, c.quality));
+  t.rows = compare_rows(compare_numbers(a.mesh_summary, a.quality, a.composition),
+                        compare_numbers(c.mesh_summary, c.quality, c.composition));
   t.alignment = alignment_description(c.alignment);
   return t;
 }

@@ -31,6 +31,11 @@ struct CompareTable {
 // key of a report.json). Counts are whole numbers.
 struct CompareNumbers {
   double num_vertices = 0, num_hexes = 0;
+  // Composition (report.json headline.num_cells_by_kind, hex_fraction,
+  // hex_volume_fraction): volume cells of every kind, tets, wedges,
+  // pyramids; hexes / cells by count and by volume.
+  double num_cells = 0, num_tets = 0, num_wedges = 0, num_pyramids = 0;
+  double hex_fraction = 0, hex_volume_fraction = 0;
   double sj_min = 0, sj_mean = 0, sj_p05 = 0;
   double num_inverted = 0, num_degenerate = 0;
   double vertex_quality_min = 0;
@@ -38,11 +43,19 @@ struct CompareNumbers {
   double bbox_diagonal = 0, edge_length_mean = 0;
 };
 
-CompareNumbers compare_numbers(const MeshSummary& mesh, const QualitySummary& quality);
-// From a report.json's `mesh` and `quality` objects (or its compare block's).
-CompareNumbers compare_numbers(const nlohmann::json& mesh, const nlohmann::json& quality);
+CompareNumbers compare_numbers(const MeshSummary& mesh, const QualitySummary& quality,
+                               const CellComposition& composition);
+// From a report.json's `headline`, `mesh` and `quality` objects (or its
+// compare block's); a report written before the composition keys has NaN
+// there.
+CompareNumbers compare_numbers(const nlohmann::json& headline, const nlohmann::json& mesh,
+                               const nlohmann::json& quality);
 
-// The rows, `theirs` - `mine` (is_worse: `theirs` is worse).
+// The rows, `theirs` - `mine` (is_worse: `theirs` is worse). When either
+// mesh has a tet, wedge or pyramid, the composition rows follow the
+// hexahedra row: cells (every kind), tetrahedra, wedges, pyramids, hex
+// fraction by count and by volume (lower is worse: a hex-dominant mesher
+// aims at hexes); two pure-hex meshes show none of them.
 std::vector<CompareTableRow> compare_rows(const CompareNumbers& mine, const CompareNumbers& theirs);
 
 // Precondition: analysis.compare holds a value.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -85,10 +86,11 @@ void write_cells_csv(const ReportModel& model, std::ostream& out, TextEncoding e
       // for a non-hex cell (the overlap stage checks hexes).
       buffer += ',';
       if (model.analysis.overlap && c < nh) buffer += model.analysis.overlap->cell_intersecting[c] ? '1' : '0';
-      // size_gradation: empty for a hex without a positive volume or a face
-      // neighbour of positive volume, and for a non-hex cell.
+      // size_gradation: every kind; empty for a cell without a positive
+      // volume or a face neighbour of positive volume.
       buffer += ',';
-      append_double(buffer, CellRows::hex_only(model.analysis.structure.cell_gradation, c, nh));
+      const std::vector<double>& gradation = model.analysis.structure.cell_gradation;
+      append_double(buffer, c < gradation.size() ? gradation[c] : std::numeric_limits<double>::quiet_NaN());
       for (const std::vector<double>* column :
            {fem ? &fem->kappa : nullptr, fem ? &fem->lambda_max : nullptr, fem ? &fem->det_j_min : nullptr,
             fem ? &fem->det_j_max : nullptr, has_poisson ? &model.analysis.poisson->cell_l2_share : nullptr,

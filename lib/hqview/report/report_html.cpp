@@ -411,6 +411,11 @@ void set_headline(data& page, const ReportModel& model) {
   for (const std::string& w : model.analysis.warnings) warnings.push_back(w);
   page.set("warnings", warnings);
   page.set("has_warnings", !model.analysis.warnings.empty());
+  // Notes (information: not in the warning colour).
+  data notes{data::type::list};
+  for (const std::string& n : model.analysis.notes) notes.push_back(n);
+  page.set("notes", notes);
+  page.set("has_notes", !model.analysis.notes.empty());
 }
 
 // --compare: both meshes' numbers side by side and their differences.

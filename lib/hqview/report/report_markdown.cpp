@@ -125,6 +125,11 @@ std::string summary_markdown(const ReportModel& model, const std::string& link_b
     for (const std::string& w : model.analysis.warnings) md += "- " + markdown_escape(w) + "\n";
     md += "\n";
   }
+  if (!model.analysis.notes.empty()) {
+    md += "### Notes\n\n";
+    for (const std::string& w : model.analysis.notes) md += "- " + markdown_escape(w) + "\n";
+    md += "\n";
+  }
 
   std::string views;
   for (const std::string_view id : summary_view_ids())

@@ -110,7 +110,7 @@ void check_sizes(const ReportModel& model) {
   if (model.analysis.boundary_error)
     require_size(model.analysis.boundary_error->vertex_error, nv, "boundary vertex_error");
   require_size(model.analysis.structure.vertex_singular, nv, "vertex_singular");
-  require_size(model.analysis.structure.cell_gradation, nc, "cell_gradation");
+  require_size(model.analysis.structure.cell_gradation, num_cells, "cell_gradation");
   if (model.analysis.fem_elements) require_size(model.analysis.fem_elements->kappa, nc, "fem kappa");
   if (model.analysis.poisson && model.analysis.poisson->skipped.empty())
     require_size(model.analysis.poisson->cell_error_density, nc, "fem error density");
@@ -183,7 +183,10 @@ std::vector<VtuArray> build_arrays(const ReportModel& model) {
     return make_array<double>("CellData", name, 1, num_cells,
                               [&values, nh](std::size_t c) { return CellRows::hex_only(values, c, nh); });
   };
-  arrays.push_back(hex_only("size_gradation", model.analysis.structure.cell_gradation));
+  // Every kind (check_sizes: one value per volume cell).
+  const std::vector<double>& gradation = model.analysis.structure.cell_gradation;
+  arrays.push_back(
+      make_array<double>("CellData", "size_gradation", 1, num_cells, [&gradation](std::size_t c) { return gradation[c]; }));
   if (const auto& fem = model.analysis.fem_elements) {
     arrays.push_back(hex_only("fem_kappa", fem->kappa));
     arrays.push_back(hex_only("fem_lambda_max", fem->lambda_max));

@@ -6,6 +6,8 @@
 #include <numbers>
 
 #include "hqview/core/hex_topology.h"
+#include "hqview/mesh/cell_faces.h"
+#include "hqview/quality/cell_volume.h"
 #include "hqview/quality/hex_metrics.h"
 
 namespace hq {
@@ -75,11 +77,22 @@ void number_curves(HexStructure& s, std::size_t num_vertices) {
     if (s.edges[i].singular)
       for (Index v : s.edges[i].vertices) incident[static_cast<std::size_t>(fill[static_cast<std::size_t>(v)]++)] = static_cast<Index>(i);
   auto degree = [&](Index v) { return first[static_cast<std::size_t>(v) + 1] - first[static_cast<std::size_t>(v)]; };
+  // A hybrid mesh: a vertex of an edge that touches a non-hex cell is where
+  // the hex part's graph meets the rest of the mesh; a curve ending there is
+  // cut by the interface, not at a node of the structure.
+  std::vector<char> on_interface(num_vertices, 0);
+  for (const StructureEdge& e : s.edges)
+    if (e.touches_non_hex)
+      for (Index v : e.vertices) on_interface[static_cast<std::size_t>(v)] = 1;
+  // Curve ends: nodes, and interface vertices with one singular edge.
   std::vector<char> is_node(num_vertices, 0);
+  std::vector<Index> ends;
   for (std::size_t v = 0; v < num_vertices; ++v)
     if (degree(static_cast<Index>(v)) > 0 && degree(static_cast<Index>(v)) != 2) {
       is_node[v] = 1;
-      s.nodes.push_back(static_cast<Index>(v));
+      ends.push_back(static_cast<Index>(v));
+      if (on_interface[v] && degree(static_cast<Index>(v)) == 1) ++s.num_interface_ends;
+      else s.nodes.push_back(static_cast<Index>(v));
     }
   // Walks from vertex `from` along edge `e` until a node or a visited edge.
   auto walk = [&](Index from, Index e) {
@@ -100,7 +113,7 @@ void number_curves(HexStructure& s, std::size_t num_vertices) {
     }
     s.curve_lengths.push_back(length);
   };
-  for (Index v : s.nodes)
+  for (Index v : ends)
     for (auto k = first[static_cast<std::size_t>(v)]; k < first[static_cast<std::size_t>(v) + 1]; ++k)
       if (s.edges[static_cast<std::size_t>(incident[static_cast<std::size_t>(k)])].curve == kNoIndex)
         walk(v, incident[static_cast<std::size_t>(k)]);
@@ -132,6 +145,117 @@ void size_gradation(const HexMesh& mesh, const Topology& topology, HexStructure&
     }
     s.cell_gradation[h] = worst;
   }
+  s.gradation = compute_statistics(s.cell_gradation);
+  for (double g : s.cell_gradation) {
+    s.num_gradation_above_2 += g > 2.0;
+    s.num_gradation_above_4 += g > 4.0;
+  }
+}
+
+// ---- Size gradation across kinds ----------------------------------------
+
+// Per volume cell id (hexes, tets, wedges, pyramids): Verdict's volume over
+// the volume of its kind's regular unit cell (cell_volume.h), the volume of
+// the cube of the same edge length: for a hex its volume.
+std::vector<double> equivalent_hex_volumes(const Mesh& mesh) {
+  std::vector<double> out;
+  out.reserve(static_cast<std::size_t>(num_volume_cells(mesh)));
+  for_each_block(mesh, [&](auto kind, const auto& cells) {
+    if constexpr (CellKindTable<kind()>::dimension == 3) {
+      constexpr int N = CellKindTable<kind()>::num_corners;
+      for (const auto& cell : cells) {
+        std::array<Vec3, N> p;
+        for (int k = 0; k < N; ++k) p[static_cast<std::size_t>(k)] = mesh.points[static_cast<std::size_t>(cell[static_cast<std::size_t>(k)])];
+        out.push_back(cell_volume<kind()>(p) / regular_unit_volume<kind()>());
+      }
+    }
+  });
+  return out;
+}
+
+// Face f of volume cell `id`: its corner ids sorted ascending, a triangle's
+// padded with kNoIndex at the end.
+std::array<Index, 4> sorted_face(const Mesh& mesh, Index id, int f) {
+  std::array<Index, 4> v{kNoIndex, kNoIndex, kNoIndex, kNoIndex};
+  int i = 0, size = 0;
+  for_each_face_of(volume_cell(mesh, id), [&](const std::array<Index, 4>& corners, int n) {
+    if (i++ == f) {
+      v = corners;
+      size = n;
+    }
+  });
+  std::sort(v.begin(), v.begin() + size);
+  return v;
+}
+
+// Raises the gradation of cells a and b to their ratio when both have a
+// positive size.
+void compare_sizes(const std::vector<double>& size, Index a, Index b, std::vector<double>& gradation) {
+  const double va = size[static_cast<std::size_t>(a)], vb = size[static_cast<std::size_t>(b)];
+  if (a == b || !(va > 0.0) || !(vb > 0.0)) return;
+  const double r = std::max(va / vb, vb / va);
+  for (Index c : {a, b}) {
+    double& g = gradation[static_cast<std::size_t>(c)];
+    if (!(g >= r)) g = r;
+  }
+}
+
+// A mesh of several kinds: every pair of volume cells sharing a face (the same
+// three or four vertices; a non-manifold face's cells pairwise) and the quad
+// cell of each non-conforming interface with its two triangle cells. The
+// faces are bucketed by their smallest vertex (linear), matched inside a
+// bucket by sorting its few faces on their other vertices.
+std::vector<double> gradation_across_kinds(const Mesh& mesh, const Topology& topology) {
+  const std::vector<double> size = equivalent_hex_volumes(mesh);
+  const std::size_t nc = size.size(), nv = mesh.points.size();
+  struct FaceOf {
+    Index cell;
+    std::int32_t face;  // its index in CellKindTable<kind>::faces
+  };
+  std::vector<Index> first(nv + 1, 0);
+  std::vector<FaceOf> faces;
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<Index> fill;
+    if (pass == 1) {
+      for (std::size_t v = 0; v < nv; ++v) first[v + 1] += first[v];
+      faces.resize(static_cast<std::size_t>(first[nv]));
+      fill.assign(first.begin(), first.end() - 1);
+    }
+    for (Index c = 0; c < static_cast<Index>(nc); ++c) {
+      std::int32_t f = 0;
+      for_each_face_of(volume_cell(mesh, c), [&](const std::array<Index, 4>& corners, int n) {
+        const auto lowest = static_cast<std::size_t>(*std::min_element(corners.begin(), corners.begin() + n));
+        if (pass == 0) ++first[lowest + 1];
+        else faces[static_cast<std::size_t>(fill[lowest]++)] = {c, f};
+        ++f;
+      });
+    }
+  }
+  std::vector<double> gradation(nc, std::numeric_limits<double>::quiet_NaN());
+  std::vector<std::pair<std::array<Index, 4>, Index>> bucket;
+  for (std::size_t v = 0; v < nv; ++v) {
+    bucket.clear();
+    for (Index k = first[v]; k < first[v + 1]; ++k) {
+      const FaceOf& face = faces[static_cast<std::size_t>(k)];
+      bucket.push_back({sorted_face(mesh, face.cell, face.face), face.cell});
+    }
+    std::sort(bucket.begin(), bucket.end());
+    for (std::size_t i = 0; i < bucket.size();) {
+      std::size_t j = i + 1;
+      while (j < bucket.size() && bucket[j].first == bucket[i].first) ++j;
+      for (std::size_t a = i; a < j; ++a)
+        for (std::size_t b = a + 1; b < j; ++b) compare_sizes(size, bucket[a].second, bucket[b].second, gradation);
+      i = j;
+    }
+  }
+  for (const NonConformingFace& f : topology.non_conforming_faces)
+    for (Index t : f.triangle_cells)
+      if (t != kNoIndex) compare_sizes(size, f.quad_cell, t, gradation);
+  return gradation;
+}
+
+void size_gradation_across_kinds(const Mesh& mesh, const Topology& topology, HexStructure& s) {
+  s.cell_gradation = gradation_across_kinds(mesh, topology);
   s.gradation = compute_statistics(s.cell_gradation);
   for (double g : s.cell_gradation) {
     s.num_gradation_above_2 += g > 2.0;
@@ -214,7 +338,10 @@ HexStructure compute_structure(const HexMesh& mesh, const Topology& topology) {
   }
   s.num_singular_vertices = static_cast<Index>(std::count(s.vertex_singular.begin(), s.vertex_singular.end(), 1));
   number_curves(s, nv);
-  size_gradation(mesh, topology, s);
+  if (mesh.tets.empty() && mesh.wedges.empty() && mesh.pyramids.empty())
+    size_gradation(mesh, topology, s);
+  else
+    size_gradation_across_kinds(mesh, topology, s);
   return s;
 }
 

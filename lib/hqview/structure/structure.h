@@ -8,12 +8,20 @@
 //     round(theta / 90 deg) (at least 1), theta the dihedral angle inside the
 //     mesh between its two boundary faces (90 along a box edge);
 //   - singular vertices touch a singular edge; the singularity graph's nodes
-//     are singular vertices with other than 2 singular edges, its curves
+//     are singular vertices with other than 2 singular edges (on a hybrid
+//     mesh not a curve's end on the interface with the non-hex cells), its curves
 //     maximal chains of singular edges between nodes (a closed chain
 //     without a node is one curve);
-//   - the size gradation of a hex is the largest ratio of its volume to a
-//     face neighbour's (or the inverse, so >= 1).
-// On a hybrid mesh all of this is the hex part's: valences count hexes, and
+//   - the size gradation of a cell is the largest ratio of its size to a
+//     face neighbour's (or the inverse, so >= 1); a cell's size is its
+//     Verdict volume over the volume of its kind's regular cell of unit
+//     edges (cell_volume.h): a hex's volume, and for a tet, wedge or pyramid
+//     the volume of the cube whose edge is that of the regular cell of the
+//     same volume, so a regular tet next to a cube of the same edge length
+//     grades 1. On a hybrid mesh every volume cell has one, its neighbours
+//     those sharing a whole face with it (any kinds) and, across a
+//     non-conforming interface, the quad's cell and the two triangles'.
+// On a hybrid mesh all of this but the size gradation is the hex part's: valences count hexes, and
 // an edge of the hex part that is also an edge of a tet, wedge or pyramid
 // (Topology::edge_touches_non_hex) is neither singular nor regular nor
 // irregular: it is listed with touches_non_hex and counted apart (its kind
@@ -61,10 +69,15 @@ struct HexStructure {
   std::vector<char> vertex_singular;           // per vertex, 0/1
   Index num_singular_vertices = 0;
   std::vector<Index> nodes;                    // ascending vertex ids
+  // A hybrid mesh: singular vertices with one singular edge on an edge that
+  // touches a non-hex cell, where a curve is cut by the hex part's
+  // interface; not nodes (the curve goes on in the non-hex part, unseen).
+  Index num_interface_ends = 0;
   Index num_curves = 0;
   std::vector<Index> curve_lengths;            // edges per curve, by curve id
-  // Per hex: the size gradation (NaN for a hex without a positive volume or
-  // without a face neighbour of positive volume).
+  // Per volume cell id (hexes first, then tets, wedges, pyramids): the size
+  // gradation (NaN for a cell without a positive volume or without a face
+  // neighbour of positive volume).
   std::vector<double> cell_gradation;
   Statistics gradation;                        // of the finite cell_gradation values
   Index num_gradation_above_2 = 0, num_gradation_above_4 = 0;

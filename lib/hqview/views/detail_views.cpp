@@ -176,27 +176,42 @@ struct Figure {
 
 // The detail views' legend: the quality colour bar, its title ending with
 // the kinds of the cells drawn (`kinds`, cell_kinds_legend) when not empty.
-ColorBar detail_color_bar(const std::string& kinds) {
+// The ring's edge colour of each kind in view D: hexes kRingEdgeColor, the
+// other kinds cell_kind_edge_color (view A's).
+Rgba8 ring_edge_color(CellKind kind) { return kind == CellKind::hex ? kRingEdgeColor : cell_kind_edge_color(kind); }
+
+// kind_swatches: one swatch per kind named in `kinds`' last line, in its ring edge
+// colour (view D, whose ring edges are coloured by kind).
+ColorBar detail_color_bar(const std::string& kinds, bool kind_swatches = false) {
   ColorBar bar = quality_color_bar();
   if (!kinds.empty()) bar.label += "\n" + kinds;
+  if (kind_swatches)
+    for (const auto& [color, text] : cell_kind_swatches(std::string_view(kinds).substr(kinds.rfind('\n') + 1))) {
+      const std::string name = text.substr(text.find(' ') + 1);
+      CellKind kind = CellKind::hex;
+      for (CellKind k : kCellKinds)
+        if (cell_kind_name(k) == name) kind = k;
+      bar.swatches.push_back({to_color(ring_edge_color(kind)), name + " edges"});
+    }
   return bar;
 }
 
-Figure detail_figure(const DetailViewOptions& options, const std::string& kinds = {}) {
+Figure detail_figure(const DetailViewOptions& options, const std::string& kinds = {}, bool kind_swatches = false) {
   Figure f;
   f.style = annotation_style_for(options.height);
   f.style.background = options.background;
   f.layout = figure_layout(options.width, options.height, !options.title.empty(),
-                           color_bar_width(detail_color_bar(kinds), f.style), f.style);
+                           color_bar_width(detail_color_bar(kinds, kind_swatches), f.style), f.style);
   f.aspect = static_cast<double>(std::max(1, f.layout.view.width)) / std::max(1, f.layout.view.height);
   return f;
 }
 
-Image compose(const DetailViewOptions& options, const Figure& f, const Image& view, const std::string& kinds = {}) {
+Image compose(const DetailViewOptions& options, const Figure& f, const Image& view, const std::string& kinds = {},
+              bool kind_swatches = false) {
   Image figure = make_image(options.width, options.height, options.background);
   paste(figure, view, f.layout.view.x, f.layout.view.y);
   draw_title(figure, f.layout.title, options.title, f.style);
-  draw_color_bar(figure, f.layout.legend, detail_color_bar(kinds), f.style);
+  draw_color_bar(figure, f.layout.legend, detail_color_bar(kinds, kind_swatches), f.style);
   return figure;
 }
 
@@ -220,7 +235,7 @@ struct NonHexIncidence {
 
 NonHexIncidence non_hex_incidence(const HexMesh& mesh) {
   NonHexIncidence out;
-  const Index first = mesh.num_hexes(), end = num_volume_cells(mesh);
+  const Index first = mesh.num_hexes(), end = static_cast<Index>(num_volume_cells(mesh));
   if (first == end) return out;
   out.offsets.assign(mesh.points.size() + 1, 0);
   for (Index c = first; c < end; ++c) {
@@ -241,7 +256,7 @@ NonHexIncidence non_hex_incidence(const HexMesh& mesh) {
 // The cells using the given vertices, every kind, ascending.
 ClusterRegion region_of(const HexMesh& mesh, const Topology& topology, const NonHexIncidence& others,
                         std::span<const Index> vertices) {
-  IdSet cells(static_cast<std::size_t>(std::max<Index>(num_volume_cells(mesh), 0)));
+  IdSet cells(static_cast<std::size_t>(num_volume_cells(mesh)));
   for (Index v : vertices) {
     for (Index h : topology.hexes_of(v)) cells.add(h);
     for (Index c : others.of(v)) cells.add(c);
@@ -488,7 +503,14 @@ Scene build_local_scene(const HexMesh& mesh, const Topology& topology, std::span
   Scene scene;
   const Vec3& p = mesh.points.at(static_cast<std::size_t>(v));
   scene.origin = p;
-  scene.lines.push_back(cell_edges(mesh, topology, ring, scene.origin, kRingEdgeColor, 1.5f));
+  // The ring's edges by kind (one set per kind present; a pure-hex ring is one set).
+  std::array<std::vector<Index>, 4> by_kind;
+  for (Index c : ring)
+    by_kind[static_cast<std::size_t>(c < mesh.num_hexes() ? CellKind::hex : volume_cell(mesh, c).kind)].push_back(c);
+  for (std::size_t k = 0; k < by_kind.size(); ++k)
+    if (k == 0 || !by_kind[k].empty())
+      scene.lines.push_back(
+          cell_edges(mesh, topology, by_kind[k], scene.origin, ring_edge_color(static_cast<CellKind>(k)), 1.5f));
   const double size = mean_edge_at(mesh, corners, v);
   SphereSet markers, centre;
   for (const VertexCorner& c : corners) {
@@ -508,13 +530,57 @@ Scene build_local_scene(const HexMesh& mesh, const Topology& topology, std::span
   return scene;
 }
 
+namespace {
+
+// The corner markers (the scene's first sphere set) as flat discs facing the
+// camera, each on a dark rim, over everything (Scene::overlay): behind the
+// ring's translucent faces a sphere's colour washed out towards grey, so a
+// marker's colour disagreed with its value.
+Scene with_flat_markers(const Scene& scene, const Camera& camera) {
+  Scene out = scene;
+  if (out.spheres.empty()) return out;
+  const SphereSet markers = out.spheres[0];
+  out.spheres[0] = SphereSet{};
+  const Vec3 d = normalized(camera.target - camera.eye);
+  Vec3 right = cross(d, camera.up);
+  if (!(squared_norm(right) > 0.0)) right = cross(d, Vec3{1.0, 0.0, 0.0});
+  right = normalized(right);
+  const Vec3 up = cross(right, d);
+  constexpr int kSegments = 32;
+  constexpr Rgba8 kRim{40, 40, 46, 255};
+  TriangleSet discs;
+  discs.is_lit = false;
+  const auto disc = [&](const Vec3& c, double r, Rgba8 color) {
+    const auto base = static_cast<std::uint32_t>(discs.positions.size());
+    discs.positions.push_back(to_vec3f(c));
+    discs.colors.push_back(color);
+    for (int k = 0; k < kSegments; ++k) {
+      const double a = 2.0 * 3.14159265358979323846 * k / kSegments;
+      discs.positions.push_back(to_vec3f(c + r * (std::cos(a) * right + std::sin(a) * up)));
+      discs.colors.push_back(color);
+    }
+    for (std::uint32_t k = 0; k < kSegments; ++k)
+      discs.indices.insert(discs.indices.end(), {base, base + 1 + k, base + 1 + (k + 1) % kSegments});
+  };
+  for (std::size_t i = 0; i < markers.centers.size(); ++i) {
+    const Vec3 c{markers.centers[i].x, markers.centers[i].y, markers.centers[i].z};
+    const double r = markers.radii[i];
+    disc(c + 0.05 * r * d, 1.12 * r, kRim);  // the rim just behind its disc
+    disc(c, r, markers.colors[i]);
+  }
+  out.overlay.push_back(std::move(discs));
+  return out;
+}
+
+}  // namespace
+
 Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v,
                         const DetailViewOptions& options, Renderer& renderer) {
   const std::vector<Index> ring = local_ring(mesh, topology, v);
   // Under the colour bar: the markers' size rule, then the cells' kinds.
   const std::string kinds = std::string(kLocalMarkerSizeLegend) +
                             (has_non_hex_cells(mesh) ? "\n" + cell_kinds_legend(mesh, ring) : std::string());
-  const Figure f = detail_figure(options, kinds);
+  const Figure f = detail_figure(options, kinds, has_non_hex_cells(mesh));
   const Scene scene = build_local_scene(mesh, topology, corner_values, v);
   const std::vector<VertexCorner> corners = vertex_corners(mesh, topology, corner_values, v);
   std::vector<Vec3> points = cell_points(mesh, ring);
@@ -529,7 +595,9 @@ Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span
   const std::vector<Vec3> direction = choose_viewpoints(points, centers, radii, f.aspect, 1, options.up);
   const Camera camera =
       fit_camera_to_points(points, direction.at(0), f.aspect, {.up = options.up, .is_perspective = false});
-  Image figure = compose(options, f, renderer.render(scene, camera, f.layout.view.width, f.layout.view.height), kinds);
+  Image figure = compose(options, f,
+                         renderer.render(with_flat_markers(scene, camera), camera, f.layout.view.width, f.layout.view.height),
+                         kinds, true);
   // Labels: each corner's value next to its marker, placed greedily
   // (place_labels) so that no label covers another or any marker; a label
   // that has to move away from its marker gets a leader line to it.
@@ -568,6 +636,16 @@ Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span
       if (placed[i]->has_leader)
         draw_line(figure, placed[i]->leader_x0, placed[i]->leader_y0, placed[i]->leader_x1, placed[i]->leader_y1, color,
                   std::max(1.0, 1.2 * f.style.scale));
+    }
+    // A label beside its marker gets a short leader too: among a dozen
+    // markers "next to" names none.
+    if (!placed[i] || !placed[i]->has_leader) {
+      const double nx = std::clamp(markers[i].x, double(box.x), double(box.x + box.width));
+      const double ny = std::clamp(markers[i].y, double(box.y), double(box.y + box.height));
+      const double dx = nx - markers[i].x, dy = ny - markers[i].y, d = std::hypot(dx, dy);
+      if (d > markers[i].radius + 2.0)
+        draw_line(figure, markers[i].x + dx / d * markers[i].radius, markers[i].y + dy / d * markers[i].radius, nx, ny,
+                  color, std::max(1.0, 1.2 * f.style.scale));
     }
     label_style.text_color = color;
     draw_text(figure, box.x + 2, box.y + static_cast<int>(std::lround(0.85 * size)), texts[i], size, label_style);

@@ -59,7 +59,58 @@ std::vector<double> displayed_glyph_radii(const GlyphResult& glyphs, double scal
   return radii;
 }
 
+Rgba8 cell_kind_edge_color(CellKind kind) {
+  switch (kind) {
+    case CellKind::tet: return {60, 110, 185, 255};
+    case CellKind::wedge: return {40, 135, 80, 255};
+    case CellKind::pyramid: return {185, 105, 35, 255};
+    default: return kWireframeColor;
+  }
+}
+
+std::vector<std::pair<Rgba8, std::string>> cell_kind_swatches(std::string_view cell_kinds) {
+  std::vector<std::pair<Rgba8, std::string>> out;
+  std::string_view rest = cell_kinds;
+  if (rest.starts_with("cells: ")) rest.remove_prefix(7);
+  while (!rest.empty()) {
+    const std::size_t comma = rest.find(", ");
+    const std::string_view item = rest.substr(0, comma);
+    const std::string_view name = item.substr(std::min(item.size(), item.find(' ') + 1));
+    for (CellKind kind : kCellKinds)
+      if (cell_kind_name(kind) == name) out.push_back({cell_kind_edge_color(kind), std::string(item)});
+    rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 2);
+  }
+  return out;
+}
+
 namespace {
+
+// The boundary edges' colours on a mesh of several kinds: each edge in the
+// edge colour of the kinds of its boundary faces, the rarer kind winning
+// (pyramid, wedge, tet, hex) so that the few pyramids among tets show.
+std::vector<Rgba8> boundary_edge_kind_colors(const HexMesh& mesh, const Topology& topology,
+                                             const std::vector<Edge>& edges) {
+  constexpr std::array<int, 4> kRank = {0, 1, 2, 3};  // hex, tet, wedge, pyramid: higher wins
+  std::vector<int> rank(edges.size(), 0);
+  const std::array<Index, 5> start = volume_block_starts(mesh);
+  for (const BoundaryPolygon& face : boundary_polygons(topology)) {
+    int kind = 0;
+    while (kind < 3 && face.cell >= start[static_cast<std::size_t>(kind) + 1]) ++kind;
+    for (int i = 0; i < face.size; ++i) {
+      const Index a = face.v[static_cast<std::size_t>(i)], b = face.v[static_cast<std::size_t>((i + 1) % face.size)];
+      const Edge e{std::min(a, b), std::max(a, b)};
+      const auto it = std::lower_bound(edges.begin(), edges.end(), e);
+      if (it != edges.end() && *it == e) {
+        int& r = rank[static_cast<std::size_t>(it - edges.begin())];
+        r = std::max(r, kRank[static_cast<std::size_t>(kind)]);
+      }
+    }
+  }
+  std::vector<Rgba8> colors;
+  colors.reserve(edges.size());
+  for (int r : rank) colors.push_back(cell_kind_edge_color(static_cast<CellKind>(r)));
+  return colors;
+}
 
 // A line set of the given edges, vertices renumbered compactly; colour per edge.
 LineSet edge_lines(const HexMesh& mesh, const Vec3& origin, const std::vector<Edge>& edges,
@@ -426,9 +477,12 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   auto local = [&](const Vec3& p) { return to_vec3f(p - scene.origin); };
 
   // 1. Boundary wireframe.
+  // On a mesh of several kinds each edge in its faces' kind colour.
   const std::vector<Edge> wire = boundary_edges_all_kinds(topology);
-  scene.lines.push_back(
-      edge_lines(mesh, scene.origin, wire, std::vector<Rgba8>(wire.size(), kWireframeColor), options.wire_width));
+  scene.lines.push_back(edge_lines(mesh, scene.origin, wire,
+                                   topology.across_kinds ? boundary_edge_kind_colors(mesh, topology, wire)
+                                                         : std::vector<Rgba8>(wire.size(), kWireframeColor),
+                                   options.wire_width));
   scene.lines.back().under_ranked_spheres = true;  // no veil over the coloured glyphs
 
   // 2. Cluster edges: around each cluster's worst vertices only (a cluster
@@ -794,16 +848,10 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
   lines.push_back({kWireframeColor, "boundary edges"});
   // "cells: 64 hex, 484 tet, 16 pyramid" as a heading and one line per kind
   // (one line would be cut in the legend's width).
+  // Each with its boundary edges' colour.
   if (!options.cell_kinds.empty()) {
-    std::string_view rest = options.cell_kinds;
-    const std::string_view heading = "cells: ";
-    if (rest.starts_with(heading)) rest.remove_prefix(heading.size());
-    lines.push_back({std::nullopt, "cells of the mesh", 1});
-    while (!rest.empty()) {
-      const std::size_t comma = rest.find(", ");
-      lines.push_back({std::nullopt, "  " + std::string(rest.substr(0, comma))});
-      rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 2);
-    }
+    lines.push_back({std::nullopt, "cells of the mesh (edge colour)", 1});
+    for (const auto& [color, text] : cell_kind_swatches(options.cell_kinds)) lines.push_back({color, text});
   }
   return lines;
 }

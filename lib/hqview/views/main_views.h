@@ -7,6 +7,8 @@
 // directions) that show the most glyph area.
 
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "hqview/glyph/glyphs.h"
@@ -32,6 +34,15 @@ inline constexpr Rgba8 kWireframeColor{120, 124, 134, 255};
 inline constexpr Rgba8 kCoincidentArrowColor{25, 25, 25, 255};
 inline constexpr Rgba8 kIntersectionArrowColor{140, 20, 120, 255};
 inline constexpr Rgba8 kIntersectingCellColor{214, 40, 190, 96};  // translucent magenta
+
+// The edge colour of each volume kind where the views tell kinds apart (view
+// A's boundary wireframe, view D's one ring): hexes kWireframeColor, tets
+// blue, wedges green, pyramids brown-orange, each mid-dark and less
+// saturated than the cluster palette; with a swatch per kind present.
+Rgba8 cell_kind_edge_color(CellKind kind);
+// The legend swatches of a "cells: 64 hex, 484 tet, 16 pyramid" text
+// (mesh_kinds_text): one per kind named, "64 hex" in its edge colour.
+std::vector<std::pair<Rgba8, std::string>> cell_kind_swatches(std::string_view cell_kinds);
 
 struct MainViewOptions {
   int width = 1600;  // figure size in pixels, legend and title included

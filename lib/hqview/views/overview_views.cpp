@@ -189,8 +189,41 @@ TriangleSet non_conforming_outlines(const HexMesh& mesh, const Topology& topolog
       const std::uint32_t o0 = base + 2 * i, i0 = o0 + 1, o1 = base + 2 * ((i + 1) % 4), i1 = o1 + 1;
       set.indices.insert(set.indices.end(), {o0, o1, i1, o0, i1, i0});
     }
+    add_non_conforming_diagonal(mesh, nc, origin, kNonConformingColor, set);
   }
   return set;
+}
+
+void add_non_conforming_diagonal(const HexMesh& mesh, const NonConformingFace& nc, const Vec3& origin,
+                                 const Rgba8& color, TriangleSet& set) {
+  // The diagonal: the two quad corners both triangles use.
+  std::array<Index, 2> ends{kNoIndex, kNoIndex};
+  int n = 0;
+  for (Index v : nc.triangles[0])
+    if (n < 2 && std::find(nc.triangles[1].begin(), nc.triangles[1].end(), v) != nc.triangles[1].end()) ends[static_cast<std::size_t>(n++)] = v;
+  if (n < 2) return;
+  Vec3 p[4], centre{};
+  for (int i = 0; i < 4; ++i) centre = centre + (p[i] = point(mesh, nc.quad[static_cast<std::size_t>(i)]));
+  centre = 0.25 * centre;
+  const Vec3 a = point(mesh, ends[0]), b = point(mesh, ends[1]);
+  // In the face's plane, across the diagonal: half as wide as the frame is deep.
+  const Vec3 normal = cross(p[2] - p[0], p[3] - p[1]);
+  const Vec3 across = cross(normal, b - a);
+  if (!(squared_norm(across) > 0.0)) return;
+  double depth = 0.0;  // the frame's depth at the corners the diagonal leaves
+  for (const Vec3& e : {a, b}) depth = std::max(depth, kNonConformingFrame * norm(centre - e));
+  const Vec3 side = (0.25 * depth) * normalized(across);
+  // kNonConformingDashes dashes with gaps as long, from corner to corner.
+  const int pieces = 2 * kNonConformingDashes - 1;
+  for (int k = 0; k < pieces; k += 2) {
+    const Vec3 s = a + (static_cast<double>(k) / pieces) * (b - a), e = a + (static_cast<double>(k + 1) / pieces) * (b - a);
+    const auto base = static_cast<std::uint32_t>(set.positions.size());
+    for (const Vec3& q : {s - side, s + side, e + side, e - side}) {
+      set.positions.push_back(to_vec3f(q - origin));
+      set.colors.push_back(color);
+    }
+    set.indices.insert(set.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+  }
 }
 
 ColorBar overview_color_bar(const Topology& topology, const std::vector<double>& vertex_quality) {

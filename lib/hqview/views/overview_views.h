@@ -61,7 +61,14 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
 // model shows where it is; they are never part of the boundary.
 inline constexpr Rgba8 kNonConformingColor{125, 70, 20, 255};  // dark brown: in no palette of the overview or structure views
 inline constexpr double kNonConformingFrame = 0.15;
+inline constexpr int kNonConformingDashes = 5;
+// The frame, and inside it the diagonal the two triangles split the quad
+// along, dashed (what makes the face non-conforming).
 TriangleSet non_conforming_outlines(const HexMesh& mesh, const Topology& topology, const Vec3& origin);
+// Appends the dashed diagonal of one non-conforming face (kNonConformingDashes
+// dashes, unlit, as wide as half the frame's depth) to `set`.
+void add_non_conforming_diagonal(const HexMesh& mesh, const NonConformingFace& nc, const Vec3& origin,
+                                 const Rgba8& color, TriangleSet& set);
 
 // The overview's legend: quality_color_bar(), plus on a hybrid mesh a
 // "no value" swatch when a boundary vertex has no quality (NaN) and a

@@ -19,9 +19,11 @@ namespace hq {
 namespace {
 
 constexpr double kNodeRadius = 0.2;  // of the median singular edge length
+constexpr double kMaxNodeRadius = 0.02;  // of the boundary's bounding-box diagonal
 constexpr Rgba8 kVeilColor{176, 182, 194, 56};     // the translucent boundary
 constexpr Rgba8 kNodeColor{40, 40, 46, 255};        // singularity nodes
 constexpr Rgba8 kGradationEdgeColor{40, 40, 46, 70};  // boundary edges over the gradation
+constexpr Rgba8 kNonConformingDiagonalColor{255, 255, 255, 255};  // dashed over the brown face
 
 const Vec3& point(const HexMesh& mesh, Index v) { return mesh.points[static_cast<std::size_t>(v)]; }
 
@@ -129,7 +131,10 @@ Scene build_singularity_scene(const HexMesh& mesh, const Topology& topology, con
   }
   scene.lines.push_back(std::move(lines));
   SphereSet nodes;
-  const auto radius = static_cast<float>(kNodeRadius * median_singular_edge_length(mesh, structure));
+  // At most kMaxNodeRadius of the boundary's diagonal: on a coarse mesh (a
+  // few hexes beside many tets) a fifth of an edge hid the graph.
+  const auto radius = static_cast<float>(std::min(kNodeRadius * median_singular_edge_length(mesh, structure),
+                                                  kMaxNodeRadius * norm(box.hi - box.lo)));
   if (radius > 0.0f)
     for (Index v : structure.nodes) {
       nodes.centers.push_back(to_vec3f(point(mesh, v) - scene.origin));
@@ -150,6 +155,13 @@ Scene build_singularity_scene(const HexMesh& mesh, const Topology& topology, con
       faces.indices.insert(faces.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
     }
     scene.triangles.push_back(std::move(faces));
+    // The triangles' diagonal, dashed in white over everything (the face is
+    // under the veil; the split is what makes it non-conforming).
+    TriangleSet diagonals;
+    diagonals.is_lit = false;
+    for (const NonConformingFace& nc : topology.non_conforming_faces)
+      add_non_conforming_diagonal(mesh, nc, scene.origin, kNonConformingDiagonalColor, diagonals);
+    scene.overlay.push_back(std::move(diagonals));
   }
   return scene;
 }
@@ -211,6 +223,8 @@ Image render_singularity_view(const HexMesh& mesh, const Topology& topology, con
   if (const std::string kinds = mesh_kinds_text(mesh); !kinds.empty()) {
     lines.push_back({std::nullopt, kinds, 1});
     lines.push_back({std::nullopt, "graph of the hex part"});
+    if (structure.num_interface_ends > 0)
+      lines.push_back({std::nullopt, std::to_string(structure.num_interface_ends) + " curve ends at non-hex cells"});
   }
   draw_legend(figure, layout.legend, lines, style);
   return figure;
@@ -225,12 +239,20 @@ Vec3 choose_gradation_viewpoint(const HexMesh& mesh, const Topology& topology, c
                                 const StructureViewOptions& options) {
   std::vector<Vec3> centers;
   std::vector<double> radii;
-  for (Index face : topology.boundary_faces) {
-    const Index h = topology.face_hexes[static_cast<std::size_t>(topology.face_hex_offsets[static_cast<std::size_t>(face)])];
-    if (!(structure.cell_gradation[static_cast<std::size_t>(h)] > 2.0)) continue;
-    const Quad& q = topology.faces[static_cast<std::size_t>(face)];
-    centers.push_back(0.25 * (point(mesh, q[0]) + point(mesh, q[1]) + point(mesh, q[2]) + point(mesh, q[3])));
-    radii.push_back(0.5 * norm(point(mesh, q[2]) - point(mesh, q[0])));
+  // The boundary faces of every kind whose cell grades above 2 (a pure-hex
+  // mesh: its boundary quads, in their order).
+  for (const BoundaryPolygon& face : boundary_polygons(topology)) {
+    const auto cell = static_cast<std::size_t>(face.cell);
+    if (cell >= structure.cell_gradation.size() || !(structure.cell_gradation[cell] > 2.0)) continue;
+    const auto& q = face.v;
+    if (face.size == 4) {
+      centers.push_back(0.25 * (point(mesh, q[0]) + point(mesh, q[1]) + point(mesh, q[2]) + point(mesh, q[3])));
+      radii.push_back(0.5 * norm(point(mesh, q[2]) - point(mesh, q[0])));
+    } else {
+      const Vec3 c = (1.0 / 3.0) * (point(mesh, q[0]) + point(mesh, q[1]) + point(mesh, q[2]));
+      centers.push_back(c);
+      radii.push_back(std::max({norm(point(mesh, q[0]) - c), norm(point(mesh, q[1]) - c), norm(point(mesh, q[2]) - c)}));
+    }
   }
   return choose_viewpoints(boundary_points(mesh, topology), centers, radii, structure_view_aspect(options), 1,
                            options.up, options.fov_y_degrees)
@@ -240,9 +262,9 @@ Vec3 choose_gradation_viewpoint(const HexMesh& mesh, const Topology& topology, c
 Image render_gradation_view(const HexMesh& mesh, const Topology& topology, const HexStructure& structure,
                             const Vec3& view_direction, const StructureViewOptions& options, Renderer& renderer) {
   check_size(options);
-  if (structure.cell_gradation.size() != mesh.hexes.size())
+  if (structure.cell_gradation.size() != static_cast<std::size_t>(num_volume_cells(mesh)))
     throw Error("size gradation has " + std::to_string(structure.cell_gradation.size()) + " values for " +
-                std::to_string(mesh.hexes.size()) + " hexes");
+                std::to_string(num_volume_cells(mesh)) + " cells");
   AnnotationStyle style = annotation_style_for(options.height);
   style.background = options.background;
   ColorBar bar;
@@ -252,7 +274,9 @@ Image render_gradation_view(const HexMesh& mesh, const Topology& topology, const
   for (int i = 0; i <= 32; ++i) bar.colors.push_back(gradation_color(std::exp2(2.0 * i / 32.0)));
   bar.ticks = {{0.0, "1"}, {std::log2(1.5), "1.5"}, {1.0, "2"}, {std::log2(3.0), "3"}, {2.0, ">= 4"}};
   bar.swatches = {{kUndefinedColor, "undefined"}};
-  if (const std::string kinds = mesh_kinds_text(mesh); !kinds.empty()) bar.label += "\n" + kinds;
+  // Several kinds: sizes are volumes over the kind's regular unit cell (structure.h).
+  if (const std::string kinds = mesh_kinds_text(mesh); !kinds.empty())
+    bar.label = "size gradation: ratio of\nvolume / regular cell\nof its kind to a face\nneighbour's (max)\n" + kinds;
   const FigureLayout layout =
       figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(bar, style), style);
   const double aspect = static_cast<double>(layout.view.width) / std::max(1, layout.view.height);
@@ -263,11 +287,7 @@ Image render_gradation_view(const HexMesh& mesh, const Topology& topology, const
   scene.origin = 0.5 * (box.lo + box.hi);
   scene.background = options.background;
   scene.triangles.push_back(boundary_faces(mesh, topology, scene.origin, [&](Index cell) {
-    // Cells of other kinds have no gradation (yet): the undefined colour.
-    const double g = static_cast<std::size_t>(cell) < structure.cell_gradation.size()
-                         ? structure.cell_gradation[static_cast<std::size_t>(cell)]
-                         : std::nan("");
-    return to_rgba8(gradation_color(g));
+    return to_rgba8(gradation_color(structure.cell_gradation[static_cast<std::size_t>(cell)]));
   }));
   LineSet edges;
   edges.width = static_cast<float>(std::max(1.0, style.scale));
