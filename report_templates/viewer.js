@@ -356,28 +356,49 @@
   if (L.kind_faces && lowKindCount.filter(Boolean).length > 1)
     lowKindsText = ' (' + lowKindCount.map(function (n, kd) { return n ? n + ' ' + L.kind_faces.names[kd] : ''; })
       .filter(Boolean).join(', ') + ')';
-  // One mesh per cell kind, each with a check box (issue 44 review: one
-  // threshold floods a Delaunay tet region, whose tets sit well under 0.5):
-  // on a mesh with hexes under the threshold only the hexes are shown at
-  // first, otherwise every kind; the note gives every kind's count.
-  var lowNormals = quadNormals(lowPos, lowFaces), low = new THREE.Group(), lowByKind = [], lowKindBoxes = document.getElementById('cut-kinds');
-  var faceStart = 0, kindNames = L.kind_faces ? L.kind_faces.names : ['hex'];
-  for (h = 0; h < L.count; ) {
-    var kd = lowKinds[h], first = faceStart;
-    for (; h < L.count && lowKinds[h] === kd; ++h) faceStart += kindFaces[kd].length;
+  // Per cell kind, one mesh of its inverted cells (scaled Jacobian < 0),
+  // always drawn by the cut, and one of the rest, drawn while the kind's
+  // check box is ticked (issue 44 review: one threshold floods a Delaunay
+  // tet region, whose tets sit well under 0.5). Ticked at first: hexes, and
+  // every kind with an inverted cell or a cell with a vertex of cluster #0
+  // (L.worst); with no hex among the cells, every kind. The note gives every
+  // kind's count and the inverted count.
+  var lowNormals = quadNormals(lowPos, lowFaces), low = new THREE.Group(), lowKindBoxes = document.getElementById('cut-kinds');
+  var kindNames = L.kind_faces ? L.kind_faces.names : ['hex'], lowWorst = L.worst ? typed(Uint8Array, L.worst) : new Uint8Array(L.count);
+  var cellFace = new Uint32Array(L.count + 1), lowInverted = 0, kindTicked = [];
+  for (h = 0; h < L.count; ++h) {
+    cellFace[h + 1] = cellFace[h] + kindFaces[lowKinds[h]].length;
+    if (lowSj[h] < 0) lowInverted += 1;
+    if (lowSj[h] < 0 || lowWorst[h] || lowKinds[h] === 0) kindTicked[lowKinds[h]] = true;
+  }
+  function lowPart(kd, inverted) {
+    var cells = [];
+    for (var i = 0; i < L.count; ++i) if (lowKinds[i] === kd && (lowSj[i] < 0) === inverted) cells.push(i);
+    if (!cells.length) return;
+    var n = cells.reduce(function (m, i) { return m + cellFace[i + 1] - cellFace[i]; }, 0), at = 0;
+    var pos = new Float32Array(18 * n), col = new Float32Array(18 * n), nor = new Float32Array(18 * n);
+    cells.forEach(function (i) {
+      var a = 18 * cellFace[i], b = 18 * cellFace[i + 1];
+      pos.set(lowPos.subarray(a, b), at); col.set(lowCol.subarray(a, b), at); nor.set(lowNormals.subarray(a, b), at);
+      at += b - a;
+    });
     var gm = new THREE.BufferGeometry();
-    gm.setAttribute('position', new THREE.BufferAttribute(lowPos.subarray(18 * first, 18 * faceStart), 3));
-    gm.setAttribute('color', new THREE.BufferAttribute(lowCol.subarray(18 * first, 18 * faceStart), 3));
-    gm.setAttribute('normal', new THREE.BufferAttribute(lowNormals.subarray(18 * first, 18 * faceStart), 3));
+    gm.setAttribute('position', new THREE.BufferAttribute(pos, 3));
+    gm.setAttribute('color', new THREE.BufferAttribute(col, 3));
+    gm.setAttribute('normal', new THREE.BufferAttribute(nor, 3));
     var part = new THREE.Mesh(gm, new THREE.MeshLambertMaterial({ vertexColors: THREE.VertexColors, side: THREE.DoubleSide, clippingPlanes: clipping }));
     part.userData.legend = 'field';  // the quality colours of the bar
     part.userData.kind = kd;
+    part.userData.inverted = inverted;
+    part.userData.cells = cells.length;
     low.add(part);
   }
   var kindShown = {};
   lowKindCount.forEach(function (n, kd) {
     if (!n) return;
-    kindShown[kd] = !lowKindCount[0] || kd === 0;
+    lowPart(kd, true);
+    lowPart(kd, false);
+    kindShown[kd] = !lowKindCount[0] || !!kindTicked[kd];
     var box = el('input', { type: 'checkbox', 'data-kind': kindNames[kd] });
     box.checked = kindShown[kd];
     box.addEventListener('change', function () { kindShown[kd] = box.checked; updateCut(); });
@@ -641,9 +662,13 @@
     low.visible = axis >= 0 && document.getElementById('layer-low').checked;
     planeOutline.visible = axis >= 0;
     var drawn = 0;
-    low.children.forEach(function (part) { part.visible = !!kindShown[part.userData.kind]; if (part.visible) drawn += lowKindCount[part.userData.kind]; });
+    low.children.forEach(function (part) {
+      part.visible = part.userData.inverted || !!kindShown[part.userData.kind];
+      if (part.visible) drawn += part.userData.cells;
+    });
     document.getElementById('cut-note').textContent = axis >= 0
-      ? L.count + ' cells with scaled Jacobian under ' + show(L.threshold) + lowKindsText + '; ' + drawn + ' drawn inside (the kinds ticked below)'
+      ? L.count + ' cells with scaled Jacobian under ' + show(L.threshold) + lowKindsText + '; ' + drawn + ' drawn inside (the kinds ticked below; ' +
+        lowInverted + ' inverted always drawn)'
       : '';
     document.getElementById('cut-legend').hidden = axis < 0;
     lowKindBoxes.hidden = axis < 0;

@@ -114,14 +114,14 @@ function hexTetBoxMesh(file) {
 analyze([hexTetBoxMesh(path.join(outDir, 'hex_tet_box.vtk')), '-o', path.join(outDir, 'hybrid')]);
 
 // One poor cell of each kind, apart (a hex with a top corner pushed down, a
-// flat tet, a wedge with a top corner pushed down, a flat pyramid), and two
+// flat inverted tet (apex under its base), a wedge with a top corner pushed down, a flat pyramid), and two
 // unit hexes that intersect: the cut draws every kind, the legend has an
 // entry for the overlap markers and the intersecting cells (issue 44).
 function kindsMesh(file) {
   const points = [], cells = [];
   const add = (type, corners) => { cells.push([type, corners.map((p) => points.push(p) - 1)]); };
   add(12, [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, -0.2], [0, 1, 1]]);
-  add(10, [[3, 0, 0], [4, 0, 0], [3, 1, 0], [3.3, 0.3, 0.08]]);
+  add(10, [[3, 0, 0], [4, 0, 0], [3, 1, 0], [3.3, 0.3, -0.08]]);
   add(13, [[6, 0, 0], [7, 0, 0], [6, 1, 0], [6, 0, 1], [7, 0, 1], [6.1, 0.9, 0.1]]);
   add(14, [[9, 0, 0], [10, 0, 0], [10, 1, 0], [9, 1, 0], [9.5, 0.5, 0.05]]);
   const cube = (x, y, z) => [[x, y, z], [x + 1, y, z], [x + 1, y + 1, z], [x, y + 1, z],

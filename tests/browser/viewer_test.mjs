@@ -712,14 +712,30 @@ await section('cut of every kind', CHROMIUM_ONLY, async () => {
     }
     return drawnKinds;
   }
-  // With hexes among the cells under the threshold, only the hexes at first
-  // (issue 44 review: a Delaunay tet region floods the cut); each kind has a
-  // check box with its count.
+  // At first the hexes and every kind with an inverted cell or a vertex of
+  // cluster #0 are ticked (issue 44 review: a Delaunay tet region floods the
+  // cut, but the inverted tet must show); each kind has a check box with its
+  // count. The hex, the tet and the wedge are inverted (scaled Jacobian < 0);
+  // the pyramid is not, but its vertices are in cluster #0 (all 17 are: one
+  // cluster at this size), so every box is ticked.
+  const sj = await page.evaluate(() => {
+    const b = atob(window.hqViewer.data.low_cells.scaled_jacobian);
+    return Array.from(new Float64Array(new Uint8Array(Array.from(b, (c) => c.charCodeAt(0))).buffer));
+  });
+  const inverted = cells.filter((c, i) => sj[i] < 0).map((c) => c.kind).sort().join();
+  check(inverted === 'hex,tet,wedge', `the hex, the tet and the wedge are the inverted cells (${inverted}; ${sj.map((s) => s.toFixed(3))})`);
+  const worst = await page.evaluate(() => Array.from(atob(window.hqViewer.data.low_cells.worst), (c) => c.charCodeAt(0)));
   const first = await kindsDrawn();
   const boxes = await page.evaluate(() => [...document.querySelectorAll('#cut-kinds input')].map((b) => b.parentNode.textContent.trim() + (b.checked ? ' on' : ' off')));
-  check(first.join() === 'hex' && boxes.join() === '1 hex on,1 tet off,1 wedge off,1 pyramid off',
-    `the cut first draws the hexes only, with a box per kind (drawn: ${first}; boxes: ${boxes})`);
-  for (const kd of ['tet', 'wedge', 'pyramid']) await setChecked(page, `#cut-kinds input[data-kind=${kd}]`, true);
+  const firstNote = await page.evaluate(() => document.getElementById('cut-note').textContent);
+  check(worst.join() === '1,1,1,1' && first.join() === 'hex,tet,wedge,pyramid' && boxes.join() === '1 hex on,1 tet on,1 wedge on,1 pyramid on' &&
+    /; 4 drawn inside \(the kinds ticked below; 3 inverted always drawn\)$/.test(firstNote),
+    `the cut first draws the inverted hex, tet and wedge and the pyramid of cluster #0, with a box per kind (drawn: ${first}; cluster #0 cells: ${worst}; boxes: ${boxes}; "${firstNote}")`);
+  // Inverted cells are drawn whatever the boxes say.
+  for (const kd of ['hex', 'tet', 'wedge', 'pyramid']) await setChecked(page, `#cut-kinds input[data-kind=${kd}]`, false);
+  const unticked = await kindsDrawn();
+  check(unticked.join() === 'hex,tet,wedge', `with every box unticked the inverted hex, tet and wedge stay drawn, the pyramid goes (drawn: ${unticked})`);
+  for (const kd of ['hex', 'tet', 'wedge', 'pyramid']) await setChecked(page, `#cut-kinds input[data-kind=${kd}]`, true);
   const drawnKinds = await kindsDrawn();
   await page.screenshot({ path: path.join(outDir, 'kinds_cut.png') });
   check(drawnKinds.length === 4, `the cut draws every kind's cell under the threshold once ticked (drawn: ${drawnKinds})`);

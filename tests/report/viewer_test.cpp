@@ -268,13 +268,22 @@ TEST(Viewer, CellsOfEveryKindTheNonConformingFaceAndTheViewsColours) {
   const auto ids = array_of<std::uint32_t>(low["ids"]);
   const auto kinds = array_of<std::uint8_t>(low["kinds"]);
   const auto corners = array_of<float>(low["corners"]);
+  const auto worst = array_of<std::uint8_t>(low["worst"]);
   ASSERT_EQ(ids.size(), low["count"].get<std::size_t>());
   ASSERT_EQ(kinds.size(), ids.size());
+  ASSERT_EQ(worst.size(), ids.size());
   std::set<int> seen;
-  std::size_t o = 0;
+  std::size_t o = 0, in_worst = 0;
   for (std::size_t i = 0; i < ids.size(); ++i) {
     const CellRef cell = volume_cell(mesh, static_cast<Index>(ids[i]));
     EXPECT_EQ(kinds[i], static_cast<std::uint8_t>(cell.kind));
+    // 1 exactly for a cell with a member of cluster #0 among its corners.
+    bool has = false;
+    for (int c = 0; c < cell.num_corners; ++c)
+      for (std::size_t m = static_cast<std::size_t>(a.glyphs->cluster_offsets[0]); m < static_cast<std::size_t>(a.glyphs->cluster_offsets[1]); ++m)
+        has = has || a.glyphs->cluster_vertices[m] == cell.corners[static_cast<std::size_t>(c)];
+    EXPECT_EQ(worst[i], has ? 1 : 0) << "low cell " << i;
+    in_worst += has;
     EXPECT_LT(a.field.cell_scaled_jacobian[ids[i]], 1.0 - a.glyphs->options.threshold);
     seen.insert(kinds[i]);
     ASSERT_EQ(low["kind_faces"]["corners"][kinds[i]].get<int>(), cell.num_corners);
@@ -285,6 +294,7 @@ TEST(Viewer, CellsOfEveryKindTheNonConformingFaceAndTheViewsColours) {
     o += 3 * static_cast<std::size_t>(cell.num_corners);
   }
   EXPECT_EQ(o, corners.size());
+  EXPECT_GE(in_worst, 1u);
   EXPECT_TRUE(seen.count(static_cast<int>(CellKind::wedge)) && seen.count(static_cast<int>(CellKind::pyramid)));
   // The face tables: the kinds' faces as CellKindTable has them (a hex's 6 quads, a pyramid's 4 triangles and base).
   EXPECT_EQ(low["kind_faces"]["faces"][0].size(), 6u);

@@ -398,7 +398,7 @@ std::vector<ViewerFile> viewer_files(const ReportModel& model) {
   {
     const double t = a.glyphs ? a.glyphs->options.threshold : 0.5;
     std::vector<std::uint32_t> ids;
-    std::vector<std::uint8_t> kinds;
+    std::vector<std::uint8_t> kinds, worst;  // worst: 1 for a cell with a vertex of cluster #0
     std::vector<float> corners;
     std::vector<double> sj;
     const Index cells = std::min<Index>(num_volume_cells(a.mesh), static_cast<Index>(a.field.cell_scaled_jacobian.size()));
@@ -409,12 +409,16 @@ std::vector<ViewerFile> viewer_files(const ReportModel& model) {
       ids.push_back(static_cast<std::uint32_t>(h));
       kinds.push_back(static_cast<std::uint8_t>(cell.kind));
       sj.push_back(s);
-      for (int i = 0; i < cell.num_corners; ++i)
-        for (int c = 0; c < 3; ++c)
-          corners.push_back(static_cast<float>(a.mesh.points[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>(i)])][c]));
+      std::uint8_t in_worst = 0;
+      for (int i = 0; i < cell.num_corners; ++i) {
+        const auto v = static_cast<std::size_t>(cell.corners[static_cast<std::size_t>(i)]);
+        if (a.glyphs && v < a.glyphs->vertex_cluster.size() && a.glyphs->vertex_cluster[v] == 0) in_worst = 1;
+        for (int c = 0; c < 3; ++c) corners.push_back(static_cast<float>(a.mesh.points[v][c]));
+      }
+      worst.push_back(in_worst);
     }
     d["low_cells"] = {{"count", ids.size()}, {"threshold", 1.0 - t}, {"ids", b64(ids)}, {"kinds", b64(kinds)},
-                      {"corners", b64(corners)}, {"scaled_jacobian", b64(sj)}, {"kind_faces", kind_faces_json()}};
+                      {"worst", b64(worst)}, {"corners", b64(corners)}, {"scaled_jacobian", b64(sj)}, {"kind_faces", kind_faces_json()}};
   }
   d["camera"] = camera_of_view_a(model);
 
