@@ -283,7 +283,12 @@ await section('reset view', BOTH, async () => {
     for (let i = 0; i < mine.length; ++i) { both += mine[i] & theirs[i]; either += mine[i] | theirs[i]; }
     return { iou: both / either, mine: mine.reduce((a, b) => a + b, 0), theirs: theirs.reduce((a, b) => a + b, 0) };
   }, [w, h]);
-  check(!overlap.error && overlap.iou >= 0.9, `the reset view's silhouette overlaps view A's (intersection over union ${JSON.stringify(overlap)})`);
+  // 0.8, not 0.9: view A draws #0 at least 24 px in radius with its labels'
+  // leaders round the model (issue 44 part G), the viewer caps a glyph at 3 %
+  // of the diagonal (part W), so on the twisted bar the two silhouettes
+  // differ by the glyph and the labels (IoU 0.83 with the same camera); a
+  // wrong up or view direction on the bar gives far less.
+  check(!overlap.error && overlap.iou >= 0.8, `the reset view's silhouette overlaps view A's (intersection over union ${JSON.stringify(overlap)})`);
   await page.screenshot({ path: path.join(outDir, 'bar_reset.png') });
   await page.close();
 });
@@ -716,8 +721,9 @@ await section('cut of every kind', CHROMIUM_ONLY, async () => {
   // cluster #0 are ticked (issue 44 review: a Delaunay tet region floods the
   // cut, but the inverted tet must show); each kind has a check box with its
   // count. The hex, the tet and the wedge are inverted (scaled Jacobian < 0);
-  // the pyramid is not, but its vertices are in cluster #0 (all 17 are: one
-  // cluster at this size), so every box is ticked.
+  // the pyramid is not, but it has a vertex in cluster #0 (the bounded
+  // clusters of issue 44 part G keep #0 round its worst vertex, so not every
+  // cell need be in it; the pyramid is), so every box is ticked.
   const sj = await page.evaluate(() => {
     const b = atob(window.hqViewer.data.low_cells.scaled_jacobian);
     return Array.from(new Float64Array(new Uint8Array(Array.from(b, (c) => c.charCodeAt(0))).buffer));
@@ -728,7 +734,8 @@ await section('cut of every kind', CHROMIUM_ONLY, async () => {
   const first = await kindsDrawn();
   const boxes = await page.evaluate(() => [...document.querySelectorAll('#cut-kinds input')].map((b) => b.parentNode.textContent.trim() + (b.checked ? ' on' : ' off')));
   const firstNote = await page.evaluate(() => document.getElementById('cut-note').textContent);
-  check(worst.join() === '1,1,1,1' && first.join() === 'hex,tet,wedge,pyramid' && boxes.join() === '1 hex on,1 tet on,1 wedge on,1 pyramid on' &&
+  const pyramidIndex = cells.findIndex((c) => c.kind === 'pyramid');
+  check(worst[pyramidIndex] === 1 && first.join() === 'hex,tet,wedge,pyramid' && boxes.join() === '1 hex on,1 tet on,1 wedge on,1 pyramid on' &&
     /; 4 drawn inside \(the kinds ticked below; 3 inverted always drawn\)$/.test(firstNote),
     `the cut first draws the inverted hex, tet and wedge and the pyramid of cluster #0, with a box per kind (drawn: ${first}; cluster #0 cells: ${worst}; boxes: ${boxes}; "${firstNote}")`);
   // Inverted cells are drawn whatever the boxes say.

@@ -261,7 +261,10 @@ TEST(BatchIndex, StatusAgreesWithFindingsAndLightboxOpensTheOverview) {
   const std::vector<BatchEntry> back = parse_batch_index_json(batch_index_json({clean, bad, warned}, "9.9.9"), "i");
   ASSERT_EQ(back.size(), 3u);
   EXPECT_EQ(back[1].overview, "views/overview.png");
-  EXPECT_EQ(back[2].warnings, warned.warnings);
+  // index.json holds the warnings as the page shows them (the mesh's path
+  // relative to the batch input), so it does not depend on where the batch ran.
+  EXPECT_EQ(back[2].warnings,
+            std::vector<std::string>{"m/c.vtk: 68 cells with 8 points but a non-hexahedral type (10) loaded as hexahedra"});
   EXPECT_EQ(batch_index_html(back, "9.9.9"), html) << "merge gives the same page";
 }
 

@@ -570,7 +570,7 @@ class GmshParser {
     if (num_volume_dropped > 0)
       loaded.warnings.push_back(detail::volume_dropped_warning(s_.name(), num_volume_dropped, "element"));
     if (skipped.count > 0)
-      (SkippedCells::all_types(skipped_by_type_, is_lower_dimensional_gmsh_type) ? loaded.notes : loaded.warnings)
+      (!is_surface && SkippedCells::all_types(skipped_by_type_, is_lower_dimensional_gmsh_type) ? loaded.notes : loaded.warnings)
           .push_back(skipped.warning(s_.name(), "element"));
     if (is_surface)
       surface_.append_warnings(s_.name(), "element", loaded.warnings);

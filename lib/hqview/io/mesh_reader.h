@@ -40,9 +40,11 @@ struct LoadedMesh {
   // than 4 vertices they skipped, each as (a, b) with a < b, ascending,
   // unique. Holes left by the reader, not the surface's boundary.
   std::vector<std::array<Index, 2>> hole_edges;
-  // Information, not a warning: the lower-dimensional cells skipped (a Gmsh
-  // or VTK file's boundary triangles, edges and points, which a volume
-  // mesh's file carries for its physical groups), worded as the warning.
+  // Information, not a warning: the lower-dimensional cells a volume mesh's
+  // reader skipped (a Gmsh or VTK file's boundary triangles, edges and
+  // points, which a volume mesh's file carries for its physical groups),
+  // worded as the warning. A surface mesh's skipped cells stay warnings (a
+  // skipped polygon leaves a hole).
   std::vector<std::string> notes;
 };
 

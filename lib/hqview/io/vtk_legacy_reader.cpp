@@ -702,7 +702,7 @@ class VtkParser {
       s_.fail_at(0, "no volume cells" + (skipped.count > 0 ? " (" + skipped.counted("cell") + ")" : std::string()));
     if (num_volume_dropped > 0) loaded.warnings.push_back(detail::volume_dropped_warning(s_.name(), num_volume_dropped, "cell"));
     if (skipped.count > 0)
-      (SkippedCells::all_types(skipped_by_type, vtk::is_lower_dimensional_type) ? loaded.notes : loaded.warnings)
+      (!is_surface && SkippedCells::all_types(skipped_by_type, vtk::is_lower_dimensional_type) ? loaded.notes : loaded.warnings)
           .push_back(skipped.warning(s_.name(), "cell"));
     if (is_surface) {
       surface.append_warnings(s_.name(), "cell", loaded.warnings);

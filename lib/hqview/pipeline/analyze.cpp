@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <future>
+#include <limits>
 #include <optional>
 
 #include "hqview/core/box3.h"
@@ -179,6 +180,9 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
     } else {
       a.structure = HexStructure{};
       a.structure.vertex_singular.assign(a.mesh.points.size(), 0);
+      // No size gradation on a surface mesh: one undefined value per cell.
+      a.structure.cell_gradation.assign(static_cast<std::size_t>(num_cells(a.mesh)),
+                                        std::numeric_limits<double>::quiet_NaN());
     }
   });
   const auto metrics = timed(metrics_seconds, [&] {

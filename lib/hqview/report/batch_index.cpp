@@ -246,7 +246,12 @@ std::string batch_index_json(const std::vector<BatchEntry>& entries, const std::
     m["failed_gates"] = e.failed_gates;
     m["thumbnail"] = e.thumbnail.empty() ? json(nullptr) : json(e.thumbnail);
     m["overview"] = e.overview.empty() ? json(nullptr) : json(e.overview);
-    m["warnings"] = e.warnings;
+    // As the page shows them: the mesh's path relative to the batch input,
+    // so that index.json does not depend on where the batch ran (a merge of
+    // shards equals the unsharded batch).
+    json warnings = json::array();
+    for (const std::string& w : e.warnings) warnings.push_back(relative_warning(w, e.path));
+    m["warnings"] = std::move(warnings);
     meshes.push_back(std::move(m));
   }
   j["meshes"] = std::move(meshes);

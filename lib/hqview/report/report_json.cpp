@@ -539,11 +539,11 @@ ReportDocument report_document(const ReportModel& model) {
   for (const DataFile& f : data_files(model.data)) files.push_back({{"path", f.path}, {"format", f.format}});
   j["data_files"] = std::move(files);
   j["gates"] = gates_json(model.gates);
-  // The readers' notes first (where they came from), then the warnings.
-  Json warnings = Json::array();
-  for (const auto* list : {&model.analysis.notes, &model.analysis.warnings})
-    for (const std::string& w : *list) warnings.push_back(w);
-  j["warnings"] = std::move(warnings);
+  // The readers' notes (information: lower-dimensional cells skipped) apart
+  // from the warnings, so that a pipeline or the batch index acting on
+  // warnings does not act on them.
+  j["notes"] = model.analysis.notes;
+  j["warnings"] = model.analysis.warnings;
   return j;
 }
 
