@@ -757,8 +757,12 @@ int main(int argc, char** argv) {
     const int requested = *batch ? batch_args.jobs : args.threads;
     const int threads = requested > 0 ? requested : tbb::info::default_concurrency();
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
-    if (*batch) return run_batch_command(batch_args, threads);
-    return run_analyze(args);
+    const int code = *batch ? run_batch_command(batch_args, threads) : run_analyze(args);
+    // A signal that arrived after the last poll point (the bundles already
+    // swapped in) is not ignored silently: the run says that it finished.
+    if (const int s = hq::stop::requested(); s != 0)
+      std::cerr << "hqview: " << hq::stop::signal_name(s) << " arrived after the work was complete; the output is kept\n";
+    return code;
   } catch (const std::bad_alloc&) {
     std::cerr << "hqview: out of memory (see --max-memory, --memory-budget)\n";
     return kEnvironment;

@@ -16,6 +16,12 @@ static_assert(std::atomic<int>::is_always_lock_free, "the signal handler needs a
 thread_local const stop::ScopedDeadline* t_deadline = nullptr;
 thread_local const std::atomic<bool>* t_cancel = nullptr;
 
+}  // namespace
+
+Interrupted::Interrupted(int signal) : Error("stopped by " + stop::signal_name(signal)), signal_(signal) {}
+
+namespace stop {
+
 std::string signal_name(int signal) {
   switch (signal) {
     case SIGINT: return "SIGINT";
@@ -24,12 +30,6 @@ std::string signal_name(int signal) {
     default: return "signal " + std::to_string(signal);
   }
 }
-
-}  // namespace
-
-Interrupted::Interrupted(int signal) : Error("stopped by " + signal_name(signal)), signal_(signal) {}
-
-namespace stop {
 
 void request(int signal) noexcept {
   int expected = 0;

@@ -10,6 +10,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <string>
 
 #include "hqview/core/error.h"
 
@@ -37,6 +38,8 @@ namespace stop {
 void request(int signal) noexcept;
 // The first signal requested, 0 if none.
 int requested() noexcept;
+// "SIGINT", "SIGTERM", "SIGHUP", else "signal N".
+std::string signal_name(int signal);
 // Forgets a request (tests; a library caller that handled it).
 void reset() noexcept;
 

@@ -17,6 +17,7 @@
 
 #include "hqview/core/error.h"
 #include "hqview/core/fault_point.h"
+#include "hqview/core/stop.h"
 #include "hqview/report/atomic_file.h"
 #include "hqview/image/png.h"
 #include "hqview/report/link_base.h"
@@ -280,6 +281,9 @@ void write_bundle(const ReportModel& model, const ReportDocument& document, cons
       wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - *options.started).count();
     write_text(tmp / "timings.json", timings_json(timings, wall));
     fault_point("bundle-before-swap");
+    // The last poll point: a signal that comes later finds the bundle in
+    // place (main then says that it arrived after the work was complete).
+    stop::check();
     swap_into_place(tmp, dir);
   } catch (const fs::filesystem_error& e) {
     std::error_code ignored;
