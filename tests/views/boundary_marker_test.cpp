@@ -11,6 +11,7 @@
 #include "hqview/render/osmesa_renderer.h"
 #include "hqview/views/boundary_views.h"
 #include "hqview/views/overview_views.h"
+#include "support/image_probe.h"
 #include "support/surface_fixtures.h"
 
 namespace hq {
@@ -58,23 +59,8 @@ TEST(WorstErrorMarker, SitsOnTheSampleOfTheSampledMaximum) {
 }
 
 // Pixels of the ring colour inside the 3D view, and their centre.
-struct RingPixels {
-  int count = 0;
-  double cx = 0, cy = 0;
-};
-RingPixels ring_pixels(const Image& image, const PixelRect& view) {
-  RingPixels r;
-  for (int y = view.y; y < view.y + view.height; ++y)
-    for (int x = view.x; x < view.x + view.width; ++x) {
-      const std::uint8_t* p = &image.rgba[pixel_offset(image, x, y)];
-      if (p[0] == kWorstMarkerColor.r && p[1] == kWorstMarkerColor.g && p[2] == kWorstMarkerColor.b) {
-        ++r.count;
-        r.cx += x + 0.5;
-        r.cy += y + 0.5;
-      }
-    }
-  if (r.count > 0) r.cx /= r.count, r.cy /= r.count;
-  return r;
+test::ColorPixels ring_pixels(const Image& image, const PixelRect& view) {
+  return test::pixels_of_color(image, view, kWorstMarkerColor);
 }
 
 TEST(WorstErrorMarker, RingDrawnAroundTheProjectedSample) {
@@ -102,7 +88,7 @@ TEST(WorstErrorMarker, RingDrawnAroundTheProjectedSample) {
     const Vec3 ndc = project_to_ndc(f.camera, aspect, m.position);
     const double px = f.layout.view.x + 0.5 * (ndc.x + 1.0) * f.layout.view.width;
     const double py = f.layout.view.y + 0.5 * (1.0 - ndc.y) * f.layout.view.height;
-    const RingPixels ring = ring_pixels(image, f.layout.view);
+    const test::ColorPixels ring = ring_pixels(image, f.layout.view);
     // A solid ring of radius >= 8 px and core >= 1 px: at least 2 pi 8 pixels.
     EXPECT_GT(ring.count, 50) << (mesh_side ? "mesh" : "reference");
     EXPECT_NEAR(ring.cx, px, 1.5) << (mesh_side ? "mesh" : "reference");

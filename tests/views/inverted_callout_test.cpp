@@ -15,6 +15,7 @@
 #include "hqview/render/upright.h"
 #include "hqview/views/overview_views.h"
 #include "support/fixtures.h"
+#include "support/image_probe.h"
 
 namespace hq {
 namespace {
@@ -65,25 +66,9 @@ std::pair<double, double> projected_centre(const Case& c, const Frame& f) {
   return {x / c.inverted.size(), y / c.inverted.size()};
 }
 
-struct RingPixels {
-  int count = 0;
-  double cx = 0, cy = 0, max_distance = 0;
-};
 // Pixels of the ring colour in the view within `within` pixels of (x, y).
-RingPixels ring_pixels(const Image& image, const PixelRect& view, double x, double y, double within) {
-  RingPixels r;
-  for (int py = view.y; py < view.y + view.height; ++py)
-    for (int px = view.x; px < view.x + view.width; ++px) {
-      const std::uint8_t* p = &image.rgba[pixel_offset(image, px, py)];
-      if (p[0] != kCalloutColor.r || p[1] != kCalloutColor.g || p[2] != kCalloutColor.b) continue;
-      const double d = std::hypot(px + 0.5 - x, py + 0.5 - y);
-      if (d > within) continue;
-      ++r.count;
-      r.cx += px + 0.5;
-      r.cy += py + 0.5;
-    }
-  if (r.count > 0) r.cx /= r.count, r.cy /= r.count;
-  return r;
+test::ColorPixels ring_pixels(const Image& image, const PixelRect& view, double x, double y, double within) {
+  return test::pixels_of_color(image, view, kCalloutColor, x, y, within);
 }
 
 TEST(InvertedCallout, RingsInvertedHexesDeepInsideWhereTheyProject) {
@@ -121,7 +106,7 @@ TEST(InvertedCallout, RingsInvertedHexesDeepInsideWhereTheyProject) {
 
   // The ring's pixels in the figure: a ring (dashed, half its circumference)
   // of radius >= 13 px around the projected hexes.
-  const RingPixels ring = ring_pixels(image, f.view, x, y, 0.45 * f.view.height);
+  const test::ColorPixels ring = ring_pixels(image, f.view, x, y, 0.45 * f.view.height);
   EXPECT_GT(ring.count, 40);
   EXPECT_NEAR(ring.cx, x, 4.0);
   EXPECT_NEAR(ring.cy, y, 4.0);
@@ -163,7 +148,7 @@ TEST(InvertedCallout, ADentInSightGetsASolidRing) {
   o.inverted_cells = c.inverted;
   const Image image = render_quality_overview(c.mesh, c.topology, c.quality.vertex_quality, o, *renderer);
   const auto [x, y] = projected_centre(c, f);
-  const RingPixels ring = ring_pixels(image, f.view, x, y, callouts[0].radius + 3.0);
+  const test::ColorPixels ring = ring_pixels(image, f.view, x, y, callouts[0].radius + 3.0);
   EXPECT_GT(ring.count, static_cast<int>(2 * 3.14159 * callouts[0].radius * 0.8));
   EXPECT_NEAR(ring.cx, x, 4.0);
   EXPECT_NEAR(ring.cy, y, 4.0);
