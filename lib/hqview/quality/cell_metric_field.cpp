@@ -17,8 +17,11 @@ namespace {
 constexpr std::size_t kGrain = 1024;
 
 // Metrics computed per pass of summarize_cell_block_metrics: that many
-// columns (8 bytes per cell each) alive at once beside the kept ones.
-constexpr int kMetricsPerPass = 4;
+// columns (8 bytes per cell each) alive at once beside the kept ones, and as
+// many summaries (each a sorted copy) at most. Two: on 2.18 M tets this
+// pass is the run's memory peak (4 took 33 MiB more); the passes' other
+// costs (a gather and a size per cell) are small beside the kernels.
+constexpr int kMetricsPerPass = 2;
 
 // The corner values a cell of kind K has (a pyramid: its 4 base corners).
 template <CellKind K>
@@ -271,7 +274,7 @@ SummarizedCellBlock summarize_cell_block_metrics(std::span<const Vec3> points,
   const auto reference = metric_reference<Kernels>(field.average_size);
   // kMetricsPerPass metrics per pass over the cells (one gather of each
   // cell's corners, one size and one block reference for all of them),
-  // then their summaries (one task each). A product metric (a tet's
+  // then their summaries. A product metric (a tet's
   // shape_and_size) alone in its pass is read from its kept factors.
   for (int first = 0; first < M; first += kMetricsPerPass) {
     const int count = std::min(kMetricsPerPass, M - first);
@@ -295,12 +298,14 @@ SummarizedCellBlock summarize_cell_block_metrics(std::span<const Vec3> points,
         for (int j = 0; j < count; ++j) columns[static_cast<std::size_t>(j)][c] = v[static_cast<std::size_t>(j)];
       });
     }
-    tbb::parallel_for(0, count, [&](int j) {
+    // One summary at a time (each sorts a copy of its column, in parallel
+    // on a large block): one copy alive, not one per column.
+    for (int j = 0; j < count; ++j) {
       const auto m = static_cast<std::size_t>(first + j);
       std::vector<double>& column = columns[static_cast<std::size_t>(j)];
       out.summaries[m] = {std::string(field.names[m]), compute_statistics(column, metric_statistics_options(field.names[m]))};
       if (keep(field.names[m])) field.values[m] = std::move(column);
-    });
+    }
   }
   out.summaries[M] = corner_summary(corners.scaled_jacobian, corners.degenerate_mask, kNumCornerValues<K>);
   return out;
