@@ -39,21 +39,27 @@ import time
 VTK_PYTHON = "/usr/bin/python3"  # Debian's, with python3-vtk9
 
 
+def run_once(cmd, out):
+    """One run of cmd (its output directory removed first): wall seconds,
+    wait4's peak RSS in bytes, and CPU seconds (user + system)."""
+    shutil.rmtree(out, ignore_errors=True)
+    start = time.monotonic()
+    child = subprocess.Popen(cmd)
+    _, status, usage = os.wait4(child.pid, 0)
+    wall = time.monotonic() - start
+    code = os.waitstatus_to_exitcode(status)
+    if code not in (0, 1):
+        sys.exit("e2e: %s exited with %d" % (shlex.join(cmd), code))
+    return wall, usage.ru_maxrss * 1024, usage.ru_utime + usage.ru_stime
+
+
 def run_timed(cmd, out, runs):
     walls, peaks = [], []
     for i in range(runs):
-        shutil.rmtree(out, ignore_errors=True)
-        start = time.monotonic()
-        child = subprocess.Popen(cmd)
-        _, status, usage = os.wait4(child.pid, 0)
-        wall = time.monotonic() - start
-        code = os.waitstatus_to_exitcode(status)
-        if code not in (0, 1):
-            sys.exit("e2e: %s exited with %d" % (shlex.join(cmd), code))
+        wall, peak, _ = run_once(cmd, out)
         walls.append(wall)
-        peaks.append(usage.ru_maxrss * 1024)
-        print("e2e: %.2f s wall, %.2f GB peak RSS: %s" % (wall, usage.ru_maxrss / 2**20, shlex.join(cmd)),
-              file=sys.stderr)
+        peaks.append(peak)
+        print("e2e: %.2f s wall, %.2f GB peak RSS: %s" % (wall, peak / 2**30, shlex.join(cmd)), file=sys.stderr)
     return walls, peaks
 
 

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <vector>
 
@@ -91,6 +92,54 @@ TEST(BoxPairs, GroupedSearchSkipsEmptyGroups) {
   g.boxes = {a, b};
   g.first = {0, 0, 1, 1, 2};
   EXPECT_EQ(grouped_box_self_pairs(g.boxes, g.first, 10).pairs, (std::vector<std::array<Index, 2>>{{0, 1}}));
+}
+
+}  // namespace
+}  // namespace hq::detail
+
+namespace hq::detail {
+namespace {
+
+// The subset search (stage G's broad phase, open contact) against every
+// pair tested directly: subsets of 1 to every box, boxes on a coarse lattice
+// (many touch exactly: not reported in open contact), flat ones (never
+// reported), and a box over everything (more grid cells than the grid
+// visits per box).
+TEST(BoxPairs, SubsetSearchFindsEveryPairWithASubsetBoxAsTestedDirectly) {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    GroupedBoxes g = make_boxes(seed, 400);
+    Box3 everything;
+    everything.lo = {-1, -1, -1};
+    everything.hi = {20, 20, 20};
+    g.boxes.push_back(everything);
+    const auto n = static_cast<Index>(g.boxes.size());
+    const auto open_overlap = [](const Box3& a, const Box3& b) {
+      return a.lo.x < b.hi.x && b.lo.x < a.hi.x && a.lo.y < b.hi.y && b.lo.y < a.hi.y && a.lo.z < b.hi.z &&
+             b.lo.z < a.hi.z && a.lo.x < a.hi.x && a.lo.y < a.hi.y && a.lo.z < a.hi.z && b.lo.x < b.hi.x &&
+             b.lo.y < b.hi.y && b.lo.z < b.hi.z;
+    };
+    std::mt19937 rng(seed);
+    for (const int size : {1, 3, 40, 300, static_cast<int>(n)}) {
+      std::vector<Index> subset;
+      for (Index i = 0; i < n; ++i) subset.push_back(i);
+      std::shuffle(subset.begin(), subset.end(), rng);
+      subset.resize(static_cast<std::size_t>(size));
+      if (size == 3) subset.back() = n - 1;  // the box over everything
+      std::sort(subset.begin(), subset.end());
+      std::vector<char> in(static_cast<std::size_t>(n), 0);
+      for (Index i : subset) in[static_cast<std::size_t>(i)] = 1;
+      std::vector<std::array<Index, 2>> expected;
+      for (Index i = 0; i < n; ++i)
+        for (Index j = i + 1; j < n; ++j)
+          if ((in[static_cast<std::size_t>(i)] || in[static_cast<std::size_t>(j)]) &&
+              open_overlap(g.boxes[static_cast<std::size_t>(i)], g.boxes[static_cast<std::size_t>(j)]))
+            expected.push_back({i, j});
+      const BoxPairs got = box_subset_pairs(g.boxes, subset, BoxContact::open, 1 << 30);
+      EXPECT_TRUE(got.is_complete);
+      EXPECT_EQ(got.pairs, expected) << "seed " << seed << ", subset of " << size;
+      if (size > 1) EXPECT_FALSE(expected.empty());
+    }
+  }
 }
 
 }  // namespace

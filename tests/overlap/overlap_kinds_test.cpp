@@ -22,8 +22,10 @@
 #include "hqview/core/box3.h"
 #include "hqview/io/mesh_reader.h"
 #include "hqview/mesh/topology.h"
+#include "hqview/overlap/cell_faces.h"
 #include "hqview/overlap/overlap.h"
 #include "hybrid_mesh_files.h"
+#include "support/mixed_grid.h"
 #include "temp_dir.h"
 
 namespace hq {
@@ -297,6 +299,91 @@ TEST(OverlapKinds, HandBuiltHybridMeshIsCleanUntilItsApexDrops) {
   EXPECT_EQ(r.intersecting_pairs[0].kinds, (std::array<CellKind, 2>{CellKind::hex, CellKind::tet}));
   EXPECT_EQ(r.intersecting_pairs[1].kinds, (std::array<CellKind, 2>{CellKind::hex, CellKind::pyramid}));
   for (const IntersectingPair& p : r.intersecting_pairs) EXPECT_EQ(p.inside_vertex, 16);
+}
+
+Mesh gmsh_hex_tet_mesh(const test::TempDir& dir);
+
+// ---- The topology's matched faces, read by stages D-F ---------------------------
+
+// Every face of every cell, matched by the topology, is the table the
+// overlap's own sort gives (same faces, same order, same uses), at 1 and 2
+// threads; and the overlap's answers on it are those of that table.
+TEST(OverlapKinds, TopologyMatchedFacesAreTheOverlapsOwnSort) {
+  const test::TempDir dir("overlap_kinds_faces");
+  std::vector<std::pair<const char*, Mesh>> meshes;
+  meshes.emplace_back("mixed grid", test::mixed_grid());
+  {
+    const test::HybridMesh h = test::hybrid_mesh();
+    Mesh mesh;
+    for (const auto& p : h.points) mesh.points.push_back({p[0], p[1], p[2]});
+    for (const test::HybridCell& c : h.cells) {
+      const auto& v = c.vtk;
+      if (c.vtk_type == 12) mesh.hexes.push_back({v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]});
+      if (c.vtk_type == 10) mesh.tets.push_back({v[0], v[1], v[2], v[3]});
+      if (c.vtk_type == 13) mesh.wedges.push_back({v[0], v[1], v[2], v[3], v[4], v[5]});
+      if (c.vtk_type == 14) mesh.pyramids.push_back({v[0], v[1], v[2], v[3], v[4]});
+    }
+    meshes.emplace_back("hand-built hybrid", std::move(mesh));
+  }
+  Mesh gmsh = gmsh_hex_tet_mesh(dir);
+  if (!gmsh.hexes.empty()) meshes.emplace_back("gmsh hex-pyramid-tet", std::move(gmsh));
+  for (const auto& [what, mesh] : meshes) {
+    const detail::VolumeCells cells(mesh);
+    std::vector<Index> offsets, uses;
+    detail::match_cell_faces(cells, offsets, uses);
+    ASSERT_EQ(uses.size(), static_cast<std::size_t>(6 * mesh.hexes.size() + 4 * mesh.tets.size() +
+                                                    5 * (mesh.wedges.size() + mesh.pyramids.size())))
+        << what;
+    // The independent sort's table: each face's uses have the same sorted
+    // vertex ids, and consecutive faces ascend (triangles, then quads).
+    std::vector<std::vector<Index>> keys;
+    for (std::size_t f = 0; f + 1 < offsets.size(); ++f) {
+      std::vector<Index> key;
+      for (Index i = offsets[f]; i < offsets[f + 1]; ++i) {
+        const CellHalfFace u = cell_half_face(cells.first, uses[static_cast<std::size_t>(i)]);
+        auto corners = detail::local_face_corners(cells.corners(u.cell), u.local);
+        std::vector<Index> k(corners.begin(), corners[3] == kNoIndex ? corners.begin() + 3 : corners.end());
+        std::sort(k.begin(), k.end());
+        if (i == offsets[f]) key = k;
+        EXPECT_EQ(k, key) << what << " face " << f;
+      }
+      if (!keys.empty()) {
+        EXPECT_TRUE(keys.back().size() < key.size() || (keys.back().size() == key.size() && keys.back() < key)) << what;
+      }
+      keys.push_back(key);
+    }
+    for (const int threads : {1, 2}) {
+      const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+      const Topology topo = build_topology(mesh);
+      EXPECT_EQ(topo.cell_face_offsets, offsets) << what << ", " << threads << " threads";
+      EXPECT_EQ(topo.cell_face_uses, uses) << what << ", " << threads << " threads";
+      const detail::CellFaceMap map(cells, topo);
+      EXPECT_TRUE(map.reads_topology()) << what;
+    }
+  }
+  // The repeated tet {0, 1, 2, 6} of cube 1: its triangles 0-1-6 and 0-2-6
+  // are inside the cube (shared with a neighbouring tet: 3 uses, non-manifold);
+  // 0-1-2 is on the grid's bottom and 1-2-6 against the wedges' quad of cube
+  // 2 (2 uses each).
+  const Mesh& grid = meshes.front().second;
+  const OverlapReport r = run(grid);
+  EXPECT_EQ(r.non_manifold_faces.size(), 2u);
+  EXPECT_EQ(r.duplicate_cells.size(), 1u);
+  // A topology of the hexes alone: the overlap matches every face itself.
+  Mesh hexes_only = grid;
+  hexes_only.tets.clear();
+  hexes_only.wedges.clear();
+  hexes_only.pyramids.clear();
+  const Topology hex_topo = build_topology(hexes_only);
+  const detail::VolumeCells grid_cells(grid);
+  const detail::CellFaceMap own(grid_cells, hex_topo);
+  EXPECT_FALSE(own.reads_topology());
+  EXPECT_EQ(own.offsets(), build_topology(grid).cell_face_offsets);
+  const OverlapReport from_hexes = check_overlap(grid, hex_topo, OverlapOptions{});
+  EXPECT_EQ(from_hexes.non_manifold_faces, r.non_manifold_faces);
+  EXPECT_EQ(from_hexes.same_winding_faces, r.same_winding_faces);
+  EXPECT_EQ(from_hexes.duplicate_cells, r.duplicate_cells);
+  EXPECT_EQ(pairs_of(from_hexes), pairs_of(r));
 }
 
 // ---- A hybrid mesh by Gmsh, and an independent test -----------------------------

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <random>
 
 #include "hqview/quality/pyramid_metrics.h"
@@ -164,8 +165,17 @@ void expect_streamed_equals_full(const std::vector<Vec3>& points, const std::vec
   const CellBlockMetricField full = full_of(points, cells);
   const auto expected = summarize_cell_block(full);
   const BlockCornerValues corners{full.corner_scaled_jacobian, full.corner_degenerate_mask, full.validity};
-  const auto keep = [](std::string_view name) { return name == "volume" || name == "scaled_jacobian"; };
-  for (int threads : {1, 2}) {
+  // Two choices of kept columns: a few, and the factors of a product metric
+  // with it (a tet's shape_and_size then read from shape and
+  // relative_size_squared, as the cells.csv columns make it).
+  const std::vector<std::function<bool(std::string_view)>> keeps = {
+      [](std::string_view name) { return name == "volume" || name == "scaled_jacobian"; },
+      [](std::string_view name) {
+        return name == "volume" || name == "shape" || name == "relative_size_squared" || name == "shape_and_size";
+      }};
+  for (std::size_t k = 0; k < 2 * keeps.size(); ++k) {
+    const auto& keep = keeps[k / 2];
+    const int threads = 1 + static_cast<int>(k % 2);
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
     const SummarizedCellBlock got = summarize_cell_block_metrics<K>(points, cells, corners, keep);
     EXPECT_EQ(got.field.kind, K);

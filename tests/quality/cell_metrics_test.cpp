@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -102,6 +103,39 @@ TEST(CellMetrics, EveryOracleCaseAndMetricEqualsVerdict145) {
   EXPECT_EQ(checked["tri"], 19 * 15);
   for (const auto& [kind, n] : checked)
     std::cout << kind << ": " << n << " values, largest relative error " << worst[kind] << "\n";
+}
+
+// The tet kernels the block summaries run (tet_metric_range: a range of
+// metrics with the tet's size and the block's size reference computed once)
+// give tet_metric's and tet_metrics' values bit for bit, for every range, on
+// every oracle tet (degenerate, flat and inverted ones among them).
+TEST(CellMetrics, TetRangeKernelIsTheOneMetricKernelBitForBit) {
+  const auto oracle = test::load_cell_oracle();
+  if (oracle.is_null()) GTEST_SKIP() << "../shared/data absent: Verdict oracle not available";
+  const auto same_bits = [](double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; };
+  int checked = 0;
+  for (const auto& c : oracle["cases"]) {
+    if (c["kind"] != "tet") continue;
+    const TetCorners p = corners_of<4>(c["coords"]);
+    for (const double average : {case_average(c), 0.37, 1e-17}) {
+      const TetMetricValues all = tet_metrics(p, average);
+      const TetSizeReference reference = tet_size_reference(average);
+      for (int first = 0; first < kNumTetMetrics; ++first)
+        for (int count = 1; first + count <= kNumTetMetrics && count <= 4; ++count) {
+          std::array<double, 4> range{};
+          tet_metric_range(first, count, p, reference, range.data());
+          for (int j = 0; j < count; ++j) {
+            const double one = tet_metric(TetMetric(first + j), p, average);
+            EXPECT_TRUE(same_bits(range[static_cast<std::size_t>(j)], one))
+                << c["name"] << " " << tet_metric_info(TetMetric(first + j)).name;
+            EXPECT_TRUE(same_bits(all[static_cast<std::size_t>(first + j)], one))
+                << c["name"] << " " << tet_metric_info(TetMetric(first + j)).name;
+            ++checked;
+          }
+        }
+    }
+  }
+  EXPECT_EQ(checked, 27 * 3 * (21 + 20 * 2 + 19 * 3 + 18 * 4));
 }
 
 // The wedge cases also list Verdict on the VTK corners fed unchanged: HQView

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <iterator>
+#include <limits>
 #include <numeric>
 #include <span>
 
@@ -277,6 +278,13 @@ struct HalfFaces {
     return run.first_cell + static_cast<Index>((static_cast<std::size_t>(h) - run.begin) / static_cast<std::size_t>(run.per_cell));
   }
   CellKind kind(Index h) const { return run_of(h).kind; }
+  // Half-face h as a half-face id over every volume cell (half_face_id).
+  Index global_id(Index h, const std::array<Index, 5>& first) const {
+    const FaceRun& run = run_of(h);
+    const std::size_t local = static_cast<std::size_t>(h) - run.begin;
+    const auto per_cell = static_cast<std::size_t>(run.per_cell);
+    return half_face_id(first, run.kind, static_cast<Index>(local / per_cell), run.faces[local % per_cell]);
+  }
   Face corners(Index h) const {
     const FaceRun& run = run_of(h);
     const std::size_t local = static_cast<std::size_t>(h) - run.begin;
@@ -356,6 +364,63 @@ Index find_hex_face(const Topology& topo, const Quad& key) {
     else hi = mid;
   }
   return lo < topo.faces.size() && sorted_quad(topo.faces[lo]) == key ? static_cast<Index>(lo) : kNoIndex;
+}
+
+// Topology::cell_face_offsets / cell_face_uses from the grouped half-faces:
+// the triangle groups (non-hex cells only), then the hex faces and the
+// non-hex quad groups merged by their sorted ids (a face of both: the hex
+// uses first, their cell ids being lower). tris.order becomes the uses, in
+// place; tris.keys is released first.
+void build_cell_faces(const HexMesh& mesh, const NonHexBlocks& others, HalfFaces<3>& tris, const HalfFaces<4>& quads,
+                      Topology& topo) {
+  std::array<Index, 5> first{};
+  first[1] = static_cast<Index>(mesh.hexes.size());
+  first[2] = first[1] + static_cast<Index>(others.tets.size());
+  first[3] = first[2] + static_cast<Index>(others.wedges.size());
+  first[4] = first[3] + static_cast<Index>(others.pyramids.size());
+  std::int64_t num_half_faces = 0;
+  for (std::size_t k = 0; k < 4; ++k)
+    num_half_faces += static_cast<std::int64_t>(first[k + 1] - first[k]) * kFacesPerVolumeKind[k];
+  if (num_half_faces > std::int64_t{std::numeric_limits<Index>::max()}) return;
+  tris.keys.clear();
+  tris.keys.shrink_to_fit();
+  std::vector<Index>& uses = tris.order;
+  std::vector<Index>& offsets = topo.cell_face_offsets;
+  offsets.reserve(tris.num_groups() + topo.faces.size() + quads.num_groups() + 1);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, uses.size()), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) uses[i] = tris.global_id(uses[i], first);
+  });
+  for (std::size_t g = 0; g < tris.num_groups(); ++g) offsets.push_back(static_cast<Index>(tris.groups[g]));
+  uses.reserve(static_cast<std::size_t>(num_half_faces));  // every half-face is a use
+  const std::size_t nf = topo.faces.size(), ng = quads.num_groups();
+  std::size_t f = 0, g = 0;
+  while (f < nf || g < ng) {
+    const Quad hex_key = f < nf ? sorted_quad(topo.faces[f]) : Quad{};
+    const int order = f == nf ? 1 : g == ng ? -1 : hex_key < quads.key(quads.first_of(g)) ? -1
+                                                  : same_face(hex_key, quads.key(quads.first_of(g))) ? 0 : 1;
+    offsets.push_back(static_cast<Index>(uses.size()));
+    if (order <= 0) {
+      // The hexes of face f, ascending; a hex using it twice, its local
+      // faces in ascending order.
+      Index last_hex = kNoIndex;
+      int last_local = -1;
+      for (Index i = topo.face_hex_offsets[f]; i < topo.face_hex_offsets[f + 1]; ++i) {
+        const Index h = topo.face_hexes[static_cast<std::size_t>(i)];
+        int k = h == last_hex ? last_local + 1 : 0;
+        while (k < 6 && topo.hex_faces[6 * static_cast<std::size_t>(h) + static_cast<std::size_t>(k)] != static_cast<Index>(f)) ++k;
+        uses.push_back(half_face_id(first, CellKind::hex, h, k));
+        last_hex = h;
+        last_local = k;
+      }
+      ++f;
+    }
+    if (order >= 0) {
+      for (std::size_t i = quads.groups[g]; i < quads.groups[g + 1]; ++i) uses.push_back(quads.global_id(quads.order[i], first));
+      ++g;
+    }
+  }
+  offsets.push_back(static_cast<Index>(uses.size()));
+  topo.cell_face_uses = std::move(uses);
 }
 
 // Matches the faces of the non-hex cells against each other and against the
@@ -457,6 +522,10 @@ void match_across_kinds(const HexMesh& mesh, const NonHexBlocks& others, Topolog
     topo.boundary_triangle_cells.push_back(tris.cell(lone_tris[k]));
   }
 
+  // Every face matched, for the overlap; the triangles' keys are no longer
+  // needed (released there), their order becomes the uses.
+  build_cell_faces(mesh, others, tris, quads, topo);
+
   // Boundary vertices over every boundary face.
   topo.is_boundary_vertex.assign(nv, 0);
   const auto mark = [&](const auto& face) {
@@ -493,6 +562,7 @@ void match_across_kinds(const HexMesh& mesh, const NonHexBlocks& others, Topolog
     while (j < non_hex_edges.size() && non_hex_edges[j] < topo.edges[i]) ++j;
     if (j < non_hex_edges.size() && non_hex_edges[j] == topo.edges[i]) topo.edge_touches_non_hex[i] = 1;
   }
+
 }
 
 // A surface mesh: its edges, boundary vertices (on an edge used by one

@@ -87,6 +87,17 @@ struct Topology {
   // overlap's zero-length edges read on such a mesh. Empty for a pure-hex
   // mesh (`edges` is that mesh's every edge).
   std::vector<Edge> all_edges;
+  // Every face of every volume cell (hexes too), matched by its vertex ids:
+  // the unique triangles, then the unique quads, each in the order of their
+  // sorted vertex ids. Face f is used by the half-faces
+  // cell_face_uses[cell_face_offsets[f] .. cell_face_offsets[f+1]),
+  // ascending (1 = boundary, 2 = interior, more = non-manifold); half-face
+  // ids as cell_half_face() reads them. What the overlap's stages D-F read
+  // on such a mesh (the matching done once). Empty for a pure-hex mesh, and
+  // when a mesh has 2^31 half-faces or more.
+  std::vector<Index> cell_face_offsets;  // num faces + 1
+  std::vector<Index> cell_face_uses;
+
 
   // ---- A surface mesh (quads and triangles, no volume cell) ----
   // Its edges, boundary and non-manifold edges and reversed faces; empty for
@@ -106,6 +117,33 @@ struct Topology {
     return face_hex_offsets[static_cast<std::size_t>(face) + 1] - face_hex_offsets[static_cast<std::size_t>(face)];
   }
 };
+
+// Half-face ids: the local faces (CellKindTable order) of every volume cell,
+// block by block in CellKind order (hexes, tets, wedges, pyramids), cell by
+// cell, so that ids ascend with (cell id, local face). first[k] is the first
+// cell id of kind k (first[4] = the number of volume cells).
+struct CellHalfFace {
+  Index cell = 0;  // over all blocks
+  int local = 0;   // the cell's local face
+};
+inline constexpr std::array<int, 4> kFacesPerVolumeKind = {
+    static_cast<int>(CellKindTable<CellKind::hex>::faces.size()), static_cast<int>(CellKindTable<CellKind::tet>::faces.size()),
+    static_cast<int>(CellKindTable<CellKind::wedge>::faces.size()),
+    static_cast<int>(CellKindTable<CellKind::pyramid>::faces.size())};
+inline Index half_face_id(const std::array<Index, 5>& first, CellKind kind, Index local_cell, int local_face) {
+  Index h = 0;
+  const auto k = static_cast<std::size_t>(kind);
+  for (std::size_t i = 0; i < k; ++i) h += (first[i + 1] - first[i]) * kFacesPerVolumeKind[i];
+  return h + local_cell * kFacesPerVolumeKind[k] + local_face;
+}
+inline CellHalfFace cell_half_face(const std::array<Index, 5>& first, Index h) {
+  for (std::size_t k = 0; k < 3; ++k) {
+    const Index n = (first[k + 1] - first[k]) * kFacesPerVolumeKind[k];
+    if (h < n) return {first[k] + h / kFacesPerVolumeKind[k], static_cast<int>(h % kFacesPerVolumeKind[k])};
+    h -= n;
+  }
+  return {first[3] + h / kFacesPerVolumeKind[3], static_cast<int>(h % kFacesPerVolumeKind[3])};
+}
 
 // The unique edges of the boundary faces (a < b), ascending: of the hex
 // boundary quads only (what the hex views draw).

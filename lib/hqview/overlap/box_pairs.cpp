@@ -4,6 +4,8 @@
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace hq::detail {
 namespace {
@@ -132,15 +134,109 @@ BoxPairs grouped_box_self_pairs(const std::vector<Box3>& boxes, const std::vecto
   return result;
 }
 
+namespace {
+
+// Cells of a coarse grid over the subset's boxes that some subset box
+// touches (closed): a box that touches no marked cell meets no subset box, so
+// the search's other side keeps only the boxes that may (the same pairs; a
+// small subset of a large mesh no longer copies every box).
+class SubsetGrid {
+ public:
+  explicit SubsetGrid(const std::vector<IndexedBox>& some) {
+    for (const IndexedBox& b : some) {
+      bounds_.add({b.lo[0], b.lo[1], b.lo[2]});
+      bounds_.add({b.hi[0], b.hi[1], b.hi[2]});
+    }
+    // About 8 cells per subset box, at most 64 per axis.
+    const double cells = std::min(262144.0, 8.0 * static_cast<double>(some.size()));
+    const Vec3 size = bounds_.hi - bounds_.lo;
+    const double side = std::cbrt(std::max(size.x, 1e-300) * std::max(size.y, 1e-300) * std::max(size.z, 1e-300) / cells);
+    for (std::size_t k = 0; k < 3; ++k) {
+      const double extent = size[static_cast<int>(k)];
+      n_[k] = side > 0 && std::isfinite(side) ? static_cast<int>(std::clamp(std::ceil(extent / side), 1.0, 64.0)) : 1;
+      scale_[k] = extent > 0 && std::isfinite(extent) ? n_[k] / extent : 0.0;
+    }
+    marked_.assign(static_cast<std::size_t>(n_[0] * n_[1] * n_[2]), 0);
+    // Every cell of every subset box marked; when that is more than 64
+    // sweeps of the grid (many boxes over most of it), no filter at all.
+    std::size_t work = 0;
+    for (const IndexedBox& b : some) work += num_cells(b.lo, b.hi);
+    if (work > 64 * marked_.size()) {
+      std::fill(marked_.begin(), marked_.end(), 1);
+      keep_all_ = true;
+      return;
+    }
+    for (const IndexedBox& b : some)
+      visit(b.lo, b.hi, std::numeric_limits<std::size_t>::max(), [&](std::size_t c) {
+        marked_[c] = 1;
+        return false;
+      });
+  }
+  // False only when the closed box touches no marked cell (then it meets no
+  // subset box, closed or open). A box over more than kMaxCells cells is
+  // kept unvisited.
+  bool may_meet(const IndexedBox& b) const {
+    if (keep_all_) return true;
+    for (std::size_t k = 0; k < 3; ++k)
+      if (b.hi[k] < bounds_.lo[static_cast<int>(k)] || b.lo[k] > bounds_.hi[static_cast<int>(k)]) return false;
+    return visit(b.lo, b.hi, kMaxCells, [&](std::size_t c) { return marked_[c] != 0; });
+  }
+
+ private:
+  static constexpr std::size_t kMaxCells = 512;
+  std::size_t num_cells(const std::array<double, 3>& lo, const std::array<double, 3>& hi) const {
+    std::size_t count = 1;
+    for (std::size_t k = 0; k < 3; ++k) count *= static_cast<std::size_t>(index(hi[k], k) - index(lo[k], k) + 1);
+    return count;
+  }
+  // Calls f on the grid cells of the closed box [lo, hi] (clamped to the
+  // grid) until it returns true; true then, or when the box spans more than
+  // max_cells cells (not visited).
+  template <class F>
+  bool visit(const std::array<double, 3>& lo, const std::array<double, 3>& hi, std::size_t max_cells, F&& f) const {
+    if (num_cells(lo, hi) > max_cells) return true;
+    std::array<int, 3> a{}, b{};
+    for (std::size_t k = 0; k < 3; ++k) {
+      a[k] = index(lo[k], k);
+      b[k] = index(hi[k], k);
+    }
+    for (int z = a[2]; z <= b[2]; ++z)
+      for (int y = a[1]; y <= b[1]; ++y)
+        for (int x = a[0]; x <= b[0]; ++x)
+          if (f(static_cast<std::size_t>((z * n_[1] + y) * n_[0] + x))) return true;
+    return false;
+  }
+  // Monotone in v (NaN to 0): boxes that meet on an axis get index ranges
+  // that meet.
+  int index(double v, std::size_t k) const {
+    const double t = (v - bounds_.lo[static_cast<int>(k)]) * scale_[k];
+    if (!(t > 0)) return 0;
+    return t >= n_[k] ? n_[k] - 1 : static_cast<int>(t);
+  }
+
+  Box3 bounds_;
+  std::array<int, 3> n_{1, 1, 1};
+  std::array<double, 3> scale_{};
+  std::vector<char> marked_;
+  bool keep_all_ = false;
+};
+
+}  // namespace
+
 BoxPairs box_subset_pairs(const std::vector<Box3>& boxes, const std::vector<Index>& subset, BoxContact contact,
                           std::int64_t max_pairs) {
   std::vector<IndexedBox> all, some;
-  all.reserve(boxes.size());
-  for (std::size_t i = 0; i < boxes.size(); ++i)
-    if (contact == BoxContact::closed || !is_empty(boxes[i])) all.push_back(indexed(boxes[i], i));
   for (Index i : subset) {
     const Box3& b = boxes[static_cast<std::size_t>(i)];
     if (contact == BoxContact::closed || !is_empty(b)) some.push_back(indexed(b, static_cast<std::size_t>(i)));
+  }
+  if (!some.empty()) {
+    const SubsetGrid grid(some);
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+      if (contact == BoxContact::open && is_empty(boxes[i])) continue;
+      const IndexedBox b = indexed(boxes[i], i);
+      if (contact == BoxContact::closed || grid.may_meet(b)) all.push_back(b);
+    }
   }
   BudgetedPairs collected(max_pairs);
   auto report = [&](const IndexedBox& a, const IndexedBox& b) { collected.add(a.index, b.index); };

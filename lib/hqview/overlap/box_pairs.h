@@ -32,7 +32,9 @@ BoxPairs box_self_pairs(const std::vector<Box3>& boxes, BoxContact contact, std:
 
 // Every pair {i, j}, i < j, with i or j in `subset` (ascending indices into
 // boxes), whose boxes intersect, at most max_pairs of them. Sorted, no
-// repeats.
+// repeats. In open contact the other side holds only the boxes that touch a
+// coarse grid's cells marked by the subset's boxes (the same pairs, a
+// fraction of the copies when the subset is small).
 BoxPairs box_subset_pairs(const std::vector<Box3>& boxes, const std::vector<Index>& subset, BoxContact contact,
                           std::int64_t max_pairs);
 

@@ -13,7 +13,7 @@ namespace {
 template <std::size_t N>
 struct Entry {
   std::array<Index, N> key;
-  FaceUse use;
+  Index half_face;  // half_face_id: ascends with (cell, local face)
 };
 
 // Every face with N corners of every cell, sorted by key, then cell, then
@@ -43,28 +43,28 @@ std::vector<Entry<N>> sorted_entries(const VolumeCells& cells) {
         Entry<N>& e = entries[at++];
         std::copy(all.begin(), all.begin() + N, e.key.begin());
         std::sort(e.key.begin(), e.key.end());
-        e.use = {c, f};
+        e.half_face = half_face_id(cells.first, corners.kind, corners.local, f);
       }
     }
   });
   tbb::parallel_sort(entries.begin(), entries.end(), [](const Entry<N>& a, const Entry<N>& b) {
     for (std::size_t i = 0; i < N; ++i)
       if (a.key[i] != b.key[i]) return a.key[i] < b.key[i];
-    return a.use.cell != b.use.cell ? a.use.cell < b.use.cell : a.use.local < b.use.local;
+    return a.half_face < b.half_face;
   });
   return entries;
 }
 
 template <std::size_t N>
-void append(const std::vector<Entry<N>>& entries, CellFaceMap& map) {
+void append(const std::vector<Entry<N>>& entries, std::vector<Index>& offsets, std::vector<Index>& uses) {
   const auto same_key = [](const Entry<N>& a, const Entry<N>& b) {
     for (std::size_t i = 0; i < N; ++i)
       if (a.key[i] != b.key[i]) return false;
     return true;
   };
   for (std::size_t i = 0; i < entries.size(); ++i) {
-    if (i == 0 || !same_key(entries[i], entries[i - 1])) map.offsets.push_back(static_cast<Index>(map.uses.size()));
-    map.uses.push_back(entries[i].use);
+    if (i == 0 || !same_key(entries[i], entries[i - 1])) offsets.push_back(static_cast<Index>(uses.size()));
+    uses.push_back(entries[i].half_face);
   }
 }
 
@@ -73,18 +73,29 @@ void append(const std::vector<Entry<N>>& entries, CellFaceMap& map) {
 // Triangles and quads apart, each sorted on its own keys (12 and 16 bytes
 // instead of 16 for every face): the faces come out in the order of the
 // keys of the whole map, triangles first (as if keyed with kNoIndex first).
-CellFaceMap build_cell_face_map(const VolumeCells& cells) {
-  CellFaceMap map;
+void match_cell_faces(const VolumeCells& cells, std::vector<Index>& offsets, std::vector<Index>& uses) {
+  offsets.clear();
+  uses.clear();
   {
     const std::vector<Entry<3>> triangles = sorted_entries<3>(cells);
-    map.uses.reserve(triangles.size());
-    append(triangles, map);
+    uses.reserve(triangles.size());
+    append(triangles, offsets, uses);
   }
   const std::vector<Entry<4>> quads = sorted_entries<4>(cells);
-  map.uses.reserve(map.uses.size() + quads.size());
-  append(quads, map);
-  map.offsets.push_back(static_cast<Index>(map.uses.size()));
-  return map;
+  uses.reserve(uses.size() + quads.size());
+  append(quads, offsets, uses);
+  offsets.push_back(static_cast<Index>(uses.size()));
+}
+
+CellFaceMap::CellFaceMap(const VolumeCells& cells, const Topology& topo) : first_(cells.first) {
+  if (topo.across_kinds && !topo.cell_face_offsets.empty()) {
+    offsets_ = &topo.cell_face_offsets;
+    uses_ = &topo.cell_face_uses;
+    return;
+  }
+  match_cell_faces(cells, own_offsets_, own_uses_);
+  offsets_ = &own_offsets_;
+  uses_ = &own_uses_;
 }
 
 }  // namespace hq::detail

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <tuple>
 #include <utility>
 
@@ -284,10 +285,10 @@ struct MixedFaces {
 MixedFaces check_mixed_faces(const VolumeCells& cells, const detail::CellFaceMap& map) {
   MixedFaces out;
   for (Index f = 0; f < map.num_faces(); ++f) {
-    const Index n = map.offsets[sz(f) + 1] - map.offsets[sz(f)];
+    const Index n = map.end(f) - map.begin(f);
     if (n > 2) out.non_manifold_faces.push_back(f);
     if (n != 2) continue;
-    const detail::FaceUse u1 = map.uses[sz(map.offsets[sz(f)])], u2 = map.uses[sz(map.offsets[sz(f)]) + 1];
+    const detail::FaceUse u1 = map.use(map.begin(f)), u2 = map.use(map.begin(f) + 1);
     const auto a = detail::local_face_corners(cells.corners(u1.cell), u1.local);
     const auto b = detail::local_face_corners(cells.corners(u2.cell), u2.local);
     if (!opposite_winding(a, b, a[3] == kNoIndex ? 3 : 4)) out.same_winding_faces.push_back(f);
@@ -300,18 +301,20 @@ std::vector<BoundaryFace> mixed_boundary_of_unflagged(const VolumeCells& cells, 
                                                       const std::vector<char>& flagged) {
   std::vector<BoundaryFace> faces;
   for (Index f = 0; f < map.num_faces(); ++f) {
-    const detail::FaceUse* owner = nullptr;
+    detail::FaceUse owner;
     int count = 0;
-    for (Index i = map.offsets[sz(f)]; i < map.offsets[sz(f) + 1]; ++i)
-      if (!flagged[sz(map.uses[sz(i)].cell)]) {
-        owner = &map.uses[sz(i)];
+    for (Index i = map.begin(f); i < map.end(f); ++i) {
+      const detail::FaceUse u = map.use(i);
+      if (!flagged[sz(u.cell)]) {
+        owner = u;
         ++count;
       }
+    }
     if (count != 1) continue;
-    const CellCornerIds c = cells.corners(owner->cell);
-    const auto corners = detail::local_face_corners(c, owner->local);
-    const Index centre = corners[3] == kNoIndex ? kNoIndex : detail::quad_centre_id(topo, tp, cells, c, owner->local);
-    faces.push_back({f, owner->cell, corners, centre});
+    const CellCornerIds c = cells.corners(owner.cell);
+    const auto corners = detail::local_face_corners(c, owner.local);
+    const Index centre = corners[3] == kNoIndex ? kNoIndex : detail::quad_centre_id(topo, tp, cells, c, owner.local);
+    faces.push_back({f, owner.cell, corners, centre});
   }
   return faces;
 }
@@ -483,7 +486,7 @@ OverlapReport check_overlap(const Mesh& mesh, const Topology& topo, const Overla
   progress::add_done(1);
   // D. A pure-hex mesh reads the hex topology's faces; any other the face
   // map of every cell.
-  detail::CellFaceMap face_map;
+  std::optional<detail::CellFaceMap> face_map;
   if (cells.is_pure_hex()) {
     r.non_manifold_faces = topo.non_manifold_faces;
     r.same_winding_faces = find_same_winding_faces(mesh, topo);
@@ -492,14 +495,13 @@ OverlapReport check_overlap(const Mesh& mesh, const Topology& topo, const Overla
         for (Index i = topo.face_hex_offsets[sz(f)]; i < topo.face_hex_offsets[sz(f) + 1]; ++i)
           flagged[sz(topo.face_hexes[sz(i)])] = 1;
   } else {
-    face_map = detail::build_cell_face_map(cells);
-    MixedFaces faces = check_mixed_faces(cells, face_map);
+    face_map.emplace(cells, topo);
+    MixedFaces faces = check_mixed_faces(cells, *face_map);
     r.non_manifold_faces = std::move(faces.non_manifold_faces);
     r.same_winding_faces = std::move(faces.same_winding_faces);
     for (const auto* list : {&r.non_manifold_faces, &r.same_winding_faces})
       for (Index f : *list)
-        for (Index i = face_map.offsets[sz(f)]; i < face_map.offsets[sz(f) + 1]; ++i)
-          flagged[sz(face_map.uses[sz(i)].cell)] = 1;
+        for (Index i = face_map->begin(f); i < face_map->end(f); ++i) flagged[sz(face_map->use(i).cell)] = 1;
   }
   r.duplicate_cells = find_duplicate_cells(cells, flagged);
   const bool clean_a_to_d = std::find(flagged.begin(), flagged.end(), 1) == flagged.end();
@@ -509,7 +511,7 @@ OverlapReport check_overlap(const Mesh& mesh, const Topology& topo, const Overla
   for (int round = 0;; ++round) {
     const std::vector<BoundaryFace> quads = cells.is_pure_hex()
                                                 ? boundary_of_unflagged(mesh, topo, tp, flagged)
-                                                : mixed_boundary_of_unflagged(cells, topo, tp, face_map, flagged);
+                                                : mixed_boundary_of_unflagged(cells, topo, tp, *face_map, flagged);
     // E tests the faces' fan triangles: 4 per quad, 1 per triangle.
     std::size_t num_triangles = 0;
     for (const BoundaryFace& q : quads) num_triangles += static_cast<std::size_t>(q.num_fan_triangles());

@@ -21,6 +21,16 @@ namespace hq {
 namespace fs = std::filesystem;
 namespace {
 
+// The matched faces of every cell (Topology::cell_face_offsets/uses) serve
+// the overlap and the size gradation only: released once both ran, before
+// the metric columns and summaries pile up (2.18 M tets: 52 MiB of the
+// run's peak). A later overlap or structure on this topology would match
+// the faces itself, to the same table.
+void release_cell_faces(Topology& topology) {
+  std::vector<Index>().swap(topology.cell_face_offsets);
+  std::vector<Index>().swap(topology.cell_face_uses);
+}
+
 // The up axis of every view: --up's, or the resting one under --up auto.
 Vec3 views_up(const Analysis& a, const AnalyzeOptions& options) {
   return a.resting_up ? a.resting_up->up : options.views.up;
@@ -215,6 +225,7 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
     else
       tbb::parallel_invoke(overlap, structure);
     clock.stop();
+    release_cell_faces(a.topology);
     concurrent("structure", structure_seconds);
     if (metrics_beside) {
       concurrent("metrics", metrics_seconds);
@@ -239,6 +250,7 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
   if (!options.overlap || is_surface) {
     clock.start("structure");
     structure();
+    release_cell_faces(a.topology);
   }
   clock.stop();
   analyze_fem(a, options, clock);

@@ -17,8 +17,11 @@ namespace {
 constexpr std::size_t kGrain = 1024;
 
 // Metrics computed per pass of summarize_cell_block_metrics: that many
-// columns (8 bytes per cell each) alive at once beside the kept ones.
-constexpr int kMetricsPerPass = 4;
+// columns (8 bytes per cell each) alive at once beside the kept ones, and as
+// many summaries (each a sorted copy) at most. Two: on 2.18 M tets this
+// pass is the run's memory peak (4 took 33 MiB more); the passes' other
+// costs (a gather and a size per cell) are small beside the kernels.
+constexpr int kMetricsPerPass = 2;
 
 // The corner values a cell of kind K has (a pyramid: its 4 base corners).
 template <CellKind K>
@@ -45,6 +48,18 @@ struct BlockKernels<CellKind::tet> {
   static double size(const Corners& p) { return tet_volume(p); }
   static auto metrics(const Corners& p, double average) { return tet_metrics(p, average); }
   static double metric(int m, const Corners& p, double average) { return tet_metric(TetMetric(m), p, average); }
+  // Metrics first .. first + count - 1 of one cell: metric()'s values, the
+  // tet's size and the block's size reference computed once.
+  using Reference = TetSizeReference;
+  static Reference reference(double average) { return tet_size_reference(average); }
+  static void metric_range(int first, int count, const Corners& p, const Reference& reference, double* out) {
+    tet_metric_range(first, count, p, reference, out);
+  }
+  // shape_and_size is shape times relative_size_squared (the kernel's very
+  // product): read from those columns when they are kept.
+  static constexpr std::array<int, 3> product = {static_cast<int>(TetMetric::shape_and_size),
+                                                 static_cast<int>(TetMetric::shape),
+                                                 static_cast<int>(TetMetric::relative_size_squared)};
   static auto corners(const Corners& p, const std::optional<Vec3>&) { return tet_corner_scaled_jacobians(p); }
   static CellValidity validity(const Corners& p, const std::optional<Vec3>&) { return tet_validity(p); }
 };
@@ -94,6 +109,32 @@ struct BlockKernels<CellKind::triangle> {
   static auto corners(const Corners& p, const std::optional<Vec3>& n) { return triangle_corner_scaled_jacobians(p, n); }
   static CellValidity validity(const Corners& p, const std::optional<Vec3>& n) { return triangle_validity(p, n); }
 };
+
+// Metrics first .. first + count - 1 of one cell by the kind's range
+// kernel where it has one (tets), else one by one.
+template <typename Kernels>
+concept HasMetricRange = requires { typename Kernels::Reference; };
+
+template <typename Kernels>
+concept HasProductMetric = requires { Kernels::product; };
+
+template <typename Kernels>
+auto metric_reference(double average) {
+  if constexpr (HasMetricRange<Kernels>)
+    return Kernels::reference(average);
+  else
+    return average;
+}
+
+template <typename Kernels, typename Reference>
+void metric_range(int first, int count, const typename Kernels::Corners& p, double average, const Reference& reference,
+                  double* out) {
+  if constexpr (HasMetricRange<Kernels>) {
+    Kernels::metric_range(first, count, p, reference, out);
+  } else {
+    for (int j = 0; j < count; ++j) out[j] = Kernels::metric(first + j, p, average);
+  }
+}
 
 template <CellKind K>
 using BlockCells = std::span<const std::array<Index, CellKindTable<K>::num_corners>>;
@@ -230,23 +271,41 @@ SummarizedCellBlock summarize_cell_block_metrics(std::span<const Vec3> points,
     field.num_flat += o == CellValidity::flat;
   }
   out.summaries.resize(M + 1);
+  const auto reference = metric_reference<Kernels>(field.average_size);
   // kMetricsPerPass metrics per pass over the cells (one gather of each
-  // cell's corners for all of them), then their summaries (one task each).
+  // cell's corners, one size and one block reference for all of them),
+  // then their summaries. A product metric (a tet's
+  // shape_and_size) alone in its pass is read from its kept factors.
   for (int first = 0; first < M; first += kMetricsPerPass) {
     const int count = std::min(kMetricsPerPass, M - first);
     std::array<std::vector<double>, kMetricsPerPass> columns;
     for (int j = 0; j < count; ++j) columns[static_cast<std::size_t>(j)].resize(n);
-    for_each_cell(n, [&](std::size_t c) {
-      const auto p = corners_of<K>(points, cells, c);
-      for (int j = 0; j < count; ++j)
-        columns[static_cast<std::size_t>(j)][c] = Kernels::metric(first + j, p, field.average_size);
-    });
-    tbb::parallel_for(0, count, [&](int j) {
+    bool from_product = false;
+    if constexpr (HasProductMetric<Kernels>) {
+      constexpr auto product = Kernels::product;
+      const auto& a = field.values[static_cast<std::size_t>(product[1])];
+      const auto& b = field.values[static_cast<std::size_t>(product[2])];
+      if (count == 1 && first == product[0] && a.size() == n && b.size() == n) {
+        for_each_cell(n, [&](std::size_t c) { columns[0][c] = a[c] * b[c]; });
+        from_product = true;
+      }
+    }
+    if (!from_product) {
+      for_each_cell(n, [&](std::size_t c) {
+        const auto p = corners_of<K>(points, cells, c);
+        std::array<double, kMetricsPerPass> v;
+        metric_range<Kernels>(first, count, p, field.average_size, reference, v.data());
+        for (int j = 0; j < count; ++j) columns[static_cast<std::size_t>(j)][c] = v[static_cast<std::size_t>(j)];
+      });
+    }
+    // One summary at a time (each sorts a copy of its column, in parallel
+    // on a large block): one copy alive, not one per column.
+    for (int j = 0; j < count; ++j) {
       const auto m = static_cast<std::size_t>(first + j);
       std::vector<double>& column = columns[static_cast<std::size_t>(j)];
       out.summaries[m] = {std::string(field.names[m]), compute_statistics(column, metric_statistics_options(field.names[m]))};
       if (keep(field.names[m])) field.values[m] = std::move(column);
-    });
+    }
   }
   out.summaries[M] = corner_summary(corners.scaled_jacobian, corners.degenerate_mask, kNumCornerValues<K>);
   return out;

@@ -94,7 +94,7 @@ struct SummarizedCellBlock {
 // The metrics of a block of kind K (tet, wedge, pyramid, quad, triangle)
 // computed a few metrics per pass over the cells (parallel), each
 // summarised and then dropped unless `keep` accepts its name: memory for
-// the kept columns and four more, not every column at once (2.18 M tets:
+// the kept columns and two more, not every column at once (2.18 M tets:
 // 21 columns, 366 MB, before). The values are those of
 // compute_*_block_metrics (each kind's all-metrics kernel is its one-metric
 // kernel in a loop); the corner summary and the inverted and flat counts

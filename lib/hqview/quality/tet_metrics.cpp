@@ -308,14 +308,21 @@ double equiangle_skew_of(const TetCorners& p) {
   return skew;
 }
 
-double relative_size_squared_of(const TetCorners& p, double average_volume) {
-  // The weight is the regular tet of volume average_volume.
+// The weight of the size metrics: the regular tet of volume
+// average_volume, its volume as Verdict computes it (a cube root and a
+// triple product: the same for every tet of a block, computed once per
+// block by tet_size_reference).
+double regular_volume_of(double average_volume) {
   Vec3 w1{1, 0, 0}, w2{0.5, 0.5 * kSqrt3, 0}, w3{0.5, kSqrt3 / 6.0, kSqrt2 / kSqrt3};
   const double scale = std::pow(6. * average_volume / dot(w1, cross(w2, w3)), 1.0 / 3.0);
   w1 = w1 * scale;
   w2 = w2 * scale;
   w3 = w3 * scale;
-  const double avg_volume = dot(w1, cross(w2, w3)) / 6.0;
+  return dot(w1, cross(w2, w3)) / 6.0;
+}
+
+double relative_size_squared_of(const TetCorners& p, const TetSizeReference& reference) {
+  const double avg_volume = reference.regular_volume;
   const double volume = tet_volume(p);
   if (avg_volume < kDblMin) return 0.0;
   double size = volume / avg_volume;
@@ -384,7 +391,7 @@ double tet_aspect_frobenius(const TetCorners& p) { return aspect_frobenius_with_
 namespace {
 
 // One metric, given the tet's characteristic size (char_size(p)).
-double metric_with_size(TetMetric m, const TetCorners& p, double average_volume, double size) {
+double metric_with_size(TetMetric m, const TetCorners& p, const TetSizeReference& reference, double size) {
   using M = TetMetric;
   switch (m) {
     case M::inradius:
@@ -426,26 +433,37 @@ double metric_with_size(TetMetric m, const TetCorners& p, double average_volume,
     case M::equiangle_skew:
       return equiangle_skew_of(p);
     case M::relative_size_squared:
-      return relative_size_squared_of(p, average_volume);
+      return relative_size_squared_of(p, reference);
     case M::shape_and_size:
-      return shape_of(p, size) * relative_size_squared_of(p, average_volume);
+      return shape_of(p, size) * relative_size_squared_of(p, reference);
   }
   return std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace
 
+TetSizeReference tet_size_reference(double average_volume) { return {average_volume, regular_volume_of(average_volume)}; }
+
 double tet_metric(TetMetric m, const TetCorners& p, double average_volume) {
-  return metric_with_size(m, p, average_volume, char_size(p));
+  // The cube root only for the metrics that read it.
+  const bool sized = m == TetMetric::relative_size_squared || m == TetMetric::shape_and_size;
+  const TetSizeReference reference = sized ? tet_size_reference(average_volume) : TetSizeReference{average_volume, 0.0};
+  return metric_with_size(m, p, reference, char_size(p));
+}
+
+void tet_metric_range(int first, int count, const TetCorners& p, const TetSizeReference& reference, double* out) {
+  const double size = char_size(p);  // shared by every scaled metric
+  for (int j = 0; j < count; ++j) out[j] = metric_with_size(static_cast<TetMetric>(first + j), p, reference, size);
 }
 
 TetMetricValues tet_metrics(const TetCorners& p, double average_volume) {
   const double size = char_size(p);  // shared by every scaled metric
+  const TetSizeReference reference = tet_size_reference(average_volume);
   TetMetricValues out;
   for (int m = 0; m < kNumTetMetrics; ++m) {
     const auto metric = static_cast<TetMetric>(m);
     if (metric == TetMetric::shape_and_size) continue;  // from shape and relative_size_squared below
-    out[static_cast<std::size_t>(m)] = metric_with_size(metric, p, average_volume, size);
+    out[static_cast<std::size_t>(m)] = metric_with_size(metric, p, reference, size);
   }
   out[static_cast<std::size_t>(TetMetric::shape_and_size)] =
       out[static_cast<std::size_t>(TetMetric::shape)] * out[static_cast<std::size_t>(TetMetric::relative_size_squared)];

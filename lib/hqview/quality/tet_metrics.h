@@ -62,6 +62,20 @@ using TetMetricValues = std::array<double, kNumTetMetrics>;
 const CellMetricInfo& tet_metric_info(TetMetric m);
 std::optional<TetMetric> tet_metric_from_name(std::string_view name);
 
+// The block-wide part of the size metrics (relative_size_squared,
+// shape_and_size): the mean tet volume and the volume of Verdict's regular
+// weight tet of that volume (a cube root), computed once per block.
+struct TetSizeReference {
+  double average_volume = 0;
+  double regular_volume = 0;
+};
+TetSizeReference tet_size_reference(double average_volume);
+
+// Metrics first .. first + count - 1 (the enum's order) of one tet into
+// out[0 .. count): tet_metric's values, bit for bit, with the tet's size
+// and the block's reference computed once instead of per metric.
+void tet_metric_range(int first, int count, const TetCorners& p, const TetSizeReference& reference, double* out);
+
 // Every metric of one tet, in the enum's order.
 TetMetricValues tet_metrics(const TetCorners& p, double average_volume);
 // One metric by its enum.

@@ -200,13 +200,12 @@ void compare_sizes(const std::vector<double>& size, Index a, Index b, std::vecto
   }
 }
 
-// A mesh of several kinds: every pair of volume cells sharing a face (the same
-// three or four vertices; a non-manifold face's cells pairwise) and the quad
-// cell of each non-conforming interface with its two triangle cells. The
-// faces are bucketed by their smallest vertex (linear), matched inside a
-// bucket by sorting its few faces on their other vertices.
-std::vector<double> gradation_across_kinds(const Mesh& mesh, const Topology& topology) {
-  const std::vector<double> size = equivalent_hex_volumes(mesh);
+// Every pair of volume cells sharing a face (the same three or four
+// vertices; a non-manifold face's cells pairwise), the faces matched here:
+// bucketed by their smallest vertex (linear), matched inside a bucket by
+// sorting its few faces on their other vertices.
+void compare_across_own_matched_faces(const Mesh& mesh, const std::vector<double>& size,
+                                      std::vector<double>& gradation) {
   const std::size_t nc = size.size(), nv = mesh.points.size();
   struct FaceOf {
     Index cell;
@@ -231,7 +230,6 @@ std::vector<double> gradation_across_kinds(const Mesh& mesh, const Topology& top
       });
     }
   }
-  std::vector<double> gradation(nc, std::numeric_limits<double>::quiet_NaN());
   std::vector<std::pair<std::array<Index, 4>, Index>> bucket;
   for (std::size_t v = 0; v < nv; ++v) {
     bucket.clear();
@@ -247,6 +245,32 @@ std::vector<double> gradation_across_kinds(const Mesh& mesh, const Topology& top
         for (std::size_t b = a + 1; b < j; ++b) compare_sizes(size, bucket[a].second, bucket[b].second, gradation);
       i = j;
     }
+  }
+}
+
+// A mesh of several kinds: every pair of volume cells sharing a face and the
+// quad cell of each non-conforming interface with its two triangle cells.
+// The faces are the topology's matched faces (Topology::cell_face_uses: no
+// second matching, no face array beside the overlap's stages); without them
+// (a topology of the hexes alone) matched here. Either way the same pairs,
+// and a cell's gradation is the largest ratio over its pairs, in any order.
+std::vector<double> gradation_across_kinds(const Mesh& mesh, const Topology& topology) {
+  const std::vector<double> size = equivalent_hex_volumes(mesh);
+  const std::size_t nc = size.size();
+  std::vector<double> gradation(nc, std::numeric_limits<double>::quiet_NaN());
+  if (topology.cell_face_offsets.empty()) {
+    compare_across_own_matched_faces(mesh, size, gradation);
+  } else {
+    const std::array<Index, 5> first_cell = {
+        0, static_cast<Index>(mesh.hexes.size()), static_cast<Index>(mesh.hexes.size() + mesh.tets.size()),
+        static_cast<Index>(mesh.hexes.size() + mesh.tets.size() + mesh.wedges.size()), static_cast<Index>(nc)};
+    const std::vector<Index>& offsets = topology.cell_face_offsets;
+    const auto cell = [&](Index use) {
+      return cell_half_face(first_cell, topology.cell_face_uses[static_cast<std::size_t>(use)]).cell;
+    };
+    for (std::size_t f = 0; f + 1 < offsets.size(); ++f)
+      for (Index a = offsets[f]; a < offsets[f + 1]; ++a)
+        for (Index b = a + 1; b < offsets[f + 1]; ++b) compare_sizes(size, cell(a), cell(b), gradation);
   }
   for (const NonConformingFace& f : topology.non_conforming_faces)
     for (Index t : f.triangle_cells)
