@@ -154,8 +154,10 @@
   }));
   scene.add(edges);
 
-  // Glyphs: one sphere per listed cluster in its colour; as in view A the
-  // grey (unlabelled) ones are drawn at 0.6 of their radius, a ring in the
+  // Glyphs: one sphere per listed cluster in its colour (its tie class's:
+  // clusters tied with a labelled one wear its colour, issue 44 part T);
+  // as in view A every glyph keeps its severity radius, the grey
+  // (unlabelled) ones are fainter (kGreyOpacity), a ring in the
   // inverted colour goes round each cluster with an inverted vertex
   // (min < 0) and a dark ring round cluster #0, outside it, each on a white
   // halo. The rings face the camera (turned in draw()).
@@ -164,8 +166,16 @@
   // the faces (transparent pass, opacity 1, renderOrder 5: their own colour,
   // still hidden by opaque faces), the rings after everything with no depth
   // test (renderOrder 20+: an overlay, as view A draws them).
-  var kGreyGlyphFactor = 0.6, colors = D.colors, kDarkRing = colors.worst_ring;
+  var colors = D.colors, kDarkRing = colors.worst_ring;
   var labelled = D.labelled_clusters === undefined ? D.top_clusters || 0 : D.labelled_clusters;
+  // Tie classes (report.json glyphs.clusters[].tie_class): a cluster is
+  // coloured when its class is among the labelled ones; the first of a
+  // class carries its label; #0 tied with others gets no "worst" ring.
+  function tieClass(cl, rank) { return cl.tie_class === undefined ? rank : cl.tie_class; }
+  var colouredClasses = D.coloured_classes === undefined ? labelled : D.coloured_classes;
+  function isColoured(cl, rank) { return tieClass(cl, rank) < colouredClasses; }
+  function isClassFirst(cl, rank) { return rank === 0 || tieClass(D.clusters[rank - 1], rank - 1) !== tieClass(cl, rank); }
+  var worstTied = D.clusters.length > 0 && (D.clusters[0].tied || 1) > 1;
   var glyphs = new THREE.Group(), sphere = new THREE.SphereGeometry(1, 24, 16), rings = [];
   var invertedColor = (function () {
     var lut = bytes(D.fields[0].lut), h = '#';
@@ -214,15 +224,15 @@
   // kMaxGlyphFraction of the bounding diagonal, and the spheres are
   // see-through (kGlyphOpacity) so that the inverted surface colour and the
   // overlap markers inside them show.
-  var kMaxGlyphFraction = 0.03, kGlyphOpacity = 0.55;
+  var kMaxGlyphFraction = 0.03, kGlyphOpacity = 0.55, kGreyOpacity = 0.22;
   var largestRadius = D.clusters.reduce(function (m, cl) { return Math.max(m, cl.radius); }, 0);
   var glyphScale = largestRadius > kMaxGlyphFraction * diagonal ? kMaxGlyphFraction * diagonal / largestRadius : 1;
   D.clusters.forEach(function (cl, rank) {
     var g = new THREE.Group();
     g.position.set(cl.position[0], cl.position[1], cl.position[2]);
-    var r = Math.max(cl.radius * glyphScale, 1e-6 * diagonal) * (rank < labelled ? 1 : kGreyGlyphFactor);
+    var r = Math.max(cl.radius * glyphScale, 1e-6 * diagonal);
     var m = new THREE.Mesh(sphere, new THREE.MeshLambertMaterial({ color: new THREE.Color(cl.color), transparent: true,
-      opacity: kGlyphOpacity, depthWrite: false, clippingPlanes: clipping }));
+      opacity: isColoured(cl, rank) ? kGlyphOpacity : kGreyOpacity, depthWrite: false }));
     m.renderOrder = 5;
     m.scale.set(r, r, r);
     m.userData.cluster = cl;
@@ -232,7 +242,7 @@
     g.userData.drawnRadius = r;
     var inverted = cl.min_quality < 0;
     if (inverted) addRing(g, r, kRingPx.inverted, invertedColor, 20);
-    if (cl.id === 0) addRing(g, r, inverted ? kRingPx.worstOutside : kRingPx.worst, kDarkRing, 22);
+    if (cl.id === 0 && !worstTied) addRing(g, r, inverted ? kRingPx.worstOutside : kRingPx.worst, kDarkRing, 22);
     if (g.children.length > 1) rings.push(g);
     glyphs.add(g);
   });
@@ -247,21 +257,32 @@
       // A ring whose glyph centre the cut removes goes with it.
       g.children.forEach(function (ring) { if (ring.userData.ring) ring.visible = clipping.length === 0 || clipping[0].distanceToPoint(g.position) >= 0; });
     });
+    // A glyph goes whole with its centre (the 44w review: the cut left
+    // lenses and half spheres inside whole rings and labels).
+    glyphs.children.forEach(function (g) { g.children[0].visible = clipping.length === 0 || clipping[0].distanceToPoint(g.position) >= 0; });
     sizeRings(pxPerUnit());
   }
 
   // Overlap markers and intersecting cells.
-  var markers = new THREE.Group(), markerRadius = 0.012 * diagonal;
+  // Each marker a small dot in a hollow ring (the 44w review: opaque discs
+  // 0.012 of the diagonal hid the cells they mark and merged into a blob on
+  // rockarm): the dot 0.005 of the diagonal, the ring 3-5.5 px outside it
+  // on a white halo, facing the camera like the glyph rings.
+  var markers = new THREE.Group(), markerRadius = 0.005 * diagonal;
   D.markers.forEach(function (mk) {
     // An overlay (issue 44 review): after the see-through faces and the
     // glyphs, no depth test, so neither washes it nor hides it.
-    var m = new THREE.Mesh(sphere, new THREE.MeshBasicMaterial({ color: new THREE.Color(mk.kind === 'coincident' ? colors.coincident : colors.intersection),
+    var colour = mk.kind === 'coincident' ? colors.coincident : colors.intersection, g = new THREE.Group();
+    var m = new THREE.Mesh(sphere, new THREE.MeshBasicMaterial({ color: new THREE.Color(colour),
       depthTest: false, depthWrite: false, transparent: true, clippingPlanes: clipping }));
     m.renderOrder = 26;
-    m.position.set(mk.position[0], mk.position[1], mk.position[2]);
+    g.position.set(mk.position[0], mk.position[1], mk.position[2]);
     m.scale.set(markerRadius, markerRadius, markerRadius);
     m.userData.marker = mk;
-    markers.add(m);
+    g.add(m);
+    addRing(g, markerRadius, [3, 5.5], colour, 27);
+    rings.push(g);
+    markers.add(g);
   });
   scene.add(markers);
   var intersectingGeometry = new THREE.BufferGeometry();
@@ -540,11 +561,17 @@
   // order) and no other labelled glyph or its rings, else the first place.
   var labelLayer = el('div', { id: 'glyph-labels' });
   view.appendChild(labelLayer);
-  var labels = D.clusters.slice(0, labelled).map(function (cl) {
-    var e = el('div', { class: 'glyph-label', 'data-cluster': String(cl.id) }, ['#' + cl.id + ' (' + cl.size + ')']);
+  // One label per coloured tie class, on its first cluster: "#k (n)", or
+  // "#k (n) +m tied" for a tie.
+  var labels = [];
+  D.clusters.forEach(function (cl, rank) {
+    if (!isColoured(cl, rank) || !isClassFirst(cl, rank)) return;
+    var tied = cl.tied || 1;
+    var e = el('div', { class: 'glyph-label', 'data-cluster': String(cl.id) },
+      ['#' + cl.id + ' (' + cl.size + ')' + (tied > 1 ? ' +' + (tied - 1) + ' tied' : '')]);
     e.style.borderLeftColor = cl.color;
     labelLayer.appendChild(e);
-    return { cl: cl, e: e };
+    labels.push({ cl: cl, e: e, rank: rank });
   });
   function placeLabels() {
     labelLayer.hidden = !glyphs.visible;
@@ -552,11 +579,12 @@
     var w = view.clientWidth, hgt = view.clientHeight;
     var ppu = pxPerUnit();
     var discs = labels.map(function (l, i) {
-      var p = new THREE.Vector3().fromArray(l.cl.position).project(camera), r = glyphs.children[i].userData.drawnRadius * ppu;
+      var gi = glyphs.children[l.rank];
+      var p = new THREE.Vector3().fromArray(l.cl.position).project(camera), r = gi.userData.drawnRadius * ppu;
       // Outside the rings (fixed pixels outside the glyph) and their halo.
-      var ringPx = l.cl.id === 0 ? (l.cl.min_quality < 0 ? kRingPx.worstOutside[1] : kRingPx.worst[1]) : l.cl.min_quality < 0 ? kRingPx.inverted[1] : 0;
+      var ringPx = l.cl.id === 0 && !worstTied ? (l.cl.min_quality < 0 ? kRingPx.worstOutside[1] : kRingPx.worst[1]) : l.cl.min_quality < 0 ? kRingPx.inverted[1] : 0;
       var outer = r + ringPx + kHaloPx + 2;
-      var cutAway = clipping.length > 0 && clipping[0].distanceToPoint(glyphs.children[i].position) < 0;
+      var cutAway = clipping.length > 0 && clipping[0].distanceToPoint(gi.position) < 0;
       return { x: (p.x + 1) / 2 * w, y: (1 - p.y) / 2 * hgt, r: r, outer: outer, z: p.z, cutAway: cutAway };
     });
     var placed = [];
@@ -722,7 +750,7 @@
     // Glyphs first: they show through the see-through faces.
     function hitsOf(objects) {
       return raycaster.intersectObjects(objects, false).filter(function (hit) {
-        return clipping.length === 0 || clipping[0].distanceToPoint(hit.point) >= 0;
+        return hit.object.visible && (clipping.length === 0 || clipping[0].distanceToPoint(hit.point) >= 0);
       });
     }
     var glyphHits = glyphs.visible ? hitsOf(glyphSpheres) : [];
@@ -759,17 +787,26 @@
 
   // The cluster legend: the labelled clusters' colours, then the one grey of
   // all others; an entry focuses its cluster.
-  var legend = document.getElementById('clusters'), others = 0;
-  D.clusters.forEach(function (cl) {
-    if (!cl.is_top) { others += 1; return; }
-    var sw = el('span', { class: 'swatch' });
+  // One entry per coloured tie class ("#k-#m  N tied at q" for a tie),
+  // then the grey ones with the range of their min quality.
+  var legend = document.getElementById('clusters'), others = [];
+  D.clusters.forEach(function (cl, rank) {
+    if (!isColoured(cl, rank)) { others.push(cl); return; }
+    if (!isClassFirst(cl, rank)) return;
+    var sw = el('span', { class: 'swatch' }), tied = cl.tied || 1, q = show(Number(cl.min_quality.toPrecision(3)));
     sw.style.background = cl.color;
-    legend.appendChild(el('a', { href: '#cluster-' + cl.id }, [sw, '#' + cl.id + '  ' + counted(cl.size, 'vertex', 'vertices') + ', min ' + show(Number(cl.min_quality.toPrecision(3)))]));
+    legend.appendChild(el('a', { href: '#cluster-' + cl.id, class: tied > 1 ? 'tie' : '' }, [sw, tied > 1
+      ? '#' + cl.id + '-#' + (cl.id + tied - 1) + '  ' + tied + ' tied at ' + q + ' (within ' + D.tie_tolerance + ')'
+      : '#' + cl.id + '  ' + counted(cl.size, 'vertex', 'vertices') + ', min ' + q]));
   });
-  if (others) {
-    var grey = D.clusters.filter(function (cl) { return !cl.is_top; })[0].color, sw = el('span', { class: 'swatch' });
-    sw.style.background = grey;
-    legend.appendChild(el('div', {}, [sw, counted(others, 'other cluster', 'other clusters') + ': smaller grey spheres (0.6 of their radius)']));
+  if (others.length) {
+    var sw = el('span', { class: 'swatch' });
+    sw.style.background = others[0].color;
+    sw.style.opacity = String(0.5);
+    var othersLo = show(Number(others[0].min_quality.toPrecision(2)));
+    var othersHi = show(Number(others[others.length - 1].min_quality.toPrecision(2)));
+    legend.appendChild(el('div', { id: 'legend-others' }, [sw, counted(others.length, 'other cluster', 'other clusters') +
+      ', min ' + othersLo + (others.length > 1 ? ' to ' + othersHi : '') + ': faint grey spheres (full radius)']));
   }
   // The rings, with ring swatches (view A's legend says the same).
   function ringEntry(color, label, id) {
@@ -777,7 +814,7 @@
     sw.style.borderColor = color;
     legend.appendChild(el('div', { id: id }, [sw, label]));
   }
-  if (D.clusters.length) ringEntry(kDarkRing, 'ring: worst cluster #0', 'legend-ring-worst');
+  if (D.clusters.length && !worstTied) ringEntry(kDarkRing, 'ring: worst cluster #0', 'legend-ring-worst');
   if (D.clusters.some(function (cl) { return cl.min_quality < 0; }))
     ringEntry(invertedColor, 'ring: inverted (min < 0)', 'legend-ring-inverted');
   if (!D.clusters.length) legend.appendChild(text('no glyph: every vertex is above the threshold'));

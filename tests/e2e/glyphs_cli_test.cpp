@@ -47,7 +47,8 @@ void expect_glyphs_match_vertices_csv(const GlyphBundle& b) {
   for (const auto& item : g.items()) keys.push_back(item.key());
   EXPECT_EQ(keys,
             (std::vector<std::string>{"rmax", "threshold", "num_glyphs", "num_clusters", "rmax_mode", "rmax_factor",
-                                      "top_clusters", "size_rule", "num_clusters_omitted", "clusters"}));
+                                      "top_clusters", "size_rule", "num_clusters_omitted", "tie_tolerance",
+                                      "clusters"}));
   const bool is_paper = g["size_rule"] == "paper";
   EXPECT_TRUE(is_paper || g["size_rule"] == "severity");
   const double rmax = g["rmax"], threshold = g["threshold"];
@@ -83,6 +84,32 @@ void expect_glyphs_match_vertices_csv(const GlyphBundle& b) {
   EXPECT_EQ(g["num_glyphs"].get<long>(), glyphs);
   EXPECT_EQ(g["num_clusters"].get<std::size_t>(), members.size());
   const auto& clusters = g["clusters"];
+  // Tie classes (issue 44 part T), recomputed from the listed min qualities:
+  // a class starts where the min quality leaves its first one's tolerance
+  // or crosses 0; classes are coloured while at most 6 and (after the
+  // first) their members add up to at most 12.
+  const double tolerance = g["tie_tolerance"];
+  EXPECT_EQ(tolerance, 0.001);
+  std::vector<long> tie(clusters.size(), 0), class_size;
+  double first = 0.0;  // the current class's first min quality
+  for (std::size_t i = 0; i < clusters.size(); ++i) {
+    const double q = clusters[i]["min_quality"];
+    const bool ties = i > 0 && q - first <= tolerance && (q < 0.0) == (first < 0.0);
+    tie[i] = i == 0 ? 0 : tie[i - 1] + (ties ? 0 : 1);
+    if (!ties) {
+      first = q;
+      class_size.push_back(0);
+    }
+    ++class_size.back();
+    EXPECT_EQ(clusters[i]["tie_class"].get<long>(), tie[i]) << i;
+  }
+  long coloured = 0, coloured_glyphs = 0;
+  const long palette = labelled_cluster_count(g["top_clusters"].get<std::int64_t>());
+  for (long size : class_size) {
+    if (coloured >= palette || (coloured > 0 && coloured_glyphs + size > 12)) break;
+    coloured_glyphs += size;
+    ++coloured;
+  }
   EXPECT_EQ(clusters.size() + g["num_clusters_omitted"].get<std::size_t>(), members.size());
   for (std::size_t i = 0; i < clusters.size(); ++i) {
     const auto& c = clusters[i];
@@ -102,15 +129,11 @@ void expect_glyphs_match_vertices_csv(const GlyphBundle& b) {
     const std::string color = c["color"];
     EXPECT_EQ(color.size(), 7u);
     EXPECT_EQ(color[0], '#');
-    // The top K clusters wear distinct colours; every other cluster the one
-    // neutral tone, which no top cluster wears.
-    const std::size_t top = static_cast<std::size_t>(labelled_cluster_count(g["top_clusters"].get<std::int64_t>()));
-    if (i < top) {
-      for (std::size_t j = 0; j < i; ++j) EXPECT_NE(color, clusters[j]["color"].get<std::string>()) << i << " " << j;
-    } else if (i > top) {
-      EXPECT_EQ(color, clusters[top]["color"].get<std::string>()) << "cluster " << i << " is neutral";
-    } else {
-      for (std::size_t j = 0; j < top; ++j) EXPECT_NE(color, clusters[j]["color"].get<std::string>()) << j;
+    // The coloured tie classes wear distinct colours, one per class; every
+    // other cluster the one neutral tone, which no coloured class wears.
+    for (std::size_t j = 0; j < i; ++j) {
+      const bool same = tie[i] == tie[j] || (tie[i] >= coloured && tie[j] >= coloured);
+      EXPECT_EQ(color == clusters[j]["color"].get<std::string>(), same) << i << " " << j;
     }
     if (i > 0) {  // ranked by min quality, then larger first
       const auto& prev = clusters[i - 1];

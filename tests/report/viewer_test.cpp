@@ -15,6 +15,7 @@
 #include <cstring>
 #include <set>
 
+#include "hqview/glyph/glyph_ties.h"
 #include "hqview/glyph/glyphs.h"
 #include "hqview/image/colormap.h"
 #include "hqview/mesh/cell_faces.h"
@@ -23,6 +24,7 @@
 #include "hqview/mesh/topology.h"
 #include "hqview/quality/hex_metric_field.h"
 #include "hqview/quality/quality_field.h"
+#include "hqview/report/cluster_color.h"
 #include "support/fixtures.h"
 
 namespace hq {
@@ -146,6 +148,34 @@ TEST(Viewer, DataDecodesToTheAnalysis) {
   EXPECT_GE(under, 8u);
   EXPECT_TRUE(d["reduced"].empty());
   EXPECT_EQ(d["fields"].size(), 2u + kNumHexMetrics - 1);  // quality, scaled Jacobian, the other metrics
+}
+
+// Ties (issue 44 part T): clusters whose min quality ties #0's wear its
+// colour and carry their class and its size, so the viewer draws them alike
+// and labels the tie once; the report.json colour is the same.
+TEST(Viewer, TiedClustersShareTheirClassColour) {
+  ReportModel model = grid_model(6, true);
+  std::vector<AggregatedGlyph>& clusters = model.analysis.glyphs->clusters;
+  ASSERT_GE(clusters.size(), 1u);
+  while (clusters.size() < 3) {  // copies of the last (the viewer lists clusters as given)
+    AggregatedGlyph extra = clusters.back();
+    extra.id = static_cast<Index>(clusters.size());
+    clusters.push_back(extra);
+  }
+  // #0 and #1 tie (0.0004 apart), #2 does not.
+  clusters[0].min_quality = 0.1;
+  clusters[1].min_quality = 0.1004;
+  clusters[2].min_quality = 0.3;
+  const json d = data_of(model);
+  EXPECT_EQ(d["tie_tolerance"].get<double>(), kGlyphTieTolerance);
+  EXPECT_EQ(d["clusters"][0]["tie_class"].get<Index>(), 0);
+  EXPECT_EQ(d["clusters"][1]["tie_class"].get<Index>(), 0);
+  EXPECT_EQ(d["clusters"][2]["tie_class"].get<Index>(), 1);
+  EXPECT_EQ(d["clusters"][0]["tied"].get<Index>(), 2);
+  EXPECT_EQ(d["clusters"][2]["tied"].get<Index>(), 1);
+  EXPECT_EQ(d["clusters"][1]["color"], d["clusters"][0]["color"]);
+  EXPECT_EQ(d["clusters"][2]["color"].get<std::string>(), cluster_color_hex(1, model.analysis.glyphs->options.top_clusters));
+  EXPECT_NE(d["clusters"][2]["color"], d["clusters"][0]["color"]);
 }
 
 TEST(Viewer, TheBudgetDropsMetricColouringsNeverGlyphsOrBadCells) {

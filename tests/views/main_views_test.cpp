@@ -60,21 +60,26 @@ TEST(MainScene, OnlyTheTopClustersAreColouredTheRestAreNeutral) {
     glyphs.cluster_vertices.push_back(v);
     AggregatedGlyph g;
     g.id = v, g.size = 1, g.representative_vertex = v, g.position = mesh.points[v], g.radius = 0.1;
+    g.min_quality = 0.01 * v;  // no ties (glyph_tie_classes)
     glyphs.clusters.push_back(g);
   }
   glyphs.cluster_offsets.push_back(n);
-  const Scene scene = build_main_scene(mesh, topology, glyphs, nullptr,
-                                       fit_camera_to_points(main_view_points(mesh, topology, glyphs), {-1, -1, -1}, 1.0),
-                                       600, {});
+  const Camera camera = fit_camera_to_points(main_view_points(mesh, topology, glyphs), {-1, -2, -3}, 1.0);
+  const Scene scene = build_main_scene(mesh, topology, glyphs, nullptr, camera, 600, {});
   const Rgba8 neutral = to_rgba8(neutral_cluster_color());
-  // The three ranked glyphs in the set drawn over the grey ones.
+  // The three ranked glyphs in the set drawn over the grey ones; the grey
+  // ones but those left out where they pile up on screen.
+  const GlyphsDrawn shown = main_view_glyphs_drawn(
+      glyphs, camera, 600, displayed_glyph_radii(glyphs, displayed_glyph_scale(glyphs, camera, 600, 1.0)));
   ASSERT_EQ(scene.spheres.size(), 2u);
   ASSERT_EQ(scene.spheres[1].colors.size(), 3u);
-  ASSERT_EQ(scene.spheres[0].colors.size(), static_cast<std::size_t>(n) - 3);
+  ASSERT_EQ(scene.spheres[0].colors.size(), static_cast<std::size_t>(n - 3 - shown.num_left_out));
+  EXPECT_GT(scene.spheres[0].colors.size(), static_cast<std::size_t>(n) / 2);
+  std::size_t grey = 0;
   for (Index v = 0; v < n; ++v) {
+    if (!shown.drawn[static_cast<std::size_t>(v)]) continue;
     const Rgba8 expected = v < 3 ? to_rgba8(labelled_cluster_color(v)) : neutral;
-    const Rgba8 drawn = v < 3 ? scene.spheres[1].colors[static_cast<std::size_t>(v)]
-                              : scene.spheres[0].colors[static_cast<std::size_t>(v - 3)];
+    const Rgba8 drawn = v < 3 ? scene.spheres[1].colors[static_cast<std::size_t>(v)] : scene.spheres[0].colors[grey++];
     EXPECT_EQ(drawn, expected) << v;
   }
   // Edge colours: the lower-ranked endpoint's cluster decides; edges only

@@ -263,6 +263,31 @@ TEST(Palette, WorstRankIsTheAlarmAndRanksApartAtAGlance) {
   EXPECT_LT(glance_delta_e(before[1], before[7]), 11.0);
 }
 
+// Issue 44 part T (the 44g review: under protanopia #0 red and #4 teal
+// were 11.1 apart, the teal 14.4 from the grey): every pair of the 6
+// cluster colours and the neutral grey keeps a simulated CIEDE2000 (the
+// smaller of Machado protanopia and deuteranopia, severity 1) >= 14.5 (the
+// palette reaches 14.9), every cluster colour >= 12.5 from the grey glyphs
+// as view A draws them (pale_grey_glyph_color); the palette before fails.
+double smallest_glance(const std::vector<Rgba8>& colours) {
+  double m = 1e9;
+  for (std::size_t i = 0; i < colours.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j) m = std::min(m, glance_delta_e(colours[i], colours[j]));
+  return m;
+}
+TEST(Palette, EveryPairApartUnderProtanopiaAndDeuteranopia) {
+  std::vector<Rgba8> colours;
+  for (const Named& c : cluster_colors()) colours.push_back(c.color);
+  colours.push_back(to_rgba8(neutral_cluster_color()));
+  EXPECT_GE(smallest_glance(colours), 14.5);
+  for (const Named& c : cluster_colors()) EXPECT_GE(glance_delta_e(c.color, pale_grey_glyph_color()), 12.5) << c.name;
+  const std::vector<Rgba8> before{{0xff, 0x3c, 0x5a, 255}, {0x00, 0x78, 0xe1, 255}, {0x69, 0xe1, 0xff, 255},
+                                  {0x87, 0x78, 0x00, 255}, {0x1e, 0x96, 0x78, 255}, {0x78, 0xc3, 0x1e, 255},
+                                  to_rgba8(neutral_cluster_color())};
+  EXPECT_LT(smallest_glance(before), 10.0);
+  EXPECT_LT(glance_delta_e(before[0], before[4]), 11.5);  // the review's red / teal
+}
+
 TEST(Palette, TheOldPaletteFailsTheseRules) {
   // The palette of issue 44's first round: #0 #00d200 and #2 #2d4b00 one
   // hue family, the dark #2 near the coincident black; pairwise 16.2 at

@@ -93,13 +93,21 @@ constexpr std::array<Rgb, 11> kDivergingTable = {{
 // 4 and 5. Among #1-#5 and the grey every pair keeps >= 11.2 simulated
 // (was 9.4); the pairs under 12 all involve #0, which wears the dark ring
 // and is the largest glyph (#5 lime 9.8, #4 teal 10.9).
+// Issue 44 part T (the 44g review: under protanopia #0 red and #4 teal
+// collapsed, 11.1): with #0 kept red, #1-#5 searched on a 15-step sRGB
+// grid under every rule of tests/views/palette_test.cpp plus L* <= 88 and
+// CIEDE2000 >= 22 from white, maximising the smallest simulated CIEDE2000
+// (Machado 2009 severity 1, the smaller of protanopia and deuteranopia)
+// over every pair of the 6 colours and the neutral grey: 14.9 (#0 and the
+// green; was 9.8), every pair with the grey >= 17.6 (was 11.2), the first
+// 3 ranks and the grey >= 20.2 apart as before.
 constexpr std::array<Rgb, kLabelledClusterPaletteSize> kLabelledClusterTable = {{
     hex(0xff3c5a),
-    hex(0x0078e1),
-    hex(0x69e1ff),
-    hex(0x877800),
-    hex(0x1e9678),
-    hex(0x78c31e),
+    hex(0x0069f0),
+    hex(0xe1e100),
+    hex(0x0fc3ff),
+    hex(0x00f0a5),
+    hex(0x0f8700),
 }};
 // A light grey (#a0a0a0), calm among the coloured clusters: CIEDE2000 19
 // from the undefined grey (kUndefinedColor), 16 from the quality map's

@@ -187,6 +187,7 @@ flat in vec4 flat_color;
 uniform mat4 projection;
 uniform bool is_perspective;
 uniform bool is_flat;  // id images: the colour as given, unlit
+uniform float pale;    // SphereSet::pale: the lit colour mixed this far towards white
 uniform vec3 light_direction;
 uniform float ambient;
 out vec4 fragment_color;
@@ -214,8 +215,8 @@ void main() {
   float x = max(dot(n, h), 0.0);
   float x2 = x * x, x4 = x2 * x2, x8 = x4 * x4, x32 = (x8 * x8) * (x8 * x8);
   float specular = 0.25 * x32 * x8;
-  vec3 lit = linear_color * shade + vec3(specular);
-  fragment_color = vec4(to_srgb(min(lit, vec3(1.0))), 1.0);
+  vec3 lit = mix(min(linear_color * shade + vec3(specular), vec3(1.0)), vec3(1.0), pale);
+  fragment_color = vec4(to_srgb(lit), 1.0);
 }
 )";
 
@@ -591,6 +592,7 @@ class OsmesaRenderer final : public Renderer {
       const SphereSet& set = *set_pointer;
       stop::check();  // a stop request lands between draws (hq::stop)
       if (set.centers.empty()) continue;
+      gl.Uniform1f(gl.GetUniformLocation(sphere_program_, "pale"), std::clamp(set.pale, 0.0f, 0.95f));
       const std::size_t n = set.centers.size();
       std::vector<std::size_t> sphere_order(n);
       for (std::size_t i = 0; i < n; ++i) sphere_order[i] = i;

@@ -109,6 +109,10 @@ struct SphereSet {
   // worst cluster's glyph is never hidden by a less severe one), instead of
   // back to front.
   bool first_on_top = false;
+  // In [0, 1): the lit colour is mixed this far towards white (issue 44
+  // part T: view A's grey glyphs are de-emphasised by lightness, not size).
+  // Id images ignore it.
+  float pale = 0.0f;
 };
 
 struct Scene {

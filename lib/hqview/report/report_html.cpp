@@ -11,6 +11,7 @@
 #include "hqview/core/error.h"
 #include "hqview/core/number_format.h"
 #include "hqview/render/upright.h"
+#include "hqview/glyph/glyph_ties.h"
 #include "hqview/report/cluster_color.h"
 #include "hqview/report/compare_table.h"
 #include "hqview/report/escape.h"
@@ -620,11 +621,13 @@ void set_glyphs(data& page, const ReportModel& model, const PanelIndex& index, s
                       : " A cluster's glyph radius is (1 − min quality) · rmax, its size the member count."));
     data clusters{data::type::list};
     const std::size_t rows = cluster_rows;
+    const std::vector<Index> slots =
+        glyph_colour_slots(g.clusters, static_cast<Index>(labelled_cluster_count(g.options.top_clusters)));
     for (std::size_t i = 0; i < rows; ++i) {
       const AggregatedGlyph& c = g.clusters[i];
       data d;
       d.set("id", std::to_string(c.id));
-      d.set("color", cluster_color_hex(c.id, g.options.top_clusters));
+      d.set("color", cluster_color_hex(slots[i], g.options.top_clusters));
       d.set("size", show_count(c.size));
       d.set("min_quality", show(c.min_quality));
       d.set("vertex", std::to_string(c.representative_vertex));

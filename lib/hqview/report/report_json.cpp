@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hqview/render/upright.h"
+#include "hqview/glyph/glyph_ties.h"
 #include "hqview/report/cluster_color.h"
 #include "hqview/report/escape.h"
 
@@ -79,6 +80,10 @@ Json glyphs_json(const GlyphResult& g) {
   j["size_rule"] = glyph_size_rule_name(g.options.size_rule);
   const std::size_t listed = std::min(g.clusters.size(), kMaxListedClusters);
   j["num_clusters_omitted"] = g.clusters.size() - listed;
+  j["tie_tolerance"] = number(kGlyphTieTolerance);
+  const std::vector<Index> ties = glyph_tie_classes(g.clusters);
+  const std::vector<Index> slots =
+      glyph_colour_slots(g.clusters, static_cast<Index>(labelled_cluster_count(g.options.top_clusters)));
   Json clusters = Json::array();
   for (std::size_t i = 0; i < listed; ++i) {
     const AggregatedGlyph& c = g.clusters[i];
@@ -89,7 +94,8 @@ Json glyphs_json(const GlyphResult& g) {
                         {"min_quality", number(c.min_quality)},
                         {"ratio", number(c.ratio)},
                         {"radius", number(c.radius)},
-                        {"color", cluster_color_hex(c.id, g.options.top_clusters)}});
+                        {"color", cluster_color_hex(slots[i], g.options.top_clusters)},
+                        {"tie_class", ties[i]}});
   }
   j["clusters"] = std::move(clusters);
   return j;

@@ -15,6 +15,7 @@
 #include "hqview/image/colormap.h"
 #include "hqview/mesh/cell_faces.h"
 #include "hqview/quality/corner_jacobian.h"
+#include "hqview/glyph/glyph_ties.h"
 #include "hqview/report/cluster_color.h"
 #include "hqview/report/escape.h"
 #include "hqview/report/report_templates.h"
@@ -349,15 +350,21 @@ std::vector<ViewerFile> viewer_files(const ReportModel& model) {
   if (a.glyphs) {
     const std::int64_t k = a.glyphs->options.top_clusters;
     const std::size_t listed = std::min<std::size_t>(a.glyphs->clusters.size(), 1000);
+    const std::vector<Index> ties = glyph_tie_classes(a.glyphs->clusters);
+    const std::vector<Index> tie_sizes = tie_class_sizes(ties);
+    const Index coloured = coloured_tie_classes(tie_sizes, static_cast<Index>(labelled_cluster_count(k)));
+    d["coloured_classes"] = coloured;  // tie classes wearing a cluster colour (glyph_ties.h)
     for (std::size_t i = 0; i < listed; ++i) {
       const AggregatedGlyph& g = a.glyphs->clusters[i];
       clusters.push_back({{"id", g.id}, {"size", g.size}, {"min_quality", g.min_quality},
                           {"vertex", g.representative_vertex}, {"position", vec(g.position)}, {"radius", g.radius},
-                          {"color", cluster_color_hex(g.id, k)}, {"is_top", static_cast<std::int64_t>(i) < k}});
+                          {"color", cluster_color_hex(ties[i] < coloured ? ties[i] : -1, k)}, {"is_top", static_cast<std::int64_t>(i) < k},
+                          {"tie_class", ties[i]}, {"tied", tie_sizes[static_cast<std::size_t>(ties[i])]}});
     }
     d["top_clusters"] = k;
     d["labelled_clusters"] = labelled_cluster_count(k);  // #k labels, as view A's
     d["glyph_threshold"] = a.glyphs->options.threshold;
+    d["tie_tolerance"] = kGlyphTieTolerance;  // clusters[].tie_class / tied (glyph_ties.h)
   }
   d["clusters"] = std::move(clusters);
 

@@ -8,6 +8,7 @@
 #include <span>
 
 #include "hqview/core/box3.h"
+#include "hqview/glyph/glyph_ties.h"
 #include "hqview/core/error.h"
 #include "hqview/image/colormap.h"
 #include "hqview/mesh/cell_faces.h"
@@ -315,8 +316,13 @@ Scene cluster_scene(const HexMesh& mesh, const Topology& topology, const std::ve
   Scene scene;
   scene.origin = centre_of(cell_vertex_points);
   scene.lines.push_back(cell_edges(mesh, topology, only_neighbours, scene.origin, kNeighbourEdgeColor, 1.0f));
+  // In its colour in view A (by tie class: glyph_colour_slots; by rank when
+  // the clusters are not listed).
+  const std::vector<Index> slots =
+      glyph_colour_slots(glyphs.clusters, static_cast<Index>(labelled_cluster_count(glyphs.options.top_clusters)));
+  const Index slot = static_cast<std::size_t>(cluster) < slots.size() ? slots[static_cast<std::size_t>(cluster)] : cluster;
   scene.lines.push_back(
-      cell_edges(mesh, topology, cells, scene.origin, to_rgba8(cluster_color(cluster, glyphs.options.top_clusters)), 2.0f));
+      cell_edges(mesh, topology, cells, scene.origin, to_rgba8(cluster_color(slot, glyphs.options.top_clusters)), 2.0f));
   double edge_sum = 0.0;
   const LineSet& own = scene.lines.back();
   for (std::size_t i = 0; i + 1 < own.positions.size(); i += 2) {

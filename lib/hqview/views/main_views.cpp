@@ -44,9 +44,22 @@ double displayed_glyph_scale(const GlyphResult& glyphs, const Camera& camera, in
 
 namespace {
 
-// Whether view A draws a cluster's glyph grey (unlabelled; scene spheres[0]).
-bool is_grey_glyph(const AggregatedGlyph& g, const GlyphResult& glyphs) {
-  return to_rgba8(cluster_color(g.id, glyphs.options.top_clusters)) == to_rgba8(neutral_cluster_color());
+// The tie classes wearing a cluster colour (coloured_tie_classes).
+Index coloured_classes_of(const GlyphResult& glyphs, std::span<const Index> tie_class) {
+  return coloured_tie_classes(tie_class_sizes(tie_class),
+                              static_cast<Index>(labelled_cluster_count(glyphs.options.top_clusters)));
+}
+
+// Whether view A draws a cluster's glyph grey (unlabelled; scene
+// spheres[0]): its tie class is beyond the coloured ones.
+bool is_grey_glyph(Index id, std::span<const Index> tie_class, Index coloured) {
+  return tie_class[static_cast<std::size_t>(id)] >= coloured;
+}
+
+// A glyph's colour in view A: its tie class's (cluster_color by class).
+Rgba8 glyph_color(Index id, std::span<const Index> tie_class, Index coloured, const GlyphResult& glyphs) {
+  const Index c = tie_class[static_cast<std::size_t>(id)];
+  return to_rgba8(cluster_color(c < coloured ? c : -1, glyphs.options.top_clusters));
 }
 
 }  // namespace
@@ -54,9 +67,92 @@ bool is_grey_glyph(const AggregatedGlyph& g, const GlyphResult& glyphs) {
 std::vector<double> displayed_glyph_radii(const GlyphResult& glyphs, double scale) {
   std::vector<double> radii;
   radii.reserve(glyphs.clusters.size());
-  for (const AggregatedGlyph& g : glyphs.clusters)
-    radii.push_back(g.radius * scale * (is_grey_glyph(g, glyphs) ? kGreyGlyphFactor : 1.0));
+  for (const AggregatedGlyph& g : glyphs.clusters) radii.push_back(g.radius * scale);
   return radii;
+}
+
+Rgba8 pale_grey_glyph_color() {
+  // The sphere shader's steps at the lit side (diffuse 0.8 with ambient
+  // 0.25: shade 0.85), in linear RGB, then mixed towards white.
+  const Color grey = neutral_cluster_color();
+  auto channel = [](float v) {
+    const double linear = v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+    const double lit = std::min(1.0, linear * 0.85) * (1.0 - kGreyGlyphPale) + kGreyGlyphPale;
+    const double srgb = lit <= 0.0031308 ? 12.92 * lit : 1.055 * std::pow(lit, 1.0 / 2.4) - 0.055;
+    return static_cast<std::uint8_t>(std::lround(255.0 * std::clamp(srgb, 0.0, 1.0)));
+  };
+  return {channel(grey.r), channel(grey.g), channel(grey.b), 255};
+}
+
+GlyphsDrawn main_view_glyphs_drawn(const GlyphResult& glyphs, const Camera& camera, int view_height,
+                                   std::span<const double> drawn_radii) {
+  GlyphsDrawn result;
+  result.tie_class = glyph_tie_classes(glyphs.clusters);
+  const std::size_t n = glyphs.clusters.size();
+  result.drawn.assign(n, 0);
+  const Index labelled = result.coloured_classes = coloured_classes_of(glyphs, result.tie_class);
+  const Vec3 forward = forward_of(camera);
+  const Vec3 right = normalized(cross(forward, camera.up));
+  const Vec3 up = cross(right, forward);
+  // Screen discs (pixels, image plane) of the glyphs drawn so far, in a
+  // uniform grid of cell size = the largest drawn radius (#0's, up to
+  // perspective): a disc overlapping another lies in its 3 x 3 cells.
+  struct Disc {
+    double x, y, r;
+  };
+  std::vector<Disc> discs(n, Disc{0.0, 0.0, 0.0});
+  double largest = 1.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const AggregatedGlyph& g = glyphs.clusters[i];
+    if (!(g.radius > 0.0) || i >= drawn_radii.size()) continue;
+    const Vec3 d = g.position - camera.eye;
+    const double unit = units_per_pixel(camera, std::max(dot(d, forward), 1e-12), view_height);
+    discs[i] = {dot(d, right) / unit, dot(d, up) / unit, drawn_radii[i] / unit};
+    if (std::isfinite(discs[i].r)) largest = std::max(largest, discs[i].r);
+  }
+  std::map<std::pair<long long, long long>, std::vector<std::size_t>> grid;
+  auto cell_of = [&](double v) { return static_cast<long long>(std::floor(v / largest)); };
+  std::vector<Index> first_of_class;
+  for (std::size_t i = 0; i < n; ++i) {
+    const AggregatedGlyph& g = glyphs.clusters[i];
+    if (!(g.radius > 0.0) || i >= drawn_radii.size()) continue;
+    const Disc& d = discs[i];
+    if (!std::isfinite(d.x) || !std::isfinite(d.y) || !std::isfinite(d.r)) continue;
+    const Index c = result.tie_class[i];
+    const bool is_class_first = i == 0 || result.tie_class[i - 1] != c;
+    bool keep = is_class_first && c < labelled;
+    if (!keep) {
+      int covered = 0;
+      const long long cx = cell_of(d.x), cy = cell_of(d.y);
+      for (int k = 0; k < kThinSamples; ++k) {
+        // Vogel's sunflower: evenly spread over the disc's area.
+        const double radius = d.r * std::sqrt((k + 0.5) / kThinSamples);
+        const double angle = k * 2.399963229728653;
+        const double x = d.x + radius * std::cos(angle), y = d.y + radius * std::sin(angle);
+        bool inside = false;
+        for (long long gy = cy - 1; gy <= cy + 1 && !inside; ++gy)
+          for (long long gx = cx - 1; gx <= cx + 1 && !inside; ++gx) {
+            const auto it = grid.find({gx, gy});
+            if (it == grid.end()) continue;
+            for (std::size_t j : it->second)
+              if (std::hypot(x - discs[j].x, y - discs[j].y) < discs[j].r) {
+                inside = true;
+                break;
+              }
+          }
+        covered += inside ? 1 : 0;
+      }
+      keep = covered < kThinnedCoverage * kThinSamples;
+    }
+    if (!keep) {
+      ++result.num_left_out;
+      if (c < labelled) ++result.num_left_out_coloured;
+      continue;
+    }
+    result.drawn[i] = 1;
+    grid[{cell_of(d.x), cell_of(d.y)}].push_back(i);
+  }
+  return result;
 }
 
 Rgba8 cell_kind_edge_color(CellKind kind) {
@@ -488,18 +584,28 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   // 2. Cluster edges: around each cluster's worst vertices only (a cluster
   // of thousands of vertices would paint over the model), in its colour.
   const std::int64_t top = glyphs.options.top_clusters;
+  const std::vector<Index> edge_ties = glyph_tie_classes(glyphs.clusters);  // colours by tie class
+  const Index edge_coloured = coloured_classes_of(glyphs, edge_ties);
   const std::vector<std::uint8_t> marked = worst_cluster_vertices(glyphs, options.cluster_edge_vertices);
   std::vector<Edge> cluster_edges;
   std::vector<Rgba8> cluster_colors;
   // An edge with a marked end, in the colour of its marked ends' lower rank.
+  // Only round the first cluster of each tie class (the labelled one): the
+  // others of a tie are its equals, their edges would mark an arbitrary few.
+  auto is_class_first = [&](Index v) {
+    const Index c = glyphs.vertex_cluster[static_cast<std::size_t>(v)];
+    return c != kNoIndex && (c == 0 || edge_ties[static_cast<std::size_t>(c) - 1] != edge_ties[static_cast<std::size_t>(c)]);
+  };
   auto add_cluster_edge = [&](const Edge& e) {
-    const bool ma = marked[static_cast<std::size_t>(e[0])] != 0, mb = marked[static_cast<std::size_t>(e[1])] != 0;
+    const bool ma = marked[static_cast<std::size_t>(e[0])] != 0 && is_class_first(e[0]),
+               mb = marked[static_cast<std::size_t>(e[1])] != 0 && is_class_first(e[1]);
     if (!ma && !mb) return;
     const Index ca = ma ? glyphs.vertex_cluster[static_cast<std::size_t>(e[0])] : kNoIndex;
     const Index cb = mb ? glyphs.vertex_cluster[static_cast<std::size_t>(e[1])] : kNoIndex;
     const Index c = ca == kNoIndex ? cb : (cb == kNoIndex ? ca : std::min(ca, cb));
     cluster_edges.push_back(e);
-    cluster_colors.push_back(to_rgba8(cluster_color(c, top)));
+    const Index slot = edge_ties[static_cast<std::size_t>(c)];
+    cluster_colors.push_back(to_rgba8(cluster_color(slot < edge_coloured ? slot : -1, top)));
   };
   for (const Edge& e : topology.edges) add_cluster_edge(e);
   // The tets', wedges' and pyramids' edges too (topology.edges holds the
@@ -566,15 +672,19 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   // over them, so that no grey glyph hides a ranked one.
   // Drawn at displayed_glyph_radii: #0 at least kWorstGlyphMinPixels, the
   // grey ones smaller.
+  // Tied clusters wear their class's colour; glyphs piled up on screen are
+  // left out (main_view_glyphs_drawn); the grey ones are pale.
   SphereSet spheres, ranked;
+  spheres.pale = kGreyGlyphPale;
   ranked.over_other_spheres = true;
   ranked.first_on_top = true;  // by rank: #0 on top of every other glyph
   const std::vector<double> shown =
       displayed_glyph_radii(glyphs, displayed_glyph_scale(glyphs, camera, view_height, options.pixel_scale));
+  const GlyphsDrawn drawn = main_view_glyphs_drawn(glyphs, camera, view_height, shown);
   for (const AggregatedGlyph& g : glyphs.clusters) {
-    if (!(g.radius > 0.0)) continue;
-    const Rgba8 color = to_rgba8(cluster_color(g.id, top));
-    SphereSet& set = is_grey_glyph(g, glyphs) ? spheres : ranked;
+    if (!(g.radius > 0.0) || !drawn.drawn[static_cast<std::size_t>(g.id)]) continue;
+    const Rgba8 color = glyph_color(g.id, drawn.tie_class, drawn.coloured_classes, glyphs);
+    SphereSet& set = is_grey_glyph(g.id, drawn.tie_class, drawn.coloured_classes) ? spheres : ranked;
     set.centers.push_back(local(g.position));
     set.radii.push_back(static_cast<float>(shown[static_cast<std::size_t>(g.id)]));
     set.colors.push_back(color);
@@ -622,15 +732,27 @@ IdImage main_view_id_image(Renderer& renderer, const Scene& scene, const GlyphRe
         opaque.indices.insert(opaque.indices.end(), {set.indices[i], set.indices[i + 1]});
     coded.lines.push_back(std::move(opaque));
   }
-  // Spheres: in build_main_scene's order (grey ones, then coloured ones, by rank).
+  // Spheres: in build_main_scene's order (grey ones, then coloured ones, by
+  // rank), without the glyphs it left out (main_view_glyphs_drawn): a
+  // glyph is the next sphere of its set when that sphere sits at its
+  // position (a left-out glyph at the same position as the next drawn one
+  // is covered by it: the id is the drawn one's either way).
   coded.spheres = scene.spheres;
   std::size_t next[2] = {0, 0};
+  const std::vector<Index> ties = glyph_tie_classes(glyphs.clusters);
+  const Index coloured = coloured_classes_of(glyphs, ties);
   for (const AggregatedGlyph& g : glyphs.clusters) {
     if (!(g.radius > 0.0)) continue;
-    const std::size_t set = is_grey_glyph(g, glyphs) ? 0 : 1;
-    if (next[set] >= coded.spheres[set].colors.size()) throw RenderError("main_view_id_image: scene and glyphs differ");
+    const std::size_t set = is_grey_glyph(g.id, ties, coloured) ? 0 : 1;
+    const SphereSet& drawn = coded.spheres[set];
+    const Vec3f at = to_vec3f(g.position - scene.origin);
+    if (next[set] >= drawn.centers.size() || !(drawn.centers[next[set]].x == at.x && drawn.centers[next[set]].y == at.y &&
+                                               drawn.centers[next[set]].z == at.z))
+      continue;
     coded.spheres[set].colors[next[set]++] = id_color(kIdGlyph + static_cast<std::uint32_t>(g.id));
   }
+  if (next[0] != coded.spheres[0].colors.size() || next[1] != coded.spheres[1].colors.size())
+    throw RenderError("main_view_id_image: scene and glyphs differ");
   if (with_markers)
     for (const TriangleSet& set : scene.overlay) {
       TriangleSet flat = set;
@@ -785,9 +907,20 @@ std::string mostly_inverted_note(const QualityField& quality) {
 
 std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const OverlapReport* overlap,
                                           const AnnotationStyle& style, const MainViewOptions& options,
-                                          double glyph_scale, std::span<const Index> hidden) {
-  const std::size_t listed = std::min<std::size_t>(
-      glyphs.clusters.size(), static_cast<std::size_t>(labelled_cluster_count(glyphs.options.top_clusters)));
+                                          double glyph_scale, std::span<const Index> hidden, Index left_out,
+                                          std::span<const Index> unlabelled) {
+  // One line per coloured tie class (glyph_tie_classes): "#k (n)  min q",
+  // or for a tie "#k-#m  N tied at q".
+  const std::vector<Index> ties = glyph_tie_classes(glyphs.clusters);
+  const std::vector<Index> tie_sizes = tie_class_sizes(ties);
+  const Index labelled = coloured_classes_of(glyphs, ties);
+  std::size_t listed = 0;  // clusters in coloured classes
+  while (listed < ties.size() && ties[listed] < labelled) ++listed;
+  const bool worst_is_tied = !tie_sizes.empty() && tie_sizes[0] > 1;
+  // A tie among the coloured classes (the "tied" lines are said only then).
+  bool coloured_tie = false;
+  for (Index c = 0; c < labelled && static_cast<std::size_t>(c) < tie_sizes.size(); ++c)
+    coloured_tie = coloured_tie || tie_sizes[static_cast<std::size_t>(c)] > 1;
   std::vector<LegendLine> lines;
   // Mostly inverted: the glyphs mark the orientation, not a local defect.
   if (!options.orientation_note.empty()) {
@@ -796,19 +929,37 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
   }
   lines.push_back({std::nullopt, "glyphs: worst clusters", options.orientation_note.empty() ? 0 : 1});
   for (std::size_t i = 0; i < listed; ++i) {
+    if (i > 0 && ties[i - 1] == ties[i]) continue;
     const AggregatedGlyph& g = glyphs.clusters[i];
+    const Index tied = tie_sizes[static_cast<std::size_t>(ties[i])];
+    const std::string is_hidden =
+        std::find(hidden.begin(), hidden.end(), g.id) != hidden.end()                 ? ", hidden"
+        : std::find(unlabelled.begin(), unlabelled.end(), g.id) != unlabelled.end() ? ", no room"
+                                                                                       : "";
     // As the label reads, then the key number (short: a long line is cut).
-    lines.push_back({to_rgba8(cluster_color(g.id, glyphs.options.top_clusters)),
-                     "#" + std::to_string(g.id) + " (" + std::to_string(g.size) + ")  min " +
-                         display_number(g.min_quality, 3) +
-                         (std::find(hidden.begin(), hidden.end(), g.id) != hidden.end() ? ", hidden" : "")});
+    if (tied > 1)
+      lines.push_back({to_rgba8(cluster_color(ties[i], glyphs.options.top_clusters)),
+                       "#" + std::to_string(g.id) + "-#" + std::to_string(g.id + tied - 1) + "  " +
+                           std::to_string(tied) + " tied at " + display_number(g.min_quality, 3) + is_hidden});
+    else
+      lines.push_back({to_rgba8(cluster_color(ties[i], glyphs.options.top_clusters)),
+                       "#" + std::to_string(g.id) + " (" + std::to_string(g.size) + ")  min " +
+                           display_number(g.min_quality, 3) + is_hidden});
   }
   if (glyphs.clusters.size() > listed) {
+    // The grey ones' range of min quality (they may be as bad as a
+    // coloured one only when ties ran past the palette).
     const std::size_t rest = glyphs.clusters.size() - listed;
-    lines.push_back({to_rgba8(neutral_cluster_color()),
-                     std::to_string(rest) + (rest == 1 ? " other" : " others") + " (" +
-                         display_number(kGreyGlyphFactor, 2) + " size)"});
+    const double lo = glyphs.clusters[listed].min_quality, hi = glyphs.clusters.back().min_quality;
+    lines.push_back({pale_grey_glyph_color(),
+                     std::to_string(rest) + (rest == 1 ? " other: " : " others: ") + display_number(lo, 2) +
+                         (rest == 1 ? "" : " to " + display_number(hi, 2))});
   }
+  if (coloured_tie)
+    lines.push_back({std::nullopt, "tied: min within " + display_number(kGlyphTieTolerance, 2)});
+  if (left_out > 0)
+    lines.push_back({std::nullopt, std::to_string(left_out) + " not drawn: >" +
+                                       std::to_string(static_cast<int>(kThinnedCoverage * 100)) + "% covered"});
   if (glyphs.clusters.empty())
     lines.push_back({options.background, "none: no quality below " + display_number(1.0 - glyphs.options.threshold, 3)});
   lines.push_back({std::nullopt,
@@ -820,14 +971,17 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
   if (glyph_scale > 1.0)
     lines.push_back({std::nullopt, "drawn x" + display_number(glyph_scale, 2) + ": #0 radius " +
                                        display_number(kWorstGlyphMinPixels, 2) + " px"});
-  if (!glyphs.clusters.empty()) lines.push_back({std::nullopt, "label #k (n): rank k, n vertices"});
+  if (!glyphs.clusters.empty()) {
+    lines.push_back({std::nullopt, "label #k (n): rank k, n vertices"});
+    if (coloured_tie) lines.push_back({std::nullopt, "  +m tied: m more at its min"});
+  }
   // The coloured edge lines that scene step 2 draws around each cluster's
   // worst vertices: their colour is the cluster's, their meaning said here.
   if (!glyphs.clusters.empty() && options.cluster_edge_vertices > 0)
     lines.push_back({std::nullopt, "lines: edges of " + std::to_string(options.cluster_edge_vertices) + " worst"});
   // The rings as the view draws them (draw_worst_glyph_ring,
   // draw_inverted_glyph_rings): ring swatches, unlike the square ones.
-  if (!glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0)
+  if (!glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0 && !worst_is_tied)
     lines.push_back({style.text_color, "ring: worst cluster #0", 0, true});
   if (!glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0)
     lines.push_back({to_rgba8(kInvertedColor), "ring: inverted (min < 0)", 0, true});
@@ -861,8 +1015,10 @@ namespace {
 // Legend: what each colour means (draw_legend shrinks it to the panel).
 void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapReport* overlap,
                       const FigureLayout& layout, const AnnotationStyle& style, const MainViewOptions& options,
-                      double glyph_scale, std::span<const Index> hidden) {
-  draw_legend(figure, layout.legend, main_legend_lines(glyphs, overlap, style, options, glyph_scale, hidden), style);
+                      double glyph_scale, std::span<const Index> hidden, Index left_out,
+                      std::span<const Index> unlabelled) {
+  draw_legend(figure, layout.legend,
+              main_legend_lines(glyphs, overlap, style, options, glyph_scale, hidden, left_out, unlabelled), style);
 }
 
 }  // namespace
@@ -1030,18 +1186,22 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
   result.view = layout.view;
   result.glyph_scale = displayed_glyph_scale(glyphs, camera, layout.view.height, scaled.pixel_scale);
   const std::vector<double> shown = displayed_glyph_radii(glyphs, result.glyph_scale);
+  const GlyphsDrawn drawn = main_view_glyphs_drawn(glyphs, camera, layout.view.height, shown);
+  const std::vector<Index> tie_sizes = tie_class_sizes(drawn.tie_class);
+  result.left_out_glyphs = drawn.num_left_out;
+  result.worst_is_tied = !tie_sizes.empty() && tie_sizes[0] > 1;
   // Obstacles: the glyphs (the 1,000 largest on screen: under the severity
   // rule the first 1,000 ranks; bounded clusters are many, bunny_in 467)
   // and the arrow fans.
   constexpr std::size_t kGlyphObstacles = 1000;
   std::vector<std::pair<double, ScreenDisc>> glyph_discs;
   for (const AggregatedGlyph& g : glyphs.clusters) {
-    if (!(g.radius > 0.0)) continue;
+    if (!(g.radius > 0.0) || !drawn.drawn[static_cast<std::size_t>(g.id)]) continue;
     ScreenDisc d = screen_of(g.position, shown[static_cast<std::size_t>(g.id)]);
     d.id = g.id;
     if (on_screen(d) && d.radius >= 1.0) glyph_discs.push_back({d.radius, d});
     if (on_screen(d) && g.min_quality < 0.0) result.inverted_glyphs.push_back(d);
-    if (on_screen(d) && !is_grey_glyph(g, glyphs)) result.coloured_glyphs.push_back(d);
+    if (on_screen(d) && !is_grey_glyph(g.id, drawn.tie_class, drawn.coloured_classes)) result.coloured_glyphs.push_back(d);
   }
   std::stable_sort(glyph_discs.begin(), glyph_discs.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });
@@ -1076,9 +1236,11 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
                      [](const MainViewLabel& a, const MainViewLabel& b) { return a.count > b.count; });
   }
   std::vector<MainViewLabel> clusters;
-  const std::size_t num_cluster_labels = std::min<std::size_t>(
-      glyphs.clusters.size(), static_cast<std::size_t>(labelled_cluster_count(glyphs.options.top_clusters)));
-  for (std::size_t i = 0; i < num_cluster_labels; ++i) {
+  // One label per coloured tie class, on its first (labelled) member; a
+  // tie's label reads "#k (n) +m tied".
+  const Index labelled_classes = drawn.coloured_classes;
+  for (std::size_t i = 0; i < glyphs.clusters.size() && drawn.tie_class[i] < labelled_classes; ++i) {
+    if (i > 0 && drawn.tie_class[i - 1] == drawn.tie_class[i]) continue;
     const AggregatedGlyph& g = glyphs.clusters[i];
     ScreenDisc disc = screen_of(g.position, shown[i]);
     disc.id = g.id;
@@ -1086,7 +1248,9 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
     MainViewLabel label;
     label.kind = MainViewLabel::Kind::cluster;
     label.cluster = g.id;
-    label.text = "#" + std::to_string(g.id) + " (" + std::to_string(g.size) + ")";
+    const Index tied = tie_sizes[static_cast<std::size_t>(drawn.tie_class[i])];
+    label.text = "#" + std::to_string(g.id) + " (" + std::to_string(g.size) + ")" +
+                 (tied > 1 ? " +" + std::to_string(tied - 1) + " tied" : "");
     label.color = style.text_color;
     label.anchor = disc;
     if (!seen.empty()) {
@@ -1097,6 +1261,13 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
       }
       label.leader_from = visible.leader_from;
       label.always_leader = visible.is_mostly_hidden;
+      // Mostly hidden behind another glyph (the 44g review: a leader ending
+      // on a sliver named nothing one could check): the label says which.
+      if (visible.is_mostly_hidden) {
+        const std::uint32_t front = seen.at(static_cast<int>(std::floor(disc.x)), static_cast<int>(std::floor(disc.y)));
+        if (front >= kIdGlyph && front != kIdGlyph + static_cast<std::uint32_t>(g.id))
+          label.text += " behind #" + std::to_string(front - kIdGlyph);
+      }
     }
     clusters.push_back(label);
   }
@@ -1150,6 +1321,7 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
     }
     if (!placed) {
       ++result.omitted_clusters;
+      if (label.kind == MainViewLabel::Kind::cluster) result.unlabelled_clusters.push_back(label.cluster);
       continue;
     }
     if (label.kind == MainViewLabel::Kind::cluster && placed && label.leader_from && !seen.empty()) {
@@ -1163,6 +1335,7 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
         placed = placer.place(request, all_obstacles);
         if (!placed) {
           ++result.omitted_clusters;
+          result.unlabelled_clusters.push_back(label.cluster);
           continue;
         }
       }
@@ -1220,8 +1393,9 @@ Scene main_view_scene(const HexMesh& mesh, const Topology& topology, const Glyph
 void draw_glyph_rings(Image& figure, const MainViewLabels& labels, const GlyphResult& glyphs,
                       const AnnotationStyle& style, const MainViewOptions& scaled) {
   draw_inverted_glyph_rings(figure, labels.inverted_glyphs, labels.coloured_glyphs, style, scaled);
-  draw_worst_glyph_ring(figure, labels.worst_glyph, !glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0,
-                        style, scaled);
+  if (!labels.worst_is_tied)
+    draw_worst_glyph_ring(figure, labels.worst_glyph, !glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0,
+                          style, scaled);
 }
 
 // Marks kIdAnnotation where the rings (and with is_labels the leader lines
@@ -1236,6 +1410,7 @@ void mark_drawn(IdImage& ids, const MainViewLabels& labels, const GlyphResult& g
   if (is_labels) white_labels.labels = labels.labels;
   for (MainViewLabel& l : white_labels.labels) l.color = white;
   white_labels.worst_glyph = labels.worst_glyph;
+  white_labels.worst_is_tied = labels.worst_is_tied;
   white_labels.inverted_glyphs = labels.inverted_glyphs;
   white_labels.coloured_glyphs = labels.coloured_glyphs;
   Image mask = make_image(std::max(1, ids.x0 + ids.width), std::max(1, ids.y0 + ids.height), Rgba8{0, 0, 0, 255});
@@ -1290,7 +1465,8 @@ Image render_main_view(const HexMesh& mesh, const Topology& topology, const Glyp
       layout_main_view_labels(glyphs, overlap, camera, layout, style, scaled, ids.empty() ? nullptr : &ids);
   draw_glyph_rings(figure, labels, glyphs, style, scaled);
   draw_main_view_labels(figure, labels, style, scaled);
-  draw_main_legend(figure, glyphs, overlap, layout, style, options, labels.glyph_scale, labels.hidden_clusters);
+  draw_main_legend(figure, glyphs, overlap, layout, style, options, labels.glyph_scale, labels.hidden_clusters,
+                   labels.left_out_glyphs, labels.unlabelled_clusters);
   return figure;
 }
 

@@ -6,11 +6,14 @@
 // cells translucent. Shown from the viewpoints (among 26 axis and diagonal
 // directions) that show the most glyph area.
 
+#include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
+#include "hqview/glyph/glyph_ties.h"
 #include "hqview/glyph/glyphs.h"
 #include "hqview/image/image.h"
 #include "hqview/mesh/hex_mesh.h"
@@ -171,24 +174,54 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
 // aggregated glyph is drawn scale times its radius, scale the smallest
 // factor >= 1 that makes cluster #0 at least kWorstGlyphMinPixels pixels
 // in radius (times pixel_scale: 1 at a 1200-pixel-high figure), so the
-// radii keep their ratios (size = severity) and #0 is the largest; the grey
-// (unlabelled) clusters are drawn kGreyGlyphFactor smaller still, so none
-// looks as big as a coloured one (grey ranks come after the coloured ones:
-// a worse cluster is never drawn smaller). report.json keeps the radii.
+// radii keep their ratios (size = severity) and #0 is the largest. The grey
+// (unlabelled) clusters keep their severity radius too (issue 44 part T:
+// before, they were drawn 0.6 of it, so a grey glyph as bad as a coloured
+// one looked milder); they are de-emphasised by lightness instead
+// (kGreyGlyphPale) and thinned on screen (main_view_glyphs_drawn).
+// report.json keeps the radii.
 inline constexpr double kWorstGlyphMinPixels = 24.0;
-inline constexpr double kGreyGlyphFactor = 0.6;
+// The grey glyphs' lit colour is mixed this far towards white (SphereSet::pale).
+inline constexpr float kGreyGlyphPale = 0.45f;
+// The colour of a grey glyph's lit side as drawn (the legend's swatch).
+Rgba8 pale_grey_glyph_color();
 double displayed_glyph_scale(const GlyphResult& glyphs, const Camera& camera, int view_height, double pixel_scale);
 // The drawn radius of each cluster (by rank), model units.
 std::vector<double> displayed_glyph_radii(const GlyphResult& glyphs, double scale);
+
+// Which glyphs view A draws (issue 44 part T: heaps of grey glyphs made the
+// Gmsh star, the mirrored kitten and the Dolphin's fin unrecognisable).
+// Ranks are visited worst first; the first glyph of each coloured tie class
+// (glyph_tie_classes; classes below labelled_cluster_count(K), the labelled
+// ones) is always drawn; any other glyph (a tied member of a coloured class
+// or a grey one) is left out when at least kThinnedCoverage of its disc on
+// screen (drawn radius, image plane of camera, pixels) lies inside the discs
+// of glyphs already drawn, i.e. of worse or equally bad ones. The coverage
+// is measured on kThinSamples points spread evenly over the disc (Vogel's
+// sunflower pattern). Pure; linear in the glyphs for bounded crowding.
+inline constexpr double kThinnedCoverage = 0.5;
+inline constexpr int kThinSamples = 32;
+struct GlyphsDrawn {
+  std::vector<Index> tie_class;      // per cluster, glyph_tie_classes
+  std::vector<std::uint8_t> drawn;   // per cluster: 1 drawn, 0 left out
+  Index num_left_out = 0;            // glyphs with radius > 0 left out
+  Index num_left_out_coloured = 0;   // of those, tied members of a coloured class
+  Index coloured_classes = 0;        // coloured_tie_classes: the classes in colour
+};
+GlyphsDrawn main_view_glyphs_drawn(const GlyphResult& glyphs, const Camera& camera, int view_height,
+                                   std::span<const double> drawn_radii);
 
 // The lines of view A's legend (draw_legend): the clusters, the size rule,
 // the rings (ring swatches: #0's dark ring in style.text_color, the
 // inverted ring), the findings and the boundary edges; glyph_scale as
 // displayed_glyph_scale.
-// A cluster in hidden (MainViewLabels::hidden_clusters) reads "…, hidden".
+// A cluster in hidden (MainViewLabels::hidden_clusters) reads "…, hidden",
+// one in unlabelled (MainViewLabels::unlabelled_clusters) "…, no label
+// room"; left_out: MainViewLabels::left_out_glyphs.
 std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const OverlapReport* overlap,
                                           const AnnotationStyle& style, const MainViewOptions& options,
-                                          double glyph_scale, std::span<const Index> hidden = {});
+                                          double glyph_scale, std::span<const Index> hidden = {},
+                                          Index left_out = 0, std::span<const Index> unlabelled = {});
 
 // Width / height of the 3D part of the figure render_main_view draws.
 double main_view_aspect(const MainViewOptions& options);
@@ -225,6 +258,15 @@ struct MainViewLabels {
   // (hidden behind other glyphs, edges or arrows): they get no label (it
   // would point at something else) and the legend says "hidden".
   std::vector<Index> hidden_clusters;
+  // main_view_glyphs_drawn's count of glyphs left out where they pile up
+  // (the legend says so).
+  Index left_out_glyphs = 0;
+  // Ranks of the labelled clusters on screen whose label found no place
+  // (omitted_clusters of them): the legend line ends ", no label room".
+  std::vector<Index> unlabelled_clusters;
+  // Cluster #0 ties another (glyph_tie_classes): no "worst" ring (it would
+  // single out one of equals); its label and legend line say "N tied".
+  bool worst_is_tied = false;
   // The id image the labels were placed on (main_view_id_image with the
   // markers, the rings marked kIdAnnotation); empty when placed without one.
   IdImage ids;

@@ -1,0 +1,214 @@
+// View A and ties, grey glyphs and screen thinning (issue 44 part T):
+// - a hand-built mesh with k = 3 exactly tied worst corners gives 3 glyphs
+//   of #0's colour and radius, one label "#0 (n) +2 tied", the legend line
+//   "#0-#2  3 tied at q" and no "worst" ring (it would single out one of
+//   equals); one dent made deeper breaks the tie (control);
+// - grey glyphs keep their severity radius (before: 0.6 of it) and are
+//   drawn pale;
+// - a grey glyph mostly covered on screen by a worse one is left out, the
+//   legend counts it; one beside it is kept.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hqview/core/number_format.h"
+#include "hqview/glyph/glyph_ties.h"
+#include "hqview/glyph/glyphs.h"
+#include "hqview/image/colormap.h"
+#include "hqview/mesh/topology.h"
+#include "hqview/quality/quality_field.h"
+#include "hqview/render/osmesa_renderer.h"
+#include "hqview/views/main_views.h"
+#include "support/fixtures.h"
+
+namespace hq {
+namespace {
+// A dented grid, its topology and its glyphs (default options).
+struct Case {
+  GlyphResult glyphs;
+  HexMesh mesh;
+  Topology topology;
+};
+
+// A 12 x 4 x 2 grid of unit hexes whose top vertices at x = 2, 6, 10
+// (y = 2) are pushed down to z = 1.5 and sideways by shift[i] (poor, not
+// inverted): equal shifts give corners of exactly equal scaled Jacobian
+// (the same geometry translated by 4, every coordinate exact in binary).
+Case dented(const std::array<double, 3>& shift) {
+  Case c;
+  c.mesh = test::box_grid(12, 4, 2);
+  const int xs[3] = {2, 6, 10};
+  for (int i = 0; i < 3; ++i) {
+    Vec3& p = c.mesh.points[static_cast<std::size_t>(xs[i] + 13 * (2 + 5 * 2))];
+    p.z = 1.5;
+    p.x += shift[static_cast<std::size_t>(i)];
+  }
+  c.topology = build_topology(c.mesh);
+  const QualityField quality = compute_quality(c.mesh, c.topology);
+  c.glyphs =
+      compute_glyphs(c.mesh.points, quality.vertex_quality, test::mean_edge_length(c.mesh, c.topology), GlyphOptions{});
+  return c;
+}
+
+const Vec3 kDirection{0.3, -1.0, 1.2};
+
+std::vector<std::string> legend_texts(const GlyphResult& glyphs, double scale, Index left_out = 0) {
+  std::vector<std::string> texts;
+  for (const LegendLine& line : main_legend_lines(glyphs, nullptr, AnnotationStyle{}, MainViewOptions{}, scale, {}, left_out))
+    texts.push_back(line.text);
+  return texts;
+}
+bool has_line(const std::vector<std::string>& texts, const std::string& text) {
+  return std::find(texts.begin(), texts.end(), text) != texts.end();
+}
+
+TEST(GlyphTiesView, ExactlyTiedWorstCornersAreDrawnAlikeAndLabelledAsATie) {
+  const Case c = dented({0.375, 0.375, 0.375});
+  ASSERT_GE(c.glyphs.clusters.size(), 3u);
+  const double q = c.glyphs.clusters[0].min_quality;
+  ASSERT_GT(q, 0.0);
+  ASSERT_LT(q, 0.5);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(c.glyphs.clusters[static_cast<std::size_t>(i)].min_quality, q) << i;
+  // Nothing else ties them (the dents' neighbours are milder).
+  for (std::size_t i = 3; i < c.glyphs.clusters.size(); ++i)
+    EXPECT_GT(c.glyphs.clusters[i].min_quality, q + kGlyphTieTolerance);
+
+  const MainViewOptions options;
+  Scene scene;
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  const MainViewLabels labels =
+      main_view_labels(c.mesh, c.topology, c.glyphs, nullptr, kDirection, options, &scene, renderer.get());
+  // Three glyphs of #0's colour and equal radius, in the ranked set.
+  const Rgba8 red = to_rgba8(labelled_cluster_color(0));
+  ASSERT_EQ(scene.spheres.size(), 2u);
+  ASSERT_EQ(scene.spheres[1].colors.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(scene.spheres[1].colors[i], red) << i;
+    EXPECT_FLOAT_EQ(scene.spheres[1].radii[i], scene.spheres[1].radii[0]) << i;
+  }
+  // One label for the tie, on #0; no dark "worst" ring.
+  int cluster_labels = 0;
+  for (const MainViewLabel& l : labels.labels) {
+    if (l.kind != MainViewLabel::Kind::cluster) continue;
+    ++cluster_labels;
+    EXPECT_EQ(l.cluster, 0);
+    EXPECT_EQ(l.text, "#0 (" + std::to_string(c.glyphs.clusters[0].size) + ") +2 tied");
+  }
+  EXPECT_EQ(cluster_labels, 1);
+  EXPECT_TRUE(labels.worst_is_tied);
+  // Each of the three shows in the id image (none hidden behind another).
+  for (std::uint32_t id = 0; id < 3; ++id)
+    EXPECT_GT(std::count(labels.ids.ids.begin(), labels.ids.ids.end(), kIdGlyph + id), 50) << id;
+  const std::vector<std::string> legend = legend_texts(c.glyphs, labels.glyph_scale);
+  EXPECT_TRUE(has_line(legend, "#0-#2  3 tied at " + display_number(q, 3)));
+  EXPECT_FALSE(has_line(legend, "ring: worst cluster #0"));
+  EXPECT_TRUE(has_line(legend, "tied: min within 0.001"));
+  // The picture: #0's colour in three separate places of the figure (the
+  // three dents are 4 units apart: far more than a glyph's radius).
+  const Image image = render_main_view(c.mesh, c.topology, c.glyphs, nullptr, kDirection, options, *renderer);
+  std::vector<int> columns;
+  for (int y = labels.view.y; y < labels.view.y + labels.view.height; ++y)
+    for (int x = labels.view.x; x < labels.view.x + labels.view.width; ++x) {
+      const std::uint8_t* p = image.rgba.data() + pixel_offset(image, x, y);
+      if (std::hypot(p[0] - red.r, p[1] - red.g, p[2] - red.b) < 60.0) columns.push_back(x);
+    }
+  std::sort(columns.begin(), columns.end());
+  columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
+  int runs = columns.empty() ? 0 : 1;
+  for (std::size_t i = 1; i < columns.size(); ++i) runs += columns[i] > columns[i - 1] + 3;
+  EXPECT_EQ(runs, 3);
+}
+
+TEST(GlyphTiesView, ADeeperDentBreaksTheTie) {
+  const Case c = dented({0.375, 0.5, 0.375});
+  ASSERT_GE(c.glyphs.clusters.size(), 3u);
+  ASSERT_LT(c.glyphs.clusters[0].min_quality + kGlyphTieTolerance, c.glyphs.clusters[1].min_quality);
+  const MainViewOptions options;
+  Scene scene;
+  const MainViewLabels labels = main_view_labels(c.mesh, c.topology, c.glyphs, nullptr, kDirection, options, &scene);
+  EXPECT_FALSE(labels.worst_is_tied);
+  ASSERT_EQ(scene.spheres[1].colors.size(), 3u);
+  EXPECT_EQ(scene.spheres[1].colors[0], to_rgba8(labelled_cluster_color(0)));
+  EXPECT_EQ(scene.spheres[1].colors[1], to_rgba8(labelled_cluster_color(1)));
+  EXPECT_EQ(scene.spheres[1].colors[2], to_rgba8(labelled_cluster_color(1)));  // #1 and #2 tie
+  std::vector<std::string> texts;
+  for (const MainViewLabel& l : labels.labels) texts.push_back(l.text);
+  EXPECT_TRUE(has_line(texts, "#0 (" + std::to_string(c.glyphs.clusters[0].size) + ")"));
+  EXPECT_TRUE(has_line(texts, "#1 (" + std::to_string(c.glyphs.clusters[1].size) + ") +1 tied"));
+  const std::vector<std::string> legend = legend_texts(c.glyphs, labels.glyph_scale);
+  EXPECT_TRUE(has_line(legend, "ring: worst cluster #0"));
+  EXPECT_TRUE(has_line(legend, "#1-#2  2 tied at " + display_number(c.glyphs.clusters[1].min_quality, 3)));
+  // A labelled cluster whose label found no place: the legend says so (the
+  // 44g review: Dolphin's #4 had no label and no word why).
+  const std::vector<Index> unlabelled{0};
+  bool said = false;
+  for (const LegendLine& line :
+       main_legend_lines(c.glyphs, nullptr, AnnotationStyle{}, options, labels.glyph_scale, {}, 0, unlabelled))
+    said = said || line.text == "#0 (" + std::to_string(c.glyphs.clusters[0].size) + ")  min " +
+                                    display_number(c.glyphs.clusters[0].min_quality, 3) + ", no room";
+  EXPECT_TRUE(said);
+}
+
+// Hand-made clusters on a 4 x 4 x 4 grid, K = 2: #0 and #1 coloured, the
+// rest grey; #4 sits exactly where #3 is (covered: left out), #5 far away.
+GlyphResult crowded(const HexMesh& mesh) {
+  GlyphResult glyphs;
+  glyphs.options.top_clusters = 2;
+  const std::size_t at[6] = {0, 3, 12, 60, 60, 63};
+  glyphs.vertex_cluster.assign(mesh.points.size(), kNoIndex);
+  glyphs.vertex_radius.assign(mesh.points.size(), 0.0);
+  for (Index i = 0; i < 6; ++i) {
+    AggregatedGlyph g;
+    g.id = i, g.size = 1, g.representative_vertex = static_cast<Index>(at[i]);
+    g.position = mesh.points[at[i]];
+    g.min_quality = 0.1 * i;  // no ties
+    g.radius = 0.5 * (1.0 - g.min_quality);
+    glyphs.clusters.push_back(g);
+    glyphs.cluster_offsets.push_back(i);
+    glyphs.cluster_vertices.push_back(static_cast<Index>(at[i]));
+  }
+  glyphs.cluster_offsets.push_back(6);
+  return glyphs;
+}
+
+TEST(GlyphTiesView, GreyGlyphsKeepTheirSeverityRadiusAndPilesAreThinned) {
+  const HexMesh mesh = test::grid(4);
+  const Topology topology = build_topology(mesh);
+  const GlyphResult glyphs = crowded(mesh);
+  const Camera camera = fit_camera_to_points(main_view_points(mesh, topology, glyphs), {0.2, -1.0, 0.4}, 1.0);
+  const MainViewOptions options;
+  const double scale = displayed_glyph_scale(glyphs, camera, 600, options.pixel_scale);
+  const std::vector<double> radii = displayed_glyph_radii(glyphs, scale);
+  for (const AggregatedGlyph& g : glyphs.clusters)
+    EXPECT_DOUBLE_EQ(radii[static_cast<std::size_t>(g.id)], g.radius * scale) << g.id;  // no 0.6 for the grey ones
+  const GlyphsDrawn drawn = main_view_glyphs_drawn(glyphs, camera, 600, radii);
+  EXPECT_EQ(drawn.drawn, (std::vector<std::uint8_t>{1, 1, 1, 1, 0, 1}));
+  EXPECT_EQ(drawn.num_left_out, 1);
+  EXPECT_EQ(drawn.num_left_out_coloured, 0);
+  const Scene scene = build_main_scene(mesh, topology, glyphs, nullptr, camera, 600, options);
+  // Grey set: #2, #3, #5 at their severity radius, pale; #4 left out.
+  ASSERT_EQ(scene.spheres[0].radii.size(), 3u);
+  EXPECT_FLOAT_EQ(scene.spheres[0].radii[0], static_cast<float>(radii[2]));
+  EXPECT_FLOAT_EQ(scene.spheres[0].radii[1], static_cast<float>(radii[3]));
+  EXPECT_FLOAT_EQ(scene.spheres[0].radii[2], static_cast<float>(radii[5]));
+  EXPECT_GT(scene.spheres[0].pale, 0.0f);
+  EXPECT_EQ(scene.spheres[1].pale, 0.0f);
+  // The legend: the grey range and the count left out.
+  const std::vector<std::string> legend = legend_texts(glyphs, scale, drawn.num_left_out);
+  EXPECT_TRUE(has_line(legend, "4 others: 0.2 to 0.5"));
+  EXPECT_TRUE(has_line(legend, "1 not drawn: >50% covered"));
+  EXPECT_FALSE(has_line(legend, "tied: min within 0.001"));
+  // The id image maps the drawn spheres to their ranks (the left-out #4 to none).
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  const IdImage ids = main_view_id_image(*renderer, scene, glyphs, camera, PixelRect{0, 0, 800, 600}, false);
+  for (std::uint32_t id : {0u, 1u, 2u, 3u, 5u})
+    EXPECT_GT(std::count(ids.ids.begin(), ids.ids.end(), kIdGlyph + id), 0) << id;
+  EXPECT_EQ(std::count(ids.ids.begin(), ids.ids.end(), kIdGlyph + 4u), 0);
+}
+
+}  // namespace
+}  // namespace hq
