@@ -230,8 +230,8 @@ TEST(InvertedInset, DrawsInteriorInvertedHexesInBlueInsideTheirFootprint) {
   std::vector<InvertedCallout> callouts = inverted_callouts(c.mesh, c.topology, c.inverted, c.quality.vertex_quality,
                                                             f.camera, f.layout.view, 13.0, *renderer);
   ASSERT_EQ(callouts.size(), 1u);
-  const std::vector<InvertedInset> insets =
-      plan_inverted_insets(c.mesh, callouts, plain, f.layout.view, f.style.background, f.camera, 10, f.style);
+  std::vector<InvertedInset> insets = plan_inverted_insets(c.mesh, callouts, f.layout.view, f.camera, f.label_size);
+  place_inverted_insets(insets, callouts, plain, f.layout.view, f.style.background, f.style);
   ASSERT_EQ(insets.size(), 1u);
   EXPECT_EQ(insets[0].letter, "A");
   EXPECT_EQ(inverted_callout_label(callouts[0], "hex", 1e6),

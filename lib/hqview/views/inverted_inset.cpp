@@ -140,42 +140,19 @@ Scene inverted_inset_scene(const HexMesh& mesh, std::span<const Index> cells, st
 }
 
 std::vector<InvertedInset> plan_inverted_insets(const HexMesh& mesh, std::vector<InvertedCallout>& callouts,
-                                                const Image& figure, const PixelRect& view, Rgba8 background,
-                                                const Camera& view_camera, int text_size,
-                                                const AnnotationStyle& style) {
+                                                const PixelRect& view, const Camera& view_camera, int text_size) {
   std::vector<InvertedInset> insets;
   const int w = static_cast<int>(std::lround(kInsetWidthFraction * view.width));
   const int h = static_cast<int>(std::lround(kInsetHeightFraction * view.height));
-  const int margin = std::max(4, static_cast<int>(std::lround(12 * style.scale)));
-  const int caption = caption_size(text_size);
-  const int caption_height = 2 * static_cast<int>(std::lround(1.3 * caption)) + 8;
+  const int caption_height = 2 * static_cast<int>(std::lround(1.3 * caption_size(text_size))) + 8;
   if (w < 40 || h < caption_height + 40) return insets;
-  std::array<bool, 4> used{};
-  const std::array<PixelRect, 4> corners = corner_rects(view, w, h, margin);
   for (std::size_t i = 0; i < callouts.size() && static_cast<int>(insets.size()) < kMaxInvertedInsets; ++i) {
     if (callout_in_sight(callouts[i]) || callouts[i].cells.empty()) continue;
-    // The free corner covering the fewest model pixels, ringless if it can.
-    long best_cost = std::numeric_limits<long>::max();
-    int best = -1;
-    for (int k = 0; k < 4; ++k) {
-      if (used[static_cast<std::size_t>(k)]) continue;
-      const PixelRect& r = corners[static_cast<std::size_t>(k)];
-      bool clash = false;
-      for (const InvertedInset& other : insets) clash = clash || overlaps(other.rect, r);
-      if (clash) continue;
-      long cost = model_pixels(figure, r, background);
-      for (const InvertedCallout& c : callouts)
-        if (ring_touches(c, r, 4.0)) cost += static_cast<long>(w) * h;  // a ring under the inset: last resort
-      if (cost < best_cost) best_cost = cost, best = k;
-    }
-    if (best < 0) break;
-    used[static_cast<std::size_t>(best)] = true;
     InvertedInset inset;
     inset.callout = i;
     inset.letter = std::string(1, static_cast<char>('A' + insets.size()));
-    inset.rect = corners[static_cast<std::size_t>(best)];
-    inset.picture = {inset.rect.x + 2, inset.rect.y + caption_height, inset.rect.width - 4,
-                     inset.rect.height - caption_height - 2};
+    inset.rect = {view.x, view.y, w, h};
+    inset.picture = {view.x + 2, view.y + caption_height, w - 4, h - caption_height - 2};
     inset.cells = callouts[i].cells;
     std::sort(inset.cells.begin(), inset.cells.end());
     inset.neighbours = cells_touching(mesh, inset.cells);
@@ -195,17 +172,58 @@ std::vector<InvertedInset> plan_inverted_insets(const HexMesh& mesh, std::vector
   return insets;
 }
 
-void draw_inverted_insets(Image& figure, const HexMesh& mesh, std::span<const InvertedInset> insets,
+std::vector<Image> render_inverted_insets(const HexMesh& mesh, std::span<const InvertedInset> insets,
+                                          Renderer& renderer) {
+  std::vector<Image> pictures;
+  for (const InvertedInset& inset : insets)
+    pictures.push_back(renderer.render(inverted_inset_scene(mesh, inset.cells, inset.neighbours), inset.camera,
+                                       inset.picture.width, inset.picture.height));
+  return pictures;
+}
+
+void place_inverted_insets(std::vector<InvertedInset>& insets, std::span<const InvertedCallout> callouts,
+                           const Image& figure, const PixelRect& view, Rgba8 background, const AnnotationStyle& style) {
+  const int margin = std::max(4, static_cast<int>(std::lround(12 * style.scale)));
+  std::array<bool, 4> used{};
+  std::vector<PixelRect> placed;
+  for (InvertedInset& inset : insets) {
+    const int w = inset.rect.width, h = inset.rect.height;
+    const std::array<PixelRect, 4> corners = corner_rects(view, w, h, margin);
+    // The free corner covering the fewest model pixels, ringless if it can.
+    long best_cost = std::numeric_limits<long>::max();
+    int best = -1;
+    for (int k = 0; k < 4; ++k) {
+      if (used[static_cast<std::size_t>(k)]) continue;
+      const PixelRect& r = corners[static_cast<std::size_t>(k)];
+      bool clash = false;
+      for (const PixelRect& other : placed) clash = clash || overlaps(other, r);
+      if (clash) continue;
+      long cost = model_pixels(figure, r, background);
+      for (const InvertedCallout& c : callouts)
+        if (ring_touches(c, r, 4.0)) cost += static_cast<long>(w) * h;  // a ring under the inset: last resort
+      if (cost < best_cost) best_cost = cost, best = k;
+    }
+    if (best < 0) best = 0;  // four corners, at most kMaxInvertedInsets insets: never reached
+    used[static_cast<std::size_t>(best)] = true;
+    const PixelRect r = corners[static_cast<std::size_t>(best)];
+    const int dx = r.x - inset.rect.x, dy = r.y - inset.rect.y;
+    inset.rect = r;
+    inset.picture.x += dx;
+    inset.picture.y += dy;
+    placed.push_back(r);
+  }
+}
+
+void draw_inverted_insets(Image& figure, std::span<const InvertedInset> insets, std::span<const Image> pictures,
                           std::span<const InvertedCallout> callouts, const std::string& noun, int text_size,
-                          const AnnotationStyle& style, Renderer& renderer) {
+                          const AnnotationStyle& style) {
   const int caption = caption_size(text_size);
   const int pitch = static_cast<int>(std::lround(1.3 * caption));
-  for (const InvertedInset& inset : insets) {
+  for (std::size_t i = 0; i < insets.size() && i < pictures.size(); ++i) {
+    const InvertedInset& inset = insets[i];
     const PixelRect& r = inset.rect;
     fill_rect(figure, r, {255, 255, 255, 255});
-    const Scene scene = inverted_inset_scene(mesh, inset.cells, inset.neighbours);
-    const Image picture = renderer.render(scene, inset.camera, inset.picture.width, inset.picture.height);
-    paste(figure, picture, inset.picture.x, inset.picture.y);
+    paste(figure, pictures[i], inset.picture.x, inset.picture.y);
     // The caption: what it shows and what the colours are.
     InvertedCallout named = callouts[inset.callout];
     named.inset.clear();

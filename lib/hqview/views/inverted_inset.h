@@ -57,20 +57,29 @@ std::vector<Index> cells_touching(const HexMesh& mesh, std::span<const Index> ce
 Scene inverted_inset_scene(const HexMesh& mesh, std::span<const Index> cells, std::span<const Index> neighbours);
 
 // Plans the insets for the callouts out of sight (callout_in_sight false),
-// the largest first (the callouts' order), at most kMaxInvertedInsets; sets
-// each such callout's `inset` letter. `figure` holds the rendered overview
-// (its view pixels tell where the model is: pixels unlike `background`);
-// `view_camera` is the overview's (its direction and up are kept).
+// the largest first (the callouts' order), at most kMaxInvertedInsets: each
+// one's cells, neighbours, size (kInset*Fraction of `view`; rect at the
+// view's origin until placed) and camera (`view_camera`'s direction and up,
+// fitted to the cage); sets each such callout's `inset` letter.
 std::vector<InvertedInset> plan_inverted_insets(const HexMesh& mesh, std::vector<InvertedCallout>& callouts,
-                                                const Image& figure, const PixelRect& view, Rgba8 background,
-                                                const Camera& view_camera, int text_size,
-                                                const AnnotationStyle& style);
+                                                const PixelRect& view, const Camera& view_camera, int text_size);
 
-// Draws each inset: a white box framed in kInsetFrameColor, two caption
-// lines ("A: 14 inverted hexes, inside"; "blue: inverted · grey: their
-// neighbours"), the picture rendered with its camera.
-void draw_inverted_insets(Image& figure, const HexMesh& mesh, std::span<const InvertedInset> insets,
+// The insets' pictures (picture.width x picture.height each). Rendered
+// before the overview's own frame, so that the renderer's last frame (what
+// report.json views[].cameras records) is the overview's.
+std::vector<Image> render_inverted_insets(const HexMesh& mesh, std::span<const InvertedInset> insets,
+                                          Renderer& renderer);
+
+// Moves each inset to a corner of `view`: the free one covering the fewest
+// pixels of `figure` unlike `background` (the model) and no ring.
+void place_inverted_insets(std::vector<InvertedInset>& insets, std::span<const InvertedCallout> callouts,
+                           const Image& figure, const PixelRect& view, Rgba8 background, const AnnotationStyle& style);
+
+// Draws each placed inset: a white box framed in kInsetFrameColor, two
+// caption lines ("A: 14 inverted hexes, inside"; "blue: inverted · grey:
+// their neighbours"), its picture.
+void draw_inverted_insets(Image& figure, std::span<const InvertedInset> insets, std::span<const Image> pictures,
                           std::span<const InvertedCallout> callouts, const std::string& noun, int text_size,
-                          const AnnotationStyle& style, Renderer& renderer);
+                          const AnnotationStyle& style);
 
 }  // namespace hq

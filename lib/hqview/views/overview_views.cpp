@@ -304,6 +304,7 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
   f.layout = figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(f.bar, f.style), f.style);
   const double aspect = static_cast<double>(f.layout.view.width) / static_cast<double>(f.layout.view.height);
   f.camera = fit_camera_to_points(boundary_points(mesh, topology), view_direction_of(options), aspect, {.up = options.up});
+  f.label_size = std::max(f.style.min_text_size, static_cast<int>(std::lround(20.0 * f.style.scale)));
   return f;
 }
 
@@ -312,6 +313,20 @@ Image render_quality_overview(const HexMesh& mesh, const Topology& topology, con
   OverviewFrame f = quality_overview_frame(mesh, topology, vertex_quality, options);
   const AnnotationStyle& style = f.style;
   const FigureLayout& layout = f.layout;
+  // The rings' groups (id images only) and the insets' pictures first, so
+  // that the overview's own frame is the renderer's last (report.json
+  // views[].cameras).
+  const double min_radius = std::max(10.0, 26.0 * style.scale), thickness = std::max(2.0, 4.0 * style.scale);
+  const int text_size = f.label_size;
+  std::vector<InvertedCallout> callouts =
+      options.inverted_cells.empty()
+          ? std::vector<InvertedCallout>{}
+          : inverted_callouts(mesh, topology, options.inverted_cells, vertex_quality, f.camera, layout.view, min_radius,
+                              renderer);
+  // Out of sight: a cut-away inset draws the cells themselves (inverted_inset.h).
+  std::vector<InvertedInset> insets = plan_inverted_insets(mesh, callouts, layout.view, f.camera, text_size);
+  const std::vector<Image> pictures = render_inverted_insets(mesh, insets, renderer);
+
   Scene scene = build_quality_overview_scene(mesh, topology, vertex_quality, options);
   const double opacity = edge_opacity(scene, f.camera, layout.view.width, layout.view.height);
   for (LineSet& lines : scene.lines)
@@ -322,18 +337,12 @@ Image render_quality_overview(const HexMesh& mesh, const Topology& topology, con
     draw_color_bar(figure, layout.legend, f.bar, style);
     return figure;
   }
-  const double min_radius = std::max(10.0, 26.0 * style.scale), thickness = std::max(2.0, 4.0 * style.scale);
-  const int text_size = std::max(style.min_text_size, static_cast<int>(std::lround(20.0 * style.scale)));
-  std::vector<InvertedCallout> callouts = inverted_callouts(mesh, topology, options.inverted_cells, vertex_quality,
-                                                            f.camera, layout.view, min_radius, renderer);
-  // Out of sight: a cut-away inset draws the cells themselves
-  // (inverted_inset.h), over the rings (a large ring may pass under it),
-  // then the labels around it.
-  const std::vector<InvertedInset> insets = plan_inverted_insets(mesh, callouts, figure, layout.view, style.background,
-                                                                 f.camera, text_size, style);
+  // The insets go where they cover least of the model, over the rings (a
+  // large ring may pass under one), then the labels around them.
+  place_inverted_insets(insets, callouts, figure, layout.view, style.background, style);
   for (const InvertedCallout& c : callouts)
     draw_marker_ring(figure, c.x, c.y, c.radius, thickness, !callout_in_sight(c), kCalloutColor);
-  draw_inverted_insets(figure, mesh, insets, callouts, options.cell_noun, text_size, style, renderer);
+  draw_inverted_insets(figure, insets, pictures, callouts, options.cell_noun, text_size, style);
   std::vector<PixelRect> taken;
   for (const InvertedInset& inset : insets) taken.push_back(inset.rect);
   draw_inverted_callouts(figure, layout.view, callouts, options.cell_noun, thickness, text_size, style, taken, false);

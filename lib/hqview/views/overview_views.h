@@ -116,6 +116,7 @@ struct OverviewFrame {
   ColorBar bar;
   FigureLayout layout;
   Camera camera;
+  int label_size = 0;  // the rings' labels and the insets' captions (pixels)
 };
 OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topology,
                                     const std::vector<double>& vertex_quality, const OverviewOptions& options);
