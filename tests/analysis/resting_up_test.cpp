@@ -113,6 +113,58 @@ TEST(RestingUp, EveryRotationAndMirrorOfTheLampAndTheDustpanGivesTheTurnedAxis) 
   }
 }
 
+// An L bracket (issue 45e, as the Gmsh bracket of the 45d review): a 4 x 1
+// long leg and a 1 x 2 upright leg on its end, extruded 2 along z. Flat on
+// its L (+z or -z: the hull of the L, 9, alike both ways: it is mirror-
+// symmetric across z = 1) it lies on its side; it stands on the long leg
+// (+y: 8) or on the upright's back (+x: 6, within the prior's margin).
+HexMesh bracket() {
+  std::vector<Cell> cells;
+  for (int k = 0; k < 2; ++k) {
+    for (int i = 0; i < 4; ++i) cells.push_back({i, 0, k});
+    for (int j = 1; j < 3; ++j) cells.push_back({0, j, k});
+  }
+  return voxels(cells);
+}
+
+// A slab whose two faces differ by 10 %: a 9 x 10 layer under a 10 x 10 one
+// (the rockarm of issue 45e rests on either face, 0.072 against 0.080).
+HexMesh stepped_slab() {
+  std::vector<Cell> cells;
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j) {
+      if (i < 9) cells.push_back({i, j, 0});
+      cells.push_back({i, j, 1});
+    }
+  return voxels(cells);
+}
+
+TEST(RestingUp, ABracketStandsUnderEveryTurnAndASlabLiesOnItsLargerFace) {
+  {
+    const HexMesh mesh = bracket();
+    const RestingUp r = choose_resting_up(mesh, build_topology(mesh));
+    EXPECT_DOUBLE_EQ(r.candidates[0].support_area, 9.0);
+    EXPECT_DOUBLE_EQ(r.candidates[3].support_area, 9.0);
+    EXPECT_DOUBLE_EQ(r.candidates[1].support_area, 8.0);
+    EXPECT_DOUBLE_EQ(r.candidates[2].support_area, 6.0);
+    EXPECT_TRUE(r.candidates[0].rests && r.candidates[3].rests);
+    EXPECT_EQ(r.up, (Vec3{0, 1, 0})) << "standing on its long leg, not flat on its L";
+  }
+  const Vec3 z{0, 0, 1}, long_leg{0, 1, 0}, back{1, 0, 0};
+  for (const Matrix3& rotation : axis_rotations())
+    for (const double mirror : {1.0, -1.0}) {
+      Matrix3 m = rotation;
+      for (double& a : m[0]) a *= mirror;
+      const Vec3 up = choose(transformed(bracket(), m));
+      EXPECT_TRUE(up == exact(m * long_leg) || up == exact(m * back))
+          << "bracket turned so that its L faces " << up_axis_name(exact(m * z)) << " mirror " << mirror << ": "
+          << up_axis_name(up);
+      // The slab: on its larger face (the 10 x 10 layer down), every turn.
+      EXPECT_EQ(choose(transformed(stepped_slab(), m)), exact(m * Vec3{0, 0, -1}))
+          << "slab turned to " << up_axis_name(exact(m * z)) << " mirror " << mirror;
+    }
+}
+
 TEST(RestingUp, ACubeCannotTellAndKeepsTheFilesAxes) {
   const HexMesh cube = test::box_grid(3, 3, 3);
   const RestingUp r = choose_resting_up(cube, build_topology(cube));

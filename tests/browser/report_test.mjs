@@ -242,7 +242,8 @@ async function checkLightboxFits(page, href, what) {
       check(box !== null, `${f.src}: has a viewBox`);
       font = 11.5 * f.natural / Number(box ? box[1] : f.natural);
     } else {
-      font = Math.max(11, 19 * f.height / 1200);
+      // The overview's text is 1.3x larger (overview_views.h kOverviewTextScale).
+      font = Math.max(11, (f.src === 'views/overview.png' ? 1.3 : 1) * 19 * f.height / 1200);
     }
     const onScreen = (f.shown / f.natural) * font;
     check(onScreen >= 11, `1400 px: ${f.src} legend text ${onScreen.toFixed(1)} px on screen (shown ${f.shown.toFixed(0)} of ${f.natural} px, font ${font.toFixed(1)})`);
@@ -265,6 +266,9 @@ async function checkLightboxFits(page, href, what) {
   check(overflowing.length === 0, `1400 px: card values wider than their cards: ${overflowing.join(', ')}`);
   const firstFigure = await page.$eval('figure img', (i) => ({ src: i.getAttribute('src'), top: i.getBoundingClientRect().top }));
   check(firstFigure.src === 'views/overview.png' && firstFigure.top < 500, `1400 px: the overview first, at ${firstFigure.top.toFixed(0)} px (${firstFigure.src})`);
+  // ... and whole on it, rings and legend included (issue 45e: the fold).
+  const overviewBottom = await page.$eval('figure.overview img', (i) => i.getBoundingClientRect().bottom);
+  check(overviewBottom <= 1000, `1400 px: the overview ends at ${overviewBottom.toFixed(0)} px, above the 1000 px fold`);
   // The comparison is on the page, both meshes' numbers side by side.
   check((await page.$$('#compare table.compare tbody tr')).length >= 10, '1400 px: the Comparison table has its rows');
   // The lightbox: a click on a view shows its image at its natural size

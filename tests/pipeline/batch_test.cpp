@@ -266,6 +266,18 @@ TEST(BatchIndex, StatusAgreesWithFindingsAndLightboxOpensTheOverview) {
   EXPECT_EQ(back[2].warnings,
             std::vector<std::string>{"m/c.vtk: 68 cells with 8 points but a non-hexahedral type (10) loaded as hexahedra"});
   EXPECT_EQ(batch_index_html(back, "9.9.9"), html) << "merge gives the same page";
+  // summary.md says what the page says (issue 45e): no "ok" for the mesh
+  // with inverted cells nor for the one read with a warning, whose warning
+  // is listed under Problems with the batch's path.
+  const std::string md = batch_summary_markdown({clean, bad, warned});
+  auto row_of = [&](std::string_view name) {
+    const std::size_t at = md.find(std::string("[") + std::string(name));
+    return at == std::string::npos ? std::string() : md.substr(at, md.find('\n', at) - at);
+  };
+  EXPECT_NE(row_of("a\\.mesh").find("| ok |"), std::string::npos) << md;
+  EXPECT_NE(row_of("b\\.mesh").find("| ⚠ inverted, intersecting |"), std::string::npos) << md;
+  EXPECT_NE(row_of("m\\/c\\.vtk").find("| ⚠ input warning |"), std::string::npos) << md;
+  EXPECT_NE(md.find("- m\\/c\\.vtk: warning\\: m\\/c\\.vtk\\: 68 cells with 8 points"), std::string::npos) << md;
 }
 
 TEST(BatchIndex, MethodsComparePerLabel) {

@@ -248,8 +248,7 @@ TEST(QualityOverview, Grid3RendersAFigure) {
   ASSERT_EQ(image.height, 1200);
   ASSERT_EQ(image.rgba.size(), 1600u * 1200u * 4u);
 
-  const AnnotationStyle style = annotation_style_for(1200);
-  const FigureLayout layout = figure_layout(1600, 1200, true, color_bar_width(quality_color_bar(), style), style);
+  const FigureLayout layout = quality_overview_frame(mesh, topology, quality, options).layout;
   // The mesh fills the middle of the view; its centre pixel is not background.
   const int cx = layout.view.x + layout.view.width / 2, cy = layout.view.y + layout.view.height / 2;
   EXPECT_NE(pixel_at(image, cx, cy), kWhite);

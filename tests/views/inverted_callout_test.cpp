@@ -13,6 +13,7 @@
 #include "hqview/quality/quality_field.h"
 #include "hqview/render/osmesa_renderer.h"
 #include "hqview/render/upright.h"
+#include "hqview/views/inverted_inset.h"
 #include "hqview/views/overview_views.h"
 #include "support/fixtures.h"
 #include "support/image_probe.h"
@@ -43,13 +44,10 @@ struct Frame {
   Camera camera;
 };
 Frame overview_frame(const Case& c, const OverviewOptions& o) {
-  const AnnotationStyle style = annotation_style_for(o.height);
-  ColorBar bar = overview_color_bar(c.topology, c.quality.vertex_quality);
-  bar.swatches.push_back({to_color(kCalloutColor), "ring: inverted hexes"});
-  const FigureLayout layout = figure_layout(o.width, o.height, !o.title.empty(), color_bar_width(bar, style), style);
-  const double aspect = static_cast<double>(layout.view.width) / layout.view.height;
-  return {layout.view, fit_camera_to_points(boundary_points(c.mesh, c.topology), three_quarter_view(o.up), aspect,
-                                            {.up = o.up})};
+  OverviewOptions with_rings = o;
+  if (with_rings.inverted_cells.empty()) with_rings.inverted_cells = c.inverted;
+  const OverviewFrame f = quality_overview_frame(c.mesh, c.topology, c.quality.vertex_quality, with_rings);
+  return {f.layout.view, f.camera};
 }
 
 // The mean screen position of the inverted hexes' centres.
@@ -71,13 +69,26 @@ test::ColorPixels ring_pixels(const Image& image, const PixelRect& view, double 
   return test::pixels_of_color(image, view, kCalloutColor, x, y, within);
 }
 
-TEST(InvertedCallout, RingsInvertedHexesDeepInsideWhereTheyProject) {
-  // A 9^3 grid; interior vertex (6, 2, 6) pushed 1.7 cells along -x past
-  // its neighbour: the hexes around it invert, none touches the boundary.
+// A 9^3 grid; interior vertex (6, 2, 6) pushed 1.7 cells along -x past
+// its neighbour: the hexes around it invert, none touches the boundary.
+Case interior_case() {
   HexMesh mesh = test::box_grid(9, 9, 9);
   for (Vec3& p : mesh.points)
     if (p.x == 6.0 && p.y == 2.0 && p.z == 6.0) p.x -= 1.7;
-  const Case c = make_case(std::move(mesh));
+  return make_case(std::move(mesh));
+}
+
+// An 800 x 600 overview ringing `cells`.
+OverviewOptions small_overview(const std::vector<Index>& cells) {
+  OverviewOptions o;
+  o.width = 800;
+  o.height = 600;
+  o.inverted_cells = cells;
+  return o;
+}
+
+TEST(InvertedCallout, RingsInvertedHexesDeepInsideWhereTheyProject) {
+  const Case c = interior_case();
   ASSERT_FALSE(c.inverted.empty());
   for (std::size_t v = 0; v < c.mesh.points.size(); ++v) {
     const Vec3& p = c.mesh.points[v];
@@ -86,10 +97,7 @@ TEST(InvertedCallout, RingsInvertedHexesDeepInsideWhereTheyProject) {
     }
   }
   const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
-  OverviewOptions o;
-  o.width = 800;
-  o.height = 600;
-  o.inverted_cells = c.inverted;
+  OverviewOptions o = small_overview(c.inverted);
   const Image image = render_quality_overview(c.mesh, c.topology, c.quality.vertex_quality, o, *renderer);
   const Frame f = overview_frame(c, o);
   const auto [x, y] = projected_centre(c, f);
@@ -143,7 +151,7 @@ TEST(InvertedCallout, ADentInSightGetsASolidRing) {
       c.mesh, c.topology, c.inverted, c.quality.vertex_quality, back, f.view, 13.0, *renderer);
   ASSERT_EQ(hidden.size(), 1u);
   EXPECT_EQ(hidden[0].visible_pixels, 0);
-  EXPECT_NE(inverted_callout_label(hidden[0], "hex", 1e6).find(", hidden"), std::string::npos);
+  EXPECT_NE(inverted_callout_label(hidden[0], "hex", 1e6).find(", far side"), std::string::npos);
   // The figure: a solid ring (more pixels than a dashed one of the same radius) around the projected hexes.
   o.inverted_cells = c.inverted;
   const Image image = render_quality_overview(c.mesh, c.topology, c.quality.vertex_quality, o, *renderer);
@@ -152,6 +160,103 @@ TEST(InvertedCallout, ADentInSightGetsASolidRing) {
   EXPECT_GT(ring.count, static_cast<int>(2 * 3.14159 * callouts[0].radius * 0.8));
   EXPECT_NEAR(ring.cx, x, 4.0);
   EXPECT_NEAR(ring.cy, y, 4.0);
+}
+
+
+// A convex polygon (Andrew's monotone chain) and whether a point is within
+// `pad` pixels inside or outside it.
+std::vector<std::pair<double, double>> convex_hull(std::vector<std::pair<double, double>> p) {
+  std::sort(p.begin(), p.end());
+  if (p.size() < 3) return p;
+  std::vector<std::pair<double, double>> h(2 * p.size());
+  auto cross = [](auto o, auto a, auto b) { return (a.first - o.first) * (b.second - o.second) - (a.second - o.second) * (b.first - o.first); };
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < p.size(); h[k++] = p[i++])
+    while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+  for (std::size_t i = p.size() - 1, t = k + 1; i > 0; h[k++] = p[--i])
+    while (k >= t && cross(h[k - 2], h[k - 1], p[i - 1]) <= 0) --k;
+  h.resize(k - 1);
+  return h;
+}
+bool within_hull(const std::vector<std::pair<double, double>>& h, double x, double y, double pad) {
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    const auto a = h[i], b = h[(i + 1) % h.size()];
+    const double ex = b.first - a.first, ey = b.second - a.second, len = std::hypot(ex, ey);
+    if (len == 0) continue;
+    // The hull is counter-clockwise in these coordinates: inside is side >= 0.
+    const double side = (ex * (y - a.second) - ey * (x - a.first)) / len;
+    if (side < -pad) return false;
+  }
+  return true;
+}
+bool is_blue(const Image& image, int x, int y) {
+  const std::uint8_t* p = &image.rgba[pixel_offset(image, x, y)];
+  return p[2] > p[0] + 60 && p[2] > p[1] + 60;
+}
+
+TEST(InvertedInset, DrawsInteriorInvertedHexesInBlueInsideTheirFootprint) {
+  // The 9^3 grid with hexes inverted deep inside (as above): the overview's
+  // view shows no blue; the inset (issue 45e) draws those hexes in the
+  // inverted colour where its camera projects them.
+  const Case c = interior_case();
+  ASSERT_FALSE(c.inverted.empty());
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  const OverviewOptions o = small_overview(c.inverted);
+  const Image image = render_quality_overview(c.mesh, c.topology, c.quality.vertex_quality, o, *renderer);
+  const OverviewFrame f = quality_overview_frame(c.mesh, c.topology, c.quality.vertex_quality, o);
+  // The legend names the ring styles: both sized for, the dashed one drawn.
+  int rings = 0;
+  for (const ColorBarSwatch& s : f.bar.swatches) rings += s.shape != SwatchShape::box;
+  EXPECT_EQ(rings, 2);
+
+  // The plan, as the overview makes it, on the model alone.
+  const Image plain = render_figure(*renderer, build_quality_overview_scene(c.mesh, c.topology, c.quality.vertex_quality, o),
+                                    f.camera, o.width, o.height, f.layout, o.title, f.style);
+  std::vector<InvertedCallout> callouts = inverted_callouts(c.mesh, c.topology, c.inverted, c.quality.vertex_quality,
+                                                            f.camera, f.layout.view, 13.0, *renderer);
+  ASSERT_EQ(callouts.size(), 1u);
+  std::vector<InvertedInset> insets = plan_inverted_insets(c.mesh, callouts, f.layout.view, f.camera, f.label_size);
+  place_inverted_insets(insets, callouts, plain, f.layout.view, f.style.background, f.style);
+  ASSERT_EQ(insets.size(), 1u);
+  EXPECT_EQ(insets[0].letter, "A");
+  EXPECT_EQ(inverted_callout_label(callouts[0], "hex", 1e6),
+            std::to_string(c.inverted.size()) + " inverted hexes, inside: see inset A");
+  EXPECT_EQ(insets[0].cells.size(), c.inverted.size());
+  EXPECT_FALSE(insets[0].neighbours.empty());
+  const PixelRect pic = insets[0].picture;
+
+  // The inverted hexes' footprint in the inset: the hull of their projected corners.
+  std::vector<std::pair<double, double>> corners;
+  const double aspect = static_cast<double>(pic.width) / pic.height;
+  for (Index h : c.inverted)
+    for (Index v : c.mesh.hexes[static_cast<std::size_t>(h)]) {
+      const Vec3 ndc = project_to_ndc(insets[0].camera, aspect, c.mesh.points[static_cast<std::size_t>(v)]);
+      corners.push_back({pic.x + 0.5 * (ndc.x + 1.0) * pic.width, pic.y + 0.5 * (1.0 - ndc.y) * pic.height});
+    }
+  std::vector<std::pair<double, double>> hull = convex_hull(corners);
+  ASSERT_GE(hull.size(), 3u);
+  // Orient so that inside is where `side` >= 0.
+  double area = 0;
+  for (std::size_t i = 0; i < hull.size(); ++i)
+    area += hull[i].first * hull[(i + 1) % hull.size()].second - hull[(i + 1) % hull.size()].first * hull[i].second;
+  if (area < 0) std::reverse(hull.begin(), hull.end());
+  long inside = 0, outside = 0, in_view = 0, hull_pixels = 0;
+  for (int y = f.layout.view.y; y < f.layout.view.y + f.layout.view.height; ++y)
+    for (int x = f.layout.view.x; x < f.layout.view.x + f.layout.view.width; ++x) {
+      const bool in_pic = x >= pic.x && x < pic.x + pic.width && y >= pic.y && y < pic.y + pic.height;
+      const bool in_hull = in_pic && within_hull(hull, x + 0.5, y + 0.5, 0.0);
+      hull_pixels += in_hull;
+      if (!is_blue(image, x, y)) continue;
+      if (!in_pic) ++in_view;
+      else if (within_hull(hull, x + 0.5, y + 0.5, 2.0)) ++inside;
+      else ++outside;
+    }
+  EXPECT_EQ(in_view, 0) << "the interior hexes show no blue on the overview itself";
+  EXPECT_GT(inside, hull_pixels / 3) << "the inset paints their footprint blue (" << hull_pixels << " px)";
+  EXPECT_LE(outside, inside / 50) << "and nothing else";
+  // The inset covers no ring: the ring's pixels still surround the hexes.
+  const auto [x, y] = projected_centre(c, {f.layout.view, f.camera});
+  EXPECT_GT(ring_pixels(image, f.layout.view, x, y, callouts[0].radius + 3.0).count, 40);
 }
 
 }  // namespace

@@ -38,6 +38,7 @@ HexMesh dented_grid() {
 // bluest colour has blue 1.1 times its red; edges and text are grey).
 int inverted_pixels(const Image& image, const OverviewOptions& options) {
   AnnotationStyle style = annotation_style_for(options.height);
+  style.scale *= kOverviewTextScale;  // the overview's text size
   const FigureLayout layout = figure_layout(options.width, options.height, !options.title.empty(),
                                             color_bar_width(quality_color_bar(), style), style);
   int n = 0;
@@ -176,10 +177,14 @@ TEST(OverviewViewpoint, RockarmShowsItsInvertedHexesUnderAutoUp) {
   if (!data) GTEST_SKIP() << "../shared/data is absent";
   const HexMesh mesh = read_hex_mesh(*data / "meshes/dualsheet2019/rockarm.vtk").mesh;
   const Vec3 up = choose_resting_up(mesh, build_topology(mesh)).up;
+  // Since issue 45e it lies on its larger face (-y, was +y).
+  EXPECT_EQ(up, (Vec3{0.0, -1.0, 0.0})) << up_axis_name(up);
+  // The three-quarter view of +y hides them (the reviewer's finding of
+  // issue 45b); the chosen eye shows them, under +y and under auto.
+  const Seen plus_y = look(mesh, {0.0, 1.0, 0.0});
+  EXPECT_EQ(plus_y.three_quarter, 0);
+  EXPECT_GT(plus_y.chosen, 500) << "rockarm's inverted hexes in its overview (up +y)";
   const Seen s = look(mesh, up);
-  // The three-quarter view of its resting axis hides them (the reviewer's
-  // finding of issue 45b); the chosen eye shows them.
-  EXPECT_EQ(s.three_quarter, 0) << "up " << up_axis_name(up);
   EXPECT_GT(s.chosen, 500) << "rockarm's inverted hexes in its overview (up " << up_axis_name(up) << ")";
 }
 

@@ -153,19 +153,40 @@ RestingUp choose_resting_up(const HexMesh& mesh, const Topology& topology) {
   if (!(std::abs(solid.volume) > 0.0) || !std::isfinite(solid.volume) || !is_finite(solid.centre)) return result;
   result.candidates.reserve(6);
   for (const Vec3& up : resting_up_candidates()) result.candidates.push_back(evaluate(mesh, topology, solid, up));
-  double largest = 0.0;
-  for (const RestingCandidate& c : result.candidates)
-    if (c.rests) largest = std::max(largest, c.support_area);
-  if (!(largest > 0.0)) return result;
-  // The first resting candidate in the prior order whose support area is
-  // within the margin of the largest.
-  for (const RestingCandidate& c : result.candidates) {
-    if (c.rests && c.support_area * kRestingPriorMargin >= largest) {
-      result.up = c.up;
-      result.from_data = true;
-      break;
-    }
+  // 1. Alike opposite poses (both rest, support areas and tips within
+  // kRestingAlike): the model is about mirror-symmetric across the plane
+  // between them, so either pose lies on its side (an L bracket flat on its
+  // L); they are left out while another candidate rests.
+  const std::size_t n = result.candidates.size();  // 6: candidate k and k + 3 are opposite
+  auto alike = [](double a, double b, double scale) { return std::abs(a - b) <= kRestingAlike * scale; };
+  std::vector<char> on_side(n, 0);
+  for (std::size_t k = 0; k < 3; ++k) {
+    const RestingCandidate &a = result.candidates[k], &b = result.candidates[k + 3];
+    if (a.rests && b.rests && alike(a.support_area, b.support_area, std::max(a.support_area, b.support_area)) &&
+        alike(a.tip, b.tip, std::max({1.0, std::abs(a.tip), std::abs(b.tip)})))
+      on_side[k] = on_side[k + 3] = 1;
   }
+  bool upright_rests = false;
+  for (std::size_t k = 0; k < n; ++k) upright_rests = upright_rests || (result.candidates[k].rests && !on_side[k]);
+  auto eligible = [&](std::size_t k) { return result.candidates[k].rests && (!on_side[k] || !upright_rests); };
+  double largest = 0.0;
+  for (std::size_t k = 0; k < n; ++k)
+    if (eligible(k)) largest = std::max(largest, result.candidates[k].support_area);
+  if (!(largest > 0.0)) return result;
+  // 2. The first eligible candidate in the prior order whose support area
+  // is within the margin of the largest.
+  std::size_t chosen = n;
+  for (std::size_t k = 0; k < n && chosen == n; ++k)
+    if (eligible(k) && result.candidates[k].support_area * kRestingPriorMargin >= largest) chosen = k;
+  // 3. A slab rests on either face: the larger base wins when it is larger by
+  // more than kRestingFlipMargin, whatever the file's axes (so a turned copy
+  // is not drawn upside down).
+  const std::size_t opposite = (chosen + 3) % n;
+  if (eligible(opposite) &&
+      result.candidates[opposite].support_area > (1.0 + kRestingFlipMargin) * result.candidates[chosen].support_area)
+    chosen = opposite;
+  result.up = result.candidates[chosen].up;
+  result.from_data = true;
   return result;
 }
 

@@ -21,11 +21,20 @@
 //                 (a scan has lost its pedestal, the thin band misses toes:
 //                 the armadillo's centre is 2-3 % of its height outside the
 //                 hull of its feet).
-// The chosen axis: the first resting candidate, in the prior order +z, +y,
-// +x, -z, -y, -x, whose support area is at least 1/kRestingPriorMargin of
-// the largest support area of a resting candidate (so data that cannot
-// tell, a cube, keeps the file's own axis: z-up, then y-up). No resting
-// candidate with an area: +z (the default), from_data false.
+// Opposite candidates that both rest with alike support areas and tips
+// (within kRestingAlike) mean a model about mirror-symmetric across the
+// plane between them: either pose lies on its side (an L bracket flat on
+// its L; the upright of a symmetric part has its symmetry plane vertical,
+// as in Fu et al.), so they are left out while another candidate rests
+// (issue 45e). The chosen axis: the first remaining resting candidate, in
+// the prior order +z, +y, +x, -z, -y, -x, whose support area is at least
+// 1/kRestingPriorMargin of the largest support area of a remaining
+// resting candidate (so data that cannot tell, a cube, keeps the file's own
+// axis: z-up, then y-up); then, when its opposite rests too with a support
+// area over (1 + kRestingFlipMargin) times its own, the opposite (a slab
+// lies on its larger face, whichever way the file has it: issue 45e's
+// rockarm). No resting candidate with an area: +z (the default),
+// from_data false.
 //
 // Deterministic (no hashing, fixed orders, no threads) and O(#boundary
 // faces + #boundary vertices + #band vertices log #band vertices) per
@@ -43,6 +52,8 @@ namespace hq {
 inline constexpr double kRestingBaseBand = 0.01;      // of the bounding-box diagonal
 inline constexpr double kRestingTipTolerance = 0.05;  // of the centre's height
 inline constexpr double kRestingPriorMargin = 1.5;    // the largest support area over the chosen one's, at most
+inline constexpr double kRestingAlike = 0.02;         // opposite poses alike: relative to the larger area, the larger |tip| (at least 1)
+inline constexpr double kRestingFlipMargin = 0.05;    // the opposite base wins when larger by this fraction
 
 struct RestingCandidate {
   Vec3 up;

@@ -423,8 +423,26 @@ void draw_color_bar(Image& image, const PixelRect& area, const ColorBar& bar, co
   int swatch_y = bar_rect.y + bar_rect.height + outline + m.swatch_gap;
   for (const ColorBarSwatch& swatch : bar.swatches) {
     const PixelRect box{x, swatch_y, m.bar_width, m.swatch_height};
-    fill_rect(image, box, to_rgba8(swatch.color));
-    outline_rect(image, box, outline, kOutlineColor);
+    if (swatch.shape == SwatchShape::box) {
+      fill_rect(image, box, to_rgba8(swatch.color));
+      outline_rect(image, box, outline, kOutlineColor);
+    } else {
+      // A ring as the figure draws it: 12 arcs of 30 degrees, every other
+      // one left out when dashed.
+      const double width = std::max(1.5, 0.18 * m.swatch_height);
+      const double cx = box.x + 0.5 * box.width, cy = box.y + 0.5 * box.height;
+      const double r = 0.5 * (std::min(box.width, box.height) - width);
+      constexpr int kArcs = 12, kSteps = 4;
+      for (int a = 0; a < kArcs; ++a) {
+        if (swatch.shape == SwatchShape::dashed_ring && a % 2 == 1) continue;
+        for (int k = 0; k < kSteps; ++k) {
+          const double t0 = 2.0 * M_PI * (a * kSteps + k) / (kArcs * kSteps);
+          const double t1 = 2.0 * M_PI * (a * kSteps + k + 1) / (kArcs * kSteps);
+          draw_line(image, cx + r * std::cos(t0), cy + r * std::sin(t0), cx + r * std::cos(t1), cy + r * std::sin(t1),
+                    to_rgba8(swatch.color), width);
+        }
+      }
+    }
     draw_text(image, tick_x + m.tick_length + m.tick_gap, swatch_y + m.swatch_height / 2 + baseline_shift, swatch.label,
               m.tick_size, style);
     swatch_y += m.swatch_pitch;

@@ -69,9 +69,13 @@ struct ColorBarTick {
 };
 
 // A discrete legend entry drawn below the bar (e.g. "inverted").
+// A swatch's mark: a filled box, or a ring drawn solid or dashed (the
+// overview's inverted-cell rings, issue 45e: each ring style its own entry).
+enum class SwatchShape { box, solid_ring, dashed_ring };
 struct ColorBarSwatch {
   Color color;
   std::string label;
+  SwatchShape shape = SwatchShape::box;
 };
 
 // A vertical colour bar legend: a title (lines separated by '\n'), the bar

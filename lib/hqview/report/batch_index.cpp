@@ -577,7 +577,6 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
   for (std::size_t k = 0; k < kNumHeadlineKeys; ++k)
     if (shown[k]) headers.push_back(data("title", kHeadlineTitles[k]));
   page.set("headline_columns", headers);
-  static const std::size_t intersecting_key = headline_index("overlap.num_intersecting_cells");
   int failed = 0, gate_failed = 0, with_findings = 0, with_warnings = 0;
   data rows = data::type::list;
   for (const std::size_t i : worst_first_order(entries)) {
@@ -589,23 +588,11 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
     row.set("label", e.label);
     row.set("model", e.model);
     row.set("variant", e.variant);
-    // What the row shows beyond its run's status: inverted or intersecting
-    // cells and input warnings (an "ok" run of a broken mesh is not "ok").
-    std::string findings;
-    auto find = [&](bool found, const char* what) {
-      if (found) findings += (findings.empty() ? "" : ", ") + std::string(what);
-    };
-    find(e.headline[inverted_key] && *e.headline[inverted_key] > 0, "inverted");
-    find(e.headline[intersecting_key] && *e.headline[intersecting_key] > 0, "intersecting");
-    find(!e.warnings.empty(), "input warning");
+    const std::string findings = batch_findings(e);
     with_findings += !findings.empty() && e.status != BatchStatus::failed && e.status != BatchStatus::skipped;
     with_warnings += !e.warnings.empty();
     row.set("status", std::string(to_string(e.status)) + (findings.empty() ? "" : " finding"));
-    row.set("status_text", e.status == BatchStatus::failed        ? "✗ failed"
-                           : e.status == BatchStatus::gate_failed ? "✗ gate failed"
-                           : e.status == BatchStatus::skipped     ? "skipped"
-                           : findings.empty()                     ? "ok"
-                                                                  : "⚠ " + findings);
+    row.set("status_text", batch_status_text(e));
     row.set("has_bundle", !e.bundle.empty());
     row.set("link", url_path(e.bundle) + "/index.html");
     const bool has_thumbnail = !e.bundle.empty() && !e.thumbnail.empty();
@@ -673,6 +660,28 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
   return tmpl.render(page);
 }
 
+std::string batch_findings(const BatchEntry& e) {
+  static const std::size_t inverted_key = headline_index("quality.num_inverted");
+  static const std::size_t intersecting_key = headline_index("overlap.num_intersecting_cells");
+  std::string findings;
+  auto find = [&](bool found, const char* what) {
+    if (found) findings += (findings.empty() ? "" : ", ") + std::string(what);
+  };
+  find(e.headline[inverted_key] && *e.headline[inverted_key] > 0, "inverted");
+  find(e.headline[intersecting_key] && *e.headline[intersecting_key] > 0, "intersecting");
+  find(!e.warnings.empty(), "input warning");
+  return findings;
+}
+
+std::string batch_status_text(const BatchEntry& e) {
+  const std::string findings = batch_findings(e);
+  return e.status == BatchStatus::failed        ? "✗ failed"
+         : e.status == BatchStatus::gate_failed ? "✗ gate failed"
+         : e.status == BatchStatus::skipped     ? "skipped"
+         : findings.empty()                     ? "ok"
+                                                : "⚠ " + findings;
+}
+
 std::string batch_summary_markdown(const std::vector<BatchEntry>& entries) {
   int failed = 0, gate_failed = 0;
   for (const BatchEntry& e : entries) {
@@ -689,17 +698,18 @@ std::string batch_summary_markdown(const std::vector<BatchEntry>& entries) {
   for (const BatchEntry& e : entries) {
     md += "| " +
           (e.bundle.empty() ? markdown_escape(e.path) : "[" + markdown_escape(e.path) + "](" + url_path(e.bundle) + "/index.html)") +
-          " | " + markdown_escape(e.label) + " | " + std::string(to_string(e.status)) + " |";
+          " | " + markdown_escape(e.label) + " | " + batch_status_text(e) + " |";  // fixed words, no input
     for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) md += " " + show(e.headline[k]) + " |";
     md += "\n";
   }
   bool any_problem = false;
   for (const BatchEntry& e : entries) {
-    if (e.status == BatchStatus::ok) continue;
+    if (e.status == BatchStatus::ok && e.warnings.empty()) continue;
     if (!any_problem) md += "\n### Problems\n\n";
     any_problem = true;
     std::string what = e.error;
     for (const std::string& g : e.failed_gates) what += (what.empty() ? "gate failed: " : "; ") + g;
+    for (const std::string& w : e.warnings) what += (what.empty() ? "warning: " : "; warning: ") + relative_warning(w, e.path);
     md += "- " + markdown_escape(e.path) + ": " + markdown_escape(what) + "\n";
   }
   const std::vector<MethodSummary> methods = summarize_methods(entries);

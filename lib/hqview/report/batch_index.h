@@ -127,6 +127,15 @@ struct ComparisonKey;  // comparison.h
 std::vector<std::size_t> worst_first_order(const std::vector<BatchEntry>& entries);
 std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::string& tool_version,
                              const std::vector<ComparisonKey>* keys = nullptr);
+// What a row shows beyond its run's status (issue 45): "inverted",
+// "intersecting", "input warning", comma-separated; empty: none.
+std::string batch_findings(const BatchEntry& entry);
+// A row's status in words, the same on index.html and summary.md: "✗ failed",
+// "✗ gate failed", "skipped", "ok", or "⚠ " + batch_findings (an "ok" run of a
+// broken mesh, or of a mesh read with warnings, is not "ok").
+std::string batch_status_text(const BatchEntry& entry);
+// summary.md: the status column is batch_status_text; every input warning is
+// listed under "Problems" with the mesh's path.
 std::string batch_summary_markdown(const std::vector<BatchEntry>& entries);
 
 // Writes index.json, index.html and summary.md into `dir`, and with method

@@ -89,7 +89,7 @@ const std::vector<PanelSpec>& index_panels() {
   static const std::vector<PanelSpec> panels{
       {"panel-a", "A main", "A · Overview and main view: vertex quality, glyphs, clusters and overlaps",
        "First the overview: the boundary coloured by vertex quality, a ring around the inverted hexes (dashed when "
-       "they are inside or out of sight). Then sphere glyphs sit on bad vertices (the lower the quality, the larger), merged where they overlap; the worst "
+       "they are inside the volume or on the far side, and then also drawn cut out in a corner inset). Then sphere glyphs sit on bad vertices (the lower the quality, the larger), merged where they overlap; the worst "
        "clusters each have a colour, all others are grey; arrows point at overlapping elements.",
        'A'},
       {"panel-s", "S structure", "S · Structure: singularity graph and size gradation",
@@ -233,6 +233,7 @@ data figure(const ViewEntry& v, std::size_t i, const PanelIndex& index) {
   d.set("file", file);
   d.set("alt", v.title);
   d.set("is_chart", file.ends_with(".svg"));
+  d.set("is_overview", v.id == "overview");  // fitted above the fold (style.css figure.overview)
   data links{data::type::list};
   std::string id = "view-" + stem_of(file), caption = v.title;
   if (v.id == "clusters" && l.cluster != kNoIndex) {
@@ -452,6 +453,9 @@ void set_panels(data& page, const ReportModel& model, const PanelIndex& index) {
     panel.set("nav", spec.nav);
     panel.set("title", spec.title);
     panel.set("intro", spec.intro);
+    // Panel A's intro under its figures, so that the overview starts right
+    // under the heading and fits the first screen (issue 45e).
+    panel.set("intro_after", spec.letter == 'A');
     panel.set("figures", figures);
     panel.set("has_viewer", spec.letter == 'A' && model.has_viewer);
     panels.push_back(panel);

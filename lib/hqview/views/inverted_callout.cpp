@@ -174,6 +174,7 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
   for (std::size_t i = 0; i < cells.size(); ++i) {
     InvertedCallout& g = groups[static_cast<std::size_t>(cell_group[i])];
     ++g.num_cells;
+    g.cells.push_back(cells[i]);
     g.x += centres[i].x;
     g.y += centres[i].y;
   }
@@ -225,9 +226,10 @@ std::string inverted_callout_label(const InvertedCallout& c, const std::string& 
   std::string label = std::to_string(c.num_cells) + " inverted";
   if (!noun.empty()) label += " " + noun + (c.num_cells == 1 ? "" : noun == "hex" ? "es" : "s");
   if (!c.on_boundary) label += ", inside";
-  else if (c.visible_pixels == 0) label += ", hidden";
+  else if (c.visible_pixels == 0) label += ", far side";
   else if (static_cast<double>(c.visible_pixels) < kSmallInvertedFraction * view_area) label += " (small)";
   if (c.num_more_cells > 0) label += "; +" + std::to_string(c.num_more_cells) + " more";
+  if (!c.inset.empty()) label += ": see inset " + c.inset;
   return label;
 }
 
@@ -249,9 +251,10 @@ void draw_marker_ring(Image& image, double cx, double cy, double radius, double 
 }
 
 void draw_inverted_callouts(Image& figure, const PixelRect& view, std::span<const InvertedCallout> callouts,
-                            const std::string& noun, double thickness, int text_size, const AnnotationStyle& style) {
+                            const std::string& noun, double thickness, int text_size, const AnnotationStyle& style,
+                            std::span<const PixelRect> taken, bool draw_rings) {
   for (const InvertedCallout& c : callouts)
-    draw_marker_ring(figure, c.x, c.y, c.radius, thickness, !callout_in_sight(c), kCalloutColor);
+    if (draw_rings) draw_marker_ring(figure, c.x, c.y, c.radius, thickness, !callout_in_sight(c), kCalloutColor);
   if (text_size <= 0) return;
   const double area = static_cast<double>(view.width) * view.height;
   const Rgba8 line{70, 70, 70, 255};  // the labels' leaders and frames: not the ring's colour
@@ -264,13 +267,15 @@ void draw_inverted_callouts(Image& figure, const PixelRect& view, std::span<cons
     const PixelRect extent = text_extent(texts.back(), text_size, style);
     const ScreenDisc disc{c.x, c.y, c.radius + thickness, static_cast<std::int64_t>(i)};
     rings.push_back(disc);
-    requests.push_back({disc, extent.width + 8, text_size + 8});
+    LabelRequest request{disc, extent.width + 8, text_size + 8};
+    request.always_leader = true;  // a label beside two rings names one of them
+    requests.push_back(request);
   }
   LabelLayoutOptions layout;
   layout.bounds = {view.x + 2, view.y + 2, view.width - 4, view.height - 4};
-  layout.gap = 6.0;
+  layout.gap = std::max(8.0, 0.6 * text_size);  // a leader long enough to see
   layout.ring_step = std::max(8.0, 0.8 * text_size);
-  const std::vector<std::optional<PlacedLabel>> placed = place_labels(requests, rings, {}, layout);
+  const std::vector<std::optional<PlacedLabel>> placed = place_labels(requests, rings, taken, layout);
   for (std::size_t i = 0; i < placed.size(); ++i) {
     if (!placed[i]) continue;
     const PlacedLabel& p = *placed[i];

@@ -39,6 +39,8 @@ struct InvertedCallout {
   long visible_pixels = 0;    // view pixels where the overview paints their inverted corners, depth-tested
   bool on_boundary = false;   // some corner of theirs on the boundary is inverted (vertex quality < 0)
   int num_more_cells = 0;     // inverted cells of groups left without a ring (the last callout only)
+  std::vector<Index> cells;   // the group's inverted cells (volume cell ids, in the order given)
+  std::string inset;          // the letter of the overview's inset that draws them (inverted_inset.h); empty: none
 };
 
 // Groups the inverted cells (ids over all volume cells, mesh/cell_faces.h) by
@@ -60,19 +62,24 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
 
 // "14 inverted hexes" (noun: "hex" or "cell", made plural but for 1; empty:
 // "14 inverted"), then ", inside" (no
-// inverted corner on the boundary), ", hidden" (on the boundary, none in
+// inverted corner on the boundary), ", far side" (on the boundary, none in
 // sight) or " (small)" (fewer pixels than kSmallInvertedFraction of
-// view_area); then "; +N more" for the cells without a ring.
+// view_area); then "; +N more" for the cells without a ring; then
+// ": see inset A" when an inset draws them.
 std::string inverted_callout_label(const InvertedCallout& callout, const std::string& noun, double view_area);
 // Whether the ring is drawn solid: some of the group's inverted colour is in sight.
 inline bool callout_in_sight(const InvertedCallout& c) { return c.visible_pixels > 0; }
 
 // Draws each callout's ring (kCalloutColor core of `thickness` pixels on a
 // white halo; dashed when not in sight) and, with labels (text_size > 0),
-// its label on a pale box placed beside the ring inside view
-// (label_layout.h; a leader when it has to move away).
+// its label on a pale box placed outside the ring inside view, off the
+// `taken` rectangles (the insets), always with a leader from the ring to
+// the box (label_layout.h), so that no label sits between two rings
+// unattached. draw_rings false: the labels only (the overview draws its
+// rings before its insets, the labels after).
 void draw_inverted_callouts(Image& figure, const PixelRect& view, std::span<const InvertedCallout> callouts,
-                            const std::string& noun, double thickness, int text_size, const AnnotationStyle& style);
+                            const std::string& noun, double thickness, int text_size, const AnnotationStyle& style,
+                            std::span<const PixelRect> taken = {}, bool draw_rings = true);
 
 // A ring: an annulus of `color` (core thickness / 2 either side of radius)
 // on a white halo (as wide again), solid or dashed (every other 30 degrees).

@@ -11,6 +11,7 @@
 #include "hqview/render/annotate.h"
 #include "hqview/render/upright.h"
 #include "hqview/views/inverted_callout.h"
+#include "hqview/views/inverted_inset.h"
 
 namespace hq {
 namespace {
@@ -283,35 +284,75 @@ Image render_figure(Renderer& renderer, const Scene& scene, const Camera& camera
   return figure;
 }
 
-Image render_quality_overview(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
-                              const OverviewOptions& options, Renderer& renderer) {
+OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topology,
+                                    const std::vector<double>& vertex_quality, const OverviewOptions& options) {
   if (options.width <= 0 || options.height <= 0)
     throw RenderError("overview size must be positive, got " + std::to_string(options.width) + "x" +
                       std::to_string(options.height));
-  AnnotationStyle style = annotation_style_for(options.height);
-  style.background = options.background;
-  ColorBar bar = overview_color_bar(topology, vertex_quality);
-  if (!options.inverted_cells.empty()) bar.swatches.push_back({to_color(kCalloutColor), "ring: inverted " + options.cell_noun + (options.cell_noun == "hex" ? "es" : "s")});
-  const FigureLayout layout =
-      figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(bar, style), style);
+  OverviewFrame f;
+  f.style = annotation_style_for(options.height);
+  f.style.scale *= kOverviewTextScale;
+  f.style.background = options.background;
+  f.bar = overview_color_bar(topology, vertex_quality);
+  // Both ring entries size the legend; the figure keeps those it draws.
+  if (!options.inverted_cells.empty()) {
+    const std::string plural = options.cell_noun == "hex" ? "hexes" : options.cell_noun + "s";
+    f.bar.swatches.push_back({to_color(kCalloutColor), "solid ring: inverted " + plural + " in sight", SwatchShape::solid_ring});
+    f.bar.swatches.push_back(
+        {to_color(kCalloutColor), "dashed ring: inside or on the far side", SwatchShape::dashed_ring});
+  }
+  f.layout = figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(f.bar, f.style), f.style);
+  const double aspect = static_cast<double>(f.layout.view.width) / static_cast<double>(f.layout.view.height);
+  f.camera = fit_camera_to_points(boundary_points(mesh, topology), view_direction_of(options), aspect, {.up = options.up});
+  f.label_size = std::max(f.style.min_text_size, static_cast<int>(std::lround(20.0 * f.style.scale)));
+  return f;
+}
+
+Image render_quality_overview(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
+                              const OverviewOptions& options, Renderer& renderer) {
+  OverviewFrame f = quality_overview_frame(mesh, topology, vertex_quality, options);
+  const AnnotationStyle& style = f.style;
+  const FigureLayout& layout = f.layout;
+  // The rings' groups (id images only) and the insets' pictures first, so
+  // that the overview's own frame is the renderer's last (report.json
+  // views[].cameras).
+  const double min_radius = std::max(10.0, 26.0 * style.scale), thickness = std::max(2.0, 4.0 * style.scale);
+  const int text_size = f.label_size;
+  std::vector<InvertedCallout> callouts =
+      options.inverted_cells.empty()
+          ? std::vector<InvertedCallout>{}
+          : inverted_callouts(mesh, topology, options.inverted_cells, vertex_quality, f.camera, layout.view, min_radius,
+                              renderer);
+  // Out of sight: a cut-away inset draws the cells themselves (inverted_inset.h).
+  std::vector<InvertedInset> insets = plan_inverted_insets(mesh, callouts, layout.view, f.camera, text_size);
+  const std::vector<Image> pictures = render_inverted_insets(mesh, insets, renderer);
 
   Scene scene = build_quality_overview_scene(mesh, topology, vertex_quality, options);
-  const double aspect = static_cast<double>(layout.view.width) / static_cast<double>(layout.view.height);
-  const Camera camera =
-      fit_camera_to_points(boundary_points(mesh, topology), view_direction_of(options), aspect, {.up = options.up});
-  const double opacity = edge_opacity(scene, camera, layout.view.width, layout.view.height);
+  const double opacity = edge_opacity(scene, f.camera, layout.view.width, layout.view.height);
   for (LineSet& lines : scene.lines)
     for (Rgba8& c : lines.colors) c.a = static_cast<std::uint8_t>(std::lround(c.a * opacity));
 
-  Image figure = render_figure(renderer, scene, camera, options.width, options.height, layout, options.title, style);
-  draw_color_bar(figure, layout.legend, bar, style);
-  if (!options.inverted_cells.empty()) {
-    const double min_radius = std::max(10.0, 26.0 * style.scale), thickness = std::max(2.0, 4.0 * style.scale);
-    const std::vector<InvertedCallout> callouts = inverted_callouts(
-        mesh, topology, options.inverted_cells, vertex_quality, camera, layout.view, min_radius, renderer);
-    draw_inverted_callouts(figure, layout.view, callouts, options.cell_noun, thickness,
-                           std::max(style.min_text_size, static_cast<int>(std::lround(20.0 * style.scale))), style);
+  Image figure = render_figure(renderer, scene, f.camera, options.width, options.height, layout, options.title, style);
+  if (options.inverted_cells.empty()) {
+    draw_color_bar(figure, layout.legend, f.bar, style);
+    return figure;
   }
+  // The insets go where they cover least of the model, over the rings (a
+  // large ring may pass under one), then the labels around them.
+  place_inverted_insets(insets, callouts, figure, layout.view, style.background, style);
+  for (const InvertedCallout& c : callouts)
+    draw_marker_ring(figure, c.x, c.y, c.radius, thickness, !callout_in_sight(c), kCalloutColor);
+  draw_inverted_insets(figure, insets, pictures, callouts, options.cell_noun, text_size, style);
+  std::vector<PixelRect> taken;
+  for (const InvertedInset& inset : insets) taken.push_back(inset.rect);
+  draw_inverted_callouts(figure, layout.view, callouts, options.cell_noun, thickness, text_size, style, taken, false);
+  // The legend keeps the ring styles drawn.
+  const bool solid = std::any_of(callouts.begin(), callouts.end(), callout_in_sight);
+  const bool dashed = std::any_of(callouts.begin(), callouts.end(), [](const InvertedCallout& c) { return !callout_in_sight(c); });
+  std::erase_if(f.bar.swatches, [&](const ColorBarSwatch& s) {
+    return (s.shape == SwatchShape::solid_ring && !solid) || (s.shape == SwatchShape::dashed_ring && !dashed);
+  });
+  draw_color_bar(figure, layout.legend, f.bar, style);
   return figure;
 }
 

@@ -103,10 +103,29 @@ FigureFrame3d figure_frame_3d(const std::string& what, int width, int height, Rg
 Image render_figure(Renderer& renderer, const Scene& scene, const Camera& camera, int width, int height,
                     const FigureLayout& layout, const std::string& title, const AnnotationStyle& style);
 
+// The overview's frame (render_quality_overview's): its annotation style,
+// legend (overview_color_bar, and with inverted cells a "solid ring" and a
+// "dashed ring" entry: the figure keeps those it draws), layout and camera.
+// The overview's text (title, legend, ring labels, inset captions) is drawn
+// this much larger than annotation_style_for's: the page fits the overview
+// on the first screen, at about half its size (style.css figure.overview),
+// and its legend must stay at least 11 px there (issue 45e).
+inline constexpr double kOverviewTextScale = 1.3;
+struct OverviewFrame {
+  AnnotationStyle style;
+  ColorBar bar;
+  FigureLayout layout;
+  Camera camera;
+  int label_size = 0;  // the rings' labels and the insets' captions (pixels)
+};
+OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topology,
+                                    const std::vector<double>& vertex_quality, const OverviewOptions& options);
+
 // The overview figure: options.width x options.height, the 3D view on the
 // left framing the boundary vertices tightly (fit_camera_to_points), the quality colour bar on the
 // right, the title on top; each group of options.inverted_cells ringed and
-// labelled (inverted_callout.h), the legend saying so. Boundary edges fade (down to 30% opacity) when
+// labelled (inverted_callout.h), those out of sight also drawn in a
+// cut-away inset (inverted_inset.h), the legend saying so. Boundary edges fade (down to 30% opacity) when
 // the median edge is shorter than 8 pixels on screen. Throws RenderError
 // from the renderer or when the font is missing, Error when vertex_quality
 // has the wrong size.
