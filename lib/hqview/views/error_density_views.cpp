@@ -281,18 +281,12 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   const ErrorDensityScale scale = error_density_scale(density);
   Figure f = begin_figure(mesh, topology, scale, view_direction, options);
   const ErrorDensityWorst worst = error_density_worst(topology, density);
-  // The veil: only the boundary faces that face away from the camera (the
-  // far side, behind the cells), so the cells are never blended with it and
-  // show their legend colours exactly; the far side still fills the outline.
-  TriangleSet veil;  // lit: the far side's shading gives the shape
-  for (Index face : topology.boundary_faces) {
-    const auto& q = topology.faces[static_cast<std::size_t>(face)];
-    Vec3 n = cross(point(mesh, q[2]) - point(mesh, q[0]), point(mesh, q[3]) - point(mesh, q[1]));
-    const Vec3 centroid = 0.25 * (point(mesh, q[0]) + point(mesh, q[1]) + point(mesh, q[2]) + point(mesh, q[3]));
-    if (dot(n, centroid - hex_center(mesh, face_hex(topology, face))) < 0) n = -1.0 * n;  // outward
-    const Vec3 to_eye = f.camera.is_perspective ? f.camera.eye - centroid : f.camera.eye - f.camera.target;
-    if (dot(n, to_eye) < 0) add_quad(veil, mesh, f.scene.origin, q, kVeilColor);
-  }
+  // The veil first (blended over the background only), then the cells and
+  // their edges in the overlay layer over it: no veil is ever blended over a
+  // cell, so every cell shows its legend colour exactly, also behind a fold.
+  TriangleSet veil;  // lit: its shading gives the shape
+  for (Index face : topology.boundary_faces)
+    add_quad(veil, mesh, f.scene.origin, topology.faces[static_cast<std::size_t>(face)], kVeilColor);
   f.scene.translucent.push_back(std::move(veil));
   TriangleSet cells;
   cells.is_lit = false;
@@ -314,10 +308,10 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
         set.colors.push_back(low ? kLowCellEdgeColor : kCellEdgeColor);
       }
   }
-  f.scene.triangles.push_back(std::move(cells));
+  f.scene.overlay.push_back(std::move(cells));
+  edges.in_overlay = low_edges.in_overlay = true;
   f.scene.lines.push_back(std::move(edges));
   f.scene.lines.push_back(std::move(low_edges));
-  add_worst_overlay(f, mesh, worst, scale);
   f.bar.swatches.push_back({Color{0.08, 0.08, 0.08}, "ring: max (dashed: interior)"});
   f.bar.swatches.push_back({to_color(Rgba8{160, 208, 202, 255}), "boundary (veil)"});
   f.bar.swatches.push_back(
