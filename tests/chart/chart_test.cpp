@@ -11,6 +11,7 @@
 #include <string>
 
 #include "hqview/image/colormap.h"
+#include "support/image_probe.h"
 
 namespace hq {
 namespace {
@@ -264,30 +265,82 @@ TEST(MethodDistribution, OneDotPerValueAtItsHeightAndAMedianBar) {
   EXPECT_TRUE(has_text("a") && has_text("b") && has_text("2 meshes") && has_text("4 meshes"));
 }
 
-// One bar per metric with a rho, sorted by |rho| from the top, from the zero
-// line to rho on [-1, 1], blue for negative, orange for positive; a NaN rho
-// is named under the chart, not drawn.
-TEST(MetricCorrelation, BarsSortedByAbsoluteRhoFromTheZeroLine) {
-  const std::vector<std::string> metrics = {"a", "b", "c", "d"};
-  const std::vector<double> rho = {0.2, -0.8, std::nan(""), 0.5};
-  const Chart chart = metric_correlation_chart(metrics, rho, {900, 300, "t"});
-  ASSERT_EQ(chart.rects.size(), 9u + 3u + 2u);  // nine grid lines (under the bars), three bars, two key swatches
+// Bars coloured and sorted by agreement (-direction * rho), not by the sign
+// of rho: from the zero line to rho on [-1, 1]; a size with no direction
+// grey, below a separator, tagged; the interval as a whisker and in the
+// numbers column; a NaN rho named under the chart, not drawn.
+TEST(MetricCorrelation, BarsColouredAndSortedByAgreement) {
+  const double nan = std::nan("");
+  // condition (lower is better) rho +0.5: agrees 0.5; scaled_jacobian
+  // (higher is better) rho -0.3: agrees 0.3; edge_ratio (lower) rho -0.6:
+  // disagrees -0.6; volume (size) rho -0.8; c constant.
+  const std::vector<CorrelationBar> bars = {
+      {"scaled_jacobian", -0.3, -0.4, -0.2, nan, 0.3, false}, {"volume", -0.8, -0.85, -0.75, nan, nan, true},
+      {"edge_ratio", -0.6, -0.7, -0.5, nan, -0.6, false},     {"c", nan, nan, nan, nan, nan, false},
+      {"condition", 0.5, 0.4, 0.6, nan, 0.5, false}};
+  const Chart chart = metric_correlation_chart(bars, {900, 300, "t"}, 100);
   const ChartRect& plot = chart.plot;
   const auto x_of = [&](double v) { return plot.x + plot.width * (v + 1.0) / 2.0; };
-  const double expected[] = {-0.8, 0.5, 0.2};  // b, d, a
-  for (int k = 0; k < 3; ++k) {
-    const ChartRect& bar = chart.rects[static_cast<std::size_t>(9 + k)];
-    EXPECT_TRUE(inside(plot, bar));
-    EXPECT_NEAR(std::min(bar.x, bar.x + bar.width), std::min(x_of(0.0), x_of(expected[k])), 1e-9);
-    EXPECT_NEAR(std::max(bar.x, bar.x + bar.width), std::max(x_of(0.0), x_of(expected[k])), 1e-9);
-    EXPECT_EQ(bar.fill.b > bar.fill.r, expected[k] < 0) << k;
+  std::vector<ChartRect> drawn;  // the bars: inside the plot, taller than a grid line is wide
+  for (const ChartRect& r : chart.rects)
+    if (inside(plot, r) && r.width > 1.0 && r.height < 20.0) drawn.push_back(r);
+  ASSERT_EQ(drawn.size(), 4u);
+  const double expected[] = {0.5, -0.3, -0.6, -0.8};  // condition, scaled_jacobian, edge_ratio, volume
+  const Rgba8 colour[] = {kAgreesColor, kAgreesColor, kDisagreesColor, kNoDirectionColor};
+  for (int k = 0; k < 4; ++k) {
+    const ChartRect& bar = drawn[static_cast<std::size_t>(k)];
+    EXPECT_NEAR(std::min(bar.x, bar.x + bar.width), std::min(x_of(0.0), x_of(expected[k])), 1e-9) << k;
+    EXPECT_NEAR(std::max(bar.x, bar.x + bar.width), std::max(x_of(0.0), x_of(expected[k])), 1e-9) << k;
+    EXPECT_EQ(bar.fill, colour[k]) << k;
     if (k > 0) {
-      EXPECT_GT(bar.y, chart.rects[static_cast<std::size_t>(9 + k - 1)].y);
+      EXPECT_GT(bar.y, drawn[static_cast<std::size_t>(k - 1)].y);
     }
   }
-  EXPECT_TRUE(has_text(chart, "-0.800") && has_text(chart, "0.500") && has_text(chart, "0.200"));
+  // A separator slot between the directed rows and the size: 2 rows apart.
+  EXPECT_NEAR(drawn[3].y - drawn[2].y, 40.0, 1e-9);
+  EXPECT_TRUE(has_text(chart, "volume (size)") && has_text(chart, "condition") && has_text(chart, "no better direction:"));
+  EXPECT_TRUE(has_text(chart, "0.500 [0.40, 0.60]") && has_text(chart, "-0.800 [-0.85, -0.75]"));
   EXPECT_TRUE(has_text(chart, "no \u03c1 (constant on this mesh): c"));
-  EXPECT_FALSE(has_text(chart, "0.000"));
+  EXPECT_TRUE(has_text(chart, "Spearman \u03c1 over the 100 hexes, metric vs error density (3D legend)"));
+  // The whisker of condition's interval: a horizontal line from 0.4 to 0.6.
+  bool whisker = false;
+  for (const ChartPolyline& l : chart.lines)
+    whisker = whisker || (l.points.size() == 2 && std::abs(l.points[0].x - x_of(0.4)) < 1e-9 &&
+                          std::abs(l.points[1].x - x_of(0.6)) < 1e-9 && l.points[0].y == l.points[1].y);
+  EXPECT_TRUE(whisker);
+}
+
+// Read on the drawn image: each bar's pixels are its legend swatch's pixels
+// (the key names the colour the eye sees), and the two key colours differ.
+TEST(MetricCorrelation, BarColourIsItsLegendSwatchOnTheImage) {
+  const double nan = std::nan("");
+  const std::vector<CorrelationBar> bars = {{"skew", 0.7, 0.6, 0.8, nan, 0.7, false},
+                                            {"shape", 0.6, 0.5, 0.7, nan, -0.6, false},
+                                            {"dimension", 0.5, 0.4, 0.6, nan, nan, true}};
+  const Chart chart = metric_correlation_chart(bars, {900, 300, "t"});
+  const Image image = chart_image(chart);
+  ASSERT_EQ(image.width, chart.width);
+  const auto swatch_of = [&](const std::string& prefix) {
+    for (const ChartText& t : chart.texts)
+      if (t.text.starts_with(prefix))
+        return test::pixel_at(image, static_cast<int>(t.at.x) - 13, static_cast<int>(t.at.y) - 4);
+    ADD_FAILURE() << "no key " << prefix;
+    return Rgba8{};
+  };
+  const Rgba8 agrees = swatch_of("agrees:"), disagrees = swatch_of("disagrees:"), size = swatch_of("no better direction (a size)");
+  EXPECT_NE(agrees, disagrees);
+  EXPECT_NE(agrees, size);
+  std::vector<ChartRect> drawn;
+  for (const ChartRect& r : chart.rects)
+    if (inside(chart.plot, r) && r.width > 1.0 && r.height < 20.0) drawn.push_back(r);
+  ASSERT_EQ(drawn.size(), 3u);
+  const Rgba8 expected[] = {agrees, disagrees, size};  // skew, shape (disagrees), dimension
+  for (int k = 0; k < 3; ++k) {
+    const ChartRect& bar = drawn[static_cast<std::size_t>(k)];
+    // Between the bar's top and the whisker (at the row's middle), away from the caps.
+    const Rgba8 pixel = test::pixel_at(image, static_cast<int>(bar.x + 0.5 * bar.width), static_cast<int>(bar.y + 2.5));
+    EXPECT_EQ(pixel, expected[k]) << k;
+  }
 }
 
 // Every hex with 0 < SJ <= 1 and a positive density lands in one cell of

@@ -48,7 +48,8 @@ def report_rule(path, value):
         return {path + ".<key>"}
     if path.startswith("structure.singular_edges_by_valence.") and isinstance(value, dict):
         return {path + ".<valence>"}
-    if path in ("fem.poisson.correlation", "fem.poisson.correlation_given_size") and isinstance(value, dict):
+    if path in ("fem.poisson.correlation", "fem.poisson.correlation_given_size",
+                "fem.poisson.correlation_interval") and isinstance(value, dict):
         return {path + ".<metric>"} if value else set()
     if path == "fem.poisson.solutions" and isinstance(value, dict):
         return {f"{path}.<solution>.{k}" for v in value.values() for k in v}

@@ -236,6 +236,17 @@ TEST(FemCli, BatchCorrelatesErrorsWithMetricsAcrossMeshes) {
     EXPECT_EQ(m["headline"]["fem.element.num_invalid"], 0);
     EXPECT_EQ(m["metrics"]["scaled_jacobian"]["min"], report["quality"]["metrics"]["scaled_jacobian"]["min"]);
     EXPECT_EQ(m["metrics"]["fem_kappa"]["mean"], report["fem"]["element"]["kappa"]["mean"]);
+    EXPECT_NEAR(m["metrics"]["h_over_l"]["mean"].get<double>(),
+                std::cbrt(report["quality"]["metrics"]["volume"]["mean"].get<double>()) /
+                    report["fem"]["poisson"]["normalization"]["diagonal"].get<double>(),
+                1e-15);
+    // Each hex's rho has its 95 % interval around it.
+    const json& sj_rho = report["fem"]["poisson"]["correlation"]["scaled_jacobian"];
+    const json& sj_interval = report["fem"]["poisson"]["correlation_interval"]["scaled_jacobian"];
+    if (sj_rho.is_number()) {
+      EXPECT_LT(sj_interval[0].get<double>(), sj_rho.get<double>());
+      EXPECT_GT(sj_interval[1].get<double>(), sj_rho.get<double>());
+    }
     l2.push_back(report["fem"]["poisson"]["mean"]["l2_error"].get<double>());
     h1.push_back(report["fem"]["poisson"]["mean"]["h1_error"].get<double>());
     sj_min.push_back(report["quality"]["metrics"]["scaled_jacobian"]["min"].get<double>());
@@ -249,6 +260,10 @@ TEST(FemCli, BatchCorrelatesErrorsWithMetricsAcrossMeshes) {
   const json& c = index["fem_correlation"];
   EXPECT_EQ(c["num_meshes"], 6);
   EXPECT_EQ(c["min_meshes"], 5);
+  // Six distinct boxes: no duplicate; the smallest p 2/6!, the critical |rho| 31/35.
+  EXPECT_TRUE(c["duplicates"].empty());
+  EXPECT_NEAR(c["min_p"].get<double>(), 2.0 / 720.0, 1e-15);
+  EXPECT_NEAR(c["critical_rho"].get<double>(), 31.0 / 35.0, 1e-12);
   bool seen_min = false, seen_mean = false, seen_edge_ratio = false, seen_baseline = false;
   for (const json& row : c["metrics"]) {
     // The worst of a lower-is-better metric is its max (the first version
@@ -298,6 +313,9 @@ TEST(FemCli, BatchCorrelatesErrorsWithMetricsAcrossMeshes) {
   }
   const std::string html = read_text(dir / "sim" / "index.html");
   EXPECT_NE(html.find("Which metrics rank these meshes by their simulation error"), std::string::npos);
+  // Said plainly: about 60 rows, 6 meshes, no single row can reach q < 0.05.
+  EXPECT_NE(html.find("no single metric can reach q &lt; 0.05, whatever the data"), std::string::npos);
+  EXPECT_NE(html.find("<table class=\"sortable\" id=\"fem-meshes\">"), std::string::npos);
   EXPECT_NE(html.find("<th>FEM H1 error (rel., semi-norm)</th>"), std::string::npos);
   EXPECT_NE(html.find("FEM cond. (Jacobi)"), std::string::npos);  // a --compare-keys table
   EXPECT_NE(read_text(dir / "sim" / "comparison.csv").find(",fem.poisson.mean.h1_error,"), std::string::npos);

@@ -167,5 +167,55 @@ TEST(MetricDirection, FollowsTheVerdictManual) {
     EXPECT_EQ(metric_direction(m), 0) << m;
 }
 
+// The metric-direction normalisation by hand: agreement = -direction * rho.
+// On six hexes, a higher-is-better metric (scaled Jacobian) whose values fall
+// as the error density rises agrees; a lower-is-better one (edge ratio) with
+// the same values disagrees; a size has none. rho by hand: ranks of the
+// density 1..6 against (6, 5, 4, 3, 1, 2): d = (-5, -3, -1, 1, 4, 4),
+// sum d^2 = 68, rho = 1 - 6 * 68 / (6 * 35) = -33/35.
+TEST(MetricAgreement, NormalisesTheSignByTheMetricsDirection) {
+  const std::vector<double> density = {0.01, 0.02, 0.03, 0.05, 0.08, 0.13};
+  const std::vector<double> metric = {0.9, 0.8, 0.7, 0.6, 0.2, 0.3};
+  const double rho = spearman_correlation(density, metric).rho;
+  EXPECT_NEAR(rho, -33.0 / 35.0, 1e-15);
+  EXPECT_NEAR(metric_agreement(metric_direction("scaled_jacobian"), rho), 33.0 / 35.0, 1e-15);  // agrees
+  EXPECT_NEAR(metric_agreement(metric_direction("edge_ratio"), rho), -33.0 / 35.0, 1e-15);      // disagrees
+  EXPECT_TRUE(std::isnan(metric_agreement(metric_direction("volume"), rho)));
+  EXPECT_TRUE(std::isnan(metric_agreement(+1, std::nan(""))));
+  EXPECT_EQ(metric_agreement(-1, 0.25), 0.25);
+  // Size metrics: no direction, or Verdict's relative-size ones.
+  for (const char* m : {"volume", "dimension", "jacobian", "fem_lambda_max", "fem_det_j_min", "relative_size_squared",
+                        "shape_and_size", "shear_and_size"})
+    EXPECT_TRUE(metric_is_size(m)) << m;
+  for (const char* m : {"scaled_jacobian", "shape", "shear", "edge_ratio", "fem_kappa", "condition"})
+    EXPECT_FALSE(metric_is_size(m)) << m;
+}
+
+// The interval by hand: rho = 29/35 over 6 pairs (x = 1..6 against
+// 2, 1, 4, 3, 6, 5: sum d^2 = 6), z = atanh(29/35) = ln(32/3) / 2,
+// se = sqrt((1 + (29/35)^2 / 2) / 3); and rho = 1/2 over 103 pairs, z = ln 3 / 2,
+// se = sqrt(1.125 / 100). The numbers from Python's math module.
+TEST(SpearmanInterval, FisherZWithBonettWrightError) {
+  const std::vector<double> x = {1, 2, 3, 4, 5, 6}, y = {2, 1, 4, 3, 6, 5};
+  const RankCorrelation r = spearman_correlation(x, y);
+  EXPECT_NEAR(r.rho, 29.0 / 35.0, 1e-15);
+  RankCorrelationInterval i = spearman_interval(r.rho, r.count);
+  const double z = 0.5 * std::log(32.0 / 3.0), se = std::sqrt((1.0 + 0.5 * (29.0 / 35.0) * (29.0 / 35.0)) / 3.0);
+  EXPECT_NEAR(i.lo, std::tanh(z - 1.959963984540054 * se), 1e-14);
+  EXPECT_NEAR(i.hi, std::tanh(z + 1.959963984540054 * se), 1e-14);
+  EXPECT_NEAR(i.lo, -0.12724489572415673, 1e-12);  // crosses 0: six pairs say little
+  EXPECT_NEAR(i.hi, 0.9864823442496332, 1e-12);
+  i = spearman_interval(0.5, 103);
+  EXPECT_NEAR(i.lo, 0.3287450308758815, 1e-12);
+  EXPECT_NEAR(i.hi, 0.6394198469997987, 1e-12);
+  // Symmetric in the sign; undefined below 4 pairs; a perfect rho has no width.
+  const RankCorrelationInterval m = spearman_interval(-0.5, 103);
+  EXPECT_NEAR(m.lo, -i.hi, 1e-15);
+  EXPECT_NEAR(m.hi, -i.lo, 1e-15);
+  EXPECT_TRUE(std::isnan(spearman_interval(0.5, 3).lo));
+  EXPECT_TRUE(std::isnan(spearman_interval(std::nan(""), 50).hi));
+  EXPECT_EQ(spearman_interval(1.0, 10).lo, 1.0);
+}
+
 }  // namespace
 }  // namespace hq

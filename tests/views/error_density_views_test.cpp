@@ -173,7 +173,50 @@ TEST(ErrorDensityView, TheBadRegionCarriesTheHighEndOfTheMap) {
           std::hypot(x - cx, y - cy) > 8)
         ++ring;
   EXPECT_GT(ring, 60) << "no ring about hex " << worst.hex;
-  (void)scale;
+
+  // The cells figure: each drawn cell shows a legend colour exactly (the
+  // boundary veil lies only behind the cells, never blended over them; the
+  // first version tinted them off the map). At each cell's centre pixel the
+  // colour is that of a drawn cell (itself or one in front), to 3 units.
+  options.densest_fraction = 0.05;
+  Camera cells_camera;
+  PixelRect cells_view;
+  const std::vector<double> good(mesh.hexes.size(), 1.0);  // scaled Jacobian: thin edges only
+  const Image cells_image = render_error_density_cells(mesh, topology, density, good, direction,
+                                                       options, *renderer, &cells_camera, &cells_view);
+  const Mat4 cells_ndc =
+      projection_matrix(cells_camera, static_cast<double>(cells_view.width) / cells_view.height) *
+      view_matrix(cells_camera);
+  const std::vector<Index> cells = error_density_cells(density, options);
+  ASSERT_GE(cells.size(), 40u);
+  std::vector<Rgba8> legend;
+  for (Index h : cells) legend.push_back(to_rgba8(error_density_color(density[static_cast<std::size_t>(h)], scale)));
+  // A 5x5 window about each centre (an edge line may cross the centre);
+  // centres under the max's white label box are left out (at most a fifth).
+  std::size_t on_legend = 0, under_label = 0;
+  for (Index h : cells) {
+    Vec3 c;
+    for (Index v : mesh.hexes[static_cast<std::size_t>(h)]) c = c + mesh.points[static_cast<std::size_t>(v)] / 8.0;
+    const Vec3 p = transform_point(cells_ndc, c);
+    const int px = cells_view.x + static_cast<int>(std::lround((p.x + 1) / 2 * cells_view.width));
+    const int py = cells_view.y + static_cast<int>(std::lround((1 - p.y) / 2 * cells_view.height));
+    const Rgba8 centre = test::pixel_at(cells_image, px, py);
+    if (centre.r >= 250 && centre.g >= 250 && centre.b >= 250) {
+      ++under_label;
+      continue;
+    }
+    bool ok = false;
+    for (int dy = -2; dy <= 2 && !ok; ++dy)
+      for (int dx = -2; dx <= 2 && !ok; ++dx) {
+        const Rgba8 pixel = test::pixel_at(cells_image, px + dx, py + dy);
+        ok = std::any_of(legend.begin(), legend.end(), [&](const Rgba8& e) {
+          return std::abs(pixel.r - e.r) <= 3 && std::abs(pixel.g - e.g) <= 3 && std::abs(pixel.b - e.b) <= 3;
+        });
+      }
+    on_legend += ok;
+  }
+  EXPECT_LE(under_label, cells.size() / 5);
+  EXPECT_GE(on_legend, (cells.size() - under_label) * 9 / 10) << on_legend << " of " << cells.size() - under_label;
 }
 
 }  // namespace

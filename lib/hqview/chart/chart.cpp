@@ -515,8 +515,6 @@ Chart boundary_area_chart(std::span<const double> vertex_error, std::span<const 
 
 namespace {
 
-constexpr Rgba8 kNegativeRhoColor{49, 104, 170, 255};  // higher value, lower error
-constexpr Rgba8 kPositiveRhoColor{205, 96, 40, 255};   // higher value, higher error
 constexpr Rgba8 kPartialRhoColor{20, 20, 24, 255};     // the partial rho given the size
 
 // "0.01", "1", "1e-05": a decade's label.
@@ -527,79 +525,134 @@ std::string decade_label(int k) {
 
 }  // namespace
 
-Chart metric_correlation_chart(std::span<const std::string> metrics, std::span<const double> rho,
-                               const ChartOptions& options, std::span<const double> rho_given_size,
-                               std::span<const char> is_size, std::int64_t count) {
-  std::vector<std::size_t> order, constant;
-  for (std::size_t i = 0; i < metrics.size() && i < rho.size(); ++i)
-    (std::isfinite(rho[i]) ? order : constant).push_back(i);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return std::abs(rho[a]) > std::abs(rho[b]); });
+Chart metric_correlation_chart(std::span<const CorrelationBar> bars, const ChartOptions& options,
+                               std::int64_t count) {
+  std::vector<std::size_t> directed, undirected, constant;
+  for (std::size_t i = 0; i < bars.size(); ++i)
+    (!std::isfinite(bars[i].rho) ? constant : std::isfinite(bars[i].agreement) ? directed : undirected).push_back(i);
+  std::stable_sort(directed.begin(), directed.end(),
+                   [&](std::size_t a, std::size_t b) { return bars[a].agreement > bars[b].agreement; });
+  std::stable_sort(undirected.begin(), undirected.end(),
+                   [&](std::size_t a, std::size_t b) { return std::abs(bars[a].rho) > std::abs(bars[b].rho); });
+  // Row slots: the directed rows, a separator slot (when both groups exist), the undirected rows.
+  const bool separator = !directed.empty() && !undirected.empty();
+  const std::size_t slots = directed.size() + undirected.size() + (separator ? 1 : 0);
   ChartOptions sized = options;
   const double row = 20.0;
-  sized.height = std::max(options.height, static_cast<int>(120 + row * static_cast<double>(order.size())));
+  sized.height = std::max(options.height, static_cast<int>(120 + row * static_cast<double>(slots)));
   Chart chart = begin_chart(sized);
-  // Metric names left of the plot: a wider left margin.
+  // Metric names left of the plot, the numbers' column right of it.
   ChartRect r = chart.plot;
-  const double names = 190.0;
+  const double names = 190.0, numbers = 200.0;
   r.x += names - 74.0;
-  r.width -= names - 74.0;
-  r.height = row * static_cast<double>(std::max<std::size_t>(1, order.size()));
+  r.width -= names - 74.0 + numbers;
+  r.height = row * static_cast<double>(std::max<std::size_t>(1, slots));
   chart.plot = r;
+  const double column = r.x + r.width + 12.0, partial_column = r.x + r.width + numbers;
   const auto x_of = [&](double v) { return r.x + r.width * (std::clamp(v, -1.0, 1.0) + 1.0) / 2.0; };
-  // The grid as 1-pixel rectangles, drawn before (under) the bars.
   for (double t = -1.0; t <= 1.0001; t += 0.25) chart.rects.push_back({x_of(t) - 0.5, r.y, 1.0, r.height, kGridColor});
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    const std::size_t i = order[k];
-    const double y = r.y + row * static_cast<double>(k);
-    const double x0 = x_of(0.0), x1 = x_of(rho[i]);
-    chart.rects.push_back({std::min(x0, x1), y + 3.0, std::max(1.0, std::abs(x1 - x0)), row - 6.0,
-                           rho[i] < 0 ? kNegativeRhoColor : kPositiveRhoColor});
-    const bool size = i < is_size.size() && is_size[i];
-    chart.texts.push_back({{r.x - 8.0, y + row - 6.0}, metrics[i] + (size ? " (size)" : ""), kTickSize,
-                           size ? kAxisColor : Rgba8{38, 38, 38, 255}, ChartAnchor::right, false});
-    const bool left = rho[i] < 0;
-    chart.texts.push_back({{x1 + (left ? -4.0 : 4.0), y + row - 6.0}, format_value(rho[i]), kTickSize - 1.0,
-                           kAxisColor, left ? ChartAnchor::right : ChartAnchor::left, false});
+  const auto two = [](double v) {
+    char text[16];
+    std::snprintf(text, sizeof text, "%.2f", v);
+    return std::string(text);
+  };
+  chart.texts.push_back({{column, r.y - 6.0}, "\u03c1 [95% interval]", kTickSize - 1.0, kAxisColor, ChartAnchor::left,
+                         false});
+  chart.texts.push_back({{partial_column, r.y - 6.0}, "partial", kTickSize - 1.0, kAxisColor, ChartAnchor::right,
+                         false});
+  std::vector<std::pair<std::size_t, double>> placed;  // (bar, row top)
+  for (std::size_t k = 0; k < directed.size(); ++k) placed.push_back({directed[k], r.y + row * static_cast<double>(k)});
+  const double undirected_top = r.y + row * static_cast<double>(directed.size() + (separator ? 1 : 0));
+  for (std::size_t k = 0; k < undirected.size(); ++k)
+    placed.push_back({undirected[k], undirected_top + row * static_cast<double>(k)});
+  bool any_partial = false, any_interval = false;
+  std::size_t disagree = 0;
+  for (const auto& [i, y] : placed) {
+    const CorrelationBar& bar = bars[i];
+    const bool has_direction = std::isfinite(bar.agreement);
+    disagree += has_direction && bar.agreement < 0;
+    const Rgba8 fill = !has_direction ? kNoDirectionColor : bar.agreement >= 0 ? kAgreesColor : kDisagreesColor;
+    const double x0 = x_of(0.0), x1 = x_of(bar.rho);
+    chart.rects.push_back({std::min(x0, x1), y + 4.0, std::max(1.0, std::abs(x1 - x0)), row - 8.0, fill});
+    chart.texts.push_back({{r.x - 8.0, y + row - 6.0}, bar.metric + (bar.is_size ? " (size)" : ""), kTickSize,
+                           {38, 38, 38, 255}, ChartAnchor::right, false});
+    const bool interval = std::isfinite(bar.lo) && std::isfinite(bar.hi);
+    if (interval) {
+      any_interval = true;
+      const double ym = y + 0.5 * row, xl = x_of(bar.lo), xh = x_of(bar.hi);
+      chart.lines.push_back({{{xl, ym}, {xh, ym}}, kAxisColor, 1.5});
+      chart.lines.push_back({{{xl, ym - 4.0}, {xl, ym + 4.0}}, kAxisColor, 1.5});
+      chart.lines.push_back({{{xh, ym - 4.0}, {xh, ym + 4.0}}, kAxisColor, 1.5});
+    }
+    chart.texts.push_back({{column, y + row - 6.0},
+                           format_value(bar.rho) + (interval ? " [" + two(bar.lo) + ", " + two(bar.hi) + "]" : ""),
+                           kTickSize - 1.0, {38, 38, 38, 255}, ChartAnchor::left, false});
+    if (std::isfinite(bar.rho_given_size)) {
+      any_partial = true;
+      chart.rects.push_back({x_of(bar.rho_given_size) - 1.5, y + 1.0, 3.0, row - 2.0, kPartialRhoColor});
+      chart.texts.push_back({{partial_column, y + row - 6.0}, format_value(bar.rho_given_size), kTickSize - 1.0,
+                             {38, 38, 38, 255}, ChartAnchor::right, false});
+    }
   }
-  // The partial rho given the size: a dark tick across each row, over the bars.
-  bool any_partial = false;
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    const std::size_t i = order[k];
-    if (i >= rho_given_size.size() || !std::isfinite(rho_given_size[i])) continue;
-    any_partial = true;
-    chart.rects.push_back({x_of(rho_given_size[i]) - 1.5, r.y + row * static_cast<double>(k) + 1.0, 3.0, row - 2.0,
-                           kPartialRhoColor});
+  if (separator) {
+    const double ys = r.y + row * static_cast<double>(directed.size()) + 0.5 * row;
+    chart.lines.push_back({{{r.x, ys}, {r.x + r.width, ys}}, kAxisColor, 1.0});
+    chart.texts.push_back({{r.x - 8.0, ys + 4.0}, "no better direction:", kTickSize - 1.0, kAxisColor,
+                           ChartAnchor::right, false});
   }
   std::vector<std::pair<double, double>> x_ticks;
   for (double t = -1.0; t <= 1.0001; t += 0.5) x_ticks.push_back({t, x_of(t)});
   add_axes(chart, r, {}, x_ticks,
            "Spearman \u03c1 over the " + (count > 0 ? std::to_string(count) + " " : std::string()) +
-               "hexes: metric vs normalised error density",
+               "hexes, metric vs error density (3D legend)",
            "");
   chart.lines.push_back({{{x_of(0.0), r.y}, {x_of(0.0), r.y + r.height}}, kAxisColor, 1.0});
-  // The key, and the metrics that have no rho.
+  // The key: every colour and mark, then how the rows are ordered.
   double ly = r.y + r.height + 62.0;
-  chart.rects.push_back({r.x, ly - 9.0, 14.0, 10.0, kNegativeRhoColor});
-  chart.texts.push_back({{r.x + 20.0, ly}, "\u03c1 < 0: a higher value, a lower error", kTickSize, kAxisColor,
-                         ChartAnchor::left, false});
-  chart.rects.push_back({r.x + 0.5 * r.width, ly - 9.0, 14.0, 10.0, kPositiveRhoColor});
-  chart.texts.push_back({{r.x + 0.5 * r.width + 20.0, ly}, "\u03c1 > 0: a higher value, a higher error", kTickSize,
-                         kAxisColor, ChartAnchor::left, false});
+  const auto key = [&](const Rgba8& color, const std::string& text) {
+    chart.rects.push_back({r.x, ly - 9.0, 14.0, 10.0, color});
+    chart.texts.push_back({{r.x + 20.0, ly}, text, kTickSize, kAxisColor, ChartAnchor::left, false});
+    ly += 20.0;
+  };
+  key(kAgreesColor, "agrees: the metric's worse side has the higher error (\u03c1 < 0 where higher is better, "
+                    "\u03c1 > 0 where lower is better)");
+  key(kDisagreesColor, "disagrees: the metric's better side has the higher error");
+  if (!undirected.empty()) key(kNoDirectionColor, "no better direction (a size): the sign says nothing about quality");
+  if (any_interval) {
+    chart.lines.push_back({{{r.x, ly - 4.0}, {r.x + 14.0, ly - 4.0}}, kAxisColor, 1.5});
+    chart.lines.push_back({{{r.x, ly - 8.0}, {r.x, ly}}, kAxisColor, 1.5});
+    chart.lines.push_back({{{r.x + 14.0, ly - 8.0}, {r.x + 14.0, ly}}, kAxisColor, 1.5});
+    chart.texts.push_back({{r.x + 20.0, ly},
+                           "95% interval (Fisher z): too narrow, as neighbouring hexes' errors are correlated",
+                           kTickSize, kAxisColor, ChartAnchor::left, false});
+    ly += 20.0;
+  }
   if (any_partial) {
-    ly += 22.0;
     chart.rects.push_back({r.x + 5.5, ly - 11.0, 3.0, 14.0, kPartialRhoColor});
     chart.texts.push_back({{r.x + 20.0, ly},
                            "partial \u03c1 given the hex size h_e (what the metric adds to the size; "
                            "none where the metric ranks as the size)",
                            kTickSize, kAxisColor, ChartAnchor::left, false});
+    ly += 20.0;
+  }
+  chart.texts.push_back({{r.x, ly},
+                         "rows: by agreement \u2212direction\u00b7\u03c1, strongest agreement on top; "
+                         "(size): a size or size-weighted metric",
+                         kTickSize, kAxisColor, ChartAnchor::left, false});
+  if (2 * disagree > directed.size()) {
+    ly += 20.0;
+    chart.texts.push_back({{r.x, ly},
+                           std::to_string(disagree) + " of " + std::to_string(directed.size()) +
+                               " metrics disagree: the error here does not follow what they call worse",
+                           kTickSize, kAxisColor, ChartAnchor::left, false});
   }
   if (!constant.empty()) {
     std::string text = "no \u03c1 (constant on this mesh):";
-    for (std::size_t i : constant) text += " " + metrics[i];
-    chart.texts.push_back({{16.0, ly + 22.0}, text, kTickSize, kAxisColor, ChartAnchor::left, false});
+    for (std::size_t i : constant) text += " " + bars[i].metric;
+    ly += 20.0;
+    chart.texts.push_back({{16.0, ly}, text, kTickSize, kAxisColor, ChartAnchor::left, false});
   }
-  chart.height = static_cast<int>(ly + (constant.empty() ? 16.0 : 36.0));
+  chart.height = static_cast<int>(ly + 16.0);
   return chart;
 }
 

@@ -121,15 +121,32 @@ Chart method_distribution_chart(std::span<const std::string> methods, std::span<
 
 // --simulate: Spearman's rho over the hexes between the normalised error
 // density and each metric (fem.poisson.correlation), one horizontal bar per
-// metric sorted by |rho| (largest on top), on [-1, 1]; metrics whose rho is
-// NaN (constant on the mesh) are named under the chart. With
-// rho_given_size: a dark tick on each row at the partial rho given the hex
-// size (fem.poisson.correlation_given_size; none where NaN), in the key.
-// is_size[i]: metric i measures size (no better direction), its name gets
-// " (size)". count > 0: the number of hexes, in the axis title.
-Chart metric_correlation_chart(std::span<const std::string> metrics, std::span<const double> rho,
-                               const ChartOptions& options, std::span<const double> rho_given_size = {},
-                               std::span<const char> is_size = {}, std::int64_t count = 0);
+// metric from 0 to rho on [-1, 1], coloured by agreement (not by the sign):
+// the metric-direction normalisation agreement = -direction * rho
+// (metric_agreement, fem/metric_correlation.h) > 0 is blue ("agrees: the
+// metric's worse side has the higher error"), < 0 orange ("disagrees"), and
+// a metric with no better direction grey. Rows: the metrics with a direction
+// by agreement, strongest agreement on top (strongest disagreement at the
+// bottom of that group), then the ones without a direction by |rho|, under a
+// separator line. A size metric (metric_is_size) gets " (size)". Each row: a
+// whisker over the bar for its 95 % interval (lo, hi; none where NaN), a dark
+// tick at the partial rho given the hex size (none where NaN), and in a
+// column right of the plot "rho [lo, hi]" and the partial. Metrics whose rho
+// is NaN (constant on the mesh) are named under the chart; the key names
+// every colour and mark. count > 0: the number of hexes, in the axis title.
+struct CorrelationBar {
+  std::string metric;
+  double rho = 0;
+  double lo = 0, hi = 0;     // its 95 % interval; NaN: none
+  double rho_given_size = 0;  // NaN: none
+  double agreement = 0;       // -direction * rho; NaN: no better direction
+  bool is_size = false;
+};
+inline constexpr Rgba8 kAgreesColor{49, 104, 170, 255};
+inline constexpr Rgba8 kDisagreesColor{205, 96, 40, 255};
+inline constexpr Rgba8 kNoDirectionColor{150, 150, 156, 255};
+Chart metric_correlation_chart(std::span<const CorrelationBar> bars, const ChartOptions& options,
+                               std::int64_t count = 0);
 
 // --simulate: per hex the normalised error density against the scaled
 // Jacobian, both on log axes (whole decades; x up to 1). Every hex with

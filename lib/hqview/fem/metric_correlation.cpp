@@ -122,6 +122,25 @@ int metric_direction(std::string_view metric) {
   return info.acceptable_max == 1.0 ? +1 : -1;
 }
 
+bool metric_is_size(std::string_view metric) {
+  return metric_direction(metric) == 0 || metric == "relative_size_squared" || metric == "shape_and_size" ||
+         metric == "shear_and_size";
+}
+
+double metric_agreement(int direction, double rho) {
+  if (direction == 0 || !std::isfinite(rho)) return std::numeric_limits<double>::quiet_NaN();
+  return -static_cast<double>(direction) * rho;
+}
+
+RankCorrelationInterval spearman_interval(double rho, std::int64_t count) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (count < 4 || !std::isfinite(rho)) return {nan, nan};
+  if (std::abs(rho) >= 1.0) return {rho, rho};
+  const double z = std::atanh(rho);
+  const double se = std::sqrt((1.0 + 0.5 * rho * rho) / (static_cast<double>(count) - 3.0));
+  return {std::tanh(z - kCorrelationIntervalZ * se), std::tanh(z + kCorrelationIntervalZ * se)};
+}
+
 RankCorrelation spearman_correlation(std::span<const double> x, std::span<const double> y) {
   std::vector<double> a, b;
   for (std::size_t i = 0; i < std::min(x.size(), y.size()); ++i)
@@ -178,14 +197,14 @@ std::vector<MetricCorrelation> correlate_metrics(std::span<const double> error_d
   for (int m = 0; m < kNumHexMetrics; ++m) {
     const auto metric = static_cast<HexMetric>(m);
     if (metrics.of(metric).empty()) continue;
-    out.push_back({std::string(hex_metric_name(metric)), {}, 0});
+    out.push_back({std::string(hex_metric_name(metric)), {}, 0, {}});
     columns.push_back(&metrics.of(metric));
   }
-  out.push_back({"fem_kappa", {}, 0});
+  out.push_back({"fem_kappa", {}, 0, {}});
   columns.push_back(&elements.kappa);
-  out.push_back({"fem_lambda_max", {}, 0});
+  out.push_back({"fem_lambda_max", {}, 0, {}});
   columns.push_back(&elements.lambda_max);
-  out.push_back({"fem_det_j_min", {}, 0});
+  out.push_back({"fem_det_j_min", {}, 0, {}});
   columns.push_back(&elements.det_j_min);
   // The density's ranks (and the size's) once, over the hexes where the
   // density (and the size) is usable; a metric usable on all of them reuses
@@ -234,6 +253,7 @@ std::vector<MetricCorrelation> correlate_metrics(std::span<const double> error_d
       out[i].rho_given_size =
           partial_rank_correlation(out[i].correlation.rho, rank_pearson(metric_ranks, size_ranks), density_size);
   });
+  for (MetricCorrelation& m : out) m.interval = spearman_interval(m.correlation.rho, m.correlation.count);
   return out;
 }
 

@@ -7,8 +7,10 @@
 // is NaN or a Verdict sentinel (|v| >= 1e30) are left out; rho is NaN (null
 // in report.json) when fewer than 3 hexes remain or either side is constant.
 
+#include <cstdint>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "hqview/fem/fem_element_field.h"
@@ -54,6 +56,36 @@ std::vector<double> benjamini_hochberg(std::span<const double> p);
 // scale with the size: across meshes they rank resolution). 0 for other names.
 int metric_direction(std::string_view metric);
 
+// A size metric: one with no better direction (metric_direction 0: volume,
+// dimension, jacobian, fem_lambda_max, fem_det_j_min) or one that Verdict
+// builds from the hex's size relative to the mesh's mean
+// (relative_size_squared = min(D, 1/D)^2 with D = volume / mean volume, and
+// the size-weighted shape_and_size and shear_and_size). Their correlation with
+// the error density mixes the mesh's resolution into it: the charts tag them.
+bool metric_is_size(std::string_view metric);
+
+// The metric-direction normalisation of a rho against the error density:
+// agreement = -direction * rho (direction = metric_direction), so that
+// agreement > 0 says "the metric's worse side has the higher error" (a
+// higher-is-better metric with rho < 0, a lower-is-better one with rho > 0)
+// and its size how strongly. NaN when the metric has no direction or rho is
+// NaN. The correlation chart colours and sorts by it.
+double metric_agreement(int direction, double rho);
+
+// A two-sided confidence interval for Spearman's rho over n pairs: Fisher's
+// z = atanh(rho) with the standard error of Bonett and Wright ("Sample size
+// requirements for estimating Pearson, Kendall and Spearman correlations",
+// Psychometrika 65, 2000) sqrt((1 + rho^2 / 2) / (n - 3)); the interval
+// tanh(z -+ z_(1 - alpha/2) se) (z_0.975 = 1.959963984540054). It treats the
+// n pairs as independent: over the hexes of one mesh, whose neighbours are
+// correlated, it is too narrow (docs/analysis.md). NaN ends for n < 4 or a
+// NaN rho; rho = +-1 gives [rho, rho].
+struct RankCorrelationInterval {
+  double lo = 0, hi = 0;
+};
+inline constexpr double kCorrelationIntervalZ = 1.959963984540054;  // 95 %
+RankCorrelationInterval spearman_interval(double rho, std::int64_t count);
+
 struct MetricCorrelation {
   std::string metric;  // a Verdict name, or fem_kappa / fem_lambda_max / fem_det_j_min
   RankCorrelation correlation;
@@ -62,6 +94,8 @@ struct MetricCorrelation {
   // what the metric says about the density beyond what the size says. NaN
   // without sizes, or when the metric or the density ranks exactly as the size.
   double rho_given_size = 0;
+  // The 95 % interval of correlation.rho (spearman_interval over its count).
+  RankCorrelationInterval interval;
 };
 
 // The partial correlation of x and y given z from the three pairwise

@@ -472,6 +472,7 @@ class OsmesaRenderer final : public Renderer {
                     [](const TriangleSet& set) { return !set.indices.empty(); })) {
       gl.Clear(GL_DEPTH_BUFFER_BIT);  // the depth mask is on again
       draw_triangles(scene.overlay, model_view, projection, nullptr);
+      draw_lines(scene, model_view, projection, false, true);
     }
     check_gl("drawing");
   }
@@ -713,10 +714,11 @@ class OsmesaRenderer final : public Renderer {
 
   // The line sets with under_ranked_spheres == under.
   void draw_lines(const Scene& scene, const std::array<float, 16>& model_view,
-                  const std::array<float, 16>& projection, bool under) {
-    if (std::none_of(scene.lines.begin(), scene.lines.end(), [&](const LineSet& set) {
-          return set.under_ranked_spheres == under && !set.indices.empty();
-        }))
+                  const std::array<float, 16>& projection, bool under, bool overlay = false) {
+    const auto drawn = [&](const LineSet& set) {
+      return !set.indices.empty() && set.in_overlay == overlay && (overlay || set.under_ranked_spheres == under);
+    };
+    if (std::none_of(scene.lines.begin(), scene.lines.end(), drawn))
       return;
     gl.UseProgram(line_program_);
     set_matrices(line_program_, model_view, projection);
@@ -725,7 +727,7 @@ class OsmesaRenderer final : public Renderer {
     gl.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     for (const LineSet& set : scene.lines) {
       stop::check();
-      if (set.indices.empty() || set.under_ranked_spheres != under) continue;
+      if (!drawn(set)) continue;
       bind_positions_and_colors(set.positions, set.colors);
       gl.LineWidth(std::clamp(set.width * static_cast<float>(kSupersampling), 1.0f, max_line_width_));
       upload(GL_ELEMENT_ARRAY_BUFFER, index_buffer_, set.indices);

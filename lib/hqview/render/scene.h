@@ -23,7 +23,9 @@
 //   5. overlay     opaque triangles over everything else: drawn last, after
 //                  the depth buffer is cleared, so they hide only each other
 //                  (markers that must stay visible, e.g. overlap arrows
-//                  whose target lies inside a glyph).
+//                  whose target lies inside a glyph);
+//   6. overlay lines line sets with in_overlay, after the overlay triangles
+//                  and depth-tested against them only (the overlay's edges).
 
 #include <cstdint>
 #include <vector>
@@ -92,6 +94,8 @@ struct LineSet {
   // which then cover it (view A's boundary wireframe: no veil over the
   // ranked glyphs).
   bool under_ranked_spheres = false;
+  // Drawn in the overlay layer (6. above), not with the other lines.
+  bool in_overlay = false;
 };
 
 // Spheres (glyphs): centre, radius (model units, > 0) and colour each.

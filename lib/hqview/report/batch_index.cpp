@@ -48,6 +48,12 @@ static_assert(std::size(kHeadlineTitles) == kNumHeadlineKeys);
 
 std::string show(std::optional<double> v) { return v ? display_number(*v) : "–"; }
 
+std::size_t headline_slot(std::string_view key) {
+  std::size_t k = 0;
+  while (k < kNumHeadlineKeys && key != kHeadlineKeys[k]) ++k;
+  return k;
+}
+
 // The thumbnail's URL from the batch index.
 std::string row_thumbnail(const BatchEntry& e) {
   return !e.bundle.empty() && !e.thumbnail.empty() ? url_path(e.bundle) + "/" + url_path(e.thumbnail) : "";
@@ -113,7 +119,15 @@ json correlation_json(const CollectionCorrelation& c) {
                     {"q_l2_error", number_or_null(r.q_l2)},
                     {"q_h1_error", number_or_null(r.q_h1)},
                     {"num_meshes", r.num_meshes}});
-  return {{"num_meshes", c.num_meshes}, {"min_meshes", c.min_meshes}, {"metrics", std::move(rows)}};
+  json duplicates = json::array();
+  for (const CollectionDuplicate& d : c.duplicates)
+    duplicates.push_back({{"path", d.path},
+                          {"same_as", d.same_as},
+                          {"l2_error_difference", number_or_null(d.l2_difference)},
+                          {"h1_error_difference", number_or_null(d.h1_difference)}});
+  return {{"num_meshes", c.num_meshes},   {"min_meshes", c.min_meshes},
+          {"metrics", std::move(rows)},   {"duplicates", std::move(duplicates)},
+          {"min_p", number_or_null(c.min_p)}, {"critical_rho", number_or_null(c.critical_rho)}};
 }
 
 bool has_labels(const std::vector<BatchEntry>& entries) {
@@ -440,7 +454,7 @@ kainjow::mustache::data comparison_data(const std::vector<BatchEntry>& entries, 
 
 // index.html's "Which metrics rank these meshes by their simulation error" table: the rows
 // by |rho| with the H1 error, largest first (nulls last, then metric order).
-kainjow::mustache::data fem_correlation_data(const CollectionCorrelation& c) {
+kainjow::mustache::data fem_correlation_data(const CollectionCorrelation& c, const std::vector<BatchEntry>& entries) {
   using kainjow::mustache::data;
   std::vector<std::size_t> order(c.rows.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -463,8 +477,10 @@ kainjow::mustache::data fem_correlation_data(const CollectionCorrelation& c) {
   // error": a higher-is-better metric's min falls as the error rises (rho <
   // 0), a lower-is-better one's max rises (rho > 0). " ✗" where rho has the
   // other sign.
-  const auto wrong_way = [](const CollectionCorrelationRow& r, double rho_value) {
+  // Only where the sign is supported: |rho| at least the critical value (p <= 0.05 before correction).
+  const auto wrong_way = [&](const CollectionCorrelationRow& r, double rho_value) {
     if (r.direction == 0 || !std::isfinite(rho_value) || rho_value == 0) return false;
+    if (!(std::abs(rho_value) >= c.critical_rho - 1e-12)) return false;
     return (rho_value < 0) != (r.direction > 0);
   };
   data rows = data::type::list;
@@ -488,12 +504,65 @@ kainjow::mustache::data fem_correlation_data(const CollectionCorrelation& c) {
     row.set("sort_h1", std::isfinite(r.rho_h1) ? format_double(r.rho_h1) : "");
     row.set("sort_p_l2", std::isfinite(r.p_l2) ? format_double(r.p_l2) : "");
     row.set("sort_p_h1", std::isfinite(r.p_h1) ? format_double(r.p_h1) : "");
-    row.set("baseline", r.metric == "num_hexes");
+    row.set("baseline", r.metric == "num_hexes" || r.metric == "h_over_l");
     row.set("num_meshes", std::to_string(r.num_meshes));
     rows.push_back(row);
   }
   data d;
   d.set("rows", rows);
+  // How far significance is out of reach, in plain words.
+  std::string power;
+  if (std::isfinite(c.min_p)) {
+    const std::size_t m = c.rows.size();
+    char text[512];
+    std::snprintf(text, sizeof text,
+                  "With %d distinct meshes the smallest p any \u03c1 can have is 2/%d! = %s; without correction "
+                  "|\u03c1| \u2265 %.3f is needed for p \u2264 0.05.",
+                  c.num_meshes, c.num_meshes, p_text(c.min_p).c_str(), c.critical_rho);
+    power = text;
+    if (static_cast<double>(m) * c.min_p > 0.05)
+      power += " Over these " + std::to_string(m) + " rows no single metric can reach q < 0.05, whatever the data: " +
+               "too few meshes for significance; a greyed row means \u201ccould not detect\u201d, not \u201cno effect\u201d.";
+  }
+  d.set("power", power);
+  d.set("has_power", !power.empty());
+  // The meshes the table is computed from, and the duplicates left out.
+  data meshes = data::type::list;
+  static const std::size_t l2_slot = headline_slot("fem.poisson.mean.l2_error"),
+                           h1_slot = headline_slot("fem.poisson.mean.h1_error"),
+                           hexes_slot = headline_slot("mesh.num_hexes"),
+                           sj_slot = headline_slot("quality.scaled_jacobian.min"),
+                           inverted_slot = headline_slot("quality.num_inverted");
+  const auto cell = [&](const std::optional<double>& v, int digits) {
+    return v ? display_number(*v, digits) : std::string("–");
+  };
+  for (const BatchEntry& e : entries) {
+    if (e.metrics.empty() || !e.headline[l2_slot]) continue;
+    data row;
+    row.set("path", e.path);
+    row.set("num_hexes", cell(e.headline[hexes_slot], 12));
+    std::optional<double> h_over_l;
+    for (const MeshMetricRange& m : e.metrics)
+      if (m.metric == "h_over_l") h_over_l = m.mean;
+    row.set("h_over_l", cell(h_over_l, 3));
+    row.set("l2", cell(e.headline[l2_slot], 3));
+    row.set("h1", cell(e.headline[h1_slot], 3));
+    row.set("min_sj", cell(e.headline[sj_slot], 3));
+    row.set("inverted", cell(e.headline[inverted_slot], 12));
+    std::string counted = "counted";
+    for (const CollectionDuplicate& dup : c.duplicates)
+      if (dup.path == e.path) {
+        char text[160];
+        std::snprintf(text, sizeof text, "left out: same geometry as %s (errors differ by %.2g %% L2, %.2g %% H1)",
+                      dup.same_as.c_str(), 100.0 * dup.l2_difference, 100.0 * dup.h1_difference);
+        counted = text;
+      }
+    row.set("counted", counted);
+    meshes.push_back(row);
+  }
+  d.set("meshes", meshes);
+  d.set("has_duplicates", !c.duplicates.empty());
+  d.set("num_duplicates", std::to_string(c.duplicates.size()));
   d.set("num_meshes", std::to_string(c.num_meshes));
   d.set("min_meshes", std::to_string(c.min_meshes));
   d.set("too_few", c.num_meshes < c.min_meshes);
@@ -649,7 +718,7 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
   }
   page.set("methods", method_rows);
   page.set("has_fem_correlation", has_fem_metrics(entries));
-  if (has_fem_metrics(entries)) page.set("fem_correlation", fem_correlation_data(correlate_collection(entries)));
+  if (has_fem_metrics(entries)) page.set("fem_correlation", fem_correlation_data(correlate_collection(entries), entries));
   page.set("has_comparison", has_comparison(entries));
   if (has_comparison(entries))
     page.set("comparison", comparison_data(entries, keys ? *keys : default_comparison_keys(entries)));

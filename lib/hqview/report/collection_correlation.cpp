@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <span>
+
+#include <boost/math/distributions/students_t.hpp>
 
 #include "hqview/fem/metric_correlation.h"
 
@@ -24,7 +27,62 @@ std::size_t slot_of(std::string_view key) {
   return k;
 }
 
+constexpr const char* kHOverL = "h_over_l";
+
+bool close(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max({1.0, std::abs(a), std::abs(b)}); }
+
+double relative_difference(double a, double b) {
+  const double m = std::max(std::abs(a), std::abs(b));
+  return m > 0 ? std::abs(a - b) / m : 0.0;
+}
+
+// The smallest |rho| over n distinct ranks whose two-sided p is at most 0.05.
+double critical_rho_for(int n) {
+  if (n < kMinCorrelationMeshes) return kNaN;
+  if (n <= kExactSpearmanMaxCount) {
+    // Every permutation's |rho| (no ties): rho = 1 - 6 sum d^2 / (n (n^2 - 1)).
+    std::vector<int> order(static_cast<std::size_t>(n));
+    std::iota(order.begin(), order.end(), 0);
+    std::vector<double> all;
+    do {
+      double d2 = 0;
+      for (int i = 0; i < n; ++i) d2 += static_cast<double>((order[static_cast<std::size_t>(i)] - i) * (order[static_cast<std::size_t>(i)] - i));
+      all.push_back(std::abs(1.0 - 6.0 * d2 / (n * (static_cast<double>(n) * n - 1.0))));
+    } while (std::next_permutation(order.begin(), order.end()));
+    std::sort(all.begin(), all.end(), std::greater<>());
+    // The smallest value v with #{|rho| >= v} / n! <= 0.05.
+    double critical = kNaN;
+    for (std::size_t i = 0; i < all.size();) {
+      std::size_t j = i;
+      while (j < all.size() && all[j] >= all[i] - 1e-12) ++j;
+      if (static_cast<double>(j) / static_cast<double>(all.size()) > 0.05) break;
+      critical = all[i];
+      i = j;
+    }
+    return critical;
+  }
+  const double df = n - 2.0;
+  const double t = boost::math::quantile(boost::math::students_t(df), 0.975);
+  return t / std::sqrt(df + t * t);
+}
+
 }  // namespace
+
+bool same_mesh_geometry(const BatchEntry& a, const BatchEntry& b) {
+  static const std::size_t vertices_slot = slot_of("mesh.num_vertices"), hexes_slot = slot_of("mesh.num_hexes");
+  for (const std::size_t slot : {vertices_slot, hexes_slot})
+    if (!a.headline[slot] || !b.headline[slot] || *a.headline[slot] != *b.headline[slot]) return false;
+  int compared = 0;
+  for (const MeshMetricRange& m : a.metrics) {
+    if (metric_direction(m.metric) == 0) continue;  // a size: changes with the scale
+    const auto other = std::find_if(b.metrics.begin(), b.metrics.end(),
+                                    [&](const MeshMetricRange& x) { return x.metric == m.metric; });
+    if (other == b.metrics.end()) continue;
+    if (!close(m.min, other->min) || !close(m.mean, other->mean) || !close(m.max, other->max)) return false;
+    ++compared;
+  }
+  return compared >= 3;
+}
 
 std::vector<MeshMetricRange> metric_summaries_from_report(const ReportDocument& report) {
   std::vector<MeshMetricRange> out;
@@ -40,6 +98,14 @@ std::vector<MeshMetricRange> metric_summaries_from_report(const ReportDocument& 
       if (fem["element"].contains(name) && fem["element"][name].is_object())
         out.push_back({std::string("fem_") + name, number_or_nan(fem["element"][name], "min"),
                        number_or_nan(fem["element"][name], "mean"), number_or_nan(fem["element"][name], "max")});
+  const auto volume = std::find_if(out.begin(), out.end(), [](const MeshMetricRange& m) { return m.metric == "volume"; });
+  const double diagonal = fem["poisson"].contains("normalization") && fem["poisson"]["normalization"].is_object()
+                              ? number_or_nan(fem["poisson"]["normalization"], "diagonal")
+                              : kNaN;
+  if (volume != out.end() && volume->mean > 0 && diagonal > 0) {
+    const double h_over_l = std::cbrt(volume->mean) / diagonal;
+    out.push_back({kHOverL, h_over_l, h_over_l, h_over_l});
+  }
   return out;
 }
 
@@ -47,18 +113,40 @@ CollectionCorrelation correlate_collection(const std::vector<BatchEntry>& entrie
   static const std::size_t l2_slot = slot_of("fem.poisson.mean.l2_error");
   static const std::size_t h1_slot = slot_of("fem.poisson.mean.h1_error");
   CollectionCorrelation out;
-  std::vector<const BatchEntry*> meshes;
+  std::vector<const BatchEntry*> candidates, meshes;
   for (const BatchEntry& e : entries)
     if (is_analysed(e) && (label.empty() || e.label == label) && !e.metrics.empty() && e.headline[l2_slot] &&
         e.headline[h1_slot])
-      meshes.push_back(&e);
+      candidates.push_back(&e);
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const BatchEntry* a, const BatchEntry* b) { return a->path < b->path; });
+  // Each mesh once: a later one with the geometry of a kept one is a duplicate.
+  for (const BatchEntry* e : candidates) {
+    const auto same = std::find_if(meshes.begin(), meshes.end(),
+                                   [&](const BatchEntry* kept) { return same_mesh_geometry(*kept, *e); });
+    if (same == meshes.end()) {
+      meshes.push_back(e);
+      continue;
+    }
+    out.duplicates.push_back({e->path, (*same)->path,
+                              relative_difference(*e->headline[l2_slot], *(*same)->headline[l2_slot]),
+                              relative_difference(*e->headline[h1_slot], *(*same)->headline[h1_slot])});
+  }
   out.num_meshes = static_cast<int>(meshes.size());
+  out.critical_rho = critical_rho_for(out.num_meshes);
+  out.min_p = kNaN;
+  if (out.num_meshes >= kMinCorrelationMeshes) {
+    double factorial = 1;
+    for (int i = 2; i <= out.num_meshes; ++i) factorial *= i;
+    out.min_p = 2.0 / factorial;
+  }
   // The metric names in alphabetical order: index.json keeps a row's metrics
   // by name, so a merge of shards (rows read back) gives the same order as one run.
   std::vector<std::string> names;
   for (const BatchEntry* e : meshes)
     for (const MeshMetricRange& m : e->metrics)
-      if (std::find(names.begin(), names.end(), m.metric) == names.end()) names.push_back(m.metric);
+      if (m.metric != kHOverL && std::find(names.begin(), names.end(), m.metric) == names.end())
+        names.push_back(m.metric);
   std::sort(names.begin(), names.end());
   const auto add_row = [&](std::string metric, std::string stat, int direction, const std::vector<double>& value,
                            const std::vector<double>& l2, const std::vector<double>& h1) {
@@ -99,6 +187,16 @@ CollectionCorrelation correlate_collection(const std::vector<BatchEntry>& entrie
       h1.push_back(*e->headline[h1_slot]);
     }
   if (!meshes.empty()) add_row("num_hexes", "count", 0, value, l2, h1);
+  // The second baseline: h/L.
+  value.clear(), l2.clear(), h1.clear();
+  for (const BatchEntry* e : meshes)
+    for (const MeshMetricRange& m : e->metrics)
+      if (m.metric == kHOverL) {
+        value.push_back(m.mean);
+        l2.push_back(*e->headline[l2_slot]);
+        h1.push_back(*e->headline[h1_slot]);
+      }
+  if (!value.empty()) add_row(kHOverL, "value", 0, value, l2, h1);
   // The family's false discovery rate: one q per p, per error.
   std::vector<double> p_l2, p_h1;
   for (const CollectionCorrelationRow& r : out.rows) {

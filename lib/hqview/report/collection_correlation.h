@@ -14,8 +14,16 @@
 // exact permutation up to 8 meshes, the t approximation above) and its
 // Benjamini-Hochberg q over the table's rows (metric_correlation.h). Null (NaN)
 // when fewer than kMinCorrelationMeshes meshes have both values or either
-// side is constant over them. Pure; the entries' order (index.json, sorted
-// by path) does not change the result.
+// side is constant over them. A second baseline row correlates h/L (the
+// cube root of the mean hex volume over the diagonal of the bounding box of
+// the mesh's points: its resolution relative to its size; BatchEntry::metrics
+// "h_over_l"). Duplicates are detected by geometry, not by name
+// (same_mesh_geometry): a mesh whose geometry equals an earlier one's (by
+// path) is counted once and listed in `duplicates`, with how much its errors
+// differ (the problem's placement: same mesh, other errors). With few meshes
+// no correlation can be significant: min_p and critical_rho say how far.
+// Pure; the entries' order (index.json, sorted by path) does not change the
+// result.
 
 #include <string>
 #include <vector>
@@ -42,16 +50,43 @@ struct CollectionCorrelationRow {
   int num_meshes = 0;  // meshes that entered (both errors and this value)
 };
 
+// One mesh left out as the duplicate of another.
+struct CollectionDuplicate {
+  std::string path;     // left out
+  std::string same_as;  // the one counted (the first by path)
+  // |e_a - e_b| / max(e_a, e_b) of the mean L2 (H1) errors: 0 when the
+  // check does not depend on where the mesh sits.
+  double l2_difference = 0, h1_difference = 0;
+};
+
 struct CollectionCorrelation {
-  int num_meshes = 0;  // analysed meshes with a solved check
+  int num_meshes = 0;  // distinct analysed meshes with a solved check (duplicates left out)
+  std::vector<CollectionDuplicate> duplicates;
+  // The smallest two-sided p any rho can reach over num_meshes meshes
+  // (2 / n!: the two perfect orders among the n! permutations), and the
+  // smallest |rho| whose p is at most 0.05 (exact permutation distribution
+  // up to kExactSpearmanMaxCount meshes, the t approximation above); NaN
+  // below kMinCorrelationMeshes. With m rows, one row alone reaches
+  // q <= 0.05 only when m * min_p <= 0.05.
+  double min_p = 0;
+  double critical_rho = 0;
   int min_meshes = kMinCorrelationMeshes;
   // Per metric (alphabetical: the same after a merge of shards), worst (or
   // min) then mean; then the baseline num_hexes.
   std::vector<CollectionCorrelationRow> rows;
 };
 
+// Whether two meshes have the same geometry up to a rotation, reflection,
+// uniform scale, translation or renumbering: the same numbers of vertices
+// and hexes, and the same min, mean and max (to 1e-9 relative) of every
+// scale-invariant metric both computed (the ones with a better direction,
+// fem_kappa included), at least three of them. Needs solved checks (metrics).
+bool same_mesh_geometry(const BatchEntry& a, const BatchEntry& b);
+
 // The metric summaries a batch row keeps for this (BatchEntry::metrics),
 // read from a report document: empty unless its fem.poisson was solved.
+// Also "h_over_l" (min = mean = max): cbrt(quality.metrics.volume.mean) /
+// fem.poisson.normalization.diagonal, when both are there.
 std::vector<MeshMetricRange> metric_summaries_from_report(const ReportDocument& report);
 
 // Over the analysed (ok, gate_failed) entries with a solved check. `label`:

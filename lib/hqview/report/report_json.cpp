@@ -198,10 +198,12 @@ Json fem_poisson_json(const PoissonCheck& p, const std::vector<MetricCorrelation
                          {"lanczos_steps", s.lanczos_steps},
                          {"converged", s.converged},
                          {"relative_residual", number(s.relative_residual)}};
-  Json correlation = Json::object(), given_size = Json::object();
+  Json correlation = Json::object(), given_size = Json::object(), interval = Json::object();
   for (const MetricCorrelation& c : correlations) {
     correlation[c.metric] = number(c.correlation.rho);
     given_size[c.metric] = number(c.rho_given_size);
+    interval[c.metric] = std::isfinite(c.interval.lo) ? Json::array({number(c.interval.lo), number(c.interval.hi)})
+                                                      : Json(nullptr);
   }
   return {{"skipped", solved ? Json(nullptr) : Json(p.skipped)},
           {"num_free_vertices", p.num_free_vertices},
@@ -226,7 +228,8 @@ Json fem_poisson_json(const PoissonCheck& p, const std::vector<MetricCorrelation
           {"error_density", solved ? stats_json(p.error_density_stats, false) : Json(nullptr)},
           {"correlation", solved ? std::move(correlation) : Json(nullptr)},
           {"size_correlation", value(p.size_correlation)},
-          {"correlation_given_size", solved ? std::move(given_size) : Json(nullptr)}};
+          {"correlation_given_size", solved ? std::move(given_size) : Json(nullptr)},
+          {"correlation_interval", solved ? std::move(interval) : Json(nullptr)}};
 }
 
 Json fem_json(const Analysis& a) {

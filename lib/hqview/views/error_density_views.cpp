@@ -281,7 +281,10 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   const ErrorDensityScale scale = error_density_scale(density);
   Figure f = begin_figure(mesh, topology, scale, view_direction, options);
   const ErrorDensityWorst worst = error_density_worst(topology, density);
-  TriangleSet veil;
+  // The veil first (blended over the background only), then the cells and
+  // their edges in the overlay layer over it: no veil is ever blended over a
+  // cell, so every cell shows its legend colour exactly, also behind a fold.
+  TriangleSet veil;  // lit: its shading gives the shape
   for (Index face : topology.boundary_faces)
     add_quad(veil, mesh, f.scene.origin, topology.faces[static_cast<std::size_t>(face)], kVeilColor);
   f.scene.translucent.push_back(std::move(veil));
@@ -305,10 +308,10 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
         set.colors.push_back(low ? kLowCellEdgeColor : kCellEdgeColor);
       }
   }
-  f.scene.triangles.push_back(std::move(cells));
+  f.scene.overlay.push_back(std::move(cells));
+  edges.in_overlay = low_edges.in_overlay = true;
   f.scene.lines.push_back(std::move(edges));
   f.scene.lines.push_back(std::move(low_edges));
-  add_worst_overlay(f, mesh, worst, scale);
   f.bar.swatches.push_back({Color{0.08, 0.08, 0.08}, "ring: max (dashed: interior)"});
   f.bar.swatches.push_back({to_color(Rgba8{160, 208, 202, 255}), "boundary (veil)"});
   f.bar.swatches.push_back(

@@ -10,11 +10,14 @@
 //     coloured by density, black edges where the cell scaled Jacobian is
 //     below the quality threshold (grey otherwise), inside the boundary
 //     drawn as a translucent blue-green veil (off the map, its own legend
-//     swatch): where the worst cells are, also when they are inside.
+//     swatch) drawn first, the cells and their edges over it (the overlay
+//     layer, Scene), so no veil is blended over a cell: every cell shows its
+//     legend colour exactly; where the worst cells are, also inside.
 // Faces unlit (the legend's colours exactly; edges give the depth). In both,
 // the densest hex is ringed and labelled with its value and whether it is on
 // the boundary (the ring dashed when it is inside); an interior one is drawn
-// over everything in the boundary figure, and in the cells figure it always is. Both from one upright,
+// over everything in the boundary figure (in the cells figure it is one of
+// the cells, all drawn over the veil). Both from one upright,
 // orthographic viewpoint: the one that shows the most of the densest 1% of
 // the hexes (choose_viewpoints), so the worst region faces the camera. The
 // colour range is the mesh's own (the legend says so).

@@ -636,20 +636,14 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
 
 
 std::vector<ViewFile> build_fem_correlation(ViewContext& c) {
-  std::vector<std::string> metrics;
-  std::vector<double> rho, given_size;
-  std::vector<char> is_size;
-  for (const MetricCorrelation& m : c.a.fem_correlations) {
-    metrics.push_back(m.metric);
-    rho.push_back(m.correlation.rho);
-    given_size.push_back(m.rho_given_size);
-    is_size.push_back(metric_direction(m.metric) == 0 ? 1 : 0);
-  }
-  if (metrics.empty()) return {};
+  std::vector<CorrelationBar> bars;
+  for (const MetricCorrelation& m : c.a.fem_correlations)
+    bars.push_back({m.metric, m.correlation.rho, m.interval.lo, m.interval.hi, m.rho_given_size,
+                    metric_agreement(metric_direction(m.metric), m.correlation.rho), metric_is_size(m.metric)});
+  if (bars.empty()) return {};
   return chart_files("fem_correlation",
-                     metric_correlation_chart(metrics, rho,
-                                              {900, 300, c.name + ": which metrics rank the hexes by FEM error"},
-                                              given_size, is_size, c.a.poisson->error_density_stats.count));
+                     metric_correlation_chart(bars, {900, 300, c.name + ": which metrics rank the hexes by FEM error"},
+                                              c.a.poisson->error_density_stats.count));
 }
 
 std::vector<ViewFile> build_fem_error_scatter(ViewContext& c) {
