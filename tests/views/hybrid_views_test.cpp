@@ -20,6 +20,7 @@
 
 #include <unistd.h>
 
+#include "hqview/image/colormap.h"
 #include "hqview/io/mesh_reader.h"
 #include "hqview/mesh/boundary_polygons.h"
 #include "hqview/mesh/cell_faces.h"
@@ -320,6 +321,44 @@ TEST(HybridViews, ViewDOfAVertexSharedByHexTetAndPyramidShowsEveryCell) {
   EXPECT_EQ(scene.lines[1].colors.front(), cell_kind_edge_color(CellKind::tet));
   EXPECT_EQ(scene.lines[2].colors.front(), cell_kind_edge_color(CellKind::pyramid));
   EXPECT_EQ(cell_kinds_legend(mesh, ring), "cells: 4 hex, " + std::to_string(by_kind[CellKind::tet]) + " tet, 4 pyramid");
+}
+
+// View D's discs are stacked by value (46q review Q-M1): every marker moved
+// onto the worst one's place shows the worst one's colour there, and a
+// marker moved onto the vertex leaves the vertex's dark dot on top.
+TEST(HybridViews, ViewDStacksTheWorstDiscOnTopAndTheVertexAboveAll) {
+  if (!hex_tet()) GTEST_SKIP() << "gmsh failed or is missing";
+  const Mesh& mesh = *hex_tet();
+  const Topology topo = topology_of(mesh);
+  const QualityField field = compute_quality(mesh, topo);
+  Index v = kNoIndex;
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    if (norm(mesh.points[i] - Vec3{1.0, 0.5, 0.5}) < 1e-12) v = static_cast<Index>(i);
+  ASSERT_NE(v, kNoIndex);
+  const std::vector<VertexCorner> corners = vertex_corners(mesh, topo, field.corner_scaled_jacobian, v);
+  Scene scene = build_local_scene(mesh, topo, field.corner_scaled_jacobian, v);
+  ASSERT_EQ(scene.spheres[0].centers.size(), corners.size());
+  std::vector<double> values;
+  for (const VertexCorner& c : corners) values.push_back(c.value);
+  const std::size_t worst = static_cast<std::size_t>(std::min_element(values.begin(), values.end()) - values.begin());
+  const std::size_t best = static_cast<std::size_t>(std::max_element(values.begin(), values.end()) - values.begin());
+  ASSERT_LT(values[worst], values[best] - 0.1);
+  // Every marker but the best on the worst one's place; the best on the vertex.
+  const Vec3f at = scene.spheres[0].centers[worst];
+  for (std::size_t i = 0; i < values.size(); ++i) scene.spheres[0].centers[i] = i == best ? Vec3f{0, 0, 0} : at;
+  for (float& r : scene.spheres[0].radii) r = 0.03f;
+  constexpr int kSize = 300;
+  const Vec3 direction = normalized(Vec3{1.0, -0.7, 0.4});
+  const std::vector<Vec3> frame = {scene.origin + Vec3{-0.15, -0.15, -0.15}, scene.origin + Vec3{0.15, 0.15, 0.15}};
+  const Camera camera = fit_camera_to_points(frame, direction, 1.0, {.up = Vec3{0, 0, 1}, .is_perspective = false});
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  const Image image = renderer->render(local_marker_discs(scene, camera, values, 1.0), camera, kSize, kSize);
+  const auto pixel_of = [&](const Vec3& p) {
+    const Vec3 ndc = project_to_ndc(camera, 1.0, p);
+    return test::pixel_at(image, static_cast<int>(0.5 * (ndc.x + 1.0) * kSize), static_cast<int>(0.5 * (1.0 - ndc.y) * kSize));
+  };
+  EXPECT_EQ(pixel_of(scene.origin + Vec3{at.x, at.y, at.z}), to_rgba8(quality_color(values[worst])));
+  EXPECT_EQ(pixel_of(scene.origin), scene.spheres[1].colors.at(0));
 }
 
 TEST(HybridViews, ViewCOfAClusterAtTheInterfaceDrawsEveryKind) {
