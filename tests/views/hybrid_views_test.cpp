@@ -24,6 +24,8 @@
 #include "hqview/io/mesh_reader.h"
 #include "hqview/mesh/boundary_polygons.h"
 #include "hqview/mesh/cell_faces.h"
+#include "hqview/quality/corner_jacobian.h"
+#include "hqview/quality/kind_vertex_quality.h"
 #include "hqview/quality/quality_field.h"
 #include "hqview/render/camera.h"
 #include "hqview/render/osmesa_renderer.h"
@@ -249,6 +251,67 @@ TEST(HybridViews, NonConformingFaceIsOutlinedAndOutOfTheBoundary) {
 double tet_corner_by_hand(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 u = a - p, v = b - p, w = c - p;
   return std::min(1.0, std::sqrt(2.0) * std::abs(dot(cross(u, v), w)) / (norm(u) * norm(v) * norm(w)));
+}
+
+// A hex face beside tets is coloured from the hex's own corners (46q review
+// Q-M2): on a hex with one corner pulled out, next to two poor tets, the
+// rendered centre of the hex's y = 0 face is the colour of the mean of the
+// hex's four corner values there (the face's centre carries the corners'
+// mean), not of the vertex quality that the tets pull down.
+TEST(HybridViews, HexFaceBesideTetsTakesTheHexCornersColour) {
+  Mesh mesh = non_conforming_mesh();
+  const auto find = [&](const Vec3& p) {
+    for (std::size_t i = 0; i < mesh.points.size(); ++i)
+      if (norm(mesh.points[i] - p) < 1e-12) return static_cast<Index>(i);
+    return kNoIndex;
+  };
+  const Index pulled = find({0, 0, 1});
+  ASSERT_NE(pulled, kNoIndex);
+  mesh.points[static_cast<std::size_t>(pulled)] = {-0.2, 0.0, 1.2};  // stays in the plane y = 0
+  mesh.points.back() = {1.25, 0.5, 0.5};  // the tets' apex near their base: flat, poor tets
+  const Topology topo = build_topology(mesh);
+  const QualityField field = compute_quality(mesh, topo);
+  const KindVertexQuality kinds = kind_vertex_quality(mesh, field);
+  const std::array<Vec3, 4> face = {Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{1, 0, 1}, Vec3{-0.2, 0, 1.2}};
+  // The hex's own corner values at the face's corners, from Verdict's hex
+  // corner frames (corner_scaled_jacobians), and the vertex quality there.
+  const CornerJacobians hex = corner_scaled_jacobians(hex_corners(mesh, 0));
+  double hex_mean = 0.0, vertex_mean = 0.0;
+  for (const Vec3& p : face) {
+    const Index v = find(p);
+    ASSERT_NE(v, kNoIndex);
+    for (int i = 0; i < 8; ++i)
+      if (mesh.hexes[0][i] == v) hex_mean += 0.25 * hex.value[static_cast<std::size_t>(i)];
+    vertex_mean += 0.25 * field.vertex_quality[static_cast<std::size_t>(v)];
+    EXPECT_EQ(kinds.by_kind[static_cast<std::size_t>(CellKind::hex)][static_cast<std::size_t>(v)],
+              field.corner_scaled_jacobian[8 * 0 + static_cast<std::size_t>(std::find(mesh.hexes[0].begin(), mesh.hexes[0].end(), v) - mesh.hexes[0].begin())]);
+  }
+  // The tets pull the shared corners' vertex quality well below the hex's.
+  ASSERT_LT(vertex_mean, hex_mean - 0.05);
+  Vec3 centre{};
+  for (const Vec3& p : face) centre = centre + 0.25 * p;
+  constexpr int kSize = 240;
+  const std::vector<Vec3> frame = {{-0.3, -0.1, -0.1}, {2.1, 1.1, 1.3}};
+  const Camera camera = fit_camera_to_points(frame, Vec3{0, 1, 0}, 1.0, {.up = Vec3{0, 0, 1}, .is_perspective = false});
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  const auto centre_colour = [&](const KindVertexQuality* k) {
+    OverviewOptions options;
+    options.kind_quality = k;
+    Scene scene = build_quality_overview_scene(mesh, topo, field.vertex_quality, options);
+    scene.lines.clear();
+    for (TriangleSet& t : scene.triangles) t.is_lit = false;  // the map's colours as they are
+    const Image image = renderer->render(scene, camera, kSize, kSize);
+    const Vec3 ndc = project_to_ndc(camera, 1.0, centre - scene.origin + scene.origin);
+    return test::pixel_at(image, static_cast<int>(0.5 * (ndc.x + 1.0) * kSize), static_cast<int>(0.5 * (1.0 - ndc.y) * kSize));
+  };
+  const auto near = [](Rgba8 a, Rgba8 b) {
+    return std::abs(int(a.r) - int(b.r)) <= 2 && std::abs(int(a.g) - int(b.g)) <= 2 && std::abs(int(a.b) - int(b.b)) <= 2;
+  };
+  const Rgba8 expected = to_rgba8(quality_color(hex_mean));
+  EXPECT_TRUE(near(centre_colour(&kinds), expected));
+  // Blending the vertex quality instead (the old picture) is another colour.
+  EXPECT_FALSE(near(centre_colour(nullptr), expected));
+  EXPECT_TRUE(near(centre_colour(nullptr), to_rgba8(quality_color(vertex_mean))));
 }
 
 TEST(HybridViews, ViewDOfAVertexSharedByHexTetAndPyramidShowsEveryCell) {
