@@ -468,13 +468,15 @@ TEST(HybridViews, LegendsNameTheKindsOfAHybridMeshOnly) {
   const AnnotationStyle style = annotation_style_for(1200);
   const std::vector<LegendLine> lines = main_legend_lines(glyphs, nullptr, style, options, 1.0);
   const auto at = std::find_if(lines.begin(), lines.end(),
-                               [](const LegendLine& l) { return l.text == "cells of the mesh (edge colour)"; });
+                               [](const LegendLine& l) { return l.text == "edge colour by cell kind"; });
   ASSERT_NE(at, lines.end());
   ASSERT_GE(lines.end() - at, 4);
   EXPECT_EQ(at[1].text, "64 hex");
   EXPECT_EQ(at[2].text, std::to_string(mesh.tets.size()) + " tet");
   EXPECT_EQ(at[3].text, "16 pyramid");
-  EXPECT_EQ(at[1].swatch, std::optional<Rgba8>(kWireframeColor));
+  EXPECT_EQ(at[1].swatch, std::optional<Rgba8>(cell_kind_edge_color(CellKind::hex)));
+  // No "boundary edges" line in the boundary grey: no edge has it here.
+  for (const LegendLine& line : lines) EXPECT_NE(line.swatch, std::optional<Rgba8>(kWireframeColor)) << line.text;
   EXPECT_EQ(at[2].swatch, std::optional<Rgba8>(cell_kind_edge_color(CellKind::tet)));
   EXPECT_EQ(at[3].swatch, std::optional<Rgba8>(cell_kind_edge_color(CellKind::pyramid)));
   // The four colours differ from each other.
@@ -484,9 +486,23 @@ TEST(HybridViews, LegendsNameTheKindsOfAHybridMeshOnly) {
     distinct.insert({c.r, c.g, c.b});
   }
   EXPECT_EQ(distinct.size(), 4u);
+  // ... and from every colour of the quality map (sampled every 0.005, the
+  // inverted and undefined colours), the boundary grey and the
+  // non-conforming brown, by more than 60 in RGB (46q review Q-M6: hexes
+  // were the boundary grey, pyramids the map's orange).
+  std::vector<Rgba8> others = {kWireframeColor, kNonConformingColor, to_rgba8(kInvertedColor), to_rgba8(kUndefinedColor)};
+  for (int i = 0; i <= 200; ++i) others.push_back(to_rgba8(quality_color(i / 200.0)));
+  const auto distance = [](Rgba8 a, Rgba8 b) {
+    return std::hypot(double(a.r) - b.r, double(a.g) - b.g, double(a.b) - b.b);
+  };
+  for (CellKind k : {CellKind::hex, CellKind::tet, CellKind::wedge, CellKind::pyramid}) {
+    for (const Rgba8 o : others) EXPECT_GT(distance(cell_kind_edge_color(k), o), 60.0) << cell_kind_name(k);
+    for (CellKind l : {CellKind::hex, CellKind::tet, CellKind::wedge, CellKind::pyramid})
+      if (l != k) EXPECT_GT(distance(cell_kind_edge_color(k), cell_kind_edge_color(l)), 60.0);
+  }
   options.cell_kinds.clear();
   for (const LegendLine& line : main_legend_lines(glyphs, nullptr, style, options, 1.0))
-    EXPECT_EQ(line.text.find("cells of the mesh"), std::string::npos);
+    EXPECT_EQ(line.text.find("edge colour by cell kind"), std::string::npos);
 }
 
 // View A's wireframe on a hybrid mesh: each boundary edge in the colour of
@@ -524,6 +540,18 @@ TEST(HybridViews, ViewAWireframeColoursEdgesByKind) {
       if (c == cell_kind_edge_color(static_cast<CellKind>(k))) ++drawn[k];
   }
   EXPECT_EQ(drawn, expected);
+  // The 16 pyramids are all inside: their edges (counted here, boundary
+  // edges left out) are the last line set, in the pyramid colour.
+  std::set<std::pair<Index, Index>> pyramid_edges;
+  for (const auto& p : mesh.pyramids)
+    for (int i = 0; i < 4; ++i)
+      for (const auto& [a, b] : {std::pair{p[i], p[(i + 1) % 4]}, std::pair{p[i], p[4]}})
+        if (!rank.count({std::min(a, b), std::max(a, b)})) pyramid_edges.insert({std::min(a, b), std::max(a, b)});
+  ASSERT_EQ(mesh.pyramids.size(), 16u);
+  ASSERT_FALSE(pyramid_edges.empty());
+  ASSERT_EQ(scene.lines.size(), 4u);
+  EXPECT_EQ(scene.lines[3].indices.size(), 2 * pyramid_edges.size());
+  for (const Rgba8& c : scene.lines[3].colors) EXPECT_EQ(c, cell_kind_edge_color(CellKind::pyramid));
   const Mesh box = hex_box(2, 2, 2, 1, 1, 1);
   const Topology box_topo = topology_of(box);
   GlyphResult none;

@@ -27,7 +27,6 @@ namespace {
 constexpr double kClusterGlyphScale = 0.5;
 constexpr double kClusterGlyphMaxEdgeFraction = 0.35;
 constexpr Rgba8 kNeighbourEdgeColor{150, 152, 160, 255};
-constexpr Rgba8 kRingEdgeColor{70, 72, 80, 255};
 constexpr Rgba8 kRegionFaceColor{190, 196, 210, 60};
 
 Vec3 centre_of(const std::vector<Vec3>& points) {
@@ -176,9 +175,8 @@ struct Figure {
 
 // The detail views' legend: the quality colour bar, its title ending with
 // the kinds of the cells drawn (`kinds`, cell_kinds_legend) when not empty.
-// The ring's edge colour of each kind in view D: hexes kRingEdgeColor, the
-// other kinds cell_kind_edge_color (view A's).
-Rgba8 ring_edge_color(CellKind kind) { return kind == CellKind::hex ? kRingEdgeColor : cell_kind_edge_color(kind); }
+// The ring's edge colour of each kind in view D: cell_kind_edge_color (view A's).
+Rgba8 ring_edge_color(CellKind kind) { return cell_kind_edge_color(kind); }
 
 // kind_swatches: one swatch per kind named in `kinds`' last line, in its ring edge
 // colour (view D, whose ring edges are coloured by kind).
