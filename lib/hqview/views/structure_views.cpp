@@ -301,7 +301,7 @@ Vec3 choose_gradation_viewpoint(const HexMesh& mesh, const Topology& topology, c
   // mesh: its boundary quads, in their order).
   for (const BoundaryPolygon& face : boundary_polygons(topology)) {
     const auto cell = static_cast<std::size_t>(face.cell);
-    if (cell >= structure.cell_gradation.size() || !(structure.cell_gradation[cell] > 2.0)) continue;
+    if (cell >= structure.cell_gradation.size() || !(structure.cell_gradation[cell] > kGradationOfInterest)) continue;
     const auto& q = face.v;
     if (face.size == 4) {
       centers.push_back(0.25 * (point(mesh, q[0]) + point(mesh, q[1]) + point(mesh, q[2]) + point(mesh, q[3])));
@@ -326,15 +326,22 @@ Image render_gradation_view(const HexMesh& mesh, const Topology& topology, const
   AnnotationStyle style = annotation_style_for(options.height);
   style.background = options.background;
   ColorBar bar;
-  bar.label = "size gradation:\nvolume ratio to a\nface neighbour (max)";
+  bar.label = "size gradation:\nedge length (cube root of\nvolume) ratio to a face\nneighbour (max)";
   bar.min_value = 0.0;
   bar.max_value = 2.0;  // log2 of the gradation
   for (int i = 0; i <= 32; ++i) bar.colors.push_back(gradation_color(std::exp2(2.0 * i / 32.0)));
   bar.ticks = {{0.0, "1"}, {std::log2(1.5), "1.5"}, {1.0, "2"}, {std::log2(3.0), "3"}, {2.0, ">= 4"}};
-  bar.swatches = {{kUndefinedColor, "undefined"}};
-  // Several kinds: sizes are volumes over the kind's regular unit cell (structure.h).
+  // "undefined" only when a boundary cell has no gradation.
+  for (const BoundaryPolygon& face : boundary_polygons(topology))
+    if (static_cast<std::size_t>(face.cell) < structure.cell_gradation.size() &&
+        std::isnan(structure.cell_gradation[static_cast<std::size_t>(face.cell)])) {
+      bar.swatches = {{kUndefinedColor, "undefined"}};
+      break;
+    }
+  // Several kinds: sizes are equivalent edge lengths (the regular cell of
+  // the kind with the cell's volume; structure.h).
   if (const std::string kinds = mesh_kinds_text(mesh); !kinds.empty())
-    bar.label = "size gradation: ratio of\nvolume / regular cell\nof its kind to a face\nneighbour's (max)\n" + kinds;
+    bar.label = "size gradation: ratio of\nequivalent edge lengths\n(regular cell of its kind\nwith its volume) to a face\nneighbour's (max)\n" + kinds;
   const FigureLayout layout =
       figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(bar, style), style);
   const double aspect = static_cast<double>(layout.view.width) / std::max(1, layout.view.height);

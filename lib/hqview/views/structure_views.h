@@ -86,9 +86,11 @@ std::vector<Vec3> choose_singularity_viewpoints(const HexMesh& mesh, const Topol
 Image render_singularity_view(const HexMesh& mesh, const Topology& topology, const HexStructure& structure,
                               const Vec3& view_direction, const StructureViewOptions& options, Renderer& renderer);
 
-// The colour of a size gradation g: sample_quality_map(1 - log2(g) / 2)
-// (g = 1 pale, g >= 4 red), kUndefinedColor for NaN.
+// The colour of a size gradation g (a length ratio): sample_quality_map(1 -
+// log2(g) / 2) (g = 1 pale, 2 orange, g >= 4 red), kUndefinedColor for NaN.
 Color gradation_color(double g);
+// The gradation view looks at the cells grading above this (length ratio).
+inline constexpr double kGradationOfInterest = 1.5;
 
 // One upright direction for the gradation view.
 Vec3 choose_gradation_viewpoint(const HexMesh& mesh, const Topology& topology, const HexStructure& structure,
