@@ -157,8 +157,21 @@ RestingUp choose_resting_up(const HexMesh& mesh, const Topology& topology) {
   for (const RestingCandidate& c : result.candidates)
     if (c.rests) largest = std::max(largest, c.support_area);
   if (!(largest > 0.0)) return result;
-  // The first resting candidate in the prior order whose support area is
-  // within the margin of the largest.
+  // A box-like solid (it fills kRestingBoxFill of its bounding box: a box,
+  // a tower, a slab): every side is a flat face of the box and the data
+  // cannot tell one from another, so the file's axes win, as for a cube
+  // (issue 46: a tower modelled z-up lay on its long side): the first
+  // resting candidate in the prior order.
+  const Vec3 extent = solid.hi - solid.lo;
+  if (std::abs(solid.volume) >= kRestingBoxFill * extent.x * extent.y * extent.z)
+    for (const RestingCandidate& c : result.candidates)
+      if (c.rests) {
+        result.up = c.up;
+        result.from_data = true;
+        return result;
+      }
+  // Else the first resting candidate in the prior order whose support area
+  // is within the margin of the largest.
   for (const RestingCandidate& c : result.candidates) {
     if (c.rests && c.support_area * kRestingPriorMargin >= largest) {
       result.up = c.up;

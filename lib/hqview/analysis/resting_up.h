@@ -21,8 +21,11 @@
 //                 (a scan has lost its pedestal, the thin band misses toes:
 //                 the armadillo's centre is 2-3 % of its height outside the
 //                 hull of its feet).
-// The chosen axis: the first resting candidate, in the prior order +z, +y,
-// +x, -z, -y, -x, whose support area is at least 1/kRestingPriorMargin of
+// The chosen axis: on a box-like solid (its volume at least kRestingBoxFill
+// of its bounding box's: a box, tower or slab, whose flat sides the data
+// cannot tell apart; issue 46) the first resting candidate in the prior
+// order +z, +y, +x, -z, -y, -x; else the first resting candidate, in that
+// order, whose support area is at least 1/kRestingPriorMargin of
 // the largest support area of a resting candidate (so data that cannot
 // tell, a cube, keeps the file's own axis: z-up, then y-up). No resting
 // candidate with an area: +z (the default), from_data false.
@@ -43,6 +46,7 @@ namespace hq {
 inline constexpr double kRestingBaseBand = 0.01;      // of the bounding-box diagonal
 inline constexpr double kRestingTipTolerance = 0.05;  // of the centre's height
 inline constexpr double kRestingPriorMargin = 1.5;    // the largest support area over the chosen one's, at most
+inline constexpr double kRestingBoxFill = 0.9;        // solid volume / bounding-box volume of a box-like solid
 
 struct RestingCandidate {
   Vec3 up;
