@@ -668,7 +668,27 @@ Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span
   layout.ring_step = 12.0 * f.style.scale;
   layout.rings = static_cast<int>(std::ceil(std::max(f.layout.view.width, f.layout.view.height) / layout.ring_step));
   layout.leader_distance = 8.0 * f.style.scale;
-  const std::vector<std::optional<PlacedLabel>> placed_in_order = place_labels(ordered, obstacles, {}, layout);
+  std::vector<std::optional<PlacedLabel>> placed_in_order = place_labels(ordered, obstacles, {}, layout);
+  // Labels with no such place: placed again after the others, their
+  // leaders then free to cross discs (never a label over another).
+  std::vector<PlacedLabel> done;
+  std::vector<LabelRequest> again;
+  std::vector<std::size_t> again_at;
+  for (std::size_t k = 0; k < ordered.size(); ++k) {
+    if (placed_in_order[k]) {
+      done.push_back(*placed_in_order[k]);
+      continue;
+    }
+    LabelRequest r = ordered[k];
+    r.protect_below = 0;
+    r.strict_leaders = false;
+    again.push_back(r);
+    again_at.push_back(k);
+  }
+  if (!again.empty()) {
+    const std::vector<std::optional<PlacedLabel>> second = place_labels(again, obstacles, {}, layout, done);
+    for (std::size_t i = 0; i < again.size(); ++i) placed_in_order[again_at[i]] = second[i];
+  }
   std::vector<std::optional<PlacedLabel>> placed(requests.size());
   for (std::size_t k = 0; k < label_order.size(); ++k) placed[label_order[k]] = placed_in_order[k];
   for (std::size_t i = 0; i < centers.size(); ++i) {
