@@ -169,12 +169,17 @@ TEST(RestingUp, ACubeCannotTellAndKeepsTheFilesAxes) {
   const HexMesh cube = test::box_grid(3, 3, 3);
   const RestingUp r = choose_resting_up(cube, build_topology(cube));
   EXPECT_EQ(r.up, (Vec3{0, 0, 1}));
-  // A 4 x 3 x 4 box: +y rests on 16, +z on 12, within the margin (12 x 1.5
-  // >= 16), so +z, the first; a 4 x 3 x 2 one: +z's 12 is 1.5 x +y's 8.
+  // Any box fills its bounding box: the file's +z whatever its proportions
+  // (issue 46: the area margin laid a 4 x 2 x 4 box, and a z-up tower, on
+  // their long sides), and turned, the turned axis.
   EXPECT_EQ(choose(test::box_grid(4, 3, 4)), (Vec3{0, 0, 1}));
   EXPECT_EQ(choose(test::box_grid(4, 3, 2)), (Vec3{0, 0, 1}));
-  // A 4 x 2 x 4 one: +y's 16 over +z's 8 is more than the margin.
-  EXPECT_EQ(choose(test::box_grid(4, 2, 4)), (Vec3{0, 1, 0}));
+  EXPECT_EQ(choose(test::box_grid(4, 2, 4)), (Vec3{0, 0, 1}));
+  const RestingUp tall = choose_resting_up(test::box_grid(2, 2, 6), build_topology(test::box_grid(2, 2, 6)));
+  EXPECT_NEAR(tall.candidates[1].support_area, 12.0, 1e-12);  // +y: 2 x 6, three times +z's 4
+  EXPECT_EQ(tall.up, (Vec3{0, 0, 1}));
+  // The lamp and dustpan (a fifth and a third of their boxes) keep the
+  // margin rule: EveryRotationAndMirrorOfTheLampAndTheDustpanGivesTheTurnedAxis.
 }
 
 TEST(RestingUp, NoBoundaryOrNoVolumeIsTheDefault) {
@@ -312,7 +317,9 @@ v[] = Extrude {0, 0, 1.5} { Surface{s[1]}; Layers{3}; Recombine; };
       EXPECT_NEAR(r->candidates[i].support_area, area[i], 1e-9) << i;
       EXPECT_NEAR(r->candidates[i].tip, tip[i], 1e-9) << i;
     }
-    EXPECT_EQ(r->up, (Vec3{0, 1, 0}));
+    // A box (volume 1.5 x 1.5 x 2.7, its bounding box's): upright, as
+    // modelled (the margin rule alone chose +y's larger side).
+    EXPECT_EQ(r->up, (Vec3{0, 0, 1}));
   }
   // Turned so that the tower lies along x: it rests on -z... any side; the
   // prior picks the first side in +z +y +x -z -y -x order, as for the hex copy.

@@ -206,6 +206,24 @@ TEST(IndexHtml, DataFilesAndBoundaryPageAreLinkedOnlyWhenWritten) {
   EXPECT_NE(md.find(" 4.5 % |"), std::string::npos) << md;
 }
 
+// On a mesh with a tet the panels and the statistics speak of cells of
+// every kind, not of hexes (46q review Q-M9); a pure-hex mesh keeps its words.
+TEST(IndexHtml, HybridMeshPagesSayCellsWhereHexOnlyPagesSayHexes) {
+  ReportModel m = linked_model();
+  const std::string hexes = index_html(m);
+  EXPECT_NE(hexes.find("all 8 corners of every hex"), std::string::npos);
+  EXPECT_NE(hexes.find("one-ring hexes of a vertex"), std::string::npos);
+  m.analysis.mesh.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.analysis.mesh.tets.push_back({0, 1, 2, 3});
+  const std::string cells = index_html(m);
+  EXPECT_EQ(cells.find("all 8 corners of every hex"), std::string::npos);
+  EXPECT_EQ(cells.find("one-ring hexes"), std::string::npos);
+  EXPECT_EQ(cells.find("The hexes around a chosen vertex"), std::string::npos);
+  EXPECT_NE(cells.find("8 per hex, 4 per tet, 6 per wedge"), std::string::npos);
+  EXPECT_NE(cells.find("one-ring cells of a vertex"), std::string::npos);
+  EXPECT_NE(cells.find("of each cell&apos;s kind"), std::string::npos);
+}
+
 TEST(BoundaryHtml, StatisticsViewsAndTheWayBack) {
   ReportModel m = linked_model();
   EXPECT_THROW(boundary_html(m), Error);

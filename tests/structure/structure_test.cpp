@@ -73,18 +73,29 @@ TEST(Structure, IrregularWhenTheValenceDoesNotFitTheAngle) {
   EXPECT_EQ(w.num_singular_edges_boundary, 12);
 }
 
-TEST(Structure, GradationIsTheLargestVolumeRatioToAFaceNeighbour) {
+// A graded bar of 3 hexes of unit cross-section and widths 1, 8 and 27
+// (x = 0, 1, 9, 36): volumes 1, 8, 27, equivalent edge lengths (cube roots)
+// 1, 2, 3, so by hand the gradations are 2, max(2, 3/2) = 2 and 3/2 (a
+// volume ratio would say 8, 8 and 27/8).
+TEST(Structure, GradationIsTheLargestEdgeLengthRatioToAFaceNeighbour) {
   HexMesh mesh = test::box_grid(3, 1, 1);
-  // x = 3 -> x = 6: the last hex is 4 times the middle one.
-  for (Vec3& p : mesh.points)
-    if (p.x > 2.5) p.x = 6.0;
+  for (Vec3& p : mesh.points) p.x = p.x < 0.5 ? 0.0 : p.x < 1.5 ? 1.0 : p.x < 2.5 ? 9.0 : 36.0;
   const HexStructure s = structure_of(mesh);
   ASSERT_EQ(s.cell_gradation.size(), 3u);
-  EXPECT_NEAR(s.cell_gradation[0], 1.0, 1e-12);
-  EXPECT_NEAR(s.cell_gradation[1], 4.0, 1e-12);
-  EXPECT_NEAR(s.cell_gradation[2], 4.0, 1e-12);
-  EXPECT_EQ(s.num_gradation_above_2, 2);
-  EXPECT_EQ(s.num_gradation_above_4, 0);  // strictly above
+  EXPECT_NEAR(s.cell_gradation[0], 2.0, 1e-12);
+  EXPECT_NEAR(s.cell_gradation[1], 2.0, 1e-12);
+  EXPECT_NEAR(s.cell_gradation[2], 1.5, 1e-12);
+  EXPECT_EQ(s.num_gradation_above_2, 0);  // strictly above
+  EXPECT_EQ(s.num_gradation_above_4, 0);
+  EXPECT_NEAR(s.gradation.max, 2.0, 1e-12);
+  // Its last hex 4 times as wide (x = 36 -> 117, width 108): lengths 1, 2,
+  // cbrt(108) = 4.762, gradations 2, cbrt(108) / 2 = 2.381 twice.
+  for (Vec3& p : mesh.points)
+    if (p.x > 30.0) p.x = 117.0;
+  const HexStructure t = structure_of(mesh);
+  EXPECT_NEAR(t.cell_gradation[1], std::cbrt(108.0) / 2.0, 1e-12);
+  EXPECT_NEAR(t.cell_gradation[2], std::cbrt(108.0) / 2.0, 1e-12);
+  EXPECT_EQ(t.num_gradation_above_2, 2);
 }
 
 // ---- Hybrid meshes: size gradation across kinds, nodes at the interface ----
@@ -144,21 +155,23 @@ TEST(HybridGradation, RegularCellsOfEachKindGradeOneAndATetTwiceAsLargeTwo) {
   const HexStructure r = structure_of(regular);
   ASSERT_EQ(r.cell_gradation.size(), 4u);  // hex, tet, wedge, pyramid (cell ids)
   for (std::size_t c = 0; c < 4; ++c) EXPECT_NEAR(r.cell_gradation[c], 1.0, 1e-12) << c;
-  // The tet twice as high: size 2 against the pyramid's 1.
+  // The tet twice as high (twice the volume): equivalent edge cbrt(2)
+  // against the pyramid's 1.
   const HexStructure t = structure_of(kinds_tower(2.0));
   EXPECT_NEAR(t.cell_gradation[0], 1.0, 1e-12);  // the cube: pyramid 1, wedge 1
-  EXPECT_NEAR(t.cell_gradation[1], 2.0, 1e-12);  // the tet
+  EXPECT_NEAR(t.cell_gradation[1], std::cbrt(2.0), 1e-12);  // the tet
   EXPECT_NEAR(t.cell_gradation[2], 1.0, 1e-12);  // the wedge: only the cube
-  EXPECT_NEAR(t.cell_gradation[3], 2.0, 1e-12);  // the pyramid: the tet
+  EXPECT_NEAR(t.cell_gradation[3], std::cbrt(2.0), 1e-12);  // the pyramid: the tet
   EXPECT_EQ(t.gradation.count, 4);
   EXPECT_EQ(t.num_gradation_above_2, 0);  // strictly above
 }
 
 // The unit cube beside the 6 Kuhn tets of [1,2] x [0,1]^2 (the path x, y, z
 // in every order): the shared x = 1 face is the cube's quad against two
-// tet triangles (non-conforming). A Kuhn tet has volume 1/6, size
-// (1/6) / (sqrt 2 / 12) = sqrt 2: the cube and the two tets on the
-// interface grade sqrt 2, the other four tets (only tet neighbours) 1.
+// tet triangles (non-conforming). A Kuhn tet has volume 1/6, so
+// (1/6) / (sqrt 2 / 12) = sqrt 2 regular unit tets, equivalent edge
+// cbrt(sqrt 2) = 2^(1/6): the cube and the two tets on the interface grade
+// 2^(1/6), the other four tets (only tet neighbours) 1.
 Mesh cube_and_kuhn_tets() {
   Mesh mesh;
   const auto corner = [](double x0, int i) {
@@ -181,10 +194,10 @@ TEST(HybridGradation, ANonConformingInterfaceComparesTheQuadsCellWithItsTriangle
   ASSERT_EQ(topology.non_conforming_faces.size(), 1u);
   const HexStructure s = compute_structure(mesh, topology);
   ASSERT_EQ(s.cell_gradation.size(), 7u);
-  EXPECT_NEAR(s.cell_gradation[0], std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(s.cell_gradation[0], std::pow(2.0, 1.0 / 6.0), 1e-12);
   int at_interface = 0;
   for (Index t : topology.non_conforming_faces[0].triangle_cells) {
-    EXPECT_NEAR(s.cell_gradation[static_cast<std::size_t>(t)], std::sqrt(2.0), 1e-12) << t;
+    EXPECT_NEAR(s.cell_gradation[static_cast<std::size_t>(t)], std::pow(2.0, 1.0 / 6.0), 1e-12) << t;
     ++at_interface;
   }
   EXPECT_EQ(at_interface, 2);

@@ -20,9 +20,12 @@
 
 #include <unistd.h>
 
+#include "hqview/image/colormap.h"
 #include "hqview/io/mesh_reader.h"
 #include "hqview/mesh/boundary_polygons.h"
 #include "hqview/mesh/cell_faces.h"
+#include "hqview/quality/corner_jacobian.h"
+#include "hqview/quality/kind_vertex_quality.h"
 #include "hqview/quality/quality_field.h"
 #include "hqview/render/camera.h"
 #include "hqview/render/osmesa_renderer.h"
@@ -250,6 +253,67 @@ double tet_corner_by_hand(const Vec3& p, const Vec3& a, const Vec3& b, const Vec
   return std::min(1.0, std::sqrt(2.0) * std::abs(dot(cross(u, v), w)) / (norm(u) * norm(v) * norm(w)));
 }
 
+// A hex face beside tets is coloured from the hex's own corners (46q review
+// Q-M2): on a hex with one corner pulled out, next to two poor tets, the
+// rendered centre of the hex's y = 0 face is the colour of the mean of the
+// hex's four corner values there (the face's centre carries the corners'
+// mean), not of the vertex quality that the tets pull down.
+TEST(HybridViews, HexFaceBesideTetsTakesTheHexCornersColour) {
+  Mesh mesh = non_conforming_mesh();
+  const auto find = [&](const Vec3& p) {
+    for (std::size_t i = 0; i < mesh.points.size(); ++i)
+      if (norm(mesh.points[i] - p) < 1e-12) return static_cast<Index>(i);
+    return kNoIndex;
+  };
+  const Index pulled = find({0, 0, 1});
+  ASSERT_NE(pulled, kNoIndex);
+  mesh.points[static_cast<std::size_t>(pulled)] = {-0.2, 0.0, 1.2};  // stays in the plane y = 0
+  mesh.points.back() = {1.25, 0.5, 0.5};  // the tets' apex near their base: flat, poor tets
+  const Topology topo = build_topology(mesh);
+  const QualityField field = compute_quality(mesh, topo);
+  const KindVertexQuality kinds = kind_vertex_quality(mesh, field);
+  const std::array<Vec3, 4> face = {Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{1, 0, 1}, Vec3{-0.2, 0, 1.2}};
+  // The hex's own corner values at the face's corners, from Verdict's hex
+  // corner frames (corner_scaled_jacobians), and the vertex quality there.
+  const CornerJacobians hex = corner_scaled_jacobians(hex_corners(mesh, 0));
+  double hex_mean = 0.0, vertex_mean = 0.0;
+  for (const Vec3& p : face) {
+    const Index v = find(p);
+    ASSERT_NE(v, kNoIndex);
+    for (int i = 0; i < 8; ++i)
+      if (mesh.hexes[0][i] == v) hex_mean += 0.25 * hex.value[static_cast<std::size_t>(i)];
+    vertex_mean += 0.25 * field.vertex_quality[static_cast<std::size_t>(v)];
+    EXPECT_EQ(kinds.by_kind[static_cast<std::size_t>(CellKind::hex)][static_cast<std::size_t>(v)],
+              field.corner_scaled_jacobian[8 * 0 + static_cast<std::size_t>(std::find(mesh.hexes[0].begin(), mesh.hexes[0].end(), v) - mesh.hexes[0].begin())]);
+  }
+  // The tets pull the shared corners' vertex quality well below the hex's.
+  ASSERT_LT(vertex_mean, hex_mean - 0.05);
+  Vec3 centre{};
+  for (const Vec3& p : face) centre = centre + 0.25 * p;
+  constexpr int kSize = 240;
+  const std::vector<Vec3> frame = {{-0.3, -0.1, -0.1}, {2.1, 1.1, 1.3}};
+  const Camera camera = fit_camera_to_points(frame, Vec3{0, 1, 0}, 1.0, {.up = Vec3{0, 0, 1}, .is_perspective = false});
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  const auto centre_colour = [&](const KindVertexQuality* k) {
+    OverviewOptions options;
+    options.kind_quality = k;
+    Scene scene = build_quality_overview_scene(mesh, topo, field.vertex_quality, options);
+    scene.lines.clear();
+    for (TriangleSet& t : scene.triangles) t.is_lit = false;  // the map's colours as they are
+    const Image image = renderer->render(scene, camera, kSize, kSize);
+    const Vec3 ndc = project_to_ndc(camera, 1.0, centre - scene.origin + scene.origin);
+    return test::pixel_at(image, static_cast<int>(0.5 * (ndc.x + 1.0) * kSize), static_cast<int>(0.5 * (1.0 - ndc.y) * kSize));
+  };
+  const auto near = [](Rgba8 a, Rgba8 b) {
+    return std::abs(int(a.r) - int(b.r)) <= 2 && std::abs(int(a.g) - int(b.g)) <= 2 && std::abs(int(a.b) - int(b.b)) <= 2;
+  };
+  const Rgba8 expected = to_rgba8(quality_color(hex_mean));
+  EXPECT_TRUE(near(centre_colour(&kinds), expected));
+  // Blending the vertex quality instead (the old picture) is another colour.
+  EXPECT_FALSE(near(centre_colour(nullptr), expected));
+  EXPECT_TRUE(near(centre_colour(nullptr), to_rgba8(quality_color(vertex_mean))));
+}
+
 TEST(HybridViews, ViewDOfAVertexSharedByHexTetAndPyramidShowsEveryCell) {
   if (!hex_tet()) GTEST_SKIP() << "gmsh failed or is missing";
   const Mesh& mesh = *hex_tet();
@@ -322,6 +386,44 @@ TEST(HybridViews, ViewDOfAVertexSharedByHexTetAndPyramidShowsEveryCell) {
   EXPECT_EQ(cell_kinds_legend(mesh, ring), "cells: 4 hex, " + std::to_string(by_kind[CellKind::tet]) + " tet, 4 pyramid");
 }
 
+// View D's discs are stacked by value (46q review Q-M1): every marker moved
+// onto the worst one's place shows the worst one's colour there, and a
+// marker moved onto the vertex leaves the vertex's dark dot on top.
+TEST(HybridViews, ViewDStacksTheWorstDiscOnTopAndTheVertexAboveAll) {
+  if (!hex_tet()) GTEST_SKIP() << "gmsh failed or is missing";
+  const Mesh& mesh = *hex_tet();
+  const Topology topo = topology_of(mesh);
+  const QualityField field = compute_quality(mesh, topo);
+  Index v = kNoIndex;
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    if (norm(mesh.points[i] - Vec3{1.0, 0.5, 0.5}) < 1e-12) v = static_cast<Index>(i);
+  ASSERT_NE(v, kNoIndex);
+  const std::vector<VertexCorner> corners = vertex_corners(mesh, topo, field.corner_scaled_jacobian, v);
+  Scene scene = build_local_scene(mesh, topo, field.corner_scaled_jacobian, v);
+  ASSERT_EQ(scene.spheres[0].centers.size(), corners.size());
+  std::vector<double> values;
+  for (const VertexCorner& c : corners) values.push_back(c.value);
+  const std::size_t worst = static_cast<std::size_t>(std::min_element(values.begin(), values.end()) - values.begin());
+  const std::size_t best = static_cast<std::size_t>(std::max_element(values.begin(), values.end()) - values.begin());
+  ASSERT_LT(values[worst], values[best] - 0.1);
+  // Every marker but the best on the worst one's place; the best on the vertex.
+  const Vec3f at = scene.spheres[0].centers[worst];
+  for (std::size_t i = 0; i < values.size(); ++i) scene.spheres[0].centers[i] = i == best ? Vec3f{0, 0, 0} : at;
+  for (float& r : scene.spheres[0].radii) r = 0.03f;
+  constexpr int kSize = 300;
+  const Vec3 direction = normalized(Vec3{1.0, -0.7, 0.4});
+  const std::vector<Vec3> frame = {scene.origin + Vec3{-0.15, -0.15, -0.15}, scene.origin + Vec3{0.15, 0.15, 0.15}};
+  const Camera camera = fit_camera_to_points(frame, direction, 1.0, {.up = Vec3{0, 0, 1}, .is_perspective = false});
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  const Image image = renderer->render(local_marker_discs(scene, camera, values, 1.0), camera, kSize, kSize);
+  const auto pixel_of = [&](const Vec3& p) {
+    const Vec3 ndc = project_to_ndc(camera, 1.0, p);
+    return test::pixel_at(image, static_cast<int>(0.5 * (ndc.x + 1.0) * kSize), static_cast<int>(0.5 * (1.0 - ndc.y) * kSize));
+  };
+  EXPECT_EQ(pixel_of(scene.origin + Vec3{at.x, at.y, at.z}), to_rgba8(quality_color(values[worst])));
+  EXPECT_EQ(pixel_of(scene.origin), scene.spheres[1].colors.at(0));
+}
+
 TEST(HybridViews, ViewCOfAClusterAtTheInterfaceDrawsEveryKind) {
   if (!hex_tet()) GTEST_SKIP() << "gmsh failed or is missing";
   const Mesh& mesh = *hex_tet();
@@ -366,13 +468,15 @@ TEST(HybridViews, LegendsNameTheKindsOfAHybridMeshOnly) {
   const AnnotationStyle style = annotation_style_for(1200);
   const std::vector<LegendLine> lines = main_legend_lines(glyphs, nullptr, style, options, 1.0);
   const auto at = std::find_if(lines.begin(), lines.end(),
-                               [](const LegendLine& l) { return l.text == "cells of the mesh (edge colour)"; });
+                               [](const LegendLine& l) { return l.text == "edge colour by cell kind"; });
   ASSERT_NE(at, lines.end());
   ASSERT_GE(lines.end() - at, 4);
   EXPECT_EQ(at[1].text, "64 hex");
   EXPECT_EQ(at[2].text, std::to_string(mesh.tets.size()) + " tet");
   EXPECT_EQ(at[3].text, "16 pyramid");
-  EXPECT_EQ(at[1].swatch, std::optional<Rgba8>(kWireframeColor));
+  EXPECT_EQ(at[1].swatch, std::optional<Rgba8>(cell_kind_edge_color(CellKind::hex)));
+  // No "boundary edges" line in the boundary grey: no edge has it here.
+  for (const LegendLine& line : lines) EXPECT_NE(line.swatch, std::optional<Rgba8>(kWireframeColor)) << line.text;
   EXPECT_EQ(at[2].swatch, std::optional<Rgba8>(cell_kind_edge_color(CellKind::tet)));
   EXPECT_EQ(at[3].swatch, std::optional<Rgba8>(cell_kind_edge_color(CellKind::pyramid)));
   // The four colours differ from each other.
@@ -382,9 +486,23 @@ TEST(HybridViews, LegendsNameTheKindsOfAHybridMeshOnly) {
     distinct.insert({c.r, c.g, c.b});
   }
   EXPECT_EQ(distinct.size(), 4u);
+  // ... and from every colour of the quality map (sampled every 0.005, the
+  // inverted and undefined colours), the boundary grey and the
+  // non-conforming brown, by more than 60 in RGB (46q review Q-M6: hexes
+  // were the boundary grey, pyramids the map's orange).
+  std::vector<Rgba8> others = {kWireframeColor, kNonConformingColor, to_rgba8(kInvertedColor), to_rgba8(kUndefinedColor)};
+  for (int i = 0; i <= 200; ++i) others.push_back(to_rgba8(quality_color(i / 200.0)));
+  const auto distance = [](Rgba8 a, Rgba8 b) {
+    return std::hypot(double(a.r) - b.r, double(a.g) - b.g, double(a.b) - b.b);
+  };
+  for (CellKind k : {CellKind::hex, CellKind::tet, CellKind::wedge, CellKind::pyramid}) {
+    for (const Rgba8 o : others) EXPECT_GT(distance(cell_kind_edge_color(k), o), 60.0) << cell_kind_name(k);
+    for (CellKind l : {CellKind::hex, CellKind::tet, CellKind::wedge, CellKind::pyramid})
+      if (l != k) EXPECT_GT(distance(cell_kind_edge_color(k), cell_kind_edge_color(l)), 60.0);
+  }
   options.cell_kinds.clear();
   for (const LegendLine& line : main_legend_lines(glyphs, nullptr, style, options, 1.0))
-    EXPECT_EQ(line.text.find("cells of the mesh"), std::string::npos);
+    EXPECT_EQ(line.text.find("edge colour by cell kind"), std::string::npos);
 }
 
 // View A's wireframe on a hybrid mesh: each boundary edge in the colour of
@@ -422,6 +540,18 @@ TEST(HybridViews, ViewAWireframeColoursEdgesByKind) {
       if (c == cell_kind_edge_color(static_cast<CellKind>(k))) ++drawn[k];
   }
   EXPECT_EQ(drawn, expected);
+  // The 16 pyramids are all inside: their edges (counted here, boundary
+  // edges left out) are the last line set, in the pyramid colour.
+  std::set<std::pair<Index, Index>> pyramid_edges;
+  for (const auto& p : mesh.pyramids)
+    for (int i = 0; i < 4; ++i)
+      for (const auto& [a, b] : {std::pair{p[i], p[(i + 1) % 4]}, std::pair{p[i], p[4]}})
+        if (!rank.count({std::min(a, b), std::max(a, b)})) pyramid_edges.insert({std::min(a, b), std::max(a, b)});
+  ASSERT_EQ(mesh.pyramids.size(), 16u);
+  ASSERT_FALSE(pyramid_edges.empty());
+  ASSERT_EQ(scene.lines.size(), 4u);
+  EXPECT_EQ(scene.lines[3].indices.size(), 2 * pyramid_edges.size());
+  for (const Rgba8& c : scene.lines[3].colors) EXPECT_EQ(c, cell_kind_edge_color(CellKind::pyramid));
   const Mesh box = hex_box(2, 2, 2, 1, 1, 1);
   const Topology box_topo = topology_of(box);
   GlyphResult none;

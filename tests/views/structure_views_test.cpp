@@ -1,4 +1,5 @@
 // The structure views' scenes, palette and viewpoints, built without OpenGL.
+#include "hqview/views/overview_views.h"
 #include "hqview/views/structure_views.h"
 
 #include <gtest/gtest.h>
@@ -49,6 +50,69 @@ TEST(StructureViews, NodeSpheresOfACoarseMeshAreCappedByItsSize) {
   const Scene scene = build_singularity_scene(mesh, topology, compute_structure(mesh, topology), {});
   ASSERT_EQ(sphere_count(scene), 8u);
   EXPECT_FLOAT_EQ(scene.spheres[0].radii[0], static_cast<float>(0.02 * std::sqrt(3.0)));
+}
+
+// One unit hex and two tets splitting its x = 1 face (non-conforming): the
+// 4 hex edges along x are singular (boundary, valence 1) and end at the
+// face's 4 corners, which touch the tets: 4 curve ends there, each drawn as a
+// ring facing the camera; the brown face is half transparent, unlit and
+// after the veil, so nothing opaque hides a node (46q review Q-M3, Q-M4).
+TEST(StructureViews, CurveEndsAtTetsGetRingsAndTheNonConformingFaceIsSeeThrough) {
+  HexMesh mesh = test::unit_cube();
+  std::vector<Index> x1;
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    if (std::abs(mesh.points[i].x - 1.0) < 1e-12) x1.push_back(static_cast<Index>(i));
+  ASSERT_EQ(x1.size(), 4u);
+  const auto at = [&](double y, double z) {
+    for (Index v : x1)
+      if (std::abs(mesh.points[static_cast<std::size_t>(v)].y - y) < 1e-12 && std::abs(mesh.points[static_cast<std::size_t>(v)].z - z) < 1e-12) return v;
+    return kNoIndex;
+  };
+  mesh.points.push_back({2.0, 0.5, 0.5});
+  const Index apex = static_cast<Index>(mesh.points.size() - 1);
+  const auto positive = [&](std::array<Index, 4> t) {
+    const auto p = [&](int i) { return mesh.points[static_cast<std::size_t>(t[static_cast<std::size_t>(i)])]; };
+    if (dot(cross(p(1) - p(0), p(2) - p(0)), p(3) - p(0)) < 0) std::swap(t[1], t[2]);
+    return t;
+  };
+  mesh.tets.push_back(positive({at(0, 0), at(1, 0), at(1, 1), apex}));
+  mesh.tets.push_back(positive({at(0, 0), at(1, 1), at(0, 1), apex}));
+  const Topology topology = build_topology(mesh);
+  ASSERT_EQ(topology.non_conforming_faces.size(), 1u);
+  const HexStructure s = compute_structure(mesh, topology);
+  std::vector<Index> expected = x1;
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(interface_curve_ends(s), expected);
+  EXPECT_EQ(s.num_interface_ends, 4);
+  // Rings: 4, each 24 segments of 2 triangles, unlit, centred on its vertex, facing the camera.
+  Camera camera;
+  camera.eye = {5, -3, 2};
+  camera.target = {0, 0, 0};
+  camera.up = {0, 0, 1};
+  const double r = 0.1;
+  const std::vector<Index> ends = interface_curve_ends(s);
+  const TriangleSet rings = curve_end_rings(mesh, ends, Vec3{}, camera, r);
+  EXPECT_FALSE(rings.is_lit);
+  ASSERT_EQ(rings.positions.size(), 4u * 48u);
+  EXPECT_EQ(rings.indices.size(), 4u * 24u * 6u);
+  const Vec3 d = normalized(camera.target - camera.eye);
+  for (std::size_t k = 0; k < ends.size(); ++k) {
+    const Vec3 c = mesh.points[static_cast<std::size_t>(ends[k])];
+    for (std::size_t i = 48 * k; i < 48 * (k + 1); ++i) {
+      const Vec3 q = Vec3{rings.positions[i].x, rings.positions[i].y, rings.positions[i].z} - c;
+      EXPECT_NEAR(dot(q, d), 0.0, 1e-6);
+      EXPECT_NEAR(norm(q), i % 2 == 0 ? r : kCurveEndRingInner * r, 1e-6);
+    }
+  }
+  const Scene scene = build_singularity_scene(mesh, topology, s, {});
+  EXPECT_TRUE(scene.triangles.empty());  // nothing opaque
+  ASSERT_EQ(scene.translucent.size(), 2u);
+  EXPECT_FALSE(scene.translucent[1].is_lit);
+  ASSERT_FALSE(scene.translucent[1].colors.empty());
+  for (const Rgba8& c : scene.translucent[1].colors) {
+    EXPECT_EQ((Rgba8{c.r, c.g, c.b, 255}), kNonConformingColor);
+    EXPECT_EQ(c.a, kNonConformingFaceAlpha);
+  }
 }
 
 TEST(StructureViews, AGridShowsItsTwelveBoxEdgesAndEightNodes) {

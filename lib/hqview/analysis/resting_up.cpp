@@ -153,6 +153,19 @@ RestingUp choose_resting_up(const HexMesh& mesh, const Topology& topology) {
   if (!(std::abs(solid.volume) > 0.0) || !std::isfinite(solid.volume) || !is_finite(solid.centre)) return result;
   result.candidates.reserve(6);
   for (const Vec3& up : resting_up_candidates()) result.candidates.push_back(evaluate(mesh, topology, solid, up));
+  // 0. A box-like solid (it fills kRestingBoxFill of its bounding box: a
+  // box, a tower, a slab): every side is a flat face of the box and the
+  // data cannot tell one from another, so the file's axes win, as for a cube
+  // (issue 46: a tower modelled z-up lay on its long side): the first
+  // resting candidate in the prior order.
+  const Vec3 extent = solid.hi - solid.lo;
+  if (std::abs(solid.volume) >= kRestingBoxFill * extent.x * extent.y * extent.z)
+    for (const RestingCandidate& c : result.candidates)
+      if (c.rests && c.support_area > 0.0) {
+        result.up = c.up;
+        result.from_data = true;
+        return result;
+      }
   // 1. Alike opposite poses (both rest, support areas and tips within
   // kRestingAlike): the model is about mirror-symmetric across the plane
   // between them, so either pose lies on its side (an L bracket flat on its

@@ -21,7 +21,10 @@
 //                 (a scan has lost its pedestal, the thin band misses toes:
 //                 the armadillo's centre is 2-3 % of its height outside the
 //                 hull of its feet).
-// Opposite candidates that both rest with alike support areas and tips
+// On a box-like solid (its volume at least kRestingBoxFill of its bounding
+// box's: a box, tower or slab, whose flat sides the data cannot tell apart;
+// issue 46) the first resting candidate in the prior order (below). Else:
+// opposite candidates that both rest with alike support areas and tips
 // (within kRestingAlike) mean a model about mirror-symmetric across the
 // plane between them: either pose lies on its side (an L bracket flat on
 // its L; the upright of a symmetric part has its symmetry plane vertical,
@@ -54,6 +57,7 @@ inline constexpr double kRestingTipTolerance = 0.05;  // of the centre's height
 inline constexpr double kRestingPriorMargin = 1.5;    // the largest support area over the chosen one's, at most
 inline constexpr double kRestingAlike = 0.02;         // opposite poses alike: relative to the larger area, the larger |tip| (at least 1)
 inline constexpr double kRestingFlipMargin = 0.05;    // the opposite base wins when larger by this fraction
+inline constexpr double kRestingBoxFill = 0.9;        // solid volume / bounding-box volume of a box-like solid
 
 struct RestingCandidate {
   Vec3 up;

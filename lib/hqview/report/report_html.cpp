@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <kainjow/mustache.hpp>
 #include <map>
@@ -441,6 +442,28 @@ void set_comparison(data& page, const ReportModel& model) {
   page.set("compare_rows", rows);
 }
 
+bool has_non_hex(const ReportModel& model) {
+  const Mesh& mesh = model.analysis.mesh;
+  return !mesh.tets.empty() || !mesh.wedges.empty() || !mesh.pyramids.empty();
+}
+
+// A panel's text on a mesh with tets, wedges or pyramids: what it says of
+// hexes said of the cells of every kind (46q review Q-M9).
+std::string hybrid_wording(std::string text) {
+  static const std::pair<const char*, const char*> kWords[] = {
+      {"The hex boundary", "The boundary (every cell kind)"},
+      {"the inverted hexes", "the inverted cells"},
+      {"one-ring hexes of a vertex", "one-ring cells of a vertex"},
+      {"The hexes around a chosen vertex", "The cells of every kind around a chosen vertex"},
+      {"one bar per incident hex", "one bar per corner of an incident cell"},
+      {"and the hexes around them", "and the cells around them"},
+  };
+  for (const auto& [from, to] : kWords)
+    for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + std::strlen(to)))
+      text.replace(at, std::strlen(from), to);
+  return text;
+}
+
 // Panels A–F with the links between them (every view of kViews has a
 // panel here or on boundary.html).
 void set_panels(data& page, const ReportModel& model, const PanelIndex& index) {
@@ -452,7 +475,8 @@ void set_panels(data& page, const ReportModel& model, const PanelIndex& index) {
     panel.set("anchor", spec.anchor);
     panel.set("nav", spec.nav);
     panel.set("title", spec.title);
-    panel.set("intro", spec.intro);
+    panel.set("intro", has_non_hex(model) ? hybrid_wording(spec.intro) : std::string(spec.intro));
+    if (has_non_hex(model)) panel.set("title", hybrid_wording(spec.title));
     // Panel A's intro under its figures, so that the overview starts right
     // under the heading and fits the first screen (issue 45e).
     panel.set("intro_after", spec.letter == 'A');
@@ -507,15 +531,19 @@ void set_structure(data& page, const HexStructure& s) {
 }
 
 // The statistics of the Jacobian fields and of every Verdict metric.
-void set_statistics(data& page, const QualitySummary& q, bool is_surface) {
+void set_statistics(data& page, const QualitySummary& q, bool is_surface, bool is_hybrid) {
   data stats{data::type::list};
   // A surface mesh's cells: signed corners (docs/analysis.md, "Surface meshes").
+  // A hybrid mesh's: each kind's Verdict scaled Jacobian and corners (46q review Q-M9).
   stats.push_back(stats_row("cell scaled Jacobian",
-                            is_surface ? "lowest signed corner (against the plane of a planar mesh)"
-                                       : "Verdict: min over centre and 8 corner frames",
+                            is_surface  ? "lowest signed corner (against the plane of a planar mesh)"
+                            : is_hybrid ? "Verdict's, of each cell's kind (a hex: min over centre and 8 corner frames)"
+                                        : "Verdict: min over centre and 8 corner frames",
                             q.scaled_jacobian));
   stats.push_back(stats_row("corner scaled Jacobian",
-                            is_surface ? "4 corners of every quad, 3 of every triangle" : "all 8 corners of every hex",
+                            is_surface  ? "4 corners of every quad, 3 of every triangle"
+                            : is_hybrid ? "every cell's corners: 8 per hex, 4 per tet, 6 per wedge, a pyramid's 4 base corners"
+                                        : "all 8 corners of every hex",
                             q.corner_scaled_jacobian));
   stats.push_back(stats_row("vertex quality", "min corner value at the vertex", q.vertex_quality));
   page.set("stats", stats);
@@ -719,7 +747,7 @@ std::string index_html(const ReportModel& model) {
   set_headline(page, model);
   set_panels(page, model, index);
   set_comparison(page, model);
-  set_statistics(page, model.analysis.quality, model.analysis.mesh_summary.is_surface);
+  set_statistics(page, model.analysis.quality, model.analysis.mesh_summary.is_surface, has_non_hex(model));
   page.set("is_surface", model.analysis.mesh_summary.is_surface);
   set_structure(page, model.analysis.structure);
   set_gates(page, model.gates);

@@ -139,7 +139,8 @@ void size_gradation(const HexMesh& mesh, const Topology& topology, HexStructure&
            k < topology.face_hex_offsets[static_cast<std::size_t>(face) + 1]; ++k) {
         const auto o = static_cast<std::size_t>(topology.face_hexes[static_cast<std::size_t>(k)]);
         if (o == h || !(volume[o] > 0.0)) continue;
-        const double r = std::max(volume[h] / volume[o], volume[o] / volume[h]);
+        // Lengths: the cube roots of the volumes (issue 46, 46q review Q-M5).
+        const double r = std::cbrt(std::max(volume[h] / volume[o], volume[o] / volume[h]));
         if (!(worst >= r)) worst = r;
       }
     }
@@ -154,10 +155,12 @@ void size_gradation(const HexMesh& mesh, const Topology& topology, HexStructure&
 
 // ---- Size gradation across kinds ----------------------------------------
 
-// Per volume cell id (hexes, tets, wedges, pyramids): Verdict's volume over
-// the volume of its kind's regular unit cell (cell_volume.h), the volume of
-// the cube of the same edge length: for a hex its volume.
-std::vector<double> equivalent_hex_volumes(const Mesh& mesh) {
+// Per volume cell id (hexes, tets, wedges, pyramids): the equivalent edge
+// length, the cube root of Verdict's volume over the volume of its kind's
+// regular unit cell (cell_volume.h): the edge of the regular cell of that
+// kind with that volume (for a hex the cube root of its volume); a cell
+// without a positive volume keeps its volume (no size).
+std::vector<double> equivalent_edge_lengths(const Mesh& mesh) {
   std::vector<double> out;
   out.reserve(static_cast<std::size_t>(num_volume_cells(mesh)));
   for_each_block(mesh, [&](auto kind, const auto& cells) {
@@ -166,7 +169,8 @@ std::vector<double> equivalent_hex_volumes(const Mesh& mesh) {
       for (const auto& cell : cells) {
         std::array<Vec3, N> p;
         for (int k = 0; k < N; ++k) p[static_cast<std::size_t>(k)] = mesh.points[static_cast<std::size_t>(cell[static_cast<std::size_t>(k)])];
-        out.push_back(cell_volume<kind()>(p) / regular_unit_volume<kind()>());
+        const double v = cell_volume<kind()>(p) / regular_unit_volume<kind()>();
+        out.push_back(v > 0.0 ? std::cbrt(v) : v);
       }
     }
   });
@@ -255,7 +259,7 @@ void compare_across_own_matched_faces(const Mesh& mesh, const std::vector<double
 // (a topology of the hexes alone) matched here. Either way the same pairs,
 // and a cell's gradation is the largest ratio over its pairs, in any order.
 std::vector<double> gradation_across_kinds(const Mesh& mesh, const Topology& topology) {
-  const std::vector<double> size = equivalent_hex_volumes(mesh);
+  const std::vector<double> size = equivalent_edge_lengths(mesh);
   const std::size_t nc = size.size();
   std::vector<double> gradation(nc, std::numeric_limits<double>::quiet_NaN());
   if (topology.cell_face_offsets.empty()) {

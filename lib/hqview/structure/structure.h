@@ -13,12 +13,14 @@
 //     maximal chains of singular edges between nodes (a closed chain
 //     without a node is one curve);
 //   - the size gradation of a cell is the largest ratio of its size to a
-//     face neighbour's (or the inverse, so >= 1); a cell's size is its
-//     Verdict volume over the volume of its kind's regular cell of unit
-//     edges (cell_volume.h): a hex's volume, and for a tet, wedge or pyramid
-//     the volume of the cube whose edge is that of the regular cell of the
-//     same volume, so a regular tet next to a cube of the same edge length
-//     grades 1. On a hybrid mesh every volume cell has one, its neighbours
+//     face neighbour's (or the inverse, so >= 1); a cell's size is a
+//     length, its equivalent edge length: the cube root of its Verdict
+//     volume over the volume of its kind's regular cell of unit edges
+//     (cell_volume.h), i.e. the edge of the regular cell of its kind with
+//     its volume (a hex: the cube root of its volume), so a regular tet next
+//     to a cube of the same edge length grades 1, and a cube next to one of
+//     twice its edge grades 2 (issue 46: a volume ratio turned the shape
+//     noise of same-size tets into ratios of 2-3). On a hybrid mesh every volume cell has one, its neighbours
 //     those sharing a whole face with it (any kinds) and, across a
 //     non-conforming interface, the quad's cell and the two triangles'.
 // On a hybrid mesh all of this but the size gradation is the hex part's: valences count hexes, and
@@ -80,7 +82,7 @@ struct HexStructure {
   // neighbour of positive volume).
   std::vector<double> cell_gradation;
   Statistics gradation;                        // of the finite cell_gradation values
-  Index num_gradation_above_2 = 0, num_gradation_above_4 = 0;
+  Index num_gradation_above_2 = 0, num_gradation_above_4 = 0;  // length ratios, strictly above
 };
 
 HexStructure compute_structure(const HexMesh& mesh, const Topology& topology);

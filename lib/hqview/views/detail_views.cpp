@@ -28,7 +28,6 @@ namespace {
 constexpr double kClusterGlyphScale = 0.5;
 constexpr double kClusterGlyphMaxEdgeFraction = 0.35;
 constexpr Rgba8 kNeighbourEdgeColor{150, 152, 160, 255};
-constexpr Rgba8 kRingEdgeColor{70, 72, 80, 255};
 constexpr Rgba8 kRegionFaceColor{190, 196, 210, 60};
 
 Vec3 centre_of(const std::vector<Vec3>& points) {
@@ -177,9 +176,8 @@ struct Figure {
 
 // The detail views' legend: the quality colour bar, its title ending with
 // the kinds of the cells drawn (`kinds`, cell_kinds_legend) when not empty.
-// The ring's edge colour of each kind in view D: hexes kRingEdgeColor, the
-// other kinds cell_kind_edge_color (view A's).
-Rgba8 ring_edge_color(CellKind kind) { return kind == CellKind::hex ? kRingEdgeColor : cell_kind_edge_color(kind); }
+// The ring's edge colour of each kind in view D: cell_kind_edge_color (view A's).
+Rgba8 ring_edge_color(CellKind kind) { return cell_kind_edge_color(kind); }
 
 // kind_swatches: one swatch per kind named in `kinds`' last line, in its ring edge
 // colour (view D, whose ring edges are coloured by kind).
@@ -536,17 +534,21 @@ Scene build_local_scene(const HexMesh& mesh, const Topology& topology, std::span
   return scene;
 }
 
-namespace {
-
 // The corner markers (the scene's first sphere set) as flat discs facing the
 // camera, each on a dark rim, over everything (Scene::overlay): behind the
 // ring's translucent faces a sphere's colour washed out towards grey, so a
-// marker's colour disagreed with its value.
-Scene with_flat_markers(const Scene& scene, const Camera& camera) {
+// marker's colour disagreed with its value. The discs are stacked by value
+// (issue 46, 46q review Q-M1): each lies in the plane through the vertex
+// facing the camera, kStackStep of the mean edge nearer the camera per rank,
+// the worst corner on top; the vertex itself (the scene's second sphere
+// set) is a dark disc above them all, so the view's subject is never hidden.
+Scene local_marker_discs(const Scene& scene, const Camera& camera, const std::vector<double>& values, double size) {
   Scene out = scene;
   if (out.spheres.empty()) return out;
   const SphereSet markers = out.spheres[0];
   out.spheres[0] = SphereSet{};
+  SphereSet vertex;
+  if (out.spheres.size() > 1) std::swap(vertex, out.spheres[1]);
   const Vec3 d = normalized(camera.target - camera.eye);
   Vec3 right = cross(d, camera.up);
   if (!(squared_norm(right) > 0.0)) right = cross(d, Vec3{1.0, 0.0, 0.0});
@@ -568,17 +570,29 @@ Scene with_flat_markers(const Scene& scene, const Camera& camera) {
     for (std::uint32_t k = 0; k < kSegments; ++k)
       discs.indices.insert(discs.indices.end(), {base, base + 1 + k, base + 1 + (k + 1) % kSegments});
   };
-  for (std::size_t i = 0; i < markers.centers.size(); ++i) {
-    const Vec3 c{markers.centers[i].x, markers.centers[i].y, markers.centers[i].z};
+  // Best first (lowest in the stack), ties by corner order; NaN lowest.
+  std::vector<std::size_t> order(markers.centers.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  const auto key = [&](std::size_t i) { return i < values.size() && !std::isnan(values[i]) ? values[i] : 2.0; };
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key(a) > key(b); });
+  const double step = kLocalStackStep * size;
+  // The plane through the vertex (the scene's origin) facing the camera.
+  const auto in_plane = [&](const Vec3f& c, double rank) {
+    const Vec3 q{c.x, c.y, c.z};
+    return q - dot(q, d) * d - (rank * step) * d;
+  };
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const std::size_t i = order[k];
     const double r = markers.radii[i];
-    disc(c + 0.05 * r * d, 1.12 * r, kRim);  // the rim just behind its disc
-    disc(c, r, markers.colors[i]);
+    disc(in_plane(markers.centers[i], 2.0 * static_cast<double>(k) + 1.0), 1.12 * r, kRim);  // its rim just under it
+    disc(in_plane(markers.centers[i], 2.0 * static_cast<double>(k) + 2.0), r, markers.colors[i]);
   }
+  for (std::size_t i = 0; i < vertex.centers.size(); ++i)
+    disc(in_plane(vertex.centers[i], 2.0 * static_cast<double>(order.size()) + 2.0), kLocalDiscScale * vertex.radii[i],
+         vertex.colors[i]);
   out.overlay.push_back(std::move(discs));
   return out;
 }
-
-}  // namespace
 
 Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v,
                         const DetailViewOptions& options, Renderer& renderer) {
@@ -587,8 +601,12 @@ Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span
   const std::string kinds = std::string(kLocalMarkerSizeLegend) +
                             (has_non_hex_cells(mesh) ? "\n" + cell_kinds_legend(mesh, ring) : std::string());
   const Figure f = detail_figure(options, kinds, has_non_hex_cells(mesh));
-  const Scene scene = build_local_scene(mesh, topology, corner_values, v);
+  Scene scene = build_local_scene(mesh, topology, corner_values, v);
   const std::vector<VertexCorner> corners = vertex_corners(mesh, topology, corner_values, v);
+  // The discs at kLocalDiscScale of the markers' size: at full size a ring
+  // of 20 cells was one blob of discs (46q review Q-M1).
+  std::vector<double> values;
+  for (const VertexCorner& c : corners) values.push_back(c.value);
   std::vector<Vec3> points = cell_points(mesh, ring);
   // Viewpoint: the one that separates the corner markers best.
   std::vector<Vec3> centers;
@@ -599,10 +617,12 @@ Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span
     radii.push_back(scene.spheres[0].radii[i]);
   }
   const std::vector<Vec3> direction = choose_viewpoints(points, centers, radii, f.aspect, 1, options.up);
+  for (double& r : radii) r *= kLocalDiscScale;
+  for (float& r : scene.spheres[0].radii) r *= static_cast<float>(kLocalDiscScale);
   const Camera camera =
       fit_camera_to_points(points, direction.at(0), f.aspect, {.up = options.up, .is_perspective = false});
   Image figure = compose(options, f,
-                         renderer.render(with_flat_markers(scene, camera), camera, f.layout.view.width, f.layout.view.height),
+                         renderer.render(local_marker_discs(scene, camera, values, mean_edge_at(mesh, corners, v)), camera, f.layout.view.width, f.layout.view.height),
                          kinds, true);
   // Labels: each corner's value next to its marker, placed greedily
   // (place_labels) so that no label covers another or any marker; a label
@@ -616,6 +636,19 @@ Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span
                        f.layout.view.y + 0.5 * (1.0 - ndc.y) * f.layout.view.height,
                        radii[i] / camera.ortho_height * f.layout.view.height});
   }
+  // Each disc has its id (its corner's index); the vertex's dot is one
+  // more obstacle. No leader crosses another disc or the dot (protect_below)
+  // or another leader (strict_leaders), so a leader names the disc it ends on.
+  for (std::size_t i = 0; i < markers.size(); ++i) markers[i].id = static_cast<std::int64_t>(i);
+  std::vector<ScreenDisc> obstacles = markers;
+  {
+    const Vec3 ndc = project_to_ndc(camera, f.aspect, scene.origin);
+    const SphereSet& dot_set = scene.spheres.at(1);
+    obstacles.push_back({f.layout.view.x + 0.5 * (ndc.x + 1.0) * f.layout.view.width,
+                         f.layout.view.y + 0.5 * (1.0 - ndc.y) * f.layout.view.height,
+                         kLocalDiscScale * dot_set.radii.at(0) / camera.ortho_height * f.layout.view.height,
+                         static_cast<std::int64_t>(markers.size())});
+  }
   std::vector<std::string> texts;
   std::vector<LabelRequest> requests;
   for (std::size_t i = 0; i < centers.size(); ++i) {
@@ -623,15 +656,47 @@ Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span
     texts.push_back(format_value(corners[i].value) + "  " + std::string(cell_kind_name(corners[i].kind)) + " " +
                     std::to_string(corners[i].hex));
     const PixelRect extent = text_extent(texts.back(), size, label_style);
-    requests.push_back({markers[i], extent.width + 4, static_cast<int>(std::lround(1.15 * size))});
+    LabelRequest request{markers[i], extent.width + 4, static_cast<int>(std::lround(1.15 * size))};
+    request.protect_below = static_cast<std::int64_t>(obstacles.size());
+    request.strict_leaders = true;
+    requests.push_back(request);
   }
+  // Worst corner first: it gets the nearest free place.
+  std::vector<std::size_t> label_order(requests.size());
+  for (std::size_t i = 0; i < label_order.size(); ++i) label_order[i] = i;
+  std::stable_sort(label_order.begin(), label_order.end(),
+                   [&](std::size_t a, std::size_t b) { return corners[a].value < corners[b].value; });
+  std::vector<LabelRequest> ordered;
+  for (std::size_t i : label_order) ordered.push_back(requests[i]);
   LabelLayoutOptions layout;
   layout.bounds = f.layout.view;
   layout.gap = 4.0 * f.style.scale;
   layout.ring_step = 12.0 * f.style.scale;
   layout.rings = static_cast<int>(std::ceil(std::max(f.layout.view.width, f.layout.view.height) / layout.ring_step));
   layout.leader_distance = 8.0 * f.style.scale;
-  const std::vector<std::optional<PlacedLabel>> placed = place_labels(requests, markers, {}, layout);
+  std::vector<std::optional<PlacedLabel>> placed_in_order = place_labels(ordered, obstacles, {}, layout);
+  // Labels with no such place: placed again after the others, their
+  // leaders then free to cross discs (never a label over another).
+  std::vector<PlacedLabel> done;
+  std::vector<LabelRequest> again;
+  std::vector<std::size_t> again_at;
+  for (std::size_t k = 0; k < ordered.size(); ++k) {
+    if (placed_in_order[k]) {
+      done.push_back(*placed_in_order[k]);
+      continue;
+    }
+    LabelRequest r = ordered[k];
+    r.protect_below = 0;
+    r.strict_leaders = false;
+    again.push_back(r);
+    again_at.push_back(k);
+  }
+  if (!again.empty()) {
+    const std::vector<std::optional<PlacedLabel>> second = place_labels(again, obstacles, {}, layout, done);
+    for (std::size_t i = 0; i < again.size(); ++i) placed_in_order[again_at[i]] = second[i];
+  }
+  std::vector<std::optional<PlacedLabel>> placed(requests.size());
+  for (std::size_t k = 0; k < label_order.size(); ++k) placed[label_order[k]] = placed_in_order[k];
   for (std::size_t i = 0; i < centers.size(); ++i) {
     const Rgba8 color = corners[i].value < 0 ? to_rgba8(kInvertedColor) : Rgba8{30, 30, 30, 255};
     PixelRect box{static_cast<int>(std::lround(markers[i].x + markers[i].radius + 4)),

@@ -95,6 +95,8 @@ std::string cell_kinds_legend(const HexMesh& mesh, std::span<const Index> cells)
 // (kLocalMarkerSizeLegend, under the colour bar).
 double local_marker_radius(double scaled_jacobian, double size);
 inline constexpr const char* kLocalMarkerSizeLegend = "marker size = 1 - SJ";
+// View D draws its corner discs at this fraction of local_marker_radius.
+inline constexpr double kLocalDiscScale = 0.6;
 
 // View D's scene:
 //   lines[0]       edges of the one-ring cells (local_ring: every kind,
@@ -106,6 +108,16 @@ inline constexpr const char* kLocalMarkerSizeLegend = "marker size = 1 - SJ";
 //   spheres[1]     v itself, small, dark;
 //   translucent[0] the one-ring cells' faces, pale.
 Scene build_local_scene(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v);
+
+// View D's scene as drawn for `camera`: the corner markers (spheres[0]) as
+// flat discs facing the camera on a dark rim, and v's dot (spheres[1]) as a
+// dark disc, all moved to the overlay, in the plane through v facing the
+// camera and stacked by value: each rank kLocalStackStep * size nearer the
+// camera, the lowest value (values[i]: marker i's; NaN lowest) on top of
+// the others, v's dot (at kLocalDiscScale of its radius) on top of all
+// (46q review Q-M1: discs hid one another, the worst and the vertex).
+inline constexpr double kLocalStackStep = 1e-3;
+Scene local_marker_discs(const Scene& scene, const Camera& camera, const std::vector<double>& values, double size);
 
 // The figure of view D: the one ring framed, each corner marker labelled
 // with its value, its cell's kind and id ("0.812  hex 12", as in chart E),

@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <iterator>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -156,11 +157,14 @@ GlyphsDrawn main_view_glyphs_drawn(const GlyphResult& glyphs, const Camera& came
 }
 
 Rgba8 cell_kind_edge_color(CellKind kind) {
+  // Dark, saturated hues away from the quality map (pale blue-grey through
+  // tan and orange to red, blue-violet inverted), from the boundary grey
+  // kWireframeColor and from the non-conforming brown (46q review Q-M6).
   switch (kind) {
-    case CellKind::tet: return {60, 110, 185, 255};
-    case CellKind::wedge: return {40, 135, 80, 255};
-    case CellKind::pyramid: return {185, 105, 35, 255};
-    default: return kWireframeColor;
+    case CellKind::tet: return {30, 50, 115, 255};      // navy
+    case CellKind::wedge: return {20, 105, 40, 255};    // forest green
+    case CellKind::pyramid: return {125, 55, 175, 255};  // violet
+    default: return {40, 40, 44, 255};                  // hex: charcoal
   }
 }
 
@@ -171,7 +175,9 @@ std::vector<std::pair<Rgba8, std::string>> cell_kind_swatches(std::string_view c
   while (!rest.empty()) {
     const std::size_t comma = rest.find(", ");
     const std::string_view item = rest.substr(0, comma);
-    const std::string_view name = item.substr(std::min(item.size(), item.find(' ') + 1));
+    // "16 pyramid" or "16 pyramid (inside)": the word after the count.
+    std::string_view name = item.substr(std::min(item.size(), item.find(' ') + 1));
+    name = name.substr(0, name.find(' '));
     for (CellKind kind : kCellKinds)
       if (cell_kind_name(kind) == name) out.push_back({cell_kind_edge_color(kind), std::string(item)});
     rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 2);
@@ -705,6 +711,29 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   }
   scene.overlay.push_back(std::move(arrows));
   scene.translucent.push_back(std::move(cells));
+
+  // 6. On a mesh of several kinds, the pyramids' edges that are not boundary
+  // edges, in the pyramid colour: pyramids join a hex block to tets, inside
+  // the mesh as a rule, so these show where the hexes end and give the
+  // legend's pyramid swatch its edges (46q review Q-M7).
+  if (topology.across_kinds && !mesh.pyramids.empty() && mesh.pyramids.size() <= kMaxInteriorPyramids) {
+    std::vector<Edge> inner;
+    inner.reserve(8 * mesh.pyramids.size());
+    for (const auto& p : mesh.pyramids)
+      for (int i = 0; i < 4; ++i)
+        for (const Edge e : {Edge{p[i], p[(i + 1) % 4]}, Edge{p[i], p[4]}})
+          inner.push_back({std::min(e[0], e[1]), std::max(e[0], e[1])});
+    std::sort(inner.begin(), inner.end());
+    inner.erase(std::unique(inner.begin(), inner.end()), inner.end());
+    std::vector<Edge> kept;
+    std::set_difference(inner.begin(), inner.end(), wire.begin(), wire.end(), std::back_inserter(kept));
+    if (!kept.empty()) {
+      scene.lines.push_back(edge_lines(mesh, scene.origin, kept,
+                                       std::vector<Rgba8>(kept.size(), cell_kind_edge_color(CellKind::pyramid)),
+                                       options.wire_width));
+      scene.lines.back().under_ranked_spheres = true;
+    }
+  }
   return scene;
 }
 
@@ -999,12 +1028,14 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
   lines.push_back({kIntersectionArrowColor, "intersecting pairs: " + std::to_string(findings[1]) + unchecked});
   lines.push_back({kIntersectingCellColor, "intersecting cells: " + std::to_string(intersecting) + unchecked});
   if (overlap && !overlap->markers.empty()) lines.push_back({std::nullopt, "label xN: N of its colour's kind"});
-  lines.push_back({kWireframeColor, "boundary edges"});
+  // On a mesh of several kinds the boundary edges are in their kinds'
+  // colours (no edge is kWireframeColor).
+  if (options.cell_kinds.empty()) lines.push_back({kWireframeColor, "boundary edges"});
   // "cells: 64 hex, 484 tet, 16 pyramid" as a heading and one line per kind
   // (one line would be cut in the legend's width).
   // Each with its boundary edges' colour.
   if (!options.cell_kinds.empty()) {
-    lines.push_back({std::nullopt, "cells of the mesh (edge colour)", 1});
+    lines.push_back({std::nullopt, "edge colour by cell kind", 1});
     for (const auto& [color, text] : cell_kind_swatches(options.cell_kinds)) lines.push_back({color, text});
   }
   return lines;

@@ -39,10 +39,12 @@ inline constexpr Rgba8 kIntersectionArrowColor{140, 20, 120, 255};
 inline constexpr Rgba8 kIntersectingCellColor{214, 40, 190, 96};  // translucent magenta
 
 // The edge colour of each volume kind where the views tell kinds apart (view
-// A's boundary wireframe, view D's one ring): hexes kWireframeColor, tets
-// blue, wedges green, pyramids brown-orange, each mid-dark and less
-// saturated than the cluster palette; with a swatch per kind present.
+// A's boundary wireframe, view D's one ring): hexes charcoal, tets navy,
+// wedges forest green, pyramids violet: dark hues in neither the quality map
+// nor the boundary grey kWireframeColor (which only a pure-hex mesh's
+// wireframe uses) nor the non-conforming brown; with a swatch per kind present.
 Rgba8 cell_kind_edge_color(CellKind kind);
+inline constexpr std::size_t kMaxInteriorPyramids = 50000;
 // The legend swatches of a "cells: 64 hex, 484 tet, 16 pyramid" text
 // (mesh_kinds_text): one per kind named, "64 hex" in its edge colour.
 std::vector<std::pair<Rgba8, std::string>> cell_kind_swatches(std::string_view cell_kinds);
@@ -158,7 +160,11 @@ std::vector<ScreenMarker> group_markers_on_screen(std::span<const OverlapMarker>
 //                on screen is left out (when all would, one arrow comes from
 //                the side away from the glyph), and the arrows of an anchor
 //                inside the disc start at the disc's edge;
-//   translucent[0] the faces of the intersecting cells.
+//   translucent[0] the faces of the intersecting cells;
+//   lines[3]     on a mesh of several kinds with 1 to kMaxInteriorPyramids
+//                pyramids: the pyramids' edges that are not boundary edges,
+//                in cell_kind_edge_color(pyramid) (the interface the
+//                pyramids make between hexes and tets, inside the mesh).
 // overlap may be null (no arrows, no intersecting cells).
 // 1 for the per_cluster worst members (largest glyph radius, then lowest
 // id) of every coloured cluster (the first labelled_cluster_count(K)

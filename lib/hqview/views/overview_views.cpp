@@ -8,6 +8,7 @@
 #include "hqview/core/error.h"
 #include "hqview/image/colormap.h"
 #include "hqview/mesh/boundary_polygons.h"
+#include "hqview/mesh/cell_faces.h"
 #include "hqview/render/annotate.h"
 #include "hqview/render/upright.h"
 #include "hqview/views/inverted_callout.h"
@@ -91,8 +92,18 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
   faces.normals.reserve(5 * num_faces);
   faces.colors.reserve(5 * num_faces);
   faces.indices.reserve(12 * num_faces);
+  const std::array<Index, 5> block_start = volume_block_starts(mesh);
+  // The values a face's corners take: its cell's kind's (options.kind_quality) or vertex_quality.
+  const auto quality_of_face = [&](const BoundaryPolygon& polygon) -> const std::vector<double>& {
+    if (options.kind_quality == nullptr || polygon.cell == kNoIndex) return vertex_quality;
+    std::size_t kind = 0;
+    while (kind < 3 && polygon.cell >= block_start[kind + 1]) ++kind;
+    const std::vector<double>& q = options.kind_quality->by_kind[kind];
+    return q.size() == vertex_quality.size() ? q : vertex_quality;
+  };
   for (const BoundaryPolygon& polygon : polygons) {
     const auto base = static_cast<std::uint32_t>(faces.positions.size());
+    const std::vector<double>& face_quality = quality_of_face(polygon);
     if (polygon.size == 3) {
       // A triangle (of a tet, wedge or pyramid): its 3 corners, one flat
       // triangle; the per-fragment map gives it the same colours as a quad.
@@ -100,7 +111,7 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
       for (int i = 0; i < 3; ++i) p[i] = point(mesh, polygon.v[static_cast<std::size_t>(i)]);
       const Vec3f normal = to_vec3f(normalized(cross(p[1] - p[0], p[2] - p[0])));
       for (int i = 0; i < 3; ++i) {
-        const double q = vertex_quality[static_cast<std::size_t>(polygon.v[static_cast<std::size_t>(i)])];
+        const double q = face_quality[static_cast<std::size_t>(polygon.v[static_cast<std::size_t>(i)])];
         faces.positions.push_back(local(p[i]));
         faces.normals.push_back(normal);
         faces.colors.push_back(color(q));
@@ -115,7 +126,7 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
     int finite = 0;
     for (int i = 0; i < 4; ++i) {
       p[i] = point(mesh, quad[i]);
-      const double q = vertex_quality[static_cast<std::size_t>(quad[i])];
+      const double q = face_quality[static_cast<std::size_t>(quad[i])];
       if (!std::isnan(q)) {
         quality_sum += q;
         ++finite;
@@ -126,7 +137,7 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
     // quad, outward for an outward-oriented face.
     const Vec3f normal = to_vec3f(normalized(cross(p[2] - p[0], p[3] - p[1])));
     for (int i = 0; i < 4; ++i) {
-      const double q = vertex_quality[static_cast<std::size_t>(quad[i])];
+      const double q = face_quality[static_cast<std::size_t>(quad[i])];
       faces.positions.push_back(local(p[i]));
       faces.normals.push_back(normal);
       faces.colors.push_back(color(q));
@@ -294,6 +305,7 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
   f.style.scale *= kOverviewTextScale;
   f.style.background = options.background;
   f.bar = overview_color_bar(topology, vertex_quality);
+  if (options.kind_quality != nullptr && !options.kind_quality->empty()) f.bar.label += "\nfaces: their own kind's corners";
   // Both ring entries size the legend; the figure keeps those it draws.
   if (!options.inverted_cells.empty()) {
     const std::string plural = options.cell_noun == "hex" ? "hexes" : options.cell_noun + "s";
@@ -363,6 +375,9 @@ Image render_compare_overview(const HexMesh& mesh, const Topology& topology, con
   AnnotationStyle style = annotation_style_for(options.height);
   style.background = options.background;
   ColorBar bar = overview_color_bar(topology, vertex_quality);
+  for (const KindVertexQuality* kinds : {options.kind_quality, options.other_kind_quality})
+    if (kinds != nullptr && !kinds->empty() && bar.label.find("\nfaces:") == std::string::npos)
+      bar.label += "\nfaces: their own kind's corners";
   for (ColorBarSwatch& swatch : overview_color_bar(other_topology, other_vertex_quality).swatches)
     if (std::none_of(bar.swatches.begin(), bar.swatches.end(),
                      [&](const ColorBarSwatch& s) { return s.label == swatch.label; }))
@@ -380,7 +395,9 @@ Image render_compare_overview(const HexMesh& mesh, const Topology& topology, con
   const Topology* topologies[] = {&topology, &other_topology};
   const std::vector<double>* qualities[] = {&vertex_quality, &other_vertex_quality};
   for (int k = 0; k < 2; ++k) {
-    Scene scene = build_quality_overview_scene(*meshes[k], *topologies[k], *qualities[k], options);
+    OverviewOptions own = options;
+    own.kind_quality = k == 0 ? options.kind_quality : options.other_kind_quality;
+    Scene scene = build_quality_overview_scene(*meshes[k], *topologies[k], *qualities[k], own);
     const double opacity = edge_opacity(scene, camera, half, layout.view.height);
     for (LineSet& lines : scene.lines)
       for (Rgba8& c : lines.colors) c.a = static_cast<std::uint8_t>(std::lround(c.a * opacity));

@@ -12,6 +12,7 @@
 #include "hqview/image/image.h"
 #include "hqview/mesh/hex_mesh.h"
 #include "hqview/mesh/topology.h"
+#include "hqview/quality/kind_vertex_quality.h"
 #include "hqview/render/annotate.h"
 #include "hqview/render/camera.h"
 #include "hqview/render/renderer.h"
@@ -32,6 +33,12 @@ struct OverviewOptions {
   // (inverted_callout.h), with a legend entry; none: no rings.
   std::vector<Index> inverted_cells;
   std::string cell_noun = "hex";  // "hex" or "cell": the rings' labels and legend entry
+  // On a mesh of several kinds: each boundary face's corners take the
+  // vertex quality of its own cell's kind (kind_vertex_quality.h), so a hex
+  // face beside tets shows the hexes' corners (46q review Q-M2); null or
+  // empty: vertex_quality everywhere. Not owned.
+  const KindVertexQuality* kind_quality = nullptr;
+  const KindVertexQuality* other_kind_quality = nullptr;  // the compared mesh's (render_compare_overview)
 };
 
 // The overview's 3D content: every boundary face over all kinds
@@ -49,7 +56,9 @@ struct OverviewOptions {
 // outlines in scene.overlay (none on a pure-hex mesh). The scene's origin is
 // the centre of the boundary's bounding box.
 //   vertex_quality: mesh.num_vertices() values (min corner scaled Jacobian,
-//                   NaN for vertices no hex uses).
+//                   NaN for vertices no hex uses); a face's corners take
+//                   options.kind_quality's values of its cell's kind instead
+//                   when that is given and not empty.
 // Throws Error when vertex_quality has the wrong size.
 Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology,
                                    const std::vector<double>& vertex_quality, const OverviewOptions& options);

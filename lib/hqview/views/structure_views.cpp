@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
+#include <numbers>
+#include <set>
+#include <span>
 
 #include "hqview/core/error.h"
 #include "hqview/core/number_format.h"
@@ -80,6 +84,55 @@ double median_singular_edge_length(const HexMesh& mesh, const HexStructure& s) {
 
 }  // namespace
 
+double node_radius(const HexMesh& mesh, const Topology& topology, const HexStructure& structure) {
+  // At most kMaxNodeRadius of the boundary's diagonal: on a coarse mesh (a
+  // few hexes beside many tets) a fifth of an edge hid the graph.
+  const Box3 box = boundary_bounding_box(mesh, topology);
+  return std::min(kNodeRadius * median_singular_edge_length(mesh, structure), kMaxNodeRadius * norm(box.hi - box.lo));
+}
+
+std::vector<Index> interface_curve_ends(const HexStructure& structure) {
+  std::map<Index, int> degree;
+  std::set<Index> on_interface;
+  for (const StructureEdge& e : structure.edges) {
+    if (e.singular)
+      for (Index v : e.vertices) ++degree[v];
+    if (e.touches_non_hex) on_interface.insert(e.vertices.begin(), e.vertices.end());
+  }
+  std::vector<Index> ends;
+  for (const auto& [v, d] : degree)
+    if (d == 1 && on_interface.count(v)) ends.push_back(v);
+  return ends;
+}
+
+TriangleSet curve_end_rings(const HexMesh& mesh, std::span<const Index> ends, const Vec3& origin, const Camera& camera,
+                            double radius) {
+  TriangleSet set;
+  set.is_lit = false;
+  const Vec3 d = normalized(camera.target - camera.eye);
+  Vec3 right = cross(d, camera.up);
+  if (!(squared_norm(right) > 0.0)) right = cross(d, Vec3{1.0, 0.0, 0.0});
+  right = normalized(right);
+  const Vec3 up = cross(right, d);
+  constexpr int kSegments = 24;
+  for (Index v : ends) {
+    const Vec3 c = point(mesh, v) - origin;
+    const auto base = static_cast<std::uint32_t>(set.positions.size());
+    for (int k = 0; k < kSegments; ++k) {
+      const double a = 2.0 * std::numbers::pi * k / kSegments;
+      const Vec3 u = std::cos(a) * right + std::sin(a) * up;
+      set.positions.push_back(to_vec3f(c + radius * u));
+      set.positions.push_back(to_vec3f(c + kCurveEndRingInner * radius * u));
+    }
+    for (std::uint32_t k = 0; k < kSegments; ++k) {
+      const std::uint32_t o0 = base + 2 * k, i0 = o0 + 1, o1 = base + 2 * ((k + 1) % kSegments), i1 = o1 + 1;
+      set.indices.insert(set.indices.end(), {o0, o1, i1, o0, i1, i0});
+    }
+  }
+  set.colors.assign(set.positions.size(), kNodeColor);
+  return set;
+}
+
 SingularClass singular_class(const StructureEdge& e) {
   if (e.kind == EdgeKind::boundary) return e.valence <= 1 ? SingularClass::boundary_1 : SingularClass::boundary_3_plus;
   if (e.valence == 3) return SingularClass::interior_3;
@@ -131,10 +184,7 @@ Scene build_singularity_scene(const HexMesh& mesh, const Topology& topology, con
   }
   scene.lines.push_back(std::move(lines));
   SphereSet nodes;
-  // At most kMaxNodeRadius of the boundary's diagonal: on a coarse mesh (a
-  // few hexes beside many tets) a fifth of an edge hid the graph.
-  const auto radius = static_cast<float>(std::min(kNodeRadius * median_singular_edge_length(mesh, structure),
-                                                  kMaxNodeRadius * norm(box.hi - box.lo)));
+  const auto radius = static_cast<float>(node_radius(mesh, topology, structure));
   if (radius > 0.0f)
     for (Index v : structure.nodes) {
       nodes.centers.push_back(to_vec3f(point(mesh, v) - scene.origin));
@@ -143,18 +193,20 @@ Scene build_singularity_scene(const HexMesh& mesh, const Topology& topology, con
     }
   scene.spheres.push_back(std::move(nodes));
   scene.translucent.push_back(boundary_faces(mesh, topology, scene.origin, [](Index) { return kVeilColor; }));
-  // Non-conforming interfaces (inside the mesh): opaque, under the veil.
+  // Non-conforming interfaces (inside the mesh): flat, half transparent,
+  // after the veil (one shade; the curves and nodes behind show through).
   if (!topology.non_conforming_faces.empty()) {
     TriangleSet faces;
+    faces.is_lit = false;
     for (const NonConformingFace& nc : topology.non_conforming_faces) {
       const auto base = static_cast<std::uint32_t>(faces.positions.size());
       for (Index v : nc.quad) {
         faces.positions.push_back(to_vec3f(point(mesh, v) - scene.origin));
-        faces.colors.push_back(kNonConformingColor);
+        faces.colors.push_back({kNonConformingColor.r, kNonConformingColor.g, kNonConformingColor.b, kNonConformingFaceAlpha});
       }
       faces.indices.insert(faces.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
     }
-    scene.triangles.push_back(std::move(faces));
+    scene.translucent.push_back(std::move(faces));
     // The triangles' diagonal, dashed in white over everything (the face is
     // under the veil; the split is what makes it non-conforming).
     TriangleSet diagonals;
@@ -196,7 +248,13 @@ Image render_singularity_view(const HexMesh& mesh, const Topology& topology, con
   const Camera camera = structure_camera(boundary_points(mesh, topology), view_direction, aspect, options);
   StructureViewOptions scaled = options;
   scaled.edge_width = static_cast<float>(options.edge_width * style.scale);
-  const Scene scene = build_singularity_scene(mesh, topology, structure, scaled);
+  Scene scene = build_singularity_scene(mesh, topology, structure, scaled);
+  // Where a curve of the hex part is cut by non-hex cells: a hollow ring
+  // over everything (46q review Q-M3: the ends looked like dropouts).
+  const std::vector<Index> ends = interface_curve_ends(structure);
+  if (!ends.empty())
+    scene.overlay.push_back(
+        curve_end_rings(mesh, ends, scene.origin, camera, kCurveEndRingRadius * node_radius(mesh, topology, structure)));
 
   Image figure = render_figure(renderer, scene, camera, options.width, options.height, layout, options.title, style);
 
@@ -224,7 +282,7 @@ Image render_singularity_view(const HexMesh& mesh, const Topology& topology, con
     lines.push_back({std::nullopt, kinds, 1});
     lines.push_back({std::nullopt, "graph of the hex part"});
     if (structure.num_interface_ends > 0)
-      lines.push_back({std::nullopt, std::to_string(structure.num_interface_ends) + " curve ends at non-hex cells"});
+      lines.push_back({kNodeColor, std::to_string(structure.num_interface_ends) + " curve ends at non-hex cells", 0, true});
   }
   draw_legend(figure, layout.legend, lines, style);
   return figure;
@@ -243,7 +301,7 @@ Vec3 choose_gradation_viewpoint(const HexMesh& mesh, const Topology& topology, c
   // mesh: its boundary quads, in their order).
   for (const BoundaryPolygon& face : boundary_polygons(topology)) {
     const auto cell = static_cast<std::size_t>(face.cell);
-    if (cell >= structure.cell_gradation.size() || !(structure.cell_gradation[cell] > 2.0)) continue;
+    if (cell >= structure.cell_gradation.size() || !(structure.cell_gradation[cell] > kGradationOfInterest)) continue;
     const auto& q = face.v;
     if (face.size == 4) {
       centers.push_back(0.25 * (point(mesh, q[0]) + point(mesh, q[1]) + point(mesh, q[2]) + point(mesh, q[3])));
@@ -268,15 +326,22 @@ Image render_gradation_view(const HexMesh& mesh, const Topology& topology, const
   AnnotationStyle style = annotation_style_for(options.height);
   style.background = options.background;
   ColorBar bar;
-  bar.label = "size gradation:\nvolume ratio to a\nface neighbour (max)";
+  bar.label = "size gradation:\nedge length (cube root of\nvolume) ratio to a face\nneighbour (max)";
   bar.min_value = 0.0;
   bar.max_value = 2.0;  // log2 of the gradation
   for (int i = 0; i <= 32; ++i) bar.colors.push_back(gradation_color(std::exp2(2.0 * i / 32.0)));
   bar.ticks = {{0.0, "1"}, {std::log2(1.5), "1.5"}, {1.0, "2"}, {std::log2(3.0), "3"}, {2.0, ">= 4"}};
-  bar.swatches = {{kUndefinedColor, "undefined"}};
-  // Several kinds: sizes are volumes over the kind's regular unit cell (structure.h).
+  // "undefined" only when a boundary cell has no gradation.
+  for (const BoundaryPolygon& face : boundary_polygons(topology))
+    if (static_cast<std::size_t>(face.cell) < structure.cell_gradation.size() &&
+        std::isnan(structure.cell_gradation[static_cast<std::size_t>(face.cell)])) {
+      bar.swatches = {{kUndefinedColor, "undefined"}};
+      break;
+    }
+  // Several kinds: sizes are equivalent edge lengths (the regular cell of
+  // the kind with the cell's volume; structure.h).
   if (const std::string kinds = mesh_kinds_text(mesh); !kinds.empty())
-    bar.label = "size gradation: ratio of\nvolume / regular cell\nof its kind to a face\nneighbour's (max)\n" + kinds;
+    bar.label = "size gradation: ratio of\nequivalent edge lengths\n(regular cell of its kind\nwith its volume) to a face\nneighbour's (max)\n" + kinds;
   const FigureLayout layout =
       figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(bar, style), style);
   const double aspect = static_cast<double>(layout.view.width) / std::max(1, layout.view.height);

@@ -12,6 +12,7 @@
 //     grey where undefined; upright, from the viewpoint that shows the most
 //     faces above 2 (the three-quarter view when there are none).
 
+#include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
@@ -19,6 +20,7 @@
 #include "hqview/image/image.h"
 #include "hqview/mesh/hex_mesh.h"
 #include "hqview/mesh/topology.h"
+#include "hqview/render/camera.h"
 #include "hqview/render/renderer.h"
 #include "hqview/render/scene.h"
 #include "hqview/structure/structure.h"
@@ -43,8 +45,32 @@ struct StructureViewOptions {
   double fov_y_degrees = 30.0;
 };
 
+// The radius of the node spheres: 0.2 of the median singular edge length,
+// at most 0.02 of the boundary's bounding-box diagonal (model units).
+double node_radius(const HexMesh& mesh, const Topology& topology, const HexStructure& structure);
+
+// A hybrid mesh: the vertices where a singular curve of the hex part is cut
+// by non-hex cells (one singular edge there, on an edge that touches a
+// non-hex cell; HexStructure::num_interface_ends of them), ascending.
+std::vector<Index> interface_curve_ends(const HexStructure& structure);
+
+// A hollow ring (outer radius `radius`, inner kCurveEndRingInner of it, in
+// model units) facing the camera at each of `ends`, unlit, in the node
+// colour: what view S draws over everything at the curve ends, with a ring
+// swatch on the legend's "curve ends at non-hex cells" line.
+inline constexpr double kCurveEndRingRadius = 0.8;  // of node_radius
+inline constexpr double kCurveEndRingInner = 0.6;
+TriangleSet curve_end_rings(const HexMesh& mesh, std::span<const Index> ends, const Vec3& origin, const Camera& camera,
+                            double radius);
+
+// The non-conforming faces' opacity in view S (a flat, half-transparent
+// brown drawn after the veil: nodes and curves behind it show through).
+inline constexpr std::uint8_t kNonConformingFaceAlpha = 128;
+
 // The singularity graph's scene: translucent boundary, lines, node spheres
-// (radius 0.2 of the median singular edge length).
+// (radius node_radius); on a mesh with non-conforming faces, those faces
+// (translucent[1], unlit, kNonConformingFaceAlpha) and their diagonals dashed
+// in white (overlay[0]).
 Scene build_singularity_scene(const HexMesh& mesh, const Topology& topology, const HexStructure& structure,
                               const StructureViewOptions& options);
 
@@ -60,9 +86,11 @@ std::vector<Vec3> choose_singularity_viewpoints(const HexMesh& mesh, const Topol
 Image render_singularity_view(const HexMesh& mesh, const Topology& topology, const HexStructure& structure,
                               const Vec3& view_direction, const StructureViewOptions& options, Renderer& renderer);
 
-// The colour of a size gradation g: sample_quality_map(1 - log2(g) / 2)
-// (g = 1 pale, g >= 4 red), kUndefinedColor for NaN.
+// The colour of a size gradation g (a length ratio): sample_quality_map(1 -
+// log2(g) / 2) (g = 1 pale, 2 orange, g >= 4 red), kUndefinedColor for NaN.
 Color gradation_color(double g);
+// The gradation view looks at the cells grading above this (length ratio).
+inline constexpr double kGradationOfInterest = 1.5;
 
 // One upright direction for the gradation view.
 Vec3 choose_gradation_viewpoint(const HexMesh& mesh, const Topology& topology, const HexStructure& structure,

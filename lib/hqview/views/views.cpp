@@ -206,6 +206,8 @@ std::vector<ViewFile> build_overview(ViewContext& c) {
   overview.view_direction = eye.direction;
   overview.inverted_cells = c.inverted_cells;
   overview.cell_noun = cell_word(c.a);
+  const KindVertexQuality kinds = kind_vertex_quality(c.a.mesh, c.a.field);
+  overview.kind_quality = &kinds;
   if (!eye.is_default)
     overview.title += " (from " + viewpoint_name(eye.direction, overview.up) + ", the side showing the " +
                       (eye.target == WorstFaces::Kind::inverted ? "inverted hexes" : "worst cluster") + ")";
@@ -354,6 +356,9 @@ std::vector<ViewFile> build_compare(ViewContext& c) {
                    " (right): vertex quality, one camera" +
                    (alignment_description(align).empty() ? std::string() : ", right " + alignment_description(align));
   const HexMesh placed = aligned_copy(other.mesh, align);
+  const KindVertexQuality kinds = kind_vertex_quality(c.a.mesh, c.a.field), other_kinds = kind_vertex_quality(other.mesh, other.field);
+  overview.kind_quality = &kinds;
+  overview.other_kind_quality = &other_kinds;
   Image image = render_compare_overview(c.a.mesh, c.a.topology, c.quality(), placed, other.topology,
                                         other.field.vertex_quality, overview, c.renderer);
   return {framed("views/compare.png", std::move(image), c)};
@@ -450,6 +455,8 @@ std::vector<ViewFile> build_thumbnail(ViewContext& c) {
   const Box3 box = boundary_bounding_box(c.a.mesh, c.a.topology);
   const Camera camera = fit_camera(box.lo, box.hi, c.overview_viewpoint.direction, static_cast<double>(width) / height,
                                    {.up = options.up});
+  const KindVertexQuality kinds = kind_vertex_quality(c.a.mesh, c.a.field);
+  options.kind_quality = &kinds;
   Scene scene = build_quality_overview_scene(c.a.mesh, c.a.topology, c.quality(), options);
   scene.lines.clear();  // at 320 pixels the edges of a real mesh are a grey smear
   Image image = c.renderer.render(scene, camera, width, height);
