@@ -14,6 +14,7 @@
 #include "hqview/io/mesh_reader.h"
 #include "hqview/io/mesh_source.h"
 #include "hqview/mesh/planarity.h"
+#include "hqview/mesh/surface_boundary.h"
 #include "hqview/quality/quality_summary.h"
 #include "hqview/render/upright.h"
 
@@ -160,6 +161,9 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
   a.field = compute_quality(a.mesh, a.topology, surface);
   a.mesh_summary = summarize_mesh(a.mesh, a.topology);
   a.mesh_summary.planarity = planarity;
+  // A surface mesh's faces are what the views and the viewer draw as its
+  // boundary; after summarize_mesh (mesh.num_boundary_faces stays 0).
+  add_surface_faces_as_boundary(a.mesh, a.topology);
   a.composition = compute_cell_composition(a.mesh);
   // Beside the overlap stage: the structure (the singularity graph: one
   // sequential pass over the edges) always, and on meshes up to
@@ -178,8 +182,13 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
     if (!is_surface) {
       a.structure = compute_structure(a.mesh, a.topology);
     } else {
+      // The quad structure (irregular vertices, separatrices, patches);
+      // vertices.csv's `singular` marks its irregular vertices.
+      QuadStructureOptions quad_options;
+      quad_options.hole_edges = a.hole_edges;  // no further cap: each edge is traced at most once (linear)
+      a.quad_structure = compute_quad_structure(a.mesh, quad_options);
       a.structure = HexStructure{};
-      a.structure.vertex_singular.assign(a.mesh.points.size(), 0);
+      a.structure.vertex_singular.assign(a.quad_structure->irregular.begin(), a.quad_structure->irregular.end());
       // No size gradation on a surface mesh: one undefined value per cell.
       a.structure.cell_gradation.assign(static_cast<std::size_t>(num_cells(a.mesh)),
                                         std::numeric_limits<double>::quiet_NaN());
@@ -406,6 +415,7 @@ void start_analysis(const AnalyzeOptions& options, AnalysisInProgress& out) {
   a.warnings = std::move(loaded.warnings);
   a.notes = std::move(loaded.notes);
   a.mesh = std::move(loaded.mesh);
+  a.hole_edges = std::move(loaded.hole_edges);
   clock.start("topology");
   a.topology = build_topology(a.mesh);
   const bool is_surface = is_surface_mesh(a.mesh);
@@ -462,11 +472,9 @@ AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
   start_analysis(options, in_progress);
   ViewOptions views = options.views;
   views.up = views_up(in_progress.analysis, options);
-  if (renderer && is_surface_mesh(in_progress.analysis.mesh)) {
-    in_progress.analysis.warnings.push_back(
-        "the views of surface meshes are not drawn yet (report.json, the CSV files and annotated.vtu are written)");
-    renderer = nullptr;
-  }
+  const bool is_surface = is_surface_mesh(in_progress.analysis.mesh);
+  if (renderer && is_surface && options.viewer)
+    in_progress.analysis.warnings.push_back("the viewer of surface meshes is not written yet (the views are drawn)");
   if (renderer) {
     // The views that need no atlas are drawn while it is built.
     std::vector<StageTime> view_times;
@@ -483,7 +491,7 @@ AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
   in_progress.finish_atlas(in_progress.analysis.timings, options.on_stage);
   model.analysis = std::move(in_progress.analysis);
   model.data.non_conforming_faces = model.analysis.topology.across_kinds;
-  model.has_viewer = renderer && options.viewer;
+  model.has_viewer = renderer && options.viewer && !is_surface;
   model.viewer_max_mb = options.viewer_max_mb;
   model.viewer_up = views.up;
   // Gates read the finished report, so any numeric key can be gated on.
