@@ -60,34 +60,9 @@ auto timed(double& seconds, F f) {
 // those that have a cells.csv column (named as a hex metric).
 bool has_cell_column(std::string_view metric) { return hex_metric_from_name(metric).has_value(); }
 
-// The Verdict metrics of a surface mesh's quads and triangles, one block per
-// kind present, each with its summaries (summarize_cell_block; the volume
-// kinds are summarised as they are computed: summarize_non_hex_blocks). A
-// block keeps every column until keep_cell_metric_columns (the surface
-// warnings read its areas). Its inverted and flat counts are the quality
-// field's (quality_field.h: against the plane of a planar mesh, else by
-// orientation against the neighbours).
-std::vector<SummarizedCellBlock> summarize_surface_blocks(const Mesh& mesh, const QualityField& field,
-                                                          const SurfaceOrientation& surface) {
-  std::vector<SummarizedCellBlock> out;
-  std::size_t first = static_cast<std::size_t>(num_volume_cells(mesh)) - field.num_hexes;
-  const auto surface_block = [&](CellBlockMetricField block) {
-    block.num_inverted = block.num_flat = 0;
-    for (std::size_t c = 0; c < static_cast<std::size_t>(block.count); ++c) {
-      block.validity[c] = field.non_hex_validity[first + c];
-      block.num_inverted += block.validity[c] == CellValidity::inverted;
-      block.num_flat += block.validity[c] == CellValidity::flat;
-    }
-    first += static_cast<std::size_t>(block.count);
-    SummarizedCellBlock& summarized = out.emplace_back();
-    summarized.summaries = summarize_cell_block(block);
-    summarized.field = std::move(block);
-  };
-  if (!mesh.quads.empty()) surface_block(compute_quad_block_metrics(mesh.points, mesh.quads, surface.plane_normal));
-  if (!mesh.triangles.empty())
-    surface_block(compute_triangle_block_metrics(mesh.points, mesh.triangles, surface.plane_normal));
-  return out;
-}
+// A surface mesh's blocks keep their areas too until keep_cell_metric_columns
+// (add_surface_warnings reads them for the faces of zero area).
+bool has_cell_column_or_area(std::string_view metric) { return has_cell_column(metric) || metric == "area"; }
 
 // A surface mesh's plane and orientation (planarity.h, SurfaceTopology);
 // nothing for a volume mesh.
@@ -176,8 +151,8 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
   std::vector<SummarizedCellBlock> non_hex_blocks;
   std::vector<KindQualitySummary> by_kind;
   double structure_seconds = 0, metrics_seconds = 0, metric_summaries_seconds = 0;
-  // A surface mesh's structure and overlap are not computed this release
-  // (add_surface_warnings).
+  // A surface mesh's structure is its quad structure; its overlap is not
+  // computed this release (add_surface_warnings).
   const auto structure = timed(structure_seconds, [&] {
     if (!is_surface) {
       a.structure = compute_structure(a.mesh, a.topology);
@@ -198,8 +173,7 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
     a.metrics = compute_hex_metrics(a.mesh, options.metrics, metrics_beside ? progress::Reporting::silent : progress::Reporting::report);
     // The volume kinds' metrics are summarised as they are computed (one
     // column at a time), keeping only the cells.csv columns.
-    non_hex_blocks = is_surface ? summarize_surface_blocks(a.mesh, a.field, surface)
-                                : summarize_non_hex_blocks(a.mesh, a.field, has_cell_column);
+    non_hex_blocks = summarize_non_hex_blocks(a.mesh, a.field, is_surface ? has_cell_column_or_area : has_cell_column);
   });
   const auto summarize_metrics = timed(metric_summaries_seconds, [&] {
     metric_summaries = summarize_hex_metrics(a.metrics);
