@@ -92,6 +92,17 @@ def main():
                     f.write(f"{c} {c + 1} {c + 6} {c + 5} {c + 25} {c + 26} {c + 31} {c + 30} 0\n")
         f.write("End\n")
     run([hqview, "analyze", "box.mesh", "--simulate", "--no-render", "--data", "csv", "-o", "box", "-q"], work)
+    # A surface mesh's `structure` (its quad structure, other keys than a
+    # hex mesh's): a regular 4 x 4 quad grid.
+    with open(os.path.join(work, "quads.obj"), "w") as f:
+        for j in range(5):
+            for i in range(5):
+                f.write(f"v {i} {j} 0\n")
+        for j in range(4):
+            for i in range(4):
+                c = 1 + i + 5 * j
+                f.write(f"f {c} {c + 1} {c + 6} {c + 5}\n")
+    run([hqview, "analyze", "quads.obj", "--no-render", "-o", "quads", "-q"], work)
     with open(os.path.join(work, "manifest.csv"), "w") as f:
         f.write("mesh,label,model\n")
         f.write(os.path.join(examples, "ball.mesh") + ",m1,ball\n")
@@ -111,6 +122,7 @@ def main():
         contract = contract.replace(row, "| `mesh.num_unicorns` | int | invented |\n")
     report = contract_keys.load(os.path.join(bundle, "report.json"))
     report["fem"] = contract_keys.load(os.path.join(work, "box", "report.json"))["fem"]
+    report["structure"].update(contract_keys.load(os.path.join(work, "quads", "report.json"))["structure"])
     ok = True
     stray = contract_keys.compare_mirrors(report)
     for k in sorted(stray):

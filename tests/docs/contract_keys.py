@@ -46,7 +46,8 @@ def report_rule(path, value):
         return {path}
     if path == "compare.differences" and isinstance(value, dict):
         return {path + ".<key>"}
-    if path.startswith("structure.singular_edges_by_valence.") and isinstance(value, dict):
+    if (path.startswith("structure.singular_edges_by_valence.")
+            or path.startswith("structure.irregular_vertices_by_valence.")) and isinstance(value, dict):
         return {path + ".<valence>"}
     if path in ("fem.poisson.correlation", "fem.poisson.correlation_given_size",
                 "fem.poisson.correlation_interval") and isinstance(value, dict):

@@ -7,6 +7,7 @@
 
 #include "hqview/core/error.h"
 #include "hqview/report/batch_index.h"
+#include "io/temp_dir.h"
 
 #include <nlohmann/json.hpp>
 
@@ -31,6 +32,21 @@ BatchEntry entry(const std::string& path, BatchStatus status, const std::string&
   }
   if (status == BatchStatus::gate_failed) e.failed_gates = {"quality.scaled_jacobian.min>=0.9"};
   return e;
+}
+
+TEST(Collection, PolygonFilesAreSurfaceMeshesUnlessBesideVolumeMeshes) {
+  // quads/: surface meshes only (picked, any case); hex/: a volume mesh and
+  // its reference surface (left out); .stl is no mesh format.
+  const test::TempDir dir("collect_polygons");
+  std::filesystem::create_directories(dir.path() / "quads" / "deeper");
+  std::filesystem::create_directories(dir.path() / "hex");
+  for (const char* name : {"quads/grid.obj", "quads/sphere.OFF", "quads/deeper/torus.ply", "quads/part.stl",
+                           "hex/bunny_in.mesh", "hex/bunny.off", "hex/bunny.obj"})
+    dir.write(name, "x");
+  std::vector<std::string> paths;
+  for (const BatchInput& input : collect_directory(dir.path())) paths.push_back(input.path);
+  EXPECT_EQ(paths, (std::vector<std::string>{"hex/bunny_in.mesh", "quads/deeper/torus.ply", "quads/grid.obj",
+                                             "quads/sphere.OFF"}));
 }
 
 TEST(Manifest, CsvColumnsByHeaderQuotesAndRelativePaths) {

@@ -219,7 +219,29 @@ TEST(SurfaceAnalysis, GmshPlanarQuadMeshWithAHole) {
   EXPECT_GT(r["headline"]["min_scaled_jacobian"].get<double>(), 0.0);
   EXPECT_EQ(r["quality"]["by_kind"]["quad"]["count"], counts.at(3));
   EXPECT_EQ(r["quality"]["by_kind"]["quad"]["metrics"]["scaled_jacobian"]["count"], counts.at(3));
-  EXPECT_TRUE(r["structure"].is_null());
+  // The quad structure (issue 47 part C): its boundary is Gmsh's line
+  // elements; its irregular interior vertices are those counted here: not
+  // on the boundary, on no triangle, not on 4 quads.
+  EXPECT_EQ(r["structure"]["valence"], "incident quads");
+  EXPECT_EQ(r["structure"]["num_boundary_edges"], counts.at(1));
+  EXPECT_EQ(r["structure"]["num_nonmanifold_edges"], 0);
+  {
+    const Analysis& sa = result.model.analysis;
+    std::vector<int> quads_at(sa.mesh.points.size(), 0);
+    std::vector<char> on_triangle(sa.mesh.points.size(), 0);
+    for (const auto& q : sa.mesh.quads)
+      for (Index v : q) ++quads_at[static_cast<std::size_t>(v)];
+    for (const auto& t : sa.mesh.triangles)
+      for (Index v : t) on_triangle[static_cast<std::size_t>(v)] = 1;
+    int irregular = 0;
+    for (std::size_t v = 0; v < quads_at.size(); ++v)
+      irregular += quads_at[v] > 0 && !sa.topology.is_boundary_vertex[v] && !on_triangle[v] && quads_at[v] != 4;
+    EXPECT_EQ(r["structure"]["num_irregular_vertices_interior"], irregular);
+    EXPECT_GT(irregular, 0);
+    int singular = 0;  // vertices.csv's column: the irregular vertices
+    for (char c : sa.structure.vertex_singular) singular += c;
+    EXPECT_EQ(r["structure"]["num_irregular_vertices"], singular);
+  }
   EXPECT_TRUE(r["overlap"].is_null());
   // An annulus: V - E + F = 0.
   const Analysis& a = result.model.analysis;

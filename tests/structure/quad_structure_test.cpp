@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "io/temp_dir.h"
+#include "support/surface_fixtures.h"
 
 namespace hq {
 namespace {
@@ -131,27 +132,7 @@ TEST(QuadStructure, HoleEdgesAreNotBoundary) {
 // The cube [-1, 1]^3's faces, each an n x n grid, projected to the unit
 // sphere: 8 vertices of valence 3 (the cube's corners), 12 separatrices
 // along the cube's edges (n edges each, from corner to corner), 6 patches.
-Mesh cube_sphere(int n) {
-  PointSet set;
-  Mesh mesh;
-  for (int axis = 0; axis < 3; ++axis)
-    for (const int sign : {-1, 1}) {
-      // (u, v, normal) right-handed with the normal outward.
-      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-      const auto id = [&](int i, int j) {
-        std::array<int, 3> k{};
-        k[static_cast<std::size_t>(axis)] = sign * n;
-        k[static_cast<std::size_t>(u)] = (2 * i - n) * sign;
-        k[static_cast<std::size_t>(v)] = 2 * j - n;
-        const Vec3 p{k[0] / double(n), k[1] / double(n), k[2] / double(n)};
-        return set.add({k[0], k[1], k[2]}, p * (1.0 / norm(p)));
-      };
-      for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) mesh.quads.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  mesh.points = set.points;
-  return mesh;
-}
+Mesh cube_sphere(int n) { return test::quad_cube_sphere(n); }
 
 TEST(QuadStructure, CubeSphere) {
   for (const int n : {1, 2, 5}) {

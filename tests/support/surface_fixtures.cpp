@@ -151,4 +151,29 @@ TriSurface genus3_slab() {
   return s;
 }
 
+Mesh quad_cube_sphere(int n, double radius) {
+  Mesh mesh;
+  std::map<std::array<int, 3>, Index> ids;
+  for (int axis = 0; axis < 3; ++axis)
+    for (const int sign : {-1, 1}) {
+      // (u, v, normal) right-handed with the normal outward.
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      const auto id = [&](int i, int j) {
+        std::array<int, 3> k{};
+        k[static_cast<std::size_t>(axis)] = sign * n;
+        k[static_cast<std::size_t>(u)] = (2 * i - n) * sign;
+        k[static_cast<std::size_t>(v)] = 2 * j - n;
+        const auto [it, is_new] = ids.emplace(k, static_cast<Index>(mesh.points.size()));
+        if (is_new) {
+          const Vec3 p{k[0] / double(n), k[1] / double(n), k[2] / double(n)};
+          mesh.points.push_back(p * (radius / norm(p)));
+        }
+        return it->second;
+      };
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) mesh.quads.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return mesh;
+}
+
 }  // namespace hq::test

@@ -23,5 +23,9 @@ HexMesh hex_ball(int n, const std::function<double(const Vec3& u)>& radius);
 // The boundary of a 7 x 3 x 1 slab of unit voxels with 3 voxel holes: a
 // closed manifold surface of genus 3 (outward counter-clockwise).
 TriSurface genus3_slab();
+// The cube [-1, 1]^3's faces, each an n x n grid of quads, projected to the
+// sphere of `radius` about the origin (corners shared), counter-clockwise
+// seen from outside: 8 vertices of valence 3, 6 grids.
+Mesh quad_cube_sphere(int n, double radius = 1.0);
 
 }  // namespace hq::test

@@ -26,6 +26,7 @@
 #include "hqview/quality/hex_metric_field.h"
 #include "hqview/quality/quality_field.h"
 #include "hqview/quality/quality_summary.h"
+#include "hqview/structure/quad_structure.h"
 #include "hqview/structure/structure.h"
 #include "hqview/uv/uv_atlas.h"
 
@@ -55,6 +56,12 @@ struct Analysis {
   QualitySummary quality;
   // Edge valences, singular edges and vertices, the singularity graph, size gradation.
   HexStructure structure;
+  // A surface mesh's quad structure (irregular vertices, separatrices,
+  // patches: structure/quad_structure.h); none for a volume mesh.
+  std::optional<QuadStructure> quad_structure;
+  // The edges of the polygons the reader skipped (LoadedMesh::hole_edges,
+  // a < b): holes, not boundary, for the quad structure.
+  std::vector<std::array<Index, 2>> hole_edges;
   // The finite-element check (--simulate, or fem_element in --metrics for
   // the element conditioning alone); empty when not asked for.
   std::optional<FemElementField> fem_elements;

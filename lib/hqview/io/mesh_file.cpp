@@ -244,6 +244,11 @@ bool has_hex_mesh_extension(const std::filesystem::path& path) {
   return format != nullptr && !format->is_polygon;
 }
 
+bool has_polygon_mesh_extension(const std::filesystem::path& path) {
+  const MeshFormat* format = format_by_extension(detail::lowercase_extension(path));
+  return format != nullptr && format->is_polygon;
+}
+
 std::string mesh_format_names() {
   std::string names;
   for (const MeshFormat& format : kFormats) names += (names.empty() ? "" : ", ") + std::string(format.name);

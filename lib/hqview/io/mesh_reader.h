@@ -127,6 +127,9 @@ LoadedMesh read_hex_mesh_as(const std::filesystem::path& path, std::string_view 
 // read_hex_mesh() dispatches on: not .obj, .off or .ply, which a directory
 // of hex meshes holds as reference surfaces (batch DIR picks hex meshes).
 bool has_hex_mesh_extension(const std::filesystem::path& path);
+// True when path's extension (any case) is a polygon (surface) format the
+// polygon reader reads: .obj, .off or .ply.
+bool has_polygon_mesh_extension(const std::filesystem::path& path);
 
 // The format names --format accepts, comma-separated: "mesh, vtk, vtu, msh,
 // ovm, exodus, inp, obj, off, ply".

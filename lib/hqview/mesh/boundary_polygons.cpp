@@ -41,7 +41,9 @@ void sort_unique(std::vector<Edge>& edges) {
 }  // namespace
 
 std::vector<Edge> boundary_edges_all_kinds(const Topology& t) {
-  if (!t.across_kinds) return boundary_edges(t);
+  // A pure-hex mesh: its hex boundary (no other faces); a surface mesh's
+  // faces are the non-hex ones (surface_boundary.h).
+  if (!t.across_kinds && t.boundary_quads_non_hex.empty() && t.boundary_triangles.empty()) return boundary_edges(t);
   std::vector<Edge> edges = boundary_edges(t);
   add_cycle_edges(t.boundary_quads_non_hex, edges);
   add_cycle_edges(t.boundary_triangles, edges);

@@ -14,6 +14,7 @@
 #include "hqview/io/mesh_reader.h"
 #include "hqview/io/mesh_source.h"
 #include "hqview/mesh/planarity.h"
+#include "hqview/mesh/surface_boundary.h"
 #include "hqview/quality/quality_summary.h"
 #include "hqview/render/upright.h"
 
@@ -69,34 +70,9 @@ auto timed(double& seconds, F f) {
 // those that have a cells.csv column (named as a hex metric).
 bool has_cell_column(std::string_view metric) { return hex_metric_from_name(metric).has_value(); }
 
-// The Verdict metrics of a surface mesh's quads and triangles, one block per
-// kind present, each with its summaries (summarize_cell_block; the volume
-// kinds are summarised as they are computed: summarize_non_hex_blocks). A
-// block keeps every column until keep_cell_metric_columns (the surface
-// warnings read its areas). Its inverted and flat counts are the quality
-// field's (quality_field.h: against the plane of a planar mesh, else by
-// orientation against the neighbours).
-std::vector<SummarizedCellBlock> summarize_surface_blocks(const Mesh& mesh, const QualityField& field,
-                                                          const SurfaceOrientation& surface) {
-  std::vector<SummarizedCellBlock> out;
-  std::size_t first = static_cast<std::size_t>(num_volume_cells(mesh)) - field.num_hexes;
-  const auto surface_block = [&](CellBlockMetricField block) {
-    block.num_inverted = block.num_flat = 0;
-    for (std::size_t c = 0; c < static_cast<std::size_t>(block.count); ++c) {
-      block.validity[c] = field.non_hex_validity[first + c];
-      block.num_inverted += block.validity[c] == CellValidity::inverted;
-      block.num_flat += block.validity[c] == CellValidity::flat;
-    }
-    first += static_cast<std::size_t>(block.count);
-    SummarizedCellBlock& summarized = out.emplace_back();
-    summarized.summaries = summarize_cell_block(block);
-    summarized.field = std::move(block);
-  };
-  if (!mesh.quads.empty()) surface_block(compute_quad_block_metrics(mesh.points, mesh.quads, surface.plane_normal));
-  if (!mesh.triangles.empty())
-    surface_block(compute_triangle_block_metrics(mesh.points, mesh.triangles, surface.plane_normal));
-  return out;
-}
+// A surface mesh's blocks keep their areas too until keep_cell_metric_columns
+// (add_surface_warnings reads them for the faces of zero area).
+bool has_cell_column_or_area(std::string_view metric) { return has_cell_column(metric) || metric == "area"; }
 
 // A surface mesh's plane and orientation (planarity.h, SurfaceTopology);
 // nothing for a volume mesh.
@@ -170,6 +146,9 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
   a.field = compute_quality(a.mesh, a.topology, surface);
   a.mesh_summary = summarize_mesh(a.mesh, a.topology);
   a.mesh_summary.planarity = planarity;
+  // A surface mesh's faces are what the views and the viewer draw as its
+  // boundary; after summarize_mesh (mesh.num_boundary_faces stays 0).
+  add_surface_faces_as_boundary(a.mesh, a.topology);
   a.composition = compute_cell_composition(a.mesh);
   // Beside the overlap stage: the structure (the singularity graph: one
   // sequential pass over the edges) always, and on meshes up to
@@ -182,14 +161,19 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
   std::vector<SummarizedCellBlock> non_hex_blocks;
   std::vector<KindQualitySummary> by_kind;
   double structure_seconds = 0, metrics_seconds = 0, metric_summaries_seconds = 0;
-  // A surface mesh's structure and overlap are not computed this release
-  // (add_surface_warnings).
+  // A surface mesh's structure is its quad structure; its overlap is not
+  // computed this release (add_surface_warnings).
   const auto structure = timed(structure_seconds, [&] {
     if (!is_surface) {
       a.structure = compute_structure(a.mesh, a.topology);
     } else {
+      // The quad structure (irregular vertices, separatrices, patches);
+      // vertices.csv's `singular` marks its irregular vertices.
+      QuadStructureOptions quad_options;
+      quad_options.hole_edges = a.hole_edges;  // no further cap: each edge is traced at most once (linear)
+      a.quad_structure = compute_quad_structure(a.mesh, quad_options);
       a.structure = HexStructure{};
-      a.structure.vertex_singular.assign(a.mesh.points.size(), 0);
+      a.structure.vertex_singular.assign(a.quad_structure->irregular.begin(), a.quad_structure->irregular.end());
       // No size gradation on a surface mesh: one undefined value per cell.
       a.structure.cell_gradation.assign(static_cast<std::size_t>(num_cells(a.mesh)),
                                         std::numeric_limits<double>::quiet_NaN());
@@ -199,8 +183,7 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
     a.metrics = compute_hex_metrics(a.mesh, options.metrics, metrics_beside ? progress::Reporting::silent : progress::Reporting::report);
     // The volume kinds' metrics are summarised as they are computed (one
     // column at a time), keeping only the cells.csv columns.
-    non_hex_blocks = is_surface ? summarize_surface_blocks(a.mesh, a.field, surface)
-                                : summarize_non_hex_blocks(a.mesh, a.field, has_cell_column);
+    non_hex_blocks = summarize_non_hex_blocks(a.mesh, a.field, is_surface ? has_cell_column_or_area : has_cell_column);
   });
   const auto summarize_metrics = timed(metric_summaries_seconds, [&] {
     metric_summaries = summarize_hex_metrics(a.metrics);
@@ -418,6 +401,7 @@ void start_analysis(const AnalyzeOptions& options, AnalysisInProgress& out) {
   a.warnings = std::move(loaded.warnings);
   a.notes = std::move(loaded.notes);
   a.mesh = std::move(loaded.mesh);
+  a.hole_edges = std::move(loaded.hole_edges);
   clock.start("topology");
   a.topology = build_topology(a.mesh);
   const bool is_surface = is_surface_mesh(a.mesh);
@@ -474,11 +458,9 @@ AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
   start_analysis(options, in_progress);
   ViewOptions views = options.views;
   views.up = views_up(in_progress.analysis, options);
-  if (renderer && is_surface_mesh(in_progress.analysis.mesh)) {
-    in_progress.analysis.warnings.push_back(
-        "the views of surface meshes are not drawn yet (report.json, the CSV files and annotated.vtu are written)");
-    renderer = nullptr;
-  }
+  const bool is_surface = is_surface_mesh(in_progress.analysis.mesh);
+  if (renderer && is_surface && options.viewer)
+    in_progress.analysis.warnings.push_back("the viewer of surface meshes is not written yet (the views are drawn)");
   if (renderer) {
     // The views that need no atlas are drawn while it is built.
     std::vector<StageTime> view_times;
@@ -495,7 +477,7 @@ AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
   in_progress.finish_atlas(in_progress.analysis.timings, options.on_stage);
   model.analysis = std::move(in_progress.analysis);
   model.data.non_conforming_faces = model.analysis.topology.across_kinds;
-  model.has_viewer = renderer && options.viewer;
+  model.has_viewer = renderer && options.viewer && !is_surface;
   model.viewer_max_mb = options.viewer_max_mb;
   model.viewer_up = views.up;
   // Gates read the finished report, so any numeric key can be gated on.

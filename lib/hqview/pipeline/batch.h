@@ -69,9 +69,11 @@ std::string strip_trailing_commas(std::string_view text);
 // .msh .ovm .inp .e .exo; any case).
 bool is_hex_mesh_extension(const std::filesystem::path& path);
 
-// Every hex mesh file under `dir` (recursive), sorted by relative path;
-// hidden entries and HQView outputs (directories with report.json or
-// index.json) are skipped.
+// Every mesh file under `dir` (recursive), sorted by relative path: the
+// volume formats, and the polygon formats (.obj .off .ply: surface meshes)
+// in folders that hold no volume-format file (beside volume meshes they are
+// reference surfaces and are left out); hidden entries and HQView outputs
+// (directories with report.json or index.json) are skipped.
 // Throws InputError when `dir` cannot be listed.
 std::vector<BatchInput> collect_directory(const std::filesystem::path& dir);
 

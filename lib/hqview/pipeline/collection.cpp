@@ -3,6 +3,7 @@
 // mesh path stands for (batch.h declares them all).
 #include <algorithm>
 #include <map>
+#include <set>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -204,7 +205,7 @@ std::vector<BatchInput> collect_directory(const fs::path& dir) {
       it.disable_recursion_pending();
       continue;
     }
-    if (!it->is_regular_file() || !is_hex_mesh_extension(file)) continue;
+    if (!it->is_regular_file() || !(is_hex_mesh_extension(file) || has_polygon_mesh_extension(file))) continue;
     BatchInput input;
     input.path = file.lexically_relative(dir).generic_string();
     input.mesh_file = file;
@@ -213,6 +214,16 @@ std::vector<BatchInput> collect_directory(const fs::path& dir) {
     input.variant = mv.variant;
     inputs.push_back(std::move(input));
   }
+  // Polygon files (.obj .off .ply) are surface meshes, but in a folder that
+  // also holds volume-format files they are taken for those meshes'
+  // reference surfaces (HexaLab's layout: bunny.off beside bunny_in.mesh)
+  // and left out.
+  std::set<fs::path> volume_folders;
+  for (const BatchInput& input : inputs)
+    if (is_hex_mesh_extension(input.mesh_file)) volume_folders.insert(input.mesh_file.parent_path());
+  std::erase_if(inputs, [&](const BatchInput& input) {
+    return has_polygon_mesh_extension(input.mesh_file) && volume_folders.count(input.mesh_file.parent_path()) != 0;
+  });
   std::sort(inputs.begin(), inputs.end(), [](const BatchInput& a, const BatchInput& b) { return a.path < b.path; });
   return inputs;
 }

@@ -180,8 +180,12 @@ std::vector<SummarizedCellBlock> summarize_non_hex_blocks(const Mesh& mesh, cons
                                                           const std::function<bool(std::string_view)>& keep) {
   std::vector<SummarizedCellBlock> out;
   std::size_t first_cell = field.num_hexes;
+  // The volume kinds of a volume mesh, the surface kinds of a surface mesh
+  // (the analysis holds one or the other).
+  const bool surface = is_surface_mesh(mesh);
   for_each_block(mesh, [&](auto kind, const auto& cells) {
-    if constexpr (kind() != CellKind::hex && CellKindTable<kind()>::dimension == 3) {
+    if constexpr (kind() != CellKind::hex) {
+      if ((CellKindTable<kind()>::dimension == 2) != surface) return;
       const std::size_t n = cells.size();
       if (n > 0) {
         constexpr std::size_t C = kCornerValuesPerCell<kind()>;

@@ -85,18 +85,19 @@ std::vector<MetricSummary> summarize_hex_metrics(const HexMetricField& field);
 // then "corner_scaled_jacobian" (the keys of quality.by_kind.<kind>.metrics).
 std::vector<std::string_view> volume_kind_metric_names(CellKind kind);
 
-// The Verdict metrics of every non-hex volume block present (tets, wedges,
-// pyramids, in CellKind order), computed and summarised one metric at a
-// time (summarize_cell_block_metrics), the corner summaries and inverted
-// counts from `field`'s slice of each block; each block keeps the values of
-// the metrics `keep` accepts.
+// The Verdict metrics of every non-hex block present of the mesh's
+// dimension (a volume mesh's tets, wedges, pyramids; a surface mesh's quads
+// and triangles; in CellKind order), computed and summarised one metric at
+// a time (summarize_cell_block_metrics), the corner summaries and inverted
+// counts from `field`'s slice of each block (a surface cell's: against the
+// plane of a planar mesh, else by orientation against its neighbours);
+// each block keeps the values of the metrics `keep` accepts.
 std::vector<SummarizedCellBlock> summarize_non_hex_blocks(const Mesh& mesh, const QualityField& field,
                                                           const std::function<bool(std::string_view)>& keep);
 
 // by_kind: the hexes from `hex_metrics` (summarize_hex_metrics) and the
 // corner values of `field`, every other kind from its block's summaries
-// (summarize_non_hex_blocks; a surface mesh's quads and triangles from
-// summarize_cell_block); a volume mesh lists the volume kinds, a surface
+// (summarize_non_hex_blocks); a volume mesh lists the volume kinds, a surface
 // mesh the surface kinds; a kind without cells has count 0 and no metrics.
 std::vector<KindQualitySummary> summarize_by_kind(const Mesh& mesh, const QualityField& field,
                                                   const std::vector<MetricSummary>& hex_metrics,

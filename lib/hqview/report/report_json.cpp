@@ -184,6 +184,37 @@ Json structure_json(const HexStructure& s) {
           {"num_gradation_above_4", s.num_gradation_above_4}};
 }
 
+// structure of a surface mesh: its quad structure (docs/contract.md
+// "structure (surface meshes)").
+Json quad_structure_json(const QuadStructure& s) {
+  auto by_valence = [](const std::map<Index, Index>& m) {
+    Json j = Json::object();
+    for (const auto& [valence, count] : m) j[std::to_string(valence)] = count;
+    return j;
+  };
+  std::array<Index, 5> ends{};
+  for (SeparatrixEnd e : s.separatrix_end) ++ends[static_cast<std::size_t>(e)];
+  return {{"valence", "incident quads"},
+          {"num_edges", s.num_edges},
+          {"num_boundary_edges", s.num_boundary_edges},
+          {"num_nonmanifold_edges", s.num_nonmanifold_edges},
+          {"num_irregular_vertices", s.num_irregular},
+          {"num_irregular_vertices_interior", s.num_irregular_interior},
+          {"num_irregular_vertices_boundary", s.num_irregular_boundary},
+          {"irregular_vertices_by_valence",
+           {{"interior", by_valence(s.interior_by_valence)}, {"boundary", by_valence(s.boundary_by_valence)}}},
+          {"num_unclassified_vertices", s.num_unclassified},
+          {"num_separatrices", s.num_separatrices},
+          {"separatrix_ends",
+           {{"irregular_vertex", ends[static_cast<std::size_t>(SeparatrixEnd::irregular_vertex)]},
+            {"boundary", ends[static_cast<std::size_t>(SeparatrixEnd::boundary)]},
+            {"unclassified_vertex", ends[static_cast<std::size_t>(SeparatrixEnd::unclassified_vertex)]},
+            {"traced_edge", ends[static_cast<std::size_t>(SeparatrixEnd::traced_edge)]},
+            {"cap", ends[static_cast<std::size_t>(SeparatrixEnd::cap)]}}},
+          {"num_traced_edges", s.num_traced_edges},
+          {"num_patches", s.num_patches}};
+}
+
 // fem: the element conditioning, and with --simulate the Poisson check
 // (docs/contract.md "fem"). A skipped check keeps every key, null.
 Json fem_poisson_json(const PoissonCheck& p, const std::vector<MetricCorrelation>& correlations) {
@@ -517,8 +548,12 @@ ReportDocument report_document(const ReportModel& model) {
   // Stages of later releases; null until computed.
   j["glyphs"] = model.analysis.glyphs ? glyphs_json(*model.analysis.glyphs) : Json(nullptr);
   j["overlap"] = model.analysis.overlap ? overlap_json(*model.analysis.overlap) : Json(nullptr);
-  // A surface mesh's structure (irregular vertices, separatrices) is not computed yet: null.
-  j["structure"] = model.analysis.mesh_summary.is_surface ? Json(nullptr) : structure_json(model.analysis.structure);
+  // A surface mesh's structure is its quad structure (irregular vertices,
+  // separatrices, patches).
+  const Analysis& analysis = model.analysis;
+  j["structure"] = !analysis.mesh_summary.is_surface ? structure_json(analysis.structure)
+                   : analysis.quad_structure        ? quad_structure_json(*analysis.quad_structure)
+                                                    : Json(nullptr);
   // Only when asked for (--simulate, --metrics fem_element): other reports keep their bytes.
   if (model.analysis.fem_elements) j["fem"] = fem_json(model.analysis);
   j["boundary_error"] = model.analysis.boundary_error ? boundary_error_json(model) : Json(nullptr);

@@ -20,6 +20,7 @@
 #include "hqview/render/annotate.h"
 #include "hqview/render/scene_shapes.h"
 #include "hqview/views/overview_views.h"
+#include "hqview/views/surface_views.h"
 
 namespace hq {
 namespace {
@@ -578,6 +579,12 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   scene.background = options.background;
   auto local = [&](const Vec3& p) { return to_vec3f(p - scene.origin); };
 
+  // 0. A surface mesh's faces, filled by quality (surface_views.h).
+  if (options.surface_cell_quality) {
+    scene.triangles.push_back(surface_fill_faces(mesh, topology, *options.surface_cell_quality, scene.origin));
+    scene.triangles.back().is_lit = options.surface_fill_lit;
+  }
+
   // 1. Boundary wireframe.
   // On a mesh of several kinds each edge in its faces' kind colour.
   const std::vector<Edge> wire = boundary_edges_all_kinds(topology);
@@ -1028,9 +1035,14 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
   lines.push_back({kIntersectionArrowColor, "intersecting pairs: " + std::to_string(findings[1]) + unchecked});
   lines.push_back({kIntersectingCellColor, "intersecting cells: " + std::to_string(intersecting) + unchecked});
   if (overlap && !overlap->markers.empty()) lines.push_back({std::nullopt, "label xN: N of its colour's kind"});
+  if (options.surface_cell_quality) {
+    const std::vector<LegendLine> fill = surface_fill_legend_lines(*options.surface_cell_quality);
+    lines.insert(lines.end(), fill.begin(), fill.end());
+  }
   // On a mesh of several kinds the boundary edges are in their kinds'
   // colours (no edge is kWireframeColor).
-  if (options.cell_kinds.empty()) lines.push_back({kWireframeColor, "boundary edges"});
+  if (options.cell_kinds.empty())
+    lines.push_back({kWireframeColor, options.surface_cell_quality ? "edges" : "boundary edges"});
   // "cells: 64 hex, 484 tet, 16 pyramid" as a heading and one line per kind
   // (one line would be cut in the legend's width).
   // Each with its boundary edges' colour.

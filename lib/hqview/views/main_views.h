@@ -75,6 +75,12 @@ struct MainViewOptions {
   // A legend line for a mesh whose cells are mostly inverted
   // (mostly_inverted_note); empty: none.
   std::string orientation_note;
+  // A surface mesh: its faces filled by their cell scaled Jacobian in bins
+  // (surface_views.h), with the bins in the legend; null: no fill (volume
+  // meshes: the boundary wireframe only). Lit unless surface_fill_lit is
+  // false (a planar mesh seen along its normal: the bins' colours exactly).
+  const std::vector<double>* surface_cell_quality = nullptr;
+  bool surface_fill_lit = true;
 };
 
 // "inverted: 1200 of 1200 cells" when more than half of the volume cells

@@ -34,6 +34,7 @@
 #include "hqview/views/overview_viewpoint.h"
 #include "hqview/views/overview_views.h"
 #include "hqview/views/structure_views.h"
+#include "hqview/views/surface_views.h"
 #include "hqview/views/uv_key_view.h"
 
 namespace hq {
@@ -201,7 +202,7 @@ bool has_inputs(const Analysis& a, ViewNeeds needs) {
 
 std::vector<ViewFile> build_overview(ViewContext& c) {
   auto overview = sized<OverviewOptions>(c);
-  overview.title = c.name + ": vertex quality on the boundary";
+  overview.title = c.name + (is_surface_mesh(c.a.mesh) ? ": vertex quality on the surface" : ": vertex quality on the boundary");
   const OverviewViewpoint& eye = c.overview_viewpoint;
   overview.view_direction = eye.direction;
   overview.inverted_cells = c.inverted_cells;
@@ -222,13 +223,21 @@ std::vector<ViewFile> build_main(ViewContext& c) {
   const std::vector<Vec3> points = main_view_points(c.a.mesh, c.a.topology, *c.glyphs);
   main.title = "-";  // the layout of a titled figure
   const double aspect = main_view_aspect(main);
+  // A surface mesh: its faces filled by quality; a planar one seen once,
+  // along its normal (surface_views.h).
+  const std::optional<Vec3> planar = planar_view_direction(c.a);
+  if (is_surface_mesh(c.a.mesh)) {
+    main.surface_cell_quality = &c.a.field.cell_scaled_jacobian;
+    main.surface_fill_lit = !planar;
+  }
   const std::vector<Vec3> directions =
-      choose_main_viewpoints(points, *c.glyphs, aspect, 2, main.up, main.fov_y_degrees);
+      planar ? std::vector<Vec3>{*planar} : choose_main_viewpoints(points, *c.glyphs, aspect, 2, main.up, main.fov_y_degrees);
   const OverlapReport* overlap = c.a.overlap ? &*c.a.overlap : nullptr;
   std::vector<ViewFile> files;
   for (std::size_t i = 0; i < directions.size(); ++i) {
-    main.title = c.name + ": glyph clusters and overlaps, view " + std::to_string(i + 1) + " (from " +
-                 viewpoint_name(directions[i], main.up) + ")";
+    main.title = c.name + (main.surface_cell_quality ? ": faces by scaled Jacobian and glyph clusters, view "
+                                                     : ": glyph clusters and overlaps, view ") +
+                 std::to_string(i + 1) + " (from " + viewpoint_name(directions[i], main.up) + ")";
     Image image = render_main_view(c.a.mesh, c.a.topology, *c.glyphs, overlap, directions[i], main, c.renderer);
     files.push_back(framed("views/main_" + std::to_string(i + 1) + ".png", std::move(image), c));
   }
@@ -415,7 +424,28 @@ std::vector<ViewFile> build_sorted_quality(ViewContext& c) {
                                           {900, 460, c.name + ": sorted vertex quality (min corner scaled Jacobian)"}));
 }
 
+// A surface mesh's structure view: one figure, along a planar mesh's
+// normal, else from the three-quarter view (surface_views.h).
+std::vector<ViewFile> build_quad_structure(ViewContext& c) {
+  if (!c.a.quad_structure) return {};
+  const QuadStructure& s = *c.a.quad_structure;
+  QuadStructureViewOptions options;
+  options.width = c.options.width;
+  options.height = c.options.height;
+  options.up = c.options.up;
+  const std::optional<Vec3> planar = planar_view_direction(c.a);
+  options.is_lit = !planar;
+  const Vec3 direction = planar ? *planar : three_quarter_view(options.up);
+  options.title = c.name + ": quad structure, " + std::to_string(s.num_irregular) + " irregular vertices, " +
+                  std::to_string(s.num_separatrices) + " separatrices, " + std::to_string(s.num_patches) +
+                  " patches (from " + viewpoint_name(direction, options.up) + ")";
+  Image image = render_quad_structure_view(c.a.mesh, c.a.topology, s, c.a.mesh_summary.edge_length_mean, direction,
+                                           options, c.renderer);
+  return {framed("views/structure_1.png", std::move(image), c)};
+}
+
 std::vector<ViewFile> build_structure(ViewContext& c) {
+  if (is_surface_mesh(c.a.mesh)) return build_quad_structure(c);
   auto options = sized<StructureViewOptions>(c);
   options.title = "-";  // the layout of a titled figure
   const HexStructure& s = c.a.structure;
@@ -528,10 +558,18 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
   // The top clusters (C views; their worst vertices get D and E): as the glyph stage was asked.
   shared.num_top = std::min<std::size_t>(static_cast<std::size_t>(std::max(0, shared.glyphs->options.top_clusters)),
                                          shared.glyphs->clusters.size());
-  shared.local_vertices = choose_local_vertices(shared);
+  // A surface mesh draws its own views only (surface_views.h): no C, D, E.
+  const bool is_surface = is_surface_mesh(analysis.mesh);
+  if (is_surface) std::erase_if(wanted, [](std::size_t i) { return !is_surface_mesh_view(kViews[i].id); });
+  if (!is_surface) shared.local_vertices = choose_local_vertices(shared);
   // The overview's and thumbnail's eye, once for both.
   shared.overview_viewpoint.direction = three_quarter_view(options.up);
-  if (std::any_of(wanted.begin(), wanted.end(),
+  if (is_surface) {
+    // A planar surface mesh along its normal; a curved one from the
+    // three-quarter view of --up.
+    if (const std::optional<Vec3> planar = planar_view_direction(analysis)) shared.overview_viewpoint.direction = *planar;
+    shared.inverted_cells = inverted_cell_ids(analysis.field);
+  } else if (std::any_of(wanted.begin(), wanted.end(),
                   [](std::size_t i) { return kViews[i].id == "overview" || kViews[i].id == "thumbnail"; })) {
     const GlyphResult& g = *shared.glyphs;
     std::span<const Index> worst_cluster;

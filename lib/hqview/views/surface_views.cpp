@@ -1,0 +1,257 @@
+#include "hqview/views/surface_views.h"
+
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "hqview/core/box3.h"
+#include "hqview/image/colormap.h"
+#include "hqview/mesh/boundary_polygons.h"
+#include "hqview/quality/hex_metrics.h"
+#include "hqview/views/overview_views.h"
+#include "hqview/views/structure_views.h"
+
+namespace hq {
+namespace {
+
+// The fill's bins: upper bounds (inclusive) and tints (fraction of white).
+struct FillBin {
+  double upper;
+  double sample;  // the quality map's value for the bin
+  double white;   // mixed towards white by this much
+  const char* text;
+};
+constexpr std::array<FillBin, 5> kFillBins{{{0.0, -1.0, 0.0, "inverted (<= 0)"},
+                                            {0.3, 0.15, 0.25, "0 to 0.3"},
+                                            {0.6, 0.45, 0.45, "0.3 to 0.6"},
+                                            {0.9, 0.75, 0.6, "0.6 to 0.9"},
+                                            {1.0, 0.95, 0.7, "0.9 to 1"}}};
+
+// The bin of q, or -1 (undefined: NaN or Verdict's sentinel).
+int fill_bin(double q) {
+  if (std::isnan(q) || is_verdict_sentinel(q)) return -1;
+  for (std::size_t b = 0; b < kFillBins.size(); ++b)
+    if (q <= kFillBins[b].upper) return static_cast<int>(b);
+  return static_cast<int>(kFillBins.size()) - 1;
+}
+
+// A face as 1 or 2 triangles in one colour, lit by one normal (a quad's
+// diagonals' cross product: its area-weighted normal when not planar).
+void add_flat_face(TriangleSet& set, const HexMesh& mesh, const BoundaryPolygon& face, const Rgba8& color,
+                   const Vec3& origin) {
+  std::array<Vec3, 4> p{};
+  for (int i = 0; i < face.size; ++i)
+    p[static_cast<std::size_t>(i)] = mesh.points[static_cast<std::size_t>(face.v[static_cast<std::size_t>(i)])];
+  const Vec3 n = face.size == 4 ? cross(p[2] - p[0], p[3] - p[1]) : cross(p[1] - p[0], p[2] - p[0]);
+  const Vec3f normal = norm(n) > 0.0 ? to_vec3f(normalized(n)) : Vec3f{0.0f, 0.0f, 1.0f};
+  const auto base = static_cast<std::uint32_t>(set.positions.size());
+  for (int i = 0; i < face.size; ++i) {
+    set.positions.push_back(to_vec3f(p[static_cast<std::size_t>(i)] - origin));
+    set.normals.push_back(normal);
+    set.colors.push_back(color);
+  }
+  set.indices.insert(set.indices.end(), {base, base + 1, base + 2});
+  if (face.size == 4) set.indices.insert(set.indices.end(), {base, base + 2, base + 3});
+}
+
+Rgba8 bin_color(int b) {
+  if (b < 0) return to_rgba8(kUndefinedColor);
+  const FillBin& bin = kFillBins[static_cast<std::size_t>(b)];
+  const Color c = quality_color(bin.sample);
+  const auto tint = [&](float v) { return static_cast<float>(v + bin.white * (1.0 - v)); };
+  return to_rgba8(Color{tint(c.r), tint(c.g), tint(c.b), 1.0f});
+}
+
+}  // namespace
+
+bool is_surface_mesh_view(std::string_view id) {
+  return id == "overview" || id == "main" || id == "histogram" || id == "histogram_log" || id == "sorted_quality" ||
+         id == "structure" || id == "thumbnail";
+}
+
+std::optional<Vec3> planar_view_direction(const Analysis& a) {
+  if (!is_surface_mesh(a.mesh) || !a.mesh_summary.planarity || !a.mesh_summary.planarity->is_planar) return std::nullopt;
+  return -1.0 * a.mesh_summary.planarity->normal;
+}
+
+Rgba8 surface_fill_color(double q) { return bin_color(fill_bin(q)); }
+
+TriangleSet surface_fill_faces(const HexMesh& mesh, const Topology& topology, const std::vector<double>& cell_quality,
+                               const Vec3& origin) {
+  TriangleSet set;
+  for (const BoundaryPolygon& face : boundary_polygons(topology)) {
+    const auto cell = static_cast<std::size_t>(face.cell);
+    const Rgba8 color = surface_fill_color(cell < cell_quality.size() ? cell_quality[cell] : std::nan(""));
+    add_flat_face(set, mesh, face, color, origin);
+  }
+  return set;
+}
+
+std::vector<LegendLine> surface_fill_legend_lines(const std::vector<double>& cell_quality) {
+  std::array<std::size_t, kFillBins.size()> counts{};
+  std::size_t undefined = 0;
+  for (double q : cell_quality) {
+    const int b = fill_bin(q);
+    if (b < 0)
+      ++undefined;
+    else
+      ++counts[static_cast<std::size_t>(b)];
+  }
+  std::vector<LegendLine> lines;
+  lines.push_back({std::nullopt, "faces: scaled Jacobian (min corner)", 1});
+  for (std::size_t b = 0; b < kFillBins.size(); ++b)
+    if (counts[b] > 0)
+      lines.push_back({bin_color(static_cast<int>(b)), std::string(kFillBins[b].text) + ": " + std::to_string(counts[b])});
+  if (undefined > 0) lines.push_back({bin_color(-1), "degenerate: " + std::to_string(undefined)});
+  return lines;
+}
+
+namespace {
+
+// The irregular vertices' classes, in legend order.
+enum class IrregularClass { interior_3, interior_5, interior_6_plus, interior_1_2, boundary_below, boundary_above };
+constexpr int kNumIrregularClasses = 6;
+
+IrregularClass irregular_class(Index valence, int ideal, bool is_boundary) {
+  if (is_boundary) return valence < ideal ? IrregularClass::boundary_below : IrregularClass::boundary_above;
+  if (valence == 3) return IrregularClass::interior_3;
+  if (valence == 5) return IrregularClass::interior_5;
+  return valence >= 6 ? IrregularClass::interior_6_plus : IrregularClass::interior_1_2;
+}
+
+Rgba8 irregular_class_color(IrregularClass c) {
+  // The hex structure view's palette (Okabe-Ito), class for class.
+  switch (c) {
+    case IrregularClass::interior_3: return singular_class_color(SingularClass::interior_3);
+    case IrregularClass::interior_5: return singular_class_color(SingularClass::interior_5);
+    case IrregularClass::interior_6_plus: return singular_class_color(SingularClass::interior_6_plus);
+    case IrregularClass::interior_1_2: return singular_class_color(SingularClass::interior_other);
+    case IrregularClass::boundary_below: return singular_class_color(SingularClass::boundary_1);
+    case IrregularClass::boundary_above: return singular_class_color(SingularClass::boundary_3_plus);
+  }
+  return {0, 0, 0, 255};
+}
+
+const char* irregular_class_label(IrregularClass c) {
+  switch (c) {
+    case IrregularClass::interior_3: return "interior, valence 3";
+    case IrregularClass::interior_5: return "interior, valence 5";
+    case IrregularClass::interior_6_plus: return "interior, valence 6+";
+    case IrregularClass::interior_1_2: return "interior, valence 1-2";
+    case IrregularClass::boundary_below: return "boundary, below ideal";
+    case IrregularClass::boundary_above: return "boundary, above ideal";
+  }
+  return "";
+}
+
+// Pale tints for the patches (light, unsaturated: the spheres and lines
+// stay apart from them).
+constexpr std::array<Rgba8, 8> kPatchTints{{{222, 232, 246, 255},
+                                            {246, 228, 214, 255},
+                                            {222, 240, 226, 255},
+                                            {240, 226, 240, 255},
+                                            {246, 240, 210, 255},
+                                            {214, 238, 240, 255},
+                                            {236, 232, 222, 255},
+                                            {230, 230, 236, 255}}};
+constexpr Rgba8 kSeparatrixColor{45, 45, 52, 255};
+constexpr Rgba8 kFaintEdgeColor{150, 154, 162, 110};
+
+}  // namespace
+
+Rgba8 irregular_vertex_color(Index valence, int ideal, bool is_boundary) {
+  return irregular_class_color(irregular_class(valence, ideal, is_boundary));
+}
+
+Image render_quad_structure_view(const HexMesh& mesh, const Topology& topology, const QuadStructure& structure,
+                                 double mean_edge_length, const Vec3& view_direction,
+                                 const QuadStructureViewOptions& options, Renderer& renderer) {
+  const std::vector<Vec3> points = boundary_points(mesh, topology);
+  const FigureFrame3d f = figure_frame_3d(
+      "structure view", options.width, options.height, Rgba8{255, 255, 255, 255},
+      [&](const AnnotationStyle& style) {
+        return figure_layout(options.width, options.height, !options.title.empty(),
+                             static_cast<int>(std::lround(340 * style.scale)), style);
+      },
+      points, view_direction, options.up, 30.0);
+  const Box3 box = boundary_bounding_box(mesh, topology);
+  Scene scene;
+  scene.origin = 0.5 * (box.lo + box.hi);
+  scene.background = f.style.background;
+  const auto local = [&](Index v) { return to_vec3f(mesh.points[static_cast<std::size_t>(v)] - scene.origin); };
+
+  // Faces by patch (the quads; triangles and faces without a patch white).
+  TriangleSet faces;
+  faces.is_lit = options.is_lit;
+  for (const BoundaryPolygon& face : boundary_polygons(topology)) {
+    const auto cell = static_cast<std::size_t>(face.cell);
+    const Rgba8 tint = face.size == 4 && cell < structure.quad_patch.size() && structure.quad_patch[cell] != kNoIndex
+                           ? kPatchTints[static_cast<std::size_t>(structure.quad_patch[cell]) % kPatchTints.size()]
+                           : Rgba8{255, 255, 255, 255};
+    add_flat_face(faces, mesh, face, tint, scene.origin);
+  }
+  scene.triangles.push_back(std::move(faces));
+
+  // Faint edges, then the separatrices.
+  LineSet edges;
+  edges.width = static_cast<float>(f.style.scale);
+  for (const Edge& e : boundary_edges_all_kinds(topology))
+    for (Index v : e) {
+      edges.indices.push_back(static_cast<std::uint32_t>(edges.positions.size()));
+      edges.positions.push_back(local(v));
+      edges.colors.push_back(kFaintEdgeColor);
+    }
+  scene.lines.push_back(std::move(edges));
+  LineSet separatrices;
+  separatrices.width = static_cast<float>(3.0 * f.style.scale);
+  for (Index s = 0; s < structure.num_separatrices; ++s) {
+    const auto begin = structure.separatrix_offsets[static_cast<std::size_t>(s)];
+    const auto end = structure.separatrix_offsets[static_cast<std::size_t>(s) + 1];
+    for (auto i = begin; i + 1 < end; ++i)
+      for (auto k : {i, i + 1}) {
+        separatrices.indices.push_back(static_cast<std::uint32_t>(separatrices.positions.size()));
+        separatrices.positions.push_back(local(structure.separatrix_vertices[static_cast<std::size_t>(k)]));
+        separatrices.colors.push_back(kSeparatrixColor);
+      }
+  }
+  scene.lines.push_back(std::move(separatrices));
+
+  // Irregular vertices.
+  std::array<Index, kNumIrregularClasses> counts{};
+  SphereSet spheres;
+  const double diagonal = box.is_empty() ? 1.0 : norm(box.hi - box.lo);
+  const auto radius = static_cast<float>(std::max(0.3 * mean_edge_length, 0.006 * diagonal));
+  for (Index v : structure.irregular_vertices) {
+    const auto i = static_cast<std::size_t>(v);
+    const IrregularClass c = irregular_class(structure.valence[i], structure.ideal_valence[i],
+                                             structure.vertex_kind[i] == QuadVertexKind::boundary);
+    ++counts[static_cast<std::size_t>(c)];
+    spheres.centers.push_back(local(v));
+    spheres.radii.push_back(radius);
+    spheres.colors.push_back(irregular_class_color(c));
+  }
+  scene.spheres.push_back(std::move(spheres));
+
+  Image figure = render_figure(renderer, scene, f.camera, options.width, options.height, f.layout, options.title, f.style);
+  std::vector<LegendLine> lines{{std::nullopt, "irregular vertices: " + std::to_string(structure.num_irregular)},
+                                {std::nullopt, "(valence = incident quads)"}};
+  for (int c = 0; c < kNumIrregularClasses; ++c)
+    if (counts[static_cast<std::size_t>(c)] > 0)
+      lines.push_back({irregular_class_color(static_cast<IrregularClass>(c)),
+                       std::string(irregular_class_label(static_cast<IrregularClass>(c))) + ": " +
+                           std::to_string(counts[static_cast<std::size_t>(c)])});
+  if (structure.num_irregular == 0) lines.push_back({std::nullopt, "none: every vertex is regular"});
+  lines.push_back({kSeparatrixColor,
+                   "separatrices: " + std::to_string(structure.num_separatrices) +
+                       (structure.is_capped ? " (capped)" : ""),
+                   1});
+  lines.push_back({std::nullopt, "traced edges: " + std::to_string(structure.num_traced_edges)});
+  lines.push_back({kPatchTints[0], "patches: " + std::to_string(structure.num_patches) + " (tints repeat)"});
+  if (structure.num_unclassified > 0)
+    lines.push_back({std::nullopt, "unclassified vertices: " + std::to_string(structure.num_unclassified)});
+  lines.push_back({Rgba8{150, 154, 162, 255}, "edges"});
+  draw_legend(figure, f.layout.legend, lines, f.style);
+  return figure;
+}
+
+}  // namespace hq

@@ -1,0 +1,76 @@
+#pragma once
+// What the views draw differently for a surface mesh (quads and triangles,
+// no volume cell; docs/contract.md "Surface meshes"): which views exist, the
+// camera of a planar mesh (seen along its normal), and view A's face fill
+// (each face coloured by its cell scaled Jacobian in a few bins, each bin a
+// legend entry). The faces themselves are the drawn "boundary"
+// (mesh/surface_boundary.h).
+
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "hqview/analysis/analysis.h"
+#include "hqview/image/color.h"
+#include "hqview/mesh/topology.h"
+#include "hqview/render/annotate.h"
+#include "hqview/render/renderer.h"
+#include "hqview/render/scene.h"
+#include "hqview/structure/quad_structure.h"
+
+namespace hq {
+
+// Whether view `id` (kViews) is drawn for a surface mesh: the overview, A,
+// B, the histograms, the structure (its quad structure) and the thumbnail.
+// C, D, E, the size gradation and the boundary, compare and simulation
+// views are not (yet).
+bool is_surface_mesh_view(std::string_view id);
+
+// The direction a planar surface mesh is seen along (eye towards the
+// mesh): against the plane's normal, which the majority of the faces share
+// (planarity.h), so that those faces face the camera. None when the mesh
+// is not a planar surface mesh.
+std::optional<Vec3> planar_view_direction(const Analysis& a);
+
+// View A's face fill bins of a face's cell scaled Jacobian q (the lowest
+// signed corner): inverted (q <= 0) in the inverted colour, then (0, 0.3],
+// (0.3, 0.6], (0.6, 0.9], (0.9, 1] in pale tints of the quality map (so that
+// the glyphs' cluster colours stay apart), degenerate (Verdict's sentinel)
+// or NaN in the undefined grey.
+Rgba8 surface_fill_color(double q);
+
+// The faces of boundary_polygons(topology), each flat in
+// surface_fill_color(cell_quality[face.cell]); positions relative to origin.
+TriangleSet surface_fill_faces(const HexMesh& mesh, const Topology& topology, const std::vector<double>& cell_quality,
+                               const Vec3& origin);
+
+// The legend lines of the fill: a heading and one swatch per bin that holds
+// a face (counts in the text), in the bins' order.
+std::vector<LegendLine> surface_fill_legend_lines(const std::vector<double>& cell_quality);
+
+// The structure view of a surface mesh (`structure`, panel S): the faces
+// tinted by patch (8 pale tints, repeating), the edges faint, the
+// separatrices as dark 3-pixel lines (at 1200 pixels of height), each
+// irregular vertex a sphere in its class's colour (the hex structure view's
+// Okabe-Ito palette: interior valence 3 blue, 5 vermillion, 6+ reddish
+// purple, 1-2 sky blue; boundary below its ideal valence bluish green,
+// above orange), radius 0.3 of the mean edge length and at least 0.6% of
+// the bounding-box diagonal. Orthographic, along view_direction, `up`
+// upright; lit unless is_lit is false (a planar mesh seen along its
+// normal). The legend gives each class with its count, the separatrices,
+// their traced edges, the patches and the unclassified vertices.
+struct QuadStructureViewOptions {
+  int width = 1600, height = 1200;
+  std::string title;
+  Vec3 up{0.0, 0.0, 1.0};
+  bool is_lit = true;
+};
+Image render_quad_structure_view(const HexMesh& mesh, const Topology& topology, const QuadStructure& structure,
+                                 double mean_edge_length, const Vec3& view_direction,
+                                 const QuadStructureViewOptions& options, Renderer& renderer);
+
+// The colour of an irregular vertex of valence `valence` (ideal `ideal`, 4
+// inside) and its legend text.
+Rgba8 irregular_vertex_color(Index valence, int ideal, bool is_boundary);
+
+}  // namespace hq

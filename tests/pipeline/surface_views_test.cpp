@@ -1,0 +1,262 @@
+// The views of surface meshes (issue 47): a planar quad grid in a tilted
+// plane, built here with one quad squeezed, drawn by the OSMesa renderer.
+// The main view looks along the plane's normal (the grid's squares stay
+// squares on screen) and fills each quad with its scaled-Jacobian bin: the
+// worst quad's pixels carry its bin's colour, and no pixel outside the
+// quads of that bin does. The overview and the thumbnail face the plane
+// too; C, D, E are not drawn for surface meshes.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "hqview/pipeline/analyze.h"
+#include "hqview/render/camera.h"
+#include "hqview/render/osmesa_renderer.h"
+#include "hqview/views/surface_views.h"
+#include "hqview/views/views.h"
+#include "io/temp_dir.h"
+#include "support/image_probe.h"
+#include "support/surface_fixtures.h"
+
+namespace hq {
+namespace {
+
+// An n x n grid of unit quads (side h) in the plane through o spanned by
+// the orthonormal e1, e2, counter-clockwise about e1 x e2; vertex (i, j)
+// is i + (n + 1) j.
+struct Grid {
+  std::vector<Vec3> points;
+  std::vector<std::array<Index, 4>> quads;
+};
+Grid planar_grid(int n, const Vec3& o, const Vec3& e1, const Vec3& e2, double h) {
+  Grid g;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) g.points.push_back(o + (h * i) * e1 + (h * j) * e2);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const Index a = i + (n + 1) * j;
+      g.quads.push_back({a, a + 1, a + n + 2, a + n + 1});
+    }
+  return g;
+}
+
+std::string obj_text(const Grid& g) {
+  std::ostringstream out;
+  out.precision(17);
+  for (const Vec3& p : g.points) out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+  for (const auto& q : g.quads) out << "f " << q[0] + 1 << ' ' << q[1] + 1 << ' ' << q[2] + 1 << ' ' << q[3] + 1 << '\n';
+  return out.str();
+}
+
+// Pixel of model point p in a 3D view's figure (its 3D area at the bottom
+// left: ViewCameraEntry).
+struct Pixel {
+  double x, y;
+};
+Pixel to_pixel(const ViewFile& f, const Vec3& p) {
+  const Vec3 ndc = project_to_ndc(*f.camera, f.camera_aspect, p);
+  return {0.5 * (ndc.x + 1.0) * f.frame_width, f.image.height - f.frame_height + 0.5 * (1.0 - ndc.y) * f.frame_height};
+}
+
+const ViewFile& file_of(const std::vector<RenderedView>& views, const std::string& id) {
+  for (const RenderedView& v : views)
+    if (v.id == id) return v.files.at(0);
+  throw std::runtime_error("no view " + id);
+}
+
+TEST(SurfaceViews, PlanarGridSeenAlongItsNormalWorstQuadInItsBinColour) {
+  const int n = 12;
+  const Vec3 e1 = normalized(Vec3{1, 0, 1}), e2 = Vec3{0, 1, 0};  // a plane tilted 45 degrees about y
+  Grid g = planar_grid(n, {3, -2, 1}, e1, e2, 0.5);
+  // Vertex (7, 7) pulled to (6.55, 6.55): the quad (6,6)-(7,7) is squeezed
+  // to a kite whose corner there has the scaled Jacobian 0.1 / 0.505 = 0.198
+  // (still convex: the diagonal (7,6)-(6,7) passes through (6.5, 6.5)).
+  const auto at = [&](int i, int j) { return static_cast<std::size_t>(i + (n + 1) * j); };
+  g.points[at(7, 7)] = g.points[at(6, 6)] + 0.55 * (g.points[at(7, 7)] - g.points[at(6, 6)]);
+  const test::TempDir dir("surface_views");
+  AnalyzeOptions options;
+  options.mesh_path = dir.write("tilted.obj", obj_text(g));
+  options.tool_version = "test";
+  // Glyphs below quality 0.1 only: none here, so no glyph covers the
+  // squeezed quad (glyphs on a surface mesh: the curved test below).
+  options.glyphs.threshold = 0.9;
+  const Analysis a = analyze_mesh(options);
+  ASSERT_TRUE(a.mesh_summary.planarity && a.mesh_summary.planarity->is_planar);
+
+  ViewOptions views;
+  views.width = 800;
+  views.height = 600;
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  ASSERT_TRUE(renderer);
+  const std::vector<RenderedView> drawn = render_views(a, views, *renderer);
+  std::vector<std::string> ids;
+  for (const RenderedView& v : drawn) ids.push_back(v.id);
+  EXPECT_EQ(ids, (std::vector<std::string>{"overview", "main", "histogram", "histogram_log", "sorted_quality", "structure",
+                                      "thumbnail"}));
+
+  // One main view, along the normal: the grid's unit edges have equal,
+  // perpendicular images.
+  const ViewFile& main = file_of(drawn, "main");
+  for (const RenderedView& v : drawn) {
+    if (v.id == "main") EXPECT_EQ(v.files.size(), 1u);
+  }
+  ASSERT_TRUE(main.camera);
+  const Pixel o = to_pixel(main, g.points[at(0, 0)]), px = to_pixel(main, g.points[at(n, 0)]),
+              py = to_pixel(main, g.points[at(0, n)]);
+  const double ux = px.x - o.x, uy = px.y - o.y, vx = py.x - o.x, vy = py.y - o.y;
+  EXPECT_NEAR(std::hypot(ux, uy), std::hypot(vx, vy), 0.01 * std::hypot(ux, uy));
+  EXPECT_NEAR(ux * vx + uy * vy, 0.0, 0.01 * (ux * ux + uy * uy));
+  EXPECT_GT(std::hypot(ux, uy), 200.0);  // the grid fills the view
+
+  // The worst quad and its bin's colour.
+  const std::vector<double>& q = a.field.cell_scaled_jacobian;
+  const std::size_t worst = static_cast<std::size_t>(std::min_element(q.begin(), q.end()) - q.begin());
+  EXPECT_EQ(worst, static_cast<std::size_t>(6 + n * 6));
+  EXPECT_NEAR(q[worst], 0.1 / 0.505, 1e-12);
+  const Rgba8 colour = surface_fill_color(q[worst]);
+  EXPECT_NE(colour, surface_fill_color(1.0));
+  // Its interior (bilinear samples away from its edges): 90% of the pixels
+  // carry the colour exactly (unlit: the planar mesh faces the camera).
+  const auto& c = g.quads[worst];
+  const auto p = [&](int k) { return g.points[static_cast<std::size_t>(c[static_cast<std::size_t>(k)])]; };
+  int inside = 0, coloured = 0;
+  for (int s = 1; s < 8; ++s)
+    for (int t = 1; t < 8; ++t) {
+      const double u = 0.1 + 0.8 * s / 8.0, v = 0.1 + 0.8 * t / 8.0;
+      const Vec3 m = (1 - u) * (1 - v) * p(0) + u * (1 - v) * p(1) + u * v * p(2) + (1 - u) * v * p(3);
+      const Pixel pix = to_pixel(main, m);
+      ++inside;
+      coloured += test::pixel_at(main.image, static_cast<int>(pix.x), static_cast<int>(pix.y)) == colour;
+    }
+  EXPECT_GE(10 * coloured, 9 * inside) << coloured << " of " << inside;
+  // No pixel of that colour outside the quads of its bin (their projected
+  // bounding boxes, 2 pixels wider).
+  std::vector<std::array<double, 4>> boxes;
+  for (std::size_t k = 0; k < g.quads.size(); ++k) {
+    if (surface_fill_color(q[k]) != colour) continue;
+    std::array<double, 4> b{1e9, 1e9, -1e9, -1e9};
+    for (Index v : g.quads[k]) {
+      const Pixel pix = to_pixel(main, g.points[static_cast<std::size_t>(v)]);
+      b = {std::min(b[0], pix.x - 2), std::min(b[1], pix.y - 2), std::max(b[2], pix.x + 2), std::max(b[3], pix.y + 2)};
+    }
+    boxes.push_back(b);
+  }
+  const int legend_x = main.frame_width;  // the legend (with its swatch of the colour) is right of the 3D area
+  int outside = 0;
+  for (int y = 0; y < main.image.height; ++y)
+    for (int x = 0; x < legend_x; ++x) {
+      if (test::pixel_at(main.image, x, y) != colour) continue;
+      const bool in_box = std::any_of(boxes.begin(), boxes.end(), [&](const auto& b) {
+        return x >= b[0] && x <= b[2] && y >= b[1] && y <= b[3];
+      });
+      outside += !in_box;
+    }
+  EXPECT_EQ(outside, 0);
+
+  // The overview and the thumbnail look along the normal too.
+  for (const char* id : {"overview", "thumbnail"}) {
+    const ViewFile& f = file_of(drawn, id);
+    ASSERT_TRUE(f.camera) << id;
+    const Vec3 d = normalized(f.camera->target - f.camera->eye);
+    EXPECT_NEAR(dot(d, a.mesh_summary.planarity->normal), -1.0, 1e-9) << id;
+  }
+}
+
+TEST(SurfaceViews, CubeSphereStructureInTheReportAndItsView) {
+  const int n = 6;
+  const Mesh sphere = test::quad_cube_sphere(n, 2.0);
+  Grid g{sphere.points, {}};
+  for (const auto& q : sphere.quads) g.quads.push_back({q[0], q[1], q[2], q[3]});
+  const test::TempDir dir("surface_structure");
+  AnalyzeOptions options;
+  options.mesh_path = dir.write("cube_sphere.obj", obj_text(g));
+  options.tool_version = "test";
+  options.views.width = 800;
+  options.views.height = 600;
+  options.views.views = {"structure"};
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  ASSERT_TRUE(renderer);
+  const AnalyzeResult result = analyze(options, renderer.get());
+  const auto r = nlohmann::ordered_json::parse(result.document.dump());
+  const auto& s = r["structure"];
+  EXPECT_EQ(s["num_irregular_vertices"], 8);
+  EXPECT_EQ(s["irregular_vertices_by_valence"]["interior"], nlohmann::ordered_json({{"3", 8}}));
+  EXPECT_EQ(s["num_separatrices"], 12);
+  EXPECT_EQ(s["separatrix_ends"]["irregular_vertex"], 12);
+  EXPECT_EQ(s["num_traced_edges"], 12 * n);
+  EXPECT_EQ(s["num_patches"], 6);
+  EXPECT_EQ(s["num_boundary_edges"], 0);
+  EXPECT_EQ(s["num_edges"], 12 * n * n);
+
+  // The structure view: pixels of the valence-3 blue's hue within 6 pixels
+  // of each irregular vertex in sight (its normal towards the eye), none
+  // near the centre of a cube face in sight.
+  const Analysis& a = result.model.analysis;
+  const ViewEntry* entry = nullptr;
+  for (const ViewEntry& v : result.model.views)
+    if (v.id == "structure") entry = &v;
+  ASSERT_NE(entry, nullptr);
+  ASSERT_EQ(entry->files, (std::vector<std::string>{"views/structure_1.png"}));
+  // The drawn image again (the bundle holds it encoded).
+  ViewOptions views = options.views;
+  views.up = Vec3{0, 0, 1};
+  const std::vector<RenderedView> drawn = render_views(a, views, *renderer);
+  const ViewFile& f = file_of(drawn, "structure");
+  ASSERT_TRUE(f.camera);
+  const Vec3 eye_dir = normalized(f.camera->eye - f.camera->target);
+  const auto blue_near = [&](const Vec3& p) {
+    const Pixel c = to_pixel(f, p);
+    int count = 0;
+    for (int dy = -6; dy <= 6; ++dy)
+      for (int dx = -6; dx <= 6; ++dx) {
+        const Rgba8 px = test::pixel_at(f.image, static_cast<int>(c.x) + dx, static_cast<int>(c.y) + dy);
+        count += px.b > px.r + 60 && px.b > px.g + 20;
+      }
+    return count;
+  };
+  int seen = 0;
+  for (Index v : a.quad_structure->irregular_vertices) {
+    const Vec3 p = a.mesh.points[static_cast<std::size_t>(v)];
+    if (dot(normalized(p), eye_dir) < 0.3) continue;
+    ++seen;
+    EXPECT_GE(blue_near(p), 20) << "vertex " << v;
+  }
+  EXPECT_GE(seen, 1);
+  for (const Vec3& centre : {Vec3{2, 0, 0}, Vec3{-2, 0, 0}, Vec3{0, 2, 0}, Vec3{0, -2, 0}, Vec3{0, 0, 2}, Vec3{0, 0, -2}})
+    if (dot(normalized(centre), eye_dir) > 0.3) EXPECT_EQ(blue_near(centre), 0);
+}
+
+TEST(SurfaceViews, SkippedPolygonLeavesHolesNotBoundaryInTheStructure) {
+  // A 4 x 3 grid of unit quads whose cells (1, 1) and (2, 1) are one
+  // hexagon (skipped by the reader: its 6 edges are holes): the boundary is
+  // the outer 14 edges, and the hexagon's 6 vertices are unclassified.
+  std::ostringstream obj;
+  for (int j = 0; j <= 3; ++j)
+    for (int i = 0; i <= 4; ++i) obj << "v " << i << ' ' << j << " 0\n";
+  const auto id = [](int i, int j) { return 1 + i + 5 * j; };
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 4; ++i)
+      if (j != 1 || (i != 1 && i != 2))
+        obj << "f " << id(i, j) << ' ' << id(i + 1, j) << ' ' << id(i + 1, j + 1) << ' ' << id(i, j + 1) << '\n';
+  obj << "f " << id(1, 1) << ' ' << id(2, 1) << ' ' << id(3, 1) << ' ' << id(3, 2) << ' ' << id(2, 2) << ' ' << id(1, 2)
+      << '\n';
+  const test::TempDir dir("surface_holes");
+  AnalyzeOptions options;
+  options.mesh_path = dir.write("holed.obj", obj.str());
+  options.tool_version = "test";
+  const AnalyzeResult result = analyze(options, nullptr);
+  const auto r = nlohmann::ordered_json::parse(result.document.dump());
+  EXPECT_EQ(r["structure"]["num_boundary_edges"], 14);
+  EXPECT_EQ(r["structure"]["num_unclassified_vertices"], 6);
+  EXPECT_EQ(r["structure"]["num_irregular_vertices"], 0);
+  EXPECT_EQ(r["structure"]["num_patches"], 1);
+}
+
+}  // namespace
+}  // namespace hq
