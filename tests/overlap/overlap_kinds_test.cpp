@@ -265,13 +265,8 @@ TEST(OverlapKinds, TouchingAcrossKindsIsNotIntersecting) {
   EXPECT_EQ(pushed.intersecting_pairs[3].inside_vertex, apex);
 }
 
-// A conforming hybrid mesh by hand (2 hexes, 2 wedges, a pyramid, 2 tets,
-// hybrid_mesh_files.h): clean, certified. Its pyramid's apex (16, also a
-// corner of tet T1 = cell 2) pulled down into hex B (cell 1) below it, to
-// (1.5, 0.5, 0.6): the pyramid (cell 6) goes below its base's plane z = 1
-// and T1 below the plane of its face 8-11-17 (z = 2/3 there), both
-// inverted, and 16 lies inside B: the pairs B-T1 and B-pyramid.
-TEST(OverlapKinds, HandBuiltHybridMeshIsCleanUntilItsApexDrops) {
+// The hand-built hybrid mesh (test::hybrid_mesh) as a Mesh of cell blocks.
+Mesh hand_built_hybrid() {
   const test::HybridMesh h = test::hybrid_mesh();
   Mesh mesh;
   for (const auto& p : h.points) mesh.points.push_back({p[0], p[1], p[2]});
@@ -282,6 +277,17 @@ TEST(OverlapKinds, HandBuiltHybridMeshIsCleanUntilItsApexDrops) {
     if (c.vtk_type == 13) mesh.wedges.push_back({v[0], v[1], v[2], v[3], v[4], v[5]});
     if (c.vtk_type == 14) mesh.pyramids.push_back({v[0], v[1], v[2], v[3], v[4]});
   }
+  return mesh;
+}
+
+// A conforming hybrid mesh by hand (2 hexes, 2 wedges, a pyramid, 2 tets,
+// hybrid_mesh_files.h): clean, certified. Its pyramid's apex (16, also a
+// corner of tet T1 = cell 2) pulled down into hex B (cell 1) below it, to
+// (1.5, 0.5, 0.6): the pyramid (cell 6) goes below its base's plane z = 1
+// and T1 below the plane of its face 8-11-17 (z = 2/3 there), both
+// inverted, and 16 lies inside B: the pairs B-T1 and B-pyramid.
+TEST(OverlapKinds, HandBuiltHybridMeshIsCleanUntilItsApexDrops) {
+  Mesh mesh = hand_built_hybrid();
   for (const OverlapMode mode : {OverlapMode::certificate, OverlapMode::exhaustive}) {
     const OverlapReport r = run(mesh, mode);
     EXPECT_TRUE(r.intersecting_pairs.empty());
@@ -313,17 +319,7 @@ TEST(OverlapKinds, TopologyMatchedFacesAreTheOverlapsOwnSort) {
   std::vector<std::pair<const char*, Mesh>> meshes;
   meshes.emplace_back("mixed grid", test::mixed_grid());
   {
-    const test::HybridMesh h = test::hybrid_mesh();
-    Mesh mesh;
-    for (const auto& p : h.points) mesh.points.push_back({p[0], p[1], p[2]});
-    for (const test::HybridCell& c : h.cells) {
-      const auto& v = c.vtk;
-      if (c.vtk_type == 12) mesh.hexes.push_back({v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]});
-      if (c.vtk_type == 10) mesh.tets.push_back({v[0], v[1], v[2], v[3]});
-      if (c.vtk_type == 13) mesh.wedges.push_back({v[0], v[1], v[2], v[3], v[4], v[5]});
-      if (c.vtk_type == 14) mesh.pyramids.push_back({v[0], v[1], v[2], v[3], v[4]});
-    }
-    meshes.emplace_back("hand-built hybrid", std::move(mesh));
+    meshes.emplace_back("hand-built hybrid", hand_built_hybrid());
   }
   Mesh gmsh = gmsh_hex_tet_mesh(dir);
   if (!gmsh.hexes.empty()) meshes.emplace_back("gmsh hex-pyramid-tet", std::move(gmsh));

@@ -314,15 +314,20 @@ TEST(HybridViews, HexFaceBesideTetsTakesTheHexCornersColour) {
   EXPECT_TRUE(near(centre_colour(nullptr), to_rgba8(quality_color(vertex_mean))));
 }
 
+// The vertex at p (kNoIndex if none).
+Index point_at(const Mesh& mesh, const Vec3& p) {
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    if (norm(mesh.points[i] - p) < 1e-12) return static_cast<Index>(i);
+  return kNoIndex;
+}
+
 TEST(HybridViews, ViewDOfAVertexSharedByHexTetAndPyramidShowsEveryCell) {
   if (!hex_tet()) GTEST_SKIP() << "gmsh failed or is missing";
   const Mesh& mesh = *hex_tet();
   const Topology topo = topology_of(mesh);
   const QualityField field = compute_quality(mesh, topo);
   // The centre of the shared face x = 1: 4 hexes, 4 pyramids (base corner), tets.
-  Index v = kNoIndex;
-  for (std::size_t i = 0; i < mesh.points.size(); ++i)
-    if (norm(mesh.points[i] - Vec3{1.0, 0.5, 0.5}) < 1e-12) v = static_cast<Index>(i);
+  const Index v = point_at(mesh, {1.0, 0.5, 0.5});
   ASSERT_NE(v, kNoIndex);
   const std::vector<VertexCorner> corners = vertex_corners(mesh, topo, field.corner_scaled_jacobian, v);
   std::map<CellKind, int> by_kind;
@@ -394,9 +399,7 @@ TEST(HybridViews, ViewDStacksTheWorstDiscOnTopAndTheVertexAboveAll) {
   const Mesh& mesh = *hex_tet();
   const Topology topo = topology_of(mesh);
   const QualityField field = compute_quality(mesh, topo);
-  Index v = kNoIndex;
-  for (std::size_t i = 0; i < mesh.points.size(); ++i)
-    if (norm(mesh.points[i] - Vec3{1.0, 0.5, 0.5}) < 1e-12) v = static_cast<Index>(i);
+  const Index v = point_at(mesh, {1.0, 0.5, 0.5});
   ASSERT_NE(v, kNoIndex);
   const std::vector<VertexCorner> corners = vertex_corners(mesh, topo, field.corner_scaled_jacobian, v);
   Scene scene = build_local_scene(mesh, topo, field.corner_scaled_jacobian, v);

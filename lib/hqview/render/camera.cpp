@@ -101,6 +101,14 @@ Vec3 project_to_ndc(const Camera& camera, double aspect, const Vec3& p) {
   return transform_point(projection_matrix(camera, aspect) * view_matrix(camera), p);
 }
 
+ScreenAxes screen_axes(const Camera& camera) {
+  const Vec3 d = normalized(camera.target - camera.eye);
+  Vec3 right = cross(d, camera.up);
+  if (!(squared_norm(right) > 0.0)) right = cross(d, Vec3{1.0, 0.0, 0.0});
+  right = normalized(right);
+  return {right, cross(right, d)};
+}
+
 Camera fit_camera_to_points(std::span<const Vec3> points, const Vec3& view_direction, double aspect,
                             const CameraFitOptions& options) {
   constexpr double inf = std::numeric_limits<double>::infinity();

@@ -46,6 +46,12 @@ Mat4 projection_matrix(const Camera& camera, double aspect);
 // A model point in NDC: x, y in [-1, 1] inside the image (y up), z in
 // [-1, 1] between the near and far planes.
 Vec3 project_to_ndc(const Camera& camera, double aspect, const Vec3& p);
+// The unit axes of the image plane in model space: right and up on screen
+// (right from the view direction and camera.up; x when they are parallel).
+struct ScreenAxes {
+  Vec3 right, up;
+};
+ScreenAxes screen_axes(const Camera& camera);
 
 struct CameraFitOptions {
   Vec3 up{0.0, 0.0, 1.0};        // replaced by another axis when parallel to the view direction

@@ -550,10 +550,7 @@ Scene local_marker_discs(const Scene& scene, const Camera& camera, const std::ve
   SphereSet vertex;
   if (out.spheres.size() > 1) std::swap(vertex, out.spheres[1]);
   const Vec3 d = normalized(camera.target - camera.eye);
-  Vec3 right = cross(d, camera.up);
-  if (!(squared_norm(right) > 0.0)) right = cross(d, Vec3{1.0, 0.0, 0.0});
-  right = normalized(right);
-  const Vec3 up = cross(right, d);
+  const auto [right, up] = screen_axes(camera);
   constexpr int kSegments = 32;
   constexpr Rgba8 kRim{40, 40, 46, 255};
   TriangleSet discs;

@@ -109,11 +109,7 @@ TriangleSet curve_end_rings(const HexMesh& mesh, std::span<const Index> ends, co
                             double radius) {
   TriangleSet set;
   set.is_lit = false;
-  const Vec3 d = normalized(camera.target - camera.eye);
-  Vec3 right = cross(d, camera.up);
-  if (!(squared_norm(right) > 0.0)) right = cross(d, Vec3{1.0, 0.0, 0.0});
-  right = normalized(right);
-  const Vec3 up = cross(right, d);
+  const auto [right, up] = screen_axes(camera);
   constexpr int kSegments = 24;
   for (Index v : ends) {
     const Vec3 c = point(mesh, v) - origin;
