@@ -137,7 +137,9 @@ TEST(BoxPairs, SubsetSearchFindsEveryPairWithASubsetBoxAsTestedDirectly) {
       const BoxPairs got = box_subset_pairs(g.boxes, subset, BoxContact::open, 1 << 30);
       EXPECT_TRUE(got.is_complete);
       EXPECT_EQ(got.pairs, expected) << "seed " << seed << ", subset of " << size;
-      if (size > 1) EXPECT_FALSE(expected.empty());
+      if (size > 1) {
+        EXPECT_FALSE(expected.empty());
+      }
     }
   }
 }

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "hqview/core/error.h"
+#include "hqview/image/colormap.h"
 #include "hqview/render/scene.h"
 #include "hqview/views/views.h"
 #include "support/fixtures.h"
@@ -68,7 +69,24 @@ std::vector<std::string> expected_ids(bool with_reference, bool with_compare) {
 // built beside the others); one per PNG file of a view that is not a chart
 // (charts have an SVG twin), two for the compare view (one per half, one
 // camera).
-std::map<std::string, std::size_t> first_frames(const AnalyzeResult& result) {
+// An overview inset's picture (views/inverted_inset.h): its faces are all
+// in the inverted colour. The overview draws its insets' pictures before
+// its own frame.
+bool is_inset_picture(const Scene& scene) {
+  bool any = false;
+  for (const TriangleSet& t : scene.triangles)
+    for (const Rgba8& c : t.colors) {
+      if (c != to_rgba8(kInvertedColor)) return false;
+      any = true;
+    }
+  return any;
+}
+
+std::size_t count_inset_pictures(const RecordingRenderer& renderer) {
+  return static_cast<std::size_t>(std::count_if(renderer.scenes.begin(), renderer.scenes.end(), is_inset_picture));
+}
+
+std::map<std::string, std::size_t> first_frames(const AnalyzeResult& result, std::size_t overview_insets) {
   std::map<std::string, std::size_t> first;
   std::size_t frame = 0;
   std::vector<ViewEntry> drawn = result.model.views;
@@ -78,6 +96,7 @@ std::map<std::string, std::size_t> first_frames(const AnalyzeResult& result) {
     const bool is_chart =
         std::any_of(v.files.begin(), v.files.end(), [](const std::string& f) { return f.ends_with(".svg"); });
     if (is_chart) continue;
+    if (v.id == "overview") frame += overview_insets;  // the insets' pictures come first
     first[v.id] = frame;
     // compare: two meshes; uv_key: front, back and the atlas, each then
     // again in chart-id colours (where its numbers may go).
@@ -95,7 +114,7 @@ TEST(AnalyzePipeline, EveryMeshViewWithAMockRenderer) {
   ASSERT_GT(a.glyphs->clusters.size(), 0u) << "ball.mesh has bad vertices: C, D, E need clusters";
   EXPECT_EQ(ids_of(result), expected_ids(false, false));
 
-  const auto first = first_frames(result);
+  const auto first = first_frames(result, count_inset_pictures(renderer));
   ASSERT_EQ(renderer.scenes.size(), first.at("(end)")) << "one frame per 3D image";
   for (const auto& [w, h] : renderer.sizes) EXPECT_TRUE(w > 0 && w <= 320 && h > 0 && h <= 240);
   // Overview: 4 triangles per boundary quad, coloured by vertex quality.
@@ -159,7 +178,7 @@ TEST(AnalyzePipeline, ReferenceAndCompareViewsWithAMockRenderer) {
                           [](const ViewSpec& v) { return v.needs == ViewNeeds::simulation; }),
             3);
 
-  const auto first = first_frames(result);
+  const auto first = first_frames(result, count_inset_pictures(renderer));
   ASSERT_EQ(renderer.scenes.size(), first.at("(end)"));
   // Boundary error: front and back, the hex boundary's sampled patches; then
   // the reference error, front and back, the reference's patches.

@@ -226,7 +226,9 @@ TEST(HybridGradation, TheTopologysMatchedFacesGiveTheSameGradationAsItsOwnMatchi
   // and pyramids are not all positive: those compare with no one).
   int graded = 0;
   for (double g : a.cell_gradation) {
-    if (!std::isnan(g)) EXPECT_GE(g, 1.0);
+    if (!std::isnan(g)) {
+      EXPECT_GE(g, 1.0);
+    }
     graded += g > 1.0;
   }
   EXPECT_GT(graded, static_cast<int>(a.cell_gradation.size()) / 3);

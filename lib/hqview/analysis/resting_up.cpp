@@ -153,19 +153,6 @@ RestingUp choose_resting_up(const HexMesh& mesh, const Topology& topology) {
   if (!(std::abs(solid.volume) > 0.0) || !std::isfinite(solid.volume) || !is_finite(solid.centre)) return result;
   result.candidates.reserve(6);
   for (const Vec3& up : resting_up_candidates()) result.candidates.push_back(evaluate(mesh, topology, solid, up));
-  // 0. A box-like solid (it fills kRestingBoxFill of its bounding box: a
-  // box, a tower, a slab): every side is a flat face of the box and the
-  // data cannot tell one from another, so the file's axes win, as for a cube
-  // (issue 46: a tower modelled z-up lay on its long side): the first
-  // resting candidate in the prior order.
-  const Vec3 extent = solid.hi - solid.lo;
-  if (std::abs(solid.volume) >= kRestingBoxFill * extent.x * extent.y * extent.z)
-    for (const RestingCandidate& c : result.candidates)
-      if (c.rests && c.support_area > 0.0) {
-        result.up = c.up;
-        result.from_data = true;
-        return result;
-      }
   // 1. Alike opposite poses (both rest, support areas and tips within
   // kRestingAlike): the model is about mirror-symmetric across the plane
   // between them, so either pose lies on its side (an L bracket flat on its
@@ -179,8 +166,26 @@ RestingUp choose_resting_up(const HexMesh& mesh, const Topology& topology) {
         alike(a.tip, b.tip, std::max({1.0, std::abs(a.tip), std::abs(b.tip)})))
       on_side[k] = on_side[k + 3] = 1;
   }
+  // Left out only for a pose that stands firmly (its centre inside its
+  // support: tip > 0): a twisted bar's sides rest on an edge within the
+  // tolerance only, and it keeps its alike ends.
   bool upright_rests = false;
-  for (std::size_t k = 0; k < n; ++k) upright_rests = upright_rests || (result.candidates[k].rests && !on_side[k]);
+  for (std::size_t k = 0; k < n; ++k)
+    upright_rests = upright_rests || (result.candidates[k].rests && !on_side[k] && result.candidates[k].tip > 0.0);
+  // A box-like solid (it fills kRestingBoxFill of its bounding box: a box,
+  // a tower, a plain slab) whose every resting pose has an alike opposite:
+  // its flat sides cannot be told apart, so the file's axes win, as for a
+  // cube (issue 46: a tower modelled z-up lay on its long side): the first
+  // resting candidate in the prior order. (A stepped slab has unlike faces
+  // and goes on below: it lies on its larger one.)
+  const Vec3 extent = solid.hi - solid.lo;
+  if (!upright_rests && std::abs(solid.volume) >= kRestingBoxFill * extent.x * extent.y * extent.z)
+    for (const RestingCandidate& c : result.candidates)
+      if (c.rests && c.support_area > 0.0) {
+        result.up = c.up;
+        result.from_data = true;
+        return result;
+      }
   auto eligible = [&](std::size_t k) { return result.candidates[k].rests && (!on_side[k] || !upright_rests); };
   double largest = 0.0;
   for (std::size_t k = 0; k < n; ++k)

@@ -21,15 +21,16 @@
 //                 (a scan has lost its pedestal, the thin band misses toes:
 //                 the armadillo's centre is 2-3 % of its height outside the
 //                 hull of its feet).
-// On a box-like solid (its volume at least kRestingBoxFill of its bounding
-// box's: a box, tower or slab, whose flat sides the data cannot tell apart;
-// issue 46) the first resting candidate in the prior order (below). Else:
-// opposite candidates that both rest with alike support areas and tips
+// Opposite candidates that both rest with alike support areas and tips
 // (within kRestingAlike) mean a model about mirror-symmetric across the
 // plane between them: either pose lies on its side (an L bracket flat on
 // its L; the upright of a symmetric part has its symmetry plane vertical,
 // as in Fu et al.), so they are left out while another candidate rests
-// (issue 45e). The chosen axis: the first remaining resting candidate, in
+// with its centre inside its support (tip > 0; a twisted bar's sides rest
+// on an edge within the tolerance only) (issue 45e). When every resting candidate is so and the solid is
+// box-like (its volume at least kRestingBoxFill of its bounding box's: a
+// box, a tower, a plain slab, whose flat sides the data cannot tell apart;
+// issue 46), the first resting candidate in the prior order. Else the chosen axis: the first remaining resting candidate, in
 // the prior order +z, +y, +x, -z, -y, -x, whose support area is at least
 // 1/kRestingPriorMargin of the largest support area of a remaining
 // resting candidate (so data that cannot tell, a cube, keeps the file's own
