@@ -501,7 +501,9 @@ TEST(HybridViews, LegendsNameTheKindsOfAHybridMeshOnly) {
   for (CellKind k : {CellKind::hex, CellKind::tet, CellKind::wedge, CellKind::pyramid}) {
     for (const Rgba8 o : others) EXPECT_GT(distance(cell_kind_edge_color(k), o), 60.0) << cell_kind_name(k);
     for (CellKind l : {CellKind::hex, CellKind::tet, CellKind::wedge, CellKind::pyramid})
-      if (l != k) EXPECT_GT(distance(cell_kind_edge_color(k), cell_kind_edge_color(l)), 60.0);
+      if (l != k) {
+        EXPECT_GT(distance(cell_kind_edge_color(k), cell_kind_edge_color(l)), 60.0);
+      }
   }
   options.cell_kinds.clear();
   for (const LegendLine& line : main_legend_lines(glyphs, nullptr, style, options, 1.0))

@@ -520,9 +520,16 @@ kainjow::mustache::data fem_correlation_data(const CollectionCorrelation& c, con
                   "|\u03c1| \u2265 %.3f is needed for p \u2264 0.05.",
                   c.num_meshes, c.num_meshes, p_text(c.min_p).c_str(), c.critical_rho);
     power = text;
-    if (static_cast<double>(m) * c.min_p > 0.05)
-      power += " Over these " + std::to_string(m) + " rows no single metric can reach q < 0.05, whatever the data: " +
-               "too few meshes for significance; a greyed row means \u201ccould not detect\u201d, not \u201cno effect\u201d.";
+    // Benjamini-Hochberg: the k rows with the smallest p get q = p m / k at
+    // best, so q < 0.05 needs at least `needed` rows at the smallest p.
+    const double spread = static_cast<double>(m) * c.min_p;
+    if (spread > 0.05) {
+      const auto needed = static_cast<std::size_t>(std::floor(spread / 0.05)) + 1;
+      power += " Over these " + std::to_string(m) + " rows (Benjamini\u2013Hochberg) a row reaches q < 0.05 only when at least " +
+               std::to_string(needed) + " rows reach p = " + p_text(c.min_p) + " together; a row alone there gets q = " +
+               p_text(std::min(1.0, spread)) +
+               ": too few meshes for significance; a greyed row means \u201ccould not detect\u201d, not \u201cno effect\u201d.";
+    }
   }
   d.set("power", power);
   d.set("has_power", !power.empty());
