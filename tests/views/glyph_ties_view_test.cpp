@@ -331,6 +331,16 @@ TEST(GlyphTiesView, ASymmetricModelGetsTwoDifferentViews) {
   const Vec3 turned = upright_view_direction(up, view_azimuth_degrees(views[0], up) + 90.0,
                                              view_elevation_degrees(views[0], up));
   EXPECT_GE(view_signature_similarity(a, view_signature(points, centers, radii, turned, 1.2, up)), kSameViewSimilarity);
+  // A mirror image counts as a copy (a plate seen from its other side).
+  std::vector<std::uint8_t> mirrored(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const std::size_t x = i % kViewSignatureWidth;
+    mirrored[i - x + (kViewSignatureWidth - 1 - x)] = a[i];
+  }
+  EXPECT_EQ(view_signature_similarity(a, mirrored), 1.0);
+  std::vector<std::uint8_t> other = a;
+  for (std::size_t i = a.size() / 2; i < a.size(); ++i) other[i] = 0;  // no glyph there
+  EXPECT_LT(view_signature_similarity(a, other), kSameViewSimilarity);
 }
 
 }  // namespace

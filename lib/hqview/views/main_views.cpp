@@ -413,17 +413,24 @@ std::vector<std::uint8_t> view_signature(std::span<const Vec3> points, std::span
 }
 
 double view_signature_similarity(std::span<const std::uint8_t> a, std::span<const std::uint8_t> b) {
-  if (a.size() != b.size() || a.empty() || a.size() % 2 != 0) return 0.0;
-  auto iou = [&](std::size_t from, std::size_t to) {
+  constexpr std::size_t kCells = static_cast<std::size_t>(kViewSignatureWidth) * kViewSignatureHeight;
+  if (a.size() != 2 * kCells || b.size() != 2 * kCells) return 0.0;
+  // One half's intersection over union, b as it is or mirrored left to
+  // right (the view from the other side of a plate seen face-on, whose
+  // glyphs the wireframe does not hide).
+  auto iou = [&](std::size_t half, bool mirrored) {
     std::size_t both = 0, either = 0;
-    for (std::size_t i = from; i < to; ++i) {
-      both += a[i] && b[i];
-      either += a[i] || b[i];
-    }
+    for (int y = 0; y < kViewSignatureHeight; ++y)
+      for (int x = 0; x < kViewSignatureWidth; ++x) {
+        const std::size_t row = half + static_cast<std::size_t>(y) * kViewSignatureWidth;
+        const bool in_a = a[row + static_cast<std::size_t>(x)] != 0;
+        const bool in_b = b[row + static_cast<std::size_t>(mirrored ? kViewSignatureWidth - 1 - x : x)] != 0;
+        both += in_a && in_b;
+        either += in_a || in_b;
+      }
     return either == 0 ? 1.0 : static_cast<double>(both) / static_cast<double>(either);
   };
-  const std::size_t half = a.size() / 2;
-  return std::min(iou(0, half), iou(half, a.size()));
+  return std::max(std::min(iou(0, false), iou(kCells, false)), std::min(iou(0, true), iou(kCells, true)));
 }
 
 std::vector<Vec3> choose_viewpoints(std::span<const Vec3> points, std::span<const Vec3> centers,

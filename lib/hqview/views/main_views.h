@@ -147,7 +147,10 @@ std::vector<std::uint8_t> view_signature(std::span<const Vec3> points, std::span
                                          std::span<const double> radii, const Vec3& direction, double aspect,
                                          const Vec3& up, double fov_y_degrees = 30.0);
 // The smaller of the two masks' intersection over union (1 for two empty
-// masks): a view of another outline, or with the glyphs elsewhere, differs.
+// masks): a view of another outline, or with the glyphs elsewhere, differs;
+// the larger of that and the same with b mirrored left to right (a plate
+// seen face-on from its other side, the twisted star: the wireframe hides
+// no glyph, so that view is the first's mirror image).
 double view_signature_similarity(std::span<const std::uint8_t> a, std::span<const std::uint8_t> b);
 
 // The same choice for any spheres (centres, radii).
