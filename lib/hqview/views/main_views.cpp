@@ -1185,7 +1185,7 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
   }
   if (!glyphs.clusters.empty()) {
     lines.push_back({std::nullopt, "label #k (n): rank k, n vertices"});
-    if (coloured_tie) lines.push_back({std::nullopt, "  #k-#m tied (n): n of all"});
+    if (coloured_tie) lines.push_back({std::nullopt, "  #k-#m tied (n): n in all"});
   }
   // The coloured edge lines that scene step 2 draws around each cluster's
   // worst vertices: their colour is the cluster's, their meaning said here.
