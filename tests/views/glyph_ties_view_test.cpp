@@ -102,6 +102,18 @@ TEST(GlyphTiesView, ExactlyTiedWorstCornersAreDrawnAlikeAndLabelledAsATie) {
                           std::to_string(c.glyphs.clusters[0].size + c.glyphs.clusters[1].size +
                                          c.glyphs.clusters[2].size) +
                           ")");
+    // Its leader crosses none of the class's other glyphs (it protects
+    // ranks below 3).
+    EXPECT_EQ(l.protect_end, 3);
+    if (l.placement.has_leader)
+      for (const ScreenDisc& d : labels.coloured_glyphs) {
+        if (d.id == 0) continue;
+        const PlacedLabel& p = l.placement;
+        const double dx = p.leader_x1 - p.leader_x0, dy = p.leader_y1 - p.leader_y0;
+        const double t = std::clamp(((d.x - p.leader_x0) * dx + (d.y - p.leader_y0) * dy) /
+                                        std::max(dx * dx + dy * dy, 1e-12), 0.0, 1.0);
+        EXPECT_GT(std::hypot(p.leader_x0 + t * dx - d.x, p.leader_y0 + t * dy - d.y), d.radius) << "#" << d.id;
+      }
   }
   EXPECT_EQ(cluster_labels, 1);
   EXPECT_TRUE(labels.worst_is_tied);
