@@ -85,8 +85,11 @@ TEST(GlyphSize, SharedMeshesNeverDrawTheWorseClusterSmaller) {
     const Camera camera = fit_camera_to_points(points, {-1, -1, -1}, 4.0 / 3.0, {.is_perspective = false});
     const Scene scene = build_main_scene(mesh, topology, severity, nullptr, camera, 1000, {});
     // The ranked (coloured) glyphs are the set drawn over the grey ones.
-    ASSERT_EQ(scene.spheres.size(), 2u);
+    // Then the unfaded grey ones (min quality < kUnfadedGlyphQuality), then
+    // the pale ones: rank order.
+    ASSERT_EQ(scene.spheres.size(), 3u);
     std::vector<float> radii = scene.spheres[1].radii;
+    radii.insert(radii.end(), scene.spheres[2].radii.begin(), scene.spheres[2].radii.end());
     radii.insert(radii.end(), scene.spheres[0].radii.begin(), scene.spheres[0].radii.end());
     // Every cluster but those main_view_glyphs_drawn leaves out where they
     // pile up on screen (issue 44 part T), at its severity radius.

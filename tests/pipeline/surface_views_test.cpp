@@ -15,7 +15,10 @@
 #include <string>
 #include <vector>
 
+#include "hqview/image/colormap.h"
+#include "hqview/mesh/boundary_polygons.h"
 #include "hqview/pipeline/analyze.h"
+#include "hqview/quality/quality_field.h"
 #include "hqview/render/camera.h"
 #include "hqview/render/osmesa_renderer.h"
 #include "hqview/views/surface_views.h"
@@ -165,6 +168,105 @@ TEST(SurfaceViews, PlanarGridSeenAlongItsNormalWorstQuadInItsBinColour) {
     ASSERT_TRUE(f.camera) << id;
     const Vec3 d = normalized(f.camera->target - f.camera->eye);
     EXPECT_NEAR(dot(d, a.mesh_summary.planarity->normal), -1.0, 1e-9) << id;
+  }
+}
+
+// Issue 44 part U: view A's glyph #0 sits on the worst vertex, a corner of
+// the inverted faces it marks, and hid them (47c review: the pushed hole's
+// three inverted quads under one sphere). Every inverted face keeps at
+// least half of its pixels in the inverted colour in every main view: on a
+// planar quad grid with a vertex pushed across its neighbour, and on a hex
+// grid whose top vertex is pushed below the middle layer (four inverted
+// surface cells). The face's pixels: samples inside its two triangles as
+// drawn (v0 v1 v2, v0 v2 v3), away from their edges.
+int inverted_face_pixels_shown(const ViewFile& f, const Analysis& a, const BoundaryPolygon& face, const Rgba8& colour,
+                               int& samples) {
+  int shown = 0;
+  samples = 0;
+  const auto p = [&](int k) { return a.mesh.points[static_cast<std::size_t>(face.v[static_cast<std::size_t>(k)])]; };
+  for (int t = 0; t < (face.size == 4 ? 2 : 1); ++t) {
+    const Vec3 A = p(0), B = p(1 + t), C = p(2 + t);
+    for (int i = 1; i < 10; ++i)
+      for (int j = 1; i + j < 10; ++j) {
+        const double u = i / 10.0, v = j / 10.0;
+        if (u < 0.15 || v < 0.15 || 1 - u - v < 0.15) continue;  // off the outline
+        const Pixel pix = to_pixel(f, A + u * (B - A) + v * (C - A));
+        ++samples;
+        shown += test::pixel_at(f.image, static_cast<int>(pix.x), static_cast<int>(pix.y)) == colour;
+      }
+  }
+  return shown;
+}
+
+void expect_inverted_faces_visible(const Analysis& a, const std::vector<RenderedView>& drawn, bool surface) {
+  std::vector<BoundaryPolygon> faces;
+  for (const BoundaryPolygon& face : boundary_polygons(a.topology))
+    if (cell_is_inverted(a.field, static_cast<std::size_t>(face.cell))) faces.push_back(face);
+  ASSERT_FALSE(faces.empty());
+  ASSERT_TRUE(a.glyphs && !a.glyphs->clusters.empty());
+  EXPECT_LT(a.glyphs->clusters[0].min_quality, 0.0);
+  int views = 0;
+  for (const RenderedView& v : drawn) {
+    if (v.id != "main") continue;
+    for (const ViewFile& f : v.files) {
+      ++views;
+      ASSERT_TRUE(f.camera);
+      for (const BoundaryPolygon& face : faces) {
+        const Rgba8 colour =
+            surface ? surface_fill_color(a.field.cell_scaled_jacobian[static_cast<std::size_t>(face.cell)])
+                    : to_rgba8(kInvertedColor);
+        int samples = 0;
+        const int shown = inverted_face_pixels_shown(f, a, face, colour, samples);
+        if (samples < 4) continue;  // seen edge-on
+        EXPECT_GE(2 * shown, samples) << f.relative_path << " cell " << face.cell << ": " << shown << " of " << samples;
+      }
+    }
+  }
+  EXPECT_GE(views, 1);
+}
+
+TEST(SurfaceViews, EveryInvertedFaceShowsOverTheGlyphs) {
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  ASSERT_TRUE(renderer);
+  ViewOptions views;
+  views.width = 800;
+  views.height = 600;
+  views.views = {"main"};
+  const test::TempDir dir("inverted_faces");
+  {
+    // A planar 8 x 8 grid of unit quads; vertex (4, 4) pushed to (5.4,
+    // 4.3): the quads on its right fold over their neighbours.
+    const int n = 8;
+    Grid g = planar_grid(n, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 1.0);
+    g.points[static_cast<std::size_t>(4 + (n + 1) * 4)] = {5.4, 4.3, 0.0};
+    AnalyzeOptions options;
+    options.mesh_path = dir.write("pushed.obj", obj_text(g));
+    options.tool_version = "test";
+    const Analysis a = analyze_mesh(options);
+    expect_inverted_faces_visible(a, render_views(a, views, *renderer), true);
+  }
+  {
+    // A 4 x 4 x 2 hex grid (medit); the top vertex (2, 2, 2) pushed down to
+    // z = 0.6, below the middle layer: the four top cells round it invert.
+    std::ostringstream m;
+    m << "MeshVersionFormatted 2\nDimension 3\nVertices\n" << 5 * 5 * 3 << "\n";
+    for (int z = 0; z <= 2; ++z)
+      for (int y = 0; y <= 4; ++y)
+        for (int x = 0; x <= 4; ++x) m << x << ' ' << y << ' ' << (x == 2 && y == 2 && z == 2 ? 0.6 : z) << " 0\n";
+    m << "Hexahedra\n" << 4 * 4 * 2 << "\n";
+    const auto at = [](int x, int y, int z) { return 1 + x + 5 * (y + 5 * z); };
+    for (int z = 0; z < 2; ++z)
+      for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x)
+          m << at(x, y, z) << ' ' << at(x + 1, y, z) << ' ' << at(x + 1, y + 1, z) << ' ' << at(x, y + 1, z) << ' '
+            << at(x, y, z + 1) << ' ' << at(x + 1, y, z + 1) << ' ' << at(x + 1, y + 1, z + 1) << ' '
+            << at(x, y + 1, z + 1) << " 0\n";
+    m << "End\n";
+    AnalyzeOptions options;
+    options.mesh_path = dir.write("dented.mesh", m.str());
+    options.tool_version = "test";
+    const Analysis a = analyze_mesh(options);
+    expect_inverted_faces_visible(a, render_views(a, views, *renderer), false);
   }
 }
 

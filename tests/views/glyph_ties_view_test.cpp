@@ -22,6 +22,7 @@
 #include "hqview/mesh/topology.h"
 #include "hqview/quality/quality_field.h"
 #include "hqview/render/osmesa_renderer.h"
+#include "hqview/render/upright.h"
 #include "hqview/views/main_views.h"
 #include "support/fixtures.h"
 
@@ -84,7 +85,7 @@ TEST(GlyphTiesView, ExactlyTiedWorstCornersAreDrawnAlikeAndLabelledAsATie) {
       main_view_labels(c.mesh, c.topology, c.glyphs, nullptr, kDirection, options, &scene, renderer.get());
   // Three glyphs of #0's colour and equal radius, in the ranked set.
   const Rgba8 red = to_rgba8(labelled_cluster_color(0));
-  ASSERT_EQ(scene.spheres.size(), 2u);
+  ASSERT_EQ(scene.spheres.size(), 3u);
   ASSERT_EQ(scene.spheres[1].colors.size(), 3u);
   for (std::size_t i = 0; i < 3; ++i) {
     EXPECT_EQ(scene.spheres[1].colors[i], red) << i;
@@ -96,7 +97,23 @@ TEST(GlyphTiesView, ExactlyTiedWorstCornersAreDrawnAlikeAndLabelledAsATie) {
     if (l.kind != MainViewLabel::Kind::cluster) continue;
     ++cluster_labels;
     EXPECT_EQ(l.cluster, 0);
-    EXPECT_EQ(l.text, "#0 (" + std::to_string(c.glyphs.clusters[0].size) + ") +2 tied");
+    // The class as a unit: its ranks and all its vertices (issue 44 part U).
+    EXPECT_EQ(l.text, "#0-#2 tied (" +
+                          std::to_string(c.glyphs.clusters[0].size + c.glyphs.clusters[1].size +
+                                         c.glyphs.clusters[2].size) +
+                          ")");
+    // Its leader crosses none of the class's other glyphs (it protects
+    // ranks below 3).
+    EXPECT_EQ(l.protect_end, 3);
+    if (l.placement.has_leader)
+      for (const ScreenDisc& d : labels.coloured_glyphs) {
+        if (d.id == 0) continue;
+        const PlacedLabel& p = l.placement;
+        const double dx = p.leader_x1 - p.leader_x0, dy = p.leader_y1 - p.leader_y0;
+        const double t = std::clamp(((d.x - p.leader_x0) * dx + (d.y - p.leader_y0) * dy) /
+                                        std::max(dx * dx + dy * dy, 1e-12), 0.0, 1.0);
+        EXPECT_GT(std::hypot(p.leader_x0 + t * dx - d.x, p.leader_y0 + t * dy - d.y), d.radius) << "#" << d.id;
+      }
   }
   EXPECT_EQ(cluster_labels, 1);
   EXPECT_TRUE(labels.worst_is_tied);
@@ -138,7 +155,8 @@ TEST(GlyphTiesView, ADeeperDentBreaksTheTie) {
   std::vector<std::string> texts;
   for (const MainViewLabel& l : labels.labels) texts.push_back(l.text);
   EXPECT_TRUE(has_line(texts, "#0 (" + std::to_string(c.glyphs.clusters[0].size) + ")"));
-  EXPECT_TRUE(has_line(texts, "#1 (" + std::to_string(c.glyphs.clusters[1].size) + ") +1 tied"));
+  EXPECT_TRUE(has_line(texts, "#1-#2 tied (" +
+                                  std::to_string(c.glyphs.clusters[1].size + c.glyphs.clusters[2].size) + ")"));
   const std::vector<std::string> legend = legend_texts(c.glyphs, labels.glyph_scale);
   EXPECT_TRUE(has_line(legend, "ring: worst cluster #0"));
   EXPECT_TRUE(has_line(legend, "#1-#2  2 tied at " + display_number(c.glyphs.clusters[1].min_quality, 3)));
@@ -208,6 +226,133 @@ TEST(GlyphTiesView, GreyGlyphsKeepTheirSeverityRadiusAndPilesAreThinned) {
   for (std::uint32_t id : {0u, 1u, 2u, 3u, 5u})
     EXPECT_GT(std::count(ids.ids.begin(), ids.ids.end(), kIdGlyph + id), 0) << id;
   EXPECT_EQ(std::count(ids.ids.begin(), ids.ids.end(), kIdGlyph + 4u), 0);
+}
+
+// Issue 44 part U: the glyph radius is capped from above (#0 at most one
+// mean edge and 3% of the model's on-screen diagonal, never below the
+// 24-pixel floor), and the legend says #0's radius in pixels. By hand from
+// the orthographic camera's pixels per model unit k.
+TEST(GlyphTiesView, GlyphRadiusIsCappedFromAboveAndTheLegendSaysHowBig) {
+  const HexMesh mesh = test::grid(4);
+  const Topology topology = build_topology(mesh);
+  GlyphResult glyphs = crowded(mesh);
+  glyphs.rmax = 1.0;  // the mean edge of the unit grid (options.rmax 1 mean edge)
+  glyphs.clusters[0].radius = 1.5;
+  const Camera camera = fit_camera_to_points(main_view_points(mesh, topology, glyphs), {0.2, -1.0, 0.4}, 1.0,
+                                             {.is_perspective = false});
+  const double k = 600.0 / camera.ortho_height;  // pixels per model unit
+  ASSERT_GT(1.0 * k, 24.0);                       // the edge cap lies above the floor
+  // No screen term: one mean edge.
+  EXPECT_NEAR(displayed_glyph_scale(glyphs, camera, 600, 1.0), 1.0 / 1.5, 1e-9);
+  // 3% of a 2000-pixel diagonal (60 px) when below one edge.
+  EXPECT_NEAR(displayed_glyph_scale(glyphs, camera, 600, 1.0, 2000.0), std::min(k, 60.0) / (1.5 * k), 1e-9);
+  // A cap below the floor: the floor (24 px).
+  EXPECT_NEAR(displayed_glyph_scale(glyphs, camera, 600, 1.0, 100.0), 24.0 / (1.5 * k), 1e-9);
+  // A small #0 is still enlarged to the floor whatever the cap.
+  glyphs.clusters[0].radius = 0.1;
+  EXPECT_NEAR(displayed_glyph_scale(glyphs, camera, 600, 1.0, 100.0), 24.0 / (0.1 * k), 1e-9);
+  glyphs.clusters[0].radius = 1.5;
+  const double scale = displayed_glyph_scale(glyphs, camera, 600, 1.0, 2000.0);
+  std::vector<std::string> legend;
+  for (const LegendLine& line :
+       main_legend_lines(glyphs, nullptr, AnnotationStyle{}, MainViewOptions{}, scale, {}, 0, {}, 1.5 * k * scale))
+    legend.push_back(line.text);
+  EXPECT_TRUE(has_line(legend, "drawn x" + display_number(scale, 2) + ": #0 " +
+                                   std::to_string(std::lround(std::min(k, 60.0))) + " px"));
+  EXPECT_TRUE(has_line(legend, "  (capped: 1 edge, 3% of model)"));
+}
+
+// Issue 44 part U: the worst tie class is a unit (none of its members left
+// out where it piles up, edge lines at every member), and grey glyphs of
+// min quality below 0.01 (inverted or about 0) are not faded. #0-#2 tie at
+// 0 (K = 1: the only coloured class), #1 one edge from #0 along the view
+// and so wholly behind it on screen; #3 grey at 0.005 (unfaded), #4 grey at 0.3 (pale).
+TEST(GlyphTiesView, TheWorstTieIsAUnitAndNearZeroGreysAreNotFaded) {
+  const HexMesh mesh = test::grid(4);
+  const Topology topology = build_topology(mesh);
+  GlyphResult glyphs;
+  glyphs.options.top_clusters = 1;
+  glyphs.rmax = 1.0;
+  const std::size_t at[5] = {0, 1, 24, 12, 124};
+  const double q[5] = {0.0, 0.0, 0.0, 0.005, 0.3};
+  const double r[5] = {1.5, 1.5, 1.5, 0.5, 0.2};
+  glyphs.vertex_cluster.assign(mesh.points.size(), kNoIndex);
+  glyphs.vertex_radius.assign(mesh.points.size(), 0.0);
+  for (Index i = 0; i < 5; ++i) {
+    AggregatedGlyph g;
+    g.id = i, g.size = 1, g.representative_vertex = static_cast<Index>(at[i]), g.position = mesh.points[at[i]];
+    g.min_quality = q[i], g.radius = r[i];
+    glyphs.clusters.push_back(g);
+    glyphs.cluster_offsets.push_back(i);
+    glyphs.cluster_vertices.push_back(static_cast<Index>(at[i]));
+    glyphs.vertex_cluster[at[i]] = i;
+    glyphs.vertex_radius[at[i]] = r[i];
+  }
+  glyphs.cluster_offsets.push_back(5);
+  const Camera camera = fit_camera_to_points(main_view_points(mesh, topology, glyphs), {1.0, 0.0, 0.0}, 1.0,
+                                             {.is_perspective = false});
+  MainViewOptions options;
+  const std::vector<double> radii = displayed_glyph_radii(glyphs, displayed_glyph_scale(glyphs, camera, 600, 1.0));
+  const GlyphsDrawn drawn = main_view_glyphs_drawn(glyphs, camera, 600, radii);
+  // Seen along x, #1 (one unit from #0 along x) lies wholly behind #0: kept.
+  EXPECT_EQ(drawn.drawn[1], 1);
+  EXPECT_EQ(drawn.num_left_out_coloured, 0);
+  const Scene scene = build_main_scene(mesh, topology, glyphs, nullptr, camera, 600, options);
+  ASSERT_EQ(scene.spheres.size(), 3u);
+  EXPECT_EQ(scene.spheres[1].centers.size(), 3u);  // the whole tie, coloured
+  ASSERT_EQ(scene.spheres[2].centers.size(), 1u);  // #3, unfaded
+  EXPECT_EQ(scene.spheres[2].pale, 0.0f);
+  EXPECT_FLOAT_EQ(scene.spheres[2].radii[0], static_cast<float>(radii[3]));
+  ASSERT_EQ(scene.spheres[0].centers.size(), 1u);  // #4, pale
+  EXPECT_GT(scene.spheres[0].pale, 0.0f);
+  // Edge lines at every member of the tie, none at the grey ones.
+  const std::vector<std::uint8_t> marked = worst_cluster_vertices(glyphs, 48);
+  for (std::size_t v = 0; v < marked.size(); ++v) EXPECT_EQ(marked[v], v == 0 || v == 1 || v == 24) << v;
+  // (the scene's edge lines: every mesh edge at a marked vertex; vertex 24
+  // is a corner with 3 edges, 0 has 3, 1 has 4 and shares one with 0.)
+  EXPECT_EQ(scene.lines[1].indices.size() / 2, 9u);
+  // The legend: the two grey ranges apart, each with its own swatch.
+  bool strong = false, pale = false;
+  for (const LegendLine& line : main_legend_lines(glyphs, nullptr, AnnotationStyle{}, options, 1.0)) {
+    strong = strong || (line.text == "1 other: " + display_number(0.005, 2) && line.swatch == grey_glyph_color(0.0f));
+    pale = pale || (line.text == "1 other: 0.3" && line.swatch == pale_grey_glyph_color());
+  }
+  EXPECT_TRUE(strong);
+  EXPECT_TRUE(pale);
+  EXPECT_NE(grey_glyph_color(0.0f), pale_grey_glyph_color());
+}
+
+// Issue 44 part U: a 4-fold symmetric model (a plus-shaped slab, a glyph
+// at each arm's tip) looks the same from azimuths 90 degrees apart; the
+// second view is not such a copy.
+TEST(GlyphTiesView, ASymmetricModelGetsTwoDifferentViews) {
+  std::vector<Vec3> points;
+  for (int z = 0; z <= 1; ++z)
+    for (int y = -3; y <= 3; ++y)
+      for (int x = -3; x <= 3; ++x)
+        if (std::abs(x) <= 1 || std::abs(y) <= 1) points.push_back({double(x), double(y), double(z)});
+  const std::vector<Vec3> centers{{3, 0, 1}, {0, 3, 1}, {-3, 0, 1}, {0, -3, 1}};
+  const std::vector<double> radii(4, 0.6);
+  const Vec3 up{0, 0, 1};
+  const std::vector<Vec3> views = choose_viewpoints(points, centers, radii, 1.2, 2, up);
+  ASSERT_EQ(views.size(), 2u);
+  const auto a = view_signature(points, centers, radii, views[0], 1.2, up);
+  const auto b = view_signature(points, centers, radii, views[1], 1.2, up);
+  EXPECT_LT(view_signature_similarity(a, b), kSameViewSimilarity);
+  // The detector: the view 90 degrees round is a copy of the first.
+  const Vec3 turned = upright_view_direction(up, view_azimuth_degrees(views[0], up) + 90.0,
+                                             view_elevation_degrees(views[0], up));
+  EXPECT_GE(view_signature_similarity(a, view_signature(points, centers, radii, turned, 1.2, up)), kSameViewSimilarity);
+  // A mirror image counts as a copy (a plate seen from its other side).
+  std::vector<std::uint8_t> mirrored(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const std::size_t x = i % kViewSignatureWidth;
+    mirrored[i - x + (kViewSignatureWidth - 1 - x)] = a[i];
+  }
+  EXPECT_EQ(view_signature_similarity(a, mirrored), 1.0);
+  std::vector<std::uint8_t> other = a;
+  for (std::size_t i = a.size() / 2; i < a.size(); ++i) other[i] = 0;  // no glyph there
+  EXPECT_LT(view_signature_similarity(a, other), kSameViewSimilarity);
 }
 
 }  // namespace

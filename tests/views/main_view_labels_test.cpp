@@ -160,20 +160,27 @@ int background_inside_rim(const Image& image, const ScreenDisc& d, const Rgba8& 
 // part T: the grey ones keep their severity radius, no longer 0.6 of it;
 // they rank after every coloured tie class).
 void expect_sizes_by_severity(const Scene& scene, const std::vector<ScreenDisc>& discs, const MainViewLabels& labels) {
-  ASSERT_EQ(scene.spheres.size(), 2u);
-  const std::size_t grey = scene.spheres[0].centers.size(), coloured = scene.spheres[1].centers.size();
-  ASSERT_EQ(grey + coloured, discs.size());
+  // Sets: the pale grey ones, the coloured ones, the unfaded grey ones
+  // (min quality < kUnfadedGlyphQuality: ranked before the pale ones).
+  ASSERT_EQ(scene.spheres.size(), 3u);
+  const std::size_t pale = scene.spheres[0].centers.size(), coloured = scene.spheres[1].centers.size(),
+                    unfaded = scene.spheres[2].centers.size();
+  ASSERT_EQ(pale + coloured + unfaded, discs.size());
   const auto radius = [&](std::size_t i) { return discs[i].radius; };
-  for (std::size_t i = 1; i < grey; ++i) EXPECT_LE(radius(i), radius(i - 1) * (1 + 1e-9) + 1e-9) << "grey " << i;
-  for (std::size_t i = grey + 1; i < discs.size(); ++i)
-    EXPECT_LE(radius(i), radius(i - 1) * (1 + 1e-9) + 1e-9) << "coloured " << i - grey;
+  // In rank order: coloured, unfaded grey, pale grey.
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < coloured; ++i) order.push_back(pale + i);
+  for (std::size_t i = 0; i < unfaded; ++i) order.push_back(pale + coloured + i);
+  for (std::size_t i = 0; i < pale; ++i) order.push_back(i);
+  for (std::size_t k = 1; k < order.size(); ++k)
+    if (k != coloured) EXPECT_LE(radius(order[k]), radius(order[k - 1]) * (1 + 1e-9) + 1e-9) << "rank " << k;
   if (coloured == 0) return;
-  const double worst = radius(grey);  // cluster #0
+  const double worst = radius(pale);  // cluster #0
   EXPECT_GE(worst, 24.0 - 0.01);
   EXPECT_NEAR(labels.worst_glyph.radius, worst, 0.01);
   for (std::size_t i = 0; i < discs.size(); ++i) EXPECT_LE(radius(i), worst * (1 + 1e-9)) << i;
-  for (std::size_t i = 0; i < grey; ++i)
-    EXPECT_LE(radius(i), radius(discs.size() - 1) * (1 + 1e-6)) << "grey " << i << " bigger than a coloured glyph";
+  for (std::size_t k = coloured; k < order.size(); ++k)
+    EXPECT_LE(radius(order[k]), radius(pale + coloured - 1) * (1 + 1e-6)) << "grey " << k << " bigger than a coloured glyph";
 }
 
 struct MainViewFrameForTest {
@@ -302,7 +309,7 @@ void expect_clear_views(const Case& c, const char* name, bool expect_findings = 
     for (const std::string& w : labels_off_their_glyph(labels, labels.ids)) ADD_FAILURE() << w;
     for (Index hidden : labels.hidden_clusters)
       EXPECT_EQ(count_id(labels.ids, kIdGlyph + static_cast<std::uint32_t>(hidden)), 0u) << "#" << hidden;
-    // The worst cluster's glyph keeps at least 3/4 of its disc once the
+    // The worst cluster's glyph keeps at least 0.7 of its disc once the
     // arrows, rings, leaders and labels are drawn (before issue 44's fifth
     // round this compared with the pixels it showed without the markers,
     // which a glyph already hidden by another passed), and no other glyph
@@ -312,7 +319,10 @@ void expect_clear_views(const Case& c, const char* name, bool expect_findings = 
       mark_main_view_annotations(drawn, labels, c.glyphs, options);
       const double disc = M_PI * labels.worst_glyph.radius * labels.worst_glyph.radius;
       const std::size_t after = count_id(drawn, kIdGlyph);
-      EXPECT_GE(static_cast<double>(after), 0.75 * disc) << "the worst glyph shows " << after << " pixels of a disc of " << disc;
+      // (0.7: since issue 44 part U caps #0's radius, as small as 24-40 px,
+      // its rings' fixed-width halos take a larger share of its rim; the
+      // issue asks for at least half.)
+      EXPECT_GE(static_cast<double>(after), 0.7 * disc) << "the worst glyph shows " << after << " pixels of a disc of " << disc;
       EXPECT_LE(worst_disc_covered(labels.ids, labels.worst_glyph), 2u) << "another glyph or an arrow over #0";
     }
     for (const std::string& w : leaders_over_higher_ranks(labels, labels.ids)) ADD_FAILURE() << w;
@@ -478,12 +488,14 @@ TEST(MainViewLabels, InvertedClustersWearARing) {
   int on = 0;
   constexpr int kSamples = 72;
   for (int i = 0; i < kSamples; ++i) {
-    const double a = 2.0 * M_PI * i / kSamples, r = worst.radius + 3.0;
+    // 3 to 5 px out: the ring's band (3.5 px from the glyph, 2-3 px wide).
+    const double a = 2.0 * M_PI * i / kSamples;
     bool hit = false;
-    for (int dy = -1; dy <= 1 && !hit; ++dy)
-      for (int dx = -1; dx <= 1 && !hit; ++dx)
-        hit = near_inverted(image, static_cast<int>(std::lround(worst.x + r * std::cos(a))) + dx,
-                            static_cast<int>(std::lround(worst.y + r * std::sin(a))) + dy);
+    for (double r : {worst.radius + 3.0, worst.radius + 5.0})
+      for (int dy = -1; dy <= 1 && !hit; ++dy)
+        for (int dx = -1; dx <= 1 && !hit; ++dx)
+          hit = near_inverted(image, static_cast<int>(std::lround(worst.x + r * std::cos(a))) + dx,
+                              static_cast<int>(std::lround(worst.y + r * std::sin(a))) + dy);
     on += hit ? 1 : 0;
   }
   EXPECT_GE(on, kSamples / 2);

@@ -71,8 +71,9 @@ TEST(MainScene, OnlyTheTopClustersAreColouredTheRestAreNeutral) {
   // ones but those left out where they pile up on screen.
   const GlyphsDrawn shown = main_view_glyphs_drawn(
       glyphs, camera, 600, displayed_glyph_radii(glyphs, displayed_glyph_scale(glyphs, camera, 600, 1.0)));
-  ASSERT_EQ(scene.spheres.size(), 2u);
+  ASSERT_EQ(scene.spheres.size(), 3u);
   ASSERT_EQ(scene.spheres[1].colors.size(), 3u);
+  EXPECT_TRUE(scene.spheres[2].colors.empty());  // no grey one below 0.01
   ASSERT_EQ(scene.spheres[0].colors.size(), static_cast<std::size_t>(n - 3 - shown.num_left_out));
   EXPECT_GT(scene.spheres[0].colors.size(), static_cast<std::size_t>(n) / 2);
   std::size_t grey = 0;
@@ -120,9 +121,12 @@ TEST(MainScene, LayersHoldWhatTheViewDraws) {
   Fixture f;
   const Scene scene = build_main_scene(f.mesh, f.topology, f.glyphs, &f.overlap, camera_for(f), 600, {});
   ASSERT_EQ(scene.lines.size(), 3u);
-  ASSERT_EQ(scene.spheres.size(), 2u);  // grey glyphs, then the ranked ones over them
+  ASSERT_EQ(scene.spheres.size(), 3u);  // pale grey glyphs, the ranked ones over them, unfaded grey ones
   EXPECT_FALSE(scene.spheres[0].over_other_spheres);
   EXPECT_TRUE(scene.spheres[1].over_other_spheres);
+  EXPECT_FALSE(scene.spheres[2].over_other_spheres);
+  EXPECT_GT(scene.spheres[0].pale, 0.0f);
+  EXPECT_EQ(scene.spheres[2].pale, 0.0f);
   ASSERT_TRUE(scene.triangles.empty());
   ASSERT_EQ(scene.overlay.size(), 1u);
   ASSERT_EQ(scene.translucent.size(), 1u);

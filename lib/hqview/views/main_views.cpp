@@ -27,6 +27,9 @@ namespace {
 
 Vec3 forward_of(const Camera& camera) { return normalized(camera.target - camera.eye); }
 
+// The id of #0's rings as an obstacle of its own label (no glyph's, no fan's).
+constexpr std::int64_t kRingsObstacleId = -2;
+
 // Model units per output pixel at distance depth in front of the camera.
 double units_per_pixel(const Camera& camera, double depth, int view_height) {
   const double height =
@@ -36,12 +39,41 @@ double units_per_pixel(const Camera& camera, double depth, int view_height) {
 
 }  // namespace
 
-double displayed_glyph_scale(const GlyphResult& glyphs, const Camera& camera, int view_height, double pixel_scale) {
+double displayed_glyph_scale(const GlyphResult& glyphs, const Camera& camera, int view_height, double pixel_scale,
+                             double model_diagonal_pixels) {
   if (glyphs.clusters.empty() || !(glyphs.clusters[0].radius > 0.0)) return 1.0;
   const AggregatedGlyph& worst = glyphs.clusters[0];
   const double depth = std::max(dot(worst.position - camera.eye, forward_of(camera)), 1e-12);
-  const double pixels = worst.radius / units_per_pixel(camera, depth, view_height);
-  return std::max(1.0, kWorstGlyphMinPixels * pixel_scale / pixels);
+  const double unit = units_per_pixel(camera, depth, view_height);
+  const double pixels = worst.radius / unit;
+  if (!(pixels > 0.0) || !std::isfinite(pixels)) return 1.0;
+  const double floor = kWorstGlyphMinPixels * pixel_scale;
+  // The cap: a mean edge length (the glyph unit rmax of ratio 1, under the
+  // default unit) and a fraction of the model's on-screen diagonal.
+  double cap = std::numeric_limits<double>::infinity();
+  const double edge = glyphs.options.rmax_unit == RmaxUnit::kMeanEdgeLength && glyphs.options.rmax > 0.0
+                          ? glyphs.rmax / glyphs.options.rmax
+                          : glyphs.rmax;
+  if (edge > 0.0 && std::isfinite(edge)) cap = std::min(cap, kWorstGlyphMaxEdges * edge / unit);
+  if (model_diagonal_pixels > 0.0) cap = std::min(cap, kWorstGlyphMaxDiagonal * model_diagonal_pixels);
+  const double target = std::clamp(pixels, floor, std::max(floor, cap));
+  return target / pixels;
+}
+
+double model_diagonal_pixels(const HexMesh& mesh, const Topology& topology, const Camera& camera, int view_width,
+                             int view_height) {
+  const Box3 box = boundary_bounding_box(mesh, topology);
+  const double aspect = static_cast<double>(view_width) / static_cast<double>(std::max(1, view_height));
+  double lo[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  double hi[2] = {-lo[0], -lo[1]};
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 p{(k & 1) ? box.hi.x : box.lo.x, (k & 2) ? box.hi.y : box.lo.y, (k & 4) ? box.hi.z : box.lo.z};
+    const Vec3 ndc = project_to_ndc(camera, aspect, p);
+    const double x = 0.5 * ndc.x * view_width, y = 0.5 * ndc.y * view_height;
+    lo[0] = std::min(lo[0], x), hi[0] = std::max(hi[0], x), lo[1] = std::min(lo[1], y), hi[1] = std::max(hi[1], y);
+  }
+  const double d = std::hypot(hi[0] - lo[0], hi[1] - lo[1]);
+  return std::isfinite(d) ? d : 0.0;
 }
 
 namespace {
@@ -73,13 +105,17 @@ std::vector<double> displayed_glyph_radii(const GlyphResult& glyphs, double scal
   return radii;
 }
 
-Rgba8 pale_grey_glyph_color() {
+Rgba8 pale_grey_glyph_color() { return grey_glyph_color(kGreyGlyphPale); }
+
+bool is_faded_grey_glyph(const AggregatedGlyph& g) { return !(g.min_quality < kUnfadedGlyphQuality); }
+
+Rgba8 grey_glyph_color(float pale) {
   // The sphere shader's steps at the lit side (diffuse 0.8 with ambient
   // 0.25: shade 0.85), in linear RGB, then mixed towards white.
   const Color grey = neutral_cluster_color();
-  auto channel = [](float v) {
+  auto channel = [pale](float v) {
     const double linear = v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
-    const double lit = std::min(1.0, linear * 0.85) * (1.0 - kGreyGlyphPale) + kGreyGlyphPale;
+    const double lit = std::min(1.0, linear * 0.85) * (1.0 - pale) + pale;
     const double srgb = lit <= 0.0031308 ? 12.92 * lit : 1.055 * std::pow(lit, 1.0 / 2.4) - 0.055;
     return static_cast<std::uint8_t>(std::lround(255.0 * std::clamp(srgb, 0.0, 1.0)));
   };
@@ -121,8 +157,9 @@ GlyphsDrawn main_view_glyphs_drawn(const GlyphResult& glyphs, const Camera& came
     const Disc& d = discs[i];
     if (!std::isfinite(d.x) || !std::isfinite(d.y) || !std::isfinite(d.r)) continue;
     const Index c = result.tie_class[i];
-    const bool is_class_first = i == 0 || result.tie_class[i - 1] != c;
-    bool keep = is_class_first && c < labelled;
+    // A coloured class is a unit (issue 44 part U): none of its members
+    // is left out (30 tied worst glyphs are 30, not 29).
+    bool keep = c < labelled;
     if (!keep) {
       int covered = 0;
       const long long cx = cell_of(d.x), cy = cell_of(d.y);
@@ -342,6 +379,60 @@ double azimuth_gap(const Vec3& a, const Vec3& b, const Vec3& up) {
 
 }  // namespace
 
+std::vector<std::uint8_t> view_signature(std::span<const Vec3> points, std::span<const Vec3> centers,
+                                         std::span<const double> radii, const Vec3& direction, double aspect,
+                                         const Vec3& up, double fov_y_degrees) {
+  const Camera camera = fit_camera_to_points(points, direction, aspect,
+                                             {.up = up, .fov_y_degrees = fov_y_degrees, .is_perspective = false});
+  constexpr std::size_t kCells = static_cast<std::size_t>(kViewSignatureWidth) * kViewSignatureHeight;
+  std::vector<std::uint8_t> mask(2 * kCells, 0);
+  const Mat4 to_ndc = projection_matrix(camera, aspect) * view_matrix(camera);
+  std::size_t half = 0;  // 0: the points' cells, kCells: the discs'
+  auto mark = [&](double x, double y) {  // NDC
+    const int gx = static_cast<int>(std::floor(0.5 * (x + 1.0) * kViewSignatureWidth));
+    const int gy = static_cast<int>(std::floor(0.5 * (y + 1.0) * kViewSignatureHeight));
+    if (gx >= 0 && gy >= 0 && gx < kViewSignatureWidth && gy < kViewSignatureHeight)
+      mask[half + static_cast<std::size_t>(gy) * kViewSignatureWidth + static_cast<std::size_t>(gx)] = 1;
+  };
+  for (const Vec3& p : points) {
+    const Vec3 ndc = transform_point(to_ndc, p);
+    if (std::isfinite(ndc.x) && std::isfinite(ndc.y)) mark(ndc.x, ndc.y);
+  }
+  half = kCells;
+  // The glyph discs (orthographic: radius 2 r / ortho_height in NDC y).
+  for (std::size_t i = 0; i < centers.size() && i < radii.size(); ++i) {
+    const Vec3 ndc = transform_point(to_ndc, centers[i]);
+    if (!std::isfinite(ndc.x) || !std::isfinite(ndc.y)) continue;
+    const double ry = 2.0 * radii[i] / camera.ortho_height, rx = ry / aspect;
+    const int steps = 8;
+    for (int a = -steps; a <= steps; ++a)
+      for (int b = -steps; b <= steps; ++b)
+        if (a * a + b * b <= steps * steps) mark(ndc.x + rx * a / steps, ndc.y + ry * b / steps);
+  }
+  return mask;
+}
+
+double view_signature_similarity(std::span<const std::uint8_t> a, std::span<const std::uint8_t> b) {
+  constexpr std::size_t kCells = static_cast<std::size_t>(kViewSignatureWidth) * kViewSignatureHeight;
+  if (a.size() != 2 * kCells || b.size() != 2 * kCells) return 0.0;
+  // One half's intersection over union, b as it is or mirrored left to
+  // right (the view from the other side of a plate seen face-on, whose
+  // glyphs the wireframe does not hide).
+  auto iou = [&](std::size_t half, bool mirrored) {
+    std::size_t both = 0, either = 0;
+    for (int y = 0; y < kViewSignatureHeight; ++y)
+      for (int x = 0; x < kViewSignatureWidth; ++x) {
+        const std::size_t row = half + static_cast<std::size_t>(y) * kViewSignatureWidth;
+        const bool in_a = a[row + static_cast<std::size_t>(x)] != 0;
+        const bool in_b = b[row + static_cast<std::size_t>(mirrored ? kViewSignatureWidth - 1 - x : x)] != 0;
+        both += in_a && in_b;
+        either += in_a || in_b;
+      }
+    return either == 0 ? 1.0 : static_cast<double>(both) / static_cast<double>(either);
+  };
+  return std::max(std::min(iou(0, false), iou(kCells, false)), std::min(iou(0, true), iou(kCells, true)));
+}
+
 std::vector<Vec3> choose_viewpoints(std::span<const Vec3> points, std::span<const Vec3> centers,
                                     std::span<const double> radii, double aspect, int count, const Vec3& up,
                                     double fov_y_degrees) {
@@ -367,29 +458,50 @@ std::vector<Vec3> choose_viewpoints(std::span<const Vec3> points, std::span<cons
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return score[a] > score[b]; });
   // Each further view looks from at least 90 degrees of azimuth away from
   // those chosen (the other side of the model), while such a view remains.
+  // A view that repeats a chosen one (a symmetric model: the twisted
+  // cross from azimuth 30 and 210; issue 44 part U) is no further view:
+  // view_signature_similarity >= kSameViewSimilarity.
   std::vector<Vec3> chosen{candidates[order[0]]};
+  std::vector<std::vector<std::uint8_t>> signatures{
+      view_signature(points, centers, radii, candidates[order[0]], aspect, up, fov_y_degrees)};
   std::vector<bool> taken(candidates.size(), false);
   taken[order[0]] = true;
+  std::vector<std::vector<std::uint8_t>> signature_of(candidates.size());
+  auto is_copy = [&](std::size_t i) {
+    if (signature_of[i].empty())
+      signature_of[i] = view_signature(points, centers, radii, candidates[i], aspect, up, fov_y_degrees);
+    return std::any_of(signatures.begin(), signatures.end(), [&](const std::vector<std::uint8_t>& s) {
+      return view_signature_similarity(s, signature_of[i]) >= kSameViewSimilarity;
+    });
+  };
   while (static_cast<int>(chosen.size()) < count) {
     std::size_t pick = candidates.size();
     for (std::size_t i : order) {
       if (taken[i]) continue;
       const bool apart = std::all_of(chosen.begin(), chosen.end(),
                                      [&](const Vec3& c) { return azimuth_gap(candidates[i], c, up) >= 90.0 - 1e-9; });
-      if (apart) {
+      if (apart && !is_copy(i)) {
         pick = i;
         break;
       }
     }
-    if (pick == candidates.size())  // none far enough: the best one left
+    if (pick == candidates.size())  // none far enough: the best one left that differs
       for (std::size_t i : order)
-        if (!taken[i]) {
+        if (!taken[i] && !is_copy(i)) {
           pick = i;
           break;
         }
-    if (pick == candidates.size()) break;
+    if (pick == candidates.size()) {
+      // Every candidate repeats a chosen view: from high above instead.
+      const Vec3 high = upright_view_direction(up, view_azimuth_degrees(chosen[0], up), kHighViewElevation);
+      if (std::any_of(chosen.begin(), chosen.end(), [&](const Vec3& c) { return norm(c - high) < 1e-9; })) break;
+      chosen.push_back(high);
+      signatures.push_back(view_signature(points, centers, radii, high, aspect, up, fov_y_degrees));
+      continue;
+    }
     taken[pick] = true;
     chosen.push_back(candidates[pick]);
+    signatures.push_back(signature_of[pick]);
   }
   return chosen;
 }
@@ -482,7 +594,7 @@ std::vector<MarkerFan> marker_fans(const GlyphResult& glyphs, const OverlapRepor
   const bool has_worst = !glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0;
   const Vec3 worst = has_worst ? glyphs.clusters[0].position : Vec3{};
   const double worst_radius =
-      has_worst ? displayed_glyph_radii(glyphs, displayed_glyph_scale(glyphs, camera, view_height, options.pixel_scale))[0]
+      has_worst ? displayed_glyph_radii(glyphs, displayed_glyph_scale(glyphs, camera, view_height, options.pixel_scale, options.model_diagonal_pixels))[0]
                 : 0.0;
   auto in_plane = [&](const Vec3& v) { return std::array<double, 2>{dot(v, plane.right), dot(v, plane.up)}; };
   std::vector<MarkerFan> fans;
@@ -544,18 +656,41 @@ std::vector<MarkerFan> marker_fans(const GlyphResult& glyphs, const OverlapRepor
 
 }  // namespace
 
+std::vector<BoundaryPolygon> inverted_boundary_faces(const Topology& topology, const MainViewOptions& options) {
+  std::vector<BoundaryPolygon> faces;
+  if (!options.inverted_cells || !options.orientation_note.empty()) return faces;
+  const std::vector<std::uint8_t>& inverted = *options.inverted_cells;
+  for (const BoundaryPolygon& face : boundary_polygons(topology)) {
+    const auto c = static_cast<std::size_t>(face.cell);
+    if (c < inverted.size() && inverted[c] != 0) faces.push_back(face);
+  }
+  if (faces.size() > (options.surface_cell_quality ? kMaxInvertedOverlayFaces : kMaxInvertedOverlayVolumeFaces))
+    faces.clear();
+  return faces;
+}
+
 std::vector<std::uint8_t> worst_cluster_vertices(const GlyphResult& glyphs, int per_cluster) {
   std::vector<std::uint8_t> marked(glyphs.vertex_cluster.size(), 0);
   std::vector<Index> members;
-  // The coloured (labelled) clusters only: the grey ones' edges, hundreds
-  // with bounded clusters, would veil the model (issue 44's fifth round).
-  const std::size_t coloured = std::min<std::size_t>(
-      glyphs.cluster_offsets.empty() ? 0 : glyphs.cluster_offsets.size() - 1,
-      static_cast<std::size_t>(labelled_cluster_count(glyphs.options.top_clusters)));
-  for (std::size_t c = 0; c < coloured; ++c) {
+  // The coloured clusters only: the grey ones' edges, hundreds with bounded
+  // clusters, would veil the model (issue 44's fifth round). Every member
+  // of a coloured tie class alike (issue 44 part U: edges at one of 28
+  // equals singled it out), per_cluster shared among them.
+  const std::vector<Index> ties = glyph_tie_classes(glyphs.clusters);
+  const std::vector<Index> sizes = tie_class_sizes(ties);
+  const Index coloured_classes = coloured_classes_of(glyphs, ties);
+  // (Clusters without an aggregated glyph: each a class of its own, the
+  // first labelled_cluster_count(K) coloured.)
+  const std::size_t clusters = glyphs.cluster_offsets.empty() ? 0 : glyphs.cluster_offsets.size() - 1;
+  const auto labelled = static_cast<std::size_t>(labelled_cluster_count(glyphs.options.top_clusters));
+  for (std::size_t c = 0; c < clusters; ++c) {
+    const bool has_class = c < ties.size();
+    if (has_class ? ties[c] >= coloured_classes : c >= labelled) break;
     members.assign(glyphs.cluster_vertices.begin() + glyphs.cluster_offsets[c],
                    glyphs.cluster_vertices.begin() + glyphs.cluster_offsets[c + 1]);
-    const auto keep = std::min<std::size_t>(members.size(), static_cast<std::size_t>(std::max(per_cluster, 0)));
+    const Index class_size = has_class ? std::max<Index>(1, sizes[static_cast<std::size_t>(ties[c])]) : 1;
+    const Index share = per_cluster > 0 ? std::max<Index>(1, per_cluster / class_size) : 0;
+    const auto keep = std::min<std::size_t>(members.size(), static_cast<std::size_t>(share));
     auto radius = [&](Index v) {
       const std::size_t i = static_cast<std::size_t>(v);
       return i < glyphs.vertex_radius.size() ? glyphs.vertex_radius[i] : 0.0;
@@ -602,16 +737,10 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   const std::vector<std::uint8_t> marked = worst_cluster_vertices(glyphs, options.cluster_edge_vertices);
   std::vector<Edge> cluster_edges;
   std::vector<Rgba8> cluster_colors;
-  // An edge with a marked end, in the colour of its marked ends' lower rank.
-  // Only round the first cluster of each tie class (the labelled one): the
-  // others of a tie are its equals, their edges would mark an arbitrary few.
-  auto is_class_first = [&](Index v) {
-    const Index c = glyphs.vertex_cluster[static_cast<std::size_t>(v)];
-    return c != kNoIndex && (c == 0 || edge_ties[static_cast<std::size_t>(c) - 1] != edge_ties[static_cast<std::size_t>(c)]);
-  };
+  // An edge with a marked end, in the colour of its marked ends' lower rank
+  // (every member of a tie class is marked alike: worst_cluster_vertices).
   auto add_cluster_edge = [&](const Edge& e) {
-    const bool ma = marked[static_cast<std::size_t>(e[0])] != 0 && is_class_first(e[0]),
-               mb = marked[static_cast<std::size_t>(e[1])] != 0 && is_class_first(e[1]);
+    const bool ma = marked[static_cast<std::size_t>(e[0])] != 0, mb = marked[static_cast<std::size_t>(e[1])] != 0;
     if (!ma && !mb) return;
     const Index ca = ma ? glyphs.vertex_cluster[static_cast<std::size_t>(e[0])] : kNoIndex;
     const Index cb = mb ? glyphs.vertex_cluster[static_cast<std::size_t>(e[1])] : kNoIndex;
@@ -687,23 +816,26 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   // grey ones smaller.
   // Tied clusters wear their class's colour; glyphs piled up on screen are
   // left out (main_view_glyphs_drawn); the grey ones are pale.
-  SphereSet spheres, ranked;
+  SphereSet spheres, ranked, unfaded;
   spheres.pale = kGreyGlyphPale;
   ranked.over_other_spheres = true;
   ranked.first_on_top = true;  // by rank: #0 on top of every other glyph
   const std::vector<double> shown =
-      displayed_glyph_radii(glyphs, displayed_glyph_scale(glyphs, camera, view_height, options.pixel_scale));
+      displayed_glyph_radii(glyphs, displayed_glyph_scale(glyphs, camera, view_height, options.pixel_scale, options.model_diagonal_pixels));
   const GlyphsDrawn drawn = main_view_glyphs_drawn(glyphs, camera, view_height, shown);
   for (const AggregatedGlyph& g : glyphs.clusters) {
     if (!(g.radius > 0.0) || !drawn.drawn[static_cast<std::size_t>(g.id)]) continue;
     const Rgba8 color = glyph_color(g.id, drawn.tie_class, drawn.coloured_classes, glyphs);
-    SphereSet& set = is_grey_glyph(g.id, drawn.tie_class, drawn.coloured_classes) ? spheres : ranked;
+    SphereSet& set = !is_grey_glyph(g.id, drawn.tie_class, drawn.coloured_classes) ? ranked
+                     : is_faded_grey_glyph(g)                                       ? spheres
+                                                                                     : unfaded;
     set.centers.push_back(local(g.position));
     set.radii.push_back(static_cast<float>(shown[static_cast<std::size_t>(g.id)]));
     set.colors.push_back(color);
   }
   scene.spheres.push_back(std::move(spheres));
   scene.spheres.push_back(std::move(ranked));
+  scene.spheres.push_back(std::move(unfaded));
 
   // 5. Arrows on overlap markers, grouped where they crowd on screen.
   TriangleSet arrows;
@@ -718,6 +850,36 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   }
   scene.overlay.push_back(std::move(arrows));
   scene.translucent.push_back(std::move(cells));
+
+  // 5b. The boundary faces of inverted cells over the glyphs (overlay[1]
+  // and their outlines; issue 44 part U: #0's glyph sits on the worst
+  // vertex, a corner of the inverted faces, and hid them).
+  const std::vector<BoundaryPolygon> inverted_faces = inverted_boundary_faces(topology, options);
+  if (!inverted_faces.empty()) {
+    TriangleSet faces;
+    faces.is_lit = false;
+    std::vector<Edge> outline;
+    for (const BoundaryPolygon& face : inverted_faces) {
+      const Rgba8 color = options.surface_cell_quality
+                              ? surface_fill_color((*options.surface_cell_quality)[static_cast<std::size_t>(face.cell)])
+                              : to_rgba8(kInvertedColor);
+      const auto base = static_cast<std::uint32_t>(faces.positions.size());
+      for (int i = 0; i < face.size; ++i) {
+        const Index a = face.v[static_cast<std::size_t>(i)], b = face.v[static_cast<std::size_t>((i + 1) % face.size)];
+        faces.positions.push_back(local(mesh.points[static_cast<std::size_t>(a)]));
+        faces.colors.push_back(color);
+        outline.push_back({std::min(a, b), std::max(a, b)});
+      }
+      faces.indices.insert(faces.indices.end(), {base, base + 1, base + 2});
+      if (face.size == 4) faces.indices.insert(faces.indices.end(), {base, base + 2, base + 3});
+    }
+    std::sort(outline.begin(), outline.end());
+    outline.erase(std::unique(outline.begin(), outline.end()), outline.end());
+    scene.overlay.push_back(std::move(faces));
+    scene.lines.push_back(edge_lines(mesh, scene.origin, outline, std::vector<Rgba8>(outline.size(), kWireframeColor),
+                                     std::max(1.5f, options.wire_width)));
+    scene.lines.back().in_overlay = true;
+  }
 
   // 6. On a mesh of several kinds, the pyramids' edges that are not boundary
   // edges, in the pyramid colour: pyramids join a hex block to tets, inside
@@ -746,7 +908,7 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
 
 IdImage main_view_id_image(Renderer& renderer, const Scene& scene, const GlyphResult& glyphs, const Camera& camera,
                            const PixelRect& view, bool with_markers) {
-  if (scene.spheres.size() != 2) throw RenderError("main_view_id_image needs view A's scene");
+  if (scene.spheres.size() != 3) throw RenderError("main_view_id_image needs view A's scene");
   Scene coded;
   coded.origin = scene.origin;
   coded.background = id_color(kIdBackground);
@@ -774,12 +936,12 @@ IdImage main_view_id_image(Renderer& renderer, const Scene& scene, const GlyphRe
   // position (a left-out glyph at the same position as the next drawn one
   // is covered by it: the id is the drawn one's either way).
   coded.spheres = scene.spheres;
-  std::size_t next[2] = {0, 0};
+  std::size_t next[3] = {0, 0, 0};
   const std::vector<Index> ties = glyph_tie_classes(glyphs.clusters);
   const Index coloured = coloured_classes_of(glyphs, ties);
   for (const AggregatedGlyph& g : glyphs.clusters) {
     if (!(g.radius > 0.0)) continue;
-    const std::size_t set = is_grey_glyph(g.id, ties, coloured) ? 0 : 1;
+    const std::size_t set = !is_grey_glyph(g.id, ties, coloured) ? 1 : is_faded_grey_glyph(g) ? 0 : 2;
     const SphereSet& drawn = coded.spheres[set];
     const Vec3f at = to_vec3f(g.position - scene.origin);
     if (next[set] >= drawn.centers.size() || !(drawn.centers[next[set]].x == at.x && drawn.centers[next[set]].y == at.y &&
@@ -787,7 +949,8 @@ IdImage main_view_id_image(Renderer& renderer, const Scene& scene, const GlyphRe
       continue;
     coded.spheres[set].colors[next[set]++] = id_color(kIdGlyph + static_cast<std::uint32_t>(g.id));
   }
-  if (next[0] != coded.spheres[0].colors.size() || next[1] != coded.spheres[1].colors.size())
+  if (next[0] != coded.spheres[0].colors.size() || next[1] != coded.spheres[1].colors.size() ||
+      next[2] != coded.spheres[2].colors.size())
     throw RenderError("main_view_id_image: scene and glyphs differ");
   if (with_markers)
     for (const TriangleSet& set : scene.overlay) {
@@ -944,7 +1107,7 @@ std::string mostly_inverted_note(const QualityField& quality) {
 std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const OverlapReport* overlap,
                                           const AnnotationStyle& style, const MainViewOptions& options,
                                           double glyph_scale, std::span<const Index> hidden, Index left_out,
-                                          std::span<const Index> unlabelled) {
+                                          std::span<const Index> unlabelled, double worst_pixels) {
   // One line per coloured tie class (glyph_tie_classes): "#k (n)  min q",
   // or for a tie "#k-#m  N tied at q".
   const std::vector<Index> ties = glyph_tie_classes(glyphs.clusters);
@@ -985,11 +1148,19 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
   if (glyphs.clusters.size() > listed) {
     // The grey ones' range of min quality (they may be as bad as a
     // coloured one only when ties ran past the palette).
-    const std::size_t rest = glyphs.clusters.size() - listed;
-    const double lo = glyphs.clusters[listed].min_quality, hi = glyphs.clusters.back().min_quality;
-    lines.push_back({pale_grey_glyph_color(),
-                     std::to_string(rest) + (rest == 1 ? " other: " : " others: ") + display_number(lo, 2) +
-                         (rest == 1 ? "" : " to " + display_number(hi, 2))});
+    // Inverted or about 0 (degenerate) ones unfaded (issue 44 part U), a
+    // line of their own; the rest pale.
+    std::size_t strong = listed;
+    while (strong < glyphs.clusters.size() && !is_faded_grey_glyph(glyphs.clusters[strong])) ++strong;
+    auto others = [&](std::size_t from, std::size_t to, Rgba8 swatch, const std::string& what) {
+      if (to <= from) return;
+      const std::size_t rest = to - from;
+      const double lo = glyphs.clusters[from].min_quality, hi = glyphs.clusters[to - 1].min_quality;
+      lines.push_back({swatch, std::to_string(rest) + (rest == 1 ? " other" : " others") + what + ": " +
+                                   display_number(lo, 2) + (rest == 1 ? "" : " to " + display_number(hi, 2))});
+    };
+    others(listed, strong, grey_glyph_color(0.0f), "");
+    others(strong, glyphs.clusters.size(), pale_grey_glyph_color(), "");
   }
   if (coloured_tie)
     lines.push_back({std::nullopt, "tied: min within " + display_number(kGlyphTieTolerance, 2)});
@@ -1003,13 +1174,18 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
                        ? "size = 1 - min quality + 0.1 per 10 vertices (paper)"
                        : "size = 1 - min quality",
                    1});
-  // The drawn scale (kWorstGlyphMinPixels), when it is not 1.
-  if (glyph_scale > 1.0)
-    lines.push_back({std::nullopt, "drawn x" + display_number(glyph_scale, 2) + ": #0 radius " +
-                                       display_number(kWorstGlyphMinPixels, 2) + " px"});
+  // The drawn scale (kWorstGlyphMinPixels from below, the cap from above)
+  // and #0's radius on screen (worst_pixels, when known; else the floor's),
+  // so that pictures compare.
+  if (!glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0 && (glyph_scale != 1.0 || worst_pixels > 0.0)) {
+    const double px = worst_pixels > 0.0 ? worst_pixels : kWorstGlyphMinPixels * style.scale;
+    lines.push_back({std::nullopt, "drawn x" + display_number(glyph_scale, 2) + ": #0 " +
+                                       std::to_string(std::lround(px)) + " px"});
+    if (glyph_scale < 1.0) lines.push_back({std::nullopt, "  (capped: 1 edge, 3% of model)"});
+  }
   if (!glyphs.clusters.empty()) {
     lines.push_back({std::nullopt, "label #k (n): rank k, n vertices"});
-    if (coloured_tie) lines.push_back({std::nullopt, "  +m tied: m more at its min"});
+    if (coloured_tie) lines.push_back({std::nullopt, "  #k-#m tied (n): n in all"});
   }
   // The coloured edge lines that scene step 2 draws around each cluster's
   // worst vertices: their colour is the cluster's, their meaning said here.
@@ -1031,6 +1207,9 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
     }
   const std::size_t intersecting = overlap ? static_cast<std::size_t>(overlap->num_intersecting_cells) : 0;
   const std::string unchecked = overlap ? "" : " (not checked)";
+  if (options.inverted_overlay_faces > 0 && !options.surface_cell_quality)
+    lines.push_back(
+        {to_rgba8(kInvertedColor), "inverted cells' faces: " + std::to_string(options.inverted_overlay_faces)});
   lines.push_back({kCoincidentArrowColor, "coincident vertices: " + std::to_string(findings[0]) + unchecked, 1});
   lines.push_back({kIntersectionArrowColor, "intersecting pairs: " + std::to_string(findings[1]) + unchecked});
   lines.push_back({kIntersectingCellColor, "intersecting cells: " + std::to_string(intersecting) + unchecked});
@@ -1059,9 +1238,10 @@ namespace {
 void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapReport* overlap,
                       const FigureLayout& layout, const AnnotationStyle& style, const MainViewOptions& options,
                       double glyph_scale, std::span<const Index> hidden, Index left_out,
-                      std::span<const Index> unlabelled) {
+                      std::span<const Index> unlabelled, double worst_pixels) {
   draw_legend(figure, layout.legend,
-              main_legend_lines(glyphs, overlap, style, options, glyph_scale, hidden, left_out, unlabelled), style);
+              main_legend_lines(glyphs, overlap, style, options, glyph_scale, hidden, left_out, unlabelled, worst_pixels),
+              style);
 }
 
 }  // namespace
@@ -1227,7 +1407,8 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
   MainViewLabels result;
   result.camera = camera;
   result.view = layout.view;
-  result.glyph_scale = displayed_glyph_scale(glyphs, camera, layout.view.height, scaled.pixel_scale);
+  result.glyph_scale =
+      displayed_glyph_scale(glyphs, camera, layout.view.height, scaled.pixel_scale, scaled.model_diagonal_pixels);
   const std::vector<double> shown = displayed_glyph_radii(glyphs, result.glyph_scale);
   const GlyphsDrawn drawn = main_view_glyphs_drawn(glyphs, camera, layout.view.height, shown);
   const std::vector<Index> tie_sizes = tie_class_sizes(drawn.tie_class);
@@ -1292,8 +1473,13 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
     label.kind = MainViewLabel::Kind::cluster;
     label.cluster = g.id;
     const Index tied = tie_sizes[static_cast<std::size_t>(drawn.tie_class[i])];
-    label.text = "#" + std::to_string(g.id) + " (" + std::to_string(g.size) + ")" +
-                 (tied > 1 ? " +" + std::to_string(tied - 1) + " tied" : "");
+    // A tie as a unit: "#0-#29 tied (210)", the class's vertices.
+    Index vertices = 0;
+    for (Index k = 0; k < tied; ++k) vertices += glyphs.clusters[i + static_cast<std::size_t>(k)].size;
+    label.text = tied > 1 ? "#" + std::to_string(g.id) + "-#" + std::to_string(g.id + tied - 1) + " tied (" +
+                                std::to_string(vertices) + ")"
+                          : "#" + std::to_string(g.id) + " (" + std::to_string(g.size) + ")";
+    label.protect_end = tied > 1 ? g.id + tied : g.id;
     label.color = style.text_color;
     label.anchor = disc;
     if (!seen.empty()) {
@@ -1338,6 +1524,13 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
     ScreenDisc rings = result.worst_glyph;
     rings.radius = worst_rings_extent(rings.radius, glyphs.clusters[0].min_quality < 0.0, style);
     all_obstacles.push_back(rings);
+    // And #0's own label sits outside them (issue 44 part U: on a glyph
+    // capped small its label box covered much of the rings), its leader
+    // crossing them: the same disc under an id of no glyph.
+    if (!result.worst_is_tied) {
+      rings.id = kRingsObstacleId;
+      all_obstacles.push_back(rings);
+    }
   }
   all_obstacles.insert(all_obstacles.end(), fans.begin(), fans.end());
   std::vector<ScreenDisc> worst_only;
@@ -1349,7 +1542,8 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
     request.leader_from = label.leader_from;
     request.always_leader = label.always_leader;
     // No leader crosses a glyph ranked before its own (a marker's: #0).
-    request.protect_below = label.kind == MainViewLabel::Kind::cluster ? label.cluster : 1;
+    // A tie's label: nor any glyph of its class (issue 44 part U).
+    request.protect_below = label.kind == MainViewLabel::Kind::cluster ? label.protect_end : 1;
     request.strict_leaders = true;
     std::optional<PlacedLabel> placed = placer.place(request, all_obstacles);
     if (!placed && label.kind == MainViewLabel::Kind::marker) placed = placer.place(request, worst_only);
@@ -1413,6 +1607,9 @@ MainViewFrame main_view_frame(const HexMesh& mesh, const Topology& topology, con
   frame.camera = f.camera;
   frame.scaled = options;
   frame.scaled.pixel_scale = frame.style.scale;
+  frame.scaled.inverted_overlay_faces = inverted_boundary_faces(topology, options).size();
+  frame.scaled.model_diagonal_pixels =
+      model_diagonal_pixels(mesh, topology, frame.camera, frame.layout.view.width, frame.layout.view.height);
   return frame;
 }
 
@@ -1508,8 +1705,8 @@ Image render_main_view(const HexMesh& mesh, const Topology& topology, const Glyp
       layout_main_view_labels(glyphs, overlap, camera, layout, style, scaled, ids.empty() ? nullptr : &ids);
   draw_glyph_rings(figure, labels, glyphs, style, scaled);
   draw_main_view_labels(figure, labels, style, scaled);
-  draw_main_legend(figure, glyphs, overlap, layout, style, options, labels.glyph_scale, labels.hidden_clusters,
-                   labels.left_out_glyphs, labels.unlabelled_clusters);
+  draw_main_legend(figure, glyphs, overlap, layout, style, scaled, labels.glyph_scale, labels.hidden_clusters,
+                   labels.left_out_glyphs, labels.unlabelled_clusters, labels.worst_glyph.radius);
   return figure;
 }
 

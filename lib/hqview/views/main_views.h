@@ -16,6 +16,7 @@
 #include "hqview/glyph/glyph_ties.h"
 #include "hqview/glyph/glyphs.h"
 #include "hqview/image/image.h"
+#include "hqview/mesh/boundary_polygons.h"
 #include "hqview/mesh/hex_mesh.h"
 #include "hqview/mesh/topology.h"
 #include "hqview/overlap/overlap.h"
@@ -81,7 +82,25 @@ struct MainViewOptions {
   // false (a planar mesh seen along its normal: the bins' colours exactly).
   const std::vector<double>* surface_cell_quality = nullptr;
   bool surface_fill_lit = true;
+  // The on-screen diagonal (pixels, the 3D area) of the model's bounding
+  // box as the view's camera projects it (render_main_view sets it; issue
+  // 44 part U): the glyph radius cap's screen term
+  // (displayed_glyph_scale). 0: no screen term.
+  double model_diagonal_pixels = 0.0;
+  // Per volume cell (or surface face) whether it is inverted
+  // (cell_is_inverted), or null: the boundary faces of inverted cells are
+  // drawn over the glyphs (scene overlay[0], issue 44 part U) unless more
+  // than half of the cells are inverted (orientation_note says so) or more
+  // than kMaxInvertedOverlayFaces faces (a volume mesh:
+  // kMaxInvertedOverlayVolumeFaces; they are drawn over everything, and a
+  // mesh with hundreds of them, dolphin_rot's 759, turned blue) would be.
+  const std::vector<std::uint8_t>* inverted_cells = nullptr;
+  // How many of those faces the view draws (render_main_view sets it from
+  // inverted_boundary_faces): a volume mesh's legend line
+  // "inverted cells' faces: N" (a surface mesh's fill lines count them).
+  std::size_t inverted_overlay_faces = 0;
 };
+inline constexpr std::size_t kMaxInvertedOverlayFaces = 20000, kMaxInvertedOverlayVolumeFaces = 64;
 
 // "inverted: 1200 of 1200 cells" when more than half of the volume cells
 // are inverted (cell_is_inverted): a mirrored mesh, or one with reversed
@@ -110,6 +129,29 @@ std::vector<Vec3> main_view_points(const HexMesh& mesh, const Topology& topology
 // glyphs (or none visible): the three-quarter view and the one behind it.
 std::vector<Vec3> choose_main_viewpoints(std::span<const Vec3> points, const GlyphResult& glyphs, double aspect,
                                          int count, const Vec3& up, double fov_y_degrees = 30.0);
+
+// A further view is no copy of a chosen one (issue 44 part U: the twisted
+// cross, 4-fold symmetric, looked the same from azimuth 30 and 210): a
+// candidate whose view_signature has view_signature_similarity >=
+// kSameViewSimilarity with a chosen view's is skipped; when every
+// candidate is such a copy, the next view looks from kHighViewElevation
+// degrees at the first view's azimuth.
+inline constexpr int kViewSignatureWidth = 96, kViewSignatureHeight = 72;
+inline constexpr double kSameViewSimilarity = 0.9;
+inline constexpr double kHighViewElevation = 70.0;
+// Two masks of kViewSignatureWidth x kViewSignatureHeight cells over the
+// framed orthographic view along direction (fit_camera_to_points),
+// row-major, 1 = covered: the cells of the points, then the cells of the
+// sphere discs.
+std::vector<std::uint8_t> view_signature(std::span<const Vec3> points, std::span<const Vec3> centers,
+                                         std::span<const double> radii, const Vec3& direction, double aspect,
+                                         const Vec3& up, double fov_y_degrees = 30.0);
+// The smaller of the two masks' intersection over union (1 for two empty
+// masks): a view of another outline, or with the glyphs elsewhere, differs;
+// the larger of that and the same with b mirrored left to right (a plate
+// seen face-on from its other side, the twisted star: the wireframe hides
+// no glyph, so that view is the first's mirror image).
+double view_signature_similarity(std::span<const std::uint8_t> a, std::span<const std::uint8_t> b);
 
 // The same choice for any spheres (centres, radii).
 std::vector<Vec3> choose_viewpoints(std::span<const Vec3> points, std::span<const Vec3> centers,
@@ -153,9 +195,10 @@ std::vector<ScreenMarker> group_markers_on_screen(std::span<const OverlapMarker>
 //                rank when both endpoints are marked), drawn under the
 //                coloured glyphs (LineSet::under_ranked_spheres, as lines[0]);
 //   lines[2]     edges of intersecting cells, kIntersectionArrowColor;
-//   spheres[0]   the grey aggregated glyphs, spheres[1] the coloured ones
-//                (drawn over them): one per cluster, radius as
-//                displayed_glyph_radii, colour = its cluster colour;
+//   spheres[0]   the grey aggregated glyphs (pale), spheres[1] the coloured
+//                ones (drawn over them), spheres[2] the grey ones of min
+//                quality < kUnfadedGlyphQuality (not pale): one per cluster,
+//                radius as displayed_glyph_radii, colour = its cluster colour;
 //   overlay[0]   arrows, over everything (a marker inside a glyph still
 //                shows its arrows): per marker group (group_markers_on_screen
 //                with options.marker_merge_pixels and max_marker_groups)
@@ -167,6 +210,11 @@ std::vector<ScreenMarker> group_markers_on_screen(std::span<const OverlapMarker>
 //                the side away from the glyph), and the arrows of an anchor
 //                inside the disc start at the disc's edge;
 //   translucent[0] the faces of the intersecting cells;
+//   overlay[1]   when inverted_boundary_faces is not empty: those faces,
+//                unlit, in the inverted colour (a surface mesh: its fill
+//                bin's, the same), over the glyphs, with their edges in
+//                kWireframeColor (a line set in_overlay), so that every
+//                inverted face shows whatever glyph sits on its corners;
 //   lines[3]     on a mesh of several kinds with 1 to kMaxInteriorPyramids
 //                pyramids: the pyramids' edges that are not boundary edges,
 //                in cell_kind_edge_color(pyramid) (the interface the
@@ -176,6 +224,14 @@ std::vector<ScreenMarker> group_markers_on_screen(std::span<const OverlapMarker>
 // id) of every coloured cluster (the first labelled_cluster_count(K)
 // ranks), per mesh vertex.
 std::vector<std::uint8_t> worst_cluster_vertices(const GlyphResult& glyphs, int per_cluster);
+
+// The boundary faces (boundary_polygons order) of the cells
+// options.inverted_cells marks, which view A draws over the glyphs (scene
+// overlay[1]); none when options.inverted_cells is null, when more than half
+// of the cells are inverted (options.orientation_note is set) or when there
+// are more than kMaxInvertedOverlayFaces (a volume mesh:
+// kMaxInvertedOverlayVolumeFaces) of them.
+std::vector<BoundaryPolygon> inverted_boundary_faces(const Topology& topology, const MainViewOptions& options);
 
 Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                        const OverlapReport* overlap, const Camera& camera, int view_height,
@@ -193,11 +249,34 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
 // (kGreyGlyphPale) and thinned on screen (main_view_glyphs_drawn).
 // report.json keeps the radii.
 inline constexpr double kWorstGlyphMinPixels = 24.0;
+// And from above (issue 44 part U: the Gmsh star's and the mirrored
+// kitten's glyphs buried the model): the scale is the largest factor <= 1
+// (below the floor's) that keeps #0's drawn radius at most
+// kWorstGlyphMaxEdges mean edge lengths (rmax / options.rmax under the
+// default rmax unit) and at most kWorstGlyphMaxDiagonal of the model's
+// on-screen diagonal (MainViewOptions::model_diagonal_pixels), but never
+// below the floor: #0's radius in pixels is
+// clamp(natural, floor, max(floor, cap)). The legend says "#0 N px".
+inline constexpr double kWorstGlyphMaxEdges = 1.0;
+inline constexpr double kWorstGlyphMaxDiagonal = 0.03;
 // The grey glyphs' lit colour is mixed this far towards white (SphereSet::pale).
 inline constexpr float kGreyGlyphPale = 0.45f;
 // The colour of a grey glyph's lit side as drawn (the legend's swatch).
 Rgba8 pale_grey_glyph_color();
-double displayed_glyph_scale(const GlyphResult& glyphs, const Camera& camera, int view_height, double pixel_scale);
+// The same mixed pale towards white (0: the unfaded grey).
+Rgba8 grey_glyph_color(float pale);
+// Grey glyphs of min quality below this (inverted, or about 0: degenerate
+// cells) are not faded (issue 44 part U: the bunny's ~0 clusters and the
+// kitten's -0.95 ones read as "don't care"): scene spheres[2], unpaled,
+// and a legend line "N others: a to b" of their own (an unfaded swatch).
+inline constexpr double kUnfadedGlyphQuality = 0.01;
+bool is_faded_grey_glyph(const AggregatedGlyph& g);
+double displayed_glyph_scale(const GlyphResult& glyphs, const Camera& camera, int view_height, double pixel_scale,
+                             double model_diagonal_pixels = 0.0);
+// The boundary bounding box's on-screen diagonal in pixels (the 8 corners
+// projected through camera into a view view_width x view_height).
+double model_diagonal_pixels(const HexMesh& mesh, const Topology& topology, const Camera& camera, int view_width,
+                             int view_height);
 // The drawn radius of each cluster (by rank), model units.
 std::vector<double> displayed_glyph_radii(const GlyphResult& glyphs, double scale);
 
@@ -229,11 +308,16 @@ GlyphsDrawn main_view_glyphs_drawn(const GlyphResult& glyphs, const Camera& came
 // displayed_glyph_scale.
 // A cluster in hidden (MainViewLabels::hidden_clusters) reads "…, hidden",
 // one in unlabelled (MainViewLabels::unlabelled_clusters) "…, no label
-// room"; left_out: MainViewLabels::left_out_glyphs.
+// room"; left_out: MainViewLabels::left_out_glyphs; worst_pixels: #0's
+// drawn radius in figure pixels (MainViewLabels::worst_glyph), said in the
+// line "drawn xs: #0 N px", always when known, and when s < 1 the line
+// "  (capped: 1 edge, 3% of model)" (kWorstGlyphMaxEdges,
+// kWorstGlyphMaxDiagonal).
 std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const OverlapReport* overlap,
                                           const AnnotationStyle& style, const MainViewOptions& options,
                                           double glyph_scale, std::span<const Index> hidden = {},
-                                          Index left_out = 0, std::span<const Index> unlabelled = {});
+                                          Index left_out = 0, std::span<const Index> unlabelled = {},
+                                          double worst_pixels = 0.0);
 
 // Width / height of the 3D part of the figure render_main_view draws.
 double main_view_aspect(const MainViewOptions& options);
@@ -244,6 +328,10 @@ struct MainViewLabel {
   Kind kind = Kind::cluster;
   std::string text;          // "#k (n)": rank and member count; "xN": findings of a marker group
   Index cluster = kNoIndex;  // the cluster's rank (cluster labels)
+  // Its leader crosses no glyph ranked before this (cluster labels): its
+  // own rank, or for a tie one past its class's last rank (issue 44 part U:
+  // no leader over another tied glyph).
+  Index protect_end = 0;
   Index count = 0;           // findings (marker labels)
   Rgba8 color;               // text colour
   ScreenDisc anchor;         // the glyph's disc, or a 3-pixel disc at the marker group's position

@@ -220,6 +220,10 @@ std::vector<ViewFile> build_main(ViewContext& c) {
   auto main = sized<MainViewOptions>(c);
   main.cell_kinds = mesh_kinds_text(c.a.mesh);
   main.orientation_note = mostly_inverted_note(c.a.field);
+  std::vector<std::uint8_t> inverted_cells(c.a.field.cell_scaled_jacobian.size(), 0);
+  for (std::size_t cell = 0; cell < inverted_cells.size(); ++cell)
+    inverted_cells[cell] = cell_is_inverted(c.a.field, cell) ? 1 : 0;
+  main.inverted_cells = &inverted_cells;
   const std::vector<Vec3> points = main_view_points(c.a.mesh, c.a.topology, *c.glyphs);
   main.title = "-";  // the layout of a titled figure
   const double aspect = main_view_aspect(main);
