@@ -670,6 +670,13 @@ TEST(ViewsCli, TheStructurePanelDrawsEachSingularClassInItsColour) {
   double gap = std::abs(cameras[0]["azimuth_degrees"].get<double>() - cameras[1]["azimuth_degrees"].get<double>());
   gap = gap > 180 ? 360 - gap : gap;
   EXPECT_GE(gap, 90.0 - 1e-9);
+  // The size gradation from an upright three-quarter pose in perspective,
+  // as the overview (46r review M4: a head-on orthographic view read flat).
+  ASSERT_EQ(report["views"][2]["id"], "size_gradation");
+  const json& g = report["views"][2]["cameras"][0];
+  EXPECT_EQ(g["projection"], "perspective");
+  EXPECT_NEAR(g["elevation_degrees"].get<double>(), 25.0, 1e-9);
+  EXPECT_NEAR(std::fmod(g["azimuth_degrees"].get<double>() + 360.0, 90.0), 30.0, 1e-9);
   // On index.html, panel S after panel A.
   const std::string html = read_text(out / "index.html");
   const auto s = html.find("id=\"panel-s\"");

@@ -291,26 +291,28 @@ Color gradation_color(double g) {
 
 Vec3 choose_gradation_viewpoint(const HexMesh& mesh, const Topology& topology, const HexStructure& structure,
                                 const StructureViewOptions& options) {
-  std::vector<Vec3> centers;
-  std::vector<double> radii;
-  // The boundary faces of every kind whose cell grades above 2 (a pure-hex
-  // mesh: its boundary quads, in their order).
+  // The four upright three-quarter poses, the overview's first.
+  std::vector<Vec3> poses;
+  for (int k = 0; k < 4; ++k)
+    poses.push_back(upright_view_direction(options.up, kThreeQuarterAzimuth + 90.0 * k, kThreeQuarterElevation));
+  // Each pose's score: the area, projected on its view plane, of the
+  // boundary faces (every kind) of cells grading above
+  // kGradationOfInterest that face its eye (their outward vector areas
+  // against the direction to the eye).
+  std::vector<double> score(poses.size(), 0.0);
   for (const BoundaryPolygon& face : boundary_polygons(topology)) {
     const auto cell = static_cast<std::size_t>(face.cell);
     if (cell >= structure.cell_gradation.size() || !(structure.cell_gradation[cell] > kGradationOfInterest)) continue;
-    const auto& q = face.v;
-    if (face.size == 4) {
-      centers.push_back(0.25 * (point(mesh, q[0]) + point(mesh, q[1]) + point(mesh, q[2]) + point(mesh, q[3])));
-      radii.push_back(0.5 * norm(point(mesh, q[2]) - point(mesh, q[0])));
-    } else {
-      const Vec3 c = (1.0 / 3.0) * (point(mesh, q[0]) + point(mesh, q[1]) + point(mesh, q[2]));
-      centers.push_back(c);
-      radii.push_back(std::max({norm(point(mesh, q[0]) - c), norm(point(mesh, q[1]) - c), norm(point(mesh, q[2]) - c)}));
-    }
+    const auto p = [&](int i) { return point(mesh, face.v[static_cast<std::size_t>(i)]); };
+    Vec3 area = 0.5 * cross(p(1) - p(0), p(2) - p(0));
+    if (face.size == 4) area = area + 0.5 * cross(p(2) - p(0), p(3) - p(0));
+    for (std::size_t k = 0; k < poses.size(); ++k) score[k] += std::max(0.0, -dot(area, poses[k]));
   }
-  return choose_viewpoints(boundary_points(mesh, topology), centers, radii, structure_view_aspect(options), 1,
-                           options.up, options.fov_y_degrees)
-      .front();
+  // The first best (a tie, or no such face: the overview's pose).
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < poses.size(); ++k)
+    if (score[k] > score[best] * (1.0 + 1e-9)) best = k;
+  return poses[best];
 }
 
 Image render_gradation_view(const HexMesh& mesh, const Topology& topology, const HexStructure& structure,
@@ -341,7 +343,12 @@ Image render_gradation_view(const HexMesh& mesh, const Topology& topology, const
   const FigureLayout layout =
       figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(bar, style), style);
   const double aspect = static_cast<double>(layout.view.width) / std::max(1, layout.view.height);
-  const Camera camera = structure_camera(boundary_points(mesh, topology), view_direction, aspect, options);
+  // In perspective, as the overview (a boundary coloured by a field, seen
+  // from its upright three-quarter pose): an orthographic view along a
+  // side read as a flat rectangle (46r review M4).
+  const Camera camera = fit_camera_to_points(
+      boundary_points(mesh, topology), view_direction, aspect,
+      {.up = options.up, .fov_y_degrees = options.fov_y_degrees, .is_perspective = true});
 
   const Box3 box = boundary_bounding_box(mesh, topology);
   Scene scene;
