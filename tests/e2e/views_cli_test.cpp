@@ -91,9 +91,17 @@ TEST(ViewsCli, ReferenceAddsTheBoundaryChartsAndTheOverlay) {
 TEST(ViewsCli, CompareAnalysesTheSecondMeshAndDrawsBothBoundaries) {
   const fs::path out = fresh_output_dir("views/compare") / "bundle";
   const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "--compare", example("twisted_bar.mesh").string(),
-                                  "-o", out.string(), "--size", "480x240", "--views", "compare"});
+                                  "-o", out.string(), "--size", "480x240", "--views", "main,structure,local,compare"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(check_views(out, "compare"), (std::vector<std::string>{"compare"}));
+  // --compare keeps every view asked for (46r review M2), and the page says
+  // which mesh its panels show.
+  EXPECT_EQ(check_views(out, "compare"), (std::vector<std::string>{"main", "local", "compare", "structure"}));
+  const std::string html = read_text(out / "index.html");
+  for (const char* nav : {">A main</a>", ">S structure</a>", ">D local</a>", ">F reference</a>", ">Comparison</a>"})
+    EXPECT_NE(html.find(nav), std::string::npos) << nav;
+  EXPECT_NE(html.find("Panels A main, S structure and D local show ball.mesh only. twisted_bar.mesh is shown by its "
+                      "boundary beside it in the compare view (panel F)"),
+            std::string::npos);
   const json report = json::parse(read_text(out / "report.json"));
   EXPECT_EQ(report["input"]["compare"]["path"], "twisted_bar.mesh");
   const json& c = report["compare"];
