@@ -230,7 +230,7 @@ TEST(HybridViews, NonConformingFaceIsOutlinedAndOutOfTheBoundary) {
   const ColorBar bar = overview_color_bar(topo, quality);
   std::vector<std::string> labels;
   for (const ColorBarSwatch& s : bar.swatches) labels.push_back(s.label);
-  EXPECT_EQ(labels, (std::vector<std::string>{"inverted (< 0)", "no value", "non-conforming (1, inside)"}));
+  EXPECT_EQ(labels, (std::vector<std::string>{"inverted (< 0)", "no value", "non-conforming (1, inside; dashed: split)"}));
   // Drawn over the model (the interface is inside): its colour is on screen.
   const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
   const Camera camera = fit_camera_to_points(boundary_points(mesh, topo), Vec3{-1, -0.6, -0.4}, 1.0, {.up = {0, 0, 1}});

@@ -28,6 +28,21 @@ constexpr Rgba8 kVeilColor{176, 182, 194, 56};     // the translucent boundary
 constexpr Rgba8 kNodeColor{40, 40, 46, 255};        // singularity nodes
 constexpr Rgba8 kGradationEdgeColor{40, 40, 46, 70};  // boundary edges over the gradation
 constexpr Rgba8 kNonConformingDiagonalColor{255, 255, 255, 255};  // dashed over the brown face
+// The dashes stop this fraction of the diagonal short of its corners, so the
+// curve-end rings there stay whole (46r review).
+constexpr double kDiagonalEndMargin = 0.07;
+// The non-conforming face as drawn: its colour at kNonConformingFaceAlpha
+// over the veiled boundary on white (213, 214, 218: measured on the
+// rendered view), so the legend swatch matches the face (46r review: the
+// swatch was the saturated brown, the face tan).
+constexpr Rgba8 kVeiledBoundary{213, 214, 218, 255};
+constexpr Rgba8 non_conforming_face_as_drawn() {
+  const auto mix = [](int c, int under) {
+    return static_cast<std::uint8_t>((c * kNonConformingFaceAlpha + under * (255 - kNonConformingFaceAlpha) + 127) / 255);
+  };
+  return {mix(kNonConformingColor.r, kVeiledBoundary.r), mix(kNonConformingColor.g, kVeiledBoundary.g),
+          mix(kNonConformingColor.b, kVeiledBoundary.b), 255};
+}
 
 const Vec3& point(const HexMesh& mesh, Index v) { return mesh.points[static_cast<std::size_t>(v)]; }
 
@@ -208,7 +223,7 @@ Scene build_singularity_scene(const HexMesh& mesh, const Topology& topology, con
     TriangleSet diagonals;
     diagonals.is_lit = false;
     for (const NonConformingFace& nc : topology.non_conforming_faces)
-      add_non_conforming_diagonal(mesh, nc, scene.origin, kNonConformingDiagonalColor, diagonals);
+      add_non_conforming_diagonal(mesh, nc, scene.origin, kNonConformingDiagonalColor, diagonals, kDiagonalEndMargin);
     scene.overlay.push_back(std::move(diagonals));
   }
   return scene;
@@ -271,9 +286,11 @@ Image render_singularity_view(const HexMesh& mesh, const Topology& topology, con
   if (structure.num_nonmanifold_edges > 0)
     lines.push_back({std::nullopt, "non-manifold edges: " + std::to_string(structure.num_nonmanifold_edges)});
   lines.push_back({Rgba8{176, 182, 194, 255}, "boundary (translucent)", 1});
-  if (!topology.non_conforming_faces.empty())
-    lines.push_back({kNonConformingColor,
+  if (!topology.non_conforming_faces.empty()) {
+    lines.push_back({non_conforming_face_as_drawn(),
                      "non-conforming faces: " + std::to_string(topology.non_conforming_faces.size())});
+    lines.push_back({std::nullopt, "white dashes: the split diagonal"});
+  }
   if (const std::string kinds = mesh_kinds_text(mesh); !kinds.empty()) {
     lines.push_back({std::nullopt, kinds, 1});
     lines.push_back({std::nullopt, "graph of the hex part"});
