@@ -275,9 +275,18 @@ TEST(IndexHtml, ComparePageKeepsTheSectionsAndSaysWhatIsWhose) {
   std::erase_if(overview_only.views, [](const ViewEntry& v) { return v.id == "main" || v.id == "size_gradation"; });
   const std::string fewer = index_html(overview_only);
   EXPECT_NE(fewer.find("First the overview"), std::string::npos);
+  EXPECT_NE(fewer.find("A · Overview: vertex quality on the boundary"), std::string::npos);
   EXPECT_EQ(fewer.find("glyphs sit on bad vertices"), std::string::npos);
   EXPECT_EQ(fewer.find("size gradation image"), std::string::npos);
   EXPECT_NE(fewer.find("The singular edges"), std::string::npos);
+  // A mesh with a tet: its overview is of corner quality (each face its own
+  // kind's corners), as its legend says.
+  overview_only.analysis.mesh.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  overview_only.analysis.mesh.tets.push_back({0, 1, 2, 3});
+  const std::string hybrid = index_html(overview_only);
+  EXPECT_NE(hybrid.find("A · Overview: corner quality on the boundary"), std::string::npos);
+  EXPECT_NE(hybrid.find("First the overview: the boundary coloured by corner quality (each face: its own cell kind&apos;s corners)"),
+            std::string::npos);
 }
 
 TEST(BoundaryHtml, StatisticsViewsAndTheWayBack) {

@@ -490,6 +490,9 @@ std::string hybrid_wording(std::string text) {
       {"The hexes around a chosen vertex", "The cells of every kind around a chosen vertex"},
       {"one bar per incident hex", "one bar per corner of an incident cell"},
       {"and the hexes around them", "and the cells around them"},
+      // Each boundary face takes its own kind's corners (the overview's legend).
+      {"Overview: vertex quality on the boundary", "Overview: corner quality on the boundary"},
+      {"the boundary coloured by vertex quality", "the boundary coloured by corner quality (each face: its own cell kind's corners)"},
   };
   for (const auto& [from, to] : kWords)
     for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + std::strlen(to)))
