@@ -671,6 +671,7 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
     label.text = format_value(corners[i].value) + "  " + std::string(cell_kind_name(corners[i].kind)) + " " +
                  std::to_string(corners[i].hex);
     label.marker = markers[i];
+    label.is_inverted = corners[i].value < 0;
     const PixelRect extent = text_extent(label.text, shot.text_size, f.style);
     LabelRequest request{markers[i], extent.width + 4, label_height};
     request.protect_below = static_cast<std::int64_t>(obstacles.size());
@@ -771,8 +772,7 @@ Image render_local_shot(const LocalShot& shot, const DetailViewOptions& options,
   for (std::size_t i = 0; i < shot.labels.size(); ++i) {
     const LocalLabel& label = shot.labels[i];
     if (!label.placed) continue;
-    const bool is_inverted = label.text.front() == '-';
-    const Rgba8 color = is_inverted ? to_rgba8(kInvertedColor) : Rgba8{30, 30, 30, 255};
+    const Rgba8 color = label.is_inverted ? to_rgba8(kInvertedColor) : Rgba8{30, 30, 30, 255};
     if (label.has_leader)
       draw_line(figure, label.leader_x0, label.leader_y0, label.leader_x1, label.leader_y1, color, width);
     fill_rect(figure, label.box, options.background);

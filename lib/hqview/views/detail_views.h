@@ -141,6 +141,7 @@ struct LocalLabel {
   std::string text;
   PixelRect box;
   ScreenDisc marker;
+  bool is_inverted = false;  // its value < 0: drawn in the inverted colour
   bool placed = false;
   bool has_leader = false;
   double leader_x0 = 0, leader_y0 = 0, leader_x1 = 0, leader_y1 = 0;
