@@ -91,9 +91,17 @@ TEST(ViewsCli, ReferenceAddsTheBoundaryChartsAndTheOverlay) {
 TEST(ViewsCli, CompareAnalysesTheSecondMeshAndDrawsBothBoundaries) {
   const fs::path out = fresh_output_dir("views/compare") / "bundle";
   const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "--compare", example("twisted_bar.mesh").string(),
-                                  "-o", out.string(), "--size", "480x240", "--views", "compare"});
+                                  "-o", out.string(), "--size", "480x240", "--views", "main,structure,local,compare"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(check_views(out, "compare"), (std::vector<std::string>{"compare"}));
+  // --compare keeps every view asked for (46r review M2), and the page says
+  // which mesh its panels show.
+  EXPECT_EQ(check_views(out, "compare"), (std::vector<std::string>{"main", "local", "compare", "structure"}));
+  const std::string html = read_text(out / "index.html");
+  for (const char* nav : {">A main</a>", ">S structure</a>", ">D local</a>", ">F reference</a>", ">Comparison</a>"})
+    EXPECT_NE(html.find(nav), std::string::npos) << nav;
+  EXPECT_NE(html.find("Panels A main, S structure and D local show ball.mesh only. twisted_bar.mesh is shown by its "
+                      "boundary beside it in the compare view (panel F)"),
+            std::string::npos);
   const json report = json::parse(read_text(out / "report.json"));
   EXPECT_EQ(report["input"]["compare"]["path"], "twisted_bar.mesh");
   const json& c = report["compare"];
@@ -670,6 +678,13 @@ TEST(ViewsCli, TheStructurePanelDrawsEachSingularClassInItsColour) {
   double gap = std::abs(cameras[0]["azimuth_degrees"].get<double>() - cameras[1]["azimuth_degrees"].get<double>());
   gap = gap > 180 ? 360 - gap : gap;
   EXPECT_GE(gap, 90.0 - 1e-9);
+  // The size gradation from an upright three-quarter pose in perspective,
+  // as the overview (46r review M4: a head-on orthographic view read flat).
+  ASSERT_EQ(report["views"][2]["id"], "size_gradation");
+  const json& g = report["views"][2]["cameras"][0];
+  EXPECT_EQ(g["projection"], "perspective");
+  EXPECT_NEAR(g["elevation_degrees"].get<double>(), 25.0, 1e-9);
+  EXPECT_NEAR(std::fmod(g["azimuth_degrees"].get<double>() + 360.0, 90.0), 30.0, 1e-9);
   // On index.html, panel S after panel A.
   const std::string html = read_text(out / "index.html");
   const auto s = html.find("id=\"panel-s\"");

@@ -147,12 +147,13 @@ TEST(AnalyzePipeline, EveryMeshViewWithAMockRenderer) {
   const std::size_t corners =
       static_cast<std::size_t>(a.topology.vertex_hex_offsets[v + 1] - a.topology.vertex_hex_offsets[v]);
   // Drawn as flat discs over the veil (a rim and a disc of 1 + 32 points
-  // each), then the vertex's dot (one disc) on top of them.
+  // each), then the vertex's dot (a black ring disc and its white centre)
+  // on top of them.
   const Scene& local_scene = renderer.scenes[first.at("local")];
   EXPECT_TRUE(local_scene.spheres[0].centers.empty());
   EXPECT_TRUE(local_scene.spheres[1].centers.empty());
   ASSERT_EQ(local_scene.overlay.size(), 1u);
-  EXPECT_EQ(local_scene.overlay[0].positions.size(), (corners * 2 + 1) * 33);
+  EXPECT_EQ(local_scene.overlay[0].positions.size(), (corners * 2 + 2) * 33);
   // Every file of every view is a bundle image.
   std::size_t files = 0;
   for (const ViewEntry& view : result.model.views) files += view.files.size();

@@ -224,6 +224,71 @@ TEST(IndexHtml, HybridMeshPagesSayCellsWhereHexOnlyPagesSayHexes) {
   EXPECT_NE(cells.find("of each cell&apos;s kind"), std::string::npos);
 }
 
+// The navigation bar's section names, in order.
+std::vector<std::string> nav_sections(const std::string& html) {
+  std::vector<std::string> names;
+  const std::size_t begin = html.find("<nav"), end = html.find("</nav>");
+  for (std::size_t at = html.find("<a href=", begin); at < end; at = html.find("<a href=", at + 1)) {
+    const std::size_t from = html.find('>', at) + 1;
+    names.push_back(html.substr(from, html.find("</a>", from) - from));
+  }
+  return names;
+}
+
+// A compare page (46r review M2): the same sections as the page of the same
+// views without --compare, plus the comparison; it names the panels drawn
+// (the first mesh's) and says where the compared mesh's own are. Panel A's
+// and S's texts follow the views drawn: no glyph sentence without view A's
+// glyph images, no gradation sentence without its image.
+TEST(IndexHtml, ComparePageKeepsTheSectionsAndSaysWhatIsWhose) {
+  ReportModel plain = linked_model();
+  plain.analysis.mesh_input.path = "hextet2.msh";
+  for (const char* id : {"overview", "main", "structure", "size_gradation"})
+    plain.views.push_back({id, id, {std::string("views/") + id + ".png"}, {}});
+  ReportModel compared = plain;
+  compared.analysis.compare.emplace().input.path = "dir/hextet.msh";
+  compared.views.push_back({"compare", "compare", {"views/compare.png"}, {}});
+  const std::vector<std::string> without = nav_sections(index_html(plain));
+  const std::string html = index_html(compared);
+  const std::vector<std::string> with = nav_sections(html);
+  // Every panel of the plain page, in its order, then F, then the rest.
+  std::vector<std::string> panels(without.begin(), std::find(without.begin(), without.end(), "Statistics"));
+  for (const char* name : {"A main", "S structure", "B sorted quality", "C clusters", "D local", "E corners"})
+    EXPECT_NE(std::find(panels.begin(), panels.end(), name), panels.end()) << name;
+  std::vector<std::string> expected = panels;
+  expected.push_back("F reference");
+  expected.push_back("Comparison");
+  expected.insert(expected.end(), std::find(without.begin(), without.end(), "Statistics"), without.end());
+  EXPECT_EQ(with, expected);
+  // The scope sentence names each panel drawn, the compared mesh and its command.
+  const std::size_t scope = html.find("id=\"compare-scope\"");
+  ASSERT_NE(scope, std::string::npos);
+  const std::string sentence = html.substr(scope, html.find("</p>", scope) - scope);
+  for (const std::string& name : panels) EXPECT_NE(sentence.find(name), std::string::npos) << name << " in " << sentence;
+  EXPECT_NE(sentence.find("show hextet2.msh only"), std::string::npos) << sentence;
+  EXPECT_NE(sentence.find("hqview analyze hextet.msh with the same --views"), std::string::npos) << sentence;
+  EXPECT_NE(sentence.find("compare view (panel F)"), std::string::npos) << sentence;
+  // Panel A's and S's texts from their views.
+  EXPECT_NE(html.find("Then sphere glyphs sit on bad vertices"), std::string::npos);
+  EXPECT_NE(html.find("a smooth grading stays pale by design"), std::string::npos);
+  ReportModel overview_only = compared;
+  std::erase_if(overview_only.views, [](const ViewEntry& v) { return v.id == "main" || v.id == "size_gradation"; });
+  const std::string fewer = index_html(overview_only);
+  EXPECT_NE(fewer.find("First the overview"), std::string::npos);
+  EXPECT_NE(fewer.find("A · Overview: vertex quality on the boundary"), std::string::npos);
+  EXPECT_EQ(fewer.find("glyphs sit on bad vertices"), std::string::npos);
+  EXPECT_EQ(fewer.find("size gradation image"), std::string::npos);
+  EXPECT_NE(fewer.find("The singular edges"), std::string::npos);
+  // A mesh with a tet: its overview is of corner quality (each face its own
+  // kind's corners), as its legend says.
+  overview_only.analysis.mesh.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  overview_only.analysis.mesh.tets.push_back({0, 1, 2, 3});
+  const std::string hybrid = index_html(overview_only);
+  EXPECT_NE(hybrid.find("A · Overview: corner quality on the boundary"), std::string::npos);
+  EXPECT_NE(hybrid.find("First the overview: the boundary coloured by corner quality (each face: its own cell kind&apos;s corners)"),
+            std::string::npos);
+}
+
 TEST(BoundaryHtml, StatisticsViewsAndTheWayBack) {
   ReportModel m = linked_model();
   EXPECT_THROW(boundary_html(m), Error);

@@ -230,7 +230,7 @@ TEST(HybridViews, NonConformingFaceIsOutlinedAndOutOfTheBoundary) {
   const ColorBar bar = overview_color_bar(topo, quality);
   std::vector<std::string> labels;
   for (const ColorBarSwatch& s : bar.swatches) labels.push_back(s.label);
-  EXPECT_EQ(labels, (std::vector<std::string>{"inverted (< 0)", "no value", "non-conforming (1, inside)"}));
+  EXPECT_EQ(labels, (std::vector<std::string>{"inverted (< 0)", "no value", "non-conforming (1, inside; dashed: split)"}));
   // Drawn over the model (the interface is inside): its colour is on screen.
   const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
   const Camera camera = fit_camera_to_points(boundary_points(mesh, topo), Vec3{-1, -0.6, -0.4}, 1.0, {.up = {0, 0, 1}});
@@ -425,6 +425,78 @@ TEST(HybridViews, ViewDStacksTheWorstDiscOnTopAndTheVertexAboveAll) {
   };
   EXPECT_EQ(pixel_of(scene.origin + Vec3{at.x, at.y, at.z}), to_rgba8(quality_color(values[worst])));
   EXPECT_EQ(pixel_of(scene.origin), scene.spheres[1].colors.at(0));
+}
+
+// View D's labels (46r review M1: "1.000 tet 466" ran into "0.698 tet 305"),
+// checked on the layout the figure is drawn from, for many vertices of
+// three meshes and two figure sizes: every corner labelled (none dropped to
+// make room), its box as wide as its text, inside the view, over no other
+// box, no disc and not the vertex's clear zone; no leader through another
+// label's box.
+void expect_local_labels_apart(const Mesh& mesh, Index v, const DetailViewOptions& options, int& labels_checked) {
+  SCOPED_TRACE("vertex " + std::to_string(v) + " at " + std::to_string(options.width) + "x" +
+               std::to_string(options.height));
+  const Topology topo = topology_of(mesh);
+  const QualityField field = compute_quality(mesh, topo);
+  const LocalShot shot = local_shot(mesh, topo, field.corner_scaled_jacobian, v, options);
+  ASSERT_EQ(shot.labels.size(), vertex_corners(mesh, topo, field.corner_scaled_jacobian, v).size());
+  EXPECT_EQ(shot.num_left_out, 0u);
+  const PixelRect& view = shot.layout.view;
+  for (std::size_t i = 0; i < shot.labels.size(); ++i) {
+    const LocalLabel& a = shot.labels[i];
+    if (!a.placed) continue;
+    ++labels_checked;
+    EXPECT_GE(a.box.width, text_extent(a.text, shot.text_size, shot.style).width + 4) << a.text;
+    EXPECT_GE(a.box.x, view.x);
+    EXPECT_GE(a.box.y, view.y);
+    EXPECT_LE(a.box.x + a.box.width, view.x + view.width);
+    EXPECT_LE(a.box.y + a.box.height, view.y + view.height);
+    EXPECT_FALSE(box_meets_disc(a.box, {shot.dot.x, shot.dot.y, shot.dot_clear_radius})) << a.text;
+    for (std::size_t j = 0; j < shot.labels.size(); ++j) {
+      const LocalLabel& b = shot.labels[j];
+      EXPECT_FALSE(box_meets_disc(a.box, b.marker)) << a.text << " over the disc of " << b.text;
+      if (j == i || !b.placed) continue;
+      EXPECT_FALSE(boxes_overlap(a.box, b.box)) << a.text << " / " << b.text;
+      if (a.has_leader) {
+        PlacedLabel leader;
+        leader.leader_x0 = a.leader_x0, leader.leader_y0 = a.leader_y0;
+        leader.leader_x1 = a.leader_x1, leader.leader_y1 = a.leader_y1;
+        EXPECT_FALSE(leader_meets_box(leader, b.box)) << a.text << "'s leader through " << b.text;
+      }
+    }
+  }
+}
+
+TEST(HybridViews, ViewDLabelsNeverOverlapOnManyVerticesMeshesAndSizes) {
+  if (!hex_tet() || !extruded()) GTEST_SKIP() << "gmsh failed or is missing";
+  int labels_checked = 0;
+  const DetailViewOptions large;  // 1600 x 1200
+  DetailViewOptions small;
+  small.width = 800, small.height = 600;
+  // hex_tet: every vertex of the shared face x = 1 (4 hexes, up to 4
+  // pyramids and a dozen tets each), at both sizes.
+  const Mesh& ht = *hex_tet();
+  int face_vertices = 0;
+  for (std::size_t w = 0; w < ht.points.size(); ++w)
+    if (std::abs(ht.points[w].x - 1.0) < 1e-9) {
+      ++face_vertices;
+      expect_local_labels_apart(ht, static_cast<Index>(w), w % 2 ? small : large, labels_checked);
+    }
+  EXPECT_EQ(face_vertices, 25);
+  // extruded (hexes and wedges): the vertices where hexes meet wedges; the
+  // same mesh turned and mirrored (another camera, another layout).
+  Mesh turned = *extruded();
+  for (Vec3& p : turned.points) p = {-(0.6 * p.x - 0.8 * p.y), 0.8 * p.x + 0.6 * p.y, p.z};
+  for (const Mesh* mesh : {&*extruded(), static_cast<const Mesh*>(&turned)})
+    for (std::size_t w = 0; w < extruded()->points.size(); ++w) {
+      const Vec3& p = extruded()->points[w];
+      if (std::abs(p.x - 1.0) < 1e-9 && p.y > 0.2 && p.y < 0.8)
+        expect_local_labels_apart(*mesh, static_cast<Index>(w), mesh == &turned ? small : large, labels_checked);
+    }
+  // A pure-hex box's inner vertex: 8 labels.
+  const Mesh box = hex_box(2, 2, 2, 1.0, 1.0, 1.0);
+  expect_local_labels_apart(box, point_at(box, {0.5, 0.5, 0.5}), large, labels_checked);
+  EXPECT_GT(labels_checked, 300);
 }
 
 TEST(HybridViews, ViewCOfAClusterAtTheInterfaceDrawsEveryKind) {

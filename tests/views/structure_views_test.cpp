@@ -172,6 +172,42 @@ TEST(StructureViews, ViewpointsAreUprightAndApart) {
   }
 }
 
+// The size gradation view (46r review M4): from one of the four upright
+// three-quarter poses (azimuth 30 + k 90, elevation 25), never head-on; a
+// mesh grading evenly: the overview's pose; a grid with a thin first layer
+// along x and y at one corner (length ratio 5^(1/3) > 1.5 there): the pose
+// whose eye sees both of that corner's sides.
+TEST(StructureViews, GradationViewIsTheThreeQuarterPoseFacingTheJump) {
+  for (const Vec3 up : {Vec3{0, 0, 1}, Vec3{0, 1, 0}}) {
+    StructureViewOptions options;
+    options.up = up;
+    const HexMesh even = test::box_grid(3, 3, 3);
+    const Topology even_topology = build_topology(even);
+    const Vec3 plain = choose_gradation_viewpoint(even, even_topology, compute_structure(even, even_topology), options);
+    EXPECT_LT(norm(plain - three_quarter_view(up)), 1e-12);
+  }
+  StructureViewOptions options;  // up +z
+  for (const double side : {-1.0, 1.0}) {
+    HexMesh mesh = test::box_grid(4, 4, 4);
+    // Layers 0.2, 1, 1, 1 thick along x and y, the thin one at x, y = 0 (side
+    // -1) or mirrored to x, y = 4 (side +1).
+    const auto graded = [side](double t) {
+      const double g = t < 0.5 ? 0.2 * t : 0.2 + (t - 1.0);
+      return side < 0 ? g : 3.2 - g;
+    };
+    for (Vec3& p : mesh.points) p = {graded(p.x), graded(p.y), p.z};
+    const Topology topology = build_topology(mesh);
+    const HexStructure s = compute_structure(mesh, topology);
+    ASSERT_GT(s.gradation.max, kGradationOfInterest);
+    const Vec3 d = choose_gradation_viewpoint(mesh, topology, s, options);
+    EXPECT_NEAR(view_elevation_degrees(d, options.up), 25.0, 1e-9);
+    EXPECT_NEAR(std::fmod(view_azimuth_degrees(d, options.up) + 360.0, 90.0), 30.0, 1e-9);
+    // The eye (-d) on the thin layers' side in x and in y.
+    EXPECT_GT(-d.x * side, 0.0) << side;
+    EXPECT_GT(-d.y * side, 0.0) << side;
+  }
+}
+
 TEST(StructureViews, GradationColoursRunFromPaleToRedOnALogScale) {
   EXPECT_EQ(to_rgba8(gradation_color(1.0)).r, to_rgba8(sample_quality_map(1.0)).r);
   EXPECT_EQ(channel_distance(to_rgba8(gradation_color(2.0)), to_rgba8(sample_quality_map(0.5))), 0);

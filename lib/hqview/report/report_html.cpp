@@ -89,15 +89,10 @@ struct PanelSpec {
 const std::vector<PanelSpec>& index_panels() {
   static const std::vector<PanelSpec> panels{
       {"panel-a", "A main", "A · Overview and main view: vertex quality, glyphs, clusters and overlaps",
-       "First the overview: the boundary coloured by vertex quality, a ring around the inverted hexes (dashed when "
-       "they are inside the volume or on the far side, and then also drawn cut out in a corner inset). Then sphere glyphs sit on bad vertices (the lower the quality, the larger), merged where they overlap; the worst "
-       "clusters each have a colour, all others are grey; arrows point at overlapping elements.",
+       "",  // panel_intro: from the views drawn
        'A'},
       {"panel-s", "S structure", "S · Structure: singularity graph and size gradation",
-       "The singular edges (an interior edge without 4 hexes, a boundary edge without 2) coloured by valence, inside "
-       "the translucent boundary; dark spheres are the nodes where singular curves meet or end. The second image "
-       "colours the boundary by size gradation: a hex's largest volume ratio to a face neighbour. Counts: report.json "
-       "structure; every singular, irregular or non-manifold edge: data/edges.csv.",
+       "",  // panel_intro: from the views drawn
        'S'},
       {"panel-b", "B sorted quality", "B · Sorted vertex quality",
        "Each bar of the sorted chart is one of the worst vertices, worst on the left. Click a bar to go to its "
@@ -421,6 +416,43 @@ void set_headline(data& page, const ReportModel& model) {
   page.set("has_notes", !model.analysis.notes.empty());
 }
 
+bool has_view(const ReportModel& model, std::string_view id) {
+  return std::any_of(model.views.begin(), model.views.end(),
+                     [&](const ViewEntry& v) { return v.id == id && !v.files.empty(); });
+}
+
+// The short names of index.html's panels with a figure ("A main", "S
+// structure", ...), in page order; F (the compare view) left out.
+std::vector<std::string> drawn_panels_but_f(const ReportModel& model) {
+  std::vector<std::string> names;
+  for (const PanelSpec& spec : index_panels()) {
+    if (spec.letter == 'F') continue;
+    const std::vector<std::string_view> ids = panel_view_ids(spec.letter);
+    if (std::any_of(ids.begin(), ids.end(), [&](std::string_view id) { return has_view(model, id); }))
+      names.emplace_back(spec.nav);
+  }
+  return names;
+}
+
+// What of each mesh a compare page shows (46r review M2: a reader took the
+// missing panels of the compared mesh, or of a run with fewer --views, for
+// a regression): the panels drawn are the first mesh's; the compared one
+// is in the compare view and this table, its own panels in its own report.
+std::string compare_scope(const ReportModel& model, const CompareTable& t) {
+  const std::vector<std::string> panels = drawn_panels_but_f(model);
+  std::string list;
+  for (std::size_t i = 0; i < panels.size(); ++i)
+    list += (i == 0 ? "" : i + 1 == panels.size() ? " and " : ", ") + panels[i];
+  std::string text = panels.empty()        ? "No panel of either mesh was drawn in this run (--views)."
+                     : panels.size() == 1 ? "Panel " + list + " shows " + t.mine_name + " only."
+                                          : "Panels " + list + " show " + t.mine_name + " only.";
+  text += " " + t.theirs_name + " is shown " +
+          (has_view(model, "compare") ? "by its boundary beside it in the compare view (panel F) and " : "") +
+          "by this table: a comparison draws one mesh's views, not both; its own panels are in its own report (hqview "
+          "analyze " + t.theirs_name + " with the same --views).";
+  return text;
+}
+
 // --compare: both meshes' numbers side by side and their differences.
 void set_comparison(data& page, const ReportModel& model) {
   page.set("has_compare", model.analysis.compare.has_value());
@@ -429,6 +461,7 @@ void set_comparison(data& page, const ReportModel& model) {
   page.set("compare_mine", t.mine_name);
   page.set("compare_theirs", t.theirs_name);
   page.set("compare_alignment", t.alignment.empty() ? std::string("as read (same frame)") : t.alignment);
+  page.set("compare_scope", compare_scope(model, t));
   data rows{data::type::list};
   for (const CompareTableRow& r : t.rows) {
     data d;
@@ -457,11 +490,65 @@ std::string hybrid_wording(std::string text) {
       {"The hexes around a chosen vertex", "The cells of every kind around a chosen vertex"},
       {"one bar per incident hex", "one bar per corner of an incident cell"},
       {"and the hexes around them", "and the cells around them"},
+      // Each boundary face takes its own kind's corners (the overview's legend).
+      {"Overview: vertex quality on the boundary", "Overview: corner quality on the boundary"},
+      {"the boundary coloured by vertex quality", "the boundary coloured by corner quality (each face: its own cell kind's corners)"},
   };
   for (const auto& [from, to] : kWords)
     for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + std::strlen(to)))
       text.replace(at, std::strlen(from), to);
   return text;
+}
+
+// The intro of panels A and S from the views drawn, so that the text never
+// promises a picture the page lacks (46r review M2: "Then sphere glyphs
+// sit on bad vertices" over a panel A of the overview alone); the other
+// panels' from their spec.
+std::string panel_intro(const PanelSpec& spec, const ReportModel& model) {
+  std::string text;
+  const auto add = [&text](const std::string& sentence) { text += (text.empty() ? "" : " ") + sentence; };
+  if (spec.letter == 'A') {
+    const bool overview = has_view(model, "overview"), main = has_view(model, "main");
+    if (overview)
+      add("First the overview: the boundary coloured by vertex quality, a ring around the inverted hexes (dashed when "
+          "they are inside the volume or on the far side, and then also drawn cut out in a corner inset).");
+    if (main)
+      add(std::string(overview ? "Then sphere" : "Sphere") +
+          " glyphs sit on bad vertices (the lower the quality, the larger), merged where they overlap; the worst "
+          "clusters each have a colour, all others are grey; arrows point at overlapping elements.");
+    return text;
+  }
+  if (spec.letter == 'S') {
+    if (has_view(model, "structure"))
+      add("The singular edges (an interior edge without 4 hexes, a boundary edge without 2) coloured by valence, "
+          "inside the translucent boundary; dark spheres are the nodes where singular curves meet or end.");
+    if (has_view(model, "size_gradation"))
+      add("The size gradation image colours the boundary by each cell's largest ratio of equivalent edge lengths "
+          "(the cube root of its volume; of several kinds: the regular cell of its kind with that volume) to a face "
+          "neighbour's; a smooth grading stays pale by design, as the ratio is between neighbours.");
+    add("Counts: report.json structure; every singular, irregular or non-manifold edge: data/edges.csv.");
+    return text;
+  }
+  if (spec.letter == 'F') {
+    const std::vector<std::string_view> ids = panel_view_ids('F');
+    if (std::any_of(ids.begin(), ids.end(), [&](std::string_view id) { return id != "compare" && has_view(model, id); }))
+      add("The hex boundary against the reference surface (--reference).");
+    if (has_view(model, "compare"))
+      add("The compared mesh (--compare) beside this one: one camera, one colour map; the Comparison section below "
+          "says what of each mesh the page shows.");
+    return text;
+  }
+  return spec.intro;
+}
+
+// Panel A's and S's titles name what they show when only one of their two
+// kinds of picture was drawn; the others keep their spec's.
+std::string panel_title(const PanelSpec& spec, const ReportModel& model) {
+  if (spec.letter == 'A' && !has_view(model, "main")) return "A · Overview: vertex quality on the boundary";
+  if (spec.letter == 'A' && !has_view(model, "overview")) return "A · Main view: glyphs, clusters and overlaps";
+  if (spec.letter == 'S' && !has_view(model, "size_gradation")) return "S · Structure: singularity graph";
+  if (spec.letter == 'S' && !has_view(model, "structure")) return "S · Structure: size gradation";
+  return spec.title;
 }
 
 // Panels A–F with the links between them (every view of kViews has a
@@ -474,9 +561,10 @@ void set_panels(data& page, const ReportModel& model, const PanelIndex& index) {
     data panel;
     panel.set("anchor", spec.anchor);
     panel.set("nav", spec.nav);
-    panel.set("title", spec.title);
-    panel.set("intro", has_non_hex(model) ? hybrid_wording(spec.intro) : std::string(spec.intro));
-    if (has_non_hex(model)) panel.set("title", hybrid_wording(spec.title));
+    panel.set("title", panel_title(spec, model));
+    const std::string intro = panel_intro(spec, model);
+    panel.set("intro", has_non_hex(model) ? hybrid_wording(intro) : intro);
+    if (has_non_hex(model)) panel.set("title", hybrid_wording(panel_title(spec, model)));
     // Panel A's intro under its figures, so that the overview starts right
     // under the heading and fits the first screen (issue 45e).
     panel.set("intro_after", spec.letter == 'A');

@@ -525,7 +525,7 @@ Scene build_local_scene(const HexMesh& mesh, const Topology& topology, std::span
   }
   centre.centers.push_back({0.0f, 0.0f, 0.0f});
   centre.radii.push_back(static_cast<float>(0.04 * size));
-  centre.colors.push_back({40, 40, 46, 255});
+  centre.colors.push_back({255, 255, 255, 255});
   scene.spheres.push_back(std::move(markers));
   scene.spheres.push_back(std::move(centre));
   // All faces of the ring (shared ones twice is fine: pale and translucent).
@@ -584,27 +584,39 @@ Scene local_marker_discs(const Scene& scene, const Camera& camera, const std::ve
     disc(in_plane(markers.centers[i], 2.0 * static_cast<double>(k) + 1.0), 1.12 * r, kRim);  // its rim just under it
     disc(in_plane(markers.centers[i], 2.0 * static_cast<double>(k) + 2.0), r, markers.colors[i]);
   }
-  for (std::size_t i = 0; i < vertex.centers.size(); ++i)
-    disc(in_plane(vertex.centers[i], 2.0 * static_cast<double>(order.size()) + 2.0), kLocalDiscScale * vertex.radii[i],
-         vertex.colors[i]);
+  // The vertex: its colour (white) inside a black ring, the legend's
+  // "the vertex" (no kind's edge colour: the 46r review read the dark dot
+  // as a hex edge's end).
+  for (std::size_t i = 0; i < vertex.centers.size(); ++i) {
+    const double top = 2.0 * static_cast<double>(order.size()) + 2.0;
+    disc(in_plane(vertex.centers[i], top), kLocalDiscScale * vertex.radii[i], Rgba8{0, 0, 0, 255});
+    disc(in_plane(vertex.centers[i], top + 1.0), 0.55 * kLocalDiscScale * vertex.radii[i], vertex.colors[i]);
+  }
   out.overlay.push_back(std::move(discs));
   return out;
 }
 
-Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v,
-                        const DetailViewOptions& options, Renderer& renderer) {
+LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v,
+                     const DetailViewOptions& options) {
+  LocalShot shot;
   const std::vector<Index> ring = local_ring(mesh, topology, v);
-  // Under the colour bar: the markers' size rule, then the cells' kinds.
-  const std::string kinds = std::string(kLocalMarkerSizeLegend) +
-                            (has_non_hex_cells(mesh) ? "\n" + cell_kinds_legend(mesh, ring) : std::string());
-  const Figure f = detail_figure(options, kinds, has_non_hex_cells(mesh));
+  shot.kind_swatches = has_non_hex_cells(mesh);
   Scene scene = build_local_scene(mesh, topology, corner_values, v);
   const std::vector<VertexCorner> corners = vertex_corners(mesh, topology, corner_values, v);
+  // Under the colour bar: the markers' size rule, the cells' kinds, and on
+  // a mesh with non-hex cells the corner values' range (Verdict clamps
+  // every kind's to [-1, 1]: an orthogonal tet corner reads 1, not sqrt 2).
+  shot.legend = std::string(kLocalMarkerSizeLegend) +
+                (shot.kind_swatches ? "\ncorners clamped to [-1, 1]\n" + cell_kinds_legend(mesh, ring)
+                                    : std::string());
+  const Figure f = detail_figure(options, shot.legend, shot.kind_swatches);
+  shot.style = f.style;
+  shot.layout = f.layout;
   // The discs at kLocalDiscScale of the markers' size: at full size a ring
   // of 20 cells was one blob of discs (46q review Q-M1).
   std::vector<double> values;
   for (const VertexCorner& c : corners) values.push_back(c.value);
-  std::vector<Vec3> points = cell_points(mesh, ring);
+  const std::vector<Vec3> points = cell_points(mesh, ring);
   // Viewpoint: the one that separates the corner markers best.
   std::vector<Vec3> centers;
   std::vector<double> radii;
@@ -614,49 +626,58 @@ Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span
     radii.push_back(scene.spheres[0].radii[i]);
   }
   const std::vector<Vec3> direction = choose_viewpoints(points, centers, radii, f.aspect, 1, options.up);
-  for (double& r : radii) r *= kLocalDiscScale;
-  for (float& r : scene.spheres[0].radii) r *= static_cast<float>(kLocalDiscScale);
-  const Camera camera =
-      fit_camera_to_points(points, direction.at(0), f.aspect, {.up = options.up, .is_perspective = false});
-  Image figure = compose(options, f,
-                         renderer.render(local_marker_discs(scene, camera, values, mean_edge_at(mesh, corners, v)), camera, f.layout.view.width, f.layout.view.height),
-                         kinds, true);
+  shot.camera = fit_camera_to_points(points, direction.at(0), f.aspect, {.up = options.up, .is_perspective = false});
+  const double pixels_per_unit = f.layout.view.height / shot.camera.ortho_height;
+  // Each disc at least kLocalMinDiscPixels in radius: a good corner's disc
+  // (a quarter of the largest) was an 8-pixel dot on the pale faces (46r review).
+  const double min_radius = kLocalMinDiscPixels * f.style.scale / pixels_per_unit;
+  for (std::size_t i = 0; i < radii.size(); ++i) {
+    radii[i] = std::max(radii[i] * kLocalDiscScale, min_radius);
+    scene.spheres[0].radii[i] = static_cast<float>(radii[i]);
+  }
+  const auto to_screen = [&](const Vec3& p) {
+    const Vec3 ndc = project_to_ndc(shot.camera, f.aspect, p);
+    return std::pair{f.layout.view.x + 0.5 * (ndc.x + 1.0) * f.layout.view.width,
+                     f.layout.view.y + 0.5 * (1.0 - ndc.y) * f.layout.view.height};
+  };
+  const double dot_radius = kLocalDiscScale * scene.spheres.at(1).radii.at(0) * pixels_per_unit;
+  shot.scene = local_marker_discs(scene, shot.camera, values, mean_edge_at(mesh, corners, v));
+
   // Labels: each corner's value next to its marker, placed greedily
-  // (place_labels) so that no label covers another or any marker; a label
-  // that has to move away from its marker gets a leader line to it.
-  const int size = std::max(11, static_cast<int>(std::lround(22 * f.style.scale)));
-  AnnotationStyle label_style = f.style;
+  // (place_labels) so that no label covers another, any marker or the dot's
+  // clear zone; a label away from its marker gets a leader line to it.
+  shot.text_size = std::max(11, static_cast<int>(std::lround(22 * f.style.scale)));
+  const int label_height = static_cast<int>(std::lround(1.15 * shot.text_size));
   std::vector<ScreenDisc> markers;
   for (std::size_t i = 0; i < centers.size(); ++i) {
-    const Vec3 ndc = project_to_ndc(camera, f.aspect, centers[i]);
-    markers.push_back({f.layout.view.x + 0.5 * (ndc.x + 1.0) * f.layout.view.width,
-                       f.layout.view.y + 0.5 * (1.0 - ndc.y) * f.layout.view.height,
-                       radii[i] / camera.ortho_height * f.layout.view.height});
+    const auto [x, y] = to_screen(centers[i]);
+    markers.push_back({x, y, radii[i] * pixels_per_unit, static_cast<std::int64_t>(i)});
   }
-  // Each disc has its id (its corner's index); the vertex's dot is one
-  // more obstacle. No leader crosses another disc or the dot (protect_below)
-  // or another leader (strict_leaders), so a leader names the disc it ends on.
-  for (std::size_t i = 0; i < markers.size(); ++i) markers[i].id = static_cast<std::int64_t>(i);
-  std::vector<ScreenDisc> obstacles = markers;
   {
-    const Vec3 ndc = project_to_ndc(camera, f.aspect, scene.origin);
-    const SphereSet& dot_set = scene.spheres.at(1);
-    obstacles.push_back({f.layout.view.x + 0.5 * (ndc.x + 1.0) * f.layout.view.width,
-                         f.layout.view.y + 0.5 * (1.0 - ndc.y) * f.layout.view.height,
-                         kLocalDiscScale * dot_set.radii.at(0) / camera.ortho_height * f.layout.view.height,
-                         static_cast<std::int64_t>(markers.size())});
+    const auto [x, y] = to_screen(scene.origin);
+    shot.dot = {x, y, dot_radius, static_cast<std::int64_t>(markers.size())};
+    shot.dot_clear_radius = std::max(dot_radius, kLocalDotClearLabels * label_height);
   }
-  std::vector<std::string> texts;
+  // Each disc has its id (its corner's index); the vertex's dot (with its
+  // clear zone) is one more obstacle. No leader crosses another disc or the
+  // dot (protect_below) or another leader (strict_leaders), so a leader
+  // names the disc it ends on.
+  std::vector<ScreenDisc> obstacles = markers;
+  obstacles.push_back({shot.dot.x, shot.dot.y, shot.dot_clear_radius, shot.dot.id});
   std::vector<LabelRequest> requests;
   for (std::size_t i = 0; i < centers.size(); ++i) {
-    // The hex id ties each marker to its bar in chart E.
-    texts.push_back(format_value(corners[i].value) + "  " + std::string(cell_kind_name(corners[i].kind)) + " " +
-                    std::to_string(corners[i].hex));
-    const PixelRect extent = text_extent(texts.back(), size, label_style);
-    LabelRequest request{markers[i], extent.width + 4, static_cast<int>(std::lround(1.15 * size))};
+    LocalLabel label;
+    // The cell id ties each marker to its bar in chart E.
+    label.text = format_value(corners[i].value) + "  " + std::string(cell_kind_name(corners[i].kind)) + " " +
+                 std::to_string(corners[i].hex);
+    label.marker = markers[i];
+    label.is_inverted = corners[i].value < 0;
+    const PixelRect extent = text_extent(label.text, shot.text_size, f.style);
+    LabelRequest request{markers[i], extent.width + 4, label_height};
     request.protect_below = static_cast<std::int64_t>(obstacles.size());
     request.strict_leaders = true;
     requests.push_back(request);
+    shot.labels.push_back(std::move(label));
   }
   // Worst corner first: it gets the nearest free place.
   std::vector<std::size_t> label_order(requests.size());
@@ -692,33 +713,79 @@ Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span
     const std::vector<std::optional<PlacedLabel>> second = place_labels(again, obstacles, {}, layout, done);
     for (std::size_t i = 0; i < again.size(); ++i) placed_in_order[again_at[i]] = second[i];
   }
-  std::vector<std::optional<PlacedLabel>> placed(requests.size());
-  for (std::size_t k = 0; k < label_order.size(); ++k) placed[label_order[k]] = placed_in_order[k];
-  for (std::size_t i = 0; i < centers.size(); ++i) {
-    const Rgba8 color = corners[i].value < 0 ? to_rgba8(kInvertedColor) : Rgba8{30, 30, 30, 255};
-    PixelRect box{static_cast<int>(std::lround(markers[i].x + markers[i].radius + 4)),
-                  static_cast<int>(std::lround(markers[i].y - 0.5 * requests[i].height)), requests[i].width,
-                  requests[i].height};
-    if (placed[i]) {
-      box = placed[i]->box;
-      if (placed[i]->has_leader)
-        draw_line(figure, placed[i]->leader_x0, placed[i]->leader_y0, placed[i]->leader_x1, placed[i]->leader_y1, color,
-                  std::max(1.0, 1.2 * f.style.scale));
+  for (std::size_t k = 0; k < label_order.size(); ++k) {
+    LocalLabel& label = shot.labels[label_order[k]];
+    const std::optional<PlacedLabel>& p = placed_in_order[k];
+    if (!p) {
+      ++shot.num_left_out;
+      continue;
+    }
+    label.placed = true;
+    label.box = p->box;
+    if (p->has_leader) {
+      label.has_leader = true;
+      label.leader_x0 = p->leader_x0, label.leader_y0 = p->leader_y0;
+      label.leader_x1 = p->leader_x1, label.leader_y1 = p->leader_y1;
+      continue;
     }
     // A label beside its marker gets a short leader too: among a dozen
     // markers "next to" names none.
-    if (!placed[i] || !placed[i]->has_leader) {
-      const double nx = std::clamp(markers[i].x, double(box.x), double(box.x + box.width));
-      const double ny = std::clamp(markers[i].y, double(box.y), double(box.y + box.height));
-      const double dx = nx - markers[i].x, dy = ny - markers[i].y, d = std::hypot(dx, dy);
-      if (d > markers[i].radius + 2.0)
-        draw_line(figure, markers[i].x + dx / d * markers[i].radius, markers[i].y + dy / d * markers[i].radius, nx, ny,
-                  color, std::max(1.0, 1.2 * f.style.scale));
+    const ScreenDisc& m = label.marker;
+    const double nx = std::clamp(m.x, double(label.box.x), double(label.box.x + label.box.width));
+    const double ny = std::clamp(m.y, double(label.box.y), double(label.box.y + label.box.height));
+    const double dx = nx - m.x, dy = ny - m.y, d = std::hypot(dx, dy);
+    if (d > m.radius + 2.0) {
+      label.has_leader = true;
+      label.leader_x0 = m.x + dx / d * m.radius, label.leader_y0 = m.y + dy / d * m.radius;
+      label.leader_x1 = nx, label.leader_y1 = ny;
     }
+  }
+  return shot;
+}
+
+Image render_local_shot(const LocalShot& shot, const DetailViewOptions& options, Renderer& renderer) {
+  // A count of labels left out under the size rule (the kinds stay the
+  // title's last line: detail_color_bar reads its swatches from it).
+  std::string legend = shot.legend;
+  if (shot.num_left_out > 0)
+    legend.insert(std::string_view(kLocalMarkerSizeLegend).size(),
+                  "\n" + std::to_string(shot.num_left_out) + (shot.num_left_out == 1 ? " label" : " labels") + " left out");
+  const Figure f = detail_figure(options, shot.legend, shot.kind_swatches);
+  ColorBar bar = detail_color_bar(legend, shot.kind_swatches);
+  // The vertex's dot: a white disc on a black ring, its own legend entry.
+  bar.swatches.push_back({Color{0.0, 0.0, 0.0}, "the vertex", SwatchShape::solid_ring});
+  Image figure = make_image(options.width, options.height, options.background);
+  paste(figure, renderer.render(shot.scene, shot.camera, f.layout.view.width, f.layout.view.height), f.layout.view.x,
+        f.layout.view.y);
+  draw_title(figure, f.layout.title, options.title, f.style);
+  draw_color_bar(figure, f.layout.legend, bar, f.style);
+  // Leaders on a pale halo first, then each label on its box filled with
+  // the background (as view A's), so that no cell edge runs through its
+  // text (46r review).
+  Rgba8 halo = options.background;
+  halo.a = 200;
+  const double width = std::max(1.0, 1.2 * f.style.scale);
+  for (const LocalLabel& label : shot.labels)
+    if (label.placed && label.has_leader)
+      draw_line(figure, label.leader_x0, label.leader_y0, label.leader_x1, label.leader_y1, halo, 3.0 * width);
+  AnnotationStyle label_style = f.style;
+  for (std::size_t i = 0; i < shot.labels.size(); ++i) {
+    const LocalLabel& label = shot.labels[i];
+    if (!label.placed) continue;
+    const Rgba8 color = label.is_inverted ? to_rgba8(kInvertedColor) : Rgba8{30, 30, 30, 255};
+    if (label.has_leader)
+      draw_line(figure, label.leader_x0, label.leader_y0, label.leader_x1, label.leader_y1, color, width);
+    fill_rect(figure, label.box, options.background);
     label_style.text_color = color;
-    draw_text(figure, box.x + 2, box.y + static_cast<int>(std::lround(0.85 * size)), texts[i], size, label_style);
+    draw_text(figure, label.box.x + 2, label.box.y + static_cast<int>(std::lround(0.85 * shot.text_size)), label.text,
+              shot.text_size, label_style);
   }
   return figure;
+}
+
+Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v,
+                        const DetailViewOptions& options, Renderer& renderer) {
+  return render_local_shot(local_shot(mesh, topology, corner_values, v, options), options, renderer);
 }
 
 }  // namespace hq

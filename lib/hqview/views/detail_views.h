@@ -11,7 +11,9 @@
 #include "hqview/image/image.h"
 #include "hqview/mesh/hex_mesh.h"
 #include "hqview/mesh/topology.h"
+#include "hqview/render/annotate.h"
 #include "hqview/render/camera.h"
+#include "hqview/render/label_layout.h"
 #include "hqview/render/renderer.h"
 #include "hqview/render/scene.h"
 
@@ -105,7 +107,7 @@ inline constexpr double kLocalDiscScale = 0.6;
 //                  from v towards its cell's centre, coloured by
 //                  quality_color(value), radius local_marker_radius(value,
 //                  the mean distance from v to its cells' centres);
-//   spheres[1]     v itself, small, dark;
+//   spheres[1]     v itself, small, white (drawn on a black ring: local_marker_discs);
 //   translucent[0] the one-ring cells' faces, pale.
 Scene build_local_scene(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v);
 
@@ -126,5 +128,49 @@ Scene local_marker_discs(const Scene& scene, const Camera& camera, const std::ve
 // cell_kinds_legend.
 Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v,
                         const DetailViewOptions& options, Renderer& renderer);
+
+// One corner's label in view D, as laid out on the figure (pixels).
+//   text:   "0.812  hex 12" (value, kind, cell id; chart E's names);
+//   box:    where the text is drawn (its extent plus 2 px each side);
+//   marker: its disc on screen (at least kLocalMinDiscPixels in radius);
+//   placed: false when no free place was found: the label is left out
+//           (never drawn over another; the legend counts the left out);
+//   leader: from the disc's edge to the box (every placed label has one
+//           unless its box touches its disc).
+struct LocalLabel {
+  std::string text;
+  PixelRect box;
+  ScreenDisc marker;
+  bool is_inverted = false;  // its value < 0: drawn in the inverted colour
+  bool placed = false;
+  bool has_leader = false;
+  double leader_x0 = 0, leader_y0 = 0, leader_x1 = 0, leader_y1 = 0;
+};
+// View D before drawing (no renderer needed): its scene with the discs
+// (local_marker_discs), camera, figure layout, the vertex's dot and its
+// clear zone on screen, and every corner's label placed (issue 46, 46r
+// review M1): worst corner first, no box over another box, a disc, the
+// dot's clear zone (kLocalDotClearLabels label heights: a label there read
+// as the vertex's own), or outside the view; a leader crosses no other
+// disc, the dot or another leader where any place allows it (a second
+// pass lets it cross discs); a label with no free place is left out.
+inline constexpr double kLocalMinDiscPixels = 6.0;   // at scale 1 (a 1200-pixel-high figure)
+inline constexpr double kLocalDotClearLabels = 1.0;  // the dot's clear zone radius, in label heights
+struct LocalShot {
+  Scene scene;  // as drawn (discs in the overlay)
+  Camera camera;
+  AnnotationStyle style;
+  FigureLayout layout;
+  std::string legend;  // the colour bar's title's lines under "vertex quality ..."
+  ScreenDisc dot;      // the vertex's dot on screen
+  double dot_clear_radius = 0;
+  int text_size = 0;   // pixels
+  std::vector<LocalLabel> labels;  // vertex_corners' order
+  std::size_t num_left_out = 0;
+  bool kind_swatches = false;  // the legend's edge colour per kind (a mesh with non-hex cells)
+};
+LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v,
+                     const DetailViewOptions& options);
+Image render_local_shot(const LocalShot& shot, const DetailViewOptions& options, Renderer& renderer);
 
 }  // namespace hq

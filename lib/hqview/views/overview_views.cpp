@@ -207,7 +207,7 @@ TriangleSet non_conforming_outlines(const HexMesh& mesh, const Topology& topolog
 }
 
 void add_non_conforming_diagonal(const HexMesh& mesh, const NonConformingFace& nc, const Vec3& origin,
-                                 const Rgba8& color, TriangleSet& set) {
+                                 const Rgba8& color, TriangleSet& set, double end_margin) {
   // The diagonal: the two quad corners both triangles use.
   std::array<Index, 2> ends{kNoIndex, kNoIndex};
   int n = 0;
@@ -217,13 +217,14 @@ void add_non_conforming_diagonal(const HexMesh& mesh, const NonConformingFace& n
   Vec3 p[4], centre{};
   for (int i = 0; i < 4; ++i) centre = centre + (p[i] = point(mesh, nc.quad[static_cast<std::size_t>(i)]));
   centre = 0.25 * centre;
-  const Vec3 a = point(mesh, ends[0]), b = point(mesh, ends[1]);
+  const Vec3 a0 = point(mesh, ends[0]), b0 = point(mesh, ends[1]);
+  const Vec3 a = a0 + end_margin * (b0 - a0), b = b0 - end_margin * (b0 - a0);
   // In the face's plane, across the diagonal: half as wide as the frame is deep.
   const Vec3 normal = cross(p[2] - p[0], p[3] - p[1]);
   const Vec3 across = cross(normal, b - a);
   if (!(squared_norm(across) > 0.0)) return;
   double depth = 0.0;  // the frame's depth at the corners the diagonal leaves
-  for (const Vec3& e : {a, b}) depth = std::max(depth, kNonConformingFrame * norm(centre - e));
+  for (const Vec3& e : {a0, b0}) depth = std::max(depth, kNonConformingFrame * norm(centre - e));
   const Vec3 side = (0.25 * depth) * normalized(across);
   // kNonConformingDashes dashes with gaps as long, from corner to corner.
   const int pieces = 2 * kNonConformingDashes - 1;
@@ -252,7 +253,7 @@ ColorBar overview_color_bar(const Topology& topology, const std::vector<double>&
   }
   if (!topology.non_conforming_faces.empty())
     bar.swatches.push_back({to_color(kNonConformingColor),
-                            "non-conforming (" + std::to_string(topology.non_conforming_faces.size()) + ", inside)"});
+                            "non-conforming (" + std::to_string(topology.non_conforming_faces.size()) + ", inside; dashed: split)"});
   return bar;
 }
 
@@ -305,7 +306,7 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
   f.style.scale *= kOverviewTextScale;
   f.style.background = options.background;
   f.bar = overview_color_bar(topology, vertex_quality);
-  if (options.kind_quality != nullptr && !options.kind_quality->empty()) f.bar.label += "\nfaces: their own kind's corners";
+  if (options.kind_quality != nullptr && !options.kind_quality->empty()) f.bar.label = kKindCornerQualityLabel;
   // Both ring entries size the legend; the figure keeps those it draws.
   if (!options.inverted_cells.empty()) {
     const std::string plural = options.cell_noun == "hex" ? "hexes" : options.cell_noun + "s";
@@ -376,8 +377,7 @@ Image render_compare_overview(const HexMesh& mesh, const Topology& topology, con
   style.background = options.background;
   ColorBar bar = overview_color_bar(topology, vertex_quality);
   for (const KindVertexQuality* kinds : {options.kind_quality, options.other_kind_quality})
-    if (kinds != nullptr && !kinds->empty() && bar.label.find("\nfaces:") == std::string::npos)
-      bar.label += "\nfaces: their own kind's corners";
+    if (kinds != nullptr && !kinds->empty()) bar.label = kKindCornerQualityLabel;
   for (ColorBarSwatch& swatch : overview_color_bar(other_topology, other_vertex_quality).swatches)
     if (std::none_of(bar.swatches.begin(), bar.swatches.end(),
                      [&](const ColorBarSwatch& s) { return s.label == swatch.label; }))

@@ -69,15 +69,22 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
 // over everything else (Scene::overlay), so that an interface inside the
 // model shows where it is; they are never part of the boundary.
 inline constexpr Rgba8 kNonConformingColor{125, 70, 20, 255};  // dark brown: in no palette of the overview or structure views
+// The colour bar's title on a mesh with tets, wedges or pyramids, whose
+// boundary faces take their own kind's corners (kind_vertex_quality): not
+// "vertex quality", the min over every cell (46r review).
+inline constexpr const char* kKindCornerQualityLabel =
+    "corner quality (min scaled\nJacobian at the vertex over\nthe face's cell kind's corners)";
 inline constexpr double kNonConformingFrame = 0.15;
 inline constexpr int kNonConformingDashes = 5;
 // The frame, and inside it the diagonal the two triangles split the quad
 // along, dashed (what makes the face non-conforming).
 TriangleSet non_conforming_outlines(const HexMesh& mesh, const Topology& topology, const Vec3& origin);
 // Appends the dashed diagonal of one non-conforming face (kNonConformingDashes
-// dashes, unlit, as wide as half the frame's depth) to `set`.
+// dashes, unlit, as wide as half the frame's depth) to `set`; end_margin:
+// the fraction of the diagonal left out at each end (view S: its rings at
+// the corners stay uncovered).
 void add_non_conforming_diagonal(const HexMesh& mesh, const NonConformingFace& nc, const Vec3& origin,
-                                 const Rgba8& color, TriangleSet& set);
+                                 const Rgba8& color, TriangleSet& set, double end_margin = 0.0);
 
 // The overview's legend: quality_color_bar(), plus on a hybrid mesh a
 // "no value" swatch when a boundary vertex has no quality (NaN) and a

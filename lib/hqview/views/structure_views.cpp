@@ -28,6 +28,21 @@ constexpr Rgba8 kVeilColor{176, 182, 194, 56};     // the translucent boundary
 constexpr Rgba8 kNodeColor{40, 40, 46, 255};        // singularity nodes
 constexpr Rgba8 kGradationEdgeColor{40, 40, 46, 70};  // boundary edges over the gradation
 constexpr Rgba8 kNonConformingDiagonalColor{255, 255, 255, 255};  // dashed over the brown face
+// The dashes stop this fraction of the diagonal short of its corners, so the
+// curve-end rings there stay whole (46r review).
+constexpr double kDiagonalEndMargin = 0.07;
+// The non-conforming face as drawn: its colour at kNonConformingFaceAlpha
+// over the veiled boundary on white (213, 214, 218: measured on the
+// rendered view), so the legend swatch matches the face (46r review: the
+// swatch was the saturated brown, the face tan).
+constexpr Rgba8 kVeiledBoundary{213, 214, 218, 255};
+constexpr Rgba8 non_conforming_face_as_drawn() {
+  const auto mix = [](int c, int under) {
+    return static_cast<std::uint8_t>((c * kNonConformingFaceAlpha + under * (255 - kNonConformingFaceAlpha) + 127) / 255);
+  };
+  return {mix(kNonConformingColor.r, kVeiledBoundary.r), mix(kNonConformingColor.g, kVeiledBoundary.g),
+          mix(kNonConformingColor.b, kVeiledBoundary.b), 255};
+}
 
 const Vec3& point(const HexMesh& mesh, Index v) { return mesh.points[static_cast<std::size_t>(v)]; }
 
@@ -208,7 +223,7 @@ Scene build_singularity_scene(const HexMesh& mesh, const Topology& topology, con
     TriangleSet diagonals;
     diagonals.is_lit = false;
     for (const NonConformingFace& nc : topology.non_conforming_faces)
-      add_non_conforming_diagonal(mesh, nc, scene.origin, kNonConformingDiagonalColor, diagonals);
+      add_non_conforming_diagonal(mesh, nc, scene.origin, kNonConformingDiagonalColor, diagonals, kDiagonalEndMargin);
     scene.overlay.push_back(std::move(diagonals));
   }
   return scene;
@@ -271,9 +286,11 @@ Image render_singularity_view(const HexMesh& mesh, const Topology& topology, con
   if (structure.num_nonmanifold_edges > 0)
     lines.push_back({std::nullopt, "non-manifold edges: " + std::to_string(structure.num_nonmanifold_edges)});
   lines.push_back({Rgba8{176, 182, 194, 255}, "boundary (translucent)", 1});
-  if (!topology.non_conforming_faces.empty())
-    lines.push_back({kNonConformingColor,
+  if (!topology.non_conforming_faces.empty()) {
+    lines.push_back({non_conforming_face_as_drawn(),
                      "non-conforming faces: " + std::to_string(topology.non_conforming_faces.size())});
+    lines.push_back({std::nullopt, "white dashes: the split diagonal"});
+  }
   if (const std::string kinds = mesh_kinds_text(mesh); !kinds.empty()) {
     lines.push_back({std::nullopt, kinds, 1});
     lines.push_back({std::nullopt, "graph of the hex part"});
@@ -291,26 +308,28 @@ Color gradation_color(double g) {
 
 Vec3 choose_gradation_viewpoint(const HexMesh& mesh, const Topology& topology, const HexStructure& structure,
                                 const StructureViewOptions& options) {
-  std::vector<Vec3> centers;
-  std::vector<double> radii;
-  // The boundary faces of every kind whose cell grades above 2 (a pure-hex
-  // mesh: its boundary quads, in their order).
+  // The four upright three-quarter poses, the overview's first.
+  std::vector<Vec3> poses;
+  for (int k = 0; k < 4; ++k)
+    poses.push_back(upright_view_direction(options.up, kThreeQuarterAzimuth + 90.0 * k, kThreeQuarterElevation));
+  // Each pose's score: the area, projected on its view plane, of the
+  // boundary faces (every kind) of cells grading above
+  // kGradationOfInterest that face its eye (their outward vector areas
+  // against the direction to the eye).
+  std::vector<double> score(poses.size(), 0.0);
   for (const BoundaryPolygon& face : boundary_polygons(topology)) {
     const auto cell = static_cast<std::size_t>(face.cell);
     if (cell >= structure.cell_gradation.size() || !(structure.cell_gradation[cell] > kGradationOfInterest)) continue;
-    const auto& q = face.v;
-    if (face.size == 4) {
-      centers.push_back(0.25 * (point(mesh, q[0]) + point(mesh, q[1]) + point(mesh, q[2]) + point(mesh, q[3])));
-      radii.push_back(0.5 * norm(point(mesh, q[2]) - point(mesh, q[0])));
-    } else {
-      const Vec3 c = (1.0 / 3.0) * (point(mesh, q[0]) + point(mesh, q[1]) + point(mesh, q[2]));
-      centers.push_back(c);
-      radii.push_back(std::max({norm(point(mesh, q[0]) - c), norm(point(mesh, q[1]) - c), norm(point(mesh, q[2]) - c)}));
-    }
+    const auto p = [&](int i) { return point(mesh, face.v[static_cast<std::size_t>(i)]); };
+    Vec3 area = 0.5 * cross(p(1) - p(0), p(2) - p(0));
+    if (face.size == 4) area = area + 0.5 * cross(p(2) - p(0), p(3) - p(0));
+    for (std::size_t k = 0; k < poses.size(); ++k) score[k] += std::max(0.0, -dot(area, poses[k]));
   }
-  return choose_viewpoints(boundary_points(mesh, topology), centers, radii, structure_view_aspect(options), 1,
-                           options.up, options.fov_y_degrees)
-      .front();
+  // The first best (a tie, or no such face: the overview's pose).
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < poses.size(); ++k)
+    if (score[k] > score[best] * (1.0 + 1e-9)) best = k;
+  return poses[best];
 }
 
 Image render_gradation_view(const HexMesh& mesh, const Topology& topology, const HexStructure& structure,
@@ -341,7 +360,12 @@ Image render_gradation_view(const HexMesh& mesh, const Topology& topology, const
   const FigureLayout layout =
       figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(bar, style), style);
   const double aspect = static_cast<double>(layout.view.width) / std::max(1, layout.view.height);
-  const Camera camera = structure_camera(boundary_points(mesh, topology), view_direction, aspect, options);
+  // In perspective, as the overview (a boundary coloured by a field, seen
+  // from its upright three-quarter pose): an orthographic view along a
+  // side read as a flat rectangle (46r review M4).
+  const Camera camera = fit_camera_to_points(
+      boundary_points(mesh, topology), view_direction, aspect,
+      {.up = options.up, .fov_y_degrees = options.fov_y_degrees, .is_perspective = true});
 
   const Box3 box = boundary_bounding_box(mesh, topology);
   Scene scene;

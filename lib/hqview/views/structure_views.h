@@ -92,7 +92,14 @@ Color gradation_color(double g);
 // The gradation view looks at the cells grading above this (length ratio).
 inline constexpr double kGradationOfInterest = 1.5;
 
-// One upright direction for the gradation view.
+// The gradation view's direction: of the four upright three-quarter poses
+// (azimuth kThreeQuarterAzimuth + k 90 degrees, elevation
+// kThreeQuarterElevation: the overview's pose, first, and its turns about
+// up), the one that sees the largest projected area of the boundary faces
+// (every kind) of cells grading above kGradationOfInterest facing it; ties
+// and none: the overview's pose (issue 46 part T: a free choice among the
+// upright candidates gave the tower a head-on view that read as a flat
+// rectangle). The view is drawn in perspective, as the overview.
 Vec3 choose_gradation_viewpoint(const HexMesh& mesh, const Topology& topology, const HexStructure& structure,
                                 const StructureViewOptions& options);
 

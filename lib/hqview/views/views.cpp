@@ -123,6 +123,9 @@ std::vector<Index> inverted_cell_ids(const QualityField& field) {
 
 // "hex", or "cell" on a mesh with other volume cells (the per-cell fields
 // cover every kind).
+// Whether a volume mesh has tets, wedges or pyramids.
+static bool has_non_hex(const HexMesh& m) { return !m.tets.empty() || !m.wedges.empty() || !m.pyramids.empty(); }
+
 static std::string cell_word(const Analysis& a) { return a.field.cell_scaled_jacobian.size() > a.mesh.hexes.size() ? "cell" : "hex"; }
 
 // A 3D view's file: its image and the camera that drew it.
@@ -202,7 +205,9 @@ bool has_inputs(const Analysis& a, ViewNeeds needs) {
 
 std::vector<ViewFile> build_overview(ViewContext& c) {
   auto overview = sized<OverviewOptions>(c);
-  overview.title = c.name + (is_surface_mesh(c.a.mesh) ? ": vertex quality on the surface" : ": vertex quality on the boundary");
+  overview.title = c.name + (is_surface_mesh(c.a.mesh) ? ": vertex quality on the surface"
+                             : !has_non_hex(c.a.mesh) ? ": vertex quality on the boundary"
+                                 : ": corner quality on the boundary (each face: its cell kind's corners)");
   const OverviewViewpoint& eye = c.overview_viewpoint;
   overview.view_direction = eye.direction;
   overview.inverted_cells = c.inverted_cells;
@@ -365,8 +370,14 @@ std::vector<ViewFile> build_compare(ViewContext& c) {
   const Analysis::Compared& other = *c.a.compare;
   auto overview = sized<OverviewOptions>(c);
   const CompareAlignment& align = other.alignment;
-  overview.title = c.name + " (left) vs " + std::filesystem::path(other.input.path).filename().string() +
-                   " (right): vertex quality, one camera" +
+  // Each side's min in the title, so the picture says which is worse (46r
+  // review); "corner quality" when either mesh has non-hex cells (each face
+  // takes its own kind's corners).
+  const bool hybrid = has_non_hex(c.a.mesh) || has_non_hex(other.mesh);
+  overview.title = c.name + " (left, min " + display_number(c.a.quality.vertex_quality.min, 3) + ") vs " +
+                   std::filesystem::path(other.input.path).filename().string() + " (right, min " +
+                   display_number(other.quality.vertex_quality.min, 3) + "): " +
+                   (hybrid ? "corner quality" : "vertex quality") + ", one camera" +
                    (alignment_description(align).empty() ? std::string() : ", right " + alignment_description(align));
   const HexMesh placed = aligned_copy(other.mesh, align);
   const KindVertexQuality kinds = kind_vertex_quality(c.a.mesh, c.a.field), other_kinds = kind_vertex_quality(other.mesh, other.field);
@@ -524,6 +535,13 @@ std::vector<const ViewSpec*> views_of_panel(char panel) {
 static std::string view_title(std::string_view title, const Analysis& a) {
   std::string t(title);
   if (const auto at = t.find("per hex"); at != std::string::npos && cell_word(a) == "cell") t.replace(at, 7, "per cell");
+  // A mesh with tets, wedges or pyramids colours each boundary face by its
+  // own kind's corners: not the vertex quality (the min over every cell;
+  // 46r review), as the overview's legend says.
+  constexpr std::string_view kVertexQuality = "coloured by vertex quality";
+  if (const auto at = t.find(kVertexQuality);
+      at != std::string::npos && has_non_hex(a.mesh))
+    t.replace(at, kVertexQuality.size(), "coloured by corner quality (each face: its own cell kind's corners)");
   return t;
 }
 
