@@ -76,7 +76,10 @@ TEST(Cli, OverviewImageHasContent) {
       for (int c = 0; c < 3; ++c) diff += std::abs(pixel[c] - background[c]);
       mesh_pixels += diff > 0.05f;
     }
-  EXPECT_GT(mesh_pixels, total / 5) << "the ball should fill a good part of the frame";
+  // Since issue 45f the insets of its interior inverted hexes take a row
+  // beside the ball instead of covering it, so the ball is drawn smaller
+  // (about 0.17 of the frame with the insets' pictures and legend).
+  EXPECT_GT(mesh_pixels, total / 7) << "the ball should fill a good part of the frame";
 }
 
 TEST(Cli, TwistedBarHasInvertedHexes) {

@@ -55,7 +55,7 @@ namespace hq {
 
 inline constexpr double kRestingBaseBand = 0.01;      // of the bounding-box diagonal
 inline constexpr double kRestingTipTolerance = 0.05;  // of the centre's height
-inline constexpr double kRestingPriorMargin = 1.5;    // the largest support area over the chosen one's, at most
+inline constexpr double kRestingPriorMargin = 1.1;    // the largest support area over the chosen one's, at most (1.5 before issue 45f)
 inline constexpr double kRestingAlike = 0.02;         // opposite poses alike: relative to the larger area, the larger |tip| (at least 1)
 inline constexpr double kRestingFlipMargin = 0.05;    // the opposite base wins when larger by this fraction
 inline constexpr double kRestingBoxFill = 0.9;        // solid volume / bounding-box volume of a box-like solid

@@ -759,34 +759,67 @@ std::string batch_status_text(const BatchEntry& e) {
 }
 
 std::string batch_summary_markdown(const std::vector<BatchEntry>& entries) {
-  int failed = 0, gate_failed = 0;
+  // The counts of index.html's subtitle (issue 45f: the header read as an
+  // all-clear above meshes with inverted hexes).
+  int failed = 0, gate_failed = 0, with_findings = 0, with_warnings = 0;
   for (const BatchEntry& e : entries) {
     failed += e.status == BatchStatus::failed;
     gate_failed += e.status == BatchStatus::gate_failed;
+    with_findings += !batch_findings(e).empty() && e.status != BatchStatus::failed && e.status != BatchStatus::skipped;
+    with_warnings += !e.warnings.empty();
   }
+  const auto skipped = std::count_if(entries.begin(), entries.end(),
+                                     [](const BatchEntry& e) { return e.status == BatchStatus::skipped; });
   std::string md = "## HQView batch: " + std::to_string(entries.size()) + " meshes, " + std::to_string(failed) +
-                   " failed, " + std::to_string(gate_failed) + " with failed gates\n\n";
+                   " failed, " + std::to_string(gate_failed) + " with failed gates, " + std::to_string(with_findings) +
+                   " with inverted or intersecting cells or input warnings";
+  if (with_warnings > 0) md += " (" + std::to_string(with_warnings) + " with input warnings)";
+  if (skipped > 0) md += ", " + std::to_string(skipped) + " skipped (not hex meshes)";
+  md += "\n\n";
   md += "| mesh | label | status |";
   for (const char* title : kHeadlineTitles) md += std::string(" ") + title + " |";
   md += "\n|---|---|---|";
   for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) md += "--:|";
   md += "\n";
-  for (const BatchEntry& e : entries) {
+  // Worst first, as index.html (worst_first_order).
+  const std::vector<std::size_t> order = worst_first_order(entries);
+  for (const std::size_t i : order) {
+    const BatchEntry& e = entries[i];
     md += "| " +
           (e.bundle.empty() ? markdown_escape(e.path) : "[" + markdown_escape(e.path) + "](" + url_path(e.bundle) + "/index.html)") +
           " | " + markdown_escape(e.label) + " | " + batch_status_text(e) + " |";  // fixed words, no input
     for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) md += " " + show(e.headline[k]) + " |";
     md += "\n";
   }
+  // Every mesh that is not plainly ok, worst first, with why: its error,
+  // failed gates, inverted and intersecting cell counts, input warnings
+  // (each without the mesh's path, which the line starts with).
+  static const std::size_t inverted_key = headline_index("quality.num_inverted");
+  static const std::size_t intersecting_key = headline_index("overlap.num_intersecting_cells");
   bool any_problem = false;
-  for (const BatchEntry& e : entries) {
-    if (e.status == BatchStatus::ok && e.warnings.empty()) continue;
+  for (const std::size_t i : order) {
+    const BatchEntry& e = entries[i];
+    const bool finding = !batch_findings(e).empty();
+    if (e.status == BatchStatus::ok && !finding) continue;
+    if (e.status == BatchStatus::skipped) continue;
     if (!any_problem) md += "\n### Problems\n\n";
     any_problem = true;
-    std::string what = e.error;
-    for (const std::string& g : e.failed_gates) what += (what.empty() ? "gate failed: " : "; ") + g;
-    for (const std::string& w : e.warnings) what += (what.empty() ? "warning: " : "; warning: ") + relative_warning(w, e.path);
-    md += "- " + markdown_escape(e.path) + ": " + markdown_escape(what) + "\n";
+    // Fixed words and numbers as they are; input text (errors, gates,
+    // warnings) escaped.
+    std::string what = markdown_escape(e.error);
+    for (const std::string& g : e.failed_gates) what += (what.empty() ? "gate failed: " : "; ") + markdown_escape(g);
+    auto count = [&](std::size_t key, const char* word) {
+      if (e.headline[key] && *e.headline[key] > 0)
+        what += (what.empty() ? "" : "; ") + show(e.headline[key]) + " " + word;
+    };
+    count(inverted_key, "inverted");
+    count(intersecting_key, "intersecting");
+    for (const std::string& w : e.warnings) {
+      std::string text = relative_warning(w, e.path);
+      if (text.starts_with(e.path + ": ")) text.erase(0, e.path.size() + 2);
+      what += (what.empty() ? "warning: " : "; warning: ") + markdown_escape(text);
+    }
+    md += "- " + markdown_escape(e.path) + ": " + what + "\n";
   }
   const std::vector<MethodSummary> methods = summarize_methods(entries);
   if (!methods.empty()) {

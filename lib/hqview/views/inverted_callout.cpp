@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
 #include <numeric>
 #include <unordered_map>
 
@@ -19,6 +18,9 @@ namespace {
 constexpr std::uint32_t kIdNothing = 0;               // background
 constexpr std::uint32_t kIdOccluder = kMaxId;         // boundary not painted inverted
 constexpr double kPi = 3.14159265358979323846;
+constexpr double kDashPixels = 14.0;  // a dashed ring's dash, along the ring
+// The fraction of each period a dash takes: kDashPixels of the period, at most 0.6.
+double dash_fraction(double n, double radius) { return std::min(0.6, kDashPixels * n / std::max(1.0, 2.0 * kPi * radius)); }
 
 struct Projector {
   Mat4 to_ndc;
@@ -105,11 +107,7 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
   const Projector project{projection_matrix(camera, aspect) * view_matrix(camera), view};
   const Index num_cells = num_volume_cells(mesh);
 
-  // 1. Each cell's projected centre, in grid squares of 2 min_radius.
-  const double square = std::max(1.0, 2.0 * min_radius);
-  std::map<std::pair<long, long>, int> square_of;  // occupied square -> its index
-  std::vector<std::pair<long, long>> squares;
-  std::vector<int> cell_square;
+  // 1. The cells that project (finite) and their projected centres.
   std::vector<Index> cells;
   std::vector<Vec3> centres;  // projected
   for (Index c : inverted_cells) {
@@ -120,81 +118,81 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
       centre = centre + mesh.points[static_cast<std::size_t>(ref.corners[static_cast<std::size_t>(i)])];
     const Vec3 s = project((1.0 / ref.num_corners) * centre);
     if (!std::isfinite(s.x) || !std::isfinite(s.y)) continue;
-    const std::pair<long, long> key{std::lround(std::floor(s.x / square)), std::lround(std::floor(s.y / square))};
-    const auto [it, added] = square_of.emplace(key, static_cast<int>(squares.size()));
-    if (added) squares.push_back(key);
-    cell_square.push_back(it->second);
     cells.push_back(c);
     centres.push_back(s);
   }
   if (cells.empty()) return {};
 
-  // 2. Touching occupied squares (8-neighbourhood), and the squares of cells
-  // that share a vertex, form one group (union-find over the squares).
-  std::vector<int> parent(squares.size());
+  // 2. Cells that share a vertex, transitively, form one group: connected
+  // in 3D, whatever the camera (issue 45f: grouping by screen distance
+  // merged two places far apart in depth into one ring, and a turned copy
+  // or a smaller drawing grouped differently). Union-find over the cells.
+  std::vector<int> parent(cells.size());
   std::iota(parent.begin(), parent.end(), 0);
   auto find = [&](int i) {
     while (parent[static_cast<std::size_t>(i)] != i)
       i = parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
     return i;
   };
-  for (std::size_t i = 0; i < squares.size(); ++i)
-    for (long dy = -1; dy <= 1; ++dy)
-      for (long dx = -1; dx <= 1; ++dx) {
-        const auto it = square_of.find({squares[i].first + dx, squares[i].second + dy});
-        if (it == square_of.end()) continue;
-        const int a = find(static_cast<int>(i)), b = find(it->second);
-        if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
-      }
   {
-    std::unordered_map<Index, int> square_of_vertex;
+    std::unordered_map<Index, int> cell_of_vertex;
     for (std::size_t i = 0; i < cells.size(); ++i) {
       const CellRef ref = volume_cell(mesh, cells[i]);
       for (int k = 0; k < ref.num_corners; ++k) {
-        const auto [it, added] = square_of_vertex.emplace(ref.corners[static_cast<std::size_t>(k)], cell_square[i]);
+        const auto [it, added] = cell_of_vertex.emplace(ref.corners[static_cast<std::size_t>(k)], static_cast<int>(i));
         if (added) continue;
-        const int a = find(cell_square[i]), b = find(it->second);
+        const int a = find(static_cast<int>(i)), b = find(it->second);
         if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
       }
     }
   }
   // Groups numbered in the order of their first cell.
-  std::vector<int> group_of_root(squares.size(), -1);
+  std::vector<int> group_of_root(cells.size(), -1);
   std::vector<int> cell_group(cells.size());
   int num_groups = 0;
   for (std::size_t i = 0; i < cells.size(); ++i) {
-    int& g = group_of_root[static_cast<std::size_t>(find(cell_square[i]))];
+    int& g = group_of_root[static_cast<std::size_t>(find(static_cast<int>(i)))];
     if (g < 0) g = num_groups++;
     cell_group[i] = g;
   }
 
-  // 3. Each group's centre (the mean of its cells' projected centres) and
-  // radius (to its farthest projected corner); its inverted corners' vertices.
+  // 3. Each group's ring: around the bounding box of its cells' projected
+  // corners (centre: the box's; radius: half its diagonal, plus a margin),
+  // so that it is as tight as a circle around them can be; its inverted
+  // corners' vertices.
   std::vector<InvertedCallout> groups(static_cast<std::size_t>(num_groups));
   for (std::size_t i = 0; i < cells.size(); ++i) {
     InvertedCallout& g = groups[static_cast<std::size_t>(cell_group[i])];
     ++g.num_cells;
     g.cells.push_back(cells[i]);
-    g.x += centres[i].x;
-    g.y += centres[i].y;
   }
-  for (InvertedCallout& g : groups) g.x /= g.num_cells, g.y /= g.num_cells;
-  std::vector<double> reach(groups.size(), 0.0);
+  struct Extent {
+    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  };
+  std::vector<Extent> extent(groups.size());
   std::vector<int> vertex_group(mesh.points.size(), -1);
   for (std::size_t i = 0; i < cells.size(); ++i) {
     const auto g = static_cast<std::size_t>(cell_group[i]);
     const CellRef ref = volume_cell(mesh, cells[i]);
+    Extent& e = extent[g];
+    e.x0 = std::min(e.x0, centres[i].x), e.x1 = std::max(e.x1, centres[i].x);
+    e.y0 = std::min(e.y0, centres[i].y), e.y1 = std::max(e.y1, centres[i].y);
     for (int k = 0; k < ref.num_corners; ++k) {
       const auto v = static_cast<std::size_t>(ref.corners[static_cast<std::size_t>(k)]);
       const Vec3 s = project(mesh.points[v]);
-      if (std::isfinite(s.x) && std::isfinite(s.y)) reach[g] = std::max(reach[g], std::hypot(s.x - groups[g].x, s.y - groups[g].y));
+      if (std::isfinite(s.x) && std::isfinite(s.y))
+        e.x0 = std::min(e.x0, s.x), e.x1 = std::max(e.x1, s.x), e.y0 = std::min(e.y0, s.y), e.y1 = std::max(e.y1, s.y);
       if (v < vertex_quality.size() && vertex_quality[v] < 0.0 && vertex_group[v] < 0)
         vertex_group[v] = static_cast<int>(g);
     }
   }
   const double max_radius = std::max(min_radius, 0.45 * std::min(view.width, view.height));
-  for (std::size_t g = 0; g < groups.size(); ++g)
-    groups[g].radius = std::clamp(reach[g] + 0.3 * min_radius, min_radius, max_radius);
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const Extent& e = extent[g];
+    groups[g].x = 0.5 * (e.x0 + e.x1);
+    groups[g].y = 0.5 * (e.y0 + e.y1);
+    groups[g].radius = std::clamp(0.5 * std::hypot(e.x1 - e.x0, e.y1 - e.y0) + 0.2 * min_radius, min_radius, max_radius);
+  }
 
   // 4. On the boundary, and in sight: the id image.
   for (const BoundaryPolygon& face : boundary_polygons(topology))
@@ -243,8 +241,14 @@ void draw_marker_ring(Image& image, double cx, double cy, double radius, double 
       const double off = std::abs(d - radius);
       if (off > thickness) continue;
       const bool core = off <= 0.5 * thickness;
-      const double angle = std::atan2(dy, dx) * 180.0 / kPi + 180.0;
-      if (dashed && static_cast<int>(angle / 30.0) % 2 == 1) continue;
+      // Dashes of about kDashPixels, at least 8 around, evenly spaced:
+      // a large ring stays a ring (the 45e review: five short dashes
+      // around a ball read as scratches).
+      if (dashed) {
+        const double turn = (std::atan2(dy, dx) + kPi) / (2.0 * kPi);  // [0, 1]
+        const double n = std::max(8.0, std::round(2.0 * kPi * radius / (kDashPixels + std::max(6.0, 1.5 * thickness))));
+        if (turn * n - std::floor(turn * n) >= dash_fraction(n, radius)) continue;
+      }
       const Rgba8 c = core ? color : halo;
       std::copy_n(&c.r, 4, &image.rgba[pixel_offset(image, x, y)]);
     }
@@ -272,7 +276,8 @@ void draw_inverted_callouts(Image& figure, const PixelRect& view, std::span<cons
     requests.push_back(request);
   }
   LabelLayoutOptions layout;
-  layout.bounds = {view.x + 2, view.y + 2, view.width - 4, view.height - 4};
+  // 8 pixels off the figure's edge (the 45e review's m1: a label touched it).
+  layout.bounds = {view.x + 8, view.y + 2, view.width - 16, view.height - 4};
   layout.gap = std::max(8.0, 0.6 * text_size);  // a leader long enough to see
   layout.ring_step = std::max(8.0, 0.8 * text_size);
   const std::vector<std::optional<PlacedLabel>> placed = place_labels(requests, rings, taken, layout);

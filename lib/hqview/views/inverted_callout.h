@@ -32,6 +32,12 @@ inline constexpr int kMaxInvertedCallouts = 4;
 // view's area counts as small ("(small)" in its label).
 inline constexpr double kSmallInvertedFraction = 2e-4;
 
+// The thumbnail (views.cpp build_thumbnail): with inverted cells, a band
+// this many pixels high on top of its 320 x 240 saying "N inverted" in text
+// this many pixels high (11 px where the batch index shows it at 128 x 96).
+inline constexpr int kThumbnailBadgeBand = 40;
+inline constexpr int kThumbnailBadgeText = 28;
+
 struct InvertedCallout {
   double x = 0, y = 0;        // ring centre, figure pixels
   double radius = 0;          // ring radius, pixels
@@ -43,13 +49,13 @@ struct InvertedCallout {
   std::string inset;          // the letter of the overview's inset that draws them (inverted_inset.h); empty: none
 };
 
-// Groups the inverted cells (ids over all volume cells, mesh/cell_faces.h) by
-// where they project: cells whose centres fall into touching squares of a
-// grid of 2 min_radius pixels form one group, and so do cells that share a
-// vertex. Each group's ring is centred
-// on the mean of its cells' projected centres and encloses their projected
-// corners (plus a margin), at least min_radius and at most 0.45 of the
-// view's smaller side. visible_pixels comes from an id
+// Groups the inverted cells (ids over all volume cells, mesh/cell_faces.h)
+// in 3D: cells that share a vertex, transitively, form one group (issue
+// 45f: the same groups from every eye and at every size, so the overview,
+// its turned copies and the thumbnail ring the same places). Each group's
+// ring is centred on the bounding box of its cells' projected corners and
+// passes half its diagonal (plus 0.2 min_radius) from there, at least
+// min_radius and at most 0.45 of the view's smaller side. visible_pixels comes from an id
 // image of the boundary drawn with the camera into view (the part of each
 // face the overview paints in an inverted corner's colour carries that
 // corner's group): 0 when the renderer draws no id images. Groups in
@@ -82,7 +88,8 @@ void draw_inverted_callouts(Image& figure, const PixelRect& view, std::span<cons
                             std::span<const PixelRect> taken = {}, bool draw_rings = true);
 
 // A ring: an annulus of `color` (core thickness / 2 either side of radius)
-// on a white halo (as wide again), solid or dashed (every other 30 degrees).
+// on a white halo (as wide again), solid or dashed (dashes of about 14
+// pixels along the ring, at least 8 of them, evenly spaced).
 void draw_marker_ring(Image& image, double cx, double cy, double radius, double thickness, bool dashed, Rgba8 color);
 
 }  // namespace hq

@@ -14,40 +14,41 @@ namespace {
 
 constexpr Rgba8 kInsetEdgeColor{30, 30, 40, 255};  // the inverted cells' edges
 
-// The corner rectangles of `view` of size w x h, `margin` pixels in, in the
-// tie order bottom right, bottom left, top right, top left.
-std::array<PixelRect, 4> corner_rects(const PixelRect& view, int w, int h, int margin) {
-  const int left = view.x + margin, right = view.x + view.width - margin - w;
-  const int top = view.y + margin, bottom = view.y + view.height - margin - h;
-  return {PixelRect{right, bottom, w, h}, PixelRect{left, bottom, w, h}, PixelRect{right, top, w, h},
-          PixelRect{left, top, w, h}};
-}
-
-bool overlaps(const PixelRect& a, const PixelRect& b) {
-  return a.x < b.x + b.width && b.x < a.x + a.width && a.y < b.y + b.height && b.y < a.y + a.height;
-}
-
-// Figure pixels in `rect` unlike the background (the model, its edges and rings).
-long model_pixels(const Image& figure, const PixelRect& rect, Rgba8 background) {
-  long n = 0;
-  for (int y = std::max(0, rect.y); y < std::min(figure.height, rect.y + rect.height); ++y)
-    for (int x = std::max(0, rect.x); x < std::min(figure.width, rect.x + rect.width); ++x) {
-      const std::uint8_t* p = &figure.rgba[pixel_offset(figure, x, y)];
-      n += p[0] != background.r || p[1] != background.g || p[2] != background.b;
-    }
-  return n;
-}
-
-// Whether the ring (with its halo) touches the rectangle.
-bool ring_touches(const InvertedCallout& c, const PixelRect& r, double pad) {
-  const double nx = std::clamp(c.x, static_cast<double>(r.x), static_cast<double>(r.x + r.width));
-  const double ny = std::clamp(c.y, static_cast<double>(r.y), static_cast<double>(r.y + r.height));
-  return std::hypot(nx - c.x, ny - c.y) <= c.radius + pad;
-}
-
-int caption_size(int text_size) { return std::max(9, static_cast<int>(std::lround(0.75 * text_size))); }
+// The caption: at the legend's size (issue 45f: was three quarters of the
+// labels', about 10 px on the page), three lines.
+int caption_size(int text_size) { return std::max(9, static_cast<int>(std::lround(0.92 * text_size))); }
+constexpr int kCaptionLines = 3;
+int caption_height(int text_size) { return kCaptionLines * static_cast<int>(std::lround(1.3 * caption_size(text_size))) + 8; }
 
 }  // namespace
+
+InsetStrip inset_strip(const PixelRect& view, double silhouette_width, double silhouette_height, int count, int margin) {
+  InsetStrip out{view, {}};
+  if (count <= 0 || view.width <= 0 || view.height <= 0) return out;
+  const double bw = std::max(1.0, silhouette_width), bh = std::max(1.0, silhouette_height);
+  const int full_w = static_cast<int>(std::lround(kInsetWidthFraction * view.width));
+  const int full_h = static_cast<int>(std::lround(kInsetHeightFraction * view.height));
+  // The column on the right.
+  const int col_h = std::min(full_h, (view.height - (count + 1) * margin) / count);
+  const PixelRect col_model{view.x, view.y, view.width - full_w - 2 * margin, view.height};
+  // The row at the bottom.
+  const int row_w = std::min(full_w, (view.width - (count + 1) * margin) / count);
+  const PixelRect row_model{view.x, view.y, view.width, view.height - full_h - 2 * margin};
+  const double col_scale = std::min(col_model.width / bw, col_model.height / bh);
+  const double row_scale = std::min(row_model.width / bw, row_model.height / bh);
+  if (col_scale >= row_scale) {
+    out.model = col_model;
+    for (int i = 0; i < count; ++i)
+      out.slots.push_back({view.x + view.width - margin - full_w, view.y + margin + i * (col_h + margin), full_w, col_h});
+  } else {
+    out.model = row_model;
+    // Right-aligned, A on the left.
+    const int x0 = view.x + view.width - count * (row_w + margin);
+    for (int i = 0; i < count; ++i)
+      out.slots.push_back({x0 + i * (row_w + margin), view.y + view.height - margin - full_h, row_w, full_h});
+  }
+  return out;
+}
 
 std::vector<Index> cells_touching(const HexMesh& mesh, std::span<const Index> cells) {
   const Index num_cells = num_volume_cells(mesh);
@@ -72,7 +73,8 @@ std::vector<Index> cells_touching(const HexMesh& mesh, std::span<const Index> ce
   return out;
 }
 
-Scene inverted_inset_scene(const HexMesh& mesh, std::span<const Index> cells, std::span<const Index> neighbours) {
+Scene inverted_inset_scene(const HexMesh& mesh, std::span<const Index> cells, std::span<const Index> neighbours,
+                           std::span<const double> vertex_quality) {
   const Index num_cells = num_volume_cells(mesh);
   Box3 box;
   bool any = false;
@@ -101,13 +103,33 @@ Scene inverted_inset_scene(const HexMesh& mesh, std::span<const Index> cells, st
   LineSet cage;       // the neighbours' edges
   cage.width = 1.0f;
   const Rgba8 blue = to_rgba8(kInvertedColor);
+  SphereSet dots;  // the negative corners, over the cells
+  dots.over_other_spheres = true;
+  std::vector<char> dotted(mesh.points.size(), 0);
+  // The dots' radius: a sixth of the inverted cells' mean edge.
+  double edge_sum = 0.0;
+  int edge_count = 0;
+  for (Index c : cells)
+    if (c >= 0 && c < num_cells)
+      for_each_edge_of(volume_cell(mesh, c), [&](Index a, Index b) {
+        edge_sum += norm(mesh.points[static_cast<std::size_t>(a)] - mesh.points[static_cast<std::size_t>(b)]);
+        ++edge_count;
+      });
+  const double dot_radius = edge_count > 0 ? edge_sum / edge_count / 6.0 : 0.0;
   for (Index c : cells) {
     if (c < 0 || c >= num_cells) continue;
     const CellRef ref = volume_cell(mesh, c);
+    Vec3 centre;
+    for (int k = 0; k < ref.num_corners; ++k) centre = centre + mesh.points[static_cast<std::size_t>(ref.corners[static_cast<std::size_t>(k)])];
+    centre = (1.0 / ref.num_corners) * centre;
+    // A corner of the shrunk cell.
+    const auto at = [&](Index v) {
+      return to_vec3f(centre + kInsetShrink * (mesh.points[static_cast<std::size_t>(v)] - centre) - origin);
+    };
     for_each_face_of(ref, [&](const std::array<Index, 4>& v, int size) {
       const auto base = static_cast<std::uint32_t>(faces.positions.size());
       for (int i = 0; i < size; ++i) {
-        faces.positions.push_back(to_vec3f(mesh.points[static_cast<std::size_t>(v[static_cast<std::size_t>(i)])] - origin));
+        faces.positions.push_back(at(v[static_cast<std::size_t>(i)]));
         faces.colors.push_back(blue);
       }
       faces.indices.insert(faces.indices.end(), {base, base + 1, base + 2});
@@ -116,11 +138,19 @@ Scene inverted_inset_scene(const HexMesh& mesh, std::span<const Index> cells, st
     for_each_edge_of(ref, [&](Index a, Index b) {
       const auto base = static_cast<std::uint32_t>(edges.positions.size());
       for (Index v : {a, b}) {
-        edges.positions.push_back(to_vec3f(mesh.points[static_cast<std::size_t>(v)] - origin));
+        edges.positions.push_back(at(v));
         edges.colors.push_back(kInsetEdgeColor);
       }
       edges.indices.insert(edges.indices.end(), {base, base + 1});
     });
+    for (int k = 0; k < ref.num_corners; ++k) {
+      const auto v = static_cast<std::size_t>(ref.corners[static_cast<std::size_t>(k)]);
+      if (v >= vertex_quality.size() || !(vertex_quality[v] < 0.0) || dotted[v]) continue;
+      dotted[v] = 1;
+      dots.centers.push_back(to_vec3f(mesh.points[v] - origin));
+      dots.radii.push_back(static_cast<float>(dot_radius));
+      dots.colors.push_back(kInsetCornerColor);
+    }
   }
   for (Index c : neighbours) {
     if (c < 0 || c >= num_cells) continue;
@@ -136,23 +166,24 @@ Scene inverted_inset_scene(const HexMesh& mesh, std::span<const Index> cells, st
   scene.triangles.push_back(std::move(faces));
   scene.lines.push_back(std::move(cage));
   scene.lines.push_back(std::move(edges));
+  if (!dots.centers.empty()) scene.spheres.push_back(std::move(dots));
   return scene;
 }
 
 std::vector<InvertedInset> plan_inverted_insets(const HexMesh& mesh, std::vector<InvertedCallout>& callouts,
-                                                const PixelRect& view, const Camera& view_camera, int text_size) {
+                                                std::span<const PixelRect> slots, const Camera& view_camera,
+                                                int text_size) {
   std::vector<InvertedInset> insets;
-  const int w = static_cast<int>(std::lround(kInsetWidthFraction * view.width));
-  const int h = static_cast<int>(std::lround(kInsetHeightFraction * view.height));
-  const int caption_height = 2 * static_cast<int>(std::lround(1.3 * caption_size(text_size))) + 8;
-  if (w < 40 || h < caption_height + 40) return insets;
-  for (std::size_t i = 0; i < callouts.size() && static_cast<int>(insets.size()) < kMaxInvertedInsets; ++i) {
+  const int caption = caption_height(text_size);
+  for (std::size_t i = 0; i < callouts.size() && insets.size() < slots.size(); ++i) {
     if (callout_in_sight(callouts[i]) || callouts[i].cells.empty()) continue;
+    const PixelRect& slot = slots[insets.size()];
+    if (slot.width < 40 || slot.height < caption + 40) break;
     InvertedInset inset;
     inset.callout = i;
     inset.letter = std::string(1, static_cast<char>('A' + insets.size()));
-    inset.rect = {view.x, view.y, w, h};
-    inset.picture = {view.x + 2, view.y + caption_height, w - 4, h - caption_height - 2};
+    inset.rect = slot;
+    inset.picture = {slot.x + 2, slot.y + caption, slot.width - 4, slot.height - caption - 2};
     inset.cells = callouts[i].cells;
     std::sort(inset.cells.begin(), inset.cells.end());
     inset.neighbours = cells_touching(mesh, inset.cells);
@@ -173,45 +204,12 @@ std::vector<InvertedInset> plan_inverted_insets(const HexMesh& mesh, std::vector
 }
 
 std::vector<Image> render_inverted_insets(const HexMesh& mesh, std::span<const InvertedInset> insets,
-                                          Renderer& renderer) {
+                                          std::span<const double> vertex_quality, Renderer& renderer) {
   std::vector<Image> pictures;
   for (const InvertedInset& inset : insets)
-    pictures.push_back(renderer.render(inverted_inset_scene(mesh, inset.cells, inset.neighbours), inset.camera,
-                                       inset.picture.width, inset.picture.height));
+    pictures.push_back(renderer.render(inverted_inset_scene(mesh, inset.cells, inset.neighbours, vertex_quality),
+                                       inset.camera, inset.picture.width, inset.picture.height));
   return pictures;
-}
-
-void place_inverted_insets(std::vector<InvertedInset>& insets, std::span<const InvertedCallout> callouts,
-                           const Image& figure, const PixelRect& view, Rgba8 background, const AnnotationStyle& style) {
-  const int margin = std::max(4, static_cast<int>(std::lround(12 * style.scale)));
-  std::array<bool, 4> used{};
-  std::vector<PixelRect> placed;
-  for (InvertedInset& inset : insets) {
-    const int w = inset.rect.width, h = inset.rect.height;
-    const std::array<PixelRect, 4> corners = corner_rects(view, w, h, margin);
-    // The free corner covering the fewest model pixels, ringless if it can.
-    long best_cost = std::numeric_limits<long>::max();
-    int best = -1;
-    for (int k = 0; k < 4; ++k) {
-      if (used[static_cast<std::size_t>(k)]) continue;
-      const PixelRect& r = corners[static_cast<std::size_t>(k)];
-      bool clash = false;
-      for (const PixelRect& other : placed) clash = clash || overlaps(other, r);
-      if (clash) continue;
-      long cost = model_pixels(figure, r, background);
-      for (const InvertedCallout& c : callouts)
-        if (ring_touches(c, r, 4.0)) cost += static_cast<long>(w) * h;  // a ring under the inset: last resort
-      if (cost < best_cost) best_cost = cost, best = k;
-    }
-    if (best < 0) best = 0;  // four corners, at most kMaxInvertedInsets insets: never reached
-    used[static_cast<std::size_t>(best)] = true;
-    const PixelRect r = corners[static_cast<std::size_t>(best)];
-    const int dx = r.x - inset.rect.x, dy = r.y - inset.rect.y;
-    inset.rect = r;
-    inset.picture.x += dx;
-    inset.picture.y += dy;
-    placed.push_back(r);
-  }
 }
 
 void draw_inverted_insets(Image& figure, std::span<const InvertedInset> insets, std::span<const Image> pictures,
@@ -229,11 +227,11 @@ void draw_inverted_insets(Image& figure, std::span<const InvertedInset> insets, 
     named.inset.clear();
     named.num_more_cells = 0;
     const std::string line1 = inset.letter + ": " + inverted_callout_label(named, noun, 1.0);
-    const std::string line2 = "blue: inverted · grey: their neighbours";
+    const std::string lines[kCaptionLines] = {line1, "blue: inverted, shrunk", "dots: det J < 0 · grey: nearby"};
     const int max_width = r.width - 12;
-    draw_text(figure, r.x + 6, r.y + 4 + pitch - caption / 4, ellipsize(line1, caption, max_width, style), caption, style);
-    draw_text(figure, r.x + 6, r.y + 4 + 2 * pitch - caption / 4, ellipsize(line2, caption, max_width, style), caption,
-              style);
+    for (int k = 0; k < kCaptionLines; ++k)
+      draw_text(figure, r.x + 6, r.y + 4 + (k + 1) * pitch - caption / 4, ellipsize(lines[k], caption, max_width, style),
+                caption, style);
     fill_rect(figure, {r.x, inset.picture.y - 2, r.width, 1}, kInsetFrameColor);
     for (int t = 0; t < 2; ++t) {
       fill_rect(figure, {r.x + t, r.y, 1, r.height}, kInsetFrameColor);

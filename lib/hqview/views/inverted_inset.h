@@ -6,13 +6,18 @@
 // cells opaque in the inverted colour (kInvertedColor, lit) with their
 // edges, and the cells that share a vertex with them as a grey wire cage,
 // seen from the overview's direction with the overview's up, zoomed to the
-// neighbourhood. A caption names it ("A: 14 inverted hexes, inside") and
-// says what the colours are; the ring's label says "see inset A". Drawn
-// over the rings (a ring as large as the model may pass under it).
+// neighbourhood. Each inverted cell is drawn shrunk towards its centre
+// (kInsetShrink), so that cells that share faces stay apart and a folded
+// one shows its crossing faces, and the vertices where a corner's scaled
+// Jacobian is negative (vertex quality < 0) carry a dot in kInsetCornerColor
+// (issue 45f, the 45e review's M5). A caption names it ("A: 14 inverted
+// hexes, inside") and says what the colours are; the ring's label says
+// "see inset A".
 //
-// Placed in a corner of the overview's view where it covers the fewest
-// model pixels and no ring (deterministic: ties in the order bottom right,
-// bottom left, top right, top left).
+// Never over the model (issue 45f, the 45e review's M1): the insets take a
+// strip of the overview's view, a column on its right or a row at its
+// bottom, whichever leaves the model drawn larger (inset_strip), and the
+// model is fitted into the rest.
 
 #include <span>
 #include <string>
@@ -36,6 +41,26 @@ inline constexpr double kInsetHeightFraction = 0.42;
 // The neighbours' wire cage and the inset's frame and caption rule.
 inline constexpr Rgba8 kInsetNeighbourColor{120, 124, 132, 255};
 inline constexpr Rgba8 kInsetFrameColor{70, 70, 70, 255};
+// Each inverted cell's corners are drawn this fraction of the way from its
+// centre (1: as they are).
+inline constexpr double kInsetShrink = 0.82;
+// The dots on the vertices with a negative corner (vertex quality < 0):
+// crimson on a white rim, in no other colour of the inset.
+inline constexpr Rgba8 kInsetCornerColor{200, 0, 70, 255};
+
+// Where the insets go: `model` is the part of `view` the model is fitted
+// into, `slots` the insets' rectangles (figure pixels), outside it. A column
+// on the right (slots stacked from the top) or a row at the bottom
+// (right-aligned, the first on the left), each inset kInset*Fraction of the view or less so that
+// `count` of them fit with `margin` pixels around each: whichever lets a
+// silhouette of silhouette_width x silhouette_height pixels (the model as
+// fitted to the whole view) be drawn larger; ties: the column. count 0:
+// model = view, no slots. Pure.
+struct InsetStrip {
+  PixelRect model;
+  std::vector<PixelRect> slots;
+};
+InsetStrip inset_strip(const PixelRect& view, double silhouette_width, double silhouette_height, int count, int margin);
 
 struct InvertedInset {
   std::size_t callout = 0;        // index into the callouts it shows
@@ -51,33 +76,31 @@ struct InvertedInset {
 // any of `cells` and are not among them.
 std::vector<Index> cells_touching(const HexMesh& mesh, std::span<const Index> cells);
 
-// The 3D scene of an inset: `cells` as lit opaque faces in kInvertedColor
-// with dark edges, `neighbours` as a grey wire cage; origin at the centre of
-// their corners' bounding box.
-Scene inverted_inset_scene(const HexMesh& mesh, std::span<const Index> cells, std::span<const Index> neighbours);
+// The 3D scene of an inset: `cells` shrunk by kInsetShrink as lit opaque
+// faces in kInvertedColor with dark edges, a kInsetCornerColor dot on each
+// of their corners whose vertex_quality is < 0 (empty: none), `neighbours`
+// as a grey wire cage; origin at the centre of their corners' bounding box.
+Scene inverted_inset_scene(const HexMesh& mesh, std::span<const Index> cells, std::span<const Index> neighbours,
+                           std::span<const double> vertex_quality = {});
 
 // Plans the insets for the callouts out of sight (callout_in_sight false),
-// the largest first (the callouts' order), at most kMaxInvertedInsets: each
-// one's cells, neighbours, size (kInset*Fraction of `view`; rect at the
-// view's origin until placed) and camera (`view_camera`'s direction and up,
-// fitted to the cage); sets each such callout's `inset` letter.
+// the largest first (the callouts' order), one per slot: each one's cells,
+// neighbours, rect (its slot) and camera (`view_camera`'s direction and up,
+// fitted to the cage); sets each such callout's `inset` letter. A slot too
+// small for the caption and a picture gets none.
 std::vector<InvertedInset> plan_inverted_insets(const HexMesh& mesh, std::vector<InvertedCallout>& callouts,
-                                                const PixelRect& view, const Camera& view_camera, int text_size);
+                                                std::span<const PixelRect> slots, const Camera& view_camera,
+                                                int text_size);
 
 // The insets' pictures (picture.width x picture.height each). Rendered
 // before the overview's own frame, so that the renderer's last frame (what
 // report.json views[].cameras records) is the overview's.
 std::vector<Image> render_inverted_insets(const HexMesh& mesh, std::span<const InvertedInset> insets,
-                                          Renderer& renderer);
-
-// Moves each inset to a corner of `view`: the free one covering the fewest
-// pixels of `figure` unlike `background` (the model) and no ring.
-void place_inverted_insets(std::vector<InvertedInset>& insets, std::span<const InvertedCallout> callouts,
-                           const Image& figure, const PixelRect& view, Rgba8 background, const AnnotationStyle& style);
+                                          std::span<const double> vertex_quality, Renderer& renderer);
 
 // Draws each placed inset: a white box framed in kInsetFrameColor, two
-// caption lines ("A: 14 inverted hexes, inside"; "blue: inverted · grey:
-// their neighbours"), its picture.
+// caption lines ("A: 14 inverted hexes, inside"; "blue: inverted, shrunk ·
+// dots: det J < 0 · grey: neighbours"), its picture.
 void draw_inverted_insets(Image& figure, std::span<const InvertedInset> insets, std::span<const Image> pictures,
                           std::span<const InvertedCallout> callouts, const std::string& noun, int text_size,
                           const AnnotationStyle& style);

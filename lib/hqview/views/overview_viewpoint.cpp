@@ -6,7 +6,10 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <span>
+#include <vector>
 
+#include "hqview/mesh/boundary_polygons.h"
 #include "hqview/render/camera.h"
 #include "hqview/render/upright.h"
 #include "hqview/views/overview_views.h"
@@ -147,10 +150,86 @@ double visible_flagged_area(const HexMesh& mesh, const Topology& topology, std::
   return area;
 }
 
+Vec3 overview_view_direction(const Vec3& up, const Vec3& front, double azimuth_degrees, double elevation_degrees) {
+  // The front's own azimuth around up (upright.h's, from the file's front).
+  return upright_view_direction(up, azimuth_degrees + view_azimuth_degrees(-front, up), elevation_degrees);
+}
+
+std::vector<Vec3> overview_view_candidates(const Vec3& up, const Vec3& front, bool below) {
+  std::vector<Vec3> directions;
+  for (double elevation : below ? std::span<const double>(kOverviewBelowElevations) : std::span<const double>(kOverviewElevations))
+    for (double azimuth : kOverviewAzimuths) directions.push_back(overview_view_direction(up, front, azimuth, elevation));
+  return directions;
+}
+
+std::string overview_side_name(const Vec3& view_direction, const Vec3& up, const Vec3& front) {
+  const Vec3 u = normalized(up);
+  const Vec3 f = normalized(front - dot(front, u) * u), side = cross(u, f);
+  const Vec3 eye = -normalized(view_direction);
+  const double azimuth = std::atan2(dot(eye, side), dot(eye, f)) * 180.0 / kPi;  // (-180, 180]
+  const std::string height = dot(eye, u) < 0.0 ? "below, " : "above, ";
+  const std::string depth = std::abs(azimuth) < 90.0 ? "front " : "back ";
+  return height + depth + (azimuth > 0.0 ? "right" : "left");
+}
+
+Vec3 model_front(const HexMesh& mesh, const Topology& topology, const Vec3& up) {
+  const Vec3 u = normalized(up);
+  Vec3 file_front = front_of(u);
+  file_front = normalized(file_front - dot(file_front, u) * u);
+  const Vec3 side = cross(u, file_front);
+  // The area-weighted centres in (file_front, side) coordinates.
+  struct Weighted {
+    double x, y, w;
+  };
+  std::vector<Weighted> centres;
+  double total = 0.0, mx = 0.0, my = 0.0;
+  for (const BoundaryPolygon& face : boundary_polygons(topology)) {
+    Vec3 c;
+    for (int i = 0; i < face.size; ++i) c = c + mesh.points[static_cast<std::size_t>(face.v[static_cast<std::size_t>(i)])];
+    c = (1.0 / face.size) * c;
+    const Vec3& p0 = mesh.points[static_cast<std::size_t>(face.v[0])];
+    const Vec3& p1 = mesh.points[static_cast<std::size_t>(face.v[1])];
+    const Vec3& p2 = mesh.points[static_cast<std::size_t>(face.v[2])];
+    const Vec3& p3 = mesh.points[static_cast<std::size_t>(face.v[face.size == 4 ? 3 : 0])];
+    const double w = face.size == 4 ? 0.5 * norm(cross(p2 - p0, p3 - p1)) : 0.5 * norm(cross(p1 - p0, p2 - p0));
+    if (!(w > 0.0) || !std::isfinite(w)) continue;
+    centres.push_back({dot(c, file_front), dot(c, side), w});
+    total += w;
+    mx += w * centres.back().x;
+    my += w * centres.back().y;
+  }
+  if (!(total > 0.0)) return file_front;
+  mx /= total, my /= total;
+  double cxx = 0.0, cyy = 0.0, cxy = 0.0;
+  for (const Weighted& c : centres) {
+    cxx += c.w * (c.x - mx) * (c.x - mx);
+    cyy += c.w * (c.y - my) * (c.y - my);
+    cxy += c.w * (c.x - mx) * (c.y - my);
+  }
+  cxx /= total, cyy /= total, cxy /= total;
+  const double mean = 0.5 * (cxx + cyy), half_gap = std::hypot(0.5 * (cxx - cyy), cxy);
+  if (!(mean > 0.0) || half_gap / mean < kFrontIsotropy) return file_front;
+  // The larger spread's angle; the front is orthogonal to it.
+  const double major = 0.5 * std::atan2(2.0 * cxy, cxx - cyy);
+  const double ax = -std::sin(major), ay = std::cos(major);
+  double m2 = 0.0, m3 = 0.0;
+  for (const Weighted& c : centres) {
+    const double t = ax * (c.x - mx) + ay * (c.y - my);
+    m2 += c.w * t * t;
+    m3 += c.w * t * t * t;
+  }
+  m2 /= total, m3 /= total;
+  const double skew = m2 > 0.0 ? m3 / std::pow(m2, 1.5) : 0.0;
+  const double sign = std::abs(skew) > kFrontSkew ? (skew > 0.0 ? 1.0 : -1.0)
+                      : (ax != 0.0 ? (ax > 0.0 ? 1.0 : -1.0) : (ay >= 0.0 ? 1.0 : -1.0));
+  return normalized(sign * (ax * file_front + ay * side));
+}
+
 OverviewViewpoint choose_overview_viewpoint(const HexMesh& mesh, const Topology& topology, const WorstFaces& worst,
                                             const Vec3& up) {
   OverviewViewpoint out;
-  out.direction = three_quarter_view(up);
+  out.front = model_front(mesh, topology, up);
+  out.direction = overview_view_direction(up, out.front, kThreeQuarterAzimuth, kThreeQuarterElevation);
   out.target = worst.kind;
   if (worst.kind == WorstFaces::Kind::none) return out;
   auto scores = [&](const std::vector<Vec3>& candidates) {
@@ -161,20 +240,22 @@ OverviewViewpoint choose_overview_viewpoint(const HexMesh& mesh, const Topology&
     return s;
   };
   std::vector<Vec3> candidates{out.direction};
-  const std::vector<Vec3> upright = upright_view_candidates(up);
+  const std::vector<Vec3> upright = overview_view_candidates(up, out.front, false);
   candidates.insert(candidates.end(), upright.begin(), upright.end());
   std::vector<double> score = scores(candidates);
   out.default_area = out.chosen_area = score[0];
   if (*std::max_element(score.begin(), score.end()) <= 0.0) {
-    candidates = below_view_candidates(up);
+    candidates = overview_view_candidates(up, out.front, true);
     score = scores(candidates);
   }
-  const auto best = static_cast<std::size_t>(std::max_element(score.begin(), score.end()) - score.begin());
+  const double top = *std::max_element(score.begin(), score.end());
+  std::size_t best = 0;
+  while (best + 1 < score.size() && score[best] < kNearBestFraction * top) ++best;
   // Inverted cells turn the eye by the fraction rule; a worst cluster (no
   // inverted corner) only when the three-quarter view shows none of it.
   const bool keep = worst.kind == WorstFaces::Kind::worst_cluster ? out.default_area > 0.0
-                                                                   : out.default_area >= kKeepDefaultFraction * score[best];
-  if (score[best] <= 0.0 || keep) return out;
+                                                                   : out.default_area >= kKeepDefaultFraction * top;
+  if (top <= 0.0 || keep) return out;
   out.direction = candidates[best];
   out.is_default = false;
   out.chosen_area = score[best];

@@ -7,6 +7,7 @@
 // around (or, when no upright eye sees the region, below) it.
 
 #include <span>
+#include <string>
 #include <vector>
 
 #include "hqview/core/vec3.h"
@@ -41,19 +42,57 @@ inline constexpr int kViewpointGrid = 200;
 double visible_flagged_area(const HexMesh& mesh, const Topology& topology, std::span<const char> flagged,
                             const Vec3& direction, const Vec3& up);
 
-// The rule. Candidates: the three-quarter view (three_quarter_view(up))
-// first, then upright_view_candidates(up); when none shows any flagged
-// face, below_view_candidates(up). The best is the first candidate of the
-// largest visible_flagged_area. The three-quarter view is kept when no
+// The horizontal axis the overview's eye turns around (its azimuth 0), from
+// the model, not the file (issue 45f: a copy turned about up or turned over
+// and stood up again by --up auto must be seen from the same side): the
+// boundary faces' centres, weighted by their areas, projected on the plane
+// orthogonal to up; the axis of their smaller spread (the eye faces the
+// model's broad side, as a CAD part is drawn), unless the two spreads are
+// within kFrontIsotropy of each other (a ball, a square column: the file's
+// front_of(up) then); its sign towards the longer tail of the centres along
+// it (third moment over the spread cubed above kFrontSkew), else the one
+// nearer to front_of(up) (a model symmetric across the plane looks alike
+// from either side).
+inline constexpr double kFrontIsotropy = 0.05;  // (larger - smaller) / (larger + smaller) spread
+inline constexpr double kFrontSkew = 0.1;
+Vec3 model_front(const HexMesh& mesh, const Topology& topology, const Vec3& up);
+
+// The view direction of an eye at (azimuth, elevation) degrees around up,
+// azimuth 0 on `front` (orthogonal to up), positive turning right-handed
+// about up.
+Vec3 overview_view_direction(const Vec3& up, const Vec3& front, double azimuth_degrees, double elevation_degrees);
+
+// The overview's eyes: never on a principal axis of the model or straight
+// above or below it, where a part reads as a flat grid (the 45e review's T
+// beam seen from straight below): azimuths kOverviewAzimuths from the
+// model's front, elevations 25, 15, 35 degrees, and, when no such eye sees
+// the target, -25, -15, -40 (below).
+inline constexpr double kOverviewAzimuths[] = {30, 60, 120, 150, 210, 240, 300, 330};
+inline constexpr double kOverviewElevations[] = {25, 15, 35};
+inline constexpr double kOverviewBelowElevations[] = {-25, -15, -40};
+std::vector<Vec3> overview_view_candidates(const Vec3& up, const Vec3& front, bool below);
+// Where such an eye sits, in words: "above" or "below", then the quarter
+// around the model's front ("front right" for azimuths in (0, 90), "back
+// right", "back left", "front left"): "above, front left".
+std::string overview_side_name(const Vec3& view_direction, const Vec3& up, const Vec3& front);
+
+// The rule. Candidates: the three-quarter view (azimuth 30, elevation 25
+// from model_front) first, then overview_view_candidates(up, front, false); when none shows any flagged
+// face, overview_view_candidates(up, front, true). The best is the first candidate whose
+// visible_flagged_area is at least kNearBestFraction of the largest (so
+// that near ties go to the view earlier in the order, the recognisable
+// three-quarter ones, whatever rounding a turned copy brings). The three-quarter view is kept when no
 // face is flagged, when nothing flagged is visible from any candidate, or
-// when it shows at least kKeepDefaultFraction of the best's area (inverted
+// when it shows at least kKeepDefaultFraction of the largest area (inverted
 // corners) or any of it (the worst cluster: a softer target, and the
 // three-quarter view is the pose a reader recognises: Dolphin_padded's
 // flukes seen end-on made an unrecognisable thumbnail); else the best is
 // taken. Deterministic (one task per candidate, fixed order).
 inline constexpr double kKeepDefaultFraction = 0.5;
+inline constexpr double kNearBestFraction = 0.8;
 struct OverviewViewpoint {
   Vec3 direction;             // from the eye towards the model
+  Vec3 front;                 // model_front: the eye's azimuth 0
   bool is_default = true;     // the three-quarter view
   double default_area = 0.0;  // visible_flagged_area of the three-quarter view
   double chosen_area = 0.0;   // and of the chosen one

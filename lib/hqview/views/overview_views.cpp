@@ -321,24 +321,59 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
   return f;
 }
 
+OverviewPlan plan_quality_overview(const HexMesh& mesh, const Topology& topology,
+                                   const std::vector<double>& vertex_quality, const OverviewOptions& options,
+                                   Renderer& renderer) {
+  OverviewPlan plan;
+  plan.frame = quality_overview_frame(mesh, topology, vertex_quality, options);
+  OverviewFrame& f = plan.frame;
+  plan.full_view = f.layout.view;
+  if (options.inverted_cells.empty()) return plan;
+  const double min_radius = std::max(10.0, 26.0 * f.style.scale);
+  plan.callouts = inverted_callouts(mesh, topology, options.inverted_cells, vertex_quality, f.camera, f.layout.view,
+                                    min_radius, renderer);
+  const auto out_of_sight = std::count_if(plan.callouts.begin(), plan.callouts.end(),
+                                          [](const InvertedCallout& c) { return !callout_in_sight(c) && !c.cells.empty(); });
+  const int count = static_cast<int>(std::min<long>(out_of_sight, kMaxInvertedInsets));
+  if (count == 0) return plan;
+  // Out of sight: cut-away insets draw the cells themselves, in a strip
+  // beside the model (inverted_inset.h), the model fitted into the rest.
+  const std::vector<Vec3> points = boundary_points(mesh, topology);
+  const PixelRect& view = f.layout.view;
+  const double aspect = static_cast<double>(view.width) / view.height;
+  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  for (const Vec3& p : points) {
+    const Vec3 ndc = project_to_ndc(f.camera, aspect, p);
+    if (!std::isfinite(ndc.x) || !std::isfinite(ndc.y)) continue;
+    x0 = std::min(x0, ndc.x), x1 = std::max(x1, ndc.x), y0 = std::min(y0, ndc.y), y1 = std::max(y1, ndc.y);
+  }
+  const double silhouette_w = x1 > x0 ? 0.5 * (x1 - x0) * view.width : view.width;
+  const double silhouette_h = y1 > y0 ? 0.5 * (y1 - y0) * view.height : view.height;
+  const int margin = std::max(4, static_cast<int>(std::lround(12 * f.style.scale)));
+  const InsetStrip strip = inset_strip(view, silhouette_w, silhouette_h, count, margin);
+  f.layout.view = strip.model;
+  f.camera = fit_camera_to_points(points, view_direction_of(options),
+                                  static_cast<double>(strip.model.width) / std::max(1, strip.model.height), {.up = options.up});
+  plan.callouts = inverted_callouts(mesh, topology, options.inverted_cells, vertex_quality, f.camera, f.layout.view,
+                                    min_radius, renderer);
+  plan.insets = plan_inverted_insets(mesh, plan.callouts, strip.slots, f.camera, f.label_size);
+  return plan;
+}
+
 Image render_quality_overview(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
                               const OverviewOptions& options, Renderer& renderer) {
-  OverviewFrame f = quality_overview_frame(mesh, topology, vertex_quality, options);
-  const AnnotationStyle& style = f.style;
-  const FigureLayout& layout = f.layout;
   // The rings' groups (id images only) and the insets' pictures first, so
   // that the overview's own frame is the renderer's last (report.json
   // views[].cameras).
-  const double min_radius = std::max(10.0, 26.0 * style.scale), thickness = std::max(2.0, 4.0 * style.scale);
+  OverviewPlan plan = plan_quality_overview(mesh, topology, vertex_quality, options, renderer);
+  OverviewFrame& f = plan.frame;
+  const AnnotationStyle& style = f.style;
+  const FigureLayout& layout = f.layout;
+  const double thickness = std::max(2.0, 4.0 * style.scale);
   const int text_size = f.label_size;
-  std::vector<InvertedCallout> callouts =
-      options.inverted_cells.empty()
-          ? std::vector<InvertedCallout>{}
-          : inverted_callouts(mesh, topology, options.inverted_cells, vertex_quality, f.camera, layout.view, min_radius,
-                              renderer);
-  // Out of sight: a cut-away inset draws the cells themselves (inverted_inset.h).
-  std::vector<InvertedInset> insets = plan_inverted_insets(mesh, callouts, layout.view, f.camera, text_size);
-  const std::vector<Image> pictures = render_inverted_insets(mesh, insets, renderer);
+  std::vector<InvertedCallout>& callouts = plan.callouts;
+  const std::vector<InvertedInset>& insets = plan.insets;
+  const std::vector<Image> pictures = render_inverted_insets(mesh, insets, vertex_quality, renderer);
 
   Scene scene = build_quality_overview_scene(mesh, topology, vertex_quality, options);
   const double opacity = edge_opacity(scene, f.camera, layout.view.width, layout.view.height);
@@ -350,15 +385,14 @@ Image render_quality_overview(const HexMesh& mesh, const Topology& topology, con
     draw_color_bar(figure, layout.legend, f.bar, style);
     return figure;
   }
-  // The insets go where they cover least of the model, over the rings (a
-  // large ring may pass under one), then the labels around them.
-  place_inverted_insets(insets, callouts, figure, layout.view, style.background, style);
+  // The rings, the insets beside the model (a large ring may pass under
+  // one), then the labels around them, anywhere in the whole view.
   for (const InvertedCallout& c : callouts)
     draw_marker_ring(figure, c.x, c.y, c.radius, thickness, !callout_in_sight(c), kCalloutColor);
   draw_inverted_insets(figure, insets, pictures, callouts, options.cell_noun, text_size, style);
   std::vector<PixelRect> taken;
   for (const InvertedInset& inset : insets) taken.push_back(inset.rect);
-  draw_inverted_callouts(figure, layout.view, callouts, options.cell_noun, thickness, text_size, style, taken, false);
+  draw_inverted_callouts(figure, plan.full_view, callouts, options.cell_noun, thickness, text_size, style, taken, false);
   // The legend keeps the ring styles drawn.
   const bool solid = std::any_of(callouts.begin(), callouts.end(), callout_in_sight);
   const bool dashed = std::any_of(callouts.begin(), callouts.end(), [](const InvertedCallout& c) { return !callout_in_sight(c); });

@@ -17,6 +17,7 @@
 #include "hqview/render/camera.h"
 #include "hqview/render/renderer.h"
 #include "hqview/render/scene.h"
+#include "hqview/views/inverted_inset.h"
 
 namespace hq {
 
@@ -137,11 +138,27 @@ struct OverviewFrame {
 OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topology,
                                     const std::vector<double>& vertex_quality, const OverviewOptions& options);
 
+// The overview's plan (render_quality_overview's): its frame, whose
+// layout.view is where the model is drawn (the whole view, less the insets'
+// strip when there are insets: inset_strip), and camera fitted to it; the
+// view before the strip (full_view: where the rings' labels may go); the
+// rings (inverted_callouts, with the minimum radius of the overview) and
+// the insets, placed in the strip. Renders id images only.
+struct OverviewPlan {
+  OverviewFrame frame;
+  PixelRect full_view;
+  std::vector<InvertedCallout> callouts;
+  std::vector<InvertedInset> insets;
+};
+OverviewPlan plan_quality_overview(const HexMesh& mesh, const Topology& topology,
+                                   const std::vector<double>& vertex_quality, const OverviewOptions& options,
+                                   Renderer& renderer);
+
 // The overview figure: options.width x options.height, the 3D view on the
 // left framing the boundary vertices tightly (fit_camera_to_points), the quality colour bar on the
 // right, the title on top; each group of options.inverted_cells ringed and
 // labelled (inverted_callout.h), those out of sight also drawn in a
-// cut-away inset (inverted_inset.h), the legend saying so. Boundary edges fade (down to 30% opacity) when
+// cut-away inset (inverted_inset.h) beside the model, never over it, the legend saying so. Boundary edges fade (down to 30% opacity) when
 // the median edge is shorter than 8 pixels on screen. Throws RenderError
 // from the renderer or when the font is missing, Error when vertex_quality
 // has the wrong size.

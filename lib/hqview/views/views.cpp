@@ -215,7 +215,7 @@ std::vector<ViewFile> build_overview(ViewContext& c) {
   const KindVertexQuality kinds = kind_vertex_quality(c.a.mesh, c.a.field);
   overview.kind_quality = &kinds;
   if (!eye.is_default)
-    overview.title += " (from " + viewpoint_name(eye.direction, overview.up) + ", the side showing the " +
+    overview.title += " (from " + overview_side_name(eye.direction, overview.up, eye.front) + ", the side showing the " +
                       (eye.target == WorstFaces::Kind::inverted ? "inverted hexes" : "worst cluster") + ")";
   Image image = render_quality_overview(c.a.mesh, c.a.topology, c.quality(), overview, c.renderer);
   return {framed("views/overview.png", std::move(image), c)};
@@ -491,25 +491,35 @@ std::vector<ViewFile> build_size_gradation(ViewContext& c) {
 // 320 x 240, no title, legend or edges: the boundary coloured by vertex quality
 // from the overview's eye (the three-quarter view of --up unless the worst
 // region is out of its sight: overview_viewpoint.h), the camera fitted to the boundary's
-// bounding box, so that every mesh of a model is framed alike whoever
-// renders it (a shard, one job per mesh).
+// vertices (was: to their bounding box's corners, which drew a part like
+// rockarm at a third of the frame; issue 45f). With inverted cells: each group
+// ringed as on the overview (solid in sight, dashed not; no labels, which
+// the batch index's 128 x 96 would shrink to 7 px) and a band on top
+// (kThumbnailBadgeBand) saying "N inverted" at kThumbnailBadgeText pixels,
+// 11 px on the batch index (issue 45f, the 45e review's M7); the model is
+// fitted below it.
 std::vector<ViewFile> build_thumbnail(ViewContext& c) {
   OverviewOptions options;
   options.up = c.options.up;
   const int width = 320, height = 240;
-  const Box3 box = boundary_bounding_box(c.a.mesh, c.a.topology);
-  const Camera camera = fit_camera(box.lo, box.hi, c.overview_viewpoint.direction, static_cast<double>(width) / height,
-                                   {.up = options.up});
+  const int band = c.inverted_cells.empty() ? 0 : kThumbnailBadgeBand;
+  const Camera camera = fit_camera_to_points(boundary_points(c.a.mesh, c.a.topology), c.overview_viewpoint.direction,
+                                             static_cast<double>(width) / (height - band), {.up = options.up});
   const KindVertexQuality kinds = kind_vertex_quality(c.a.mesh, c.a.field);
   options.kind_quality = &kinds;
   Scene scene = build_quality_overview_scene(c.a.mesh, c.a.topology, c.quality(), options);
   scene.lines.clear();  // at 320 pixels the edges of a real mesh are a grey smear
-  Image image = c.renderer.render(scene, camera, width, height);
-  // Rings sized for the batch index, which shows the thumbnail at half size.
-  const PixelRect view{0, 0, width, height};
-  const std::vector<InvertedCallout> callouts =
-      inverted_callouts(c.a.mesh, c.a.topology, c.inverted_cells, c.quality(), camera, view, 16.0, c.renderer);
-  draw_inverted_callouts(image, view, callouts, "", 3.0, 18, annotation_style_for(height));
+  Image image = make_image(width, height, scene.background);
+  paste(image, c.renderer.render(scene, camera, width, height - band), 0, band);
+  if (band > 0) {
+    // Rings sized for the batch index, which shows the thumbnail at 0.4 of its size.
+    const PixelRect view{0, band, width, height - band};
+    const std::vector<InvertedCallout> callouts =
+        inverted_callouts(c.a.mesh, c.a.topology, c.inverted_cells, c.quality(), camera, view, 16.0, c.renderer);
+    draw_inverted_callouts(image, view, callouts, "", 3.0, 0, annotation_style_for(height));
+    const std::string badge = std::to_string(c.inverted_cells.size()) + " inverted";
+    draw_text(image, 6, band - 9, badge, kThumbnailBadgeText, annotation_style_for(height));
+  }
   return {framed("views/thumbnail.png", std::move(image), c)};
 }
 
