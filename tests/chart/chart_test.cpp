@@ -301,13 +301,57 @@ TEST(MetricCorrelation, BarsColouredAndSortedByAgreement) {
   EXPECT_TRUE(has_text(chart, "volume (size)") && has_text(chart, "condition") && has_text(chart, "no better direction:"));
   EXPECT_TRUE(has_text(chart, "0.500 [0.40, 0.60]") && has_text(chart, "-0.800 [-0.85, -0.75]"));
   EXPECT_TRUE(has_text(chart, "no \u03c1 (constant on this mesh): c"));
-  EXPECT_TRUE(has_text(chart, "Spearman \u03c1 over the 100 hexes, metric vs error density (3D legend)"));
+  EXPECT_TRUE(has_text(chart, "Spearman \u03c1 over the 100 hexes, metric vs error density (as in the cells figure)"));
   // The whisker of condition's interval: a horizontal line from 0.4 to 0.6.
   bool whisker = false;
   for (const ChartPolyline& l : chart.lines)
     whisker = whisker || (l.points.size() == 2 && std::abs(l.points[0].x - x_of(0.4)) < 1e-9 &&
                           std::abs(l.points[1].x - x_of(0.6)) < 1e-9 && l.points[0].y == l.points[1].y);
   EXPECT_TRUE(whisker);
+}
+
+// An interval that includes 0 reads "undecided" (an open pale bar), whatever
+// the sign; a bound under 0.005 keeps 3 decimals; the count line is on every
+// chart, shape and size-weighted metrics apart; the position/grading line
+// only where most shape metrics disagree.
+TEST(MetricCorrelation, IntervalThroughZeroIsUndecided) {
+  const double nan = std::nan("");
+  // stretch (higher is better) rho +0.05 [-0.07, 0.15]: disagrees by sign, undecided;
+  // edge_ratio (lower is better) rho -0.12 [-0.23, -0.004]: disagrees;
+  // shape_and_size (size-weighted, higher is better) rho -0.4: agrees.
+  const std::vector<CorrelationBar> bars = {{"stretch", 0.05, -0.07, 0.15, nan, -0.05, false},
+                                            {"edge_ratio", -0.12, -0.23, -0.004, nan, -0.12, false},
+                                            {"shape_and_size", -0.4, -0.5, -0.3, nan, 0.4, true}};
+  const Chart chart = metric_correlation_chart(bars, {900, 300, "t"}, 500);
+  std::vector<ChartRect> drawn;
+  for (const ChartRect& r : chart.rects)
+    if (inside(chart.plot, r) && r.width > 1.0 && r.height < 20.0) drawn.push_back(r);
+  ASSERT_EQ(drawn.size(), 3u);  // shape_and_size (0.4), stretch (-0.05), edge_ratio (-0.12)
+  EXPECT_EQ(drawn[0].fill, kAgreesColor);
+  EXPECT_EQ(drawn[1].fill, kUndecidedColor);
+  EXPECT_EQ(drawn[2].fill, kDisagreesColor);
+  // The open bar's outline: a closed polyline on stretch's rectangle.
+  bool outlined = false;
+  for (const ChartPolyline& l : chart.lines)
+    outlined = outlined || (l.points.size() == 5 && l.color == kUndecidedEdgeColor &&
+                            std::abs(l.points[0].x - drawn[1].x) < 1e-9 && std::abs(l.points[0].y - drawn[1].y) < 1e-9);
+  EXPECT_TRUE(outlined);
+  EXPECT_TRUE(has_text(chart, "-0.120 [-0.23, -0.004]"));
+  EXPECT_TRUE(has_text(chart, "shape_and_size (size-weighted)") && has_text(chart, "stretch"));
+  EXPECT_TRUE(has_text(chart, "undecided: the interval includes 0 (open bar)"));
+  EXPECT_TRUE(has_text(chart, "shape metrics (2): 0 agree, 1 disagree, 1 undecided; size-weighted (1): 1 agree, "
+                              "0 disagree, 0 undecided"));
+  const auto has_prefix = [](const Chart& c, const std::string& prefix) {
+    return std::any_of(c.texts.begin(), c.texts.end(), [&](const ChartText& t) { return t.text.starts_with(prefix); });
+  };
+  EXPECT_FALSE(has_prefix(chart, "Most shape metrics disagree"));
+  // Two decided disagreements and one undecided among shape metrics: most disagree.
+  const std::vector<CorrelationBar> most = {{"skew", -0.3, -0.35, -0.25, nan, -0.3, false},
+                                            {"taper", -0.2, -0.25, -0.15, nan, -0.2, false},
+                                            {"shape", 0.01, -0.05, 0.07, nan, -0.01, false}};
+  const Chart other = metric_correlation_chart(most, {900, 300, "t"});
+  EXPECT_TRUE(has_text(other, "shape metrics (3): 0 agree, 2 disagree, 1 undecided"));
+  EXPECT_TRUE(has_prefix(other, "Most shape metrics disagree"));
 }
 
 // Read on the drawn image: each bar's pixels are its legend swatch's pixels

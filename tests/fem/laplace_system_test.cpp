@@ -109,6 +109,36 @@ TEST(LaplaceSystem, ProductEqualsTheElementByElementSum) {
   for (std::size_t i = 0; i < y.size(); ++i) ASSERT_NEAR(y[i], expected[i], 1e-12 * scale) << i;
 }
 
+// The 16-bit column steps (what the product reads when the band fits): each
+// equals column - row, and the product (CG's only use of the matrix) gives
+// the same bits as from the 32-bit ids (the steps cleared: the other path); a band over
+// 65,535 keeps the ids only.
+TEST(LaplaceSystem, ColumnStepsGiveTheSameBits) {
+  const LaplaceSystem& s = fixture().system;
+  ASSERT_EQ(s.matrix.column_steps.size(), s.matrix.columns.size());
+  for (std::size_t r = 0; r < s.matrix.num_rows(); ++r)
+    for (auto e = static_cast<std::size_t>(s.matrix.offsets[r]); e < static_cast<std::size_t>(s.matrix.offsets[r + 1]); ++e)
+      ASSERT_EQ(r + s.matrix.column_steps[e], static_cast<std::size_t>(s.matrix.columns[e])) << r;
+  CsrMatrix wide = s.matrix;
+  wide.column_steps.clear();
+  const std::vector<double> x = some_columns(s.matrix.num_rows());
+  std::vector<double> y_narrow, y_wide;
+  multiply(s.matrix, x, y_narrow, 3);
+  multiply(wide, x, y_wide, 3);
+  EXPECT_EQ(std::memcmp(y_narrow.data(), y_wide.data(), y_narrow.size() * sizeof(double)), 0);
+  // A 2 x 2 matrix with its off-diagonal entry 70,000 columns out: no steps.
+  CsrMatrix far;
+  far.offsets = {0, 2, 3};
+  far.columns = {0, 70000, 70000};
+  far.values = {1, 2, 3};
+  far.bandwidth = 70000;
+  EXPECT_FALSE(compact_column_steps(far));
+  EXPECT_TRUE(far.column_steps.empty());
+  wide.bandwidth = s.matrix.bandwidth;
+  EXPECT_TRUE(compact_column_steps(wide));
+  EXPECT_EQ(wide.column_steps, s.matrix.column_steps);
+}
+
 // The product and a CG solve across chunks: the same bits on one thread and two.
 TEST(LaplaceSystem, SameBitsForAnyThreadCount) {
   const LaplaceSystem& s = fixture().system;

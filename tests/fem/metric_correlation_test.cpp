@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <numeric>
+
 #include <cmath>
 #include <limits>
 #include <string_view>
@@ -21,6 +24,52 @@ TEST(Spearman, TiesShareTheirMeanRank) {
   const RankCorrelation r = spearman_correlation(std::vector<double>{1, 2, 2, 3}, std::vector<double>{10, 30, 20, 40});
   EXPECT_EQ(r.count, 4);
   EXPECT_NEAR(r.rho, 4.5 / std::sqrt(4.5 * 5.0), 1e-15);
+}
+
+// Above the radix sort's threshold (thousands of hexes): the same rho as
+// average ranks computed here by a plain comparison sort, with ties (values
+// rounded to a few levels), negatives, -0 and +0 (equal: one tie group) and
+// values of every magnitude.
+TEST(Spearman, LargeInputsRankAsAComparisonSort) {
+  const std::size_t n = 20000;
+  std::vector<double> x(n), y(n);
+  std::uint64_t z = 12345;
+  const auto next = [&] {  // splitmix64 in [0, 1)
+    z += 0x9e3779b97f4a7c15ULL;
+    std::uint64_t t = z;
+    t = (t ^ (t >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    t = (t ^ (t >> 27)) * 0x94d049bb133111ebULL;
+    return static_cast<double>((t ^ (t >> 31)) >> 11) / 9007199254740992.0;
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    const double u = next();
+    x[i] = i % 7 == 0 ? std::round(8 * u - 4) : (u - 0.5) * std::pow(10.0, 40 * next() - 20);
+    if (i % 97 == 0) x[i] = i % 2 ? -0.0 : 0.0;
+    y[i] = x[i] * 0.3 + next() - 0.5;
+  }
+  const auto ranks = [](const std::vector<double>& v) {
+    std::vector<std::size_t> order(v.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return v[a] < v[b]; });
+    std::vector<double> r(v.size());
+    for (std::size_t i = 0; i < order.size();) {
+      std::size_t j = i;
+      while (j + 1 < order.size() && v[order[j + 1]] == v[order[i]]) ++j;
+      for (std::size_t t = i; t <= j; ++t) r[order[t]] = 0.5 * static_cast<double>(i + j) + 1.0;
+      i = j + 1;
+    }
+    return r;
+  };
+  const std::vector<double> rx = ranks(x), ry = ranks(y);
+  const double mean = 0.5 * (static_cast<double>(n) + 1.0);
+  double sab = 0, saa = 0, sbb = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    sab += (rx[i] - mean) * (ry[i] - mean);
+    saa += (rx[i] - mean) * (rx[i] - mean);
+    sbb += (ry[i] - mean) * (ry[i] - mean);
+  }
+  // The same ranks summed in the same order: the same bits.
+  EXPECT_EQ(spearman_correlation(x, y).rho, sab / std::sqrt(saa * sbb));
 }
 
 TEST(Spearman, SkipsUnusablePairsAndConstants) {

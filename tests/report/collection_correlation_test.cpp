@@ -3,6 +3,8 @@
 // with few meshes (min_p, critical_rho), by hand.
 #include "hqview/report/collection_correlation.h"
 
+#include "hqview/report/batch_index.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -77,6 +79,61 @@ TEST(CollectionCorrelation, DuplicatesByGeometryCountOnce) {
       EXPECT_EQ(d.rows[i].rho_h1, c.rows[i].rho_h1) << d.rows[i].metric;
     }
   }
+}
+
+// Sizes across meshes in other units: the volume row is value / L^3 (L the
+// bounding-box diagonal, cbrt(volume.mean) / h_over_l). Here the raw volumes
+// grow with the error (each mesh in a larger unit) while the volumes in units
+// of L fall: rho must be -1, not the units' +1. index.html names the row
+// "volume / L³", pins the two baselines first, and turns a duplicate's error
+// difference into ties among the counted meshes.
+TEST(CollectionCorrelation, SizesInUnitsOfTheMeshLength) {
+  std::vector<BatchEntry> entries;
+  for (int i = 0; i < 6; ++i) {
+    const double unit = 1.0 + i, d = 1.0 + 0.2 * i;  // L = unit * d; volume / L^3 = 0.1 / d^3
+    BatchEntry e = mesh("m" + std::to_string(i) + ".mesh", 0.9 - 0.1 * i, unit, 0.01 * (i + 1), 0.1 * (i + 1));
+    e.metrics.push_back({"h_over_l", 0.5 / d, 0.5 / d, 0.5 / d});  // cbrt(0.125 unit^3) / (unit d)
+    entries.push_back(e);
+  }
+  CollectionCorrelation c = correlate_collection(entries);
+  bool seen = false;
+  for (const CollectionCorrelationRow& r : c.rows)
+    if (r.metric == "volume") {
+      seen = true;
+      EXPECT_EQ(r.length_power, 3);
+      EXPECT_EQ(r.num_meshes, 6);
+      EXPECT_DOUBLE_EQ(r.rho_h1, -1.0) << r.stat;  // raw volumes would give +1
+      EXPECT_DOUBLE_EQ(r.rho_l2, -1.0) << r.stat;
+    } else if (r.metric == "scaled_jacobian") {
+      EXPECT_EQ(r.length_power, 0);
+    }
+  EXPECT_TRUE(seen);
+  EXPECT_EQ(size_length_power("dimension"), 1);
+  EXPECT_EQ(size_length_power("fem_lambda_max"), 1);
+  EXPECT_EQ(size_length_power("jacobian"), 3);
+  EXPECT_EQ(size_length_power("fem_det_j_min"), 3);
+  EXPECT_EQ(size_length_power("scaled_jacobian"), 0);
+  // A 2x copy of m2 with errors 10 % (L2) and 2 % (H1) higher: m1 and m2
+  // (0.02 vs 0.03 L2) differ by more; make m3's L2 5 % above m2's: one tie in L2.
+  entries[3].headline[slot("fem.poisson.mean.l2_error")] = 0.0315;
+  BatchEntry copy = mesh("z_copy.mesh", 0.7, 6.0, 0.033, 0.3 * 1.02);
+  copy.metrics.push_back(entries[2].metrics.back());
+  entries.push_back(copy);
+  const std::string html = batch_index_html(entries, "test", nullptr);
+  EXPECT_NE(html.find("volume / L\u00b3"), std::string::npos);
+  EXPECT_NE(html.find("moved the L2 error by 9.1 % and the H1 error by 2 %: meshes whose errors differ by less are "
+                      "ties. Here 1 pair of counted meshes is within that in L2 and 0 in H1"),
+            std::string::npos)
+      << html.substr(html.find("Placing"), 400);
+  EXPECT_NE(html.find("left out: same counts and scale-invariant quality summaries as m2.mesh"), std::string::npos);
+  // The baselines first: num_hexes (or h_over_l) before any metric row.
+  const auto first_row = html.find("<td class=\"text\">", html.find("Which metrics rank these meshes"));
+  ASSERT_NE(first_row, std::string::npos);
+  const std::string cell = html.substr(first_row + 17, 9);
+  EXPECT_TRUE(cell == "h_over_l<" || cell == "num_hexes") << cell;
+  // The sizes after every metric with a better direction.
+  EXPECT_LT(html.find(">scaled_jacobian<", first_row), html.find(">volume / L\u00b3<", first_row));
+  EXPECT_LT(html.find(">edge_ratio<", first_row), html.find(">volume / L\u00b3<", first_row));
 }
 
 // The critical |rho| from the permutation distribution, counted here: over

@@ -19,6 +19,20 @@
 namespace hq {
 namespace {
 
+// The centre of a boundary face, and the outward normal of the unit box's
+// side through a point on it.
+Vec3 face_centre(const HexMesh& mesh, const Topology& topology, Index face) {
+  Vec3 c;
+  for (Index v : topology.faces[static_cast<std::size_t>(face)]) c = c + mesh.points[static_cast<std::size_t>(v)] / 4.0;
+  return c;
+}
+Vec3 unit_box_normal(const Vec3& c) {
+  const Vec3 outward = c - Vec3{0.5, 0.5, 0.5};
+  return std::abs(outward.z) > 0.499 ? Vec3{0, 0, outward.z}
+         : std::abs(outward.x) > 0.499 ? Vec3{outward.x, 0, 0}
+                                       : Vec3{0, outward.y, 0};
+}
+
 // Redness r / (b + 1): where on the map (pale blue-grey low, red high) a
 // pixel is.
 double redness(Rgba8 c) { return c.r / (c.b + 1.0); }
@@ -130,12 +144,9 @@ TEST(ErrorDensityView, TheBadRegionCarriesTheHighEndOfTheMap) {
   std::vector<double> region, rest;
   std::size_t matching = 0;
   for (Index face : topology.boundary_faces) {
-    const Quad& q = topology.faces[static_cast<std::size_t>(face)];
-    Vec3 c;
-    for (Index v : q) c = c + mesh.points[static_cast<std::size_t>(v)] / 4.0;
-    const Vec3 outward = c - Vec3{0.5, 0.5, 0.5};
+    const Vec3 c = face_centre(mesh, topology, face);
     // Only faces turned to the camera (a box: nothing hides them).
-    const Vec3 normal = std::abs(outward.z) > 0.499 ? Vec3{0, 0, outward.z} : std::abs(outward.x) > 0.499 ? Vec3{outward.x, 0, 0} : Vec3{0, outward.y, 0};
+    const Vec3 normal = unit_box_normal(c);
     if (dot(normal, camera.target - camera.eye) >= 0) continue;
     const Vec3 ndc = transform_point(to_ndc, c);
     const int x = view.x + static_cast<int>(std::lround((ndc.x + 1) / 2 * view.width));
@@ -209,14 +220,44 @@ TEST(ErrorDensityView, TheBadRegionCarriesTheHighEndOfTheMap) {
     for (int dy = -2; dy <= 2 && !ok; ++dy)
       for (int dx = -2; dx <= 2 && !ok; ++dx) {
         const Rgba8 pixel = test::pixel_at(cells_image, px + dx, py + dy);
+        // A legend colour shaded by a factor in [0.85, 1] (the face's angle),
+        // the same factor on every channel: never a blend with the veil.
         ok = std::any_of(legend.begin(), legend.end(), [&](const Rgba8& e) {
-          return std::abs(pixel.r - e.r) <= 3 && std::abs(pixel.g - e.g) <= 3 && std::abs(pixel.b - e.b) <= 3;
+          const double f = std::clamp(static_cast<double>(pixel.r + pixel.g + pixel.b) / (e.r + e.g + e.b + 1e-9), 0.85, 1.0);
+          return std::abs(pixel.r - f * e.r) <= 3 && std::abs(pixel.g - f * e.g) <= 3 && std::abs(pixel.b - f * e.b) <= 3;
         });
       }
     on_legend += ok;
   }
   EXPECT_LE(under_label, cells.size() / 5);
   EXPECT_GE(on_legend, (cells.size() - under_label) * 9 / 10) << on_legend << " of " << cells.size() - under_label;
+
+  // Depth: of the drawn cells, one with a boundary face turned to the camera
+  // is not behind the boundary; one with no boundary face (inside the box)
+  // is. With the box's other cells drawn too, the same.
+  std::vector<char> has_front_face(mesh.hexes.size(), 0), has_face(mesh.hexes.size(), 0);
+  for (Index face : topology.boundary_faces) {
+    const Vec3 normal = unit_box_normal(face_centre(mesh, topology, face));
+    const Index h = topology.face_hexes[static_cast<std::size_t>(topology.face_hex_offsets[static_cast<std::size_t>(face)])];
+    has_face[static_cast<std::size_t>(h)] = 1;
+    if (dot(normal, cells_camera.target - cells_camera.eye) < 0) has_front_face[static_cast<std::size_t>(h)] = 1;
+  }
+  std::vector<Index> inside, front;
+  for (std::size_t h = 0; h < mesh.hexes.size(); ++h) {
+    if (!has_face[h] && inside.size() < 3) inside.push_back(static_cast<Index>(h));
+    if (has_front_face[h] && front.size() < 3) front.push_back(static_cast<Index>(h));
+  }
+  ASSERT_EQ(inside.size(), 3u);
+  ASSERT_EQ(front.size(), 3u);
+  std::vector<Index> probe = inside;
+  probe.insert(probe.end(), front.begin(), front.end());
+  const std::vector<bool> hidden = error_density_cells_behind_boundary(mesh, topology, probe, cells_camera,
+                                                                       cells_view.width, cells_view.height, *renderer);
+  ASSERT_EQ(hidden.size(), 6u);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_TRUE(hidden[static_cast<std::size_t>(k)]) << "interior hex " << probe[static_cast<std::size_t>(k)];
+    EXPECT_FALSE(hidden[static_cast<std::size_t>(3 + k)]) << "front hex " << probe[static_cast<std::size_t>(3 + k)];
+  }
 }
 
 }  // namespace

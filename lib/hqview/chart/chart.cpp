@@ -516,6 +516,12 @@ Chart boundary_area_chart(std::span<const double> vertex_error, std::span<const 
 namespace {
 
 constexpr Rgba8 kPartialRhoColor{20, 20, 24, 255};     // the partial rho given the size
+constexpr Rgba8 kWhiskerColor{20, 20, 24, 255};        // the 95 % interval
+
+// The partial rho's mark: an open diamond centred at (x, y), unlike the whisker's caps.
+ChartPolyline partial_diamond(double x, double y) {
+  return {{{x, y - 6.0}, {x + 5.0, y}, {x, y + 6.0}, {x - 5.0, y}, {x, y - 6.0}}, kPartialRhoColor, 1.8};
+}
 
 // "0.01", "1", "1e-05": a decade's label.
 std::string decade_label(int k) {
@@ -543,7 +549,7 @@ Chart metric_correlation_chart(std::span<const CorrelationBar> bars, const Chart
   Chart chart = begin_chart(sized);
   // Metric names left of the plot, the numbers' column right of it.
   ChartRect r = chart.plot;
-  const double names = 190.0, numbers = 200.0;
+  const double names = 250.0, numbers = 200.0;  // room for "relative_size_squared (size-weighted)"
   r.x += names - 74.0;
   r.width -= names - 74.0 + numbers;
   r.height = row * static_cast<double>(std::max<std::size_t>(1, slots));
@@ -551,9 +557,10 @@ Chart metric_correlation_chart(std::span<const CorrelationBar> bars, const Chart
   const double column = r.x + r.width + 12.0, partial_column = r.x + r.width + numbers;
   const auto x_of = [&](double v) { return r.x + r.width * (std::clamp(v, -1.0, 1.0) + 1.0) / 2.0; };
   for (double t = -1.0; t <= 1.0001; t += 0.25) chart.rects.push_back({x_of(t) - 0.5, r.y, 1.0, r.height, kGridColor});
+  // An interval bound to 2 decimals, 3 where 2 would print "0.00" or "-0.00".
   const auto two = [](double v) {
     char text[16];
-    std::snprintf(text, sizeof text, "%.2f", v);
+    std::snprintf(text, sizeof text, std::abs(v) < 0.005 ? "%.3f" : "%.2f", v);
     return std::string(text);
   };
   chart.texts.push_back({{column, r.y - 6.0}, "\u03c1 [95% interval]", kTickSize - 1.0, kAxisColor, ChartAnchor::left,
@@ -565,31 +572,46 @@ Chart metric_correlation_chart(std::span<const CorrelationBar> bars, const Chart
   const double undirected_top = r.y + row * static_cast<double>(directed.size() + (separator ? 1 : 0));
   for (std::size_t k = 0; k < undirected.size(); ++k)
     placed.push_back({undirected[k], undirected_top + row * static_cast<double>(k)});
-  bool any_partial = false, any_interval = false;
-  std::size_t disagree = 0;
+  bool any_partial = false, any_interval = false, any_undecided = false;
+  // Per group (0: shape metrics, 1: size-weighted ones): agree, disagree, undecided.
+  std::array<std::array<std::size_t, 3>, 2> counts{};
   for (const auto& [i, y] : placed) {
     const CorrelationBar& bar = bars[i];
     const bool has_direction = std::isfinite(bar.agreement);
-    disagree += has_direction && bar.agreement < 0;
-    const Rgba8 fill = !has_direction ? kNoDirectionColor : bar.agreement >= 0 ? kAgreesColor : kDisagreesColor;
-    const double x0 = x_of(0.0), x1 = x_of(bar.rho);
-    chart.rects.push_back({std::min(x0, x1), y + 4.0, std::max(1.0, std::abs(x1 - x0)), row - 8.0, fill});
-    chart.texts.push_back({{r.x - 8.0, y + row - 6.0}, bar.metric + (bar.is_size ? " (size)" : ""), kTickSize,
-                           {38, 38, 38, 255}, ChartAnchor::right, false});
     const bool interval = std::isfinite(bar.lo) && std::isfinite(bar.hi);
+    const bool undecided = has_direction && correlation_undecided(bar);
+    if (has_direction) ++counts[bar.is_size ? 1 : 0][undecided ? 2 : bar.agreement >= 0 ? 0 : 1];
+    any_undecided = any_undecided || undecided;
+    const Rgba8 fill = !has_direction ? kNoDirectionColor
+                       : undecided    ? kUndecidedColor
+                       : bar.agreement >= 0 ? kAgreesColor
+                                            : kDisagreesColor;
+    const double x0 = x_of(0.0), x1 = x_of(bar.rho);
+    const ChartRect shape{std::min(x0, x1), y + 4.0, std::max(1.0, std::abs(x1 - x0)), row - 8.0, fill};
+    chart.rects.push_back(shape);
+    if (undecided) {  // an open bar: outlined
+      const double xa = shape.x, xb = shape.x + shape.width, ya = shape.y, yb = shape.y + shape.height;
+      chart.lines.push_back({{{xa, ya}, {xb, ya}, {xb, yb}, {xa, yb}, {xa, ya}}, kUndecidedEdgeColor, 1.0});
+    }
+    chart.texts.push_back({{r.x - 8.0, y + row - 6.0},
+                           bar.metric + (!bar.is_size ? "" : has_direction ? " (size-weighted)" : " (size)"), kTickSize,
+                           {38, 38, 38, 255}, ChartAnchor::right, false});
     if (interval) {
       any_interval = true;
+      // Black on a white casing: seen on every bar colour.
       const double ym = y + 0.5 * row, xl = x_of(bar.lo), xh = x_of(bar.hi);
-      chart.lines.push_back({{{xl, ym}, {xh, ym}}, kAxisColor, 1.5});
-      chart.lines.push_back({{{xl, ym - 4.0}, {xl, ym + 4.0}}, kAxisColor, 1.5});
-      chart.lines.push_back({{{xh, ym - 4.0}, {xh, ym + 4.0}}, kAxisColor, 1.5});
+      for (const auto& [color, width] : {std::pair{Rgba8{255, 255, 255, 255}, 3.5}, std::pair{kWhiskerColor, 1.5}}) {
+        chart.lines.push_back({{{xl, ym}, {xh, ym}}, color, width});
+        chart.lines.push_back({{{xl, ym - 4.0}, {xl, ym + 4.0}}, color, width});
+        chart.lines.push_back({{{xh, ym - 4.0}, {xh, ym + 4.0}}, color, width});
+      }
     }
     chart.texts.push_back({{column, y + row - 6.0},
                            format_value(bar.rho) + (interval ? " [" + two(bar.lo) + ", " + two(bar.hi) + "]" : ""),
                            kTickSize - 1.0, {38, 38, 38, 255}, ChartAnchor::left, false});
     if (std::isfinite(bar.rho_given_size)) {
       any_partial = true;
-      chart.rects.push_back({x_of(bar.rho_given_size) - 1.5, y + 1.0, 3.0, row - 2.0, kPartialRhoColor});
+      chart.lines.push_back(partial_diamond(x_of(bar.rho_given_size), y + 0.5 * row));
       chart.texts.push_back({{partial_column, y + row - 6.0}, format_value(bar.rho_given_size), kTickSize - 1.0,
                              {38, 38, 38, 255}, ChartAnchor::right, false});
     }
@@ -604,47 +626,76 @@ Chart metric_correlation_chart(std::span<const CorrelationBar> bars, const Chart
   for (double t = -1.0; t <= 1.0001; t += 0.5) x_ticks.push_back({t, x_of(t)});
   add_axes(chart, r, {}, x_ticks,
            "Spearman \u03c1 over the " + (count > 0 ? std::to_string(count) + " " : std::string()) +
-               "hexes, metric vs error density (3D legend)",
+               "hexes, metric vs error density (as in the cells figure)",
            "");
   chart.lines.push_back({{{x_of(0.0), r.y}, {x_of(0.0), r.y + r.height}}, kAxisColor, 1.0});
-  // The key: every colour and mark, then how the rows are ordered.
+  // The key: every colour and mark, then how the rows are ordered (from
+  // where the plot began before the names column widened: the lines fit).
+  const double kx = r.x - 60.0;
   double ly = r.y + r.height + 62.0;
   const auto key = [&](const Rgba8& color, const std::string& text) {
-    chart.rects.push_back({r.x, ly - 9.0, 14.0, 10.0, color});
-    chart.texts.push_back({{r.x + 20.0, ly}, text, kTickSize, kAxisColor, ChartAnchor::left, false});
+    chart.rects.push_back({kx, ly - 9.0, 14.0, 10.0, color});
+    chart.texts.push_back({{kx + 20.0, ly}, text, kTickSize, kAxisColor, ChartAnchor::left, false});
     ly += 20.0;
   };
   key(kAgreesColor, "agrees: the metric's worse side has the higher error (\u03c1 < 0 where higher is better, "
                     "\u03c1 > 0 where lower is better)");
   key(kDisagreesColor, "disagrees: the metric's better side has the higher error");
+  if (any_undecided) {
+    key(kUndecidedColor, "undecided: the interval includes 0 (open bar)");
+    chart.lines.push_back({{{kx, ly - 29.0}, {kx + 14.0, ly - 29.0}, {kx + 14.0, ly - 19.0}, {kx, ly - 19.0},
+                            {kx, ly - 29.0}},
+                           kUndecidedEdgeColor, 1.0});
+  }
   if (!undirected.empty()) key(kNoDirectionColor, "no better direction (a size): the sign says nothing about quality");
   if (any_interval) {
-    chart.lines.push_back({{{r.x, ly - 4.0}, {r.x + 14.0, ly - 4.0}}, kAxisColor, 1.5});
-    chart.lines.push_back({{{r.x, ly - 8.0}, {r.x, ly}}, kAxisColor, 1.5});
-    chart.lines.push_back({{{r.x + 14.0, ly - 8.0}, {r.x + 14.0, ly}}, kAxisColor, 1.5});
-    chart.texts.push_back({{r.x + 20.0, ly},
-                           "95% interval (Fisher z): too narrow, as neighbouring hexes' errors are correlated",
+    chart.lines.push_back({{{kx, ly - 4.0}, {kx + 14.0, ly - 4.0}}, kWhiskerColor, 1.5});
+    chart.lines.push_back({{{kx, ly - 8.0}, {kx, ly}}, kWhiskerColor, 1.5});
+    chart.lines.push_back({{{kx + 14.0, ly - 8.0}, {kx + 14.0, ly}}, kWhiskerColor, 1.5});
+    chart.texts.push_back({{kx + 20.0, ly},
+                           "95% interval per metric (Fisher z, Bonett\u2013Wright SE), unadjusted for the " +
+                               std::to_string(directed.size() + undirected.size()) + " metrics;",
                            kTickSize, kAxisColor, ChartAnchor::left, false});
+    ly += 20.0;
+    chart.texts.push_back({{kx + 20.0, ly}, "too narrow, as neighbouring hexes' errors are correlated", kTickSize,
+                           kAxisColor, ChartAnchor::left, false});
     ly += 20.0;
   }
   if (any_partial) {
-    chart.rects.push_back({r.x + 5.5, ly - 11.0, 3.0, 14.0, kPartialRhoColor});
-    chart.texts.push_back({{r.x + 20.0, ly},
+    chart.lines.push_back(partial_diamond(kx + 7.0, ly - 4.0));
+    chart.texts.push_back({{kx + 20.0, ly},
                            "partial \u03c1 given the hex size h_e (what the metric adds to the size; "
                            "none where the metric ranks as the size)",
                            kTickSize, kAxisColor, ChartAnchor::left, false});
     ly += 20.0;
   }
-  chart.texts.push_back({{r.x, ly},
-                         "rows: by agreement \u2212direction\u00b7\u03c1, strongest agreement on top; "
-                         "(size): a size or size-weighted metric",
-                         kTickSize, kAxisColor, ChartAnchor::left, false});
-  if (2 * disagree > directed.size()) {
-    ly += 20.0;
-    chart.texts.push_back({{r.x, ly},
-                           std::to_string(disagree) + " of " + std::to_string(directed.size()) +
-                               " metrics disagree: the error here does not follow what they call worse",
-                           kTickSize, kAxisColor, ChartAnchor::left, false});
+  // A footer line under the previous one (the first at ly).
+  bool first_note = true;
+  const auto note = [&](const std::string& text) {
+    if (!first_note) ly += 20.0;
+    first_note = false;
+    chart.texts.push_back({{kx, ly}, text, kTickSize, kAxisColor, ChartAnchor::left, false});
+  };
+  note("rows: by agreement \u2212direction\u00b7\u03c1 (direction +1: higher is better, \u22121: lower), "
+       "strongest agreement on top");
+  note("(size): no better side (jacobian: its magnitude); (size-weighted): shape times the hex's size");
+  // The count line, every figure: shape metrics and size-weighted ones apart.
+  const auto tally = [](const std::array<std::size_t, 3>& c) {
+    return " (" + std::to_string(c[0] + c[1] + c[2]) + "): " + std::to_string(c[0]) + " agree, " +
+           std::to_string(c[1]) + " disagree, " + std::to_string(c[2]) + " undecided";
+  };
+  const std::size_t shape_total = counts[0][0] + counts[0][1] + counts[0][2];
+  const std::size_t weighted_total = counts[1][0] + counts[1][1] + counts[1][2];
+  if (shape_total + weighted_total > 0) {
+    std::string text;
+    if (shape_total > 0) text = "shape metrics" + tally(counts[0]);
+    if (weighted_total > 0) text += (text.empty() ? "" : "; ") + std::string("size-weighted") + tally(counts[1]);
+    note(text);
+    note("(the metrics correlate with each other: they are not independent witnesses)");
+    if (counts[0][1] > counts[0][0] + counts[0][2]) {
+      note("Most shape metrics disagree: here the hexes they call worse have the lower error;");
+      note("a position or grading effect is the first explanation, not a verdict on the metrics");
+    }
   }
   if (!constant.empty()) {
     std::string text = "no \u03c1 (constant on this mesh):";

@@ -125,13 +125,20 @@ Chart method_distribution_chart(std::span<const std::string> methods, std::span<
 // the metric-direction normalisation agreement = -direction * rho
 // (metric_agreement, fem/metric_correlation.h) > 0 is blue ("agrees: the
 // metric's worse side has the higher error"), < 0 orange ("disagrees"), and
-// a metric with no better direction grey. Rows: the metrics with a direction
+// a metric with no better direction grey; a directed metric whose interval
+// includes 0 (correlation_undecided) an open pale bar, "undecided", whatever
+// its sign. Rows: the metrics with a direction
 // by agreement, strongest agreement on top (strongest disagreement at the
 // bottom of that group), then the ones without a direction by |rho|, under a
-// separator line. A size metric (metric_is_size) gets " (size)". Each row: a
-// whisker over the bar for its 95 % interval (lo, hi; none where NaN), a dark
-// tick at the partial rho given the hex size (none where NaN), and in a
-// column right of the plot "rho [lo, hi]" and the partial. Metrics whose rho
+// separator line. A size metric (metric_is_size) gets " (size)" without a
+// direction, " (size-weighted)" with one. Each row: a black whisker on a white
+// casing for its 95 % interval (lo, hi; none where NaN), an open diamond at
+// the partial rho given the hex size (none where NaN), and in a column right
+// of the plot "rho [lo, hi]" (bounds to 2 decimals, 3 under 0.005) and the
+// partial. Under the key, on every chart, the count line: agree / disagree /
+// undecided of the shape metrics and of the size-weighted ones apart, and
+// when most shape metrics disagree a line naming position or grading as the
+// first explanation. Metrics whose rho
 // is NaN (constant on the mesh) are named under the chart; the key names
 // every colour and mark. count > 0: the number of hexes, in the axis title.
 struct CorrelationBar {
@@ -145,6 +152,12 @@ struct CorrelationBar {
 inline constexpr Rgba8 kAgreesColor{49, 104, 170, 255};
 inline constexpr Rgba8 kDisagreesColor{205, 96, 40, 255};
 inline constexpr Rgba8 kNoDirectionColor{150, 150, 156, 255};
+// A directed metric whose 95 % interval includes 0: an open (outlined) pale bar.
+inline constexpr Rgba8 kUndecidedColor{236, 234, 228, 255};
+inline constexpr Rgba8 kUndecidedEdgeColor{96, 96, 104, 255};
+// Whether a bar's interval includes 0 (lo <= 0 <= hi): its sign is undecided.
+// False without an interval.
+inline bool correlation_undecided(const CorrelationBar& bar) { return bar.lo <= 0 && bar.hi >= 0; }
 Chart metric_correlation_chart(std::span<const CorrelationBar> bars, const ChartOptions& options,
                                std::int64_t count = 0);
 

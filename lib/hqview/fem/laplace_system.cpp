@@ -171,7 +171,18 @@ LaplaceSystem assemble_laplace_system(const HexMesh& mesh, const Topology& topol
   s.diagonal.assign(s.row_vertex.size(), 0.0);
   s.rhs.assign(s.row_vertex.size() * static_cast<std::size_t>(num_rhs), 0.0);
   gather_rows(mesh, topology, dirichlet, s);
+  compact_column_steps(s.matrix);
   return s;
+}
+
+bool compact_column_steps(CsrMatrix& a) {
+  a.column_steps.clear();
+  if (a.bandwidth > 0xffffu) return false;
+  a.column_steps.resize(a.columns.size());
+  for (std::size_t r = 0; r + 1 < a.offsets.size(); ++r)
+    for (auto e = static_cast<std::size_t>(a.offsets[r]); e < static_cast<std::size_t>(a.offsets[r + 1]); ++e)
+      a.column_steps[e] = static_cast<std::uint16_t>(static_cast<std::size_t>(a.columns[e]) - r);
+  return true;
 }
 
 void multiply(const CsrMatrix& a, const std::vector<double>& x, std::vector<double>& y, int k) {

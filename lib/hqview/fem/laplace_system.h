@@ -21,6 +21,10 @@ namespace hq {
 struct CsrMatrix {
   std::vector<std::int64_t> offsets;  // rows + 1
   std::vector<Index> columns;
+  // column - row of each entry, when the bandwidth is at most 65,535 (else
+  // empty): what the product reads instead of `columns` (issue 48's speed:
+  // the product is memory-bound). compact_column_steps fills it.
+  std::vector<std::uint16_t> column_steps;
   std::vector<double> values;
   std::size_t bandwidth = 0;   // max over the entries of column - row
   std::size_t chunk_rows = 0;  // the product's fixed row chunks: >= bandwidth
@@ -36,6 +40,10 @@ struct LaplaceSystem {
   std::vector<double> rhs;        // rows x num_rhs, rhs[row * num_rhs + s] = -(K_fb g_s)
   Index max_hexes_at_vertex = 0;  // m of Fried's bound
 };
+
+// Fills a.column_steps from a.columns when every column - row fits in 16
+// bits (clears it otherwise); returns whether it did.
+bool compact_column_steps(CsrMatrix& a);
 
 // Free vertices: used by a hex and not on a boundary face.
 // `dirichlet`: #vertices x num_rhs values (interleaved), read at boundary vertices only.

@@ -6,6 +6,8 @@
 // hex mesh's Laplace matrix spends most of its time reading.
 //
 // Row r gathers A_rj x_j (j >= r) and scatters A_rj x_r into y_j (j > r).
+// Columns are read as 16-bit steps from the row (CsrMatrix::column_steps)
+// when the band allows: a sixth fewer bytes per entry than 32-bit ids.
 // Rows go in fixed chunks of a.chunk_rows (at least the bandwidth, so a
 // chunk's scatters land in its own rows or the next chunk's first ones):
 // pass 1, in parallel over chunks, writes a chunk's own rows to y and its
@@ -21,6 +23,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <cstring>
 #include <vector>
 
@@ -40,9 +43,21 @@ inline Pair load_pair(const double* p) {
 
 inline void store_pair(double* p, Pair v) { std::memcpy(p, &v, sizeof v); }
 
+// A row entry's column: from the 32-bit ids, or from the 16-bit steps
+// column - row (CsrMatrix::column_steps: 2 bytes an entry fewer to read).
+struct WideColumns {
+  const Index* columns;
+  std::size_t operator()(std::size_t e, std::size_t) const { return static_cast<std::size_t>(columns[e]); }
+};
+struct NarrowColumns {
+  const std::uint16_t* steps;
+  std::size_t operator()(std::size_t e, std::size_t r) const { return r + steps[e]; }
+};
+
 // One row of the three-column product: columns 0 and 1 as a pair, column 2
 // alone (the same operations, in the same order, as the generic loop).
-inline void row_product_3(const double* values, const Index* columns, std::size_t begin, std::size_t end, std::size_t r,
+template <class Columns>
+inline void row_product_3(const double* values, Columns columns, std::size_t begin, std::size_t end, std::size_t r,
                           std::size_t last, const double* x, double* y, double* overflow, double sum[3]) {
   const Pair xr01 = load_pair(x + r * 3);
   const double xr2 = x[r * 3 + 2];
@@ -50,7 +65,7 @@ inline void row_product_3(const double* values, const Index* columns, std::size_
   double sum2 = sum[2];
   for (std::size_t e = begin; e < end; ++e) {
     const double v = values[e];
-    const std::size_t j = static_cast<std::size_t>(columns[e]);
+    const std::size_t j = columns(e, r);
     const double* xj = x + j * 3;
     sum01 += v * load_pair(xj);
     sum2 += v * xj[2];
@@ -65,15 +80,14 @@ inline void row_product_3(const double* values, const Index* columns, std::size_
 
 // `overflow`: a.num_rows() * K zeros, left zeros. `w`: the vector the dots
 // take y against (rows x K; may be x itself).
-template <std::size_t K>
-std::array<double, K> symmetric_product(const CsrMatrix& a, const double* x, double* y, double* overflow,
-                                        const double* w) {
+template <std::size_t K, class Columns>
+std::array<double, K> symmetric_product(const CsrMatrix& a, Columns columns, const double* x, double* y,
+                                        double* overflow, const double* w) {
   const std::size_t n = a.num_rows();
   // A chunk narrower than the band (never so from assemble_laplace_system) is one chunk.
   const std::size_t chunk = std::max<std::size_t>(1, a.chunk_rows >= a.bandwidth ? a.chunk_rows : n);
   const std::size_t num_chunks = (n + chunk - 1) / chunk, band = std::min(chunk, a.bandwidth);
   std::vector<std::array<double, K>> partial(num_chunks), partial_head(num_chunks);
-  const Index* columns = a.columns.data();
   const double* values = a.values.data();
   // Pass 1: the chunk's rows; the dots of the rows no earlier chunk reaches.
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_chunks), [&](const tbb::blocked_range<std::size_t>& range) {
@@ -93,7 +107,7 @@ std::array<double, K> symmetric_product(const CsrMatrix& a, const double* x, dou
         } else {
           for (std::size_t e = begin; e < end; ++e) {
             const double v = values[e];
-            const std::size_t j = static_cast<std::size_t>(columns[e]);
+            const std::size_t j = columns(e, r);
             const double* xj = x + j * K;
             for (std::size_t s = 0; s < K; ++s) sum[s] += v * xj[s];
             if (j == r) continue;
@@ -129,6 +143,16 @@ std::array<double, K> symmetric_product(const CsrMatrix& a, const double* x, dou
   for (std::size_t c = 0; c < num_chunks; ++c)
     for (std::size_t s = 0; s < K; ++s) total[s] += partial_head[c][s] + partial[c][s];
   return total;
+}
+
+// The product with the 16-bit column steps when the matrix has them, else
+// with the column ids (the same entries in the same order: the same bits).
+template <std::size_t K>
+std::array<double, K> symmetric_product(const CsrMatrix& a, const double* x, double* y, double* overflow,
+                                        const double* w) {
+  if (!a.column_steps.empty() && a.column_steps.size() == a.columns.size())
+    return symmetric_product<K>(a, NarrowColumns{a.column_steps.data()}, x, y, overflow, w);
+  return symmetric_product<K>(a, WideColumns{a.columns.data()}, x, y, overflow, w);
 }
 
 }  // namespace hq::detail

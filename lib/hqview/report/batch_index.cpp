@@ -118,7 +118,8 @@ json correlation_json(const CollectionCorrelation& c) {
                     {"p_h1_error", number_or_null(r.p_h1)},
                     {"q_l2_error", number_or_null(r.q_l2)},
                     {"q_h1_error", number_or_null(r.q_h1)},
-                    {"num_meshes", r.num_meshes}});
+                    {"num_meshes", r.num_meshes},
+                    {"length_power", r.length_power}});
   json duplicates = json::array();
   for (const CollectionDuplicate& d : c.duplicates)
     duplicates.push_back({{"path", d.path},
@@ -452,14 +453,43 @@ kainjow::mustache::data comparison_data(const std::vector<BatchEntry>& entries, 
   return d;
 }
 
-// index.html's "Which metrics rank these meshes by their simulation error" table: the rows
-// by |rho| with the H1 error, largest first (nulls last, then metric order).
+bool is_baseline_row(const CollectionCorrelationRow& r) { return r.metric == "num_hexes" || r.metric == "h_over_l"; }
+
+// Of the counted meshes (solved, not a duplicate), the pairs whose errors
+// (headline slot) differ by less than `noise` relative: ties within the
+// placement effect.
+std::size_t pairs_within(const std::vector<BatchEntry>& entries, const CollectionCorrelation& c, std::size_t slot,
+                         double noise) {
+  std::vector<double> errors;
+  for (const BatchEntry& e : entries) {
+    if (e.metrics.empty() || !e.headline[slot]) continue;
+    if (e.status != BatchStatus::ok && e.status != BatchStatus::gate_failed) continue;
+    if (std::any_of(c.duplicates.begin(), c.duplicates.end(),
+                    [&](const CollectionDuplicate& d) { return d.path == e.path; }))
+      continue;
+    errors.push_back(*e.headline[slot]);
+  }
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < errors.size(); ++i)
+    for (std::size_t j = i + 1; j < errors.size(); ++j) {
+      const double m = std::max(std::abs(errors[i]), std::abs(errors[j]));
+      n += m > 0 && std::abs(errors[i] - errors[j]) < noise * m;
+    }
+  return n;
+}
+
+// index.html's "Which metrics rank these meshes by their simulation error" table: the two
+// baselines first, then the rows by |rho| with the H1 error, largest first (nulls last, then metric order).
 kainjow::mustache::data fem_correlation_data(const CollectionCorrelation& c, const std::vector<BatchEntry>& entries) {
   using kainjow::mustache::data;
   std::vector<std::size_t> order(c.rows.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   const auto strength = [&](std::size_t i) { return std::isfinite(c.rows[i].rho_h1) ? std::abs(c.rows[i].rho_h1) : -1.0; };
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return strength(a) > strength(b); });
+  // Groups: the baselines, the metrics with a better direction, the sizes (in units of L).
+  const auto group = [&](std::size_t i) { return is_baseline_row(c.rows[i]) ? 0 : c.rows[i].direction != 0 ? 1 : 2; };
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return group(a) != group(b) ? group(a) < group(b) : strength(a) > strength(b);
+  });
   const auto rho = [](double v) {
     if (!std::isfinite(v)) return std::string("–");
     char text[32];
@@ -487,7 +517,10 @@ kainjow::mustache::data fem_correlation_data(const CollectionCorrelation& c, con
   for (const std::size_t i : order) {
     const CollectionCorrelationRow& r = c.rows[i];
     data row;
-    row.set("metric", r.metric);
+    row.set("metric", r.metric + (r.length_power == 1   ? " / L"
+                                  : r.length_power == 2 ? " / L\u00b2"
+                                  : r.length_power == 3 ? " / L\u00b3"
+                                                        : ""));
     row.set("stat", r.stat);
     row.set("direction", r.direction > 0 ? "higher is better" : r.direction < 0 ? "lower is better" : "–");
     row.set("rho_l2", rho(r.rho_l2) + (wrong_way(r, r.rho_l2) ? " \u2717" : ""));
@@ -504,7 +537,7 @@ kainjow::mustache::data fem_correlation_data(const CollectionCorrelation& c, con
     row.set("sort_h1", std::isfinite(r.rho_h1) ? format_double(r.rho_h1) : "");
     row.set("sort_p_l2", std::isfinite(r.p_l2) ? format_double(r.p_l2) : "");
     row.set("sort_p_h1", std::isfinite(r.p_h1) ? format_double(r.p_h1) : "");
-    row.set("baseline", r.metric == "num_hexes" || r.metric == "h_over_l");
+    row.set("baseline", is_baseline_row(r));
     row.set("num_meshes", std::to_string(r.num_meshes));
     rows.push_back(row);
   }
@@ -528,8 +561,27 @@ kainjow::mustache::data fem_correlation_data(const CollectionCorrelation& c, con
       power += " Over these " + std::to_string(m) + " rows (Benjamini\u2013Hochberg) a row reaches q < 0.05 only when at least " +
                std::to_string(needed) + " rows reach p = " + p_text(c.min_p) + " together; a row alone there gets q = " +
                p_text(std::min(1.0, spread)) +
-               ": too few meshes for significance; a greyed row means \u201ccould not detect\u201d, not \u201cno effect\u201d.";
+               " (the two baselines are rows of the family): too few meshes for significance; a greyed row means \u201ccould not detect\u201d, not \u201cno effect\u201d.";
     }
+  }
+  // The placement effect (a duplicate's errors) as the noise of the error columns.
+  if (!c.duplicates.empty()) {
+    double l2_noise = 0, h1_noise = 0;
+    for (const CollectionDuplicate& dup : c.duplicates) {
+      l2_noise = std::max(l2_noise, dup.l2_difference);
+      h1_noise = std::max(h1_noise, dup.h1_difference);
+    }
+    const std::size_t l2_ties = pairs_within(entries, c, headline_slot("fem.poisson.mean.l2_error"), l2_noise),
+                      h1_ties = pairs_within(entries, c, headline_slot("fem.poisson.mean.h1_error"), h1_noise);
+    char text[600];
+    std::snprintf(text, sizeof text,
+                  " Placing the same mesh differently (the duplicate below) moved the L2 error by %.2g %% and the H1 "
+                  "error by %.2g %%: meshes whose errors differ by less are ties. Here %zu pair%s of counted meshes "
+                  "%s within that in L2 and %zu in H1, so the L2 (H1) column's \u03c1 is uncertain by at least as "
+                  "many swaps.",
+                  100.0 * l2_noise, 100.0 * h1_noise, l2_ties, l2_ties == 1 ? "" : "s", l2_ties == 1 ? "is" : "are",
+                  h1_ties);
+    power += text;
   }
   d.set("power", power);
   d.set("has_power", !power.empty());
@@ -557,12 +609,16 @@ kainjow::mustache::data fem_correlation_data(const CollectionCorrelation& c, con
     row.set("min_sj", cell(e.headline[sj_slot], 3));
     row.set("inverted", cell(e.headline[inverted_slot], 12));
     std::string counted = "counted";
+    if (e.headline[inverted_slot] && *e.headline[inverted_slot] > 0)
+      counted += " (with " + cell(e.headline[inverted_slot], 12) +
+                 " inverted hexes: the check ran on a map that folds; their error is in the mean)";
     for (const CollectionDuplicate& dup : c.duplicates)
       if (dup.path == e.path) {
-        char text[160];
-        std::snprintf(text, sizeof text, "left out: same geometry as %s (errors differ by %.2g %% L2, %.2g %% H1)",
-                      dup.same_as.c_str(), 100.0 * dup.l2_difference, 100.0 * dup.h1_difference);
-        counted = text;
+        char text[96];
+        std::snprintf(text, sizeof text, "errors differ by %.2g %% L2, %.2g %% H1", 100.0 * dup.l2_difference,
+                      100.0 * dup.h1_difference);
+        counted = "left out: same counts and scale-invariant quality summaries as " + dup.same_as +
+                  ", so treated as the same mesh (the first by path is kept; " + text + ")";
       }
     row.set("counted", counted);
     meshes.push_back(row);

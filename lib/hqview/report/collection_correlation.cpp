@@ -68,6 +68,12 @@ double critical_rho_for(int n) {
 
 }  // namespace
 
+int size_length_power(std::string_view metric) {
+  if (metric == "dimension" || metric == "fem_lambda_max") return 1;
+  if (metric == "volume" || metric == "jacobian" || metric == "fem_det_j_min") return 3;
+  return 0;
+}
+
 bool same_mesh_geometry(const BatchEntry& a, const BatchEntry& b) {
   static const std::size_t vertices_slot = slot_of("mesh.num_vertices"), hexes_slot = slot_of("mesh.num_hexes");
   for (const std::size_t slot : {vertices_slot, hexes_slot})
@@ -149,11 +155,12 @@ CollectionCorrelation correlate_collection(const std::vector<BatchEntry>& entrie
         names.push_back(m.metric);
   std::sort(names.begin(), names.end());
   const auto add_row = [&](std::string metric, std::string stat, int direction, const std::vector<double>& value,
-                           const std::vector<double>& l2, const std::vector<double>& h1) {
+                           const std::vector<double>& l2, const std::vector<double>& h1, int length_power = 0) {
     CollectionCorrelationRow row;
     row.metric = std::move(metric);
     row.stat = std::move(stat);
     row.direction = direction;
+    row.length_power = length_power;
     const RankCorrelationTest a = spearman_test(std::span<const double>(value), std::span<const double>(l2));
     const RankCorrelationTest b = spearman_test(std::span<const double>(value), std::span<const double>(h1));
     row.num_meshes = static_cast<int>(a.correlation.count);
@@ -164,18 +171,33 @@ CollectionCorrelation correlate_collection(const std::vector<BatchEntry>& entrie
     row.p_h1 = enough_h1 ? b.p_value : kNaN;
     out.rows.push_back(std::move(row));
   };
+  // A size (no better direction) in units of the mesh's length L^k: L the
+  // diagonal of the bounding box the check normalises by, cbrt(volume.mean) /
+  // h_over_l; a mesh without L leaves such a row (NaN, so not counted).
+  const auto length_of = [](const BatchEntry& e) {
+    double volume = kNaN, h_over_l = kNaN;
+    for (const MeshMetricRange& m : e.metrics) {
+      if (m.metric == "volume") volume = m.mean;
+      if (m.metric == kHOverL) h_over_l = m.mean;
+    }
+    return volume > 0 && h_over_l > 0 ? std::cbrt(volume) / h_over_l : kNaN;
+  };
   for (const std::string& name : names) {
     const int direction = metric_direction(name);
+    const int power = direction == 0 ? size_length_power(name) : 0;
     for (const bool is_worst : {true, false}) {
       std::vector<double> value, l2, h1;
       for (const BatchEntry* e : meshes)
         for (const MeshMetricRange& m : e->metrics)
           if (m.metric == name) {
-            value.push_back(!is_worst ? m.mean : direction < 0 ? m.max : m.min);
+            const double v = !is_worst ? m.mean : direction < 0 ? m.max : m.min;
+            const double length = power > 0 ? length_of(*e) : 1.0;
+            if (!std::isfinite(length)) continue;
+            value.push_back(power > 0 ? v / std::pow(length, power) : v);
             l2.push_back(*e->headline[l2_slot]);
             h1.push_back(*e->headline[h1_slot]);
           }
-      add_row(name, !is_worst ? "mean" : direction != 0 ? "worst" : "min", direction, value, l2, h1);
+      add_row(name, !is_worst ? "mean" : direction != 0 ? "worst" : "min", direction, value, l2, h1, power);
     }
   }
   static const std::size_t hexes_slot = slot_of("mesh.num_hexes");

@@ -8,7 +8,8 @@
 // and the element conditioning fem.element.kappa / lambda_max / det_j_min):
 // the worst is the min of a higher-is-better metric and the max of a
 // lower-is-better one (metric_direction); a metric with no direction (a
-// size) gives its min. A baseline row correlates the hex count
+// size) gives its min, divided by L^k (CollectionCorrelationRow::length_power)
+// so that meshes in different units compare. A baseline row correlates the hex count
 // (mesh.num_hexes): a metric that ranks the meshes no better than their
 // resolution says little. Each rho has its two-sided p-value (spearman_test:
 // exact permutation up to 8 meshes, the t approximation above) and its
@@ -26,6 +27,7 @@
 // result.
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "hqview/report/batch_index.h"
@@ -48,7 +50,16 @@ struct CollectionCorrelationRow {
   // included); NaN: null.
   double q_l2 = 0, q_h1 = 0;
   int num_meshes = 0;  // meshes that entered (both errors and this value)
+  // k > 0: a size correlated in units of the mesh's length, value / L^k
+  // (size_length_power; L the bounding-box diagonal the check normalises
+  // coordinates by): raw sizes rank the meshes' units, not their quality.
+  int length_power = 0;
 };
+
+// The power of length a size metric (no better direction) carries:
+// dimension and fem_lambda_max 1, volume, jacobian and fem_det_j_min 3;
+// 0 for any other name.
+int size_length_power(std::string_view metric);
 
 // One mesh left out as the duplicate of another.
 struct CollectionDuplicate {

@@ -66,6 +66,7 @@ Vec3 hex_center(const HexMesh& mesh, Index h) {
 }
 
 struct Figure {
+  std::vector<Vec3> model_points;  // the boundary's points (the label's margin)
   AnnotationStyle style;
   ColorBar bar;
   FigureLayout layout;
@@ -76,6 +77,7 @@ struct Figure {
 Figure begin_figure(const HexMesh& mesh, const Topology& topology, const ErrorDensityScale& scale,
                     const Vec3& view_direction, const ErrorDensityViewOptions& options) {
   Figure f;
+  f.model_points = boundary_points(mesh, topology);
   f.bar = error_density_color_bar(scale);
   FigureFrame3d frame = figure_frame_3d(
       "error density view", options.width, options.height, options.background,
@@ -83,7 +85,7 @@ Figure begin_figure(const HexMesh& mesh, const Topology& topology, const ErrorDe
         return figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(f.bar, style),
                              style);
       },
-      boundary_points(mesh, topology), view_direction, options.up, kFovY);
+      f.model_points, view_direction, options.up, kFovY);
   f.style = frame.style;
   f.layout = frame.layout;
   f.camera = frame.camera;
@@ -103,6 +105,20 @@ void add_quad(TriangleSet& set, const HexMesh& mesh, const Vec3& origin, const s
   for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) set.indices.push_back(base + i);
 }
 
+// A cell face's colour darkened by its angle to the camera, at most
+// kCellShadeDepth: full colour facing the camera, (1 - depth) edge-on.
+constexpr double kCellShadeDepth = 0.15;
+Rgba8 shade_cell_face(Rgba8 color, const HexMesh& mesh, const std::array<Index, 4>& q, const Camera& camera) {
+  const Vec3 &p0 = point(mesh, q[0]), &p1 = point(mesh, q[1]), &p2 = point(mesh, q[2]), &p3 = point(mesh, q[3]);
+  const Vec3 normal = cross(p2 - p0, p3 - p1);
+  const Vec3 to_eye = camera.is_perspective ? camera.eye - 0.25 * (p0 + p1 + p2 + p3) : camera.eye - camera.target;
+  const double n = norm(normal) * norm(to_eye);
+  const double c = n > 0 ? std::abs(dot(normal, to_eye)) / n : 1.0;
+  const double shade = 1.0 - kCellShadeDepth * (1.0 - c);
+  const auto scaled = [&](std::uint8_t v) { return static_cast<std::uint8_t>(std::lround(shade * v)); };
+  return {scaled(color.r), scaled(color.g), scaled(color.b), color.a};
+}
+
 // The densest hex drawn over everything (opaque overlay): an interior one
 // shows through the boundary, and in the cells figure through the other cells.
 void add_worst_overlay(Figure& f, const HexMesh& mesh, const ErrorDensityWorst& worst, const ErrorDensityScale& scale) {
@@ -116,9 +132,58 @@ void add_worst_overlay(Figure& f, const HexMesh& mesh, const ErrorDensityWorst& 
   f.scene.overlay.push_back(std::move(faces));
 }
 
+// The label of the ring at (cx, cy) in the free margin beside the model's
+// projected box (x0, y0)-(x1, y1): right of it, left, above or below (the
+// first that fits in the view, nearest the ring's height or column), with a
+// leader line from the label to the ring; where no margin fits, beside the
+// ring (draw_worst_label). So the label's white box never covers a drawn cell.
+struct PixelBox {
+  double x0, y0, x1, y1;
+};
+void draw_worst_label_outside(Image& figure, const PixelRect& view, const PixelBox& model, double cx, double cy,
+                              double radius, const std::string& label, const AnnotationStyle& style) {
+  const int size = std::max(style.min_text_size, static_cast<int>(std::lround(20 * style.scale)));
+  const PixelRect extent = text_extent(label, size, style);
+  const double w = extent.width + 6.0, h = size + 6.0, gap = 10.0 * style.scale;
+  const double vx0 = view.x + 2.0, vy0 = view.y + 2.0, vx1 = view.x + view.width - 2.0, vy1 = view.y + view.height - 2.0;
+  const auto clamp_x = [&](double x) { return std::clamp(x, vx0, std::max(vx0, vx1 - w)); };
+  const auto clamp_y = [&](double y) { return std::clamp(y, vy0, std::max(vy0, vy1 - h)); };
+  struct Box {
+    double x, y;
+  };
+  std::vector<Box> candidates;
+  if (model.x1 + gap + w <= vx1) candidates.push_back({model.x1 + gap, clamp_y(cy - 0.5 * h)});
+  if (model.x0 - gap - w >= vx0) candidates.push_back({model.x0 - gap - w, clamp_y(cy - 0.5 * h)});
+  if (model.y0 - gap - h >= vy0) candidates.push_back({clamp_x(cx - 0.5 * w), model.y0 - gap - h});
+  if (model.y1 + gap + h <= vy1) candidates.push_back({clamp_x(cx - 0.5 * w), model.y1 + gap});
+  if (candidates.empty()) {
+    draw_worst_label(figure, view, cx, cy, radius, label, style);
+    return;
+  }
+  // The nearest to the ring (the shortest leader).
+  const auto distance = [&](const Box& b) {
+    const double dx = std::max({b.x - cx, 0.0, cx - (b.x + w)}), dy = std::max({b.y - cy, 0.0, cy - (b.y + h)});
+    return std::hypot(dx, dy);
+  };
+  const Box best = *std::min_element(candidates.begin(), candidates.end(),
+                                     [&](const Box& a, const Box& b) { return distance(a) < distance(b); });
+  // The leader: from the box's nearest point to the ring's edge.
+  const double px = std::clamp(cx, best.x, best.x + w), py = std::clamp(cy, best.y, best.y + h);
+  const double length = std::hypot(px - cx, py - cy);
+  if (length > radius + 2.0) {
+    const double ux = (px - cx) / length, uy = (py - cy) / length;
+    draw_line(figure, cx + ux * radius, cy + uy * radius, px, py, kWorstMarkerColor, std::max(1.5, 2.0 * style.scale));
+  }
+  const int x = static_cast<int>(std::lround(best.x)), y = static_cast<int>(std::lround(best.y));
+  fill_rect(figure, {x, y, static_cast<int>(std::lround(w)), static_cast<int>(std::lround(h))}, {255, 255, 255, 230});
+  draw_text(figure, x + 3, y + size + 1, label, size, style);
+}
+
 // The ring about the densest hex (its projected corners plus a margin),
-// dashed when it is inside, and its label: "max 11.4, hex 24347 (interior)".
-void draw_worst_marker(Image& figure, const Figure& f, const HexMesh& mesh, const ErrorDensityWorst& worst) {
+// dashed when it is inside, and its label: "max 11.4, hex 24347 (interior)"
+// outside the model (model_points: the boundary's points) with a leader.
+void draw_worst_marker(Image& figure, const Figure& f, const HexMesh& mesh, const ErrorDensityWorst& worst,
+                       const std::vector<Vec3>& model_points) {
   if (worst.hex == kNoIndex) return;
   const PixelRect& view = f.layout.view;
   const double aspect = static_cast<double>(view.width) / std::max(1, view.height);
@@ -135,12 +200,21 @@ void draw_worst_marker(Image& figure, const Figure& f, const HexMesh& mesh, cons
     double x = 0, y = 0;
     if (to_pixel(point(mesh, v), x, y)) radius = std::max(radius, std::hypot(x - cx, y - cy));
   }
-  radius = std::max(radius + 6.0 * f.style.scale, 16.0 * f.style.scale);
+  // The hex's own projected extent plus a small margin: the ring encloses
+  // it, not its neighbours.
+  radius = std::max(radius + 4.0 * f.style.scale, 10.0 * f.style.scale);
   draw_marker_ring(figure, cx, cy, radius, std::max(2.0, 3.0 * f.style.scale), !worst.on_boundary, kWorstMarkerColor);
-  draw_worst_label(figure, view, cx, cy, radius,
-                   "max " + display_number(worst.density, 3) + ", hex " + std::to_string(worst.hex) +
-                       (worst.on_boundary ? " (on the boundary)" : " (interior, seen through)"),
-                   f.style);
+  // The model's projected box: the label goes in the free margin beside it.
+  double x0 = view.x + view.width, y0 = view.y + view.height, x1 = view.x, y1 = view.y;
+  for (const Vec3& p : model_points) {
+    double x = 0, y = 0;
+    if (!to_pixel(p, x, y)) continue;
+    x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+  }
+  draw_worst_label_outside(figure, view, {x0, y0, x1, y1}, cx, cy, radius,
+                           "max " + display_number(worst.density, 3) + ", hex " + std::to_string(worst.hex) +
+                               (worst.on_boundary ? " (on the boundary)" : " (interior, seen through)"),
+                           f.style);
 }
 
 Image finish_figure(Figure& f, const HexMesh& mesh, const ErrorDensityWorst& worst,
@@ -148,7 +222,7 @@ Image finish_figure(Figure& f, const HexMesh& mesh, const ErrorDensityWorst& wor
   Image figure = render_figure(renderer, f.scene, f.camera, options.width, options.height, f.layout, options.title,
                                f.style);
   draw_color_bar(figure, f.layout.legend, f.bar, f.style);
-  draw_worst_marker(figure, f, mesh, worst);
+  draw_worst_marker(figure, f, mesh, worst, f.model_points);
   if (camera) *camera = f.camera;
   if (view) *view = f.layout.view;
   return figure;
@@ -281,42 +355,117 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   const ErrorDensityScale scale = error_density_scale(density);
   Figure f = begin_figure(mesh, topology, scale, view_direction, options);
   const ErrorDensityWorst worst = error_density_worst(topology, density);
+  const std::vector<Index> shown = error_density_cells(density, options);
+  const std::vector<bool> hidden =
+      error_density_cells_behind_boundary(mesh, topology, shown, f.camera, f.layout.view.width, f.layout.view.height,
+                                          renderer);
   // The veil first (blended over the background only), then the cells and
   // their edges in the overlay layer over it: no veil is ever blended over a
-  // cell, so every cell shows its legend colour exactly, also behind a fold.
+  // cell, so every cell keeps its legend colour (faces at most
+  // kCellShadeDepth darker by their angle to the camera, which tells the
+  // faces of a cluster apart); the cells the boundary hides get dashed edges.
   TriangleSet veil;  // lit: its shading gives the shape
   for (Index face : topology.boundary_faces)
     add_quad(veil, mesh, f.scene.origin, topology.faces[static_cast<std::size_t>(face)], kVeilColor);
   f.scene.translucent.push_back(std::move(veil));
   TriangleSet cells;
   cells.is_lit = false;
-  LineSet low_edges, edges;
+  LineSet low_edges, edges, halo, halo_core;
   edges.width = static_cast<float>(std::max(1.0, f.style.scale));
   low_edges.width = static_cast<float>(std::max(2.0, 2.5 * f.style.scale));
-  for (Index h : error_density_cells(density, options)) {
+  halo.width = static_cast<float>(std::max(4.0, 6.0 * f.style.scale));
+  halo_core.width = static_cast<float>(std::max(2.0, 2.5 * f.style.scale));
+  const auto add_segment = [&](LineSet& set, const Vec3& a, const Vec3& b, Rgba8 color) {
+    for (const Vec3& p : {a, b}) {
+      set.indices.push_back(static_cast<std::uint32_t>(set.positions.size()));
+      set.positions.push_back(to_vec3f(p - f.scene.origin));
+      set.colors.push_back(color);
+    }
+  };
+  for (std::size_t k = 0; k < shown.size(); ++k) {
+    const Index h = shown[k];
     const Hex& hex = mesh.hexes[static_cast<std::size_t>(h)];
     const Rgba8 color = to_rgba8(error_density_color(density[static_cast<std::size_t>(h)], scale));
-    for (const auto& face : kHexFaces)
-      add_quad(cells, mesh, f.scene.origin, {hex[face[0]], hex[face[1]], hex[face[2]], hex[face[3]]}, color);
+    for (const auto& face : kHexFaces) {
+      const std::array<Index, 4> q{hex[face[0]], hex[face[1]], hex[face[2]], hex[face[3]]};
+      add_quad(cells, mesh, f.scene.origin, q, shade_cell_face(color, mesh, q, f.camera));
+    }
     const double sj = cell_scaled_jacobian[static_cast<std::size_t>(h)];
     const bool low = sj < options.quality_threshold || is_verdict_sentinel(sj);
     LineSet& set = low ? low_edges : edges;
-    for (const auto& e : kHexEdges)
-      for (int c : e) {
-        set.indices.push_back(static_cast<std::uint32_t>(set.positions.size()));
-        set.positions.push_back(to_vec3f(point(mesh, hex[c]) - f.scene.origin));
-        set.colors.push_back(low ? kLowCellEdgeColor : kCellEdgeColor);
+    const Rgba8 edge_color = low ? kLowCellEdgeColor : kCellEdgeColor;
+    for (const auto& e : kHexEdges) {
+      const Vec3 &a = point(mesh, hex[e[0]]), &b = point(mesh, hex[e[1]]);
+      if (!hidden[k]) {
+        add_segment(set, a, b, edge_color);
+      } else {  // dashed: 4 dashes and 3 gaps of equal length
+        for (int d = 0; d < 7; d += 2) add_segment(set, a + (d / 7.0) * (b - a), a + ((d + 1) / 7.0) * (b - a), edge_color);
       }
+      if (h == worst.hex) {  // the max's own edges: black on a white halo
+        add_segment(halo, a, b, {255, 255, 255, 255});
+        add_segment(halo_core, a, b, {0, 0, 0, 255});
+      }
+    }
   }
   f.scene.overlay.push_back(std::move(cells));
-  edges.in_overlay = low_edges.in_overlay = true;
+  edges.in_overlay = low_edges.in_overlay = halo.in_overlay = halo_core.in_overlay = true;
   f.scene.lines.push_back(std::move(edges));
   f.scene.lines.push_back(std::move(low_edges));
-  f.bar.swatches.push_back({Color{0.08, 0.08, 0.08}, "ring: max (dashed: interior)"});
+  f.scene.lines.push_back(std::move(halo));
+  f.scene.lines.push_back(std::move(halo_core));
+  f.bar.swatches.push_back({Color{0.08, 0.08, 0.08}, "ring: max (solid: on the boundary)", SwatchShape::solid_ring});
+  f.bar.swatches.push_back({Color{0.08, 0.08, 0.08}, "ring: max (dashed: interior)", SwatchShape::dashed_ring});
+  f.bar.swatches.push_back({Color{0.0, 0.0, 0.0}, "max hex: edges black on white"});
   f.bar.swatches.push_back({to_color(Rgba8{160, 208, 202, 255}), "boundary (veil)"});
   f.bar.swatches.push_back(
       {to_color(kLowCellEdgeColor), "thick edge: SJ < " + display_number(options.quality_threshold, 3)});
+  if (std::find(hidden.begin(), hidden.end(), true) != hidden.end())
+    f.bar.swatches.push_back({to_color(kCellEdgeColor), "dashed edges: behind the boundary"});
+  f.bar.swatches.push_back({to_color(kCellEdgeColor), "faces up to 15 % darker by their angle"});
   return finish_figure(f, mesh, worst, options, renderer, camera, view);
+}
+
+std::vector<bool> error_density_cells_behind_boundary(const HexMesh& mesh, const Topology& topology,
+                                                      std::span<const Index> cells, const Camera& camera, int width,
+                                                      int height, Renderer& renderer) {
+  std::vector<bool> hidden(cells.size(), false);
+  if (cells.empty() || width <= 0 || height <= 0 || cells.size() + 2 > kMaxId) return hidden;
+  const Box3 box = boundary_bounding_box(mesh, topology);
+  const Vec3 origin = 0.5 * (box.lo + box.hi);
+  std::vector<Index> sorted(cells.begin(), cells.end());
+  std::sort(sorted.begin(), sorted.end());
+  // The cells' own boundary faces, id 2 + k; every other boundary face id 1.
+  TriangleSet own, other;
+  own.is_lit = other.is_lit = false;
+  for (Index face : topology.boundary_faces) {
+    const Index h = face_hex(topology, face);
+    const auto at = std::lower_bound(sorted.begin(), sorted.end(), h);
+    if (at == sorted.end() || *at != h) {
+      add_quad(other, mesh, origin, topology.faces[static_cast<std::size_t>(face)], id_color(1));
+      continue;
+    }
+    const auto k = static_cast<std::size_t>(std::find(cells.begin(), cells.end(), h) - cells.begin());
+    add_quad(own, mesh, origin, topology.faces[static_cast<std::size_t>(face)], id_color(static_cast<std::uint32_t>(k + 2)));
+  }
+  Scene alone;
+  alone.origin = origin;
+  alone.background = id_color(0);
+  alone.triangles.push_back(own);
+  Scene with = alone;
+  with.triangles.push_back(std::move(other));
+  const IdImage a = renderer.render_ids(alone, camera, width, height);
+  const IdImage b = renderer.render_ids(with, camera, width, height);
+  if (a.empty() || b.empty() || a.ids.size() != b.ids.size()) return hidden;
+  std::vector<std::size_t> seen_alone(cells.size(), 0), seen_with(cells.size(), 0);
+  for (std::size_t i = 0; i < a.ids.size(); ++i) {
+    if (a.ids[i] >= 2 && a.ids[i] - 2 < cells.size()) ++seen_alone[a.ids[i] - 2];
+    if (b.ids[i] >= 2 && b.ids[i] - 2 < cells.size()) ++seen_with[b.ids[i] - 2];
+  }
+  // Hidden: no boundary face of its own in the image (an interior cell, or
+  // one whose boundary faces are off screen or edge-on), or less than half of
+  // what its boundary faces cover alone still seen with the whole boundary.
+  for (std::size_t k = 0; k < cells.size(); ++k) hidden[k] = seen_alone[k] == 0 || 2 * seen_with[k] < seen_alone[k];
+  return hidden;
 }
 
 }  // namespace hq

@@ -12,10 +12,16 @@
 //     drawn as a translucent blue-green veil (off the map, its own legend
 //     swatch) drawn first, the cells and their edges over it (the overlay
 //     layer, Scene), so no veil is blended over a cell: every cell shows its
-//     legend colour exactly; where the worst cells are, also inside.
-// Faces unlit (the legend's colours exactly; edges give the depth). In both,
-// the densest hex is ringed and labelled with its value and whether it is on
-// the boundary (the ring dashed when it is inside); an interior one is drawn
+//     legend colour (each face at most 15 % darker by its angle to the
+//     camera, so the faces of a cluster differ); where the worst cells are,
+//     also inside. Depth: a cell the boundary hides (seen through the veil,
+//     error_density_cells_behind_boundary) gets dashed edges; the max hex's
+//     own edges are drawn black on a white halo.
+// Boundary faces unlit (the legend's colours exactly; edges give the depth). In both,
+// the densest hex is ringed (its projected extent plus a few pixels) and
+// labelled with its value and whether it is on the boundary (the ring dashed
+// when it is inside), the label in the free margin beside the model with a
+// leader line to the ring; an interior one is drawn
 // over everything in the boundary figure (in the cells figure it is one of
 // the cells, all drawn over the veil). Both from one upright,
 // orthographic viewpoint: the one that shows the most of the densest 1% of
@@ -97,5 +103,15 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
                                  std::span<const double> cell_scaled_jacobian, const Vec3& view_direction,
                                  const ErrorDensityViewOptions& options, Renderer& renderer, Camera* camera = nullptr,
                                  PixelRect* view = nullptr);
+
+// Which of `cells` the boundary hides from `camera` (an image of width x
+// height): a cell with no boundary face in the image (interior), or whose own
+// boundary faces, drawn opaque with the whole boundary, show less than half
+// of the pixels they cover drawn alone (id images, Renderer::render_ids;
+// e.g. behind a fold, or on the far side). All false when the renderer draws
+// no id images.
+std::vector<bool> error_density_cells_behind_boundary(const HexMesh& mesh, const Topology& topology,
+                                                      std::span<const Index> cells, const Camera& camera, int width,
+                                                      int height, Renderer& renderer);
 
 }  // namespace hq
