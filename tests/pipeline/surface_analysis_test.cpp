@@ -25,6 +25,7 @@
 #include "hqview/report/report_vtu.h"
 #include "io/gmsh_run.h"
 #include "io/temp_dir.h"
+#include "reference_overlap.h"
 #include "support/verdict_oracle.h"
 
 namespace hq {
@@ -242,7 +243,11 @@ TEST(SurfaceAnalysis, GmshPlanarQuadMeshWithAHole) {
     for (char c : sa.structure.vertex_singular) singular += c;
     EXPECT_EQ(r["structure"]["num_irregular_vertices"], singular);
   }
-  EXPECT_TRUE(r["overlap"].is_null());
+  // The overlap (check_surface_overlap): a clean Gmsh mesh.
+  EXPECT_TRUE(r["overlap"]["certified_clean"].get<bool>());
+  EXPECT_EQ(r["overlap"]["num_intersecting_cells"], 0);
+  EXPECT_EQ(r["overlap"]["quad_split"], "unfolded_else_shorter_diagonal");
+  EXPECT_GT(r["overlap"]["num_candidate_pairs"].get<int>(), 2 * counts.at(3));
   // An annulus: V - E + F = 0.
   const Analysis& a = result.model.analysis;
   const auto v = static_cast<std::int64_t>(a.mesh.points.size() - a.topology.unreferenced_vertices.size());
@@ -290,6 +295,44 @@ TEST(SurfaceAnalysis, GmshPlanarQuadMeshWithAHole) {
                 rp["quality"]["by_kind"]["triangle"]["num_inverted"].get<std::size_t>(),
             by_hand.size());
   EXPECT_LT(rp["headline"]["min_scaled_jacobian"].get<double>(), 0.0);
+  // Its overlapping faces: those of the all-pairs reference, listed in
+  // report.json and marked in cells.csv.
+  const std::vector<std::array<Index, 2>> reference = test::reference_surface_pairs(mesh);
+  ASSERT_FALSE(reference.empty());
+  std::vector<std::array<Index, 2>> listed;
+  for (const Json& pair : rp["overlap"]["intersecting_pairs"]) listed.push_back({pair[0].get<Index>(), pair[1].get<Index>()});
+  for (const Json& f : rp["overlap"]["self_intersecting_faces"]) listed.push_back({f.get<Index>(), f.get<Index>()});
+  std::sort(listed.begin(), listed.end());
+  EXPECT_EQ(listed, reference);
+  std::set<std::size_t> overlapping;
+  for (const auto& pair : reference) overlapping.insert({static_cast<std::size_t>(pair[0]), static_cast<std::size_t>(pair[1])});
+  EXPECT_EQ(rp["overlap"]["num_intersecting_cells"], overlapping.size());
+  EXPECT_FALSE(rp["overlap"]["certified_clean"].get<bool>());
+  EXPECT_EQ(rp["overlap"]["num_self_intersecting_faces"], rp["overlap"]["self_intersecting_faces"].size());
+  // Every pair has its marker (pairs at one point share one).
+  std::size_t marked = 0;
+  for (const Json& m : rp["overlap"]["markers"]) marked += m["count"].get<std::size_t>();
+  EXPECT_EQ(marked, reference.size());
+  // The moved vertex's faces are among them (it lies inside a face it is not a vertex of).
+  for (std::size_t c = 0; c < mesh.quads.size(); ++c)
+    if (std::find(mesh.quads[c].begin(), mesh.quads[c].end(), moved) != mesh.quads[c].end())
+      EXPECT_TRUE(overlapping.count(c)) << c;
+  std::ostringstream cells;
+  write_cells_csv(pushed.model, cells);
+  std::istringstream rows(cells.str());
+  std::string header, row;
+  std::getline(rows, header);
+  std::size_t column = 0;
+  for (std::stringstream h(header); std::getline(h, row, ',') && row != "intersecting";) ++column;
+  std::set<std::size_t> in_csv;
+  for (std::size_t c = 0; std::getline(rows, row); ++c) {
+    std::vector<std::string> fields;
+    for (std::stringstream f(row); std::getline(f, header, ',');) fields.push_back(header);
+    ASSERT_GT(fields.size(), column);
+    EXPECT_TRUE(fields[column] == "0" || fields[column] == "1") << c;
+    if (fields[column] == "1") in_csv.insert(c);
+  }
+  EXPECT_EQ(in_csv, overlapping);
 }
 #endif
 
