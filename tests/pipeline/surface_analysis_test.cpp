@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "hqview/core/error.h"
 #include "hqview/io/mesh_reader.h"
 #include "hqview/pipeline/analyze.h"
 #include "hqview/quality/quad_metrics.h"
@@ -335,6 +336,44 @@ TEST(SurfaceAnalysis, GmshPlanarQuadMeshWithAHole) {
   EXPECT_EQ(in_csv, overlapping);
 }
 #endif
+
+// --reference on a surface mesh: the unit cube's surface (6 quads) inside a
+// reference box 0.1 larger on every side is -0.1 from it at every vertex
+// (inside), 0.1 sqrt(3) back from the reference's corners; --compare with a
+// surface mesh is refused (exit 3's InputError), naming what is missing.
+TEST(SurfaceAnalysis, ReferenceMeasuresTheFacesAndCompareIsRefused) {
+  const test::TempDir dir("surface_reference");
+  const std::vector<Vec3> cube = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const std::vector<std::array<Index, 4>> faces = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                                   {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  const auto mesh = dir.write("cube.vtk", vtk_text(cube, faces, {}));
+  std::string off = "OFF\n8 12 0\n";
+  for (const Vec3& p : cube) off += std::to_string(1.2 * p.x - 0.1) + " " + std::to_string(1.2 * p.y - 0.1) + " " +
+                                    std::to_string(1.2 * p.z - 0.1) + "\n";
+  for (const auto& f : faces) off += "3 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) +
+                                     "\n3 " + std::to_string(f[0]) + " " + std::to_string(f[2]) + " " + std::to_string(f[3]) + "\n";
+  AnalyzeOptions options;
+  options.mesh_path = mesh;
+  options.reference_path = dir.write("box.off", off);
+  options.tool_version = "test";
+  const AnalyzeResult result = analyze(options, nullptr);
+  const Analysis& a = result.model.analysis;
+  ASSERT_TRUE(a.boundary_error.has_value());
+  // The reference's coordinates are read as floats (OpenMesh): 1e-7.
+  for (std::size_t v = 0; v < cube.size(); ++v) EXPECT_NEAR(a.boundary_error->vertex_error[v], -0.1, 1e-7) << v;
+  EXPECT_NEAR(a.boundary_error->hausdorff_reference_to_mesh, 0.1 * std::sqrt(3.0), 1e-7);
+  EXPECT_DOUBLE_EQ(a.boundary_error->fraction_inside, 1.0);
+  const Json r = report_of(result);
+  EXPECT_FALSE(r["boundary_error"].is_null());
+  options.reference_path.clear();
+  options.compare_path = mesh;
+  try {
+    analyze(options, nullptr);
+    ADD_FAILURE() << "--compare with a surface mesh was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--compare: surface meshes are not compared yet"), std::string::npos) << e.what();
+  }
+}
 
 TEST(SurfaceAnalysis, NonManifoldEdgeAndZeroAreaFaceAreWarnedAndCounted) {
   // Three quads on the edge (0,1) along x (a fan, not planar), and a quad

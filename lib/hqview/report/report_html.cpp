@@ -836,6 +836,7 @@ std::string boundary_html(const ReportModel& model) {
   no_links.model = &model;
   data figures = figures_of(model, panel_view_ids(0), no_links);
   page.set("has_figures", !figures.is_empty_list());
+  page.set("is_surface", model.analysis.mesh_summary.is_surface);
   page.set("figures", figures);
 
   const Statistics& s = e.signed_stats;
