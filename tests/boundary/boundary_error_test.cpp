@@ -1,7 +1,9 @@
 // Boundary error on analytic cases (offset cubes, a ball against a sphere,
 // an open sphere) and on the real mesh/reference pairs of ../shared/data
 // (the sampled figure of kitten_1 and bunny_1 against an exhaustive dense
-// sampling; the sampling's analytic tests: sampled_distance_test.cpp).
+// sampling; the sampling's analytic tests: sampled_distance_test.cpp). A
+// hex mesh's boundary written as a quad surface (OBJ, 17 digits) gives the
+// hex analysis's numbers (issue 47).
 
 #include "hqview/boundary/boundary_error.h"
 
@@ -16,6 +18,7 @@
 #include "hqview/core/error.h"
 #include "hqview/io/mesh_reader.h"
 #include "hqview/mesh/topology.h"
+#include "io/temp_dir.h"
 #include "support/fixtures.h"
 #include "support/surface_fixtures.h"
 
@@ -191,6 +194,62 @@ TEST(BoundaryError, SameBitsForOneAndTwoThreads) {
     ASSERT_EQ(one.reference_patches[i].error, two.reference_patches[i].error);
   EXPECT_EQ(one.sampled_upper_bound, two.sampled_upper_bound);
   EXPECT_EQ(one.sampled_mesh_to_reference.mean, two.sampled_mesh_to_reference.mean);
+}
+
+// The boundary quads of a hex mesh as an OBJ surface (every point, so ids
+// are kept; 17 significant digits), read back by the polygon reader.
+Mesh boundary_as_obj_surface(const HexMesh& mesh, const Topology& topo, const TempDir& dir) {
+  std::string text;
+  char line[128];
+  for (const Vec3& p : mesh.points) {
+    std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", p.x, p.y, p.z);
+    text += line;
+  }
+  for (Index f : topo.boundary_faces) {
+    const Quad& q = topo.faces[static_cast<std::size_t>(f)];
+    std::snprintf(line, sizeof line, "f %lld %lld %lld %lld\n", static_cast<long long>(q[0]) + 1,
+                  static_cast<long long>(q[1]) + 1, static_cast<long long>(q[2]) + 1, static_cast<long long>(q[3]) + 1);
+    text += line;
+  }
+  return read_hex_mesh(dir.write("boundary.obj", text)).mesh;
+}
+
+// The surface's boundary error equals the hex mesh's: the same vertices,
+// triangles (quads split 0-2) and areas.
+void expect_same_boundary_error(const HexMesh& mesh, const TriSurface& reference, const std::string& what) {
+  const TempDir dir("surface_boundary_error");
+  const Topology topo = build_topology(mesh);
+  const Mesh surface = boundary_as_obj_surface(mesh, topo, dir);
+  ASSERT_TRUE(is_surface_mesh(surface)) << what;
+  ASSERT_EQ(surface.quads.size(), topo.boundary_faces.size()) << what;
+  const Topology surface_topo = build_topology(surface);
+  EXPECT_EQ(measured_vertices(surface, surface_topo), topo.boundary_vertices) << what;
+  const BoundaryError hex = compute_boundary_error(mesh, topo, reference);
+  const BoundaryError quads = compute_boundary_error(surface, surface_topo, reference);
+  const double tol = 1e-12 * hex.reference_bbox_diagonal;
+  for (Index v : topo.boundary_vertices) {
+    ASSERT_NEAR(quads.vertex_error[v], hex.vertex_error[v], tol) << what << " vertex " << v;
+    ASSERT_NEAR(quads.vertex_area[v], hex.vertex_area[v], 1e-12 * hex.vertex_area[v]) << what << " vertex " << v;
+  }
+  for (std::size_t v = 0; v < reference.points.size(); ++v)
+    if (!std::isnan(hex.reference_vertex_error[v]))
+      ASSERT_NEAR(quads.reference_vertex_error[v], hex.reference_vertex_error[v], tol) << what << " reference " << v;
+  EXPECT_NEAR(quads.hausdorff_mesh_to_reference, hex.hausdorff_mesh_to_reference, tol) << what;
+  EXPECT_NEAR(quads.hausdorff_reference_to_mesh, hex.hausdorff_reference_to_mesh, tol) << what;
+  EXPECT_NEAR(quads.sampled_mesh_to_reference.max, hex.sampled_mesh_to_reference.max, tol) << what;
+  EXPECT_NEAR(quads.sampled_reference_to_mesh.max, hex.sampled_reference_to_mesh.max, tol) << what;
+  EXPECT_NEAR(quads.area_weighted_mean, hex.area_weighted_mean, tol) << what;
+  EXPECT_NEAR(quads.fraction_outside, hex.fraction_outside, 1e-12) << what;
+  EXPECT_NEAR(quads.fraction_inside, hex.fraction_inside, 1e-12) << what;
+  EXPECT_EQ(quads.sign_method, hex.sign_method) << what;
+  EXPECT_GT(hex.hausdorff_mesh_to_reference, 0.0) << what;
+}
+
+TEST(BoundaryError, HexBoundaryAsAQuadSurfaceGivesTheHexBoundaryError) {
+  expect_same_boundary_error(hex_ball(6, wavy_radius), icosphere(3), "wavy ball");
+  if (const auto data = shared_data_dir())
+    expect_same_boundary_error(read_hex_mesh(*data / "meshes" / "gao2016_sweeping/kitten_1.mesh").mesh,
+                               read_surface(*data / "meshes" / "gao2016_sweeping/kitten.off"), "kitten_1");
 }
 
 struct Pair {

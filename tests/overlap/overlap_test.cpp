@@ -408,5 +408,267 @@ TEST(Overlap, SameResultForAnyThreadCount) {
     EXPECT_EQ(one.intersecting_pairs[i].inside_vertex, two.intersecting_pairs[i].inside_vertex);
 }
 
+// ---- Surface meshes (check_surface_overlap, issue 47) --------------------------
+// Hand-built quad and triangle surfaces with injected defects; each checked
+// against the all-pairs reference (Epeck constructions, its own split rule)
+// and against what is derived here by hand.
+
+// An n x n grid of unit quads in z = 0, counter-clockwise seen from +z:
+// vertex (i, j) = j (n + 1) + i, quad (i, j) = j n + i.
+Mesh quad_grid(int n) {
+  Mesh m;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) m.points.push_back({double(i), double(j), 0.0});
+  const auto v = [n](int i, int j) { return static_cast<Index>(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) m.quads.push_back({v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)});
+  return m;
+}
+
+OverlapReport run_surface(const Mesh& mesh, double eps = 0.0, std::int64_t min_budget = 1'000'000,
+                          std::int64_t per_box = 64) {
+  return check_surface_overlap(mesh, OverlapOptions{.coincident_eps = eps, .pairs_per_box = per_box, .min_pair_budget = min_budget});
+}
+
+// Every pair the check lists, and each folded face as {f, f}: the reference's form.
+std::vector<std::array<Index, 2>> surface_pairs(const OverlapReport& r) {
+  std::vector<std::array<Index, 2>> out;
+  for (const IntersectingPair& p : r.intersecting_pairs) out.push_back(p.cells);
+  for (Index f : r.self_intersecting_faces) out.push_back({f, f});
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// The check's pairs equal the reference's; every face of a pair and no
+// other is intersecting.
+void expect_surface_matches_reference(const Mesh& mesh, const std::string& what) {
+  const OverlapReport r = run_surface(mesh);
+  const auto expected = test::reference_surface_pairs(mesh);
+  EXPECT_EQ(surface_pairs(r), expected) << what;
+  std::vector<char> intersecting(mesh.quads.size() + mesh.triangles.size(), 0);
+  for (const auto& pair : expected) intersecting[pair[0]] = intersecting[pair[1]] = 1;
+  EXPECT_EQ(r.cell_intersecting, intersecting) << what;
+  EXPECT_EQ(r.certified_clean, expected.empty() && r.coincident_groups.empty() && r.duplicate_cells.empty()) << what;
+}
+
+TEST(SurfaceOverlap, CleanGridOfQuadsAndTrianglesIsClean) {
+  Mesh m = quad_grid(4);
+  // Quads 5 and 10 split into triangles (on different diagonals).
+  const auto q5 = m.quads[5], q10 = m.quads[10];
+  m.triangles = {{q5[0], q5[1], q5[2]}, {q5[0], q5[2], q5[3]}, {q10[0], q10[1], q10[3]}, {q10[1], q10[2], q10[3]}};
+  m.quads.erase(m.quads.begin() + 10);
+  m.quads.erase(m.quads.begin() + 5);
+  const OverlapReport r = run_surface(m);
+  EXPECT_TRUE(r.is_surface);
+  EXPECT_TRUE(r.certified_clean);
+  EXPECT_TRUE(r.intersecting_pairs.empty());
+  EXPECT_TRUE(r.self_intersecting_faces.empty());
+  EXPECT_TRUE(r.markers.empty());
+  EXPECT_EQ(r.cell_intersecting, std::vector<char>(18, 0));
+  EXPECT_GT(r.num_candidate_pairs, 0);  // neighbours' boxes touch
+  EXPECT_TRUE(test::reference_surface_pairs(m).empty());
+}
+
+TEST(SurfaceOverlap, ConcaveQuadIsSplitAtItsReflexCornerABowTieFoldsOntoItself) {
+  // A dart (reflex corner p3) is covered by its p1-p3 split; p0-p2 folds it.
+  const Vec3 d0{0, 0, 0}, d1{4, 2, 0}, d2{0, 4, 0}, d3{3, 2, 0};
+  EXPECT_EQ(quad_split_diagonal(d0, d1, d2, d3), 1);
+  EXPECT_EQ(quad_split_diagonal(d1, d2, d3, d0), 0);  // the same quad, corners turned
+  // A convex quad: the shorter diagonal.
+  EXPECT_EQ(quad_split_diagonal({0, 0, 0}, {3, 0, 0}, {3, 1, 0}, {0, 1, 0}), 0);
+  EXPECT_EQ(quad_split_diagonal({0, 0, 0}, {2, 0, 0}, {3, 1, 0}, {0, 1, 0}), 1);
+  Mesh dart;
+  dart.points = {d0, d1, d2, d3};
+  dart.quads = {{0, 1, 2, 3}};
+  EXPECT_TRUE(run_surface(dart).certified_clean);
+  // A bow-tie: edges p0p1 and p2p3 cross at (0.5, 0.5).
+  Mesh bow;
+  bow.points = {{0, 0, 0}, {1, 1, 0}, {1, 0, 0}, {0, 1, 0}};
+  bow.quads = {{0, 1, 2, 3}};
+  const OverlapReport r = run_surface(bow);
+  EXPECT_EQ(r.self_intersecting_faces, std::vector<Index>{0});
+  EXPECT_TRUE(r.intersecting_pairs.empty());
+  EXPECT_EQ(r.num_intersecting_cells, 1);
+  ASSERT_EQ(r.markers.size(), 1u);
+  EXPECT_EQ(r.markers[0].kind, MarkerKind::intersection);
+  EXPECT_FALSE(r.certified_clean);
+  expect_surface_matches_reference(bow, "bow-tie");
+}
+
+TEST(SurfaceOverlap, VertexPushedThroughItsOppositeCornerOverlapsAsTheReferenceSays) {
+  // Vertex (1, 1) of a 4 x 4 grid pushed through the opposite corner (2, 2)
+  // of quad (1, 1) to (2.3, 2.4), inside quad (2, 2) = 10.
+  Mesh m = quad_grid(4);
+  m.points[6] = {2.3, 2.4, 0.0};
+  const OverlapReport r = run_surface(m);
+  const auto pairs = surface_pairs(r);
+  // By hand: the four quads at the moved vertex (0, 1, 4, 5) each have a
+  // vertex strictly inside quad 10, so each intersects it; quad 5 turns
+  // clockwise but stays simple (split along its unfolded diagonal 6-12),
+  // so nothing folds onto itself; the quads beyond x or y = 3 (3, 7, 11,
+  // 12-15), outside the moved quads' hull [0, 2.4]^2, intersect nothing.
+  for (Index q : {0, 1, 4, 5}) EXPECT_TRUE(std::binary_search(pairs.begin(), pairs.end(), std::array<Index, 2>{q, 10})) << q;
+  EXPECT_TRUE(r.self_intersecting_faces.empty());
+  for (Index q : {3, 7, 11, 12, 13, 14, 15}) EXPECT_FALSE(r.cell_intersecting[q]) << q;
+  EXPECT_TRUE(r.coincident_groups.empty());
+  expect_surface_matches_reference(m, "pushed vertex");
+  // Mirrored, its axes permuted and scaled by 8 (exact): the same pairs.
+  Mesh turned = m;
+  for (Vec3& p : turned.points) p = Vec3{-8 * p.y, 8 * p.z, 8 * p.x};
+  EXPECT_EQ(surface_pairs(run_surface(turned)), pairs);
+  // Rotated by 0.9 rad (no longer exactly planar): as the reference says.
+  const double c = std::cos(0.9), s = std::sin(0.9);
+  for (Vec3& p : turned.points) p = Vec3{c * p.x - s * p.z, p.y, s * p.x + c * p.z} + Vec3{5.0, -7.0, 1e2};
+  expect_surface_matches_reference(turned, "pushed vertex, rotated");
+}
+
+TEST(SurfaceOverlap, DuplicatedFaceByIdsOrByCoincidentVertices) {
+  Mesh m = quad_grid(3);
+  m.quads.push_back(m.quads[4]);  // face 9 repeats face 4
+  OverlapReport r = run_surface(m);
+  EXPECT_EQ(r.duplicate_cells, std::vector<Index>{9});
+  EXPECT_EQ(surface_pairs(r), (std::vector<std::array<Index, 2>>{{4, 9}}));
+  EXPECT_FALSE(r.certified_clean);
+  expect_surface_matches_reference(m, "duplicate by ids");
+  // The copy on fresh vertices at the same positions, turned the other way:
+  // 4 coincident groups; they count as one vertex each, so the copy meets
+  // face 4 on its whole area, and its neighbours only where they share
+  // (welded) vertices and edges.
+  Mesh fresh = quad_grid(3);
+  const auto q = fresh.quads[4];
+  const auto base = static_cast<Index>(fresh.points.size());
+  for (int i = 3; i >= 0; --i) fresh.points.push_back(fresh.points[q[i]]);
+  fresh.quads.push_back({base, base + 1, base + 2, base + 3});
+  r = run_surface(fresh);
+  EXPECT_EQ(r.coincident_groups.size(), 4u);
+  EXPECT_EQ(r.num_coincident_vertices, 8);
+  EXPECT_TRUE(r.duplicate_cells.empty());
+  EXPECT_EQ(surface_pairs(r), (std::vector<std::array<Index, 2>>{{4, 9}}));
+  EXPECT_EQ(r.markers.size(), 5u);  // 4 coincident groups, 1 pair
+  expect_surface_matches_reference(fresh, "duplicate on coincident vertices");
+}
+
+TEST(SurfaceOverlap, FlapFoldedBackFlatIntersectsAFoldedUpOneOnlyTouches) {
+  // A strip of 3 quads along x; the last one's far edge folded back over
+  // the middle one, to x = 1.5 (flat: its area overlaps quad 1), or up to
+  // (1.5, z = 0.5) (a crease: it touches quads 1 and 2 along x = 2 only).
+  Mesh strip;
+  strip.points = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 1, 0}, {3, 1, 0}};
+  strip.quads = {{0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}};
+  EXPECT_TRUE(run_surface(strip).certified_clean);
+  Mesh flat = strip;
+  flat.points[3] = {1.5, 0, 0};
+  flat.points[7] = {1.5, 1, 0};
+  EXPECT_EQ(surface_pairs(run_surface(flat)), (std::vector<std::array<Index, 2>>{{1, 2}}));
+  expect_surface_matches_reference(flat, "flat flap");
+  Mesh up = strip;
+  up.points[3] = {1.5, 0, 0.5};
+  up.points[7] = {1.5, 1, 0.5};
+  EXPECT_TRUE(run_surface(up).certified_clean);
+  expect_surface_matches_reference(up, "raised flap");
+  // Raised, and long enough to pass through a wall standing on quad 0.
+  Mesh wall = up;
+  wall.points[3] = {-0.5, 0, 2.0};
+  wall.points[7] = {-0.5, 1, 2.0};
+  const auto w = static_cast<Index>(wall.points.size());
+  wall.points.insert(wall.points.end(), {{0.5, -1, 0}, {0.5, 2, 0}, {0.5, 2, 3}, {0.5, -1, 3}});
+  wall.triangles = {{w, w + 1, w + 2}, {w, w + 2, w + 3}};  // the plane x = 0.5 over the strip
+  const OverlapReport r = run_surface(wall);
+  // The wall (faces 3, 4) cuts quad 0 along x = 0.5 and the flap (face 2)
+  // where it crosses x = 0.5 at z = 1.5 / 2.5 * 2 = 1.2.
+  EXPECT_TRUE(r.cell_intersecting[0]);
+  EXPECT_TRUE(r.cell_intersecting[2]);
+  EXPECT_FALSE(r.cell_intersecting[1]);
+  expect_surface_matches_reference(wall, "flap through a wall");
+}
+
+TEST(SurfaceOverlap, ClosedCubeSurfaceAndAVertexPushedThroughTheOppositeFace) {
+  // The boundary of a 3 x 3 x 3 hex grid, as quads (outward).
+  const HexMesh hexes = grid(3);
+  const Topology topo = build_topology(hexes);
+  Mesh cube;
+  cube.points = hexes.points;
+  for (std::size_t f = 0; f < topo.faces.size(); ++f)
+    if (topo.face_hex_offsets[f + 1] - topo.face_hex_offsets[f] == 1) cube.quads.push_back(topo.faces[f]);
+  ASSERT_EQ(cube.quads.size(), 54u);
+  EXPECT_TRUE(run_surface(cube).certified_clean);
+  // The middle vertex of the top face (z = 3) pushed down through the
+  // bottom face (z = 0) to z = -0.5: its four quads pierce the bottom's
+  // middle quad.
+  Index top = kNoIndex;
+  for (std::size_t v = 0; v < cube.points.size(); ++v)
+    if (cube.points[v] == Vec3{1, 1, 3}) top = static_cast<Index>(v);
+  ASSERT_NE(top, kNoIndex);
+  cube.points[top] = {1.5, 1.5, -0.5};
+  const OverlapReport r = run_surface(cube);
+  EXPECT_FALSE(r.intersecting_pairs.empty());
+  Index bottom_middle = kNoIndex;
+  for (std::size_t q = 0; q < cube.quads.size(); ++q) {
+    bool is = true;
+    for (Index v : cube.quads[q]) is = is && cube.points[v].z == 0 && cube.points[v].x >= 1 && cube.points[v].x <= 2 &&
+                                       cube.points[v].y >= 1 && cube.points[v].y <= 2;
+    if (is) bottom_middle = static_cast<Index>(q);
+  }
+  ASSERT_NE(bottom_middle, kNoIndex);
+  EXPECT_TRUE(r.cell_intersecting[bottom_middle]);
+  expect_surface_matches_reference(cube, "cube, pushed vertex");
+}
+
+TEST(SurfaceOverlap, RandomlyTangledSurfacesMatchTheReference) {
+  for (unsigned seed = 1; seed <= 4; ++seed) {
+    Mesh m = quad_grid(4);
+    std::srand(seed);
+    const auto noise = [] { return (std::rand() / double(RAND_MAX) - 0.5) * 1.6; };
+    for (Vec3& p : m.points) p = p + Vec3{noise(), noise(), seed % 2 ? 0.0 : noise()};
+    // Half the quads as triangle pairs (a planar mesh of both kinds).
+    for (std::size_t q = 0; q < m.quads.size(); q += 2) {
+      const auto c = m.quads[q];
+      m.triangles.push_back({c[0], c[1], c[2]});
+    }
+    expect_surface_matches_reference(m, "seed " + std::to_string(seed));
+  }
+}
+
+TEST(SurfaceOverlap, ToleranceWeldsNearVerticesAndTheBudgetStopsTheSearch) {
+  Mesh m = quad_grid(2);
+  // Quad 1 detached onto its own vertices, 1e-9 away from the grid's.
+  const auto q = m.quads[1];
+  const auto base = static_cast<Index>(m.points.size());
+  for (Index v : q) m.points.push_back(m.points[v] + Vec3{1e-9, 0, 0});
+  m.quads[1] = {base, base + 1, base + 2, base + 3};
+  OverlapReport exact = run_surface(m);
+  EXPECT_TRUE(exact.coincident_groups.empty());
+  // Unwelded, quad 1 ([1, 2] x [0, 1] moved 1e-9 along +x) is 1e-9 clear
+  // of quad 0, and its top edge runs along quad 3's bottom edge, on points
+  // they do not share: a contact, so an intersection.
+  EXPECT_EQ(surface_pairs(exact), (std::vector<std::array<Index, 2>>{{1, 3}}));
+  // Welded: 3 groups ((2, 0) is left to quad 1 alone, so it has no twin).
+  const OverlapReport welded = run_surface(m, 1e-6);
+  EXPECT_EQ(welded.coincident_groups.size(), 3u);
+  EXPECT_EQ(welded.num_coincident_vertices, 6);
+  EXPECT_TRUE(welded.intersecting_pairs.empty());
+  // A budget of 1 pair: nothing is listed and nothing certified.
+  const OverlapReport stopped = run_surface(quad_grid(3), 0.0, 1, 0);
+  EXPECT_TRUE(stopped.is_over_budget);
+  EXPECT_EQ(stopped.over_budget_stage, "faces");
+  EXPECT_GT(stopped.num_untested_pairs, 1);
+  EXPECT_FALSE(stopped.certified_clean);
+}
+
+TEST(SurfaceOverlap, SameResultForAnyThreadCount) {
+  Mesh m = quad_grid(12);
+  std::srand(11);
+  for (Vec3& p : m.points) p = p + Vec3{(std::rand() / double(RAND_MAX) - 0.5) * 1.5, (std::rand() / double(RAND_MAX) - 0.5) * 1.5, 0};
+  OverlapReport runs[2];
+  for (int n : {1, 2}) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(n));
+    runs[n - 1] = run_surface(m);
+  }
+  EXPECT_GT(runs[0].intersecting_pairs.size(), 10u);
+  EXPECT_EQ(surface_pairs(runs[0]), surface_pairs(runs[1]));
+  ASSERT_EQ(runs[0].markers.size(), runs[1].markers.size());
+  for (std::size_t i = 0; i < runs[0].markers.size(); ++i) EXPECT_EQ(runs[0].markers[i].position, runs[1].markers[i].position);
+}
+
 }  // namespace
 }  // namespace hq

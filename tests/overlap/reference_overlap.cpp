@@ -3,6 +3,7 @@
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 
 #include <algorithm>
+#include <map>
 #include <tuple>
 
 #include "hqview/core/hex_topology.h"
@@ -229,6 +230,65 @@ std::vector<std::array<Index, 2>> reference_all_pairs(const HexMesh& mesh) {
   for (const auto& pair : reference_interior_pairs(mesh)) pairs.push_back(pair);
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  return pairs;
+}
+
+namespace {
+
+using RefTriangle = std::array<Index, 3>;
+
+// Whether the exact intersection of two triangles (ids welded) is more
+// than what their shared ids span.
+bool surface_triangles_meet(const std::vector<P>& x, const RefTriangle& a, const RefTriangle& b) {
+  const K::Triangle_3 ta(x[a[0]], x[a[1]], x[a[2]]), tb(x[b[0]], x[b[1]], x[b[2]]);
+  const auto meet = CGAL::intersection(ta, tb);
+  if (!meet) return false;
+  std::vector<Index> shared;
+  for (Index i : a)
+    if (std::find(b.begin(), b.end(), i) != b.end()) shared.push_back(i);
+  if (shared.size() == 0 || shared.size() == 3) return true;
+  if (const P* point = boost::get<P>(&*meet)) return !(shared.size() == 1 && *point == x[shared[0]]);
+  if (const K::Segment_3* segment = boost::get<K::Segment_3>(&*meet))
+    return !(shared.size() == 2 && ((segment->source() == x[shared[0]] && segment->target() == x[shared[1]]) ||
+                                    (segment->source() == x[shared[1]] && segment->target() == x[shared[0]])));
+  return true;  // a triangle or a polygon: an area in common
+}
+
+}  // namespace
+
+std::vector<std::array<Index, 2>> reference_surface_pairs(const Mesh& mesh) {
+  const auto& p = mesh.points;
+  // Exact coincidence: the lowest id at each position.
+  std::map<std::tuple<double, double, double>, Index> first_at;
+  std::vector<Index> welded(p.size());
+  for (std::size_t v = 0; v < p.size(); ++v)
+    welded[v] = first_at.emplace(std::make_tuple(p[v].x, p[v].y, p[v].z), static_cast<Index>(v)).first->second;
+  std::vector<P> x;
+  for (const Vec3& v : p) x.push_back(exact(v));
+  // Each face's triangles: a quad split along the diagonal whose triangles
+  // face the same way when only one does, else the shorter (p0-p2 on a tie).
+  std::vector<std::vector<RefTriangle>> faces;
+  for (const auto& q : mesh.quads) {
+    const Index a = welded[q[0]], b = welded[q[1]], c = welded[q[2]], d = welded[q[3]];
+    const Vec3 &pa = p[a], &pb = p[b], &pc = p[c], &pd = p[d];
+    const bool ac = dot(cross(pb - pa, pc - pa), cross(pc - pa, pd - pa)) > 0.0;
+    const bool bd = dot(cross(pb - pa, pd - pa), cross(pc - pb, pd - pb)) > 0.0;
+    const bool use_ac = ac != bd ? ac : squared_norm(pc - pa) <= squared_norm(pd - pb);
+    faces.push_back(use_ac ? std::vector<RefTriangle>{{a, b, c}, {a, c, d}} : std::vector<RefTriangle>{{a, b, d}, {b, c, d}});
+  }
+  for (const auto& t : mesh.triangles) faces.push_back({{welded[t[0]], welded[t[1]], welded[t[2]]}});
+  for (auto& f : faces)
+    f.erase(std::remove_if(f.begin(), f.end(), [&](const RefTriangle& t) { return CGAL::collinear(x[t[0]], x[t[1]], x[t[2]]); }),
+            f.end());
+  std::vector<std::array<Index, 2>> pairs;
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    for (std::size_t g = f; g < faces.size(); ++g) {
+      bool meet = false;
+      for (std::size_t i = 0; i < faces[f].size() && !meet; ++i)
+        for (std::size_t j = f == g ? i + 1 : 0; j < faces[g].size() && !meet; ++j)
+          meet = surface_triangles_meet(x, faces[f][i], faces[g][j]);
+      if (meet) pairs.push_back({static_cast<Index>(f), static_cast<Index>(g)});
+    }
   return pairs;
 }
 

@@ -29,4 +29,15 @@ std::vector<std::array<Index, 2>> reference_interior_pairs(const HexMesh& mesh);
 // The union of both: what check_overlap must list. Sorted.
 std::vector<std::array<Index, 2>> reference_all_pairs(const HexMesh& mesh);
 
+// A surface mesh (quads, then triangles: face ids): all pairs {f, g}, f <= g,
+// whose triangles meet other than in the vertices they share, as
+// check_surface_overlap defines it (overlap.h) with exact coincidence:
+// vertices at one position count as one (the lowest id); a quad is split
+// by the rule stated there (coded here on its own); f == g when a face's
+// two triangles overlap. Decided by construction (Epeck): the exact
+// intersection of two triangles must be empty, their shared vertex, or
+// their shared edge. Triangles with collinear corners are skipped. Sorted.
+// O(#faces^2): for small meshes only.
+std::vector<std::array<Index, 2>> reference_surface_pairs(const Mesh& mesh);
+
 }  // namespace hq::test

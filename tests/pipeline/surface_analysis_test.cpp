@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "hqview/core/error.h"
 #include "hqview/io/mesh_reader.h"
 #include "hqview/pipeline/analyze.h"
 #include "hqview/quality/quad_metrics.h"
@@ -25,6 +26,7 @@
 #include "hqview/report/report_vtu.h"
 #include "io/gmsh_run.h"
 #include "io/temp_dir.h"
+#include "reference_overlap.h"
 #include "support/verdict_oracle.h"
 
 namespace hq {
@@ -242,7 +244,11 @@ TEST(SurfaceAnalysis, GmshPlanarQuadMeshWithAHole) {
     for (char c : sa.structure.vertex_singular) singular += c;
     EXPECT_EQ(r["structure"]["num_irregular_vertices"], singular);
   }
-  EXPECT_TRUE(r["overlap"].is_null());
+  // The overlap (check_surface_overlap): a clean Gmsh mesh.
+  EXPECT_TRUE(r["overlap"]["certified_clean"].get<bool>());
+  EXPECT_EQ(r["overlap"]["num_intersecting_cells"], 0);
+  EXPECT_EQ(r["overlap"]["quad_split"], "unfolded_else_shorter_diagonal");
+  EXPECT_GT(r["overlap"]["num_candidate_pairs"].get<int>(), 2 * counts.at(3));
   // An annulus: V - E + F = 0.
   const Analysis& a = result.model.analysis;
   const auto v = static_cast<std::int64_t>(a.mesh.points.size() - a.topology.unreferenced_vertices.size());
@@ -290,8 +296,84 @@ TEST(SurfaceAnalysis, GmshPlanarQuadMeshWithAHole) {
                 rp["quality"]["by_kind"]["triangle"]["num_inverted"].get<std::size_t>(),
             by_hand.size());
   EXPECT_LT(rp["headline"]["min_scaled_jacobian"].get<double>(), 0.0);
+  // Its overlapping faces: those of the all-pairs reference, listed in
+  // report.json and marked in cells.csv.
+  const std::vector<std::array<Index, 2>> reference = test::reference_surface_pairs(mesh);
+  ASSERT_FALSE(reference.empty());
+  std::vector<std::array<Index, 2>> listed;
+  for (const Json& pair : rp["overlap"]["intersecting_pairs"]) listed.push_back({pair[0].get<Index>(), pair[1].get<Index>()});
+  for (const Json& f : rp["overlap"]["self_intersecting_faces"]) listed.push_back({f.get<Index>(), f.get<Index>()});
+  std::sort(listed.begin(), listed.end());
+  EXPECT_EQ(listed, reference);
+  std::set<std::size_t> overlapping;
+  for (const auto& pair : reference) overlapping.insert({static_cast<std::size_t>(pair[0]), static_cast<std::size_t>(pair[1])});
+  EXPECT_EQ(rp["overlap"]["num_intersecting_cells"], overlapping.size());
+  EXPECT_FALSE(rp["overlap"]["certified_clean"].get<bool>());
+  EXPECT_EQ(rp["overlap"]["num_self_intersecting_faces"], rp["overlap"]["self_intersecting_faces"].size());
+  // Every pair has its marker (pairs at one point share one).
+  std::size_t marked = 0;
+  for (const Json& m : rp["overlap"]["markers"]) marked += m["count"].get<std::size_t>();
+  EXPECT_EQ(marked, reference.size());
+  // The moved vertex's faces are among them (it lies inside a face it is not a vertex of).
+  for (std::size_t c = 0; c < mesh.quads.size(); ++c)
+    if (std::find(mesh.quads[c].begin(), mesh.quads[c].end(), moved) != mesh.quads[c].end())
+      EXPECT_TRUE(overlapping.count(c)) << c;
+  std::ostringstream cells;
+  write_cells_csv(pushed.model, cells);
+  std::istringstream rows(cells.str());
+  std::string header, row;
+  std::getline(rows, header);
+  std::size_t column = 0;
+  for (std::stringstream h(header); std::getline(h, row, ',') && row != "intersecting";) ++column;
+  std::set<std::size_t> in_csv;
+  for (std::size_t c = 0; std::getline(rows, row); ++c) {
+    std::vector<std::string> fields;
+    for (std::stringstream f(row); std::getline(f, header, ',');) fields.push_back(header);
+    ASSERT_GT(fields.size(), column);
+    EXPECT_TRUE(fields[column] == "0" || fields[column] == "1") << c;
+    if (fields[column] == "1") in_csv.insert(c);
+  }
+  EXPECT_EQ(in_csv, overlapping);
 }
 #endif
+
+// --reference on a surface mesh: the unit cube's surface (6 quads) inside a
+// reference box 0.1 larger on every side is -0.1 from it at every vertex
+// (inside), 0.1 sqrt(3) back from the reference's corners; --compare with a
+// surface mesh is refused (exit 3's InputError), naming what is missing.
+TEST(SurfaceAnalysis, ReferenceMeasuresTheFacesAndCompareIsRefused) {
+  const test::TempDir dir("surface_reference");
+  const std::vector<Vec3> cube = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const std::vector<std::array<Index, 4>> faces = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                                   {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  const auto mesh = dir.write("cube.vtk", vtk_text(cube, faces, {}));
+  std::string off = "OFF\n8 12 0\n";
+  for (const Vec3& p : cube) off += std::to_string(1.2 * p.x - 0.1) + " " + std::to_string(1.2 * p.y - 0.1) + " " +
+                                    std::to_string(1.2 * p.z - 0.1) + "\n";
+  for (const auto& f : faces) off += "3 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) +
+                                     "\n3 " + std::to_string(f[0]) + " " + std::to_string(f[2]) + " " + std::to_string(f[3]) + "\n";
+  AnalyzeOptions options;
+  options.mesh_path = mesh;
+  options.reference_path = dir.write("box.off", off);
+  options.tool_version = "test";
+  const AnalyzeResult result = analyze(options, nullptr);
+  const Analysis& a = result.model.analysis;
+  ASSERT_TRUE(a.boundary_error.has_value());
+  // The reference's coordinates are read as floats (OpenMesh): 1e-7.
+  for (std::size_t v = 0; v < cube.size(); ++v) EXPECT_NEAR(a.boundary_error->vertex_error[v], -0.1, 1e-7) << v;
+  EXPECT_NEAR(a.boundary_error->hausdorff_reference_to_mesh, 0.1 * std::sqrt(3.0), 1e-7);
+  EXPECT_DOUBLE_EQ(a.boundary_error->fraction_inside, 1.0);
+  const Json r = report_of(result);
+  EXPECT_FALSE(r["boundary_error"].is_null());
+  options.reference_path.clear();
+  options.compare_path = mesh;
+  try {
+    analyze(options, nullptr);
+    ADD_FAILURE() << "--compare with a surface mesh was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--compare: surface meshes are not compared yet"), std::string::npos) << e.what();
+  }
+}
 
 TEST(SurfaceAnalysis, NonManifoldEdgeAndZeroAreaFaceAreWarnedAndCounted) {
   // Three quads on the edge (0,1) along x (a fan, not planar), and a quad

@@ -40,6 +40,15 @@ const char* sign_method_name(SignMethod method) {
 TriSurface boundary_triangles(const HexMesh& mesh, const Topology& topo) {
   TriSurface s;
   s.points = mesh.points;
+  if (is_surface_mesh(mesh)) {
+    s.triangles.reserve(2 * mesh.quads.size() + mesh.triangles.size());
+    for (const auto& q : mesh.quads) {
+      s.triangles.push_back({q[0], q[1], q[2]});
+      s.triangles.push_back({q[0], q[2], q[3]});
+    }
+    s.triangles.insert(s.triangles.end(), mesh.triangles.begin(), mesh.triangles.end());
+    return s;
+  }
   s.triangles.reserve(2 * topo.boundary_faces.size());
   for (Index f : topo.boundary_faces) {
     const Quad& q = topo.faces[f];
@@ -49,23 +58,36 @@ TriSurface boundary_triangles(const HexMesh& mesh, const Topology& topo) {
   return s;
 }
 
+std::vector<Index> measured_vertices(const HexMesh& mesh, const Topology& topo) {
+  if (!is_surface_mesh(mesh)) return topo.boundary_vertices;
+  std::vector<char> used(mesh.points.size(), 0);
+  for (const auto& q : mesh.quads)
+    for (Index v : q) used[static_cast<std::size_t>(v)] = 1;
+  for (const auto& t : mesh.triangles)
+    for (Index v : t) used[static_cast<std::size_t>(v)] = 1;
+  std::vector<Index> out;
+  for (std::size_t v = 0; v < used.size(); ++v)
+    if (used[v]) out.push_back(static_cast<Index>(v));
+  return out;
+}
+
 namespace {
 
 // The reference's used vertices (those of a triangle). Throws InputError when
 // the bounding boxes of the mesh boundary and the reference do not overlap.
-std::vector<std::uint8_t> check_bounding_boxes(const HexMesh& mesh, const Topology& topo, const TriSurface& reference,
-                                               BoundaryError& out) {
+std::vector<std::uint8_t> check_bounding_boxes(const HexMesh& mesh, const std::vector<Index>& vertices,
+                                               const TriSurface& reference, BoundaryError& out) {
   Box3 reference_box, mesh_box;
   std::vector<std::uint8_t> used(reference.points.size(), 0);
   for (const auto& t : reference.triangles)
     for (Index v : t) used[v] = 1;
   for (std::size_t v = 0; v < reference.points.size(); ++v)
     if (used[v]) reference_box.add(reference.points[v]);
-  for (Index v : topo.boundary_vertices) mesh_box.add(mesh.points[v]);
+  for (Index v : vertices) mesh_box.add(mesh.points[v]);
   out.reference_bbox_min = reference_box.lo;
   out.reference_bbox_max = reference_box.hi;
   out.reference_bbox_diagonal = norm(reference_box.hi - reference_box.lo);
-  if (!topo.boundary_vertices.empty() && !reference_box.overlaps(mesh_box))
+  if (!vertices.empty() && !reference_box.overlaps(mesh_box))
     throw InputError("the bounding boxes of the mesh boundary " + box_text(mesh_box) + " and the reference " +
                      box_text(reference_box) + " do not overlap (different units or placement?)");
 
@@ -112,11 +134,11 @@ void prepare_reference(const TriSurface& reference, ReferenceSide& side, Boundar
 // Hex boundary -> reference: the signed distance of every boundary vertex
 // (sign by pseudo-normals on a closed manifold reference, else by the
 // generalized winding number).
-void signed_vertex_errors(const HexMesh& mesh, const Topology& topo, const ReferenceSide& side,
+void signed_vertex_errors(const HexMesh& mesh, const std::vector<Index>& vertices, const ReferenceSide& side,
                           const BoundaryOptions& options, BoundaryError& out) {
   std::vector<Vec3> queries;
-  queries.reserve(topo.boundary_vertices.size());
-  for (Index v : topo.boundary_vertices) queries.push_back(mesh.points[v]);
+  queries.reserve(vertices.size());
+  for (Index v : vertices) queries.push_back(mesh.points[v]);
   const std::vector<ClosestPoint> closest = side.tree->query(queries);
 
   std::vector<int> sign(queries.size(), 0);
@@ -134,7 +156,7 @@ void signed_vertex_errors(const HexMesh& mesh, const Topology& topo, const Refer
   out.sign_uncertain.assign(nv, 0);
   out.vertex_area.assign(nv, 0.0);
   for (std::size_t i = 0; i < queries.size(); ++i) {
-    const Index v = topo.boundary_vertices[i];
+    const Index v = vertices[i];
     out.vertex_error[v] = sign[i] < 0 ? -closest[i].distance : closest[i].distance;
     out.sign_uncertain[v] = uncertain[i];
     out.num_uncertain_signs += uncertain[i];
@@ -168,10 +190,10 @@ void patch_means(const std::vector<BoundaryError::ErrorPatch>& patches, Boundary
 
 // Hex boundary -> reference over the boundary triangles (certified maximum),
 // each patch signed like the vertices.
-void sampled_mesh_errors(const HexMesh& mesh, const Topology& topo, const ReferenceSide& side,
-                         const BoundaryOptions& options, BoundaryError& out) {
+void sampled_mesh_errors(const HexMesh& mesh, const Topology& topo, const std::vector<Index>& vertices,
+                         const ReferenceSide& side, const BoundaryOptions& options, BoundaryError& out) {
   double vertex_max = 0;
-  for (Index v : topo.boundary_vertices) vertex_max = std::max(vertex_max, std::abs(out.vertex_error[v]));
+  for (Index v : vertices) vertex_max = std::max(vertex_max, std::abs(out.vertex_error[v]));
   const SampledDistance d =
       sample_distance(boundary_triangles(mesh, topo), *side.tree, sampling_options(options, out, vertex_max));
   out.mesh_patches.resize(d.patches.size());
@@ -191,13 +213,23 @@ void sampled_mesh_errors(const HexMesh& mesh, const Topology& topo, const Refere
   patch_means(out.mesh_patches, s);
 }
 
-// A quarter of each boundary quad's area to each of its corners.
+// A quarter of each boundary quad's area to each of its corners (a surface
+// mesh: of each quad; a third of each triangle's).
 void vertex_areas(const HexMesh& mesh, const Topology& topo, BoundaryError& out) {
-  for (Index f : topo.boundary_faces) {
-    const Quad& q = topo.faces[f];
+  const auto add_quad = [&](const Quad& q) {
     const Vec3 &a = mesh.points[q[0]], &b = mesh.points[q[1]], &c = mesh.points[q[2]], &d = mesh.points[q[3]];
     const double area = 0.5 * norm(cross(c - a, d - b));
     for (Index v : q) out.vertex_area[v] += 0.25 * area;
+  };
+  if (!is_surface_mesh(mesh)) {
+    for (Index f : topo.boundary_faces) add_quad(topo.faces[f]);
+    return;
+  }
+  for (const auto& q : mesh.quads) add_quad(q);
+  for (const auto& t : mesh.triangles) {
+    const Vec3 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]];
+    const double area = 0.5 * norm(cross(b - a, c - a));
+    for (Index v : t) out.vertex_area[v] += area / 3.0;
   }
 }
 
@@ -261,11 +293,11 @@ void reference_to_mesh_errors(const HexMesh& mesh, const Topology& topo, const T
 
 // Hausdorff distances, area-weighted errors and statistics (sequential,
 // fixed order).
-void summarize_errors(const Topology& topo, const BoundaryOptions& options, BoundaryError& out) {
+void summarize_errors(const std::vector<Index>& vertices, const BoundaryOptions& options, BoundaryError& out) {
   std::vector<double> errors;
-  errors.reserve(topo.boundary_vertices.size());
+  errors.reserve(vertices.size());
   double total_area = 0, sum = 0, sum_abs = 0, sum_sq = 0;
-  for (Index v : topo.boundary_vertices) {
+  for (Index v : vertices) {
     const double e = out.vertex_error[v], a = out.vertex_area[v];
     errors.push_back(e);
     out.hausdorff_mesh_to_reference = std::max(out.hausdorff_mesh_to_reference, std::abs(e));
@@ -332,7 +364,7 @@ void add_warnings(const BoundaryOptions& options, BoundaryError& out) {
 void check_reference_placement(const HexMesh& mesh, const Topology& topo, const TriSurface& reference) {
   if (!has_positive_area(reference)) throw InputError("the reference surface has no triangle of positive area");
   BoundaryError scratch;
-  check_bounding_boxes(mesh, topo, reference, scratch);
+  check_bounding_boxes(mesh, measured_vertices(mesh, topo), reference, scratch);
 }
 
 BoundaryError compute_boundary_error(const HexMesh& mesh, const Topology& topo, const TriSurface& reference,
@@ -340,14 +372,15 @@ BoundaryError compute_boundary_error(const HexMesh& mesh, const Topology& topo, 
   BoundaryError out;
   out.num_reference_triangles = static_cast<Index>(reference.triangles.size());
   if (!has_positive_area(reference)) throw InputError("the reference surface has no triangle of positive area");
-  const std::vector<std::uint8_t> used = check_bounding_boxes(mesh, topo, reference, out);
+  const std::vector<Index> vertices = measured_vertices(mesh, topo);
+  const std::vector<std::uint8_t> used = check_bounding_boxes(mesh, vertices, reference, out);
   ReferenceSide side;
   prepare_reference(reference, side, out);
-  signed_vertex_errors(mesh, topo, side, options, out);
-  sampled_mesh_errors(mesh, topo, side, options, out);
+  signed_vertex_errors(mesh, vertices, side, options, out);
+  sampled_mesh_errors(mesh, topo, vertices, side, options, out);
   vertex_areas(mesh, topo, out);
   reference_to_mesh_errors(mesh, topo, reference, used, options, out);
-  summarize_errors(topo, options, out);
+  summarize_errors(vertices, options, out);
   add_warnings(options, out);
   return out;
 }

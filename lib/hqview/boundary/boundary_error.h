@@ -128,7 +128,14 @@ BoundaryError compute_boundary_error(const HexMesh& mesh, const Topology& topo, 
 void check_reference_placement(const HexMesh& mesh, const Topology& topo, const TriSurface& reference);
 
 // The hex boundary quads split into two triangles each (diagonal 0-2), with
-// the mesh's points (outward oriented as the topology's boundary faces).
+// the mesh's points (outward oriented as the topology's boundary faces). A
+// surface mesh (issue 47): its quads split the same way, then its
+// triangles, as oriented in the file.
 TriSurface boundary_triangles(const HexMesh& mesh, const Topology& topo);
+
+// The vertices whose distance to the reference is measured (vertex_error):
+// a volume mesh's boundary vertices (topo.boundary_vertices); a surface
+// mesh's vertices that a face uses, ascending (issue 47).
+std::vector<Index> measured_vertices(const HexMesh& mesh, const Topology& topo);
 
 }  // namespace hq

@@ -501,47 +501,141 @@ std::vector<std::uint8_t> classify_cell_orientations(const VolumeCells& cells, c
 
 // ---- Stage E ----------------------------------------------------------------
 
-FacePairs intersecting_face_pairs(const TetPoints& tp, const std::vector<BoundaryFace>& quads, std::int64_t max_pairs) {
-  const auto& p = tp.points;
+namespace {
+
+// Non-degenerate triangles in groups (a face's triangles are consecutive:
+// the groups of the box search), with their boxes.
+struct TriangleGroups {
   std::vector<Triangle> triangles;
-  std::vector<Index> triangle_quad;
+  std::vector<Index> group;
   std::vector<Box3> boxes;
-  // A face's triangles are consecutive: the groups of the box search.
-  std::vector<Index> first_triangle(quads.size() + 1, 0);
-  triangles.reserve(4 * quads.size());
-  for (std::size_t q = 0; q < quads.size(); ++q) {
-    const BoundaryFace& face = quads[q];
-    const int n = face.num_fan_triangles();
-    for (int e = 0; e < n; ++e) {
-      const Triangle t = fan_triangle(face, e);
-      if (!CGAL::collinear(point(at(p, t[0])), point(at(p, t[1])), point(at(p, t[2])))) {
-        triangles.push_back(t);
-        triangle_quad.push_back(static_cast<Index>(q));
-        boxes.push_back(box_of(p, t.data(), 3));
-      }
-    }
-    first_triangle[q + 1] = static_cast<Index>(triangles.size());
+  std::vector<Index> first{0};  // one entry more than there are groups
+  void add(const std::vector<Vec3>& p, const Triangle& t) {
+    if (CGAL::collinear(point(at(p, t[0])), point(at(p, t[1])), point(at(p, t[2])))) return;
+    triangles.push_back(t);
+    group.push_back(static_cast<Index>(first.size() - 1));
+    boxes.push_back(box_of(p, t.data(), 3));
   }
-  FacePairs result;
-  result.budget = grouped_box_self_pairs(boxes, first_triangle, max_pairs);
-  const std::vector<std::array<Index, 2>> candidates = std::move(result.budget.pairs);
-  result.budget.pairs = {};
-  std::vector<char> hit(candidates.size(), 0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 4096),
+  void close_group() { first.push_back(static_cast<Index>(triangles.size())); }
+};
+
+// The candidate pairs of triangles (boxes that touch, within the budget)
+// and, per candidate, whether they meet improperly. TBB, deterministic.
+struct TriangleHits {
+  std::vector<std::array<Index, 2>> candidates;
+  std::vector<char> hit;
+  BoxPairs budget;
+};
+TriangleHits test_triangle_groups(const std::vector<Vec3>& p, const TriangleGroups& g, std::int64_t max_pairs) {
+  TriangleHits out;
+  out.budget = grouped_box_self_pairs(g.boxes, g.first, max_pairs);
+  out.candidates = std::move(out.budget.pairs);
+  out.budget.pairs = {};
+  out.hit.assign(out.candidates.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.candidates.size(), 4096),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t i = r.begin(); i != r.end(); ++i)
-                        hit[i] = triangles_meet_improperly(p, triangles[static_cast<std::size_t>(candidates[i][0])],
-                                                           triangles[static_cast<std::size_t>(candidates[i][1])]);
+                        out.hit[i] = triangles_meet_improperly(p, g.triangles[static_cast<std::size_t>(out.candidates[i][0])],
+                                                               g.triangles[static_cast<std::size_t>(out.candidates[i][1])]);
                     });
+  return out;
+}
+
+// x in the closed triangle (t0, t1, t2) of normal n, x assumed in its plane:
+// each edge function at least -1e-9 |n|^2 (double arithmetic).
+bool near_inside(const Vec3& x, const Vec3& t0, const Vec3& t1, const Vec3& t2, const Vec3& n) {
+  const double slack = -1e-9 * squared_norm(n);
+  return dot(n, cross(t1 - t0, x - t0)) >= slack && dot(n, cross(t2 - t1, x - t1)) >= slack &&
+         dot(n, cross(t0 - t2, x - t2)) >= slack;
+}
+
+// Where the edges of a cross the plane of b inside b (a's corners in b's
+// plane count when inside b), appended to out. Double arithmetic.
+void crossings(const std::vector<Vec3>& p, const Triangle& a, const Triangle& b, std::vector<Vec3>& out) {
+  const Vec3 &b0 = at(p, b[0]), &b1 = at(p, b[1]), &b2 = at(p, b[2]);
+  const Vec3 n = cross(b1 - b0, b2 - b0);
+  if (squared_norm(n) == 0.0) return;
+  for (std::size_t e = 0; e < 3; ++e) {
+    const Vec3 &u = at(p, a[e]), &v = at(p, a[(e + 1) % 3]);
+    const double du = dot(n, u - b0), dv = dot(n, v - b0);
+    if (du == 0.0 && near_inside(u, b0, b1, b2, n)) out.push_back(u);
+    if (du == dv || (du < 0.0) == (dv < 0.0) || du == 0.0 || dv == 0.0) continue;
+    const Vec3 x = u + (du / (du - dv)) * (v - u);
+    if (near_inside(x, b0, b1, b2, n)) out.push_back(x);
+  }
+}
+
+// A point where two triangles that meet improperly meet, for an arrow: the
+// mean of the crossings of each one's edges with the other (and of corners
+// of one lying in the other); the mean of their centroids when double
+// arithmetic finds none (coplanar triangles crossing edge on edge).
+Vec3 meeting_point(const std::vector<Vec3>& p, const Triangle& a, const Triangle& b) {
+  std::vector<Vec3> found;
+  crossings(p, a, b, found);
+  crossings(p, b, a, found);
+  Vec3 sum{};
+  if (found.empty()) {
+    for (const Triangle* t : {&a, &b})
+      for (Index i : *t) found.push_back(at(p, i));
+  }
+  for (const Vec3& x : found) sum = sum + x;
+  return sum / static_cast<double>(found.size());
+}
+
+}  // namespace
+
+FacePairs intersecting_face_pairs(const TetPoints& tp, const std::vector<BoundaryFace>& quads, std::int64_t max_pairs) {
+  const auto& p = tp.points;
+  TriangleGroups groups;
+  groups.triangles.reserve(4 * quads.size());
+  for (const BoundaryFace& face : quads) {
+    for (int e = 0; e < face.num_fan_triangles(); ++e) groups.add(p, fan_triangle(face, e));
+    groups.close_group();
+  }
+  TriangleHits hits = test_triangle_groups(p, groups, max_pairs);
+  FacePairs result;
+  result.budget = hits.budget;
   std::vector<std::array<Index, 2>>& pairs = result.pairs;
-  for (std::size_t i = 0; i < candidates.size(); ++i)
-    if (hit[i]) {
-      Index a = triangle_quad[static_cast<std::size_t>(candidates[i][0])],
-            b = triangle_quad[static_cast<std::size_t>(candidates[i][1])];
+  for (std::size_t i = 0; i < hits.candidates.size(); ++i)
+    if (hits.hit[i]) {
+      const Index a = groups.group[static_cast<std::size_t>(hits.candidates[i][0])],
+                  b = groups.group[static_cast<std::size_t>(hits.candidates[i][1])];
       pairs.push_back({std::min(a, b), std::max(a, b)});
     }
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  return result;
+}
+
+SurfaceFacePairs intersecting_surface_faces(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles,
+                                            const std::vector<Index>& first, std::int64_t max_pairs) {
+  TriangleGroups groups;
+  groups.triangles.reserve(triangles.size());
+  for (std::size_t f = 0; f + 1 < first.size(); ++f) {
+    for (Index t = first[f]; t < first[f + 1]; ++t) groups.add(points, triangles[static_cast<std::size_t>(t)]);
+    groups.close_group();
+  }
+  TriangleHits hits = test_triangle_groups(points, groups, max_pairs);
+  SurfaceFacePairs result;
+  result.budget = hits.budget;
+  result.num_tested = static_cast<std::int64_t>(hits.candidates.size());
+  // (face pair, first triangle pair that meets): the candidates are sorted,
+  // so the point of each face pair comes from its first meeting triangles.
+  std::vector<std::pair<std::array<Index, 2>, std::size_t>> met;
+  for (std::size_t i = 0; i < hits.candidates.size(); ++i)
+    if (hits.hit[i]) {
+      const Index a = groups.group[static_cast<std::size_t>(hits.candidates[i][0])],
+                  b = groups.group[static_cast<std::size_t>(hits.candidates[i][1])];
+      met.push_back({{std::min(a, b), std::max(a, b)}, i});
+    }
+  std::sort(met.begin(), met.end());
+  for (std::size_t i = 0; i < met.size(); ++i) {
+    if (i > 0 && met[i].first == met[i - 1].first) continue;
+    const auto& c = hits.candidates[met[i].second];
+    result.pairs.push_back(met[i].first);
+    result.positions.push_back(meeting_point(points, groups.triangles[static_cast<std::size_t>(c[0])],
+                                             groups.triangles[static_cast<std::size_t>(c[1])]));
+  }
   return result;
 }
 

@@ -33,6 +33,25 @@ struct FacePairs {
 };
 FacePairs intersecting_face_pairs(const TetPoints& tp, const std::vector<BoundaryFace>& faces, std::int64_t max_pairs);
 
+// Surface meshes (check_surface_overlap): the same exact test on given
+// triangles. The triangles of face f are triangles[first[f] .. first[f+1])
+// (ids into points); pairs {f, g} (f <= g, face ids) whose triangles meet
+// other than in the vertex ids they share; f == g when two triangles of one
+// face overlap (a folded quad). Triangles with collinear corners are
+// skipped (their faces have zero area; warned by the analysis). Sorted,
+// each with `positions[i]`, a point where the pair meets (double
+// arithmetic, for the arrows only). At most max_pairs candidate triangle
+// pairs are tested: beyond, the result is empty and budget.is_complete
+// false (box_pairs.h). num_tested: the candidate triangle pairs tested.
+struct SurfaceFacePairs {
+  std::vector<std::array<Index, 2>> pairs;
+  std::vector<Vec3> positions;
+  BoxPairs budget;  // its pairs are cleared
+  std::int64_t num_tested = 0;
+};
+SurfaceFacePairs intersecting_surface_faces(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles,
+                                            const std::vector<Index>& first, std::int64_t max_pairs);
+
 // Stage F: the winding number of the closed surface made of all the fans of
 // `faces`, at points just behind faces[q] (its cell's side), counted exactly
 // along a ray from its centre (a quad's face centre; a triangle's centroid,

@@ -593,4 +593,144 @@ OverlapReport check_overlap(const Mesh& mesh, const Topology& topo, const Overla
   return r;
 }
 
+// ---- Surface meshes ------------------------------------------------------------
+
+namespace {
+
+// The face ids (quads, then triangles) and their corners.
+template <class F>
+void for_each_face(const Mesh& mesh, F&& f) {
+  Index id = 0;
+  for (const auto& q : mesh.quads) f(id++, q.data(), 4);
+  for (const auto& t : mesh.triangles) f(id++, t.data(), 3);
+}
+
+// vertex -> faces (CSR); stage A reads which vertices a face uses.
+VertexCells surface_vertex_faces(const Mesh& mesh) {
+  VertexCells vc;
+  const std::size_t nv = mesh.points.size();
+  vc.own_offsets.assign(nv + 1, 0);
+  for_each_face(mesh, [&](Index, const Index* c, int n) {
+    for (int i = 0; i < n; ++i) ++vc.own_offsets[sz(c[i]) + 1];
+  });
+  for (std::size_t v = 0; v < nv; ++v) vc.own_offsets[v + 1] += vc.own_offsets[v];
+  vc.own_cells.resize(sz(vc.own_offsets[nv]));
+  std::vector<Index> next(vc.own_offsets.begin(), vc.own_offsets.end() - 1);
+  for_each_face(mesh, [&](Index f, const Index* c, int n) {
+    for (int i = 0; i < n; ++i) vc.own_cells[sz(next[sz(c[i])]++)] = f;
+  });
+  vc.offsets = vc.own_offsets.data();
+  vc.cells = vc.own_cells.data();
+  return vc;
+}
+
+}  // namespace
+
+int quad_split_diagonal(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3) {
+  const bool along_02 = dot(cross(p1 - p0, p2 - p0), cross(p2 - p0, p3 - p0)) > 0.0;
+  const bool along_13 = dot(cross(p1 - p0, p3 - p0), cross(p2 - p1, p3 - p1)) > 0.0;
+  if (along_02 != along_13) return along_02 ? 0 : 1;
+  return squared_norm(p2 - p0) <= squared_norm(p3 - p1) ? 0 : 1;
+}
+
+OverlapReport check_surface_overlap(const Mesh& mesh, const OverlapOptions& options,
+                                    const std::function<void()>& on_self_intersection) {
+  OverlapReport r;
+  r.mode = options.mode;
+  r.is_surface = true;
+  const auto& p = mesh.points;
+  const auto num_faces = static_cast<std::size_t>(mesh.quads.size() + mesh.triangles.size());
+  const VertexCells vertex_faces = surface_vertex_faces(mesh);
+  r.coincident_tolerance =
+      options.coincident_eps > 0.0 ? options.coincident_eps * referenced_bbox_diagonal(mesh, vertex_faces) : 0.0;
+  progress::set_total(2);
+  // A. Each vertex then stands for its group's lowest vertex.
+  find_coincident_vertices(mesh, vertex_faces, r.coincident_tolerance, r);
+  std::vector<Index> welded(p.size());
+  std::iota(welded.begin(), welded.end(), 0);
+  for (const CoincidentGroup& g : r.coincident_groups)
+    for (Index v : g.vertices) welded[sz(v)] = g.vertices.front();
+  // B. Unique edges of the faces, by their original ids.
+  const double tol2 = r.coincident_tolerance * r.coincident_tolerance;
+  std::vector<Edge> edges;
+  edges.reserve(4 * num_faces);
+  for_each_face(mesh, [&](Index, const Index* c, int n) {
+    for (int i = 0; i < n; ++i) edges.push_back({std::min(c[i], c[(i + 1) % n]), std::max(c[i], c[(i + 1) % n])});
+  });
+  tbb::parallel_sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  for (const Edge& e : edges) {
+    const Vec3 d = p[sz(e[1])] - p[sz(e[0])];
+    if (tol2 > 0.0 ? squared_norm(d) <= tol2 : d == Vec3{}) r.zero_length_edges.push_back(e);
+  }
+  std::vector<Edge>().swap(edges);
+  // Duplicate faces: sorted vertex ids (a triangle's padded with kNoIndex).
+  {
+    std::vector<std::pair<std::array<Index, 4>, Index>> keyed;
+    keyed.reserve(num_faces);
+    for_each_face(mesh, [&](Index f, const Index* c, int n) {
+      std::array<Index, 4> key{kNoIndex, kNoIndex, kNoIndex, kNoIndex};
+      std::copy(c, c + n, key.begin());
+      std::sort(key.begin(), key.end());
+      keyed.push_back({key, f});
+    });
+    tbb::parallel_sort(keyed.begin(), keyed.end());
+    for (std::size_t i = 1; i < keyed.size(); ++i)
+      if (keyed[i].first == keyed[i - 1].first) r.duplicate_cells.push_back(keyed[i].second);
+    std::sort(r.duplicate_cells.begin(), r.duplicate_cells.end());
+  }
+  progress::add_done(1);
+
+  // S. Each face's triangles, on the welded ids.
+  if (on_self_intersection) on_self_intersection();
+  std::vector<detail::Triangle> triangles;
+  std::vector<Index> first;
+  triangles.reserve(2 * mesh.quads.size() + mesh.triangles.size());
+  first.reserve(num_faces + 1);
+  first.push_back(0);
+  for_each_face(mesh, [&](Index, const Index* c, int n) {
+    const auto w = [&](int i) { return welded[sz(c[i])]; };
+    if (n == 3) {
+      triangles.push_back({w(0), w(1), w(2)});
+    } else if (quad_split_diagonal(p[sz(w(0))], p[sz(w(1))], p[sz(w(2))], p[sz(w(3))]) == 0) {
+      triangles.push_back({w(0), w(1), w(2)});
+      triangles.push_back({w(0), w(2), w(3)});
+    } else {
+      triangles.push_back({w(0), w(1), w(3)});
+      triangles.push_back({w(1), w(2), w(3)});
+    }
+    first.push_back(static_cast<Index>(triangles.size()));
+  });
+  const std::int64_t budget = pair_budget(options, triangles.size());
+  detail::SurfaceFacePairs found = detail::intersecting_surface_faces(p, triangles, first, budget);
+  if (!found.budget.is_complete) record_over_budget(r, "faces", budget, found.budget);
+  r.num_candidate_pairs = found.num_tested;
+  r.cell_intersecting.assign(num_faces, 0);
+  const auto nq = static_cast<Index>(mesh.quads.size());
+  for (std::size_t i = 0; i < found.pairs.size(); ++i) {
+    const std::array<Index, 2>& faces = found.pairs[i];
+    r.cell_intersecting[sz(faces[0])] = r.cell_intersecting[sz(faces[1])] = 1;
+    if (faces[0] == faces[1]) {
+      r.self_intersecting_faces.push_back(faces[0]);
+      continue;
+    }
+    IntersectingPair pair{faces, kNoIndex, found.positions[i], {}, {}};
+    for (std::size_t k = 0; k < 2; ++k) {
+      const bool is_quad = faces[k] < nq;
+      pair.kinds[k] = is_quad ? CellKind::quad : CellKind::triangle;
+      pair.source_indices[k] = cell_source_index(mesh, pair.kinds[k], sz(is_quad ? faces[k] : faces[k] - nq));
+    }
+    r.intersecting_pairs.push_back(pair);
+  }
+  r.num_intersecting_cells = static_cast<Index>(std::count(r.cell_intersecting.begin(), r.cell_intersecting.end(), 1));
+  r.certified_clean = !r.is_over_budget && r.coincident_groups.empty() && r.zero_length_edges.empty() &&
+                      r.duplicate_cells.empty() && r.num_intersecting_cells == 0;
+  build_markers(r);
+  // Then one arrow per folded face, at where its triangles meet.
+  for (std::size_t i = 0; i < found.pairs.size(); ++i)
+    if (found.pairs[i][0] == found.pairs[i][1]) r.markers.push_back({MarkerKind::intersection, found.positions[i], 1});
+  progress::add_done(1);
+  return r;
+}
+
 }  // namespace hq

@@ -52,6 +52,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -182,6 +183,13 @@ struct OverlapReport {
   Index num_flagged_cells = 0;           // cells G paired with every cell near them
   std::int64_t num_candidate_pairs = 0;  // cell pairs G tested
   int certificate_rounds = 0;            // E/F passes until the unflagged part was certified
+
+  // A surface mesh's check (check_surface_overlap): cell ids are face ids
+  // (quads, then triangles), intersecting_pairs hold distinct faces, and
+  // the faces whose own two triangles overlap (a quad folded flat onto
+  // itself, a bow-tie) are listed here, ascending, and are intersecting.
+  bool is_surface = false;
+  std::vector<Index> self_intersecting_faces;
 };
 
 // Runs stages A-G on every volume cell of the mesh (all blocks; surface
@@ -191,5 +199,44 @@ struct OverlapReport {
 // Deterministic: every list is sorted, and the result is the same for any
 // number of TBB threads. Throws nothing but std::bad_alloc.
 OverlapReport check_overlap(const Mesh& mesh, const Topology& topo, const OverlapOptions& options);
+
+// ---- Surface meshes (issue 47) ---------------------------------------------
+// The diagonal a quad (p0, p1, p2, p3) is split along for the surface
+// check: 0 = p0-p2, triangles (p0, p1, p2) and (p0, p2, p3); 1 = p1-p3,
+// triangles (p0, p1, p3) and (p1, p2, p3). The diagonal whose two triangles
+// face the same way (their normals, corner order, have a positive dot
+// product) when only one does (so a planar concave quad, a dart, is split
+// at its reflex corner and covered exactly); otherwise the shorter one (a
+// tie: p0-p2). A bow-tie folds on either diagonal. Double arithmetic: the
+// split is a definition; what is decided on its triangles is exact.
+int quad_split_diagonal(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3);
+
+// The overlap check of a surface mesh (quads and triangles, no volume
+// cell; other meshes: check_overlap). Stages, in the report's fields:
+//   A coincident vertices (as for volumes, over the vertices a face uses);
+//   B zero-length face edges;   duplicate faces (the vertex ids of a
+//   lower-numbered face, as a set: duplicate_cells);
+//   S self-intersection: every pair of faces whose triangles (a quad split
+//   by quad_split_diagonal, a triangle itself) meet other than in the
+//   vertices they share (a shared vertex or edge is a contact, not an
+//   intersection; faces meeting beyond it intersect: a flap folded back
+//   across its edge, neighbours crossing away from their common vertex),
+//   decided exactly (CGAL Epick predicates; coplanar pairs in 2-D). The
+//   vertices of one coincident group count as one (its lowest id, at its
+//   position), so a seam of duplicated vertices is reported once, by A.
+//   A vertex lying on another face without being its vertex (a T-junction)
+//   is an intersection. Candidate pairs: triangle boxes that touch, within
+//   the work budget (pair_budget over the triangles; over it: nothing
+//   listed, over_budget_stage "faces").
+// Stage C (orientation) is the quality's (num_inverted): inverted_cells,
+// cell_orientation and the volume-only lists stay empty. certified_clean:
+// S completed and A, B, duplicates and S found nothing. num_candidate_pairs:
+// the triangle pairs S tested. on_self_intersection, when set, is called as
+// S starts (the analysis times S as a stage of its own). markers: the
+// coincident groups, the intersecting pairs (as for volumes), then one per
+// self-intersecting face.
+// Deterministic for any number of TBB threads.
+OverlapReport check_surface_overlap(const Mesh& mesh, const OverlapOptions& options,
+                                    const std::function<void()>& on_self_intersection = {});
 
 }  // namespace hq

@@ -88,9 +88,8 @@ SurfaceOrientation surface_orientation(const Analysis& a, std::optional<Planarit
   return out;
 }
 
-// What a surface mesh's analysis leaves out this release, and its faces of
-// zero area and non-manifold edges, as warnings.
-void add_surface_warnings(Analysis& a, const AnalyzeOptions& options) {
+// A surface mesh's faces of zero area and non-manifold edges, as warnings.
+void add_surface_warnings(Analysis& a) {
   if (!is_surface_mesh(a.mesh)) return;
   const SurfaceTopology& s = a.topology.surface;
   if (s.num_non_manifold_edges > 0)
@@ -105,7 +104,6 @@ void add_surface_warnings(Analysis& a, const AnalyzeOptions& options) {
   if (zero_area > 0)
     a.warnings.push_back(std::to_string(zero_area) + " face" + (zero_area > 1 ? "s" : "") +
                          " of zero area (Verdict's area 0)");
-  if (options.overlap) a.warnings.push_back("overlap is not checked on surface meshes yet (report.json overlap is null)");
 }
 
 // Once summarised, a block keeps the values of the metrics that have a
@@ -161,8 +159,8 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
   std::vector<SummarizedCellBlock> non_hex_blocks;
   std::vector<KindQualitySummary> by_kind;
   double structure_seconds = 0, metrics_seconds = 0, metric_summaries_seconds = 0;
-  // A surface mesh's structure is its quad structure; its overlap is not
-  // computed this release (add_surface_warnings).
+  // A surface mesh's structure is its quad structure; its overlap is
+  // check_surface_overlap, after it.
   const auto structure = timed(structure_seconds, [&] {
     if (!is_surface) {
       a.structure = compute_structure(a.mesh, a.topology);
@@ -190,7 +188,7 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
     by_kind = summarize_by_kind(a.mesh, a.field, metric_summaries, non_hex_blocks);
     a.cell_metrics.clear();
     for (SummarizedCellBlock& block : non_hex_blocks) a.cell_metrics.push_back(std::move(block.field));
-    if (is_surface) add_surface_warnings(a, options);
+    if (is_surface) add_surface_warnings(a);
     keep_cell_metric_columns(a.cell_metrics);
   });
   const auto concurrent = [&](const char* name, double seconds) {
@@ -235,6 +233,12 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
     structure();
     release_cell_faces(a.topology);
   }
+  if (options.overlap && is_surface) {
+    // Coincident vertices, zero-length edges and duplicate faces as
+    // "overlap", the faces' self-intersection as a stage of its own.
+    clock.start("overlap");
+    a.overlap = check_surface_overlap(a.mesh, *options.overlap, [&] { clock.start("self-intersection"); });
+  }
   clock.stop();
   analyze_fem(a, options, clock);
 }
@@ -268,7 +272,7 @@ TriSurface read_reference(Analysis& a, const AnalyzeOptions& options) {
   TriSurface reference = read_surface(source);
   a.reference_input = input_file(source);
   Box3 mesh_box, reference_box;
-  for (Index v : a.topology.boundary_vertices) mesh_box.add(a.mesh.points[static_cast<std::size_t>(v)]);
+  for (Index v : measured_vertices(a.mesh, a.topology)) mesh_box.add(a.mesh.points[static_cast<std::size_t>(v)]);
   for (const auto& t : reference.triangles)
     for (Index v : t) reference_box.add(reference.points[static_cast<std::size_t>(v)]);
   a.reference_alignment =
@@ -406,9 +410,6 @@ void start_analysis(const AnalyzeOptions& options, AnalysisInProgress& out) {
   a.topology = build_topology(a.mesh);
   const bool is_surface = is_surface_mesh(a.mesh);
   if (options.up_auto && !is_surface) a.resting_up = choose_resting_up(a.mesh, a.topology);
-  if (is_surface && !options.reference_path.empty())
-    throw InputError(options.reference_path.string() +
-                     ": --reference: the boundary error of surface meshes is not computed yet (run without it)");
   if (is_surface && !options.compare_path.empty())
     throw InputError(options.compare_path.string() + ": --compare: surface meshes are not compared yet (run without it)");
   // The reference as soon as the boundary is known, so that its atlas runs
@@ -461,6 +462,9 @@ AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
   const bool is_surface = is_surface_mesh(in_progress.analysis.mesh);
   if (renderer && is_surface && options.viewer)
     in_progress.analysis.warnings.push_back("the viewer of surface meshes is not written yet (the views are drawn)");
+  if (renderer && is_surface && in_progress.analysis.boundary_error)
+    in_progress.analysis.warnings.push_back(
+        "the boundary-error views of surface meshes are not drawn yet (report.json boundary_error has the numbers)");
   if (renderer) {
     // The views that need no atlas are drawn while it is built.
     std::vector<StageTime> view_times;

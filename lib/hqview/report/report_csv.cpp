@@ -83,9 +83,10 @@ void write_cells_csv(const ReportModel& model, std::ostream& out, TextEncoding e
       buffer += cell_is_inverted(q, c) ? ",1" : ",0";
       buffer += cell_is_degenerate(q, c) ? ",1" : ",0";
       // intersecting: 0/1 from the overlap stage, empty with --no-overlap and
-      // for a non-hex cell (the overlap stage checks hexes).
+      // for a non-hex cell of a volume mesh; every face of a surface mesh.
       buffer += ',';
-      if (model.analysis.overlap && c < nh) buffer += model.analysis.overlap->cell_intersecting[c] ? '1' : '0';
+      if (model.analysis.overlap && (c < nh || model.analysis.overlap->is_surface))
+        buffer += model.analysis.overlap->cell_intersecting[c] ? '1' : '0';
       // size_gradation: every kind; empty for a cell without a positive
       // volume or a face neighbour of positive volume.
       buffer += ',';

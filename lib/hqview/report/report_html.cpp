@@ -768,13 +768,64 @@ void set_glyphs(data& page, const ReportModel& model, const PanelIndex& index, s
   }
 }
 
+constexpr std::size_t kHtmlOverlapRows = 20;
+
+// The first kHtmlOverlapRows intersecting pairs.
+void set_overlap_pairs(data& page, const OverlapReport& o) {
+  data pairs{data::type::list};
+  const std::size_t shown = std::min(o.intersecting_pairs.size(), kHtmlOverlapRows);
+  for (std::size_t i = 0; i < shown; ++i) {
+    const IntersectingPair& p = o.intersecting_pairs[i];
+    data d;
+    d.set("a", std::to_string(p.cells[0]));
+    d.set("b", std::to_string(p.cells[1]));
+    d.set("vertex", o.is_surface ? std::string(cell_kind_name(p.kinds[0])) + " / " + std::string(cell_kind_name(p.kinds[1]))
+                   : p.inside_vertex == kNoIndex ? "– (duplicates)" : std::to_string(p.inside_vertex));
+    d.set("position", show_vec(p.position));
+    pairs.push_back(d);
+  }
+  page.set("overlap_pairs", pairs);
+  page.set("overlap_of_faces", o.is_surface);
+  page.set("has_overlap_pairs", shown > 0);
+  page.set("has_more_overlap_pairs", o.intersecting_pairs.size() > shown);
+  page.set("more_overlap_pairs", show_count(static_cast<long long>(o.intersecting_pairs.size() - shown)));
+}
+
+data count_row(const std::string& key, std::size_t value) {
+  data d = kv(key, show_count(static_cast<long long>(value)));
+  d.set("alert", value > 0);
+  return d;
+}
+
+// A surface mesh's findings (check_surface_overlap): faces, not hexes.
+void set_surface_overlap(data& page, const OverlapReport& o) {
+  page.set("overlap_summary",
+           std::string(o.certified_clean ? "Clean: no two faces meet other than in the vertices and edges they share"
+                                         : "Faces whose triangles meet other than in the vertices and edges they share") +
+               " (" + show_count(o.num_candidate_pairs) +
+               " triangle pairs tested exactly; a quad is split along the diagonal that does not fold it, else the "
+               "shorter; coincident vertices count as one).");
+  data rows{data::type::list};
+  rows.push_back(count_row("intersecting faces", static_cast<std::size_t>(o.num_intersecting_cells)));
+  rows.push_back(count_row("intersecting face pairs", o.intersecting_pairs.size()));
+  rows.push_back(count_row("faces folded onto themselves", o.self_intersecting_faces.size()));
+  rows.push_back(count_row("coincident vertices", static_cast<std::size_t>(o.num_coincident_vertices)));
+  rows.push_back(count_row("zero-length edges", o.zero_length_edges.size()));
+  rows.push_back(count_row("duplicate faces", o.duplicate_cells.size()));
+  page.set("overlap_rows", rows);
+  set_overlap_pairs(page, o);
+}
+
 // Overlap findings: the counts, then the first kHtmlOverlapRows pairs.
 void set_overlap(data& page, const ReportModel& model) {
-  constexpr std::size_t kHtmlOverlapRows = 20;
   page.set("has_overlap", model.analysis.overlap.has_value());
   if (model.analysis.overlap) {
     const OverlapReport& o = *model.analysis.overlap;
     const std::string mode(overlap_mode_name(o.mode));
+    if (o.is_surface) {
+      set_surface_overlap(page, o);
+      return;
+    }
     page.set("overlap_summary",
              o.certified_clean
                  ? "Certified: every hex is positively oriented (24 exact tets each) and the boundary is embedded and "
@@ -785,11 +836,7 @@ void set_overlap(data& page, const ReportModel& model) {
                        " hexes were tested against every hex near them (" + show_count(o.num_candidate_pairs) +
                        " pairs, " + mode + " mode). A pair intersects when a vertex of one lies inside the other.");
     data rows{data::type::list};
-    auto row = [&](const std::string& key, std::size_t value) {
-      data d = kv(key, show_count(static_cast<long long>(value)));
-      d.set("alert", value > 0);
-      rows.push_back(d);
-    };
+    auto row = [&](const std::string& key, std::size_t value) { rows.push_back(count_row(key, value)); };
     row("intersecting hexes", static_cast<std::size_t>(o.num_intersecting_cells));
     row("intersecting pairs", o.intersecting_pairs.size());
     row("coincident vertices", static_cast<std::size_t>(o.num_coincident_vertices));
@@ -803,21 +850,7 @@ void set_overlap(data& page, const ReportModel& model) {
     row("intersecting boundary face pairs", o.boundary_self_intersections.size());
     row("nested boundary shells", static_cast<std::size_t>(o.num_nested_shells));
     page.set("overlap_rows", rows);
-    data pairs{data::type::list};
-    const std::size_t shown = std::min(o.intersecting_pairs.size(), kHtmlOverlapRows);
-    for (std::size_t i = 0; i < shown; ++i) {
-      const IntersectingPair& p = o.intersecting_pairs[i];
-      data d;
-      d.set("a", std::to_string(p.cells[0]));
-      d.set("b", std::to_string(p.cells[1]));
-      d.set("vertex", p.inside_vertex == kNoIndex ? "– (duplicates)" : std::to_string(p.inside_vertex));
-      d.set("position", show_vec(p.position));
-      pairs.push_back(d);
-    }
-    page.set("overlap_pairs", pairs);
-    page.set("has_overlap_pairs", shown > 0);
-    page.set("has_more_overlap_pairs", o.intersecting_pairs.size() > shown);
-    page.set("more_overlap_pairs", show_count(static_cast<long long>(o.intersecting_pairs.size() - shown)));
+    set_overlap_pairs(page, o);
   }
 }
 
@@ -891,6 +924,7 @@ std::string boundary_html(const ReportModel& model) {
   no_links.model = &model;
   data figures = figures_of(model, panel_view_ids(0), no_links);
   page.set("has_figures", !figures.is_empty_list());
+  page.set("is_surface", model.analysis.mesh_summary.is_surface);
   page.set("figures", figures);
 
   const Statistics& s = e.signed_stats;

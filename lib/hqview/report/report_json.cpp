@@ -460,6 +460,13 @@ Json overlap_json(const OverlapReport& o) {
                                                 {"count", o.num_untested_pairs},
                                                 {"count_is_lower_bound", !o.is_untested_count_exact}}
                                          : Json(nullptr);
+  // A surface mesh's check (issue 47): how quads were split into the
+  // triangles tested, and the faces folded onto themselves.
+  if (o.is_surface) {
+    j["quad_split"] = "unfolded_else_shorter_diagonal";
+    j["num_self_intersecting_faces"] = o.self_intersecting_faces.size();
+    j["self_intersecting_faces"] = ids(o.self_intersecting_faces);
+  }
   return j;
 }
 

@@ -173,10 +173,11 @@ std::vector<VtuArray> build_arrays(const ReportModel& model) {
   arrays.push_back(make_array<std::uint8_t>("CellData", "degenerate", 1, num_cells,
                                             [&q](std::size_t c) { return cell_is_degenerate(q, c) ? 1 : 0; }));
   if (model.analysis.overlap) {
-    // The overlap stage checks hexes: 0 for the other cells.
+    // A volume mesh's hexes (0 for its other cells); every face of a surface mesh.
     const std::vector<char>& intersecting = model.analysis.overlap->cell_intersecting;
-    arrays.push_back(make_array<std::uint8_t>("CellData", "intersecting", 1, num_cells, [&intersecting, nh](std::size_t c) {
-      return c < nh && intersecting[c] != 0 ? 1 : 0;
+    const std::size_t checked = model.analysis.overlap->is_surface ? intersecting.size() : nh;
+    arrays.push_back(make_array<std::uint8_t>("CellData", "intersecting", 1, num_cells, [&intersecting, checked](std::size_t c) {
+      return c < checked && intersecting[c] != 0 ? 1 : 0;
     }));
   }
   const auto hex_only = [&](const char* name, const std::vector<double>& values) {

@@ -807,6 +807,25 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
     std::sort(cell_edges.begin(), cell_edges.end());
     cell_edges.erase(std::unique(cell_edges.begin(), cell_edges.end()), cell_edges.end());
   }
+  // A surface mesh's intersecting faces (check_surface_overlap), the same way.
+  if (overlap && overlap->is_surface) {
+    const std::size_t nq = mesh.quads.size();
+    for (std::size_t c = 0; c < num_checked_cells; ++c) {
+      if (!overlap->cell_intersecting[c]) continue;
+      const Index* v = c < nq ? mesh.quads[c].data() : mesh.triangles[c - nq].data();
+      const int size = c < nq ? 4 : 3;
+      const auto base = static_cast<std::uint32_t>(cells.positions.size());
+      for (int i = 0; i < size; ++i) {
+        cells.positions.push_back(local(mesh.points[static_cast<std::size_t>(v[i])]));
+        cells.colors.push_back(kIntersectingCellColor);
+        cell_edges.push_back({std::min(v[i], v[(i + 1) % size]), std::max(v[i], v[(i + 1) % size])});
+      }
+      cells.indices.insert(cells.indices.end(), {base, base + 1, base + 2});
+      if (size == 4) cells.indices.insert(cells.indices.end(), {base, base + 2, base + 3});
+    }
+    std::sort(cell_edges.begin(), cell_edges.end());
+    cell_edges.erase(std::unique(cell_edges.begin(), cell_edges.end()), cell_edges.end());
+  }
   scene.lines.push_back(
       edge_lines(mesh, scene.origin, cell_edges, std::vector<Rgba8>(cell_edges.size(), kIntersectionArrowColor), 1.5f));
 
