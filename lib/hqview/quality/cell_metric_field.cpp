@@ -225,7 +225,8 @@ StatisticsOptions metric_statistics_options(std::string_view name) {
 
 // The statistics of every corner value, degenerate corners left out
 // (histogram over [-1, 1]).
-CellMetricSummary corner_summary(std::span<const double> values, std::span<const std::uint8_t> masks, int C) {
+CellMetricSummary corner_summary(std::span<const double> values, std::span<const std::uint8_t> masks, int C,
+                                 std::vector<double>& sorted) {
   const auto per_cell = static_cast<std::size_t>(C);
   std::vector<std::uint8_t> degenerate(values.size());
   for (std::size_t c = 0; c < masks.size(); ++c)
@@ -233,7 +234,7 @@ CellMetricSummary corner_summary(std::span<const double> values, std::span<const
   StatisticsOptions options;
   options.histogram_min = -1.0;
   options.histogram_max = 1.0;
-  return {"corner_scaled_jacobian", compute_statistics(values, options, degenerate)};
+  return {"corner_scaled_jacobian", compute_statistics(values, options, degenerate, sorted)};
 }
 
 }  // namespace
@@ -294,10 +295,25 @@ SummarizedCellBlock summarize_cell_block_metrics(std::span<const Vec3> points,
   // A column summarised (one summary at a time: each sorts a copy of its
   // column, in parallel on a large block; one copy alive, not one per
   // column), then kept or dropped.
+  // The sorted copies share one buffer, and a dropped column's memory
+  // serves the next pass (fresh pages are zeroed by the kernel: once, not
+  // once per column).
+  std::vector<double> sorted;
+  std::vector<std::vector<double>> spare;
+  const auto new_column = [&] {
+    if (spare.empty()) return std::vector<double>(n);
+    std::vector<double> column = std::move(spare.back());
+    spare.pop_back();
+    return column;
+  };
   const auto summarize = [&](int metric, std::vector<double>& column) {
     const auto m = static_cast<std::size_t>(metric);
-    out.summaries[m] = {std::string(field.names[m]), compute_statistics(column, metric_statistics_options(field.names[m]))};
-    if (keep(field.names[m])) field.values[m] = std::move(column);
+    out.summaries[m] = {std::string(field.names[m]),
+                        compute_statistics(column, metric_statistics_options(field.names[m]), {}, sorted)};
+    if (keep(field.names[m]))
+      field.values[m] = std::move(column);
+    else
+      spare.push_back(std::move(column));
   };
   // The columns whose values are at hand: the size metric (start_block's
   // sizes), the field's metric (the quality field's cell values, when
@@ -322,7 +338,7 @@ SummarizedCellBlock summarize_cell_block_metrics(std::span<const Vec3> points,
     const std::size_t count = std::min<std::size_t>(kMetricsPerPass, computed.size() - first);
     const std::span<const int> metrics = std::span<const int>(computed).subspan(first, count);
     std::array<std::vector<double>, kMetricsPerPass> columns;
-    for (std::size_t j = 0; j < count; ++j) columns[j].resize(n);
+    for (std::size_t j = 0; j < count; ++j) columns[j] = new_column();
     for_each_cell(n, [&](std::size_t c) {
       const auto p = corners_of<K>(points, cells, c);
       std::array<double, kMetricsPerPass> v{};
@@ -335,7 +351,8 @@ SummarizedCellBlock summarize_cell_block_metrics(std::span<const Vec3> points,
     if (at_hand[Kernels::size_metric]) summarize(Kernels::size_metric, sizes);
   if constexpr (HasFieldMetric<Kernels>) {
     if (at_hand[Kernels::field_metric]) {
-      std::vector<double> column(corners.cell_scaled_jacobian.begin(), corners.cell_scaled_jacobian.end());
+      std::vector<double> column = new_column();
+      std::copy(corners.cell_scaled_jacobian.begin(), corners.cell_scaled_jacobian.end(), column.begin());
       summarize(Kernels::field_metric, column);
     }
   }
@@ -344,12 +361,13 @@ SummarizedCellBlock summarize_cell_block_metrics(std::span<const Vec3> points,
       constexpr auto product = Kernels::product;
       const auto& a = field.values[static_cast<std::size_t>(product[1])];
       const auto& b = field.values[static_cast<std::size_t>(product[2])];
-      std::vector<double> column(n);
+      std::vector<double> column = new_column();
       for_each_cell(n, [&](std::size_t c) { column[c] = a[c] * b[c]; });
       summarize(product[0], column);
     }
   }
-  out.summaries[M] = corner_summary(corners.scaled_jacobian, corners.degenerate_mask, kNumCornerValues<K>);
+  spare.clear();
+  out.summaries[M] = corner_summary(corners.scaled_jacobian, corners.degenerate_mask, kNumCornerValues<K>, sorted);
   return out;
 }
 
@@ -369,7 +387,8 @@ std::vector<CellMetricSummary> summarize_cell_block(const CellBlockMetricField& 
   for (std::size_t m = 0; m < field.names.size(); ++m)
     out.push_back(
         {std::string(field.names[m]), compute_statistics(field.values[m], metric_statistics_options(field.names[m]))});
-  out.push_back(corner_summary(field.corner_scaled_jacobian, field.corner_degenerate_mask, field.corners_per_cell));
+  std::vector<double> sorted;
+  out.push_back(corner_summary(field.corner_scaled_jacobian, field.corner_degenerate_mask, field.corners_per_cell, sorted));
   return out;
 }
 

@@ -138,10 +138,10 @@ constexpr std::size_t kParallelSortMin = 1 << 20;
 constexpr std::size_t kNumSlices = 16;
 
 template <class IsKept>
-std::vector<double> sorted_kept_values(std::span<const double> values, IsKept is_kept, std::size_t num_kept,
-                                       KeyBuckets& buckets) {
-  std::vector<double> out(num_kept);
-  if (num_kept == 0) return out;
+void sorted_kept_values(std::span<const double> values, IsKept is_kept, std::size_t num_kept, KeyBuckets& buckets,
+                        std::vector<double>& out) {
+  out.resize(num_kept);
+  if (num_kept == 0) return;
   const std::size_t num_buckets = buckets.finish();
   std::vector<std::size_t> start(num_buckets + 1, 0);
   const auto bucket = [&](double v) { return buckets(order_key(v)); };
@@ -193,7 +193,6 @@ std::vector<double> sorted_kept_values(std::span<const double> values, IsKept is
   else
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_buckets, 256),
                       [&](const tbb::blocked_range<std::size_t>& r) { sort_buckets(r.begin(), r.end()); });
-  return out;
 }
 
 }  // namespace
@@ -209,6 +208,12 @@ double percentile_of_sorted(std::span<const double> sorted, double q) {
 
 Statistics compute_statistics(std::span<const double> values, const StatisticsOptions& options,
                               std::span<const std::uint8_t> degenerate) {
+  std::vector<double> buffer;
+  return compute_statistics(values, options, degenerate, buffer);
+}
+
+Statistics compute_statistics(std::span<const double> values, const StatisticsOptions& options,
+                              std::span<const std::uint8_t> degenerate, std::vector<double>& buffer) {
   Statistics s;
   // Kept: finite, not Verdict's sentinel, not flagged degenerate.
   const auto is_kept = [&](std::size_t i) {
@@ -251,7 +256,8 @@ Statistics compute_statistics(std::span<const double> values, const StatisticsOp
       buckets.merge(part.range);
     }
   }
-  const std::vector<double> kept = sorted_kept_values(values, is_kept, num_kept, buckets);
+  sorted_kept_values(values, is_kept, num_kept, buckets, buffer);
+  const std::vector<double>& kept = buffer;
   s.count = static_cast<std::int64_t>(kept.size());
 
   const int bins = std::max(1, options.histogram_bins);
