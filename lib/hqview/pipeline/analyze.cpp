@@ -8,6 +8,7 @@
 #include <limits>
 #include <optional>
 
+#include "hqview/analysis/limitations.h"
 #include "hqview/core/box3.h"
 #include "hqview/core/error.h"
 #include "hqview/core/stop.h"
@@ -105,7 +106,7 @@ void add_surface_warnings(Analysis& a, const AnalyzeOptions& options) {
   if (zero_area > 0)
     a.warnings.push_back(std::to_string(zero_area) + " face" + (zero_area > 1 ? "s" : "") +
                          " of zero area (Verdict's area 0)");
-  if (options.overlap) a.warnings.push_back("overlap is not checked on surface meshes yet (report.json overlap is null)");
+  if (options.overlap) a.warnings.emplace_back(kSurfaceOverlapNotChecked);
 }
 
 // Once summarised, a block keeps the values of the metrics that have a
@@ -460,7 +461,7 @@ AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
   views.up = views_up(in_progress.analysis, options);
   const bool is_surface = is_surface_mesh(in_progress.analysis.mesh);
   if (renderer && is_surface && options.viewer)
-    in_progress.analysis.warnings.push_back("the viewer of surface meshes is not written yet (the views are drawn)");
+    in_progress.analysis.warnings.emplace_back(kSurfaceViewerNotWritten);
   if (renderer) {
     // The views that need no atlas are drawn while it is built.
     std::vector<StageTime> view_times;
