@@ -18,6 +18,7 @@
 #include "hqview/pipeline/analyze.h"
 #include "hqview/render/camera.h"
 #include "hqview/render/osmesa_renderer.h"
+#include "hqview/report/report_html.h"
 #include "hqview/views/main_views.h"
 #include "hqview/views/overview_views.h"
 #include "hqview/views/surface_views.h"
@@ -320,6 +321,16 @@ TEST(SurfaceViews, CubeSphereStructureInTheReportAndItsView) {
   EXPECT_EQ(s["num_patches"], 6);
   EXPECT_EQ(s["num_boundary_edges"], 0);
   EXPECT_EQ(s["num_edges"], 12 * n * n);
+
+  // index.html speaks of the surface (47c review item 8): panel S's own
+  // title and text, the mesh table's edges, the footer's faces; no hex wording.
+  const std::string html = index_html(result.model);
+  EXPECT_NE(html.find("S · Structure: irregular vertices, separatrices and patches"), std::string::npos);
+  EXPECT_NE(html.find("The layout is traced as is, not simplified"), std::string::npos);
+  EXPECT_NE(html.find("reversed faces (against their neighbours)"), std::string::npos);
+  EXPECT_NE(html.find("over the vertex's faces"), std::string::npos);
+  EXPECT_EQ(html.find("singularity graph"), std::string::npos);
+  EXPECT_EQ(html.find("hexes"), std::string::npos);
 
   // The structure view: pixels of the valence-3 blue's hue within 6 pixels
   // of each irregular vertex in sight (its normal towards the eye), none

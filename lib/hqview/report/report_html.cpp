@@ -653,10 +653,19 @@ void set_worst(data& page, const QualitySummary& q, const PanelIndex& index) {
 
 void set_mesh_rows(data& page, const MeshSummary& m) {
   data mesh_rows{data::type::list};
-  mesh_rows.push_back(kv("boundary faces", show_count(m.num_boundary_faces)));
-  mesh_rows.push_back(kv("boundary vertices", show_count(m.num_boundary_vertices)));
-  mesh_rows.push_back(kv("unreferenced vertices", show_count(m.num_unreferenced_vertices)));
-  mesh_rows.push_back(kv("faces shared by > 2 hexes", show_count(m.num_non_manifold_faces)));
+  // A surface mesh counts its edges, not hex faces (47c review item 8).
+  if (m.is_surface) {
+    mesh_rows.push_back(kv("boundary edges (on one face)", show_count(m.num_boundary_edges)));
+    mesh_rows.push_back(kv("boundary vertices", show_count(m.num_boundary_vertices)));
+    mesh_rows.push_back(kv("unreferenced vertices", show_count(m.num_unreferenced_vertices)));
+    mesh_rows.push_back(kv("non-manifold edges (on > 2 faces)", show_count(m.num_non_manifold_edges)));
+    mesh_rows.push_back(kv("reversed faces (against their neighbours)", show_count(m.num_reversed_faces)));
+  } else {
+    mesh_rows.push_back(kv("boundary faces", show_count(m.num_boundary_faces)));
+    mesh_rows.push_back(kv("boundary vertices", show_count(m.num_boundary_vertices)));
+    mesh_rows.push_back(kv("unreferenced vertices", show_count(m.num_unreferenced_vertices)));
+    mesh_rows.push_back(kv("faces shared by > 2 hexes", show_count(m.num_non_manifold_faces)));
+  }
   if (m.num_non_conforming_faces > 0)  // hybrid meshes only: pure-hex pages keep their bytes
     mesh_rows.push_back(kv("non-conforming faces (a quad against two triangles)", show_count(m.num_non_conforming_faces)));
   mesh_rows.push_back(kv("bounding box min", show_vec(m.bbox_min)));

@@ -529,6 +529,9 @@ std::vector<const ViewSpec*> views_of_panel(char panel) {
 static std::string view_title(std::string_view title, const Analysis& a) {
   std::string t(title);
   if (const auto at = t.find("per hex"); at != std::string::npos && cell_word(a) == "cell") t.replace(at, 7, "per cell");
+  // A surface mesh's structure view is its quad structure (47c review item 8).
+  if (is_surface_mesh(a.mesh) && t == "Structure: the singularity graph by valence")
+    t = "Structure: irregular vertices, separatrices and patches";
   return t;
 }
 
