@@ -330,6 +330,7 @@ TEST(SurfaceViews, CubeSphereStructureInTheReportAndItsView) {
   EXPECT_NE(html.find("reversed faces (against their neighbours)"), std::string::npos);
   EXPECT_NE(html.find("over the vertex's faces"), std::string::npos);
   EXPECT_EQ(html.find("singularity graph"), std::string::npos);
+  EXPECT_EQ(r["views"][0]["title"], "Structure: irregular vertices, separatrices and patches");
   EXPECT_EQ(html.find("hexes"), std::string::npos);
 
   // The structure view: pixels of the valence-3 blue's hue within 6 pixels

@@ -529,9 +529,18 @@ std::vector<const ViewSpec*> views_of_panel(char panel) {
 static std::string view_title(std::string_view title, const Analysis& a) {
   std::string t(title);
   if (const auto at = t.find("per hex"); at != std::string::npos && cell_word(a) == "cell") t.replace(at, 7, "per cell");
-  // A surface mesh's structure view is its quad structure (47c review item 8).
-  if (is_surface_mesh(a.mesh) && t == "Structure: the singularity graph by valence")
-    t = "Structure: irregular vertices, separatrices and patches";
+  // A surface mesh's views speak of its faces and quad structure (47c
+  // review item 8).
+  if (is_surface_mesh(a.mesh)) {
+    static const std::pair<std::string_view, std::string_view> kSurfaceTitles[] = {
+        {"Structure: the singularity graph by valence", "Structure: irregular vertices, separatrices and patches"},
+        {"Boundary coloured by vertex quality", "Faces coloured by vertex quality"},
+        {"A: glyphs, clusters and overlaps", "A: faces by scaled Jacobian, glyphs and clusters"},
+        {"Thumbnail: the boundary by vertex quality, bounding-box frame",
+         "Thumbnail: the faces by vertex quality, bounding-box frame"}};
+    for (const auto& [from, to] : kSurfaceTitles)
+      if (t == from) t = to;
+  }
   return t;
 }
 
