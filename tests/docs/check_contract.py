@@ -107,6 +107,7 @@ def main():
         f.write("mesh,label,model\n")
         f.write(os.path.join(examples, "ball.mesh") + ",m1,ball\n")
         f.write(os.path.join(examples, "twisted_bar.mesh") + ",m2,bar\n")
+        f.write(os.path.join(work, "quads.obj") + ",m2,quads\n")  # meshes[].surface
     run([hqview, "batch", "manifest.csv", "-o", "batch", "--no-render", "-q"], work)
     # index.json's finite-element keys (meshes[].metrics, fem_correlation) exist with --simulate only.
     with open(os.path.join(work, "manifest_simulate.csv"), "w") as f:

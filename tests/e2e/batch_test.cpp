@@ -55,14 +55,29 @@ TEST(Batch, SharedCollectionWithABrokenFile) {
   const CliResult r = run_hqview({"batch", collection.string(), "-o", out.string(), "-j", "2", "--no-render"});
   EXPECT_EQ(r.exit_code, 3) << r.err;  // an input failed; the others went on
   const json index = read_json(out / "index.json");
-  ASSERT_EQ(index["meshes"].size(), kNumSharedMeshes + 1u);
+  // The reference surfaces beside the meshes (.off .obj .ply) are listed as
+  // skipped rows, not analysed (issue 47, part D: the page names them).
+  std::size_t references = 0;
+  for (const auto& e : fs::recursive_directory_iterator(collection)) {
+    const std::string ext = e.path().extension().string();
+    references += ext == ".off" || ext == ".obj" || ext == ".ply";
+  }
+  ASSERT_GT(references, 0u);
+  ASSERT_EQ(index["meshes"].size(), kNumSharedMeshes + 1u + references);
   EXPECT_EQ(index["counts"]["ok"], kNumSharedMeshes);
   EXPECT_EQ(index["counts"]["failed"], 1);
+  EXPECT_EQ(index["counts"]["skipped"], references);
+  EXPECT_EQ(index["counts"]["meshes"], kNumSharedMeshes + 1u);
   std::string previous;
   for (const json& m : index["meshes"]) {
     const std::string path = m["path"];
     EXPECT_LT(previous, path);  // sorted by path
     previous = path;
+    if (m["status"] == "skipped") {
+      EXPECT_NE(m["error"].get<std::string>().find("reference surface"), std::string::npos) << m["error"];
+      EXPECT_TRUE(m["bundle"].is_null());
+      continue;
+    }
     if (path == "broken/truncated.mesh") {
       EXPECT_EQ(m["status"], "failed");
       EXPECT_NE(m["error"].get<std::string>().find("truncated.mesh:"), std::string::npos) << m["error"];
@@ -80,8 +95,10 @@ TEST(Batch, SharedCollectionWithABrokenFile) {
   const std::string html = read_text(out / "index.html");
   EXPECT_NE(html.find("href=\"livesu2015_edgecone/bunny_out.mesh/index.html\""), std::string::npos);
   EXPECT_NE(read_text(out / "summary.md").find("12 meshes, 1 failed"), std::string::npos);
-  // No reference surfaces or temporary siblings are taken for meshes.
-  EXPECT_EQ(html.find("bunny.off"), std::string::npos);
+  // No reference surfaces or temporary siblings are taken for meshes: a
+  // reference is named under "Not analysed", never linked to a bundle.
+  EXPECT_EQ(html.find("bunny.off/index.html"), std::string::npos);
+  EXPECT_NE(html.find("Not analysed: "), std::string::npos);
 }
 
 TEST(Batch, ExitCodesAndRenderedBundlesInParallel) {
@@ -133,7 +150,7 @@ TEST(Batch, ShardsMergedEqualTheUnshardedRun) {
     rows += read_json(shard / "index.json")["meshes"].size();
     merge.push_back(shard.string());
   }
-  EXPECT_EQ(rows, kNumSharedMeshes + 1u);  // a partition
+  EXPECT_EQ(rows, read_json(dir / "whole" / "index.json")["meshes"].size());  // a partition
   merge.push_back("-o");
   merge.push_back((dir / "merged").string());
   const CliResult merged = run_hqview(merge);

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "hqview/analysis/limitations.h"
 #include "hqview/core/error.h"
 #include "hqview/report/batch_index.h"
 #include "io/temp_dir.h"
@@ -36,17 +37,20 @@ BatchEntry entry(const std::string& path, BatchStatus status, const std::string&
 
 TEST(Collection, PolygonFilesAreSurfaceMeshesUnlessBesideVolumeMeshes) {
   // quads/: surface meshes only (picked, any case); hex/: a volume mesh and
-  // its reference surface (left out); .stl is no mesh format.
+  // its reference surface (skipped); .stl is no mesh format.
   const test::TempDir dir("collect_polygons");
   std::filesystem::create_directories(dir.path() / "quads" / "deeper");
   std::filesystem::create_directories(dir.path() / "hex");
   for (const char* name : {"quads/grid.obj", "quads/sphere.OFF", "quads/deeper/torus.ply", "quads/part.stl",
                            "hex/bunny_in.mesh", "hex/bunny.off", "hex/bunny.obj"})
     dir.write(name, "x");
-  std::vector<std::string> paths;
-  for (const BatchInput& input : collect_directory(dir.path())) paths.push_back(input.path);
+  // The reference surfaces are listed with a reason (the index names them), not analysed.
+  std::vector<std::string> paths, skipped;
+  for (const BatchInput& input : collect_directory(dir.path()))
+    (input.skip_reason.empty() ? paths : skipped).push_back(input.path);
   EXPECT_EQ(paths, (std::vector<std::string>{"hex/bunny_in.mesh", "quads/deeper/torus.ply", "quads/grid.obj",
                                              "quads/sphere.OFF"}));
+  EXPECT_EQ(skipped, (std::vector<std::string>{"hex/bunny.obj", "hex/bunny.off"}));
 }
 
 TEST(Manifest, CsvColumnsByHeaderQuotesAndRelativePaths) {
@@ -305,6 +309,77 @@ TEST(BatchIndex, StatusAgreesWithFindingsAndLightboxOpensTheOverview) {
   EXPECT_EQ(md.find("- a\\.mesh"), std::string::npos) << md;
   EXPECT_LT(md.find("[b\\.mesh"), md.find("[a\\.mesh")) << "worst first";
   EXPECT_EQ(md.back(), '\n');
+}
+
+// Surface meshes in a batch (47c review items 7 and 10): a tool limitation
+// is no input warning (a neutral "limited analysis" status, its text once
+// under the table), the hex column counts a surface mesh's cells by kind
+// (never "0"), the singular columns its irregular vertices, and a skipped
+// input is named with its reason at the top; index.json keeps the counts.
+TEST(BatchIndex, SurfaceRowsLimitedAnalysisCellCountsAndSkippedInputs) {
+  auto key = [](std::string_view k) {
+    return static_cast<std::size_t>(std::find(std::begin(kHeadlineKeys), std::end(kHeadlineKeys), k) - std::begin(kHeadlineKeys));
+  };
+  BatchEntry hex = entry("hex/ball.mesh", BatchStatus::ok);
+  hex.headline[key("mesh.num_hexes")] = 1000;
+  hex.headline[key("headline.num_cells")] = 1000;
+  hex.headline[key("structure.num_singular_edges_interior")] = 12;
+  BatchEntry sphere = entry("quads/sphere.obj", BatchStatus::ok);
+  sphere.headline[key("mesh.num_hexes")] = 0;
+  sphere.surface = SurfaceCounts{600, 0, 8, std::nullopt};
+  sphere.warnings = {std::string(kSurfaceBoundaryErrorViewsNotDrawn), std::string(kSurfaceViewerNotWritten)};
+  BatchEntry holed = entry("quads/holed.obj", BatchStatus::ok);
+  holed.headline[key("mesh.num_hexes")] = 0;
+  holed.surface = SurfaceCounts{200, 16, 38, 9};
+  holed.warnings = {std::string(kSurfaceBoundaryErrorViewsNotDrawn), "/abs/quads/holed.obj: 1 node is no cell's corner"};
+  BatchEntry reference = entry("hex/ball.off", BatchStatus::skipped);
+  reference.error = "a surface file beside volume meshes: taken for their reference surface";
+  const std::vector<BatchEntry> entries{hex, sphere, holed, reference};
+  const std::string html = batch_index_html(entries, "9.9.9");
+  const std::string table = html.substr(html.find("id=\"mesh-table\""));
+  // The flawless surface mesh: ok, limited, neutral; not an input warning.
+  EXPECT_NE(table.find("<tr class=\"ok limited\">"), std::string::npos) << table;
+  EXPECT_NE(table.find("status\">ok · limited analysis<"), std::string::npos);
+  // The one with a real input warning keeps it (and is limited too).
+  EXPECT_NE(table.find("status\">⚠ input warning · limited analysis<"), std::string::npos);
+  EXPECT_NE(table.find("warning: quads/holed.obj: 1 node is no cell"), std::string::npos);
+  // The limitation's text once, under the table, not under a row's path.
+  EXPECT_EQ(table.find("warning: overlap is not checked"), std::string::npos);
+  std::size_t once = 0;
+  for (std::size_t at = html.find("the viewer of surface meshes"); at != std::string::npos;
+       at = html.find("the viewer of surface meshes", at + 1))
+    ++once;
+  EXPECT_EQ(once, 1u);
+  EXPECT_NE(html.find("2 with limited analysis"), std::string::npos);
+  EXPECT_NE(html.find("(1 with input warnings)"), std::string::npos);
+  // Cells by kind, sorted by their count; never "0" for a mesh with cells.
+  EXPECT_NE(table.find("<th>#cells (hex / quad / tri)</th>"), std::string::npos);
+  EXPECT_NE(table.find("data-sort=\"600\">600 quad<"), std::string::npos);
+  EXPECT_NE(table.find("data-sort=\"216\">200 quad + 16 tri<"), std::string::npos);
+  EXPECT_NE(table.find("data-sort=\"1000\">1000 hex<"), std::string::npos);
+  EXPECT_NE(table.find(">38 vertices<"), std::string::npos);
+  EXPECT_NE(table.find(">8 vertices<"), std::string::npos);
+  EXPECT_NE(table.find(">9 vertices<"), std::string::npos);
+  EXPECT_EQ(table.find(">0 quad<"), std::string::npos);
+  EXPECT_EQ(table.find("data-sort=\"0\">0</td>"), std::string::npos) << "no row reads 0 cells";
+  // The skipped input, named with its reason at the top.
+  const std::string head = html.substr(0, html.find("<main>"));
+  EXPECT_NE(head.find("1 not analysed (listed below)"), std::string::npos) << head;
+  EXPECT_NE(head.find("<code>hex/ball.off</code> (a surface file beside volume meshes"), std::string::npos) << head;
+  // Surface wording, not "per hex" alone.
+  EXPECT_EQ(table.find("the most inverted hexes"), std::string::npos);
+  // index.json round trip: the page is the same after a merge.
+  const std::vector<BatchEntry> back = parse_batch_index_json(batch_index_json(entries, "9.9.9"), "i");
+  ASSERT_EQ(back.size(), 4u);
+  EXPECT_EQ(batch_index_html(back, "9.9.9"), html);
+  // A batch without surface meshes keeps its page: no limited status, the
+  // hex column's title.
+  const std::string volume_only = batch_index_html({hex}, "9.9.9");
+  EXPECT_NE(volume_only.find("<th>#H</th>"), std::string::npos);
+  EXPECT_EQ(volume_only.find("limited"), std::string::npos);
+  // summary.md: the limitation is not a warning.
+  const std::string md = batch_summary_markdown(entries);
+  EXPECT_NE(md.find("limited\\: overlap is not checked"), std::string::npos) << md;
 }
 
 TEST(BatchIndex, MethodsComparePerLabel) {

@@ -21,6 +21,9 @@
 #include "hqview/quality/quality_field.h"
 #include "hqview/render/camera.h"
 #include "hqview/render/osmesa_renderer.h"
+#include "hqview/report/report_html.h"
+#include "hqview/views/main_views.h"
+#include "hqview/views/overview_views.h"
 #include "hqview/views/surface_views.h"
 #include "hqview/views/views.h"
 #include "io/temp_dir.h"
@@ -270,6 +273,131 @@ TEST(SurfaceViews, EveryInvertedFaceShowsOverTheGlyphs) {
   }
 }
 
+// Within r pixels of (x, y), a pixel within 12 of `color` per channel.
+bool color_near(const Image& image, const Pixel& at, Rgba8 color, int r) {
+  for (int dy = -r; dy <= r; ++dy)
+    for (int dx = -r; dx <= r; ++dx) {
+      const Rgba8 p = test::pixel_at(image, static_cast<int>(at.x) + dx, static_cast<int>(at.y) + dy);
+      if (std::abs(p.r - color.r) <= 12 && std::abs(p.g - color.g) <= 12 && std::abs(p.b - color.b) <= 12) return true;
+    }
+  return false;
+}
+
+// The 47c review's surface items on a hand-built planar 8 x 8 grid in a
+// rotated plane, its faces listed clockwise about e1 x e2 (mirrored), vertex
+// (3, 3) pushed through its quad's opposite corner to (4.4, 4.4): by hand
+// the quads (3, 2), (2, 3) and (3, 3) fold (lowest corners -0.2747, -0.2747,
+// -0.8491), (2, 2) drops to 0.4922, the other 60 stay squares (1). The
+// overview outlines exactly the folded quads whole; the main legend lists
+// every bin with its count (empty ones too) and says overlap was not
+// checked, without a number; the structure view draws the boundary.
+TEST(SurfaceViews, PushedVertexFoldedQuadsOutlinedLegendsHonestBoundaryDrawn) {
+  const int n = 8;
+  const Vec3 e1 = Vec3{2, 1, -2} / 3.0, e2 = normalized(Vec3{1, -2, 0});
+  Grid g = planar_grid(n, {-1, 4, 2}, e1, e2, 0.5);
+  for (auto& q : g.quads) std::swap(q[1], q[3]);  // mirrored: clockwise about e1 x e2
+  const auto at = [&](int i, int j) { return static_cast<std::size_t>(i + (n + 1) * j); };
+  g.points[at(3, 3)] = g.points[at(3, 3)] + 1.4 * (g.points[at(4, 4)] - g.points[at(3, 3)]);
+  const test::TempDir dir("surface_pushed");
+  AnalyzeOptions options;
+  options.mesh_path = dir.write("pushed.obj", obj_text(g));
+  options.tool_version = "test";
+  options.glyphs.threshold = 0.05;  // no glyph over the folded quads (their size is issue 44's)
+  const Analysis a = analyze_mesh(options);
+  ASSERT_TRUE(a.mesh_summary.planarity && a.mesh_summary.planarity->is_planar);
+  const std::vector<double>& q = a.field.cell_scaled_jacobian;
+  const auto quad = [&](int i, int j) { return static_cast<std::size_t>(i + n * j); };
+  const std::vector<std::size_t> folded{quad(3, 2), quad(2, 3), quad(3, 3)};
+  EXPECT_NEAR(q[quad(3, 3)], -0.8491, 1e-4);
+  EXPECT_NEAR(q[quad(3, 2)], -0.2747, 1e-4);
+  EXPECT_NEAR(q[quad(2, 2)], 0.4922, 1e-4);
+
+  // The fill legend: every bin, its count, empty ones too.
+  std::vector<std::string> texts;
+  for (const LegendLine& line : surface_fill_legend_lines(q)) texts.push_back(line.text);
+  EXPECT_EQ(texts, (std::vector<std::string>{"faces: scaled Jacobian", "(each face's lowest corner)", "inverted (<= 0): 3",
+                                             "0 to 0.3: 0", "0.3 to 0.6: 1", "0.6 to 0.9: 0", "0.9 to 1: 60"}));
+  // A reversed face (a curved mesh's inverted cell, positive value) takes
+  // the inverted bin, which then says so.
+  const std::vector<Index> reversed{static_cast<Index>(quad(0, 0))};
+  const std::vector<LegendLine> with_reversed = surface_fill_legend_lines(q, reversed);
+  EXPECT_EQ(with_reversed.at(2).text, "inverted or reversed: 4");
+  EXPECT_EQ(with_reversed.at(6).text, "0.9 to 1: 59");
+  EXPECT_EQ(surface_fill_faces(a.mesh, a.topology, q, Vec3{}, reversed).colors.at(0), surface_fill_color(-1.0));
+  // Neighbouring bins differ in lightness (a 0.3-0.6 face stands out).
+  const auto light = [](Rgba8 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };
+  EXPECT_GT(light(surface_fill_color(0.95)) - light(surface_fill_color(0.75)), 25.0);
+  EXPECT_GT(light(surface_fill_color(0.75)) - light(surface_fill_color(0.45)), 50.0);
+  EXPECT_GT(light(surface_fill_color(0.45)) - light(surface_fill_color(0.15)), 50.0);
+  // Unrun overlap: no number, no swatch.
+  MainViewOptions main_options;
+  main_options.surface_cell_quality = &q;
+  const std::vector<LegendLine> legend = main_legend_lines(GlyphResult{}, nullptr, AnnotationStyle{}, main_options, 1.0);
+  int unchecked = 0;
+  for (const LegendLine& line : legend) {
+    EXPECT_FALSE(line.text.starts_with("coincident") || line.text.starts_with("intersecting")) << line.text;
+    if (line.text == "overlap: not checked" || line.text == "  on surface meshes") {
+      EXPECT_FALSE(line.swatch);
+      ++unchecked;
+    }
+  }
+  EXPECT_EQ(unchecked, 2);
+
+  ViewOptions views;
+  views.width = 800;
+  views.height = 600;
+  views.views = {"overview", "structure"};
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  ASSERT_TRUE(renderer);
+  const std::vector<RenderedView> drawn = render_views(a, views, *renderer);
+  // Overview: every edge of a folded quad outlined (its quarter points), no
+  // outline on the edges of the quads two or more rows away.
+  const ViewFile& overview = file_of(drawn, "overview");
+  ASSERT_TRUE(overview.camera);
+
+  const auto on_edges = [&](std::size_t c, Rgba8 color, int r) {
+    int hits = 0, points = 0;
+    const auto& v = g.quads[c];
+    for (int k = 0; k < 4; ++k)
+      for (double t : {0.25, 0.5, 0.75}) {
+        const Vec3 p0 = a.mesh.points[static_cast<std::size_t>(v[static_cast<std::size_t>(k)])];
+        const Vec3 p1 = a.mesh.points[static_cast<std::size_t>(v[static_cast<std::size_t>((k + 1) % 4)])];
+        ++points;
+        hits += color_near(overview.image, to_pixel(overview, p0 + t * (p1 - p0)), color, r);
+      }
+    return std::pair{hits, points};
+  };
+  for (std::size_t c : folded) {
+    const auto [hits, points] = on_edges(c, kInvertedOutlineColor, 2);
+    EXPECT_EQ(hits, points) << "quad " << c;
+  }
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      if (i >= 6 || j >= 6 || (i <= 0 && j <= 0)) EXPECT_EQ(on_edges(quad(i, j), kInvertedOutlineColor, 2).first, 0);
+  // Its legend has the outline's swatch (right of the 3D area).
+  int swatch = 0;
+  for (int y = 0; y < overview.image.height; ++y)
+    for (int x = overview.frame_width; x < overview.image.width; ++x)
+      swatch += test::pixel_at(overview.image, x, y) == kInvertedOutlineColor;
+  EXPECT_GT(swatch, 20);
+  // Structure view: the outline drawn in the boundary colour (a pixel
+  // within 2 of each outer edge's midpoint).
+  const ViewFile& structure = file_of(drawn, "structure");
+  ASSERT_TRUE(structure.camera);
+  int outer = 0, drawn_outer = 0;
+  for (int k = 0; k < n; ++k)
+    for (const auto& [p0, p1] : {std::pair{at(k, 0), at(k + 1, 0)}, std::pair{at(k, n), at(k + 1, n)},
+                                 std::pair{at(0, k), at(0, k + 1)}, std::pair{at(n, k), at(n, k + 1)}}) {
+      const Vec3 m = 0.5 * (a.mesh.points[p0] + a.mesh.points[p1]);
+      ++outer;
+      drawn_outer += color_near(structure.image, to_pixel(structure, m), kSurfaceBoundaryEdgeColor, 2);
+    }
+  EXPECT_EQ(drawn_outer, outer);
+  // and not inside (the grid's interior edges, at its centre row).
+  const Vec3 inner = 0.5 * (a.mesh.points[at(6, 6)] + a.mesh.points[at(7, 6)]);
+  EXPECT_FALSE(color_near(structure.image, to_pixel(structure, inner), kSurfaceBoundaryEdgeColor, 2));
+}
+
 TEST(SurfaceViews, CubeSphereStructureInTheReportAndItsView) {
   const int n = 6;
   const Mesh sphere = test::quad_cube_sphere(n, 2.0);
@@ -295,6 +423,17 @@ TEST(SurfaceViews, CubeSphereStructureInTheReportAndItsView) {
   EXPECT_EQ(s["num_patches"], 6);
   EXPECT_EQ(s["num_boundary_edges"], 0);
   EXPECT_EQ(s["num_edges"], 12 * n * n);
+
+  // index.html speaks of the surface (47c review item 8): panel S's own
+  // title and text, the mesh table's edges, the footer's faces; no hex wording.
+  const std::string html = index_html(result.model);
+  EXPECT_NE(html.find("S · Structure: irregular vertices, separatrices and patches"), std::string::npos);
+  EXPECT_NE(html.find("The layout is traced as is, not simplified"), std::string::npos);
+  EXPECT_NE(html.find("reversed faces (against their neighbours)"), std::string::npos);
+  EXPECT_NE(html.find("over the vertex's faces"), std::string::npos);
+  EXPECT_EQ(html.find("singularity graph"), std::string::npos);
+  EXPECT_EQ(r["views"][0]["title"], "Structure: irregular vertices, separatrices and patches");
+  EXPECT_EQ(html.find("hexes"), std::string::npos);
 
   // The structure view: pixels of the valence-3 blue's hue within 6 pixels
   // of each irregular vertex in sight (its normal towards the eye), none

@@ -519,15 +519,32 @@ TEST(MainViewLabels, InvertedClustersWearARing) {
     if (line.text.starts_with("coincident vertices")) EXPECT_FALSE(line.ring);
   }
   EXPECT_EQ(rings, 2);
-  // The clusters' coloured edge lines are named, with the count the view uses.
-  int edge_lines = 0;
-  for (const LegendLine& line : legend)
-    edge_lines += line.text == "lines: edges of " + std::to_string(options.cluster_edge_vertices) + " worst";
-  EXPECT_EQ(edge_lines, 1);
+  // The clusters' coloured edge lines are named with a line swatch in #0's
+  // colour and the vertices they surround: #0's size, or the cap when it
+  // cuts (47c review: "edges of 48 worst" on a 4-vertex cluster).
+  const auto edge_line = [&](const MainViewOptions& o) {
+    std::vector<LegendLine> found;
+    for (const LegendLine& line : main_legend_lines(deep.glyphs, nullptr, style, o, labels.glyph_scale))
+      if (line.text.starts_with("edges at")) found.push_back(line);
+    return found;
+  };
+  const Index size = deep.glyphs.clusters[0].size;
+  ASSERT_GE(size, 2);
+  ASSERT_LT(size, options.cluster_edge_vertices);
+  const std::vector<LegendLine> named = edge_line(options);
+  ASSERT_EQ(named.size(), 1u);
+  EXPECT_EQ(named[0].text, "edges at #0's " + std::to_string(size) + " vertices");
+  EXPECT_TRUE(named[0].line);
+  EXPECT_EQ(named[0].swatch, to_rgba8(cluster_color(0, deep.glyphs.options.top_clusters)));
+  MainViewOptions capped = options;
+  capped.cluster_edge_vertices = 1;
+  ASSERT_EQ(edge_line(capped).size(), 1u);
+  EXPECT_EQ(edge_line(capped)[0].text, "edges at #0's 1 worst vertex");
   MainViewOptions no_edges = options;
   no_edges.cluster_edge_vertices = 0;
-  for (const LegendLine& line : main_legend_lines(deep.glyphs, nullptr, style, no_edges, labels.glyph_scale))
-    EXPECT_FALSE(line.text.starts_with("lines: edges"));
+  EXPECT_TRUE(edge_line(no_edges).empty());
+  // Overlap not run on this volume mesh: said, without a number.
+  for (const LegendLine& line : legend) EXPECT_FALSE(line.text.starts_with("coincident vertices"));
   // The rings begin outside the glyph: its rim is not covered.
   EXPECT_EQ(background_inside_rim(image, worst, options.background), 0);
   const Case shallow = dented(1.5, 0.3);

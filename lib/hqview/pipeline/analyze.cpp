@@ -8,6 +8,7 @@
 #include <limits>
 #include <optional>
 
+#include "hqview/analysis/limitations.h"
 #include "hqview/core/box3.h"
 #include "hqview/core/error.h"
 #include "hqview/core/stop.h"
@@ -459,10 +460,9 @@ AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
   views.up = views_up(in_progress.analysis, options);
   const bool is_surface = is_surface_mesh(in_progress.analysis.mesh);
   if (renderer && is_surface && options.viewer)
-    in_progress.analysis.warnings.push_back("the viewer of surface meshes is not written yet (the views are drawn)");
+    in_progress.analysis.warnings.emplace_back(kSurfaceViewerNotWritten);
   if (renderer && is_surface && in_progress.analysis.boundary_error)
-    in_progress.analysis.warnings.push_back(
-        "the boundary-error views of surface meshes are not drawn yet (report.json boundary_error has the numbers)");
+    in_progress.analysis.warnings.emplace_back(kSurfaceBoundaryErrorViewsNotDrawn);
   if (renderer) {
     // The views that need no atlas are drawn while it is built.
     std::vector<StageTime> view_times;

@@ -72,7 +72,7 @@ bool is_hex_mesh_extension(const std::filesystem::path& path);
 // Every mesh file under `dir` (recursive), sorted by relative path: the
 // volume formats, and the polygon formats (.obj .off .ply: surface meshes)
 // in folders that hold no volume-format file (beside volume meshes they are
-// reference surfaces and are left out); hidden entries and HQView outputs
+// reference surfaces: listed with a skip_reason, not analysed); hidden entries and HQView outputs
 // (directories with report.json or index.json) are skipped.
 // Throws InputError when `dir` cannot be listed.
 std::vector<BatchInput> collect_directory(const std::filesystem::path& dir);

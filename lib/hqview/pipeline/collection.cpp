@@ -216,14 +216,15 @@ std::vector<BatchInput> collect_directory(const fs::path& dir) {
   }
   // Polygon files (.obj .off .ply) are surface meshes, but in a folder that
   // also holds volume-format files they are taken for those meshes'
-  // reference surfaces (HexaLab's layout: bunny.off beside bunny_in.mesh)
-  // and left out.
+  // reference surfaces (HexaLab's layout: bunny.off beside bunny_in.mesh):
+  // listed, not analysed (skipped rows, so the index names them).
   std::set<fs::path> volume_folders;
   for (const BatchInput& input : inputs)
     if (is_hex_mesh_extension(input.mesh_file)) volume_folders.insert(input.mesh_file.parent_path());
-  std::erase_if(inputs, [&](const BatchInput& input) {
-    return has_polygon_mesh_extension(input.mesh_file) && volume_folders.count(input.mesh_file.parent_path()) != 0;
-  });
+  for (BatchInput& input : inputs)
+    if (has_polygon_mesh_extension(input.mesh_file) && volume_folders.count(input.mesh_file.parent_path()) != 0)
+      input.skip_reason =
+          "a surface file beside volume meshes, taken for their reference surface; a manifest can analyse it";
   std::sort(inputs.begin(), inputs.end(), [](const BatchInput& a, const BatchInput& b) { return a.path < b.path; });
   return inputs;
 }

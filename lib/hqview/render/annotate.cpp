@@ -496,6 +496,9 @@ void draw_legend(Image& image, const PixelRect& area, std::span<const LegendLine
           draw_line(image, cx + r * std::cos(a0), cy + r * std::sin(a0), cx + r * std::cos(a1), cy + r * std::sin(a1),
                     color, width);
         }
+      } else if (line.line) {
+        const double width = std::max(2.0, 4.0 * style.scale * fit);
+        draw_line(image, x, y - 0.5 * swatch, x + swatch, y - 0.5 * swatch, color, width);
       } else {
         fill_rect(image, {x, y - swatch, swatch, swatch}, color);
       }

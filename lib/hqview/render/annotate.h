@@ -127,13 +127,15 @@ struct LegendLine {
   std::string text;
   int gap_halves = 0;
   bool ring = false;  // swatch drawn as a hollow ring (as a view draws its rings), not a square
+  bool line = false;  // swatch drawn as a short thick line (as a view draws its edge lines)
 };
 // Draws the lines from the top of area: 34-pixel pitch, 18-pixel swatches and
 // 19-pixel text at the style's scale, all shrunk together when the lines
 // would not fit the area's height; text too long for the width ends in
 // "...". Swatches are drawn opaque; a ring swatch is a circle outline
 // (3 px wide at scale 1) with the background inside, so it differs by shape
-// from any filled swatch of a similar colour.
+// from any filled swatch of a similar colour; a line swatch is a horizontal
+// line across the swatch's width, 4 px thick at scale 1.
 void draw_legend(Image& image, const PixelRect& area, std::span<const LegendLine> lines, const AnnotationStyle& style);
 
 }  // namespace hq

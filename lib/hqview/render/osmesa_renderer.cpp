@@ -468,8 +468,12 @@ class OsmesaRenderer final : public Renderer {
       gl.DepthMask(GL_TRUE);
       gl.Disable(GL_BLEND);
     }
+    // Overlay lines alone (the overview's inverted-face outlines) are drawn
+    // over everything too.
     if (std::any_of(scene.overlay.begin(), scene.overlay.end(),
-                    [](const TriangleSet& set) { return !set.indices.empty(); })) {
+                    [](const TriangleSet& set) { return !set.indices.empty(); }) ||
+        std::any_of(scene.lines.begin(), scene.lines.end(),
+                    [](const LineSet& set) { return set.in_overlay && !set.indices.empty(); })) {
       gl.Clear(GL_DEPTH_BUFFER_BIT);  // the depth mask is on again
       draw_triangles(scene.overlay, model_view, projection, nullptr);
       draw_lines(scene, model_view, projection, false, true);
@@ -656,6 +660,7 @@ class OsmesaRenderer final : public Renderer {
       }
       gl.Uniform1i(gl.GetUniformLocation(triangle_program_, "use_vertex_normals"), use_normals ? 1 : 0);
       gl.Uniform1i(gl.GetUniformLocation(triangle_program_, "is_lit"), set.is_lit && !id_mode_ ? 1 : 0);
+      gl.Uniform1f(gl.GetUniformLocation(triangle_program_, "ambient"), set.ambient);
       set_scalars(set);
       // One colour for the whole set (translucent hulls, arrows, the grey
       // boundary of view F): linearised once here instead of per fragment.

@@ -70,6 +70,10 @@ struct TriangleSet {
   std::vector<Rgba8> colors;           // #V, interpolated across triangles (with scalars: only their alpha)
   std::vector<std::uint32_t> indices;  // 3 * #triangles, ids in [0, #V)
   bool is_lit = true;                  // false: colours shown as given (2D maps)
+  // Lit: the share of the colour kept facing away from the light (shade =
+  // ambient + (1 - ambient) * |n . l|). A surface mesh's binned fill keeps
+  // 0.7 so a shaded face keeps its legend colour's hue and near its value.
+  float ambient = 0.25f;
   // #V values, or empty. When set, each fragment's colour is color_map of the
   // interpolated scalar (ScalarColorMap) instead of the interpolated colour.
   std::vector<float> scalars;

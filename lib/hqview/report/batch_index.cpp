@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "hqview/analysis/limitations.h"
 #include "hqview/core/error.h"
 #include "hqview/core/number_format.h"
 #include "hqview/core/fault_point.h"
@@ -176,6 +177,15 @@ void fill_entry_from_report(BatchEntry& entry, const ReportDocument& report) {
   if (report.contains("warnings") && report["warnings"].is_array())
     for (const ReportDocument& w : report["warnings"])
       if (w.is_string()) entry.warnings.push_back(w.get<std::string>());
+  entry.surface.reset();
+  if (report.contains("mesh") && report["mesh"].is_object() && report["mesh"].value("dimension", "") == "surface") {
+    SurfaceCounts counts;
+    counts.quads = json_number_at(report, "headline.num_cells_by_kind.quad").value_or(0.0);
+    counts.triangles = json_number_at(report, "headline.num_cells_by_kind.triangle").value_or(0.0);
+    counts.irregular_interior = json_number_at(report, "structure.num_irregular_vertices_interior");
+    counts.irregular_boundary = json_number_at(report, "structure.num_irregular_vertices_boundary");
+    entry.surface = counts;
+  }
 }
 
 std::vector<MethodSummary> summarize_methods(const std::vector<BatchEntry>& entries) {
@@ -251,6 +261,11 @@ std::string batch_index_json(const std::vector<BatchEntry>& entries, const std::
     json headline = json::object();
     for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) headline[kHeadlineKeys[k]] = number_or_null(e.headline[k]);
     m["headline"] = std::move(headline);
+    if (e.surface)  // a surface mesh only: volume rows keep their bytes
+      m["surface"] = {{"num_quads", number_or_null(e.surface->quads)},
+                      {"num_triangles", number_or_null(e.surface->triangles)},
+                      {"num_irregular_vertices_interior", number_or_null(e.surface->irregular_interior)},
+                      {"num_irregular_vertices_boundary", number_or_null(e.surface->irregular_boundary)}};
     if (!e.metrics.empty()) {  // a solved finite-element check only: other rows keep their bytes
       json metrics = json::object();
       for (const MeshMetricRange& s : e.metrics)
@@ -336,6 +351,16 @@ std::vector<BatchEntry> parse_batch_index_json(std::string_view text, const std:
       for (std::size_t k = 0; k < kNumHeadlineKeys; ++k)
         if (headline.contains(kHeadlineKeys[k]) && headline[kHeadlineKeys[k]].is_number())
           e.headline[k] = headline[kHeadlineKeys[k]].get<double>();
+      if (m.contains("surface") && m["surface"].is_object()) {
+        const json& f = m["surface"];
+        const auto number = [&](const char* key) -> std::optional<double> {
+          if (f.contains(key) && f[key].is_number()) return f[key].get<double>();
+          return std::nullopt;
+        };
+        e.surface = SurfaceCounts{number("num_quads").value_or(0.0), number("num_triangles").value_or(0.0),
+                                  number("num_irregular_vertices_interior"),
+                                  number("num_irregular_vertices_boundary")};
+      }
       if (m.contains("failed_gates")) e.failed_gates = m["failed_gates"].get<std::vector<std::string>>();
       if (m.contains("thumbnail") && m["thumbnail"].is_string()) e.thumbnail = m["thumbnail"].get<std::string>();
       if (m.contains("overview") && m["overview"].is_string()) e.overview = m["overview"].get<std::string>();
@@ -687,9 +712,20 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
   const bool any_hybrid = std::any_of(entries.begin(), entries.end(), [](const BatchEntry& e) {
     return e.headline[hex_fraction_key].has_value() && *e.headline[hex_fraction_key] != 1.0;
   });
+  // Surface meshes (issue 47): the hex column counts their cells by kind,
+  // the singular-edge columns their irregular vertices.
+  static const std::size_t hexes_key = headline_index("mesh.num_hexes");
+  static const std::size_t singular_keys[2] = {headline_index("structure.num_singular_edges_interior"),
+                                               headline_index("structure.num_singular_edges_boundary")};
+  const bool any_surface = std::any_of(entries.begin(), entries.end(), [](const BatchEntry& e) { return e.surface.has_value(); });
   for (const BatchEntry& e : entries) {
     for (std::size_t k = 0; k < kNumHeadlineKeys; ++k)
       shown[k] = shown[k] || (e.headline[k].has_value() && (k < first_composition_key || any_hybrid));
+    if (e.surface) {
+      shown[hexes_key] = true;
+      shown[singular_keys[0]] = shown[singular_keys[0]] || e.surface->irregular_interior.has_value();
+      shown[singular_keys[1]] = shown[singular_keys[1]] || e.surface->irregular_boundary.has_value();
+    }
     any_label = any_label || !e.label.empty();
     any_model = any_model || !e.model.empty();
     any_variant = any_variant || !e.variant.empty();
@@ -706,10 +742,18 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
   static const std::size_t invalid_key = headline_index("fem.element.num_invalid");
   static const std::size_t not_invertible_key = headline_index("fem.element.num_not_invertible");
   data headers = data::type::list;
-  for (std::size_t k = 0; k < kNumHeadlineKeys; ++k)
-    if (shown[k]) headers.push_back(data("title", kHeadlineTitles[k]));
+  for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) {
+    if (!shown[k]) continue;
+    std::string title = kHeadlineTitles[k];
+    if (any_surface && k == hexes_key) title = "#cells (hex / quad / tri)";
+    if (any_surface && k == singular_keys[0]) title = "#singular edges / irregular vertices, interior";
+    if (any_surface && k == singular_keys[1]) title = "#singular edges / irregular vertices, boundary";
+    headers.push_back(data("title", title));
+  }
   page.set("headline_columns", headers);
-  int failed = 0, gate_failed = 0, with_findings = 0, with_warnings = 0;
+  page.set("has_surface", any_surface);
+  int failed = 0, gate_failed = 0, with_findings = 0, with_warnings = 0, limited = 0;
+  std::vector<std::string> limitations;  // distinct, in first-seen order (rows worst first)
   data rows = data::type::list;
   for (const std::size_t i : worst_first_order(entries)) {
     const BatchEntry& e = entries[i];
@@ -722,8 +766,11 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
     row.set("variant", e.variant);
     const std::string findings = batch_findings(e);
     with_findings += !findings.empty() && e.status != BatchStatus::failed && e.status != BatchStatus::skipped;
-    with_warnings += !e.warnings.empty();
-    row.set("status", std::string(to_string(e.status)) + (findings.empty() ? "" : " finding"));
+    const bool is_limited = (e.status == BatchStatus::ok || e.status == BatchStatus::gate_failed) && has_limited_analysis(e);
+    with_warnings += findings.find("input warning") != std::string::npos;
+    limited += is_limited;
+    row.set("status", std::string(to_string(e.status)) + (findings.empty() ? "" : " finding") +
+                          (is_limited && findings.empty() ? " limited" : ""));
     row.set("status_text", batch_status_text(e));
     row.set("has_bundle", !e.bundle.empty());
     row.set("link", url_path(e.bundle) + "/index.html");
@@ -735,7 +782,14 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
     for (const std::string& g : e.failed_gates) detail += (detail.empty() ? "" : "; ") + g;
     // Input warnings under the mesh's path (the details column is for errors and gates).
     std::string warning;
-    for (const std::string& w : e.warnings) warning += (warning.empty() ? "warning: " : "; warning: ") + relative_warning(w, e.path);
+    // Tool limitations once under the table, not per row.
+    for (const std::string& w : e.warnings) {
+      if (is_limitation_warning(w)) {
+        if (std::find(limitations.begin(), limitations.end(), w) == limitations.end()) limitations.push_back(w);
+        continue;
+      }
+      warning += (warning.empty() ? "warning: " : "; warning: ") + relative_warning(w, e.path);
+    }
     row.set("warning", warning);
     row.set("has_warning", !warning.empty());
     row.set("detail", detail);
@@ -743,9 +797,29 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
     for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) {
       if (!shown[k]) continue;
       data cell;
-      cell.set("text", show(e.headline[k]));
+      std::optional<double> value = e.headline[k];
+      std::string text = show(value);
+      if (any_surface && k == hexes_key) {
+        // "216 quad", "200 quad + 16 tri", "1000 hex" (+ " + 12 other" on a hybrid mesh).
+        const auto count = [](double v) { return display_number(v); };
+        if (e.surface) {
+          value = e.surface->quads + e.surface->triangles;
+          text = e.surface->triangles == 0 ? count(e.surface->quads) + " quad"
+                 : e.surface->quads == 0   ? count(e.surface->triangles) + " tri"
+                                           : count(e.surface->quads) + " quad + " + count(e.surface->triangles) + " tri";
+        } else if (value) {
+          static const std::size_t cells_key = headline_index("headline.num_cells");
+          const double others = e.headline[cells_key] ? *e.headline[cells_key] - *value : 0.0;
+          text = count(*value) + " hex" + (others > 0 ? " + " + count(others) + " other" : "");
+          if (others > 0) value = *value + others;
+        }
+      } else if (e.surface && (k == singular_keys[0] || k == singular_keys[1])) {
+        value = k == singular_keys[0] ? e.surface->irregular_interior : e.surface->irregular_boundary;
+        text = value ? show(value) + " vertices" : "–";
+      }
+      cell.set("text", text);
       // The sort key: the exact number, or empty (sorted last).
-      cell.set("sort", e.headline[k] && std::isfinite(*e.headline[k]) ? format_double(*e.headline[k]) : "");
+      cell.set("sort", value && std::isfinite(*value) ? format_double(*value) : "");
       // Inverted hexes, a non-positive min SJ and invalid elements stand out.
       const bool alert = e.headline[k] && (((k == inverted_key || k == invalid_key || k == not_invertible_key) && *e.headline[k] > 0) ||
                                            (k == min_sj_key && *e.headline[k] <= 0));
@@ -756,7 +830,9 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
     rows.push_back(row);
   }
   page.set("rows", rows);
-  page.set("num_meshes", std::to_string(entries.size()));
+  page.set("num_meshes", std::to_string(entries.size() - static_cast<std::size_t>(std::count_if(
+                                          entries.begin(), entries.end(),
+                                          [](const BatchEntry& e) { return e.status == BatchStatus::skipped; }))));
   page.set("num_failed", std::to_string(failed));
   page.set("num_gate_failed", std::to_string(gate_failed));
   page.set("num_with_findings", std::to_string(with_findings));
@@ -764,6 +840,20 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
   const auto skipped = std::count_if(entries.begin(), entries.end(),
                                      [](const BatchEntry& e) { return e.status == BatchStatus::skipped; });
   if (skipped > 0) page.set("num_skipped", std::to_string(skipped));
+  // Each input not analysed, by name and reason, at the top.
+  data skipped_rows = data::type::list;
+  for (const BatchEntry& e : entries)
+    if (e.status == BatchStatus::skipped) {
+      data d;
+      d.set("path", e.path);
+      d.set("reason", e.error);
+      skipped_rows.push_back(d);
+    }
+  page.set("skipped", skipped_rows);
+  if (limited > 0) page.set("num_limited", std::to_string(limited));
+  data limitation_rows = data::type::list;
+  for (const std::string& w : limitations) limitation_rows.push_back(data("text", w));
+  page.set("limitations", limitation_rows);
   const std::vector<MethodSummary> methods = summarize_methods(entries);
   page.set("has_methods", !methods.empty());
   data method_rows = data::type::list;
@@ -801,17 +891,25 @@ std::string batch_findings(const BatchEntry& e) {
   };
   find(e.headline[inverted_key] && *e.headline[inverted_key] > 0, "inverted");
   find(e.headline[intersecting_key] && *e.headline[intersecting_key] > 0, "intersecting");
-  find(!e.warnings.empty(), "input warning");
+  find(std::any_of(e.warnings.begin(), e.warnings.end(), [](const std::string& w) { return !is_limitation_warning(w); }),
+       "input warning");
   return findings;
+}
+
+bool has_limited_analysis(const BatchEntry& e) {
+  return std::any_of(e.warnings.begin(), e.warnings.end(), [](const std::string& w) { return is_limitation_warning(w); });
 }
 
 std::string batch_status_text(const BatchEntry& e) {
   const std::string findings = batch_findings(e);
-  return e.status == BatchStatus::failed        ? "✗ failed"
+  const std::string status = e.status == BatchStatus::failed        ? "✗ failed"
          : e.status == BatchStatus::gate_failed ? "✗ gate failed"
          : e.status == BatchStatus::skipped     ? "skipped"
          : findings.empty()                     ? "ok"
                                                 : "⚠ " + findings;
+  // A skipped or failed mesh has no analysis to call limited.
+  const bool analysed = e.status == BatchStatus::ok || e.status == BatchStatus::gate_failed;
+  return analysed && has_limited_analysis(e) ? status + " · limited analysis" : status;
 }
 
 std::string batch_summary_markdown(const std::vector<BatchEntry>& entries) {
@@ -822,15 +920,17 @@ std::string batch_summary_markdown(const std::vector<BatchEntry>& entries) {
     failed += e.status == BatchStatus::failed;
     gate_failed += e.status == BatchStatus::gate_failed;
     with_findings += !batch_findings(e).empty() && e.status != BatchStatus::failed && e.status != BatchStatus::skipped;
-    with_warnings += !e.warnings.empty();
+    with_warnings += std::any_of(e.warnings.begin(), e.warnings.end(),
+                                 [](const std::string& w) { return !is_limitation_warning(w); });
   }
-  const auto skipped = std::count_if(entries.begin(), entries.end(),
-                                     [](const BatchEntry& e) { return e.status == BatchStatus::skipped; });
-  std::string md = "## HQView batch: " + std::to_string(entries.size()) + " meshes, " + std::to_string(failed) +
+  // Meshes as index.json counts.meshes: skipped inputs left out.
+  const std::size_t skipped = static_cast<std::size_t>(std::count_if(
+      entries.begin(), entries.end(), [](const BatchEntry& e) { return e.status == BatchStatus::skipped; }));
+  std::string md = "## HQView batch: " + std::to_string(entries.size() - skipped) + " meshes, " + std::to_string(failed) +
                    " failed, " + std::to_string(gate_failed) + " with failed gates, " + std::to_string(with_findings) +
                    " with inverted or intersecting cells or input warnings";
   if (with_warnings > 0) md += " (" + std::to_string(with_warnings) + " with input warnings)";
-  if (skipped > 0) md += ", " + std::to_string(skipped) + " skipped (not hex meshes)";
+  if (skipped > 0) md += ", " + std::to_string(skipped) + " inputs not analysed";
   md += "\n\n";
   md += "| mesh | label | status |";
   for (const char* title : kHeadlineTitles) md += std::string(" ") + title + " |";
@@ -861,7 +961,7 @@ std::string batch_summary_markdown(const std::vector<BatchEntry>& entries) {
     if (!any_problem) md += "\n### Problems\n\n";
     any_problem = true;
     // Fixed words and numbers as they are; input text (errors, gates,
-    // warnings) escaped.
+    // warnings) escaped; a limitation of HQView is "limited", not a warning.
     std::string what = markdown_escape(e.error);
     for (const std::string& g : e.failed_gates) what += (what.empty() ? "gate failed: " : "; ") + markdown_escape(g);
     auto count = [&](std::size_t key, const char* word) {
@@ -873,7 +973,8 @@ std::string batch_summary_markdown(const std::vector<BatchEntry>& entries) {
     for (const std::string& w : e.warnings) {
       std::string text = relative_warning(w, e.path);
       if (text.starts_with(e.path + ": ")) text.erase(0, e.path.size() + 2);
-      what += (what.empty() ? "warning: " : "; warning: ") + markdown_escape(text);
+      what += std::string(what.empty() ? "" : "; ") + (is_limitation_warning(w) ? "limited: " : "warning: ") +
+              markdown_escape(text);
     }
     md += "- " + markdown_escape(e.path) + ": " + what + "\n";
   }

@@ -66,6 +66,15 @@ struct MeshMetricRange {
   bool operator==(const MeshMetricRange&) const = default;
 };
 
+// A surface mesh's counts (report.json mesh.dimension "surface"): its
+// cells by kind and its irregular vertices (structure), which the batch
+// page shows in the cell and singular columns; index.json `surface`.
+struct SurfaceCounts {
+  double quads = 0, triangles = 0;
+  std::optional<double> irregular_interior, irregular_boundary;  // null: not counted
+  bool operator==(const SurfaceCounts&) const = default;
+};
+
 // One row of the index.
 struct BatchEntry {
   std::string path;
@@ -82,6 +91,7 @@ struct BatchEntry {
   std::string thumbnail;  // the bundle's thumbnail view, relative to the bundle; empty: not rendered
   std::string overview;   // the bundle's overview view (the batch lightbox shows it); empty: not rendered
   std::vector<std::string> warnings;  // report.json warnings (input integrity: cells read as another kind ...)
+  std::optional<SurfaceCounts> surface;  // a surface mesh's; absent for a volume mesh
   // With a solved finite-element check only (else empty, and absent from
   // index.json): every computed metric's min and mean, for the correlation
   // across the collection (collection_correlation.h).
@@ -128,11 +138,16 @@ std::vector<std::size_t> worst_first_order(const std::vector<BatchEntry>& entrie
 std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::string& tool_version,
                              const std::vector<ComparisonKey>* keys = nullptr);
 // What a row shows beyond its run's status (issue 45): "inverted",
-// "intersecting", "input warning", comma-separated; empty: none.
+// "intersecting", "input warning", comma-separated; empty: none. A warning
+// that names a tool limitation (analysis/limitations.h: overlap not checked
+// on a surface mesh ...) is no input warning.
 std::string batch_findings(const BatchEntry& entry);
+// Whether the row's warnings hold a tool limitation (is_limitation_warning).
+bool has_limited_analysis(const BatchEntry& entry);
 // A row's status in words, the same on index.html and summary.md: "✗ failed",
 // "✗ gate failed", "skipped", "ok", or "⚠ " + batch_findings (an "ok" run of a
-// broken mesh, or of a mesh read with warnings, is not "ok").
+// broken mesh, or of a mesh read with warnings, is not "ok"); " · limited
+// analysis" follows when has_limited_analysis.
 std::string batch_status_text(const BatchEntry& entry);
 // summary.md: the status column is batch_status_text; every input warning is
 // listed under "Problems" with the mesh's path.

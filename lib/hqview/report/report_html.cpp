@@ -551,6 +551,35 @@ std::string panel_title(const PanelSpec& spec, const ReportModel& model) {
   return spec.title;
 }
 
+// Panel A's and S's title and text on a surface mesh (no hexes, nothing
+// inside; the structure is irregular vertices and separatrices): nullptr
+// for the other panels, which keep theirs (47c review item 8).
+const char* surface_panel_title(char letter) {
+  if (letter == 'A') return "A · Overview and main view: vertex quality, faces by scaled Jacobian, glyphs and clusters";
+  if (letter == 'S') return "S · Structure: irregular vertices, separatrices and patches";
+  return nullptr;
+}
+const char* surface_panel_intro(char letter) {
+  if (letter == 'A')
+    return "First the overview: the faces coloured by vertex quality (the lowest corner scaled Jacobian at each "
+           "vertex), each inverted face outlined whole in dark blue-violet. Then the main view: each face filled "
+           "by its own scaled Jacobian (its lowest corner; signed against the plane's normal on a planar mesh, so a "
+           "folded quad is negative) in five bins, every bin counted in the legend; sphere glyphs sit on bad "
+           "vertices (the lower the quality, the larger), merged where they overlap; the worst clusters each have a "
+           "colour, all others are grey. A planar mesh is seen along its normal, orthographic; a curved one from "
+           "the three-quarter view. Arrows point at coincident vertices and at faces that intersect the surface "
+           "elsewhere.";
+  if (letter == 'S')
+    return "Each irregular vertex (valence = the number of incident quads; interior not 4, boundary not its ideal "
+           "valence from its corner angles) as a sphere coloured by its class; the separatrices traced from them "
+           "along edge lines, straight on through regular vertices, as dark lines; the mesh boundary in blue-grey; "
+           "the patches (quads joined across untraced edges) tinted. The layout is traced as is, not simplified "
+           "(no collapse of nearby singularity pairs, no motorcycle graph): on an unstructured mesh nearly every "
+           "edge lies on a separatrix and a patch holds a quad or two, which the legend's counts say. Counts: "
+           "report.json structure.";
+  return nullptr;
+}
+
 // Panels A–F with the links between them (every view of kViews has a
 // panel here or on boundary.html).
 void set_panels(data& page, const ReportModel& model, const PanelIndex& index) {
@@ -565,6 +594,10 @@ void set_panels(data& page, const ReportModel& model, const PanelIndex& index) {
     const std::string intro = panel_intro(spec, model);
     panel.set("intro", has_non_hex(model) ? hybrid_wording(intro) : intro);
     if (has_non_hex(model)) panel.set("title", hybrid_wording(panel_title(spec, model)));
+    if (model.analysis.mesh_summary.is_surface && surface_panel_intro(spec.letter)) {
+      panel.set("intro", std::string(surface_panel_intro(spec.letter)));
+      panel.set("title", std::string(surface_panel_title(spec.letter)));
+    }
     // Panel A's intro under its figures, so that the overview starts right
     // under the heading and fits the first screen (issue 45e).
     panel.set("intro_after", spec.letter == 'A');
@@ -709,10 +742,19 @@ void set_worst(data& page, const QualitySummary& q, const PanelIndex& index) {
 
 void set_mesh_rows(data& page, const MeshSummary& m) {
   data mesh_rows{data::type::list};
-  mesh_rows.push_back(kv("boundary faces", show_count(m.num_boundary_faces)));
-  mesh_rows.push_back(kv("boundary vertices", show_count(m.num_boundary_vertices)));
-  mesh_rows.push_back(kv("unreferenced vertices", show_count(m.num_unreferenced_vertices)));
-  mesh_rows.push_back(kv("faces shared by > 2 hexes", show_count(m.num_non_manifold_faces)));
+  // A surface mesh counts its edges, not hex faces (47c review item 8).
+  if (m.is_surface) {
+    mesh_rows.push_back(kv("boundary edges (on one face)", show_count(m.num_boundary_edges)));
+    mesh_rows.push_back(kv("boundary vertices", show_count(m.num_boundary_vertices)));
+    mesh_rows.push_back(kv("unreferenced vertices", show_count(m.num_unreferenced_vertices)));
+    mesh_rows.push_back(kv("non-manifold edges (on > 2 faces)", show_count(m.num_non_manifold_edges)));
+    mesh_rows.push_back(kv("reversed faces (against their neighbours)", show_count(m.num_reversed_faces)));
+  } else {
+    mesh_rows.push_back(kv("boundary faces", show_count(m.num_boundary_faces)));
+    mesh_rows.push_back(kv("boundary vertices", show_count(m.num_boundary_vertices)));
+    mesh_rows.push_back(kv("unreferenced vertices", show_count(m.num_unreferenced_vertices)));
+    mesh_rows.push_back(kv("faces shared by > 2 hexes", show_count(m.num_non_manifold_faces)));
+  }
   if (m.num_non_conforming_faces > 0)  // hybrid meshes only: pure-hex pages keep their bytes
     mesh_rows.push_back(kv("non-conforming faces (a quad against two triangles)", show_count(m.num_non_conforming_faces)));
   mesh_rows.push_back(kv("bounding box min", show_vec(m.bbox_min)));

@@ -716,7 +716,8 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
 
   // 0. A surface mesh's faces, filled by quality (surface_views.h).
   if (options.surface_cell_quality) {
-    scene.triangles.push_back(surface_fill_faces(mesh, topology, *options.surface_cell_quality, scene.origin));
+    scene.triangles.push_back(surface_fill_faces(mesh, topology, *options.surface_cell_quality, scene.origin,
+                                                 options.surface_inverted_cells));
     scene.triangles.back().is_lit = options.surface_fill_lit;
   }
 
@@ -1208,8 +1209,31 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
   }
   // The coloured edge lines that scene step 2 draws around each cluster's
   // worst vertices: their colour is the cluster's, their meaning said here.
-  if (!glyphs.clusters.empty() && options.cluster_edge_vertices > 0)
-    lines.push_back({std::nullopt, "lines: edges of " + std::to_string(options.cluster_edge_vertices) + " worst"});
+  // A line swatch in #0's colour; the count is the vertices the lines
+  // really surround (at most cluster_edge_vertices of each coloured class's
+  // first cluster, build_main_scene step 2), not the cap.
+  if (!glyphs.clusters.empty() && options.cluster_edge_vertices > 0) {
+    std::size_t surrounded = 0, classes = 0;
+    bool capped = false;
+    for (std::size_t i = 0; i < listed; ++i) {
+      if (i > 0 && ties[i - 1] == ties[i]) continue;
+      const auto size = static_cast<std::size_t>(std::max<Index>(glyphs.clusters[i].size, 0));
+      const auto cap = static_cast<std::size_t>(options.cluster_edge_vertices);
+      surrounded += std::min(size, cap);
+      capped = capped || size > cap;
+      ++classes;
+    }
+    const std::string n = std::to_string(surrounded);
+    if (classes == 1)
+      lines.push_back({to_rgba8(cluster_color(0, glyphs.options.top_clusters)),
+                       "edges at #0's " + n + (capped ? " worst" : "") + (surrounded == 1 ? " vertex" : " vertices"),
+                       0, false, true});
+    else if (classes > 1) {
+      lines.push_back({to_rgba8(cluster_color(0, glyphs.options.top_clusters)),
+                       "edges at " + n + (capped ? " worst vertices" : " glyph vertices"), 0, false, true});
+      lines.push_back({std::nullopt, "  (each in its cluster's colour)"});
+    }
+  }
   // The rings as the view draws them (draw_worst_glyph_ring,
   // draw_inverted_glyph_rings): ring swatches, unlike the square ones.
   if (!glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0 && !worst_is_tied)
@@ -1225,16 +1249,25 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
       findings[kind] += static_cast<std::size_t>(std::max<Index>(m.count, 1));
     }
   const std::size_t intersecting = overlap ? static_cast<std::size_t>(overlap->num_intersecting_cells) : 0;
-  const std::string unchecked = overlap ? "" : " (not checked)";
   if (options.inverted_overlay_faces > 0 && !options.surface_cell_quality)
     lines.push_back(
         {to_rgba8(kInvertedColor), "inverted cells' faces: " + std::to_string(options.inverted_overlay_faces)});
-  lines.push_back({kCoincidentArrowColor, "coincident vertices: " + std::to_string(findings[0]) + unchecked, 1});
-  lines.push_back({kIntersectionArrowColor, "intersecting pairs: " + std::to_string(findings[1]) + unchecked});
-  lines.push_back({kIntersectingCellColor, "intersecting cells: " + std::to_string(intersecting) + unchecked});
+  // An unrun check has no number and no swatch (nothing of its colours is
+  // drawn): "0" would read as "checked, none found".
+  if (overlap) {
+    lines.push_back({kCoincidentArrowColor, "coincident vertices: " + std::to_string(findings[0]), 1});
+    lines.push_back({kIntersectionArrowColor, "intersecting pairs: " + std::to_string(findings[1])});
+    lines.push_back({kIntersectingCellColor, "intersecting cells: " + std::to_string(intersecting)});
+  } else if (options.surface_cell_quality) {
+    lines.push_back({std::nullopt, "overlap: not checked", 1});
+    lines.push_back({std::nullopt, "  on surface meshes"});
+  } else {
+    lines.push_back({std::nullopt, "overlap: not checked", 1});
+  }
   if (overlap && !overlap->markers.empty()) lines.push_back({std::nullopt, "label xN: N of its colour's kind"});
   if (options.surface_cell_quality) {
-    const std::vector<LegendLine> fill = surface_fill_legend_lines(*options.surface_cell_quality);
+    const std::vector<LegendLine> fill =
+        surface_fill_legend_lines(*options.surface_cell_quality, options.surface_inverted_cells);
     lines.insert(lines.end(), fill.begin(), fill.end());
   }
   // On a mesh of several kinds the boundary edges are in their kinds'

@@ -81,6 +81,9 @@ struct MainViewOptions {
   // meshes: the boundary wireframe only). Lit unless surface_fill_lit is
   // false (a planar mesh seen along its normal: the bins' colours exactly).
   const std::vector<double>* surface_cell_quality = nullptr;
+  // Its inverted cells (the fill's inverted bin whatever their value: a
+  // reversed face of a curved mesh); not owned.
+  std::span<const Index> surface_inverted_cells;
   bool surface_fill_lit = true;
   // The on-screen diagonal (pixels, the 3D area) of the model's bounding
   // box as the view's camera projects it (render_main_view sets it; issue

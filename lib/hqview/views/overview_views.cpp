@@ -310,6 +310,10 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
   // Both ring entries size the legend; the figure keeps those it draws.
   if (!options.inverted_cells.empty()) {
     const std::string plural = options.cell_noun == "hex" ? "hexes" : options.cell_noun + "s";
+    if (options.outline_inverted_faces)
+      f.bar.swatches.push_back({to_color(kInvertedOutlineColor),
+                                "outlined: " + std::to_string(options.inverted_cells.size()) + " inverted " +
+                                    (options.inverted_cells.size() == 1 ? options.cell_noun : plural)});
     f.bar.swatches.push_back({to_color(kCalloutColor), "solid ring: inverted " + plural + " in sight", SwatchShape::solid_ring});
     f.bar.swatches.push_back(
         {to_color(kCalloutColor), "dashed ring: inside or on the far side", SwatchShape::dashed_ring});
@@ -379,6 +383,37 @@ Image render_quality_overview(const HexMesh& mesh, const Topology& topology, con
   const double opacity = edge_opacity(scene, f.camera, layout.view.width, layout.view.height);
   for (LineSet& lines : scene.lines)
     for (Rgba8& c : lines.colors) c.a = static_cast<std::uint8_t>(std::lround(c.a * opacity));
+  if (options.outline_inverted_faces) {
+    // Whole inverted faces, over the fill and the edges: a 4 px line on a
+    // 7 px white halo, apart from the black edges and the blue fill.
+    const double base = style.scale / kOverviewTextScale;  // 1 at 1200 px of height
+    LineSet halo, outline;
+    halo.width = static_cast<float>(std::max(4.0, 7.0 * base));
+    outline.width = static_cast<float>(std::max(2.0, 4.0 * base));
+    halo.in_overlay = outline.in_overlay = options.outline_on_top;
+    const auto add_face = [&](const std::array<Index, 4>& v, int size) {
+      for (int i = 0; i < size; ++i)
+        for (Index p : {v[static_cast<std::size_t>(i)], v[static_cast<std::size_t>((i + 1) % size)]}) {
+          const Vec3f at = to_vec3f(mesh.points[static_cast<std::size_t>(p)] - scene.origin);
+          for (LineSet* set : {&halo, &outline}) {
+            set->indices.push_back(static_cast<std::uint32_t>(set->positions.size()));
+            set->positions.push_back(at);
+            set->colors.push_back(set == &halo ? Rgba8{255, 255, 255, 255} : kInvertedOutlineColor);
+          }
+        }
+    };
+    for (Index c : options.inverted_cells) {
+      const auto i = static_cast<std::size_t>(c);
+      if (i < mesh.quads.size())
+        add_face(mesh.quads[i], 4);
+      else if (i - mesh.quads.size() < mesh.triangles.size()) {
+        const auto& t = mesh.triangles[i - mesh.quads.size()];
+        add_face({t[0], t[1], t[2], kNoIndex}, 3);
+      }
+    }
+    scene.lines.push_back(std::move(halo));
+    scene.lines.push_back(std::move(outline));
+  }
 
   Image figure = render_figure(renderer, scene, f.camera, options.width, options.height, layout, options.title, style);
   if (options.inverted_cells.empty()) {

@@ -21,6 +21,10 @@
 
 namespace hq {
 
+// The outline of an inverted surface face (OverviewOptions): a darker
+// blue-violet than kInvertedColor, apart from its fill and from the map.
+inline constexpr Rgba8 kInvertedOutlineColor{70, 20, 170, 255};
+
 struct OverviewOptions {
   int width = 1600;  // figure size in pixels, legend and title included
   int height = 1200;
@@ -34,6 +38,16 @@ struct OverviewOptions {
   // (inverted_callout.h), with a legend entry; none: no rings.
   std::vector<Index> inverted_cells;
   std::string cell_noun = "hex";  // "hex" or "cell": the rings' labels and legend entry
+  // A surface mesh: each inverted cell's face (a quad or triangle of
+  // inverted_cells) is outlined whole, 4 px at 1200 px of height on a 7 px
+  // white halo, in kInvertedOutlineColor over everything else (the per-pixel vertex
+  // quality shows only its inverted corners in blue), with a legend entry
+  // "outlined: N inverted <noun>s".
+  bool outline_inverted_faces = false;
+  // With it: the outlines drawn over everything (a planar mesh seen along
+  // its normal: nothing lies behind), else depth-tested (a curved surface:
+  // a face on the far side stays hidden).
+  bool outline_on_top = false;
   // On a mesh of several kinds: each boundary face's corners take the
   // vertex quality of its own cell's kind (kind_vertex_quality.h), so a hex
   // face beside tets shows the hexes' corners (46q review Q-M2); null or

@@ -1,7 +1,10 @@
 #include "hqview/views/surface_views.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <span>
 #include <string>
 
 #include "hqview/core/box3.h"
@@ -14,18 +17,25 @@
 namespace hq {
 namespace {
 
-// The fill's bins: upper bounds (inclusive) and tints (fraction of white).
+// The fill's bins: upper bounds (inclusive), colours and legend text. A
+// sequential ramp dark to light with a step in lightness between
+// neighbours (CIE L* about 45, 67, 87, 97; ColorBrewer OrRd's hues), so a
+// 0.3-0.6 face stands out among 0.9-1 faces in grey-scale too; inverted in
+// the inverted colour (blue, apart from the ramp's hues).
 struct FillBin {
   double upper;
-  double sample;  // the quality map's value for the bin
-  double white;   // mixed towards white by this much
+  Rgba8 color;
   const char* text;
 };
-constexpr std::array<FillBin, 5> kFillBins{{{0.0, -1.0, 0.0, "inverted (<= 0)"},
-                                            {0.3, 0.15, 0.25, "0 to 0.3"},
-                                            {0.6, 0.45, 0.45, "0.3 to 0.6"},
-                                            {0.9, 0.75, 0.6, "0.6 to 0.9"},
-                                            {1.0, 0.95, 0.7, "0.9 to 1"}}};
+const std::array<FillBin, 5> kFillBins{{{0.0, to_rgba8(kInvertedColor), "inverted (<= 0)"},
+                                        {0.3, Rgba8{179, 0, 0, 255}, "0 to 0.3"},
+                                        {0.6, Rgba8{239, 101, 72, 255}, "0.3 to 0.6"},
+                                        {0.9, Rgba8{253, 212, 158, 255}, "0.6 to 0.9"},
+                                        {1.0, Rgba8{250, 247, 240, 255}, "0.9 to 1"}}};
+
+// Lit faces keep most of their colour (TriangleSet::ambient): a shaded
+// face's bin stays readable against its legend swatch.
+constexpr float kSurfaceFillAmbient = 0.7f;
 
 // The bin of q, or -1 (undefined: NaN or Verdict's sentinel).
 int fill_bin(double q) {
@@ -55,11 +65,7 @@ void add_flat_face(TriangleSet& set, const HexMesh& mesh, const BoundaryPolygon&
 }
 
 Rgba8 bin_color(int b) {
-  if (b < 0) return to_rgba8(kUndefinedColor);
-  const FillBin& bin = kFillBins[static_cast<std::size_t>(b)];
-  const Color c = quality_color(bin.sample);
-  const auto tint = [&](float v) { return static_cast<float>(v + bin.white * (1.0 - v)); };
-  return to_rgba8(Color{tint(c.r), tint(c.g), tint(c.b), 1.0f});
+  return b < 0 ? to_rgba8(kUndefinedColor) : kFillBins[static_cast<std::size_t>(b)].color;
 }
 
 }  // namespace
@@ -76,32 +82,58 @@ std::optional<Vec3> planar_view_direction(const Analysis& a) {
 
 Rgba8 surface_fill_color(double q) { return bin_color(fill_bin(q)); }
 
+namespace {
+
+// Per cell its bin: fill_bin of its quality, the inverted bin for the cells
+// of `inverted` (a reversed face of a curved mesh has a positive unsigned
+// scaled Jacobian but counts as inverted).
+std::vector<int> cell_bins(const std::vector<double>& cell_quality, std::span<const Index> inverted) {
+  std::vector<int> bins(cell_quality.size());
+  for (std::size_t c = 0; c < cell_quality.size(); ++c) bins[c] = fill_bin(cell_quality[c]);
+  for (Index c : inverted)
+    if (c >= 0 && static_cast<std::size_t>(c) < bins.size()) bins[static_cast<std::size_t>(c)] = 0;
+  return bins;
+}
+
+}  // namespace
+
 TriangleSet surface_fill_faces(const HexMesh& mesh, const Topology& topology, const std::vector<double>& cell_quality,
-                               const Vec3& origin) {
+                               const Vec3& origin, std::span<const Index> inverted) {
+  const std::vector<int> bins = cell_bins(cell_quality, inverted);
   TriangleSet set;
+  set.ambient = kSurfaceFillAmbient;
   for (const BoundaryPolygon& face : boundary_polygons(topology)) {
     const auto cell = static_cast<std::size_t>(face.cell);
-    const Rgba8 color = surface_fill_color(cell < cell_quality.size() ? cell_quality[cell] : std::nan(""));
-    add_flat_face(set, mesh, face, color, origin);
+    add_flat_face(set, mesh, face, bin_color(cell < bins.size() ? bins[cell] : -1), origin);
   }
   return set;
 }
 
-std::vector<LegendLine> surface_fill_legend_lines(const std::vector<double>& cell_quality) {
+std::vector<LegendLine> surface_fill_legend_lines(const std::vector<double>& cell_quality,
+                                                  std::span<const Index> inverted) {
   std::array<std::size_t, kFillBins.size()> counts{};
   std::size_t undefined = 0;
-  for (double q : cell_quality) {
-    const int b = fill_bin(q);
+  for (int b : cell_bins(cell_quality, inverted)) {
     if (b < 0)
       ++undefined;
     else
       ++counts[static_cast<std::size_t>(b)];
   }
   std::vector<LegendLine> lines;
-  lines.push_back({std::nullopt, "faces: scaled Jacobian (min corner)", 1});
+  // Every bin, empty ones too (a reader sees that 0 to 0.3 was looked for).
+  lines.push_back({std::nullopt, "faces: scaled Jacobian", 1});
+  lines.push_back({std::nullopt, "(each face's lowest corner)"});
   for (std::size_t b = 0; b < kFillBins.size(); ++b)
-    if (counts[b] > 0)
-      lines.push_back({bin_color(static_cast<int>(b)), std::string(kFillBins[b].text) + ": " + std::to_string(counts[b])});
+    lines.push_back({bin_color(static_cast<int>(b)),
+                     std::string(b == 0 && !inverted.empty() && counts[0] > 0 &&
+                                         std::any_of(inverted.begin(), inverted.end(),
+                                                     [&](Index c) {
+                                                       return static_cast<std::size_t>(c) < cell_quality.size() &&
+                                                              cell_quality[static_cast<std::size_t>(c)] > 0.0;
+                                                     })
+                                     ? "inverted or reversed"
+                                     : kFillBins[b].text) +
+                         ": " + std::to_string(counts[b])});
   if (undefined > 0) lines.push_back({bin_color(-1), "degenerate: " + std::to_string(undefined)});
   return lines;
 }
@@ -157,6 +189,13 @@ constexpr std::array<Rgba8, 8> kPatchTints{{{222, 232, 246, 255},
 constexpr Rgba8 kSeparatrixColor{45, 45, 52, 255};
 constexpr Rgba8 kFaintEdgeColor{150, 154, 162, 110};
 
+// "1.2", "12": a ratio with one decimal below 10.
+std::string ratio_text(double r) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, r < 10.0 ? "%.1f" : "%.0f", r);
+  return buffer;
+}
+
 }  // namespace
 
 Rgba8 irregular_vertex_color(Index valence, int ideal, bool is_boundary) {
@@ -183,6 +222,7 @@ Image render_quad_structure_view(const HexMesh& mesh, const Topology& topology, 
   // Faces by patch (the quads; triangles and faces without a patch white).
   TriangleSet faces;
   faces.is_lit = options.is_lit;
+  faces.ambient = kSurfaceFillAmbient;
   for (const BoundaryPolygon& face : boundary_polygons(topology)) {
     const auto cell = static_cast<std::size_t>(face.cell);
     const Rgba8 tint = face.size == 4 && cell < structure.quad_patch.size() && structure.quad_patch[cell] != kNoIndex
@@ -202,6 +242,19 @@ Image render_quad_structure_view(const HexMesh& mesh, const Topology& topology, 
       edges.colors.push_back(kFaintEdgeColor);
     }
   scene.lines.push_back(std::move(edges));
+  // The boundary edges (used by one face), over the faint ones.
+  LineSet boundary;
+  boundary.width = static_cast<float>(std::max(2.0, 2.0 * f.style.scale));
+  const SurfaceTopology& surface = topology.surface;
+  for (std::size_t e = 0; e < surface.edges.size() && e < surface.edge_num_faces.size(); ++e)
+    if (surface.edge_num_faces[e] == 1)
+      for (Index v : surface.edges[e]) {
+        boundary.indices.push_back(static_cast<std::uint32_t>(boundary.positions.size()));
+        boundary.positions.push_back(local(v));
+        boundary.colors.push_back(kSurfaceBoundaryEdgeColor);
+      }
+  const bool has_boundary = !boundary.positions.empty();
+  scene.lines.push_back(std::move(boundary));
   LineSet separatrices;
   separatrices.width = static_cast<float>(3.0 * f.style.scale);
   for (Index s = 0; s < structure.num_separatrices; ++s) {
@@ -235,21 +288,40 @@ Image render_quad_structure_view(const HexMesh& mesh, const Topology& topology, 
   Image figure = render_figure(renderer, scene, f.camera, options.width, options.height, f.layout, options.title, f.style);
   std::vector<LegendLine> lines{{std::nullopt, "irregular vertices: " + std::to_string(structure.num_irregular)},
                                 {std::nullopt, "(valence = incident quads)"}};
+  // Every class, zeros too: the reader sees each was looked for.
   for (int c = 0; c < kNumIrregularClasses; ++c)
-    if (counts[static_cast<std::size_t>(c)] > 0)
+    if (structure.num_irregular > 0)
       lines.push_back({irregular_class_color(static_cast<IrregularClass>(c)),
                        std::string(irregular_class_label(static_cast<IrregularClass>(c))) + ": " +
                            std::to_string(counts[static_cast<std::size_t>(c)])});
   if (structure.num_irregular == 0) lines.push_back({std::nullopt, "none: every vertex is regular"});
+  // The separatrices with their edges' share, the patches with their mean
+  // size: on an unstructured mesh nearly every edge is traced and a patch
+  // is a quad or two, which the numbers say (the layout is not simplified).
+  const double edge_share = structure.num_edges > 0 ? 100.0 * static_cast<double>(structure.num_traced_edges) /
+                                                          static_cast<double>(structure.num_edges)
+                                                    : 0.0;
   lines.push_back({kSeparatrixColor,
                    "separatrices: " + std::to_string(structure.num_separatrices) +
                        (structure.is_capped ? " (capped)" : ""),
-                   1});
-  lines.push_back({std::nullopt, "traced edges: " + std::to_string(structure.num_traced_edges)});
-  lines.push_back({kPatchTints[0], "patches: " + std::to_string(structure.num_patches) + " (tints repeat)"});
+                   1, false, true});
+  lines.push_back({std::nullopt, "  " + std::to_string(structure.num_traced_edges) + " edges, " +
+                                     std::to_string(static_cast<long long>(std::lround(edge_share))) + "% of all"});
+  const std::size_t num_quads = mesh.quads.size();
+  std::string patches = "patches: " + std::to_string(structure.num_patches);
+  if (structure.num_patches == 1)
+    patches += " (all " + std::to_string(num_quads) + " quads)";
+  else if (structure.num_patches > 1)
+    patches += ", " + ratio_text(static_cast<double>(num_quads) / static_cast<double>(structure.num_patches)) +
+               " quads each";
+  lines.push_back({kPatchTints[0], patches});
+  if (structure.num_patches > static_cast<Index>(kPatchTints.size()))
+    lines.push_back({std::nullopt, "  (8 tints, repeating)"});
+  lines.push_back({std::nullopt, "not simplified: traced as is"});
   if (structure.num_unclassified > 0)
     lines.push_back({std::nullopt, "unclassified vertices: " + std::to_string(structure.num_unclassified)});
-  lines.push_back({Rgba8{150, 154, 162, 255}, "edges"});
+  if (has_boundary) lines.push_back({kSurfaceBoundaryEdgeColor, "mesh boundary", 0, false, true});
+  lines.push_back({Rgba8{150, 154, 162, 255}, "edges", 0, false, true});
   draw_legend(figure, f.layout.legend, lines, f.style);
   return figure;
 }

@@ -7,6 +7,7 @@
 // (mesh/surface_boundary.h).
 
 #include <optional>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -34,31 +35,48 @@ std::optional<Vec3> planar_view_direction(const Analysis& a);
 
 // View A's face fill bins of a face's cell scaled Jacobian q (the lowest
 // signed corner): inverted (q <= 0) in the inverted colour, then (0, 0.3],
-// (0.3, 0.6], (0.6, 0.9], (0.9, 1] in pale tints of the quality map (so that
-// the glyphs' cluster colours stay apart), degenerate (Verdict's sentinel)
-// or NaN in the undefined grey.
+// (0.3, 0.6], (0.6, 0.9], (0.9, 1] dark red, orange-red, pale orange and
+// near-white (a ramp stepping in lightness: a 0.3-0.6 face stands out),
+// degenerate (Verdict's sentinel) or NaN in the undefined grey. Lit (a
+// curved mesh) with ambient 0.7, so a shaded face keeps its bin's hue.
 Rgba8 surface_fill_color(double q);
 
 // The faces of boundary_polygons(topology), each flat in
 // surface_fill_color(cell_quality[face.cell]); positions relative to origin.
+// The cells of `inverted` (Analysis inverted cells: on a curved mesh the
+// reversed faces, whose unsigned scaled Jacobian is positive) take the
+// inverted bin whatever their value.
 TriangleSet surface_fill_faces(const HexMesh& mesh, const Topology& topology, const std::vector<double>& cell_quality,
-                               const Vec3& origin);
+                               const Vec3& origin, std::span<const Index> inverted = {});
 
-// The legend lines of the fill: a heading and one swatch per bin that holds
-// a face (counts in the text), in the bins' order.
-std::vector<LegendLine> surface_fill_legend_lines(const std::vector<double>& cell_quality);
+// The legend lines of the fill: a heading of two lines and one swatch per
+// bin with its count, empty bins too, in the bins' order; "degenerate: N"
+// when a face has no value.
+// The inverted bin reads "inverted or reversed" when a cell of `inverted`
+// has a positive value (a reversed face of a curved mesh).
+std::vector<LegendLine> surface_fill_legend_lines(const std::vector<double>& cell_quality,
+                                                  std::span<const Index> inverted = {});
 
 // The structure view of a surface mesh (`structure`, panel S): the faces
-// tinted by patch (8 pale tints, repeating), the edges faint, the
-// separatrices as dark 3-pixel lines (at 1200 pixels of height), each
+// tinted by patch (8 pale tints, repeating), the edges faint, the mesh
+// boundary 2 px in kSurfaceBoundaryEdgeColor, the separatrices as dark
+// 3-pixel lines (at 1200 pixels of height) over it, each
 // irregular vertex a sphere in its class's colour (the hex structure view's
 // Okabe-Ito palette: interior valence 3 blue, 5 vermillion, 6+ reddish
 // purple, 1-2 sky blue; boundary below its ideal valence bluish green,
 // above orange), radius 0.3 of the mean edge length and at least 0.6% of
 // the bounding-box diagonal. Orthographic, along view_direction, `up`
 // upright; lit unless is_lit is false (a planar mesh seen along its
-// normal). The legend gives each class with its count, the separatrices,
-// their traced edges, the patches and the unclassified vertices.
+// normal). The legend gives each class with its count (all six, zeros too,
+// when any vertex is irregular), the separatrices with their edges' share
+// of all edges, the patches with their mean size in quads ("not
+// simplified": on an unstructured mesh a patch is a quad or two), the
+// unclassified vertices, the boundary and the edges.
+// The structure view's mesh boundary (its outline and holes, edges used by
+// one face): it bounds patches as the separatrices do, drawn 2 px in this
+// blue-grey, apart from the separatrices' near-black, with a legend entry.
+inline constexpr Rgba8 kSurfaceBoundaryEdgeColor{70, 90, 125, 255};
+
 struct QuadStructureViewOptions {
   int width = 1600, height = 1200;
   std::string title;

@@ -212,6 +212,11 @@ std::vector<ViewFile> build_overview(ViewContext& c) {
   overview.view_direction = eye.direction;
   overview.inverted_cells = c.inverted_cells;
   overview.cell_noun = cell_word(c.a);
+  if (is_surface_mesh(c.a.mesh)) {
+    overview.outline_inverted_faces = true;
+    overview.outline_on_top = planar_view_direction(c.a).has_value();
+    overview.cell_noun = c.a.mesh.triangles.empty() ? "quad" : c.a.mesh.quads.empty() ? "triangle" : "face";
+  }
   const KindVertexQuality kinds = kind_vertex_quality(c.a.mesh, c.a.field);
   overview.kind_quality = &kinds;
   if (!eye.is_default)
@@ -237,6 +242,7 @@ std::vector<ViewFile> build_main(ViewContext& c) {
   const std::optional<Vec3> planar = planar_view_direction(c.a);
   if (is_surface_mesh(c.a.mesh)) {
     main.surface_cell_quality = &c.a.field.cell_scaled_jacobian;
+    main.surface_inverted_cells = c.inverted_cells;
     main.surface_fill_lit = !planar;
   }
   const std::vector<Vec3> directions =
@@ -246,7 +252,9 @@ std::vector<ViewFile> build_main(ViewContext& c) {
   for (std::size_t i = 0; i < directions.size(); ++i) {
     main.title = c.name + (main.surface_cell_quality ? ": faces by scaled Jacobian and glyph clusters, view "
                                                      : ": glyph clusters and overlaps, view ") +
-                 std::to_string(i + 1) + " (from " + viewpoint_name(directions[i], main.up) + ")";
+                 std::to_string(i + 1) +
+                 (planar ? std::string(" (along the plane's normal)")  // metric: squares stay squares
+                         : " (from " + viewpoint_name(directions[i], main.up) + ")");
     Image image = render_main_view(c.a.mesh, c.a.topology, *c.glyphs, overlap, directions[i], main, c.renderer);
     files.push_back(framed("views/main_" + std::to_string(i + 1) + ".png", std::move(image), c));
   }
@@ -453,7 +461,8 @@ std::vector<ViewFile> build_quad_structure(ViewContext& c) {
   const Vec3 direction = planar ? *planar : three_quarter_view(options.up);
   options.title = c.name + ": quad structure, " + std::to_string(s.num_irregular) + " irregular vertices, " +
                   std::to_string(s.num_separatrices) + " separatrices, " + std::to_string(s.num_patches) +
-                  " patches (from " + viewpoint_name(direction, options.up) + ")";
+                  (s.num_patches == 1 ? " patch" : " patches") +
+                  (planar ? std::string(" (along the plane's normal)") : " (from " + viewpoint_name(direction, options.up) + ")");
   Image image = render_quad_structure_view(c.a.mesh, c.a.topology, s, c.a.mesh_summary.edge_length_mean, direction,
                                            options, c.renderer);
   return {framed("views/structure_1.png", std::move(image), c)};
@@ -552,6 +561,18 @@ static std::string view_title(std::string_view title, const Analysis& a) {
   if (const auto at = t.find(kVertexQuality);
       at != std::string::npos && has_non_hex(a.mesh))
     t.replace(at, kVertexQuality.size(), "coloured by corner quality (each face: its own cell kind's corners)");
+  // A surface mesh's views speak of its faces and quad structure (47c
+  // review item 8).
+  if (is_surface_mesh(a.mesh)) {
+    static const std::pair<std::string_view, std::string_view> kSurfaceTitles[] = {
+        {"Structure: the singularity graph by valence", "Structure: irregular vertices, separatrices and patches"},
+        {"Boundary coloured by vertex quality", "Faces coloured by vertex quality"},
+        {"A: glyphs, clusters and overlaps", "A: faces by scaled Jacobian, glyphs and clusters"},
+        {"Thumbnail: the boundary by vertex quality, bounding-box frame",
+         "Thumbnail: the faces by vertex quality, bounding-box frame"}};
+    for (const auto& [from, to] : kSurfaceTitles)
+      if (t == from) t = to;
+  }
   return t;
 }
 
