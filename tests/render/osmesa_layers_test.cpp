@@ -219,6 +219,33 @@ TEST(Translucent, BlendsBackToFrontOverTheBackground) {
   EXPECT_EQ(pixel_at(image, 1, 1), (Rgba8{255, 255, 255, 255})) << "background untouched";
 }
 
+TEST(SphereImpostor, OverTranslucentKeepsTheSpheresColourUnderAGlass) {
+  // A red ranked sphere behind a translucent magenta square in front of
+  // it (issue 44 part U, round 2: the intersecting cells' boxes turned #0
+  // magenta). Without over_translucent the glass blends over it (blue
+  // rises); with it the sphere's centre is red as without the glass, and
+  // the glass still shows beside the sphere.
+  for (bool keep : {false, true}) {
+    Scene scene = sphere_scene({0, 0, 0}, 0.8f, {220, 30, 30, 255});
+    scene.spheres[0].over_other_spheres = true;
+    scene.spheres[0].over_translucent = keep;
+    TriangleSet glass;
+    glass.positions = {{-1.5f, -1.5f, 1.5f}, {1.5f, -1.5f, 1.5f}, {1.5f, 1.5f, 1.5f}, {-1.5f, 1.5f, 1.5f}};
+    glass.colors.assign(4, Rgba8{210, 40, 200, 160});
+    glass.indices = {0, 1, 2, 0, 2, 3};
+    glass.is_lit = false;
+    scene.translucent.push_back(glass);
+    const Image image = renderer().render(scene, front_camera(false), 80, 80);
+    const Rgba8 centre = pixel_at(image, 40, 40);
+    if (keep) {
+      EXPECT_TRUE(is_reddish(centre)) << int(centre.r) << ' ' << int(centre.g) << ' ' << int(centre.b);
+      EXPECT_GT(pixel_at(image, 40, 66).b, 80) << "the glass beside the sphere";
+    } else {
+      EXPECT_FALSE(is_reddish(centre)) << "the glass blends over a sphere without the flag";
+    }
+  }
+}
+
 // All layers at once against a golden image (tests/render/golden/layers.png),
 // with a tolerance for rasterizer differences between Mesa versions. Set
 // HQVIEW_UPDATE_GOLDEN=1 to rewrite the golden image after a deliberate change.

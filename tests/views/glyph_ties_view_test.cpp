@@ -257,9 +257,40 @@ TEST(GlyphTiesView, GlyphRadiusIsCappedFromAboveAndTheLegendSaysHowBig) {
   for (const LegendLine& line :
        main_legend_lines(glyphs, nullptr, AnnotationStyle{}, MainViewOptions{}, scale, {}, 0, {}, 1.5 * k * scale))
     legend.push_back(line.text);
-  EXPECT_TRUE(has_line(legend, "drawn x" + display_number(scale, 2) + ": #0 " +
-                                   std::to_string(std::lround(std::min(k, 60.0))) + " px"));
-  EXPECT_TRUE(has_line(legend, "  (capped: 1 edge, 3% of model)"));
+  // A radius, and in words why every glyph is shrunk (round 2).
+  EXPECT_TRUE(has_line(legend, "glyph radius \u221d 1 - min quality"));
+  EXPECT_TRUE(has_line(legend, "#0 radius " + std::to_string(std::lround(std::min(k, 60.0))) + " px"));
+  EXPECT_TRUE(has_line(legend, "  all shrunk x" + display_number(scale, 2) + ": #0 at most"));
+  EXPECT_TRUE(has_line(legend, "  1 mean edge, 3% of model size"));
+  // Enlarged to the floor: said so.
+  glyphs.clusters[0].radius = 0.1;
+  const double up = displayed_glyph_scale(glyphs, camera, 600, 1.0, 100.0);
+  legend.clear();
+  for (const LegendLine& line :
+       main_legend_lines(glyphs, nullptr, AnnotationStyle{}, MainViewOptions{}, up, {}, 0, {}, 24.0))
+    legend.push_back(line.text);
+  EXPECT_TRUE(has_line(legend, "#0 radius 24 px"));
+  EXPECT_TRUE(has_line(legend, "  all enlarged x" + display_number(up, 2) + ": #0 at"));
+  EXPECT_FALSE(has_line(legend, "  1 mean edge, 3% of model size"));
+  // The inverted cells and their faces left out (dolphin_rot said nothing).
+  MainViewOptions inverted;
+  inverted.inverted_cell_count = 520;
+  inverted.inverted_face_count = 759;
+  auto inverted_legend = [&] {
+    std::vector<std::string> texts;
+    for (const LegendLine& line : main_legend_lines(glyphs, nullptr, AnnotationStyle{}, inverted, up))
+      texts.push_back(line.text);
+    return texts;
+  };
+  legend = inverted_legend();
+  EXPECT_TRUE(has_line(legend, "inverted cells: 520"));
+  EXPECT_TRUE(has_line(legend, "  their 759 boundary faces"));
+  EXPECT_TRUE(has_line(legend, "  not drawn (more than 64)"));
+  inverted.inverted_face_count = 17;
+  inverted.inverted_overlay_faces = 9;
+  legend = inverted_legend();
+  EXPECT_TRUE(has_line(legend, "  boundary faces: 9 of 17"));
+  EXPECT_TRUE(has_line(legend, "  drawn (8 out of sight)"));
 }
 
 // Issue 44 part U: the worst tie class is a unit (none of its members left

@@ -467,6 +467,9 @@ class OsmesaRenderer final : public Renderer {
       draw_triangles(scene.translucent, model_view, projection, &model_view_matrix);
       gl.DepthMask(GL_TRUE);
       gl.Disable(GL_BLEND);
+      if (std::any_of(scene.translucent.begin(), scene.translucent.end(),
+                      [](const TriangleSet& set) { return !set.indices.empty(); }))
+        draw_spheres(scene, model_view, projection, camera.is_perspective, true, true);
     }
     // Overlay lines alone (the overview's inverted-face outlines) are drawn
     // over everything too.
@@ -575,9 +578,11 @@ class OsmesaRenderer final : public Renderer {
   }
 
   void draw_spheres(const Scene& scene, const std::array<float, 16>& model_view,
-                    const std::array<float, 16>& projection, bool is_perspective, bool over) {
+                    const std::array<float, 16>& projection, bool is_perspective, bool over,
+                    bool over_translucent = false) {
     if (std::none_of(scene.spheres.begin(), scene.spheres.end(), [&](const SphereSet& set) {
-          return set.over_other_spheres == over && !set.centers.empty();
+          return set.over_other_spheres == over && (!over_translucent || set.over_translucent) &&
+                 !set.centers.empty();
         }))
       return;
     gl.UseProgram(sphere_program_);
@@ -591,7 +596,7 @@ class OsmesaRenderer final : public Renderer {
     // or first on top, depth test off.
     std::vector<const SphereSet*> order;
     for (const SphereSet& set : scene.spheres)
-      if (set.over_other_spheres == over) order.push_back(&set);
+      if (set.over_other_spheres == over && (!over_translucent || set.over_translucent)) order.push_back(&set);
     auto eye_z = [&](const Vec3f& c) { return model_view[2] * c.x + model_view[6] * c.y + model_view[10] * c.z; };
     for (const SphereSet* set_pointer : order) {
       const SphereSet& set = *set_pointer;

@@ -19,7 +19,8 @@
 //                  over_other_spheres, which cover it);
 //   4. translucent triangles blended over everything else without depth
 //                  writes, all triangles of a set sorted back to front for
-//                  the camera (back_to_front_order, scene_shapes.h);
+//                  the camera (back_to_front_order, scene_shapes.h); then
+//                  the sphere sets with over_translucent again, over them;
 //   5. overlay     opaque triangles over everything else: drawn last, after
 //                  the depth buffer is cleared, so they hide only each other
 //                  (markers that must stay visible, e.g. overlap arrows
@@ -117,6 +118,11 @@ struct SphereSet {
   // worst cluster's glyph is never hidden by a less severe one), instead of
   // back to front.
   bool first_on_top = false;
+  // With over_other_spheres: drawn once more after the translucent layer
+  // (4.), depth test off, so that no translucent face blends over these
+  // spheres (issue 44 part U, round 2: view A's intersecting-cell boxes
+  // turned the worst glyph magenta); the overlay layer still covers them.
+  bool over_translucent = false;
   // In [0, 1): the lit colour is mixed this far towards white (issue 44
   // part T: view A's grey glyphs are de-emphasised by lightness, not size).
   // Id images ignore it.

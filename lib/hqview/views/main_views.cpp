@@ -656,17 +656,81 @@ std::vector<MarkerFan> marker_fans(const GlyphResult& glyphs, const OverlapRepor
 
 }  // namespace
 
-std::vector<BoundaryPolygon> inverted_boundary_faces(const Topology& topology, const MainViewOptions& options) {
-  std::vector<BoundaryPolygon> faces;
-  if (!options.inverted_cells || !options.orientation_note.empty()) return faces;
+namespace {
+
+// Whether the segment from o to o + d crosses triangle (a, b, c) at a
+// parameter in (0, 1 - 1e-7): Moller-Trumbore, double precision.
+bool segment_hits_triangle(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 e1 = b - a, e2 = c - a;
+  const Vec3 p = cross(d, e2);
+  const double det = dot(e1, p);
+  if (std::abs(det) < 1e-300) return false;
+  const double inv = 1.0 / det;
+  const Vec3 s = o - a;
+  const double u = dot(s, p) * inv;
+  if (u < 0.0 || u > 1.0) return false;
+  const Vec3 q = cross(s, e1);
+  const double v = dot(d, q) * inv;
+  if (v < 0.0 || u + v > 1.0) return false;
+  const double t = dot(e2, q) * inv;
+  return t > 1e-9 && t < 1.0 - 1e-7;
+}
+
+// Whether some of face shows from camera past the other boundary faces
+// (the see-through wireframe has no surface that would hide it): one of
+// its centre and the points 0.6 of the way from there to its corners is
+// reached by the camera's ray without crossing another boundary polygon.
+bool face_shows(const HexMesh& mesh, const BoundaryPolygon& face, std::span<const BoundaryPolygon> boundary,
+                const Camera& camera) {
+  const Vec3 forward = forward_of(camera);
+  auto corner = [&](const BoundaryPolygon& f, int k) {
+    return mesh.points[static_cast<std::size_t>(f.v[static_cast<std::size_t>(k)])];
+  };
+  Vec3 centre{};
+  for (int k = 0; k < face.size; ++k) centre = centre + corner(face, k);
+  centre = (1.0 / face.size) * centre;
+  std::vector<Vec3> samples{centre};
+  for (int k = 0; k < face.size; ++k) samples.push_back(centre + 0.6 * (corner(face, k) - centre));
+  for (const Vec3& p : samples) {
+    const Vec3 o = camera.is_perspective ? camera.eye : p - dot(p - camera.eye, forward) * forward;
+    const Vec3 d = p - o;
+    bool hidden = false;
+    for (const BoundaryPolygon& other : boundary) {
+      if (other.cell == face.cell && other.v == face.v) continue;
+      for (int t = 0; t + 2 < other.size && !hidden; ++t)
+        hidden = segment_hits_triangle(o, d, corner(other, 0), corner(other, t + 1), corner(other, t + 2));
+      if (hidden) break;
+    }
+    if (!hidden) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+InvertedFaces inverted_boundary_faces(const HexMesh& mesh, const Topology& topology, const MainViewOptions& options,
+                                      const Camera& camera) {
+  InvertedFaces result;
+  if (!options.inverted_cells || !options.orientation_note.empty()) return result;
   const std::vector<std::uint8_t>& inverted = *options.inverted_cells;
-  for (const BoundaryPolygon& face : boundary_polygons(topology)) {
+  result.cells = static_cast<std::size_t>(std::count_if(inverted.begin(), inverted.end(), [](std::uint8_t c) { return c != 0; }));
+  const std::vector<BoundaryPolygon> boundary = boundary_polygons(topology);
+  std::vector<BoundaryPolygon> faces;
+  for (const BoundaryPolygon& face : boundary) {
     const auto c = static_cast<std::size_t>(face.cell);
     if (c < inverted.size() && inverted[c] != 0) faces.push_back(face);
   }
-  if (faces.size() > (options.surface_cell_quality ? kMaxInvertedOverlayFaces : kMaxInvertedOverlayVolumeFaces))
-    faces.clear();
-  return faces;
+  result.faces = faces.size();
+  const bool surface = options.surface_cell_quality != nullptr;
+  result.over_limit = faces.size() > (surface ? kMaxInvertedOverlayFaces : kMaxInvertedOverlayVolumeFaces);
+  if (result.over_limit) return result;
+  // A surface mesh is drawn filled: the depth test hides its far side.
+  for (const BoundaryPolygon& face : faces)
+    if (surface || face_shows(mesh, face, boundary, camera))
+      result.drawn.push_back(face);
+    else
+      ++result.hidden;
+  return result;
 }
 
 std::vector<std::uint8_t> worst_cluster_vertices(const GlyphResult& glyphs, int per_cluster) {
@@ -840,6 +904,9 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   spheres.pale = kGreyGlyphPale;
   ranked.over_other_spheres = true;
   ranked.first_on_top = true;  // by rank: #0 on top of every other glyph
+  // And over the intersecting cells' translucent faces (issue 44 part U,
+  // round 2: they turned #0 magenta).
+  ranked.over_translucent = true;
   const std::vector<double> shown =
       displayed_glyph_radii(glyphs, displayed_glyph_scale(glyphs, camera, view_height, options.pixel_scale, options.model_diagonal_pixels));
   const GlyphsDrawn drawn = main_view_glyphs_drawn(glyphs, camera, view_height, shown);
@@ -871,34 +938,45 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   scene.overlay.push_back(std::move(arrows));
   scene.translucent.push_back(std::move(cells));
 
-  // 5b. The boundary faces of inverted cells over the glyphs (overlay[1]
-  // and their outlines; issue 44 part U: #0's glyph sits on the worst
-  // vertex, a corner of the inverted faces, and hid them).
-  const std::vector<BoundaryPolygon> inverted_faces = inverted_boundary_faces(topology, options);
+  // 5b. The boundary faces of inverted cells that show (issue 44 part U:
+  // #0's glyph sits on the worst vertex, a corner of the inverted faces,
+  // and hid them): opaque, unlit, in the inverted colour, with their edges,
+  // moved towards the camera by kInvertedFaceLift of the model's diagonal
+  // (they win over a surface mesh's fill and over coplanar folded faces),
+  // depth-tested like the mesh: a grey glyph in front covers them, and the
+  // ranked glyphs, drawn over the triangles, keep their colour (round 2:
+  // drawn over everything they turned #0 blue, far-side ones too).
+  const std::vector<BoundaryPolygon> inverted_faces = inverted_boundary_faces(mesh, topology, options, camera).drawn;
   if (!inverted_faces.empty()) {
     TriangleSet faces;
     faces.is_lit = false;
-    std::vector<Edge> outline;
+    LineSet outline;
+    outline.width = std::max(1.5f, options.wire_width);
+    const double lift = kInvertedFaceLift * norm(box.hi - box.lo);
+    const Vec3 forward = forward_of(camera);
+    auto lifted = [&](const Vec3& p) {
+      const Vec3 towards = camera.is_perspective ? normalized(camera.eye - p) : -1.0 * forward;
+      return local(p + lift * towards);
+    };
     for (const BoundaryPolygon& face : inverted_faces) {
       const Rgba8 color = options.surface_cell_quality
                               ? surface_fill_color((*options.surface_cell_quality)[static_cast<std::size_t>(face.cell)])
                               : to_rgba8(kInvertedColor);
       const auto base = static_cast<std::uint32_t>(faces.positions.size());
       for (int i = 0; i < face.size; ++i) {
-        const Index a = face.v[static_cast<std::size_t>(i)], b = face.v[static_cast<std::size_t>((i + 1) % face.size)];
-        faces.positions.push_back(local(mesh.points[static_cast<std::size_t>(a)]));
+        const Vec3f q = lifted(mesh.points[static_cast<std::size_t>(face.v[static_cast<std::size_t>(i)])]);
+        faces.positions.push_back(q);
         faces.colors.push_back(color);
-        outline.push_back({std::min(a, b), std::max(a, b)});
+        outline.positions.push_back(q);
+        outline.colors.push_back(kWireframeColor);
+        outline.indices.insert(outline.indices.end(),
+                               {base + static_cast<std::uint32_t>(i), base + static_cast<std::uint32_t>((i + 1) % face.size)});
       }
       faces.indices.insert(faces.indices.end(), {base, base + 1, base + 2});
       if (face.size == 4) faces.indices.insert(faces.indices.end(), {base, base + 2, base + 3});
     }
-    std::sort(outline.begin(), outline.end());
-    outline.erase(std::unique(outline.begin(), outline.end()), outline.end());
-    scene.overlay.push_back(std::move(faces));
-    scene.lines.push_back(edge_lines(mesh, scene.origin, outline, std::vector<Rgba8>(outline.size(), kWireframeColor),
-                                     std::max(1.5f, options.wire_width)));
-    scene.lines.back().in_overlay = true;
+    scene.triangles.push_back(std::move(faces));
+    scene.lines.push_back(std::move(outline));
   }
 
   // 6. On a mesh of several kinds, the pyramids' edges that are not boundary
@@ -1189,23 +1267,33 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
                                        std::to_string(static_cast<int>(kThinnedCoverage * 100)) + "% covered"});
   if (glyphs.clusters.empty())
     lines.push_back({options.background, "none: no quality below " + display_number(1.0 - glyphs.options.threshold, 3)});
-  lines.push_back({std::nullopt,
-                   glyphs.options.size_rule == GlyphSizeRule::kPaper
-                       ? "size = 1 - min quality + 0.1 per 10 vertices (paper)"
-                       : "size = 1 - min quality",
-                   1});
-  // The drawn scale (kWorstGlyphMinPixels from below, the cap from above)
-  // and #0's radius on screen (worst_pixels, when known; else the floor's),
-  // so that pictures compare.
+  // The size key (issue 44 part U, round 2: "drawn x0.73: #0 42 px" said
+  // neither radius nor what the factor was): the rule, #0's drawn radius
+  // on screen (worst_pixels, when known; else the floor's), and in words
+  // why every glyph is drawn larger (the kWorstGlyphMinPixels floor) or
+  // smaller (the kWorstGlyphMaxEdges / kWorstGlyphMaxDiagonal cap) than
+  // its radius in model units.
+  lines.push_back({std::nullopt, "glyph radius \u221d 1 - min quality", 1});
+  if (glyphs.options.size_rule == GlyphSizeRule::kPaper)
+    lines.push_back({std::nullopt, "  + 0.1 per 10 vertices (paper)"});
   if (!glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0 && (glyph_scale != 1.0 || worst_pixels > 0.0)) {
     const double px = worst_pixels > 0.0 ? worst_pixels : kWorstGlyphMinPixels * style.scale;
-    lines.push_back({std::nullopt, "drawn x" + display_number(glyph_scale, 2) + ": #0 " +
-                                       std::to_string(std::lround(px)) + " px"});
-    if (glyph_scale < 1.0) lines.push_back({std::nullopt, "  (capped: 1 edge, 3% of model)"});
+    lines.push_back({std::nullopt, "#0 radius " + std::to_string(std::lround(px)) + " px"});
+    if (glyph_scale < 1.0) {
+      lines.push_back({std::nullopt, "  all shrunk x" + display_number(glyph_scale, 2) + ": #0 at most"});
+      lines.push_back({std::nullopt, "  1 mean edge, 3% of model size"});
+    } else if (glyph_scale > 1.0) {
+      lines.push_back({std::nullopt, "  all enlarged x" + display_number(glyph_scale, 2) + ": #0 at"});
+      lines.push_back({std::nullopt, "  least " + std::to_string(static_cast<int>(kWorstGlyphMinPixels)) +
+                                         " px (at 1600 x 1200)"});
+    }
   }
   if (!glyphs.clusters.empty()) {
     lines.push_back({std::nullopt, "label #k (n): rank k, n vertices"});
-    if (coloured_tie) lines.push_back({std::nullopt, "  #k-#m tied (n): n in all"});
+    if (coloured_tie) {
+      lines.push_back({std::nullopt, "  #k-#m tied (n): ranks k to m"});
+      lines.push_back({std::nullopt, "  equal, n vertices together"});
+    }
   }
   // The coloured edge lines that scene step 2 draws around each cluster's
   // worst vertices: their colour is the cluster's, their meaning said here.
@@ -1249,9 +1337,22 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
       findings[kind] += static_cast<std::size_t>(std::max<Index>(m.count, 1));
     }
   const std::size_t intersecting = overlap ? static_cast<std::size_t>(overlap->num_intersecting_cells) : 0;
-  if (options.inverted_overlay_faces > 0 && !options.surface_cell_quality)
-    lines.push_back(
-        {to_rgba8(kInvertedColor), "inverted cells' faces: " + std::to_string(options.inverted_overlay_faces)});
+  // The inverted cells and which of their boundary faces the view draws
+  // (issue 44 part U, round 2: a legend said nothing of dolphin_rot's 759
+  // faces left out). A surface mesh's fill lines count them.
+  if (options.inverted_cell_count > 0 && !options.surface_cell_quality) {
+    const std::size_t faces = options.inverted_face_count, drawn = options.inverted_overlay_faces;
+    lines.push_back({to_rgba8(kInvertedColor), "inverted cells: " + std::to_string(options.inverted_cell_count), 1});
+    if (faces == 0)
+      lines.push_back({std::nullopt, "  none on the boundary"});
+    else if (faces > kMaxInvertedOverlayVolumeFaces) {
+      lines.push_back({std::nullopt, "  their " + std::to_string(faces) + " boundary faces"});
+      lines.push_back({std::nullopt, "  not drawn (more than " + std::to_string(kMaxInvertedOverlayVolumeFaces) + ")"});
+    } else {
+      lines.push_back({std::nullopt, "  boundary faces: " + std::to_string(drawn) + " of " + std::to_string(faces)});
+      if (drawn < faces) lines.push_back({std::nullopt, "  drawn (" + std::to_string(faces - drawn) + " out of sight)"});
+    }
+  }
   // An unrun check has no number and no swatch (nothing of its colours is
   // drawn): "0" would read as "checked, none found".
   if (overlap) {
@@ -1659,7 +1760,12 @@ MainViewFrame main_view_frame(const HexMesh& mesh, const Topology& topology, con
   frame.camera = f.camera;
   frame.scaled = options;
   frame.scaled.pixel_scale = frame.style.scale;
-  frame.scaled.inverted_overlay_faces = inverted_boundary_faces(topology, options).size();
+  {
+    const InvertedFaces inverted = inverted_boundary_faces(mesh, topology, options, frame.camera);
+    frame.scaled.inverted_overlay_faces = inverted.drawn.size();
+    frame.scaled.inverted_cell_count = inverted.cells;
+    frame.scaled.inverted_face_count = inverted.faces;
+  }
   frame.scaled.model_diagonal_pixels =
       model_diagonal_pixels(mesh, topology, frame.camera, frame.layout.view.width, frame.layout.view.height);
   return frame;

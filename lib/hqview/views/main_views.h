@@ -91,17 +91,21 @@ struct MainViewOptions {
   // (displayed_glyph_scale). 0: no screen term.
   double model_diagonal_pixels = 0.0;
   // Per volume cell (or surface face) whether it is inverted
-  // (cell_is_inverted), or null: the boundary faces of inverted cells are
-  // drawn over the glyphs (scene overlay[0], issue 44 part U) unless more
-  // than half of the cells are inverted (orientation_note says so) or more
-  // than kMaxInvertedOverlayFaces faces (a volume mesh:
-  // kMaxInvertedOverlayVolumeFaces; they are drawn over everything, and a
-  // mesh with hundreds of them, dolphin_rot's 759, turned blue) would be.
+  // (cell_is_inverted), or null: the boundary faces of inverted cells that
+  // show from the camera are drawn in the inverted colour (scene 5b, issue
+  // 44 part U) unless more than half of the cells are inverted
+  // (orientation_note says so) or there are more than
+  // kMaxInvertedOverlayFaces such faces (a volume mesh:
+  // kMaxInvertedOverlayVolumeFaces; dolphin_rot's 759 would turn it blue).
   const std::vector<std::uint8_t>* inverted_cells = nullptr;
-  // How many of those faces the view draws (render_main_view sets it from
-  // inverted_boundary_faces): a volume mesh's legend line
-  // "inverted cells' faces: N" (a surface mesh's fill lines count them).
+  // What main_view_frame found (inverted_boundary_faces) for the legend:
+  // the faces drawn, the inverted cells, their boundary faces. A volume
+  // mesh's legend says "inverted cells: N", then "  K of F boundary faces
+  // drawn" (the rest on the far side), "  F boundary faces not drawn"
+  // and "  (more than 64)" over the limit, or "  none on the boundary".
   std::size_t inverted_overlay_faces = 0;
+  std::size_t inverted_cell_count = 0;
+  std::size_t inverted_face_count = 0;
 };
 inline constexpr std::size_t kMaxInvertedOverlayFaces = 20000, kMaxInvertedOverlayVolumeFaces = 64;
 
@@ -199,7 +203,8 @@ std::vector<ScreenMarker> group_markers_on_screen(std::span<const OverlapMarker>
 //                coloured glyphs (LineSet::under_ranked_spheres, as lines[0]);
 //   lines[2]     edges of intersecting cells, kIntersectionArrowColor;
 //   spheres[0]   the grey aggregated glyphs (pale), spheres[1] the coloured
-//                ones (drawn over them), spheres[2] the grey ones of min
+//                ones (drawn over them and over the translucent faces:
+//                over_translucent), spheres[2] the grey ones of min
 //                quality < kUnfadedGlyphQuality (not pale): one per cluster,
 //                radius as displayed_glyph_radii, colour = its cluster colour;
 //   overlay[0]   arrows, over everything (a marker inside a glyph still
@@ -213,11 +218,12 @@ std::vector<ScreenMarker> group_markers_on_screen(std::span<const OverlapMarker>
 //                the side away from the glyph), and the arrows of an anchor
 //                inside the disc start at the disc's edge;
 //   translucent[0] the faces of the intersecting cells;
-//   overlay[1]   when inverted_boundary_faces is not empty: those faces,
-//                unlit, in the inverted colour (a surface mesh: its fill
-//                bin's, the same), over the glyphs, with their edges in
-//                kWireframeColor (a line set in_overlay), so that every
-//                inverted face shows whatever glyph sits on its corners;
+//   triangles[last] when inverted_boundary_faces(...).drawn is not empty:
+//                those faces, unlit, in the inverted colour (a surface
+//                mesh: its fill bin's, the same), lifted kInvertedFaceLift
+//                towards the camera, depth-tested (under the ranked
+//                glyphs, which keep their colour), with their edges in
+//                kWireframeColor (lines[last], lifted alike);
 //   lines[3]     on a mesh of several kinds with 1 to kMaxInteriorPyramids
 //                pyramids: the pyramids' edges that are not boundary edges,
 //                in cell_kind_edge_color(pyramid) (the interface the
@@ -229,12 +235,28 @@ std::vector<ScreenMarker> group_markers_on_screen(std::span<const OverlapMarker>
 std::vector<std::uint8_t> worst_cluster_vertices(const GlyphResult& glyphs, int per_cluster);
 
 // The boundary faces (boundary_polygons order) of the cells
-// options.inverted_cells marks, which view A draws over the glyphs (scene
-// overlay[1]); none when options.inverted_cells is null, when more than half
-// of the cells are inverted (options.orientation_note is set) or when there
-// are more than kMaxInvertedOverlayFaces (a volume mesh:
-// kMaxInvertedOverlayVolumeFaces) of them.
-std::vector<BoundaryPolygon> inverted_boundary_faces(const Topology& topology, const MainViewOptions& options);
+// options.inverted_cells marks, as view A draws them (scene 5b): none when
+// options.inverted_cells is null or more than half of the cells are
+// inverted (options.orientation_note is set); none drawn (over_limit) when
+// there are more than kMaxInvertedOverlayFaces (a volume mesh:
+// kMaxInvertedOverlayVolumeFaces) of them. On a volume mesh (drawn as a
+// see-through wireframe) only the faces that show from camera are drawn:
+// the ray from the camera to the face's centre, or to a point 0.6 of the
+// way from there to a corner, crosses no other boundary face; the others
+// are hidden (on the far side). A surface mesh's faces all (its fill hides
+// the far side by depth).
+struct InvertedFaces {
+  std::vector<BoundaryPolygon> drawn;
+  std::size_t cells = 0;   // inverted cells
+  std::size_t faces = 0;   // their boundary faces
+  std::size_t hidden = 0;  // of those, hidden from camera
+  bool over_limit = false;
+};
+InvertedFaces inverted_boundary_faces(const HexMesh& mesh, const Topology& topology, const MainViewOptions& options,
+                                      const Camera& camera);
+// How far (a fraction of the model's bounding box diagonal) scene 5b moves
+// the inverted faces towards the camera.
+inline constexpr double kInvertedFaceLift = 2e-3;
 
 Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                        const OverlapReport* overlap, const Camera& camera, int view_height,
@@ -259,7 +281,7 @@ inline constexpr double kWorstGlyphMinPixels = 24.0;
 // default rmax unit) and at most kWorstGlyphMaxDiagonal of the model's
 // on-screen diagonal (MainViewOptions::model_diagonal_pixels), but never
 // below the floor: #0's radius in pixels is
-// clamp(natural, floor, max(floor, cap)). The legend says "#0 N px".
+// clamp(natural, floor, max(floor, cap)). The legend says "#0 radius N px".
 inline constexpr double kWorstGlyphMaxEdges = 1.0;
 inline constexpr double kWorstGlyphMaxDiagonal = 0.03;
 // The grey glyphs' lit colour is mixed this far towards white (SphereSet::pale).
@@ -313,9 +335,11 @@ GlyphsDrawn main_view_glyphs_drawn(const GlyphResult& glyphs, const Camera& came
 // one in unlabelled (MainViewLabels::unlabelled_clusters) "…, no label
 // room"; left_out: MainViewLabels::left_out_glyphs; worst_pixels: #0's
 // drawn radius in figure pixels (MainViewLabels::worst_glyph), said in the
-// line "drawn xs: #0 N px", always when known, and when s < 1 the line
-// "  (capped: 1 edge, 3% of model)" (kWorstGlyphMaxEdges,
-// kWorstGlyphMaxDiagonal).
+// lines "glyph radius ∝ 1 - min quality", "#0 radius N px" (always when
+// known) and, when s != 1, why all glyphs are drawn x s: "  all shrunk xs:
+// #0 at most" / "  1 mean edge, 3% of model size" (kWorstGlyphMaxEdges,
+// kWorstGlyphMaxDiagonal) or "  all enlarged xs: #0 at" / "  least 24 px
+// (at 1600 x 1200)" (kWorstGlyphMinPixels).
 std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const OverlapReport* overlap,
                                           const AnnotationStyle& style, const MainViewOptions& options,
                                           double glyph_scale, std::span<const Index> hidden = {},
