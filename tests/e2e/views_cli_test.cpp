@@ -685,6 +685,26 @@ TEST(ViewsCli, TheStructurePanelDrawsEachSingularClassInItsColour) {
   EXPECT_EQ(g["projection"], "perspective");
   EXPECT_NEAR(g["elevation_degrees"].get<double>(), 25.0, 1e-9);
   EXPECT_NEAR(std::fmod(g["azimuth_degrees"].get<double>() + 360.0, 90.0), 30.0, 1e-9);
+  // Flat faces (46t review: lit side faces took colours the bar has not):
+  // nearly every drawn pixel of the view is a colour of its bar (the
+  // quality map), the rest the faint edges' blend.
+  std::vector<Rgba8> bar;
+  for (int i = 0; i <= 2048; ++i) bar.push_back(to_rgba8(sample_quality_map(i / 2048.0)));
+  long drawn = 0, on_bar = 0;
+  count_pixels(out / "views/size_gradation.png", [&](const float* px) {
+    const int r = static_cast<int>(std::lround(255 * px[0])), gr = static_cast<int>(std::lround(255 * px[1])),
+              b = static_cast<int>(std::lround(255 * px[2]));
+    if (r == 255 && gr == 255 && b == 255) return false;
+    ++drawn;
+    for (const Rgba8 c : bar)
+      if (std::abs(r - c.r) + std::abs(gr - c.g) + std::abs(b - c.b) <= 3) {
+        ++on_bar;
+        break;
+      }
+    return false;
+  });
+  EXPECT_GT(drawn, 50000);
+  EXPECT_GT(on_bar, 0.8 * drawn) << on_bar << " of " << drawn;
   // On index.html, panel S after panel A.
   const std::string html = read_text(out / "index.html");
   const auto s = html.find("id=\"panel-s\"");
