@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
+#include <set>
 #include <sstream>
+#include <algorithm>
 #include <array>
 #include <gtest/gtest.h>
 
@@ -685,6 +687,30 @@ TEST(ViewsCli, TheStructurePanelDrawsEachSingularClassInItsColour) {
   EXPECT_EQ(g["projection"], "perspective");
   EXPECT_NEAR(g["elevation_degrees"].get<double>(), 25.0, 1e-9);
   EXPECT_NEAR(std::fmod(g["azimuth_degrees"].get<double>() + 360.0, 90.0), 30.0, 1e-9);
+  // Flat faces (46t review: lit side faces took colours the bar has not):
+  // nearly every drawn pixel of the view is a colour of its bar (the
+  // quality map), the rest the faint edges' blend.
+  // (Every colour within 3 in RGB, L1, of a bar colour, as a set.)
+  std::set<int> bar;
+  for (int i = 0; i <= 2048; ++i) {
+    const Rgba8 c = to_rgba8(sample_quality_map(i / 2048.0));
+    for (int dr = -3; dr <= 3; ++dr)
+      for (int dg = -3 + std::abs(dr); dg <= 3 - std::abs(dr); ++dg)
+        for (int db = -3 + std::abs(dr) + std::abs(dg); db <= 3 - std::abs(dr) - std::abs(dg); ++db)
+          if (std::min({c.r + dr, c.g + dg, c.b + db}) >= 0)
+            bar.insert(((c.r + dr) << 20) | ((c.g + dg) << 10) | (c.b + db));
+  }
+  long drawn = 0, on_bar = 0;
+  count_pixels(out / "views/size_gradation.png", [&](const float* px) {
+    const int r = static_cast<int>(std::lround(255 * px[0])), gr = static_cast<int>(std::lround(255 * px[1])),
+              b = static_cast<int>(std::lround(255 * px[2]));
+    if (r == 255 && gr == 255 && b == 255) return false;
+    ++drawn;
+    on_bar += bar.count((r << 20) | (gr << 10) | b) ? 1 : 0;
+    return false;
+  });
+  EXPECT_GT(drawn, 50000);
+  EXPECT_GT(on_bar, 0.8 * drawn) << on_bar << " of " << drawn;
   // On index.html, panel S after panel A.
   const std::string html = read_text(out / "index.html");
   const auto s = html.find("id=\"panel-s\"");

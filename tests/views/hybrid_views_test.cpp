@@ -429,39 +429,80 @@ TEST(HybridViews, ViewDStacksTheWorstDiscOnTopAndTheVertexAboveAll) {
 
 // View D's labels (46r review M1: "1.000 tet 466" ran into "0.698 tet 305"),
 // checked on the layout the figure is drawn from, for many vertices of
-// three meshes and two figure sizes: every corner labelled (none dropped to
-// make room), its box as wide as its text, inside the view, over no other
-// box, no disc and not the vertex's clear zone; no leader through another
-// label's box.
+// three meshes and two figure sizes: every corner labelled or numbered
+// (at most 2 of ~800 left out, listed in the table), its box as wide
+// as its text, inside the view, over no other box, no disc and not the
+// vertex's clear zone; no leader longer than the cap, through another
+// label's box, another corner's disc, the vertex's dot or another leader
+// (46t review: leaders under other boxes named the wrong corner).
+int local_callouts_checked = 0;  // numbered callouts seen by expect_local_labels_apart
+int local_left_out = 0;          // corners left out, over all its shots
+
 void expect_local_labels_apart(const Mesh& mesh, Index v, const DetailViewOptions& options, int& labels_checked) {
   SCOPED_TRACE("vertex " + std::to_string(v) + " at " + std::to_string(options.width) + "x" +
                std::to_string(options.height));
   const Topology topo = topology_of(mesh);
   const QualityField field = compute_quality(mesh, topo);
   const LocalShot shot = local_shot(mesh, topo, field.corner_scaled_jacobian, v, options);
-  ASSERT_EQ(shot.labels.size(), vertex_corners(mesh, topo, field.corner_scaled_jacobian, v).size());
-  EXPECT_EQ(shot.num_left_out, 0u);
+  const std::vector<VertexCorner> corners = vertex_corners(mesh, topo, field.corner_scaled_jacobian, v);
+  ASSERT_EQ(shot.labels.size(), corners.size());
+  // A corner left out (no place even for its number within the leader
+  // cap) is counted in the legend and listed "-" in the table; rare
+  // (counted over all shots below).
+  std::size_t left_out = 0;
+  for (const LocalLabel& a : shot.labels) left_out += a.placed ? 0 : 1;
+  EXPECT_EQ(shot.num_left_out, left_out);
+  local_left_out += static_cast<int>(left_out);
   const PixelRect& view = shot.layout.view;
+  // The leader cap: kLocalMaxLeaderLabels label heights.
+  EXPECT_NEAR(shot.max_leader, kLocalMaxLeaderLabels * std::lround(1.15 * shot.text_size), 1e-9);
+  // Numbered callouts: 1, 2, ... worst first; every corner of a ring of more
+  // than kLocalMaxFullLabels numbered; the table beside the view when any is.
+  std::vector<std::pair<int, double>> numbers;
+  for (std::size_t i = 0; i < shot.labels.size(); ++i)
+    if (shot.labels[i].number > 0) numbers.push_back({shot.labels[i].number, corners[i].value});
+  std::sort(numbers.begin(), numbers.end());
+  for (std::size_t k = 0; k < numbers.size(); ++k) {
+    EXPECT_EQ(numbers[k].first, static_cast<int>(k + 1));
+    if (k > 0) EXPECT_LE(numbers[k - 1].second, numbers[k].second);
+  }
+  if (corners.size() > kLocalMaxFullLabels) EXPECT_EQ(numbers.size() + left_out, corners.size());
+  local_callouts_checked += static_cast<int>(numbers.size());
+  EXPECT_EQ(shot.table_box.width > 0, !numbers.empty());
+  if (!numbers.empty()) EXPECT_GE(shot.table_box.x, view.x + view.width);
+  const auto leader_of = [](const LocalLabel& l) {
+    PlacedLabel leader;
+    leader.leader_x0 = l.leader_x0, leader.leader_y0 = l.leader_y0;
+    leader.leader_x1 = l.leader_x1, leader.leader_y1 = l.leader_y1;
+    return leader;
+  };
   for (std::size_t i = 0; i < shot.labels.size(); ++i) {
     const LocalLabel& a = shot.labels[i];
     if (!a.placed) continue;
     ++labels_checked;
-    EXPECT_GE(a.box.width, text_extent(a.text, shot.text_size, shot.style).width + 4) << a.text;
+    const std::string drawn = a.number > 0 ? std::to_string(a.number) : a.text;
+    EXPECT_GE(a.box.width, text_extent(drawn, shot.text_size, shot.style).width + 4) << a.text;
     EXPECT_GE(a.box.x, view.x);
     EXPECT_GE(a.box.y, view.y);
     EXPECT_LE(a.box.x + a.box.width, view.x + view.width);
     EXPECT_LE(a.box.y + a.box.height, view.y + view.height);
     EXPECT_FALSE(box_meets_disc(a.box, {shot.dot.x, shot.dot.y, shot.dot_clear_radius})) << a.text;
+    const PlacedLabel la = leader_of(a);
+    if (a.has_leader) {
+      // Short, and through no other corner's disc nor the vertex's dot.
+      EXPECT_LE(std::hypot(a.leader_x1 - a.leader_x0, a.leader_y1 - a.leader_y0), shot.max_leader) << a.text;
+      EXPECT_FALSE(leader_meets_disc(la, shot.dot)) << a.text << "'s leader through the vertex";
+    }
     for (std::size_t j = 0; j < shot.labels.size(); ++j) {
       const LocalLabel& b = shot.labels[j];
       EXPECT_FALSE(box_meets_disc(a.box, b.marker)) << a.text << " over the disc of " << b.text;
-      if (j == i || !b.placed) continue;
+      if (j == i) continue;
+      if (a.has_leader) EXPECT_FALSE(leader_meets_disc(la, b.marker)) << a.text << "'s leader through " << b.text;
+      if (!b.placed) continue;
       EXPECT_FALSE(boxes_overlap(a.box, b.box)) << a.text << " / " << b.text;
       if (a.has_leader) {
-        PlacedLabel leader;
-        leader.leader_x0 = a.leader_x0, leader.leader_y0 = a.leader_y0;
-        leader.leader_x1 = a.leader_x1, leader.leader_y1 = a.leader_y1;
-        EXPECT_FALSE(leader_meets_box(leader, b.box)) << a.text << "'s leader through " << b.text;
+        EXPECT_FALSE(leader_meets_box(la, b.box)) << a.text << "'s leader through " << b.text;
+        if (b.has_leader) EXPECT_FALSE(leaders_cross(la, leader_of(b))) << a.text << " / " << b.text;
       }
     }
   }
@@ -497,6 +538,8 @@ TEST(HybridViews, ViewDLabelsNeverOverlapOnManyVerticesMeshesAndSizes) {
   const Mesh box = hex_box(2, 2, 2, 1.0, 1.0, 1.0);
   expect_local_labels_apart(box, point_at(box, {0.5, 0.5, 0.5}), large, labels_checked);
   EXPECT_GT(labels_checked, 300);
+  EXPECT_GT(local_callouts_checked, 50);  // dense rings were numbered
+  EXPECT_LE(local_left_out, 2);
 }
 
 TEST(HybridViews, ViewCOfAClusterAtTheInterfaceDrawsEveryKind) {

@@ -181,8 +181,11 @@ Rgba8 ring_edge_color(CellKind kind) { return cell_kind_edge_color(kind); }
 
 // kind_swatches: one swatch per kind named in `kinds`' last line, in its ring edge
 // colour (view D, whose ring edges are coloured by kind).
-ColorBar detail_color_bar(const std::string& kinds, bool kind_swatches = false) {
+// corner_discs: view D's heading (each disc one cell corner's value, not
+// the vertex's min: 46t review).
+ColorBar detail_color_bar(const std::string& kinds, bool kind_swatches = false, bool corner_discs = false) {
   ColorBar bar = quality_color_bar();
+  if (corner_discs) bar.label = kLocalBarHeading;
   if (!kinds.empty()) bar.label += "\n" + kinds;
   if (kind_swatches)
     for (const auto& [color, text] : cell_kind_swatches(std::string_view(kinds).substr(kinds.rfind('\n') + 1))) {
@@ -195,12 +198,13 @@ ColorBar detail_color_bar(const std::string& kinds, bool kind_swatches = false) 
   return bar;
 }
 
-Figure detail_figure(const DetailViewOptions& options, const std::string& kinds = {}, bool kind_swatches = false) {
+Figure detail_figure(const DetailViewOptions& options, const std::string& kinds = {}, bool kind_swatches = false,
+                     bool corner_discs = false) {
   Figure f;
   f.style = annotation_style_for(options.height);
   f.style.background = options.background;
   f.layout = figure_layout(options.width, options.height, !options.title.empty(),
-                           color_bar_width(detail_color_bar(kinds, kind_swatches), f.style), f.style);
+                           color_bar_width(detail_color_bar(kinds, kind_swatches, corner_discs), f.style), f.style);
   f.aspect = static_cast<double>(std::max(1, f.layout.view.width)) / std::max(1, f.layout.view.height);
   return f;
 }
@@ -596,6 +600,38 @@ Scene local_marker_discs(const Scene& scene, const Camera& camera, const std::ve
   return out;
 }
 
+// Whether shot.labels[i] (placed as set) keeps clear of the labels in
+// `kept`: no box over another, its leader (at most shot.max_leader long)
+// through no other box, no other corner's disc, the vertex's dot or another
+// leader, and no other leader through its box (46t review: leaders ran
+// under other labels' boxes and through other discs).
+bool local_label_clear(const LocalShot& shot, std::size_t i, std::span<const std::size_t> kept,
+                       std::span<const ScreenDisc> markers, const ScreenDisc& dot) {
+  const LocalLabel& a = shot.labels[i];
+  const auto leader_of = [](const LocalLabel& l) {
+    PlacedLabel p;
+    p.box = l.box, p.has_leader = l.has_leader;
+    p.leader_x0 = l.leader_x0, p.leader_y0 = l.leader_y0, p.leader_x1 = l.leader_x1, p.leader_y1 = l.leader_y1;
+    return p;
+  };
+  const PlacedLabel la = leader_of(a);
+  if (a.has_leader) {
+    if (std::hypot(a.leader_x1 - a.leader_x0, a.leader_y1 - a.leader_y0) > shot.max_leader) return false;
+    for (std::size_t j = 0; j < markers.size(); ++j)
+      if (j != i && leader_meets_disc(la, markers[j])) return false;
+    if (leader_meets_disc(la, dot)) return false;
+  }
+  for (std::size_t k : kept) {
+    const LocalLabel& b = shot.labels[k];
+    const PlacedLabel lb = leader_of(b);
+    if (boxes_overlap(a.box, b.box)) return false;
+    if (a.has_leader && leader_meets_box(la, b.box)) return false;
+    if (b.has_leader && leader_meets_box(lb, a.box)) return false;
+    if (a.has_leader && b.has_leader && leaders_cross(la, lb)) return false;
+  }
+  return true;
+}
+
 LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v,
                      const DetailViewOptions& options) {
   LocalShot shot;
@@ -609,7 +645,7 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
   shot.legend = std::string(kLocalMarkerSizeLegend) +
                 (shot.kind_swatches ? "\ncorners clamped to [-1, 1]\n" + cell_kinds_legend(mesh, ring)
                                     : std::string());
-  const Figure f = detail_figure(options, shot.legend, shot.kind_swatches);
+  const Figure f = detail_figure(options, shot.legend, shot.kind_swatches, true);
   shot.style = f.style;
   shot.layout = f.layout;
   // The discs at kLocalDiscScale of the markers' size: at full size a ring
@@ -617,128 +653,199 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
   std::vector<double> values;
   for (const VertexCorner& c : corners) values.push_back(c.value);
   const std::vector<Vec3> points = cell_points(mesh, ring);
-  // Viewpoint: the one that separates the corner markers best.
   std::vector<Vec3> centers;
-  std::vector<double> radii;
+  std::vector<double> base_radii;
   for (std::size_t i = 0; i < scene.spheres[0].centers.size(); ++i) {
     const Vec3f& c = scene.spheres[0].centers[i];
     centers.push_back(scene.origin + Vec3{c.x, c.y, c.z});
-    radii.push_back(scene.spheres[0].radii[i]);
+    base_radii.push_back(scene.spheres[0].radii[i]);
   }
-  const std::vector<Vec3> direction = choose_viewpoints(points, centers, radii, f.aspect, 1, options.up);
-  shot.camera = fit_camera_to_points(points, direction.at(0), f.aspect, {.up = options.up, .is_perspective = false});
-  const double pixels_per_unit = f.layout.view.height / shot.camera.ortho_height;
-  // Each disc at least kLocalMinDiscPixels in radius: a good corner's disc
-  // (a quarter of the largest) was an 8-pixel dot on the pale faces (46r review).
-  const double min_radius = kLocalMinDiscPixels * f.style.scale / pixels_per_unit;
-  for (std::size_t i = 0; i < radii.size(); ++i) {
-    radii[i] = std::max(radii[i] * kLocalDiscScale, min_radius);
-    scene.spheres[0].radii[i] = static_cast<float>(radii[i]);
-  }
-  const auto to_screen = [&](const Vec3& p) {
-    const Vec3 ndc = project_to_ndc(shot.camera, f.aspect, p);
-    return std::pair{f.layout.view.x + 0.5 * (ndc.x + 1.0) * f.layout.view.width,
-                     f.layout.view.y + 0.5 * (1.0 - ndc.y) * f.layout.view.height};
-  };
-  const double dot_radius = kLocalDiscScale * scene.spheres.at(1).radii.at(0) * pixels_per_unit;
-  shot.scene = local_marker_discs(scene, shot.camera, values, mean_edge_at(mesh, corners, v));
-
-  // Labels: each corner's value next to its marker, placed greedily
-  // (place_labels) so that no label covers another, any marker or the dot's
-  // clear zone; a label away from its marker gets a leader line to it.
   shot.text_size = std::max(11, static_cast<int>(std::lround(22 * f.style.scale)));
   const int label_height = static_cast<int>(std::lround(1.15 * shot.text_size));
-  std::vector<ScreenDisc> markers;
-  for (std::size_t i = 0; i < centers.size(); ++i) {
-    const auto [x, y] = to_screen(centers[i]);
-    markers.push_back({x, y, radii[i] * pixels_per_unit, static_cast<std::int64_t>(i)});
-  }
-  {
-    const auto [x, y] = to_screen(scene.origin);
-    shot.dot = {x, y, dot_radius, static_cast<std::int64_t>(markers.size())};
-    shot.dot_clear_radius = std::max(dot_radius, kLocalDotClearLabels * label_height);
-  }
-  // Each disc has its id (its corner's index); the vertex's dot (with its
-  // clear zone) is one more obstacle. No leader crosses another disc or the
-  // dot (protect_below) or another leader (strict_leaders), so a leader
-  // names the disc it ends on.
-  std::vector<ScreenDisc> obstacles = markers;
-  obstacles.push_back({shot.dot.x, shot.dot.y, shot.dot_clear_radius, shot.dot.id});
-  std::vector<LabelRequest> requests;
-  for (std::size_t i = 0; i < centers.size(); ++i) {
-    LocalLabel label;
-    // The cell id ties each marker to its bar in chart E.
-    label.text = format_value(corners[i].value) + "  " + std::string(cell_kind_name(corners[i].kind)) + " " +
-                 std::to_string(corners[i].hex);
-    label.marker = markers[i];
-    label.is_inverted = corners[i].value < 0;
-    const PixelRect extent = text_extent(label.text, shot.text_size, f.style);
-    LabelRequest request{markers[i], extent.width + 4, label_height};
-    request.protect_below = static_cast<std::int64_t>(obstacles.size());
-    request.strict_leaders = true;
-    requests.push_back(request);
-    shot.labels.push_back(std::move(label));
-  }
-  // Worst corner first: it gets the nearest free place.
-  std::vector<std::size_t> label_order(requests.size());
-  for (std::size_t i = 0; i < label_order.size(); ++i) label_order[i] = i;
-  std::stable_sort(label_order.begin(), label_order.end(),
+  shot.max_leader = kLocalMaxLeaderLabels * label_height;
+  shot.table_text_size = std::max(10, static_cast<int>(std::lround(0.8 * shot.text_size)));
+  std::vector<std::string> texts;
+  for (const VertexCorner& c : corners)
+    texts.push_back(format_value(c.value) + "  " + std::string(cell_kind_name(c.kind)) + " " + std::to_string(c.hex));
+  // Worst corner first: it gets the nearest free place and number 1.
+  std::vector<std::size_t> order(corners.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return corners[a].value < corners[b].value; });
-  std::vector<LabelRequest> ordered;
-  for (std::size_t i : label_order) ordered.push_back(requests[i]);
-  LabelLayoutOptions layout;
-  layout.bounds = f.layout.view;
-  layout.gap = 4.0 * f.style.scale;
-  layout.ring_step = 12.0 * f.style.scale;
-  layout.rings = static_cast<int>(std::ceil(std::max(f.layout.view.width, f.layout.view.height) / layout.ring_step));
-  layout.leader_distance = 8.0 * f.style.scale;
-  std::vector<std::optional<PlacedLabel>> placed_in_order = place_labels(ordered, obstacles, {}, layout);
-  // Labels with no such place: placed again after the others, their
-  // leaders then free to cross discs (never a label over another).
-  std::vector<PlacedLabel> done;
-  std::vector<LabelRequest> again;
-  std::vector<std::size_t> again_at;
-  for (std::size_t k = 0; k < ordered.size(); ++k) {
-    if (placed_in_order[k]) {
-      done.push_back(*placed_in_order[k]);
-      continue;
+
+  // Viewpoint: the one that separates the corner markers best (in the
+  // whole view: the same with or without the table).
+  const std::vector<Vec3> direction = choose_viewpoints(points, centers, base_radii, f.aspect, 1, options.up);
+  // One layout in `view`: the camera, the discs on screen and the labels.
+  const auto lay_out = [&](const PixelRect& view) {
+    shot.labels.clear();
+    shot.num_left_out = 0;
+    shot.layout.view = view;
+    const double aspect = static_cast<double>(std::max(1, view.width)) / std::max(1, view.height);
+    shot.camera = fit_camera_to_points(points, direction.at(0), aspect, {.up = options.up, .is_perspective = false});
+    const double pixels_per_unit = view.height / shot.camera.ortho_height;
+    // Each disc at least kLocalMinDiscPixels in radius: a good corner's disc
+    // (a quarter of the largest) was an 8-pixel dot on the pale faces (46r review).
+    const double min_radius = kLocalMinDiscPixels * f.style.scale / pixels_per_unit;
+    Scene drawn = scene;
+    std::vector<double> radii(base_radii.size());
+    for (std::size_t i = 0; i < radii.size(); ++i) {
+      radii[i] = std::max(base_radii[i] * kLocalDiscScale, min_radius);
+      drawn.spheres[0].radii[i] = static_cast<float>(radii[i]);
     }
-    LabelRequest r = ordered[k];
-    r.protect_below = 0;
-    r.strict_leaders = false;
-    again.push_back(r);
-    again_at.push_back(k);
-  }
-  if (!again.empty()) {
-    const std::vector<std::optional<PlacedLabel>> second = place_labels(again, obstacles, {}, layout, done);
-    for (std::size_t i = 0; i < again.size(); ++i) placed_in_order[again_at[i]] = second[i];
-  }
-  for (std::size_t k = 0; k < label_order.size(); ++k) {
-    LocalLabel& label = shot.labels[label_order[k]];
-    const std::optional<PlacedLabel>& p = placed_in_order[k];
-    if (!p) {
-      ++shot.num_left_out;
-      continue;
+    const auto to_screen = [&](const Vec3& p) {
+      const Vec3 ndc = project_to_ndc(shot.camera, aspect, p);
+      return std::pair{view.x + 0.5 * (ndc.x + 1.0) * view.width, view.y + 0.5 * (1.0 - ndc.y) * view.height};
+    };
+    const double dot_radius = kLocalDiscScale * scene.spheres.at(1).radii.at(0) * pixels_per_unit;
+    shot.scene = local_marker_discs(drawn, shot.camera, values, mean_edge_at(mesh, corners, v));
+    std::vector<ScreenDisc> markers;
+    for (std::size_t i = 0; i < centers.size(); ++i) {
+      const auto [x, y] = to_screen(centers[i]);
+      markers.push_back({x, y, radii[i] * pixels_per_unit, static_cast<std::int64_t>(i)});
     }
-    label.placed = true;
-    label.box = p->box;
-    if (p->has_leader) {
-      label.has_leader = true;
-      label.leader_x0 = p->leader_x0, label.leader_y0 = p->leader_y0;
-      label.leader_x1 = p->leader_x1, label.leader_y1 = p->leader_y1;
-      continue;
+    {
+      const auto [x, y] = to_screen(scene.origin);
+      shot.dot = {x, y, dot_radius, static_cast<std::int64_t>(markers.size())};
+      shot.dot_clear_radius = std::max(dot_radius, kLocalDotClearLabels * label_height);
     }
+    // Each disc has its id (its corner's index); the vertex's dot (with its
+    // clear zone) is one more obstacle.
+    std::vector<ScreenDisc> obstacles = markers;
+    obstacles.push_back({shot.dot.x, shot.dot.y, shot.dot_clear_radius, shot.dot.id});
+    for (std::size_t i = 0; i < centers.size(); ++i) {
+      LocalLabel label;
+      label.text = texts[i];  // the cell id ties each marker to its bar in chart E
+      label.marker = markers[i];
+      label.is_inverted = corners[i].value < 0;
+      shot.labels.push_back(std::move(label));
+    }
+    LabelLayoutOptions layout;
+    layout.bounds = view;
+    layout.gap = 4.0 * f.style.scale;
+    layout.ring_step = 12.0 * f.style.scale;
+    layout.rings = static_cast<int>(std::ceil(shot.max_leader / layout.ring_step)) + 1;
+    layout.leader_distance = 8.0 * f.style.scale;
     // A label beside its marker gets a short leader too: among a dozen
     // markers "next to" names none.
-    const ScreenDisc& m = label.marker;
-    const double nx = std::clamp(m.x, double(label.box.x), double(label.box.x + label.box.width));
-    const double ny = std::clamp(m.y, double(label.box.y), double(label.box.y + label.box.height));
-    const double dx = nx - m.x, dy = ny - m.y, d = std::hypot(dx, dy);
-    if (d > m.radius + 2.0) {
-      label.has_leader = true;
-      label.leader_x0 = m.x + dx / d * m.radius, label.leader_y0 = m.y + dy / d * m.radius;
-      label.leader_x1 = nx, label.leader_y1 = ny;
+    const auto set_leader = [&](LocalLabel& label, const PlacedLabel& p) {
+      label.box = p.box;
+      label.has_leader = p.has_leader;
+      label.leader_x0 = p.leader_x0, label.leader_y0 = p.leader_y0;
+      label.leader_x1 = p.leader_x1, label.leader_y1 = p.leader_y1;
+      if (p.has_leader) return;
+      const ScreenDisc& m = label.marker;
+      const double nx = std::clamp(m.x, double(label.box.x), double(label.box.x + label.box.width));
+      const double ny = std::clamp(m.y, double(label.box.y), double(label.box.y + label.box.height));
+      const double dx = nx - m.x, dy = ny - m.y, d = std::hypot(dx, dy);
+      if (d > m.radius + 2.0) {
+        label.has_leader = true;
+        label.leader_x0 = m.x + dx / d * m.radius, label.leader_y0 = m.y + dy / d * m.radius;
+        label.leader_x1 = nx, label.leader_y1 = ny;
+      }
+    };
+    // Whether label i, as set, keeps clear of what is kept so far
+    // (local_label_clear) and of every disc and the vertex's dot.
+    std::vector<std::size_t> kept;
+    const auto clear = [&](std::size_t i) {
+      return local_label_clear(shot, i, kept, markers, {shot.dot.x, shot.dot.y, dot_radius + 1.0});
+    };
+    // First the full labels (worst first; none on a dense ring): one whose
+    // leader would be too long or cross another label's box, disc or
+    // leader becomes a numbered callout.
+    std::vector<std::size_t> callouts;
+    if (corners.size() <= kLocalMaxFullLabels) {
+      LabelPlacer placer({}, layout);
+      for (std::size_t i : order) {
+        const PixelRect extent = text_extent(texts[i], shot.text_size, f.style);
+        LabelRequest request{markers[i], extent.width + 4, label_height};
+        request.protect_below = static_cast<std::int64_t>(obstacles.size());
+        request.strict_leaders = true;
+        request.always_leader = true;  // so the placer checks the leader drawn
+        const std::optional<PlacedLabel> p = placer.place(request, obstacles);
+        if (p) {
+          set_leader(shot.labels[i], *p);
+          if (clear(i)) {
+            shot.labels[i].placed = true;
+            kept.push_back(i);
+            PlacedLabel as_set = *p;
+            as_set.has_leader = shot.labels[i].has_leader;
+            as_set.leader_x0 = shot.labels[i].leader_x0, as_set.leader_y0 = shot.labels[i].leader_y0;
+            as_set.leader_x1 = shot.labels[i].leader_x1, as_set.leader_y1 = shot.labels[i].leader_y1;
+            placer.add(as_set);
+            continue;
+          }
+        }
+        shot.labels[i].has_leader = false;
+        callouts.push_back(i);
+      }
+    } else {
+      callouts = order;
     }
+    // Then the callouts: a number next to the disc, the same rules; its
+    // value and cell in the table beside the view.
+    LabelPlacer placer({}, layout);
+    for (std::size_t i : kept) {
+      PlacedLabel p;
+      const LocalLabel& l = shot.labels[i];
+      p.box = l.box, p.has_leader = l.has_leader;
+      p.leader_x0 = l.leader_x0, p.leader_y0 = l.leader_y0, p.leader_x1 = l.leader_x1, p.leader_y1 = l.leader_y1;
+      placer.add(p);
+    }
+    int number = 0;
+    for (std::size_t i : callouts) {
+      LocalLabel& label = shot.labels[i];
+      label.number = number + 1;  // numbers only the placed ones: no gaps
+      const PixelRect extent = text_extent(std::to_string(label.number), shot.text_size, f.style);
+      LabelRequest request{markers[i], extent.width + 6, label_height};
+      request.protect_below = static_cast<std::int64_t>(obstacles.size());
+      request.strict_leaders = true;
+      request.always_leader = true;  // so the placer checks the leader drawn
+      std::optional<PlacedLabel> p = placer.place(request, obstacles);
+      // A disc inside the dot's clear zone (often the worst, stacked at
+      // the vertex) may have its number's leader cross the zone (not an
+      // obstacle protected from leaders), never the dot itself (clear).
+      if (!p || (set_leader(label, *p), !clear(i))) {
+        request.protect_below = static_cast<std::int64_t>(markers.size());
+        p = placer.place(request, obstacles);
+      }
+      if (p) {
+        set_leader(label, *p);
+        if (clear(i)) {
+          label.placed = true;
+          kept.push_back(i);
+          PlacedLabel as_set = *p;
+          as_set.has_leader = label.has_leader;
+          as_set.leader_x0 = label.leader_x0, as_set.leader_y0 = label.leader_y0;
+          as_set.leader_x1 = label.leader_x1, as_set.leader_y1 = label.leader_y1;
+          placer.add(as_set);
+          ++number;
+          continue;
+        }
+      }
+      label.has_leader = false;
+      label.number = 0;
+      ++shot.num_left_out;
+    }
+    return callouts.size();
+  };
+
+  // The table of numbered corners: a column right of the view (the view
+  // narrowed by it), made only when some corner is numbered.
+  PixelRect view = f.layout.view;
+  shot.layout = f.layout;
+  if (lay_out(view) > 0) {
+    int width = text_extent(kLocalTableHeading, shot.table_text_size, f.style).width;
+    for (std::size_t i = 0; i < texts.size(); ++i)
+      width = std::max(width, text_extent(std::to_string(i + 1) + "   " + texts[i], shot.table_text_size, f.style).width);
+    const int line = static_cast<int>(std::lround(1.3 * shot.table_text_size));
+    const int rows = std::max(1, view.height / line - 2);
+    const int columns = static_cast<int>((texts.size() + rows - 1) / rows);
+    const int margin = static_cast<int>(std::lround(12 * f.style.scale));
+    const int table_width = columns * (width + margin) + margin;
+    view.width -= std::min(table_width, view.width / 2);
+    lay_out(view);
+    shot.table_box = {view.x + view.width + margin, view.y, table_width - margin, view.height};
   }
   return shot;
 }
@@ -750,35 +857,64 @@ Image render_local_shot(const LocalShot& shot, const DetailViewOptions& options,
   if (shot.num_left_out > 0)
     legend.insert(std::string_view(kLocalMarkerSizeLegend).size(),
                   "\n" + std::to_string(shot.num_left_out) + (shot.num_left_out == 1 ? " label" : " labels") + " left out");
-  const Figure f = detail_figure(options, shot.legend, shot.kind_swatches);
-  ColorBar bar = detail_color_bar(legend, shot.kind_swatches);
+  const Figure f = detail_figure(options, shot.legend, shot.kind_swatches, true);
+  ColorBar bar = detail_color_bar(legend, shot.kind_swatches, true);
   // The vertex's dot: a white disc on a black ring, its own legend entry.
   bar.swatches.push_back({Color{0.0, 0.0, 0.0}, "the vertex", SwatchShape::solid_ring});
   Image figure = make_image(options.width, options.height, options.background);
-  paste(figure, renderer.render(shot.scene, shot.camera, f.layout.view.width, f.layout.view.height), f.layout.view.x,
-        f.layout.view.y);
+  const PixelRect& view = shot.layout.view;  // narrowed by the table, if any
+  paste(figure, renderer.render(shot.scene, shot.camera, view.width, view.height), view.x, view.y);
   draw_title(figure, f.layout.title, options.title, f.style);
   draw_color_bar(figure, f.layout.legend, bar, f.style);
-  // Leaders on a pale halo first, then each label on its box filled with
-  // the background (as view A's), so that no cell edge runs through its
-  // text (46r review).
+  // All leaders (on a pale halo) under all boxes, then each label or
+  // number on its box filled with the background (as view A's), so that no
+  // cell edge runs through its text (46r review); no leader meets another
+  // box (local_shot).
   Rgba8 halo = options.background;
   halo.a = 200;
   const double width = std::max(1.0, 1.2 * f.style.scale);
+  const auto ink = [](const LocalLabel& label) {
+    return label.is_inverted ? to_rgba8(kInvertedColor) : Rgba8{30, 30, 30, 255};
+  };
   for (const LocalLabel& label : shot.labels)
     if (label.placed && label.has_leader)
       draw_line(figure, label.leader_x0, label.leader_y0, label.leader_x1, label.leader_y1, halo, 3.0 * width);
+  for (const LocalLabel& label : shot.labels)
+    if (label.placed && label.has_leader)
+      draw_line(figure, label.leader_x0, label.leader_y0, label.leader_x1, label.leader_y1, ink(label), width);
   AnnotationStyle label_style = f.style;
-  for (std::size_t i = 0; i < shot.labels.size(); ++i) {
-    const LocalLabel& label = shot.labels[i];
+  for (const LocalLabel& label : shot.labels) {
     if (!label.placed) continue;
-    const Rgba8 color = label.is_inverted ? to_rgba8(kInvertedColor) : Rgba8{30, 30, 30, 255};
-    if (label.has_leader)
-      draw_line(figure, label.leader_x0, label.leader_y0, label.leader_x1, label.leader_y1, color, width);
     fill_rect(figure, label.box, options.background);
-    label_style.text_color = color;
-    draw_text(figure, label.box.x + 2, label.box.y + static_cast<int>(std::lround(0.85 * shot.text_size)), label.text,
-              shot.text_size, label_style);
+    label_style.text_color = ink(label);
+    const std::string text = label.number > 0 ? std::to_string(label.number) : label.text;
+    draw_text(figure, label.box.x + (label.number > 0 ? 3 : 2),
+              label.box.y + static_cast<int>(std::lround(0.85 * shot.text_size)), text, shot.text_size, label_style);
+  }
+  // The numbered corners' table, worst first, in columns top to bottom.
+  if (shot.table_box.width > 0) {
+    std::vector<const LocalLabel*> numbered;
+    for (const LocalLabel& label : shot.labels)
+      if (label.placed && label.number > 0) numbered.push_back(&label);
+    std::sort(numbered.begin(), numbered.end(),
+              [](const LocalLabel* a, const LocalLabel* b) { return a->number < b->number; });
+    // Then the corners left out (no place even for a number), marked "-".
+    for (const LocalLabel& label : shot.labels)
+      if (!label.placed) numbered.push_back(&label);
+    const int line = static_cast<int>(std::lround(1.3 * shot.table_text_size));
+    const int rows = std::max(1, shot.table_box.height / line - 2);
+    const int columns = std::max<int>(1, static_cast<int>((numbered.size() + rows - 1) / rows));
+    const int column_width = shot.table_box.width / columns;
+    label_style.text_color = Rgba8{30, 30, 30, 255};
+    const int top = shot.table_box.y + line;
+    draw_text(figure, shot.table_box.x, top, kLocalTableHeading, shot.table_text_size, label_style);
+    for (std::size_t k = 0; k < numbered.size(); ++k) {
+      label_style.text_color = ink(*numbered[k]);
+      const int x = shot.table_box.x + static_cast<int>(k / rows) * column_width;
+      const int y = top + (static_cast<int>(k % rows) + 1) * line + line / 2;
+      const std::string key = numbered[k]->placed ? std::to_string(numbered[k]->number) : "-";
+      draw_text(figure, x, y, key + "   " + numbered[k]->text, shot.table_text_size, label_style);
+    }
   }
   return figure;
 }

@@ -96,7 +96,9 @@ std::string cell_kinds_legend(const HexMesh& mesh, std::span<const Index> cells)
 // (1 − SJ) clamped to [0.25, 2] (NaN: 0.25). The legend says so
 // (kLocalMarkerSizeLegend, under the colour bar).
 double local_marker_radius(double scaled_jacobian, double size);
-inline constexpr const char* kLocalMarkerSizeLegend = "marker size = 1 - SJ";
+inline constexpr const char* kLocalMarkerSizeLegend = "disc size grows with 1 - SJ";
+// View D's colour bar title: each disc is one cell's corner at the vertex.
+inline constexpr const char* kLocalBarHeading = "corner scaled Jacobian\n(one disc per cell corner)";
 // View D draws its corner discs at this fraction of local_marker_radius.
 inline constexpr double kLocalDiscScale = 0.6;
 
@@ -145,6 +147,9 @@ struct LocalLabel {
   bool placed = false;
   bool has_leader = false;
   double leader_x0 = 0, leader_y0 = 0, leader_x1 = 0, leader_y1 = 0;
+  // > 0: a numbered callout (the number drawn in box, the text in the
+  // shot's table), 1 the worst numbered corner; 0: the text drawn in box.
+  int number = 0;
 };
 // View D before drawing (no renderer needed): its scene with the discs
 // (local_marker_discs), camera, figure layout, the vertex's dot and its
@@ -156,6 +161,17 @@ struct LocalLabel {
 // pass lets it cross discs); a label with no free place is left out.
 inline constexpr double kLocalMinDiscPixels = 6.0;   // at scale 1 (a 1200-pixel-high figure)
 inline constexpr double kLocalDotClearLabels = 1.0;  // the dot's clear zone radius, in label heights
+// Leaders are at most kLocalMaxLeaderLabels label heights long and cross no
+// other label's box, no other corner's disc, the dot or another leader
+// (46t review: 300-450 px leaders under other boxes read as the wrong
+// corner's). A corner whose label cannot keep to that, and every corner of
+// a ring of more than kLocalMaxFullLabels, gets a numbered callout instead
+// (worst first from 1, the same rules), its value and cell listed in a
+// table beside the view headed kLocalTableHeading; one that finds no place
+// even so is left out and counted.
+inline constexpr double kLocalMaxLeaderLabels = 4.0;
+inline constexpr std::size_t kLocalMaxFullLabels = 16;
+inline constexpr const char* kLocalTableHeading = "numbered corners";
 struct LocalShot {
   Scene scene;  // as drawn (discs in the overlay)
   Camera camera;
@@ -167,6 +183,9 @@ struct LocalShot {
   int text_size = 0;   // pixels
   std::vector<LocalLabel> labels;  // vertex_corners' order
   std::size_t num_left_out = 0;
+  double max_leader = 0;    // pixels (kLocalMaxLeaderLabels label heights)
+  int table_text_size = 0;  // pixels
+  PixelRect table_box;      // the numbered corners' table (width 0: none); layout.view is narrowed by it
   bool kind_swatches = false;  // the legend's edge colour per kind (a mesh with non-hex cells)
 };
 LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v,

@@ -374,6 +374,9 @@ Image render_gradation_view(const HexMesh& mesh, const Topology& topology, const
   scene.triangles.push_back(boundary_faces(mesh, topology, scene.origin, [&](Index cell) {
     return to_rgba8(gradation_color(structure.cell_gradation[static_cast<std::size_t>(cell)]));
   }));
+  // Flat, as the colour bar: lit side faces took colours the bar has not
+  // (46t review); the edges give the shape.
+  scene.triangles.back().is_lit = false;
   LineSet edges;
   edges.width = static_cast<float>(std::max(1.0, style.scale));
   for (const Edge& e : boundary_edges_all_kinds(topology))
