@@ -101,13 +101,25 @@ constexpr std::array<Rgb, 11> kDivergingTable = {{
 // over every pair of the 6 colours and the neutral grey: 14.9 (#0 and the
 // green; was 9.8), every pair with the grey >= 17.6 (was 11.2), the first
 // 3 ranks and the grey >= 20.2 apart as before.
+// Issue 44 part P (the 44t review: under deuteranopia the dark green
+// #0f8700 read as the red #0, 14.9; the mint #00f0a5 as the pale "others",
+// the cyan #0fc3ff as the mint under tritanopia): the colours of view A
+// that mean something (the cluster colours, the pale "others" as drawn,
+// the inverted ring, the dark worst ring, the coincident and intersection
+// colours) must differ pairwise by CIEDE2000 >= 20 for normal vision and
+// under each Machado 2009 simulation (protanopia, deuteranopia,
+// tritanopia). A search over the sRGB grid in steps of 17 (the ring, the
+// inverted blue and the grey fixed) finds no set of more than 9 such colours
+// (dichromats see a plane: lightness and one hue axis), and with #0 in the
+// quality map's red family and the two overlap colours, room for 2 cluster
+// colours only: #0 red #ee2266 and #1 lime #aaff00 (and the overlap
+// colours #005500, #cc88ff; main_views.h). The smallest of the 7 x 6 / 2
+// pairs under the four visions is 20.4 (the lilac against the inverted blue
+// under protanopia); with 3 cluster colours the best is 18.3. Every later
+// class is the neutral grey, as the legend says.
 constexpr std::array<Rgb, kLabelledClusterPaletteSize> kLabelledClusterTable = {{
-    hex(0xff3c5a),
-    hex(0x0069f0),
-    hex(0xe1e100),
-    hex(0x0fc3ff),
-    hex(0x00f0a5),
-    hex(0x0f8700),
+    hex(0xee2266),
+    hex(0xaaff00),
 }};
 // A light grey (#a0a0a0), calm among the coloured clusters: CIEDE2000 19
 // from the undefined grey (kUndefinedColor), 16 from the quality map's
