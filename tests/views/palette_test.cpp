@@ -123,7 +123,7 @@ TEST(Palette, ViewAColoursApartForEveryVision) {
     for (std::size_t j = 0; j < i; ++j)
       EXPECT_GE(four_visions(colors[i].color, colors[j].color), 20.0) << colors[i].name << " vs " << colors[j].name;
   std::string which;
-  EXPECT_GT(smallest_pair(colors, &which), 20.3) << which;  // the palette's 20.4 (lilac / inverted, protanopia)
+  EXPECT_GT(smallest_pair(colors, &which), 20.3) << which;  // the palette's 20.4 (#0 / worst ring, protanopia)
   // The intersecting cells are a tint of the intersection colour: one
   // meaning, one colour (their legend swatch is the tint).
   EXPECT_EQ(opaque(kIntersectingCellColor), kIntersectionArrowColor);

@@ -114,7 +114,7 @@ constexpr std::array<Rgb, 11> kDivergingTable = {{
 // quality map's red family and the two overlap colours, room for 2 cluster
 // colours only: #0 red #ee2266 and #1 lime #aaff00 (and the overlap
 // colours #005500, #cc88ff; main_views.h). The smallest of the 7 x 6 / 2
-// pairs under the four visions is 20.4 (the lilac against the inverted blue
+// pairs under the four visions is 20.4 (the red #0 against the worst ring
 // under protanopia); with 3 cluster colours the best is 18.3. Every later
 // class is the neutral grey, as the legend says.
 constexpr std::array<Rgb, kLabelledClusterPaletteSize> kLabelledClusterTable = {{
