@@ -552,8 +552,9 @@ TEST(MainViewLabels, SharedMeshesWithCrowdedGlyphs) {
 // edge line just outside the glyph's silhouette, and on another glyph drawn
 // in front of their own (the reviewer's Dolphin "#7 (10)" on #5, with the
 // connected clusters and 8 colours of then; with the bounded clusters and 6
-// colours others; with the 2 colours of issue 44 part P, 2 labels a view
-// and 3 leaders off their glyph): the check above catches it; with the id
+// colours others; with the 2 colours of issue 44 part P round 1, 2 labels a
+// view and 3 leaders off their glyph; 5 colours since round 2): the check
+// above catches it; with the id
 // image nothing is left.
 TEST(MainViewLabels, PlacementWithoutIdImageMisnamesGlyphs) {
   const auto data = test::shared_data_dir();

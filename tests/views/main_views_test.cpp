@@ -46,7 +46,7 @@ Camera camera_for(const Fixture& f) {
 
 // Many more clusters than K: every vertex of a 4x4x4 grid is a cluster of
 // its own (rank = vertex id), K = 3; the palette colours min(K, its size)
-// = 2 of them (issue 44 part P).
+// = 3 of them.
 TEST(MainScene, OnlyTheTopClustersAreColouredTheRestAreNeutral) {
   HexMesh mesh = test::grid(4);
   const Topology topology = build_topology(mesh);
@@ -69,7 +69,7 @@ TEST(MainScene, OnlyTheTopClustersAreColouredTheRestAreNeutral) {
   const Scene scene = build_main_scene(mesh, topology, glyphs, nullptr, camera, 600, {});
   const Rgba8 neutral = to_rgba8(neutral_cluster_color());
   const Index coloured = labelled_cluster_count(3);
-  ASSERT_EQ(coloured, 2);
+  ASSERT_EQ(coloured, 3);
   // The coloured (ranked) glyphs in the set drawn over the grey ones; the grey
   // ones but those left out where they pile up on screen.
   const GlyphsDrawn shown = main_view_glyphs_drawn(

@@ -162,8 +162,8 @@ Rgba8 cell_kind_edge_color(CellKind kind) {
   // and every legend colour of view A (issue 44 part P; main_views.h).
   switch (kind) {
     case CellKind::tet: return {0, 0, 153, 255};      // dark blue
-    case CellKind::wedge: return {0, 153, 136, 255};  // teal
-    case CellKind::pyramid: return {85, 51, 85, 255};  // plum
+    case CellKind::wedge: return {102, 136, 0, 255};    // olive
+    case CellKind::pyramid: return {187, 102, 136, 255};  // dusty rose
     default: return {34, 0, 51, 255};                 // hex: near-black aubergine
   }
 }

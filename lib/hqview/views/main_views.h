@@ -39,20 +39,23 @@ inline constexpr Rgba8 kWireframeColor{120, 124, 134, 255};
 // edges, the cells' faces a translucent tint of it (one meaning, one
 // colour; the dark magenta #8c1478 was 8 from the violet pyramid edges).
 // Both CIEDE2000 >= 20 from the cluster colours, the pale grey, the rings
-// and each other for normal vision and under protanopia, deuteranopia and
-// tritanopia (image/colormap.cpp, tests/views/palette_test.cpp).
+// and each other for normal vision and >= 15 under protanopia, deuteranopia
+// and tritanopia (image/colormap.cpp, tests/views/palette_test.cpp).
 inline constexpr Rgba8 kCoincidentArrowColor{0, 85, 0, 255};
 inline constexpr Rgba8 kIntersectionArrowColor{204, 136, 255, 255};
 inline constexpr Rgba8 kIntersectingCellColor{204, 136, 255, 96};  // translucent lilac
 
 // The edge colour of each volume kind where the views tell kinds apart (view
 // A's boundary wireframe, view D's one ring): hexes a near-black aubergine
-// #220033, tets dark blue #000099, wedges teal #009988, pyramids plum
-// #553355 (issue 44 part P, the 46r review's M3: the charcoal hex was the
-// coincident near-black, the violet pyramid the intersection magenta).
-// Each is CIEDE2000 >= 12.9 from every colour of view A's legend (cluster
-// colours, pale grey, rings, overlap colours) and from the other kinds for
-// normal vision and under protanopia, deuteranopia and tritanopia, and more
+// #220033, tets dark blue #000099, wedges olive #668800, pyramids dusty
+// rose #bb6688 (issue 44 part P, the 46r review's M3: the charcoal hex was
+// the coincident near-black, the violet pyramid the intersection magenta).
+// Each is CIEDE2000 >= 12.9 from the other kinds and from every colour of
+// view A's legend but the cluster colours (pale grey, rings, overlap
+// colours, the non-conforming brown) for normal vision and under
+// protanopia, deuteranopia and tritanopia; from the 5 cluster colours >= 15
+// for normal vision and >= 8 simulated (the issue's critical-pair bound: no
+// 4 edge colours keep 12.9 from all of them, 12.3 at best), and more
 // than 60 apart in RGB from the quality map, the inverted and undefined
 // colours, the pure-hex wireframe grey and the non-conforming brown; with a
 // swatch per kind present.
