@@ -187,19 +187,22 @@
   // glyph radius, on a white halo of kHaloPx each side; the positions are
   // rewritten at every frame (sizeRings) from the pixels per model unit.
   var kRingPx = { inverted: [2, 6], worstOutside: [8, 12], worst: [2, 6] }, kHaloPx = 1;
-  function ringGeometry() {
-    var gm = new THREE.BufferGeometry(), n = 64, index = [];
+  function ringGeometry(n) {
+    var gm = new THREE.BufferGeometry(), index = [];
     gm.setAttribute('position', new THREE.BufferAttribute(new Float32Array(6 * (n + 1)), 3));
     for (var i = 0; i < n; ++i) index.push(2 * i, 2 * i + 1, 2 * i + 2, 2 * i + 1, 2 * i + 3, 2 * i + 2);
     gm.setIndex(index);
     return gm;
   }
-  function addRing(group, r, px, color, order) {
+  // A ring of n segments (64: a circle; 4: a diamond, the overlap markers'
+  // outline, corners on the screen axes).
+  function addRing(group, r, px, color, order, n) {
+    n = n || 64;
     [[px[0] - kHaloPx, px[1] + kHaloPx, '#ffffff', order], [px[0], px[1], color, order + 1]].forEach(function (d) {
-      var ring = new THREE.Mesh(ringGeometry(), new THREE.MeshBasicMaterial({ color: new THREE.Color(d[2]),
+      var ring = new THREE.Mesh(ringGeometry(n), new THREE.MeshBasicMaterial({ color: new THREE.Color(d[2]),
         side: THREE.DoubleSide, depthWrite: false, depthTest: false, transparent: true, clippingPlanes: clipping }));
       ring.renderOrder = d[3];
-      ring.userData.ring = { r: r, inner: d[0], outer: d[1] };
+      ring.userData.ring = { r: r, inner: d[0], outer: d[1], n: n };
       group.add(ring);
     });
   }
@@ -209,8 +212,10 @@
         var d = ring.userData.ring;
         if (!d) return;
         var a = d.r + d.inner / pxPerUnit, b = d.r + d.outer / pxPerUnit, p = ring.geometry.attributes.position;
-        for (var i = 0; i <= 64; ++i) {
-          var t = 2 * Math.PI * i / 64, x = Math.cos(t), y = Math.sin(t);
+        // A diamond's band is as wide as a circle's across its edges.
+        if (d.n === 4) { a *= Math.SQRT2; b *= Math.SQRT2; }
+        for (var i = 0; i <= d.n; ++i) {
+          var t = 2 * Math.PI * i / d.n, x = Math.cos(t), y = Math.sin(t);
           p.setXYZ(2 * i, a * x, a * y, 0);
           p.setXYZ(2 * i + 1, b * x, b * y, 0);
         }
@@ -221,19 +226,30 @@
   }
   // Glyph size on screen (issue 44 review): the drawn radii keep report.json's
   // ratios but are scaled down so that the largest is at most
-  // kMaxGlyphFraction of the bounding diagonal, and the spheres are
-  // see-through (kGlyphOpacity) so that the inverted surface colour and the
-  // overlap markers inside them show.
-  var kMaxGlyphFraction = 0.03, kGlyphOpacity = 0.55, kGreyOpacity = 0.22;
+  // kMaxGlyphFraction of the bounding diagonal. The overlap markers are
+  // drawn over them.
+  // The coloured spheres are drawn over the faces whatever their depth
+  // (depthTest off, as view A draws its ranked glyphs over the wireframe),
+  // so a glyph in front of a face and one behind it show the same colour
+  // (the 44t review: the red #0 class looked pink in front of the faces and
+  // brown behind them), opaque (see-through, they took the colour of what
+  // lay behind: pink over the background, dark red over the faces), each on
+  // a white rim kRimPx wide that parts it from the red-to-orange faces
+  // under it (issue 44 part P). The grey glyphs stay see-through and behind
+  // opaque faces; an inverted grey one (min < 0) at kGlyphOpacity, not faint,
+  // so its inverted ring does not read as an empty circle (44t review).
+  var kMaxGlyphFraction = 0.03, kGlyphOpacity = 0.55, kGreyOpacity = 0.22, kRimPx = [0, 2];
   var largestRadius = D.clusters.reduce(function (m, cl) { return Math.max(m, cl.radius); }, 0);
   var glyphScale = largestRadius > kMaxGlyphFraction * diagonal ? kMaxGlyphFraction * diagonal / largestRadius : 1;
   D.clusters.forEach(function (cl, rank) {
     var g = new THREE.Group();
     g.position.set(cl.position[0], cl.position[1], cl.position[2]);
     var r = Math.max(cl.radius * glyphScale, 1e-6 * diagonal);
+    var coloured = isColoured(cl, rank);
     var m = new THREE.Mesh(sphere, new THREE.MeshLambertMaterial({ color: new THREE.Color(cl.color), transparent: true,
-      opacity: isColoured(cl, rank) ? kGlyphOpacity : kGreyOpacity, depthWrite: false }));
-    m.renderOrder = 5;
+      opacity: coloured ? 1 : cl.min_quality < 0 ? kGlyphOpacity : kGreyOpacity, depthWrite: false, depthTest: !coloured }));
+    // Coloured after the grey, worse ranks last (on top), as in view A.
+    m.renderOrder = coloured ? 7 + (D.clusters.length - rank) / (D.clusters.length + 1) : 5;
     m.scale.set(r, r, r);
     m.userData.cluster = cl;
     m.userData.drawnRadius = r;
@@ -241,6 +257,7 @@
     g.userData.cluster = cl;
     g.userData.drawnRadius = r;
     var inverted = cl.min_quality < 0;
+    if (coloured) addRing(g, r, kRimPx, '#ffffff', 6);
     if (inverted) addRing(g, r, kRingPx.inverted, invertedColor, 20);
     if (cl.id === 0 && !worstTied) addRing(g, r, inverted ? kRingPx.worstOutside : kRingPx.worst, kDarkRing, 22);
     if (g.children.length > 1) rings.push(g);
@@ -264,23 +281,20 @@
   }
 
   // Overlap markers and intersecting cells.
-  // Each marker a small dot in a hollow ring (the 44w review: opaque discs
-  // 0.012 of the diagonal hid the cells they mark and merged into a blob on
-  // rockarm): the dot 0.005 of the diagonal, the ring 3-5.5 px outside it
-  // on a white halo, facing the camera like the glyph rings.
-  var markers = new THREE.Group(), markerRadius = 0.005 * diagonal;
+  // Each marker a hollow diamond (issue 44 part P, the 44t review: the
+  // earlier dot in a ring chained into interlocking rings on rockarm, a
+  // third meaning of "ring" beside the worst and inverted rings): its
+  // outline kMarkerPx CSS pixels wide, kMarkerPx[0] outside a centre
+  // 0.005 of the diagonal across, on a white halo, facing the camera like
+  // the rings; the legend's swatch is the same diamond. An overlay (issue
+  // 44 review): after the see-through faces and the glyphs, no depth test,
+  // so neither washes it nor hides it.
+  var markers = new THREE.Group(), markerRadius = 0.005 * diagonal, kMarkerPx = [1, 4];
   D.markers.forEach(function (mk) {
-    // An overlay (issue 44 review): after the see-through faces and the
-    // glyphs, no depth test, so neither washes it nor hides it.
     var colour = mk.kind === 'coincident' ? colors.coincident : colors.intersection, g = new THREE.Group();
-    var m = new THREE.Mesh(sphere, new THREE.MeshBasicMaterial({ color: new THREE.Color(colour),
-      depthTest: false, depthWrite: false, transparent: true, clippingPlanes: clipping }));
-    m.renderOrder = 26;
     g.position.set(mk.position[0], mk.position[1], mk.position[2]);
-    m.scale.set(markerRadius, markerRadius, markerRadius);
-    m.userData.marker = mk;
-    g.add(m);
-    addRing(g, markerRadius, [3, 5.5], colour, 27);
+    g.userData.marker = mk;
+    addRing(g, markerRadius, kMarkerPx, colour, 27, 4);
     rings.push(g);
     markers.add(g);
   });
@@ -454,7 +468,9 @@
     var isQuality = fd.id === 'vertex_quality' || fd.id === 'scaled_jacobian';
     for (var f = 0; f < nf; ++f)
       for (var c = 0; c < 6; ++c) {
-        var t = mapTriple(fd.per === 'vertex' ? values[quads[4 * f + corners[c]]] : values[f], isQuality);
+        // per vertex, per face corner (a mesh of several kinds: the face's own
+        // kind's vertex quality) or per face
+        var t = mapTriple(fd.per === 'vertex' ? values[quads[4 * f + corners[c]]] : fd.per === 'corner' ? values[4 * f + corners[c]] : values[f], isQuality);
         for (var k = 0; k < 3; ++k) triMap[18 * f + 3 * c + k] = t[k];
       }
     boundaryGeometry.attributes.hqMap.needsUpdate = true;
@@ -620,7 +636,58 @@
     });
   }
 
-  function draw() { orientCut(); faceRings(); renderer.render(scene, camera); placeLabels(); }
+  // ---- thinning (issue 44 part P) ----
+  // As view A thins its glyphs (views/main_views.h main_view_glyphs_drawn,
+  // the same constants): in rank order, a grey glyph is left out of this
+  // frame when at least kThinnedCoverage of its disc on screen (measured on
+  // kThinSamples points spread evenly over it, Vogel's sunflower) lies in
+  // the discs of glyphs drawn before it; the coloured glyphs are always
+  // drawn. Redone at every frame, since turning and zooming move the discs;
+  // the cluster legend says how many are left out.
+  var kThinnedCoverage = 0.5, kThinSamples = 32, thinnedNow = 0;
+  function thinGlyphs() {
+    thinnedNow = 0;
+    if (!glyphs.visible) return;
+    var w = view.clientWidth, hgt = view.clientHeight, ppu = pxPerUnit(), cell = 1, discs = [];
+    glyphs.children.forEach(function (g) {
+      var p = g.position.clone().project(camera);
+      var d = { x: (p.x + 1) / 2 * w, y: (1 - p.y) / 2 * hgt, r: g.userData.drawnRadius * ppu };
+      cell = Math.max(cell, d.r);
+      discs.push(d);
+    });
+    var grid = {};
+    function key(gx, gy) { return gx + ',' + gy; }
+    glyphs.children.forEach(function (g, rank) {
+      var sphereMesh = g.children[0], d = discs[rank];
+      if (!sphereMesh.visible) return;  // cut away
+      var cx = Math.floor(d.x / cell), cy = Math.floor(d.y / cell);
+      if (!isColoured(g.userData.cluster, rank)) {
+        var covered = 0;
+        for (var k = 0; k < kThinSamples; ++k) {
+          var rr = d.r * Math.sqrt((k + 0.5) / kThinSamples), an = k * 2.399963229728653;
+          var x = d.x + rr * Math.cos(an), y = d.y + rr * Math.sin(an), inside = false;
+          for (var gy = cy - 1; gy <= cy + 1 && !inside; ++gy)
+            for (var gx = cx - 1; gx <= cx + 1 && !inside; ++gx)
+              (grid[key(gx, gy)] || []).forEach(function (j) {
+                if (!inside && Math.hypot(x - discs[j].x, y - discs[j].y) < discs[j].r) inside = true;
+              });
+          if (inside) covered += 1;
+        }
+        if (covered >= kThinnedCoverage * kThinSamples) {
+          g.children.forEach(function (o) { o.visible = false; });  // its rings too
+          thinnedNow += 1;
+          return;
+        }
+      }
+      (grid[key(cx, cy)] = grid[key(cx, cy)] || []).push(rank);
+    });
+    var note = document.getElementById('legend-thinned');
+    if (note) {
+      note.hidden = thinnedNow === 0;
+      note.textContent = counted(thinnedNow, 'grey glyph', 'grey glyphs') + ' not drawn in this view: >50% behind glyphs drawn (turn or zoom to see them)';
+    }
+  }
+  function draw() { orientCut(); faceRings(); thinGlyphs(); renderer.render(scene, camera); placeLabels(); }
   // The light moves with the camera: from above-left of the eye.
   camera.add(light);
   camera.add(light.target);
@@ -650,9 +717,10 @@
   // Every colour drawn has a legend entry (issue 44): a swatch beside each
   // layer of one colour, with its count (the quality colours of the faces
   // and of the cut's cells are the bar's).
-  function swatch(color, ring) {
-    var sw = el('span', { class: ring ? 'swatch ring' : 'swatch' });
-    if (ring) sw.style.borderColor = color; else sw.style.background = color;
+  // A filled square, a ring or a hollow diamond (the overlap markers' shape).
+  function swatch(color, shape) {
+    var sw = el('span', { class: shape ? 'swatch ' + shape : 'swatch' });
+    if (shape) sw.style.borderColor = color; else sw.style.background = color;
     return sw;
   }
   function layerLegend(id, entries) {
@@ -660,7 +728,7 @@
     // A layer with nothing in it: no row at all (issue 44 review), and nothing drawn.
     if (entries.every(function (e) { return /^0 /.test(e[1]); })) { row.style.display = 'none'; return; }
     entries.forEach(function (e) {
-      var entry = el('div', { 'data-legend': e[2] }, [swatch(e[0]), e[1]]);
+      var entry = el('div', { 'data-legend': e[2] }, [swatch(e[0], e[3]), e[1]]);
       if (/^0 /.test(e[1])) return;  // nothing of it drawn: no row (issue 44 review)
       list.appendChild(entry);
     });
@@ -675,9 +743,9 @@
   var grouped = { coincident: 0, intersection: 0 };
   D.markers.forEach(function (mk) { grouped[mk.kind === 'coincident' ? 'coincident' : 'intersection'] += mk.count || 0; });
   layerLegend('layer-markers', [[colors.coincident, counted(byKind.coincident, 'marker', 'markers') + ' of ' +
-      counted(grouped.coincident, 'coincident vertex', 'coincident vertices') + ' (one per group)', 'coincident'],
+      counted(grouped.coincident, 'coincident vertex', 'coincident vertices') + ' (one per group)', 'coincident', 'diamond'],
     [colors.intersection, counted(byKind.intersection, 'marker', 'markers') + ' of ' +
-      counted(grouped.intersection, 'intersecting cell pair', 'intersecting cell pairs') + ' (one per group)', 'intersection']]);
+      counted(grouped.intersection, 'intersecting cell pair', 'intersecting cell pairs') + ' (one per group)', 'intersection', 'diamond']]);
   layerLegend('layer-intersecting', [[colors.intersecting_cells,
     counted(D.num_intersecting_cells || 0, 'intersecting cell', 'intersecting cells') + ' (edges)', 'intersecting_cells']]);
   layerLegend('layer-nonconforming', [[colors.non_conforming, counted(NC.count, 'non-conforming face', 'non-conforming faces') +
@@ -806,7 +874,11 @@
     var othersLo = show(Number(others[0].min_quality.toPrecision(2)));
     var othersHi = show(Number(others[others.length - 1].min_quality.toPrecision(2)));
     legend.appendChild(el('div', { id: 'legend-others' }, [sw, counted(others.length, 'other cluster', 'other clusters') +
-      ', min ' + othersLo + (others.length > 1 ? ' to ' + othersHi : '') + ': faint grey spheres (full radius)']));
+      ', min ' + othersLo + (others.length > 1 ? ' to ' + othersHi : '') + ': faint grey spheres (full radius)' +
+      (others.some(function (cl) { return cl.min_quality < 0; }) ? '; the inverted ones less faint' : '')]));
+    var thinnedNote = el('div', { id: 'legend-thinned', class: 'small' }, []);
+    thinnedNote.hidden = true;
+    legend.appendChild(thinnedNote);
   }
   // The rings, with ring swatches (view A's legend says the same).
   function ringEntry(color, label, id) {
@@ -831,5 +903,6 @@
   reset();
   focusFromHash();
   window.hqViewer = { camera: camera, renderer: renderer, scene: scene, controls: controls, data: D, draw: draw,
-    glyphScale: glyphScale, ringPx: kRingPx, ready: true };
+    glyphScale: glyphScale, ringPx: kRingPx, markerPx: kMarkerPx, markerRadiusPx: function () { return markerRadius * pxPerUnit(); },
+    thinned: function () { return thinnedNow; }, ready: true };
 })();

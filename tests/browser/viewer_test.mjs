@@ -172,20 +172,40 @@ await section('bar', BOTH, async () => {
     tops.every((g) => Math.abs(g.drawn / g.radius - cap / biggest) <= 1e-6 * cap / biggest),
     `glyphs are drawn at most 3 % of the diagonal (${cap.toFixed(4)}), in report.json's ratios: ${JSON.stringify(sized.spheres.slice(0, 4))}`);
   // The overlap markers are drawn over everything (issue 44 review: 7 of the
-  // bar's 8 were hidden inside #0's opaque glyph): each marker's centre pixel
-  // is the marker colour.
+  // bar's 8 were hidden inside #0's opaque glyph), each a hollow diamond
+  // (issue 44 part P: the dot in a ring chained into rings): the outline
+  // crosses each screen axis between its inner and outer corner, 1-4 px
+  // plus the centre's radius times sqrt 2 from the centre, in the marker
+  // colour on all four sides; at 45 degrees, outside the edges, it is not.
   const shot0 = await frameOf(page);
   const rect0 = await page.evaluate(() => { const r = window.hqViewer.renderer.domElement.getBoundingClientRect(); return [r.left, r.top, r.width, r.height]; });
   const markerColour = await page.evaluate(() => window.hqViewer.data.colors.intersection);
   const mc = [1, 3, 5].map((i) => parseInt(markerColour.slice(i, i + 2), 16));
-  let markersSeen = 0;
+  const centrePx = await page.evaluate(() => window.hqViewer.markerRadiusPx());
+  const inMarkerColour = (x, y) => {
+    const i = 4 * ((shot0.h - 1 - y) * shot0.w + x);
+    return Math.hypot(shot0.px[i] - mc[0], shot0.px[i + 1] - mc[1], shot0.px[i + 2] - mc[2]) <= 40;
+  };
+  let markersSeen = 0, diamonds = 0;
   for (const mk of report.overlap.markers) {
     const [sx, sy] = await projectToPage(page, mk.position);
     const px = Math.round((sx - rect0[0]) * shot0.w / rect0[2]), py = Math.round((sy - rect0[1]) * shot0.h / rect0[3]);
-    const i = 4 * ((shot0.h - 1 - py) * shot0.w + px);
-    if (Math.hypot(shot0.px[i] - mc[0], shot0.px[i + 1] - mc[1], shot0.px[i + 2] - mc[2]) <= 40) markersSeen += 1;
+    const corner = Math.round((centrePx + 2.5) * Math.SQRT2);  // the outline's middle on each axis
+    const sides = [[corner, 0], [-corner, 0], [0, corner], [0, -corner]].filter(([dx, dy]) => inMarkerColour(px + dx, py + dy)).length;
+    if (sides === 4) markersSeen += 1;
+    // A diamond, not a ring: at 45 degrees and the corners' distance the
+    // pixel lies outside the outline (a circle of that radius would be on it).
+    const off = Math.round(corner / Math.SQRT2);
+    if ([[off, off], [-off, off], [off, -off], [-off, -off]].filter(([dx, dy]) => inMarkerColour(px + dx, py + dy)).length <= 1) diamonds += 1;
   }
-  check(report.overlap.markers.length === 8 && markersSeen === 8, `every overlap marker shows in its colour (${markersSeen} of ${report.overlap.markers.length})`);
+  check(report.overlap.markers.length === 8 && markersSeen === 8 && diamonds >= 6,
+    `every overlap marker shows as a diamond outline in its colour (${markersSeen} of ${report.overlap.markers.length} outlined, ${diamonds} not round)`);
+  const markerSwatch = await page.evaluate(() => {
+    const sw = document.querySelector('[data-legend=intersection] .swatch');
+    return sw ? { cls: sw.className, border: getComputedStyle(sw).borderTopColor, transform: getComputedStyle(sw).transform } : null;
+  });
+  check(markerSwatch && /diamond/.test(markerSwatch.cls) && markerSwatch.border === `rgb(${mc.join(', ')})` && markerSwatch.transform !== 'none',
+    `the marker legend's swatch is a hollow diamond in the marker colour (${JSON.stringify(markerSwatch)})`);
   // The legend says what a marker is (a group of pairs) and counts the pairs
   // as report.json does; a layer with nothing drawn has no row.
   const markerLegend = await page.evaluate(() => ({
@@ -524,6 +544,30 @@ await section('hex and tets', CHROMIUM_ONLY, async () => {
   check(/^tet \d+$/.test(cell || ''), `a click on the tet box names a tet (${cell})`);
   const kinds = await page.evaluate(() => { const d = window.hqViewer.data; return { n: d.faces.count, names: d.faces.kind_names }; });
   check(kinds.n === 5 + 10 && kinds.names && kinds.names[1] === 'tet', `the viewer's boundary: the hex's 5 quads and the tet box's 10 triangles (${JSON.stringify(kinds)})`);
+  // The vertex quality per face corner, of the face's own kind (issue 44
+  // part P; issue 46): the perfect hex's 5 faces are quality 1 (index 254)
+  // at every corner, also at the 4 vertices it shares with the tets, whose
+  // faces there are lower; the hex's top face is one colour from x = 0.1 to
+  // x = 0.9 (before, its x = 1 corners took the tets' minimum).
+  const perCorner = await page.evaluate(() => {
+    const d = window.hqViewer.data, fd = d.fields[0], dec = (b) => Array.from(atob(b), (c) => c.charCodeAt(0));
+    const values = dec(fd.values), kind = dec(d.faces.kind);
+    const hex = [], tetLow = [];
+    for (let f = 0; f < d.faces.count; ++f)
+      for (let c = 0; c < 4; ++c) (kind[f] === 0 ? hex : tetLow).push(values[4 * f + c]);
+    return { per: fd.per, n: values.length, hex: [...new Set(hex)], tetMin: Math.min(...tetLow) };
+  });
+  check(perCorner.per === 'corner' && perCorner.n === 4 * kinds.n && perCorner.hex.length === 1 && perCorner.hex[0] === 254 && perCorner.tetMin < 254,
+    `the vertex quality is per face corner, of the face's own kind: the hex's corners all 1 (${JSON.stringify(perCorner)})`);
+  const topColour = [];
+  for (const p of [[0.1, 0.5, 1], [0.9, 0.5, 1], [0.5, 0.9, 1]]) {
+    const [sx, sy] = await projectToPage(page, p);
+    const x = Math.round((sx - box[0]) * shot.w / box[2]), y = Math.round((sy - box[1]) * shot.h / box[3]);
+    const i = 4 * ((shot.h - 1 - y) * shot.w + x);
+    topColour.push([shot.px[i], shot.px[i + 1], shot.px[i + 2]]);
+  }
+  const spread = Math.max(...topColour.map((c) => Math.hypot(c[0] - topColour[0][0], c[1] - topColour[0][1], c[2] - topColour[0][2])));
+  check(spread <= 6, `the hex's top face is one colour up to the tets (${JSON.stringify(topColour)})`);
   // The non-conforming x = 1 face (the hex's quad against two of the tets'
   // triangles, inside the model): its frame in the overview's colour at
   // probes 0.075 of the way in from each edge's middle, over the opaque
@@ -681,6 +725,12 @@ await section('rings', BOTH, async () => {
   const rgbF = (x, y) => { const i = 4 * ((faced.h - 1 - Math.round(y)) * faced.w + Math.round(x)); return [faced.px[i], faced.px[i + 1], faced.px[i + 2]]; };
   const invF = onCircle(g0, at(g0, 4), lut, rgbF), darkF = onCircle(g0, at(g0, 10), [38, 38, 38], rgbF);
   check(invF >= 40 && darkF >= 40, `with the see-through faces over #0 its rings keep their colours (inverted ${invF}, dark ${darkF} of 48)`);
+  // Issue 44 part P: a coloured glyph is opaque and drawn over the faces
+  // whatever its depth, so #0 (under the top faces here) shows the same
+  // colour with the faces on as off (the 44t review: see-through and depth
+  // tested, the red class came out dark red behind the faces, pink in front).
+  const centreOff = rgb(g0.x, g0.y), centreOn = rgbF(g0.x, g0.y);
+  check(dist(centreOff, centreOn) <= 3, `#0's glyph keeps its colour under the faces (${centreOff} without, ${centreOn} with)`);
   // The #k label: view A's text "#0 (n)" (report.json's id and size) beside
   // #0's glyph, outside its rings and within 24 px of them; the grey
   // cluster has none.
@@ -700,6 +750,32 @@ await section('rings', BOTH, async () => {
   const gaps = await legendGaps(page);
   check(gaps.missing.length === 0 && gaps.drawn.length >= 4, `every colour drawn on the ringed grid has a legend swatch (drawn ${gaps.drawn}; missing ${gaps.missing})`);
   await page.screenshot({ path: path.join(outDir, 'ringed_faces.png') });
+  // Thinning (issue 44 part P), as view A thins: seen from straight above
+  // nothing is left out; seen along the line from the grey glyph through
+  // #0 (the larger), the grey disc lies wholly in #0's and is left out of
+  // the frame, the legend saying so; back, it is drawn again.
+  const thinning = async (along) => page.evaluate(([a, b, greyId, along]) => {
+    const v = window.hqViewer, T = window.THREE, A = new T.Vector3(...a), B = new T.Vector3(...b);
+    if (along) {
+      const dir = A.clone().sub(B).normalize();
+      v.camera.up.copy(Math.abs(dir.z) < 0.9 ? new T.Vector3(0, 0, 1) : new T.Vector3(1, 0, 0));
+      v.camera.position.copy(A.clone().add(dir.multiplyScalar(20)));
+      v.camera.lookAt(B);
+      v.camera.updateProjectionMatrix();
+      v.camera.updateMatrixWorld();
+    }
+    v.draw();
+    let sphere = null;
+    v.scene.traverse((o) => { if (o.isMesh && o.userData.cluster && o.userData.cluster.id === greyId) sphere = o; });
+    const note = document.getElementById('legend-thinned');
+    return { thinned: v.thinned(), visible: !!sphere && sphere.visible, note: note && !note.hidden ? note.textContent : null };
+  }, [worst.position, grey.position, grey.id, along]);
+  const apart = await thinning(false), behind = await thinning(true);
+  check(apart.thinned === 0 && apart.visible && apart.note === null && behind.thinned === 1 && !behind.visible &&
+    /^1 grey glyph not drawn in this view: >50% behind glyphs drawn/.test(behind.note || ''),
+    `a grey glyph wholly behind #0 on screen is left out and counted, and drawn when apart (${JSON.stringify([apart, behind])})`);
+  await page.evaluate(() => window.hqViewer.camera.up.set(0, 1, 0));
+  await aim(2, [3, 3]);
   // The cut clips the glyphs, their rings and labels (issue 44 review: they
   // hung outside the cut model): a cut across z at the grid's bottom, seen
   // from above, removes everything; #0's centre and ring pixels are then the

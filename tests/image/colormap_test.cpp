@@ -81,7 +81,7 @@ TEST(DivergingColor, BlueWhiteRed) {
 // The perceptual rules (CIEDE2000 between the palette, the neutral grey,
 // the special colours and the quality map; colour vision deficiency) are
 // checked in tests/views/palette_test.cpp, which also knows the overlap
-// markers' colours; here: the palette is 8 distinct opaque colours, none
+// markers' colours; here: the palette is distinct opaque colours, none
 // the neutral grey.
 TEST(ClusterColor, LabelledColoursAreDistinctAndNotNeutral) {
   std::set<std::tuple<int, int, int>> seen;
@@ -94,11 +94,17 @@ TEST(ClusterColor, LabelledColoursAreDistinctAndNotNeutral) {
 }
 
 TEST(ClusterColor, OnlyTheTopClustersWearAColour) {
-  // K = 3: ranks 0..2 their own colours, every other rank the neutral tone.
+  // K = 1: rank 0 its own colour, every other rank the neutral tone.
+  EXPECT_TRUE(same(cluster_color(0, 1), labelled_cluster_color(0)));
+  for (int rank : {1, 2, 9, 500}) EXPECT_TRUE(same(cluster_color(rank, 1), neutral_cluster_color())) << rank;
+  // K = 3: ranks 0..2 their own colours, then the neutral tone.
   for (int rank = 0; rank < 3; ++rank) EXPECT_TRUE(same(cluster_color(rank, 3), labelled_cluster_color(rank)));
   for (int rank : {3, 4, 9, 10, 500}) EXPECT_TRUE(same(cluster_color(rank, 3), neutral_cluster_color())) << rank;
+  // K = 8 (the default): the palette's 5 (issue 44 part P), then the neutral tone.
+  for (int rank = 0; rank < 5; ++rank) EXPECT_TRUE(same(cluster_color(rank, 8), labelled_cluster_color(rank)));
+  for (int rank : {5, 6, 7, 8, 500}) EXPECT_TRUE(same(cluster_color(rank, 8), neutral_cluster_color())) << rank;
   EXPECT_TRUE(same(cluster_color(-1, 3), neutral_cluster_color()));
-  // K beyond the palette: the first 8 are labelled, never a repeat.
+  // K beyond the palette: the palette's first are labelled, never a repeat.
   EXPECT_EQ(labelled_cluster_count(25), kLabelledClusterPaletteSize);
   EXPECT_TRUE(same(cluster_color(kLabelledClusterPaletteSize, 25), neutral_cluster_color()));
   EXPECT_EQ(labelled_cluster_count(0), 0);

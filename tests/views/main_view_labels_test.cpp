@@ -581,14 +581,15 @@ TEST(MainViewLabels, SharedMeshesWithCrowdedGlyphs) {
 // edge line just outside the glyph's silhouette, and on another glyph drawn
 // in front of their own (the reviewer's Dolphin "#7 (10)" on #5, with the
 // connected clusters and 8 colours of then; with the bounded clusters and 6
-// colours others): the check above catches it; with the id image nothing
-// is left.
+// colours others; with the 2 colours of issue 44 part P round 1, 2 labels a
+// view and 3 leaders off their glyph; 5 colours since round 2): the check
+// above catches it; with the id
+// image nothing is left.
 TEST(MainViewLabels, PlacementWithoutIdImageMisnamesGlyphs) {
   const auto data = test::shared_data_dir();
   if (!data) GTEST_SKIP() << "no ../shared/data";
   const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
   std::size_t wrong_with = 0, wrong_without = 0;
-  std::vector<std::string> on_other;
   for (const char* file : {"meshes/livesu2016_skeleton/warrior.mesh", "meshes/gao2016_sweeping/Dolphin_padded.mesh"}) {
     const Case c = analyse(read_hex_mesh(*data / file).mesh);
     const MainViewOptions options;
@@ -601,13 +602,11 @@ TEST(MainViewLabels, PlacementWithoutIdImageMisnamesGlyphs) {
       const MainViewLabels without = main_view_labels(c.mesh, c.topology, c.glyphs, &c.overlap, direction, options);
       wrong_with += labels_off_their_glyph(with, with.ids).size();
       wrong_without += labels_off_their_glyph(without, with.ids).size();
-      for (const std::string& w : leaders_on_other_glyphs(without, with.ids)) on_other.push_back(w);
       EXPECT_TRUE(leaders_on_other_glyphs(with, with.ids).empty());
     }
   }
   EXPECT_EQ(wrong_with, 0u);
-  EXPECT_GE(wrong_without, 10u);
-  EXPECT_GE(on_other.size(), 3u);
+  EXPECT_GE(wrong_without, 3u);
 }
 
 // bunny_in (the reviewer's case): in view A the inverted #0 (min -0.003)

@@ -45,7 +45,8 @@ Camera camera_for(const Fixture& f) {
 }
 
 // Many more clusters than K: every vertex of a 4x4x4 grid is a cluster of
-// its own (rank = vertex id), K = 3.
+// its own (rank = vertex id), K = 3; the palette colours min(K, its size)
+// = 3 of them.
 TEST(MainScene, OnlyTheTopClustersAreColouredTheRestAreNeutral) {
   HexMesh mesh = test::grid(4);
   const Topology topology = build_topology(mesh);
@@ -67,20 +68,22 @@ TEST(MainScene, OnlyTheTopClustersAreColouredTheRestAreNeutral) {
   const Camera camera = fit_camera_to_points(main_view_points(mesh, topology, glyphs), {-1, -2, -3}, 1.0);
   const Scene scene = build_main_scene(mesh, topology, glyphs, nullptr, camera, 600, {});
   const Rgba8 neutral = to_rgba8(neutral_cluster_color());
-  // The three ranked glyphs in the set drawn over the grey ones; the grey
+  const Index coloured = labelled_cluster_count(3);
+  ASSERT_EQ(coloured, 3);
+  // The coloured (ranked) glyphs in the set drawn over the grey ones; the grey
   // ones but those left out where they pile up on screen.
   const GlyphsDrawn shown = main_view_glyphs_drawn(
       glyphs, camera, 600, displayed_glyph_radii(glyphs, displayed_glyph_scale(glyphs, camera, 600, 1.0)));
   ASSERT_EQ(scene.spheres.size(), 3u);
-  ASSERT_EQ(scene.spheres[1].colors.size(), 3u);
+  ASSERT_EQ(scene.spheres[1].colors.size(), static_cast<std::size_t>(coloured));
   EXPECT_TRUE(scene.spheres[2].colors.empty());  // no grey one below 0.01
-  ASSERT_EQ(scene.spheres[0].colors.size(), static_cast<std::size_t>(n - 3 - shown.num_left_out));
+  ASSERT_EQ(scene.spheres[0].colors.size(), static_cast<std::size_t>(n - coloured - shown.num_left_out));
   EXPECT_GT(scene.spheres[0].colors.size(), static_cast<std::size_t>(n) / 2);
   std::size_t grey = 0;
   for (Index v = 0; v < n; ++v) {
     if (!shown.drawn[static_cast<std::size_t>(v)]) continue;
-    const Rgba8 expected = v < 3 ? to_rgba8(labelled_cluster_color(v)) : neutral;
-    const Rgba8 drawn = v < 3 ? scene.spheres[1].colors[static_cast<std::size_t>(v)] : scene.spheres[0].colors[grey++];
+    const Rgba8 expected = v < coloured ? to_rgba8(labelled_cluster_color(v)) : neutral;
+    const Rgba8 drawn = v < coloured ? scene.spheres[1].colors[static_cast<std::size_t>(v)] : scene.spheres[0].colors[grey++];
     EXPECT_EQ(drawn, expected) << v;
   }
   // Edge colours: the lower-ranked endpoint's cluster decides; edges only
@@ -89,7 +92,7 @@ TEST(MainScene, OnlyTheTopClustersAreColouredTheRestAreNeutral) {
   std::size_t i = 0;
   for (const Edge& e : topology.edges) {
     const Index rank = std::min(e[0], e[1]);
-    if (rank >= 3) continue;
+    if (rank >= coloured) continue;
     ASSERT_LT(2 * i, scene.lines[1].colors.size());
     EXPECT_EQ(scene.lines[1].colors[2 * i], to_rgba8(labelled_cluster_color(rank))) << e[0] << "-" << e[1];
     ++i;

@@ -48,11 +48,13 @@ Color diverging_color(double t);
 
 // Colours of glyph clusters (ranked 0 = worst). The labelled clusters, the
 // first labelled_cluster_count(K) ranks, each get their own colour of a
-// 6-colour palette chosen away from the quality map (reds, oranges,
-// creams), the inverted and overlap colours and grey, #0 the red; every
+// 5-colour palette (issue 44 part P: red, teal, yellow, dark magenta, pale
+// mint; CIEDE2000 >= 20 from each other, the pale grey, the inverted ring,
+// the worst ring and the overlap colours for normal vision, >= 15 under
+// simulated protanopia, deuteranopia and tritanopia), #0 the red; every
 // other cluster wears the one neutral tone, so a colour in a picture always
 // means one legend entry.
-inline constexpr int kLabelledClusterPaletteSize = 6;
+inline constexpr int kLabelledClusterPaletteSize = 5;
 inline constexpr std::int64_t labelled_cluster_count(std::int64_t top_clusters) {
   return top_clusters < 0 ? 0 : (top_clusters > kLabelledClusterPaletteSize ? kLabelledClusterPaletteSize : top_clusters);
 }

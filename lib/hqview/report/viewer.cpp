@@ -15,6 +15,7 @@
 #include "hqview/image/colormap.h"
 #include "hqview/mesh/cell_faces.h"
 #include "hqview/quality/corner_jacobian.h"
+#include "hqview/quality/kind_vertex_quality.h"
 #include "hqview/glyph/glyph_ties.h"
 #include "hqview/report/cluster_color.h"
 #include "hqview/report/escape.h"
@@ -245,10 +246,33 @@ BoundaryData boundary_data(const Analysis& a, const ViewerBoundary& b, bool with
     return i == kNoValue ? kUndefinedColor : quality_color(quality_of_index(i));
   });
   {
+    // On a mesh of several kinds each face's corners take the vertex
+    // quality of its own cell's kind (kind_vertex_quality.h, as the overview
+    // colours them; issue 44 part P: the viewer blended a perfect hex's
+    // face with its tet neighbours' corners): 4 values per face ("per":
+    // "corner", in the face's quads order); a pure-hex mesh keeps one value
+    // per vertex and its bytes.
+    const KindVertexQuality kinds = kind_vertex_quality(a.mesh, a.field);
     std::vector<std::uint8_t> vq;
-    for (Index v : b.vertices) vq.push_back(quality_index(a.field.vertex_quality[static_cast<std::size_t>(v)]));
-    out.fields.push_back(field_json("vertex_quality", "vertex quality (min corner scaled Jacobian)", "vertex", vq,
-                                    quality_lut, -1.0, 1.0, Json::array()));
+    if (kinds.empty()) {
+      for (Index v : b.vertices) vq.push_back(quality_index(a.field.vertex_quality[static_cast<std::size_t>(v)]));
+      out.fields.push_back(field_json("vertex_quality", "vertex quality (min corner scaled Jacobian)", "vertex", vq,
+                                      quality_lut, -1.0, 1.0, Json::array()));
+    } else {
+      for (std::size_t f = 0; f < b.face_hex.size(); ++f) {
+        const auto kind = static_cast<std::size_t>(
+            b.face_hex[f] < a.mesh.num_hexes() ? CellKind::hex : volume_cell(a.mesh, b.face_hex[f]).kind);
+        for (int c = 0; c < 4; ++c) {
+          const auto v = static_cast<std::size_t>(b.vertices[b.quads[4 * f + static_cast<std::size_t>(c)]]);
+          const std::vector<double>& own = kinds.by_kind[kind];
+          const double q = v < own.size() && !std::isnan(own[v]) ? own[v] : a.field.vertex_quality[v];
+          vq.push_back(quality_index(q));
+        }
+      }
+      out.fields.push_back(field_json("vertex_quality",
+                                      "vertex quality (min corner scaled Jacobian over the face's own cell kind)",
+                                      "corner", vq, quality_lut, -1.0, 1.0, Json::array()));
+    }
     std::vector<std::uint8_t> sj;
     for (double s : face_sj) sj.push_back(quality_index(s));
     out.fields.push_back(field_json("scaled_jacobian", "cell scaled Jacobian (Verdict)", "face", sj, quality_lut, -1.0,

@@ -195,14 +195,13 @@ GlyphsDrawn main_view_glyphs_drawn(const GlyphResult& glyphs, const Camera& came
 }
 
 Rgba8 cell_kind_edge_color(CellKind kind) {
-  // Dark, saturated hues away from the quality map (pale blue-grey through
-  // tan and orange to red, blue-violet inverted), from the boundary grey
-  // kWireframeColor and from the non-conforming brown (46q review Q-M6).
+  // Away from the quality map, the non-conforming brown (46q review Q-M6)
+  // and every legend colour of view A (issue 44 part P; main_views.h).
   switch (kind) {
-    case CellKind::tet: return {30, 50, 115, 255};      // navy
-    case CellKind::wedge: return {20, 105, 40, 255};    // forest green
-    case CellKind::pyramid: return {125, 55, 175, 255};  // violet
-    default: return {40, 40, 44, 255};                  // hex: charcoal
+    case CellKind::tet: return {0, 0, 153, 255};      // dark blue
+    case CellKind::wedge: return {102, 136, 0, 255};    // olive
+    case CellKind::pyramid: return {187, 102, 136, 255};  // dusty rose
+    default: return {34, 0, 51, 255};                 // hex: near-black aubergine
   }
 }
 

@@ -33,17 +33,33 @@ namespace hq {
 
 // Colours of view A's elements (fixed, documented in the legend).
 inline constexpr Rgba8 kWireframeColor{120, 124, 134, 255};
-// Coincident vertices: near-black (the earlier orange was CIEDE2000 3.8
-// from the quality map's orange, which the viewer draws under the markers).
-inline constexpr Rgba8 kCoincidentArrowColor{25, 25, 25, 255};
-inline constexpr Rgba8 kIntersectionArrowColor{140, 20, 120, 255};
-inline constexpr Rgba8 kIntersectingCellColor{214, 40, 190, 96};  // translucent magenta
+// Coincident vertices: a dark green #005500 (issue 44 part P: the
+// near-black #191919 was CIEDE2000 4 from the worst ring's dark grey and
+// the hexes' charcoal edges; the earlier orange 3.8 from the quality map).
+// Intersections: a lilac #cc88ff for the pairs' arrows and the cells'
+// edges, the cells' faces a translucent tint of it (one meaning, one
+// colour; the dark magenta #8c1478 was 8 from the violet pyramid edges).
+// Both CIEDE2000 >= 20 from the cluster colours, the pale grey, the rings
+// and each other for normal vision and >= 15 under protanopia, deuteranopia
+// and tritanopia (image/colormap.cpp, tests/views/palette_test.cpp).
+inline constexpr Rgba8 kCoincidentArrowColor{0, 85, 0, 255};
+inline constexpr Rgba8 kIntersectionArrowColor{204, 136, 255, 255};
+inline constexpr Rgba8 kIntersectingCellColor{204, 136, 255, 96};  // translucent lilac
 
 // The edge colour of each volume kind where the views tell kinds apart (view
-// A's boundary wireframe, view D's one ring): hexes charcoal, tets navy,
-// wedges forest green, pyramids violet: dark hues in neither the quality map
-// nor the boundary grey kWireframeColor (which only a pure-hex mesh's
-// wireframe uses) nor the non-conforming brown; with a swatch per kind present.
+// A's boundary wireframe, view D's one ring): hexes a near-black aubergine
+// #220033, tets dark blue #000099, wedges olive #668800, pyramids dusty
+// rose #bb6688 (issue 44 part P, the 46r review's M3: the charcoal hex was
+// the coincident near-black, the violet pyramid the intersection magenta).
+// Each is CIEDE2000 >= 12.9 from the other kinds and from every colour of
+// view A's legend but the cluster colours (pale grey, rings, overlap
+// colours, the non-conforming brown) for normal vision and under
+// protanopia, deuteranopia and tritanopia; from the 5 cluster colours >= 15
+// for normal vision and >= 8 simulated (the issue's critical-pair bound: no
+// 4 edge colours keep 12.9 from all of them, 12.3 at best), and more
+// than 60 apart in RGB from the quality map, the inverted and undefined
+// colours, the pure-hex wireframe grey and the non-conforming brown; with a
+// swatch per kind present.
 Rgba8 cell_kind_edge_color(CellKind kind);
 inline constexpr std::size_t kMaxInteriorPyramids = 50000;
 // The legend swatches of a "cells: 64 hex, 484 tet, 16 pyramid" text
