@@ -313,6 +313,12 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
     f.bar.swatches.push_back(
         {to_color(kCalloutColor), "dashed ring: inside or on the far side", SwatchShape::dashed_ring});
   }
+  if (options.intersecting_cells > 0) {
+    const std::string plural = options.cell_noun == "hex" ? "hexes" : options.cell_noun + "s";
+    f.bar.swatches.push_back(
+        {Color{}, "intersecting " + plural + ": " + std::to_string(options.intersecting_cells), SwatchShape::text});
+    f.bar.swatches.push_back({Color{}, "drawn in the main view, not here", SwatchShape::text});
+  }
   f.layout = figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(f.bar, f.style), f.style);
   const double aspect = static_cast<double>(f.layout.view.width) / static_cast<double>(f.layout.view.height);
   f.camera = fit_camera_to_points(boundary_points(mesh, topology), view_direction_of(options), aspect, {.up = options.up});
