@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include <memory>
 
 #include "hqview/mesh/topology.h"
@@ -86,6 +88,10 @@ OverviewOptions small_overview(const std::vector<Index>& cells) {
   o.inverted_cells = cells;
   return o;
 }
+
+// The fraction of the overview's view not under an inset that the interior
+// case's model covers (measured 0.26 before issue 45f round 2, 0.37 after).
+constexpr double kFilled = 0.33;
 
 TEST(InvertedCallout, RingsInvertedHexesDeepInsideWhereTheyProject) {
   const Case c = interior_case();
@@ -212,8 +218,32 @@ TEST(InvertedInset, DrawsInteriorInvertedHexesInBlueBesideTheModel) {
   const OverviewFrame& f = plan.frame;
   // The legend names the ring styles: both sized for, the dashed one drawn.
   int rings = 0;
-  for (const ColorBarSwatch& s : f.bar.swatches) rings += s.shape != SwatchShape::box;
+  for (const ColorBarSwatch& s : f.bar.swatches)
+    rings += s.shape == SwatchShape::solid_ring || s.shape == SwatchShape::dashed_ring;
   EXPECT_EQ(rings, 2);
+  {
+    // Intersecting cells (issue 45f round 2): named with their count in the
+    // legend, as text under the rings; the view itself keeps its pixels
+    // (the overview does not draw them, and the lines fit the legend's width).
+    OverviewOptions with = o;
+    with.intersecting_cells = 18;
+    const OverviewPlan p2 = plan_quality_overview(c.mesh, c.topology, c.quality.vertex_quality, with, *renderer);
+    std::vector<std::string> texts;
+    for (const ColorBarSwatch& s : p2.frame.bar.swatches)
+      if (s.shape == SwatchShape::text) texts.push_back(s.label);
+    EXPECT_EQ(texts, (std::vector<std::string>{"intersecting hexes: 18", "drawn in the main view, not here"}));
+    const Image image2 = render_quality_overview(c.mesh, c.topology, c.quality.vertex_quality, with, *renderer);
+    const PixelRect& lg = f.layout.legend;
+    long view_diff = 0, legend_diff = 0;
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x) {
+        const bool differs = std::memcmp(&image.rgba[pixel_offset(image, x, y)], &image2.rgba[pixel_offset(image2, x, y)], 4) != 0;
+        const bool in_legend = x >= lg.x && x < lg.x + lg.width && y >= lg.y && y < lg.y + lg.height;
+        (in_legend ? legend_diff : view_diff) += differs;
+      }
+    EXPECT_EQ(view_diff, 0);
+    EXPECT_GT(legend_diff, 100) << "the two lines are drawn";
+  }
   const std::vector<InvertedCallout>& callouts = plan.callouts;
   const std::vector<InvertedInset>& insets = plan.insets;
   ASSERT_EQ(callouts.size(), 1u);
@@ -240,6 +270,13 @@ TEST(InvertedInset, DrawsInteriorInvertedHexesInBlueBesideTheModel) {
     }
   EXPECT_GT(silhouette, plan.full_view.width * plan.full_view.height / 8) << "the model is drawn, not shrunk away";
   EXPECT_EQ(covered, 0) << "model pixels under the inset";
+  // And it fills the space the insets leave (issue 45f round 2, the 45f
+  // review: drawn 0.61-0.71 of its width beside the strip, with the rest of
+  // the canvas empty): its silhouette is scaled about the view's corner
+  // until it clears the inset, not fitted into the strip's rest.
+  const long free_space = static_cast<long>(plan.full_view.width) * plan.full_view.height -
+                          static_cast<long>(r.width) * r.height;
+  EXPECT_GT(silhouette, kFilled * free_space) << silhouette << " of " << free_space;
   // The inset is inside the overview's view.
   EXPECT_GE(r.x, plan.full_view.x);
   EXPECT_LE(r.x + r.width, plan.full_view.x + plan.full_view.width);

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <memory>
+#include <string>
 #include <string_view>
 
 #include "hqview/analysis/resting_up.h"
@@ -250,6 +251,52 @@ TEST(OverviewViewpoint, TurnedCopiesAreSeenAlikeFromAnEyeOffTheAxes) {
         << "azimuth " << view_azimuth_degrees(eye.direction, up) << ", elevation " << elevation;
     EXPECT_NEAR(eye.chosen_area, first_area, 0.02 * first_area);
   }
+}
+
+TEST(OverviewViewpoint, ASymmetricModelsTurnedCopyIsNamedAlike) {
+  // Issue 45f round 2 (the 45f review's title words): a 10 x 4 x 3 slab is
+  // symmetric across its long middle plane, so the shape fixes the front's
+  // axis (across the slab) but not its sign; a dent on +y (inverted hexes)
+  // turns the eye. Turned 180 deg about z the same pixels were named "front
+  // right" and "back left"; now the front's sign goes towards the defect,
+  // so both copies are seen from the same side, with the same words and
+  // degrees.
+  HexMesh original = test::box_grid(10, 4, 3);
+  for (Vec3& p : original.points)
+    if (p.x == 6.0 && p.y == 4.0 && p.z == 1.0) p.y -= 1.6;
+  std::string first_name;
+  Vec3 first_direction;
+  for (const bool turn : {false, true}) {
+    SCOPED_TRACE(turn ? "turned 180 deg about z" : "as built");
+    const HexMesh mesh =
+        turn ? transformed(original, [](const Vec3& p) { return Vec3{10.0 - p.x, 4.0 - p.y, p.z}; }, false) : original;
+    const Topology topology = build_topology(mesh);
+    const ModelFront front = model_front_of(mesh, topology, {0.0, 0.0, 1.0});
+    EXPECT_TRUE(front.axis_from_shape);
+    EXPECT_FALSE(front.sign_from_shape);
+    EXPECT_LT(std::abs(front.front.x), 0.01) << "across the slab";
+    const QualityField q = compute_quality(mesh, topology);
+    const WorstFaces worst = worst_boundary_faces(topology, q.vertex_quality, {});
+    const OverviewViewpoint eye = choose_overview_viewpoint(mesh, topology, worst, {0.0, 0.0, 1.0});
+    const std::string name = overview_side_name(eye.direction, {0.0, 0.0, 1.0}, eye.front);
+    // The eye sees the dent's side, which is the front now.
+    EXPECT_GT(dot(-eye.direction, eye.front), 0.0);
+    EXPECT_NE(name.find(": azimuth "), std::string::npos) << name;
+    EXPECT_NE(name.find(" deg from the model's front"), std::string::npos) << name;
+    if (!turn) {
+      first_name = name;
+      first_direction = eye.direction;
+      EXPECT_EQ(name.rfind("above, front ", 0), 0u) << name;
+      continue;
+    }
+    EXPECT_LT(norm(eye.direction - Vec3{-first_direction.x, -first_direction.y, first_direction.z}), 1e-6);
+    EXPECT_EQ(name, first_name);
+  }
+  // The numbers: azimuth 30 from the front is right of it, elevation 25.
+  EXPECT_EQ(overview_side_name(overview_view_direction({0, 0, 1}, {0, -1, 0}, 30.0, 25.0), {0, 0, 1}, {0, -1, 0}),
+            "above, front right: azimuth 30, elevation 25 deg from the model's front");
+  EXPECT_EQ(overview_side_name(overview_view_direction({0, 0, 1}, {0, -1, 0}, 210.0, -15.0), {0, 0, 1}, {0, -1, 0}),
+            "below, back left: azimuth 210, elevation -15 deg from the model's front");
 }
 
 TEST(OverviewViewpoint, RockarmShowsItsInvertedHexesUnderAutoUp) {

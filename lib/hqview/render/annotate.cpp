@@ -426,7 +426,7 @@ void draw_color_bar(Image& image, const PixelRect& area, const ColorBar& bar, co
     if (swatch.shape == SwatchShape::box) {
       fill_rect(image, box, to_rgba8(swatch.color));
       outline_rect(image, box, outline, kOutlineColor);
-    } else {
+    } else if (swatch.shape != SwatchShape::text) {
       // A ring as the figure draws it: 12 arcs of 30 degrees, every other
       // one left out when dashed.
       const double width = std::max(1.5, 0.18 * m.swatch_height);

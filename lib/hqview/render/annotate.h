@@ -71,7 +71,8 @@ struct ColorBarTick {
 // A discrete legend entry drawn below the bar (e.g. "inverted").
 // A swatch's mark: a filled box, or a ring drawn solid or dashed (the
 // overview's inverted-cell rings, issue 45e: each ring style its own entry).
-enum class SwatchShape { box, solid_ring, dashed_ring };
+// text: no mark, the label alone (a count the figure names but does not draw).
+enum class SwatchShape { box, solid_ring, dashed_ring, text };
 struct ColorBarSwatch {
   Color color;
   std::string label;

@@ -169,10 +169,17 @@ std::string overview_side_name(const Vec3& view_direction, const Vec3& up, const
   const double azimuth = std::atan2(dot(eye, side), dot(eye, f)) * 180.0 / kPi;  // (-180, 180]
   const std::string height = dot(eye, u) < 0.0 ? "below, " : "above, ";
   const std::string depth = std::abs(azimuth) < 90.0 ? "front " : "back ";
-  return height + depth + (azimuth > 0.0 ? "right" : "left");
+  const long degrees = std::lround(azimuth) < 0 ? std::lround(azimuth) + 360 : std::lround(azimuth) % 360;
+  const long elevation = std::lround(std::asin(std::clamp(dot(eye, u), -1.0, 1.0)) * 180.0 / kPi);
+  return height + depth + (azimuth > 0.0 ? "right" : "left") + ": azimuth " + std::to_string(degrees) +
+         ", elevation " + std::to_string(elevation) + " deg from the model's front";
 }
 
 Vec3 model_front(const HexMesh& mesh, const Topology& topology, const Vec3& up) {
+  return model_front_of(mesh, topology, up).front;
+}
+
+ModelFront model_front_of(const HexMesh& mesh, const Topology& topology, const Vec3& up) {
   const Vec3 u = normalized(up);
   Vec3 file_front = front_of(u);
   file_front = normalized(file_front - dot(file_front, u) * u);
@@ -198,7 +205,7 @@ Vec3 model_front(const HexMesh& mesh, const Topology& topology, const Vec3& up) 
     mx += w * centres.back().x;
     my += w * centres.back().y;
   }
-  if (!(total > 0.0)) return file_front;
+  if (!(total > 0.0)) return {file_front};
   mx /= total, my /= total;
   double cxx = 0.0, cyy = 0.0, cxy = 0.0;
   for (const Weighted& c : centres) {
@@ -208,7 +215,7 @@ Vec3 model_front(const HexMesh& mesh, const Topology& topology, const Vec3& up) 
   }
   cxx /= total, cyy /= total, cxy /= total;
   const double mean = 0.5 * (cxx + cyy), half_gap = std::hypot(0.5 * (cxx - cyy), cxy);
-  if (!(mean > 0.0) || half_gap / mean < kFrontIsotropy) return file_front;
+  if (!(mean > 0.0) || half_gap / mean < kFrontIsotropy) return {file_front};
   // The larger spread's angle; the front is orthogonal to it.
   const double major = 0.5 * std::atan2(2.0 * cxy, cxx - cyy);
   const double ax = -std::sin(major), ay = std::cos(major);
@@ -222,13 +229,36 @@ Vec3 model_front(const HexMesh& mesh, const Topology& topology, const Vec3& up) 
   const double skew = m2 > 0.0 ? m3 / std::pow(m2, 1.5) : 0.0;
   const double sign = std::abs(skew) > kFrontSkew ? (skew > 0.0 ? 1.0 : -1.0)
                       : (ax != 0.0 ? (ax > 0.0 ? 1.0 : -1.0) : (ay >= 0.0 ? 1.0 : -1.0));
-  return normalized(sign * (ax * file_front + ay * side));
+  return {normalized(sign * (ax * file_front + ay * side)), true, std::abs(skew) > kFrontSkew};
 }
 
 OverviewViewpoint choose_overview_viewpoint(const HexMesh& mesh, const Topology& topology, const WorstFaces& worst,
                                             const Vec3& up) {
   OverviewViewpoint out;
-  out.front = model_front(mesh, topology, up);
+  ModelFront front = model_front_of(mesh, topology, up);
+  // A model symmetric across the plane: the front's sign towards the
+  // flagged faces (their corners' mean against the boundary's), so that a
+  // turned copy is seen from the same side of its defect.
+  if (front.axis_from_shape && !front.sign_from_shape && worst.kind != WorstFaces::Kind::none) {
+    double all = 0.0, mark = 0.0, lo = 1e300, hi = -1e300;
+    std::size_t n_all = 0, n_mark = 0;
+    for (std::size_t i = 0; i < topology.boundary_faces.size(); ++i) {
+      const Quad& q = topology.faces[static_cast<std::size_t>(topology.boundary_faces[i])];
+      for (int k = 0; k < 4; ++k) {
+        const double t = dot(mesh.points[static_cast<std::size_t>(q[static_cast<std::size_t>(k)])], front.front);
+        all += t, ++n_all, lo = std::min(lo, t), hi = std::max(hi, t);
+        if (i < worst.flagged.size() && (worst.flagged[i] & (1 << k))) mark += t, ++n_mark;
+      }
+    }
+    if (n_mark > 0 && n_all > 0) {
+      const double d = mark / static_cast<double>(n_mark) - all / static_cast<double>(n_all);
+      if (std::abs(d) > kFrontDefectOffset * (hi - lo)) {
+        if (d < 0.0) front.front = -front.front;
+        front.sign_from_shape = true;
+      }
+    }
+  }
+  out.front = front.front;
   out.direction = overview_view_direction(up, out.front, kThreeQuarterAzimuth, kThreeQuarterElevation);
   out.target = worst.kind;
   if (worst.kind == WorstFaces::Kind::none) return out;
@@ -259,6 +289,8 @@ OverviewViewpoint choose_overview_viewpoint(const HexMesh& mesh, const Topology&
   out.direction = candidates[best];
   out.is_default = false;
   out.chosen_area = score[best];
+  // A symmetric model's front is the side the eye is on (its words).
+  if (front.axis_from_shape && !front.sign_from_shape && dot(-out.direction, out.front) < 0.0) out.front = -out.front;
   return out;
 }
 

@@ -56,6 +56,14 @@ double visible_flagged_area(const HexMesh& mesh, const Topology& topology, std::
 inline constexpr double kFrontIsotropy = 0.05;  // (larger - smaller) / (larger + smaller) spread
 inline constexpr double kFrontSkew = 0.1;
 Vec3 model_front(const HexMesh& mesh, const Topology& topology, const Vec3& up);
+// The same, with whether the shape fixed its axis (the spreads differ) and
+// its sign (the skew); model_front is its `front`.
+struct ModelFront {
+  Vec3 front;
+  bool axis_from_shape = false;
+  bool sign_from_shape = false;
+};
+ModelFront model_front_of(const HexMesh& mesh, const Topology& topology, const Vec3& up);
 
 // The view direction of an eye at (azimuth, elevation) degrees around up,
 // azimuth 0 on `front` (orthogonal to up), positive turning right-handed
@@ -73,7 +81,10 @@ inline constexpr double kOverviewBelowElevations[] = {-25, -15, -40};
 std::vector<Vec3> overview_view_candidates(const Vec3& up, const Vec3& front, bool below);
 // Where such an eye sits, in words: "above" or "below", then the quarter
 // around the model's front ("front right" for azimuths in (0, 90), "back
-// right", "back left", "front left"): "above, front left".
+// right", "back left", "front left"), then the numbers (issue 45f round 2:
+// the 45f review's title words): "above, front left: azimuth 330,
+// elevation 25 deg from the model's front" (azimuth 0..359 turning
+// right-handed about up, elevation above the horizontal plane; whole degrees).
 std::string overview_side_name(const Vec3& view_direction, const Vec3& up, const Vec3& front);
 
 // The rule. Candidates: the three-quarter view (azimuth 30, elevation 25
@@ -88,11 +99,22 @@ std::string overview_side_name(const Vec3& view_direction, const Vec3& up, const
 // three-quarter view is the pose a reader recognises: Dolphin_padded's
 // flukes seen end-on made an unrecognisable thumbnail); else the best is
 // taken. Deterministic (one task per candidate, fixed order).
+// Copies (issue 45f round 2): when the shape fixes the front's axis but
+// not its sign, the sign goes towards the flagged faces (the mean of their
+// flagged corners along the axis against the mean of all boundary corners,
+// when they differ by more than kFrontDefectOffset of the boundary's extent
+// along it), so a turned copy is seen from the same side of its defect.
+inline constexpr double kFrontDefectOffset = 0.01;
+// The front's words (issue 45f round 2): when neither the shape nor the
+// defect fixes the sign (the defect on the middle plane), `front` is the
+// sign on the chosen eye's side after the choice, so a copy drawn alike is
+// named alike ("front right", not "back left" for the same pixels); the eye
+// itself does not change.
 inline constexpr double kKeepDefaultFraction = 0.5;
 inline constexpr double kNearBestFraction = 0.8;
 struct OverviewViewpoint {
   Vec3 direction;             // from the eye towards the model
-  Vec3 front;                 // model_front: the eye's azimuth 0
+  Vec3 front;                 // model_front (its sign as above): the eye's azimuth 0
   bool is_default = true;     // the three-quarter view
   double default_area = 0.0;  // visible_flagged_area of the three-quarter view
   double chosen_area = 0.0;   // and of the chosen one

@@ -286,6 +286,84 @@ double edge_opacity(const Scene& scene, const Camera& camera, int width, int hei
   return std::clamp(*middle / kOpaqueEdgePixels, kMinEdgeOpacity, 1.0);
 }
 
+// The silhouette grid's columns (rows by the view's aspect).
+constexpr int kFitGrid = 192;
+
+// The boundary's silhouette from `camera` on a grid of gw x gh cells over a
+// view of `aspect`: a cell is set when a boundary triangle covers its
+// centre or a projected corner falls in it, then grown by one cell (so that
+// a face crossing a cell's corner counts).
+std::vector<char> silhouette_mask(const HexMesh& mesh, const Topology& topology, const Camera& camera, double aspect,
+                                  int gw, int gh) {
+  std::vector<char> mask(static_cast<std::size_t>(gw) * static_cast<std::size_t>(gh), 0);
+  auto set = [&](int i, int j) {
+    if (i >= 0 && i < gw && j >= 0 && j < gh) mask[static_cast<std::size_t>(j) * gw + i] = 1;
+  };
+  for (const BoundaryPolygon& face : boundary_polygons(topology)) {
+    double gx[4], gy[4];
+    bool finite = true;
+    for (int k = 0; k < face.size; ++k) {
+      const Vec3 ndc = project_to_ndc(camera, aspect, mesh.points[static_cast<std::size_t>(face.v[static_cast<std::size_t>(k)])]);
+      gx[k] = 0.5 * (ndc.x + 1.0) * gw, gy[k] = 0.5 * (1.0 - ndc.y) * gh;
+      finite = finite && std::isfinite(gx[k]) && std::isfinite(gy[k]);
+    }
+    if (!finite) continue;
+    for (int k = 0; k < face.size; ++k) set(static_cast<int>(std::floor(gx[k])), static_cast<int>(std::floor(gy[k])));
+    for (int t = 0; t < face.size - 2; ++t) {
+      const int a = 0, b = t + 1, c = t + 2;
+      const int i0 = std::max(0, static_cast<int>(std::floor(std::min({gx[a], gx[b], gx[c]}))));
+      const int i1 = std::min(gw - 1, static_cast<int>(std::floor(std::max({gx[a], gx[b], gx[c]}))));
+      const int j0 = std::max(0, static_cast<int>(std::floor(std::min({gy[a], gy[b], gy[c]}))));
+      const int j1 = std::min(gh - 1, static_cast<int>(std::floor(std::max({gy[a], gy[b], gy[c]}))));
+      const double area = (gx[b] - gx[a]) * (gy[c] - gy[a]) - (gy[b] - gy[a]) * (gx[c] - gx[a]);
+      if (area == 0.0) continue;
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) {
+          const double px = i + 0.5, py = j + 0.5;
+          const double w0 = (gx[b] - gx[a]) * (py - gy[a]) - (gy[b] - gy[a]) * (px - gx[a]);
+          const double w1 = (gx[c] - gx[b]) * (py - gy[b]) - (gy[c] - gy[b]) * (px - gx[b]);
+          const double w2 = (gx[a] - gx[c]) * (py - gy[c]) - (gy[a] - gy[c]) * (px - gx[c]);
+          if (area > 0.0 ? (w0 >= 0.0 && w1 >= 0.0 && w2 >= 0.0) : (w0 <= 0.0 && w1 <= 0.0 && w2 <= 0.0)) set(i, j);
+        }
+    }
+  }
+  std::vector<char> grown = mask;
+  for (int j = 0; j < gh; ++j)
+    for (int i = 0; i < gw; ++i)
+      if (mask[static_cast<std::size_t>(j) * gw + i])
+        for (int dj = -1; dj <= 1; ++dj)
+          for (int di = -1; di <= 1; ++di) {
+            const int u = i + di, v = j + dj;
+            if (u >= 0 && u < gw && v >= 0 && v < gh) grown[static_cast<std::size_t>(v) * gw + u] = 1;
+          }
+  return grown;
+}
+
+// The largest fraction t (kFitSteps down to kFitMin) of `view`, anchored at
+// its top-left corner, into which the silhouette `mask` (of the model fitted
+// to the whole view) can be drawn scaled by t without a set cell touching
+// any of `slots` grown by `margin`; 0 when none.
+double largest_free_scale(const std::vector<char>& mask, int gw, int gh, const PixelRect& view,
+                          const std::vector<PixelRect>& slots, int margin) {
+  for (int step = 0; step <= 50; ++step) {
+    const double t = 1.0 - 0.01 * step;
+    const double cw = t * view.width / gw, ch = t * view.height / gh;
+    bool hit = false;
+    for (int j = 0; j < gh && !hit; ++j)
+      for (int i = 0; i < gw && !hit; ++i) {
+        if (!mask[static_cast<std::size_t>(j) * gw + i]) continue;
+        const double x0 = view.x + i * cw, x1 = x0 + cw, y0 = view.y + j * ch, y1 = y0 + ch;
+        for (const PixelRect& s : slots)
+          if (x1 > s.x - margin && x0 < s.x + s.width + margin && y1 > s.y - margin && y0 < s.y + s.height + margin) {
+            hit = true;
+            break;
+          }
+      }
+    if (!hit) return t;
+  }
+  return 0.0;
+}
+
 }  // namespace
 
 Image render_figure(Renderer& renderer, const Scene& scene, const Camera& camera, int width, int height,
@@ -317,6 +395,12 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
     f.bar.swatches.push_back({to_color(kCalloutColor), "solid ring: inverted " + plural + " in sight", SwatchShape::solid_ring});
     f.bar.swatches.push_back(
         {to_color(kCalloutColor), "dashed ring: inside or on the far side", SwatchShape::dashed_ring});
+  }
+  if (options.intersecting_cells > 0) {
+    const std::string plural = options.cell_noun == "hex" ? "hexes" : options.cell_noun + "s";
+    f.bar.swatches.push_back(
+        {Color{}, "intersecting " + plural + ": " + std::to_string(options.intersecting_cells), SwatchShape::text});
+    f.bar.swatches.push_back({Color{}, "drawn in the main view, not here", SwatchShape::text});
   }
   f.layout = figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(f.bar, f.style), f.style);
   const double aspect = static_cast<double>(f.layout.view.width) / static_cast<double>(f.layout.view.height);
@@ -354,7 +438,26 @@ OverviewPlan plan_quality_overview(const HexMesh& mesh, const Topology& topology
   const double silhouette_w = x1 > x0 ? 0.5 * (x1 - x0) * view.width : view.width;
   const double silhouette_h = y1 > y0 ? 0.5 * (y1 - y0) * view.height : view.height;
   const int margin = std::max(4, static_cast<int>(std::lround(12 * f.style.scale)));
-  const InsetStrip strip = inset_strip(view, silhouette_w, silhouette_h, count, margin);
+  InsetStrip strip = inset_strip(view, silhouette_w, silhouette_h, count, margin);
+  // The model larger where the strip leaves room (issue 45f round 2, the
+  // 45f review: it was drawn 0.61-0.71 of its width with quadrants empty):
+  // the silhouette as fitted to the whole view, scaled about the view's
+  // top-left corner until it clears the slots of the column or of the row
+  // (inset_strip with a silhouette that only fits the one or the other),
+  // when that draws it larger than the strip's rest does.
+  const int gw = kFitGrid, gh = std::max(1, static_cast<int>(std::lround(kFitGrid * static_cast<double>(view.height) / view.width)));
+  const std::vector<char> mask = silhouette_mask(mesh, topology, f.camera, aspect, gw, gh);
+  double best = std::min(strip.model.width / silhouette_w, strip.model.height / silhouette_h) /
+                std::min(view.width / silhouette_w, view.height / silhouette_h);
+  for (const InsetStrip& side : {inset_strip(view, 1.0, 1e9, count, margin), inset_strip(view, 1e9, 1.0, count, margin)}) {
+    const double t = largest_free_scale(mask, gw, gh, view, side.slots, margin);
+    if (t > best + 1e-9) {
+      best = t;
+      strip = {PixelRect{view.x, view.y, static_cast<int>(std::lround(t * view.width)),
+                         static_cast<int>(std::lround(t * view.height))},
+               side.slots};
+    }
+  }
   f.layout.view = strip.model;
   f.camera = fit_camera_to_points(points, view_direction_of(options),
                                   static_cast<double>(strip.model.width) / std::max(1, strip.model.height), {.up = options.up});

@@ -48,6 +48,10 @@ struct OverviewOptions {
   // its normal: nothing lies behind), else depth-tested (a curved surface:
   // a face on the far side stays hidden).
   bool outline_on_top = false;
+  // overlap.num_intersecting_cells: > 0 names them in the legend ("intersecting
+  // hexes: 18" / "drawn in the main view, not here"; issue 45f round 2), so
+  // the figure agrees with the numbers; the overview does not draw them.
+  long long intersecting_cells = 0;
   // On a mesh of several kinds: each boundary face's corners take the
   // vertex quality of its own cell's kind (kind_vertex_quality.h), so a hex
   // face beside tets shows the hexes' corners (46q review Q-M2); null or

@@ -217,11 +217,16 @@ std::vector<ViewFile> build_overview(ViewContext& c) {
     overview.outline_on_top = planar_view_direction(c.a).has_value();
     overview.cell_noun = c.a.mesh.triangles.empty() ? "quad" : c.a.mesh.quads.empty() ? "triangle" : "face";
   }
+  if (c.a.overlap) overview.intersecting_cells = c.a.overlap->num_intersecting_cells;
   const KindVertexQuality kinds = kind_vertex_quality(c.a.mesh, c.a.field);
   overview.kind_quality = &kinds;
+  // Where the eye is, in words and degrees from the model's front (issue
+  // 45f round 2: every overview says it, so titles of copies compare).
+  overview.title += " (from " + overview_side_name(eye.direction, overview.up, eye.front);
   if (!eye.is_default)
-    overview.title += " (from " + overview_side_name(eye.direction, overview.up, eye.front) + ", the side showing the " +
-                      (eye.target == WorstFaces::Kind::inverted ? "inverted hexes" : "worst cluster") + ")";
+    overview.title += std::string("; turned to the ") +
+                      (eye.target == WorstFaces::Kind::inverted ? "inverted hexes" : "worst cluster");
+  overview.title += ")";
   Image image = render_quality_overview(c.a.mesh, c.a.topology, c.quality(), overview, c.renderer);
   return {framed("views/overview.png", std::move(image), c)};
 }
