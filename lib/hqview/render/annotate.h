@@ -71,7 +71,10 @@ struct ColorBarTick {
 // A discrete legend entry drawn below the bar (e.g. "inverted").
 // A swatch's mark: a filled box, or a ring drawn solid or dashed (the
 // overview's inverted-cell rings, issue 45e: each ring style its own entry).
-enum class SwatchShape { box, solid_ring, dashed_ring };
+// box: a filled square (a colour of the data); rings as the figure's
+// markers; line / thick_line / dashed_line: a horizontal segment as the
+// figure draws edges (1, 2.5 and 1 times the line width, the last in 4 dashes).
+enum class SwatchShape { box, solid_ring, dashed_ring, line, thick_line, dashed_line };
 struct ColorBarSwatch {
   Color color;
   std::string label;
