@@ -396,6 +396,7 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   }
   f.scene.overlay.push_back(std::move(cells));
   edges.in_overlay = low_edges.in_overlay = halo.in_overlay = halo_core.in_overlay = true;
+  halo.over_all = halo_core.over_all = true;  // the max's whole wireframe, over nearer cells
   f.scene.lines.push_back(std::move(edges));
   f.scene.lines.push_back(std::move(low_edges));
   f.scene.lines.push_back(std::move(halo));
