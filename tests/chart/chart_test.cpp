@@ -312,8 +312,9 @@ TEST(MetricCorrelation, BarsColouredAndSortedByAgreement) {
 
 // An interval that includes 0 reads "undecided" (an open pale bar), whatever
 // the sign; a bound under 0.005 keeps 3 decimals; the count line is on every
-// chart, shape and size-weighted metrics apart; the position/grading line
-// only where most shape metrics disagree.
+// chart, shape and size-weighted metrics apart; the "why is not tested" line
+// only where most shape metrics disagree; the key defines relative_size_squared
+// as Verdict does (a relative size, not shape times size).
 TEST(MetricCorrelation, IntervalThroughZeroIsUndecided) {
   const double nan = std::nan("");
   // stretch (higher is better) rho +0.05 [-0.07, 0.15]: disagrees by sign, undecided;
@@ -352,6 +353,11 @@ TEST(MetricCorrelation, IntervalThroughZeroIsUndecided) {
   const Chart other = metric_correlation_chart(most, {900, 300, "t"});
   EXPECT_TRUE(has_text(other, "shape metrics (3): 0 agree, 2 disagree, 1 undecided"));
   EXPECT_TRUE(has_prefix(other, "Most shape metrics disagree"));
+  EXPECT_TRUE(has_prefix(other, "why is not tested here"));
+  EXPECT_FALSE(has_prefix(other, "a position or grading effect"));
+  EXPECT_TRUE(has_text(chart, "  relative_size_squared = min(\u03c4, 1/\u03c4)\u00b2, \u03c4 = its mean corner "
+                              "determinant / the mean hex volume;"));
+  EXPECT_TRUE(has_text(chart, "  shape_and_size, shear_and_size = shape, shear times relative_size_squared"));
 }
 
 // Read on the drawn image: each bar's pixels are its legend swatch's pixels

@@ -220,17 +220,41 @@ TEST(ErrorDensityView, TheBadRegionCarriesTheHighEndOfTheMap) {
     for (int dy = -2; dy <= 2 && !ok; ++dy)
       for (int dx = -2; dx <= 2 && !ok; ++dx) {
         const Rgba8 pixel = test::pixel_at(cells_image, px + dx, py + dy);
-        // A legend colour shaded by a factor in [0.85, 1] (the face's angle),
-        // the same factor on every channel: never a blend with the veil.
+        // A legend colour exactly (to 3 units): never shaded by the face's
+        // angle (that read as a higher value), never a blend with the veil.
         ok = std::any_of(legend.begin(), legend.end(), [&](const Rgba8& e) {
-          const double f = std::clamp(static_cast<double>(pixel.r + pixel.g + pixel.b) / (e.r + e.g + e.b + 1e-9), 0.85, 1.0);
-          return std::abs(pixel.r - f * e.r) <= 3 && std::abs(pixel.g - f * e.g) <= 3 && std::abs(pixel.b - f * e.b) <= 3;
+          return std::abs(pixel.r - e.r) <= 3 && std::abs(pixel.g - e.g) <= 3 && std::abs(pixel.b - e.b) <= 3;
         });
       }
     on_legend += ok;
   }
   EXPECT_LE(under_label, cells.size() / 5);
   EXPECT_GE(on_legend, (cells.size() - under_label) * 9 / 10) << on_legend << " of " << cells.size() - under_label;
+
+  // The max hex is found by its edge colour: kMaxHexEdgeColor pixels exist
+  // (10 on this small hex: the rest antialiased or behind nearer cells),
+  // all within the max hex's projected box (+8 px), and that colour is on no
+  // other mark (nor on the density map, whose colours are checked above).
+  {
+    int x_lo = cells_image.width, x_hi = -1, y_lo = cells_image.height, y_hi = -1;
+    for (Index v : mesh.hexes[static_cast<std::size_t>(worst.hex)]) {
+      const Vec3 p = transform_point(cells_ndc, mesh.points[static_cast<std::size_t>(v)]);
+      const int px = cells_view.x + static_cast<int>(std::lround((p.x + 1) / 2 * cells_view.width));
+      const int py = cells_view.y + static_cast<int>(std::lround((1 - p.y) / 2 * cells_view.height));
+      x_lo = std::min(x_lo, px), x_hi = std::max(x_hi, px), y_lo = std::min(y_lo, py), y_hi = std::max(y_hi, py);
+    }
+    int inside_box = 0, outside_box = 0;
+    for (int y = 0; y < cells_image.height; ++y)
+      for (int x = 0; x < cells_view.x + cells_view.width; ++x) {
+        const Rgba8 pixel = test::pixel_at(cells_image, x, y);
+        if (std::abs(pixel.r - kMaxHexEdgeColor.r) > 3 || std::abs(pixel.g - kMaxHexEdgeColor.g) > 3 ||
+            std::abs(pixel.b - kMaxHexEdgeColor.b) > 3)
+          continue;
+        (x >= x_lo - 8 && x <= x_hi + 8 && y >= y_lo - 8 && y <= y_hi + 8 ? inside_box : outside_box) += 1;
+      }
+    EXPECT_GE(inside_box, 5) << "the max hex " << worst.hex << " has no edges in its colour";
+    EXPECT_EQ(outside_box, 0);
+  }
 
   // Depth: of the drawn cells, one with a boundary face turned to the camera
   // is not behind the boundary; one with no boundary face (inside the box)

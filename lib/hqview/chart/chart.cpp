@@ -678,7 +678,10 @@ Chart metric_correlation_chart(std::span<const CorrelationBar> bars, const Chart
   };
   note("rows: by agreement \u2212direction\u00b7\u03c1 (direction +1: higher is better, \u22121: lower), "
        "strongest agreement on top");
-  note("(size): no better side (jacobian: its magnitude); (size-weighted): shape times the hex's size");
+  note("(size): no better side (jacobian: its magnitude); (size-weighted): the hex's size against the mean,");
+  note("  relative_size_squared = min(\u03c4, 1/\u03c4)\u00b2, \u03c4 = its mean corner determinant / the mean "
+       "hex volume;");
+  note("  shape_and_size, shear_and_size = shape, shear times relative_size_squared");
   // The count line, every figure: shape metrics and size-weighted ones apart.
   const auto tally = [](const std::array<std::size_t, 3>& c) {
     return " (" + std::to_string(c[0] + c[1] + c[2]) + "): " + std::to_string(c[0]) + " agree, " +
@@ -694,7 +697,8 @@ Chart metric_correlation_chart(std::span<const CorrelationBar> bars, const Chart
     note("(the metrics correlate with each other: they are not independent witnesses)");
     if (counts[0][1] > counts[0][0] + counts[0][2]) {
       note("Most shape metrics disagree: here the hexes they call worse have the lower error;");
-      note("a position or grading effect is the first explanation, not a verdict on the metrics");
+      note("why is not tested here (the partial \u03c1 shows what the hex size explains): not alone a verdict on "
+           "the metrics");
     }
   }
   if (!constant.empty()) {

@@ -137,8 +137,8 @@ Chart method_distribution_chart(std::span<const std::string> methods, std::span<
 // of the plot "rho [lo, hi]" (bounds to 2 decimals, 3 under 0.005) and the
 // partial. Under the key, on every chart, the count line: agree / disagree /
 // undecided of the shape metrics and of the size-weighted ones apart, and
-// when most shape metrics disagree a line naming position or grading as the
-// first explanation. Metrics whose rho
+// when most shape metrics disagree a line saying that the chart does not test
+// why (the partial rho shows what the hex size explains). Metrics whose rho
 // is NaN (constant on the mesh) are named under the chart; the key names
 // every colour and mark. count > 0: the number of hexes, in the axis title.
 struct CorrelationBar {

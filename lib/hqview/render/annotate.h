@@ -71,8 +71,11 @@ struct ColorBarTick {
 // A discrete legend entry drawn below the bar (e.g. "inverted").
 // A swatch's mark: a filled box, or a ring drawn solid or dashed (the
 // overview's inverted-cell rings, issue 45e: each ring style its own entry).
+// box: a filled square (a colour of the data); rings as the figure's
+// markers; line / thick_line / dashed_line: a horizontal segment as the
+// figure draws edges (1, 2.5 and 1 times the line width, the last in 4 dashes);
 // text: no mark, the label alone (a count the figure names but does not draw).
-enum class SwatchShape { box, solid_ring, dashed_ring, text };
+enum class SwatchShape { box, solid_ring, dashed_ring, line, thick_line, dashed_line, text };
 struct ColorBarSwatch {
   Color color;
   std::string label;

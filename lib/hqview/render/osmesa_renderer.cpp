@@ -741,7 +741,9 @@ class OsmesaRenderer final : public Renderer {
       bind_positions_and_colors(set.positions, set.colors);
       gl.LineWidth(std::clamp(set.width * static_cast<float>(kSupersampling), 1.0f, max_line_width_));
       upload(GL_ELEMENT_ARRAY_BUFFER, index_buffer_, set.indices);
+      if (set.over_all) gl.Disable(GL_DEPTH_TEST);
       gl.DrawElements(GL_LINES, static_cast<GLsizei>(set.indices.size()), GL_UNSIGNED_INT, nullptr);
+      if (set.over_all) gl.Enable(GL_DEPTH_TEST);
     }
     gl.Disable(GL_BLEND);
   }

@@ -101,6 +101,9 @@ struct LineSet {
   bool under_ranked_spheres = false;
   // Drawn in the overlay layer (6. above), not with the other lines.
   bool in_overlay = false;
+  // Drawn with no depth test, over everything drawn before it (the cells
+  // figure's max hex: its whole wireframe stays visible behind nearer cells).
+  bool over_all = false;
 };
 
 // Spheres (glyphs): centre, radius (model units, > 0) and colour each.

@@ -105,20 +105,6 @@ void add_quad(TriangleSet& set, const HexMesh& mesh, const Vec3& origin, const s
   for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) set.indices.push_back(base + i);
 }
 
-// A cell face's colour darkened by its angle to the camera, at most
-// kCellShadeDepth: full colour facing the camera, (1 - depth) edge-on.
-constexpr double kCellShadeDepth = 0.15;
-Rgba8 shade_cell_face(Rgba8 color, const HexMesh& mesh, const std::array<Index, 4>& q, const Camera& camera) {
-  const Vec3 &p0 = point(mesh, q[0]), &p1 = point(mesh, q[1]), &p2 = point(mesh, q[2]), &p3 = point(mesh, q[3]);
-  const Vec3 normal = cross(p2 - p0, p3 - p1);
-  const Vec3 to_eye = camera.is_perspective ? camera.eye - 0.25 * (p0 + p1 + p2 + p3) : camera.eye - camera.target;
-  const double n = norm(normal) * norm(to_eye);
-  const double c = n > 0 ? std::abs(dot(normal, to_eye)) / n : 1.0;
-  const double shade = 1.0 - kCellShadeDepth * (1.0 - c);
-  const auto scaled = [&](std::uint8_t v) { return static_cast<std::uint8_t>(std::lround(shade * v)); };
-  return {scaled(color.r), scaled(color.g), scaled(color.b), color.a};
-}
-
 // The densest hex drawn over everything (opaque overlay): an interior one
 // shows through the boundary, and in the cells figure through the other cells.
 void add_worst_overlay(Figure& f, const HexMesh& mesh, const ErrorDensityWorst& worst, const ErrorDensityScale& scale) {
@@ -361,9 +347,10 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
                                           renderer);
   // The veil first (blended over the background only), then the cells and
   // their edges in the overlay layer over it: no veil is ever blended over a
-  // cell, so every cell keeps its legend colour (faces at most
-  // kCellShadeDepth darker by their angle to the camera, which tells the
-  // faces of a cluster apart); the cells the boundary hides get dashed edges.
+  // cell and no face is shaded, so every face is exactly its colour-bar
+  // colour; the cells the boundary hides get dashed edges, and the max
+  // hex's edges, drawn last, are kMaxHexEdgeColor (no other mark uses it)
+  // on a white halo.
   TriangleSet veil;  // lit: its shading gives the shape
   for (Index face : topology.boundary_faces)
     add_quad(veil, mesh, f.scene.origin, topology.faces[static_cast<std::size_t>(face)], kVeilColor);
@@ -388,7 +375,7 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
     const Rgba8 color = to_rgba8(error_density_color(density[static_cast<std::size_t>(h)], scale));
     for (const auto& face : kHexFaces) {
       const std::array<Index, 4> q{hex[face[0]], hex[face[1]], hex[face[2]], hex[face[3]]};
-      add_quad(cells, mesh, f.scene.origin, q, shade_cell_face(color, mesh, q, f.camera));
+      add_quad(cells, mesh, f.scene.origin, q, color);
     }
     const double sj = cell_scaled_jacobian[static_cast<std::size_t>(h)];
     const bool low = sj < options.quality_threshold || is_verdict_sentinel(sj);
@@ -401,27 +388,29 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
       } else {  // dashed: 4 dashes and 3 gaps of equal length
         for (int d = 0; d < 7; d += 2) add_segment(set, a + (d / 7.0) * (b - a), a + ((d + 1) / 7.0) * (b - a), edge_color);
       }
-      if (h == worst.hex) {  // the max's own edges: black on a white halo
+      if (h == worst.hex) {  // the max's own edges: kMaxHexEdgeColor on a white halo
         add_segment(halo, a, b, {255, 255, 255, 255});
-        add_segment(halo_core, a, b, {0, 0, 0, 255});
+        add_segment(halo_core, a, b, kMaxHexEdgeColor);
       }
     }
   }
   f.scene.overlay.push_back(std::move(cells));
   edges.in_overlay = low_edges.in_overlay = halo.in_overlay = halo_core.in_overlay = true;
+  halo.over_all = halo_core.over_all = true;  // the max's whole wireframe, over nearer cells
   f.scene.lines.push_back(std::move(edges));
   f.scene.lines.push_back(std::move(low_edges));
   f.scene.lines.push_back(std::move(halo));
   f.scene.lines.push_back(std::move(halo_core));
   f.bar.swatches.push_back({Color{0.08, 0.08, 0.08}, "ring: max (solid: on the boundary)", SwatchShape::solid_ring});
   f.bar.swatches.push_back({Color{0.08, 0.08, 0.08}, "ring: max (dashed: interior)", SwatchShape::dashed_ring});
-  f.bar.swatches.push_back({Color{0.0, 0.0, 0.0}, "max hex: edges black on white"});
+  f.bar.swatches.push_back({to_color(kMaxHexEdgeColor), "max hex: its edges", SwatchShape::thick_line});
   f.bar.swatches.push_back({to_color(Rgba8{160, 208, 202, 255}), "boundary (veil)"});
+  f.bar.swatches.push_back({to_color(kCellEdgeColor), "edge of a drawn cell", SwatchShape::line});
   f.bar.swatches.push_back(
-      {to_color(kLowCellEdgeColor), "thick edge: SJ < " + display_number(options.quality_threshold, 3)});
+      {to_color(kLowCellEdgeColor), "thick edge: SJ < " + display_number(options.quality_threshold, 3),
+       SwatchShape::thick_line});
   if (std::find(hidden.begin(), hidden.end(), true) != hidden.end())
-    f.bar.swatches.push_back({to_color(kCellEdgeColor), "dashed edges: behind the boundary"});
-  f.bar.swatches.push_back({to_color(kCellEdgeColor), "faces up to 15 % darker by their angle"});
+    f.bar.swatches.push_back({to_color(kCellEdgeColor), "dashed: behind the boundary", SwatchShape::dashed_line});
   return finish_figure(f, mesh, worst, options, renderer, camera, view);
 }
 

@@ -42,6 +42,11 @@
 
 namespace hq {
 
+// The edges of the cells figure's max hex: magenta, a colour no other mark
+// of the figure uses (not on the density map, the veil, the black SJ edges or
+// the grey cell edges), so the max is found by its edge colour alone.
+inline constexpr Rgba8 kMaxHexEdgeColor{204, 0, 204, 255};
+
 // The colour scale: log10 of the density from lo to hi (both > 0), the same
 // for every mesh (a colour means the same density on any mesh, so a good
 // mesh stays pale and pages side by side compare; 1 = an H1 error equal to
