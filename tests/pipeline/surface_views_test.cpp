@@ -270,6 +270,10 @@ TEST(SurfaceViews, EveryInvertedFaceShowsOverTheGlyphs) {
     AnalyzeOptions options;
     options.mesh_path = dir.write("pushed.obj", obj_text(g));
     options.tool_version = "test";
+    // Without the overlap check: the folded quads also intersect their
+    // neighbours (issue 47 part E), and the intersecting cells' translucent
+    // tint over them is another finding; this test is about the glyph.
+    options.overlap = std::nullopt;
     const Analysis a = analyze_mesh(options);
     expect_inverted_faces_visible(a, render_views(a, views, *renderer), true);
   }
