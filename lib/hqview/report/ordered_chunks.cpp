@@ -4,7 +4,8 @@
 #include <tbb/task_arena.h>
 
 #include <cerrno>
-#include <memory>
+#include <string>
+#include <vector>
 
 #include "hqview/core/progress.h"
 
@@ -18,23 +19,30 @@ void write_ordered_chunks(std::ostream& out, std::size_t num_chunks, const Chunk
   // Two chunks in flight per thread keep both the producers and the writer busy.
   const auto tokens = static_cast<std::size_t>(2 * tbb::this_task_arena::max_concurrency());
   struct Chunk {
-    std::size_t index;
+    std::size_t index = 0;
     std::string text;
   };
-  // Shared pointers: a producer that throws leaves nothing behind.
-  using ChunkPtr = std::shared_ptr<Chunk>;
+  // The chunks live here, one slot per token, not in the pipeline's tokens:
+  // a writer that throws cancels the pipeline, and TBB leaves the items it
+  // holds then undestroyed (LeakSanitizer found the shared pointers that
+  // were here). The last filter is serial in order, so when chunk i enters,
+  // chunk i - tokens has left and its slot i % tokens is free.
+  std::vector<Chunk> slots(tokens);
   tbb::parallel_pipeline(
       tokens,
-      tbb::make_filter<void, ChunkPtr>(tbb::filter_mode::serial_in_order, [&](tbb::flow_control& fc) -> ChunkPtr {
+      tbb::make_filter<void, Chunk*>(tbb::filter_mode::serial_in_order, [&](tbb::flow_control& fc) -> Chunk* {
         if (next == num_chunks) {
           fc.stop();
           return nullptr;
         }
-        return std::make_shared<Chunk>(Chunk{next++, {}});
-      }) & tbb::make_filter<ChunkPtr, ChunkPtr>(tbb::filter_mode::parallel, [&](ChunkPtr c) {
+        Chunk* c = &slots[next % tokens];
+        c->index = next++;
+        c->text.clear();
+        return c;
+      }) & tbb::make_filter<Chunk*, Chunk*>(tbb::filter_mode::parallel, [&](Chunk* c) {
         produce(c->index, c->text);
         return c;
-      }) & tbb::make_filter<ChunkPtr, void>(tbb::filter_mode::serial_in_order, [&](const ChunkPtr& c) {
+      }) & tbb::make_filter<Chunk*, void>(tbb::filter_mode::serial_in_order, [&](Chunk* c) {
         out.write(c->text.data(), static_cast<std::streamsize>(c->text.size()));
         throw_if_failed(out);
         progress::add_done(1);

@@ -809,6 +809,7 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
     const Index ca = ma ? glyphs.vertex_cluster[static_cast<std::size_t>(e[0])] : kNoIndex;
     const Index cb = mb ? glyphs.vertex_cluster[static_cast<std::size_t>(e[1])] : kNoIndex;
     const Index c = ca == kNoIndex ? cb : (cb == kNoIndex ? ca : std::min(ca, cb));
+    if (c == kNoIndex) return;  // marked ends in no cluster: no cluster colour
     cluster_edges.push_back(e);
     const Index slot = edge_ties[static_cast<std::size_t>(c)];
     cluster_colors.push_back(to_rgba8(cluster_color(slot < edge_coloured ? slot : -1, top)));
