@@ -382,12 +382,22 @@ void write_compressed(const ReportModel& model, std::vector<VtuArray> arrays, st
   for (std::size_t i = 0; i < arrays.size(); ++i)
     for (std::size_t k = 0; k < std::max<std::size_t>(num_blocks(i), 1); ++k) order.emplace_back(i, k);
   std::size_t next = 0;
-  const auto hand_out = [&](tbb::flow_control& fc) -> std::shared_ptr<VtuBlock> {
+  // Four blocks in flight per thread: the compressors never wait on the writer.
+  const auto tokens = static_cast<std::size_t>(4 * tbb::this_task_arena::max_concurrency());
+  // The blocks live here, one slot per token, not in the pipeline's tokens:
+  // a stage that throws cancels the pipeline, and TBB leaves the items it
+  // holds then undestroyed (LeakSanitizer found the shared pointers that
+  // were here). gather is serial in order, so when block i is handed out,
+  // block i - tokens is gathered and its slot i % tokens is free.
+  std::vector<VtuBlock> slots(tokens);
+  const auto hand_out = [&](tbb::flow_control& fc) -> VtuBlock* {
     if (next == order.size()) {
       fc.stop();
       return nullptr;
     }
-    auto b = std::make_shared<VtuBlock>();
+    VtuBlock* b = &slots[next % tokens];
+    b->compressed = false;
+    b->data.clear();
     std::tie(b->array, b->block) = order[next++];
     // The first block decides for the rest of the array: the measured
     // values (doubles with noisy low bits) shrink by 6-8 % for most of the
@@ -406,7 +416,7 @@ void write_compressed(const ReportModel& model, std::vector<VtuArray> arrays, st
   std::uint64_t offset = 0;
   std::vector<std::vector<unsigned char>> blocks;
   std::vector<unsigned char> block_header;
-  const auto gather = [&](const std::shared_ptr<VtuBlock>& b) {
+  const auto gather = [&](VtuBlock* b) {
     const std::size_t n = num_blocks(b->array);
     if (n > 0) blocks.push_back(std::move(b->data));
     if (b->block + 1 < n) return;
@@ -428,9 +438,7 @@ void write_compressed(const ReportModel& model, std::vector<VtuArray> arrays, st
     blocks.clear();
   };
 
-  // Four blocks in flight per thread: the compressors never wait on the writer.
-  const auto tokens = static_cast<std::size_t>(4 * tbb::this_task_arena::max_concurrency());
-  using Token = std::shared_ptr<VtuBlock>;  // a stage that throws leaves nothing behind
+  using Token = VtuBlock*;  // a slot of `slots`
   tbb::parallel_pipeline(tokens,
                          tbb::make_filter<void, Token>(tbb::filter_mode::serial_in_order, hand_out) &
                              tbb::make_filter<Token, Token>(tbb::filter_mode::parallel,
