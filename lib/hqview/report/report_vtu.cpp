@@ -20,10 +20,10 @@
 #include "hqview/io/vtk_cells.h"
 #include "hqview/quality/hex_metrics.h"
 #include "hqview/report/deflate.h"
+#include "hqview/report/ordered_pipeline.h"
 #include "hqview/report/cell_rows.h"
 #include "hqview/report/report_csv.h"
 
-#include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
 namespace hq {
@@ -381,46 +381,33 @@ void write_compressed(const ReportModel& model, std::vector<VtuArray> arrays, st
   std::vector<std::pair<std::size_t, std::size_t>> order;  // (array, block), in file order
   for (std::size_t i = 0; i < arrays.size(); ++i)
     for (std::size_t k = 0; k < std::max<std::size_t>(num_blocks(i), 1); ++k) order.emplace_back(i, k);
-  std::size_t next = 0;
   // Four blocks in flight per thread: the compressors never wait on the writer.
   const auto tokens = static_cast<std::size_t>(4 * tbb::this_task_arena::max_concurrency());
-  // The blocks live here, one slot per token, not in the pipeline's tokens:
-  // a stage that throws cancels the pipeline, and TBB leaves the items it
-  // holds then undestroyed (LeakSanitizer found the shared pointers that
-  // were here). gather is serial in order, so when block i is handed out,
-  // block i - tokens is gathered and its slot i % tokens is free.
-  std::vector<VtuBlock> slots(tokens);
-  const auto hand_out = [&](tbb::flow_control& fc) -> VtuBlock* {
-    if (next == order.size()) {
-      fc.stop();
-      return nullptr;
-    }
-    VtuBlock* b = &slots[next % tokens];
-    b->compressed = false;
-    b->data.clear();
-    std::tie(b->array, b->block) = order[next++];
+  const auto hand_out = [&](std::size_t i, VtuBlock& b) {
+    b.compressed = false;
+    b.data.clear();
+    std::tie(b.array, b.block) = order[i];
     // The first block decides for the rest of the array: the measured
     // values (doubles with noisy low bits) shrink by 6-8 % for most of the
     // time of the whole file, and the coordinates by 16-22 % (at 363k hexes,
     // 1.4 MB saved for 30 ms), so an array whose first block keeps more than
     // kStoreAbove of its size is stored (zlib streams of stored blocks). The
     // choice depends on the data only, never on the thread count.
-    if (num_blocks(b->array) == 0)
-      b->compressed = true;
-    else if (b->block == 0)
-      stored[b->array] = compress(*b) > kStoreAbove;
-    return b;
+    if (num_blocks(b.array) == 0)
+      b.compressed = true;
+    else if (b.block == 0)
+      stored[b.array] = compress(b) > kStoreAbove;
   };
 
   // Gathered in order; an array is written when its last block is in.
   std::uint64_t offset = 0;
   std::vector<std::vector<unsigned char>> blocks;
   std::vector<unsigned char> block_header;
-  const auto gather = [&](VtuBlock* b) {
-    const std::size_t n = num_blocks(b->array);
-    if (n > 0) blocks.push_back(std::move(b->data));
-    if (b->block + 1 < n) return;
-    VtuArray& a = arrays[b->array];
+  const auto gather = [&](VtuBlock& b) {
+    const std::size_t n = num_blocks(b.array);
+    if (n > 0) blocks.push_back(std::move(b.data));
+    if (b.block + 1 < n) return;
+    VtuArray& a = arrays[b.array];
     a.info.offset = offset;
     block_header.assign((3 + n) * sizeof(std::uint64_t), 0);
     const auto put = [&](std::size_t i, std::uint64_t v) { store_little_endian(v, &block_header[8 * i]); };
@@ -438,15 +425,12 @@ void write_compressed(const ReportModel& model, std::vector<VtuArray> arrays, st
     blocks.clear();
   };
 
-  using Token = VtuBlock*;  // a slot of `slots`
-  tbb::parallel_pipeline(tokens,
-                         tbb::make_filter<void, Token>(tbb::filter_mode::serial_in_order, hand_out) &
-                             tbb::make_filter<Token, Token>(tbb::filter_mode::parallel,
-                                                            [&](Token b) {
-                                                              if (!b->compressed) compress(*b);
-                                                              return b;
-                                                            }) &
-                             tbb::make_filter<Token, void>(tbb::filter_mode::serial_in_order, gather));
+  run_ordered_pipeline<VtuBlock>(
+      order.size(), tokens, hand_out,
+      [&](VtuBlock& b) {
+        if (!b.compressed) compress(b);
+      },
+      gather);
 
   out.write(kTail.data(), static_cast<std::streamsize>(kTail.size()));
   const std::streampos end = out.tellp();
