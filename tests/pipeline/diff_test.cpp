@@ -6,6 +6,7 @@
 
 #include "hqview/core/error.h"
 
+#include <algorithm>
 #include <string>
 
 namespace hq {
@@ -262,6 +263,55 @@ TEST(DiffReports, SideBySideOfHybridReportsShowsTheComposition) {
   EXPECT_EQ(rows[7].difference, "0");
   EXPECT_EQ(rows[11].label, "inverted cells");
   EXPECT_NE(diff_markdown(d).find("| hex fraction (by count) | 0.25 | 0.2 | **-0.05** |"), std::string::npos);
+}
+
+// Two surface reports (issue 47): no hexahedra or boundary faces rows, the
+// quads, triangles and boundary edges instead, and the rows and notes speak
+// of faces; a surface against a hex report keeps both sides' rows and says
+// cells.
+TEST(DiffReports, SideBySideOfSurfaceReportsSpeaksOfFaces) {
+  const auto report = [](int quads, int triangles, int hexes, int inverted) {
+    const bool surface = quads + triangles > 0;
+    return std::string(R"({"schema_version": 2, "input": {"mesh": {"path": "/d/s.obj"}},
+      "headline": {"num_cells": )") + std::to_string(quads + triangles + hexes) +
+           R"(, "num_cells_by_kind": {"hex": )" + std::to_string(hexes) +
+           R"(, "tet": 0, "wedge": 0, "pyramid": 0, "quad": )" + std::to_string(quads) + R"(, "triangle": )" +
+           std::to_string(triangles) + R"(}},
+      "mesh": {"num_vertices": 81, "num_hexes": )" + std::to_string(hexes) + R"(, "num_boundary_faces": )" +
+           (surface ? "0" : "40") + R"(, "num_boundary_edges": )" + (surface ? "32" : "null") + R"(},
+      "quality": {"scaled_jacobian": {"min": -0.5, "num_inverted": )" + std::to_string(inverted) + "}}}";
+  };
+  const DiffResult d = diff_reports(report(64, 0, 0, 2), report(60, 8, 0, 3), {}, "", "");
+  ASSERT_EQ(d.side_by_side.size(), 1u);
+  EXPECT_EQ(d.side_by_side[0].cells, MeshCells::surface);
+  std::vector<std::string> labels;
+  for (const CompareTableRow& r : d.side_by_side[0].rows) labels.push_back(r.label);
+  const std::vector<std::string> expected = {"vertices", "quadrilaterals", "triangles", "min scaled Jacobian",
+                                             "mean scaled Jacobian", "p05 scaled Jacobian", "inverted faces",
+                                             "degenerate faces", "min vertex quality", "boundary edges",
+                                             "bounding box diagonal", "mean edge length"};
+  EXPECT_EQ(labels, expected);
+  EXPECT_EQ(d.side_by_side[0].rows[1].difference, "-4");
+  EXPECT_EQ(d.side_by_side[0].rows[2].difference, "+8");
+  EXPECT_TRUE(d.side_by_side[0].rows[6].is_worse);  // 2 -> 3 inverted faces
+  const std::string text = diff_text(d);
+  EXPECT_EQ(text.find("hexahedra"), std::string::npos) << text;
+  EXPECT_EQ(text.find("per hex"), std::string::npos) << text;
+  EXPECT_NE(text.find("(scaled Jacobian: per face: its lowest signed corner"), std::string::npos) << text;
+  EXPECT_NE(text.find("degenerate faces: faces whose scaled Jacobian"), std::string::npos) << text;
+
+  // A quad surface without triangles has no triangles row.
+  const DiffResult q = diff_reports(report(64, 0, 0, 2), report(64, 0, 0, 2), {}, "", "");
+  EXPECT_EQ(q.side_by_side[0].rows.size(), expected.size() - 1);
+
+  // A hex report against a surface report: both kinds of rows, "cells".
+  const DiffResult m = diff_reports(report(0, 0, 27, 0), report(64, 0, 0, 2), {}, "", "");
+  EXPECT_EQ(m.side_by_side[0].cells, MeshCells::volume);
+  labels.clear();
+  for (const CompareTableRow& r : m.side_by_side[0].rows) labels.push_back(r.label);
+  for (const char* label : {"hexahedra", "quadrilaterals", "inverted cells", "boundary faces", "boundary edges"})
+    EXPECT_NE(std::find(labels.begin(), labels.end(), label), labels.end()) << label;
+  EXPECT_NE(diff_text(m).find("per cell: Verdict's scaled Jacobian of its kind"), std::string::npos);
 }
 
 }  // namespace

@@ -122,15 +122,18 @@ std::vector<DiffSideBySide> side_by_side_tables(const json& base, const json& cu
   for (const json* j : {&base, &cur})
     if (member(*j, "mesh").empty() || member(*j, "quality").empty()) return tables;
   const json &bi = member(base, "input"), &ci = member(cur, "input");
-  tables.push_back({"mesh", file_name_at(member(bi, "mesh")), file_name_at(member(ci, "mesh")),
-                    compare_rows(compare_numbers(member(base, "headline"), member(base, "mesh"), member(base, "quality")),
-                                 compare_numbers(member(cur, "headline"), member(cur, "mesh"), member(cur, "quality")))});
+  const auto table = [](std::string what, std::string baseline_name, std::string current_name, const json& b,
+                        const json& c) {
+    const CompareNumbers bn = compare_numbers(member(b, "headline"), member(b, "mesh"), member(b, "quality"));
+    const CompareNumbers cn = compare_numbers(member(c, "headline"), member(c, "mesh"), member(c, "quality"));
+    return DiffSideBySide{std::move(what), std::move(baseline_name), std::move(current_name), compare_rows(bn, cn),
+                          mesh_cells(bn, cn)};
+  };
+  tables.push_back(table("mesh", file_name_at(member(bi, "mesh")), file_name_at(member(ci, "mesh")), base, cur));
   const json &bc = member(base, "compare"), &cc = member(cur, "compare");
   if (!bc.empty() && !cc.empty())
-    tables.push_back({"compared mesh (--compare)", file_name_at(member(bi, "compare")),
-                      file_name_at(member(ci, "compare")),
-                      compare_rows(compare_numbers(member(bc, "headline"), member(bc, "mesh"), member(bc, "quality")),
-                                   compare_numbers(member(cc, "headline"), member(cc, "mesh"), member(cc, "quality")))});
+    tables.push_back(table("compared mesh (--compare)", file_name_at(member(bi, "compare")),
+                           file_name_at(member(ci, "compare")), bc, cc));
   return tables;
 }
 
@@ -564,8 +567,9 @@ std::string side_by_side_text(const DiffSideBySide& t) {
     out += line + "\n";
   }
   // The rows' quantities, where their names are ambiguous (key_quantity.h).
-  out += "  (scaled Jacobian: " + key_quantity("quality.scaled_jacobian.min") +
-         "; degenerate hexes: " + key_quantity("quality.num_degenerate") + ")\n";
+  const std::string plural = cells_plural(t.cells);
+  out += "  (scaled Jacobian: " + key_quantity("quality.scaled_jacobian.min", t.cells) + "; degenerate " + plural +
+         ": " + key_quantity("quality.num_degenerate", t.cells) + ")\n";
   return out + "\n";
 }
 
@@ -574,13 +578,17 @@ std::string side_by_side_text(const DiffSideBySide& t) {
 std::string diff_text(const DiffResult& d) {
   std::string out;
   for (const DiffSideBySide& t : d.side_by_side) out += side_by_side_text(t);
+  // The changed keys' words follow the first mesh's cells (an index's
+  // meshes may differ: they keep the hex words).
+  const MeshCells cells = d.side_by_side.empty() ? MeshCells::hex : d.side_by_side.front().cells;
   for (const std::string& m : d.new_meshes) out += "new mesh: " + m + "\n";
   for (const std::string& m : d.vanished_meshes) out += "vanished mesh: " + m + "\n";
   for (const DiffStatusChange& s : d.status_changes)
     out += s.mesh + ": status " + s.baseline + " -> " + s.current + "\n";
   for (const DiffValue& v : d.changed)
     out += (v.mesh.empty() ? "" : v.mesh + ": ") + v.key + ": " + show(v.baseline) + " -> " + show(v.current) + " (" +
-           show_delta(v) + ")" + (key_quantity(v.key).empty() ? "" : "  [" + key_quantity(v.key) + "]") + "\n";
+           show_delta(v) + ")" + (key_quantity(v.key, cells).empty() ? "" : "  [" + key_quantity(v.key, cells) + "]") +
+           "\n";
   // Keys on one side only: once per key over an index's meshes; with the
   // value in two report.json.
   for (const auto& [what, values] : {std::pair{"added key: ", &d.added}, std::pair{"removed key: ", &d.removed}}) {

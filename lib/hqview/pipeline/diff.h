@@ -62,6 +62,7 @@ struct DiffSideBySide {
   std::string what;                          // "mesh", or "compared mesh (--compare)"
   std::string baseline_name, current_name;  // the meshes' file names (not escaped)
   std::vector<CompareTableRow> rows;
+  MeshCells cells = MeshCells::hex;  // the cells the rows' numbers run over (their words)
 };
 
 struct DiffResult {

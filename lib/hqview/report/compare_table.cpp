@@ -51,6 +51,8 @@ bool has_non_hex_cells(const CompareNumbers& n) {
   return n.num_tets > 0 || n.num_wedges > 0 || n.num_pyramids > 0;  // false on NaN
 }
 
+bool is_surface(const CompareNumbers& n) { return n.num_quads > 0 || n.num_triangles > 0; }  // false on NaN
+
 }  // namespace
 
 CompareNumbers compare_numbers(const MeshSummary& m, const QualitySummary& q, const CellComposition& c) {
@@ -72,7 +74,10 @@ CompareNumbers compare_numbers(const MeshSummary& m, const QualitySummary& q, co
           q.vertex_quality.min,
           count(m.num_boundary_faces),
           m.bbox_diagonal,
-          m.edge_length_mean};
+          m.edge_length_mean,
+          count(c.num_quads),
+          count(c.num_triangles),
+          count(m.num_boundary_edges)};
 }
 
 CompareNumbers compare_numbers(const nlohmann::json& headline, const nlohmann::json& mesh,
@@ -93,16 +98,24 @@ CompareNumbers compare_numbers(const nlohmann::json& headline, const nlohmann::j
           number_at(quality, {"vertex_quality", "min"}),
           number_at(mesh, {"num_boundary_faces"}),
           number_at(mesh, {"bbox", "diagonal"}),
-          number_at(mesh, {"edge_length", "mean"})};
+          number_at(mesh, {"edge_length", "mean"}),
+          number_at(headline, {"num_cells_by_kind", "quad"}),
+          number_at(headline, {"num_cells_by_kind", "triangle"}),
+          number_at(mesh, {"num_boundary_edges"})};
+}
+
+MeshCells mesh_cells(const CompareNumbers& m, const CompareNumbers& n) {
+  if (is_surface(m) && is_surface(n)) return MeshCells::surface;
+  if (is_surface(m) || is_surface(n) || has_non_hex_cells(m) || has_non_hex_cells(n)) return MeshCells::volume;
+  return MeshCells::hex;
 }
 
 std::vector<CompareTableRow> compare_rows(const CompareNumbers& m, const CompareNumbers& n) {
-  std::vector<CompareTableRow> rows = {
-      count_row("vertices", m.num_vertices, n.num_vertices, Better::neither),
-      count_row("hexahedra", m.num_hexes, n.num_hexes, Better::neither),
-  };
-  const bool is_hybrid = has_non_hex_cells(m) || has_non_hex_cells(n);
-  if (is_hybrid) {
+  const MeshCells cells = mesh_cells(m, n);
+  const bool any_surface = is_surface(m) || is_surface(n);
+  std::vector<CompareTableRow> rows = {count_row("vertices", m.num_vertices, n.num_vertices, Better::neither)};
+  if (cells != MeshCells::surface) rows.push_back(count_row("hexahedra", m.num_hexes, n.num_hexes, Better::neither));
+  if (has_non_hex_cells(m) || has_non_hex_cells(n)) {
     rows.push_back(count_row("cells (every kind)", m.num_cells, n.num_cells, Better::neither));
     rows.push_back(count_row("tetrahedra", m.num_tets, n.num_tets, Better::neither));
     rows.push_back(count_row("wedges", m.num_wedges, n.num_wedges, Better::neither));
@@ -110,19 +123,28 @@ std::vector<CompareTableRow> compare_rows(const CompareNumbers& m, const Compare
     rows.push_back(number_row("hex fraction (by count)", m.hex_fraction, n.hex_fraction, Better::higher));
     rows.push_back(number_row("hex fraction (by volume)", m.hex_volume_fraction, n.hex_volume_fraction, Better::higher));
   }
+  if (any_surface) {
+    rows.push_back(count_row("quadrilaterals", m.num_quads, n.num_quads, Better::neither));
+    if (m.num_triangles > 0 || n.num_triangles > 0)
+      rows.push_back(count_row("triangles", m.num_triangles, n.num_triangles, Better::neither));
+  }
+  // The scaled Jacobian's statistics run over every cell of every kind.
+  const std::string plural = cells_plural(cells);
   const std::vector<CompareTableRow> quality_rows = {
       number_row("min scaled Jacobian", m.sj_min, n.sj_min, Better::higher),
       number_row("mean scaled Jacobian", m.sj_mean, n.sj_mean, Better::higher),
       number_row("p05 scaled Jacobian", m.sj_p05, n.sj_p05, Better::higher),
-      // The scaled Jacobian's statistics run over every cell of every kind.
-      count_row(is_hybrid ? "inverted cells" : "inverted hexes", m.num_inverted, n.num_inverted, Better::lower),
-      count_row(is_hybrid ? "degenerate cells" : "degenerate hexes", m.num_degenerate, n.num_degenerate, Better::lower),
+      count_row("inverted " + plural, m.num_inverted, n.num_inverted, Better::lower),
+      count_row("degenerate " + plural, m.num_degenerate, n.num_degenerate, Better::lower),
       number_row("min vertex quality", m.vertex_quality_min, n.vertex_quality_min, Better::higher),
-      count_row("boundary faces", m.num_boundary_faces, n.num_boundary_faces, Better::neither),
-      number_row("bounding box diagonal", m.bbox_diagonal, n.bbox_diagonal, Better::neither),
-      number_row("mean edge length", m.edge_length_mean, n.edge_length_mean, Better::neither),
   };
   rows.insert(rows.end(), quality_rows.begin(), quality_rows.end());
+  if (cells != MeshCells::surface)
+    rows.push_back(count_row("boundary faces", m.num_boundary_faces, n.num_boundary_faces, Better::neither));
+  if (any_surface)
+    rows.push_back(count_row("boundary edges", m.num_boundary_edges, n.num_boundary_edges, Better::neither));
+  rows.push_back(number_row("bounding box diagonal", m.bbox_diagonal, n.bbox_diagonal, Better::neither));
+  rows.push_back(number_row("mean edge length", m.edge_length_mean, n.edge_length_mean, Better::neither));
   return rows;
 }
 

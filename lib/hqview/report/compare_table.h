@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "hqview/analysis/analysis.h"
+#include "hqview/report/key_quantity.h"
 
 namespace hq {
 
@@ -41,6 +42,10 @@ struct CompareNumbers {
   double vertex_quality_min = 0;
   double num_boundary_faces = 0;
   double bbox_diagonal = 0, edge_length_mean = 0;
+  // A surface mesh's cells and boundary edges (issue 47): headline
+  // num_cells_by_kind.quad / .triangle, mesh.num_boundary_edges; 0 on a
+  // volume mesh, NaN in a report written before surface meshes.
+  double num_quads = 0, num_triangles = 0, num_boundary_edges = 0;
 };
 
 CompareNumbers compare_numbers(const MeshSummary& mesh, const QualitySummary& quality,
@@ -51,11 +56,18 @@ CompareNumbers compare_numbers(const MeshSummary& mesh, const QualitySummary& qu
 CompareNumbers compare_numbers(const nlohmann::json& headline, const nlohmann::json& mesh,
                                const nlohmann::json& quality);
 
+// Which cells the two meshes' numbers run over: surface when both are
+// surface meshes, hex when both have only hexes, else volume (every kind).
+MeshCells mesh_cells(const CompareNumbers& mine, const CompareNumbers& theirs);
+
 // The rows, `theirs` - `mine` (is_worse: `theirs` is worse). When either
 // mesh has a tet, wedge or pyramid, the composition rows follow the
 // hexahedra row: cells (every kind), tetrahedra, wedges, pyramids, hex
 // fraction by count and by volume (lower is worse: a hex-dominant mesher
-// aims at hexes); two pure-hex meshes show none of them.
+// aims at hexes); two pure-hex meshes show none of them. When either is a
+// surface mesh: quadrilaterals (and triangles when either has one) and
+// boundary edges; two surface meshes show no hexahedra and no boundary
+// faces row. Inverted and degenerate rows name the cells (mesh_cells).
 std::vector<CompareTableRow> compare_rows(const CompareNumbers& mine, const CompareNumbers& theirs);
 
 // Precondition: analysis.compare holds a value.
