@@ -86,11 +86,11 @@ TEST(Comparison, OneColumnPerMethodAndVariantOneRowPerModel) {
 TEST(Comparison, MarkdownAndTexTables) {
   const std::vector<BatchEntry> entries = collection();
   const Comparison c = build_comparison(entries, parse_comparison_keys("quality.scaled_jacobian.min"));
-  const std::string md = comparison_markdown(c);
+  const std::string md = comparison_markdown({c});
   EXPECT_NE(md.find("| model | ec · in | ec · out | pc |"), std::string::npos) << md;
   EXPECT_NE(md.find("| bunny | -0.01 | **0.6** | **0.6** |"), std::string::npos) << md;
   EXPECT_NE(md.find("| kitten | – | failed | 0.3 |"), std::string::npos) << md;
-  const std::string tex = comparison_latex(c);
+  const std::string tex = comparison_latex({c});
   EXPECT_NE(tex.find("\\caption{min SJ (quality.scaled\\_jacobian.min; higher is better)}"), std::string::npos) << tex;
   EXPECT_NE(tex.find("bunny & -0.01 & \\textbf{0.6} & \\textbf{0.6} \\\\"), std::string::npos) << tex;
   EXPECT_NE(tex.find("kitten & -- & failed & 0.3 \\\\"), std::string::npos) << tex;
@@ -138,6 +138,77 @@ TEST(Comparison, CsvLongFormAndKeys) {
   EXPECT_EQ(keys[8].key, "fem.poisson.mean.h1_error");
   EXPECT_EQ(keys[8].direction, -1);
   EXPECT_EQ(parse_comparison_keys("fem.poisson.scaled_matrix.condition, fem.element.num_invalid").size(), 2u);
+}
+
+// A batch of volume and surface meshes (issue 47) compares them apart: a
+// group each, volume first, each over its own models with its own default
+// keys (a surface's #quads, #triangles when some mesh has one, irregular
+// interior vertices when some has them; no #H), its own chart file and
+// headings; a failed mesh joins its model's group.
+TEST(Comparison, VolumeAndSurfaceMeshesAreComparedApart) {
+  std::vector<BatchEntry> entries = collection();
+  const auto surface = [](const std::string& path, const std::string& method, const std::string& model,
+                          std::optional<double> min_sj, double quads, double triangles, double irregular) {
+    BatchEntry e = mesh(path, method, model, "", min_sj);
+    e.headline[slot("mesh.num_hexes")] = 0;
+    if (min_sj) e.surface = SurfaceCounts{quads, triangles, irregular, 4};
+    return e;
+  };
+  entries.push_back(surface("c/grid_a.obj", "ec", "grid", -0.9, 64, 0, 0));
+  entries.push_back(surface("c/grid_b.obj", "pc", "grid", 0.5, 60, 8, 2));
+  entries.push_back(surface("c/vase.obj", "pc", "vase", std::nullopt, 0, 0, 0));  // failed: no counts
+  entries.push_back(surface("c/vase_ok.obj", "ec", "vase", 0.7, 100, 0, 0));
+  const std::vector<Comparison> groups = comparison_groups(entries, nullptr);
+  ASSERT_EQ(groups.size(), 2u);
+  EXPECT_EQ(groups[0].group, "volume meshes");
+  EXPECT_EQ(group_heading(groups[1]), "Surface meshes");
+  EXPECT_EQ(groups[0].chart_file, "comparison_min_sj.svg");
+  EXPECT_EQ(groups[1].chart_file, "comparison_min_sj_surface.svg");
+  ASSERT_EQ(groups[0].rows.size(), 3u);  // bunny, kitten, rod
+  ASSERT_EQ(groups[1].rows.size(), 2u);  // grid, vase (with its failed mesh)
+  EXPECT_EQ(groups[1].rows[1].model, "vase");
+  EXPECT_EQ(groups[1].entries.size(), 4u);
+  std::vector<std::string_view> keys;
+  for (const ComparisonKey& k : groups[1].keys) keys.push_back(k.key);
+  EXPECT_EQ(keys, (std::vector<std::string_view>{"mesh.num_vertices", "surface.num_quads", "surface.num_triangles",
+                                                 "quality.scaled_jacobian.min", "quality.scaled_jacobian.mean",
+                                                 "quality.num_inverted", "boundary_error.hausdorff.relative",
+                                                 "surface.num_irregular_vertices_interior"}));
+  EXPECT_EQ(groups[0].keys.size(), 6u);  // the volume defaults, #H among them
+  EXPECT_EQ(groups[0].keys[1].key, "mesh.num_hexes");
+  // grid: ec has 0 irregular vertices, pc 2: lower is better.
+  const std::vector<ComparisonCell> irregular = comparison_cells(groups[1], groups[1].rows[0], 7);
+  EXPECT_EQ(irregular[0].text, "0");
+  EXPECT_TRUE(irregular[0].is_best);
+  EXPECT_EQ(irregular[1].text, "2");
+  const std::vector<ComparisonCell> vase = comparison_cells(groups[1], groups[1].rows[1], 1);
+  EXPECT_EQ(vase[0].text, "100");
+  EXPECT_EQ(vase[1].text, "failed");
+  // Per method, over the group's meshes only: pc's surface meshes are 2 (one failed).
+  EXPECT_EQ(groups[1].methods[1].num_meshes, 2);
+  EXPECT_EQ(groups[1].methods[1].num_failed, 1);
+  EXPECT_DOUBLE_EQ(*groups[1].methods[0].mean[3], (-0.9 + 0.7) / 2);
+
+  const std::string md = comparison_markdown(groups);
+  const std::size_t volume_at = md.find("\n## Volume meshes\n"), surface_at = md.find("\n## Surface meshes\n");
+  ASSERT_NE(volume_at, std::string::npos) << md;
+  ASSERT_NE(surface_at, std::string::npos) << md;
+  EXPECT_LT(volume_at, surface_at);
+  EXPECT_NE(md.find("\n### #quads (`surface.num_quads`)\n"), std::string::npos) << md;
+  EXPECT_NE(md.find("](comparison_min_sj_surface.svg)"), std::string::npos) << md;
+  EXPECT_EQ(md.find("| grid |", 0), md.find("| grid |", surface_at)) << "a surface model in a volume table";
+  const std::string tex = comparison_latex(groups);
+  EXPECT_NE(tex.find("\\caption{Surface meshes: \\#quads"), std::string::npos) << tex;
+
+  // One dimension: one group without a heading, the old chart name.
+  const std::vector<BatchEntry> volumes = collection();
+  const std::vector<Comparison> volume_only = comparison_groups(volumes, nullptr);
+  ASSERT_EQ(volume_only.size(), 1u);
+  EXPECT_TRUE(volume_only[0].group.empty());
+  EXPECT_EQ(comparison_markdown(volume_only).find("Volume meshes"), std::string::npos);
+  // --compare-keys: the same keys in both groups.
+  const std::vector<ComparisonKey> chosen = parse_comparison_keys("quality.scaled_jacobian.min,surface.num_quads");
+  for (const Comparison& c : comparison_groups(entries, &chosen)) EXPECT_EQ(c.keys.size(), 2u);
 }
 
 }  // namespace

@@ -381,10 +381,10 @@ std::vector<BatchEntry> parse_batch_index_json(std::string_view text, const std:
 
 namespace {
 
-// The Comparison section's tables (comparison.h), one per key.
-kainjow::mustache::data comparison_data(const std::vector<BatchEntry>& entries, const std::vector<ComparisonKey>& keys) {
+// One group of the Comparison section (comparison.h): its tables, one per
+// key, its thumbnails and its methods.
+kainjow::mustache::data comparison_data(const Comparison& c) {
   using kainjow::mustache::data;
-  const Comparison c = build_comparison(entries, keys);
   data methods = data::type::list;
   for (const MethodColumn& m : c.methods) {
     data d;
@@ -392,6 +392,11 @@ kainjow::mustache::data comparison_data(const std::vector<BatchEntry>& entries, 
     d.set("year", m.paper.year);
     d.set("title", m.paper.title);
     d.set("doi", m.paper.doi);
+    // Empty strings are true in mustache sections: flags, so that a method
+    // without a paper shows "–", not " () · doi:".
+    d.set("has_year", !m.paper.year.empty());
+    d.set("has_doi", !m.paper.doi.empty());
+    d.set("has_paper", !m.paper.empty());
     d.set("num_meshes", std::to_string(m.num_meshes));
     d.set("num_models", std::to_string(m.num_models));
     d.set("num_valid", std::to_string(m.num_valid));
@@ -471,7 +476,12 @@ kainjow::mustache::data comparison_data(const std::vector<BatchEntry>& entries, 
   d.set("tables", tables);
   d.set("methods", methods);
   d.set("keys", keys_data);
-  d.set("chart", std::string(kComparisonChartFile));
+  d.set("chart", c.chart_file);
+  d.set("has_group", !c.group.empty());  // an empty string would open a mustache section
+  d.set("group", group_heading(c));
+  d.set("group_id", c.group.substr(0, c.group.find(' ')));  // "volume", "surface"
+  d.set("chart_alt", "Min scaled Jacobian of every mesh" + (c.group.empty() ? std::string() : " (" + c.group + ")") +
+                         ", one column per method");
   d.set("has_thumbnails", any_thumbnail);
   d.set("thumbnail_rows", thumb_rows);
   d.set("columns", columns);
@@ -873,8 +883,14 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
   page.set("has_fem_correlation", has_fem_metrics(entries));
   if (has_fem_metrics(entries)) page.set("fem_correlation", fem_correlation_data(correlate_collection(entries), entries));
   page.set("has_comparison", has_comparison(entries));
-  if (has_comparison(entries))
-    page.set("comparison", comparison_data(entries, keys ? *keys : default_comparison_keys(entries)));
+  if (has_comparison(entries)) {
+    // Volume and surface meshes apart (issue 47): one group each.
+    data groups = data::type::list;
+    const std::vector<Comparison> comparisons = comparison_groups(entries, keys);
+    for (const Comparison& c : comparisons) groups.push_back(comparison_data(c));
+    page.set("comparison", groups);
+    page.set("comparison_grouped", comparisons.size() > 1);
+  }
   page.set("lightbox", std::string(report_template("lightbox.html")));
   mustache tmpl{std::string(report_template("batch_index.html.mustache"))};
   if (!tmpl.is_valid()) throw Error("batch index template: " + tmpl.error_message());
@@ -1002,11 +1018,11 @@ void write_batch_index(const std::vector<BatchEntry>& entries, const std::string
   write_file_atomically(dir / "summary.md", absolute_links_markdown(batch_summary_markdown(entries), link_base));
   write_file_atomically(dir / "junit.xml", junit_xml("hqview batch", batch_junit_cases(entries)));
   if (has_comparison(entries)) {
-    const Comparison c = build_comparison(entries, keys ? *keys : default_comparison_keys(entries));
+    const std::vector<Comparison> groups = comparison_groups(entries, keys);
     write_file_atomically(dir / "comparison.csv", comparison_csv(entries));
-    write_file_atomically(dir / "comparison.md", absolute_links_markdown(comparison_markdown(c), link_base));
-    write_file_atomically(dir / "comparison.tex", comparison_latex(c));
-    write_file_atomically(dir / kComparisonChartFile, comparison_chart_svg(entries));
+    write_file_atomically(dir / "comparison.md", absolute_links_markdown(comparison_markdown(groups), link_base));
+    write_file_atomically(dir / "comparison.tex", comparison_latex(groups));
+    for (const Comparison& c : groups) write_file_atomically(dir / c.chart_file, comparison_chart_svg(c));
   }
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <span>
 
 #include "hqview/chart/chart.h"
 #include "hqview/core/error.h"
@@ -24,7 +25,68 @@ bool is_analysed(const BatchEntry& e) { return e.status == BatchStatus::ok || e.
 
 bool needs_reference(std::string_view key) { return key.starts_with("boundary_error."); }
 
-std::optional<double> value_of(const BatchEntry& e, std::string_view key) { return e.headline[headline_slot(key)]; }
+// A headline key's value, or an index.json surface count (issue 47).
+std::optional<double> value_of(const BatchEntry& e, std::string_view key) {
+  if (!key.starts_with("surface.")) return e.headline[headline_slot(key)];
+  if (!e.surface) return std::nullopt;
+  if (key == "surface.num_quads") return e.surface->quads;
+  if (key == "surface.num_triangles") return e.surface->triangles;
+  if (key == "surface.num_irregular_vertices_interior") return e.surface->irregular_interior;
+  if (key == "surface.num_irregular_vertices_boundary") return e.surface->irregular_boundary;
+  throw Error("internal: no surface count " + std::string(key));
+}
+
+std::vector<const BatchEntry*> pointers(const std::vector<BatchEntry>& entries) {
+  std::vector<const BatchEntry*> p;
+  for (const BatchEntry& e : entries) p.push_back(&e);
+  return p;
+}
+
+bool is_surface_group(const std::vector<const BatchEntry*>& entries) {
+  return std::any_of(entries.begin(), entries.end(), [](const BatchEntry* e) { return e->surface.has_value(); }) &&
+         std::none_of(entries.begin(), entries.end(),
+                      [](const BatchEntry* e) { return !e->surface && e->status != BatchStatus::failed; });
+}
+
+std::vector<ComparisonKey> default_keys(const std::vector<const BatchEntry*>& entries) {
+  const auto some_row_has = [&](std::string_view key) {
+    return std::any_of(entries.begin(), entries.end(), [&](const BatchEntry* e) {
+      const std::optional<double> v = value_of(*e, key);
+      return v.has_value() && (!key.starts_with("surface.") || *v > 0);
+    });
+  };
+  // In table order; "?": only when some row has it (the singular edges, the
+  // finite-element errors, a surface's triangles and irregular vertices).
+  static constexpr std::string_view kVolume[] = {"mesh.num_vertices",
+                                                  "mesh.num_hexes",
+                                                  "quality.scaled_jacobian.min",
+                                                  "quality.scaled_jacobian.mean",
+                                                  "quality.num_inverted",
+                                                  "boundary_error.hausdorff.relative",
+                                                  "?structure.num_singular_edges_interior",
+                                                  "?fem.poisson.mean.l2_error",
+                                                  "?fem.poisson.mean.h1_error"};
+  static constexpr std::string_view kSurface[] = {"mesh.num_vertices",
+                                                   "surface.num_quads",
+                                                   "?surface.num_triangles",
+                                                   "quality.scaled_jacobian.min",
+                                                   "quality.scaled_jacobian.mean",
+                                                   "quality.num_inverted",
+                                                   "boundary_error.hausdorff.relative",
+                                                   "?surface.num_irregular_vertices_interior"};
+  std::vector<ComparisonKey> keys;
+  for (std::string_view name : is_surface_group(entries) ? std::span<const std::string_view>(kSurface)
+                                                         : std::span<const std::string_view>(kVolume)) {
+    const bool optional = name.starts_with('?');
+    if (optional) name.remove_prefix(1);
+    if (optional && !some_row_has(name)) continue;
+    keys.push_back(*std::find_if(comparison_keys().begin(), comparison_keys().end(),
+                                 [&](const ComparisonKey& k) { return k.key == name; }));
+  }
+  return keys;
+}
+
+Comparison build(const std::vector<const BatchEntry*>& entries, std::vector<ComparisonKey> keys);
 
 std::optional<double> median_of(std::vector<double> v) {
   if (v.empty()) return std::nullopt;
@@ -44,6 +106,8 @@ std::string csv_field(std::string_view input) {
 std::string method_heading(const MethodColumn& m) { return m.paper.year.empty() ? m.label : m.label + " (" + m.paper.year + ")"; }
 
 std::string show_mean(const std::optional<double>& v) { return v ? display_number(*v) : "–"; }
+
+
 
 }  // namespace
 
@@ -74,24 +138,17 @@ const std::vector<ComparisonKey>& comparison_keys() {
       {"headline.num_cells_by_kind.pyramid", "#pyramid", 0},
       {"headline.hex_fraction", "hex fraction", +1},
       {"headline.hex_volume_fraction", "hex fraction (volume)", +1},
+      // A surface mesh's counts (index.json meshes[].surface; issue 47).
+      {"surface.num_quads", "#quads", 0},
+      {"surface.num_triangles", "#triangles", 0},
+      {"surface.num_irregular_vertices_interior", "#irregular interior vertices", -1},
+      {"surface.num_irregular_vertices_boundary", "#irregular boundary vertices", -1},
   };
   return keys;
 }
 
 std::vector<ComparisonKey> default_comparison_keys(const std::vector<BatchEntry>& entries) {
-  std::vector<ComparisonKey> keys;
-  for (const ComparisonKey& k : comparison_keys()) {
-    if (k.key == "mesh.num_vertices" || k.key == "mesh.num_hexes" || k.key == "quality.scaled_jacobian.min" ||
-        k.key == "quality.scaled_jacobian.mean" || k.key == "quality.num_inverted" ||
-        k.key == "boundary_error.hausdorff.relative")
-      keys.push_back(k);
-    // The singular edges and the finite-element errors only when some row has them.
-    if ((k.key == "structure.num_singular_edges_interior" || k.key == "fem.poisson.mean.l2_error" ||
-         k.key == "fem.poisson.mean.h1_error") &&
-        std::any_of(entries.begin(), entries.end(), [&](const BatchEntry& e) { return value_of(e, k.key).has_value(); }))
-      keys.push_back(k);
-  }
-  return keys;
+  return default_keys(pointers(entries));
 }
 
 std::vector<ComparisonKey> parse_comparison_keys(std::string_view list) {
@@ -120,14 +177,19 @@ bool has_comparison(const std::vector<BatchEntry>& entries) {
                      [](const BatchEntry& e) { return !e.label.empty() && e.status != BatchStatus::skipped; });
 }
 
-Comparison build_comparison(const std::vector<BatchEntry>& entries, std::vector<ComparisonKey> keys) {
+namespace {
+
+Comparison build(const std::vector<const BatchEntry*>& entries, std::vector<ComparisonKey> keys) {
   Comparison c;
+  c.chart_file = kComparisonChartFile;
+  c.entries = entries;
   c.keys = std::move(keys);
   std::map<std::string, MethodColumn> methods;
   std::map<std::string, std::set<std::string>> models_of;
   std::map<std::string, ComparisonRow> rows;
   std::set<std::pair<std::string, std::string>> columns;
-  for (const BatchEntry& e : entries) {  // sorted by path: fixed order
+  for (const BatchEntry* entry : entries) {  // sorted by path: fixed order
+    const BatchEntry& e = *entry;
     if (e.status == BatchStatus::skipped) continue;
     MethodColumn& m = methods[e.label];
     m.label = e.label;
@@ -147,9 +209,9 @@ Comparison build_comparison(const std::vector<BatchEntry>& entries, std::vector<
     m.num_models = static_cast<int>(models_of[label].size());
     for (const ComparisonKey& k : c.keys) {
       std::vector<double> values;
-      for (const BatchEntry& e : entries)
-        if (e.label == label && is_analysed(e))
-          if (const auto v = value_of(e, k.key); v && std::isfinite(*v)) values.push_back(*v);
+      for (const BatchEntry* e : entries)
+        if (e->label == label && is_analysed(*e))
+          if (const auto v = value_of(*e, k.key); v && std::isfinite(*v)) values.push_back(*v);
       double sum = 0.0;
       for (double v : values) sum += v;
       m.mean.push_back(values.empty() ? std::nullopt : std::optional<double>(sum / static_cast<double>(values.size())));
@@ -160,6 +222,37 @@ Comparison build_comparison(const std::vector<BatchEntry>& entries, std::vector<
   for (auto& [key, row] : rows) c.rows.push_back(std::move(row));
   for (const auto& [label, variant] : columns) c.columns.push_back({label, variant, methods[label].paper.year});
   return c;
+}
+
+}  // namespace
+
+Comparison build_comparison(const std::vector<BatchEntry>& entries, std::vector<ComparisonKey> keys) {
+  return build(pointers(entries), std::move(keys));
+}
+
+std::vector<Comparison> comparison_groups(const std::vector<BatchEntry>& entries,
+                                          const std::vector<ComparisonKey>* keys) {
+  std::set<std::string> surface_models;
+  for (const BatchEntry& e : entries)
+    if (e.surface) surface_models.insert(e.model);
+  std::vector<const BatchEntry*> volume, surface;
+  for (const BatchEntry& e : entries)
+    (e.surface || (e.status == BatchStatus::failed && surface_models.count(e.model)) ? surface : volume).push_back(&e);
+  const auto live = [](const std::vector<const BatchEntry*>& group) {
+    return std::any_of(group.begin(), group.end(), [](const BatchEntry* e) { return e->status != BatchStatus::skipped; });
+  };
+  std::vector<Comparison> groups;
+  const bool both = live(volume) && live(surface);
+  for (const auto* group : {&volume, &surface}) {
+    if (!live(*group)) continue;
+    Comparison c = build(*group, keys ? *keys : default_keys(*group));
+    if (both) {
+      c.group = group == &volume ? "volume meshes" : "surface meshes";
+      if (group == &surface) c.chart_file = kComparisonSurfaceChartFile;
+    }
+    groups.push_back(std::move(c));
+  }
+  return groups;
 }
 
 std::vector<ComparisonCell> comparison_cells(const Comparison& c, const ComparisonRow& row, std::size_t k) {
@@ -212,12 +305,18 @@ std::string comparison_csv(const std::vector<BatchEntry>& entries) {
   return out;
 }
 
-std::string comparison_chart_svg(const std::vector<BatchEntry>& entries) {
+std::string group_heading(const Comparison& c) {
+  std::string s = c.group;
+  if (!s.empty() && s[0] >= 'a' && s[0] <= 'z') s[0] = static_cast<char>(s[0] - 'a' + 'A');
+  return s;
+}
+
+std::string comparison_chart_svg(const Comparison& c) {
   std::map<std::string, std::vector<double>> by_method;
-  for (const BatchEntry& e : entries) {
-    if (e.status == BatchStatus::skipped || e.label.empty()) continue;
-    std::vector<double>& v = by_method[e.label];
-    if (const auto x = value_of(e, "quality.scaled_jacobian.min"); x && is_analysed(e)) v.push_back(*x);
+  for (const BatchEntry* e : c.entries) {
+    if (e->status == BatchStatus::skipped || e->label.empty()) continue;
+    std::vector<double>& v = by_method[e->label];
+    if (const auto x = value_of(*e, "quality.scaled_jacobian.min"); x && is_analysed(*e)) v.push_back(*x);
   }
   std::vector<std::string> methods;
   std::vector<std::vector<double>> values;
@@ -225,19 +324,25 @@ std::string comparison_chart_svg(const std::vector<BatchEntry>& entries) {
     methods.push_back(label);
     values.push_back(std::move(v));
   }
-  const int width = std::clamp(160 + 110 * static_cast<int>(methods.size()), 480, 1600);
-  return chart_svg(method_distribution_chart(methods, values, {width, 420, "Min scaled Jacobian per mesh, by method"}));
+  // Wide enough for the title (a group's is longer).
+  const int width = std::clamp(160 + 110 * static_cast<int>(methods.size()), c.group.empty() ? 480 : 640, 1600);
+  const std::string title = std::string("Min scaled Jacobian per mesh, by method") +
+                            (c.group.empty() ? "" : " (" + c.group + ")");
+  return chart_svg(method_distribution_chart(methods, values, {width, 420, title}));
 }
 
-std::string comparison_markdown(const Comparison& c) {
-  std::string md = "# Methods compared\n\n";
+namespace {
+
+// One group's part of comparison.md; `h` its tables' heading ("##", or
+// "###" under a group heading).
+std::string group_markdown(const Comparison& c, const std::string& h) {
+  std::string md = c.group.empty() ? "" : "\n## " + group_heading(c) + "\n\n";
   md += std::to_string(c.rows.size()) + " models × " + std::to_string(c.methods.size()) + " methods (" +
         std::to_string(c.columns.size()) +
         " columns: one per method and variant). Bold: the best of a row; – no mesh; failed: the mesh failed; no "
-        "ref.: analysed without a reference.\n\n![min scaled Jacobian per mesh, by method](" +
-        std::string(kComparisonChartFile) + ")\n";
+        "ref.: analysed without a reference.\n\n![min scaled Jacobian per mesh, by method](" + c.chart_file + ")\n";
   for (std::size_t k = 0; k < c.keys.size(); ++k) {
-    md += "\n## " + std::string(c.keys[k].title) + " (`" + std::string(c.keys[k].key) + "`" +
+    md += "\n" + h + " " + std::string(c.keys[k].title) + " (`" + std::string(c.keys[k].key) + "`" +
           (c.keys[k].direction > 0 ? ", higher is better" : c.keys[k].direction < 0 ? ", lower is better" : "") +
           ")\n\n| model |";
     for (const ComparisonColumn& column : c.columns) md += " " + markdown_escape(column_heading(column)) + " |";
@@ -251,7 +356,7 @@ std::string comparison_markdown(const Comparison& c) {
       md += "\n";
     }
   }
-  md += "\n## Per method\n\n| method | meshes | models | valid (min SJ > 0) | failed |";
+  md += "\n" + h + " Per method\n\n| method | meshes | models | valid (min SJ > 0) | failed |";
   for (const ComparisonKey& k : c.keys) md += " mean / median " + std::string(k.title) + " |";
   md += "\n|---|--:|--:|--:|--:|";
   for (std::size_t i = 0; i < c.keys.size(); ++i) md += "--:|";
@@ -265,7 +370,7 @@ std::string comparison_markdown(const Comparison& c) {
   bool any_paper = false;
   for (const MethodColumn& m : c.methods) {
     if (m.paper.empty()) continue;
-    if (!any_paper) md += "\n## Papers\n\n";
+    if (!any_paper) md += "\n" + h + " Papers\n\n";
     any_paper = true;
     md += "- " + markdown_escape(m.label) + ": " + markdown_escape(m.paper.title) +
           (m.paper.year.empty() ? "" : " (" + markdown_escape(m.paper.year) + ")") +
@@ -274,7 +379,15 @@ std::string comparison_markdown(const Comparison& c) {
   return md;
 }
 
-std::string comparison_latex(const Comparison& c) {
+}  // namespace
+
+std::string comparison_markdown(const std::vector<Comparison>& groups) {
+  std::string md = "# Methods compared\n";
+  for (const Comparison& c : groups) md += (c.group.empty() ? "\n" : "") + group_markdown(c, c.group.empty() ? "##" : "###");
+  return md;
+}
+
+std::string comparison_latex(const std::vector<Comparison>& groups) {
   std::string tex =
       "% HQView: methods compared (one table per key). Needs \\usepackage{booktabs};\n"
       "% UTF-8 input (model and method names are written as they are, TeX specials escaped).\n";
@@ -283,19 +396,22 @@ std::string comparison_latex(const Comparison& c) {
     const std::string text = latex_escape(cell.text);
     return cell.is_best ? "\\textbf{" + text + "}" : text;
   };
-  for (std::size_t k = 0; k < c.keys.size(); ++k) {
-    tex += "\n\\begin{table}\n\\centering\n\\caption{" + latex_escape(c.keys[k].title) + " (" +
-           latex_escape(c.keys[k].key) +
-           (c.keys[k].direction > 0 ? "; higher is better" : c.keys[k].direction < 0 ? "; lower is better" : "") +
-           ")}\n\\begin{tabular}{l" + std::string(c.columns.size(), 'r') + "}\n\\toprule\nmodel";
-    for (const ComparisonColumn& column : c.columns) tex += " & " + latex_escape(column_heading(column));
-    tex += " \\\\\n\\midrule\n";
-    for (const ComparisonRow& row : c.rows) {
-      tex += latex_escape(row.model);
-      for (const ComparisonCell& cell : comparison_cells(c, row, k)) tex += " & " + cell_tex(cell);
-      tex += " \\\\\n";
+  for (const Comparison& c : groups) {
+    for (std::size_t k = 0; k < c.keys.size(); ++k) {
+      tex += "\n\\begin{table}\n\\centering\n\\caption{" +
+             (c.group.empty() ? std::string() : latex_escape(group_heading(c)) + ": ") +
+             latex_escape(c.keys[k].title) + " (" + latex_escape(c.keys[k].key) +
+             (c.keys[k].direction > 0 ? "; higher is better" : c.keys[k].direction < 0 ? "; lower is better" : "") +
+             ")}\n\\begin{tabular}{l" + std::string(c.columns.size(), 'r') + "}\n\\toprule\nmodel";
+      for (const ComparisonColumn& column : c.columns) tex += " & " + latex_escape(column_heading(column));
+      tex += " \\\\\n\\midrule\n";
+      for (const ComparisonRow& row : c.rows) {
+        tex += latex_escape(row.model);
+        for (const ComparisonCell& cell : comparison_cells(c, row, k)) tex += " & " + cell_tex(cell);
+        tex += " \\\\\n";
+      }
+      tex += "\\bottomrule\n\\end{tabular}\n\\end{table}\n";
     }
-    tex += "\\bottomrule\n\\end{tabular}\n\\end{table}\n";
   }
   return tex;
 }

@@ -30,7 +30,7 @@
 namespace hq {
 
 struct ComparisonKey {
-  std::string_view key;    // a kHeadlineKeys entry (report.json path)
+  std::string_view key;    // a kHeadlineKeys entry (report.json path), or an index.json surface.* count
   std::string_view title;  // column / table title
   int direction = 0;       // +1: higher is better, -1: lower is better, 0: neither
 };
@@ -38,7 +38,9 @@ struct ComparisonKey {
 // Every key a comparison can show (the headline keys), with its direction.
 const std::vector<ComparisonKey>& comparison_keys();
 // The default: #V, #H, min SJ, mean SJ, #inverted, Hausdorff, and the
-// singular interior edges when some mesh has them.
+// singular interior edges when some mesh has them; for surface meshes
+// (issue 47) #V, #quads, #triangles (when some mesh has one), min SJ, mean
+// SJ, #inverted, Hausdorff and the irregular interior vertices.
 std::vector<ComparisonKey> default_comparison_keys(const std::vector<BatchEntry>& entries);
 // `--compare-keys a,b,...`: report.json paths of headline keys. Throws
 // ValueError naming an unknown key and listing the known ones.
@@ -66,6 +68,13 @@ struct MethodColumn {
 };
 
 struct Comparison {
+  // "" when the batch holds meshes of one dimension; else "volume meshes"
+  // or "surface meshes" (comparison_groups).
+  std::string group;
+  // OUT/comparison_min_sj.svg, or OUT/comparison_min_sj_surface.svg for the
+  // surface meshes of a batch that also holds volume meshes.
+  std::string chart_file;
+  std::vector<const BatchEntry*> entries;  // the group's meshes, in path order (not owned)
   std::vector<ComparisonKey> keys;
   std::vector<MethodColumn> methods;     // sorted by label
   std::vector<ComparisonColumn> columns;  // sorted by label, then variant
@@ -77,6 +86,14 @@ std::string column_heading(const ComparisonColumn& c);
 // True when some analysed or failed row has a method label.
 bool has_comparison(const std::vector<BatchEntry>& entries);
 Comparison build_comparison(const std::vector<BatchEntry>& entries, std::vector<ComparisonKey> keys);
+
+// Volume and surface meshes are compared apart (issue 47): one Comparison
+// per dimension present, volume first, each over its own meshes with
+// `keys` (nullptr: each group's default keys). A failed mesh, whose
+// dimension is unknown, joins the group of its model's other meshes
+// (volume when none has one). The entries must outlive the comparisons.
+std::vector<Comparison> comparison_groups(const std::vector<BatchEntry>& entries,
+                                          const std::vector<ComparisonKey>* keys);
 
 // What a cell shows, and whether it is the best of its row for keys[k].
 struct ComparisonCell {
@@ -90,9 +107,16 @@ std::vector<ComparisonCell> comparison_cells(const Comparison& c, const Comparis
 std::string comparison_csv(const std::vector<BatchEntry>& entries);
 // OUT/comparison_min_sj.svg: the min scaled Jacobian of every analysed mesh,
 // one column per method (method_distribution_chart).
-std::string comparison_chart_svg(const std::vector<BatchEntry>& entries);
+// "Volume meshes", "Surface meshes", or "" (a batch of one dimension).
+std::string group_heading(const Comparison& c);
+
+// A group's chart (Comparison::chart_file): its meshes' min SJ by method.
+std::string comparison_chart_svg(const Comparison& c);
 inline constexpr const char* kComparisonChartFile = "comparison_min_sj.svg";
-std::string comparison_markdown(const Comparison& c);
-std::string comparison_latex(const Comparison& c);
+inline constexpr const char* kComparisonSurfaceChartFile = "comparison_min_sj_surface.svg";
+// Every group's tables in one file: under a heading per group when there
+// are two.
+std::string comparison_markdown(const std::vector<Comparison>& groups);
+std::string comparison_latex(const std::vector<Comparison>& groups);
 
 }  // namespace hq
