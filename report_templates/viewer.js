@@ -803,13 +803,13 @@
     info.appendChild(el('table', { id: 'picked-face' }, [
       faceKind ? row('cell', D.faces.kind_names[faceKind[f]] + ' ' + faceHex[f], 'data-cell') : row('hex', faceHex[f], 'data-hex'),
       row('scaled Jacobian', show(faceSj[f]), 'data-sj'),
-      row('boundary face', f, 'data-face')]));
+      row(D.cell_word === 'face' ? 'face' : 'boundary face', f, 'data-face')]));
     if (faceCorners) {
       var values = [];
       for (var c = 0; c < 8; ++c) values.push(show(faceCorners[8 * f + c]));
       info.appendChild(el('p', { 'data-corners': values.join(' ') }, ['corner scaled Jacobians: ' + values.join(', ')]));
     }
-    if (D.cell_data) info.appendChild(el('p', {}, ['every metric of the hex: ', el('a', { href: D.cell_data }, [D.cell_data])]));
+    if (D.cell_data) info.appendChild(el('p', {}, ['every metric of the ' + (D.cell_word || 'hex') + ': ', el('a', { href: D.cell_data }, [D.cell_data])]));
   }
   function pick(x, y) {
     var r = renderer.domElement.getBoundingClientRect();

@@ -327,7 +327,7 @@ TEST(BatchIndex, SurfaceRowsLimitedAnalysisCellCountsAndSkippedInputs) {
   BatchEntry sphere = entry("quads/sphere.obj", BatchStatus::ok);
   sphere.headline[key("mesh.num_hexes")] = 0;
   sphere.surface = SurfaceCounts{600, 0, 8, std::nullopt};
-  sphere.warnings = {std::string(kSurfaceBoundaryErrorViewsNotDrawn), std::string(kSurfaceViewerNotWritten)};
+  sphere.warnings = {std::string(kSurfaceBoundaryErrorViewsNotDrawn)};
   BatchEntry holed = entry("quads/holed.obj", BatchStatus::ok);
   holed.headline[key("mesh.num_hexes")] = 0;
   holed.surface = SurfaceCounts{200, 16, 38, 9};
@@ -346,8 +346,8 @@ TEST(BatchIndex, SurfaceRowsLimitedAnalysisCellCountsAndSkippedInputs) {
   // The limitation's text once, under the table, not under a row's path.
   EXPECT_EQ(table.find("warning: overlap is not checked"), std::string::npos);
   std::size_t once = 0;
-  for (std::size_t at = html.find("the viewer of surface meshes"); at != std::string::npos;
-       at = html.find("the viewer of surface meshes", at + 1))
+  for (std::size_t at = html.find("the boundary-error views of surface meshes"); at != std::string::npos;
+       at = html.find("the boundary-error views of surface meshes", at + 1))
     ++once;
   EXPECT_EQ(once, 1u);
   EXPECT_NE(html.find("2 with limited analysis"), std::string::npos);

@@ -22,6 +22,7 @@
 #include "hqview/render/camera.h"
 #include "hqview/render/osmesa_renderer.h"
 #include "hqview/report/report_html.h"
+#include "hqview/report/viewer.h"
 #include "hqview/views/main_views.h"
 #include "hqview/views/overview_views.h"
 #include "hqview/views/surface_views.h"
@@ -29,6 +30,7 @@
 #include "io/temp_dir.h"
 #include "support/image_probe.h"
 #include "support/surface_fixtures.h"
+#include "support/viewer_data.h"
 
 namespace hq {
 namespace {
@@ -526,6 +528,81 @@ TEST(SurfaceViews, SkippedPolygonLeavesHolesNotBoundaryInTheStructure) {
   EXPECT_EQ(r["structure"]["num_unclassified_vertices"], 6);
   EXPECT_EQ(r["structure"]["num_irregular_vertices"], 0);
   EXPECT_EQ(r["structure"]["num_patches"], 1);
+}
+
+// Issue 47 part L: the viewer draws a surface mesh. On a planar 8 x 8 grid
+// whose last quad is split into two triangles and whose vertex (4, 4) is
+// pushed across its neighbour: every face is drawn (63 quads then 2
+// triangles, each its own cell, a triangle repeating its last corner) at
+// its vertices' positions, named by kind, with its exact scaled Jacobian
+// (negative on the folded quads); the intersecting faces' edges are the
+// overlay (4 edges a quad); the page says "face", not "boundary face", and
+// has no cut of cells under the threshold.
+TEST(SurfaceViews, TheViewerDrawsEveryFaceOfASurfaceMesh) {
+  const int n = 8;
+  Grid g = planar_grid(n, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 1.0);
+  g.points[static_cast<std::size_t>(4 + (n + 1) * 4)] = {5.4, 4.3, 0.0};
+  const std::array<Index, 4> last = g.quads.back();
+  g.quads.pop_back();
+  std::string text = obj_text(g);
+  text += "f " + std::to_string(last[0] + 1) + ' ' + std::to_string(last[1] + 1) + ' ' + std::to_string(last[2] + 1) +
+          "\nf " + std::to_string(last[0] + 1) + ' ' + std::to_string(last[2] + 1) + ' ' + std::to_string(last[3] + 1) +
+          "\n";
+  const test::TempDir dir("surface_viewer");
+  AnalyzeOptions options;
+  options.mesh_path = dir.write("pushed_tri.obj", text);
+  options.tool_version = "test";
+  ReportModel model;
+  model.analysis = analyze_mesh(options);
+  model.has_viewer = true;
+  const Analysis& a = model.analysis;
+  ASSERT_EQ(a.mesh.quads.size(), 63u);
+  ASSERT_EQ(a.mesh.triangles.size(), 2u);
+  const nlohmann::json d = test::data_of(model);
+  EXPECT_EQ(d["cell_word"], "face");
+  ASSERT_EQ(d["faces"]["count"], 65);
+  const auto quads = test::array_of<std::uint32_t>(d["faces"]["quads"]);
+  const auto cells = test::array_of<std::uint32_t>(d["faces"]["hex"]);
+  const auto kinds = test::array_of<std::uint8_t>(d["faces"]["kind"]);
+  const auto sj = test::array_of<double>(d["face_scaled_jacobian"]);
+  const auto q = test::array_of<std::uint16_t>(d["vertices"]["quantised"]);
+  const auto lo = d["vertices"]["lo"].get<std::vector<double>>(), step = d["vertices"]["step"].get<std::vector<double>>();
+  ASSERT_EQ(quads.size(), 4u * 65);
+  ASSERT_EQ(q.size(), 3u * 81);  // every vertex is a face's corner
+  int folded = 0, inverted = 0;
+  for (std::size_t f = 0; f < 65; ++f) {
+    inverted += cell_is_inverted(a.field, f);
+    EXPECT_EQ(cells[f], f);
+    EXPECT_EQ(kinds[f], static_cast<std::uint8_t>(f < 63 ? CellKind::quad : CellKind::triangle));
+    EXPECT_EQ(d["faces"]["kind_names"][kinds[f]], f < 63 ? "quad" : "triangle");
+    EXPECT_EQ(sj[f], a.field.cell_scaled_jacobian[f]);  // exact
+    folded += sj[f] < 0;
+    const Index* corners = f < 63 ? a.mesh.quads[f].data() : a.mesh.triangles[f - 63].data();
+    for (int c = 0; c < 4; ++c) {
+      const Index v = corners[std::min(c, f < 63 ? 3 : 2)];
+      const std::uint32_t slot = quads[4 * f + static_cast<std::size_t>(c)];
+      for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(lo[static_cast<std::size_t>(k)] + step[static_cast<std::size_t>(k)] * q[3 * slot + static_cast<std::size_t>(k)],
+                    a.mesh.points[static_cast<std::size_t>(v)][k], step[static_cast<std::size_t>(k)])
+            << "face " << f << " corner " << c;
+    }
+  }
+  EXPECT_EQ(folded, inverted);
+  EXPECT_GT(folded, 0);
+  ASSERT_TRUE(a.overlap);
+  ASSERT_GT(a.overlap->num_intersecting_cells, 0);
+  EXPECT_EQ(d["num_intersecting_cells"], a.overlap->num_intersecting_cells);
+  std::size_t edge_floats = 0;
+  for (std::size_t f = 0; f < a.overlap->cell_intersecting.size(); ++f)
+    if (a.overlap->cell_intersecting[f]) edge_floats += (f < 63 ? 4 : 3) * 2 * 3;
+  EXPECT_EQ(test::array_of<float>(d["intersecting_edges"]).size(), edge_floats);
+  EXPECT_EQ(d["low_cells"]["count"], 0);
+  for (const ViewerFile& f : viewer_files(model))
+    if (f.relative_path == "viewer.html") {
+      EXPECT_NE(f.text.find("Click a glyph or a face."), std::string::npos);
+      EXPECT_EQ(f.text.find("boundary face"), std::string::npos);
+      EXPECT_NE(f.text.find("<label style=\"display: none\"><input type=\"checkbox\" id=\"layer-low\""), std::string::npos);
+    }
 }
 
 }  // namespace

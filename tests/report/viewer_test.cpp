@@ -26,11 +26,14 @@
 #include "hqview/quality/quality_field.h"
 #include "hqview/report/cluster_color.h"
 #include "support/fixtures.h"
+#include "support/viewer_data.h"
 
 namespace hq {
 namespace {
 
 using nlohmann::json;
+using test::array_of;
+using test::data_of;
 
 std::string b64(std::string_view s) { return base64_encode(s.data(), s.size()); }
 
@@ -53,37 +56,6 @@ TEST(Viewer, ScriptSafeJsonHasNoMarkupAndParsesBack) {
   EXPECT_EQ(json::parse(safe), original);
 }
 
-std::vector<unsigned char> decode(const std::string& s) {
-  auto value = [](char c) -> int {
-    if (c >= 'A' && c <= 'Z') return c - 'A';
-    if (c >= 'a' && c <= 'z') return c - 'a' + 26;
-    if (c >= '0' && c <= '9') return c - '0' + 52;
-    return c == '+' ? 62 : c == '/' ? 63 : -1;
-  };
-  std::vector<unsigned char> out;
-  std::uint32_t acc = 0;
-  int bits = 0;
-  for (char c : s) {
-    const int v = value(c);
-    if (v < 0) break;
-    acc = (acc << 6) | static_cast<std::uint32_t>(v);
-    bits += 6;
-    if (bits >= 8) {
-      bits -= 8;
-      out.push_back(static_cast<unsigned char>((acc >> bits) & 0xff));
-    }
-  }
-  return out;
-}
-
-template <class T>
-std::vector<T> array_of(const json& b64) {
-  const auto bytes = decode(b64.get<std::string>());
-  std::vector<T> v(bytes.size() / sizeof(T));
-  std::memcpy(v.data(), bytes.data(), v.size() * sizeof(T));
-  return v;
-}
-
 // A grid of n^3 cells whose centre vertex is pulled (8 bad interior cells);
 // `dent` also pushes a vertex at the middle of the face x = 0 inwards.
 ReportModel grid_model(int n = 4, bool dent = false) {
@@ -100,17 +72,6 @@ ReportModel grid_model(int n = 4, bool dent = false) {
       compute_glyphs(model.analysis.mesh.points, model.analysis.field.vertex_quality, 1.0, GlyphOptions{});
   model.has_viewer = true;
   return model;
-}
-
-json data_of(const ReportModel& model) {
-  for (const ViewerFile& f : viewer_files(model))
-    if (f.relative_path == "viewer/data.js") {
-      const std::string prefix = "window.HQ_VIEWER_DATA = ";
-      EXPECT_EQ(f.text.rfind(prefix, 0), 0u);
-      return json::parse(f.text.substr(prefix.size(), f.text.size() - prefix.size() - 2));
-    }
-  ADD_FAILURE() << "no data.js";
-  return {};
 }
 
 TEST(Viewer, DataDecodesToTheAnalysis) {

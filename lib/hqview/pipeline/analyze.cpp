@@ -461,8 +461,6 @@ AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
   ViewOptions views = options.views;
   views.up = views_up(in_progress.analysis, options);
   const bool is_surface = is_surface_mesh(in_progress.analysis.mesh);
-  if (renderer && is_surface && options.viewer)
-    in_progress.analysis.warnings.emplace_back(kSurfaceViewerNotWritten);
   if (renderer && is_surface && in_progress.analysis.boundary_error)
     in_progress.analysis.warnings.emplace_back(kSurfaceBoundaryErrorViewsNotDrawn);
   if (renderer) {
@@ -481,7 +479,7 @@ AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
   in_progress.finish_atlas(in_progress.analysis.timings, options.on_stage);
   model.analysis = std::move(in_progress.analysis);
   model.data.non_conforming_faces = model.analysis.topology.across_kinds;
-  model.has_viewer = renderer && options.viewer && !is_surface;
+  model.has_viewer = renderer && options.viewer;
   model.viewer_max_mb = options.viewer_max_mb;
   model.viewer_up = views.up;
   // Gates read the finished report, so any numeric key can be gated on.

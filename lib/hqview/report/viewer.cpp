@@ -212,10 +212,15 @@ BoundaryData boundary_data(const Analysis& a, const ViewerBoundary& b, bool with
   // On a mesh of several kinds, each face's cell kind (CellKind number) and
   // the kinds' names: the click names the cell ("tet 70"). Absent on a
   // pure-hex mesh, whose data keeps its bytes.
-  if (a.topology.across_kinds) {
+  // A surface mesh's faces are its quads and triangles (issue 47).
+  const bool surface = is_surface_mesh(a.mesh);
+  if (a.topology.across_kinds || surface) {
+    const auto quads = static_cast<Index>(a.mesh.quads.size());
     std::vector<std::uint8_t> kinds;
     for (Index h : b.face_hex)
-      kinds.push_back(static_cast<std::uint8_t>(h < a.mesh.num_hexes() ? CellKind::hex : volume_cell(a.mesh, h).kind));
+      kinds.push_back(static_cast<std::uint8_t>(surface               ? (h < quads ? CellKind::quad : CellKind::triangle)
+                                                : h < a.mesh.num_hexes() ? CellKind::hex
+                                                                         : volume_cell(a.mesh, h).kind));
     out.faces["kind"] = b64(kinds);
     Json names = Json::array();
     for (CellKind kind : kCellKinds) names.push_back(std::string(cell_kind_name(kind)));
@@ -365,6 +370,9 @@ std::vector<ViewerFile> viewer_files(const ReportModel& model) {
   d["name"] = message_text(a.mesh_name());  // the only text from input (docs/contract.md, "Messages are text")
   d["num_vertices"] = a.mesh_summary.num_vertices;
   d["num_hexes"] = a.mesh_summary.num_hexes;
+  // What a face's cell is called in the click's text: "hex", or a surface
+  // mesh's "face" (issue 47; absent: "hex", the bytes of a volume mesh's data).
+  if (is_surface_mesh(a.mesh)) d["cell_word"] = "face";
   d["cell_data"] = cell_data_path(model.data);  // where every value of a hex is ("": --data none)
   d["up"] = vec(model.viewer_up);
   d["boundary_reduced"] = nullptr;  // or what the budget did to the boundary
@@ -399,6 +407,17 @@ std::vector<ViewerFile> viewer_files(const ReportModel& model) {
     for (const OverlapMarker& m : a.overlap->markers)
       markers.push_back({{"kind", m.kind == MarkerKind::coincident ? "coincident" : "intersection"},
                          {"position", vec(m.position)}, {"count", m.count}});
+    // A surface mesh's intersecting cells are faces (overlap.h): their edges.
+    for (std::size_t f = 0; a.overlap->is_surface && f < a.overlap->cell_intersecting.size(); ++f) {
+      if (!a.overlap->cell_intersecting[f]) continue;
+      const std::size_t quads = a.mesh.quads.size();
+      if (f >= quads + a.mesh.triangles.size()) break;
+      const Index* v = f < quads ? a.mesh.quads[f].data() : a.mesh.triangles[f - quads].data();
+      const int n = f < quads ? 4 : 3;
+      for (int i = 0; i < n; ++i)
+        for (Index w : {v[i], v[(i + 1) % n]})
+          for (int c = 0; c < 3; ++c) intersecting.push_back(static_cast<float>(a.mesh.points[static_cast<std::size_t>(w)][c]));
+    }
     for (std::size_t h = 0; h < std::min(a.overlap->cell_intersecting.size(), a.mesh.hexes.size()); ++h) {
       if (!a.overlap->cell_intersecting[h]) continue;
       if (h >= a.mesh.hexes.size()) {  // a tet, wedge or pyramid: its CellKindTable edges
@@ -505,6 +524,7 @@ std::vector<ViewerFile> viewer_files(const ReportModel& model) {
   kainjow::mustache::data data;
   data.set("name", a.mesh_name());
   data.set("tool_version", model.tool_version);
+  data.set("surface", is_surface_mesh(a.mesh));  // a surface mesh's faces are all drawn: no "boundary"
   files.push_back({"viewer.html", page.render(data)});
   return files;
 }

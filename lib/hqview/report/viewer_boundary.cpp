@@ -12,7 +12,38 @@
 
 namespace hq {
 
+namespace {
+
+ViewerBoundary surface_faces(const Mesh& mesh) {
+  ViewerBoundary b;
+  constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> slot(mesh.points.size(), kUnused);
+  for (const auto& q : mesh.quads)
+    for (Index v : q) slot[static_cast<std::size_t>(v)] = 0;
+  for (const auto& t : mesh.triangles)
+    for (Index v : t) slot[static_cast<std::size_t>(v)] = 0;
+  for (std::size_t v = 0; v < slot.size(); ++v) {
+    if (slot[v] == kUnused) continue;
+    slot[v] = static_cast<std::uint32_t>(b.vertices.size());
+    b.vertices.push_back(static_cast<Index>(v));
+  }
+  Index cell = 0;
+  for (const auto& q : mesh.quads) {
+    for (Index v : q) b.quads.push_back(slot[static_cast<std::size_t>(v)]);
+    b.face_hex.push_back(cell++);
+  }
+  for (const auto& t : mesh.triangles) {
+    for (int i = 0; i < 4; ++i) b.quads.push_back(slot[static_cast<std::size_t>(t[static_cast<std::size_t>(std::min(i, 2))])]);
+    b.face_hex.push_back(cell++);
+  }
+  b.num_source_faces = b.face_hex.size();
+  return b;
+}
+
+}  // namespace
+
 ViewerBoundary viewer_boundary(const Analysis& a) {
+  if (is_surface_mesh(a.mesh)) return surface_faces(a.mesh);
   const Topology& t = a.topology;
   ViewerBoundary b;
   b.vertices = t.boundary_vertices;

@@ -28,7 +28,8 @@ struct ViewerBoundary {
 };
 
 // Every boundary face of the analysed mesh over all kinds (boundary_polygons),
-// as seen from outside.
+// as seen from outside; of a surface mesh (issue 47), its faces: the quads
+// then the triangles, each face's cell its own id, as the file orients them.
 ViewerBoundary viewer_boundary(const Analysis& analysis);
 
 // The boundary reduced to at most `max_faces` faces: the grid's cells start
