@@ -565,15 +565,19 @@ OverlapReport check_overlap(const Mesh& mesh, const Topology& topo, const Overla
   r.num_flagged_cells = static_cast<Index>(flagged_cells.size());
   std::vector<std::array<Index, 2>> candidates;
   if (options.mode == OverlapMode::exhaustive || !flagged_cells.empty()) {
+    // Each cell's box on its own (in parallel: the same boxes for any
+    // thread count).
     std::vector<Box3> boxes(nh);
-    if (cells.is_pure_hex()) {
-      for (std::size_t h = 0; h < nh; ++h) boxes[h] = detail::box_of(p, mesh.hexes[h].data(), 8);
-    } else {
-      for (std::size_t h = 0; h < nh; ++h) {
-        const CellCornerIds c = cells.corners(static_cast<Index>(h));
-        boxes[h] = detail::box_of(p, c.v.data(), c.n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nh, 8192), [&](const tbb::blocked_range<std::size_t>& range) {
+      for (std::size_t h = range.begin(); h != range.end(); ++h) {
+        if (cells.is_pure_hex()) {
+          boxes[h] = detail::box_of(p, mesh.hexes[h].data(), 8);
+        } else {
+          const CellCornerIds c = cells.corners(static_cast<Index>(h));
+          boxes[h] = detail::box_of(p, c.v.data(), c.n);
+        }
       }
-    }
+    });
     const std::int64_t budget = pair_budget(options, nh);
     detail::BoxPairs pairs = options.mode == OverlapMode::exhaustive
                                  ? detail::box_self_pairs(boxes, detail::BoxContact::open, budget)
