@@ -565,23 +565,26 @@ OverlapReport check_overlap(const Mesh& mesh, const Topology& topo, const Overla
   r.num_flagged_cells = static_cast<Index>(flagged_cells.size());
   std::vector<std::array<Index, 2>> candidates;
   if (options.mode == OverlapMode::exhaustive || !flagged_cells.empty()) {
-    // Each cell's box on its own (in parallel: the same boxes for any
-    // thread count).
-    std::vector<Box3> boxes(nh);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nh, 8192), [&](const tbb::blocked_range<std::size_t>& range) {
-      for (std::size_t h = range.begin(); h != range.end(); ++h) {
-        if (cells.is_pure_hex()) {
-          boxes[h] = detail::box_of(p, mesh.hexes[h].data(), 8);
-        } else {
-          const CellCornerIds c = cells.corners(static_cast<Index>(h));
-          boxes[h] = detail::box_of(p, c.v.data(), c.n);
-        }
-      }
-    });
+    const auto box_of_cell = [&](std::size_t h) {
+      if (cells.is_pure_hex()) return detail::box_of(p, mesh.hexes[h].data(), 8);
+      const CellCornerIds c = cells.corners(static_cast<Index>(h));
+      return detail::box_of(p, c.v.data(), c.n);
+    };
     const std::int64_t budget = pair_budget(options, nh);
-    detail::BoxPairs pairs = options.mode == OverlapMode::exhaustive
-                                 ? detail::box_self_pairs(boxes, detail::BoxContact::open, budget)
-                                 : detail::box_subset_pairs(boxes, flagged_cells, detail::BoxContact::open, budget);
+    detail::BoxPairs pairs;
+    if (options.mode == OverlapMode::exhaustive) {
+      // Each cell's box on its own (in parallel: the same boxes for any
+      // thread count).
+      std::vector<Box3> boxes(nh);
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nh, 8192), [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t h = range.begin(); h != range.end(); ++h) boxes[h] = box_of_cell(h);
+      });
+      pairs = detail::box_self_pairs(boxes, detail::BoxContact::open, budget);
+    } else {
+      // The flagged cells against the boxes near them, each box made as it
+      // is read (no array of every cell's box).
+      pairs = detail::box_subset_pairs(nh, box_of_cell, flagged_cells, detail::BoxContact::open, budget);
+    }
     if (pairs.is_complete)
       candidates = std::move(pairs.pairs);
     else if (!r.is_over_budget)  // a stopped E already says what was not tested
