@@ -164,18 +164,29 @@ void expect_streamed_equals_full(const std::vector<Vec3>& points, const std::vec
                                  Full full_of) {
   const CellBlockMetricField full = full_of(points, cells);
   const auto expected = summarize_cell_block(full);
-  const BlockCornerValues corners{full.corner_scaled_jacobian, full.corner_degenerate_mask, full.validity};
-  // Two choices of kept columns: a few, and the factors of a product metric
-  // with it (a tet's shape_and_size then read from shape and
-  // relative_size_squared, as the cells.csv columns make it).
+  // The cells' scaled Jacobian as the quality field computes it (a tet's:
+  // tet_scaled_jacobian), given in the last two rounds: a tet block then
+  // copies its scaled_jacobian column from it.
+  std::vector<double> field_sj;
+  if constexpr (K == CellKind::tet)
+    for (const auto& c : cells)
+      field_sj.push_back(tet_scaled_jacobian({points[static_cast<std::size_t>(c[0])], points[static_cast<std::size_t>(c[1])],
+                                              points[static_cast<std::size_t>(c[2])], points[static_cast<std::size_t>(c[3])]}));
+  // Choices of kept columns: a few, the factors of a product metric with it
+  // (a tet's shape_and_size then read from shape and relative_size_squared,
+  // as the cells.csv columns make it), none (the product computed).
   const std::vector<std::function<bool(std::string_view)>> keeps = {
       [](std::string_view name) { return name == "volume" || name == "scaled_jacobian"; },
       [](std::string_view name) {
         return name == "volume" || name == "shape" || name == "relative_size_squared" || name == "shape_and_size";
-      }};
+      },
+      [](std::string_view) { return false; },
+      [](std::string_view name) { return name == "volume" || name == "scaled_jacobian"; }};
   for (std::size_t k = 0; k < 2 * keeps.size(); ++k) {
     const auto& keep = keeps[k / 2];
     const int threads = 1 + static_cast<int>(k % 2);
+    BlockCornerValues corners{full.corner_scaled_jacobian, full.corner_degenerate_mask, full.validity};
+    if (k / 2 + 1 == keeps.size()) corners.cell_scaled_jacobian = field_sj;
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
     const SummarizedCellBlock got = summarize_cell_block_metrics<K>(points, cells, corners, keep);
     EXPECT_EQ(got.field.kind, K);
@@ -203,6 +214,24 @@ void expect_streamed_equals_full(const std::vector<Vec3>& points, const std::vec
       else
         EXPECT_TRUE(got.field.values[m].empty()) << full.names[m];
   }
+}
+
+TEST(CellMetricField, GivenScaledJacobianIsCopiedNotComputed) {
+  // A tet block given its cells' scaled Jacobian reads that column from it:
+  // values that are not the kernel's show in the summary and the kept column.
+  const std::vector<Vec3> points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+  const std::vector<std::array<Index, 4>> tets = {{0, 1, 2, 3}, {1, 2, 3, 4}};
+  const CellBlockMetricField full = compute_tet_block_metrics(points, tets);
+  const std::vector<double> given = {0.25, 0.75};
+  BlockCornerValues corners{full.corner_scaled_jacobian, full.corner_degenerate_mask, full.validity};
+  corners.cell_scaled_jacobian = given;
+  const SummarizedCellBlock got = summarize_cell_block_metrics<CellKind::tet>(
+      points, tets, corners, [](std::string_view name) { return name == "scaled_jacobian"; });
+  const auto m = static_cast<std::size_t>(TetMetric::scaled_jacobian);
+  EXPECT_EQ(got.field.values[m], given);
+  EXPECT_EQ(got.summaries[m].stats.min, 0.25);
+  EXPECT_EQ(got.summaries[m].stats.max, 0.75);
+  EXPECT_EQ(got.summaries[m].stats.mean, 0.5);
 }
 
 TEST(CellMetricField, SummarizedAsComputedEqualsTheWholeField) {

@@ -1,9 +1,12 @@
 #include "hqview/overlap/box_pairs.h"
 
 #include <CGAL/box_intersection_d.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -225,18 +228,36 @@ class SubsetGrid {
 
 BoxPairs box_subset_pairs(const std::vector<Box3>& boxes, const std::vector<Index>& subset, BoxContact contact,
                           std::int64_t max_pairs) {
+  return box_subset_pairs(boxes.size(), [&](std::size_t i) { return boxes[i]; }, subset, contact, max_pairs);
+}
+
+BoxPairs box_subset_pairs(std::size_t num_boxes, const std::function<Box3(std::size_t)>& box_at,
+                          const std::vector<Index>& subset, BoxContact contact, std::int64_t max_pairs) {
   std::vector<IndexedBox> all, some;
   for (Index i : subset) {
-    const Box3& b = boxes[static_cast<std::size_t>(i)];
+    const Box3 b = box_at(static_cast<std::size_t>(i));
     if (contact == BoxContact::closed || !is_empty(b)) some.push_back(indexed(b, static_cast<std::size_t>(i)));
   }
   if (!some.empty()) {
     const SubsetGrid grid(some);
-    for (std::size_t i = 0; i < boxes.size(); ++i) {
-      if (contact == BoxContact::open && is_empty(boxes[i])) continue;
-      const IndexedBox b = indexed(boxes[i], i);
-      if (contact == BoxContact::closed || grid.may_meet(b)) all.push_back(b);
-    }
+    // The other side's boxes made and filtered in a fixed number of slices
+    // at once, joined in index order (the same list for any thread count).
+    constexpr std::size_t kSlices = 64;
+    const std::size_t slice = (num_boxes + kSlices - 1) / kSlices;
+    std::array<std::vector<IndexedBox>, kSlices> kept;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kSlices, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t k = r.begin(); k != r.end(); ++k)
+        for (std::size_t i = k * slice; i < std::min(num_boxes, (k + 1) * slice); ++i) {
+          const Box3 box = box_at(i);
+          if (contact == BoxContact::open && is_empty(box)) continue;
+          const IndexedBox b = indexed(box, i);
+          if (contact == BoxContact::closed || grid.may_meet(b)) kept[k].push_back(b);
+        }
+    });
+    std::size_t total = 0;
+    for (const auto& part : kept) total += part.size();
+    all.reserve(total);
+    for (const auto& part : kept) all.insert(all.end(), part.begin(), part.end());
   }
   BudgetedPairs collected(max_pairs);
   auto report = [&](const IndexedBox& a, const IndexedBox& b) { collected.add(a.index, b.index); };

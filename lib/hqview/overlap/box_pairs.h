@@ -3,7 +3,9 @@
 // (CGAL::box_intersection_d behind a plain interface).
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "hqview/core/types.h"
@@ -37,6 +39,11 @@ BoxPairs box_self_pairs(const std::vector<Box3>& boxes, BoxContact contact, std:
 // fraction of the copies when the subset is small).
 BoxPairs box_subset_pairs(const std::vector<Box3>& boxes, const std::vector<Index>& subset, BoxContact contact,
                           std::int64_t max_pairs);
+// The same, box i given by box_at(i) (called from several threads at once)
+// for i < num_boxes: no array of every box (2,181,120 tets: 105 MB of
+// fresh pages for a subset of 1,154).
+BoxPairs box_subset_pairs(std::size_t num_boxes, const std::function<Box3(std::size_t)>& box_at,
+                          const std::vector<Index>& subset, BoxContact contact, std::int64_t max_pairs);
 
 // The same pairs as box_self_pairs(boxes, closed, max_pairs), found through
 // groups: the boxes of group g are boxes[first[g] .. first[g+1]) (first has

@@ -200,15 +200,27 @@ struct SolidTet {
   Box3 box;
 };
 
-std::vector<SolidTet> positive_tets(const VolumeCells& cells, const TetPoints& tp, Index cell) {
+// At most 24 (a hex's 6 quads, 4 fan tets each), held in place: no
+// allocation per tested pair.
+struct NearSolidTets {
+  std::array<SolidTet, 24> tets;
+  int n = 0;
+  const SolidTet* begin() const { return tets.data(); }
+  const SolidTet* end() const { return tets.data() + n; }
+  bool empty() const { return n == 0; }
+};
+
+// The positive tets of `cell` whose box overlaps `other_box` with volume, in
+// the solid's order.
+NearSolidTets positive_tets_near(const VolumeCells& cells, const TetPoints& tp, Index cell, const Box3& other_box) {
   const CellCornerIds corners = cells.corners(cell);
   const Vec3& centre = at(tp.points, tp.cell_base + cell);
-  std::vector<SolidTet> tets;
+  NearSolidTets tets;
   const auto keep_if_positive = [&](const TetCorners& t) {
     if (orient(t[0], t[1], t[2], t[3]) <= 0) return;
     Box3 box;
     for (const Vec3& x : t) box.add(x);
-    tets.push_back({t, box});
+    if (boxes_overlap_open(box, other_box)) tets.tets[static_cast<std::size_t>(tets.n++)] = {t, box};
   };
   const KindFaces faces = kind_faces(corners.kind);
   for (int k = 0; k < faces.n; ++k) {
@@ -231,6 +243,30 @@ std::vector<SolidTet> positive_tets(const VolumeCells& cells, const TetPoints& t
   return tets;
 }
 
+// Two tet cells whose fan tets cannot meet: a plane through a face of one
+// has that cell's corners and centre on one closed side and the other's
+// corners and centre on the other (each fan tet lies in the hull of its
+// cell's corners and centre). Exact signs: the cheap common answer of
+// interiors_meet for tets that are near but apart, with the same result as
+// testing their fan tets pairwise (1 plane test instead of up to 16 tet
+// pairs' separating axes).
+bool tet_cells_separated(const std::vector<Vec3>& p, const CellCornerIds& a, const Vec3& centre_a,
+                         const CellCornerIds& b, const Vec3& centre_b) {
+  const auto by_face_of = [&](const CellCornerIds& s, const Vec3& centre_s, const CellCornerIds& t,
+                              const Vec3& centre_t) {
+    for (std::size_t k = 0; k < 4; ++k) {
+      const Vec3 &f0 = at(p, s.v[(k + 1) % 4]), &f1 = at(p, s.v[(k + 2) % 4]), &f2 = at(p, s.v[(k + 3) % 4]);
+      const int side = orient(f0, f1, f2, at(p, s.v[k]));
+      if (side == 0 || orient(f0, f1, f2, centre_s) * side < 0) continue;
+      if (orient(f0, f1, f2, centre_t) * side > 0) continue;
+      if (std::all_of(t.begin(), t.end(), [&](Index q) { return orient(f0, f1, f2, at(p, q)) * side <= 0; }))
+        return true;
+    }
+    return false;
+  };
+  return by_face_of(a, centre_a, b, centre_b) || by_face_of(b, centre_b, a, centre_a);
+}
+
 // Where the interiors of two cells meet: their solids' interiors intersect
 // exactly when the interiors of a tet of each do (the union of a solid's
 // tets of volume is dense in it). A point at the mean of the corners of the
@@ -239,13 +275,14 @@ std::vector<SolidTet> positive_tets(const VolumeCells& cells, const TetPoints& t
 // with volume can meet it.
 std::optional<Vec3> interiors_meet(const VolumeCells& cells, const TetPoints& tp, Index a, const Box3& box_a, Index b,
                                    const Box3& box_b) {
-  auto near = [](std::vector<SolidTet> tets, const Box3& other_box) {
-    std::erase_if(tets, [&](const SolidTet& t) { return !boxes_overlap_open(t.box, other_box); });
-    return tets;
-  };
-  const std::vector<SolidTet> from_a = near(positive_tets(cells, tp, a), box_b);
+  const CellCornerIds corners_a = cells.corners(a), corners_b = cells.corners(b);
+  if (corners_a.kind == CellKind::tet && corners_b.kind == CellKind::tet &&
+      tet_cells_separated(cells.mesh->points, corners_a, at(tp.points, tp.cell_base + a), corners_b,
+                          at(tp.points, tp.cell_base + b)))
+    return std::nullopt;
+  const NearSolidTets from_a = positive_tets_near(cells, tp, a, box_b);
   if (from_a.empty()) return std::nullopt;
-  const std::vector<SolidTet> from_b = near(positive_tets(cells, tp, b), box_a);
+  const NearSolidTets from_b = positive_tets_near(cells, tp, b, box_a);
   for (const SolidTet& s : from_a)
     for (const SolidTet& t : from_b)
       if (boxes_overlap_open(s.box, t.box) && tet_interiors_meet(s.corners, t.corners)) {
@@ -264,19 +301,21 @@ bool share_a_vertex(const CellCornerIds& a, const CellCornerIds& b) {
 // Some cell with a non-positive tet (folded) holds a vertex of a and one of b.
 bool touch_one_folded_cell(const VertexCells& vertex_cells, const std::vector<char>& folded, const CellCornerIds& a,
                            const CellCornerIds& b) {
-  auto folded_cells_of = [&](const CellCornerIds& corners) {
-    std::vector<Index> cells;
+  // Each thread's two lists keep their capacity from pair to pair (no
+  // allocation per tested pair).
+  thread_local std::vector<Index> of_a, of_b;
+  auto folded_cells_of = [&](const CellCornerIds& corners, std::vector<Index>& cells) {
+    cells.clear();
     for (Index v : corners)
       for (Index i = vertex_cells.begin(v); i < vertex_cells.end(v); ++i) {
         const Index c = vertex_cells.cell(i);
         if (folded[static_cast<std::size_t>(c)]) cells.push_back(c);
       }
     std::sort(cells.begin(), cells.end());
-    return cells;
   };
-  const std::vector<Index> of_a = folded_cells_of(a);
+  folded_cells_of(a, of_a);
   if (of_a.empty()) return false;
-  const std::vector<Index> of_b = folded_cells_of(b);
+  folded_cells_of(b, of_b);
   return std::any_of(of_b.begin(), of_b.end(),
                      [&](Index c) { return std::binary_search(of_a.begin(), of_a.end(), c); });
 }

@@ -219,14 +219,12 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
     metrics();
   }
   clock.start("summaries");
-  // The quality field's summaries (the corners': 8 values per hex) and, when
-  // not done yet, the metrics' (one task each) at once: neither waits on the
-  // longest of the other.
-  if (metrics_beside)
-    a.quality = summarize_quality(a.mesh, a.field, options.worst_count);
-  else
-    tbb::parallel_invoke([&] { a.quality = summarize_quality(a.mesh, a.field, options.worst_count); },
-                         summarize_metrics);
+  // A mesh of one kind shares the corner statistics (and a tet mesh the
+  // scaled Jacobian's) between by_kind and the whole mesh: the metrics'
+  // summaries first, then the quality summary copies them (2,181,120 tets:
+  // 8.7 M corner values sorted once, not twice).
+  if (!metrics_beside) summarize_metrics();
+  a.quality = summarize_quality(a.mesh, a.field, options.worst_count, single_kind_statistics(a.mesh, a.field, by_kind));
   a.quality.metrics = std::move(metric_summaries);
   a.quality.by_kind = std::move(by_kind);
   if (!options.overlap || is_surface) {

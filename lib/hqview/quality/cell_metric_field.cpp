@@ -52,9 +52,17 @@ struct BlockKernels<CellKind::tet> {
   // tet's size and the block's size reference computed once.
   using Reference = TetSizeReference;
   static Reference reference(double average) { return tet_size_reference(average); }
-  static void metric_range(int first, int count, const Corners& p, const Reference& reference, double* out) {
-    tet_metric_range(first, count, p, reference, out);
+  static void metric_list(std::span<const int> metrics, const Corners& p, const Reference& reference, double* out) {
+    std::array<TetMetric, kNumTetMetrics> ids;
+    for (std::size_t j = 0; j < metrics.size(); ++j) ids[j] = static_cast<TetMetric>(metrics[j]);
+    tet_metric_list(std::span<const TetMetric>(ids).first(metrics.size()), p, reference, out);
   }
+  // The metric that is size() itself (tet_volume): start_block's sizes.
+  static constexpr int size_metric = static_cast<int>(TetMetric::volume);
+  // The metric that is the quality field's cell value (tet_scaled_jacobian,
+  // the same kernel on the same corners): copied from
+  // BlockCornerValues::cell_scaled_jacobian when given.
+  static constexpr int field_metric = static_cast<int>(TetMetric::scaled_jacobian);
   // shape_and_size is shape times relative_size_squared (the kernel's very
   // product): read from those columns when they are kept.
   static constexpr std::array<int, 3> product = {static_cast<int>(TetMetric::shape_and_size),
@@ -126,13 +134,19 @@ auto metric_reference(double average) {
     return average;
 }
 
+template <typename Kernels>
+concept HasSizeMetric = requires { Kernels::size_metric; };
+
+template <typename Kernels>
+concept HasFieldMetric = requires { Kernels::field_metric; };
+
 template <typename Kernels, typename Reference>
-void metric_range(int first, int count, const typename Kernels::Corners& p, double average, const Reference& reference,
-                  double* out) {
+void metric_list(std::span<const int> metrics, const typename Kernels::Corners& p, double average,
+                 const Reference& reference, double* out) {
   if constexpr (HasMetricRange<Kernels>) {
-    Kernels::metric_range(first, count, p, reference, out);
+    Kernels::metric_list(metrics, p, reference, out);
   } else {
-    for (int j = 0; j < count; ++j) out[j] = Kernels::metric(first + j, p, average);
+    for (std::size_t j = 0; j < metrics.size(); ++j) out[j] = Kernels::metric(metrics[j], p, average);
   }
 }
 
@@ -150,7 +164,8 @@ typename BlockKernels<K>::Corners corners_of(std::span<const Vec3> points, Block
 // order: the same bytes for any thread count; the size metrics need it
 // first); values left empty.
 template <CellKind K>
-CellBlockMetricField start_block(std::span<const Vec3> points, BlockCells<K> cells) {
+CellBlockMetricField start_block(std::span<const Vec3> points, BlockCells<K> cells,
+                                 std::vector<double>* sizes_out = nullptr) {
   using Kernels = BlockKernels<K>;
   const std::size_t n = cells.size();
   CellBlockMetricField field;
@@ -164,6 +179,7 @@ CellBlockMetricField start_block(std::span<const Vec3> points, BlockCells<K> cel
   double sum = 0;
   for (double s : sizes) sum += s;
   field.average_size = n > 0 ? sum / static_cast<double>(n) : 0.0;
+  if (sizes_out) *sizes_out = std::move(sizes);
   return field;
 }
 
@@ -209,7 +225,8 @@ StatisticsOptions metric_statistics_options(std::string_view name) {
 
 // The statistics of every corner value, degenerate corners left out
 // (histogram over [-1, 1]).
-CellMetricSummary corner_summary(std::span<const double> values, std::span<const std::uint8_t> masks, int C) {
+CellMetricSummary corner_summary(std::span<const double> values, std::span<const std::uint8_t> masks, int C,
+                                 std::vector<double>& sorted) {
   const auto per_cell = static_cast<std::size_t>(C);
   std::vector<std::uint8_t> degenerate(values.size());
   for (std::size_t c = 0; c < masks.size(); ++c)
@@ -217,7 +234,7 @@ CellMetricSummary corner_summary(std::span<const double> values, std::span<const
   StatisticsOptions options;
   options.histogram_min = -1.0;
   options.histogram_max = 1.0;
-  return {"corner_scaled_jacobian", compute_statistics(values, options, degenerate)};
+  return {"corner_scaled_jacobian", compute_statistics(values, options, degenerate, sorted)};
 }
 
 }  // namespace
@@ -264,7 +281,10 @@ SummarizedCellBlock summarize_cell_block_metrics(std::span<const Vec3> points,
   constexpr int M = Kernels::num_metrics;
   const std::size_t n = cells.size();
   SummarizedCellBlock out;
-  out.field = start_block<K>(points, cells);
+  // The sizes are a metric's very values where the kind has one (a tet's
+  // volume): kept for it rather than computed again.
+  std::vector<double> sizes;
+  out.field = start_block<K>(points, cells, HasSizeMetric<Kernels> ? &sizes : nullptr);
   CellBlockMetricField& field = out.field;
   for (CellValidity o : corners.validity) {
     field.num_inverted += o == CellValidity::inverted;
@@ -272,42 +292,82 @@ SummarizedCellBlock summarize_cell_block_metrics(std::span<const Vec3> points,
   }
   out.summaries.resize(M + 1);
   const auto reference = metric_reference<Kernels>(field.average_size);
-  // kMetricsPerPass metrics per pass over the cells (one gather of each
-  // cell's corners, one size and one block reference for all of them),
-  // then their summaries. A product metric (a tet's
-  // shape_and_size) alone in its pass is read from its kept factors.
-  for (int first = 0; first < M; first += kMetricsPerPass) {
-    const int count = std::min(kMetricsPerPass, M - first);
+  // A column summarised (one summary at a time: each sorts a copy of its
+  // column, in parallel on a large block; one copy alive, not one per
+  // column), then kept or dropped.
+  // The sorted copies share one buffer, and a dropped column's memory
+  // serves the next pass (fresh pages are zeroed by the kernel: once, not
+  // once per column).
+  std::vector<double> sorted;
+  std::vector<std::vector<double>> spare;
+  const auto new_column = [&] {
+    if (spare.empty()) return std::vector<double>(n);
+    std::vector<double> column = std::move(spare.back());
+    spare.pop_back();
+    return column;
+  };
+  const auto summarize = [&](int metric, std::vector<double>& column) {
+    const auto m = static_cast<std::size_t>(metric);
+    out.summaries[m] = {std::string(field.names[m]),
+                        compute_statistics(column, metric_statistics_options(field.names[m]), {}, sorted)};
+    if (keep(field.names[m]))
+      field.values[m] = std::move(column);
+    else
+      spare.push_back(std::move(column));
+  };
+  // The columns whose values are at hand: the size metric (start_block's
+  // sizes), the field's metric (the quality field's cell values, when
+  // given), a product metric (a tet's shape_and_size) from its kept
+  // factors (after them: it is the kind's last metric). Every other metric
+  // is computed by its kernel, kMetricsPerPass metrics per pass over the
+  // cells (one gather of each cell's corners, one size and one block
+  // reference for all of them).
+  std::vector<char> at_hand(M, 0);
+  if constexpr (HasSizeMetric<Kernels>) at_hand[Kernels::size_metric] = sizes.size() == n;
+  if constexpr (HasFieldMetric<Kernels>) at_hand[Kernels::field_metric] = corners.cell_scaled_jacobian.size() == n;
+  bool product_at_hand = false;
+  if constexpr (HasProductMetric<Kernels>) {
+    constexpr auto product = Kernels::product;
+    product_at_hand = keep(field.names[product[1]]) && keep(field.names[product[2]]);
+    at_hand[product[0]] = product_at_hand;
+  }
+  std::vector<int> computed;
+  for (int m = 0; m < M; ++m)
+    if (!at_hand[static_cast<std::size_t>(m)]) computed.push_back(m);
+  for (std::size_t first = 0; first < computed.size(); first += kMetricsPerPass) {
+    const std::size_t count = std::min<std::size_t>(kMetricsPerPass, computed.size() - first);
+    const std::span<const int> metrics = std::span<const int>(computed).subspan(first, count);
     std::array<std::vector<double>, kMetricsPerPass> columns;
-    for (int j = 0; j < count; ++j) columns[static_cast<std::size_t>(j)].resize(n);
-    bool from_product = false;
-    if constexpr (HasProductMetric<Kernels>) {
+    for (std::size_t j = 0; j < count; ++j) columns[j] = new_column();
+    for_each_cell(n, [&](std::size_t c) {
+      const auto p = corners_of<K>(points, cells, c);
+      std::array<double, kMetricsPerPass> v{};
+      metric_list<Kernels>(metrics, p, field.average_size, reference, v.data());
+      for (std::size_t j = 0; j < count; ++j) columns[j][c] = v[j];
+    });
+    for (std::size_t j = 0; j < count; ++j) summarize(metrics[j], columns[j]);
+  }
+  if constexpr (HasSizeMetric<Kernels>)
+    if (at_hand[Kernels::size_metric]) summarize(Kernels::size_metric, sizes);
+  if constexpr (HasFieldMetric<Kernels>) {
+    if (at_hand[Kernels::field_metric]) {
+      std::vector<double> column = new_column();
+      std::copy(corners.cell_scaled_jacobian.begin(), corners.cell_scaled_jacobian.end(), column.begin());
+      summarize(Kernels::field_metric, column);
+    }
+  }
+  if constexpr (HasProductMetric<Kernels>) {
+    if (product_at_hand) {
       constexpr auto product = Kernels::product;
       const auto& a = field.values[static_cast<std::size_t>(product[1])];
       const auto& b = field.values[static_cast<std::size_t>(product[2])];
-      if (count == 1 && first == product[0] && a.size() == n && b.size() == n) {
-        for_each_cell(n, [&](std::size_t c) { columns[0][c] = a[c] * b[c]; });
-        from_product = true;
-      }
-    }
-    if (!from_product) {
-      for_each_cell(n, [&](std::size_t c) {
-        const auto p = corners_of<K>(points, cells, c);
-        std::array<double, kMetricsPerPass> v;
-        metric_range<Kernels>(first, count, p, field.average_size, reference, v.data());
-        for (int j = 0; j < count; ++j) columns[static_cast<std::size_t>(j)][c] = v[static_cast<std::size_t>(j)];
-      });
-    }
-    // One summary at a time (each sorts a copy of its column, in parallel
-    // on a large block): one copy alive, not one per column.
-    for (int j = 0; j < count; ++j) {
-      const auto m = static_cast<std::size_t>(first + j);
-      std::vector<double>& column = columns[static_cast<std::size_t>(j)];
-      out.summaries[m] = {std::string(field.names[m]), compute_statistics(column, metric_statistics_options(field.names[m]))};
-      if (keep(field.names[m])) field.values[m] = std::move(column);
+      std::vector<double> column = new_column();
+      for_each_cell(n, [&](std::size_t c) { column[c] = a[c] * b[c]; });
+      summarize(product[0], column);
     }
   }
-  out.summaries[M] = corner_summary(corners.scaled_jacobian, corners.degenerate_mask, kNumCornerValues<K>);
+  spare.clear();
+  out.summaries[M] = corner_summary(corners.scaled_jacobian, corners.degenerate_mask, kNumCornerValues<K>, sorted);
   return out;
 }
 
@@ -327,7 +387,8 @@ std::vector<CellMetricSummary> summarize_cell_block(const CellBlockMetricField& 
   for (std::size_t m = 0; m < field.names.size(); ++m)
     out.push_back(
         {std::string(field.names[m]), compute_statistics(field.values[m], metric_statistics_options(field.names[m]))});
-  out.push_back(corner_summary(field.corner_scaled_jacobian, field.corner_degenerate_mask, field.corners_per_cell));
+  std::vector<double> sorted;
+  out.push_back(corner_summary(field.corner_scaled_jacobian, field.corner_degenerate_mask, field.corners_per_cell, sorted));
   return out;
 }
 

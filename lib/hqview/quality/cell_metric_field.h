@@ -79,6 +79,10 @@ struct BlockCornerValues {
   std::span<const double> scaled_jacobian;
   std::span<const std::uint8_t> degenerate_mask;
   std::span<const CellValidity> validity;
+  // Per cell, Verdict's scaled Jacobian as the quality field holds it (the
+  // very kernel of a tet's scaled_jacobian metric, which is then copied from
+  // here instead of computed again); empty when not given.
+  std::span<const double> cell_scaled_jacobian = {};
 };
 
 // A block's metrics summarised as they were computed.
@@ -98,7 +102,10 @@ struct SummarizedCellBlock {
 // 21 columns, 366 MB, before). The values are those of
 // compute_*_block_metrics (each kind's all-metrics kernel is its one-metric
 // kernel in a loop); the corner summary and the inverted and flat counts
-// come from `corners`. Surface kinds are summarised against whatever normal
+// come from `corners`. Columns at hand are not computed again: a tet's
+// volume (the block's sizes), its scaled_jacobian (from
+// corners.cell_scaled_jacobian when given), its shape_and_size (the kept
+// factors' product). Surface kinds are summarised against whatever normal
 // `corners` was computed with. Deterministic for any thread count.
 template <CellKind K>
 SummarizedCellBlock summarize_cell_block_metrics(std::span<const Vec3> points,

@@ -27,31 +27,42 @@ StatisticsOptions jacobian_histogram() {
 
 }  // namespace
 
-QualitySummary summarize_quality(const HexMesh& mesh, const QualityField& field, int worst_count) {
+QualitySummary summarize_quality(const HexMesh& mesh, const QualityField& field, int worst_count,
+                                 const KnownQualityStatistics& known) {
   QualitySummary q;
   const auto options = jacobian_histogram();
   // A corner with a zero-length edge is degenerate: counted, kept out of the
   // distribution (its value 0 still reaches vertex quality).
-  std::vector<std::uint8_t> corner_flags(field.corner_scaled_jacobian.size());
-  for (std::size_t h = 0; h < field.num_hexes; ++h)
-    for (int i = 0; i < 8; ++i)
-      corner_flags[8 * h + static_cast<std::size_t>(i)] = (field.corner_degenerate_mask[h] >> i) & 1u;
-  std::size_t first_cell = field.num_hexes;
-  for_each_cell_kind([&](auto kind) {
-    if constexpr (kind() != CellKind::hex) {
-      constexpr std::size_t C = kCornerValuesPerCell<kind()>;
-      const std::size_t n = cell_block<kind()>(mesh).size();
-      const std::size_t corner0 = field.corner_begin[static_cast<std::size_t>(kind())];
-      for (std::size_t c = 0; c < n; ++c)
-        for (std::size_t i = 0; i < C; ++i)
-          corner_flags[corner0 + C * c + i] = (field.corner_degenerate_mask[first_cell + c] >> i) & 1u;
-      first_cell += n;
-    }
-  });
-  // Three independent sorts (the corners': 8 values per hex) run at once.
+  std::vector<std::uint8_t> corner_flags(known.corner_scaled_jacobian ? 0 : field.corner_scaled_jacobian.size());
+  if (!known.corner_scaled_jacobian) {
+    for (std::size_t h = 0; h < field.num_hexes; ++h)
+      for (int i = 0; i < 8; ++i)
+        corner_flags[8 * h + static_cast<std::size_t>(i)] = (field.corner_degenerate_mask[h] >> i) & 1u;
+    std::size_t first_cell = field.num_hexes;
+    for_each_cell_kind([&](auto kind) {
+      if constexpr (kind() != CellKind::hex) {
+        constexpr std::size_t C = kCornerValuesPerCell<kind()>;
+        const std::size_t n = cell_block<kind()>(mesh).size();
+        const std::size_t corner0 = field.corner_begin[static_cast<std::size_t>(kind())];
+        for (std::size_t c = 0; c < n; ++c)
+          for (std::size_t i = 0; i < C; ++i)
+            corner_flags[corner0 + C * c + i] = (field.corner_degenerate_mask[first_cell + c] >> i) & 1u;
+        first_cell += n;
+      }
+    });
+  }
+  // Three independent sorts (the corners': 8 values per hex) run at once;
+  // those `known` gives are copied.
   tbb::parallel_invoke(
-      [&] { q.scaled_jacobian = compute_statistics(field.cell_scaled_jacobian, options); },
-      [&] { q.corner_scaled_jacobian = compute_statistics(field.corner_scaled_jacobian, options, corner_flags); },
+      [&] {
+        q.scaled_jacobian = known.scaled_jacobian ? *known.scaled_jacobian
+                                                  : compute_statistics(field.cell_scaled_jacobian, options);
+      },
+      [&] {
+        q.corner_scaled_jacobian = known.corner_scaled_jacobian
+                                       ? *known.corner_scaled_jacobian
+                                       : compute_statistics(field.corner_scaled_jacobian, options, corner_flags);
+      },
       [&] { q.vertex_quality = compute_statistics(field.vertex_quality, options); });
 
   // The headline's cell counts (Verdict metrics: summarize_hex_metrics).
@@ -114,6 +125,35 @@ QualitySummary summarize_quality(const HexMesh& mesh, const QualityField& field,
                              cell_source_index(mesh, ref.kind, ref.index)});
   }
   return q;
+}
+
+KnownQualityStatistics single_kind_statistics(const Mesh& mesh, const QualityField& field,
+                                              const std::vector<KindQualitySummary>& by_kind) {
+  KnownQualityStatistics known;
+  int kinds_with_cells = 0;
+  CellKind only = CellKind::hex;
+  std::size_t corner_values = 0;
+  for_each_cell_kind([&](auto kind) {
+    const std::size_t n = cell_block<kind()>(mesh).size();
+    if (n == 0) return;
+    ++kinds_with_cells;
+    only = kind();
+    corner_values = kCornerValuesPerCell<kind()> * n;
+  });
+  if (kinds_with_cells != 1) return known;
+  // The kind's corners must be the whole corner array, its cells every cell.
+  if (field.corner_begin[static_cast<std::size_t>(only)] != 0 || corner_values != field.corner_scaled_jacobian.size())
+    return known;
+  const auto summary = std::find_if(by_kind.begin(), by_kind.end(),
+                                    [&](const KindQualitySummary& k) { return k.kind == only && k.count > 0; });
+  if (summary == by_kind.end()) return known;
+  for (const MetricSummary& m : summary->metrics) {
+    if (m.name == "corner_scaled_jacobian") known.corner_scaled_jacobian = &m.stats;
+    if (m.name == "scaled_jacobian" && only == CellKind::tet &&
+        static_cast<std::int64_t>(field.cell_scaled_jacobian.size()) == summary->count)
+      known.scaled_jacobian = &m.stats;
+  }
+  return known;
 }
 
 std::vector<MetricSummary> summarize_hex_metrics(const HexMetricField& field) {
@@ -192,7 +232,8 @@ std::vector<SummarizedCellBlock> summarize_non_hex_blocks(const Mesh& mesh, cons
         const BlockCornerValues corners{
             std::span<const double>(field.corner_scaled_jacobian).subspan(field.corner_begin[static_cast<std::size_t>(kind())], C * n),
             std::span<const std::uint8_t>(field.corner_degenerate_mask).subspan(first_cell, n),
-            std::span<const CellValidity>(field.non_hex_validity).subspan(first_cell - field.num_hexes, n)};
+            std::span<const CellValidity>(field.non_hex_validity).subspan(first_cell - field.num_hexes, n),
+            std::span<const double>(field.cell_scaled_jacobian).subspan(first_cell, n)};
         out.push_back(summarize_cell_block_metrics<kind()>(mesh.points, cells, corners, keep));
       }
       first_cell += n;

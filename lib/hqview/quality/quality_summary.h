@@ -67,12 +67,31 @@ struct QualitySummary {
   std::vector<WorstCell> worst_cells;
 };
 
+// Whole-mesh statistics already computed over the very same values, options
+// and degenerate flags (single_kind_statistics): summarize_quality copies
+// them instead of sorting those values again. Null: computed.
+struct KnownQualityStatistics {
+  const Statistics* scaled_jacobian = nullptr;
+  const Statistics* corner_scaled_jacobian = nullptr;
+};
+
 // The scaled Jacobian, corner and vertex quality statistics (histograms of
 // 20 bins over [-1, 1]) and the worst_count worst vertices (lowest quality
 // first, ties by id, unreferenced ones skipped) and cells (degenerate first,
 // then ascending scaled Jacobian, ties by id). `metrics` is left empty:
-// summarize_hex_metrics() fills it.
-QualitySummary summarize_quality(const HexMesh& mesh, const QualityField& field, int worst_count);
+// summarize_hex_metrics() fills it. `known`: statistics taken as given.
+QualitySummary summarize_quality(const HexMesh& mesh, const QualityField& field, int worst_count,
+                                 const KnownQualityStatistics& known = {});
+
+// What a mesh whose cells are all of one kind shares between `by_kind`
+// (summarize_by_kind) and summarize_quality: that kind's
+// corner_scaled_jacobian statistics (the same corner values, flags and
+// [-1, 1] histogram: the kind's corners are all of the field's), and its
+// scaled_jacobian statistics when its column is the quality field's own
+// (tets: summarize_cell_block_metrics copies it). Null pointers for a mesh of
+// several kinds. Points into `by_kind`.
+KnownQualityStatistics single_kind_statistics(const Mesh& mesh, const QualityField& field,
+                                              const std::vector<KindQualitySummary>& by_kind);
 
 // One MetricSummary per computed metric, in HexMetric order. Verdict's
 // sentinels (|v| >= 1e30) are counted in num_degenerate and kept out of

@@ -1,6 +1,7 @@
 #include "hqview/quality/statistics.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -34,6 +35,13 @@ class KeyBuckets {
     Side& s = side(k);
     s.lo = std::min(s.lo, k);
     s.hi = std::max(s.hi, k);
+  }
+  // The keys `other` included, as if included here (before finish()).
+  void merge(const KeyBuckets& other) {
+    for (auto [mine, theirs] : {std::pair{&negative_, &other.negative_}, std::pair{&positive_, &other.positive_}}) {
+      mine->lo = std::min(mine->lo, theirs->lo);
+      mine->hi = std::max(mine->hi, theirs->hi);
+    }
   }
   // Fixes the buckets: 2^10 a side, 2^11 when one side is empty. Few enough
   // that the bucket offsets stay in the L1 cache while the values are
@@ -124,20 +132,56 @@ constexpr std::size_t kParallelSortMin = 1 << 20;
 // equal, add up the same), so every sum and percentile is the same for any
 // thread count. Memory: the output array, the bucket offsets, and scratch
 // as large as the largest bucket.
+// Large inputs count and scatter in this many slices of the values at once
+// (a fixed number, not one per thread: the same work for any thread count;
+// the scatter keeps each bucket's values in input order either way).
+constexpr std::size_t kNumSlices = 16;
+
 template <class IsKept>
-std::vector<double> sorted_kept_values(std::span<const double> values, IsKept is_kept, std::size_t num_kept,
-                                       KeyBuckets& buckets) {
-  std::vector<double> out(num_kept);
-  if (num_kept == 0) return out;
+void sorted_kept_values(std::span<const double> values, IsKept is_kept, std::size_t num_kept, KeyBuckets& buckets,
+                        std::vector<double>& out) {
+  out.resize(num_kept);
+  if (num_kept == 0) return;
   const std::size_t num_buckets = buckets.finish();
   std::vector<std::size_t> start(num_buckets + 1, 0);
   const auto bucket = [&](double v) { return buckets(order_key(v)); };
-  for (std::size_t i = 0; i < values.size(); ++i)
-    if (is_kept(i)) ++start[bucket(values[i]) + 1];
-  for (std::size_t b = 0; b < num_buckets; ++b) start[b + 1] += start[b];
-  std::vector<std::size_t> next(start.begin(), start.end() - 1);
-  for (std::size_t i = 0; i < values.size(); ++i)
-    if (is_kept(i)) out[next[bucket(values[i])]++] = values[i];
+  if (values.size() < kParallelSortMin) {
+    for (std::size_t i = 0; i < values.size(); ++i)
+      if (is_kept(i)) ++start[bucket(values[i]) + 1];
+    for (std::size_t b = 0; b < num_buckets; ++b) start[b + 1] += start[b];
+    std::vector<std::size_t> next(start.begin(), start.end() - 1);
+    for (std::size_t i = 0; i < values.size(); ++i)
+      if (is_kept(i)) out[next[bucket(values[i])]++] = values[i];
+  } else {
+    // Per slice: its count in every bucket, then (prefix sums over buckets,
+    // then slices) where its values of each bucket go.
+    const std::size_t slice = (values.size() + kNumSlices - 1) / kNumSlices;
+    std::vector<std::size_t> next(kNumSlices * num_buckets, 0);
+    const auto for_each_slice = [&](auto body) {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kNumSlices, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t k = r.begin(); k != r.end(); ++k)
+          body(k, k * slice, std::min(values.size(), (k + 1) * slice), next.data() + k * num_buckets);
+      });
+    };
+    for_each_slice([&](std::size_t, std::size_t begin, std::size_t end, std::size_t* counts) {
+      for (std::size_t i = begin; i < end; ++i)
+        if (is_kept(i)) ++counts[bucket(values[i])];
+    });
+    std::size_t at = 0;
+    for (std::size_t b = 0; b < num_buckets; ++b) {
+      start[b] = at;
+      for (std::size_t k = 0; k < kNumSlices; ++k) {
+        const std::size_t count = next[k * num_buckets + b];
+        next[k * num_buckets + b] = at;
+        at += count;
+      }
+    }
+    start[num_buckets] = at;
+    for_each_slice([&](std::size_t, std::size_t begin, std::size_t end, std::size_t* offsets) {
+      for (std::size_t i = begin; i < end; ++i)
+        if (is_kept(i)) out[offsets[bucket(values[i])]++] = values[i];
+    });
+  }
   const auto sort_buckets = [&](std::size_t first, std::size_t last) {
     std::vector<double> scratch;
     for (std::size_t b = first; b < last; ++b)
@@ -149,7 +193,6 @@ std::vector<double> sorted_kept_values(std::span<const double> values, IsKept is
   else
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_buckets, 256),
                       [&](const tbb::blocked_range<std::size_t>& r) { sort_buckets(r.begin(), r.end()); });
-  return out;
 }
 
 }  // namespace
@@ -165,6 +208,12 @@ double percentile_of_sorted(std::span<const double> sorted, double q) {
 
 Statistics compute_statistics(std::span<const double> values, const StatisticsOptions& options,
                               std::span<const std::uint8_t> degenerate) {
+  std::vector<double> buffer;
+  return compute_statistics(values, options, degenerate, buffer);
+}
+
+Statistics compute_statistics(std::span<const double> values, const StatisticsOptions& options,
+                              std::span<const std::uint8_t> degenerate, std::vector<double>& buffer) {
   Statistics s;
   // Kept: finite, not Verdict's sentinel, not flagged degenerate.
   const auto is_kept = [&](std::size_t i) {
@@ -173,15 +222,42 @@ Statistics compute_statistics(std::span<const double> values, const StatisticsOp
   };
   std::size_t num_kept = 0;
   KeyBuckets buckets;
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    if (is_kept(i)) {
-      ++num_kept;
-      buckets.include(order_key(values[i]));
-    } else if (!std::isnan(values[i])) {
-      ++s.num_degenerate;
+  // The kept values' count and key range, the others counted (by slices on
+  // large inputs: counts, minima and maxima do not depend on the order).
+  const auto scan = [&](std::size_t begin, std::size_t end, std::size_t& kept, std::int64_t& degenerate,
+                        KeyBuckets& range) {
+    for (std::size_t i = begin; i < end; ++i) {
+      if (is_kept(i)) {
+        ++kept;
+        range.include(order_key(values[i]));
+      } else if (!std::isnan(values[i])) {
+        ++degenerate;
+      }
+    }
+  };
+  if (values.size() < kParallelSortMin) {
+    scan(0, values.size(), num_kept, s.num_degenerate, buckets);
+  } else {
+    struct Slice {
+      std::size_t kept = 0;
+      std::int64_t degenerate = 0;
+      KeyBuckets range;
+    };
+    std::array<Slice, kNumSlices> slices;
+    const std::size_t slice = (values.size() + kNumSlices - 1) / kNumSlices;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kNumSlices, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t k = r.begin(); k != r.end(); ++k)
+        scan(k * slice, std::min(values.size(), (k + 1) * slice), slices[k].kept, slices[k].degenerate,
+             slices[k].range);
+    });
+    for (const Slice& part : slices) {
+      num_kept += part.kept;
+      s.num_degenerate += part.degenerate;
+      buckets.merge(part.range);
     }
   }
-  const std::vector<double> kept = sorted_kept_values(values, is_kept, num_kept, buckets);
+  sorted_kept_values(values, is_kept, num_kept, buckets, buffer);
+  const std::vector<double>& kept = buffer;
   s.count = static_cast<std::int64_t>(kept.size());
 
   const int bins = std::max(1, options.histogram_bins);

@@ -44,6 +44,12 @@ struct StatisticsOptions {
 Statistics compute_statistics(std::span<const double> values, const StatisticsOptions& options = {},
                               std::span<const std::uint8_t> degenerate = {});
 
+// The same numbers, the ascending copy of the kept values made in `buffer`
+// (resized; its memory reused by the next call: a caller summarising many
+// columns touches fresh pages once, not once per column).
+Statistics compute_statistics(std::span<const double> values, const StatisticsOptions& options,
+                              std::span<const std::uint8_t> degenerate, std::vector<double>& buffer);
+
 // Linear-interpolation percentile of ascending `sorted` values, q in [0, 1].
 double percentile_of_sorted(std::span<const double> sorted, double q);
 

@@ -456,6 +456,12 @@ void tet_metric_range(int first, int count, const TetCorners& p, const TetSizeRe
   for (int j = 0; j < count; ++j) out[j] = metric_with_size(static_cast<TetMetric>(first + j), p, reference, size);
 }
 
+void tet_metric_list(std::span<const TetMetric> metrics, const TetCorners& p, const TetSizeReference& reference,
+                     double* out) {
+  const double size = char_size(p);  // shared by every scaled metric
+  for (std::size_t j = 0; j < metrics.size(); ++j) out[j] = metric_with_size(metrics[j], p, reference, size);
+}
+
 TetMetricValues tet_metrics(const TetCorners& p, double average_volume) {
   const double size = char_size(p);  // shared by every scaled metric
   const TetSizeReference reference = tet_size_reference(average_volume);

@@ -23,6 +23,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string_view>
 
 #include "hqview/core/vec3.h"
@@ -75,6 +76,11 @@ TetSizeReference tet_size_reference(double average_volume);
 // out[0 .. count): tet_metric's values, bit for bit, with the tet's size
 // and the block's reference computed once instead of per metric.
 void tet_metric_range(int first, int count, const TetCorners& p, const TetSizeReference& reference, double* out);
+
+// The metrics listed (any order) of one tet into out[0 .. metrics.size()):
+// tet_metric's values, bit for bit, the size computed once as above.
+void tet_metric_list(std::span<const TetMetric> metrics, const TetCorners& p, const TetSizeReference& reference,
+                     double* out);
 
 // Every metric of one tet, in the enum's order.
 TetMetricValues tet_metrics(const TetCorners& p, double average_volume);
