@@ -117,7 +117,8 @@ TEST(LaplaceSystem, ColumnStepsGiveTheSameBits) {
   const LaplaceSystem& s = fixture().system;
   ASSERT_EQ(s.matrix.column_steps.size(), s.matrix.columns.size());
   for (std::size_t r = 0; r < s.matrix.num_rows(); ++r)
-    for (auto e = static_cast<std::size_t>(s.matrix.offsets[r]); e < static_cast<std::size_t>(s.matrix.offsets[r + 1]); ++e)
+    for (auto e = static_cast<std::size_t>(s.matrix.offsets[r]); e < static_cast<std::size_t>(s.matrix.offsets[r + 1]);
+         ++e)
       ASSERT_EQ(r + s.matrix.column_steps[e], static_cast<std::size_t>(s.matrix.columns[e])) << r;
   CsrMatrix wide = s.matrix;
   wide.column_steps.clear();
@@ -137,6 +138,51 @@ TEST(LaplaceSystem, ColumnStepsGiveTheSameBits) {
   wide.bandwidth = s.matrix.bandwidth;
   EXPECT_TRUE(compact_column_steps(wide));
   EXPECT_EQ(wide.column_steps, s.matrix.column_steps);
+}
+
+// The product's documented summation order (symmetric_product.h), one row
+// at a time on one thread: y_j gets the scatters of its chunk's earlier rows
+// in row order, then its own row's gathers, then the previous chunk's
+// scatters.
+std::vector<double> product_in_documented_order(const CsrMatrix& a, const std::vector<double>& x, std::size_t k) {
+  const std::size_t n = a.num_rows(), chunk = a.chunk_rows;
+  std::vector<double> y(n * k, 0.0), overflow(n * k, 0.0);
+  for (std::size_t first = 0; first < n; first += chunk) {
+    const std::size_t last = std::min(n, first + chunk);
+    for (std::size_t r = first; r < last; ++r) {
+      std::vector<double> sum(y.begin() + static_cast<std::ptrdiff_t>(r * k),
+                              y.begin() + static_cast<std::ptrdiff_t>((r + 1) * k));
+      for (auto e = static_cast<std::size_t>(a.offsets[r]); e < static_cast<std::size_t>(a.offsets[r + 1]); ++e) {
+        const auto j = static_cast<std::size_t>(a.columns[e]);
+        for (std::size_t s = 0; s < k; ++s) sum[s] += a.values[e] * x[j * k + s];
+        if (j == r) continue;
+        for (std::size_t s = 0; s < k; ++s) (j < last ? y : overflow)[j * k + s] += a.values[e] * x[r * k + s];
+      }
+      std::copy(sum.begin(), sum.end(), y.begin() + static_cast<std::ptrdiff_t>(r * k));
+    }
+  }
+  for (std::size_t i = 0; i < y.size(); ++i) y[i] += overflow[i];  // zeros outside the chunks' first rows
+  return y;
+}
+
+// The product (two chunks' rows side by side for three columns) gives the
+// bits of the documented order, for the fixture's two chunks of unequal
+// length and for nine chunks (an odd count: the last task has one chunk).
+TEST(LaplaceSystem, ProductKeepsItsSummationOrder) {
+  const LaplaceSystem& s = fixture().system;
+  const std::vector<double> x = some_columns(s.matrix.num_rows());
+  CsrMatrix nine = s.matrix;
+  nine.chunk_rows = 3500;
+  ASSERT_GE(nine.chunk_rows, nine.bandwidth);
+  for (const CsrMatrix* m : {&s.matrix, static_cast<const CsrMatrix*>(&nine)})
+    for (int k : {1, 3}) {
+      const std::vector<double> xk(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(m->num_rows() * k));
+      std::vector<double> y;
+      multiply(*m, xk, y, k);
+      const std::vector<double> expected = product_in_documented_order(*m, xk, static_cast<std::size_t>(k));
+      ASSERT_EQ(y.size(), expected.size());
+      EXPECT_EQ(std::memcmp(y.data(), expected.data(), y.size() * sizeof(double)), 0) << m->chunk_rows << " " << k;
+    }
 }
 
 // The product and a CG solve across chunks: the same bits on one thread and two.

@@ -14,8 +14,7 @@ struct ExpCosTerms {
   int a, b, cc;
 };
 
-ExpCosTerms exp_cos_terms(const HarmonicSolution& u, const Normalization& n, const Vec3& x) {
-  const Vec3 xn = (x - n.center) / n.diagonal;
+ExpCosTerms exp_cos_terms_normalised(const HarmonicSolution& u, const Vec3& xn) {
   ExpCosTerms t;
   t.a = u.axis;
   t.b = (u.axis + 1) % 3;
@@ -27,7 +26,13 @@ ExpCosTerms exp_cos_terms(const HarmonicSolution& u, const Normalization& n, con
   return t;
 }
 
+ExpCosTerms exp_cos_terms(const HarmonicSolution& u, const Normalization& n, const Vec3& x) {
+  return exp_cos_terms_normalised(u, normalised_point(n, x));
+}
+
 }  // namespace
+
+Vec3 normalised_point(const Normalization& n, const Vec3& x) { return (x - n.center) / n.diagonal; }
 
 std::vector<HarmonicSolution> default_harmonic_solutions() {
   return {{"exp_x", HarmonicSolution::Kind::exp_cos, 0, {}},
@@ -52,12 +57,17 @@ Vec3 solution_gradient(const HarmonicSolution& u, const Normalization& n, const 
 
 void solution_value_and_gradient(const HarmonicSolution& u, const Normalization& n, const Vec3& x, double& value,
                                  Vec3& gradient) {
+  solution_value_and_gradient_normalised(u, n, normalised_point(n, x), value, gradient);
+}
+
+void solution_value_and_gradient_normalised(const HarmonicSolution& u, const Normalization& n, const Vec3& xn,
+                                            double& value, Vec3& gradient) {
   if (u.kind == HarmonicSolution::Kind::linear) {
-    value = solution_value(u, n, x);
-    gradient = solution_gradient(u, n, x);
+    value = dot(u.slope, xn);
+    gradient = u.slope / n.diagonal;
     return;
   }
-  const ExpCosTerms t = exp_cos_terms(u, n, x);
+  const ExpCosTerms t = exp_cos_terms_normalised(u, xn);
   value = t.e * t.c;
   Vec3 g;
   g[t.a] = kPi * t.e * t.c;
@@ -69,9 +79,10 @@ double solution_hessian_norm2(const HarmonicSolution& u, const Normalization& n,
   if (u.kind == HarmonicSolution::Kind::linear) return 0;
   // u_aa = pi^2 e c, u_ab = u_ac = -pi^2 e s / sqrt 2, u_bb = u_cc = u_bc = -pi^2 e c / 2:
   // the nine entries squared sum to 2 pi^4 e^2 (c^2 + s^2).
-  const ExpCosTerms t = exp_cos_terms(u, n, x);
+  // Only exp(pi x^_a) enters (c^2 + s^2 = 1): no sine or cosine.
+  const double e = std::exp(kPi * normalised_point(n, x)[u.axis]);
   const double d2 = n.diagonal * n.diagonal;
-  return 2 * std::pow(kPi, 4) * t.e * t.e / (d2 * d2);
+  return 2 * std::pow(kPi, 4) * e * e / (d2 * d2);
 }
 
 }  // namespace hq

@@ -37,6 +37,12 @@ Vec3 solution_gradient(const HarmonicSolution& u, const Normalization& n, const 
 // Value and gradient at once (one exp, one sin and cos).
 void solution_value_and_gradient(const HarmonicSolution& u, const Normalization& n, const Vec3& x, double& value,
                                  Vec3& gradient);
+// x^ = (x - c) / d.
+Vec3 normalised_point(const Normalization& n, const Vec3& x);
+// solution_value_and_gradient at x^ = normalised_point(n, x) (the same bits):
+// several solutions at one point share x^.
+void solution_value_and_gradient_normalised(const HarmonicSolution& u, const Normalization& n, const Vec3& xn,
+                                            double& value, Vec3& gradient);
 double solution_hessian_norm2(const HarmonicSolution& u, const Normalization& n, const Vec3& x);
 
 }  // namespace hq

@@ -186,6 +186,7 @@ Q1FieldErrors q1_field_errors(const HexMesh& mesh, const std::vector<double>& no
         // Gauss points; the squared errors stay non-negative.
         const double w = weight[g] * std::abs(det_j);
         e.volume[h] += w;
+        const Vec3 normalised = normalised_point(normalization, position);
         for (std::size_t s = 0; s < k; ++s) {
           double uh = 0;
           Vec3 ref_grad_uh;
@@ -197,7 +198,7 @@ Q1FieldErrors q1_field_errors(const HexMesh& mesh, const std::vector<double>& no
           const Vec3 grad_uh = inverse * (ref_grad_uh.x * bc + ref_grad_uh.y * ca + ref_grad_uh.z * ab);
           double u;
           Vec3 grad_u;
-          solution_value_and_gradient(solutions[s], normalization, position, u, grad_u);
+          solution_value_and_gradient_normalised(solutions[s], normalization, normalised, u, grad_u);
           e.l2_squared[h * k + s] += w * (uh - u) * (uh - u);
           e.h1_squared[h * k + s] += w * squared_norm(grad_uh - grad_u);
           u_squared[h * k + s] += w * u * u;

@@ -92,7 +92,11 @@ double q1_corner_det_j_min(const Q1Corners& p) {
   return out;
 }
 
-Q1Matrix q1_laplace_stiffness(const Q1Corners& p) {
+namespace {
+
+// K_e, and det J at the 8 Gauss points (the same bits as q1_gauss_det_j:
+// the same sums) from the Jacobians K_e is built from.
+Q1Matrix stiffness_and_det_j(const Q1Corners& p, std::array<double, 8>& det_js) {
   // dN_i/dxi at the 8 Gauss points, computed once.
   static const std::array<std::array<Vec3, 8>, 8> ref_grad = [] {
     std::array<std::array<Vec3, 8>, 8> t;
@@ -108,6 +112,7 @@ Q1Matrix q1_laplace_stiffness(const Q1Corners& p) {
       c = c + ref_grad[g][i].z * p[i];
     }
     const double det_j = det(a, b, c);
+    det_js[g] = det_j;
     if (det_j == 0) continue;
     // grad N_i = J^-T g_i = (g0 (b x c) + g1 (c x a) + g2 (a x b)) / det J; the
     // weight det J (Gauss weights 1) leaves one 1/det J.
@@ -126,9 +131,19 @@ Q1Matrix q1_laplace_stiffness(const Q1Corners& p) {
   return k;
 }
 
+}  // namespace
+
+Q1Matrix q1_laplace_stiffness(const Q1Corners& p) {
+  std::array<double, 8> det_j;
+  return stiffness_and_det_j(p, det_j);
+}
+
 Q1Conditioning q1_conditioning(const Q1Corners& p) {
   Q1Conditioning c;
-  const std::array<double, 8> det_j = q1_gauss_det_j(p);
+  // K_e of an invalid element is computed too (and not used): one pass over
+  // the Gauss points' Jacobians serves det J and K_e.
+  std::array<double, 8> det_j;
+  const Q1Matrix k = stiffness_and_det_j(p, det_j);
   c.det_j_min = c.det_j_max = det_j[0];
   for (double d : det_j) {
     c.det_j_min = std::min(c.det_j_min, d);
@@ -144,7 +159,6 @@ Q1Conditioning q1_conditioning(const Q1Corners& p) {
     c.lambda_max = c.lambda_2 = c.kappa = nan;
     return c;
   }
-  const Q1Matrix k = q1_laplace_stiffness(p);
   const Eigen::Map<const Eigen::Matrix<double, 8, 8, Eigen::RowMajor>> matrix(k.data());
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 8, 8>> solver(matrix, Eigen::EigenvaluesOnly);
   for (int i = 0; i < 8; ++i) c.eigenvalues[i] = solver.eigenvalues()[i];
