@@ -716,16 +716,12 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
   // of 20 cells was one blob of discs (46q review Q-M1).
   std::vector<double> values;
   for (const VertexCorner& c : corners) values.push_back(c.value);
-  // The frame of a dense ring (numbered corners): the ring's vertices
-  // drawn kLocalFrameShare of the way from v (the ring's outer cells run
-  // out of the view), so the discs and their numbers get the view (46t2
-  // review: 36 discs filled 22 % x 28 % of it); a smaller ring whole.
-  std::vector<Vec3> points = cell_points(mesh, ring);
-  {
-    const double share = corners.size() > kLocalMaxFullLabels ? kLocalFrameShare : 1.0;
-    const Vec3& at = mesh.points[static_cast<std::size_t>(v)];
-    for (Vec3& p : points) p = at + share * (p - at);
-  }
+  // The frame: the whole ring; when a corner finds no place there, the
+  // ring's vertices drawn kLocalFrameShare of the way from v (the ring's
+  // outer cells run out of the view), so the discs and their numbers get
+  // more of the view (46t2 review: 36 discs filled 22 % x 28 % of it).
+  const std::vector<Vec3> ring_points = cell_points(mesh, ring);
+  std::vector<Vec3> points = ring_points;
   std::vector<Vec3> centers;
   std::vector<double> base_radii;
   for (std::size_t i = 0; i < scene.spheres[0].centers.size(); ++i) {
@@ -922,6 +918,8 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
 
   // The table of numbered corners: a column right of the view (the view
   // narrowed by it), made only when some corner is numbered.
+  const auto lay_out_with_table = [&]() {
+  shot.table_box = {};
   PixelRect view = f.layout.view;
   shot.layout = f.layout;
   if (lay_out(view) > 0) {
@@ -937,6 +935,13 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
     view.width -= std::min(table_width, view.width / 2);
     // In the narrowed view every label may fit in full: then no table.
     if (lay_out(view) > 0) shot.table_box = {view.x + view.width + margin, view.y, table_width - margin, view.height};
+  }
+  };
+  lay_out_with_table();
+  if (shot.num_left_out > 0) {
+    const Vec3& at = mesh.points[static_cast<std::size_t>(v)];
+    for (std::size_t i = 0; i < points.size(); ++i) points[i] = at + kLocalFrameShare * (ring_points[i] - at);
+    lay_out_with_table();
   }
   return shot;
 }

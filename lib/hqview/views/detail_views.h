@@ -126,8 +126,8 @@ Scene build_local_scene(const HexMesh& mesh, const Topology& topology, std::span
 // 3/4 of the best a(d)); of them those with P(d) >= kLocalAreaShare times
 // the best kept P; of those the one whose discs (centers, radii) cover the
 // most area (as choose_viewpoints), ties to the first.
-// View D frames a ring of more than kLocalMaxFullLabels corners (numbered)
-// by its vertices moved this share of the way from v
+// View D frames its whole ring; when a corner finds no place there, the
+// ring's vertices moved this share of the way from v
 // towards where they are: the outer parts of the ring's cells run out of the
 // view, the discs and their labels get more of it (46t2 review: 36 discs
 // filled 22 % x 28 % of the view; with their leaders kept off the discs'
