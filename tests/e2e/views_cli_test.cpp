@@ -711,6 +711,14 @@ TEST(ViewsCli, TheStructurePanelDrawsEachSingularClassInItsColour) {
   });
   EXPECT_GT(drawn, 50000);
   EXPECT_GT(on_bar, 0.8 * drawn) << on_bar << " of " << drawn;
+  // The max cell outlined and its label framed in magenta (204, 0, 204),
+  // a colour of no gradation (46t2 review: the title's max was unmarked).
+  long magenta = 0;
+  count_pixels(out / "views/size_gradation.png", [&](const float* px) {
+    magenta += std::lround(255 * px[0]) == 204 && std::lround(255 * px[1]) == 0 && std::lround(255 * px[2]) == 204;
+    return false;
+  });
+  EXPECT_GT(magenta, 200);
   // On index.html, panel S after panel A.
   const std::string html = read_text(out / "index.html");
   const auto s = html.find("id=\"panel-s\"");

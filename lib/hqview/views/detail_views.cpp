@@ -15,6 +15,7 @@
 #include "hqview/quality/cell_corner_jacobian.h"
 #include "hqview/render/annotate.h"
 #include "hqview/render/label_layout.h"
+#include "hqview/render/upright.h"
 #include "hqview/views/main_views.h"
 
 namespace hq {
@@ -538,6 +539,69 @@ Scene build_local_scene(const HexMesh& mesh, const Topology& topology, std::span
   return scene;
 }
 
+std::vector<Vec3> local_face_areas(const HexMesh& mesh, std::span<const Index> cells, Index v) {
+  std::vector<std::array<Index, 4>> seen;
+  std::vector<Vec3> areas;
+  for (Index c : cells)
+    for_each_face_of(volume_cell(mesh, c), [&](const std::array<Index, 4>& f, int size) {
+      if (std::find(f.begin(), f.begin() + size, v) == f.begin() + size) return;
+      std::array<Index, 4> key = f;
+      std::sort(key.begin(), key.begin() + size);
+      if (std::find(seen.begin(), seen.end(), key) != seen.end()) return;
+      seen.push_back(key);
+      const auto p = [&](int i) { return mesh.points[static_cast<std::size_t>(f[static_cast<std::size_t>(i)])]; };
+      Vec3 area = 0.5 * cross(p(1) - p(0), p(2) - p(0));
+      if (size == 4) area = area + 0.5 * cross(p(2) - p(0), p(3) - p(0));
+      areas.push_back(area);
+    });
+  return areas;
+}
+
+LocalViewScore local_view_score(std::span<const Vec3> face_areas, const Vec3& direction) {
+  const Vec3 d = normalized(direction);
+  LocalViewScore score{0.0, 90.0};
+  for (const Vec3& a : face_areas) {
+    const double length = norm(a);
+    if (!(length > 0.0)) continue;  // a degenerate face has no plane
+    const double along = std::abs(dot(a, d));
+    score.projected_area += along;
+    score.min_face_angle =
+        std::min(score.min_face_angle, std::asin(std::min(1.0, along / length)) * 180.0 / 3.14159265358979323846);
+  }
+  return score;
+}
+
+Vec3 choose_local_viewpoint(std::span<const Vec3> face_areas, std::span<const Vec3> points,
+                            std::span<const Vec3> centers, std::span<const double> radii, double aspect,
+                            const Vec3& up) {
+  std::vector<Vec3> candidates;
+  std::vector<LocalViewScore> scores;
+  for (double elevation : kLocalViewElevations)
+    for (double azimuth = 0.0; azimuth < 360.0 - 1e-9; azimuth += kLocalViewAzimuthStep) {
+      candidates.push_back(upright_view_direction(up, azimuth, elevation));
+      scores.push_back(local_view_score(face_areas, candidates.back()));
+    }
+  double best_angle = 0.0;
+  for (const LocalViewScore& s : scores) best_angle = std::max(best_angle, s.min_face_angle);
+  const double min_angle = std::min(kLocalMinFaceAngle, 0.75 * best_angle);
+  double best_area = 0.0;
+  for (const LocalViewScore& s : scores)
+    if (s.min_face_angle >= min_angle) best_area = std::max(best_area, s.projected_area);
+  Vec3 chosen = candidates.front();
+  double best_cover = -1.0;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    if (scores[i].min_face_angle < min_angle || scores[i].projected_area < kLocalAreaShare * best_area) continue;
+    // The discs' visible area in model units (choose_viewpoints' measure).
+    const Camera camera = fit_camera_to_points(points, candidates[i], aspect, {.up = up, .is_perspective = false});
+    const double cover = glyph_coverage(centers, radii, camera, aspect) * camera.ortho_height * camera.ortho_height * aspect;
+    if (cover > best_cover * (1.0 + 1e-9)) {
+      best_cover = cover;
+      chosen = candidates[i];
+    }
+  }
+  return chosen;
+}
+
 // The corner markers (the scene's first sphere set) as flat discs facing the
 // camera, each on a dark rim, over everything (Scene::overlay): behind the
 // ring's translucent faces a sphere's colour washed out towards grey, so a
@@ -585,7 +649,7 @@ Scene local_marker_discs(const Scene& scene, const Camera& camera, const std::ve
   for (std::size_t k = 0; k < order.size(); ++k) {
     const std::size_t i = order[k];
     const double r = markers.radii[i];
-    disc(in_plane(markers.centers[i], 2.0 * static_cast<double>(k) + 1.0), 1.12 * r, kRim);  // its rim just under it
+    disc(in_plane(markers.centers[i], 2.0 * static_cast<double>(k) + 1.0), kLocalRimScale * r, kRim);  // its rim just under it
     disc(in_plane(markers.centers[i], 2.0 * static_cast<double>(k) + 2.0), r, markers.colors[i]);
   }
   // The vertex: its colour (white) inside a black ring, the legend's
@@ -652,7 +716,12 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
   // of 20 cells was one blob of discs (46q review Q-M1).
   std::vector<double> values;
   for (const VertexCorner& c : corners) values.push_back(c.value);
-  const std::vector<Vec3> points = cell_points(mesh, ring);
+  // The frame: the whole ring; when a corner finds no place there, the
+  // ring's vertices drawn kLocalFrameShare of the way from v (the ring's
+  // outer cells run out of the view), so the discs and their numbers get
+  // more of the view (46t2 review: 36 discs filled 22 % x 28 % of it).
+  const std::vector<Vec3> ring_points = cell_points(mesh, ring);
+  std::vector<Vec3> points = ring_points;
   std::vector<Vec3> centers;
   std::vector<double> base_radii;
   for (std::size_t i = 0; i < scene.spheres[0].centers.size(); ++i) {
@@ -673,9 +742,10 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return corners[a].value < corners[b].value; });
 
-  // Viewpoint: the one that separates the corner markers best (in the
-  // whole view: the same with or without the table).
-  const std::vector<Vec3> direction = choose_viewpoints(points, centers, base_radii, f.aspect, 1, options.up);
+  // Viewpoint: the corners' cells in depth (choose_local_viewpoint), the
+  // discs apart (in the whole view: the same with or without the table).
+  const std::vector<Vec3> direction = {choose_local_viewpoint(local_face_areas(mesh, ring, v), points, centers,
+                                                              base_radii, f.aspect, options.up)};
   // One layout in `view`: the camera, the discs on screen and the labels.
   const auto lay_out = [&](const PixelRect& view) {
     shot.labels.clear();
@@ -702,8 +772,14 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
     std::vector<ScreenDisc> markers;
     for (std::size_t i = 0; i < centers.size(); ++i) {
       const auto [x, y] = to_screen(centers[i]);
-      markers.push_back({x, y, radii[i] * pixels_per_unit, static_cast<std::int64_t>(i)});
+      markers.push_back({x, y, kLocalRimScale * radii[i] * pixels_per_unit, static_cast<std::int64_t>(i)});
     }
+    // What no other label's leader or box may touch: each disc with its rim,
+    // grown by the leaders' halo and a pixel (46t2 review: at 800 x 600 a
+    // leader crossed a disc's rim, outside its fill).
+    const double leader_width = local_leader_width(f.style.scale);
+    std::vector<ScreenDisc> guards = markers;
+    for (ScreenDisc& g : guards) g.radius += local_leader_clearance(leader_width);
     {
       const auto [x, y] = to_screen(scene.origin);
       shot.dot = {x, y, dot_radius, static_cast<std::int64_t>(markers.size())};
@@ -711,13 +787,14 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
     }
     // Each disc has its id (its corner's index); the vertex's dot (with its
     // clear zone) is one more obstacle.
-    std::vector<ScreenDisc> obstacles = markers;
+    std::vector<ScreenDisc> obstacles = guards;
     obstacles.push_back({shot.dot.x, shot.dot.y, shot.dot_clear_radius, shot.dot.id});
     for (std::size_t i = 0; i < centers.size(); ++i) {
       LocalLabel label;
       label.text = texts[i];  // the cell id ties each marker to its bar in chart E
       label.marker = markers[i];
       label.is_inverted = corners[i].value < 0;
+      label.value = corners[i].value;
       shot.labels.push_back(std::move(label));
     }
     LabelLayoutOptions layout;
@@ -748,7 +825,16 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
     // (local_label_clear) and of every disc and the vertex's dot.
     std::vector<std::size_t> kept;
     const auto clear = [&](std::size_t i) {
-      return local_label_clear(shot, i, kept, markers, {shot.dot.x, shot.dot.y, dot_radius + 1.0});
+      return local_label_clear(shot, i, kept, guards,
+                               {shot.dot.x, shot.dot.y, dot_radius + local_leader_clearance(leader_width)});
+    };
+    // The placer's answer for corner i: its own disc as drawn (its label may
+    // sit next to its rim), the others guarded.
+    const auto place = [&](const LabelPlacer& placer, const LabelRequest& request, std::size_t i) {
+      obstacles[i].radius = markers[i].radius;
+      std::optional<PlacedLabel> p = placer.place(request, obstacles);
+      obstacles[i].radius = guards[i].radius;
+      return p;
     };
     // First the full labels (worst first; none on a dense ring): one whose
     // leader would be too long or cross another label's box, disc or
@@ -762,7 +848,7 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
         request.protect_below = static_cast<std::int64_t>(obstacles.size());
         request.strict_leaders = true;
         request.always_leader = true;  // so the placer checks the leader drawn
-        const std::optional<PlacedLabel> p = placer.place(request, obstacles);
+        const std::optional<PlacedLabel> p = place(placer, request, i);
         if (p) {
           set_leader(shot.labels[i], *p);
           if (clear(i)) {
@@ -801,13 +887,13 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
       request.protect_below = static_cast<std::int64_t>(obstacles.size());
       request.strict_leaders = true;
       request.always_leader = true;  // so the placer checks the leader drawn
-      std::optional<PlacedLabel> p = placer.place(request, obstacles);
+      std::optional<PlacedLabel> p = place(placer, request, i);
       // A disc inside the dot's clear zone (often the worst, stacked at
       // the vertex) may have its number's leader cross the zone (not an
       // obstacle protected from leaders), never the dot itself (clear).
       if (!p || (set_leader(label, *p), !clear(i))) {
         request.protect_below = static_cast<std::int64_t>(markers.size());
-        p = placer.place(request, obstacles);
+        p = place(placer, request, i);
       }
       if (p) {
         set_leader(label, *p);
@@ -832,10 +918,13 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
 
   // The table of numbered corners: a column right of the view (the view
   // narrowed by it), made only when some corner is numbered.
+  const auto lay_out_with_table = [&]() {
+  shot.table_box = {};
   PixelRect view = f.layout.view;
   shot.layout = f.layout;
   if (lay_out(view) > 0) {
-    int width = text_extent(kLocalTableHeading, shot.table_text_size, f.style).width;
+    int width = std::max(text_extent(kLocalTableHeading, shot.table_text_size, f.style).width,
+                         text_extent(kLocalLeftOutHeading, shot.table_text_size, f.style).width);
     for (std::size_t i = 0; i < texts.size(); ++i)
       width = std::max(width, text_extent(std::to_string(i + 1) + "   " + texts[i], shot.table_text_size, f.style).width);
     const int line = static_cast<int>(std::lround(1.3 * shot.table_text_size));
@@ -844,10 +933,38 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
     const int margin = static_cast<int>(std::lround(12 * f.style.scale));
     const int table_width = columns * (width + margin) + margin;
     view.width -= std::min(table_width, view.width / 2);
-    lay_out(view);
-    shot.table_box = {view.x + view.width + margin, view.y, table_width - margin, view.height};
+    // In the narrowed view every label may fit in full: then no table.
+    if (lay_out(view) > 0) shot.table_box = {view.x + view.width + margin, view.y, table_width - margin, view.height};
+  }
+  };
+  lay_out_with_table();
+  if (shot.num_left_out > 0) {
+    const Vec3& at = mesh.points[static_cast<std::size_t>(v)];
+    for (std::size_t i = 0; i < points.size(); ++i) points[i] = at + kLocalFrameShare * (ring_points[i] - at);
+    lay_out_with_table();
   }
   return shot;
+}
+
+std::vector<LocalTableRow> local_table_rows(const LocalShot& shot) {
+  std::vector<const LocalLabel*> numbered, left_out;
+  for (const LocalLabel& label : shot.labels) {
+    if (label.placed && label.number > 0) numbered.push_back(&label);
+    if (!label.placed) left_out.push_back(&label);
+  }
+  std::sort(numbered.begin(), numbered.end(),
+            [](const LocalLabel* a, const LocalLabel* b) { return a->number < b->number; });
+  // NaN last.
+  const auto key = [](const LocalLabel* l) { return std::isnan(l->value) ? HUGE_VAL : l->value; };
+  std::stable_sort(left_out.begin(), left_out.end(),
+                   [&](const LocalLabel* a, const LocalLabel* b) { return key(a) < key(b); });
+  std::vector<LocalTableRow> rows;
+  for (const LocalLabel* l : numbered) rows.push_back({std::to_string(l->number), l->text, false, l->is_inverted});
+  if (!left_out.empty()) {
+    rows.push_back({"", kLocalLeftOutHeading, true, false});
+    for (const LocalLabel* l : left_out) rows.push_back({"", l->text, false, l->is_inverted});
+  }
+  return rows;
 }
 
 Image render_local_shot(const LocalShot& shot, const DetailViewOptions& options, Renderer& renderer) {
@@ -856,7 +973,8 @@ Image render_local_shot(const LocalShot& shot, const DetailViewOptions& options,
   std::string legend = shot.legend;
   if (shot.num_left_out > 0)
     legend.insert(std::string_view(kLocalMarkerSizeLegend).size(),
-                  "\n" + std::to_string(shot.num_left_out) + (shot.num_left_out == 1 ? " label" : " labels") + " left out");
+                  "\n" + std::to_string(shot.num_left_out) + (shot.num_left_out == 1 ? " corner" : " corners") +
+                      " not placed\n(end of the table)");
   const Figure f = detail_figure(options, shot.legend, shot.kind_swatches, true);
   ColorBar bar = detail_color_bar(legend, shot.kind_swatches, true);
   // The vertex's dot: a white disc on a black ring, its own legend entry.
@@ -872,13 +990,13 @@ Image render_local_shot(const LocalShot& shot, const DetailViewOptions& options,
   // box (local_shot).
   Rgba8 halo = options.background;
   halo.a = 200;
-  const double width = std::max(1.0, 1.2 * f.style.scale);
+  const double width = local_leader_width(f.style.scale);
   const auto ink = [](const LocalLabel& label) {
     return label.is_inverted ? to_rgba8(kInvertedColor) : Rgba8{30, 30, 30, 255};
   };
   for (const LocalLabel& label : shot.labels)
     if (label.placed && label.has_leader)
-      draw_line(figure, label.leader_x0, label.leader_y0, label.leader_x1, label.leader_y1, halo, 3.0 * width);
+      draw_line(figure, label.leader_x0, label.leader_y0, label.leader_x1, label.leader_y1, halo, kLocalHaloWidths * width);
   for (const LocalLabel& label : shot.labels)
     if (label.placed && label.has_leader)
       draw_line(figure, label.leader_x0, label.leader_y0, label.leader_x1, label.leader_y1, ink(label), width);
@@ -891,29 +1009,33 @@ Image render_local_shot(const LocalShot& shot, const DetailViewOptions& options,
     draw_text(figure, label.box.x + (label.number > 0 ? 3 : 2),
               label.box.y + static_cast<int>(std::lround(0.85 * shot.text_size)), text, shot.text_size, label_style);
   }
-  // The numbered corners' table, worst first, in columns top to bottom.
+  // The numbered corners' table (local_table_rows) in columns top to
+  // bottom, its numbers right-aligned in their own column.
   if (shot.table_box.width > 0) {
-    std::vector<const LocalLabel*> numbered;
-    for (const LocalLabel& label : shot.labels)
-      if (label.placed && label.number > 0) numbered.push_back(&label);
-    std::sort(numbered.begin(), numbered.end(),
-              [](const LocalLabel* a, const LocalLabel* b) { return a->number < b->number; });
-    // Then the corners left out (no place even for a number), marked "-".
-    for (const LocalLabel& label : shot.labels)
-      if (!label.placed) numbered.push_back(&label);
+    const std::vector<LocalTableRow> rows = local_table_rows(shot);
     const int line = static_cast<int>(std::lround(1.3 * shot.table_text_size));
-    const int rows = std::max(1, shot.table_box.height / line - 2);
-    const int columns = std::max<int>(1, static_cast<int>((numbered.size() + rows - 1) / rows));
+    const int per_column = std::max(1, shot.table_box.height / line - 2);
+    const int columns = std::max<int>(1, static_cast<int>((rows.size() + per_column - 1) / per_column));
     const int column_width = shot.table_box.width / columns;
-    label_style.text_color = Rgba8{30, 30, 30, 255};
+    int key_width = 0;
+    for (const LocalTableRow& row : rows)
+      key_width = std::max(key_width, text_extent(row.key, shot.table_text_size, f.style).width);
+    const int text_x = key_width + text_extent("  ", shot.table_text_size, f.style).width;
     const int top = shot.table_box.y + line;
+    label_style.text_color = Rgba8{30, 30, 30, 255};
     draw_text(figure, shot.table_box.x, top, kLocalTableHeading, shot.table_text_size, label_style);
-    for (std::size_t k = 0; k < numbered.size(); ++k) {
-      label_style.text_color = ink(*numbered[k]);
-      const int x = shot.table_box.x + static_cast<int>(k / rows) * column_width;
-      const int y = top + (static_cast<int>(k % rows) + 1) * line + line / 2;
-      const std::string key = numbered[k]->placed ? std::to_string(numbered[k]->number) : "-";
-      draw_text(figure, x, y, key + "   " + numbered[k]->text, shot.table_text_size, label_style);
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      const LocalTableRow& row = rows[k];
+      label_style.text_color = row.is_inverted ? to_rgba8(kInvertedColor) : Rgba8{30, 30, 30, 255};
+      const int x = shot.table_box.x + static_cast<int>(k / per_column) * column_width;
+      const int y = top + (static_cast<int>(k % per_column) + 1) * line + line / 2;
+      if (row.is_heading) {
+        draw_text(figure, x, y, row.text, shot.table_text_size, label_style);
+        continue;
+      }
+      draw_text(figure, x + key_width - text_extent(row.key, shot.table_text_size, f.style).width, y, row.key,
+                shot.table_text_size, label_style);
+      draw_text(figure, x + text_x, y, row.text, shot.table_text_size, label_style);
     }
   }
   return figure;

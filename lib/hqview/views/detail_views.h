@@ -113,6 +113,42 @@ inline constexpr double kLocalDiscScale = 0.6;
 //   translucent[0] the one-ring cells' faces, pale.
 Scene build_local_scene(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v);
 
+// View D's viewpoint (46t2 review: hexwedge v128 was a flat elevation, lshape
+// v199 head-on): the corners' cells seen in depth, never along an axis or a
+// face's plane. The faces of the ring's cells that contain v (each once,
+// by its vector area A_f, unit normal n_f) are what the eye must see:
+//   projected area  P(d) = sum_f |A_f . d| (largest for a box's corner seen
+//                   along its diagonal, smallest along an axis);
+//   face angle      a(d) = min_f asin |n_f . d| (0: some face seen edge-on).
+// Candidates: upright directions (the eye kLocalViewElevations above the
+// horizon, every kLocalViewAzimuthStep degrees of azimuth). Kept: those with
+// a(d) >= kLocalMinFaceAngle degrees (or, when none reaches it, at least
+// 3/4 of the best a(d)); of them those with P(d) >= kLocalAreaShare times
+// the best kept P; of those the one whose discs (centers, radii) cover the
+// most area (as choose_viewpoints), ties to the first.
+// View D frames its whole ring; when a corner finds no place there, the
+// ring's vertices moved this share of the way from v
+// towards where they are: the outer parts of the ring's cells run out of the
+// view, the discs and their labels get more of it (46t2 review: 36 discs
+// filled 22 % x 28 % of the view; with their leaders kept off the discs'
+// rims, 17 of 444 corners of the label test found no place, 2 at 0.65).
+inline constexpr double kLocalFrameShare = 0.65;
+inline constexpr double kLocalViewElevations[] = {20, 25, 30, 35, 40, 45, 50, 55, 60};
+inline constexpr double kLocalViewAzimuthStep = 5.0;
+inline constexpr double kLocalMinFaceAngle = 10.0;  // degrees
+inline constexpr double kLocalAreaShare = 0.95;
+struct LocalViewScore {
+  double projected_area = 0;  // P(d), model units squared
+  double min_face_angle = 0;  // a(d), degrees (90 with no face)
+};
+// The faces of `cells` containing v, each once (sorted corner set), as
+// vector areas (a quad's from its two triangles 012 and 023).
+std::vector<Vec3> local_face_areas(const HexMesh& mesh, std::span<const Index> cells, Index v);
+LocalViewScore local_view_score(std::span<const Vec3> face_areas, const Vec3& direction);
+Vec3 choose_local_viewpoint(std::span<const Vec3> face_areas, std::span<const Vec3> points,
+                            std::span<const Vec3> centers, std::span<const double> radii, double aspect,
+                            const Vec3& up);
+
 // View D's scene as drawn for `camera`: the corner markers (spheres[0]) as
 // flat discs facing the camera on a dark rim, and v's dot (spheres[1]) as a
 // dark disc, all moved to the overlay, in the plane through v facing the
@@ -121,6 +157,15 @@ Scene build_local_scene(const HexMesh& mesh, const Topology& topology, std::span
 // the others, v's dot (at kLocalDiscScale of its radius) on top of all
 // (46q review Q-M1: discs hid one another, the worst and the vertex).
 inline constexpr double kLocalStackStep = 1e-3;
+// Each disc's dark rim: a disc of this many times its radius under it.
+inline constexpr double kLocalRimScale = 1.12;
+// The leaders: local_leader_width(scale) pixels wide (scale: the figure's
+// AnnotationStyle::scale) on a halo kLocalHaloWidths times as wide; a leader
+// keeps local_leader_clearance pixels (its halo's half width and a pixel)
+// off every other disc's rim.
+inline constexpr double kLocalHaloWidths = 3.0;
+inline double local_leader_width(double scale) { return scale * 1.2 > 1.0 ? scale * 1.2 : 1.0; }
+inline double local_leader_clearance(double leader_width) { return 0.5 * kLocalHaloWidths * leader_width + 1.0; }
 Scene local_marker_discs(const Scene& scene, const Camera& camera, const std::vector<double>& values, double size);
 
 // The figure of view D: the one ring framed, each corner marker labelled
@@ -134,7 +179,8 @@ Image render_local_view(const HexMesh& mesh, const Topology& topology, std::span
 // One corner's label in view D, as laid out on the figure (pixels).
 //   text:   "0.812  hex 12" (value, kind, cell id; chart E's names);
 //   box:    where the text is drawn (its extent plus 2 px each side);
-//   marker: its disc on screen (at least kLocalMinDiscPixels in radius);
+//   marker: its disc on screen with its rim (kLocalRimScale times the
+//           disc, at least kLocalMinDiscPixels in radius);
 //   placed: false when no free place was found: the label is left out
 //           (never drawn over another; the legend counts the left out);
 //   leader: from the disc's edge to the box (every placed label has one
@@ -144,6 +190,7 @@ struct LocalLabel {
   PixelRect box;
   ScreenDisc marker;
   bool is_inverted = false;  // its value < 0: drawn in the inverted colour
+  double value = 0;          // its corner scaled Jacobian
   bool placed = false;
   bool has_leader = false;
   double leader_x0 = 0, leader_y0 = 0, leader_x1 = 0, leader_y1 = 0;
@@ -171,7 +218,11 @@ inline constexpr double kLocalDotClearLabels = 1.0;  // the dot's clear zone rad
 // even so is left out and counted.
 inline constexpr double kLocalMaxLeaderLabels = 4.0;
 inline constexpr std::size_t kLocalMaxFullLabels = 16;
-inline constexpr const char* kLocalTableHeading = "numbered corners";
+inline constexpr const char* kLocalTableHeading = "numbered corners (1 = worst)";
+// The table's last rows: the corners left out (no place even for a
+// number), worst first, under this heading and with no key (46t2 review:
+// a "-" key read as a minus sign among signed values).
+inline constexpr const char* kLocalLeftOutHeading = "not placed (no room):";
 struct LocalShot {
   Scene scene;  // as drawn (discs in the overlay)
   Camera camera;
@@ -190,6 +241,16 @@ struct LocalShot {
 };
 LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v,
                      const DetailViewOptions& options);
+// The table beside view D, row by row: the numbered corners by number
+// (key "1", "2", ...; text "0.812  hex 12"), then, when any corner was left
+// out, a heading row kLocalLeftOutHeading and those corners by value (worst
+// first, NaN last; key empty). Empty when no corner is numbered or left out.
+struct LocalTableRow {
+  std::string key, text;
+  bool is_heading = false;
+  bool is_inverted = false;  // drawn in the inverted colour
+};
+std::vector<LocalTableRow> local_table_rows(const LocalShot& shot);
 Image render_local_shot(const LocalShot& shot, const DetailViewOptions& options, Renderer& renderer);
 
 }  // namespace hq

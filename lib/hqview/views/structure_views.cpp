@@ -15,6 +15,7 @@
 #include "hqview/mesh/cell_faces.h"
 #include "hqview/render/annotate.h"
 #include "hqview/render/camera.h"
+#include "hqview/render/label_layout.h"
 #include "hqview/render/upright.h"
 #include "hqview/views/main_views.h"
 #include "hqview/views/overview_views.h"
@@ -27,6 +28,9 @@ constexpr double kMaxNodeRadius = 0.02;  // of the boundary's bounding-box diago
 constexpr Rgba8 kVeilColor{176, 182, 194, 56};     // the translucent boundary
 constexpr Rgba8 kNodeColor{40, 40, 46, 255};        // singularity nodes
 constexpr Rgba8 kGradationEdgeColor{40, 40, 46, 70};  // boundary edges over the gradation
+// The gradation's max cell's edges: the error-density view's max-hex magenta
+// (on none of the gradation map's pale-orange-red colours).
+constexpr Rgba8 kGradationMaxEdgeColor{204, 0, 204, 255};
 constexpr Rgba8 kNonConformingDiagonalColor{255, 255, 255, 255};  // dashed over the brown face
 // The dashes stop this fraction of the diagonal short of its corners, so the
 // curve-end rings there stay whole (46r review).
@@ -387,9 +391,98 @@ Image render_gradation_view(const HexMesh& mesh, const Topology& topology, const
     }
   scene.lines.push_back(std::move(edges));
 
+  // The max cell (46t2 review: the title's max was hidden and unmarked):
+  // its whole wireframe over everything (nearer cells do not hide it), in
+  // kGradationMaxEdgeColor on a white halo, and a label with its value,
+  // kind and id at its centre, with a leader.
+  const Index max_cell = gradation_max_cell(structure.cell_gradation);
+  if (max_cell != kNoIndex) {
+    LineSet halo, core;
+    halo.width = static_cast<float>(std::max(4.0, 6.0 * style.scale));
+    core.width = static_cast<float>(std::max(2.0, 2.5 * style.scale));
+    halo.over_all = core.over_all = true;
+    for_each_edge_of(volume_cell(mesh, max_cell), [&](Index a, Index b) {
+      for (Index v : {a, b}) {
+        for (LineSet* set : {&halo, &core}) {
+          set->indices.push_back(static_cast<std::uint32_t>(set->positions.size()));
+          set->positions.push_back(to_vec3f(point(mesh, v) - scene.origin));
+        }
+        halo.colors.push_back({255, 255, 255, 255});
+        core.colors.push_back(kGradationMaxEdgeColor);
+      }
+    });
+    scene.lines.push_back(std::move(halo));
+    scene.lines.push_back(std::move(core));
+    bar.swatches.push_back({to_color(kGradationMaxEdgeColor), "max cell: its edges", SwatchShape::thick_line});
+  }
   Image figure = render_figure(renderer, scene, camera, options.width, options.height, layout, options.title, style);
   draw_color_bar(figure, layout.legend, bar, style);
+  if (max_cell != kNoIndex) {
+    const CellRef cell = volume_cell(mesh, max_cell);
+    Vec3 centre{};
+    for (int i = 0; i < cell.num_corners; ++i) centre = centre + point(mesh, cell.corners[static_cast<std::size_t>(i)]);
+    centre = centre / static_cast<double>(cell.num_corners);
+    const PixelRect& view = layout.view;
+    const auto to_screen = [&](const Vec3& p) {
+      const Vec3 ndc = project_to_ndc(camera, aspect, p);
+      return std::array<double, 2>{view.x + 0.5 * (ndc.x + 1.0) * view.width, view.y + 0.5 * (1.0 - ndc.y) * view.height};
+    };
+    // The anchor: a disc over the cell's corners on screen (the label stays
+    // off the outline), at most a tenth of the view's height.
+    const auto [cx, cy] = to_screen(centre);
+    double reach = 3.0 * style.scale;
+    for (int i = 0; i < cell.num_corners; ++i) {
+      const auto [x, y] = to_screen(point(mesh, cell.corners[static_cast<std::size_t>(i)]));
+      reach = std::max(reach, std::hypot(x - cx, y - cy));
+    }
+    const ScreenDisc anchor{cx, cy, std::min(reach, 0.1 * view.height), 0};
+    // Inside (no boundary face): its outline is seen through the boundary.
+    bool on_boundary = false;
+    for (const BoundaryPolygon& face : boundary_polygons(topology)) on_boundary = on_boundary || face.cell == max_cell;
+    const std::string text =
+        gradation_max_label(structure.cell_gradation, mesh, max_cell) + (on_boundary ? "" : " (inside)");
+    const int text_size = std::max(style.min_text_size, static_cast<int>(std::lround(22 * style.scale)));
+    const PixelRect extent = text_extent(text, text_size, style);
+    LabelLayoutOptions placement;
+    placement.bounds = view;
+    placement.gap = 6.0 * style.scale;
+    placement.ring_step = 14.0 * style.scale;
+    placement.leader_distance = 0.0;  // always a leader: the label names the outlined cell
+    LabelRequest request{anchor, extent.width + 8, static_cast<int>(std::lround(1.3 * text_size))};
+    request.always_leader = true;
+    request.leader_from = ScreenDisc{cx, cy, 2.0 * style.scale, 0};  // from the cell's centre
+    const std::optional<PlacedLabel> p = LabelPlacer({}, placement).place(request, {});
+    if (p) {
+      const double width = std::max(1.0, 1.5 * style.scale);
+      draw_line(figure, p->leader_x0, p->leader_y0, p->leader_x1, p->leader_y1, {255, 255, 255, 255}, 3.0 * width);
+      draw_line(figure, p->leader_x0, p->leader_y0, p->leader_x1, p->leader_y1, kGradationMaxEdgeColor, width);
+      fill_rect(figure, p->box, options.background);
+      AnnotationStyle ink = style;
+      ink.text_color = {30, 30, 30, 255};
+      draw_text(figure, p->box.x + 4, p->box.y + static_cast<int>(std::lround(1.0 * text_size)), text, text_size, ink);
+      // Its frame in the outline's colour: the label and the outlined cell read as one.
+      for (const auto& [x0, y0, x1, y1] : std::array<std::array<int, 4>, 4>{
+               {{p->box.x, p->box.y, p->box.x + p->box.width, p->box.y},
+                {p->box.x, p->box.y + p->box.height, p->box.x + p->box.width, p->box.y + p->box.height},
+                {p->box.x, p->box.y, p->box.x, p->box.y + p->box.height},
+                {p->box.x + p->box.width, p->box.y, p->box.x + p->box.width, p->box.y + p->box.height}}})
+        draw_line(figure, x0, y0, x1, y1, kGradationMaxEdgeColor, width);
+    }
+  }
   return figure;
+}
+
+Index gradation_max_cell(std::span<const double> cell_gradation) {
+  Index best = kNoIndex;
+  for (std::size_t i = 0; i < cell_gradation.size(); ++i)
+    if (std::isfinite(cell_gradation[i]) && (best == kNoIndex || cell_gradation[i] > cell_gradation[static_cast<std::size_t>(best)]))
+      best = static_cast<Index>(i);
+  return best;
+}
+
+std::string gradation_max_label(std::span<const double> cell_gradation, const HexMesh& mesh, Index cell) {
+  return "max " + display_number(cell_gradation[static_cast<std::size_t>(cell)], 3) + "  " +
+         std::string(cell_kind_name(volume_cell(mesh, cell).kind)) + " " + std::to_string(cell);
 }
 
 }  // namespace hq

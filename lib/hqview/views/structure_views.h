@@ -103,6 +103,15 @@ inline constexpr double kGradationOfInterest = 1.5;
 Vec3 choose_gradation_viewpoint(const HexMesh& mesh, const Topology& topology, const HexStructure& structure,
                                 const StructureViewOptions& options);
 
+// The cell of the largest finite gradation (the lowest id on ties), which
+// the gradation view outlines (its edges in magenta on a white halo, drawn
+// over every nearer cell; legend "max cell: its edges") and labels with
+// gradation_max_label ("max 1.71  tet 123", then " (inside)" when it has no
+// boundary face) on a leader; kNoIndex when no
+// value is finite.
+Index gradation_max_cell(std::span<const double> cell_gradation);
+std::string gradation_max_label(std::span<const double> cell_gradation, const HexMesh& mesh, Index cell);
+
 Image render_gradation_view(const HexMesh& mesh, const Topology& topology, const HexStructure& structure,
                             const Vec3& view_direction, const StructureViewOptions& options, Renderer& renderer);
 
