@@ -551,7 +551,7 @@ kainjow::mustache::data fem_correlation_data(const CollectionCorrelation& c, con
                                   : r.length_power == 2 ? " / L\u00b2"
                                   : r.length_power == 3 ? " / L\u00b3"
                                                         : ""));
-    row.set("stat", r.restates.empty() ? r.stat : r.stat + " (restates " + r.restates + ": not counted again in q)");
+    row.set("stat", r.restates.empty() ? r.stat : r.stat + " (restates " + r.restates + ")");
     row.set("direction", r.direction > 0 ? "higher is better" : r.direction < 0 ? "lower is better" : "–");
     row.set("rho_l2", rho(r.rho_l2) + (wrong_way(r, r.rho_l2) ? " \u2717" : ""));
     row.set("rho_h1", rho(r.rho_h1) + (wrong_way(r, r.rho_h1) ? " \u2717" : ""));
