@@ -369,7 +369,10 @@ Image render_error_density_boundary(const HexMesh& mesh, const Topology& topolog
             .front())
       f.worst_note = "; its faces not seen from here";
   }
-  f.bar.swatches.push_back({Color{0.08, 0.08, 0.08}, "ring: max (dashed: interior)"});
+  // The ring as drawn (issue 48h: was a black box).
+  f.bar.swatches.push_back(worst.on_boundary
+                               ? ColorBarSwatch{Color{0.08, 0.08, 0.08}, "ring: max (on the boundary)", SwatchShape::solid_ring}
+                               : ColorBarSwatch{Color{0.08, 0.08, 0.08}, "ring: max (dashed: interior)", SwatchShape::dashed_ring});
   return finish_figure(f, mesh, worst, options, renderer, camera, view);
 }
 
