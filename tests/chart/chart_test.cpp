@@ -346,6 +346,14 @@ TEST(MetricCorrelation, IntervalThroughZeroIsUndecided) {
     return std::any_of(c.texts.begin(), c.texts.end(), [&](const ChartText& t) { return t.text.starts_with(prefix); });
   };
   EXPECT_FALSE(has_prefix(chart, "Most shape metrics disagree"));
+  // The key says which interval the verdicts rest on: one 95 % interval, or
+  // simultaneous over the verdict family (Bonferroni, 1 - 0.05/20 = 99.75 %).
+  EXPECT_TRUE(has_prefix(chart, "95% interval (Fisher z"));
+  const Chart simultaneous = metric_correlation_chart(bars, {900, 300, "t"}, 500, 20);
+  EXPECT_TRUE(has_text(simultaneous, "interval: simultaneous 95% over the 20 metrics with a direction (Bonferroni: "
+                                     "each at 99.75%;"));
+  EXPECT_TRUE(has_text(simultaneous, "Fisher z, Bonett\u2013Wright SE); agree / disagree / undecided rest on it;"));
+  EXPECT_TRUE(has_text(simultaneous, "\u03c1 [simultaneous 95%]"));
   // Two decided disagreements and one undecided among shape metrics: most disagree.
   const std::vector<CorrelationBar> most = {{"skew", -0.3, -0.35, -0.25, nan, -0.3, false},
                                             {"taper", -0.2, -0.25, -0.15, nan, -0.2, false},
@@ -353,8 +361,18 @@ TEST(MetricCorrelation, IntervalThroughZeroIsUndecided) {
   const Chart other = metric_correlation_chart(most, {900, 300, "t"});
   EXPECT_TRUE(has_text(other, "shape metrics (3): 0 agree, 2 disagree, 1 undecided"));
   EXPECT_TRUE(has_prefix(other, "Most shape metrics disagree"));
+  // Only the verdicts it shows: no "agrees" entry without a blue row.
+  EXPECT_FALSE(has_prefix(other, "agrees:"));
+  EXPECT_TRUE(has_prefix(other, "disagrees:"));
   EXPECT_TRUE(has_prefix(other, "why is not tested here"));
   EXPECT_FALSE(has_prefix(other, "a position or grading effect"));
+  // The same with partials within 0.05 of rho: the hex size explains none of it.
+  std::vector<CorrelationBar> sized = most;
+  sized[0].rho_given_size = -0.28;
+  sized[1].rho_given_size = -0.22;
+  const Chart size_free = metric_correlation_chart(sized, {900, 300, "t"});
+  EXPECT_TRUE(has_prefix(size_free, "\u03c1 hardly changes given the hex size h_e, so size does not explain it"));
+  EXPECT_TRUE(has_prefix(size_free, "Most shape metrics disagree: here the hexes they call worse tend to have"));
   EXPECT_TRUE(has_text(chart, "  relative_size_squared = min(\u03c4, 1/\u03c4)\u00b2, \u03c4 = its mean corner "
                               "determinant / the mean hex volume;"));
   EXPECT_TRUE(has_text(chart, "  shape_and_size, shear_and_size = shape, shear times relative_size_squared"));

@@ -50,7 +50,7 @@ def report_rule(path, value):
             or path.startswith("structure.irregular_vertices_by_valence.")) and isinstance(value, dict):
         return {path + ".<valence>"}
     if path in ("fem.poisson.correlation", "fem.poisson.correlation_given_size",
-                "fem.poisson.correlation_interval") and isinstance(value, dict):
+                "fem.poisson.correlation_interval", "fem.poisson.correlation_interval_adjusted") and isinstance(value, dict):
         return {path + ".<metric>"} if value else set()
     if path == "fem.poisson.solutions" and isinstance(value, dict):
         return {f"{path}.<solution>.{k}" for v in value.values() for k in v}

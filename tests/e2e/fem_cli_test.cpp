@@ -238,14 +238,23 @@ TEST(FemCli, BatchCorrelatesErrorsWithMetricsAcrossMeshes) {
     EXPECT_EQ(m["metrics"]["fem_kappa"]["mean"], report["fem"]["element"]["kappa"]["mean"]);
     EXPECT_NEAR(m["metrics"]["h_over_l"]["mean"].get<double>(),
                 std::cbrt(report["quality"]["metrics"]["volume"]["mean"].get<double>()) /
-                    report["fem"]["poisson"]["normalization"]["diagonal"].get<double>(),
+                    report["fem"]["poisson"]["mesh_length"].get<double>(),
                 1e-15);
+    // L: the diagonal of the box with the mesh's second moments. A moved
+    // interior vertex leaves the domain, the 6^3 box, as it is: 6 sqrt 3 (to
+    // the 2x2x2 Gauss rule's error on the distorted hexes).
+    EXPECT_NEAR(report["fem"]["poisson"]["mesh_length"].get<double>(), std::sqrt(3.0) * 6, 1e-3);
     // Each hex's rho has its 95 % interval around it.
     const json& sj_rho = report["fem"]["poisson"]["correlation"]["scaled_jacobian"];
     const json& sj_interval = report["fem"]["poisson"]["correlation_interval"]["scaled_jacobian"];
+    const json& sj_adjusted = report["fem"]["poisson"]["correlation_interval_adjusted"]["scaled_jacobian"];
     if (sj_rho.is_number()) {
       EXPECT_LT(sj_interval[0].get<double>(), sj_rho.get<double>());
       EXPECT_GT(sj_interval[1].get<double>(), sj_rho.get<double>());
+      // Simultaneous over the verdict family: wider.
+      EXPECT_GT(report["fem"]["poisson"]["correlation_verdict_family"].get<int>(), 1);
+      EXPECT_LT(sj_adjusted[0].get<double>(), sj_interval[0].get<double>());
+      EXPECT_GT(sj_adjusted[1].get<double>(), sj_interval[1].get<double>());
     }
     l2.push_back(report["fem"]["poisson"]["mean"]["l2_error"].get<double>());
     h1.push_back(report["fem"]["poisson"]["mean"]["h1_error"].get<double>());
@@ -293,11 +302,23 @@ TEST(FemCli, BatchCorrelatesErrorsWithMetricsAcrossMeshes) {
     EXPECT_NEAR(row["rho_h1_error"].get<double>(), test_spearman(is_min ? sj_min : sj_mean, h1), 1e-12);
   }
   EXPECT_TRUE(seen_min && seen_mean && seen_edge_ratio && seen_baseline);
-  // q: Benjamini-Hochberg over the rows' p (recomputed here from the p's).
+  // q: Benjamini-Hochberg over the family's p (recomputed here from the p's):
+  // the rows that are their own hypothesis; a restating row (mean volume /
+  // L^3 restates h_over_l) carries the restated row's q.
   std::vector<std::pair<double, double>> pq;  // (p, q) of the H1 column
-  for (const json& row : c["metrics"])
+  for (const json& row : c["metrics"]) {
+    if (!row["restates"].is_null()) {
+      for (const json& other : c["metrics"]) {
+        if (other["metric"] == row["restates"]) {
+          EXPECT_EQ(row["q_h1_error"], other["q_h1_error"]);
+        }
+      }
+      continue;
+    }
     if (row["p_h1_error"].is_number()) pq.push_back({row["p_h1_error"].get<double>(), row["q_h1_error"].get<double>()});
     else EXPECT_TRUE(row["q_h1_error"].is_null());
+  }
+  EXPECT_EQ(c["num_hypotheses_h1_error"].get<std::size_t>(), pq.size());
   std::sort(pq.begin(), pq.end());
   for (std::size_t i = 0; i < pq.size(); ++i) {
     double expected = 1.0;
@@ -315,15 +336,16 @@ TEST(FemCli, BatchCorrelatesErrorsWithMetricsAcrossMeshes) {
   EXPECT_NE(html.find("Which metrics rank these meshes by their simulation error"), std::string::npos);
   // Said plainly, by hand from index.json: m rows at best p_min each give the
   // k-th of them q = p_min m / k (Benjamini-Hochberg), so q < 0.05 needs
-  // k > 20 m p_min rows together.
-  // Here 52 rows at p_min = 2/6! give 0.144: 3 rows together (q = 0.048).
+  // k > 20 m p_min rows together (m: the family, the restated row out).
   {
     const json& fc = index["fem_correlation"];
-    const double spread = static_cast<double>(fc["metrics"].size()) * fc["min_p"].get<double>();
+    const double spread = fc["num_hypotheses_h1_error"].get<double>() * fc["min_p"].get<double>();
     ASSERT_GT(spread, 0.05);
     const int needed = static_cast<int>(std::floor(spread / 0.05)) + 1;
-    EXPECT_NE(html.find("rows (Benjamini\u2013Hochberg) a row reaches q &lt; 0.05 only when at least " +
-                        std::to_string(needed) + " rows reach p = "),
+    EXPECT_NE(html.find("The Benjamini\u2013Hochberg family: the " +
+                        std::to_string(fc["num_hypotheses_h1_error"].get<int>()) + " rows that are their own hypothesis"),
+              std::string::npos);
+    EXPECT_NE(html.find("A row reaches q &lt; 0.05 only when at least " + std::to_string(needed) + " rows reach p = "),
               std::string::npos)
         << needed;
   }

@@ -163,6 +163,14 @@ TEST(CorrelateMetrics, PartialGivenSizeAsComputedOneByOne) {
   EXPECT_NEAR(size_correlation(density, size).rho, r_ds, 1e-15);
   // Without sizes: no partial rho.
   EXPECT_TRUE(std::isnan(correlate_metrics(density, metrics, elements)[0].rho_given_size));
+  // The verdict family: skew, shear and fem_kappa have a better direction
+  // (volume, fem_lambda_max, fem_det_j_min do not): m = 3, z = 2.39398.
+  EXPECT_EQ(verdict_family_size(c), 3);
+  const RankCorrelationInterval adjusted =
+      spearman_interval(s.correlation.rho, s.correlation.count, 2.3939797998185095);
+  EXPECT_NEAR(s.adjusted_interval.lo, adjusted.lo, 1e-13);
+  EXPECT_NEAR(s.adjusted_interval.hi, adjusted.hi, 1e-13);
+  EXPECT_LT(s.adjusted_interval.lo, s.interval.lo);
 }
 
 // By hand: m = 4 finite p sorted 0.01, 0.03, 0.04, 0.5 give m p / rank
@@ -264,6 +272,23 @@ TEST(SpearmanInterval, FisherZWithBonettWrightError) {
   EXPECT_TRUE(std::isnan(spearman_interval(0.5, 3).lo));
   EXPECT_TRUE(std::isnan(spearman_interval(std::nan(""), 50).hi));
   EXPECT_EQ(spearman_interval(1.0, 10).lo, 1.0);
+}
+
+// The verdicts' interval, simultaneous over m metrics (Bonferroni): z from
+// scipy.stats.norm.isf(0.05 / (2 m)) (m = 20: 3.0233414397391476). By hand:
+// rho 0.07 over 1003 hexes, se = sqrt((1 + 0.07^2 / 2) / 1000): the one 95 %
+// interval [0.00806, 0.131] excludes 0 (a "decided" sign), the simultaneous
+// one over 20 metrics [-0.0256, 0.164] does not: undecided.
+TEST(SpearmanInterval, SimultaneousOverTheVerdictFamily) {
+  EXPECT_NEAR(bonferroni_interval_z(20), 3.0233414397391476, 1e-12);
+  EXPECT_NEAR(bonferroni_interval_z(3), 2.3939797998185095, 1e-12);
+  EXPECT_EQ(bonferroni_interval_z(1), kCorrelationIntervalZ);
+  const RankCorrelationInterval one = spearman_interval(0.07, 1003);
+  EXPECT_NEAR(one.lo, 0.00805911449470834, 1e-12);
+  EXPECT_NEAR(one.hi, 0.13140576955334957, 1e-12);
+  const RankCorrelationInterval all = spearman_interval(0.07, 1003, bonferroni_interval_z(20));
+  EXPECT_NEAR(all.lo, -0.02560322981685053, 1e-12);
+  EXPECT_NEAR(all.hi, 0.16433439829997493, 1e-12);
 }
 
 }  // namespace

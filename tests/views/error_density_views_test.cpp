@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "hqview/core/hex_topology.h"
 #include "hqview/fem/fem_element_field.h"
 #include "hqview/fem/poisson_check.h"
 #include "hqview/image/colormap.h"
@@ -254,6 +255,25 @@ TEST(ErrorDensityView, TheBadRegionCarriesTheHighEndOfTheMap) {
       }
     EXPECT_GE(inside_box, 5) << "the max hex " << worst.hex << " has no edges in its colour";
     EXPECT_EQ(outside_box, 0);
+    // Its SJ below the threshold stays visible: the halo of its front edges
+    // turns black (the SJ edges' colour) instead of white. Pure black in its
+    // box (+8 px): none with every SJ 1 (grey edges, the ring is (20,20,20)),
+    // many with the max's SJ 0.2.
+    std::vector<double> low_max = good;
+    low_max[static_cast<std::size_t>(worst.hex)] = 0.2;
+    const Image low_image =
+        render_error_density_cells(mesh, topology, density, low_max, direction, options, *renderer);
+    const auto black_in_box = [&](const Image& image) {
+      int n = 0;
+      for (int y = std::max(0, y_lo - 8); y <= std::min(image.height - 1, y_hi + 8); ++y)
+        for (int x = std::max(0, x_lo - 8); x <= std::min(image.width - 1, x_hi + 8); ++x) {
+          const Rgba8 pixel = test::pixel_at(image, x, y);
+          n += pixel.r <= 6 && pixel.g <= 6 && pixel.b <= 6;
+        }
+      return n;
+    };
+    EXPECT_EQ(black_in_box(cells_image), 0);
+    EXPECT_GE(black_in_box(low_image), 10);
   }
 
   // Depth: of the drawn cells, one with a boundary face turned to the camera
@@ -282,6 +302,39 @@ TEST(ErrorDensityView, TheBadRegionCarriesTheHighEndOfTheMap) {
     EXPECT_TRUE(hidden[static_cast<std::size_t>(k)]) << "interior hex " << probe[static_cast<std::size_t>(k)];
     EXPECT_FALSE(hidden[static_cast<std::size_t>(3 + k)]) << "front hex " << probe[static_cast<std::size_t>(3 + k)];
   }
+}
+
+}  // namespace
+}  // namespace hq
+
+namespace hq {
+namespace {
+
+// The max hex's front edges, by hand: the unit cube seen from the (1, 1, 1)
+// side shows its faces x = 1, y = 1, z = 1, whose 9 edges are its front; the
+// 3 edges at the corner (0, 0, 0) lie behind. From the other side the
+// corner (1, 1, 1)'s 3 edges are the back ones. Orthographic and perspective alike.
+TEST(ErrorDensityViews, MaxHexFrontEdgesFaceTheCamera) {
+  const HexMesh cube = test::unit_cube();
+  const Hex& hex = cube.hexes[0];
+  for (const bool perspective : {false, true})
+    for (const double side : {1.0, -1.0}) {
+      Camera camera;
+      camera.target = {0.5, 0.5, 0.5};
+      camera.eye = camera.target + side * Vec3{3, 2.5, 2};
+      camera.is_perspective = perspective;
+      const Vec3 hidden_corner = side > 0 ? Vec3{0, 0, 0} : Vec3{1, 1, 1};
+      const std::array<bool, 12> front = hex_edges_facing(cube, hex, camera);
+      int num_front = 0;
+      for (std::size_t e = 0; e < kHexEdges.size(); ++e) {
+        const Vec3 a = cube.points[static_cast<std::size_t>(hex[static_cast<std::size_t>(kHexEdges[e][0])])];
+        const Vec3 b = cube.points[static_cast<std::size_t>(hex[static_cast<std::size_t>(kHexEdges[e][1])])];
+        const bool at_hidden = norm(a - hidden_corner) < 1e-12 || norm(b - hidden_corner) < 1e-12;
+        EXPECT_EQ(front[e], !at_hidden) << e;
+        num_front += front[e];
+      }
+      EXPECT_EQ(num_front, 9);
+    }
 }
 
 }  // namespace

@@ -532,7 +532,7 @@ std::string decade_label(int k) {
 }  // namespace
 
 Chart metric_correlation_chart(std::span<const CorrelationBar> bars, const ChartOptions& options,
-                               std::int64_t count) {
+                               std::int64_t count, int verdict_family) {
   std::vector<std::size_t> directed, undirected, constant;
   for (std::size_t i = 0; i < bars.size(); ++i)
     (!std::isfinite(bars[i].rho) ? constant : std::isfinite(bars[i].agreement) ? directed : undirected).push_back(i);
@@ -563,7 +563,8 @@ Chart metric_correlation_chart(std::span<const CorrelationBar> bars, const Chart
     std::snprintf(text, sizeof text, std::abs(v) < 0.005 ? "%.3f" : "%.2f", v);
     return std::string(text);
   };
-  chart.texts.push_back({{column, r.y - 6.0}, "\u03c1 [95% interval]", kTickSize - 1.0, kAxisColor, ChartAnchor::left,
+  const bool simultaneous = verdict_family > 1;
+  chart.texts.push_back({{column, r.y - 6.0}, simultaneous ? "\u03c1 [simultaneous 95%]" : "\u03c1 [95% interval]", kTickSize - 1.0, kAxisColor, ChartAnchor::left,
                          false});
   chart.texts.push_back({{partial_column, r.y - 6.0}, "partial", kTickSize - 1.0, kAxisColor, ChartAnchor::right,
                          false});
@@ -638,9 +639,11 @@ Chart metric_correlation_chart(std::span<const CorrelationBar> bars, const Chart
     chart.texts.push_back({{kx + 20.0, ly}, text, kTickSize, kAxisColor, ChartAnchor::left, false});
     ly += 20.0;
   };
-  key(kAgreesColor, "agrees: the metric's worse side has the higher error (\u03c1 < 0 where higher is better, "
-                    "\u03c1 > 0 where lower is better)");
-  key(kDisagreesColor, "disagrees: the metric's better side has the higher error");
+  // Only the verdicts the chart shows (issue 48h: "disagrees" with no orange row).
+  if (counts[0][0] + counts[1][0] > 0)
+    key(kAgreesColor, "agrees: the metric's worse side has the higher error (\u03c1 < 0 where higher is better, "
+                      "\u03c1 > 0 where lower is better)");
+  if (counts[0][1] + counts[1][1] > 0) key(kDisagreesColor, "disagrees: the metric's better side has the higher error");
   if (any_undecided) {
     key(kUndecidedColor, "undecided: the interval includes 0 (open bar)");
     chart.lines.push_back({{{kx, ly - 29.0}, {kx + 14.0, ly - 29.0}, {kx + 14.0, ly - 19.0}, {kx, ly - 19.0},
@@ -652,14 +655,20 @@ Chart metric_correlation_chart(std::span<const CorrelationBar> bars, const Chart
     chart.lines.push_back({{{kx, ly - 4.0}, {kx + 14.0, ly - 4.0}}, kWhiskerColor, 1.5});
     chart.lines.push_back({{{kx, ly - 8.0}, {kx, ly}}, kWhiskerColor, 1.5});
     chart.lines.push_back({{{kx + 14.0, ly - 8.0}, {kx + 14.0, ly}}, kWhiskerColor, 1.5});
-    chart.texts.push_back({{kx + 20.0, ly},
-                           "95% interval per metric (Fisher z, Bonett\u2013Wright SE), unadjusted for the " +
-                               std::to_string(directed.size() + undirected.size()) + " metrics;",
-                           kTickSize, kAxisColor, ChartAnchor::left, false});
-    ly += 20.0;
-    chart.texts.push_back({{kx + 20.0, ly}, "too narrow, as neighbouring hexes' errors are correlated", kTickSize,
-                           kAxisColor, ChartAnchor::left, false});
-    ly += 20.0;
+    char level[32];
+    std::snprintf(level, sizeof level, "%.4g", 100.0 - 5.0 / std::max(1, verdict_family));
+    const std::vector<std::string> lines =
+        simultaneous
+            ? std::vector<std::string>{"interval: simultaneous 95% over the " + std::to_string(verdict_family) +
+                                           " metrics with a direction (Bonferroni: each at " + level + "%;",
+                                       "Fisher z, Bonett\u2013Wright SE); agree / disagree / undecided rest on it;",
+                                       "still too narrow, as neighbouring hexes' errors are correlated"}
+            : std::vector<std::string>{"95% interval (Fisher z, Bonett\u2013Wright SE);",
+                                       "still too narrow, as neighbouring hexes' errors are correlated"};
+    for (const std::string& line : lines) {
+      chart.texts.push_back({{kx + 20.0, ly}, line, kTickSize, kAxisColor, ChartAnchor::left, false});
+      ly += 20.0;
+    }
   }
   if (any_partial) {
     chart.lines.push_back(partial_diamond(kx + 7.0, ly - 4.0));
@@ -696,9 +705,20 @@ Chart metric_correlation_chart(std::span<const CorrelationBar> bars, const Chart
     note(text);
     note("(the metrics correlate with each other: they are not independent witnesses)");
     if (counts[0][1] > counts[0][0] + counts[0][2]) {
-      note("Most shape metrics disagree: here the hexes they call worse have the lower error;");
-      note("why is not tested here (the partial \u03c1 shows what the hex size explains): not alone a verdict on "
-           "the metrics");
+      // Whether the hex size explains it: every decided disagreeing shape
+      // metric's partial given h_e within 0.05 of its rho.
+      bool size_explains_nothing = true;
+      for (const auto& [i, y] : placed) {
+        const CorrelationBar& bar = bars[i];
+        if (bar.is_size || !std::isfinite(bar.agreement) || correlation_undecided(bar) || bar.agreement >= 0) continue;
+        size_explains_nothing = size_explains_nothing && std::isfinite(bar.rho_given_size) &&
+                                std::abs(bar.rho_given_size - bar.rho) < 0.05;
+      }
+      note("Most shape metrics disagree: here the hexes they call worse tend to have the lower error;");
+      note(size_explains_nothing
+               ? "\u03c1 hardly changes given the hex size h_e, so size does not explain it; the cause is not tested here"
+               : "why is not tested here (the partial \u03c1 shows what the hex size explains): not alone a verdict on "
+                 "the metrics");
     }
   }
   if (!constant.empty()) {

@@ -132,7 +132,10 @@ Chart method_distribution_chart(std::span<const std::string> methods, std::span<
 // bottom of that group), then the ones without a direction by |rho|, under a
 // separator line. A size metric (metric_is_size) gets " (size)" without a
 // direction, " (size-weighted)" with one. Each row: a black whisker on a white
-// casing for its 95 % interval (lo, hi; none where NaN), an open diamond at
+// casing for its interval (lo, hi; none where NaN): simultaneous 95 % over
+// the `verdict_family` directed metrics (Bonferroni, each at 1 - 0.05 / m;
+// the verdicts rest on it, the key says so; verdict_family <= 1: one 95 %
+// interval), an open diamond at
 // the partial rho given the hex size (none where NaN), and in a column right
 // of the plot "rho [lo, hi]" (bounds to 2 decimals, 3 under 0.005) and the
 // partial. Under the key, on every chart, the count line: agree / disagree /
@@ -144,7 +147,7 @@ Chart method_distribution_chart(std::span<const std::string> methods, std::span<
 struct CorrelationBar {
   std::string metric;
   double rho = 0;
-  double lo = 0, hi = 0;     // its 95 % interval; NaN: none
+  double lo = 0, hi = 0;     // its interval (simultaneous over the verdict family); NaN: none
   double rho_given_size = 0;  // NaN: none
   double agreement = 0;       // -direction * rho; NaN: no better direction
   bool is_size = false;
@@ -159,7 +162,7 @@ inline constexpr Rgba8 kUndecidedEdgeColor{96, 96, 104, 255};
 // False without an interval.
 inline bool correlation_undecided(const CorrelationBar& bar) { return bar.lo <= 0 && bar.hi >= 0; }
 Chart metric_correlation_chart(std::span<const CorrelationBar> bars, const ChartOptions& options,
-                               std::int64_t count = 0);
+                               std::int64_t count = 0, int verdict_family = 0);
 
 // --simulate: per hex the normalised error density against the scaled
 // Jacobian, both on log axes (whole decades; x up to 1). Every hex with

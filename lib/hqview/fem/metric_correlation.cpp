@@ -1,5 +1,7 @@
 #include "hqview/fem/metric_correlation.h"
 
+#include <boost/math/distributions/normal.hpp>
+
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -181,13 +183,24 @@ double metric_agreement(int direction, double rho) {
   return -static_cast<double>(direction) * rho;
 }
 
-RankCorrelationInterval spearman_interval(double rho, std::int64_t count) {
+RankCorrelationInterval spearman_interval(double rho, std::int64_t count, double z_level) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   if (count < 4 || !std::isfinite(rho)) return {nan, nan};
   if (std::abs(rho) >= 1.0) return {rho, rho};
   const double z = std::atanh(rho);
   const double se = std::sqrt((1.0 + 0.5 * rho * rho) / (static_cast<double>(count) - 3.0));
-  return {std::tanh(z - kCorrelationIntervalZ * se), std::tanh(z + kCorrelationIntervalZ * se)};
+  return {std::tanh(z - z_level * se), std::tanh(z + z_level * se)};
+}
+
+double bonferroni_interval_z(int m) {
+  if (m <= 1) return kCorrelationIntervalZ;
+  return boost::math::quantile(boost::math::complement(boost::math::normal(), 0.05 / (2.0 * m)));
+}
+
+int verdict_family_size(std::span<const MetricCorrelation> correlations) {
+  int m = 0;
+  for (const MetricCorrelation& c : correlations) m += metric_direction(c.metric) != 0 && std::isfinite(c.correlation.rho);
+  return m;
 }
 
 RankCorrelation spearman_correlation(std::span<const double> x, std::span<const double> y) {
@@ -302,7 +315,11 @@ std::vector<MetricCorrelation> correlate_metrics(std::span<const double> error_d
       out[i].rho_given_size =
           partial_rank_correlation(out[i].correlation.rho, rank_pearson(metric_ranks, size_ranks), density_size);
   });
-  for (MetricCorrelation& m : out) m.interval = spearman_interval(m.correlation.rho, m.correlation.count);
+  const double adjusted_z = bonferroni_interval_z(verdict_family_size(out));
+  for (MetricCorrelation& m : out) {
+    m.interval = spearman_interval(m.correlation.rho, m.correlation.count);
+    m.adjusted_interval = spearman_interval(m.correlation.rho, m.correlation.count, adjusted_z);
+  }
   return out;
 }
 

@@ -84,7 +84,14 @@ struct RankCorrelationInterval {
   double lo = 0, hi = 0;
 };
 inline constexpr double kCorrelationIntervalZ = 1.959963984540054;  // 95 %
-RankCorrelationInterval spearman_interval(double rho, std::int64_t count);
+// z: the normal quantile of the level (kCorrelationIntervalZ: 95 %, one interval).
+RankCorrelationInterval spearman_interval(double rho, std::int64_t count, double z = kCorrelationIntervalZ);
+
+// The normal quantile z_(1 - 0.05 / (2 m)) that makes m intervals
+// simultaneous at 95 % (Bonferroni: each at level 1 - 0.05 / m; any one
+// misses its rho with probability at most 0.05 / m, so all hold together
+// with probability at least 0.95). m <= 1: kCorrelationIntervalZ.
+double bonferroni_interval_z(int m);
 
 struct MetricCorrelation {
   std::string metric;  // a Verdict name, or fem_kappa / fem_lambda_max / fem_det_j_min
@@ -96,7 +103,16 @@ struct MetricCorrelation {
   double rho_given_size = 0;
   // The 95 % interval of correlation.rho (spearman_interval over its count).
   RankCorrelationInterval interval;
+  // The interval the verdicts (agrees / disagrees / undecided) rest on:
+  // simultaneous 95 % over the verdict family, the metrics with a better
+  // direction and a rho (bonferroni_interval_z of their number), so that
+  // deciding many signs at once does not find one by chance.
+  RankCorrelationInterval adjusted_interval;
 };
+
+// The number of metrics in the verdict family of correlate_metrics' output:
+// those with a better direction (metric_direction != 0) and a finite rho.
+int verdict_family_size(std::span<const MetricCorrelation> correlations);
 
 // The partial correlation of x and y given z from the three pairwise
 // correlations: (r_xy - r_xz r_yz) / sqrt((1 - r_xz^2)(1 - r_yz^2)) (on

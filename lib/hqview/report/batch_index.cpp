@@ -120,7 +120,10 @@ json correlation_json(const CollectionCorrelation& c) {
                     {"q_l2_error", number_or_null(r.q_l2)},
                     {"q_h1_error", number_or_null(r.q_h1)},
                     {"num_meshes", r.num_meshes},
-                    {"length_power", r.length_power}});
+                    {"length_power", r.length_power},
+                    {"restates", r.restates.empty() ? json(nullptr) : json(r.restates)},
+                    {"rho_l2_error_given_h_over_l", number_or_null(r.rho_l2_given_h)},
+                    {"rho_h1_error_given_h_over_l", number_or_null(r.rho_h1_given_h)}});
   json duplicates = json::array();
   for (const CollectionDuplicate& d : c.duplicates)
     duplicates.push_back({{"path", d.path},
@@ -129,7 +132,9 @@ json correlation_json(const CollectionCorrelation& c) {
                           {"h1_error_difference", number_or_null(d.h1_difference)}});
   return {{"num_meshes", c.num_meshes},   {"min_meshes", c.min_meshes},
           {"metrics", std::move(rows)},   {"duplicates", std::move(duplicates)},
-          {"min_p", number_or_null(c.min_p)}, {"critical_rho", number_or_null(c.critical_rho)}};
+          {"min_p", number_or_null(c.min_p)}, {"critical_rho", number_or_null(c.critical_rho)},
+          {"num_hypotheses_l2_error", c.num_hypotheses_l2}, {"num_hypotheses_h1_error", c.num_hypotheses_h1},
+          {"inverted_left_out", c.inverted}};
 }
 
 bool has_labels(const std::vector<BatchEntry>& entries) {
@@ -556,7 +561,7 @@ kainjow::mustache::data fem_correlation_data(const CollectionCorrelation& c, con
                                   : r.length_power == 2 ? " / L\u00b2"
                                   : r.length_power == 3 ? " / L\u00b3"
                                                         : ""));
-    row.set("stat", r.stat);
+    row.set("stat", r.restates.empty() ? r.stat : r.stat + " (restates " + r.restates + ")");
     row.set("direction", r.direction > 0 ? "higher is better" : r.direction < 0 ? "lower is better" : "–");
     row.set("rho_l2", rho(r.rho_l2) + (wrong_way(r, r.rho_l2) ? " \u2717" : ""));
     row.set("rho_h1", rho(r.rho_h1) + (wrong_way(r, r.rho_h1) ? " \u2717" : ""));
@@ -568,6 +573,10 @@ kainjow::mustache::data fem_correlation_data(const CollectionCorrelation& c, con
     row.set("sort_q_h1", std::isfinite(r.q_h1) ? format_double(r.q_h1) : "");
     // Greyed: neither error's q reaches 0.05 (no discovery at a 5 % false discovery rate).
     row.set("not_significant", !(r.q_l2 <= 0.05) && !(r.q_h1 <= 0.05));
+    row.set("rho_l2_given_h", rho(r.rho_l2_given_h));
+    row.set("rho_h1_given_h", rho(r.rho_h1_given_h));
+    row.set("sort_l2_given_h", std::isfinite(r.rho_l2_given_h) ? format_double(r.rho_l2_given_h) : "");
+    row.set("sort_h1_given_h", std::isfinite(r.rho_h1_given_h) ? format_double(r.rho_h1_given_h) : "");
     row.set("sort_l2", std::isfinite(r.rho_l2) ? format_double(r.rho_l2) : "");
     row.set("sort_h1", std::isfinite(r.rho_h1) ? format_double(r.rho_h1) : "");
     row.set("sort_p_l2", std::isfinite(r.p_l2) ? format_double(r.p_l2) : "");
@@ -581,22 +590,61 @@ kainjow::mustache::data fem_correlation_data(const CollectionCorrelation& c, con
   // How far significance is out of reach, in plain words.
   std::string power;
   if (std::isfinite(c.min_p)) {
-    const std::size_t m = c.rows.size();
     char text[512];
     std::snprintf(text, sizeof text,
                   "With %d distinct meshes the smallest p any \u03c1 can have is 2/%d! = %s; without correction "
                   "|\u03c1| \u2265 %.3f is needed for p \u2264 0.05.",
                   c.num_meshes, c.num_meshes, p_text(c.min_p).c_str(), c.critical_rho);
     power = text;
-    // Benjamini-Hochberg: the k rows with the smallest p get q = p m / k at
-    // best, so q < 0.05 needs at least `needed` rows at the smallest p.
+    // Benjamini-Hochberg over the family (the rows that are their own
+    // hypothesis): the k rows with the smallest p get q = p m / k at best, so
+    // q < 0.05 needs at least `needed` rows at the smallest p. Then what the
+    // table's rows reach: the q printed here is the q of those rows.
+    const std::size_t m = static_cast<std::size_t>(c.num_hypotheses_h1);
     const double spread = static_cast<double>(m) * c.min_p;
+    std::string restated;
+    for (const CollectionCorrelationRow& r : c.rows)
+      if (!r.restates.empty()) restated += (restated.empty() ? "" : ", ") + r.stat + " " + r.metric + " (restates " + r.restates + ")";
+    power += " The Benjamini\u2013Hochberg family: the " + std::to_string(m) +
+             " rows that are their own hypothesis (the two baselines included" +
+             (restated.empty() ? std::string() : "; " + restated + " is not counted again: the same ranks") + ").";
     if (spread > 0.05) {
       const auto needed = static_cast<std::size_t>(std::floor(spread / 0.05)) + 1;
-      power += " Over these " + std::to_string(m) + " rows (Benjamini\u2013Hochberg) a row reaches q < 0.05 only when at least " +
-               std::to_string(needed) + " rows reach p = " + p_text(c.min_p) + " together; a row alone there gets q = " +
-               p_text(std::min(1.0, spread)) +
-               " (the two baselines are rows of the family): too few meshes for significance; a greyed row means \u201ccould not detect\u201d, not \u201cno effect\u201d.";
+      power += " A row reaches q < 0.05 only when at least " + std::to_string(needed) + " rows reach p = " +
+               p_text(c.min_p) + " together; a row alone there gets q = " + p_text(std::min(1.0, spread)) + ".";
+    }
+    for (const bool h1 : {true, false}) {
+      double best = kNaNValue;
+      for (const CollectionCorrelationRow& r : c.rows) {
+        const double p = h1 ? r.p_h1 : r.p_l2;
+        if (r.restates.empty() && std::isfinite(p) && !(p >= best)) best = p;
+      }
+      if (!std::isfinite(best)) continue;
+      std::string names;
+      std::size_t k = 0;
+      double q = kNaNValue;
+      for (const CollectionCorrelationRow& r : c.rows)
+        if (r.restates.empty() && (h1 ? r.p_h1 : r.p_l2) == best) {
+          names += (k++ ? ", " : "") + r.metric + (r.stat == "value" || r.stat == "count" ? "" : " (" + r.stat + ")");
+          q = h1 ? r.q_h1 : r.q_l2;
+        }
+      power += std::string(h1 ? " Here, H1: " : " L2: ") + std::to_string(k) + (k == 1 ? " row" : " rows") +
+               " at the smallest p, " + p_text(best) + " (" + names + "): q = " + p_text(q) + (h1 ? ";" : ".");
+    }
+    power += " Too few meshes for significance: a greyed row means \u201ccould not detect\u201d, not \u201cno effect\u201d.";
+    // Resolution alone: when h/L ranks the errors as well as the critical rho.
+    const auto hl = std::find_if(c.rows.begin(), c.rows.end(),
+                                 [](const CollectionCorrelationRow& r) { return r.metric == "h_over_l"; });
+    if (hl != c.rows.end() && (std::abs(hl->rho_h1) >= c.critical_rho - 1e-12 || std::abs(hl->rho_l2) >= c.critical_rho - 1e-12)) {
+      char text[600];
+      const double n = c.num_meshes;
+      std::snprintf(text, sizeof text,
+                    " h/L alone ranks these meshes\u2019 errors (\u03c1 = %.3f with L2, %.3f with H1): a metric\u2019s "
+                    "\u03c1 here may only restate their resolution; the \u201cgiven h/L\u201d columns keep what it "
+                    "adds (\u2013 where h/L leaves nothing to explain). Over %d meshes one swap of neighbouring "
+                    "ranks moves \u03c1 by 12/(n(n\u00b2\u22121)) = %.2g.",
+                    hl->rho_l2, hl->rho_h1, c.num_meshes, 12.0 / (n * (n * n - 1.0)));
+      power += text;
     }
   }
   // The placement effect (a duplicate's errors) as the noise of the error columns.
@@ -644,9 +692,10 @@ kainjow::mustache::data fem_correlation_data(const CollectionCorrelation& c, con
     row.set("min_sj", cell(e.headline[sj_slot], 3));
     row.set("inverted", cell(e.headline[inverted_slot], 12));
     std::string counted = "counted";
-    if (e.headline[inverted_slot] && *e.headline[inverted_slot] > 0)
-      counted += " (with " + cell(e.headline[inverted_slot], 12) +
-                 " inverted hexes: the check ran on a map that folds; their error is in the mean)";
+    if (std::find(c.inverted.begin(), c.inverted.end(), e.path) != c.inverted.end())
+      counted = "left out: " + cell(e.headline[inverted_slot], 12) +
+                " inverted hexes (a corner Jacobian \u2264 0): the check\u2019s map folds there, so its error is no "
+                "finite-element error of this mesh";
     for (const CollectionDuplicate& dup : c.duplicates)
       if (dup.path == e.path) {
         char text[96];

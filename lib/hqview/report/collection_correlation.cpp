@@ -105,11 +105,11 @@ std::vector<MeshMetricRange> metric_summaries_from_report(const ReportDocument& 
         out.push_back({std::string("fem_") + name, number_or_nan(fem["element"][name], "min"),
                        number_or_nan(fem["element"][name], "mean"), number_or_nan(fem["element"][name], "max")});
   const auto volume = std::find_if(out.begin(), out.end(), [](const MeshMetricRange& m) { return m.metric == "volume"; });
-  const double diagonal = fem["poisson"].contains("normalization") && fem["poisson"]["normalization"].is_object()
-                              ? number_or_nan(fem["poisson"]["normalization"], "diagonal")
-                              : kNaN;
-  if (volume != out.end() && volume->mean > 0 && diagonal > 0) {
-    const double h_over_l = std::cbrt(volume->mean) / diagonal;
+  // L: the placement-free length (fem.poisson.mesh_length; issue 48h, was
+  // the bounding-box diagonal, which changes when the mesh is turned).
+  const double length = number_or_nan(fem["poisson"], "mesh_length");
+  if (volume != out.end() && volume->mean > 0 && length > 0) {
+    const double h_over_l = std::cbrt(volume->mean) / length;
     out.push_back({kHOverL, h_over_l, h_over_l, h_over_l});
   }
   return out;
@@ -120,10 +120,16 @@ CollectionCorrelation correlate_collection(const std::vector<BatchEntry>& entrie
   static const std::size_t h1_slot = slot_of("fem.poisson.mean.h1_error");
   CollectionCorrelation out;
   std::vector<const BatchEntry*> candidates, meshes;
+  static const std::size_t inverted_slot = slot_of("quality.num_inverted");
   for (const BatchEntry& e : entries)
     if (is_analysed(e) && (label.empty() || e.label == label) && !e.metrics.empty() && e.headline[l2_slot] &&
-        e.headline[h1_slot])
-      candidates.push_back(&e);
+        e.headline[h1_slot]) {
+      if (e.headline[inverted_slot] && *e.headline[inverted_slot] > 0)
+        out.inverted.push_back(e.path);
+      else
+        candidates.push_back(&e);
+    }
+  std::sort(out.inverted.begin(), out.inverted.end());
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const BatchEntry* a, const BatchEntry* b) { return a->path < b->path; });
   // Each mesh once: a later one with the geometry of a kept one is a duplicate.
@@ -171,9 +177,8 @@ CollectionCorrelation correlate_collection(const std::vector<BatchEntry>& entrie
     row.p_h1 = enough_h1 ? b.p_value : kNaN;
     out.rows.push_back(std::move(row));
   };
-  // A size (no better direction) in units of the mesh's length L^k: L the
-  // diagonal of the bounding box the check normalises by, cbrt(volume.mean) /
-  // h_over_l; a mesh without L leaves such a row (NaN, so not counted).
+  // A size (no better direction) in units of the mesh's length L^k: L =
+  // fem.poisson.mesh_length, cbrt(volume.mean) / h_over_l; a mesh without L leaves such a row (NaN, so not counted).
   const auto length_of = [](const BatchEntry& e) {
     double volume = kNaN, h_over_l = kNaN;
     for (const MeshMetricRange& m : e.metrics) {
@@ -198,6 +203,8 @@ CollectionCorrelation correlate_collection(const std::vector<BatchEntry>& entrie
             h1.push_back(*e->headline[h1_slot]);
           }
       add_row(name, !is_worst ? "mean" : direction != 0 ? "worst" : "min", direction, value, l2, h1, power);
+      // mean volume / L^3 = (cbrt(mean volume) / L)^3 = (h/L)^3.
+      if (name == "volume" && !is_worst) out.rows.back().restates = kHOverL;
     }
   }
   static const std::size_t hexes_slot = slot_of("mesh.num_hexes");
@@ -219,16 +226,59 @@ CollectionCorrelation correlate_collection(const std::vector<BatchEntry>& entrie
         h1.push_back(*e->headline[h1_slot]);
       }
   if (!value.empty()) add_row(kHOverL, "value", 0, value, l2, h1);
-  // The family's false discovery rate: one q per p, per error.
+  // Given h/L: each row's rho with h/L over the meshes that have both.
+  std::vector<double> hl_values;
+  std::vector<const BatchEntry*> hl_meshes;
+  for (const BatchEntry* e : meshes)
+    for (const MeshMetricRange& m : e->metrics)
+      if (m.metric == kHOverL) {
+        hl_values.push_back(m.mean);
+        hl_meshes.push_back(e);
+      }
+  const auto hl_row = std::find_if(out.rows.begin(), out.rows.end(),
+                                   [](const CollectionCorrelationRow& r) { return r.metric == kHOverL; });
+  for (std::size_t i = 0; i < out.rows.size(); ++i) {
+    CollectionCorrelationRow& r = out.rows[i];
+    r.rho_l2_given_h = r.rho_h1_given_h = kNaN;
+    if (hl_row == out.rows.end() || r.metric == kHOverL || r.metric == "num_hexes") continue;
+    // The row's values again, paired with h/L.
+    std::vector<double> value, hl;
+    const int direction = r.direction;
+    const bool is_worst = r.stat != "mean";
+    for (std::size_t k = 0; k < hl_meshes.size(); ++k)
+      for (const MeshMetricRange& m : hl_meshes[k]->metrics)
+        if (m.metric == r.metric) {
+          const double v = !is_worst ? m.mean : direction < 0 ? m.max : m.min;
+          const double length = r.length_power > 0 ? length_of(*hl_meshes[k]) : 1.0;
+          if (!std::isfinite(length)) continue;
+          value.push_back(r.length_power > 0 ? v / std::pow(length, r.length_power) : v);
+          hl.push_back(hl_values[k]);
+        }
+    if (static_cast<int>(value.size()) < out.min_meshes) continue;
+    const double with_h = spearman_correlation(std::span<const double>(value), std::span<const double>(hl)).rho;
+    r.rho_l2_given_h = partial_rank_correlation(r.rho_l2, with_h, hl_row->rho_l2);
+    r.rho_h1_given_h = partial_rank_correlation(r.rho_h1, with_h, hl_row->rho_h1);
+  }
+  // The family's false discovery rate: one q per p, per error, over the rows
+  // that are their own hypothesis; a restating row takes its row's q.
   std::vector<double> p_l2, p_h1;
   for (const CollectionCorrelationRow& r : out.rows) {
-    p_l2.push_back(r.p_l2);
-    p_h1.push_back(r.p_h1);
+    p_l2.push_back(r.restates.empty() ? r.p_l2 : kNaN);
+    p_h1.push_back(r.restates.empty() ? r.p_h1 : kNaN);
+    out.num_hypotheses_l2 += r.restates.empty() && std::isfinite(r.p_l2);
+    out.num_hypotheses_h1 += r.restates.empty() && std::isfinite(r.p_h1);
   }
   const std::vector<double> q_l2 = benjamini_hochberg(p_l2), q_h1 = benjamini_hochberg(p_h1);
   for (std::size_t i = 0; i < out.rows.size(); ++i) {
     out.rows[i].q_l2 = q_l2[i];
     out.rows[i].q_h1 = q_h1[i];
+  }
+  for (CollectionCorrelationRow& r : out.rows) {
+    if (r.restates.empty()) continue;
+    const auto of = std::find_if(out.rows.begin(), out.rows.end(),
+                                 [&](const CollectionCorrelationRow& x) { return x.metric == r.restates; });
+    r.q_l2 = of != out.rows.end() && std::isfinite(r.p_l2) ? of->q_l2 : kNaN;
+    r.q_h1 = of != out.rows.end() && std::isfinite(r.p_h1) ? of->q_h1 : kNaN;
   }
   return out;
 }

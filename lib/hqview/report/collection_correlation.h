@@ -16,9 +16,10 @@
 // Benjamini-Hochberg q over the table's rows (metric_correlation.h). Null (NaN)
 // when fewer than kMinCorrelationMeshes meshes have both values or either
 // side is constant over them. A second baseline row correlates h/L (the
-// cube root of the mean hex volume over the diagonal of the bounding box of
-// the mesh's points: its resolution relative to its size; BatchEntry::metrics
-// "h_over_l"). Duplicates are detected by geometry, not by name
+// cube root of the mean hex volume over L = fem.poisson.mesh_length, the
+// diagonal of the box with the mesh's second moments of volume
+// (fem/moment_length.h: the same for a turned or mirrored copy): its
+// resolution relative to its size; BatchEntry::metrics "h_over_l"). Duplicates are detected by geometry, not by name
 // (same_mesh_geometry): a mesh whose geometry equals an earlier one's (by
 // path) is counted once and listed in `duplicates`, with how much its errors
 // differ (the problem's placement: same mesh, other errors). With few meshes
@@ -51,9 +52,21 @@ struct CollectionCorrelationRow {
   double q_l2 = 0, q_h1 = 0;
   int num_meshes = 0;  // meshes that entered (both errors and this value)
   // k > 0: a size correlated in units of the mesh's length, value / L^k
-  // (size_length_power; L the bounding-box diagonal the check normalises
-  // coordinates by): raw sizes rank the meshes' units, not their quality.
+  // (size_length_power; L = fem.poisson.mesh_length, placement-free): raw
+  // sizes rank the meshes' units, not their quality.
   int length_power = 0;
+  // Not its own hypothesis: the row it restates by definition (its values
+  // are a monotone function of that row's, so the same ranks, rho and p).
+  // "h_over_l" for the mean volume / L^3 = (h/L)^3; empty otherwise. Such a
+  // row is not in the Benjamini-Hochberg family (it would count one test
+  // twice) and carries the restated row's q.
+  std::string restates;
+  // The partial rank correlation given h/L (partial_rank_correlation of this
+  // row's rho, its rho with h_over_l over the same meshes, and h_over_l's
+  // rho): what the row says beyond the meshes' resolution. NaN for the
+  // baselines, without h/L, or where h/L ranks the errors (or the row) almost
+  // exactly (|rho| >= kPartialMaxAbsRho: nothing is left to explain).
+  double rho_l2_given_h = 0, rho_h1_given_h = 0;
 };
 
 // The power of length a size metric (no better direction) carries:
@@ -73,6 +86,12 @@ struct CollectionDuplicate {
 struct CollectionCorrelation {
   int num_meshes = 0;  // distinct analysed meshes with a solved check (duplicates left out)
   std::vector<CollectionDuplicate> duplicates;
+  // Meshes left out because they have inverted hexes (mesh quality
+  // num_inverted > 0: a corner whose Jacobian is <= 0): the trilinear map
+  // folds there, so the check is no valid finite-element discretisation of
+  // the problem and its error is not that of the mesh's quality (issue 48h:
+  // were counted). By path.
+  std::vector<std::string> inverted;
   // The smallest two-sided p any rho can reach over num_meshes meshes
   // (2 / n!: the two perfect orders among the n! permutations), and the
   // smallest |rho| whose p is at most 0.05 (exact permutation distribution
@@ -82,6 +101,9 @@ struct CollectionCorrelation {
   double min_p = 0;
   double critical_rho = 0;
   int min_meshes = kMinCorrelationMeshes;
+  // The Benjamini-Hochberg family: the rows that are their own hypothesis
+  // (restates empty) with a p, for the H1 (L2) error; the baselines are in it.
+  int num_hypotheses_h1 = 0, num_hypotheses_l2 = 0;
   // Per metric (alphabetical: the same after a merge of shards), worst (or
   // min) then mean; then the baseline num_hexes.
   std::vector<CollectionCorrelationRow> rows;
@@ -97,7 +119,7 @@ bool same_mesh_geometry(const BatchEntry& a, const BatchEntry& b);
 // The metric summaries a batch row keeps for this (BatchEntry::metrics),
 // read from a report document: empty unless its fem.poisson was solved.
 // Also "h_over_l" (min = mean = max): cbrt(quality.metrics.volume.mean) /
-// fem.poisson.normalization.diagonal, when both are there.
+// fem.poisson.mesh_length, when both are there.
 std::vector<MeshMetricRange> metric_summaries_from_report(const ReportDocument& report);
 
 // Over the analysed (ok, gate_failed) entries with a solved check. `label`:

@@ -9,6 +9,7 @@
 #include "hqview/glyph/glyph_ties.h"
 #include "hqview/report/cluster_color.h"
 #include "hqview/report/escape.h"
+#include "hqview/fem/moment_length.h"
 
 namespace hq {
 namespace {
@@ -229,12 +230,15 @@ Json fem_poisson_json(const PoissonCheck& p, const std::vector<MetricCorrelation
                          {"lanczos_steps", s.lanczos_steps},
                          {"converged", s.converged},
                          {"relative_residual", number(s.relative_residual)}};
-  Json correlation = Json::object(), given_size = Json::object(), interval = Json::object();
+  Json correlation = Json::object(), given_size = Json::object(), interval = Json::object(), adjusted = Json::object();
   for (const MetricCorrelation& c : correlations) {
     correlation[c.metric] = number(c.correlation.rho);
     given_size[c.metric] = number(c.rho_given_size);
     interval[c.metric] = std::isfinite(c.interval.lo) ? Json::array({number(c.interval.lo), number(c.interval.hi)})
                                                       : Json(nullptr);
+    adjusted[c.metric] = std::isfinite(c.adjusted_interval.lo)
+                             ? Json::array({number(c.adjusted_interval.lo), number(c.adjusted_interval.hi)})
+                             : Json(nullptr);
   }
   return {{"skipped", solved ? Json(nullptr) : Json(p.skipped)},
           {"num_free_vertices", p.num_free_vertices},
@@ -260,7 +264,9 @@ Json fem_poisson_json(const PoissonCheck& p, const std::vector<MetricCorrelation
           {"correlation", solved ? std::move(correlation) : Json(nullptr)},
           {"size_correlation", value(p.size_correlation)},
           {"correlation_given_size", solved ? std::move(given_size) : Json(nullptr)},
-          {"correlation_interval", solved ? std::move(interval) : Json(nullptr)}};
+          {"correlation_interval", solved ? std::move(interval) : Json(nullptr)},
+          {"correlation_interval_adjusted", solved ? std::move(adjusted) : Json(nullptr)},
+          {"correlation_verdict_family", solved ? Json(verdict_family_size(correlations)) : Json(nullptr)}};
 }
 
 Json fem_json(const Analysis& a) {
@@ -271,8 +277,11 @@ Json fem_json(const Analysis& a) {
                   {"lambda_max", stats_json(e.lambda_max_stats, false)},
                   {"det_j_min", stats_json(e.det_j_min_stats, true)},
                   {"det_j_max", stats_json(e.det_j_max_stats, true)}};
-  return {{"element", std::move(element)},
-          {"poisson", a.poisson ? fem_poisson_json(*a.poisson, a.fem_correlations) : Json(nullptr)}};
+  Json poisson = a.poisson ? fem_poisson_json(*a.poisson, a.fem_correlations) : Json(nullptr);
+  // The placement-free length (fem/moment_length.h, one pass over the
+  // hexes): the batch's h/L. Only for a solved check.
+  if (a.poisson && a.poisson->skipped.empty()) poisson["mesh_length"] = number(moment_length(a.mesh));
+  return {{"element", std::move(element)}, {"poisson", std::move(poisson)}};
 }
 
 // compare.alignment, boundary_error.reference_alignment.

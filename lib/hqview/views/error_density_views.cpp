@@ -27,6 +27,10 @@ constexpr Rgba8 kBoundaryEdgeColor{40, 40, 46, 70};  // faint boundary edges ove
 constexpr Rgba8 kCellEdgeColor{110, 110, 116, 255};    // edges of the drawn cells
 constexpr Rgba8 kLowCellEdgeColor{0, 0, 0, 255};        // ... of those with scaled Jacobian below the threshold
 constexpr double kFovY = 30.0;
+// The veil as it looks over white where the boundary is seen through: its
+// front and back layers (kVeilColor twice), the legend's veil swatch and the
+// casing of the cells it hides.
+constexpr Rgba8 kVeilOverWhite{185, 223, 229, 255};
 
 const Vec3& point(const HexMesh& mesh, Index v) { return mesh.points[static_cast<std::size_t>(v)]; }
 
@@ -72,6 +76,7 @@ struct Figure {
   FigureLayout layout;
   Camera camera;
   Scene scene;
+  std::string worst_note;  // appended to the max's label (the cells figure: its SJ)
 };
 
 Figure begin_figure(const HexMesh& mesh, const Topology& topology, const ErrorDensityScale& scale,
@@ -199,7 +204,8 @@ void draw_worst_marker(Image& figure, const Figure& f, const HexMesh& mesh, cons
   }
   draw_worst_label_outside(figure, view, {x0, y0, x1, y1}, cx, cy, radius,
                            "max " + display_number(worst.density, 3) + ", hex " + std::to_string(worst.hex) +
-                               (worst.on_boundary ? " (on the boundary)" : " (interior, seen through)"),
+                               (worst.on_boundary ? " (on the boundary)" : " (interior, seen through)") +
+                               f.worst_note,
                            f.style);
 }
 
@@ -228,6 +234,31 @@ LineSet boundary_edge_lines(const HexMesh& mesh, const Topology& topology, const
 }
 
 }  // namespace
+
+std::array<bool, 12> hex_edges_facing(const HexMesh& mesh, const Hex& hex, const Camera& camera) {
+  Vec3 center{0, 0, 0};
+  for (Index v : hex) center = center + 0.125 * point(mesh, v);
+  std::array<bool, 6> facing{};
+  for (std::size_t f = 0; f < kHexFaces.size(); ++f) {
+    const Vec3 &a = point(mesh, hex[kHexFaces[f][0]]), &b = point(mesh, hex[kHexFaces[f][1]]),
+               &c = point(mesh, hex[kHexFaces[f][2]]), &d = point(mesh, hex[kHexFaces[f][3]]);
+    const Vec3 mid = 0.25 * (a + b + c + d);
+    Vec3 normal = cross(c - a, d - b);
+    if (dot(normal, mid - center) < 0) normal = -1.0 * normal;
+    const Vec3 to_eye = camera.is_perspective ? camera.eye - mid : camera.eye - camera.target;
+    facing[f] = dot(normal, to_eye) > 0;
+  }
+  std::array<bool, 12> front{};
+  for (std::size_t e = 0; e < kHexEdges.size(); ++e)
+    for (std::size_t f = 0; f < kHexFaces.size(); ++f) {
+      int shared = 0;
+      for (int i = 0; i < 4; ++i)
+        shared += kHexFaces[f][static_cast<std::size_t>(i)] == kHexEdges[e][0] ||
+                  kHexFaces[f][static_cast<std::size_t>(i)] == kHexEdges[e][1];
+      front[e] = front[e] || (shared == 2 && facing[f]);
+    }
+  return front;
+}
 
 ErrorDensityScale error_density_scale(std::span<const double> density) {
   ErrorDensityScale s;
@@ -328,7 +359,20 @@ Image render_error_density_boundary(const HexMesh& mesh, const Topology& topolog
                                               static_cast<float>(std::max(1.0, f.style.scale))));
   // An interior max shows through the boundary (a boundary one is drawn already).
   if (!worst.on_boundary) add_worst_overlay(f, mesh, worst, scale);
-  f.bar.swatches.push_back({Color{0.08, 0.08, 0.08}, "ring: max (dashed: interior)"});
+  // A boundary max whose faces this side does not show (on the far side,
+  // behind a fold or edge-on): the ring marks where it is, the label says
+  // its colour is not what the ring encloses.
+  if (worst.on_boundary && worst.hex != kNoIndex) {
+    const std::vector<Index> max_hex{worst.hex};
+    if (error_density_cells_behind_boundary(mesh, topology, max_hex, f.camera, f.layout.view.width,
+                                            f.layout.view.height, renderer)
+            .front())
+      f.worst_note = "; its faces not seen from here";
+  }
+  // The ring as drawn (issue 48h: was a black box).
+  f.bar.swatches.push_back(worst.on_boundary
+                               ? ColorBarSwatch{Color{0.08, 0.08, 0.08}, "ring: max (on the boundary)", SwatchShape::solid_ring}
+                               : ColorBarSwatch{Color{0.08, 0.08, 0.08}, "ring: max (dashed: interior)", SwatchShape::dashed_ring});
   return finish_figure(f, mesh, worst, options, renderer, camera, view);
 }
 
@@ -357,11 +401,19 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   f.scene.translucent.push_back(std::move(veil));
   TriangleSet cells;
   cells.is_lit = false;
-  LineSet low_edges, edges, halo, halo_core;
+  // casing: a veil-coloured outline under the edges of a cell the boundary
+  // hides (drawn over the veil for its exact colour, the casing says "inside
+  // the veil"). The max hex: its edges on the faces turned to the camera
+  // solid, the others (its back) thin and dashed, all drawn over nearer
+  // cells; a white halo, black when its SJ is below the threshold (the thick
+  // black edge's meaning kept).
+  LineSet low_edges, edges, casing, halo, halo_core, max_back;
   edges.width = static_cast<float>(std::max(1.0, f.style.scale));
   low_edges.width = static_cast<float>(std::max(2.0, 2.5 * f.style.scale));
-  halo.width = static_cast<float>(std::max(4.0, 6.0 * f.style.scale));
-  halo_core.width = static_cast<float>(std::max(2.0, 2.5 * f.style.scale));
+  casing.width = static_cast<float>(std::max(5.0, 6.0 * f.style.scale));
+  halo.width = static_cast<float>(std::max(6.0, 7.0 * f.style.scale));
+  halo_core.width = static_cast<float>(std::max(2.5, 3.0 * f.style.scale));
+  max_back.width = static_cast<float>(std::max(1.0, f.style.scale));
   const auto add_segment = [&](LineSet& set, const Vec3& a, const Vec3& b, Rgba8 color) {
     for (const Vec3& p : {a, b}) {
       set.indices.push_back(static_cast<std::uint32_t>(set.positions.size()));
@@ -369,6 +421,10 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
       set.colors.push_back(color);
     }
   };
+  const auto add_dashed = [&](LineSet& set, const Vec3& a, const Vec3& b, Rgba8 color) {
+    for (int d = 0; d < 7; d += 2) add_segment(set, a + (d / 7.0) * (b - a), a + ((d + 1) / 7.0) * (b - a), color);
+  };
+  bool any_low = false, any_hidden = false, max_low = false;
   for (std::size_t k = 0; k < shown.size(); ++k) {
     const Index h = shown[k];
     const Hex& hex = mesh.hexes[static_cast<std::size_t>(h)];
@@ -379,38 +435,63 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
     }
     const double sj = cell_scaled_jacobian[static_cast<std::size_t>(h)];
     const bool low = sj < options.quality_threshold || is_verdict_sentinel(sj);
+    any_low = any_low || low;
+    any_hidden = any_hidden || hidden[k];
     LineSet& set = low ? low_edges : edges;
     const Rgba8 edge_color = low ? kLowCellEdgeColor : kCellEdgeColor;
-    for (const auto& e : kHexEdges) {
-      const Vec3 &a = point(mesh, hex[e[0]]), &b = point(mesh, hex[e[1]]);
+    const std::array<bool, 12> front = h == worst.hex ? hex_edges_facing(mesh, hex, f.camera) : std::array<bool, 12>{};
+    if (h == worst.hex) {
+      max_low = low;
+      f.worst_note = ", SJ " + display_number(sj, 2);
+    }
+    for (std::size_t e = 0; e < kHexEdges.size(); ++e) {
+      const Vec3 &a = point(mesh, hex[kHexEdges[e][0]]), &b = point(mesh, hex[kHexEdges[e][1]]);
       if (!hidden[k]) {
         add_segment(set, a, b, edge_color);
-      } else {  // dashed: 4 dashes and 3 gaps of equal length
-        for (int d = 0; d < 7; d += 2) add_segment(set, a + (d / 7.0) * (b - a), a + ((d + 1) / 7.0) * (b - a), edge_color);
+      } else {  // dashed (4 dashes, 3 gaps) on a veil-coloured casing
+        add_segment(casing, a, b, kVeilOverWhite);
+        add_dashed(set, a, b, edge_color);
       }
-      if (h == worst.hex) {  // the max's own edges: kMaxHexEdgeColor on a white halo
-        add_segment(halo, a, b, {255, 255, 255, 255});
+      if (h != worst.hex) continue;
+      if (front[e]) {  // the max's front edges: solid magenta on a halo
+        add_segment(halo, a, b, low ? kLowCellEdgeColor : Rgba8{255, 255, 255, 255});
         add_segment(halo_core, a, b, kMaxHexEdgeColor);
+      } else {  // its back edges: thin, dashed
+        add_dashed(max_back, a, b, kMaxHexEdgeColor);
       }
     }
   }
   f.scene.overlay.push_back(std::move(cells));
-  edges.in_overlay = low_edges.in_overlay = halo.in_overlay = halo_core.in_overlay = true;
-  halo.over_all = halo_core.over_all = true;  // the max's whole wireframe, over nearer cells
+  edges.in_overlay = low_edges.in_overlay = casing.in_overlay = halo.in_overlay = halo_core.in_overlay =
+      max_back.in_overlay = true;
+  // The max's wireframe over nearer cells (its back thin and dashed first).
+  max_back.over_all = halo.over_all = halo_core.over_all = true;
+  f.scene.lines.push_back(std::move(casing));
   f.scene.lines.push_back(std::move(edges));
   f.scene.lines.push_back(std::move(low_edges));
+  f.scene.lines.push_back(std::move(max_back));
   f.scene.lines.push_back(std::move(halo));
   f.scene.lines.push_back(std::move(halo_core));
-  f.bar.swatches.push_back({Color{0.08, 0.08, 0.08}, "ring: max (solid: on the boundary)", SwatchShape::solid_ring});
-  f.bar.swatches.push_back({Color{0.08, 0.08, 0.08}, "ring: max (dashed: interior)", SwatchShape::dashed_ring});
-  f.bar.swatches.push_back({to_color(kMaxHexEdgeColor), "max hex: its edges", SwatchShape::thick_line});
-  f.bar.swatches.push_back({to_color(Rgba8{160, 208, 202, 255}), "boundary (veil)"});
+  // The legend: only the marks the figure has (no "undefined": a drawn cell
+  // has a density); short lines, so the bar keeps its size.
+  const std::string threshold = display_number(options.quality_threshold, 3);
+  f.bar.swatches.clear();
+  f.bar.swatches.push_back(worst.on_boundary
+                               ? ColorBarSwatch{Color{0.08, 0.08, 0.08}, "ring: max (on the boundary)", SwatchShape::solid_ring}
+                               : ColorBarSwatch{Color{0.08, 0.08, 0.08}, "ring: max (dashed: interior)", SwatchShape::dashed_ring});
+  f.bar.swatches.push_back({to_color(kMaxHexEdgeColor), "max hex: its front edges", SwatchShape::thick_line});
+  f.bar.swatches.push_back({to_color(kMaxHexEdgeColor), "max hex: its back edges", SwatchShape::dashed_line});
+  f.bar.swatches.push_back({to_color(kMaxHexEdgeColor), "  (drawn over nearer cells)", SwatchShape::text});
+  f.bar.swatches.push_back({to_color(kVeilOverWhite), "boundary (veil)"});
   f.bar.swatches.push_back({to_color(kCellEdgeColor), "edge of a drawn cell", SwatchShape::line});
-  f.bar.swatches.push_back(
-      {to_color(kLowCellEdgeColor), "thick edge: SJ < " + display_number(options.quality_threshold, 3),
-       SwatchShape::thick_line});
-  if (std::find(hidden.begin(), hidden.end(), true) != hidden.end())
+  if (any_low)
+    f.bar.swatches.push_back({to_color(kLowCellEdgeColor),
+                              (max_low ? "black edge or halo: SJ < " : "thick edge: SJ < ") + threshold,
+                              SwatchShape::thick_line});
+  if (any_hidden) {
     f.bar.swatches.push_back({to_color(kCellEdgeColor), "dashed: behind the boundary", SwatchShape::dashed_line});
+    f.bar.swatches.push_back({to_color(kCellEdgeColor), "  (drawn over the veil, cased)", SwatchShape::text});
+  }
   return finish_figure(f, mesh, worst, options, renderer, camera, view);
 }
 

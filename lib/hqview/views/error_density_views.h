@@ -28,6 +28,7 @@
 // the hexes (choose_viewpoints), so the worst region faces the camera. The
 // colour range is the mesh's own (the legend says so).
 
+#include <array>
 #include <span>
 #include <string>
 #include <vector>
@@ -108,6 +109,13 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
                                  std::span<const double> cell_scaled_jacobian, const Vec3& view_direction,
                                  const ErrorDensityViewOptions& options, Renderer& renderer, Camera* camera = nullptr,
                                  PixelRect* view = nullptr);
+
+// Per edge of a hex (kHexEdges order): whether one of its two faces turns to
+// the camera (its normal, oriented away from the hex's centre, points to the
+// eye; for an orthographic camera the eye's direction): the hex's own front
+// edges, drawn solid for the cells figure's max; the others lie behind its
+// faces (thin, dashed).
+std::array<bool, 12> hex_edges_facing(const HexMesh& mesh, const Hex& hex, const Camera& camera);
 
 // Which of `cells` the boundary hides from `camera` (an image of width x
 // height): a cell with no boundary face in the image (interior), or whose own

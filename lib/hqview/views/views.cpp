@@ -741,12 +741,14 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
 std::vector<ViewFile> build_fem_correlation(ViewContext& c) {
   std::vector<CorrelationBar> bars;
   for (const MetricCorrelation& m : c.a.fem_correlations)
-    bars.push_back({m.metric, m.correlation.rho, m.interval.lo, m.interval.hi, m.rho_given_size,
+    bars.push_back({m.metric, m.correlation.rho, m.adjusted_interval.lo, m.adjusted_interval.hi, m.rho_given_size,
                     metric_agreement(metric_direction(m.metric), m.correlation.rho), metric_is_size(m.metric)});
   if (bars.empty()) return {};
+  // The verdicts rest on the intervals simultaneous over the directed metrics.
   return chart_files("fem_correlation",
                      metric_correlation_chart(bars, {900, 300, c.name + ": which metrics rank the hexes by FEM error"},
-                                              c.a.poisson->error_density_stats.count));
+                                              c.a.poisson->error_density_stats.count,
+                                              verdict_family_size(c.a.fem_correlations)));
 }
 
 std::vector<ViewFile> build_fem_error_scatter(ViewContext& c) {
