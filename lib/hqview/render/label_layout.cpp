@@ -334,7 +334,7 @@ std::vector<PlacedLabel> callout_columns(std::span<const CalloutLabel> labels, s
     widest = std::max(widest, l.width);
   }
   const int margin = static_cast<int>(std::lround(gap));
-  const int step = tallest + static_cast<int>(std::lround(2.0 * gap));
+  const int step = tallest + static_cast<int>(std::lround(3.0 * gap));
   // The columns' inner edges (x of the leaders' ends) and their free slots.
   struct Column {
     double inner = 0;

@@ -137,7 +137,7 @@ class LabelPlacer {
 // Labels that find no clear place near their glyph are stacked in a column
 // at the left or right edge of bounds, each with a leader from its start
 // disc's edge to the middle of its box's inner side (the side facing the
-// model). Slots are rows of the tallest label's height plus 2 gap, from
+// model). Slots are rows of the tallest label's height plus 3 gap, from
 // bounds.y + gap down; a slot is free when the column's widest box there
 // overlaps no taken box and meets no obstacle disc. The labels, by the x
 // of their start disc, go to the left column up to a split and to the

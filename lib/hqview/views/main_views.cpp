@@ -1950,9 +1950,11 @@ struct ColouredSegment {
 // shows a glyph there) over it, width px (on a pale halo 2 px wider when
 // halo), but not within kInvertedOutlineCore of a coloured glyph's radius
 // from its centre (the vertex it marks keeps its colour).
+// rings: discs (the glyph rings' extents) inside which segments are drawn
+// too, glyph or not.
 void draw_segments_over_glyphs(Image& figure, std::span<const ColouredSegment> segments, const Camera& camera,
                                const PixelRect& view, const IdImage& ids, std::span<const ScreenDisc> coloured,
-                               double width, std::optional<Rgba8> halo) {
+                               double width, std::optional<Rgba8> halo, std::span<const ScreenDisc> rings = {}) {
   if (ids.empty()) return;
   const double aspect = static_cast<double>(view.width) / static_cast<double>(std::max(1, view.height));
   auto pixel = [&](const Vec3& p) {
@@ -1960,7 +1962,10 @@ void draw_segments_over_glyphs(Image& figure, std::span<const ColouredSegment> s
     return std::array<double, 2>{view.x + 0.5 * (ndc.x + 1.0) * view.width, view.y + 0.5 * (1.0 - ndc.y) * view.height};
   };
   auto wanted = [&](double x, double y) {
-    if (ids.at(static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y)), kIdBackground) < kIdGlyph) return false;
+    if (ids.at(static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y)), kIdBackground) < kIdGlyph &&
+        std::none_of(rings.begin(), rings.end(),
+                     [&](const ScreenDisc& d) { return std::hypot(x - d.x, y - d.y) < d.radius; }))
+      return false;
     return std::none_of(coloured.begin(), coloured.end(), [&](const ScreenDisc& d) {
       return std::hypot(x - d.x, y - d.y) < kInvertedOutlineCore * d.radius;
     });
@@ -1997,10 +2002,24 @@ void draw_segments_over_glyphs(Image& figure, std::span<const ColouredSegment> s
 // their colour so that they read over a glyph of their own colour; and the outlines of the
 // inverted faces drawn (scene 5b: the tilted grid's one inverted face was
 // 75 % under #0, one of hole_pushed's three wholly), in the face's colour,
-// kInvertedOutlineWidth px (times the scale).
+// kInvertedOutlineWidth px (times the scale, at least 2 px: a thinner
+// antialiased line has no pixel of the face's own colour).
+// The outlines also over the glyphs' rings (their pale halos hid the rest
+// of a small face; drawn after them).
 void draw_over_glyphs(Image& figure, const HexMesh& mesh, const Topology& topology, const Scene& scene,
                       const MainViewOptions& scaled, const Camera& camera, const PixelRect& view, const IdImage& ids,
-                      std::span<const ScreenDisc> coloured, const AnnotationStyle& style) {
+                      const MainViewLabels& labels, const GlyphResult& glyphs, const AnnotationStyle& style) {
+  const std::span<const ScreenDisc> coloured = labels.coloured_glyphs;
+  std::vector<ScreenDisc> rings;
+  for (ScreenDisc d : labels.inverted_glyphs) {
+    d.radius = inverted_ring_radius(d.radius, style) + 0.5 * inverted_halo_width(style);
+    rings.push_back(d);
+  }
+  if (!labels.worst_is_tied && labels.worst_glyph.radius > 0.0) {
+    ScreenDisc d = labels.worst_glyph;
+    d.radius = worst_rings_extent(d.radius, !glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0, style);
+    rings.push_back(d);
+  }
   std::vector<ColouredSegment> edges;
   if (scene.lines.size() > 1) {
     const LineSet& set = scene.lines[1];
@@ -2028,7 +2047,7 @@ void draw_over_glyphs(Image& figure, const HexMesh& mesh, const Topology& topolo
                           color});
   }
   draw_segments_over_glyphs(figure, outlines, camera, view, ids, coloured,
-                            std::max(1.5, kInvertedOutlineWidth * style.scale), std::nullopt);
+                            std::max(2.0, kInvertedOutlineWidth * style.scale), std::nullopt, rings);
 }
 
 }  // namespace
@@ -2089,8 +2108,8 @@ Image render_main_view(const HexMesh& mesh, const Topology& topology, const Glyp
   const IdImage ids = main_view_id_image(renderer, scene, glyphs, camera, layout.view, true, options.glyph_ties);
   const MainViewLabels labels =
       layout_main_view_labels(glyphs, overlap, camera, layout, style, scaled, ids.empty() ? nullptr : &ids);
-  draw_over_glyphs(figure, mesh, topology, scene, scaled, camera, layout.view, ids, labels.coloured_glyphs, style);
   draw_glyph_rings(figure, labels, glyphs, style, scaled);
+  draw_over_glyphs(figure, mesh, topology, scene, scaled, camera, layout.view, ids, labels, glyphs, style);
   draw_main_view_labels(figure, labels, style, scaled);
   draw_main_legend(figure, glyphs, overlap, layout, style, scaled, labels.glyph_scale, labels.hidden_clusters,
                    labels.left_out_glyphs, labels.unlabelled_clusters, labels.worst_glyph.radius);
