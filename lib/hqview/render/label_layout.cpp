@@ -335,6 +335,9 @@ std::vector<PlacedLabel> callout_columns(std::span<const CalloutLabel> labels, s
   }
   const int margin = static_cast<int>(std::lround(gap));
   const int step = tallest + static_cast<int>(std::lround(3.0 * gap));
+  // Slots start every quarter step (a label sits nearer its glyph's y);
+  // two labels of a column are a step apart.
+  const int fine = std::max(1, step / 4);
   // The columns' inner edges (x of the leaders' ends) and their free slots.
   struct Column {
     double inner = 0;
@@ -354,7 +357,7 @@ std::vector<PlacedLabel> callout_columns(std::span<const CalloutLabel> labels, s
   if (sides[0].empty()) return {};
   for (auto& side : sides)
     for (Column& c : side)
-    for (int y = bounds.y + margin; y + tallest <= bounds.y + bounds.height - margin; y += step) {
+    for (int y = bounds.y + margin; y + tallest <= bounds.y + bounds.height - margin; y += fine) {
       const PixelRect box{static_cast<int>(c.is_left ? c.inner - widest : c.inner), y, widest, tallest};
       if (std::any_of(taken.begin(), taken.end(), [&](const PixelRect& t) { return boxes_overlap(box, t); }) ||
           std::any_of(obstacles.begin(), obstacles.end(), [&](const ScreenDisc& d) { return box_meets_disc(box, d); }))
@@ -409,13 +412,19 @@ std::vector<PlacedLabel> callout_columns(std::span<const CalloutLabel> labels, s
       cost = kNone;
       return result;
     }
-    // best[i][j]: least cost of members 0..i-1 in slots 0..j-1.
+    // before[j]: the slots at least a step above slot j (a prefix).
+    std::vector<std::size_t> before(k);
+    for (std::size_t j = 0; j < k; ++j)
+      before[j] = static_cast<std::size_t>(std::upper_bound(c.slot_y.begin(), c.slot_y.end(), c.slot_y[j] - step) -
+                                           c.slot_y.begin());
+    // best[i][j]: least cost of members 0..i-1 in slots 0..j-1, a step apart.
     std::vector<std::vector<double>> best(m + 1, std::vector<double>(k + 1, kNone));
     std::vector<std::vector<char>> took(m + 1, std::vector<char>(k + 1, 0));
     for (std::size_t j = 0; j <= k; ++j) best[0][j] = 0.0;
     for (std::size_t i = 1; i <= m; ++i)
       for (std::size_t j = i; j <= k; ++j) {
-        const double here = best[i - 1][j - 1] + leader_cost(c, members[i - 1], c.slot_y[j - 1]) + c.slot_cost[j - 1];
+        const double here =
+            best[i - 1][before[j - 1]] + leader_cost(c, members[i - 1], c.slot_y[j - 1]) + c.slot_cost[j - 1];
         best[i][j] = best[i][j - 1];
         if (here < best[i][j]) {
           best[i][j] = here;
@@ -428,7 +437,7 @@ std::vector<PlacedLabel> callout_columns(std::span<const CalloutLabel> labels, s
     for (std::size_t i = m; i > 0; --i) {
       while (!took[i][j]) --j;
       result.push_back({members[i - 1], j - 1});
-      --j;
+      j = before[j - 1];
     }
     return result;
   };

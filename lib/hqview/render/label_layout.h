@@ -137,9 +137,10 @@ class LabelPlacer {
 // Labels that find no clear place near their glyph are stacked in a column
 // at the left or right edge of bounds, each with a leader from its start
 // disc's edge to the middle of its box's inner side (the side facing the
-// model). Slots are rows of the tallest label's height plus 3 gap, from
-// bounds.y + gap down; a slot is free when the column's widest box there
-// overlaps no taken box and meets no obstacle disc. The labels, by the x
+// model). Slots start every quarter of a step (the tallest label's height
+// plus 3 gap) from bounds.y + gap down, two labels a step apart; a slot is
+// free when the column's widest box there overlaps no taken box and meets
+// no obstacle disc. The labels, by the x
 // of their start disc, go to the left column up to a split and to the
 // right one after it (so a left leader and a right one never cross); in a
 // column they take free slots in the order of their start's y (a dynamic

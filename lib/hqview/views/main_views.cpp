@@ -1567,11 +1567,11 @@ void place_main_view_callouts(MainViewLabels& result, std::vector<MainViewLabel>
                               std::span<const ScreenDisc> obstacles, const IdImage& seen, const AnnotationStyle& style,
                               const LabelLayoutOptions& options) {
   auto cost = [&](const PixelRect& box) {
-    // A quarter pixel of leader per model pixel hidden: empty margin first.
+    // 0.15 px of leader per model pixel hidden: empty margin first.
     double covered = 0.0;
     for (int y = box.y; y < box.y + box.height; ++y)
       for (int x = box.x; x < box.x + box.width; ++x) covered += seen.at(x, y, kIdBackground) != kIdBackground ? 1.0 : 0.0;
-    return 0.25 * covered;
+    return 0.15 * covered;
   };
   std::vector<MainViewLabel> moved;  // near labels moved into the callouts (restored on failure)
   std::vector<PlacedLabel> placed;
