@@ -1975,7 +1975,10 @@ void draw_segments_over_glyphs(Image& figure, std::span<const ColouredSegment> s
   for (const ColouredSegment& s : segments) {
     const auto a = pixel(s.a), b = pixel(s.b);
     const double length = std::hypot(b[0] - a[0], b[1] - a[1]);
-    if (!std::isfinite(length) || length > 1e5) continue;
+    // (Far off the figure, or not finite: nothing to draw, and no pixel
+    // coordinate cast out of int's range.)
+    const auto is_near = [](const std::array<double, 2>& p) { return std::abs(p[0]) < 1e6 && std::abs(p[1]) < 1e6; };
+    if (!std::isfinite(length) || length > 1e5 || !is_near(a) || !is_near(b)) continue;
     const int steps = std::max(1, static_cast<int>(std::ceil(2.0 * length)));
     int run = -1;
     for (int i = 0; i <= steps + 1; ++i) {
