@@ -255,6 +255,8 @@ void expect_inverted_faces_visible(const Analysis& a, const std::vector<Rendered
   EXPECT_GE(views, 1);
 }
 
+bool color_near(const Image& image, const Pixel& at, Rgba8 color, int r);
+
 TEST(SurfaceViews, EveryInvertedFaceShowsOverTheGlyphs) {
   const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
   ASSERT_TRUE(renderer);
@@ -278,6 +280,54 @@ TEST(SurfaceViews, EveryInvertedFaceShowsOverTheGlyphs) {
     options.overlap = std::nullopt;
     const Analysis a = analyze_mesh(options);
     expect_inverted_faces_visible(a, render_views(a, views, *renderer), true);
+  }
+  {
+    // Issue 44 part V: a planar 24 x 24 grid, vertex (12, 12) pushed to
+    // (13.4, 12.3): #0's glyph (at least 12 px at 600 px height, up to one
+    // mean edge) and its rings cover most of each folded quad; each keeps
+    // its outline in sight, drawn over the glyph and its rings (not over
+    // the glyph's core, within half its radius of the marked vertex): of
+    // the points along its edges (every 0.05, corners left out) outside
+    // that core (half of #0's largest radius, max(12 px, 1.05 mean edges),
+    // plus 2 px), at least 0.9 have a pixel of its colour within 2 px.
+    // Before, the tilted grid's one inverted face was 75 % under #0.
+    const int n = 24;
+    Grid g = planar_grid(n, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 1.0);
+    g.points[static_cast<std::size_t>(12 + (n + 1) * 12)] = {13.4, 12.3, 0.0};
+    AnalyzeOptions options;
+    options.mesh_path = dir.write("pushed24.obj", obj_text(g));
+    options.tool_version = "test";
+    options.overlap = std::nullopt;
+    const Analysis a = analyze_mesh(options);
+    int faces = 0;
+    for (const RenderedView& v : render_views(a, views, *renderer)) {
+      if (v.id != "main") continue;
+      for (const ViewFile& f : v.files) {
+        ASSERT_TRUE(f.camera);
+        const Vec3 centre = a.glyphs->clusters.at(0).position;
+        const Pixel c0 = to_pixel(f, centre), e0 = to_pixel(f, centre + Vec3{1.05, 0.0, 0.0});
+        const double core = 0.5 * std::max(12.0, std::hypot(e0.x - c0.x, e0.y - c0.y)) + 2.0;
+        for (const BoundaryPolygon& face : boundary_polygons(a.topology)) {
+          if (!cell_is_inverted(a.field, static_cast<std::size_t>(face.cell))) continue;
+          const Rgba8 colour = surface_fill_color(a.field.cell_scaled_jacobian[static_cast<std::size_t>(face.cell)]);
+          int points = 0, seen = 0;
+          for (int k = 0; k < face.size; ++k) {
+            const Vec3 p0 = a.mesh.points[static_cast<std::size_t>(face.v[static_cast<std::size_t>(k)])];
+            const Vec3 p1 = a.mesh.points[static_cast<std::size_t>(face.v[static_cast<std::size_t>((k + 1) % face.size)])];
+            for (int i = 2; i <= 18; ++i) {
+              const Pixel at = to_pixel(f, p0 + (i / 20.0) * (p1 - p0));
+              if (std::hypot(at.x - c0.x, at.y - c0.y) < core) continue;
+              ++points;
+              seen += color_near(f.image, at, colour, 2);
+            }
+          }
+          ++faces;
+          EXPECT_GE(points, 20) << "cell " << face.cell;
+          EXPECT_GE(seen, 0.9 * points) << "cell " << face.cell << ": " << seen << " of " << points;
+        }
+      }
+    }
+    EXPECT_GE(faces, 2);
   }
   {
     // A 4 x 4 x 2 hex grid (medit); the top vertex (2, 2, 2) pushed down to

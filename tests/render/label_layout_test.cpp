@@ -185,3 +185,54 @@ TEST(LabelLayout, CrowdedRowKeepsLeadersApartAndRespectsEarlierLabels) {
 
 }  // namespace
 }  // namespace hq
+
+namespace hq {
+namespace {
+
+// Callout columns (issue 44 part V): 10 glyphs piled at the left end of an
+// 800 x 600 view (dolphin_rot's pile-up), each a disc of radius 6 and a
+// label of 70 x 18, with a box already taken above the pile: every label
+// is placed, inside the bounds, over no glyph disc and no taken box, the
+// boxes pairwise disjoint; each leader starts on its glyph's disc edge and
+// ends on its own box's edge; no two leaders cross, no leader runs through
+// another label's box; a leader that could avoid the protected disc #0
+// does. With no room (a view one label high) nothing is placed.
+TEST(LabelLayout, CalloutColumnsHoldAPileUpWithoutCrossings) {
+  std::vector<ScreenDisc> discs;
+  std::vector<CalloutLabel> labels;
+  for (int i = 0; i < 10; ++i) {
+    const ScreenDisc d{30.0 + 9.0 * (i % 4), 280.0 + 11.0 * i, 6.0, i};
+    discs.push_back(d);
+    labels.push_back({ScreenDisc{d.x, d.y, 2.0, i}, 70, 18, i});
+  }
+  const PixelRect bounds{0, 0, 800, 600};
+  const std::vector<PixelRect> taken{{10, 200, 120, 30}};
+  const std::vector<PlacedLabel> placed = place_callout_columns(labels, discs, taken, bounds, 4.0);
+  ASSERT_EQ(placed.size(), labels.size());
+  for (std::size_t i = 0; i < placed.size(); ++i) {
+    const PlacedLabel& p = placed[i];
+    SCOPED_TRACE(i);
+    EXPECT_TRUE(p.has_leader);
+    EXPECT_GE(p.box.x, 0);
+    EXPECT_GE(p.box.y, 0);
+    EXPECT_LE(p.box.x + p.box.width, 800);
+    EXPECT_LE(p.box.y + p.box.height, 600);
+    EXPECT_EQ(p.box.width, 70);
+    for (const ScreenDisc& d : discs) EXPECT_FALSE(box_meets_disc(p.box, d));
+    for (const PixelRect& t : taken) EXPECT_FALSE(boxes_overlap(p.box, t));
+    EXPECT_NEAR(std::hypot(p.leader_x0 - labels[i].start.x, p.leader_y0 - labels[i].start.y), 2.0, 1e-9);
+    EXPECT_LE(disc_box_gap(ScreenDisc{p.leader_x1, p.leader_y1, 0.0}, p.box), 1e-9);
+    for (std::size_t j = 0; j < placed.size(); ++j) {
+      if (j == i) continue;
+      EXPECT_FALSE(boxes_overlap(p.box, placed[j].box)) << j;
+      EXPECT_FALSE(leaders_cross(p, placed[j])) << j;
+      EXPECT_FALSE(leader_meets_box(p, placed[j].box)) << j;
+    }
+    // The protected #0: no other leader over it.
+    if (i > 0) EXPECT_FALSE(leader_meets_disc(p, discs[0]));
+  }
+  EXPECT_TRUE(place_callout_columns(labels, discs, taken, PixelRect{0, 0, 800, 20}, 4.0).empty());
+}
+
+}  // namespace
+}  // namespace hq

@@ -286,11 +286,41 @@ TEST(GlyphTiesView, GlyphRadiusIsCappedFromAboveAndTheLegendSaysHowBig) {
   EXPECT_TRUE(has_line(legend, "inverted cells: 520"));
   EXPECT_TRUE(has_line(legend, "  their 759 boundary faces"));
   EXPECT_TRUE(has_line(legend, "  not drawn (more than 64)"));
+  // One depth rule (issue 44 part V): all drawn, near and far, as glyphs.
   inverted.inverted_face_count = 17;
-  inverted.inverted_overlay_faces = 9;
+  inverted.inverted_overlay_faces = 17;
   legend = inverted_legend();
-  EXPECT_TRUE(has_line(legend, "  boundary faces: 9 of 17"));
-  EXPECT_TRUE(has_line(legend, "  drawn (8 out of sight)"));
+  EXPECT_TRUE(has_line(legend, "  all 17 boundary faces drawn"));
+  EXPECT_TRUE(has_line(legend, "  (see-through, as glyphs)"));
+  for (const std::string& line : legend) EXPECT_EQ(line.find("out of sight"), std::string::npos) << line;
+}
+
+// One glyph scale per mesh (issue 44 part V: the 44u2 review measured
+// gmsh_ring_dent's #0 at x0.28 in view 1 and x0.36 in view 2): the 12 x 4
+// x 2 grid seen along its length and across it (framed at different
+// zooms), each view alone scaled differently; with mesh_glyph_scale both
+// draw #0 at one radius in model units (pixels times the view's model
+// units per pixel), at least 24 px in each, and the labels use that scale.
+TEST(GlyphTiesView, BothViewsOfAMeshDrawAClusterAtOneRadius) {
+  const Case c = dented({0.3, 0.2, 0.1});
+  ASSERT_FALSE(c.glyphs.clusters.empty());
+  const std::vector<Vec3> directions{{1.0, -0.1, 0.5}, {0.1, -1.0, 0.5}};
+  MainViewOptions options;
+  auto world_radius = [&](const MainViewLabels& l) { return l.worst_glyph.radius * l.camera.ortho_height / l.view.height; };
+  std::vector<double> alone;
+  for (const Vec3& d : directions)
+    alone.push_back(world_radius(main_view_labels(c.mesh, c.topology, c.glyphs, nullptr, d, options)));
+  ASSERT_GT(std::abs(alone[0] - alone[1]), 0.01 * alone[0]);  // per view they differ
+  options.glyph_scale = mesh_glyph_scale(c.mesh, c.topology, c.glyphs, directions, options);
+  std::vector<double> shared;
+  for (const Vec3& d : directions) {
+    const MainViewLabels l = main_view_labels(c.mesh, c.topology, c.glyphs, nullptr, d, options);
+    EXPECT_EQ(l.glyph_scale, options.glyph_scale);
+    EXPECT_GE(l.worst_glyph.radius, 24.0 - 1e-6);
+    shared.push_back(world_radius(l));
+  }
+  EXPECT_NEAR(shared[0], shared[1], 1e-9 * shared[0]);
+  EXPECT_NEAR(shared[0], c.glyphs.clusters[0].radius * options.glyph_scale, 1e-9 * shared[0]);
 }
 
 // Issue 44 part U: the worst tie class is a unit (none of its members left

@@ -159,7 +159,8 @@ int background_inside_rim(const Image& image, const ScreenDisc& d, const Rgba8& 
 // no grey glyph is drawn bigger than the smallest coloured one (issue 44
 // part T: the grey ones keep their severity radius, no longer 0.6 of it;
 // they rank after every coloured tie class).
-void expect_sizes_by_severity(const Scene& scene, const std::vector<ScreenDisc>& discs, const MainViewLabels& labels) {
+void expect_sizes_by_severity(const Scene& scene, const std::vector<ScreenDisc>& discs, const MainViewLabels& labels,
+                              double scale = 1.0) {
   // Sets: the pale grey ones, the coloured ones, the unfaded grey ones
   // (min quality < kUnfadedGlyphQuality: ranked before the pale ones).
   ASSERT_EQ(scene.spheres.size(), 3u);
@@ -176,7 +177,7 @@ void expect_sizes_by_severity(const Scene& scene, const std::vector<ScreenDisc>&
     if (k != coloured) EXPECT_LE(radius(order[k]), radius(order[k - 1]) * (1 + 1e-9) + 1e-9) << "rank " << k;
   if (coloured == 0) return;
   const double worst = radius(pale);  // cluster #0
-  EXPECT_GE(worst, 24.0 - 0.01);
+  EXPECT_GE(worst, 24.0 * scale - 0.01);
   EXPECT_NEAR(labels.worst_glyph.radius, worst, 0.01);
   for (std::size_t i = 0; i < discs.size(); ++i) EXPECT_LE(radius(i), worst * (1 + 1e-9)) << i;
   for (std::size_t k = coloured; k < order.size(); ++k)
@@ -282,9 +283,8 @@ std::vector<std::string> leaders_over_higher_ranks(const MainViewLabels& labels,
 }
 
 void expect_clear_views(const Case& c, const char* name, bool expect_findings = true,
-                        std::optional<Vec3> extra_direction = std::nullopt) {
+                        std::optional<Vec3> extra_direction = std::nullopt, const MainViewOptions& options = {}) {
   const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
-  const MainViewOptions options;  // 1600 x 1200
   Index findings[2] = {0, 0};  // coincident vertices, intersecting pairs
   for (const OverlapMarker& m : c.overlap.markers)
     findings[m.kind == MarkerKind::coincident ? 0 : 1] += std::max<Index>(m.count, 1);
@@ -294,7 +294,7 @@ void expect_clear_views(const Case& c, const char* name, bool expect_findings = 
   const std::vector<Vec3> directions =
       choose_main_viewpoints(points, c.glyphs, main_view_aspect(options), 2, options.up, options.fov_y_degrees);
   ASSERT_EQ(directions.size(), 2u);
-  const double scale = 1.0;  // annotation scale of a 1200-pixel-high figure
+  const double scale = annotation_style_for(options.height).scale;  // 1 at a 1200-pixel-high figure
   std::vector<Vec3> all_directions = directions;
   if (extra_direction) all_directions.push_back(*extra_direction);
   for (const Vec3& direction : all_directions) {
@@ -309,20 +309,36 @@ void expect_clear_views(const Case& c, const char* name, bool expect_findings = 
     for (const std::string& w : labels_off_their_glyph(labels, labels.ids)) ADD_FAILURE() << w;
     for (Index hidden : labels.hidden_clusters)
       EXPECT_EQ(count_id(labels.ids, kIdGlyph + static_cast<std::uint32_t>(hidden)), 0u) << "#" << hidden;
-    // The worst cluster's glyph keeps at least 0.7 of its disc once the
+    // Every coloured tie class whose glyph shows has exactly one label
+    // (issue 44 part V: none left out for want of room, Dolphin_padded's
+    // #4), pointing at its glyph (labels_off_their_glyph above).
+    EXPECT_TRUE(labels.unlabelled_clusters.empty()) << labels.unlabelled_clusters.size() << " without a label";
+    {
+      const std::vector<Index> ties = glyph_tie_classes(c.glyphs.clusters);
+      const Index coloured = coloured_tie_classes(
+          tie_class_sizes(ties), static_cast<Index>(labelled_cluster_count(c.glyphs.options.top_clusters)));
+      for (std::size_t i = 0; i < ties.size() && ties[i] < coloured; ++i) {
+        if ((i > 0 && ties[i - 1] == ties[i]) || count_id(labels.ids, kIdGlyph + static_cast<std::uint32_t>(i)) == 0)
+          continue;
+        const auto named = std::count_if(labels.labels.begin(), labels.labels.end(), [&](const MainViewLabel& l) {
+          return l.kind == MainViewLabel::Kind::cluster && l.cluster == static_cast<Index>(i);
+        });
+        EXPECT_EQ(named, 1) << "#" << i;
+      }
+    }
+    // The worst cluster's glyph keeps at least 3/4 of its disc once the
     // arrows, rings, leaders and labels are drawn (before issue 44's fifth
     // round this compared with the pixels it showed without the markers,
     // which a glyph already hidden by another passed), and no other glyph
-    // nor arrow shows inside its disc.
+    // nor arrow shows inside its disc. (Weakened to 0.7 in a merge of part
+    // U, #0 capped at 24-40 px; since part V a leader's halo begins outside
+    // its glyph, and 3/4 holds again.)
     if (!c.glyphs.clusters.empty() && labels.worst_glyph.radius > 0.0) {
       IdImage drawn = labels.ids;
       mark_main_view_annotations(drawn, labels, c.glyphs, options);
       const double disc = M_PI * labels.worst_glyph.radius * labels.worst_glyph.radius;
       const std::size_t after = count_id(drawn, kIdGlyph);
-      // (0.7: since issue 44 part U caps #0's radius, as small as 24-40 px,
-      // its rings' fixed-width halos take a larger share of its rim; the
-      // issue asks for at least half.)
-      EXPECT_GE(static_cast<double>(after), 0.7 * disc) << "the worst glyph shows " << after << " pixels of a disc of " << disc;
+      EXPECT_GE(static_cast<double>(after), 0.75 * disc) << "the worst glyph shows " << after << " pixels of a disc of " << disc << " (" << count_id(labels.ids, kIdGlyph) << " before the annotations)";
       EXPECT_LE(worst_disc_covered(labels.ids, labels.worst_glyph), 2u) << "another glyph or an arrow over #0";
     }
     for (const std::string& w : leaders_over_higher_ranks(labels, labels.ids)) ADD_FAILURE() << w;
@@ -336,7 +352,7 @@ void expect_clear_views(const Case& c, const char* name, bool expect_findings = 
       inverted += g.min_quality < 0.0 && drawn.drawn[static_cast<std::size_t>(g.id)] ? 1 : 0;
     EXPECT_EQ(labels.inverted_glyphs.size(), inverted);
     EXPECT_EQ(discs.size(), c.glyphs.clusters.size() - static_cast<std::size_t>(labels.left_out_glyphs));
-    expect_sizes_by_severity(scene, discs, labels);
+    expect_sizes_by_severity(scene, discs, labels, scale);
     for (const MainViewLabel& l : labels.labels) {
       const PixelRect& b = l.placement.box;
       const double own = disc_box_gap(l.anchor, b);
@@ -348,9 +364,9 @@ void expect_clear_views(const Case& c, const char* name, bool expect_findings = 
         if (d.radius < 1.0 || (discs.size() > 1000 && d.radius < 3.0)) continue;
         EXPECT_FALSE(box_meets_disc(b, ScreenDisc{d.x, d.y, d.radius - 0.5})) << l.text << " covers a glyph";
         if (!is_own && !l.placement.has_leader)
-          EXPECT_GE(disc_box_gap(d, b), own + 10.0 * 0.999) << l.text << " without a leader beside another glyph";
+          EXPECT_GE(disc_box_gap(d, b), own + 10.0 * scale * 0.999) << l.text << " without a leader beside another glyph";
       }
-      if (!l.placement.has_leader) EXPECT_LE(own, 10.0) << l.text;
+      if (!l.placement.has_leader) EXPECT_LE(own, 10.0 * scale) << l.text;
       for (const MainViewLabel& other : labels.labels) {
         if (&other == &l) continue;
         EXPECT_FALSE(leaders_cross(l.placement, other.placement)) << l.text << " and " << other.text << " leaders cross";
@@ -574,6 +590,39 @@ TEST(MainViewLabels, SharedMeshesWithCrowdedGlyphs) {
     ASSERT_GT(c.glyphs.clusters.size(), 5u) << file;
     expect_clear_views(c, file, false);
   }
+}
+
+// Pile-ups (issue 44 part V): Dolphin_padded turned about a skew axis and
+// mirrored (its glyphs pile up at one end, dolphin_rot of the 44u review:
+// labels 200 px from their glyph, leaders over rings; untouched, its #4
+// found "no room"), at 1600 x 1200 and at 800 x 600: every coloured
+// cluster that shows gets one label whose leader ends on its glyph, no
+// two boxes overlap, no leaders cross (expect_clear_views); the labels
+// that find no clear place nearby are in the callout columns, stacked in
+// the order of their glyphs' y.
+TEST(MainViewLabels, PileUpsGoToCalloutColumns) {
+  const auto data = test::shared_data_dir();
+  if (!data) GTEST_SKIP() << "no ../shared/data";
+  HexMesh mesh = read_hex_mesh(*data / "meshes/gao2016_sweeping/Dolphin_padded.mesh").mesh;
+  // Rodrigues' rotation by 2.2 rad about (0.3, 1, 0.2), then x mirrored
+  // (each hex's corners reordered so that it stays positively oriented).
+  const Vec3 k = normalized(Vec3{0.3, 1.0, 0.2});
+  const double a = 2.2;
+  for (Vec3& p : mesh.points) {
+    p = std::cos(a) * p + std::sin(a) * cross(k, p) + (1.0 - std::cos(a)) * dot(k, p) * k;
+    p.x = -p.x;
+  }
+  for (auto& h : mesh.hexes) {
+    std::swap(h[1], h[3]);
+    std::swap(h[5], h[7]);
+  }
+  const Case c = analyse(std::move(mesh));
+  ASSERT_GT(c.glyphs.clusters.size(), 5u);
+  expect_clear_views(c, "Dolphin_padded turned", false);
+  MainViewOptions small;
+  small.width = 800;
+  small.height = 600;
+  expect_clear_views(c, "Dolphin_padded turned, 800 x 600", false, std::nullopt, small);
 }
 
 // The placement without the id image (main before issue 44d) lets leaders

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 namespace hq {
 
@@ -272,8 +273,10 @@ std::optional<PlacedLabel> LabelPlacer::place(const LabelRequest& label, std::sp
   };
   // The rings' candidates, evaluated as the passes first reach them.
   std::vector<std::array<Candidate, kDirections.size()>> rings;
-  for (int pass = 0; pass < 3; ++pass)
-    for (int ring = 0; ring <= options_.rings; ++ring) {
+  const int last_pass = std::clamp(label.max_pass, 0, 2);
+  const int last_ring = label.max_rings < 0 ? options_.rings : std::min(options_.rings, label.max_rings);
+  for (int pass = 0; pass <= last_pass; ++pass)
+    for (int ring = 0; ring <= last_ring; ++ring) {
       if (static_cast<std::size_t>(ring) == rings.size()) {
         const double distance = anchor.radius + options_.gap + ring * options_.ring_step;
         rings.emplace_back();
@@ -292,6 +295,239 @@ std::optional<PlacedLabel> LabelPlacer::place(const LabelRequest& label, std::sp
       if (best) return best->placement;
     }
   return std::nullopt;
+}
+
+namespace {
+
+// A callout's leader: from start's edge towards (x, y), ending there.
+PlacedLabel callout_leader(const ScreenDisc& start, const PixelRect& box, double x, double y) {
+  const double dx = x - start.x, dy = y - start.y;
+  const double length = std::max(std::hypot(dx, dy), 1e-9);
+  const double r = std::min(start.radius, length);
+  PlacedLabel p{box};
+  p.has_leader = true;
+  p.leader_x0 = start.x + dx / length * r;
+  p.leader_y0 = start.y + dy / length * r;
+  p.leader_x1 = x;
+  p.leader_y1 = y;
+  return p;
+}
+
+}  // namespace
+
+namespace {
+
+constexpr double kNoCallout = std::numeric_limits<double>::infinity();
+// Added to a callout's cost when its leader crosses a protected disc.
+constexpr double kProtectedPenalty = 1e6;
+
+// place_callout_columns' columns; cost: their total (kNoCallout: no room).
+std::vector<PlacedLabel> callout_columns(std::span<const CalloutLabel> labels, std::span<const ScreenDisc> obstacles,
+                                         std::span<const PixelRect> taken, const PixelRect& bounds, double gap,
+                                         const std::function<double(const PixelRect&)>& box_cost, double& total) {
+  total = kNoCallout;
+  const std::size_t n = labels.size();
+  if (n == 0) return {};
+  int tallest = 0, widest = 0;
+  for (const CalloutLabel& l : labels) {
+    tallest = std::max(tallest, l.height);
+    widest = std::max(widest, l.width);
+  }
+  const int margin = static_cast<int>(std::lround(gap));
+  const int step = tallest + static_cast<int>(std::lround(3.0 * gap));
+  // Slots start every quarter step (a label sits nearer its glyph's y);
+  // two labels of a column are a step apart.
+  const int fine = std::max(1, step / 4);
+  // The columns' inner edges (x of the leaders' ends) and their free slots.
+  struct Column {
+    double inner = 0;
+    bool is_left = true;
+    std::vector<int> slot_y;        // free slots' top
+    std::vector<double> slot_cost;  // box_cost of each
+  };
+  // Each side's candidate columns: at the edge of bounds, then every
+  // max(20, widest / 2) px inwards up to the middle (a column near the
+  // glyphs over empty space shortens the leaders).
+  std::vector<Column> sides[2];
+  const double shift = std::max(20.0, 0.5 * widest);
+  for (double inner = bounds.x + margin + widest; inner <= bounds.x + 0.5 * bounds.width; inner += shift) {
+    sides[0].push_back({inner, true, {}, {}});
+    sides[1].push_back({2.0 * bounds.x + bounds.width - inner, false, {}, {}});
+  }
+  if (sides[0].empty()) return {};
+  for (auto& side : sides)
+    for (Column& c : side)
+    for (int y = bounds.y + margin; y + tallest <= bounds.y + bounds.height - margin; y += fine) {
+      const PixelRect box{static_cast<int>(c.is_left ? c.inner - widest : c.inner), y, widest, tallest};
+      if (std::any_of(taken.begin(), taken.end(), [&](const PixelRect& t) { return boxes_overlap(box, t); }) ||
+          std::any_of(obstacles.begin(), obstacles.end(), [&](const ScreenDisc& d) { return box_meets_disc(box, d); }))
+        continue;
+      c.slot_y.push_back(y);
+      c.slot_cost.push_back(box_cost ? box_cost(box) : 0.0);
+    }
+  auto box_of = [&](const Column& c, std::size_t label, int y) {
+    const CalloutLabel& l = labels[label];
+    // Boxes hug the inner edge and sit centred in their slot.
+    const int top = y + (tallest - l.height) / 2;
+    return PixelRect{static_cast<int>(c.is_left ? c.inner - l.width : c.inner), top, l.width, l.height};
+  };
+  auto attach_y = [&](int y) { return y + 0.5 * tallest; };
+  // Labels by their start's x (ties: y, then index).
+  std::vector<std::size_t> by_x(n);
+  for (std::size_t i = 0; i < n; ++i) by_x[i] = i;
+  std::sort(by_x.begin(), by_x.end(), [&](std::size_t a, std::size_t b) {
+    const ScreenDisc &p = labels[a].start, &q = labels[b].start;
+    return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : a < b;
+  });
+  constexpr double kNone = kNoCallout;
+  // A leader's cost: its length; kNone when its start is not on the
+  // column's inner side (it would run through the column's boxes); plus
+  // kProtectedPenalty when it crosses a protected disc that does not hold
+  // its start.
+  auto leader_cost = [&](const Column& c, std::size_t label, int y) {
+    const ScreenDisc& s = labels[label].start;
+    if (c.is_left ? s.x < c.inner + gap : s.x > c.inner - gap) return kNone;
+    const PlacedLabel p = callout_leader(s, PixelRect{}, c.inner, attach_y(y));
+    double cost = std::hypot(c.inner - s.x, attach_y(y) - s.y);
+    for (const ScreenDisc& d : obstacles)
+      if (d.id >= 0 && d.id < labels[label].protect_below && d.id != s.id && leader_meets_disc(p, d) &&
+          std::hypot(p.leader_x0 - d.x, p.leader_y0 - d.y) >= d.radius) {
+        cost += kProtectedPenalty;
+        break;
+      }
+    return cost;
+  };
+  // The order-preserving assignment of members (sorted by y) to c's slots
+  // of least cost: the slot index of each member, or empty.
+  auto assign = [&](const Column& c, std::vector<std::size_t> members, double& cost) {
+    std::sort(members.begin(), members.end(), [&](std::size_t a, std::size_t b) {
+      const ScreenDisc &p = labels[a].start, &q = labels[b].start;
+      return p.y != q.y ? p.y < q.y : p.x != q.x ? p.x < q.x : a < b;
+    });
+    const std::size_t m = members.size(), k = c.slot_y.size();
+    cost = 0.0;
+    std::vector<std::pair<std::size_t, std::size_t>> result;  // (label, slot)
+    if (m == 0) return result;
+    if (m > k) {
+      cost = kNone;
+      return result;
+    }
+    // before[j]: the slots at least a step above slot j (a prefix).
+    std::vector<std::size_t> before(k);
+    for (std::size_t j = 0; j < k; ++j)
+      before[j] = static_cast<std::size_t>(std::upper_bound(c.slot_y.begin(), c.slot_y.end(), c.slot_y[j] - step) -
+                                           c.slot_y.begin());
+    // best[i][j]: least cost of members 0..i-1 in slots 0..j-1, a step apart.
+    std::vector<std::vector<double>> best(m + 1, std::vector<double>(k + 1, kNone));
+    std::vector<std::vector<char>> took(m + 1, std::vector<char>(k + 1, 0));
+    for (std::size_t j = 0; j <= k; ++j) best[0][j] = 0.0;
+    for (std::size_t i = 1; i <= m; ++i)
+      for (std::size_t j = i; j <= k; ++j) {
+        const double here =
+            best[i - 1][before[j - 1]] + leader_cost(c, members[i - 1], c.slot_y[j - 1]) + c.slot_cost[j - 1];
+        best[i][j] = best[i][j - 1];
+        if (here < best[i][j]) {
+          best[i][j] = here;
+          took[i][j] = 1;
+        }
+      }
+    cost = best[m][k];
+    if (!(cost < kNone)) return result;
+    std::size_t j = k;
+    for (std::size_t i = m; i > 0; --i) {
+      while (!took[i][j]) --j;
+      result.push_back({members[i - 1], j - 1});
+      j = before[j - 1];
+    }
+    return result;
+  };
+  double best_cost = kNone;
+  std::vector<std::pair<std::size_t, std::size_t>> best_sides[2];
+  std::size_t best_column[2] = {0, 0};
+  for (std::size_t split = 0; split <= n; ++split) {
+    double costs[2] = {kNone, kNone};
+    std::vector<std::pair<std::size_t, std::size_t>> chosen[2];
+    std::size_t column[2] = {0, 0};
+    for (int side = 0; side < 2; ++side) {
+      const std::vector<std::size_t> members =
+          side == 0 ? std::vector<std::size_t>(by_x.begin(), by_x.begin() + static_cast<std::ptrdiff_t>(split))
+                    : std::vector<std::size_t>(by_x.begin() + static_cast<std::ptrdiff_t>(split), by_x.end());
+      for (std::size_t k = 0; k < sides[side].size(); ++k) {
+        double cost = kNone;
+        auto a = assign(sides[side][k], members, cost);
+        if (cost < costs[side]) {
+          costs[side] = cost;
+          chosen[side] = std::move(a);
+          column[side] = k;
+        }
+        if (members.empty()) break;
+      }
+    }
+    const double total = costs[0] + costs[1];
+    if (total < best_cost) {
+      best_cost = total;
+      for (int side = 0; side < 2; ++side) {
+        best_sides[side] = std::move(chosen[side]);
+        best_column[side] = column[side];
+      }
+    }
+  }
+  if (!(best_cost < kNone)) return {};
+  total = best_cost;
+  std::vector<PlacedLabel> placed(n);
+  for (int side = 0; side < 2; ++side) {
+    const Column& c = sides[side][best_column[side]];
+    auto& members = best_sides[side];
+    auto leader = [&](std::size_t label, std::size_t slot) {
+      return callout_leader(labels[label].start, box_of(c, label, c.slot_y[slot]), c.inner, attach_y(c.slot_y[slot]));
+    };
+    // Uncross: swap the slots of two crossing leaders (bounded; each swap
+    // shortens the total length).
+    for (std::size_t round = 0; round < 4 * n * n + 4; ++round) {
+      bool swapped = false;
+      for (std::size_t a = 0; a < members.size() && !swapped; ++a)
+        for (std::size_t b = a + 1; b < members.size() && !swapped; ++b)
+          if (leaders_cross(leader(members[a].first, members[a].second), leader(members[b].first, members[b].second))) {
+            std::swap(members[a].second, members[b].second);
+            swapped = true;
+          }
+      if (!swapped) break;
+    }
+    for (const auto& [label, slot] : members) placed[label] = leader(label, slot);
+  }
+  return placed;
+}
+
+// x and y swapped (rows as columns).
+PixelRect transposed(const PixelRect& r) { return {r.y, r.x, r.height, r.width}; }
+ScreenDisc transposed(const ScreenDisc& d) { return {d.y, d.x, d.radius, d.id}; }
+
+}  // namespace
+
+std::vector<PlacedLabel> place_callout_columns(std::span<const CalloutLabel> labels,
+                                               std::span<const ScreenDisc> obstacles,
+                                               std::span<const PixelRect> taken, const PixelRect& bounds, double gap,
+                                               const std::function<double(const PixelRect&)>& box_cost) {
+  double column_cost = kNoCallout, row_cost = kNoCallout;
+  std::vector<PlacedLabel> columns = callout_columns(labels, obstacles, taken, bounds, gap, box_cost, column_cost);
+  // Rows: the same with x and y swapped.
+  std::vector<CalloutLabel> t_labels;
+  for (const CalloutLabel& l : labels) t_labels.push_back({transposed(l.start), l.height, l.width, l.protect_below});
+  std::vector<ScreenDisc> t_obstacles;
+  for (const ScreenDisc& d : obstacles) t_obstacles.push_back(transposed(d));
+  std::vector<PixelRect> t_taken;
+  for (const PixelRect& r : taken) t_taken.push_back(transposed(r));
+  std::function<double(const PixelRect&)> t_cost;
+  if (box_cost) t_cost = [&](const PixelRect& r) { return box_cost(transposed(r)); };
+  std::vector<PlacedLabel> rows =
+      callout_columns(t_labels, t_obstacles, t_taken, transposed(bounds), gap, t_cost, row_cost);
+  if (!(row_cost < column_cost)) return columns;
+  for (PlacedLabel& p : rows) {
+    p.box = transposed(p.box);
+    std::swap(p.leader_x0, p.leader_y0);
+    std::swap(p.leader_x1, p.leader_y1);
+  }
+  return rows;
 }
 
 std::vector<std::optional<PlacedLabel>> place_labels(std::span<const LabelRequest> labels,

@@ -8,6 +8,7 @@
 // Pure geometry on pixel coordinates; nothing here draws.
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <unordered_map>
@@ -45,6 +46,12 @@ struct LabelRequest {
   // an earlier leader, in any pass (view A, issue 44's fifth round);
   // false: only the first two passes keep to that.
   bool strict_leaders = false;
+  // The last pass tried (0: clear places only, 2: any free place) and the
+  // last ring of candidates (-1: LabelLayoutOptions::rings): a caller that
+  // has a better place for a label that finds no clear one nearby (view
+  // A's callout column, issue 44 part V) asks for no more.
+  int max_pass = 2;
+  int max_rings = -1;
 };
 
 struct LabelLayoutOptions {
@@ -124,6 +131,43 @@ class LabelPlacer {
   std::vector<PlacedLabel> leaders_;
   std::unordered_map<std::int64_t, std::vector<std::uint32_t>> box_cells_, leader_cells_;
 };
+
+// Margin callout columns (issue 44 part V: dolphin_rot's pile-up of a
+// dozen glyphs at one end had labels 200 px away and leaders over rings).
+// Labels that find no clear place near their glyph are stacked in a column
+// at the left or right edge of bounds, each with a leader from its start
+// disc's edge to the middle of its box's inner side (the side facing the
+// model). Slots start every quarter of a step (the tallest label's height
+// plus 3 gap) from bounds.y + gap down, two labels a step apart; a slot is
+// free when the column's widest box there overlaps no taken box and meets
+// no obstacle disc. The labels, by the x
+// of their start disc, go to the left column up to a split and to the
+// right one after it (so a left leader and a right one never cross); in a
+// column they take free slots in the order of their start's y (a dynamic
+// program over the slots, cost: the leader's length plus box_cost of the
+// slot's box, e.g. the model pixels it would hide; a label whose start is
+// not on a column's inner side, at least gap in, cannot go there: its
+// leader would cross that column's boxes), then two leaders that
+// cross swap slots until none do (a swap shortens their total length, so
+// it ends). The split of least total cost wins. Empty when there are not
+// enough free slots for all labels (nothing is left out half way).
+//   starts: where each leader starts (a disc inside its glyph; radius 0:
+//           at the point), widths/heights: the boxes' sizes, pixels.
+//   protect_below: as LabelRequest's (the leader crosses no obstacle with
+//           0 <= id < protect_below but start's own, unless it starts in
+//           it, wherever the columns allow: a crossing costs 1e6).
+// The same with rows at the top and bottom of bounds (x and y swapped:
+// leaders to the middle of the box's bottom or top side); of columns and
+// rows the layout of least cost.
+struct CalloutLabel {
+  ScreenDisc start;
+  int width = 0, height = 0;
+  std::int64_t protect_below = 0;
+};
+std::vector<PlacedLabel> place_callout_columns(std::span<const CalloutLabel> labels,
+                                               std::span<const ScreenDisc> obstacles,
+                                               std::span<const PixelRect> taken, const PixelRect& bounds, double gap,
+                                               const std::function<double(const PixelRect&)>& box_cost = {});
 
 // A placement of box with a leader line from the anchor disc's edge
 // towards the box's point nearest the anchor's centre.

@@ -39,14 +39,22 @@ double units_per_pixel(const Camera& camera, double depth, int view_height) {
 
 }  // namespace
 
-double displayed_glyph_scale(const GlyphResult& glyphs, const Camera& camera, int view_height, double pixel_scale,
-                             double model_diagonal_pixels) {
-  if (glyphs.clusters.empty() || !(glyphs.clusters[0].radius > 0.0)) return 1.0;
+namespace {
+
+// The factors displayed_glyph_scale clamps 1 to: [lo, max(lo, hi)], lo
+// the floor's, hi the cap's (none: [1, 1]).
+struct GlyphScaleBounds {
+  double lo = 1.0, hi = 1.0;
+};
+
+GlyphScaleBounds glyph_scale_bounds(const GlyphResult& glyphs, const Camera& camera, int view_height,
+                                    double pixel_scale, double model_diagonal_pixels) {
+  if (glyphs.clusters.empty() || !(glyphs.clusters[0].radius > 0.0)) return {};
   const AggregatedGlyph& worst = glyphs.clusters[0];
   const double depth = std::max(dot(worst.position - camera.eye, forward_of(camera)), 1e-12);
   const double unit = units_per_pixel(camera, depth, view_height);
   const double pixels = worst.radius / unit;
-  if (!(pixels > 0.0) || !std::isfinite(pixels)) return 1.0;
+  if (!(pixels > 0.0) || !std::isfinite(pixels)) return {};
   const double floor = kWorstGlyphMinPixels * pixel_scale;
   // The cap: a mean edge length (the glyph unit rmax of ratio 1, under the
   // default unit) and a fraction of the model's on-screen diagonal.
@@ -56,9 +64,30 @@ double displayed_glyph_scale(const GlyphResult& glyphs, const Camera& camera, in
                           : glyphs.rmax;
   if (edge > 0.0 && std::isfinite(edge)) cap = std::min(cap, kWorstGlyphMaxEdges * edge / unit);
   if (model_diagonal_pixels > 0.0) cap = std::min(cap, kWorstGlyphMaxDiagonal * model_diagonal_pixels);
-  const double target = std::clamp(pixels, floor, std::max(floor, cap));
-  return target / pixels;
+  // #0's radius in pixels: clamp(pixels, floor, max(floor, cap)).
+  return {floor / pixels, cap / pixels};
 }
+
+double scale_within(const GlyphScaleBounds& b) { return std::clamp(1.0, b.lo, std::max(b.lo, b.hi)); }
+
+}  // namespace
+
+double displayed_glyph_scale(const GlyphResult& glyphs, const Camera& camera, int view_height, double pixel_scale,
+                             double model_diagonal_pixels) {
+  return scale_within(glyph_scale_bounds(glyphs, camera, view_height, pixel_scale, model_diagonal_pixels));
+}
+
+namespace {
+
+// The glyph scale a main view draws with: the mesh's (options.glyph_scale) or its own.
+double view_glyph_scale(const GlyphResult& glyphs, const Camera& camera, int view_height,
+                        const MainViewOptions& options) {
+  return options.glyph_scale > 0.0
+             ? options.glyph_scale
+             : displayed_glyph_scale(glyphs, camera, view_height, options.pixel_scale, options.model_diagonal_pixels);
+}
+
+}  // namespace
 
 double model_diagonal_pixels(const HexMesh& mesh, const Topology& topology, const Camera& camera, int view_width,
                              int view_height) {
@@ -77,6 +106,14 @@ double model_diagonal_pixels(const HexMesh& mesh, const Topology& topology, cons
 }
 
 namespace {
+
+// glyph_tie_classes(glyphs.clusters): given, or computed into storage.
+std::span<const Index> tie_classes_of(const GlyphResult& glyphs, std::span<const Index> given,
+                                      std::vector<Index>& storage) {
+  if (!given.empty() || glyphs.clusters.empty()) return given;
+  storage = glyph_tie_classes(glyphs.clusters);
+  return storage;
+}
 
 // The tie classes wearing a cluster colour (coloured_tie_classes).
 Index coloured_classes_of(const GlyphResult& glyphs, std::span<const Index> tie_class) {
@@ -123,9 +160,9 @@ Rgba8 grey_glyph_color(float pale) {
 }
 
 GlyphsDrawn main_view_glyphs_drawn(const GlyphResult& glyphs, const Camera& camera, int view_height,
-                                   std::span<const double> drawn_radii) {
+                                   std::span<const double> drawn_radii, std::span<const Index> ties) {
   GlyphsDrawn result;
-  result.tie_class = glyph_tie_classes(glyphs.clusters);
+  result.tie_class = ties.empty() ? glyph_tie_classes(glyphs.clusters) : std::vector<Index>(ties.begin(), ties.end());
   const std::size_t n = glyphs.clusters.size();
   result.drawn.assign(n, 0);
   const Index labelled = result.coloured_classes = coloured_classes_of(glyphs, result.tie_class);
@@ -593,7 +630,7 @@ std::vector<MarkerFan> marker_fans(const GlyphResult& glyphs, const OverlapRepor
   const bool has_worst = !glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0;
   const Vec3 worst = has_worst ? glyphs.clusters[0].position : Vec3{};
   const double worst_radius =
-      has_worst ? displayed_glyph_radii(glyphs, displayed_glyph_scale(glyphs, camera, view_height, options.pixel_scale, options.model_diagonal_pixels))[0]
+      has_worst ? displayed_glyph_radii(glyphs, view_glyph_scale(glyphs, camera, view_height, options))[0]
                 : 0.0;
   auto in_plane = [&](const Vec3& v) { return std::array<double, 2>{dot(v, plane.right), dot(v, plane.up)}; };
   std::vector<MarkerFan> fans;
@@ -655,67 +692,13 @@ std::vector<MarkerFan> marker_fans(const GlyphResult& glyphs, const OverlapRepor
 
 }  // namespace
 
-namespace {
-
-// Whether the segment from o to o + d crosses triangle (a, b, c) at a
-// parameter in (0, 1 - 1e-7): Moller-Trumbore, double precision.
-bool segment_hits_triangle(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 e1 = b - a, e2 = c - a;
-  const Vec3 p = cross(d, e2);
-  const double det = dot(e1, p);
-  if (std::abs(det) < 1e-300) return false;
-  const double inv = 1.0 / det;
-  const Vec3 s = o - a;
-  const double u = dot(s, p) * inv;
-  if (u < 0.0 || u > 1.0) return false;
-  const Vec3 q = cross(s, e1);
-  const double v = dot(d, q) * inv;
-  if (v < 0.0 || u + v > 1.0) return false;
-  const double t = dot(e2, q) * inv;
-  return t > 1e-9 && t < 1.0 - 1e-7;
-}
-
-// Whether some of face shows from camera past the other boundary faces
-// (the see-through wireframe has no surface that would hide it): one of
-// its centre and the points 0.6 of the way from there to its corners is
-// reached by the camera's ray without crossing another boundary polygon.
-bool face_shows(const HexMesh& mesh, const BoundaryPolygon& face, std::span<const BoundaryPolygon> boundary,
-                const Camera& camera) {
-  const Vec3 forward = forward_of(camera);
-  auto corner = [&](const BoundaryPolygon& f, int k) {
-    return mesh.points[static_cast<std::size_t>(f.v[static_cast<std::size_t>(k)])];
-  };
-  Vec3 centre{};
-  for (int k = 0; k < face.size; ++k) centre = centre + corner(face, k);
-  centre = (1.0 / face.size) * centre;
-  std::vector<Vec3> samples{centre};
-  for (int k = 0; k < face.size; ++k) samples.push_back(centre + 0.6 * (corner(face, k) - centre));
-  for (const Vec3& p : samples) {
-    const Vec3 o = camera.is_perspective ? camera.eye : p - dot(p - camera.eye, forward) * forward;
-    const Vec3 d = p - o;
-    bool hidden = false;
-    for (const BoundaryPolygon& other : boundary) {
-      if (other.cell == face.cell && other.v == face.v) continue;
-      for (int t = 0; t + 2 < other.size && !hidden; ++t)
-        hidden = segment_hits_triangle(o, d, corner(other, 0), corner(other, t + 1), corner(other, t + 2));
-      if (hidden) break;
-    }
-    if (!hidden) return true;
-  }
-  return false;
-}
-
-}  // namespace
-
-InvertedFaces inverted_boundary_faces(const HexMesh& mesh, const Topology& topology, const MainViewOptions& options,
-                                      const Camera& camera) {
+InvertedFaces inverted_boundary_faces(const Topology& topology, const MainViewOptions& options) {
   InvertedFaces result;
   if (!options.inverted_cells || !options.orientation_note.empty()) return result;
   const std::vector<std::uint8_t>& inverted = *options.inverted_cells;
   result.cells = static_cast<std::size_t>(std::count_if(inverted.begin(), inverted.end(), [](std::uint8_t c) { return c != 0; }));
-  const std::vector<BoundaryPolygon> boundary = boundary_polygons(topology);
   std::vector<BoundaryPolygon> faces;
-  for (const BoundaryPolygon& face : boundary) {
+  for (const BoundaryPolygon& face : boundary_polygons(topology)) {
     const auto c = static_cast<std::size_t>(face.cell);
     if (c < inverted.size() && inverted[c] != 0) faces.push_back(face);
   }
@@ -723,23 +706,25 @@ InvertedFaces inverted_boundary_faces(const HexMesh& mesh, const Topology& topol
   const bool surface = options.surface_cell_quality != nullptr;
   result.over_limit = faces.size() > (surface ? kMaxInvertedOverlayFaces : kMaxInvertedOverlayVolumeFaces);
   if (result.over_limit) return result;
-  // A surface mesh is drawn filled: the depth test hides its far side.
-  for (const BoundaryPolygon& face : faces)
-    if (surface || face_shows(mesh, face, boundary, camera))
-      result.drawn.push_back(face);
-    else
-      ++result.hidden;
+  // One depth rule (issue 44 part V): the see-through wireframe shows
+  // every glyph, near or far, so every marked face is drawn too (round 2
+  // of part U hid the far ones by ray casting while far glyphs showed:
+  // 3 of gmsh_ring_dent's 5 dent faces were gone). A surface mesh is drawn
+  // filled: the depth test hides its far side, faces and glyphs alike.
+  result.drawn = std::move(faces);
   return result;
 }
 
-std::vector<std::uint8_t> worst_cluster_vertices(const GlyphResult& glyphs, int per_cluster) {
+std::vector<std::uint8_t> worst_cluster_vertices(const GlyphResult& glyphs, int per_cluster,
+                                                 std::span<const Index> given_ties) {
   std::vector<std::uint8_t> marked(glyphs.vertex_cluster.size(), 0);
   std::vector<Index> members;
   // The coloured clusters only: the grey ones' edges, hundreds with bounded
   // clusters, would veil the model (issue 44's fifth round). Every member
   // of a coloured tie class alike (issue 44 part U: edges at one of 28
   // equals singled it out), per_cluster shared among them.
-  const std::vector<Index> ties = glyph_tie_classes(glyphs.clusters);
+  std::vector<Index> storage;
+  const std::span<const Index> ties = tie_classes_of(glyphs, given_ties, storage);
   const std::vector<Index> sizes = tie_class_sizes(ties);
   const Index coloured_classes = coloured_classes_of(glyphs, ties);
   // (Clusters without an aggregated glyph: each a class of its own, the
@@ -796,9 +781,10 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   // 2. Cluster edges: around each cluster's worst vertices only (a cluster
   // of thousands of vertices would paint over the model), in its colour.
   const std::int64_t top = glyphs.options.top_clusters;
-  const std::vector<Index> edge_ties = glyph_tie_classes(glyphs.clusters);  // colours by tie class
+  std::vector<Index> tie_storage;
+  const std::span<const Index> edge_ties = tie_classes_of(glyphs, options.glyph_ties, tie_storage);  // colours by tie class
   const Index edge_coloured = coloured_classes_of(glyphs, edge_ties);
-  const std::vector<std::uint8_t> marked = worst_cluster_vertices(glyphs, options.cluster_edge_vertices);
+  const std::vector<std::uint8_t> marked = worst_cluster_vertices(glyphs, options.cluster_edge_vertices, edge_ties);
   std::vector<Edge> cluster_edges;
   std::vector<Rgba8> cluster_colors;
   // An edge with a marked end, in the colour of its marked ends' lower rank
@@ -893,6 +879,9 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   }
   scene.lines.push_back(
       edge_lines(mesh, scene.origin, cell_edges, std::vector<Rgba8>(cell_edges.size(), kIntersectionArrowColor), 1.5f));
+  // Under the ranked glyphs, as the wireframe (issue 44 part V: the lilac
+  // edges of the cells injected round the dent took a quarter of #0).
+  scene.lines.back().under_ranked_spheres = true;
 
   // 4. Aggregated glyphs: the grey ones, then the coloured (ranked) ones
   // over them, so that no grey glyph hides a ranked one.
@@ -908,8 +897,8 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   // round 2: they turned #0 magenta).
   ranked.over_translucent = true;
   const std::vector<double> shown =
-      displayed_glyph_radii(glyphs, displayed_glyph_scale(glyphs, camera, view_height, options.pixel_scale, options.model_diagonal_pixels));
-  const GlyphsDrawn drawn = main_view_glyphs_drawn(glyphs, camera, view_height, shown);
+      displayed_glyph_radii(glyphs, view_glyph_scale(glyphs, camera, view_height, options));
+  const GlyphsDrawn drawn = main_view_glyphs_drawn(glyphs, camera, view_height, shown, edge_ties);
   for (const AggregatedGlyph& g : glyphs.clusters) {
     if (!(g.radius > 0.0) || !drawn.drawn[static_cast<std::size_t>(g.id)]) continue;
     const Rgba8 color = glyph_color(g.id, drawn.tie_class, drawn.coloured_classes, glyphs);
@@ -946,7 +935,7 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   // depth-tested like the mesh: a grey glyph in front covers them, and the
   // ranked glyphs, drawn over the triangles, keep their colour (round 2:
   // drawn over everything they turned #0 blue, far-side ones too).
-  const std::vector<BoundaryPolygon> inverted_faces = inverted_boundary_faces(mesh, topology, options, camera).drawn;
+  const std::vector<BoundaryPolygon> inverted_faces = inverted_boundary_faces(topology, options).drawn;
   if (!inverted_faces.empty()) {
     TriangleSet faces;
     faces.is_lit = false;
@@ -976,6 +965,9 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
       if (face.size == 4) faces.indices.insert(faces.indices.end(), {base, base + 2, base + 3});
     }
     scene.triangles.push_back(std::move(faces));
+    // Under the ranked glyphs (render_main_view draws the part a glyph
+    // hides over it, outside its core).
+    outline.under_ranked_spheres = true;
     scene.lines.push_back(std::move(outline));
   }
 
@@ -1005,7 +997,7 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
 }
 
 IdImage main_view_id_image(Renderer& renderer, const Scene& scene, const GlyphResult& glyphs, const Camera& camera,
-                           const PixelRect& view, bool with_markers) {
+                           const PixelRect& view, bool with_markers, std::span<const Index> given_ties) {
   if (scene.spheres.size() != 3) throw RenderError("main_view_id_image needs view A's scene");
   Scene coded;
   coded.origin = scene.origin;
@@ -1035,7 +1027,8 @@ IdImage main_view_id_image(Renderer& renderer, const Scene& scene, const GlyphRe
   // is covered by it: the id is the drawn one's either way).
   coded.spheres = scene.spheres;
   std::size_t next[3] = {0, 0, 0};
-  const std::vector<Index> ties = glyph_tie_classes(glyphs.clusters);
+  std::vector<Index> storage;
+  const std::span<const Index> ties = tie_classes_of(glyphs, given_ties, storage);
   const Index coloured = coloured_classes_of(glyphs, ties);
   for (const AggregatedGlyph& g : glyphs.clusters) {
     if (!(g.radius > 0.0)) continue;
@@ -1104,7 +1097,23 @@ void draw_main_view_labels(Image& figure, const MainViewLabels& labels, const An
   for (const MainViewLabel& label : labels.labels) {
     const PlacedLabel& p = label.placement;
     if (!p.has_leader) continue;
-    draw_line(figure, p.leader_x0, p.leader_y0, p.leader_x1, p.leader_y1, halo, std::max(3.0, 4.5 * style.scale));
+    // The halo from where the leader leaves its glyph's disc (issue 44
+    // part V: a callout's leader starts inside the glyph, and a pale halo
+    // over the glyph's rim made it look smaller).
+    const double dx = p.leader_x1 - p.leader_x0, dy = p.leader_y1 - p.leader_y0;
+    const double length = std::hypot(dx, dy);
+    double t0 = 0.0;
+    if (label.kind == MainViewLabel::Kind::cluster && length > 0.0) {
+      // The leader's parameter where it leaves the anchor disc (plus 1 px
+      // and the halo's half width), if it starts inside.
+      const double fx = p.leader_x0 - label.anchor.x, fy = p.leader_y0 - label.anchor.y;
+      const double r = label.anchor.radius + 1.0 + 0.5 * std::max(3.0, 4.5 * style.scale);
+      const double b = (fx * dx + fy * dy) / length, c = fx * fx + fy * fy - r * r;
+      if (c < 0.0) t0 = std::min(1.0, (-b + std::sqrt(b * b - c)) / length);
+    }
+    if (t0 < 1.0)
+      draw_line(figure, p.leader_x0 + t0 * dx, p.leader_y0 + t0 * dy, p.leader_x1, p.leader_y1, halo,
+                std::max(3.0, 4.5 * style.scale));
     draw_line(figure, p.leader_x0, p.leader_y0, p.leader_x1, p.leader_y1, label.color, std::max(1.0, 1.8 * style.scale));
   }
   for (const MainViewLabel& label : labels.labels) {
@@ -1208,7 +1217,8 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
                                           std::span<const Index> unlabelled, double worst_pixels) {
   // One line per coloured tie class (glyph_tie_classes): "#k (n)  min q",
   // or for a tie "#k-#m  N tied at q".
-  const std::vector<Index> ties = glyph_tie_classes(glyphs.clusters);
+  std::vector<Index> storage;
+  const std::span<const Index> ties = tie_classes_of(glyphs, options.glyph_ties, storage);
   const std::vector<Index> tie_sizes = tie_class_sizes(ties);
   const Index labelled = coloured_classes_of(glyphs, ties);
   std::size_t listed = 0;  // clusters in coloured classes
@@ -1349,8 +1359,10 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
       lines.push_back({std::nullopt, "  their " + std::to_string(faces) + " boundary faces"});
       lines.push_back({std::nullopt, "  not drawn (more than " + std::to_string(kMaxInvertedOverlayVolumeFaces) + ")"});
     } else {
-      lines.push_back({std::nullopt, "  boundary faces: " + std::to_string(drawn) + " of " + std::to_string(faces)});
-      if (drawn < faces) lines.push_back({std::nullopt, "  drawn (" + std::to_string(faces - drawn) + " out of sight)"});
+      // One depth rule (issue 44 part V): drawn near and far, as the glyphs.
+      lines.push_back({std::nullopt, "  " + std::string(drawn == faces ? "all " : "") + std::to_string(drawn) +
+                                         " boundary faces drawn"});
+      lines.push_back({std::nullopt, "  (see-through, as glyphs)"});
     }
   }
   // An unrun check has no number and no swatch (nothing of its colours is
@@ -1537,6 +1549,108 @@ bool slide_leader_start(PlacedLabel& p, const ScreenDisc& from, const IdImage& i
 // Ids of the arrow fans' discs among the glyphs' (ranks) in place_labels.
 constexpr std::int64_t kFanIdBase = std::int64_t{1} << 40;
 
+// Rings of candidates a cluster label tries near its glyph before it goes
+// to a callout column (14 px each at scale 1: at most ~90 px away).
+constexpr int kNearRings = 6;
+
+// The labels that found no clear place near their anchor (deferred), in
+// the margin callout columns (place_callout_columns, issue 44 part V): a
+// cluster's leader starts inside its glyph's visible pixels (leader_from),
+// a marker's at its anchor's edge; the slots avoid the labels placed, the
+// glyph discs, #0's rings and the fans, and (with an id image) the model's
+// pixels where they can. A placed label whose box or leader a callout
+// leader would meet, or whose leader would cross a callout box, joins the
+// callouts, and the columns are laid out again. When the columns cannot
+// hold them all: a marker label at its anchor's right, clamped to the view
+// (the counts add up), a cluster label left out (omitted_clusters).
+void place_main_view_callouts(MainViewLabels& result, std::vector<MainViewLabel> deferred,
+                              std::span<const ScreenDisc> obstacles, const IdImage& seen, const AnnotationStyle& style,
+                              const LabelLayoutOptions& options) {
+  auto cost = [&](const PixelRect& box) {
+    // 0.15 px of leader per model pixel hidden: empty margin first.
+    double covered = 0.0;
+    for (int y = box.y; y < box.y + box.height; ++y)
+      for (int x = box.x; x < box.x + box.width; ++x) covered += seen.at(x, y, kIdBackground) != kIdBackground ? 1.0 : 0.0;
+    return 0.15 * covered;
+  };
+  std::vector<MainViewLabel> moved;  // near labels moved into the callouts (restored on failure)
+  std::vector<PlacedLabel> placed;
+  for (int round = 0; round < 16 && !deferred.empty(); ++round) {
+    std::vector<PixelRect> taken;
+    for (const MainViewLabel& l : result.labels) taken.push_back(l.placement.box);
+    std::vector<CalloutLabel> requests;
+    for (const MainViewLabel& l : deferred) {
+      const int size = l.kind == MainViewLabel::Kind::cluster ? cluster_label_size(style) : marker_label_size(style);
+      const LabelRequest r = label_request(l.text, size, l.anchor, style);
+      // Its leader crosses no glyph ranked before its own (a marker's: #0).
+      requests.push_back({l.leader_from.value_or(l.anchor), r.width, r.height,
+                          l.kind == MainViewLabel::Kind::cluster ? l.protect_end : 1});
+    }
+    placed = place_callout_columns(requests, obstacles, taken, options.bounds, options.gap,
+                                   seen.empty() ? std::function<double(const PixelRect&)>{} : cost);
+    if (placed.empty()) break;
+    // Near labels in the callouts' way join them.
+    bool is_moved = false;
+    for (std::size_t k = result.labels.size(); k-- > 0;) {
+      const PlacedLabel& near = result.labels[k].placement;
+      const bool in_way = std::any_of(placed.begin(), placed.end(), [&](const PlacedLabel& p) {
+        return leaders_cross(p, near) || leader_meets_box(p, near.box) || leader_meets_box(near, p.box);
+      });
+      if (!in_way) continue;
+      moved.push_back(result.labels[k]);
+      deferred.push_back(result.labels[k]);
+      result.labels.erase(result.labels.begin() + static_cast<std::ptrdiff_t>(k));
+      is_moved = true;
+    }
+    if (is_moved) continue;
+    // A cluster's leader ends on its glyph's pixels (past a line over it),
+    // else it starts again from the pixels no line covers.
+    bool is_again = false;
+    for (std::size_t i = 0; i < deferred.size(); ++i) {
+      MainViewLabel& l = deferred[i];
+      if (l.kind != MainViewLabel::Kind::cluster || !l.leader_from || seen.empty()) continue;
+      const auto own = kIdGlyph + static_cast<std::uint32_t>(l.cluster);
+      if (slide_leader_start(placed[i], *l.leader_from, seen, own)) continue;
+      const VisibleGlyph strict = visible_glyph(seen, own, l.anchor, true);
+      if (strict.pixels == 0 || (strict.leader_from.x == l.leader_from->x && strict.leader_from.y == l.leader_from->y))
+        continue;
+      l.leader_from = strict.leader_from;
+      is_again = true;
+    }
+    if (is_again) continue;
+    for (std::size_t i = 0; i < deferred.size(); ++i) {
+      deferred[i].placement = placed[i];
+      deferred[i].always_leader = true;
+      result.labels.push_back(deferred[i]);
+    }
+    return;
+  }
+  // No room for them all: the near labels moved stay where they were.
+  for (const MainViewLabel& m : moved) {
+    result.labels.push_back(m);
+    deferred.erase(std::find_if(deferred.begin(), deferred.end(), [&](const MainViewLabel& d) {
+      return d.kind == m.kind && d.cluster == m.cluster && d.text == m.text && d.anchor.x == m.anchor.x &&
+             d.anchor.y == m.anchor.y;
+    }));
+  }
+  for (MainViewLabel& label : deferred) {
+    if (label.kind == MainViewLabel::Kind::cluster) {
+      ++result.omitted_clusters;
+      result.unlabelled_clusters.push_back(label.cluster);
+      continue;
+    }
+    // No free place in the whole view: at the anchor's right, clamped to the view.
+    const LabelRequest request = label_request(label.text, marker_label_size(style), label.anchor, style);
+    PixelRect box{static_cast<int>(std::lround(label.anchor.x + label.anchor.radius)),
+                  static_cast<int>(std::lround(label.anchor.y)), request.width, request.height};
+    box.x = std::clamp(box.x, options.bounds.x, options.bounds.x + options.bounds.width - box.width);
+    box.y = std::clamp(box.y, options.bounds.y, options.bounds.y + options.bounds.height - box.height);
+    label.placement = PlacedLabel{box};
+    if (disc_box_gap(label.anchor, box) > options.leader_distance) label.placement = with_leader(label.anchor, box);
+    result.labels.push_back(label);
+  }
+}
+
 }  // namespace
 
 MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapReport* overlap, const Camera& camera,
@@ -1560,10 +1674,9 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
   MainViewLabels result;
   result.camera = camera;
   result.view = layout.view;
-  result.glyph_scale =
-      displayed_glyph_scale(glyphs, camera, layout.view.height, scaled.pixel_scale, scaled.model_diagonal_pixels);
+  result.glyph_scale = view_glyph_scale(glyphs, camera, layout.view.height, scaled);
   const std::vector<double> shown = displayed_glyph_radii(glyphs, result.glyph_scale);
-  const GlyphsDrawn drawn = main_view_glyphs_drawn(glyphs, camera, layout.view.height, shown);
+  const GlyphsDrawn drawn = main_view_glyphs_drawn(glyphs, camera, layout.view.height, shown, scaled.glyph_ties);
   const std::vector<Index> tie_sizes = tie_class_sizes(drawn.tie_class);
   result.left_out_glyphs = drawn.num_left_out;
   result.worst_is_tied = !tie_sizes.empty() && tie_sizes[0] > 1;
@@ -1689,32 +1802,35 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
   std::vector<ScreenDisc> worst_only;
   if (result.worst_glyph.radius > 0.0) worst_only.push_back(result.worst_glyph);
   LabelPlacer placer({}, options);
+  // Labels with no clear place near their glyph (a cluster's within
+  // kNearRings rings; a marker's nowhere): the callout columns below.
+  std::vector<MainViewLabel> deferred;
   for (MainViewLabel& label : order) {
-    const int size = label.kind == MainViewLabel::Kind::cluster ? cluster_label_size(style) : marker_label_size(style);
+    const bool is_cluster = label.kind == MainViewLabel::Kind::cluster;
+    const int size = is_cluster ? cluster_label_size(style) : marker_label_size(style);
     LabelRequest request = label_request(label.text, size, label.anchor, style);
     request.leader_from = label.leader_from;
     request.always_leader = label.always_leader;
     // No leader crosses a glyph ranked before its own (a marker's: #0).
     // A tie's label: nor any glyph of its class (issue 44 part U).
-    request.protect_below = label.kind == MainViewLabel::Kind::cluster ? label.protect_end : 1;
+    request.protect_below = is_cluster ? label.protect_end : 1;
     request.strict_leaders = true;
-    std::optional<PlacedLabel> placed = placer.place(request, all_obstacles);
-    if (!placed && label.kind == MainViewLabel::Kind::marker) placed = placer.place(request, worst_only);
-    if (!placed && label.kind == MainViewLabel::Kind::marker) {
-      // No free place in the whole view: at the anchor's right, clamped to the view.
-      PixelRect box{static_cast<int>(std::lround(label.anchor.x + label.anchor.radius)),
-                    static_cast<int>(std::lround(label.anchor.y)), request.width, request.height};
-      box.x = std::clamp(box.x, layout.view.x, layout.view.x + layout.view.width - box.width);
-      box.y = std::clamp(box.y, layout.view.y, layout.view.y + layout.view.height - box.height);
-      placed = PlacedLabel{box};
-      if (disc_box_gap(label.anchor, box) > options.leader_distance) *placed = with_leader(label.anchor, box);
+    // A cluster's label near its glyph only where it is clear (issue 44
+    // part V: beside a pile-up it went 200 px away or over other rings):
+    // else in a callout column.
+    // (#0's own label sits outside its rings, its leader over them: a
+    // leader over a disc of another id, so pass 1.)
+    if (is_cluster) {
+      request.max_pass = label.cluster == 0 && !result.worst_is_tied ? 1 : 0;
+      request.max_rings = kNearRings;
     }
+    std::optional<PlacedLabel> placed = placer.place(request, all_obstacles);
+    if (!placed && !is_cluster) placed = placer.place(request, worst_only);
     if (!placed) {
-      ++result.omitted_clusters;
-      if (label.kind == MainViewLabel::Kind::cluster) result.unlabelled_clusters.push_back(label.cluster);
+      deferred.push_back(label);
       continue;
     }
-    if (label.kind == MainViewLabel::Kind::cluster && placed && label.leader_from && !seen.empty()) {
+    if (is_cluster && label.leader_from && !seen.empty()) {
       const auto own = kIdGlyph + static_cast<std::uint32_t>(label.cluster);
       if (!slide_leader_start(*placed, *label.leader_from, seen, own)) {
         // The leader runs along a line over the glyph: placed again from
@@ -1724,8 +1840,7 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
         label.always_leader = request.always_leader = strict.is_mostly_hidden;
         placed = placer.place(request, all_obstacles);
         if (!placed) {
-          ++result.omitted_clusters;
-          result.unlabelled_clusters.push_back(label.cluster);
+          deferred.push_back(label);
           continue;
         }
       }
@@ -1734,6 +1849,7 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
     placer.add(*placed);
     result.labels.push_back(label);
   }
+  place_main_view_callouts(result, deferred, all_obstacles, seen, style, options);
   result.ids = std::move(seen);
   return result;
 }
@@ -1749,7 +1865,7 @@ struct MainViewFrame {
 };
 
 MainViewFrame main_view_frame(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
-                              const Vec3& view_direction, const MainViewOptions& options) {
+                              const Vec3& view_direction, const MainViewOptions& options, bool with_inverted = true) {
   FigureFrame3d f = figure_frame_3d(
       "main view", options.width, options.height, options.background,
       [&](const AnnotationStyle& style) { return main_layout(options, style); }, main_view_points(mesh, topology, glyphs),
@@ -1760,8 +1876,8 @@ MainViewFrame main_view_frame(const HexMesh& mesh, const Topology& topology, con
   frame.camera = f.camera;
   frame.scaled = options;
   frame.scaled.pixel_scale = frame.style.scale;
-  {
-    const InvertedFaces inverted = inverted_boundary_faces(mesh, topology, options, frame.camera);
+  if (with_inverted) {
+    const InvertedFaces inverted = inverted_boundary_faces(topology, options);
     frame.scaled.inverted_overlay_faces = inverted.drawn.size();
     frame.scaled.inverted_cell_count = inverted.cells;
     frame.scaled.inverted_face_count = inverted.faces;
@@ -1824,6 +1940,119 @@ void mark_drawn(IdImage& ids, const MainViewLabels& labels, const GlyphResult& g
     }
 }
 
+// A segment in model coordinates and its colour.
+struct ColouredSegment {
+  Vec3 a, b;
+  Rgba8 color;
+};
+
+// Draws the parts of segments that a glyph hides (ids: main_view_id_image
+// shows a glyph there) over it, width px (on a pale halo 2 px wider when
+// halo), but not within kInvertedOutlineCore of a coloured glyph's radius
+// from its centre (the vertex it marks keeps its colour).
+// rings: discs (the glyph rings' extents) inside which segments are drawn
+// too, glyph or not.
+void draw_segments_over_glyphs(Image& figure, std::span<const ColouredSegment> segments, const Camera& camera,
+                               const PixelRect& view, const IdImage& ids, std::span<const ScreenDisc> coloured,
+                               double width, std::optional<Rgba8> halo, std::span<const ScreenDisc> rings = {}) {
+  if (ids.empty()) return;
+  const double aspect = static_cast<double>(view.width) / static_cast<double>(std::max(1, view.height));
+  auto pixel = [&](const Vec3& p) {
+    const Vec3 ndc = project_to_ndc(camera, aspect, p);
+    return std::array<double, 2>{view.x + 0.5 * (ndc.x + 1.0) * view.width, view.y + 0.5 * (1.0 - ndc.y) * view.height};
+  };
+  auto wanted = [&](double x, double y) {
+    if (ids.at(static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y)), kIdBackground) < kIdGlyph &&
+        std::none_of(rings.begin(), rings.end(),
+                     [&](const ScreenDisc& d) { return std::hypot(x - d.x, y - d.y) < d.radius; }))
+      return false;
+    return std::none_of(coloured.begin(), coloured.end(), [&](const ScreenDisc& d) {
+      return std::hypot(x - d.x, y - d.y) < kInvertedOutlineCore * d.radius;
+    });
+  };
+  // Runs of wanted points every 0.5 px, each one segment; halos first.
+  std::vector<std::pair<std::array<double, 4>, Rgba8>> runs;
+  for (const ColouredSegment& s : segments) {
+    const auto a = pixel(s.a), b = pixel(s.b);
+    const double length = std::hypot(b[0] - a[0], b[1] - a[1]);
+    // (Far off the figure, or not finite: nothing to draw, and no pixel
+    // coordinate cast out of int's range.)
+    const auto is_near = [](const std::array<double, 2>& p) { return std::abs(p[0]) < 1e6 && std::abs(p[1]) < 1e6; };
+    if (!std::isfinite(length) || length > 1e5 || !is_near(a) || !is_near(b)) continue;
+    const int steps = std::max(1, static_cast<int>(std::ceil(2.0 * length)));
+    int run = -1;
+    for (int i = 0; i <= steps + 1; ++i) {
+      const double t = std::min(1.0, static_cast<double>(i) / steps);
+      const bool in = i <= steps && wanted(a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]));
+      if (in && run < 0) run = i;
+      if (!in && run >= 0) {
+        const double t0 = static_cast<double>(run) / steps, t1 = std::min(1.0, static_cast<double>(i - 1) / steps);
+        runs.push_back({{a[0] + t0 * (b[0] - a[0]), a[1] + t0 * (b[1] - a[1]), a[0] + t1 * (b[0] - a[0]),
+                         a[1] + t1 * (b[1] - a[1])},
+                        s.color});
+        run = -1;
+      }
+    }
+  }
+  if (halo)
+    for (const auto& [r, color] : runs) draw_line(figure, r[0], r[1], r[2], r[3], *halo, width + 2.0);
+  for (const auto& [r, color] : runs) draw_line(figure, r[0], r[1], r[2], r[3], color, width);
+}
+
+// What view A draws over the glyphs that hide it (issue 44 part V), outside
+// the coloured glyphs' cores: the worst clusters' edge lines (scene
+// lines[1]: the opaque coloured glyphs hid them), kEdgeOverGlyphShade of
+// their colour so that they read over a glyph of their own colour; and the outlines of the
+// inverted faces drawn (scene 5b: the tilted grid's one inverted face was
+// 75 % under #0, one of hole_pushed's three wholly), in the face's colour,
+// kInvertedOutlineWidth px (times the scale, at least 2 px: a thinner
+// antialiased line has no pixel of the face's own colour).
+// The outlines also over the glyphs' rings (their pale halos hid the rest
+// of a small face; drawn after them).
+void draw_over_glyphs(Image& figure, const HexMesh& mesh, const Topology& topology, const Scene& scene,
+                      const MainViewOptions& scaled, const Camera& camera, const PixelRect& view, const IdImage& ids,
+                      const MainViewLabels& labels, const GlyphResult& glyphs, const AnnotationStyle& style) {
+  const std::span<const ScreenDisc> coloured = labels.coloured_glyphs;
+  std::vector<ScreenDisc> rings;
+  for (ScreenDisc d : labels.inverted_glyphs) {
+    d.radius = inverted_ring_radius(d.radius, style) + 0.5 * inverted_halo_width(style);
+    rings.push_back(d);
+  }
+  if (!labels.worst_is_tied && labels.worst_glyph.radius > 0.0) {
+    ScreenDisc d = labels.worst_glyph;
+    d.radius = worst_rings_extent(d.radius, !glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0, style);
+    rings.push_back(d);
+  }
+  std::vector<ColouredSegment> edges;
+  if (scene.lines.size() > 1) {
+    const LineSet& set = scene.lines[1];
+    auto at = [&](std::uint32_t i) {
+      const Vec3f& p = set.positions[i];
+      return scene.origin + Vec3{p.x, p.y, p.z};
+    };
+    for (std::size_t i = 0; i + 1 < set.indices.size(); i += 2)
+      edges.push_back({at(set.indices[i]), at(set.indices[i + 1]), set.colors[set.indices[i]]});
+  }
+  // Over a glyph (of its own colour, as a rule) in its colour darkened.
+  for (ColouredSegment& e : edges)
+    e.color = {static_cast<std::uint8_t>(e.color.r * kEdgeOverGlyphShade), static_cast<std::uint8_t>(e.color.g * kEdgeOverGlyphShade),
+               static_cast<std::uint8_t>(e.color.b * kEdgeOverGlyphShade), 255};
+  draw_segments_over_glyphs(figure, edges, camera, view, ids, coloured,
+                            std::max(1.0, 0.6 * scaled.cluster_edge_width * style.scale), std::nullopt);
+  std::vector<ColouredSegment> outlines;
+  for (const BoundaryPolygon& face : inverted_boundary_faces(topology, scaled).drawn) {
+    const Rgba8 color = scaled.surface_cell_quality
+                            ? surface_fill_color((*scaled.surface_cell_quality)[static_cast<std::size_t>(face.cell)])
+                            : to_rgba8(kInvertedColor);
+    for (int k = 0; k < face.size; ++k)
+      outlines.push_back({mesh.points[static_cast<std::size_t>(face.v[static_cast<std::size_t>(k)])],
+                          mesh.points[static_cast<std::size_t>(face.v[static_cast<std::size_t>((k + 1) % face.size)])],
+                          color});
+  }
+  draw_segments_over_glyphs(figure, outlines, camera, view, ids, coloured,
+                            std::max(2.0, kInvertedOutlineWidth * style.scale), std::nullopt, rings);
+}
+
 }  // namespace
 
 void mark_main_view_annotations(IdImage& ids, const MainViewLabels& labels, const GlyphResult& glyphs,
@@ -1834,20 +2063,41 @@ void mark_main_view_annotations(IdImage& ids, const MainViewLabels& labels, cons
   mark_drawn(ids, labels, glyphs, style, scaled, true);
 }
 
+double mesh_glyph_scale(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
+                        std::span<const Vec3> directions, const MainViewOptions& options) {
+  GlyphScaleBounds all{1.0, std::numeric_limits<double>::infinity()};
+  bool any = false;
+  for (const Vec3& direction : directions) {
+    const MainViewFrame f = main_view_frame(mesh, topology, glyphs, direction, options, false);
+    const GlyphScaleBounds b = glyph_scale_bounds(glyphs, f.camera, f.layout.view.height, f.scaled.pixel_scale,
+                                                  f.scaled.model_diagonal_pixels);
+    all.lo = any ? std::max(all.lo, b.lo) : b.lo;
+    all.hi = std::min(all.hi, b.hi);
+    any = true;
+  }
+  return any ? scale_within(all) : 1.0;
+}
+
 MainViewLabels main_view_labels(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                                 const OverlapReport* overlap, const Vec3& view_direction,
-                                const MainViewOptions& options, Scene* scene, Renderer* renderer) {
+                                const MainViewOptions& given, Scene* scene, Renderer* renderer) {
+  MainViewOptions options = given;
+  std::vector<Index> ties;
+  options.glyph_ties = tie_classes_of(glyphs, given.glyph_ties, ties);
   const MainViewFrame f = main_view_frame(mesh, topology, glyphs, view_direction, options);
   Scene drawn = main_view_scene(mesh, topology, glyphs, overlap, f);
   IdImage ids;
-  if (renderer) ids = main_view_id_image(*renderer, drawn, glyphs, f.camera, f.layout.view, true);
+  if (renderer) ids = main_view_id_image(*renderer, drawn, glyphs, f.camera, f.layout.view, true, options.glyph_ties);
   if (scene) *scene = std::move(drawn);
   return layout_main_view_labels(glyphs, overlap, f.camera, f.layout, f.style, f.scaled, ids.empty() ? nullptr : &ids);
 }
 
 Image render_main_view(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
-                       const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& options,
+                       const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& given,
                        Renderer& renderer) {
+  MainViewOptions options = given;
+  std::vector<Index> ties;
+  options.glyph_ties = tie_classes_of(glyphs, given.glyph_ties, ties);
   const MainViewFrame frame = main_view_frame(mesh, topology, glyphs, view_direction, options);
   const AnnotationStyle& style = frame.style;
   const FigureLayout& layout = frame.layout;
@@ -1858,10 +2108,11 @@ Image render_main_view(const HexMesh& mesh, const Topology& topology, const Glyp
   Image figure = render_figure(renderer, scene, camera, options.width, options.height, layout, options.title, style);
 
   // Labels placed on what is visible (each points at its own glyph's pixels).
-  const IdImage ids = main_view_id_image(renderer, scene, glyphs, camera, layout.view, true);
+  const IdImage ids = main_view_id_image(renderer, scene, glyphs, camera, layout.view, true, options.glyph_ties);
   const MainViewLabels labels =
       layout_main_view_labels(glyphs, overlap, camera, layout, style, scaled, ids.empty() ? nullptr : &ids);
   draw_glyph_rings(figure, labels, glyphs, style, scaled);
+  draw_over_glyphs(figure, mesh, topology, scene, scaled, camera, layout.view, ids, labels, glyphs, style);
   draw_main_view_labels(figure, labels, style, scaled);
   draw_main_legend(figure, glyphs, overlap, layout, style, scaled, labels.glyph_scale, labels.hidden_clusters,
                    labels.left_out_glyphs, labels.unlabelled_clusters, labels.worst_glyph.radius);

@@ -116,12 +116,22 @@ struct MainViewOptions {
   const std::vector<std::uint8_t>* inverted_cells = nullptr;
   // What main_view_frame found (inverted_boundary_faces) for the legend:
   // the faces drawn, the inverted cells, their boundary faces. A volume
-  // mesh's legend says "inverted cells: N", then "  K of F boundary faces
-  // drawn" (the rest on the far side), "  F boundary faces not drawn"
-  // and "  (more than 64)" over the limit, or "  none on the boundary".
+  // mesh's legend says "inverted cells: N", then "  all F boundary faces
+  // drawn" / "  (see-through, as glyphs)", "  their F boundary faces" /
+  // "  not drawn (more than 64)" over the limit, or "  none on the
+  // boundary".
   std::size_t inverted_overlay_faces = 0;
   std::size_t inverted_cell_count = 0;
   std::size_t inverted_face_count = 0;
+  // glyph_tie_classes(glyphs.clusters), per cluster: computed once for all
+  // of a mesh's main views (issue 44 part V: it was computed 5 times a
+  // view); empty: render_main_view and main_view_labels compute it once
+  // and pass it down. Not owned.
+  std::span<const Index> glyph_ties;
+  // The glyph scale of all of a mesh's main views (mesh_glyph_scale; issue
+  // 44 part V: each view scaled its own, so one cluster was drawn at two
+  // world radii); 0: each view its own (displayed_glyph_scale).
+  double glyph_scale = 0.0;
 };
 inline constexpr std::size_t kMaxInvertedOverlayFaces = 20000, kMaxInvertedOverlayVolumeFaces = 64;
 
@@ -217,7 +227,8 @@ std::vector<ScreenMarker> group_markers_on_screen(std::span<const OverlapMarker>
 //                in that cluster's colour (cluster_color(rank, K); the lower
 //                rank when both endpoints are marked), drawn under the
 //                coloured glyphs (LineSet::under_ranked_spheres, as lines[0]);
-//   lines[2]     edges of intersecting cells, kIntersectionArrowColor;
+//   lines[2]     edges of intersecting cells, kIntersectionArrowColor,
+//                under the coloured glyphs (as lines[0]);
 //   spheres[0]   the grey aggregated glyphs (pale), spheres[1] the coloured
 //                ones (drawn over them and over the translucent faces:
 //                over_translucent), spheres[2] the grey ones of min
@@ -239,7 +250,8 @@ std::vector<ScreenMarker> group_markers_on_screen(std::span<const OverlapMarker>
 //                mesh: its fill bin's, the same), lifted kInvertedFaceLift
 //                towards the camera, depth-tested (under the ranked
 //                glyphs, which keep their colour), with their edges in
-//                kWireframeColor (lines[last], lifted alike);
+//                kWireframeColor (lines[last], lifted alike, under the
+//                coloured glyphs);
 //   lines[3]     on a mesh of several kinds with 1 to kMaxInteriorPyramids
 //                pyramids: the pyramids' edges that are not boundary edges,
 //                in cell_kind_edge_color(pyramid) (the interface the
@@ -248,31 +260,40 @@ std::vector<ScreenMarker> group_markers_on_screen(std::span<const OverlapMarker>
 // 1 for the per_cluster worst members (largest glyph radius, then lowest
 // id) of every coloured cluster (the first labelled_cluster_count(K)
 // ranks), per mesh vertex.
-std::vector<std::uint8_t> worst_cluster_vertices(const GlyphResult& glyphs, int per_cluster);
+// ties: glyph_tie_classes(glyphs.clusters), or empty (computed here).
+std::vector<std::uint8_t> worst_cluster_vertices(const GlyphResult& glyphs, int per_cluster,
+                                                 std::span<const Index> ties = {});
 
 // The boundary faces (boundary_polygons order) of the cells
 // options.inverted_cells marks, as view A draws them (scene 5b): none when
 // options.inverted_cells is null or more than half of the cells are
 // inverted (options.orientation_note is set); none drawn (over_limit) when
 // there are more than kMaxInvertedOverlayFaces (a volume mesh:
-// kMaxInvertedOverlayVolumeFaces) of them. On a volume mesh (drawn as a
-// see-through wireframe) only the faces that show from camera are drawn:
-// the ray from the camera to the face's centre, or to a point 0.6 of the
-// way from there to a corner, crosses no other boundary face; the others
-// are hidden (on the far side). A surface mesh's faces all (its fill hides
-// the far side by depth).
+// kMaxInvertedOverlayVolumeFaces) of them. One depth rule for view A (issue
+// 44 part V): a volume mesh is drawn as a see-through wireframe whose
+// glyphs show near and far, so all of these faces are drawn, near and far
+// side alike (part U round 2 hid the far ones while far glyphs showed); a
+// surface mesh is drawn filled, and depth hides its far side, faces and
+// glyphs alike.
 struct InvertedFaces {
   std::vector<BoundaryPolygon> drawn;
   std::size_t cells = 0;   // inverted cells
   std::size_t faces = 0;   // their boundary faces
-  std::size_t hidden = 0;  // of those, hidden from camera
   bool over_limit = false;
 };
-InvertedFaces inverted_boundary_faces(const HexMesh& mesh, const Topology& topology, const MainViewOptions& options,
-                                      const Camera& camera);
+InvertedFaces inverted_boundary_faces(const Topology& topology, const MainViewOptions& options);
 // How far (a fraction of the model's bounding box diagonal) scene 5b moves
 // the inverted faces towards the camera.
 inline constexpr double kInvertedFaceLift = 2e-3;
+// render_main_view draws those faces' outlines over the glyphs that hide
+// them (issue 44 part V: an inverted face stays in sight), this wide (px
+// at 1200 px height), in the face's colour, except within this share of a
+// coloured glyph's radius from its centre (the vertex it marks).
+inline constexpr double kInvertedOutlineWidth = 2.0, kInvertedOutlineCore = 0.5;
+// And the worst clusters' edge lines (scene lines[1]) where a glyph hides
+// them, outside the same core, in their colour times this (darker: they
+// read over a glyph of their own colour), 0.6 of their width.
+inline constexpr double kEdgeOverGlyphShade = 0.55;
 
 Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                        const OverlapReport* overlap, const Camera& camera, int view_height,
@@ -314,6 +335,12 @@ inline constexpr double kUnfadedGlyphQuality = 0.01;
 bool is_faded_grey_glyph(const AggregatedGlyph& g);
 double displayed_glyph_scale(const GlyphResult& glyphs, const Camera& camera, int view_height, double pixel_scale,
                              double model_diagonal_pixels = 0.0);
+// One glyph scale for all the main views along directions (issue 44 part
+// V): displayed_glyph_scale's rule with the floor the largest any view
+// needs and the cap the smallest any view allows (the floor wins), so a
+// cluster has one radius in model units in every view of its mesh.
+double mesh_glyph_scale(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
+                        std::span<const Vec3> directions, const MainViewOptions& options);
 // The boundary bounding box's on-screen diagonal in pixels (the 8 corners
 // projected through camera into a view view_width x view_height).
 double model_diagonal_pixels(const HexMesh& mesh, const Topology& topology, const Camera& camera, int view_width,
@@ -340,8 +367,9 @@ struct GlyphsDrawn {
   Index num_left_out_coloured = 0;   // of those, tied members of a coloured class
   Index coloured_classes = 0;        // coloured_tie_classes: the classes in colour
 };
+// ties: glyph_tie_classes(glyphs.clusters), or empty (computed here).
 GlyphsDrawn main_view_glyphs_drawn(const GlyphResult& glyphs, const Camera& camera, int view_height,
-                                   std::span<const double> drawn_radii);
+                                   std::span<const double> drawn_radii, std::span<const Index> ties = {});
 
 // The lines of view A's legend (draw_legend): the clusters, the size rule,
 // the rings (ring swatches: #0's dark ring in style.text_color, the
@@ -425,8 +453,9 @@ struct MainViewLabels {
 //   kIdBackground    nothing.
 // Empty when the renderer draws no id images.
 inline constexpr std::uint32_t kIdBackground = 0, kIdEdge = 1, kIdMarker = 2, kIdAnnotation = 3, kIdGlyph = 16;
+// ties: glyph_tie_classes(glyphs.clusters), or empty (computed here).
 IdImage main_view_id_image(Renderer& renderer, const Scene& scene, const GlyphResult& glyphs, const Camera& camera,
-                           const PixelRect& view, bool with_markers);
+                           const PixelRect& view, bool with_markers, std::span<const Index> ties = {});
 
 // Marks kIdAnnotation on ids where render_main_view draws over the 3D
 // view: the rings, the leader lines and the label boxes (the pixels those
@@ -451,8 +480,15 @@ void mark_main_view_annotations(IdImage& ids, const MainViewLabels& labels, cons
 // the centre, never reading as the label of a neighbouring fan; it wears the
 // colour of its kind. A marker label that
 // finds no such place is placed ignoring the other glyphs (never the worst
-// one), so the counts always add up; a cluster label that finds none is left
-// out (omitted_clusters).
+// one), so the counts always add up. Issue 44 part V (pile-ups): a cluster
+// label that finds no clear place (place_labels' first pass; #0's: its
+// second, its leader over its own rings) within 6 rings of its glyph, and a
+// marker label with no free place, goes to a margin callout column or row
+// (place_callout_columns; its leader crosses no glyph ranked before its
+// own where the callouts allow), and a placed label in a callout's way
+// joins them; a cluster label is left out (omitted_clusters) only when the
+// callouts have no room for all (a marker label then sits at its anchor's
+// right, clamped to the view).
 // With ids (main_view_id_image; the rings are drawn over it first), a
 // cluster label points at a visible part of its own glyph: its leader starts 1 px inside the largest disc of the
 // glyph's visible pixels about the glyph's centre when that disc has at
@@ -473,7 +509,11 @@ MainViewLabels main_view_labels(const HexMesh& mesh, const Topology& topology, c
 
 // The figure: title, the 3D view, the labels (layout_main_view_labels:
 // every marker group with its number of findings "xN", the worst clusters
-// "#k (n)"), and a legend on the right.
+// "#k (n)"), and a legend on the right. Where a glyph hides them (the id
+// image), the inverted faces' outlines (kInvertedOutlineWidth) and the
+// worst clusters' edge lines (kEdgeOverGlyphShade) are drawn over it, but
+// not within kInvertedOutlineCore of a coloured glyph's radius of its
+// centre (issue 44 part V).
 Image render_main_view(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                        const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& options,
                        Renderer& renderer);

@@ -253,6 +253,11 @@ std::vector<ViewFile> build_main(ViewContext& c) {
   const std::vector<Vec3> directions =
       planar ? std::vector<Vec3>{*planar} : choose_main_viewpoints(points, *c.glyphs, aspect, 2, main.up, main.fov_y_degrees);
   const OverlapReport* overlap = c.a.overlap ? &*c.a.overlap : nullptr;
+  // Once for the mesh (issue 44 part V): the tie classes, and one glyph
+  // scale for both views (a cluster the same size in each).
+  const std::vector<Index> ties = glyph_tie_classes(c.glyphs->clusters);
+  main.glyph_ties = ties;
+  main.glyph_scale = mesh_glyph_scale(c.a.mesh, c.a.topology, *c.glyphs, directions, main);
   std::vector<ViewFile> files;
   for (std::size_t i = 0; i < directions.size(); ++i) {
     main.title = c.name + (main.surface_cell_quality ? ": faces by scaled Jacobian and glyph clusters, view "
