@@ -333,14 +333,19 @@ void draw_marker_ring(Image& image, double cx, double cy, double radius, double 
 namespace {
 
 // The words of text in lines of at most max_width pixels (a word longer
-// than that on a line of its own).
+// than that on a line of its own); "see inset A" stays on one line.
 std::vector<std::string> wrap_words(const std::string& text, int max_width, int text_size, const AnnotationStyle& style) {
-  std::vector<std::string> lines;
-  std::string line, word;
-  std::size_t i = 0;
-  while (i <= text.size()) {
+  std::vector<std::string> words;
+  for (std::size_t i = 0; i <= text.size();) {
     const std::size_t j = std::min(text.find(' ', i), text.size());
-    word = text.substr(i, j - i);
+    std::string word = text.substr(i, j - i);
+    if (!words.empty() && (words.back() == "see" || words.back() == "see inset")) words.back() += " " + word;
+    else words.push_back(std::move(word));
+    i = j + 1;
+  }
+  std::vector<std::string> lines;
+  std::string line;
+  for (const std::string& word : words) {
     const std::string longer = line.empty() ? word : line + " " + word;
     if (!line.empty() && text_extent(longer, text_size, style).width > max_width) {
       lines.push_back(line);
@@ -348,7 +353,6 @@ std::vector<std::string> wrap_words(const std::string& text, int max_width, int 
     } else {
       line = longer;
     }
-    i = j + 1;
   }
   if (!line.empty()) lines.push_back(line);
   return lines;
