@@ -221,8 +221,11 @@ std::vector<ViewFile> build_overview(ViewContext& c) {
   }
   if (c.a.overlap) {
     overview.intersecting_cells = c.a.overlap->num_intersecting_cells;
-    for (std::size_t cell = 0; cell < c.a.overlap->cell_intersecting.size(); ++cell)
-      if (c.a.overlap->cell_intersecting[cell]) overview.intersecting_cell_ids.push_back(static_cast<Index>(cell));
+    // Drawn on a volume mesh (mostly inside); a surface mesh's are its own
+    // faces, outlined when inverted: not overdrawn (legend text only).
+    if (!is_surface_mesh(c.a.mesh))
+      for (std::size_t cell = 0; cell < c.a.overlap->cell_intersecting.size(); ++cell)
+        if (c.a.overlap->cell_intersecting[cell]) overview.intersecting_cell_ids.push_back(static_cast<Index>(cell));
   }
   const KindVertexQuality kinds = kind_vertex_quality(c.a.mesh, c.a.field);
   overview.kind_quality = &kinds;
