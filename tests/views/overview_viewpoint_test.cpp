@@ -326,5 +326,60 @@ TEST(OverviewViewpoint, RockarmShowsItsInvertedHexesUnderAutoUp) {
   EXPECT_LT(norm(turned_eye.direction - Vec3{s.eye.direction.x, -s.eye.direction.y, -s.eye.direction.z}), 1e-6);
 }
 
+
+// Issue 45g, the 45f2 review's B2: the ball (a shape that tells neither up
+// nor front: every resting pose alike, isotropic about each axis) and its
+// copy turned 90 degrees about x were drawn from different sides under the
+// same words. The eye's up and front now come from the worst region (here
+// one boundary vertex, the same id in both), so the copy's eye is the
+// original's turned: direction and up map by the rotation.
+TEST(OverviewViewpoint, ABallAndItsTurnedCopyAreSeenAlike) {
+  const HexMesh ball = read_hex_mesh(test::source_dir() / "examples/ball.mesh").mesh;
+  auto rx90 = [](const Vec3& p) { return Vec3{p.x, -p.z, p.y}; };
+  HexMesh copy = ball;
+  for (Vec3& p : copy.points) p = rx90(p);
+  OverviewViewpoint eyes[2];
+  int k = 0;
+  for (const HexMesh* m : {&ball, static_cast<const HexMesh*>(&copy)}) {
+    const Topology topology = build_topology(*m);
+    const RestingUp resting = choose_resting_up(*m, topology);
+    ASSERT_TRUE(resting_up_undecided(resting)) << "the ball tells no up";
+    EXPECT_EQ(resting.up, (Vec3{0, 0, 1}));  // the file's z both times: not the model's
+    const QualityField q = compute_quality(*m, topology);
+    // The worst region: the boundary's first vertex in the first boundary
+    // face that is not on a coordinate plane (so that no symmetry ties it).
+    Index worst = kNoIndex;
+    for (Index f : topology.boundary_faces) {
+      const Index v = topology.faces[static_cast<std::size_t>(f)][0];
+      const Vec3& p = ball.points[static_cast<std::size_t>(v)];
+      if (std::abs(p.x) > 0.1 && std::abs(p.y) > 0.1 && std::abs(p.z) > 0.1 && std::abs(std::abs(p.x) - std::abs(p.y)) > 0.1 &&
+          std::abs(std::abs(p.y) - std::abs(p.z)) > 0.1 && std::abs(std::abs(p.x) - std::abs(p.z)) > 0.1) {
+        worst = v;
+        break;
+      }
+    }
+    ASSERT_NE(worst, kNoIndex);
+    const std::vector<Index> cluster{worst};
+    eyes[k++] = choose_overview_viewpoint(*m, topology, worst_boundary_faces(topology, q.vertex_quality, cluster),
+                                          resting.up, resting_up_candidates());
+  }
+  EXPECT_TRUE(eyes[0].front_from_target);
+  EXPECT_TRUE(eyes[1].front_from_target);
+  EXPECT_LT(norm(eyes[1].up - rx90(eyes[0].up)), 1e-9) << up_axis_name(eyes[0].up) << " vs " << up_axis_name(eyes[1].up);
+  EXPECT_LT(norm(eyes[1].direction - rx90(eyes[0].direction)), 1e-6);
+  EXPECT_LT(norm(eyes[1].front - rx90(eyes[0].front)), 1e-6);
+  // Without the free up (an --up given by the user) the up stays the file's.
+  const Topology topology = build_topology(ball);
+  const QualityField q = compute_quality(ball, topology);
+  EXPECT_EQ(choose_overview_viewpoint(ball, topology, worst_boundary_faces(topology, q.vertex_quality, {}), {0, 0, 1}).up,
+            (Vec3{0, 0, 1}));
+}
+
+// Issue 45g: straight above (a planar mesh along its normal) has no side.
+TEST(OverviewViewpoint, StraightAboveNamesNoSide) {
+  EXPECT_EQ(overview_side_name({0, 0, -1}, {0, 0, 1}, {0, -1, 0}), "straight above: elevation 90 deg");
+  EXPECT_EQ(overview_side_name({0, 0, 1}, {0, 0, 1}, {0, -1, 0}), "straight below: elevation -90 deg");
+}
+
 }  // namespace
 }  // namespace hq

@@ -146,6 +146,20 @@ std::vector<Vec3> resting_up_candidates() {
   return {{0.0, 0.0, 1.0}, {0.0, 1.0, 0.0}, {1.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, {0.0, -1.0, 0.0}, {-1.0, 0.0, 0.0}};
 }
 
+bool resting_up_undecided(const RestingUp& resting) {
+  if (resting.candidates.size() != 6) return false;
+  double area = 0.0, tip = 1.0;
+  for (const RestingCandidate& c : resting.candidates) {
+    if (!c.rests) return false;
+    area = std::max(area, c.support_area);
+    tip = std::max(tip, std::abs(c.tip));
+  }
+  return std::all_of(resting.candidates.begin(), resting.candidates.end(), [&](const RestingCandidate& c) {
+    return std::abs(c.support_area - resting.candidates[0].support_area) <= kRestingAlike * area &&
+           std::abs(c.tip - resting.candidates[0].tip) <= kRestingAlike * tip;
+  });
+}
+
 RestingUp choose_resting_up(const HexMesh& mesh, const Topology& topology) {
   RestingUp result;
   if (num_boundary_faces_all_kinds(topology) == 0) return result;

@@ -73,6 +73,12 @@ struct RestingUp {
   bool from_data = false;                    // false: no resting candidate; the default +z
 };
 
+// Whether the data could not tell up at all: all six candidates rest with
+// alike support areas and tips (within kRestingAlike, as opposite poses are
+// compared): a ball, a cube; the chosen +z is then the file's, not the
+// model's (issue 45g: a turned ball was drawn from another side).
+bool resting_up_undecided(const RestingUp& resting);
+
 // The six candidates in the prior order.
 std::vector<Vec3> resting_up_candidates();
 

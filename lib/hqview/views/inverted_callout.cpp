@@ -187,14 +187,15 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
     }
   }
   const double max_radius = std::max(min_radius, 0.45 * std::min(view.width, view.height));
-  for (std::size_t g = 0; g < groups.size(); ++g) {
-    const Extent& e = extent[g];
-    groups[g].x = 0.5 * (e.x0 + e.x1);
-    groups[g].y = 0.5 * (e.y0 + e.y1);
-    groups[g].radius = std::clamp(0.5 * std::hypot(e.x1 - e.x0, e.y1 - e.y0) + 0.2 * min_radius, min_radius, max_radius);
-  }
+  auto ring_of = [&](const Extent& e, InvertedCallout& c) {
+    c.x = 0.5 * (e.x0 + e.x1);
+    c.y = 0.5 * (e.y0 + e.y1);
+    c.radius = std::clamp(0.5 * std::hypot(e.x1 - e.x0, e.y1 - e.y0) + 0.2 * min_radius, min_radius, max_radius);
+  };
+  for (std::size_t g = 0; g < groups.size(); ++g) ring_of(extent[g], groups[g]);
 
-  // 4. On the boundary, and in sight: the id image.
+  // 3a. On the boundary, and in sight: the id image (per 3D group, before
+  // the merge, so that a merged ring knows which of its groups are hidden).
   for (const BoundaryPolygon& face : boundary_polygons(topology))
     for (int i = 0; i < face.size; ++i) {
       const int g = vertex_group[static_cast<std::size_t>(face.v[static_cast<std::size_t>(i)])];
@@ -206,6 +207,73 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
     for (std::uint32_t id : ids.ids)
       if (id != kIdNothing && id != kIdOccluder && id <= static_cast<std::uint32_t>(num_groups))
         ++groups[id - 1].visible_pixels;
+  }
+
+  // 3b. Rings that overlap on screen (closer than kRingMergeGap x
+  // min_radius apart, edge to edge) become one ring around both groups'
+  // extents, repeatedly (issue 45g: the ball's three overlapping rings
+  // left no leader a way out that crossed no other ring, and a reader could
+  // not tell which ring a label named). The merged ring counts its groups.
+  std::vector<int> merged(groups.size());
+  std::iota(merged.begin(), merged.end(), 0);
+  bool any_merged = false;
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (std::size_t a = 0; a < groups.size() && !changed; ++a) {
+      if (merged[a] != static_cast<int>(a)) continue;
+      for (std::size_t b = a + 1; b < groups.size() && !changed; ++b) {
+        if (merged[b] != static_cast<int>(b)) continue;
+        const InvertedCallout &ga = groups[a], &gb = groups[b];
+        if (std::hypot(ga.x - gb.x, ga.y - gb.y) >= ga.radius + gb.radius + kRingMergeGap * min_radius) continue;
+        Extent& e = extent[a];
+        const Extent& f = extent[b];
+        e.x0 = std::min(e.x0, f.x0), e.y0 = std::min(e.y0, f.y0), e.x1 = std::max(e.x1, f.x1), e.y1 = std::max(e.y1, f.y1);
+        for (int& m : merged)
+          if (m == static_cast<int>(b)) m = static_cast<int>(a);
+        ring_of(e, groups[a]);
+        changed = any_merged = true;
+      }
+    }
+  }
+  if (any_merged) {
+    // Renumber in the order of the first cell, the cells in the order given.
+    std::vector<int> renumber(groups.size(), -1);
+    std::vector<InvertedCallout> joined;
+    std::vector<Extent> joined_extent;
+    std::vector<int> groups_in(groups.size(), 0);
+    for (std::size_t g = 0; g < groups.size(); ++g) ++groups_in[static_cast<std::size_t>(merged[g])];
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      const auto root = static_cast<std::size_t>(merged[static_cast<std::size_t>(cell_group[i])]);
+      if (renumber[root] < 0) {
+        renumber[root] = static_cast<int>(joined.size());
+        joined.emplace_back();
+        joined.back().num_groups = groups_in[root];
+        joined_extent.push_back(extent[root]);
+        ring_of(extent[root], joined.back());
+      }
+      InvertedCallout& j = joined[static_cast<std::size_t>(renumber[root])];
+      ++j.num_cells;
+      j.cells.push_back(cells[i]);
+      // A group out of sight keeps its cells apart (its inset draws them).
+      if (!callout_in_sight(groups[static_cast<std::size_t>(cell_group[i])])) j.hidden_cells.push_back(cells[i]);
+    }
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+      InvertedCallout& j = joined[static_cast<std::size_t>(renumber[static_cast<std::size_t>(merged[g])])];
+      j.visible_pixels += groups[g].visible_pixels;
+      j.on_boundary = j.on_boundary || groups[g].on_boundary;
+      if (!callout_in_sight(groups[g])) {
+        ++j.num_hidden_groups;
+        j.hidden_on_boundary = j.hidden_on_boundary || groups[g].on_boundary;
+      }
+    }
+    // A ring all of whose groups are hidden needs no list apart.
+    for (InvertedCallout& j : joined)
+      if (!callout_in_sight(j)) j.hidden_cells.clear(), j.num_hidden_groups = 0, j.hidden_on_boundary = false;
+    for (int& g : vertex_group)
+      if (g >= 0) g = renumber[static_cast<std::size_t>(merged[static_cast<std::size_t>(g)])];
+    groups = std::move(joined);
+    extent = std::move(joined_extent);
+    num_groups = static_cast<int>(groups.size());
   }
 
   // 5. The largest groups first (stable: ties keep the first cell's order).
@@ -223,6 +291,14 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
 std::string inverted_callout_label(const InvertedCallout& c, const std::string& noun, double view_area) {
   std::string label = std::to_string(c.num_cells) + " inverted";
   if (!noun.empty()) label += " " + noun + (c.num_cells == 1 ? "" : noun == "hex" ? "es" : "s");
+  if (c.num_groups > 1) label += " in " + std::to_string(c.num_groups) + " groups";
+  if (!c.hidden_cells.empty()) {
+    // A ring in sight with hidden groups: how many of its cells are not.
+    label += ", " + std::to_string(c.hidden_cells.size()) + (c.hidden_on_boundary ? " on the far side" : " inside");
+    if (c.num_more_cells > 0) label += "; +" + std::to_string(c.num_more_cells) + " more";
+    if (!c.inset.empty()) label += ": see inset " + c.inset;
+    return label;
+  }
   if (!c.on_boundary) label += ", inside";
   else if (c.visible_pixels == 0) label += ", far side";
   else if (static_cast<double>(c.visible_pixels) < kSmallInvertedFraction * view_area) label += " (small)";
@@ -254,36 +330,110 @@ void draw_marker_ring(Image& image, double cx, double cy, double radius, double 
     }
 }
 
-void draw_inverted_callouts(Image& figure, const PixelRect& view, std::span<const InvertedCallout> callouts,
-                            const std::string& noun, double thickness, int text_size, const AnnotationStyle& style,
-                            std::span<const PixelRect> taken, bool draw_rings) {
-  for (const InvertedCallout& c : callouts)
-    if (draw_rings) draw_marker_ring(figure, c.x, c.y, c.radius, thickness, !callout_in_sight(c), kCalloutColor);
-  if (text_size <= 0) return;
+namespace {
+
+// The words of text in lines of at most max_width pixels (a word longer
+// than that on a line of its own); "see inset A" stays on one line.
+std::vector<std::string> wrap_words(const std::string& text, int max_width, int text_size, const AnnotationStyle& style) {
+  std::vector<std::string> words;
+  for (std::size_t i = 0; i <= text.size();) {
+    const std::size_t j = std::min(text.find(' ', i), text.size());
+    std::string word = text.substr(i, j - i);
+    if (!words.empty() && (words.back() == "see" || words.back() == "see inset")) words.back() += " " + word;
+    else words.push_back(std::move(word));
+    i = j + 1;
+  }
+  std::vector<std::string> lines;
+  std::string line;
+  for (const std::string& word : words) {
+    const std::string longer = line.empty() ? word : line + " " + word;
+    if (!line.empty() && text_extent(longer, text_size, style).width > max_width) {
+      lines.push_back(line);
+      line = word;
+    } else {
+      line = longer;
+    }
+  }
+  if (!line.empty()) lines.push_back(line);
+  return lines;
+}
+
+int line_pitch(int text_size) { return text_size + std::max(3, text_size / 5); }
+
+}  // namespace
+
+std::vector<CalloutLabel> place_callout_labels(const PixelRect& view, std::span<const InvertedCallout> callouts,
+                                               const std::string& noun, double thickness, int text_size,
+                                               const AnnotationStyle& style, std::span<const PixelRect> taken) {
   const double area = static_cast<double>(view.width) * view.height;
-  const Rgba8 line{70, 70, 70, 255};  // the labels' leaders and frames: not the ring's colour
-  std::vector<LabelRequest> requests;
   std::vector<ScreenDisc> rings;
-  std::vector<std::string> texts;
+  std::vector<CalloutLabel> labels;
   for (std::size_t i = 0; i < callouts.size(); ++i) {
     const InvertedCallout& c = callouts[i];
-    texts.push_back(inverted_callout_label(c, noun, area));
-    const PixelRect extent = text_extent(texts.back(), text_size, style);
-    const ScreenDisc disc{c.x, c.y, c.radius + thickness, static_cast<std::int64_t>(i)};
-    rings.push_back(disc);
-    LabelRequest request{disc, extent.width + 8, text_size + 8};
-    request.always_leader = true;  // a label beside two rings names one of them
-    requests.push_back(request);
+    labels.push_back({inverted_callout_label(c, noun, area), {}, std::nullopt});
+    rings.push_back({c.x, c.y, c.radius + thickness, static_cast<std::int64_t>(i)});
   }
   LabelLayoutOptions layout;
   // 8 pixels off the figure's edge (the 45e review's m1: a label touched it).
   layout.bounds = {view.x + 8, view.y + 2, view.width - 16, view.height - 4};
   layout.gap = std::max(8.0, 0.6 * text_size);  // a leader long enough to see
   layout.ring_step = std::max(8.0, 0.8 * text_size);
-  const std::vector<std::optional<PlacedLabel>> placed = place_labels(requests, rings, taken, layout);
-  for (std::size_t i = 0; i < placed.size(); ++i) {
-    if (!placed[i]) continue;
-    const PlacedLabel& p = *placed[i];
+  // Each label around its ring; when no place there is free (a long label
+  // beside a large ring near the view's edge: the 8 positions around the
+  // ring all leave the view), around the ring's disc moved sideways and up
+  // or down by steps, the leader still from the ring itself (the moved disc
+  // only shifts where the label is tried); then the same on 2, then 3
+  // lines (issue 45g: rockarm's small ring between a large ring and the
+  // view's top edge had no room for one line).
+  LabelPlacer placer(taken, layout);
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    const ScreenDisc& ring = rings[i];
+    const int one_line = text_extent(labels[i].text, text_size, style).width;
+    std::optional<PlacedLabel> p;
+    for (int n = 1; !p && n <= 3; ++n) {
+      const std::vector<std::string> lines =
+          n == 1 ? std::vector<std::string>{labels[i].text} : wrap_words(labels[i].text, (one_line + n - 1) / n, text_size, style);
+      if (n > 1 && static_cast<int>(lines.size()) == 1) continue;
+      int width = 0;
+      for (const std::string& l : lines) width = std::max(width, text_extent(l, text_size, style).width);
+      LabelRequest request{ring, width + 8, static_cast<int>(lines.size()) * line_pitch(text_size) + 8 - (line_pitch(text_size) - text_size)};
+      request.always_leader = true;  // a label beside two rings names one of them
+      // No leader over another ring or leader (issue 45g: the ball's leaders
+      // crossed rings and ended on the wrong one).
+      request.protect_below = static_cast<std::int64_t>(rings.size());
+      request.strict_leaders = true;
+      p = placer.place(request, rings);
+      const double step = std::max(0.5 * ring.radius, 0.75 * text_size);
+      for (int k = 1; !p && k <= 24; ++k)
+        for (const auto& [sx, sy] : {std::pair{-1, 0}, std::pair{1, 0}, std::pair{0, -1}, std::pair{0, 1},
+                                     std::pair{-1, -1}, std::pair{1, -1}, std::pair{-1, 1}, std::pair{1, 1}}) {
+          LabelRequest moved = request;
+          moved.anchor.x += sx * k * step;
+          moved.anchor.y += sy * k * step;
+          moved.leader_from = ring;
+          moved.anchor.radius = std::min(ring.radius, 0.5 * text_size);  // only where the box is tried from
+          p = placer.place(moved, rings);
+          if (p) break;
+        }
+      if (p) labels[i].lines = lines;
+    }
+    if (p) placer.add(*p);
+    labels[i].placed = p;
+  }
+  return labels;
+}
+
+void draw_inverted_callouts(Image& figure, const PixelRect& view, std::span<const InvertedCallout> callouts,
+                            const std::string& noun, double thickness, int text_size, const AnnotationStyle& style,
+                            std::span<const PixelRect> taken, bool draw_rings) {
+  for (const InvertedCallout& c : callouts)
+    if (draw_rings) draw_marker_ring(figure, c.x, c.y, c.radius, thickness, !callout_in_sight(c), kCalloutColor);
+  if (text_size <= 0) return;
+  const Rgba8 line{70, 70, 70, 255};  // the labels' leaders and frames: not the ring's colour
+  const std::vector<CalloutLabel> labels = place_callout_labels(view, callouts, noun, thickness, text_size, style, taken);
+  for (const CalloutLabel& label : labels) {
+    if (!label.placed) continue;
+    const PlacedLabel& p = *label.placed;
     if (p.has_leader) {
       draw_line(figure, p.leader_x0, p.leader_y0, p.leader_x1, p.leader_y1, {255, 255, 255, 255}, thickness + 2.0);
       draw_line(figure, p.leader_x0, p.leader_y0, p.leader_x1, p.leader_y1, line, 0.5 * thickness + 0.5);
@@ -293,8 +443,10 @@ void draw_inverted_callouts(Image& figure, const PixelRect& view, std::span<cons
     fill_rect(figure, {p.box.x, p.box.y + p.box.height - 1, p.box.width, 1}, line);
     fill_rect(figure, {p.box.x, p.box.y, 1, p.box.height}, line);
     fill_rect(figure, {p.box.x + p.box.width - 1, p.box.y, 1, p.box.height}, line);
-    draw_text(figure, p.box.x + 4, p.box.y + 4 + static_cast<int>(std::lround(0.8 * text_size)), texts[i], text_size,
-              style);
+    for (std::size_t k = 0; k < label.lines.size(); ++k)
+      draw_text(figure, p.box.x + 4,
+                p.box.y + 4 + static_cast<int>(std::lround(0.8 * text_size)) + static_cast<int>(k) * line_pitch(text_size),
+                label.lines[k], text_size, style);
   }
 }
 

@@ -9,6 +9,7 @@
 // shows. The ring is solid when the group's inverted colour is in sight,
 // dashed when it is not (inside the volume or hidden behind the model).
 
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -18,6 +19,7 @@
 #include "hqview/mesh/topology.h"
 #include "hqview/render/annotate.h"
 #include "hqview/render/camera.h"
+#include "hqview/render/label_layout.h"
 #include "hqview/render/renderer.h"
 
 namespace hq {
@@ -42,12 +44,22 @@ struct InvertedCallout {
   double x = 0, y = 0;        // ring centre, figure pixels
   double radius = 0;          // ring radius, pixels
   int num_cells = 0;          // inverted cells in the group
+  int num_groups = 1;         // 3D groups ringed together (their rings overlapped on screen)
+  // A merged ring in sight: the cells of its groups out of sight (none in
+  // sight: empty), how many such groups, and whether any reaches the
+  // boundary (far side) or none does (inside).
+  std::vector<Index> hidden_cells;
+  int num_hidden_groups = 0;
+  bool hidden_on_boundary = false;
   long visible_pixels = 0;    // view pixels where the overview paints their inverted corners, depth-tested
   bool on_boundary = false;   // some corner of theirs on the boundary is inverted (vertex quality < 0)
   int num_more_cells = 0;     // inverted cells of groups left without a ring (the last callout only)
   std::vector<Index> cells;   // the group's inverted cells (volume cell ids, in the order given)
   std::string inset;          // the letter of the overview's inset that draws them (inverted_inset.h); empty: none
 };
+
+// Rings closer than this times min_radius (edge to edge) are merged.
+inline constexpr double kRingMergeGap = 0.5;
 
 // Groups the inverted cells (ids over all volume cells, mesh/cell_faces.h)
 // in 3D: cells that share a vertex, transitively, form one group (issue
@@ -67,7 +79,9 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
                                                const PixelRect& view, double min_radius, Renderer& renderer);
 
 // "14 inverted hexes" (noun: "hex" or "cell", made plural but for 1; empty:
-// "14 inverted"), then ", inside" (no
+// "14 inverted"), then " in 3 groups" for a merged ring; a merged ring in
+// sight with hidden groups then ", 6 on the far side" (or " inside") and
+// the rest below from "; +N more"; else ", inside" (no
 // inverted corner on the boundary), ", far side" (on the boundary, none in
 // sight) or " (small)" (fewer pixels than kSmallInvertedFraction of
 // view_area); then "; +N more" for the cells without a ring; then
@@ -75,6 +89,21 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
 std::string inverted_callout_label(const InvertedCallout& callout, const std::string& noun, double view_area);
 // Whether the ring is drawn solid: some of the group's inverted colour is in sight.
 inline bool callout_in_sight(const InvertedCallout& c) { return c.visible_pixels > 0; }
+
+// The labels' placement (draw_inverted_callouts'): each label's text and
+// its box and leader (nullopt: no free place). Every leader runs from its
+// own ring outwards and crosses no other ring, no other leader and no
+// other label's box; no box covers a ring (label_layout.h strict_leaders,
+// every ring protected; issue 45g). A label with no place on one line
+// tries 2, then 3 lines (words wrapped).
+struct CalloutLabel {
+  std::string text;
+  std::vector<std::string> lines;  // as drawn: text on 1 line, or wrapped on 2 or 3 when 1 found no place
+  std::optional<PlacedLabel> placed;
+};
+std::vector<CalloutLabel> place_callout_labels(const PixelRect& view, std::span<const InvertedCallout> callouts,
+                                               const std::string& noun, double thickness, int text_size,
+                                               const AnnotationStyle& style, std::span<const PixelRect> taken = {});
 
 // Draws each callout's ring (kCalloutColor core of `thickness` pixels on a
 // white halo; dashed when not in sight) and, with labels (text_size > 0),

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "hqview/core/box3.h"
+#include "hqview/core/cell_kinds.h"
 #include "hqview/image/colormap.h"
 #include "hqview/mesh/cell_faces.h"
 
@@ -17,7 +18,7 @@ constexpr Rgba8 kInsetEdgeColor{30, 30, 40, 255};  // the inverted cells' edges
 // The caption: at the legend's size (issue 45f: was three quarters of the
 // labels', about 10 px on the page), three lines.
 int caption_size(int text_size) { return std::max(9, static_cast<int>(std::lround(0.92 * text_size))); }
-constexpr int kCaptionLines = 3;
+constexpr int kCaptionLines = 4;
 int caption_height(int text_size) { return kCaptionLines * static_cast<int>(std::lround(1.3 * caption_size(text_size))) + 8; }
 
 }  // namespace
@@ -69,6 +70,37 @@ std::vector<Index> cells_touching(const HexMesh& mesh, std::span<const Index> ce
         out.push_back(c);
         break;
       }
+  }
+  return out;
+}
+
+namespace {
+
+template <CellKind K>
+void add_negative_frames(const Mesh& mesh, const CellRef& cell, std::vector<std::array<Index, 4>>& out) {
+  for (const auto& f : CellKindTable<K>::corner_frames) {
+    const std::size_t i = static_cast<std::size_t>(&f - CellKindTable<K>::corner_frames.data());
+    const Index v = cell.corners[i];
+    const Vec3& p = mesh.points[static_cast<std::size_t>(v)];
+    std::array<Vec3, 3> e;
+    for (std::size_t k = 0; k < 3; ++k)
+      e[k] = mesh.points[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>(f[k])])] - p;
+    if (dot(cross(e[0], e[1]), e[2]) < 0.0)
+      out.push_back({v, cell.corners[static_cast<std::size_t>(f[0])], cell.corners[static_cast<std::size_t>(f[1])],
+                     cell.corners[static_cast<std::size_t>(f[2])]});
+  }
+}
+
+}  // namespace
+
+std::vector<std::array<Index, 4>> negative_corner_frames(const Mesh& mesh, const CellRef& cell) {
+  std::vector<std::array<Index, 4>> out;
+  switch (cell.kind) {
+    case CellKind::hex: add_negative_frames<CellKind::hex>(mesh, cell, out); break;
+    case CellKind::tet: add_negative_frames<CellKind::tet>(mesh, cell, out); break;
+    case CellKind::wedge: add_negative_frames<CellKind::wedge>(mesh, cell, out); break;
+    case CellKind::pyramid: add_negative_frames<CellKind::pyramid>(mesh, cell, out); break;
+    default: break;
   }
   return out;
 }
@@ -163,20 +195,66 @@ Scene inverted_inset_scene(const HexMesh& mesh, std::span<const Index> cells, st
       cage.indices.insert(cage.indices.end(), {base, base + 1});
     });
   }
+  // The fold (issue 45g: a single shrunk cell read as a thin cell, not an
+  // inverted one): each corner whose frame is left-handed in its cell
+  // (det J < 0) has its three frame edges drawn from the vertex
+  // kInsetFoldReach of the way to their other ends, over everything.
+  LineSet fold_halo, fold;
+  fold_halo.width = 6.0f;
+  fold.width = 3.0f;
+  fold_halo.in_overlay = fold.in_overlay = true;
+  for (Index c : cells) {
+    if (c < 0 || c >= num_cells) continue;
+    for (const std::array<Index, 4>& frame : negative_corner_frames(mesh, volume_cell(mesh, c))) {
+      const Vec3& p = mesh.points[static_cast<std::size_t>(frame[0])];
+      for (int k = 1; k < 4; ++k) {
+        const Vec3 q = p + kInsetFoldReach * (mesh.points[static_cast<std::size_t>(frame[static_cast<std::size_t>(k)])] - p);
+        for (LineSet* set : {&fold_halo, &fold}) {
+          const auto base = static_cast<std::uint32_t>(set->positions.size());
+          set->positions.push_back(to_vec3f(p - origin));
+          set->positions.push_back(to_vec3f(q - origin));
+          const Rgba8 color = set == &fold ? kInsetCornerColor : Rgba8{255, 255, 255, 255};
+          set->colors.insert(set->colors.end(), {color, color});
+          set->indices.insert(set->indices.end(), {base, base + 1});
+        }
+      }
+    }
+  }
   scene.triangles.push_back(std::move(faces));
   scene.lines.push_back(std::move(cage));
   scene.lines.push_back(std::move(edges));
+  if (!fold.positions.empty()) {
+    scene.lines.push_back(std::move(fold_halo));
+    scene.lines.push_back(std::move(fold));
+  }
   if (!dots.centers.empty()) scene.spheres.push_back(std::move(dots));
   return scene;
 }
 
+InvertedCallout inset_part(const InvertedCallout& c) {
+  if (c.hidden_cells.empty()) return c;
+  InvertedCallout part = c;
+  part.cells = c.hidden_cells;
+  part.num_cells = static_cast<int>(c.hidden_cells.size());
+  part.num_groups = c.num_hidden_groups;
+  part.visible_pixels = 0;
+  part.on_boundary = c.hidden_on_boundary;
+  part.hidden_cells.clear();
+  return part;
+}
+
 std::vector<InvertedInset> plan_inverted_insets(const HexMesh& mesh, std::vector<InvertedCallout>& callouts,
                                                 std::span<const PixelRect> slots, const Camera& view_camera,
-                                                int text_size) {
+                                                int text_size, double view_area) {
   std::vector<InvertedInset> insets;
   const int caption = caption_height(text_size);
-  for (std::size_t i = 0; i < callouts.size() && insets.size() < slots.size(); ++i) {
-    if (callout_in_sight(callouts[i]) || callouts[i].cells.empty()) continue;
+  // Out of sight first, then small (callout_wants_inset), each in the callouts' order.
+  std::vector<std::size_t> order;
+  for (int small = 0; small < 2; ++small)
+    for (std::size_t i = 0; i < callouts.size(); ++i)
+      if (callout_wants_inset(callouts[i], view_area) && callout_has_hidden(callouts[i]) == (small == 0)) order.push_back(i);
+  for (std::size_t i : order) {
+    if (insets.size() >= slots.size()) break;
     const PixelRect& slot = slots[insets.size()];
     if (slot.width < 40 || slot.height < caption + 40) break;
     InvertedInset inset;
@@ -184,7 +262,7 @@ std::vector<InvertedInset> plan_inverted_insets(const HexMesh& mesh, std::vector
     inset.letter = std::string(1, static_cast<char>('A' + insets.size()));
     inset.rect = slot;
     inset.picture = {slot.x + 2, slot.y + caption, slot.width - 4, slot.height - caption - 2};
-    inset.cells = callouts[i].cells;
+    inset.cells = inset_part(callouts[i]).cells;
     std::sort(inset.cells.begin(), inset.cells.end());
     inset.neighbours = cells_touching(mesh, inset.cells);
     std::vector<Vec3> points;
@@ -223,11 +301,22 @@ void draw_inverted_insets(Image& figure, std::span<const InvertedInset> insets, 
     fill_rect(figure, r, {255, 255, 255, 255});
     paste(figure, pictures[i], inset.picture.x, inset.picture.y);
     // The caption: what it shows and what the colours are.
-    InvertedCallout named = callouts[inset.callout];
+    InvertedCallout named = inset_part(callouts[inset.callout]);
     named.inset.clear();
     named.num_more_cells = 0;
-    const std::string line1 = inset.letter + ": " + inverted_callout_label(named, noun, 1.0);
-    const std::string lines[kCaptionLines] = {line1, "blue: inverted, shrunk", "dots: det J < 0 · grey: nearby"};
+    // The label split after its noun ("A: 14 inverted hexes" / "in 3
+    // groups, inside"), so that neither line is cut at an inset's width.
+    std::string label = inverted_callout_label(named, noun, 1.0);
+    std::string rest;
+    const std::size_t noun_end = noun.empty() ? std::string::npos : label.find(' ', label.find(noun));
+    if (noun_end != std::string::npos) {
+      rest = label.substr(noun_end + 1);
+      label.resize(noun_end);
+      if (label.ends_with(",")) label.pop_back();
+    }
+    if (rest.empty() && callout_in_sight(named)) rest = "small, in sight";  // only small groups in sight get one
+    const std::string lines[kCaptionLines] = {inset.letter + ": " + label, rest, "blue: shrunk · grey: nearby",
+                                              "crimson: det J < 0 corners"};
     const int max_width = r.width - 12;
     for (int k = 0; k < kCaptionLines; ++k)
       draw_text(figure, r.x + 6, r.y + 4 + (k + 1) * pitch - caption / 4, ellipsize(lines[k], caption, max_width, style),

@@ -19,11 +19,13 @@
 // bottom, whichever leaves the model drawn larger (inset_strip), and the
 // model is fitted into the rest.
 
+#include <array>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "hqview/image/image.h"
+#include "hqview/mesh/cell_faces.h"
 #include "hqview/mesh/hex_mesh.h"
 #include "hqview/render/annotate.h"
 #include "hqview/render/camera.h"
@@ -47,6 +49,30 @@ inline constexpr double kInsetShrink = 0.82;
 // The dots on the vertices with a negative corner (vertex quality < 0):
 // crimson on a white rim, in no other colour of the inset.
 inline constexpr Rgba8 kInsetCornerColor{200, 0, 70, 255};
+
+// A corner with det J < 0 has its three frame edges drawn in
+// kInsetCornerColor (on a white halo, over everything) from its vertex this
+// fraction of the way along each edge: where the cell folds (issue 45g).
+inline constexpr double kInsetFoldReach = 0.6;
+
+// Which groups get an inset (issue 45g): those out of sight (no inverted
+// colour visible: inside, or on the far side; or a merged ring's groups out
+// of sight, which the inset then draws alone), then those in sight but
+// small (fewer inverted pixels than kSmallInvertedFraction of the view:
+// "(small)"), up to kMaxInvertedInsets; a group whose blue is plainly in
+// sight has none (the overview shows it).
+inline bool callout_has_hidden(const InvertedCallout& c) { return !callout_in_sight(c) || !c.hidden_cells.empty(); }
+inline bool callout_wants_inset(const InvertedCallout& c, double view_area) {
+  return !c.cells.empty() &&
+         (callout_has_hidden(c) || static_cast<double>(c.visible_pixels) < kSmallInvertedFraction * view_area);
+}
+// What an inset of c draws, as a callout of its own: a merged ring's
+// hidden groups (InvertedCallout::hidden_cells) when it has any, else c.
+InvertedCallout inset_part(const InvertedCallout& c);
+
+// The corners of `cell` whose frame (CellKindTable corner_frames) is
+// left-handed: each as {vertex, its three frame neighbours}, in corner order.
+std::vector<std::array<Index, 4>> negative_corner_frames(const Mesh& mesh, const CellRef& cell);
 
 // Where the insets go: `model` is the part of `view` the model is fitted
 // into, `slots` the insets' rectangles (figure pixels), outside it. A column
@@ -83,14 +109,15 @@ std::vector<Index> cells_touching(const HexMesh& mesh, std::span<const Index> ce
 Scene inverted_inset_scene(const HexMesh& mesh, std::span<const Index> cells, std::span<const Index> neighbours,
                            std::span<const double> vertex_quality = {});
 
-// Plans the insets for the callouts out of sight (callout_in_sight false),
-// the largest first (the callouts' order), one per slot: each one's cells,
+// Plans the insets for the callouts that want one (callout_wants_inset:
+// out of sight first, then small; each the largest first, the callouts'
+// order), one per slot: each one's cells,
 // neighbours, rect (its slot) and camera (`view_camera`'s direction and up,
 // fitted to the cage); sets each such callout's `inset` letter. A slot too
 // small for the caption and a picture gets none.
 std::vector<InvertedInset> plan_inverted_insets(const HexMesh& mesh, std::vector<InvertedCallout>& callouts,
                                                 std::span<const PixelRect> slots, const Camera& view_camera,
-                                                int text_size);
+                                                int text_size, double view_area);
 
 // The insets' pictures (picture.width x picture.height each). Rendered
 // before the overview's own frame, so that the renderer's last frame (what
@@ -100,7 +127,7 @@ std::vector<Image> render_inverted_insets(const HexMesh& mesh, std::span<const I
 
 // Draws each placed inset: a white box framed in kInsetFrameColor, two
 // caption lines ("A: 14 inverted hexes, inside"; "blue: inverted, shrunk ·
-// dots: det J < 0 · grey: neighbours"), its picture.
+// grey: nearby"; "dots, red edges: corners with det J < 0"), its picture.
 void draw_inverted_insets(Image& figure, std::span<const InvertedInset> insets, std::span<const Image> pictures,
                           std::span<const InvertedCallout> callouts, const std::string& noun, int text_size,
                           const AnnotationStyle& style);

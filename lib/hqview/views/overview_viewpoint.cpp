@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "hqview/core/box3.h"
 #include "hqview/mesh/boundary_polygons.h"
 #include "hqview/render/camera.h"
 #include "hqview/render/upright.h"
@@ -162,7 +163,7 @@ std::vector<Vec3> overview_view_candidates(const Vec3& up, const Vec3& front, bo
   return directions;
 }
 
-std::string overview_side_name(const Vec3& view_direction, const Vec3& up, const Vec3& front) {
+std::string overview_side_name(const Vec3& view_direction, const Vec3& up, const Vec3& front, const std::string& front_name) {
   const Vec3 u = normalized(up);
   const Vec3 f = normalized(front - dot(front, u) * u), side = cross(u, f);
   const Vec3 eye = -normalized(view_direction);
@@ -171,8 +172,11 @@ std::string overview_side_name(const Vec3& view_direction, const Vec3& up, const
   const std::string depth = std::abs(azimuth) < 90.0 ? "front " : "back ";
   const long degrees = std::lround(azimuth) < 0 ? std::lround(azimuth) + 360 : std::lround(azimuth) % 360;
   const long elevation = std::lround(std::asin(std::clamp(dot(eye, u), -1.0, 1.0)) * 180.0 / kPi);
+  // Straight above or below (a planar mesh seen along its normal): no
+  // side, no azimuth (issue 45g: "front left: azimuth 0, elevation 90").
+  if (std::abs(elevation) == 90) return std::string(elevation > 0 ? "straight above" : "straight below") + ": elevation " + std::to_string(elevation) + " deg";
   return height + depth + (azimuth > 0.0 ? "right" : "left") + ": azimuth " + std::to_string(degrees) +
-         ", elevation " + std::to_string(elevation) + " deg from the model's front";
+         ", elevation " + std::to_string(elevation) + " deg from " + front_name;
 }
 
 Vec3 model_front(const HexMesh& mesh, const Topology& topology, const Vec3& up) {
@@ -232,14 +236,69 @@ ModelFront model_front_of(const HexMesh& mesh, const Topology& topology, const V
   return {normalized(sign * (ax * file_front + ay * side)), true, std::abs(skew) > kFrontSkew};
 }
 
+namespace {
+
+// The flagged corners' mean (else inside_target) less the boundary
+// corners' mean, and the boundary's extent (the largest of its bounding
+// box's sides); a zero vector when there is no target.
+std::pair<Vec3, double> flagged_offset(const HexMesh& mesh, const Topology& topology, const WorstFaces& worst,
+                                       const std::optional<Vec3>& inside_target) {
+  Vec3 all, mark;
+  std::size_t n_all = 0, n_mark = 0;
+  Box3 box;
+  for (std::size_t i = 0; i < topology.boundary_faces.size(); ++i) {
+    const Quad& q = topology.faces[static_cast<std::size_t>(topology.boundary_faces[i])];
+    for (int k = 0; k < 4; ++k) {
+      const Vec3& p = mesh.points[static_cast<std::size_t>(q[static_cast<std::size_t>(k)])];
+      all = all + p, ++n_all, box.add(p);
+      if (i < worst.flagged.size() && (worst.flagged[i] & (1 << k))) mark = mark + p, ++n_mark;
+    }
+  }
+  if (n_all == 0 || (n_mark == 0 && !inside_target)) return {Vec3{}, 0.0};
+  const Vec3 extent = box.hi - box.lo;
+  const Vec3 target = n_mark > 0 ? (1.0 / static_cast<double>(n_mark)) * mark : *inside_target;
+  return {target - (1.0 / static_cast<double>(n_all)) * all, std::max({extent.x, extent.y, extent.z})};
+}
+
+}  // namespace
+
 OverviewViewpoint choose_overview_viewpoint(const HexMesh& mesh, const Topology& topology, const WorstFaces& worst,
-                                            const Vec3& up) {
+                                            const Vec3& given_up, std::span<const Vec3> free_up,
+                                            const std::optional<Vec3>& inside_target) {
   OverviewViewpoint out;
+  Vec3 up = given_up;
   ModelFront front = model_front_of(mesh, topology, up);
+  // A shape that tells neither its up nor its front (a ball): both from
+  // the flagged faces (else the inverted cells inside), so that they turn
+  // with the model.
+  if (!front.axis_from_shape && !free_up.empty() && (worst.kind != WorstFaces::Kind::none || inside_target)) {
+    const auto [d, extent] = flagged_offset(mesh, topology, worst, inside_target);
+    if (!free_up.empty() && norm(d) > 0.0) {
+      std::vector<double> along;
+      for (const Vec3& u : free_up) along.push_back(dot(normalized(u), d));
+      const auto best = static_cast<std::size_t>(std::max_element(along.begin(), along.end()) - along.begin());
+      double second = -1e300;
+      for (std::size_t i = 0; i < along.size(); ++i)
+        if (i != best) second = std::max(second, along[i]);
+      if (along[best] - second > kFrontDefectOffset * norm(d)) {
+        up = normalized(free_up[best]);
+        front = model_front_of(mesh, topology, up);
+      }
+    }
+    if (!front.axis_from_shape) {
+      const Vec3 u = normalized(up);
+      const Vec3 across = d - dot(d, u) * u;
+      if (norm(across) > kFrontDefectOffset * extent) {
+        front = {normalized(across), true, true};
+        out.front_from_target = true;
+      }
+    }
+  }
+  out.up = up;
   // A model symmetric across the plane: the front's sign towards the
   // flagged faces (their corners' mean against the boundary's), so that a
   // turned copy is seen from the same side of its defect.
-  if (front.axis_from_shape && !front.sign_from_shape && worst.kind != WorstFaces::Kind::none) {
+  if (front.axis_from_shape && !front.sign_from_shape && (worst.kind != WorstFaces::Kind::none || inside_target)) {
     double all = 0.0, mark = 0.0, lo = 1e300, hi = -1e300;
     std::size_t n_all = 0, n_mark = 0;
     for (std::size_t i = 0; i < topology.boundary_faces.size(); ++i) {
@@ -250,6 +309,10 @@ OverviewViewpoint choose_overview_viewpoint(const HexMesh& mesh, const Topology&
         if (i < worst.flagged.size() && (worst.flagged[i] & (1 << k))) mark += t, ++n_mark;
       }
     }
+    // Nothing flagged on the boundary: the inverted cells inside (issue
+    // 45g: a fandisk with interior defects turned 90 deg about x was seen
+    // from the other side under the same words).
+    if (n_mark == 0 && inside_target) mark = dot(*inside_target, front.front), n_mark = 1;
     if (n_mark > 0 && n_all > 0) {
       const double d = mark / static_cast<double>(n_mark) - all / static_cast<double>(n_all);
       if (std::abs(d) > kFrontDefectOffset * (hi - lo)) {

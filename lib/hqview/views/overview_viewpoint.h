@@ -6,6 +6,7 @@
 // cameras"). The model keeps the pose --up gives it; only the eye moves
 // around (or, when no upright eye sees the region, below) it.
 
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -84,8 +85,13 @@ std::vector<Vec3> overview_view_candidates(const Vec3& up, const Vec3& front, bo
 // right", "back left", "front left"), then the numbers (issue 45f round 2:
 // the 45f review's title words): "above, front left: azimuth 330,
 // elevation 25 deg from the model's front" (azimuth 0..359 turning
-// right-handed about up, elevation above the horizontal plane; whole degrees).
-std::string overview_side_name(const Vec3& view_direction, const Vec3& up, const Vec3& front);
+// right-handed about up, elevation above the horizontal plane; whole degrees);
+// an eye whose elevation rounds to +-90 has no side: "straight above:
+// elevation 90 deg" (issue 45g).
+// front_name: what the front is ("the inverted hexes' side" for a shape
+// without a front of its own, issue 45g).
+std::string overview_side_name(const Vec3& view_direction, const Vec3& up, const Vec3& front,
+                               const std::string& front_name = "the model's front");
 
 // The rule. Candidates: the three-quarter view (azimuth 30, elevation 25
 // from model_front) first, then overview_view_candidates(up, front, false); when none shows any flagged
@@ -103,13 +109,25 @@ std::string overview_side_name(const Vec3& view_direction, const Vec3& up, const
 // not its sign, the sign goes towards the flagged faces (the mean of their
 // flagged corners along the axis against the mean of all boundary corners,
 // when they differ by more than kFrontDefectOffset of the boundary's extent
-// along it), so a turned copy is seen from the same side of its defect.
+// along it; nothing flagged: the inside_target's offset, issue 45g), so a
+// turned copy is seen from the same side of its defect.
 inline constexpr double kFrontDefectOffset = 0.01;
 // The front's words (issue 45f round 2): when neither the shape nor the
 // defect fixes the sign (the defect on the middle plane), `front` is the
 // sign on the chosen eye's side after the choice, so a copy drawn alike is
 // named alike ("front right", not "back left" for the same pixels); the eye
 // itself does not change.
+// A shape that fixes neither its front's axis (model_front_of) nor its up
+// (free_up given: the up candidates when the data could not tell up, a
+// ball; resting_up_undecided) (issue 45g: the ball and its copy turned
+// 90 deg about x were drawn from different sides under the same words):
+// d = the flagged corners' mean (none flagged: inside_target, the inverted
+// cells' corners' mean, when given) less the boundary corners' mean; the up is
+// the candidate of free_up with the largest d . up (when it beats the
+// next by kFrontDefectOffset of |d|; else the given up), the front d's part
+// across the up (when longer than kFrontDefectOffset of the boundary's
+// extent along it); both then turn with the model, so a turned copy is
+// drawn alike. front_from_target says so (the title's words).
 inline constexpr double kKeepDefaultFraction = 0.5;
 inline constexpr double kNearBestFraction = 0.8;
 struct OverviewViewpoint {
@@ -119,8 +137,11 @@ struct OverviewViewpoint {
   double default_area = 0.0;  // visible_flagged_area of the three-quarter view
   double chosen_area = 0.0;   // and of the chosen one
   WorstFaces::Kind target = WorstFaces::Kind::none;  // what was aimed at
+  Vec3 up{0.0, 0.0, 1.0};     // the up the eye turns about (the given one, or one of free_up)
+  bool front_from_target = false;  // the front (and the up, when free) from the flagged faces
 };
 OverviewViewpoint choose_overview_viewpoint(const HexMesh& mesh, const Topology& topology, const WorstFaces& worst,
-                                            const Vec3& up);
+                                            const Vec3& up, std::span<const Vec3> free_up = {},
+                                            const std::optional<Vec3>& inside_target = std::nullopt);
 
 }  // namespace hq

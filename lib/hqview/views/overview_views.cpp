@@ -339,20 +339,27 @@ std::vector<char> silhouette_mask(const HexMesh& mesh, const Topology& topology,
   return grown;
 }
 
-// The largest fraction t (kFitSteps down to kFitMin) of `view`, anchored at
-// its top-left corner, into which the silhouette `mask` (of the model fitted
-// to the whole view) can be drawn scaled by t without a set cell touching
-// any of `slots` grown by `margin`; 0 when none.
+// The part of `view` scaled by t about its corner (ax, ay): 0 left/top, 1 right/bottom.
+PixelRect scaled_view(const PixelRect& view, double t, int ax, int ay) {
+  const int w = static_cast<int>(std::lround(t * view.width)), h = static_cast<int>(std::lround(t * view.height));
+  return {view.x + ax * (view.width - w), view.y + ay * (view.height - h), w, h};
+}
+
+// The largest fraction t (1.00 down to 0.50 by 0.01) of `view`, scaled
+// about its corner (ax, ay), into which the silhouette `mask` (of the model
+// fitted to the whole view) can be drawn scaled by t without a set cell
+// touching any of `slots` grown by `margin`; 0 when none.
 double largest_free_scale(const std::vector<char>& mask, int gw, int gh, const PixelRect& view,
-                          const std::vector<PixelRect>& slots, int margin) {
+                          const std::vector<PixelRect>& slots, int margin, int ax = 0, int ay = 0) {
   for (int step = 0; step <= 50; ++step) {
     const double t = 1.0 - 0.01 * step;
     const double cw = t * view.width / gw, ch = t * view.height / gh;
+    const double ox = view.x + ax * (1.0 - t) * view.width, oy = view.y + ay * (1.0 - t) * view.height;
     bool hit = false;
     for (int j = 0; j < gh && !hit; ++j)
       for (int i = 0; i < gw && !hit; ++i) {
         if (!mask[static_cast<std::size_t>(j) * gw + i]) continue;
-        const double x0 = view.x + i * cw, x1 = x0 + cw, y0 = view.y + j * ch, y1 = y0 + ch;
+        const double x0 = ox + i * cw, x1 = x0 + cw, y0 = oy + j * ch, y1 = y0 + ch;
         for (const PixelRect& s : slots)
           if (x1 > s.x - margin && x0 < s.x + s.width + margin && y1 > s.y - margin && y0 < s.y + s.height + margin) {
             hit = true;
@@ -362,6 +369,49 @@ double largest_free_scale(const std::vector<char>& mask, int gw, int gh, const P
     if (!hit) return t;
   }
   return 0.0;
+}
+
+// The intersecting cells' unique edges, over everything: a white halo,
+// then kIntersectingEdgeColor (OverviewOptions::intersecting_cell_ids).
+std::vector<LineSet> intersecting_cell_edges(const HexMesh& mesh, const OverviewOptions& options, const Vec3& origin,
+                                             const AnnotationStyle& style) {
+  std::vector<Edge> edges;
+  const Index num_cells = num_volume_cells(mesh);
+  const bool surface = num_cells == 0;
+  const auto add = [&](const std::array<Index, 4>& v, int size) {
+    for (int i = 0; i < size; ++i) {
+      const Index a = v[static_cast<std::size_t>(i)], b = v[static_cast<std::size_t>((i + 1) % size)];
+      edges.push_back({std::min(a, b), std::max(a, b)});
+    }
+  };
+  for (Index c : options.intersecting_cell_ids) {
+    if (c < 0) continue;
+    if (!surface) {
+      if (c < num_cells) for_each_face_of(volume_cell(mesh, c), add);
+    } else if (static_cast<std::size_t>(c) < mesh.quads.size()) {
+      add(mesh.quads[static_cast<std::size_t>(c)], 4);
+    } else if (static_cast<std::size_t>(c) - mesh.quads.size() < mesh.triangles.size()) {
+      const auto& t = mesh.triangles[static_cast<std::size_t>(c) - mesh.quads.size()];
+      add({t[0], t[1], t[2], kNoIndex}, 3);
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  const double base = style.scale / kOverviewTextScale;  // 1 at 1200 px of height
+  LineSet halo, core;
+  halo.width = static_cast<float>(std::max(3.0, 5.0 * base));
+  core.width = static_cast<float>(std::max(1.5, 2.5 * base));
+  halo.in_overlay = core.in_overlay = true;
+  for (const Edge& e : edges)
+    for (Index v : e) {
+      const Vec3f at = to_vec3f(mesh.points[static_cast<std::size_t>(v)] - origin);
+      for (LineSet* set : {&halo, &core}) {
+        set->indices.push_back(static_cast<std::uint32_t>(set->positions.size()));
+        set->positions.push_back(at);
+        set->colors.push_back(set == &halo ? Rgba8{255, 255, 255, 255} : kIntersectingEdgeColor);
+      }
+    }
+  return {std::move(halo), std::move(core)};
 }
 
 }  // namespace
@@ -398,9 +448,12 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
   }
   if (options.intersecting_cells > 0) {
     const std::string plural = options.cell_noun == "hex" ? "hexes" : options.cell_noun + "s";
-    f.bar.swatches.push_back(
-        {Color{}, "intersecting " + plural + ": " + std::to_string(options.intersecting_cells), SwatchShape::text});
-    f.bar.swatches.push_back({Color{}, "drawn in the main view, not here", SwatchShape::text});
+    const bool drawn = !options.intersecting_cell_ids.empty();
+    f.bar.swatches.push_back({to_color(kIntersectingEdgeColor),
+                              "intersecting " + plural + ": " + std::to_string(options.intersecting_cells) +
+                                  (drawn ? " (edges," : ""),
+                              drawn ? SwatchShape::thick_line : SwatchShape::text});
+    if (drawn) f.bar.swatches.push_back({Color{}, "seen through the surface)", SwatchShape::text});
   }
   f.layout = figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(f.bar, f.style), f.style);
   const double aspect = static_cast<double>(f.layout.view.width) / static_cast<double>(f.layout.view.height);
@@ -420,9 +473,10 @@ OverviewPlan plan_quality_overview(const HexMesh& mesh, const Topology& topology
   const double min_radius = std::max(10.0, 26.0 * f.style.scale);
   plan.callouts = inverted_callouts(mesh, topology, options.inverted_cells, vertex_quality, f.camera, f.layout.view,
                                     min_radius, renderer);
-  const auto out_of_sight = std::count_if(plan.callouts.begin(), plan.callouts.end(),
-                                          [](const InvertedCallout& c) { return !callout_in_sight(c) && !c.cells.empty(); });
-  const int count = static_cast<int>(std::min<long>(out_of_sight, kMaxInvertedInsets));
+  const double full_area = static_cast<double>(plan.full_view.width) * plan.full_view.height;
+  const auto wanted = std::count_if(plan.callouts.begin(), plan.callouts.end(),
+                                    [&](const InvertedCallout& c) { return callout_wants_inset(c, full_area); });
+  const int count = static_cast<int>(std::min<long>(wanted, kMaxInvertedInsets));
   if (count == 0) return plan;
   // Out of sight: cut-away insets draw the cells themselves, in a strip
   // beside the model (inverted_inset.h), the model fitted into the rest.
@@ -449,13 +503,29 @@ OverviewPlan plan_quality_overview(const HexMesh& mesh, const Topology& topology
   const std::vector<char> mask = silhouette_mask(mesh, topology, f.camera, aspect, gw, gh);
   double best = std::min(strip.model.width / silhouette_w, strip.model.height / silhouette_h) /
                 std::min(view.width / silhouette_w, view.height / silhouette_h);
-  for (const InsetStrip& side : {inset_strip(view, 1.0, 1e9, count, margin), inset_strip(view, 1e9, 1.0, count, margin)}) {
-    const double t = largest_free_scale(mask, gw, gh, view, side.slots, margin);
+  // Issue 45g (the 45f2 review: the bunny and the ball small in their
+  // frames): the column's slots also at the bottom (the model scaled about
+  // the view's bottom-left corner too), the row's also on the left (about
+  // the top-right corner too); the largest scale wins, ties the earlier.
+  struct Arrangement {
+    bool column, flipped;
+    int ax, ay;
+  };
+  constexpr Arrangement kArrangements[] = {{true, false, 0, 0}, {false, false, 0, 0}, {true, false, 0, 1},
+                                           {true, true, 0, 0},  {true, true, 0, 1},   {false, false, 1, 0},
+                                           {false, true, 0, 0}, {false, true, 1, 0}};
+  for (const Arrangement& a : kArrangements) {
+    InsetStrip side = a.column ? inset_strip(view, 1.0, 1e9, count, margin) : inset_strip(view, 1e9, 1.0, count, margin);
+    if (a.flipped)  // mirrored across the view's middle, the order kept (A on top / on the left)
+      for (PixelRect& r : side.slots) {
+        if (a.column) r.y = view.y + view.height - (r.y - view.y) - r.height;
+        else r.x = view.x + view.width - (r.x - view.x) - r.width;
+      }
+    if (a.flipped) std::reverse(side.slots.begin(), side.slots.end());
+    const double t = largest_free_scale(mask, gw, gh, view, side.slots, margin, a.ax, a.ay);
     if (t > best + 1e-9) {
       best = t;
-      strip = {PixelRect{view.x, view.y, static_cast<int>(std::lround(t * view.width)),
-                         static_cast<int>(std::lround(t * view.height))},
-               side.slots};
+      strip = {scaled_view(view, t, a.ax, a.ay), side.slots};
     }
   }
   f.layout.view = strip.model;
@@ -463,7 +533,7 @@ OverviewPlan plan_quality_overview(const HexMesh& mesh, const Topology& topology
                                   static_cast<double>(strip.model.width) / std::max(1, strip.model.height), {.up = options.up});
   plan.callouts = inverted_callouts(mesh, topology, options.inverted_cells, vertex_quality, f.camera, f.layout.view,
                                     min_radius, renderer);
-  plan.insets = plan_inverted_insets(mesh, plan.callouts, strip.slots, f.camera, f.label_size);
+  plan.insets = plan_inverted_insets(mesh, plan.callouts, strip.slots, f.camera, f.label_size, full_area);
   return plan;
 }
 
@@ -476,7 +546,7 @@ Image render_quality_overview(const HexMesh& mesh, const Topology& topology, con
   OverviewFrame& f = plan.frame;
   const AnnotationStyle& style = f.style;
   const FigureLayout& layout = f.layout;
-  const double thickness = std::max(2.0, 4.0 * style.scale);
+  const double thickness = overview_ring_thickness(style);
   const int text_size = f.label_size;
   std::vector<InvertedCallout>& callouts = plan.callouts;
   const std::vector<InvertedInset>& insets = plan.insets;
@@ -517,6 +587,9 @@ Image render_quality_overview(const HexMesh& mesh, const Topology& topology, con
     scene.lines.push_back(std::move(halo));
     scene.lines.push_back(std::move(outline));
   }
+
+  if (!options.intersecting_cell_ids.empty())
+    for (LineSet& set : intersecting_cell_edges(mesh, options, scene.origin, style)) scene.lines.push_back(std::move(set));
 
   Image figure = render_figure(renderer, scene, f.camera, options.width, options.height, layout, options.title, style);
   if (options.inverted_cells.empty()) {

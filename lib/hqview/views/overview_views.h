@@ -3,6 +3,7 @@
 // boundary edges on top, a colour bar and a title. The first image of the
 // report.
 
+#include <algorithm>
 #include <functional>
 #include <span>
 #include <string>
@@ -24,6 +25,10 @@ namespace hq {
 // The outline of an inverted surface face (OverviewOptions): a darker
 // blue-violet than kInvertedColor, apart from its fill and from the map.
 inline constexpr Rgba8 kInvertedOutlineColor{70, 20, 170, 255};
+// The intersecting cells' edges: the main view's intersection colour
+// (main_views.h kIntersectionArrowColor, lilac), so one colour names them
+// in both figures.
+inline constexpr Rgba8 kIntersectingEdgeColor{204, 136, 255, 255};
 
 struct OverviewOptions {
   int width = 1600;  // figure size in pixels, legend and title included
@@ -48,10 +53,14 @@ struct OverviewOptions {
   // its normal: nothing lies behind), else depth-tested (a curved surface:
   // a face on the far side stays hidden).
   bool outline_on_top = false;
-  // overlap.num_intersecting_cells: > 0 names them in the legend ("intersecting
-  // hexes: 18" / "drawn in the main view, not here"; issue 45f round 2), so
-  // the figure agrees with the numbers; the overview does not draw them.
+  // overlap.num_intersecting_cells and the cells (ids over all volume
+  // cells, or a surface mesh's face ids): their edges are drawn over
+  // everything (seen through the surface: most are inside) in
+  // kIntersectingEdgeColor on a white halo, with the legend entry
+  // "intersecting hexes: N (edges, seen through)" (issue 45g: the legend
+  // named them and nothing showed them). Ids out of range are skipped.
   long long intersecting_cells = 0;
+  std::vector<Index> intersecting_cell_ids;
   // On a mesh of several kinds: each boundary face's corners take the
   // vertex quality of its own cell's kind (kind_vertex_quality.h), so a hex
   // face beside tets shows the hexes' corners (46q review Q-M2); null or
@@ -146,6 +155,9 @@ Image render_figure(Renderer& renderer, const Scene& scene, const Camera& camera
 // on the first screen, at about half its size (style.css figure.overview),
 // and its legend must stay at least 11 px there (issue 45e).
 inline constexpr double kOverviewTextScale = 1.3;
+// The rings' core thickness on the overview (pixels; their labels'
+// leaders and the placement's discs use it too).
+inline double overview_ring_thickness(const AnnotationStyle& style) { return std::max(2.0, 4.0 * style.scale); }
 struct OverviewFrame {
   AnnotationStyle style;
   ColorBar bar;

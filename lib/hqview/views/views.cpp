@@ -17,6 +17,7 @@
 #include <optional>
 #include <thread>
 
+#include "hqview/analysis/resting_up.h"
 #include "hqview/core/error.h"
 #include "hqview/core/number_format.h"
 #include "hqview/core/progress.h"
@@ -210,6 +211,7 @@ std::vector<ViewFile> build_overview(ViewContext& c) {
                                  : ": corner quality on the boundary (each face: its cell kind's corners)");
   const OverviewViewpoint& eye = c.overview_viewpoint;
   overview.view_direction = eye.direction;
+  if (!is_surface_mesh(c.a.mesh)) overview.up = eye.up;
   overview.inverted_cells = c.inverted_cells;
   overview.cell_noun = cell_word(c.a);
   if (is_surface_mesh(c.a.mesh)) {
@@ -217,12 +219,25 @@ std::vector<ViewFile> build_overview(ViewContext& c) {
     overview.outline_on_top = planar_view_direction(c.a).has_value();
     overview.cell_noun = c.a.mesh.triangles.empty() ? "quad" : c.a.mesh.quads.empty() ? "triangle" : "face";
   }
-  if (c.a.overlap) overview.intersecting_cells = c.a.overlap->num_intersecting_cells;
+  if (c.a.overlap) {
+    overview.intersecting_cells = c.a.overlap->num_intersecting_cells;
+    // Drawn on a volume mesh (mostly inside); a surface mesh's are its own
+    // faces, outlined when inverted: not overdrawn (legend text only).
+    if (!is_surface_mesh(c.a.mesh))
+      for (std::size_t cell = 0; cell < c.a.overlap->cell_intersecting.size(); ++cell)
+        if (c.a.overlap->cell_intersecting[cell]) overview.intersecting_cell_ids.push_back(static_cast<Index>(cell));
+  }
   const KindVertexQuality kinds = kind_vertex_quality(c.a.mesh, c.a.field);
   overview.kind_quality = &kinds;
   // Where the eye is, in words and degrees from the model's front (issue
   // 45f round 2: every overview says it, so titles of copies compare).
-  overview.title += " (from " + overview_side_name(eye.direction, overview.up, eye.front);
+  // A shape without a front of its own (a ball): its front is the worst
+  // region's side (overview_viewpoint.h, issue 45g).
+  const std::string front_name =
+      !eye.front_from_target ? std::string("the model's front")
+      : eye.target == WorstFaces::Kind::worst_cluster ? std::string("the worst cluster's side")
+                                                      : "the inverted " + std::string(cell_word(c.a) == "hex" ? "hexes'" : "cells'") + " side";
+  overview.title += " (from " + overview_side_name(eye.direction, overview.up, eye.front, front_name);
   if (!eye.is_default)
     overview.title += std::string("; turned to the ") +
                       (eye.target == WorstFaces::Kind::inverted ? "inverted hexes" : "worst cluster");
@@ -519,7 +534,7 @@ std::vector<ViewFile> build_size_gradation(ViewContext& c) {
 // fitted below it.
 std::vector<ViewFile> build_thumbnail(ViewContext& c) {
   OverviewOptions options;
-  options.up = c.options.up;
+  options.up = is_surface_mesh(c.a.mesh) ? c.options.up : c.overview_viewpoint.up;
   const int width = 320, height = 240;
   const int band = c.inverted_cells.empty() ? 0 : kThumbnailBadgeBand;
   const Camera camera = fit_camera_to_points(boundary_points(c.a.mesh, c.a.topology), c.overview_viewpoint.direction,
@@ -640,10 +655,27 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
       worst_cluster = std::span<const Index>(g.cluster_vertices).subspan(
           static_cast<std::size_t>(g.cluster_offsets[0]),
           static_cast<std::size_t>(g.cluster_offsets[1] - g.cluster_offsets[0]));
+    // The data could not tell up (a ball): the eye may take its up from
+    // the worst region too (overview_viewpoint.h, issue 45g).
+    const std::vector<Vec3> free_up = analysis.resting_up && resting_up_undecided(*analysis.resting_up)
+                                          ? resting_up_candidates() : std::vector<Vec3>{};
+    shared.inverted_cells = inverted_cell_ids(analysis.field);
+    // The inverted cells' corners' mean: a ball's target when its worst
+    // region is inside (no boundary face flagged).
+    std::optional<Vec3> inside_target;
+    if (!shared.inverted_cells.empty()) {
+      Vec3 sum;
+      std::size_t n = 0;
+      for (Index cell : shared.inverted_cells) {
+        const CellRef ref = volume_cell(analysis.mesh, cell);
+        for (int k = 0; k < ref.num_corners; ++k, ++n)
+          sum = sum + analysis.mesh.points[static_cast<std::size_t>(ref.corners[static_cast<std::size_t>(k)])];
+      }
+      if (n > 0) inside_target = (1.0 / static_cast<double>(n)) * sum;
+    }
     shared.overview_viewpoint = choose_overview_viewpoint(
         analysis.mesh, analysis.topology, worst_boundary_faces(analysis.topology, shared.quality(), worst_cluster),
-        options.up);
-    shared.inverted_cells = inverted_cell_ids(analysis.field);
+        options.up, free_up, inside_target);
   }
 
   // Taking the next view, before_view, the clock and the encoding tasks'
