@@ -460,7 +460,7 @@ void expect_rings_apart(const HexMesh& mesh, const std::string& what, Renderer& 
           << what << ": rings " << a << " and " << b << " overlap";
   std::vector<PixelRect> taken;
   for (const InvertedInset& inset : plan.insets) taken.push_back(inset.rect);
-  const std::vector<CalloutLabel> labels =
+  const std::vector<InvertedRingLabel> labels =
       place_callout_labels(plan.full_view, rings, "hex", thickness, plan.frame.label_size, plan.frame.style, taken);
   ASSERT_EQ(labels.size(), rings.size());
   for (std::size_t i = 0; i < labels.size(); ++i) {

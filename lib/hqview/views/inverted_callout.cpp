@@ -362,12 +362,12 @@ int line_pitch(int text_size) { return text_size + std::max(3, text_size / 5); }
 
 }  // namespace
 
-std::vector<CalloutLabel> place_callout_labels(const PixelRect& view, std::span<const InvertedCallout> callouts,
+std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::span<const InvertedCallout> callouts,
                                                const std::string& noun, double thickness, int text_size,
                                                const AnnotationStyle& style, std::span<const PixelRect> taken) {
   const double area = static_cast<double>(view.width) * view.height;
   std::vector<ScreenDisc> rings;
-  std::vector<CalloutLabel> labels;
+  std::vector<InvertedRingLabel> labels;
   for (std::size_t i = 0; i < callouts.size(); ++i) {
     const InvertedCallout& c = callouts[i];
     labels.push_back({inverted_callout_label(c, noun, area), {}, std::nullopt});
@@ -430,8 +430,8 @@ void draw_inverted_callouts(Image& figure, const PixelRect& view, std::span<cons
     if (draw_rings) draw_marker_ring(figure, c.x, c.y, c.radius, thickness, !callout_in_sight(c), kCalloutColor);
   if (text_size <= 0) return;
   const Rgba8 line{70, 70, 70, 255};  // the labels' leaders and frames: not the ring's colour
-  const std::vector<CalloutLabel> labels = place_callout_labels(view, callouts, noun, thickness, text_size, style, taken);
-  for (const CalloutLabel& label : labels) {
+  const std::vector<InvertedRingLabel> labels = place_callout_labels(view, callouts, noun, thickness, text_size, style, taken);
+  for (const InvertedRingLabel& label : labels) {
     if (!label.placed) continue;
     const PlacedLabel& p = *label.placed;
     if (p.has_leader) {

@@ -96,12 +96,12 @@ inline bool callout_in_sight(const InvertedCallout& c) { return c.visible_pixels
 // other label's box; no box covers a ring (label_layout.h strict_leaders,
 // every ring protected; issue 45g). A label with no place on one line
 // tries 2, then 3 lines (words wrapped).
-struct CalloutLabel {
+struct InvertedRingLabel {
   std::string text;
   std::vector<std::string> lines;  // as drawn: text on 1 line, or wrapped on 2 or 3 when 1 found no place
   std::optional<PlacedLabel> placed;
 };
-std::vector<CalloutLabel> place_callout_labels(const PixelRect& view, std::span<const InvertedCallout> callouts,
+std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::span<const InvertedCallout> callouts,
                                                const std::string& noun, double thickness, int text_size,
                                                const AnnotationStyle& style, std::span<const PixelRect> taken = {});
 
