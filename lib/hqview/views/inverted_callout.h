@@ -49,7 +49,9 @@ struct InvertedCallout {
   std::string inset;          // the letter of the overview's inset that draws them (inverted_inset.h); empty: none
 };
 
-// Groups the inverted cells (ids over all volume cells, mesh/cell_faces.h)
+// Groups the inverted cells (ids over all volume cells, then a surface
+// mesh's quads and triangles: any_cell, mesh/cell_faces.h; a surface cell's
+// corners all count as its inverted corners)
 // in 3D: cells that share a vertex, transitively, form one group (issue
 // 45f: the same groups from every eye and at every size, so the overview,
 // its turned copies and the thumbnail ring the same places). Each group's

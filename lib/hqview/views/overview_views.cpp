@@ -388,18 +388,26 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
   // Both ring entries size the legend; the figure keeps those it draws.
   if (!options.inverted_cells.empty()) {
     const std::string plural = options.cell_noun == "hex" ? "hexes" : options.cell_noun + "s";
-    if (options.outline_inverted_faces)
+    if (options.outline_inverted_faces) {
       f.bar.swatches.push_back({to_color(kInvertedOutlineColor),
-                                "outlined: " + std::to_string(options.inverted_cells.size()) + " inverted " +
+                                "outlined: " + std::to_string(options.inverted_cells.size()) +
+                                    (options.inverted_are_reversed ? " reversed " : " inverted ") +
                                     (options.inverted_cells.size() == 1 ? options.cell_noun : plural)});
+      if (options.inverted_are_reversed)
+        f.bar.swatches.push_back({Color{}, "(orientation flipped)", SwatchShape::text});
+    }
     f.bar.swatches.push_back({to_color(kCalloutColor), "solid ring: inverted " + plural + " in sight", SwatchShape::solid_ring});
     f.bar.swatches.push_back(
         {to_color(kCalloutColor), "dashed ring: inside or on the far side", SwatchShape::dashed_ring});
   }
   if (options.intersecting_cells > 0) {
     const std::string plural = options.cell_noun == "hex" ? "hexes" : options.cell_noun + "s";
-    f.bar.swatches.push_back(
-        {Color{}, "intersecting " + plural + ": " + std::to_string(options.intersecting_cells), SwatchShape::text});
+    // A surface mesh's faces: "intersecting faces", the word of its page
+    // and main view (issue 47 part F).
+    f.bar.swatches.push_back({Color{},
+                              "intersecting " + (options.outline_inverted_faces ? std::string("faces") : plural) +
+                                  ": " + std::to_string(options.intersecting_cells),
+                              SwatchShape::text});
     f.bar.swatches.push_back({Color{}, "drawn in the main view, not here", SwatchShape::text});
   }
   f.layout = figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(f.bar, f.style), f.style);
@@ -416,7 +424,8 @@ OverviewPlan plan_quality_overview(const HexMesh& mesh, const Topology& topology
   plan.frame = quality_overview_frame(mesh, topology, vertex_quality, options);
   OverviewFrame& f = plan.frame;
   plan.full_view = f.layout.view;
-  if (options.inverted_cells.empty()) return plan;
+  // A surface mesh's inverted faces are outlined whole, not ringed.
+  if (options.inverted_cells.empty() || options.outline_inverted_faces) return plan;
   const double min_radius = std::max(10.0, 26.0 * f.style.scale);
   plan.callouts = inverted_callouts(mesh, topology, options.inverted_cells, vertex_quality, f.camera, f.layout.view,
                                     min_radius, renderer);
