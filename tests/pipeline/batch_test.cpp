@@ -334,7 +334,14 @@ TEST(BatchIndex, SurfaceRowsLimitedAnalysisCellCountsAndSkippedInputs) {
   holed.warnings = {std::string(kSurfaceBoundaryErrorViewsNotDrawn), "/abs/quads/holed.obj: 1 node is no cell's corner"};
   BatchEntry reference = entry("hex/ball.off", BatchStatus::skipped);
   reference.error = "a surface file beside volume meshes: taken for their reference surface";
-  const std::vector<BatchEntry> entries{hex, sphere, holed, reference};
+  // A curved surface with one reversed face (issue 47 part F): its
+  // quality.num_inverted counts reversed faces, and the row says so.
+  BatchEntry vase = entry("quads/vase.obj", BatchStatus::ok);
+  vase.headline[key("mesh.num_hexes")] = 0;
+  vase.headline[key("quality.num_inverted")] = 1;
+  vase.surface = SurfaceCounts{312, 0, 0, 0};
+  vase.surface->planar = false;
+  const std::vector<BatchEntry> entries{hex, sphere, holed, reference, vase};
   const std::string html = batch_index_html(entries, "9.9.9");
   const std::string table = html.substr(html.find("id=\"mesh-table\""));
   // The flawless surface mesh: ok, limited, neutral; not an input warning.
@@ -370,8 +377,13 @@ TEST(BatchIndex, SurfaceRowsLimitedAnalysisCellCountsAndSkippedInputs) {
   EXPECT_EQ(table.find("the most inverted hexes"), std::string::npos);
   // index.json round trip: the page is the same after a merge.
   const std::vector<BatchEntry> back = parse_batch_index_json(batch_index_json(entries, "9.9.9"), "i");
-  ASSERT_EQ(back.size(), 4u);
+  ASSERT_EQ(back.size(), 5u);
   EXPECT_EQ(batch_index_html(back, "9.9.9"), html);
+  const auto vase_back = std::find_if(back.begin(), back.end(), [](const BatchEntry& e) { return e.path == "quads/vase.obj"; });
+  ASSERT_TRUE(vase_back != back.end() && vase_back->surface);
+  EXPECT_FALSE(vase_back->surface->planar);
+  EXPECT_NE(table.find("status\">⚠ reversed faces<"), std::string::npos) << table;
+  EXPECT_NE(table.find("data-sort=\"1\" class=\"alert\">1 reversed<"), std::string::npos) << table;
   // A batch without surface meshes keeps its page: no limited status, the
   // hex column's title.
   const std::string volume_only = batch_index_html({hex}, "9.9.9");
@@ -380,6 +392,8 @@ TEST(BatchIndex, SurfaceRowsLimitedAnalysisCellCountsAndSkippedInputs) {
   // summary.md: the limitation is not a warning.
   const std::string md = batch_summary_markdown(entries);
   EXPECT_NE(md.find("- quads\\/holed\\.obj: limited: the boundary\\-error views"), std::string::npos) << md;
+  EXPECT_NE(md.find("- quads\\/vase\\.obj: 1 reversed faces\n"), std::string::npos) << md;
+  EXPECT_NE(md.find("| ⚠ reversed faces |"), std::string::npos) << md;
 }
 
 TEST(BatchIndex, MethodsComparePerLabel) {

@@ -274,12 +274,45 @@ TEST(SurfaceViews, EveryInvertedFaceShowsOverTheGlyphs) {
     AnalyzeOptions options;
     options.mesh_path = dir.write("pushed.obj", obj_text(g));
     options.tool_version = "test";
-    // Without the overlap check: the folded quads also intersect their
-    // neighbours (issue 47 part E), and the intersecting cells' translucent
-    // tint over them is another finding; this test is about the glyph.
+    // Without the overlap check first: its arrows at the pushed vertex
+    // (drawn over everything) cover a part of the faces; this is about the glyph.
     options.overlap = std::nullopt;
     const Analysis a = analyze_mesh(options);
     expect_inverted_faces_visible(a, render_views(a, views, *renderer), true);
+    // With it: the folded quads intersect their neighbours (issue 47 part
+    // E), whose translucent lilac is blended after every opaque face; no
+    // pixel of a folded quad may be that lilac over its fill (issue 47 part
+    // F: the folded faces are drawn once more after the translucent layer).
+    options.overlap = AnalyzeOptions{}.overlap;
+    const Analysis b = analyze_mesh(options);
+    ASSERT_TRUE(b.overlap && b.overlap->num_intersecting_cells > 0);
+    int tinted = 0, fill = 0;
+    for (const RenderedView& v : render_views(b, views, *renderer)) {
+      if (v.id != "main") continue;
+      for (const ViewFile& f : v.files)
+        for (const BoundaryPolygon& face : boundary_polygons(b.topology)) {
+          const auto cell = static_cast<std::size_t>(face.cell);
+          if (!cell_is_inverted(b.field, cell)) continue;
+          const Rgba8 c = surface_fill_color(b.field.cell_scaled_jacobian[cell]);
+          // The fill with the lilac blended over it (alpha 96 of 255).
+          const auto over = [&](int under, int lilac) { return (under * (255 - 96) + lilac * 96) / 255; };
+          const Rgba8 blend{static_cast<std::uint8_t>(over(c.r, kIntersectingCellColor.r)),
+                            static_cast<std::uint8_t>(over(c.g, kIntersectingCellColor.g)),
+                            static_cast<std::uint8_t>(over(c.b, kIntersectingCellColor.b)), 255};
+          const auto p = [&](int k) { return b.mesh.points[static_cast<std::size_t>(face.v[static_cast<std::size_t>(k)])]; };
+          for (int t = 0; t < (face.size == 4 ? 2 : 1); ++t)
+            for (int i = 1; i < 10; ++i)
+              for (int j = 1; i + j < 10; ++j) {
+                const Vec3 A = p(0), B = p(1 + t), C = p(2 + t);
+                const Pixel pix = to_pixel(f, A + (i / 10.0) * (B - A) + (j / 10.0) * (C - A));
+                const Rgba8 q = test::pixel_at(f.image, static_cast<int>(pix.x), static_cast<int>(pix.y));
+                fill += q == c;
+                tinted += std::abs(q.r - blend.r) <= 4 && std::abs(q.g - blend.g) <= 4 && std::abs(q.b - blend.b) <= 4;
+              }
+        }
+    }
+    EXPECT_GT(fill, 20);
+    EXPECT_EQ(tinted, 0);
   }
   {
     // Issue 44 part V: a planar 24 x 24 grid, vertex (12, 12) pushed to
@@ -405,6 +438,19 @@ TEST(SurfaceViews, PushedVertexFoldedQuadsOutlinedLegendsHonestBoundaryDrawn) {
   EXPECT_EQ(with_reversed.at(2).text, "inverted or reversed: 4");
   EXPECT_EQ(with_reversed.at(6).text, "0.9 to 1: 59");
   EXPECT_EQ(surface_fill_faces(a.mesh, a.topology, q, Vec3{}, reversed).colors.at(0), surface_fill_color(-1.0));
+  // A curved surface's inverted cells are its reversed faces (issue 47 part
+  // F): the first bin holds them alone and says so; a face <= 0 that is not
+  // reversed falls in the next bin, "up to 0.3".
+  const std::vector<LegendLine> curved = surface_fill_legend_lines(q, reversed, true);
+  EXPECT_EQ(curved.at(2).text, "reversed: 1");
+  EXPECT_EQ(curved.at(3).text, "  (orientation flipped)");
+  EXPECT_FALSE(curved.at(3).swatch);
+  EXPECT_EQ(curved.at(4).text, "up to 0.3: 3");
+  EXPECT_EQ(curved.at(7).text, "0.9 to 1: 59");
+  const TriangleSet curved_fill = surface_fill_faces(a.mesh, a.topology, q, Vec3{}, reversed, true);
+  EXPECT_EQ(curved_fill.colors.at(0), surface_fill_color(-1.0));
+  EXPECT_EQ(std::count(curved_fill.colors.begin(), curved_fill.colors.end(), surface_fill_color(-1.0)), 4);
+  EXPECT_EQ(std::count(curved_fill.colors.begin(), curved_fill.colors.end(), surface_fill_color(0.15)), 12);
   // Neighbouring bins differ in lightness (a 0.3-0.6 face stands out).
   const auto light = [](Rgba8 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };
   EXPECT_GT(light(surface_fill_color(0.95)) - light(surface_fill_color(0.75)), 25.0);

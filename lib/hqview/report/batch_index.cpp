@@ -189,6 +189,7 @@ void fill_entry_from_report(BatchEntry& entry, const ReportDocument& report) {
     counts.triangles = json_number_at(report, "headline.num_cells_by_kind.triangle").value_or(0.0);
     counts.irregular_interior = json_number_at(report, "structure.num_irregular_vertices_interior");
     counts.irregular_boundary = json_number_at(report, "structure.num_irregular_vertices_boundary");
+    counts.planar = report["mesh"].value("planar", true);
     entry.surface = counts;
   }
 }
@@ -270,7 +271,8 @@ std::string batch_index_json(const std::vector<BatchEntry>& entries, const std::
       m["surface"] = {{"num_quads", number_or_null(e.surface->quads)},
                       {"num_triangles", number_or_null(e.surface->triangles)},
                       {"num_irregular_vertices_interior", number_or_null(e.surface->irregular_interior)},
-                      {"num_irregular_vertices_boundary", number_or_null(e.surface->irregular_boundary)}};
+                      {"num_irregular_vertices_boundary", number_or_null(e.surface->irregular_boundary)},
+                      {"planar", e.surface->planar}};
     if (!e.metrics.empty()) {  // a solved finite-element check only: other rows keep their bytes
       json metrics = json::object();
       for (const MeshMetricRange& s : e.metrics)
@@ -364,7 +366,8 @@ std::vector<BatchEntry> parse_batch_index_json(std::string_view text, const std:
         };
         e.surface = SurfaceCounts{number("num_quads").value_or(0.0), number("num_triangles").value_or(0.0),
                                   number("num_irregular_vertices_interior"),
-                                  number("num_irregular_vertices_boundary")};
+                                  number("num_irregular_vertices_boundary"),
+                                  !f.contains("planar") || !f["planar"].is_boolean() || f["planar"].get<bool>()};
       }
       if (m.contains("failed_gates")) e.failed_gates = m["failed_gates"].get<std::vector<std::string>>();
       if (m.contains("thumbnail") && m["thumbnail"].is_string()) e.thumbnail = m["thumbnail"].get<std::string>();
@@ -872,6 +875,8 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
           text = count(*value) + " hex" + (others > 0 ? " + " + count(others) + " other" : "");
           if (others > 0) value = *value + others;
         }
+      } else if (e.surface && !e.surface->planar && k == inverted_key && value && *value > 0) {
+        text += " reversed";  // a curved surface's flipped faces, not a bad shape
       } else if (e.surface && (k == singular_keys[0] || k == singular_keys[1])) {
         value = k == singular_keys[0] ? e.surface->irregular_interior : e.surface->irregular_boundary;
         text = value ? show(value) + " vertices" : "–";
@@ -947,6 +952,10 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
   return tmpl.render(page);
 }
 
+// What a row's quality.num_inverted counts: "reversed faces" on a curved
+// surface (orientation flipped against their neighbours), else "inverted".
+static const char* inverted_word(const BatchEntry& e) { return e.surface && !e.surface->planar ? "reversed faces" : "inverted"; }
+
 std::string batch_findings(const BatchEntry& e) {
   static const std::size_t inverted_key = headline_index("quality.num_inverted");
   static const std::size_t intersecting_key = headline_index("overlap.num_intersecting_cells");
@@ -954,7 +963,7 @@ std::string batch_findings(const BatchEntry& e) {
   auto find = [&](bool found, const char* what) {
     if (found) findings += (findings.empty() ? "" : ", ") + std::string(what);
   };
-  find(e.headline[inverted_key] && *e.headline[inverted_key] > 0, "inverted");
+  find(e.headline[inverted_key] && *e.headline[inverted_key] > 0, inverted_word(e));
   find(e.headline[intersecting_key] && *e.headline[intersecting_key] > 0, "intersecting");
   find(std::any_of(e.warnings.begin(), e.warnings.end(), [](const std::string& w) { return !is_limitation_warning(w); }),
        "input warning");
@@ -1033,7 +1042,7 @@ std::string batch_summary_markdown(const std::vector<BatchEntry>& entries) {
       if (e.headline[key] && *e.headline[key] > 0)
         what += (what.empty() ? "" : "; ") + show(e.headline[key]) + " " + word;
     };
-    count(inverted_key, "inverted");
+    count(inverted_key, inverted_word(e));
     count(intersecting_key, "intersecting");
     for (const std::string& w : e.warnings) {
       std::string text = relative_warning(w, e.path);

@@ -72,6 +72,10 @@ struct MeshMetricRange {
 struct SurfaceCounts {
   double quads = 0, triangles = 0;
   std::optional<double> irregular_interior, irregular_boundary;  // null: not counted
+  // report.json mesh.planar: a curved surface's quality.num_inverted counts
+  // its reversed faces (orientation flipped against their neighbours), which
+  // the status, the #inverted cell and summary.md call so (issue 47 part F).
+  bool planar = true;
   bool operator==(const SurfaceCounts&) const = default;
 };
 

@@ -9,6 +9,7 @@
 #include <map>
 #include <set>
 
+#include "hqview/analysis/limitations.h"
 #include "hqview/core/error.h"
 #include "hqview/core/number_format.h"
 #include "hqview/render/upright.h"
@@ -353,10 +354,26 @@ void set_headline(data& page, const ReportModel& model) {
     headline.push_back(card("cells", show_count(c.num_cells)));
     if (c.num_quads > 0) headline.push_back(card("quads", show_count(c.num_quads)));
     if (c.num_triangles > 0) headline.push_back(card("triangles", show_count(c.num_triangles)));
-    headline.push_back(card("surface", m.planarity && m.planarity->is_planar ? "planar" : "not planar"));
-    headline.push_back(card("min scaled Jacobian (per cell)", show(q.scaled_jacobian.min), q.scaled_jacobian.min <= 0));
-    headline.push_back(card("mean scaled Jacobian (per cell)", show(q.scaled_jacobian.mean)));
-    headline.push_back(card("inverted cells", show_count(q.num_inverted), q.num_inverted > 0));
+    const bool planar = m.planarity && m.planarity->is_planar;
+    headline.push_back(card("surface", planar ? "planar" : "not planar"));
+    if (planar) {
+      headline.push_back(card("min scaled Jacobian (per cell, signed against the plane's normal)",
+                              show(q.scaled_jacobian.min), q.scaled_jacobian.min <= 0));
+      headline.push_back(card("mean scaled Jacobian (per cell)", show(q.scaled_jacobian.mean)));
+      headline.push_back(card("inverted cells (folded or reversed against the plane)", show_count(q.num_inverted),
+                              q.num_inverted > 0));
+    } else {
+      // A curved surface has no "inside": its inverted cells are its
+      // reversed faces (orientation flipped against their neighbours), whose
+      // shape and so Verdict's unsigned scaled Jacobian are unaffected (the
+      // 47d review's C2: "1 inverted" beside min SJ 0.998 read as a
+      // contradiction).
+      headline.push_back(card("min scaled Jacobian (per cell; Verdict's, unsigned: the shape only)",
+                              show(q.scaled_jacobian.min), q.scaled_jacobian.min <= 0));
+      headline.push_back(card("mean scaled Jacobian (per cell)", show(q.scaled_jacobian.mean)));
+      headline.push_back(card("reversed faces (orientation flipped against their neighbours; shape unaffected)",
+                              show_count(q.num_inverted), q.num_inverted > 0));
+    }
   } else if (hybrid) {
     headline.push_back(card("cells", show_count(c.num_cells)));
     // One card per kind present, then the two hex fractions.
@@ -376,11 +393,14 @@ void set_headline(data& page, const ReportModel& model) {
     headline.push_back(
         card("inverted hexes", show_count(q.scaled_jacobian.num_inverted), q.scaled_jacobian.num_inverted > 0));
   }
+  // A surface mesh's count: "intersecting faces", as its views and overlap
+  // table say (issue 47 part F: one word for one count).
+  const char* overlap_label = m.is_surface ? "intersecting faces" : hybrid ? "overlapping cells" : "overlapping hexes";
   if (model.analysis.overlap)
-    headline.push_back(card(hybrid ? "overlapping cells" : "overlapping hexes", show_count(model.analysis.overlap->num_intersecting_cells),
+    headline.push_back(card(overlap_label, show_count(model.analysis.overlap->num_intersecting_cells),
                             model.analysis.overlap->num_intersecting_cells > 0));
   else
-    headline.push_back(card(hybrid ? "overlapping cells" : "overlapping hexes", "not checked"));
+    headline.push_back(card(overlap_label, "not checked"));
   if (model.analysis.boundary_error) {
     const BoundaryError& e = *model.analysis.boundary_error;
     data hausdorff = card("Hausdorff distance (sampled, symmetric), % of bbox diagonal",
@@ -388,7 +408,10 @@ void set_headline(data& page, const ReportModel& model) {
     hausdorff.set("href", "boundary.html");
     headline.push_back(hausdorff);
   }
-  headline.push_back(card(hybrid ? "degenerate cells (a zero-length edge or axis)" : "degenerate hexes (a zero-length edge or axis)",
+  // A surface's faces have no axis (the 47d review's minor: hex wording).
+  headline.push_back(card(m.is_surface ? "degenerate faces (a zero-length edge)"
+                          : hybrid     ? "degenerate cells (a zero-length edge or axis)"
+                                       : "degenerate hexes (a zero-length edge or axis)",
                           show_count(q.scaled_jacobian.num_degenerate), q.scaled_jacobian.num_degenerate > 0));
   headline.push_back(card("min vertex quality", show(q.vertex_quality.min), q.vertex_quality.min <= 0));
   if (model.analysis.fem_elements) {
@@ -405,10 +428,15 @@ void set_headline(data& page, const ReportModel& model) {
     headline.push_back(card("coincident vertices", show_count(model.analysis.overlap->num_coincident_vertices), true));
   page.set("headline", headline);
 
-  data warnings{data::type::list};
-  for (const std::string& w : model.analysis.warnings) warnings.push_back(w);
+  // Input warnings in red; what HQView does not do yet on this mesh
+  // (analysis/limitations.h) apart, neutral, as the batch page calls them
+  // (the 47d review's M3).
+  data warnings{data::type::list}, limitations{data::type::list};
+  for (const std::string& w : model.analysis.warnings) (is_limitation_warning(w) ? limitations : warnings).push_back(w);
   page.set("warnings", warnings);
-  page.set("has_warnings", !model.analysis.warnings.empty());
+  page.set("has_warnings", !warnings.is_empty_list());
+  page.set("limitations", limitations);
+  page.set("has_limitations", !limitations.is_empty_list());
   // Notes (information: not in the warning colour).
   data notes{data::type::list};
   for (const std::string& n : model.analysis.notes) notes.push_back(n);
@@ -557,6 +585,7 @@ std::string panel_title(const PanelSpec& spec, const ReportModel& model) {
 const char* surface_panel_title(char letter) {
   if (letter == 'A') return "A · Overview and main view: vertex quality, faces by scaled Jacobian, glyphs and clusters";
   if (letter == 'S') return "S · Structure: irregular vertices, separatrices and patches";
+  if (letter == 'B') return "B · Sorted vertex quality";
   return nullptr;
 }
 const char* surface_panel_intro(char letter) {
@@ -577,6 +606,11 @@ const char* surface_panel_intro(char letter) {
            "(no collapse of nearby singularity pairs, no motorcycle graph): on an unstructured mesh nearly every "
            "edge lies on a separatrix and a patch holds a quad or two, which the legend's counts say. Counts: "
            "report.json structure.";
+  // No views C and D on a surface mesh (the 47d review's M5): a bar goes to
+  // its cluster's row.
+  if (letter == 'B')
+    return "Each bar of the sorted chart is one of the worst vertices (its lowest corner scaled Jacobian over its "
+           "faces), worst on the left. Click a bar to go to its cluster's row in the clusters table.";
   return nullptr;
 }
 

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "hqview/analysis/limitations.h"
 #include "hqview/core/number_format.h"
 #include "hqview/report/compare_table.h"
 #include "hqview/report/escape.h"
@@ -53,15 +54,21 @@ std::string summary_markdown(const ReportModel& model, const std::string& link_b
   // The papers' headline row.
   // A surface mesh (quads, triangles) counts its cells.
   const CellComposition& composition = model.analysis.composition;
-  std::string header = m.is_surface ? "| #V | #cells | min scaled Jacobian (per cell) | mean scaled Jacobian (per cell) | "
-                                      "#inverted | overlapping cells |"
+  // A curved surface's inverted cells are its reversed faces (orientation
+  // flipped against their neighbours), which Verdict's unsigned scaled
+  // Jacobian does not see; "intersecting faces" as the page and views.
+  const bool curved = m.is_surface && !(m.planarity && m.planarity->is_planar);
+  std::string header = curved ? "| #V | #cells | min scaled Jacobian (per cell, unsigned) | mean scaled Jacobian (per cell) | "
+                                "#reversed faces | intersecting faces |"
+                       : m.is_surface ? "| #V | #cells | min scaled Jacobian (per cell) | mean scaled Jacobian (per cell) | "
+                                      "#inverted | intersecting faces |"
                                     : "| #V | #H | min scaled Jacobian (per hex) | mean scaled Jacobian (per hex) | "
                                       "#inverted | overlapping hexes |";
   std::string align = "|---:|---:|---:|---:|---:|---:|";
   std::string row = "| " + std::to_string(m.num_vertices) + " | " +
                     std::to_string(m.is_surface ? composition.num_cells : m.num_hexes) + " | " +
                     show(q.scaled_jacobian.min) + " | " + show(q.scaled_jacobian.mean) + " | " +
-                    std::to_string(q.scaled_jacobian.num_inverted) + " | " +
+                    std::to_string(m.is_surface ? q.num_inverted : q.scaled_jacobian.num_inverted) + " | " +
                     (model.analysis.overlap ? std::to_string(model.analysis.overlap->num_intersecting_cells)
                                             : std::string("not checked")) +
                     " |";
@@ -80,10 +87,14 @@ std::string summary_markdown(const ReportModel& model, const std::string& link_b
     md += "Surface mesh: " + std::to_string(composition.num_quads) + " quads, " +
           std::to_string(composition.num_triangles) + " triangles; " +
           (m.planarity && m.planarity->is_planar ? "planar" : "not planar") + " (planarity " +
-          show(m.planarity ? m.planarity->planarity : 0.0) + "); inverted cells " + std::to_string(q.num_inverted) +
+          show(m.planarity ? m.planarity->planarity : 0.0) + ")" +
+          (curved ? std::string("; reversed faces ") + std::to_string(q.num_inverted) +
+                        " (orientation flipped against their neighbours: on a curved surface the inverted count; "
+                        "their shape, and so the unsigned scaled Jacobian, is unaffected)"
+                  : "; inverted cells " + std::to_string(q.num_inverted)) +
           "; boundary edges " + std::to_string(m.num_boundary_edges) + ", non-manifold edges " +
-          std::to_string(m.num_non_manifold_edges) + ", reversed faces " + std::to_string(m.num_reversed_faces) +
-          "\n\n";
+          std::to_string(m.num_non_manifold_edges) +
+          (curved ? std::string() : ", reversed faces " + std::to_string(m.num_reversed_faces)) + "\n\n";
   } else if (const CellComposition& c = composition; c.num_cells > c.count[0]) {
     md += "Cells: " + std::to_string(c.num_cells) + " (hex " + std::to_string(c.count[0]) + ", tet " +
           std::to_string(c.count[1]) + ", wedge " + std::to_string(c.count[2]) + ", pyramid " +
@@ -120,9 +131,18 @@ std::string summary_markdown(const ReportModel& model, const std::string& link_b
     md += "\n";
   }
 
-  if (!model.analysis.warnings.empty()) {
+  // Input warnings apart from what HQView does not do yet (limitations.h).
+  const auto is_input_warning = [](const std::string& w) { return !is_limitation_warning(w); };
+  if (std::any_of(model.analysis.warnings.begin(), model.analysis.warnings.end(), is_input_warning)) {
     md += "### Warnings\n\n";
-    for (const std::string& w : model.analysis.warnings) md += "- " + markdown_escape(w) + "\n";
+    for (const std::string& w : model.analysis.warnings)
+      if (is_input_warning(w)) md += "- " + markdown_escape(w) + "\n";
+    md += "\n";
+  }
+  if (std::any_of(model.analysis.warnings.begin(), model.analysis.warnings.end(), is_limitation_warning)) {
+    md += "### Limitations of this analysis\n\n";
+    for (const std::string& w : model.analysis.warnings)
+      if (is_limitation_warning(w)) md += "- " + markdown_escape(w) + "\n";
     md += "\n";
   }
   if (!model.analysis.notes.empty()) {

@@ -105,14 +105,17 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
   if (inverted_cells.empty() || view.width <= 0 || view.height <= 0) return {};
   const double aspect = static_cast<double>(view.width) / view.height;
   const Projector project{projection_matrix(camera, aspect) * view_matrix(camera), view};
-  const Index num_cells = num_volume_cells(mesh);
+  // A surface mesh's cells (quads, triangles after the volume blocks) too:
+  // its thumbnail rings them as a volume mesh's (issue 47 part F).
+  const Index num_volume = num_volume_cells(mesh);
+  const Index num_cells = num_volume + static_cast<Index>(mesh.quads.size() + mesh.triangles.size());
 
   // 1. The cells that project (finite) and their projected centres.
   std::vector<Index> cells;
   std::vector<Vec3> centres;  // projected
   for (Index c : inverted_cells) {
     if (c < 0 || c >= num_cells) continue;
-    const CellRef ref = volume_cell(mesh, c);
+    const CellRef ref = any_cell(mesh, c);
     Vec3 centre;
     for (int i = 0; i < ref.num_corners; ++i)
       centre = centre + mesh.points[static_cast<std::size_t>(ref.corners[static_cast<std::size_t>(i)])];
@@ -137,7 +140,7 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
   {
     std::unordered_map<Index, int> cell_of_vertex;
     for (std::size_t i = 0; i < cells.size(); ++i) {
-      const CellRef ref = volume_cell(mesh, cells[i]);
+      const CellRef ref = any_cell(mesh, cells[i]);
       for (int k = 0; k < ref.num_corners; ++k) {
         const auto [it, added] = cell_of_vertex.emplace(ref.corners[static_cast<std::size_t>(k)], static_cast<int>(i));
         if (added) continue;
@@ -173,7 +176,7 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
   std::vector<int> vertex_group(mesh.points.size(), -1);
   for (std::size_t i = 0; i < cells.size(); ++i) {
     const auto g = static_cast<std::size_t>(cell_group[i]);
-    const CellRef ref = volume_cell(mesh, cells[i]);
+    const CellRef ref = any_cell(mesh, cells[i]);
     Extent& e = extent[g];
     e.x0 = std::min(e.x0, centres[i].x), e.x1 = std::max(e.x1, centres[i].x);
     e.y0 = std::min(e.y0, centres[i].y), e.y1 = std::max(e.y1, centres[i].y);
@@ -182,8 +185,10 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
       const Vec3 s = project(mesh.points[v]);
       if (std::isfinite(s.x) && std::isfinite(s.y))
         e.x0 = std::min(e.x0, s.x), e.x1 = std::max(e.x1, s.x), e.y0 = std::min(e.y0, s.y), e.y1 = std::max(e.y1, s.y);
-      if (v < vertex_quality.size() && vertex_quality[v] < 0.0 && vertex_group[v] < 0)
-        vertex_group[v] = static_cast<int>(g);
+      // A surface cell is its own boundary face: all its corners count (a
+      // reversed face of a curved surface has no negative corner).
+      const bool marks = cells[i] >= num_volume || (v < vertex_quality.size() && vertex_quality[v] < 0.0);
+      if (marks && vertex_group[v] < 0) vertex_group[v] = static_cast<int>(g);
     }
   }
   const double max_radius = std::max(min_radius, 0.45 * std::min(view.width, view.height));

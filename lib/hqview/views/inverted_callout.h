@@ -61,7 +61,9 @@ struct InvertedCallout {
 // Rings closer than this times min_radius (edge to edge) are merged.
 inline constexpr double kRingMergeGap = 0.5;
 
-// Groups the inverted cells (ids over all volume cells, mesh/cell_faces.h)
+// Groups the inverted cells (ids over all volume cells, then a surface
+// mesh's quads and triangles: any_cell, mesh/cell_faces.h; a surface cell's
+// corners all count as its inverted corners)
 // in 3D: cells that share a vertex, transitively, form one group (issue
 // 45f: the same groups from every eye and at every size, so the overview,
 // its turned copies and the thumbnail ring the same places). Each group's

@@ -765,15 +765,17 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   // 0. A surface mesh's faces, filled by quality (surface_views.h).
   if (options.surface_cell_quality) {
     scene.triangles.push_back(surface_fill_faces(mesh, topology, *options.surface_cell_quality, scene.origin,
-                                                 options.surface_inverted_cells));
+                                                 options.surface_inverted_cells, options.surface_inverted_are_reversed));
     scene.triangles.back().is_lit = options.surface_fill_lit;
   }
 
   // 1. Boundary wireframe.
   // On a mesh of several kinds each edge in its faces' kind colour.
   const std::vector<Edge> wire = boundary_edges_all_kinds(topology);
+  const bool surface = options.surface_cell_quality != nullptr;
   scene.lines.push_back(edge_lines(mesh, scene.origin, wire,
                                    topology.across_kinds ? boundary_edge_kind_colors(mesh, topology, wire)
+                                   : surface             ? std::vector<Rgba8>(wire.size(), kSurfaceEdgeColor)
                                                          : std::vector<Rgba8>(wire.size(), kWireframeColor),
                                    options.wire_width));
   scene.lines.back().under_ranked_spheres = true;  // no veil over the coloured glyphs
@@ -964,6 +966,12 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
       faces.indices.insert(faces.indices.end(), {base, base + 1, base + 2});
       if (face.size == 4) faces.indices.insert(faces.indices.end(), {base, base + 2, base + 3});
     }
+    // A surface mesh's folded faces overlap their neighbours, whose
+    // intersecting-cell lilac (the translucent layer, blended after every
+    // opaque triangle) tinted them: drawn once more, opaque, after that lilac
+    // (depth-tested, so a glyph in front still hides them; the ranked glyphs
+    // are drawn over the translucent layer again). Issue 47 part F.
+    if (options.surface_cell_quality && overlap) scene.translucent.push_back(faces);
     scene.triangles.push_back(std::move(faces));
     // Under the ranked glyphs (render_main_view draws the part a glyph
     // hides over it, outside its core).
@@ -1370,7 +1378,11 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
   if (overlap) {
     lines.push_back({kCoincidentArrowColor, "coincident vertices: " + std::to_string(findings[0]), 1});
     lines.push_back({kIntersectionArrowColor, "intersecting pairs: " + std::to_string(findings[1])});
-    lines.push_back({kIntersectingCellColor, "intersecting cells: " + std::to_string(intersecting)});
+    // A surface mesh's page, overview and overlap table say "intersecting
+    // faces": one word for one count (issue 47 part F).
+    lines.push_back({kIntersectingCellColor, std::string(options.surface_cell_quality ? "intersecting faces: "
+                                                                                      : "intersecting cells: ") +
+                                                 std::to_string(intersecting)});
   } else if (options.surface_cell_quality) {
     lines.push_back({std::nullopt, "overlap: not checked", 1});
     lines.push_back({std::nullopt, "  on surface meshes"});
@@ -1380,13 +1392,15 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
   if (overlap && !overlap->markers.empty()) lines.push_back({std::nullopt, "label xN: N of its colour's kind"});
   if (options.surface_cell_quality) {
     const std::vector<LegendLine> fill =
-        surface_fill_legend_lines(*options.surface_cell_quality, options.surface_inverted_cells);
+        surface_fill_legend_lines(*options.surface_cell_quality, options.surface_inverted_cells,
+                                  options.surface_inverted_are_reversed);
     lines.insert(lines.end(), fill.begin(), fill.end());
   }
   // On a mesh of several kinds the boundary edges are in their kinds'
   // colours (no edge is kWireframeColor).
   if (options.cell_kinds.empty())
-    lines.push_back({kWireframeColor, options.surface_cell_quality ? "edges" : "boundary edges"});
+    lines.push_back({options.surface_cell_quality ? kSurfaceEdgeColor : kWireframeColor,
+                     options.surface_cell_quality ? "edges" : "boundary edges"});
   // "cells: 64 hex, 484 tet, 16 pyramid" as a heading and one line per kind
   // (one line would be cut in the legend's width).
   // Each with its boundary edges' colour.

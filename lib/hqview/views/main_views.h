@@ -33,6 +33,11 @@ namespace hq {
 
 // Colours of view A's elements (fixed, documented in the legend).
 inline constexpr Rgba8 kWireframeColor{120, 124, 134, 255};
+// A surface mesh's edges in view A: darker, over its filled faces (the
+// volume meshes' grey all but vanished on the near-white 0.9-1 faces; issue
+// 47 part F). Their width stays the wireframe's: wider lines at the plane
+// hid the thin parts of a folded quad that its neighbours overlap.
+inline constexpr Rgba8 kSurfaceEdgeColor{62, 66, 76, 255};
 // Coincident vertices: a dark green #005500 (issue 44 part P: the
 // near-black #191919 was CIEDE2000 4 from the worst ring's dark grey and
 // the hexes' charcoal edges; the earlier orange 3.8 from the quality map).
@@ -100,6 +105,10 @@ struct MainViewOptions {
   // Its inverted cells (the fill's inverted bin whatever their value: a
   // reversed face of a curved mesh); not owned.
   std::span<const Index> surface_inverted_cells;
+  // A curved surface: those cells are its reversed faces (orientation
+  // flipped against their neighbours), the fill's first bin says so
+  // (surface_fill_legend_lines' `reversed`).
+  bool surface_inverted_are_reversed = false;
   bool surface_fill_lit = true;
   // The on-screen diagonal (pixels, the 3D area) of the model's bounding
   // box as the view's camera projects it (render_main_view sets it; issue

@@ -438,22 +438,30 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
   // Both ring entries size the legend; the figure keeps those it draws.
   if (!options.inverted_cells.empty()) {
     const std::string plural = options.cell_noun == "hex" ? "hexes" : options.cell_noun + "s";
-    if (options.outline_inverted_faces)
+    if (options.outline_inverted_faces) {
       f.bar.swatches.push_back({to_color(kInvertedOutlineColor),
-                                "outlined: " + std::to_string(options.inverted_cells.size()) + " inverted " +
+                                "outlined: " + std::to_string(options.inverted_cells.size()) +
+                                    (options.inverted_are_reversed ? " reversed " : " inverted ") +
                                     (options.inverted_cells.size() == 1 ? options.cell_noun : plural)});
+      if (options.inverted_are_reversed)
+        f.bar.swatches.push_back({Color{}, "(orientation flipped)", SwatchShape::text});
+    }
     f.bar.swatches.push_back({to_color(kCalloutColor), "solid ring: inverted " + plural + " in sight", SwatchShape::solid_ring});
     f.bar.swatches.push_back(
         {to_color(kCalloutColor), "dashed ring: inside or on the far side", SwatchShape::dashed_ring});
   }
   if (options.intersecting_cells > 0) {
     const std::string plural = options.cell_noun == "hex" ? "hexes" : options.cell_noun + "s";
+    // Volume meshes: the edges drawn (issue 45 part G); a surface mesh's
+    // faces: "intersecting faces", the word of its page and main view, drawn
+    // there only (issue 47 part F).
     const bool drawn = !options.intersecting_cell_ids.empty();
     f.bar.swatches.push_back({to_color(kIntersectingEdgeColor),
-                              "intersecting " + plural + ": " + std::to_string(options.intersecting_cells) +
-                                  (drawn ? " (edges," : ""),
+                              "intersecting " + (options.outline_inverted_faces ? std::string("faces") : plural) + ": " +
+                                  std::to_string(options.intersecting_cells) + (drawn ? " (edges," : ""),
                               drawn ? SwatchShape::thick_line : SwatchShape::text});
-    if (drawn) f.bar.swatches.push_back({Color{}, "seen through the surface)", SwatchShape::text});
+    f.bar.swatches.push_back({Color{}, drawn ? "seen through the surface)" : "drawn in the main view, not here",
+                              SwatchShape::text});
   }
   f.layout = figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(f.bar, f.style), f.style);
   const double aspect = static_cast<double>(f.layout.view.width) / static_cast<double>(f.layout.view.height);
@@ -469,7 +477,8 @@ OverviewPlan plan_quality_overview(const HexMesh& mesh, const Topology& topology
   plan.frame = quality_overview_frame(mesh, topology, vertex_quality, options);
   OverviewFrame& f = plan.frame;
   plan.full_view = f.layout.view;
-  if (options.inverted_cells.empty()) return plan;
+  // A surface mesh's inverted faces are outlined whole, not ringed.
+  if (options.inverted_cells.empty() || options.outline_inverted_faces) return plan;
   const double min_radius = std::max(10.0, 26.0 * f.style.scale);
   plan.callouts = inverted_callouts(mesh, topology, options.inverted_cells, vertex_quality, f.camera, f.layout.view,
                                     min_radius, renderer);

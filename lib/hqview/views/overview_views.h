@@ -49,6 +49,11 @@ struct OverviewOptions {
   // quality shows only its inverted corners in blue), with a legend entry
   // "outlined: N inverted <noun>s".
   bool outline_inverted_faces = false;
+  // A curved surface: its inverted cells are its reversed faces
+  // (orientation flipped against their neighbours, shape unaffected): the
+  // outline's entry reads "outlined: N reversed <noun>s" and a second line
+  // "(orientation flipped)".
+  bool inverted_are_reversed = false;
   // With it: the outlines drawn over everything (a planar mesh seen along
   // its normal: nothing lies behind), else depth-tested (a curved surface:
   // a face on the far side stays hidden).

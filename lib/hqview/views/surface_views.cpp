@@ -87,9 +87,13 @@ namespace {
 // Per cell its bin: fill_bin of its quality, the inverted bin for the cells
 // of `inverted` (a reversed face of a curved mesh has a positive unsigned
 // scaled Jacobian but counts as inverted).
-std::vector<int> cell_bins(const std::vector<double>& cell_quality, std::span<const Index> inverted) {
+// With `reversed`, the first bin holds the cells of `inverted` alone.
+std::vector<int> cell_bins(const std::vector<double>& cell_quality, std::span<const Index> inverted, bool reversed) {
   std::vector<int> bins(cell_quality.size());
-  for (std::size_t c = 0; c < cell_quality.size(); ++c) bins[c] = fill_bin(cell_quality[c]);
+  for (std::size_t c = 0; c < cell_quality.size(); ++c) {
+    bins[c] = fill_bin(cell_quality[c]);
+    if (reversed && bins[c] == 0) bins[c] = 1;  // not reversed: a shape below 0.3
+  }
   for (Index c : inverted)
     if (c >= 0 && static_cast<std::size_t>(c) < bins.size()) bins[static_cast<std::size_t>(c)] = 0;
   return bins;
@@ -98,8 +102,8 @@ std::vector<int> cell_bins(const std::vector<double>& cell_quality, std::span<co
 }  // namespace
 
 TriangleSet surface_fill_faces(const HexMesh& mesh, const Topology& topology, const std::vector<double>& cell_quality,
-                               const Vec3& origin, std::span<const Index> inverted) {
-  const std::vector<int> bins = cell_bins(cell_quality, inverted);
+                               const Vec3& origin, std::span<const Index> inverted, bool reversed) {
+  const std::vector<int> bins = cell_bins(cell_quality, inverted, reversed);
   TriangleSet set;
   set.ambient = kSurfaceFillAmbient;
   for (const BoundaryPolygon& face : boundary_polygons(topology)) {
@@ -110,10 +114,10 @@ TriangleSet surface_fill_faces(const HexMesh& mesh, const Topology& topology, co
 }
 
 std::vector<LegendLine> surface_fill_legend_lines(const std::vector<double>& cell_quality,
-                                                  std::span<const Index> inverted) {
+                                                  std::span<const Index> inverted, bool reversed) {
   std::array<std::size_t, kFillBins.size()> counts{};
   std::size_t undefined = 0;
-  for (int b : cell_bins(cell_quality, inverted)) {
+  for (int b : cell_bins(cell_quality, inverted, reversed)) {
     if (b < 0)
       ++undefined;
     else
@@ -123,9 +127,11 @@ std::vector<LegendLine> surface_fill_legend_lines(const std::vector<double>& cel
   // Every bin, empty ones too (a reader sees that 0 to 0.3 was looked for).
   lines.push_back({std::nullopt, "faces: scaled Jacobian", 1});
   lines.push_back({std::nullopt, "(each face's lowest corner)"});
-  for (std::size_t b = 0; b < kFillBins.size(); ++b)
+  for (std::size_t b = 0; b < kFillBins.size(); ++b) {
     lines.push_back({bin_color(static_cast<int>(b)),
-                     std::string(b == 0 && !inverted.empty() && counts[0] > 0 &&
+                     std::string(reversed && b == 0   ? "reversed"
+                                 : reversed && b == 1 ? "up to 0.3"
+                                 : b == 0 && !inverted.empty() && counts[0] > 0 &&
                                          std::any_of(inverted.begin(), inverted.end(),
                                                      [&](Index c) {
                                                        return static_cast<std::size_t>(c) < cell_quality.size() &&
@@ -134,6 +140,8 @@ std::vector<LegendLine> surface_fill_legend_lines(const std::vector<double>& cel
                                      ? "inverted or reversed"
                                      : kFillBins[b].text) +
                          ": " + std::to_string(counts[b])});
+    if (reversed && b == 0) lines.push_back({std::nullopt, "  (orientation flipped)"});
+  }
   if (undefined > 0) lines.push_back({bin_color(-1), "degenerate: " + std::to_string(undefined)});
   return lines;
 }

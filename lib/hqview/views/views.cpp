@@ -217,6 +217,7 @@ std::vector<ViewFile> build_overview(ViewContext& c) {
   if (is_surface_mesh(c.a.mesh)) {
     overview.outline_inverted_faces = true;
     overview.outline_on_top = planar_view_direction(c.a).has_value();
+    overview.inverted_are_reversed = !planar_view_direction(c.a).has_value();
     overview.cell_noun = c.a.mesh.triangles.empty() ? "quad" : c.a.mesh.quads.empty() ? "triangle" : "face";
   }
   if (c.a.overlap) {
@@ -264,6 +265,7 @@ std::vector<ViewFile> build_main(ViewContext& c) {
     main.surface_cell_quality = &c.a.field.cell_scaled_jacobian;
     main.surface_inverted_cells = c.inverted_cells;
     main.surface_fill_lit = !planar;
+    main.surface_inverted_are_reversed = !planar;
   }
   const std::vector<Vec3> directions =
       planar ? std::vector<Vec3>{*planar} : choose_main_viewpoints(points, *c.glyphs, aspect, 2, main.up, main.fov_y_degrees);
@@ -551,7 +553,9 @@ std::vector<ViewFile> build_thumbnail(ViewContext& c) {
     const std::vector<InvertedCallout> callouts =
         inverted_callouts(c.a.mesh, c.a.topology, c.inverted_cells, c.quality(), camera, view, 16.0, c.renderer);
     draw_inverted_callouts(image, view, callouts, "", 3.0, 0, annotation_style_for(height));
-    const std::string badge = std::to_string(c.inverted_cells.size()) + " inverted";
+    // A curved surface's inverted cells are its reversed faces.
+    const bool reversed = is_surface_mesh(c.a.mesh) && !planar_view_direction(c.a).has_value();
+    const std::string badge = std::to_string(c.inverted_cells.size()) + (reversed ? " reversed" : " inverted");
     draw_text(image, 6, band - 9, badge, kThumbnailBadgeText, annotation_style_for(height));
   }
   return {framed("views/thumbnail.png", std::move(image), c)};
