@@ -447,7 +447,7 @@ TEST(SurfaceAnalysis, AReversedFaceOnACurvedSurfaceIsTheInvertedOne) {
   EXPECT_NE(md.find("#reversed faces | intersecting faces |"), std::string::npos) << md;
   EXPECT_NE(md.find("; reversed faces 1 (orientation flipped"), std::string::npos) << md;
   EXPECT_EQ(md.find("inverted cells"), std::string::npos) << md;
-  const std::size_t md_limits = md.find("### Limitations of this analysis\n\n- the boundary-error views of surface meshes");
+  const std::size_t md_limits = md.find("### Limitations of this analysis\n\n- the boundary\\-error views of surface meshes");
   EXPECT_NE(md_limits, std::string::npos) << md;
   EXPECT_EQ(md.substr(0, md_limits).find("not drawn yet"), std::string::npos) << md;
 }

@@ -460,8 +460,10 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
                               "intersecting " + (options.outline_inverted_faces ? std::string("faces") : plural) + ": " +
                                   std::to_string(options.intersecting_cells) + (drawn ? " (edges," : ""),
                               drawn ? SwatchShape::thick_line : SwatchShape::text});
-    f.bar.swatches.push_back({Color{}, drawn ? "seen through the surface)" : "drawn in the main view, not here",
-                              SwatchShape::text});
+    if (drawn)
+      f.bar.swatches.push_back({Color{}, "seen through the surface)", SwatchShape::text});
+    else if (options.outline_inverted_faces)
+      f.bar.swatches.push_back({Color{}, "drawn in the main view, not here", SwatchShape::text});
   }
   f.layout = figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(f.bar, f.style), f.style);
   const double aspect = static_cast<double>(f.layout.view.width) / static_cast<double>(f.layout.view.height);
