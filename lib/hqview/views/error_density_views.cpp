@@ -125,6 +125,21 @@ void add_worst_overlay(Figure& f, const HexMesh& mesh, const ErrorDensityWorst& 
   for (const auto& face : kHexFaces)
     add_quad(faces, mesh, f.scene.origin, {hex[face[0]], hex[face[1]], hex[face[2]], hex[face[3]]}, color);
   f.scene.overlay.push_back(std::move(faces));
+  // Its edges dashed (drawn through: issue 48h round 2), so its outline
+  // shows against neighbours of a similar colour.
+  LineSet edges;
+  edges.width = static_cast<float>(std::max(1.5, 1.5 * f.style.scale));
+  edges.in_overlay = true;
+  for (const auto& e : kHexEdges) {
+    const Vec3 &a = point(mesh, hex[e[0]]), &b = point(mesh, hex[e[1]]);
+    for (int d = 0; d < 7; d += 2)
+      for (const double t : {d / 7.0, (d + 1) / 7.0}) {
+        edges.indices.push_back(static_cast<std::uint32_t>(edges.positions.size()));
+        edges.positions.push_back(to_vec3f(a + t * (b - a) - f.scene.origin));
+        edges.colors.push_back(kWorstMarkerColor);
+      }
+  }
+  f.scene.lines.push_back(std::move(edges));
 }
 
 // Whether the boundary hides the max hex from f's camera: an interior one
