@@ -339,3 +339,91 @@ TEST(ErrorDensityViews, MaxHexFrontEdgesFaceTheCamera) {
 
 }  // namespace
 }  // namespace hq
+
+namespace hq {
+namespace {
+
+// Pixel of a model point in a figure's view.
+std::array<int, 2> to_pixel(const Camera& camera, const PixelRect& view, const Vec3& p) {
+  const Mat4 to_ndc = projection_matrix(camera, static_cast<double>(view.width) / view.height) * view_matrix(camera);
+  const Vec3 ndc = transform_point(to_ndc, p);
+  return {view.x + static_cast<int>(std::lround((ndc.x + 1) / 2 * view.width)),
+          view.y + static_cast<int>(std::lround((1 - ndc.y) / 2 * view.height))};
+}
+bool near_color(Rgba8 a, Rgba8 b) { return std::abs(a.r - b.r) <= 3 && std::abs(a.g - b.g) <= 3 && std::abs(a.b - b.b) <= 3; }
+
+// Issue 48h round 2, on a 5^3 grid seen from the (1, 0.8, 0.6) side.
+// (a) A boundary max the boundary hides (the corner hex at the origin, whose
+// boundary faces all turn away) is drawn as hidden in the cells figure: its
+// front edges dashed like its back (no magenta in the gaps between dashes;
+// they were solid), and in the boundary figure it is drawn through, so the
+// ring circles its own colour (it circled other hexes' faces).
+// (b) A hidden (interior) cell keeps its colour of the bar: the casing of its dashed
+// edges lies under the fills (it was painted over them in the veil's colour).
+TEST(ErrorDensityViews, HiddenMaxDrawnHiddenAndHiddenCellsKeepTheirColour) {
+  const int n = 5;
+  const HexMesh mesh = test::grid(n);
+  const Topology topology = build_topology(mesh);
+  const Vec3 direction = Vec3{-1.0, -0.8, -0.6} / norm(Vec3{1.0, 0.8, 0.6});  // eye to target
+  const Index corner = 0, centre = 1 + 3 * n + 3 * n * n;  // interior, apart from the max in the picture
+  std::vector<double> density(mesh.hexes.size(), 0.05);
+  density[static_cast<std::size_t>(corner)] = 2.0;
+  density[static_cast<std::size_t>(centre)] = 0.5;
+  const std::vector<double> sj(mesh.hexes.size(), 1.0);
+  ErrorDensityViewOptions options;
+  options.width = 480;
+  options.height = 360;
+  options.densest_fraction = 1.0;
+  options.max_cells = 2;  // the corner max and the centre hex
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  Camera camera;
+  PixelRect view;
+  const Image cells = render_error_density_cells(mesh, topology, density, sj, direction, options, *renderer, &camera, &view);
+  const std::vector<Index> probe{corner, centre, static_cast<Index>(mesh.hexes.size() - 1)};
+  const std::vector<bool> hidden =
+      error_density_cells_behind_boundary(mesh, topology, probe, camera, view.width, view.height, *renderer);
+  ASSERT_TRUE(hidden[0] && hidden[1] && !hidden[2])
+      << "the corner at the origin must face away";
+  const ErrorDensityScale scale = error_density_scale(density);
+  // (a) The gaps of the 4-dash pattern (t = 1.5/7, 3.5/7, 5.5/7) on its front edges.
+  const Hex& hex = mesh.hexes[static_cast<std::size_t>(corner)];
+  const std::array<bool, 12> front = hex_edges_facing(mesh, hex, camera);
+  int gaps = 0, magenta_in_gaps = 0;
+  for (std::size_t e = 0; e < kHexEdges.size(); ++e) {
+    if (!front[e]) continue;
+    const Vec3 a = mesh.points[static_cast<std::size_t>(hex[static_cast<std::size_t>(kHexEdges[e][0])])];
+    const Vec3 b = mesh.points[static_cast<std::size_t>(hex[static_cast<std::size_t>(kHexEdges[e][1])])];
+    for (const double t : {1.5 / 7, 3.5 / 7, 5.5 / 7}) {
+      const auto [x, y] = to_pixel(camera, view, a + t * (b - a));
+      ++gaps;
+      magenta_in_gaps += near_color(test::pixel_at(cells, x, y), kMaxHexEdgeColor);
+    }
+  }
+  EXPECT_EQ(gaps, 27);
+  EXPECT_LE(magenta_in_gaps, 3) << "the hidden max's front edges are drawn solid";
+  // Its colour within the ring in the boundary figure.
+  Camera boundary_camera;
+  PixelRect boundary_view;
+  const Image boundary = render_error_density_boundary(mesh, topology, density, direction, options, *renderer,
+                                                       &boundary_camera, &boundary_view);
+  const Rgba8 max_color = to_rgba8(error_density_color(2.0, scale));
+  const auto [cx, cy] = to_pixel(boundary_camera, boundary_view, Vec3{0.5, 0.5, 0.5});
+  int max_colored = 0;
+  for (int dy = -3; dy <= 3; ++dy)
+    for (int dx = -3; dx <= 3; ++dx) max_colored += near_color(test::pixel_at(boundary, cx + dx, cy + dy), max_color);
+  EXPECT_GE(max_colored, 40) << "the ring does not circle the hidden max's colour";
+  // (b) Samples inside the centre hex: its colour of the bar.
+  const Rgba8 centre_color = to_rgba8(error_density_color(0.5, scale));
+  int samples = 0, colored = 0;
+  for (double u = 0.15; u < 0.9; u += 0.1)
+    for (double v = 0.15; v < 0.9; v += 0.1)
+      for (double w = 0.15; w < 0.9; w += 0.1) {
+        const auto [x, y] = to_pixel(camera, view, Vec3{1 + u, 3 + v, 3 + w});
+        ++samples;
+        colored += near_color(test::pixel_at(cells, x, y), centre_color);
+      }
+  EXPECT_GE(colored, samples * 9 / 10) << colored << " of " << samples;
+}
+
+}  // namespace
+}  // namespace hq

@@ -639,6 +639,10 @@ Chart metric_correlation_chart(std::span<const CorrelationBar> bars, const Chart
     chart.texts.push_back({{kx + 20.0, ly}, text, kTickSize, kAxisColor, ChartAnchor::left, false});
     ly += 20.0;
   };
+  // Issue 48h round 2: the test solutions are fixed in space, so the errors
+  // (and these verdicts) depend on how the mesh is placed (docs/analysis.md).
+  static const std::string kPlacementCaveat =
+      "and it covers no placement: a turned copy of the mesh can get other verdicts";
   // Only the verdicts the chart shows (issue 48h: "disagrees" with no orange row).
   if (counts[0][0] + counts[1][0] > 0)
     key(kAgreesColor, "agrees: the metric's worse side has the higher error (\u03c1 < 0 where higher is better, "
@@ -662,9 +666,11 @@ Chart metric_correlation_chart(std::span<const CorrelationBar> bars, const Chart
             ? std::vector<std::string>{"interval: simultaneous 95% over the " + std::to_string(verdict_family) +
                                            " metrics with a direction (Bonferroni: each at " + level + "%;",
                                        "Fisher z, Bonett\u2013Wright SE); agree / disagree / undecided rest on it;",
-                                       "still too narrow, as neighbouring hexes' errors are correlated"}
+                                       "still too narrow, as neighbouring hexes' errors are correlated;",
+                                       kPlacementCaveat}
             : std::vector<std::string>{"95% interval (Fisher z, Bonett\u2013Wright SE);",
-                                       "still too narrow, as neighbouring hexes' errors are correlated"};
+                                       "still too narrow, as neighbouring hexes' errors are correlated;",
+                                       kPlacementCaveat};
     for (const std::string& line : lines) {
       chart.texts.push_back({{kx + 20.0, ly}, line, kTickSize, kAxisColor, ChartAnchor::left, false});
       ly += 20.0;

@@ -503,13 +503,12 @@ bool is_baseline_row(const CollectionCorrelationRow& r) { return r.metric == "nu
 // placement effect.
 std::size_t pairs_within(const std::vector<BatchEntry>& entries, const CollectionCorrelation& c, std::size_t slot,
                          double noise) {
+  // Over the counted meshes only (not the duplicates, not the meshes left
+  // out for inverted hexes: issue 48h round 2).
   std::vector<double> errors;
   for (const BatchEntry& e : entries) {
     if (e.metrics.empty() || !e.headline[slot]) continue;
-    if (e.status != BatchStatus::ok && e.status != BatchStatus::gate_failed) continue;
-    if (std::any_of(c.duplicates.begin(), c.duplicates.end(),
-                    [&](const CollectionDuplicate& d) { return d.path == e.path; }))
-      continue;
+    if (std::find(c.counted.begin(), c.counted.end(), e.path) == c.counted.end()) continue;
     errors.push_back(*e.headline[slot]);
   }
   std::size_t n = 0;

@@ -145,6 +145,7 @@ CollectionCorrelation correlate_collection(const std::vector<BatchEntry>& entrie
                               relative_difference(*e->headline[h1_slot], *(*same)->headline[h1_slot])});
   }
   out.num_meshes = static_cast<int>(meshes.size());
+  for (const BatchEntry* e : meshes) out.counted.push_back(e->path);
   out.critical_rho = critical_rho_for(out.num_meshes);
   out.min_p = kNaN;
   if (out.num_meshes >= kMinCorrelationMeshes) {

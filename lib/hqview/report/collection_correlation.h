@@ -92,6 +92,9 @@ struct CollectionCorrelation {
   // the problem and its error is not that of the mesh's quality (issue 48h:
   // were counted). By path.
   std::vector<std::string> inverted;
+  // The paths of the num_meshes counted meshes (by path): every count over
+  // "the counted meshes" (the batch page's ties) runs over these only.
+  std::vector<std::string> counted;
   // The smallest two-sided p any rho can reach over num_meshes meshes
   // (2 / n!: the two perfect orders among the n! permutations), and the
   // smallest |rho| whose p is at most 0.05 (exact permutation distribution

@@ -77,6 +77,10 @@ struct Figure {
   Camera camera;
   Scene scene;
   std::string worst_note;  // appended to the max's label (the cells figure: its SJ)
+  // A boundary max the boundary hides from this viewpoint (its own faces
+  // not seen: max_hex_behind_boundary): drawn through, its ring dashed, its
+  // label says so; the same test in both figures.
+  bool worst_hidden = false;
 };
 
 Figure begin_figure(const HexMesh& mesh, const Topology& topology, const ErrorDensityScale& scale,
@@ -121,6 +125,43 @@ void add_worst_overlay(Figure& f, const HexMesh& mesh, const ErrorDensityWorst& 
   for (const auto& face : kHexFaces)
     add_quad(faces, mesh, f.scene.origin, {hex[face[0]], hex[face[1]], hex[face[2]], hex[face[3]]}, color);
   f.scene.overlay.push_back(std::move(faces));
+  // Its edges dashed (drawn through: issue 48h round 2), so its outline
+  // shows against neighbours of a similar colour.
+  LineSet edges;
+  edges.width = static_cast<float>(std::max(1.5, 1.5 * f.style.scale));
+  edges.in_overlay = true;
+  for (const auto& e : kHexEdges) {
+    const Vec3 &a = point(mesh, hex[e[0]]), &b = point(mesh, hex[e[1]]);
+    for (int d = 0; d < 7; d += 2)
+      for (const double t : {d / 7.0, (d + 1) / 7.0}) {
+        edges.indices.push_back(static_cast<std::uint32_t>(edges.positions.size()));
+        edges.positions.push_back(to_vec3f(a + t * (b - a) - f.scene.origin));
+        edges.colors.push_back(kWorstMarkerColor);
+      }
+  }
+  f.scene.lines.push_back(std::move(edges));
+}
+
+// Whether the boundary hides the max hex from f's camera: an interior one
+// always; a boundary one by the test error_density_cells_behind_boundary
+// makes for it alone (so both figures agree).
+bool max_hex_behind_boundary(const Figure& f, const HexMesh& mesh, const Topology& topology,
+                             const ErrorDensityWorst& worst, Renderer& renderer) {
+  if (worst.hex == kNoIndex) return false;
+  if (!worst.on_boundary) return true;
+  const std::vector<Index> max_hex{worst.hex};
+  return error_density_cells_behind_boundary(mesh, topology, max_hex, f.camera, f.layout.view.width,
+                                             f.layout.view.height, renderer)
+      .front();
+}
+
+// The ring's legend swatch: solid for a max seen on the boundary, dashed for
+// one drawn through it (interior, or on a boundary side hidden from here).
+ColorBarSwatch worst_ring_swatch(const ErrorDensityWorst& worst, bool hidden) {
+  const Color ink{0.08, 0.08, 0.08};
+  if (!worst.on_boundary) return {ink, "ring: max (dashed: interior)", SwatchShape::dashed_ring};
+  if (hidden) return {ink, "ring: max (dashed: behind)", SwatchShape::dashed_ring};
+  return {ink, "ring: max (on the boundary)", SwatchShape::solid_ring};
 }
 
 // The label of the ring at (cx, cy) in the free margin beside the model's
@@ -194,7 +235,8 @@ void draw_worst_marker(Image& figure, const Figure& f, const HexMesh& mesh, cons
   // The hex's own projected extent plus a small margin: the ring encloses
   // it, not its neighbours.
   radius = std::max(radius + 4.0 * f.style.scale, 10.0 * f.style.scale);
-  draw_marker_ring(figure, cx, cy, radius, std::max(2.0, 3.0 * f.style.scale), !worst.on_boundary, kWorstMarkerColor);
+  draw_marker_ring(figure, cx, cy, radius, std::max(2.0, 3.0 * f.style.scale), !worst.on_boundary || f.worst_hidden,
+                   kWorstMarkerColor);
   // The model's projected box: the label goes in the free margin beside it.
   double x0 = view.x + view.width, y0 = view.y + view.height, x1 = view.x, y1 = view.y;
   for (const Vec3& p : model_points) {
@@ -204,7 +246,9 @@ void draw_worst_marker(Image& figure, const Figure& f, const HexMesh& mesh, cons
   }
   draw_worst_label_outside(figure, view, {x0, y0, x1, y1}, cx, cy, radius,
                            "max " + display_number(worst.density, 3) + ", hex " + std::to_string(worst.hex) +
-                               (worst.on_boundary ? " (on the boundary)" : " (interior, seen through)") +
+                               (!worst.on_boundary   ? " (interior, seen through)"
+                                : f.worst_hidden     ? " (on the boundary, hidden: seen through)"
+                                                     : " (on the boundary)") +
                                f.worst_note,
                            f.style);
 }
@@ -357,22 +401,14 @@ Image render_error_density_boundary(const HexMesh& mesh, const Topology& topolog
   f.scene.triangles.push_back(std::move(faces));
   f.scene.lines.push_back(boundary_edge_lines(mesh, topology, f.scene.origin, kBoundaryEdgeColor,
                                               static_cast<float>(std::max(1.0, f.style.scale))));
-  // An interior max shows through the boundary (a boundary one is drawn already).
-  if (!worst.on_boundary) add_worst_overlay(f, mesh, worst, scale);
-  // A boundary max whose faces this side does not show (on the far side,
-  // behind a fold or edge-on): the ring marks where it is, the label says
-  // its colour is not what the ring encloses.
-  if (worst.on_boundary && worst.hex != kNoIndex) {
-    const std::vector<Index> max_hex{worst.hex};
-    if (error_density_cells_behind_boundary(mesh, topology, max_hex, f.camera, f.layout.view.width,
-                                            f.layout.view.height, renderer)
-            .front())
-      f.worst_note = "; its faces not seen from here";
-  }
+  // A max the boundary hides from here (interior, or a boundary one whose
+  // faces this side does not show: on the far side, behind a fold or
+  // edge-on) shows through it, so the dashed ring circles the max itself,
+  // not other hexes' faces (issue 48h round 2).
+  f.worst_hidden = max_hex_behind_boundary(f, mesh, topology, worst, renderer);
+  if (f.worst_hidden) add_worst_overlay(f, mesh, worst, scale);
   // The ring as drawn (issue 48h: was a black box).
-  f.bar.swatches.push_back(worst.on_boundary
-                               ? ColorBarSwatch{Color{0.08, 0.08, 0.08}, "ring: max (on the boundary)", SwatchShape::solid_ring}
-                               : ColorBarSwatch{Color{0.08, 0.08, 0.08}, "ring: max (dashed: interior)", SwatchShape::dashed_ring});
+  f.bar.swatches.push_back(worst_ring_swatch(worst, f.worst_hidden));
   return finish_figure(f, mesh, worst, options, renderer, camera, view);
 }
 
@@ -401,9 +437,8 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   f.scene.translucent.push_back(std::move(veil));
   TriangleSet cells;
   cells.is_lit = false;
-  // casing: a veil-coloured outline under the edges of a cell the boundary
-  // hides (drawn over the veil for its exact colour, the casing says "inside
-  // the veil"). The max hex: its edges on the faces turned to the camera
+  // casing: a light outline under the edges of a cell the boundary hides,
+  // drawn under every fill (seen only beside the cell). The max hex: its edges on the faces turned to the camera
   // solid, the others (its back) thin and dashed, all drawn over nearer
   // cells; a white halo, black when its SJ is below the threshold (the thick
   // black edge's meaning kept).
@@ -424,6 +459,10 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   const auto add_dashed = [&](LineSet& set, const Vec3& a, const Vec3& b, Rgba8 color) {
     for (int d = 0; d < 7; d += 2) add_segment(set, a + (d / 7.0) * (b - a), a + ((d + 1) / 7.0) * (b - a), color);
   };
+  // The max hidden by the same test as the boundary figure's (issue 48h
+  // round 2: it was drawn solid, as if in front, where the boundary figure
+  // said its faces are not seen): then its front edges are dashed too.
+  f.worst_hidden = max_hex_behind_boundary(f, mesh, topology, worst, renderer);
   bool any_low = false, any_hidden = false, max_low = false;
   for (std::size_t k = 0; k < shown.size(); ++k) {
     const Index h = shown[k];
@@ -436,7 +475,8 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
     const double sj = cell_scaled_jacobian[static_cast<std::size_t>(h)];
     const bool low = sj < options.quality_threshold || is_verdict_sentinel(sj);
     any_low = any_low || low;
-    any_hidden = any_hidden || hidden[k];
+    const bool behind = h == worst.hex ? f.worst_hidden : static_cast<bool>(hidden[k]);
+    any_hidden = any_hidden || behind;
     LineSet& set = low ? low_edges : edges;
     const Rgba8 edge_color = low ? kLowCellEdgeColor : kCellEdgeColor;
     const std::array<bool, 12> front = h == worst.hex ? hex_edges_facing(mesh, hex, f.camera) : std::array<bool, 12>{};
@@ -446,24 +486,30 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
     }
     for (std::size_t e = 0; e < kHexEdges.size(); ++e) {
       const Vec3 &a = point(mesh, hex[kHexEdges[e][0]]), &b = point(mesh, hex[kHexEdges[e][1]]);
-      if (!hidden[k]) {
+      if (!behind) {
         add_segment(set, a, b, edge_color);
       } else {  // dashed (4 dashes, 3 gaps) on a veil-coloured casing
         add_segment(casing, a, b, kVeilOverWhite);
         add_dashed(set, a, b, edge_color);
       }
       if (h != worst.hex) continue;
-      if (front[e]) {  // the max's front edges: solid magenta on a halo
+      if (front[e] && !behind) {  // the max's front edges: solid magenta on a halo
         add_segment(halo, a, b, low ? kLowCellEdgeColor : Rgba8{255, 255, 255, 255});
         add_segment(halo_core, a, b, kMaxHexEdgeColor);
+      } else if (front[e]) {  // hidden: the same, dashed
+        add_dashed(halo, a, b, low ? kLowCellEdgeColor : Rgba8{255, 255, 255, 255});
+        add_dashed(halo_core, a, b, kMaxHexEdgeColor);
       } else {  // its back edges: thin, dashed
         add_dashed(max_back, a, b, kMaxHexEdgeColor);
       }
     }
   }
   f.scene.overlay.push_back(std::move(cells));
-  edges.in_overlay = low_edges.in_overlay = casing.in_overlay = halo.in_overlay = halo_core.in_overlay =
-      max_back.in_overlay = true;
+  // The casing under the fills (with the other lines, before the veil and
+  // the overlay's cells: issue 48h round 2, it was painted over them in the
+  // veil's colour): it shows only beside a cell, where it lifts the dashes
+  // off the veil; every fill keeps its colour of the bar.
+  edges.in_overlay = low_edges.in_overlay = halo.in_overlay = halo_core.in_overlay = max_back.in_overlay = true;
   // The max's wireframe over nearer cells (its back thin and dashed first).
   max_back.over_all = halo.over_all = halo_core.over_all = true;
   f.scene.lines.push_back(std::move(casing));
@@ -476,10 +522,11 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   // has a density); short lines, so the bar keeps its size.
   const std::string threshold = display_number(options.quality_threshold, 3);
   f.bar.swatches.clear();
-  f.bar.swatches.push_back(worst.on_boundary
-                               ? ColorBarSwatch{Color{0.08, 0.08, 0.08}, "ring: max (on the boundary)", SwatchShape::solid_ring}
-                               : ColorBarSwatch{Color{0.08, 0.08, 0.08}, "ring: max (dashed: interior)", SwatchShape::dashed_ring});
-  f.bar.swatches.push_back({to_color(kMaxHexEdgeColor), "max hex: its front edges", SwatchShape::thick_line});
+  f.bar.swatches.push_back(worst_ring_swatch(worst, f.worst_hidden));
+  f.bar.swatches.push_back(f.worst_hidden ? ColorBarSwatch{to_color(kMaxHexEdgeColor), "max hex: front edges (hidden)",
+                                                           SwatchShape::dashed_line}
+                                          : ColorBarSwatch{to_color(kMaxHexEdgeColor), "max hex: its front edges",
+                                                           SwatchShape::thick_line});
   f.bar.swatches.push_back({to_color(kMaxHexEdgeColor), "max hex: its back edges", SwatchShape::dashed_line});
   f.bar.swatches.push_back({to_color(kMaxHexEdgeColor), "  (drawn over nearer cells)", SwatchShape::text});
   f.bar.swatches.push_back({to_color(kVeilOverWhite), "boundary (veil)"});
@@ -490,7 +537,7 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
                               SwatchShape::thick_line});
   if (any_hidden) {
     f.bar.swatches.push_back({to_color(kCellEdgeColor), "dashed: behind the boundary", SwatchShape::dashed_line});
-    f.bar.swatches.push_back({to_color(kCellEdgeColor), "  (drawn over the veil, cased)", SwatchShape::text});
+    f.bar.swatches.push_back({to_color(kCellEdgeColor), "  (seen through the veil)", SwatchShape::text});
   }
   return finish_figure(f, mesh, worst, options, renderer, camera, view);
 }

@@ -20,7 +20,9 @@
 // Boundary faces unlit (the legend's colours exactly; edges give the depth). In both,
 // the densest hex is ringed (its projected extent plus a few pixels) and
 // labelled with its value and whether it is on the boundary (the ring dashed
-// when it is inside), the label in the free margin beside the model with a
+// when it is inside, or on the boundary but hidden from the viewpoint: then
+// "(on the boundary, hidden: seen through)", drawn through like an interior
+// one, and in the cells figure its front edges dashed too), the label in the free margin beside the model with a
 // leader line to the ring; an interior one is drawn
 // over everything in the boundary figure (in the cells figure it is one of
 // the cells, all drawn over the veil). Both from one upright,
