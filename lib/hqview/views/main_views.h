@@ -290,10 +290,6 @@ inline constexpr double kInvertedFaceLift = 2e-3;
 // at 1200 px height), in the face's colour, except within this share of a
 // coloured glyph's radius from its centre (the vertex it marks).
 inline constexpr double kInvertedOutlineWidth = 2.0, kInvertedOutlineCore = 0.5;
-// And the worst clusters' edge lines (scene lines[1]) where a glyph hides
-// them, outside the same core, in their colour times this (darker: they
-// read over a glyph of their own colour), 0.6 of their width.
-inline constexpr double kEdgeOverGlyphShade = 0.55;
 
 Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                        const OverlapReport* overlap, const Camera& camera, int view_height,
@@ -410,6 +406,8 @@ struct MainViewLabel {
   // anchor's edge) and whether it always has one (its glyph mostly hidden).
   std::optional<ScreenDisc> leader_from;
   bool always_leader = false;
+  // In a margin callout (issue 44 part V): it had no clear place near its glyph.
+  bool is_callout = false;
   PlacedLabel placement;
 };
 struct MainViewLabels {
@@ -510,9 +508,9 @@ MainViewLabels main_view_labels(const HexMesh& mesh, const Topology& topology, c
 // The figure: title, the 3D view, the labels (layout_main_view_labels:
 // every marker group with its number of findings "xN", the worst clusters
 // "#k (n)"), and a legend on the right. Where a glyph hides them (the id
-// image), the inverted faces' outlines (kInvertedOutlineWidth) and the
-// worst clusters' edge lines (kEdgeOverGlyphShade) are drawn over it, but
-// not within kInvertedOutlineCore of a coloured glyph's radius of its
+// image), the inverted faces' outlines (kInvertedOutlineWidth) are drawn
+// over it (the clusters' edge lines are not: over a glyph they showed other
+// clusters' colours, issue 44 part V round 2), but not within kInvertedOutlineCore of a coloured glyph's radius of its
 // centre (issue 44 part V).
 Image render_main_view(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                        const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& options,
