@@ -1843,8 +1843,8 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
   std::vector<ScreenDisc> worst_only;
   if (result.worst_glyph.radius > 0.0) worst_only.push_back(result.worst_glyph);
   LabelPlacer placer({}, options);
-  // Labels with no clear place near their glyph (a cluster's within
-  // kNearRings rings; a marker's nowhere): the callout columns below.
+  // Labels with no place near their glyph, or only one with an overlong
+  // leader: the callout columns below.
   std::vector<MainViewLabel> deferred;
   // The coloured glyphs' ranks: 0 to coloured_ids - 1 (ranked classes first).
   Index coloured_ids = 0;

@@ -478,15 +478,14 @@ void mark_main_view_annotations(IdImage& ids, const MainViewLabels& labels, cons
 // the centre, never reading as the label of a neighbouring fan; it wears the
 // colour of its kind. A marker label that
 // finds no such place is placed ignoring the other glyphs (never the worst
-// one), so the counts always add up. Issue 44 part V (pile-ups): a cluster
-// label that finds no clear place (place_labels' first pass; #0's: its
-// second, its leader over its own rings) within 6 rings of its glyph, and a
-// marker label with no free place, goes to a margin callout column or row
-// (place_callout_columns; its leader crosses no glyph ranked before its
-// own where the callouts allow), and a placed label in a callout's way
-// joins them; a cluster label is left out (omitted_clusters) only when the
-// callouts have no room for all (a marker label then sits at its anchor's
-// right, clamped to the view).
+// one), so the counts always add up. Issue 44 part V (pile-ups, round 2): a
+// label keeps its place near its glyph; one with no place, or only one
+// whose leader is longer than a third of the view's diagonal, goes to a
+// margin callout column or row (place_callout_columns), kept only if its
+// leader crosses no coloured glyph but its own class's, no near label or
+// leader, and is at most that long; else the near place, else a cluster
+// label is left out (omitted_clusters) and a marker label sits at its
+// anchor's right, clamped to the view. Near labels are never moved.
 // With ids (main_view_id_image; the rings are drawn over it first), a
 // cluster label points at a visible part of its own glyph: its leader starts 1 px inside the largest disc of the
 // glyph's visible pixels about the glyph's centre when that disc has at
