@@ -934,13 +934,16 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   // and hid them): opaque, unlit, in the inverted colour, with their edges,
   // moved towards the camera by kInvertedFaceLift of the model's diagonal
   // (they win over a surface mesh's fill and over coplanar folded faces),
-  // depth-tested like the mesh: a grey glyph in front covers them, and the
-  // ranked glyphs, drawn over the triangles, keep their colour (round 2:
-  // drawn over everything they turned #0 blue, far-side ones too).
+  // depth-tested against the mesh's fill, and under every glyph, grey or
+  // coloured, whatever its depth (one depth rule, issue 44 part V round 2:
+  // a far grey glyph was washed out by the fill while coloured ones were
+  // drawn over it; part U round 2: drawn over everything they turned #0
+  // blue). Their outlines show over the glyphs (draw_over_glyphs).
   const std::vector<BoundaryPolygon> inverted_faces = inverted_boundary_faces(topology, options).drawn;
   if (!inverted_faces.empty()) {
     TriangleSet faces;
     faces.is_lit = false;
+    faces.under_spheres = true;
     LineSet outline;
     outline.width = std::max(1.5f, options.wire_width);
     const double lift = kInvertedFaceLift * norm(box.hi - box.lo);
@@ -1370,7 +1373,7 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
       // One depth rule (issue 44 part V): drawn near and far, as the glyphs.
       lines.push_back({std::nullopt, "  " + std::string(drawn == faces ? "all " : "") + std::to_string(drawn) +
                                          " boundary faces drawn"});
-      lines.push_back({std::nullopt, "  (see-through, as glyphs)"});
+      lines.push_back({std::nullopt, "  (see-through, under glyphs)"});
     }
   }
   // An unrun check has no number and no swatch (nothing of its colours is
@@ -1563,23 +1566,32 @@ bool slide_leader_start(PlacedLabel& p, const ScreenDisc& from, const IdImage& i
 // Ids of the arrow fans' discs among the glyphs' (ranks) in place_labels.
 constexpr std::int64_t kFanIdBase = std::int64_t{1} << 40;
 
-// Rings of candidates a cluster label tries near its glyph before it goes
-// to a callout column (14 px each at scale 1: at most ~90 px away).
-constexpr int kNearRings = 6;
+// The longest leader a label gets, as a share of the view's diagonal
+// (issue 44 part V round 2: callout leaders of 540-700 px at 1600 x 1200).
+constexpr double kMaxLeaderShare = 1.0 / 3.0;
 
-// The labels that found no clear place near their anchor (deferred), in
-// the margin callout columns (place_callout_columns, issue 44 part V): a
-// cluster's leader starts inside its glyph's visible pixels (leader_from),
-// a marker's at its anchor's edge; the slots avoid the labels placed, the
-// glyph discs, #0's rings and the fans, and (with an id image) the model's
-// pixels where they can. A placed label whose box or leader a callout
-// leader would meet, or whose leader would cross a callout box, joins the
-// callouts, and the columns are laid out again. When the columns cannot
-// hold them all: a marker label at its anchor's right, clamped to the view
-// (the counts add up), a cluster label left out (omitted_clusters).
+double leader_length(const PlacedLabel& p) {
+  return p.has_leader ? std::hypot(p.leader_x1 - p.leader_x0, p.leader_y1 - p.leader_y0) : 0.0;
+}
+
+// The labels that found no place near their anchor, or only one with a
+// leader longer than max_leader (deferred; such a label's placement is that
+// place, its fallback), in the margin callout columns (place_callout_columns,
+// issue 44 part V): a cluster's leader starts inside its glyph's visible
+// pixels (leader_from), a marker's at its anchor's edge; the slots avoid the
+// labels placed, the glyph discs, #0's rings and the fans, and (with an id
+// image) the model's pixels where they can. The labels placed near their
+// glyphs stay where they are (round 2: round 1 moved those in a callout
+// leader's way into the callouts too, #0's short leader became 700 px).
+// A callout is kept only if its leader crosses no coloured glyph (ids below
+// coloured_ids) but its own tie class's, no placed label's box or leader,
+// and is at most max_leader long (and, for a label with a fallback, shorter
+// than the fallback's); else the fallback, else a marker label at its
+// anchor's right, clamped to the view (the counts add up), a cluster label
+// left out (omitted_clusters).
 void place_main_view_callouts(MainViewLabels& result, std::vector<MainViewLabel> deferred,
                               std::span<const ScreenDisc> obstacles, const IdImage& seen, const AnnotationStyle& style,
-                              const LabelLayoutOptions& options) {
+                              const LabelLayoutOptions& options, Index coloured_ids, double max_leader) {
   auto cost = [&](const PixelRect& box) {
     // 0.15 px of leader per model pixel hidden: empty margin first.
     double covered = 0.0;
@@ -1587,36 +1599,49 @@ void place_main_view_callouts(MainViewLabels& result, std::vector<MainViewLabel>
       for (int x = box.x; x < box.x + box.width; ++x) covered += seen.at(x, y, kIdBackground) != kIdBackground ? 1.0 : 0.0;
     return 0.15 * covered;
   };
-  std::vector<MainViewLabel> moved;  // near labels moved into the callouts (restored on failure)
+  // The near labels and the fallbacks: callouts keep clear of them all.
+  std::vector<PlacedLabel> kept;
+  for (const MainViewLabel& l : result.labels) kept.push_back(l.placement);
+  for (const MainViewLabel& l : deferred)
+    if (l.placement.box.width > 0) kept.push_back(l.placement);
   std::vector<PlacedLabel> placed;
-  for (int round = 0; round < 16 && !deferred.empty(); ++round) {
-    std::vector<PixelRect> taken;
-    for (const MainViewLabel& l : result.labels) taken.push_back(l.placement.box);
+  std::vector<PixelRect> taken;
+  for (const PlacedLabel& k : kept) taken.push_back(k.box);
+  // Their leaders and boxes as chains of small discs that a callout leader
+  // avoids where it can, as it does the coloured glyphs (ids below
+  // protect, a crossing costing 10^6 in place_callout_columns; the grey
+  // glyphs' ids dropped, so that crossing them costs nothing), so that the
+  // checks below pass.
+  std::vector<ScreenDisc> avoid(obstacles.begin(), obstacles.end());
+  for (ScreenDisc& d : avoid)
+    if (d.id >= coloured_ids && d.id < kFanIdBase) d.id = -1;
+  const std::int64_t kept_id = coloured_ids, protect = coloured_ids + 1;
+  for (const PlacedLabel& k : kept) {
+    if (k.has_leader) {
+      const double length = leader_length(k);
+      const int n = std::max(1, static_cast<int>(std::ceil(length / 3.0)));
+      for (int i = 0; i <= n; ++i) {
+        const double t = static_cast<double>(i) / n;
+        avoid.push_back({k.leader_x0 + t * (k.leader_x1 - k.leader_x0), k.leader_y0 + t * (k.leader_y1 - k.leader_y0), 1.5,
+                         kept_id});
+      }
+    }
+    const double r = 0.5 * k.box.height;
+    for (double x = k.box.x + r; x <= k.box.x + k.box.width - r + 0.5 * r; x += r)
+      avoid.push_back({std::min(x, k.box.x + k.box.width - r), k.box.y + r, r, kept_id});
+  }
+  for (int round = 0; round < 8 && !deferred.empty(); ++round) {
     std::vector<CalloutLabel> requests;
     for (const MainViewLabel& l : deferred) {
       const int size = l.kind == MainViewLabel::Kind::cluster ? cluster_label_size(style) : marker_label_size(style);
       const LabelRequest r = label_request(l.text, size, l.anchor, style);
-      // Its leader crosses no glyph ranked before its own (a marker's: #0).
-      requests.push_back({l.leader_from.value_or(l.anchor), r.width, r.height,
-                          l.kind == MainViewLabel::Kind::cluster ? l.protect_end : 1});
+      // Its leader crosses no coloured glyph (but its own), label or leader
+      // where the columns allow.
+      requests.push_back({l.leader_from.value_or(l.anchor), r.width, r.height, protect});
     }
-    placed = place_callout_columns(requests, obstacles, taken, options.bounds, options.gap,
+    placed = place_callout_columns(requests, avoid, taken, options.bounds, options.gap,
                                    seen.empty() ? std::function<double(const PixelRect&)>{} : cost);
     if (placed.empty()) break;
-    // Near labels in the callouts' way join them.
-    bool is_moved = false;
-    for (std::size_t k = result.labels.size(); k-- > 0;) {
-      const PlacedLabel& near = result.labels[k].placement;
-      const bool in_way = std::any_of(placed.begin(), placed.end(), [&](const PlacedLabel& p) {
-        return leaders_cross(p, near) || leader_meets_box(p, near.box) || leader_meets_box(near, p.box);
-      });
-      if (!in_way) continue;
-      moved.push_back(result.labels[k]);
-      deferred.push_back(result.labels[k]);
-      result.labels.erase(result.labels.begin() + static_cast<std::ptrdiff_t>(k));
-      is_moved = true;
-    }
-    if (is_moved) continue;
     // A cluster's leader ends on its glyph's pixels (past a line over it),
     // else it starts again from the pixels no line covers.
     bool is_again = false;
@@ -1631,23 +1656,39 @@ void place_main_view_callouts(MainViewLabels& result, std::vector<MainViewLabel>
       l.leader_from = strict.leader_from;
       is_again = true;
     }
-    if (is_again) continue;
-    for (std::size_t i = 0; i < deferred.size(); ++i) {
-      deferred[i].placement = placed[i];
-      deferred[i].always_leader = true;
-      result.labels.push_back(deferred[i]);
+    if (!is_again) break;
+  }
+  auto crosses_coloured = [&](const MainViewLabel& l, const PlacedLabel& p) {
+    const std::int64_t own_end = std::max<std::int64_t>(l.cluster + 1, l.protect_end);
+    return std::any_of(result.coloured_glyphs.begin(), result.coloured_glyphs.end(), [&](const ScreenDisc& d) {
+      const bool own = l.kind == MainViewLabel::Kind::cluster && d.id >= l.cluster && d.id < own_end;
+      return !own && d.id < coloured_ids && leader_meets_disc(p, ScreenDisc{d.x, d.y, d.radius - 0.5, d.id});
+    });
+  };
+  for (std::size_t i = 0; i < deferred.size(); ++i) {
+    MainViewLabel& label = deferred[i];
+    const bool has_fallback = label.placement.box.width > 0;
+    if (i < placed.size()) {
+      const PlacedLabel& p = placed[i];
+      bool ok = leader_length(p) <= max_leader && !crosses_coloured(label, p) &&
+                (!has_fallback || leader_length(p) < leader_length(label.placement));
+      for (std::size_t k = 0; ok && k < kept.size(); ++k) {
+        const PlacedLabel& near = kept[k];
+        if (has_fallback && near.box.x == label.placement.box.x && near.box.y == label.placement.box.y) continue;
+        ok = !leaders_cross(p, near) && !leader_meets_box(p, near.box) && !leader_meets_box(near, p.box);
+      }
+      if (ok) {
+        label.placement = p;
+        label.always_leader = true;
+        label.is_callout = true;
+        result.labels.push_back(label);
+        continue;
+      }
     }
-    return;
-  }
-  // No room for them all: the near labels moved stay where they were.
-  for (const MainViewLabel& m : moved) {
-    result.labels.push_back(m);
-    deferred.erase(std::find_if(deferred.begin(), deferred.end(), [&](const MainViewLabel& d) {
-      return d.kind == m.kind && d.cluster == m.cluster && d.text == m.text && d.anchor.x == m.anchor.x &&
-             d.anchor.y == m.anchor.y;
-    }));
-  }
-  for (MainViewLabel& label : deferred) {
+    if (has_fallback) {
+      result.labels.push_back(label);
+      continue;
+    }
     if (label.kind == MainViewLabel::Kind::cluster) {
       ++result.omitted_clusters;
       result.unlabelled_clusters.push_back(label.cluster);
@@ -1816,9 +1857,14 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
   std::vector<ScreenDisc> worst_only;
   if (result.worst_glyph.radius > 0.0) worst_only.push_back(result.worst_glyph);
   LabelPlacer placer({}, options);
-  // Labels with no clear place near their glyph (a cluster's within
-  // kNearRings rings; a marker's nowhere): the callout columns below.
+  // Labels with no place near their glyph, or only one with an overlong
+  // leader: the callout columns below.
   std::vector<MainViewLabel> deferred;
+  // The coloured glyphs' ranks: 0 to coloured_ids - 1 (ranked classes first).
+  Index coloured_ids = 0;
+  for (Index t : drawn.tie_class) coloured_ids += t < drawn.coloured_classes ? 1 : 0;
+  const double max_leader =
+      kMaxLeaderShare * std::hypot(static_cast<double>(layout.view.width), static_cast<double>(layout.view.height));
   for (MainViewLabel& label : order) {
     const bool is_cluster = label.kind == MainViewLabel::Kind::cluster;
     const int size = is_cluster ? cluster_label_size(style) : marker_label_size(style);
@@ -1829,17 +1875,20 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
     // A tie's label: nor any glyph of its class (issue 44 part U).
     request.protect_below = is_cluster ? label.protect_end : 1;
     request.strict_leaders = true;
-    // A cluster's label near its glyph only where it is clear (issue 44
-    // part V: beside a pile-up it went 200 px away or over other rings):
-    // else in a callout column.
-    // (#0's own label sits outside its rings, its leader over them: a
-    // leader over a disc of another id, so pass 1.)
-    if (is_cluster) {
-      request.max_pass = label.cluster == 0 && !result.worst_is_tied ? 1 : 0;
-      request.max_rings = kNearRings;
-    }
+    // Near its glyph wherever the placer finds a place, as before the
+    // callouts (issue 44 part V round 2: a label with a clear near place
+    // keeps it; round 1 sent labels with no clear place within 90 px to the
+    // callouts, and moved bunny's, kitten's and Dolphin_padded's fine
+    // labels), unless its leader runs longer than kMaxLeaderShare of the
+    // view's diagonal: then a callout, if one is nearer.
     std::optional<PlacedLabel> placed = placer.place(request, all_obstacles);
     if (!placed && !is_cluster) placed = placer.place(request, worst_only);
+    if (placed && placed->has_leader && leader_length(*placed) > max_leader) {
+      label.placement = *placed;  // the fallback if no callout is nearer
+      placer.add(*placed);        // (kept free for it)
+      deferred.push_back(label);
+      continue;
+    }
     if (!placed) {
       deferred.push_back(label);
       continue;
@@ -1863,7 +1912,7 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
     placer.add(*placed);
     result.labels.push_back(label);
   }
-  place_main_view_callouts(result, deferred, all_obstacles, seen, style, options);
+  place_main_view_callouts(result, deferred, all_obstacles, seen, style, options, coloured_ids, max_leader);
   result.ids = std::move(seen);
   return result;
 }
@@ -2014,17 +2063,13 @@ void draw_segments_over_glyphs(Image& figure, std::span<const ColouredSegment> s
 }
 
 // What view A draws over the glyphs that hide it (issue 44 part V), outside
-// the coloured glyphs' cores: the worst clusters' edge lines (scene
-// lines[1]: the opaque coloured glyphs hid them), kEdgeOverGlyphShade of
-// their colour so that they read over a glyph of their own colour; and the outlines of the
-// inverted faces drawn (scene 5b: the tilted grid's one inverted face was
+// the coloured glyphs' cores: the outlines of the inverted faces drawn (scene 5b: the tilted grid's one inverted face was
 // 75 % under #0, one of hole_pushed's three wholly), in the face's colour,
 // kInvertedOutlineWidth px (times the scale, at least 2 px: a thinner
 // antialiased line has no pixel of the face's own colour).
 // The outlines also over the glyphs' rings (their pale halos hid the rest
 // of a small face; drawn after them).
-void draw_over_glyphs(Image& figure, const HexMesh& mesh, const Topology& topology, const Scene& scene,
-                      const MainViewOptions& scaled, const Camera& camera, const PixelRect& view, const IdImage& ids,
+void draw_over_glyphs(Image& figure, const HexMesh& mesh, const Topology& topology, const MainViewOptions& scaled, const Camera& camera, const PixelRect& view, const IdImage& ids,
                       const MainViewLabels& labels, const GlyphResult& glyphs, const AnnotationStyle& style) {
   const std::span<const ScreenDisc> coloured = labels.coloured_glyphs;
   std::vector<ScreenDisc> rings;
@@ -2037,22 +2082,6 @@ void draw_over_glyphs(Image& figure, const HexMesh& mesh, const Topology& topolo
     d.radius = worst_rings_extent(d.radius, !glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0, style);
     rings.push_back(d);
   }
-  std::vector<ColouredSegment> edges;
-  if (scene.lines.size() > 1) {
-    const LineSet& set = scene.lines[1];
-    auto at = [&](std::uint32_t i) {
-      const Vec3f& p = set.positions[i];
-      return scene.origin + Vec3{p.x, p.y, p.z};
-    };
-    for (std::size_t i = 0; i + 1 < set.indices.size(); i += 2)
-      edges.push_back({at(set.indices[i]), at(set.indices[i + 1]), set.colors[set.indices[i]]});
-  }
-  // Over a glyph (of its own colour, as a rule) in its colour darkened.
-  for (ColouredSegment& e : edges)
-    e.color = {static_cast<std::uint8_t>(e.color.r * kEdgeOverGlyphShade), static_cast<std::uint8_t>(e.color.g * kEdgeOverGlyphShade),
-               static_cast<std::uint8_t>(e.color.b * kEdgeOverGlyphShade), 255};
-  draw_segments_over_glyphs(figure, edges, camera, view, ids, coloured,
-                            std::max(1.0, 0.6 * scaled.cluster_edge_width * style.scale), std::nullopt);
   std::vector<ColouredSegment> outlines;
   for (const BoundaryPolygon& face : inverted_boundary_faces(topology, scaled).drawn) {
     const Rgba8 color = scaled.surface_cell_quality
@@ -2126,7 +2155,7 @@ Image render_main_view(const HexMesh& mesh, const Topology& topology, const Glyp
   const MainViewLabels labels =
       layout_main_view_labels(glyphs, overlap, camera, layout, style, scaled, ids.empty() ? nullptr : &ids);
   draw_glyph_rings(figure, labels, glyphs, style, scaled);
-  draw_over_glyphs(figure, mesh, topology, scene, scaled, camera, layout.view, ids, labels, glyphs, style);
+  draw_over_glyphs(figure, mesh, topology, scaled, camera, layout.view, ids, labels, glyphs, style);
   draw_main_view_labels(figure, labels, style, scaled);
   draw_main_legend(figure, glyphs, overlap, layout, style, scaled, labels.glyph_scale, labels.hidden_clusters,
                    labels.left_out_glyphs, labels.unlabelled_clusters, labels.worst_glyph.radius);

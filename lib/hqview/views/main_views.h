@@ -126,7 +126,7 @@ struct MainViewOptions {
   // What main_view_frame found (inverted_boundary_faces) for the legend:
   // the faces drawn, the inverted cells, their boundary faces. A volume
   // mesh's legend says "inverted cells: N", then "  all F boundary faces
-  // drawn" / "  (see-through, as glyphs)", "  their F boundary faces" /
+  // drawn" / "  (see-through, under glyphs)", "  their F boundary faces" /
   // "  not drawn (more than 64)" over the limit, or "  none on the
   // boundary".
   std::size_t inverted_overlay_faces = 0;
@@ -299,10 +299,6 @@ inline constexpr double kInvertedFaceLift = 2e-3;
 // at 1200 px height), in the face's colour, except within this share of a
 // coloured glyph's radius from its centre (the vertex it marks).
 inline constexpr double kInvertedOutlineWidth = 2.0, kInvertedOutlineCore = 0.5;
-// And the worst clusters' edge lines (scene lines[1]) where a glyph hides
-// them, outside the same core, in their colour times this (darker: they
-// read over a glyph of their own colour), 0.6 of their width.
-inline constexpr double kEdgeOverGlyphShade = 0.55;
 
 Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                        const OverlapReport* overlap, const Camera& camera, int view_height,
@@ -419,6 +415,8 @@ struct MainViewLabel {
   // anchor's edge) and whether it always has one (its glyph mostly hidden).
   std::optional<ScreenDisc> leader_from;
   bool always_leader = false;
+  // In a margin callout (issue 44 part V): it had no clear place near its glyph.
+  bool is_callout = false;
   PlacedLabel placement;
 };
 struct MainViewLabels {
@@ -489,15 +487,14 @@ void mark_main_view_annotations(IdImage& ids, const MainViewLabels& labels, cons
 // the centre, never reading as the label of a neighbouring fan; it wears the
 // colour of its kind. A marker label that
 // finds no such place is placed ignoring the other glyphs (never the worst
-// one), so the counts always add up. Issue 44 part V (pile-ups): a cluster
-// label that finds no clear place (place_labels' first pass; #0's: its
-// second, its leader over its own rings) within 6 rings of its glyph, and a
-// marker label with no free place, goes to a margin callout column or row
-// (place_callout_columns; its leader crosses no glyph ranked before its
-// own where the callouts allow), and a placed label in a callout's way
-// joins them; a cluster label is left out (omitted_clusters) only when the
-// callouts have no room for all (a marker label then sits at its anchor's
-// right, clamped to the view).
+// one), so the counts always add up. Issue 44 part V (pile-ups, round 2): a
+// label keeps its place near its glyph; one with no place, or only one
+// whose leader is longer than a third of the view's diagonal, goes to a
+// margin callout column or row (place_callout_columns), kept only if its
+// leader crosses no coloured glyph but its own class's, no near label or
+// leader, and is at most that long; else the near place, else a cluster
+// label is left out (omitted_clusters) and a marker label sits at its
+// anchor's right, clamped to the view. Near labels are never moved.
 // With ids (main_view_id_image; the rings are drawn over it first), a
 // cluster label points at a visible part of its own glyph: its leader starts 1 px inside the largest disc of the
 // glyph's visible pixels about the glyph's centre when that disc has at
@@ -519,9 +516,9 @@ MainViewLabels main_view_labels(const HexMesh& mesh, const Topology& topology, c
 // The figure: title, the 3D view, the labels (layout_main_view_labels:
 // every marker group with its number of findings "xN", the worst clusters
 // "#k (n)"), and a legend on the right. Where a glyph hides them (the id
-// image), the inverted faces' outlines (kInvertedOutlineWidth) and the
-// worst clusters' edge lines (kEdgeOverGlyphShade) are drawn over it, but
-// not within kInvertedOutlineCore of a coloured glyph's radius of its
+// image), the inverted faces' outlines (kInvertedOutlineWidth) are drawn
+// over it (the clusters' edge lines are not: over a glyph they showed other
+// clusters' colours, issue 44 part V round 2), but not within kInvertedOutlineCore of a coloured glyph's radius of its
 // centre (issue 44 part V).
 Image render_main_view(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                        const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& options,
