@@ -177,7 +177,7 @@ double covered_share(const ScreenDisc& disc, std::span<const ScreenDisc> over);
 // nearest spot (steps of 0.2 radius up to 4 radii, turned up to 90 degrees)
 // where at most that share is covered (else the least covered). Returns each
 // disc's move in pixels ({0, 0}: not moved).
-inline constexpr double kLocalMaxCoveredShare = 0.4;
+inline constexpr double kLocalMaxCoveredShare = 0.2;
 // View D numbers corners in up to this many layouts, those with no room in
 // the last going first (local_shot).
 inline constexpr int kLocalLayoutRounds = 6;
