@@ -455,8 +455,10 @@ void expect_local_labels_apart(const Mesh& mesh, Index v, const DetailViewOption
   EXPECT_EQ(shot.num_left_out, left_out);
   local_left_out += static_cast<int>(left_out);
   local_corners += static_cast<int>(corners.size());
-  // Never most of a ring: at most a quarter of its corners.
-  EXPECT_LE(4 * left_out, corners.size());
+  // Never most of a ring: at 1600 x 1200 at most a quarter of its corners
+  // (at 800 x 600 the whole ring's 22-24 corners leave out up to 13: those
+  // ranked after the first with no room, 46w review M2).
+  EXPECT_LE((options.width >= 1600 ? 4 : 1) * left_out, corners.size());
   const PixelRect& view = shot.layout.view;
   // The leader cap: kLocalMaxLeaderLabels label heights.
   EXPECT_NEAR(shot.max_leader, kLocalMaxLeaderLabels * std::lround(1.15 * shot.text_size), 1e-9);
@@ -471,6 +473,22 @@ void expect_local_labels_apart(const Mesh& mesh, Index v, const DetailViewOption
     if (k > 0) EXPECT_LE(numbers[k - 1].second, numbers[k].second);
   }
   if (corners.size() > kLocalMaxFullLabels) EXPECT_EQ(numbers.size() + left_out, corners.size());
+  // "1 = worst" over the whole ring (46w review C1): number k is the k-th
+  // smallest value of all corners, and with any number no corner keeps a
+  // full label; those left out are the best (M2: never worse than a
+  // numbered one).
+  std::vector<double> all_values;
+  for (const VertexCorner& c : corners) all_values.push_back(c.value);
+  std::sort(all_values.begin(), all_values.end());
+  for (std::size_t k = 0; k < numbers.size(); ++k) EXPECT_EQ(numbers[k].second, all_values[k]) << "number " << k + 1;
+  if (!numbers.empty()) {
+    for (std::size_t i = 0; i < shot.labels.size(); ++i) {
+      EXPECT_FALSE(shot.labels[i].placed && shot.labels[i].number == 0) << shot.labels[i].text << " labelled in full";
+      if (!shot.labels[i].placed) {
+        EXPECT_GE(corners[i].value, numbers.back().second) << shot.labels[i].text;
+      }
+    }
+  }
   local_callouts_checked += static_cast<int>(numbers.size());
   EXPECT_EQ(shot.table_box.width > 0, !numbers.empty() || left_out > 0);
   if (!numbers.empty()) EXPECT_GE(shot.table_box.x, view.x + view.width);
@@ -530,6 +548,25 @@ void expect_local_labels_apart(const Mesh& mesh, Index v, const DetailViewOption
     discs.push_back({c[0], c[1], r});
   }
   EXPECT_EQ(discs.size(), 2 * corners.size() + 2);
+  // No disc mostly hidden (46w review C1, M1: one under the vertex's dot,
+  // one under another disc, whose numbers read as the other's): of each
+  // corner's rim disc (drawn bottom up, rim then fill) at most half lies
+  // under the discs drawn after it (a 41 x 41 grid over it).
+  for (std::size_t k = 0; k + 2 < discs.size(); k += 2) {
+    int samples = 0, hidden = 0;
+    for (int a = -20; a <= 20; ++a)
+      for (int b = -20; b <= 20; ++b) {
+        if (a * a + b * b > 400) continue;
+        ++samples;
+        const double x = discs[k].x + discs[k].r * a / 20.0, y = discs[k].y + discs[k].r * b / 20.0;
+        for (std::size_t j = k + 2; j < discs.size(); ++j)
+          if (std::hypot(x - discs[j].x, y - discs[j].y) <= discs[j].r) {
+            ++hidden;
+            break;
+          }
+      }
+    EXPECT_LE(2 * hidden, samples) << "disc " << k / 2 << " of the stack at " << discs[k].x << ", " << discs[k].y;
+  }
   const double halo = 0.5 * kLocalHaloWidths * local_leader_width(shot.style.scale);
   for (std::size_t i = 0; i < shot.labels.size(); ++i) {
     const LocalLabel& a = shot.labels[i];
@@ -557,7 +594,9 @@ void expect_local_labels_apart(const Mesh& mesh, Index v, const DetailViewOption
     const PlacedLabel la = leader_of(a);
     if (a.has_leader) {
       // Short, and through no other corner's disc nor the vertex's dot.
-      EXPECT_LE(std::hypot(a.leader_x1 - a.leader_x0, a.leader_y1 - a.leader_y0), shot.max_leader) << a.text;
+      EXPECT_LE(std::hypot(a.leader_x1 - a.leader_x0, a.leader_y1 - a.leader_y0),
+                (a.number > 0 ? kLocalFarLeaderShare : 1.0) * shot.max_leader)
+          << a.text;
       EXPECT_FALSE(leader_meets_disc(la, shot.dot)) << a.text << "'s leader through the vertex";
     }
     for (std::size_t j = 0; j < shot.labels.size(); ++j) {
@@ -606,10 +645,56 @@ TEST(HybridViews, ViewDLabelsNeverOverlapOnManyVerticesMeshesAndSizes) {
   expect_local_labels_apart(box, point_at(box, {0.5, 0.5, 0.5}), large, labels_checked);
   EXPECT_GT(labels_checked, 300);
   EXPECT_GT(local_callouts_checked, 50);  // dense rings were numbered
-  // Left out, over all: at most 1 % (2 of 444; 17 when the leaders kept
-  // their halo off the discs' rims in a view framed on the whole ring:
-  // kLocalFrameShare).
-  EXPECT_LE(100 * local_left_out, local_corners) << local_left_out << " of " << local_corners;
+  // Left out, over all: at most 8 % (31 of 444 with the whole ring framed
+  // and every corner ranked after the first with no room left out; round 1's
+  // closer frame left out 2 but cut the ring: 46w review C3, M3).
+  EXPECT_LE(100 * local_left_out, 8 * local_corners) << local_left_out << " of " << local_corners;
+}
+
+// The spider (46w review C1, M1: a disc under the vertex's dot, one under
+// another disc, so its number read as the other's): hand-placed discs on
+// screen; after the moves no disc has more than kLocalMaxCoveredShare of it
+// under the dot and the discs above it (counted here on a fine grid), a
+// free disc stays put, and the stack runs worst first, the later of a tie
+// on top, NaN at the bottom.
+TEST(HybridViews, ViewDSpiderMovesHiddenDiscsOut) {
+  const double nan = std::nan("");
+  EXPECT_EQ(local_stack_order(std::vector<double>{0.5, 0.2, nan, 0.2}), (std::vector<std::size_t>{3, 1, 0, 2}));
+  const ScreenDisc dot{100, 100, 5, -1};
+  // 0: under the dot; 1: free; 2: under 3 (3 is worse: above it); 3: free.
+  const std::vector<ScreenDisc> discs{{101, 100, 6, 0}, {200, 100, 6, 1}, {151, 140, 6, 2}, {150, 140, 6, 3}};
+  const std::vector<std::size_t> top_down{3, 0, 1, 2};
+  const auto moves = local_spider_moves(discs, top_down, dot);
+  ASSERT_EQ(moves.size(), discs.size());
+  EXPECT_EQ(moves[1][0], 0.0);
+  EXPECT_EQ(moves[1][1], 0.0);
+  EXPECT_EQ(moves[3][0], 0.0);
+  EXPECT_EQ(moves[3][1], 0.0);
+  std::vector<ScreenDisc> over{dot};
+  for (std::size_t i : top_down) {
+    ScreenDisc d = discs[i];
+    d.x += moves[i][0], d.y += moves[i][1];
+    int samples = 0, hidden = 0;
+    for (int a = -30; a <= 30; ++a)
+      for (int b = -30; b <= 30; ++b) {
+        if (a * a + b * b > 900) continue;
+        ++samples;
+        const double x = d.x + d.radius * a / 30.0, y = d.y + d.radius * b / 30.0;
+        for (const ScreenDisc& o : over)
+          if (std::hypot(x - o.x, y - o.y) <= o.radius) {
+            ++hidden;
+            break;
+          }
+      }
+    EXPECT_LE(hidden, (kLocalMaxCoveredShare + 0.03) * samples) << "disc " << i;
+    over.push_back(d);
+  }
+  // Before the moves discs 0 and 2 were mostly hidden (the test has teeth).
+  EXPECT_GT(covered_share(discs[0], std::vector<ScreenDisc>{dot}), 0.6);
+  EXPECT_GT(covered_share(discs[2], std::vector<ScreenDisc>{discs[3]}), 0.8);
+  // Disc 0 moved away from the dot, not past 4 radii.
+  EXPECT_GT(moves[0][0], 0.0);
+  EXPECT_LE(std::hypot(moves[0][0], moves[0][1]), 4.0 * discs[0].radius + 1e-9);
 }
 
 // View D's camera (46t2 review: hexwedge v128 was a flat elevation along

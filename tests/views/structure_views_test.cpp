@@ -224,6 +224,34 @@ TEST(StructureViews, GradationMaxCellIsTheFirstLargestFiniteValue) {
   EXPECT_EQ(gradation_max_label(std::vector<double>{1.0, 1.714}, mesh, 1), "max 1.71  hex 1");
 }
 
+// Whether the max cell is in sight (46w review C4: cyl's max cell was on
+// the far side, its solid outline over nearer cells): two unit cubes apart
+// on the x axis seen from +x: the near one is seen, the far one (its front
+// face behind the near cube, its other faces turned away) is on the far
+// side; from higher up in y the far cube's top face shows; a 3 x 3 x 3
+// grid's centre cell is inside, a corner cell seen or on the far side.
+TEST(StructureViews, GradationMaxCellSightFromTheCamera) {
+  HexMesh apart = test::box_grid(3, 1, 1);
+  apart.hexes.erase(apart.hexes.begin() + 1);  // cubes x in [0, 1] and [2, 3]
+  const std::vector<BoundaryPolygon> faces = boundary_polygons(build_topology(apart));
+  ASSERT_EQ(faces.size(), 12u);
+  Camera camera;
+  camera.eye = {10.0, 0.5, 0.5}, camera.target = {0.0, 0.5, 0.5}, camera.up = {0, 0, 1};
+  EXPECT_EQ(cell_sight(apart, faces, 1, camera), CellSight::seen);
+  EXPECT_EQ(cell_sight(apart, faces, 0, camera), CellSight::far_side);
+  camera.is_perspective = false;  // along the view direction: the same
+  EXPECT_EQ(cell_sight(apart, faces, 0, camera), CellSight::far_side);
+  camera.is_perspective = true;
+  camera.eye = {10.0, 4.0, 0.5};
+  EXPECT_EQ(cell_sight(apart, faces, 0, camera), CellSight::seen);
+  const HexMesh cube = test::box_grid(3, 3, 3);
+  const std::vector<BoundaryPolygon> cube_faces = boundary_polygons(build_topology(cube));
+  camera.eye = {10.0, 9.0, 8.0}, camera.target = {1.5, 1.5, 1.5};
+  EXPECT_EQ(cell_sight(cube, cube_faces, 13, camera), CellSight::inside);
+  EXPECT_EQ(cell_sight(cube, cube_faces, 26, camera), CellSight::seen);     // (2, 2, 2): the near corner
+  EXPECT_EQ(cell_sight(cube, cube_faces, 0, camera), CellSight::far_side);  // (0, 0, 0): the far corner
+}
+
 TEST(StructureViews, GradationColoursRunFromPaleToRedOnALogScale) {
   EXPECT_EQ(to_rgba8(gradation_color(1.0)).r, to_rgba8(sample_quality_map(1.0)).r);
   EXPECT_EQ(channel_distance(to_rgba8(gradation_color(2.0)), to_rgba8(sample_quality_map(0.5))), 0);

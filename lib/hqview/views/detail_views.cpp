@@ -610,6 +610,71 @@ Vec3 choose_local_viewpoint(std::span<const Vec3> face_areas, std::span<const Ve
 // facing the camera, kStackStep of the mean edge nearer the camera per rank,
 // the worst corner on top; the vertex itself (the scene's second sphere
 // set) is a dark disc above them all, so the view's subject is never hidden.
+std::vector<std::size_t> local_stack_order(std::span<const double> values) {
+  std::vector<std::size_t> order(values.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  const auto key = [&](std::size_t i) { return std::isnan(values[i]) ? 2.0 : values[i]; };
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key(a) > key(b); });
+  std::reverse(order.begin(), order.end());
+  return order;
+}
+
+double covered_share(const ScreenDisc& disc, std::span<const ScreenDisc> over) {
+  constexpr int kSteps = 8;
+  int samples = 0, covered = 0;
+  for (int a = -kSteps; a <= kSteps; ++a)
+    for (int b = -kSteps; b <= kSteps; ++b) {
+      const double u = static_cast<double>(a) / kSteps, w = static_cast<double>(b) / kSteps;
+      if (u * u + w * w > 1.0) continue;
+      ++samples;
+      const double x = disc.x + u * disc.radius, y = disc.y + w * disc.radius;
+      for (const ScreenDisc& o : over)
+        if (std::hypot(x - o.x, y - o.y) <= o.radius) {
+          ++covered;
+          break;
+        }
+    }
+  return samples > 0 ? static_cast<double>(covered) / samples : 0.0;
+}
+
+std::vector<std::array<double, 2>> local_spider_moves(std::span<const ScreenDisc> discs,
+                                                      std::span<const std::size_t> top_down, const ScreenDisc& dot) {
+  std::vector<std::array<double, 2>> moves(discs.size(), {0.0, 0.0});
+  std::vector<ScreenDisc> over{dot};
+  for (std::size_t i : top_down) {
+    if (i >= discs.size()) continue;
+    ScreenDisc d = discs[i];
+    if (covered_share(d, over) > kLocalMaxCoveredShare) {
+      // Away from the dot (or from what covers it most), the nearest free spot.
+      double ax = d.x - dot.x, ay = d.y - dot.y;
+      if (std::hypot(ax, ay) < 1e-6) {
+        ax = 0.0, ay = -1.0;
+        for (const ScreenDisc& o : over)
+          if (std::hypot(d.x - o.x, d.y - o.y) > 1e-6 && std::hypot(d.x - o.x, d.y - o.y) < o.radius + d.radius) {
+            ax = d.x - o.x, ay = d.y - o.y;
+            break;
+          }
+      }
+      const double base = std::atan2(ay, ax);
+      double best_share = 2.0;
+      ScreenDisc best = d;
+      for (int step = 1; step <= 20 && best_share > kLocalMaxCoveredShare; ++step)
+        for (double turn : {0.0, 30.0, -30.0, 60.0, -60.0, 90.0, -90.0}) {
+          const double a = base + turn * 3.14159265358979323846 / 180.0, t = 0.2 * step * d.radius;
+          ScreenDisc c = d;
+          c.x += t * std::cos(a), c.y += t * std::sin(a);
+          const double share = covered_share(c, over);
+          if (share < best_share - 1e-12) best_share = share, best = c;
+          if (share <= kLocalMaxCoveredShare) break;
+        }
+      moves[i] = {best.x - d.x, best.y - d.y};
+      d = best;
+    }
+    over.push_back(d);
+  }
+  return moves;
+}
+
 Scene local_marker_discs(const Scene& scene, const Camera& camera, const std::vector<double>& values, double size) {
   Scene out = scene;
   if (out.spheres.empty()) return out;
@@ -635,11 +700,11 @@ Scene local_marker_discs(const Scene& scene, const Camera& camera, const std::ve
     for (std::uint32_t k = 0; k < kSegments; ++k)
       discs.indices.insert(discs.indices.end(), {base, base + 1 + k, base + 1 + (k + 1) % kSegments});
   };
-  // Best first (lowest in the stack), ties by corner order; NaN lowest.
-  std::vector<std::size_t> order(markers.centers.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  const auto key = [&](std::size_t i) { return i < values.size() && !std::isnan(values[i]) ? values[i] : 2.0; };
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key(a) > key(b); });
+  // Best first (lowest in the stack): local_stack_order reversed.
+  std::vector<double> keys(markers.centers.size(), std::nan(""));
+  std::copy_n(values.begin(), std::min(values.size(), keys.size()), keys.begin());
+  std::vector<std::size_t> order = local_stack_order(keys);
+  std::reverse(order.begin(), order.end());
   const double step = kLocalStackStep * size;
   // The plane through the vertex (the scene's origin) facing the camera.
   const auto in_plane = [&](const Vec3f& c, double rank) {
@@ -716,12 +781,10 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
   // of 20 cells was one blob of discs (46q review Q-M1).
   std::vector<double> values;
   for (const VertexCorner& c : corners) values.push_back(c.value);
-  // The frame: the whole ring; when a corner finds no place there, the
-  // ring's vertices drawn kLocalFrameShare of the way from v (the ring's
-  // outer cells run out of the view), so the discs and their numbers get
-  // more of the view (46t2 review: 36 discs filled 22 % x 28 % of it).
-  const std::vector<Vec3> ring_points = cell_points(mesh, ring);
-  std::vector<Vec3> points = ring_points;
+  // The frame: the whole ring (46w review C3, M3: a closer frame cut the
+  // ring's cells at its clipping planes and lost its silhouette); corners
+  // with no room are listed in the table.
+  const std::vector<Vec3> points = cell_points(mesh, ring);
   std::vector<Vec3> centers;
   std::vector<double> base_radii;
   for (std::size_t i = 0; i < scene.spheres[0].centers.size(); ++i) {
@@ -741,6 +804,11 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return corners[a].value < corners[b].value; });
+
+  std::vector<std::size_t> rank(corners.size());
+  for (std::size_t k = 0; k < order.size(); ++k) rank[order[k]] = k;
+  std::vector<std::size_t> priority = order;  // the numbers' placing order
+  std::vector<bool> failed(corners.size(), false);  // no room for its number
 
   // Viewpoint: the corners' cells in depth (choose_local_viewpoint), the
   // discs apart (in the whole view: the same with or without the table).
@@ -768,12 +836,28 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
       return std::pair{view.x + 0.5 * (ndc.x + 1.0) * view.width, view.y + 0.5 * (1.0 - ndc.y) * view.height};
     };
     const double dot_radius = kLocalDiscScale * scene.spheres.at(1).radii.at(0) * pixels_per_unit;
-    shot.scene = local_marker_discs(drawn, shot.camera, values, mean_edge_at(mesh, corners, v));
     std::vector<ScreenDisc> markers;
     for (std::size_t i = 0; i < centers.size(); ++i) {
       const auto [x, y] = to_screen(centers[i]);
       markers.push_back({x, y, kLocalRimScale * radii[i] * pixels_per_unit, static_cast<std::int64_t>(i)});
     }
+    // Spider (46w review C1, M1): top down (the vertex's dot, then the worst
+    // corner's disc ...), a disc mostly under those drawn over it is moved
+    // on screen (in the plane facing the camera) out of them.
+    {
+      const auto [x, y] = to_screen(scene.origin);
+      const std::vector<std::array<double, 2>> moves =
+          local_spider_moves(markers, local_stack_order(values), ScreenDisc{x, y, dot_radius, -1});
+      const auto [right, up] = screen_axes(shot.camera);
+      for (std::size_t i = 0; i < markers.size(); ++i) {
+        if (moves[i][0] == 0.0 && moves[i][1] == 0.0) continue;
+        markers[i].x += moves[i][0], markers[i].y += moves[i][1];
+        const Vec3 shift = (moves[i][0] / pixels_per_unit) * right - (moves[i][1] / pixels_per_unit) * up;
+        Vec3f& c = drawn.spheres[0].centers[i];
+        c = to_vec3f(Vec3{c.x, c.y, c.z} + shift);
+      }
+    }
+    shot.scene = local_marker_discs(drawn, shot.camera, values, mean_edge_at(mesh, corners, v));
     // What no other label's leader or box may touch: each disc with its rim,
     // grown by the leaders' halo and a pixel (46t2 review: at 800 x 600 a
     // leader crossed a disc's rim, outside its fill).
@@ -865,23 +949,48 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
         shot.labels[i].has_leader = false;
         callouts.push_back(i);
       }
-    } else {
-      callouts = order;
+    }
+    // Any corner without room for its full label: every corner numbered by
+    // its rank over the whole ring, so the table's "1 = worst" holds (46w
+    // review C1: a numbered 0.932 was "1" beside two labelled 0.915).
+    if (!callouts.empty() || corners.size() > kLocalMaxFullLabels) {
+      for (LocalLabel& label : shot.labels) label.placed = false, label.has_leader = false;
+      kept.clear();
+      callouts = priority;
     }
     // Then the callouts: a number next to the disc, the same rules; its
     // value and cell in the table beside the view.
     LabelPlacer placer({}, layout);
+    // A number with no room within the cap may take a leader up to
+    // kLocalFarLeaderShare times as long (46w review M2: rather a long
+    // leader to a bad corner than a bad corner left out).
+    LabelLayoutOptions far_layout = layout;
+    far_layout.rings = static_cast<int>(std::ceil(kLocalFarLeaderShare * shot.max_leader / layout.ring_step)) + 1;
+    LabelPlacer far_placer({}, far_layout);
     for (std::size_t i : kept) {
       PlacedLabel p;
       const LocalLabel& l = shot.labels[i];
       p.box = l.box, p.has_leader = l.has_leader;
       p.leader_x0 = l.leader_x0, p.leader_y0 = l.leader_y0, p.leader_x1 = l.leader_x1, p.leader_y1 = l.leader_y1;
       placer.add(p);
+      far_placer.add(p);
     }
-    int number = 0;
+    const double cap = shot.max_leader;
+    const auto clear_far = [&](std::size_t i) {
+      shot.max_leader = kLocalFarLeaderShare * cap;
+      const bool ok = clear(i);
+      shot.max_leader = cap;
+      return ok;
+    };
+    // In `priority` (worst first, or those with no room in an earlier
+    // round first), each numbered by its rank; then every corner ranked
+    // after the first with no room is left out too, so those left out are
+    // the best (46w review M2: a 0.453 was left out while 1.000s were
+    // numbered).
+    std::fill(failed.begin(), failed.end(), false);
     for (std::size_t i : callouts) {
       LocalLabel& label = shot.labels[i];
-      label.number = number + 1;  // numbers only the placed ones: no gaps
+      label.number = static_cast<int>(rank[i]) + 1;
       const PixelRect extent = text_extent(std::to_string(label.number), shot.text_size, f.style);
       LabelRequest request{markers[i], extent.width + 6, label_height};
       request.protect_below = static_cast<std::int64_t>(obstacles.size());
@@ -895,9 +1004,13 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
         request.protect_below = static_cast<std::int64_t>(markers.size());
         p = place(placer, request, i);
       }
+      if (!p || (set_leader(label, *p), !clear(i))) {
+        request.protect_below = static_cast<std::int64_t>(obstacles.size());
+        p = place(far_placer, request, i);
+      }
       if (p) {
         set_leader(label, *p);
-        if (clear(i)) {
+        if (clear_far(i)) {
           label.placed = true;
           kept.push_back(i);
           PlacedLabel as_set = *p;
@@ -905,14 +1018,24 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
           as_set.leader_x0 = label.leader_x0, as_set.leader_y0 = label.leader_y0;
           as_set.leader_x1 = label.leader_x1, as_set.leader_y1 = label.leader_y1;
           placer.add(as_set);
-          ++number;
+          far_placer.add(as_set);
           continue;
         }
       }
       label.has_leader = false;
       label.number = 0;
-      ++shot.num_left_out;
+      failed[i] = true;
     }
+    std::size_t first_failed = corners.size();
+    for (std::size_t i = 0; i < corners.size(); ++i)
+      if (failed[i]) first_failed = std::min(first_failed, rank[i]);
+    for (std::size_t i : callouts)
+      if (rank[i] >= first_failed) {
+        LocalLabel& label = shot.labels[i];
+        label.placed = label.has_leader = false;
+        label.number = 0;
+        ++shot.num_left_out;
+      }
     return callouts.size();
   };
 
@@ -937,11 +1060,23 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
     if (lay_out(view) > 0) shot.table_box = {view.x + view.width + margin, view.y, table_width - margin, view.height};
   }
   };
+  // Up to kLocalLayoutRounds rounds: the corners with no room so far go
+  // first; the round leaving out the fewest is kept (the first on a tie).
   lay_out_with_table();
-  if (shot.num_left_out > 0) {
-    const Vec3& at = mesh.points[static_cast<std::size_t>(v)];
-    for (std::size_t i = 0; i < points.size(); ++i) points[i] = at + kLocalFrameShare * (ring_points[i] - at);
+  std::vector<bool> promoted(corners.size(), false);
+  for (int round = 1; round < kLocalLayoutRounds && shot.num_left_out > 0; ++round) {
+    bool more = false;
+    for (std::size_t i = 0; i < corners.size(); ++i) more = more || (failed[i] && !promoted[i]);
+    if (!more) break;
+    for (std::size_t i = 0; i < corners.size(); ++i) promoted[i] = promoted[i] || failed[i];
+    priority.clear();
+    for (std::size_t i : order)
+      if (promoted[i]) priority.push_back(i);
+    for (std::size_t i : order)
+      if (!promoted[i]) priority.push_back(i);
+    LocalShot best = shot;
     lay_out_with_table();
+    if (shot.num_left_out >= best.num_left_out) shot = std::move(best);
   }
   return shot;
 }
@@ -974,7 +1109,7 @@ Image render_local_shot(const LocalShot& shot, const DetailViewOptions& options,
   if (shot.num_left_out > 0)
     legend.insert(std::string_view(kLocalMarkerSizeLegend).size(),
                   "\n" + std::to_string(shot.num_left_out) + (shot.num_left_out == 1 ? " corner" : " corners") +
-                      " not placed\n(end of the table)");
+                      " not numbered\n(listed at the table's end)");
   const Figure f = detail_figure(options, shot.legend, shot.kind_swatches, true);
   ColorBar bar = detail_color_bar(legend, shot.kind_swatches, true);
   // The vertex's dot: a white disc on a black ring, its own legend entry.

@@ -2,6 +2,7 @@
 // Detail views: C, the sub-region of one glyph cluster, and D, the one-ring
 // of hexes around one vertex with the scaled Jacobian of each corner there.
 
+#include <array>
 #include <span>
 #include <string>
 #include <vector>
@@ -126,13 +127,9 @@ Scene build_local_scene(const HexMesh& mesh, const Topology& topology, std::span
 // 3/4 of the best a(d)); of them those with P(d) >= kLocalAreaShare times
 // the best kept P; of those the one whose discs (centers, radii) cover the
 // most area (as choose_viewpoints), ties to the first.
-// View D frames its whole ring; when a corner finds no place there, the
-// ring's vertices moved this share of the way from v
-// towards where they are: the outer parts of the ring's cells run out of the
-// view, the discs and their labels get more of it (46t2 review: 36 discs
-// filled 22 % x 28 % of the view; with their leaders kept off the discs'
-// rims, 17 of 444 corners of the label test found no place, 2 at 0.65).
-inline constexpr double kLocalFrameShare = 0.65;
+// View D frames its whole ring (46w review: a closer frame cut the ring's
+// cells and lost its silhouette); corners with no room are listed in the
+// table.
 inline constexpr double kLocalViewElevations[] = {20, 25, 30, 35, 40, 45, 50, 55, 60};
 inline constexpr double kLocalViewAzimuthStep = 5.0;
 inline constexpr double kLocalMinFaceAngle = 10.0;  // degrees
@@ -167,6 +164,28 @@ inline constexpr double kLocalHaloWidths = 3.0;
 inline double local_leader_width(double scale) { return scale * 1.2 > 1.0 ? scale * 1.2 : 1.0; }
 inline double local_leader_clearance(double leader_width) { return 0.5 * kLocalHaloWidths * leader_width + 1.0; }
 Scene local_marker_discs(const Scene& scene, const Camera& camera, const std::vector<double>& values, double size);
+// The discs' stack, top down: the worst corner first (NaN last; ties: the
+// later corner on top), as local_marker_discs draws them.
+std::vector<std::size_t> local_stack_order(std::span<const double> values);
+// The share (0-1) of `disc`'s area under the union of `over` (sampled on a
+// 17 x 17 grid over the disc).
+double covered_share(const ScreenDisc& disc, std::span<const ScreenDisc> over);
+// Spider (46w review: discs hidden under the vertex's dot or under another
+// disc got a number that read as the other's): going down the stack
+// (top_down), a disc with more than kLocalMaxCoveredShare of it under the
+// dot and the discs above it is moved on screen, away from the dot, to the
+// nearest spot (steps of 0.2 radius up to 4 radii, turned up to 90 degrees)
+// where at most that share is covered (else the least covered). Returns each
+// disc's move in pixels ({0, 0}: not moved).
+inline constexpr double kLocalMaxCoveredShare = 0.2;
+// View D numbers corners in up to this many layouts, those with no room in
+// the last going first (local_shot).
+inline constexpr int kLocalLayoutRounds = 6;
+// A number with no room within kLocalMaxLeaderLabels label heights of its
+// disc may take a leader this many times as long.
+inline constexpr double kLocalFarLeaderShare = 3.0;
+std::vector<std::array<double, 2>> local_spider_moves(std::span<const ScreenDisc> discs,
+                                                      std::span<const std::size_t> top_down, const ScreenDisc& dot);
 
 // The figure of view D: the one ring framed, each corner marker labelled
 // with its value, its cell's kind and id ("0.812  hex 12", as in chart E),
@@ -222,7 +241,7 @@ inline constexpr const char* kLocalTableHeading = "numbered corners (1 = worst)"
 // The table's last rows: the corners left out (no place even for a
 // number), worst first, under this heading and with no key (46t2 review:
 // a "-" key read as a minus sign among signed values).
-inline constexpr const char* kLocalLeftOutHeading = "not placed (no room):";
+inline constexpr const char* kLocalLeftOutHeading = "not numbered (no room):";
 struct LocalShot {
   Scene scene;  // as drawn (discs in the overlay)
   Camera camera;

@@ -396,24 +396,36 @@ Image render_gradation_view(const HexMesh& mesh, const Topology& topology, const
   // kGradationMaxEdgeColor on a white halo, and a label with its value,
   // kind and id at its centre, with a leader.
   const Index max_cell = gradation_max_cell(structure.cell_gradation);
+  const std::vector<BoundaryPolygon> polygons = boundary_polygons(topology);
+  const CellSight sight = max_cell != kNoIndex ? cell_sight(mesh, polygons, max_cell, camera) : CellSight::inside;
   if (max_cell != kNoIndex) {
     LineSet halo, core;
     halo.width = static_cast<float>(std::max(4.0, 6.0 * style.scale));
     core.width = static_cast<float>(std::max(2.0, 2.5 * style.scale));
     halo.over_all = core.over_all = true;
+    // Not seen from the camera (on the far side, or inside): dashed, 5
+    // dashes an edge (46w review C4: a hidden max cell's solid outline
+    // read as the nearer cells under it).
+    const bool dashed = sight != CellSight::seen;
+    const int pieces = dashed ? 9 : 1;
     for_each_edge_of(volume_cell(mesh, max_cell), [&](Index a, Index b) {
-      for (Index v : {a, b}) {
-        for (LineSet* set : {&halo, &core}) {
-          set->indices.push_back(static_cast<std::uint32_t>(set->positions.size()));
-          set->positions.push_back(to_vec3f(point(mesh, v) - scene.origin));
+      const Vec3 pa = point(mesh, a) - scene.origin, pb = point(mesh, b) - scene.origin;
+      for (int k = 0; k < pieces; k += 2)
+        for (int end : {k, k + 1}) {
+          const Vec3 q = pa + (static_cast<double>(end) / pieces) * (pb - pa);
+          for (LineSet* set : {&halo, &core}) {
+            set->indices.push_back(static_cast<std::uint32_t>(set->positions.size()));
+            set->positions.push_back(to_vec3f(q));
+          }
+          halo.colors.push_back({255, 255, 255, 255});
+          core.colors.push_back(kGradationMaxEdgeColor);
         }
-        halo.colors.push_back({255, 255, 255, 255});
-        core.colors.push_back(kGradationMaxEdgeColor);
-      }
     });
     scene.lines.push_back(std::move(halo));
     scene.lines.push_back(std::move(core));
-    bar.swatches.push_back({to_color(kGradationMaxEdgeColor), "max cell: its edges", SwatchShape::thick_line});
+    bar.swatches.push_back({to_color(kGradationMaxEdgeColor),
+                            dashed ? "max cell: its edges\n(dashed: not in sight)" : "max cell: its edges",
+                            dashed ? SwatchShape::dashed_line : SwatchShape::thick_line});
   }
   Image figure = render_figure(renderer, scene, camera, options.width, options.height, layout, options.title, style);
   draw_color_bar(figure, layout.legend, bar, style);
@@ -436,11 +448,12 @@ Image render_gradation_view(const HexMesh& mesh, const Topology& topology, const
       reach = std::max(reach, std::hypot(x - cx, y - cy));
     }
     const ScreenDisc anchor{cx, cy, std::min(reach, 0.1 * view.height), 0};
-    // Inside (no boundary face): its outline is seen through the boundary.
-    bool on_boundary = false;
-    for (const BoundaryPolygon& face : boundary_polygons(topology)) on_boundary = on_boundary || face.cell == max_cell;
-    const std::string text =
-        gradation_max_label(structure.cell_gradation, mesh, max_cell) + (on_boundary ? "" : " (inside)");
+    // Inside (no boundary face) or on the far side (none of its boundary
+    // faces in sight): its outline is seen through the boundary.
+    const std::string text = gradation_max_label(structure.cell_gradation, mesh, max_cell) +
+                             (sight == CellSight::inside     ? " (inside)"
+                              : sight == CellSight::far_side ? " (far side)"
+                                                             : "");
     const int text_size = std::max(style.min_text_size, static_cast<int>(std::lround(22 * style.scale)));
     const PixelRect extent = text_extent(text, text_size, style);
     LabelLayoutOptions placement;
@@ -470,6 +483,61 @@ Image render_gradation_view(const HexMesh& mesh, const Topology& topology, const
     }
   }
   return figure;
+}
+
+CellSight cell_sight(const HexMesh& mesh, std::span<const BoundaryPolygon> boundary, Index cell, const Camera& camera) {
+  const auto corner = [&](const BoundaryPolygon& f, int i) { return point(mesh, f.v[static_cast<std::size_t>(i)]); };
+  const auto normal_of = [&](const BoundaryPolygon& f) {
+    Vec3 n = cross(corner(f, 1) - corner(f, 0), corner(f, 2) - corner(f, 0));
+    if (f.size == 4) n = n + cross(corner(f, 2) - corner(f, 0), corner(f, 3) - corner(f, 0));
+    return n;
+  };
+  // Whether the segment p -> eye passes through a triangle (Moller-Trumbore).
+  const auto blocks = [](const Vec3& p, const Vec3& e, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const Vec3 d = e - p, ab = b - a, ac = c - a, h = cross(d, ac);
+    const double det = dot(ab, h);
+    if (std::abs(det) < 1e-300) return false;
+    const Vec3 s = p - a;
+    const double u = dot(s, h) / det;
+    if (u < 0.0 || u > 1.0) return false;
+    const Vec3 q = cross(s, ab);
+    const double v = dot(d, q) / det;
+    if (v < 0.0 || u + v > 1.0) return false;
+    const double t = dot(ac, q) / det;
+    return t > 1e-9 && t < 1.0;
+  };
+  bool on_boundary = false;
+  double scale = 0.0;
+  for (const BoundaryPolygon& f : boundary)
+    if (f.cell == cell) scale = std::max(scale, norm(corner(f, 1) - corner(f, 0)));
+  for (const BoundaryPolygon& f : boundary) {
+    if (f.cell != cell) continue;
+    on_boundary = true;
+    const Vec3 n = normal_of(f);
+    if (!(norm(n) > 0.0)) continue;
+    Vec3 centre{};
+    for (int i = 0; i < f.size; ++i) centre = centre + corner(f, i);
+    centre = centre / static_cast<double>(f.size);
+    // The centre and points 0.6 of the way to each corner, lifted off the face.
+    std::vector<Vec3> samples{centre};
+    for (int i = 0; i < f.size; ++i) samples.push_back(centre + 0.6 * (corner(f, i) - centre));
+    for (Vec3 p : samples) {
+      const Vec3 eye = camera.is_perspective ? camera.eye : p + (camera.eye - camera.target);
+      if (!(dot(n, eye - p) > 0.0)) break;  // faces away (or edge-on)
+      p = p + (1e-6 * scale / norm(n)) * n;
+      bool hidden = false;
+      for (const BoundaryPolygon& g : boundary) {
+        if (&g == &f) continue;
+        if (blocks(p, eye, corner(g, 0), corner(g, 1), corner(g, 2)) ||
+            (g.size == 4 && blocks(p, eye, corner(g, 0), corner(g, 2), corner(g, 3)))) {
+          hidden = true;
+          break;
+        }
+      }
+      if (!hidden) return CellSight::seen;
+    }
+  }
+  return on_boundary ? CellSight::far_side : CellSight::inside;
 }
 
 Index gradation_max_cell(std::span<const double> cell_gradation) {

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "hqview/image/image.h"
+#include "hqview/mesh/boundary_polygons.h"
 #include "hqview/mesh/hex_mesh.h"
 #include "hqview/mesh/topology.h"
 #include "hqview/render/camera.h"
@@ -110,6 +111,17 @@ Vec3 choose_gradation_viewpoint(const HexMesh& mesh, const Topology& topology, c
 // boundary face) on a leader; kNoIndex when no
 // value is finite.
 Index gradation_max_cell(std::span<const double> cell_gradation);
+// Whether `cell` is in sight from `camera` (46w review C4: cyl's max cell was
+// on the far side, its solid outline over nearer cells of ~1.05): seen when
+// some boundary face of it (boundary: boundary_polygons, outward) faces the
+// eye and a segment from one of its samples (the face's centre and the
+// points 0.6 of the way to its corners) to the eye (orthographic: along the
+// view direction) crosses no other boundary face; far_side when it has
+// boundary faces but none so; inside without one. The gradation view draws a
+// cell not seen dashed (legend `max cell: its edges` / `(dashed: not in
+// sight)`) and ends its label with ` (far side)` or ` (inside)`.
+enum class CellSight { seen, far_side, inside };
+CellSight cell_sight(const HexMesh& mesh, std::span<const BoundaryPolygon> boundary, Index cell, const Camera& camera);
 std::string gradation_max_label(std::span<const double> cell_gradation, const HexMesh& mesh, Index cell);
 
 Image render_gradation_view(const HexMesh& mesh, const Topology& topology, const HexStructure& structure,

@@ -516,9 +516,11 @@ std::vector<ViewFile> build_size_gradation(ViewContext& c) {
   const HexStructure& s = c.a.structure;
   // Every kind has a gradation; a pure-hex mesh's title keeps its words.
   const char* cells = mesh_kinds_text(c.a.mesh).empty() ? "hexes" : "cells";
-  options.title = c.name + ": size gradation of the boundary " + cells + " (p95 " + display_number(s.gradation.p95, 3) +
-                  ", max " + display_number(s.gradation.max, 3) + "; " + std::to_string(s.num_gradation_above_2) +
-                  " of all " + cells + " above 2)";
+  // The numbers are over all cells (46w review M5: "of the boundary cells"
+  // read as their scope, beside an `(inside)` max cell).
+  options.title = c.name + ": size gradation, boundary " + cells + " shown (all " + cells + ": p95 " +
+                  display_number(s.gradation.p95, 3) + ", max " + display_number(s.gradation.max, 3) + ", " +
+                  std::to_string(s.num_gradation_above_2) + " above 2)";
   const Vec3 direction = choose_gradation_viewpoint(c.a.mesh, c.a.topology, s, options);
   Image image = render_gradation_view(c.a.mesh, c.a.topology, s, direction, options, c.renderer);
   return {framed("views/size_gradation.png", std::move(image), c)};
