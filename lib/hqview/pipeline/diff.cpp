@@ -189,9 +189,9 @@ void diff_comparison_cells(const Comparison& b, const Comparison& c, std::vector
       if (other == base->second->cells.end()) continue;
       for (const ComparisonKey& key : c.keys) {
         if (key.direction == 0) continue;
-        std::size_t k = 0;
-        while (k < kNumHeadlineKeys && key.key != kHeadlineKeys[k]) ++k;
-        const auto bv = other->second->headline[k], cv = entry->headline[k];
+        // A headline key or a surface count (issue 47): comparison_value.
+        const std::optional<double> bv = comparison_value(*other->second, key.key),
+                                    cv = comparison_value(*entry, key.key);
         if (!bv || !cv || *bv == *cv || !std::isfinite(*bv) || !std::isfinite(*cv)) continue;
         out.push_back({row.model, column.first, column.second, std::string(key.key), *bv, *cv,
                        key.direction > 0 ? *cv > *bv : *cv < *bv});

@@ -111,6 +111,8 @@ std::string show_mean(const std::optional<double>& v) { return v ? display_numbe
 
 }  // namespace
 
+std::optional<double> comparison_value(const BatchEntry& entry, std::string_view key) { return value_of(entry, key); }
+
 std::string column_heading(const ComparisonColumn& c) {
   return (c.year.empty() ? c.label : c.label + " (" + c.year + ")") + (c.variant.empty() ? "" : " · " + c.variant);
 }

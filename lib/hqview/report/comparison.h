@@ -42,6 +42,9 @@ const std::vector<ComparisonKey>& comparison_keys();
 // (issue 47) #V, #quads, #triangles (when some mesh has one), min SJ, mean
 // SJ, #inverted, Hausdorff and the irregular interior vertices.
 std::vector<ComparisonKey> default_comparison_keys(const std::vector<BatchEntry>& entries);
+// The value a comparison shows for `key` (comparison_keys()): a headline
+// key's, or an index.json surface count; nullopt when the mesh has none.
+std::optional<double> comparison_value(const BatchEntry& entry, std::string_view key);
 // `--compare-keys a,b,...`: report.json paths of headline keys. Throws
 // ValueError naming an unknown key and listing the known ones.
 std::vector<ComparisonKey> parse_comparison_keys(std::string_view list);
