@@ -286,12 +286,12 @@ TEST(GlyphTiesView, GlyphRadiusIsCappedFromAboveAndTheLegendSaysHowBig) {
   EXPECT_TRUE(has_line(legend, "inverted cells: 520"));
   EXPECT_TRUE(has_line(legend, "  their 759 boundary faces"));
   EXPECT_TRUE(has_line(legend, "  not drawn (more than 64)"));
-  // One depth rule (issue 44 part V): all drawn, near and far, under the glyphs.
+  // One depth rule (issue 44 part V): all drawn, near and far, as the glyphs.
   inverted.inverted_face_count = 17;
   inverted.inverted_overlay_faces = 17;
   legend = inverted_legend();
   EXPECT_TRUE(has_line(legend, "  all 17 boundary faces drawn"));
-  EXPECT_TRUE(has_line(legend, "  (see-through, under glyphs)"));
+  EXPECT_TRUE(has_line(legend, "  (see-through, as glyphs)"));
   for (const std::string& line : legend) EXPECT_EQ(line.find("out of sight"), std::string::npos) << line;
 }
 

@@ -934,16 +934,18 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   // and hid them): opaque, unlit, in the inverted colour, with their edges,
   // moved towards the camera by kInvertedFaceLift of the model's diagonal
   // (they win over a surface mesh's fill and over coplanar folded faces),
-  // depth-tested against the mesh's fill, and under every glyph, grey or
-  // coloured, whatever its depth (one depth rule, issue 44 part V round 2:
-  // a far grey glyph was washed out by the fill while coloured ones were
-  // drawn over it; part U round 2: drawn over everything they turned #0
-  // blue). Their outlines show over the glyphs (draw_over_glyphs).
+  // depth-tested against the mesh's fill and the glyphs (part U round 2:
+  // drawn over everything they turned #0 blue). Their outlines show over
+  // the glyphs (draw_over_glyphs).
   const std::vector<BoundaryPolygon> inverted_faces = inverted_boundary_faces(topology, options).drawn;
   if (!inverted_faces.empty()) {
     TriangleSet faces;
     faces.is_lit = false;
-    faces.under_spheres = true;
+    // Not under_spheres (round 2 drew them without writing depth: the
+    // intersecting cells' translucent tint, drawn after, then covered them
+    // and turned hole_pushed's and gmsh_ring_dent's faces violet, a colour
+    // of no legend entry; 44v round-2 review). They write depth, so a grey
+    // glyph behind them is covered, as any geometry behind them.
     LineSet outline;
     outline.width = std::max(1.5f, options.wire_width);
     const double lift = kInvertedFaceLift * norm(box.hi - box.lo);
@@ -1373,7 +1375,7 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
       // One depth rule (issue 44 part V): drawn near and far, as the glyphs.
       lines.push_back({std::nullopt, "  " + std::string(drawn == faces ? "all " : "") + std::to_string(drawn) +
                                          " boundary faces drawn"});
-      lines.push_back({std::nullopt, "  (see-through, under glyphs)"});
+      lines.push_back({std::nullopt, "  (see-through, as glyphs)"});
     }
   }
   // An unrun check has no number and no swatch (nothing of its colours is

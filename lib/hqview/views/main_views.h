@@ -126,7 +126,7 @@ struct MainViewOptions {
   // What main_view_frame found (inverted_boundary_faces) for the legend:
   // the faces drawn, the inverted cells, their boundary faces. A volume
   // mesh's legend says "inverted cells: N", then "  all F boundary faces
-  // drawn" / "  (see-through, under glyphs)", "  their F boundary faces" /
+  // drawn" / "  (see-through, as glyphs)", "  their F boundary faces" /
   // "  not drawn (more than 64)" over the limit, or "  none on the
   // boundary".
   std::size_t inverted_overlay_faces = 0;
