@@ -88,27 +88,6 @@ TEST(SphereImpostor, WritesTheSpheresDepth) {
 
 bool is_greyish(Rgba8 p) { return p.r > 40 && std::abs(p.r - p.g) < 12 && std::abs(p.r - p.b) < 12; }
 
-// A triangle set under_spheres (view A's inverted-face fill, issue 44 part
-// V round 2) is covered by a sphere behind it, as the ranked glyphs cover
-// it, while the same square without the flag hides that sphere (a far grey
-// glyph was washed out by the fill while the coloured ones were not).
-TEST(SphereImpostor, ASetUnderSpheresIsCoveredByASphereBehindIt) {
-  for (bool under : {false, true}) {
-    Scene scene = sphere_scene({0, 0, -1}, 1.0f, {220, 30, 30, 255});
-    TriangleSet square;
-    const Rgba8 green{20, 200, 20, 255};
-    square.positions = {{-2, -2, 0.5f}, {2, -2, 0.5f}, {2, 2, 0.5f}, {-2, 2, 0.5f}};
-    square.colors = {green, green, green, green};
-    square.indices = {0, 1, 2, 0, 2, 3};
-    square.is_lit = false;
-    square.under_spheres = under;
-    scene.triangles.push_back(square);
-    const Image image = renderer().render(scene, front_camera(false), 80, 80);
-    EXPECT_EQ(is_reddish(pixel_at(image, 40, 40)), under) << "under_spheres " << under;
-    EXPECT_FALSE(is_reddish(pixel_at(image, 5, 5))) << "the square outside the sphere";
-  }
-}
-
 TEST(SphereImpostor, ASetOverOtherSpheresShowsInFrontOfCloserOnes) {
   // A grey sphere in front of (closer than) a red one and a blue one, the
   // red one also in front of the blue one. Without the flag the grey one

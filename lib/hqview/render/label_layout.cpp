@@ -273,10 +273,8 @@ std::optional<PlacedLabel> LabelPlacer::place(const LabelRequest& label, std::sp
   };
   // The rings' candidates, evaluated as the passes first reach them.
   std::vector<std::array<Candidate, kDirections.size()>> rings;
-  const int last_pass = std::clamp(label.max_pass, 0, 2);
-  const int last_ring = label.max_rings < 0 ? options_.rings : std::min(options_.rings, label.max_rings);
-  for (int pass = 0; pass <= last_pass; ++pass)
-    for (int ring = 0; ring <= last_ring; ++ring) {
+  for (int pass = 0; pass <= 2; ++pass)
+    for (int ring = 0; ring <= options_.rings; ++ring) {
       if (static_cast<std::size_t>(ring) == rings.size()) {
         const double distance = anchor.radius + options_.gap + ring * options_.ring_step;
         rings.emplace_back();

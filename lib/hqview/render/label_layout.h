@@ -46,12 +46,6 @@ struct LabelRequest {
   // an earlier leader, in any pass (view A, issue 44's fifth round);
   // false: only the first two passes keep to that.
   bool strict_leaders = false;
-  // The last pass tried (0: clear places only, 2: any free place) and the
-  // last ring of candidates (-1: LabelLayoutOptions::rings): a caller that
-  // has a better place for a label that finds no clear one nearby (view
-  // A's callout column, issue 44 part V) asks for no more.
-  int max_pass = 2;
-  int max_rings = -1;
 };
 
 struct LabelLayoutOptions {

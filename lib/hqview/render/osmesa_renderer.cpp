@@ -685,10 +685,7 @@ class OsmesaRenderer final : public Renderer {
         upload(GL_ELEMENT_ARRAY_BUFFER, index_buffer_, sorted_indices(set, back_to_front_order(set, *sort_by)));
       else
         upload(GL_ELEMENT_ARRAY_BUFFER, index_buffer_, set.indices);
-      const bool keep_depth = set.under_spheres && !sort_by;
-      if (keep_depth) gl.DepthMask(GL_FALSE);
       gl.DrawElements(GL_TRIANGLES, static_cast<GLsizei>(set.indices.size()), GL_UNSIGNED_INT, nullptr);
-      if (keep_depth) gl.DepthMask(GL_TRUE);
     }
     gl.Disable(GL_POLYGON_OFFSET_FILL);
     gl.DisableVertexAttribArray(kNormalAttribute);

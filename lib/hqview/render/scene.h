@@ -71,11 +71,6 @@ struct TriangleSet {
   std::vector<Rgba8> colors;           // #V, interpolated across triangles (with scalars: only their alpha)
   std::vector<std::uint32_t> indices;  // 3 * #triangles, ids in [0, #V)
   bool is_lit = true;                  // false: colours shown as given (2D maps)
-  // Opaque sets only: drawn without writing depth (still depth-tested
-  // against the sets before it), so every sphere and line drawn after it
-  // covers it whatever its depth (view A's inverted-face fill: under every
-  // glyph, grey or coloured, issue 44 part V round 2).
-  bool under_spheres = false;
   // Lit: the share of the colour kept facing away from the light (shade =
   // ambient + (1 - ambient) * |n . l|). A surface mesh's binned fill keeps
   // 0.7 so a shaded face keeps its legend colour's hue and near its value.

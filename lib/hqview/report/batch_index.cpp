@@ -32,6 +32,12 @@ namespace hq {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
+std::size_t headline_slot(std::string_view key) {
+  for (std::size_t k = 0; k < kNumHeadlineKeys; ++k)
+    if (key == kHeadlineKeys[k]) return k;
+  throw Error("internal: no headline key " + std::string(key));
+}
+
 namespace {
 
 constexpr int kIndexSchemaVersion = 1;
@@ -49,11 +55,6 @@ static_assert(std::size(kHeadlineTitles) == kNumHeadlineKeys);
 
 std::string show(std::optional<double> v) { return v ? display_number(*v) : "–"; }
 
-std::size_t headline_slot(std::string_view key) {
-  std::size_t k = 0;
-  while (k < kNumHeadlineKeys && key != kHeadlineKeys[k]) ++k;
-  return k;
-}
 
 // The thumbnail's URL from the batch index.
 std::string row_thumbnail(const BatchEntry& e) {

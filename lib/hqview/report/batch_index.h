@@ -50,6 +50,9 @@ inline constexpr const char* kHeadlineKeys[] = {
     "headline.hex_volume_fraction",
 };
 inline constexpr std::size_t kNumHeadlineKeys = std::size(kHeadlineKeys);
+// The index of `key` in kHeadlineKeys; throws Error for a key not there
+// (callers name fixed keys).
+std::size_t headline_slot(std::string_view key);
 
 // The paper a method comes from (HexaLab's index.json `paper`); empty when
 // unknown.

@@ -21,11 +21,6 @@ double number_or_nan(const ReportDocument& j, const char* key) {
   return j.contains(key) && j[key].is_number() ? j[key].get<double>() : kNaN;
 }
 
-std::size_t slot_of(std::string_view key) {
-  std::size_t k = 0;
-  while (k < kNumHeadlineKeys && key != kHeadlineKeys[k]) ++k;
-  return k;
-}
 
 constexpr const char* kHOverL = "h_over_l";
 
@@ -75,7 +70,7 @@ int size_length_power(std::string_view metric) {
 }
 
 bool same_mesh_geometry(const BatchEntry& a, const BatchEntry& b) {
-  static const std::size_t vertices_slot = slot_of("mesh.num_vertices"), hexes_slot = slot_of("mesh.num_hexes");
+  static const std::size_t vertices_slot = headline_slot("mesh.num_vertices"), hexes_slot = headline_slot("mesh.num_hexes");
   for (const std::size_t slot : {vertices_slot, hexes_slot})
     if (!a.headline[slot] || !b.headline[slot] || *a.headline[slot] != *b.headline[slot]) return false;
   int compared = 0;
@@ -116,11 +111,11 @@ std::vector<MeshMetricRange> metric_summaries_from_report(const ReportDocument& 
 }
 
 CollectionCorrelation correlate_collection(const std::vector<BatchEntry>& entries, const std::string& label) {
-  static const std::size_t l2_slot = slot_of("fem.poisson.mean.l2_error");
-  static const std::size_t h1_slot = slot_of("fem.poisson.mean.h1_error");
+  static const std::size_t l2_slot = headline_slot("fem.poisson.mean.l2_error");
+  static const std::size_t h1_slot = headline_slot("fem.poisson.mean.h1_error");
   CollectionCorrelation out;
   std::vector<const BatchEntry*> candidates, meshes;
-  static const std::size_t inverted_slot = slot_of("quality.num_inverted");
+  static const std::size_t inverted_slot = headline_slot("quality.num_inverted");
   for (const BatchEntry& e : entries)
     if (is_analysed(e) && (label.empty() || e.label == label) && !e.metrics.empty() && e.headline[l2_slot] &&
         e.headline[h1_slot]) {
@@ -208,7 +203,7 @@ CollectionCorrelation correlate_collection(const std::vector<BatchEntry>& entrie
       if (name == "volume" && !is_worst) out.rows.back().restates = kHOverL;
     }
   }
-  static const std::size_t hexes_slot = slot_of("mesh.num_hexes");
+  static const std::size_t hexes_slot = headline_slot("mesh.num_hexes");
   std::vector<double> value, l2, h1;
   for (const BatchEntry* e : meshes)
     if (e->headline[hexes_slot]) {

@@ -15,11 +15,6 @@
 namespace hq {
 namespace {
 
-std::size_t headline_slot(std::string_view key) {
-  for (std::size_t k = 0; k < kNumHeadlineKeys; ++k)
-    if (key == kHeadlineKeys[k]) return k;
-  throw Error("internal: no headline key " + std::string(key));
-}
 
 bool is_analysed(const BatchEntry& e) { return e.status == BatchStatus::ok || e.status == BatchStatus::gate_failed; }
 

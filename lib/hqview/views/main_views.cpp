@@ -941,10 +941,8 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   if (!inverted_faces.empty()) {
     TriangleSet faces;
     faces.is_lit = false;
-    // Not under_spheres (round 2 drew them without writing depth: the
-    // intersecting cells' translucent tint, drawn after, then covered them
-    // and turned hole_pushed's and gmsh_ring_dent's faces violet, a colour
-    // of no legend entry; 44v round-2 review). They write depth, so a grey
+    // They write depth (44v round 2 drew them without: the intersecting
+    // cells' translucent tint, drawn after, turned them violet), so a grey
     // glyph behind them is covered, as any geometry behind them.
     LineSet outline;
     outline.width = std::max(1.5f, options.wire_width);
