@@ -23,6 +23,7 @@
 #include "hqview/pipeline/analyze.h"
 #include "hqview/quality/quad_metrics.h"
 #include "hqview/quality/triangle_metrics.h"
+#include "hqview/report/compare_table.h"
 #include "hqview/report/report_csv.h"
 #include "hqview/report/report_html.h"
 #include "hqview/report/report_markdown.h"
@@ -342,9 +343,8 @@ TEST(SurfaceAnalysis, GmshPlanarQuadMeshWithAHole) {
 
 // --reference on a surface mesh: the unit cube's surface (6 quads) inside a
 // reference box 0.1 larger on every side is -0.1 from it at every vertex
-// (inside), 0.1 sqrt(3) back from the reference's corners; --compare with a
-// surface mesh is refused (exit 3's InputError), naming what is missing.
-TEST(SurfaceAnalysis, ReferenceMeasuresTheFacesAndCompareIsRefused) {
+// (inside), 0.1 sqrt(3) back from the reference's corners.
+TEST(SurfaceAnalysis, ReferenceMeasuresTheFaces) {
   const test::TempDir dir("surface_reference");
   const std::vector<Vec3> cube = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
   const std::vector<std::array<Index, 4>> faces = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
@@ -368,13 +368,73 @@ TEST(SurfaceAnalysis, ReferenceMeasuresTheFacesAndCompareIsRefused) {
   EXPECT_DOUBLE_EQ(a.boundary_error->fraction_inside, 1.0);
   const Json r = report_of(result);
   EXPECT_FALSE(r["boundary_error"].is_null());
-  options.reference_path.clear();
-  options.compare_path = mesh;
-  try {
-    analyze(options, nullptr);
-    ADD_FAILURE() << "--compare with a surface mesh was accepted";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("--compare: surface meshes are not compared yet"), std::string::npos) << e.what();
+}
+
+// --compare of two surface meshes: a box's surface with one corner pulled
+// out (no symmetry) against the same surface turned 90 deg about x, and
+// against its mirror image. The turned copy is found (mean distance 0 after
+// alignment), every number is the same (rounding is no difference and no
+// row is worse), the table speaks of quads, not hexes; the mirror image is
+// said. A surface against a volume mesh is refused (exit 3's InputError).
+TEST(SurfaceAnalysis, CompareTwoSurfacesFindsTheTurnAndTheMirror) {
+  const test::TempDir dir("surface_compare");
+  const std::vector<Vec3> box = {{0, 0, 0}, {1, 0, 0}, {1, 2, 0}, {0, 2, 0},
+                                 {0, 0, 3}, {1, 0, 3}, {1.3, 2.2, 3.4}, {0, 2, 3}};
+  const std::vector<std::array<Index, 4>> faces = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                                   {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  std::vector<Vec3> turned, mirrored;
+  for (const Vec3& p : box) {
+    turned.push_back({p.x, -p.z, p.y});
+    mirrored.push_back({-p.x, p.y, p.z});
+  }
+  std::vector<std::array<Index, 4>> mirrored_faces;
+  for (const auto& f : faces) mirrored_faces.push_back({f[3], f[2], f[1], f[0]});
+  AnalyzeOptions options;
+  options.mesh_path = dir.write("box.vtk", vtk_text(box, faces, {}));
+  options.tool_version = "test";
+  options.compare_path = dir.write("turned.vtk", vtk_text(turned, faces, {}));
+  const AnalyzeResult result = analyze(options, nullptr);
+  const Json r = report_of(result);
+  const Json& alignment = r["compare"]["alignment"];
+  EXPECT_EQ(alignment["mode"], "rotation") << alignment.dump();
+  EXPECT_EQ(alignment["rotation_name"], "90 deg about -x") << alignment.dump();
+  EXPECT_LT(alignment["mean_distance"].get<double>(), 1e-12) << alignment.dump();
+  EXPECT_FALSE(alignment["mirrored"].get<bool>());
+  EXPECT_EQ(r["compare"]["headline"]["num_cells_by_kind"]["quad"], 6);
+  EXPECT_EQ(r["compare"]["headline"]["num_hexes"], 0);
+  const CompareTable table = compare_table(result.model.analysis);
+  std::vector<std::string> labels;
+  for (const CompareTableRow& row : table.rows) {
+    labels.push_back(row.label);
+    EXPECT_FALSE(row.is_worse) << row.label << ": " << row.difference;
+    EXPECT_EQ(row.difference, "0") << row.label;
+  }
+  EXPECT_NE(std::find(labels.begin(), labels.end(), "quadrilaterals"), labels.end());
+  EXPECT_NE(std::find(labels.begin(), labels.end(), "inverted faces"), labels.end());
+  EXPECT_EQ(std::find(labels.begin(), labels.end(), "hexahedra"), labels.end());
+  EXPECT_TRUE(table.alignment.starts_with("turned 90 deg about -x (scale 1)")) << table.alignment;
+
+  options.compare_path = dir.write("mirrored.vtk", vtk_text(mirrored, mirrored_faces, {}));
+  const Json m = report_of(analyze(options, nullptr));
+  EXPECT_TRUE(m["compare"]["alignment"]["mirrored"].get<bool>()) << m["compare"]["alignment"].dump();
+  EXPECT_EQ(m["compare"]["headline"]["num_inverted"], 0);
+
+  // A surface against a volume mesh, either way round.
+  const auto hex = dir.write("hex.vtk", "# vtk DataFile Version 3.0\nh\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 8 double\n"
+                                        "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+                                        "CELLS 1 9\n8 0 1 2 3 4 5 6 7\nCELL_TYPES 1\n12\n");
+  for (const bool surface_first : {true, false}) {
+    options.mesh_path = surface_first ? dir.path() / "box.vtk" : hex;
+    options.compare_path = surface_first ? hex : dir.path() / "box.vtk";
+    try {
+      analyze(options, nullptr);
+      ADD_FAILURE() << "--compare of a surface and a volume mesh was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(surface_first ? "a volume mesh against a surface mesh (compare meshes of one dimension)"
+                                                         : "a surface mesh against a volume mesh (compare meshes of one dimension)"),
+                std::string::npos)
+          << e.what();
+    }
   }
 }
 

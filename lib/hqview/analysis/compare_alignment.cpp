@@ -18,6 +18,13 @@ Box3 used_box(const HexMesh& mesh) {
   std::vector<std::uint8_t> used(mesh.points.size(), 0);
   for (const Hex& h : mesh.hexes)
     for (Index v : h) used[static_cast<std::size_t>(v)] = 1;
+  // A surface mesh (no volume cells): the points of its faces.
+  if (is_surface_mesh(mesh)) {
+    for (const auto& q : mesh.quads)
+      for (Index v : q) used[static_cast<std::size_t>(v)] = 1;
+    for (const auto& t : mesh.triangles)
+      for (Index v : t) used[static_cast<std::size_t>(v)] = 1;
+  }
   Box3 box;
   for (std::size_t i = 0; i < mesh.points.size(); ++i)
     if (used[i]) box.add(mesh.points[i]);

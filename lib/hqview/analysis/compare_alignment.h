@@ -94,7 +94,8 @@ struct CompareAlignment {
   Vec3 mirror_normal{};        // the mirror's plane normal (axis of the best improper placement)
 };
 
-// Boxes of the vertices used by hexes. Degenerate boxes (a point) are never aligned.
+// Boxes of the vertices used by hexes (a surface mesh: by its faces).
+// Degenerate boxes (a point) are never aligned.
 // auto also needs the topologies (the boundaries).
 CompareAlignment align_compare_mesh(const HexMesh& mesh, const Topology& topology, const HexMesh& other,
                                     const Topology& other_topology, CompareAlign requested);

@@ -77,15 +77,16 @@ bool has_cell_column_or_area(std::string_view metric) { return has_cell_column(m
 
 // A surface mesh's plane and orientation (planarity.h, SurfaceTopology);
 // nothing for a volume mesh.
-SurfaceOrientation surface_orientation(const Analysis& a, std::optional<Planarity>& planarity) {
+SurfaceOrientation surface_orientation(const HexMesh& mesh, const Topology& topology,
+                                       std::optional<Planarity>& planarity) {
   SurfaceOrientation out;
-  if (!is_surface_mesh(a.mesh)) return out;
-  const Box3 box = referenced_bounding_box(a.mesh, a.topology);
-  planarity = measure_planarity(a.mesh, box.is_empty() ? 0.0 : norm(box.hi - box.lo));
+  if (!is_surface_mesh(mesh)) return out;
+  const Box3 box = referenced_bounding_box(mesh, topology);
+  planarity = measure_planarity(mesh, box.is_empty() ? 0.0 : norm(box.hi - box.lo));
   if (planarity->is_planar)
     out.plane_normal = planarity->normal;
   else
-    out.is_reversed = a.topology.surface.is_reversed;
+    out.is_reversed = topology.surface.is_reversed;
   return out;
 }
 
@@ -141,7 +142,7 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
   clock.start("quality");
   const bool is_surface = is_surface_mesh(a.mesh);
   std::optional<Planarity> planarity;
-  const SurfaceOrientation surface = surface_orientation(a, planarity);
+  const SurfaceOrientation surface = surface_orientation(a.mesh, a.topology, planarity);
   a.field = compute_quality(a.mesh, a.topology, surface);
   a.mesh_summary = summarize_mesh(a.mesh, a.topology);
   a.mesh_summary.planarity = planarity;
@@ -321,11 +322,20 @@ void analyze_boundary_error(Analysis& a, const TriSurface& reference, const Anal
 void analyze_compare(Analysis& a, const AnalyzeOptions& options) {
   Analysis::Compared& c = a.compare.emplace();
   c.mesh = load_mesh(options.compare_path, options, c.input).mesh;
-  if (is_surface_mesh(c.mesh))
-    throw InputError(options.compare_path.string() + ": --compare: surface meshes are not compared yet (run without it)");
+  // One dimension on both sides: a surface's faces against a volume's
+  // boundary would compare different cells under one name.
+  if (is_surface_mesh(c.mesh) != is_surface_mesh(a.mesh))
+    throw InputError(options.compare_path.string() + ": --compare: " +
+                     (is_surface_mesh(c.mesh) ? "a surface mesh against a volume mesh"
+                                              : "a volume mesh against a surface mesh") +
+                     " (compare meshes of one dimension)");
   c.topology = build_topology(c.mesh);
-  c.field = compute_quality(c.mesh, c.topology);
+  std::optional<Planarity> planarity;
+  c.field = compute_quality(c.mesh, c.topology, surface_orientation(c.mesh, c.topology, planarity));
   c.mesh_summary = summarize_mesh(c.mesh, c.topology);
+  c.mesh_summary.planarity = planarity;
+  // As for MESH: a surface's faces are its boundary for the alignment and the view.
+  add_surface_faces_as_boundary(c.mesh, c.topology);
   c.composition = compute_cell_composition(c.mesh);
   c.quality = summarize_quality(c.mesh, c.field, options.worst_count);
   c.quality.metrics = summarize_hex_metrics(compute_hex_metrics(c.mesh, options.metrics));
@@ -409,8 +419,6 @@ void start_analysis(const AnalyzeOptions& options, AnalysisInProgress& out) {
   a.topology = build_topology(a.mesh);
   const bool is_surface = is_surface_mesh(a.mesh);
   if (options.up_auto && !is_surface) a.resting_up = choose_resting_up(a.mesh, a.topology);
-  if (is_surface && !options.compare_path.empty())
-    throw InputError(options.compare_path.string() + ": --compare: surface meshes are not compared yet (run without it)");
   // The reference as soon as the boundary is known, so that its atlas runs
   // beside everything after.
   if (!options.reference_path.empty()) {

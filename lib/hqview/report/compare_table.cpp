@@ -1,5 +1,6 @@
 #include "hqview/report/compare_table.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <initializer_list>
@@ -21,13 +22,22 @@ std::string signed_number(double d) {
 
 std::string signed_count(long long d) { return d == 0 ? "0" : (d > 0 ? "+" : "") + display_count(d); }
 
+// Two values that differ by rounding only (a relative 1e-12: the same mesh
+// turned or renumbered sums its means in another order) are equal here.
+constexpr double kRoundoff = 1e-12;
+
+bool roundoff_equal(double mine, double theirs) {
+  return std::abs(theirs - mine) <= kRoundoff * std::max(std::abs(mine), std::abs(theirs));
+}
+
 bool worse(double mine, double theirs, Better better) {
-  if (!std::isfinite(mine) || !std::isfinite(theirs)) return false;
+  if (!std::isfinite(mine) || !std::isfinite(theirs) || roundoff_equal(mine, theirs)) return false;
   return better == Better::lower ? theirs > mine : better == Better::higher ? theirs < mine : false;
 }
 
 CompareTableRow number_row(const std::string& label, double mine, double theirs, Better better) {
-  return {label, display_number(mine), display_number(theirs), signed_number(theirs - mine), worse(mine, theirs, better)};
+  const double difference = std::isfinite(mine) && std::isfinite(theirs) && roundoff_equal(mine, theirs) ? 0.0 : theirs - mine;
+  return {label, display_number(mine), display_number(theirs), signed_number(difference), worse(mine, theirs, better)};
 }
 
 CompareTableRow count_row(const std::string& label, double mine, double theirs, Better better) {

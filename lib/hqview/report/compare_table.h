@@ -18,7 +18,7 @@ struct CompareTableRow {
   std::string label;       // "min scaled Jacobian"
   std::string mine;        // MESH's value, display text
   std::string theirs;      // MESH2's value
-  std::string difference;  // MESH2 - MESH, signed ("+8,496", "-0.178"); "0" when equal, "–" when undefined
+  std::string difference;  // MESH2 - MESH, signed ("+8,496", "-0.178"); "0" when equal up to rounding (relative 1e-12), "–" when undefined
   bool is_worse = false;   // MESH2 is worse on a key where lower (or higher) is better
 };
 

@@ -475,7 +475,9 @@ std::string compare_scope(const ReportModel& model, const CompareTable& t) {
                      : panels.size() == 1 ? "Panel " + list + " shows " + t.mine_name + " only."
                                           : "Panels " + list + " show " + t.mine_name + " only.";
   text += " " + t.theirs_name + " is shown " +
-          (has_view(model, "compare") ? "by its boundary beside it in the compare view (panel F) and " : "") +
+          (has_view(model, "compare") ? std::string("by its ") + (is_surface_mesh(model.analysis.mesh) ? "faces" : "boundary") +
+                                              " beside it in the compare view (panel F) and "
+                                        : std::string()) +
           "by this table: a comparison draws one mesh's views, not both; its own panels are in its own report (hqview "
           "analyze " + t.theirs_name + " with the same --views).";
   return text;

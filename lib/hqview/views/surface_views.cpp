@@ -72,7 +72,7 @@ Rgba8 bin_color(int b) {
 
 bool is_surface_mesh_view(std::string_view id) {
   return id == "overview" || id == "main" || id == "histogram" || id == "histogram_log" || id == "sorted_quality" ||
-         id == "structure" || id == "thumbnail";
+         id == "structure" || id == "thumbnail" || id == "compare";
 }
 
 std::optional<Vec3> planar_view_direction(const Analysis& a) {

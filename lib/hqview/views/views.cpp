@@ -414,6 +414,9 @@ std::vector<ViewFile> build_compare(ViewContext& c) {
                    display_number(other.quality.vertex_quality.min, 3) + "): " +
                    (hybrid ? "corner quality" : "vertex quality") + ", one camera" +
                    (alignment_description(align).empty() ? std::string() : ", right " + alignment_description(align));
+  // Two surface meshes (analyze refuses a surface against a volume): a
+  // planar pair seen along MESH's normal, like its overview.
+  if (const std::optional<Vec3> planar = planar_view_direction(c.a)) overview.view_direction = *planar;
   const HexMesh placed = aligned_copy(other.mesh, align);
   const KindVertexQuality kinds = kind_vertex_quality(c.a.mesh, c.a.field), other_kinds = kind_vertex_quality(other.mesh, other.field);
   overview.kind_quality = &kinds;
@@ -600,7 +603,9 @@ static std::string view_title(std::string_view title, const Analysis& a) {
         {"Boundary coloured by vertex quality", "Faces coloured by vertex quality"},
         {"A: glyphs, clusters and overlaps", "A: faces by scaled Jacobian, glyphs and clusters"},
         {"Thumbnail: the boundary by vertex quality, bounding-box frame",
-         "Thumbnail: the faces by vertex quality, bounding-box frame"}};
+         "Thumbnail: the faces by vertex quality, bounding-box frame"},
+        {"Compare: both boundaries coloured by vertex quality, one camera",
+         "Compare: both surfaces coloured by vertex quality, one camera"}};
     for (const auto& [from, to] : kSurfaceTitles)
       if (t == from) t = to;
   }
