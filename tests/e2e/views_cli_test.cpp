@@ -2,9 +2,11 @@
 // blank, --views selects, --focus-vertex adds D/E views, bad values are usage
 // errors; every real mesh of ../shared/data gets every view (small --size).
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
+#include <map>
 #include <set>
 #include <sstream>
 #include <algorithm>
@@ -541,6 +543,71 @@ ModelPixels model_pixels(const fs::path& png, double top) {
 // boundary view coloured per sample shows error colours over most of the
 // model, where per-vertex colours were white; the reference view shows the
 // ear tips the mesh cuts off in the "inside" blue.
+// A surface mesh against a reference (issue 47): a cube-sphere of quads,
+// radius 0.97, inside the unit icosphere of examples/ball.off, gets every
+// boundary view (they were not drawn for surface meshes: a warning said so),
+// worded for a surface mesh, its front view mostly coloured and nowhere
+// "outside" (it lies inside its reference).
+TEST(ViewsCli, SurfaceMeshAgainstAReferenceGetsTheBoundaryViews) {
+  const fs::path dir = fresh_output_dir("views/surface_reference");
+  const int n = 8;
+  std::ostringstream obj;
+  obj.precision(17);
+  // Six n x n grids on the cube's faces, projected to the sphere; the
+  // vertices of shared edges are written once per face and merged by
+  // position below (an index map).
+  std::vector<std::array<double, 3>> points;
+  std::map<std::array<long, 3>, int> id_of;
+  auto vertex = [&](std::array<double, 3> c) {
+    const std::array<long, 3> key = {std::lround(c[0] * n), std::lround(c[1] * n), std::lround(c[2] * n)};
+    if (const auto it = id_of.find(key); it != id_of.end()) return it->second;
+    const double r = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    points.push_back({0.97 * c[0] / r, 0.97 * c[1] / r, 0.97 * c[2] / r});
+    return id_of[key] = static_cast<int>(points.size());
+  };
+  std::vector<std::array<int, 4>> quads;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side : {-1, 1})
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          std::array<int, 4> q;
+          const int di[4] = {0, 1, 1, 0}, dj[4] = {0, 0, 1, 1};
+          for (int k = 0; k < 4; ++k) {
+            std::array<double, 3> c;
+            c[axis] = side;
+            c[(axis + 1) % 3] = -1.0 + 2.0 * (i + di[k]) / n;
+            c[(axis + 2) % 3] = -1.0 + 2.0 * (j + dj[k]) / n;
+            q[side > 0 ? k : 3 - k] = vertex(c);  // outward
+          }
+          quads.push_back(q);
+        }
+  for (const auto& p : points) obj << "v " << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
+  for (const auto& q : quads) obj << "f " << q[0] << ' ' << q[1] << ' ' << q[2] << ' ' << q[3] << '\n';
+  const fs::path mesh = dir / "cube_sphere.obj";
+  std::ofstream(mesh) << obj.str();
+  const fs::path out = dir / "bundle";
+  const CliResult r = run_hqview({"analyze", mesh.string(), "--reference", example("ball.off").string(), "-o",
+                                  out.string(), "--size", "640x480", "--no-viewer"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto ids = check_views(out, "surface reference");
+  for (const char* id : {"boundary_error", "reference_error", "uv_error", "uv_key", "reference_overlay",
+                         "boundary_error_sorted", "boundary_area"})
+    EXPECT_NE(std::find(ids.begin(), ids.end(), id), ids.end()) << id;
+  const json report = json::parse(read_text(out / "report.json"));
+  EXPECT_EQ(report["headline"]["num_cells_by_kind"]["quad"], 6 * n * n);
+  for (const auto& w : report["warnings"]) EXPECT_EQ(w.get<std::string>().find("not drawn yet"), std::string::npos) << w;
+  const std::string boundary = read_text(out / "boundary.html");
+  EXPECT_NE(boundary.find("The signed distance of the surface mesh to the reference"), std::string::npos);
+  EXPECT_EQ(boundary.find("hex boundary"), std::string::npos);
+  EXPECT_NE(boundary.find("views/boundary_error_front.png"), std::string::npos);
+  for (const auto& view : report["views"])
+    EXPECT_EQ(view["title"].get<std::string>().find("hex boundary"), std::string::npos) << view["title"];
+  const ModelPixels front = model_pixels(out / "views/boundary_error_front.png", 0.1);
+  ASSERT_GT(front.model, 20000);
+  EXPECT_GT(front.coloured, 0.4 * front.model) << front.coloured << " of " << front.model;
+  EXPECT_LT(front.outside, 0.02 * front.model) << "the cube-sphere lies inside its reference";
+}
+
 TEST(ViewsCli, KittenBoundaryViewsShowTheErrorBetweenTheVertices) {
   const auto data = shared_data_dir();
   if (!data) GTEST_SKIP() << "../shared/data absent";

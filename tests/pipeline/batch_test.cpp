@@ -327,11 +327,11 @@ TEST(BatchIndex, SurfaceRowsLimitedAnalysisCellCountsAndSkippedInputs) {
   BatchEntry sphere = entry("quads/sphere.obj", BatchStatus::ok);
   sphere.headline[key("mesh.num_hexes")] = 0;
   sphere.surface = SurfaceCounts{600, 0, 8, std::nullopt};
-  sphere.warnings = {std::string(kSurfaceBoundaryErrorViewsNotDrawn)};
+  sphere.warnings = {std::string(kSurfaceBoundaryErrorViewsNotDrawnBefore)};
   BatchEntry holed = entry("quads/holed.obj", BatchStatus::ok);
   holed.headline[key("mesh.num_hexes")] = 0;
   holed.surface = SurfaceCounts{200, 16, 38, 9};
-  holed.warnings = {std::string(kSurfaceBoundaryErrorViewsNotDrawn), "/abs/quads/holed.obj: 1 node is no cell's corner"};
+  holed.warnings = {std::string(kSurfaceBoundaryErrorViewsNotDrawnBefore), "/abs/quads/holed.obj: 1 node is no cell's corner"};
   BatchEntry reference = entry("hex/ball.off", BatchStatus::skipped);
   reference.error = "a surface file beside volume meshes: taken for their reference surface";
   // A curved surface with one reversed face (issue 47 part F): its

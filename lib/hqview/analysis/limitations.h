@@ -10,16 +10,16 @@
 
 namespace hq {
 
-inline constexpr std::string_view kSurfaceBoundaryErrorViewsNotDrawn =
+// No longer written (the boundary-error views of surface meshes are drawn
+// since issue 47's --compare/boundary views, and the viewer draws surface
+// meshes since issue 47 part L), but an index.json of an earlier HQView may
+// hold them: `merge` and the batch page still read them as limitations.
+inline constexpr std::string_view kSurfaceBoundaryErrorViewsNotDrawnBefore =
     "the boundary-error views of surface meshes are not drawn yet (report.json boundary_error has the numbers)";
-
-// No longer written (the viewer draws surface meshes since issue 47 part
-// L), but an index.json of an earlier HQView may hold it: `merge` and the
-// batch page still read it as a limitation.
 inline constexpr std::string_view kSurfaceViewerNotWrittenBefore =
     "the viewer of surface meshes is not written yet (the views are drawn)";
 
-inline constexpr std::string_view kLimitationWarnings[] = {kSurfaceBoundaryErrorViewsNotDrawn,
+inline constexpr std::string_view kLimitationWarnings[] = {kSurfaceBoundaryErrorViewsNotDrawnBefore,
                                                            kSurfaceViewerNotWrittenBefore};
 
 // True when `warning` is one of kLimitationWarnings (exactly).

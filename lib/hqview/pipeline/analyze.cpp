@@ -8,7 +8,6 @@
 #include <limits>
 #include <optional>
 
-#include "hqview/analysis/limitations.h"
 #include "hqview/core/box3.h"
 #include "hqview/core/error.h"
 #include "hqview/core/stop.h"
@@ -466,9 +465,6 @@ AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
   start_analysis(options, in_progress);
   ViewOptions views = options.views;
   views.up = views_up(in_progress.analysis, options);
-  const bool is_surface = is_surface_mesh(in_progress.analysis.mesh);
-  if (renderer && is_surface && in_progress.analysis.boundary_error)
-    in_progress.analysis.warnings.emplace_back(kSurfaceBoundaryErrorViewsNotDrawn);
   if (renderer) {
     // The views that need no atlas are drawn while it is built.
     std::vector<StageTime> view_times;

@@ -562,7 +562,8 @@ std::string panel_intro(const PanelSpec& spec, const ReportModel& model) {
   if (spec.letter == 'F') {
     const std::vector<std::string_view> ids = panel_view_ids('F');
     if (std::any_of(ids.begin(), ids.end(), [&](std::string_view id) { return id != "compare" && has_view(model, id); }))
-      add("The hex boundary against the reference surface (--reference).");
+      add(model.analysis.mesh_summary.is_surface ? "The surface mesh against the reference surface (--reference)."
+                                                 : "The hex boundary against the reference surface (--reference).");
     if (has_view(model, "compare"))
       add("The compared mesh (--compare) beside this one: one camera, one colour map; the Comparison section below "
           "says what of each mesh the page shows.");
@@ -987,7 +988,9 @@ std::string boundary_html(const ReportModel& model) {
                           show(sampled_relative(e, e.sampled_mesh_to_reference.max)) + " %"));
   headline.push_back(card("sampled reference → mesh, % of diagonal",
                           show(sampled_relative(e, e.sampled_reference_to_mesh.max)) + " %"));
-  headline.push_back(card("mesh → reference at the hex boundary vertices (the papers' figure), % of diagonal",
+  // A surface mesh's vertices are all on its "boundary" here.
+  const std::string vertices = model.analysis.mesh_summary.is_surface ? "the mesh's vertices" : "hex boundary vertices";
+  headline.push_back(card("mesh → reference at " + vertices + " (the papers' figure), % of diagonal",
                           show(100.0 * e.relative_mesh_to_reference) + " %"));
   const std::string floor = show(sampled_relative(e, e.on_surface_tolerance));
   headline.push_back(card("boundary area outside / on / inside the reference (on: |error| ≤ " + floor +
@@ -1031,13 +1034,13 @@ std::string boundary_html(const ReportModel& model) {
   rows.push_back(kv("sampled area-weighted mean / mean |error| / rms, reference → mesh",
                     show(e.sampled_reference_to_mesh.mean) + " / " + show(e.sampled_reference_to_mesh.mean_abs) +
                         " / " + show(e.sampled_reference_to_mesh.rms)));
-  rows.push_back(kv("Hausdorff at hex boundary vertices, mesh → reference", show(e.hausdorff_mesh_to_reference)));
+  rows.push_back(kv("Hausdorff at " + vertices + ", mesh → reference", show(e.hausdorff_mesh_to_reference)));
   rows.push_back(kv("Hausdorff at reference vertices and face centres, reference → mesh",
                     show(e.hausdorff_reference_to_mesh)));
   rows.push_back(kv("Hausdorff (vertex figures), symmetric", show(e.hausdorff_symmetric)));
   rows.push_back(kv("reference bbox diagonal", show(e.reference_bbox_diagonal)));
   rows.push_back(
-      kv("area-weighted mean / mean |error| / rms (hex boundary vertices)",
+      kv("area-weighted mean / mean |error| / rms (" + vertices + ")",
          show(e.area_weighted_mean) + " / " + show(e.area_weighted_mean_abs) + " / " + show(e.area_weighted_rms)));
   rows.push_back(kv("sign method", sign_method_name(e.sign_method)));
   rows.push_back(kv("uncertain signs", show_count(e.num_uncertain_signs)));

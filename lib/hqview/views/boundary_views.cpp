@@ -151,9 +151,9 @@ double nice_tick_step(double top) {
   return step;
 }
 
-ColorBar error_color_bar(double scale, double diagonal) {
+ColorBar error_color_bar(double scale, double diagonal, std::string_view mesh_word) {
   ColorBar bar;
-  bar.label = "signed error\n% of diagonal\n(model units)\n+ = hex outside";
+  bar.label = "signed error\n% of diagonal\n(model units)\n+ = " + std::string(mesh_word) + " outside";
   const double top = diagonal > 0.0 ? 100.0 * scale / diagonal : scale;
   const double units_per_percent = top > 0.0 ? scale / top : 1.0;
   bar.min_value = -top;
@@ -201,7 +201,7 @@ ErrorFigureFrame error_figure_frame(const std::vector<Vec3>& points, const Bound
   ErrorFigureFrame f;
   f.style = annotation_style_for(options.height);
   f.style.background = options.background;
-  f.bar = error_color_bar(scale, error.reference_bbox_diagonal);
+  f.bar = error_color_bar(scale, error.reference_bbox_diagonal, options.mesh_word);
   if (worst.found)
     f.bar.swatches.push_back({to_color(kWorstMarkerColor),
                               "ring: max |error| " + signed_percent_label(worst.error, error.reference_bbox_diagonal)});
@@ -355,7 +355,7 @@ Image render_uv_error_map(const TriSurface& reference, const UvAtlas& atlas, con
   AnnotationStyle style = annotation_style_for(options.height);
   style.background = options.background;
   const double scale = boundary_error_scale(error);
-  const ColorBar bar = error_color_bar(scale, error.reference_bbox_diagonal);
+  const ColorBar bar = error_color_bar(scale, error.reference_bbox_diagonal, options.mesh_word);
   const FigureLayout layout =
       figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(bar, style), style);
   Scene scene = build_uv_error_scene(reference, atlas, error.reference_vertex_error, scale);

@@ -25,6 +25,7 @@ struct BoundaryViewOptions {
   std::string title;
   Rgba8 background{255, 255, 255, 255};
   Vec3 up{0.0, 0.0, 1.0};  // the model axis drawn upwards in the 3D views (--up)
+  std::string mesh_word = "hex";  // the legend's "+ = hex outside"; "mesh" for a surface mesh
 };
 
 // The 98th percentile of |e| over the finite values of field (1 when there
@@ -49,7 +50,7 @@ double nice_tick_step(double top);
 // the two ends (the scale's exact values, "<=" / ">=": larger errors are
 // drawn in the end colour), 0 and the multiples of nice_tick_step(100 s / d)
 // not within 8 % of an end.
-ColorBar error_color_bar(double scale, double diagonal);
+ColorBar error_color_bar(double scale, double diagonal, std::string_view mesh_word = "hex");
 // The marker of the boundary_error and reference_error views: a dark ring
 // on a white halo with the value beside it, and a legend swatch.
 inline constexpr Rgba8 kWorstMarkerColor{20, 20, 20, 255};

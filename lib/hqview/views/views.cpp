@@ -351,8 +351,18 @@ std::vector<ViewFile> build_corners(ViewContext& c) {
   return files;
 }
 
-std::vector<ViewFile> build_boundary_error(ViewContext& c) {
+// What the boundary views call MESH's side of the comparison with the
+// reference: a volume mesh's boundary, or a surface mesh itself.
+const char* mesh_side(const Analysis& a) { return is_surface_mesh(a.mesh) ? "surface mesh" : "hex boundary"; }
+
+BoundaryViewOptions boundary_options(ViewContext& c) {
   auto b = sized<BoundaryViewOptions>(c);
+  if (is_surface_mesh(c.a.mesh)) b.mesh_word = "mesh";
+  return b;
+}
+
+std::vector<ViewFile> build_boundary_error(ViewContext& c) {
+  auto b = boundary_options(c);
   std::vector<ViewFile> files;
   b.title = c.name + ": signed boundary error, front";
   Image front = render_boundary_error_view(c.a.mesh, c.a.topology, *c.a.boundary_error, three_quarter_view(b.up), b,
@@ -366,36 +376,36 @@ std::vector<ViewFile> build_boundary_error(ViewContext& c) {
 }
 
 std::vector<ViewFile> build_reference_error(ViewContext& c) {
-  auto b = sized<BoundaryViewOptions>(c);
+  auto b = boundary_options(c);
   std::vector<ViewFile> files;
   const BoundaryError& e = *c.a.boundary_error;
-  b.title = c.name + ": reference coloured by signed distance to the hex boundary, front";
+  b.title = c.name + ": reference coloured by signed distance to the " + mesh_side(c.a) + ", front";
   files.push_back(framed("views/reference_error_front.png",
                          render_reference_error_view(*c.a.reference_surface, e, three_quarter_view(b.up), b, c.renderer), c));
-  b.title = c.name + ": reference coloured by signed distance to the hex boundary, back";
+  b.title = c.name + ": reference coloured by signed distance to the " + mesh_side(c.a) + ", back";
   files.push_back(framed("views/reference_error_back.png",
                          render_reference_error_view(*c.a.reference_surface, e, three_quarter_back_view(b.up), b, c.renderer), c));
   return files;
 }
 
 std::vector<ViewFile> build_uv_error(ViewContext& c) {
-  auto b = sized<BoundaryViewOptions>(c);
-  b.title = c.name + ": reference UV atlas, reference to hex boundary error";
+  auto b = boundary_options(c);
+  b.title = c.name + ": reference UV atlas, reference to " + mesh_side(c.a) + " error";
   return {{"views/uv_error.png",
            render_uv_error_map(*c.a.reference_surface, *c.a.uv_atlas, *c.a.boundary_error, b, c.renderer),
            {}}};
 }
 
 std::vector<ViewFile> build_uv_key(ViewContext& c) {
-  auto b = sized<BoundaryViewOptions>(c);
+  auto b = boundary_options(c);
   b.title = c.name + ": UV key, the reference's " + std::to_string(c.a.uv_atlas->num_charts) +
             " charts numbered (two opposite sides; the atlas as the UV error map lays it out)";
   return {{"views/uv_key.png", render_uv_key(*c.a.reference_surface, *c.a.uv_atlas, b, c.renderer), {}}};
 }
 
 std::vector<ViewFile> build_reference_overlay(ViewContext& c) {
-  auto b = sized<BoundaryViewOptions>(c);
-  b.title = c.name + ": hex boundary (grey) and reference (orange, translucent)";
+  auto b = boundary_options(c);
+  b.title = c.name + ": " + mesh_side(c.a) + " (grey) and reference (orange, translucent)";
   Image image =
       render_reference_overlay(c.a.mesh, c.a.topology, *c.a.reference_surface, three_quarter_view(b.up), b, c.renderer);
   return {framed("views/reference_overlay.png", std::move(image), c)};
@@ -447,7 +457,7 @@ std::vector<ViewFile> build_boundary_error_sorted(ViewContext& c) {
       "boundary_error_sorted",
       sorted_boundary_error_chart(v.error,
                                   {900, 460, c.name + ": sorted signed boundary error (+ outside the reference)"},
-                                  {"hex boundary samples", "% of diagonal",
+                                  {std::string(mesh_side(c.a)) + " samples", "% of diagonal",
                                    v.per_unit * c.a.boundary_error->on_surface_tolerance}));
 }
 
@@ -457,7 +467,7 @@ std::vector<ViewFile> build_boundary_area(ViewContext& c) {
   return chart_files("boundary_area",
                      boundary_area_chart(v.error, v.area, v.per_unit * e.on_surface_tolerance,
                                          {900, 500, c.name + ": boundary area outside / inside the reference"},
-                                         {"hex boundary samples", "% of diagonal"}));
+                                         {std::string(mesh_side(c.a)) + " samples", "% of diagonal"}));
 }
 
 std::vector<ViewFile> build_histogram(ViewContext& c) {
@@ -605,7 +615,14 @@ static std::string view_title(std::string_view title, const Analysis& a) {
         {"Thumbnail: the boundary by vertex quality, bounding-box frame",
          "Thumbnail: the faces by vertex quality, bounding-box frame"},
         {"Compare: both boundaries coloured by vertex quality, one camera",
-         "Compare: both surfaces coloured by vertex quality, one camera"}};
+         "Compare: both surfaces coloured by vertex quality, one camera"},
+        {"Boundary error: hex boundary coloured by signed distance to the reference",
+         "Boundary error: the surface mesh coloured by signed distance to the reference"},
+        {"Reference error: the reference coloured by signed distance to the hex boundary",
+         "Reference error: the reference coloured by signed distance to the surface mesh"},
+        {"F: hex boundary over the translucent reference surface", "F: the surface mesh over the translucent reference"},
+        {"Sorted boundary error (signed, hex boundary samples, % of diagonal)",
+         "Sorted boundary error (signed, surface mesh samples, % of diagonal)"}};
     for (const auto& [from, to] : kSurfaceTitles)
       if (t == from) t = to;
   }
