@@ -27,10 +27,20 @@ constexpr int kMetricsPerPass = 2;
 template <CellKind K>
 constexpr int kNumCornerValues = static_cast<int>(CellKindTable<K>::corner_frames.size());
 
+// Cells per call of a batch kernel (HasMetricBatch): their corners
+// gathered on the stack (96 bytes a tet).
+constexpr std::size_t kBatch = 128;
+
+template <typename Body>
+void for_each_cell_range(std::size_t count, const Body& body) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, kGrain),
+                    [&](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end()); });
+}
+
 template <typename Body>
 void for_each_cell(std::size_t count, const Body& body) {
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t c = r.begin(); c != r.end(); ++c) body(c);
+  for_each_cell_range(count, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c != end; ++c) body(c);
   });
 }
 
@@ -56,6 +66,14 @@ struct BlockKernels<CellKind::tet> {
     std::array<TetMetric, kNumTetMetrics> ids;
     for (std::size_t j = 0; j < metrics.size(); ++j) ids[j] = static_cast<TetMetric>(metrics[j]);
     tet_metric_list(std::span<const TetMetric>(ids).first(metrics.size()), p, reference, out);
+  }
+  // metric_list's values of many cells at once (SIMD lanes): out[j][i] for
+  // cells[i], bit for bit.
+  static void metric_list_many(std::span<const int> metrics, std::span<const Corners> cells, const Reference& reference,
+                               std::span<double* const> out) {
+    std::array<TetMetric, kNumTetMetrics> ids;
+    for (std::size_t j = 0; j < metrics.size(); ++j) ids[j] = static_cast<TetMetric>(metrics[j]);
+    tet_metric_list_many(std::span<const TetMetric>(ids).first(metrics.size()), cells, reference, out);
   }
   // The metric that is size() itself (tet_volume): start_block's sizes.
   static constexpr int size_metric = static_cast<int>(TetMetric::volume);
@@ -122,6 +140,10 @@ struct BlockKernels<CellKind::triangle> {
 // kernel where it has one (tets), else one by one.
 template <typename Kernels>
 concept HasMetricRange = requires { typename Kernels::Reference; };
+
+// Metrics of many cells at once by the kind's batch kernel (tets).
+template <typename Kernels>
+concept HasMetricBatch = requires { &Kernels::metric_list_many; };
 
 template <typename Kernels>
 concept HasProductMetric = requires { Kernels::product; };
@@ -339,12 +361,26 @@ SummarizedCellBlock summarize_cell_block_metrics(std::span<const Vec3> points,
     const std::span<const int> metrics = std::span<const int>(computed).subspan(first, count);
     std::array<std::vector<double>, kMetricsPerPass> columns;
     for (std::size_t j = 0; j < count; ++j) columns[j] = new_column();
-    for_each_cell(n, [&](std::size_t c) {
-      const auto p = corners_of<K>(points, cells, c);
-      std::array<double, kMetricsPerPass> v{};
-      metric_list<Kernels>(metrics, p, field.average_size, reference, v.data());
-      for (std::size_t j = 0; j < count; ++j) columns[j][c] = v[j];
-    });
+    if constexpr (HasMetricBatch<Kernels>) {
+      // Batches of gathered corners through the kind's batch kernel.
+      for_each_cell_range(n, [&](std::size_t begin, std::size_t end) {
+        std::array<typename Kernels::Corners, kBatch> p;
+        for (std::size_t first = begin; first < end; first += kBatch) {
+          const std::size_t size = std::min(kBatch, end - first);
+          for (std::size_t c = 0; c < size; ++c) p[c] = corners_of<K>(points, cells, first + c);
+          std::array<double*, kMetricsPerPass> out{};
+          for (std::size_t j = 0; j < count; ++j) out[j] = columns[j].data() + first;
+          Kernels::metric_list_many(metrics, std::span(p).first(size), reference, std::span(out).first(count));
+        }
+      });
+    } else {
+      for_each_cell(n, [&](std::size_t c) {
+        const auto p = corners_of<K>(points, cells, c);
+        std::array<double, kMetricsPerPass> v{};
+        metric_list<Kernels>(metrics, p, field.average_size, reference, v.data());
+        for (std::size_t j = 0; j < count; ++j) columns[j][c] = v[j];
+      });
+    }
     for (std::size_t j = 0; j < count; ++j) summarize(metrics[j], columns[j]);
   }
   if constexpr (HasSizeMetric<Kernels>)

@@ -82,6 +82,14 @@ void tet_metric_range(int first, int count, const TetCorners& p, const TetSizeRe
 void tet_metric_list(std::span<const TetMetric> metrics, const TetCorners& p, const TetSizeReference& reference,
                      double* out);
 
+// The metrics listed (any order) of every tet of `tets`: out[j][i] is
+// tet_metric_list's j-th value of tets[i], bit for bit, computed a few tets
+// at a time, one per SIMD lane (the same IEEE operations in every lane, libm
+// called lane by lane). out.size() == metrics.size(), each out[j] with room
+// for tets.size() values.
+void tet_metric_list_many(std::span<const TetMetric> metrics, std::span<const TetCorners> tets,
+                          const TetSizeReference& reference, std::span<double* const> out);
+
 // Every metric of one tet, in the enum's order.
 TetMetricValues tet_metrics(const TetCorners& p, double average_volume);
 // One metric by its enum.
