@@ -58,17 +58,11 @@ struct BlockKernels<CellKind::tet> {
   static double size(const Corners& p) { return tet_volume(p); }
   static auto metrics(const Corners& p, double average) { return tet_metrics(p, average); }
   static double metric(int m, const Corners& p, double average) { return tet_metric(TetMetric(m), p, average); }
-  // Metrics first .. first + count - 1 of one cell: metric()'s values, the
-  // tet's size and the block's size reference computed once.
+  // The block's size reference (the cube root of the size metrics), and
+  // metric()'s values of many cells at once (SIMD lanes, the tet's size
+  // computed once for all its metrics): out[j][i] for cells[i], bit for bit.
   using Reference = TetSizeReference;
   static Reference reference(double average) { return tet_size_reference(average); }
-  static void metric_list(std::span<const int> metrics, const Corners& p, const Reference& reference, double* out) {
-    std::array<TetMetric, kNumTetMetrics> ids;
-    for (std::size_t j = 0; j < metrics.size(); ++j) ids[j] = static_cast<TetMetric>(metrics[j]);
-    tet_metric_list(std::span<const TetMetric>(ids).first(metrics.size()), p, reference, out);
-  }
-  // metric_list's values of many cells at once (SIMD lanes): out[j][i] for
-  // cells[i], bit for bit.
   static void metric_list_many(std::span<const int> metrics, std::span<const Corners> cells, const Reference& reference,
                                std::span<double* const> out) {
     std::array<TetMetric, kNumTetMetrics> ids;
@@ -136,41 +130,19 @@ struct BlockKernels<CellKind::triangle> {
   static CellValidity validity(const Corners& p, const std::optional<Vec3>& n) { return triangle_validity(p, n); }
 };
 
-// Metrics first .. first + count - 1 of one cell by the kind's range
-// kernel where it has one (tets), else one by one.
+// Metrics of many cells at once by the kind's batch kernel, against its
+// block-wide size reference (tets); the other kinds' metrics cell by cell.
 template <typename Kernels>
-concept HasMetricRange = requires { typename Kernels::Reference; };
-
-// Metrics of many cells at once by the kind's batch kernel (tets).
-template <typename Kernels>
-concept HasMetricBatch = requires { &Kernels::metric_list_many; };
+concept HasMetricBatch = requires { typename Kernels::Reference; };
 
 template <typename Kernels>
 concept HasProductMetric = requires { Kernels::product; };
-
-template <typename Kernels>
-auto metric_reference(double average) {
-  if constexpr (HasMetricRange<Kernels>)
-    return Kernels::reference(average);
-  else
-    return average;
-}
 
 template <typename Kernels>
 concept HasSizeMetric = requires { Kernels::size_metric; };
 
 template <typename Kernels>
 concept HasFieldMetric = requires { Kernels::field_metric; };
-
-template <typename Kernels, typename Reference>
-void metric_list(std::span<const int> metrics, const typename Kernels::Corners& p, double average,
-                 const Reference& reference, double* out) {
-  if constexpr (HasMetricRange<Kernels>) {
-    Kernels::metric_list(metrics, p, reference, out);
-  } else {
-    for (std::size_t j = 0; j < metrics.size(); ++j) out[j] = Kernels::metric(metrics[j], p, average);
-  }
-}
 
 template <CellKind K>
 using BlockCells = std::span<const std::array<Index, CellKindTable<K>::num_corners>>;
@@ -313,7 +285,6 @@ SummarizedCellBlock summarize_cell_block_metrics(std::span<const Vec3> points,
     field.num_flat += o == CellValidity::flat;
   }
   out.summaries.resize(M + 1);
-  const auto reference = metric_reference<Kernels>(field.average_size);
   // A column summarised (one summary at a time: each sorts a copy of its
   // column, in parallel on a large block; one copy alive, not one per
   // column), then kept or dropped.
@@ -363,22 +334,21 @@ SummarizedCellBlock summarize_cell_block_metrics(std::span<const Vec3> points,
     for (std::size_t j = 0; j < count; ++j) columns[j] = new_column();
     if constexpr (HasMetricBatch<Kernels>) {
       // Batches of gathered corners through the kind's batch kernel.
+      const typename Kernels::Reference reference = Kernels::reference(field.average_size);
       for_each_cell_range(n, [&](std::size_t begin, std::size_t end) {
         std::array<typename Kernels::Corners, kBatch> p;
-        for (std::size_t first = begin; first < end; first += kBatch) {
-          const std::size_t size = std::min(kBatch, end - first);
-          for (std::size_t c = 0; c < size; ++c) p[c] = corners_of<K>(points, cells, first + c);
+        for (std::size_t batch = begin; batch < end; batch += kBatch) {
+          const std::size_t size = std::min(kBatch, end - batch);
+          for (std::size_t c = 0; c < size; ++c) p[c] = corners_of<K>(points, cells, batch + c);
           std::array<double*, kMetricsPerPass> out{};
-          for (std::size_t j = 0; j < count; ++j) out[j] = columns[j].data() + first;
+          for (std::size_t j = 0; j < count; ++j) out[j] = columns[j].data() + batch;
           Kernels::metric_list_many(metrics, std::span(p).first(size), reference, std::span(out).first(count));
         }
       });
     } else {
       for_each_cell(n, [&](std::size_t c) {
         const auto p = corners_of<K>(points, cells, c);
-        std::array<double, kMetricsPerPass> v{};
-        metric_list<Kernels>(metrics, p, field.average_size, reference, v.data());
-        for (std::size_t j = 0; j < count; ++j) columns[j][c] = v[j];
+        for (std::size_t j = 0; j < count; ++j) columns[j][c] = Kernels::metric(metrics[j], p, field.average_size);
       });
     }
     for (std::size_t j = 0; j < count; ++j) summarize(metrics[j], columns[j]);

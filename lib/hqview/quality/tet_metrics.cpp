@@ -72,12 +72,6 @@ void tet_metric_range(int first, int count, const TetCorners& p, const TetSizeRe
   for (int j = 0; j < count; ++j) out[j] = metric_with_size(static_cast<TetMetric>(first + j), p, reference, size);
 }
 
-void tet_metric_list(std::span<const TetMetric> metrics, const TetCorners& p, const TetSizeReference& reference,
-                     double* out) {
-  const double size = size_of(p);  // shared by every scaled metric
-  for (std::size_t j = 0; j < metrics.size(); ++j) out[j] = metric_with_size(metrics[j], p, reference, size);
-}
-
 void tet_metric_list_many(std::span<const TetMetric> metrics, std::span<const TetCorners> tets,
                           const TetSizeReference& reference, std::span<double* const> out) {
 #if HQ_TET_KERNELS_AVX2

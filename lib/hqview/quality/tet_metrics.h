@@ -77,13 +77,9 @@ TetSizeReference tet_size_reference(double average_volume);
 // and the block's reference computed once instead of per metric.
 void tet_metric_range(int first, int count, const TetCorners& p, const TetSizeReference& reference, double* out);
 
-// The metrics listed (any order) of one tet into out[0 .. metrics.size()):
-// tet_metric's values, bit for bit, the size computed once as above.
-void tet_metric_list(std::span<const TetMetric> metrics, const TetCorners& p, const TetSizeReference& reference,
-                     double* out);
-
 // The metrics listed (any order) of every tet of `tets`: out[j][i] is
-// tet_metric_list's j-th value of tets[i], bit for bit, computed a few tets
+// tet_metric(metrics[j], tets[i], reference.average_volume), bit for bit,
+// the tet's size computed once for all its metrics, a few tets
 // at a time, one per SIMD lane (the same IEEE operations in every lane, libm
 // called lane by lane). out.size() == metrics.size(), each out[j] with room
 // for tets.size() values.
