@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <iostream>
@@ -17,6 +18,7 @@
 
 #include "hqview/quality/pyramid_metrics.h"
 #include "hqview/quality/quad_metrics.h"
+#include "hqview/quality/tet_metric_kernels.h"
 #include "hqview/quality/tet_metrics.h"
 #include "hqview/quality/triangle_metrics.h"
 #include "hqview/quality/wedge_metrics.h"
@@ -136,6 +138,81 @@ TEST(CellMetrics, TetRangeKernelIsTheOneMetricKernelBitForBit) {
     }
   }
   EXPECT_EQ(checked, 27 * 3 * (21 + 20 * 2 + 19 * 3 + 18 * 4));
+}
+
+// Tets for the batch kernels: random tets near the unit corner tet, and
+// copies made degenerate (coincident corners, all corners at one point,
+// flat, tiny, huge, far from the origin at tiny size, inverted, -0.0
+// coordinates), then the oracle's tets (degenerate, flat and inverted ones
+// among them).
+std::vector<TetCorners> batch_test_tets() {
+  std::mt19937_64 rng(4646);
+  std::uniform_real_distribution<double> jitter(-0.6, 0.6);
+  std::vector<TetCorners> tets;
+  for (int i = 0; i < 4000; ++i) {
+    TetCorners t = {Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}};
+    for (Vec3& p : t) p = p + Vec3{jitter(rng), jitter(rng), jitter(rng)};
+    switch (i % 12) {
+      case 0: t[1] = t[0]; break;
+      case 1: t[1] = t[2] = t[3] = t[0]; break;
+      case 2: t[3] = (t[0] + t[1]) / 2.0; break;
+      case 3: for (Vec3& p : t) p.z = 0.0; break;
+      case 4: for (Vec3& p : t) p = 1e-20 * p; break;
+      case 5: for (Vec3& p : t) p = 1e20 * p; break;
+      case 6: std::swap(t[0], t[1]); break;
+      case 7: for (Vec3& p : t) p.x = -0.0 * p.x; break;
+      case 8: for (Vec3& p : t) p = 1e-8 * p + Vec3{1e3, 2e3, -5e2}; break;
+      case 9: t[2] = t[0]; t[3] = t[1]; break;
+      default: break;
+    }
+    tets.push_back(t);
+  }
+  const auto oracle = test::load_cell_oracle();
+  if (!oracle.is_null())
+    for (const auto& c : oracle["cases"])
+      if (c["kind"] == "tet") tets.push_back(corners_of<4>(c["coords"]));
+  return tets;
+}
+
+// `many` (a tet_metric_list_many) gives tet_metric's value of every metric
+// of every tet bit for bit, fed in runs of 1 to 13 tets (full and partial
+// lane groups).
+template <class Many>
+void expect_batch_equals_one_tet_kernel(const Many& many) {
+  const std::vector<TetCorners> tets = batch_test_tets();
+  std::vector<TetMetric> metrics;
+  for (int m = 0; m < kNumTetMetrics; ++m) metrics.push_back(TetMetric(m));
+  const auto same_bits = [](double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; };
+  for (const double average : {0.16, 1e-17, -0.3}) {
+    const TetSizeReference reference = tet_size_reference(average);
+    std::vector<std::vector<double>> columns(kNumTetMetrics, std::vector<double>(tets.size()));
+    for (std::size_t first = 0, run = 1; first < tets.size(); first += run, run = run % 13 + 1) {
+      const std::size_t count = std::min(run, tets.size() - first);
+      std::vector<double*> out;
+      for (auto& column : columns) out.push_back(column.data() + first);
+      many(metrics, std::span<const TetCorners>(tets).subspan(first, count), reference, out);
+    }
+    int differing = 0;
+    for (std::size_t i = 0; i < tets.size(); ++i)
+      for (int m = 0; m < kNumTetMetrics; ++m) {
+        const double one = tet_metric(TetMetric(m), tets[i], average);
+        if (!same_bits(columns[static_cast<std::size_t>(m)][i], one) && differing++ < 10)
+          ADD_FAILURE() << "tet " << i << " " << tet_metric_info(TetMetric(m)).name << ": batch "
+                        << columns[static_cast<std::size_t>(m)][i] << ", one tet " << one;
+      }
+    EXPECT_EQ(differing, 0) << "average " << average;
+  }
+}
+
+// The batch kernel the block summaries run (AVX2's 4 lanes where the CPU
+// has them, else SSE2's 2), and the lane kernel as this file is built
+// (SSE2's 2 lanes on the baseline x86-64).
+TEST(CellMetrics, TetBatchKernelIsTheOneTetKernelBitForBit) {
+  expect_batch_equals_one_tet_kernel([](std::span<const TetMetric> metrics, std::span<const TetCorners> tets,
+                                        const TetSizeReference& reference, std::span<double* const> out) {
+    tet_metric_list_many(metrics, tets, reference, out);
+  });
+  expect_batch_equals_one_tet_kernel(tet_kernels::metric_list_lanes);
 }
 
 // The wedge cases also list Verdict on the VTK corners fed unchanged: HQView

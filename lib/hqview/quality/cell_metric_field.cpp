@@ -27,10 +27,20 @@ constexpr int kMetricsPerPass = 2;
 template <CellKind K>
 constexpr int kNumCornerValues = static_cast<int>(CellKindTable<K>::corner_frames.size());
 
+// Cells per call of a batch kernel (HasMetricBatch): their corners
+// gathered on the stack (96 bytes a tet).
+constexpr std::size_t kBatch = 128;
+
+template <typename Body>
+void for_each_cell_range(std::size_t count, const Body& body) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, kGrain),
+                    [&](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end()); });
+}
+
 template <typename Body>
 void for_each_cell(std::size_t count, const Body& body) {
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t c = r.begin(); c != r.end(); ++c) body(c);
+  for_each_cell_range(count, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c != end; ++c) body(c);
   });
 }
 
@@ -48,14 +58,16 @@ struct BlockKernels<CellKind::tet> {
   static double size(const Corners& p) { return tet_volume(p); }
   static auto metrics(const Corners& p, double average) { return tet_metrics(p, average); }
   static double metric(int m, const Corners& p, double average) { return tet_metric(TetMetric(m), p, average); }
-  // Metrics first .. first + count - 1 of one cell: metric()'s values, the
-  // tet's size and the block's size reference computed once.
+  // The block's size reference (the cube root of the size metrics), and
+  // metric()'s values of many cells at once (SIMD lanes, the tet's size
+  // computed once for all its metrics): out[j][i] for cells[i], bit for bit.
   using Reference = TetSizeReference;
   static Reference reference(double average) { return tet_size_reference(average); }
-  static void metric_list(std::span<const int> metrics, const Corners& p, const Reference& reference, double* out) {
+  static void metric_list_many(std::span<const int> metrics, std::span<const Corners> cells, const Reference& reference,
+                               std::span<double* const> out) {
     std::array<TetMetric, kNumTetMetrics> ids;
     for (std::size_t j = 0; j < metrics.size(); ++j) ids[j] = static_cast<TetMetric>(metrics[j]);
-    tet_metric_list(std::span<const TetMetric>(ids).first(metrics.size()), p, reference, out);
+    tet_metric_list_many(std::span<const TetMetric>(ids).first(metrics.size()), cells, reference, out);
   }
   // The metric that is size() itself (tet_volume): start_block's sizes.
   static constexpr int size_metric = static_cast<int>(TetMetric::volume);
@@ -118,37 +130,19 @@ struct BlockKernels<CellKind::triangle> {
   static CellValidity validity(const Corners& p, const std::optional<Vec3>& n) { return triangle_validity(p, n); }
 };
 
-// Metrics first .. first + count - 1 of one cell by the kind's range
-// kernel where it has one (tets), else one by one.
+// Metrics of many cells at once by the kind's batch kernel, against its
+// block-wide size reference (tets); the other kinds' metrics cell by cell.
 template <typename Kernels>
-concept HasMetricRange = requires { typename Kernels::Reference; };
+concept HasMetricBatch = requires { typename Kernels::Reference; };
 
 template <typename Kernels>
 concept HasProductMetric = requires { Kernels::product; };
-
-template <typename Kernels>
-auto metric_reference(double average) {
-  if constexpr (HasMetricRange<Kernels>)
-    return Kernels::reference(average);
-  else
-    return average;
-}
 
 template <typename Kernels>
 concept HasSizeMetric = requires { Kernels::size_metric; };
 
 template <typename Kernels>
 concept HasFieldMetric = requires { Kernels::field_metric; };
-
-template <typename Kernels, typename Reference>
-void metric_list(std::span<const int> metrics, const typename Kernels::Corners& p, double average,
-                 const Reference& reference, double* out) {
-  if constexpr (HasMetricRange<Kernels>) {
-    Kernels::metric_list(metrics, p, reference, out);
-  } else {
-    for (std::size_t j = 0; j < metrics.size(); ++j) out[j] = Kernels::metric(metrics[j], p, average);
-  }
-}
 
 template <CellKind K>
 using BlockCells = std::span<const std::array<Index, CellKindTable<K>::num_corners>>;
@@ -291,7 +285,6 @@ SummarizedCellBlock summarize_cell_block_metrics(std::span<const Vec3> points,
     field.num_flat += o == CellValidity::flat;
   }
   out.summaries.resize(M + 1);
-  const auto reference = metric_reference<Kernels>(field.average_size);
   // A column summarised (one summary at a time: each sorts a copy of its
   // column, in parallel on a large block; one copy alive, not one per
   // column), then kept or dropped.
@@ -339,12 +332,25 @@ SummarizedCellBlock summarize_cell_block_metrics(std::span<const Vec3> points,
     const std::span<const int> metrics = std::span<const int>(computed).subspan(first, count);
     std::array<std::vector<double>, kMetricsPerPass> columns;
     for (std::size_t j = 0; j < count; ++j) columns[j] = new_column();
-    for_each_cell(n, [&](std::size_t c) {
-      const auto p = corners_of<K>(points, cells, c);
-      std::array<double, kMetricsPerPass> v{};
-      metric_list<Kernels>(metrics, p, field.average_size, reference, v.data());
-      for (std::size_t j = 0; j < count; ++j) columns[j][c] = v[j];
-    });
+    if constexpr (HasMetricBatch<Kernels>) {
+      // Batches of gathered corners through the kind's batch kernel.
+      const typename Kernels::Reference reference = Kernels::reference(field.average_size);
+      for_each_cell_range(n, [&](std::size_t begin, std::size_t end) {
+        std::array<typename Kernels::Corners, kBatch> p;
+        for (std::size_t batch = begin; batch < end; batch += kBatch) {
+          const std::size_t size = std::min(kBatch, end - batch);
+          for (std::size_t c = 0; c < size; ++c) p[c] = corners_of<K>(points, cells, batch + c);
+          std::array<double*, kMetricsPerPass> out{};
+          for (std::size_t j = 0; j < count; ++j) out[j] = columns[j].data() + batch;
+          Kernels::metric_list_many(metrics, std::span(p).first(size), reference, std::span(out).first(count));
+        }
+      });
+    } else {
+      for_each_cell(n, [&](std::size_t c) {
+        const auto p = corners_of<K>(points, cells, c);
+        for (std::size_t j = 0; j < count; ++j) columns[j][c] = Kernels::metric(metrics[j], p, field.average_size);
+      });
+    }
     for (std::size_t j = 0; j < count; ++j) summarize(metrics[j], columns[j]);
   }
   if constexpr (HasSizeMetric<Kernels>)

@@ -77,10 +77,14 @@ TetSizeReference tet_size_reference(double average_volume);
 // and the block's reference computed once instead of per metric.
 void tet_metric_range(int first, int count, const TetCorners& p, const TetSizeReference& reference, double* out);
 
-// The metrics listed (any order) of one tet into out[0 .. metrics.size()):
-// tet_metric's values, bit for bit, the size computed once as above.
-void tet_metric_list(std::span<const TetMetric> metrics, const TetCorners& p, const TetSizeReference& reference,
-                     double* out);
+// The metrics listed (any order) of every tet of `tets`: out[j][i] is
+// tet_metric(metrics[j], tets[i], reference.average_volume), bit for bit,
+// the tet's size computed once for all its metrics, a few tets
+// at a time, one per SIMD lane (the same IEEE operations in every lane, libm
+// called lane by lane). out.size() == metrics.size(), each out[j] with room
+// for tets.size() values.
+void tet_metric_list_many(std::span<const TetMetric> metrics, std::span<const TetCorners> tets,
+                          const TetSizeReference& reference, std::span<double* const> out);
 
 // Every metric of one tet, in the enum's order.
 TetMetricValues tet_metrics(const TetCorners& p, double average_volume);
