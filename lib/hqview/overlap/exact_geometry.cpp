@@ -476,6 +476,17 @@ bool coplanar_triangles_meet_improperly(const std::vector<Vec3>& p, const Triang
   return orient2(project(u), project(v), project(x)) == orient2(project(u), project(v), project(y));
 }
 
+// The sign of orient2 when double arithmetic alone is sure of it, else 0:
+// Shewchuk's bound for orient2dfast ((3 + 16 eps) eps of the products'
+// magnitudes, eps = 2^-53), widened by 1e-4 of itself, and not trusted near
+// underflow, overflow or NaN.
+int sure_orient2(const Point2& a, const Point2& b, const Point2& c) {
+  const double left = (a.x() - c.x()) * (b.y() - c.y()), right = (a.y() - c.y()) * (b.x() - c.x());
+  const double det = left - right, bound = 3.3311e-16 * (std::abs(left) + std::abs(right));
+  if (!(bound > 0x1p-1000 && bound < 0x1p1000)) return 0;
+  return det > bound ? 1 : (det < -bound ? -1 : 0);
+}
+
 // The triangles meet at most in their shared corners (by id) and what lies
 // between them, decided in one coordinate plane (the one a's normal points
 // to most) by exact 2D orientations: some edge's line of one triangle, whose
@@ -485,7 +496,10 @@ bool coplanar_triangles_meet_improperly(const std::vector<Vec3>& p, const Triang
 // that triangle's plane, so the triangles meet only in the shared corners'
 // hull: a shared vertex or edge, a contact. On a smooth surface this settles
 // neighbours without the 3D orientations, which are nearly zero there and
-// go to CGAL's exact fallback. False: not settled (the full test decides).
+// go to CGAL's exact fallback. The signs double arithmetic is sure of are
+// tried first (a corner nearly on one line, e.g. the next point of a grid
+// line, leaves another line to separate them), then CGAL's exact ones.
+// False: not settled (the full test decides).
 bool separated_in_projection(const std::vector<Vec3>& p, const Triangle& a, const Triangle& b) {
   const Vec3 &a0 = at(p, a[0]), &a1 = at(p, a[1]), &a2 = at(p, a[2]);
   const Vec3 n = cross(a1 - a0, a2 - a0);
@@ -497,20 +511,22 @@ bool separated_in_projection(const std::vector<Vec3>& p, const Triangle& a, cons
   };
   const std::array<Point2, 3> pa{project(a[0]), project(a[1]), project(a[2])},
       pb{project(b[0]), project(b[1]), project(b[2])};
+  // sign(a, b, c): an exact sign, or 0 when not known (never a wrong sign).
   const auto edge_separates = [](const Triangle& s, const std::array<Point2, 3>& ps, const Triangle& t,
-                                 const std::array<Point2, 3>& pt) {
-    const int side = orient2(ps[0], ps[1], ps[2]);
+                                 const std::array<Point2, 3>& pt, auto sign) {
+    const int side = sign(ps[0], ps[1], ps[2]);
     if (side == 0) return false;
     for (std::size_t e = 0; e < 3; ++e) {
       const std::size_t f = (e + 1) % 3;
       bool beyond = true;
       for (std::size_t k = 0; k < 3 && beyond; ++k)
-        beyond = t[k] == s[e] || t[k] == s[f] || orient2(ps[e], ps[f], pt[k]) == -side;
+        beyond = t[k] == s[e] || t[k] == s[f] || sign(ps[e], ps[f], pt[k]) == -side;
       if (beyond) return true;
     }
     return false;
   };
-  return edge_separates(a, pa, b, pb) || edge_separates(b, pb, a, pa);
+  return edge_separates(a, pa, b, pb, sure_orient2) || edge_separates(b, pb, a, pa, sure_orient2) ||
+         edge_separates(a, pa, b, pb, orient2) || edge_separates(b, pb, a, pa, orient2);
 }
 
 bool triangles_meet_improperly(const std::vector<Vec3>& p, const Triangle& a, const Triangle& b) {
