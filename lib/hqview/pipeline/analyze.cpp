@@ -60,7 +60,8 @@ constexpr std::size_t kMetricsBesideOverlapMaxCells = 1'000'000;
 // and the pairs of faces whose boxes meet: about 250 bytes a face) and its
 // metric columns (8 bytes a face each) are smaller; its metrics, their
 // summaries and its quad structure run beside the self-intersection up to
-// this many faces (1,092,416 quads: the run's peak RSS ... ).
+// this many faces (1,092,416 quads: the run's peak RSS 0.86 GB, against
+// 0.97 GB before, when they ran after it and the candidates were listed).
 constexpr std::size_t kMetricsBesideSurfaceOverlapMaxFaces = 4'000'000;
 
 // f, timed into `seconds`: for stages that run beside another one.
