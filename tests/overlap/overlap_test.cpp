@@ -629,6 +629,97 @@ TEST(SurfaceOverlap, RandomlyTangledSurfacesMatchTheReference) {
   }
 }
 
+// The candidate pairs by definition: every two non-degenerate triangles of
+// the faces (a quad split by quad_split_diagonal) whose closed boxes touch,
+// counted over all pairs (no vertex welding: the meshes below have none).
+std::int64_t brute_force_candidates(const Mesh& m) {
+  std::vector<std::array<Vec3, 3>> triangles;
+  const auto add = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+    if (squared_norm(cross(b - a, c - a)) > 0.0) triangles.push_back({a, b, c});
+  };
+  for (const auto& q : m.quads) {
+    const Vec3 &p0 = m.points[q[0]], &p1 = m.points[q[1]], &p2 = m.points[q[2]], &p3 = m.points[q[3]];
+    if (quad_split_diagonal(p0, p1, p2, p3) == 0) {
+      add(p0, p1, p2);
+      add(p0, p2, p3);
+    } else {
+      add(p0, p1, p3);
+      add(p1, p2, p3);
+    }
+  }
+  for (const auto& t : m.triangles) add(m.points[t[0]], m.points[t[1]], m.points[t[2]]);
+  std::int64_t count = 0;
+  for (std::size_t i = 0; i < triangles.size(); ++i)
+    for (std::size_t j = i + 1; j < triangles.size(); ++j) {
+      bool touch = true;
+      for (int k = 0; k < 3 && touch; ++k) {
+        const auto lo = [&](const std::array<Vec3, 3>& t) { return std::fmin(std::fmin(t[0][k], t[1][k]), t[2][k]); };
+        const auto hi = [&](const std::array<Vec3, 3>& t) { return std::fmax(std::fmax(t[0][k], t[1][k]), t[2][k]); };
+        touch = lo(triangles[i]) <= hi(triangles[j]) && lo(triangles[j]) <= hi(triangles[i]);
+      }
+      count += touch;
+    }
+  return count;
+}
+
+Vec3 rotated(const Vec3& p, double angle) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  const Vec3 q{c * p.x - s * p.y, s * p.x + c * p.y, p.z};
+  return Vec3{q.x, c * q.y - s * q.z, s * q.y + c * q.z};
+}
+
+// The projection filter (triangles settled in one coordinate plane) and the
+// streamed candidates of the self-intersection against the all-pairs
+// reference where rounding is hardest: faces on the points of a small
+// lattice (exactly coplanar and collinear corners, shared vertices and
+// edges, corners on other faces' edges, triangles touching at a point),
+// then the same faces on the lattice turned by an irrational angle (the
+// same configurations, now only nearly coplanar or collinear).
+TEST(SurfaceOverlap, LatticeFacesExactlyAndNearlyCoplanarMatchTheReference) {
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    std::srand(seed);
+    Mesh m;
+    for (int z = 0; z < 2; ++z)
+      for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) m.points.push_back({double(x), double(y), double(z) * (seed % 3)});
+    const auto vertex = [&] { return static_cast<Index>(std::rand() % static_cast<int>(m.points.size())); };
+    while (m.quads.size() + m.triangles.size() < 40) {
+      const Index a = vertex(), b = vertex(), c = vertex(), d = vertex();
+      if (a == b || a == c || b == c) continue;
+      if (std::rand() % 2)
+        m.triangles.push_back({a, b, c});
+      else if (d != a && d != b && d != c)
+        m.quads.push_back({a, b, c, d});
+    }
+    expect_surface_matches_reference(m, "lattice, seed " + std::to_string(seed));
+    EXPECT_EQ(run_surface(m).num_candidate_pairs, brute_force_candidates(m)) << seed;
+    Mesh turned = m;
+    for (Vec3& p : turned.points) p = rotated(p, 0.1 * std::sqrt(2.0) * seed) + Vec3{1e3, -2e2, 7.0};
+    expect_surface_matches_reference(turned, "turned lattice, seed " + std::to_string(seed));
+    EXPECT_EQ(run_surface(turned).num_candidate_pairs, brute_force_candidates(turned)) << seed;
+  }
+}
+
+// A refined flat patch turned off the axes (neighbours nearly coplanar, the
+// case the projection filter settles), then folded: a vertex pushed within
+// the plane across its neighbour (coplanar overlaps), and by 1e-13 off the
+// plane beside a neighbour pushed back flat over it (nearly coplanar).
+TEST(SurfaceOverlap, TurnedFlatPatchAndItsNearlyFlatFoldsMatchTheReference) {
+  Mesh m = quad_grid(6);
+  for (Vec3& p : m.points) p = rotated(p * 0.37, 0.7);
+  expect_surface_matches_reference(m, "turned patch");
+  EXPECT_TRUE(run_surface(m).certified_clean);
+  EXPECT_EQ(run_surface(m).num_candidate_pairs, brute_force_candidates(m));
+  Mesh pushed = quad_grid(6);
+  pushed.points[8] = {2.6, 1.3, 0.0};                  // (1, 1) across quad (1, 1) into (2, 1)
+  pushed.points[17] = {3.0 + 1e-13, 2.0, 1e-13};       // (3, 2) barely off the plane
+  pushed.points[24] = {2.5, 3.0, -1e-13};              // (3, 3) folded back over quad (2, 2)
+  expect_surface_matches_reference(pushed, "pushed in the plane");
+  for (Vec3& p : pushed.points) p = rotated(p * 0.37, 0.7);
+  expect_surface_matches_reference(pushed, "pushed, turned");
+  EXPECT_EQ(run_surface(pushed).num_candidate_pairs, brute_force_candidates(pushed));
+}
+
 TEST(SurfaceOverlap, ToleranceWeldsNearVerticesAndTheBudgetStopsTheSearch) {
   Mesh m = quad_grid(2);
   // Quad 1 detached onto its own vertices, 1e-9 away from the grid's.

@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace hq::detail {
 namespace {
@@ -106,35 +107,67 @@ BoxPairs box_self_pairs(const std::vector<Box3>& boxes, BoxContact contact, std:
   return result;
 }
 
-BoxPairs grouped_box_self_pairs(const std::vector<Box3>& boxes, const std::vector<Index>& first, std::int64_t max_pairs) {
-  const auto at = [&](Index i) -> const Box3& { return boxes[static_cast<std::size_t>(i)]; };
+namespace {
+
+// Each non-empty group's bounds (the box around its boxes), its id the group.
+std::vector<IndexedBox> group_bounds(const std::vector<Box3>& boxes, const std::vector<Index>& first) {
   std::vector<IndexedBox> groups;
   for (std::size_t g = 0; g + 1 < first.size(); ++g) {
     Box3 bounds;
     for (Index i = first[g]; i < first[g + 1]; ++i) {
-      bounds.add(at(i).lo);
-      bounds.add(at(i).hi);
+      bounds.add(boxes[static_cast<std::size_t>(i)].lo);
+      bounds.add(boxes[static_cast<std::size_t>(i)].hi);
     }
     if (first[g] < first[g + 1]) groups.push_back(indexed(bounds, g));
   }
+  return groups;
+}
+
+// CGAL's search on the groups' bounds, closed: report(a, b) per pair.
+template <class Report>
+void group_self_intersection(std::vector<IndexedBox>& groups, Report&& report) {
+  CGAL::box_self_intersection_d<CGAL::Sequential_tag>(groups.begin(), groups.end(), report,
+                                                      CGAL::Box_intersection_d::Box_traits_d<IndexedBox>(), kScanCutoff,
+                                                      CGAL::Box_intersection_d::CLOSED);
+}
+
+}  // namespace
+
+BoxPairs grouped_box_self_pairs(const std::vector<Box3>& boxes, const std::vector<Index>& first, std::int64_t max_pairs) {
+  const auto at = [&](Index i) -> const Box3& { return boxes[static_cast<std::size_t>(i)]; };
+  std::vector<IndexedBox> groups = group_bounds(boxes, first);
   BudgetedPairs collected(max_pairs);
   const auto test = [&](Index i, Index j) {
     if (boxes_overlap_closed(at(i), at(j))) collected.add(static_cast<std::size_t>(i), static_cast<std::size_t>(j));
-  };
-  auto report = [&](const IndexedBox& a, const IndexedBox& b) {
-    for (Index i = first[a.index]; i < first[a.index + 1]; ++i)
-      for (Index j = first[b.index]; j < first[b.index + 1]; ++j) test(i, j);
   };
   BoxPairs result = collected.run([&] {
     for (const IndexedBox& g : groups)
       for (Index i = first[g.index]; i < first[g.index + 1]; ++i)
         for (Index j = i + 1; j < first[g.index + 1]; ++j) test(i, j);
-    CGAL::box_self_intersection_d<CGAL::Sequential_tag>(groups.begin(), groups.end(), report,
-                                                        CGAL::Box_intersection_d::Box_traits_d<IndexedBox>(), kScanCutoff,
-                                                        CGAL::Box_intersection_d::CLOSED);
+    group_self_intersection(groups, [&](const IndexedBox& a, const IndexedBox& b) {
+      for (Index i = first[a.index]; i < first[a.index + 1]; ++i)
+        for (Index j = first[b.index]; j < first[b.index + 1]; ++j) test(i, j);
+    });
   });
   normalize(result.pairs);
   return result;
+}
+
+std::optional<std::vector<std::array<Index, 2>>> group_bound_pairs(const std::vector<Box3>& boxes,
+                                                                   const std::vector<Index>& first,
+                                                                   std::int64_t max_pairs) {
+  std::vector<IndexedBox> groups = group_bounds(boxes, first);
+  std::vector<std::array<Index, 2>> pairs;
+  struct Stop {};
+  try {
+    group_self_intersection(groups, [&](const IndexedBox& a, const IndexedBox& b) {
+      if (static_cast<std::int64_t>(pairs.size()) >= max_pairs) throw Stop{};
+      pairs.push_back({static_cast<Index>(std::min(a.index, b.index)), static_cast<Index>(std::max(a.index, b.index))});
+    });
+  } catch (const Stop&) {
+    return std::nullopt;
+  }
+  return pairs;
 }
 
 namespace {

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "hqview/core/types.h"
@@ -53,5 +54,13 @@ BoxPairs box_subset_pairs(std::size_t num_boxes, const std::function<Box3(std::s
 // of near neighbours (a boundary quad's 4 fan triangles): a quarter of the
 // boxes for CGAL to sort and split. The budget counts box pairs, as there.
 BoxPairs grouped_box_self_pairs(const std::vector<Box3>& boxes, const std::vector<Index>& first, std::int64_t max_pairs);
+
+// The pairs {g, h}, g < h, of groups (as there) whose bounds meet (closed),
+// in the search's order (the same for any thread count: the search is
+// sequential); nullopt when there are more than max_pairs (the search stops
+// there). The caller tests the boxes of each pair itself.
+std::optional<std::vector<std::array<Index, 2>>> group_bound_pairs(const std::vector<Box3>& boxes,
+                                                                   const std::vector<Index>& first,
+                                                                   std::int64_t max_pairs);
 
 }  // namespace hq::detail

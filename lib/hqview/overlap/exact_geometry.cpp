@@ -476,9 +476,63 @@ bool coplanar_triangles_meet_improperly(const std::vector<Vec3>& p, const Triang
   return orient2(project(u), project(v), project(x)) == orient2(project(u), project(v), project(y));
 }
 
+// The sign of orient2 when double arithmetic alone is sure of it, else 0:
+// Shewchuk's bound for orient2dfast ((3 + 16 eps) eps of the products'
+// magnitudes, eps = 2^-53), widened by 1e-4 of itself, and not trusted near
+// underflow, overflow or NaN.
+int sure_orient2(const Point2& a, const Point2& b, const Point2& c) {
+  const double left = (a.x() - c.x()) * (b.y() - c.y()), right = (a.y() - c.y()) * (b.x() - c.x());
+  const double det = left - right, bound = 3.3311e-16 * (std::abs(left) + std::abs(right));
+  if (!(bound > 0x1p-1000 && bound < 0x1p1000)) return 0;
+  return det > bound ? 1 : (det < -bound ? -1 : 0);
+}
+
+// The triangles meet at most in their shared corners (by id) and what lies
+// between them, decided in one coordinate plane (the one a's normal points
+// to most) by exact 2D orientations: some edge's line of one triangle, whose
+// projection has area, has the other's corners but the edge's own ends
+// strictly on its far side. Then the projections meet only within the hull
+// of the shared corners' projections, and the projection is one to one on
+// that triangle's plane, so the triangles meet only in the shared corners'
+// hull: a shared vertex or edge, a contact. On a smooth surface this settles
+// neighbours without the 3D orientations, which are nearly zero there and
+// go to CGAL's exact fallback. The signs double arithmetic is sure of are
+// tried first (a corner nearly on one line, e.g. the next point of a grid
+// line, leaves another line to separate them), then CGAL's exact ones.
+// False: not settled (the full test decides).
+bool separated_in_projection(const std::vector<Vec3>& p, const Triangle& a, const Triangle& b) {
+  const Vec3 &a0 = at(p, a[0]), &a1 = at(p, a[1]), &a2 = at(p, a[2]);
+  const Vec3 n = cross(a1 - a0, a2 - a0);
+  const double nx = std::abs(n.x), ny = std::abs(n.y), nz = std::abs(n.z);
+  const int drop = nx >= ny && nx >= nz ? 0 : (ny >= nz ? 1 : 2);
+  const auto project = [&](Index i) {
+    const Vec3& q = at(p, i);
+    return drop == 0 ? Point2(q.y, q.z) : (drop == 1 ? Point2(q.z, q.x) : Point2(q.x, q.y));
+  };
+  const std::array<Point2, 3> pa{project(a[0]), project(a[1]), project(a[2])},
+      pb{project(b[0]), project(b[1]), project(b[2])};
+  // sign(a, b, c): an exact sign, or 0 when not known (never a wrong sign).
+  const auto edge_separates = [](const Triangle& s, const std::array<Point2, 3>& ps, const Triangle& t,
+                                 const std::array<Point2, 3>& pt, auto sign) {
+    const int side = sign(ps[0], ps[1], ps[2]);
+    if (side == 0) return false;
+    for (std::size_t e = 0; e < 3; ++e) {
+      const std::size_t f = (e + 1) % 3;
+      bool beyond = true;
+      for (std::size_t k = 0; k < 3 && beyond; ++k)
+        beyond = t[k] == s[e] || t[k] == s[f] || sign(ps[e], ps[f], pt[k]) == -side;
+      if (beyond) return true;
+    }
+    return false;
+  };
+  return edge_separates(a, pa, b, pb, sure_orient2) || edge_separates(b, pb, a, pa, sure_orient2) ||
+         edge_separates(a, pa, b, pb, orient2) || edge_separates(b, pb, a, pa, orient2);
+}
+
 bool triangles_meet_improperly(const std::vector<Vec3>& p, const Triangle& a, const Triangle& b) {
   const SharedCorners shared = shared_corners(a, b);
   if (shared.count == 3) return true;  // the same triangle twice
+  if (separated_in_projection(p, a, b)) return false;
   // Most candidate pairs lie strictly on one side of each other's plane.
   bool coplanar = false, unused = false;
   if (strictly_beside(p, a, b, shared.in_b, coplanar) || strictly_beside(p, b, a, shared.in_a, unused)) return false;
@@ -558,25 +612,110 @@ struct TriangleGroups {
   void close_group() { first.push_back(static_cast<Index>(triangles.size())); }
 };
 
-// The candidate pairs of triangles (boxes that touch, within the budget)
-// and, per candidate, whether they meet improperly. TBB, deterministic.
+// The candidate pairs of triangles (boxes that touch, within the budget):
+// how many, and those that meet improperly (sorted, {low, high}). TBB,
+// deterministic.
 struct TriangleHits {
-  std::vector<std::array<Index, 2>> candidates;
-  std::vector<char> hit;
-  BoxPairs budget;
+  std::vector<std::array<Index, 2>> hits;
+  std::int64_t num_candidates = 0;
+  BoxPairs budget;  // its pairs are cleared
 };
-TriangleHits test_triangle_groups(const std::vector<Vec3>& p, const TriangleGroups& g, std::int64_t max_pairs) {
+
+// The same, the candidates listed by grouped_box_self_pairs and then tested.
+TriangleHits test_listed_triangle_pairs(const std::vector<Vec3>& p, const TriangleGroups& g, std::int64_t max_pairs) {
   TriangleHits out;
   out.budget = grouped_box_self_pairs(g.boxes, g.first, max_pairs);
-  out.candidates = std::move(out.budget.pairs);
+  const std::vector<std::array<Index, 2>> candidates = std::move(out.budget.pairs);
   out.budget.pairs = {};
-  out.hit.assign(out.candidates.size(), 0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.candidates.size(), 4096),
+  out.num_candidates = static_cast<std::int64_t>(candidates.size());
+  std::vector<char> hit(candidates.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 4096),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t i = r.begin(); i != r.end(); ++i)
-                        out.hit[i] = triangles_meet_improperly(p, g.triangles[static_cast<std::size_t>(out.candidates[i][0])],
-                                                               g.triangles[static_cast<std::size_t>(out.candidates[i][1])]);
+                        hit[i] = triangles_meet_improperly(p, g.triangles[static_cast<std::size_t>(candidates[i][0])],
+                                                           g.triangles[static_cast<std::size_t>(candidates[i][1])]);
                     });
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    if (hit[i]) out.hits.push_back(candidates[i]);
+  return out;
+}
+
+// Group pairs the search may hand over per group (and at least) before
+// test_triangle_groups leaves the work to test_listed_triangle_pairs: a
+// surface's face meets 8 to 20 others; a tangle whose boxes all overlap is
+// left to the budgeted search, which stops at its budget.
+constexpr std::int64_t kGroupPairsPerGroup = 32;
+constexpr std::int64_t kMinGroupPairs = 1'000'000;
+// Work items (a group's own pairs, or a pair of groups) per parallel chunk.
+constexpr std::size_t kItemsPerChunk = 8192;
+
+// The same hits and count as test_listed_triangle_pairs without a list of
+// every candidate: the pairs of groups whose bounds meet are found first,
+// then, over fixed chunks of them in parallel, their triangles' boxes are
+// compared and the pairs that touch tested at once. The candidates are
+// counted first (box comparisons only) when they could exceed the budget.
+TriangleHits test_triangle_groups(const std::vector<Vec3>& p, const TriangleGroups& g, std::int64_t max_pairs) {
+  const std::size_t num_groups = g.first.size() - 1;
+  const auto group_pairs =
+      group_bound_pairs(g.boxes, g.first, kMinGroupPairs + kGroupPairsPerGroup * static_cast<std::int64_t>(num_groups));
+  if (!group_pairs) return test_listed_triangle_pairs(p, g, max_pairs);
+  const auto size = [&](Index group) { return std::int64_t{g.first[static_cast<std::size_t>(group) + 1] - g.first[static_cast<std::size_t>(group)]}; };
+  // Item k: group k's own pairs for k < num_groups, else group pair k - num_groups.
+  const std::size_t num_items = num_groups + group_pairs->size();
+  const auto for_each_candidate = [&](std::size_t k, auto&& f) {
+    const auto touch = [&](Index i, Index j) {
+      if (boxes_overlap_closed(g.boxes[static_cast<std::size_t>(i)], g.boxes[static_cast<std::size_t>(j)])) f(i, j);
+    };
+    if (k < num_groups) {
+      for (Index i = g.first[k]; i < g.first[k + 1]; ++i)
+        for (Index j = i + 1; j < g.first[k + 1]; ++j) touch(i, j);
+      return;
+    }
+    const auto [a, b] = (*group_pairs)[k - num_groups];  // a < b: a's triangles come first
+    for (Index i = g.first[static_cast<std::size_t>(a)]; i < g.first[static_cast<std::size_t>(a) + 1]; ++i)
+      for (Index j = g.first[static_cast<std::size_t>(b)]; j < g.first[static_cast<std::size_t>(b) + 1]; ++j) touch(i, j);
+  };
+  const std::size_t num_chunks = (num_items + kItemsPerChunk - 1) / kItemsPerChunk;
+  const auto chunk_range = [&](std::size_t c) {
+    return std::pair{c * kItemsPerChunk, std::min(num_items, (c + 1) * kItemsPerChunk)};
+  };
+  TriangleHits out;
+  std::int64_t most = 0;  // the candidates there can be
+  for (std::size_t k = 0; k < num_groups; ++k) most += size(static_cast<Index>(k)) * (size(static_cast<Index>(k)) - 1) / 2;
+  for (const auto& [a, b] : *group_pairs) most += size(a) * size(b);
+  if (most > max_pairs) {
+    std::vector<std::int64_t> counts(num_chunks, 0);
+    tbb::parallel_for(std::size_t{0}, num_chunks, [&](std::size_t c) {
+      const auto [begin, end] = chunk_range(c);
+      for (std::size_t k = begin; k < end; ++k) for_each_candidate(k, [&](Index, Index) { ++counts[c]; });
+    });
+    std::int64_t total = 0;
+    for (std::int64_t n : counts) total += n;
+    if (total > max_pairs) {
+      // As the budgeted search says it: counted up to kBudgetCountFactor x the budget.
+      out.budget.is_complete = false;
+      out.budget.num_found = std::min(total, kBudgetCountFactor * max_pairs);
+      out.budget.is_count_exact = total < kBudgetCountFactor * max_pairs;
+      return out;
+    }
+  }
+  std::vector<std::int64_t> counts(num_chunks, 0);
+  std::vector<std::vector<std::array<Index, 2>>> hits(num_chunks);
+  tbb::parallel_for(std::size_t{0}, num_chunks, [&](std::size_t c) {
+    const auto [begin, end] = chunk_range(c);
+    for (std::size_t k = begin; k < end; ++k)
+      for_each_candidate(k, [&](Index i, Index j) {
+        ++counts[c];
+        if (triangles_meet_improperly(p, g.triangles[static_cast<std::size_t>(i)], g.triangles[static_cast<std::size_t>(j)]))
+          hits[c].push_back({i, j});
+      });
+  });
+  for (std::size_t c = 0; c < num_chunks; ++c) {
+    out.num_candidates += counts[c];
+    out.hits.insert(out.hits.end(), hits[c].begin(), hits[c].end());
+  }
+  std::sort(out.hits.begin(), out.hits.end());
+  out.budget.num_found = out.num_candidates;
   return out;
 }
 
@@ -631,16 +770,14 @@ FacePairs intersecting_face_pairs(const TetPoints& tp, const std::vector<Boundar
     for (int e = 0; e < face.num_fan_triangles(); ++e) groups.add(p, fan_triangle(face, e));
     groups.close_group();
   }
-  TriangleHits hits = test_triangle_groups(p, groups, max_pairs);
+  const TriangleHits hits = test_triangle_groups(p, groups, max_pairs);
   FacePairs result;
   result.budget = hits.budget;
   std::vector<std::array<Index, 2>>& pairs = result.pairs;
-  for (std::size_t i = 0; i < hits.candidates.size(); ++i)
-    if (hits.hit[i]) {
-      const Index a = groups.group[static_cast<std::size_t>(hits.candidates[i][0])],
-                  b = groups.group[static_cast<std::size_t>(hits.candidates[i][1])];
-      pairs.push_back({std::min(a, b), std::max(a, b)});
-    }
+  for (const auto& [i, j] : hits.hits) {
+    const Index a = groups.group[static_cast<std::size_t>(i)], b = groups.group[static_cast<std::size_t>(j)];
+    pairs.push_back({std::min(a, b), std::max(a, b)});
+  }
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   return result;
@@ -654,23 +791,21 @@ SurfaceFacePairs intersecting_surface_faces(const std::vector<Vec3>& points, con
     for (Index t = first[f]; t < first[f + 1]; ++t) groups.add(points, triangles[static_cast<std::size_t>(t)]);
     groups.close_group();
   }
-  TriangleHits hits = test_triangle_groups(points, groups, max_pairs);
+  const TriangleHits hits = test_triangle_groups(points, groups, max_pairs);
   SurfaceFacePairs result;
   result.budget = hits.budget;
-  result.num_tested = static_cast<std::int64_t>(hits.candidates.size());
-  // (face pair, first triangle pair that meets): the candidates are sorted,
-  // so the point of each face pair comes from its first meeting triangles.
-  std::vector<std::pair<std::array<Index, 2>, std::size_t>> met;
-  for (std::size_t i = 0; i < hits.candidates.size(); ++i)
-    if (hits.hit[i]) {
-      const Index a = groups.group[static_cast<std::size_t>(hits.candidates[i][0])],
-                  b = groups.group[static_cast<std::size_t>(hits.candidates[i][1])];
-      met.push_back({{std::min(a, b), std::max(a, b)}, i});
-    }
+  result.num_tested = hits.num_candidates;
+  // (face pair, triangle pair that meets): the point of each face pair
+  // comes from its first meeting triangles.
+  std::vector<std::pair<std::array<Index, 2>, std::array<Index, 2>>> met;
+  for (const auto& [i, j] : hits.hits) {
+    const Index a = groups.group[static_cast<std::size_t>(i)], b = groups.group[static_cast<std::size_t>(j)];
+    met.push_back({{std::min(a, b), std::max(a, b)}, {i, j}});
+  }
   std::sort(met.begin(), met.end());
   for (std::size_t i = 0; i < met.size(); ++i) {
     if (i > 0 && met[i].first == met[i - 1].first) continue;
-    const auto& c = hits.candidates[met[i].second];
+    const auto& c = met[i].second;
     result.pairs.push_back(met[i].first);
     result.positions.push_back(meeting_point(points, groups.triangles[static_cast<std::size_t>(c[0])],
                                              groups.triangles[static_cast<std::size_t>(c[1])]));
