@@ -45,6 +45,25 @@ std::array<double, 2 * kMaxColumns> update_residual(std::vector<double>& r, cons
   const bool all = std::all_of(stepped.begin(), stepped.begin() + K, [](bool b) { return b; });
   return detail::sum_fem_chunks<2 * kMaxColumns>(inverse_diagonal.size(), [&](std::size_t first, std::size_t last) {
     std::array<double, 2 * kMaxColumns> s{};
+    if constexpr (L == 4) {
+      if (all) {  // a row as one four-double value (a padding column: alpha 0, its zeros stay)
+        const detail::Quad a = {alpha[0], alpha[1], alpha[2], alpha[3]};
+        detail::Quad rr{}, rz{}, ri, qi;
+        for (std::size_t i = first; i < last; ++i) {
+          detail::load_quad(ri, &r[i * 4]);
+          detail::load_quad(qi, &q[i * 4]);
+          ri = ri - a * qi;
+          detail::store_quad(&r[i * 4], ri);
+          rr += ri * ri;
+          rz += ri * (ri * inverse_diagonal[i]);
+        }
+        for (std::size_t c = 0; c < K; ++c) {
+          s[c] = rr[c];
+          s[kMaxColumns + c] = rz[c];
+        }
+        return s;
+      }
+    }
     for (std::size_t i = first; i < last; ++i) {
       const double d = inverse_diagonal[i];
       for (std::size_t c = 0; c < K; ++c) {
@@ -69,6 +88,20 @@ void update_iterate(std::vector<double>& x, std::vector<double>& p, const std::v
   const bool all = std::all_of(stepped.begin(), stepped.begin() + K, [](bool b) { return b; }) &&
                    std::all_of(active.begin(), active.begin() + K, [](bool b) { return b; });
   detail::for_fem_chunks(inverse_diagonal.size(), [&](std::size_t first, std::size_t last) {
+    if constexpr (L == 4) {
+      if (all) {  // as update_residual's
+        const detail::Quad a = {alpha[0], alpha[1], alpha[2], alpha[3]}, b = {beta[0], beta[1], beta[2], beta[3]};
+        detail::Quad xi, pi, ri;
+        for (std::size_t i = first; i < last; ++i) {
+          detail::load_quad(xi, &x[i * 4]);
+          detail::load_quad(pi, &p[i * 4]);
+          detail::load_quad(ri, &r[i * 4]);
+          detail::store_quad(&x[i * 4], xi + a * pi);
+          detail::store_quad(&p[i * 4], ri * inverse_diagonal[i] + b * pi);
+        }
+        return;
+      }
+    }
     for (std::size_t i = first; i < last; ++i) {
       const double d = inverse_diagonal[i];
       for (std::size_t c = 0; c < K; ++c) {
