@@ -239,7 +239,7 @@ double lanczos_largest_eigenvalue(const CsrMatrix& a, int steps, const std::vect
   const std::size_t n = a.num_rows();
   if (n == 0 || steps <= 0) return 0;
   // A fixed start (splitmix64 of the row's id), normalised.
-  std::vector<double> v(n), v_prev(n, 0.0), w(n);
+  std::vector<double> v(n), v_prev(n, 0.0), w(n), overflow(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint64_t id = row_ids.size() == n ? static_cast<std::uint64_t>(row_ids[i]) : i;
     std::uint64_t z = (id + 1) * 0x9e3779b97f4a7c15ULL;
@@ -254,7 +254,7 @@ double lanczos_largest_eigenvalue(const CsrMatrix& a, int steps, const std::vect
   double beta = 0;
   for (int j = 0; j < steps && static_cast<std::size_t>(j) < n; ++j) {
     stop::check();
-    multiply(a, v, w, 1);
+    detail::symmetric_product<1>(a, v.data(), w.data(), overflow.data(), v.data());  // w = A v (one overflow for all)
     const double alpha = column_dots(w, v, n, 1, 1)[0];
     alphas.push_back(alpha);
     const double next = std::sqrt(detail::sum_fem_chunks<1>(n, [&](std::size_t first, std::size_t last) {
