@@ -10,7 +10,8 @@ in the same run (bench/vtk_metrics.py, Debian's python3-vtk9):
   - 2,908,160 hexes (refined twice), --no-render: at most 12 s, peak RSS
     under 2 GB (issue 11's 60 s and 6 GB before it);
   - issue 48: --simulate on the 363,520 hexes at most 5x the --no-render
-    run (interleaved), and on the 2,908,160 hexes a peak RSS at most 2 GB
+    run (interleaved; the medians of wall and of CPU seconds each), and on
+    the 2,908,160 hexes a peak RSS at most 2 GB
     above the --no-render run's;
   - 363,520 hexes with --reference dolphin.off and every view: at most 5 s;
   - issue 17's viewer: `analyze` (every view) with the viewer against
