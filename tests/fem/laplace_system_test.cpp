@@ -8,6 +8,7 @@
 
 #include "hqview/fem/pcg.h"
 #include "hqview/fem/q1_element.h"
+#include "hqview/fem/symmetric_product.h"
 #include "hqview/mesh/topology.h"
 #include "support/fixtures.h"
 
@@ -165,17 +166,28 @@ std::vector<double> product_in_documented_order(const CsrMatrix& a, const std::v
   return y;
 }
 
-// The product (two chunks' rows side by side for three columns) gives the
-// bits of the documented order, for the fixture's two chunks of unequal
-// length and for nine chunks (an odd count: the last task has one chunk).
+// The product gives the bits of the documented order, for the fixture's
+// two chunks of unequal length and for nine chunks (an odd count: the last
+// task has one chunk); four columns (CG's padded three) both through the
+// AVX2 build of the chunk loop, where the processor has it, and the portable one.
 TEST(LaplaceSystem, ProductKeepsItsSummationOrder) {
   const LaplaceSystem& s = fixture().system;
-  const std::vector<double> x = some_columns(s.matrix.num_rows());
+  std::vector<double> x = some_columns(s.matrix.num_rows());
+  x.insert(x.end(), x.begin(), x.begin() + static_cast<std::ptrdiff_t>(s.matrix.num_rows()));  // a fourth column
   CsrMatrix nine = s.matrix;
   nine.chunk_rows = 3500;
   ASSERT_GE(nine.chunk_rows, nine.bandwidth);
-  for (const CsrMatrix* m : {&s.matrix, static_cast<const CsrMatrix*>(&nine)})
-    for (int k : {1, 3}) {
+  for (const CsrMatrix* m : {&s.matrix, static_cast<const CsrMatrix*>(&nine)}) {
+    const std::size_t n = m->num_rows();
+    const std::vector<double> x4(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(n * 4));
+    CsrMatrix one = *m;  // one chunk: every scatter in row order
+    one.chunk_rows = n;
+    const std::vector<double> expected4 = product_in_documented_order(one, x4, 4);
+    std::vector<double> portable(n * 4), overflow(n * 4, 0.0);
+    detail::product_chunk<4>(*m, detail::WideColumns{m->columns.data()}, 0, n, 0, x4.data(), portable.data(),
+                             overflow.data(), x4.data());  // one chunk: no overflow
+    EXPECT_EQ(std::memcmp(portable.data(), expected4.data(), portable.size() * sizeof(double)), 0) << n;
+    for (int k : {1, 3, 4}) {
       const std::vector<double> xk(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(m->num_rows() * k));
       std::vector<double> y;
       multiply(*m, xk, y, k);
@@ -183,6 +195,7 @@ TEST(LaplaceSystem, ProductKeepsItsSummationOrder) {
       ASSERT_EQ(y.size(), expected.size());
       EXPECT_EQ(std::memcmp(y.data(), expected.data(), y.size() * sizeof(double)), 0) << m->chunk_rows << " " << k;
     }
+  }
 }
 
 // The product and a CG solve across chunks: the same bits on one thread and two.

@@ -18,14 +18,19 @@ inline constexpr std::size_t kFemChunk = 4096;
 
 inline std::size_t num_fem_chunks(std::size_t n) { return (n + kFemChunk - 1) / kFemChunk; }
 
+// f(first, last) on every chunk of `chunk` indices of [0, n), in parallel.
+template <class F>
+void for_chunks_of(std::size_t n, std::size_t chunk, F&& f) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, (n + chunk - 1) / chunk),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t c = r.begin(); c != r.end(); ++c) f(c * chunk, std::min(n, (c + 1) * chunk));
+                    });
+}
+
 // f(first, last) on every chunk of [0, n), in parallel.
 template <class F>
 void for_fem_chunks(std::size_t n, F&& f) {
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_fem_chunks(n)),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      for (std::size_t c = r.begin(); c != r.end(); ++c)
-                        f(c * kFemChunk, std::min(n, (c + 1) * kFemChunk));
-                    });
+  for_chunks_of(n, kFemChunk, f);
 }
 
 // The sums of K terms: f(first, last) returns a chunk's K partial sums

@@ -8,7 +8,8 @@
 // product and two vector passes (r -= alpha q with the new dots; x += alpha p
 // with p = D^-1 r + beta p; D^-1 r is never stored). Every dot product is a
 // fixed-chunk sum (fixed_chunks.h): the iterates have the same bits for any
-// thread count.
+// thread count. Three columns are kept as four (a fourth of zeros) so that
+// the product moves a row's values as one four-double value.
 //
 // Lanczos from CG (Saad, "Iterative Methods for Sparse Linear Systems",
 // 2nd ed., 6.7.3): with CG's alpha_j, beta_j the tridiagonal T has

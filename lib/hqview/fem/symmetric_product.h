@@ -15,7 +15,9 @@
 // next chunk's first rows. Each y_j is summed in one fixed order (the
 // scatters of the earlier rows of its chunk in row order, its own row,
 // then the previous chunk's scatters), and the dots are fixed-chunk sums:
-// the same bits for any thread count.
+// the same bits for any thread count. Four columns (CG's three, padded)
+// move as one four-double value; the chunk loop for them is also built for
+// AVX2 and chosen at run time (no FMA: the same bits on either path).
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -54,6 +56,40 @@ struct NarrowColumns {
   std::size_t operator()(std::size_t e, std::size_t r) const { return r + steps[e]; }
 };
 
+// Four doubles as one value: two SSE2 pairs on baseline x86-64, one AVX
+// register in the chunk loop built for AVX2 (product_chunk_avx2; never FMA:
+// separate products and sums, so the same bits on either path).
+using Quad = double __attribute__((vector_size(32)));
+
+// By reference: a 32-byte vector by value would change the ABI without AVX.
+inline void load_quad(Quad& v, const double* p) { std::memcpy(&v, p, sizeof v); }
+
+inline void store_quad(double* p, const Quad& v) { std::memcpy(p, &v, sizeof v); }
+
+// One row of the four-column product (CG's three columns padded with a zero
+// fourth, pcg.cpp): the first entry is the diagonal (gathered only); the
+// rest scatter into y, or past the chunk's end into `overflow`. The same
+// operations, in the same order, as the generic loop.
+template <class Columns>
+[[gnu::always_inline]] inline void row_product_4(const double* values, Columns columns, std::size_t begin,
+                                                 std::size_t end, std::size_t r, std::size_t last, const double* x,
+                                                 double* y, double* overflow, double sum[4]) {
+  Quad xr, s, xj, t;
+  load_quad(xr, x + r * 4);
+  load_quad(s, sum);
+  if (begin < end && columns(begin, r) == r) s += values[begin++] * xr;
+  for (std::size_t e = begin; e < end; ++e) {
+    const double v = values[e];
+    const std::size_t j = columns(e, r);
+    load_quad(xj, x + j * 4);
+    s += v * xj;
+    double* target = (j < last ? y : overflow) + j * 4;
+    load_quad(t, target);
+    store_quad(target, t + v * xr);
+  }
+  store_quad(sum, s);
+}
+
 // One row of the three-column product: columns 0 and 1 as a pair, column 2
 // alone (the same operations, in the same order, as the generic loop).
 template <class Columns>
@@ -78,6 +114,60 @@ inline void row_product_3(const double* values, Columns columns, std::size_t beg
   sum[2] = sum2;
 }
 
+// Pass 1 of one chunk [first, last): its rows' products into y (its
+// scatters past `last` into overflow); returns the dots (w, y) of its rows
+// from head_end on.
+template <std::size_t K, class Columns>
+[[gnu::always_inline]] inline std::array<double, K> product_chunk(const CsrMatrix& a, Columns columns,
+                                                                  std::size_t first, std::size_t last,
+                                                                  std::size_t head_end, const double* x, double* y,
+                                                                  double* overflow, const double* w) {
+  const double* values = a.values.data();
+  std::fill(y + first * K, y + last * K, 0.0);
+  std::array<double, K> dots{};
+  for (std::size_t r = first; r < last; ++r) {
+    const std::size_t begin = static_cast<std::size_t>(a.offsets[r]), end = static_cast<std::size_t>(a.offsets[r + 1]);
+    const double* xr = x + r * K;
+    std::array<double, K> sum{};
+    for (std::size_t s = 0; s < K; ++s) sum[s] = y[r * K + s];
+    if constexpr (K == 3) {
+      row_product_3(values, columns, begin, end, r, last, x, y, overflow, sum.data());
+    } else if constexpr (K == 4) {
+      row_product_4(values, columns, begin, end, r, last, x, y, overflow, sum.data());
+    } else {
+      for (std::size_t e = begin; e < end; ++e) {
+        const double v = values[e];
+        const std::size_t j = columns(e, r);
+        const double* xj = x + j * K;
+        for (std::size_t s = 0; s < K; ++s) sum[s] += v * xj[s];
+        if (j == r) continue;
+        double* target = (j < last ? y : overflow) + j * K;
+        for (std::size_t s = 0; s < K; ++s) target[s] += v * xr[s];
+      }
+    }
+    for (std::size_t s = 0; s < K; ++s) {
+      y[r * K + s] = sum[s];
+      if (r >= head_end) dots[s] += w[r * K + s] * sum[s];
+    }
+  }
+  return dots;
+}
+
+// product_chunk<4> built for AVX2 (one 256-bit operation a Quad; "avx2"
+// without "fma": no contraction), chosen at run time by has_avx2().
+template <class Columns>
+__attribute__((target("avx2"))) std::array<double, 4> product_chunk_avx2(const CsrMatrix& a, Columns columns,
+                                                                         std::size_t first, std::size_t last,
+                                                                         std::size_t head_end, const double* x,
+                                                                         double* y, double* overflow, const double* w) {
+  return product_chunk<4>(a, columns, first, last, head_end, x, y, overflow, w);
+}
+
+inline bool has_avx2() {
+  static const bool yes = __builtin_cpu_supports("avx2");
+  return yes;
+}
+
 // `overflow`: a.num_rows() * K zeros, left zeros. `w`: the vector the dots
 // take y against (rows x K; may be x itself).
 template <std::size_t K, class Columns>
@@ -88,39 +178,18 @@ std::array<double, K> symmetric_product(const CsrMatrix& a, Columns columns, con
   const std::size_t chunk = std::max<std::size_t>(1, a.chunk_rows >= a.bandwidth ? a.chunk_rows : n);
   const std::size_t num_chunks = (n + chunk - 1) / chunk, band = std::min(chunk, a.bandwidth);
   std::vector<std::array<double, K>> partial(num_chunks), partial_head(num_chunks);
-  const double* values = a.values.data();
   // Pass 1: the chunk's rows; the dots of the rows no earlier chunk reaches.
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_chunks), [&](const tbb::blocked_range<std::size_t>& range) {
     for (std::size_t c = range.begin(); c != range.end(); ++c) {
       const std::size_t first = c * chunk, last = std::min(n, first + chunk);
       const std::size_t head_end = c == 0 ? first : std::min(last, first + band);
-      std::fill(y + first * K, y + last * K, 0.0);
-      std::array<double, K> dots{};
-      for (std::size_t r = first; r < last; ++r) {
-        const std::size_t begin = static_cast<std::size_t>(a.offsets[r]),
-                          end = static_cast<std::size_t>(a.offsets[r + 1]);
-        const double* xr = x + r * K;
-        std::array<double, K> sum{};
-        for (std::size_t s = 0; s < K; ++s) sum[s] = y[r * K + s];
-        if constexpr (K == 3) {
-          row_product_3(values, columns, begin, end, r, last, x, y, overflow, sum.data());
-        } else {
-          for (std::size_t e = begin; e < end; ++e) {
-            const double v = values[e];
-            const std::size_t j = columns(e, r);
-            const double* xj = x + j * K;
-            for (std::size_t s = 0; s < K; ++s) sum[s] += v * xj[s];
-            if (j == r) continue;
-            double* target = (j < last ? y : overflow) + j * K;
-            for (std::size_t s = 0; s < K; ++s) target[s] += v * xr[s];
-          }
-        }
-        for (std::size_t s = 0; s < K; ++s) {
-          y[r * K + s] = sum[s];
-          if (r >= head_end) dots[s] += w[r * K + s] * sum[s];
+      if constexpr (K == 4) {
+        if (has_avx2()) {
+          partial[c] = product_chunk_avx2(a, columns, first, last, head_end, x, y, overflow, w);
+          continue;
         }
       }
-      partial[c] = dots;
+      partial[c] = product_chunk<K>(a, columns, first, last, head_end, x, y, overflow, w);
     }
   });
   // Pass 2: the previous chunk's scatters into a chunk's first rows, and their dots.
