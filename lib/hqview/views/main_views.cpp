@@ -1882,11 +1882,14 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
     ScreenDisc rings = result.worst_glyph;
     rings.radius = worst_rings_extent(rings.radius, glyphs.clusters[0].min_quality < 0.0, style);
     all_obstacles.push_back(rings);
-    // And #0's own label sits outside them (issue 44 part U: on a glyph
-    // capped small its label box covered much of the rings), its leader
-    // crossing them: the same disc under an id of no glyph.
+    // And no label box (#0's own too, issue 44 part U: on a glyph capped
+    // small its label box covered much of the rings) comes within #0's
+    // radius of the rings: #0's neighbourhood, its worst cells, stays in
+    // sight (the 44l review: gmsh_ring_dent's "#0" sat over the funnel);
+    // #0's leader crosses it: a disc under an id of no glyph.
     if (!result.worst_is_tied) {
       rings.id = kRingsObstacleId;
+      rings.radius += result.worst_glyph.radius;
       all_obstacles.push_back(rings);
     }
   }
