@@ -659,8 +659,8 @@ TEST(HybridViews, ViewDLabelsNeverOverlapOnManyVerticesMeshesAndSizes) {
   // round 1's closer frame left out 2 but cut the ring: 46w review C3, M3).
   EXPECT_LE(100 * local_left_out, 3 * local_corners) << local_left_out << " of " << local_corners;
   // A corner with no room no longer drops the better ones after it (the
-  // 44l review): 67 numbered corners rank after a worse one left out (9 of
-  // 444 left out; before, 31, and none of these).
+  // 44l review): 67 (numbered, worse one left out) pairs here; the rule
+  // before allowed none (and left out 31 of 444, as this note said then).
   EXPECT_GT(local_numbered_after_left_out, 20);
 }
 
