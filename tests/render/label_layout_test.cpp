@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <vector>
 
@@ -232,6 +233,59 @@ TEST(LabelLayout, CalloutColumnsHoldAPileUpWithoutCrossings) {
     if (i > 0) EXPECT_FALSE(leader_meets_disc(p, discs[0]));
   }
   EXPECT_TRUE(place_callout_columns(labels, discs, taken, PixelRect{0, 0, 800, 20}, 4.0).empty());
+}
+
+}  // namespace
+}  // namespace hq
+
+namespace hq {
+namespace {
+
+// Spokes of glyph discs along the eight directions a label first tries
+// (every 8 px from 20 px out to the view's edge), so that every candidate
+// on those rays meets a disc; the wedges between them are empty. A label
+// has room in a wedge (22.5 degrees between two spokes: about 0.77 d wide
+// at distance d, its 30 x 12 box fits from d = 60 px); before the 44l
+// review the placer tried the eight rays only and gave up ("no room", as
+// Dolphin_padded's #4 and a turned dolphin's #5). Each label of the four
+// (one anchor, placed one after another) finds a place in a wedge, its box
+// disjoint from every disc and the other boxes, within 80 px of the anchor
+// with a leader that keeps leader_clearance off every disc and crosses no
+// other leader.
+TEST(LabelLayout, ALabelFindsTheFreeWedgeBetweenBlockedDirections) {
+  const ScreenDisc anchor{300, 300, 8, 0};
+  std::vector<ScreenDisc> spokes;
+  for (int k = 0; k < 8; ++k) {
+    const double a = k * std::numbers::pi / 4.0;
+    for (double d = 20; d < 300; d += 8) spokes.push_back({300 + d * std::cos(a), 300 + d * std::sin(a), 5, k + 1});
+  }
+  LabelLayoutOptions o = options_for({0, 0, 600, 600});
+  o.rings = 28;
+  o.leader_clearance = 2.0;
+  std::vector<LabelRequest> labels(4, LabelRequest{anchor, 30, 12});
+  for (LabelRequest& l : labels) l.strict_leaders = true;
+  const auto placed = place_labels(labels, spokes, {}, o);
+  for (std::size_t i = 0; i < placed.size(); ++i) {
+    SCOPED_TRACE(i);
+    ASSERT_TRUE(placed[i]);
+    const PlacedLabel& p = *placed[i];
+    for (const ScreenDisc& d : spokes) {
+      EXPECT_FALSE(box_meets_disc(p.box, d));
+      EXPECT_FALSE(leader_meets_disc(p, ScreenDisc{d.x, d.y, d.radius + o.leader_clearance}));
+    }
+    EXPECT_LE(disc_box_gap(anchor, p.box), 80.0);
+    EXPECT_TRUE(p.has_leader);
+    for (std::size_t j = 0; j < i; ++j) {
+      EXPECT_FALSE(boxes_overlap(p.box, placed[j]->box)) << j;
+      EXPECT_FALSE(leaders_cross(p, *placed[j])) << j;
+    }
+  }
+  // Candidates between the eight directions: a ring's 8, then 16 more at
+  // 22.5 degrees when its length allows, boxes sliding along their edge.
+  const LabelRequest one{{300, 300, 8}, 30, 12};
+  LabelLayoutOptions near = o;
+  near.rings = 0;  // only the first ring (12 px from the centre: 8 candidates)
+  EXPECT_FALSE(place_labels(std::span(&one, 1), spokes, {}, near)[0]);
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numbers>
+#include <vector>
 
 namespace hq {
 
@@ -38,13 +40,35 @@ constexpr std::array<std::array<double, 2>, 8> kDirections{{{1, 0},
                                                             {0, 1}}};
 
 // The box of size w x h whose corner or edge centre facing the anchor is at
-// (px, py), for direction d.
+// (px, py), for direction d: for the eight directions of kDirections its
+// corner (diagonals) or edge centre; between them the point facing the
+// anchor slides along the edge, so that boxes of neighbouring directions
+// differ little.
+double box_shift(double d) {
+  const double s = std::clamp(-0.5 + kDiagonal * d, -1.0, 0.0);
+  return std::abs(s) < 1e-6 ? 0.0 : std::abs(s + 1.0) < 1e-6 ? -1.0 : std::abs(s + 0.5) < 1e-6 ? -0.5 : s;
+}
 PixelRect box_at(double px, double py, const std::array<double, 2>& d, int w, int h) {
-  const double sx = d[0] > 0.1 ? 0.0 : d[0] < -0.1 ? -1.0 : -0.5;
-  const double sy = d[1] > 0.1 ? 0.0 : d[1] < -0.1 ? -1.0 : -0.5;
-  return {static_cast<int>(std::lround(px + sx * w)), static_cast<int>(std::lround(py + sy * h)), w, h};
+  return {static_cast<int>(std::lround(px + box_shift(d[0]) * w)), static_cast<int>(std::lround(py + box_shift(d[1]) * h)),
+          w, h};
 }
 
+// The directions tried on a ring at `distance` from the anchor's centre:
+// kDirections, then halving the angles between them (22.5, 11.25 ...
+// degrees) until neighbouring candidates lie at most `spacing` apart on the
+// ring, at most kMaxDirections (the 44l review: with eight, Dolphin_padded's
+// #4 and a turned dolphin's #5 found "no room" in a view with room to
+// spare). Coarse ones first: they keep the order of ties.
+constexpr std::size_t kMaxDirections = 64;
+std::vector<std::array<double, 2>> ring_directions(double distance, double spacing) {
+  std::vector<std::array<double, 2>> out(kDirections.begin(), kDirections.end());
+  for (std::size_t n = 16; n <= kMaxDirections && 2.0 * std::numbers::pi * distance / (n / 2) > spacing; n *= 2)
+    for (std::size_t k = 1; k < n; k += 2) {
+      const double a = 2.0 * std::numbers::pi * static_cast<double>(k) / static_cast<double>(n);
+      out.push_back({std::cos(a), std::sin(a)});
+    }
+  return out;
+}
 }  // namespace
 
 bool box_meets_disc(const PixelRect& box, const ScreenDisc& disc) {
@@ -204,6 +228,25 @@ std::optional<PlacedLabel> LabelPlacer::place(const LabelRequest& label, std::sp
   auto is_own = [&](const ScreenDisc& d) {
     return anchor.id >= 0 ? d.id == anchor.id : d.x == anchor.x && d.y == anchor.y;
   };
+  // The obstacles in the grid's cells (each in those its disc's square
+  // meets), so that a candidate looks at its neighbourhood only: with up to
+  // 64 candidates a ring and a thousand glyphs, scanning them all was the
+  // cost of a view.
+  std::unordered_map<std::int64_t, std::vector<std::uint32_t>> disc_cells;
+  for (std::size_t i = 0; i < obstacles.size(); ++i) {
+    const ScreenDisc& d = obstacles[i];
+    for_cells(d.x - d.radius, d.y - d.radius, d.x + d.radius, d.y + d.radius,
+              [&](std::int64_t k) { disc_cells[k].push_back(static_cast<std::uint32_t>(i)); });
+  }
+  const std::vector<ScreenDisc> all(obstacles.begin(), obstacles.end());
+  auto any_disc_near = [&](double x0, double y0, double x1, double y1, auto&& pred) {
+    return any_near(disc_cells, all, x0, y0, x1, y1, pred);
+  };
+  // A leader keeps options_.leader_clearance off the discs it must not cross.
+  auto leader_meets = [&](const PlacedLabel& r, const ScreenDisc& d) {
+    return leader_meets_disc(r, ScreenDisc{d.x, d.y, d.radius + options_.leader_clearance, d.id});
+  };
+  const double reach = options_.leader_clearance + 1.0;
   // A candidate, checked once: its placement (with a leader when it needs
   // one) and the first pass that takes it (0: clear; 1: its leader may run
   // over glyphs; 2: any free place; 3: not free).
@@ -217,20 +260,29 @@ std::optional<PlacedLabel> LabelPlacer::place(const LabelRequest& label, std::sp
     if (!inside(box, options_.bounds) || box_meets_disc(box, anchor)) return c;
     const double bx1 = box.x + box.width, by1 = box.y + box.height;
     if (any_box_near(box.x, box.y, bx1, by1, [&](const PixelRect& b) { return boxes_overlap(box, b); })) return c;
-    if (std::any_of(obstacles.begin(), obstacles.end(), [&](const ScreenDisc& d) { return box_meets_disc(box, d); }))
-      return c;
+    if (any_disc_near(box.x, box.y, bx1, by1, [&](const ScreenDisc& d) { return box_meets_disc(box, d); })) return c;
     const double own = disc_box_gap(anchor, box);
     const bool is_far = own > options_.leader_distance;
-    const bool is_beside_other = std::any_of(obstacles.begin(), obstacles.end(), [&](const ScreenDisc& d) {
-      return !is_own(d) && disc_box_gap(d, box) < own + options_.leader_distance;
-    });
+    // (Far, it has a leader anyway: only a near box asks who else is beside it.)
+    const double beside = own + options_.leader_distance;
+    const bool is_beside_other =
+        !is_far && any_disc_near(box.x - beside, box.y - beside, bx1 + beside, by1 + beside, [&](const ScreenDisc& d) {
+          return !is_own(d) && disc_box_gap(d, box) < beside;
+        });
     c.placement = is_far || is_beside_other || label.always_leader
                       ? with_leader(label.leader_from.value_or(anchor), box)
                       : PlacedLabel{box};
     c.room = 3.0 * options_.leader_distance;
-    for (const ScreenDisc& o : obstacles)
+    const double room = c.room;
+    any_disc_near(box.x - room, box.y - room, bx1 + room, by1 + room, [&](const ScreenDisc& o) {
       if (!is_own(o)) c.room = std::min(c.room, disc_box_gap(o, box));
+      return false;
+    });
     const PlacedLabel& r = c.placement;
+    auto any_disc_on_leader = [&](auto&& pred) {
+      return any_disc_near(std::min(r.leader_x0, r.leader_x1) - reach, std::min(r.leader_y0, r.leader_y1) - reach,
+                           std::max(r.leader_x0, r.leader_x1) + reach, std::max(r.leader_y0, r.leader_y1) + reach, pred);
+    };
     // Never (any pass): a leader over a protected disc; with strict_leaders
     // over another leader either.
     if (r.has_leader) {
@@ -239,7 +291,7 @@ std::optional<PlacedLabel> LabelPlacer::place(const LabelRequest& label, std::sp
         return c;
       // (A protected disc holding the leader's start, e.g. a marker group
       // inside #0, cannot be avoided: it does not count.)
-      if (std::any_of(obstacles.begin(), obstacles.end(), [&](const ScreenDisc& d) {
+      if (any_disc_on_leader([&](const ScreenDisc& d) {
             return d.id >= 0 && d.id < label.protect_below && !is_own(d) && leader_meets_disc(r, d) &&
                    std::hypot(r.leader_x0 - d.x, r.leader_y0 - d.y) >= d.radius;
           }))
@@ -264,29 +316,31 @@ std::optional<PlacedLabel> LabelPlacer::place(const LabelRequest& label, std::sp
         return c;
       if (leader_through_box) return c;
       c.pass = 1;
-      if (std::any_of(obstacles.begin(), obstacles.end(),
-                      [&](const ScreenDisc& d) { return !is_own(d) && leader_meets_disc(r, d); }))
+      // (Nor here does a disc holding the leader's start count.)
+      if (any_disc_on_leader([&](const ScreenDisc& d) {
+            return !is_own(d) && leader_meets(r, d) && std::hypot(r.leader_x0 - d.x, r.leader_y0 - d.y) >= d.radius;
+          }))
         return c;
     }
     c.pass = 0;
     return c;
   };
-  // The rings' candidates, evaluated as the passes first reach them.
-  std::vector<std::array<Candidate, kDirections.size()>> rings;
+  // The rings' candidates (ring_directions), evaluated as the passes first
+  // reach them.
+  std::vector<std::vector<Candidate>> rings;
+  const double spacing = std::max({static_cast<double>(label.height), options_.ring_step, 1.0});
   for (int pass = 0; pass <= 2; ++pass)
     for (int ring = 0; ring <= options_.rings; ++ring) {
       if (static_cast<std::size_t>(ring) == rings.size()) {
         const double distance = anchor.radius + options_.gap + ring * options_.ring_step;
         rings.emplace_back();
-        for (std::size_t k = 0; k < kDirections.size(); ++k) {
-          const auto& d = kDirections[k];
-          rings.back()[k] = evaluate(box_at(anchor.x + d[0] * distance, anchor.y + d[1] * distance, d, label.width,
-                                            label.height));
-        }
+        for (const auto& d : ring_directions(distance, spacing))
+          rings.back().push_back(evaluate(box_at(anchor.x + d[0] * distance, anchor.y + d[1] * distance, d,
+                                                 label.width, label.height)));
       }
       // Of the ring's candidates this pass takes, the one farthest from the
       // other discs (up to 3 leader distances; ties: the order of
-      // kDirections), so a label leans away from its neighbours' glyphs.
+      // ring_directions), so a label leans away from its neighbours' glyphs.
       const Candidate* best = nullptr;
       for (const Candidate& c : rings[static_cast<std::size_t>(ring)])
         if (c.pass <= pass && (!best || c.room > best->room)) best = &c;

@@ -58,6 +58,9 @@ struct LabelLayoutOptions {
   // within this distance of (nearer than its own anchor plus this), which
   // would read as naming that one.
   double leader_distance = 10.0;
+  // Pixels a clear leader (the first pass) keeps off the other discs, so
+  // that its line and halo do not graze them (0: it may touch a rim).
+  double leader_clearance = 0.0;
 };
 
 struct PlacedLabel {
@@ -69,7 +72,10 @@ struct PlacedLabel {
 
 // Places the labels in order. Candidates: 8 directions around the anchor
 // (right, upper right, lower right, left, upper left, lower left, above,
-// below: the box's nearest corner or edge centre at that point), first at
+// below: the box's nearest corner or edge centre at that point), then,
+// where a ring is long enough, the directions halfway between them and so on
+// (up to 64 a ring) until neighbouring candidates are at most the label's
+// height (or ring_step) apart, first at
 // gap from the anchor disc, then on rings ring_step farther out; of a ring's
 // free candidates the one with the most room to the other obstacle discs
 // (counted up to 3 leader distances; ties in that order). A candidate
@@ -80,7 +86,8 @@ struct PlacedLabel {
 // anchor's gap + leader_distance: the label would read as that one's).
 // The first pass takes only clear candidates: not beside another disc
 // unless it has a leader, its leader crossing no earlier leader, no placed
-// box and no obstacle disc but its own anchor, its box crossed by no earlier
+// box and no obstacle disc but its own anchor (nor coming within
+// leader_clearance of one), its box crossed by no earlier
 // leader. When none is clear, the second pass lets the leader run over
 // other discs, and the third takes the first free place (with a leader
 // when it needs one). In every pass a leader crosses no protected disc

@@ -983,10 +983,10 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
       return ok;
     };
     // In `priority` (worst first, or those with no room in an earlier
-    // round first), each numbered by its rank; then every corner ranked
-    // after the first with no room is left out too, so those left out are
-    // the best (46w review M2: a 0.453 was left out while 1.000s were
-    // numbered).
+    // round first), each numbered by its rank; a corner with no room is
+    // left out and counted, and every later one that has room is still
+    // numbered (the vertex-158 review: one corner without room dropped all
+    // the better ones after it, 21 of 36 unnumbered).
     std::fill(failed.begin(), failed.end(), false);
     for (std::size_t i : callouts) {
       LocalLabel& label = shot.labels[i];
@@ -1026,16 +1026,7 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
       label.number = 0;
       failed[i] = true;
     }
-    std::size_t first_failed = corners.size();
-    for (std::size_t i = 0; i < corners.size(); ++i)
-      if (failed[i]) first_failed = std::min(first_failed, rank[i]);
-    for (std::size_t i : callouts)
-      if (rank[i] >= first_failed) {
-        LocalLabel& label = shot.labels[i];
-        label.placed = label.has_leader = false;
-        label.number = 0;
-        ++shot.num_left_out;
-      }
+    for (std::size_t i : callouts) shot.num_left_out += failed[i] ? 1 : 0;
     return callouts.size();
   };
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <iterator>
+#include <utility>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -1319,23 +1320,25 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
   // The coloured edge lines that scene step 2 draws around each cluster's
   // worst vertices: their colour is the cluster's, their meaning said here.
   // A line swatch in #0's colour; the count is the vertices the lines
-  // really surround (at most cluster_edge_vertices of each coloured class's
-  // first cluster, build_main_scene step 2), not the cap.
+  // really surround: those build_main_scene step 2 marks
+  // (worst_cluster_vertices: every member of a coloured tie class alike),
+  // counted, not the cap nor one member's (star_twisted: "#0's 7 vertices"
+  // under edges at 30 tied glyphs).
   if (!glyphs.clusters.empty() && options.cluster_edge_vertices > 0) {
-    std::size_t surrounded = 0, classes = 0;
-    bool capped = false;
+    const std::vector<std::uint8_t> marked = worst_cluster_vertices(glyphs, options.cluster_edge_vertices, ties);
+    const auto surrounded = static_cast<std::size_t>(std::count(marked.begin(), marked.end(), std::uint8_t{1}));
+    std::size_t members = 0, classes = 0;
     for (std::size_t i = 0; i < listed; ++i) {
-      if (i > 0 && ties[i - 1] == ties[i]) continue;
-      const auto size = static_cast<std::size_t>(std::max<Index>(glyphs.clusters[i].size, 0));
-      const auto cap = static_cast<std::size_t>(options.cluster_edge_vertices);
-      surrounded += std::min(size, cap);
-      capped = capped || size > cap;
-      ++classes;
+      members += static_cast<std::size_t>(std::max<Index>(glyphs.clusters[i].size, 0));
+      classes += i == 0 || ties[i - 1] != ties[i] ? 1 : 0;
     }
+    const bool capped = surrounded < members;
     const std::string n = std::to_string(surrounded);
+    const std::string worst = worst_is_tied ? "#0-#" + std::to_string(tie_sizes[0] - 1) : "#0";
     if (classes == 1)
       lines.push_back({to_rgba8(cluster_color(0, glyphs.options.top_clusters)),
-                       "edges at #0's " + n + (capped ? " worst" : "") + (surrounded == 1 ? " vertex" : " vertices"),
+                       "edges at " + worst + "'s " + n + (capped ? " worst" : "") +
+                           (surrounded == 1 ? " vertex" : " vertices"),
                        0, false, true});
     else if (classes > 1) {
       lines.push_back({to_rgba8(cluster_color(0, glyphs.options.top_clusters)),
@@ -1570,8 +1573,34 @@ constexpr std::int64_t kFanIdBase = std::int64_t{1} << 40;
 // (issue 44 part V round 2: callout leaders of 540-700 px at 1600 x 1200).
 constexpr double kMaxLeaderShare = 1.0 / 3.0;
 
+// View A's labels are placed in up to this many orders (layout_main_view_labels).
+constexpr int kMainLayoutRounds = 4;
+
 double leader_length(const PlacedLabel& p) {
   return p.has_leader ? std::hypot(p.leader_x1 - p.leader_x0, p.leader_y1 - p.leader_y0) : 0.0;
+}
+
+// Whether p's leader runs over an obstacle disc (glyph, #0's rings, fan)
+// other than the label's own (its glyph, its tie class's, its fan) and
+// those holding the leader's start (the 44l review: near leaders over
+// bunny's, a turned dolphin's and warrior's glyphs).
+bool leader_over_others(const MainViewLabel& l, const PlacedLabel& p, std::span<const ScreenDisc> obstacles) {
+  const bool is_cluster = l.kind == MainViewLabel::Kind::cluster;
+  const std::int64_t own_end = std::max<std::int64_t>(l.cluster + 1, l.protect_end);
+  return p.has_leader && std::any_of(obstacles.begin(), obstacles.end(), [&](const ScreenDisc& d) {
+           const bool own = is_cluster ? (d.id >= l.cluster && d.id < own_end) || (l.cluster == 0 && d.id == kRingsObstacleId)
+                                       : d.id == l.anchor.id;
+           return !own && std::hypot(p.leader_x0 - d.x, p.leader_y0 - d.y) >= d.radius &&
+                  leader_meets_disc(p, ScreenDisc{d.x, d.y, d.radius - 0.5, d.id});
+         });
+}
+
+// A layout's faults, worst first: its clusters with no room, then its
+// labels whose leader crosses other glyphs (leader_over_others).
+std::pair<std::size_t, std::size_t> layout_faults(const MainViewLabels& labels, std::span<const ScreenDisc> obstacles) {
+  std::size_t over = 0;
+  for (const MainViewLabel& l : labels.labels) over += leader_over_others(l, l.placement, obstacles) ? 1 : 0;
+  return {labels.unlabelled_clusters.size(), over};
 }
 
 // The labels that found no place near their anchor, or only one with a
@@ -1608,14 +1637,14 @@ void place_main_view_callouts(MainViewLabels& result, std::vector<MainViewLabel>
   std::vector<PixelRect> taken;
   for (const PlacedLabel& k : kept) taken.push_back(k.box);
   // Their leaders and boxes as chains of small discs that a callout leader
-  // avoids where it can, as it does the coloured glyphs (ids below
-  // protect, a crossing costing 10^6 in place_callout_columns; the grey
-  // glyphs' ids dropped, so that crossing them costs nothing), so that the
-  // checks below pass.
+  // avoids where it can, as it does the glyphs (ids below protect, a
+  // crossing costing 10^6 in place_callout_columns), so that the checks
+  // below pass.
+  // Every glyph is protected (the 44l review: a near label whose leader
+  // crossed a grey glyph comes here, and its callout should not); a
+  // callout over a coloured one is refused below.
   std::vector<ScreenDisc> avoid(obstacles.begin(), obstacles.end());
-  for (ScreenDisc& d : avoid)
-    if (d.id >= coloured_ids && d.id < kFanIdBase) d.id = -1;
-  const std::int64_t kept_id = coloured_ids, protect = coloured_ids + 1;
+  const std::int64_t kept_id = kFanIdBase - 1, protect = kFanIdBase;
   for (const PlacedLabel& k : kept) {
     if (k.has_leader) {
       const double length = leader_length(k);
@@ -1670,8 +1699,14 @@ void place_main_view_callouts(MainViewLabels& result, std::vector<MainViewLabel>
     const bool has_fallback = label.placement.box.width > 0;
     if (i < placed.size()) {
       const PlacedLabel& p = placed[i];
-      bool ok = leader_length(p) <= max_leader && !crosses_coloured(label, p) &&
-                (!has_fallback || leader_length(p) < leader_length(label.placement));
+      // Better than the fallback: off the glyphs that the fallback's leader
+      // crosses, or shorter and over no glyph the fallback keeps off.
+      const bool is_over = leader_over_others(label, p, obstacles);
+      const bool is_fallback_over = has_fallback && leader_over_others(label, label.placement, obstacles);
+      const bool is_shorter = has_fallback && leader_length(p) < leader_length(label.placement);
+      const bool is_better = !has_fallback || (!is_over && (is_fallback_over || is_shorter)) ||
+                             (is_over && is_fallback_over && is_shorter);
+      bool ok = leader_length(p) <= max_leader && !crosses_coloured(label, p) && is_better;
       for (std::size_t k = 0; ok && k < kept.size(); ++k) {
         const PlacedLabel& near = kept[k];
         if (has_fallback && near.box.x == label.placement.box.x && near.box.y == label.placement.box.y) continue;
@@ -1837,6 +1872,8 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
   options.ring_step = 14.0 * style.scale;
   options.rings = static_cast<int>(std::ceil(std::max(layout.view.width, layout.view.height) / options.ring_step));
   options.leader_distance = 10.0 * style.scale;
+  // A clear leader's halo (render_main_view) keeps off the other glyphs.
+  options.leader_clearance = 0.5 * std::max(3.0, 4.5 * style.scale);
   std::vector<ScreenDisc> all_obstacles;
   for (const auto& g : glyph_discs) all_obstacles.push_back(g.second);
   if (result.worst_glyph.radius > 0.0) {
@@ -1845,76 +1882,119 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
     ScreenDisc rings = result.worst_glyph;
     rings.radius = worst_rings_extent(rings.radius, glyphs.clusters[0].min_quality < 0.0, style);
     all_obstacles.push_back(rings);
-    // And #0's own label sits outside them (issue 44 part U: on a glyph
-    // capped small its label box covered much of the rings), its leader
-    // crossing them: the same disc under an id of no glyph.
+    // And no label box (#0's own too, issue 44 part U: on a glyph capped
+    // small its label box covered much of the rings) comes within #0's
+    // radius of the rings: #0's neighbourhood, its worst cells, stays in
+    // sight (the 44l review: gmsh_ring_dent's "#0" sat over the funnel);
+    // #0's leader crosses it: a disc under an id of no glyph.
     if (!result.worst_is_tied) {
       rings.id = kRingsObstacleId;
+      rings.radius += result.worst_glyph.radius;
       all_obstacles.push_back(rings);
     }
   }
   all_obstacles.insert(all_obstacles.end(), fans.begin(), fans.end());
   std::vector<ScreenDisc> worst_only;
   if (result.worst_glyph.radius > 0.0) worst_only.push_back(result.worst_glyph);
-  LabelPlacer placer({}, options);
-  // Labels with no place near their glyph, or only one with an overlong
-  // leader: the callout columns below.
-  std::vector<MainViewLabel> deferred;
   // The coloured glyphs' ranks: 0 to coloured_ids - 1 (ranked classes first).
   Index coloured_ids = 0;
   for (Index t : drawn.tie_class) coloured_ids += t < drawn.coloured_classes ? 1 : 0;
   const double max_leader =
       kMaxLeaderShare * std::hypot(static_cast<double>(layout.view.width), static_cast<double>(layout.view.height));
-  for (MainViewLabel& label : order) {
-    const bool is_cluster = label.kind == MainViewLabel::Kind::cluster;
-    const int size = is_cluster ? cluster_label_size(style) : marker_label_size(style);
-    LabelRequest request = label_request(label.text, size, label.anchor, style);
-    request.leader_from = label.leader_from;
-    request.always_leader = label.always_leader;
-    // No leader crosses a glyph ranked before its own (a marker's: #0).
-    // A tie's label: nor any glyph of its class (issue 44 part U).
-    request.protect_below = is_cluster ? label.protect_end : 1;
-    request.strict_leaders = true;
-    // Near its glyph wherever the placer finds a place, as before the
-    // callouts (issue 44 part V round 2: a label with a clear near place
-    // keeps it; round 1 sent labels with no clear place within 90 px to the
-    // callouts, and moved bunny's, kitten's and Dolphin_padded's fine
-    // labels), unless its leader runs longer than kMaxLeaderShare of the
-    // view's diagonal: then a callout, if one is nearer.
-    std::optional<PlacedLabel> placed = placer.place(request, all_obstacles);
-    if (!placed && !is_cluster) placed = placer.place(request, worst_only);
-    if (placed && placed->has_leader && leader_length(*placed) > max_leader) {
-      label.placement = *placed;  // the fallback if no callout is nearer
-      placer.add(*placed);        // (kept free for it)
-      deferred.push_back(label);
-      continue;
-    }
-    if (!placed) {
-      deferred.push_back(label);
-      continue;
-    }
-    if (is_cluster && label.leader_from && !seen.empty()) {
-      const auto own = kIdGlyph + static_cast<std::uint32_t>(label.cluster);
-      if (!slide_leader_start(*placed, *label.leader_from, seen, own)) {
-        // The leader runs along a line over the glyph: placed again from
-        // the glyph's pixels that no line covers.
-        const VisibleGlyph strict = visible_glyph(seen, own, label.anchor, true);
-        label.leader_from = request.leader_from = strict.leader_from;
-        label.always_leader = request.always_leader = strict.is_mostly_hidden;
-        placed = placer.place(request, all_obstacles);
-        if (!placed) {
-          deferred.push_back(label);
-          continue;
+  // One greedy placement of the labels in `order`, onto result's copy.
+  const MainViewLabels unplaced = result;
+  const auto lay_out = [&](std::vector<MainViewLabel> order) {
+    MainViewLabels result = unplaced;
+    LabelPlacer placer({}, options);
+    // Labels with no place near their glyph, or only one with an overlong
+    // leader: the callout columns below.
+    std::vector<MainViewLabel> deferred;
+    for (MainViewLabel& label : order) {
+      const bool is_cluster = label.kind == MainViewLabel::Kind::cluster;
+      const int size = is_cluster ? cluster_label_size(style) : marker_label_size(style);
+      LabelRequest request = label_request(label.text, size, label.anchor, style);
+      request.leader_from = label.leader_from;
+      request.always_leader = label.always_leader;
+      // No leader crosses a glyph ranked before its own (a marker's: #0).
+      // A tie's label: nor any glyph of its class (issue 44 part U).
+      request.protect_below = is_cluster ? label.protect_end : 1;
+      request.strict_leaders = true;
+      // Near its glyph wherever the placer finds a place, as before the
+      // callouts (issue 44 part V round 2: a label with a clear near place
+      // keeps it; round 1 sent labels with no clear place within 90 px to the
+      // callouts, and moved bunny's, kitten's and Dolphin_padded's fine
+      // labels), unless its leader runs longer than kMaxLeaderShare of the
+      // view's diagonal: then a callout, if one is nearer.
+      std::optional<PlacedLabel> placed = placer.place(request, all_obstacles);
+      if (!placed && !is_cluster) placed = placer.place(request, worst_only);
+      // So is one whose leader crosses other glyphs (the 44l review): a
+      // callout may pass them by.
+      if (placed && placed->has_leader &&
+          (leader_length(*placed) > max_leader || leader_over_others(label, *placed, all_obstacles))) {
+        label.placement = *placed;  // the fallback if no callout is nearer
+        placer.add(*placed);        // (kept free for it)
+        deferred.push_back(label);
+        continue;
+      }
+      if (!placed) {
+        deferred.push_back(label);
+        continue;
+      }
+      if (is_cluster && label.leader_from && !seen.empty()) {
+        const auto own = kIdGlyph + static_cast<std::uint32_t>(label.cluster);
+        if (!slide_leader_start(*placed, *label.leader_from, seen, own)) {
+          // The leader runs along a line over the glyph: placed again from
+          // the glyph's pixels that no line covers.
+          const VisibleGlyph strict = visible_glyph(seen, own, label.anchor, true);
+          label.leader_from = request.leader_from = strict.leader_from;
+          label.always_leader = request.always_leader = strict.is_mostly_hidden;
+          placed = placer.place(request, all_obstacles);
+          if (!placed) {
+            deferred.push_back(label);
+            continue;
+          }
         }
       }
+      label.placement = *placed;
+      placer.add(*placed);
+      result.labels.push_back(label);
     }
-    label.placement = *placed;
-    placer.add(*placed);
-    result.labels.push_back(label);
+    place_main_view_callouts(result, deferred, all_obstacles, seen, style, options, coloured_ids, max_leader);
+    return result;
+  };
+  // Up to kMainLayoutRounds rounds (the 44l review: a turned dolphin's #4,
+  // behind #0, was fenced in by the leaders placed before it and found "no
+  // room"): the clusters with no room so far, or whose leader crossed other
+  // glyphs, go right after #0 and the marker groups; the round with the
+  // fewest faults (layout_faults) is kept (the first on a tie).
+  MainViewLabels best = lay_out(order);
+  std::vector<Index> promoted;
+  const std::pair<std::size_t, std::size_t> none{0, 0};
+  for (int round = 1; round < kMainLayoutRounds && layout_faults(best, all_obstacles) != none; ++round) {
+    std::vector<Index> faulty = best.unlabelled_clusters;
+    for (const MainViewLabel& l : best.labels)
+      if (l.kind == MainViewLabel::Kind::cluster && leader_over_others(l, l.placement, all_obstacles))
+        faulty.push_back(l.cluster);
+    bool more = false;
+    for (Index c : faulty)
+      if (c != 0 && std::find(promoted.begin(), promoted.end(), c) == promoted.end()) {
+        promoted.push_back(c);
+        more = true;
+      }
+    if (!more) break;
+    const auto is_promoted = [&](const MainViewLabel& l) {
+      return l.kind == MainViewLabel::Kind::cluster && l.cluster != 0 &&
+             std::find(promoted.begin(), promoted.end(), l.cluster) != promoted.end();
+    };
+    std::vector<MainViewLabel> again(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(first_other + markers.size()));
+    std::copy_if(order.begin() + static_cast<std::ptrdiff_t>(again.size()), order.end(), std::back_inserter(again), is_promoted);
+    std::copy_if(order.begin() + static_cast<std::ptrdiff_t>(first_other + markers.size()), order.end(),
+                 std::back_inserter(again), [&](const MainViewLabel& l) { return !is_promoted(l); });
+    MainViewLabels next = lay_out(std::move(again));
+    if (layout_faults(next, all_obstacles) < layout_faults(best, all_obstacles)) best = std::move(next);
   }
-  place_main_view_callouts(result, deferred, all_obstacles, seen, style, options, coloured_ids, max_leader);
-  result.ids = std::move(seen);
-  return result;
+  best.ids = std::move(seen);
+  return best;
 }
 
 namespace {
