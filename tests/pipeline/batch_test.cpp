@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "hqview/analysis/limitations.h"
 #include "hqview/core/error.h"
 #include "hqview/report/batch_index.h"
@@ -394,6 +396,64 @@ TEST(BatchIndex, SurfaceRowsLimitedAnalysisCellCountsAndSkippedInputs) {
   EXPECT_NE(md.find("- quads\\/holed\\.obj: limited: the boundary\\-error views"), std::string::npos) << md;
   EXPECT_NE(md.find("- quads\\/vase\\.obj: 1 reversed faces\n"), std::string::npos) << md;
   EXPECT_NE(md.find("| ⚠ reversed faces |"), std::string::npos) << md;
+}
+
+// A manifest row whose compare mesh is a surface mesh, or a surface mesh's
+// row with a compare mesh (issue 47p): HQView does not compare surface
+// meshes yet, a limitation of HQView, not a failure of the mesh. The batch
+// analyses the mesh alone with the limitation's warning: status ok, the
+// neutral "limited analysis" row (was "✗ failed", red, with no analysis),
+// the limitation explained once under the table.
+TEST(Batch, ASurfaceMeshBesideACompareMeshIsALimitedAnalysisNotAFailure) {
+  const test::TempDir dir("batch_surface_compare");
+  std::string obj;
+  for (int j = 0; j <= 2; ++j)
+    for (int i = 0; i <= 2; ++i) obj += "v " + std::to_string(i) + " " + std::to_string(j) + " " + std::to_string(i * j) + "\n";
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      const int a = 1 + i + 3 * j;
+      obj += "f " + std::to_string(a) + " " + std::to_string(a + 1) + " " + std::to_string(a + 4) + " " + std::to_string(a + 3) + "\n";
+    }
+  const std::filesystem::path surface = dir.write("quads.obj", obj), other = dir.write("other.obj", obj);
+  const std::filesystem::path hex = dir.write("cube.mesh",
+                                              "MeshVersionFormatted 2\nDimension 3\nVertices\n8\n0 0 0 0\n1 0 0 0\n1 1 0 0\n"
+                                              "0 1 0 0\n0 0 1 0\n1 0 1 0\n1 1 1 0\n0 1 1 0\nHexahedra\n1\n1 2 3 4 5 6 7 8 0\nEnd\n");
+  std::vector<BatchInput> inputs(2);
+  inputs[0].path = "quads.obj";
+  inputs[0].mesh_file = surface;
+  inputs[0].compare_file = other;
+  inputs[1].path = "cube.mesh";
+  inputs[1].mesh_file = hex;
+  inputs[1].compare_file = surface;
+  BatchOptions options;
+  options.output = dir.path() / "out";
+  options.analyze.tool_version = "test";
+  const std::vector<BatchEntry> entries = run_batch(inputs, options);
+  ASSERT_EQ(entries.size(), 2u);
+  for (const BatchEntry& e : entries) {
+    EXPECT_EQ(e.status, BatchStatus::ok) << e.path << ": " << e.error;
+    EXPECT_EQ(std::count(e.warnings.begin(), e.warnings.end(), std::string(kSurfaceCompareNotAvailable)), 1) << e.path;
+    EXPECT_TRUE(std::filesystem::is_regular_file(options.output / e.path / "report.json")) << e.path;
+  }
+  ASSERT_EQ(entries[1].path, "quads.obj");  // sorted by path
+  EXPECT_EQ(entries[1].headline[0], 9);     // the surface mesh was analysed: its 9 vertices
+  const std::string html = batch_index_html(entries, "9.9.9");
+  const std::string table = html.substr(html.find("id=\"mesh-table\""));
+  EXPECT_EQ(table.find("failed"), std::string::npos) << table;
+  std::size_t limited_rows = 0;
+  for (std::size_t at = table.find("<tr class=\"ok limited\">"); at != std::string::npos;
+       at = table.find("<tr class=\"ok limited\">", at + 1))
+    ++limited_rows;
+  EXPECT_EQ(limited_rows, 2u) << table;
+  EXPECT_NE(table.find("status\">ok · limited analysis<"), std::string::npos) << table;
+  EXPECT_NE(html.find("surface meshes are not compared yet"), std::string::npos);
+  EXPECT_NE(html.find("2 with limited analysis"), std::string::npos);
+  // A single run asked for the comparison: refused (exit 3), as before.
+  AnalyzeOptions single;
+  single.mesh_path = surface;
+  single.compare_path = other;
+  single.tool_version = "test";
+  EXPECT_THROW(analyze_mesh(single), InputError);
 }
 
 TEST(BatchIndex, MethodsComparePerLabel) {

@@ -19,8 +19,14 @@ inline constexpr std::string_view kSurfaceBoundaryErrorViewsNotDrawn =
 inline constexpr std::string_view kSurfaceViewerNotWrittenBefore =
     "the viewer of surface meshes is not written yet (the views are drawn)";
 
+// A batch row's --compare (its manifest's compare column) beside a surface
+// mesh, on either side: the mesh is analysed alone (AnalyzeOptions::
+// limitations_as_warnings); a single run refuses it (exit 3).
+inline constexpr std::string_view kSurfaceCompareNotAvailable =
+    "--compare: surface meshes are not compared yet (this mesh was analysed without its compare mesh)";
+
 inline constexpr std::string_view kLimitationWarnings[] = {kSurfaceBoundaryErrorViewsNotDrawn,
-                                                           kSurfaceViewerNotWrittenBefore};
+                                                           kSurfaceViewerNotWrittenBefore, kSurfaceCompareNotAvailable};
 
 // True when `warning` is one of kLimitationWarnings (exactly).
 inline bool is_limitation_warning(std::string_view warning) {

@@ -317,12 +317,24 @@ void analyze_boundary_error(Analysis& a, const TriSurface& reference, const Anal
   }
 }
 
+// --compare with a surface mesh on either side: an InputError, or with
+// options.limitations_as_warnings the limitation's warning (the caller
+// leaves the comparison out).
+void refuse_surface_compare(Analysis& a, const AnalyzeOptions& options) {
+  if (!options.limitations_as_warnings)
+    throw InputError(options.compare_path.string() + ": --compare: surface meshes are not compared yet (run without it)");
+  a.warnings.emplace_back(kSurfaceCompareNotAvailable);
+}
+
 // MESH2 of --compare, analysed as the mesh is (quality only).
 void analyze_compare(Analysis& a, const AnalyzeOptions& options) {
   Analysis::Compared& c = a.compare.emplace();
   c.mesh = load_mesh(options.compare_path, options, c.input).mesh;
-  if (is_surface_mesh(c.mesh))
-    throw InputError(options.compare_path.string() + ": --compare: surface meshes are not compared yet (run without it)");
+  if (is_surface_mesh(c.mesh)) {
+    refuse_surface_compare(a, options);
+    a.compare.reset();
+    return;
+  }
   c.topology = build_topology(c.mesh);
   c.field = compute_quality(c.mesh, c.topology);
   c.mesh_summary = summarize_mesh(c.mesh, c.topology);
@@ -409,8 +421,11 @@ void start_analysis(const AnalyzeOptions& options, AnalysisInProgress& out) {
   a.topology = build_topology(a.mesh);
   const bool is_surface = is_surface_mesh(a.mesh);
   if (options.up_auto && !is_surface) a.resting_up = choose_resting_up(a.mesh, a.topology);
-  if (is_surface && !options.compare_path.empty())
-    throw InputError(options.compare_path.string() + ": --compare: surface meshes are not compared yet (run without it)");
+  bool with_compare = !options.compare_path.empty();
+  if (is_surface && with_compare) {
+    refuse_surface_compare(a, options);
+    with_compare = false;
+  }
   // The reference as soon as the boundary is known, so that its atlas runs
   // beside everything after.
   if (!options.reference_path.empty()) {
@@ -433,7 +448,7 @@ void start_analysis(const AnalyzeOptions& options, AnalysisInProgress& out) {
     analyze_boundary_error(a, *a.reference_surface, options);
     clock.stop();
   }
-  if (!options.compare_path.empty()) {
+  if (with_compare) {
     clock.start("compare mesh");
     analyze_compare(a, options);
     clock.stop();

@@ -33,6 +33,11 @@ struct AnalyzeOptions {
   std::string mesh_format;               // a name of mesh_format_names(); empty: by extension and content
   std::filesystem::path reference_path;  // empty: no boundary error
   std::filesystem::path compare_path;    // empty: no comparison
+  // A feature not available for the mesh (limitations.h: --compare on a
+  // surface mesh, either side): false throws InputError (a single run asked
+  // for it, exit 3); true leaves it out with its limitation warning and
+  // analyses the rest (batch: a limitation is not a failure).
+  bool limitations_as_warnings = false;
   CompareAlign compare_align = CompareAlign::auto_;  // --compare-align
   CompareAlign reference_align = CompareAlign::none; // --reference-align (none, bbox or auto)
   BoundaryOptions boundary;                          // --boundary-tolerance (sampling_tolerance)

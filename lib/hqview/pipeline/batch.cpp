@@ -106,6 +106,7 @@ BatchEntry run_batch_mesh(const BatchInput& input, const BatchOptions& options, 
     analyze_options.mesh_path = input.mesh_file;
     analyze_options.reference_path = input.reference_file;
     analyze_options.compare_path = input.compare_file;
+    analyze_options.limitations_as_warnings = true;  // a limitation is no failure: the rest is analysed
     // The manifest's up column: an axis, or auto (the resting axis).
     if (input.up == "auto") {
       analyze_options.up_auto = true;
