@@ -428,7 +428,7 @@ TEST(Batch, ASurfaceMeshBesideACompareMeshIsALimitedAnalysisNotAFailure) {
   BatchOptions options;
   options.output = dir.path() / "out";
   options.analyze.tool_version = "test";
-  const std::vector<BatchEntry> entries = run_batch(inputs, options);
+  const std::vector<BatchEntry> entries = run_batch(inputs, options, nullptr);
   ASSERT_EQ(entries.size(), 2u);
   for (const BatchEntry& e : entries) {
     EXPECT_EQ(e.status, BatchStatus::ok) << e.path << ": " << e.error;

@@ -372,7 +372,7 @@ void set_headline(data& page, const ReportModel& model) {
       headline.push_back(card("min scaled Jacobian (per cell, signed against the neighbours' orientation)",
                               show(q.scaled_jacobian.min), q.scaled_jacobian.min <= 0));
       headline.push_back(card("mean scaled Jacobian (per cell)", show(q.scaled_jacobian.mean)));
-      headline.push_back(card("reversed faces (orientation flipped against their neighbours: the inverted cells)",
+      headline.push_back(card("reversed faces (orientation flipped against their neighbours: their corners negative)",
                               show_count(q.num_inverted), q.num_inverted > 0));
     }
   } else if (hybrid) {
