@@ -74,6 +74,20 @@ Pixel to_pixel(const ViewFile& f, const Vec3& p) {
   return {0.5 * (ndc.x + 1.0) * f.frame_width, f.image.height - f.frame_height + 0.5 * (1.0 - ndc.y) * f.frame_height};
 }
 
+// The pixel at each point A + (i/10)(B - A) + (j/10)(C - A) of a face's
+// fan triangles (A = corner(0); B, C = corners 1, 2 and 2, 3 of a quad),
+// i, j >= margin and i + j <= 10 - margin (away from the edges), passed to f.
+template <class Corner, class F>
+void for_inner_pixels(const ViewFile& file, const Corner& corner, int size, int margin, F&& f) {
+  for (int t = 0; t < (size == 4 ? 2 : 1); ++t)
+    for (int i = margin; i <= 10 - 2 * margin; ++i)
+      for (int j = margin; i + j <= 10 - margin; ++j) {
+        const Vec3 A = corner(0), B = corner(1 + t), C = corner(2 + t);
+        const Pixel at = to_pixel(file, A + (i / 10.0) * (B - A) + (j / 10.0) * (C - A));
+        f(test::pixel_at(file.image, static_cast<int>(at.x), static_cast<int>(at.y)));
+      }
+}
+
 const ViewFile& file_of(const std::vector<RenderedView>& views, const std::string& id) {
   for (const RenderedView& v : views)
     if (v.id == id) return v.files.at(0);
@@ -302,15 +316,10 @@ TEST(SurfaceViews, EveryInvertedFaceShowsOverTheGlyphs) {
                             static_cast<std::uint8_t>(over(c.g, kIntersectingCellColor.g)),
                             static_cast<std::uint8_t>(over(c.b, kIntersectingCellColor.b)), 255};
           const auto p = [&](int k) { return b.mesh.points[static_cast<std::size_t>(face.v[static_cast<std::size_t>(k)])]; };
-          for (int t = 0; t < (face.size == 4 ? 2 : 1); ++t)
-            for (int i = 1; i < 10; ++i)
-              for (int j = 1; i + j < 10; ++j) {
-                const Vec3 A = p(0), B = p(1 + t), C = p(2 + t);
-                const Pixel pix = to_pixel(f, A + (i / 10.0) * (B - A) + (j / 10.0) * (C - A));
-                const Rgba8 q = test::pixel_at(f.image, static_cast<int>(pix.x), static_cast<int>(pix.y));
-                fill += q == c;
-                tinted += std::abs(q.r - blend.r) <= 4 && std::abs(q.g - blend.g) <= 4 && std::abs(q.b - blend.b) <= 4;
-              }
+          for_inner_pixels(f, p, face.size, 1, [&](Rgba8 q) {
+            fill += q == c;
+            tinted += std::abs(q.r - blend.r) <= 4 && std::abs(q.g - blend.g) <= 4 && std::abs(q.b - blend.b) <= 4;
+          });
         }
     }
     EXPECT_GT(fill, 20);
@@ -452,15 +461,10 @@ TEST(SurfaceViews, ACurvedSurfacesReversedFacesAreInvertedInTheReportTheChartsAn
     for (const ViewFile& f : v.files)
       for (std::size_t c : reversed) {
         const auto p = [&](int k) { return g.points[static_cast<std::size_t>(g.quads[c][static_cast<std::size_t>(k)])]; };
-        for (int t = 0; t < 2; ++t)
-          for (int i = 2; i < 8; ++i)
-            for (int j = 2; i + j < 8; ++j) {
-              const Vec3 A = p(0), B = p(1 + t), C = p(2 + t);
-              const Pixel at = to_pixel(f, A + (i / 10.0) * (B - A) + (j / 10.0) * (C - A));
-              const Rgba8 q = test::pixel_at(f.image, static_cast<int>(at.x), static_cast<int>(at.y));
-              in_inverted += q == inverted;
-              in_top += q == top;
-            }
+        for_inner_pixels(f, p, 4, 2, [&](Rgba8 q) {
+          in_inverted += q == inverted;
+          in_top += q == top;
+        });
       }
   }
   EXPECT_GT(in_inverted, 20);
