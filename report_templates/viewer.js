@@ -491,7 +491,7 @@
     var extra = document.getElementById('legend-extra');
     extra.textContent = '';
     var entries = fd.legend.concat([{ label: 'no value', index: 255 }]);
-    if (fd.id === 'vertex_quality' || fd.id === 'scaled_jacobian') entries.unshift({ label: 'inverted (< 0)', index: 0 });
+    if (fd.id === 'vertex_quality' || fd.id === 'scaled_jacobian') entries.unshift({ label: fd.below_zero || 'inverted (< 0)', index: 0 });
     entries.forEach(function (e) {
       var sw = el('span', { class: 'swatch' });
       sw.style.background = 'rgb(' + lut[3 * e.index] + ',' + lut[3 * e.index + 1] + ',' + lut[3 * e.index + 2] + ')';

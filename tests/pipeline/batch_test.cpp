@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <fstream>
+
 #include "hqview/analysis/limitations.h"
 #include "hqview/core/error.h"
 #include "hqview/report/batch_index.h"
@@ -394,6 +397,51 @@ TEST(BatchIndex, SurfaceRowsLimitedAnalysisCellCountsAndSkippedInputs) {
   EXPECT_NE(md.find("- quads\\/holed\\.obj: limited: the boundary\\-error views"), std::string::npos) << md;
   EXPECT_NE(md.find("- quads\\/vase\\.obj: 1 reversed faces\n"), std::string::npos) << md;
   EXPECT_NE(md.find("| ⚠ reversed faces |"), std::string::npos) << md;
+}
+
+// Manifest rows with a compare mesh beside surface meshes (issue 47): a
+// surface mesh with a surface compare mesh is compared (its report has the
+// compare block, no warning); a hex mesh with a surface compare mesh is a
+// manifest error (the two are of different dimensions): that row fails
+// with the message that says so, the other rows are analysed.
+TEST(Batch, SurfaceMeshesAreComparedAndAMixedDimensionRowFails) {
+  const test::TempDir dir("batch_surface_compare");
+  std::string obj;
+  for (int j = 0; j <= 2; ++j)
+    for (int i = 0; i <= 2; ++i) obj += "v " + std::to_string(i) + " " + std::to_string(j) + " " + std::to_string(i * j) + "\n";
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      const int a = 1 + i + 3 * j;
+      obj += "f " + std::to_string(a) + " " + std::to_string(a + 1) + " " + std::to_string(a + 4) + " " + std::to_string(a + 3) + "\n";
+    }
+  const std::filesystem::path surface = dir.write("quads.obj", obj), other = dir.write("other.obj", obj);
+  const std::filesystem::path hex = dir.write("cube.mesh",
+                                              "MeshVersionFormatted 2\nDimension 3\nVertices\n8\n0 0 0 0\n1 0 0 0\n1 1 0 0\n"
+                                              "0 1 0 0\n0 0 1 0\n1 0 1 0\n1 1 1 0\n0 1 1 0\nHexahedra\n1\n1 2 3 4 5 6 7 8 0\nEnd\n");
+  std::vector<BatchInput> inputs(2);
+  inputs[0].path = "quads.obj";
+  inputs[0].mesh_file = surface;
+  inputs[0].compare_file = other;
+  inputs[1].path = "cube.mesh";
+  inputs[1].mesh_file = hex;
+  inputs[1].compare_file = surface;
+  BatchOptions options;
+  options.output = dir.path() / "out";
+  options.analyze.tool_version = "test";
+  const std::vector<BatchEntry> entries = run_batch(inputs, options, nullptr);
+  ASSERT_EQ(entries.size(), 2u);
+  ASSERT_EQ(entries[1].path, "quads.obj");  // sorted by path
+  EXPECT_EQ(entries[1].status, BatchStatus::ok) << entries[1].error;
+  EXPECT_TRUE(entries[1].warnings.empty());
+  const nlohmann::json report =
+      nlohmann::json::parse(std::ifstream(options.output / "quads.obj" / "report.json"));
+  EXPECT_EQ(report["compare"]["headline"]["num_cells_by_kind"]["quad"], 4);
+  EXPECT_EQ(report["compare"]["alignment"]["mode"], "none");  // the same surface, in place
+  EXPECT_EQ(entries[0].path, "cube.mesh");
+  EXPECT_EQ(entries[0].status, BatchStatus::failed);
+  EXPECT_NE(entries[0].error.find("a surface mesh against a volume mesh (compare meshes of one dimension)"),
+            std::string::npos)
+      << entries[0].error;
 }
 
 TEST(BatchIndex, MethodsComparePerLabel) {

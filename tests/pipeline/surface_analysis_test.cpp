@@ -340,6 +340,43 @@ TEST(SurfaceAnalysis, GmshPlanarQuadMeshWithAHole) {
     if (fields[column] == "1") in_csv.insert(c);
   }
   EXPECT_EQ(in_csv, overlapping);
+
+  // Rotated copies (generic axes and angles), mirrored ones too, written
+  // with 17 digits: planar within the tolerance, decided in their plane,
+  // the very same inverted quads, intersecting pairs, self-intersecting
+  // faces and coincident vertices as the axis-aligned original (issue 47p:
+  // 0.7 rad about x and mirrored, the overlap check found nothing).
+  struct Placement {
+    Vec3 axis;
+    double angle;
+    bool mirrored;
+  };
+  for (const Placement& at : {Placement{{1, 0, 0}, 0.7, true}, Placement{normalized(Vec3{1, 2, 3}), 1.1, false},
+                              Placement{normalized(Vec3{-2, 1, 0.5}), 2.6, true}}) {
+    std::vector<Vec3> points = mesh.points;
+    const double c = std::cos(at.angle), s = std::sin(at.angle);
+    for (Vec3& p : points) {
+      p = c * p + s * cross(at.axis, p) + ((1.0 - c) * dot(at.axis, p)) * at.axis + Vec3{3.0, -2.0, 40.0};
+      if (at.mirrored) p.x = -p.x;
+    }
+    const std::string what = "turned " + std::to_string(at.angle) + (at.mirrored ? ", mirrored" : "");
+    const AnalyzeResult turned = run(dir.write("turned.vtk", vtk_text(points, mesh.quads, mesh.triangles)));
+    const Json rt = report_of(turned);
+    EXPECT_TRUE(rt["mesh"]["planar"].get<bool>()) << what;
+    std::set<std::size_t> inverted;
+    for (std::size_t c = 0; c < mesh.quads.size() + mesh.triangles.size(); ++c)
+      if (cell_is_inverted(turned.model.analysis.field, c)) inverted.insert(c);
+    EXPECT_EQ(inverted, by_hand) << what;
+    EXPECT_EQ(rt["quality"]["num_inverted"], by_hand.size()) << what;
+    std::vector<std::array<Index, 2>> turned_pairs;
+    for (const Json& pair : rt["overlap"]["intersecting_pairs"]) turned_pairs.push_back({pair[0].get<Index>(), pair[1].get<Index>()});
+    for (const Json& f : rt["overlap"]["self_intersecting_faces"]) turned_pairs.push_back({f.get<Index>(), f.get<Index>()});
+    std::sort(turned_pairs.begin(), turned_pairs.end());
+    EXPECT_EQ(turned_pairs, reference) << what;
+    EXPECT_EQ(rt["overlap"]["num_intersecting_cells"], overlapping.size()) << what;
+    EXPECT_EQ(rt["overlap"]["self_intersecting_faces"], rp["overlap"]["self_intersecting_faces"]) << what;
+    EXPECT_EQ(rt["overlap"]["num_coincident_vertices"], rp["overlap"]["num_coincident_vertices"]) << what;
+  }
 }
 #endif
 
@@ -480,10 +517,27 @@ TEST(SurfaceAnalysis, AReversedFaceOnACurvedSurfaceIsTheInvertedOne) {
   EXPECT_TRUE(cell_is_inverted(q, 2));
   // Against their own normals every corner is a right angle: Verdict's 1.
   EXPECT_NEAR(r["quality"]["by_kind"]["quad"]["metrics"]["scaled_jacobian"]["min"].get<double>(), 1.0, 1e-15);
+  // Measured against the orientation its neighbours agree on, the reversed
+  // quad's right angles are -1 (issue 47p: they were +1, so the histograms,
+  // charts and views put the inverted face in the "0.9 to 1" bin): its cell
+  // value, its 4 corners and its 4 vertices' quality fall in the first
+  // histogram bin [-1, -0.9] of report.json, the others in the last.
+  ASSERT_EQ(q.cell_scaled_jacobian.size(), 3u);
+  EXPECT_NEAR(q.cell_scaled_jacobian[0], 1.0, 1e-15);
+  EXPECT_NEAR(q.cell_scaled_jacobian[1], 1.0, 1e-15);
+  EXPECT_NEAR(q.cell_scaled_jacobian[2], -1.0, 1e-15);
+  const Json& sj = r["quality"]["scaled_jacobian"];
+  EXPECT_NEAR(sj["min"].get<double>(), -1.0, 1e-15);
+  EXPECT_EQ(sj["histogram"]["counts"].front(), 1);
+  EXPECT_EQ(sj["histogram"]["counts"].back(), 2);
+  EXPECT_EQ(r["quality"]["corner_scaled_jacobian"]["histogram"]["counts"].front(), 4);
+  EXPECT_EQ(r["quality"]["vertex_quality"]["histogram"]["counts"].front(), 4);  // vertices 4-7
+  EXPECT_EQ(r["quality"]["vertex_quality"]["histogram"]["counts"].back(), 4);   // vertices 0-3
+  EXPECT_EQ(r["quality"]["worst_cells"][0]["cell"], 2);
 
   // The page and summary.md call the count what it is (issue 47 part F, the
-  // 47d review's C2): reversed faces, beside an unsigned min scaled
-  // Jacobian; never "inverted cells" on a curved surface. Tool limitations
+  // 47d review's C2): reversed faces, beside the min scaled Jacobian signed
+  // against the neighbours' orientation; never "inverted cells" on a curved surface. Tool limitations
   // (the boundary-error views) apart from input warnings, neutral.
   // (No run writes this text any more, since the boundary-error views of
   // surface meshes are drawn; an earlier HQView's report did, and the page
@@ -491,9 +545,10 @@ TEST(SurfaceAnalysis, AReversedFaceOnACurvedSurfaceIsTheInvertedOne) {
   result.model.analysis.warnings.push_back(std::string(kSurfaceBoundaryErrorViewsNotDrawnBefore));
   const std::string html = index_html(result.model);
   EXPECT_NE(html.find("<div class=\"card alert\"><div class=\"value\">1</div><div class=\"label\">reversed faces "
-                      "(orientation flipped against their neighbours; shape unaffected)</div></div>"),
+                      "(orientation flipped against their neighbours: their corners negative)</div></div>"),
             std::string::npos);
-  EXPECT_NE(html.find("min scaled Jacobian (per cell; Verdict&apos;s, unsigned: the shape only)"), std::string::npos);
+  EXPECT_NE(html.find("min scaled Jacobian (per cell, signed against the neighbours&apos; orientation)"), std::string::npos);
+  EXPECT_EQ(html.find("unsigned"), std::string::npos);
   EXPECT_EQ(html.find("inverted cells"), std::string::npos);
   EXPECT_NE(html.find("intersecting faces"), std::string::npos);
   EXPECT_NE(html.find("degenerate faces (a zero-length edge)"), std::string::npos);

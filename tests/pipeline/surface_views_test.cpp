@@ -11,10 +11,12 @@
 #include <cmath>
 #include <fstream>
 #include <memory>
+#include <numeric>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "hqview/chart/chart.h"
 #include "hqview/image/colormap.h"
 #include "hqview/mesh/boundary_polygons.h"
 #include "hqview/pipeline/analyze.h"
@@ -70,6 +72,20 @@ struct Pixel {
 Pixel to_pixel(const ViewFile& f, const Vec3& p) {
   const Vec3 ndc = project_to_ndc(*f.camera, f.camera_aspect, p);
   return {0.5 * (ndc.x + 1.0) * f.frame_width, f.image.height - f.frame_height + 0.5 * (1.0 - ndc.y) * f.frame_height};
+}
+
+// The pixel at each point A + (i/10)(B - A) + (j/10)(C - A) of a face's
+// fan triangles (A = corner(0); B, C = corners 1, 2 and 2, 3 of a quad),
+// i, j >= margin and i + j <= 10 - margin (away from the edges), passed to f.
+template <class Corner, class F>
+void for_inner_pixels(const ViewFile& file, const Corner& corner, int size, int margin, F&& f) {
+  for (int t = 0; t < (size == 4 ? 2 : 1); ++t)
+    for (int i = margin; i <= 10 - 2 * margin; ++i)
+      for (int j = margin; i + j <= 10 - margin; ++j) {
+        const Vec3 A = corner(0), B = corner(1 + t), C = corner(2 + t);
+        const Pixel at = to_pixel(file, A + (i / 10.0) * (B - A) + (j / 10.0) * (C - A));
+        f(test::pixel_at(file.image, static_cast<int>(at.x), static_cast<int>(at.y)));
+      }
 }
 
 const ViewFile& file_of(const std::vector<RenderedView>& views, const std::string& id) {
@@ -300,15 +316,10 @@ TEST(SurfaceViews, EveryInvertedFaceShowsOverTheGlyphs) {
                             static_cast<std::uint8_t>(over(c.g, kIntersectingCellColor.g)),
                             static_cast<std::uint8_t>(over(c.b, kIntersectingCellColor.b)), 255};
           const auto p = [&](int k) { return b.mesh.points[static_cast<std::size_t>(face.v[static_cast<std::size_t>(k)])]; };
-          for (int t = 0; t < (face.size == 4 ? 2 : 1); ++t)
-            for (int i = 1; i < 10; ++i)
-              for (int j = 1; i + j < 10; ++j) {
-                const Vec3 A = p(0), B = p(1 + t), C = p(2 + t);
-                const Pixel pix = to_pixel(f, A + (i / 10.0) * (B - A) + (j / 10.0) * (C - A));
-                const Rgba8 q = test::pixel_at(f.image, static_cast<int>(pix.x), static_cast<int>(pix.y));
-                fill += q == c;
-                tinted += std::abs(q.r - blend.r) <= 4 && std::abs(q.g - blend.g) <= 4 && std::abs(q.b - blend.b) <= 4;
-              }
+          for_inner_pixels(f, p, face.size, 1, [&](Rgba8 q) {
+            fill += q == c;
+            tinted += std::abs(q.r - blend.r) <= 4 && std::abs(q.g - blend.g) <= 4 && std::abs(q.b - blend.b) <= 4;
+          });
         }
     }
     EXPECT_GT(fill, 20);
@@ -395,6 +406,92 @@ bool color_near(const Image& image, const Pixel& at, Rgba8 color, int r) {
       if (std::abs(p.r - color.r) <= 12 && std::abs(p.g - color.g) <= 12 && std::abs(p.b - color.b) <= 12) return true;
     }
   return false;
+}
+
+// A curved surface (issue 47p): an 8 x 8 grid over [-2, 2]^2 lifted to the
+// bell z = 1.5 exp(-(x^2 + y^2)), the two quads at its top, (3, 3) and
+// (4, 4), listed backwards: reversed against their neighbours, so the
+// inverted cells. Measured against their neighbours' orientation their
+// corners are negative, and every output says so alike: report.json's
+// first histogram bin, the histogram chart's bars below 0, the main view's
+// inverted colour on their pixels (was the "0.9 to 1" colour, from their
+// positive unsigned value), the overview's and the viewer's swatch below 0
+// naming what it shows on a curved surface (was "inverted (< 0)").
+TEST(SurfaceViews, ACurvedSurfacesReversedFacesAreInvertedInTheReportTheChartsAndTheViews) {
+  const int n = 8;
+  Grid g = planar_grid(n, {-2, -2, 0}, {1, 0, 0}, {0, 1, 0}, 0.5);
+  for (Vec3& p : g.points) p.z = 1.5 * std::exp(-(p.x * p.x + p.y * p.y));
+  const std::vector<std::size_t> reversed{3 + n * 3, 4 + n * 4};
+  for (std::size_t c : reversed) std::swap(g.quads[c][1], g.quads[c][3]);
+  const test::TempDir dir("surface_bell");
+  AnalyzeOptions options;
+  options.mesh_path = dir.write("bell.obj", obj_text(g));
+  options.tool_version = "test";
+  ReportModel model;
+  model.analysis = analyze_mesh(options);
+  model.has_viewer = true;
+  const Analysis& a = model.analysis;
+  ASSERT_TRUE(a.mesh_summary.planarity && !a.mesh_summary.planarity->is_planar);
+  for (std::size_t c = 0; c < g.quads.size(); ++c) {
+    const bool is_reversed = std::find(reversed.begin(), reversed.end(), c) != reversed.end();
+    EXPECT_EQ(cell_is_inverted(a.field, c), is_reversed) << c;
+    EXPECT_EQ(a.field.cell_scaled_jacobian[c] < 0.0, is_reversed) << c;  // the bell's quads are convex
+  }
+  // report.json: both in the first bins (below 0), none in the last.
+  const nlohmann::json r = nlohmann::json::parse(report_document(model).dump());
+  const std::vector<long> counts = r["quality"]["scaled_jacobian"]["histogram"]["counts"];
+  const auto below_zero = [&](const std::vector<long>& c) { return std::accumulate(c.begin(), c.begin() + 10, 0L); };
+  EXPECT_EQ(below_zero(counts), 2);
+  EXPECT_EQ(r["quality"]["num_inverted"], 2);
+  EXPECT_EQ(below_zero(r["quality"]["corner_scaled_jacobian"]["histogram"]["counts"].get<std::vector<long>>()), 8);
+
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  ASSERT_TRUE(renderer);
+  ViewOptions views;
+  views.width = 800;
+  views.height = 600;
+  views.views = {"main", "histogram"};
+  const std::vector<RenderedView> rendered = render_views(a, views, *renderer);
+  // The main view: inside each reversed face (its two triangles, points
+  // away from the edges), the inverted bin's colour, never the top bin's.
+  const Rgba8 inverted = surface_fill_color(-1.0), top = surface_fill_color(1.0);
+  int in_inverted = 0, in_top = 0;
+  for (const RenderedView& v : rendered) {
+    if (v.id != "main") continue;
+    for (const ViewFile& f : v.files)
+      for (std::size_t c : reversed) {
+        const auto p = [&](int k) { return g.points[static_cast<std::size_t>(g.quads[c][static_cast<std::size_t>(k)])]; };
+        for_inner_pixels(f, p, 4, 2, [&](Rgba8 q) {
+          in_inverted += q == inverted;
+          in_top += q == top;
+        });
+      }
+  }
+  EXPECT_GT(in_inverted, 20);
+  EXPECT_EQ(in_top, 0);
+  // The histogram chart: the two faces as bars below 0, in the inverted colour.
+  const Chart chart = quality_histogram_chart(a.field.cell_scaled_jacobian, false, {800, 460, "t"});
+  int inverted_bars = 0;
+  for (const ChartRect& bar : chart.rects) inverted_bars += bar.fill == to_rgba8(kInvertedColor);
+  EXPECT_GE(inverted_bars, 1);  // both faces: one bin or two
+  EXPECT_LE(inverted_bars, 2);
+  // The overview's colour bar names what lies below 0 here.
+  OverviewOptions overview;
+  overview.inverted_are_reversed = true;
+  const OverviewFrame frame = quality_overview_frame(a.mesh, a.topology, a.field.vertex_quality, overview);
+  ASSERT_GE(frame.bar.swatches.size(), 2u);
+  EXPECT_EQ(frame.bar.swatches[0].label, kCurvedBelowZeroLabel);
+  EXPECT_EQ(frame.bar.swatches[1].label, kCurvedBelowZeroNote);
+  for (const ColorBarSwatch& s : frame.bar.swatches) EXPECT_EQ(s.label.find("inverted (< 0)"), std::string::npos);
+  // So does the viewer's legend (its data: the label the swatch takes).
+  const nlohmann::json d = test::data_of(model);
+  int named = 0;
+  for (const nlohmann::json& field : d["fields"])
+    if (field["id"] == "vertex_quality" || field["id"] == "scaled_jacobian") {
+      EXPECT_EQ(field["below_zero"], std::string(kCurvedBelowZeroLabel) + " " + kCurvedBelowZeroNote);
+      ++named;
+    }
+  EXPECT_EQ(named, 2);
 }
 
 // The 47c review's surface items on a hand-built planar 8 x 8 grid in a

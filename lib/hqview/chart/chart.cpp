@@ -93,7 +93,7 @@ Rgba8 bar_color(double quality) { return to_rgba8(quality < 0.0 ? kInvertedColor
 }  // namespace
 
 Chart quality_histogram_chart(std::span<const double> values, bool log_scale, const ChartOptions& options,
-                              double bin_width) {
+                              double bin_width, const HistogramAxes& axes) {
   Chart chart = begin_chart(options);
   const ChartRect r = chart.plot;
   const int bins = std::max(1, static_cast<int>(std::lround(2.0 / bin_width)));
@@ -129,7 +129,7 @@ Chart quality_histogram_chart(std::span<const double> values, bool log_scale, co
   }
   std::vector<std::pair<double, double>> x_ticks;
   for (double t = -1.0; t <= 1.0001; t += 0.25) x_ticks.push_back({t, r.x + r.width * (t + 1.0) / 2.0});
-  add_axes(chart, r, y_ticks, x_ticks, "scaled Jacobian (per hex)", log_scale ? "hexes (log scale)" : "hexes");
+  add_axes(chart, r, y_ticks, x_ticks, axes.x_label, log_scale ? axes.cells + " (log scale)" : axes.cells);
   return chart;
 }
 

@@ -63,12 +63,19 @@ struct ChartOptions {
   std::string title;
 };
 
-// Histogram of per-hex scaled Jacobian: bins of width bin_width on [-1, 1],
+// The histogram's axis titles: the x axis, and the cells counted (plural:
+// the y axis, " (log scale)" added on a log chart).
+struct HistogramAxes {
+  std::string x_label = "scaled Jacobian (per hex)";
+  std::string cells = "hexes";
+};
+
+// Histogram of per-cell scaled Jacobian: bins of width bin_width on [-1, 1],
 // bars coloured by the quality map at the bin's centre (inverted bins in
 // kInvertedColor); values >= 1e30 (degenerate) and NaN are left out. With
 // log_scale the bar heights are log10(1 + count).
 Chart quality_histogram_chart(std::span<const double> values, bool log_scale, const ChartOptions& options,
-                              double bin_width = 0.05);
+                              double bin_width = 0.05, const HistogramAxes& axes = {});
 
 // Chart B, sorted vertex quality: the worst_n lowest values as bars (worst
 // on the left, coloured by quality), and the whole ascending distribution as

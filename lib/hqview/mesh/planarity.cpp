@@ -72,4 +72,52 @@ Planarity measure_planarity(const Mesh& mesh, double diagonal) {
   return out;
 }
 
+Vec3 PlaneFrame::to_plane(const Vec3& p) const {
+  if (shared_axis >= 0) return {p[(shared_axis + 1) % 3], p[(shared_axis + 2) % 3], 0.0};
+  const Vec3 d = p - origin;
+  return {dot(d, e1), dot(d, e2), 0.0};
+}
+
+Vec3 PlaneFrame::from_plane(const Vec3& uv) const {
+  if (shared_axis < 0) return origin + uv.x * e1 + uv.y * e2;
+  Vec3 p;
+  p[shared_axis] = shared_value;
+  p[(shared_axis + 1) % 3] = uv.x;
+  p[(shared_axis + 2) % 3] = uv.y;
+  return p;
+}
+
+PlaneFrame plane_frame(const Mesh& mesh, const Planarity& planarity) {
+  PlaneFrame frame;
+  const Vec3& n = planarity.normal;
+  // The axis the normal is nearest to: shared exactly by every vertex?
+  int axis = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::abs(n[k]) > std::abs(n[axis])) axis = k;
+  bool shared = true, seen = false;
+  double value = 0;
+  for_each_surface_cell(mesh, [&](const std::array<Index, 4>& c, int size) {
+    for (int i = 0; i < size && shared; ++i) {
+      const double x = mesh.points[static_cast<std::size_t>(c[static_cast<std::size_t>(i)])][axis];
+      if (seen && x != value) shared = false;
+      value = x;
+      seen = true;
+    }
+  });
+  if (shared) {
+    frame.shared_axis = axis;
+    frame.shared_value = value;
+    return frame;
+  }
+  int farthest = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::abs(n[k]) < std::abs(n[farthest])) farthest = k;
+  Vec3 a;
+  a[farthest] = 1.0;
+  frame.origin = planarity.centroid;
+  frame.e1 = normalized(cross(n, a));
+  frame.e2 = cross(n, frame.e1);
+  return frame;
+}
+
 }  // namespace hq

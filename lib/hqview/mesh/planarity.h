@@ -32,4 +32,24 @@ struct Planarity {
 // `diagonal` is the bounding-box diagonal of those vertices.
 Planarity measure_planarity(const Mesh& mesh, double diagonal);
 
+// Coordinates in a planar mesh's plane, where check_surface_overlap decides
+// it (docs/analysis.md, "Overlap"): to_plane(p) = (u, v, 0), from_plane
+// back. A mesh whose vertices share one coordinate exactly (it lies in a
+// coordinate plane) keeps its two others as they are (u, v in cyclic order
+// after the shared axis): no rounding. Any other plane: u = (p - c) . e1,
+// v = (p - c) . e2 about the centroid c, e1 the unit normal x the
+// coordinate axis the normal is farthest from (the lowest such axis on a
+// tie), e2 = normal x e1: a basis fixed by the normal alone, so a rotated
+// or mirrored copy of a mesh gets the same (u, v) up to a turn or a flip of
+// the plane and rounding.
+struct PlaneFrame {
+  int shared_axis = -1;  // 0-2 when the vertices share that coordinate exactly, else -1
+  double shared_value = 0;
+  Vec3 origin, e1, e2;
+
+  Vec3 to_plane(const Vec3& p) const;
+  Vec3 from_plane(const Vec3& uv) const;  // uv.z ignored
+};
+PlaneFrame plane_frame(const Mesh& mesh, const Planarity& planarity);
+
 }  // namespace hq

@@ -15,6 +15,7 @@
 
 #include "hqview/core/hex_topology.h"
 #include "hqview/core/progress.h"
+#include "hqview/mesh/planarity.h"
 #include "hqview/overlap/box_pairs.h"
 #include "hqview/overlap/cell_faces.h"
 #include "hqview/overlap/exact_geometry.h"
@@ -659,8 +660,8 @@ OverlapReport check_surface_overlap(const Mesh& mesh, const OverlapOptions& opti
   const auto& p = mesh.points;
   const auto num_faces = static_cast<std::size_t>(mesh.quads.size() + mesh.triangles.size());
   const VertexCells vertex_faces = surface_vertex_faces(mesh);
-  r.coincident_tolerance =
-      options.coincident_eps > 0.0 ? options.coincident_eps * referenced_bbox_diagonal(mesh, vertex_faces) : 0.0;
+  const double diagonal = referenced_bbox_diagonal(mesh, vertex_faces);
+  r.coincident_tolerance = options.coincident_eps > 0.0 ? options.coincident_eps * diagonal : 0.0;
   progress::set_total(2);
   // A. Each vertex then stands for its group's lowest vertex.
   find_coincident_vertices(mesh, vertex_faces, r.coincident_tolerance, r);
@@ -699,8 +700,22 @@ OverlapReport check_surface_overlap(const Mesh& mesh, const OverlapOptions& opti
   }
   progress::add_done(1);
 
-  // S. Each face's triangles, on the welded ids.
+  // S. A planar mesh in its plane: its rotated or mirrored copies are
+  // decided as it is (in 3-D their coplanar triangles would lie a rounding
+  // apart, and meet nowhere or along a line).
   if (on_self_intersection) on_self_intersection();
+  const Planarity planarity = measure_planarity(mesh, diagonal);
+  r.is_decided_in_plane = planarity.is_planar;
+  std::optional<PlaneFrame> frame;
+  std::vector<Vec3> in_plane;
+  if (planarity.is_planar) {
+    frame = plane_frame(mesh, planarity);
+    in_plane.resize(p.size());
+    for (std::size_t v = 0; v < p.size(); ++v)
+      if (is_referenced(vertex_faces, v)) in_plane[v] = frame->to_plane(p[v]);
+  }
+  const std::vector<Vec3>& q = frame ? in_plane : p;
+  // Each face's triangles, on the welded ids.
   std::vector<detail::Triangle> triangles;
   std::vector<Index> first;
   triangles.reserve(2 * mesh.quads.size() + mesh.triangles.size());
@@ -710,7 +725,7 @@ OverlapReport check_surface_overlap(const Mesh& mesh, const OverlapOptions& opti
     const auto w = [&](int i) { return welded[sz(c[i])]; };
     if (n == 3) {
       triangles.push_back({w(0), w(1), w(2)});
-    } else if (quad_split_diagonal(p[sz(w(0))], p[sz(w(1))], p[sz(w(2))], p[sz(w(3))]) == 0) {
+    } else if (quad_split_diagonal(q[sz(w(0))], q[sz(w(1))], q[sz(w(2))], q[sz(w(3))]) == 0) {
       triangles.push_back({w(0), w(1), w(2)});
       triangles.push_back({w(0), w(2), w(3)});
     } else {
@@ -720,7 +735,9 @@ OverlapReport check_surface_overlap(const Mesh& mesh, const OverlapOptions& opti
     first.push_back(static_cast<Index>(triangles.size()));
   });
   const std::int64_t budget = pair_budget(options, triangles.size());
-  detail::SurfaceFacePairs found = detail::intersecting_surface_faces(p, triangles, first, budget);
+  detail::SurfaceFacePairs found = detail::intersecting_surface_faces(q, triangles, first, budget);
+  if (frame)
+    for (Vec3& x : found.positions) x = frame->from_plane(x);
   if (!found.budget.is_complete) record_over_budget(r, "faces", budget, found.budget);
   r.num_candidate_pairs = found.num_tested;
   r.cell_intersecting.assign(num_faces, 0);

@@ -190,6 +190,8 @@ struct OverlapReport {
   // itself, a bow-tie) are listed here, ascending, and are intersecting.
   bool is_surface = false;
   std::vector<Index> self_intersecting_faces;
+  // A planar surface mesh (planarity.h) is decided in its plane (PlaneFrame).
+  bool is_decided_in_plane = false;
 };
 
 // Runs stages A-G on every volume cell of the mesh (all blocks; surface
@@ -221,7 +223,14 @@ int quad_split_diagonal(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Ve
 //   vertices they share (a shared vertex or edge is a contact, not an
 //   intersection; faces meeting beyond it intersect: a flap folded back
 //   across its edge, neighbours crossing away from their common vertex),
-//   decided exactly (CGAL Epick predicates; coplanar pairs in 2-D). The
+//   decided exactly (CGAL Epick predicates; coplanar pairs in 2-D). A
+//   planar mesh (measure_planarity: within kPlanarTolerance of its
+//   best-fit plane) is decided in that plane: its points projected by
+//   plane_frame, every pair of triangles then coplanar and decided in 2-D
+//   (exact on the projected doubles), so that a rotated or mirrored copy
+//   finds what the axis-aligned original finds (unless the original holds
+//   an exactly degenerate contact, a vertex exactly on another face's
+//   edge, which rounding moves to one side). The
 //   vertices of one coincident group count as one (its lowest id, at its
 //   position), so a seam of duplicated vertices is reported once, by A.
 //   A vertex lying on another face without being its vertex (a T-junction)

@@ -88,18 +88,22 @@ void compute_block(const Mesh& mesh, std::size_t first_cell, QualityField& q, co
         q.cell_scaled_jacobian[first_cell + c] = VolumeKernels<K>::scaled_jacobian(p);
         q.non_hex_validity[first_cell + c - q.num_hexes] = VolumeKernels<K>::validity(p);
       } else {
-        const auto k = VolumeKernels<K>::corners(p, surface.plane_normal);
-        for (int i = 0; i < C; ++i) q.corner_scaled_jacobian[corner0 + C * c + static_cast<std::size_t>(i)] = k.value[i];
-        q.corner_degenerate_mask[first_cell + c] = k.degenerate_mask;
-        q.cell_scaled_jacobian[first_cell + c] = *std::min_element(k.value.begin(), k.value.end());
+        auto k = VolumeKernels<K>::corners(p, surface.plane_normal);
         CellValidity validity = VolumeKernels<K>::validity(p, surface.plane_normal);
         if (!surface.plane_normal) {
-          // Not planar: inverted = reversed against the neighbours; a folded
-          // (concave) cell is bad, not inverted.
+          // Not planar: inverted = reversed against the neighbours, its
+          // corners then measured against the orientation they agree on
+          // (its own normal turned over: every value negated, 0 stays +0);
+          // a folded (concave) cell is bad, not inverted.
           const bool reversed = first_cell + c < surface.is_reversed.size() && surface.is_reversed[first_cell + c];
+          if (reversed)
+            for (double& v : k.value) v = 0.0 - v;
           validity = reversed ? CellValidity::inverted
                               : (validity == CellValidity::inverted ? CellValidity::valid : validity);
         }
+        for (int i = 0; i < C; ++i) q.corner_scaled_jacobian[corner0 + C * c + static_cast<std::size_t>(i)] = k.value[i];
+        q.corner_degenerate_mask[first_cell + c] = k.degenerate_mask;
+        q.cell_scaled_jacobian[first_cell + c] = *std::min_element(k.value.begin(), k.value.end());
         q.non_hex_validity[first_cell + c - q.num_hexes] = validity;
       }
     }

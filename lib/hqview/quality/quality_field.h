@@ -61,9 +61,10 @@ void compute_corner_scaled_jacobians(const HexMesh& mesh, std::span<double> out,
 // has its cells after the (empty) volume blocks, quads then triangles: each
 // corner signed against `surface.plane_normal` when the mesh is planar (a
 // cell reversed or folded against the plane is negative and inverted), else
-// against the cell's own normal (Verdict's), a cell then inverted when
-// `surface.is_reversed` says its orientation disagrees with its
-// neighbours'. A surface cell's cell_scaled_jacobian is its lowest corner:
+// against the orientation its neighbours agree on: the cell's own normal
+// (Verdict's), turned over for a cell that `surface.is_reversed` says
+// disagrees with its neighbours' (every corner negated: such a cell is
+// inverted and negative, as on a plane). A surface cell's cell_scaled_jacobian is its lowest corner:
 // Verdict's scaled Jacobian for every cell measured against its own normal
 // or one that agrees with the plane's (except Verdict's P3 == P2 quad), and
 // negative for a reversed one.

@@ -365,13 +365,14 @@ void set_headline(data& page, const ReportModel& model) {
     } else {
       // A curved surface has no "inside": its inverted cells are its
       // reversed faces (orientation flipped against their neighbours), whose
-      // shape and so Verdict's unsigned scaled Jacobian are unaffected (the
-      // 47d review's C2: "1 inverted" beside min SJ 0.998 read as a
-      // contradiction).
-      headline.push_back(card("min scaled Jacobian (per cell; Verdict's, unsigned: the shape only)",
+      // corners are measured against the orientation the neighbours agree
+      // on, so negative (the 47d review's C2: "1 inverted" beside min SJ
+      // 0.998 read as a contradiction; since issue 47p they are negative,
+      // the same in the histograms, charts and views).
+      headline.push_back(card("min scaled Jacobian (per cell, signed against the neighbours' orientation)",
                               show(q.scaled_jacobian.min), q.scaled_jacobian.min <= 0));
       headline.push_back(card("mean scaled Jacobian (per cell)", show(q.scaled_jacobian.mean)));
-      headline.push_back(card("reversed faces (orientation flipped against their neighbours; shape unaffected)",
+      headline.push_back(card("reversed faces (orientation flipped against their neighbours: their corners negative)",
                               show_count(q.num_inverted), q.num_inverted > 0));
     }
   } else if (hybrid) {

@@ -473,6 +473,7 @@ Json overlap_json(const OverlapReport& o) {
   // triangles tested, and the faces folded onto themselves.
   if (o.is_surface) {
     j["quad_split"] = "unfolded_else_shorter_diagonal";
+    j["decided_in_plane"] = o.is_decided_in_plane;
     j["num_self_intersecting_faces"] = o.self_intersecting_faces.size();
     j["self_intersecting_faces"] = ids(o.self_intersecting_faces);
   }

@@ -55,10 +55,10 @@ std::string summary_markdown(const ReportModel& model, const std::string& link_b
   // A surface mesh (quads, triangles) counts its cells.
   const CellComposition& composition = model.analysis.composition;
   // A curved surface's inverted cells are its reversed faces (orientation
-  // flipped against their neighbours), which Verdict's unsigned scaled
-  // Jacobian does not see; "intersecting faces" as the page and views.
+  // flipped against their neighbours; their corners signed against the
+  // neighbours' orientation); "intersecting faces" as the page and views.
   const bool curved = m.is_surface && !(m.planarity && m.planarity->is_planar);
-  std::string header = curved ? "| #V | #cells | min scaled Jacobian (per cell, unsigned) | mean scaled Jacobian (per cell) | "
+  std::string header = curved ? "| #V | #cells | min scaled Jacobian (per cell, signed against the neighbours) | mean scaled Jacobian (per cell) | "
                                 "#reversed faces | intersecting faces |"
                        : m.is_surface ? "| #V | #cells | min scaled Jacobian (per cell) | mean scaled Jacobian (per cell) | "
                                       "#inverted | intersecting faces |"
@@ -90,7 +90,7 @@ std::string summary_markdown(const ReportModel& model, const std::string& link_b
           show(m.planarity ? m.planarity->planarity : 0.0) + ")" +
           (curved ? std::string("; reversed faces ") + std::to_string(q.num_inverted) +
                         " (orientation flipped against their neighbours: on a curved surface the inverted count; "
-                        "their shape, and so the unsigned scaled Jacobian, is unaffected)"
+                        "their corners, measured against the orientation their neighbours agree on, are negative)"
                   : "; inverted cells " + std::to_string(q.num_inverted)) +
           "; boundary edges " + std::to_string(m.num_boundary_edges) + ", non-manifold edges " +
           std::to_string(m.num_non_manifold_edges) +

@@ -282,6 +282,11 @@ BoundaryData boundary_data(const Analysis& a, const ViewerBoundary& b, bool with
     for (double s : face_sj) sj.push_back(quality_index(s));
     out.fields.push_back(field_json("scaled_jacobian", "cell scaled Jacobian (Verdict)", "face", sj, quality_lut, -1.0,
                                     1.0, Json::array()));
+    // A curved surface: what its values below 0 are (the overview's
+    // swatch); the viewer names the swatch "inverted (< 0)" otherwise.
+    if (surface && !(a.mesh_summary.planarity && a.mesh_summary.planarity->is_planar))
+      for (std::size_t f = out.fields.size() - 2; f < out.fields.size(); ++f)
+        out.fields[f]["below_zero"] = std::string(kCurvedBelowZeroLabel) + " " + kCurvedBelowZeroNote;
   }
   if (a.boundary_error) {
     const double s = error_scale(a.boundary_error->vertex_error);

@@ -186,7 +186,7 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
       if (std::isfinite(s.x) && std::isfinite(s.y))
         e.x0 = std::min(e.x0, s.x), e.x1 = std::max(e.x1, s.x), e.y0 = std::min(e.y0, s.y), e.y1 = std::max(e.y1, s.y);
       // A surface cell is its own boundary face: all its corners count (a
-      // reversed face of a curved surface has no negative corner).
+      // concave reversed face of a curved surface has a positive corner).
       const bool marks = cells[i] >= num_volume || (v < vertex_quality.size() && vertex_quality[v] < 0.0);
       if (marks && vertex_group[v] < 0) vertex_group[v] = static_cast<int>(g);
     }

@@ -102,8 +102,8 @@ struct MainViewOptions {
   // meshes: the boundary wireframe only). Lit unless surface_fill_lit is
   // false (a planar mesh seen along its normal: the bins' colours exactly).
   const std::vector<double>* surface_cell_quality = nullptr;
-  // Its inverted cells (the fill's inverted bin whatever their value: a
-  // reversed face of a curved mesh); not owned.
+  // Its inverted cells (the fill's inverted bin whatever their value); not
+  // owned.
   std::span<const Index> surface_inverted_cells;
   // A curved surface: those cells are its reversed faces (orientation
   // flipped against their neighbours), the fill's first bin says so

@@ -435,6 +435,14 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
   f.style.background = options.background;
   f.bar = overview_color_bar(topology, vertex_quality);
   if (options.kind_quality != nullptr && !options.kind_quality->empty()) f.bar.label = kKindCornerQualityLabel;
+  // A curved surface's values below 0: the corners of its reversed faces
+  // (measured against their neighbours' orientation) and the reflex corners
+  // of concave faces, which are not inverted there; "inverted (< 0)" named
+  // neither (issue 47p).
+  if (options.inverted_are_reversed) {
+    f.bar.swatches.front().label = kCurvedBelowZeroLabel;
+    f.bar.swatches.insert(f.bar.swatches.begin() + 1, {Color{}, std::string(kCurvedBelowZeroNote), SwatchShape::text});
+  }
   // Both ring entries size the legend; the figure keeps those it draws.
   if (!options.inverted_cells.empty()) {
     const std::string plural = options.cell_noun == "hex" ? "hexes" : options.cell_noun + "s";

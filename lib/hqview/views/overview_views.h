@@ -50,9 +50,10 @@ struct OverviewOptions {
   // "outlined: N inverted <noun>s".
   bool outline_inverted_faces = false;
   // A curved surface: its inverted cells are its reversed faces
-  // (orientation flipped against their neighbours, shape unaffected): the
-  // outline's entry reads "outlined: N reversed <noun>s" and a second line
-  // "(orientation flipped)".
+  // (orientation flipped against their neighbours): the outline's entry
+  // reads "outlined: N reversed <noun>s" and a second line "(orientation
+  // flipped)"; the colour bar's swatch below 0 reads kCurvedBelowZeroLabel
+  // over kCurvedBelowZeroNote (not "inverted (< 0)").
   bool inverted_are_reversed = false;
   // With it: the outlines drawn over everything (a planar mesh seen along
   // its normal: nothing lies behind), else depth-tested (a curved surface:
@@ -107,6 +108,10 @@ inline constexpr Rgba8 kNonConformingColor{125, 70, 20, 255};  // dark brown: in
 // "vertex quality", the min over every cell (46r review).
 inline constexpr const char* kKindCornerQualityLabel =
     "corner quality (min scaled\nJacobian at the vertex over\nthe face's cell kind's corners)";
+// A curved surface's swatch below 0 (OverviewOptions::inverted_are_reversed)
+// and the line under it; the viewer's legend says the same.
+inline constexpr const char* kCurvedBelowZeroLabel = "< 0: corner of a reversed face";
+inline constexpr const char* kCurvedBelowZeroNote = "or reflex corner of a concave one";
 inline constexpr double kNonConformingFrame = 0.15;
 inline constexpr int kNonConformingDashes = 5;
 // The frame, and inside it the diagonal the two triangles split the quad

@@ -87,8 +87,8 @@ Rgba8 surface_fill_color(double q) { return bin_color(fill_bin(q)); }
 namespace {
 
 // Per cell its bin: fill_bin of its quality, the inverted bin for the cells
-// of `inverted` (a reversed face of a curved mesh has a positive unsigned
-// scaled Jacobian but counts as inverted).
+// of `inverted` (a cell given with a positive value still counts as
+// inverted).
 // With `reversed`, the first bin holds the cells of `inverted` alone.
 std::vector<int> cell_bins(const std::vector<double>& cell_quality, std::span<const Index> inverted, bool reversed) {
   std::vector<int> bins(cell_quality.size());

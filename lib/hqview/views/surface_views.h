@@ -44,8 +44,8 @@ Rgba8 surface_fill_color(double q);
 // The faces of boundary_polygons(topology), each flat in
 // surface_fill_color(cell_quality[face.cell]); positions relative to origin.
 // The cells of `inverted` (Analysis inverted cells: on a curved mesh the
-// reversed faces, whose unsigned scaled Jacobian is positive) take the
-// inverted bin whatever their value.
+// reversed faces, negative since issue 47p) take the inverted bin whatever
+// their value.
 // `reversed` as for surface_fill_legend_lines.
 TriangleSet surface_fill_faces(const HexMesh& mesh, const Topology& topology, const std::vector<double>& cell_quality,
                                const Vec3& origin, std::span<const Index> inverted = {}, bool reversed = false);
@@ -54,10 +54,10 @@ TriangleSet surface_fill_faces(const HexMesh& mesh, const Topology& topology, co
 // bin with its count, empty bins too, in the bins' order; "degenerate: N"
 // when a face has no value.
 // The inverted bin reads "inverted or reversed" when a cell of `inverted`
-// has a positive value (a reversed face of a curved mesh).
+// has a positive value (a reversed face given with its unsigned value).
 // With `reversed` (a curved surface, whose inverted cells are exactly its
-// reversed faces: orientation flipped against their neighbours, shape
-// unaffected; issue 47 part F) the first bin holds those faces alone and
+// reversed faces: orientation flipped against their neighbours; issue 47
+// part F) the first bin holds those faces alone and
 // reads "reversed: N" over a line "  (orientation flipped)"; a face with q <= 0 that is not
 // reversed (a concave quad) falls in the next bin, which reads "up to 0.3".
 std::vector<LegendLine> surface_fill_legend_lines(const std::vector<double>& cell_quality,

@@ -470,15 +470,29 @@ std::vector<ViewFile> build_boundary_area(ViewContext& c) {
                                          {std::string(mesh_side(c.a)) + " samples", "% of diagonal"}));
 }
 
+// The histograms' axes: what is counted, and on a surface mesh what its
+// sign is measured against (a curved surface's values below 0: its
+// reversed faces, every corner negated, and concave faces' reflex corners).
+HistogramAxes histogram_axes(const Analysis& a) {
+  if (is_surface_mesh(a.mesh))
+    return {planar_view_direction(a) ? "scaled Jacobian (per face, signed against the plane)"
+                                     : "scaled Jacobian (per face; < 0: reversed faces, concave corners)",
+            "faces"};
+  if (cell_word(a) == "cell") return {"scaled Jacobian (per cell)", "cells"};
+  return {};
+}
+
 std::vector<ViewFile> build_histogram(ViewContext& c) {
   return chart_files("histogram", quality_histogram_chart(c.a.field.cell_scaled_jacobian, false,
-                                                          {800, 460, c.name + ": scaled Jacobian per " + cell_word(c.a)}));
+                                                          {800, 460, c.name + ": scaled Jacobian per " + cell_word(c.a)},
+                                                          0.05, histogram_axes(c.a)));
 }
 
 std::vector<ViewFile> build_histogram_log(ViewContext& c) {
   return chart_files("histogram_log",
                      quality_histogram_chart(c.a.field.cell_scaled_jacobian, true,
-                                             {800, 460, c.name + ": scaled Jacobian per " + cell_word(c.a) + " (log scale)"}));
+                                             {800, 460, c.name + ": scaled Jacobian per " + cell_word(c.a) + " (log scale)"},
+                                             0.05, histogram_axes(c.a)));
 }
 
 std::vector<ViewFile> build_sorted_quality(ViewContext& c) {
