@@ -493,7 +493,8 @@ TEST(ErrorDensityViews, HiddenMaxIsOutlinedThroughTheSurface) {
       const auto [x, y] = to_pixel(camera, view, edge_point(mesh, hex, e, t));
       bool found = false;
       for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) found = found || near_color(test::pixel_at(image, x + dx, y + dy), kMaxHexEdgeColor);
+        for (int dx = -1; dx <= 1; ++dx)
+          found = found || near_color(test::pixel_at(image, x + dx, y + dy), kMaxHexEdgeColor);
       dashes += found;
     }
     edges_seen += dashes >= 3;
@@ -516,7 +517,8 @@ TEST(ErrorDensityViews, HiddenMaxIsOutlinedThroughTheSurface) {
   EXPECT_GE(front_colored, samples / 3) << front_colored << " of " << samples;
   bool has_outline_entry = false;
   for (const ColorBarSwatch& s : parts.swatches)
-    has_outline_entry = has_outline_entry || (to_rgba8(s.color) == kMaxHexEdgeColor && s.shape == SwatchShape::dashed_line);
+    has_outline_entry =
+        has_outline_entry || (to_rgba8(s.color) == kMaxHexEdgeColor && s.shape == SwatchShape::dashed_line);
   EXPECT_TRUE(has_outline_entry);
 }
 
@@ -531,8 +533,8 @@ TEST(ErrorDensityViews, EverySwatchDistinctAndEveryMaxMarkInTheLegend) {
         worst.hex = 3;
         worst.on_boundary = on_boundary;
         const ErrorDensityCellsMarks marks{(flags & 1) != 0, (flags & 3) == 3, (flags & 4) != 0};
-        for (const auto& swatches : {error_density_cells_swatches(worst, hidden, marks, 0.5),
-                                     error_density_boundary_swatches(worst, hidden)})
+        for (const auto& swatches :
+             {error_density_cells_swatches(worst, hidden, marks, 0.5), error_density_boundary_swatches(worst, hidden)})
           for (std::size_t i = 0; i < swatches.size(); ++i)
             for (std::size_t j = i + 1; j < swatches.size(); ++j) {
               if (swatches[i].shape == SwatchShape::text) continue;
@@ -566,8 +568,8 @@ TEST(ErrorDensityViews, EverySwatchDistinctAndEveryMaxMarkInTheLegend) {
         bool listed = false;
         for (const ColorBarSwatch& s : parts->swatches) {
           const bool swatch_dashed = s.shape == SwatchShape::dashed_line || s.shape == SwatchShape::thick_dashed_line;
-          listed = listed || (to_rgba8(s.color) == kMaxHexEdgeColor && s.shape != SwatchShape::text &&
-                              swatch_dashed == dashed);
+          listed = listed ||
+                   (to_rgba8(s.color) == kMaxHexEdgeColor && s.shape != SwatchShape::text && swatch_dashed == dashed);
         }
         EXPECT_TRUE(listed) << (parts == &boundary ? "boundary" : "cells") << " figure, side " << side
                             << (dashed ? ": dashed" : ": solid") << " max edges without a legend entry";

@@ -113,17 +113,14 @@ Normalization principal_normalization(const HexMesh& mesh, const Topology& topol
                   std::pow(points_variance, 1.5)};
   if (top_pair && bottom_pair) {
     n.axes_from_input = 3;  // the model axes, as constructed
-  } else if (top_pair) {
-    n.axes[2] = signed_axis(skew, vectors[2], n);
-    const auto plane = plane_axes_from_input(n.axes[2]);
-    n.axes[0] = plane[0];
-    n.axes[1] = plane[1];
-    n.axes_from_input = 2;
-  } else if (bottom_pair) {
-    n.axes[0] = signed_axis(skew, vectors[0], n);
-    const auto plane = plane_axes_from_input(n.axes[0]);
-    n.axes[1] = plane[0];
-    n.axes[2] = plane[1];
+  } else if (top_pair || bottom_pair) {
+    // The distinct axis keeps its place by its variance (last for a top
+    // pair, first for a bottom pair); the plane's two fill the others.
+    const std::size_t distinct = top_pair ? 2 : 0, first = top_pair ? 0 : 1;
+    n.axes[distinct] = signed_axis(skew, vectors[distinct], n);
+    const auto plane = plane_axes_from_input(n.axes[distinct]);
+    n.axes[first] = plane[0];
+    n.axes[first + 1] = plane[1];
     n.axes_from_input = 2;
   } else {
     for (std::size_t i = 0; i < 3; ++i) n.axes[i] = signed_axis(skew, vectors[i], n);

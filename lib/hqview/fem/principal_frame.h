@@ -33,8 +33,8 @@
 
 namespace hq {
 
-inline constexpr double kDegenerateGap = 1e-5;   // relative to the largest principal variance
-inline constexpr double kSkewTolerance = 1e-8;   // |third moment| / sigma^3 below it: no sign
+inline constexpr double kDegenerateGap = 1e-5;  // relative to the largest principal variance
+inline constexpr double kSkewTolerance = 1e-8;  // |third moment| / sigma^3 below it: no sign
 
 Normalization principal_normalization(const HexMesh& mesh, const Topology& topology);
 

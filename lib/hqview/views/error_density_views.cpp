@@ -123,7 +123,8 @@ void add_segment(LineSet& set, const Vec3& origin, const Vec3& a, const Vec3& b,
   }
 }
 void add_dashed(LineSet& set, const Vec3& origin, const Vec3& a, const Vec3& b, Rgba8 color) {
-  for (int d = 0; d < 7; d += 2) add_segment(set, origin, a + (d / 7.0) * (b - a), a + ((d + 1) / 7.0) * (b - a), color);
+  for (int d = 0; d < 7; d += 2)
+    add_segment(set, origin, a + (d / 7.0) * (b - a), a + ((d + 1) / 7.0) * (b - a), color);
 }
 
 // The boundary figure's outline of the max hex, all 12 edges in
@@ -534,8 +535,8 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   f.scene.lines.push_back(std::move(halo_core));
   // The legend: only the marks the figure has (no "undefined": a drawn cell
   // has a density); short lines, so the bar keeps its size.
-  f.bar.swatches = error_density_cells_swatches(worst, f.worst_hidden, {any_low, max_low, any_hidden},
-                                                options.quality_threshold);
+  f.bar.swatches =
+      error_density_cells_swatches(worst, f.worst_hidden, {any_low, max_low, any_hidden}, options.quality_threshold);
   return finish_figure(f, mesh, worst, options, renderer, camera, view, parts);
 }
 
@@ -558,9 +559,9 @@ std::vector<ColorBarSwatch> error_density_cells_swatches(const ErrorDensityWorst
     swatches.push_back(worst_ring_swatch(worst, max_hidden));
     // Front thick, back thin (issue 48: a hidden max's front and back
     // swatches were the same thin dashed line).
-    swatches.push_back(max_hidden ? ColorBarSwatch{magenta, "max hex: front edges, dashed (hidden)",
-                                                   SwatchShape::thick_dashed_line}
-                                  : ColorBarSwatch{magenta, "max hex: its front edges", SwatchShape::thick_line});
+    swatches.push_back(
+        max_hidden ? ColorBarSwatch{magenta, "max hex: front edges, dashed (hidden)", SwatchShape::thick_dashed_line}
+                   : ColorBarSwatch{magenta, "max hex: its front edges", SwatchShape::thick_line});
     swatches.push_back({magenta, "max hex: back edges (thin)", SwatchShape::dashed_line});
     swatches.push_back({magenta, "  (drawn over nearer cells)", SwatchShape::text});
   }

@@ -142,8 +142,7 @@ struct ErrorDensityCellsMarks {
   bool any_hidden = false;  // a drawn cell the boundary hides (dashed edges)
 };
 std::vector<ColorBarSwatch> error_density_cells_swatches(const ErrorDensityWorst& worst, bool max_hidden,
-                                                         const ErrorDensityCellsMarks& marks,
-                                                         double quality_threshold);
+                                                         const ErrorDensityCellsMarks& marks, double quality_threshold);
 
 // Per edge of a hex (kHexEdges order): whether one of its two faces turns to
 // the camera (its normal, oriented away from the hex's centre, points to the
