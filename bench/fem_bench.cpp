@@ -13,6 +13,7 @@
 #include "hqview/fem/metric_correlation.h"
 #include "hqview/fem/pcg.h"
 #include "hqview/fem/poisson_check.h"
+#include "hqview/fem/principal_frame.h"
 #include "hqview/io/mesh_reader.h"
 #include "hqview/mesh/topology.h"
 #include "hqview/quality/hex_metric_field.h"
@@ -32,7 +33,7 @@ const Input& input() {
     Input i{hq::bench::refine_1_to_8(hq::read_hex_mesh(hq::bench::largest_mesh()).mesh), {}, {}, {}, {}};
     i.topology = hq::build_topology(i.mesh);
     i.elements = hq::compute_fem_elements(i.mesh);
-    i.normalization = hq::used_points_normalization(i.mesh, i.topology);
+    i.normalization = hq::principal_normalization(i.mesh, i.topology);
     i.dirichlet = hq::interpolate_solutions(i.mesh, hq::default_harmonic_solutions(), i.normalization);
     return i;
   }();

@@ -15,6 +15,9 @@ token readers and meshio, nothing of lib/hqview) of docs/analysis.md's
     3 x 3 x 3 Gauss (1e-7 relative); the extreme eigenvalues of the
     Jacobi-scaled D^-1/2 K_ff D^-1/2 by eigsh (1e-6 relative); lambda_max(K_ff)
     by eigsh against HQView's Lanczos estimate and Fried's bound;
+  - the frame the solutions are placed in (principal axes of the volume,
+    signs by third moments, the bounding box in it) redone from the docs,
+    and the turned kitten's and its mirror image's errors equal kitten_1's;
   - skipped checks: a mirrored copy (every hex inverted) and a one-layer box.
 
 Usage: check_fem.py HQVIEW OUTPUT_DIR [SHARED_DATA_DIR]
@@ -109,9 +112,62 @@ def boundary_vertices(hexes, num_points):
     return on
 
 
-def solutions(points, center, diagonal):
+def principal_frame(points, hexes):
+    """The frame of docs/analysis.md "Finite-element check": (axes (3, 3) rows, center, diagonal, axes_from_input,
+    signs_from_input). The volume's moments by 2 x 2 x 2 Gauss on each hex's trilinear map."""
+    used = np.zeros(len(points), dtype=bool)
+    used[hexes.ravel()] = True
+    p = points[used]
+    dref, shape = reference_gradients(SIGNS / np.sqrt(3))
+    corners = points[hexes]
+    w = np.linalg.det(jacobians(corners, dref)).ravel()  # weights 1
+    x = np.einsum("ga,nai->ngi", shape, corners).reshape(-1, 3)
+    volume = w.sum()
+    centroid = (w[:, None] * x).sum(axis=0) / volume
+    y = x - centroid
+    cov = np.einsum("m,mi,mj->ij", w, y, y) / volume
+    lam, vec = np.linalg.eigh(cov)
+    lam, vec = lam[::-1], vec[:, ::-1].T  # descending; rows
+    mean = p.mean(axis=0)
+    point_sigma3 = np.mean(np.sum((p - mean) ** 2, axis=1)) ** 1.5
+    signs_from_input = 0
+
+    def signed(a):
+        nonlocal signs_from_input
+        for m3, sigma3 in ((np.sum(w * (y @ a) ** 3) / volume, lam.sum() ** 1.5),
+                           (np.mean(((p - mean) @ a) ** 3), point_sigma3)):
+            if abs(m3) > 1e-8 * sigma3:
+                return a if m3 > 0 else -a
+        signs_from_input += 1
+        return a if a[np.argmax(np.abs(a))] > 0 else -a
+
+    def plane(n):
+        e = np.eye(3)[np.argmin(np.abs(n))]
+        a = e - (e @ n) * n
+        a /= np.linalg.norm(a)
+        return a, np.cross(n, a)
+
+    tol = 1e-5 * lam[0]
+    top, bottom = lam[0] - lam[1] <= tol, lam[1] - lam[2] <= tol
+    if top and bottom:
+        axes, from_input = np.eye(3), 3
+    elif top:
+        c = signed(vec[2])
+        axes, from_input = np.array([*plane(c), c]), 2
+    elif bottom:
+        a = signed(vec[0])
+        axes, from_input = np.array([a, *plane(a)]), 2
+    else:
+        axes, from_input = np.array([signed(v) for v in vec]), 0
+    q = (p - centroid) @ axes.T
+    lo, hi = q.min(axis=0), q.max(axis=0)
+    return axes, centroid + ((lo + hi) / 2) @ axes, np.linalg.norm(hi - lo), from_input, signs_from_input
+
+
+def solutions(points, frame):
     """u and grad u (physical) of exp_x, exp_y, exp_z at points (M, 3): (3, M), (3, M, 3)."""
-    xn = (points - center) / diagonal
+    axes, center, diagonal = frame[:3]
+    xn = (points - center) @ axes.T / diagonal
     values, grads = [], []
     for a in range(3):
         b, c = (a + 1) % 3, (a + 2) % 3
@@ -121,15 +177,14 @@ def solutions(points, center, diagonal):
         g = np.zeros((len(points), 3))
         g[:, a] = np.pi * e * np.cos(theta)
         g[:, b] = g[:, c] = -np.pi / np.sqrt(2) * e * np.sin(theta)
-        grads.append(g / diagonal)
+        grads.append(g @ axes / diagonal)
     return np.array(values), np.array(grads)
 
 
 def poisson(points, hexes, k_e):
     used = np.zeros(len(points), dtype=bool)
     used[hexes.ravel()] = True
-    lo, hi = points[used].min(axis=0), points[used].max(axis=0)
-    center, diagonal = (lo + hi) / 2, np.linalg.norm(hi - lo)
+    frame = principal_frame(points, hexes)
     fixed = boundary_vertices(hexes, len(points))
     free = used & ~fixed
     rows = np.repeat(hexes, 8, axis=1).ravel()
@@ -139,7 +194,7 @@ def poisson(points, hexes, k_e):
     bi = np.nonzero(fixed)[0]
     k_ff = k[fi][:, fi].tocsc()
     k_fb = k[fi][:, bi]
-    u_nodes, _ = solutions(points, center, diagonal)
+    u_nodes, _ = solutions(points, frame)
     solved = u_nodes.copy()
     lu = spla.splu(k_ff)
     for s in range(3):
@@ -155,7 +210,7 @@ def poisson(points, hexes, k_e):
     det = np.abs(np.linalg.det(jac))
     grads = np.einsum("gaj,ngji->ngai", dref, np.linalg.inv(jac))
     x = np.einsum("ga,nai->ngi", shape, corners).reshape(-1, 3)
-    u, gu = solutions(x, center, diagonal)
+    u, gu = solutions(x, frame)
     weight = (det * w).ravel()
     result = {}
     for s, name in enumerate(["exp_x", "exp_y", "exp_z"]):
@@ -171,7 +226,7 @@ def poisson(points, hexes, k_e):
     lam_max = spla.eigsh(scaled, k=1, which="LA", return_eigenvectors=False, tol=1e-12)[0]
     lam_min = spla.eigsh(scaled.tocsc(), k=1, sigma=0, which="LM", return_eigenvectors=False, tol=1e-12)[0]
     k_max = spla.eigsh(k_ff, k=1, which="LA", return_eigenvectors=False, tol=1e-12)[0]
-    return result, lam_min, lam_max, k_max, int(free.sum())
+    return result, lam_min, lam_max, k_max, int(free.sum()), frame
 
 
 def run(hqview, mesh, bundle, extra):
@@ -228,7 +283,14 @@ def check_poisson(name, points, hexes, report, k_e):
     check(p["skipped"] is None, f"{name}: skipped: {p['skipped']}")
     if p["skipped"] is not None:
         return
-    result, lam_min, lam_max, k_max, num_free = poisson(points, hexes, k_e)
+    result, lam_min, lam_max, k_max, num_free, frame = poisson(points, hexes, k_e)
+    norm = p["normalization"]
+    axes, center, diagonal, from_input, signs = frame
+    err_frame = max(np.max(np.abs(np.array(norm["axes"]) - axes)), abs(norm["diagonal"] - diagonal) / diagonal,
+                    np.max(np.abs(np.array(norm["center"]) - center)) / diagonal)
+    check(err_frame <= 1e-9, f"{name}: frame differs from numpy's by {err_frame:.1e}")
+    check(norm["axes_from_input"] == from_input and norm["signs_from_input"] == signs,
+          f"{name}: axes/signs from input {norm['axes_from_input']}, {norm['signs_from_input']} != {from_input}, {signs}")
     check(p["num_free_vertices"] == num_free, f"{name}: {p['num_free_vertices']} free vertices, numpy {num_free}")
     worst = 0.0
     for s, (l2, h1, nodal) in result.items():
@@ -238,7 +300,8 @@ def check_poisson(name, points, hexes, report, k_e):
             check(close(mine[key], value, 1e-7), f"{name}: {s} {key} {mine[key]!r} != scipy {value!r}")
     sm = p["scaled_matrix"]
     e_min, e_max = abs(sm["lambda_min"] - lam_min) / lam_min, abs(sm["lambda_max"] - lam_max) / lam_max
-    print(f"{name}: {num_free} free; errors vs scipy max relative {worst:.1e}; scaled eigenvalues "
+    print(f"{name}: frame {err_frame:.1e} (from input: {from_input} axes, {signs} signs); {num_free} free; errors vs "
+          f"scipy max relative {worst:.1e}; scaled eigenvalues "
           f"[{lam_min:.6g}, {lam_max:.6g}] relative {e_min:.1e}, {e_max:.1e}; lambda_max(K) {k_max:.6g}, "
           f"Lanczos {p['stiffness']['lambda_max']:.6g}, Fried {p['stiffness']['fried_bound']:.6g}")
     check(e_min <= 1e-6, f"{name}: scaled lambda_min {sm['lambda_min']!r} != eigsh {lam_min!r}")
@@ -274,8 +337,10 @@ def main():
     rot = np.array([[np.cos(angle), -np.sin(angle), 0], [np.sin(angle), np.cos(angle), 0], [0, 0, 1]])
     cases.append(("kitten_rotated_scaled.mesh", None, 40.0 * kp @ rot.T + [5, -3, 100], kh, True))
     cases.append(("kitten_mirrored.mesh", None, kp * [-1, 1, 1], kh, "skip"))
+    cases.append(("kitten_mirrored_valid.mesh", None, kp * [-1, 1, 1], kh[:, [4, 5, 6, 7, 0, 1, 2, 3]], True))
     points, hexes = box(6, nz=1)
     cases.append(("one_layer_box.mesh", None, points, hexes, "skip"))
+    errors = {}  # name: the report's errors, for the placement check
     for name, path, points, hexes, solve in cases:
         if path is None:
             path = os.path.join(out, name)
@@ -292,6 +357,15 @@ def main():
             check(report["fem"]["poisson"]["mean"]["l2_error"] is None, f"{name}: a skipped check has errors")
         elif solve:
             check_poisson(name, points, hexes, report, k_e)
+            solutions = report["fem"]["poisson"]["solutions"] or {}
+            errors[name] = [s[k] for s in solutions.values() for k in ("l2_error", "h1_error", "nodal_error")]
+    # Issue 48: the turned, scaled and moved kitten and its mirror image score as the kitten.
+    for copy in ("kitten_rotated_scaled.mesh", "kitten_mirrored_valid.mesh"):
+        if "kitten_1.mesh" in errors and copy in errors:
+            a, b = np.array(errors["kitten_1.mesh"]), np.array(errors[copy])
+            spread = np.max(np.abs(a - b) / a)
+            print(f"{copy}: errors vs kitten_1.mesh max relative {spread:.1e}")
+            check(spread <= 1e-8, f"{copy}: errors differ from kitten_1.mesh's by {spread:.1e} relative")
     print("fem oracle:", "FAILED" if failures else "passed", f"({len(failures)} failures)")
     return 1 if failures else 0
 

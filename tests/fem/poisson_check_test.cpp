@@ -10,6 +10,8 @@
 #include "hqview/fem/laplace_system.h"
 #include "hqview/fem/metric_correlation.h"
 #include "hqview/fem/pcg.h"
+#include "hqview/fem/principal_frame.h"
+#include "hqview/io/mesh_reader.h"
 #include "hqview/quality/corner_jacobian.h"
 #include "hqview/quality/hex_metrics.h"
 #include "support/fixtures.h"
@@ -40,14 +42,14 @@ PoissonCheck check(const HexMesh& mesh, const PoissonOptions& options = {}) {
   return run_poisson_check(mesh, topology, compute_fem_elements(mesh), options);
 }
 
-// Q1 converges as h^2 in L2 and h in the H1 semi-norm.
-TEST(PoissonCheck, ConvergesAtTheQ1Rates) {
-  std::vector<PoissonCheck> runs;
-  for (int n : {4, 8, 16, 32}) runs.push_back(check(unit_box(n)));
-  for (std::size_t i = 0; i < runs.size(); ++i) {
-    ASSERT_TRUE(runs[i].skipped.empty()) << runs[i].skipped;
-    for (const PoissonSolutionResult& s : runs[i].solutions) EXPECT_TRUE(s.converged) << s.name;
-  }
+// p turned by `angle` about the unit axis k (Rodrigues).
+Vec3 turn(const Vec3& p, const Vec3& k, double angle) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  return c * p + s * cross(k, p) + (1 - c) * dot(k, p) * k;
+}
+
+// Halving h divides the L2 error by about 4 and the H1 error by about 2.
+void expect_q1_rates(const std::vector<PoissonCheck>& runs) {
   for (std::size_t i = 1; i < runs.size(); ++i)
     for (std::size_t s = 0; s < 3; ++s) {
       const double l2 = runs[i - 1].solutions[s].l2_error / runs[i].solutions[s].l2_error;
@@ -57,8 +59,33 @@ TEST(PoissonCheck, ConvergesAtTheQ1Rates) {
       EXPECT_GE(h1, 1.9) << i << " " << s;
       EXPECT_LE(h1, 2.1) << i << " " << s;
     }
+}
+
+// Q1 converges as h^2 in L2 and h in the H1 semi-norm.
+TEST(PoissonCheck, ConvergesAtTheQ1Rates) {
+  std::vector<PoissonCheck> runs;
+  for (int n : {4, 8, 16, 32}) runs.push_back(check(unit_box(n)));
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    ASSERT_TRUE(runs[i].skipped.empty()) << runs[i].skipped;
+    for (const PoissonSolutionResult& s : runs[i].solutions) EXPECT_TRUE(s.converged) << s.name;
+  }
+  expect_q1_rates(runs);
   // The cube's three solutions are the same problem turned: the same errors.
   EXPECT_NEAR(runs[1].solutions[0].l2_error, runs[1].solutions[2].l2_error, 1e-9 * runs[1].solutions[0].l2_error);
+}
+
+// The same rates in a principal frame that is not the model axes: a
+// 1 x 0.75 x 0.5 box turned 0.7 rad about (1, 2, 3).
+TEST(PoissonCheck, ConvergesAtTheQ1RatesInATurnedFrame) {
+  std::vector<PoissonCheck> runs;
+  for (int k : {2, 4, 8}) {
+    HexMesh box = test::box_grid(4 * k, 3 * k, 2 * k);
+    for (Vec3& p : box.points) p = turn(p / (4.0 * k), normalized(Vec3{1, 2, 3}), 0.7);
+    runs.push_back(check(box));
+    ASSERT_TRUE(runs.back().skipped.empty());
+    EXPECT_EQ(runs.back().normalization.axes_from_input, 0);
+  }
+  expect_q1_rates(runs);
 }
 
 // The Jacobi-scaled matrix of the uniform grid has closed-form eigenvalues:
@@ -109,7 +136,7 @@ TEST(PoissonCheck, PerturbedGridsAreWorseAndGalerkinBeatsTheInterpolant) {
       const Topology topology = build_topology(*mesh);
       const PoissonCheck solved = run_poisson_check(*mesh, topology, compute_fem_elements(*mesh));
       const auto solutions = default_harmonic_solutions();
-      const Normalization norm = used_points_normalization(*mesh, topology);
+      const Normalization norm = principal_normalization(*mesh, topology);
       const Q1FieldErrors interpolant =
           q1_field_errors(*mesh, interpolate_solutions(*mesh, solutions, norm), solutions, norm);
       for (std::size_t s = 0; s < 3; ++s) {
@@ -217,6 +244,109 @@ TEST(PoissonCheck, SkipsInvalidAndOneLayerMeshes) {
   const PoissonCheck c = check(test::box_grid(4, 4, 2));  // 9 interior vertices
   EXPECT_EQ(c.num_free_vertices, 9);
   EXPECT_FALSE(c.skipped.empty());
+}
+
+// A copy turned by `angle` about the unit axis k, then moved.
+HexMesh turned(HexMesh mesh, const Vec3& k, double angle, const Vec3& offset) {
+  for (Vec3& p : mesh.points) p = turn(p, k, angle) + offset;
+  return mesh;
+}
+
+// The mirror image in the plane x = 0, each hex's layers swapped so that it
+// stays a valid element.
+HexMesh mirrored(HexMesh mesh) {
+  for (Vec3& p : mesh.points) p.x = -p.x;
+  for (Hex& h : mesh.hexes)
+    for (int i = 0; i < 4; ++i) std::swap(h[i], h[i + 4]);
+  return mesh;
+}
+
+// The errors do not depend on the placement (issue 48): a copy turned 0.7
+// rad about (1, 2, 3) and moved, and a mirror image, solve the same
+// problem in the principal frame (before: the bounding box in the model
+// axes, and the turned kitten_1's errors differed by 10 % and more).
+void expect_placement_free(const HexMesh& mesh, const std::string& name) {
+  const PoissonCheck original = check(mesh);
+  ASSERT_TRUE(original.skipped.empty()) << name << ": " << original.skipped;
+  EXPECT_EQ(original.normalization.axes_from_input, 0) << name;
+  EXPECT_EQ(original.normalization.signs_from_input, 0) << name;
+  const Vec3 axis = normalized(Vec3{1, 2, 3});
+  for (const auto& [copy_name, copy] :
+       {std::pair<std::string, HexMesh>{"turned", turned(mesh, axis, 0.7, {5, -3, 100})},
+        std::pair<std::string, HexMesh>{"mirrored", mirrored(mesh)},
+        std::pair<std::string, HexMesh>{"mirrored and turned", turned(mirrored(mesh), axis, -2.1, {0, 0, 0})}}) {
+    const PoissonCheck c = check(copy);
+    ASSERT_TRUE(c.skipped.empty()) << name << " " << copy_name << ": " << c.skipped;
+    for (std::size_t s = 0; s < 3; ++s) {
+      const PoissonSolutionResult &a = original.solutions[s], &b = c.solutions[s];
+      EXPECT_NEAR(b.l2_error, a.l2_error, 1e-8 * a.l2_error) << name << " " << copy_name << " " << a.name;
+      EXPECT_NEAR(b.h1_error, a.h1_error, 1e-8 * a.h1_error) << name << " " << copy_name << " " << a.name;
+      EXPECT_NEAR(b.nodal_error, a.nodal_error, 1e-8 * a.nodal_error) << name << " " << copy_name << " " << a.name;
+    }
+    EXPECT_NEAR(c.normalization.diagonal, original.normalization.diagonal, 1e-12 * original.normalization.diagonal);
+    for (std::size_t h = 0; h < mesh.hexes.size(); h += 7)
+      EXPECT_NEAR(c.cell_error_density[h], original.cell_error_density[h], 1e-7 * original.cell_error_density[h])
+          << name << " " << copy_name << " hex " << h;
+  }
+}
+
+// An anisotropic perturbed box (1.6 x 1.1 x 0.8): the box's volume has no
+// third moment, so its perturbed points' fix the axes' signs.
+HexMesh anisotropic_box() {
+  HexMesh mesh = test::box_grid(8, 6, 5);
+  for (std::size_t v = 0; v < mesh.points.size(); ++v) {
+    Vec3& p = mesh.points[v];
+    const bool interior = p.x > 0 && p.x < 8 && p.y > 0 && p.y < 6 && p.z > 0 && p.z < 5;
+    if (interior)
+      for (int a = 0; a < 3; ++a) {
+        const double t = std::sin(12.9898 * static_cast<double>(v) + 78.233 * a) * 43758.5453;
+        p[a] += 0.3 * 2 * (t - std::floor(t) - 0.5);
+      }
+    p = {0.2 * p.x, 0.1833333333333333 * p.y, 0.16 * p.z};
+  }
+  return mesh;
+}
+
+TEST(PoissonCheck, PlacementFreeOnAPerturbedAnisotropicBox) {
+  const HexMesh mesh = anisotropic_box();
+  expect_placement_free(mesh, "box");
+  // The frame: x^ along the longest side, z^ along the shortest.
+  const Normalization n = check(mesh).normalization;
+  EXPECT_NEAR(std::abs(n.axes[0].x), 1, 1e-3);
+  EXPECT_NEAR(std::abs(n.axes[2].z), 1, 1e-3);
+  EXPECT_GT(n.principal_variances[0], n.principal_variances[1]);
+  EXPECT_GT(n.principal_variances[1], n.principal_variances[2]);
+}
+
+TEST(PoissonCheck, PlacementFreeOnASharedMesh) {
+  const auto data = test::shared_data_dir();
+  if (!data) GTEST_SKIP() << "../shared/data is absent";
+  expect_placement_free(read_hex_mesh(*data / "meshes/gao2016_sweeping/kitten_1.mesh").mesh, "kitten_1");
+}
+
+// Equal principal variances: the model axes inside the degenerate
+// eigenspace, and the report says so.
+TEST(PoissonCheck, DegenerateFramesFallBackToTheModelAxes) {
+  const PoissonCheck cube = check(unit_box(6, 0.3));  // the box's volume is a cube's: all three equal
+  EXPECT_EQ(cube.normalization.axes_from_input, 3);
+  EXPECT_EQ(cube.normalization.axes[0], (Vec3{1, 0, 0}));
+  EXPECT_EQ(cube.normalization.axes[2], (Vec3{0, 0, 1}));
+  EXPECT_NEAR(cube.normalization.center.x, 0.5, 1e-14);
+  EXPECT_NEAR(cube.normalization.diagonal, std::sqrt(3.0), 1e-14);
+  // A square prism 1 x 1 x 2 turned: x^ along its long side (either sign:
+  // a symmetric box of a regular grid has no third moment), y^ and z^ in
+  // the square's plane from the model axes.
+  HexMesh prism = test::box_grid(4, 4, 8);
+  for (Vec3& p : prism.points) p = p / 4.0;
+  const Vec3 axis = normalized(Vec3{1, 2, 3});
+  const Normalization n = check(turned(prism, axis, 0.7, {})).normalization;
+  EXPECT_EQ(n.axes_from_input, 2);
+  const Vec3 long_side = turn({0, 0, 1}, axis, 0.7);
+  EXPECT_NEAR(std::abs(dot(n.axes[0], long_side)), 1, 1e-9);
+  EXPECT_NEAR(dot(n.axes[1], n.axes[0]), 0, 1e-12);
+  EXPECT_NEAR(dot(n.axes[2], n.axes[0]), 0, 1e-12);
+  EXPECT_NEAR(norm(cross(n.axes[1], n.axes[2]) - n.axes[0]), 0, 1e-12);
+  EXPECT_EQ(n.signs_from_input, 1);
 }
 
 // Bit for bit the same on one thread and on two.

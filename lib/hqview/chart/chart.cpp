@@ -639,10 +639,12 @@ Chart metric_correlation_chart(std::span<const CorrelationBar> bars, const Chart
     chart.texts.push_back({{kx + 20.0, ly}, text, kTickSize, kAxisColor, ChartAnchor::left, false});
     ly += 20.0;
   };
-  // Issue 48h round 2: the test solutions are fixed in space, so the errors
-  // (and these verdicts) depend on how the mesh is placed (docs/analysis.md).
+  // The verdicts hold for these three test solutions; they sit in the
+  // mesh's principal frame, so a turned copy gets the same ones (issue 48;
+  // issue 48h round 2 said "it covers no placement": they were fixed in
+  // the model axes; docs/analysis.md).
   static const std::string kPlacementCaveat =
-      "and it covers no placement: a turned copy of the mesh can get other verdicts";
+      "and it covers only the three test solutions (placed in the mesh's principal frame)";
   // Only the verdicts the chart shows (issue 48h: "disagrees" with no orange row).
   if (counts[0][0] + counts[1][0] > 0)
     key(kAgreesColor, "agrees: the metric's worse side has the higher error (\u03c1 < 0 where higher is better, "

@@ -26,13 +26,21 @@ ExpCosTerms exp_cos_terms_normalised(const HarmonicSolution& u, const Vec3& xn) 
   return t;
 }
 
+// A gradient in normalised coordinates to model coordinates: sum_i g_i a_i / d.
+Vec3 model_gradient(const Normalization& n, const Vec3& g) {
+  return (g[0] * n.axes[0] + g[1] * n.axes[1] + g[2] * n.axes[2]) / n.diagonal;
+}
+
 ExpCosTerms exp_cos_terms(const HarmonicSolution& u, const Normalization& n, const Vec3& x) {
   return exp_cos_terms_normalised(u, normalised_point(n, x));
 }
 
 }  // namespace
 
-Vec3 normalised_point(const Normalization& n, const Vec3& x) { return (x - n.center) / n.diagonal; }
+Vec3 normalised_point(const Normalization& n, const Vec3& x) {
+  const Vec3 y = (x - n.center) / n.diagonal;
+  return {dot(n.axes[0], y), dot(n.axes[1], y), dot(n.axes[2], y)};
+}
 
 std::vector<HarmonicSolution> default_harmonic_solutions() {
   return {{"exp_x", HarmonicSolution::Kind::exp_cos, 0, {}},
@@ -41,18 +49,16 @@ std::vector<HarmonicSolution> default_harmonic_solutions() {
 }
 
 double solution_value(const HarmonicSolution& u, const Normalization& n, const Vec3& x) {
-  if (u.kind == HarmonicSolution::Kind::linear) return dot(u.slope, (x - n.center) / n.diagonal);
+  if (u.kind == HarmonicSolution::Kind::linear) return dot(u.slope, normalised_point(n, x));
   const ExpCosTerms t = exp_cos_terms(u, n, x);
   return t.e * t.c;
 }
 
 Vec3 solution_gradient(const HarmonicSolution& u, const Normalization& n, const Vec3& x) {
-  if (u.kind == HarmonicSolution::Kind::linear) return u.slope / n.diagonal;
-  const ExpCosTerms t = exp_cos_terms(u, n, x);
-  Vec3 g;
-  g[t.a] = kPi * t.e * t.c;
-  g[t.b] = g[t.cc] = -kPi * kRootHalf * t.e * t.s;
-  return g / n.diagonal;
+  double value;
+  Vec3 gradient;
+  solution_value_and_gradient(u, n, x, value, gradient);
+  return gradient;
 }
 
 void solution_value_and_gradient(const HarmonicSolution& u, const Normalization& n, const Vec3& x, double& value,
@@ -64,7 +70,7 @@ void solution_value_and_gradient_normalised(const HarmonicSolution& u, const Nor
                                             double& value, Vec3& gradient) {
   if (u.kind == HarmonicSolution::Kind::linear) {
     value = dot(u.slope, xn);
-    gradient = u.slope / n.diagonal;
+    gradient = model_gradient(n, u.slope);
     return;
   }
   const ExpCosTerms t = exp_cos_terms_normalised(u, xn);
@@ -72,7 +78,7 @@ void solution_value_and_gradient_normalised(const HarmonicSolution& u, const Nor
   Vec3 g;
   g[t.a] = kPi * t.e * t.c;
   g[t.b] = g[t.cc] = -kPi * kRootHalf * t.e * t.s;
-  gradient = g / n.diagonal;
+  gradient = model_gradient(n, g);
 }
 
 double solution_hessian_norm2(const HarmonicSolution& u, const Normalization& n, const Vec3& x) {

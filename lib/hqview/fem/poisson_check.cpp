@@ -4,11 +4,11 @@
 #include <cmath>
 #include <limits>
 
-#include "hqview/core/box3.h"
 #include "hqview/fem/fixed_chunks.h"
 #include "hqview/fem/laplace_system.h"
 #include "hqview/fem/metric_correlation.h"
 #include "hqview/fem/pcg.h"
+#include "hqview/fem/principal_frame.h"
 #include "hqview/fem/q1_element.h"
 
 namespace hq {
@@ -117,18 +117,6 @@ void fill_cell_fields(const HexMesh& mesh, const Q1FieldErrors& errors, const Po
 
 }  // namespace
 
-Normalization used_points_normalization(const HexMesh& mesh, const Topology& topology) {
-  Box3 box;
-  for (std::size_t v = 0; v < mesh.points.size(); ++v)
-    if (topology.vertex_hex_offsets[v + 1] > topology.vertex_hex_offsets[v]) box.add(mesh.points[v]);
-  Normalization n;
-  if (box.is_empty()) return n;
-  n.center = 0.5 * (box.lo + box.hi);
-  n.diagonal = box.diagonal();
-  if (!(n.diagonal > 0)) n.diagonal = 1;
-  return n;
-}
-
 std::vector<double> interpolate_solutions(const HexMesh& mesh, const std::vector<HarmonicSolution>& solutions,
                                           const Normalization& normalization) {
   const std::size_t k = solutions.size();
@@ -231,7 +219,7 @@ PoissonCheck run_poisson_check(const HexMesh& mesh, const Topology& topology, co
                                const PoissonOptions& options) {
   PoissonCheck out;
   out.min_free_vertices = options.min_free_vertices;
-  out.normalization = used_points_normalization(mesh, topology);
+  out.normalization = principal_normalization(mesh, topology);
   for (std::size_t v = 0; v < mesh.points.size(); ++v)
     if (topology.vertex_hex_offsets[v + 1] > topology.vertex_hex_offsets[v] && !topology.is_boundary_vertex[v])
       ++out.num_free_vertices;

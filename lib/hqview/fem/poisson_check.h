@@ -48,7 +48,7 @@ struct PoissonCheck {
   std::string skipped;  // why nothing was solved; empty when solved
   Index num_free_vertices = 0;
   Index min_free_vertices = 0;
-  Normalization normalization;  // of the points used by hexes
+  Normalization normalization;  // the principal frame of the mesh's volume (principal_frame.h)
   std::vector<PoissonSolutionResult> solutions;
   // Means over the solutions.
   double mean_l2_error = 0, mean_h1_error = 0, mean_nodal_error = 0, mean_iterations = 0;
@@ -87,9 +87,6 @@ struct Q1FieldErrors {
 // `nodal`: #vertices x k interleaved values (k = solutions.size()).
 Q1FieldErrors q1_field_errors(const HexMesh& mesh, const std::vector<double>& nodal,
                               const std::vector<HarmonicSolution>& solutions, const Normalization& normalization);
-
-// The bounding box centre and diagonal of the points used by hexes.
-Normalization used_points_normalization(const HexMesh& mesh, const Topology& topology);
 
 // The solutions sampled at every vertex (#vertices x k interleaved): the interpolant I_h u.
 std::vector<double> interpolate_solutions(const HexMesh& mesh, const std::vector<HarmonicSolution>& solutions,

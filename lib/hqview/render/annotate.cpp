@@ -427,12 +427,14 @@ void draw_color_bar(Image& image, const PixelRect& area, const ColorBar& bar, co
       fill_rect(image, box, to_rgba8(swatch.color));
       outline_rect(image, box, outline, kOutlineColor);
     } else if (swatch.shape == SwatchShape::line || swatch.shape == SwatchShape::thick_line ||
-               swatch.shape == SwatchShape::dashed_line) {
+               swatch.shape == SwatchShape::dashed_line || swatch.shape == SwatchShape::thick_dashed_line) {
       // A horizontal segment across the swatch: 4 dashes and 3 gaps when dashed.
-      const double width = std::max(1.0, (swatch.shape == SwatchShape::thick_line ? 0.2 : 0.08) * m.swatch_height);
+      const bool thick = swatch.shape == SwatchShape::thick_line || swatch.shape == SwatchShape::thick_dashed_line;
+      const bool dashed = swatch.shape == SwatchShape::dashed_line || swatch.shape == SwatchShape::thick_dashed_line;
+      const double width = std::max(1.0, (thick ? 0.2 : 0.08) * m.swatch_height);
       const double y = box.y + 0.5 * box.height, x0 = box.x + 1.0, x1 = box.x + box.width - 1.0;
-      for (int d = 0; d < 7; d += swatch.shape == SwatchShape::dashed_line ? 2 : 7) {
-        const bool whole = swatch.shape != SwatchShape::dashed_line;
+      for (int d = 0; d < 7; d += dashed ? 2 : 7) {
+        const bool whole = !dashed;
         draw_line(image, x0 + (whole ? 0.0 : d / 7.0) * (x1 - x0), y, x0 + (whole ? 1.0 : (d + 1) / 7.0) * (x1 - x0), y,
                   to_rgba8(swatch.color), width);
       }

@@ -75,7 +75,7 @@ struct ColorBarTick {
 // markers; line / thick_line / dashed_line: a horizontal segment as the
 // figure draws edges (1, 2.5 and 1 times the line width, the last in 4 dashes);
 // text: no mark, the label alone (a count the figure names but does not draw).
-enum class SwatchShape { box, solid_ring, dashed_ring, line, thick_line, dashed_line, text };
+enum class SwatchShape { box, solid_ring, dashed_ring, line, thick_line, dashed_line, thick_dashed_line, text };
 struct ColorBarSwatch {
   Color color;
   std::string label;

@@ -216,6 +216,19 @@ Json quad_structure_json(const QuadStructure& s) {
           {"num_patches", s.num_patches}};
 }
 
+// fem.poisson.normalization: the frame of the manufactured solutions
+// (principal_frame.h; issue 48: was the model axes and their bounding box).
+Json normalization_json(const Normalization& n) {
+  const auto& v = n.principal_variances;
+  return {{"center", vec3(n.center)},
+          {"diagonal", number(n.diagonal)},
+          {"axes", Json::array({vec3(n.axes[0]), vec3(n.axes[1]), vec3(n.axes[2])})},
+          {"principal_variances", Json::array({number(v[0]), number(v[1]), number(v[2])})},
+          {"axes_from_input", n.axes_from_input},
+          {"signs_from_input", n.signs_from_input},
+          {"placement_independent", n.axes_from_input == 0 && n.signs_from_input == 0}};
+}
+
 // fem: the element conditioning, and with --simulate the Poisson check
 // (docs/contract.md "fem"). A skipped check keeps every key, null.
 Json fem_poisson_json(const PoissonCheck& p, const std::vector<MetricCorrelation>& correlations) {
@@ -243,7 +256,7 @@ Json fem_poisson_json(const PoissonCheck& p, const std::vector<MetricCorrelation
   return {{"skipped", solved ? Json(nullptr) : Json(p.skipped)},
           {"num_free_vertices", p.num_free_vertices},
           {"min_free_vertices", p.min_free_vertices},
-          {"normalization", {{"center", vec3(p.normalization.center)}, {"diagonal", number(p.normalization.diagonal)}}},
+          {"normalization", normalization_json(p.normalization)},
           {"solver", {{"method", "cg"}, {"preconditioner", "jacobi"}, {"tolerance", 1e-10}}},
           {"solutions", solved ? std::move(solutions) : Json(nullptr)},
           {"mean",

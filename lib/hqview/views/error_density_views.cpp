@@ -114,32 +114,42 @@ void add_quad(TriangleSet& set, const HexMesh& mesh, const Vec3& origin, const s
   for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) set.indices.push_back(base + i);
 }
 
-// The densest hex drawn over everything (opaque overlay): an interior one
-// shows through the boundary, and in the cells figure through the other cells.
-void add_worst_overlay(Figure& f, const HexMesh& mesh, const ErrorDensityWorst& worst, const ErrorDensityScale& scale) {
+// A segment a-b of model points; dashed: 4 dashes and 3 gaps of equal length.
+void add_segment(LineSet& set, const Vec3& origin, const Vec3& a, const Vec3& b, Rgba8 color) {
+  for (const Vec3& p : {a, b}) {
+    set.indices.push_back(static_cast<std::uint32_t>(set.positions.size()));
+    set.positions.push_back(to_vec3f(p - origin));
+    set.colors.push_back(color);
+  }
+}
+void add_dashed(LineSet& set, const Vec3& origin, const Vec3& a, const Vec3& b, Rgba8 color) {
+  for (int d = 0; d < 7; d += 2)
+    add_segment(set, origin, a + (d / 7.0) * (b - a), a + ((d + 1) / 7.0) * (b - a), color);
+}
+
+// The boundary figure's outline of the max hex, all 12 edges in
+// kMaxHexEdgeColor on a white halo. Seen on the boundary: solid, depth-tested
+// like the boundary's edges (so its back edges stay hidden behind its own
+// faces). Hidden (interior, or its faces not seen from here): dashed and
+// drawn through the surface (no depth test) with no fill, so the faces in
+// front keep their colours and it reads as behind them (issue 48: its faces
+// were painted opaque over the front faces, and its dashed edges were
+// depth-tested against them, which hid two of its edges or more).
+void add_max_outline(Figure& f, const HexMesh& mesh, const ErrorDensityWorst& worst) {
   if (worst.hex == kNoIndex) return;
   const Hex& hex = mesh.hexes[static_cast<std::size_t>(worst.hex)];
-  TriangleSet faces;
-  faces.is_lit = false;
-  const Rgba8 color = to_rgba8(error_density_color(worst.density, scale));
-  for (const auto& face : kHexFaces)
-    add_quad(faces, mesh, f.scene.origin, {hex[face[0]], hex[face[1]], hex[face[2]], hex[face[3]]}, color);
-  f.scene.overlay.push_back(std::move(faces));
-  // Its edges dashed (drawn through: issue 48h round 2), so its outline
-  // shows against neighbours of a similar colour.
-  LineSet edges;
-  edges.width = static_cast<float>(std::max(1.5, 1.5 * f.style.scale));
-  edges.in_overlay = true;
+  LineSet halo, core;
+  halo.width = static_cast<float>(std::max(4.0, 5.0 * f.style.scale));
+  core.width = static_cast<float>(std::max(2.0, 2.5 * f.style.scale));
+  halo.over_all = core.over_all = f.worst_hidden;
+  const auto add = f.worst_hidden ? add_dashed : add_segment;
   for (const auto& e : kHexEdges) {
     const Vec3 &a = point(mesh, hex[e[0]]), &b = point(mesh, hex[e[1]]);
-    for (int d = 0; d < 7; d += 2)
-      for (const double t : {d / 7.0, (d + 1) / 7.0}) {
-        edges.indices.push_back(static_cast<std::uint32_t>(edges.positions.size()));
-        edges.positions.push_back(to_vec3f(a + t * (b - a) - f.scene.origin));
-        edges.colors.push_back(kWorstMarkerColor);
-      }
+    add(halo, f.scene.origin, a, b, Rgba8{255, 255, 255, 255});
+    add(core, f.scene.origin, a, b, kMaxHexEdgeColor);
   }
-  f.scene.lines.push_back(std::move(edges));
+  f.scene.lines.push_back(std::move(halo));
+  f.scene.lines.push_back(std::move(core));
 }
 
 // Whether the boundary hides the max hex from f's camera: an interior one
@@ -211,12 +221,14 @@ void draw_worst_label_outside(Image& figure, const PixelRect& view, const PixelB
   draw_text(figure, x + 3, y + size + 1, label, size, style);
 }
 
-// The ring about the densest hex (its projected corners plus a margin),
-// dashed when it is inside, and its label: "max 11.4, hex 24347 (interior)"
-// outside the model (model_points: the boundary's points) with a leader.
-void draw_worst_marker(Image& figure, const Figure& f, const HexMesh& mesh, const ErrorDensityWorst& worst,
-                       const std::vector<Vec3>& model_points) {
-  if (worst.hex == kNoIndex) return;
+// The ring about the densest hex (its projected corners plus a margin, at
+// least kMinRingRadius), dashed when it is inside, and its label: "max
+// 11.4, hex 24347 (interior)" outside the model (model_points: the
+// boundary's points) with a leader. Returns the ring's radius in pixels (0:
+// none).
+double draw_worst_marker(Image& figure, const Figure& f, const HexMesh& mesh, const ErrorDensityWorst& worst,
+                         const std::vector<Vec3>& model_points) {
+  if (worst.hex == kNoIndex) return 0;
   const PixelRect& view = f.layout.view;
   const double aspect = static_cast<double>(view.width) / std::max(1, view.height);
   const auto to_pixel = [&](const Vec3& p, double& x, double& y) {
@@ -226,19 +238,25 @@ void draw_worst_marker(Image& figure, const Figure& f, const HexMesh& mesh, cons
     return std::isfinite(ndc.x) && std::isfinite(ndc.y);
   };
   double cx = 0, cy = 0;
-  if (!to_pixel(hex_center(mesh, worst.hex), cx, cy)) return;
+  if (!to_pixel(hex_center(mesh, worst.hex), cx, cy)) return 0;
   double radius = 0;
   for (Index v : mesh.hexes[static_cast<std::size_t>(worst.hex)]) {
     double x = 0, y = 0;
     if (to_pixel(point(mesh, v), x, y)) radius = std::max(radius, std::hypot(x - cx, y - cy));
   }
   // The hex's own projected extent plus a small margin: the ring encloses
-  // it, not its neighbours.
-  radius = std::max(radius + 4.0 * f.style.scale, 10.0 * f.style.scale);
+  // it, not its neighbours; but never smaller than kMinRingRadius, so that
+  // a small max (a few pixels) shows inside a ring that reads as one and
+  // its outline is not covered by the ring's stroke (issue 48: 10 pixels,
+  // the dashes of a dashed one merged into a blot over the hex).
+  radius = std::max(radius + 4.0 * f.style.scale, kMinRingRadius * f.style.scale);
   draw_marker_ring(figure, cx, cy, radius, std::max(2.0, 3.0 * f.style.scale), !worst.on_boundary || f.worst_hidden,
                    kWorstMarkerColor);
-  // The model's projected box: the label goes in the free margin beside it.
-  double x0 = view.x + view.width, y0 = view.y + view.height, x1 = view.x, y1 = view.y;
+  // The model's projected box and the ring's (which can stick out of it: a
+  // max at the silhouette): the label goes in the free margin beside them,
+  // so its box never covers the ring (issue 48: it cut off the top of a
+  // ring at the model's top edge).
+  double x0 = cx - radius, y0 = cy - radius, x1 = cx + radius, y1 = cy + radius;
   for (const Vec3& p : model_points) {
     double x = 0, y = 0;
     if (!to_pixel(p, x, y)) continue;
@@ -251,16 +269,19 @@ void draw_worst_marker(Image& figure, const Figure& f, const HexMesh& mesh, cons
                                                      : " (on the boundary)") +
                                f.worst_note,
                            f.style);
+  return radius;
 }
 
 Image finish_figure(Figure& f, const HexMesh& mesh, const ErrorDensityWorst& worst,
-                    const ErrorDensityViewOptions& options, Renderer& renderer, Camera* camera, PixelRect* view) {
+                    const ErrorDensityViewOptions& options, Renderer& renderer, Camera* camera, PixelRect* view,
+                    ErrorDensityFigureParts* parts) {
   Image figure = render_figure(renderer, f.scene, f.camera, options.width, options.height, f.layout, options.title,
                                f.style);
   draw_color_bar(figure, f.layout.legend, f.bar, f.style);
-  draw_worst_marker(figure, f, mesh, worst, f.model_points);
+  const double ring_radius = draw_worst_marker(figure, f, mesh, worst, f.model_points);
   if (camera) *camera = f.camera;
   if (view) *view = f.layout.view;
+  if (parts) *parts = {f.scene, f.bar.swatches, ring_radius};
   return figure;
 }
 
@@ -388,7 +409,8 @@ Vec3 choose_error_density_viewpoint(const HexMesh& mesh, const Topology& topolog
 
 Image render_error_density_boundary(const HexMesh& mesh, const Topology& topology, std::span<const double> density,
                                     const Vec3& view_direction, const ErrorDensityViewOptions& options,
-                                    Renderer& renderer, Camera* camera, PixelRect* view) {
+                                    Renderer& renderer, Camera* camera, PixelRect* view,
+                                    ErrorDensityFigureParts* parts) {
   check_sizes(mesh, density, "error density");
   const ErrorDensityScale scale = error_density_scale(density);
   Figure f = begin_figure(mesh, topology, scale, view_direction, options);
@@ -406,16 +428,18 @@ Image render_error_density_boundary(const HexMesh& mesh, const Topology& topolog
   // edge-on) shows through it, so the dashed ring circles the max itself,
   // not other hexes' faces (issue 48h round 2).
   f.worst_hidden = max_hex_behind_boundary(f, mesh, topology, worst, renderer);
-  if (f.worst_hidden) add_worst_overlay(f, mesh, worst, scale);
-  // The ring as drawn (issue 48h: was a black box).
-  f.bar.swatches.push_back(worst_ring_swatch(worst, f.worst_hidden));
-  return finish_figure(f, mesh, worst, options, renderer, camera, view);
+  add_max_outline(f, mesh, worst);
+  // The ring and the outline as drawn (issue 48h: the ring was a black
+  // box; issue 48: the outline had no entry).
+  for (const ColorBarSwatch& swatch : error_density_boundary_swatches(worst, f.worst_hidden))
+    f.bar.swatches.push_back(swatch);
+  return finish_figure(f, mesh, worst, options, renderer, camera, view, parts);
 }
 
 Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, std::span<const double> density,
                                  std::span<const double> cell_scaled_jacobian, const Vec3& view_direction,
                                  const ErrorDensityViewOptions& options, Renderer& renderer, Camera* camera,
-                                 PixelRect* view) {
+                                 PixelRect* view, ErrorDensityFigureParts* parts) {
   check_sizes(mesh, density, "error density");
   check_sizes(mesh, cell_scaled_jacobian, "cell scaled Jacobian");
   const ErrorDensityScale scale = error_density_scale(density);
@@ -449,16 +473,7 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   halo.width = static_cast<float>(std::max(6.0, 7.0 * f.style.scale));
   halo_core.width = static_cast<float>(std::max(2.5, 3.0 * f.style.scale));
   max_back.width = static_cast<float>(std::max(1.0, f.style.scale));
-  const auto add_segment = [&](LineSet& set, const Vec3& a, const Vec3& b, Rgba8 color) {
-    for (const Vec3& p : {a, b}) {
-      set.indices.push_back(static_cast<std::uint32_t>(set.positions.size()));
-      set.positions.push_back(to_vec3f(p - f.scene.origin));
-      set.colors.push_back(color);
-    }
-  };
-  const auto add_dashed = [&](LineSet& set, const Vec3& a, const Vec3& b, Rgba8 color) {
-    for (int d = 0; d < 7; d += 2) add_segment(set, a + (d / 7.0) * (b - a), a + ((d + 1) / 7.0) * (b - a), color);
-  };
+  const Vec3& origin = f.scene.origin;
   // The max hidden by the same test as the boundary figure's (issue 48h
   // round 2: it was drawn solid, as if in front, where the boundary figure
   // said its faces are not seen): then its front edges are dashed too.
@@ -487,20 +502,20 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
     for (std::size_t e = 0; e < kHexEdges.size(); ++e) {
       const Vec3 &a = point(mesh, hex[kHexEdges[e][0]]), &b = point(mesh, hex[kHexEdges[e][1]]);
       if (!behind) {
-        add_segment(set, a, b, edge_color);
+        add_segment(set, origin, a, b, edge_color);
       } else {  // dashed (4 dashes, 3 gaps) on a veil-coloured casing
-        add_segment(casing, a, b, kVeilOverWhite);
-        add_dashed(set, a, b, edge_color);
+        add_segment(casing, origin, a, b, kVeilOverWhite);
+        add_dashed(set, origin, a, b, edge_color);
       }
       if (h != worst.hex) continue;
       if (front[e] && !behind) {  // the max's front edges: solid magenta on a halo
-        add_segment(halo, a, b, low ? kLowCellEdgeColor : Rgba8{255, 255, 255, 255});
-        add_segment(halo_core, a, b, kMaxHexEdgeColor);
+        add_segment(halo, origin, a, b, low ? kLowCellEdgeColor : Rgba8{255, 255, 255, 255});
+        add_segment(halo_core, origin, a, b, kMaxHexEdgeColor);
       } else if (front[e]) {  // hidden: the same, dashed
-        add_dashed(halo, a, b, low ? kLowCellEdgeColor : Rgba8{255, 255, 255, 255});
-        add_dashed(halo_core, a, b, kMaxHexEdgeColor);
+        add_dashed(halo, origin, a, b, low ? kLowCellEdgeColor : Rgba8{255, 255, 255, 255});
+        add_dashed(halo_core, origin, a, b, kMaxHexEdgeColor);
       } else {  // its back edges: thin, dashed
-        add_dashed(max_back, a, b, kMaxHexEdgeColor);
+        add_dashed(max_back, origin, a, b, kMaxHexEdgeColor);
       }
     }
   }
@@ -520,26 +535,48 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   f.scene.lines.push_back(std::move(halo_core));
   // The legend: only the marks the figure has (no "undefined": a drawn cell
   // has a density); short lines, so the bar keeps its size.
-  const std::string threshold = display_number(options.quality_threshold, 3);
-  f.bar.swatches.clear();
-  f.bar.swatches.push_back(worst_ring_swatch(worst, f.worst_hidden));
-  f.bar.swatches.push_back(f.worst_hidden ? ColorBarSwatch{to_color(kMaxHexEdgeColor), "max hex: front edges (hidden)",
-                                                           SwatchShape::dashed_line}
-                                          : ColorBarSwatch{to_color(kMaxHexEdgeColor), "max hex: its front edges",
-                                                           SwatchShape::thick_line});
-  f.bar.swatches.push_back({to_color(kMaxHexEdgeColor), "max hex: its back edges", SwatchShape::dashed_line});
-  f.bar.swatches.push_back({to_color(kMaxHexEdgeColor), "  (drawn over nearer cells)", SwatchShape::text});
-  f.bar.swatches.push_back({to_color(kVeilOverWhite), "boundary (veil)"});
-  f.bar.swatches.push_back({to_color(kCellEdgeColor), "edge of a drawn cell", SwatchShape::line});
-  if (any_low)
-    f.bar.swatches.push_back({to_color(kLowCellEdgeColor),
-                              (max_low ? "black edge or halo: SJ < " : "thick edge: SJ < ") + threshold,
-                              SwatchShape::thick_line});
-  if (any_hidden) {
-    f.bar.swatches.push_back({to_color(kCellEdgeColor), "dashed: behind the boundary", SwatchShape::dashed_line});
-    f.bar.swatches.push_back({to_color(kCellEdgeColor), "  (seen through the veil)", SwatchShape::text});
+  f.bar.swatches =
+      error_density_cells_swatches(worst, f.worst_hidden, {any_low, max_low, any_hidden}, options.quality_threshold);
+  return finish_figure(f, mesh, worst, options, renderer, camera, view, parts);
+}
+
+std::vector<ColorBarSwatch> error_density_boundary_swatches(const ErrorDensityWorst& worst, bool max_hidden) {
+  if (worst.hex == kNoIndex) return {};
+  const Color magenta = to_color(kMaxHexEdgeColor);
+  if (max_hidden)
+    return {worst_ring_swatch(worst, true),
+            {magenta, "max hex: dashed outline", SwatchShape::dashed_line},
+            {magenta, "  (behind: seen through)", SwatchShape::text}};
+  return {worst_ring_swatch(worst, false), {magenta, "max hex: its edges", SwatchShape::thick_line}};
+}
+
+std::vector<ColorBarSwatch> error_density_cells_swatches(const ErrorDensityWorst& worst, bool max_hidden,
+                                                         const ErrorDensityCellsMarks& marks,
+                                                         double quality_threshold) {
+  std::vector<ColorBarSwatch> swatches;
+  const Color magenta = to_color(kMaxHexEdgeColor);
+  if (worst.hex != kNoIndex) {
+    swatches.push_back(worst_ring_swatch(worst, max_hidden));
+    // Front thick, back thin (issue 48: a hidden max's front and back
+    // swatches were the same thin dashed line).
+    swatches.push_back(
+        max_hidden ? ColorBarSwatch{magenta, "max hex: front edges, dashed (hidden)", SwatchShape::thick_dashed_line}
+                   : ColorBarSwatch{magenta, "max hex: its front edges", SwatchShape::thick_line});
+    swatches.push_back({magenta, "max hex: back edges (thin)", SwatchShape::dashed_line});
+    swatches.push_back({magenta, "  (drawn over nearer cells)", SwatchShape::text});
   }
-  return finish_figure(f, mesh, worst, options, renderer, camera, view);
+  swatches.push_back({to_color(kVeilOverWhite), "boundary (veil)"});
+  swatches.push_back({to_color(kCellEdgeColor), "edge of a drawn cell", SwatchShape::line});
+  const std::string threshold = display_number(quality_threshold, 3);
+  if (marks.any_low)
+    swatches.push_back({to_color(kLowCellEdgeColor),
+                        (marks.max_low ? "black edge or halo: SJ < " : "thick edge: SJ < ") + threshold,
+                        SwatchShape::thick_line});
+  if (marks.any_hidden) {
+    swatches.push_back({to_color(kCellEdgeColor), "dashed: behind the boundary", SwatchShape::dashed_line});
+    swatches.push_back({to_color(kCellEdgeColor), "  (seen through the veil)", SwatchShape::text});
+  }
+  return swatches;
 }
 
 std::vector<bool> error_density_cells_behind_boundary(const HexMesh& mesh, const Topology& topology,

@@ -18,14 +18,17 @@
 //     error_density_cells_behind_boundary) gets dashed edges; the max hex's
 //     own edges are drawn black on a white halo.
 // Boundary faces unlit (the legend's colours exactly; edges give the depth). In both,
-// the densest hex is ringed (its projected extent plus a few pixels) and
-// labelled with its value and whether it is on the boundary (the ring dashed
-// when it is inside, or on the boundary but hidden from the viewpoint: then
-// "(on the boundary, hidden: seen through)", drawn through like an interior
-// one, and in the cells figure its front edges dashed too), the label in the free margin beside the model with a
-// leader line to the ring; an interior one is drawn
-// over everything in the boundary figure (in the cells figure it is one of
-// the cells, all drawn over the veil). Both from one upright,
+// the densest hex is ringed (its projected extent plus a few pixels, at
+// least kMinRingRadius) and labelled with its value and whether it is on
+// the boundary (the ring dashed when it is inside, or on the boundary but
+// hidden from the viewpoint: then "(on the boundary, hidden: seen
+// through)", and in the cells figure its front edges dashed too), the label
+// in the free margin beside the model with a leader line to the ring. In
+// the boundary figure its 12 edges are outlined in kMaxHexEdgeColor on a
+// white halo: solid and depth-tested when it is seen, dashed and drawn
+// through the surface when hidden, never filled over the faces in front of
+// it (issue 48; in the cells figure it is one of the cells, all drawn over
+// the veil). Every mark has its own legend entry. Both from one upright,
 // orthographic viewpoint: the one that shows the most of the densest 1% of
 // the hexes (choose_viewpoints), so the worst region faces the camera. The
 // colour range is the mesh's own (the legend says so).
@@ -42,11 +45,12 @@
 #include "hqview/render/annotate.h"
 #include "hqview/render/camera.h"
 #include "hqview/render/renderer.h"
+#include "hqview/render/scene.h"
 
 namespace hq {
 
-// The edges of the cells figure's max hex: magenta, a colour no other mark
-// of the figure uses (not on the density map, the veil, the black SJ edges or
+// The edges of the max hex (both figures): magenta, a colour no other mark
+// of the figures uses (not on the density map, the veil, the black SJ edges or
 // the grey cell edges), so the max is found by its edge colour alone.
 inline constexpr Rgba8 kMaxHexEdgeColor{204, 0, 204, 255};
 
@@ -100,17 +104,45 @@ std::vector<Index> error_density_cells(std::span<const double> density, const Er
 Vec3 choose_error_density_viewpoint(const HexMesh& mesh, const Topology& topology, std::span<const double> density,
                                     const ErrorDensityViewOptions& options);
 
+// The ring about the max is at least this many pixels (times the style's
+// scale) in radius.
+inline constexpr double kMinRingRadius = 18.0;
+
+// What a figure drew, for tests: the 3D scene, the legend's swatches and
+// the ring's radius in pixels (0: no max).
+struct ErrorDensityFigureParts {
+  Scene scene;
+  std::vector<ColorBarSwatch> swatches;
+  double ring_radius = 0;
+};
+
 // The two figures; `camera` (may be null) receives the 3D camera and
 // `view` (may be null) the pixel rectangle it drew into (for tests that
-// project cells). Throws Error when a field has the wrong size, RenderError
-// from the renderer.
+// project cells), `parts` (may be null) the scene and legend. Throws Error
+// when a field has the wrong size, RenderError from the renderer.
 Image render_error_density_boundary(const HexMesh& mesh, const Topology& topology, std::span<const double> density,
                                     const Vec3& view_direction, const ErrorDensityViewOptions& options,
-                                    Renderer& renderer, Camera* camera = nullptr, PixelRect* view = nullptr);
+                                    Renderer& renderer, Camera* camera = nullptr, PixelRect* view = nullptr,
+                                    ErrorDensityFigureParts* parts = nullptr);
 Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, std::span<const double> density,
                                  std::span<const double> cell_scaled_jacobian, const Vec3& view_direction,
                                  const ErrorDensityViewOptions& options, Renderer& renderer, Camera* camera = nullptr,
-                                 PixelRect* view = nullptr);
+                                 PixelRect* view = nullptr, ErrorDensityFigureParts* parts = nullptr);
+
+// The legends' entries for the marks each figure draws (every mark one
+// entry, no two entries alike; issue 48). Boundary figure: the ring and
+// the max's outline (solid, or dashed when max_hidden). Cells figure: the
+// ring, the max's front edges (thick; dashed when hidden) and back edges
+// (thin dashed), the veil, the cells' edges, and when drawn the low-SJ
+// edges and the dashed edges of hidden cells.
+std::vector<ColorBarSwatch> error_density_boundary_swatches(const ErrorDensityWorst& worst, bool max_hidden);
+struct ErrorDensityCellsMarks {
+  bool any_low = false;     // a drawn cell with scaled Jacobian below the threshold
+  bool max_low = false;     // ... the max among them (its halo black)
+  bool any_hidden = false;  // a drawn cell the boundary hides (dashed edges)
+};
+std::vector<ColorBarSwatch> error_density_cells_swatches(const ErrorDensityWorst& worst, bool max_hidden,
+                                                         const ErrorDensityCellsMarks& marks, double quality_threshold);
 
 // Per edge of a hex (kHexEdges order): whether one of its two faces turns to
 // the camera (its normal, oriented away from the hex's centre, points to the
