@@ -378,7 +378,7 @@ TEST(OverviewViewpoint, ABallAndItsTurnedCopyAreSeenAlike) {
 // Issue 45g: straight above (a planar mesh along its normal) has no side.
 TEST(OverviewViewpoint, StraightAboveNamesNoSide) {
   EXPECT_EQ(overview_side_name({0, 0, -1}, {0, 0, 1}, {0, -1, 0}), "straight above (elevation 90 deg)");
-  EXPECT_EQ(overview_side_name({0, 0, 1}, {0, 0, 1}, {0, -1, 0}), "straight below: elevation -90 deg");
+  EXPECT_EQ(overview_side_name({0, 0, 1}, {0, 0, 1}, {0, -1, 0}), "straight below (elevation -90 deg)");
 }
 
 }  // namespace
