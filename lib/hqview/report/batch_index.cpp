@@ -928,7 +928,7 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
   if (with_warnings > 0) page.set("num_with_warnings", std::to_string(with_warnings));
   const auto skipped = std::count_if(entries.begin(), entries.end(),
                                      [](const BatchEntry& e) { return e.status == BatchStatus::skipped; });
-  if (skipped > 0) page.set("num_skipped", std::to_string(skipped));
+  if (skipped > 0) page.set("num_skipped", std::to_string(skipped) + (skipped == 1 ? " file" : " files"));
   // The inputs not analysed, one line per reason (skipped_files): "Skipped:
   // 5 files, not analysed (a surface file beside volume meshes, ...): a.off, ...".
   data skipped_rows = data::type::list;
@@ -1036,7 +1036,7 @@ std::string batch_summary_markdown(const std::vector<BatchEntry>& entries) {
                    " failed, " + std::to_string(gate_failed) + " with failed gates, " + std::to_string(with_findings) +
                    " with inverted or intersecting cells or input warnings";
   if (with_warnings > 0) md += " (" + std::to_string(with_warnings) + " with input warnings)";
-  if (skipped > 0) md += ", " + std::to_string(skipped) + " files skipped (listed under the table)";
+  if (skipped > 0) md += ", " + std::to_string(skipped) + (skipped == 1 ? " file" : " files") + " skipped (listed under the table)";
   md += "\n\n";
   md += "| mesh | label | status |";
   for (const char* title : kHeadlineTitles) md += std::string(" ") + title + " |";
