@@ -267,16 +267,26 @@ async function checkLightboxFits(page, href, what) {
   // Each rendered view whole on one screen when scrolled to, so that its
   // legend (at its right, down to its bottom) shows with it (issue 45: at
   // 1400 x 1000 the views were 990 px high and their legends ran below).
+  // Also on a 900 px high window (a laptop's), where a view at the
+  // column's width (990 px high) did not fit at all.
   const views = await page.$$eval('.figures > figure:not(.chart)', (figs) => figs.map((f) => f.id));
   check(views.length >= 6, `1400 px: rendered views (${views.length})`);
-  for (const id of views) {
-    const box = await page.$eval(`[id="${id}"]`, (f) => {
-      f.scrollIntoView({ block: 'start' });
-      const r = f.querySelector('img').getBoundingClientRect();
-      return { top: r.top, bottom: r.bottom, vh: innerHeight };
-    });
-    check(box.top >= 0 && box.bottom <= box.vh, `1400 px: view ${id} spans ${box.top.toFixed(0)}-${box.bottom.toFixed(0)} px of a ${box.vh} px screen when scrolled to`);
+  for (const height of [1000, 900]) {
+    await page.setViewportSize({ width: 1400, height });
+    for (const id of views) {
+      const box = await page.$eval(`[id="${id}"]`, (f) => {
+        f.scrollIntoView({ block: 'start' });
+        const r = f.querySelector('img').getBoundingClientRect();
+        const img = f.querySelector('img');
+        return { top: r.top, bottom: r.bottom, width: r.width, natural: img.naturalWidth, font: Math.max(11, 19 * img.naturalHeight / 1200), vh: innerHeight };
+      });
+      check(box.top >= 0 && box.bottom <= box.vh, `1400 x ${height}: view ${id} spans ${box.top.toFixed(0)}-${box.bottom.toFixed(0)} px of a ${box.vh} px screen when scrolled to`);
+      // ... and its legend still readable (19 px per 1200 px of height, at least 11).
+      const legend = (box.width / box.natural) * box.font;
+      check(legend >= 11, `1400 x ${height}: view ${id} legend text ${legend.toFixed(1)} px on screen`);
+    }
   }
+  await page.setViewportSize({ width: 1400, height: 1000 });
   await page.evaluate(() => window.scrollTo(0, 0));
   const firstFigure = await page.$eval('figure img', (i) => ({ src: i.getAttribute('src'), top: i.getBoundingClientRect().top }));
   check(firstFigure.src === 'views/overview.png' && firstFigure.top < 500, `1400 px: the overview first, at ${firstFigure.top.toFixed(0)} px (${firstFigure.src})`);
