@@ -264,6 +264,30 @@ async function checkLightboxFits(page, href, what) {
   check(cards.length >= 8 && cards.every((t) => t === cards[0]), `1400 px: the ${cards.length} cards in one row (tops ${cards.join(', ')})`);
   const overflowing = await page.$$eval('.headline .card .value', (vs) => vs.filter((v) => v.scrollWidth > v.parentElement.clientWidth).map((v) => v.textContent));
   check(overflowing.length === 0, `1400 px: card values wider than their cards: ${overflowing.join(', ')}`);
+  // Each rendered view whole on one screen when scrolled to, so that its
+  // legend (at its right, down to its bottom) shows with it (issue 45: at
+  // 1400 x 1000 the views were 990 px high and their legends ran below).
+  // Also on a 900 px high window (a laptop's), where a view at the
+  // column's width (990 px high) did not fit at all.
+  const views = await page.$$eval('.figures > figure:not(.chart)', (figs) => figs.map((f) => f.id));
+  check(views.length >= 6, `1400 px: rendered views (${views.length})`);
+  for (const height of [1000, 900]) {
+    await page.setViewportSize({ width: 1400, height });
+    for (const id of views) {
+      const box = await page.$eval(`[id="${id}"]`, (f) => {
+        f.scrollIntoView({ block: 'start' });
+        const r = f.querySelector('img').getBoundingClientRect();
+        const img = f.querySelector('img');
+        return { top: r.top, bottom: r.bottom, width: r.width, natural: img.naturalWidth, font: Math.max(11, 19 * img.naturalHeight / 1200), vh: innerHeight };
+      });
+      check(box.top >= 0 && box.bottom <= box.vh, `1400 x ${height}: view ${id} spans ${box.top.toFixed(0)}-${box.bottom.toFixed(0)} px of a ${box.vh} px screen when scrolled to`);
+      // ... and its legend still readable (19 px per 1200 px of height, at least 11).
+      const legend = (box.width / box.natural) * box.font;
+      check(legend >= 11, `1400 x ${height}: view ${id} legend text ${legend.toFixed(1)} px on screen`);
+    }
+  }
+  await page.setViewportSize({ width: 1400, height: 1000 });
+  await page.evaluate(() => window.scrollTo(0, 0));
   const firstFigure = await page.$eval('figure img', (i) => ({ src: i.getAttribute('src'), top: i.getBoundingClientRect().top }));
   check(firstFigure.src === 'views/overview.png' && firstFigure.top < 500, `1400 px: the overview first, at ${firstFigure.top.toFixed(0)} px (${firstFigure.src})`);
   // ... at the column's full width, no empty half beside it (issue 45g:
@@ -313,18 +337,49 @@ async function checkLightboxFits(page, href, what) {
   const collection = path.join(outDir, 'collection');
   fs.mkdirSync(collection, { recursive: true });
   for (const f of ['ball.mesh', 'twisted_bar.mesh']) fs.copyFileSync(example(f), path.join(collection, f));
+  // A long path and name, a reference surface beside the meshes (skipped)
+  // and a failed gate (the details column): the table still fits 1400 px
+  // (issue 45: it was wider, its details column cut, skipped files rows of
+  // dashes).
+  const deep = path.join(collection, 'a_rather_long_directory_name_of_a_published_dataset', 'method_variant_with_options');
+  fs.mkdirSync(deep, { recursive: true });
+  fs.copyFileSync(example('twisted_bar.mesh'), path.join(deep, 'twisted_bar_optimised_with_a_very_long_descriptive_file_name_v2.mesh'));
+  fs.copyFileSync(example('ball.off'), path.join(collection, 'ball.off'));
   const batchOut = path.join(outDir, 'batch');
-  execFileSync(hqview, ['batch', collection, '-o', batchOut, '--views', 'thumbnail,overview', '--no-viewer', '--no-overlap',
-    '--data', 'none', '-j', '2', '-q'], { stdio: 'inherit' });
+  try {
+    execFileSync(hqview, ['batch', collection, '-o', batchOut, '--views', 'thumbnail,overview', '--no-viewer',
+      '--gate', 'mesh.num_hexes>=500', '--data', 'none', '-j', '2', '-q'], { stdio: 'inherit' });
+  } catch (e) {
+    check(e.status === 1, `batch with a failing gate exits 1 (got ${e.status})`);
+  }
   const { page, problems } = await open(path.join(batchOut, 'index.html'), { width: 1400, height: 1000 });
+  const table = await page.$eval('#mesh-table', (t) => {
+    const box = t.closest('.scroll');
+    return { scroll: box.scrollWidth, client: box.clientWidth, doc: document.documentElement.scrollWidth, view: innerWidth,
+      rows: t.tBodies[0].rows.length, skippedRows: t.querySelectorAll('tr.skipped').length,
+      heads: [...t.tHead.rows[0].cells].map((c) => c.textContent), details: t.querySelectorAll('td.detail').length };
+  });
+  check(table.scroll <= table.client && table.doc <= table.view,
+    `batch index at 1400 px: the mesh table is ${table.scroll} px in a ${table.client} px box (page ${table.doc} of ${table.view})`);
+  check(table.rows === 3 && table.skippedRows === 0, `batch index: 3 mesh rows, no skipped row (${table.rows}, ${table.skippedRows})`);
+  check(table.heads.includes('details') && table.heads.includes('#inter\u00adsecting'), `batch index: details and #intersecting columns (${table.heads.join(' | ')})`);
+  const detailWidths = await page.$$eval('#mesh-table td.detail', (ds) => ds.map((d) => d.getBoundingClientRect().width));
+  check(detailWidths.every((w) => w >= 120), `batch index: details cells readable (${detailWidths.map((w) => w.toFixed(0)).join(', ')} px)`);
+  const skippedLine = await page.$$eval('p.skipped', (ps) => ps.map((p) => p.textContent));
+  check(skippedLine.length === 1 && skippedLine[0].startsWith('Skipped: 1 file, not analysed (') && skippedLine[0].includes('ball.off'),
+    `batch index: the skipped reference listed apart (${skippedLine.join(' / ')})`);
+  await page.screenshot({ path: path.join(shots, 'batch-index-1400px.png') });
   const links = await page.$$eval('a[data-lightbox]', (as) => as.map((a) => ({ href: a.getAttribute('href'), image: a.getAttribute('data-lightbox') })));
-  check(links.length === 2, `batch index: 2 thumbnails open in the lightbox (${links.length})`);
+  check(links.length === 3, `batch index: 3 thumbnails open in the lightbox (${links.length})`);
   const first = '#mesh-table a[data-lightbox]';
   const image = await page.$eval(first, (a) => a.getAttribute('data-lightbox'));
   check(/\/views\/overview\.png$/.test(image), `batch index: the lightbox image is the overview (${image})`);
   // ball.mesh (14 inverted hexes) is not "ok", and its row is tinted.
-  const ballRow = await page.$eval('#mesh-table tbody tr:first-child', (r) => ({ cls: r.className, status: r.querySelector('td.status').textContent }));
-  check(ballRow.cls.includes('finding') && ballRow.status === '⚠ inverted', `batch index: ball.mesh's row says ${ballRow.status} (${ballRow.cls})`);
+  // (The two twisted bars, 144 hexes, fail the gate and come first.)
+  const ballRow = await page.$$eval('#mesh-table tbody tr', (rs) => rs.filter((r) => r.querySelector('td.path').textContent.trim() === 'ball.mesh')
+    .map((r) => ({ cls: r.className, status: r.querySelector('td.status').textContent, index: r.rowIndex }))[0]);
+  check(ballRow && ballRow.index === 3 && ballRow.cls.includes('finding') && ballRow.status === '⚠ inverted, intersecting',
+    `batch index: ball.mesh's row, the last, says ${ballRow && ballRow.status} (${ballRow && ballRow.cls})`);
   await page.click(first);
   await page.waitForFunction(() => document.getElementById('lightbox').open);
   await checkLightboxFits(page, image, 'batch index lightbox');

@@ -96,9 +96,16 @@ TEST(Batch, SharedCollectionWithABrokenFile) {
   EXPECT_NE(html.find("href=\"livesu2015_edgecone/bunny_out.mesh/index.html\""), std::string::npos);
   EXPECT_NE(read_text(out / "summary.md").find("12 meshes, 1 failed"), std::string::npos);
   // No reference surfaces or temporary siblings are taken for meshes: a
-  // reference is named under "Not analysed", never linked to a bundle.
+  // reference is named on the "Skipped" line, never linked to a bundle, and
+  // is no row of the mesh table (issue 45: they were rows of dashes).
   EXPECT_EQ(html.find("bunny.off/index.html"), std::string::npos);
-  EXPECT_NE(html.find("Not analysed: "), std::string::npos);
+  EXPECT_NE(html.find("<p class=\"note skipped\">Skipped: "), std::string::npos);
+  EXPECT_NE(html.find("<code>gao2016_sweeping/bunny.off</code>"), std::string::npos);
+  EXPECT_EQ(html.find("<tr class=\"skipped"), std::string::npos);
+  const std::string md = read_text(out / "summary.md");
+  EXPECT_NE(md.find("\nSkipped: "), std::string::npos) << md;
+  EXPECT_NE(md.find(" files, not analysed ("), std::string::npos) << md;
+  EXPECT_EQ(md.find("| skipped |"), std::string::npos) << md;
 }
 
 TEST(Batch, ExitCodesAndRenderedBundlesInParallel) {

@@ -90,6 +90,18 @@ TEST(OverlapCli, BallFoldIsReportedInJsonCsvAndHtml) {
   const std::string html = read_text(out / "index.html");
   EXPECT_NE(html.find("Overlap findings"), std::string::npos);
   EXPECT_NE(html.find("intersecting hexes"), std::string::npos);
+  // One term for one count (issue 45): the card, the overlap table and
+  // summary.md name num_intersecting_cells "intersecting hexes", with the
+  // same number; "overlapping" names none of them (the card said
+  // "overlapping hexes" beside the overview's "intersecting hexes: N").
+  const std::string count = std::to_string(cells);
+  EXPECT_NE(html.find("<div class=\"value\">" + count + "</div><div class=\"label\">intersecting hexes</div>"),
+            std::string::npos);
+  EXPECT_NE(html.find("<th scope=\"row\">intersecting hexes</th><td class=\"alert\">" + count + "</td>"), std::string::npos);
+  EXPECT_EQ(html.find("overlapping hexes"), std::string::npos);
+  const std::string md = read_text(out / "summary.md");
+  EXPECT_NE(md.find("| #inverted | intersecting hexes |"), std::string::npos) << md;
+  EXPECT_EQ(md.find("overlapping"), std::string::npos) << md;
   // Exhaustive mode finds the same pairs.
   const json exhaustive =
       analyze_json("ball.mesh", {"--overlap=exhaustive"}, fresh_output_dir("overlap_ball_ex") / "bundle")["overlap"];

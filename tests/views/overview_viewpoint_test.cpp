@@ -281,8 +281,8 @@ TEST(OverviewViewpoint, ASymmetricModelsTurnedCopyIsNamedAlike) {
     const std::string name = overview_side_name(eye.direction, {0.0, 0.0, 1.0}, eye.front);
     // The eye sees the dent's side, which is the front now.
     EXPECT_GT(dot(-eye.direction, eye.front), 0.0);
-    EXPECT_NE(name.find(": azimuth "), std::string::npos) << name;
-    EXPECT_NE(name.find(" deg from the model's front"), std::string::npos) << name;
+    EXPECT_NE(name.find(" (azimuth "), std::string::npos) << name;
+    EXPECT_NE(name.find(" deg from the model's front, elevation "), std::string::npos) << name;
     if (!turn) {
       first_name = name;
       first_direction = eye.direction;
@@ -294,9 +294,9 @@ TEST(OverviewViewpoint, ASymmetricModelsTurnedCopyIsNamedAlike) {
   }
   // The numbers: azimuth 30 from the front is right of it, elevation 25.
   EXPECT_EQ(overview_side_name(overview_view_direction({0, 0, 1}, {0, -1, 0}, 30.0, 25.0), {0, 0, 1}, {0, -1, 0}),
-            "above, front right: azimuth 30, elevation 25 deg from the model's front");
+            "above, front right (azimuth 30 deg from the model's front, elevation 25 deg)");
   EXPECT_EQ(overview_side_name(overview_view_direction({0, 0, 1}, {0, -1, 0}, 210.0, -15.0), {0, 0, 1}, {0, -1, 0}),
-            "below, back left: azimuth 210, elevation -15 deg from the model's front");
+            "below, back left (azimuth 210 deg from the model's front, elevation -15 deg)");
 }
 
 TEST(OverviewViewpoint, RockarmShowsItsInvertedHexesUnderAutoUp) {
@@ -377,8 +377,8 @@ TEST(OverviewViewpoint, ABallAndItsTurnedCopyAreSeenAlike) {
 
 // Issue 45g: straight above (a planar mesh along its normal) has no side.
 TEST(OverviewViewpoint, StraightAboveNamesNoSide) {
-  EXPECT_EQ(overview_side_name({0, 0, -1}, {0, 0, 1}, {0, -1, 0}), "straight above: elevation 90 deg");
-  EXPECT_EQ(overview_side_name({0, 0, 1}, {0, 0, 1}, {0, -1, 0}), "straight below: elevation -90 deg");
+  EXPECT_EQ(overview_side_name({0, 0, -1}, {0, 0, 1}, {0, -1, 0}), "straight above (elevation 90 deg)");
+  EXPECT_EQ(overview_side_name({0, 0, 1}, {0, 0, 1}, {0, -1, 0}), "straight below (elevation -90 deg)");
 }
 
 }  // namespace

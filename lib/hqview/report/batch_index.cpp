@@ -719,6 +719,25 @@ kainjow::mustache::data fem_correlation_data(const CollectionCorrelation& c, con
   return d;
 }
 
+// The inputs not analysed (status skipped: reference surfaces beside the
+// meshes), grouped by reason in first-seen order, paths in entry order:
+// index.html and summary.md list them apart from the mesh table, one line
+// per reason, not as rows of dashes.
+struct SkippedFiles {
+  std::string reason;
+  std::vector<std::string> paths;
+};
+std::vector<SkippedFiles> skipped_files(const std::vector<BatchEntry>& entries) {
+  std::vector<SkippedFiles> groups;
+  for (const BatchEntry& e : entries) {
+    if (e.status != BatchStatus::skipped) continue;
+    auto it = std::find_if(groups.begin(), groups.end(), [&](const SkippedFiles& g) { return g.reason == e.error; });
+    if (it == groups.end()) it = groups.insert(groups.end(), {e.error, {}});
+    it->paths.push_back(e.path);
+  }
+  return groups;
+}
+
 // The order of index.html's mesh table: worst first (batch_index.h).
 int status_rank(BatchStatus s) {
   switch (s) {
@@ -781,6 +800,7 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
                                                headline_index("structure.num_singular_edges_boundary")};
   const bool any_surface = std::any_of(entries.begin(), entries.end(), [](const BatchEntry& e) { return e.surface.has_value(); });
   for (const BatchEntry& e : entries) {
+    if (e.status == BatchStatus::skipped) continue;  // listed apart, above the table
     for (std::size_t k = 0; k < kNumHeadlineKeys; ++k)
       shown[k] = shown[k] || (e.headline[k].has_value() && (k < first_composition_key || any_hybrid));
     if (e.surface) {
@@ -810,6 +830,8 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
     if (any_surface && k == hexes_key) title = "#cells (hex / quad / tri)";
     if (any_surface && k == singular_keys[0]) title = "#singular edges / irregular vertices, interior";
     if (any_surface && k == singular_keys[1]) title = "#singular edges / irregular vertices, boundary";
+    // The one long word may break (a soft hyphen): the table fits 1400 px.
+    if (title == "#intersecting") title = "#inter\u00ADsecting";
     headers.push_back(data("title", title));
   }
   page.set("headline_columns", headers);
@@ -819,6 +841,9 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
   data rows = data::type::list;
   for (const std::size_t i : worst_first_order(entries)) {
     const BatchEntry& e = entries[i];
+    // Inputs not analysed (reference surfaces beside the meshes) are no
+    // rows of dashes: they are listed apart, above the table.
+    if (e.status == BatchStatus::skipped) continue;
     failed += e.status == BatchStatus::failed;
     gate_failed += e.status == BatchStatus::gate_failed;
     data row;
@@ -903,16 +928,23 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
   if (with_warnings > 0) page.set("num_with_warnings", std::to_string(with_warnings));
   const auto skipped = std::count_if(entries.begin(), entries.end(),
                                      [](const BatchEntry& e) { return e.status == BatchStatus::skipped; });
-  if (skipped > 0) page.set("num_skipped", std::to_string(skipped));
-  // Each input not analysed, by name and reason, at the top.
+  if (skipped > 0) page.set("num_skipped", std::to_string(skipped) + (skipped == 1 ? " file" : " files"));
+  // The inputs not analysed, one line per reason (skipped_files): "Skipped:
+  // 5 files, not analysed (a surface file beside volume meshes, ...): a.off, ...".
   data skipped_rows = data::type::list;
-  for (const BatchEntry& e : entries)
-    if (e.status == BatchStatus::skipped) {
-      data d;
-      d.set("path", e.path);
-      d.set("reason", e.error);
-      skipped_rows.push_back(d);
+  for (const auto& [reason, paths] : skipped_files(entries)) {
+    data d;
+    d.set("count", std::to_string(paths.size()) + (paths.size() == 1 ? " file" : " files"));
+    d.set("reason", reason);
+    data names = data::type::list;
+    for (std::size_t k = 0; k < paths.size(); ++k) {
+      data n("path", paths[k]);
+      n.set("last", k + 1 == paths.size());
+      names.push_back(n);
     }
+    d.set("paths", names);
+    skipped_rows.push_back(d);
+  }
   page.set("skipped", skipped_rows);
   if (limited > 0) page.set("num_limited", std::to_string(limited));
   data limitation_rows = data::type::list;
@@ -1004,7 +1036,7 @@ std::string batch_summary_markdown(const std::vector<BatchEntry>& entries) {
                    " failed, " + std::to_string(gate_failed) + " with failed gates, " + std::to_string(with_findings) +
                    " with inverted or intersecting cells or input warnings";
   if (with_warnings > 0) md += " (" + std::to_string(with_warnings) + " with input warnings)";
-  if (skipped > 0) md += ", " + std::to_string(skipped) + " inputs not analysed";
+  if (skipped > 0) md += ", " + std::to_string(skipped) + (skipped == 1 ? " file" : " files") + " skipped (listed under the table)";
   md += "\n\n";
   md += "| mesh | label | status |";
   for (const char* title : kHeadlineTitles) md += std::string(" ") + title + " |";
@@ -1015,11 +1047,18 @@ std::string batch_summary_markdown(const std::vector<BatchEntry>& entries) {
   const std::vector<std::size_t> order = worst_first_order(entries);
   for (const std::size_t i : order) {
     const BatchEntry& e = entries[i];
+    if (e.status == BatchStatus::skipped) continue;  // listed under the table
     md += "| " +
           (e.bundle.empty() ? markdown_escape(e.path) : "[" + markdown_escape(e.path) + "](" + url_path(e.bundle) + "/index.html)") +
           " | " + markdown_escape(e.label) + " | " + batch_status_text(e) + " |";  // fixed words, no input
     for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) md += " " + show(e.headline[k]) + " |";
     md += "\n";
+  }
+  for (const SkippedFiles& group : skipped_files(entries)) {
+    md += "\nSkipped: " + std::to_string(group.paths.size()) + (group.paths.size() == 1 ? " file" : " files") +
+          ", not analysed (" + markdown_escape(group.reason) + "):";
+    for (std::size_t k = 0; k < group.paths.size(); ++k) md += (k == 0 ? " " : ", ") + markdown_escape(group.paths[k]);
+    md += ".\n";
   }
   // Every mesh that is not plainly ok, worst first, with why: its error,
   // failed gates, inverted and intersecting cell counts, input warnings

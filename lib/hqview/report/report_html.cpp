@@ -394,9 +394,11 @@ void set_headline(data& page, const ReportModel& model) {
     headline.push_back(
         card("inverted hexes", show_count(q.scaled_jacobian.num_inverted), q.scaled_jacobian.num_inverted > 0));
   }
-  // A surface mesh's count: "intersecting faces", as its views and overlap
-  // table say (issue 47 part F: one word for one count).
-  const char* overlap_label = m.is_surface ? "intersecting faces" : hybrid ? "overlapping cells" : "overlapping hexes";
+  // One word for one count (issue 47 part F, issue 45): "intersecting
+  // hexes" (cells; a surface mesh's "intersecting faces"), as the overlap
+  // table and the overview's and view A's legends say; the overlap
+  // module's other finding, vertices at one place, is "coincident vertices".
+  const char* overlap_label = m.is_surface ? "intersecting faces" : hybrid ? "intersecting cells" : "intersecting hexes";
   if (model.analysis.overlap)
     headline.push_back(card(overlap_label, show_count(model.analysis.overlap->num_intersecting_cells),
                             model.analysis.overlap->num_intersecting_cells > 0));

@@ -63,7 +63,7 @@ std::string summary_markdown(const ReportModel& model, const std::string& link_b
                        : m.is_surface ? "| #V | #cells | min scaled Jacobian (per cell) | mean scaled Jacobian (per cell) | "
                                       "#inverted | intersecting faces |"
                                     : "| #V | #H | min scaled Jacobian (per hex) | mean scaled Jacobian (per hex) | "
-                                      "#inverted | overlapping hexes |";
+                                      "#inverted | intersecting hexes |";
   std::string align = "|---:|---:|---:|---:|---:|---:|";
   std::string row = "| " + std::to_string(m.num_vertices) + " | " +
                     std::to_string(m.is_surface ? composition.num_cells : m.num_hexes) + " | " +

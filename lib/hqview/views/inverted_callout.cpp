@@ -219,6 +219,7 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
   // extents, repeatedly (issue 45g: the ball's three overlapping rings
   // left no leader a way out that crossed no other ring, and a reader could
   // not tell which ring a label named). The merged ring counts its groups.
+  const std::vector<Extent> group_extent = extent;  // each 3D group's own, before the merge
   std::vector<int> merged(groups.size());
   std::iota(merged.begin(), merged.end(), 0);
   bool any_merged = false;
@@ -274,6 +275,25 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
     // A ring all of whose groups are hidden needs no list apart.
     for (InvertedCallout& j : joined)
       if (!callout_in_sight(j)) j.hidden_cells.clear(), j.num_hidden_groups = 0, j.hidden_on_boundary = false;
+    // A ring with groups in sight and groups hidden is split by sight: a
+    // solid ring around the extent of those in sight, a dashed one around
+    // the extent of those hidden (the merge decided which label names them;
+    // the rings say which are seen).
+    for (std::size_t k = 0; k < joined.size(); ++k) {
+      InvertedCallout& j = joined[k];
+      if (j.hidden_cells.empty()) continue;
+      Extent seen, hidden;
+      for (std::size_t g = 0; g < groups.size(); ++g) {
+        if (renumber[static_cast<std::size_t>(merged[g])] != static_cast<int>(k)) continue;
+        Extent& e = callout_in_sight(groups[g]) ? seen : hidden;
+        const Extent& f = group_extent[g];
+        e.x0 = std::min(e.x0, f.x0), e.y0 = std::min(e.y0, f.y0), e.x1 = std::max(e.x1, f.x1), e.y1 = std::max(e.y1, f.y1);
+      }
+      InvertedCallout part;
+      ring_of(hidden, part);
+      j.hidden_x = part.x, j.hidden_y = part.y, j.hidden_radius = part.radius;
+      ring_of(seen, j);
+    }
     for (int& g : vertex_group)
       if (g >= 0) g = renumber[static_cast<std::size_t>(merged[static_cast<std::size_t>(g)])];
     groups = std::move(joined);
@@ -310,6 +330,17 @@ std::string inverted_callout_label(const InvertedCallout& c, const std::string& 
   if (c.num_more_cells > 0) label += "; +" + std::to_string(c.num_more_cells) + " more";
   if (!c.inset.empty()) label += ": see inset " + c.inset;
   return label;
+}
+
+std::vector<ScreenDisc> callout_discs(const InvertedCallout& c, double thickness) {
+  std::vector<ScreenDisc> discs{{c.x, c.y, c.radius + thickness}};
+  if (c.hidden_radius > 0.0) discs.push_back({c.hidden_x, c.hidden_y, c.hidden_radius + thickness});
+  return discs;
+}
+
+void draw_callout_rings(Image& image, const InvertedCallout& c, double thickness) {
+  draw_marker_ring(image, c.x, c.y, c.radius, thickness, !callout_in_sight(c), kCalloutColor);
+  if (c.hidden_radius > 0.0) draw_marker_ring(image, c.hidden_x, c.hidden_y, c.hidden_radius, thickness, true, kCalloutColor);
 }
 
 void draw_marker_ring(Image& image, double cx, double cy, double radius, double thickness, bool dashed, Rgba8 color) {
@@ -378,6 +409,12 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
     labels.push_back({inverted_callout_label(c, noun, area), {}, std::nullopt});
     rings.push_back({c.x, c.y, c.radius + thickness, static_cast<std::int64_t>(i)});
   }
+  // The dashed rings of hidden groups after them: no label covers one, and
+  // only its own label's leader may cross it (the same id).
+  for (std::size_t i = 0; i < callouts.size(); ++i) {
+    const std::vector<ScreenDisc> discs = callout_discs(callouts[i], thickness);
+    for (std::size_t k = 1; k < discs.size(); ++k) rings.push_back({discs[k].x, discs[k].y, discs[k].radius, static_cast<std::int64_t>(i)});
+  }
   LabelLayoutOptions layout;
   // 8 pixels off the figure's edge (the 45e review's m1: a label touched it).
   layout.bounds = {view.x + 8, view.y + 2, view.width - 16, view.height - 4};
@@ -392,7 +429,7 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
   // view's top edge had no room for one line).
   LabelPlacer placer(taken, layout);
   for (std::size_t i = 0; i < labels.size(); ++i) {
-    const ScreenDisc& ring = rings[i];
+    const ScreenDisc ring = rings[i];
     const int one_line = text_extent(labels[i].text, text_size, style).width;
     std::optional<PlacedLabel> p;
     for (int n = 1; !p && n <= 3; ++n) {
@@ -432,7 +469,7 @@ void draw_inverted_callouts(Image& figure, const PixelRect& view, std::span<cons
                             const std::string& noun, double thickness, int text_size, const AnnotationStyle& style,
                             std::span<const PixelRect> taken, bool draw_rings) {
   for (const InvertedCallout& c : callouts)
-    if (draw_rings) draw_marker_ring(figure, c.x, c.y, c.radius, thickness, !callout_in_sight(c), kCalloutColor);
+    if (draw_rings) draw_callout_rings(figure, c, thickness);
   if (text_size <= 0) return;
   const Rgba8 line{70, 70, 70, 255};  // the labels' leaders and frames: not the ring's colour
   const std::vector<InvertedRingLabel> labels = place_callout_labels(view, callouts, noun, thickness, text_size, style, taken);

@@ -51,12 +51,21 @@ struct InvertedCallout {
   std::vector<Index> hidden_cells;
   int num_hidden_groups = 0;
   bool hidden_on_boundary = false;
+  // Such a ring is split by sight (issue 45: one solid ring over groups on
+  // the far side said they were in sight): (x, y, radius) rings its groups
+  // in sight only, solid, and this second ring, dashed, its groups out of
+  // sight; hidden_radius 0: no second ring.
+  double hidden_x = 0, hidden_y = 0, hidden_radius = 0;
   long visible_pixels = 0;    // view pixels where the overview paints their inverted corners, depth-tested
   bool on_boundary = false;   // some corner of theirs on the boundary is inverted (vertex quality < 0)
   int num_more_cells = 0;     // inverted cells of groups left without a ring (the last callout only)
   std::vector<Index> cells;   // the group's inverted cells (volume cell ids, in the order given)
   std::string inset;          // the letter of the overview's inset that draws them (inverted_inset.h); empty: none
 };
+
+// The screen discs a callout's rings take (ring radius + thickness): its
+// ring, then its dashed ring of hidden groups when it has one.
+std::vector<ScreenDisc> callout_discs(const InvertedCallout& c, double thickness);
 
 // Rings closer than this times min_radius (edge to edge) are merged.
 inline constexpr double kRingMergeGap = 0.5;
@@ -117,6 +126,10 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
 void draw_inverted_callouts(Image& figure, const PixelRect& view, std::span<const InvertedCallout> callouts,
                             const std::string& noun, double thickness, int text_size, const AnnotationStyle& style,
                             std::span<const PixelRect> taken = {}, bool draw_rings = true);
+
+// A callout's rings: its ring (solid when in sight, else dashed) and its
+// dashed ring of hidden groups when it has one.
+void draw_callout_rings(Image& image, const InvertedCallout& c, double thickness);
 
 // A ring: an annulus of `color` (core thickness / 2 either side of radius)
 // on a white halo (as wide again), solid or dashed (dashes of about 14

@@ -1361,12 +1361,15 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
       findings[kind] += static_cast<std::size_t>(std::max<Index>(m.count, 1));
     }
   const std::size_t intersecting = overlap ? static_cast<std::size_t>(overlap->num_intersecting_cells) : 0;
+  // One word for one count (issue 45): "hexes" on a pure-hex mesh, as its
+  // page's cards, overlap table and overview say; "cells" on a hybrid one.
+  const std::string cells_word = options.cell_kinds.empty() ? "hexes" : "cells";
   // The inverted cells and which of their boundary faces the view draws
   // (issue 44 part U, round 2: a legend said nothing of dolphin_rot's 759
   // faces left out). A surface mesh's fill lines count them.
   if (options.inverted_cell_count > 0 && !options.surface_cell_quality) {
     const std::size_t faces = options.inverted_face_count, drawn = options.inverted_overlay_faces;
-    lines.push_back({to_rgba8(kInvertedColor), "inverted cells: " + std::to_string(options.inverted_cell_count), 1});
+    lines.push_back({to_rgba8(kInvertedColor), "inverted " + cells_word + ": " + std::to_string(options.inverted_cell_count), 1});
     if (faces == 0)
       lines.push_back({std::nullopt, "  none on the boundary"});
     else if (faces > kMaxInvertedOverlayVolumeFaces) {
@@ -1386,9 +1389,9 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
     lines.push_back({kIntersectionArrowColor, "intersecting pairs: " + std::to_string(findings[1])});
     // A surface mesh's page, overview and overlap table say "intersecting
     // faces": one word for one count (issue 47 part F).
-    lines.push_back({kIntersectingCellColor, std::string(options.surface_cell_quality ? "intersecting faces: "
-                                                                                      : "intersecting cells: ") +
-                                                 std::to_string(intersecting)});
+    lines.push_back({kIntersectingCellColor,
+                     "intersecting " + (options.surface_cell_quality ? std::string("faces") : cells_word) + ": " +
+                         std::to_string(intersecting)});
   } else if (options.surface_cell_quality) {
     lines.push_back({std::nullopt, "overlap: not checked", 1});
     lines.push_back({std::nullopt, "  on surface meshes"});

@@ -174,9 +174,12 @@ std::string overview_side_name(const Vec3& view_direction, const Vec3& up, const
   const long elevation = std::lround(std::asin(std::clamp(dot(eye, u), -1.0, 1.0)) * 180.0 / kPi);
   // Straight above or below (a planar mesh seen along its normal): no
   // side, no azimuth (issue 45g: "front left: azimuth 0, elevation 90").
-  if (std::abs(elevation) == 90) return std::string(elevation > 0 ? "straight above" : "straight below") + ": elevation " + std::to_string(elevation) + " deg";
-  return height + depth + (azimuth > 0.0 ? "right" : "left") + ": azimuth " + std::to_string(degrees) +
-         ", elevation " + std::to_string(elevation) + " deg from " + front_name;
+  if (std::abs(elevation) == 90) return std::string(elevation > 0 ? "straight above" : "straight below") + " (elevation " + std::to_string(elevation) + " deg)";
+  // The azimuth is from the front, the elevation from the horizontal (issue
+  // 45: "azimuth 120, elevation 35 deg from the model's front" read as if
+  // both were from the front).
+  return height + depth + (azimuth > 0.0 ? "right" : "left") + " (azimuth " + std::to_string(degrees) + " deg from " +
+         front_name + ", elevation " + std::to_string(elevation) + " deg)";
 }
 
 Vec3 model_front(const HexMesh& mesh, const Topology& topology, const Vec3& up) {

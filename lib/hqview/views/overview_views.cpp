@@ -511,7 +511,7 @@ OverviewPlan plan_quality_overview(const HexMesh& mesh, const Topology& topology
   const double silhouette_w = x1 > x0 ? 0.5 * (x1 - x0) * view.width : view.width;
   const double silhouette_h = y1 > y0 ? 0.5 * (y1 - y0) * view.height : view.height;
   const int margin = std::max(4, static_cast<int>(std::lround(12 * f.style.scale)));
-  InsetStrip strip = inset_strip(view, silhouette_w, silhouette_h, count, margin);
+  const InsetStrip strip = inset_strip(view, silhouette_w, silhouette_h, count, margin);
   // The model larger where the strip leaves room (issue 45f round 2, the
   // 45f review: it was drawn 0.61-0.71 of its width with quadrants empty):
   // the silhouette as fitted to the whole view, scaled about the view's
@@ -520,12 +520,19 @@ OverviewPlan plan_quality_overview(const HexMesh& mesh, const Topology& topology
   // when that draws it larger than the strip's rest does.
   const int gw = kFitGrid, gh = std::max(1, static_cast<int>(std::lround(kFitGrid * static_cast<double>(view.height) / view.width)));
   const std::vector<char> mask = silhouette_mask(mesh, topology, f.camera, aspect, gw, gh);
-  double best = std::min(strip.model.width / silhouette_w, strip.model.height / silhouette_h) /
-                std::min(view.width / silhouette_w, view.height / silhouette_h);
   // Issue 45g (the 45f2 review: the bunny and the ball small in their
   // frames): the column's slots also at the bottom (the model scaled about
   // the view's bottom-left corner too), the row's also on the left (about
-  // the top-right corner too); the largest scale wins, ties the earlier.
+  // the top-right corner too). Each candidate's model scale; the largest
+  // wins, ties the earlier.
+  struct Candidate {
+    double scale;
+    InsetStrip strip;
+  };
+  std::vector<Candidate> candidates{
+      {std::min(strip.model.width / silhouette_w, strip.model.height / silhouette_h) /
+           std::min(view.width / silhouette_w, view.height / silhouette_h),
+       strip}};
   struct Arrangement {
     bool column, flipped;
     int ax, ay;
@@ -542,18 +549,38 @@ OverviewPlan plan_quality_overview(const HexMesh& mesh, const Topology& topology
       }
     if (a.flipped) std::reverse(side.slots.begin(), side.slots.end());
     const double t = largest_free_scale(mask, gw, gh, view, side.slots, margin, a.ax, a.ay);
-    if (t > best + 1e-9) {
-      best = t;
-      strip = {scaled_view(view, t, a.ax, a.ay), side.slots};
-    }
+    if (t > 0.0) candidates.push_back({t, {scaled_view(view, t, a.ax, a.ay), side.slots}});
   }
-  f.layout.view = strip.model;
-  f.camera = fit_camera_to_points(points, view_direction_of(options),
-                                  static_cast<double>(strip.model.width) / std::max(1, strip.model.height), {.up = options.up});
-  plan.callouts = inverted_callouts(mesh, topology, options.inverted_cells, vertex_quality, f.camera, f.layout.view,
-                                    min_radius, renderer);
-  plan.insets = plan_inverted_insets(mesh, plan.callouts, strip.slots, f.camera, f.label_size, full_area);
-  return plan;
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.scale > b.scale; });
+  // The largest model whose rings pass under no inset (issue 45: kitten's
+  // ring ran under inset A, which hid part of it): the silhouette clears
+  // the slots, a ring (drawn around its cells with a margin) may not.
+  // None such: the largest.
+  const auto place = [&](const InsetStrip& s, OverviewPlan& out) {
+    out.frame.layout.view = s.model;
+    out.frame.camera = fit_camera_to_points(points, view_direction_of(options),
+                                            static_cast<double>(s.model.width) / std::max(1, s.model.height), {.up = options.up});
+    out.callouts = inverted_callouts(mesh, topology, options.inverted_cells, vertex_quality, out.frame.camera,
+                                     out.frame.layout.view, min_radius, renderer);
+    out.insets = plan_inverted_insets(mesh, out.callouts, s.slots, out.frame.camera, out.frame.label_size, full_area);
+  };
+  OverviewPlan first;
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    OverviewPlan trial = plan;
+    place(candidates[k].strip, trial);
+    if (!rings_under_insets(trial.callouts, trial.insets, overview_ring_thickness(trial.frame.style))) return trial;
+    if (k == 0) first = std::move(trial);
+  }
+  return first;
+}
+
+bool rings_under_insets(std::span<const InvertedCallout> callouts, std::span<const InvertedInset> insets, double thickness) {
+  for (const InvertedCallout& c : callouts)
+    for (const ScreenDisc& d : callout_discs(c, thickness))
+      for (const InvertedInset& inset : insets)
+        if (box_meets_disc(inset.rect, d)) return true;
+  return false;
 }
 
 Image render_quality_overview(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
@@ -617,15 +644,15 @@ Image render_quality_overview(const HexMesh& mesh, const Topology& topology, con
   }
   // The rings, the insets beside the model (a large ring may pass under
   // one), then the labels around them, anywhere in the whole view.
-  for (const InvertedCallout& c : callouts)
-    draw_marker_ring(figure, c.x, c.y, c.radius, thickness, !callout_in_sight(c), kCalloutColor);
+  for (const InvertedCallout& c : callouts) draw_callout_rings(figure, c, thickness);
   draw_inverted_insets(figure, insets, pictures, callouts, options.cell_noun, text_size, style);
   std::vector<PixelRect> taken;
   for (const InvertedInset& inset : insets) taken.push_back(inset.rect);
   draw_inverted_callouts(figure, plan.full_view, callouts, options.cell_noun, thickness, text_size, style, taken, false);
   // The legend keeps the ring styles drawn.
   const bool solid = std::any_of(callouts.begin(), callouts.end(), callout_in_sight);
-  const bool dashed = std::any_of(callouts.begin(), callouts.end(), [](const InvertedCallout& c) { return !callout_in_sight(c); });
+  const bool dashed = std::any_of(callouts.begin(), callouts.end(),
+                                  [](const InvertedCallout& c) { return !callout_in_sight(c) || c.hidden_radius > 0.0; });
   std::erase_if(f.bar.swatches, [&](const ColorBarSwatch& s) {
     return (s.shape == SwatchShape::solid_ring && !solid) || (s.shape == SwatchShape::dashed_ring && !dashed);
   });

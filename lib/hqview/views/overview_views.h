@@ -194,6 +194,12 @@ OverviewPlan plan_quality_overview(const HexMesh& mesh, const Topology& topology
                                    const std::vector<double>& vertex_quality, const OverviewOptions& options,
                                    Renderer& renderer);
 
+// Whether a ring of `callouts` (callout_discs: the ring's outer edge,
+// its dashed ring of hidden groups too) reaches into an inset's rectangle.
+// plan_quality_overview places the model, of its arrangements, the largest
+// where none does (issue 45: an inset covered part of a ring).
+bool rings_under_insets(std::span<const InvertedCallout> callouts, std::span<const InvertedInset> insets, double thickness);
+
 // The overview figure: options.width x options.height, the 3D view on the
 // left framing the boundary vertices tightly (fit_camera_to_points), the quality colour bar on the
 // right, the title on top; each group of options.inverted_cells ringed and

@@ -238,11 +238,10 @@ std::vector<ViewFile> build_overview(ViewContext& c) {
       !eye.front_from_target ? std::string("the model's front")
       : eye.target == WorstFaces::Kind::worst_cluster ? std::string("the worst cluster's side")
                                                       : "the inverted " + std::string(cell_word(c.a) == "hex" ? "hexes'" : "cells'") + " side";
-  overview.title += " (from " + overview_side_name(eye.direction, overview.up, eye.front, front_name);
+  overview.title += ", from " + overview_side_name(eye.direction, overview.up, eye.front, front_name);
   if (!eye.is_default)
-    overview.title += std::string("; turned to the ") +
+    overview.title += std::string(", turned to show the ") +
                       (eye.target == WorstFaces::Kind::inverted ? "inverted hexes" : "worst cluster");
-  overview.title += ")";
   Image image = render_quality_overview(c.a.mesh, c.a.topology, c.quality(), overview, c.renderer);
   return {framed("views/overview.png", std::move(image), c)};
 }
