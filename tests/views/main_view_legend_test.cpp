@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -60,13 +61,10 @@ HexMesh every_mark() {
   mesh.points[static_cast<std::size_t>(point_id(5, 5, 2))].z = 0.6;
   for (const int i : {1, 8}) {
     const std::array<Index, 8> cell = mesh.hexes[static_cast<std::size_t>(i + 10 * (i + 10))];
-    std::array<Index, 8> copy{};
-    for (int k = 0; k < 8; ++k) {
-      copy[static_cast<std::size_t>(k)] = static_cast<Index>(mesh.points.size());
-      mesh.points.push_back(mesh.points[static_cast<std::size_t>(cell[static_cast<std::size_t>(k)])] +
-                            Vec3{0.3, 0.3, 0.2});
-    }
-    mesh.hexes.push_back(copy);
+    std::array<Index, 8> shifted{};
+    std::iota(shifted.begin(), shifted.end(), static_cast<Index>(mesh.points.size()));
+    for (const Index v : cell) mesh.points.push_back(Vec3{0.3, 0.3, 0.2} + mesh.points[static_cast<std::size_t>(v)]);
+    mesh.hexes.push_back(shifted);
   }
   std::array<Index, 8> cube{};
   for (int k = 0; k < 8; ++k) {
