@@ -159,6 +159,8 @@ TEST(MainViewLegend, EveryMarkDrawnHasItsLegendLine) {
   ASSERT_GT(a.overlap.num_intersecting_cells, 0);
   ASSERT_GT(a.overlap.num_coincident_vertices, 0);
   MainViewOptions options;
+  options.width = 800;  // a quarter of the pixels to draw: the marks are the same
+  options.height = 600;
   options.inverted_cells = &a.inverted;
   int with_outlines = 0;
   for (const Vec3& direction : {Vec3{1.0, -1.0, 1.5}, Vec3{-0.3, 0.2, -1.0}, Vec3{0.1, 0.15, -1.0}}) {
@@ -201,6 +203,8 @@ TEST(MainViewLegend, TheLegendBeforeFailsTheCheck) {
   const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
   const Analysed a = analyse(every_mark());
   MainViewOptions options;
+  options.width = 800;  // a quarter of the pixels to draw: the marks are the same
+  options.height = 600;
   options.inverted_cells = &a.inverted;
   MainViewPlan plan = plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, Vec3{1.0, -1.0, 1.5}, options, *renderer);
   for (LegendLine& l : plan.legend) {

@@ -571,8 +571,10 @@ MainViewPlan plan_main_view(const HexMesh& mesh, const Topology& topology, const
 // "#k (n)"), and a legend on the right. Where a glyph hides them (the id
 // image), the inverted faces' outlines (kInvertedOutlineWidth) are drawn
 // over it (the clusters' edge lines are not: over a glyph they showed other
-// clusters' colours, issue 44 part V round 2), but not within kInvertedOutlineCore of a coloured glyph's radius of its
-// centre (issue 44 part V).
+// clusters' colours, issue 44 part V round 2), but not within
+// kInvertedOutlineCore of a coloured glyph's radius of its centre (issue 44
+// part V) nor on #0's glyph (part P round 3): main_view_outlines_over_glyphs.
+// What it draws is plan_main_view's.
 Image render_main_view(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                        const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& options,
                        Renderer& renderer);
