@@ -329,12 +329,13 @@ TEST(SurfaceViews, EveryInvertedFaceShowsOverTheGlyphs) {
     // Issue 44 part V: a planar 24 x 24 grid, vertex (12, 12) pushed to
     // (13.4, 12.3): #0's glyph (at least 12 px at 600 px height, up to one
     // mean edge) and its rings cover most of each folded quad; each keeps
-    // its outline in sight, drawn over the glyph and its rings (not over
-    // the glyph's core, within half its radius of the marked vertex): of
+    // its outline in sight, drawn over the glyph rings and other glyphs but
+    // never over #0's glyph (the 44p review: the outlines crossed #0): of
     // the points along its edges (every 0.05, corners left out) outside
-    // that core (half of #0's largest radius, max(12 px, 1.05 mean edges),
-    // plus 2 px), at least 0.9 have a pixel of its colour within 2 px.
-    // Before, the tilted grid's one inverted face was 75 % under #0.
+    // #0's disc (its largest radius, max(12 px, 1.05 mean edges), plus
+    // 2 px; part V round 1 left out only half that, the core), at least
+    // 0.9 have a pixel of its colour within 2 px.
+    // Before part V, the tilted grid's one inverted face was 75 % under #0.
     const int n = 24;
     Grid g = planar_grid(n, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 1.0);
     g.points[static_cast<std::size_t>(12 + (n + 1) * 12)] = {13.4, 12.3, 0.0};
@@ -350,7 +351,7 @@ TEST(SurfaceViews, EveryInvertedFaceShowsOverTheGlyphs) {
         ASSERT_TRUE(f.camera);
         const Vec3 centre = a.glyphs->clusters.at(0).position;
         const Pixel c0 = to_pixel(f, centre), e0 = to_pixel(f, centre + Vec3{1.05, 0.0, 0.0});
-        const double core = 0.5 * std::max(12.0, std::hypot(e0.x - c0.x, e0.y - c0.y)) + 2.0;
+        const double core = std::max(12.0, std::hypot(e0.x - c0.x, e0.y - c0.y)) + 2.0;
         for (const BoundaryPolygon& face : boundary_polygons(a.topology)) {
           if (!cell_is_inverted(a.field, static_cast<std::size_t>(face.cell))) continue;
           const Rgba8 colour = surface_fill_color(a.field.cell_scaled_jacobian[static_cast<std::size_t>(face.cell)]);
@@ -366,7 +367,7 @@ TEST(SurfaceViews, EveryInvertedFaceShowsOverTheGlyphs) {
             }
           }
           ++faces;
-          EXPECT_GE(points, 20) << "cell " << face.cell;
+          EXPECT_GE(points, 8) << "cell " << face.cell;  // 12 and more outside #0
           EXPECT_GE(seen, 0.9 * points) << "cell " << face.cell << ": " << seen << " of " << points;
         }
       }

@@ -126,7 +126,7 @@ TEST(Legend, RingSwatchIsHollow) {
   const AnnotationStyle style;  // scale 1: 18 px swatches, 34 px pitch
   Image image = make_image(300, 140, kWhite);
   const Rgba8 ring{38, 38, 38, 255}, square{25, 25, 25, 255};
-  const std::vector<LegendLine> lines{{ring, "ring: worst cluster #0", 0, true}, {square, "coincident vertices"}};
+  const std::vector<LegendLine> lines{{ring, "ring: worst cluster #0", 0, SwatchShape::solid_ring}, {square, "coincident vertices"}};
   draw_legend(image, {0, 0, 300, 140}, lines, style);
   // Swatches: x [16, 34), bottoms at y 40 and 74.
   auto near = [](const Rgba8& p, const Rgba8& c) { return std::abs(p.r - c.r) + std::abs(p.g - c.g) <= 20; };
@@ -142,6 +142,35 @@ TEST(Legend, RingSwatchIsHollow) {
                    : 0;
   }
   EXPECT_GE(outline, 12) << "the ring's outline is drawn in its colour";
+}
+
+// Each swatch shape has one entry in kSwatchMarks (the table draw_swatch
+// reads), and the shapes a legend tells apart look apart: an arrow has a
+// head above and below its shaft's end where a thick line has none; a line
+// leaves the square's corners empty where a box fills them.
+TEST(Legend, EverySwatchShapeHasOneMark) {
+  for (SwatchShape shape : {SwatchShape::box, SwatchShape::solid_ring, SwatchShape::dashed_ring, SwatchShape::line,
+                            SwatchShape::thick_line, SwatchShape::dashed_line, SwatchShape::thick_dashed_line, SwatchShape::arrow,
+                            SwatchShape::text}) {
+    int entries = 0;
+    for (const SwatchMark& m : kSwatchMarks) entries += m.shape == shape ? 1 : 0;
+    EXPECT_EQ(entries, 1) << static_cast<int>(shape);
+  }
+  const Rgba8 ink{20, 120, 40, 255};
+  auto drawn = [&](SwatchShape shape) {
+    Image image = make_image(40, 40, kWhite);
+    draw_swatch(image, {10, 10, 20, 20}, ink, shape);
+    return image;
+  };
+  const Image arrow = drawn(SwatchShape::arrow), line = drawn(SwatchShape::thick_line), box = drawn(SwatchShape::box);
+  // The head's wings at 3 px above and below the shaft, 4 px from its tip.
+  EXPECT_NE(pixel_at(arrow, 25, 17), kWhite);
+  EXPECT_NE(pixel_at(arrow, 25, 23), kWhite);
+  EXPECT_EQ(pixel_at(line, 25, 16), kWhite);
+  EXPECT_EQ(pixel_at(line, 25, 24), kWhite);
+  EXPECT_EQ(pixel_at(box, 11, 11), ink);
+  EXPECT_EQ(pixel_at(line, 11, 11), kWhite);
+  EXPECT_EQ(pixel_at(drawn(SwatchShape::text), 20, 20), kWhite);
 }
 
 TEST(FigureLayout, PartsTileTheFigure) {

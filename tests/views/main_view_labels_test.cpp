@@ -594,16 +594,16 @@ TEST(MainViewLabels, InvertedClustersWearARing) {
   int rings = 0;
   for (const LegendLine& line : legend) {
     if (line.text == "ring: worst cluster #0") {
-      EXPECT_TRUE(line.ring);
+      EXPECT_EQ(line.shape, SwatchShape::solid_ring);
       EXPECT_EQ(line.swatch, style.text_color);
       ++rings;
     }
     if (line.text == "ring: inverted (min < 0)") {
-      EXPECT_TRUE(line.ring);
+      EXPECT_EQ(line.shape, SwatchShape::solid_ring);
       EXPECT_EQ(line.swatch, inverted);
       ++rings;
     }
-    if (line.text.starts_with("coincident vertices")) EXPECT_FALSE(line.ring);
+    if (line.text.starts_with("coincident vertices")) EXPECT_NE(line.shape, SwatchShape::solid_ring);
   }
   EXPECT_EQ(rings, 2);
   // The clusters' coloured edge lines are named with a line swatch in #0's
@@ -621,7 +621,7 @@ TEST(MainViewLabels, InvertedClustersWearARing) {
   const std::vector<LegendLine> named = edge_line(options);
   ASSERT_EQ(named.size(), 1u);
   EXPECT_EQ(named[0].text, "edges at #0's " + std::to_string(size) + " vertices");
-  EXPECT_TRUE(named[0].line);
+  EXPECT_EQ(named[0].shape, SwatchShape::thick_line);
   EXPECT_EQ(named[0].swatch, to_rgba8(cluster_color(0, deep.glyphs.options.top_clusters)));
   MainViewOptions capped = options;
   capped.cluster_edge_vertices = 1;

@@ -387,6 +387,54 @@ AnnotationStyle color_bar_style_for(const ColorBar& bar, const AnnotationStyle& 
   return fitted;
 }
 
+const SwatchMark& swatch_mark(SwatchShape shape) {
+  for (const SwatchMark& m : kSwatchMarks)
+    if (m.shape == shape) return m;
+  return kSwatchMarks[0];
+}
+
+void draw_swatch(Image& image, const PixelRect& box, const Rgba8& color, SwatchShape shape, int outline) {
+  const SwatchMark& mark = swatch_mark(shape);
+  const double width = std::max(1.5, mark.width * box.height);
+  const double cx = box.x + 0.5 * box.width, cy = box.y + 0.5 * box.height;
+  switch (mark.kind) {
+    case SwatchMark::Kind::fill:
+      fill_rect(image, box, color);
+      if (outline > 0) outline_rect(image, box, outline, kOutlineColor);
+      return;
+    case SwatchMark::Kind::segment: {
+      // Across the box (the head's length short of its right end): 4 dashes
+      // and 3 gaps when dashed.
+      const double x0 = box.x + 1.0, head = mark.head ? 0.4 * box.height : 0.0;
+      const double x1 = box.x + box.width - 1.0 - head;
+      for (int d = 0; d < 7; d += mark.dashed ? 2 : 7)
+        draw_line(image, x0 + (mark.dashed ? d / 7.0 : 0.0) * (x1 - x0), cy,
+                  x0 + (mark.dashed ? (d + 1) / 7.0 : 1.0) * (x1 - x0), cy, color, width);
+      if (mark.head)
+        for (const double side : {-1.0, 1.0})
+          draw_line(image, x1 + head, cy, x1 - 0.2 * head, cy + side * head, color, width);
+      return;
+    }
+    case SwatchMark::Kind::ring: {
+      // As the figure draws it: 12 arcs of 30 degrees, every other one
+      // left out when dashed.
+      const double r = 0.5 * (std::min(box.width, box.height) - width);
+      constexpr int kArcs = 12, kSteps = 4;
+      for (int a = 0; a < kArcs; ++a) {
+        if (mark.dashed && a % 2 == 1) continue;
+        for (int k = 0; k < kSteps; ++k) {
+          const double t0 = 2.0 * M_PI * (a * kSteps + k) / (kArcs * kSteps);
+          const double t1 = 2.0 * M_PI * (a * kSteps + k + 1) / (kArcs * kSteps);
+          draw_line(image, cx + r * std::cos(t0), cy + r * std::sin(t0), cx + r * std::cos(t1), cy + r * std::sin(t1),
+                    color, width);
+        }
+      }
+      return;
+    }
+    case SwatchMark::Kind::none: return;
+  }
+}
+
 void draw_color_bar(Image& image, const PixelRect& area, const ColorBar& bar, const AnnotationStyle& given_style) {
   const AnnotationStyle style = color_bar_style_for(bar, given_style, area);
   const LegendMetrics m = legend_metrics(style, area.height);
@@ -422,39 +470,7 @@ void draw_color_bar(Image& image, const PixelRect& area, const ColorBar& bar, co
 
   int swatch_y = bar_rect.y + bar_rect.height + outline + m.swatch_gap;
   for (const ColorBarSwatch& swatch : bar.swatches) {
-    const PixelRect box{x, swatch_y, m.bar_width, m.swatch_height};
-    if (swatch.shape == SwatchShape::box) {
-      fill_rect(image, box, to_rgba8(swatch.color));
-      outline_rect(image, box, outline, kOutlineColor);
-    } else if (swatch.shape == SwatchShape::line || swatch.shape == SwatchShape::thick_line ||
-               swatch.shape == SwatchShape::dashed_line || swatch.shape == SwatchShape::thick_dashed_line) {
-      // A horizontal segment across the swatch: 4 dashes and 3 gaps when dashed.
-      const bool thick = swatch.shape == SwatchShape::thick_line || swatch.shape == SwatchShape::thick_dashed_line;
-      const bool dashed = swatch.shape == SwatchShape::dashed_line || swatch.shape == SwatchShape::thick_dashed_line;
-      const double width = std::max(1.0, (thick ? 0.2 : 0.08) * m.swatch_height);
-      const double y = box.y + 0.5 * box.height, x0 = box.x + 1.0, x1 = box.x + box.width - 1.0;
-      for (int d = 0; d < 7; d += dashed ? 2 : 7) {
-        const bool whole = !dashed;
-        draw_line(image, x0 + (whole ? 0.0 : d / 7.0) * (x1 - x0), y, x0 + (whole ? 1.0 : (d + 1) / 7.0) * (x1 - x0), y,
-                  to_rgba8(swatch.color), width);
-      }
-    } else if (swatch.shape != SwatchShape::text) {
-      // A ring as the figure draws it: 12 arcs of 30 degrees, every other
-      // one left out when dashed.
-      const double width = std::max(1.5, 0.18 * m.swatch_height);
-      const double cx = box.x + 0.5 * box.width, cy = box.y + 0.5 * box.height;
-      const double r = 0.5 * (std::min(box.width, box.height) - width);
-      constexpr int kArcs = 12, kSteps = 4;
-      for (int a = 0; a < kArcs; ++a) {
-        if (swatch.shape == SwatchShape::dashed_ring && a % 2 == 1) continue;
-        for (int k = 0; k < kSteps; ++k) {
-          const double t0 = 2.0 * M_PI * (a * kSteps + k) / (kArcs * kSteps);
-          const double t1 = 2.0 * M_PI * (a * kSteps + k + 1) / (kArcs * kSteps);
-          draw_line(image, cx + r * std::cos(t0), cy + r * std::sin(t0), cx + r * std::cos(t1), cy + r * std::sin(t1),
-                    to_rgba8(swatch.color), width);
-        }
-      }
-    }
+    draw_swatch(image, {x, swatch_y, m.bar_width, m.swatch_height}, to_rgba8(swatch.color), swatch.shape, outline);
     draw_text(image, tick_x + m.tick_length + m.tick_gap, swatch_y + m.swatch_height / 2 + baseline_shift, swatch.label,
               m.tick_size, style);
     swatch_y += m.swatch_pitch;
@@ -499,21 +515,7 @@ void draw_legend(Image& image, const PixelRect& area, std::span<const LegendLine
     if (line.swatch) {
       Rgba8 color = *line.swatch;
       color.a = 255;
-      if (line.ring) {
-        const double width = std::max(1.5, 3.0 * style.scale * fit);
-        const double cx = x + 0.5 * swatch, cy = y - 0.5 * swatch, r = 0.5 * (swatch - width);
-        constexpr int kSegments = 32;
-        for (int i = 0; i < kSegments; ++i) {
-          const double a0 = 2.0 * M_PI * i / kSegments, a1 = 2.0 * M_PI * (i + 1) / kSegments;
-          draw_line(image, cx + r * std::cos(a0), cy + r * std::sin(a0), cx + r * std::cos(a1), cy + r * std::sin(a1),
-                    color, width);
-        }
-      } else if (line.line) {
-        const double width = std::max(2.0, 4.0 * style.scale * fit);
-        draw_line(image, x, y - 0.5 * swatch, x + swatch, y - 0.5 * swatch, color, width);
-      } else {
-        fill_rect(image, {x, y - swatch, swatch, swatch}, color);
-      }
+      draw_swatch(image, {x, y - swatch, swatch, swatch}, color, line.shape);
       const int text_x = x + swatch + swatch / 2;
       draw_text(image, text_x, y - 2, ellipsize(line.text, text_size, right - text_x, style), text_size, style);
     } else {

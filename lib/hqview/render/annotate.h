@@ -69,13 +69,39 @@ struct ColorBarTick {
 };
 
 // A discrete legend entry drawn below the bar (e.g. "inverted").
-// A swatch's mark: a filled box, or a ring drawn solid or dashed (the
-// overview's inverted-cell rings, issue 45e: each ring style its own entry).
-// box: a filled square (a colour of the data); rings as the figure's
-// markers; line / thick_line / dashed_line: a horizontal segment as the
-// figure draws edges (1, 2.5 and 1 times the line width, the last in 4 dashes);
-// text: no mark, the label alone (a count the figure names but does not draw).
-enum class SwatchShape { box, solid_ring, dashed_ring, line, thick_line, dashed_line, thick_dashed_line, text };
+// A swatch's mark, as the figure draws the thing it names (kSwatchMarks
+// describes each; draw_swatch draws them for the colour bar and the swatch
+// legend alike): box, a filled square (a colour of the data); solid_ring /
+// dashed_ring, a ring as the figure's markers (the overview's inverted-cell
+// rings, issue 45e: each ring style its own entry); line / thick_line /
+// dashed_line / thick_dashed_line, a horizontal segment as the figure draws
+// edges (1, 2.5, 1 and 2.5 times the line width, the dashed in 4 dashes); arrow, a thick segment
+// with a head (view A's overlap arrows); text: no mark, the label alone (a
+// count the figure names but does not draw).
+enum class SwatchShape { box, solid_ring, dashed_ring, line, thick_line, dashed_line, thick_dashed_line, arrow, text };
+// How a shape is drawn in a swatch box of height h: its kind of mark, its
+// stroke width as a fraction of h (rings and segments), whether it is
+// dashed (every other of 12 arcs, 4 of 7 segment pieces).
+struct SwatchMark {
+  enum class Kind { fill, ring, segment, none };
+  SwatchShape shape;
+  Kind kind;
+  double width = 0.0;
+  bool dashed = false;
+  bool head = false;  // an arrowhead at the segment's right end
+};
+inline constexpr SwatchMark kSwatchMarks[] = {
+    {SwatchShape::box, SwatchMark::Kind::fill},
+    {SwatchShape::solid_ring, SwatchMark::Kind::ring, 0.18},
+    {SwatchShape::dashed_ring, SwatchMark::Kind::ring, 0.18, true},
+    {SwatchShape::line, SwatchMark::Kind::segment, 0.08},
+    {SwatchShape::thick_line, SwatchMark::Kind::segment, 0.2},
+    {SwatchShape::dashed_line, SwatchMark::Kind::segment, 0.08, true},
+    {SwatchShape::thick_dashed_line, SwatchMark::Kind::segment, 0.2, true},
+    {SwatchShape::arrow, SwatchMark::Kind::segment, 0.14, false, true},
+    {SwatchShape::text, SwatchMark::Kind::none},
+};
+const SwatchMark& swatch_mark(SwatchShape shape);
 struct ColorBarSwatch {
   Color color;
   std::string label;
@@ -124,22 +150,25 @@ FigureLayout figure_layout(int width, int height, bool has_title, int legend_wid
 // with "...".
 void draw_title(Image& image, const PixelRect& area, std::string_view title, const AnnotationStyle& style);
 
-// A line of a swatch legend: a colour square and its text, or text alone (a
-// heading or a note); gap_halves half lines of space before it.
+// A line of a swatch legend: a swatch (its shape as the figure draws the
+// thing named, kSwatchMarks) and its text, or text alone (a heading or a
+// note); gap_halves half lines of space before it.
 struct LegendLine {
   std::optional<Rgba8> swatch;
   std::string text;
   int gap_halves = 0;
-  bool ring = false;  // swatch drawn as a hollow ring (as a view draws its rings), not a square
-  bool line = false;  // swatch drawn as a short thick line (as a view draws its edge lines)
+  SwatchShape shape = SwatchShape::box;
 };
+// Draws shape's mark (kSwatchMarks) in color in box; a fill gets an
+// outline of outline px in the outline grey when outline > 0.
+void draw_swatch(Image& image, const PixelRect& box, const Rgba8& color, SwatchShape shape, int outline = 0);
 // Draws the lines from the top of area: 34-pixel pitch, 18-pixel swatches and
 // 19-pixel text at the style's scale, all shrunk together when the lines
 // would not fit the area's height; text too long for the width ends in
-// "...". Swatches are drawn opaque; a ring swatch is a circle outline
-// (3 px wide at scale 1) with the background inside, so it differs by shape
-// from any filled swatch of a similar colour; a line swatch is a horizontal
-// line across the swatch's width, 4 px thick at scale 1.
+// "...". Swatches are drawn opaque (draw_swatch): a ring swatch is a circle
+// outline with the background inside, so it differs by shape from any
+// filled swatch of a similar colour; a line swatch a horizontal line across
+// the swatch's width.
 void draw_legend(Image& image, const PixelRect& area, std::span<const LegendLine> lines, const AnnotationStyle& style);
 
 }  // namespace hq

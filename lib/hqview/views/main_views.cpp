@@ -937,7 +937,7 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   // (they win over a surface mesh's fill and over coplanar folded faces),
   // depth-tested against the mesh's fill and the glyphs (part U round 2:
   // drawn over everything they turned #0 blue). Their outlines show over
-  // the glyphs (draw_over_glyphs).
+  // the glyphs (main_view_outlines_over_glyphs).
   const std::vector<BoundaryPolygon> inverted_faces = inverted_boundary_faces(topology, options).drawn;
   if (!inverted_faces.empty()) {
     TriangleSet faces;
@@ -1166,21 +1166,29 @@ double worst_rings_extent(double radius, bool is_inverted, const AnnotationStyle
 
 // A ring around cluster #0's glyph on screen (dark on a pale halo, a few
 // pixels outside its silhouette), so the worst place is found first even
-// where its glyph is small.
+// where its glyph is small. The halo hugs the glyph from 0.5 px outside
+// its rim (issue 44 part P, round 3): a light outline between the dark red
+// glyph and the wireframe or a dark neighbour (an inverted #0's halo is
+// the inverted ring's, which begins there too).
 void draw_worst_glyph_ring(Image& figure, const ScreenDisc& worst, bool is_inverted, const AnnotationStyle& style,
                            const MainViewOptions& options) {
   if (!(worst.radius > 0.0)) return;
   Rgba8 halo = options.background;
   halo.a = 255;
   const double radius = worst_ring_radius(worst.radius, is_inverted, style);
+  const double halo_width = std::max(4.0, 5.0 * style.scale);
+  const double outer = radius + 0.5 * halo_width;
+  const double inner = is_inverted ? radius - 0.5 * halo_width : worst.radius + 0.5;
   constexpr int kSegments = 96;
-  for (int pass = 0; pass < 2; ++pass)
+  for (int pass = 0; pass < 2; ++pass) {
+    const double r = pass == 0 ? 0.5 * (inner + outer) : radius;
     for (int i = 0; i < kSegments; ++i) {
       const double a0 = 2.0 * M_PI * i / kSegments, a1 = 2.0 * M_PI * (i + 1) / kSegments;
-      draw_line(figure, worst.x + radius * std::cos(a0), worst.y + radius * std::sin(a0), worst.x + radius * std::cos(a1),
-                worst.y + radius * std::sin(a1), pass == 0 ? halo : style.text_color,
-                pass == 0 ? std::max(4.0, 5.0 * style.scale) : std::max(1.5, 2.2 * style.scale));
+      draw_line(figure, worst.x + r * std::cos(a0), worst.y + r * std::sin(a0), worst.x + r * std::cos(a1),
+                worst.y + r * std::sin(a1), pass == 0 ? halo : style.text_color,
+                pass == 0 ? outer - inner : std::max(1.5, 2.2 * style.scale));
     }
+  }
 }
 
 // A ring in the inverted colour just outside each glyph of a cluster with an
@@ -1226,7 +1234,8 @@ std::string mostly_inverted_note(const QualityField& quality) {
 std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const OverlapReport* overlap,
                                           const AnnotationStyle& style, const MainViewOptions& options,
                                           double glyph_scale, std::span<const Index> hidden, Index left_out,
-                                          std::span<const Index> unlabelled, double worst_pixels) {
+                                          std::span<const Index> unlabelled, double worst_pixels,
+                                          std::span<const Rgba8> outlines_over_glyphs) {
   // One line per coloured tie class (glyph_tie_classes): "#k (n)  min q",
   // or for a tie "#k-#m  N tied at q".
   std::vector<Index> storage;
@@ -1339,19 +1348,19 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
       lines.push_back({to_rgba8(cluster_color(0, glyphs.options.top_clusters)),
                        "edges at " + worst + "'s " + n + (capped ? " worst" : "") +
                            (surrounded == 1 ? " vertex" : " vertices"),
-                       0, false, true});
+                       0, SwatchShape::thick_line});
     else if (classes > 1) {
       lines.push_back({to_rgba8(cluster_color(0, glyphs.options.top_clusters)),
-                       "edges at " + n + (capped ? " worst vertices" : " glyph vertices"), 0, false, true});
+                       "edges at " + n + (capped ? " worst vertices" : " glyph vertices"), 0, SwatchShape::thick_line});
       lines.push_back({std::nullopt, "  (each in its cluster's colour)"});
     }
   }
   // The rings as the view draws them (draw_worst_glyph_ring,
   // draw_inverted_glyph_rings): ring swatches, unlike the square ones.
   if (!glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0 && !worst_is_tied)
-    lines.push_back({style.text_color, "ring: worst cluster #0", 0, true});
+    lines.push_back({style.text_color, "ring: worst cluster #0", 0, SwatchShape::solid_ring});
   if (!glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0)
-    lines.push_back({to_rgba8(kInvertedColor), "ring: inverted (min < 0)", 0, true});
+    lines.push_back({to_rgba8(kInvertedColor), "ring: inverted (min < 0)", 0, SwatchShape::solid_ring});
   // Findings and places by kind, as the markers count them: the "xN"
   // labels of the marker groups add up to the two findings counts.
   std::size_t findings[2] = {0, 0};
@@ -1369,7 +1378,10 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
   // faces left out). A surface mesh's fill lines count them.
   if (options.inverted_cell_count > 0 && !options.surface_cell_quality) {
     const std::size_t faces = options.inverted_face_count, drawn = options.inverted_overlay_faces;
-    lines.push_back({to_rgba8(kInvertedColor), "inverted " + cells_word + ": " + std::to_string(options.inverted_cell_count), 1});
+    // A swatch only when faces are drawn (nothing else wears it).
+    lines.push_back({drawn > 0 && faces <= kMaxInvertedOverlayVolumeFaces ? std::optional(to_rgba8(kInvertedColor))
+                                                                          : std::nullopt,
+                     "inverted " + cells_word + ": " + std::to_string(options.inverted_cell_count), 1});
     if (faces == 0)
       lines.push_back({std::nullopt, "  none on the boundary"});
     else if (faces > kMaxInvertedOverlayVolumeFaces) {
@@ -1382,16 +1394,30 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
       lines.push_back({std::nullopt, "  (see-through, as glyphs)"});
     }
   }
+  // The outlines drawn over the glyphs that hide such faces: a line swatch
+  // per colour drawn (44p review: a mark without a legend entry).
+  for (const Rgba8& color : outlines_over_glyphs)
+    lines.push_back({color, "outline: face behind a glyph", 0, SwatchShape::line});
   // An unrun check has no number and no swatch (nothing of its colours is
   // drawn): "0" would read as "checked, none found".
   if (overlap) {
-    lines.push_back({kCoincidentArrowColor, "coincident vertices: " + std::to_string(findings[0]), 1});
-    lines.push_back({kIntersectionArrowColor, "intersecting pairs: " + std::to_string(findings[1])});
+    // The findings as the view marks them, with arrows; the cells as their
+    // translucent faces look on the background (44p review: pairs and
+    // cells shared one swatch).
+    // A swatch only for what is drawn: none for a count of 0.
+    const auto swatch = [](std::size_t count, const Rgba8& color) {
+      return count > 0 ? std::optional(color) : std::nullopt;
+    };
+    lines.push_back({swatch(findings[0], kCoincidentArrowColor), "coincident vertices: " + std::to_string(findings[0]),
+                     1, SwatchShape::arrow});
+    lines.push_back({swatch(findings[1], kIntersectionArrowColor), "intersecting pairs: " + std::to_string(findings[1]),
+                     0, SwatchShape::arrow});
     // A surface mesh's page, overview and overlap table say "intersecting
     // faces": one word for one count (issue 47 part F).
-    lines.push_back({kIntersectingCellColor,
+    lines.push_back({swatch(intersecting, blend_over(kIntersectingCellColor, options.background)),
                      "intersecting " + (options.surface_cell_quality ? std::string("faces") : cells_word) + ": " +
                          std::to_string(intersecting)});
+    if (intersecting > 0) lines.push_back({kIntersectionArrowColor, "  their edges", 0, SwatchShape::line});
   } else if (options.surface_cell_quality) {
     lines.push_back({std::nullopt, "overlap: not checked", 1});
     lines.push_back({std::nullopt, "  on surface meshes"});
@@ -1409,30 +1435,17 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
   // colours (no edge is kWireframeColor).
   if (options.cell_kinds.empty())
     lines.push_back({options.surface_cell_quality ? kSurfaceEdgeColor : kWireframeColor,
-                     options.surface_cell_quality ? "edges" : "boundary edges"});
+                     options.surface_cell_quality ? "edges" : "boundary edges", 0, SwatchShape::line});
   // "cells: 64 hex, 484 tet, 16 pyramid" as a heading and one line per kind
   // (one line would be cut in the legend's width).
   // Each with its boundary edges' colour.
   if (!options.cell_kinds.empty()) {
     lines.push_back({std::nullopt, "edge colour by cell kind", 1});
-    for (const auto& [color, text] : cell_kind_swatches(options.cell_kinds)) lines.push_back({color, text});
+    for (const auto& [color, text] : cell_kind_swatches(options.cell_kinds))
+      lines.push_back({color, text, 0, SwatchShape::line});
   }
   return lines;
 }
-
-namespace {
-
-// Legend: what each colour means (draw_legend shrinks it to the panel).
-void draw_main_legend(Image& figure, const GlyphResult& glyphs, const OverlapReport* overlap,
-                      const FigureLayout& layout, const AnnotationStyle& style, const MainViewOptions& options,
-                      double glyph_scale, std::span<const Index> hidden, Index left_out,
-                      std::span<const Index> unlabelled, double worst_pixels) {
-  draw_legend(figure, layout.legend,
-              main_legend_lines(glyphs, overlap, style, options, glyph_scale, hidden, left_out, unlabelled, worst_pixels),
-              style);
-}
-
-}  // namespace
 
 namespace {
 
@@ -2092,16 +2105,19 @@ struct ColouredSegment {
   Rgba8 color;
 };
 
-// Draws the parts of segments that a glyph hides (ids: main_view_id_image
-// shows a glyph there) over it, width px (on a pale halo 2 px wider when
-// halo), but not within kInvertedOutlineCore of a coloured glyph's radius
-// from its centre (the vertex it marks keeps its colour).
+// The parts of segments that a glyph hides (ids: main_view_id_image shows
+// a glyph there), as runs in figure pixels, but not within
+// kInvertedOutlineCore of a coloured glyph's radius from its centre (the
+// vertex it marks keeps its colour) nor anywhere on #0's disc (worst; the
+// 44p review: they crossed #0's glyph).
 // rings: discs (the glyph rings' extents) inside which segments are drawn
 // too, glyph or not.
-void draw_segments_over_glyphs(Image& figure, std::span<const ColouredSegment> segments, const Camera& camera,
-                               const PixelRect& view, const IdImage& ids, std::span<const ScreenDisc> coloured,
-                               double width, std::optional<Rgba8> halo, std::span<const ScreenDisc> rings = {}) {
-  if (ids.empty()) return;
+std::vector<OutlineRun> segment_runs_over_glyphs(std::span<const ColouredSegment> segments, const Camera& camera,
+                                                 const PixelRect& view, const IdImage& ids,
+                                                 std::span<const ScreenDisc> coloured, const ScreenDisc& worst,
+                                                 std::span<const ScreenDisc> rings) {
+  std::vector<OutlineRun> runs;
+  if (ids.empty()) return runs;
   const double aspect = static_cast<double>(view.width) / static_cast<double>(std::max(1, view.height));
   auto pixel = [&](const Vec3& p) {
     const Vec3 ndc = project_to_ndc(camera, aspect, p);
@@ -2112,12 +2128,12 @@ void draw_segments_over_glyphs(Image& figure, std::span<const ColouredSegment> s
         std::none_of(rings.begin(), rings.end(),
                      [&](const ScreenDisc& d) { return std::hypot(x - d.x, y - d.y) < d.radius; }))
       return false;
+    if (worst.radius > 0.0 && std::hypot(x - worst.x, y - worst.y) < worst.radius + 1.0) return false;
     return std::none_of(coloured.begin(), coloured.end(), [&](const ScreenDisc& d) {
       return std::hypot(x - d.x, y - d.y) < kInvertedOutlineCore * d.radius;
     });
   };
-  // Runs of wanted points every 0.5 px, each one segment; halos first.
-  std::vector<std::pair<std::array<double, 4>, Rgba8>> runs;
+  // Runs of wanted points every 0.5 px, each one segment.
   for (const ColouredSegment& s : segments) {
     const auto a = pixel(s.a), b = pixel(s.b);
     const double length = std::hypot(b[0] - a[0], b[1] - a[1]);
@@ -2133,50 +2149,63 @@ void draw_segments_over_glyphs(Image& figure, std::span<const ColouredSegment> s
       if (in && run < 0) run = i;
       if (!in && run >= 0) {
         const double t0 = static_cast<double>(run) / steps, t1 = std::min(1.0, static_cast<double>(i - 1) / steps);
-        runs.push_back({{a[0] + t0 * (b[0] - a[0]), a[1] + t0 * (b[1] - a[1]), a[0] + t1 * (b[0] - a[0]),
-                         a[1] + t1 * (b[1] - a[1])},
-                        s.color});
+        runs.push_back({a[0] + t0 * (b[0] - a[0]), a[1] + t0 * (b[1] - a[1]), a[0] + t1 * (b[0] - a[0]),
+                        a[1] + t1 * (b[1] - a[1]), s.color});
         run = -1;
       }
     }
   }
-  if (halo)
-    for (const auto& [r, color] : runs) draw_line(figure, r[0], r[1], r[2], r[3], *halo, width + 2.0);
-  for (const auto& [r, color] : runs) draw_line(figure, r[0], r[1], r[2], r[3], color, width);
+  return runs;
 }
 
-// What view A draws over the glyphs that hide it (issue 44 part V), outside
-// the coloured glyphs' cores: the outlines of the inverted faces drawn (scene 5b: the tilted grid's one inverted face was
-// 75 % under #0, one of hole_pushed's three wholly), in the face's colour,
-// kInvertedOutlineWidth px (times the scale, at least 2 px: a thinner
-// antialiased line has no pixel of the face's own colour).
-// The outlines also over the glyphs' rings (their pale halos hid the rest
-// of a small face; drawn after them).
-void draw_over_glyphs(Image& figure, const HexMesh& mesh, const Topology& topology, const MainViewOptions& scaled, const Camera& camera, const PixelRect& view, const IdImage& ids,
-                      const MainViewLabels& labels, const GlyphResult& glyphs, const AnnotationStyle& style) {
-  const std::span<const ScreenDisc> coloured = labels.coloured_glyphs;
+}  // namespace
+
+std::vector<OutlineRun> main_view_outlines_over_glyphs(const HexMesh& mesh, const Topology& topology,
+                                                       const GlyphResult& glyphs, const MainViewLabels& labels,
+                                                       const MainViewOptions& options) {
+  const AnnotationStyle style = annotation_style_for(options.height);
   std::vector<ScreenDisc> rings;
   for (ScreenDisc d : labels.inverted_glyphs) {
     d.radius = inverted_ring_radius(d.radius, style) + 0.5 * inverted_halo_width(style);
     rings.push_back(d);
   }
+  ScreenDisc worst;
   if (!labels.worst_is_tied && labels.worst_glyph.radius > 0.0) {
+    worst = labels.worst_glyph;
     ScreenDisc d = labels.worst_glyph;
     d.radius = worst_rings_extent(d.radius, !glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0, style);
     rings.push_back(d);
   }
   std::vector<ColouredSegment> outlines;
-  for (const BoundaryPolygon& face : inverted_boundary_faces(topology, scaled).drawn) {
-    const Rgba8 color = scaled.surface_cell_quality
-                            ? surface_fill_color((*scaled.surface_cell_quality)[static_cast<std::size_t>(face.cell)])
+  for (const BoundaryPolygon& face : inverted_boundary_faces(topology, options).drawn) {
+    const Rgba8 color = options.surface_cell_quality
+                            ? surface_fill_color((*options.surface_cell_quality)[static_cast<std::size_t>(face.cell)])
                             : to_rgba8(kInvertedColor);
     for (int k = 0; k < face.size; ++k)
       outlines.push_back({mesh.points[static_cast<std::size_t>(face.v[static_cast<std::size_t>(k)])],
                           mesh.points[static_cast<std::size_t>(face.v[static_cast<std::size_t>((k + 1) % face.size)])],
                           color});
   }
-  draw_segments_over_glyphs(figure, outlines, camera, view, ids, coloured,
-                            std::max(2.0, kInvertedOutlineWidth * style.scale), std::nullopt, rings);
+  return segment_runs_over_glyphs(outlines, labels.camera, labels.view, labels.ids, labels.coloured_glyphs, worst,
+                                  rings);
+}
+
+std::vector<Rgba8> outline_colors(std::span<const OutlineRun> runs) {
+  std::vector<Rgba8> colors;
+  for (const OutlineRun& r : runs)
+    if (std::find(colors.begin(), colors.end(), r.color) == colors.end()) colors.push_back(r.color);
+  return colors;
+}
+
+namespace {
+
+// Draws the runs (main_view_outlines_over_glyphs) kInvertedOutlineWidth px
+// wide (times the scale, at least 2 px: a thinner antialiased line has no
+// pixel of the face's own colour), after the glyphs' rings (their pale
+// halos hid the rest of a small face).
+void draw_outline_runs(Image& figure, std::span<const OutlineRun> runs, const AnnotationStyle& style) {
+  const double width = std::max(2.0, kInvertedOutlineWidth * style.scale);
+  for (const OutlineRun& r : runs) draw_line(figure, r.x0, r.y0, r.x1, r.y1, r.color, width);
 }
 
 }  // namespace
@@ -2218,30 +2247,42 @@ MainViewLabels main_view_labels(const HexMesh& mesh, const Topology& topology, c
   return layout_main_view_labels(glyphs, overlap, f.camera, f.layout, f.style, f.scaled, ids.empty() ? nullptr : &ids);
 }
 
+MainViewPlan plan_main_view(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
+                            const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& given,
+                            Renderer& renderer) {
+  MainViewPlan plan;
+  MainViewOptions options = given;
+  options.glyph_ties = tie_classes_of(glyphs, given.glyph_ties, plan.ties);
+  const MainViewFrame frame = main_view_frame(mesh, topology, glyphs, view_direction, options);
+  plan.style = frame.style;
+  plan.layout = frame.layout;
+  plan.scaled = frame.scaled;
+  plan.scene = main_view_scene(mesh, topology, glyphs, overlap, frame);
+  // Labels placed on what is visible (each points at its own glyph's pixels).
+  IdImage ids = main_view_id_image(renderer, plan.scene, glyphs, frame.camera, plan.layout.view, true,
+                                   options.glyph_ties);
+  plan.labels = layout_main_view_labels(glyphs, overlap, frame.camera, plan.layout, plan.style, plan.scaled,
+                                        ids.empty() ? nullptr : &ids);
+  plan.outlines = main_view_outlines_over_glyphs(mesh, topology, glyphs, plan.labels, plan.scaled);
+  plan.legend = main_legend_lines(glyphs, overlap, plan.style, plan.scaled, plan.labels.glyph_scale,
+                                  plan.labels.hidden_clusters, plan.labels.left_out_glyphs,
+                                  plan.labels.unlabelled_clusters, plan.labels.worst_glyph.radius,
+                                  outline_colors(plan.outlines));
+  return plan;
+}
+
 Image render_main_view(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                        const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& given,
                        Renderer& renderer) {
-  MainViewOptions options = given;
-  std::vector<Index> ties;
-  options.glyph_ties = tie_classes_of(glyphs, given.glyph_ties, ties);
-  const MainViewFrame frame = main_view_frame(mesh, topology, glyphs, view_direction, options);
-  const AnnotationStyle& style = frame.style;
-  const FigureLayout& layout = frame.layout;
-  const Camera& camera = frame.camera;
-  const MainViewOptions& scaled = frame.scaled;
-  const Scene scene = main_view_scene(mesh, topology, glyphs, overlap, frame);
-
-  Image figure = render_figure(renderer, scene, camera, options.width, options.height, layout, options.title, style);
-
-  // Labels placed on what is visible (each points at its own glyph's pixels).
-  const IdImage ids = main_view_id_image(renderer, scene, glyphs, camera, layout.view, true, options.glyph_ties);
-  const MainViewLabels labels =
-      layout_main_view_labels(glyphs, overlap, camera, layout, style, scaled, ids.empty() ? nullptr : &ids);
-  draw_glyph_rings(figure, labels, glyphs, style, scaled);
-  draw_over_glyphs(figure, mesh, topology, scaled, camera, layout.view, ids, labels, glyphs, style);
-  draw_main_view_labels(figure, labels, style, scaled);
-  draw_main_legend(figure, glyphs, overlap, layout, style, scaled, labels.glyph_scale, labels.hidden_clusters,
-                   labels.left_out_glyphs, labels.unlabelled_clusters, labels.worst_glyph.radius);
+  const MainViewPlan plan = plan_main_view(mesh, topology, glyphs, overlap, view_direction, given, renderer);
+  Image figure = render_figure(renderer, plan.scene, plan.labels.camera, given.width, given.height, plan.layout,
+                               given.title, plan.style);
+  // The rings, the outlines over the glyphs, the labels (in this order:
+  // each over the one before), the legend.
+  draw_glyph_rings(figure, plan.labels, glyphs, plan.style, plan.scaled);
+  draw_outline_runs(figure, plan.outlines, plan.style);
+  draw_main_view_labels(figure, plan.labels, plan.style, plan.scaled);
+  draw_legend(figure, plan.layout.legend, plan.legend, plan.style);
   return figure;
 }
 

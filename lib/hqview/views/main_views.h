@@ -6,6 +6,7 @@
 // cells translucent. Shown from the viewpoints (among 26 axis and diagonal
 // directions) that show the most glyph area.
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -38,18 +39,30 @@ inline constexpr Rgba8 kWireframeColor{120, 124, 134, 255};
 // 47 part F). Their width stays the wireframe's: wider lines at the plane
 // hid the thin parts of a folded quad that its neighbours overlap.
 inline constexpr Rgba8 kSurfaceEdgeColor{62, 66, 76, 255};
-// Coincident vertices: a dark green #005500 (issue 44 part P: the
-// near-black #191919 was CIEDE2000 4 from the worst ring's dark grey and
-// the hexes' charcoal edges; the earlier orange 3.8 from the quality map).
-// Intersections: a lilac #cc88ff for the pairs' arrows and the cells'
-// edges, the cells' faces a translucent tint of it (one meaning, one
-// colour; the dark magenta #8c1478 was 8 from the violet pyramid edges).
-// Both CIEDE2000 >= 20 from the cluster colours, the pale grey, the rings
-// and each other for normal vision and >= 15 under protanopia, deuteranopia
-// and tritanopia (image/colormap.cpp, tests/views/palette_test.cpp).
-inline constexpr Rgba8 kCoincidentArrowColor{0, 85, 0, 255};
+// Coincident vertices: a green #00cc33 (issue 44 part P, round 3: the
+// dark green #005500 was CIEDE2000 3.4 from the dark red #0 under
+// protanopia; before it the near-black #191919 was 4 from the worst ring's
+// dark grey and the hexes' charcoal edges, the orange 3.8 from the quality
+// map). Intersections: a lilac #cc88ff for the pairs' arrows and the
+// cells' edges, the cells' faces a translucent tint of it (the legend
+// gives the pairs an arrow swatch, the cells a square of the tint as drawn
+// on the background: two things, two swatches; the dark magenta #8c1478
+// was 8 from the violet pyramid edges). Both CIEDE2000 >= 20 from the
+// cluster colours, the pale grey and each other for normal vision, and
+// under protanopia, deuteranopia and tritanopia >= 10 from the cluster
+// colours (image/colormap.cpp, tests/views/palette_test.cpp).
+inline constexpr Rgba8 kCoincidentArrowColor{0, 204, 51, 255};
 inline constexpr Rgba8 kIntersectionArrowColor{204, 136, 255, 255};
 inline constexpr Rgba8 kIntersectingCellColor{204, 136, 255, 96};  // translucent lilac
+// top (straight alpha) drawn over an opaque bottom, per sRGB channel as the
+// renderer blends: what a translucent colour looks like on it (the
+// intersecting cells' legend swatch).
+inline Rgba8 blend_over(const Rgba8& top, const Rgba8& bottom) {
+  auto channel = [&](std::uint8_t t, std::uint8_t b) {
+    return static_cast<std::uint8_t>(std::lround((t * top.a + b * (255 - top.a)) / 255.0));
+  };
+  return {channel(top.r, bottom.r), channel(top.g, bottom.g), channel(top.b, bottom.b), 255};
+}
 
 // The edge colour of each volume kind where the views tell kinds apart (view
 // A's boundary wireframe, view D's one ring): hexes a near-black aubergine
@@ -393,7 +406,8 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
                                           const AnnotationStyle& style, const MainViewOptions& options,
                                           double glyph_scale, std::span<const Index> hidden = {},
                                           Index left_out = 0, std::span<const Index> unlabelled = {},
-                                          double worst_pixels = 0.0);
+                                          double worst_pixels = 0.0,
+                                          std::span<const Rgba8> outlines_over_glyphs = {});
 
 // Width / height of the 3D part of the figure render_main_view draws.
 double main_view_aspect(const MainViewOptions& options);
@@ -513,13 +527,54 @@ MainViewLabels main_view_labels(const HexMesh& mesh, const Topology& topology, c
                                 const OverlapReport* overlap, const Vec3& view_direction,
                                 const MainViewOptions& options, Scene* scene = nullptr, Renderer* renderer = nullptr);
 
+// A stretch of an inverted face's outline that render_main_view draws
+// over a glyph hiding it, figure pixels.
+struct OutlineRun {
+  double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0;
+  Rgba8 color;
+};
+// Those runs for the view labels were laid out for (MainViewLabels'
+// camera, view and id image): the outlines of the inverted faces drawn
+// (scene 5b) where a glyph or a glyph ring hides them, but never on #0's
+// disc (its glyph stays whole) nor within kInvertedOutlineCore of another
+// coloured glyph's radius of its centre. options: as render_main_view's.
+std::vector<OutlineRun> main_view_outlines_over_glyphs(const HexMesh& mesh, const Topology& topology,
+                                                       const GlyphResult& glyphs, const MainViewLabels& labels,
+                                                       const MainViewOptions& options);
+// The distinct colours of runs, in order of first use (main_legend_lines'
+// outlines_over_glyphs: one line swatch each).
+std::vector<Rgba8> outline_colors(std::span<const OutlineRun> runs);
+
+// What render_main_view draws for view_direction, before it draws it: the
+// figure's style and layout, the scaled options, the scene, the labels
+// (placed on the id image), the outlines drawn over glyphs and the legend
+// lines (main_legend_lines, with the outlines' colours). Every mark the
+// figure shows is in scene, labels (the rings: worst_glyph,
+// inverted_glyphs) or outlines, and the legend names each (tests/views/
+// main_view_legend_test.cpp).
+struct MainViewPlan {
+  AnnotationStyle style;
+  FigureLayout layout;
+  MainViewOptions scaled;   // its glyph_ties refer to ties
+  std::vector<Index> ties;  // glyph_tie_classes when options had none
+  Scene scene;
+  MainViewLabels labels;
+  std::vector<OutlineRun> outlines;
+  std::vector<LegendLine> legend;
+};
+MainViewPlan plan_main_view(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
+                            const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& options,
+                            Renderer& renderer);
+
 // The figure: title, the 3D view, the labels (layout_main_view_labels:
 // every marker group with its number of findings "xN", the worst clusters
 // "#k (n)"), and a legend on the right. Where a glyph hides them (the id
 // image), the inverted faces' outlines (kInvertedOutlineWidth) are drawn
 // over it (the clusters' edge lines are not: over a glyph they showed other
-// clusters' colours, issue 44 part V round 2), but not within kInvertedOutlineCore of a coloured glyph's radius of its
-// centre (issue 44 part V).
+// clusters' colours, issue 44 part V round 2), but not within
+// kInvertedOutlineCore of a coloured glyph's radius of its centre (issue 44
+// part V) nor on #0's glyph (part P round 3): main_view_outlines_over_glyphs.
+// What it draws is plan_main_view's.
 Image render_main_view(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                        const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& options,
                        Renderer& renderer);

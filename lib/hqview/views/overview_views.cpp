@@ -450,7 +450,8 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
       f.bar.swatches.push_back({to_color(kInvertedOutlineColor),
                                 "outlined: " + std::to_string(options.inverted_cells.size()) +
                                     (options.inverted_are_reversed ? " reversed " : " inverted ") +
-                                    (options.inverted_cells.size() == 1 ? options.cell_noun : plural)});
+                                    (options.inverted_cells.size() == 1 ? options.cell_noun : plural),
+                                SwatchShape::thick_line});  // drawn as an outline, named by one (44p review)
       if (options.inverted_are_reversed)
         f.bar.swatches.push_back({Color{}, "(orientation flipped)", SwatchShape::text});
     }

@@ -299,7 +299,7 @@ Image render_singularity_view(const HexMesh& mesh, const Topology& topology, con
     lines.push_back({std::nullopt, kinds, 1});
     lines.push_back({std::nullopt, "graph of the hex part"});
     if (structure.num_interface_ends > 0)
-      lines.push_back({kNodeColor, std::to_string(structure.num_interface_ends) + " curve ends at non-hex cells", 0, true});
+      lines.push_back({kNodeColor, std::to_string(structure.num_interface_ends) + " curve ends at non-hex cells", 0, SwatchShape::solid_ring});
   }
   draw_legend(figure, layout.legend, lines, style);
   return figure;

@@ -314,7 +314,7 @@ Image render_quad_structure_view(const HexMesh& mesh, const Topology& topology, 
   lines.push_back({kSeparatrixColor,
                    "separatrices: " + std::to_string(structure.num_separatrices) +
                        (structure.is_capped ? " (capped)" : ""),
-                   1, false, true});
+                   1, SwatchShape::thick_line});
   lines.push_back({std::nullopt, "  " + std::to_string(structure.num_traced_edges) + " edges, " +
                                      std::to_string(static_cast<long long>(std::lround(edge_share))) + "% of all"});
   const std::size_t num_quads = mesh.quads.size();
@@ -330,8 +330,8 @@ Image render_quad_structure_view(const HexMesh& mesh, const Topology& topology, 
   lines.push_back({std::nullopt, "not simplified: traced as is"});
   if (structure.num_unclassified > 0)
     lines.push_back({std::nullopt, "unclassified vertices: " + std::to_string(structure.num_unclassified)});
-  if (has_boundary) lines.push_back({kSurfaceBoundaryEdgeColor, "mesh boundary", 0, false, true});
-  lines.push_back({Rgba8{150, 154, 162, 255}, "edges", 0, false, true});
+  if (has_boundary) lines.push_back({kSurfaceBoundaryEdgeColor, "mesh boundary", 0, SwatchShape::thick_line});
+  lines.push_back({Rgba8{150, 154, 162, 255}, "edges", 0, SwatchShape::thick_line});
   draw_legend(figure, f.layout.legend, lines, f.style);
   return figure;
 }

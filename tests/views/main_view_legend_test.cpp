@@ -1,0 +1,219 @@
+// View A's legend is exact (issue 44 part P, the 44p review): every mark
+// the figure draws, read from what render_main_view draws (plan_main_view:
+// the scene's sets, the rings, the outlines drawn over glyphs), has a
+// legend line with its colour and a swatch of its shape (a sphere or face
+// a filled square, a translucent face the square of its tint as it looks
+// on the background, an edge a line, an arrow an arrow, a ring a ring);
+// two things of one colour and shape (the intersecting pairs and cells
+// before) would need two marks of their own. And #0's glyph is never
+// crossed by a drawn outline.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "hqview/glyph/glyphs.h"
+#include "hqview/image/colormap.h"
+#include "hqview/mesh/topology.h"
+#include "hqview/overlap/overlap.h"
+#include "hqview/quality/quality_field.h"
+#include "hqview/render/osmesa_renderer.h"
+#include "hqview/views/main_views.h"
+#include "support/fixtures.h"
+
+namespace hq {
+namespace {
+
+struct Analysed {
+  HexMesh mesh;
+  Topology topology;
+  QualityField quality;
+  GlyphResult glyphs;
+  OverlapReport overlap;
+  std::vector<std::uint8_t> inverted;
+};
+
+Analysed analyse(HexMesh mesh) {
+  Analysed a;
+  a.mesh = std::move(mesh);
+  a.topology = build_topology(a.mesh);
+  a.quality = compute_quality(a.mesh, a.topology);
+  a.glyphs = compute_glyphs(a.mesh.points, a.quality.vertex_quality, test::mean_edge_length(a.mesh, a.topology),
+                            GlyphOptions{});
+  a.overlap = check_overlap(a.mesh, a.topology, OverlapOptions{});
+  for (std::size_t c = 0; c < a.quality.cell_scaled_jacobian.size(); ++c)
+    a.inverted.push_back(cell_is_inverted(a.quality, c) ? 1 : 0);
+  return a;
+}
+
+// A 10 x 10 x 2 grid, its top vertex (5, 5) pushed below the middle layer
+// (4 inverted hexes, their boundary faces drawn), 3 top cells copied and
+// shifted by (0.3, 0.3, 0.2) (intersecting pairs and cells), and a cube
+// beside the grid whose 4 corners sit on grid corners without sharing them
+// (coincident vertices).
+HexMesh every_mark() {
+  HexMesh mesh = test::box_grid(10, 10, 2);
+  const auto point_id = [](int i, int j, int k) { return static_cast<Index>(i + 11 * (j + 11 * k)); };
+  mesh.points[static_cast<std::size_t>(point_id(5, 5, 2))].z = 0.6;
+  for (const int i : {1, 8}) {
+    const std::array<Index, 8> cell = mesh.hexes[static_cast<std::size_t>(i + 10 * (i + 10))];
+    std::array<Index, 8> shifted{};
+    std::iota(shifted.begin(), shifted.end(), static_cast<Index>(mesh.points.size()));
+    for (const Index v : cell) mesh.points.push_back(Vec3{0.3, 0.3, 0.2} + mesh.points[static_cast<std::size_t>(v)]);
+    mesh.hexes.push_back(shifted);
+  }
+  std::array<Index, 8> cube{};
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 p{10.0 + (k == 1 || k == 2 || k == 5 || k == 6 ? 1.0 : 0.0), (k % 4 == 2 || k % 4 == 3) ? 1.0 : 0.0,
+                 k >= 4 ? 1.0 : 0.0};
+    cube[static_cast<std::size_t>(k)] = static_cast<Index>(mesh.points.size());
+    mesh.points.push_back(p);
+  }
+  mesh.hexes.push_back(cube);
+  return mesh;
+}
+
+bool is_line(SwatchShape s) {
+  return s == SwatchShape::line || s == SwatchShape::thick_line || s == SwatchShape::dashed_line;
+}
+
+struct Mark {
+  std::string what;
+  Rgba8 color;
+  SwatchShape shape;
+};
+
+Rgba8 opaque(Rgba8 c) {
+  c.a = 255;
+  return c;
+}
+
+// The marks of a plan, from what it draws.
+std::vector<Mark> marks_drawn(const MainViewPlan& plan) {
+  std::vector<Mark> marks;
+  auto add = [&](const std::string& what, const Rgba8& color, SwatchShape shape) {
+    for (const Mark& m : marks)
+      if (m.color == color && m.shape == shape) return;
+    marks.push_back({what, color, shape});
+  };
+  for (const LineSet& set : plan.scene.lines)
+    for (const Rgba8& c : set.colors) add("edge line", opaque(c), SwatchShape::line);
+  for (const SphereSet& set : plan.scene.spheres)
+    for (const Rgba8& c : set.colors) {
+      // A pale set is drawn mixed towards white: its lit side is the
+      // legend's pale grey.
+      add("glyph", set.pale > 0.0f ? pale_grey_glyph_color() : opaque(c), SwatchShape::box);
+    }
+  for (const TriangleSet& set : plan.scene.triangles)
+    for (const Rgba8& c : set.colors) add("face", opaque(c), SwatchShape::box);
+  for (const TriangleSet& set : plan.scene.translucent)
+    for (const Rgba8& c : set.colors) add("translucent face", blend_over(c, plan.scaled.background), SwatchShape::box);
+  for (const TriangleSet& set : plan.scene.overlay)
+    for (const Rgba8& c : set.colors) add("arrow", opaque(c), SwatchShape::arrow);
+  if (!plan.labels.worst_is_tied && plan.labels.worst_glyph.radius > 0.0)
+    add("worst ring", plan.style.text_color, SwatchShape::solid_ring);
+  if (!plan.labels.inverted_glyphs.empty()) add("inverted ring", to_rgba8(kInvertedColor), SwatchShape::solid_ring);
+  for (const OutlineRun& r : plan.outlines) add("outline over a glyph", r.color, SwatchShape::line);
+  return marks;
+}
+
+// The marks with no legend line of their colour and shape (a cluster's
+// edge lines are named by the "edges at" line: "each in its cluster's
+// colour").
+std::vector<std::string> unnamed_marks(const MainViewPlan& plan, const std::vector<Mark>& marks) {
+  bool edges_named = false;
+  std::vector<Rgba8> cluster_colors;
+  for (const LegendLine& l : plan.legend) {
+    edges_named = edges_named || (l.text.starts_with("edges at") && is_line(l.shape));
+    if (l.swatch && l.shape == SwatchShape::box && l.text.starts_with("#")) cluster_colors.push_back(*l.swatch);
+  }
+  std::vector<std::string> unnamed;
+  for (const Mark& m : marks) {
+    const bool named = std::any_of(plan.legend.begin(), plan.legend.end(), [&](const LegendLine& l) {
+      return l.swatch && opaque(*l.swatch) == m.color && (l.shape == m.shape || (is_line(l.shape) && is_line(m.shape)));
+    });
+    const bool cluster_edge = m.shape == SwatchShape::line && edges_named &&
+                              std::find(cluster_colors.begin(), cluster_colors.end(), m.color) != cluster_colors.end();
+    if (!named && !cluster_edge)
+      unnamed.push_back(m.what + " #" + std::to_string(m.color.r) + "," + std::to_string(m.color.g) + "," +
+                        std::to_string(m.color.b));
+  }
+  return unnamed;
+}
+
+std::string joined(const std::vector<std::string>& items) {
+  std::string out;
+  for (const std::string& s : items) out += s + "; ";
+  return out;
+}
+
+TEST(MainViewLegend, EveryMarkDrawnHasItsLegendLine) {
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  const Analysed a = analyse(every_mark());
+  ASSERT_FALSE(a.glyphs.clusters.empty());
+  ASSERT_LT(a.glyphs.clusters[0].min_quality, 0.0);
+  ASSERT_GT(a.overlap.num_intersecting_cells, 0);
+  ASSERT_GT(a.overlap.num_coincident_vertices, 0);
+  MainViewOptions options;
+  options.width = 800;  // a quarter of the pixels to draw: the marks are the same
+  options.height = 600;
+  options.inverted_cells = &a.inverted;
+  int with_outlines = 0;
+  for (const Vec3& direction : {Vec3{1.0, -1.0, 1.5}, Vec3{-0.3, 0.2, -1.0}, Vec3{0.1, 0.15, -1.0}}) {
+    const MainViewPlan plan = plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, direction, options, *renderer);
+    const std::vector<Mark> marks = marks_drawn(plan);
+    // The kinds of marks this mesh makes are all there.
+    for (const char* what : {"edge line", "glyph", "face", "translucent face", "arrow", "worst ring", "inverted ring"})
+      EXPECT_TRUE(std::any_of(marks.begin(), marks.end(), [&](const Mark& m) { return m.what == what; })) << what;
+    std::vector<std::string> legend_text;
+    for (const LegendLine& l : plan.legend)
+      legend_text.push_back(l.text + (l.swatch ? " (" + std::to_string(l.swatch->r) + "," + std::to_string(l.swatch->g) +
+                                                     "," + std::to_string(l.swatch->b) + " s" + std::to_string(static_cast<int>(l.shape)) + ")"
+                                               : std::string()));
+    EXPECT_EQ(unnamed_marks(plan, marks), std::vector<std::string>{}) << joined(legend_text);
+    with_outlines += plan.outlines.empty() ? 0 : 1;
+    // The pairs' arrows and the cells' tint: two swatches, two shapes.
+    const auto line_of = [&](const std::string& start) {
+      for (const LegendLine& l : plan.legend)
+        if (l.text.starts_with(start)) return l;
+      return LegendLine{};
+    };
+    EXPECT_EQ(line_of("intersecting pairs").shape, SwatchShape::arrow);
+    EXPECT_EQ(line_of("coincident vertices").shape, SwatchShape::arrow);
+    EXPECT_EQ(line_of("intersecting cells").shape, SwatchShape::box);
+    EXPECT_NE(line_of("intersecting cells").swatch, line_of("intersecting pairs").swatch);
+    // No outline run on #0's disc.
+    const ScreenDisc& worst = plan.labels.worst_glyph;
+    for (const OutlineRun& r : plan.outlines)
+      for (double t = 0.0; t <= 1.0; t += 0.05)
+        EXPECT_GE(std::hypot(r.x0 + t * (r.x1 - r.x0) - worst.x, r.y0 + t * (r.y1 - r.y0) - worst.y), worst.radius);
+  }
+  // The views from below look through the dent's faces into #0 and its
+  // neighbours: outlines are drawn over some glyph in at least one.
+  EXPECT_GT(with_outlines, 0);
+}
+
+// The check fails on the legend of before: no line for the outlines, the
+// pairs and the cells one lilac square each.
+TEST(MainViewLegend, TheLegendBeforeFailsTheCheck) {
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  const Analysed a = analyse(every_mark());
+  MainViewOptions options;
+  options.width = 800;  // a quarter of the pixels to draw: the marks are the same
+  options.height = 600;
+  options.inverted_cells = &a.inverted;
+  MainViewPlan plan = plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, Vec3{1.0, -1.0, 1.5}, options, *renderer);
+  for (LegendLine& l : plan.legend) {
+    if (l.text.starts_with("intersecting") || l.text.starts_with("coincident")) l.shape = SwatchShape::box;
+    if (l.text.starts_with("intersecting cells")) l.swatch = kIntersectingCellColor;
+  }
+  const std::vector<std::string> unnamed = unnamed_marks(plan, marks_drawn(plan));
+  EXPECT_GE(unnamed.size(), 3u) << joined(unnamed);  // the two arrows and the tint
+}
+
+}  // namespace
+}  // namespace hq
