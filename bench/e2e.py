@@ -9,8 +9,10 @@ in the same run (bench/vtk_metrics.py, Debian's python3-vtk9):
   - the same run's bundle: at most 120 MB;
   - 2,908,160 hexes (refined twice), --no-render: at most 12 s, peak RSS
     under 2 GB (issue 11's 60 s and 6 GB before it);
-  - issue 48: --simulate on the 363,520 hexes at most 5x the --no-render
-    run (interleaved; the medians of wall and of CPU seconds each), and on
+  - issue 48: --simulate on the 363,520 hexes adds at most 5x the
+    --no-render run's time (the issue's words: (simulate - no-render) /
+    no-render <= 5, so at most 6x in all; interleaved; the medians of wall
+    and of CPU seconds each), and on
     the 2,908,160 hexes a peak RSS at most 2 GB
     above the --no-render run's;
   - 363,520 hexes with --reference dolphin.off and every view: at most 5 s;
@@ -107,10 +109,13 @@ def simulate_ratio_case(a, out):
           "ratios %.2f (wall), %.2f (CPU)" % (statistics.median(plain), statistics.median(plain_cpu),
                                               statistics.median(simulated), statistics.median(simulated_cpu),
                                               ratio, cpu_ratio), file=sys.stderr)
+    # Issue 48's words: --simulate "adds at most 5x that run's time", so the
+    # added time (simulate - no-render) over the no-render run, on both medians.
     return case("hqview 363,520 hexes --no-render --simulate", shlex.join(cmd + ["--simulate"]),
                 statistics.median(simulated), "s",
-                "simulate / no-render = %.2fx wall, %.2fx CPU, target <= 5x" % (ratio, cpu_ratio),
-                ratio <= 5.0 and cpu_ratio <= 5.0, simulated)
+                "simulate / no-render = %.2fx wall, %.2fx CPU: adds %.2fx, %.2fx; target: adds <= 5x"
+                % (ratio, cpu_ratio, ratio - 1.0, cpu_ratio - 1.0),
+                ratio - 1.0 <= 5.0 and cpu_ratio - 1.0 <= 5.0, simulated)
 
 
 def main():
