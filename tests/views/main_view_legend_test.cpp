@@ -180,12 +180,14 @@ TEST(MainViewLegend, EveryMarkDrawnHasItsLegendLine) {
     const auto line_of = [&](const std::string& start) {
       for (const LegendLine& l : plan.legend)
         if (l.text.starts_with(start)) return l;
+      ADD_FAILURE() << "no legend line " << start;
       return LegendLine{};
     };
     EXPECT_EQ(line_of("intersecting pairs").shape, SwatchShape::arrow);
     EXPECT_EQ(line_of("coincident vertices").shape, SwatchShape::arrow);
-    EXPECT_EQ(line_of("intersecting cells").shape, SwatchShape::box);
-    EXPECT_NE(line_of("intersecting cells").swatch, line_of("intersecting pairs").swatch);
+    // (A pure-hex mesh says "hexes", issue 45: the card's word.)
+    EXPECT_EQ(line_of("intersecting hexes").shape, SwatchShape::box);
+    EXPECT_NE(line_of("intersecting hexes").swatch, line_of("intersecting pairs").swatch);
     // No outline run on #0's disc.
     const ScreenDisc& worst = plan.labels.worst_glyph;
     for (const OutlineRun& r : plan.outlines)
@@ -209,7 +211,7 @@ TEST(MainViewLegend, TheLegendBeforeFailsTheCheck) {
   MainViewPlan plan = plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, Vec3{1.0, -1.0, 1.5}, options, *renderer);
   for (LegendLine& l : plan.legend) {
     if (l.text.starts_with("intersecting") || l.text.starts_with("coincident")) l.shape = SwatchShape::box;
-    if (l.text.starts_with("intersecting cells")) l.swatch = kIntersectingCellColor;
+    if (l.text.starts_with("intersecting hexes")) l.swatch = kIntersectingCellColor;
   }
   const std::vector<std::string> unnamed = unnamed_marks(plan, marks_drawn(plan));
   EXPECT_GE(unnamed.size(), 3u) << joined(unnamed);  // the two arrows and the tint
