@@ -200,6 +200,7 @@ TEST(SurfaceViews, PlanarGridSeenAlongItsNormalWorstQuadInItsBinColour) {
 // grid whose top vertex is pushed below the middle layer (four inverted
 // surface cells). The face's pixels: samples inside its two triangles as
 // drawn (v0 v1 v2, v0 v2 v3), away from their edges.
+
 // Whether the ray from q along d (unit) meets a boundary face other than
 // own (Moller-Trumbore on each face's two triangles) beyond 1e-6.
 bool ray_meets_other_face(const Analysis& a, const BoundaryPolygon& own, const Vec3& q, const Vec3& d) {
@@ -222,8 +223,9 @@ bool ray_meets_other_face(const Analysis& a, const BoundaryPolygon& own, const V
   return false;
 }
 
-// (A curved surface: samples behind another face, on its far side, are
-// not counted; towards: the unit direction to the orthographic camera.)
+// The samples of face (above) in colour; on a curved surface only those
+// in sight are counted: a sample whose ray towards the orthographic camera
+// meets another face (the face on the far side of a bump) is left out.
 int inverted_face_pixels_shown(const ViewFile& f, const Analysis& a, const BoundaryPolygon& face, const Rgba8& colour,
                                int& samples) {
   int shown = 0;
