@@ -88,6 +88,11 @@ void add_axes(Chart& chart, const ChartRect& r, const std::vector<std::pair<doub
         {{r.x - 50.0, r.y + 0.5 * r.height}, y_title, kLabelSize, {38, 38, 38, 255}, ChartAnchor::center, true});
 }
 
+// A histogram bar below 1/kSmallBarShare of the tallest is drawn at least
+// kMinBarPixels tall and labelled with its count.
+constexpr std::int64_t kSmallBarShare = 20;
+constexpr double kMinBarPixels = 6.0;
+
 Rgba8 bar_color(double quality) { return to_rgba8(quality < 0.0 ? kInvertedColor : quality_color(quality)); }
 
 }  // namespace
@@ -119,13 +124,28 @@ Chart quality_histogram_chart(std::span<const double> values, bool log_scale, co
     top = std::ceil(static_cast<double>(max_count) / step) * step;
     for (double t = 0.0; t <= top + 0.5 * step; t += step) y_ticks.push_back({t, r.y + r.height * (1.0 - t / top)});
   }
+  double label_end = -std::numeric_limits<double>::infinity();
   for (int i = 0; i < bins; ++i) {
     const std::int64_t c = counts[static_cast<std::size_t>(i)];
     if (c == 0) continue;
     const double h = r.height * height_of(static_cast<double>(c)) / top;
     const double x = r.x + r.width * i / bins;
     const double centre = -1.0 + (i + 0.5) * 2.0 / bins;
-    chart.rects.push_back({x + 0.5, r.y + r.height - h, r.width / bins - 1.0, h, bar_color(centre)});
+    // A small bar (issue 47 part R: the bell's 6 reversed faces were a
+    // 4 px bar beside 410): at least kMinBarPixels tall, its count above it.
+    const bool is_small = c * kSmallBarShare < max_count;
+    const double shown = is_small ? std::max(h, kMinBarPixels) : h;
+    chart.rects.push_back({x + 0.5, r.y + r.height - shown, r.width / bins - 1.0, shown, bar_color(centre)});
+    // (Left to right, a label that would touch the one before is left out:
+    // the inverted bins, on the left, keep theirs.)
+    const std::string count = std::to_string(c);
+    const double half_width = 0.35 * kTickSize * static_cast<double>(count.size()) + 2.0;
+    const double mid = x + 0.5 * r.width / bins;
+    if (is_small && mid - half_width >= label_end) {
+      chart.texts.push_back({{mid, r.y + r.height - shown - 4.0}, count, kTickSize, kAxisColor, ChartAnchor::center,
+                             false});
+      label_end = mid + half_width;
+    }
   }
   std::vector<std::pair<double, double>> x_ticks;
   for (double t = -1.0; t <= 1.0001; t += 0.25) x_ticks.push_back({t, r.x + r.width * (t + 1.0) / 2.0});

@@ -49,21 +49,21 @@ struct GlyphScaleBounds {
 };
 
 GlyphScaleBounds glyph_scale_bounds(const GlyphResult& glyphs, const Camera& camera, int view_height,
-                                    double pixel_scale, double model_diagonal_pixels) {
+                                    double pixel_scale, double model_diagonal_pixels, const GlyphSizeLimits& limits) {
   if (glyphs.clusters.empty() || !(glyphs.clusters[0].radius > 0.0)) return {};
   const AggregatedGlyph& worst = glyphs.clusters[0];
   const double depth = std::max(dot(worst.position - camera.eye, forward_of(camera)), 1e-12);
   const double unit = units_per_pixel(camera, depth, view_height);
   const double pixels = worst.radius / unit;
   if (!(pixels > 0.0) || !std::isfinite(pixels)) return {};
-  const double floor = kWorstGlyphMinPixels * pixel_scale;
+  const double floor = limits.min_pixels * pixel_scale;
   // The cap: a mean edge length (the glyph unit rmax of ratio 1, under the
   // default unit) and a fraction of the model's on-screen diagonal.
   double cap = std::numeric_limits<double>::infinity();
   const double edge = glyphs.options.rmax_unit == RmaxUnit::kMeanEdgeLength && glyphs.options.rmax > 0.0
                           ? glyphs.rmax / glyphs.options.rmax
                           : glyphs.rmax;
-  if (edge > 0.0 && std::isfinite(edge)) cap = std::min(cap, kWorstGlyphMaxEdges * edge / unit);
+  if (edge > 0.0 && std::isfinite(edge)) cap = std::min(cap, limits.max_edges * edge / unit);
   if (model_diagonal_pixels > 0.0) cap = std::min(cap, kWorstGlyphMaxDiagonal * model_diagonal_pixels);
   // #0's radius in pixels: clamp(pixels, floor, max(floor, cap)).
   return {floor / pixels, cap / pixels};
@@ -74,8 +74,15 @@ double scale_within(const GlyphScaleBounds& b) { return std::clamp(1.0, b.lo, st
 }  // namespace
 
 double displayed_glyph_scale(const GlyphResult& glyphs, const Camera& camera, int view_height, double pixel_scale,
-                             double model_diagonal_pixels) {
-  return scale_within(glyph_scale_bounds(glyphs, camera, view_height, pixel_scale, model_diagonal_pixels));
+                             double model_diagonal_pixels, const GlyphSizeLimits& limits) {
+  return scale_within(glyph_scale_bounds(glyphs, camera, view_height, pixel_scale, model_diagonal_pixels, limits));
+}
+
+GlyphSizeLimits glyph_size_limits(const MainViewOptions& options) {
+  if (!options.surface_cell_quality || options.surface_inverted_cells.empty() ||
+      !options.surface_inverted_are_reversed)
+    return {};
+  return {kSurfaceInvertedGlyphMinPixels, kSurfaceInvertedGlyphMaxEdges};
 }
 
 namespace {
@@ -85,7 +92,8 @@ double view_glyph_scale(const GlyphResult& glyphs, const Camera& camera, int vie
                         const MainViewOptions& options) {
   return options.glyph_scale > 0.0
              ? options.glyph_scale
-             : displayed_glyph_scale(glyphs, camera, view_height, options.pixel_scale, options.model_diagonal_pixels);
+             : displayed_glyph_scale(glyphs, camera, view_height, options.pixel_scale, options.model_diagonal_pixels,
+                                     glyph_size_limits(options));
 }
 
 }  // namespace
@@ -1308,16 +1316,21 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
   if (glyphs.options.size_rule == GlyphSizeRule::kPaper)
     lines.push_back({std::nullopt, "  + 0.1 per 10 vertices (paper)"});
   if (!glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0 && (glyph_scale != 1.0 || worst_pixels > 0.0)) {
-    const double px = worst_pixels > 0.0 ? worst_pixels : kWorstGlyphMinPixels * style.scale;
+    const GlyphSizeLimits limits = glyph_size_limits(options);
+    const double px = worst_pixels > 0.0 ? worst_pixels : limits.min_pixels * style.scale;
     lines.push_back({std::nullopt, "#0 radius " + std::to_string(std::lround(px)) + " px"});
     if (glyph_scale < 1.0) {
       lines.push_back({std::nullopt, "  all shrunk x" + display_number(glyph_scale, 2) + ": #0 at most"});
-      lines.push_back({std::nullopt, "  1 mean edge, 3% of model size"});
+      lines.push_back({std::nullopt, limits.max_edges != kWorstGlyphMaxEdges
+                                         ? "  " + display_number(limits.max_edges, 2) + " mean edge (the faces"
+                                         : "  1 mean edge, 3% of model size"});
+      if (limits.max_edges != kWorstGlyphMaxEdges) lines.push_back({std::nullopt, "  show), 3% of model size"});
     } else if (glyph_scale > 1.0) {
       lines.push_back({std::nullopt, "  all enlarged x" + display_number(glyph_scale, 2) + ": #0 at"});
-      lines.push_back({std::nullopt, "  least " + std::to_string(static_cast<int>(kWorstGlyphMinPixels)) +
+      lines.push_back({std::nullopt, "  least " + std::to_string(static_cast<int>(limits.min_pixels)) +
                                          " px (at 1600 x 1200)"});
     }
+
   }
   if (!glyphs.clusters.empty()) {
     lines.push_back({std::nullopt, "label #k (n): rank k, n vertices"});
@@ -2225,7 +2238,7 @@ double mesh_glyph_scale(const HexMesh& mesh, const Topology& topology, const Gly
   for (const Vec3& direction : directions) {
     const MainViewFrame f = main_view_frame(mesh, topology, glyphs, direction, options, false);
     const GlyphScaleBounds b = glyph_scale_bounds(glyphs, f.camera, f.layout.view.height, f.scaled.pixel_scale,
-                                                  f.scaled.model_diagonal_pixels);
+                                                  f.scaled.model_diagonal_pixels, glyph_size_limits(options));
     all.lo = any ? std::max(all.lo, b.lo) : b.lo;
     all.hi = std::min(all.hi, b.hi);
     any = true;

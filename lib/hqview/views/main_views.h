@@ -339,6 +339,18 @@ inline constexpr double kWorstGlyphMinPixels = 24.0;
 // clamp(natural, floor, max(floor, cap)). The legend says "#0 radius N px".
 inline constexpr double kWorstGlyphMaxEdges = 1.0;
 inline constexpr double kWorstGlyphMaxDiagonal = 0.03;
+// On a surface mesh with inverted (or reversed) faces the faces are the
+// finding (issue 47 part R: the bell's 6 reversed faces hid under glyphs of
+// one mean edge): #0 at most kSurfaceInvertedGlyphMaxEdges mean edges and
+// at least kSurfaceInvertedGlyphMinPixels, so most of each face shows.
+inline constexpr double kSurfaceInvertedGlyphMaxEdges = 0.3;
+inline constexpr double kSurfaceInvertedGlyphMinPixels = 12.0;
+// #0's drawn radius limits of a main view: the floor in pixels (at scale 1)
+// and the cap in mean edges (the surface mesh's above, or the defaults).
+struct GlyphSizeLimits {
+  double min_pixels = kWorstGlyphMinPixels;
+  double max_edges = kWorstGlyphMaxEdges;
+};
 // The grey glyphs' lit colour is mixed this far towards white (SphereSet::pale).
 inline constexpr float kGreyGlyphPale = 0.45f;
 // The colour of a grey glyph's lit side as drawn (the legend's swatch).
@@ -352,11 +364,14 @@ Rgba8 grey_glyph_color(float pale);
 inline constexpr double kUnfadedGlyphQuality = 0.01;
 bool is_faded_grey_glyph(const AggregatedGlyph& g);
 double displayed_glyph_scale(const GlyphResult& glyphs, const Camera& camera, int view_height, double pixel_scale,
-                             double model_diagonal_pixels = 0.0);
+                             double model_diagonal_pixels = 0.0, const GlyphSizeLimits& limits = {});
 // One glyph scale for all the main views along directions (issue 44 part
 // V): displayed_glyph_scale's rule with the floor the largest any view
 // needs and the cap the smallest any view allows (the floor wins), so a
 // cluster has one radius in model units in every view of its mesh.
+// The limits of options' view: a surface mesh with inverted faces
+// (options.surface_inverted_cells) gets the surface ones.
+GlyphSizeLimits glyph_size_limits(const MainViewOptions& options);
 double mesh_glyph_scale(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                         std::span<const Vec3> directions, const MainViewOptions& options);
 // The boundary bounding box's on-screen diagonal in pixels (the 8 corners

@@ -1,6 +1,7 @@
 #include "hqview/views/overview_views.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -101,9 +102,29 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
     const std::vector<double>& q = options.kind_quality->by_kind[kind];
     return q.size() == vertex_quality.size() ? q : vertex_quality;
   };
+  // A curved surface's reversed faces (options.inverted_are_reversed): the
+  // inverted colour stays on them (issue 47 part R: their corners' negative
+  // vertex quality turned half of every neighbour blue, ~3x their area).
+  // A face not inverted has no negative corner of its own, so its corners
+  // below 0 take its lowest corner at or above 0.
+  std::vector<Index> reversed;
+  if (options.inverted_are_reversed) {
+    reversed = options.inverted_cells;
+    std::sort(reversed.begin(), reversed.end());
+  }
   for (const BoundaryPolygon& polygon : polygons) {
     const auto base = static_cast<std::uint32_t>(faces.positions.size());
     const std::vector<double>& face_quality = quality_of_face(polygon);
+    std::array<double, 4> corner{};
+    for (int i = 0; i < polygon.size; ++i)
+      corner[static_cast<std::size_t>(i)] = face_quality[static_cast<std::size_t>(polygon.v[static_cast<std::size_t>(i)])];
+    if (!reversed.empty() && !std::binary_search(reversed.begin(), reversed.end(), polygon.cell)) {
+      double lowest = std::numeric_limits<double>::infinity();
+      for (int i = 0; i < polygon.size; ++i)
+        if (corner[static_cast<std::size_t>(i)] >= 0.0) lowest = std::min(lowest, corner[static_cast<std::size_t>(i)]);
+      if (std::isfinite(lowest))
+        for (double& q : corner) q = q < 0.0 ? lowest : q;
+    }
     if (polygon.size == 3) {
       // A triangle (of a tet, wedge or pyramid): its 3 corners, one flat
       // triangle; the per-fragment map gives it the same colours as a quad.
@@ -111,7 +132,7 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
       for (int i = 0; i < 3; ++i) p[i] = point(mesh, polygon.v[static_cast<std::size_t>(i)]);
       const Vec3f normal = to_vec3f(normalized(cross(p[1] - p[0], p[2] - p[0])));
       for (int i = 0; i < 3; ++i) {
-        const double q = face_quality[static_cast<std::size_t>(polygon.v[static_cast<std::size_t>(i)])];
+        const double q = corner[static_cast<std::size_t>(i)];
         faces.positions.push_back(local(p[i]));
         faces.normals.push_back(normal);
         faces.colors.push_back(color(q));
@@ -126,7 +147,7 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
     int finite = 0;
     for (int i = 0; i < 4; ++i) {
       p[i] = point(mesh, quad[i]);
-      const double q = face_quality[static_cast<std::size_t>(quad[i])];
+      const double q = corner[static_cast<std::size_t>(i)];
       if (!std::isnan(q)) {
         quality_sum += q;
         ++finite;
@@ -137,7 +158,7 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
     // quad, outward for an outward-oriented face.
     const Vec3f normal = to_vec3f(normalized(cross(p[2] - p[0], p[3] - p[1])));
     for (int i = 0; i < 4; ++i) {
-      const double q = face_quality[static_cast<std::size_t>(quad[i])];
+      const double q = corner[static_cast<std::size_t>(i)];
       faces.positions.push_back(local(p[i]));
       faces.normals.push_back(normal);
       faces.colors.push_back(color(q));
