@@ -138,15 +138,28 @@ constexpr std::array<Rgb, 11> kDivergingTable = {{
 // deuteranopia; the issue asks normal vision for that pair).
 // The coincident colour moved with it (kCoincidentArrowColor: the dark
 // green #005500 was the dark red under protanopia, 3.4).
-// #0 #6b0010, #1 dark teal #115544, #2 olive brown #776611, #3 sea blue
-// #0088aa, #4 pale aquamarine #66ffcc. Every later class is the neutral
-// grey.
+// Issue 44 part R (the 44p review: the dark red #0 read as one more dark
+// ball among the dark-grey "others", near-black for protanopes; #4 pale
+// aquamarine 10 from the greys for deuteranopes; the olive #2 7 from the
+// quality map's bad end for deuteranopes): #0 is the most salient mark, a
+// vivid crimson #ee0055 (CIELCh chroma 82, the highest of the cluster
+// colours; the 44p #0 had 49, below #4's 54). A search over the sRGB grid
+// in steps of 17 (#0 vivid within 25 degrees of the map's worst hue, the
+// other rules as round 3) with #1-#3 >= 12 from the pale and the dark
+// "others" greys and >= 8 from the map's bad end (quality <= 0.25) under
+// every simulation found no fifth colour beside a vivid #0: the light
+// yellows and the light greens that pass are within 20 of each other, and
+// every darker or more saturated one is within 14.5 of #0 or the overlap
+// colours for a dichromat (the dark teal #115544 is 5.4 from the crimson
+// under protanopia, both dark). So 3 clusters are coloured (the issue:
+// "colour fewer clusters than 10 if the palette cannot hold them"):
+// #0 vivid crimson #ee0055, #1 sea blue #0088aa, #2 pale mint #ccffbb
+// (>= 17.9 from the greys under every simulation).
+// Every later class is the neutral grey.
 constexpr std::array<Rgb, kLabelledClusterPaletteSize> kLabelledClusterTable = {{
-    hex(0x6b0010),
-    hex(0x115544),
-    hex(0x776611),
+    hex(0xee0055),
     hex(0x0088aa),
-    hex(0x66ffcc),
+    hex(0xccffbb),
 }};
 // A light grey (#a0a0a0), calm among the coloured clusters: CIEDE2000 19
 // from the undefined grey (kUndefinedColor), 16 from the quality map's

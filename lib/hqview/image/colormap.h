@@ -48,15 +48,11 @@ Color diverging_color(double t);
 
 // Colours of glyph clusters (ranked 0 = worst). The labelled clusters, the
 // first labelled_cluster_count(K) ranks, each get their own colour of a
-// 5-colour palette that steps in lightness with the rank (issue 44 part P,
-// round 3: #0 a dark red, CIE L* 21, then L* 32, 44, 52, 91: dark teal,
-// olive brown, sea blue, pale aquamarine; CIEDE2000 >= 20 from each other,
-// the pale grey and the inverted and overlap colours for normal vision,
-// under simulated protanopia, deuteranopia and tritanopia >= 10 from the
-// inverted and overlap colours and >= 14.7 from each other); every other
-// cluster wears the one neutral tone, so a colour in a picture always
-// means one legend entry.
-inline constexpr int kLabelledClusterPaletteSize = 5;
+// 3-colour palette (issue 44 part R: #0 a vivid crimson, the most salient
+// mark, then sea blue and pale mint; image/colormap.cpp says why no more
+// fit); every other cluster wears the one neutral tone, so a colour in a
+// picture always means one legend entry.
+inline constexpr int kLabelledClusterPaletteSize = 3;
 inline constexpr std::int64_t labelled_cluster_count(std::int64_t top_clusters) {
   return top_clusters < 0 ? 0 : (top_clusters > kLabelledClusterPaletteSize ? kLabelledClusterPaletteSize : top_clusters);
 }
