@@ -88,8 +88,21 @@ TEST(OverlapCli, BallFoldIsReportedInJsonCsvAndHtml) {
   for (const std::string& x : column(out / "data/cells.csv", "intersecting")) flagged += x == "1";
   EXPECT_EQ(flagged, cells);
   const std::string html = read_text(out / "index.html");
-  EXPECT_NE(html.find("Overlap findings"), std::string::npos);
+  EXPECT_NE(html.find("<h2>Overlap check</h2>"), std::string::npos);
   EXPECT_NE(html.find("intersecting hexes"), std::string::npos);
+  // The 45t review: the nav said "Overlaps", panel A's heading and the
+  // main views' titles "clusters and overlaps" beside the cards'
+  // "intersecting hexes". The check is the "overlap check"; what it finds,
+  // "intersecting hexes" everywhere.
+  EXPECT_NE(html.find("<a href=\"#overlap\">Overlap check</a>"), std::string::npos);
+  EXPECT_EQ(html.find(">Overlaps<"), std::string::npos);
+  EXPECT_EQ(html.find("and overlaps"), std::string::npos);
+  EXPECT_NE(html.find("glyphs, clusters and intersecting hexes"), std::string::npos);
+  const json views = json::parse(read_text(out / "report.json"))["views"];
+  int main_titles = 0;
+  for (const json& v : views)
+    if (v["id"] == "main") EXPECT_EQ(v["title"], "A: glyphs, clusters and intersecting hexes"), ++main_titles;
+  EXPECT_EQ(main_titles, 1);
   // One term for one count (issue 45): the card, the overlap table and
   // summary.md name num_intersecting_cells "intersecting hexes", with the
   // same number; "overlapping" names none of them (the card said
@@ -131,7 +144,7 @@ TEST(OverlapCli, NoOverlapLeavesItNull) {
   EXPECT_TRUE(report["overlap"].is_null());
   for (const std::string& x : column(out / "data/vertices.csv", "coincident_group")) EXPECT_EQ(x, "");
   for (const std::string& x : column(out / "data/cells.csv", "intersecting")) EXPECT_EQ(x, "");
-  EXPECT_EQ(read_text(out / "index.html").find("Overlap findings"), std::string::npos);
+  EXPECT_EQ(read_text(out / "index.html").find("<h2>Overlap check</h2>"), std::string::npos);
 }
 
 TEST(OverlapCli, BadValuesAreUsageErrors) {
