@@ -88,8 +88,12 @@ TEST(OverlapCli, BallFoldIsReportedInJsonCsvAndHtml) {
   for (const std::string& x : column(out / "data/cells.csv", "intersecting")) flagged += x == "1";
   EXPECT_EQ(flagged, cells);
   const std::string html = read_text(out / "index.html");
-  EXPECT_NE(html.find("Overlap findings"), std::string::npos);
+  EXPECT_NE(html.find("<h2>Overlap check</h2>"), std::string::npos);
   EXPECT_NE(html.find("intersecting hexes"), std::string::npos);
+  // The 45t review: the nav said "Overlaps" beside the cards' "intersecting
+  // hexes". The check is the "overlap check".
+  EXPECT_NE(html.find("<a href=\"#overlap\">Overlap check</a>"), std::string::npos);
+  EXPECT_EQ(html.find(">Overlaps<"), std::string::npos);
   // One term for one count (issue 45): the card, the overlap table and
   // summary.md name num_intersecting_cells "intersecting hexes", with the
   // same number; "overlapping" names none of them (the card said
@@ -107,6 +111,27 @@ TEST(OverlapCli, BallFoldIsReportedInJsonCsvAndHtml) {
       analyze_json("ball.mesh", {"--overlap=exhaustive"}, fresh_output_dir("overlap_ball_ex") / "bundle")["overlap"];
   EXPECT_EQ(exhaustive["mode"], "exhaustive");
   EXPECT_EQ(exhaustive["intersecting_pairs"], o["intersecting_pairs"]);
+}
+
+// The 45t review: panel A's heading and view A's title said "clusters and
+// overlaps" beside the cards' "intersecting hexes": one term, the cards'.
+TEST(OverlapCli, ViewATitlesNameIntersectingHexesAsTheCards) {
+  const fs::path out = fresh_output_dir("overlap_view_a_titles") / "bundle";
+  const CliResult r = run_hqview({"analyze", example("ball.mesh").string(), "-o", out.string(), "--views", "main",
+                                  "--no-viewer", "--data", "none", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string html = read_text(out / "index.html");
+  EXPECT_EQ(html.find("overlaps"), std::string::npos);
+  EXPECT_NE(html.find("A · Main view: glyphs, clusters and intersecting hexes"), std::string::npos);
+  EXPECT_NE(html.find("<div class=\"label\">intersecting hexes</div>"), std::string::npos);
+  int main_titles = 0;
+  const json report = json::parse(read_text(out / "report.json"));
+  for (const json& v : report["views"])
+    if (v["id"] == "main") {
+      EXPECT_EQ(v["title"], "A: glyphs, clusters and intersecting hexes");
+      ++main_titles;
+    }
+  EXPECT_EQ(main_titles, 1);
 }
 
 TEST(OverlapCli, GateOnIntersectingCells) {
@@ -131,7 +156,7 @@ TEST(OverlapCli, NoOverlapLeavesItNull) {
   EXPECT_TRUE(report["overlap"].is_null());
   for (const std::string& x : column(out / "data/vertices.csv", "coincident_group")) EXPECT_EQ(x, "");
   for (const std::string& x : column(out / "data/cells.csv", "intersecting")) EXPECT_EQ(x, "");
-  EXPECT_EQ(read_text(out / "index.html").find("Overlap findings"), std::string::npos);
+  EXPECT_EQ(read_text(out / "index.html").find("<h2>Overlap check</h2>"), std::string::npos);
 }
 
 TEST(OverlapCli, BadValuesAreUsageErrors) {

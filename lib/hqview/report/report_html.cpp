@@ -89,7 +89,7 @@ struct PanelSpec {
 
 const std::vector<PanelSpec>& index_panels() {
   static const std::vector<PanelSpec> panels{
-      {"panel-a", "A main", "A · Overview and main view: vertex quality, glyphs, clusters and overlaps",
+      {"panel-a", "A main", "A · Overview and main view: vertex quality, glyphs, clusters and intersecting hexes",
        "",  // panel_intro: from the views drawn
        'A'},
       {"panel-s", "S structure", "S · Structure: singularity graph and size gradation",
@@ -519,6 +519,7 @@ std::string hybrid_wording(std::string text) {
   static const std::pair<const char*, const char*> kWords[] = {
       {"The hex boundary", "The boundary (every cell kind)"},
       {"the inverted hexes", "the inverted cells"},
+      {"clusters and intersecting hexes", "clusters and intersecting cells"},
       {"one-ring hexes of a vertex", "one-ring cells of a vertex"},
       {"The hexes around a chosen vertex", "The cells of every kind around a chosen vertex"},
       {"one bar per incident hex", "one bar per corner of an incident cell"},
@@ -579,7 +580,7 @@ std::string panel_intro(const PanelSpec& spec, const ReportModel& model) {
 // kinds of picture was drawn; the others keep their spec's.
 std::string panel_title(const PanelSpec& spec, const ReportModel& model) {
   if (spec.letter == 'A' && !has_view(model, "main")) return "A · Overview: vertex quality on the boundary";
-  if (spec.letter == 'A' && !has_view(model, "overview")) return "A · Main view: glyphs, clusters and overlaps";
+  if (spec.letter == 'A' && !has_view(model, "overview")) return "A · Main view: glyphs, clusters and intersecting hexes";
   if (spec.letter == 'S' && !has_view(model, "size_gradation")) return "S · Structure: singularity graph";
   if (spec.letter == 'S' && !has_view(model, "structure")) return "S · Structure: size gradation";
   return spec.title;

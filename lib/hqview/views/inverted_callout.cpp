@@ -96,6 +96,23 @@ Scene id_scene(const HexMesh& mesh, const Topology& topology, std::span<const do
   return scene;
 }
 
+// The area two discs share.
+double disc_overlap_area(double x0, double y0, double r0, double x1, double y1, double r1) {
+  const double d = std::hypot(x1 - x0, y1 - y0);
+  if (d >= r0 + r1) return 0.0;
+  if (d <= std::abs(r0 - r1)) return kPi * std::min(r0, r1) * std::min(r0, r1);
+  const double a0 = std::acos(std::clamp((d * d + r0 * r0 - r1 * r1) / (2.0 * d * r0), -1.0, 1.0));
+  const double a1 = std::acos(std::clamp((d * d + r1 * r1 - r0 * r0) / (2.0 * d * r1), -1.0, 1.0));
+  return r0 * r0 * (a0 - std::sin(2.0 * a0) / 2.0) + r1 * r1 * (a1 - std::sin(2.0 * a1) / 2.0);
+}
+
+// "6 inverted hexes" (noun empty: "6 inverted").
+std::string count_inverted(std::size_t n, const std::string& noun) {
+  std::string label = std::to_string(n) + " inverted";
+  if (!noun.empty()) label += " " + noun + (n == 1 ? "" : noun == "hex" ? "es" : "s");
+  return label;
+}
+
 }  // namespace
 
 std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topology& topology,
@@ -191,6 +208,9 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
       if (marks && vertex_group[v] < 0) vertex_group[v] = static_cast<int>(g);
     }
   }
+  auto grow = [](Extent& e, const Extent& f) {
+    e.x0 = std::min(e.x0, f.x0), e.y0 = std::min(e.y0, f.y0), e.x1 = std::max(e.x1, f.x1), e.y1 = std::max(e.y1, f.y1);
+  };
   const double max_radius = std::max(min_radius, 0.45 * std::min(view.width, view.height));
   auto ring_of = [&](const Extent& e, InvertedCallout& c) {
     c.x = 0.5 * (e.x0 + e.x1);
@@ -209,9 +229,27 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
   if (std::any_of(groups.begin(), groups.end(), [](const InvertedCallout& c) { return c.on_boundary; })) {
     const IdImage ids = renderer.render_ids(id_scene(mesh, topology, vertex_quality, vertex_group, camera.target),
                                             camera, view.width, view.height);
-    for (std::uint32_t id : ids.ids)
-      if (id != kIdNothing && id != kIdOccluder && id <= static_cast<std::uint32_t>(num_groups))
+    // Each group's visible pixels, and their box: the group's extent grows
+    // to it, so that its solid ring encloses every blue pixel it names (a
+    // face painted from an inverted corner reaches past the cells' corners).
+    std::vector<Extent> seen(groups.size());
+    for (int v = 0; v < ids.height; ++v)
+      for (int u = 0; u < ids.width; ++u) {
+        const std::uint32_t id = ids.ids[static_cast<std::size_t>(v) * static_cast<std::size_t>(ids.width) + static_cast<std::size_t>(u)];
+        if (id == kIdNothing || id == kIdOccluder || id > static_cast<std::uint32_t>(num_groups)) continue;
         ++groups[id - 1].visible_pixels;
+        Extent& e = seen[id - 1];
+        const double x = view.x + ids.x0 + u, y = view.y + ids.y0 + v;
+        e.x0 = std::min(e.x0, x), e.y0 = std::min(e.y0, y), e.x1 = std::max(e.x1, x + 1.0), e.y1 = std::max(e.y1, y + 1.0);
+      }
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+      if (groups[g].visible_pixels == 0) continue;
+      const Extent& e = seen[g];
+      InvertedCallout& c = groups[g];
+      c.visible_x0 = e.x0, c.visible_y0 = e.y0, c.visible_x1 = e.x1, c.visible_y1 = e.y1;
+      grow(extent[g], e);
+      ring_of(extent[g], c);
+    }
   }
 
   // 3b. Rings that overlap on screen (closer than kRingMergeGap x
@@ -231,9 +269,8 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
         if (merged[b] != static_cast<int>(b)) continue;
         const InvertedCallout &ga = groups[a], &gb = groups[b];
         if (std::hypot(ga.x - gb.x, ga.y - gb.y) >= ga.radius + gb.radius + kRingMergeGap * min_radius) continue;
+        grow(extent[a], extent[b]);
         Extent& e = extent[a];
-        const Extent& f = extent[b];
-        e.x0 = std::min(e.x0, f.x0), e.y0 = std::min(e.y0, f.y0), e.x1 = std::max(e.x1, f.x1), e.y1 = std::max(e.y1, f.y1);
         for (int& m : merged)
           if (m == static_cast<int>(b)) m = static_cast<int>(a);
         ring_of(e, groups[a]);
@@ -265,6 +302,14 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
     }
     for (std::size_t g = 0; g < groups.size(); ++g) {
       InvertedCallout& j = joined[static_cast<std::size_t>(renumber[static_cast<std::size_t>(merged[g])])];
+      if (groups[g].visible_pixels > 0) {
+        const InvertedCallout& f = groups[g];
+        const bool first = j.visible_pixels == 0;
+        j.visible_x0 = first ? f.visible_x0 : std::min(j.visible_x0, f.visible_x0);
+        j.visible_y0 = first ? f.visible_y0 : std::min(j.visible_y0, f.visible_y0);
+        j.visible_x1 = first ? f.visible_x1 : std::max(j.visible_x1, f.visible_x1);
+        j.visible_y1 = first ? f.visible_y1 : std::max(j.visible_y1, f.visible_y1);
+      }
       j.visible_pixels += groups[g].visible_pixels;
       j.on_boundary = j.on_boundary || groups[g].on_boundary;
       if (!callout_in_sight(groups[g])) {
@@ -278,21 +323,25 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
     // A ring with groups in sight and groups hidden is split by sight: a
     // solid ring around the extent of those in sight, a dashed one around
     // the extent of those hidden (the merge decided which label names them;
-    // the rings say which are seen).
+    // the rings say which are seen), unless the two would overlap by more
+    // than kMaxSplitOverlap of the smaller: then one solid ring, its label
+    // counting both.
     for (std::size_t k = 0; k < joined.size(); ++k) {
       InvertedCallout& j = joined[k];
       if (j.hidden_cells.empty()) continue;
       Extent seen, hidden;
-      for (std::size_t g = 0; g < groups.size(); ++g) {
-        if (renumber[static_cast<std::size_t>(merged[g])] != static_cast<int>(k)) continue;
-        Extent& e = callout_in_sight(groups[g]) ? seen : hidden;
-        const Extent& f = group_extent[g];
-        e.x0 = std::min(e.x0, f.x0), e.y0 = std::min(e.y0, f.y0), e.x1 = std::max(e.x1, f.x1), e.y1 = std::max(e.y1, f.y1);
-      }
-      InvertedCallout part;
-      ring_of(hidden, part);
-      j.hidden_x = part.x, j.hidden_y = part.y, j.hidden_radius = part.radius;
-      ring_of(seen, j);
+      for (std::size_t g = 0; g < groups.size(); ++g)
+        if (renumber[static_cast<std::size_t>(merged[g])] == static_cast<int>(k))
+          grow(callout_in_sight(groups[g]) ? seen : hidden, group_extent[g]);
+      InvertedCallout solid, dashed;
+      ring_of(seen, solid);
+      ring_of(hidden, dashed);
+      const double smaller = std::min(solid.radius, dashed.radius);
+      if (disc_overlap_area(solid.x, solid.y, solid.radius, dashed.x, dashed.y, dashed.radius) >
+          kMaxSplitOverlap * kPi * smaller * smaller)
+        continue;
+      j.hidden_x = dashed.x, j.hidden_y = dashed.y, j.hidden_radius = dashed.radius;
+      j.x = solid.x, j.y = solid.y, j.radius = solid.radius;
     }
     for (int& g : vertex_group)
       if (g >= 0) g = renumber[static_cast<std::size_t>(merged[static_cast<std::size_t>(g)])];
@@ -314,20 +363,36 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
 }
 
 std::string inverted_callout_label(const InvertedCallout& c, const std::string& noun, double view_area) {
-  std::string label = std::to_string(c.num_cells) + " inverted";
-  if (!noun.empty()) label += " " + noun + (c.num_cells == 1 ? "" : noun == "hex" ? "es" : "s");
+  const std::size_t num_seen = static_cast<std::size_t>(c.num_cells) - c.hidden_cells.size();
+  if (c.hidden_radius > 0.0) {
+    // A split ring's solid ring: its cells in sight only (the dashed ring
+    // names the rest, inverted_hidden_label).
+    std::string label = count_inverted(num_seen, noun) + " in sight";
+    if (c.num_more_cells > 0) label += "; +" + std::to_string(c.num_more_cells) + " more";
+    return label;
+  }
+  std::string label = count_inverted(static_cast<std::size_t>(c.num_cells), noun);
   if (c.num_groups > 1) label += " in " + std::to_string(c.num_groups) + " groups";
   if (!c.hidden_cells.empty()) {
-    // A ring in sight with hidden groups: how many of its cells are not.
-    label += ", " + std::to_string(c.hidden_cells.size()) + (c.hidden_on_boundary ? " on the far side" : " inside");
+    // One ring over groups in sight and hidden: how many of each.
+    label += ": " + std::to_string(num_seen) + " in sight, " + std::to_string(c.hidden_cells.size()) +
+             (c.hidden_on_boundary ? " on the far side" : " inside");
     if (c.num_more_cells > 0) label += "; +" + std::to_string(c.num_more_cells) + " more";
-    if (!c.inset.empty()) label += ": see inset " + c.inset;
+    if (!c.inset.empty()) label += "; see inset " + c.inset;
     return label;
   }
   if (!c.on_boundary) label += ", inside";
   else if (c.visible_pixels == 0) label += ", far side";
   else if (static_cast<double>(c.visible_pixels) < kSmallInvertedFraction * view_area) label += " (small)";
   if (c.num_more_cells > 0) label += "; +" + std::to_string(c.num_more_cells) + " more";
+  if (!c.inset.empty()) label += ": see inset " + c.inset;
+  return label;
+}
+
+std::string inverted_hidden_label(const InvertedCallout& c, const std::string& noun) {
+  std::string label = count_inverted(c.hidden_cells.size(), noun);
+  if (c.num_hidden_groups > 1) label += " in " + std::to_string(c.num_hidden_groups) + " groups";
+  label += c.hidden_on_boundary ? ", far side" : ", inside";
   if (!c.inset.empty()) label += ": see inset " + c.inset;
   return label;
 }
@@ -406,14 +471,18 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
   std::vector<InvertedRingLabel> labels;
   for (std::size_t i = 0; i < callouts.size(); ++i) {
     const InvertedCallout& c = callouts[i];
-    labels.push_back({inverted_callout_label(c, noun, area), {}, std::nullopt});
+    labels.push_back({inverted_callout_label(c, noun, area), i, false, {}, std::nullopt});
     rings.push_back({c.x, c.y, c.radius + thickness, static_cast<std::int64_t>(i)});
   }
-  // The dashed rings of hidden groups after them: no label covers one, and
-  // only its own label's leader may cross it (the same id).
+  // The dashed rings of hidden groups after them, each with its own label:
+  // no label covers one, and only its callout's labels' leaders may cross
+  // it (the same id).
   for (std::size_t i = 0; i < callouts.size(); ++i) {
     const std::vector<ScreenDisc> discs = callout_discs(callouts[i], thickness);
-    for (std::size_t k = 1; k < discs.size(); ++k) rings.push_back({discs[k].x, discs[k].y, discs[k].radius, static_cast<std::int64_t>(i)});
+    for (std::size_t k = 1; k < discs.size(); ++k) {
+      labels.push_back({inverted_hidden_label(callouts[i], noun), i, true, {}, std::nullopt});
+      rings.push_back({discs[k].x, discs[k].y, discs[k].radius, static_cast<std::int64_t>(i)});
+    }
   }
   LabelLayoutOptions layout;
   // 8 pixels off the figure's edge (the 45e review's m1: a label touched it).

@@ -57,6 +57,10 @@ struct InvertedCallout {
   // sight; hidden_radius 0: no second ring.
   double hidden_x = 0, hidden_y = 0, hidden_radius = 0;
   long visible_pixels = 0;    // view pixels where the overview paints their inverted corners, depth-tested
+  // The box of those pixels (figure pixels, their outer edges; empty when
+  // none): the solid ring encloses it (issue 45: a visible blue face stuck
+  // out of the solid ring).
+  double visible_x0 = 0, visible_y0 = 0, visible_x1 = 0, visible_y1 = 0;
   bool on_boundary = false;   // some corner of theirs on the boundary is inverted (vertex quality < 0)
   int num_more_cells = 0;     // inverted cells of groups left without a ring (the last callout only)
   std::vector<Index> cells;   // the group's inverted cells (volume cell ids, in the order given)
@@ -69,6 +73,12 @@ std::vector<ScreenDisc> callout_discs(const InvertedCallout& c, double thickness
 
 // Rings closer than this times min_radius (edge to edge) are merged.
 inline constexpr double kRingMergeGap = 0.5;
+// A merged ring is split by sight only when its solid and dashed rings
+// would overlap by at most this fraction of the smaller disc's area; more,
+// and one ring (solid) holds both, its label saying how many are in sight
+// and how many hidden (issue 45: rings overlapping by 40 % left the blue in
+// the overlap neither in sight nor hidden).
+inline constexpr double kMaxSplitOverlap = 0.25;
 
 // Groups the inverted cells (ids over all volume cells, then a surface
 // mesh's quads and triangles: any_cell, mesh/cell_faces.h; a surface cell's
@@ -91,13 +101,18 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
 
 // "14 inverted hexes" (noun: "hex" or "cell", made plural but for 1; empty:
 // "14 inverted"), then " in 3 groups" for a merged ring; a merged ring in
-// sight with hidden groups then ", 6 on the far side" (or " inside") and
-// the rest below from "; +N more"; else ", inside" (no
+// sight with hidden groups: split (hidden_radius > 0), the solid ring's
+// "4 inverted hexes in sight" (its own cells only: the dashed ring has its
+// label, inverted_hidden_label), else one ring's ": 4 in sight, 6 on the
+// far side" (or " inside"), then "; +N more" and the inset; else ", inside" (no
 // inverted corner on the boundary), ", far side" (on the boundary, none in
 // sight) or " (small)" (fewer pixels than kSmallInvertedFraction of
 // view_area); then "; +N more" for the cells without a ring; then
 // ": see inset A" when an inset draws them.
 std::string inverted_callout_label(const InvertedCallout& callout, const std::string& noun, double view_area);
+// A split ring's dashed ring's label: "6 inverted hexes in 2 groups, far
+// side" (or ", inside"), then ": see inset A" when an inset draws them.
+std::string inverted_hidden_label(const InvertedCallout& callout, const std::string& noun);
 // Whether the ring is drawn solid: some of the group's inverted colour is in sight.
 inline bool callout_in_sight(const InvertedCallout& c) { return c.visible_pixels > 0; }
 
@@ -105,10 +120,13 @@ inline bool callout_in_sight(const InvertedCallout& c) { return c.visible_pixels
 // its box and leader (nullopt: no free place). Every leader runs from its
 // own ring outwards and crosses no other ring, no other leader and no
 // other label's box; no box covers a ring (label_layout.h strict_leaders,
-// every ring protected; issue 45g). A label with no place on one line
+// every ring protected; issue 45g); a split callout's dashed ring gets its
+// own label and leader (issue 45). A label with no place on one line
 // tries 2, then 3 lines (words wrapped).
 struct InvertedRingLabel {
   std::string text;
+  std::size_t callout = 0;  // the callout whose ring it names
+  bool dashed_ring = false;  // a split callout's dashed ring (after every callout's own label)
   std::vector<std::string> lines;  // as drawn: text on 1 line, or wrapped on 2 or 3 when 1 found no place
   std::optional<PlacedLabel> placed;
 };

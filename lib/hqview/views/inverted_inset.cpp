@@ -240,6 +240,7 @@ InvertedCallout inset_part(const InvertedCallout& c) {
   part.visible_pixels = 0;
   part.on_boundary = c.hidden_on_boundary;
   part.hidden_cells.clear();
+  part.hidden_radius = 0.0;
   return part;
 }
 

@@ -277,7 +277,7 @@ std::vector<ViewFile> build_main(ViewContext& c) {
   std::vector<ViewFile> files;
   for (std::size_t i = 0; i < directions.size(); ++i) {
     main.title = c.name + (main.surface_cell_quality ? ": faces by scaled Jacobian and glyph clusters, view "
-                                                     : ": glyph clusters and overlaps, view ") +
+                                                     : ": glyph clusters and intersecting " + std::string(cell_word(c.a) == "hex" ? "hexes" : "cells") + ", view ") +
                  std::to_string(i + 1) +
                  (planar ? std::string(" (along the plane's normal)")  // metric: squares stay squares
                          : " (from " + viewpoint_name(directions[i], main.up) + ")");
@@ -611,6 +611,9 @@ std::vector<const ViewSpec*> views_of_panel(char panel) {
 static std::string view_title(std::string_view title, const Analysis& a) {
   std::string t(title);
   if (const auto at = t.find("per hex"); at != std::string::npos && cell_word(a) == "cell") t.replace(at, 7, "per cell");
+  constexpr std::string_view kIntersectingHexes = "intersecting hexes";
+  if (const auto at = t.find(kIntersectingHexes); at != std::string::npos && cell_word(a) == "cell")
+    t.replace(at, kIntersectingHexes.size(), "intersecting cells");
   // A mesh with tets, wedges or pyramids colours each boundary face by its
   // own kind's corners: not the vertex quality (the min over every cell;
   // 46r review), as the overview's legend says.
@@ -624,7 +627,7 @@ static std::string view_title(std::string_view title, const Analysis& a) {
     static const std::pair<std::string_view, std::string_view> kSurfaceTitles[] = {
         {"Structure: the singularity graph by valence", "Structure: irregular vertices, separatrices and patches"},
         {"Boundary coloured by vertex quality", "Faces coloured by vertex quality"},
-        {"A: glyphs, clusters and overlaps", "A: faces by scaled Jacobian, glyphs and clusters"},
+        {"A: glyphs, clusters and intersecting hexes", "A: faces by scaled Jacobian, glyphs and clusters"},
         {"Thumbnail: the boundary by vertex quality, bounding-box frame",
          "Thumbnail: the faces by vertex quality, bounding-box frame"},
         {"Compare: both boundaries coloured by vertex quality, one camera",

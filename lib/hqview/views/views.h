@@ -97,7 +97,7 @@ std::vector<ViewFile> build_fem_error_density(ViewContext&);
 // Every view, in report order (the order they are drawn and listed).
 inline constexpr ViewSpec kViews[] = {
     {"overview", "Boundary coloured by vertex quality", 'A', 0, ViewNeeds::mesh, true, -1, build_overview},
-    {"main", "A: glyphs, clusters and overlaps", 'A', 1, ViewNeeds::mesh, true, 0, build_main},
+    {"main", "A: glyphs, clusters and intersecting hexes", 'A', 1, ViewNeeds::mesh, true, 0, build_main},
     {"clusters", "C: sub-region of each top cluster", 'C', 0, ViewNeeds::mesh, true, 2, build_clusters},
     {"local", "D: one-ring hexes around chosen vertices, corner scaled Jacobians", 'D', 0, ViewNeeds::mesh, true, 3,
      build_local},
