@@ -114,7 +114,7 @@ void add_quad(TriangleSet& set, const HexMesh& mesh, const Vec3& origin, const s
   for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) set.indices.push_back(base + i);
 }
 
-// A segment a-b of model points; dashed: 4 dashes and 3 gaps of equal length.
+// A segment a-b of model points.
 void add_segment(LineSet& set, const Vec3& origin, const Vec3& a, const Vec3& b, Rgba8 color) {
   for (const Vec3& p : {a, b}) {
     set.indices.push_back(static_cast<std::uint32_t>(set.positions.size()));
@@ -122,9 +122,41 @@ void add_segment(LineSet& set, const Vec3& origin, const Vec3& a, const Vec3& b,
     set.colors.push_back(color);
   }
 }
-void add_dashed(LineSet& set, const Vec3& origin, const Vec3& a, const Vec3& b, Rgba8 color) {
-  for (int d = 0; d < 7; d += 2)
-    add_segment(set, origin, a + (d / 7.0) * (b - a), a + ((d + 1) / 7.0) * (b - a), color);
+
+// The figure's dashes, a fixed length on screen (issue 48r: 4 dashes per
+// edge broke short edges into dots): 10 px dashes and 6 px gaps at 1200 px
+// height.
+struct Dashes {
+  double dash, gap;  // pixels
+};
+Dashes figure_dashes(const Figure& f) { return {10.0 * f.style.scale, 6.0 * f.style.scale}; }
+
+// The length of a-b on f's screen in pixels.
+double pixel_length(const Figure& f, const Vec3& a, const Vec3& b) {
+  const PixelRect& view = f.layout.view;
+  const double aspect = static_cast<double>(view.width) / std::max(1, view.height);
+  const Vec3 p = project_to_ndc(f.camera, aspect, a), q = project_to_ndc(f.camera, aspect, b);
+  const double length = std::hypot(0.5 * (p.x - q.x) * view.width, 0.5 * (p.y - q.y) * view.height);
+  return std::isfinite(length) ? length : 0.0;
+}
+
+// a-b dashed as f draws it: dashes of the pattern's length from end to end
+// (the gaps stretched to fit, at most their length plus a dash), solid when
+// it is shorter than two dashes and a gap; one halo and its core drawn with
+// the same call get the same dashes.
+void add_dashed(LineSet& set, const Figure& f, const Vec3& a, const Vec3& b, Rgba8 color) {
+  const Dashes d = figure_dashes(f);
+  const double pixels = pixel_length(f, a, b);
+  const int count = static_cast<int>(std::floor((pixels + d.gap) / (d.dash + d.gap)));
+  if (count < 2) {
+    add_segment(set, f.scene.origin, a, b, color);
+    return;
+  }
+  const double dash = d.dash / pixels, gap = (1.0 - count * dash) / (count - 1);
+  for (int i = 0; i < count; ++i) {
+    const double t = i * (dash + gap);
+    add_segment(set, f.scene.origin, a + t * (b - a), a + (t + dash) * (b - a), color);
+  }
 }
 
 // The boundary figure's outline of the max hex, all 12 edges in
@@ -142,11 +174,16 @@ void add_max_outline(Figure& f, const HexMesh& mesh, const ErrorDensityWorst& wo
   halo.width = static_cast<float>(std::max(4.0, 5.0 * f.style.scale));
   core.width = static_cast<float>(std::max(2.0, 2.5 * f.style.scale));
   halo.over_all = core.over_all = f.worst_hidden;
-  const auto add = f.worst_hidden ? add_dashed : add_segment;
+  const auto add = [&](LineSet& set, const Vec3& a, const Vec3& b, Rgba8 color) {
+    if (f.worst_hidden)
+      add_dashed(set, f, a, b, color);
+    else
+      add_segment(set, f.scene.origin, a, b, color);
+  };
   for (const auto& e : kHexEdges) {
     const Vec3 &a = point(mesh, hex[e[0]]), &b = point(mesh, hex[e[1]]);
-    add(halo, f.scene.origin, a, b, Rgba8{255, 255, 255, 255});
-    add(core, f.scene.origin, a, b, kMaxHexEdgeColor);
+    add(halo, a, b, Rgba8{255, 255, 255, 255});
+    add(core, a, b, kMaxHexEdgeColor);
   }
   f.scene.lines.push_back(std::move(halo));
   f.scene.lines.push_back(std::move(core));
@@ -325,11 +362,41 @@ std::array<bool, 12> hex_edges_facing(const HexMesh& mesh, const Hex& hex, const
   return front;
 }
 
+namespace {
+
+// The 1-2-5 step at or below v (v > 0).
+double step_at_or_below(double v) {
+  const double decade = std::pow(10.0, std::floor(std::log10(v) + 1e-9));
+  for (double m : {5.0, 2.0, 1.0})
+    if (m * decade <= v * (1 + 1e-9)) return m * decade;
+  return decade;
+}
+
+// v rounded up to two significant figures (0.285 -> 0.29).
+double two_figures_up(double v) {
+  const double unit = std::pow(10.0, std::floor(std::log10(v) + 1e-9) - 1);
+  return std::ceil(v / unit * (1 - 1e-9)) * unit;
+}
+
+}  // namespace
+
 ErrorDensityScale error_density_scale(std::span<const double> density) {
   ErrorDensityScale s;
   s.max = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> positive;
   for (double d : density)
-    if (is_positive(d) && !(d <= s.max)) s.max = d;
+    if (is_positive(d)) positive.push_back(d);
+  if (positive.empty()) return s;
+  std::sort(positive.begin(), positive.end());
+  s.max = positive.back();
+  // The mesh's own range (issue 48r: one fixed range 0.01-10 for every mesh
+  // put a mesh's 0.02-0.3 in one pale band, so colour did not point to the
+  // worst hex): log from the 5th percentile, rounded down to a 1-2-5 step,
+  // to the max, rounded up to two figures (so the max is the map's top
+  // colour); at least a decade, lowered a 1-2-5 step at a time.
+  s.hi = two_figures_up(s.max);
+  s.lo = step_at_or_below(positive[static_cast<std::size_t>(0.05 * static_cast<double>(positive.size() - 1))]);
+  while (s.hi / s.lo < 10.0 * (1 - 1e-9)) s.lo = step_at_or_below(s.lo * (1 - 1e-6));
   return s;
 }
 
@@ -342,29 +409,30 @@ Color error_density_color(double density, const ErrorDensityScale& scale) {
 ColorBar error_density_color_bar(const ErrorDensityScale& scale) {
   ColorBar bar;
   bar.label =
-      "FEM error density\n|u\u2212u_h|\u00b2_H1(e) / (|e| h_e\u00b2 |D\u00b2u|\u00b2),\nh_e = |e|^(1/3); no unit;\nlog, one range for all meshes";
+      "FEM error density\n|u\u2212u_h|\u00b2_H1(e) / (|e| h_e\u00b2 |D\u00b2u|\u00b2),\nh_e = |e|^(1/3); no unit;\nlog, this mesh's 5th percentile to max";
   bar.min_value = std::log10(scale.lo);
   bar.max_value = std::log10(scale.hi);
   for (int i = 0; i <= 32; ++i)
     bar.colors.push_back(error_density_color(std::pow(10.0, bar.min_value + (bar.max_value - bar.min_value) * i / 32.0),
                                              scale));
-  const auto label = [](double v) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.2g", v);
-    return std::string(text);
-  };
+  const auto label = [](double v) { return display_number(v, 3); };
   bar.ticks.push_back({bar.min_value, "\u2264 " + label(scale.lo)});
   const double span = bar.max_value - bar.min_value;
   const bool has_max = std::isfinite(scale.max) && scale.max > 0;
-  const double max_at = has_max ? std::clamp(std::log10(scale.max), bar.min_value, bar.max_value) : 0.0;
-  for (int k = static_cast<int>(std::ceil(bar.min_value)); k <= static_cast<int>(std::floor(bar.max_value)); ++k)
-    // Decades not crowding an end's label or the max's.
-    if (k - bar.min_value > 0.08 * span && bar.max_value - k > 0.08 * span &&
-        !(has_max && std::abs(k - max_at) < 0.08 * span))
-      bar.ticks.push_back({static_cast<double>(k), label(std::pow(10.0, k))});
-  const bool max_at_top = has_max && bar.max_value - max_at < 0.08 * span;
-  bar.ticks.push_back({bar.max_value, "\u2265 " + label(scale.hi) + (max_at_top ? ", mesh max " + label(scale.max) : "")});
-  if (has_max && !max_at_top) bar.ticks.push_back({max_at, "mesh max " + label(scale.max)});
+  const double max_at = has_max ? std::clamp(std::log10(scale.max), bar.min_value, bar.max_value) : bar.max_value;
+  // Round values between (1-2-5 up to two decades, then whole decades),
+  // none crowding an end's label or the max's.
+  const bool decades_only = span > 2.0 + 1e-9;
+  for (int k = static_cast<int>(std::floor(bar.min_value)); k <= static_cast<int>(std::ceil(bar.max_value)); ++k)
+    for (double m : {1.0, 2.0, 5.0}) {
+      if (decades_only && m != 1.0) continue;
+      const double at = std::log10(m) + k;
+      if (at - bar.min_value > 0.08 * span && bar.max_value - at > 0.08 * span && std::abs(at - max_at) > 0.08 * span)
+        bar.ticks.push_back({at, label(m * std::pow(10.0, k))});
+    }
+  // The top: the max (nothing lies beyond it); without one, the end.
+  bar.ticks.push_back(has_max ? ColorBarTick{max_at, "mesh max " + label(scale.max)}
+                              : ColorBarTick{bar.max_value, "\u2265 " + label(scale.hi)});
   bar.swatches = {{kUndefinedColor, "undefined"}};
   return bar;
 }
@@ -503,19 +571,19 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
       const Vec3 &a = point(mesh, hex[kHexEdges[e][0]]), &b = point(mesh, hex[kHexEdges[e][1]]);
       if (!behind) {
         add_segment(set, origin, a, b, edge_color);
-      } else {  // dashed (4 dashes, 3 gaps) on a veil-coloured casing
+      } else {  // dashed on a veil-coloured casing
         add_segment(casing, origin, a, b, kVeilOverWhite);
-        add_dashed(set, origin, a, b, edge_color);
+        add_dashed(set, f, a, b, edge_color);
       }
       if (h != worst.hex) continue;
       if (front[e] && !behind) {  // the max's front edges: solid magenta on a halo
         add_segment(halo, origin, a, b, low ? kLowCellEdgeColor : Rgba8{255, 255, 255, 255});
         add_segment(halo_core, origin, a, b, kMaxHexEdgeColor);
       } else if (front[e]) {  // hidden: the same, dashed
-        add_dashed(halo, origin, a, b, low ? kLowCellEdgeColor : Rgba8{255, 255, 255, 255});
-        add_dashed(halo_core, origin, a, b, kMaxHexEdgeColor);
+        add_dashed(halo, f, a, b, low ? kLowCellEdgeColor : Rgba8{255, 255, 255, 255});
+        add_dashed(halo_core, f, a, b, kMaxHexEdgeColor);
       } else {  // its back edges: thin, dashed
-        add_dashed(max_back, origin, a, b, kMaxHexEdgeColor);
+        add_dashed(max_back, f, a, b, kMaxHexEdgeColor);
       }
     }
   }
