@@ -425,6 +425,39 @@ TEST(ErrorDensityViews, HiddenMaxDrawnHiddenAndHiddenCellsKeepTheirColour) {
   }
   EXPECT_GE(gaps, 18);
   EXPECT_LE(magenta_in_gaps, gaps / 8) << "the hidden max's front edges are drawn solid";
+  // Issue 48r: the legend's swatch for them is their stroke as drawn: the
+  // core's and the halo's widths and colours, and the dashes' length.
+  const LineSet& halo = parts.scene.lines[parts.scene.lines.size() - 2];
+  const ColorBarSwatch* swatch = nullptr;
+  for (const ColorBarSwatch& s : parts.swatches)
+    if (s.shape == SwatchShape::thick_dashed_line) swatch = &s;
+  ASSERT_NE(swatch, nullptr);
+  ASSERT_TRUE(swatch->stroke.has_value());
+  EXPECT_EQ(to_rgba8(swatch->color), core.colors.front());
+  EXPECT_FLOAT_EQ(static_cast<float>(swatch->stroke->width), core.width);
+  EXPECT_FLOAT_EQ(static_cast<float>(swatch->stroke->halo_width), halo.width);
+  EXPECT_EQ(swatch->stroke->halo, halo.colors.front());
+  ASSERT_EQ(halo.positions.size(), core.positions.size());
+  for (std::size_t i = 0; i < core.positions.size(); ++i)  // the halo's dashes under the core's
+    EXPECT_EQ(norm(Vec3{halo.positions[i].x - core.positions[i].x, halo.positions[i].y - core.positions[i].y,
+                        halo.positions[i].z - core.positions[i].z}),
+              0.0);
+  int measured = 0;
+  for (std::size_t i = 0; i + 1 < core.indices.size(); i += 2) {
+    const Vec3f p = core.positions[core.indices[i]], q = core.positions[core.indices[i + 1]];
+    const auto [x0, y0] = to_pixel(camera, view, parts.scene.origin + Vec3{p.x, p.y, p.z});
+    const auto [x1, y1] = to_pixel(camera, view, parts.scene.origin + Vec3{q.x, q.y, q.z});
+    const double length = std::hypot(x1 - x0, y1 - y0);
+    if (length < 2 * swatch->stroke->dash + swatch->stroke->gap - 1.5) {
+      ++measured;
+      EXPECT_NEAR(length, swatch->stroke->dash, 1.5);
+    }
+  }
+  EXPECT_GE(measured, 18);
+  // The swatch's own dashes (dashed_pieces over its width): the same length.
+  const auto pieces = dashed_pieces(34.0, *swatch->stroke);
+  ASSERT_GE(pieces.size(), 2u);
+  for (const auto& [t0, t1] : pieces) EXPECT_NEAR((t1 - t0) * 34.0, swatch->stroke->dash, 1e-9);
   // (b) Samples inside the centre hex: its colour of the bar.
   const Rgba8 centre_color = to_rgba8(error_density_color(0.5, scale));
   int samples = 0, colored = 0;
@@ -670,6 +703,44 @@ TEST(ErrorDensityViews, SmallMaxGetsAReadableRingTheLabelDoesNotCover) {
     dark += on_ring;
   }
   EXPECT_GE(dark, kSamples * 8 / 10) << "the ring is covered or not drawn";
+}
+
+}  // namespace
+}  // namespace hq
+
+namespace hq {
+namespace {
+
+// Issue 48r: an extruded plate was seen edge-on (a rectangle). A 12 x 8 x 1
+// plate (thin along z; turned so that it stands with its thin axis along x,
+// with z up), the max hex at a corner: the chosen view is at least 15
+// degrees from edge-on to the thin axis, and the eye is on the max's side.
+TEST(ErrorDensityViews, PlateIsNotSeenEdgeOn) {
+  for (const bool standing : {false, true}) {
+    HexMesh mesh = test::box_grid(12, 8, 1);
+    for (Vec3& p : mesh.points) {
+      p.z *= 0.4;
+      if (standing) p = Vec3{p.z, p.x, p.y};  // thin along x, the long side horizontal
+    }
+    const Topology topology = build_topology(mesh);
+    std::vector<double> density(mesh.hexes.size());
+    for (std::size_t h = 0; h < density.size(); ++h) density[h] = 0.02 + 0.001 * static_cast<double>(h % 7);
+    density[5] = 0.3;
+    ErrorDensityViewOptions options;
+    options.up = {0, 0, 1};
+    const Vec3 d = choose_error_density_viewpoint(mesh, topology, density, options);
+    const Vec3 thin = standing ? Vec3{1, 0, 0} : Vec3{0, 0, 1};
+    EXPECT_GE(std::abs(dot(d / norm(d), thin)), std::sin(15.0 * std::numbers::pi / 180.0) - 1e-9)
+        << (standing ? "standing" : "lying") << ": " << d.x << " " << d.y << " " << d.z;
+  }
+  // An edge-on direction is turned to 30 degrees, the eye (at -d) on the
+  // side of the focus.
+  const HexMesh plate = test::box_grid(12, 8, 1);
+  const Vec3 turned = away_from_edge_on({1, 0, 0}, plate.points, Vec3{6, 4, 1});  // focus above the middle
+  EXPECT_NEAR(turned.z, -0.5, 1e-6);
+  EXPECT_NEAR(turned.x, std::sqrt(0.75), 1e-6);
+  const Vec3 kept = away_from_edge_on({0.5, 0, -0.8}, plate.points, Vec3{6, 4, 1});
+  EXPECT_EQ(kept.z, -0.8);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <numeric>
 
 #include "hqview/core/box3.h"
@@ -140,23 +141,26 @@ double pixel_length(const Figure& f, const Vec3& a, const Vec3& b) {
   return std::isfinite(length) ? length : 0.0;
 }
 
-// a-b dashed as f draws it: dashes of the pattern's length from end to end
-// (the gaps stretched to fit, at most their length plus a dash), solid when
-// it is shorter than two dashes and a gap; one halo and its core drawn with
-// the same call get the same dashes.
+// The max hex's edges as f draws them (issue 48r: the legend's swatch is
+// drawn from the same stroke, so they agree): a core on a halo, dashed
+// (figure_dashes) when hidden.
+SwatchStroke max_edge_stroke(const Figure& f, double core, double halo, Rgba8 halo_color, bool dashed) {
+  const Dashes d = figure_dashes(f);
+  return {core, halo, halo_color, dashed ? d.dash : 0.0, d.gap};
+}
+
+// a-b dashed as f draws it (dashed_pieces of figure_dashes: the dashes of a
+// halo and its core drawn with the same call coincide).
 void add_dashed(LineSet& set, const Figure& f, const Vec3& a, const Vec3& b, Rgba8 color) {
   const Dashes d = figure_dashes(f);
-  const double pixels = pixel_length(f, a, b);
-  const int count = static_cast<int>(std::floor((pixels + d.gap) / (d.dash + d.gap)));
-  if (count < 2) {
-    add_segment(set, f.scene.origin, a, b, color);
-    return;
-  }
-  const double dash = d.dash / pixels, gap = (1.0 - count * dash) / (count - 1);
-  for (int i = 0; i < count; ++i) {
-    const double t = i * (dash + gap);
-    add_segment(set, f.scene.origin, a + t * (b - a), a + (t + dash) * (b - a), color);
-  }
+  for (const auto& [t0, t1] : dashed_pieces(pixel_length(f, a, b), {0, 0, {}, d.dash, d.gap}))
+    add_segment(set, f.scene.origin, a + t0 * (b - a), a + t1 * (b - a), color);
+}
+
+// The boundary figure's outline of the max hex: white halo, dashed when hidden.
+SwatchStroke boundary_max_stroke(const Figure& f) {
+  return max_edge_stroke(f, std::max(2.0, 2.5 * f.style.scale), std::max(4.0, 5.0 * f.style.scale),
+                         {255, 255, 255, 255}, f.worst_hidden);
 }
 
 // The boundary figure's outline of the max hex, all 12 edges in
@@ -170,9 +174,10 @@ void add_dashed(LineSet& set, const Figure& f, const Vec3& a, const Vec3& b, Rgb
 void add_max_outline(Figure& f, const HexMesh& mesh, const ErrorDensityWorst& worst) {
   if (worst.hex == kNoIndex) return;
   const Hex& hex = mesh.hexes[static_cast<std::size_t>(worst.hex)];
+  const SwatchStroke stroke = boundary_max_stroke(f);
   LineSet halo, core;
-  halo.width = static_cast<float>(std::max(4.0, 5.0 * f.style.scale));
-  core.width = static_cast<float>(std::max(2.0, 2.5 * f.style.scale));
+  halo.width = static_cast<float>(stroke.halo_width);
+  core.width = static_cast<float>(stroke.width);
   halo.over_all = core.over_all = f.worst_hidden;
   const auto add = [&](LineSet& set, const Vec3& a, const Vec3& b, Rgba8 color) {
     if (f.worst_hidden)
@@ -335,7 +340,54 @@ LineSet boundary_edge_lines(const HexMesh& mesh, const Topology& topology, const
   return lines;
 }
 
+// The axis along which points vary least (the eigenvector of the smallest
+// eigenvalue of their covariance; power iteration on trace - C, which
+// converges to it, from a start fixed by the points' spread).
+Vec3 thinnest_axis(std::span<const Vec3> points) {
+  if (points.empty()) return {0, 0, 1};
+  Vec3 mean;
+  for (const Vec3& p : points) mean = mean + p / static_cast<double>(points.size());
+  double c[3][3] = {};
+  for (const Vec3& p : points)
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) c[i][j] += (p[i] - mean[i]) * (p[j] - mean[j]);
+  const double trace = c[0][0] + c[1][1] + c[2][2];
+  if (!(trace > 0)) return {0, 0, 1};
+  const int thin = c[0][0] <= c[1][1] && c[0][0] <= c[2][2] ? 0 : c[1][1] <= c[2][2] ? 1 : 2;
+  Vec3 v{0.1, 0.1, 0.1};
+  v[thin] = 1.0;
+  for (int k = 0; k < 200; ++k) {
+    Vec3 w;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) w[i] += ((i == j ? trace : 0.0) - c[i][j]) * v[j];
+    if (!(norm(w) > 0)) break;
+    v = w / norm(w);
+  }
+  return v;
+}
+
 }  // namespace
+
+Vec3 away_from_edge_on(const Vec3& direction, std::span<const Vec3> points, const Vec3& focus) {
+  // Issue 48r: an extruded plate was seen edge-on (a rectangle). Within
+  // kEdgeOnDegrees of edge-on to the model's thinnest axis n, the view is
+  // tilted to kTiltDegrees from edge-on, towards the side of n the focus
+  // (the max hex) lies on, keeping its azimuth about n.
+  constexpr double kEdgeOnDegrees = 15.0, kTiltDegrees = 30.0;
+  const Vec3 n = thinnest_axis(points);
+  const Vec3 d = direction / norm(direction);
+  if (std::abs(dot(d, n)) >= std::sin(kEdgeOnDegrees * std::numbers::pi / 180.0)) return direction;
+  Vec3 across = d - dot(d, n) * n;
+  if (!(norm(across) > 1e-9)) return direction;
+  across = across / norm(across);
+  Vec3 mean;
+  for (const Vec3& p : points) mean = mean + p / static_cast<double>(points.size());
+  // The eye at -d: on the focus's side of n when d points against it.
+  const double side = dot(focus - mean, n);
+  const double sign = side > 0 ? -1.0 : side < 0 ? 1.0 : (dot(d, n) < 0 ? -1.0 : 1.0);
+  const double tilt = kTiltDegrees * std::numbers::pi / 180.0;
+  return std::cos(tilt) * across + sign * std::sin(tilt) * n;
+}
 
 std::array<bool, 12> hex_edges_facing(const HexMesh& mesh, const Hex& hex, const Camera& camera) {
   Vec3 center{0, 0, 0};
@@ -472,7 +524,10 @@ Vec3 choose_error_density_viewpoint(const HexMesh& mesh, const Topology& topolog
                                             color_bar_width(error_density_color_bar({}), annotation_style_for(options.height)),
                                             annotation_style_for(options.height));
   const double aspect = static_cast<double>(layout.view.width) / std::max(1, layout.view.height);
-  return choose_viewpoints(boundary_points(mesh, topology), centers, radii, aspect, 1, options.up, kFovY).front();
+  const std::vector<Vec3> points = boundary_points(mesh, topology);
+  const Vec3 chosen = choose_viewpoints(points, centers, radii, aspect, 1, options.up, kFovY).front();
+  const ErrorDensityWorst worst = error_density_worst(topology, density);
+  return worst.hex == kNoIndex ? chosen : away_from_edge_on(chosen, points, hex_center(mesh, worst.hex));
 }
 
 Image render_error_density_boundary(const HexMesh& mesh, const Topology& topology, std::span<const double> density,
@@ -499,8 +554,11 @@ Image render_error_density_boundary(const HexMesh& mesh, const Topology& topolog
   add_max_outline(f, mesh, worst);
   // The ring and the outline as drawn (issue 48h: the ring was a black
   // box; issue 48: the outline had no entry).
-  for (const ColorBarSwatch& swatch : error_density_boundary_swatches(worst, f.worst_hidden))
+  for (ColorBarSwatch swatch : error_density_boundary_swatches(worst, f.worst_hidden)) {
+    if (swatch.shape == SwatchShape::dashed_line || swatch.shape == SwatchShape::thick_line)
+      swatch.stroke = boundary_max_stroke(f);
     f.bar.swatches.push_back(swatch);
+  }
   return finish_figure(f, mesh, worst, options, renderer, camera, view, parts);
 }
 
@@ -538,8 +596,12 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   edges.width = static_cast<float>(std::max(1.0, f.style.scale));
   low_edges.width = static_cast<float>(std::max(2.0, 2.5 * f.style.scale));
   casing.width = static_cast<float>(std::max(5.0, 6.0 * f.style.scale));
-  halo.width = static_cast<float>(std::max(6.0, 7.0 * f.style.scale));
-  halo_core.width = static_cast<float>(std::max(2.5, 3.0 * f.style.scale));
+  const auto front_stroke = [&](bool low) {
+    return max_edge_stroke(f, std::max(2.5, 3.0 * f.style.scale), std::max(6.0, 7.0 * f.style.scale),
+                           low ? kLowCellEdgeColor : Rgba8{255, 255, 255, 255}, f.worst_hidden);
+  };
+  halo.width = static_cast<float>(front_stroke(false).halo_width);
+  halo_core.width = static_cast<float>(front_stroke(false).width);
   max_back.width = static_cast<float>(std::max(1.0, f.style.scale));
   const Vec3& origin = f.scene.origin;
   // The max hidden by the same test as the boundary figure's (issue 48h
@@ -605,6 +667,10 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   // has a density); short lines, so the bar keeps its size.
   f.bar.swatches =
       error_density_cells_swatches(worst, f.worst_hidden, {any_low, max_low, any_hidden}, options.quality_threshold);
+  // The front edges' swatch: their stroke, halo and dashes as drawn.
+  for (ColorBarSwatch& swatch : f.bar.swatches)
+    if (swatch.shape == SwatchShape::thick_dashed_line || swatch.shape == SwatchShape::thick_line)
+      if (to_rgba8(swatch.color) == kMaxHexEdgeColor) swatch.stroke = front_stroke(max_low);
   return finish_figure(f, mesh, worst, options, renderer, camera, view, parts);
 }
 

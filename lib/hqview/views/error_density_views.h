@@ -54,6 +54,13 @@ namespace hq {
 // the grey cell edges), so the max is found by its edge colour alone.
 inline constexpr Rgba8 kMaxHexEdgeColor{204, 0, 204, 255};
 
+// A view direction (eye to target) for the error-density figures:
+// direction, or, when it is within 15 degrees of edge-on to the thinnest
+// axis n of points (their covariance's), the direction 30 degrees from
+// edge-on with the same azimuth about n, the eye on focus's side of n
+// (issue 48r: an extruded plate was seen edge-on, as a rectangle).
+Vec3 away_from_edge_on(const Vec3& direction, std::span<const Vec3> points, const Vec3& focus);
+
 // The colour scale: log10 of the density from lo to hi (both > 0), the
 // mesh's own (issue 48r; was 0.01 to 10 for every mesh, which put a mesh's
 // data in one pale band): lo its 5th percentile rounded down to a 1-2-5
@@ -103,7 +110,8 @@ struct ErrorDensityViewOptions {
 // alone, so the figure does not assume which metric predicts it.
 std::vector<Index> error_density_cells(std::span<const double> density, const ErrorDensityViewOptions& options);
 
-// The upright direction that shows the most of the densest hexes.
+// The upright direction that shows the most of the densest hexes, turned
+// away from edge-on to the model (away_from_edge_on, the max hex the focus).
 Vec3 choose_error_density_viewpoint(const HexMesh& mesh, const Topology& topology, std::span<const double> density,
                                     const ErrorDensityViewOptions& options);
 
