@@ -42,7 +42,7 @@ double redness(Rgba8 c) { return c.r / (c.b + 1.0); }
 
 // The mesh's own log range (issue 48r; was 0.01 to 10 for every mesh): the
 // 5th percentile rounded down to a 1-2-5 step, the max rounded up to two
-// figures, at least a decade; the legend ticks round values.
+// figures, at least a factor 4; the legend ticks round values.
 TEST(ErrorDensityView, LogScaleHighIsTheMapsRedEnd) {
   std::vector<double> d = {std::nan(""), -1.0};
   for (int i = 0; i < 100; ++i) d.push_back(0.02 * std::pow(0.285 / 0.02, i / 99.0));  // 0.02 .. 0.285
@@ -64,10 +64,10 @@ TEST(ErrorDensityView, LogScaleHighIsTheMapsRedEnd) {
   for (const ColorBarTick& t : bar.ticks) labels.push_back(t.label);
   EXPECT_EQ(labels, (std::vector<std::string>{"\u2264 0.02", "0.05", "0.1", "0.2", "mesh max 0.285"}));
   EXPECT_NEAR(bar.ticks.back().value, std::log10(0.285), 1e-12);
-  // Narrow data: still a decade (0.3 .. 0.31 -> 0.02 .. 0.31).
+  // Narrow data: still a factor 4 (0.3 .. 0.31 -> 0.05 .. 0.31).
   const ErrorDensityScale narrow = error_density_scale(std::vector<double>{0.3, 0.31});
   EXPECT_NEAR(narrow.hi, 0.31, 1e-12);
-  EXPECT_NEAR(narrow.lo, 0.02, 1e-12);
+  EXPECT_NEAR(narrow.lo, 0.05, 1e-12);
   // Large data: 3 to 40 -> 2 .. 40.
   const ErrorDensityScale large = error_density_scale(std::vector<double>{3.0, 10.0, 40.0});
   EXPECT_NEAR(large.lo, 2.0, 1e-12);

@@ -445,10 +445,11 @@ ErrorDensityScale error_density_scale(std::span<const double> density) {
   // put a mesh's 0.02-0.3 in one pale band, so colour did not point to the
   // worst hex): log from the 5th percentile, rounded down to a 1-2-5 step,
   // to the max, rounded up to two figures (so the max is the map's top
-  // colour); at least a decade, lowered a 1-2-5 step at a time.
+  // colour); hi / lo at least 4 (a mesh whose densities vary by 2x does not
+  // span the whole map), lo lowered a 1-2-5 step at a time.
   s.hi = two_figures_up(s.max);
   s.lo = step_at_or_below(positive[static_cast<std::size_t>(0.05 * static_cast<double>(positive.size() - 1))]);
-  while (s.hi / s.lo < 10.0 * (1 - 1e-9)) s.lo = step_at_or_below(s.lo * (1 - 1e-6));
+  while (s.hi / s.lo < 4.0 * (1 - 1e-9)) s.lo = step_at_or_below(s.lo * (1 - 1e-6));
   return s;
 }
 

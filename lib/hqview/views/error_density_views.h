@@ -65,7 +65,7 @@ Vec3 away_from_edge_on(const Vec3& direction, std::span<const Vec3> points, cons
 // mesh's own (issue 48r; was 0.01 to 10 for every mesh, which put a mesh's
 // data in one pale band): lo its 5th percentile rounded down to a 1-2-5
 // step, hi its max rounded up to two figures (the max is the map's top
-// colour), hi / lo at least 10 (lo lowered a 1-2-5 step at a time); values
+// colour), hi / lo at least 4 (lo lowered a 1-2-5 step at a time); values
 // below lo clamped to the low end; max: the mesh's largest density (NaN for
 // none), marked on the legend. No positive density: 0.01 to 10.
 inline constexpr double kErrorDensityLo = 1e-2, kErrorDensityHi = 10.0;
