@@ -373,6 +373,14 @@ std::array<int, 2> to_pixel(const Camera& camera, const PixelRect& view, const V
   return {view.x + static_cast<int>(std::lround((ndc.x + 1) / 2 * view.width)),
           view.y + static_cast<int>(std::lround((1 - ndc.y) / 2 * view.height))};
 }
+// The on-screen length in pixels of the segment at index i of lines.
+double segment_pixels(const Camera& camera, const PixelRect& view, const Vec3& origin, const LineSet& lines,
+                      std::size_t i) {
+  const Vec3f p = lines.positions[lines.indices[i]], q = lines.positions[lines.indices[i + 1]];
+  const auto [x0, y0] = to_pixel(camera, view, origin + Vec3{p.x, p.y, p.z});
+  const auto [x1, y1] = to_pixel(camera, view, origin + Vec3{q.x, q.y, q.z});
+  return std::hypot(x1 - x0, y1 - y0);
+}
 bool near_color(Rgba8 a, Rgba8 b) { return std::abs(a.r - b.r) <= 3 && std::abs(a.g - b.g) <= 3 && std::abs(a.b - b.b) <= 3; }
 
 // Issue 48h round 2, on a 5^3 grid seen from the (1, 0.8, 0.6) side.
@@ -444,10 +452,7 @@ TEST(ErrorDensityViews, HiddenMaxDrawnHiddenAndHiddenCellsKeepTheirColour) {
               0.0);
   int measured = 0;
   for (std::size_t i = 0; i + 1 < core.indices.size(); i += 2) {
-    const Vec3f p = core.positions[core.indices[i]], q = core.positions[core.indices[i + 1]];
-    const auto [x0, y0] = to_pixel(camera, view, parts.scene.origin + Vec3{p.x, p.y, p.z});
-    const auto [x1, y1] = to_pixel(camera, view, parts.scene.origin + Vec3{q.x, q.y, q.z});
-    const double length = std::hypot(x1 - x0, y1 - y0);
+    const double length = segment_pixels(camera, view, parts.scene.origin, core, i);
     if (length < 2 * swatch->stroke->dash + swatch->stroke->gap - 1.5) {
       ++measured;
       EXPECT_NEAR(length, swatch->stroke->dash, 1.5);
@@ -553,10 +558,7 @@ TEST(ErrorDensityViews, HiddenMaxIsOutlinedThroughTheSurface) {
     }
     int dashes = 0;
     for (std::size_t i = 0; i + 1 < lines.indices.size(); i += 2) {
-      const Vec3f p = lines.positions[lines.indices[i]], q = lines.positions[lines.indices[i + 1]];
-      const auto [x0, y0] = to_pixel(camera, view, parts.scene.origin + Vec3{p.x, p.y, p.z});
-      const auto [x1, y1] = to_pixel(camera, view, parts.scene.origin + Vec3{q.x, q.y, q.z});
-      const double length = std::hypot(x1 - x0, y1 - y0);
+      const double length = segment_pixels(camera, view, parts.scene.origin, lines, i);
       if (std::abs(length - 10 * scale) <= 1.5)
         ++dashes;
       else  // else a whole short edge, solid
