@@ -15,6 +15,7 @@
 #include "hqview/image/colormap.h"
 #include "hqview/render/osmesa_renderer.h"
 #include "hqview/views/boundary_views.h"
+#include "support/colour_science.h"
 #include "support/fixtures.h"
 #include "support/image_probe.h"
 
@@ -39,31 +40,38 @@ Vec3 unit_box_normal(const Vec3& c) {
 // pixel is.
 double redness(Rgba8 c) { return c.r / (c.b + 1.0); }
 
-// One fixed log range for every mesh, 0.01 to 10 (clamped outside), so a
-// colour means the same density on any mesh; the legend marks the mesh's max.
+// The mesh's own log range (issue 48r; was 0.01 to 10 for every mesh): the
+// 5th percentile rounded down to a 1-2-5 step, the max rounded up to two
+// figures, at least a factor 4; the legend ticks round values.
 TEST(ErrorDensityView, LogScaleHighIsTheMapsRedEnd) {
-  const std::vector<double> d = {1e-3, 1e-2, 0.1, std::nan(""), -1.0, 0.05};
+  std::vector<double> d = {std::nan(""), -1.0};
+  for (int i = 0; i < 100; ++i) d.push_back(0.02 * std::pow(0.285 / 0.02, i / 99.0));  // 0.02 .. 0.285
   const ErrorDensityScale s = error_density_scale(d);
-  EXPECT_DOUBLE_EQ(s.hi, 10.0);
-  EXPECT_DOUBLE_EQ(s.lo, 1e-2);
-  EXPECT_DOUBLE_EQ(s.max, 0.1);
-  EXPECT_EQ(to_rgba8(error_density_color(10.0, s)), to_rgba8(sample_quality_map(0.0)));
+  EXPECT_NEAR(s.hi, 0.29, 1e-12);
+  EXPECT_NEAR(s.lo, 0.02, 1e-12);  // p05 = 0.0229, down to 0.02
+  EXPECT_DOUBLE_EQ(s.max, 0.285);
+  EXPECT_EQ(to_rgba8(error_density_color(0.29, s)), to_rgba8(sample_quality_map(0.0)));
   EXPECT_EQ(to_rgba8(error_density_color(50.0, s)), to_rgba8(sample_quality_map(0.0)));  // clamped
-  EXPECT_EQ(to_rgba8(error_density_color(1e-2, s)), to_rgba8(sample_quality_map(1.0)));
+  EXPECT_EQ(to_rgba8(error_density_color(0.02, s)), to_rgba8(sample_quality_map(1.0)));
   EXPECT_EQ(to_rgba8(error_density_color(1e-3, s)), to_rgba8(sample_quality_map(1.0)));
-  EXPECT_EQ(to_rgba8(error_density_color(std::sqrt(10.0) / 10.0, s)), to_rgba8(sample_quality_map(0.5)));  // log: the middle
+  EXPECT_EQ(to_rgba8(error_density_color(std::sqrt(0.02 * 0.29), s)), to_rgba8(sample_quality_map(0.5)));  // log: the middle
   EXPECT_EQ(to_rgba8(error_density_color(std::nan(""), s)), to_rgba8(kUndefinedColor));
   const ColorBar bar = error_density_color_bar(s);
-  EXPECT_DOUBLE_EQ(bar.min_value, -2.0);
-  EXPECT_DOUBLE_EQ(bar.max_value, 1.0);
-  // <= 0.01, 1 (0.1 crowds the max), >= 10, the max at log10 0.1.
+  EXPECT_NEAR(bar.min_value, std::log10(0.02), 1e-12);
+  EXPECT_NEAR(bar.max_value, std::log10(0.29), 1e-12);
+  // <= 0.02, the round values 0.05 0.1 0.2 between, the max at the top.
   std::vector<std::string> labels;
   for (const ColorBarTick& t : bar.ticks) labels.push_back(t.label);
-  EXPECT_EQ(labels, (std::vector<std::string>{"\u2264 0.01", "1", "\u2265 10", "mesh max 0.1"}));
-  EXPECT_DOUBLE_EQ(bar.ticks.back().value, -1.0);
-  // Two meshes: the same density, the same colour.
-  EXPECT_EQ(to_rgba8(error_density_color(0.3, error_density_scale(std::vector<double>{0.3, 2.0}))),
-            to_rgba8(error_density_color(0.3, error_density_scale(std::vector<double>{0.3, 0.31}))));
+  EXPECT_EQ(labels, (std::vector<std::string>{"\u2264 0.02", "0.05", "0.1", "0.2", "mesh max 0.285"}));
+  EXPECT_NEAR(bar.ticks.back().value, std::log10(0.285), 1e-12);
+  // Narrow data: still a factor 4 (0.3 .. 0.31 -> 0.05 .. 0.31).
+  const ErrorDensityScale narrow = error_density_scale(std::vector<double>{0.3, 0.31});
+  EXPECT_NEAR(narrow.hi, 0.31, 1e-12);
+  EXPECT_NEAR(narrow.lo, 0.05, 1e-12);
+  // Large data: 3 to 40 -> 2 .. 40.
+  const ErrorDensityScale large = error_density_scale(std::vector<double>{3.0, 10.0, 40.0});
+  EXPECT_NEAR(large.lo, 2.0, 1e-12);
+  EXPECT_NEAR(large.hi, 40.0, 1e-12);
 }
 
 // The cells figure draws the densest 1% by density alone (at least one, at
@@ -171,6 +179,20 @@ TEST(ErrorDensityView, TheBadRegionCarriesTheHighEndOfTheMap) {
   };
   // The region's pixels are redder than the rest's.
   EXPECT_GT(median(region), 1.08 * median(rest)) << median(region) << " vs " << median(rest);
+  // Issue 48r: the scale is the mesh's own, so the max is the map's top
+  // colour and the median hex sits mid-map (on 0.01 to 10 for every mesh
+  // this mesh's densities all lay in the map's pale lower half).
+  std::vector<double> positive;
+  for (double d : density)
+    if (d > 0) positive.push_back(d);
+  std::nth_element(positive.begin(), positive.begin() + static_cast<std::ptrdiff_t>(positive.size() / 2), positive.end());
+  const double median_density = positive[positive.size() / 2];
+  const ErrorDensityWorst max = error_density_worst(topology, density);
+  EXPECT_LE(test::delta_e(to_rgba8(error_density_color(max.density, scale)), to_rgba8(sample_quality_map(0.0))), 3.0)
+      << "max " << max.density << " on " << scale.lo << " .. " << scale.hi;
+  const double median_at = (std::log10(median_density) - std::log10(scale.lo)) / (std::log10(scale.hi) - std::log10(scale.lo));
+  EXPECT_GT(median_at, 0.25) << median_density << " on " << scale.lo << " .. " << scale.hi;
+  EXPECT_LT(median_at, 0.75) << median_density << " on " << scale.lo << " .. " << scale.hi;
   // The densest hex is ringed: ring-coloured pixels around its projection.
   const ErrorDensityWorst worst = error_density_worst(topology, density);
   ASSERT_NE(worst.hex, kNoIndex);
@@ -351,6 +373,14 @@ std::array<int, 2> to_pixel(const Camera& camera, const PixelRect& view, const V
   return {view.x + static_cast<int>(std::lround((ndc.x + 1) / 2 * view.width)),
           view.y + static_cast<int>(std::lround((1 - ndc.y) / 2 * view.height))};
 }
+// The on-screen length in pixels of the segment at index i of lines.
+double segment_pixels(const Camera& camera, const PixelRect& view, const Vec3& origin, const LineSet& lines,
+                      std::size_t i) {
+  const Vec3f p = lines.positions[lines.indices[i]], q = lines.positions[lines.indices[i + 1]];
+  const auto [x0, y0] = to_pixel(camera, view, origin + Vec3{p.x, p.y, p.z});
+  const auto [x1, y1] = to_pixel(camera, view, origin + Vec3{q.x, q.y, q.z});
+  return std::hypot(x1 - x0, y1 - y0);
+}
 bool near_color(Rgba8 a, Rgba8 b) { return std::abs(a.r - b.r) <= 3 && std::abs(a.g - b.g) <= 3 && std::abs(a.b - b.b) <= 3; }
 
 // Issue 48h round 2, on a 5^3 grid seen from the (1, 0.8, 0.6) side.
@@ -378,29 +408,61 @@ TEST(ErrorDensityViews, HiddenMaxDrawnHiddenAndHiddenCellsKeepTheirColour) {
   const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
   Camera camera;
   PixelRect view;
-  const Image cells = render_error_density_cells(mesh, topology, density, sj, direction, options, *renderer, &camera, &view);
+  ErrorDensityFigureParts parts;
+  const Image cells =
+      render_error_density_cells(mesh, topology, density, sj, direction, options, *renderer, &camera, &view, &parts);
   const std::vector<Index> probe{corner, centre, static_cast<Index>(mesh.hexes.size() - 1)};
   const std::vector<bool> hidden =
       error_density_cells_behind_boundary(mesh, topology, probe, camera, view.width, view.height, *renderer);
   ASSERT_TRUE(hidden[0] && hidden[1] && !hidden[2])
       << "the corner at the origin must face away";
   const ErrorDensityScale scale = error_density_scale(density);
-  // (a) The gaps of the 4-dash pattern (t = 1.5/7, 3.5/7, 5.5/7) on its front edges.
-  const Hex& hex = mesh.hexes[static_cast<std::size_t>(corner)];
-  const std::array<bool, 12> front = hex_edges_facing(mesh, hex, camera);
+  // (a) The gaps between the dashes of its front edges (the last line set,
+  // the halo's core; consecutive dashes of one edge) show no magenta.
+  const LineSet& core = parts.scene.lines.back();
+  ASSERT_EQ(core.colors.front(), kMaxHexEdgeColor);
   int gaps = 0, magenta_in_gaps = 0;
-  for (std::size_t e = 0; e < kHexEdges.size(); ++e) {
-    if (!front[e]) continue;
-    const Vec3 a = mesh.points[static_cast<std::size_t>(hex[static_cast<std::size_t>(kHexEdges[e][0])])];
-    const Vec3 b = mesh.points[static_cast<std::size_t>(hex[static_cast<std::size_t>(kHexEdges[e][1])])];
-    for (const double t : {1.5 / 7, 3.5 / 7, 5.5 / 7}) {
-      const auto [x, y] = to_pixel(camera, view, a + t * (b - a));
-      ++gaps;
-      magenta_in_gaps += near_color(test::pixel_at(cells, x, y), kMaxHexEdgeColor);
+  for (std::size_t i = 0; i + 3 < core.indices.size(); i += 2) {
+    const Vec3f p = core.positions[core.indices[i]], q = core.positions[core.indices[i + 1]];
+    const Vec3f r = core.positions[core.indices[i + 2]];
+    const Vec3 dash{q.x - p.x, q.y - p.y, q.z - p.z}, gap{r.x - q.x, r.y - q.y, r.z - q.z};
+    if (norm(gap) < 1e-9 || norm(cross(dash, gap)) > 1e-6 * norm(dash) * norm(gap) || dot(dash, gap) <= 0) continue;
+    const auto [x, y] = to_pixel(camera, view, parts.scene.origin + Vec3{q.x, q.y, q.z} + 0.5 * gap);
+    ++gaps;
+    magenta_in_gaps += near_color(test::pixel_at(cells, x, y), kMaxHexEdgeColor);
+  }
+  EXPECT_GE(gaps, 18);
+  EXPECT_LE(magenta_in_gaps, gaps / 8) << "the hidden max's front edges are drawn solid";
+  // Issue 48r: the legend's swatch for them is their stroke as drawn: the
+  // core's and the halo's widths and colours, and the dashes' length.
+  const LineSet& halo = parts.scene.lines[parts.scene.lines.size() - 2];
+  const ColorBarSwatch* swatch = nullptr;
+  for (const ColorBarSwatch& s : parts.swatches)
+    if (s.shape == SwatchShape::thick_dashed_line) swatch = &s;
+  ASSERT_NE(swatch, nullptr);
+  ASSERT_TRUE(swatch->stroke.has_value());
+  EXPECT_EQ(to_rgba8(swatch->color), core.colors.front());
+  EXPECT_FLOAT_EQ(static_cast<float>(swatch->stroke->width), core.width);
+  EXPECT_FLOAT_EQ(static_cast<float>(swatch->stroke->halo_width), halo.width);
+  EXPECT_EQ(swatch->stroke->halo, halo.colors.front());
+  ASSERT_EQ(halo.positions.size(), core.positions.size());
+  for (std::size_t i = 0; i < core.positions.size(); ++i)  // the halo's dashes under the core's
+    EXPECT_EQ(norm(Vec3{halo.positions[i].x - core.positions[i].x, halo.positions[i].y - core.positions[i].y,
+                        halo.positions[i].z - core.positions[i].z}),
+              0.0);
+  int measured = 0;
+  for (std::size_t i = 0; i + 1 < core.indices.size(); i += 2) {
+    const double length = segment_pixels(camera, view, parts.scene.origin, core, i);
+    if (length < 2 * swatch->stroke->dash + swatch->stroke->gap - 1.5) {
+      ++measured;
+      EXPECT_NEAR(length, swatch->stroke->dash, 1.5);
     }
   }
-  EXPECT_EQ(gaps, 27);
-  EXPECT_LE(magenta_in_gaps, 3) << "the hidden max's front edges are drawn solid";
+  EXPECT_GE(measured, 18);
+  // The swatch's own dashes (dashed_pieces over its width): the same length.
+  const auto pieces = dashed_pieces(34.0, *swatch->stroke);
+  ASSERT_GE(pieces.size(), 2u);
+  for (const auto& [t0, t1] : pieces) EXPECT_NEAR((t1 - t0) * 34.0, swatch->stroke->dash, 1e-9);
   // (b) Samples inside the centre hex: its colour of the bar.
   const Rgba8 centre_color = to_rgba8(error_density_color(0.5, scale));
   int samples = 0, colored = 0;
@@ -453,7 +515,7 @@ bool same_swatch(const ColorBarSwatch& a, const ColorBarSwatch& b) {
 // corner hex at the origin of a 5^3 grid seen from the (1, 0.8, 0.6) side).
 // N1: it is not painted over the faces in front of it: inside its
 // projection those faces keep their own colour (it was filled opaque in the
-// max's colour). N2: all 12 edges are outlined, 4 dashes each, drawn
+// max's colour). N2: all 12 edges are outlined, dashed (48r: a fixed screen length), drawn
 // through the surface (its dashed edges were depth-tested against its own
 // opaque faces: some were lost), and magenta is seen on every one. N4: the
 // dashed outline has a legend entry.
@@ -480,24 +542,50 @@ TEST(ErrorDensityViews, HiddenMaxIsOutlinedThroughTheSurface) {
     if (lines.colors.empty() || lines.colors.front() != kMaxHexEdgeColor) continue;
     ++magenta_sets;
     EXPECT_TRUE(lines.over_all) << "depth-tested: the surface hides it";
-    EXPECT_EQ(lines.indices.size(), 12u * 4u * 2u);
+    // Issue 48r: dashes of a fixed screen length (10 px, gaps 6 px to 16 px
+    // at 1200 px height) from end to end of each edge, at least one per
+    // edge (a short edge solid); were 4 per edge, dots on short edges.
+    const double scale = annotation_style_for(options.height).scale;
     const std::array<int, 12> per_edge = segments_per_edge(mesh, hex, lines, parts.scene.origin);
-    for (std::size_t e = 0; e < 12; ++e) EXPECT_EQ(per_edge[e], 4) << "edge " << e;
+    for (std::size_t e = 0; e < 12; ++e) {
+      const auto [x0, y0] = to_pixel(camera, view, edge_point(mesh, hex, e, 0));
+      const auto [x1, y1] = to_pixel(camera, view, edge_point(mesh, hex, e, 1));
+      const double length = std::hypot(x1 - x0, y1 - y0);
+      EXPECT_GE(per_edge[e], 1) << "edge " << e;
+      if (length >= 26 * scale + 2) {
+        EXPECT_NEAR(per_edge[e], std::floor((length + 6 * scale) / (16 * scale)), 1) << "edge " << e;
+      }
+    }
+    int dashes = 0;
+    for (std::size_t i = 0; i + 1 < lines.indices.size(); i += 2) {
+      const double length = segment_pixels(camera, view, parts.scene.origin, lines, i);
+      if (std::abs(length - 10 * scale) <= 1.5)
+        ++dashes;
+      else  // else a whole short edge, solid
+        EXPECT_LT(length, 26 * scale + 1.5);
+    }
+    EXPECT_GE(dashes, 24);
   }
   EXPECT_EQ(magenta_sets, 1);
-  // Magenta at the dashes' middles on every edge (within a pixel).
+  // Magenta at the middle of every dash (within a pixel), on every edge.
   int edges_seen = 0;
-  for (std::size_t e = 0; e < 12; ++e) {
-    int dashes = 0;
-    for (const double t : {0.5 / 7, 2.5 / 7, 4.5 / 7, 6.5 / 7}) {
-      const auto [x, y] = to_pixel(camera, view, edge_point(mesh, hex, e, t));
+  for (const LineSet& lines : parts.scene.lines) {
+    if (lines.colors.empty() || lines.colors.front() != kMaxHexEdgeColor) continue;
+    std::array<int, 12> seen{}, all{};
+    for (std::size_t i = 0; i + 1 < lines.indices.size(); i += 2) {
+      const Vec3f p = lines.positions[lines.indices[i]], q = lines.positions[lines.indices[i + 1]];
+      const Vec3 mid = parts.scene.origin + 0.5 * Vec3{p.x + q.x, p.y + q.y, p.z + q.z};
+      const auto [x, y] = to_pixel(camera, view, mid);
       bool found = false;
       for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx)
-          found = found || near_color(test::pixel_at(image, x + dx, y + dy), kMaxHexEdgeColor);
-      dashes += found;
+        for (int dx = -1; dx <= 1; ++dx) found = found || near_color(test::pixel_at(image, x + dx, y + dy), kMaxHexEdgeColor);
+      for (std::size_t e = 0; e < 12; ++e) {
+        const Vec3 a = edge_point(mesh, hex, e, 0), d = edge_point(mesh, hex, e, 1) - a;
+        const double t = dot(mid - a, d) / dot(d, d);
+        if (t > 0 && t < 1 && norm(mid - (a + t * d)) < 1e-5) ++all[e], seen[e] += found;
+      }
     }
-    edges_seen += dashes >= 3;
+    for (std::size_t e = 0; e < 12; ++e) edges_seen += all[e] > 0 && 4 * seen[e] >= 3 * all[e];
   }
   EXPECT_EQ(edges_seen, 12);
   // Inside its projection, off its edges: the front faces' colour, never the max's.
@@ -617,6 +705,44 @@ TEST(ErrorDensityViews, SmallMaxGetsAReadableRingTheLabelDoesNotCover) {
     dark += on_ring;
   }
   EXPECT_GE(dark, kSamples * 8 / 10) << "the ring is covered or not drawn";
+}
+
+}  // namespace
+}  // namespace hq
+
+namespace hq {
+namespace {
+
+// Issue 48r: an extruded plate was seen edge-on (a rectangle). A 12 x 8 x 1
+// plate (thin along z; turned so that it stands with its thin axis along x,
+// with z up), the max hex at a corner: the chosen view is at least 15
+// degrees from edge-on to the thin axis, and the eye is on the max's side.
+TEST(ErrorDensityViews, PlateIsNotSeenEdgeOn) {
+  for (const bool standing : {false, true}) {
+    HexMesh mesh = test::box_grid(12, 8, 1);
+    for (Vec3& p : mesh.points) {
+      p.z *= 0.4;
+      if (standing) p = Vec3{p.z, p.x, p.y};  // thin along x, the long side horizontal
+    }
+    const Topology topology = build_topology(mesh);
+    std::vector<double> density(mesh.hexes.size());
+    for (std::size_t h = 0; h < density.size(); ++h) density[h] = 0.02 + 0.001 * static_cast<double>(h % 7);
+    density[5] = 0.3;
+    ErrorDensityViewOptions options;
+    options.up = {0, 0, 1};
+    const Vec3 d = choose_error_density_viewpoint(mesh, topology, density, options);
+    const Vec3 thin = standing ? Vec3{1, 0, 0} : Vec3{0, 0, 1};
+    EXPECT_GE(std::abs(dot(d / norm(d), thin)), std::sin(15.0 * std::numbers::pi / 180.0) - 1e-9)
+        << (standing ? "standing" : "lying") << ": " << d.x << " " << d.y << " " << d.z;
+  }
+  // An edge-on direction is turned to 30 degrees, the eye (at -d) on the
+  // side of the focus.
+  const HexMesh plate = test::box_grid(12, 8, 1);
+  const Vec3 turned = away_from_edge_on({1, 0, 0}, plate.points, Vec3{6, 4, 1});  // focus above the middle
+  EXPECT_NEAR(turned.z, -0.5, 1e-6);
+  EXPECT_NEAR(turned.x, std::sqrt(0.75), 1e-6);
+  const Vec3 kept = away_from_edge_on({0.5, 0, -0.8}, plate.points, Vec3{6, 4, 1});
+  EXPECT_EQ(kept.z, -0.8);
 }
 
 }  // namespace

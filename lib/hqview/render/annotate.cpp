@@ -393,6 +393,28 @@ const SwatchMark& swatch_mark(SwatchShape shape) {
   return kSwatchMarks[0];
 }
 
+std::vector<std::array<double, 2>> dashed_pieces(double length, const SwatchStroke& stroke) {
+  const int count = stroke.dash > 0 ? static_cast<int>(std::floor((length + stroke.gap) / (stroke.dash + stroke.gap))) : 0;
+  if (count < 2 || !(length > 0)) return {{0.0, 1.0}};
+  const double dash = stroke.dash / length, gap = (1.0 - count * dash) / (count - 1);
+  std::vector<std::array<double, 2>> pieces;
+  for (int i = 0; i < count; ++i) pieces.push_back({i * (dash + gap), i * (dash + gap) + dash});
+  return pieces;
+}
+
+namespace {
+
+// A stroke swatch: the halo's pieces, then the core's, across the box.
+void draw_stroke_swatch(Image& image, const PixelRect& box, const Rgba8& color, const SwatchStroke& stroke) {
+  const double x0 = box.x + 1.0, x1 = box.x + box.width - 1.0, cy = box.y + 0.5 * box.height;
+  const std::vector<std::array<double, 2>> pieces = dashed_pieces(x1 - x0, stroke);
+  for (const auto& [rgba, width] : {std::pair{stroke.halo, stroke.halo_width}, std::pair{color, stroke.width}})
+    if (width > 0)
+      for (const auto& [t0, t1] : pieces) draw_line(image, x0 + t0 * (x1 - x0), cy, x0 + t1 * (x1 - x0), cy, rgba, width);
+}
+
+}  // namespace
+
 void draw_swatch(Image& image, const PixelRect& box, const Rgba8& color, SwatchShape shape, int outline) {
   const SwatchMark& mark = swatch_mark(shape);
   const double width = std::max(1.5, mark.width * box.height);
@@ -470,7 +492,10 @@ void draw_color_bar(Image& image, const PixelRect& area, const ColorBar& bar, co
 
   int swatch_y = bar_rect.y + bar_rect.height + outline + m.swatch_gap;
   for (const ColorBarSwatch& swatch : bar.swatches) {
-    draw_swatch(image, {x, swatch_y, m.bar_width, m.swatch_height}, to_rgba8(swatch.color), swatch.shape, outline);
+    if (swatch.stroke)
+      draw_stroke_swatch(image, {x, swatch_y, m.bar_width, m.swatch_height}, to_rgba8(swatch.color), *swatch.stroke);
+    else
+      draw_swatch(image, {x, swatch_y, m.bar_width, m.swatch_height}, to_rgba8(swatch.color), swatch.shape, outline);
     draw_text(image, tick_x + m.tick_length + m.tick_gap, swatch_y + m.swatch_height / 2 + baseline_shift, swatch.label,
               m.tick_size, style);
     swatch_y += m.swatch_pitch;

@@ -4,6 +4,7 @@
 // with FreeType in DejaVu Sans (package fonts-dejavu-core).
 // Sizes are given for a 1200-pixel-high figure and scaled with the height.
 
+#include <array>
 #include <optional>
 #include <span>
 #include <string>
@@ -102,10 +103,25 @@ inline constexpr SwatchMark kSwatchMarks[] = {
     {SwatchShape::text, SwatchMark::Kind::none},
 };
 const SwatchMark& swatch_mark(SwatchShape shape);
+// A line as a figure draws it, for a swatch that shows it exactly (issue
+// 48r: a generic thick dashed swatch did not look like the max hex's edges):
+// its core width, a halo under it (halo_width 0: none), and its dashes
+// (dash 0: solid), all in pixels, dashed as dashed_pieces lays them out.
+struct SwatchStroke {
+  double width = 0, halo_width = 0;
+  Rgba8 halo{255, 255, 255, 255};
+  double dash = 0, gap = 0;
+};
+// The pieces [t0, t1] of a dashed line `length` pixels long: dashes of
+// stroke.dash pixels from end to end, the gaps stretched to fit (at most a
+// dash more than stroke.gap); one piece (solid) when it is shorter than two
+// dashes and a gap, or stroke.dash is 0.
+std::vector<std::array<double, 2>> dashed_pieces(double length, const SwatchStroke& stroke);
 struct ColorBarSwatch {
   Color color;
   std::string label;
   SwatchShape shape = SwatchShape::box;
+  std::optional<SwatchStroke> stroke;  // set: drawn as this stroke (a line across the box), not as shape's mark
 };
 
 // A vertical colour bar legend: a title (lines separated by '\n'), the bar

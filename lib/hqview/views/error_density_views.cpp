@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <numeric>
 
 #include "hqview/core/box3.h"
@@ -114,7 +115,7 @@ void add_quad(TriangleSet& set, const HexMesh& mesh, const Vec3& origin, const s
   for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) set.indices.push_back(base + i);
 }
 
-// A segment a-b of model points; dashed: 4 dashes and 3 gaps of equal length.
+// A segment a-b of model points.
 void add_segment(LineSet& set, const Vec3& origin, const Vec3& a, const Vec3& b, Rgba8 color) {
   for (const Vec3& p : {a, b}) {
     set.indices.push_back(static_cast<std::uint32_t>(set.positions.size()));
@@ -122,9 +123,44 @@ void add_segment(LineSet& set, const Vec3& origin, const Vec3& a, const Vec3& b,
     set.colors.push_back(color);
   }
 }
-void add_dashed(LineSet& set, const Vec3& origin, const Vec3& a, const Vec3& b, Rgba8 color) {
-  for (int d = 0; d < 7; d += 2)
-    add_segment(set, origin, a + (d / 7.0) * (b - a), a + ((d + 1) / 7.0) * (b - a), color);
+
+// The figure's dashes, a fixed length on screen (issue 48r: 4 dashes per
+// edge broke short edges into dots): 10 px dashes and 6 px gaps at 1200 px
+// height.
+struct Dashes {
+  double dash, gap;  // pixels
+};
+Dashes figure_dashes(const Figure& f) { return {10.0 * f.style.scale, 6.0 * f.style.scale}; }
+
+// The length of a-b on f's screen in pixels.
+double pixel_length(const Figure& f, const Vec3& a, const Vec3& b) {
+  const PixelRect& view = f.layout.view;
+  const double aspect = static_cast<double>(view.width) / std::max(1, view.height);
+  const Vec3 p = project_to_ndc(f.camera, aspect, a), q = project_to_ndc(f.camera, aspect, b);
+  const double length = std::hypot(0.5 * (p.x - q.x) * view.width, 0.5 * (p.y - q.y) * view.height);
+  return std::isfinite(length) ? length : 0.0;
+}
+
+// The max hex's edges as f draws them (issue 48r: the legend's swatch is
+// drawn from the same stroke, so they agree): a core on a halo, dashed
+// (figure_dashes) when hidden.
+SwatchStroke max_edge_stroke(const Figure& f, double core, double halo, Rgba8 halo_color, bool dashed) {
+  const Dashes d = figure_dashes(f);
+  return {core, halo, halo_color, dashed ? d.dash : 0.0, d.gap};
+}
+
+// a-b dashed as f draws it (dashed_pieces of figure_dashes: the dashes of a
+// halo and its core drawn with the same call coincide).
+void add_dashed(LineSet& set, const Figure& f, const Vec3& a, const Vec3& b, Rgba8 color) {
+  const Dashes d = figure_dashes(f);
+  for (const auto& [t0, t1] : dashed_pieces(pixel_length(f, a, b), {0, 0, {}, d.dash, d.gap}))
+    add_segment(set, f.scene.origin, a + t0 * (b - a), a + t1 * (b - a), color);
+}
+
+// The boundary figure's outline of the max hex: white halo, dashed when hidden.
+SwatchStroke boundary_max_stroke(const Figure& f) {
+  return max_edge_stroke(f, std::max(2.0, 2.5 * f.style.scale), std::max(4.0, 5.0 * f.style.scale),
+                         {255, 255, 255, 255}, f.worst_hidden);
 }
 
 // The boundary figure's outline of the max hex, all 12 edges in
@@ -138,15 +174,21 @@ void add_dashed(LineSet& set, const Vec3& origin, const Vec3& a, const Vec3& b, 
 void add_max_outline(Figure& f, const HexMesh& mesh, const ErrorDensityWorst& worst) {
   if (worst.hex == kNoIndex) return;
   const Hex& hex = mesh.hexes[static_cast<std::size_t>(worst.hex)];
+  const SwatchStroke stroke = boundary_max_stroke(f);
   LineSet halo, core;
-  halo.width = static_cast<float>(std::max(4.0, 5.0 * f.style.scale));
-  core.width = static_cast<float>(std::max(2.0, 2.5 * f.style.scale));
+  halo.width = static_cast<float>(stroke.halo_width);
+  core.width = static_cast<float>(stroke.width);
   halo.over_all = core.over_all = f.worst_hidden;
-  const auto add = f.worst_hidden ? add_dashed : add_segment;
+  const auto add = [&](LineSet& set, const Vec3& a, const Vec3& b, Rgba8 color) {
+    if (f.worst_hidden)
+      add_dashed(set, f, a, b, color);
+    else
+      add_segment(set, f.scene.origin, a, b, color);
+  };
   for (const auto& e : kHexEdges) {
     const Vec3 &a = point(mesh, hex[e[0]]), &b = point(mesh, hex[e[1]]);
-    add(halo, f.scene.origin, a, b, Rgba8{255, 255, 255, 255});
-    add(core, f.scene.origin, a, b, kMaxHexEdgeColor);
+    add(halo, a, b, Rgba8{255, 255, 255, 255});
+    add(core, a, b, kMaxHexEdgeColor);
   }
   f.scene.lines.push_back(std::move(halo));
   f.scene.lines.push_back(std::move(core));
@@ -298,7 +340,54 @@ LineSet boundary_edge_lines(const HexMesh& mesh, const Topology& topology, const
   return lines;
 }
 
+// The axis along which points vary least (the eigenvector of the smallest
+// eigenvalue of their covariance; power iteration on trace - C, which
+// converges to it, from a start fixed by the points' spread).
+Vec3 thinnest_axis(std::span<const Vec3> points) {
+  if (points.empty()) return {0, 0, 1};
+  Vec3 mean;
+  for (const Vec3& p : points) mean = mean + p / static_cast<double>(points.size());
+  double c[3][3] = {};
+  for (const Vec3& p : points)
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) c[i][j] += (p[i] - mean[i]) * (p[j] - mean[j]);
+  const double trace = c[0][0] + c[1][1] + c[2][2];
+  if (!(trace > 0)) return {0, 0, 1};
+  const int thin = c[0][0] <= c[1][1] && c[0][0] <= c[2][2] ? 0 : c[1][1] <= c[2][2] ? 1 : 2;
+  Vec3 v{0.1, 0.1, 0.1};
+  v[thin] = 1.0;
+  for (int k = 0; k < 200; ++k) {
+    Vec3 w;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) w[i] += ((i == j ? trace : 0.0) - c[i][j]) * v[j];
+    if (!(norm(w) > 0)) break;
+    v = w / norm(w);
+  }
+  return v;
+}
+
 }  // namespace
+
+Vec3 away_from_edge_on(const Vec3& direction, std::span<const Vec3> points, const Vec3& focus) {
+  // Issue 48r: an extruded plate was seen edge-on (a rectangle). Within
+  // kEdgeOnDegrees of edge-on to the model's thinnest axis n, the view is
+  // tilted to kTiltDegrees from edge-on, towards the side of n the focus
+  // (the max hex) lies on, keeping its azimuth about n.
+  constexpr double kEdgeOnDegrees = 15.0, kTiltDegrees = 30.0;
+  const Vec3 n = thinnest_axis(points);
+  const Vec3 d = direction / norm(direction);
+  if (std::abs(dot(d, n)) >= std::sin(kEdgeOnDegrees * std::numbers::pi / 180.0)) return direction;
+  Vec3 across = d - dot(d, n) * n;
+  if (!(norm(across) > 1e-9)) return direction;
+  across = across / norm(across);
+  Vec3 mean;
+  for (const Vec3& p : points) mean = mean + p / static_cast<double>(points.size());
+  // The eye at -d: on the focus's side of n when d points against it.
+  const double side = dot(focus - mean, n);
+  const double sign = side > 0 ? -1.0 : side < 0 ? 1.0 : (dot(d, n) < 0 ? -1.0 : 1.0);
+  const double tilt = kTiltDegrees * std::numbers::pi / 180.0;
+  return std::cos(tilt) * across + sign * std::sin(tilt) * n;
+}
 
 std::array<bool, 12> hex_edges_facing(const HexMesh& mesh, const Hex& hex, const Camera& camera) {
   Vec3 center{0, 0, 0};
@@ -325,11 +414,42 @@ std::array<bool, 12> hex_edges_facing(const HexMesh& mesh, const Hex& hex, const
   return front;
 }
 
+namespace {
+
+// The 1-2-5 step at or below v (v > 0).
+double step_at_or_below(double v) {
+  const double decade = std::pow(10.0, std::floor(std::log10(v) + 1e-9));
+  for (double m : {5.0, 2.0, 1.0})
+    if (m * decade <= v * (1 + 1e-9)) return m * decade;
+  return decade;
+}
+
+// v rounded up to two significant figures (0.285 -> 0.29).
+double two_figures_up(double v) {
+  const double unit = std::pow(10.0, std::floor(std::log10(v) + 1e-9) - 1);
+  return std::ceil(v / unit * (1 - 1e-9)) * unit;
+}
+
+}  // namespace
+
 ErrorDensityScale error_density_scale(std::span<const double> density) {
   ErrorDensityScale s;
   s.max = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> positive;
   for (double d : density)
-    if (is_positive(d) && !(d <= s.max)) s.max = d;
+    if (is_positive(d)) positive.push_back(d);
+  if (positive.empty()) return s;
+  std::sort(positive.begin(), positive.end());
+  s.max = positive.back();
+  // The mesh's own range (issue 48r: one fixed range 0.01-10 for every mesh
+  // put a mesh's 0.02-0.3 in one pale band, so colour did not point to the
+  // worst hex): log from the 5th percentile, rounded down to a 1-2-5 step,
+  // to the max, rounded up to two figures (so the max is the map's top
+  // colour); hi / lo at least 4 (a mesh whose densities vary by 2x does not
+  // span the whole map), lo lowered a 1-2-5 step at a time.
+  s.hi = two_figures_up(s.max);
+  s.lo = step_at_or_below(positive[static_cast<std::size_t>(0.05 * static_cast<double>(positive.size() - 1))]);
+  while (s.hi / s.lo < 4.0 * (1 - 1e-9)) s.lo = step_at_or_below(s.lo * (1 - 1e-6));
   return s;
 }
 
@@ -342,29 +462,30 @@ Color error_density_color(double density, const ErrorDensityScale& scale) {
 ColorBar error_density_color_bar(const ErrorDensityScale& scale) {
   ColorBar bar;
   bar.label =
-      "FEM error density\n|u\u2212u_h|\u00b2_H1(e) / (|e| h_e\u00b2 |D\u00b2u|\u00b2),\nh_e = |e|^(1/3); no unit;\nlog, one range for all meshes";
+      "FEM error density\n|u\u2212u_h|\u00b2_H1(e) / (|e| h_e\u00b2 |D\u00b2u|\u00b2),\nh_e = |e|^(1/3); no unit;\nlog, this mesh's 5th percentile to max";
   bar.min_value = std::log10(scale.lo);
   bar.max_value = std::log10(scale.hi);
   for (int i = 0; i <= 32; ++i)
     bar.colors.push_back(error_density_color(std::pow(10.0, bar.min_value + (bar.max_value - bar.min_value) * i / 32.0),
                                              scale));
-  const auto label = [](double v) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.2g", v);
-    return std::string(text);
-  };
+  const auto label = [](double v) { return display_number(v, 3); };
   bar.ticks.push_back({bar.min_value, "\u2264 " + label(scale.lo)});
   const double span = bar.max_value - bar.min_value;
   const bool has_max = std::isfinite(scale.max) && scale.max > 0;
-  const double max_at = has_max ? std::clamp(std::log10(scale.max), bar.min_value, bar.max_value) : 0.0;
-  for (int k = static_cast<int>(std::ceil(bar.min_value)); k <= static_cast<int>(std::floor(bar.max_value)); ++k)
-    // Decades not crowding an end's label or the max's.
-    if (k - bar.min_value > 0.08 * span && bar.max_value - k > 0.08 * span &&
-        !(has_max && std::abs(k - max_at) < 0.08 * span))
-      bar.ticks.push_back({static_cast<double>(k), label(std::pow(10.0, k))});
-  const bool max_at_top = has_max && bar.max_value - max_at < 0.08 * span;
-  bar.ticks.push_back({bar.max_value, "\u2265 " + label(scale.hi) + (max_at_top ? ", mesh max " + label(scale.max) : "")});
-  if (has_max && !max_at_top) bar.ticks.push_back({max_at, "mesh max " + label(scale.max)});
+  const double max_at = has_max ? std::clamp(std::log10(scale.max), bar.min_value, bar.max_value) : bar.max_value;
+  // Round values between (1-2-5 up to two decades, then whole decades),
+  // none crowding an end's label or the max's.
+  const bool decades_only = span > 2.0 + 1e-9;
+  for (int k = static_cast<int>(std::floor(bar.min_value)); k <= static_cast<int>(std::ceil(bar.max_value)); ++k)
+    for (double m : {1.0, 2.0, 5.0}) {
+      if (decades_only && m != 1.0) continue;
+      const double at = std::log10(m) + k;
+      if (at - bar.min_value > 0.08 * span && bar.max_value - at > 0.08 * span && std::abs(at - max_at) > 0.08 * span)
+        bar.ticks.push_back({at, label(m * std::pow(10.0, k))});
+    }
+  // The top: the max (nothing lies beyond it); without one, the end.
+  bar.ticks.push_back(has_max ? ColorBarTick{max_at, "mesh max " + label(scale.max)}
+                              : ColorBarTick{bar.max_value, "\u2265 " + label(scale.hi)});
   bar.swatches = {{kUndefinedColor, "undefined"}};
   return bar;
 }
@@ -404,7 +525,10 @@ Vec3 choose_error_density_viewpoint(const HexMesh& mesh, const Topology& topolog
                                             color_bar_width(error_density_color_bar({}), annotation_style_for(options.height)),
                                             annotation_style_for(options.height));
   const double aspect = static_cast<double>(layout.view.width) / std::max(1, layout.view.height);
-  return choose_viewpoints(boundary_points(mesh, topology), centers, radii, aspect, 1, options.up, kFovY).front();
+  const std::vector<Vec3> points = boundary_points(mesh, topology);
+  const Vec3 chosen = choose_viewpoints(points, centers, radii, aspect, 1, options.up, kFovY).front();
+  const ErrorDensityWorst worst = error_density_worst(topology, density);
+  return worst.hex == kNoIndex ? chosen : away_from_edge_on(chosen, points, hex_center(mesh, worst.hex));
 }
 
 Image render_error_density_boundary(const HexMesh& mesh, const Topology& topology, std::span<const double> density,
@@ -431,8 +555,11 @@ Image render_error_density_boundary(const HexMesh& mesh, const Topology& topolog
   add_max_outline(f, mesh, worst);
   // The ring and the outline as drawn (issue 48h: the ring was a black
   // box; issue 48: the outline had no entry).
-  for (const ColorBarSwatch& swatch : error_density_boundary_swatches(worst, f.worst_hidden))
+  for (ColorBarSwatch swatch : error_density_boundary_swatches(worst, f.worst_hidden)) {
+    if (swatch.shape == SwatchShape::dashed_line || swatch.shape == SwatchShape::thick_line)
+      swatch.stroke = boundary_max_stroke(f);
     f.bar.swatches.push_back(swatch);
+  }
   return finish_figure(f, mesh, worst, options, renderer, camera, view, parts);
 }
 
@@ -470,8 +597,12 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   edges.width = static_cast<float>(std::max(1.0, f.style.scale));
   low_edges.width = static_cast<float>(std::max(2.0, 2.5 * f.style.scale));
   casing.width = static_cast<float>(std::max(5.0, 6.0 * f.style.scale));
-  halo.width = static_cast<float>(std::max(6.0, 7.0 * f.style.scale));
-  halo_core.width = static_cast<float>(std::max(2.5, 3.0 * f.style.scale));
+  const auto front_stroke = [&](bool low) {
+    return max_edge_stroke(f, std::max(2.5, 3.0 * f.style.scale), std::max(6.0, 7.0 * f.style.scale),
+                           low ? kLowCellEdgeColor : Rgba8{255, 255, 255, 255}, f.worst_hidden);
+  };
+  halo.width = static_cast<float>(front_stroke(false).halo_width);
+  halo_core.width = static_cast<float>(front_stroke(false).width);
   max_back.width = static_cast<float>(std::max(1.0, f.style.scale));
   const Vec3& origin = f.scene.origin;
   // The max hidden by the same test as the boundary figure's (issue 48h
@@ -503,19 +634,19 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
       const Vec3 &a = point(mesh, hex[kHexEdges[e][0]]), &b = point(mesh, hex[kHexEdges[e][1]]);
       if (!behind) {
         add_segment(set, origin, a, b, edge_color);
-      } else {  // dashed (4 dashes, 3 gaps) on a veil-coloured casing
+      } else {  // dashed on a veil-coloured casing
         add_segment(casing, origin, a, b, kVeilOverWhite);
-        add_dashed(set, origin, a, b, edge_color);
+        add_dashed(set, f, a, b, edge_color);
       }
       if (h != worst.hex) continue;
       if (front[e] && !behind) {  // the max's front edges: solid magenta on a halo
         add_segment(halo, origin, a, b, low ? kLowCellEdgeColor : Rgba8{255, 255, 255, 255});
         add_segment(halo_core, origin, a, b, kMaxHexEdgeColor);
       } else if (front[e]) {  // hidden: the same, dashed
-        add_dashed(halo, origin, a, b, low ? kLowCellEdgeColor : Rgba8{255, 255, 255, 255});
-        add_dashed(halo_core, origin, a, b, kMaxHexEdgeColor);
+        add_dashed(halo, f, a, b, low ? kLowCellEdgeColor : Rgba8{255, 255, 255, 255});
+        add_dashed(halo_core, f, a, b, kMaxHexEdgeColor);
       } else {  // its back edges: thin, dashed
-        add_dashed(max_back, origin, a, b, kMaxHexEdgeColor);
+        add_dashed(max_back, f, a, b, kMaxHexEdgeColor);
       }
     }
   }
@@ -537,6 +668,10 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   // has a density); short lines, so the bar keeps its size.
   f.bar.swatches =
       error_density_cells_swatches(worst, f.worst_hidden, {any_low, max_low, any_hidden}, options.quality_threshold);
+  // The front edges' swatch: their stroke, halo and dashes as drawn.
+  for (ColorBarSwatch& swatch : f.bar.swatches)
+    if (swatch.shape == SwatchShape::thick_dashed_line || swatch.shape == SwatchShape::thick_line)
+      if (to_rgba8(swatch.color) == kMaxHexEdgeColor) swatch.stroke = front_stroke(max_low);
   return finish_figure(f, mesh, worst, options, renderer, camera, view, parts);
 }
 

@@ -54,11 +54,20 @@ namespace hq {
 // the grey cell edges), so the max is found by its edge colour alone.
 inline constexpr Rgba8 kMaxHexEdgeColor{204, 0, 204, 255};
 
-// The colour scale: log10 of the density from lo to hi (both > 0), the same
-// for every mesh (a colour means the same density on any mesh, so a good
-// mesh stays pale and pages side by side compare; 1 = an H1 error equal to
-// the a-priori estimate with constant 1), values outside clamped to the
-// ends; max: the mesh's largest density (NaN for none), marked on the legend.
+// A view direction (eye to target) for the error-density figures:
+// direction, or, when it is within 15 degrees of edge-on to the thinnest
+// axis n of points (their covariance's), the direction 30 degrees from
+// edge-on with the same azimuth about n, the eye on focus's side of n
+// (issue 48r: an extruded plate was seen edge-on, as a rectangle).
+Vec3 away_from_edge_on(const Vec3& direction, std::span<const Vec3> points, const Vec3& focus);
+
+// The colour scale: log10 of the density from lo to hi (both > 0), the
+// mesh's own (issue 48r; was 0.01 to 10 for every mesh, which put a mesh's
+// data in one pale band): lo its 5th percentile rounded down to a 1-2-5
+// step, hi its max rounded up to two figures (the max is the map's top
+// colour), hi / lo at least 4 (lo lowered a 1-2-5 step at a time); values
+// below lo clamped to the low end; max: the mesh's largest density (NaN for
+// none), marked on the legend. No positive density: 0.01 to 10.
 inline constexpr double kErrorDensityLo = 1e-2, kErrorDensityHi = 10.0;
 struct ErrorDensityScale {
   double lo = kErrorDensityLo, hi = kErrorDensityHi;
@@ -68,9 +77,10 @@ ErrorDensityScale error_density_scale(std::span<const double> density);
 // sample_quality_map(1 - t), t = (log10 d - log10 lo) / (log10 hi - log10 lo)
 // clamped to [0, 1]; kUndefinedColor for NaN or d <= 0.
 Color error_density_color(double density, const ErrorDensityScale& scale);
-// Its legend: the map over log10 [lo, hi], ticks at the ends ("<= lo",
-// ">= hi"), the whole decades between and the mesh's max ("max 2.2") when
-// finite (decades crowding it dropped), an "undefined" swatch.
+// Its legend: the map over log10 [lo, hi], ticks "<= lo" at the bottom, the
+// round 1-2-5 values between (whole decades only over more than two), and
+// "mesh max 0.285" at the max (the top; ">= hi" without one); values
+// crowding an end's or the max's label dropped; an "undefined" swatch.
 ColorBar error_density_color_bar(const ErrorDensityScale& scale);
 
 // The hex of largest density (the first on ties; kNoIndex when none has a
@@ -100,7 +110,8 @@ struct ErrorDensityViewOptions {
 // alone, so the figure does not assume which metric predicts it.
 std::vector<Index> error_density_cells(std::span<const double> density, const ErrorDensityViewOptions& options);
 
-// The upright direction that shows the most of the densest hexes.
+// The upright direction that shows the most of the densest hexes, turned
+// away from edge-on to the model (away_from_edge_on, the max hex the focus).
 Vec3 choose_error_density_viewpoint(const HexMesh& mesh, const Topology& topology, std::span<const double> density,
                                     const ErrorDensityViewOptions& options);
 
