@@ -716,6 +716,114 @@ TEST(MainViewLabels, EveryClusterFindsRoomAndLeadersPassGlyphsBy) {
   }
 }
 
+// Dolphin_padded turned 90 degrees about x (the 44m brief, 44l review C2:
+// in view 2 "#3 (15) behind #1" started on #1's disc, at the seam where #3
+// shows, and its 320 px leader ran through all of #1 while the upper right
+// was empty): no leader runs over the disc of a coloured glyph ranked
+// before its own (a disc holding its start counts once the leader heads
+// into it, leader_over_disc), besides expect_clear_views' rules.
+TEST(MainViewLabels, TurnedDolphinLeadersPassHigherRanksBy) {
+  const auto data = test::shared_data_dir();
+  if (!data) GTEST_SKIP() << "no ../shared/data";
+  HexMesh mesh = read_hex_mesh(*data / "meshes/gao2016_sweeping/Dolphin_padded.mesh").mesh;
+  for (Vec3& p : mesh.points) p = Vec3{p.x, -p.z, p.y};
+  const Case c = analyse(std::move(mesh));
+  expect_clear_views(c, "Dolphin_padded turned about x", false);
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  const MainViewOptions options;
+  const std::vector<Vec3> directions = choose_main_viewpoints(main_view_points(c.mesh, c.topology, c.glyphs), c.glyphs,
+                                                              main_view_aspect(options), 2, options.up,
+                                                              options.fov_y_degrees);
+  int behind = 0;
+  for (const Vec3& direction : directions) {
+    const MainViewLabels labels =
+        main_view_labels(c.mesh, c.topology, c.glyphs, &c.overlap, direction, options, nullptr, renderer.get());
+    for (const MainViewLabel& l : labels.labels) {
+      if (l.kind != MainViewLabel::Kind::cluster || !l.placement.has_leader) continue;
+      behind += l.text.find("behind") != std::string::npos ? 1 : 0;
+      for (const ScreenDisc& d : labels.coloured_glyphs)
+        if (d.id < l.cluster)
+          EXPECT_FALSE(leader_over_disc(l.placement, ScreenDisc{d.x, d.y, d.radius - 0.5, d.id}))
+              << l.text << " over #" << d.id;
+    }
+  }
+  EXPECT_GT(behind, 0);  // the case: a label behind a higher rank
+}
+
+// A leader ends on its own glyph's visible pixels a few pixels off #0's
+// rings (the 44m brief, 44l review M5: "#4 (63) behind #0" ended within 3
+// px of #0's ring on Dolphin_padded and turned 90 degrees about x, and read
+// as pointing at #0): every other cluster's leader starts at least 3 px
+// (at scale 1) outside the rings' extent.
+TEST(MainViewLabels, LeadersEndOffTheWorstRings) {
+  const auto data = test::shared_data_dir();
+  if (!data) GTEST_SKIP() << "no ../shared/data";
+  HexMesh mesh = read_hex_mesh(*data / "meshes/gao2016_sweeping/Dolphin_padded.mesh").mesh;
+  HexMesh turned = mesh;
+  for (Vec3& p : turned.points) p = Vec3{p.x, -p.z, p.y};
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  const MainViewOptions options;
+  const AnnotationStyle style = annotation_style_for(options.height);
+  int near_worst = 0;  // leaders starting within two radii of #0
+  for (const auto& [name, c] : {std::pair{"Dolphin_padded", analyse(std::move(mesh))},
+                                std::pair{"Dolphin_padded turned about x", analyse(std::move(turned))}}) {
+    const std::vector<Vec3> directions = choose_main_viewpoints(main_view_points(c.mesh, c.topology, c.glyphs), c.glyphs,
+                                                                main_view_aspect(options), 2, options.up,
+                                                                options.fov_y_degrees);
+    for (const Vec3& direction : directions) {
+      SCOPED_TRACE(std::string(name) + " from " + viewpoint_name(direction, options.up));
+      const MainViewLabels labels =
+          main_view_labels(c.mesh, c.topology, c.glyphs, &c.overlap, direction, options, nullptr, renderer.get());
+      const ScreenDisc& w = labels.worst_glyph;
+      const double rings = worst_rings_extent(w.radius, c.glyphs.clusters.at(0).min_quality < 0.0, style);
+      for (const MainViewLabel& l : labels.labels) {
+        if (l.kind != MainViewLabel::Kind::cluster || l.cluster == 0 || !l.placement.has_leader) continue;
+        const double d = std::hypot(l.placement.leader_x0 - w.x, l.placement.leader_y0 - w.y);
+        near_worst += d < 2.0 * rings ? 1 : 0;
+        EXPECT_GE(d, rings + 3.0 * style.scale) << l.text;
+      }
+    }
+  }
+  EXPECT_GT(near_worst, 0);  // the case: a leader ending next to #0
+}
+
+// #0's own label is exempt from the rule keeping labels out of #0's
+// neighbourhood (the 44m brief, 44l review M3: kept out, kitten_1 turned
+// 30 degrees about z had `#0 (4)` 10 px from #3's glyph and 44 px from #0's
+// ring): in both views of it and of bunny_1 turned 90 degrees about y, #0's
+// label box is nearer #0's glyph than any other coloured glyph.
+TEST(MainViewLabels, WorstLabelNearerItsGlyphThanAnyOther) {
+  const auto data = test::shared_data_dir();
+  if (!data) GTEST_SKIP() << "no ../shared/data";
+  HexMesh bunny = read_hex_mesh(*data / "meshes/gao2016_sweeping/bunny_1.mesh").mesh;
+  for (Vec3& p : bunny.points) p = Vec3{p.z, p.y, -p.x};
+  HexMesh kitten = read_hex_mesh(*data / "meshes/gao2016_sweeping/kitten_1.mesh").mesh;
+  const double a = M_PI / 6.0;
+  for (Vec3& p : kitten.points) p = Vec3{std::cos(a) * p.x - std::sin(a) * p.y, std::sin(a) * p.x + std::cos(a) * p.y, p.z};
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  const MainViewOptions options;
+  int checked = 0;
+  for (const auto& [name, c] : {std::pair{"bunny_1 turned about y", analyse(std::move(bunny))},
+                                std::pair{"kitten_1 turned about z", analyse(std::move(kitten))}}) {
+    const std::vector<Vec3> directions = choose_main_viewpoints(main_view_points(c.mesh, c.topology, c.glyphs), c.glyphs,
+                                                                main_view_aspect(options), 2, options.up,
+                                                                options.fov_y_degrees);
+    for (const Vec3& direction : directions) {
+      SCOPED_TRACE(std::string(name) + " from " + viewpoint_name(direction, options.up));
+      const MainViewLabels labels =
+          main_view_labels(c.mesh, c.topology, c.glyphs, &c.overlap, direction, options, nullptr, renderer.get());
+      for (const MainViewLabel& l : labels.labels) {
+        if (l.kind != MainViewLabel::Kind::cluster || l.cluster != 0) continue;
+        ++checked;
+        const double own = disc_box_gap(labels.worst_glyph, l.placement.box);
+        for (const ScreenDisc& d : labels.coloured_glyphs)
+          if (d.id != 0) EXPECT_LT(own, disc_box_gap(d, l.placement.box)) << l.text << " nearer #" << d.id;
+      }
+    }
+  }
+  EXPECT_EQ(checked, 4);
+}
+
 // The placement without the id image (main before issue 44d) lets leaders
 // end off their glyph on warrior and Dolphin_padded: on the background or an
 // edge line just outside the glyph's silhouette, and on another glyph drawn

@@ -144,6 +144,13 @@ bool leader_meets_disc(const PlacedLabel& leader, const ScreenDisc& disc) {
   return std::hypot(leader.leader_x0 + t * dx - disc.x, leader.leader_y0 + t * dy - disc.y) < disc.radius;
 }
 
+bool leader_over_disc(const PlacedLabel& leader, const ScreenDisc& disc) {
+  if (!leader_meets_disc(leader, disc)) return false;
+  const double start = std::hypot(leader.leader_x0 - disc.x, leader.leader_y0 - disc.y);
+  return start >= disc.radius ||
+         leader_meets_disc(leader, ScreenDisc{disc.x, disc.y, start - 1.0, disc.id});
+}
+
 PlacedLabel with_leader(const ScreenDisc& anchor, const PixelRect& box) {
   const auto end = nearest_point(box, anchor.x, anchor.y);
   const double dx = end[0] - anchor.x, dy = end[1] - anchor.y;
@@ -243,9 +250,6 @@ std::optional<PlacedLabel> LabelPlacer::place(const LabelRequest& label, std::sp
     return any_near(disc_cells, all, x0, y0, x1, y1, pred);
   };
   // A leader keeps options_.leader_clearance off the discs it must not cross.
-  auto leader_meets = [&](const PlacedLabel& r, const ScreenDisc& d) {
-    return leader_meets_disc(r, ScreenDisc{d.x, d.y, d.radius + options_.leader_clearance, d.id});
-  };
   const double reach = options_.leader_clearance + 1.0;
   // A candidate, checked once: its placement (with a leader when it needs
   // one) and the first pass that takes it (0: clear; 1: its leader may run
@@ -290,10 +294,10 @@ std::optional<PlacedLabel> LabelPlacer::place(const LabelRequest& label, std::sp
                                                   [&](const PlacedLabel& l) { return leaders_cross(l, r); }))
         return c;
       // (A protected disc holding the leader's start, e.g. a marker group
-      // inside #0, cannot be avoided: it does not count.)
+      // inside #0, cannot be avoided: it counts only when the leader heads
+      // into it, leader_over_disc.)
       if (any_disc_on_leader([&](const ScreenDisc& d) {
-            return d.id >= 0 && d.id < label.protect_below && !is_own(d) && leader_meets_disc(r, d) &&
-                   std::hypot(r.leader_x0 - d.x, r.leader_y0 - d.y) >= d.radius;
+            return d.id >= 0 && d.id < label.protect_below && !is_own(d) && leader_over_disc(r, d);
           }))
         return c;
     }
@@ -316,9 +320,11 @@ std::optional<PlacedLabel> LabelPlacer::place(const LabelRequest& label, std::sp
         return c;
       if (leader_through_box) return c;
       c.pass = 1;
-      // (Nor here does a disc holding the leader's start count.)
+      // (Nor here does a disc holding the leader's start count, unless the
+      // leader heads into it.)
       if (any_disc_on_leader([&](const ScreenDisc& d) {
-            return !is_own(d) && leader_meets(r, d) && std::hypot(r.leader_x0 - d.x, r.leader_y0 - d.y) >= d.radius;
+            return !is_own(d) &&
+                   leader_over_disc(r, ScreenDisc{d.x, d.y, d.radius + options_.leader_clearance, d.id});
           }))
         return c;
     }
@@ -442,8 +448,7 @@ std::vector<PlacedLabel> callout_columns(std::span<const CalloutLabel> labels, s
     const PlacedLabel p = callout_leader(s, PixelRect{}, c.inner, attach_y(y));
     double cost = std::hypot(c.inner - s.x, attach_y(y) - s.y);
     for (const ScreenDisc& d : obstacles)
-      if (d.id >= 0 && d.id < labels[label].protect_below && d.id != s.id && leader_meets_disc(p, d) &&
-          std::hypot(p.leader_x0 - d.x, p.leader_y0 - d.y) >= d.radius) {
+      if (d.id >= 0 && d.id < labels[label].protect_below && d.id != s.id && leader_over_disc(p, d)) {
         cost += kProtectedPenalty;
         break;
       }

@@ -181,6 +181,11 @@ bool leaders_cross(const PlacedLabel& a, const PlacedLabel& b);
 // Whether a leader line passes through a box's / a disc's interior.
 bool leader_meets_box(const PlacedLabel& leader, const PixelRect& box);
 bool leader_meets_disc(const PlacedLabel& leader, const ScreenDisc& disc);
+// Whether a leader runs over a disc: meets it, and when the disc holds its
+// start, reaches more than a pixel nearer its centre than the start (the
+// 44l review: "#3 behind #1" started on #1's disc and ran through all of
+// it; a leader heading out of the disc does not count).
+bool leader_over_disc(const PlacedLabel& leader, const ScreenDisc& disc);
 bool box_meets_disc(const PixelRect& box, const ScreenDisc& disc);
 // Distance in pixels from a disc's edge to a box (0 when they meet).
 double disc_box_gap(const ScreenDisc& disc, const PixelRect& box);

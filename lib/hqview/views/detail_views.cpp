@@ -879,6 +879,7 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
       label.marker = markers[i];
       label.is_inverted = corners[i].value < 0;
       label.value = corners[i].value;
+      label.rank = static_cast<int>(rank[i]) + 1;
       shot.labels.push_back(std::move(label));
     }
     LabelLayoutOptions layout;
@@ -1007,6 +1008,15 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
       if (!p || (set_leader(label, *p), !clear(i))) {
         request.protect_below = static_cast<std::int64_t>(obstacles.size());
         p = place(far_placer, request, i);
+        // The far placer's first choice may break local_label_clear's
+        // rules: up to kLocalRetries more, each with the places refused so
+        // far taken (the 44m brief: at hex_tet's vertex 229 rank 2's only
+        // choice was refused, while room was left beside its disc).
+        LabelPlacer retry = far_placer;
+        for (int k = 0; k < kLocalRetries && p && (set_leader(label, *p), !clear_far(i)); ++k) {
+          retry.add(PlacedLabel{p->box});
+          p = place(retry, request, i);
+        }
       }
       if (p) {
         set_leader(label, *p);
@@ -1052,7 +1062,15 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
   }
   };
   // Up to kLocalLayoutRounds rounds: the corners with no room so far go
-  // first; the round leaving out the fewest is kept (the first on a tie).
+  // first; the round numbering the worse corners is kept (the first on a
+  // tie): at the worst corner numbered in one round and left out in the
+  // other, the round numbering it wins (the 44m brief: rounds kept for
+  // leaving out fewest let ranks 35-38 take rank 2's room).
+  const auto numbers_worse_first = [&](const LocalShot& a, const LocalShot& b) {
+    for (std::size_t i : order)
+      if (a.labels[i].placed != b.labels[i].placed) return a.labels[i].placed;
+    return false;
+  };
   lay_out_with_table();
   std::vector<bool> promoted(corners.size(), false);
   for (int round = 1; round < kLocalLayoutRounds && shot.num_left_out > 0; ++round) {
@@ -1067,7 +1085,7 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
       if (!promoted[i]) priority.push_back(i);
     LocalShot best = shot;
     lay_out_with_table();
-    if (shot.num_left_out >= best.num_left_out) shot = std::move(best);
+    if (!numbers_worse_first(shot, best)) shot = std::move(best);
   }
   return shot;
 }
@@ -1088,7 +1106,7 @@ std::vector<LocalTableRow> local_table_rows(const LocalShot& shot) {
   for (const LocalLabel* l : numbered) rows.push_back({std::to_string(l->number), l->text, false, l->is_inverted});
   if (!left_out.empty()) {
     rows.push_back({"", kLocalLeftOutHeading, true, false});
-    for (const LocalLabel* l : left_out) rows.push_back({"", l->text, false, l->is_inverted});
+    for (const LocalLabel* l : left_out) rows.push_back({std::to_string(l->rank), l->text, false, l->is_inverted});
   }
   return rows;
 }

@@ -216,6 +216,9 @@ struct LocalLabel {
   // > 0: a numbered callout (the number drawn in box, the text in the
   // shot's table), 1 the worst numbered corner; 0: the text drawn in box.
   int number = 0;
+  // Its rank over the ring by value (1 = worst): a corner left out is
+  // listed with it (the 44m brief: the table's leftover rows had no rank).
+  int rank = 0;
 };
 // View D before drawing (no renderer needed): its scene with the discs
 // (local_marker_discs), camera, figure layout, the vertex's dot and its
@@ -237,10 +240,13 @@ inline constexpr double kLocalDotClearLabels = 1.0;  // the dot's clear zone rad
 // even so is left out and counted.
 inline constexpr double kLocalMaxLeaderLabels = 4.0;
 inline constexpr std::size_t kLocalMaxFullLabels = 16;
+// A number whose place breaks the leader rules asks again, up to this many
+// times, with the places refused so far taken.
+inline constexpr int kLocalRetries = 8;
 inline constexpr const char* kLocalTableHeading = "numbered corners (1 = worst)";
 // The table's last rows: the corners left out (no place even for a
-// number), worst first, under this heading and with no key (46t2 review:
-// a "-" key read as a minus sign among signed values).
+// number), worst first, under this heading and keyed by their ranks (the
+// 44m brief; not "-": 46t2 review, it read as a minus sign).
 inline constexpr const char* kLocalLeftOutHeading = "not numbered (no room):";
 struct LocalShot {
   Scene scene;  // as drawn (discs in the overlay)
@@ -263,7 +269,7 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
 // The table beside view D, row by row: the numbered corners by number
 // (key "1", "2", ...; text "0.812  hex 12"), then, when any corner was left
 // out, a heading row kLocalLeftOutHeading and those corners by value (worst
-// first, NaN last; key empty). Empty when no corner is numbered or left out.
+// first, NaN last; key its rank). Empty when no corner is numbered or left out.
 struct LocalTableRow {
   std::string key, text;
   bool is_heading = false;

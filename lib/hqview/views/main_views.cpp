@@ -1166,11 +1166,13 @@ double worst_ring_radius(double radius, bool is_inverted, const AnnotationStyle&
                      : radius + 1.5 + 0.5 * std::max(4.0, 5.0 * style.scale);
 }
 
-// How far #0's rings reach (pixels; their halo's outer edge): no label or
-// leader of another cluster crosses them.
+}  // namespace
+
 double worst_rings_extent(double radius, bool is_inverted, const AnnotationStyle& style) {
   return worst_ring_radius(radius, is_inverted, style) + 0.5 * std::max(4.0, 5.0 * style.scale);
 }
+
+namespace {
 
 // A ring around cluster #0's glyph on screen (dark on a pale halo, a few
 // pixels outside its silhouette), so the worst place is found first even
@@ -1511,44 +1513,66 @@ VisibleGlyph visible_glyph(const IdImage& ids, std::uint32_t id, const ScreenDis
       return result;
     }
   }
-  // Mostly hidden: about the visible pixel farthest from the others
-  // (a 3-4 chamfer distance; ties: nearest the glyph's centre, then the
-  // first in rows).
+  // Mostly hidden: about the visible pixel farthest from the other glyphs
+  // and #0's rings, at least a pixel inside its silhouette where it can
+  // (the 44m brief, 44l review M5: a sliver's middle 3 px from #0's ring
+  // read as pointing at #0; its edge beside the background does not), then
+  // farthest from anything else (a 3-4 chamfer distance; ties: nearest the
+  // glyph's centre, then the first in rows).
   constexpr int kFar = 1 << 28;
-  std::vector<int> dist(own.size());
-  for (std::size_t i = 0; i < own.size(); ++i) dist[i] = own[i] ? kFar : 0;
-  auto at = [&](int u, int v) -> int& { return dist[static_cast<std::size_t>(v) * static_cast<std::size_t>(w) + static_cast<std::size_t>(u)]; };
-  for (int v = 0; v < h; ++v)
-    for (int u = 0; u < w; ++u) {
-      int& d = at(u, v);
-      if (d == 0) continue;
-      if (u > 0) d = std::min(d, at(u - 1, v) + 3);
-      if (v > 0) {
-        d = std::min(d, at(u, v - 1) + 3);
-        if (u > 0) d = std::min(d, at(u - 1, v - 1) + 4);
-        if (u + 1 < w) d = std::min(d, at(u + 1, v - 1) + 4);
+  // The chamfer distance from the pixels `is_seed` picks (own pixels never).
+  const auto chamfer = [&](auto&& is_seed) {
+    std::vector<int> dist(own.size());
+    for (int v = 0; v < h; ++v)
+      for (int u = 0; u < w; ++u) {
+        const std::size_t k = static_cast<std::size_t>(v) * static_cast<std::size_t>(w) + static_cast<std::size_t>(u);
+        dist[k] = own[k] || !is_seed(ids.at(left + u, top + v, kIdBackground)) ? kFar : 0;
       }
-    }
-  for (int v = h - 1; v >= 0; --v)
-    for (int u = w - 1; u >= 0; --u) {
-      int& d = at(u, v);
-      if (d == 0) continue;
-      if (u + 1 < w) d = std::min(d, at(u + 1, v) + 3);
-      if (v + 1 < h) {
-        d = std::min(d, at(u, v + 1) + 3);
-        if (u + 1 < w) d = std::min(d, at(u + 1, v + 1) + 4);
-        if (u > 0) d = std::min(d, at(u - 1, v + 1) + 4);
+    auto at = [&](int u, int v) -> int& { return dist[static_cast<std::size_t>(v) * static_cast<std::size_t>(w) + static_cast<std::size_t>(u)]; };
+    for (int v = 0; v < h; ++v)
+      for (int u = 0; u < w; ++u) {
+        int& d = at(u, v);
+        if (d == 0) continue;
+        if (u > 0) d = std::min(d, at(u - 1, v) + 3);
+        if (v > 0) {
+          d = std::min(d, at(u, v - 1) + 3);
+          if (u > 0) d = std::min(d, at(u - 1, v - 1) + 4);
+          if (u + 1 < w) d = std::min(d, at(u + 1, v - 1) + 4);
+        }
       }
-    }
+    for (int v = h - 1; v >= 0; --v)
+      for (int u = w - 1; u >= 0; --u) {
+        int& d = at(u, v);
+        if (d == 0) continue;
+        if (u + 1 < w) d = std::min(d, at(u + 1, v) + 3);
+        if (v + 1 < h) {
+          d = std::min(d, at(u, v + 1) + 3);
+          if (u + 1 < w) d = std::min(d, at(u + 1, v + 1) + 4);
+          if (u > 0) d = std::min(d, at(u - 1, v + 1) + 4);
+        }
+      }
+    return dist;
+  };
+  const std::vector<int> dist = chamfer([](std::uint32_t) { return true; });
+  const std::vector<int> from_glyphs =
+      chamfer([](std::uint32_t at) { return at >= kIdGlyph || at == kIdAnnotation || at == kIdMarker; });
+  // 6: a pixel off the silhouette's edge pixels (3 or 4), if any is.
+  int inside = 0;
+  for (std::size_t k = 0; k < own.size(); ++k)
+    if (own[k]) inside = std::max(inside, std::min(dist[k], 6));
   int best_u = -1, best_v = -1;
+  std::size_t best = 0;
   double best_centre = 0.0;
   for (int v = 0; v < h; ++v)
     for (int u = 0; u < w; ++u) {
-      if (at(u, v) == 0) continue;
+      const std::size_t k = static_cast<std::size_t>(v) * static_cast<std::size_t>(w) + static_cast<std::size_t>(u);
+      if (!own[k] || dist[k] < inside) continue;
       const double centre = std::hypot(left + u + 0.5 - disc.x, top + v + 0.5 - disc.y);
-      if (best_u < 0 || at(u, v) > at(best_u, best_v) || (at(u, v) == at(best_u, best_v) && centre < best_centre)) {
+      const auto key = std::pair{from_glyphs[k], dist[k]}, best_key = std::pair{from_glyphs[best], dist[best]};
+      if (best_u < 0 || key > best_key || (key == best_key && centre < best_centre)) {
         best_u = u;
         best_v = v;
+        best = k;
         best_centre = centre;
       }
     }
@@ -1611,16 +1635,16 @@ double leader_length(const PlacedLabel& p) {
 
 // Whether p's leader runs over an obstacle disc (glyph, #0's rings, fan)
 // other than the label's own (its glyph, its tie class's, its fan) and
-// those holding the leader's start (the 44l review: near leaders over
-// bunny's, a turned dolphin's and warrior's glyphs).
+// those holding the leader's start, unless it heads into them
+// (leader_over_disc; the 44l review: near leaders over bunny's, a turned
+// dolphin's and warrior's glyphs, "#3 behind #1" through #1).
 bool leader_over_others(const MainViewLabel& l, const PlacedLabel& p, std::span<const ScreenDisc> obstacles) {
   const bool is_cluster = l.kind == MainViewLabel::Kind::cluster;
   const std::int64_t own_end = std::max<std::int64_t>(l.cluster + 1, l.protect_end);
   return p.has_leader && std::any_of(obstacles.begin(), obstacles.end(), [&](const ScreenDisc& d) {
            const bool own = is_cluster ? (d.id >= l.cluster && d.id < own_end) || (l.cluster == 0 && d.id == kRingsObstacleId)
                                        : d.id == l.anchor.id;
-           return !own && std::hypot(p.leader_x0 - d.x, p.leader_y0 - d.y) >= d.radius &&
-                  leader_meets_disc(p, ScreenDisc{d.x, d.y, d.radius - 0.5, d.id});
+           return !own && leader_over_disc(p, ScreenDisc{d.x, d.y, d.radius - 0.5, d.id});
          });
 }
 
@@ -1925,6 +1949,12 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
   all_obstacles.insert(all_obstacles.end(), fans.begin(), fans.end());
   std::vector<ScreenDisc> worst_only;
   if (result.worst_glyph.radius > 0.0) worst_only.push_back(result.worst_glyph);
+  // #0's own label may sit in its neighbourhood (the 44m brief, 44l review
+  // M3: kept out, it went next to other clusters' glyphs or over #0's red
+  // edges).
+  std::vector<ScreenDisc> worst_label_obstacles;
+  std::copy_if(all_obstacles.begin(), all_obstacles.end(), std::back_inserter(worst_label_obstacles),
+               [](const ScreenDisc& d) { return d.id != kRingsObstacleId; });
   // The coloured glyphs' ranks: 0 to coloured_ids - 1 (ranked classes first).
   Index coloured_ids = 0;
   for (Index t : drawn.tie_class) coloured_ids += t < drawn.coloured_classes ? 1 : 0;
@@ -1954,7 +1984,9 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
       // callouts, and moved bunny's, kitten's and Dolphin_padded's fine
       // labels), unless its leader runs longer than kMaxLeaderShare of the
       // view's diagonal: then a callout, if one is nearer.
-      std::optional<PlacedLabel> placed = placer.place(request, all_obstacles);
+      const std::vector<ScreenDisc>& obstacles =
+          is_cluster && label.cluster == 0 ? worst_label_obstacles : all_obstacles;
+      std::optional<PlacedLabel> placed = placer.place(request, obstacles);
       if (!placed && !is_cluster) placed = placer.place(request, worst_only);
       // So is one whose leader crosses other glyphs (the 44l review): a
       // callout may pass them by.
@@ -1977,7 +2009,7 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
           const VisibleGlyph strict = visible_glyph(seen, own, label.anchor, true);
           label.leader_from = request.leader_from = strict.leader_from;
           label.always_leader = request.always_leader = strict.is_mostly_hidden;
-          placed = placer.place(request, all_obstacles);
+          placed = placer.place(request, obstacles);
           if (!placed) {
             deferred.push_back(label);
             continue;

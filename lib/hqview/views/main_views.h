@@ -488,6 +488,9 @@ struct MainViewLabels {
 //   kIdMarker        an overlap arrow (with_markers; otherwise left out);
 //   kIdBackground    nothing.
 // Empty when the renderer draws no id images.
+// How far #0's rings reach around its glyph's screen radius (pixels; their
+// halo's outer edge): no label or leader of another cluster crosses them.
+double worst_rings_extent(double radius, bool is_inverted, const AnnotationStyle& style);
 inline constexpr std::uint32_t kIdBackground = 0, kIdEdge = 1, kIdMarker = 2, kIdAnnotation = 3, kIdGlyph = 16;
 // ties: glyph_tie_classes(glyphs.clusters), or empty (computed here).
 IdImage main_view_id_image(Renderer& renderer, const Scene& scene, const GlyphResult& glyphs, const Camera& camera,
