@@ -121,7 +121,7 @@ struct ColorBarSwatch {
   Color color;
   std::string label;
   SwatchShape shape = SwatchShape::box;
-  std::optional<SwatchStroke> stroke;  // set: drawn as this stroke (a line across the box), not as shape's mark
+  std::optional<SwatchStroke> stroke = std::nullopt;  // set: drawn as this stroke (a line across the box), not as shape's mark
 };
 
 // A vertical colour bar legend: a title (lines separated by '\n'), the bar
