@@ -30,6 +30,8 @@
 // Dolphin_padded) when ../shared/data is there.
 #include <gtest/gtest.h>
 
+#include <functional>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -734,20 +736,38 @@ TEST(MainViewLabels, TurnedDolphinLeadersPassHigherRanksBy) {
   const std::vector<Vec3> directions = choose_main_viewpoints(main_view_points(c.mesh, c.topology, c.glyphs), c.glyphs,
                                                               main_view_aspect(options), 2, options.up,
                                                               options.fov_y_degrees);
-  int behind = 0;
+  int pairs = 0;  // (leader, higher-ranked glyph) pairs checked
   for (const Vec3& direction : directions) {
     const MainViewLabels labels =
         main_view_labels(c.mesh, c.topology, c.glyphs, &c.overlap, direction, options, nullptr, renderer.get());
     for (const MainViewLabel& l : labels.labels) {
       if (l.kind != MainViewLabel::Kind::cluster || !l.placement.has_leader) continue;
-      behind += l.text.find("behind") != std::string::npos ? 1 : 0;
       for (const ScreenDisc& d : labels.coloured_glyphs)
-        if (d.id < l.cluster)
+        if (d.id < l.cluster) {
+          ++pairs;
           EXPECT_FALSE(leader_over_disc(l.placement, ScreenDisc{d.x, d.y, d.radius - 0.5, d.id}))
               << l.text << " over #" << d.id;
+        }
     }
   }
-  EXPECT_GT(behind, 0);  // the case: a label behind a higher rank
+  // Since issue 44 part R colours 3 clusters, the reviewer's "#3 behind #1"
+  // is grey and unlabelled; the rule is held on the labelled leaders.
+  EXPECT_GT(pairs, 0);
+}
+
+// Each of the two main views of each named mesh, its labels placed as view A
+// places them (scoped by the mesh's name and the view's direction).
+void for_each_main_view(std::vector<std::pair<std::string, Case>> meshes, const MainViewOptions& options,
+                        Renderer& renderer, const std::function<void(const Case&, const MainViewLabels&)>& check) {
+  for (const auto& [name, c] : meshes) {
+    const std::vector<Vec3> directions = choose_main_viewpoints(main_view_points(c.mesh, c.topology, c.glyphs), c.glyphs,
+                                                                main_view_aspect(options), 2, options.up,
+                                                                options.fov_y_degrees);
+    for (const Vec3& direction : directions) {
+      SCOPED_TRACE(name + " from " + viewpoint_name(direction, options.up));
+      check(c, main_view_labels(c.mesh, c.topology, c.glyphs, &c.overlap, direction, options, nullptr, &renderer));
+    }
+  }
 }
 
 // A leader ends on its own glyph's visible pixels a few pixels off #0's
@@ -764,27 +784,22 @@ TEST(MainViewLabels, LeadersEndOffTheWorstRings) {
   const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
   const MainViewOptions options;
   const AnnotationStyle style = annotation_style_for(options.height);
-  int near_worst = 0;  // leaders starting within two radii of #0
-  for (const auto& [name, c] : {std::pair{"Dolphin_padded", analyse(std::move(mesh))},
-                                std::pair{"Dolphin_padded turned about x", analyse(std::move(turned))}}) {
-    const std::vector<Vec3> directions = choose_main_viewpoints(main_view_points(c.mesh, c.topology, c.glyphs), c.glyphs,
-                                                                main_view_aspect(options), 2, options.up,
-                                                                options.fov_y_degrees);
-    for (const Vec3& direction : directions) {
-      SCOPED_TRACE(std::string(name) + " from " + viewpoint_name(direction, options.up));
-      const MainViewLabels labels =
-          main_view_labels(c.mesh, c.topology, c.glyphs, &c.overlap, direction, options, nullptr, renderer.get());
+  int checked = 0;  // the leaders held to the rule
+  for_each_main_view({{"Dolphin_padded", analyse(std::move(mesh))}, {"Dolphin_padded turned about x", analyse(std::move(turned))}},
+                     options, *renderer, [&](const Case& c, const MainViewLabels& labels) {
       const ScreenDisc& w = labels.worst_glyph;
       const double rings = worst_rings_extent(w.radius, c.glyphs.clusters.at(0).min_quality < 0.0, style);
       for (const MainViewLabel& l : labels.labels) {
         if (l.kind != MainViewLabel::Kind::cluster || l.cluster == 0 || !l.placement.has_leader) continue;
         const double d = std::hypot(l.placement.leader_x0 - w.x, l.placement.leader_y0 - w.y);
-        near_worst += d < 2.0 * rings ? 1 : 0;
+        ++checked;
         EXPECT_GE(d, rings + 3.0 * style.scale) << l.text;
       }
-    }
-  }
-  EXPECT_GT(near_worst, 0);  // the case: a leader ending next to #0
+  });
+  // Since issue 44 part R colours 3 clusters, #4 (whose leader ended next to
+  // #0 on these meshes) is grey and unlabelled: the case this test was made
+  // for no longer arises here; the rule is held on the leaders there are.
+  EXPECT_GT(checked, 0);
 }
 
 // #0's own label is exempt from the rule keeping labels out of #0's
@@ -803,15 +818,8 @@ TEST(MainViewLabels, WorstLabelNearerItsGlyphThanAnyOther) {
   const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
   const MainViewOptions options;
   int checked = 0;
-  for (const auto& [name, c] : {std::pair{"bunny_1 turned about y", analyse(std::move(bunny))},
-                                std::pair{"kitten_1 turned about z", analyse(std::move(kitten))}}) {
-    const std::vector<Vec3> directions = choose_main_viewpoints(main_view_points(c.mesh, c.topology, c.glyphs), c.glyphs,
-                                                                main_view_aspect(options), 2, options.up,
-                                                                options.fov_y_degrees);
-    for (const Vec3& direction : directions) {
-      SCOPED_TRACE(std::string(name) + " from " + viewpoint_name(direction, options.up));
-      const MainViewLabels labels =
-          main_view_labels(c.mesh, c.topology, c.glyphs, &c.overlap, direction, options, nullptr, renderer.get());
+  for_each_main_view({{"bunny_1 turned about y", analyse(std::move(bunny))}, {"kitten_1 turned about z", analyse(std::move(kitten))}},
+                     options, *renderer, [&](const Case&, const MainViewLabels& labels) {
       for (const MainViewLabel& l : labels.labels) {
         if (l.kind != MainViewLabel::Kind::cluster || l.cluster != 0) continue;
         ++checked;
@@ -819,8 +827,7 @@ TEST(MainViewLabels, WorstLabelNearerItsGlyphThanAnyOther) {
         for (const ScreenDisc& d : labels.coloured_glyphs)
           if (d.id != 0) EXPECT_LT(own, disc_box_gap(d, l.placement.box)) << l.text << " nearer #" << d.id;
       }
-    }
-  }
+  });
   EXPECT_EQ(checked, 4);
 }
 
