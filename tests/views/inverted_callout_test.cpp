@@ -116,13 +116,30 @@ TEST(InvertedCallout, RingsInvertedHexesDeepInsideWhereTheyProject) {
   const Image image = render_quality_overview(c.mesh, c.topology, c.quality.vertex_quality, o, *renderer);
   const Frame f = overview_frame(c, o, *renderer);
   const auto [x, y] = projected_centre(c, f);
-  const test::ColorPixels lilac = test::pixels_of_color(image, f.view, kIntersectingEdgeColor, x, y, 1e9);
-  EXPECT_GT(lilac.count, 30) << "the intersecting hexes' edges, seen through the boundary";
-  EXPECT_NEAR(lilac.cx, x, 0.1 * f.view.height);
-  EXPECT_NEAR(lilac.cy, y, 0.1 * f.view.height);
+  // Beside inverted hexes the edges are faded (issue 45, the 45r review:
+  // they drew the eye before the blue): no opaque lilac, but the pixels
+  // they change against the same figure without them lie around the hexes.
+  EXPECT_EQ(test::pixels_of_color(image, f.view, kIntersectingEdgeColor).count, 0);
+  {
+    OverviewOptions without = o;
+    without.intersecting_cell_ids.clear();
+    const Image bare = render_quality_overview(c.mesh, c.topology, c.quality.vertex_quality, without, *renderer);
+    long changed = 0;
+    double cx = 0, cy = 0;
+    for (int v = f.view.y; v < f.view.y + f.view.height; ++v)
+      for (int u = f.view.x; u < f.view.x + f.view.width; ++u) {
+        const std::size_t at = pixel_offset(image, u, v);
+        if (std::memcmp(&image.rgba[at], &bare.rgba[at], 3) == 0) continue;
+        ++changed, cx += u, cy += v;
+      }
+    EXPECT_GT(changed, 30) << "the intersecting hexes' edges, seen through the boundary";
+    EXPECT_NEAR(cx / std::max(1L, changed), x, 0.1 * f.view.height);
+    EXPECT_NEAR(cy / std::max(1L, changed), y, 0.1 * f.view.height);
+  }
   const ColorBar bar = quality_overview_frame(c.mesh, c.topology, c.quality.vertex_quality, o).bar;
   EXPECT_TRUE(std::any_of(bar.swatches.begin(), bar.swatches.end(), [&](const ColorBarSwatch& s) {
-    return s.shape == SwatchShape::thick_line && s.label.starts_with("intersecting hexes: " + std::to_string(c.inverted.size()));
+    return s.shape == SwatchShape::thick_line && s.label.starts_with("intersecting hexes: " + std::to_string(c.inverted.size())) &&
+           to_rgba8(s.color) == kFadedIntersectingSwatchColor;
   }));
 
   // The callout: one group, not on the boundary, nothing in sight.
@@ -147,6 +164,48 @@ TEST(InvertedCallout, RingsInvertedHexesDeepInsideWhereTheyProject) {
   const Image plain = render_quality_overview(c.mesh, c.topology, c.quality.vertex_quality, o, *renderer);
   EXPECT_EQ(ring_pixels(plain, f.view, x, y, 1e9).count, 0);
   EXPECT_EQ(test::pixels_of_color(plain, f.view, kIntersectingEdgeColor).count, 0);
+  // Without inverted hexes the intersecting ones' edges are opaque lilac.
+  o.intersecting_cell_ids = c.inverted;
+  const Image lilac_only = render_quality_overview(c.mesh, c.topology, c.quality.vertex_quality, o, *renderer);
+  const OverviewFrame alone = quality_overview_frame(c.mesh, c.topology, c.quality.vertex_quality, o);  // no insets
+  const auto [ax, ay] = projected_centre(c, {alone.layout.view, alone.camera});
+  const test::ColorPixels lilac = test::pixels_of_color(lilac_only, alone.layout.view, kIntersectingEdgeColor, ax, ay, 1e9);
+  EXPECT_GT(lilac.count, 30);
+  EXPECT_NEAR(lilac.cx, ax, 0.1 * alone.layout.view.height);
+  EXPECT_NEAR(lilac.cy, ay, 0.1 * alone.layout.view.height);
+}
+
+// Issue 45, the 45r review ("37 in sight" counted whole groups): a dent on
+// the -y face, in sight (vertex (3, 0, 2) pushed 1.6 cells inwards: its 4
+// hexes inverted at that boundary corner), joined through vertex (3, 1, 2)
+// to hexes inverted deep inside (vertex (3, 2, 2) pushed 1.7 cells along
+// -x): one group, of which exactly the 4 hexes at the dent's corner show
+// blue; the label counts them, and all the group's hexes.
+TEST(InvertedCallout, InSightCountsTheHexesWhoseBlueShows) {
+  HexMesh mesh = test::box_grid(6, 6, 4);
+  for (Vec3& p : mesh.points) {
+    if (p.x == 3.0 && p.y == 0.0 && p.z == 2.0) p.y += 1.6;
+    if (p.x == 3.0 && p.y == 2.0 && p.z == 2.0) p.x -= 1.7;
+  }
+  const Case c = make_case(std::move(mesh));
+  std::size_t at_dent = 0;
+  for (Index h : c.inverted)
+    for (Index v : c.mesh.hexes[static_cast<std::size_t>(h)]) {
+      const Vec3& p = c.mesh.points[static_cast<std::size_t>(v)];
+      at_dent += p.x == 3.0 && p.y == 1.6 && p.z == 2.0;
+    }
+  ASSERT_EQ(at_dent, 4u);
+  ASSERT_GT(c.inverted.size(), 4u);
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  const Frame f = overview_frame(c, small_overview(c.inverted), *renderer);
+  const std::vector<InvertedCallout> callouts = inverted_callouts(
+      c.mesh, c.topology, c.inverted, c.quality.vertex_quality, f.camera, f.view, 13.0, *renderer);
+  ASSERT_EQ(callouts.size(), 1u);
+  EXPECT_TRUE(callout_in_sight(callouts[0]));
+  EXPECT_EQ(callouts[0].num_cells, static_cast<int>(c.inverted.size()));
+  EXPECT_EQ(callouts[0].num_seen_cells, 4);
+  EXPECT_EQ(inverted_callout_label(callouts[0], "hex", 1e6),
+            std::to_string(c.inverted.size()) + " inverted hexes, 4 in sight");
 }
 
 TEST(InvertedCallout, ADentInSightGetsASolidRing) {
@@ -521,12 +580,20 @@ void expect_rings_apart(const HexMesh& mesh, const std::string& what, Renderer& 
   for (const InvertedRingLabel& label : labels) {
     const InvertedCallout& ring = rings[label.callout];
     if (ring.hidden_radius == 0.0) continue;
-    const std::string seen = std::to_string(ring.num_cells - static_cast<int>(ring.hidden_cells.size()));
+    const int in_seen_groups = ring.num_cells - static_cast<int>(ring.hidden_cells.size());
+    const std::string seen = std::to_string(in_seen_groups);
     const std::string hidden = std::to_string(ring.hidden_cells.size());
+    // The hexes whose blue shows: some, never more than the groups in sight hold.
+    EXPECT_GE(ring.num_seen_cells, 1) << what;
+    EXPECT_LE(ring.num_seen_cells, in_seen_groups) << what;
     if (label.dashed_ring)
       EXPECT_EQ(label.text.rfind(hidden + " inverted hex", 0), 0u) << what << ": " << label.text;
     else
-      EXPECT_EQ(label.text.rfind(seen + " inverted hex" + (seen == "1" ? "" : "es") + " in sight", 0), 0u) << what << ": " << label.text;
+      EXPECT_EQ(label.text.rfind(seen + " inverted hex" + (seen == "1" ? "" : "es") +
+                                     (ring.num_seen_cells == in_seen_groups ? " in sight" : ", " + std::to_string(ring.num_seen_cells) + " in sight"),
+                                 0),
+                0u)
+          << what << ": " << label.text;
     EXPECT_EQ(label.text.find("see inset") != std::string::npos, label.dashed_ring && !ring.inset.empty()) << what << ": " << label.text;
   }
   for (std::size_t i = 0; i < labels.size(); ++i) {
@@ -593,13 +660,24 @@ TEST(InvertedCallout, EachRingsLabelCountsItsOwnHexes) {
   c.visible_pixels = 500;
   c.on_boundary = true;
   c.inset = "A";
+  c.num_seen_cells = 4;
   EXPECT_EQ(inverted_callout_label(c, "hex", 1e6), "10 inverted hexes in 3 groups: 4 in sight, 6 on the far side; see inset A");
+  // Issue 45, the 45r review: of the groups in sight only the hexes whose
+  // blue shows are "in sight"; the rest of those groups are counted apart.
+  c.num_seen_cells = 1;
+  EXPECT_EQ(inverted_callout_label(c, "hex", 1e6),
+            "10 inverted hexes in 3 groups: 1 in sight, 3 unseen beside them, 6 on the far side; see inset A");
+  c.num_seen_cells = 4;
   c.hidden_radius = 30.0;
   EXPECT_EQ(inverted_callout_label(c, "hex", 1e6), "4 inverted hexes in sight");
+  c.num_seen_cells = 3;
+  EXPECT_EQ(inverted_callout_label(c, "hex", 1e6), "4 inverted hexes, 3 in sight");
+  c.num_seen_cells = 4;
   EXPECT_EQ(inverted_hidden_label(c, "hex"), "6 inverted hexes in 2 groups, far side: see inset A");
   c.hidden_cells = {1};
   c.num_hidden_groups = 1;
   c.hidden_on_boundary = false;
+  c.num_seen_cells = 9;
   EXPECT_EQ(inverted_callout_label(c, "hex", 1e6), "9 inverted hexes in sight");
   EXPECT_EQ(inverted_hidden_label(c, "hex"), "1 inverted hex, inside: see inset A");
 }

@@ -90,6 +90,13 @@ LegendMetrics legend_metrics(const AnnotationStyle& style, int available_height)
   return m;
 }
 
+// A colour bar's: its max_bar_height caps the bar.
+LegendMetrics legend_metrics(const ColorBar& bar, const AnnotationStyle& style, int available_height) {
+  LegendMetrics m = legend_metrics(style, available_height);
+  if (bar.max_bar_height > 0) m.bar_height = std::max(1, std::min(m.bar_height, bar.max_bar_height));
+  return m;
+}
+
 }  // namespace
 
 AnnotationStyle annotation_style_for(int figure_height) {
@@ -370,7 +377,7 @@ int color_bar_width(const ColorBar& bar, const AnnotationStyle& style) {
 }
 
 int color_bar_height(const ColorBar& bar, const AnnotationStyle& style, int area_height) {
-  const LegendMetrics m = legend_metrics(style, area_height);
+  const LegendMetrics m = legend_metrics(bar, style, area_height);
   const int label_lines = bar.label.empty() ? 0 : static_cast<int>(split_lines(bar.label).size());
   const int swatch_block =
       bar.swatches.empty() ? 0 : m.swatch_gap + static_cast<int>(bar.swatches.size()) * m.swatch_pitch;
@@ -459,11 +466,11 @@ void draw_swatch(Image& image, const PixelRect& box, const Rgba8& color, SwatchS
 
 void draw_color_bar(Image& image, const PixelRect& area, const ColorBar& bar, const AnnotationStyle& given_style) {
   const AnnotationStyle style = color_bar_style_for(bar, given_style, area);
-  const LegendMetrics m = legend_metrics(style, area.height);
+  const LegendMetrics m = legend_metrics(bar, style, area.height);
   const int label_lines = bar.label.empty() ? 0 : static_cast<int>(split_lines(bar.label).size());
   const int label_block = label_lines * m.line_height;
   const int total = color_bar_height(bar, style, area.height);
-  const int top = area.y + std::max(0, (area.height - total) / 2);
+  const int top = area.y + (bar.max_bar_height > 0 ? 0 : std::max(0, (area.height - total) / 2));
   const int x = area.x + m.inset;
   const int outline = std::max(1, scaled(1.0, style));
 

@@ -133,6 +133,10 @@ struct ColorBar {
   std::vector<Color> colors;  // >= 1 samples, colors.front() at min_value
   std::vector<ColorBarTick> ticks;
   std::vector<ColorBarSwatch> swatches;
+  // > 0: the bar at most this many pixels high and the legend drawn from
+  // its area's top, not centred (the overview: its whole legend above the
+  // report page's fold, issue 45).
+  int max_bar_height = 0;
 };
 
 // The legend for vertex quality: quality map on [0, 1] with ticks every

@@ -78,6 +78,22 @@ std::string relative_warning(const std::string& warning, const std::string& path
 }
 
 
+// Text for a table cell that may break only after '_', '/', '.', '-' or a
+// space (issue 45, the 45t review: overflow-wrap anywhere broke "rockar|m",
+// "padde|d" and "mi|n>=0.2"): html_escape'd, with <wbr> after each of
+// those, so a long name wraps where its words meet.
+std::string html_with_breaks(std::string_view text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size();) {
+    std::size_t j = text.find_first_of("_/.-", i);
+    j = j == std::string_view::npos ? text.size() : j + 1;
+    out += html_escape(text.substr(i, j - i));
+    if (j < text.size()) out += "<wbr>";
+    i = j;
+  }
+  return out;
+}
+
 json number_or_null(std::optional<double> v) {
   if (!v || !std::isfinite(*v)) return nullptr;
   // Counts stay integers in the JSON.
@@ -685,6 +701,7 @@ kainjow::mustache::data fem_correlation_data(const CollectionCorrelation& c, con
     if (e.metrics.empty() || !e.headline[l2_slot]) continue;
     data row;
     row.set("path", e.path);
+    row.set("path_html", html_with_breaks(e.path));
     row.set("num_hexes", cell(e.headline[hexes_slot], 12));
     std::optional<double> h_over_l;
     for (const MeshMetricRange& m : e.metrics)
@@ -849,8 +866,11 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
     data row;
     row.set("path", e.path);
     row.set("label", e.label);
+    row.set("label_html", html_with_breaks(e.label));
     row.set("model", e.model);
+    row.set("model_html", html_with_breaks(e.model));
     row.set("variant", e.variant);
+    row.set("variant_html", html_with_breaks(e.variant));
     const std::string findings = batch_findings(e);
     with_findings += !findings.empty() && e.status != BatchStatus::failed && e.status != BatchStatus::skipped;
     const bool is_limited = (e.status == BatchStatus::ok || e.status == BatchStatus::gate_failed) && has_limited_analysis(e);
@@ -879,7 +899,7 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
     }
     row.set("warning", warning);
     row.set("has_warning", !warning.empty());
-    row.set("detail", detail);
+    row.set("detail", html_with_breaks(detail));
     data cells = data::type::list;
     for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) {
       if (!shown[k]) continue;
@@ -1038,21 +1058,49 @@ std::string batch_summary_markdown(const std::vector<BatchEntry>& entries) {
   if (with_warnings > 0) md += " (" + std::to_string(with_warnings) + " with input warnings)";
   if (skipped > 0) md += ", " + std::to_string(skipped) + (skipped == 1 ? " file" : " files") + " skipped (listed under the table)";
   md += "\n\n";
-  md += "| mesh | label | status |";
-  for (const char* title : kHeadlineTitles) md += std::string(" ") + title + " |";
-  md += "\n|---|---|---|";
-  for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) md += "--:|";
-  md += "\n";
-  // Worst first, as index.html (worst_first_order).
+  // The table in parts that a terminal and GitHub show whole (issue 45, the
+  // 45t review: 24 columns): the quality numbers beside each mesh's status,
+  // then the other headline numbers in tables of their own, each with the
+  // columns some row has a value in (as index.html), none without any.
   const std::vector<std::size_t> order = worst_first_order(entries);
-  for (const std::size_t i : order) {
-    const BatchEntry& e = entries[i];
-    if (e.status == BatchStatus::skipped) continue;  // listed under the table
-    md += "| " +
-          (e.bundle.empty() ? markdown_escape(e.path) : "[" + markdown_escape(e.path) + "](" + url_path(e.bundle) + "/index.html)") +
-          " | " + markdown_escape(e.label) + " | " + batch_status_text(e) + " |";  // fixed words, no input
-    for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) md += " " + show(e.headline[k]) + " |";
+  const bool any_label = std::any_of(entries.begin(), entries.end(), [](const BatchEntry& e) { return !e.label.empty(); });
+  struct Part {
+    const char* heading;  // empty: the first table
+    std::size_t first, end;  // headline keys [first, end)
+  };
+  static const std::size_t structure_key = headline_index("boundary_error.hausdorff.relative");
+  static const std::size_t fem_key = headline_index("fem.element.num_invalid");
+  static const std::size_t cells_key = headline_index("headline.num_cells");
+  const Part parts[] = {{"", 0, structure_key},
+                        {"Reference and structure", structure_key, fem_key},
+                        {"Finite elements", fem_key, cells_key},
+                        {"Cell kinds", cells_key, kNumHeadlineKeys}};
+  for (const Part& part : parts) {
+    const bool first = part.first == 0;
+    std::vector<std::size_t> keys;
+    for (std::size_t k = part.first; k < part.end; ++k)
+      if (first || std::any_of(entries.begin(), entries.end(), [&](const BatchEntry& e) {
+            return e.status != BatchStatus::skipped && e.headline[k].has_value();
+          }))
+        keys.push_back(k);
+    if (keys.empty()) continue;
+    if (!first) md += std::string("\n### ") + part.heading + "\n\n";
+    md += std::string("| mesh |") + (first && any_label ? " label |" : "") + (first ? " status |" : "");
+    for (const std::size_t k : keys) md += std::string(" ") + kHeadlineTitles[k] + " |";
+    md += std::string("\n|---|") + (first && any_label ? "---|" : "") + (first ? "---|" : "");
+    for (std::size_t k = 0; k < keys.size(); ++k) md += "--:|";
     md += "\n";
+    // Worst first, as index.html (worst_first_order).
+    for (const std::size_t i : order) {
+      const BatchEntry& e = entries[i];
+      if (e.status == BatchStatus::skipped) continue;  // listed under the table
+      md += "| " + (e.bundle.empty() ? markdown_escape(e.path)
+                                     : "[" + markdown_escape(e.path) + "](" + url_path(e.bundle) + "/index.html)") + " |";
+      if (first && any_label) md += " " + markdown_escape(e.label) + " |";
+      if (first) md += " " + batch_status_text(e) + " |";  // fixed words, no input
+      for (const std::size_t k : keys) md += " " + show(e.headline[k]) + " |";
+      md += "\n";
+    }
   }
   for (const SkippedFiles& group : skipped_files(entries)) {
     md += "\nSkipped: " + std::to_string(group.paths.size()) + (group.paths.size() == 1 ? " file" : " files") +

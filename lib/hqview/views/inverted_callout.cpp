@@ -37,10 +37,12 @@ struct Projector {
 // each triangle of its fan (corner, next corner, centre; a triangle face is
 // its own fan) into the 3 parts nearest its vertices (each vertex and the
 // midpoints of its two edges) and the middle; a part nearest an inverted
-// vertex (the centre: when the corners' mean is < 0) carries that vertex's
-// group + 1.
+// vertex (the centre: when the corners' mean is < 0, its first inverted
+// corner's) carries that vertex's slot + 1 (vertex_slot: its place among
+// the inverted corners' vertices, -1 for the others), so that the pixels
+// say which vertex's blue shows and with it which cells are in sight.
 Scene id_scene(const HexMesh& mesh, const Topology& topology, std::span<const double> vertex_quality,
-               const std::vector<int>& vertex_group, const Vec3& origin) {
+               const std::vector<int>& vertex_slot, const Vec3& origin) {
   Scene scene;
   scene.origin = origin;
   scene.background = id_color(kIdNothing);
@@ -69,7 +71,7 @@ Scene id_scene(const HexMesh& mesh, const Topology& topology, std::span<const do
     for (int i = 0; i < face.size; ++i) {
       const auto v = static_cast<std::size_t>(face.v[static_cast<std::size_t>(i)]);
       p[static_cast<std::size_t>(i)] = mesh.points[v];
-      if (v < vertex_group.size()) g[static_cast<std::size_t>(i)] = vertex_group[v];
+      if (v < vertex_slot.size()) g[static_cast<std::size_t>(i)] = vertex_slot[v];
       if (first < 0) first = g[static_cast<std::size_t>(i)];
     }
     if (face.size == 3) {
@@ -227,18 +229,29 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
       if (g >= 0) groups[static_cast<std::size_t>(g)].on_boundary = true;
     }
   if (std::any_of(groups.begin(), groups.end(), [](const InvertedCallout& c) { return c.on_boundary; })) {
-    const IdImage ids = renderer.render_ids(id_scene(mesh, topology, vertex_quality, vertex_group, camera.target),
+    // Each marked vertex its slot (ids up to kMaxId - 1; more: the rest draw as occluders).
+    std::vector<int> vertex_slot(vertex_group.size(), -1);
+    std::vector<std::size_t> slot_vertex;
+    for (std::size_t v = 0; v < vertex_group.size(); ++v)
+      if (vertex_group[v] >= 0 && slot_vertex.size() + 1 < kIdOccluder) {
+        vertex_slot[v] = static_cast<int>(slot_vertex.size());
+        slot_vertex.push_back(v);
+      }
+    const IdImage ids = renderer.render_ids(id_scene(mesh, topology, vertex_quality, vertex_slot, camera.target),
                                             camera, view.width, view.height);
     // Each group's visible pixels, and their box: the group's extent grows
     // to it, so that its solid ring encloses every blue pixel it names (a
     // face painted from an inverted corner reaches past the cells' corners).
     std::vector<Extent> seen(groups.size());
+    std::vector<char> slot_seen(slot_vertex.size(), 0);
     for (int v = 0; v < ids.height; ++v)
       for (int u = 0; u < ids.width; ++u) {
         const std::uint32_t id = ids.ids[static_cast<std::size_t>(v) * static_cast<std::size_t>(ids.width) + static_cast<std::size_t>(u)];
-        if (id == kIdNothing || id == kIdOccluder || id > static_cast<std::uint32_t>(num_groups)) continue;
-        ++groups[id - 1].visible_pixels;
-        Extent& e = seen[id - 1];
+        if (id == kIdNothing || id == kIdOccluder || id > slot_vertex.size()) continue;
+        slot_seen[id - 1] = 1;
+        const auto g = static_cast<std::size_t>(vertex_group[slot_vertex[id - 1]]);
+        ++groups[g].visible_pixels;
+        Extent& e = seen[g];
         const double x = view.x + ids.x0 + u, y = view.y + ids.y0 + v;
         e.x0 = std::min(e.x0, x), e.y0 = std::min(e.y0, y), e.x1 = std::max(e.x1, x + 1.0), e.y1 = std::max(e.y1, y + 1.0);
       }
@@ -249,6 +262,19 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
       c.visible_x0 = e.x0, c.visible_y0 = e.y0, c.visible_x1 = e.x1, c.visible_y1 = e.y1;
       grow(extent[g], e);
       ring_of(extent[g], c);
+    }
+    // A cell is in sight when the blue of one of its corners shows (issue
+    // 45, the 45r review: "37 in sight" counted every cell of a group with
+    // any blue in sight, most of them inside).
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      const CellRef ref = any_cell(mesh, cells[i]);
+      for (int k = 0; k < ref.num_corners; ++k) {
+        const int slot = vertex_slot[static_cast<std::size_t>(ref.corners[static_cast<std::size_t>(k)])];
+        if (slot >= 0 && slot_seen[static_cast<std::size_t>(slot)] != 0) {
+          ++groups[static_cast<std::size_t>(cell_group[i])].num_seen_cells;
+          break;
+        }
+      }
     }
   }
 
@@ -311,6 +337,7 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
         j.visible_y1 = first ? f.visible_y1 : std::max(j.visible_y1, f.visible_y1);
       }
       j.visible_pixels += groups[g].visible_pixels;
+      j.num_seen_cells += groups[g].num_seen_cells;
       j.on_boundary = j.on_boundary || groups[g].on_boundary;
       if (!callout_in_sight(groups[g])) {
         ++j.num_hidden_groups;
@@ -338,8 +365,18 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
       ring_of(hidden, dashed);
       const double smaller = std::min(solid.radius, dashed.radius);
       if (disc_overlap_area(solid.x, solid.y, solid.radius, dashed.x, dashed.y, dashed.radius) >
-          kMaxSplitOverlap * kPi * smaller * smaller)
+          kMaxSplitOverlap * kPi * smaller * smaller) {
+        // One ring, then around the blue in sight when a ring holds it
+        // (the 45r review: around all its groups' cells, centred on the
+        // model, at its largest radius it cut through the blue); its inset
+        // draws the hidden. Blue spread wider than the largest ring keeps
+        // the ring around all the cells (centred on the blue it moved the
+        // ring under an inset, and the model was drawn smaller to free it).
+        InvertedCallout blue;
+        ring_of({j.visible_x0, j.visible_y0, j.visible_x1, j.visible_y1}, blue);
+        if (blue.radius < max_radius) j.x = blue.x, j.y = blue.y, j.radius = blue.radius;
         continue;
+      }
       j.hidden_x = dashed.x, j.hidden_y = dashed.y, j.hidden_radius = dashed.radius;
       j.x = solid.x, j.y = solid.y, j.radius = solid.radius;
     }
@@ -363,27 +400,37 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
 }
 
 std::string inverted_callout_label(const InvertedCallout& c, const std::string& noun, double view_area) {
-  const std::size_t num_seen = static_cast<std::size_t>(c.num_cells) - c.hidden_cells.size();
+  // The cells of its groups in sight, and of those the cells with blue in
+  // sight at a corner (issue 45, the 45r review: "37 in sight" counted
+  // whole groups).
+  const std::size_t num_in_seen_groups = static_cast<std::size_t>(c.num_cells) - c.hidden_cells.size();
+  const auto num_seen = static_cast<std::size_t>(c.num_seen_cells);
+  const std::string seen_part = std::to_string(num_seen) + " in sight";
   if (c.hidden_radius > 0.0) {
-    // A split ring's solid ring: its cells in sight only (the dashed ring
+    // A split ring's solid ring: its groups in sight only (the dashed ring
     // names the rest, inverted_hidden_label).
-    std::string label = count_inverted(num_seen, noun) + " in sight";
+    std::string label = count_inverted(num_in_seen_groups, noun) + (num_seen == num_in_seen_groups ? "" : ",") + " " +
+                        (num_seen == num_in_seen_groups ? "in sight" : seen_part);
     if (c.num_more_cells > 0) label += "; +" + std::to_string(c.num_more_cells) + " more";
     return label;
   }
   std::string label = count_inverted(static_cast<std::size_t>(c.num_cells), noun);
   if (c.num_groups > 1) label += " in " + std::to_string(c.num_groups) + " groups";
   if (!c.hidden_cells.empty()) {
-    // One ring over groups in sight and hidden: how many of each.
-    label += ": " + std::to_string(num_seen) + " in sight, " + std::to_string(c.hidden_cells.size()) +
-             (c.hidden_on_boundary ? " on the far side" : " inside");
+    // One ring over groups in sight and hidden: how many of each, the cells
+    // of the groups in sight whose blue does not show apart.
+    label += ": " + seen_part + ", ";
+    if (num_in_seen_groups > num_seen) label += std::to_string(num_in_seen_groups - num_seen) + " unseen beside them, ";
+    label += std::to_string(c.hidden_cells.size()) + (c.hidden_on_boundary ? " on the far side" : " inside");
     if (c.num_more_cells > 0) label += "; +" + std::to_string(c.num_more_cells) + " more";
     if (!c.inset.empty()) label += "; see inset " + c.inset;
     return label;
   }
   if (!c.on_boundary) label += ", inside";
   else if (c.visible_pixels == 0) label += ", far side";
-  else if (static_cast<double>(c.visible_pixels) < kSmallInvertedFraction * view_area) label += " (small)";
+  else if (num_seen < num_in_seen_groups) label += ", " + seen_part;
+  if (c.on_boundary && c.visible_pixels > 0 && static_cast<double>(c.visible_pixels) < kSmallInvertedFraction * view_area)
+    label += " (small)";
   if (c.num_more_cells > 0) label += "; +" + std::to_string(c.num_more_cells) + " more";
   if (!c.inset.empty()) label += ": see inset " + c.inset;
   return label;

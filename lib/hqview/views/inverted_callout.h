@@ -57,6 +57,9 @@ struct InvertedCallout {
   // sight; hidden_radius 0: no second ring.
   double hidden_x = 0, hidden_y = 0, hidden_radius = 0;
   long visible_pixels = 0;    // view pixels where the overview paints their inverted corners, depth-tested
+  // Its cells (of its groups in sight) with the blue of a corner in sight:
+  // the labels' "N in sight" (a group in sight has cells inside too).
+  int num_seen_cells = 0;
   // The box of those pixels (figure pixels, their outer edges; empty when
   // none): the solid ring encloses it (issue 45: a visible blue face stuck
   // out of the solid ring).
@@ -75,7 +78,7 @@ std::vector<ScreenDisc> callout_discs(const InvertedCallout& c, double thickness
 inline constexpr double kRingMergeGap = 0.5;
 // A merged ring is split by sight only when its solid and dashed rings
 // would overlap by at most this fraction of the smaller disc's area; more,
-// and one ring (solid) holds both, its label saying how many are in sight
+// and one ring (solid, around the box of the blue in sight) holds both, its label saying how many are in sight
 // and how many hidden (issue 45: rings overlapping by 40 % left the blue in
 // the overlap neither in sight nor hidden).
 inline constexpr double kMaxSplitOverlap = 0.25;
@@ -102,13 +105,17 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
 // "14 inverted hexes" (noun: "hex" or "cell", made plural but for 1; empty:
 // "14 inverted"), then " in 3 groups" for a merged ring; a merged ring in
 // sight with hidden groups: split (hidden_radius > 0), the solid ring's
-// "4 inverted hexes in sight" (its own cells only: the dashed ring has its
-// label, inverted_hidden_label), else one ring's ": 4 in sight, 6 on the
-// far side" (or " inside"), then "; +N more" and the inset; else ", inside" (no
-// inverted corner on the boundary), ", far side" (on the boundary, none in
-// sight) or " (small)" (fewer pixels than kSmallInvertedFraction of
-// view_area); then "; +N more" for the cells without a ring; then
-// ": see inset A" when an inset draws them.
+// "4 inverted hexes in sight" (its groups in sight only: the dashed ring has
+// its label, inverted_hidden_label; "4 inverted hexes, 3 in sight" when one
+// shows no blue), else one ring's ": 9 in sight, 28 unseen beside them, 21
+// on the far side" (or " inside"; "in sight" counts num_seen_cells, the
+// middle part the rest of the groups in sight, left out when none), then
+// "; +N more" and the inset; else ", inside" (no inverted corner on the
+// boundary), ", far side" (on the boundary, none in sight) or, in sight,
+// ", 3 in sight" when fewer than all its cells show blue and " (small)"
+// (fewer pixels than kSmallInvertedFraction of view_area); then "; +N
+// more" for the cells without a ring; then ": see inset A" when an inset
+// draws them.
 std::string inverted_callout_label(const InvertedCallout& callout, const std::string& noun, double view_area);
 // A split ring's dashed ring's label: "6 inverted hexes in 2 groups, far
 // side" (or ", inside"), then ": see inset A" when an inset draws them.

@@ -419,19 +419,26 @@ std::vector<LineSet> intersecting_cell_edges(const HexMesh& mesh, const Overview
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   const double base = style.scale / kOverviewTextScale;  // 1 at 1200 px of height
+  // Beside inverted cells: thin and faded, no halo (issue 45, the 45r and
+  // 45t reviews: 118 hexes' lattice on a halo drew the eye before the
+  // inverted hexes' blue, the worst region).
+  const bool faded = !options.inverted_cells.empty();
   LineSet halo, core;
   halo.width = static_cast<float>(std::max(3.0, 5.0 * base));
-  core.width = static_cast<float>(std::max(1.5, 2.5 * base));
+  core.width = static_cast<float>(faded ? std::max(1.0, 1.5 * base) : std::max(1.5, 2.5 * base));
   halo.in_overlay = core.in_overlay = true;
+  const Rgba8 color = faded ? kFadedIntersectingEdgeColor : kIntersectingEdgeColor;
   for (const Edge& e : edges)
     for (Index v : e) {
       const Vec3f at = to_vec3f(mesh.points[static_cast<std::size_t>(v)] - origin);
       for (LineSet* set : {&halo, &core}) {
+        if (faded && set == &halo) continue;
         set->indices.push_back(static_cast<std::uint32_t>(set->positions.size()));
         set->positions.push_back(at);
-        set->colors.push_back(set == &halo ? Rgba8{255, 255, 255, 255} : kIntersectingEdgeColor);
+        set->colors.push_back(set == &halo ? Rgba8{255, 255, 255, 255} : color);
       }
     }
+  if (faded) return {std::move(core)};
   return {std::move(halo), std::move(core)};
 }
 
@@ -455,6 +462,11 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
   f.style.scale *= kOverviewTextScale;
   f.style.background = options.background;
   f.bar = overview_color_bar(topology, vertex_quality);
+  // A short bar, the legend from the top: on index.html (the overview at
+  // the column's width under the cards) its last swatch above the 1400 x
+  // 1000 window's fold (issue 45, the 45t review: the ring entries were
+  // below it at page load).
+  f.bar.max_bar_height = static_cast<int>(std::lround(kOverviewBarFraction * options.height));
   if (options.kind_quality != nullptr && !options.kind_quality->empty()) f.bar.label = kKindCornerQualityLabel;
   // A curved surface's values below 0: the corners of its reversed faces
   // (measured against their neighbours' orientation) and the reflex corners
@@ -476,7 +488,7 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
       if (options.inverted_are_reversed)
         f.bar.swatches.push_back({Color{}, "(orientation flipped)", SwatchShape::text});
     }
-    f.bar.swatches.push_back({to_color(kCalloutColor), "solid ring: inverted " + plural + " in sight", SwatchShape::solid_ring});
+    f.bar.swatches.push_back({to_color(kCalloutColor), "solid ring: inverted " + plural + ", some in sight", SwatchShape::solid_ring});
     f.bar.swatches.push_back(
         {to_color(kCalloutColor), "dashed ring: inside or on the far side", SwatchShape::dashed_ring});
   }
@@ -486,7 +498,7 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
     // faces: "intersecting faces", the word of its page and main view, drawn
     // there only (issue 47 part F).
     const bool drawn = !options.intersecting_cell_ids.empty();
-    f.bar.swatches.push_back({to_color(kIntersectingEdgeColor),
+    f.bar.swatches.push_back({to_color(drawn && !options.inverted_cells.empty() ? kFadedIntersectingSwatchColor : kIntersectingEdgeColor),
                               "intersecting " + (options.outline_inverted_faces ? std::string("faces") : plural) + ": " +
                                   std::to_string(options.intersecting_cells) + (drawn ? " (edges," : ""),
                               drawn ? SwatchShape::thick_line : SwatchShape::text});

@@ -29,6 +29,12 @@ inline constexpr Rgba8 kInvertedOutlineColor{70, 20, 170, 255};
 // (main_views.h kIntersectionArrowColor, lilac), so one colour names them
 // in both figures.
 inline constexpr Rgba8 kIntersectingEdgeColor{204, 136, 255, 255};
+// Beside inverted cells (OverviewOptions::intersecting_cell_ids): the same
+// lilac at 45 % opacity, thinner, without the white halo, so that the
+// inverted hexes' blue stays what the eye finds first; the legend's swatch
+// is that lilac as it looks on the white legend.
+inline constexpr Rgba8 kFadedIntersectingEdgeColor{204, 136, 255, 115};
+inline constexpr Rgba8 kFadedIntersectingSwatchColor{232, 201, 255, 255};
 
 struct OverviewOptions {
   int width = 1600;  // figure size in pixels, legend and title included
@@ -165,6 +171,9 @@ Image render_figure(Renderer& renderer, const Scene& scene, const Camera& camera
 // on the first screen, at about half its size (style.css figure.overview),
 // and its legend must stay at least 11 px there (issue 45e).
 inline constexpr double kOverviewTextScale = 1.3;
+// The overview's colour bar at most this fraction of the figure's height,
+// its legend drawn from the legend panel's top (ColorBar::max_bar_height).
+inline constexpr double kOverviewBarFraction = 0.25;
 // The rings' core thickness on the overview (pixels; their labels'
 // leaders and the placement's discs use it too).
 inline double overview_ring_thickness(const AnnotationStyle& style) { return std::max(2.0, 4.0 * style.scale); }
