@@ -452,6 +452,12 @@ Image render_figure(Renderer& renderer, const Scene& scene, const Camera& camera
   return figure;
 }
 
+// The overview's colour bar at most this fraction of the figure's height,
+// its legend drawn from the legend panel's top (ColorBar::max_bar_height):
+// with a Warnings section above panel A, index.html at 1400 x 1000 still
+// shows its last legend line at page load (0.25 left it under the fold).
+constexpr double kOverviewBarFraction = 0.18;
+
 OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topology,
                                     const std::vector<double>& vertex_quality, const OverviewOptions& options) {
   if (options.width <= 0 || options.height <= 0)

@@ -171,9 +171,6 @@ Image render_figure(Renderer& renderer, const Scene& scene, const Camera& camera
 // on the first screen, at about half its size (style.css figure.overview),
 // and its legend must stay at least 11 px there (issue 45e).
 inline constexpr double kOverviewTextScale = 1.3;
-// The overview's colour bar at most this fraction of the figure's height,
-// its legend drawn from the legend panel's top (ColorBar::max_bar_height).
-inline constexpr double kOverviewBarFraction = 0.25;
 // The rings' core thickness on the overview (pixels; their labels'
 // leaders and the placement's discs use it too).
 inline double overview_ring_thickness(const AnnotationStyle& style) { return std::max(2.0, 4.0 * style.scale); }
