@@ -701,7 +701,6 @@ kainjow::mustache::data fem_correlation_data(const CollectionCorrelation& c, con
     if (e.metrics.empty() || !e.headline[l2_slot]) continue;
     data row;
     row.set("path", e.path);
-    row.set("path_html", html_with_breaks(e.path));
     row.set("num_hexes", cell(e.headline[hexes_slot], 12));
     std::optional<double> h_over_l;
     for (const MeshMetricRange& m : e.metrics)
@@ -865,6 +864,7 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
     gate_failed += e.status == BatchStatus::gate_failed;
     data row;
     row.set("path", e.path);
+    row.set("path_html", html_with_breaks(e.path));
     row.set("label", e.label);
     row.set("label_html", html_with_breaks(e.label));
     row.set("model", e.model);
