@@ -1075,8 +1075,14 @@ std::string batch_summary_markdown(const std::vector<BatchEntry>& entries) {
                         {"Reference and structure", structure_key, fem_key},
                         {"Finite elements", fem_key, cells_key},
                         {"Cell kinds", cells_key, kNumHeadlineKeys}};
+  // The cell kinds only when some mesh is not pure-hex (as index.html).
+  static const std::size_t hex_fraction_key = headline_index("headline.hex_fraction");
+  const bool any_hybrid = std::any_of(entries.begin(), entries.end(), [](const BatchEntry& e) {
+    return e.headline[hex_fraction_key].has_value() && *e.headline[hex_fraction_key] != 1.0;
+  });
   for (const Part& part : parts) {
     const bool first = part.first == 0;
+    if (part.first == cells_key && !any_hybrid) continue;
     std::vector<std::size_t> keys;
     for (std::size_t k = part.first; k < part.end; ++k)
       if (first || std::any_of(entries.begin(), entries.end(), [&](const BatchEntry& e) {
