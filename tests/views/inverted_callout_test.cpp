@@ -136,6 +136,19 @@ TEST(InvertedCallout, RingsInvertedHexesDeepInsideWhereTheyProject) {
     EXPECT_NEAR(cx / std::max(1L, changed), x, 0.1 * f.view.height);
     EXPECT_NEAR(cy / std::max(1L, changed), y, 0.1 * f.view.height);
   }
+  // Issue 45, the 45t review: index.html shows the overview under the
+  // cards (and a Warnings section) at the column's width, so at 1400 x
+  // 1000 its fold is at about 0.6 of the figure's height: the whole legend
+  // (colour bar, inverted, ring and intersecting lines) lies above it.
+  {
+    const PixelRect legend = quality_overview_frame(c.mesh, c.topology, c.quality.vertex_quality, o).layout.legend;
+    int last = -1;
+    for (int v = legend.y; v < legend.y + legend.height; ++v)
+      for (int u = legend.x; u < legend.x + legend.width && last < v; ++u)
+        if (std::memcmp(&image.rgba[pixel_offset(image, u, v)], &o.background.r, 3) != 0) last = v;
+    EXPECT_GT(last, legend.y + legend.height / 3) << "the legend is drawn";
+    EXPECT_LE(last, 0.6 * o.height) << "the legend's last line under the page's fold";
+  }
   const ColorBar bar = quality_overview_frame(c.mesh, c.topology, c.quality.vertex_quality, o).bar;
   EXPECT_TRUE(std::any_of(bar.swatches.begin(), bar.swatches.end(), [&](const ColorBarSwatch& s) {
     return s.shape == SwatchShape::thick_line && s.label.starts_with("intersecting hexes: " + std::to_string(c.inverted.size())) &&
