@@ -394,11 +394,16 @@ const SwatchMark& swatch_mark(SwatchShape shape) {
 }
 
 std::vector<std::array<double, 2>> dashed_pieces(double length, const SwatchStroke& stroke) {
-  const int count = stroke.dash > 0 ? static_cast<int>(std::floor((length + stroke.gap) / (stroke.dash + stroke.gap))) : 0;
-  if (count < 2 || !(length > 0)) return {{0.0, 1.0}};
-  const double dash = stroke.dash / length, gap = (1.0 - count * dash) / (count - 1);
+  if (!(stroke.dash > 0) || !(length > 0)) return {{0.0, 1.0}};
+  // Issue 48c: a half gap at each end, so the dashes of edges meeting at a
+  // corner do not merge into a chevron; an edge shorter than a dash and a
+  // gap one dash in its middle, its ends open (it was drawn solid, or as two
+  // dashes: small hexes' outlines read as scribbles or corner brackets).
+  const int count = static_cast<int>(std::floor(length / (stroke.dash + stroke.gap)));
+  if (count < 1) return {{0.2, 0.8}};
+  const double slot = 1.0 / count, dash = stroke.dash / length;
   std::vector<std::array<double, 2>> pieces;
-  for (int i = 0; i < count; ++i) pieces.push_back({i * (dash + gap), i * (dash + gap) + dash});
+  for (int i = 0; i < count; ++i) pieces.push_back({(i + 0.5) * slot - 0.5 * dash, (i + 0.5) * slot + 0.5 * dash});
   return pieces;
 }
 
