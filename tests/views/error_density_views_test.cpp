@@ -70,6 +70,7 @@ TEST(ErrorDensityView, LogScaleRelativeToTheMedian) {
   EXPECT_EQ(labels, (std::vector<std::string>{"\u2264 0.0755 (median)", "2\u00d7 (0.151)", "5\u00d7 (0.377)",
                                               "10\u00d7 (0.755)", "mesh max 0.285 (3.8\u00d7)"}));
   EXPECT_NEAR(bar.ticks.back().value, std::log10(0.285), 1e-12);
+  EXPECT_LE(bar.ticks[3].value, bar.max_value);  // 10x at the top, not past it (the bar would drop it)
   // A max above 10x its median is the red end: 0.1, 0.1, 0.1, 5 -> 0.1 .. 5.
   const ErrorDensityScale bad = error_density_scale(std::vector<double>{0.1, 0.1, 0.1, 5.0});
   EXPECT_NEAR(bad.lo, 0.1, 1e-12);

@@ -476,8 +476,10 @@ ColorBar error_density_color_bar(const ErrorDensityScale& scale) {
   for (int k = 0; k <= static_cast<int>(std::ceil(span)); ++k)
     for (double m : {1.0, 2.0, 5.0}) {
       if (decades_only && m != 1.0) continue;
-      const double at = bar.min_value + std::log10(m) + k;
-      if (at - bar.min_value > 0.08 * span && bar.max_value - at > -1e-12 &&
+      const double raw = bar.min_value + std::log10(m) + k;
+      if (raw > bar.max_value + 1e-9) continue;
+      const double at = std::min(raw, bar.max_value);  // 10x: the top exactly (the bar drops u > 1)
+      if (at - bar.min_value > 0.08 * span &&
           (!max_on_bar || std::abs(at - max_at) > 0.08 * span))
         bar.ticks.push_back({at, relative ? times(m * std::pow(10.0, k)) + " (" + value(m * std::pow(10.0, k) * scale.lo) + ")"
                                           : value(m * std::pow(10.0, k) * scale.lo)});
