@@ -31,7 +31,8 @@
 // the veil). Every mark has its own legend entry. Both from one upright,
 // orthographic viewpoint: the one that shows the most of the densest 1% of
 // the hexes (choose_viewpoints), so the worst region faces the camera. The
-// colour range is the mesh's own (the legend says so).
+// colour is the density relative to the mesh's median (error_density_scale;
+// the legend says so).
 
 #include <array>
 #include <span>
@@ -168,11 +169,12 @@ std::vector<ColorBarSwatch> error_density_cells_swatches(const ErrorDensityWorst
 std::array<bool, 12> hex_edges_facing(const HexMesh& mesh, const Hex& hex, const Camera& camera);
 
 // Which of `cells` the boundary hides from `camera` (an image of width x
-// height): a cell with no boundary face in the image (interior), or whose own
-// boundary faces, drawn opaque with the whole boundary, show less than half
-// of the pixels they cover drawn alone (id images, Renderer::render_ids;
-// e.g. behind a fold, or on the far side). All false when the renderer draws
-// no id images.
+// height): a cell none of whose boundary faces, drawn opaque with the whole
+// boundary, shows at least half of the pixels (and at least 4) it covers
+// drawn alone, face by face (id images, Renderer::render_ids): an interior
+// cell, one behind a fold or on the far side. Face by face (issue 48c): one
+// face seen at a grazing angle makes a cell seen, however large its faces
+// turned away. All false when the renderer draws no id images.
 std::vector<bool> error_density_cells_behind_boundary(const HexMesh& mesh, const Topology& topology,
                                                       std::span<const Index> cells, const Camera& camera, int width,
                                                       int height, Renderer& renderer);
