@@ -230,7 +230,9 @@ void draw_worst_label_outside(Image& figure, const PixelRect& view, const PixelB
   const int size = std::max(style.min_text_size, static_cast<int>(std::lround(20 * style.scale)));
   const PixelRect extent = text_extent(label, size, style);
   const double w = extent.width + 6.0, h = size + 6.0, gap = 10.0 * style.scale;
-  const double vx0 = view.x + 2.0, vy0 = view.y + 2.0, vx1 = view.x + view.width - 2.0, vy1 = view.y + view.height - 2.0;
+  // A margin off the view's edges (issue 48c: labels at x = 5 px touched the image border).
+  const double inset = 10.0 * style.scale;
+  const double vx0 = view.x + inset, vy0 = view.y + 2.0, vx1 = view.x + view.width - inset, vy1 = view.y + view.height - 2.0;
   const auto clamp_x = [&](double x) { return std::clamp(x, vx0, std::max(vx0, vx1 - w)); };
   const auto clamp_y = [&](double y) { return std::clamp(y, vy0, std::max(vy0, vy1 - h)); };
   struct Box {
