@@ -95,6 +95,14 @@ double parse_glyph_threshold(const std::string& text) {
   return *value;
 }
 
+double parse_error_density_reference(const std::string& text) {
+  if (text.empty()) return 0;  // not given: the mesh's median
+  const auto value = parse_finite(text);
+  if (!value || !(*value > 0))
+    throw UsageError("--error-density-reference: expected a positive number (an error density), got '" + text + "'");
+  return *value;
+}
+
 std::optional<hq::OverlapOptions> parse_overlap(const std::string& mode, const std::string& coincident_eps,
                                                 bool no_overlap) {
   if (no_overlap) return std::nullopt;

@@ -52,6 +52,9 @@ void parse_rmax(const std::string& text, hq::GlyphOptions& glyphs);
 
 // --glyph-threshold T: a ratio 1 - Jm, in [0, 2].
 double parse_glyph_threshold(const std::string& text);
+// --error-density-reference: a positive number; empty (not given): 0, the
+// mesh's median. Throws UsageError.
+double parse_error_density_reference(const std::string& text);
 
 // --overlap certificate|exhaustive and --coincident-eps E (a fraction of the
 // bounding-box diagonal, 0 = exact equality); nullopt with --no-overlap.

@@ -167,6 +167,7 @@ struct AnalyzeArgs {
   std::string coincident_eps = "0";
   bool no_overlap = false;
   bool simulate = false;   // --simulate: the finite-element (Poisson) check
+  std::string error_density_reference;  // --error-density-reference; empty: the mesh's median
   std::string max_memory;  // --max-memory; empty: hq::default_max_memory()
 };
 
@@ -193,6 +194,7 @@ hq::AnalyzeOptions make_analyze_options(const AnalyzeArgs& args) {
   options.metrics = parse_metric_list(args.metrics);
   options.fem_elements = lists_fem_element(args.metrics) || args.simulate;
   options.simulate = args.simulate;
+  options.views.error_density_reference = parse_error_density_reference(args.error_density_reference);
   // Rules are checked for syntax before the work; whether their key exists is
   // known once the report is (analyze throws hq::ValueError then, no bundle).
   for (const std::string& rule : args.gates) options.gates.push_back(hq::parse_gate_rule(rule));
@@ -499,6 +501,9 @@ void add_analysis_options(CLI::App* cmd, AnalyzeArgs& args) {
   cmd->add_flag("--simulate", args.simulate,
                 "Run the finite-element check: element conditioning and a Poisson solve with three manufactured "
                 "solutions (report.json fem)");
+  cmd->add_option("--error-density-reference", args.error_density_reference,
+                  "With --simulate: colour the error-density view relative to this density instead of the mesh's "
+                  "median (pale at or below it, red at 10 times it), one scale for every mesh");
   cmd->add_option("--rmax", args.rmax,
                   "Glyph radius at quality 0: R in model units, or Rx for R times the mean edge length")
       ->capture_default_str();

@@ -141,5 +141,18 @@ TEST(Size, WidthByHeightWithinBounds) {
             "--size: width and height must be between 64 and 8192, got '32x32'");
 }
 
+// Issue 48c: --error-density-reference, a positive density; not given: 0
+// (the mesh's median).
+TEST(ErrorDensityReference, PositiveOrNotGiven) {
+  EXPECT_EQ(parse_error_density_reference(""), 0.0);
+  EXPECT_EQ(parse_error_density_reference("0.05"), 0.05);
+  EXPECT_EQ(parse_error_density_reference("2e-3"), 2e-3);
+  for (const char* bad : {"0", "-1", "abc", "nan", "inf"})
+    EXPECT_EQ(usage_error([&] { parse_error_density_reference(bad); }),
+              std::string("--error-density-reference: expected a positive number (an error density), got '") + bad +
+                  "'")
+        << bad;
+}
+
 }  // namespace
 }  // namespace hqcli

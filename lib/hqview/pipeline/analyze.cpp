@@ -492,6 +492,7 @@ AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
   model.has_viewer = renderer && options.viewer;
   model.viewer_max_mb = options.viewer_max_mb;
   model.viewer_up = views.up;
+  model.viewer_error_density_reference = views.error_density_reference;
   // Gates read the finished report, so any numeric key can be gated on.
   {
     StageClock clock(model.analysis.timings, options.on_stage);

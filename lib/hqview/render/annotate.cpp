@@ -400,12 +400,25 @@ const SwatchMark& swatch_mark(SwatchShape shape) {
   return kSwatchMarks[0];
 }
 
-std::vector<std::array<double, 2>> dashed_pieces(double length, const SwatchStroke& stroke) {
-  const int count = stroke.dash > 0 ? static_cast<int>(std::floor((length + stroke.gap) / (stroke.dash + stroke.gap))) : 0;
-  if (count < 2 || !(length > 0)) return {{0.0, 1.0}};
-  const double dash = stroke.dash / length, gap = (1.0 - count * dash) / (count - 1);
+std::vector<std::array<double, 2>> dashed_pieces(double length, const SwatchStroke& stroke, bool open_ends) {
+  if (!(stroke.dash > 0) || !(length > 0)) return {{0.0, 1.0}};
+  if (!open_ends) {  // a swatch: dashes from end to end, at least two
+    const int count = static_cast<int>(std::floor((length + stroke.gap) / (stroke.dash + stroke.gap)));
+    if (count < 2) return {{0.0, 1.0}};
+    const double dash = stroke.dash / length, gap = (1.0 - count * dash) / (count - 1);
+    std::vector<std::array<double, 2>> pieces;
+    for (int i = 0; i < count; ++i) pieces.push_back({i * (dash + gap), i * (dash + gap) + dash});
+    return pieces;
+  }
+  // Issue 48c: a half gap at each end, so the dashes of edges meeting at a
+  // corner do not merge into a chevron; an edge shorter than a dash and a
+  // gap one dash in its middle, its ends open (it was drawn solid, or as two
+  // dashes: small hexes' outlines read as scribbles or corner brackets).
+  const int count = static_cast<int>(std::floor(length / (stroke.dash + stroke.gap)));
+  if (count < 1) return {{0.2, 0.8}};
+  const double slot = 1.0 / count, dash = stroke.dash / length;
   std::vector<std::array<double, 2>> pieces;
-  for (int i = 0; i < count; ++i) pieces.push_back({i * (dash + gap), i * (dash + gap) + dash});
+  for (int i = 0; i < count; ++i) pieces.push_back({(i + 0.5) * slot - 0.5 * dash, (i + 0.5) * slot + 0.5 * dash});
   return pieces;
 }
 
@@ -414,7 +427,7 @@ namespace {
 // A stroke swatch: the halo's pieces, then the core's, across the box.
 void draw_stroke_swatch(Image& image, const PixelRect& box, const Rgba8& color, const SwatchStroke& stroke) {
   const double x0 = box.x + 1.0, x1 = box.x + box.width - 1.0, cy = box.y + 0.5 * box.height;
-  const std::vector<std::array<double, 2>> pieces = dashed_pieces(x1 - x0, stroke);
+  const std::vector<std::array<double, 2>> pieces = dashed_pieces(x1 - x0, stroke, false);
   for (const auto& [rgba, width] : {std::pair{stroke.halo, stroke.halo_width}, std::pair{color, stroke.width}})
     if (width > 0)
       for (const auto& [t0, t1] : pieces) draw_line(image, x0 + t0 * (x1 - x0), cy, x0 + t1 * (x1 - x0), cy, rgba, width);

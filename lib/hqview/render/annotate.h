@@ -112,11 +112,14 @@ struct SwatchStroke {
   Rgba8 halo{255, 255, 255, 255};
   double dash = 0, gap = 0;
 };
-// The pieces [t0, t1] of a dashed line `length` pixels long: dashes of
-// stroke.dash pixels from end to end, the gaps stretched to fit (at most a
-// dash more than stroke.gap); one piece (solid) when it is shorter than two
-// dashes and a gap, or stroke.dash is 0.
-std::vector<std::array<double, 2>> dashed_pieces(double length, const SwatchStroke& stroke);
+// The pieces [t0, t1] of a dashed line `length` pixels long: as many dashes
+// of stroke.dash pixels as dash-and-gap periods fit, each centred in its
+// period (the gaps stretched to fit, half a gap at each end, so the line's
+// ends are open); shorter than one period: one dash over its middle 60 %;
+// one piece (solid) when stroke.dash is 0. Not open_ends (a legend swatch,
+// about two periods wide): the same dashes from end to end, the gaps
+// stretched, solid when fewer than two fit.
+std::vector<std::array<double, 2>> dashed_pieces(double length, const SwatchStroke& stroke, bool open_ends = true);
 struct ColorBarSwatch {
   Color color;
   std::string label;

@@ -202,7 +202,7 @@ struct BoundaryData {
   std::size_t size() const { return vertices.dump().size() + faces.dump().size() + face_scaled_jacobian.dump().size() + fields.dump().size(); }
 };
 
-BoundaryData boundary_data(const Analysis& a, const ViewerBoundary& b, bool with_metrics) {
+BoundaryData boundary_data(const Analysis& a, const ViewerBoundary& b, bool with_metrics, double density_reference) {
   BoundaryData out;
   std::vector<Vec3> points;
   for (Index v : b.vertices) points.push_back(a.mesh.points[static_cast<std::size_t>(v)]);
@@ -304,7 +304,7 @@ BoundaryData boundary_data(const Analysis& a, const ViewerBoundary& b, bool with
     // --simulate: the error density of each face's hex, indices 0..253 on
     // the log scale of view fem_error_density (error_density_views.h).
     const std::vector<double>& density = a.poisson->cell_error_density;
-    const ErrorDensityScale scale = error_density_scale(density);
+    const ErrorDensityScale scale = error_density_scale(density, density_reference);
     const double span = std::log10(scale.hi) - std::log10(scale.lo);
     std::vector<std::uint8_t> e;
     for (Index h : b.face_hex) {
@@ -480,7 +480,7 @@ std::vector<ViewerFile> viewer_files(const ReportModel& model) {
   // The budget (base64 is 4/3 of the bytes): the metric colourings go first,
   // then the corner values of a click, then the boundary is reduced.
   const double rest = static_cast<double>(d.dump().size());
-  BoundaryData bd = boundary_data(a, full, true);
+  BoundaryData bd = boundary_data(a, full, true, model.viewer_error_density_reference);
   const double boundary_size = static_cast<double>(bd.size());
   if (rest + boundary_size + static_cast<double>(bd.metric_bytes * 4 / 3) > budget && !bd.metric_fields.empty()) {
     reduced.push_back("the " + std::to_string(bd.metric_fields.size()) +
@@ -498,7 +498,7 @@ std::vector<ViewerFile> viewer_files(const ReportModel& model) {
     const auto target = std::max(kMinViewerFaces, static_cast<std::size_t>(0.9 * share * static_cast<double>(full.face_hex.size())));
     const ViewerBoundary drawn = reduce_boundary(full, a.mesh.points, a.field.vertex_quality, a.field.cell_scaled_jacobian, target);
     if (drawn.face_hex.size() < full.face_hex.size()) {
-      bd = boundary_data(a, drawn, false);
+      bd = boundary_data(a, drawn, false, model.viewer_error_density_reference);
       d["boundary_reduced"] = {{"faces", full.face_hex.size()}, {"cell_size", drawn.cell_size}};
       reduced.push_back("the boundary is drawn with " + display_count(static_cast<long long>(drawn.face_hex.size())) + " of its " +
                         display_count(static_cast<long long>(full.face_hex.size())) + " faces (vertex clustering on a grid of " +

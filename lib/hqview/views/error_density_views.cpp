@@ -12,6 +12,7 @@
 #include "hqview/core/hex_topology.h"
 #include "hqview/image/colormap.h"
 #include "hqview/quality/hex_metrics.h"
+#include "hqview/quality/statistics.h"
 #include "hqview/render/upright.h"
 #include "hqview/views/boundary_views.h"
 #include "hqview/views/inverted_callout.h"
@@ -229,7 +230,9 @@ void draw_worst_label_outside(Image& figure, const PixelRect& view, const PixelB
   const int size = std::max(style.min_text_size, static_cast<int>(std::lround(20 * style.scale)));
   const PixelRect extent = text_extent(label, size, style);
   const double w = extent.width + 6.0, h = size + 6.0, gap = 10.0 * style.scale;
-  const double vx0 = view.x + 2.0, vy0 = view.y + 2.0, vx1 = view.x + view.width - 2.0, vy1 = view.y + view.height - 2.0;
+  // A margin off the view's edges (issue 48c: labels at x = 5 px touched the image border).
+  const double inset = 10.0 * style.scale;
+  const double vx0 = view.x + inset, vy0 = view.y + 2.0, vx1 = view.x + view.width - inset, vy1 = view.y + view.height - 2.0;
   const auto clamp_x = [&](double x) { return std::clamp(x, vx0, std::max(vx0, vx1 - w)); };
   const auto clamp_y = [&](double y) { return std::clamp(y, vy0, std::max(vy0, vy1 - h)); };
   struct Box {
@@ -369,11 +372,12 @@ Vec3 thinnest_axis(std::span<const Vec3> points) {
 }  // namespace
 
 Vec3 away_from_edge_on(const Vec3& direction, std::span<const Vec3> points, const Vec3& focus) {
-  // Issue 48r: an extruded plate was seen edge-on (a rectangle). Within
+  // Issue 48r: an extruded plate was seen edge-on (a rectangle); 48c: at 30
+  // degrees its profile was still squeezed to a strip. Within
   // kEdgeOnDegrees of edge-on to the model's thinnest axis n, the view is
   // tilted to kTiltDegrees from edge-on, towards the side of n the focus
   // (the max hex) lies on, keeping its azimuth about n.
-  constexpr double kEdgeOnDegrees = 15.0, kTiltDegrees = 30.0;
+  constexpr double kEdgeOnDegrees = 45.0, kTiltDegrees = 60.0;
   const Vec3 n = thinnest_axis(points);
   const Vec3 d = direction / norm(direction);
   if (std::abs(dot(d, n)) >= std::sin(kEdgeOnDegrees * std::numbers::pi / 180.0)) return direction;
@@ -414,42 +418,27 @@ std::array<bool, 12> hex_edges_facing(const HexMesh& mesh, const Hex& hex, const
   return front;
 }
 
-namespace {
-
-// The 1-2-5 step at or below v (v > 0).
-double step_at_or_below(double v) {
-  const double decade = std::pow(10.0, std::floor(std::log10(v) + 1e-9));
-  for (double m : {5.0, 2.0, 1.0})
-    if (m * decade <= v * (1 + 1e-9)) return m * decade;
-  return decade;
-}
-
-// v rounded up to two significant figures (0.285 -> 0.29).
-double two_figures_up(double v) {
-  const double unit = std::pow(10.0, std::floor(std::log10(v) + 1e-9) - 1);
-  return std::ceil(v / unit * (1 - 1e-9)) * unit;
-}
-
-}  // namespace
-
-ErrorDensityScale error_density_scale(std::span<const double> density) {
+ErrorDensityScale error_density_scale(std::span<const double> density, double reference) {
   ErrorDensityScale s;
-  s.max = std::numeric_limits<double>::quiet_NaN();
+  s.max = s.median = std::numeric_limits<double>::quiet_NaN();
   std::vector<double> positive;
   for (double d : density)
     if (is_positive(d)) positive.push_back(d);
-  if (positive.empty()) return s;
-  std::sort(positive.begin(), positive.end());
-  s.max = positive.back();
-  // The mesh's own range (issue 48r: one fixed range 0.01-10 for every mesh
-  // put a mesh's 0.02-0.3 in one pale band, so colour did not point to the
-  // worst hex): log from the 5th percentile, rounded down to a 1-2-5 step,
-  // to the max, rounded up to two figures (so the max is the map's top
-  // colour); hi / lo at least 4 (a mesh whose densities vary by 2x does not
-  // span the whole map), lo lowered a 1-2-5 step at a time.
-  s.hi = two_figures_up(s.max);
-  s.lo = step_at_or_below(positive[static_cast<std::size_t>(0.05 * static_cast<double>(positive.size() - 1))]);
-  while (s.hi / s.lo < 4.0 * (1 - 1e-9)) s.lo = step_at_or_below(s.lo * (1 - 1e-6));
+  if (!positive.empty()) {
+    std::sort(positive.begin(), positive.end());
+    s.max = positive.back();
+    s.median = percentile_of_sorted(positive, 0.5);
+  }
+  // Issue 48c: relative to a reference, the mesh's median unless given (48r's
+  // p05-to-max range painted a mesh whose max is 2x its median red; 48's
+  // fixed 0.01-10 put every mesh in one pale band): pale up to the
+  // reference, red from kErrorDensitySpan times it, or from the max when
+  // higher; a given reference keeps the top there too (every mesh one scale).
+  s.given = is_positive(reference);
+  const double ref = s.given ? reference : s.median;
+  if (!is_positive(ref)) return s;
+  s.lo = ref;
+  s.hi = s.given || !(s.max > kErrorDensitySpan * ref) ? kErrorDensitySpan * ref : s.max;
   return s;
 }
 
@@ -461,31 +450,45 @@ Color error_density_color(double density, const ErrorDensityScale& scale) {
 
 ColorBar error_density_color_bar(const ErrorDensityScale& scale) {
   ColorBar bar;
-  bar.label =
-      "FEM error density\n|u\u2212u_h|\u00b2_H1(e) / (|e| h_e\u00b2 |D\u00b2u|\u00b2),\nh_e = |e|^(1/3); no unit;\nlog, this mesh's 5th percentile to max";
+  const bool relative = is_positive(scale.median) || scale.given;
+  bar.label = std::string("FEM error density\n|u\u2212u_h|\u00b2_H1(e) / (|e| h_e\u00b2 |D\u00b2u|\u00b2),\nh_e = |e|^(1/3); no unit; log;\n") +
+              (!relative      ? "no positive density"
+               : scale.given ? "\u00d7 the given reference: pale \u2264 1\u00d7,\nred \u2265 10\u00d7"
+                             : "\u00d7 this mesh's median: pale \u2264 1\u00d7,\nred at 10\u00d7 (or the max, if higher)");
   bar.min_value = std::log10(scale.lo);
   bar.max_value = std::log10(scale.hi);
   for (int i = 0; i <= 32; ++i)
     bar.colors.push_back(error_density_color(std::pow(10.0, bar.min_value + (bar.max_value - bar.min_value) * i / 32.0),
                                              scale));
-  const auto label = [](double v) { return display_number(v, 3); };
-  bar.ticks.push_back({bar.min_value, "\u2264 " + label(scale.lo)});
+  const auto value = [](double v) { return display_number(v, 3); };
+  const auto times = [](double r) { return display_number(r, r < 10 ? 2 : 3) + "\u00d7"; };
+  bar.ticks.push_back({bar.min_value, "\u2264 " + value(scale.lo) +
+                                          (!relative     ? std::string()
+                                           : scale.given ? " (reference)"
+                                                         : " (median)")});
   const double span = bar.max_value - bar.min_value;
-  const bool has_max = std::isfinite(scale.max) && scale.max > 0;
-  const double max_at = has_max ? std::clamp(std::log10(scale.max), bar.min_value, bar.max_value) : bar.max_value;
-  // Round values between (1-2-5 up to two decades, then whole decades),
-  // none crowding an end's label or the max's.
+  const bool has_max = is_positive(scale.max);
+  // The max's tick: where it is, at the top when above a given scale's (none
+  // below the bottom: the title gives it).
+  const bool max_on_bar = has_max && std::log10(scale.max) > bar.min_value;
+  const double max_at = max_on_bar ? std::min(std::log10(scale.max), bar.max_value) : bar.max_value;
+  // Round multiples of the reference between (2x, 5x, 10x, 20x, ...; whole
+  // decades over more than two), none crowding an end's label or the max's.
   const bool decades_only = span > 2.0 + 1e-9;
-  for (int k = static_cast<int>(std::floor(bar.min_value)); k <= static_cast<int>(std::ceil(bar.max_value)); ++k)
+  for (int k = 0; k <= static_cast<int>(std::ceil(span)); ++k)
     for (double m : {1.0, 2.0, 5.0}) {
       if (decades_only && m != 1.0) continue;
-      const double at = std::log10(m) + k;
-      if (at - bar.min_value > 0.08 * span && bar.max_value - at > 0.08 * span && std::abs(at - max_at) > 0.08 * span)
-        bar.ticks.push_back({at, label(m * std::pow(10.0, k))});
+      const double raw = bar.min_value + std::log10(m) + k;
+      if (raw > bar.max_value + 1e-9) continue;
+      const double at = std::min(raw, bar.max_value);  // 10x: the top exactly (the bar drops u > 1)
+      if (at - bar.min_value > 0.08 * span &&
+          (!max_on_bar || std::abs(at - max_at) > 0.08 * span))
+        bar.ticks.push_back({at, relative ? times(m * std::pow(10.0, k)) + " (" + value(m * std::pow(10.0, k) * scale.lo) + ")"
+                                          : value(m * std::pow(10.0, k) * scale.lo)});
     }
-  // The top: the max (nothing lies beyond it); without one, the end.
-  bar.ticks.push_back(has_max ? ColorBarTick{max_at, "mesh max " + label(scale.max)}
-                              : ColorBarTick{bar.max_value, "\u2265 " + label(scale.hi)});
+  if (max_on_bar)
+    bar.ticks.push_back({max_at, (std::log10(scale.max) > bar.max_value + 1e-12 ? "\u2191 mesh max " : "mesh max ") +
+                                     value(scale.max) + (relative ? " (" + times(scale.max / scale.lo) + ")" : std::string())});
   bar.swatches = {{kUndefinedColor, "undefined"}};
   return bar;
 }
@@ -536,7 +539,7 @@ Image render_error_density_boundary(const HexMesh& mesh, const Topology& topolog
                                     Renderer& renderer, Camera* camera, PixelRect* view,
                                     ErrorDensityFigureParts* parts) {
   check_sizes(mesh, density, "error density");
-  const ErrorDensityScale scale = error_density_scale(density);
+  const ErrorDensityScale scale = error_density_scale(density, options.reference);
   Figure f = begin_figure(mesh, topology, scale, view_direction, options);
   const ErrorDensityWorst worst = error_density_worst(topology, density);
   TriangleSet faces;
@@ -569,7 +572,7 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
                                  PixelRect* view, ErrorDensityFigureParts* parts) {
   check_sizes(mesh, density, "error density");
   check_sizes(mesh, cell_scaled_jacobian, "cell scaled Jacobian");
-  const ErrorDensityScale scale = error_density_scale(density);
+  const ErrorDensityScale scale = error_density_scale(density, options.reference);
   Figure f = begin_figure(mesh, topology, scale, view_direction, options);
   const ErrorDensityWorst worst = error_density_worst(topology, density);
   const std::vector<Index> shown = error_density_cells(density, options);
@@ -593,7 +596,7 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   // solid, the others (its back) thin and dashed, all drawn over nearer
   // cells; a white halo, black when its SJ is below the threshold (the thick
   // black edge's meaning kept).
-  LineSet low_edges, edges, casing, halo, halo_core, max_back;
+  LineSet low_edges, edges, casing, halo, halo_core, max_back, max_back_halo;
   edges.width = static_cast<float>(std::max(1.0, f.style.scale));
   low_edges.width = static_cast<float>(std::max(2.0, 2.5 * f.style.scale));
   casing.width = static_cast<float>(std::max(5.0, 6.0 * f.style.scale));
@@ -603,7 +606,11 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   };
   halo.width = static_cast<float>(front_stroke(false).halo_width);
   halo_core.width = static_cast<float>(front_stroke(false).width);
-  max_back.width = static_cast<float>(std::max(1.0, f.style.scale));
+  max_back.width = static_cast<float>(std::max(1.5, 1.5 * f.style.scale));
+  // Issue 48c: on a crimson fill the thin magenta back edges vanished; a
+  // white halo lifts them off any fill.
+  max_back_halo.width = static_cast<float>(std::max(3.5, 3.5 * f.style.scale));
+  const double back_width = max_back.width, back_halo_width = max_back_halo.width;
   const Vec3& origin = f.scene.origin;
   // The max hidden by the same test as the boundary figure's (issue 48h
   // round 2: it was drawn solid, as if in front, where the boundary figure
@@ -645,7 +652,8 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
       } else if (front[e]) {  // hidden: the same, dashed
         add_dashed(halo, f, a, b, low ? kLowCellEdgeColor : Rgba8{255, 255, 255, 255});
         add_dashed(halo_core, f, a, b, kMaxHexEdgeColor);
-      } else {  // its back edges: thin, dashed
+      } else {  // its back edges: thin, dashed, on a thin white halo
+        add_dashed(max_back_halo, f, a, b, Rgba8{255, 255, 255, 255});
         add_dashed(max_back, f, a, b, kMaxHexEdgeColor);
       }
     }
@@ -655,12 +663,14 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   // the overlay's cells: issue 48h round 2, it was painted over them in the
   // veil's colour): it shows only beside a cell, where it lifts the dashes
   // off the veil; every fill keeps its colour of the bar.
-  edges.in_overlay = low_edges.in_overlay = halo.in_overlay = halo_core.in_overlay = max_back.in_overlay = true;
+  edges.in_overlay = low_edges.in_overlay = halo.in_overlay = halo_core.in_overlay = max_back.in_overlay =
+      max_back_halo.in_overlay = true;
   // The max's wireframe over nearer cells (its back thin and dashed first).
-  max_back.over_all = halo.over_all = halo_core.over_all = true;
+  max_back.over_all = max_back_halo.over_all = halo.over_all = halo_core.over_all = true;
   f.scene.lines.push_back(std::move(casing));
   f.scene.lines.push_back(std::move(edges));
   f.scene.lines.push_back(std::move(low_edges));
+  f.scene.lines.push_back(std::move(max_back_halo));
   f.scene.lines.push_back(std::move(max_back));
   f.scene.lines.push_back(std::move(halo));
   f.scene.lines.push_back(std::move(halo_core));
@@ -668,10 +678,14 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   // has a density); short lines, so the bar keeps its size.
   f.bar.swatches =
       error_density_cells_swatches(worst, f.worst_hidden, {any_low, max_low, any_hidden}, options.quality_threshold);
-  // The front edges' swatch: their stroke, halo and dashes as drawn.
-  for (ColorBarSwatch& swatch : f.bar.swatches)
+  // The front and back edges' swatches: their stroke, halo and dashes as drawn.
+  for (ColorBarSwatch& swatch : f.bar.swatches) {
+    if (to_rgba8(swatch.color) != kMaxHexEdgeColor) continue;
     if (swatch.shape == SwatchShape::thick_dashed_line || swatch.shape == SwatchShape::thick_line)
-      if (to_rgba8(swatch.color) == kMaxHexEdgeColor) swatch.stroke = front_stroke(max_low);
+      swatch.stroke = front_stroke(max_low);
+    else if (swatch.shape == SwatchShape::dashed_line)
+      swatch.stroke = max_edge_stroke(f, back_width, back_halo_width, {255, 255, 255, 255}, true);
+  }
   return finish_figure(f, mesh, worst, options, renderer, camera, view, parts);
 }
 
@@ -723,9 +737,11 @@ std::vector<bool> error_density_cells_behind_boundary(const HexMesh& mesh, const
   const Vec3 origin = 0.5 * (box.lo + box.hi);
   std::vector<Index> sorted(cells.begin(), cells.end());
   std::sort(sorted.begin(), sorted.end());
-  // The cells' own boundary faces, id 2 + k; every other boundary face id 1.
+  // Each boundary face of the cells its own id, 2 + j (owner[j] its cell's
+  // index in cells); every other boundary face id 1.
   TriangleSet own, other;
   own.is_lit = other.is_lit = false;
+  std::vector<std::size_t> owner;
   for (Index face : topology.boundary_faces) {
     const Index h = face_hex(topology, face);
     const auto at = std::lower_bound(sorted.begin(), sorted.end(), h);
@@ -733,8 +749,10 @@ std::vector<bool> error_density_cells_behind_boundary(const HexMesh& mesh, const
       add_quad(other, mesh, origin, topology.faces[static_cast<std::size_t>(face)], id_color(1));
       continue;
     }
-    const auto k = static_cast<std::size_t>(std::find(cells.begin(), cells.end(), h) - cells.begin());
-    add_quad(own, mesh, origin, topology.faces[static_cast<std::size_t>(face)], id_color(static_cast<std::uint32_t>(k + 2)));
+    if (owner.size() + 3 > kMaxId) return hidden;
+    owner.push_back(static_cast<std::size_t>(std::find(cells.begin(), cells.end(), h) - cells.begin()));
+    add_quad(own, mesh, origin, topology.faces[static_cast<std::size_t>(face)],
+             id_color(static_cast<std::uint32_t>(owner.size() + 1)));
   }
   Scene alone;
   alone.origin = origin;
@@ -745,15 +763,21 @@ std::vector<bool> error_density_cells_behind_boundary(const HexMesh& mesh, const
   const IdImage a = renderer.render_ids(alone, camera, width, height);
   const IdImage b = renderer.render_ids(with, camera, width, height);
   if (a.empty() || b.empty() || a.ids.size() != b.ids.size()) return hidden;
-  std::vector<std::size_t> seen_alone(cells.size(), 0), seen_with(cells.size(), 0);
+  std::vector<std::size_t> seen_alone(owner.size(), 0), seen_with(owner.size(), 0);
   for (std::size_t i = 0; i < a.ids.size(); ++i) {
-    if (a.ids[i] >= 2 && a.ids[i] - 2 < cells.size()) ++seen_alone[a.ids[i] - 2];
-    if (b.ids[i] >= 2 && b.ids[i] - 2 < cells.size()) ++seen_with[b.ids[i] - 2];
+    if (a.ids[i] >= 2 && a.ids[i] - 2 < owner.size()) ++seen_alone[a.ids[i] - 2];
+    if (b.ids[i] >= 2 && b.ids[i] - 2 < owner.size()) ++seen_with[b.ids[i] - 2];
   }
-  // Hidden: no boundary face of its own in the image (an interior cell, or
-  // one whose boundary faces are off screen or edge-on), or less than half of
-  // what its boundary faces cover alone still seen with the whole boundary.
-  for (std::size_t k = 0; k < cells.size(); ++k) hidden[k] = seen_alone[k] == 0 || 2 * seen_with[k] < seen_alone[k];
+  // Seen: one of its boundary faces shows at least half of what it covers
+  // drawn alone (at least kMinSeenPixels), face by face (issue 48c: summed
+  // over the cell, a face turned away, drawn alone, outweighed a face seen
+  // at a grazing angle, and a max at the silhouette whose face is in plain
+  // view was called hidden). Hidden: none is (an interior cell, one behind a
+  // fold or on the far side, or whose faces are off screen or edge-on).
+  constexpr std::size_t kMinSeenPixels = 4;
+  std::fill(hidden.begin(), hidden.end(), true);
+  for (std::size_t j = 0; j < owner.size(); ++j)
+    if (seen_with[j] >= kMinSeenPixels && 2 * seen_with[j] >= seen_alone[j]) hidden[owner[j]] = false;
   return hidden;
 }
 

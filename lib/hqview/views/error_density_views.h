@@ -31,7 +31,8 @@
 // the veil). Every mark has its own legend entry. Both from one upright,
 // orthographic viewpoint: the one that shows the most of the densest 1% of
 // the hexes (choose_viewpoints), so the worst region faces the camera. The
-// colour range is the mesh's own (the legend says so).
+// colour is the density relative to the mesh's median (error_density_scale;
+// the legend says so).
 
 #include <array>
 #include <span>
@@ -61,25 +62,29 @@ inline constexpr Rgba8 kMaxHexEdgeColor{204, 0, 204, 255};
 // (issue 48r: an extruded plate was seen edge-on, as a rectangle).
 Vec3 away_from_edge_on(const Vec3& direction, std::span<const Vec3> points, const Vec3& focus);
 
-// The colour scale: log10 of the density from lo to hi (both > 0), the
-// mesh's own (issue 48r; was 0.01 to 10 for every mesh, which put a mesh's
-// data in one pale band): lo its 5th percentile rounded down to a 1-2-5
-// step, hi its max rounded up to two figures (the max is the map's top
-// colour), hi / lo at least 4 (lo lowered a 1-2-5 step at a time); values
-// below lo clamped to the low end; max: the mesh's largest density (NaN for
-// none), marked on the legend. No positive density: 0.01 to 10.
-inline constexpr double kErrorDensityLo = 1e-2, kErrorDensityHi = 10.0;
+// The colour scale (issue 48c): log10 of the density relative to a
+// reference, by default the mesh's median: lo = the reference (values at or
+// below it the map's pale end), hi = kErrorDensitySpan times it, or the
+// mesh's max when that is higher (so the max is the map's red end and a mesh
+// whose max is twice its median shows no red); with a reference given
+// (ErrorDensityViewOptions::reference, --error-density-reference), hi is
+// always kErrorDensitySpan times it: one scale for every mesh, values above
+// clamped. max: the mesh's largest density, median its median of the positive
+// densities (NaN for none). No positive density and no reference: 0.01 to 10.
+inline constexpr double kErrorDensityLo = 1e-2, kErrorDensityHi = 10.0, kErrorDensitySpan = 10.0;
 struct ErrorDensityScale {
   double lo = kErrorDensityLo, hi = kErrorDensityHi;
-  double max = 0;
+  double max = 0, median = 0;
+  bool given = false;  // lo is a given reference, not the median
 };
-ErrorDensityScale error_density_scale(std::span<const double> density);
+ErrorDensityScale error_density_scale(std::span<const double> density, double reference = 0);
 // sample_quality_map(1 - t), t = (log10 d - log10 lo) / (log10 hi - log10 lo)
 // clamped to [0, 1]; kUndefinedColor for NaN or d <= 0.
 Color error_density_color(double density, const ErrorDensityScale& scale);
-// Its legend: the map over log10 [lo, hi], ticks "<= lo" at the bottom, the
-// round 1-2-5 values between (whole decades only over more than two), and
-// "mesh max 0.285" at the max (the top; ">= hi" without one); values
+// Its legend: the map over log10 [lo, hi], ticks "<= 0.0428 (median)" at the
+// bottom, the multiples 2x, 5x, 10x, 20x ... of lo between, each with its
+// value (whole decades only over more than two), and "mesh max 0.0857 = 2.0x"
+// at the max (at the top with an arrow when above a given scale); values
 // crowding an end's or the max's label dropped; an "undefined" swatch.
 ColorBar error_density_color_bar(const ErrorDensityScale& scale);
 
@@ -103,6 +108,7 @@ struct ErrorDensityViewOptions {
   double densest_fraction = 0.01;  // cells figure: this fraction of the densest hexes (at least 1) ...
   std::size_t max_cells = 300;     // ... and at most this many
   Rgba8 background{255, 255, 255, 255};
+  double reference = 0;  // > 0: the colour scale's reference (error_density_scale); else the mesh's median
 };
 
 // The hexes of the cells figure, ascending: the densest densest_fraction
@@ -163,11 +169,12 @@ std::vector<ColorBarSwatch> error_density_cells_swatches(const ErrorDensityWorst
 std::array<bool, 12> hex_edges_facing(const HexMesh& mesh, const Hex& hex, const Camera& camera);
 
 // Which of `cells` the boundary hides from `camera` (an image of width x
-// height): a cell with no boundary face in the image (interior), or whose own
-// boundary faces, drawn opaque with the whole boundary, show less than half
-// of the pixels they cover drawn alone (id images, Renderer::render_ids;
-// e.g. behind a fold, or on the far side). All false when the renderer draws
-// no id images.
+// height): a cell none of whose boundary faces, drawn opaque with the whole
+// boundary, shows at least half of the pixels (and at least 4) it covers
+// drawn alone, face by face (id images, Renderer::render_ids): an interior
+// cell, one behind a fold or on the far side. Face by face (issue 48c): one
+// face seen at a grazing angle makes a cell seen, however large its faces
+// turned away. All false when the renderer draws no id images.
 std::vector<bool> error_density_cells_behind_boundary(const HexMesh& mesh, const Topology& topology,
                                                       std::span<const Index> cells, const Camera& camera, int width,
                                                       int height, Renderer& renderer);

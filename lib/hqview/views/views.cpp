@@ -846,6 +846,7 @@ std::vector<ViewFile> build_fem_error_density(ViewContext& c) {
   if (p.cell_error_density.size() != c.a.mesh.hexes.size()) return {};
   auto options = sized<ErrorDensityViewOptions>(c);
   options.quality_threshold = 1.0 - (c.a.glyphs ? c.a.glyphs->options.threshold : 0.5);
+  options.reference = c.options.error_density_reference;
   const Vec3 direction = choose_error_density_viewpoint(c.a.mesh, c.a.topology, p.cell_error_density, options);
   const ErrorDensityWorst worst = error_density_worst(c.a.topology, p.cell_error_density);
   // Where the max is (the ring says it too), then the boundary's own max.
@@ -857,7 +858,10 @@ std::vector<ViewFile> build_fem_error_density(ViewContext& c) {
                   (worst.on_boundary || !std::isfinite(worst.boundary_max)
                        ? std::string()
                        : ", boundary max " + display_number(worst.boundary_max, 3)) +
-                  ", median " + display_number(p.error_density_stats.p50, 3);
+                  ", median " + display_number(p.error_density_stats.p50, 3) +
+                  (worst.hex != kNoIndex && p.error_density_stats.p50 > 0
+                       ? ", max/median " + display_number(worst.density / p.error_density_stats.p50, 2)
+                       : std::string());
   std::vector<ViewFile> files;
   files.push_back(framed("views/fem_error_density.png",
                          render_error_density_boundary(c.a.mesh, c.a.topology, p.cell_error_density, direction,

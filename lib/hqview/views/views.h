@@ -46,6 +46,7 @@ struct ViewOptions {
   std::vector<std::string> views;     // ids of kViews to draw (selectable ones); empty: all
   Vec3 up{0.0, 0.0, 1.0};             // the model axis drawn upwards in every 3D view (--up)
   int render_threads = 2;             // threads drawing views, each with its own renderer (Renderer::sibling)
+  double error_density_reference = 0;  // --error-density-reference: view fem_error_density's scale (0: the mesh's median)
 };
 
 struct ViewContext;  // what the builders share (views.cpp)
