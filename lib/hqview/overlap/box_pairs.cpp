@@ -196,8 +196,15 @@ std::optional<std::vector<std::array<Index, 2>>> group_bound_pairs(const std::ve
   if (num_slabs == 1) {
     members[0] = std::move(groups);
   } else {
+    // Counted first: each slab's array made once (not grown by doubling
+    // into fresh pages), and the groups' array freed before the search.
+    std::vector<std::size_t> sizes(num_slabs, 0);
+    for (const IndexedBox& g : groups)
+      for (std::size_t s = slab_of(g.lo[0]), last = slab_of(g.hi[0]); s <= last; ++s) ++sizes[s];
+    for (std::size_t s = 0; s < num_slabs; ++s) members[s].reserve(sizes[s]);
     for (const IndexedBox& g : groups)
       for (std::size_t s = slab_of(g.lo[0]), last = slab_of(g.hi[0]); s <= last; ++s) members[s].push_back(g);
+    groups = {};
   }
   std::vector<std::vector<std::array<Index, 2>>> found(num_slabs);
   std::vector<char> stopped(num_slabs, 0);
