@@ -3,6 +3,7 @@
 #include "hqview/overlap/box_pairs.h"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <random>
@@ -92,6 +93,64 @@ TEST(BoxPairs, GroupedSearchSkipsEmptyGroups) {
   g.boxes = {a, b};
   g.first = {0, 0, 1, 1, 2};
   EXPECT_EQ(grouped_box_self_pairs(g.boxes, g.first, 10).pairs, (std::vector<std::array<Index, 2>>{{0, 1}}));
+}
+
+// The group pairs whose bounds meet, by a sweep over the groups sorted by
+// their lower end on the first axis: the reference for group_bound_pairs.
+std::vector<std::array<Index, 2>> group_pairs_swept(const GroupedBoxes& g) {
+  std::vector<std::pair<Box3, Index>> bounds;
+  for (std::size_t k = 0; k + 1 < g.first.size(); ++k) {
+    Box3 b;
+    for (Index i = g.first[k]; i < g.first[k + 1]; ++i) {
+      b.add(g.boxes[static_cast<std::size_t>(i)].lo);
+      b.add(g.boxes[static_cast<std::size_t>(i)].hi);
+    }
+    if (g.first[k] < g.first[k + 1]) bounds.push_back({b, static_cast<Index>(k)});
+  }
+  std::sort(bounds.begin(), bounds.end(), [](const auto& a, const auto& b) { return a.first.lo.x < b.first.lo.x; });
+  std::vector<std::array<Index, 2>> pairs;
+  for (std::size_t i = 0; i < bounds.size(); ++i)
+    for (std::size_t j = i + 1; j < bounds.size() && bounds[j].first.lo.x <= bounds[i].first.hi.x; ++j)
+      if (bounds[i].first.overlaps(bounds[j].first))
+        pairs.push_back({std::min(bounds[i].second, bounds[j].second), std::max(bounds[i].second, bounds[j].second)});
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+// Past 16,384 groups the search runs over 16 slabs of the first axis in
+// parallel: every pair found once (boxes spanning several slabs, boxes
+// touching exactly on a slab's bound among them), the same list in the same
+// order on one thread, and the budget as before.
+TEST(BoxPairs, SlabbedGroupSearchFindsEveryGroupPairOnce) {
+  std::mt19937 rng(46);
+  std::uniform_int_distribution<int> count(0, 4), cell(0, 3), along(0, 3999), offset(0, 8), size(0, 6), wide(0, 99);
+  GroupedBoxes g;
+  for (int k = 0; k < 20000; ++k) {
+    const double cx = along(rng), cy = cell(rng), cz = cell(rng);
+    for (int n = count(rng); n > 0; --n) {
+      Box3 b;
+      b.lo = {cx + offset(rng) / 8.0, cy + offset(rng) / 8.0, cz + offset(rng) / 8.0};
+      // One box in a hundred spans hundreds of cells along the first axis.
+      const double length = wide(rng) == 0 ? 400.0 : size(rng) / 8.0;
+      b.hi = {b.lo.x + length, b.lo.y + size(rng) / 8.0, b.lo.z + size(rng) / 8.0};
+      g.boxes.push_back(b);
+    }
+    g.first.push_back(static_cast<Index>(g.boxes.size()));
+  }
+  const std::vector<std::array<Index, 2>> expected = group_pairs_swept(g);
+  ASSERT_GT(expected.size(), 20000u);
+  const auto found = group_bound_pairs(g.boxes, g.first, 1 << 30);
+  ASSERT_TRUE(found.has_value());
+  std::vector<std::array<Index, 2>> sorted = *found;
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(sorted, expected);  // each once: a repeat would lengthen the list
+  {
+    const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+    EXPECT_EQ(group_bound_pairs(g.boxes, g.first, 1 << 30), found);
+  }
+  const auto n = static_cast<std::int64_t>(expected.size());
+  EXPECT_TRUE(group_bound_pairs(g.boxes, g.first, n).has_value());
+  EXPECT_FALSE(group_bound_pairs(g.boxes, g.first, n - 1).has_value());
 }
 
 }  // namespace

@@ -140,6 +140,49 @@ TEST(CellMetrics, TetRangeKernelIsTheOneMetricKernelBitForBit) {
   EXPECT_EQ(checked, 27 * 3 * (21 + 20 * 2 + 19 * 3 + 18 * 4));
 }
 
+// quad_metric_list shares a quad's pieces (edges, size, corner areas,
+// angles) between the metrics it is given: each value must be the one
+// quad_metric computes alone, whatever the metrics asked before it, on the
+// oracle's quads (degenerate, collapsed, reflex and bow-tie ones among them)
+// and on random quads made collapsed, flat, tiny, huge or reversed.
+TEST(CellMetrics, QuadListKernelIsTheOneMetricKernelBitForBit) {
+  const auto same_bits = [](double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; };
+  std::vector<QuadCorners> quads;
+  const auto oracle = test::load_cell_oracle();
+  if (!oracle.is_null())
+    for (const auto& c : oracle["cases"])
+      if (c["kind"] == "quad") quads.push_back(corners_of<4>(c["coords"]));
+  std::mt19937_64 rng(4747);
+  std::uniform_real_distribution<double> jitter(-0.7, 0.7);
+  for (int i = 0; i < 600; ++i) {
+    QuadCorners q = {Vec3{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    for (Vec3& p : q) p = p + Vec3{jitter(rng), jitter(rng), i % 3 == 0 ? 0.0 : 0.3 * jitter(rng)};
+    if (i % 6 == 1) q[3] = q[2];
+    if (i % 6 == 2) q[1] = q[0];
+    if (i % 6 == 3) std::swap(q[1], q[3]);
+    if (i % 6 == 4) for (Vec3& p : q) p = p * 1e-20;
+    if (i % 6 == 5) for (Vec3& p : q) p = p * 1e20;
+    quads.push_back(q);
+  }
+  // Every metric at once, in reverse order, and in runs of 8 as a pass takes them.
+  std::array<QuadMetric, kNumQuadMetrics> reversed;
+  for (int m = 0; m < kNumQuadMetrics; ++m) reversed[static_cast<std::size_t>(m)] = QuadMetric(kNumQuadMetrics - 1 - m);
+  int checked = 0;
+  for (const QuadCorners& q : quads)
+    for (const double average : {1.0, 0.37, 1e-17}) {
+      std::array<double, kNumQuadMetrics> out{};
+      quad_metric_list(reversed, q, average, out);
+      const QuadMetricValues all = quad_metrics(q, average);
+      for (int m = 0; m < kNumQuadMetrics; ++m) {
+        const double one = quad_metric(QuadMetric(m), q, average);
+        EXPECT_TRUE(same_bits(out[static_cast<std::size_t>(kNumQuadMetrics - 1 - m)], one)) << m;
+        EXPECT_TRUE(same_bits(all[static_cast<std::size_t>(m)], one)) << m;
+        ++checked;
+      }
+    }
+  EXPECT_GE(checked, 600 * 3 * kNumQuadMetrics);
+}
+
 // Tets for the batch kernels: random tets near the unit corner tet, and
 // copies made degenerate (coincident corners, all corners at one point,
 // flat, tiny, huge, far from the origin at tiny size, inverted, -0.0

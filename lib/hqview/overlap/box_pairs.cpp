@@ -153,20 +153,84 @@ BoxPairs grouped_box_self_pairs(const std::vector<Box3>& boxes, const std::vecto
   return result;
 }
 
+namespace {
+
+// group_bound_pairs splits its boxes into this many slabs along the first
+// axis (a fixed number: the same pairs in the same order for any thread
+// count) once there are kMinSlabGroups of them; fewer are searched whole.
+constexpr std::size_t kNumSlabs = 16;
+constexpr std::size_t kMinSlabGroups = std::size_t{1} << 14;
+
+// The slabs' bounds on the first axis: quantiles of a sample of the boxes'
+// lower ends (slab s is [split[s-1], split[s]), the first and last open
+// outwards); empty when some lower or upper end is not finite (then one
+// slab, the search as it was).
+std::vector<double> slab_splits(const std::vector<IndexedBox>& groups) {
+  for (const IndexedBox& g : groups)
+    if (!std::isfinite(g.lo[0]) || !std::isfinite(g.hi[0])) return {};
+  std::vector<double> sample;
+  const std::size_t step = std::max<std::size_t>(1, groups.size() / 4096);
+  for (std::size_t i = 0; i < groups.size(); i += step) sample.push_back(groups[i].lo[0]);
+  std::sort(sample.begin(), sample.end());
+  std::vector<double> split;
+  for (std::size_t s = 1; s < kNumSlabs; ++s) split.push_back(sample[s * sample.size() / kNumSlabs]);
+  return split;
+}
+
+}  // namespace
+
 std::optional<std::vector<std::array<Index, 2>>> group_bound_pairs(const std::vector<Box3>& boxes,
                                                                    const std::vector<Index>& first,
                                                                    std::int64_t max_pairs) {
   std::vector<IndexedBox> groups = group_bounds(boxes, first);
-  std::vector<std::array<Index, 2>> pairs;
-  struct Stop {};
-  try {
-    group_self_intersection(groups, [&](const IndexedBox& a, const IndexedBox& b) {
-      if (static_cast<std::int64_t>(pairs.size()) >= max_pairs) throw Stop{};
-      pairs.push_back({static_cast<Index>(std::min(a.index, b.index)), static_cast<Index>(std::max(a.index, b.index))});
-    });
-  } catch (const Stop&) {
-    return std::nullopt;
+  const std::vector<double> split = groups.size() >= kMinSlabGroups ? slab_splits(groups) : std::vector<double>{};
+  const auto slab_of = [&](double x) {
+    return static_cast<std::size_t>(std::upper_bound(split.begin(), split.end(), x) - split.begin());
+  };
+  // Each box goes to every slab its extent on the first axis meets; a pair
+  // is kept by the one slab holding the larger of the two lower ends (both
+  // boxes reach it when they meet), so each pair is found exactly once, in
+  // parallel over the slabs, each searched as one set was before.
+  const std::size_t num_slabs = split.size() + 1;
+  std::vector<std::vector<IndexedBox>> members(num_slabs);
+  if (num_slabs == 1) {
+    members[0] = std::move(groups);
+  } else {
+    // Counted first: each slab's array made once (not grown by doubling
+    // into fresh pages), and the groups' array freed before the search.
+    std::vector<std::size_t> sizes(num_slabs, 0);
+    for (const IndexedBox& g : groups)
+      for (std::size_t s = slab_of(g.lo[0]), last = slab_of(g.hi[0]); s <= last; ++s) ++sizes[s];
+    for (std::size_t s = 0; s < num_slabs; ++s) members[s].reserve(sizes[s]);
+    for (const IndexedBox& g : groups)
+      for (std::size_t s = slab_of(g.lo[0]), last = slab_of(g.hi[0]); s <= last; ++s) members[s].push_back(g);
+    groups = {};
   }
+  std::vector<std::vector<std::array<Index, 2>>> found(num_slabs);
+  std::vector<char> stopped(num_slabs, 0);
+  struct Stop {};
+  tbb::parallel_for(std::size_t{0}, num_slabs, [&](std::size_t s) {
+    std::vector<std::array<Index, 2>>& pairs = found[s];
+    try {
+      group_self_intersection(members[s], [&](const IndexedBox& a, const IndexedBox& b) {
+        if (num_slabs > 1 && slab_of(std::max(a.lo[0], b.lo[0])) != s) return;
+        if (static_cast<std::int64_t>(pairs.size()) >= max_pairs) throw Stop{};
+        pairs.push_back({static_cast<Index>(std::min(a.index, b.index)), static_cast<Index>(std::max(a.index, b.index))});
+      });
+    } catch (const Stop&) {
+      stopped[s] = 1;
+    }
+    members[s] = {};
+  });
+  std::size_t total = 0;
+  for (std::size_t s = 0; s < num_slabs; ++s) {
+    if (stopped[s] != 0) return std::nullopt;
+    total += found[s].size();
+  }
+  if (static_cast<std::int64_t>(total) > max_pairs) return std::nullopt;
+  std::vector<std::array<Index, 2>> pairs;
+  pairs.reserve(total);
+  for (const auto& part : found) pairs.insert(pairs.end(), part.begin(), part.end());
   return pairs;
 }
 

@@ -56,7 +56,9 @@ BoxPairs box_subset_pairs(std::size_t num_boxes, const std::function<Box3(std::s
 BoxPairs grouped_box_self_pairs(const std::vector<Box3>& boxes, const std::vector<Index>& first, std::int64_t max_pairs);
 
 // The pairs {g, h}, g < h, of groups (as there) whose bounds meet (closed),
-// in the search's order (the same for any thread count: the search is
+// each once, in the search's order (the same for any thread count: from
+// 16,384 groups on, the search runs in parallel over 16 fixed slabs of the
+// first axis and joins them in slab order; each slab's search is
 // sequential); nullopt when there are more than max_pairs (the search stops
 // there). The caller tests the boxes of each pair itself.
 std::optional<std::vector<std::array<Index, 2>>> group_bound_pairs(const std::vector<Box3>& boxes,

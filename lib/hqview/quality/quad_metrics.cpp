@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <utility>
 
 #include "hqview/quality/triangle_metrics.h"
 #include "hqview/quality/verdict_support.h"
@@ -46,24 +48,92 @@ TriangleCorners first_three(const QuadCorners& p) { return {p[0], p[1], p[2]}; }
 
 std::array<Vec3, 4> edges_of(const QuadCorners& p) { return {p[1] - p[0], p[2] - p[1], p[3] - p[2], p[0] - p[3]}; }
 
-std::array<Vec3, 4> scaled_edges(const QuadCorners& p, double& size) {
-  size = char_size(p);
-  auto e = edges_of(p);
-  for (Vec3& v : e) v = v / size;
-  return e;
-}
+// The pieces Verdict's quad metrics share, each computed on first use and
+// kept: one quad's metrics read its edges, size, corner areas and angles
+// once (quad_metric_list), not once per metric. Each piece is the very
+// expression the metric computed for itself, so every value is the same
+// bit for bit.
+class QuadPieces {
+ public:
+  explicit QuadPieces(const QuadCorners& corners) : p(corners) {}
+  const QuadCorners& p;
 
-// The corners moved to the centroid and divided by the size.
-std::array<Vec3, 4> scaled_points(const QuadCorners& p) {
-  const ElemScale s = elem_scaling(p);
-  std::array<Vec3, 4> q;
-  for (int i = 0; i < 4; ++i) q[i] = (p[i] - s.centre) / s.scale;
-  return q;
-}
+  // The edges P(i+1) - P(i).
+  const std::array<Vec3, 4>& edges() {
+    if (!edges_) edges_ = edges_of(p);
+    return *edges_;
+  }
+  // Verdict's elem_scaling: its scale is the size the metrics divide by.
+  const ElemScale& scaling() {
+    if (!scaling_) scaling_ = elem_scaling(p);
+    return *scaling_;
+  }
+  double size() { return scaling().scale; }
+  // The edges divided by the size.
+  const std::array<Vec3, 4>& scaled_edges() {
+    if (!scaled_edges_) {
+      auto e = edges();
+      for (Vec3& v : e) v = v / size();
+      scaled_edges_ = e;
+    }
+    return *scaled_edges_;
+  }
+  // The corners moved to the centroid and divided by the size.
+  const std::array<Vec3, 4>& scaled_points() {
+    if (!scaled_points_) {
+      const ElemScale& s = scaling();
+      std::array<Vec3, 4> q;
+      for (int i = 0; i < 4; ++i) q[i] = (p[i] - s.centre) / s.scale;
+      scaled_points_ = q;
+    }
+    return *scaled_points_;
+  }
+  const std::array<double, 4>& areas() {
+    if (!areas_) areas_ = quad_signed_corner_areas(p);
+    return *areas_;
+  }
+  // The corner areas divided by the size squared.
+  const std::array<double, 4>& scaled_areas() {
+    if (!scaled_areas_) {
+      auto a = areas();
+      for (double& v : a) v /= (size() * size());
+      scaled_areas_ = a;
+    }
+    return *scaled_areas_;
+  }
+  bool has_reflex_corner() {
+    const auto& a = areas();
+    return a[0] < 0 || a[1] < 0 || a[2] < 0 || a[3] < 0;
+  }
+  // The four corner angles in radians, Verdict's order; null when an edge
+  // is not longer than kDblMin.
+  const std::array<double, 4>* corner_angles() {
+    if (!angles_) {
+      const auto& e = edges();
+      double length[4];
+      for (int i = 0; i < 4; ++i) length[i] = norm(e[i]);
+      std::array<double, 4> angle{};
+      const bool ok = !(length[0] <= kDblMin || length[1] <= kDblMin || length[2] <= kDblMin || length[3] <= kDblMin);
+      if (ok) {
+        for (int i = 0; i < 4; ++i) {
+          const int n = (i + 1) % 4;
+          angle[i] = std::acos(-dot(e[i], e[n]) / (length[i] * length[n]));
+        }
+      }
+      angles_ = std::pair{ok, angle};
+    }
+    return angles_->first ? &angles_->second : nullptr;
+  }
 
-double edge_ratio_of(const QuadCorners& p) {
-  double size;
-  const auto e = scaled_edges(p, size);
+ private:
+  std::optional<std::array<Vec3, 4>> edges_, scaled_edges_, scaled_points_;
+  std::optional<ElemScale> scaling_;
+  std::optional<std::array<double, 4>> areas_, scaled_areas_;
+  std::optional<std::pair<bool, std::array<double, 4>>> angles_;
+};
+
+double edge_ratio_of(QuadPieces& s) {
+  const auto& e = s.scaled_edges();
   const double a2 = squared_norm(e[0]), b2 = squared_norm(e[1]), c2 = squared_norm(e[2]), d2 = squared_norm(e[3]);
   const double m2 = std::fmin(std::fmin(a2, b2), std::fmin(c2, d2));
   const double M2 = std::fmax(std::fmax(a2, b2), std::fmax(c2, d2));
@@ -71,28 +141,27 @@ double edge_ratio_of(const QuadCorners& p) {
   return clamp_signed(std::sqrt(M2 / m2));
 }
 
-double max_edge_ratio_of(const QuadCorners& p) {
-  const auto q = scaled_points(p);
+double max_edge_ratio_of(QuadPieces& s) {
+  const auto& q = s.scaled_points();
   const double len1 = norm(q[1] + q[2] - q[0] - q[3]);
   const double len2 = norm(q[2] + q[3] - q[0] - q[1]);
   if (len1 < kDblMin || len2 < kDblMin) return kDblMax;
   return clamp_signed(std::fmax(len1 / len2, len2 / len1));
 }
 
-double aspect_ratio_of(const QuadCorners& p) {
-  double size;
-  const auto e = scaled_edges(p, size);
+double aspect_ratio_of(QuadPieces& s) {
+  const auto& e = s.scaled_edges();
   const double a1 = norm(e[0]), b1 = norm(e[1]), c1 = norm(e[2]), d1 = norm(e[3]);
   const double ma = a1 > b1 ? a1 : b1, mb = c1 > d1 ? c1 : d1;
   const double hm = ma > mb ? ma : mb;
-  auto areas = quad_signed_corner_areas(p);
-  for (double& a : areas) a /= (size * size);
+  const auto& areas = s.scaled_areas();
   return clamp_signed(hm * (a1 + b1 + c1 + d1) / (areas[0] + areas[1] + areas[2] + areas[3]));
 }
 
-double radius_ratio_of(const QuadCorners& p) {
-  double size;
-  const auto e = scaled_edges(p, size);
+double radius_ratio_of(QuadPieces& s) {
+  const QuadCorners& p = s.p;
+  const double size = s.size();
+  const auto& e = s.scaled_edges();
   const double a2 = squared_norm(e[0]), b2 = squared_norm(e[1]), c2 = squared_norm(e[2]), d2 = squared_norm(e[3]);
   const double m2 = squared_norm((p[2] - p[0]) / size), n2 = squared_norm((p[3] - p[1]) / size);
   const double t0 = a2 > b2 ? a2 : b2, t1 = c2 > d2 ? c2 : d2, t2 = m2 > n2 ? m2 : n2;
@@ -107,9 +176,8 @@ double radius_ratio_of(const QuadCorners& p) {
 
 // The four corner terms (|e(i)|^2 + |e(i+1)|^2) / |e(i) x e(i+1)|, or false
 // when a corner is degenerate.
-bool frobenius_terms(const QuadCorners& p, std::array<double, 4>& q) {
-  double size;
-  const auto e = scaled_edges(p, size);
+bool frobenius_terms(QuadPieces& s, std::array<double, 4>& q) {
+  const auto& e = s.scaled_edges();
   double l2[4];
   for (int i = 0; i < 4; ++i) l2[i] = squared_norm(e[i]);
   double c[4];
@@ -119,9 +187,9 @@ bool frobenius_terms(const QuadCorners& p, std::array<double, 4>& q) {
   return true;
 }
 
-double med_aspect_frobenius_of(const QuadCorners& p) {
+double med_aspect_frobenius_of(QuadPieces& s) {
   std::array<double, 4> q;
-  if (!frobenius_terms(p, q)) return kDblMax;
+  if (!frobenius_terms(s, q)) return kDblMax;
   double sum = q[0];
   sum += q[1];
   sum += q[2];
@@ -129,16 +197,16 @@ double med_aspect_frobenius_of(const QuadCorners& p) {
   return clamp_signed(.125 * sum);
 }
 
-double max_aspect_frobenius_of(const QuadCorners& p) {
+double max_aspect_frobenius_of(QuadPieces& s) {
   std::array<double, 4> q;
-  if (!frobenius_terms(p, q)) return kDblMax;
+  if (!frobenius_terms(s, q)) return kDblMax;
   double qmax = q[0];
   for (int i = 1; i < 4; ++i) qmax = qmax > q[i] ? qmax : q[i];
   return clamp_signed(.5 * qmax);
 }
 
-double skew_of(const QuadCorners& p) {
-  const auto q = scaled_points(p);
+double skew_of(QuadPieces& s) {
+  const auto& q = s.scaled_points();
   Vec3 a0 = q[1] + q[2] - q[3] - q[0];
   Vec3 a1 = q[2] + q[3] - q[0] - q[1];
   if (normalize(a0) < kDblMin) return 0.0;
@@ -146,8 +214,8 @@ double skew_of(const QuadCorners& p) {
   return std::fmin(std::fabs(dot(a0, a1)), kDblMax);
 }
 
-double taper_of(const QuadCorners& p) {
-  const auto q = scaled_points(p);
+double taper_of(QuadPieces& s) {
+  const auto& q = s.scaled_points();
   const Vec3 a0 = q[1] + q[2] - q[3] - q[0];
   const Vec3 a1 = q[2] + q[3] - q[0] - q[1];
   const Vec3 cross_derivative = q[0] + q[2] - q[1] - q[3];
@@ -156,9 +224,8 @@ double taper_of(const QuadCorners& p) {
   return std::fmin(norm(cross_derivative) / shortest, kDblMax);
 }
 
-double warpage_of(const QuadCorners& p) {
-  double size;
-  const auto e = scaled_edges(p, size);
+double warpage_of(QuadPieces& s) {
+  const auto& e = s.scaled_edges();
   Vec3 n[4] = {cross(e[3], e[0]), cross(e[0], e[1]), cross(e[1], e[2]), cross(e[2], e[3])};
   if (normalize(n[0]) < kDblMin || normalize(n[1]) < kDblMin || normalize(n[2]) < kDblMin || normalize(n[3]) < kDblMin)
     return kDblMin;
@@ -167,53 +234,34 @@ double warpage_of(const QuadCorners& p) {
   return clamp_signed(warpage);
 }
 
-double area_of(const QuadCorners& p) {
-  const auto a = quad_signed_corner_areas(p);
+double area_of(QuadPieces& s) {
+  const auto& a = s.areas();
   return clamp_signed(0.25 * (a[0] + a[1] + a[2] + a[3]));
 }
 
-// The four corner angles in radians, Verdict's order; false when an edge is
-// not longer than kDblMin.
-bool corner_angles(const QuadCorners& p, double (&angle)[4]) {
-  const auto e = edges_of(p);
-  double length[4];
-  for (int i = 0; i < 4; ++i) length[i] = norm(e[i]);
-  if (length[0] <= kDblMin || length[1] <= kDblMin || length[2] <= kDblMin || length[3] <= kDblMin) return false;
-  for (int i = 0; i < 4; ++i) {
-    const int n = (i + 1) % 4;
-    angle[i] = std::acos(-dot(e[i], e[n]) / (length[i] * length[n]));
-  }
-  return true;
-}
-
-bool has_reflex_corner(const QuadCorners& p) {
-  const auto a = quad_signed_corner_areas(p);
-  return a[0] < 0 || a[1] < 0 || a[2] < 0 || a[3] < 0;
-}
-
-double maximum_angle_of(const QuadCorners& p) {
-  if (is_collapsed(p)) return triangle_maximum_angle(first_three(p));
-  double angle[4];
-  if (!corner_angles(p, angle)) return 0.0;
+double maximum_angle_of(QuadPieces& s) {
+  if (is_collapsed(s.p)) return triangle_maximum_angle(first_three(s.p));
+  const auto* angle = s.corner_angles();
+  if (angle == nullptr) return 0.0;
   double max_angle = 0.0;
-  for (double a : angle) max_angle = std::fmax(a, max_angle);
+  for (double a : *angle) max_angle = std::fmax(a, max_angle);
   max_angle = max_angle * 180.0 / kPi;
-  if (has_reflex_corner(p)) max_angle = 360 - max_angle;
+  if (s.has_reflex_corner()) max_angle = 360 - max_angle;
   return clamp_signed(max_angle);
 }
 
-double minimum_angle_of(const QuadCorners& p) {
-  if (is_collapsed(p)) return triangle_minimum_angle(first_three(p));
-  double angle[4];
-  if (!corner_angles(p, angle)) return 360.0;
+double minimum_angle_of(QuadPieces& s) {
+  if (is_collapsed(s.p)) return triangle_minimum_angle(first_three(s.p));
+  const auto* angle = s.corner_angles();
+  if (angle == nullptr) return 360.0;
   double min_angle = 360.0;
-  for (double a : angle) min_angle = std::fmin(a, min_angle);
+  for (double a : *angle) min_angle = std::fmin(a, min_angle);
   min_angle = min_angle * 180.0 / kPi;
   return clamp_signed(min_angle);
 }
 
-double oddy_of(const QuadCorners& p) {
-  const auto q = scaled_points(p);
+double oddy_of(QuadPieces& s) {
+  const auto& q = s.scaled_points();
   double max_oddy = 0.;
   for (int i = 0; i < 4; ++i) {
     const Vec3 first = q[i] - q[(i + 1) % 4];
@@ -226,11 +274,11 @@ double oddy_of(const QuadCorners& p) {
   return clamp_signed(max_oddy);
 }
 
-double condition_of(const QuadCorners& p) {
+double condition_of(QuadPieces& s) {
+  const QuadCorners& p = s.p;
   if (is_collapsed(p)) return triangle_condition(first_three(p));
-  const double size = char_size(p);
-  auto areas = quad_signed_corner_areas(p);
-  for (double& a : areas) a /= (size * size);
+  const double size = s.size();
+  const auto& areas = s.scaled_areas();
   double max_condition = 0.;
   for (int i = 0; i < 4; ++i) {
     const Vec3 xxi = (p[i] - p[(i + 1) % 4]) / size;
@@ -243,18 +291,16 @@ double condition_of(const QuadCorners& p) {
   return max_condition / 2.;
 }
 
-double jacobian_of(const QuadCorners& p) {
-  if (is_collapsed(p)) return triangle_area(first_three(p)) * 2.0;
-  const auto a = quad_signed_corner_areas(p);
+double jacobian_of(QuadPieces& s) {
+  if (is_collapsed(s.p)) return triangle_area(first_three(s.p)) * 2.0;
+  const auto& a = s.areas();
   return clamp_signed(std::fmin(std::fmin(a[0], a[1]), std::fmin(a[2], a[3])));
 }
 
-double scaled_jacobian_of(const QuadCorners& p) {
-  if (is_collapsed(p)) return triangle_scaled_jacobian(first_three(p));
-  auto areas = quad_signed_corner_areas(p);
-  double size;
-  const auto e = scaled_edges(p, size);
-  for (double& a : areas) a /= (size * size);
+double scaled_jacobian_of(QuadPieces& s) {
+  if (is_collapsed(s.p)) return triangle_scaled_jacobian(first_three(s.p));
+  const auto& areas = s.scaled_areas();
+  const auto& e = s.scaled_edges();
   double length[4];
   for (int i = 0; i < 4; ++i) length[i] = norm(e[i]);
   if (length[0] < kDblMin || length[1] < kDblMin || length[2] < kDblMin || length[3] < kDblMin) return 0.0;
@@ -263,14 +309,12 @@ double scaled_jacobian_of(const QuadCorners& p) {
   return clamp_signed(smallest);
 }
 
-double shear_of(const QuadCorners& p) {
-  const double scaled_jacobian = scaled_jacobian_of(p);
+double shear_of(double scaled_jacobian) {
   if (scaled_jacobian <= kDblMin) return 0.0;
   return std::fmin(scaled_jacobian, kDblMax);
 }
 
-double relative_size_squared_of(const QuadCorners& p, double average_area) {
-  const double area = area_of(p);
+double relative_size_squared_of(double area, double average_area) {
   // The weight is the square of area average_area.
   const double scale = std::sqrt(average_area / 1.0);
   const double avg_area = scale * scale;
@@ -283,6 +327,33 @@ double relative_size_squared_of(const QuadCorners& p, double average_area) {
     }
   }
   return clamp_signed(relative);
+}
+
+double stretch_of(QuadPieces& s) {
+  const QuadCorners& p = s.p;
+  const double size = s.size();
+  const auto& e = s.scaled_edges();
+  double l2[4];
+  for (int i = 0; i < 4; ++i) l2[i] = squared_norm(e[i]);
+  const double diag02 = squared_norm((p[2] - p[0]) / size);
+  const double diag13 = squared_norm((p[3] - p[1]) / size);
+  const double longest = std::fmax(diag02, diag13);
+  if (longest < kDblMin) return kDblMax;
+  const double stretch = kSqrt2 * std::sqrt(std::fmin(std::fmin(l2[0], l2[1]), std::fmin(l2[2], l2[3])) / longest);
+  return std::fmin(stretch, kDblMax);
+}
+
+double shape_of(QuadPieces& s) {
+  const auto& areas = s.scaled_areas();
+  const auto& e = s.scaled_edges();
+  double l2[4];
+  for (int i = 0; i < 4; ++i) l2[i] = squared_norm(e[i]);
+  if (l2[0] <= kDblMin || l2[1] <= kDblMin || l2[2] <= kDblMin || l2[3] <= kDblMin) return 0.0;
+  double min_shape = kDblMax;
+  for (int i = 0; i < 4; ++i) min_shape = std::fmin(areas[i] / (l2[i] + l2[(i + 3) % 4]), min_shape);
+  min_shape *= 2;
+  if (min_shape < kDblMin) min_shape = 0;
+  return clamp_signed(min_shape);
 }
 
 // Verdict's quad_normal: the mean of two corner normals that agree.
@@ -417,31 +488,88 @@ double distortion_of(const QuadCorners& p) {
   return distortion;
 }
 
-double equiangle_skew_of(const QuadCorners& p) {
+double equiangle_skew_of(QuadPieces& s) {
+  const QuadCorners& p = s.p;
   double min_angle, max_angle;
   if (is_collapsed(p)) {
     min_angle = triangle_minimum_angle(first_three(p));
     max_angle = triangle_maximum_angle(first_three(p));
   } else {
-    double angle[4];
-    if (!corner_angles(p, angle)) {
+    const auto* angle = s.corner_angles();
+    if (angle == nullptr) {
       min_angle = 360.0;
       max_angle = 0.0;
     } else {
       double lo = 360.0, hi = 0.0;  // Verdict's start values, in radians' place
-      for (double a : angle) {
+      for (double a : *angle) {
         lo = std::fmin(a, lo);
         hi = std::fmax(a, hi);
       }
       max_angle = hi * 180.0 / kPi;
       min_angle = std::fmax(lo * 180.0 / kPi, -kDblMax);
-      if (has_reflex_corner(p)) max_angle = 360 - max_angle;
+      if (s.has_reflex_corner()) max_angle = 360 - max_angle;
       max_angle = std::fmax(max_angle, -kDblMax);
     }
   }
   const double skew_max = (max_angle - 90.0) / 90.0;
   const double skew_min = (90.0 - min_angle) / 90.0;
   return skew_max > skew_min ? skew_max : skew_min;
+}
+
+// One metric of the quad whose pieces `s` holds (and keeps for the next).
+double metric_of(QuadMetric m, QuadPieces& s, double average_area) {
+  using M = QuadMetric;
+  switch (m) {
+    case M::edge_ratio:
+      return edge_ratio_of(s);
+    case M::max_edge_ratio:
+      return max_edge_ratio_of(s);
+    case M::aspect_ratio:
+      return aspect_ratio_of(s);
+    case M::radius_ratio:
+      return radius_ratio_of(s);
+    case M::med_aspect_frobenius:
+      return med_aspect_frobenius_of(s);
+    case M::max_aspect_frobenius:
+      return max_aspect_frobenius_of(s);
+    case M::skew:
+      return skew_of(s);
+    case M::taper:
+      return taper_of(s);
+    case M::warpage:
+      return warpage_of(s);
+    case M::area:
+      return area_of(s);
+    case M::stretch:
+      return stretch_of(s);
+    case M::minimum_angle:
+      return minimum_angle_of(s);
+    case M::maximum_angle:
+      return maximum_angle_of(s);
+    case M::oddy:
+      return oddy_of(s);
+    case M::condition:
+      return condition_of(s);
+    case M::jacobian:
+      return jacobian_of(s);
+    case M::scaled_jacobian:
+      return scaled_jacobian_of(s);
+    case M::shear:
+      return shear_of(scaled_jacobian_of(s));
+    case M::shape:
+      return shape_of(s);
+    case M::distortion:
+      return distortion_of(s.p);
+    case M::equiangle_skew:
+      return equiangle_skew_of(s);
+    case M::relative_size_squared:
+      return relative_size_squared_of(area_of(s), average_area);
+    case M::shape_and_size:
+      return clamp_signed(shape_of(s) * relative_size_squared_of(area_of(s), average_area));
+    case M::shear_and_size:
+      return clamp_signed(shear_of(scaled_jacobian_of(s)) * relative_size_squared_of(area_of(s), average_area));
+  }
+  return std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace
@@ -464,94 +592,36 @@ std::array<double, 4> quad_signed_corner_areas(const QuadCorners& p) {
 }
 
 double quad_stretch(const QuadCorners& p) {
-  double size;
-  const auto e = scaled_edges(p, size);
-  double l2[4];
-  for (int i = 0; i < 4; ++i) l2[i] = squared_norm(e[i]);
-  const double diag02 = squared_norm((p[2] - p[0]) / size);
-  const double diag13 = squared_norm((p[3] - p[1]) / size);
-  const double longest = std::fmax(diag02, diag13);
-  if (longest < kDblMin) return kDblMax;
-  const double stretch = kSqrt2 * std::sqrt(std::fmin(std::fmin(l2[0], l2[1]), std::fmin(l2[2], l2[3])) / longest);
-  return std::fmin(stretch, kDblMax);
+  QuadPieces s(p);
+  return stretch_of(s);
 }
 
 double quad_shape(const QuadCorners& p) {
-  auto areas = quad_signed_corner_areas(p);
-  double size;
-  const auto e = scaled_edges(p, size);
-  for (double& a : areas) a /= (size * size);
-  double l2[4];
-  for (int i = 0; i < 4; ++i) l2[i] = squared_norm(e[i]);
-  if (l2[0] <= kDblMin || l2[1] <= kDblMin || l2[2] <= kDblMin || l2[3] <= kDblMin) return 0.0;
-  double min_shape = kDblMax;
-  for (int i = 0; i < 4; ++i) min_shape = std::fmin(areas[i] / (l2[i] + l2[(i + 3) % 4]), min_shape);
-  min_shape *= 2;
-  if (min_shape < kDblMin) min_shape = 0;
-  return clamp_signed(min_shape);
+  QuadPieces s(p);
+  return shape_of(s);
 }
 
-double quad_equiangle_skew(const QuadCorners& p) { return equiangle_skew_of(p); }
+double quad_equiangle_skew(const QuadCorners& p) {
+  QuadPieces s(p);
+  return equiangle_skew_of(s);
+}
 
 double quad_metric(QuadMetric m, const QuadCorners& p, double average_area) {
-  using M = QuadMetric;
-  switch (m) {
-    case M::edge_ratio:
-      return edge_ratio_of(p);
-    case M::max_edge_ratio:
-      return max_edge_ratio_of(p);
-    case M::aspect_ratio:
-      return aspect_ratio_of(p);
-    case M::radius_ratio:
-      return radius_ratio_of(p);
-    case M::med_aspect_frobenius:
-      return med_aspect_frobenius_of(p);
-    case M::max_aspect_frobenius:
-      return max_aspect_frobenius_of(p);
-    case M::skew:
-      return skew_of(p);
-    case M::taper:
-      return taper_of(p);
-    case M::warpage:
-      return warpage_of(p);
-    case M::area:
-      return area_of(p);
-    case M::stretch:
-      return quad_stretch(p);
-    case M::minimum_angle:
-      return minimum_angle_of(p);
-    case M::maximum_angle:
-      return maximum_angle_of(p);
-    case M::oddy:
-      return oddy_of(p);
-    case M::condition:
-      return condition_of(p);
-    case M::jacobian:
-      return jacobian_of(p);
-    case M::scaled_jacobian:
-      return scaled_jacobian_of(p);
-    case M::shear:
-      return shear_of(p);
-    case M::shape:
-      return quad_shape(p);
-    case M::distortion:
-      return distortion_of(p);
-    case M::equiangle_skew:
-      return equiangle_skew_of(p);
-    case M::relative_size_squared:
-      return relative_size_squared_of(p, average_area);
-    case M::shape_and_size:
-      return clamp_signed(quad_shape(p) * relative_size_squared_of(p, average_area));
-    case M::shear_and_size:
-      return clamp_signed(shear_of(p) * relative_size_squared_of(p, average_area));
-  }
-  return std::numeric_limits<double>::quiet_NaN();
+  QuadPieces s(p);
+  return metric_of(m, s, average_area);
+}
+
+void quad_metric_list(std::span<const QuadMetric> metrics, const QuadCorners& p, double average_area,
+                      std::span<double> out) {
+  QuadPieces s(p);
+  for (std::size_t j = 0; j < metrics.size(); ++j) out[j] = metric_of(metrics[j], s, average_area);
 }
 
 QuadMetricValues quad_metrics(const QuadCorners& p, double average_area) {
   QuadMetricValues out;
+  QuadPieces s(p);
   for (int m = 0; m < kNumQuadMetrics; ++m)
-    out[static_cast<std::size_t>(m)] = quad_metric(static_cast<QuadMetric>(m), p, average_area);
+    out[static_cast<std::size_t>(m)] = metric_of(static_cast<QuadMetric>(m), s, average_area);
   return out;
 }
 

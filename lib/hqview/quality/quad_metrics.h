@@ -23,6 +23,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string_view>
 
 #include "hqview/core/vec3.h"
@@ -69,6 +70,10 @@ std::optional<QuadMetric> quad_metric_from_name(std::string_view name);
 QuadMetricValues quad_metrics(const QuadCorners& p, double average_area);
 // One metric by its enum.
 double quad_metric(QuadMetric m, const QuadCorners& p, double average_area);
+// out[j] = quad_metric(metrics[j], p, average_area), bit for bit, the pieces
+// the metrics share (edges, size, corner areas, angles) computed once.
+void quad_metric_list(std::span<const QuadMetric> metrics, const QuadCorners& p, double average_area,
+                      std::span<double> out);
 
 // Verdict's signed corner areas: (e(i-1) x e(i)) . n at corner i, n the unit
 // centre normal described above (0 when the quad has no centre normal).
