@@ -13,6 +13,7 @@
 #include <cmath>
 #include <memory>
 #include <numeric>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,7 @@
 #include "hqview/quality/quality_field.h"
 #include "hqview/render/osmesa_renderer.h"
 #include "hqview/views/main_views.h"
+#include "hqview/views/overview_views.h"
 #include "support/fixtures.h"
 
 namespace hq {
@@ -218,6 +220,78 @@ TEST(MainViewLegend, TheLegendBeforeFailsTheCheck) {
   // line says "intersecting hexes" on a pure-hex mesh since the 45t merge,
   // and the test looked for "intersecting cells").
   EXPECT_GE(unnamed.size(), 3u) << joined(unnamed);
+}
+
+// The intersecting cells' swatch is the fill as drawn (issue 44 part C, the
+// 44p/44r reviews: the swatch #ecd2ff, the lit single fill #d0acec and the
+// stacked fill #b87de5 were up to CIEDE2000 44 apart). The view rendered
+// with and without the cells' translucent faces: the pixels they change
+// that were background (and whose 8 neighbours are such too: no
+// anti-aliased rim) all show the swatch's colour (+-1 per channel for the
+// renderer's rounding), and the legend has a swatch of that colour.
+struct Fill {
+  std::size_t pixels = 0, matching = 0;
+  std::size_t legend_pixels = 0;  // legend pixels of the swatch's colour
+};
+Fill tint_fill(Renderer& renderer, const MainViewPlan& plan, const MainViewOptions& options, const Rgba8& swatch) {
+  const Image with = render_figure(renderer, plan.scene, plan.labels.camera, options.width, options.height, plan.layout,
+                                   "", plan.style);
+  Scene bare = plan.scene;
+  bare.translucent.clear();
+  const Image without =
+      render_figure(renderer, bare, plan.labels.camera, options.width, options.height, plan.layout, "", plan.style);
+  const auto at = [](const Image& im, int x, int y) {
+    const std::size_t o = pixel_offset(im, x, y);
+    return Rgba8{im.rgba[o], im.rgba[o + 1], im.rgba[o + 2], 255};
+  };
+  const Rgba8 background = opaque(plan.scaled.background);
+  const auto tinted = [&](int x, int y) { return at(without, x, y) == background && at(with, x, y) != background; };
+  Fill fill;
+  const PixelRect& v = plan.layout.view;
+  for (int y = v.y + 1; y < v.y + v.height - 1; ++y)
+    for (int x = v.x + 1; x < v.x + v.width - 1; ++x) {
+      bool inside = true;
+      for (int dy = -1; dy <= 1 && inside; ++dy)
+        for (int dx = -1; dx <= 1 && inside; ++dx) inside = tinted(x + dx, y + dy);
+      if (!inside) continue;
+      const Rgba8 c = at(with, x, y);
+      ++fill.pixels;
+      fill.matching += std::abs(c.r - swatch.r) <= 1 && std::abs(c.g - swatch.g) <= 1 && std::abs(c.b - swatch.b) <= 1;
+    }
+  Image legend = with;
+  draw_legend(legend, plan.layout.legend, plan.legend, plan.style);
+  const PixelRect& l = plan.layout.legend;
+  for (int y = l.y; y < l.y + l.height; ++y)
+    for (int x = l.x; x < l.x + l.width; ++x) fill.legend_pixels += at(legend, x, y) == swatch ? 1 : 0;
+  return fill;
+}
+
+TEST(MainViewLegend, IntersectingCellsSwatchIsTheDrawnFill) {
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  const Analysed a = analyse(every_mark());
+  MainViewOptions options;
+  options.width = 800;
+  options.height = 600;
+  options.inverted_cells = &a.inverted;
+  MainViewPlan plan =
+      plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, Vec3{1.0, -1.0, 1.5}, options, *renderer);
+  std::optional<Rgba8> swatch;
+  for (const LegendLine& l : plan.legend)
+    if (l.text.starts_with("intersecting hexes")) swatch = l.swatch;
+  ASSERT_TRUE(swatch.has_value());
+  EXPECT_EQ(*swatch, blend_over(kIntersectingCellColor, opaque(options.background)));
+  const Fill fill = tint_fill(*renderer, plan, options, *swatch);
+  ASSERT_GT(fill.pixels, 200u);  // the 2 x 3 shifted cells' tint over the white background
+  EXPECT_EQ(fill.matching, fill.pixels);
+  EXPECT_GE(fill.legend_pixels, 81u);  // the swatch square (9 x 9 px at 800 x 600)
+  // Drawn lit and in layers as before, the fill does not match (measured:
+  // 4,214 fill pixels, all matching; before, none).
+  for (TriangleSet& set : plan.scene.translucent) {
+    set.is_lit = true;
+    set.single_layer = false;
+  }
+  const Fill before = tint_fill(*renderer, plan, options, *swatch);
+  EXPECT_LT(before.matching, before.pixels / 2);
 }
 
 }  // namespace

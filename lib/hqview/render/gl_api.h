@@ -13,7 +13,7 @@ namespace hq {
 // X(name): the function gl<name> (OSMesa<name> for the OSMESA list).
 #define HQ_GL_FUNCTIONS(X)                                                                                        \
   X(AttachShader) X(BindBuffer) X(BindFramebuffer) X(BindRenderbuffer) X(BindVertexArray) X(BlendFuncSeparate)   \
-  X(BufferData) X(CheckFramebufferStatus) X(Clear) X(ClearColor) X(ClearDepth) X(CompileShader) X(CreateProgram) \
+  X(BufferData) X(CheckFramebufferStatus) X(Clear) X(ClearColor) X(ClearDepth) X(ColorMask) X(CompileShader) X(CreateProgram) \
   X(CreateShader) X(DeleteBuffers) X(DeleteFramebuffers) X(DeleteProgram) X(DeleteRenderbuffers) X(DeleteShader) \
   X(DeleteVertexArrays) X(DepthFunc) X(DepthMask) X(Disable) X(DisableVertexAttribArray) X(DrawElements)         \
   X(Enable) X(EnableVertexAttribArray) X(FramebufferRenderbuffer) X(GenBuffers) X(GenFramebuffers)               \

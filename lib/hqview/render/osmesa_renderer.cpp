@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <span>
 #include <vector>
 
 #include "hqview/core/error.h"
@@ -464,7 +465,21 @@ class OsmesaRenderer final : public Renderer {
       gl.Enable(GL_BLEND);
       gl.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
       gl.DepthMask(GL_FALSE);
-      draw_triangles(scene.translucent, model_view, projection, &model_view_matrix);
+      for (const TriangleSet& set : scene.translucent) {
+        const std::span<const TriangleSet> one(&set, 1);
+        if (set.single_layer) {
+          // Its nearest faces' depth first (no colour), then the colour
+          // where the depth equals it: one blend a pixel.
+          gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+          gl.DepthMask(GL_TRUE);
+          draw_triangles(one, model_view, projection, &model_view_matrix);
+          gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+          gl.DepthMask(GL_FALSE);
+          gl.DepthFunc(GL_EQUAL);
+        }
+        draw_triangles(one, model_view, projection, &model_view_matrix);
+        gl.DepthFunc(GL_LEQUAL);
+      }
       gl.DepthMask(GL_TRUE);
       gl.Disable(GL_BLEND);
       if (std::any_of(scene.translucent.begin(), scene.translucent.end(),
@@ -642,7 +657,7 @@ class OsmesaRenderer final : public Renderer {
 
   // Opaque sets (sort_by == nullptr) or translucent ones, whose triangles are
   // drawn back to front for the eye-space transform *sort_by.
-  void draw_triangles(const std::vector<TriangleSet>& sets, const std::array<float, 16>& model_view,
+  void draw_triangles(std::span<const TriangleSet> sets, const std::array<float, 16>& model_view,
                       const std::array<float, 16>& projection, const Mat4* sort_by) {
     gl.UseProgram(triangle_program_);
     set_matrices(triangle_program_, model_view, projection);
