@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <numeric>
@@ -284,6 +285,28 @@ TEST(MainViewLegend, IntersectingCellsSwatchIsTheDrawnFill) {
   ASSERT_GT(fill.pixels, 200u);  // the 2 x 3 shifted cells' tint over the white background
   EXPECT_EQ(fill.matching, fill.pixels);
   EXPECT_GE(fill.legend_pixels, 81u);  // the swatch square (9 x 9 px at 800 x 600)
+  // A stack of 40 unit cubes, cube i moved by i (0.013, 0.009, 0.005) (as
+  // tests/bad_inputs' overlapping stack, trimmed): up to 80 faces over a
+  // pixel, some closer than the depth buffer tells apart (a depth pass and
+  // then GL_EQUAL painted it all but opaque lilac).
+  HexMesh stack;
+  for (int i = 0; i < 40; ++i) {
+    std::array<Index, 8> cube{};
+    for (int k = 0; k < 8; ++k) {
+      cube[static_cast<std::size_t>(k)] = static_cast<Index>(stack.points.size());
+      stack.points.push_back(Vec3{(k == 1 || k == 2 || k == 5 || k == 6) ? 1.0 : 0.0, (k % 4 >= 2) ? 1.0 : 0.0,
+                                  k >= 4 ? 1.0 : 0.0} +
+                             static_cast<double>(i) * Vec3{0.013, 0.009, 0.005});
+    }
+    stack.hexes.push_back(cube);
+  }
+  const Analysed b = analyse(stack);
+  ASSERT_EQ(b.overlap.num_intersecting_cells, 40);
+  const MainViewPlan stacked =
+      plan_main_view(b.mesh, b.topology, b.glyphs, &b.overlap, Vec3{1.0, -1.0, 1.5}, options, *renderer);
+  const Fill stack_fill = tint_fill(*renderer, stacked, options, *swatch);
+  ASSERT_GT(stack_fill.pixels, 1000u);
+  EXPECT_EQ(stack_fill.matching, stack_fill.pixels);
   // Drawn lit and in layers as before, the fill does not match (measured:
   // 4,214 fill pixels, all matching; before, none).
   for (TriangleSet& set : plan.scene.translucent) {
@@ -292,6 +315,58 @@ TEST(MainViewLegend, IntersectingCellsSwatchIsTheDrawnFill) {
   }
   const Fill before = tint_fill(*renderer, plan, options, *swatch);
   EXPECT_LT(before.matching, before.pixels / 2);
+}
+
+// The "edges at" line has its swatch only when some of those edges show
+// (the 44r/44p reviews: bunny_in's "edges at #0's 41 vertices" had a
+// crimson line, and all of #0's edges lay under its glyph). The pixels of
+// #0's colour outside #0's rings: none on a fine grid whose one poor vertex
+// has edges shorter than its glyph's radius (no swatch, "  (all under the
+// glyphs)"); some on every_mark (a swatch).
+std::size_t worst_colour_pixels_outside_rings(const Image& figure, const MainViewPlan& plan, const Rgba8& worst,
+                                              bool is_inverted) {
+  const ScreenDisc& d = plan.labels.worst_glyph;
+  const double rings = worst_rings_extent(d.radius, is_inverted, plan.style) + 1.0;
+  const PixelRect& v = plan.layout.view;
+  std::size_t n = 0;
+  for (int y = v.y; y < v.y + v.height; ++y)
+    for (int x = v.x; x < v.x + v.width; ++x) {
+      const std::size_t o = pixel_offset(figure, x, y);
+      const bool near = std::abs(figure.rgba[o] - worst.r) < 40 && std::abs(figure.rgba[o + 1] - worst.g) < 40 &&
+                        std::abs(figure.rgba[o + 2] - worst.b) < 40;
+      n += near && std::hypot(x + 0.5 - d.x, y + 0.5 - d.y) > rings ? 1 : 0;
+    }
+  return n;
+}
+TEST(MainViewLegend, EdgesSwatchOnlyWhenTheyShow) {
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  HexMesh fine = test::box_grid(120, 120, 1);
+  Vec3& poor = fine.points[static_cast<std::size_t>(60 + 121 * (60 + 121 * 1))];
+  poor.x += 0.45;
+  poor.y += 0.45;
+  MainViewOptions options;
+  options.width = 800;
+  options.height = 600;
+  const Rgba8 worst = to_rgba8(labelled_cluster_color(0));
+  for (const bool hidden : {true, false}) {
+    const Analysed a = analyse(hidden ? fine : every_mark());
+    ASSERT_FALSE(a.glyphs.clusters.empty());
+    const Vec3 direction = hidden ? Vec3{0.2, -0.3, 1.0} : Vec3{1.0, -1.0, 1.5};
+    const MainViewPlan plan = plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, direction, options, *renderer);
+    const Image figure = render_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, direction, options, *renderer);
+    const std::size_t shown =
+        worst_colour_pixels_outside_rings(figure, plan, worst, a.glyphs.clusters[0].min_quality < 0.0);
+    std::optional<LegendLine> edges;
+    bool under = false;
+    for (const LegendLine& l : plan.legend) {
+      if (l.text.starts_with("edges at")) edges = l;
+      under = under || l.text == "  (all under the glyphs)";
+    }
+    ASSERT_TRUE(edges.has_value()) << hidden;
+    EXPECT_EQ(edges->swatch.has_value(), !hidden);
+    EXPECT_EQ(under, hidden);
+    EXPECT_EQ(shown > 0, !hidden) << shown;
+  }
 }
 
 }  // namespace

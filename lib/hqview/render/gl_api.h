@@ -13,14 +13,15 @@ namespace hq {
 // X(name): the function gl<name> (OSMesa<name> for the OSMESA list).
 #define HQ_GL_FUNCTIONS(X)                                                                                        \
   X(AttachShader) X(BindBuffer) X(BindFramebuffer) X(BindRenderbuffer) X(BindVertexArray) X(BlendFuncSeparate)   \
-  X(BufferData) X(CheckFramebufferStatus) X(Clear) X(ClearColor) X(ClearDepth) X(ColorMask) X(CompileShader) X(CreateProgram) \
+  X(BufferData) X(CheckFramebufferStatus) X(Clear) X(ClearColor) X(ClearDepth) X(CompileShader) X(CreateProgram) \
   X(CreateShader) X(DeleteBuffers) X(DeleteFramebuffers) X(DeleteProgram) X(DeleteRenderbuffers) X(DeleteShader) \
   X(DeleteVertexArrays) X(DepthFunc) X(DepthMask) X(Disable) X(DisableVertexAttribArray) X(DrawElements)         \
   X(Enable) X(EnableVertexAttribArray) X(FramebufferRenderbuffer) X(GenBuffers) X(GenFramebuffers)               \
   X(GenRenderbuffers) X(GenVertexArrays) X(GetError) X(GetFloatv) X(GetIntegerv) X(GetProgramInfoLog)            \
   X(GetProgramiv) X(GetShaderInfoLog) X(GetShaderiv) X(GetUniformLocation) X(LineWidth) X(LinkProgram)           \
-  X(PixelStorei) X(PolygonOffset) X(ReadPixels) X(RenderbufferStorage) X(ShaderSource) X(Uniform1f) X(Uniform1i) \
-  X(Uniform3f) X(Uniform3fv) X(UniformMatrix4fv) X(UseProgram) X(VertexAttribPointer) X(Viewport)
+  X(PixelStorei) X(PolygonOffset) X(ReadPixels) X(RenderbufferStorage) X(ShaderSource) X(StencilFunc)          \
+  X(StencilOp) X(Uniform1f) X(Uniform1i) X(Uniform3f) X(Uniform3fv) X(UniformMatrix4fv) X(UseProgram)           \
+  X(VertexAttribPointer) X(Viewport)
 #define HQ_OSMESA_FUNCTIONS(X) X(CreateContextAttribs) X(DestroyContext) X(MakeCurrent)
 
 // gl.Clear(...) calls glClear; gl.MakeCurrent(...) calls OSMesaMakeCurrent.

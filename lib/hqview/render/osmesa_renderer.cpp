@@ -468,17 +468,17 @@ class OsmesaRenderer final : public Renderer {
       for (const TriangleSet& set : scene.translucent) {
         const std::span<const TriangleSet> one(&set, 1);
         if (set.single_layer) {
-          // Its nearest faces' depth first (no colour), then the colour
-          // where the depth equals it: one blend a pixel.
-          gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-          gl.DepthMask(GL_TRUE);
-          draw_triangles(one, model_view, projection, &model_view_matrix);
-          gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-          gl.DepthMask(GL_FALSE);
-          gl.DepthFunc(GL_EQUAL);
+          // The first fragment a pixel blends, the others fail the stencil
+          // test (a depth pass and then GL_EQUAL blended several faces
+          // that the depth buffer could not tell apart: a stack of
+          // overlapping cubes).
+          gl.Clear(GL_STENCIL_BUFFER_BIT);
+          gl.Enable(GL_STENCIL_TEST);
+          gl.StencilFunc(GL_EQUAL, 0, 0xff);
+          gl.StencilOp(GL_KEEP, GL_KEEP, GL_INCR);
         }
         draw_triangles(one, model_view, projection, &model_view_matrix);
-        gl.DepthFunc(GL_LEQUAL);
+        gl.Disable(GL_STENCIL_TEST);
       }
       gl.DepthMask(GL_TRUE);
       gl.Disable(GL_BLEND);
@@ -546,12 +546,12 @@ class OsmesaRenderer final : public Renderer {
       return id;
     };
     supersampled_color_ = make_renderbuffer(GL_RGBA8, ss_width, ss_height);
-    supersampled_depth_ = make_renderbuffer(GL_DEPTH_COMPONENT24, ss_width, ss_height);
+    supersampled_depth_ = make_renderbuffer(GL_DEPTH24_STENCIL8, ss_width, ss_height);  // stencil: single_layer
 
     gl.GenFramebuffers(1, &supersampled_framebuffer_);
     gl.BindFramebuffer(GL_FRAMEBUFFER, supersampled_framebuffer_);
     gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, supersampled_color_);
-    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, supersampled_depth_);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, supersampled_depth_);
     const GLenum supersampled_status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
     check_gl("framebuffer set-up");
     if (supersampled_status != GL_FRAMEBUFFER_COMPLETE) {

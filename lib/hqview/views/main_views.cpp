@@ -2239,12 +2239,12 @@ std::vector<OutlineRun> main_view_outlines_over_glyphs(const HexMesh& mesh, cons
     d.radius = inverted_ring_radius(d.radius, style) + 0.5 * inverted_halo_width(style);
     rings.push_back(d);
   }
-  // No run on #0's glyph nor on its rings and yellow band (issue 44 part
-  // C: rockarm's and lshape's outlines crossed the band).
   ScreenDisc worst;
   if (!labels.worst_is_tied && labels.worst_glyph.radius > 0.0) {
     worst = labels.worst_glyph;
-    worst.radius = worst_rings_extent(worst.radius, !glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0, style);
+    ScreenDisc d = labels.worst_glyph;
+    d.radius = worst_rings_extent(d.radius, !glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0, style);
+    rings.push_back(d);
   }
   std::vector<ColouredSegment> outlines;
   for (const BoundaryPolygon& face : inverted_boundary_faces(topology, options).drawn) {
