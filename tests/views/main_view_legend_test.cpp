@@ -117,7 +117,7 @@ std::vector<Mark> marks_drawn(const MainViewPlan& plan) {
     for (const Rgba8& c : set.colors) add("translucent face", blend_over(c, plan.scaled.background), SwatchShape::box);
   for (const TriangleSet& set : plan.scene.overlay)
     for (const Rgba8& c : set.colors) add("arrow", opaque(c), SwatchShape::arrow);
-  if (!plan.labels.worst_is_tied && plan.labels.worst_glyph.radius > 0.0)
+  if ((!plan.labels.worst_is_tied && plan.labels.worst_glyph.radius > 0.0) || !plan.labels.worst_class_glyphs.empty())
     add("worst ring", plan.style.text_color, SwatchShape::solid_ring);
   if (!plan.labels.inverted_glyphs.empty()) add("inverted ring", to_rgba8(kInvertedColor), SwatchShape::solid_ring);
   for (const OutlineRun& r : plan.outlines) add("outline over a glyph", r.color, SwatchShape::line);

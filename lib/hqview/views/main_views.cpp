@@ -1214,17 +1214,18 @@ void draw_worst_glyph_ring(Image& figure, const ScreenDisc& worst, bool is_inver
 // poor ones at a glance; cluster #0's dark ring goes outside it.
 // A ring's stretch inside a coloured glyph ranked before its own is left
 // out (that glyph is drawn over it: a grey glyph's ring over a coloured
-// one read as the grey glyph in front). The glyph banded (#0 unless tied,
-// else -1) has its halo in the yellow band (draw_worst_glyph_ring).
+// one read as the grey glyph in front). The glyphs of ids below
+// banded_below (#0's class) have their halo in the yellow band
+// (draw_worst_glyph_ring).
 void draw_inverted_glyph_rings(Image& figure, const std::vector<ScreenDisc>& inverted,
-                               const std::vector<ScreenDisc>& coloured, std::int64_t banded,
+                               const std::vector<ScreenDisc>& coloured, std::int64_t banded_below,
                                const AnnotationStyle& style, const MainViewOptions& options) {
   Rgba8 background = options.background;
   background.a = 255;
   const Rgba8 color = to_rgba8(kInvertedColor);
   for (const ScreenDisc& d : inverted) {
     // #0's halo is its yellow band (draw_worst_glyph_ring), up to its dark ring.
-    const Rgba8 halo = d.id == banded ? kWorstBandColor : background;
+    const Rgba8 halo = d.id >= 0 && d.id < banded_below ? kWorstBandColor : background;
     const double radius = inverted_ring_radius(d.radius, style);
     const int segments = std::clamp(static_cast<int>(radius), 24, 96);
     for (int pass = 0; pass < 2; ++pass)
@@ -1387,8 +1388,11 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
   }
   // The rings as the view draws them (draw_worst_glyph_ring,
   // draw_inverted_glyph_rings): ring swatches, unlike the square ones.
-  if (!glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0 && !worst_is_tied)
-    lines.push_back({style.text_color, "ring: worst cluster #0", 0, SwatchShape::solid_ring, kWorstBandColor});
+  if (!glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0)
+    lines.push_back({style.text_color,
+                     worst_is_tied ? "ring: worst clusters #0-#" + std::to_string(tie_sizes[0] - 1)
+                                   : std::string("ring: worst cluster #0"),
+                     0, SwatchShape::solid_ring, kWorstBandColor});
   if (!glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0)
     lines.push_back({to_rgba8(kInvertedColor), "ring: inverted (min < 0)", 0, SwatchShape::solid_ring});
   // Findings and places by kind, as the markers count them: the "xN"
@@ -1850,6 +1854,8 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
     if (on_screen(d) && d.radius >= 1.0) glyph_discs.push_back({d.radius, d});
     if (on_screen(d) && g.min_quality < 0.0) result.inverted_glyphs.push_back(d);
     if (on_screen(d) && !is_grey_glyph(g.id, drawn.tie_class, drawn.coloured_classes)) result.coloured_glyphs.push_back(d);
+    if (on_screen(d) && result.worst_is_tied && drawn.tie_class[static_cast<std::size_t>(g.id)] == 0)
+      result.worst_class_glyphs.push_back(d);
   }
   std::stable_sort(glyph_discs.begin(), glyph_discs.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });
@@ -1969,6 +1975,11 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
       rings.radius += result.worst_glyph.radius;
       all_obstacles.push_back(rings);
     }
+  }
+  // A tied #0's class: each member's band and ring.
+  for (ScreenDisc d : result.worst_class_glyphs) {
+    d.radius = worst_rings_extent(d.radius, glyphs.clusters[0].min_quality < 0.0, style);
+    all_obstacles.push_back(d);
   }
   all_obstacles.insert(all_obstacles.end(), fans.begin(), fans.end());
   std::vector<ScreenDisc> worst_only;
@@ -2134,11 +2145,13 @@ Scene main_view_scene(const HexMesh& mesh, const Topology& topology, const Glyph
 // The rings render_main_view draws around the glyphs.
 void draw_glyph_rings(Image& figure, const MainViewLabels& labels, const GlyphResult& glyphs,
                       const AnnotationStyle& style, const MainViewOptions& scaled) {
-  draw_inverted_glyph_rings(figure, labels.inverted_glyphs, labels.coloured_glyphs,
-                            labels.worst_is_tied ? std::int64_t{-1} : labels.worst_glyph.id, style, scaled);
-  if (!labels.worst_is_tied)
-    draw_worst_glyph_ring(figure, labels.worst_glyph, !glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0,
-                          style, scaled);
+  // #0's class (ids 0 to n - 1) wears the band.
+  std::int64_t banded_below = labels.worst_is_tied ? 0 : 1;
+  for (const ScreenDisc& d : labels.worst_class_glyphs) banded_below = std::max(banded_below, d.id + 1);
+  draw_inverted_glyph_rings(figure, labels.inverted_glyphs, labels.coloured_glyphs, banded_below, style, scaled);
+  const bool is_inverted = !glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0;
+  if (!labels.worst_is_tied) draw_worst_glyph_ring(figure, labels.worst_glyph, is_inverted, style, scaled);
+  for (const ScreenDisc& d : labels.worst_class_glyphs) draw_worst_glyph_ring(figure, d, is_inverted, style, scaled);
 }
 
 // Marks kIdAnnotation where the rings (and with is_labels the leader lines
@@ -2154,6 +2167,7 @@ void mark_drawn(IdImage& ids, const MainViewLabels& labels, const GlyphResult& g
   for (MainViewLabel& l : white_labels.labels) l.color = white;
   white_labels.worst_glyph = labels.worst_glyph;
   white_labels.worst_is_tied = labels.worst_is_tied;
+  white_labels.worst_class_glyphs = labels.worst_class_glyphs;
   white_labels.inverted_glyphs = labels.inverted_glyphs;
   white_labels.coloured_glyphs = labels.coloured_glyphs;
   Image mask = make_image(std::max(1, ids.x0 + ids.width), std::max(1, ids.y0 + ids.height), Rgba8{0, 0, 0, 255});

@@ -483,6 +483,10 @@ struct MainViewLabels {
   // Cluster #0 ties another (glyph_tie_classes): no "worst" ring (it would
   // single out one of equals); its label and legend line say "N tied".
   bool worst_is_tied = false;
+  // When #0 ties: the glyphs of its class on screen, each drawn in #0's
+  // yellow band and dark ring (all equal, none singled out; issue 44 part C:
+  // warrior's tied crimson #0-#1 were dark grey balls to protanopes).
+  std::vector<ScreenDisc> worst_class_glyphs;
   // The id image the labels were placed on (main_view_id_image with the
   // markers, the rings marked kIdAnnotation); empty when placed without one.
   IdImage ids;
