@@ -1180,8 +1180,10 @@ namespace {
 // its rim (issue 44 part P, round 3): a light outline between the dark red
 // glyph and the wireframe or a dark neighbour (an inverted #0's halo is
 // the inverted ring's, which begins there too).
+// A tied #0's class: no stretch inside another glyph of the class (others),
+// so that no ring crosses a worst glyph.
 void draw_worst_glyph_ring(Image& figure, const ScreenDisc& worst, bool is_inverted, const AnnotationStyle& style,
-                           const MainViewOptions& options) {
+                           const MainViewOptions& options, std::span<const ScreenDisc> others = {}) {
   if (!(worst.radius > 0.0)) return;
   Rgba8 halo = options.background;
   halo.a = 255;
@@ -1204,6 +1206,12 @@ void draw_worst_glyph_ring(Image& figure, const ScreenDisc& worst, bool is_inver
   for (const Pass& pass : passes)
     for (int i = 0; i < kSegments; ++i) {
       const double a0 = 2.0 * M_PI * i / kSegments, a1 = 2.0 * M_PI * (i + 1) / kSegments;
+      const double am = 0.5 * (a0 + a1);
+      const double mx = worst.x + pass.r * std::cos(am), my = worst.y + pass.r * std::sin(am);
+      if (std::any_of(others.begin(), others.end(), [&](const ScreenDisc& o) {
+            return o.id != worst.id && std::hypot(mx - o.x, my - o.y) < o.radius + 0.5 * pass.width;
+          }))
+        continue;
       draw_line(figure, worst.x + pass.r * std::cos(a0), worst.y + pass.r * std::sin(a0),
                 worst.x + pass.r * std::cos(a1), worst.y + pass.r * std::sin(a1), pass.color, pass.width);
     }
@@ -2151,7 +2159,8 @@ void draw_glyph_rings(Image& figure, const MainViewLabels& labels, const GlyphRe
   draw_inverted_glyph_rings(figure, labels.inverted_glyphs, labels.coloured_glyphs, banded_below, style, scaled);
   const bool is_inverted = !glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0;
   if (!labels.worst_is_tied) draw_worst_glyph_ring(figure, labels.worst_glyph, is_inverted, style, scaled);
-  for (const ScreenDisc& d : labels.worst_class_glyphs) draw_worst_glyph_ring(figure, d, is_inverted, style, scaled);
+  for (const ScreenDisc& d : labels.worst_class_glyphs)
+    draw_worst_glyph_ring(figure, d, is_inverted, style, scaled, labels.worst_class_glyphs);
 }
 
 // Marks kIdAnnotation where the rings (and with is_labels the leader lines
