@@ -123,6 +123,10 @@ TEST(GlyphTiesView, ExactlyTiedWorstCornersAreDrawnAlikeAndLabelledAsATie) {
   const std::vector<std::string> legend = legend_texts(c.glyphs, labels.glyph_scale);
   EXPECT_TRUE(has_line(legend, "#0-#2  3 tied at " + display_number(q, 3)));
   EXPECT_FALSE(has_line(legend, "ring: worst cluster #0"));
+  // All three wear #0's band and ring (issue 44 part C: a tied crimson #0
+  // was a grey ball to protanopes), none singled out.
+  EXPECT_TRUE(has_line(legend, "ring: worst clusters #0-#2"));
+  EXPECT_EQ(labels.worst_class_glyphs.size(), 3u);
   EXPECT_TRUE(has_line(legend, "tied: min within 0.001"));
   // The picture: #0's colour in three separate places of the figure (the
   // three dents are 4 units apart: far more than a glyph's radius).
@@ -135,8 +139,11 @@ TEST(GlyphTiesView, ExactlyTiedWorstCornersAreDrawnAlikeAndLabelledAsATie) {
     }
   std::sort(columns.begin(), columns.end());
   columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
+  // (A gap narrower than a glyph's radius is a glyph's band and ring
+  // between it and its own red edges.)
   int runs = columns.empty() ? 0 : 1;
-  for (std::size_t i = 1; i < columns.size(); ++i) runs += columns[i] > columns[i - 1] + 3;
+  for (std::size_t i = 1; i < columns.size(); ++i)
+    runs += columns[i] > columns[i - 1] + std::max(3.0, labels.worst_glyph.radius);
   EXPECT_EQ(runs, 3);
 }
 

@@ -471,10 +471,24 @@ void expect_clear_views(const Case& c, const char* name, bool expect_findings = 
             EXPECT_GE(disc_box_gap(other.anchor, b), disc_box_gap(l.anchor, b)) << l.text << " reads as " << other.text;
       if (l.placement.has_leader) {
         const PlacedLabel& p = l.placement;
-        // A marker's leader starts at its anchor disc's edge (a cluster's on
-        // its glyph's visible pixels: checked above).
-        if (l.kind == MainViewLabel::Kind::marker)
-          EXPECT_NEAR(std::hypot(p.leader_x0 - l.anchor.x, p.leader_y0 - l.anchor.y), l.anchor.radius, 1.0) << l.text;
+        // A marker's leader starts at its anchor disc's edge, or at #0's
+        // rings' when its group sits inside them (issue 44 part C: the
+        // leader from the group's centre crossed #0's glyph), and never
+        // enters #0's glyph (a cluster's on its glyph's visible pixels:
+        // checked above).
+        if (l.kind == MainViewLabel::Kind::marker) {
+          const ScreenDisc& from = l.leader_from.value_or(l.anchor);
+          EXPECT_NEAR(std::hypot(p.leader_x0 - from.x, p.leader_y0 - from.y), from.radius, 1.0) << l.text;
+          if (l.leader_from) {
+            EXPECT_EQ(from.x, labels.worst_glyph.x);
+            EXPECT_EQ(from.y, labels.worst_glyph.y);
+          }
+          for (double t = 0.0; t <= 1.0 && labels.worst_glyph.radius > 0.0; t += 0.02)
+            EXPECT_GE(std::hypot(p.leader_x0 + t * (p.leader_x1 - p.leader_x0) - labels.worst_glyph.x,
+                                 p.leader_y0 + t * (p.leader_y1 - p.leader_y0) - labels.worst_glyph.y),
+                      labels.worst_glyph.radius)
+                << l.text << " crosses #0's glyph";
+        }
         EXPECT_TRUE(p.leader_x1 >= b.x - 0.5 && p.leader_x1 <= b.x + b.width + 0.5 && p.leader_y1 >= b.y - 0.5 &&
                     p.leader_y1 <= b.y + b.height + 0.5)
             << l.text;

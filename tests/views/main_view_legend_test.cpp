@@ -10,9 +10,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <numeric>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +25,7 @@
 #include "hqview/quality/quality_field.h"
 #include "hqview/render/osmesa_renderer.h"
 #include "hqview/views/main_views.h"
+#include "hqview/views/overview_views.h"
 #include "support/fixtures.h"
 
 namespace hq {
@@ -114,7 +117,7 @@ std::vector<Mark> marks_drawn(const MainViewPlan& plan) {
     for (const Rgba8& c : set.colors) add("translucent face", blend_over(c, plan.scaled.background), SwatchShape::box);
   for (const TriangleSet& set : plan.scene.overlay)
     for (const Rgba8& c : set.colors) add("arrow", opaque(c), SwatchShape::arrow);
-  if (!plan.labels.worst_is_tied && plan.labels.worst_glyph.radius > 0.0)
+  if ((!plan.labels.worst_is_tied && plan.labels.worst_glyph.radius > 0.0) || !plan.labels.worst_class_glyphs.empty())
     add("worst ring", plan.style.text_color, SwatchShape::solid_ring);
   if (!plan.labels.inverted_glyphs.empty()) add("inverted ring", to_rgba8(kInvertedColor), SwatchShape::solid_ring);
   for (const OutlineRun& r : plan.outlines) add("outline over a glyph", r.color, SwatchShape::line);
@@ -218,6 +221,152 @@ TEST(MainViewLegend, TheLegendBeforeFailsTheCheck) {
   // line says "intersecting hexes" on a pure-hex mesh since the 45t merge,
   // and the test looked for "intersecting cells").
   EXPECT_GE(unnamed.size(), 3u) << joined(unnamed);
+}
+
+// The intersecting cells' swatch is the fill as drawn (issue 44 part C, the
+// 44p/44r reviews: the swatch #ecd2ff, the lit single fill #d0acec and the
+// stacked fill #b87de5 were up to CIEDE2000 44 apart). The view rendered
+// with and without the cells' translucent faces: the pixels they change
+// that were background (and whose 8 neighbours are such too: no
+// anti-aliased rim) all show the swatch's colour (+-1 per channel for the
+// renderer's rounding), and the legend has a swatch of that colour.
+struct Fill {
+  std::size_t pixels = 0, matching = 0;
+  std::size_t legend_pixels = 0;  // legend pixels of the swatch's colour
+};
+Fill tint_fill(Renderer& renderer, const MainViewPlan& plan, const MainViewOptions& options, const Rgba8& swatch) {
+  const Image with = render_figure(renderer, plan.scene, plan.labels.camera, options.width, options.height, plan.layout,
+                                   "", plan.style);
+  Scene bare = plan.scene;
+  bare.translucent.clear();
+  const Image without =
+      render_figure(renderer, bare, plan.labels.camera, options.width, options.height, plan.layout, "", plan.style);
+  const auto at = [](const Image& im, int x, int y) {
+    const std::size_t o = pixel_offset(im, x, y);
+    return Rgba8{im.rgba[o], im.rgba[o + 1], im.rgba[o + 2], 255};
+  };
+  const Rgba8 background = opaque(plan.scaled.background);
+  const auto tinted = [&](int x, int y) { return at(without, x, y) == background && at(with, x, y) != background; };
+  Fill fill;
+  const PixelRect& v = plan.layout.view;
+  for (int y = v.y + 1; y < v.y + v.height - 1; ++y)
+    for (int x = v.x + 1; x < v.x + v.width - 1; ++x) {
+      bool inside = true;
+      for (int dy = -1; dy <= 1 && inside; ++dy)
+        for (int dx = -1; dx <= 1 && inside; ++dx) inside = tinted(x + dx, y + dy);
+      if (!inside) continue;
+      const Rgba8 c = at(with, x, y);
+      ++fill.pixels;
+      fill.matching += std::abs(c.r - swatch.r) <= 1 && std::abs(c.g - swatch.g) <= 1 && std::abs(c.b - swatch.b) <= 1;
+    }
+  Image legend = with;
+  draw_legend(legend, plan.layout.legend, plan.legend, plan.style);
+  const PixelRect& l = plan.layout.legend;
+  for (int y = l.y; y < l.y + l.height; ++y)
+    for (int x = l.x; x < l.x + l.width; ++x) fill.legend_pixels += at(legend, x, y) == swatch ? 1 : 0;
+  return fill;
+}
+
+TEST(MainViewLegend, IntersectingCellsSwatchIsTheDrawnFill) {
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  const Analysed a = analyse(every_mark());
+  MainViewOptions options;
+  options.width = 800;
+  options.height = 600;
+  options.inverted_cells = &a.inverted;
+  MainViewPlan plan =
+      plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, Vec3{1.0, -1.0, 1.5}, options, *renderer);
+  std::optional<Rgba8> swatch;
+  for (const LegendLine& l : plan.legend)
+    if (l.text.starts_with("intersecting hexes")) swatch = l.swatch;
+  ASSERT_TRUE(swatch.has_value());
+  EXPECT_EQ(*swatch, blend_over(kIntersectingCellColor, opaque(options.background)));
+  const Fill fill = tint_fill(*renderer, plan, options, *swatch);
+  ASSERT_GT(fill.pixels, 200u);  // the 2 x 3 shifted cells' tint over the white background
+  EXPECT_EQ(fill.matching, fill.pixels);
+  EXPECT_GE(fill.legend_pixels, 81u);  // the swatch square (9 x 9 px at 800 x 600)
+  // A stack of 40 unit cubes, cube i moved by i (0.013, 0.009, 0.005) (as
+  // tests/bad_inputs' overlapping stack, trimmed): up to 80 faces over a
+  // pixel, some closer than the depth buffer tells apart (a depth pass and
+  // then GL_EQUAL painted it all but opaque lilac).
+  HexMesh stack;
+  for (int i = 0; i < 40; ++i) {
+    std::array<Index, 8> cube{};
+    for (int k = 0; k < 8; ++k) {
+      cube[static_cast<std::size_t>(k)] = static_cast<Index>(stack.points.size());
+      stack.points.push_back(Vec3{(k == 1 || k == 2 || k == 5 || k == 6) ? 1.0 : 0.0, (k % 4 >= 2) ? 1.0 : 0.0,
+                                  k >= 4 ? 1.0 : 0.0} +
+                             static_cast<double>(i) * Vec3{0.013, 0.009, 0.005});
+    }
+    stack.hexes.push_back(cube);
+  }
+  const Analysed b = analyse(stack);
+  ASSERT_EQ(b.overlap.num_intersecting_cells, 40);
+  const MainViewPlan stacked =
+      plan_main_view(b.mesh, b.topology, b.glyphs, &b.overlap, Vec3{1.0, -1.0, 1.5}, options, *renderer);
+  const Fill stack_fill = tint_fill(*renderer, stacked, options, *swatch);
+  ASSERT_GT(stack_fill.pixels, 1000u);
+  EXPECT_EQ(stack_fill.matching, stack_fill.pixels);
+  // Drawn lit and in layers as before, the fill does not match (measured:
+  // 4,214 fill pixels, all matching; before, none).
+  for (TriangleSet& set : plan.scene.translucent) {
+    set.is_lit = true;
+    set.single_layer = false;
+  }
+  const Fill before = tint_fill(*renderer, plan, options, *swatch);
+  EXPECT_LT(before.matching, before.pixels / 2);
+}
+
+// The "edges at" line has its swatch only when some of those edges show
+// (the 44r/44p reviews: bunny_in's "edges at #0's 41 vertices" had a
+// crimson line, and all of #0's edges lay under its glyph). The pixels of
+// #0's colour outside #0's rings: none on a fine grid whose one poor vertex
+// has edges shorter than its glyph's radius (no swatch, "  (all under the
+// glyphs)"); some on every_mark (a swatch).
+std::size_t worst_colour_pixels_outside_rings(const Image& figure, const MainViewPlan& plan, const Rgba8& worst,
+                                              bool is_inverted) {
+  const ScreenDisc& d = plan.labels.worst_glyph;
+  const double rings = worst_rings_extent(d.radius, is_inverted, plan.style) + 1.0;
+  const PixelRect& v = plan.layout.view;
+  std::size_t n = 0;
+  for (int y = v.y; y < v.y + v.height; ++y)
+    for (int x = v.x; x < v.x + v.width; ++x) {
+      const std::size_t o = pixel_offset(figure, x, y);
+      const bool near = std::abs(figure.rgba[o] - worst.r) < 40 && std::abs(figure.rgba[o + 1] - worst.g) < 40 &&
+                        std::abs(figure.rgba[o + 2] - worst.b) < 40;
+      n += near && std::hypot(x + 0.5 - d.x, y + 0.5 - d.y) > rings ? 1 : 0;
+    }
+  return n;
+}
+TEST(MainViewLegend, EdgesSwatchOnlyWhenTheyShow) {
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  HexMesh fine = test::box_grid(120, 120, 1);
+  Vec3& poor = fine.points[static_cast<std::size_t>(60 + 121 * (60 + 121 * 1))];
+  poor.x += 0.45;
+  poor.y += 0.45;
+  MainViewOptions options;
+  options.width = 800;
+  options.height = 600;
+  const Rgba8 worst = to_rgba8(labelled_cluster_color(0));
+  for (const bool hidden : {true, false}) {
+    const Analysed a = analyse(hidden ? fine : every_mark());
+    ASSERT_FALSE(a.glyphs.clusters.empty());
+    const Vec3 direction = hidden ? Vec3{0.2, -0.3, 1.0} : Vec3{1.0, -1.0, 1.5};
+    const MainViewPlan plan = plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, direction, options, *renderer);
+    const Image figure = render_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, direction, options, *renderer);
+    const std::size_t shown =
+        worst_colour_pixels_outside_rings(figure, plan, worst, a.glyphs.clusters[0].min_quality < 0.0);
+    std::optional<LegendLine> edges;
+    bool under = false;
+    for (const LegendLine& l : plan.legend) {
+      if (l.text.starts_with("edges at")) edges = l;
+      under = under || l.text == "  (all under the glyphs)";
+    }
+    ASSERT_TRUE(edges.has_value()) << hidden;
+    EXPECT_EQ(edges->swatch.has_value(), !hidden);
+    EXPECT_EQ(under, hidden);
+    EXPECT_EQ(shown > 0, !hidden) << shown;
+  }
 }
 
 }  // namespace

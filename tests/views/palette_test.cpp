@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -223,6 +224,69 @@ TEST(Palette, RankReadsAsSalience) {
   EXPECT_GE(salience(clusters[0].color, &kDeuteranopia), 15.0);
   // The 44p #0 (dark red #6b0010) had less chroma than its #4 (#66ffcc).
   EXPECT_LT(chroma({0x6b, 0x00, 0x10, 255}), chroma({0x66, 0xff, 0xcc, 255}));
+}
+
+// #0 stays the most salient mark for every reader (issue 44 part C, the
+// 44r review: the crimson alone is a neutral dark grey to protanopes,
+// CIELCh chroma 4 at L* 39, darker than the grey "others"). #0 is drawn
+// as its crimson glyph in a yellow band inside its dark ring
+// (kWorstBandColor); under each of normal vision and the three Machado
+// 2009 simulations:
+// - the most chromatic of #0's colours keeps chroma >= 80 and >= 40 more
+//   than every other cluster colour and the greys (measured: normal 88 vs
+//   39, protanopia 86 vs 31, deuteranopia 85 vs 30, tritanopia 94 vs 33);
+// - #0's colours carry a lightness step no grey glyph has: the band is
+//   >= 25 L* lighter than the glyph and >= 60 lighter than the ring
+//   (measured >= 30 and >= 71), and lighter than the pale "others".
+double lch_chroma(const Lab& l) { return std::hypot(l.a, l.b); }
+Lab seen(const Rgba8& c, const Matrix* m) { return m ? simulated(c, *m) : lab_of(c); }
+double most_chromatic(std::initializer_list<Rgba8> colors, const Matrix* m) {
+  double most = 0.0;
+  for (const Rgba8& c : colors) most = std::max(most, lch_chroma(seen(c, m)));
+  return most;
+}
+TEST(Palette, WorstClusterSalientForEveryVision) {
+  const std::vector<Named> clusters = cluster_colors();
+  const Rgba8 worst = clusters[0].color, ring = AnnotationStyle{}.text_color;
+  for (const Matrix* m : {static_cast<const Matrix*>(nullptr), &kProtanopia, &kDeuteranopia, &kTritanopia}) {
+    const double salient = most_chromatic({worst, kWorstBandColor}, m);
+    EXPECT_GE(salient, 80.0);
+    for (std::size_t i = 1; i < clusters.size(); ++i)
+      EXPECT_GE(salient, most_chromatic({clusters[i].color}, m) + 40.0) << clusters[i].name;
+    for (const Rgba8& grey : {pale_grey_glyph_color(), grey_glyph_color(0.0f)})
+      EXPECT_GE(salient, most_chromatic({grey}, m) + 40.0);
+    const double band = seen(kWorstBandColor, m).l;
+    EXPECT_GE(band - seen(worst, m).l, 25.0);
+    EXPECT_GE(band - seen(ring, m).l, 60.0);
+    EXPECT_GT(band, seen(pale_grey_glyph_color(), m).l);
+  }
+  // The crimson alone (the 44r #0, no band) fails under protanopia: a grey
+  // less chromatic than the sea blue #1, with the white halo no lighter
+  // step than a pale grey glyph's.
+  EXPECT_LT(most_chromatic({worst}, &kProtanopia), 10.0);
+  EXPECT_LT(most_chromatic({worst, kWhite}, &kProtanopia), most_chromatic({clusters[1].color}, &kProtanopia));
+}
+
+// The band is a colour of view A of its own: >= 20 from every colour of
+// view A and the cells' tint for normal vision, >= 15 from the quality map,
+// the undefined grey and white; >= 8 under each simulation (the issue's
+// critical bound; measured 8.4, the coincident green under protanopia,
+// drawn as arrows, never as a ring) and >= 12.9 from the cell kinds'
+// edges for every vision.
+TEST(Palette, WorstBandApartFromViewAColours) {
+  std::vector<Named> colors = view_a_colors();
+  colors.push_back({"intersecting cells (tint)", cell_tint()});
+  for (const Named& c : colors) {
+    EXPECT_GE(delta_e(kWorstBandColor, c.color), kNormalApart) << c.name;
+    EXPECT_GE(worst_cvd_delta_e(kWorstBandColor, c.color), kCriticalApart) << c.name;
+  }
+  double nearest = 1e9;
+  for (int i = 0; i <= 1000; ++i) nearest = std::min(nearest, delta_e(kWorstBandColor, to_rgba8(sample_quality_map(i / 1000.0))));
+  EXPECT_GE(nearest, 15.0);
+  EXPECT_GE(delta_e(kWorstBandColor, to_rgba8(kUndefinedColor)), 15.0);
+  EXPECT_GE(delta_e(kWorstBandColor, kWhite), 15.0);
+  for (CellKind k : {CellKind::hex, CellKind::tet, CellKind::wedge, CellKind::pyramid})
+    EXPECT_GE(four_visions(kWorstBandColor, cell_kind_edge_color(k)), 12.9) << cell_kind_name(k);
 }
 
 // Every cluster colour but #0 (of the map's "bad" hue on purpose) stays

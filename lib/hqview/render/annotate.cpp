@@ -560,6 +560,13 @@ void draw_legend(Image& image, const PixelRect& area, std::span<const LegendLine
     if (line.swatch) {
       Rgba8 color = *line.swatch;
       color.a = 255;
+      if (line.ring_band && swatch_mark(line.shape).kind == SwatchMark::Kind::ring) {
+        // Inside the ring, as the figure draws it: the ring's stroke is
+        // mark.width * swatch wide, the band as wide again within it.
+        const int inset = static_cast<int>(std::lround(swatch_mark(line.shape).width * swatch));
+        draw_swatch(image, {x + inset, y - swatch + inset, swatch - 2 * inset, swatch - 2 * inset}, *line.ring_band,
+                    line.shape);
+      }
       draw_swatch(image, {x, y - swatch, swatch, swatch}, color, line.shape);
       const int text_x = x + swatch + swatch / 2;
       draw_text(image, text_x, y - 2, ellipsize(line.text, text_size, right - text_x, style), text_size, style);

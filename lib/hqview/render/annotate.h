@@ -181,6 +181,9 @@ struct LegendLine {
   std::string text;
   int gap_halves = 0;
   SwatchShape shape = SwatchShape::box;
+  // A ring swatch's band inside its ring (view A's #0: a yellow band in a
+  // dark ring), as wide as the ring.
+  std::optional<Rgba8> ring_band = std::nullopt;
 };
 // Draws shape's mark (kSwatchMarks) in color in box; a fill gets an
 // outline of outline px in the outline grey when outline > 0.

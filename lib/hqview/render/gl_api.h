@@ -19,8 +19,9 @@ namespace hq {
   X(Enable) X(EnableVertexAttribArray) X(FramebufferRenderbuffer) X(GenBuffers) X(GenFramebuffers)               \
   X(GenRenderbuffers) X(GenVertexArrays) X(GetError) X(GetFloatv) X(GetIntegerv) X(GetProgramInfoLog)            \
   X(GetProgramiv) X(GetShaderInfoLog) X(GetShaderiv) X(GetUniformLocation) X(LineWidth) X(LinkProgram)           \
-  X(PixelStorei) X(PolygonOffset) X(ReadPixels) X(RenderbufferStorage) X(ShaderSource) X(Uniform1f) X(Uniform1i) \
-  X(Uniform3f) X(Uniform3fv) X(UniformMatrix4fv) X(UseProgram) X(VertexAttribPointer) X(Viewport)
+  X(PixelStorei) X(PolygonOffset) X(ReadPixels) X(RenderbufferStorage) X(ShaderSource) X(StencilFunc)          \
+  X(StencilOp) X(Uniform1f) X(Uniform1i) X(Uniform3f) X(Uniform3fv) X(UniformMatrix4fv) X(UseProgram)           \
+  X(VertexAttribPointer) X(Viewport)
 #define HQ_OSMESA_FUNCTIONS(X) X(CreateContextAttribs) X(DestroyContext) X(MakeCurrent)
 
 // gl.Clear(...) calls glClear; gl.MakeCurrent(...) calls OSMesaMakeCurrent.

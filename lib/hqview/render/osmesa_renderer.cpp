@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <span>
 #include <vector>
 
 #include "hqview/core/error.h"
@@ -464,7 +465,21 @@ class OsmesaRenderer final : public Renderer {
       gl.Enable(GL_BLEND);
       gl.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
       gl.DepthMask(GL_FALSE);
-      draw_triangles(scene.translucent, model_view, projection, &model_view_matrix);
+      for (const TriangleSet& set : scene.translucent) {
+        const std::span<const TriangleSet> one(&set, 1);
+        if (set.single_layer) {
+          // The first fragment a pixel blends, the others fail the stencil
+          // test (a depth pass and then GL_EQUAL blended several faces
+          // that the depth buffer could not tell apart: a stack of
+          // overlapping cubes).
+          gl.Clear(GL_STENCIL_BUFFER_BIT);
+          gl.Enable(GL_STENCIL_TEST);
+          gl.StencilFunc(GL_EQUAL, 0, 0xff);
+          gl.StencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+        }
+        draw_triangles(one, model_view, projection, &model_view_matrix);
+        gl.Disable(GL_STENCIL_TEST);
+      }
       gl.DepthMask(GL_TRUE);
       gl.Disable(GL_BLEND);
       if (std::any_of(scene.translucent.begin(), scene.translucent.end(),
@@ -531,12 +546,12 @@ class OsmesaRenderer final : public Renderer {
       return id;
     };
     supersampled_color_ = make_renderbuffer(GL_RGBA8, ss_width, ss_height);
-    supersampled_depth_ = make_renderbuffer(GL_DEPTH_COMPONENT24, ss_width, ss_height);
+    supersampled_depth_ = make_renderbuffer(GL_DEPTH24_STENCIL8, ss_width, ss_height);  // stencil: single_layer
 
     gl.GenFramebuffers(1, &supersampled_framebuffer_);
     gl.BindFramebuffer(GL_FRAMEBUFFER, supersampled_framebuffer_);
     gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, supersampled_color_);
-    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, supersampled_depth_);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, supersampled_depth_);
     const GLenum supersampled_status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
     check_gl("framebuffer set-up");
     if (supersampled_status != GL_FRAMEBUFFER_COMPLETE) {
@@ -642,7 +657,7 @@ class OsmesaRenderer final : public Renderer {
 
   // Opaque sets (sort_by == nullptr) or translucent ones, whose triangles are
   // drawn back to front for the eye-space transform *sort_by.
-  void draw_triangles(const std::vector<TriangleSet>& sets, const std::array<float, 16>& model_view,
+  void draw_triangles(std::span<const TriangleSet> sets, const std::array<float, 16>& model_view,
                       const std::array<float, 16>& projection, const Mat4* sort_by) {
     gl.UseProgram(triangle_program_);
     set_matrices(triangle_program_, model_view, projection);

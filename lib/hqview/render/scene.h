@@ -71,6 +71,11 @@ struct TriangleSet {
   std::vector<Rgba8> colors;           // #V, interpolated across triangles (with scalars: only their alpha)
   std::vector<std::uint32_t> indices;  // 3 * #triangles, ids in [0, #V)
   bool is_lit = true;                  // false: colours shown as given (2D maps)
+  // A translucent set only: each pixel blended once, by the first of the
+  // set's faces drawn there (a stencil test), so that unlit it shows its
+  // colour blended once over what is behind however many of its faces stack
+  // (view A's intersecting cells).
+  bool single_layer = false;
   // Lit: the share of the colour kept facing away from the light (shade =
   // ambient + (1 - ambient) * |n . l|). A surface mesh's binned fill keeps
   // 0.7 so a shaded face keeps its legend colour's hue and near its value.

@@ -12,6 +12,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <set>
 
 #include "hqview/core/error.h"
 #include "hqview/mesh/boundary_polygons.h"
@@ -30,6 +31,9 @@ Vec3 forward_of(const Camera& camera) { return normalized(camera.target - camera
 
 // The id of #0's rings as an obstacle of its own label (no glyph's, no fan's).
 constexpr std::int64_t kRingsObstacleId = -2;
+
+// Whether an id of main_view_id_image is a line's (any edge).
+bool is_line_id(std::uint32_t id) { return id == kIdEdge || id == kIdClusterEdge; }
 
 // Model units per output pixel at distance depth in front of the camera.
 double units_per_pixel(const Camera& camera, double depth, int view_height) {
@@ -830,64 +834,59 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   scene.lines.push_back(edge_lines(mesh, scene.origin, cluster_edges, cluster_colors, options.cluster_edge_width));
   scene.lines.back().under_ranked_spheres = true;  // around the coloured glyphs, not over them
 
-  // 3. Intersecting cells: translucent faces and their edges.
+  // 3. Intersecting cells: translucent faces and their edges. Unlit and
+  // one layer (TriangleSet::single_layer), each face once (a face two such
+  // cells share too): every pixel of them is the tint blended once over what
+  // is behind, on the background exactly the legend's swatch
+  // (blend_over(kIntersectingCellColor, background); the 44p review: the
+  // lit, stacked faces were up to CIEDE2000 44 from the swatch).
   TriangleSet cells;
+  cells.is_lit = false;
+  cells.single_layer = true;
   std::vector<Edge> cell_edges;
+  std::set<std::array<Index, 4>> drawn_faces;  // sorted corners, -1 last for a triangle
+  const auto add_face = [&](const Index* v, int size) {
+    std::array<Index, 4> key{v[0], v[1], v[2], size == 4 ? v[3] : Index{-1}};
+    for (int i = 1; i < size; ++i)  // (std::sort of 3 or 4 warned -Warray-bounds)
+      for (int j = i; j > 0 && key[static_cast<std::size_t>(j - 1)] > key[static_cast<std::size_t>(j)]; --j)
+        std::swap(key[static_cast<std::size_t>(j - 1)], key[static_cast<std::size_t>(j)]);
+    if (!drawn_faces.insert(key).second) return;
+    const auto base = static_cast<std::uint32_t>(cells.positions.size());
+    for (int i = 0; i < size; ++i) {
+      cells.positions.push_back(local(mesh.points[static_cast<std::size_t>(v[i])]));
+      cells.colors.push_back(kIntersectingCellColor);
+      const Index a = v[i], b = v[(i + 1) % size];
+      cell_edges.push_back({std::min(a, b), std::max(a, b)});
+    }
+    cells.indices.insert(cells.indices.end(), {base, base + 1, base + 2});
+    if (size == 4) cells.indices.insert(cells.indices.end(), {base, base + 2, base + 3});
+  };
   const std::size_t num_checked_cells = overlap ? overlap->cell_intersecting.size() : 0;
   if (overlap && (num_checked_cells == mesh.hexes.size() ||
                   num_checked_cells == static_cast<std::size_t>(num_volume_cells(mesh)))) {
     for (std::size_t c = 0; c < mesh.hexes.size(); ++c) {
       if (!overlap->cell_intersecting[c]) continue;
-      for (int f = 0; f < 6; ++f) {
-        const Quad& quad = topology.faces[static_cast<std::size_t>(topology.hex_faces[6 * c + f])];
-        const auto base = static_cast<std::uint32_t>(cells.positions.size());
-        for (int i = 0; i < 4; ++i) {
-          cells.positions.push_back(local(mesh.points[static_cast<std::size_t>(quad[i])]));
-          cells.colors.push_back(kIntersectingCellColor);
-          const Index a = quad[i], b = quad[(i + 1) % 4];
-          cell_edges.push_back({std::min(a, b), std::max(a, b)});
-        }
-        cells.indices.insert(cells.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
-      }
+      for (int f = 0; f < 6; ++f)
+        add_face(topology.faces[static_cast<std::size_t>(topology.hex_faces[6 * c + f])].data(), 4);
     }
     // Tets, wedges and pyramids (when the overlap stage checked them), each
     // with its own faces (CellKindTable).
     for (std::size_t c = mesh.hexes.size(); c < num_checked_cells; ++c) {
       if (!overlap->cell_intersecting[c]) continue;
-      for_each_face_of(volume_cell(mesh, static_cast<Index>(c)), [&](const std::array<Index, 4>& v, int size) {
-        const auto base = static_cast<std::uint32_t>(cells.positions.size());
-        for (int i = 0; i < size; ++i) {
-          cells.positions.push_back(local(mesh.points[static_cast<std::size_t>(v[static_cast<std::size_t>(i)])]));
-          cells.colors.push_back(kIntersectingCellColor);
-          const Index a = v[static_cast<std::size_t>(i)], b = v[static_cast<std::size_t>((i + 1) % size)];
-          cell_edges.push_back({std::min(a, b), std::max(a, b)});
-        }
-        cells.indices.insert(cells.indices.end(), {base, base + 1, base + 2});
-        if (size == 4) cells.indices.insert(cells.indices.end(), {base, base + 2, base + 3});
-      });
+      for_each_face_of(volume_cell(mesh, static_cast<Index>(c)),
+                       [&](const std::array<Index, 4>& v, int size) { add_face(v.data(), size); });
     }
-    std::sort(cell_edges.begin(), cell_edges.end());
-    cell_edges.erase(std::unique(cell_edges.begin(), cell_edges.end()), cell_edges.end());
   }
   // A surface mesh's intersecting faces (check_surface_overlap), the same way.
   if (overlap && overlap->is_surface) {
     const std::size_t nq = mesh.quads.size();
     for (std::size_t c = 0; c < num_checked_cells; ++c) {
       if (!overlap->cell_intersecting[c]) continue;
-      const Index* v = c < nq ? mesh.quads[c].data() : mesh.triangles[c - nq].data();
-      const int size = c < nq ? 4 : 3;
-      const auto base = static_cast<std::uint32_t>(cells.positions.size());
-      for (int i = 0; i < size; ++i) {
-        cells.positions.push_back(local(mesh.points[static_cast<std::size_t>(v[i])]));
-        cells.colors.push_back(kIntersectingCellColor);
-        cell_edges.push_back({std::min(v[i], v[(i + 1) % size]), std::max(v[i], v[(i + 1) % size])});
-      }
-      cells.indices.insert(cells.indices.end(), {base, base + 1, base + 2});
-      if (size == 4) cells.indices.insert(cells.indices.end(), {base, base + 2, base + 3});
+      add_face(c < nq ? mesh.quads[c].data() : mesh.triangles[c - nq].data(), c < nq ? 4 : 3);
     }
-    std::sort(cell_edges.begin(), cell_edges.end());
-    cell_edges.erase(std::unique(cell_edges.begin(), cell_edges.end()), cell_edges.end());
   }
+  std::sort(cell_edges.begin(), cell_edges.end());
+  cell_edges.erase(std::unique(cell_edges.begin(), cell_edges.end()), cell_edges.end());
   scene.lines.push_back(
       edge_lines(mesh, scene.origin, cell_edges, std::vector<Rgba8>(cell_edges.size(), kIntersectionArrowColor), 1.5f));
   // Under the ranked glyphs, as the wireframe (issue 44 part V: the lilac
@@ -1028,13 +1027,14 @@ IdImage main_view_id_image(Renderer& renderer, const Scene& scene, const GlyphRe
     flat.colors.assign(set.positions.size(), id_color(kIdEdge));
     coded.triangles.push_back(std::move(flat));
   }
-  // Lines: the segments drawn at least half opaque at both ends.
+  // Lines: the segments drawn at least half opaque at both ends (the
+  // clusters' coloured edges, build_main_scene step 2, apart).
   for (const LineSet& set : scene.lines) {
     LineSet opaque;
     opaque.width = set.width;
     opaque.under_ranked_spheres = set.under_ranked_spheres;
     opaque.positions = set.positions;
-    opaque.colors.assign(set.positions.size(), id_color(kIdEdge));
+    opaque.colors.assign(set.positions.size(), id_color(coded.lines.size() == 1 ? kIdClusterEdge : kIdEdge));
     for (std::size_t i = 0; i + 1 < set.indices.size(); i += 2)
       if (set.colors[set.indices[i]].a >= 128 && set.colors[set.indices[i + 1]].a >= 128)
         opaque.indices.insert(opaque.indices.end(), {set.indices[i], set.indices[i + 1]});
@@ -1180,8 +1180,10 @@ namespace {
 // its rim (issue 44 part P, round 3): a light outline between the dark red
 // glyph and the wireframe or a dark neighbour (an inverted #0's halo is
 // the inverted ring's, which begins there too).
+// A tied #0's class: no stretch inside another glyph of the class (others),
+// so that no ring crosses a worst glyph.
 void draw_worst_glyph_ring(Image& figure, const ScreenDisc& worst, bool is_inverted, const AnnotationStyle& style,
-                           const MainViewOptions& options) {
+                           const MainViewOptions& options, std::span<const ScreenDisc> others = {}) {
   if (!(worst.radius > 0.0)) return;
   Rgba8 halo = options.background;
   halo.a = 255;
@@ -1189,16 +1191,30 @@ void draw_worst_glyph_ring(Image& figure, const ScreenDisc& worst, bool is_inver
   const double halo_width = std::max(4.0, 5.0 * style.scale);
   const double outer = radius + 0.5 * halo_width;
   const double inner = is_inverted ? radius - 0.5 * halo_width : worst.radius + 0.5;
+  const double ring_width = std::max(1.5, 2.2 * style.scale);
+  // The pale halo, the yellow band from the halo's inner edge to the dark
+  // ring (kWorstBandColor), the dark ring.
+  struct Pass {
+    double r, width;
+    Rgba8 color;
+  };
+  const double band_outer = radius - 0.5 * ring_width;
+  const Pass passes[] = {{0.5 * (inner + outer), outer - inner, halo},
+                         {0.5 * (inner + band_outer), band_outer - inner, kWorstBandColor},
+                         {radius, ring_width, style.text_color}};
   constexpr int kSegments = 96;
-  for (int pass = 0; pass < 2; ++pass) {
-    const double r = pass == 0 ? 0.5 * (inner + outer) : radius;
+  for (const Pass& pass : passes)
     for (int i = 0; i < kSegments; ++i) {
       const double a0 = 2.0 * M_PI * i / kSegments, a1 = 2.0 * M_PI * (i + 1) / kSegments;
-      draw_line(figure, worst.x + r * std::cos(a0), worst.y + r * std::sin(a0), worst.x + r * std::cos(a1),
-                worst.y + r * std::sin(a1), pass == 0 ? halo : style.text_color,
-                pass == 0 ? outer - inner : std::max(1.5, 2.2 * style.scale));
+      const double am = 0.5 * (a0 + a1);
+      const double mx = worst.x + pass.r * std::cos(am), my = worst.y + pass.r * std::sin(am);
+      if (std::any_of(others.begin(), others.end(), [&](const ScreenDisc& o) {
+            return o.id != worst.id && std::hypot(mx - o.x, my - o.y) < o.radius + 0.5 * pass.width;
+          }))
+        continue;
+      draw_line(figure, worst.x + pass.r * std::cos(a0), worst.y + pass.r * std::sin(a0),
+                worst.x + pass.r * std::cos(a1), worst.y + pass.r * std::sin(a1), pass.color, pass.width);
     }
-  }
 }
 
 // A ring in the inverted colour just outside each glyph of a cluster with an
@@ -1206,14 +1222,18 @@ void draw_worst_glyph_ring(Image& figure, const ScreenDisc& worst, bool is_inver
 // poor ones at a glance; cluster #0's dark ring goes outside it.
 // A ring's stretch inside a coloured glyph ranked before its own is left
 // out (that glyph is drawn over it: a grey glyph's ring over a coloured
-// one read as the grey glyph in front).
+// one read as the grey glyph in front). The glyphs of ids below
+// banded_below (#0's class) have their halo in the yellow band
+// (draw_worst_glyph_ring).
 void draw_inverted_glyph_rings(Image& figure, const std::vector<ScreenDisc>& inverted,
-                               const std::vector<ScreenDisc>& coloured, const AnnotationStyle& style,
-                               const MainViewOptions& options) {
-  Rgba8 halo = options.background;
-  halo.a = 255;
+                               const std::vector<ScreenDisc>& coloured, std::int64_t banded_below,
+                               const AnnotationStyle& style, const MainViewOptions& options) {
+  Rgba8 background = options.background;
+  background.a = 255;
   const Rgba8 color = to_rgba8(kInvertedColor);
   for (const ScreenDisc& d : inverted) {
+    // #0's halo is its yellow band (draw_worst_glyph_ring), up to its dark ring.
+    const Rgba8 halo = d.id >= 0 && d.id < banded_below ? kWorstBandColor : background;
     const double radius = inverted_ring_radius(d.radius, style);
     const int segments = std::clamp(static_cast<int>(radius), 24, 96);
     for (int pass = 0; pass < 2; ++pass)
@@ -1245,7 +1265,7 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
                                           const AnnotationStyle& style, const MainViewOptions& options,
                                           double glyph_scale, std::span<const Index> hidden, Index left_out,
                                           std::span<const Index> unlabelled, double worst_pixels,
-                                          std::span<const Rgba8> outlines_over_glyphs) {
+                                          std::span<const Rgba8> outlines_over_glyphs, bool cluster_edges_seen) {
   // One line per coloured tie class (glyph_tie_classes): "#k (n)  min q",
   // or for a tie "#k-#m  N tied at q".
   std::vector<Index> storage;
@@ -1359,21 +1379,28 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
     const bool capped = surrounded < members;
     const std::string n = std::to_string(surrounded);
     const std::string worst = worst_is_tied ? "#0-#" + std::to_string(tie_sizes[0] - 1) : "#0";
+    // No swatch when no pixel of them shows (all under the glyphs).
+    const std::optional<Rgba8> swatch =
+        cluster_edges_seen ? std::optional(to_rgba8(cluster_color(0, glyphs.options.top_clusters))) : std::nullopt;
     if (classes == 1)
-      lines.push_back({to_rgba8(cluster_color(0, glyphs.options.top_clusters)),
+      lines.push_back({swatch,
                        "edges at " + worst + "'s " + n + (capped ? " worst" : "") +
                            (surrounded == 1 ? " vertex" : " vertices"),
                        0, SwatchShape::thick_line});
     else if (classes > 1) {
-      lines.push_back({to_rgba8(cluster_color(0, glyphs.options.top_clusters)),
-                       "edges at " + n + (capped ? " worst vertices" : " glyph vertices"), 0, SwatchShape::thick_line});
+      lines.push_back({swatch, "edges at " + n + (capped ? " worst vertices" : " glyph vertices"), 0,
+                       SwatchShape::thick_line});
       lines.push_back({std::nullopt, "  (each in its cluster's colour)"});
     }
+    if (classes > 0 && !cluster_edges_seen) lines.push_back({std::nullopt, "  (all under the glyphs)"});
   }
   // The rings as the view draws them (draw_worst_glyph_ring,
   // draw_inverted_glyph_rings): ring swatches, unlike the square ones.
-  if (!glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0 && !worst_is_tied)
-    lines.push_back({style.text_color, "ring: worst cluster #0", 0, SwatchShape::solid_ring});
+  if (!glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0)
+    lines.push_back({style.text_color,
+                     worst_is_tied ? "ring: worst clusters #0-#" + std::to_string(tie_sizes[0] - 1)
+                                   : std::string("ring: worst cluster #0"),
+                     0, SwatchShape::solid_ring, kWorstBandColor});
   if (!glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0)
     lines.push_back({to_rgba8(kInvertedColor), "ring: inverted (min < 0)", 0, SwatchShape::solid_ring});
   // Findings and places by kind, as the markers count them: the "xN"
@@ -1490,7 +1517,7 @@ VisibleGlyph visible_glyph(const IdImage& ids, std::uint32_t id, const ScreenDis
     for (int u = 0; u < w; ++u) {
       const std::uint32_t at = ids.at(left + u, top + v, kIdBackground);
       const bool is_on_disc = std::hypot(left + u + 0.5 - disc.x, top + v + 0.5 - disc.y) < disc.radius - 0.5;
-      const bool is_own = at == id || (!lines_hide && at == kIdEdge && is_on_disc);
+      const bool is_own = at == id || (!lines_hide && is_line_id(at) && is_on_disc);
       own[static_cast<std::size_t>(v) * static_cast<std::size_t>(w) + static_cast<std::size_t>(u)] = is_own ? 1 : 0;
       if (at == id) ++result.pixels;
       if (!is_own) others.push_back({left + u, top + v});
@@ -1506,7 +1533,7 @@ VisibleGlyph visible_glyph(const IdImage& ids, std::uint32_t id, const ScreenDis
     return best;
   };
   const auto id_at = [&](double x, double y) { return ids.at(static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y))); };
-  if (id_at(disc.x, disc.y) == id || (!lines_hide && id_at(disc.x, disc.y) == kIdEdge)) {
+  if (id_at(disc.x, disc.y) == id || (!lines_hide && is_line_id(id_at(disc.x, disc.y)))) {
     const double d = clearance(disc.x, disc.y);
     if (d >= 0.5 * disc.radius) {
       result.leader_from = {disc.x, disc.y, std::max(0.0, d - 1.0), disc.id};
@@ -1835,6 +1862,8 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
     if (on_screen(d) && d.radius >= 1.0) glyph_discs.push_back({d.radius, d});
     if (on_screen(d) && g.min_quality < 0.0) result.inverted_glyphs.push_back(d);
     if (on_screen(d) && !is_grey_glyph(g.id, drawn.tie_class, drawn.coloured_classes)) result.coloured_glyphs.push_back(d);
+    if (on_screen(d) && result.worst_is_tied && drawn.tie_class[static_cast<std::size_t>(g.id)] == 0)
+      result.worst_class_glyphs.push_back(d);
   }
   std::stable_sort(glyph_discs.begin(), glyph_discs.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });
@@ -1863,6 +1892,15 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
       // Anchored where its arrows point; its own fan is an obstacle, so
       // the label sits next to the fan with a leader line to its centre.
       label.anchor = ScreenDisc{disc.x, disc.y, 3.0 * style.scale, disc.id};
+      // A fan centred on #0's glyph: its leader starts at #0's rings, not
+      // at the fan's centre (the 44r/44p reviews: gmsh_box's "x15" leader
+      // ran across #0's glyph; nothing covers it).
+      if (!result.worst_is_tied && result.worst_glyph.radius > 0.0) {
+        const double rings =
+            worst_rings_extent(result.worst_glyph.radius, glyphs.clusters[0].min_quality < 0.0, style);
+        if (std::hypot(disc.x - result.worst_glyph.x, disc.y - result.worst_glyph.y) < rings)
+          label.leader_from = ScreenDisc{result.worst_glyph.x, result.worst_glyph.y, rings, disc.id};
+      }
       markers.push_back(label);
     }
     std::stable_sort(markers.begin(), markers.end(),
@@ -1945,6 +1983,11 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
       rings.radius += result.worst_glyph.radius;
       all_obstacles.push_back(rings);
     }
+  }
+  // A tied #0's class: each member's band and ring.
+  for (ScreenDisc d : result.worst_class_glyphs) {
+    d.radius = worst_rings_extent(d.radius, glyphs.clusters[0].min_quality < 0.0, style);
+    all_obstacles.push_back(d);
   }
   all_obstacles.insert(all_obstacles.end(), fans.begin(), fans.end());
   std::vector<ScreenDisc> worst_only;
@@ -2110,10 +2153,14 @@ Scene main_view_scene(const HexMesh& mesh, const Topology& topology, const Glyph
 // The rings render_main_view draws around the glyphs.
 void draw_glyph_rings(Image& figure, const MainViewLabels& labels, const GlyphResult& glyphs,
                       const AnnotationStyle& style, const MainViewOptions& scaled) {
-  draw_inverted_glyph_rings(figure, labels.inverted_glyphs, labels.coloured_glyphs, style, scaled);
-  if (!labels.worst_is_tied)
-    draw_worst_glyph_ring(figure, labels.worst_glyph, !glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0,
-                          style, scaled);
+  // #0's class (ids 0 to n - 1) wears the band.
+  std::int64_t banded_below = labels.worst_is_tied ? 0 : 1;
+  for (const ScreenDisc& d : labels.worst_class_glyphs) banded_below = std::max(banded_below, d.id + 1);
+  draw_inverted_glyph_rings(figure, labels.inverted_glyphs, labels.coloured_glyphs, banded_below, style, scaled);
+  const bool is_inverted = !glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0;
+  if (!labels.worst_is_tied) draw_worst_glyph_ring(figure, labels.worst_glyph, is_inverted, style, scaled);
+  for (const ScreenDisc& d : labels.worst_class_glyphs)
+    draw_worst_glyph_ring(figure, d, is_inverted, style, scaled, labels.worst_class_glyphs);
 }
 
 // Marks kIdAnnotation where the rings (and with is_labels the leader lines
@@ -2129,6 +2176,7 @@ void mark_drawn(IdImage& ids, const MainViewLabels& labels, const GlyphResult& g
   for (MainViewLabel& l : white_labels.labels) l.color = white;
   white_labels.worst_glyph = labels.worst_glyph;
   white_labels.worst_is_tied = labels.worst_is_tied;
+  white_labels.worst_class_glyphs = labels.worst_class_glyphs;
   white_labels.inverted_glyphs = labels.inverted_glyphs;
   white_labels.coloured_glyphs = labels.coloured_glyphs;
   Image mask = make_image(std::max(1, ids.x0 + ids.width), std::max(1, ids.y0 + ids.height), Rgba8{0, 0, 0, 255});
@@ -2278,6 +2326,32 @@ double mesh_glyph_scale(const HexMesh& mesh, const Topology& topology, const Gly
   return any ? scale_within(all) : 1.0;
 }
 
+bool cluster_edges_in_sight(const MainViewLabels& labels, const AnnotationStyle& style) {
+  const IdImage& ids = labels.ids;
+  if (ids.empty()) return true;
+  for (int y = 0; y < ids.height; ++y)
+    for (int x = 0; x < ids.width; ++x) {
+      if (ids.ids[static_cast<std::size_t>(y) * static_cast<std::size_t>(ids.width) + static_cast<std::size_t>(x)] !=
+          kIdClusterEdge)
+        continue;
+      const int fx = x + ids.x0, fy = y + ids.y0;
+      // (The inverted rings and their halos are drawn over the disc
+      // their outer edge bounds; the id image marks only the halos.)
+      const auto under_ring = [&](const ScreenDisc& d) {
+        return std::hypot(fx + 0.5 - d.x, fy + 0.5 - d.y) <
+               inverted_ring_radius(d.radius, style) + 0.5 * inverted_halo_width(style);
+      };
+      if (std::none_of(labels.labels.begin(), labels.labels.end(),
+                       [&](const MainViewLabel& l) {
+                         const PixelRect& b = l.placement.box;
+                         return fx >= b.x && fx < b.x + b.width && fy >= b.y && fy < b.y + b.height;
+                       }) &&
+          std::none_of(labels.inverted_glyphs.begin(), labels.inverted_glyphs.end(), under_ring))
+        return true;
+    }
+  return false;
+}
+
 MainViewLabels main_view_labels(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                                 const OverlapReport* overlap, const Vec3& view_direction,
                                 const MainViewOptions& given, Scene* scene, Renderer* renderer) {
@@ -2312,7 +2386,7 @@ MainViewPlan plan_main_view(const HexMesh& mesh, const Topology& topology, const
   plan.legend = main_legend_lines(glyphs, overlap, plan.style, plan.scaled, plan.labels.glyph_scale,
                                   plan.labels.hidden_clusters, plan.labels.left_out_glyphs,
                                   plan.labels.unlabelled_clusters, plan.labels.worst_glyph.radius,
-                                  outline_colors(plan.outlines));
+                                  outline_colors(plan.outlines), cluster_edges_in_sight(plan.labels, plan.style));
   return plan;
 }
 

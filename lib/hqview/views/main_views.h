@@ -54,6 +54,14 @@ inline constexpr Rgba8 kSurfaceEdgeColor{62, 66, 76, 255};
 inline constexpr Rgba8 kCoincidentArrowColor{0, 204, 51, 255};
 inline constexpr Rgba8 kIntersectionArrowColor{204, 136, 255, 255};
 inline constexpr Rgba8 kIntersectingCellColor{204, 136, 255, 96};  // translucent lilac
+// The band around cluster #0's glyph, inside its dark ring (issue 44 part
+// C, the 44r review: the crimson #0 is a neutral dark grey to protanopes,
+// L* 39 with chroma 4, darker than the grey "others"): a bright yellow
+// #ffdd00 whose lightness (CIE L* 86-90) and, but for tritanopia (where the
+// crimson keeps chroma 94), chroma (>= 85) survive every Machado 2009
+// simulation, so #0 reads as a dark or red disc in a yellow-and-black ring
+// for every reader (docs/analysis.md, "Colours": the table per vision).
+inline constexpr Rgba8 kWorstBandColor{255, 221, 0, 255};
 // top (straight alpha) drawn over an opaque bottom, per sRGB channel as the
 // renderer blends: what a translucent colour looks like on it (the
 // intersecting cells' legend swatch).
@@ -422,7 +430,8 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
                                           double glyph_scale, std::span<const Index> hidden = {},
                                           Index left_out = 0, std::span<const Index> unlabelled = {},
                                           double worst_pixels = 0.0,
-                                          std::span<const Rgba8> outlines_over_glyphs = {});
+                                          std::span<const Rgba8> outlines_over_glyphs = {},
+                                          bool cluster_edges_seen = true);
 
 // Width / height of the 3D part of the figure render_main_view draws.
 double main_view_aspect(const MainViewOptions& options);
@@ -474,10 +483,22 @@ struct MainViewLabels {
   // Cluster #0 ties another (glyph_tie_classes): no "worst" ring (it would
   // single out one of equals); its label and legend line say "N tied".
   bool worst_is_tied = false;
+  // When #0 ties: the glyphs of its class on screen, each drawn in #0's
+  // yellow band and dark ring (all equal, none singled out; issue 44 part C:
+  // warrior's tied crimson #0-#1 were dark grey balls to protanopes).
+  std::vector<ScreenDisc> worst_class_glyphs;
   // The id image the labels were placed on (main_view_id_image with the
   // markers, the rings marked kIdAnnotation); empty when placed without one.
   IdImage ids;
 };
+
+// Whether some pixel of the clusters' coloured edges shows in labels.ids
+// outside every label box and inverted ring (drawn in style; true without
+// an id image): the legend's line
+// "edges at ..." has their swatch only then (the 44r/44p reviews: on
+// bunny_in all of #0's edges lay under its glyph, yet the legend showed a
+// crimson line).
+bool cluster_edges_in_sight(const MainViewLabels& labels, const AnnotationStyle& style);
 
 // View A's id image (issue 44: each label points at a visible part of its
 // own glyph): scene (as render_main_view draws it) drawn through camera by
@@ -485,13 +506,16 @@ struct MainViewLabels {
 //   kIdGlyph + rank  a glyph (grey or coloured);
 //   kIdEdge          a line drawn at least half opaque (the faded wireframe
 //                    and the translucent cells do not hide what is behind);
+//   kIdClusterEdge   one of the clusters' coloured edges (scene.lines[1]),
+//                    otherwise as kIdEdge;
 //   kIdMarker        an overlap arrow (with_markers; otherwise left out);
 //   kIdBackground    nothing.
 // Empty when the renderer draws no id images.
 // How far #0's rings reach around its glyph's screen radius (pixels; their
 // halo's outer edge): no label or leader of another cluster crosses them.
 double worst_rings_extent(double radius, bool is_inverted, const AnnotationStyle& style);
-inline constexpr std::uint32_t kIdBackground = 0, kIdEdge = 1, kIdMarker = 2, kIdAnnotation = 3, kIdGlyph = 16;
+inline constexpr std::uint32_t kIdBackground = 0, kIdEdge = 1, kIdMarker = 2, kIdAnnotation = 3, kIdClusterEdge = 4,
+                                kIdGlyph = 16;
 // ties: glyph_tie_classes(glyphs.clusters), or empty (computed here).
 IdImage main_view_id_image(Renderer& renderer, const Scene& scene, const GlyphResult& glyphs, const Camera& camera,
                            const PixelRect& view, bool with_markers, std::span<const Index> ties = {});
