@@ -84,9 +84,7 @@ double displayed_glyph_scale(const GlyphResult& glyphs, const Camera& camera, in
 }
 
 GlyphSizeLimits glyph_size_limits(const MainViewOptions& options) {
-  if (!options.surface_cell_quality || options.surface_inverted_cells.empty() ||
-      !options.surface_inverted_are_reversed)
-    return {};
+  if (!options.surface_cell_quality || !options.surface_inverted_are_reversed) return {};
   return {kSurfaceInvertedGlyphMinPixels, kSurfaceInvertedGlyphMaxEdges};
 }
 
@@ -1343,9 +1341,10 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
     if (glyph_scale < 1.0) {
       lines.push_back({std::nullopt, "  all shrunk x" + display_number(glyph_scale, 2) + ": #0 at most"});
       lines.push_back({std::nullopt, limits.max_edges != kWorstGlyphMaxEdges
-                                         ? "  " + display_number(limits.max_edges, 2) + " mean edge (the faces"
+                                         ? "  " + display_number(limits.max_edges, 2) + " mean edge and 3% of"
                                          : "  1 mean edge, 3% of model size"});
-      if (limits.max_edges != kWorstGlyphMaxEdges) lines.push_back({std::nullopt, "  show), 3% of model size"});
+      if (limits.max_edges != kWorstGlyphMaxEdges)
+        lines.push_back({std::nullopt, "  model size, so faces show"});
     } else if (glyph_scale > 1.0) {
       lines.push_back({std::nullopt, "  all enlarged x" + display_number(glyph_scale, 2) + ": #0 at"});
       lines.push_back({std::nullopt, "  least " + std::to_string(static_cast<int>(limits.min_pixels)) +
