@@ -84,7 +84,7 @@ double displayed_glyph_scale(const GlyphResult& glyphs, const Camera& camera, in
 }
 
 GlyphSizeLimits glyph_size_limits(const MainViewOptions& options) {
-  if (!options.surface_cell_quality || !options.surface_inverted_are_reversed) return {};
+  if (!options.surface_cell_quality) return {};
   return {kSurfaceInvertedGlyphMinPixels, kSurfaceInvertedGlyphMaxEdges};
 }
 

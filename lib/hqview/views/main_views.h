@@ -355,10 +355,11 @@ inline constexpr double kWorstGlyphMinPixels = 24.0;
 // clamp(natural, floor, max(floor, cap)). The legend says "#0 radius N px".
 inline constexpr double kWorstGlyphMaxEdges = 1.0;
 inline constexpr double kWorstGlyphMaxDiagonal = 0.03;
-// On a curved surface mesh the faces are the finding (issue 47 part R: the
-// bell's 6 reversed faces hid under glyphs of one mean edge; part C: every
-// curved surface mesh, with inverted faces or not, its worst faces filled
-// by their bin): #0 at most kSurfaceInvertedGlyphMaxEdges mean edges and
+// On a surface mesh the faces are the finding (issue 47 part R: the bell's
+// 6 reversed faces hid under glyphs of one mean edge; part C: every surface
+// mesh, curved or planar, with inverted faces or not, its worst faces
+// filled by their bin; the planar L-shape's fold lay under a glyph of one
+// mean edge): #0 at most kSurfaceInvertedGlyphMaxEdges mean edges and
 // at least kSurfaceInvertedGlyphMinPixels, so most of each face shows; the
 // legend says "  0.3 mean edge and 3% of" / "  model size, so faces show".
 inline constexpr double kSurfaceInvertedGlyphMaxEdges = 0.3;
