@@ -22,6 +22,7 @@
 #include "hqview/pipeline/analyze.h"
 #include "hqview/quality/quality_field.h"
 #include "hqview/render/camera.h"
+#include "hqview/render/id_image.h"
 #include "hqview/render/osmesa_renderer.h"
 #include "hqview/report/report_html.h"
 #include "hqview/report/viewer.h"
@@ -574,6 +575,127 @@ TEST(SurfaceViews, ACurvedSurfacesReversedFacesAreInvertedInTheReportTheChartsAn
       ++named;
     }
   EXPECT_EQ(named, 2);
+}
+
+// The share of a face's face-on pixel area in sight in view `file` (its
+// pixels in an id image of the mesh's faces, each drawn in its own id
+// through the view's orthographic camera) and the share of those pixels
+// the figure shows in `colour`.
+struct FaceInSight {
+  double seen = 0.0, in_colour = 0.0;
+};
+std::vector<FaceInSight> faces_in_sight(const Analysis& a, const ViewFile& file, Renderer& renderer, Rgba8 colour) {
+  const std::vector<BoundaryPolygon> polygons = boundary_polygons(a.topology);
+  Scene scene;
+  scene.background = id_color(0);
+  TriangleSet faces;
+  faces.is_lit = false;
+  for (std::size_t i = 0; i < polygons.size(); ++i) {
+    const auto base = static_cast<std::uint32_t>(faces.positions.size());
+    for (int k = 0; k < polygons[i].size; ++k) {
+      faces.positions.push_back(to_vec3f(a.mesh.points[static_cast<std::size_t>(polygons[i].v[static_cast<std::size_t>(k)])]));
+      faces.colors.push_back(id_color(static_cast<std::uint32_t>(i + 1)));
+    }
+    faces.indices.insert(faces.indices.end(), {base, base + 1, base + 2});
+    if (polygons[i].size == 4) faces.indices.insert(faces.indices.end(), {base, base + 2, base + 3});
+  }
+  scene.triangles.push_back(std::move(faces));
+  const IdImage ids = renderer.render_ids(scene, *file.camera, file.frame_width, file.frame_height);
+  std::vector<double> pixels(polygons.size(), 0.0), coloured(polygons.size(), 0.0);
+  const int top = file.image.height - file.frame_height;  // the 3D area sits at the figure's bottom left
+  for (int y = 0; y < ids.height; ++y)
+    for (int x = 0; x < ids.width; ++x) {
+      const std::uint32_t id = ids.at(x, y);
+      if (id == 0 || id > polygons.size()) continue;
+      pixels[id - 1] += 1.0;
+      const Rgba8 p = test::pixel_at(file.image, x, top + y);
+      coloured[id - 1] += std::abs(p.r - colour.r) <= 12 && std::abs(p.g - colour.g) <= 12 && std::abs(p.b - colour.b) <= 12;
+    }
+  const double unit = file.camera->ortho_height / file.frame_height;  // model units a pixel
+  std::vector<FaceInSight> out(polygons.size());
+  for (std::size_t i = 0; i < polygons.size(); ++i) {
+    const auto p = [&](int k) { return a.mesh.points[static_cast<std::size_t>(polygons[i].v[static_cast<std::size_t>(k % polygons[i].size)])]; };
+    const double area = polygons[i].size == 3 ? 0.5 * norm(cross(p(1) - p(0), p(2) - p(0)))
+                                              : 0.5 * norm(cross(p(2) - p(0), p(3) - p(1)));
+    out[i].seen = pixels[i] * unit * unit / area;
+    out[i].in_colour = pixels[i] > 0.0 ? coloured[i] / pixels[i] : 0.0;
+  }
+  return out;
+}
+
+// Issue 47 part C: the main views of a curved surface mesh aim at the worst
+// clusters' faces. A bell of revolution like the Gmsh one of the 47r review
+// (13 rings of 32 quads, open at the top) with two adjacent faces reversed
+// on one side of its shoulder, one on the other side (tied with them) and
+// three on its brim: the glyph-area rule looked at #0's faces from behind
+// (its glyph drawn over perfect front faces) or edge-on. Now, in view 1,
+// each of #0's faces (cluster_target_faces) is in sight at a good angle:
+// its pixels in an id image of the faces are at least half its area seen
+// face-on (within 60 degrees of its normal, nothing in front), and at least
+// 0.6 of them are the inverted colour in the figure (no glyph, ring or
+// label hides it). Every face of #0-#2 is seen in one of the two views,
+// at least 0.4 of it (the brim is near level: an upright eye, at most 35
+// degrees above it, sees it at 55 degrees or more), 0.6 in the inverted
+// colour (a glyph on a surface has no inverted ring: the faces are blue).
+TEST(SurfaceViews, TheFirstMainViewShowsTheWorstClustersFacesFromTheirVisibleSide) {
+  const int rings = 13, sectors = 32;
+  Grid g;
+  for (int j = 0; j < sectors; ++j)
+    for (int i = 0; i <= rings; ++i) {
+      const double r = 0.05 + 1.95 * i / rings, t = 2.0 * std::acos(-1.0) * j / sectors;
+      g.points.push_back({r * std::cos(t), r * std::sin(t), 0.05 + 1.45 / (1.0 + std::pow(r, 4))});
+    }
+  const auto at = [&](int i, int j) { return static_cast<Index>(i + (rings + 1) * (j % sectors)); };
+  for (int j = 0; j < sectors; ++j)
+    for (int i = 0; i < rings; ++i) g.quads.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+  const auto face = [&](int i, int j) { return static_cast<std::size_t>(i + rings * j); };
+  // Ring 5 (the shoulder) at azimuths 22 (two faces) and 157 deg; ring 11 (the brim) at 236.
+  const std::vector<std::size_t> reversed{face(5, 2), face(5, 3), face(5, 14), face(11, 21), face(11, 22), face(11, 23)};
+  for (std::size_t c : reversed) std::swap(g.quads[c][1], g.quads[c][3]);
+  const test::TempDir dir("surface_bell_views");
+  AnalyzeOptions options;
+  options.mesh_path = dir.write("bell.obj", obj_text(g));
+  options.tool_version = "test";
+  const Analysis a = analyze_mesh(options);
+  ASSERT_TRUE(a.glyphs && a.glyphs->clusters.size() >= 3);
+  const std::vector<BoundaryPolygon> polygons = boundary_polygons(a.topology);
+  std::vector<std::vector<std::size_t>> targets;
+  for (Index k = 0; k < 3; ++k)
+    targets.push_back(cluster_target_faces(*a.glyphs, k, polygons, a.field.cell_scaled_jacobian));
+  // The targets are the reversed faces, each of them once.
+  std::vector<std::size_t> cells;
+  for (const auto& t : targets)
+    for (std::size_t i : t) cells.push_back(static_cast<std::size_t>(polygons[i].cell));
+  std::sort(cells.begin(), cells.end());
+  EXPECT_EQ(cells, (std::vector<std::size_t>{reversed.begin(), reversed.end()}));
+
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  ASSERT_TRUE(renderer);
+  ViewOptions views;
+  views.width = 800;
+  views.height = 600;
+  views.views = {"main"};
+  const std::vector<RenderedView> rendered = render_views(a, views, *renderer);
+  const std::vector<ViewFile>& files = rendered.at(0).files;
+  ASSERT_EQ(files.size(), 2u);
+  const Rgba8 inverted = surface_fill_color(-1.0);
+  std::vector<std::vector<FaceInSight>> sight;
+  for (const ViewFile& f : files) {
+    ASSERT_TRUE(f.camera && !f.camera->is_perspective);
+    sight.push_back(faces_in_sight(a, f, *renderer, inverted));
+  }
+  for (std::size_t i : targets[0]) {
+    EXPECT_GE(sight[0][i].seen, 0.5) << "view 1, face of cell " << polygons[i].cell;
+    EXPECT_GE(sight[0][i].in_colour, 0.6) << "view 1, face of cell " << polygons[i].cell;
+  }
+  for (const auto& t : targets)
+    for (std::size_t i : t) {
+      const bool seen = std::any_of(sight.begin(), sight.end(), [&](const std::vector<FaceInSight>& s) {
+        return s[i].seen >= 0.4 && s[i].in_colour >= 0.6;
+      });
+      EXPECT_TRUE(seen) << "face of cell " << polygons[i].cell << ": " << sight[0][i].seen << " " << sight[0][i].in_colour
+                        << ", " << sight[1][i].seen << " " << sight[1][i].in_colour;
+    }
 }
 
 // The 47c review's surface items on a hand-built planar 8 x 8 grid in a

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <optional>
 #include <numeric>
 #include <set>
 
@@ -22,6 +23,7 @@
 #include "hqview/render/annotate.h"
 #include "hqview/render/scene_shapes.h"
 #include "hqview/views/overview_views.h"
+#include "hqview/views/overview_viewpoint.h"
 #include "hqview/views/surface_views.h"
 
 namespace hq {
@@ -31,6 +33,9 @@ Vec3 forward_of(const Camera& camera) { return normalized(camera.target - camera
 
 // The id of #0's rings as an obstacle of its own label (no glyph's, no fan's).
 constexpr std::int64_t kRingsObstacleId = -2;
+// A surface mesh's inverted face (MainViewOptions::label_free_centres): no
+// label box on it, any leader across it.
+constexpr std::int64_t kFaceObstacleId = -3;
 
 // Whether an id of main_view_id_image is a line's (any edge).
 bool is_line_id(std::uint32_t id) { return id == kIdEdge || id == kIdClusterEdge; }
@@ -83,9 +88,7 @@ double displayed_glyph_scale(const GlyphResult& glyphs, const Camera& camera, in
 }
 
 GlyphSizeLimits glyph_size_limits(const MainViewOptions& options) {
-  if (!options.surface_cell_quality || options.surface_inverted_cells.empty() ||
-      !options.surface_inverted_are_reversed)
-    return {};
+  if (!options.surface_cell_quality) return {};
   return {kSurfaceInvertedGlyphMinPixels, kSurfaceInvertedGlyphMaxEdges};
 }
 
@@ -917,7 +920,7 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
                                                                                      : unfaded;
     set.centers.push_back(local(g.position));
     set.radii.push_back(static_cast<float>(shown[static_cast<std::size_t>(g.id)]));
-    set.colors.push_back(color);
+    set.colors.push_back(is_far_side(g.id, options) ? far_side_color(color) : color);
   }
   scene.spheres.push_back(std::move(spheres));
   scene.spheres.push_back(std::move(ranked));
@@ -1168,6 +1171,20 @@ double worst_ring_radius(double radius, bool is_inverted, const AnnotationStyle&
 
 }  // namespace
 
+bool is_far_side(Index cluster, const MainViewOptions& options) {
+  const auto k = static_cast<std::size_t>(cluster);
+  return k < options.far_side_glyphs.size() && options.far_side_glyphs[k] != 0;
+}
+
+Rgba8 far_side_color(Rgba8 c) {
+  auto pale = [](std::uint8_t v) { return static_cast<std::uint8_t>(std::lround(v + kFarSideGlyphPale * (255 - v))); };
+  return {pale(c.r), pale(c.g), pale(c.b), c.a};
+}
+
+bool has_inverted_ring(const AggregatedGlyph& g, const MainViewOptions& options) {
+  return g.min_quality < 0.0 && !options.surface_cell_quality;
+}
+
 double worst_rings_extent(double radius, bool is_inverted, const AnnotationStyle& style) {
   return worst_ring_radius(radius, is_inverted, style) + 0.5 * std::max(4.0, 5.0 * style.scale);
 }
@@ -1344,9 +1361,10 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
     if (glyph_scale < 1.0) {
       lines.push_back({std::nullopt, "  all shrunk x" + display_number(glyph_scale, 2) + ": #0 at most"});
       lines.push_back({std::nullopt, limits.max_edges != kWorstGlyphMaxEdges
-                                         ? "  " + display_number(limits.max_edges, 2) + " mean edge (the faces"
+                                         ? "  " + display_number(limits.max_edges, 2) + " mean edge and 3% of"
                                          : "  1 mean edge, 3% of model size"});
-      if (limits.max_edges != kWorstGlyphMaxEdges) lines.push_back({std::nullopt, "  show), 3% of model size"});
+      if (limits.max_edges != kWorstGlyphMaxEdges)
+        lines.push_back({std::nullopt, "  model size, so faces show"});
     } else if (glyph_scale > 1.0) {
       lines.push_back({std::nullopt, "  all enlarged x" + display_number(glyph_scale, 2) + ": #0 at"});
       lines.push_back({std::nullopt, "  least " + std::to_string(static_cast<int>(limits.min_pixels)) +
@@ -1401,8 +1419,19 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
                      worst_is_tied ? "ring: worst clusters #0-#" + std::to_string(tie_sizes[0] - 1)
                                    : std::string("ring: worst cluster #0"),
                      0, SwatchShape::solid_ring, kWorstBandColor});
-  if (!glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0)
+  if (!glyphs.clusters.empty() && has_inverted_ring(glyphs.clusters[0], options))
     lines.push_back({to_rgba8(kInvertedColor), "ring: inverted (min < 0)", 0, SwatchShape::solid_ring});
+  // A surface mesh's coloured glyphs seen through it, in the first such one's pale colour.
+  {
+    std::vector<Index> storage;
+    const std::span<const Index> ties = tie_classes_of(glyphs, options.glyph_ties, storage);
+    const Index coloured = coloured_classes_of(glyphs, ties);
+    for (const AggregatedGlyph& g : glyphs.clusters)
+      if (!is_grey_glyph(g.id, ties, coloured) && is_far_side(g.id, options)) {
+        lines.push_back({far_side_color(glyph_color(g.id, ties, coloured, glyphs)), "pale: glyph on the far side", 0});
+        break;
+      }
+  }
   // Findings and places by kind, as the markers count them: the "xN"
   // labels of the marker groups add up to the two findings counts.
   std::size_t findings[2] = {0, 0};
@@ -1669,8 +1698,9 @@ bool leader_over_others(const MainViewLabel& l, const PlacedLabel& p, std::span<
   const bool is_cluster = l.kind == MainViewLabel::Kind::cluster;
   const std::int64_t own_end = std::max<std::int64_t>(l.cluster + 1, l.protect_end);
   return p.has_leader && std::any_of(obstacles.begin(), obstacles.end(), [&](const ScreenDisc& d) {
-           const bool own = is_cluster ? (d.id >= l.cluster && d.id < own_end) || (l.cluster == 0 && d.id == kRingsObstacleId)
-                                       : d.id == l.anchor.id;
+           const bool own = d.id == kFaceObstacleId ||
+                            (is_cluster ? (d.id >= l.cluster && d.id < own_end) || (l.cluster == 0 && d.id == kRingsObstacleId)
+                                        : d.id == l.anchor.id);
            return !own && leader_over_disc(p, ScreenDisc{d.x, d.y, d.radius - 0.5, d.id});
          });
 }
@@ -1757,7 +1787,7 @@ void place_main_view_callouts(MainViewLabels& result, std::vector<MainViewLabel>
     for (std::size_t i = 0; i < deferred.size(); ++i) {
       MainViewLabel& l = deferred[i];
       if (l.kind != MainViewLabel::Kind::cluster || !l.leader_from || seen.empty()) continue;
-      const auto own = kIdGlyph + static_cast<std::uint32_t>(l.cluster);
+      const auto own = kIdGlyph + static_cast<std::uint32_t>(l.anchor.id);
       if (slide_leader_start(placed[i], *l.leader_from, seen, own)) continue;
       const VisibleGlyph strict = visible_glyph(seen, own, l.anchor, true);
       if (strict.pixels == 0 || (strict.leader_from.x == l.leader_from->x && strict.leader_from.y == l.leader_from->y))
@@ -1860,7 +1890,7 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
     ScreenDisc d = screen_of(g.position, shown[static_cast<std::size_t>(g.id)]);
     d.id = g.id;
     if (on_screen(d) && d.radius >= 1.0) glyph_discs.push_back({d.radius, d});
-    if (on_screen(d) && g.min_quality < 0.0) result.inverted_glyphs.push_back(d);
+    if (on_screen(d) && has_inverted_ring(g, scaled)) result.inverted_glyphs.push_back(d);
     if (on_screen(d) && !is_grey_glyph(g.id, drawn.tie_class, drawn.coloured_classes)) result.coloured_glyphs.push_back(d);
     if (on_screen(d) && result.worst_is_tied && drawn.tie_class[static_cast<std::size_t>(g.id)] == 0)
       result.worst_class_glyphs.push_back(d);
@@ -1897,7 +1927,7 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
       // ran across #0's glyph; nothing covers it).
       if (!result.worst_is_tied && result.worst_glyph.radius > 0.0) {
         const double rings =
-            worst_rings_extent(result.worst_glyph.radius, glyphs.clusters[0].min_quality < 0.0, style);
+            worst_rings_extent(result.worst_glyph.radius, has_inverted_ring(glyphs.clusters[0], scaled), style);
         if (std::hypot(disc.x - result.worst_glyph.x, disc.y - result.worst_glyph.y) < rings)
           label.leader_from = ScreenDisc{result.worst_glyph.x, result.worst_glyph.y, rings, disc.id};
       }
@@ -1912,27 +1942,39 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
   const Index labelled_classes = drawn.coloured_classes;
   for (std::size_t i = 0; i < glyphs.clusters.size() && drawn.tie_class[i] < labelled_classes; ++i) {
     if (i > 0 && drawn.tie_class[i - 1] == drawn.tie_class[i]) continue;
-    const AggregatedGlyph& g = glyphs.clusters[i];
-    ScreenDisc disc = screen_of(g.position, shown[i]);
+    const Index tied = tie_sizes[static_cast<std::size_t>(drawn.tie_class[i])];
+    // On a surface mesh a tie's label sits on its first member in sight
+    // (the 47r review: "#0-#1 tied" named the glyph behind the bell, not
+    // the one in front); else on its first member.
+    std::size_t anchor = i;
+    for (std::size_t k = i; k < i + static_cast<std::size_t>(tied) && k < glyphs.clusters.size(); ++k)
+      if (!is_far_side(static_cast<Index>(k), scaled) && drawn.drawn[k] &&
+          on_screen(screen_of(glyphs.clusters[k].position, shown[k]))) {
+        anchor = k;
+        break;
+      }
+    const AggregatedGlyph& g = glyphs.clusters[anchor];
+    ScreenDisc disc = screen_of(g.position, shown[anchor]);
     disc.id = g.id;
     if (!on_screen(disc)) continue;
     MainViewLabel label;
     label.kind = MainViewLabel::Kind::cluster;
-    label.cluster = g.id;
-    const Index tied = tie_sizes[static_cast<std::size_t>(drawn.tie_class[i])];
+    label.cluster = glyphs.clusters[i].id;
     // A tie as a unit: "#0-#29 tied (210)", the class's vertices.
     Index vertices = 0;
     for (Index k = 0; k < tied; ++k) vertices += glyphs.clusters[i + static_cast<std::size_t>(k)].size;
-    label.text = tied > 1 ? "#" + std::to_string(g.id) + "-#" + std::to_string(g.id + tied - 1) + " tied (" +
+    const Index first = label.cluster;
+    label.text = tied > 1 ? "#" + std::to_string(first) + "-#" + std::to_string(first + tied - 1) + " tied (" +
                                 std::to_string(vertices) + ")"
-                          : "#" + std::to_string(g.id) + " (" + std::to_string(g.size) + ")";
-    label.protect_end = tied > 1 ? g.id + tied : g.id;
+                          : "#" + std::to_string(first) + " (" + std::to_string(g.size) + ")";
+    if (is_far_side(g.id, scaled)) label.text += ", far side";
+    label.protect_end = tied > 1 ? first + tied : first;
     label.color = style.text_color;
     label.anchor = disc;
     if (!seen.empty()) {
       const VisibleGlyph visible = visible_glyph(seen, kIdGlyph + static_cast<std::uint32_t>(g.id), disc, false);
       if (visible.pixels == 0) {
-        result.hidden_clusters.push_back(g.id);
+        result.hidden_clusters.push_back(first);
         continue;
       }
       label.leader_from = visible.leader_from;
@@ -1971,7 +2013,7 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
     all_obstacles.push_back(result.worst_glyph);
     // #0's rings too: no other label or leader crosses them.
     ScreenDisc rings = result.worst_glyph;
-    rings.radius = worst_rings_extent(rings.radius, glyphs.clusters[0].min_quality < 0.0, style);
+    rings.radius = worst_rings_extent(rings.radius, has_inverted_ring(glyphs.clusters[0], scaled), style);
     all_obstacles.push_back(rings);
     // And no label box (#0's own too, issue 44 part U: on a glyph capped
     // small its label box covered much of the rings) comes within #0's
@@ -1986,10 +2028,15 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
   }
   // A tied #0's class: each member's band and ring.
   for (ScreenDisc d : result.worst_class_glyphs) {
-    d.radius = worst_rings_extent(d.radius, glyphs.clusters[0].min_quality < 0.0, style);
+    d.radius = worst_rings_extent(d.radius, has_inverted_ring(glyphs.clusters[0], scaled), style);
     all_obstacles.push_back(d);
   }
   all_obstacles.insert(all_obstacles.end(), fans.begin(), fans.end());
+  for (std::size_t i = 0; i < scaled.label_free_centres.size(); ++i) {
+    ScreenDisc face = screen_of(scaled.label_free_centres[i], scaled.label_free_radii[i]);
+    face.id = kFaceObstacleId;
+    if (on_screen(face)) all_obstacles.push_back(face);
+  }
   std::vector<ScreenDisc> worst_only;
   if (result.worst_glyph.radius > 0.0) worst_only.push_back(result.worst_glyph);
   // #0's own label may sit in its neighbourhood (the 44m brief, 44l review
@@ -2045,7 +2092,7 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
         continue;
       }
       if (is_cluster && label.leader_from && !seen.empty()) {
-        const auto own = kIdGlyph + static_cast<std::uint32_t>(label.cluster);
+        const auto own = kIdGlyph + static_cast<std::uint32_t>(label.anchor.id);
         if (!slide_leader_start(*placed, *label.leader_from, seen, own)) {
           // The leader runs along a line over the glyph: placed again from
           // the glyph's pixels that no line covers.
@@ -2128,9 +2175,27 @@ MainViewFrame main_view_frame(const HexMesh& mesh, const Topology& topology, con
     frame.scaled.inverted_overlay_faces = inverted.drawn.size();
     frame.scaled.inverted_cell_count = inverted.cells;
     frame.scaled.inverted_face_count = inverted.faces;
+    if (options.surface_cell_quality && inverted.drawn.size() <= kMaxLabelFreeFaces)
+      for (const BoundaryPolygon& face : inverted.drawn) {
+        auto p = [&](int i) { return mesh.points[static_cast<std::size_t>(face.v[static_cast<std::size_t>(i % face.size)])]; };
+        Vec3 centre;
+        for (int i = 0; i < face.size; ++i) centre = centre + (1.0 / face.size) * p(i);
+        double radius = std::numeric_limits<double>::infinity();
+        for (int i = 0; i < face.size; ++i) radius = std::min(radius, norm(0.5 * (p(i) + p(i + 1)) - centre));
+        frame.scaled.label_free_centres.push_back(centre);
+        frame.scaled.label_free_radii.push_back(radius);
+      }
   }
   frame.scaled.model_diagonal_pixels =
       model_diagonal_pixels(mesh, topology, frame.camera, frame.layout.view.width, frame.layout.view.height);
+  if (options.surface_cell_quality && !glyphs.clusters.empty()) {
+    const std::vector<BoundaryPolygon> faces = boundary_polygons(topology);
+    const FaceDepthGrid grid(mesh, faces, frame.camera,
+                             static_cast<double>(frame.layout.view.width) / std::max(1, frame.layout.view.height));
+    frame.scaled.far_side_glyphs.assign(glyphs.clusters.size(), 0);
+    for (std::size_t k = 0; k < glyphs.clusters.size(); ++k)
+      frame.scaled.far_side_glyphs[k] = grid.in_sight(glyphs.clusters[k].position) ? 0 : 1;
+  }
   return frame;
 }
 
@@ -2157,7 +2222,7 @@ void draw_glyph_rings(Image& figure, const MainViewLabels& labels, const GlyphRe
   std::int64_t banded_below = labels.worst_is_tied ? 0 : 1;
   for (const ScreenDisc& d : labels.worst_class_glyphs) banded_below = std::max(banded_below, d.id + 1);
   draw_inverted_glyph_rings(figure, labels.inverted_glyphs, labels.coloured_glyphs, banded_below, style, scaled);
-  const bool is_inverted = !glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0;
+  const bool is_inverted = !glyphs.clusters.empty() && has_inverted_ring(glyphs.clusters[0], scaled);
   if (!labels.worst_is_tied) draw_worst_glyph_ring(figure, labels.worst_glyph, is_inverted, style, scaled);
   for (const ScreenDisc& d : labels.worst_class_glyphs)
     draw_worst_glyph_ring(figure, d, is_inverted, style, scaled, labels.worst_class_glyphs);
@@ -2266,11 +2331,21 @@ std::vector<OutlineRun> main_view_outlines_over_glyphs(const HexMesh& mesh, cons
   if (!labels.worst_is_tied && labels.worst_glyph.radius > 0.0) {
     worst = labels.worst_glyph;
     ScreenDisc d = labels.worst_glyph;
-    d.radius = worst_rings_extent(d.radius, !glyphs.clusters.empty() && glyphs.clusters[0].min_quality < 0.0, style);
+    d.radius = worst_rings_extent(d.radius, !glyphs.clusters.empty() && has_inverted_ring(glyphs.clusters[0], options), style);
     rings.push_back(d);
   }
   std::vector<ColouredSegment> outlines;
+  // A surface mesh's glyph seen through it: the faces on the far side (its
+  // own, as a rule) are not outlined over it (the 47r review: blue strokes
+  // over a far glyph read as faces in front).
+  std::optional<FaceDepthGrid> grid;
+  if (std::any_of(options.far_side_glyphs.begin(), options.far_side_glyphs.end(), [](char c) { return c != 0; }))
+    grid.emplace(mesh, boundary_polygons(topology), labels.camera,
+                 static_cast<double>(labels.view.width) / std::max(1, labels.view.height));
   for (const BoundaryPolygon& face : inverted_boundary_faces(topology, options).drawn) {
+    bool in_sight = !grid;
+    for (int k = 0; k < face.size && !in_sight; ++k) in_sight = grid->in_sight(grid->corner_sample(face, k));
+    if (!in_sight) continue;
     const Rgba8 color = options.surface_cell_quality
                             ? surface_fill_color((*options.surface_cell_quality)[static_cast<std::size_t>(face.cell)])
                             : to_rgba8(kInvertedColor);

@@ -153,6 +153,20 @@ struct MainViewOptions {
   std::size_t inverted_overlay_faces = 0;
   std::size_t inverted_cell_count = 0;
   std::size_t inverted_face_count = 0;
+  // A surface mesh's inverted faces, which no label box covers (the 47r
+  // review: "#2 (8)" sat on half a reversed face): each a disc about its
+  // centre of radius its centre's distance to its nearest edge midpoint
+  // (main_view_frame sets them when it draws at most
+  // kMaxLabelFreeFaces; leaders may cross them).
+  std::vector<Vec3> label_free_centres;
+  std::vector<double> label_free_radii;
+  // A surface mesh's glyphs on the far side of the surface from this view
+  // (their centre behind a face: FaceDepthGrid), per cluster, 1 = far
+  // (main_view_frame sets it): drawn pale (kFarSideGlyphPale of the way to
+  // white), their label says "far side", the legend "pale: glyph on the
+  // far side" (the 47r review: a glyph shown through the bell was read as
+  // marking the perfect faces in front of it).
+  std::vector<char> far_side_glyphs;
   // glyph_tie_classes(glyphs.clusters), per cluster: computed once for all
   // of a mesh's main views (issue 44 part V: it was computed 5 times a
   // view); empty: render_main_view and main_view_labels compute it once
@@ -164,6 +178,8 @@ struct MainViewOptions {
   double glyph_scale = 0.0;
 };
 inline constexpr std::size_t kMaxInvertedOverlayFaces = 20000, kMaxInvertedOverlayVolumeFaces = 64;
+inline constexpr std::size_t kMaxLabelFreeFaces = 200;
+inline constexpr double kFarSideGlyphPale = 0.6;
 
 // "inverted: 1200 of 1200 cells" when more than half of the volume cells
 // are inverted (cell_is_inverted): a mirrored mesh, or one with reversed
@@ -347,10 +363,13 @@ inline constexpr double kWorstGlyphMinPixels = 24.0;
 // clamp(natural, floor, max(floor, cap)). The legend says "#0 radius N px".
 inline constexpr double kWorstGlyphMaxEdges = 1.0;
 inline constexpr double kWorstGlyphMaxDiagonal = 0.03;
-// On a surface mesh with inverted (or reversed) faces the faces are the
-// finding (issue 47 part R: the bell's 6 reversed faces hid under glyphs of
-// one mean edge): #0 at most kSurfaceInvertedGlyphMaxEdges mean edges and
-// at least kSurfaceInvertedGlyphMinPixels, so most of each face shows.
+// On a surface mesh the faces are the finding (issue 47 part R: the bell's
+// 6 reversed faces hid under glyphs of one mean edge; part C: every surface
+// mesh, curved or planar, with inverted faces or not, its worst faces
+// filled by their bin; the planar L-shape's fold lay under a glyph of one
+// mean edge): #0 at most kSurfaceInvertedGlyphMaxEdges mean edges and
+// at least kSurfaceInvertedGlyphMinPixels, so most of each face shows; the
+// legend says "  0.3 mean edge and 3% of" / "  model size, so faces show".
 inline constexpr double kSurfaceInvertedGlyphMaxEdges = 0.3;
 inline constexpr double kSurfaceInvertedGlyphMinPixels = 12.0;
 // #0's drawn radius limits of a main view: the floor in pixels (at scale 1)
@@ -511,6 +530,14 @@ bool cluster_edges_in_sight(const MainViewLabels& labels, const AnnotationStyle&
 //   kIdMarker        an overlap arrow (with_markers; otherwise left out);
 //   kIdBackground    nothing.
 // Empty when the renderer draws no id images.
+// Whether view A rings g's glyph in the inverted colour: a cluster with an
+// inverted vertex, but not on a surface mesh, whose faces show that colour
+// themselves (issue 47 part C: on the bell the ring and its halo covered
+// most of the reversed faces the glyph marks).
+bool has_inverted_ring(const AggregatedGlyph& g, const MainViewOptions& options);
+// options.far_side_glyphs says cluster is on the far side; its colour there.
+bool is_far_side(Index cluster, const MainViewOptions& options);
+Rgba8 far_side_color(Rgba8 c);
 // How far #0's rings reach around its glyph's screen radius (pixels; their
 // halo's outer edge): no label or leader of another cluster crosses them.
 double worst_rings_extent(double radius, bool is_inverted, const AnnotationStyle& style);

@@ -68,38 +68,25 @@ double edge(double ax, double ay, double bx, double by, double px, double py) {
 
 }  // namespace
 
-double visible_flagged_area(const HexMesh& mesh, const Topology& topology, std::span<const char> flagged,
-                            const Vec3& direction, const Vec3& up) {
-  // The overview's own camera (perspective, fitted to the boundary), so
-  // that what is in sight here is in sight there.
-  const std::vector<Vec3> points = boundary_points(mesh, topology);
-  const Camera camera = fit_camera_to_points(points, direction, 1.0, {.up = up});
-  const Mat4 to_ndc = projection_matrix(camera, 1.0) * view_matrix(camera);
-  const Vec3 forward = normalized(camera.target - camera.eye);
+FaceDepthGrid::FaceDepthGrid(const HexMesh& mesh, std::span<const BoundaryPolygon> faces, const Camera& camera,
+                             double aspect)
+    : mesh_(&mesh),
+      to_ndc_(projection_matrix(camera, aspect) * view_matrix(camera)),
+      eye_(camera.eye),
+      forward_(normalized(camera.target - camera.eye)),
+      depth_(static_cast<std::size_t>(kViewpointGrid) * kViewpointGrid, std::numeric_limits<double>::infinity()) {
   constexpr int g = kViewpointGrid;
-  // Grid coordinates (x, y in cells) and the distance along the view
-  // direction (z, model units) of each face corner.
-  auto grid_of = [&](Index v) {
-    const Vec3& p = mesh.points[static_cast<std::size_t>(v)];
-    const Vec3 ndc = transform_point(to_ndc, p);
-    return Vec3{0.5 * (ndc.x + 1.0) * g, 0.5 * (ndc.y + 1.0) * g, dot(p - camera.eye, forward)};
-  };
-  std::vector<double> depth(static_cast<std::size_t>(g) * g, std::numeric_limits<double>::infinity());
-  auto cell = [&](double x, double y) {
-    const int cx = std::clamp(static_cast<int>(std::floor(x)), 0, g - 1);
-    const int cy = std::clamp(static_cast<int>(std::floor(y)), 0, g - 1);
-    return static_cast<std::size_t>(cy) * g + static_cast<std::size_t>(cx);
-  };
-  // 1. The depth buffer of every boundary face (two triangles each), sampled at cell centres.
+  // The depth buffer of every face (a quad as two triangles), sampled at cell centres.
   double nearest = std::numeric_limits<double>::infinity(), farthest = -nearest;
-  for (Index face : topology.boundary_faces) {
-    const Quad& q = topology.faces[static_cast<std::size_t>(face)];
-    const Vec3 p[4] = {grid_of(q[0]), grid_of(q[1]), grid_of(q[2]), grid_of(q[3])};
-    for (const Vec3& c : p) {
-      nearest = std::min(nearest, c.z);
-      farthest = std::max(farthest, c.z);
+  for (const BoundaryPolygon& face : faces) {
+    std::array<Vec3, 4> p;
+    for (int i = 0; i < face.size; ++i) {
+      p[static_cast<std::size_t>(i)] = grid_of(mesh.points[static_cast<std::size_t>(face.v[static_cast<std::size_t>(i)])]);
+      nearest = std::min(nearest, p[static_cast<std::size_t>(i)].z);
+      farthest = std::max(farthest, p[static_cast<std::size_t>(i)].z);
     }
     for (const auto& t : {std::array<int, 3>{0, 1, 2}, std::array<int, 3>{0, 2, 3}}) {
+      if (t[2] >= face.size) continue;
       const Vec3 &a = p[t[0]], &b = p[t[1]], &c = p[t[2]];
       const double area = edge(a.x, a.y, b.x, b.y, c.x, c.y);
       if (!std::isfinite(area) || std::abs(area) < 1e-12) continue;
@@ -114,41 +101,92 @@ double visible_flagged_area(const HexMesh& mesh, const Topology& topology, std::
           const double w1 = edge(c.x, c.y, a.x, a.y, px, py) / area;
           const double w2 = 1.0 - w0 - w1;
           if (w0 < 0.0 || w1 < 0.0 || w2 < 0.0) continue;
-          double& d = depth[static_cast<std::size_t>(y) * g + static_cast<std::size_t>(x)];
+          double& d = depth_[static_cast<std::size_t>(y) * g + static_cast<std::size_t>(x)];
           d = std::min(d, w0 * a.z + w1 * b.z + w2 * c.z);
         }
     }
   }
-  // 2. Each flagged face whose centre is not behind the nearest surface
-  // there (within kDepthTolerance of the boundary's depth range: the face
-  // itself, or a neighbour at its depth when it covers no cell centre)
-  // counts its projected area, in model units at the camera's target.
-  const double tolerance = kDepthTolerance * std::max(farthest - nearest, 0.0);
-  const double frame = 2.0 * norm(camera.target - camera.eye) * std::tan(0.5 * camera.fov_y_degrees * kPi / 180.0);
-  const double cell_side = frame / g;
+  // Within kDepthTolerance of the faces' depth range: the face itself, or a
+  // neighbour at its depth when it covers no cell centre.
+  tolerance_ = kDepthTolerance * std::max(farthest - nearest, 0.0);
+  // The frame's size in model units at the camera's target.
+  const double frame = camera.is_perspective
+                           ? 2.0 * norm(camera.target - camera.eye) * std::tan(0.5 * camera.fov_y_degrees * kPi / 180.0)
+                           : camera.ortho_height;
+  cell_area_ = (frame / g) * (frame * aspect / g);
+}
+
+Vec3 FaceDepthGrid::grid_of(const Vec3& p) const {
+  constexpr int g = kViewpointGrid;
+  const Vec3 ndc = transform_point(to_ndc_, p);
+  return {0.5 * (ndc.x + 1.0) * g, 0.5 * (ndc.y + 1.0) * g, dot(p - eye_, forward_)};
+}
+
+bool FaceDepthGrid::in_sight(const Vec3& p) const {
+  constexpr int g = kViewpointGrid;
+  const Vec3 at = grid_of(p);
+  if (!std::isfinite(at.x) || !std::isfinite(at.y) || at.x < 0 || at.y < 0 || at.x >= g || at.y >= g) return false;
+  const int cx = std::clamp(static_cast<int>(std::floor(at.x)), 0, g - 1);
+  const int cy = std::clamp(static_cast<int>(std::floor(at.y)), 0, g - 1);
+  return !(at.z > depth_[static_cast<std::size_t>(cy) * g + static_cast<std::size_t>(cx)] + tolerance_);
+}
+
+double FaceDepthGrid::projected_area(const BoundaryPolygon& face) const {
+  std::array<Vec3, 4> p;
+  for (int i = 0; i < face.size; ++i)
+    p[static_cast<std::size_t>(i)] = grid_of(mesh_->points[static_cast<std::size_t>(face.v[static_cast<std::size_t>(i)])]);
+  if (face.size == 3) p[3] = p[0];
+  // Half the cross product of the diagonals (a triangle: its fourth corner on its first).
+  return 0.5 * std::abs((p[2].x - p[0].x) * (p[3].y - p[1].y) - (p[2].y - p[0].y) * (p[3].x - p[1].x)) * cell_area_;
+}
+
+Vec3 FaceDepthGrid::corner_sample(const BoundaryPolygon& face, int corner) const {
+  Vec3 centre;
+  for (int i = 0; i < face.size; ++i)
+    centre = centre + (1.0 / face.size) * mesh_->points[static_cast<std::size_t>(face.v[static_cast<std::size_t>(i)])];
+  return centre + 0.75 * (mesh_->points[static_cast<std::size_t>(face.v[static_cast<std::size_t>(corner)])] - centre);
+}
+
+double visible_flagged_area(const HexMesh& mesh, const Topology& topology, std::span<const char> flagged,
+                            const Vec3& direction, const Vec3& up) {
+  // The overview's own camera (perspective, fitted to the boundary), so
+  // that what is in sight here is in sight there.
+  const std::vector<Vec3> points = boundary_points(mesh, topology);
+  const Camera camera = fit_camera_to_points(points, direction, 1.0, {.up = up});
+  std::vector<BoundaryPolygon> faces;
+  faces.reserve(topology.boundary_faces.size());
+  for (Index face : topology.boundary_faces) {
+    const Quad& q = topology.faces[static_cast<std::size_t>(face)];
+    faces.push_back({{q[0], q[1], q[2], q[3]}, 4, kNoIndex});
+  }
+  const FaceDepthGrid grid(mesh, faces, camera, 1.0);
+  // Each flagged corner whose sample is in sight counts an eighth of its
+  // face's projected area, in model units at the camera's target.
   double area = 0.0;
-  for (std::size_t i = 0; i < topology.boundary_faces.size(); ++i) {
+  for (std::size_t i = 0; i < faces.size(); ++i) {
     if (!flagged[i]) continue;
-    const Quad& q = topology.faces[static_cast<std::size_t>(topology.boundary_faces[i])];
-    const Vec3 p[4] = {grid_of(q[0]), grid_of(q[1]), grid_of(q[2]), grid_of(q[3])};
-    // The projected quad's area, half the cross product of its diagonals.
-    const double cells =
-        0.5 * std::abs((p[2].x - p[0].x) * (p[3].y - p[1].y) - (p[2].y - p[0].y) * (p[3].x - p[1].x));
-    Vec3 centre3;
-    for (Index v : q) centre3 = centre3 + 0.25 * mesh.points[static_cast<std::size_t>(v)];
-    for (int k = 0; k < 4; ++k) {
-      if (!(flagged[i] & (1 << k))) continue;
-      // The corner's share of the face (where the overview paints its
-      // colour), sampled three quarters of the way from the centre to it.
-      const Vec3 model = centre3 + 0.75 * (mesh.points[static_cast<std::size_t>(q[static_cast<std::size_t>(k)])] - centre3);
-      const Vec3 ndc = transform_point(to_ndc, model);
-      const Vec3 at{0.5 * (ndc.x + 1.0) * g, 0.5 * (ndc.y + 1.0) * g, dot(model - camera.eye, forward)};
-      if (!std::isfinite(at.x) || !std::isfinite(at.y) || at.x < 0 || at.y < 0 || at.x >= g || at.y >= g) continue;
-      if (at.z > depth[cell(at.x, at.y)] + tolerance) continue;
-      area += 0.125 * cells * cell_side * cell_side;
-    }
+    for (int k = 0; k < 4; ++k)
+      if ((flagged[i] & (1 << k)) && grid.in_sight(grid.corner_sample(faces[i], k)))
+        area += 0.125 * grid.projected_area(faces[i]);
   }
   return area;
+}
+
+Index cells_in_sight(const HexMesh& mesh, const Topology& topology, std::span<const Index> cells, const Camera& camera,
+                     double aspect) {
+  const std::vector<BoundaryPolygon> faces = boundary_polygons(topology);
+  const FaceDepthGrid grid(mesh, faces, camera, aspect);
+  std::size_t n = 0;
+  for (Index c : cells) n = std::max(n, static_cast<std::size_t>(std::max<Index>(c, -1) + 1));
+  std::vector<char> wanted(n, 0), shown(n, 0);
+  for (Index c : cells)
+    if (c >= 0) wanted[static_cast<std::size_t>(c)] = 1;
+  for (const BoundaryPolygon& face : faces) {
+    const auto c = static_cast<std::size_t>(face.cell);
+    if (face.cell < 0 || c >= wanted.size() || !wanted[c] || shown[c]) continue;
+    for (int k = 0; k < face.size && !shown[c]; ++k) shown[c] = grid.in_sight(grid.corner_sample(face, k)) ? 1 : 0;
+  }
+  return static_cast<Index>(std::count(shown.begin(), shown.end(), 1));
 }
 
 Vec3 overview_view_direction(const Vec3& up, const Vec3& front, double azimuth_degrees, double elevation_degrees) {

@@ -12,7 +12,9 @@
 #include <vector>
 
 #include "hqview/core/vec3.h"
+#include "hqview/mesh/boundary_polygons.h"
 #include "hqview/mesh/hex_mesh.h"
+#include "hqview/render/camera.h"
 #include "hqview/mesh/topology.h"
 
 namespace hq {
@@ -42,6 +44,37 @@ WorstFaces worst_boundary_faces(const Topology& topology, std::span<const double
 inline constexpr int kViewpointGrid = 200;
 double visible_flagged_area(const HexMesh& mesh, const Topology& topology, std::span<const char> flagged,
                             const Vec3& direction, const Vec3& up);
+
+// That depth test for any faces and camera (the main views of a surface
+// mesh aim at the worst cluster's faces with it): the nearest depth of
+// `faces` (a quad as two triangles) at the centres of a kViewpointGrid x
+// kViewpointGrid grid framing the camera's image of width / height aspect.
+class FaceDepthGrid {
+ public:
+  FaceDepthGrid(const HexMesh& mesh, std::span<const BoundaryPolygon> faces, const Camera& camera, double aspect);
+  // p lies in the frame and not behind the nearest face at its cell (1 %
+  // of the faces' depth range as tolerance).
+  bool in_sight(const Vec3& p) const;
+  // A face's area projected on the image plane, model units squared.
+  double projected_area(const BoundaryPolygon& face) const;
+  // The point three quarters of the way from the face's centre to its corner.
+  Vec3 corner_sample(const BoundaryPolygon& face, int corner) const;
+
+ private:
+  Vec3 grid_of(const Vec3& p) const;  // grid x, y (cells) and depth along the view (model units)
+  const HexMesh* mesh_;
+  Mat4 to_ndc_;
+  Vec3 eye_, forward_;
+  std::vector<double> depth_;
+  double tolerance_ = 0.0, cell_area_ = 0.0;
+};
+
+// How many of cells have a boundary face (boundary_polygons) in sight
+// through camera: a corner sample of it (FaceDepthGrid::corner_sample) in
+// sight against every boundary face (the overview's "N in sight" of a
+// surface mesh's outlined faces).
+Index cells_in_sight(const HexMesh& mesh, const Topology& topology, std::span<const Index> cells, const Camera& camera,
+                     double aspect);
 
 // The horizontal axis the overview's eye turns around (its azimuth 0), from
 // the model, not the file (issue 45f: a copy turned about up or turned over

@@ -14,6 +14,7 @@
 #include "hqview/render/upright.h"
 #include "hqview/views/inverted_callout.h"
 #include "hqview/views/inverted_inset.h"
+#include "hqview/views/overview_viewpoint.h"
 
 namespace hq {
 namespace {
@@ -493,6 +494,11 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
                                 SwatchShape::thick_line});  // drawn as an outline, named by one (44p review)
       if (options.inverted_are_reversed)
         f.bar.swatches.push_back({Color{}, "(orientation flipped)", SwatchShape::text});
+      // How many show from here (the 47r review counted 3 of 6 on a turned
+      // bell): filled in once the camera is known; this text is as wide as
+      // the widest it becomes.
+      const std::string all = std::to_string(options.inverted_cells.size());
+      f.bar.swatches.push_back({Color{}, all + " in sight, " + all + " on the far side", SwatchShape::text});
     }
     f.bar.swatches.push_back({to_color(kCalloutColor), "solid ring: inverted " + plural + ", some in sight", SwatchShape::solid_ring});
     f.bar.swatches.push_back(
@@ -516,6 +522,13 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
   f.layout = figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(f.bar, f.style), f.style);
   const double aspect = static_cast<double>(f.layout.view.width) / static_cast<double>(f.layout.view.height);
   f.camera = fit_camera_to_points(boundary_points(mesh, topology), view_direction_of(options), aspect, {.up = options.up});
+  if (!options.inverted_cells.empty() && options.outline_inverted_faces) {
+    const Index shown = cells_in_sight(mesh, topology, options.inverted_cells, f.camera, aspect);
+    const auto hidden = static_cast<Index>(options.inverted_cells.size()) - shown;
+    for (ColorBarSwatch& s : f.bar.swatches)
+      if (s.label.find(" in sight, ") != std::string::npos)
+        s.label = hidden == 0 ? std::string("all in sight") : std::to_string(shown) + " in sight, " + std::to_string(hidden) + " on the far side";
+  }
   f.label_size = std::max(f.style.min_text_size, static_cast<int>(std::lround(20.0 * f.style.scale)));
   return f;
 }

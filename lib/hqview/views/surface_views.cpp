@@ -1,5 +1,7 @@
 #include "hqview/views/surface_views.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -8,9 +10,14 @@
 #include <string>
 
 #include "hqview/core/box3.h"
+#include "hqview/glyph/glyph_ties.h"
 #include "hqview/image/colormap.h"
 #include "hqview/mesh/boundary_polygons.h"
 #include "hqview/quality/hex_metrics.h"
+#include "hqview/render/camera.h"
+#include "hqview/render/upright.h"
+#include "hqview/views/main_views.h"
+#include "hqview/views/overview_viewpoint.h"
 #include "hqview/views/overview_views.h"
 #include "hqview/views/structure_views.h"
 
@@ -80,6 +87,129 @@ bool is_surface_mesh_view(std::string_view id) {
 std::optional<Vec3> planar_view_direction(const Analysis& a) {
   if (!is_surface_mesh(a.mesh) || !a.mesh_summary.planarity || !a.mesh_summary.planarity->is_planar) return std::nullopt;
   return -1.0 * a.mesh_summary.planarity->normal;
+}
+
+std::vector<std::size_t> cluster_target_faces(const GlyphResult& glyphs, Index cluster,
+                                              std::span<const BoundaryPolygon> faces,
+                                              std::span<const double> cell_quality) {
+  const auto c = static_cast<std::size_t>(cluster);
+  if (c >= glyphs.clusters.size() || c + 1 >= glyphs.cluster_offsets.size()) return {};
+  const std::span<const Index> members(glyphs.cluster_vertices.data() + glyphs.cluster_offsets[c],
+                                       glyphs.cluster_vertices.data() + glyphs.cluster_offsets[c + 1]);
+  auto at_member = [&](const BoundaryPolygon& f) {
+    return std::any_of(f.v.begin(), f.v.begin() + f.size,
+                       [&](Index v) { return std::binary_search(members.begin(), members.end(), v); });
+  };
+  const double worst = glyphs.clusters[c].min_quality + kGlyphTieTolerance;
+  std::vector<std::size_t> all, worst_faces;
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    if (!at_member(faces[i])) continue;
+    all.push_back(i);
+    const auto cell = static_cast<std::size_t>(faces[i].cell);
+    if (cell < cell_quality.size() && cell_quality[cell] <= worst) worst_faces.push_back(i);
+  }
+  return worst_faces.empty() ? all : worst_faces;
+}
+
+namespace {
+
+// A face's area vector (its normal times its area).
+Vec3 area_vector(const HexMesh& mesh, const BoundaryPolygon& f) {
+  auto p = [&](int i) { return mesh.points[static_cast<std::size_t>(f.v[static_cast<std::size_t>(i % f.size)])]; };
+  return f.size == 3 ? 0.5 * cross(p(1) - p(0), p(2) - p(0)) : 0.5 * cross(p(2) - p(0), p(3) - p(1));
+}
+
+// The first allowed candidate scoring at least kNearBestFraction of the
+// largest allowed score (candidates in order of preference: the upright
+// ones first); score.size() when none scores.
+std::size_t best_of(std::span<const double> score, const std::vector<bool>& allowed) {
+  double top = 0.0;
+  for (std::size_t i = 0; i < score.size(); ++i)
+    if (allowed[i]) top = std::max(top, score[i]);
+  for (std::size_t i = 0; i < score.size(); ++i)
+    if (allowed[i] && top > 0.0 && score[i] >= kNearBestFraction * top) return i;
+  return score.size();
+}
+
+}  // namespace
+
+std::vector<Vec3> choose_surface_main_viewpoints(const HexMesh& mesh, const Topology& topology,
+                                                 const GlyphResult& glyphs, std::span<const double> cell_quality,
+                                                 std::span<const Vec3> points, double aspect, int count,
+                                                 const Vec3& up, double fov_y_degrees) {
+  const std::vector<BoundaryPolygon> faces = boundary_polygons(topology);
+  std::vector<std::vector<std::size_t>> targets;
+  for (Index k = 0; k < std::min<Index>(kSurfaceViewTargets, static_cast<Index>(glyphs.clusters.size())); ++k)
+    targets.push_back(cluster_target_faces(glyphs, k, faces, cell_quality));
+  std::vector<Vec3> candidates = upright_view_candidates(up);
+  const std::vector<Vec3> below = below_view_candidates(up);
+  candidates.insert(candidates.end(), below.begin(), below.end());
+  for (const std::vector<std::size_t>& target : targets) {
+    Vec3 largest, normal;
+    for (std::size_t i : target)
+      if (const Vec3 a = area_vector(mesh, faces[i]); norm(a) > norm(largest)) largest = a;
+    for (std::size_t i : target) {
+      const Vec3 a = area_vector(mesh, faces[i]);
+      normal = normal + (dot(a, largest) < 0.0 ? -1.0 : 1.0) * a;
+    }
+    if (norm(normal) > 0.0) candidates.insert(candidates.end(), {-1.0 * normal, normal});
+  }
+  // f[c][k]: the area of target k's faces in sight from candidate c (one task a candidate).
+  std::vector<std::vector<double>> f(candidates.size(), std::vector<double>(targets.size(), 0.0));
+  tbb::parallel_for(std::size_t{0}, candidates.size(), [&](std::size_t c) {
+    const Camera camera = fit_camera_to_points(
+        points, candidates[c], aspect, {.up = up, .fov_y_degrees = fov_y_degrees, .is_perspective = false});
+    const FaceDepthGrid grid(mesh, faces, camera, aspect);
+    for (std::size_t k = 0; k < targets.size(); ++k)
+      for (std::size_t i : targets[k])
+        for (int corner = 0; corner < faces[i].size; ++corner)
+          if (grid.in_sight(grid.corner_sample(faces[i], corner)))
+            f[c][k] += grid.projected_area(faces[i]) / faces[i].size;
+  });
+  for (std::size_t k = 0; k < targets.size(); ++k) {
+    double top = 0.0;
+    for (const auto& row : f) top = std::max(top, row[k]);
+    for (auto& row : f) row[k] = top > 0.0 ? row[k] / top : 0.0;
+  }
+  if (targets.empty() || count <= 0 || std::all_of(f.begin(), f.end(), [](const auto& row) { return row[0] <= 0.0; }))
+    return choose_main_viewpoints(points, glyphs, aspect, count, up, fov_y_degrees);
+  // View 1: #0's faces near their best, then the most of the others'.
+  std::vector<double> score(candidates.size(), 0.0);
+  std::vector<bool> allowed(candidates.size(), true);
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    allowed[c] = f[c][0] >= kNearBestFraction;
+    for (std::size_t k = 1; k < targets.size(); ++k) score[c] += f[c][k];
+    score[c] += 1e-9;  // a candidate with #0's faces alone still scores
+  }
+  // An eye below the horizon only when none above shows #0's faces so (a
+  // hill seen from underneath is hard to recognise).
+  std::vector<bool> above(candidates.size());
+  for (std::size_t c = 0; c < candidates.size(); ++c) above[c] = view_elevation_degrees(candidates[c], up) >= 0.0;
+  const auto prefer_above = [&](std::vector<bool>& ok) {
+    bool any = false;
+    for (std::size_t c = 0; c < candidates.size(); ++c) any = any || (ok[c] && above[c] && score[c] > 0.0);
+    if (any)
+      for (std::size_t c = 0; c < candidates.size(); ++c) ok[c] = ok[c] && above[c];
+  };
+  prefer_above(allowed);
+  const std::size_t first = best_of(score, allowed);
+  std::vector<Vec3> chosen{candidates[first]};
+  if (count < 2) return chosen;
+  // View 2: what view 1 shows least, from the model's other side when that shows any.
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    score[c] = 0.0;
+    for (std::size_t k = 0; k < targets.size(); ++k) score[c] += (1.0 - f[first][k] + 0.1) * f[c][k];
+    const double gap = std::abs(view_azimuth_degrees(candidates[c], up) - view_azimuth_degrees(candidates[first], up));
+    allowed[c] = c != first && std::min(gap, 360.0 - gap) >= 90.0 - 1e-9;
+  }
+  prefer_above(allowed);
+  std::size_t second = best_of(score, allowed);
+  if (second == candidates.size()) {
+    for (std::size_t c = 0; c < candidates.size(); ++c) allowed[c] = c != first;
+    second = best_of(score, allowed);
+  }
+  if (second != candidates.size()) chosen.push_back(candidates[second]);
+  return chosen;
 }
 
 Rgba8 surface_fill_color(double q) { return bin_color(fill_bin(q)); }

@@ -12,7 +12,9 @@
 #include <vector>
 
 #include "hqview/analysis/analysis.h"
+#include "hqview/glyph/glyphs.h"
 #include "hqview/image/color.h"
+#include "hqview/mesh/boundary_polygons.h"
 #include "hqview/mesh/topology.h"
 #include "hqview/render/annotate.h"
 #include "hqview/render/renderer.h"
@@ -32,6 +34,41 @@ bool is_surface_mesh_view(std::string_view id);
 // (planarity.h), so that those faces face the camera. None when the mesh
 // is not a planar surface mesh.
 std::optional<Vec3> planar_view_direction(const Analysis& a);
+
+// The main views of a curved surface mesh aim at faces, not glyphs (issue
+// 47 part C: the bell's tied-worst reversed faces 40 and 41 were on the far
+// side of view 1 and edge-on in view 2, under their glyph).
+// A cluster's target faces (indices into boundary_polygons(topology)): the
+// faces with a corner at one of its vertices whose cell scaled Jacobian
+// (cell_quality, the lowest signed corner) is within kGlyphTieTolerance of
+// the cluster's min quality, the faces that make it worst; none such: every
+// face at its vertices.
+std::vector<std::size_t> cluster_target_faces(const GlyphResult& glyphs, Index cluster,
+                                              std::span<const BoundaryPolygon> faces,
+                                              std::span<const double> cell_quality);
+// The clusters aimed at: #0 to #kSurfaceViewTargets-1 (the coloured ranks).
+inline constexpr int kSurfaceViewTargets = 3;
+// Candidates: the upright ones (upright_view_candidates), the views from the
+// horizon and below (below_view_candidates), and along each target's mean
+// face normal (its faces' normals turned to agree with its largest face's,
+// area-weighted), from either side: a surface has two sides and a reversed
+// face is seen from either. Each candidate, through the main view's
+// orthographic camera (fit_camera_to_points on points), scores per target
+// cluster the projected area of its faces in sight (FaceDepthGrid against
+// every face: each corner sample in sight counts a quarter of its face's
+// projected area); f_k = that over the largest any candidate gives it.
+// View 1 shows #0's faces: among the candidates with f_0 >= kNearBestFraction,
+// the first (upright ones first) whose sum of the other targets' f_k is at
+// least kNearBestFraction of the largest such sum. View 2 shows what view 1
+// shows least: the same near-best rule on the sum of (1 - f_k(view 1) +
+// 0.1) f_k, among the candidates at least 90 degrees of azimuth away from
+// view 1 when one of them scores. Either view from an eye below the
+// horizon only when no eye above it is allowed and scores.
+// No target face in sight from anywhere (no glyph): choose_main_viewpoints.
+std::vector<Vec3> choose_surface_main_viewpoints(const HexMesh& mesh, const Topology& topology,
+                                                 const GlyphResult& glyphs, std::span<const double> cell_quality,
+                                                 std::span<const Vec3> points, double aspect, int count,
+                                                 const Vec3& up, double fov_y_degrees = 30.0);
 
 // View A's face fill bins of a face's cell scaled Jacobian q (the lowest
 // signed corner): inverted (q <= 0) in the inverted colour, then (0, 0.3],

@@ -266,8 +266,13 @@ std::vector<ViewFile> build_main(ViewContext& c) {
     main.surface_fill_lit = !planar;
     main.surface_inverted_are_reversed = !planar;
   }
+  // A curved surface mesh: the eyes aim at the worst clusters' faces.
   const std::vector<Vec3> directions =
-      planar ? std::vector<Vec3>{*planar} : choose_main_viewpoints(points, *c.glyphs, aspect, 2, main.up, main.fov_y_degrees);
+      planar                       ? std::vector<Vec3>{*planar}
+      : is_surface_mesh(c.a.mesh) ? choose_surface_main_viewpoints(c.a.mesh, c.a.topology, *c.glyphs,
+                                                                   c.a.field.cell_scaled_jacobian, points, aspect, 2,
+                                                                   main.up, main.fov_y_degrees)
+                                  : choose_main_viewpoints(points, *c.glyphs, aspect, 2, main.up, main.fov_y_degrees);
   const OverlapReport* overlap = c.a.overlap ? &*c.a.overlap : nullptr;
   // Once for the mesh (issue 44 part V): the tie classes, and one glyph
   // scale for both views (a cluster the same size in each).
