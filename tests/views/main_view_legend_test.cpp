@@ -164,7 +164,8 @@ TEST(MainViewLegend, EveryMarkDrawnHasItsLegendLine) {
   options.inverted_cells = &a.inverted;
   int with_outlines = 0;
   for (const Vec3& direction : {Vec3{1.0, -1.0, 1.5}, Vec3{-0.3, 0.2, -1.0}, Vec3{0.1, 0.15, -1.0}}) {
-    const MainViewPlan plan = plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, direction, options, *renderer);
+    const MainViewPlan plan =
+        plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, direction, options, renderer.get());
     const std::vector<Mark> marks = marks_drawn(plan);
     // The kinds of marks this mesh makes are all there.
     for (const char* what : {"edge line", "glyph", "face", "translucent face", "arrow", "worst ring", "inverted ring"})
@@ -208,7 +209,8 @@ TEST(MainViewLegend, TheLegendBeforeFailsTheCheck) {
   options.width = 800;  // a quarter of the pixels to draw: the marks are the same
   options.height = 600;
   options.inverted_cells = &a.inverted;
-  MainViewPlan plan = plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, Vec3{1.0, -1.0, 1.5}, options, *renderer);
+  MainViewPlan plan =
+      plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, Vec3{1.0, -1.0, 1.5}, options, renderer.get());
   for (LegendLine& l : plan.legend) {
     if (l.text.starts_with("intersecting") || l.text.starts_with("coincident")) l.shape = SwatchShape::box;
     if (l.text.starts_with("intersecting hexes")) l.swatch = kIntersectingCellColor;

@@ -2278,23 +2278,9 @@ double mesh_glyph_scale(const HexMesh& mesh, const Topology& topology, const Gly
   return any ? scale_within(all) : 1.0;
 }
 
-MainViewLabels main_view_labels(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
-                                const OverlapReport* overlap, const Vec3& view_direction,
-                                const MainViewOptions& given, Scene* scene, Renderer* renderer) {
-  MainViewOptions options = given;
-  std::vector<Index> ties;
-  options.glyph_ties = tie_classes_of(glyphs, given.glyph_ties, ties);
-  const MainViewFrame f = main_view_frame(mesh, topology, glyphs, view_direction, options);
-  Scene drawn = main_view_scene(mesh, topology, glyphs, overlap, f);
-  IdImage ids;
-  if (renderer) ids = main_view_id_image(*renderer, drawn, glyphs, f.camera, f.layout.view, true, options.glyph_ties);
-  if (scene) *scene = std::move(drawn);
-  return layout_main_view_labels(glyphs, overlap, f.camera, f.layout, f.style, f.scaled, ids.empty() ? nullptr : &ids);
-}
-
 MainViewPlan plan_main_view(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                             const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& given,
-                            Renderer& renderer) {
+                            Renderer* renderer) {
   MainViewPlan plan;
   MainViewOptions options = given;
   options.glyph_ties = tie_classes_of(glyphs, given.glyph_ties, plan.ties);
@@ -2304,8 +2290,9 @@ MainViewPlan plan_main_view(const HexMesh& mesh, const Topology& topology, const
   plan.scaled = frame.scaled;
   plan.scene = main_view_scene(mesh, topology, glyphs, overlap, frame);
   // Labels placed on what is visible (each points at its own glyph's pixels).
-  IdImage ids = main_view_id_image(renderer, plan.scene, glyphs, frame.camera, plan.layout.view, true,
-                                   options.glyph_ties);
+  IdImage ids;
+  if (renderer)
+    ids = main_view_id_image(*renderer, plan.scene, glyphs, frame.camera, plan.layout.view, true, options.glyph_ties);
   plan.labels = layout_main_view_labels(glyphs, overlap, frame.camera, plan.layout, plan.style, plan.scaled,
                                         ids.empty() ? nullptr : &ids);
   plan.outlines = main_view_outlines_over_glyphs(mesh, topology, glyphs, plan.labels, plan.scaled);
@@ -2316,10 +2303,18 @@ MainViewPlan plan_main_view(const HexMesh& mesh, const Topology& topology, const
   return plan;
 }
 
+MainViewLabels main_view_labels(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
+                                const OverlapReport* overlap, const Vec3& view_direction,
+                                const MainViewOptions& options, Scene* scene, Renderer* renderer) {
+  MainViewPlan plan = plan_main_view(mesh, topology, glyphs, overlap, view_direction, options, renderer);
+  if (scene) *scene = std::move(plan.scene);
+  return std::move(plan.labels);
+}
+
 Image render_main_view(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                        const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& given,
                        Renderer& renderer) {
-  const MainViewPlan plan = plan_main_view(mesh, topology, glyphs, overlap, view_direction, given, renderer);
+  const MainViewPlan plan = plan_main_view(mesh, topology, glyphs, overlap, view_direction, given, &renderer);
   Image figure = render_figure(renderer, plan.scene, plan.labels.camera, given.width, given.height, plan.layout,
                                given.title, plan.style);
   // The rings, the outlines over the glyphs, the labels (in this order:

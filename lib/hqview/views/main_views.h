@@ -539,8 +539,8 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
                                        const MainViewOptions& scaled, const IdImage* ids = nullptr);
 
 // The labels render_main_view draws for view_direction (and, when scene is
-// not null, the scene it draws), figure pixels; placed on the id image when
-// renderer is not null (as render_main_view does), else without one.
+// not null, the scene it draws), figure pixels: plan_main_view's (placed
+// on the id image when renderer is not null, as render_main_view does).
 MainViewLabels main_view_labels(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                                 const OverlapReport* overlap, const Vec3& view_direction,
                                 const MainViewOptions& options, Scene* scene = nullptr, Renderer* renderer = nullptr);
@@ -569,7 +569,8 @@ std::vector<Rgba8> outline_colors(std::span<const OutlineRun> runs);
 // lines (main_legend_lines, with the outlines' colours). Every mark the
 // figure shows is in scene, labels (the rings: worst_glyph,
 // inverted_glyphs) or outlines, and the legend names each (tests/views/
-// main_view_legend_test.cpp).
+// main_view_legend_test.cpp). renderer null: the labels are placed without
+// an id image (and no outline is drawn over a glyph).
 struct MainViewPlan {
   AnnotationStyle style;
   FigureLayout layout;
@@ -582,7 +583,7 @@ struct MainViewPlan {
 };
 MainViewPlan plan_main_view(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                             const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& options,
-                            Renderer& renderer);
+                            Renderer* renderer);
 
 // The figure: title, the 3D view, the labels (layout_main_view_labels:
 // every marker group with its number of findings "xN", the worst clusters
