@@ -2283,7 +2283,8 @@ MainViewPlan plan_main_view(const HexMesh& mesh, const Topology& topology, const
                             Renderer* renderer) {
   MainViewPlan plan;
   MainViewOptions options = given;
-  options.glyph_ties = tie_classes_of(glyphs, given.glyph_ties, plan.ties);
+  std::vector<Index> ties;  // when not given: computed once for this view, not kept
+  options.glyph_ties = tie_classes_of(glyphs, given.glyph_ties, ties);
   const MainViewFrame frame = main_view_frame(mesh, topology, glyphs, view_direction, options);
   plan.style = frame.style;
   plan.layout = frame.layout;
@@ -2300,6 +2301,7 @@ MainViewPlan plan_main_view(const HexMesh& mesh, const Topology& topology, const
                                   plan.labels.hidden_clusters, plan.labels.left_out_glyphs,
                                   plan.labels.unlabelled_clusters, plan.labels.worst_glyph.radius,
                                   outline_colors(plan.outlines));
+  plan.scaled.glyph_ties = given.glyph_ties;  // the caller's (ties ends here)
   return plan;
 }
 

@@ -574,8 +574,7 @@ std::vector<Rgba8> outline_colors(std::span<const OutlineRun> runs);
 struct MainViewPlan {
   AnnotationStyle style;
   FigureLayout layout;
-  MainViewOptions scaled;   // its glyph_ties refer to ties
-  std::vector<Index> ties;  // glyph_tie_classes when options had none
+  MainViewOptions scaled;  // its glyph_ties are the given options' (empty: computed where needed)
   Scene scene;
   MainViewLabels labels;
   std::vector<OutlineRun> outlines;
