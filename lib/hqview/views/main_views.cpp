@@ -761,7 +761,7 @@ std::vector<std::uint8_t> worst_cluster_vertices(const GlyphResult& glyphs, int 
 
 Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                        const OverlapReport* overlap, const Camera& camera, int view_height,
-                       const MainViewOptions& options) {
+                       const MainViewOptions& options, const InvertedFaces* inverted) {
   if (glyphs.vertex_cluster.size() != mesh.points.size())
     throw Error("glyph result does not match the mesh (" + std::to_string(glyphs.vertex_cluster.size()) + " vs " +
                 std::to_string(mesh.points.size()) + " vertices)");
@@ -946,7 +946,9 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   // depth-tested against the mesh's fill and the glyphs (part U round 2:
   // drawn over everything they turned #0 blue). Their outlines show over
   // the glyphs (main_view_outlines_over_glyphs).
-  const std::vector<BoundaryPolygon> inverted_faces = inverted_boundary_faces(topology, options).drawn;
+  InvertedFaces computed;
+  if (!inverted) computed = inverted_boundary_faces(topology, options);
+  const std::vector<BoundaryPolygon>& inverted_faces = (inverted ? *inverted : computed).drawn;
   if (!inverted_faces.empty()) {
     TriangleSet faces;
     faces.is_lit = false;
@@ -2066,6 +2068,7 @@ struct MainViewFrame {
   FigureLayout layout;
   Camera camera;
   MainViewOptions scaled;
+  InvertedFaces inverted;  // inverted_boundary_faces (with_inverted; else none)
 };
 
 MainViewFrame main_view_frame(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
@@ -2081,10 +2084,10 @@ MainViewFrame main_view_frame(const HexMesh& mesh, const Topology& topology, con
   frame.scaled = options;
   frame.scaled.pixel_scale = frame.style.scale;
   if (with_inverted) {
-    const InvertedFaces inverted = inverted_boundary_faces(topology, options);
-    frame.scaled.inverted_overlay_faces = inverted.drawn.size();
-    frame.scaled.inverted_cell_count = inverted.cells;
-    frame.scaled.inverted_face_count = inverted.faces;
+    frame.inverted = inverted_boundary_faces(topology, options);
+    frame.scaled.inverted_overlay_faces = frame.inverted.drawn.size();
+    frame.scaled.inverted_cell_count = frame.inverted.cells;
+    frame.scaled.inverted_face_count = frame.inverted.faces;
   }
   frame.scaled.model_diagonal_pixels =
       model_diagonal_pixels(mesh, topology, frame.camera, frame.layout.view.width, frame.layout.view.height);
@@ -2099,7 +2102,8 @@ namespace {
 // dense on screen, so glyphs and clusters stay readable.
 Scene main_view_scene(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                       const OverlapReport* overlap, const MainViewFrame& f) {
-  Scene scene = build_main_scene(mesh, topology, glyphs, overlap, f.camera, f.layout.view.height, f.scaled);
+  Scene scene =
+      build_main_scene(mesh, topology, glyphs, overlap, f.camera, f.layout.view.height, f.scaled, &f.inverted);
   const double pixels =
       median_edge_pixels(scene.lines[0], scene.origin, f.camera, f.layout.view.width, f.layout.view.height);
   const double opacity = std::clamp(pixels / 10.0, 0.2, 0.85);
@@ -2205,10 +2209,10 @@ std::vector<OutlineRun> segment_runs_over_glyphs(std::span<const ColouredSegment
 
 }  // namespace
 
-std::vector<OutlineRun> main_view_outlines_over_glyphs(const HexMesh& mesh, const Topology& topology,
-                                                       const GlyphResult& glyphs, const MainViewLabels& labels,
-                                                       const MainViewOptions& options) {
-  const AnnotationStyle style = annotation_style_for(options.height);
+std::vector<OutlineRun> main_view_outlines_over_glyphs(const HexMesh& mesh, const GlyphResult& glyphs,
+                                                       const MainViewLabels& labels, const MainViewOptions& options,
+                                                       const AnnotationStyle& style,
+                                                       std::span<const BoundaryPolygon> inverted_faces) {
   std::vector<ScreenDisc> rings;
   for (ScreenDisc d : labels.inverted_glyphs) {
     d.radius = inverted_ring_radius(d.radius, style) + 0.5 * inverted_halo_width(style);
@@ -2222,7 +2226,7 @@ std::vector<OutlineRun> main_view_outlines_over_glyphs(const HexMesh& mesh, cons
     rings.push_back(d);
   }
   std::vector<ColouredSegment> outlines;
-  for (const BoundaryPolygon& face : inverted_boundary_faces(topology, options).drawn) {
+  for (const BoundaryPolygon& face : inverted_faces) {
     const Rgba8 color = options.surface_cell_quality
                             ? surface_fill_color((*options.surface_cell_quality)[static_cast<std::size_t>(face.cell)])
                             : to_rgba8(kInvertedColor);
@@ -2296,7 +2300,8 @@ MainViewPlan plan_main_view(const HexMesh& mesh, const Topology& topology, const
     ids = main_view_id_image(*renderer, plan.scene, glyphs, frame.camera, plan.layout.view, true, options.glyph_ties);
   plan.labels = layout_main_view_labels(glyphs, overlap, frame.camera, plan.layout, plan.style, plan.scaled,
                                         ids.empty() ? nullptr : &ids);
-  plan.outlines = main_view_outlines_over_glyphs(mesh, topology, glyphs, plan.labels, plan.scaled);
+  plan.outlines =
+      main_view_outlines_over_glyphs(mesh, glyphs, plan.labels, plan.scaled, plan.style, frame.inverted.drawn);
   plan.legend = main_legend_lines(glyphs, overlap, plan.style, plan.scaled, plan.labels.glyph_scale,
                                   plan.labels.hidden_clusters, plan.labels.left_out_glyphs,
                                   plan.labels.unlabelled_clusters, plan.labels.worst_glyph.radius,

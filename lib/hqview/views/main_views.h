@@ -313,9 +313,11 @@ inline constexpr double kInvertedFaceLift = 2e-3;
 // coloured glyph's radius from its centre (the vertex it marks).
 inline constexpr double kInvertedOutlineWidth = 2.0, kInvertedOutlineCore = 0.5;
 
+// inverted: inverted_boundary_faces(topology, options) when the caller has
+// it (plan_main_view walks the boundary once a view); null: computed here.
 Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                        const OverlapReport* overlap, const Camera& camera, int view_height,
-                       const MainViewOptions& options);
+                       const MainViewOptions& options, const InvertedFaces* inverted = nullptr);
 
 // How view A draws the glyphs (issue 44: on a long model a glyph of one
 // mean edge is 10-15 pixels and cluster #0 does not stand out). Every
@@ -555,10 +557,12 @@ struct OutlineRun {
 // camera, view and id image): the outlines of the inverted faces drawn
 // (scene 5b) where a glyph or a glyph ring hides them, but never on #0's
 // disc (its glyph stays whole) nor within kInvertedOutlineCore of another
-// coloured glyph's radius of its centre. options: as render_main_view's.
-std::vector<OutlineRun> main_view_outlines_over_glyphs(const HexMesh& mesh, const Topology& topology,
-                                                       const GlyphResult& glyphs, const MainViewLabels& labels,
-                                                       const MainViewOptions& options);
+// coloured glyph's radius of its centre. options and style: as
+// render_main_view's; inverted_faces: inverted_boundary_faces(...).drawn.
+std::vector<OutlineRun> main_view_outlines_over_glyphs(const HexMesh& mesh, const GlyphResult& glyphs,
+                                                       const MainViewLabels& labels, const MainViewOptions& options,
+                                                       const AnnotationStyle& style,
+                                                       std::span<const BoundaryPolygon> inverted_faces);
 // The distinct colours of runs, in order of first use (main_legend_lines'
 // outlines_over_glyphs: one line swatch each).
 std::vector<Rgba8> outline_colors(std::span<const OutlineRun> runs);
