@@ -283,12 +283,12 @@ TEST(GlyphTiesView, GlyphRadiusIsCappedFromAboveAndTheLegendSaysHowBig) {
     return texts;
   };
   legend = inverted_legend();
-  // "hexes" on a pure-hex mesh (no cell_kinds), as the page's card
+  // "hexes" on a pure-hex mesh (cell_noun "hex"), as the page's card
   // (issue 45: one word for one count); "cells" on a hybrid mesh.
   EXPECT_TRUE(has_line(legend, "inverted hexes: 520"));
-  inverted.cell_kinds = "64 hex, 484 tet";
+  inverted.cell_noun = "cell";
   EXPECT_TRUE(has_line(inverted_legend(), "inverted cells: 520"));
-  inverted.cell_kinds.clear();
+  inverted.cell_noun = "hex";
   EXPECT_TRUE(has_line(legend, "  their 759 boundary faces"));
   EXPECT_TRUE(has_line(legend, "  not drawn (more than 64)"));
   // One depth rule (issue 44 part V): all drawn, near and far, as the glyphs.

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <unordered_map>
 
+#include "hqview/core/text.h"
 #include "hqview/mesh/boundary_polygons.h"
 #include "hqview/mesh/cell_faces.h"
 #include "hqview/render/id_image.h"
@@ -109,7 +110,7 @@ double disc_overlap_area(double x0, double y0, double r0, double x1, double y1, 
 // "6 inverted hexes" (noun empty: "6 inverted").
 std::string count_inverted(std::size_t n, const std::string& noun) {
   std::string label = std::to_string(n) + " inverted";
-  if (!noun.empty()) label += " " + noun + (n == 1 ? "" : noun == "hex" ? "es" : "s");
+  if (!noun.empty()) label += " " + plural(noun, n);
   return label;
 }
 

@@ -14,10 +14,11 @@
 #include <numeric>
 
 #include "hqview/core/error.h"
+#include "hqview/core/number_format.h"
+#include "hqview/core/text.h"
+#include "hqview/image/colormap.h"
 #include "hqview/mesh/boundary_polygons.h"
 #include "hqview/mesh/cell_faces.h"
-#include "hqview/core/number_format.h"
-#include "hqview/image/colormap.h"
 #include "hqview/render/annotate.h"
 #include "hqview/render/scene_shapes.h"
 #include "hqview/views/overview_views.h"
@@ -1389,7 +1390,7 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
   const std::size_t intersecting = overlap ? static_cast<std::size_t>(overlap->num_intersecting_cells) : 0;
   // One word for one count (issue 45): "hexes" on a pure-hex mesh, as its
   // page's cards, overlap table and overview say; "cells" on a hybrid one.
-  const std::string cells_word = options.cell_kinds.empty() ? "hexes" : "cells";
+  const std::string cells_word = plural(options.cell_noun);
   // The inverted cells and which of their boundary faces the view draws
   // (issue 44 part U, round 2: a legend said nothing of dolphin_rot's 759
   // faces left out). A surface mesh's fill lines count them.

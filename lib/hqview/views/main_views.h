@@ -107,6 +107,9 @@ struct MainViewOptions {
   // A legend line naming the mesh's cell kinds ("cells: 64 hex, 484 tet,
   // 16 pyramid", mesh_kinds_text); empty (pure-hex meshes): no line.
   std::string cell_kinds;
+  // The mesh's cells in the legend's counts ("inverted hexes: N"): "hex",
+  // or "cell" on a mesh with other volume cells (views.cpp cell_noun).
+  std::string cell_noun = "hex";
   // A legend line for a mesh whose cells are mostly inverted
   // (mostly_inverted_note); empty: none.
   std::string orientation_note;

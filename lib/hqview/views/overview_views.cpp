@@ -7,6 +7,7 @@
 #include <string>
 
 #include "hqview/core/error.h"
+#include "hqview/core/text.h"
 #include "hqview/image/colormap.h"
 #include "hqview/mesh/boundary_polygons.h"
 #include "hqview/mesh/cell_faces.h"
@@ -522,29 +523,30 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
   }
   // Both ring entries size the legend; the figure keeps those it draws.
   if (!options.inverted_cells.empty()) {
-    const std::string plural = options.cell_noun == "hex" ? "hexes" : options.cell_noun + "s";
+    const std::string cells = plural(options.cell_noun);
     if (options.outline_inverted_faces) {
       f.bar.swatches.push_back({to_color(kInvertedOutlineColor),
                                 "outlined: " + std::to_string(options.inverted_cells.size()) +
                                     (options.inverted_are_reversed ? " reversed " : " inverted ") +
-                                    (options.inverted_cells.size() == 1 ? options.cell_noun : plural),
+                                    plural(options.cell_noun, options.inverted_cells.size()),
                                 SwatchShape::thick_line});  // drawn as an outline, named by one (44p review)
       if (options.inverted_are_reversed)
         f.bar.swatches.push_back({Color{}, "(orientation flipped)", SwatchShape::text});
     }
-    f.bar.swatches.push_back({to_color(kCalloutColor), "solid ring: inverted " + plural + " in sight", SwatchShape::solid_ring});
+    f.bar.swatches.push_back(
+        {to_color(kCalloutColor), "solid ring: inverted " + cells + " in sight", SwatchShape::solid_ring});
     f.bar.swatches.push_back(
         {to_color(kCalloutColor), "dashed ring: inside or on the far side", SwatchShape::dashed_ring});
   }
   if (options.intersecting_cells > 0) {
-    const std::string plural = options.cell_noun == "hex" ? "hexes" : options.cell_noun + "s";
     // Volume meshes: the edges drawn (issue 45 part G); a surface mesh's
     // faces: "intersecting faces", the word of its page and main view, drawn
     // there only (issue 47 part F).
     const bool drawn = !options.intersecting_cell_ids.empty();
     f.bar.swatches.push_back({to_color(kIntersectingEdgeColor),
-                              "intersecting " + (options.outline_inverted_faces ? std::string("faces") : plural) + ": " +
-                                  std::to_string(options.intersecting_cells) + (drawn ? " (edges," : ""),
+                              "intersecting " +
+                                  (options.outline_inverted_faces ? std::string("faces") : plural(options.cell_noun)) +
+                                  ": " + std::to_string(options.intersecting_cells) + (drawn ? " (edges," : ""),
                               drawn ? SwatchShape::thick_line : SwatchShape::text});
     if (drawn)
       f.bar.swatches.push_back({Color{}, "seen through the surface)", SwatchShape::text});
