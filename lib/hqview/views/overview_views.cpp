@@ -11,6 +11,7 @@
 #include "hqview/image/colormap.h"
 #include "hqview/mesh/boundary_polygons.h"
 #include "hqview/mesh/cell_faces.h"
+#include "hqview/quality/quad_metrics.h"
 #include "hqview/render/annotate.h"
 #include "hqview/render/upright.h"
 #include "hqview/views/inverted_callout.h"
@@ -106,8 +107,11 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
   // A curved surface's reversed faces (options.inverted_are_reversed): the
   // inverted colour stays on them (issue 47 part R: their corners' negative
   // vertex quality turned half of every neighbour blue, ~3x their area).
-  // A face not inverted has no negative corner of its own, so its corners
-  // below 0 take its lowest corner at or above 0.
+  // A face not reversed has a negative corner of its own only where it is
+  // concave (a reflex corner: its signed corner area below 0, as the
+  // quality measures it): there it keeps the value below 0, as the colour
+  // bar's note says; its other corners below 0 (a neighbour's) take its
+  // lowest corner at or above 0.
   std::vector<Index> reversed;
   if (options.inverted_are_reversed) {
     reversed = options.inverted_cells;
@@ -123,8 +127,13 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
       double lowest = std::numeric_limits<double>::infinity();
       for (int i = 0; i < polygon.size; ++i)
         if (corner[static_cast<std::size_t>(i)] >= 0.0) lowest = std::min(lowest, corner[static_cast<std::size_t>(i)]);
+      std::array<double, 4> own_area{0.0, 0.0, 0.0, 0.0};  // a triangle: no reflex corner
+      if (polygon.size == 4)
+        own_area = quad_signed_corner_areas({point(mesh, polygon.v[0]), point(mesh, polygon.v[1]),
+                                             point(mesh, polygon.v[2]), point(mesh, polygon.v[3])});
       if (std::isfinite(lowest))
-        for (double& q : corner) q = q < 0.0 ? lowest : q;
+        for (std::size_t i = 0; i < corner.size(); ++i)
+          if (corner[i] < 0.0 && !(own_area[i] < 0.0)) corner[i] = lowest;
     }
     if (polygon.size == 3) {
       // A triangle (of a tet, wedge or pyramid): its 3 corners, one flat
