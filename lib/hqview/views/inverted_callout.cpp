@@ -498,6 +498,7 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
   // lines (issue 45g: rockarm's small ring between a large ring and the
   // view's top edge had no room for one line).
   LabelPlacer placer(taken, layout);
+  const DiscIndex ring_index(rings);
   for (std::size_t i = 0; i < labels.size(); ++i) {
     const ScreenDisc ring = rings[i];
     const int one_line = text_extent(labels[i].text, text_size, style).width;
@@ -514,7 +515,7 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
       // crossed rings and ended on the wrong one).
       request.protect_below = static_cast<std::int64_t>(rings.size());
       request.strict_leaders = true;
-      p = placer.place(request, rings);
+      p = placer.place(request, ring_index);
       const double step = std::max(0.5 * ring.radius, 0.75 * text_size);
       for (int k = 1; !p && k <= 24; ++k)
         for (const auto& [sx, sy] : {std::pair{-1, 0}, std::pair{1, 0}, std::pair{0, -1}, std::pair{0, 1},
@@ -524,7 +525,7 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
           moved.anchor.y += sy * k * step;
           moved.leader_from = ring;
           moved.anchor.radius = std::min(ring.radius, 0.5 * text_size);  // only where the box is tried from
-          p = placer.place(moved, rings);
+          p = placer.place(moved, ring_index);
           if (p) break;
         }
       if (p) labels[i].lines = lines;

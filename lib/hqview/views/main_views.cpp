@@ -1965,6 +1965,7 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
       kMaxLeaderShare * std::hypot(static_cast<double>(layout.view.width), static_cast<double>(layout.view.height));
   // One greedy placement of the labels in `order`, onto result's copy.
   const MainViewLabels unplaced = result;
+  const DiscIndex all_index(all_obstacles), worst_label_index(worst_label_obstacles), worst_only_index(worst_only);
   const auto lay_out = [&](std::vector<MainViewLabel> order) {
     MainViewLabels result = unplaced;
     LabelPlacer placer({}, options);
@@ -1987,10 +1988,9 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
       // callouts, and moved bunny's, kitten's and Dolphin_padded's fine
       // labels), unless its leader runs longer than kMaxLeaderShare of the
       // view's diagonal: then a callout, if one is nearer.
-      const std::vector<ScreenDisc>& obstacles =
-          is_cluster && label.cluster == 0 ? worst_label_obstacles : all_obstacles;
+      const DiscIndex& obstacles = is_cluster && label.cluster == 0 ? worst_label_index : all_index;
       std::optional<PlacedLabel> placed = placer.place(request, obstacles);
-      if (!placed && !is_cluster) placed = placer.place(request, worst_only);
+      if (!placed && !is_cluster) placed = placer.place(request, worst_only_index);
       // So is one whose leader crosses other glyphs (the 44l review): a
       // callout may pass them by.
       if (placed && placed->has_leader &&
