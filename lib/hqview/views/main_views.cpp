@@ -1180,8 +1180,8 @@ namespace {
 // A ring around cluster #0's glyph on screen (dark on a pale halo, a few
 // pixels outside its silhouette), so the worst place is found first even
 // where its glyph is small. The halo hugs the glyph from 0.5 px outside
-// its rim (issue 44 part P, round 3): a light outline between the dark red
-// glyph and the wireframe or a dark neighbour (an inverted #0's halo is
+// its rim (issue 44 part P, round 3): a light outline between #0's glyph
+// and the wireframe or a dark neighbour (an inverted #0's halo is
 // the inverted ring's, which begins there too).
 void draw_worst_glyph_ring(Image& figure, const ScreenDisc& worst, bool is_inverted, const AnnotationStyle& style,
                            const MainViewOptions& options) {
@@ -1670,8 +1670,9 @@ std::pair<std::size_t, std::size_t> layout_faults(const MainViewLabels& labels, 
 // leader's way into the callouts too, #0's short leader became 700 px).
 // A callout is kept only if its leader crosses no coloured glyph (ids below
 // coloured_ids) but its own tie class's, no placed label's box or leader,
-// and is at most max_leader long (and, for a label with a fallback, shorter
-// than the fallback's); else the fallback, else a marker label at its
+// and is at most max_leader long (and, for a label with a fallback, better
+// than the fallback: off the glyphs its leader crosses, or shorter); else
+// the fallback, else a marker label at its
 // anchor's right, clamped to the view (the counts add up), a cluster label
 // left out (omitted_clusters).
 void place_main_view_callouts(MainViewLabels& result, std::vector<MainViewLabel> deferred,

@@ -39,18 +39,16 @@ inline constexpr Rgba8 kWireframeColor{120, 124, 134, 255};
 // 47 part F). Their width stays the wireframe's: wider lines at the plane
 // hid the thin parts of a folded quad that its neighbours overlap.
 inline constexpr Rgba8 kSurfaceEdgeColor{62, 66, 76, 255};
-// Coincident vertices: a green #00cc33 (issue 44 part P, round 3: the
-// dark green #005500 was CIEDE2000 3.4 from the dark red #0 under
-// protanopia; before it the near-black #191919 was 4 from the worst ring's
-// dark grey and the hexes' charcoal edges, the orange 3.8 from the quality
-// map). Intersections: a lilac #cc88ff for the pairs' arrows and the
-// cells' edges, the cells' faces a translucent tint of it (the legend
-// gives the pairs an arrow swatch, the cells a square of the tint as drawn
-// on the background: two things, two swatches; the dark magenta #8c1478
-// was 8 from the violet pyramid edges). Both CIEDE2000 >= 20 from the
-// cluster colours, the pale grey and each other for normal vision, and
-// under protanopia, deuteranopia and tritanopia >= 10 from the cluster
-// colours (image/colormap.cpp, tests/views/palette_test.cpp).
+// Coincident vertices: a green #00cc33. Intersections: a lilac #cc88ff for
+// the pairs' arrows and the cells' edges, the cells' faces a translucent
+// tint of it (the legend gives the pairs an arrow swatch, the cells a
+// square of the tint as drawn on the background: two things, two
+// swatches). Both CIEDE2000 >= 20 from the cluster colours, the pale grey
+// and each other for normal vision, and >= 8 from the cluster colours
+// under simulated protanopia, deuteranopia and tritanopia, away from the
+// quality map, the rings' greys and the cell kinds' edges
+// (image/colormap.cpp, tests/views/palette_test.cpp; the colours they
+// replaced: CHANGELOG, issue 44).
 inline constexpr Rgba8 kCoincidentArrowColor{0, 204, 51, 255};
 inline constexpr Rgba8 kIntersectionArrowColor{204, 136, 255, 255};
 inline constexpr Rgba8 kIntersectingCellColor{204, 136, 255, 96};  // translucent lilac
