@@ -655,9 +655,8 @@ TEST(ErrorDensityViews, EverySwatchDistinctAndEveryMaxMarkInTheLegend) {
         // inside an edge, off the max hex's corners.
         const auto off_corners = [&](const Vec3f& p) {
           const Vec3 at = parts->scene.origin + Vec3{p.x, p.y, p.z};
-          return std::none_of(mesh.hexes[0].begin(), mesh.hexes[0].end(), [&](Index v) {
-            return norm(at - mesh.points[static_cast<std::size_t>(v)]) < 1e-4;
-          });
+          return std::none_of(mesh.hexes[0].begin(), mesh.hexes[0].end(),
+                              [&](Index v) { return norm(at - mesh.points[static_cast<std::size_t>(v)]) < 1e-4; });
         };
         const bool dashed = std::any_of(lines.indices.begin(), lines.indices.end(),
                                         [&](std::uint32_t i) { return off_corners(lines.positions[i]); });

@@ -274,8 +274,9 @@ TEST(Palette, CellKindColoursApartFromEveryLegendColour) {
 }
 
 // #0 is the most alarming colour: a vivid red (CIELCh hue within 25
-// degrees of the quality map's worst end, chroma >= 70), no other palette colour within 45 degrees of that hue; no cluster
-// colour within 55 degrees of the inverted blue's hue or 40 of the lilac's,
+// degrees of the quality map's worst end, chroma >= 70), no other palette
+// colour within 45 degrees of that hue; no cluster colour within 55
+// degrees of the inverted blue's hue or 40 of the lilac's,
 // and #1-#3 no green (hue 95-165 with chroma > 12; the 44p review: keep
 // them off the inverted and overlap colours and the map's calm end).
 double hue_degrees(const Rgba8& c) {

@@ -912,8 +912,7 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
     std::vector<std::size_t> kept;
     const auto clear = [&](std::size_t i, double max_leader) {
       return local_label_clear(shot, i, kept, guards,
-                               {shot.dot.x, shot.dot.y, dot_radius + local_leader_clearance(leader_width)},
-                               max_leader);
+                               {shot.dot.x, shot.dot.y, dot_radius + local_leader_clearance(leader_width)}, max_leader);
     };
     // The placer's answer for corner i: its own disc as drawn (its label may
     // sit next to its rim), the others guarded.
