@@ -778,10 +778,11 @@ bool sampled_over_disc(const PlacedLabel& p, const ScreenDisc& d) {
 // 44m rules ("#3 behind #1", "#4 behind #0") no longer arose on the shared
 // meshes. Built on purpose: a 16 x 16 x 4 box of unit hexes, its vertex
 // quality 1 but at 3 vertices (by hand), each a cluster of one: #0 at the
-// top face's centre (8, 8, 4), -0.9 (radius 1.9 mean edges); #1 at
-// (10, 8, 0), -0.2 (1.2), and #2 at (7, 7, 0), 0 (1.0), on the bottom face
-// 2 and 1.4 units aside, seen from straight above (glyph scale 1): each
-// centre behind #0's disc, part of each glyph beside it. Both labels say
+// top face's centre (8, 8, 4), -1 (radius 2 mean edges); #1 at (10, 8, 0),
+// -0.2 (1.2), and #2 at (6, 8, 0), -0.1 (1.1), on the bottom face 2 units
+// either side, seen from nearly straight above (glyph scale 1; the bottom
+// about 0.9 times as large as the top): each centre behind #0's disc, the
+// outer part of each glyph beside it, beyond #0's rings. Both labels say
 // "behind #0", each has a leader, which starts at least 3 px off #0's
 // rings (LeadersEndOffTheWorstRings' rule) and runs over no glyph ranked
 // before its own (TurnedDolphinLeadersPassHigherRanksBy's rule: #1's
@@ -798,13 +799,13 @@ TEST(MainViewLabels, HiddenGlyphsLeadersLeaveTheWorseGlyphsAndRingsBy) {
     ADD_FAILURE() << "no vertex at " << p.x << ", " << p.y << ", " << p.z;
     return std::size_t{0};
   };
-  quality[at({8, 8, 4})] = -0.9;
+  quality[at({8, 8, 4})] = -1.0;
   quality[at({10, 8, 0})] = -0.2;
-  quality[at({7, 7, 0})] = 0.0;
+  quality[at({6, 8, 0})] = -0.1;
   c.glyphs = compute_glyphs(c.mesh.points, quality, test::mean_edge_length(c.mesh, c.topology), GlyphOptions{});
   ASSERT_EQ(c.glyphs.clusters.size(), 3u);
   EXPECT_EQ(c.glyphs.clusters[1].position.x, 10.0);
-  EXPECT_EQ(c.glyphs.clusters[2].position.x, 7.0);
+  EXPECT_EQ(c.glyphs.clusters[2].position.x, 6.0);
   const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
   MainViewOptions options;
   options.width = 800;
