@@ -10,6 +10,7 @@
 #include "hqview/core/error.h"
 #include "hqview/image/colormap.h"
 #include "hqview/mesh/boundary_polygons.h"
+#include "hqview/mesh/surface_boundary.h"
 #include "support/fixtures.h"
 
 namespace hq {
@@ -152,7 +153,8 @@ TEST(QualityOverviewScene, CurvedSurfaceKeepsReversedAndReflexCornersBelowZero) 
   std::vector<double> quality(mesh.points.size(), 1.0);
   for (Index v : mesh.quads[reversed]) quality[static_cast<std::size_t>(v)] = -0.9;
   quality[static_cast<std::size_t>(reflex)] = -0.5;
-  const Topology topology = build_topology(mesh);
+  Topology topology = build_topology(mesh);
+  add_surface_faces_as_boundary(mesh, topology);  // as the pipeline draws a surface
   OverviewOptions options;
   options.inverted_are_reversed = true;
   options.inverted_cells = {static_cast<Index>(reversed)};
