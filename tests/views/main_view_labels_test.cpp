@@ -718,6 +718,24 @@ TEST(MainViewLabels, EveryClusterFindsRoomAndLeadersPassGlyphsBy) {
   }
 }
 
+// Whether leader p runs over disc d, by sampling (independent of
+// label_layout's leader_over_disc): a point every 0.25 px along it inside
+// the disc (its edge 0.5 px in) and more than 1 px nearer its centre than
+// the leader's start (a leader heading out of a disc holding its start
+// does not run over it).
+bool sampled_over_disc(const PlacedLabel& p, const ScreenDisc& d) {
+  const double length = std::hypot(p.leader_x1 - p.leader_x0, p.leader_y1 - p.leader_y0);
+  const double start = std::hypot(p.leader_x0 - d.x, p.leader_y0 - d.y);
+  const int steps = std::max(1, static_cast<int>(std::ceil(4.0 * length)));
+  for (int i = 0; i <= steps; ++i) {
+    const double t = static_cast<double>(i) / steps;
+    const double r = std::hypot(p.leader_x0 + t * (p.leader_x1 - p.leader_x0) - d.x,
+                                p.leader_y0 + t * (p.leader_y1 - p.leader_y0) - d.y);
+    if (r < d.radius - 0.5 && r < start - 1.0) return true;
+  }
+  return false;
+}
+
 // Dolphin_padded turned 90 degrees about x (the 44m brief, 44l review C2:
 // in view 2 "#3 (15) behind #1" started on #1's disc, at the seam where #3
 // shows, and its 320 px leader ran through all of #1 while the upper right
@@ -756,33 +774,15 @@ TEST(MainViewLabels, TurnedDolphinLeadersPassHigherRanksBy) {
   EXPECT_GT(pairs, 0);
 }
 
-// Whether leader p runs over disc d, by sampling (independent of
-// label_layout's leader_over_disc): a point every 0.25 px along it inside
-// the disc (its edge 0.5 px in) and more than 1 px nearer its centre than
-// the leader's start (a leader heading out of a disc holding its start
-// does not run over it).
-bool sampled_over_disc(const PlacedLabel& p, const ScreenDisc& d) {
-  const double length = std::hypot(p.leader_x1 - p.leader_x0, p.leader_y1 - p.leader_y0);
-  const double start = std::hypot(p.leader_x0 - d.x, p.leader_y0 - d.y);
-  const int steps = std::max(1, static_cast<int>(std::ceil(4.0 * length)));
-  for (int i = 0; i <= steps; ++i) {
-    const double t = static_cast<double>(i) / steps;
-    const double r = std::hypot(p.leader_x0 + t * (p.leader_x1 - p.leader_x0) - d.x,
-                                p.leader_y0 + t * (p.leader_y1 - p.leader_y0) - d.y);
-    if (r < d.radius - 0.5 && r < start - 1.0) return true;
-  }
-  return false;
-}
-
 // The 2nd-pass review B #3: since 44r colours 3 clusters, the cases of the
 // 44m rules ("#3 behind #1", "#4 behind #0") no longer arose on the shared
-// meshes. Built on purpose: a 16 x 16 x 4 box of unit hexes, its vertex
-// quality 1 but at 3 vertices (by hand), each a cluster of one: #0 at the
-// top face's centre (8, 8, 4), -1 (radius 2 mean edges); #1 at (10, 8, 0),
-// -0.2 (1.2), and #2 at (6, 8, 0), -0.1 (1.1), on the bottom face 2 units
-// either side, seen from nearly straight above (glyph scale 1; the bottom
-// about 0.9 times as large as the top): each centre behind #0's disc, the
-// outer part of each glyph beside it, beyond #0's rings. Both labels say
+// meshes. Built on purpose: a 16 x 16 x 8 box of unit hexes, its vertex
+// quality 1 but at 3 vertices (by hand), each a cluster of one (glyphs of
+// 1.5 mean edges at ratio 1): #0 at the top face's centre (8, 8, 8), 0
+// (radius 1.5); #1 at (9, 8, 0), 0.1 (1.35), and #2 at (7, 8, 4), 0.2
+// (1.2), apart in 3D, 1 unit either side of #0 seen from nearly straight
+// above (view A is orthographic; glyph scale 1): each centre behind #0's
+// disc, the outer part of each glyph beside it, beyond #0's ring. Both labels say
 // "behind #0", each has a leader, which starts at least 3 px off #0's
 // rings (LeadersEndOffTheWorstRings' rule) and runs over no glyph ranked
 // before its own (TurnedDolphinLeadersPassHigherRanksBy's rule: #1's
@@ -790,7 +790,7 @@ bool sampled_over_disc(const PlacedLabel& p, const ScreenDisc& d) {
 // are labelled.
 TEST(MainViewLabels, HiddenGlyphsLeadersLeaveTheWorseGlyphsAndRingsBy) {
   Case c;
-  c.mesh = test::box_grid(16, 16, 4);
+  c.mesh = test::box_grid(16, 16, 8);
   c.topology = build_topology(c.mesh);
   std::vector<double> quality(c.mesh.points.size(), 1.0);
   const auto at = [&](const Vec3& p) {
@@ -799,13 +799,13 @@ TEST(MainViewLabels, HiddenGlyphsLeadersLeaveTheWorseGlyphsAndRingsBy) {
     ADD_FAILURE() << "no vertex at " << p.x << ", " << p.y << ", " << p.z;
     return std::size_t{0};
   };
-  quality[at({8, 8, 4})] = -1.0;
-  quality[at({10, 8, 0})] = -0.2;
-  quality[at({6, 8, 0})] = -0.1;
-  c.glyphs = compute_glyphs(c.mesh.points, quality, test::mean_edge_length(c.mesh, c.topology), GlyphOptions{});
+  quality[at({8, 8, 8})] = 0.0;
+  quality[at({9, 8, 0})] = 0.1;
+  quality[at({7, 8, 4})] = 0.2;
+  c.glyphs = compute_glyphs(c.mesh.points, quality, test::mean_edge_length(c.mesh, c.topology), {.rmax = 1.5});
   ASSERT_EQ(c.glyphs.clusters.size(), 3u);
-  EXPECT_EQ(c.glyphs.clusters[1].position.x, 10.0);
-  EXPECT_EQ(c.glyphs.clusters[2].position.x, 6.0);
+  EXPECT_EQ(c.glyphs.clusters[1].position.x, 9.0);
+  EXPECT_EQ(c.glyphs.clusters[2].position.x, 7.0);
   const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
   MainViewOptions options;
   options.width = 800;
@@ -825,7 +825,7 @@ TEST(MainViewLabels, HiddenGlyphsLeadersLeaveTheWorseGlyphsAndRingsBy) {
   EXPECT_TRUE(labels.hidden_clusters.empty());
   EXPECT_TRUE(labels.unlabelled_clusters.empty());
   const AnnotationStyle style = annotation_style_for(options.height);
-  const double rings = worst_rings_extent(worst.radius, true, style);
+  const double rings = worst_rings_extent(worst.radius, false, style);
   int leaders = 0, pairs = 0;
   for (const MainViewLabel& l : labels.labels) {
     if (l.kind != MainViewLabel::Kind::cluster || l.cluster == 0) continue;
