@@ -212,7 +212,7 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
   auto grow = [](Extent& e, const Extent& f) {
     e.x0 = std::min(e.x0, f.x0), e.y0 = std::min(e.y0, f.y0), e.x1 = std::max(e.x1, f.x1), e.y1 = std::max(e.y1, f.y1);
   };
-  const double max_radius = std::max(min_radius, 0.45 * std::min(view.width, view.height));
+  const double max_radius = max_callout_radius(view, min_radius);
   auto ring_of = [&](const Extent& e, InvertedCallout& c) {
     c.x = 0.5 * (e.x0 + e.x1);
     c.y = 0.5 * (e.y0 + e.y1);

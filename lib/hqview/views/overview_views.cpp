@@ -479,23 +479,25 @@ PixelBox projected_box(std::span<const Vec3> points, const Camera& camera, const
 // the model refitted (the same eye direction) into box `to`: centres by
 // the similarity that takes the one box onto the other (exact when the
 // views' aspects agree, the fit's camera then the same), radii scaled but
-// at least min_radius (inverted_callouts' floor, pixels at every scale).
-// No ring is larger than inverted_callouts would draw it there, but for
+// at least min_radius and at most max_callout_radius of the model's view
+// `model` (inverted_callouts' floor and cap, pixels at every scale). No
+// ring is larger than inverted_callouts would draw it there, but for
 // groups it would merge at the smaller scale: a mapped ring under an inset
 // is one there (plan_quality_overview skips that layout without rendering).
 std::vector<InvertedCallout> mapped_callouts(std::span<const InvertedCallout> callouts, const PixelBox& from,
-                                             const PixelBox& to, double min_radius) {
+                                             const PixelBox& to, const PixelRect& model, double min_radius) {
   const double from_w = from.x1 - from.x0, from_h = from.y1 - from.y0;
   const double scale =
       from_w >= from_h ? (to.x1 - to.x0) / std::max(1e-9, from_w) : (to.y1 - to.y0) / std::max(1e-9, from_h);
   const auto x_of = [&](double x) { return 0.5 * (to.x0 + to.x1) + scale * (x - 0.5 * (from.x0 + from.x1)); };
   const auto y_of = [&](double y) { return 0.5 * (to.y0 + to.y1) + scale * (y - 0.5 * (from.y0 + from.y1)); };
+  const double largest = max_callout_radius(model, min_radius);
+  const auto radius_of = [&](double r) { return std::min(largest, std::max(min_radius, scale * r)); };
   std::vector<InvertedCallout> mapped(callouts.begin(), callouts.end());
   for (InvertedCallout& c : mapped) {
-    c.x = x_of(c.x), c.y = y_of(c.y), c.radius = std::max(min_radius, scale * c.radius);
+    c.x = x_of(c.x), c.y = y_of(c.y), c.radius = radius_of(c.radius);
     if (c.hidden_radius > 0.0)
-      c.hidden_x = x_of(c.hidden_x), c.hidden_y = y_of(c.hidden_y),
-      c.hidden_radius = std::max(min_radius, scale * c.hidden_radius);
+      c.hidden_x = x_of(c.hidden_x), c.hidden_y = y_of(c.hidden_y), c.hidden_radius = radius_of(c.hidden_radius);
   }
   return mapped;
 }
@@ -662,7 +664,7 @@ OverviewPlan plan_quality_overview(const HexMesh& mesh, const Topology& topology
   for (const Candidate& c : candidates) {
     const Camera camera = fitted(c.strip.model);
     const std::vector<InvertedCallout> mapped =
-        mapped_callouts(full, silhouette, projected_box(points, camera, c.strip.model), min_radius);
+        mapped_callouts(full, silhouette, projected_box(points, camera, c.strip.model), c.strip.model, min_radius);
     const std::size_t num_insets = inset_callouts(mapped, c.strip.slots, f.label_size, full_area).size();
     if (rings_under(mapped, std::span(c.strip.slots).first(num_insets), thickness)) continue;
     if (place(c.strip, camera)) return plan;
