@@ -356,12 +356,14 @@ async function checkLightboxFits(page, href, what) {
   fs.copyFileSync(example('twisted_bar.mesh'), path.join(deep, 'twisted_bar_optimised_with_a_very_long_descriptive_file_name_v2.mesh'));
   fs.copyFileSync(example('ball.off'), path.join(collection, 'ball.off'));
   const batchOut = path.join(outDir, 'batch');
+  let batchStatus = 0;
   try {
     execFileSync(hqview, ['batch', collection, '-o', batchOut, '--views', 'thumbnail,overview', '--no-viewer',
       '--gate', 'mesh.num_hexes>=500', '--data', 'none', '-j', '2', '-q'], { stdio: 'inherit' });
   } catch (e) {
-    check(e.status === 1, `batch with a failing gate exits 1 (got ${e.status})`);
+    batchStatus = e.status;
   }
+  check(batchStatus === 1, `batch with a failing gate exits 1 (got ${batchStatus})`);
   const { page, problems } = await open(path.join(batchOut, 'index.html'), { width: 1400, height: 1000 });
   const table = await page.$eval('#mesh-table', (t) => {
     const box = t.closest('.scroll');

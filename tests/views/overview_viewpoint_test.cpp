@@ -381,5 +381,33 @@ TEST(OverviewViewpoint, StraightAboveNamesNoSide) {
   EXPECT_EQ(overview_side_name({0, 0, 1}, {0, 0, 1}, {0, -1, 0}), "straight below (elevation -90 deg)");
 }
 
+// The 2nd-pass review B #8: the title's turn said "inverted hexes" on a
+// hybrid mesh, whose page and legend say "cells". The eye turned to the
+// inverted cells (azimuth 120, elevation 35 from a front taken from them),
+// in each mesh's noun.
+TEST(OverviewViewpoint, TitleNamesTheMeshsCells) {
+  OverviewViewpoint eye;
+  eye.front = {0, -1, 0};
+  eye.direction = overview_view_direction({0, 0, 1}, eye.front, 120.0, 35.0);
+  eye.is_default = false;
+  eye.target = WorstFaces::Kind::inverted;
+  eye.front_from_target = true;
+  const std::string side = "above, back right (azimuth 120 deg from the inverted ";
+  EXPECT_EQ(overview_eye_words(eye, {0, 0, 1}, "hex"),
+            ", from " + side + "hexes' side, elevation 35 deg), turned to show the inverted hexes");
+  EXPECT_EQ(overview_eye_words(eye, {0, 0, 1}, "cell"),
+            ", from " + side + "cells' side, elevation 35 deg), turned to show the inverted cells");
+  EXPECT_EQ(overview_eye_words(eye, {0, 0, 1}, "quad"),
+            ", from " + side + "quads' side, elevation 35 deg), turned to show the inverted quads");
+  // Turned to the worst cluster, from the model's own front: no cell noun.
+  eye.target = WorstFaces::Kind::worst_cluster;
+  eye.front_from_target = false;
+  EXPECT_EQ(overview_eye_words(eye, {0, 0, 1}, "cell"),
+            ", from above, back right (azimuth 120 deg from the model's front, elevation 35 deg), turned to show the "
+            "worst cluster");
+  eye.is_default = true;
+  EXPECT_EQ(overview_eye_words(eye, {0, 0, 1}, "cell").find("turned"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace hq

@@ -9,6 +9,8 @@
 
 #include "hqview/core/error.h"
 #include "hqview/image/colormap.h"
+#include "hqview/mesh/boundary_polygons.h"
+#include "hqview/mesh/surface_boundary.h"
 #include "support/fixtures.h"
 
 namespace hq {
@@ -126,6 +128,57 @@ TEST(QualityOverviewScene, EmptyMeshGivesAnEmptyScene) {
   const Scene scene = build_quality_overview_scene(mesh, topology, {}, {});
   EXPECT_EQ(triangle_count(scene), 0u);
   EXPECT_EQ(segment_count(scene), 0u);
+}
+
+// The 2nd-pass review B #5: on a curved surface (inverted_are_reversed) a
+// face that is not reversed kept no corner below 0, though the colour bar
+// says a concave face's reflex corner is drawn there. A 4 x 4 grid of
+// quads: quad (0, 0) reversed (its corners at -0.9 by hand), quad (2, 2)
+// concave, its corner 2 (vertex (3, 3)) pushed to (2.3, 2.3), past the
+// diagonal between its neighbours (at -0.5 by hand); every other vertex 1.
+// Below 0 in the scene: the reversed face's 4 corners and the concave
+// face's reflex corner, nothing else (the 3 other faces at (3, 3) and the
+// reversed face's neighbours take their lowest corner at or above 0).
+TEST(QualityOverviewScene, CurvedSurfaceKeepsReversedAndReflexCornersBelowZero) {
+  HexMesh mesh;
+  const auto id = [](int i, int j) { return static_cast<Index>(i + 5 * j); };
+  for (int j = 0; j <= 4; ++j)
+    for (int i = 0; i <= 4; ++i) mesh.points.push_back({static_cast<double>(i), static_cast<double>(j), 0.0});
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) mesh.quads.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+  std::swap(mesh.quads[0][1], mesh.quads[0][3]);  // quad (0, 0) reversed
+  const Index reflex = id(3, 3);
+  mesh.points[static_cast<std::size_t>(reflex)] = {2.3, 2.3, 0.0};
+  const std::size_t concave = 2 + 4 * 2, reversed = 0;
+  std::vector<double> quality(mesh.points.size(), 1.0);
+  for (Index v : mesh.quads[reversed]) quality[static_cast<std::size_t>(v)] = -0.9;
+  quality[static_cast<std::size_t>(reflex)] = -0.5;
+  Topology topology = build_topology(mesh);
+  add_surface_faces_as_boundary(mesh, topology);  // as the pipeline draws a surface
+  OverviewOptions options;
+  options.inverted_are_reversed = true;
+  options.inverted_cells = {static_cast<Index>(reversed)};
+  const Scene scene = build_quality_overview_scene(mesh, topology, quality, options);
+  const std::vector<BoundaryPolygon> polygons = boundary_polygons(topology);
+  ASSERT_EQ(polygons.size(), 16u);
+  const TriangleSet& fill = scene.triangles.at(0);
+  ASSERT_EQ(fill.scalars.size(), 5u * polygons.size());  // 4 corners and a centre a quad, in face order
+  int below = 0, lifted = 0;
+  for (std::size_t f = 0; f < polygons.size(); ++f) {
+    const auto cell = static_cast<std::size_t>(polygons[f].cell);
+    for (std::size_t k = 0; k < 4; ++k) {
+      const Index v = polygons[f].v[k];
+      const bool expected = cell == reversed || (cell == concave && v == reflex);
+      const float value = fill.scalars[5 * f + k];
+      EXPECT_EQ(value < 0.0f, expected) << "quad " << cell << " corner " << k;
+      below += value < 0.0f;
+      lifted += !expected && quality[static_cast<std::size_t>(v)] < 0.0 && value == 1.0f;
+    }
+  }
+  EXPECT_EQ(below, 5);
+  // At the reflex vertex 3 other faces, at the reversed face's 3 outer
+  // corners 2 + 2 + 1 more (6): each lifted to its lowest corner, 1.
+  EXPECT_EQ(lifted, 3 + 5);
 }
 
 TEST(BoundaryBoundingBox, SpansTheBoundaryVertices) {

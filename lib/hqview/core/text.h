@@ -1,6 +1,8 @@
 #pragma once
 // Small text helpers shared by readers, rules and pages.
 
+#include <cstddef>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -27,6 +29,13 @@ inline std::vector<std::string_view> split(std::string_view text, char separator
     if (end == std::string_view::npos) return pieces;
     start = end + 1;
   }
+}
+
+// A cell noun ("hex", "cell", "quad", "triangle", "face") for n of them:
+// the noun itself for 1, else its plural ("hexes", "cells", ...).
+inline std::string plural(std::string_view noun, std::size_t n = 2) {
+  if (n == 1) return std::string(noun);
+  return std::string(noun) + (noun.ends_with('x') ? "es" : "s");
 }
 
 }  // namespace hq

@@ -30,31 +30,18 @@ int majority_side(const Mesh& mesh, const Vec3& n) {
 
 }  // namespace
 
-Planarity measure_planarity(const Mesh& mesh, double diagonal) {
-  Planarity out;
-  std::vector<char> used(mesh.points.size(), 0);
-  for_each_surface_cell(mesh, [&](const std::array<Index, 4>& c, int size) {
-    for (int i = 0; i < size; ++i) used[static_cast<std::size_t>(c[static_cast<std::size_t>(i)])] = 1;
-  });
-  std::size_t n = 0;
+LeastSquaresPlane least_squares_plane(std::span<const Vec3> points) {
+  LeastSquaresPlane plane;
+  if (points.empty()) return plane;
   Vec3 sum;
-  for (std::size_t v = 0; v < used.size(); ++v)
-    if (used[v]) {
-      sum = sum + mesh.points[v];
-      ++n;
-    }
-  if (n == 0) {
-    out.is_planar = true;
-    return out;
-  }
-  out.centroid = sum / static_cast<double>(n);
+  for (const Vec3& p : points) sum = sum + p;
+  plane.centroid = sum / static_cast<double>(points.size());
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (std::size_t v = 0; v < used.size(); ++v)
-    if (used[v]) {
-      const Vec3 d = mesh.points[v] - out.centroid;
-      const Eigen::Vector3d e(d.x, d.y, d.z);
-      covariance += e * e.transpose();
-    }
+  for (const Vec3& p : points) {
+    const Vec3 d = p - plane.centroid;
+    const Eigen::Vector3d e(d.x, d.y, d.z);
+    covariance += e * e.transpose();
+  }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
   const Eigen::Vector3d e = solver.eigenvectors().col(0);  // smallest eigenvalue first
   Vec3 normal{e.x(), e.y(), e.z()};
@@ -62,11 +49,29 @@ Planarity measure_planarity(const Mesh& mesh, double diagonal) {
   const double largest = std::abs(normal.x) >= std::abs(normal.y) && std::abs(normal.x) >= std::abs(normal.z) ? normal.x
                          : std::abs(normal.y) >= std::abs(normal.z)                                          ? normal.y
                                                                                                               : normal.z;
-  if (largest < 0) normal = -normal;
+  plane.normal = largest < 0 ? -normal : normal;
+  return plane;
+}
+
+Planarity measure_planarity(const Mesh& mesh, double diagonal) {
+  Planarity out;
+  std::vector<char> used(mesh.points.size(), 0);
+  for_each_surface_cell(mesh, [&](const std::array<Index, 4>& c, int size) {
+    for (int i = 0; i < size; ++i) used[static_cast<std::size_t>(c[static_cast<std::size_t>(i)])] = 1;
+  });
+  std::vector<Vec3> points;
+  for (std::size_t v = 0; v < used.size(); ++v)
+    if (used[v]) points.push_back(mesh.points[v]);
+  if (points.empty()) {
+    out.is_planar = true;
+    return out;
+  }
+  const LeastSquaresPlane plane = least_squares_plane(points);
+  out.centroid = plane.centroid;
+  Vec3 normal = plane.normal;
   if (majority_side(mesh, normal) < 0) normal = -normal;
   out.normal = normal;
-  for (std::size_t v = 0; v < used.size(); ++v)
-    if (used[v]) out.max_distance = std::max(out.max_distance, std::abs(dot(mesh.points[v] - out.centroid, normal)));
+  for (const Vec3& p : points) out.max_distance = std::max(out.max_distance, std::abs(dot(p - out.centroid, normal)));
   out.planarity = diagonal > 0 ? out.max_distance / diagonal : 0.0;
   out.is_planar = out.planarity <= kPlanarTolerance;
   return out;

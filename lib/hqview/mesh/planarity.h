@@ -9,6 +9,7 @@
 // (quads first; triangles when there is no quad) point to.
 
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "hqview/core/vec3.h"
@@ -19,6 +20,16 @@ namespace hq {
 // 1e-6 of the diagonal: far above the rounding of coordinates written with
 // 7 significant digits (float), far below any intended relief.
 inline constexpr double kPlanarTolerance = 1e-6;
+
+// The least-squares plane of points: through their centroid, its normal
+// the unit eigenvector of the smallest eigenvalue of their covariance
+// (Eigen's SelfAdjointEigenSolver), signed so that its largest component
+// is positive. No points: the origin and +z.
+struct LeastSquaresPlane {
+  Vec3 centroid;
+  Vec3 normal{0, 0, 1};
+};
+LeastSquaresPlane least_squares_plane(std::span<const Vec3> points);
 
 struct Planarity {
   Vec3 normal{0, 0, 1};  // unit

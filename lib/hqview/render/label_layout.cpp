@@ -204,7 +204,7 @@ void LabelPlacer::add(const PlacedLabel& label) {
 // Whether any item of items registered in cells near [x0, x1] x [y0, y1]
 // satisfies pred.
 template <class T, class Pred>
-bool any_near(const std::unordered_map<std::int64_t, std::vector<std::uint32_t>>& cells, const std::vector<T>& items,
+bool any_near(const std::unordered_map<std::int64_t, std::vector<std::uint32_t>>& cells, std::span<const T> items,
               double x0, double y0, double x1, double y1, Pred&& pred) {
   bool found = false;
   for_cells(x0, y0, x1, y1, [&](std::int64_t k) {
@@ -222,32 +222,34 @@ bool any_near(const std::unordered_map<std::int64_t, std::vector<std::uint32_t>>
 
 template <class Pred>
 bool LabelPlacer::any_box_near(double x0, double y0, double x1, double y1, Pred&& pred) const {
-  return any_near(box_cells_, boxes_, x0, y0, x1, y1, pred);
+  return any_near(box_cells_, std::span<const PixelRect>(boxes_), x0, y0, x1, y1, pred);
 }
 
 template <class Pred>
 bool LabelPlacer::any_leader_near(double x0, double y0, double x1, double y1, Pred&& pred) const {
-  return any_near(leader_cells_, leaders_, x0, y0, x1, y1, pred);
+  return any_near(leader_cells_, std::span<const PlacedLabel>(leaders_), x0, y0, x1, y1, pred);
 }
 
-std::optional<PlacedLabel> LabelPlacer::place(const LabelRequest& label, std::span<const ScreenDisc> obstacles) const {
+DiscIndex::DiscIndex(std::span<const ScreenDisc> discs) : discs_(discs.begin(), discs.end()) {
+  for (std::size_t i = 0; i < discs_.size(); ++i) {
+    const ScreenDisc& d = discs_[i];
+    for_cells(d.x - d.radius, d.y - d.radius, d.x + d.radius, d.y + d.radius,
+              [&](std::int64_t k) { cells_[k].push_back(static_cast<std::uint32_t>(i)); });
+  }
+}
+
+template <class Pred>
+bool DiscIndex::any_near(double x0, double y0, double x1, double y1, Pred&& pred) const {
+  return hq::any_near(cells_, std::span<const ScreenDisc>(discs_), x0, y0, x1, y1, pred);
+}
+
+std::optional<PlacedLabel> LabelPlacer::place(const LabelRequest& label, const DiscIndex& obstacles) const {
   const ScreenDisc& anchor = label.anchor;
   auto is_own = [&](const ScreenDisc& d) {
     return anchor.id >= 0 ? d.id == anchor.id : d.x == anchor.x && d.y == anchor.y;
   };
-  // The obstacles in the grid's cells (each in those its disc's square
-  // meets), so that a candidate looks at its neighbourhood only: with up to
-  // 64 candidates a ring and a thousand glyphs, scanning them all was the
-  // cost of a view.
-  std::unordered_map<std::int64_t, std::vector<std::uint32_t>> disc_cells;
-  for (std::size_t i = 0; i < obstacles.size(); ++i) {
-    const ScreenDisc& d = obstacles[i];
-    for_cells(d.x - d.radius, d.y - d.radius, d.x + d.radius, d.y + d.radius,
-              [&](std::int64_t k) { disc_cells[k].push_back(static_cast<std::uint32_t>(i)); });
-  }
-  const std::vector<ScreenDisc> all(obstacles.begin(), obstacles.end());
   auto any_disc_near = [&](double x0, double y0, double x1, double y1, auto&& pred) {
-    return any_near(disc_cells, all, x0, y0, x1, y1, pred);
+    return obstacles.any_near(x0, y0, x1, y1, pred);
   };
   // A leader keeps options_.leader_clearance off the discs it must not cross.
   const double reach = options_.leader_clearance + 1.0;
@@ -594,9 +596,10 @@ std::vector<std::optional<PlacedLabel>> place_labels(std::span<const LabelReques
                                                      std::span<const PlacedLabel> earlier) {
   LabelPlacer placer(taken, options);
   for (const PlacedLabel& l : earlier) placer.add(l);
+  const DiscIndex index(obstacles);
   std::vector<std::optional<PlacedLabel>> placed(labels.size());
   for (std::size_t i = 0; i < labels.size(); ++i) {
-    placed[i] = placer.place(labels[i], obstacles);
+    placed[i] = placer.place(labels[i], index);
     if (placed[i]) placer.add(*placed[i]);
   }
   return placed;

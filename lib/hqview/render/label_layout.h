@@ -107,6 +107,24 @@ std::vector<std::optional<PlacedLabel>> place_labels(std::span<const LabelReques
                                                      const LabelLayoutOptions& options,
                                                      std::span<const PlacedLabel> earlier = {});
 
+// Obstacle discs in a grid of 64-pixel cells (each in the cells its disc's
+// square meets), so that a label's candidate looks at its neighbourhood
+// only (with up to 64 candidates a ring and a thousand glyphs, scanning
+// them all was the cost of a view). Built once for every label placed
+// among the same discs (LabelPlacer::place).
+class DiscIndex {
+ public:
+  explicit DiscIndex(std::span<const ScreenDisc> discs);
+  // Whether a disc registered in a cell that [x0, x1] x [y0, y1] meets
+  // satisfies pred (label_layout.cpp only).
+  template <class Pred>
+  bool any_near(double x0, double y0, double x1, double y1, Pred&& pred) const;
+
+ private:
+  std::vector<ScreenDisc> discs_;
+  std::unordered_map<std::int64_t, std::vector<std::uint32_t>> cells_;
+};
+
 // The greedy placement one label at a time (place_labels is a loop over
 // it): the boxes and leaders placed so far in a grid of 64-pixel cells, so
 // a label's checks look at its neighbourhood only (near-linear in the
@@ -116,7 +134,10 @@ class LabelPlacer {
   LabelPlacer(std::span<const PixelRect> taken, const LabelLayoutOptions& options);
   // Where label goes among obstacles (place_labels' rules), given what was
   // added so far; nullopt when there is no free place. Adds nothing.
-  std::optional<PlacedLabel> place(const LabelRequest& label, std::span<const ScreenDisc> obstacles) const;
+  std::optional<PlacedLabel> place(const LabelRequest& label, const DiscIndex& obstacles) const;
+  std::optional<PlacedLabel> place(const LabelRequest& label, std::span<const ScreenDisc> obstacles) const {
+    return place(label, DiscIndex(obstacles));
+  }
   // A placed label: its box is taken, its leader counts for later labels.
   void add(const PlacedLabel& label);
 

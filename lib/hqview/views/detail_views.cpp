@@ -730,12 +730,12 @@ Scene local_marker_discs(const Scene& scene, const Camera& camera, const std::ve
 }
 
 // Whether shot.labels[i] (placed as set) keeps clear of the labels in
-// `kept`: no box over another, its leader (at most shot.max_leader long)
+// `kept`: no box over another, its leader (at most max_leader long)
 // through no other box, no other corner's disc, the vertex's dot or another
 // leader, and no other leader through its box (46t review: leaders ran
 // under other labels' boxes and through other discs).
 bool local_label_clear(const LocalShot& shot, std::size_t i, std::span<const std::size_t> kept,
-                       std::span<const ScreenDisc> markers, const ScreenDisc& dot) {
+                       std::span<const ScreenDisc> markers, const ScreenDisc& dot, double max_leader) {
   const LocalLabel& a = shot.labels[i];
   const auto leader_of = [](const LocalLabel& l) {
     PlacedLabel p;
@@ -745,7 +745,7 @@ bool local_label_clear(const LocalShot& shot, std::size_t i, std::span<const std
   };
   const PlacedLabel la = leader_of(a);
   if (a.has_leader) {
-    if (std::hypot(a.leader_x1 - a.leader_x0, a.leader_y1 - a.leader_y0) > shot.max_leader) return false;
+    if (std::hypot(a.leader_x1 - a.leader_x0, a.leader_y1 - a.leader_y0) > max_leader) return false;
     for (std::size_t j = 0; j < markers.size(); ++j)
       if (j != i && leader_meets_disc(la, markers[j])) return false;
     if (leader_meets_disc(la, dot)) return false;
@@ -907,11 +907,12 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
       }
     };
     // Whether label i, as set, keeps clear of what is kept so far
-    // (local_label_clear) and of every disc and the vertex's dot.
+    // (local_label_clear, its leader at most max_leader long) and of every
+    // disc and the vertex's dot.
     std::vector<std::size_t> kept;
-    const auto clear = [&](std::size_t i) {
+    const auto clear = [&](std::size_t i, double max_leader) {
       return local_label_clear(shot, i, kept, guards,
-                               {shot.dot.x, shot.dot.y, dot_radius + local_leader_clearance(leader_width)});
+                               {shot.dot.x, shot.dot.y, dot_radius + local_leader_clearance(leader_width)}, max_leader);
     };
     // The placer's answer for corner i: its own disc as drawn (its label may
     // sit next to its rim), the others guarded.
@@ -936,7 +937,7 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
         const std::optional<PlacedLabel> p = place(placer, request, i);
         if (p) {
           set_leader(shot.labels[i], *p);
-          if (clear(i)) {
+          if (clear(i, shot.max_leader)) {
             shot.labels[i].placed = true;
             kept.push_back(i);
             PlacedLabel as_set = *p;
@@ -976,13 +977,7 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
       placer.add(p);
       far_placer.add(p);
     }
-    const double cap = shot.max_leader;
-    const auto clear_far = [&](std::size_t i) {
-      shot.max_leader = kLocalFarLeaderShare * cap;
-      const bool ok = clear(i);
-      shot.max_leader = cap;
-      return ok;
-    };
+    const double far_leader = kLocalFarLeaderShare * shot.max_leader;
     // In `priority` (worst first, or those with no room in an earlier
     // round first), each numbered by its rank; a corner with no room is
     // left out and counted, and every later one that has room is still
@@ -1001,26 +996,27 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
       // A disc inside the dot's clear zone (often the worst, stacked at
       // the vertex) may have its number's leader cross the zone (not an
       // obstacle protected from leaders), never the dot itself (clear).
-      if (!p || (set_leader(label, *p), !clear(i))) {
+      if (!p || (set_leader(label, *p), !clear(i, shot.max_leader))) {
         request.protect_below = static_cast<std::int64_t>(markers.size());
         p = place(placer, request, i);
       }
-      if (!p || (set_leader(label, *p), !clear(i))) {
+      if (!p || (set_leader(label, *p), !clear(i, shot.max_leader))) {
         request.protect_below = static_cast<std::int64_t>(obstacles.size());
         p = place(far_placer, request, i);
         // The far placer's first choice may break local_label_clear's
         // rules: up to kLocalRetries more, each with the places refused so
         // far taken (the 44m brief: at hex_tet's vertex 229 rank 2's only
         // choice was refused, while room was left beside its disc).
-        LabelPlacer retry = far_placer;
-        for (int k = 0; k < kLocalRetries && p && (set_leader(label, *p), !clear_far(i)); ++k) {
-          retry.add(PlacedLabel{p->box});
-          p = place(retry, request, i);
+        std::optional<LabelPlacer> retry;  // far_placer's copy, made at the first refusal
+        for (int k = 0; k < kLocalRetries && p && (set_leader(label, *p), !clear(i, far_leader)); ++k) {
+          if (!retry) retry = far_placer;
+          retry->add(PlacedLabel{p->box});
+          p = place(*retry, request, i);
         }
       }
       if (p) {
         set_leader(label, *p);
-        if (clear_far(i)) {
+        if (clear(i, far_leader)) {
           label.placed = true;
           kept.push_back(i);
           PlacedLabel as_set = *p;

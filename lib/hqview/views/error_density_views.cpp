@@ -11,6 +11,7 @@
 #include "hqview/core/error.h"
 #include "hqview/core/hex_topology.h"
 #include "hqview/image/colormap.h"
+#include "hqview/mesh/planarity.h"
 #include "hqview/quality/hex_metrics.h"
 #include "hqview/quality/statistics.h"
 #include "hqview/render/upright.h"
@@ -343,32 +344,6 @@ LineSet boundary_edge_lines(const HexMesh& mesh, const Topology& topology, const
   return lines;
 }
 
-// The axis along which points vary least (the eigenvector of the smallest
-// eigenvalue of their covariance; power iteration on trace - C, which
-// converges to it, from a start fixed by the points' spread).
-Vec3 thinnest_axis(std::span<const Vec3> points) {
-  if (points.empty()) return {0, 0, 1};
-  Vec3 mean;
-  for (const Vec3& p : points) mean = mean + p / static_cast<double>(points.size());
-  double c[3][3] = {};
-  for (const Vec3& p : points)
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) c[i][j] += (p[i] - mean[i]) * (p[j] - mean[j]);
-  const double trace = c[0][0] + c[1][1] + c[2][2];
-  if (!(trace > 0)) return {0, 0, 1};
-  const int thin = c[0][0] <= c[1][1] && c[0][0] <= c[2][2] ? 0 : c[1][1] <= c[2][2] ? 1 : 2;
-  Vec3 v{0.1, 0.1, 0.1};
-  v[thin] = 1.0;
-  for (int k = 0; k < 200; ++k) {
-    Vec3 w;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) w[i] += ((i == j ? trace : 0.0) - c[i][j]) * v[j];
-    if (!(norm(w) > 0)) break;
-    v = w / norm(w);
-  }
-  return v;
-}
-
 }  // namespace
 
 Vec3 away_from_edge_on(const Vec3& direction, std::span<const Vec3> points, const Vec3& focus) {
@@ -378,16 +353,15 @@ Vec3 away_from_edge_on(const Vec3& direction, std::span<const Vec3> points, cons
   // tilted to kTiltDegrees from edge-on, towards the side of n the focus
   // (the max hex) lies on, keeping its azimuth about n.
   constexpr double kEdgeOnDegrees = 45.0, kTiltDegrees = 60.0;
-  const Vec3 n = thinnest_axis(points);
+  // The model's thinnest axis: its least-squares plane's normal.
+  const Vec3 n = least_squares_plane(points).normal;
   const Vec3 d = direction / norm(direction);
   if (std::abs(dot(d, n)) >= std::sin(kEdgeOnDegrees * std::numbers::pi / 180.0)) return direction;
   Vec3 across = d - dot(d, n) * n;
   if (!(norm(across) > 1e-9)) return direction;
   across = across / norm(across);
-  Vec3 mean;
-  for (const Vec3& p : points) mean = mean + p / static_cast<double>(points.size());
   // The eye at -d: on the focus's side of n when d points against it.
-  const double side = dot(focus - mean, n);
+  const double side = dot(focus - plane.centroid, n);
   const double sign = side > 0 ? -1.0 : side < 0 ? 1.0 : (dot(d, n) < 0 ? -1.0 : 1.0);
   const double tilt = kTiltDegrees * std::numbers::pi / 180.0;
   return std::cos(tilt) * across + sign * std::sin(tilt) * n;

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <unordered_map>
 
+#include "hqview/core/text.h"
 #include "hqview/mesh/boundary_polygons.h"
 #include "hqview/mesh/cell_faces.h"
 #include "hqview/render/id_image.h"
@@ -111,7 +112,7 @@ double disc_overlap_area(double x0, double y0, double r0, double x1, double y1, 
 // "6 inverted hexes" (noun empty: "6 inverted").
 std::string count_inverted(std::size_t n, const std::string& noun) {
   std::string label = std::to_string(n) + " inverted";
-  if (!noun.empty()) label += " " + noun + (n == 1 ? "" : noun == "hex" ? "es" : "s");
+  if (!noun.empty()) label += " " + plural(noun, n);
   return label;
 }
 
@@ -213,7 +214,7 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
   auto grow = [](Extent& e, const Extent& f) {
     e.x0 = std::min(e.x0, f.x0), e.y0 = std::min(e.y0, f.y0), e.x1 = std::max(e.x1, f.x1), e.y1 = std::max(e.y1, f.y1);
   };
-  const double max_radius = std::max(min_radius, 0.45 * std::min(view.width, view.height));
+  const double max_radius = max_callout_radius(view, min_radius);
   auto ring_of = [&](const Extent& e, InvertedCallout& c) {
     c.x = 0.5 * (e.x0 + e.x1);
     c.y = 0.5 * (e.y0 + e.y1);
@@ -544,6 +545,7 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
   // lines (issue 45g: rockarm's small ring between a large ring and the
   // view's top edge had no room for one line).
   LabelPlacer placer(taken, layout);
+  const DiscIndex ring_index(rings);
   for (std::size_t i = 0; i < labels.size(); ++i) {
     const ScreenDisc ring = rings[i];
     const int one_line = text_extent(labels[i].text, text_size, style).width;
@@ -560,7 +562,7 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
       // crossed rings and ended on the wrong one).
       request.protect_below = static_cast<std::int64_t>(rings.size());
       request.strict_leaders = true;
-      p = placer.place(request, rings);
+      p = placer.place(request, ring_index);
       const double step = std::max(0.5 * ring.radius, 0.75 * text_size);
       for (int k = 1; !p && k <= 24; ++k)
         for (const auto& [sx, sy] : {std::pair{-1, 0}, std::pair{1, 0}, std::pair{0, -1}, std::pair{0, 1},
@@ -570,7 +572,7 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
           moved.anchor.y += sy * k * step;
           moved.leader_from = ring;
           moved.anchor.radius = std::min(ring.radius, 0.5 * text_size);  // only where the box is tried from
-          p = placer.place(moved, rings);
+          p = placer.place(moved, ring_index);
           if (p) break;
         }
       if (p) labels[i].lines = lines;

@@ -9,6 +9,7 @@
 // shows. The ring is solid when the group's inverted colour is in sight,
 // dashed when it is not (inside the volume or hidden behind the model).
 
+#include <algorithm>
 #include <optional>
 #include <span>
 #include <string>
@@ -73,6 +74,12 @@ struct InvertedCallout {
 // The screen discs a callout's rings take (ring radius + thickness): its
 // ring, then its dashed ring of hidden groups when it has one.
 std::vector<ScreenDisc> callout_discs(const InvertedCallout& c, double thickness);
+
+// The largest ring: this fraction of the view's smaller side (or min_radius).
+inline constexpr double kMaxCalloutRadiusShare = 0.45;
+inline double max_callout_radius(const PixelRect& view, double min_radius) {
+  return std::max(min_radius, kMaxCalloutRadiusShare * std::min(view.width, view.height));
+}
 
 // Rings closer than this times min_radius (edge to edge) are merged.
 inline constexpr double kRingMergeGap = 0.5;

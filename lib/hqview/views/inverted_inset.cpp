@@ -244,20 +244,28 @@ InvertedCallout inset_part(const InvertedCallout& c) {
   return part;
 }
 
+std::vector<std::size_t> inset_callouts(std::span<const InvertedCallout> callouts, std::span<const PixelRect> slots,
+                                        int text_size, double view_area) {
+  const int caption = caption_height(text_size);
+  std::vector<std::size_t> chosen;
+  for (int small = 0; small < 2; ++small)
+    for (std::size_t i = 0; i < callouts.size(); ++i)
+      if (callout_wants_inset(callouts[i], view_area) && callout_has_hidden(callouts[i]) == (small == 0)) {
+        if (chosen.size() >= slots.size()) return chosen;
+        const PixelRect& slot = slots[chosen.size()];
+        if (slot.width < 40 || slot.height < caption + 40) return chosen;
+        chosen.push_back(i);
+      }
+  return chosen;
+}
+
 std::vector<InvertedInset> plan_inverted_insets(const HexMesh& mesh, std::vector<InvertedCallout>& callouts,
                                                 std::span<const PixelRect> slots, const Camera& view_camera,
                                                 int text_size, double view_area) {
   std::vector<InvertedInset> insets;
   const int caption = caption_height(text_size);
-  // Out of sight first, then small (callout_wants_inset), each in the callouts' order.
-  std::vector<std::size_t> order;
-  for (int small = 0; small < 2; ++small)
-    for (std::size_t i = 0; i < callouts.size(); ++i)
-      if (callout_wants_inset(callouts[i], view_area) && callout_has_hidden(callouts[i]) == (small == 0)) order.push_back(i);
-  for (std::size_t i : order) {
-    if (insets.size() >= slots.size()) break;
+  for (std::size_t i : inset_callouts(callouts, slots, text_size, view_area)) {
     const PixelRect& slot = slots[insets.size()];
-    if (slot.width < 40 || slot.height < caption + 40) break;
     InvertedInset inset;
     inset.callout = i;
     inset.letter = std::string(1, static_cast<char>('A' + insets.size()));

@@ -109,12 +109,16 @@ std::vector<Index> cells_touching(const HexMesh& mesh, std::span<const Index> ce
 Scene inverted_inset_scene(const HexMesh& mesh, std::span<const Index> cells, std::span<const Index> neighbours,
                            std::span<const double> vertex_quality = {});
 
-// Plans the insets for the callouts that want one (callout_wants_inset:
-// out of sight first, then small; each the largest first, the callouts'
-// order), one per slot: each one's cells,
+// The callouts that get an inset, in the slots' order: those that want one
+// (callout_wants_inset: out of sight first, then small; each the largest
+// first, the callouts' order), one per slot, until a slot too small for the
+// caption and a picture.
+std::vector<std::size_t> inset_callouts(std::span<const InvertedCallout> callouts, std::span<const PixelRect> slots,
+                                        int text_size, double view_area);
+
+// Plans the insets for inset_callouts, one per slot: each one's cells,
 // neighbours, rect (its slot) and camera (`view_camera`'s direction and up,
-// fitted to the cage); sets each such callout's `inset` letter. A slot too
-// small for the caption and a picture gets none.
+// fitted to the cage); sets each such callout's `inset` letter.
 std::vector<InvertedInset> plan_inverted_insets(const HexMesh& mesh, std::vector<InvertedCallout>& callouts,
                                                 std::span<const PixelRect> slots, const Camera& view_camera,
                                                 int text_size, double view_area);

@@ -16,10 +16,11 @@
 #include <set>
 
 #include "hqview/core/error.h"
+#include "hqview/core/number_format.h"
+#include "hqview/core/text.h"
+#include "hqview/image/colormap.h"
 #include "hqview/mesh/boundary_polygons.h"
 #include "hqview/mesh/cell_faces.h"
-#include "hqview/core/number_format.h"
-#include "hqview/image/colormap.h"
 #include "hqview/render/annotate.h"
 #include "hqview/render/scene_shapes.h"
 #include "hqview/views/overview_views.h"
@@ -768,7 +769,7 @@ std::vector<std::uint8_t> worst_cluster_vertices(const GlyphResult& glyphs, int 
 
 Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                        const OverlapReport* overlap, const Camera& camera, int view_height,
-                       const MainViewOptions& options) {
+                       const MainViewOptions& options, const InvertedFaces* inverted) {
   if (glyphs.vertex_cluster.size() != mesh.points.size())
     throw Error("glyph result does not match the mesh (" + std::to_string(glyphs.vertex_cluster.size()) + " vs " +
                 std::to_string(mesh.points.size()) + " vertices)");
@@ -948,7 +949,9 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   // depth-tested against the mesh's fill and the glyphs (part U round 2:
   // drawn over everything they turned #0 blue). Their outlines show over
   // the glyphs (main_view_outlines_over_glyphs).
-  const std::vector<BoundaryPolygon> inverted_faces = inverted_boundary_faces(topology, options).drawn;
+  InvertedFaces computed;
+  if (!inverted) computed = inverted_boundary_faces(topology, options);
+  const std::vector<BoundaryPolygon>& inverted_faces = (inverted ? *inverted : computed).drawn;
   if (!inverted_faces.empty()) {
     TriangleSet faces;
     faces.is_lit = false;
@@ -1194,8 +1197,8 @@ namespace {
 // A ring around cluster #0's glyph on screen (dark on a pale halo, a few
 // pixels outside its silhouette), so the worst place is found first even
 // where its glyph is small. The halo hugs the glyph from 0.5 px outside
-// its rim (issue 44 part P, round 3): a light outline between the dark red
-// glyph and the wireframe or a dark neighbour (an inverted #0's halo is
+// its rim (issue 44 part P, round 3): a light outline between #0's glyph
+// and the wireframe or a dark neighbour (an inverted #0's halo is
 // the inverted ring's, which begins there too).
 // A tied #0's class: no stretch inside another glyph of the class (others),
 // so that no ring crosses a worst glyph.
@@ -1443,7 +1446,7 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
   const std::size_t intersecting = overlap ? static_cast<std::size_t>(overlap->num_intersecting_cells) : 0;
   // One word for one count (issue 45): "hexes" on a pure-hex mesh, as its
   // page's cards, overlap table and overview say; "cells" on a hybrid one.
-  const std::string cells_word = options.cell_kinds.empty() ? "hexes" : "cells";
+  const std::string cells_word = plural(options.cell_noun);
   // The inverted cells and which of their boundary faces the view draws
   // (issue 44 part U, round 2: a legend said nothing of dolphin_rot's 759
   // faces left out). A surface mesh's fill lines count them.
@@ -1724,8 +1727,9 @@ std::pair<std::size_t, std::size_t> layout_faults(const MainViewLabels& labels, 
 // leader's way into the callouts too, #0's short leader became 700 px).
 // A callout is kept only if its leader crosses no coloured glyph (ids below
 // coloured_ids) but its own tie class's, no placed label's box or leader,
-// and is at most max_leader long (and, for a label with a fallback, shorter
-// than the fallback's); else the fallback, else a marker label at its
+// and is at most max_leader long (and, for a label with a fallback, better
+// than the fallback: off the glyphs its leader crosses, or shorter); else
+// the fallback, else a marker label at its
 // anchor's right, clamped to the view (the counts add up), a cluster label
 // left out (omitted_clusters).
 void place_main_view_callouts(MainViewLabels& result, std::vector<MainViewLabel> deferred,
@@ -2052,6 +2056,7 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
       kMaxLeaderShare * std::hypot(static_cast<double>(layout.view.width), static_cast<double>(layout.view.height));
   // One greedy placement of the labels in `order`, onto result's copy.
   const MainViewLabels unplaced = result;
+  const DiscIndex all_index(all_obstacles), worst_label_index(worst_label_obstacles), worst_only_index(worst_only);
   const auto lay_out = [&](std::vector<MainViewLabel> order) {
     MainViewLabels result = unplaced;
     LabelPlacer placer({}, options);
@@ -2074,10 +2079,9 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
       // callouts, and moved bunny's, kitten's and Dolphin_padded's fine
       // labels), unless its leader runs longer than kMaxLeaderShare of the
       // view's diagonal: then a callout, if one is nearer.
-      const std::vector<ScreenDisc>& obstacles =
-          is_cluster && label.cluster == 0 ? worst_label_obstacles : all_obstacles;
+      const DiscIndex& obstacles = is_cluster && label.cluster == 0 ? worst_label_index : all_index;
       std::optional<PlacedLabel> placed = placer.place(request, obstacles);
-      if (!placed && !is_cluster) placed = placer.place(request, worst_only);
+      if (!placed && !is_cluster) placed = placer.place(request, worst_only_index);
       // So is one whose leader crosses other glyphs (the 44l review): a
       // callout may pass them by.
       if (placed && placed->has_leader &&
@@ -2156,6 +2160,7 @@ struct MainViewFrame {
   FigureLayout layout;
   Camera camera;
   MainViewOptions scaled;
+  InvertedFaces inverted;  // inverted_boundary_faces (with_inverted; else none)
 };
 
 MainViewFrame main_view_frame(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
@@ -2171,12 +2176,12 @@ MainViewFrame main_view_frame(const HexMesh& mesh, const Topology& topology, con
   frame.scaled = options;
   frame.scaled.pixel_scale = frame.style.scale;
   if (with_inverted) {
-    const InvertedFaces inverted = inverted_boundary_faces(topology, options);
-    frame.scaled.inverted_overlay_faces = inverted.drawn.size();
-    frame.scaled.inverted_cell_count = inverted.cells;
-    frame.scaled.inverted_face_count = inverted.faces;
-    if (options.surface_cell_quality && inverted.drawn.size() <= kMaxLabelFreeFaces)
-      for (const BoundaryPolygon& face : inverted.drawn) {
+    frame.inverted = inverted_boundary_faces(topology, options);
+    frame.scaled.inverted_overlay_faces = frame.inverted.drawn.size();
+    frame.scaled.inverted_cell_count = frame.inverted.cells;
+    frame.scaled.inverted_face_count = frame.inverted.faces;
+    if (options.surface_cell_quality && frame.inverted.drawn.size() <= kMaxLabelFreeFaces)
+      for (const BoundaryPolygon& face : frame.inverted.drawn) {
         auto p = [&](int i) { return mesh.points[static_cast<std::size_t>(face.v[static_cast<std::size_t>(i % face.size)])]; };
         Vec3 centre;
         for (int i = 0; i < face.size; ++i) centre = centre + (1.0 / face.size) * p(i);
@@ -2207,7 +2212,8 @@ namespace {
 // dense on screen, so glyphs and clusters stay readable.
 Scene main_view_scene(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                       const OverlapReport* overlap, const MainViewFrame& f) {
-  Scene scene = build_main_scene(mesh, topology, glyphs, overlap, f.camera, f.layout.view.height, f.scaled);
+  Scene scene =
+      build_main_scene(mesh, topology, glyphs, overlap, f.camera, f.layout.view.height, f.scaled, &f.inverted);
   const double pixels =
       median_edge_pixels(scene.lines[0], scene.origin, f.camera, f.layout.view.width, f.layout.view.height);
   const double opacity = std::clamp(pixels / 10.0, 0.2, 0.85);
@@ -2320,8 +2326,9 @@ std::vector<OutlineRun> segment_runs_over_glyphs(std::span<const ColouredSegment
 
 std::vector<OutlineRun> main_view_outlines_over_glyphs(const HexMesh& mesh, const Topology& topology,
                                                        const GlyphResult& glyphs, const MainViewLabels& labels,
-                                                       const MainViewOptions& options) {
-  const AnnotationStyle style = annotation_style_for(options.height);
+                                                       const MainViewOptions& options,
+                                                       const AnnotationStyle& style,
+                                                       std::span<const BoundaryPolygon> inverted_faces) {
   std::vector<ScreenDisc> rings;
   for (ScreenDisc d : labels.inverted_glyphs) {
     d.radius = inverted_ring_radius(d.radius, style) + 0.5 * inverted_halo_width(style);
@@ -2342,7 +2349,7 @@ std::vector<OutlineRun> main_view_outlines_over_glyphs(const HexMesh& mesh, cons
   if (std::any_of(options.far_side_glyphs.begin(), options.far_side_glyphs.end(), [](char c) { return c != 0; }))
     grid.emplace(mesh, boundary_polygons(topology), labels.camera,
                  static_cast<double>(labels.view.width) / std::max(1, labels.view.height));
-  for (const BoundaryPolygon& face : inverted_boundary_faces(topology, options).drawn) {
+  for (const BoundaryPolygon& face : inverted_faces) {
     bool in_sight = !grid;
     for (int k = 0; k < face.size && !in_sight; ++k) in_sight = grid->in_sight(grid->corner_sample(face, k));
     if (!in_sight) continue;
@@ -2427,48 +2434,47 @@ bool cluster_edges_in_sight(const MainViewLabels& labels, const AnnotationStyle&
   return false;
 }
 
-MainViewLabels main_view_labels(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
-                                const OverlapReport* overlap, const Vec3& view_direction,
-                                const MainViewOptions& given, Scene* scene, Renderer* renderer) {
-  MainViewOptions options = given;
-  std::vector<Index> ties;
-  options.glyph_ties = tie_classes_of(glyphs, given.glyph_ties, ties);
-  const MainViewFrame f = main_view_frame(mesh, topology, glyphs, view_direction, options);
-  Scene drawn = main_view_scene(mesh, topology, glyphs, overlap, f);
-  IdImage ids;
-  if (renderer) ids = main_view_id_image(*renderer, drawn, glyphs, f.camera, f.layout.view, true, options.glyph_ties);
-  if (scene) *scene = std::move(drawn);
-  return layout_main_view_labels(glyphs, overlap, f.camera, f.layout, f.style, f.scaled, ids.empty() ? nullptr : &ids);
-}
-
 MainViewPlan plan_main_view(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                             const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& given,
-                            Renderer& renderer) {
+                            Renderer* renderer) {
   MainViewPlan plan;
   MainViewOptions options = given;
-  options.glyph_ties = tie_classes_of(glyphs, given.glyph_ties, plan.ties);
+  std::vector<Index> ties;  // when not given: computed once for this view, not kept
+  options.glyph_ties = tie_classes_of(glyphs, given.glyph_ties, ties);
   const MainViewFrame frame = main_view_frame(mesh, topology, glyphs, view_direction, options);
   plan.style = frame.style;
   plan.layout = frame.layout;
   plan.scaled = frame.scaled;
   plan.scene = main_view_scene(mesh, topology, glyphs, overlap, frame);
   // Labels placed on what is visible (each points at its own glyph's pixels).
-  IdImage ids = main_view_id_image(renderer, plan.scene, glyphs, frame.camera, plan.layout.view, true,
-                                   options.glyph_ties);
+  IdImage ids;
+  if (renderer)
+    ids = main_view_id_image(*renderer, plan.scene, glyphs, frame.camera, plan.layout.view, true, options.glyph_ties);
   plan.labels = layout_main_view_labels(glyphs, overlap, frame.camera, plan.layout, plan.style, plan.scaled,
                                         ids.empty() ? nullptr : &ids);
-  plan.outlines = main_view_outlines_over_glyphs(mesh, topology, glyphs, plan.labels, plan.scaled);
+  plan.outlines =
+      main_view_outlines_over_glyphs(mesh, topology, glyphs, plan.labels, plan.scaled, plan.style,
+                                     frame.inverted.drawn);
   plan.legend = main_legend_lines(glyphs, overlap, plan.style, plan.scaled, plan.labels.glyph_scale,
                                   plan.labels.hidden_clusters, plan.labels.left_out_glyphs,
                                   plan.labels.unlabelled_clusters, plan.labels.worst_glyph.radius,
                                   outline_colors(plan.outlines), cluster_edges_in_sight(plan.labels, plan.style));
+  plan.scaled.glyph_ties = given.glyph_ties;  // the caller's (ties ends here)
   return plan;
+}
+
+MainViewLabels main_view_labels(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
+                                const OverlapReport* overlap, const Vec3& view_direction,
+                                const MainViewOptions& options, Scene* scene, Renderer* renderer) {
+  MainViewPlan plan = plan_main_view(mesh, topology, glyphs, overlap, view_direction, options, renderer);
+  if (scene) *scene = std::move(plan.scene);
+  return std::move(plan.labels);
 }
 
 Image render_main_view(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                        const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& given,
                        Renderer& renderer) {
-  const MainViewPlan plan = plan_main_view(mesh, topology, glyphs, overlap, view_direction, given, renderer);
+  const MainViewPlan plan = plan_main_view(mesh, topology, glyphs, overlap, view_direction, given, &renderer);
   Image figure = render_figure(renderer, plan.scene, plan.labels.camera, given.width, given.height, plan.layout,
                                given.title, plan.style);
   // The rings, the outlines over the glyphs, the labels (in this order:

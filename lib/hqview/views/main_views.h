@@ -39,18 +39,16 @@ inline constexpr Rgba8 kWireframeColor{120, 124, 134, 255};
 // 47 part F). Their width stays the wireframe's: wider lines at the plane
 // hid the thin parts of a folded quad that its neighbours overlap.
 inline constexpr Rgba8 kSurfaceEdgeColor{62, 66, 76, 255};
-// Coincident vertices: a green #00cc33 (issue 44 part P, round 3: the
-// dark green #005500 was CIEDE2000 3.4 from the dark red #0 under
-// protanopia; before it the near-black #191919 was 4 from the worst ring's
-// dark grey and the hexes' charcoal edges, the orange 3.8 from the quality
-// map). Intersections: a lilac #cc88ff for the pairs' arrows and the
-// cells' edges, the cells' faces a translucent tint of it (the legend
-// gives the pairs an arrow swatch, the cells a square of the tint as drawn
-// on the background: two things, two swatches; the dark magenta #8c1478
-// was 8 from the violet pyramid edges). Both CIEDE2000 >= 20 from the
-// cluster colours, the pale grey and each other for normal vision, and
-// under protanopia, deuteranopia and tritanopia >= 10 from the cluster
-// colours (image/colormap.cpp, tests/views/palette_test.cpp).
+// Coincident vertices: a green #00cc33. Intersections: a lilac #cc88ff for
+// the pairs' arrows and the cells' edges, the cells' faces a translucent
+// tint of it (the legend gives the pairs an arrow swatch, the cells a
+// square of the tint as drawn on the background: two things, two
+// swatches). Both CIEDE2000 >= 20 from the cluster colours, the pale grey
+// and each other for normal vision, and >= 8 from the cluster colours
+// under simulated protanopia, deuteranopia and tritanopia, away from the
+// quality map, the rings' greys and the cell kinds' edges
+// (image/colormap.cpp, tests/views/palette_test.cpp; the colours they
+// replaced: CHANGELOG, issue 44).
 inline constexpr Rgba8 kCoincidentArrowColor{0, 204, 51, 255};
 inline constexpr Rgba8 kIntersectionArrowColor{204, 136, 255, 255};
 inline constexpr Rgba8 kIntersectingCellColor{204, 136, 255, 96};  // translucent lilac
@@ -115,6 +113,9 @@ struct MainViewOptions {
   // A legend line naming the mesh's cell kinds ("cells: 64 hex, 484 tet,
   // 16 pyramid", mesh_kinds_text); empty (pure-hex meshes): no line.
   std::string cell_kinds;
+  // The mesh's cells in the legend's counts ("inverted hexes: N"): "hex",
+  // or "cell" on a mesh with other volume cells (views.cpp cell_noun).
+  std::string cell_noun = "hex";
   // A legend line for a mesh whose cells are mostly inverted
   // (mostly_inverted_note); empty: none.
   std::string orientation_note;
@@ -337,9 +338,11 @@ inline constexpr double kInvertedFaceLift = 2e-3;
 // coloured glyph's radius from its centre (the vertex it marks).
 inline constexpr double kInvertedOutlineWidth = 2.0, kInvertedOutlineCore = 0.5;
 
+// inverted: inverted_boundary_faces(topology, options) when the caller has
+// it (plan_main_view walks the boundary once a view); null: computed here.
 Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                        const OverlapReport* overlap, const Camera& camera, int view_height,
-                       const MainViewOptions& options);
+                       const MainViewOptions& options, const InvertedFaces* inverted = nullptr);
 
 // How view A draws the glyphs (issue 44: on a long model a glyph of one
 // mean edge is 10-15 pixels and cluster #0 does not stand out). Every
@@ -590,8 +593,8 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
                                        const MainViewOptions& scaled, const IdImage* ids = nullptr);
 
 // The labels render_main_view draws for view_direction (and, when scene is
-// not null, the scene it draws), figure pixels; placed on the id image when
-// renderer is not null (as render_main_view does), else without one.
+// not null, the scene it draws), figure pixels: plan_main_view's (placed
+// on the id image when renderer is not null, as render_main_view does).
 MainViewLabels main_view_labels(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                                 const OverlapReport* overlap, const Vec3& view_direction,
                                 const MainViewOptions& options, Scene* scene = nullptr, Renderer* renderer = nullptr);
@@ -606,10 +609,13 @@ struct OutlineRun {
 // camera, view and id image): the outlines of the inverted faces drawn
 // (scene 5b) where a glyph or a glyph ring hides them, but never on #0's
 // disc (its glyph stays whole) nor within kInvertedOutlineCore of another
-// coloured glyph's radius of its centre. options: as render_main_view's.
+// coloured glyph's radius of its centre. options and style: as
+// render_main_view's; inverted_faces: inverted_boundary_faces(...).drawn.
 std::vector<OutlineRun> main_view_outlines_over_glyphs(const HexMesh& mesh, const Topology& topology,
                                                        const GlyphResult& glyphs, const MainViewLabels& labels,
-                                                       const MainViewOptions& options);
+                                                       const MainViewOptions& options,
+                                                       const AnnotationStyle& style,
+                                                       std::span<const BoundaryPolygon> inverted_faces);
 // The distinct colours of runs, in order of first use (main_legend_lines'
 // outlines_over_glyphs: one line swatch each).
 std::vector<Rgba8> outline_colors(std::span<const OutlineRun> runs);
@@ -620,12 +626,12 @@ std::vector<Rgba8> outline_colors(std::span<const OutlineRun> runs);
 // lines (main_legend_lines, with the outlines' colours). Every mark the
 // figure shows is in scene, labels (the rings: worst_glyph,
 // inverted_glyphs) or outlines, and the legend names each (tests/views/
-// main_view_legend_test.cpp).
+// main_view_legend_test.cpp). renderer null: the labels are placed without
+// an id image (and no outline is drawn over a glyph).
 struct MainViewPlan {
   AnnotationStyle style;
   FigureLayout layout;
-  MainViewOptions scaled;   // its glyph_ties refer to ties
-  std::vector<Index> ties;  // glyph_tie_classes when options had none
+  MainViewOptions scaled;  // its glyph_ties are the given options' (empty: computed where needed)
   Scene scene;
   MainViewLabels labels;
   std::vector<OutlineRun> outlines;
@@ -633,7 +639,7 @@ struct MainViewPlan {
 };
 MainViewPlan plan_main_view(const HexMesh& mesh, const Topology& topology, const GlyphResult& glyphs,
                             const OverlapReport* overlap, const Vec3& view_direction, const MainViewOptions& options,
-                            Renderer& renderer);
+                            Renderer* renderer);
 
 // The figure: title, the 3D view, the labels (layout_main_view_labels:
 // every marker group with its number of findings "xN", the worst clusters

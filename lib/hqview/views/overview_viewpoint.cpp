@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "hqview/core/box3.h"
+#include "hqview/core/text.h"
 #include "hqview/mesh/boundary_polygons.h"
 #include "hqview/render/camera.h"
 #include "hqview/render/upright.h"
@@ -218,6 +219,18 @@ std::string overview_side_name(const Vec3& view_direction, const Vec3& up, const
   // both were from the front).
   return height + depth + (azimuth > 0.0 ? "right" : "left") + " (azimuth " + std::to_string(degrees) + " deg from " +
          front_name + ", elevation " + std::to_string(elevation) + " deg)";
+}
+
+std::string overview_eye_words(const OverviewViewpoint& eye, const Vec3& up, const std::string& cell_noun) {
+  const std::string inverted = "the inverted " + plural(cell_noun);
+  const std::string front_name = !eye.front_from_target ? std::string("the model's front")
+                                 : eye.target == WorstFaces::Kind::worst_cluster
+                                     ? std::string("the worst cluster's side")
+                                     : inverted + "' side";
+  std::string words = ", from " + overview_side_name(eye.direction, up, eye.front, front_name);
+  if (!eye.is_default)
+    words += ", turned to show " + (eye.target == WorstFaces::Kind::inverted ? inverted : "the worst cluster");
+  return words;
 }
 
 Vec3 model_front(const HexMesh& mesh, const Topology& topology, const Vec3& up) {

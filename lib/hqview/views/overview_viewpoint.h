@@ -177,4 +177,12 @@ OverviewViewpoint choose_overview_viewpoint(const HexMesh& mesh, const Topology&
                                             const Vec3& up, std::span<const Vec3> free_up = {},
                                             const std::optional<Vec3>& inside_target = std::nullopt);
 
+// What the overview's title says of its eye: ", from " and overview_side_name
+// (the front named "the model's front", or, taken from the flagged faces,
+// "the worst cluster's side" / "the inverted hexes' side"), then, when the
+// eye turned from the three-quarter view, ", turned to show the inverted
+// hexes" (or "the worst cluster"); cell_noun: the mesh's ("hex", "cell" on a
+// hybrid mesh, a surface mesh's "quad", ...), made plural.
+std::string overview_eye_words(const OverviewViewpoint& eye, const Vec3& up, const std::string& cell_noun);
+
 }  // namespace hq

@@ -7,9 +7,11 @@
 #include <string>
 
 #include "hqview/core/error.h"
+#include "hqview/core/text.h"
 #include "hqview/image/colormap.h"
 #include "hqview/mesh/boundary_polygons.h"
 #include "hqview/mesh/cell_faces.h"
+#include "hqview/quality/quad_metrics.h"
 #include "hqview/render/annotate.h"
 #include "hqview/render/upright.h"
 #include "hqview/views/inverted_callout.h"
@@ -106,8 +108,11 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
   // A curved surface's reversed faces (options.inverted_are_reversed): the
   // inverted colour stays on them (issue 47 part R: their corners' negative
   // vertex quality turned half of every neighbour blue, ~3x their area).
-  // A face not inverted has no negative corner of its own, so its corners
-  // below 0 take its lowest corner at or above 0.
+  // A face not reversed has a negative corner of its own only where it is
+  // concave (a reflex corner: its signed corner area below 0, as the
+  // quality measures it): there it keeps the value below 0, as the colour
+  // bar's note says; its other corners below 0 (a neighbour's) take its
+  // lowest corner at or above 0.
   std::vector<Index> reversed;
   if (options.inverted_are_reversed) {
     reversed = options.inverted_cells;
@@ -123,8 +128,13 @@ Scene build_quality_overview_scene(const HexMesh& mesh, const Topology& topology
       double lowest = std::numeric_limits<double>::infinity();
       for (int i = 0; i < polygon.size; ++i)
         if (corner[static_cast<std::size_t>(i)] >= 0.0) lowest = std::min(lowest, corner[static_cast<std::size_t>(i)]);
+      std::array<double, 4> own_area{0.0, 0.0, 0.0, 0.0};  // a triangle: no reflex corner
+      if (polygon.size == 4)
+        own_area = quad_signed_corner_areas({point(mesh, polygon.v[0]), point(mesh, polygon.v[1]),
+                                             point(mesh, polygon.v[2]), point(mesh, polygon.v[3])});
       if (std::isfinite(lowest))
-        for (double& q : corner) q = q < 0.0 ? lowest : q;
+        for (std::size_t i = 0; i < corner.size(); ++i)
+          if (corner[i] < 0.0 && !(own_area[i] < 0.0)) corner[i] = lowest;
     }
     if (polygon.size == 3) {
       // A triangle (of a tet, wedge or pyramid): its 3 corners, one flat
@@ -459,6 +469,64 @@ Image render_figure(Renderer& renderer, const Scene& scene, const Camera& camera
 // shows its last legend line at page load (0.25 left it under the fold).
 constexpr double kOverviewBarFraction = 0.18;
 
+namespace {
+
+struct PixelBox {
+  double x0, y0, x1, y1;
+};
+
+// The box of points projected by camera into view (figure pixels).
+PixelBox projected_box(std::span<const Vec3> points, const Camera& camera, const PixelRect& view) {
+  const double aspect = static_cast<double>(view.width) / std::max(1, view.height);
+  PixelBox box{1e300, 1e300, -1e300, -1e300};
+  for (const Vec3& p : points) {
+    const Vec3 ndc = project_to_ndc(camera, aspect, p);
+    if (!std::isfinite(ndc.x) || !std::isfinite(ndc.y)) continue;
+    const double x = view.x + 0.5 * (ndc.x + 1.0) * view.width, y = view.y + 0.5 * (1.0 - ndc.y) * view.height;
+    box.x0 = std::min(box.x0, x), box.x1 = std::max(box.x1, x), box.y0 = std::min(box.y0, y),
+    box.y1 = std::max(box.y1, y);
+  }
+  return box;
+}
+
+// The callouts found for the model projected into box `from`, carried to
+// the model refitted (the same eye direction) into box `to`: centres by
+// the similarity that takes the one box onto the other (exact when the
+// views' aspects agree, the fit's camera then the same), radii scaled but
+// at least min_radius and at most max_callout_radius of the model's view
+// `model` (inverted_callouts' floor and cap, pixels at every scale). No
+// ring is larger than inverted_callouts would draw it there, but for
+// groups it would merge at the smaller scale: a mapped ring under an inset
+// is one there (plan_quality_overview skips that layout without rendering).
+std::vector<InvertedCallout> mapped_callouts(std::span<const InvertedCallout> callouts, const PixelBox& from,
+                                             const PixelBox& to, const PixelRect& model, double min_radius) {
+  const double from_w = from.x1 - from.x0, from_h = from.y1 - from.y0;
+  const double scale =
+      from_w >= from_h ? (to.x1 - to.x0) / std::max(1e-9, from_w) : (to.y1 - to.y0) / std::max(1e-9, from_h);
+  const auto x_of = [&](double x) { return 0.5 * (to.x0 + to.x1) + scale * (x - 0.5 * (from.x0 + from.x1)); };
+  const auto y_of = [&](double y) { return 0.5 * (to.y0 + to.y1) + scale * (y - 0.5 * (from.y0 + from.y1)); };
+  const double largest = max_callout_radius(model, min_radius);
+  const auto radius_of = [&](double r) { return std::min(largest, std::max(min_radius, scale * r)); };
+  std::vector<InvertedCallout> mapped(callouts.begin(), callouts.end());
+  for (InvertedCallout& c : mapped) {
+    c.x = x_of(c.x), c.y = y_of(c.y), c.radius = radius_of(c.radius);
+    if (c.hidden_radius > 0.0)
+      c.hidden_x = x_of(c.hidden_x), c.hidden_y = y_of(c.hidden_y), c.hidden_radius = radius_of(c.hidden_radius);
+  }
+  return mapped;
+}
+
+// Whether a ring of callouts (callout_discs) reaches into one of rects.
+bool rings_under(std::span<const InvertedCallout> callouts, std::span<const PixelRect> rects, double thickness) {
+  for (const InvertedCallout& c : callouts)
+    for (const ScreenDisc& d : callout_discs(c, thickness))
+      for (const PixelRect& rect : rects)
+        if (box_meets_disc(rect, d)) return true;
+  return false;
+}
+
+}  // namespace
+
 OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topology,
                                     const std::vector<double>& vertex_quality, const OverviewOptions& options) {
   if (options.width <= 0 || options.height <= 0)
@@ -485,12 +553,12 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
   }
   // Both ring entries size the legend; the figure keeps those it draws.
   if (!options.inverted_cells.empty()) {
-    const std::string plural = options.cell_noun == "hex" ? "hexes" : options.cell_noun + "s";
+    const std::string cells = plural(options.cell_noun);
     if (options.outline_inverted_faces) {
       f.bar.swatches.push_back({to_color(kInvertedOutlineColor),
                                 "outlined: " + std::to_string(options.inverted_cells.size()) +
                                     (options.inverted_are_reversed ? " reversed " : " inverted ") +
-                                    (options.inverted_cells.size() == 1 ? options.cell_noun : plural),
+                                    plural(options.cell_noun, options.inverted_cells.size()),
                                 SwatchShape::thick_line});  // drawn as an outline, named by one (44p review)
       if (options.inverted_are_reversed)
         f.bar.swatches.push_back({Color{}, "(orientation flipped)", SwatchShape::text});
@@ -500,18 +568,17 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
       const std::string all = std::to_string(options.inverted_cells.size());
       f.bar.swatches.push_back({Color{}, all + " in sight, " + all + " on the far side", SwatchShape::text});
     }
-    f.bar.swatches.push_back({to_color(kCalloutColor), "solid ring: inverted " + plural + ", some in sight", SwatchShape::solid_ring});
+    f.bar.swatches.push_back({to_color(kCalloutColor), "solid ring: inverted " + cells + ", some in sight", SwatchShape::solid_ring});
     f.bar.swatches.push_back(
         {to_color(kCalloutColor), "dashed ring: inside or on the far side", SwatchShape::dashed_ring});
   }
   if (options.intersecting_cells > 0) {
-    const std::string plural = options.cell_noun == "hex" ? "hexes" : options.cell_noun + "s";
     // Volume meshes: the edges drawn (issue 45 part G); a surface mesh's
     // faces: "intersecting faces", the word of its page and main view, drawn
     // there only (issue 47 part F).
     const bool drawn = !options.intersecting_cell_ids.empty();
     f.bar.swatches.push_back({to_color(drawn && !options.inverted_cells.empty() ? kFadedIntersectingSwatchColor : kIntersectingEdgeColor),
-                              "intersecting " + (options.outline_inverted_faces ? std::string("faces") : plural) + ": " +
+                              "intersecting " + (options.outline_inverted_faces ? std::string("faces") : plural(options.cell_noun)) + ": " +
                                   std::to_string(options.intersecting_cells) + (drawn ? " (edges," : ""),
                               drawn ? SwatchShape::thick_line : SwatchShape::text});
     if (drawn)
@@ -553,16 +620,11 @@ OverviewPlan plan_quality_overview(const HexMesh& mesh, const Topology& topology
   // Out of sight: cut-away insets draw the cells themselves, in a strip
   // beside the model (inverted_inset.h), the model fitted into the rest.
   const std::vector<Vec3> points = boundary_points(mesh, topology);
-  const PixelRect& view = f.layout.view;
+  const PixelRect view = f.layout.view;  // (f's is the chosen candidate's at the end)
   const double aspect = static_cast<double>(view.width) / view.height;
-  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
-  for (const Vec3& p : points) {
-    const Vec3 ndc = project_to_ndc(f.camera, aspect, p);
-    if (!std::isfinite(ndc.x) || !std::isfinite(ndc.y)) continue;
-    x0 = std::min(x0, ndc.x), x1 = std::max(x1, ndc.x), y0 = std::min(y0, ndc.y), y1 = std::max(y1, ndc.y);
-  }
-  const double silhouette_w = x1 > x0 ? 0.5 * (x1 - x0) * view.width : view.width;
-  const double silhouette_h = y1 > y0 ? 0.5 * (y1 - y0) * view.height : view.height;
+  const PixelBox silhouette = projected_box(points, f.camera, view);
+  const double silhouette_w = silhouette.x1 > silhouette.x0 ? silhouette.x1 - silhouette.x0 : view.width;
+  const double silhouette_h = silhouette.y1 > silhouette.y0 ? silhouette.y1 - silhouette.y0 : view.height;
   const int margin = std::max(4, static_cast<int>(std::lround(12 * f.style.scale)));
   const InsetStrip strip = inset_strip(view, silhouette_w, silhouette_h, count, margin);
   // The model larger where the strip leaves room (issue 45f round 2, the
@@ -609,31 +671,41 @@ OverviewPlan plan_quality_overview(const HexMesh& mesh, const Topology& topology
   // The largest model whose rings pass under no inset (issue 45: kitten's
   // ring ran under inset A, which hid part of it): the silhouette clears
   // the slots, a ring (drawn around its cells with a margin) may not.
-  // None such: the largest.
-  const auto place = [&](const InsetStrip& s, OverviewPlan& out) {
-    out.frame.layout.view = s.model;
-    out.frame.camera = fit_camera_to_points(points, view_direction_of(options),
-                                            static_cast<double>(s.model.width) / std::max(1, s.model.height), {.up = options.up});
-    out.callouts = inverted_callouts(mesh, topology, options.inverted_cells, vertex_quality, out.frame.camera,
-                                     out.frame.layout.view, min_radius, renderer);
-    out.insets = plan_inverted_insets(mesh, out.callouts, s.slots, out.frame.camera, out.frame.label_size, full_area);
+  // None such: the largest. The id image is rendered for the full view's
+  // rings only; a candidate's are those mapped (mapped_callouts), and only
+  // a candidate whose mapped rings clear its insets has its own rings
+  // found (inverted_callouts) to confirm it.
+  const double thickness = overview_ring_thickness(f.style);
+  const auto fitted = [&](const PixelRect& model) {
+    return fit_camera_to_points(points, view_direction_of(options),
+                                static_cast<double>(model.width) / std::max(1, model.height), {.up = options.up});
   };
-  OverviewPlan first;
-  for (std::size_t k = 0; k < candidates.size(); ++k) {
-    OverviewPlan trial = plan;
-    place(candidates[k].strip, trial);
-    if (!rings_under_insets(trial.callouts, trial.insets, overview_ring_thickness(trial.frame.style))) return trial;
-    if (k == 0) first = std::move(trial);
+  // The plan with s's model and insets; whether its rings clear the insets.
+  const auto place = [&](const InsetStrip& s, const Camera& camera) {
+    plan.frame.layout.view = s.model;
+    plan.frame.camera = camera;
+    plan.callouts = inverted_callouts(mesh, topology, options.inverted_cells, vertex_quality, camera, s.model,
+                                      min_radius, renderer);
+    plan.insets = plan_inverted_insets(mesh, plan.callouts, s.slots, camera, f.label_size, full_area);
+    return !rings_under_insets(plan.callouts, plan.insets, thickness);
+  };
+  const std::vector<InvertedCallout> full = std::move(plan.callouts);
+  for (const Candidate& c : candidates) {
+    const Camera camera = fitted(c.strip.model);
+    const std::vector<InvertedCallout> mapped =
+        mapped_callouts(full, silhouette, projected_box(points, camera, c.strip.model), c.strip.model, min_radius);
+    const std::size_t num_insets = inset_callouts(mapped, c.strip.slots, f.label_size, full_area).size();
+    if (rings_under(mapped, std::span(c.strip.slots).first(num_insets), thickness)) continue;
+    if (place(c.strip, camera)) return plan;
   }
-  return first;
+  place(candidates.front().strip, fitted(candidates.front().strip.model));
+  return plan;
 }
 
 bool rings_under_insets(std::span<const InvertedCallout> callouts, std::span<const InvertedInset> insets, double thickness) {
-  for (const InvertedCallout& c : callouts)
-    for (const ScreenDisc& d : callout_discs(c, thickness))
-      for (const InvertedInset& inset : insets)
-        if (box_meets_disc(inset.rect, d)) return true;
-  return false;
+  std::vector<PixelRect> rects;
+  for (const InvertedInset& inset : insets) rects.push_back(inset.rect);
+  return rings_under(callouts, rects, thickness);
 }
 
 Image render_quality_overview(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,

@@ -22,10 +22,11 @@
 #include "hqview/core/number_format.h"
 #include "hqview/core/progress.h"
 #include "hqview/core/stop.h"
-#include "hqview/quality/cell_corner_jacobian.h"
-#include "hqview/quality/hex_metrics.h"
+#include "hqview/core/text.h"
 #include "hqview/image/png.h"
 #include "hqview/mesh/cell_faces.h"
+#include "hqview/quality/cell_corner_jacobian.h"
+#include "hqview/quality/hex_metrics.h"
 #include "hqview/render/upright.h"
 #include "hqview/views/boundary_views.h"
 #include "hqview/views/detail_views.h"
@@ -122,12 +123,17 @@ std::vector<Index> inverted_cell_ids(const QualityField& field) {
   return cells;
 }
 
-// "hex", or "cell" on a mesh with other volume cells (the per-cell fields
-// cover every kind).
 // Whether a volume mesh has tets, wedges or pyramids.
 static bool has_non_hex(const HexMesh& m) { return !m.tets.empty() || !m.wedges.empty() || !m.pyramids.empty(); }
 
-static std::string cell_word(const Analysis& a) { return a.field.cell_scaled_jacobian.size() > a.mesh.hexes.size() ? "cell" : "hex"; }
+// The one noun for the mesh's cells in titles and legends (plural: core/
+// text.h): a surface mesh's "quad", "triangle" or "face" (both kinds);
+// "hex", or "cell" on a volume mesh with other kinds (the per-cell fields
+// cover every kind).
+static std::string cell_noun(const Analysis& a) {
+  if (is_surface_mesh(a.mesh)) return a.mesh.triangles.empty() ? "quad" : a.mesh.quads.empty() ? "triangle" : "face";
+  return has_non_hex(a.mesh) ? "cell" : "hex";
+}
 
 // A 3D view's file: its image and the camera that drew it.
 ViewFile framed(std::string relative_path, Image image, const ViewContext& c) {
@@ -213,12 +219,11 @@ std::vector<ViewFile> build_overview(ViewContext& c) {
   overview.view_direction = eye.direction;
   if (!is_surface_mesh(c.a.mesh)) overview.up = eye.up;
   overview.inverted_cells = c.inverted_cells;
-  overview.cell_noun = cell_word(c.a);
+  overview.cell_noun = cell_noun(c.a);
   if (is_surface_mesh(c.a.mesh)) {
     overview.outline_inverted_faces = true;
     overview.outline_on_top = planar_view_direction(c.a).has_value();
     overview.inverted_are_reversed = !planar_view_direction(c.a).has_value();
-    overview.cell_noun = c.a.mesh.triangles.empty() ? "quad" : c.a.mesh.quads.empty() ? "triangle" : "face";
   }
   if (c.a.overlap) {
     overview.intersecting_cells = c.a.overlap->num_intersecting_cells;
@@ -234,14 +239,7 @@ std::vector<ViewFile> build_overview(ViewContext& c) {
   // 45f round 2: every overview says it, so titles of copies compare).
   // A shape without a front of its own (a ball): its front is the worst
   // region's side (overview_viewpoint.h, issue 45g).
-  const std::string front_name =
-      !eye.front_from_target ? std::string("the model's front")
-      : eye.target == WorstFaces::Kind::worst_cluster ? std::string("the worst cluster's side")
-                                                      : "the inverted " + std::string(cell_word(c.a) == "hex" ? "hexes'" : "cells'") + " side";
-  overview.title += ", from " + overview_side_name(eye.direction, overview.up, eye.front, front_name);
-  if (!eye.is_default)
-    overview.title += std::string(", turned to show the ") +
-                      (eye.target == WorstFaces::Kind::inverted ? "inverted hexes" : "worst cluster");
+  overview.title += overview_eye_words(eye, overview.up, overview.cell_noun);
   Image image = render_quality_overview(c.a.mesh, c.a.topology, c.quality(), overview, c.renderer);
   return {framed("views/overview.png", std::move(image), c)};
 }
@@ -249,6 +247,7 @@ std::vector<ViewFile> build_overview(ViewContext& c) {
 std::vector<ViewFile> build_main(ViewContext& c) {
   auto main = sized<MainViewOptions>(c);
   main.cell_kinds = mesh_kinds_text(c.a.mesh);
+  main.cell_noun = cell_noun(c.a);
   main.orientation_note = mostly_inverted_note(c.a.field);
   std::vector<std::uint8_t> inverted_cells(c.a.field.cell_scaled_jacobian.size(), 0);
   for (std::size_t cell = 0; cell < inverted_cells.size(); ++cell)
@@ -281,11 +280,13 @@ std::vector<ViewFile> build_main(ViewContext& c) {
   main.glyph_scale = mesh_glyph_scale(c.a.mesh, c.a.topology, *c.glyphs, directions, main);
   std::vector<ViewFile> files;
   for (std::size_t i = 0; i < directions.size(); ++i) {
-    main.title = c.name + (main.surface_cell_quality ? ": faces by scaled Jacobian and glyph clusters, view "
-                                                     : ": glyph clusters and intersecting " + std::string(cell_word(c.a) == "hex" ? "hexes" : "cells") + ", view ") +
-                 std::to_string(i + 1) +
-                 (planar ? std::string(" (along the plane's normal)")  // metric: squares stay squares
-                         : " (from " + viewpoint_name(directions[i], main.up) + ")");
+    main.title =
+        c.name +
+        (main.surface_cell_quality ? ": faces by scaled Jacobian and glyph clusters, view "
+                                   : ": glyph clusters and intersecting " + plural(cell_noun(c.a)) + ", view ") +
+        std::to_string(i + 1) +
+        (planar ? std::string(" (along the plane's normal)")  // metric: squares stay squares
+                : " (from " + viewpoint_name(directions[i], main.up) + ")");
     Image image = render_main_view(c.a.mesh, c.a.topology, *c.glyphs, overlap, directions[i], main, c.renderer);
     files.push_back(framed("views/main_" + std::to_string(i + 1) + ".png", std::move(image), c));
   }
@@ -482,21 +483,23 @@ HistogramAxes histogram_axes(const Analysis& a) {
     return {planar_view_direction(a) ? "scaled Jacobian (per face, signed against the plane)"
                                      : "scaled Jacobian (per face; < 0: reversed faces, concave corners)",
             "faces"};
-  if (cell_word(a) == "cell") return {"scaled Jacobian (per cell)", "cells"};
+  if (cell_noun(a) == "cell") return {"scaled Jacobian (per cell)", "cells"};
   return {};
 }
 
 std::vector<ViewFile> build_histogram(ViewContext& c) {
-  return chart_files("histogram", quality_histogram_chart(c.a.field.cell_scaled_jacobian, false,
-                                                          {800, 460, c.name + ": scaled Jacobian per " + cell_word(c.a)},
-                                                          0.05, histogram_axes(c.a)));
+  return chart_files("histogram",
+                     quality_histogram_chart(c.a.field.cell_scaled_jacobian, false,
+                                             {800, 460, c.name + ": scaled Jacobian per " + cell_noun(c.a)}, 0.05,
+                                             histogram_axes(c.a)));
 }
 
 std::vector<ViewFile> build_histogram_log(ViewContext& c) {
-  return chart_files("histogram_log",
-                     quality_histogram_chart(c.a.field.cell_scaled_jacobian, true,
-                                             {800, 460, c.name + ": scaled Jacobian per " + cell_word(c.a) + " (log scale)"},
-                                             0.05, histogram_axes(c.a)));
+  return chart_files(
+      "histogram_log",
+      quality_histogram_chart(c.a.field.cell_scaled_jacobian, true,
+                              {800, 460, c.name + ": scaled Jacobian per " + cell_noun(c.a) + " (log scale)"}, 0.05,
+                              histogram_axes(c.a)));
 }
 
 std::vector<ViewFile> build_sorted_quality(ViewContext& c) {
@@ -546,7 +549,7 @@ std::vector<ViewFile> build_size_gradation(ViewContext& c) {
   auto options = sized<StructureViewOptions>(c);
   const HexStructure& s = c.a.structure;
   // Every kind has a gradation; a pure-hex mesh's title keeps its words.
-  const char* cells = mesh_kinds_text(c.a.mesh).empty() ? "hexes" : "cells";
+  const std::string cells = plural(cell_noun(c.a));
   // The numbers are over all cells (46w review M5: "of the boundary cells"
   // read as their scope, beside an `(inside)` max cell).
   options.title = c.name + ": size gradation, boundary " + cells + " shown (all " + cells + ": p95 " +
@@ -615,9 +618,9 @@ std::vector<const ViewSpec*> views_of_panel(char panel) {
 // cells (the per-cell fields cover every kind).
 static std::string view_title(std::string_view title, const Analysis& a) {
   std::string t(title);
-  if (const auto at = t.find("per hex"); at != std::string::npos && cell_word(a) == "cell") t.replace(at, 7, "per cell");
+  if (const auto at = t.find("per hex"); at != std::string::npos && cell_noun(a) != "hex") t.replace(at, 7, "per cell");
   constexpr std::string_view kIntersectingHexes = "intersecting hexes";
-  if (const auto at = t.find(kIntersectingHexes); at != std::string::npos && cell_word(a) == "cell")
+  if (const auto at = t.find(kIntersectingHexes); at != std::string::npos && cell_noun(a) != "hex")
     t.replace(at, kIntersectingHexes.size(), "intersecting cells");
   // A mesh with tets, wedges or pyramids colours each boundary face by its
   // own kind's corners: not the vertex quality (the min over every cell;
