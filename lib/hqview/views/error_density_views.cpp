@@ -354,7 +354,8 @@ Vec3 away_from_edge_on(const Vec3& direction, std::span<const Vec3> points, cons
   // (the max hex) lies on, keeping its azimuth about n.
   constexpr double kEdgeOnDegrees = 45.0, kTiltDegrees = 60.0;
   // The model's thinnest axis: its least-squares plane's normal.
-  const Vec3 n = least_squares_plane(points).normal;
+  const LeastSquaresPlane plane = least_squares_plane(points);
+  const Vec3 n = plane.normal;
   const Vec3 d = direction / norm(direction);
   if (std::abs(dot(d, n)) >= std::sin(kEdgeOnDegrees * std::numbers::pi / 180.0)) return direction;
   Vec3 across = d - dot(d, n) * n;
