@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "hqview/core/cpu_features.h"
 #include "hqview/quality/tet_metric_kernels.h"
 #include "hqview/quality/verdict_support.h"
 
@@ -74,9 +75,8 @@ void tet_metric_range(int first, int count, const TetCorners& p, const TetSizeRe
 
 void tet_metric_list_many(std::span<const TetMetric> metrics, std::span<const TetCorners> tets,
                           const TetSizeReference& reference, std::span<double* const> out) {
-#if HQ_TET_KERNELS_AVX2
-  static const bool has_avx2 = __builtin_cpu_supports("avx2");
-  if (has_avx2) return detail::tet_metric_list_many_avx2(metrics, tets, reference, out);
+#if HQ_AVX2_KERNELS
+  if (has_avx2()) return detail::tet_metric_list_many_avx2(metrics, tets, reference, out);
 #endif
   metric_list_lanes(metrics, tets, reference, out);
 }
