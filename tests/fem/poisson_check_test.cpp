@@ -136,7 +136,7 @@ TEST(PoissonCheck, PerturbedGridsAreWorseAndGalerkinBeatsTheInterpolant) {
       const Topology topology = build_topology(*mesh);
       const PoissonCheck solved = run_poisson_check(*mesh, topology, compute_fem_elements(*mesh));
       const auto solutions = default_harmonic_solutions();
-      const Normalization norm = principal_normalization(*mesh, topology);
+      const Normalization norm = principal_normalization(*mesh, topology, volume_moments(*mesh));
       const Q1FieldErrors interpolant =
           q1_field_errors(*mesh, interpolate_solutions(*mesh, solutions, norm), solutions, norm);
       for (std::size_t s = 0; s < 3; ++s) {

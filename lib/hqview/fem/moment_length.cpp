@@ -113,8 +113,7 @@ double third_moment_along(const VolumeMoments& m, const Vec3& e) {
   return sum;
 }
 
-double moment_length(const HexMesh& mesh) {
-  const VolumeMoments m = volume_moments(mesh);
+double moment_length(const VolumeMoments& m) {
   if (!(m.volume > 0)) return kNaN;
   const double trace = m.second[0][0] + m.second[1][1] + m.second[2][2];
   return trace > 0 ? std::sqrt(12.0 * trace) : kNaN;

@@ -43,6 +43,7 @@ VolumeMoments volume_moments(const HexMesh& mesh);
 // int ((x - c) . e)^3 dV / V for a direction e.
 double third_moment_along(const VolumeMoments& m, const Vec3& e);
 
-double moment_length(const HexMesh& mesh);
+// L = sqrt(12 tr C) of the moments; NaN when the volume is not positive.
+double moment_length(const VolumeMoments& m);
 
 }  // namespace hq

@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "hqview/core/box3.h"
-#include "hqview/fem/moment_length.h"
 
 namespace hq {
 namespace {
@@ -80,11 +79,10 @@ void fit_box(const std::vector<Vec3>& points, const Vec3& origin, Normalization&
 
 }  // namespace
 
-Normalization principal_normalization(const HexMesh& mesh, const Topology& topology) {
+Normalization principal_normalization(const HexMesh& mesh, const Topology& topology, const VolumeMoments& m) {
   Normalization n;
   const std::vector<Vec3> points = used_points(mesh, topology);
   if (points.empty()) return n;
-  const VolumeMoments m = volume_moments(mesh);
   if (!(m.volume > 0) || !is_finite(m.centroid)) {
     n.principal_variances = {kNaN, kNaN, kNaN};
     n.axes_from_input = 3;
