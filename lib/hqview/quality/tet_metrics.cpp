@@ -68,11 +68,6 @@ double tet_metric(TetMetric m, const TetCorners& p, double average_volume) {
   return metric_with_size(m, p, reference, size_of(p));
 }
 
-void tet_metric_range(int first, int count, const TetCorners& p, const TetSizeReference& reference, double* out) {
-  const double size = size_of(p);  // shared by every scaled metric
-  for (int j = 0; j < count; ++j) out[j] = metric_with_size(static_cast<TetMetric>(first + j), p, reference, size);
-}
-
 void tet_metric_list_many(std::span<const TetMetric> metrics, std::span<const TetCorners> tets,
                           const TetSizeReference& reference, std::span<double* const> out) {
 #if HQ_AVX2_KERNELS
