@@ -290,8 +290,9 @@ void expect_placement_free(const HexMesh& mesh, const std::string& name) {
   }
 }
 
-// An anisotropic perturbed box (1.6 x 1.1 x 0.8): the box's volume has no
-// third moment, so its perturbed points' fix the axes' signs.
+// An anisotropic perturbed box (1.6 x 1.1 x 0.8): moving its interior
+// points skews its volume a little, and that third moment fixes the axes'
+// signs.
 HexMesh anisotropic_box() {
   HexMesh mesh = test::box_grid(8, 6, 5);
   for (std::size_t v = 0; v < mesh.points.size(); ++v) {
@@ -316,6 +317,24 @@ TEST(PoissonCheck, PlacementFreeOnAPerturbedAnisotropicBox) {
   EXPECT_NEAR(std::abs(n.axes[2].z), 1, 1e-3);
   EXPECT_GT(n.principal_variances[0], n.principal_variances[1]);
   EXPECT_GT(n.principal_variances[1], n.principal_variances[2]);
+  EXPECT_EQ(n.signs_from_points, 0);  // the volume's third moment decided
+}
+
+// A graded box (1.6 x 1.1 x 0.8, its grid lines crowded towards the
+// origin along each axis): every hex a box, so the volume is the box's and
+// its third moments vanish (2 x 2 x 2 Gauss is exact on a box), while the
+// points are skewed: their third moments fix all three signs, for the
+// turned and mirrored copies too.
+TEST(PoissonCheck, PlacementFreeOnAGradedBoxSignedByItsPoints) {
+  HexMesh mesh = test::box_grid(8, 6, 5);
+  for (Vec3& p : mesh.points)
+    p = {1.6 * std::pow(p.x / 8, 1.5), 1.1 * std::pow(p.y / 6, 1.3), 0.8 * std::pow(p.z / 5, 1.2)};
+  expect_placement_free(mesh, "graded box");
+  const Normalization n = check(mesh).normalization;
+  EXPECT_EQ(n.signs_from_points, 3);
+  EXPECT_EQ(n.signs_from_input, 0);
+  // x^ along the long side, towards the sparse end (the points' skew).
+  EXPECT_NEAR(n.axes[0].x, 1, 1e-9);
 }
 
 TEST(PoissonCheck, PlacementFreeOnASharedMesh) {

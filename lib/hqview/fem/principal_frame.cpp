@@ -46,7 +46,10 @@ Vec3 signed_axis(const Skew& skew, const Vec3& axis, Normalization& n) {
   double by_points = 0;
   for (const Vec3& p : skew.points) by_points += std::pow(dot(p - skew.points_mean, axis), 3);
   by_points /= static_cast<double>(skew.points.size());
-  if (std::abs(by_points) > kSkewTolerance * skew.points_sigma3) return by_points < 0 ? -axis : axis;
+  if (std::abs(by_points) > kSkewTolerance * skew.points_sigma3) {
+    ++n.signs_from_points;
+    return by_points < 0 ? -axis : axis;
+  }
   ++n.signs_from_input;
   return signed_by_input(axis);
 }
