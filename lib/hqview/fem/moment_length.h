@@ -36,8 +36,8 @@ struct VolumeMoments {
   std::array<std::array<std::array<double, 3>, 3>, 3> third{};
 };
 
-// All zero (volume 0) for a mesh without hexes; centroid and moments NaN
-// when the volume is not positive.
+// Centroid and moments NaN when the volume is not positive (no hexes, or a
+// mesh that folds over itself).
 VolumeMoments volume_moments(const HexMesh& mesh);
 
 // int ((x - c) . e)^3 dV / V for a direction e.
