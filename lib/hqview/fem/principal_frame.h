@@ -24,8 +24,8 @@
 //     may differ).
 //   - Centre and diagonal: of the bounding box of the points used by hexes
 //     in that frame.
-// The model axes and the bounding box (the check before issue 48's fix)
-// when the mesh has no positive volume. Pure, deterministic.
+// When the mesh has no positive volume (no moments to take axes from): the
+// model axes and the bounding box of the used points. Pure, deterministic.
 
 #include "hqview/fem/harmonic_solution.h"
 #include "hqview/fem/moment_length.h"

@@ -57,10 +57,9 @@ LoadedMesh load_mesh(const fs::path& path, const AnalyzeOptions& options, InputF
 constexpr std::size_t kMetricsBesideOverlapMaxCells = 1'000'000;
 // A surface mesh's faces: its overlap scratch (two triangles, their boxes
 // and the pairs of faces whose boxes meet: about 250 bytes a face) and its
-// metric columns (8 bytes a face each) are smaller; its metrics, their
+// metric columns (8 bytes a face each) are smaller, so its metrics, their
 // summaries and its quad structure run beside the self-intersection up to
-// this many faces (1,092,416 quads: the run's peak RSS 0.86 GB, against
-// 0.97 GB before, when they ran after it and the candidates were listed).
+// this many faces (1,092,416 quads: the run's peak RSS 0.86 GB).
 constexpr std::size_t kMetricsBesideSurfaceOverlapMaxFaces = 4'000'000;
 
 // f, timed into `seconds`: for stages that run beside another one.
