@@ -42,12 +42,6 @@ PoissonCheck check(const HexMesh& mesh, const PoissonOptions& options = {}) {
   return run_poisson_check(mesh, topology, compute_fem_elements(mesh), options);
 }
 
-// p turned by `angle` about the unit axis k (Rodrigues).
-Vec3 turn(const Vec3& p, const Vec3& k, double angle) {
-  const double c = std::cos(angle), s = std::sin(angle);
-  return c * p + s * cross(k, p) + (1 - c) * dot(k, p) * k;
-}
-
 // Halving h divides the L2 error by about 4 and the H1 error by about 2.
 void expect_q1_rates(const std::vector<PoissonCheck>& runs) {
   for (std::size_t i = 1; i < runs.size(); ++i)
@@ -80,7 +74,7 @@ TEST(PoissonCheck, ConvergesAtTheQ1RatesInATurnedFrame) {
   std::vector<PoissonCheck> runs;
   for (int k : {2, 4, 8}) {
     HexMesh box = test::box_grid(4 * k, 3 * k, 2 * k);
-    for (Vec3& p : box.points) p = turn(p / (4.0 * k), normalized(Vec3{1, 2, 3}), 0.7);
+    for (Vec3& p : box.points) p = test::turned(p / (4.0 * k), normalized(Vec3{1, 2, 3}), 0.7);
     runs.push_back(check(box));
     ASSERT_TRUE(runs.back().skipped.empty());
     EXPECT_EQ(runs.back().normalization.axes_from_input, 0);
@@ -248,7 +242,7 @@ TEST(PoissonCheck, SkipsInvalidAndOneLayerMeshes) {
 
 // A copy turned by `angle` about the unit axis k, then moved.
 HexMesh turned(HexMesh mesh, const Vec3& k, double angle, const Vec3& offset) {
-  for (Vec3& p : mesh.points) p = turn(p, k, angle) + offset;
+  for (Vec3& p : mesh.points) p = test::turned(p, k, angle, offset);
   return mesh;
 }
 
@@ -360,7 +354,7 @@ TEST(PoissonCheck, DegenerateFramesFallBackToTheModelAxes) {
   const Vec3 axis = normalized(Vec3{1, 2, 3});
   const Normalization n = check(turned(prism, axis, 0.7, {})).normalization;
   EXPECT_EQ(n.axes_from_input, 2);
-  const Vec3 long_side = turn({0, 0, 1}, axis, 0.7);
+  const Vec3 long_side = test::turned({0, 0, 1}, axis, 0.7);
   EXPECT_NEAR(std::abs(dot(n.axes[0], long_side)), 1, 1e-9);
   EXPECT_NEAR(dot(n.axes[1], n.axes[0]), 0, 1e-12);
   EXPECT_NEAR(dot(n.axes[2], n.axes[0]), 0, 1e-12);

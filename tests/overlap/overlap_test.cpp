@@ -535,12 +535,6 @@ TEST(SurfaceOverlap, VertexPushedThroughItsOppositeCornerOverlapsAsTheReferenceS
   EXPECT_EQ(surface_pairs(rotated), pairs);
 }
 
-// p turned by `angle` about the unit `axis` (Rodrigues), then moved by `shift`.
-Vec3 turned_about(const Vec3& p, const Vec3& axis, double angle, const Vec3& shift) {
-  const double c = std::cos(angle), s = std::sin(angle);
-  return c * p + s * cross(axis, p) + ((1.0 - c) * dot(axis, p)) * axis + shift;
-}
-
 TEST(SurfaceOverlap, PlanarMeshIsDecidedInItsPlaneForAnyRotationOrMirror) {
   // The 4 x 4 grid of unit quads (quad (i, j) = 4 j + i) with three defects:
   //   vertex (1, 1) pushed through the opposite corner (2, 2) of quad 5 to
@@ -584,7 +578,7 @@ TEST(SurfaceOverlap, PlanarMeshIsDecidedInItsPlaneForAnyRotationOrMirror) {
   for (const Placement& at : placements) {
     Mesh copy = m;
     for (Vec3& p : copy.points) {
-      p = turned_about(p, at.axis, at.angle, at.shift);
+      p = test::turned(p, at.axis, at.angle, at.shift);
       if (at.mirrored) p.y = -p.y;
     }
     const std::string what = "turned " + std::to_string(at.angle) + (at.mirrored ? ", mirrored" : "");
@@ -599,7 +593,7 @@ TEST(SurfaceOverlap, PlanarMeshIsDecidedInItsPlaneForAnyRotationOrMirror) {
     // The arrows point where the original's do, carried along (the plane
     // mapped back to the model's space).
     for (std::size_t i = 0; i < r.markers.size() && i < original.markers.size(); ++i) {
-      Vec3 expected = turned_about(original.markers[i].position, at.axis, at.angle, at.shift);
+      Vec3 expected = test::turned(original.markers[i].position, at.axis, at.angle, at.shift);
       if (at.mirrored) expected.y = -expected.y;
       EXPECT_LT(norm(r.markers[i].position - expected), 1e-9 * (1.0 + norm(at.shift))) << what << " marker " << i;
     }

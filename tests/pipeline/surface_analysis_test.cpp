@@ -31,6 +31,7 @@
 #include "io/gmsh_run.h"
 #include "io/temp_dir.h"
 #include "reference_overlap.h"
+#include "support/fixtures.h"
 #include "support/verdict_oracle.h"
 
 namespace hq {
@@ -354,9 +355,8 @@ TEST(SurfaceAnalysis, GmshPlanarQuadMeshWithAHole) {
   for (const Placement& at : {Placement{{1, 0, 0}, 0.7, true}, Placement{normalized(Vec3{1, 2, 3}), 1.1, false},
                               Placement{normalized(Vec3{-2, 1, 0.5}), 2.6, true}}) {
     std::vector<Vec3> points = mesh.points;
-    const double c = std::cos(at.angle), s = std::sin(at.angle);
     for (Vec3& p : points) {
-      p = c * p + s * cross(at.axis, p) + ((1.0 - c) * dot(at.axis, p)) * at.axis + Vec3{3.0, -2.0, 40.0};
+      p = test::turned(p, at.axis, at.angle, Vec3{3.0, -2.0, 40.0});
       if (at.mirrored) p.x = -p.x;
     }
     const std::string what = "turned " + std::to_string(at.angle) + (at.mirrored ? ", mirrored" : "");
