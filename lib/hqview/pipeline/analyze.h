@@ -1,5 +1,5 @@
 #pragma once
-// The `analyze` pipeline: read -> topology -> [read reference, the UV atlas
+// The `analyze` pipeline: read -> [read compare mesh] -> topology -> [read reference, the UV atlas
 // started on its own thread] -> quality -> overlap (and beside it the
 // structure) -> metrics -> summaries -> [fem elements -> fem poisson] -> glyphs -> boundary error -> compare mesh -> views (the UV
 // error map waits for the atlas) -> report document -> gates. The one place
