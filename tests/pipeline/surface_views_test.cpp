@@ -231,7 +231,7 @@ int inverted_face_pixels_shown(const ViewFile& f, const Analysis& a, const Bound
   int shown = 0;
   samples = 0;
   const auto p = [&](int k) { return a.mesh.points[static_cast<std::size_t>(face.v[static_cast<std::size_t>(k)])]; };
-  const bool curved = a.mesh_summary.planarity && !a.mesh_summary.planarity->is_planar;
+  const bool curved = is_curved_surface(a.mesh_summary);
   const Vec3 towards = normalized(f.camera->eye - f.camera->target);
   for (int t = 0; t < (face.size == 4 ? 2 : 1); ++t) {
     const Vec3 A = p(0), B = p(1 + t), C = p(2 + t);

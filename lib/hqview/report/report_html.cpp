@@ -354,7 +354,7 @@ void set_headline(data& page, const ReportModel& model) {
     headline.push_back(card("cells", show_count(c.num_cells)));
     if (c.num_quads > 0) headline.push_back(card("quads", show_count(c.num_quads)));
     if (c.num_triangles > 0) headline.push_back(card("triangles", show_count(c.num_triangles)));
-    const bool planar = m.planarity && m.planarity->is_planar;
+    const bool planar = !is_curved_surface(m);
     headline.push_back(card("surface", planar ? "planar" : "not planar"));
     if (planar) {
       headline.push_back(card("min scaled Jacobian (per cell, signed against the plane's normal)",
