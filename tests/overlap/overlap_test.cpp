@@ -12,10 +12,10 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "hqview/core/box3.h"
 #include "overlap_fixtures.h"
 #include "reference_overlap.h"
 #include "support/fixtures.h"
-#include "hqview/core/box3.h"
 
 namespace hq {
 namespace {
@@ -435,8 +435,9 @@ OverlapReport run_surface(const Mesh& mesh, double eps = 0.0, std::int64_t min_b
     for (Index v : q) box.add(mesh.points[v]);
   for (const auto& t : mesh.triangles)
     for (Index v : t) box.add(mesh.points[v]);
-  return check_surface_overlap(mesh, measure_planarity(mesh, box.diagonal()),
-                               OverlapOptions{.coincident_eps = eps, .pairs_per_box = per_box, .min_pair_budget = min_budget});
+  return check_surface_overlap(
+      mesh, measure_planarity(mesh, box.diagonal()),
+      OverlapOptions{.coincident_eps = eps, .pairs_per_box = per_box, .min_pair_budget = min_budget});
 }
 
 // Every pair the check lists, and each folded face as {f, f}: the reference's form.

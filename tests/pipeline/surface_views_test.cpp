@@ -298,8 +298,9 @@ void expect_inverted_faces_visible(const Analysis& a, const std::vector<Rendered
       }
       const Vec3 towards = normalized(f.camera->eye - f.camera->target);
       ASSERT_LT(static_cast<std::size_t>(views - 1), in_sight.size()) << f.relative_path;
-      EXPECT_EQ(checked, in_sight[static_cast<std::size_t>(views - 1)]) << f.relative_path << ": faces in sight" << seen << "; towards the camera "
-                                   << towards.x << " " << towards.y << " " << towards.z;
+      EXPECT_EQ(checked, in_sight[static_cast<std::size_t>(views - 1)])
+          << f.relative_path << ": faces in sight" << seen << "; towards the camera " << towards.x << " " << towards.y
+          << " " << towards.z;
       // And #0, on the corner where the inverted faces meet (they lie
       // behind its front half), keeps its own colour (issue 44 part U,
       // round 2: the faces drawn over everything left rockarm's #0 13 %
@@ -436,7 +437,8 @@ TEST(SurfaceViews, EveryInvertedFaceShowsOverTheGlyphs) {
     options.mesh_path = dir.write("dented.mesh", m.str());
     options.tool_version = "test";
     const Analysis a = analyze_mesh(options);
-    expect_inverted_faces_visible(a, render_views(a, views, *renderer), false, {4, 4});  // the four top faces, in both files
+    expect_inverted_faces_visible(a, render_views(a, views, *renderer), false,
+                                  {4, 4});  // the four top faces, in both files
   }
 }
 

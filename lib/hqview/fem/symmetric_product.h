@@ -187,8 +187,8 @@ std::array<double, K> symmetric_product(const CsrMatrix& a, Columns columns, con
 #if HQ_AVX2_KERNELS
       if constexpr (K == 4) {
         if (has_avx2()) {
-          partial[c] = product_chunk_avx2(a, std::is_same_v<Columns, NarrowColumns>, first, last, head_end, x, y,
-                                          overflow, w);
+          partial[c] =
+              product_chunk_avx2(a, std::is_same_v<Columns, NarrowColumns>, first, last, head_end, x, y, overflow, w);
           continue;
         }
       }

@@ -702,8 +702,8 @@ TriangleHits test_triangle_groups(const std::vector<Vec3>& p, const TriangleGrou
       std::int64_t item = 0;
       for_each_candidate(k, [&](Index i, Index j) {
         ++item;
-        if (is_testing &&
-            triangles_meet_improperly(p, g.triangles[static_cast<std::size_t>(i)], g.triangles[static_cast<std::size_t>(j)]))
+        if (is_testing && triangles_meet_improperly(p, g.triangles[static_cast<std::size_t>(i)],
+                                                    g.triangles[static_cast<std::size_t>(j)]))
           hits[c].push_back({i, j});
       });
       count += item;

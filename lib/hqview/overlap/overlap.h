@@ -57,9 +57,9 @@
 #include <string_view>
 #include <vector>
 
+#include "hqview/core/cell_kinds.h"
 #include "hqview/core/types.h"
 #include "hqview/core/vec3.h"
-#include "hqview/core/cell_kinds.h"
 #include "hqview/mesh/mesh.h"
 #include "hqview/mesh/planarity.h"
 #include "hqview/mesh/topology.h"

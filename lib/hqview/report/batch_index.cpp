@@ -1052,8 +1052,7 @@ std::string batch_summary_markdown(const std::vector<BatchEntry>& entries) {
     md += "\n";
   }
   for (const SkippedFiles& group : skipped_files(entries)) {
-    md += "\nSkipped: " + count_files(group.paths.size()) +
-          ", not analysed (" + markdown_escape(group.reason) + "):";
+    md += "\nSkipped: " + count_files(group.paths.size()) + ", not analysed (" + markdown_escape(group.reason) + "):";
     for (std::size_t k = 0; k < group.paths.size(); ++k) md += (k == 0 ? " " : ", ") + markdown_escape(group.paths[k]);
     md += ".\n";
   }

@@ -5,8 +5,8 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "hqview/render/upright.h"
 #include "hqview/glyph/glyph_ties.h"
+#include "hqview/render/upright.h"
 #include "hqview/report/cluster_color.h"
 #include "hqview/report/escape.h"
 

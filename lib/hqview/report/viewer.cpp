@@ -271,7 +271,8 @@ BoundaryData boundary_data(const Analysis& a, const ViewerBoundary& b, bool with
     std::vector<std::uint8_t> vq;
     if (kinds.empty()) {
       for (Index v : b.vertices) vq.push_back(quality_index(a.field.vertex_quality[static_cast<std::size_t>(v)]));
-      out.fields.push_back(quality_field("vertex_quality", "vertex quality (min corner scaled Jacobian)", "vertex", vq));
+      out.fields.push_back(
+          quality_field("vertex_quality", "vertex quality (min corner scaled Jacobian)", "vertex", vq));
     } else {
       for (std::size_t f = 0; f < b.face_hex.size(); ++f) {
         const auto kind = static_cast<std::size_t>(
