@@ -67,12 +67,16 @@ def run_timed(cmd, out, runs):
 
 
 def run_interleaved(cmd_a, cmd_b, out, runs):
-    """Median walls of two commands run alternately (a, b, a, b, ...), so
-    that a change of the machine's load hits both alike."""
-    a, b = [], []
+    """Two commands run alternately (a, b, a, b, ...), so that a change of the
+    machine's load hits both alike: for each, its walls and its CPU seconds
+    (user + system), a list each."""
+    a, b = ([], []), ([], [])
     for _ in range(runs):
-        a += run_timed(cmd_a, out, 1)[0]
-        b += run_timed(cmd_b, out, 1)[0]
+        for cmd, (walls, cpus) in ((cmd_a, a), (cmd_b, b)):
+            wall, _, cpu = run_once(cmd, out)
+            walls.append(wall)
+            cpus.append(cpu)
+            print("e2e: %.2f s wall, %.2f s CPU: %s" % (wall, cpu, shlex.join(cmd)), file=sys.stderr)
     return a, b
 
 
@@ -95,14 +99,7 @@ def simulate_ratio_case(a, out):
     """Issue 48: --simulate against --no-render on the 363,520 hexes, interleaved:
     the ratio of the wall-time medians and of the CPU-time (user + system) medians."""
     cmd = [a.hqview, "analyze", a.mesh363, "-o", out, "--no-render", "-j", "2", "-q"]
-    runs = {"plain": ([], []), "simulated": ([], [])}
-    for _ in range(a.runs):
-        for name, command in (("plain", cmd), ("simulated", cmd + ["--simulate"])):
-            wall, _, cpu = run_once(command, out)
-            runs[name][0].append(wall)
-            runs[name][1].append(cpu)
-            print("e2e: %.2f s wall, %.2f s CPU: %s" % (wall, cpu, shlex.join(command)), file=sys.stderr)
-    (plain, plain_cpu), (simulated, simulated_cpu) = runs["plain"], runs["simulated"]
+    (plain, plain_cpu), (simulated, simulated_cpu) = run_interleaved(cmd, cmd + ["--simulate"], out, a.runs)
     ratio = statistics.median(simulated) / statistics.median(plain)
     cpu_ratio = statistics.median(simulated_cpu) / statistics.median(plain_cpu)
     print("e2e: --no-render medians %.2f s wall, %.2f s CPU; with --simulate %.2f s wall, %.2f s CPU: "
@@ -180,7 +177,7 @@ def main():
                       wall <= 5.0, walls))
     # The viewer's cost: every view, with and without it.
     cmd = [a.hqview, "analyze", a.mesh363, "-o", out, "-j", "2", "-q"]
-    with_viewer, without = run_interleaved(cmd, cmd + ["--no-viewer"], out, a.runs)
+    (with_viewer, _), (without, _) = run_interleaved(cmd, cmd + ["--no-viewer"], out, a.runs)
     ratio = statistics.median(with_viewer) / statistics.median(without)
     cases.append(case("hqview 363,520 hexes, every view, --no-viewer (baseline)", shlex.join(cmd + ["--no-viewer"]),
                       statistics.median(without), "s", "baseline", True, without))

@@ -79,13 +79,12 @@ def main():
     if a.base:
         compared.append(ratios("base " + a.base, *runs["base"]))
     cmd = lambda mesh: cmd_of(a.hqview, mesh)
-    hexes = [w for w, _, _ in runs["this"][0]]
-    quads = [w for w, _, _ in runs["this"][1]]
-    shares = [s for _, _, s in runs["this"][1]]
+    this = compared[0]
+    hexes = [w for w, _, _ in this["hex_runs"]]
+    quads = [w for w, _, _ in this["quad_runs"]]
+    shares = [s for _, _, s in this["quad_runs"]]
     wall_h, wall_q = statistics.median(hexes), statistics.median(quads)
-    ratio = wall_q / wall_h
-    share = statistics.median(shares)
-    cpu_ratio = compared[0]["cpu_ratio"]
+    ratio, cpu_ratio, share = this["time_ratio"], this["cpu_ratio"], this["self_intersection_share"]
 
     def case(label, command, value, unit, target, ok, runs):
         return {"label": label, "command": command, "value": value, "unit": unit, "target": target, "ok": ok,

@@ -33,7 +33,7 @@ const Input& input() {
     Input i{hq::bench::refine_1_to_8(hq::read_hex_mesh(hq::bench::largest_mesh()).mesh), {}, {}, {}, {}};
     i.topology = hq::build_topology(i.mesh);
     i.elements = hq::compute_fem_elements(i.mesh);
-    i.normalization = hq::principal_normalization(i.mesh, i.topology);
+    i.normalization = hq::principal_normalization(i.mesh, i.topology, hq::volume_moments(i.mesh));
     i.dirichlet = hq::interpolate_solutions(i.mesh, hq::default_harmonic_solutions(), i.normalization);
     return i;
   }();

@@ -42,12 +42,6 @@ PoissonCheck check(const HexMesh& mesh, const PoissonOptions& options = {}) {
   return run_poisson_check(mesh, topology, compute_fem_elements(mesh), options);
 }
 
-// p turned by `angle` about the unit axis k (Rodrigues).
-Vec3 turn(const Vec3& p, const Vec3& k, double angle) {
-  const double c = std::cos(angle), s = std::sin(angle);
-  return c * p + s * cross(k, p) + (1 - c) * dot(k, p) * k;
-}
-
 // Halving h divides the L2 error by about 4 and the H1 error by about 2.
 void expect_q1_rates(const std::vector<PoissonCheck>& runs) {
   for (std::size_t i = 1; i < runs.size(); ++i)
@@ -80,7 +74,7 @@ TEST(PoissonCheck, ConvergesAtTheQ1RatesInATurnedFrame) {
   std::vector<PoissonCheck> runs;
   for (int k : {2, 4, 8}) {
     HexMesh box = test::box_grid(4 * k, 3 * k, 2 * k);
-    for (Vec3& p : box.points) p = turn(p / (4.0 * k), normalized(Vec3{1, 2, 3}), 0.7);
+    for (Vec3& p : box.points) p = test::turned(p / (4.0 * k), normalized(Vec3{1, 2, 3}), 0.7);
     runs.push_back(check(box));
     ASSERT_TRUE(runs.back().skipped.empty());
     EXPECT_EQ(runs.back().normalization.axes_from_input, 0);
@@ -136,7 +130,7 @@ TEST(PoissonCheck, PerturbedGridsAreWorseAndGalerkinBeatsTheInterpolant) {
       const Topology topology = build_topology(*mesh);
       const PoissonCheck solved = run_poisson_check(*mesh, topology, compute_fem_elements(*mesh));
       const auto solutions = default_harmonic_solutions();
-      const Normalization norm = principal_normalization(*mesh, topology);
+      const Normalization norm = principal_normalization(*mesh, topology, volume_moments(*mesh));
       const Q1FieldErrors interpolant =
           q1_field_errors(*mesh, interpolate_solutions(*mesh, solutions, norm), solutions, norm);
       for (std::size_t s = 0; s < 3; ++s) {
@@ -248,7 +242,7 @@ TEST(PoissonCheck, SkipsInvalidAndOneLayerMeshes) {
 
 // A copy turned by `angle` about the unit axis k, then moved.
 HexMesh turned(HexMesh mesh, const Vec3& k, double angle, const Vec3& offset) {
-  for (Vec3& p : mesh.points) p = turn(p, k, angle) + offset;
+  for (Vec3& p : mesh.points) p = test::turned(p, k, angle, offset);
   return mesh;
 }
 
@@ -290,8 +284,9 @@ void expect_placement_free(const HexMesh& mesh, const std::string& name) {
   }
 }
 
-// An anisotropic perturbed box (1.6 x 1.1 x 0.8): the box's volume has no
-// third moment, so its perturbed points' fix the axes' signs.
+// An anisotropic perturbed box (1.6 x 1.1 x 0.8): moving its interior
+// points skews its volume a little, and that third moment fixes the axes'
+// signs.
 HexMesh anisotropic_box() {
   HexMesh mesh = test::box_grid(8, 6, 5);
   for (std::size_t v = 0; v < mesh.points.size(); ++v) {
@@ -316,6 +311,24 @@ TEST(PoissonCheck, PlacementFreeOnAPerturbedAnisotropicBox) {
   EXPECT_NEAR(std::abs(n.axes[2].z), 1, 1e-3);
   EXPECT_GT(n.principal_variances[0], n.principal_variances[1]);
   EXPECT_GT(n.principal_variances[1], n.principal_variances[2]);
+  EXPECT_EQ(n.signs_from_points, 0);  // the volume's third moment decided
+}
+
+// A graded box (1.6 x 1.1 x 0.8, its grid lines crowded towards the
+// origin along each axis): every hex a box, so the volume is the box's and
+// its third moments vanish (2 x 2 x 2 Gauss is exact on a box), while the
+// points are skewed: their third moments fix all three signs, for the
+// turned and mirrored copies too.
+TEST(PoissonCheck, PlacementFreeOnAGradedBoxSignedByItsPoints) {
+  HexMesh mesh = test::box_grid(8, 6, 5);
+  for (Vec3& p : mesh.points)
+    p = {1.6 * std::pow(p.x / 8, 1.5), 1.1 * std::pow(p.y / 6, 1.3), 0.8 * std::pow(p.z / 5, 1.2)};
+  expect_placement_free(mesh, "graded box");
+  const Normalization n = check(mesh).normalization;
+  EXPECT_EQ(n.signs_from_points, 3);
+  EXPECT_EQ(n.signs_from_input, 0);
+  // x^ along the long side, towards the sparse end (the points' skew).
+  EXPECT_NEAR(n.axes[0].x, 1, 1e-9);
 }
 
 TEST(PoissonCheck, PlacementFreeOnASharedMesh) {
@@ -341,7 +354,7 @@ TEST(PoissonCheck, DegenerateFramesFallBackToTheModelAxes) {
   const Vec3 axis = normalized(Vec3{1, 2, 3});
   const Normalization n = check(turned(prism, axis, 0.7, {})).normalization;
   EXPECT_EQ(n.axes_from_input, 2);
-  const Vec3 long_side = turn({0, 0, 1}, axis, 0.7);
+  const Vec3 long_side = test::turned({0, 0, 1}, axis, 0.7);
   EXPECT_NEAR(std::abs(dot(n.axes[0], long_side)), 1, 1e-9);
   EXPECT_NEAR(dot(n.axes[1], n.axes[0]), 0, 1e-12);
   EXPECT_NEAR(dot(n.axes[2], n.axes[0]), 0, 1e-12);

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "hqview/core/box3.h"
 #include "overlap_fixtures.h"
 #include "reference_overlap.h"
 #include "support/fixtures.h"
@@ -425,9 +426,18 @@ Mesh quad_grid(int n) {
   return m;
 }
 
+// The check with the mesh's planarity as the analysis measures it (over the
+// vertices the faces use).
 OverlapReport run_surface(const Mesh& mesh, double eps = 0.0, std::int64_t min_budget = 1'000'000,
                           std::int64_t per_box = 64) {
-  return check_surface_overlap(mesh, OverlapOptions{.coincident_eps = eps, .pairs_per_box = per_box, .min_pair_budget = min_budget});
+  Box3 box;
+  for (const auto& q : mesh.quads)
+    for (Index v : q) box.add(mesh.points[v]);
+  for (const auto& t : mesh.triangles)
+    for (Index v : t) box.add(mesh.points[v]);
+  return check_surface_overlap(
+      mesh, measure_planarity(mesh, box.diagonal()),
+      OverlapOptions{.coincident_eps = eps, .pairs_per_box = per_box, .min_pair_budget = min_budget});
 }
 
 // Every pair the check lists, and each folded face as {f, f}: the reference's form.
@@ -526,12 +536,6 @@ TEST(SurfaceOverlap, VertexPushedThroughItsOppositeCornerOverlapsAsTheReferenceS
   EXPECT_EQ(surface_pairs(rotated), pairs);
 }
 
-// p turned by `angle` about the unit `axis` (Rodrigues), then moved by `shift`.
-Vec3 turned_about(const Vec3& p, const Vec3& axis, double angle, const Vec3& shift) {
-  const double c = std::cos(angle), s = std::sin(angle);
-  return c * p + s * cross(axis, p) + ((1.0 - c) * dot(axis, p)) * axis + shift;
-}
-
 TEST(SurfaceOverlap, PlanarMeshIsDecidedInItsPlaneForAnyRotationOrMirror) {
   // The 4 x 4 grid of unit quads (quad (i, j) = 4 j + i) with three defects:
   //   vertex (1, 1) pushed through the opposite corner (2, 2) of quad 5 to
@@ -575,7 +579,7 @@ TEST(SurfaceOverlap, PlanarMeshIsDecidedInItsPlaneForAnyRotationOrMirror) {
   for (const Placement& at : placements) {
     Mesh copy = m;
     for (Vec3& p : copy.points) {
-      p = turned_about(p, at.axis, at.angle, at.shift);
+      p = test::turned(p, at.axis, at.angle, at.shift);
       if (at.mirrored) p.y = -p.y;
     }
     const std::string what = "turned " + std::to_string(at.angle) + (at.mirrored ? ", mirrored" : "");
@@ -590,7 +594,7 @@ TEST(SurfaceOverlap, PlanarMeshIsDecidedInItsPlaneForAnyRotationOrMirror) {
     // The arrows point where the original's do, carried along (the plane
     // mapped back to the model's space).
     for (std::size_t i = 0; i < r.markers.size() && i < original.markers.size(); ++i) {
-      Vec3 expected = turned_about(original.markers[i].position, at.axis, at.angle, at.shift);
+      Vec3 expected = test::turned(original.markers[i].position, at.axis, at.angle, at.shift);
       if (at.mirrored) expected.y = -expected.y;
       EXPECT_LT(norm(r.markers[i].position - expected), 1e-9 * (1.0 + norm(at.shift))) << what << " marker " << i;
     }
@@ -738,9 +742,9 @@ std::int64_t brute_force_candidates(const Mesh& m) {
 }
 
 // One triangle far from the rest and across its plane: the mesh is no
-// longer planar, so the check decides it in 3-D (a planar mesh is decided in
-// its plane since issue 47p: its rotated copies answer as it does, which the
-// 3-D reference below does not model). Nothing of the rest meets it.
+// longer planar, so the check decides it in 3-D, as the all-pairs reference
+// does (a planar mesh is decided in its plane, so that its rotated copies
+// answer as it does: expect_planar_copies_alike). Nothing of the rest meets it.
 void lift_out_of_plane(Mesh& m) {
   const auto base = static_cast<Index>(m.points.size());
   for (const Vec3& p : {Vec3{-50, -50, -20}, Vec3{-48, -50, 20}, Vec3{-50, -47, 5}}) m.points.push_back(p);
@@ -751,6 +755,38 @@ Vec3 rotated(const Vec3& p, double angle) {
   const double c = std::cos(angle), s = std::sin(angle);
   const Vec3 q{c * p.x - s * p.y, s * p.x + c * p.y, p.z};
   return Vec3{q.x, c * q.y - s * q.z, s * q.y + c * q.z};
+}
+
+// A mesh in z = 0, decided in its plane: as the 3-D reference says (exact
+// for corners exactly coplanar), and its mirror image in x gives its pairs,
+// folded faces and candidate pairs (the plane and its triangles' boxes
+// mirrored exactly). With `turns`, so do its copies turned off the axes (by
+// an irrational angle about a skew axis, far from the origin), mirrored or
+// not, but for the candidates (the plane's frame, PlaneFrame, turns the
+// boxes): only for a mesh without exactly degenerate contacts (a corner
+// exactly on another face's edge), which rounding moves to one side
+// (overlap.h).
+void expect_planar_copies_alike(const Mesh& m, const std::string& what, bool turns) {
+  const OverlapReport original = run_surface(m);
+  EXPECT_TRUE(original.is_decided_in_plane) << what;
+  expect_surface_matches_reference(m, what);
+  const Vec3 axis = normalized(Vec3{1.0, 2.0, 3.0});
+  const Vec3 shift{1e3, -2e2, 7.0};
+  for (const bool mirror : {false, true})
+    for (const bool turn : {false, true}) {
+      if ((!mirror && !turn) || (turn && !turns)) continue;
+      Mesh copy = m;
+      for (Vec3& p : copy.points) {
+        if (mirror) p.x = -p.x;
+        if (turn) p = test::turned(p, axis, std::sqrt(2.0), shift);
+      }
+      const std::string label = what + (mirror ? ", mirrored" : "") + (turn ? ", turned" : "");
+      const OverlapReport r = run_surface(copy);
+      EXPECT_TRUE(r.is_decided_in_plane) << label;
+      EXPECT_EQ(surface_pairs(r), surface_pairs(original)) << label;
+      EXPECT_EQ(r.self_intersecting_faces, original.self_intersecting_faces) << label;
+      if (!turn) EXPECT_EQ(r.num_candidate_pairs, original.num_candidate_pairs) << label;
+    }
 }
 
 // The projection filter (triangles settled in one coordinate plane) and the
@@ -776,6 +812,20 @@ TEST(SurfaceOverlap, LatticeFacesExactlyAndNearlyCoplanarMatchTheReference) {
       else if (d != a && d != b && d != c)
         m.quads.push_back({a, b, c, d});
     }
+    if (seed % 3 == 0) {
+      // On the lattice, corners lie exactly on other faces' edges: the
+      // mirror image only. The same faces on points moved up to 0.05 in the
+      // plane (general position: every contact decided by a margin far
+      // above rounding) also turned.
+      expect_planar_copies_alike(m, "planar lattice, seed " + std::to_string(seed), false);
+      Mesh moved = m;
+      for (std::size_t v = 0; v < moved.points.size(); ++v)
+        for (int a = 0; a < 2; ++a) {
+          const double t = std::sin(12.9898 * static_cast<double>(v) + 78.233 * a) * 43758.5453;
+          moved.points[v][a] += 0.1 * (t - std::floor(t) - 0.5);
+        }
+      expect_planar_copies_alike(moved, "planar lattice moved off its points, seed " + std::to_string(seed), true);
+    }
     lift_out_of_plane(m);  // seeds 3 and 6 lie in z = 0
     expect_surface_matches_reference(m, "lattice, seed " + std::to_string(seed));
     EXPECT_EQ(run_surface(m).num_candidate_pairs, brute_force_candidates(m)) << seed;
@@ -799,6 +849,7 @@ TEST(SurfaceOverlap, TurnedFlatPatchAndItsNearlyFlatFoldsMatchTheReference) {
   EXPECT_EQ(run_surface(m).num_candidate_pairs, brute_force_candidates(m));
   Mesh pushed = quad_grid(6);
   pushed.points[8] = {2.6, 1.3, 0.0};                  // (1, 1) across quad (1, 1) into (2, 1)
+  expect_planar_copies_alike(pushed, "patch pushed in the plane", true);
   pushed.points[17] = {3.0 + 1e-13, 2.0, 1e-13};       // (3, 2) barely off the plane
   pushed.points[24] = {2.5, 3.0, -1e-13};              // (3, 3) folded back over quad (2, 2)
   lift_out_of_plane(pushed);

@@ -31,6 +31,7 @@
 #include "io/gmsh_run.h"
 #include "io/temp_dir.h"
 #include "reference_overlap.h"
+#include "support/fixtures.h"
 #include "support/verdict_oracle.h"
 
 namespace hq {
@@ -354,9 +355,8 @@ TEST(SurfaceAnalysis, GmshPlanarQuadMeshWithAHole) {
   for (const Placement& at : {Placement{{1, 0, 0}, 0.7, true}, Placement{normalized(Vec3{1, 2, 3}), 1.1, false},
                               Placement{normalized(Vec3{-2, 1, 0.5}), 2.6, true}}) {
     std::vector<Vec3> points = mesh.points;
-    const double c = std::cos(at.angle), s = std::sin(at.angle);
     for (Vec3& p : points) {
-      p = c * p + s * cross(at.axis, p) + ((1.0 - c) * dot(at.axis, p)) * at.axis + Vec3{3.0, -2.0, 40.0};
+      p = test::turned(p, at.axis, at.angle, Vec3{3.0, -2.0, 40.0});
       if (at.mirrored) p.x = -p.x;
     }
     const std::string what = "turned " + std::to_string(at.angle) + (at.mirrored ? ", mirrored" : "");
@@ -458,13 +458,19 @@ TEST(SurfaceAnalysis, CompareTwoSurfacesFindsTheTurnAndTheMirror) {
   EXPECT_TRUE(m["compare"]["alignment"]["mirrored"].get<bool>()) << m["compare"]["alignment"].dump();
   EXPECT_EQ(m["compare"]["headline"]["num_inverted"], 0);
 
-  // A surface against a volume mesh, either way round.
+  // A surface against a volume mesh, either way round: refused as soon as
+  // both are read, before MESH's quality stage (and so before its overlap
+  // check and, asked for here, its Poisson solve).
+  options.simulate = true;
+  std::vector<std::string> stages;
+  options.on_stage = [&](const StageTime& t) { stages.push_back(t.name); };
   const auto hex = dir.write("hex.vtk", "# vtk DataFile Version 3.0\nh\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 8 double\n"
                                         "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
                                         "CELLS 1 9\n8 0 1 2 3 4 5 6 7\nCELL_TYPES 1\n12\n");
   for (const bool surface_first : {true, false}) {
     options.mesh_path = surface_first ? dir.path() / "box.vtk" : hex;
     options.compare_path = surface_first ? hex : dir.path() / "box.vtk";
+    stages.clear();
     try {
       analyze(options, nullptr);
       ADD_FAILURE() << "--compare of a surface and a volume mesh was accepted";
@@ -474,6 +480,7 @@ TEST(SurfaceAnalysis, CompareTwoSurfacesFindsTheTurnAndTheMirror) {
                 std::string::npos)
           << e.what();
     }
+    EXPECT_EQ(stages, (std::vector<std::string>{"read", "read compare mesh"})) << surface_first;
   }
 }
 

@@ -80,4 +80,9 @@ double mean_edge_length(const HexMesh& mesh, const Topology& topology) {
   return topology.edges.empty() ? 0.0 : sum / static_cast<double>(topology.edges.size());
 }
 
+Vec3 turned(const Vec3& p, const Vec3& axis, double angle, const Vec3& shift) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  return c * p + s * cross(axis, p) + ((1.0 - c) * dot(axis, p)) * axis + shift;
+}
+
 }  // namespace hq::test

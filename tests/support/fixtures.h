@@ -36,4 +36,8 @@ std::vector<std::filesystem::path> shared_hex_meshes(const std::filesystem::path
 // The mean length of the mesh's unique edges (the unit of --rmax Rx).
 double mean_edge_length(const HexMesh& mesh, const Topology& topology);
 
+// p turned by `angle` (radians) about the unit `axis` (Rodrigues' formula),
+// then moved by `shift`: a placement a mesh's numbers must not depend on.
+Vec3 turned(const Vec3& p, const Vec3& axis, double angle, const Vec3& shift = {});
+
 }  // namespace hq::test

@@ -10,10 +10,9 @@
 
 namespace hq {
 
-// No longer written (the boundary-error views of surface meshes are drawn
-// since issue 47's --compare/boundary views, and the viewer draws surface
-// meshes since issue 47 part L), but an index.json of an earlier HQView may
-// hold them: `merge` and the batch page still read them as limitations.
+// Warnings this HQView never writes (it draws the boundary-error views and
+// the viewer of surface meshes) but an index.json written by an earlier
+// version may hold: `merge` and the batch page read them as limitations.
 inline constexpr std::string_view kSurfaceBoundaryErrorViewsNotDrawnBefore =
     "the boundary-error views of surface meshes are not drawn yet (report.json boundary_error has the numbers)";
 inline constexpr std::string_view kSurfaceViewerNotWrittenBefore =

@@ -36,10 +36,13 @@ struct Normalization {
   // variances, descending (model units^2; NaN for no positive volume), the
   // axes taken from the model axes inside a degenerate eigenspace (0, 2 or
   // 3) and the axes whose sign no third moment decided (the model axes'
-  // rule then). Both 0: the frame turns with the mesh.
+  // rule then). Both 0: the frame turns with the mesh. signs_from_points:
+  // the axes whose sign the used points' third moment decided (the volume's
+  // was below the tolerance).
   std::array<double, 3> principal_variances{};
   int axes_from_input = 0;
   int signs_from_input = 0;
+  int signs_from_points = 0;
 };
 
 // exp_x, exp_y, exp_z: the check's three solutions.

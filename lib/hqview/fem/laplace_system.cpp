@@ -118,14 +118,14 @@ void build_pattern(const HexMesh& mesh, const Topology& topology, LaplaceSystem&
 // computes the element matrices of its rows' hexes once (ascending hex ids)
 // and gathers from them: a hex whose vertices fall in one chunk is computed
 // once instead of once per vertex; the sums are the same either way. The
-// chunks are the product's 16,384 rows (the band is 3,931 rows on the
-// 363,520-hex Dolphin): fewer hexes straddle two chunks, and are computed
-// twice, than with 4,096 rows.
+// chunks are the product's (CsrMatrix::chunk_rows, at least the band): the
+// wider the chunk against the band, the fewer hexes straddle two chunks and
+// are computed twice.
 void gather_rows(const HexMesh& mesh, const Topology& topology, const std::vector<double>& dirichlet,
                  LaplaceSystem& s) {
   const int k = s.num_rhs;
   CsrMatrix& m = s.matrix;
-  detail::for_chunks_of(s.row_vertex.size(), 4 * detail::kFemChunk, [&](std::size_t first, std::size_t last) {
+  detail::for_chunks_of(s.row_vertex.size(), m.chunk_rows, [&](std::size_t first, std::size_t last) {
     std::vector<Index> chunk_hexes;
     for (std::size_t r = first; r < last; ++r)
       for (Index h : topology.hexes_of(s.row_vertex[r])) chunk_hexes.push_back(h);

@@ -3,8 +3,8 @@
 // vertices eliminated: K_ff u_f = -K_fb g_b for the free (interior) vertices,
 // for k right-hand sides at once. Assembled row by row: each row gathers the
 // rows of the element matrices of its vertex's hexes (ascending hex ids; the
-// matrices of a chunk of 16,384 rows' hexes are computed for that chunk and
-// dropped after it: no element matrix is kept, no atomics), so every entry
+// matrices of a chunk of rows' hexes, the product's chunk, are computed for
+// that chunk and dropped after it: no element matrix is kept, no atomics), so every entry
 // is summed in the same order for any thread count.
 
 #include <cstdint>

@@ -65,10 +65,10 @@ std::array<double, K> sum_over_hexes(const HexMesh& mesh, const Vec3& o, F&& f) 
 
 VolumeMoments volume_moments(const HexMesh& mesh) {
   VolumeMoments m;
-  if (mesh.hexes.empty()) return m;
   // o: the first hex's first corner, so that |x - o| is of the mesh's size
-  // wherever the mesh sits (no cancellation 1e3 diagonals away).
-  const Vec3 o = hex_corners(mesh, 0)[0];
+  // wherever the mesh sits (no cancellation 1e3 diagonals away). No hexes:
+  // no sums, volume 0.
+  const Vec3 o = mesh.hexes.empty() ? Vec3{} : hex_corners(mesh, 0)[0];
   const std::array<double, 4> first = sum_over_hexes<4>(mesh, o, [](const Vec3& x, double det, auto& s) {
     s[0] += det;
     for (int i = 0; i < 3; ++i) s[static_cast<std::size_t>(1 + i)] += det * x[i];
@@ -113,8 +113,7 @@ double third_moment_along(const VolumeMoments& m, const Vec3& e) {
   return sum;
 }
 
-double moment_length(const HexMesh& mesh) {
-  const VolumeMoments m = volume_moments(mesh);
+double moment_length(const VolumeMoments& m) {
   if (!(m.volume > 0)) return kNaN;
   const double trace = m.second[0][0] + m.second[1][1] + m.second[2][2];
   return trace > 0 ? std::sqrt(12.0 * trace) : kNaN;

@@ -36,13 +36,14 @@ struct VolumeMoments {
   std::array<std::array<std::array<double, 3>, 3>, 3> third{};
 };
 
-// All zero (volume 0) for a mesh without hexes; centroid and moments NaN
-// when the volume is not positive.
+// Centroid and moments NaN when the volume is not positive (no hexes, or a
+// mesh that folds over itself).
 VolumeMoments volume_moments(const HexMesh& mesh);
 
 // int ((x - c) . e)^3 dV / V for a direction e.
 double third_moment_along(const VolumeMoments& m, const Vec3& e);
 
-double moment_length(const HexMesh& mesh);
+// L = sqrt(12 tr C) of the moments; NaN when the volume is not positive.
+double moment_length(const VolumeMoments& m);
 
 }  // namespace hq

@@ -254,8 +254,8 @@ double lanczos_largest_eigenvalue(const CsrMatrix& a, int steps, const std::vect
   double beta = 0;
   for (int j = 0; j < steps && static_cast<std::size_t>(j) < n; ++j) {
     stop::check();
-    detail::symmetric_product<1>(a, v.data(), w.data(), overflow.data(), v.data());  // w = A v (one overflow for all)
-    const double alpha = column_dots(w, v, n, 1, 1)[0];
+    // w = A v (one overflow for all), and alpha = (v, A v) fused in.
+    const double alpha = detail::symmetric_product<1>(a, v.data(), w.data(), overflow.data(), v.data())[0];
     alphas.push_back(alpha);
     const double next = std::sqrt(detail::sum_fem_chunks<1>(n, [&](std::size_t first, std::size_t last) {
       double s = 0;
@@ -268,11 +268,9 @@ double lanczos_largest_eigenvalue(const CsrMatrix& a, int steps, const std::vect
     if (!(next > 1e-14 * std::abs(alpha))) break;  // an invariant subspace: its Ritz values are exact
     betas.push_back(next);
     beta = next;
+    std::swap(v_prev, v);
     detail::for_fem_chunks(n, [&](std::size_t first, std::size_t last) {
-      for (std::size_t i = first; i < last; ++i) {
-        v_prev[i] = v[i];
-        v[i] = w[i] / next;
-      }
+      for (std::size_t i = first; i < last; ++i) v[i] = w[i] / next;
     });
   }
   betas.resize(alphas.empty() ? 0 : alphas.size() - 1);

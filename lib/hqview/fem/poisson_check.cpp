@@ -219,7 +219,9 @@ PoissonCheck run_poisson_check(const HexMesh& mesh, const Topology& topology, co
                                const PoissonOptions& options) {
   PoissonCheck out;
   out.min_free_vertices = options.min_free_vertices;
-  out.normalization = principal_normalization(mesh, topology);
+  const VolumeMoments moments = volume_moments(mesh);
+  out.normalization = principal_normalization(mesh, topology, moments);
+  out.mesh_length = moment_length(moments);
   for (std::size_t v = 0; v < mesh.points.size(); ++v)
     if (topology.vertex_hex_offsets[v + 1] > topology.vertex_hex_offsets[v] && !topology.is_boundary_vertex[v])
       ++out.num_free_vertices;

@@ -15,6 +15,7 @@
 // Int. J. Numer. Meth. Eng. 4 (1972): lambda_max(K) <= m max_e lambda_max(K_e),
 // m the largest number of elements at a vertex.
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,9 @@ struct PoissonCheck {
   Index num_free_vertices = 0;
   Index min_free_vertices = 0;
   Normalization normalization;  // the principal frame of the mesh's volume (principal_frame.h)
+  // The placement-free length of the mesh's volume (moment_length.h),
+  // model units: the batch's h/L divides by it.
+  double mesh_length = std::numeric_limits<double>::quiet_NaN();
   std::vector<PoissonSolutionResult> solutions;
   // Means over the solutions.
   double mean_l2_error = 0, mean_h1_error = 0, mean_nodal_error = 0, mean_iterations = 0;

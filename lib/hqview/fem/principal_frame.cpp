@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "hqview/core/box3.h"
-#include "hqview/fem/moment_length.h"
 
 namespace hq {
 namespace {
@@ -47,7 +46,10 @@ Vec3 signed_axis(const Skew& skew, const Vec3& axis, Normalization& n) {
   double by_points = 0;
   for (const Vec3& p : skew.points) by_points += std::pow(dot(p - skew.points_mean, axis), 3);
   by_points /= static_cast<double>(skew.points.size());
-  if (std::abs(by_points) > kSkewTolerance * skew.points_sigma3) return by_points < 0 ? -axis : axis;
+  if (std::abs(by_points) > kSkewTolerance * skew.points_sigma3) {
+    ++n.signs_from_points;
+    return by_points < 0 ? -axis : axis;
+  }
   ++n.signs_from_input;
   return signed_by_input(axis);
 }
@@ -80,11 +82,10 @@ void fit_box(const std::vector<Vec3>& points, const Vec3& origin, Normalization&
 
 }  // namespace
 
-Normalization principal_normalization(const HexMesh& mesh, const Topology& topology) {
+Normalization principal_normalization(const HexMesh& mesh, const Topology& topology, const VolumeMoments& m) {
   Normalization n;
   const std::vector<Vec3> points = used_points(mesh, topology);
   if (points.empty()) return n;
-  const VolumeMoments m = volume_moments(mesh);
   if (!(m.volume > 0) || !is_finite(m.centroid)) {
     n.principal_variances = {kNaN, kNaN, kNaN};
     n.axes_from_input = 3;

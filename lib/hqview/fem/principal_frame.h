@@ -24,10 +24,11 @@
 //     may differ).
 //   - Centre and diagonal: of the bounding box of the points used by hexes
 //     in that frame.
-// The model axes and the bounding box (the check before issue 48's fix)
-// when the mesh has no positive volume. Pure, deterministic.
+// When the mesh has no positive volume (no moments to take axes from): the
+// model axes and the bounding box of the used points. Pure, deterministic.
 
 #include "hqview/fem/harmonic_solution.h"
+#include "hqview/fem/moment_length.h"
 #include "hqview/mesh/hex_mesh.h"
 #include "hqview/mesh/topology.h"
 
@@ -36,6 +37,7 @@ namespace hq {
 inline constexpr double kDegenerateGap = 1e-5;  // relative to the largest principal variance
 inline constexpr double kSkewTolerance = 1e-8;  // |third moment| / sigma^3 below it: no sign
 
-Normalization principal_normalization(const HexMesh& mesh, const Topology& topology);
+// `moments`: the mesh's (volume_moments).
+Normalization principal_normalization(const HexMesh& mesh, const Topology& topology, const VolumeMoments& moments);
 
 }  // namespace hq

@@ -17,7 +17,12 @@
 // then the previous chunk's scatters), and the dots are fixed-chunk sums:
 // the same bits for any thread count. Four columns (CG's three, padded)
 // move as one four-double value; the chunk loop for them is also built for
-// AVX2 and chosen at run time (no FMA: the same bits on either path).
+// AVX2 (symmetric_product_avx2.cpp) and chosen at run time (no FMA: the
+// same bits on either path).
+//
+// Everything here but product_chunk_avx2 has internal linkage (an unnamed
+// namespace), so that the AVX2 file's copies of these functions never stand
+// in for a baseline file's at link time.
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -27,11 +32,22 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 #include <vector>
 
+#include "hqview/core/cpu_features.h"
 #include "hqview/fem/laplace_system.h"
 
 namespace hq::detail {
+
+// product_chunk<4> (below) built for AVX2, with the 16-bit column steps
+// (NarrowColumns) or the column ids: call only where HQ_AVX2_KERNELS and
+// has_avx2() (core/cpu_features.h).
+std::array<double, 4> product_chunk_avx2(const CsrMatrix& a, bool narrow_columns, std::size_t first, std::size_t last,
+                                         std::size_t head_end, const double* x, double* y, double* overflow,
+                                         const double* w);
+
+namespace {
 
 // Two doubles as one value (GCC/Clang vector extension: SSE2 on x86-64,
 // NEON on ARM; the same IEEE products and sums as scalar code, so the same bits).
@@ -153,21 +169,6 @@ template <std::size_t K, class Columns>
   return dots;
 }
 
-// product_chunk<4> built for AVX2 (one 256-bit operation a Quad; "avx2"
-// without "fma": no contraction), chosen at run time by has_avx2().
-template <class Columns>
-__attribute__((target("avx2"))) std::array<double, 4> product_chunk_avx2(const CsrMatrix& a, Columns columns,
-                                                                         std::size_t first, std::size_t last,
-                                                                         std::size_t head_end, const double* x,
-                                                                         double* y, double* overflow, const double* w) {
-  return product_chunk<4>(a, columns, first, last, head_end, x, y, overflow, w);
-}
-
-inline bool has_avx2() {
-  static const bool yes = __builtin_cpu_supports("avx2");
-  return yes;
-}
-
 // `overflow`: a.num_rows() * K zeros, left zeros. `w`: the vector the dots
 // take y against (rows x K; may be x itself).
 template <std::size_t K, class Columns>
@@ -183,12 +184,15 @@ std::array<double, K> symmetric_product(const CsrMatrix& a, Columns columns, con
     for (std::size_t c = range.begin(); c != range.end(); ++c) {
       const std::size_t first = c * chunk, last = std::min(n, first + chunk);
       const std::size_t head_end = c == 0 ? first : std::min(last, first + band);
+#if HQ_AVX2_KERNELS
       if constexpr (K == 4) {
         if (has_avx2()) {
-          partial[c] = product_chunk_avx2(a, columns, first, last, head_end, x, y, overflow, w);
+          partial[c] =
+              product_chunk_avx2(a, std::is_same_v<Columns, NarrowColumns>, first, last, head_end, x, y, overflow, w);
           continue;
         }
       }
+#endif
       partial[c] = product_chunk<K>(a, columns, first, last, head_end, x, y, overflow, w);
     }
   });
@@ -224,4 +228,5 @@ std::array<double, K> symmetric_product(const CsrMatrix& a, const double* x, dou
   return symmetric_product<K>(a, WideColumns{a.columns.data()}, x, y, overflow, w);
 }
 
+}  // namespace
 }  // namespace hq::detail

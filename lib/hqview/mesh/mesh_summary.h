@@ -33,6 +33,11 @@ struct MeshSummary {
 
 MeshSummary summarize_mesh(const HexMesh& mesh, const Topology& topo);
 
+// A surface mesh not in one plane: no plane's normal signs its cells, so its
+// inverted cells are its reversed faces (their corners signed against the
+// orientation their neighbours agree on), and the pages say so.
+inline bool is_curved_surface(const MeshSummary& m) { return m.is_surface && !(m.planarity && m.planarity->is_planar); }
+
 // The box of the vertices cells use (empty when none is).
 Box3 referenced_bounding_box(const HexMesh& mesh, const Topology& topo);
 

@@ -17,6 +17,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "hqview/overlap/box_pairs.h"
@@ -661,8 +662,13 @@ constexpr std::size_t kItemsPerChunk = 8192;
 // The same hits and count as test_listed_triangle_pairs without a list of
 // every candidate: the pairs of groups whose bounds meet are found first,
 // then, over fixed chunks of them in parallel, their triangles' boxes are
-// compared and the pairs that touch tested at once. The candidates are
-// counted first (box comparisons only) when they could exceed the budget.
+// compared and the pairs that touch tested at once. When the candidates
+// could exceed the budget, the chunks keep a running total: once it is past
+// the budget nothing more is tested (the run is over budget, its hits are
+// dropped), once it reaches kBudgetCountFactor x the budget nothing more is
+// counted (the count is then "at least" that). A chunk stops only at a
+// total the whole count passes too, so the outcome does not depend on the
+// order the chunks run in.
 TriangleHits test_triangle_groups(const std::vector<Vec3>& p, const TriangleGroups& g, std::int64_t max_pairs) {
   const std::size_t num_groups = g.first.size() - 1;
   const auto group_pairs =
@@ -692,33 +698,41 @@ TriangleHits test_triangle_groups(const std::vector<Vec3>& p, const TriangleGrou
   std::int64_t most = 0;  // the candidates there can be
   for (std::size_t k = 0; k < num_groups; ++k) most += size(static_cast<Index>(k)) * (size(static_cast<Index>(k)) - 1) / 2;
   for (const auto& [a, b] : *group_pairs) most += size(a) * size(b);
-  if (most > max_pairs) {
-    std::vector<std::int64_t> counts(num_chunks, 0);
-    tbb::parallel_for(std::size_t{0}, num_chunks, [&](std::size_t c) {
-      const auto [begin, end] = chunk_range(c);
-      for (std::size_t k = begin; k < end; ++k) for_each_candidate(k, [&](Index, Index) { ++counts[c]; });
-    });
-    std::int64_t total = 0;
-    for (std::int64_t n : counts) total += n;
-    if (total > max_pairs) {
-      // As the budgeted search says it: counted up to kBudgetCountFactor x the budget.
-      out.budget.is_complete = false;
-      out.budget.num_found = std::min(total, kBudgetCountFactor * max_pairs);
-      out.budget.is_count_exact = total < kBudgetCountFactor * max_pairs;
-      return out;
-    }
-  }
+  const bool may_exceed = most > max_pairs;
+  const std::int64_t count_cap = kBudgetCountFactor * max_pairs;
+  std::atomic<std::int64_t> running{0};
   std::vector<std::int64_t> counts(num_chunks, 0);
   std::vector<std::vector<std::array<Index, 2>>> hits(num_chunks);
   tbb::parallel_for(std::size_t{0}, num_chunks, [&](std::size_t c) {
     const auto [begin, end] = chunk_range(c);
-    for (std::size_t k = begin; k < end; ++k)
+    std::int64_t count = 0;
+    bool is_testing = true;
+    for (std::size_t k = begin; k < end; ++k) {
+      std::int64_t item = 0;
       for_each_candidate(k, [&](Index i, Index j) {
-        ++counts[c];
-        if (triangles_meet_improperly(p, g.triangles[static_cast<std::size_t>(i)], g.triangles[static_cast<std::size_t>(j)]))
+        ++item;
+        if (is_testing && triangles_meet_improperly(p, g.triangles[static_cast<std::size_t>(i)],
+                                                    g.triangles[static_cast<std::size_t>(j)]))
           hits[c].push_back({i, j});
       });
+      count += item;
+      if (may_exceed) {
+        const std::int64_t total = running.fetch_add(item, std::memory_order_relaxed) + item;
+        is_testing = total <= max_pairs;
+        if (total >= count_cap) break;
+      }
+    }
+    counts[c] = count;
   });
+  std::int64_t total = 0;
+  for (std::int64_t n : counts) total += n;
+  if (total > max_pairs) {
+    // As the budgeted search says it: counted up to kBudgetCountFactor x the budget.
+    out.budget.is_complete = false;
+    out.budget.num_found = std::min(total, count_cap);
+    out.budget.is_count_exact = total < count_cap;
+    return out;
+  }
   for (std::size_t c = 0; c < num_chunks; ++c) {
     out.num_candidates += counts[c];
     out.hits.insert(out.hits.end(), hits[c].begin(), hits[c].end());

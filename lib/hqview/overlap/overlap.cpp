@@ -652,7 +652,7 @@ int quad_split_diagonal(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Ve
   return squared_norm(p2 - p0) <= squared_norm(p3 - p1) ? 0 : 1;
 }
 
-OverlapReport check_surface_overlap(const Mesh& mesh, const OverlapOptions& options,
+OverlapReport check_surface_overlap(const Mesh& mesh, const Planarity& planarity, const OverlapOptions& options,
                                     const std::function<void()>& on_self_intersection) {
   OverlapReport r;
   r.mode = options.mode;
@@ -704,7 +704,6 @@ OverlapReport check_surface_overlap(const Mesh& mesh, const OverlapOptions& opti
   // decided as it is (in 3-D their coplanar triangles would lie a rounding
   // apart, and meet nowhere or along a line).
   if (on_self_intersection) on_self_intersection();
-  const Planarity planarity = measure_planarity(mesh, diagonal);
   r.is_decided_in_plane = planarity.is_planar;
   std::optional<PlaneFrame> frame;
   std::vector<Vec3> in_plane;

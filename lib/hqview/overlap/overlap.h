@@ -57,10 +57,11 @@
 #include <string_view>
 #include <vector>
 
+#include "hqview/core/cell_kinds.h"
 #include "hqview/core/types.h"
 #include "hqview/core/vec3.h"
-#include "hqview/core/cell_kinds.h"
 #include "hqview/mesh/mesh.h"
+#include "hqview/mesh/planarity.h"
 #include "hqview/mesh/topology.h"
 
 namespace hq {
@@ -224,8 +225,8 @@ int quad_split_diagonal(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Ve
 //   intersection; faces meeting beyond it intersect: a flap folded back
 //   across its edge, neighbours crossing away from their common vertex),
 //   decided exactly (CGAL Epick predicates; coplanar pairs in 2-D). A
-//   planar mesh (measure_planarity: within kPlanarTolerance of its
-//   best-fit plane) is decided in that plane: its points projected by
+//   planar mesh (`planarity`: the mesh's measure_planarity, over the
+//   vertices its faces use, as the analysis reports it) is decided in that plane: its points projected by
 //   plane_frame, every pair of triangles then coplanar and decided in 2-D
 //   (exact on the projected doubles), so that a rotated or mirrored copy
 //   finds what the axis-aligned original finds (unless the original holds
@@ -245,7 +246,7 @@ int quad_split_diagonal(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Ve
 // coincident groups, the intersecting pairs (as for volumes), then one per
 // self-intersecting face.
 // Deterministic for any number of TBB threads.
-OverlapReport check_surface_overlap(const Mesh& mesh, const OverlapOptions& options,
+OverlapReport check_surface_overlap(const Mesh& mesh, const Planarity& planarity, const OverlapOptions& options,
                                     const std::function<void()>& on_self_intersection = {});
 
 }  // namespace hq

@@ -57,10 +57,9 @@ LoadedMesh load_mesh(const fs::path& path, const AnalyzeOptions& options, InputF
 constexpr std::size_t kMetricsBesideOverlapMaxCells = 1'000'000;
 // A surface mesh's faces: its overlap scratch (two triangles, their boxes
 // and the pairs of faces whose boxes meet: about 250 bytes a face) and its
-// metric columns (8 bytes a face each) are smaller; its metrics, their
+// metric columns (8 bytes a face each) are smaller, so its metrics, their
 // summaries and its quad structure run beside the self-intersection up to
-// this many faces (1,092,416 quads: the run's peak RSS 0.86 GB, against
-// 0.97 GB before, when they ran after it and the candidates were listed).
+// this many faces (1,092,416 quads: the run's peak RSS 0.86 GB).
 constexpr std::size_t kMetricsBesideSurfaceOverlapMaxFaces = 4'000'000;
 
 // f, timed into `seconds`: for stages that run beside another one.
@@ -144,18 +143,36 @@ void analyze_fem(Analysis& a, const AnalyzeOptions& options, StageClock& clock) 
   clock.stop();
 }
 
+// What MESH and MESH2 both get before their metrics: a surface's plane
+// and orientation, the quality field, the mesh summary and the cell
+// composition.
+struct MeshQuality {
+  QualityField field;
+  MeshSummary summary;
+  CellComposition composition;
+};
+
+MeshQuality measure_mesh(const HexMesh& mesh, Topology& topology) {
+  MeshQuality out;
+  std::optional<Planarity> planarity;
+  out.field = compute_quality(mesh, topology, surface_orientation(mesh, topology, planarity));
+  out.summary = summarize_mesh(mesh, topology);
+  out.summary.planarity = planarity;
+  // A surface mesh's faces are what the views, the viewer and the compare
+  // alignment take as its boundary; after summarize_mesh (the summary's
+  // num_boundary_faces stays 0).
+  add_surface_faces_as_boundary(mesh, topology);
+  out.composition = compute_cell_composition(mesh);
+  return out;
+}
+
 void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clock) {
   clock.start("quality");
   const bool is_surface = is_surface_mesh(a.mesh);
-  std::optional<Planarity> planarity;
-  const SurfaceOrientation surface = surface_orientation(a.mesh, a.topology, planarity);
-  a.field = compute_quality(a.mesh, a.topology, surface);
-  a.mesh_summary = summarize_mesh(a.mesh, a.topology);
-  a.mesh_summary.planarity = planarity;
-  // A surface mesh's faces are what the views and the viewer draw as its
-  // boundary; after summarize_mesh (mesh.num_boundary_faces stays 0).
-  add_surface_faces_as_boundary(a.mesh, a.topology);
-  a.composition = compute_cell_composition(a.mesh);
+  MeshQuality measured = measure_mesh(a.mesh, a.topology);
+  a.field = std::move(measured.field);
+  a.mesh_summary = std::move(measured.summary);
+  a.composition = std::move(measured.composition);
   // Beside the overlap stage: the structure (the singularity graph: one
   // sequential pass over the edges; a surface's quad structure) always, and
   // on meshes up to kMetricsBesideOverlapMaxCells volume cells (surfaces:
@@ -210,7 +227,8 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
     // own (the clock is this branch's alone: the others are timed apart).
     clock.start("overlap");
     const auto overlap = [&] {
-      a.overlap = is_surface ? check_surface_overlap(a.mesh, *options.overlap, [&] { clock.start("self-intersection"); })
+      a.overlap = is_surface ? check_surface_overlap(a.mesh, *a.mesh_summary.planarity, *options.overlap,
+                                                     [&] { clock.start("self-intersection"); })
                              : check_overlap(a.mesh, a.topology, *options.overlap);
     };
     if (metrics_beside)
@@ -325,25 +343,28 @@ void analyze_boundary_error(Analysis& a, const TriSurface& reference, const Anal
   }
 }
 
-// MESH2 of --compare, analysed as the mesh is (quality only).
-void analyze_compare(Analysis& a, const AnalyzeOptions& options) {
+// MESH2 of --compare, read, and refused unless it has MESH's dimension: a
+// surface's faces against a volume's boundary would compare different
+// cells under one name. Before any of MESH's analysis, so that a refusal
+// costs only the reading.
+void read_compare(Analysis& a, const AnalyzeOptions& options) {
   Analysis::Compared& c = a.compare.emplace();
   c.mesh = load_mesh(options.compare_path, options, c.input).mesh;
-  // One dimension on both sides: a surface's faces against a volume's
-  // boundary would compare different cells under one name.
   if (is_surface_mesh(c.mesh) != is_surface_mesh(a.mesh))
     throw InputError(options.compare_path.string() + ": --compare: " +
                      (is_surface_mesh(c.mesh) ? "a surface mesh against a volume mesh"
                                               : "a volume mesh against a surface mesh") +
                      " (compare meshes of one dimension)");
+}
+
+// MESH2 of --compare (read_compare), analysed as the mesh is (quality only).
+void analyze_compare(Analysis& a, const AnalyzeOptions& options) {
+  Analysis::Compared& c = *a.compare;
   c.topology = build_topology(c.mesh);
-  std::optional<Planarity> planarity;
-  c.field = compute_quality(c.mesh, c.topology, surface_orientation(c.mesh, c.topology, planarity));
-  c.mesh_summary = summarize_mesh(c.mesh, c.topology);
-  c.mesh_summary.planarity = planarity;
-  // As for MESH: a surface's faces are its boundary for the alignment and the view.
-  add_surface_faces_as_boundary(c.mesh, c.topology);
-  c.composition = compute_cell_composition(c.mesh);
+  MeshQuality measured = measure_mesh(c.mesh, c.topology);
+  c.field = std::move(measured.field);
+  c.mesh_summary = std::move(measured.summary);
+  c.composition = std::move(measured.composition);
   c.quality = summarize_quality(c.mesh, c.field, options.worst_count);
   c.quality.metrics = summarize_hex_metrics(compute_hex_metrics(c.mesh, options.metrics));
   c.alignment = align_compare_mesh(a.mesh, a.topology, c.mesh, c.topology, options.compare_align);
@@ -422,6 +443,10 @@ void start_analysis(const AnalyzeOptions& options, AnalysisInProgress& out) {
   a.notes = std::move(loaded.notes);
   a.mesh = std::move(loaded.mesh);
   a.hole_edges = std::move(loaded.hole_edges);
+  if (!options.compare_path.empty()) {
+    clock.start("read compare mesh");
+    read_compare(a, options);
+  }
   clock.start("topology");
   a.topology = build_topology(a.mesh);
   const bool is_surface = is_surface_mesh(a.mesh);

@@ -1,10 +1,9 @@
 #pragma once
-// The `analyze` pipeline: read -> topology -> [read reference, the UV atlas
+// The `analyze` pipeline: read -> [read compare mesh] -> topology -> [read reference, the UV atlas
 // started on its own thread] -> quality -> overlap (and beside it the
-// structure) -> metrics -> summaries -> [fem elements -> fem poisson] -> glyphs -> boundary error -> compare mesh -> views (the UV
-// error map waits for the atlas) -> report document -> gates. The one place
-// that knows the order of the stages. Touches no output file: the caller
-// hands the result to write_bundle(). When a stage fails while the atlas is
+// structure) -> metrics -> summaries -> [fem elements -> fem poisson] -> glyphs -> boundary error -> compare mesh ->
+// views (the UV error map waits for the atlas) -> report document -> gates. The one place that knows the order of the
+// stages. Touches no output file: the caller hands the result to write_bundle(). When a stage fails while the atlas is
 // being built, the error is reported once the atlas thread has ended (it
 // stops at once on a signal or a --mesh-timeout, else runs to its end).
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "hqview/core/cpu_features.h"
 #include "hqview/quality/tet_metric_kernels.h"
 #include "hqview/quality/verdict_support.h"
 
@@ -67,16 +68,10 @@ double tet_metric(TetMetric m, const TetCorners& p, double average_volume) {
   return metric_with_size(m, p, reference, size_of(p));
 }
 
-void tet_metric_range(int first, int count, const TetCorners& p, const TetSizeReference& reference, double* out) {
-  const double size = size_of(p);  // shared by every scaled metric
-  for (int j = 0; j < count; ++j) out[j] = metric_with_size(static_cast<TetMetric>(first + j), p, reference, size);
-}
-
 void tet_metric_list_many(std::span<const TetMetric> metrics, std::span<const TetCorners> tets,
                           const TetSizeReference& reference, std::span<double* const> out) {
-#if HQ_TET_KERNELS_AVX2
-  static const bool has_avx2 = __builtin_cpu_supports("avx2");
-  if (has_avx2) return detail::tet_metric_list_many_avx2(metrics, tets, reference, out);
+#if HQ_AVX2_KERNELS
+  if (has_avx2()) return detail::tet_metric_list_many_avx2(metrics, tets, reference, out);
 #endif
   metric_list_lanes(metrics, tets, reference, out);
 }

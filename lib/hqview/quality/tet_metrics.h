@@ -72,11 +72,6 @@ struct TetSizeReference {
 };
 TetSizeReference tet_size_reference(double average_volume);
 
-// Metrics first .. first + count - 1 (the enum's order) of one tet into
-// out[0 .. count): tet_metric's values, bit for bit, with the tet's size
-// and the block's reference computed once instead of per metric.
-void tet_metric_range(int first, int count, const TetCorners& p, const TetSizeReference& reference, double* out);
-
 // The metrics listed (any order) of every tet of `tets`: out[j][i] is
 // tet_metric(metrics[j], tets[i], reference.average_volume), bit for bit,
 // the tet's size computed once for all its metrics, a few tets

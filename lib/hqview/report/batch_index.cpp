@@ -42,6 +42,9 @@ namespace {
 
 constexpr int kIndexSchemaVersion = 1;
 
+// "1 file", "5 files".
+std::string count_files(std::size_t n) { return std::to_string(n) + (n == 1 ? " file" : " files"); }
+
 // Column titles of the headline keys (kHeadlineKeys order).
 constexpr const char* kHeadlineTitles[] = {"#V",        "#H",        "min SJ",           "mean SJ",
                                            "p05 SJ",    "#inverted", "#intersecting",    "Hausdorff (rel.)",
@@ -107,12 +110,6 @@ BatchStatus status_from(const std::string& s, const std::string& name) {
   if (s == "failed") return BatchStatus::failed;
   if (s == "skipped") return BatchStatus::skipped;
   throw InputError(name + ": unknown mesh status '" + s + "'");
-}
-
-std::size_t headline_index(std::string_view key) {
-  for (std::size_t k = 0; k < kNumHeadlineKeys; ++k)
-    if (key == kHeadlineKeys[k]) return k;
-  return kNumHeadlineKeys;
 }
 
 constexpr double kNaNValue = std::numeric_limits<double>::quiet_NaN();
@@ -215,9 +212,9 @@ std::vector<MethodSummary> summarize_methods(const std::vector<BatchEntry>& entr
   if (!has_labels(entries)) return {};
   std::map<std::string, MethodSummary> by_label;
   std::map<std::string, int> analysed;
-  const std::size_t k_min = headline_index("quality.scaled_jacobian.min");
-  const std::size_t k_mean = headline_index("quality.scaled_jacobian.mean");
-  const std::size_t k_inv = headline_index("quality.num_inverted");
+  const std::size_t k_min = headline_slot("quality.scaled_jacobian.min");
+  const std::size_t k_mean = headline_slot("quality.scaled_jacobian.mean");
+  const std::size_t k_inv = headline_slot("quality.num_inverted");
   for (const BatchEntry& e : entries) {  // entries are sorted: fixed-order sums
     if (e.status == BatchStatus::skipped) continue;
     MethodSummary& m = by_label[e.label];
@@ -772,8 +769,8 @@ int status_rank(BatchStatus s) {
 }  // namespace
 
 std::vector<std::size_t> worst_first_order(const std::vector<BatchEntry>& entries) {
-  static const std::size_t inverted = headline_index("quality.num_inverted");
-  static const std::size_t min_sj = headline_index("quality.scaled_jacobian.min");
+  static const std::size_t inverted = headline_slot("quality.num_inverted");
+  static const std::size_t min_sj = headline_slot("quality.scaled_jacobian.min");
   // A missing value sorts as the best (after every known one).
   const auto value = [](const BatchEntry& e, std::size_t k, double missing) {
     return e.headline[k] && std::isfinite(*e.headline[k]) ? *e.headline[k] : missing;
@@ -804,16 +801,16 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
   std::vector<bool> shown(kNumHeadlineKeys, false);
   bool any_label = false, any_model = false, any_variant = false, any_detail = false, any_thumbnail = false;
   // The composition columns only when some mesh is not pure-hex.
-  static const std::size_t hex_fraction_key = headline_index("headline.hex_fraction");
-  static const std::size_t first_composition_key = headline_index("headline.num_cells");
+  static const std::size_t hex_fraction_key = headline_slot("headline.hex_fraction");
+  static const std::size_t first_composition_key = headline_slot("headline.num_cells");
   const bool any_hybrid = std::any_of(entries.begin(), entries.end(), [](const BatchEntry& e) {
     return e.headline[hex_fraction_key].has_value() && *e.headline[hex_fraction_key] != 1.0;
   });
   // Surface meshes (issue 47): the hex column counts their cells by kind,
   // the singular-edge columns their irregular vertices.
-  static const std::size_t hexes_key = headline_index("mesh.num_hexes");
-  static const std::size_t singular_keys[2] = {headline_index("structure.num_singular_edges_interior"),
-                                               headline_index("structure.num_singular_edges_boundary")};
+  static const std::size_t hexes_key = headline_slot("mesh.num_hexes");
+  static const std::size_t singular_keys[2] = {headline_slot("structure.num_singular_edges_interior"),
+                                               headline_slot("structure.num_singular_edges_boundary")};
   const bool any_surface = std::any_of(entries.begin(), entries.end(), [](const BatchEntry& e) { return e.surface.has_value(); });
   for (const BatchEntry& e : entries) {
     if (e.status == BatchStatus::skipped) continue;  // listed apart, above the table
@@ -835,10 +832,11 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
   page.set("has_variant", any_variant);
   page.set("has_detail", any_detail);
   page.set("has_thumbnail", any_thumbnail);
-  static const std::size_t inverted_key = headline_index("quality.num_inverted");
-  static const std::size_t min_sj_key = headline_index("quality.scaled_jacobian.min");
-  static const std::size_t invalid_key = headline_index("fem.element.num_invalid");
-  static const std::size_t not_invertible_key = headline_index("fem.element.num_not_invertible");
+  static const std::size_t inverted_key = headline_slot("quality.num_inverted");
+  static const std::size_t min_sj_key = headline_slot("quality.scaled_jacobian.min");
+  static const std::size_t invalid_key = headline_slot("fem.element.num_invalid");
+  static const std::size_t not_invertible_key = headline_slot("fem.element.num_not_invertible");
+  static const std::size_t intersecting_key = headline_slot("overlap.num_intersecting_cells");
   data headers = data::type::list;
   for (std::size_t k = 0; k < kNumHeadlineKeys; ++k) {
     if (!shown[k]) continue;
@@ -847,19 +845,23 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
     if (any_surface && k == singular_keys[0]) title = "#singular edges / irregular vertices, interior";
     if (any_surface && k == singular_keys[1]) title = "#singular edges / irregular vertices, boundary";
     // The one long word may break (a soft hyphen): the table fits 1400 px.
-    if (title == "#intersecting") title = "#inter\u00ADsecting";
+    if (k == intersecting_key) title = "#inter\u00ADsecting";
     headers.push_back(data("title", title));
   }
   page.set("headline_columns", headers);
   page.set("has_surface", any_surface);
   int failed = 0, gate_failed = 0, with_findings = 0, with_warnings = 0, limited = 0;
+  std::size_t skipped = 0;
   std::vector<std::string> limitations;  // distinct, in first-seen order (rows worst first)
   data rows = data::type::list;
   for (const std::size_t i : worst_first_order(entries)) {
     const BatchEntry& e = entries[i];
     // Inputs not analysed (reference surfaces beside the meshes) are no
     // rows of dashes: they are listed apart, above the table.
-    if (e.status == BatchStatus::skipped) continue;
+    if (e.status == BatchStatus::skipped) {
+      ++skipped;
+      continue;
+    }
     failed += e.status == BatchStatus::failed;
     gate_failed += e.status == BatchStatus::gate_failed;
     data row;
@@ -915,7 +917,7 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
                  : e.surface->quads == 0   ? count(e.surface->triangles) + " tri"
                                            : count(e.surface->quads) + " quad + " + count(e.surface->triangles) + " tri";
         } else if (value) {
-          static const std::size_t cells_key = headline_index("headline.num_cells");
+          static const std::size_t cells_key = headline_slot("headline.num_cells");
           const double others = e.headline[cells_key] ? *e.headline[cells_key] - *value : 0.0;
           text = count(*value) + " hex" + (others > 0 ? " + " + count(others) + " other" : "");
           if (others > 0) value = *value + others;
@@ -939,22 +941,18 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
     rows.push_back(row);
   }
   page.set("rows", rows);
-  page.set("num_meshes", std::to_string(entries.size() - static_cast<std::size_t>(std::count_if(
-                                          entries.begin(), entries.end(),
-                                          [](const BatchEntry& e) { return e.status == BatchStatus::skipped; }))));
+  page.set("num_meshes", std::to_string(entries.size() - skipped));
   page.set("num_failed", std::to_string(failed));
   page.set("num_gate_failed", std::to_string(gate_failed));
   page.set("num_with_findings", std::to_string(with_findings));
   if (with_warnings > 0) page.set("num_with_warnings", std::to_string(with_warnings));
-  const auto skipped = std::count_if(entries.begin(), entries.end(),
-                                     [](const BatchEntry& e) { return e.status == BatchStatus::skipped; });
-  if (skipped > 0) page.set("num_skipped", std::to_string(skipped) + (skipped == 1 ? " file" : " files"));
+  if (skipped > 0) page.set("num_skipped", count_files(skipped));
   // The inputs not analysed, one line per reason (skipped_files): "Skipped:
   // 5 files, not analysed (a surface file beside volume meshes, ...): a.off, ...".
   data skipped_rows = data::type::list;
   for (const auto& [reason, paths] : skipped_files(entries)) {
     data d;
-    d.set("count", std::to_string(paths.size()) + (paths.size() == 1 ? " file" : " files"));
+    d.set("count", count_files(paths.size()));
     d.set("reason", reason);
     data names = data::type::list;
     for (std::size_t k = 0; k < paths.size(); ++k) {
@@ -1009,8 +1007,8 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
 static const char* inverted_word(const BatchEntry& e) { return e.surface && !e.surface->planar ? "reversed faces" : "inverted"; }
 
 std::string batch_findings(const BatchEntry& e) {
-  static const std::size_t inverted_key = headline_index("quality.num_inverted");
-  static const std::size_t intersecting_key = headline_index("overlap.num_intersecting_cells");
+  static const std::size_t inverted_key = headline_slot("quality.num_inverted");
+  static const std::size_t intersecting_key = headline_slot("overlap.num_intersecting_cells");
   std::string findings;
   auto find = [&](bool found, const char* what) {
     if (found) findings += (findings.empty() ? "" : ", ") + std::string(what);
@@ -1042,21 +1040,20 @@ std::string batch_summary_markdown(const std::vector<BatchEntry>& entries) {
   // The counts of index.html's subtitle (issue 45f: the header read as an
   // all-clear above meshes with inverted hexes).
   int failed = 0, gate_failed = 0, with_findings = 0, with_warnings = 0;
+  std::size_t skipped = 0;  // meshes as index.json counts.meshes: skipped inputs left out
   for (const BatchEntry& e : entries) {
+    skipped += e.status == BatchStatus::skipped;
     failed += e.status == BatchStatus::failed;
     gate_failed += e.status == BatchStatus::gate_failed;
     with_findings += !batch_findings(e).empty() && e.status != BatchStatus::failed && e.status != BatchStatus::skipped;
     with_warnings += std::any_of(e.warnings.begin(), e.warnings.end(),
                                  [](const std::string& w) { return !is_limitation_warning(w); });
   }
-  // Meshes as index.json counts.meshes: skipped inputs left out.
-  const std::size_t skipped = static_cast<std::size_t>(std::count_if(
-      entries.begin(), entries.end(), [](const BatchEntry& e) { return e.status == BatchStatus::skipped; }));
   std::string md = "## HQView batch: " + std::to_string(entries.size() - skipped) + " meshes, " + std::to_string(failed) +
                    " failed, " + std::to_string(gate_failed) + " with failed gates, " + std::to_string(with_findings) +
                    " with inverted or intersecting cells or input warnings";
   if (with_warnings > 0) md += " (" + std::to_string(with_warnings) + " with input warnings)";
-  if (skipped > 0) md += ", " + std::to_string(skipped) + (skipped == 1 ? " file" : " files") + " skipped (listed under the table)";
+  if (skipped > 0) md += ", " + count_files(skipped) + " skipped (listed under the table)";
   md += "\n\n";
   // The table in parts that a terminal and GitHub show whole (issue 45, the
   // 45t review: 24 columns): the quality numbers beside each mesh's status,
@@ -1109,16 +1106,15 @@ std::string batch_summary_markdown(const std::vector<BatchEntry>& entries) {
     }
   }
   for (const SkippedFiles& group : skipped_files(entries)) {
-    md += "\nSkipped: " + std::to_string(group.paths.size()) + (group.paths.size() == 1 ? " file" : " files") +
-          ", not analysed (" + markdown_escape(group.reason) + "):";
+    md += "\nSkipped: " + count_files(group.paths.size()) + ", not analysed (" + markdown_escape(group.reason) + "):";
     for (std::size_t k = 0; k < group.paths.size(); ++k) md += (k == 0 ? " " : ", ") + markdown_escape(group.paths[k]);
     md += ".\n";
   }
   // Every mesh that is not plainly ok, worst first, with why: its error,
   // failed gates, inverted and intersecting cell counts, input warnings
   // (each without the mesh's path, which the line starts with).
-  static const std::size_t inverted_key = headline_index("quality.num_inverted");
-  static const std::size_t intersecting_key = headline_index("overlap.num_intersecting_cells");
+  static const std::size_t inverted_key = headline_slot("quality.num_inverted");
+  static const std::size_t intersecting_key = headline_slot("overlap.num_intersecting_cells");
   bool any_problem = false;
   for (const std::size_t i : order) {
     const BatchEntry& e = entries[i];

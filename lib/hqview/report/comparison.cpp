@@ -20,8 +20,9 @@ bool is_analysed(const BatchEntry& e) { return e.status == BatchStatus::ok || e.
 
 bool needs_reference(std::string_view key) { return key.starts_with("boundary_error."); }
 
-// A headline key's value, or an index.json surface count (issue 47).
-std::optional<double> value_of(const BatchEntry& e, std::string_view key) {
+}  // namespace
+
+std::optional<double> comparison_value(const BatchEntry& e, std::string_view key) {
   if (!key.starts_with("surface.")) return e.headline[headline_slot(key)];
   if (!e.surface) return std::nullopt;
   if (key == "surface.num_quads") return e.surface->quads;
@@ -30,6 +31,8 @@ std::optional<double> value_of(const BatchEntry& e, std::string_view key) {
   if (key == "surface.num_irregular_vertices_boundary") return e.surface->irregular_boundary;
   throw Error("internal: no surface count " + std::string(key));
 }
+
+namespace {
 
 std::vector<const BatchEntry*> pointers(const std::vector<BatchEntry>& entries) {
   std::vector<const BatchEntry*> p;
@@ -46,7 +49,7 @@ bool is_surface_group(const std::vector<const BatchEntry*>& entries) {
 std::vector<ComparisonKey> default_keys(const std::vector<const BatchEntry*>& entries) {
   const auto some_row_has = [&](std::string_view key) {
     return std::any_of(entries.begin(), entries.end(), [&](const BatchEntry* e) {
-      const std::optional<double> v = value_of(*e, key);
+      const std::optional<double> v = comparison_value(*e, key);
       return v.has_value() && (!key.starts_with("surface.") || *v > 0);
     });
   };
@@ -102,11 +105,7 @@ std::string method_heading(const MethodColumn& m) { return m.paper.year.empty() 
 
 std::string show_mean(const std::optional<double>& v) { return v ? display_number(*v) : "–"; }
 
-
-
 }  // namespace
-
-std::optional<double> comparison_value(const BatchEntry& entry, std::string_view key) { return value_of(entry, key); }
 
 std::string column_heading(const ComparisonColumn& c) {
   return (c.year.empty() ? c.label : c.label + " (" + c.year + ")") + (c.variant.empty() ? "" : " · " + c.variant);
@@ -194,7 +193,7 @@ Comparison build(const std::vector<const BatchEntry*>& entries, std::vector<Comp
     ++m.num_meshes;
     models_of[e.label].insert(e.model);
     if (e.status == BatchStatus::failed) ++m.num_failed;
-    if (is_analysed(e) && value_of(e, "quality.scaled_jacobian.min").value_or(-1.0) > 0.0) ++m.num_valid;
+    if (is_analysed(e) && comparison_value(e, "quality.scaled_jacobian.min").value_or(-1.0) > 0.0) ++m.num_valid;
     ComparisonRow& row = rows[e.model];
     row.model = e.model;
     columns.insert({e.label, e.variant});
@@ -208,7 +207,7 @@ Comparison build(const std::vector<const BatchEntry*>& entries, std::vector<Comp
       std::vector<double> values;
       for (const BatchEntry* e : entries)
         if (e->label == label && is_analysed(*e))
-          if (const auto v = value_of(*e, k.key); v && std::isfinite(*v)) values.push_back(*v);
+          if (const auto v = comparison_value(*e, k.key); v && std::isfinite(*v)) values.push_back(*v);
       double sum = 0.0;
       for (double v : values) sum += v;
       m.mean.push_back(values.empty() ? std::nullopt : std::optional<double>(sum / static_cast<double>(values.size())));
@@ -264,7 +263,7 @@ std::vector<ComparisonCell> comparison_cells(const Comparison& c, const Comparis
       cell.entry = it->second;
       if (cell.entry->status == BatchStatus::failed) {
         cell.text = "failed";
-      } else if (const auto v = value_of(*cell.entry, key.key); v && std::isfinite(*v)) {
+      } else if (const auto v = comparison_value(*cell.entry, key.key); v && std::isfinite(*v)) {
         cell.value = v;
         cell.text = display_number(*v);
       } else {
@@ -313,7 +312,7 @@ std::string comparison_chart_svg(const Comparison& c) {
   for (const BatchEntry* e : c.entries) {
     if (e->status == BatchStatus::skipped || e->label.empty()) continue;
     std::vector<double>& v = by_method[e->label];
-    if (const auto x = value_of(*e, "quality.scaled_jacobian.min"); x && is_analysed(*e)) v.push_back(*x);
+    if (const auto x = comparison_value(*e, "quality.scaled_jacobian.min"); x && is_analysed(*e)) v.push_back(*x);
   }
   std::vector<std::string> methods;
   std::vector<std::vector<double>> values;

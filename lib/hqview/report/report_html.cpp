@@ -354,7 +354,7 @@ void set_headline(data& page, const ReportModel& model) {
     headline.push_back(card("cells", show_count(c.num_cells)));
     if (c.num_quads > 0) headline.push_back(card("quads", show_count(c.num_quads)));
     if (c.num_triangles > 0) headline.push_back(card("triangles", show_count(c.num_triangles)));
-    const bool planar = m.planarity && m.planarity->is_planar;
+    const bool planar = !is_curved_surface(m);
     headline.push_back(card("surface", planar ? "planar" : "not planar"));
     if (planar) {
       headline.push_back(card("min scaled Jacobian (per cell, signed against the plane's normal)",
@@ -366,9 +366,8 @@ void set_headline(data& page, const ReportModel& model) {
       // A curved surface has no "inside": its inverted cells are its
       // reversed faces (orientation flipped against their neighbours), whose
       // corners are measured against the orientation the neighbours agree
-      // on, so negative (the 47d review's C2: "1 inverted" beside min SJ
-      // 0.998 read as a contradiction; since issue 47p they are negative,
-      // the same in the histograms, charts and views).
+      // on, so they are negative: the min scaled Jacobian card agrees with
+      // the count of reversed faces, as the histograms, charts and views do.
       headline.push_back(card("min scaled Jacobian (per cell, signed against the neighbours' orientation)",
                               show(q.scaled_jacobian.min), q.scaled_jacobian.min <= 0));
       headline.push_back(card("mean scaled Jacobian (per cell)", show(q.scaled_jacobian.mean)));

@@ -5,11 +5,10 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "hqview/render/upright.h"
 #include "hqview/glyph/glyph_ties.h"
+#include "hqview/render/upright.h"
 #include "hqview/report/cluster_color.h"
 #include "hqview/report/escape.h"
-#include "hqview/fem/moment_length.h"
 
 namespace hq {
 namespace {
@@ -291,9 +290,9 @@ Json fem_json(const Analysis& a) {
                   {"det_j_min", stats_json(e.det_j_min_stats, true)},
                   {"det_j_max", stats_json(e.det_j_max_stats, true)}};
   Json poisson = a.poisson ? fem_poisson_json(*a.poisson, a.fem_correlations) : Json(nullptr);
-  // The placement-free length (fem/moment_length.h, one pass over the
-  // hexes): the batch's h/L. Only for a solved check.
-  if (a.poisson && a.poisson->skipped.empty()) poisson["mesh_length"] = number(moment_length(a.mesh));
+  // The placement-free length (fem/moment_length.h): the batch's h/L. Only
+  // for a solved check.
+  if (a.poisson && a.poisson->skipped.empty()) poisson["mesh_length"] = number(a.poisson->mesh_length);
   return {{"element", std::move(element)}, {"poisson", std::move(poisson)}};
 }
 

@@ -57,7 +57,7 @@ std::string summary_markdown(const ReportModel& model, const std::string& link_b
   // A curved surface's inverted cells are its reversed faces (orientation
   // flipped against their neighbours; their corners signed against the
   // neighbours' orientation); "intersecting faces" as the page and views.
-  const bool curved = m.is_surface && !(m.planarity && m.planarity->is_planar);
+  const bool curved = is_curved_surface(m);
   std::string header = curved ? "| #V | #cells | min scaled Jacobian (per cell, signed against the neighbours) | mean scaled Jacobian (per cell) | "
                                 "#reversed faces | intersecting faces |"
                        : m.is_surface ? "| #V | #cells | min scaled Jacobian (per cell) | mean scaled Jacobian (per cell) | "

@@ -258,11 +258,21 @@ BoundaryData boundary_data(const Analysis& a, const ViewerBoundary& b, bool with
     // "corner", in the face's quads order); a pure-hex mesh keeps one value
     // per vertex and its bytes.
     const KindVertexQuality kinds = kind_vertex_quality(a.mesh, a.field);
+    // A curved surface's quality fields say what their values below 0 are
+    // (the overview's swatch); the viewer names the swatch "inverted (< 0)"
+    // otherwise.
+    const bool curved = is_curved_surface(a.mesh_summary);
+    const auto quality_field = [&](std::string id, std::string label, const char* per,
+                                   const std::vector<std::uint8_t>& values) {
+      Json field = field_json(std::move(id), std::move(label), per, values, quality_lut, -1.0, 1.0, Json::array());
+      if (curved) field["below_zero"] = std::string(kCurvedBelowZeroLabel) + " " + kCurvedBelowZeroNote;
+      return field;
+    };
     std::vector<std::uint8_t> vq;
     if (kinds.empty()) {
       for (Index v : b.vertices) vq.push_back(quality_index(a.field.vertex_quality[static_cast<std::size_t>(v)]));
-      out.fields.push_back(field_json("vertex_quality", "vertex quality (min corner scaled Jacobian)", "vertex", vq,
-                                      quality_lut, -1.0, 1.0, Json::array()));
+      out.fields.push_back(
+          quality_field("vertex_quality", "vertex quality (min corner scaled Jacobian)", "vertex", vq));
     } else {
       for (std::size_t f = 0; f < b.face_hex.size(); ++f) {
         const auto kind = static_cast<std::size_t>(
@@ -274,19 +284,12 @@ BoundaryData boundary_data(const Analysis& a, const ViewerBoundary& b, bool with
           vq.push_back(quality_index(q));
         }
       }
-      out.fields.push_back(field_json("vertex_quality",
-                                      "vertex quality (min corner scaled Jacobian over the face's own cell kind)",
-                                      "corner", vq, quality_lut, -1.0, 1.0, Json::array()));
+      out.fields.push_back(quality_field(
+          "vertex_quality", "vertex quality (min corner scaled Jacobian over the face's own cell kind)", "corner", vq));
     }
     std::vector<std::uint8_t> sj;
     for (double s : face_sj) sj.push_back(quality_index(s));
-    out.fields.push_back(field_json("scaled_jacobian", "cell scaled Jacobian (Verdict)", "face", sj, quality_lut, -1.0,
-                                    1.0, Json::array()));
-    // A curved surface: what its values below 0 are (the overview's
-    // swatch); the viewer names the swatch "inverted (< 0)" otherwise.
-    if (surface && !(a.mesh_summary.planarity && a.mesh_summary.planarity->is_planar))
-      for (std::size_t f = out.fields.size() - 2; f < out.fields.size(); ++f)
-        out.fields[f]["below_zero"] = std::string(kCurvedBelowZeroLabel) + " " + kCurvedBelowZeroNote;
+    out.fields.push_back(quality_field("scaled_jacobian", "cell scaled Jacobian (Verdict)", "face", sj));
   }
   if (a.boundary_error) {
     const double s = error_scale(a.boundary_error->vertex_error);
