@@ -264,6 +264,135 @@ TEST(InvertedCallout, ADentInSightGetsASolidRing) {
 }
 
 
+TEST(InvertedCallout, RingsStayInsideTheView) {
+  // Issue 45, the 45c review: the ring around a dent at the model's end,
+  // at the view's edge, ran on under the legend. A 12 x 12 x 2 slab with the
+  // planes x = 1 and x = 11 pushed 1.6 cells outwards: two long strips of
+  // inverted hexes at the model's two ends, each ringed around its length,
+  // the rings reaching past the view (asserted). Every pixel the rings draw
+  // lies inside the 3D view; none in the legend or the title.
+  HexMesh mesh = test::box_grid(12, 12, 2);
+  for (Vec3& p : mesh.points) {
+    if (p.x == 1.0) p.x -= 1.6;
+    if (p.x == 11.0) p.x += 1.6;
+  }
+  const Case c = make_case(std::move(mesh));
+  ASSERT_FALSE(c.inverted.empty());
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  const OverviewOptions o = small_overview(c.inverted);
+  const OverviewPlan plan = plan_quality_overview(c.mesh, c.topology, c.quality.vertex_quality, o, *renderer);
+  const PixelRect& view = plan.full_view;
+  const double thickness = overview_ring_thickness(plan.frame.style);
+  ASSERT_GE(plan.callouts.size(), 2u);
+  bool reaches_out = false;
+  for (const InvertedCallout& callout : plan.callouts)
+    for (const ScreenDisc& d : callout_discs(callout, thickness))
+      reaches_out = reaches_out || d.x - d.radius < view.x || d.y - d.radius < view.y ||
+                    d.x + d.radius > view.x + view.width || d.y + d.radius > view.y + view.height;
+  ASSERT_TRUE(reaches_out) << "no ring's circle leaves the view: the case tests nothing";
+  const PixelRect& legend = plan.frame.layout.legend;
+  EXPECT_TRUE(legend.x >= view.x + view.width || legend.y >= view.y + view.height) << "the legend is beside the view";
+  // The rings alone on a transparent image, as the overview draws them.
+  Image rings{o.width, o.height, std::vector<std::uint8_t>(4 * static_cast<std::size_t>(o.width) * o.height, 0)};
+  for (const InvertedCallout& callout : plan.callouts) draw_callout_rings(rings, callout, thickness, view);
+  int inside = 0, outside = 0;
+  for (int y = 0; y < rings.height; ++y)
+    for (int x = 0; x < rings.width; ++x) {
+      if (rings.rgba[pixel_offset(rings, x, y) + 3] == 0) continue;
+      const bool in = x >= view.x && y >= view.y && x < view.x + view.width && y < view.y + view.height;
+      ++(in ? inside : outside);
+    }
+  EXPECT_EQ(outside, 0);
+  EXPECT_GT(inside, static_cast<int>(2 * 3.14159 * plan.callouts[0].radius));
+}
+
+bool is_blue(const Image& image, int x, int y);
+bool boxes_meet(const PixelRect& a, const PixelRect& b) {
+  return a.x < b.x + b.width && b.x < a.x + a.width && a.y < b.y + b.height && b.y < a.y + a.height;
+}
+
+TEST(InvertedCallout, EveryBlueInSightIsInsideARing) {
+  // Issue 45, the 45c review: blue in sight outside every ring (one ring
+  // over dents along the model, clamped at the largest radius). A 24 x 4 x 3
+  // bar, vertices of its -y face at x = 2, 8, 14 and 22 (z = 2) pushed 1.6
+  // cells inwards: four dents in sight, the two outer ones far apart. Every
+  // blue pixel of the overview's 3D view (not under an inset) lies within
+  // some ring's disc.
+  HexMesh mesh = test::box_grid(24, 4, 3);
+  for (Vec3& p : mesh.points)
+    if ((p.x == 2.0 || p.x == 8.0 || p.x == 14.0 || p.x == 22.0) && p.y == 0.0 && p.z == 2.0) p.y += 1.6;
+  const Case c = make_case(std::move(mesh));
+  ASSERT_FALSE(c.inverted.empty());
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  const OverviewOptions o = small_overview(c.inverted);
+  const OverviewPlan plan = plan_quality_overview(c.mesh, c.topology, c.quality.vertex_quality, o, *renderer);
+  const Image image = render_quality_overview(c.mesh, c.topology, c.quality.vertex_quality, o, *renderer);
+  const PixelRect& view = plan.full_view;
+  const double thickness = overview_ring_thickness(plan.frame.style);
+  int blue = 0, outside = 0;
+  for (int y = view.y; y < view.y + view.height; ++y)
+    for (int x = view.x; x < view.x + view.width; ++x) {
+      if (!is_blue(image, x, y)) continue;
+      if (std::any_of(plan.insets.begin(), plan.insets.end(),
+                      [&](const InvertedInset& inset) { return boxes_meet(inset.rect, {x, y, 1, 1}); }))
+        continue;
+      ++blue;
+      bool ringed = false;
+      for (const InvertedCallout& ring : plan.callouts)
+        for (const ScreenDisc& d : callout_discs(ring, thickness))
+          ringed = ringed || std::hypot(x + 0.5 - d.x, y + 0.5 - d.y) <= d.radius;
+      outside += ringed ? 0 : 1;
+    }
+  EXPECT_GT(blue, 200) << "the dents show blue";
+  EXPECT_EQ(outside, 0) << "blue pixels in sight outside every ring, of " << blue;
+}
+
+TEST(InvertedCallout, LabelsGoOffTheModelFirst) {
+  // Issue 45, the 45c review: the hand's label box covered its wrist while
+  // the figure's right part was empty. A ring in the middle of a model
+  // covering the view's left 500 x 600 pixels: its label goes right of the
+  // model, with a leader; without the model's rectangles it sits beside
+  // the ring, on the model (the placement the model's rectangles change).
+  const PixelRect view{0, 0, 800, 600};
+  InvertedCallout ring;
+  ring.x = 250, ring.y = 300, ring.radius = 40, ring.num_cells = 29, ring.visible_pixels = 500, ring.num_seen_cells = 29;
+  ring.on_boundary = true;
+  const std::vector<InvertedCallout> rings{ring};
+  const std::vector<PixelRect> model{{0, 0, 500, 600}};
+  const AnnotationStyle style = annotation_style_for(600);
+  const std::vector<InvertedRingLabel> off = place_callout_labels(view, rings, "hex", 3.0, 16, style, {}, model);
+  ASSERT_EQ(off.size(), 1u);
+  ASSERT_TRUE(off[0].placed);
+  EXPECT_FALSE(boxes_meet(off[0].placed->box, model[0]));
+  EXPECT_TRUE(off[0].placed->has_leader);
+  const std::vector<InvertedRingLabel> over = place_callout_labels(view, rings, "hex", 3.0, 16, style);
+  ASSERT_TRUE(over[0].placed);
+  EXPECT_TRUE(boxes_meet(over[0].placed->box, model[0]));
+  // A model over the whole view: the label still finds a place, over it.
+  const std::vector<PixelRect> everywhere{view};
+  const std::vector<InvertedRingLabel> forced = place_callout_labels(view, rings, "hex", 3.0, 16, style, {}, everywhere);
+  EXPECT_TRUE(forced[0].placed);
+}
+
+TEST(InvertedCallout, WrappedLabelsKeepANumberWithItsNoun) {
+  // The 45c review: "8 in sight, 29 / unseen beside them". A label too
+  // long for a narrow view wraps, and no line ends in a number.
+  InvertedCallout ring;
+  ring.x = 150, ring.y = 150, ring.radius = 30, ring.num_cells = 58, ring.num_groups = 4, ring.visible_pixels = 900;
+  ring.num_seen_cells = 8, ring.on_boundary = true, ring.hidden_on_boundary = true, ring.num_hidden_groups = 3;
+  ring.hidden_cells.assign(21, 0);
+  const std::vector<InvertedCallout> rings{ring};
+  const std::vector<InvertedRingLabel> labels =
+      place_callout_labels({0, 0, 300, 300}, rings, "hex", 3.0, 14, annotation_style_for(300));
+  ASSERT_TRUE(labels[0].placed);
+  EXPECT_EQ(labels[0].text, "58 inverted hexes in 4 groups: 8 in sight, 29 unseen beside them, 21 on the far side");
+  ASSERT_GT(labels[0].lines.size(), 1u);
+  for (const std::string& line : labels[0].lines) {
+    ASSERT_FALSE(line.empty());
+    EXPECT_FALSE(std::isdigit(static_cast<unsigned char>(line.back()))) << line;
+  }
+}
+
 // A convex polygon (Andrew's monotone chain) and whether a point is within
 // `pad` pixels inside or outside it.
 std::vector<std::pair<double, double>> convex_hull(std::vector<std::pair<double, double>> p) {

@@ -175,15 +175,21 @@ std::int64_t grid_key(int cx, int cy) {
 
 }  // namespace
 
-LabelPlacer::LabelPlacer(std::span<const PixelRect> taken, const LabelLayoutOptions& options) : options_(options) {
-  for (const PixelRect& b : taken) add_box(b);
-}
-
 // Calls f(cell key) for every grid cell the rectangle [x0, x1] x [y0, y1] meets.
 template <class F>
 void for_cells(double x0, double y0, double x1, double y1, F&& f) {
   for (int cy = grid_cell(std::min(y0, y1)); cy <= grid_cell(std::max(y0, y1)); ++cy)
     for (int cx = grid_cell(std::min(x0, x1)); cx <= grid_cell(std::max(x0, x1)); ++cx) f(grid_key(cx, cy));
+}
+
+LabelPlacer::LabelPlacer(std::span<const PixelRect> taken, const LabelLayoutOptions& options,
+                         std::span<const PixelRect> avoid)
+    : options_(options), avoid_(avoid.begin(), avoid.end()) {
+  for (const PixelRect& b : taken) add_box(b);
+  for (std::uint32_t i = 0; i < avoid_.size(); ++i) {
+    const PixelRect& b = avoid_[i];
+    for_cells(b.x, b.y, b.x + b.width, b.y + b.height, [&](std::int64_t k) { avoid_cells_[k].push_back(i); });
+  }
 }
 
 void LabelPlacer::add_box(const PixelRect& box) {
@@ -266,6 +272,8 @@ std::optional<PlacedLabel> LabelPlacer::place(const LabelRequest& label, const D
     if (!inside(box, options_.bounds) || box_meets_disc(box, anchor)) return c;
     const double bx1 = box.x + box.width, by1 = box.y + box.height;
     if (any_box_near(box.x, box.y, bx1, by1, [&](const PixelRect& b) { return boxes_overlap(box, b); })) return c;
+    if (any_near(avoid_cells_, avoid_, box.x, box.y, bx1, by1, [&](const PixelRect& b) { return boxes_overlap(box, b); }))
+      return c;
     if (any_disc_near(box.x, box.y, bx1, by1, [&](const ScreenDisc& d) { return box_meets_disc(box, d); })) return c;
     const double own = disc_box_gap(anchor, box);
     const bool is_far = own > options_.leader_distance;

@@ -131,7 +131,9 @@ class DiscIndex {
 // labels), and each candidate checked once for all three passes.
 class LabelPlacer {
  public:
-  LabelPlacer(std::span<const PixelRect> taken, const LabelLayoutOptions& options);
+  // avoid: boxes no label's box overlaps, its leader may cross them (the
+  // model under the labels, inverted_callout.h).
+  LabelPlacer(std::span<const PixelRect> taken, const LabelLayoutOptions& options, std::span<const PixelRect> avoid = {});
   // Where label goes among obstacles (place_labels' rules), given what was
   // added so far; nullopt when there is no free place. Adds nothing.
   std::optional<PlacedLabel> place(const LabelRequest& label, const DiscIndex& obstacles) const;
@@ -151,7 +153,8 @@ class LabelPlacer {
   LabelLayoutOptions options_;
   std::vector<PixelRect> boxes_;
   std::vector<PlacedLabel> leaders_;
-  std::unordered_map<std::int64_t, std::vector<std::uint32_t>> box_cells_, leader_cells_;
+  std::vector<PixelRect> avoid_;
+  std::unordered_map<std::int64_t, std::vector<std::uint32_t>> box_cells_, leader_cells_, avoid_cells_;
 };
 
 // Margin callout columns (issue 44 part V: dolphin_rot's pile-up of a

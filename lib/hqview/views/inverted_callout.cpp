@@ -451,17 +451,22 @@ std::vector<ScreenDisc> callout_discs(const InvertedCallout& c, double thickness
   return discs;
 }
 
-void draw_callout_rings(Image& image, const InvertedCallout& c, double thickness) {
-  draw_marker_ring(image, c.x, c.y, c.radius, thickness, !callout_in_sight(c), kCalloutColor);
-  if (c.hidden_radius > 0.0) draw_marker_ring(image, c.hidden_x, c.hidden_y, c.hidden_radius, thickness, true, kCalloutColor);
+void draw_callout_rings(Image& image, const InvertedCallout& c, double thickness, const PixelRect& clip) {
+  draw_marker_ring(image, c.x, c.y, c.radius, thickness, !callout_in_sight(c), kCalloutColor, clip);
+  if (c.hidden_radius > 0.0)
+    draw_marker_ring(image, c.hidden_x, c.hidden_y, c.hidden_radius, thickness, true, kCalloutColor, clip);
 }
 
-void draw_marker_ring(Image& image, double cx, double cy, double radius, double thickness, bool dashed, Rgba8 color) {
+void draw_marker_ring(Image& image, double cx, double cy, double radius, double thickness, bool dashed, Rgba8 color,
+                      std::optional<PixelRect> clip) {
+  const PixelRect within = clip.value_or(PixelRect{0, 0, image.width, image.height});
   const Rgba8 halo{255, 255, 255, 255};
   const int r = static_cast<int>(std::ceil(radius + 2 * thickness)) + 1;
   for (int y = static_cast<int>(cy) - r; y <= static_cast<int>(cy) + r; ++y)
     for (int x = static_cast<int>(cx) - r; x <= static_cast<int>(cx) + r; ++x) {
-      if (x < 0 || y < 0 || x >= image.width || y >= image.height) continue;
+      if (x < std::max(0, within.x) || y < std::max(0, within.y) || x >= std::min(image.width, within.x + within.width) ||
+          y >= std::min(image.height, within.y + within.height))
+        continue;
       const double dx = x + 0.5 - cx, dy = y + 0.5 - cy, d = std::hypot(dx, dy);
       const double off = std::abs(d - radius);
       if (off > thickness) continue;
@@ -482,13 +487,19 @@ void draw_marker_ring(Image& image, double cx, double cy, double radius, double 
 namespace {
 
 // The words of text in lines of at most max_width pixels (a word longer
-// than that on a line of its own); "see inset A" stays on one line.
+// than that on a line of its own); "see inset A" and a number with the word
+// after it stay on one line.
 std::vector<std::string> wrap_words(const std::string& text, int max_width, int text_size, const AnnotationStyle& style) {
   std::vector<std::string> words;
   for (std::size_t i = 0; i <= text.size();) {
     const std::size_t j = std::min(text.find(' ', i), text.size());
     std::string word = text.substr(i, j - i);
-    if (!words.empty() && (words.back() == "see" || words.back() == "see inset")) words.back() += " " + word;
+    // A count stays with the word after it ("29 unseen", the 45c review:
+    // "29" ended one line, "unseen beside them" began the next).
+    const bool glued = !words.empty() && (words.back() == "see" || words.back() == "see inset" ||
+                                          std::all_of(words.back().begin(), words.back().end(),
+                                                      [](char ch) { return ch == '+' || (ch >= '0' && ch <= '9'); }));
+    if (glued) words.back() += " " + word;
     else words.push_back(std::move(word));
     i = j + 1;
   }
@@ -513,7 +524,8 @@ int line_pitch(int text_size) { return text_size + std::max(3, text_size / 5); }
 
 std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::span<const InvertedCallout> callouts,
                                                const std::string& noun, double thickness, int text_size,
-                                               const AnnotationStyle& style, std::span<const PixelRect> taken) {
+                                               const AnnotationStyle& style, std::span<const PixelRect> taken,
+                                               std::span<const PixelRect> model) {
   const double area = static_cast<double>(view.width) * view.height;
   std::vector<ScreenDisc> rings;
   std::vector<InvertedRingLabel> labels;
@@ -544,13 +556,19 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
   // only shifts where the label is tried); then the same on 2, then 3
   // lines (issue 45g: rockarm's small ring between a large ring and the
   // view's top edge had no room for one line).
-  LabelPlacer placer(taken, layout);
+  // Off the model first (the 45c review: the hand's label covered its
+  // wrist with free space at the right): every place tried with no box on
+  // the model's rectangles (leaders may cross them), then, when none is
+  // free, anywhere.
+  LabelPlacer free_placer(taken, layout, model), placer(taken, layout);
   const DiscIndex ring_index(rings);
   for (std::size_t i = 0; i < labels.size(); ++i) {
     const ScreenDisc ring = rings[i];
     const int one_line = text_extent(labels[i].text, text_size, style).width;
     std::optional<PlacedLabel> p;
+    for (int pass = model.empty() ? 1 : 0; !p && pass < 2; ++pass)
     for (int n = 1; !p && n <= 3; ++n) {
+      const LabelPlacer& where = pass == 0 ? free_placer : placer;
       const std::vector<std::string> lines =
           n == 1 ? std::vector<std::string>{labels[i].text} : wrap_words(labels[i].text, (one_line + n - 1) / n, text_size, style);
       if (n > 1 && static_cast<int>(lines.size()) == 1) continue;
@@ -562,7 +580,7 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
       // crossed rings and ended on the wrong one).
       request.protect_below = static_cast<std::int64_t>(rings.size());
       request.strict_leaders = true;
-      p = placer.place(request, ring_index);
+      p = where.place(request, ring_index);
       const double step = std::max(0.5 * ring.radius, 0.75 * text_size);
       for (int k = 1; !p && k <= 24; ++k)
         for (const auto& [sx, sy] : {std::pair{-1, 0}, std::pair{1, 0}, std::pair{0, -1}, std::pair{0, 1},
@@ -572,12 +590,12 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
           moved.anchor.y += sy * k * step;
           moved.leader_from = ring;
           moved.anchor.radius = std::min(ring.radius, 0.5 * text_size);  // only where the box is tried from
-          p = placer.place(moved, ring_index);
+          p = where.place(moved, ring_index);
           if (p) break;
         }
       if (p) labels[i].lines = lines;
     }
-    if (p) placer.add(*p);
+    if (p) placer.add(*p), free_placer.add(*p);
     labels[i].placed = p;
   }
   return labels;
@@ -585,12 +603,12 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
 
 void draw_inverted_callouts(Image& figure, const PixelRect& view, std::span<const InvertedCallout> callouts,
                             const std::string& noun, double thickness, int text_size, const AnnotationStyle& style,
-                            std::span<const PixelRect> taken, bool draw_rings) {
+                            std::span<const PixelRect> taken, bool draw_rings, std::span<const PixelRect> model) {
   for (const InvertedCallout& c : callouts)
-    if (draw_rings) draw_callout_rings(figure, c, thickness);
+    if (draw_rings) draw_callout_rings(figure, c, thickness, view);
   if (text_size <= 0) return;
   const Rgba8 line{70, 70, 70, 255};  // the labels' leaders and frames: not the ring's colour
-  const std::vector<InvertedRingLabel> labels = place_callout_labels(view, callouts, noun, thickness, text_size, style, taken);
+  const std::vector<InvertedRingLabel> labels = place_callout_labels(view, callouts, noun, thickness, text_size, style, taken, model);
   for (const InvertedRingLabel& label : labels) {
     if (!label.placed) continue;
     const PlacedLabel& p = *label.placed;

@@ -136,7 +136,9 @@ inline bool callout_in_sight(const InvertedCallout& c) { return c.visible_pixels
 // other label's box; no box covers a ring (label_layout.h strict_leaders,
 // every ring protected; issue 45g); a split callout's dashed ring gets its
 // own label and leader (issue 45). A label with no place on one line
-// tries 2, then 3 lines (words wrapped).
+// tries 2, then 3 lines (words wrapped). `model`: rectangles the model
+// covers; every label is tried off them first (1 to 3 lines), then over
+// them when no such place is free.
 struct InvertedRingLabel {
   std::string text;
   std::size_t callout = 0;  // the callout whose ring it names
@@ -146,7 +148,8 @@ struct InvertedRingLabel {
 };
 std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::span<const InvertedCallout> callouts,
                                                const std::string& noun, double thickness, int text_size,
-                                               const AnnotationStyle& style, std::span<const PixelRect> taken = {});
+                                               const AnnotationStyle& style, std::span<const PixelRect> taken = {},
+                                               std::span<const PixelRect> model = {});
 
 // Draws each callout's ring (kCalloutColor core of `thickness` pixels on a
 // white halo; dashed when not in sight) and, with labels (text_size > 0),
@@ -157,15 +160,20 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
 // rings before its insets, the labels after).
 void draw_inverted_callouts(Image& figure, const PixelRect& view, std::span<const InvertedCallout> callouts,
                             const std::string& noun, double thickness, int text_size, const AnnotationStyle& style,
-                            std::span<const PixelRect> taken = {}, bool draw_rings = true);
+                            std::span<const PixelRect> taken = {}, bool draw_rings = true,
+                            std::span<const PixelRect> model = {});
 
 // A callout's rings: its ring (solid when in sight, else dashed) and its
-// dashed ring of hidden groups when it has one.
-void draw_callout_rings(Image& image, const InvertedCallout& c, double thickness);
+// dashed ring of hidden groups when it has one, their pixels inside `clip`
+// only (the overview's 3D view: issue 45, the 45c review: a ring around
+// blue at the view's edge ran on under the legend).
+void draw_callout_rings(Image& image, const InvertedCallout& c, double thickness, const PixelRect& clip);
 
 // A ring: an annulus of `color` (core thickness / 2 either side of radius)
 // on a white halo (as wide again), solid or dashed (dashes of about 14
-// pixels along the ring, at least 8 of them, evenly spaced).
-void draw_marker_ring(Image& image, double cx, double cy, double radius, double thickness, bool dashed, Rgba8 color);
+// pixels along the ring, at least 8 of them, evenly spaced); only its
+// pixels inside `clip` (none: the whole image) are drawn.
+void draw_marker_ring(Image& image, double cx, double cy, double radius, double thickness, bool dashed, Rgba8 color,
+                      std::optional<PixelRect> clip = std::nullopt);
 
 }  // namespace hq

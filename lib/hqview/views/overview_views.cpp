@@ -371,6 +371,28 @@ std::vector<char> silhouette_mask(const HexMesh& mesh, const Topology& topology,
   return grown;
 }
 
+// The rectangles the model covers in `view` from `camera` (silhouette_mask
+// on kFitGrid / 2 columns, each row's runs of set cells as one rectangle).
+std::vector<PixelRect> model_rects(const HexMesh& mesh, const Topology& topology, const Camera& camera, const PixelRect& view) {
+  const int gw = kFitGrid / 2, gh = std::max(1, static_cast<int>(std::lround(gw * static_cast<double>(view.height) / std::max(1, view.width))));
+  const std::vector<char> mask = silhouette_mask(mesh, topology, camera, static_cast<double>(view.width) / std::max(1, view.height), gw, gh);
+  const auto at = [&](int i, int n, int length) { return static_cast<int>(std::lround(static_cast<double>(i) * length / n)); };
+  std::vector<PixelRect> rects;
+  for (int j = 0; j < gh; ++j)
+    for (int i = 0; i < gw;) {
+      if (!mask[static_cast<std::size_t>(j) * gw + i]) {
+        ++i;
+        continue;
+      }
+      int k = i;
+      while (k < gw && mask[static_cast<std::size_t>(j) * gw + k]) ++k;
+      const int x0 = at(i, gw, view.width), x1 = at(k, gw, view.width), y0 = at(j, gh, view.height), y1 = at(j + 1, gh, view.height);
+      rects.push_back({view.x + x0, view.y + y0, x1 - x0, y1 - y0});
+      i = k;
+    }
+  return rects;
+}
+
 // The part of `view` scaled by t about its corner (ax, ay): 0 left/top, 1 right/bottom.
 PixelRect scaled_view(const PixelRect& view, double t, int ax, int ay) {
   const int w = static_cast<int>(std::lround(t * view.width)), h = static_cast<int>(std::lround(t * view.height));
@@ -769,11 +791,12 @@ Image render_quality_overview(const HexMesh& mesh, const Topology& topology, con
   }
   // The rings, the insets beside the model (a large ring may pass under
   // one), then the labels around them, anywhere in the whole view.
-  for (const InvertedCallout& c : callouts) draw_callout_rings(figure, c, thickness);
+  for (const InvertedCallout& c : callouts) draw_callout_rings(figure, c, thickness, plan.full_view);
   draw_inverted_insets(figure, insets, pictures, callouts, options.cell_noun, text_size, style);
   std::vector<PixelRect> taken;
   for (const InvertedInset& inset : insets) taken.push_back(inset.rect);
-  draw_inverted_callouts(figure, plan.full_view, callouts, options.cell_noun, thickness, text_size, style, taken, false);
+  draw_inverted_callouts(figure, plan.full_view, callouts, options.cell_noun, thickness, text_size, style, taken, false,
+                         model_rects(mesh, topology, f.camera, layout.view));
   // The legend keeps the ring styles drawn.
   const bool solid = std::any_of(callouts.begin(), callouts.end(), callout_in_sight);
   const bool dashed = std::any_of(callouts.begin(), callouts.end(),
