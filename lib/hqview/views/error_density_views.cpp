@@ -203,9 +203,7 @@ bool max_hex_behind_boundary(const Figure& f, const HexMesh& mesh, const Topolog
   if (worst.hex == kNoIndex) return false;
   if (!worst.on_boundary) return true;
   const std::vector<Index> max_hex{worst.hex};
-  return error_density_cells_behind_boundary(mesh, topology, max_hex, f.camera, f.layout.view.width,
-                                             f.layout.view.height, renderer)
-      .front();
+  return error_density_cells_behind_boundary(mesh, topology, max_hex, f.camera, renderer).front();
 }
 
 // The ring's legend swatch: solid for a max seen on the boundary, dashed for
@@ -214,7 +212,7 @@ ColorBarSwatch worst_ring_swatch(const ErrorDensityWorst& worst, bool hidden) {
   const Color ink{0.08, 0.08, 0.08};
   if (!worst.on_boundary) return {ink, "ring: max (dashed: interior)", SwatchShape::dashed_ring};
   if (hidden) return {ink, "ring: max (dashed: behind)", SwatchShape::dashed_ring};
-  return {ink, "ring: max (on the boundary)", SwatchShape::solid_ring};
+  return {ink, "ring: max (visible)", SwatchShape::solid_ring};
 }
 
 // The label of the ring at (cx, cy) in the free margin beside the model's
@@ -343,10 +341,11 @@ LineSet boundary_edge_lines(const HexMesh& mesh, const Topology& topology, const
   return lines;
 }
 
-// The axis along which points vary least (the eigenvector of the smallest
-// eigenvalue of their covariance; power iteration on trace - C, which
-// converges to it, from a start fixed by the points' spread).
-Vec3 thinnest_axis(std::span<const Vec3> points) {
+// The axis along which points vary least (thinnest) or most: the
+// eigenvector of the smallest or largest eigenvalue of their covariance C;
+// power iteration on trace - C (thinnest) or C, which converges to it, from
+// a start fixed by the points' spread.
+Vec3 principal_axis(std::span<const Vec3> points, bool thinnest) {
   if (points.empty()) return {0, 0, 1};
   Vec3 mean;
   for (const Vec3& p : points) mean = mean + p / static_cast<double>(points.size());
@@ -356,17 +355,30 @@ Vec3 thinnest_axis(std::span<const Vec3> points) {
       for (int j = 0; j < 3; ++j) c[i][j] += (p[i] - mean[i]) * (p[j] - mean[j]);
   const double trace = c[0][0] + c[1][1] + c[2][2];
   if (!(trace > 0)) return {0, 0, 1};
-  const int thin = c[0][0] <= c[1][1] && c[0][0] <= c[2][2] ? 0 : c[1][1] <= c[2][2] ? 1 : 2;
+  const int start = thinnest ? (c[0][0] <= c[1][1] && c[0][0] <= c[2][2] ? 0 : c[1][1] <= c[2][2] ? 1 : 2)
+                             : (c[0][0] >= c[1][1] && c[0][0] >= c[2][2] ? 0 : c[1][1] >= c[2][2] ? 1 : 2);
+  const double shift = thinnest ? trace : 0.0;
+  const double sign = thinnest ? -1.0 : 1.0;
   Vec3 v{0.1, 0.1, 0.1};
-  v[thin] = 1.0;
+  v[start] = 1.0;
   for (int k = 0; k < 200; ++k) {
     Vec3 w;
     for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) w[i] += ((i == j ? trace : 0.0) - c[i][j]) * v[j];
+      for (int j = 0; j < 3; ++j) w[i] += ((i == j ? shift : 0.0) + sign * c[i][j]) * v[j];
     if (!(norm(w) > 0)) break;
     v = w / norm(w);
   }
   return v;
+}
+
+// The points' extent along the unit axis a (max - min of their projections).
+double extent_along(std::span<const Vec3> points, const Vec3& a) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const Vec3& p : points) {
+    lo = std::min(lo, dot(p, a));
+    hi = std::max(hi, dot(p, a));
+  }
+  return points.empty() ? 0.0 : hi - lo;
 }
 
 }  // namespace
@@ -377,8 +389,13 @@ Vec3 away_from_edge_on(const Vec3& direction, std::span<const Vec3> points, cons
   // kEdgeOnDegrees of edge-on to the model's thinnest axis n, the view is
   // tilted to kTiltDegrees from edge-on, towards the side of n the focus
   // (the max hex) lies on, keeping its azimuth about n.
-  constexpr double kEdgeOnDegrees = 45.0, kTiltDegrees = 60.0;
-  const Vec3 n = thinnest_axis(points);
+  // Issue 48d: only for a plate (its extent along n below kPlateFraction of
+  // its extent along its longest principal axis); the tilt turned a bunny's
+  // camera so that its max, in plain view before, went behind the ear.
+  constexpr double kEdgeOnDegrees = 45.0, kTiltDegrees = 60.0, kPlateFraction = 0.5;
+  const Vec3 n = principal_axis(points, true);
+  if (!(extent_along(points, n) < kPlateFraction * extent_along(points, principal_axis(points, false))))
+    return direction;
   const Vec3 d = direction / norm(direction);
   if (std::abs(dot(d, n)) >= std::sin(kEdgeOnDegrees * std::numbers::pi / 180.0)) return direction;
   Vec3 across = d - dot(d, n) * n;
@@ -577,8 +594,7 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   const ErrorDensityWorst worst = error_density_worst(topology, density);
   const std::vector<Index> shown = error_density_cells(density, options);
   const std::vector<bool> hidden =
-      error_density_cells_behind_boundary(mesh, topology, shown, f.camera, f.layout.view.width, f.layout.view.height,
-                                          renderer);
+      error_density_cells_behind_boundary(mesh, topology, shown, f.camera, renderer);
   // The veil first (blended over the background only), then the cells and
   // their edges in the overlay layer over it: no veil is ever blended over a
   // cell and no face is shaded, so every face is exactly its colour-bar
@@ -729,12 +745,20 @@ std::vector<ColorBarSwatch> error_density_cells_swatches(const ErrorDensityWorst
 }
 
 std::vector<bool> error_density_cells_behind_boundary(const HexMesh& mesh, const Topology& topology,
-                                                      std::span<const Index> cells, const Camera& camera, int width,
-                                                      int height, Renderer& renderer) {
+                                                      std::span<const Index> cells, const Camera& camera,
+                                                      Renderer& renderer) {
   std::vector<bool> hidden(cells.size(), false);
-  if (cells.empty() || width <= 0 || height <= 0 || cells.size() + 2 > kMaxId) return hidden;
+  if (cells.empty() || cells.size() + 2 > kMaxId) return hidden;
   const Box3 box = boundary_bounding_box(mesh, topology);
   const Vec3 origin = 0.5 * (box.lo + box.hi);
+  // Decided on its own square id image of kVerdictPixels, the boundary
+  // framed along the camera's direction (issue 48d: at the figure's size a
+  // wider legend, a slightly smaller view, turned warrior_rot's max from
+  // seen to hidden; the verdict now depends on the direction only).
+  constexpr int kVerdictPixels = 1200;
+  const Camera verdict =
+      fit_camera_to_points(boundary_points(mesh, topology), camera.target - camera.eye, 1.0,
+                           {.up = camera.up, .fov_y_degrees = camera.fov_y_degrees, .is_perspective = camera.is_perspective});
   std::vector<Index> sorted(cells.begin(), cells.end());
   std::sort(sorted.begin(), sorted.end());
   // Each boundary face of the cells its own id, 2 + j (owner[j] its cell's
@@ -760,8 +784,8 @@ std::vector<bool> error_density_cells_behind_boundary(const HexMesh& mesh, const
   alone.triangles.push_back(own);
   Scene with = alone;
   with.triangles.push_back(std::move(other));
-  const IdImage a = renderer.render_ids(alone, camera, width, height);
-  const IdImage b = renderer.render_ids(with, camera, width, height);
+  const IdImage a = renderer.render_ids(alone, verdict, kVerdictPixels, kVerdictPixels);
+  const IdImage b = renderer.render_ids(with, verdict, kVerdictPixels, kVerdictPixels);
   if (a.empty() || b.empty() || a.ids.size() != b.ids.size()) return hidden;
   std::vector<std::size_t> seen_alone(owner.size(), 0), seen_with(owner.size(), 0);
   for (std::size_t i = 0; i < a.ids.size(); ++i) {
@@ -769,12 +793,14 @@ std::vector<bool> error_density_cells_behind_boundary(const HexMesh& mesh, const
     if (b.ids[i] >= 2 && b.ids[i] - 2 < owner.size()) ++seen_with[b.ids[i] - 2];
   }
   // Seen: one of its boundary faces shows at least half of what it covers
-  // drawn alone (at least kMinSeenPixels), face by face (issue 48c: summed
+  // drawn alone and at least kMinSeenPixels (issue 48d: warrior_rot's max
+  // was called seen on a 5 x 4 px blob its 2 px outline covered; 8 x 8 px
+  // leave its own colour inside the outline), face by face (issue 48c: summed
   // over the cell, a face turned away, drawn alone, outweighed a face seen
   // at a grazing angle, and a max at the silhouette whose face is in plain
   // view was called hidden). Hidden: none is (an interior cell, one behind a
   // fold or on the far side, or whose faces are off screen or edge-on).
-  constexpr std::size_t kMinSeenPixels = 4;
+  constexpr std::size_t kMinSeenPixels = 64;
   std::fill(hidden.begin(), hidden.end(), true);
   for (std::size_t j = 0; j < owner.size(); ++j)
     if (seen_with[j] >= kMinSeenPixels && 2 * seen_with[j] >= seen_alone[j]) hidden[owner[j]] = false;
