@@ -386,18 +386,21 @@ double extent_along(std::span<const Vec3> points, const Vec3& a) {
 Vec3 away_from_edge_on(const Vec3& direction, std::span<const Vec3> points, const Vec3& focus) {
   // Issue 48r: an extruded plate was seen edge-on (a rectangle); 48c: at 30
   // degrees its profile was still squeezed to a strip. Within
-  // kEdgeOnDegrees of edge-on to the model's thinnest axis n, the view is
-  // tilted to kTiltDegrees from edge-on, towards the side of n the focus
+  // edge_on_degrees of edge-on to the model's thinnest axis n, the view is
+  // tilted to tilt_degrees from edge-on, towards the side of n the focus
   // (the max hex) lies on, keeping its azimuth about n.
-  // Issue 48d: only for a plate (its extent along n below kPlateFraction of
-  // its extent along its longest principal axis); the tilt turned a bunny's
-  // camera so that its max, in plain view before, went behind the ear.
-  constexpr double kEdgeOnDegrees = 45.0, kTiltDegrees = 60.0, kPlateFraction = 0.5;
+  // Issue 48d: 45 and 60 degrees only for a plate (its extent along n below
+  // kPlateFraction of its extent along its longest principal axis); on
+  // other models 48r's 15 and 30: the plate's rule turned bunny_1_pr's camera
+  // so that its max, in plain view at 30, went behind the ear, and no tilt
+  // at all left it behind the ear too.
+  constexpr double kPlateFraction = 0.5;
   const Vec3 n = principal_axis(points, true);
-  if (!(extent_along(points, n) < kPlateFraction * extent_along(points, principal_axis(points, false))))
-    return direction;
+  const bool plate =
+      extent_along(points, n) < kPlateFraction * extent_along(points, principal_axis(points, false));
+  const double edge_on_degrees = plate ? 45.0 : 15.0, tilt_degrees = plate ? 60.0 : 30.0;
   const Vec3 d = direction / norm(direction);
-  if (std::abs(dot(d, n)) >= std::sin(kEdgeOnDegrees * std::numbers::pi / 180.0)) return direction;
+  if (std::abs(dot(d, n)) >= std::sin(edge_on_degrees * std::numbers::pi / 180.0)) return direction;
   Vec3 across = d - dot(d, n) * n;
   if (!(norm(across) > 1e-9)) return direction;
   across = across / norm(across);
@@ -406,7 +409,7 @@ Vec3 away_from_edge_on(const Vec3& direction, std::span<const Vec3> points, cons
   // The eye at -d: on the focus's side of n when d points against it.
   const double side = dot(focus - mean, n);
   const double sign = side > 0 ? -1.0 : side < 0 ? 1.0 : (dot(d, n) < 0 ? -1.0 : 1.0);
-  const double tilt = kTiltDegrees * std::numbers::pi / 180.0;
+  const double tilt = tilt_degrees * std::numbers::pi / 180.0;
   return std::cos(tilt) * across + sign * std::sin(tilt) * n;
 }
 
@@ -533,7 +536,8 @@ std::vector<Index> error_density_cells(std::span<const double> density, const Er
 }
 
 Vec3 choose_error_density_viewpoint(const HexMesh& mesh, const Topology& topology, std::span<const double> density,
-                                    const ErrorDensityViewOptions& options) {
+                                    const ErrorDensityViewOptions& options, Renderer* renderer) {
+  constexpr std::size_t kViewCandidates = 3;
   std::vector<Vec3> centers;
   std::vector<double> radii;
   for (Index h : densest_hexes(density, options.densest_fraction)) {
@@ -546,9 +550,22 @@ Vec3 choose_error_density_viewpoint(const HexMesh& mesh, const Topology& topolog
                                             annotation_style_for(options.height));
   const double aspect = static_cast<double>(layout.view.width) / std::max(1, layout.view.height);
   const std::vector<Vec3> points = boundary_points(mesh, topology);
-  const Vec3 chosen = choose_viewpoints(points, centers, radii, aspect, 1, options.up, kFovY).front();
   const ErrorDensityWorst worst = error_density_worst(topology, density);
-  return worst.hex == kNoIndex ? chosen : away_from_edge_on(chosen, points, hex_center(mesh, worst.hex));
+  const std::vector<Vec3> chosen =
+      choose_viewpoints(points, centers, radii, aspect, renderer ? kViewCandidates : 1, options.up, kFovY);
+  if (worst.hex == kNoIndex) return chosen.front();
+  // Issue 48d: the first candidate (best for the densest 1%) whose max hex
+  // is seen (error_density_cells_behind_boundary); the first when none is
+  // (bunny_1_pr: the first hid its max behind the ear, the second shows it).
+  const std::vector<Index> max_hex{worst.hex};
+  for (const Vec3& candidate : chosen) {
+    const Vec3 d = away_from_edge_on(candidate, points, hex_center(mesh, worst.hex));
+    if (!renderer || !worst.on_boundary) return d;
+    const Camera camera =
+        fit_camera_to_points(points, d, 1.0, {.up = options.up, .fov_y_degrees = kFovY, .is_perspective = false});
+    if (!error_density_cells_behind_boundary(mesh, topology, max_hex, camera, *renderer).front()) return d;
+  }
+  return away_from_edge_on(chosen.front(), points, hex_center(mesh, worst.hex));
 }
 
 Image render_error_density_boundary(const HexMesh& mesh, const Topology& topology, std::span<const double> density,

@@ -117,9 +117,12 @@ struct ErrorDensityViewOptions {
 std::vector<Index> error_density_cells(std::span<const double> density, const ErrorDensityViewOptions& options);
 
 // The upright direction that shows the most of the densest hexes, turned
-// away from edge-on to the model (away_from_edge_on, the max hex the focus).
+// away from edge-on to the model (away_from_edge_on, the max hex the focus);
+// with a renderer, of the 3 best such directions the first from which a
+// boundary max hex is seen (error_density_cells_behind_boundary), the first
+// when it is seen from none.
 Vec3 choose_error_density_viewpoint(const HexMesh& mesh, const Topology& topology, std::span<const double> density,
-                                    const ErrorDensityViewOptions& options);
+                                    const ErrorDensityViewOptions& options, Renderer* renderer = nullptr);
 
 // The ring about the max is at least this many pixels (times the style's
 // scale) in radius.

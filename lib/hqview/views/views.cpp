@@ -854,7 +854,7 @@ std::vector<ViewFile> build_fem_error_density(ViewContext& c) {
   auto options = sized<ErrorDensityViewOptions>(c);
   options.quality_threshold = 1.0 - (c.a.glyphs ? c.a.glyphs->options.threshold : 0.5);
   options.reference = c.options.error_density_reference;
-  const Vec3 direction = choose_error_density_viewpoint(c.a.mesh, c.a.topology, p.cell_error_density, options);
+  const Vec3 direction = choose_error_density_viewpoint(c.a.mesh, c.a.topology, p.cell_error_density, options, &c.renderer);
   const ErrorDensityWorst worst = error_density_worst(c.a.topology, p.cell_error_density);
   // Where the max is (the ring says it too), then the boundary's own max.
   const std::string max_text =
