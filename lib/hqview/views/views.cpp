@@ -893,7 +893,7 @@ std::vector<ViewFile> build_fem_error_density(ViewContext& c) {
                   "), " + std::to_string(low) + " of them with scaled Jacobian < " +
                   display_number(options.quality_threshold, 3) +
                   (std::isfinite(min_sj) ? " (mesh: min SJ " + display_number(min_sj, 2) + ", " +
-                                               std::to_string(not_positive) + " with SJ <= 0)"
+                                               std::to_string(not_positive) + " with SJ \u2264 0)"
                                          : std::string()) +
                   "; " + max_text;
   files.push_back(framed("views/fem_error_density_cells.png",
