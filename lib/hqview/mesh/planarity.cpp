@@ -50,6 +50,8 @@ LeastSquaresPlane least_squares_plane(std::span<const Vec3> points) {
                          : std::abs(normal.y) >= std::abs(normal.z)                                          ? normal.y
                                                                                                               : normal.z;
   plane.normal = largest < 0 ? -normal : normal;
+  const Eigen::Vector3d l = solver.eigenvectors().col(2);
+  plane.longest = Vec3{l.x(), l.y(), l.z()};
   return plane;
 }
 

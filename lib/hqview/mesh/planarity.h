@@ -27,7 +27,8 @@ inline constexpr double kPlanarTolerance = 1e-6;
 // is positive. No points: the origin and +z.
 struct LeastSquaresPlane {
   Vec3 centroid;
-  Vec3 normal{0, 0, 1};
+  Vec3 normal{0, 0, 1};   // the axis the points vary least along (unit)
+  Vec3 longest{1, 0, 0};  // the axis they vary most along (unit; its sign arbitrary)
 };
 LeastSquaresPlane least_squares_plane(std::span<const Vec3> points);
 

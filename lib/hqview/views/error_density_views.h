@@ -117,9 +117,12 @@ struct ErrorDensityViewOptions {
 std::vector<Index> error_density_cells(std::span<const double> density, const ErrorDensityViewOptions& options);
 
 // The upright direction that shows the most of the densest hexes, turned
-// away from edge-on to the model (away_from_edge_on, the max hex the focus).
+// away from edge-on to the model (away_from_edge_on, the max hex the focus);
+// with a renderer, of the 3 best such directions the first from which a
+// boundary max hex is seen (error_density_cells_behind_boundary), the first
+// when it is seen from none.
 Vec3 choose_error_density_viewpoint(const HexMesh& mesh, const Topology& topology, std::span<const double> density,
-                                    const ErrorDensityViewOptions& options);
+                                    const ErrorDensityViewOptions& options, Renderer* renderer = nullptr);
 
 // The ring about the max is at least this many pixels (times the style's
 // scale) in radius.
@@ -168,15 +171,18 @@ std::vector<ColorBarSwatch> error_density_cells_swatches(const ErrorDensityWorst
 // faces (thin, dashed).
 std::array<bool, 12> hex_edges_facing(const HexMesh& mesh, const Hex& hex, const Camera& camera);
 
-// Which of `cells` the boundary hides from `camera` (an image of width x
-// height): a cell none of whose boundary faces, drawn opaque with the whole
-// boundary, shows at least half of the pixels (and at least 4) it covers
-// drawn alone, face by face (id images, Renderer::render_ids): an interior
-// cell, one behind a fold or on the far side. Face by face (issue 48c): one
-// face seen at a grazing angle makes a cell seen, however large its faces
-// turned away. All false when the renderer draws no id images.
+// Which of `cells` the boundary hides from the direction of `camera`: a
+// cell none of whose boundary faces, drawn opaque with the whole boundary,
+// shows at least half of the pixels it covers drawn alone and at least 64
+// pixels, face by face (id images, Renderer::render_ids, of 1200 x 1200 px
+// framing the boundary along the camera's direction, so the verdict does
+// not depend on the figure's size or legend): an interior cell, one behind
+// a fold or on the far side, or one only a sliver of which shows. Face by
+// face (issue 48c): one face seen at a grazing angle makes a cell seen,
+// however large its faces turned away. All false when the renderer draws
+// no id images.
 std::vector<bool> error_density_cells_behind_boundary(const HexMesh& mesh, const Topology& topology,
-                                                      std::span<const Index> cells, const Camera& camera, int width,
-                                                      int height, Renderer& renderer);
+                                                      std::span<const Index> cells, const Camera& camera,
+                                                      Renderer& renderer);
 
 }  // namespace hq

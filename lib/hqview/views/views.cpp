@@ -11,8 +11,10 @@
 #include <array>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <exception>
 #include <functional>
+#include <limits>
 #include <mutex>
 #include <optional>
 #include <thread>
@@ -855,7 +857,7 @@ std::vector<ViewFile> build_fem_error_density(ViewContext& c) {
   auto options = sized<ErrorDensityViewOptions>(c);
   options.quality_threshold = 1.0 - (c.a.glyphs ? c.a.glyphs->options.threshold : 0.5);
   options.reference = c.options.error_density_reference;
-  const Vec3 direction = choose_error_density_viewpoint(c.a.mesh, c.a.topology, p.cell_error_density, options);
+  const Vec3 direction = choose_error_density_viewpoint(c.a.mesh, c.a.topology, p.cell_error_density, options, &c.renderer);
   const ErrorDensityWorst worst = error_density_worst(c.a.topology, p.cell_error_density);
   // Where the max is (the ring says it too), then the boundary's own max.
   const std::string max_text =
@@ -878,10 +880,25 @@ std::vector<ViewFile> build_fem_error_density(ViewContext& c) {
   const std::vector<Index> cells = error_density_cells(p.cell_error_density, options);
   std::size_t low = 0;
   for (Index h : cells) low += c.a.field.cell_scaled_jacobian[static_cast<std::size_t>(h)] < options.quality_threshold;
+  // Issue 48d: "0 with scaled Jacobian < 0.5" read as "no bad hexes" on a
+  // mesh with hexes at SJ -0.13 the density does not rank among its
+  // densest (docs/analysis.md): the count is of these cells, and the
+  // mesh's own min SJ and its hexes at SJ <= 0 follow.
+  double min_sj = std::numeric_limits<double>::infinity();
+  std::size_t not_positive = 0;
+  for (double sj : c.a.field.cell_scaled_jacobian)
+    if (std::isfinite(sj)) {
+      min_sj = std::min(min_sj, sj);
+      not_positive += sj <= 0;
+    }
   options.title = c.name + ": the " + std::to_string(cells.size()) + " densest hexes (top 1%" +
                   (cells.size() >= options.max_cells ? ", at most " + std::to_string(options.max_cells) : "") +
-                  "), " + std::to_string(low) + " with scaled Jacobian < " +
-                  display_number(options.quality_threshold, 3) + "; " + max_text;
+                  "), " + std::to_string(low) + " of them with scaled Jacobian < " +
+                  display_number(options.quality_threshold, 3) +
+                  (std::isfinite(min_sj) ? " (mesh: min SJ " + display_number(min_sj, 2) + ", " +
+                                               std::to_string(not_positive) + " with SJ \u2264 0)"
+                                         : std::string()) +
+                  "; " + max_text;
   files.push_back(framed("views/fem_error_density_cells.png",
                          render_error_density_cells(c.a.mesh, c.a.topology, p.cell_error_density,
                                                     c.a.field.cell_scaled_jacobian, direction, options, c.renderer),
