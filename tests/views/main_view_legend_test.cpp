@@ -279,7 +279,7 @@ TEST(MainViewLegend, IntersectingCellsSwatchIsTheDrawnFill) {
   options.height = 600;
   options.inverted_cells = &a.inverted;
   MainViewPlan plan =
-      plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, Vec3{1.0, -1.0, 1.5}, options, *renderer);
+      plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, Vec3{1.0, -1.0, 1.5}, options, renderer.get());
   std::optional<Rgba8> swatch;
   for (const LegendLine& l : plan.legend)
     if (l.text.starts_with("intersecting hexes")) swatch = l.swatch;
@@ -307,7 +307,7 @@ TEST(MainViewLegend, IntersectingCellsSwatchIsTheDrawnFill) {
   const Analysed b = analyse(stack);
   ASSERT_EQ(b.overlap.num_intersecting_cells, 40);
   const MainViewPlan stacked =
-      plan_main_view(b.mesh, b.topology, b.glyphs, &b.overlap, Vec3{1.0, -1.0, 1.5}, options, *renderer);
+      plan_main_view(b.mesh, b.topology, b.glyphs, &b.overlap, Vec3{1.0, -1.0, 1.5}, options, renderer.get());
   const Fill stack_fill = tint_fill(*renderer, stacked, options, *swatch);
   ASSERT_GT(stack_fill.pixels, 1000u);
   EXPECT_EQ(stack_fill.matching, stack_fill.pixels);
@@ -356,7 +356,7 @@ TEST(MainViewLegend, EdgesSwatchOnlyWhenTheyShow) {
     const Analysed a = analyse(hidden ? fine : every_mark());
     ASSERT_FALSE(a.glyphs.clusters.empty());
     const Vec3 direction = hidden ? Vec3{0.2, -0.3, 1.0} : Vec3{1.0, -1.0, 1.5};
-    const MainViewPlan plan = plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, direction, options, *renderer);
+    const MainViewPlan plan = plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, direction, options, renderer.get());
     const Image figure = render_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, direction, options, *renderer);
     const std::size_t shown =
         worst_colour_pixels_outside_rings(figure, plan, worst, a.glyphs.clusters[0].min_quality < 0.0);
