@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <numeric>
 #include <sstream>
@@ -630,6 +631,33 @@ std::vector<FaceInSight> faces_in_sight(const Analysis& a, const ViewFile& file,
   return out;
 }
 
+// The bell of revolution of the tests below (like the Gmsh one of the 47r
+// review): kBellRings rings of 32 quads, open at the top, each point placed
+// by `place`; quad i + kBellRings j is ring i's at azimuth j.
+inline constexpr int kBellRings = 13;
+Grid bell_of_revolution(const std::function<Vec3(const Vec3&)>& place) {
+  const int rings = kBellRings, sectors = 32;
+  Grid g;
+  for (int j = 0; j < sectors; ++j)
+    for (int i = 0; i <= rings; ++i) {
+      const double r = 0.05 + 1.95 * i / rings, t = 2.0 * std::acos(-1.0) * j / sectors;
+      g.points.push_back(place({r * std::cos(t), r * std::sin(t), 0.05 + 1.45 / (1.0 + std::pow(r, 4))}));
+    }
+  const auto at = [&](int i, int j) { return static_cast<Index>(i + (rings + 1) * (j % sectors)); };
+  for (int j = 0; j < sectors; ++j)
+    for (int i = 0; i < rings; ++i) g.quads.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+  return g;
+}
+
+// The main views at 800 x 600.
+std::vector<RenderedView> render_main_views(const Analysis& a, Renderer& renderer) {
+  ViewOptions views;
+  views.width = 800;
+  views.height = 600;
+  views.views = {"main"};
+  return render_views(a, views, renderer);
+}
+
 // Issue 47 part C: the main views of a curved surface mesh aim at the worst
 // clusters' faces. A bell of revolution like the Gmsh one of the 47r review
 // (13 rings of 32 quads, open at the top) with two adjacent faces reversed
@@ -645,16 +673,8 @@ std::vector<FaceInSight> faces_in_sight(const Analysis& a, const ViewFile& file,
 // degrees above it, sees it at 55 degrees or more), 0.6 in the inverted
 // colour (a glyph on a surface has no inverted ring: the faces are blue).
 TEST(SurfaceViews, TheFirstMainViewShowsTheWorstClustersFacesFromTheirVisibleSide) {
-  const int rings = 13, sectors = 32;
-  Grid g;
-  for (int j = 0; j < sectors; ++j)
-    for (int i = 0; i <= rings; ++i) {
-      const double r = 0.05 + 1.95 * i / rings, t = 2.0 * std::acos(-1.0) * j / sectors;
-      g.points.push_back({r * std::cos(t), r * std::sin(t), 0.05 + 1.45 / (1.0 + std::pow(r, 4))});
-    }
-  const auto at = [&](int i, int j) { return static_cast<Index>(i + (rings + 1) * (j % sectors)); };
-  for (int j = 0; j < sectors; ++j)
-    for (int i = 0; i < rings; ++i) g.quads.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+  const int rings = kBellRings;
+  Grid g = bell_of_revolution([](const Vec3& p) { return p; });
   const auto face = [&](int i, int j) { return static_cast<std::size_t>(i + rings * j); };
   // Ring 5 (the shoulder) at azimuths 22 (two faces) and 157 deg; ring 11 (the brim) at 236.
   const std::vector<std::size_t> reversed{face(5, 2), face(5, 3), face(5, 14), face(11, 21), face(11, 22), face(11, 23)};
@@ -678,11 +698,7 @@ TEST(SurfaceViews, TheFirstMainViewShowsTheWorstClustersFacesFromTheirVisibleSid
 
   const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
   ASSERT_TRUE(renderer);
-  ViewOptions views;
-  views.width = 800;
-  views.height = 600;
-  views.views = {"main"};
-  const std::vector<RenderedView> rendered = render_views(a, views, *renderer);
+  const std::vector<RenderedView> rendered = render_main_views(a, *renderer);
   const std::vector<ViewFile>& files = rendered.at(0).files;
   ASSERT_EQ(files.size(), 2u);
   const Rgba8 inverted = surface_fill_color(-1.0);
@@ -715,21 +731,13 @@ TEST(SurfaceViews, TheFirstMainViewShowsTheWorstClustersFacesFromTheirVisibleSid
 // and #0's face is in sight at least half its face-on area, at least half
 // of that in the inverted colour (its glyph at one corner covers the rest).
 TEST(SurfaceViews, TheFirstMainViewOfATurnedBellIsOffItsAxis) {
-  const int rings = 13, sectors = 32;
+  const int rings = kBellRings;
   const Vec3 k = normalized(Vec3{0.4, -0.7, 0.6});
   const double angle = 0.9;
   const auto turn = [&](const Vec3& p) {  // Rodrigues
     return std::cos(angle) * p + std::sin(angle) * cross(k, p) + (1.0 - std::cos(angle)) * dot(k, p) * k;
   };
-  Grid g;
-  for (int j = 0; j < sectors; ++j)
-    for (int i = 0; i <= rings; ++i) {
-      const double r = 0.05 + 1.95 * i / rings, t = 2.0 * std::acos(-1.0) * j / sectors;
-      g.points.push_back(turn({r * std::cos(t), r * std::sin(t), 0.05 + 1.45 / (1.0 + std::pow(r, 4))}));
-    }
-  const auto at = [&](int i, int j) { return static_cast<Index>(i + (rings + 1) * (j % sectors)); };
-  for (int j = 0; j < sectors; ++j)
-    for (int i = 0; i < rings; ++i) g.quads.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+  Grid g = bell_of_revolution(turn);
   const std::size_t reversed = 3 + rings * 7;
   std::swap(g.quads[reversed][1], g.quads[reversed][3]);
   const test::TempDir dir("surface_turned_bell");
@@ -752,11 +760,7 @@ TEST(SurfaceViews, TheFirstMainViewOfATurnedBellIsOffItsAxis) {
 
   const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
   ASSERT_TRUE(renderer);
-  ViewOptions views;
-  views.width = 800;
-  views.height = 600;
-  views.views = {"main"};
-  const std::vector<RenderedView> rendered = render_views(a, views, *renderer);
+  const std::vector<RenderedView> rendered = render_main_views(a, *renderer);
   const ViewFile& first = rendered.at(0).files.at(0);
   ASSERT_TRUE(first.camera);
   const Vec3 look = normalized(first.camera->target - first.camera->eye);
