@@ -190,6 +190,48 @@ Index cells_in_sight(const HexMesh& mesh, const Topology& topology, std::span<co
   return static_cast<Index>(std::count(shown.begin(), shown.end(), 1));
 }
 
+Index cells_under_other_faces(const HexMesh& mesh, const Topology& topology, std::span<const Index> cells,
+                              const Camera& camera) {
+  const std::vector<BoundaryPolygon> faces = boundary_polygons(topology);
+  const Vec3 forward = normalized(camera.target - camera.eye);
+  const Vec3 right = normalized(cross(forward, camera.up)), upward = cross(right, forward);
+  auto image = [&](const Vec3& p) { return std::array<double, 2>{dot(p, right), dot(p, upward)}; };
+  auto corner = [&](const BoundaryPolygon& f, int i) {
+    return image(mesh.points[static_cast<std::size_t>(f.v[static_cast<std::size_t>(i % f.size)])]);
+  };
+  auto inside = [&](const BoundaryPolygon& f, const std::array<double, 2>& p) {
+    bool in = false;
+    for (int i = 0; i < f.size; ++i) {
+      const auto a = corner(f, i), b = corner(f, i + 1);
+      if ((a[1] > p[1]) != (b[1] > p[1]) && p[0] < a[0] + (p[1] - a[1]) * (b[0] - a[0]) / (b[1] - a[1])) in = !in;
+    }
+    return in;
+  };
+  const FaceDepthGrid samples(mesh, faces, camera, 1.0);  // corner_sample only
+  const std::vector<Index> sorted = [&] {
+    std::vector<Index> s(cells.begin(), cells.end());
+    std::sort(s.begin(), s.end());
+    return s;
+  }();
+  std::vector<Index> seen, covered;
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    if (!std::binary_search(sorted.begin(), sorted.end(), faces[i].cell)) continue;
+    bool all = true;
+    for (int k = 0; k < faces[i].size && all; ++k) {
+      const auto p = image(samples.corner_sample(faces[i], k));
+      bool under = false;
+      for (std::size_t j = 0; j < faces.size() && !under; ++j) under = j != i && inside(faces[j], p);
+      all = under;
+    }
+    (all ? covered : seen).push_back(faces[i].cell);
+  }
+  // A cell with one face in sight is in sight.
+  std::sort(seen.begin(), seen.end());
+  return static_cast<Index>(std::count_if(covered.begin(), covered.end(), [&](Index c) {
+    return !std::binary_search(seen.begin(), seen.end(), c);
+  }));
+}
+
 Vec3 overview_view_direction(const Vec3& up, const Vec3& front, double azimuth_degrees, double elevation_degrees) {
   // The front's own azimuth around up (upright.h's, from the file's front).
   return upright_view_direction(up, azimuth_degrees + view_azimuth_degrees(-front, up), elevation_degrees);

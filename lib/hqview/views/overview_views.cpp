@@ -588,7 +588,8 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
       // bell): filled in once the camera is known; this text is as wide as
       // the widest it becomes.
       const std::string all = std::to_string(options.inverted_cells.size());
-      f.bar.swatches.push_back({Color{}, all + " in sight, " + all + " on the far side", SwatchShape::text});
+      f.bar.swatches.push_back({Color{}, all + " in sight, " + all + (options.outline_on_top ? " under an overlapping face" : " on the far side"),
+                                SwatchShape::text});
     }
     f.bar.swatches.push_back({to_color(kCalloutColor), "solid ring: inverted " + cells + ", some in sight", SwatchShape::solid_ring});
     f.bar.swatches.push_back(
@@ -612,11 +613,15 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
   const double aspect = static_cast<double>(f.layout.view.width) / static_cast<double>(f.layout.view.height);
   f.camera = fit_camera_to_points(boundary_points(mesh, topology), view_direction_of(options), aspect, {.up = options.up});
   if (!options.inverted_cells.empty() && options.outline_inverted_faces) {
-    const Index shown = cells_in_sight(mesh, topology, options.inverted_cells, f.camera, aspect);
-    const auto hidden = static_cast<Index>(options.inverted_cells.size()) - shown;
+    // A planar mesh (seen along its normal, outlines on top) has no far
+    // side: a face is hidden only under an overlapping one (a fold).
+    const auto all = static_cast<Index>(options.inverted_cells.size());
+    const Index hidden = options.outline_on_top ? cells_under_other_faces(mesh, topology, options.inverted_cells, f.camera)
+                                                : all - cells_in_sight(mesh, topology, options.inverted_cells, f.camera, aspect);
+    const char* where = options.outline_on_top ? " under an overlapping face" : " on the far side";
     for (ColorBarSwatch& s : f.bar.swatches)
       if (s.label.find(" in sight, ") != std::string::npos)
-        s.label = hidden == 0 ? std::string("all in sight") : std::to_string(shown) + " in sight, " + std::to_string(hidden) + " on the far side";
+        s.label = hidden == 0 ? std::string("all in sight") : std::to_string(all - hidden) + " in sight, " + std::to_string(hidden) + where;
   }
   f.label_size = std::max(f.style.min_text_size, static_cast<int>(std::lround(20.0 * f.style.scale)));
   return f;

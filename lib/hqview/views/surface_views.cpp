@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <cstdio>
 #include <span>
 #include <string>
@@ -133,6 +134,51 @@ std::size_t best_of(std::span<const double> score, const std::vector<bool>& allo
 
 }  // namespace
 
+std::optional<Vec3> model_axis(std::span<const Vec3> points) {
+  if (points.size() < 3) return std::nullopt;
+  Vec3 mean;
+  for (const Vec3& p : points) mean = mean + p;
+  mean = (1.0 / static_cast<double>(points.size())) * mean;
+  std::array<std::array<double, 3>, 3> c{}, v{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+  for (const Vec3& p : points) {
+    const std::array<double, 3> d{p.x - mean.x, p.y - mean.y, p.z - mean.z};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) c[i][j] += d[i] * d[j];
+  }
+  // Cyclic Jacobi rotations: c becomes diagonal, v's columns its eigenvectors.
+  for (int sweep = 0; sweep < 50; ++sweep)
+    for (int p = 0; p < 2; ++p)
+      for (int q = p + 1; q < 3; ++q) {
+        if (std::abs(c[p][q]) <= 1e-15 * (std::abs(c[p][p]) + std::abs(c[q][q]))) continue;
+        const double theta = 0.5 * std::atan2(2.0 * c[p][q], c[q][q] - c[p][p]);
+        const double cs = std::cos(theta), sn = std::sin(theta);
+        for (int k = 0; k < 3; ++k) {  // c <- c J
+          const double a = c[k][p], b = c[k][q];
+          c[k][p] = cs * a - sn * b;
+          c[k][q] = sn * a + cs * b;
+        }
+        for (int k = 0; k < 3; ++k) {  // c <- J^T c
+          const double a = c[p][k], b = c[q][k];
+          c[p][k] = cs * a - sn * b;
+          c[q][k] = sn * a + cs * b;
+        }
+        for (int k = 0; k < 3; ++k) {  // v <- v J
+          const double a = v[k][p], b = v[k][q];
+          v[k][p] = cs * a - sn * b;
+          v[k][q] = sn * a + cs * b;
+        }
+      }
+  std::array<int, 3> order{0, 1, 2};
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return c[a][a] < c[b][b]; });
+  const double l0 = c[order[0]][order[0]], l1 = c[order[1]][order[1]], l2 = c[order[2]][order[2]];
+  if (!(l2 > 0.0)) return std::nullopt;
+  // The eigenvalue farther from the middle one: the longest axis (a vase)
+  // or the shortest (a bell, a dish).
+  const int k = l2 - l1 >= l1 - l0 ? order[2] : order[0];
+  if (std::abs(c[k][k] - l1) < kAxisGap * l2) return std::nullopt;
+  return Vec3{v[0][k], v[1][k], v[2][k]};
+}
+
 std::vector<Vec3> choose_surface_main_viewpoints(const HexMesh& mesh, const Topology& topology,
                                                  const GlyphResult& glyphs, std::span<const double> cell_quality,
                                                  std::span<const Vec3> points, double aspect, int count,
@@ -175,27 +221,41 @@ std::vector<Vec3> choose_surface_main_viewpoints(const HexMesh& mesh, const Topo
     return choose_main_viewpoints(points, glyphs, aspect, count, up, fov_y_degrees);
   // View 1: #0's faces near their best, then the most of the others'.
   std::vector<double> score(candidates.size(), 0.0);
-  std::vector<bool> allowed(candidates.size(), true);
   for (std::size_t c = 0; c < candidates.size(); ++c) {
-    allowed[c] = f[c][0] >= kNearBestFraction;
     for (std::size_t k = 1; k < targets.size(); ++k) score[c] += f[c][k];
     score[c] += 1e-9;  // a candidate with #0's faces alone still scores
   }
-  // An eye below the horizon only when none above shows #0's faces so (a
-  // hill seen from underneath is hard to recognise).
-  std::vector<bool> above(candidates.size());
-  for (std::size_t c = 0; c < candidates.size(); ++c) above[c] = view_elevation_degrees(candidates[c], up) >= 0.0;
+  std::vector<bool> above(candidates.size()), off_axis(candidates.size(), true);
+  const std::optional<Vec3> axis = model_axis(points);
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    above[c] = view_elevation_degrees(candidates[c], up) >= 0.0;
+    if (axis)
+      off_axis[c] = std::abs(dot(normalized(candidates[c]), normalized(*axis))) <= std::cos(kOffAxisDegrees * std::numbers::pi / 180.0) + 1e-9;
+  }
+  // The first tier any candidate is in: the model recognisable (an eye
+  // above the horizon: a hill seen from underneath, the 47r fine bell, is
+  // hard to read; off the model's axis: the 47c review's turned bell seen
+  // 27 degrees off its axis read as a disc or a funnel) before #0's faces
+  // at their very best.
+  std::vector<bool> allowed(candidates.size(), false);
+  std::size_t first = candidates.size();
+  for (int tier = 0; tier < 4 && first == candidates.size(); ++tier)
+    for (double least : {kNearBestFraction, kRecognisableFraction}) {
+      if (first != candidates.size() || (tier == 3 && least < kNearBestFraction)) break;
+      for (std::size_t c = 0; c < candidates.size(); ++c)
+        allowed[c] = f[c][0] >= least && (tier >= 2 || above[c]) && (tier % 2 == 1 || off_axis[c]);
+      first = best_of(score, allowed);
+    }
+  std::vector<Vec3> chosen{candidates[first]};
+  if (count < 2) return chosen;
+  // View 2: what view 1 shows least, from the model's other side when that
+  // shows any; an eye below the horizon only when none above scores.
   const auto prefer_above = [&](std::vector<bool>& ok) {
     bool any = false;
     for (std::size_t c = 0; c < candidates.size(); ++c) any = any || (ok[c] && above[c] && score[c] > 0.0);
     if (any)
       for (std::size_t c = 0; c < candidates.size(); ++c) ok[c] = ok[c] && above[c];
   };
-  prefer_above(allowed);
-  const std::size_t first = best_of(score, allowed);
-  std::vector<Vec3> chosen{candidates[first]};
-  if (count < 2) return chosen;
-  // View 2: what view 1 shows least, from the model's other side when that shows any.
   for (std::size_t c = 0; c < candidates.size(); ++c) {
     score[c] = 0.0;
     for (std::size_t k = 0; k < targets.size(); ++k) score[c] += (1.0 - f[first][k] + 0.1) * f[c][k];

@@ -48,6 +48,18 @@ std::vector<std::size_t> cluster_target_faces(const GlyphResult& glyphs, Index c
                                               std::span<const double> cell_quality);
 // The clusters aimed at: #0 to #kSurfaceViewTargets-1 (the coloured ranks).
 inline constexpr int kSurfaceViewTargets = 3;
+// The model's axis from its points' covariance: the eigenvector of the
+// eigenvalue farther from the middle one (the longest axis of a vase, the
+// shortest of a bell or a dish: a body of revolution's axis), none when it
+// is within kAxisGap of the largest eigenvalue from the middle one (a
+// ball, a cube, a kitten: no axis to avoid) or the points span no volume.
+inline constexpr double kAxisGap = 0.15;
+std::optional<Vec3> model_axis(std::span<const Vec3> points);
+// View 1's eye at least this far off that axis: seen along it a body of
+// revolution is concentric rings (a disc, a funnel), its profile lost.
+inline constexpr double kOffAxisDegrees = 45.0;
+// #0's faces at least half their best projected area (f_0 below).
+inline constexpr double kRecognisableFraction = 0.5;
 // Candidates: the upright ones (upright_view_candidates), the views from the
 // horizon and below (below_view_candidates), and along each target's mean
 // face normal (its faces' normals turned to agree with its largest face's,
@@ -57,9 +69,14 @@ inline constexpr int kSurfaceViewTargets = 3;
 // cluster the projected area of its faces in sight (FaceDepthGrid against
 // every face: each corner sample in sight counts a quarter of its face's
 // projected area); f_k = that over the largest any candidate gives it.
-// View 1 shows #0's faces: among the candidates with f_0 >= kNearBestFraction,
-// the first (upright ones first) whose sum of the other targets' f_k is at
-// least kNearBestFraction of the largest such sum. View 2 shows what view 1
+// View 1 shows #0's faces with the model recognisable: the candidates are
+// taken in tiers, the first tier with one: above the horizon and at least
+// kOffAxisDegrees off model_axis (either sign), f_0 >= kNearBestFraction;
+// the same with f_0 >= kRecognisableFraction; above the horizon (any
+// axis), f_0 >= kNearBestFraction, then >= kRecognisableFraction; off the
+// axis (below too), the same two; then any with f_0 >= kNearBestFraction.
+// Within the tier, the first (upright ones first) whose sum of the other
+// targets' f_k is at least kNearBestFraction of the largest such sum. View 2 shows what view 1
 // shows least: the same near-best rule on the sum of (1 - f_k(view 1) +
 // 0.1) f_k, among the candidates at least 90 degrees of azimuth away from
 // view 1 when one of them scores. Either view from an eye below the
