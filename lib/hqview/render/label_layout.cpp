@@ -272,7 +272,7 @@ std::optional<PlacedLabel> LabelPlacer::place(const LabelRequest& label, const D
     if (!inside(box, options_.bounds) || box_meets_disc(box, anchor)) return c;
     const double bx1 = box.x + box.width, by1 = box.y + box.height;
     if (any_box_near(box.x, box.y, bx1, by1, [&](const PixelRect& b) { return boxes_overlap(box, b); })) return c;
-    if (any_near(avoid_cells_, avoid_, box.x, box.y, bx1, by1, [&](const PixelRect& b) { return boxes_overlap(box, b); }))
+    if (any_near(avoid_cells_, std::span<const PixelRect>(avoid_), box.x, box.y, bx1, by1, [&](const PixelRect& b) { return boxes_overlap(box, b); }))
       return c;
     if (any_disc_near(box.x, box.y, bx1, by1, [&](const ScreenDisc& d) { return box_meets_disc(box, d); })) return c;
     const double own = disc_box_gap(anchor, box);
