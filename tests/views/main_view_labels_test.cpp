@@ -251,6 +251,28 @@ std::size_t worst_disc_covered(const IdImage& ids, const ScreenDisc& worst) {
   return covered;
 }
 
+// The arrows and marker leaders inside a coloured glyph's disc (less 1.5 px,
+// its antialiased rim), "arrow over #1" each: #0's rule (nothing crosses its
+// glyph) for #1 and #2 too (the 44c review: gmsh_box's #1 and #2 lay under
+// arrow fans, the "x15" leader started on #1's centre). Two arrow pixels
+// are allowed per glyph.
+std::vector<std::string> marks_over_coloured_glyphs(const MainViewLabels& labels) {
+  std::vector<std::string> wrong;
+  for (const ScreenDisc& d : labels.coloured_glyphs) {
+    std::size_t arrow = 0;
+    const double r = d.radius - 1.5;
+    for (int y = static_cast<int>(std::floor(d.y - r)); y <= static_cast<int>(std::ceil(d.y + r)); ++y)
+      for (int x = static_cast<int>(std::floor(d.x - r)); x <= static_cast<int>(std::ceil(d.x + r)); ++x)
+        if (std::hypot(x + 0.5 - d.x, y + 0.5 - d.y) < r && labels.ids.at(x, y) == kIdMarker) ++arrow;
+    if (arrow > 2) wrong.push_back(std::to_string(arrow) + " arrow pixels over #" + std::to_string(d.id));
+    for (const MainViewLabel& l : labels.labels)
+      if (l.kind == MainViewLabel::Kind::marker && l.placement.has_leader &&
+          leader_meets_disc(l.placement, ScreenDisc{d.x, d.y, d.radius - 0.5, d.id}))
+        wrong.push_back(l.text + " leader over #" + std::to_string(d.id));
+  }
+  return wrong;
+}
+
 // Leaders that run over a glyph ranked before their own (a marker label's:
 // #0) in the id image, "#6 (1) over #0" each: the pixels along the leader,
 // every 0.5 px, that show such a glyph (issue 44's fifth round: warrior's
@@ -411,6 +433,7 @@ void expect_clear_views(const Case& c, const char* name, bool expect_findings = 
       EXPECT_LE(worst_disc_covered(labels.ids, labels.worst_glyph), 2u) << "another glyph or an arrow over #0";
     }
     for (const std::string& w : leaders_over_higher_ranks(labels, labels.ids)) ADD_FAILURE() << w;
+    for (const std::string& w : marks_over_coloured_glyphs(labels)) ADD_FAILURE() << w;
     const std::vector<ScreenDisc> discs = glyph_discs(scene, labels);
     if (strict.all_labelled)
       for (Index c : labels.unlabelled_clusters) ADD_FAILURE() << "no room for #" << c;

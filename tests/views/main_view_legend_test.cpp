@@ -279,7 +279,7 @@ TEST(MainViewLegend, IntersectingCellsSwatchIsTheDrawnFill) {
   options.height = 600;
   options.inverted_cells = &a.inverted;
   MainViewPlan plan =
-      plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, Vec3{1.0, -1.0, 1.5}, options, *renderer);
+      plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, Vec3{1.0, -1.0, 1.5}, options, renderer.get());
   std::optional<Rgba8> swatch;
   for (const LegendLine& l : plan.legend)
     if (l.text.starts_with("intersecting hexes")) swatch = l.swatch;
@@ -307,7 +307,7 @@ TEST(MainViewLegend, IntersectingCellsSwatchIsTheDrawnFill) {
   const Analysed b = analyse(stack);
   ASSERT_EQ(b.overlap.num_intersecting_cells, 40);
   const MainViewPlan stacked =
-      plan_main_view(b.mesh, b.topology, b.glyphs, &b.overlap, Vec3{1.0, -1.0, 1.5}, options, *renderer);
+      plan_main_view(b.mesh, b.topology, b.glyphs, &b.overlap, Vec3{1.0, -1.0, 1.5}, options, renderer.get());
   const Fill stack_fill = tint_fill(*renderer, stacked, options, *swatch);
   ASSERT_GT(stack_fill.pixels, 1000u);
   EXPECT_EQ(stack_fill.matching, stack_fill.pixels);
@@ -319,6 +319,69 @@ TEST(MainViewLegend, IntersectingCellsSwatchIsTheDrawnFill) {
   }
   const Fill before = tint_fill(*renderer, plan, options, *swatch);
   EXPECT_LT(before.matching, before.pixels / 2);
+}
+
+// The glyph pixels (id image) that the intersecting cells' tint changes:
+// none, every glyph is drawn over it (the 44c review: the tint over a grey
+// glyph made a lilac-grey ball that no legend line names).
+std::size_t tinted_glyph_pixels(Renderer& renderer, const MainViewPlan& plan, const MainViewOptions& options,
+                                std::size_t& glyph_pixels) {
+  const Image with = render_figure(renderer, plan.scene, plan.labels.camera, options.width, options.height, plan.layout,
+                                   "", plan.style);
+  Scene bare = plan.scene;
+  bare.translucent.clear();
+  const Image without =
+      render_figure(renderer, bare, plan.labels.camera, options.width, options.height, plan.layout, "", plan.style);
+  std::size_t tinted = 0;
+  glyph_pixels = 0;
+  const IdImage& ids = plan.labels.ids;
+  for (int y = ids.y0; y < ids.y0 + ids.height; ++y)
+    for (int x = ids.x0; x < ids.x0 + ids.width; ++x) {
+      const std::uint32_t id = ids.at(x, y);
+      bool inside = id >= kIdGlyph;  // and its 8 neighbours (not the antialiased rim)
+      for (int dy = -1; dy <= 1 && inside; ++dy)
+        for (int dx = -1; dx <= 1 && inside; ++dx) inside = ids.at(x + dx, y + dy) == id;
+      if (!inside) continue;
+      ++glyph_pixels;
+      const std::size_t o = pixel_offset(with, x, y);
+      bool differs = false;
+      for (int k = 0; k < 3; ++k) differs |= std::abs(with.rgba[o + k] - without.rgba[o + k]) > 2;
+      tinted += differs ? 1 : 0;
+    }
+  return tinted;
+}
+
+TEST(MainViewLegend, NoGlyphUnderTheIntersectingTint) {
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  // every_mark with 4 sheared hexes, 3 far off (#1-#3) and the mildest
+  // (grey) inside the shifted copy of top cell (8, 8).
+  HexMesh mesh = every_mark();
+  const auto add_sheared = [&mesh](const Vec3& base, double size, double height) {
+    const Vec3 a{size, 0, 0}, b{0, size, 0}, up{0.9 * size, 0.9 * size, height * size};
+    for (const Vec3& p : {base, base + a, base + a + b, base + b, base + up, base + a + up, base + a + b + up, base + b + up})
+      mesh.points.push_back(p);
+    std::array<Index, 8> hex{};
+    std::iota(hex.begin(), hex.end(), static_cast<Index>(mesh.points.size() - 8));
+    mesh.hexes.push_back(hex);
+  };
+  add_sheared({-3.0, 5.0, 0.0}, 1.0, 0.1);
+  add_sheared({5.0, -3.0, 0.0}, 1.0, 0.15);
+  add_sheared({5.0, 13.0, 0.0}, 1.0, 0.2);
+  add_sheared({8.4, 8.4, 1.4}, 0.3, 0.5);
+  const Analysed a = analyse(mesh);
+  MainViewOptions options;
+  options.width = 800;
+  options.height = 600;
+  options.inverted_cells = &a.inverted;
+  MainViewPlan plan =
+      plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, Vec3{1.0, -1.0, 1.5}, options, renderer.get());
+  std::size_t glyph_pixels = 0;
+  EXPECT_EQ(tinted_glyph_pixels(*renderer, plan, options, glyph_pixels), 0u);
+  EXPECT_GT(glyph_pixels, 500u);
+  // With the grey glyphs under the tint as before, some are tinted.
+  for (SphereSet& set : plan.scene.spheres)
+    if (!set.over_other_spheres) set.over_translucent = false;
+  EXPECT_GT(tinted_glyph_pixels(*renderer, plan, options, glyph_pixels), 20u);
 }
 
 // The "edges at" line has its swatch only when some of those edges show
@@ -356,7 +419,7 @@ TEST(MainViewLegend, EdgesSwatchOnlyWhenTheyShow) {
     const Analysed a = analyse(hidden ? fine : every_mark());
     ASSERT_FALSE(a.glyphs.clusters.empty());
     const Vec3 direction = hidden ? Vec3{0.2, -0.3, 1.0} : Vec3{1.0, -1.0, 1.5};
-    const MainViewPlan plan = plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, direction, options, *renderer);
+    const MainViewPlan plan = plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, direction, options, renderer.get());
     const Image figure = render_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, direction, options, *renderer);
     const std::size_t shown =
         worst_colour_pixels_outside_rings(figure, plan, worst, a.glyphs.clusters[0].min_quality < 0.0);
