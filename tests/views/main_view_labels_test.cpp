@@ -579,6 +579,39 @@ TEST(MainViewLabels, InjectedOverlapsAroundAnInvertedCorner) {
   expect_clear_views(c, "injected overlaps", true, Vec3{0.1, 0.15, -1.0});
 }
 
+// The injected overlaps with a shifted copy of the floating sheared hex
+// (a marker fan centred on its cluster's coloured glyph, as gmsh_box's #1
+// in the 44c review): from both views and from above, no arrow and no
+// marker leader inside a coloured glyph's disc.
+TEST(MainViewLabels, FansKeepOffEveryColouredGlyph) {
+  HexMesh mesh = injected_overlaps();
+  const std::array<Index, 8> sheared = mesh.hexes.back();
+  std::array<Index, 8> copy{};
+  for (std::size_t k = 0; k < 8; ++k) {
+    copy[k] = static_cast<Index>(mesh.points.size());
+    mesh.points.push_back(mesh.points[static_cast<std::size_t>(sheared[k])] + Vec3{0.25, 0.2, 0.1});
+  }
+  mesh.hexes.push_back(copy);
+  const Case c = analyse(std::move(mesh));
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  const MainViewOptions options;
+  const std::vector<Vec3> points = main_view_points(c.mesh, c.topology, c.glyphs);
+  std::vector<Vec3> directions =
+      choose_main_viewpoints(points, c.glyphs, main_view_aspect(options), 2, options.up, options.fov_y_degrees);
+  directions.push_back(Vec3{0.1, 0.15, -1.0});
+  std::size_t fans_on_coloured = 0;  // marker groups within 2 radii of a coloured glyph (not #0): the case is built
+  for (const Vec3& direction : directions) {
+    const MainViewLabels labels = main_view_labels(c.mesh, c.topology, c.glyphs, &c.overlap, direction, options,
+                                                   nullptr, renderer.get());
+    for (const MainViewLabel& l : labels.labels)
+      if (l.kind == MainViewLabel::Kind::marker)
+        for (const ScreenDisc& d : labels.coloured_glyphs)
+          fans_on_coloured += d.id > 0 && std::hypot(l.anchor.x - d.x, l.anchor.y - d.y) < 2.0 * d.radius ? 1 : 0;
+    for (const std::string& w : marks_over_coloured_glyphs(labels)) ADD_FAILURE() << viewpoint_name(direction, options.up) << ": " << w;
+  }
+  EXPECT_GT(fans_on_coloured, 0u);
+}
+
 // View A rings the glyph of a cluster with an inverted vertex in the
 // inverted colour (issue 44: inverted clusters looked like poor ones). An
 // 8 x 8 x 2 grid whose top centre vertex is pushed down to z = 0.6 (below
