@@ -227,6 +227,17 @@ TEST(MainViewLegend, TheLegendBeforeFailsTheCheck) {
             "translucent face #236,210,255; arrow #0,204,51; arrow #204,136,255; outline over a glyph #61,51,235; ");
 }
 
+// The plan's figure, and the same without its translucent layer (the
+// intersecting cells' tint).
+std::pair<Image, Image> with_and_without_tint(Renderer& renderer, const MainViewPlan& plan,
+                                              const MainViewOptions& options) {
+  Scene bare = plan.scene;
+  bare.translucent.clear();
+  return {render_figure(renderer, plan.scene, plan.labels.camera, options.width, options.height, plan.layout, "",
+                        plan.style),
+          render_figure(renderer, bare, plan.labels.camera, options.width, options.height, plan.layout, "", plan.style)};
+}
+
 // The intersecting cells' swatch is the fill as drawn (issue 44 part C, the
 // 44p/44r reviews: the swatch #ecd2ff, the lit single fill #d0acec and the
 // stacked fill #b87de5 were up to CIEDE2000 44 apart). The view rendered
@@ -239,12 +250,7 @@ struct Fill {
   std::size_t legend_pixels = 0;  // legend pixels of the swatch's colour
 };
 Fill tint_fill(Renderer& renderer, const MainViewPlan& plan, const MainViewOptions& options, const Rgba8& swatch) {
-  const Image with = render_figure(renderer, plan.scene, plan.labels.camera, options.width, options.height, plan.layout,
-                                   "", plan.style);
-  Scene bare = plan.scene;
-  bare.translucent.clear();
-  const Image without =
-      render_figure(renderer, bare, plan.labels.camera, options.width, options.height, plan.layout, "", plan.style);
+  const auto [with, without] = with_and_without_tint(renderer, plan, options);
   const auto at = [](const Image& im, int x, int y) {
     const std::size_t o = pixel_offset(im, x, y);
     return Rgba8{im.rgba[o], im.rgba[o + 1], im.rgba[o + 2], 255};
@@ -326,12 +332,7 @@ TEST(MainViewLegend, IntersectingCellsSwatchIsTheDrawnFill) {
 // glyph made a lilac-grey ball that no legend line names).
 std::size_t tinted_glyph_pixels(Renderer& renderer, const MainViewPlan& plan, const MainViewOptions& options,
                                 std::size_t& glyph_pixels) {
-  const Image with = render_figure(renderer, plan.scene, plan.labels.camera, options.width, options.height, plan.layout,
-                                   "", plan.style);
-  Scene bare = plan.scene;
-  bare.translucent.clear();
-  const Image without =
-      render_figure(renderer, bare, plan.labels.camera, options.width, options.height, plan.layout, "", plan.style);
+  const auto [with, without] = with_and_without_tint(renderer, plan, options);
   std::size_t tinted = 0;
   glyph_pixels = 0;
   const IdImage& ids = plan.labels.ids;
