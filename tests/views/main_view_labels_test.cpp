@@ -251,6 +251,28 @@ std::size_t worst_disc_covered(const IdImage& ids, const ScreenDisc& worst) {
   return covered;
 }
 
+// The arrows and marker leaders inside a coloured glyph's disc (less 1.5 px,
+// its antialiased rim), "arrow over #1" each: #0's rule (nothing crosses its
+// glyph) for #1 and #2 too (the 44c review: gmsh_box's #1 and #2 lay under
+// arrow fans, the "x15" leader started on #1's centre). Two arrow pixels
+// are allowed per glyph.
+std::vector<std::string> marks_over_coloured_glyphs(const MainViewLabels& labels) {
+  std::vector<std::string> wrong;
+  for (const ScreenDisc& d : labels.coloured_glyphs) {
+    std::size_t arrow = 0;
+    const double r = d.radius - 1.5;
+    for (int y = static_cast<int>(std::floor(d.y - r)); y <= static_cast<int>(std::ceil(d.y + r)); ++y)
+      for (int x = static_cast<int>(std::floor(d.x - r)); x <= static_cast<int>(std::ceil(d.x + r)); ++x)
+        if (std::hypot(x + 0.5 - d.x, y + 0.5 - d.y) < r && labels.ids.at(x, y) == kIdMarker) ++arrow;
+    if (arrow > 2) wrong.push_back(std::to_string(arrow) + " arrow pixels over #" + std::to_string(d.id));
+    for (const MainViewLabel& l : labels.labels)
+      if (l.kind == MainViewLabel::Kind::marker && l.placement.has_leader &&
+          leader_meets_disc(l.placement, ScreenDisc{d.x, d.y, d.radius - 0.5, d.id}))
+        wrong.push_back(l.text + " leader over #" + std::to_string(d.id));
+  }
+  return wrong;
+}
+
 // Leaders that run over a glyph ranked before their own (a marker label's:
 // #0) in the id image, "#6 (1) over #0" each: the pixels along the leader,
 // every 0.5 px, that show such a glyph (issue 44's fifth round: warrior's
@@ -411,6 +433,7 @@ void expect_clear_views(const Case& c, const char* name, bool expect_findings = 
       EXPECT_LE(worst_disc_covered(labels.ids, labels.worst_glyph), 2u) << "another glyph or an arrow over #0";
     }
     for (const std::string& w : leaders_over_higher_ranks(labels, labels.ids)) ADD_FAILURE() << w;
+    for (const std::string& w : marks_over_coloured_glyphs(labels)) ADD_FAILURE() << w;
     const std::vector<ScreenDisc> discs = glyph_discs(scene, labels);
     if (strict.all_labelled)
       for (Index c : labels.unlabelled_clusters) ADD_FAILURE() << "no room for #" << c;
@@ -554,6 +577,39 @@ TEST(MainViewLabels, InjectedOverlapsAroundAnInvertedCorner) {
   // top lie in front of the dent's #0 (drawn back to front by depth before
   // issue 44's fifth round, they covered it).
   expect_clear_views(c, "injected overlaps", true, Vec3{0.1, 0.15, -1.0});
+}
+
+// The injected overlaps with a shifted copy of the floating sheared hex
+// (a marker fan centred on its cluster's coloured glyph, as gmsh_box's #1
+// in the 44c review): from both views and from above, no arrow and no
+// marker leader inside a coloured glyph's disc.
+TEST(MainViewLabels, FansKeepOffEveryColouredGlyph) {
+  HexMesh mesh = injected_overlaps();
+  const std::array<Index, 8> sheared = mesh.hexes.back();
+  std::array<Index, 8> copy{};
+  for (std::size_t k = 0; k < 8; ++k) {
+    copy[k] = static_cast<Index>(mesh.points.size());
+    mesh.points.push_back(mesh.points[static_cast<std::size_t>(sheared[k])] + Vec3{0.25, 0.2, 0.1});
+  }
+  mesh.hexes.push_back(copy);
+  const Case c = analyse(std::move(mesh));
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  const MainViewOptions options;
+  const std::vector<Vec3> points = main_view_points(c.mesh, c.topology, c.glyphs);
+  std::vector<Vec3> directions =
+      choose_main_viewpoints(points, c.glyphs, main_view_aspect(options), 2, options.up, options.fov_y_degrees);
+  directions.push_back(Vec3{0.1, 0.15, -1.0});
+  std::size_t fans_on_coloured = 0;  // marker groups within 2 radii of a coloured glyph (not #0): the case is built
+  for (const Vec3& direction : directions) {
+    const MainViewLabels labels = main_view_labels(c.mesh, c.topology, c.glyphs, &c.overlap, direction, options,
+                                                   nullptr, renderer.get());
+    for (const MainViewLabel& l : labels.labels)
+      if (l.kind == MainViewLabel::Kind::marker)
+        for (const ScreenDisc& d : labels.coloured_glyphs)
+          fans_on_coloured += d.id > 0 && std::hypot(l.anchor.x - d.x, l.anchor.y - d.y) < 2.0 * d.radius ? 1 : 0;
+    for (const std::string& w : marks_over_coloured_glyphs(labels)) ADD_FAILURE() << viewpoint_name(direction, options.up) << ": " << w;
+  }
+  EXPECT_GT(fans_on_coloured, 0u);
 }
 
 // View A rings the glyph of a cluster with an inverted vertex in the

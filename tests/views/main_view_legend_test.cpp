@@ -227,6 +227,17 @@ TEST(MainViewLegend, TheLegendBeforeFailsTheCheck) {
             "translucent face #236,210,255; arrow #0,204,51; arrow #204,136,255; outline over a glyph #61,51,235; ");
 }
 
+// The plan's figure, and the same without its translucent layer (the
+// intersecting cells' tint).
+std::pair<Image, Image> with_and_without_tint(Renderer& renderer, const MainViewPlan& plan,
+                                              const MainViewOptions& options) {
+  Scene bare = plan.scene;
+  bare.translucent.clear();
+  return {render_figure(renderer, plan.scene, plan.labels.camera, options.width, options.height, plan.layout, "",
+                        plan.style),
+          render_figure(renderer, bare, plan.labels.camera, options.width, options.height, plan.layout, "", plan.style)};
+}
+
 // The intersecting cells' swatch is the fill as drawn (issue 44 part C, the
 // 44p/44r reviews: the swatch #ecd2ff, the lit single fill #d0acec and the
 // stacked fill #b87de5 were up to CIEDE2000 44 apart). The view rendered
@@ -239,12 +250,7 @@ struct Fill {
   std::size_t legend_pixels = 0;  // legend pixels of the swatch's colour
 };
 Fill tint_fill(Renderer& renderer, const MainViewPlan& plan, const MainViewOptions& options, const Rgba8& swatch) {
-  const Image with = render_figure(renderer, plan.scene, plan.labels.camera, options.width, options.height, plan.layout,
-                                   "", plan.style);
-  Scene bare = plan.scene;
-  bare.translucent.clear();
-  const Image without =
-      render_figure(renderer, bare, plan.labels.camera, options.width, options.height, plan.layout, "", plan.style);
+  const auto [with, without] = with_and_without_tint(renderer, plan, options);
   const auto at = [](const Image& im, int x, int y) {
     const std::size_t o = pixel_offset(im, x, y);
     return Rgba8{im.rgba[o], im.rgba[o + 1], im.rgba[o + 2], 255};
@@ -319,6 +325,64 @@ TEST(MainViewLegend, IntersectingCellsSwatchIsTheDrawnFill) {
   }
   const Fill before = tint_fill(*renderer, plan, options, *swatch);
   EXPECT_LT(before.matching, before.pixels / 2);
+}
+
+// The glyph pixels (id image) that the intersecting cells' tint changes:
+// none, every glyph is drawn over it (the 44c review: the tint over a grey
+// glyph made a lilac-grey ball that no legend line names).
+std::size_t tinted_glyph_pixels(Renderer& renderer, const MainViewPlan& plan, const MainViewOptions& options,
+                                std::size_t& glyph_pixels) {
+  const auto [with, without] = with_and_without_tint(renderer, plan, options);
+  std::size_t tinted = 0;
+  glyph_pixels = 0;
+  const IdImage& ids = plan.labels.ids;
+  for (int y = ids.y0; y < ids.y0 + ids.height; ++y)
+    for (int x = ids.x0; x < ids.x0 + ids.width; ++x) {
+      const std::uint32_t id = ids.at(x, y);
+      bool inside = id >= kIdGlyph;  // and its 8 neighbours (not the antialiased rim)
+      for (int dy = -1; dy <= 1 && inside; ++dy)
+        for (int dx = -1; dx <= 1 && inside; ++dx) inside = ids.at(x + dx, y + dy) == id;
+      if (!inside) continue;
+      ++glyph_pixels;
+      const std::size_t o = pixel_offset(with, x, y);
+      bool differs = false;
+      for (int k = 0; k < 3; ++k) differs |= std::abs(with.rgba[o + k] - without.rgba[o + k]) > 2;
+      tinted += differs ? 1 : 0;
+    }
+  return tinted;
+}
+
+TEST(MainViewLegend, NoGlyphUnderTheIntersectingTint) {
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  // every_mark with 4 sheared hexes, 3 far off (#1-#3) and the mildest
+  // (grey) inside the shifted copy of top cell (8, 8).
+  HexMesh mesh = every_mark();
+  const auto add_sheared = [&mesh](const Vec3& base, double size, double height) {
+    const Vec3 a{size, 0, 0}, b{0, size, 0}, up{0.9 * size, 0.9 * size, height * size};
+    for (const Vec3& p : {base, base + a, base + a + b, base + b, base + up, base + a + up, base + a + b + up, base + b + up})
+      mesh.points.push_back(p);
+    std::array<Index, 8> hex{};
+    std::iota(hex.begin(), hex.end(), static_cast<Index>(mesh.points.size() - 8));
+    mesh.hexes.push_back(hex);
+  };
+  add_sheared({-3.0, 5.0, 0.0}, 1.0, 0.1);
+  add_sheared({5.0, -3.0, 0.0}, 1.0, 0.15);
+  add_sheared({5.0, 13.0, 0.0}, 1.0, 0.2);
+  add_sheared({8.4, 8.4, 1.4}, 0.3, 0.5);
+  const Analysed a = analyse(mesh);
+  MainViewOptions options;
+  options.width = 800;
+  options.height = 600;
+  options.inverted_cells = &a.inverted;
+  MainViewPlan plan =
+      plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, Vec3{1.0, -1.0, 1.5}, options, renderer.get());
+  std::size_t glyph_pixels = 0;
+  EXPECT_EQ(tinted_glyph_pixels(*renderer, plan, options, glyph_pixels), 0u);
+  EXPECT_GT(glyph_pixels, 500u);
+  // With the grey glyphs under the tint as before, some are tinted.
+  for (SphereSet& set : plan.scene.spheres)
+    if (!set.over_other_spheres) set.over_translucent = false;
+  EXPECT_GT(tinted_glyph_pixels(*renderer, plan, options, glyph_pixels), 20u);
 }
 
 // The "edges at" line has its swatch only when some of those edges show

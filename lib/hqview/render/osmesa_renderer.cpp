@@ -483,8 +483,10 @@ class OsmesaRenderer final : public Renderer {
       gl.DepthMask(GL_TRUE);
       gl.Disable(GL_BLEND);
       if (std::any_of(scene.translucent.begin(), scene.translucent.end(),
-                      [](const TriangleSet& set) { return !set.indices.empty(); }))
+                      [](const TriangleSet& set) { return !set.indices.empty(); })) {
+        draw_spheres(scene, model_view, projection, camera.is_perspective, false, true);
         draw_spheres(scene, model_view, projection, camera.is_perspective, true, true);
+      }
     }
     // Overlay lines alone (the overview's inverted-face outlines) are drawn
     // over everything too.

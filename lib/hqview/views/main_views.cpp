@@ -639,16 +639,21 @@ struct MarkerFan {
 };
 
 // The arrows of every marker group (build_main_scene's overlay[0] and the
-// labels' fans). The worst glyph's disc (in the image plane, plus the arrow
-// head's half width) is kept clear, see build_main_scene.
+// labels' fans). The coloured glyphs' discs (#0, #1, #2: in the image plane,
+// plus the arrow head's half width) are kept clear, see build_main_scene
+// (the 44c review: #1 and #2 lay under gmsh_box's fans).
 std::vector<MarkerFan> marker_fans(const GlyphResult& glyphs, const OverlapReport& overlap, const Camera& camera,
                                    int view_height, const MainViewOptions& options) {
   const ImagePlane plane = image_plane(camera);
-  const bool has_worst = !glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0;
-  const Vec3 worst = has_worst ? glyphs.clusters[0].position : Vec3{};
-  const double worst_radius =
-      has_worst ? displayed_glyph_radii(glyphs, view_glyph_scale(glyphs, camera, view_height, options))[0]
-                : 0.0;
+  const std::vector<double> shown =
+      displayed_glyph_radii(glyphs, view_glyph_scale(glyphs, camera, view_height, options));
+  std::vector<std::pair<Vec3, double>> kept_clear;  // centre, radius in model units
+  std::vector<Index> storage;
+  const std::span<const Index> ties = tie_classes_of(glyphs, {}, storage);
+  const Index coloured = coloured_classes_of(glyphs, ties);
+  for (const AggregatedGlyph& g : glyphs.clusters)  // #0 first
+    if (g.radius > 0.0 && !is_grey_glyph(g.id, ties, coloured))
+      kept_clear.push_back({g.position, shown[static_cast<std::size_t>(g.id)]});
   auto in_plane = [&](const Vec3& v) { return std::array<double, 2>{dot(v, plane.right), dot(v, plane.up)}; };
   std::vector<MarkerFan> fans;
   for (const ScreenMarker& marker :
@@ -669,21 +674,26 @@ std::vector<MarkerFan> marker_fans(const GlyphResult& glyphs, const OverlapRepor
     const double unit = units_per_pixel(camera, depth, view_height) * options.pixel_scale;
     fan.unit = unit;
     const double length = options.arrow_pixels * unit;
-    // The worst glyph's disc, widened by an arrow head's half width.
-    const double clear = has_worst ? worst_radius + 7.0 * unit : 0.0;
-    const std::array<double, 2> m = in_plane(marker.position - worst);
-    const double m2 = m[0] * m[0] + m[1] * m[1];
     // The arrow on the ray marker − t d, t in [t0, t0 + length]: its start
-    // t0 (3 pixels, or where the ray leaves the disc), or −1 to leave it out.
+    // t0 (3 pixels, or where the ray leaves the discs holding the marker),
+    // or −1 to leave it out (it would cross another disc).
     auto start_of = [&](const Vec3& d) {
-      const double t0 = 3.0 * unit;
-      if (!has_worst) return t0;
+      double t0 = 3.0 * unit;
       const std::array<double, 2> e = in_plane(d);
-      const double me = m[0] * e[0] + m[1] * e[1];
-      if (m2 < clear * clear) return std::max(t0, me + std::sqrt(std::max(0.0, me * me - m2 + clear * clear)));
-      const double t = std::clamp(me, t0, t0 + length);
-      const double gx = m[0] - t * e[0], gy = m[1] - t * e[1];
-      return gx * gx + gy * gy < clear * clear ? -1.0 : t0;
+      for (const auto& [centre, radius] : kept_clear) {  // the discs holding the marker first
+        const double clear = radius + 7.0 * unit;  // widened by an arrow head's half width
+        const std::array<double, 2> m = in_plane(marker.position - centre);
+        const double m2 = m[0] * m[0] + m[1] * m[1], me = m[0] * e[0] + m[1] * e[1];
+        if (m2 < clear * clear) t0 = std::max(t0, me + std::sqrt(std::max(0.0, me * me - m2 + clear * clear)));
+      }
+      for (const auto& [centre, radius] : kept_clear) {
+        const double clear = radius + 7.0 * unit;
+        const std::array<double, 2> m = in_plane(marker.position - centre);
+        const double t = std::clamp(m[0] * e[0] + m[1] * e[1], t0, t0 + length);
+        const double gx = m[0] - t * e[0], gy = m[1] - t * e[1];
+        if (gx * gx + gy * gy < clear * clear * (1.0 - 1e-9)) return -1.0;
+      }
+      return t0;
     };
     int k = 0;
     for (const Vec3& d : arrow_directions(camera, n, options.arrow_start_degrees)) {
@@ -693,8 +703,9 @@ std::vector<MarkerFan> marker_fans(const GlyphResult& glyphs, const OverlapRepor
       fan.arrows.push_back({marker.position - (t0 + length) * d, marker.position - t0 * d, color});
       fan.reach = std::max(fan.reach, t0 + length);
     }
-    if (fan.arrows.empty()) {
-      // Every direction crossed the glyph: one arrow from the far side.
+    if (fan.arrows.empty() && !kept_clear.empty()) {
+      // Every direction crossed a glyph: one arrow from the far side of #0.
+      const std::array<double, 2> m = in_plane(marker.position - kept_clear[0].first);
       const Vec3 away = m[0] * plane.right + m[1] * plane.up;
       const Vec3 d = -1.0 * normalized(away);
       const double t0 = 3.0 * unit;
@@ -923,6 +934,9 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
     set.radii.push_back(static_cast<float>(shown[static_cast<std::size_t>(g.id)]));
     set.colors.push_back(is_far_side(g.id, options) ? far_side_color(color) : color);
   }
+  // The grey ones over the intersecting cells' tint too (the 44c review: a
+  // lilac-grey ball matched no legend line).
+  spheres.over_translucent = unfaded.over_translucent = true;
   scene.spheres.push_back(std::move(spheres));
   scene.spheres.push_back(std::move(ranked));
   scene.spheres.push_back(std::move(unfaded));
@@ -1491,7 +1505,7 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
     lines.push_back({swatch(intersecting, blend_over(kIntersectingCellColor, options.background)),
                      "intersecting " + (options.surface_cell_quality ? std::string("faces") : cells_word) + ": " +
                          std::to_string(intersecting)});
-    if (intersecting > 0) lines.push_back({kIntersectionArrowColor, "  their edges", 0, SwatchShape::line});
+    if (intersecting > 0) lines.push_back({kIntersectionArrowColor, "  their edges", 0, SwatchShape::thick_line});
   } else if (options.surface_cell_quality) {
     lines.push_back({std::nullopt, "overlap: not checked", 1});
     lines.push_back({std::nullopt, "  on surface meshes"});
@@ -1934,6 +1948,16 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
             worst_rings_extent(result.worst_glyph.radius, has_inverted_ring(glyphs.clusters[0], scaled), style);
         if (std::hypot(disc.x - result.worst_glyph.x, disc.y - result.worst_glyph.y) < rings)
           label.leader_from = ScreenDisc{result.worst_glyph.x, result.worst_glyph.y, rings, disc.id};
+      }
+      // The same on #1's and #2's glyphs and their inverted rings (the 44c
+      // review: gmsh_box's "x15" leader started on #1's centre).
+      for (const ScreenDisc& g : result.coloured_glyphs) {
+        if (g.id == 0 || (result.worst_is_tied && drawn.tie_class[static_cast<std::size_t>(g.id)] == 0)) continue;
+        const double outer = has_inverted_ring(glyphs.clusters[static_cast<std::size_t>(g.id)], scaled)
+                                 ? inverted_ring_radius(g.radius, style) + 0.5 * inverted_halo_width(style)
+                                 : g.radius + 1.5 * style.scale;
+        if (!label.leader_from && std::hypot(disc.x - g.x, disc.y - g.y) < outer)
+          label.leader_from = ScreenDisc{g.x, g.y, outer, disc.id};
       }
       markers.push_back(label);
     }
