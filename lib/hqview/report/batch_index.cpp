@@ -1065,15 +1065,15 @@ std::string batch_summary_markdown(const std::vector<BatchEntry>& entries) {
     const char* heading;  // empty: the first table
     std::size_t first, end;  // headline keys [first, end)
   };
-  static const std::size_t structure_key = headline_index("boundary_error.hausdorff.relative");
-  static const std::size_t fem_key = headline_index("fem.element.num_invalid");
-  static const std::size_t cells_key = headline_index("headline.num_cells");
+  static const std::size_t structure_key = headline_slot("boundary_error.hausdorff.relative");
+  static const std::size_t fem_key = headline_slot("fem.element.num_invalid");
+  static const std::size_t cells_key = headline_slot("headline.num_cells");
   const Part parts[] = {{"", 0, structure_key},
                         {"Reference and structure", structure_key, fem_key},
                         {"Finite elements", fem_key, cells_key},
                         {"Cell kinds", cells_key, kNumHeadlineKeys}};
   // The cell kinds only when some mesh is not pure-hex (as index.html).
-  static const std::size_t hex_fraction_key = headline_index("headline.hex_fraction");
+  static const std::size_t hex_fraction_key = headline_slot("headline.hex_fraction");
   const bool any_hybrid = std::any_of(entries.begin(), entries.end(), [](const BatchEntry& e) {
     return e.headline[hex_fraction_key].has_value() && *e.headline[hex_fraction_key] != 1.0;
   });
