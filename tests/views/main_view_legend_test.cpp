@@ -155,6 +155,16 @@ std::string joined(const std::vector<std::string>& items) {
   return out;
 }
 
+// View A at 800 x 600 (a quarter of the pixels to draw: the marks are the
+// same) with a's inverted cells.
+MainViewOptions small_options(const Analysed& a) {
+  MainViewOptions options;
+  options.width = 800;
+  options.height = 600;
+  options.inverted_cells = &a.inverted;
+  return options;
+}
+
 TEST(MainViewLegend, EveryMarkDrawnHasItsLegendLine) {
   const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
   const Analysed a = analyse(every_mark());
@@ -162,10 +172,7 @@ TEST(MainViewLegend, EveryMarkDrawnHasItsLegendLine) {
   ASSERT_LT(a.glyphs.clusters[0].min_quality, 0.0);
   ASSERT_GT(a.overlap.num_intersecting_cells, 0);
   ASSERT_GT(a.overlap.num_coincident_vertices, 0);
-  MainViewOptions options;
-  options.width = 800;  // a quarter of the pixels to draw: the marks are the same
-  options.height = 600;
-  options.inverted_cells = &a.inverted;
+  const MainViewOptions options = small_options(a);
   int with_outlines = 0;
   for (const Vec3& direction : {Vec3{1.0, -1.0, 1.5}, Vec3{-0.3, 0.2, -1.0}, Vec3{0.1, 0.15, -1.0}}) {
     const MainViewPlan plan =
@@ -209,10 +216,7 @@ TEST(MainViewLegend, EveryMarkDrawnHasItsLegendLine) {
 TEST(MainViewLegend, TheLegendBeforeFailsTheCheck) {
   const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
   const Analysed a = analyse(every_mark());
-  MainViewOptions options;
-  options.width = 800;  // a quarter of the pixels to draw: the marks are the same
-  options.height = 600;
-  options.inverted_cells = &a.inverted;
+  const MainViewOptions options = small_options(a);
   MainViewPlan plan =
       plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, Vec3{1.0, -1.0, 1.5}, options, renderer.get());
   for (LegendLine& l : plan.legend) {
@@ -280,10 +284,7 @@ Fill tint_fill(Renderer& renderer, const MainViewPlan& plan, const MainViewOptio
 TEST(MainViewLegend, IntersectingCellsSwatchIsTheDrawnFill) {
   const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
   const Analysed a = analyse(every_mark());
-  MainViewOptions options;
-  options.width = 800;
-  options.height = 600;
-  options.inverted_cells = &a.inverted;
+  const MainViewOptions options = small_options(a);
   MainViewPlan plan =
       plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, Vec3{1.0, -1.0, 1.5}, options, renderer.get());
   std::optional<Rgba8> swatch;
@@ -370,10 +371,7 @@ TEST(MainViewLegend, NoGlyphUnderTheIntersectingTint) {
   add_sheared({5.0, 13.0, 0.0}, 1.0, 0.2);
   add_sheared({8.4, 8.4, 1.4}, 0.3, 0.5);
   const Analysed a = analyse(mesh);
-  MainViewOptions options;
-  options.width = 800;
-  options.height = 600;
-  options.inverted_cells = &a.inverted;
+  const MainViewOptions options = small_options(a);
   MainViewPlan plan =
       plan_main_view(a.mesh, a.topology, a.glyphs, &a.overlap, Vec3{1.0, -1.0, 1.5}, options, renderer.get());
   std::size_t glyph_pixels = 0;
