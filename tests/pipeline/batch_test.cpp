@@ -470,6 +470,31 @@ TEST(BatchIndex, MethodsComparePerLabel) {
   EXPECT_TRUE(summarize_methods({entry("a", BatchStatus::ok)}).empty());
 }
 
+// The Comparison section's tables (one per key, the thumbnails, the methods)
+// and the Methods section name their rows: a model or method name in every
+// first cell, escaped (the template reads the *_html keys; a row that set
+// only the plain key showed an empty cell).
+TEST(BatchIndex, ComparisonAndMethodRowsNameTheirModelAndMethod) {
+  std::vector<BatchEntry> entries;
+  for (const char* label : {"m<1>", "m&2"}) {
+    BatchEntry e = entry(std::string(label) + "/kit_ten.mesh", BatchStatus::ok, label);
+    e.model = "kit_ten<b>";
+    entries.push_back(e);
+  }
+  const std::string html = batch_index_html(entries, "9.9.9");
+  ASSERT_NE(html.find("id=\"comparison\""), std::string::npos) << "two methods on one model: a comparison";
+  EXPECT_EQ(html.find("<td class=\"text\"></td>"), std::string::npos) << "no row without its name";
+  const std::string model = "<td class=\"text\">kit_<wbr>ten&lt;b&gt;</td>";
+  std::size_t models = 0;
+  for (std::size_t at = html.find(model); at != std::string::npos; at = html.find(model, at + 1)) ++models;
+  EXPECT_GE(models, 1u) << "the comparison tables name the model";
+  for (const char* label : {"<td class=\"text\">m&lt;1&gt;</td>", "<td class=\"text\">m&amp;2</td>"}) {
+    std::size_t rows = 0;
+    for (std::size_t at = html.find(label); at != std::string::npos; at = html.find(label, at + 1)) ++rows;
+    EXPECT_GE(rows, 3u) << label << ": the mesh table, the comparison's and the Methods section's method rows";
+  }
+}
+
 TEST(BatchIndex, HtmlEscapesNamesAndErrorsAndLinksBundles) {
   BatchEntry evil = entry("<script>alert(1)</script>.mesh", BatchStatus::failed, "a&b");
   const std::string html = batch_index_html({entry("ok.mesh", BatchStatus::ok), evil}, "1.0");

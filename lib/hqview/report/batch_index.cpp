@@ -410,7 +410,7 @@ kainjow::mustache::data comparison_data(const Comparison& c) {
   data methods = data::type::list;
   for (const MethodColumn& m : c.methods) {
     data d;
-    d.set("label", m.label);
+    d.set("label_html", html_with_breaks(m.label));
     d.set("year", m.paper.year);
     d.set("title", m.paper.title);
     d.set("doi", m.paper.doi);
@@ -448,7 +448,7 @@ kainjow::mustache::data comparison_data(const Comparison& c) {
     data rows = data::type::list;
     for (const ComparisonRow& row : c.rows) {
       data r;
-      r.set("model", row.model);
+      r.set("model_html", html_with_breaks(row.model));
       data cells = data::type::list;
       for (const ComparisonCell& cell : comparison_cells(c, row, k)) {
         data x;
@@ -471,7 +471,7 @@ kainjow::mustache::data comparison_data(const Comparison& c) {
   data thumb_rows = data::type::list;
   for (const ComparisonRow& row : c.rows) {
     data r;
-    r.set("model", row.model);
+    r.set("model_html", html_with_breaks(row.model));
     data cells = data::type::list;
     for (const ComparisonColumn& column : c.columns) {
       data x;
@@ -973,7 +973,7 @@ std::string batch_index_html(const std::vector<BatchEntry>& entries, const std::
   data method_rows = data::type::list;
   for (const MethodSummary& m : methods) {
     data row;
-    row.set("label", m.label);
+    row.set("label_html", html_with_breaks(m.label));
     row.set("num_meshes", std::to_string(m.num_meshes));
     row.set("num_failed", std::to_string(m.num_failed));
     row.set("num_gate_failed", std::to_string(m.num_gate_failed));
