@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <span>
 #include <vector>
@@ -208,6 +209,40 @@ Index cells_under_other_faces(const HexMesh& mesh, const Topology& topology, std
     return in;
   };
   const FaceDepthGrid samples(mesh, faces, camera, 1.0);  // corner_sample only
+  // The faces' image boxes bucketed in a square grid of about one face per
+  // bucket, so that a sample meets only the faces whose box holds it (all
+  // pairs took 46 s on 58k quads; review C #2).
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  std::vector<std::array<double, 4>> boxes(faces.size());  // x0, y0, x1, y1
+  std::array<double, 4> all_box{kInf, kInf, -kInf, -kInf};
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    boxes[i] = {kInf, kInf, -kInf, -kInf};
+    for (int k = 0; k < faces[i].size; ++k) {
+      const auto q = corner(faces[i], k);
+      boxes[i] = {std::min(boxes[i][0], q[0]), std::min(boxes[i][1], q[1]), std::max(boxes[i][2], q[0]),
+                  std::max(boxes[i][3], q[1])};
+    }
+    all_box = {std::min(all_box[0], boxes[i][0]), std::min(all_box[1], boxes[i][1]), std::max(all_box[2], boxes[i][2]),
+               std::max(all_box[3], boxes[i][3])};
+  }
+  const auto side = static_cast<std::size_t>(std::clamp(std::sqrt(static_cast<double>(faces.size())), 1.0, 1024.0));
+  const double width = std::max(all_box[2] - all_box[0], 1e-300), height = std::max(all_box[3] - all_box[1], 1e-300);
+  auto bucket = [&](double v, double lo, double extent) {
+    return std::min(side - 1, static_cast<std::size_t>(std::max(0.0, (v - lo) / extent * static_cast<double>(side))));
+  };
+  std::vector<std::vector<std::uint32_t>> buckets(side * side);
+  for (std::size_t i = 0; i < faces.size(); ++i)
+    for (std::size_t by = bucket(boxes[i][1], all_box[1], height); by <= bucket(boxes[i][3], all_box[1], height); ++by)
+      for (std::size_t bx = bucket(boxes[i][0], all_box[0], width); bx <= bucket(boxes[i][2], all_box[0], width); ++bx)
+        buckets[by * side + bx].push_back(static_cast<std::uint32_t>(i));
+  auto under_another = [&](std::size_t i, const std::array<double, 2>& p) {
+    if (p[0] < all_box[0] || p[0] > all_box[2] || p[1] < all_box[1] || p[1] > all_box[3]) return false;
+    for (std::uint32_t j : buckets[bucket(p[1], all_box[1], height) * side + bucket(p[0], all_box[0], width)]) {
+      const auto& b = boxes[j];
+      if (j != i && p[0] >= b[0] && p[0] <= b[2] && p[1] >= b[1] && p[1] <= b[3] && inside(faces[j], p)) return true;
+    }
+    return false;
+  };
   const std::vector<Index> sorted = [&] {
     std::vector<Index> s(cells.begin(), cells.end());
     std::sort(s.begin(), s.end());
@@ -217,12 +252,7 @@ Index cells_under_other_faces(const HexMesh& mesh, const Topology& topology, std
   for (std::size_t i = 0; i < faces.size(); ++i) {
     if (!std::binary_search(sorted.begin(), sorted.end(), faces[i].cell)) continue;
     bool all = true;
-    for (int k = 0; k < faces[i].size && all; ++k) {
-      const auto p = image(samples.corner_sample(faces[i], k));
-      bool under = false;
-      for (std::size_t j = 0; j < faces.size() && !under; ++j) under = j != i && inside(faces[j], p);
-      all = under;
-    }
+    for (int k = 0; k < faces[i].size && all; ++k) all = under_another(i, image(samples.corner_sample(faces[i], k)));
     (all ? covered : seen).push_back(faces[i].cell);
   }
   // A cell with one face in sight is in sight.
