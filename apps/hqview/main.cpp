@@ -195,6 +195,8 @@ hq::AnalyzeOptions make_analyze_options(const AnalyzeArgs& args) {
   options.fem_elements = lists_fem_element(args.metrics) || args.simulate;
   options.simulate = args.simulate;
   options.views.error_density_reference = parse_error_density_reference(args.error_density_reference);
+  if (!args.error_density_reference.empty() && !args.simulate)
+    throw UsageError("--error-density-reference: needs --simulate (the error density comes from its Poisson check)");
   // Rules are checked for syntax before the work; whether their key exists is
   // known once the report is (analyze throws hq::ValueError then, no bundle).
   for (const std::string& rule : args.gates) options.gates.push_back(hq::parse_gate_rule(rule));

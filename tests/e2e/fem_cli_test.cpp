@@ -98,6 +98,14 @@ TEST(FemCli, InvalidElementsSkipTheSolveWithExitZero) {
   EXPECT_EQ(r.exit_code, 1) << r.err;
 }
 
+TEST(FemCli, ErrorDensityReferenceNeedsSimulate) {
+  const fs::path dir = fresh_output_dir("fem_reference_alone");
+  const CliResult r = run_hqview({"analyze", kBall, "-o", (dir / "a").string(), "--no-render", "--error-density-reference", "0.1"});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--error-density-reference: needs --simulate"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "a")) << "nothing written";
+}
+
 TEST(FemCli, MetricsFemElementAloneAndTheDefaultLeavesFemOut) {
   const fs::path dir = fresh_output_dir("fem_metrics");
   ASSERT_EQ(run_hqview({"analyze", kBall, "-o", (dir / "a").string(), "--no-render", "--metrics", "fem_element",
