@@ -33,6 +33,7 @@
 #include "hqview/views/views.h"
 #include "io/temp_dir.h"
 #include "support/image_probe.h"
+#include "support/fixtures.h"
 #include "support/surface_fixtures.h"
 #include "support/viewer_data.h"
 
@@ -756,9 +757,7 @@ TEST(SurfaceViews, TheFirstMainViewOfATurnedBellIsOffItsAxis) {
   const int rings = kBellRings;
   const Vec3 k = normalized(Vec3{0.4, -0.7, 0.6});
   const double angle = 0.9;
-  const auto turn = [&](const Vec3& p) {  // Rodrigues
-    return std::cos(angle) * p + std::sin(angle) * cross(k, p) + (1.0 - std::cos(angle)) * dot(k, p) * k;
-  };
+  const auto turn = [&](const Vec3& p) { return test::turned(p, k, angle); };
   Grid g = bell_of_revolution(turn);
   const std::size_t reversed = 3 + rings * 7;
   std::swap(g.quads[reversed][1], g.quads[reversed][3]);
