@@ -92,6 +92,7 @@ struct Figure {
   double nearest_density = 0;
   ErrorDensityScale scale;
   bool max_undashed = false;  // the boundary figure's hidden max drawn solid: every edge shorter than a dash
+  std::vector<Index> drawn_cells;  // the densest 1% (the cells figure's cells): the max's label beside its ring avoids them
 };
 
 Figure begin_figure(const HexMesh& mesh, const Topology& topology, const ErrorDensityScale& scale,
@@ -261,16 +262,19 @@ ColorBarSwatch worst_ring_swatch(const ErrorDensityWorst& worst, bool hidden) {
 // projected box (x0, y0)-(x1, y1): right of it, left, above or below (the
 // first that fits in the view, nearest the ring's height or column), with a
 // leader line from the label to the ring; so the label's white box never
-// covers a drawn cell. Where no margin fits, or the nearest is more than
-// kMaxLeader of the view's smaller side from the ring (issue 48e: a 450 px
-// leader on bracket, 590 px on kitten_rot), beside the ring: right, left,
-// below or above it, the first inside the view. label may have several lines.
-constexpr double kMaxLeader = 0.12;
+// covers a drawn cell; a margin more than kMaxLeader of the view's smaller
+// side from the ring's edge is no candidate (issue 48e: a 450 px leader on
+// bracket, 590 px on kitten_rot), and the boxes right of, left of, below
+// and above the ring are: of them the one that covers the fewest model
+// pixels drawn so far (the `avoid` boxes, the densest 1% of the hexes,
+// weigh a hundredfold), then the nearest. label may have several lines.
+constexpr double kMaxLeader = 0.2;
 struct PixelBox {
   double x0, y0, x1, y1;
 };
 void draw_worst_label_outside(Image& figure, const PixelRect& view, const PixelBox& model, double cx, double cy,
-                              double radius, const std::string& label, const AnnotationStyle& style) {
+                              double radius, const std::string& label, const AnnotationStyle& style,
+                              std::span<const PixelBox> avoid) {
   const int size = std::max(style.min_text_size, static_cast<int>(std::lround(20 * style.scale)));
   const PixelRect extent = text_extent(label, size, style);
   const double w = extent.width + 6.0, h = std::max<double>(size, extent.height) + 8.0, gap = 10.0 * style.scale;
@@ -296,17 +300,40 @@ void draw_worst_label_outside(Image& figure, const PixelRect& view, const PixelB
   if (model.y0 - gap - h >= vy0) margins.push_back({clamp_x(cx - 0.5 * w), model.y0 - gap - h});
   if (model.y1 + gap + h <= vy1) margins.push_back({clamp_x(cx - 0.5 * w), model.y1 + gap});
   const double max_leader = radius + kMaxLeader * std::min(view.width, view.height);
-  Box best{};
-  if (!margins.empty() && distance(nearest(margins)) <= max_leader) {
-    best = nearest(margins);
-  } else {
-    std::vector<Box> beside;
-    if (cx + radius + gap + w <= vx1) beside.push_back({cx + radius + gap, clamp_y(cy - 0.5 * h)});
-    if (cx - radius - gap - w >= vx0) beside.push_back({cx - radius - gap - w, clamp_y(cy - 0.5 * h)});
-    if (cy + radius + gap + h <= vy1) beside.push_back({clamp_x(cx - 0.5 * w), cy + radius + gap});
-    if (cy - radius - gap - h >= vy0) beside.push_back({clamp_x(cx - 0.5 * w), cy - radius - gap - h});
-    best = !beside.empty() ? beside.front() : Box{clamp_x(cx + radius + gap), clamp_y(cy - 0.5 * h)};
-  }
+  // The candidates: the margins within max_leader, and beside the ring.
+  std::vector<Box> candidates;
+  for (const Box& m : margins)
+    if (distance(m) <= max_leader) candidates.push_back(m);
+  if (cx + radius + gap + w <= vx1) candidates.push_back({cx + radius + gap, clamp_y(cy - 0.5 * h)});
+  if (cx - radius - gap - w >= vx0) candidates.push_back({cx - radius - gap - w, clamp_y(cy - 0.5 * h)});
+  if (cy + radius + gap + h <= vy1) candidates.push_back({clamp_x(cx - 0.5 * w), cy + radius + gap});
+  if (cy - radius - gap - h >= vy0) candidates.push_back({clamp_x(cx - 0.5 * w), cy - radius - gap - h});
+  if (candidates.empty()) candidates.push_back({clamp_x(cx + radius + gap), clamp_y(cy - 0.5 * h)});
+  // What a box covers: the model's pixels drawn so far (not the
+  // background), each of the avoided boxes' (the densest hexes) counted as
+  // if a hundred times over: the least covered, then the nearest.
+  const Rgba8 background = style.background;
+  const auto covered = [&](const Box& b) {
+    const int bx0 = std::max(0, static_cast<int>(b.x)), by0 = std::max(0, static_cast<int>(b.y));
+    const int bx1 = std::min(figure.width, static_cast<int>(b.x + w)), by1 = std::min(figure.height, static_cast<int>(b.y + h));
+    double n = 0;
+    for (int y = by0; y < by1; y += 2)
+      for (int x = bx0; x < bx1; x += 2)
+      {
+        const std::uint8_t* p = &figure.rgba[pixel_offset(figure, x, y)];
+        n += p[0] != background.r || p[1] != background.g || p[2] != background.b;
+      }
+    for (const PixelBox& a : avoid)
+      n += 100.0 * std::max(0.0, std::min(b.x + w, a.x1) - std::max(b.x, a.x0)) *
+           std::max(0.0, std::min(b.y + h, a.y1) - std::max(b.y, a.y0)) / 4.0;
+    return n;
+  };
+  std::vector<double> cost;
+  for (const Box& c : candidates) cost.push_back(covered(c));
+  std::size_t pick = 0;
+  for (std::size_t i = 1; i < candidates.size(); ++i)
+    if (cost[i] < cost[pick] || (cost[i] == cost[pick] && distance(candidates[i]) < distance(candidates[pick]))) pick = i;
+  const Box best = candidates[pick];
   // The leader: from the box's nearest point to the ring's edge.
   const double px = std::clamp(cx, best.x, best.x + w), py = std::clamp(cy, best.y, best.y + h);
   const double length = std::hypot(px - cx, py - cy);
@@ -398,7 +425,19 @@ Ring draw_worst_marker(Image& figure, const Figure& f, const HexMesh& mesh, cons
   if (f.nearest_seen != kNoIndex)
     label += "\nnearest visible: " + density_with_ratio(f.nearest_density, f.scale) + ", hex " +
              std::to_string(f.nearest_seen);
-  draw_worst_label_outside(figure, view, {x0, y0, x1, y1}, ring.cx, ring.cy, ring.radius, label, f.style);
+  std::vector<PixelBox> avoid;
+  for (Index h : f.drawn_cells) {
+    if (h == worst.hex) continue;
+    PixelBox box{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                 -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+    for (Index v : mesh.hexes[static_cast<std::size_t>(h)]) {
+      double x = 0, y = 0;
+      if (!to_pixel(point(mesh, v), x, y)) continue;
+      box = {std::min(box.x0, x), std::min(box.y0, y), std::max(box.x1, x), std::max(box.y1, y)};
+    }
+    avoid.push_back(box);
+  }
+  draw_worst_label_outside(figure, view, {x0, y0, x1, y1}, ring.cx, ring.cy, ring.radius, label, f.style, avoid);
   return ring;
 }
 
@@ -693,6 +732,7 @@ Image render_error_density_boundary(const HexMesh& mesh, const Topology& topolog
   f.worst_hidden = max_hex_behind_boundary(f, mesh, topology, worst, renderer);
   find_nearest_seen(f, mesh, topology, density, worst, renderer);
   add_max_outline(f, mesh, worst);
+  f.drawn_cells = error_density_cells(density, options);  // the label keeps off the densest region
   // The ring and the outline as drawn (issue 48h: the ring was a black
   // box; issue 48: the outline had no entry).
   for (ColorBarSwatch swatch : error_density_boundary_swatches(worst, f.worst_hidden, f.max_undashed)) {
@@ -715,6 +755,7 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   const std::vector<Index> shown = error_density_cells(density, options);
   const std::vector<bool> hidden =
       error_density_cells_behind_boundary(mesh, topology, shown, f.camera, renderer);
+  f.drawn_cells = shown;
   // The veil first (blended over the background only), then the cells and
   // their edges in the overlay layer over it: no veil is ever blended over a
   // cell and no face is shaded, so every face is exactly its colour-bar
