@@ -536,10 +536,22 @@ void draw_title(Image& image, const PixelRect& area, std::string_view title, con
   if (title.empty() || area.height <= 0) return;
   const int inset = scaled(kTitleInset, style);
   const int max_width = std::max(1, area.width - 2 * inset);
-  const int size = fitting_text_size(title, std::max(14, scaled(kTitleSize, style)), 9, max_width, style);
-  // Baseline so that the cap height (0.73 em) is centred in the band.
-  const int baseline = area.y + area.height / 2 + static_cast<int>(std::lround(0.365 * size));
-  draw_text(image, area.x + inset, baseline, ellipsize(title, size, max_width, style), size, style);
+  // Several lines (issue 48e: a long title shrunk on one line to below the
+  // legend's text): one size for all, the largest at which each fits and
+  // the block fills at most 90 % of the band.
+  const std::vector<std::string_view> lines = split_lines(title);
+  const int n = static_cast<int>(lines.size());
+  int size = std::max(14, scaled(kTitleSize, style));
+  if (n > 1) size = std::max(9, std::min(size, static_cast<int>(0.9 * area.height / (n * kLineSpacing))));
+  int fitted = size;
+  for (std::string_view line : lines) fitted = std::min(fitted, fitting_text_size(line, size, 9, max_width, style));
+  const int line_height = static_cast<int>(std::lround(fitted * kLineSpacing));
+  // Baseline so that the block (cap height 0.73 em on the last line) is centred in the band.
+  int baseline = area.y + area.height / 2 + static_cast<int>(std::lround(0.365 * fitted)) - (n - 1) * line_height / 2;
+  for (std::string_view line : lines) {
+    draw_text(image, area.x + inset, baseline, ellipsize(line, fitted, max_width, style), fitted, style);
+    baseline += line_height;
+  }
 }
 
 void draw_legend(Image& image, const PixelRect& area, std::span<const LegendLine> lines, const AnnotationStyle& style) {

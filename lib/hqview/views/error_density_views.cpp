@@ -84,11 +84,21 @@ struct Figure {
   // not seen: max_hex_behind_boundary): drawn through, its ring dashed, its
   // label says so; the same test in both figures.
   bool worst_hidden = false;
+  // With the max hidden: the densest hex within kNearMaxFraction of it that
+  // is seen from here (kNoIndex: none), named in the max's label (issue
+  // 48e: on warrior_rot a face of 9.4x in plain view sat inside the dashed
+  // ring of the hidden 9.7x max, and nothing told them apart).
+  Index nearest_seen = kNoIndex;
+  double nearest_density = 0;
+  ErrorDensityScale scale;
+  bool max_undashed = false;  // the boundary figure's hidden max drawn solid: every edge shorter than a dash
+  std::vector<Index> drawn_cells;  // the densest 1% (the cells figure's cells): the max's label beside its ring avoids them
 };
 
 Figure begin_figure(const HexMesh& mesh, const Topology& topology, const ErrorDensityScale& scale,
                     const Vec3& view_direction, const ErrorDensityViewOptions& options) {
   Figure f;
+  f.scale = scale;
   f.model_points = boundary_points(mesh, topology);
   f.bar = error_density_color_bar(scale);
   FigureFrame3d frame = figure_frame_3d(
@@ -162,7 +172,7 @@ void add_dashed(LineSet& set, const Figure& f, const Vec3& a, const Vec3& b, Rgb
 // The boundary figure's outline of the max hex: white halo, dashed when hidden.
 SwatchStroke boundary_max_stroke(const Figure& f) {
   return max_edge_stroke(f, std::max(2.0, 2.5 * f.style.scale), std::max(4.0, 5.0 * f.style.scale),
-                         {255, 255, 255, 255}, f.worst_hidden);
+                         {255, 255, 255, 255}, f.worst_hidden && !f.max_undashed);
 }
 
 // The boundary figure's outline of the max hex, all 12 edges in
@@ -181,8 +191,11 @@ void add_max_outline(Figure& f, const HexMesh& mesh, const ErrorDensityWorst& wo
   halo.width = static_cast<float>(stroke.halo_width);
   core.width = static_cast<float>(stroke.width);
   halo.over_all = core.over_all = f.worst_hidden;
+  f.max_undashed = f.worst_hidden && std::all_of(kHexEdges.begin(), kHexEdges.end(), [&](const auto& e) {
+    return pixel_length(f, point(mesh, hex[e[0]]), point(mesh, hex[e[1]])) < figure_dashes(f).dash;
+  });
   const auto add = [&](LineSet& set, const Vec3& a, const Vec3& b, Rgba8 color) {
-    if (f.worst_hidden)
+    if (f.worst_hidden && !f.max_undashed)
       add_dashed(set, f, a, b, color);
     else
       add_segment(set, f.scene.origin, a, b, color);
@@ -207,6 +220,35 @@ bool max_hex_behind_boundary(const Figure& f, const HexMesh& mesh, const Topolog
   return error_density_cells_behind_boundary(mesh, topology, max_hex, f.camera, renderer).front();
 }
 
+// With the max hidden (f.worst_hidden): the densest boundary hex of density
+// at least kNearMaxFraction of the max's (at most kNearMaxCandidates of
+// them) that error_density_cells_behind_boundary sees, into f.nearest_seen.
+constexpr double kNearMaxFraction = 0.9;
+constexpr std::size_t kNearMaxCandidates = 32;
+void find_nearest_seen(Figure& f, const HexMesh& mesh, const Topology& topology, std::span<const double> density,
+                       const ErrorDensityWorst& worst, Renderer& renderer) {
+  f.nearest_seen = kNoIndex;
+  if (!f.worst_hidden || worst.hex == kNoIndex) return;
+  std::vector<Index> near;
+  for (Index face : topology.boundary_faces) {
+    const Index h = face_hex(topology, face);
+    if (h != worst.hex && density[static_cast<std::size_t>(h)] >= kNearMaxFraction * worst.density) near.push_back(h);
+  }
+  std::sort(near.begin(), near.end(), [&](Index a, Index b) {
+    const double da = density[static_cast<std::size_t>(a)], db = density[static_cast<std::size_t>(b)];
+    return da != db ? da > db : a < b;
+  });
+  near.erase(std::unique(near.begin(), near.end()), near.end());
+  near.resize(std::min(near.size(), kNearMaxCandidates));
+  const std::vector<bool> hidden = error_density_cells_behind_boundary(mesh, topology, near, f.camera, renderer);
+  for (std::size_t k = 0; k < near.size(); ++k)
+    if (!hidden[k]) {
+      f.nearest_seen = near[k];
+      f.nearest_density = density[static_cast<std::size_t>(near[k])];
+      return;
+    }
+}
+
 // The ring's legend swatch: solid for a max seen on the boundary, dashed for
 // one drawn through it (interior, or on a boundary side hidden from here).
 ColorBarSwatch worst_ring_swatch(const ErrorDensityWorst& worst, bool hidden) {
@@ -219,16 +261,23 @@ ColorBarSwatch worst_ring_swatch(const ErrorDensityWorst& worst, bool hidden) {
 // The label of the ring at (cx, cy) in the free margin beside the model's
 // projected box (x0, y0)-(x1, y1): right of it, left, above or below (the
 // first that fits in the view, nearest the ring's height or column), with a
-// leader line from the label to the ring; where no margin fits, beside the
-// ring (draw_worst_label). So the label's white box never covers a drawn cell.
+// leader line from the label to the ring; so the label's white box never
+// covers a drawn cell; a margin more than kMaxLeader of the view's smaller
+// side from the ring's edge is no candidate (issue 48e: a 450 px leader on
+// bracket, 590 px on kitten_rot), and the boxes right of, left of, below
+// and above the ring are: of them the one that covers the fewest model
+// pixels drawn so far (the `avoid` boxes, the densest 1% of the hexes,
+// weigh a hundredfold), then the nearest. label may have several lines.
+constexpr double kMaxLeader = 0.2;
 struct PixelBox {
   double x0, y0, x1, y1;
 };
 void draw_worst_label_outside(Image& figure, const PixelRect& view, const PixelBox& model, double cx, double cy,
-                              double radius, const std::string& label, const AnnotationStyle& style) {
+                              double radius, const std::string& label, const AnnotationStyle& style,
+                              std::span<const PixelBox> avoid) {
   const int size = std::max(style.min_text_size, static_cast<int>(std::lround(20 * style.scale)));
   const PixelRect extent = text_extent(label, size, style);
-  const double w = extent.width + 6.0, h = size + 6.0, gap = 10.0 * style.scale;
+  const double w = extent.width + 6.0, h = std::max<double>(size, extent.height) + 8.0, gap = 10.0 * style.scale;
   // A margin off the view's edges (issue 48c: labels at x = 5 px touched the image border).
   const double inset = 10.0 * style.scale;
   const double vx0 = view.x + inset, vy0 = view.y + 2.0, vx1 = view.x + view.width - inset, vy1 = view.y + view.height - 2.0;
@@ -237,22 +286,54 @@ void draw_worst_label_outside(Image& figure, const PixelRect& view, const PixelB
   struct Box {
     double x, y;
   };
-  std::vector<Box> candidates;
-  if (model.x1 + gap + w <= vx1) candidates.push_back({model.x1 + gap, clamp_y(cy - 0.5 * h)});
-  if (model.x0 - gap - w >= vx0) candidates.push_back({model.x0 - gap - w, clamp_y(cy - 0.5 * h)});
-  if (model.y0 - gap - h >= vy0) candidates.push_back({clamp_x(cx - 0.5 * w), model.y0 - gap - h});
-  if (model.y1 + gap + h <= vy1) candidates.push_back({clamp_x(cx - 0.5 * w), model.y1 + gap});
-  if (candidates.empty()) {
-    draw_worst_label(figure, view, cx, cy, radius, label, style);
-    return;
-  }
-  // The nearest to the ring (the shortest leader).
+  // The distance from the ring's centre to a box.
   const auto distance = [&](const Box& b) {
     const double dx = std::max({b.x - cx, 0.0, cx - (b.x + w)}), dy = std::max({b.y - cy, 0.0, cy - (b.y + h)});
     return std::hypot(dx, dy);
   };
-  const Box best = *std::min_element(candidates.begin(), candidates.end(),
-                                     [&](const Box& a, const Box& b) { return distance(a) < distance(b); });
+  const auto nearest = [&](const std::vector<Box>& boxes) {
+    return *std::min_element(boxes.begin(), boxes.end(), [&](const Box& a, const Box& b) { return distance(a) < distance(b); });
+  };
+  std::vector<Box> margins;
+  if (model.x1 + gap + w <= vx1) margins.push_back({model.x1 + gap, clamp_y(cy - 0.5 * h)});
+  if (model.x0 - gap - w >= vx0) margins.push_back({model.x0 - gap - w, clamp_y(cy - 0.5 * h)});
+  if (model.y0 - gap - h >= vy0) margins.push_back({clamp_x(cx - 0.5 * w), model.y0 - gap - h});
+  if (model.y1 + gap + h <= vy1) margins.push_back({clamp_x(cx - 0.5 * w), model.y1 + gap});
+  const double max_leader = radius + kMaxLeader * std::min(view.width, view.height);
+  // The candidates: the margins within max_leader, and beside the ring.
+  std::vector<Box> candidates;
+  for (const Box& m : margins)
+    if (distance(m) <= max_leader) candidates.push_back(m);
+  if (cx + radius + gap + w <= vx1) candidates.push_back({cx + radius + gap, clamp_y(cy - 0.5 * h)});
+  if (cx - radius - gap - w >= vx0) candidates.push_back({cx - radius - gap - w, clamp_y(cy - 0.5 * h)});
+  if (cy + radius + gap + h <= vy1) candidates.push_back({clamp_x(cx - 0.5 * w), cy + radius + gap});
+  if (cy - radius - gap - h >= vy0) candidates.push_back({clamp_x(cx - 0.5 * w), cy - radius - gap - h});
+  if (candidates.empty()) candidates.push_back({clamp_x(cx + radius + gap), clamp_y(cy - 0.5 * h)});
+  // What a box covers: the model's pixels drawn so far (not the
+  // background), each of the avoided boxes' (the densest hexes) counted as
+  // if a hundred times over: the least covered, then the nearest.
+  const Rgba8 background = style.background;
+  const auto covered = [&](const Box& b) {
+    const int bx0 = std::max(0, static_cast<int>(b.x)), by0 = std::max(0, static_cast<int>(b.y));
+    const int bx1 = std::min(figure.width, static_cast<int>(b.x + w)), by1 = std::min(figure.height, static_cast<int>(b.y + h));
+    double n = 0;
+    for (int y = by0; y < by1; y += 2)
+      for (int x = bx0; x < bx1; x += 2)
+      {
+        const std::uint8_t* p = &figure.rgba[pixel_offset(figure, x, y)];
+        n += p[0] != background.r || p[1] != background.g || p[2] != background.b;
+      }
+    for (const PixelBox& a : avoid)
+      n += 100.0 * std::max(0.0, std::min(b.x + w, a.x1) - std::max(b.x, a.x0)) *
+           std::max(0.0, std::min(b.y + h, a.y1) - std::max(b.y, a.y0)) / 4.0;
+    return n;
+  };
+  std::vector<double> cost;
+  for (const Box& c : candidates) cost.push_back(covered(c));
+  std::size_t pick = 0;
+  for (std::size_t i = 1; i < candidates.size(); ++i)
+    if (cost[i] < cost[pick] || (cost[i] == cost[pick] && distance(candidates[i]) < distance(candidates[pick]))) pick = i;
+  const Box best = candidates[pick];
   // The leader: from the box's nearest point to the ring's edge.
   const double px = std::clamp(cx, best.x, best.x + w), py = std::clamp(cy, best.y, best.y + h);
   const double length = std::hypot(px - cx, py - cy);
@@ -265,14 +346,48 @@ void draw_worst_label_outside(Image& figure, const PixelRect& view, const PixelB
   draw_text(figure, x + 3, y + size + 1, label, size, style);
 }
 
-// The ring about the densest hex (its projected corners plus a margin, at
-// least kMinRingRadius), dashed when it is inside, and its label: "max
-// 11.4, hex 24347 (interior)" outside the model (model_points: the
-// boundary's points) with a leader. Returns the ring's radius in pixels (0:
-// none).
-double draw_worst_marker(Image& figure, const Figure& f, const HexMesh& mesh, const ErrorDensityWorst& worst,
+// The ring's radius in pixels: the hex's projected extent plus a small
+// margin (the ring encloses it, not its neighbours), at least kMinRingRadius
+// (a small max, a few pixels, shows inside a ring that reads as one, and
+// its outline is not covered by the ring's stroke; issue 48: 10 pixels, the
+// dashes of a dashed one merged into a blot over the hex), at most
+// kMaxRingFraction of the view's smaller side (issue 48e: kitten_rot's max
+// hex drew a 600 px ring over a quarter of the model, the title and the
+// picture's edge; its magenta outline shows its extent); and its centre,
+// the hex's, moved in as far as needed to keep the ring and its stroke
+// inside the view (issue 48e: twist_inject's ring was cut by the picture's
+// left edge, kitten_rot's ran over the title).
+struct Ring {
+  double cx = 0, cy = 0, radius = 0;
+};
+Ring fit_ring(const PixelRect& view, double cx, double cy, double extent, double stroke, double scale) {
+  const double half = 0.5 * std::min(view.width, view.height);
+  const double pad = stroke + 2.0;  // the stroke's halo and a pixel
+  double radius = std::clamp(extent + 4.0 * scale, kMinRingRadius * scale,
+                             std::max(kMinRingRadius * scale, kMaxRingFraction * 2.0 * half));
+  // Shrunk towards the edge first (not below the minimum), then moved in.
+  const double room = std::min({cx - view.x, view.x + view.width - cx, cy - view.y, view.y + view.height - cy}) - pad;
+  radius = std::max(std::min(radius, room), std::min(kMinRingRadius * scale, half - pad));
+  const double lo = radius + pad;
+  cx = std::clamp(cx, view.x + lo, std::max(view.x + lo, view.x + view.width - lo));
+  cy = std::clamp(cy, view.y + lo, std::max(view.y + lo, view.y + view.height - lo));
+  return {cx, cy, radius};
+}
+
+// The max's density "0.45 (9.7x)": times the scale's reference.
+std::string density_with_ratio(double d, const ErrorDensityScale& scale) {
+  const double r = d / scale.lo;
+  return display_number(d, 3) + " (" + display_number(r, r < 10 ? 2 : 3) + "\u00d7)";
+}
+
+// The ring about the densest hex (fit_ring), dashed when it is inside or
+// hidden, and its label: "max 11.4 (9.7x), hex 24347 (interior)" outside
+// the model (model_points: the boundary's points) with a leader, and with
+// a hidden max the densest hex near it that is seen (find_nearest_seen).
+// Returns the ring (radius 0: none).
+Ring draw_worst_marker(Image& figure, const Figure& f, const HexMesh& mesh, const ErrorDensityWorst& worst,
                          const std::vector<Vec3>& model_points) {
-  if (worst.hex == kNoIndex) return 0;
+  if (worst.hex == kNoIndex) return {};
   const PixelRect& view = f.layout.view;
   const double aspect = static_cast<double>(view.width) / std::max(1, view.height);
   const auto to_pixel = [&](const Vec3& p, double& x, double& y) {
@@ -282,38 +397,48 @@ double draw_worst_marker(Image& figure, const Figure& f, const HexMesh& mesh, co
     return std::isfinite(ndc.x) && std::isfinite(ndc.y);
   };
   double cx = 0, cy = 0;
-  if (!to_pixel(hex_center(mesh, worst.hex), cx, cy)) return 0;
-  double radius = 0;
+  if (!to_pixel(hex_center(mesh, worst.hex), cx, cy)) return {};
+  double extent = 0;
   for (Index v : mesh.hexes[static_cast<std::size_t>(worst.hex)]) {
     double x = 0, y = 0;
-    if (to_pixel(point(mesh, v), x, y)) radius = std::max(radius, std::hypot(x - cx, y - cy));
+    if (to_pixel(point(mesh, v), x, y)) extent = std::max(extent, std::hypot(x - cx, y - cy));
   }
-  // The hex's own projected extent plus a small margin: the ring encloses
-  // it, not its neighbours; but never smaller than kMinRingRadius, so that
-  // a small max (a few pixels) shows inside a ring that reads as one and
-  // its outline is not covered by the ring's stroke (issue 48: 10 pixels,
-  // the dashes of a dashed one merged into a blot over the hex).
-  radius = std::max(radius + 4.0 * f.style.scale, kMinRingRadius * f.style.scale);
-  draw_marker_ring(figure, cx, cy, radius, std::max(2.0, 3.0 * f.style.scale), !worst.on_boundary || f.worst_hidden,
+  const double stroke = std::max(2.0, 3.0 * f.style.scale);
+  const Ring ring = fit_ring(view, cx, cy, extent, stroke, f.style.scale);
+  draw_marker_ring(figure, ring.cx, ring.cy, ring.radius, stroke, !worst.on_boundary || f.worst_hidden,
                    kWorstMarkerColor);
   // The model's projected box and the ring's (which can stick out of it: a
   // max at the silhouette): the label goes in the free margin beside them,
   // so its box never covers the ring (issue 48: it cut off the top of a
   // ring at the model's top edge).
-  double x0 = cx - radius, y0 = cy - radius, x1 = cx + radius, y1 = cy + radius;
+  double x0 = ring.cx - ring.radius, y0 = ring.cy - ring.radius, x1 = ring.cx + ring.radius, y1 = ring.cy + ring.radius;
   for (const Vec3& p : model_points) {
     double x = 0, y = 0;
     if (!to_pixel(p, x, y)) continue;
     x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
   }
-  draw_worst_label_outside(figure, view, {x0, y0, x1, y1}, cx, cy, radius,
-                           "max " + display_number(worst.density, 3) + ", hex " + std::to_string(worst.hex) +
-                               (!worst.on_boundary   ? " (interior, seen through)"
-                                : f.worst_hidden     ? " (on the boundary, hidden: seen through)"
-                                                     : " (on the boundary)") +
-                               f.worst_note,
-                           f.style);
-  return radius;
+  std::string label = "max " + density_with_ratio(worst.density, f.scale) + ", hex " + std::to_string(worst.hex) +
+                      (!worst.on_boundary ? " (interior, seen through)"
+                       : f.worst_hidden   ? " (on the boundary, hidden: seen through)"
+                                          : " (on the boundary)") +
+                      f.worst_note;
+  if (f.nearest_seen != kNoIndex)
+    label += "\nnearest visible: " + density_with_ratio(f.nearest_density, f.scale) + ", hex " +
+             std::to_string(f.nearest_seen);
+  std::vector<PixelBox> avoid;
+  for (Index h : f.drawn_cells) {
+    if (h == worst.hex) continue;
+    PixelBox box{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                 -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+    for (Index v : mesh.hexes[static_cast<std::size_t>(h)]) {
+      double x = 0, y = 0;
+      if (!to_pixel(point(mesh, v), x, y)) continue;
+      box = {std::min(box.x0, x), std::min(box.y0, y), std::max(box.x1, x), std::max(box.y1, y)};
+    }
+    avoid.push_back(box);
+  }
+  draw_worst_label_outside(figure, view, {x0, y0, x1, y1}, ring.cx, ring.cy, ring.radius, label, f.style, avoid);
+  return ring;
 }
 
 Image finish_figure(Figure& f, const HexMesh& mesh, const ErrorDensityWorst& worst,
@@ -322,10 +447,10 @@ Image finish_figure(Figure& f, const HexMesh& mesh, const ErrorDensityWorst& wor
   Image figure = render_figure(renderer, f.scene, f.camera, options.width, options.height, f.layout, options.title,
                                f.style);
   draw_color_bar(figure, f.layout.legend, f.bar, f.style);
-  const double ring_radius = draw_worst_marker(figure, f, mesh, worst, f.model_points);
+  const Ring ring = draw_worst_marker(figure, f, mesh, worst, f.model_points);
   if (camera) *camera = f.camera;
   if (view) *view = f.layout.view;
-  if (parts) *parts = {f.scene, f.bar.swatches, ring_radius};
+  if (parts) *parts = {f.scene, f.bar.swatches, ring.cx, ring.cy, ring.radius, f.worst_hidden, f.nearest_seen};
   return figure;
 }
 
@@ -350,6 +475,37 @@ double extent_along(std::span<const Vec3> points, const Vec3& a) {
     hi = std::max(hi, dot(p, a));
   }
   return points.empty() ? 0.0 : hi - lo;
+}
+
+// The camera of the hidden-cell verdict: camera's direction and up, the
+// near and far planes enclosing the whole boundary (so every occluder is
+// drawn), framing the cells' boundary faces (orthographic: the view moved
+// across and narrowed to them; perspective: the whole boundary).
+Camera verdict_camera(const HexMesh& mesh, const Topology& topology, std::span<const Index> cells,
+                      const Camera& camera) {
+  Camera verdict =
+      fit_camera_to_points(boundary_points(mesh, topology), camera.target - camera.eye, 1.0,
+                           {.up = camera.up, .fov_y_degrees = camera.fov_y_degrees, .is_perspective = camera.is_perspective});
+  if (verdict.is_perspective) return verdict;
+  std::vector<Index> sorted(cells.begin(), cells.end());
+  std::sort(sorted.begin(), sorted.end());
+  const ScreenAxes axes = screen_axes(verdict);
+  double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
+  for (Index face : topology.boundary_faces) {
+    if (!std::binary_search(sorted.begin(), sorted.end(), face_hex(topology, face))) continue;
+    for (Index v : topology.faces[static_cast<std::size_t>(face)]) {
+      const Vec3 d = point(mesh, v) - verdict.target;
+      x0 = std::min(x0, dot(d, axes.right)), x1 = std::max(x1, dot(d, axes.right));
+      y0 = std::min(y0, dot(d, axes.up)), y1 = std::max(y1, dot(d, axes.up));
+    }
+  }
+  const double size = 1.1 * std::max(x1 - x0, y1 - y0);
+  if (!(size > 0) || size >= verdict.ortho_height) return verdict;
+  const Vec3 shift = 0.5 * (x0 + x1) * axes.right + 0.5 * (y0 + y1) * axes.up;
+  verdict.eye = verdict.eye + shift;
+  verdict.target = verdict.target + shift;
+  verdict.ortho_height = size;
+  return verdict;
 }
 
 }  // namespace
@@ -463,20 +619,35 @@ ColorBar error_density_color_bar(const ErrorDensityScale& scale) {
   const bool max_on_bar = has_max && std::log10(scale.max) > bar.min_value;
   const double max_at = max_on_bar ? std::min(std::log10(scale.max), bar.max_value) : bar.max_value;
   // Round multiples of the reference between (2x, 5x, 10x, 20x, ...; whole
-  // decades over more than two), none crowding an end's label or the max's.
+  // decades over more than two), none crowding an end's label or the max's;
+  // the top end always labelled (issue 48e: warrior_rot's max at 9x, 0.046
+  // decades under it, dropped the 10x tick, and nothing gave the red end's
+  // value): beside the max's tick when more than kTopApart of the span from
+  // it, else in one label with it at the top.
+  constexpr double kApart = 0.08, kTopApart = 0.04;
   const bool decades_only = span > 2.0 + 1e-9;
+  const bool max_at_top = max_on_bar && max_at >= bar.max_value - 1e-12;  // the max is the top, or above it
+  bool merged = false;
   for (int k = 0; k <= static_cast<int>(std::ceil(span)); ++k)
     for (double m : {1.0, 2.0, 5.0}) {
       if (decades_only && m != 1.0) continue;
       const double raw = bar.min_value + std::log10(m) + k;
       if (raw > bar.max_value + 1e-9) continue;
       const double at = std::min(raw, bar.max_value);  // 10x: the top exactly (the bar drops u > 1)
-      if (at - bar.min_value > 0.08 * span &&
-          (!max_on_bar || std::abs(at - max_at) > 0.08 * span))
-        bar.ticks.push_back({at, relative ? times(m * std::pow(10.0, k)) + " (" + value(m * std::pow(10.0, k) * scale.lo) + ")"
-                                          : value(m * std::pow(10.0, k) * scale.lo)});
+      const bool top = at >= bar.max_value - 1e-9;
+      if (!(at - bar.min_value > kApart * span)) continue;
+      std::string label = relative ? times(m * std::pow(10.0, k)) + " (" + value(m * std::pow(10.0, k) * scale.lo) + ")"
+                                   : value(m * std::pow(10.0, k) * scale.lo);
+      if (max_on_bar && std::abs(at - max_at) <= (top ? kTopApart : kApart) * span) {
+        const bool above = std::log10(scale.max) > bar.max_value + 1e-12;  // clamped to the top
+        if (!top || (max_at_top && !above)) continue;  // the max's own label gives the top's value
+        merged = true;  // the max just under the top, or above it: one label
+        label += std::string(above ? ", \u2191 mesh max " : ", mesh max ") + value(scale.max) +
+                 (relative ? " (" + times(scale.max / scale.lo) + ")" : std::string());
+      }
+      bar.ticks.push_back({at, label});
     }
-  if (max_on_bar)
+  if (max_on_bar && !merged)
     bar.ticks.push_back({max_at, (std::log10(scale.max) > bar.max_value + 1e-12 ? "\u2191 mesh max " : "mesh max ") +
                                      value(scale.max) + (relative ? " (" + times(scale.max / scale.lo) + ")" : std::string())});
   bar.swatches = {{kUndefinedColor, "undefined"}};
@@ -559,10 +730,12 @@ Image render_error_density_boundary(const HexMesh& mesh, const Topology& topolog
   // edge-on) shows through it, so the dashed ring circles the max itself,
   // not other hexes' faces (issue 48h round 2).
   f.worst_hidden = max_hex_behind_boundary(f, mesh, topology, worst, renderer);
+  find_nearest_seen(f, mesh, topology, density, worst, renderer);
   add_max_outline(f, mesh, worst);
+  f.drawn_cells = error_density_cells(density, options);  // the label keeps off the densest region
   // The ring and the outline as drawn (issue 48h: the ring was a black
   // box; issue 48: the outline had no entry).
-  for (ColorBarSwatch swatch : error_density_boundary_swatches(worst, f.worst_hidden)) {
+  for (ColorBarSwatch swatch : error_density_boundary_swatches(worst, f.worst_hidden, f.max_undashed)) {
     if (swatch.shape == SwatchShape::dashed_line || swatch.shape == SwatchShape::thick_line)
       swatch.stroke = boundary_max_stroke(f);
     f.bar.swatches.push_back(swatch);
@@ -582,6 +755,7 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   const std::vector<Index> shown = error_density_cells(density, options);
   const std::vector<bool> hidden =
       error_density_cells_behind_boundary(mesh, topology, shown, f.camera, renderer);
+  f.drawn_cells = shown;
   // The veil first (blended over the background only), then the cells and
   // their edges in the overlay layer over it: no veil is ever blended over a
   // cell and no face is shaded, so every face is exactly its colour-bar
@@ -619,6 +793,7 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   // round 2: it was drawn solid, as if in front, where the boundary figure
   // said its faces are not seen): then its front edges are dashed too.
   f.worst_hidden = max_hex_behind_boundary(f, mesh, topology, worst, renderer);
+  find_nearest_seen(f, mesh, topology, density, worst, renderer);
   bool any_low = false, any_hidden = false, max_low = false;
   for (std::size_t k = 0; k < shown.size(); ++k) {
     const Index h = shown[k];
@@ -692,14 +867,23 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   return finish_figure(f, mesh, worst, options, renderer, camera, view, parts);
 }
 
-std::vector<ColorBarSwatch> error_density_boundary_swatches(const ErrorDensityWorst& worst, bool max_hidden) {
+std::vector<ColorBarSwatch> error_density_boundary_swatches(const ErrorDensityWorst& worst, bool max_hidden,
+                                                            bool max_undashed) {
   if (worst.hex == kNoIndex) return {};
   const Color magenta = to_color(kMaxHexEdgeColor);
+  // Issue 48e: what is drawn. A hidden max whose edges are all shorter than
+  // a dash is drawn solid through the surface (a dashed outline that small
+  // was a magenta blot, and the legend said "dashed outline"); a seen one
+  // depth-tested, so only its edges in sight show.
+  if (max_hidden && max_undashed)
+    return {worst_ring_swatch(worst, true),
+            {magenta, "max hex: outline (too small", SwatchShape::thick_line},
+            {magenta, "  to dash; behind: seen through)", SwatchShape::text}};
   if (max_hidden)
     return {worst_ring_swatch(worst, true),
             {magenta, "max hex: dashed outline", SwatchShape::dashed_line},
             {magenta, "  (behind: seen through)", SwatchShape::text}};
-  return {worst_ring_swatch(worst, false), {magenta, "max hex: its edges", SwatchShape::thick_line}};
+  return {worst_ring_swatch(worst, false), {magenta, "max hex: its edges in sight", SwatchShape::thick_line}};
 }
 
 std::vector<ColorBarSwatch> error_density_cells_swatches(const ErrorDensityWorst& worst, bool max_hidden,
@@ -738,14 +922,16 @@ std::vector<bool> error_density_cells_behind_boundary(const HexMesh& mesh, const
   if (cells.empty() || cells.size() + 2 > kMaxId) return hidden;
   const Box3 box = boundary_bounding_box(mesh, topology);
   const Vec3 origin = 0.5 * (box.lo + box.hi);
-  // Decided on its own square id image of kVerdictPixels, the boundary
-  // framed along the camera's direction (issue 48d: at the figure's size a
-  // wider legend, a slightly smaller view, turned warrior_rot's max from
-  // seen to hidden; the verdict now depends on the direction only).
+  // Decided on its own square id image of kVerdictPixels along the
+  // camera's direction (issue 48d: at the figure's size a wider legend, a
+  // slightly smaller view, turned warrior_rot's max from seen to hidden; the
+  // verdict now depends on the direction only), framed on the cells' own
+  // boundary faces (issue 48e: framed on the whole boundary, a 10 x 7 px
+  // max face fell under 48d's 64 px floor and was called hidden though in
+  // plain view; zoomed, the verdict is the fraction alone, whatever the
+  // face's size in the figure).
   constexpr int kVerdictPixels = 1200;
-  const Camera verdict =
-      fit_camera_to_points(boundary_points(mesh, topology), camera.target - camera.eye, 1.0,
-                           {.up = camera.up, .fov_y_degrees = camera.fov_y_degrees, .is_perspective = camera.is_perspective});
+  const Camera verdict = verdict_camera(mesh, topology, cells, camera);
   std::vector<Index> sorted(cells.begin(), cells.end());
   std::sort(sorted.begin(), sorted.end());
   // Each boundary face of the cells its own id, 2 + j (owner[j] its cell's
@@ -753,6 +939,7 @@ std::vector<bool> error_density_cells_behind_boundary(const HexMesh& mesh, const
   TriangleSet own, other;
   own.is_lit = other.is_lit = false;
   std::vector<std::size_t> owner;
+  std::vector<double> area;  // each own face's area (model units^2)
   for (Index face : topology.boundary_faces) {
     const Index h = face_hex(topology, face);
     const auto at = std::lower_bound(sorted.begin(), sorted.end(), h);
@@ -762,6 +949,8 @@ std::vector<bool> error_density_cells_behind_boundary(const HexMesh& mesh, const
     }
     if (owner.size() + 3 > kMaxId) return hidden;
     owner.push_back(static_cast<std::size_t>(std::find(cells.begin(), cells.end(), h) - cells.begin()));
+    const std::array<Index, 4>& q = topology.faces[static_cast<std::size_t>(face)];
+    area.push_back(0.5 * norm(cross(point(mesh, q[2]) - point(mesh, q[0]), point(mesh, q[3]) - point(mesh, q[1]))));
     add_quad(own, mesh, origin, topology.faces[static_cast<std::size_t>(face)],
              id_color(static_cast<std::uint32_t>(owner.size() + 1)));
   }
@@ -780,17 +969,25 @@ std::vector<bool> error_density_cells_behind_boundary(const HexMesh& mesh, const
     if (b.ids[i] >= 2 && b.ids[i] - 2 < owner.size()) ++seen_with[b.ids[i] - 2];
   }
   // Seen: one of its boundary faces shows at least half of what it covers
-  // drawn alone and at least kMinSeenPixels (issue 48d: warrior_rot's max
-  // was called seen on a 5 x 4 px blob its 2 px outline covered; 8 x 8 px
-  // leave its own colour inside the outline), face by face (issue 48c: summed
-  // over the cell, a face turned away, drawn alone, outweighed a face seen
-  // at a grazing angle, and a max at the silhouette whose face is in plain
-  // view was called hidden). Hidden: none is (an interior cell, one behind a
-  // fold or on the far side, or whose faces are off screen or edge-on).
-  constexpr std::size_t kMinSeenPixels = 64;
+  // drawn alone (issue 48e: the fraction only; 48d's 64 px floor made a
+  // small face in plain view hidden), and drawn alone at least
+  // kMinFacing of its area face-on (orthographic: the cosine of its angle
+  // to the view; issue 48e: with the floor gone, armadillo's max face seen
+  // edge-on, a 3 px sliver, was called seen) and kMinSeenPixels, face by
+  // face (issue 48c: summed over the cell, a face turned away, drawn alone,
+  // outweighed a face seen at a grazing angle, and a max at the silhouette
+  // whose face is in plain view was called hidden). Hidden: none is (an
+  // interior cell, one behind a fold or on the far side, or whose faces are
+  // off screen or edge-on).
+  constexpr std::size_t kMinSeenPixels = 16;
+  constexpr double kMinFacing = 0.15;
+  const double pixel = verdict.ortho_height / kVerdictPixels;
   std::fill(hidden.begin(), hidden.end(), true);
-  for (std::size_t j = 0; j < owner.size(); ++j)
-    if (seen_with[j] >= kMinSeenPixels && 2 * seen_with[j] >= seen_alone[j]) hidden[owner[j]] = false;
+  for (std::size_t j = 0; j < owner.size(); ++j) {
+    const bool facing = verdict.is_perspective ||
+                        static_cast<double>(seen_alone[j]) * pixel * pixel >= kMinFacing * area[j];
+    if (facing && seen_alone[j] >= kMinSeenPixels && 2 * seen_with[j] >= seen_alone[j]) hidden[owner[j]] = false;
+  }
   return hidden;
 }
 

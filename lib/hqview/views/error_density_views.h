@@ -125,15 +125,20 @@ Vec3 choose_error_density_viewpoint(const HexMesh& mesh, const Topology& topolog
                                     const ErrorDensityViewOptions& options, Renderer* renderer = nullptr);
 
 // The ring about the max is at least this many pixels (times the style's
-// scale) in radius.
+// scale) in radius, at most kMaxRingFraction of the view's smaller side,
+// and inside the view (moved in from its edges when the max is at one).
 inline constexpr double kMinRingRadius = 18.0;
+inline constexpr double kMaxRingFraction = 0.15;
 
-// What a figure drew, for tests: the 3D scene, the legend's swatches and
-// the ring's radius in pixels (0: no max).
+// What a figure drew, for tests: the 3D scene, the legend's swatches, the
+// ring's centre and radius in pixels (radius 0: no max), whether the max
+// was called hidden and the seen hex named beside it (kNoIndex: none).
 struct ErrorDensityFigureParts {
   Scene scene;
   std::vector<ColorBarSwatch> swatches;
-  double ring_radius = 0;
+  double ring_x = 0, ring_y = 0, ring_radius = 0;
+  bool max_hidden = false;
+  Index nearest_seen = kNoIndex;
 };
 
 // The two figures; `camera` (may be null) receives the 3D camera and
@@ -155,7 +160,10 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
 // ring, the max's front edges (thick; dashed when hidden) and back edges
 // (thin dashed), the veil, the cells' edges, and when drawn the low-SJ
 // edges and the dashed edges of hidden cells.
-std::vector<ColorBarSwatch> error_density_boundary_swatches(const ErrorDensityWorst& worst, bool max_hidden);
+// A hidden max drawn solid (max_undashed: every edge shorter than a dash)
+// says so.
+std::vector<ColorBarSwatch> error_density_boundary_swatches(const ErrorDensityWorst& worst, bool max_hidden,
+                                                            bool max_undashed = false);
 struct ErrorDensityCellsMarks {
   bool any_low = false;     // a drawn cell with scaled Jacobian below the threshold
   bool max_low = false;     // ... the max among them (its halo black)
@@ -173,14 +181,15 @@ std::array<bool, 12> hex_edges_facing(const HexMesh& mesh, const Hex& hex, const
 
 // Which of `cells` the boundary hides from the direction of `camera`: a
 // cell none of whose boundary faces, drawn opaque with the whole boundary,
-// shows at least half of the pixels it covers drawn alone and at least 64
-// pixels, face by face (id images, Renderer::render_ids, of 1200 x 1200 px
-// framing the boundary along the camera's direction, so the verdict does
-// not depend on the figure's size or legend): an interior cell, one behind
-// a fold or on the far side, or one only a sliver of which shows. Face by
-// face (issue 48c): one face seen at a grazing angle makes a cell seen,
-// however large its faces turned away. All false when the renderer draws
-// no id images.
+// shows at least half of the pixels it covers drawn alone, face by face (id
+// images, Renderer::render_ids, of 1200 x 1200 px along the camera's
+// direction framing the cells' boundary faces, so the verdict depends on
+// neither the figure's size and legend nor the face's size; issue 48e),
+// a face drawn alone covering under 0.15 of its area (seen edge-on) or 16
+// px not counted: an interior cell, one behind a fold or on the far side,
+// or one seen only edge-on. Face by face (issue 48c): one face seen at a
+// grazing angle makes a cell seen, however large its faces turned away.
+// All false when the renderer draws no id images.
 std::vector<bool> error_density_cells_behind_boundary(const HexMesh& mesh, const Topology& topology,
                                                       std::span<const Index> cells, const Camera& camera,
                                                       Renderer& renderer);

@@ -898,7 +898,7 @@ std::vector<ViewFile> build_fem_error_density(ViewContext& c) {
                   (std::isfinite(min_sj) ? " (mesh: min SJ " + display_number(min_sj, 2) + ", " +
                                                std::to_string(not_positive) + " with SJ \u2264 0)"
                                          : std::string()) +
-                  "; " + max_text;
+                  ";\n" + max_text;  // two lines (issue 48e: on one it shrank below the legend's text)
   files.push_back(framed("views/fem_error_density_cells.png",
                          render_error_density_cells(c.a.mesh, c.a.topology, p.cell_error_density,
                                                     c.a.field.cell_scaled_jacobian, direction, options, c.renderer),
