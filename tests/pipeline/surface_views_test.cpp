@@ -8,9 +8,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <memory>
 #include <numeric>
 #include <sstream>
@@ -790,11 +792,71 @@ TEST(SurfaceViews, TheFirstMainViewOfATurnedBellIsOffItsAxis) {
   EXPECT_GE(sight[target[0]].seen, 0.5);
   EXPECT_GE(sight[target[0]].in_colour, 0.5);
 }
+// The 47d review: a turned bowl lay on its side like a dish, a turned bell
+// leant 35-40 degrees (the views kept the file's +z up). Under --up auto a
+// curved surface of revolution takes its axis as the views' up
+// (surface_view_up): the bell of the tests above turned 1.3 rad about
+// (-0.6, 0.2, 0.75) and mirrored (x negated), one face reversed. The
+// viewer's up is the turned axis, signed towards +z; in every 3D view drawn
+// (main 1 and 2, the overview, the structure view) the axis projects
+// within 3 degrees of the image's up. The same bell stretched 1.3 times
+// along x has an axis (model_axis: the shortest) but no circular
+// cross-section (eigenvalues 30 % apart): its views keep +z.
+TEST(SurfaceViews, ATurnedSurfaceOfRevolutionStandsUprightInEveryView) {
+  const Vec3 k = normalized(Vec3{-0.6, 0.2, 0.75});
+  const double angle = 1.3;
+  const auto turn = [&](const Vec3& p) {  // Rodrigues, then the mirror
+    const Vec3 r = std::cos(angle) * p + std::sin(angle) * cross(k, p) + (1.0 - std::cos(angle)) * dot(k, p) * k;
+    return Vec3{-r.x, r.y, r.z};
+  };
+  Grid g = bell_of_revolution(turn);
+  std::swap(g.quads[4 + kBellRings * 9][1], g.quads[4 + kBellRings * 9][3]);
+  const test::TempDir dir("surface_upright_bell");
+  AnalyzeOptions options;
+  options.mesh_path = dir.write("bell.obj", obj_text(g));
+  options.tool_version = "test";
+  options.up_auto = true;
+  options.viewer = false;
+  options.views.width = 640;
+  options.views.height = 480;
+  options.views.views = {"main", "overview", "structure"};
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  ASSERT_TRUE(renderer);
+  const AnalyzeResult result = analyze(options, renderer.get());
+  Vec3 axis = turn({0, 0, 1}) - turn({0, 0, 0});
+  if (axis.z < 0.0) axis = -1.0 * axis;
+  EXPECT_GT(dot(normalized(result.model.viewer_up), normalized(axis)), 1.0 - 1e-9);
+  int cameras = 0;
+  for (const ViewEntry& view : result.model.views)
+    for (const std::optional<ViewCameraEntry>& c : view.cameras) {
+      if (!c) continue;
+      ++cameras;
+      const Vec3 forward = normalized(c->target - c->eye);
+      const Vec3 on_screen = axis - dot(axis, forward) * forward;
+      const double degrees = std::acos(std::clamp(dot(normalized(on_screen), normalized(c->up)), -1.0, 1.0)) * 180.0 / std::acos(-1.0);
+      EXPECT_LT(degrees, 3.0) << view.id;
+    }
+  EXPECT_EQ(cameras, 4);
+
+  Grid stretched = bell_of_revolution([](const Vec3& p) { return Vec3{1.3 * p.x, p.y, p.z}; });
+  const test::TempDir other("surface_stretched_bell");
+  options.mesh_path = other.write("stretched.obj", obj_text(stretched));
+  const Analysis a = analyze_mesh(options);
+  EXPECT_TRUE(model_axis(a.mesh.points).has_value());
+  EXPECT_FALSE(revolution_axis(a.mesh.points).has_value());
+  EXPECT_EQ(surface_view_up(a.mesh, a.topology, {0, 0, 1}), (Vec3{0, 0, 1}));
+}
+
 // The overview's "in sight" line of a planar mesh's outlined inverted faces
 // and, per such cell, the share of its face's area whose pixels carry its id
 // in an id image of every face through the overview's camera.
-std::pair<std::string, std::vector<double>> planar_overview_sight(const Analysis& a, const std::vector<Index>& cells,
-                                                                   Renderer& renderer) {
+struct PlanarSight {
+  std::string line;
+  std::vector<double> pixels;
+  OverviewOptions overview;
+  OverviewFrame frame;
+};
+PlanarSight planar_overview_sight(const Analysis& a, const std::vector<Index>& cells, Renderer& renderer) {
   OverviewOptions overview;
   overview.outline_inverted_faces = true;
   overview.outline_on_top = true;
@@ -814,7 +876,18 @@ std::pair<std::string, std::vector<double>> planar_overview_sight(const Analysis
   for (Index c : cells)
     for (std::size_t i = 0; i < polygons.size(); ++i)
       if (polygons[i].cell == c) seen.push_back(pixels[i]);
-  return {line, seen};
+  return {line, seen, overview, frame};
+}
+
+// The length of a line set's segments (model units).
+double drawn_length(const LineSet& set) {
+  double length = 0.0;
+  for (std::size_t i = 0; i + 1 < set.indices.size(); i += 2)
+  {
+    const Vec3f a = set.positions[set.indices[i]], b = set.positions[set.indices[i + 1]];
+    length += std::hypot(double{b.x} - a.x, double{b.y} - a.y, double{b.z} - a.z);
+  }
+  return length;
 }
 
 // The 47c review: a planar L-shape seen along its normal said "2 in sight,
@@ -844,7 +917,7 @@ TEST(SurfaceViews, APlanarMeshsOverviewCountsNoFarSide) {
     for (std::size_t c = 0; c < g.quads.size(); ++c)
       if (a.field.cell_scaled_jacobian[c] <= 0.0) cells.push_back(static_cast<Index>(c));
     ASSERT_EQ(cells.size(), 3u);
-    const auto [line, pixels] = planar_overview_sight(a, cells, *renderer);
+    const auto [line, pixels, overview, frame] = planar_overview_sight(a, cells, *renderer);
     EXPECT_EQ(line, "all in sight");
     for (double p : pixels) EXPECT_GT(p, 20.0);
   }
@@ -861,12 +934,38 @@ TEST(SurfaceViews, APlanarMeshsOverviewCountsNoFarSide) {
     for (std::size_t c = 0; c < g.quads.size(); ++c)
       if (a.field.cell_scaled_jacobian[c] <= 0.0) cells.push_back(static_cast<Index>(c));
     ASSERT_GE(cells.size(), 1u);
-    const auto [line, pixels] = planar_overview_sight(a, cells, *renderer);
+    const auto [line, pixels, overview, frame] = planar_overview_sight(a, cells, *renderer);
     const auto shown = static_cast<std::size_t>(std::count_if(pixels.begin(), pixels.end(), [](double p) { return p > 0.0; }));
     EXPECT_EQ(line, shown == cells.size() ? std::string("all in sight")
                                           : std::to_string(shown) + " in sight, " + std::to_string(cells.size() - shown) +
                                                 " under an overlapping face")
         << "pixels of the first: " << pixels.at(0);
+    // The 47d review: the hidden face was outlined like those in sight.
+    // Here one of the three is (a sliver inside the other two), drawn
+    // dashed (its outline 1/1.7 of its perimeter, in the thinner set), the
+    // others solid, whole; the legend's dashed line says so.
+    ASSERT_EQ(frame.hidden_cells.size(), cells.size() - shown);
+    EXPECT_EQ(frame.hidden_cells.size(), 1u);
+    const auto perimeter = [&](const std::vector<Index>& of) {
+      double sum = 0.0;
+      for (Index c : of) {
+        const auto& q = a.mesh.quads[static_cast<std::size_t>(c)];
+        for (int i = 0; i < 4; ++i)
+          sum += norm(a.mesh.points[static_cast<std::size_t>(q[static_cast<std::size_t>((i + 1) % 4)])] -
+                      a.mesh.points[static_cast<std::size_t>(q[static_cast<std::size_t>(i)])]);
+      }
+      return sum;
+    };
+    std::vector<Index> seen;
+    std::set_difference(cells.begin(), cells.end(), frame.hidden_cells.begin(), frame.hidden_cells.end(), std::back_inserter(seen));
+    const std::array<LineSet, 4> outlines = inverted_face_outlines(a.mesh, overview, frame, {});
+    EXPECT_NEAR(drawn_length(outlines[3]), perimeter(seen), 1e-5 * perimeter(cells));
+    EXPECT_NEAR(drawn_length(outlines[1]), perimeter(frame.hidden_cells) / 1.7, 1e-5 * perimeter(cells));
+    EXPECT_LT(outlines[1].width, outlines[3].width);
+    const bool legend_says = std::any_of(frame.bar.swatches.begin(), frame.bar.swatches.end(), [](const ColorBarSwatch& s) {
+      return s.label == "dashed: under an overlapping face" && s.shape == SwatchShape::dashed_line;
+    });
+    EXPECT_EQ(legend_says, !frame.hidden_cells.empty());
   }
 }
 

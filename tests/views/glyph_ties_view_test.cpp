@@ -147,6 +147,69 @@ TEST(GlyphTiesView, ExactlyTiedWorstCornersAreDrawnAlikeAndLabelledAsATie) {
   EXPECT_EQ(runs, 3);
 }
 
+// The 47d review: a tied worst glyph on the far side of a surface (pale)
+// wore a ring as dark as #0's in sight, which drew the eye to nothing.
+// The three tied dents with #2 marked on the far side: its ring is pale
+// (far_side_color: the dark pixels of its ring's annulus, against the same
+// view without the mark, fall to under a quarter), #0's stays dark, and
+// the legend adds "pale ring: #2 on the far side" in the pale ring's
+// colours; without the mark no such line.
+TEST(GlyphTiesView, ATiedWorstGlyphOnTheFarSideWearsAPaleRing) {
+  const Case c = dented({0.375, 0.375, 0.375});
+  ASSERT_GE(c.glyphs.clusters.size(), 3u);
+  MainViewOptions options;
+  options.width = 800;
+  options.height = 600;
+  MainViewOptions far = options;
+  far.far_side_glyphs.assign(c.glyphs.clusters.size(), 0);
+  far.far_side_glyphs[2] = 1;
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  ASSERT_TRUE(renderer);
+  const MainViewLabels labels = main_view_labels(c.mesh, c.topology, c.glyphs, nullptr, kDirection, options, nullptr, renderer.get());
+  ASSERT_TRUE(labels.worst_is_tied);
+  const Image plain = render_main_view(c.mesh, c.topology, c.glyphs, nullptr, kDirection, options, *renderer);
+  const Image paled = render_main_view(c.mesh, c.topology, c.glyphs, nullptr, kDirection, far, *renderer);
+  // Dark pixels (every channel under 60) in the annulus 1 to 14 px outside a glyph.
+  const auto dark_ring_pixels = [](const Image& image, const ScreenDisc& d) {
+    int dark = 0;
+    for (int y = static_cast<int>(d.y - d.radius - 15); y <= static_cast<int>(d.y + d.radius + 15); ++y)
+      for (int x = static_cast<int>(d.x - d.radius - 15); x <= static_cast<int>(d.x + d.radius + 15); ++x) {
+        const double r = std::hypot(x + 0.5 - d.x, y + 0.5 - d.y);
+        if (x < 0 || y < 0 || x >= image.width || y >= image.height || r < d.radius + 1 || r > d.radius + 14) continue;
+        const std::uint8_t* p = image.rgba.data() + pixel_offset(image, x, y);
+        dark += p[0] < 60 && p[1] < 60 && p[2] < 60;
+      }
+    return dark;
+  };
+  // (Each image with its own labels: a longer legend may narrow the view.)
+  const MainViewLabels far_labels =
+      main_view_labels(c.mesh, c.topology, c.glyphs, nullptr, kDirection, far, nullptr, renderer.get());
+  ASSERT_EQ(far_labels.worst_class_glyphs.size(), labels.worst_class_glyphs.size());
+  int checked = 0;
+  for (std::size_t i = 0; i < labels.worst_class_glyphs.size(); ++i) {
+    const ScreenDisc& d = labels.worst_class_glyphs[i];
+    ASSERT_EQ(far_labels.worst_class_glyphs[i].id, d.id);
+    const int before = dark_ring_pixels(plain, d), after = dark_ring_pixels(paled, far_labels.worst_class_glyphs[i]);
+    EXPECT_GT(before, 30) << "#" << d.id;
+    if (d.id == 2) {
+      EXPECT_LT(after, before / 4) << "#2";
+      ++checked;
+    } else {
+      EXPECT_GT(after, 30) << "#" << d.id;
+    }
+  }
+  EXPECT_EQ(checked, 1);
+  const AnnotationStyle style;
+  bool said = false;
+  for (const LegendLine& line : main_legend_lines(c.glyphs, nullptr, style, far, labels.glyph_scale, {}, 0))
+    if (line.text == "pale ring: #2 on the far side") {
+      said = true;
+      EXPECT_EQ(line.swatch, far_side_color(style.text_color));
+    }
+  EXPECT_TRUE(said);
+  for (const std::string& text : legend_texts(c.glyphs, labels.glyph_scale)) EXPECT_EQ(text.find("pale ring"), std::string::npos);
+}
+
 TEST(GlyphTiesView, ADeeperDentBreaksTheTie) {
   const Case c = dented({0.375, 0.5, 0.375});
   ASSERT_GE(c.glyphs.clusters.size(), 3u);

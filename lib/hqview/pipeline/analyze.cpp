@@ -17,6 +17,7 @@
 #include "hqview/mesh/surface_boundary.h"
 #include "hqview/quality/quality_summary.h"
 #include "hqview/render/upright.h"
+#include "hqview/views/surface_views.h"
 
 namespace hq {
 namespace fs = std::filesystem;
@@ -32,9 +33,12 @@ void release_cell_faces(Topology& topology) {
   std::vector<Index>().swap(topology.cell_face_uses);
 }
 
-// The up axis of every view: --up's, or the resting one under --up auto.
+// The up axis of every view: --up's, or under --up auto the resting one
+// (a volume mesh) or a curved surface's axis of revolution
+// (surface_view_up).
 Vec3 views_up(const Analysis& a, const AnalyzeOptions& options) {
-  return a.resting_up ? a.resting_up->up : options.views.up;
+  if (a.resting_up) return a.resting_up->up;
+  return options.up_auto ? surface_view_up(a.mesh, a.topology, options.views.up) : options.views.up;
 }
 
 // One hex mesh from its file: the source opened once, then read.
@@ -517,6 +521,7 @@ AnalyzeResult analyze(const AnalyzeOptions& options, Renderer* renderer) {
   model.has_viewer = renderer && options.viewer;
   model.viewer_max_mb = options.viewer_max_mb;
   model.viewer_up = views.up;
+  model.up_auto = options.up_auto;
   model.viewer_error_density_reference = views.error_density_reference;
   // Gates read the finished report, so any numeric key can be gated on.
   {

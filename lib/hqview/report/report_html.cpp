@@ -303,7 +303,11 @@ data input_rows(const ReportModel& model) {
                                                        ? (model.analysis.resting_up->from_data
                                                               ? " (--up auto: the pose it would rest in)"
                                                               : " (--up auto: no resting pose, the default)")
-                                                       : " (--up)")));
+                                                       : model.up_auto && is_surface_mesh(model.analysis.mesh)
+                                                           ? (model.viewer_up == Vec3{0.0, 0.0, 1.0}
+                                                                  ? " (--up auto: no axis of revolution, the default)"
+                                                                  : " (--up auto: the surface's axis of revolution)")
+                                                           : " (--up)")));
   rows.push_back(kv("HQView", model.tool_version));
   rows.push_back(kv("metric definitions", "Verdict 1.4.5 (hex), Si and Chen (IEEE VIS 2023) vertex quality"));
   return rows;

@@ -68,6 +68,7 @@ struct ReportModel {
   bool has_viewer = false;
   double viewer_max_mb = 25;  // --viewer-max-mb
   Vec3 viewer_up{0.0, 0.0, 1.0};  // --up
+  bool up_auto = false;           // --up auto (the default): viewer_up chosen per mesh
   double viewer_error_density_reference = 0;  // --error-density-reference
 };
 

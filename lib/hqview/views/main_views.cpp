@@ -1216,6 +1216,9 @@ namespace {
 // the inverted ring's, which begins there too).
 // A tied #0's class: no stretch inside another glyph of the class (others),
 // so that no ring crosses a worst glyph.
+// A glyph on the far side of a surface (is_far_side) wears the ring paled as
+// its glyph is (far_side_color): a ring as strong as #0's in sight drew the
+// eye to a glyph with nothing to see behind it (the 47d review's gbell).
 void draw_worst_glyph_ring(Image& figure, const ScreenDisc& worst, bool is_inverted, const AnnotationStyle& style,
                            const MainViewOptions& options, std::span<const ScreenDisc> others = {}) {
   if (!(worst.radius > 0.0)) return;
@@ -1233,9 +1236,10 @@ void draw_worst_glyph_ring(Image& figure, const ScreenDisc& worst, bool is_inver
     Rgba8 color;
   };
   const double band_outer = radius - 0.5 * ring_width;
+  const bool pale = is_far_side(static_cast<Index>(worst.id), options);
   const Pass passes[] = {{0.5 * (inner + outer), outer - inner, halo},
-                         {0.5 * (inner + band_outer), band_outer - inner, kWorstBandColor},
-                         {radius, ring_width, style.text_color}};
+                         {0.5 * (inner + band_outer), band_outer - inner, pale ? far_side_color(kWorstBandColor) : kWorstBandColor},
+                         {radius, ring_width, pale ? far_side_color(style.text_color) : style.text_color}};
   constexpr int kSegments = 96;
   for (const Pass& pass : passes)
     for (int i = 0; i < kSegments; ++i) {
@@ -1436,6 +1440,16 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
                      worst_is_tied ? "ring: worst clusters #0-#" + std::to_string(tie_sizes[0] - 1)
                                    : std::string("ring: worst cluster #0"),
                      0, SwatchShape::solid_ring, kWorstBandColor});
+  // Ringed glyphs on the far side wear it pale (draw_worst_glyph_ring).
+  if (!glyphs.clusters.empty() && glyphs.clusters[0].radius > 0.0) {
+    const std::size_t ringed = worst_is_tied ? static_cast<std::size_t>(tie_sizes[0]) : 1;
+    std::string far;
+    for (std::size_t k = 0; k < ringed && k < glyphs.clusters.size(); ++k)
+      if (is_far_side(static_cast<Index>(k), options)) far += (far.empty() ? "#" : ", #") + std::to_string(k);
+    if (!far.empty())
+      lines.push_back({far_side_color(style.text_color), "pale ring: " + far + " on the far side", 0,
+                       SwatchShape::solid_ring, far_side_color(kWorstBandColor)});
+  }
   if (!glyphs.clusters.empty() && has_inverted_ring(glyphs.clusters[0], options))
     lines.push_back({to_rgba8(kInvertedColor), "ring: inverted (min < 0)", 0, SwatchShape::solid_ring});
   // A surface mesh's coloured glyphs seen through it, in the first such one's pale colour.

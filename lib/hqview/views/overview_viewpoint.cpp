@@ -191,8 +191,8 @@ Index cells_in_sight(const HexMesh& mesh, const Topology& topology, std::span<co
   return static_cast<Index>(std::count(shown.begin(), shown.end(), 1));
 }
 
-Index cells_under_other_faces(const HexMesh& mesh, const Topology& topology, std::span<const Index> cells,
-                              const Camera& camera) {
+std::vector<Index> cells_under_other_faces(const HexMesh& mesh, const Topology& topology, std::span<const Index> cells,
+                                           const Camera& camera) {
   const std::vector<BoundaryPolygon> faces = boundary_polygons(topology);
   const Vec3 forward = normalized(camera.target - camera.eye);
   const Vec3 right = normalized(cross(forward, camera.up)), upward = cross(right, forward);
@@ -257,9 +257,10 @@ Index cells_under_other_faces(const HexMesh& mesh, const Topology& topology, std
   }
   // A cell with one face in sight is in sight.
   std::sort(seen.begin(), seen.end());
-  return static_cast<Index>(std::count_if(covered.begin(), covered.end(), [&](Index c) {
-    return !std::binary_search(seen.begin(), seen.end(), c);
-  }));
+  std::sort(covered.begin(), covered.end());
+  covered.erase(std::unique(covered.begin(), covered.end()), covered.end());
+  std::erase_if(covered, [&](Index c) { return std::binary_search(seen.begin(), seen.end(), c); });
+  return covered;
 }
 
 Vec3 overview_view_direction(const Vec3& up, const Vec3& front, double azimuth_degrees, double elevation_degrees) {

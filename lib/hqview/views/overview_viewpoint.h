@@ -77,12 +77,12 @@ Index cells_in_sight(const HexMesh& mesh, const Topology& topology, std::span<co
                      double aspect);
 // A planar mesh seen along its normal has no far side (the 47c review: "2 in
 // sight, 1 on the far side" on an L-shape whose three reversed quads were
-// all drawn): how many of cells have every corner sample of every boundary
-// face inside another boundary face's image (the image plane through
-// camera, a crossing-number test), the faces under an overlapping face
-// (a fold); the others are in sight.
-Index cells_under_other_faces(const HexMesh& mesh, const Topology& topology, std::span<const Index> cells,
-                              const Camera& camera);
+// all drawn): the cells (ascending) that have every corner sample of every
+// boundary face inside another boundary face's image (the image plane
+// through camera, a crossing-number test), the faces under an overlapping
+// face (a fold); the others are in sight.
+std::vector<Index> cells_under_other_faces(const HexMesh& mesh, const Topology& topology, std::span<const Index> cells,
+                                           const Camera& camera);
 
 // The horizontal axis the overview's eye turns around (its azimuth 0), from
 // the model, not the file (issue 45f: a copy turned about up or turned over

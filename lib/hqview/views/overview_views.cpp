@@ -616,12 +616,20 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
     // A planar mesh (seen along its normal, outlines on top) has no far
     // side: a face is hidden only under an overlapping one (a fold).
     const auto all = static_cast<Index>(options.inverted_cells.size());
-    const Index hidden = options.outline_on_top ? cells_under_other_faces(mesh, topology, options.inverted_cells, f.camera)
+    if (options.outline_on_top) f.hidden_cells = cells_under_other_faces(mesh, topology, options.inverted_cells, f.camera);
+    const Index hidden = options.outline_on_top ? static_cast<Index>(f.hidden_cells.size())
                                                 : all - cells_in_sight(mesh, topology, options.inverted_cells, f.camera, aspect);
     const char* where = options.outline_on_top ? " under an overlapping face" : " on the far side";
-    for (ColorBarSwatch& s : f.bar.swatches)
-      if (s.label.find(" in sight, ") != std::string::npos)
-        s.label = hidden == 0 ? std::string("all in sight") : std::to_string(all - hidden) + " in sight, " + std::to_string(hidden) + where;
+    for (auto s = f.bar.swatches.begin(); s != f.bar.swatches.end(); ++s)
+      if (s->label.find(" in sight, ") != std::string::npos) {
+        s->label = hidden == 0 ? std::string("all in sight") : std::to_string(all - hidden) + " in sight, " + std::to_string(hidden) + where;
+        // The hidden ones' outline, as drawn (render_quality_overview);
+        // no wider than the line above it, so the layout stands.
+        if (!f.hidden_cells.empty())
+          f.bar.swatches.insert(s + 1, {to_color(kInvertedOutlineColor), "dashed: under an overlapping face",
+                                        SwatchShape::dashed_line});
+        break;
+      }
   }
   f.label_size = std::max(f.style.min_text_size, static_cast<int>(std::lround(20.0 * f.style.scale)));
   return f;
@@ -735,6 +743,63 @@ bool rings_under_insets(std::span<const InvertedCallout> callouts, std::span<con
   return rings_under(callouts, rects, thickness);
 }
 
+std::array<LineSet, 4> inverted_face_outlines(const HexMesh& mesh, const OverviewOptions& options, const OverviewFrame& f,
+                                              const Vec3& origin) {
+  // Whole inverted faces, over the fill and the edges: a 4 px line on a
+  // 7 px white halo, apart from the black edges and the blue fill. The
+  // faces under an overlapping face (a planar fold: f.hidden_cells) dashed,
+  // 2 px on a 4 px halo, so the legend's "N under an overlapping face" can
+  // be counted in the picture (the 47d review).
+  const FigureLayout& layout = f.layout;
+  const double base = f.style.scale / kOverviewTextScale;  // 1 at 1200 px of height
+  std::array<LineSet, 4> sets;
+  LineSet &hidden_halo = sets[0], &hidden_outline = sets[1], &halo = sets[2], &outline = sets[3];
+  halo.width = static_cast<float>(std::max(4.0, 7.0 * base));
+  outline.width = static_cast<float>(std::max(2.0, 4.0 * base));
+  hidden_halo.width = static_cast<float>(std::max(3.0, 4.0 * base));
+  hidden_outline.width = static_cast<float>(std::max(1.5, 2.0 * base));
+  for (LineSet& set : sets) set.in_overlay = options.outline_on_top;
+  const double aspect = static_cast<double>(layout.view.width) / std::max(1, layout.view.height);
+  const double dash_pixels = std::max(6.0, 10.0 * base);
+  const auto add_segment = [&](LineSet& h, LineSet& o, const Vec3& a, const Vec3& b) {
+    for (LineSet* set : {&h, &o})
+      for (const Vec3& p : {a, b}) {
+        set->indices.push_back(static_cast<std::uint32_t>(set->positions.size()));
+        set->positions.push_back(to_vec3f(p - origin));
+        set->colors.push_back(set == &h ? Rgba8{255, 255, 255, 255} : kInvertedOutlineColor);
+      }
+  };
+  const auto add_face = [&](const std::array<Index, 4>& v, int size, bool is_hidden) {
+    for (int i = 0; i < size; ++i) {
+      const Vec3& a = mesh.points[static_cast<std::size_t>(v[static_cast<std::size_t>(i)])];
+      const Vec3& b = mesh.points[static_cast<std::size_t>(v[static_cast<std::size_t>((i + 1) % size)])];
+      if (!is_hidden) {
+        add_segment(halo, outline, a, b);
+        continue;
+      }
+      // Dashes of about dash_pixels, gaps of 0.7 of that, whole periods.
+      const Vec3 pa = project_to_ndc(f.camera, aspect, a), pb = project_to_ndc(f.camera, aspect, b);
+      const double pixels = 0.5 * std::hypot((pb.x - pa.x) * layout.view.width, (pb.y - pa.y) * layout.view.height);
+      const int dashes = std::max(1, static_cast<int>(pixels / (1.7 * dash_pixels)));
+      for (int k = 0; k < dashes; ++k) {
+        const double t0 = (k + 0.15) / dashes, t1 = (k + 0.15 + 1.0 / 1.7) / dashes;
+        add_segment(hidden_halo, hidden_outline, a + t0 * (b - a), a + t1 * (b - a));
+      }
+    }
+  };
+  for (Index c : options.inverted_cells) {
+    const auto i = static_cast<std::size_t>(c);
+    const bool is_hidden = std::binary_search(f.hidden_cells.begin(), f.hidden_cells.end(), c);
+    if (i < mesh.quads.size())
+      add_face(mesh.quads[i], 4, is_hidden);
+    else if (i - mesh.quads.size() < mesh.triangles.size()) {
+      const auto& t = mesh.triangles[i - mesh.quads.size()];
+      add_face({t[0], t[1], t[2], kNoIndex}, 3, is_hidden);
+    }
+  }
+  return sets;
+}
+
 Image render_quality_overview(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
                               const OverviewOptions& options, Renderer& renderer) {
   // The rings' groups (id images only) and the insets' pictures first, so
@@ -754,37 +819,9 @@ Image render_quality_overview(const HexMesh& mesh, const Topology& topology, con
   const double opacity = edge_opacity(scene, f.camera, layout.view.width, layout.view.height);
   for (LineSet& lines : scene.lines)
     for (Rgba8& c : lines.colors) c.a = static_cast<std::uint8_t>(std::lround(c.a * opacity));
-  if (options.outline_inverted_faces) {
-    // Whole inverted faces, over the fill and the edges: a 4 px line on a
-    // 7 px white halo, apart from the black edges and the blue fill.
-    const double base = style.scale / kOverviewTextScale;  // 1 at 1200 px of height
-    LineSet halo, outline;
-    halo.width = static_cast<float>(std::max(4.0, 7.0 * base));
-    outline.width = static_cast<float>(std::max(2.0, 4.0 * base));
-    halo.in_overlay = outline.in_overlay = options.outline_on_top;
-    const auto add_face = [&](const std::array<Index, 4>& v, int size) {
-      for (int i = 0; i < size; ++i)
-        for (Index p : {v[static_cast<std::size_t>(i)], v[static_cast<std::size_t>((i + 1) % size)]}) {
-          const Vec3f at = to_vec3f(mesh.points[static_cast<std::size_t>(p)] - scene.origin);
-          for (LineSet* set : {&halo, &outline}) {
-            set->indices.push_back(static_cast<std::uint32_t>(set->positions.size()));
-            set->positions.push_back(at);
-            set->colors.push_back(set == &halo ? Rgba8{255, 255, 255, 255} : kInvertedOutlineColor);
-          }
-        }
-    };
-    for (Index c : options.inverted_cells) {
-      const auto i = static_cast<std::size_t>(c);
-      if (i < mesh.quads.size())
-        add_face(mesh.quads[i], 4);
-      else if (i - mesh.quads.size() < mesh.triangles.size()) {
-        const auto& t = mesh.triangles[i - mesh.quads.size()];
-        add_face({t[0], t[1], t[2], kNoIndex}, 3);
-      }
-    }
-    scene.lines.push_back(std::move(halo));
-    scene.lines.push_back(std::move(outline));
-  }
+  if (options.outline_inverted_faces)
+    for (LineSet& set : inverted_face_outlines(mesh, options, f, scene.origin))
+      if (!set.positions.empty()) scene.lines.push_back(std::move(set));
 
   if (!options.intersecting_cell_ids.empty())
     for (LineSet& set : intersecting_cell_edges(mesh, options, scene.origin, style)) scene.lines.push_back(std::move(set));

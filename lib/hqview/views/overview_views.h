@@ -4,6 +4,7 @@
 // report.
 
 #include <algorithm>
+#include <array>
 #include <functional>
 #include <span>
 #include <string>
@@ -180,9 +181,22 @@ struct OverviewFrame {
   FigureLayout layout;
   Camera camera;
   int label_size = 0;  // the rings' labels and the insets' captions (pixels)
+  // With outline_on_top, the outlined cells under an overlapping face
+  // (cells_under_other_faces), ascending: outlined dashed and thinner,
+  // with a legend line of their own.
+  std::vector<Index> hidden_cells;
 };
 OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topology,
                                     const std::vector<double>& vertex_quality, const OverviewOptions& options);
+
+// The outlines of options.inverted_cells (outline_inverted_faces) as the
+// overview draws them over its frame f: the cells of f.hidden_cells dashed
+// (pieces of about 10 px with 7 px gaps at 1200 px of height, each edge
+// whole periods) in a 2 px line on a 4 px white halo, the others solid
+// 4 px on 7 px; in order hidden halo, hidden line, halo, line, positions
+// relative to origin.
+std::array<LineSet, 4> inverted_face_outlines(const HexMesh& mesh, const OverviewOptions& options, const OverviewFrame& f,
+                                              const Vec3& origin);
 
 // The overview's plan (render_quality_overview's): its frame, whose
 // layout.view is where the model is drawn (the whole view, less the insets'

@@ -14,6 +14,8 @@
 #include "hqview/glyph/glyph_ties.h"
 #include "hqview/image/colormap.h"
 #include "hqview/mesh/boundary_polygons.h"
+#include "hqview/mesh/mesh_summary.h"
+#include "hqview/mesh/planarity.h"
 #include "hqview/quality/hex_metrics.h"
 #include "hqview/render/camera.h"
 #include "hqview/render/upright.h"
@@ -134,7 +136,16 @@ std::size_t best_of(std::span<const double> score, const std::vector<bool>& allo
 
 }  // namespace
 
-std::optional<Vec3> model_axis(std::span<const Vec3> points) {
+namespace {
+
+// The points' principal axes: the eigenvalues of their covariance,
+// ascending, and the unit eigenvectors; none for fewer than 3 points.
+struct PrincipalAxes {
+  std::array<double, 3> value{};
+  std::array<Vec3, 3> axis{};
+};
+
+std::optional<PrincipalAxes> principal_axes(std::span<const Vec3> points) {
   if (points.size() < 3) return std::nullopt;
   Vec3 mean;
   for (const Vec3& p : points) mean = mean + p;
@@ -170,13 +181,69 @@ std::optional<Vec3> model_axis(std::span<const Vec3> points) {
       }
   std::array<int, 3> order{0, 1, 2};
   std::sort(order.begin(), order.end(), [&](int a, int b) { return c[a][a] < c[b][b]; });
-  const double l0 = c[order[0]][order[0]], l1 = c[order[1]][order[1]], l2 = c[order[2]][order[2]];
-  if (!(l2 > 0.0)) return std::nullopt;
+  PrincipalAxes out;
+  for (int i = 0; i < 3; ++i) {
+    const int k = order[static_cast<std::size_t>(i)];
+    out.value[static_cast<std::size_t>(i)] = c[k][k];
+    out.axis[static_cast<std::size_t>(i)] = Vec3{v[0][k], v[1][k], v[2][k]};
+  }
+  return out;
+}
+
+// model_axis's choice: the index (0 or 2) of the eigenvalue farther from
+// the middle one, or none.
+std::optional<std::size_t> axis_index(const PrincipalAxes& p) {
+  const auto& l = p.value;
+  if (!(l[2] > 0.0)) return std::nullopt;
   // The eigenvalue farther from the middle one: the longest axis (a vase)
   // or the shortest (a bell, a dish).
-  const int k = l2 - l1 >= l1 - l0 ? order[2] : order[0];
-  if (std::abs(c[k][k] - l1) < kAxisGap * l2) return std::nullopt;
-  return Vec3{v[0][k], v[1][k], v[2][k]};
+  const std::size_t k = l[2] - l[1] >= l[1] - l[0] ? 2 : 0;
+  if (std::abs(l[k] - l[1]) < kAxisGap * l[2]) return std::nullopt;
+  return k;
+}
+
+}  // namespace
+
+std::optional<Vec3> model_axis(std::span<const Vec3> points) {
+  const std::optional<PrincipalAxes> p = principal_axes(points);
+  const std::optional<std::size_t> k = p ? axis_index(*p) : std::nullopt;
+  if (!k) return std::nullopt;
+  return p->axis[*k];
+}
+
+std::optional<Vec3> revolution_axis(std::span<const Vec3> points) {
+  const std::optional<PrincipalAxes> p = principal_axes(points);
+  const std::optional<std::size_t> k = p ? axis_index(*p) : std::nullopt;
+  if (!k) return std::nullopt;
+  // The two other eigenvalues: 0 and 1 about the longest axis, 1 and 2
+  // about the shortest.
+  const double a = p->value[*k == 2 ? 0 : 1], b = p->value[*k == 2 ? 1 : 2];
+  if (b - a > kRevolutionAlike * b) return std::nullopt;
+  return p->axis[*k];
+}
+
+Vec3 surface_view_up(const HexMesh& mesh, const Topology& topology, const Vec3& up) {
+  if (!is_surface_mesh(mesh)) return up;
+  const Box3 box = referenced_bounding_box(mesh, topology);
+  if (measure_planarity(mesh, box.is_empty() ? 0.0 : norm(box.hi - box.lo)).is_planar) return up;
+  std::vector<Vec3> points;
+  points.reserve(mesh.points.size());
+  for (std::size_t v = 0, u = 0; v < mesh.points.size(); ++v) {
+    const auto& unused = topology.unreferenced_vertices;
+    while (u < unused.size() && static_cast<std::size_t>(unused[u]) < v) ++u;
+    if (u == unused.size() || static_cast<std::size_t>(unused[u]) != v) points.push_back(mesh.points[v]);
+  }
+  const std::optional<Vec3> axis = revolution_axis(points);
+  if (!axis) return up;
+  // The file's up decides the sign; an axis across it, its largest component.
+  double along = dot(*axis, up);
+  if (std::abs(along) < 1e-9) {
+    const Vec3& x = *axis;
+    along = std::abs(x.x) >= std::abs(x.y) && std::abs(x.x) >= std::abs(x.z) ? x.x
+            : std::abs(x.y) >= std::abs(x.z)                                   ? x.y
+                                                                               : x.z;
+  }
+  return along < 0.0 ? -1.0 * *axis : *axis;
 }
 
 std::vector<Vec3> choose_surface_main_viewpoints(const HexMesh& mesh, const Topology& topology,
@@ -237,15 +304,25 @@ std::vector<Vec3> choose_surface_main_viewpoints(const HexMesh& mesh, const Topo
   // hard to read; off the model's axis: the 47c review's turned bell seen
   // 27 degrees off its axis read as a disc or a funnel) before #0's faces
   // at their very best.
+  // An eye above the horizon that sees #0's faces at kInSightFraction
+  // before any from below (the 47d review: the mirrored kitten from -25
+  // read as a blob).
+  struct Tier {
+    bool above, off_axis;
+    double least;
+  };
+  static constexpr Tier kTiers[] = {
+      {true, true, kNearBestFraction},  {true, true, kRecognisableFraction},  {true, false, kNearBestFraction},
+      {true, false, kRecognisableFraction}, {true, true, kInSightFraction},   {true, false, kInSightFraction},
+      {false, true, kNearBestFraction}, {false, true, kRecognisableFraction}, {false, false, kNearBestFraction}};
   std::vector<bool> allowed(candidates.size(), false);
   std::size_t first = candidates.size();
-  for (int tier = 0; tier < 4 && first == candidates.size(); ++tier)
-    for (double least : {kNearBestFraction, kRecognisableFraction}) {
-      if (first != candidates.size() || (tier == 3 && least < kNearBestFraction)) break;
-      for (std::size_t c = 0; c < candidates.size(); ++c)
-        allowed[c] = f[c][0] >= least && (tier >= 2 || above[c]) && (tier % 2 == 1 || off_axis[c]);
-      first = best_of(score, allowed);
-    }
+  for (const Tier& tier : kTiers) {
+    for (std::size_t c = 0; c < candidates.size(); ++c)
+      allowed[c] = f[c][0] >= tier.least && (!tier.above || above[c]) && (!tier.off_axis || off_axis[c]);
+    first = best_of(score, allowed);
+    if (first != candidates.size()) break;
+  }
   std::vector<Vec3> chosen{candidates[first]};
   if (count < 2) return chosen;
   // View 2: what view 1 shows least, from the model's other side when that

@@ -55,11 +55,27 @@ inline constexpr int kSurfaceViewTargets = 3;
 // ball, a cube, a kitten: no axis to avoid) or the points span no volume.
 inline constexpr double kAxisGap = 0.15;
 std::optional<Vec3> model_axis(std::span<const Vec3> points);
+// A surface of revolution's axis: model_axis when the two other eigenvalues
+// are alike (within kRevolutionAlike of the larger: the cross-section a
+// circle, as a bowl's, a bell's, a vase's), else none (a kitten, a bar).
+inline constexpr double kRevolutionAlike = 0.05;
+std::optional<Vec3> revolution_axis(std::span<const Vec3> points);
+// The up axis of a curved surface mesh's views under --up auto (a surface
+// has no resting pose: resting_up.h needs a solid): the revolution_axis of
+// the vertices its faces use,
+// signed to agree with `up` (the file's +z; an axis across it: its largest
+// component positive), so a bowl or a bell turned in its file stands
+// upright on screen (the 47d review: a bowl lay on its side like a dish, a
+// bell leant 35-40 degrees); `up` for any other mesh, planar ones too.
+Vec3 surface_view_up(const HexMesh& mesh, const Topology& topology, const Vec3& up);
 // View 1's eye at least this far off that axis: seen along it a body of
 // revolution is concentric rings (a disc, a funnel), its profile lost.
 inline constexpr double kOffAxisDegrees = 45.0;
 // #0's faces at least half their best projected area (f_0 below).
 inline constexpr double kRecognisableFraction = 0.5;
+// #0's faces in sight enough for an eye above the horizon to be taken
+// before any below it (f_0 below).
+inline constexpr double kInSightFraction = 0.25;
 // Candidates: the upright ones (upright_view_candidates), the views from the
 // horizon and below (below_view_candidates), and along each target's mean
 // face normal (its faces' normals turned to agree with its largest face's,
@@ -73,8 +89,10 @@ inline constexpr double kRecognisableFraction = 0.5;
 // taken in tiers, the first tier with one: above the horizon and at least
 // kOffAxisDegrees off model_axis (either sign), f_0 >= kNearBestFraction;
 // the same with f_0 >= kRecognisableFraction; above the horizon (any
-// axis), f_0 >= kNearBestFraction, then >= kRecognisableFraction; off the
-// axis (below too), the same two; then any with f_0 >= kNearBestFraction.
+// axis), f_0 >= kNearBestFraction, then >= kRecognisableFraction; above
+// the horizon with f_0 >= kInSightFraction, off the axis then any; off the
+// axis (below too), f_0 >= kNearBestFraction then >= kRecognisableFraction;
+// then any with f_0 >= kNearBestFraction.
 // Within the tier, the first (upright ones first) whose sum of the other
 // targets' f_k is at least kNearBestFraction of the largest such sum. View 2 shows what view 1
 // shows least: the same near-best rule on the sum of (1 - f_k(view 1) +
