@@ -942,7 +942,7 @@ TEST(SurfaceViews, APlanarMeshsOverviewCountsNoFarSide) {
         << "pixels of the first: " << pixels.at(0);
     // The 47d review: the hidden face was outlined like those in sight.
     // Here one of the three is (a sliver inside the other two), drawn
-    // dashed (its outline 1/1.7 of its perimeter, in the thinner set), the
+    // dashed (its outline 1/1.7 of its perimeter, in the set drawn last), the
     // others solid, whole; the legend's dashed line says so.
     ASSERT_EQ(frame.hidden_cells.size(), cells.size() - shown);
     EXPECT_EQ(frame.hidden_cells.size(), 1u);
@@ -959,9 +959,9 @@ TEST(SurfaceViews, APlanarMeshsOverviewCountsNoFarSide) {
     std::vector<Index> seen;
     std::set_difference(cells.begin(), cells.end(), frame.hidden_cells.begin(), frame.hidden_cells.end(), std::back_inserter(seen));
     const std::array<LineSet, 4> outlines = inverted_face_outlines(a.mesh, overview, frame, {});
-    EXPECT_NEAR(drawn_length(outlines[3]), perimeter(seen), 1e-5 * perimeter(cells));
-    EXPECT_NEAR(drawn_length(outlines[1]), perimeter(frame.hidden_cells) / 1.7, 1e-5 * perimeter(cells));
-    EXPECT_LT(outlines[1].width, outlines[3].width);
+    EXPECT_NEAR(drawn_length(outlines[1]), perimeter(seen), 1e-5 * perimeter(cells));
+    EXPECT_NEAR(drawn_length(outlines[3]), perimeter(frame.hidden_cells) / 1.7, 1e-5 * perimeter(cells));
+    EXPECT_EQ(outlines[3].width, outlines[1].width) << "the dashes as wide as the solid lines, drawn after them";
     const bool legend_says = std::any_of(frame.bar.swatches.begin(), frame.bar.swatches.end(), [](const ColorBarSwatch& s) {
       return s.label == "dashed: under an overlapping face" && s.shape == SwatchShape::dashed_line;
     });

@@ -748,16 +748,15 @@ std::array<LineSet, 4> inverted_face_outlines(const HexMesh& mesh, const Overvie
   // Whole inverted faces, over the fill and the edges: a 4 px line on a
   // 7 px white halo, apart from the black edges and the blue fill. The
   // faces under an overlapping face (a planar fold: f.hidden_cells) dashed,
-  // 2 px on a 4 px halo, so the legend's "N under an overlapping face" can
-  // be counted in the picture (the 47d review).
+  // as wide and drawn after them, so the legend's "N under an overlapping
+  // face" can be counted in the picture (the 47d review; the 47f review:
+  // thinner dashes drawn first were 1-2 px specks beside the solid lines).
   const FigureLayout& layout = f.layout;
   const double base = f.style.scale / kOverviewTextScale;  // 1 at 1200 px of height
   std::array<LineSet, 4> sets;
-  LineSet &hidden_halo = sets[0], &hidden_outline = sets[1], &halo = sets[2], &outline = sets[3];
-  halo.width = static_cast<float>(std::max(4.0, 7.0 * base));
-  outline.width = static_cast<float>(std::max(2.0, 4.0 * base));
-  hidden_halo.width = static_cast<float>(std::max(3.0, 4.0 * base));
-  hidden_outline.width = static_cast<float>(std::max(1.5, 2.0 * base));
+  LineSet &halo = sets[0], &outline = sets[1], &hidden_halo = sets[2], &hidden_outline = sets[3];
+  halo.width = hidden_halo.width = static_cast<float>(std::max(4.0, 7.0 * base));
+  outline.width = hidden_outline.width = static_cast<float>(std::max(2.0, 4.0 * base));
   for (LineSet& set : sets) set.in_overlay = options.outline_on_top;
   const double aspect = static_cast<double>(layout.view.width) / std::max(1, layout.view.height);
   const double dash_pixels = std::max(6.0, 10.0 * base);

@@ -192,9 +192,9 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
 // The outlines of options.inverted_cells (outline_inverted_faces) as the
 // overview draws them over its frame f: the cells of f.hidden_cells dashed
 // (pieces of about 10 px with 7 px gaps at 1200 px of height, each edge
-// whole periods) in a 2 px line on a 4 px white halo, the others solid
-// 4 px on 7 px; in order hidden halo, hidden line, halo, line, positions
-// relative to origin.
+// whole periods), the others solid, both a 4 px line on a 7 px white halo;
+// in order halo, line, hidden halo, hidden line (the dashes drawn over the
+// solid lines), positions relative to origin.
 std::array<LineSet, 4> inverted_face_outlines(const HexMesh& mesh, const OverviewOptions& options, const OverviewFrame& f,
                                               const Vec3& origin);
 
