@@ -90,6 +90,16 @@ void add_sheared_hex(HexMesh& mesh, const Vec3& base, double size, double height
 // copy of a top cell shifted by (0.3, 0.3, 0.2) (it intersects its original
 // and neighbours), 8 of them around the dent and the rest spread over the
 // top; and a sheared hex floating above the dent.
+// Appends a copy of cell (a hex of mesh, taken by value) moved by shift.
+void add_shifted_copy(HexMesh& mesh, const std::array<Index, 8> cell, const Vec3& shift) {
+  std::array<Index, 8> copy{};
+  for (std::size_t k = 0; k < 8; ++k) {
+    copy[k] = static_cast<Index>(mesh.points.size());
+    mesh.points.push_back(mesh.points[static_cast<std::size_t>(cell[k])] + shift);
+  }
+  mesh.hexes.push_back(copy);
+}
+
 HexMesh injected_overlaps() {
   HexMesh mesh = test::box_grid(24, 24, 2);
   const auto point_id = [](int i, int j, int k) { return static_cast<Index>(i + 25 * (j + 25 * k)); };
@@ -98,16 +108,7 @@ HexMesh injected_overlaps() {
   std::vector<std::pair<int, int>> where{{11, 11}, {12, 11}, {11, 12}, {12, 12},
                                          {10, 12}, {13, 12}, {12, 10}, {12, 13}};
   for (int n = 0; n < 52; ++n) where.push_back({(n * 7) % 24, (n * 11 + 3) % 24});
-  for (const auto& [i, j] : where) {
-    const std::array<Index, 8> cell = mesh.hexes[cell_id(i, j, 1)];
-    std::array<Index, 8> copy{};
-    for (int k = 0; k < 8; ++k) {
-      copy[static_cast<std::size_t>(k)] = static_cast<Index>(mesh.points.size());
-      mesh.points.push_back(mesh.points[static_cast<std::size_t>(cell[static_cast<std::size_t>(k)])] +
-                            Vec3{0.3, 0.3, 0.2});
-    }
-    mesh.hexes.push_back(copy);
-  }
+  for (const auto& [i, j] : where) add_shifted_copy(mesh, mesh.hexes[cell_id(i, j, 1)], Vec3{0.3, 0.3, 0.2});
   // A sheared hex floating 4.5 above the dent (scaled Jacobian 0.23 at every
   // corner: a poor cluster of its own, too far from the dent's to join
   // it): from above, its glyphs lie in front of #0's.
@@ -628,15 +629,8 @@ TEST(MainViewLabels, OverlappingStack) {
 TEST(MainViewLabels, LeadersKeepOffTheArrows) {
   HexMesh mesh = test::box_grid(10, 10, 2);
   mesh.points[static_cast<std::size_t>(5 + 11 * (5 + 11 * 2))].z = 0.6;
-  for (const auto& [i, j] : {std::pair{5, 5}, std::pair{1, 2}, std::pair{7, 2}, std::pair{2, 7}}) {
-    const std::array<Index, 8> cell = mesh.hexes[static_cast<std::size_t>(i + 10 * (j + 10))];
-    std::array<Index, 8> copy{};
-    for (std::size_t k = 0; k < 8; ++k) {
-      copy[k] = static_cast<Index>(mesh.points.size());
-      mesh.points.push_back(mesh.points[static_cast<std::size_t>(cell[k])] + Vec3{0.3, 0.3, 0.2});
-    }
-    mesh.hexes.push_back(copy);
-  }
+  for (const auto& [i, j] : {std::pair{5, 5}, std::pair{1, 2}, std::pair{7, 2}, std::pair{2, 7}})
+    add_shifted_copy(mesh, mesh.hexes[static_cast<std::size_t>(i + 10 * (j + 10))], Vec3{0.3, 0.3, 0.2});
   const Case c = analyse(std::move(mesh));
   ASSERT_LT(c.glyphs.clusters.at(0).min_quality, 0.0);
   const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
@@ -676,13 +670,7 @@ TEST(MainViewLabels, InjectedOverlapsAroundAnInvertedCorner) {
 // marker leader inside a coloured glyph's disc.
 TEST(MainViewLabels, FansKeepOffEveryColouredGlyph) {
   HexMesh mesh = injected_overlaps();
-  const std::array<Index, 8> sheared = mesh.hexes.back();
-  std::array<Index, 8> copy{};
-  for (std::size_t k = 0; k < 8; ++k) {
-    copy[k] = static_cast<Index>(mesh.points.size());
-    mesh.points.push_back(mesh.points[static_cast<std::size_t>(sheared[k])] + Vec3{0.25, 0.2, 0.1});
-  }
-  mesh.hexes.push_back(copy);
+  add_shifted_copy(mesh, mesh.hexes.back(), Vec3{0.25, 0.2, 0.1});
   const Case c = analyse(std::move(mesh));
   const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
   const MainViewOptions options;
