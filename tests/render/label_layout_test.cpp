@@ -288,5 +288,22 @@ TEST(LabelLayout, ALabelFindsTheFreeWedgeBetweenBlockedDirections) {
   EXPECT_FALSE(place_labels(std::span(&one, 1), spokes, {}, near)[0]);
 }
 
+// Two leaders that run side by side read as one line (the 44e shots):
+// 40 px at 2 px apart do, two leaving one point at a right angle do not,
+// nor two parallel ones 8 px apart. A second label whose only near place
+// would lay its leader along the first's gets another (clear) place.
+TEST(LabelLayout, LeadersDoNotRunTogether) {
+  auto leader = [](double x0, double y0, double x1, double y1) {
+    PlacedLabel p;
+    p.has_leader = true;
+    p.leader_x0 = x0, p.leader_y0 = y0, p.leader_x1 = x1, p.leader_y1 = y1;
+    return p;
+  };
+  EXPECT_TRUE(leaders_run_together(leader(100, 100, 60, 100), leader(100, 102, 60, 102)));
+  EXPECT_FALSE(leaders_run_together(leader(100, 100, 60, 100), leader(100, 100, 100, 60)));
+  EXPECT_FALSE(leaders_run_together(leader(100, 100, 60, 100), leader(100, 108, 60, 108)));
+  EXPECT_FALSE(leaders_run_together(leader(100, 100, 60, 100), PlacedLabel{}));
+}
+
 }  // namespace
 }  // namespace hq

@@ -46,6 +46,7 @@
 #include "hqview/overlap/overlap.h"
 #include "hqview/quality/quality_field.h"
 #include "hqview/render/osmesa_renderer.h"
+#include "hqview/render/scene_shapes.h"
 #include "hqview/views/main_views.h"
 #include "support/fixtures.h"
 
@@ -89,6 +90,16 @@ void add_sheared_hex(HexMesh& mesh, const Vec3& base, double size, double height
 // copy of a top cell shifted by (0.3, 0.3, 0.2) (it intersects its original
 // and neighbours), 8 of them around the dent and the rest spread over the
 // top; and a sheared hex floating above the dent.
+// Appends a copy of cell (a hex of mesh, taken by value) moved by shift.
+void add_shifted_copy(HexMesh& mesh, const std::array<Index, 8> cell, const Vec3& shift) {
+  std::array<Index, 8> copy{};
+  for (std::size_t k = 0; k < 8; ++k) {
+    copy[k] = static_cast<Index>(mesh.points.size());
+    mesh.points.push_back(mesh.points[static_cast<std::size_t>(cell[k])] + shift);
+  }
+  mesh.hexes.push_back(copy);
+}
+
 HexMesh injected_overlaps() {
   HexMesh mesh = test::box_grid(24, 24, 2);
   const auto point_id = [](int i, int j, int k) { return static_cast<Index>(i + 25 * (j + 25 * k)); };
@@ -97,16 +108,7 @@ HexMesh injected_overlaps() {
   std::vector<std::pair<int, int>> where{{11, 11}, {12, 11}, {11, 12}, {12, 12},
                                          {10, 12}, {13, 12}, {12, 10}, {12, 13}};
   for (int n = 0; n < 52; ++n) where.push_back({(n * 7) % 24, (n * 11 + 3) % 24});
-  for (const auto& [i, j] : where) {
-    const std::array<Index, 8> cell = mesh.hexes[cell_id(i, j, 1)];
-    std::array<Index, 8> copy{};
-    for (int k = 0; k < 8; ++k) {
-      copy[static_cast<std::size_t>(k)] = static_cast<Index>(mesh.points.size());
-      mesh.points.push_back(mesh.points[static_cast<std::size_t>(cell[static_cast<std::size_t>(k)])] +
-                            Vec3{0.3, 0.3, 0.2});
-    }
-    mesh.hexes.push_back(copy);
-  }
+  for (const auto& [i, j] : where) add_shifted_copy(mesh, mesh.hexes[cell_id(i, j, 1)], Vec3{0.3, 0.3, 0.2});
   // A sheared hex floating 4.5 above the dent (scaled Jacobian 0.23 at every
   // corner: a poor cluster of its own, too far from the dent's to join
   // it): from above, its glyphs lie in front of #0's.
@@ -341,6 +343,56 @@ std::vector<std::string> near_leaders_over_glyphs(const MainViewLabels& labels, 
   return wrong;
 }
 
+// Every fan draws all its arrows (the 44d review: lshape's "x8" fan, kept
+// off #2's glyph, showed 4): the scene's arrows (overlay 0, each arrow the
+// same number of vertices, append_arrow) number the marker labels' counts,
+// each capped at max_arrows_per_marker. "drew 9 arrows for 12" each.
+std::vector<std::string> arrows_short_of_counts(const Scene& scene, const MainViewLabels& labels,
+                                                const MainViewOptions& options) {
+  TriangleSet one;
+  append_arrow(one, Vec3f{0.0f, 0.0f, 0.0f}, Vec3f{1.0f, 0.0f, 0.0f}, ArrowShape{0.1f, 0.2f, 0.3f, 16}, Rgba8{});
+  std::size_t expected = 0;
+  for (const MainViewLabel& l : labels.labels)
+    if (l.kind == MainViewLabel::Kind::marker)
+      expected += static_cast<std::size_t>(std::min<Index>(l.count, options.max_arrows_per_marker));
+  const std::size_t vertices = scene.overlay.empty() ? 0 : scene.overlay[0].positions.size();
+  if (vertices == expected * one.positions.size()) return {};
+  return {"drew " + std::to_string(vertices / one.positions.size()) + " arrows for " + std::to_string(expected)};
+}
+
+// Leaders and arrows stay separate marks (the 44d review: the "#2 (4)"
+// leader lay on an arrow of #2's x8 fan, lshape's ran 6 px beside one):
+// the arrow pixels (id image) within 3 px of a leader, sampled every
+// 0.5 px, past the first 24 px of a marker label's leader (it leaves its
+// own fan between the arrow heads, 20 px long); at most 2 a leader.
+std::vector<std::string> leaders_along_arrows(const MainViewLabels& labels) {
+  std::vector<std::string> wrong;
+  for (const MainViewLabel& l : labels.labels) {
+    const PlacedLabel& p = l.placement;
+    if (!p.has_leader) continue;
+    const double length = std::hypot(p.leader_x1 - p.leader_x0, p.leader_y1 - p.leader_y0);
+    const double skip = l.kind == MainViewLabel::Kind::marker ? 24.0 * labels.ids.height / 1200.0 : 0.0;
+    std::vector<std::pair<int, int>> hits;
+    for (int i = 0; i <= static_cast<int>(2.0 * length); ++i) {
+      const double s = 0.5 * i;
+      if (s < skip) continue;
+      const double x = p.leader_x0 + s / length * (p.leader_x1 - p.leader_x0);
+      const double y = p.leader_y0 + s / length * (p.leader_y1 - p.leader_y0);
+      for (int dy = -3; dy <= 3; ++dy)
+        for (int dx = -3; dx <= 3; ++dx) {
+          const int px = static_cast<int>(std::floor(x)) + dx, py = static_cast<int>(std::floor(y)) + dy;
+          if (std::hypot(px + 0.5 - x, py + 0.5 - y) <= 3.0 && labels.ids.at(px, py) == kIdMarker &&
+              std::find(hits.begin(), hits.end(), std::make_pair(px, py)) == hits.end())
+            hits.push_back({px, py});
+        }
+    }
+    if (hits.size() > 2)
+      wrong.push_back(l.text + (l.is_callout ? " (callout)" : "") + " leader within 3 px of " + std::to_string(hits.size()) + " arrow pixels, first at (" +
+                      std::to_string(hits[0].first) + ", " + std::to_string(hits[0].second) + ")");
+  }
+  return wrong;
+}
+
 // The 44l review's rules, for meshes with room to spare: every coloured
 // cluster that shows is labelled (none "no room"), and no near label's
 // leader crosses another glyph where a way out exists
@@ -434,6 +486,7 @@ void expect_clear_views(const Case& c, const char* name, bool expect_findings = 
     }
     for (const std::string& w : leaders_over_higher_ranks(labels, labels.ids)) ADD_FAILURE() << w;
     for (const std::string& w : marks_over_coloured_glyphs(labels)) ADD_FAILURE() << w;
+    for (const std::string& w : arrows_short_of_counts(scene, labels, options)) ADD_FAILURE() << w;
     const std::vector<ScreenDisc> discs = glyph_discs(scene, labels);
     if (strict.all_labelled)
       for (Index c : labels.unlabelled_clusters) ADD_FAILURE() << "no room for #" << c;
@@ -566,6 +619,38 @@ TEST(MainViewLabels, OverlappingStack) {
   expect_clear_views(c, "overlapping stack", true, Vec3{0.1, 0.15, -1.0});
 }
 
+// Leaders keep off the arrows where the fans leave room (a 10 x 10 x 2
+// grid dented to an inverted #0, with shifted copies of 4 cells: one under
+// #0, three apart; no two fans overlap): from both main views no leader
+// runs within 3 px of an arrow (leaders_along_arrows) and every fan draws
+// its count of arrows. (Where a coincident and an intersection fan overlap,
+// injected_overlaps' corners, a leader out of one may still cross the
+// other's arrows.)
+TEST(MainViewLabels, LeadersKeepOffTheArrows) {
+  HexMesh mesh = test::box_grid(10, 10, 2);
+  mesh.points[static_cast<std::size_t>(5 + 11 * (5 + 11 * 2))].z = 0.6;
+  for (const auto& [i, j] : {std::pair{5, 5}, std::pair{1, 2}, std::pair{7, 2}, std::pair{2, 7}})
+    add_shifted_copy(mesh, mesh.hexes[static_cast<std::size_t>(i + 10 * (j + 10))], Vec3{0.3, 0.3, 0.2});
+  const Case c = analyse(std::move(mesh));
+  ASSERT_LT(c.glyphs.clusters.at(0).min_quality, 0.0);
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  const MainViewOptions options;
+  const std::vector<Vec3> directions = choose_main_viewpoints(main_view_points(c.mesh, c.topology, c.glyphs), c.glyphs,
+                                                              main_view_aspect(options), 2, options.up, options.fov_y_degrees);
+  std::size_t marker_leaders = 0;
+  for (const Vec3& direction : directions) {
+    SCOPED_TRACE(viewpoint_name(direction, options.up));
+    Scene scene;
+    const MainViewLabels labels =
+        main_view_labels(c.mesh, c.topology, c.glyphs, &c.overlap, direction, options, &scene, renderer.get());
+    for (const MainViewLabel& l : labels.labels)
+      marker_leaders += l.kind == MainViewLabel::Kind::marker && l.placement.has_leader ? 1 : 0;
+    for (const std::string& w : arrows_short_of_counts(scene, labels, options)) ADD_FAILURE() << w;
+    for (const std::string& w : leaders_along_arrows(labels)) ADD_FAILURE() << w;
+  }
+  EXPECT_GE(marker_leaders, 4u);
+}
+
 TEST(MainViewLabels, InjectedOverlapsAroundAnInvertedCorner) {
   const Case c = analyse(injected_overlaps());
   ASSERT_FALSE(c.glyphs.clusters.empty());
@@ -585,13 +670,7 @@ TEST(MainViewLabels, InjectedOverlapsAroundAnInvertedCorner) {
 // marker leader inside a coloured glyph's disc.
 TEST(MainViewLabels, FansKeepOffEveryColouredGlyph) {
   HexMesh mesh = injected_overlaps();
-  const std::array<Index, 8> sheared = mesh.hexes.back();
-  std::array<Index, 8> copy{};
-  for (std::size_t k = 0; k < 8; ++k) {
-    copy[k] = static_cast<Index>(mesh.points.size());
-    mesh.points.push_back(mesh.points[static_cast<std::size_t>(sheared[k])] + Vec3{0.25, 0.2, 0.1});
-  }
-  mesh.hexes.push_back(copy);
+  add_shifted_copy(mesh, mesh.hexes.back(), Vec3{0.25, 0.2, 0.1});
   const Case c = analyse(std::move(mesh));
   const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
   const MainViewOptions options;
@@ -601,8 +680,11 @@ TEST(MainViewLabels, FansKeepOffEveryColouredGlyph) {
   directions.push_back(Vec3{0.1, 0.15, -1.0});
   std::size_t fans_on_coloured = 0;  // marker groups within 2 radii of a coloured glyph (not #0): the case is built
   for (const Vec3& direction : directions) {
+    Scene scene;
     const MainViewLabels labels = main_view_labels(c.mesh, c.topology, c.glyphs, &c.overlap, direction, options,
-                                                   nullptr, renderer.get());
+                                                   &scene, renderer.get());
+    for (const std::string& w : arrows_short_of_counts(scene, labels, options))
+      ADD_FAILURE() << viewpoint_name(direction, options.up) << ": " << w;
     for (const MainViewLabel& l : labels.labels)
       if (l.kind == MainViewLabel::Kind::marker)
         for (const ScreenDisc& d : labels.coloured_glyphs)

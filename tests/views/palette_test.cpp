@@ -393,6 +393,49 @@ TEST(Palette, ShadedClusterColoursStayApart) {
     }
 }
 
+// The critical pairs as drawn (the 44d review: under tritanopia #1's lit
+// sphere beside an inverted face read as one teal): every shade of a
+// cluster's sphere (ShadedClusterColoursStayApart's, from its 25 % dark
+// side to a highlight) keeps kCriticalApart from the inverted and overlap
+// colours, for normal vision and under each simulation. The shades as the
+// renderer's sphere shader makes them (osmesa_renderer.cpp, linear RGB):
+// the colour times ambient 0.25 to full light, plus a highlight of up to
+// 0.25; nearest_shade is the smallest CIEDE2000 over them.
+double nearest_shade(const Rgba8& cluster, const Rgba8& critical, const Matrix* m) {
+  auto seen = [&](std::array<double, 3> rgb) {
+    if (m) {
+      const std::array<double, 3> in = rgb;
+      for (std::size_t i = 0; i < 3; ++i)
+        rgb[i] = std::clamp((*m)[i][0] * in[0] + (*m)[i][1] * in[1] + (*m)[i][2] * in[2], 0.0, 1.0);
+    }
+    return test::lab_of_linear(rgb);
+  };
+  const Lab other = seen(test::linear_of(critical));
+  double nearest = 1e9;
+  for (int l = 0; l <= 75; ++l)
+    for (int s = 0; s <= 10; ++s) {
+      std::array<double, 3> rgb = test::linear_of(cluster);
+      for (double& v : rgb) v = std::min(v * (0.25 + 0.01 * l) + 0.025 * s, 1.0);
+      nearest = std::min(nearest, ciede2000(seen(rgb), other));
+    }
+  return nearest;
+}
+TEST(Palette, ShadedClusterColoursApartFromTheCriticalColoursForEveryVision) {
+  for (const Named& c : cluster_colors())
+    for (const Named& k : critical_colors())
+      for (const Matrix* m : {static_cast<const Matrix*>(nullptr), &kProtanopia, &kDeuteranopia, &kTritanopia})
+        EXPECT_GE(nearest_shade(c.color, k.color, m), kCriticalApart)
+            << c.name << " vs " << k.name << (m == &kTritanopia ? " (tritanopia)" : "");
+  // #1 against the inverted blue under tritanopia (the review's pair):
+  // 13.3 at a shade, 20 flat.
+  EXPECT_GE(nearest_shade(to_rgba8(labelled_cluster_color(1)), to_rgba8(kInvertedColor), &kTritanopia), 12.0);
+  // The rule rejects a #1 of the inverted blue's family (a steel blue that
+  // is 13.7 from it for normal vision, 6 at a shade under tritanopia).
+  const Rgba8 steel{0x44, 0x66, 0xee, 255};
+  EXPECT_GE(delta_e(steel, to_rgba8(kInvertedColor)), kCriticalApart);
+  EXPECT_LT(nearest_shade(steel, to_rgba8(kInvertedColor), &kTritanopia), kCriticalApart);
+}
+
 TEST(Palette, ThePalettesBeforeFailTheseRules) {
   // Issue 44 part T's 6 colours: the dark green #0f8700 and the red #0
   // under deuteranopia (the 44t review: 14.9), the mint #00f0a5 and the

@@ -108,6 +108,21 @@ bool segments_meet(const Point& a, const Point& b, const Point& c, const Point& 
 
 }  // namespace
 
+bool leaders_run_together(const PlacedLabel& a, const PlacedLabel& b) {
+  if (!a.has_leader || !b.has_leader) return false;
+  const double dx = a.leader_x1 - a.leader_x0, dy = a.leader_y1 - a.leader_y0, length2 = dx * dx + dy * dy;
+  const double length = std::hypot(b.leader_x1 - b.leader_x0, b.leader_y1 - b.leader_y0);
+  const int steps = static_cast<int>(std::ceil(length / 2.0));
+  int together = 0;
+  for (int i = 0; i <= steps; ++i) {
+    const double s = steps > 0 ? static_cast<double>(i) / steps : 0.0;
+    const double x = b.leader_x0 + s * (b.leader_x1 - b.leader_x0), y = b.leader_y0 + s * (b.leader_y1 - b.leader_y0);
+    const double t = length2 > 0.0 ? std::clamp(((x - a.leader_x0) * dx + (y - a.leader_y0) * dy) / length2, 0.0, 1.0) : 0.0;
+    together += std::hypot(a.leader_x0 + t * dx - x, a.leader_y0 + t * dy - y) < 5.0 ? 1 : 0;
+  }
+  return 2 * together > 15;  // more than 15 px of b within 5 px of a
+}
+
 bool leaders_cross(const PlacedLabel& a, const PlacedLabel& b) {
   return a.has_leader && b.has_leader &&
          segments_meet({a.leader_x0, a.leader_y0}, {a.leader_x1, a.leader_y1}, {b.leader_x0, b.leader_y0},
@@ -329,6 +344,11 @@ std::optional<PlacedLabel> LabelPlacer::place(const LabelRequest& label, const D
                           [&](const PlacedLabel& l) { return leaders_cross(l, r); }))
         return c;
       if (leader_through_box) return c;
+      // Nor one that runs along an earlier leader (the 44e shots: a fan's
+      // "x13" leader 2 px under "#1 (10)"'s reads as one line).
+      if (any_leader_near(r.leader_x0, r.leader_y0, r.leader_x1, r.leader_y1,
+                          [&](const PlacedLabel& l) { return leaders_run_together(l, r); }))
+        return c;
       c.pass = 1;
       // (Nor here does a disc holding the leader's start count, unless the
       // leader heads into it.)

@@ -85,7 +85,8 @@ struct PlacedLabel {
 // anchor disc or another obstacle disc is not clearly farther (within the
 // anchor's gap + leader_distance: the label would read as that one's).
 // The first pass takes only clear candidates: not beside another disc
-// unless it has a leader, its leader crossing no earlier leader, no placed
+// unless it has a leader, its leader crossing no earlier leader (nor
+// running along one, leaders_run_together), no placed
 // box and no obstacle disc but its own anchor (nor coming within
 // leader_clearance of one), its box crossed by no earlier
 // leader. When none is clear, the second pass lets the leader run over
@@ -202,6 +203,9 @@ PlacedLabel with_leader(const ScreenDisc& anchor, const PixelRect& box);
 bool boxes_overlap(const PixelRect& a, const PixelRect& b);
 // Whether two leader lines cross (share a point; touching ends count).
 bool leaders_cross(const PlacedLabel& a, const PlacedLabel& b);
+// Whether more than 15 px of b's leader lie within 5 px of a's (they would
+// read as one line).
+bool leaders_run_together(const PlacedLabel& a, const PlacedLabel& b);
 // Whether a leader line passes through a box's / a disc's interior.
 bool leader_meets_box(const PlacedLabel& leader, const PixelRect& box);
 bool leader_meets_disc(const PlacedLabel& leader, const ScreenDisc& disc);

@@ -674,48 +674,132 @@ std::vector<MarkerFan> marker_fans(const GlyphResult& glyphs, const OverlapRepor
     const double unit = units_per_pixel(camera, depth, view_height) * options.pixel_scale;
     fan.unit = unit;
     const double length = options.arrow_pixels * unit;
-    // The arrow on the ray marker − t d, t in [t0, t0 + length]: its start
-    // t0 (3 pixels, or where the ray leaves the discs holding the marker),
-    // or −1 to leave it out (it would cross another disc).
-    auto start_of = [&](const Vec3& d) {
-      double t0 = 3.0 * unit;
+    // The arrow on the ray marker − t d: its start t0 (3 pixels, or where
+    // the ray leaves the discs holding the marker) and how long it may run
+    // from there before it meets another disc (at most length).
+    struct Ray {
+      double t0, free;
+    };
+    auto ray_of = [&](const Vec3& d) {
+      Ray ray{3.0 * unit, length};
       const std::array<double, 2> e = in_plane(d);
       for (const auto& [centre, radius] : kept_clear) {  // the discs holding the marker first
         const double clear = radius + 7.0 * unit;  // widened by an arrow head's half width
         const std::array<double, 2> m = in_plane(marker.position - centre);
         const double m2 = m[0] * m[0] + m[1] * m[1], me = m[0] * e[0] + m[1] * e[1];
-        if (m2 < clear * clear) t0 = std::max(t0, me + std::sqrt(std::max(0.0, me * me - m2 + clear * clear)));
+        if (m2 < clear * clear) ray.t0 = std::max(ray.t0, me + std::sqrt(std::max(0.0, me * me - m2 + clear * clear)));
       }
       for (const auto& [centre, radius] : kept_clear) {
         const double clear = radius + 7.0 * unit;
         const std::array<double, 2> m = in_plane(marker.position - centre);
-        const double t = std::clamp(m[0] * e[0] + m[1] * e[1], t0, t0 + length);
-        const double gx = m[0] - t * e[0], gy = m[1] - t * e[1];
-        if (gx * gx + gy * gy < clear * clear * (1.0 - 1e-9)) return -1.0;
+        const double m2 = m[0] * m[0] + m[1] * m[1], me = m[0] * e[0] + m[1] * e[1];
+        const double disc = me * me - m2 + clear * clear;
+        if (disc <= 0.0) continue;
+        const double enter = me - std::sqrt(disc), leave = me + std::sqrt(disc);
+        if (leave > ray.t0 && enter < ray.t0 + ray.free) ray.free = std::max(0.0, enter - ray.t0);
       }
-      return t0;
+      return ray;
     };
-    int k = 0;
-    for (const Vec3& d : arrow_directions(camera, n, options.arrow_start_degrees)) {
-      const Rgba8 color = k++ < num_coincident ? kCoincidentArrowColor : kIntersectionArrowColor;
-      const double t0 = start_of(d);
-      if (t0 < 0.0) continue;
-      fan.arrows.push_back({marker.position - (t0 + length) * d, marker.position - t0 * d, color});
-      fan.reach = std::max(fan.reach, t0 + length);
-    }
-    if (fan.arrows.empty() && !kept_clear.empty()) {
-      // Every direction crossed a glyph: one arrow from the far side of #0.
-      const std::array<double, 2> m = in_plane(marker.position - kept_clear[0].first);
-      const Vec3 away = m[0] * plane.right + m[1] * plane.up;
-      const Vec3 d = -1.0 * normalized(away);
-      const double t0 = 3.0 * unit;
-      fan.arrows.push_back({marker.position - (t0 + length) * d, marker.position - t0 * d,
-                            marker.intersections > 0 ? kIntersectionArrowColor : kCoincidentArrowColor});
-      fan.reach = t0 + length;
+    // Every one of the n arrows is drawn, so that the fan's count can be
+    // checked against its label (the 44d review: lshape's "x8" fan lost
+    // the arrows that crossed #2 and showed 4). The evenly spread
+    // directions when none meets a coloured glyph; else n of 72 directions
+    // spread over those clear at full length, then the longest of the rest,
+    // each shortened to stop at the glyph's halo.
+    auto add_arrow = [&](const Vec3& d, const Ray& ray, double run, const Rgba8& color) {
+      fan.arrows.push_back({marker.position - (ray.t0 + run) * d, marker.position - ray.t0 * d, color});
+      fan.reach = std::max(fan.reach, ray.t0 + run);
+    };
+    auto color_of = [&](int k) { return k < num_coincident ? kCoincidentArrowColor : kIntersectionArrowColor; };
+    const std::vector<Vec3> even = arrow_directions(camera, n, options.arrow_start_degrees);
+    std::vector<Ray> rays;
+    for (const Vec3& d : even) rays.push_back(ray_of(d));
+    if (std::all_of(rays.begin(), rays.end(), [&](const Ray& r) { return r.free >= length; })) {
+      for (std::size_t k = 0; k < even.size(); ++k) add_arrow(even[k], rays[k], length, color_of(static_cast<int>(k)));
+    } else {
+      constexpr int kCandidates = 72;
+      const std::vector<Vec3> around = arrow_directions(camera, kCandidates, options.arrow_start_degrees);
+      std::vector<Ray> ray(around.size());
+      std::vector<std::size_t> clear, rest;
+      for (std::size_t i = 0; i < around.size(); ++i) {
+        ray[i] = ray_of(around[i]);
+        (ray[i].free >= length ? clear : rest).push_back(i);
+      }
+      std::vector<std::size_t> chosen;
+      const std::size_t from_clear = std::min(clear.size(), static_cast<std::size_t>(n));
+      for (std::size_t k = 0; k < from_clear; ++k) chosen.push_back(clear[k * clear.size() / from_clear]);
+      std::stable_sort(rest.begin(), rest.end(), [&](std::size_t a, std::size_t b) { return ray[a].free > ray[b].free; });
+      const std::size_t from_rest = static_cast<std::size_t>(n) - from_clear;
+      // (Of the rest every other one first, so that shortened arrows spread.)
+      std::vector<std::size_t> spread;
+      for (std::size_t i = 0; i < rest.size(); i += 2) spread.push_back(rest[i]);
+      for (std::size_t i = 1; i < rest.size(); i += 2) spread.push_back(rest[i]);
+      for (std::size_t k = 0; k < from_rest && k < spread.size(); ++k) chosen.push_back(spread[k]);
+      std::sort(chosen.begin(), chosen.end());
+      // A shortened arrow keeps at least its head and a stub of shaft.
+      const double shortest = std::min(length, 26.0 * unit);
+      for (std::size_t k = 0; k < chosen.size(); ++k) {
+        const std::size_t i = chosen[k];
+        add_arrow(around[i], ray[i], std::max(std::min(ray[i].free, length), shortest), color_of(static_cast<int>(k)));
+      }
     }
     fans.push_back(std::move(fan));
   }
   return fans;
+}
+
+// Pixels (at 1200 px height) within which an intersecting cell's edge
+// adds nothing beside one drawn (edges_apart_on_screen).
+constexpr double kCellEdgesApartPixels = 5.0;
+
+// The edges in order, less each one whose two ends lie within apart pixels
+// of an edge kept before it (so all of it lies in that edge's band): the
+// stacked copies of a cell (stack80_rot in the 44c/44d reviews: 80 cubes a
+// pixel apart) drew their edges into one flat lilac slab of the edge
+// colour that no legend swatch matched and that hid the cubes; one edge
+// every few pixels shows them over the tint.
+std::vector<Edge> edges_apart_on_screen(const HexMesh& mesh, std::span<const Edge> edges, const Camera& camera,
+                                        int view_height, double apart) {
+  if (!(apart > 0.0)) return {edges.begin(), edges.end()};
+  const ImagePlane plane = image_plane(camera);
+  using Point = std::array<double, 2>;
+  auto screen = [&](Index v) {
+    const Vec3 q = mesh.points[static_cast<std::size_t>(v)] - camera.eye;
+    const double unit = units_per_pixel(camera, std::max(dot(q, plane.forward), 1e-12), view_height);
+    return Point{dot(q, plane.right) / unit, dot(q, plane.up) / unit};
+  };
+  auto distance = [](const Point& p, const Point& a, const Point& b) {  // from p to the segment ab
+    const double dx = b[0] - a[0], dy = b[1] - a[1], length2 = dx * dx + dy * dy;
+    const double t = length2 > 0.0 ? std::clamp(((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / length2, 0.0, 1.0) : 0.0;
+    return std::hypot(a[0] + t * dx - p[0], a[1] + t * dy - p[1]);
+  };
+  // The kept edges in each cell that their box, widened by apart, meets.
+  const double cell = std::max(apart, 32.0);
+  auto cell_of = [&](double v) { return static_cast<std::int64_t>(std::floor(v / cell)); };
+  std::map<std::pair<std::int64_t, std::int64_t>, std::vector<std::size_t>> near_cell;
+  std::vector<std::array<Point, 2>> kept_ends;
+  std::vector<Edge> kept;
+  for (const Edge& e : edges) {
+    const Point a = screen(e[0]), b = screen(e[1]);
+    if (!std::isfinite(a[0]) || !std::isfinite(a[1]) || !std::isfinite(b[0]) || !std::isfinite(b[1])) {
+      kept.push_back(e);
+      continue;
+    }
+    const auto it = near_cell.find({cell_of(a[0]), cell_of(a[1])});
+    if (it != near_cell.end() && std::any_of(it->second.begin(), it->second.end(), [&](std::size_t k) {
+          return distance(a, kept_ends[k][0], kept_ends[k][1]) < apart &&
+                 distance(b, kept_ends[k][0], kept_ends[k][1]) < apart;
+        }))
+      continue;
+    const std::int64_t x0 = cell_of(std::min(a[0], b[0]) - apart), x1 = cell_of(std::max(a[0], b[0]) + apart);
+    const std::int64_t y0 = cell_of(std::min(a[1], b[1]) - apart), y1 = cell_of(std::max(a[1], b[1]) + apart);
+    if ((x1 - x0 + 1) * (y1 - y0 + 1) <= 4096)  // (an edge across the whole view and far beyond: kept, alone)
+      for (std::int64_t cx = x0; cx <= x1; ++cx)
+        for (std::int64_t cy = y0; cy <= y1; ++cy) near_cell[{cx, cy}].push_back(kept.size());
+    kept_ends.push_back({a, b});
+    kept.push_back(e);
+  }
+  return kept;
 }
 
 }  // namespace
@@ -799,14 +883,11 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
 
   // 1. Boundary wireframe.
   // On a mesh of several kinds each edge in its faces' kind colour.
-  const std::vector<Edge> wire = boundary_edges_all_kinds(topology);
+  // (Drawn once the intersecting cells' edges are known, step 3.)
+  std::vector<Edge> wire = boundary_edges_all_kinds(topology);
   const bool surface = options.surface_cell_quality != nullptr;
-  scene.lines.push_back(edge_lines(mesh, scene.origin, wire,
-                                   topology.across_kinds ? boundary_edge_kind_colors(mesh, topology, wire)
-                                   : surface             ? std::vector<Rgba8>(wire.size(), kSurfaceEdgeColor)
-                                                         : std::vector<Rgba8>(wire.size(), kWireframeColor),
-                                   options.wire_width));
-  scene.lines.back().under_ranked_spheres = true;  // no veil over the coloured glyphs
+  const std::size_t wire_lines = scene.lines.size();
+  scene.lines.emplace_back();
 
   // 2. Cluster edges: around each cluster's worst vertices only (a cluster
   // of thousands of vertices would paint over the model), in its colour.
@@ -902,6 +983,19 @@ Scene build_main_scene(const HexMesh& mesh, const Topology& topology, const Glyp
   }
   std::sort(cell_edges.begin(), cell_edges.end());
   cell_edges.erase(std::unique(cell_edges.begin(), cell_edges.end()), cell_edges.end());
+  // The wireframe without the intersecting cells' edges: they are drawn in
+  // the intersection colour (a stack's grey edges between its lilac ones
+  // made the 44c review's slab).
+  std::erase_if(wire, [&](const Edge& e) {
+    return std::binary_search(cell_edges.begin(), cell_edges.end(), Edge{std::min(e[0], e[1]), std::max(e[0], e[1])});
+  });
+  scene.lines[wire_lines] = edge_lines(mesh, scene.origin, wire,
+                                       topology.across_kinds ? boundary_edge_kind_colors(mesh, topology, wire)
+                                       : surface             ? std::vector<Rgba8>(wire.size(), kSurfaceEdgeColor)
+                                                             : std::vector<Rgba8>(wire.size(), kWireframeColor),
+                                       options.wire_width);
+  scene.lines[wire_lines].under_ranked_spheres = true;  // no veil over the coloured glyphs
+  cell_edges = edges_apart_on_screen(mesh, cell_edges, camera, view_height, kCellEdgesApartPixels * options.pixel_scale);
   scene.lines.push_back(
       edge_lines(mesh, scene.origin, cell_edges, std::vector<Rgba8>(cell_edges.size(), kIntersectionArrowColor), 1.5f));
   // Under the ranked glyphs, as the wireframe (issue 44 part V: the lilac
@@ -1708,6 +1802,31 @@ bool slide_leader_start(PlacedLabel& p, const ScreenDisc& from, const IdImage& i
 
 // Ids of the arrow fans' discs among the glyphs' (ranks) in place_labels.
 constexpr std::int64_t kFanIdBase = std::int64_t{1} << 40;
+// Ids of the fans' arrow shafts (fan_arrow_discs): no label's own.
+constexpr std::int64_t kArrowIdBase = std::int64_t{1} << 41;
+
+// A fan's arrows as chains of discs along them, pixels (the 44d review:
+// the "#2 (4)" leader lay on the bottom arrow of #2's x8 fan, the x8
+// leader on its right one): the heads under the fan's id (fan_id, its own
+// label's leader leaves the fan between them), the shafts under
+// kArrowIdBase + the fan's index, 5 px wider than the shaft, so that no
+// leader runs along an arrow or within a halo's width of one.
+void add_fan_arrow_discs(std::vector<ScreenDisc>& discs, const std::array<double, 2>& tip,
+                         const std::array<double, 2>& tail, double pixels_per_unit_scale, std::int64_t fan_id,
+                         std::int64_t index) {
+  const double dx = tail[0] - tip[0], dy = tail[1] - tip[1];
+  const double length = std::hypot(dx, dy);
+  if (!(length > 0.0)) return;
+  const double head = std::min(length, 20.0 * pixels_per_unit_scale);
+  const int steps = static_cast<int>(std::ceil(length / 2.0));
+  for (int i = 0; i <= steps; ++i) {
+    const double s = length * i / steps;
+    const bool is_head = s < head;
+    const double radius = is_head ? 6.5 * pixels_per_unit_scale * s / head + 1.0 : (2.2 + 5.0) * pixels_per_unit_scale;
+    discs.push_back({tip[0] + dx * s / length, tip[1] + dy * s / length, radius,
+                     is_head ? fan_id : kArrowIdBase + index});
+  }
+}
 
 // The longest leader a label gets, as a share of the view's diagonal
 // (issue 44 part V round 2: callout leaders of 540-700 px at 1600 x 1200).
@@ -1787,6 +1906,9 @@ void place_main_view_callouts(MainViewLabels& result, std::vector<MainViewLabel>
   // callout over a coloured one is refused below.
   std::vector<ScreenDisc> avoid(obstacles.begin(), obstacles.end());
   const std::int64_t kept_id = kFanIdBase - 1, protect = kFanIdBase;
+  // The arrows' shafts too (fan_arrow_discs: no leader along an arrow).
+  for (ScreenDisc& d : avoid)
+    if (d.id >= kArrowIdBase) d.id = kept_id;
   for (const PlacedLabel& k : kept) {
     if (k.has_leader) {
       const double length = leader_length(k);
@@ -1939,12 +2061,18 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
     seen = *ids;
     mark_drawn(seen, result, glyphs, style, scaled, false);
   }
-  std::vector<ScreenDisc> fans;
+  std::vector<ScreenDisc> fans, arrows;
   std::vector<MainViewLabel> markers;
   if (overlap) {
     for (const MarkerFan& fan : marker_fans(glyphs, *overlap, camera, layout.view.height, scaled)) {
       ScreenDisc disc = screen_of(fan.group.position, fan.reach + 6.5 * fan.unit);
       disc.id = kFanIdBase + static_cast<std::int64_t>(fans.size());
+      const double scale = screen_of(fan.group.position, fan.unit).radius;  // pixels of one arrow unit
+      for (const MarkerFan::Arrow& arrow : fan.arrows) {
+        const ScreenDisc tip = screen_of(arrow.tip, 0.0), tail = screen_of(arrow.tail, 0.0);
+        add_fan_arrow_discs(arrows, {tip.x, tip.y}, {tail.x, tail.y}, scale, disc.id,
+                            static_cast<std::int64_t>(fans.size()));
+      }
       fans.push_back(disc);
       MainViewLabel label;
       label.kind = MainViewLabel::Kind::marker;
@@ -2074,6 +2202,7 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
     all_obstacles.push_back(d);
   }
   all_obstacles.insert(all_obstacles.end(), fans.begin(), fans.end());
+  all_obstacles.insert(all_obstacles.end(), arrows.begin(), arrows.end());
   for (std::size_t i = 0; i < scaled.label_free_centres.size(); ++i) {
     ScreenDisc face = screen_of(scaled.label_free_centres[i], scaled.label_free_radii[i]);
     face.id = kFaceObstacleId;
