@@ -116,6 +116,48 @@ std::string count_inverted(std::size_t n, const std::string& noun) {
   return label;
 }
 
+
+// 6. The blue in sight that each solid ring leaves outside (issue 45, the
+// 45c/45d reviews: blue spread wider than the largest ring lay outside it,
+// and the label's "32 in sight" did not say whether those cells were among
+// them): each callout counts its cells in sight with a blue pixel beyond
+// its (solid) ring's radius (num_seen_outside). ids: the id image of
+// inverted_callouts' step 3a; group g's callout is rank[g] (none when past
+// the callouts kept).
+void count_blue_outside_rings(std::vector<InvertedCallout>& callouts, const IdImage& ids, const PixelRect& view,
+                              const std::vector<int>& vertex_group, const std::vector<std::size_t>& rank,
+                              const std::vector<int>& vertex_slot, const std::vector<std::size_t>& slot_vertex,
+                              const std::vector<char>& slot_seen, const HexMesh& mesh, const std::vector<Index>& cells) {
+  const auto callout_of_slot = [&](std::size_t slot) -> std::optional<std::size_t> {
+    const int g = vertex_group[slot_vertex[slot]];
+    if (g < 0 || static_cast<std::size_t>(g) >= rank.size() || rank[static_cast<std::size_t>(g)] >= callouts.size()) return std::nullopt;
+    return rank[static_cast<std::size_t>(g)];
+  };
+  // Slots with a pixel beyond their callout's ring; then the cells in sight with such a corner.
+  std::vector<char> slot_outside(slot_vertex.size(), 0);
+  for (int v = 0; v < ids.height; ++v)
+    for (int u = 0; u < ids.width; ++u) {
+      const std::uint32_t id = ids.ids[static_cast<std::size_t>(v) * static_cast<std::size_t>(ids.width) + static_cast<std::size_t>(u)];
+      if (id == kIdNothing || id == kIdOccluder || id > slot_vertex.size() || slot_outside[id - 1]) continue;
+      const auto k = callout_of_slot(id - 1);
+      if (!k) continue;
+      const InvertedCallout& c = callouts[*k];
+      slot_outside[id - 1] = std::hypot(view.x + ids.x0 + u + 0.5 - c.x, view.y + ids.y0 + v + 0.5 - c.y) > c.radius;
+    }
+  for (const Index cell : cells) {
+    const CellRef ref = any_cell(mesh, cell);
+    std::optional<std::size_t> k;
+    bool outside = false;
+    for (int i = 0; i < ref.num_corners; ++i) {
+      const int slot = vertex_slot[static_cast<std::size_t>(ref.corners[static_cast<std::size_t>(i)])];
+      if (slot < 0 || !slot_seen[static_cast<std::size_t>(slot)]) continue;
+      k = callout_of_slot(static_cast<std::size_t>(slot));
+      outside = outside || slot_outside[static_cast<std::size_t>(slot)];
+    }
+    if (k && outside) ++callouts[*k].num_seen_outside;
+  }
+}
+
 }  // namespace
 
 std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topology& topology,
@@ -229,22 +271,25 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
       const int g = vertex_group[static_cast<std::size_t>(face.v[static_cast<std::size_t>(i)])];
       if (g >= 0) groups[static_cast<std::size_t>(g)].on_boundary = true;
     }
+  // Kept for step 6: which pixels of blue each slot (marked vertex) paints.
+  IdImage ids;
+  std::vector<int> vertex_slot(vertex_group.size(), -1);
+  std::vector<std::size_t> slot_vertex;
+  std::vector<char> slot_seen;
   if (std::any_of(groups.begin(), groups.end(), [](const InvertedCallout& c) { return c.on_boundary; })) {
     // Each marked vertex its slot (ids up to kMaxId - 1; more: the rest draw as occluders).
-    std::vector<int> vertex_slot(vertex_group.size(), -1);
-    std::vector<std::size_t> slot_vertex;
     for (std::size_t v = 0; v < vertex_group.size(); ++v)
       if (vertex_group[v] >= 0 && slot_vertex.size() + 1 < kIdOccluder) {
         vertex_slot[v] = static_cast<int>(slot_vertex.size());
         slot_vertex.push_back(v);
       }
-    const IdImage ids = renderer.render_ids(id_scene(mesh, topology, vertex_quality, vertex_slot, camera.target),
-                                            camera, view.width, view.height);
+    ids = renderer.render_ids(id_scene(mesh, topology, vertex_quality, vertex_slot, camera.target), camera,
+                              view.width, view.height);
     // Each group's visible pixels, and their box: the group's extent grows
     // to it, so that its solid ring encloses every blue pixel it names (a
     // face painted from an inverted corner reaches past the cells' corners).
     std::vector<Extent> seen(groups.size());
-    std::vector<char> slot_seen(slot_vertex.size(), 0);
+    slot_seen.assign(slot_vertex.size(), 0);
     for (int v = 0; v < ids.height; ++v)
       for (int u = 0; u < ids.width; ++u) {
         const std::uint32_t id = ids.ids[static_cast<std::size_t>(v) * static_cast<std::size_t>(ids.width) + static_cast<std::size_t>(u)];
@@ -388,15 +433,26 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
     num_groups = static_cast<int>(groups.size());
   }
 
-  // 5. The largest groups first (stable: ties keep the first cell's order).
-  std::stable_sort(groups.begin(), groups.end(),
-                   [](const InvertedCallout& a, const InvertedCallout& b) { return a.num_cells > b.num_cells; });
+  // 5. The largest groups first (stable: ties keep the first cell's order);
+  // rank: each group's place (vertex_group numbers them as before).
+  std::vector<std::size_t> order(groups.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return groups[a].num_cells > groups[b].num_cells; });
+  std::vector<InvertedCallout> sorted;
+  std::vector<std::size_t> rank(groups.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    rank[order[k]] = k;
+    sorted.push_back(std::move(groups[order[k]]));
+  }
+  groups = std::move(sorted);
   if (groups.size() > static_cast<std::size_t>(kMaxInvertedCallouts)) {
     int more = 0;
     for (std::size_t g = kMaxInvertedCallouts; g < groups.size(); ++g) more += groups[g].num_cells;
     groups.resize(kMaxInvertedCallouts);
     groups.back().num_more_cells = more;
   }
+  if (!ids.empty()) count_blue_outside_rings(groups, ids, view, vertex_group, rank, vertex_slot, slot_vertex, slot_seen, mesh, cells);
   return groups;
 }
 
@@ -406,12 +462,17 @@ std::string inverted_callout_label(const InvertedCallout& c, const std::string& 
   // whole groups).
   const std::size_t num_in_seen_groups = static_cast<std::size_t>(c.num_cells) - c.hidden_cells.size();
   const auto num_seen = static_cast<std::size_t>(c.num_seen_cells);
-  const std::string seen_part = std::to_string(num_seen) + " in sight";
+  // Blue in sight beyond the ring said with its count (the 45d review:
+  // the reader could not tell whether it was among the "in sight").
+  const std::string outside =
+      c.num_seen_outside > 0 ? " (" + std::to_string(c.num_seen_outside) + (c.num_seen_outside == 1 ? " reaches" : " reach") + " outside the ring)"
+                             : "";
+  const std::string seen_part = std::to_string(num_seen) + " in sight" + outside;
+  const bool all_seen = num_seen == num_in_seen_groups && outside.empty();
   if (c.hidden_radius > 0.0) {
     // A split ring's solid ring: its groups in sight only (the dashed ring
     // names the rest, inverted_hidden_label).
-    std::string label = count_inverted(num_in_seen_groups, noun) + (num_seen == num_in_seen_groups ? "" : ",") + " " +
-                        (num_seen == num_in_seen_groups ? "in sight" : seen_part);
+    std::string label = count_inverted(num_in_seen_groups, noun) + (all_seen ? " in sight" : ", " + seen_part);
     if (c.num_more_cells > 0) label += "; +" + std::to_string(c.num_more_cells) + " more";
     return label;
   }
@@ -429,7 +490,7 @@ std::string inverted_callout_label(const InvertedCallout& c, const std::string& 
   }
   if (!c.on_boundary) label += ", inside";
   else if (c.visible_pixels == 0) label += ", far side";
-  else if (num_seen < num_in_seen_groups) label += ", " + seen_part;
+  else if (!all_seen) label += ", " + seen_part;
   if (c.on_boundary && c.visible_pixels > 0 && static_cast<double>(c.visible_pixels) < kSmallInvertedFraction * view_area)
     label += " (small)";
   if (c.num_more_cells > 0) label += "; +" + std::to_string(c.num_more_cells) + " more";
@@ -498,7 +559,7 @@ std::vector<std::string> wrap_words(const std::string& text, int max_width, int 
     // "29" ended one line, "unseen beside them" began the next).
     const bool glued = !words.empty() && (words.back() == "see" || words.back() == "see inset" ||
                                           std::all_of(words.back().begin(), words.back().end(),
-                                                      [](char ch) { return ch == '+' || (ch >= '0' && ch <= '9'); }));
+                                                      [](char ch) { return ch == '+' || ch == '(' || (ch >= '0' && ch <= '9'); }));
     if (glued) words.back() += " " + word;
     else words.push_back(std::move(word));
     i = j + 1;
@@ -567,7 +628,7 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
     const int one_line = text_extent(labels[i].text, text_size, style).width;
     std::optional<PlacedLabel> p;
     for (int pass = model.empty() ? 1 : 0; !p && pass < 2; ++pass)
-    for (int n = 1; !p && n <= 3; ++n) {
+    for (int n = 1; !p && n <= 4; ++n) {
       const LabelPlacer& where = pass == 0 ? free_placer : placer;
       const std::vector<std::string> lines =
           n == 1 ? std::vector<std::string>{labels[i].text} : wrap_words(labels[i].text, (one_line + n - 1) / n, text_size, style);

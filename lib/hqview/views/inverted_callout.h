@@ -61,6 +61,11 @@ struct InvertedCallout {
   // Its cells (of its groups in sight) with the blue of a corner in sight:
   // the labels' "N in sight" (a group in sight has cells inside too).
   int num_seen_cells = 0;
+  // Of those, the cells with a pixel of that blue beyond the (solid) ring's
+  // radius: the labels' "k of them reach outside the ring" (issue 45, the
+  // 45c/45d reviews: blue wider than the largest ring lay outside it, and
+  // "32 in sight" did not say whether it counted them).
+  int num_seen_outside = 0;
   // The box of those pixels (figure pixels, their outer edges; empty when
   // none): the solid ring encloses it (issue 45: a visible blue face stuck
   // out of the solid ring).
@@ -103,7 +108,8 @@ inline constexpr double kMaxSplitOverlap = 0.25;
 // face the overview paints in an inverted corner's colour carries that
 // corner's group): 0 when the renderer draws no id images. Groups in
 // descending cell count (ties: the first cell id), at most
-// kMaxInvertedCallouts. Deterministic.
+// kMaxInvertedCallouts. Each callout counts its cells in sight whose blue
+// reaches beyond its ring (num_seen_outside). Deterministic.
 std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topology& topology,
                                                std::span<const Index> inverted_cells,
                                                std::span<const double> vertex_quality, const Camera& camera,
@@ -120,7 +126,9 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
 // "; +N more" and the inset; else ", inside" (no inverted corner on the
 // boundary), ", far side" (on the boundary, none in sight) or, in sight,
 // ", 3 in sight" when fewer than all its cells show blue and " (small)"
-// (fewer pixels than kSmallInvertedFraction of view_area); then "; +N
+// (fewer pixels than kSmallInvertedFraction of view_area); "in sight"
+// is followed by " (5 reach outside the ring)" when num_seen_outside is 5
+// (and then said even when all are in sight); then "; +N
 // more" for the cells without a ring; then ": see inset A" when an inset
 // draws them.
 std::string inverted_callout_label(const InvertedCallout& callout, const std::string& noun, double view_area);
@@ -136,14 +144,14 @@ inline bool callout_in_sight(const InvertedCallout& c) { return c.visible_pixels
 // other label's box; no box covers a ring (label_layout.h strict_leaders,
 // every ring protected; issue 45g); a split callout's dashed ring gets its
 // own label and leader (issue 45). A label with no place on one line
-// tries 2, then 3 lines (words wrapped). `model`: rectangles the model
-// covers; every label is tried off them first (1 to 3 lines), then over
+// tries 2, then 3, then 4 lines (words wrapped). `model`: rectangles the model
+// covers; every label is tried off them first (1 to 4 lines), then over
 // them when no such place is free.
 struct InvertedRingLabel {
   std::string text;
   std::size_t callout = 0;  // the callout whose ring it names
   bool dashed_ring = false;  // a split callout's dashed ring (after every callout's own label)
-  std::vector<std::string> lines;  // as drawn: text on 1 line, or wrapped on 2 or 3 when 1 found no place
+  std::vector<std::string> lines;  // as drawn: text on 1 line, or wrapped on 2 to 4 when 1 found no place
   std::optional<PlacedLabel> placed;
 };
 std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::span<const InvertedCallout> callouts,

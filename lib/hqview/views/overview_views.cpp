@@ -485,13 +485,31 @@ Image render_figure(Renderer& renderer, const Scene& scene, const Camera& camera
   return figure;
 }
 
-// The overview's colour bar at most this fraction of the figure's height,
-// its legend drawn from the legend panel's top (ColorBar::max_bar_height):
-// with a Warnings section above panel A, index.html at 1400 x 1000 still
-// shows its last legend line at page load (0.25 left it under the fold).
+// The overview's legend, drawn from the legend panel's top
+// (ColorBar::max_bar_height), ends above this fraction of the figure's
+// height: with a Warnings section above panel A, index.html at 1400 x 1000
+// still shows its last legend line at page load (the browser test: 0.6).
+// The colour bar takes the height the rest of the legend leaves under that
+// line (issue 45, the 45d review: capped at 0.18 it was 216 px with 600 px
+// of the column empty), at least kOverviewBarFraction of the figure's.
+constexpr double kOverviewLegendEnd = 0.57;
 constexpr double kOverviewBarFraction = 0.18;
+// An inset in the legend's column at least this fraction of its size in
+// the view (narrower, its caption's lines are cut: rockarm's two insets).
+constexpr double kColumnInsetShare = 0.9;
 
 namespace {
+
+// The bar's height cap (ColorBar::max_bar_height): what the rest of the
+// legend (its label and swatches, drawn in the style draw_color_bar picks
+// for `legend`) leaves above kOverviewLegendEnd of the figure's height, at
+// least kOverviewBarFraction of it.
+void fit_overview_bar(ColorBar& bar, const AnnotationStyle& style, const PixelRect& legend, int figure_height) {
+  bar.max_bar_height = 1;
+  const int rest = color_bar_height(bar, color_bar_style_for(bar, style, legend), legend.height) - 1;
+  bar.max_bar_height = std::max(static_cast<int>(std::lround(kOverviewBarFraction * figure_height)),
+                                static_cast<int>(kOverviewLegendEnd * figure_height) - legend.y - rest);
+}
 
 struct PixelBox {
   double x0, y0, x1, y1;
@@ -563,7 +581,6 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
   // the column's width under the cards) its last swatch above the 1400 x
   // 1000 window's fold (issue 45, the 45t review: the ring entries were
   // below it at page load).
-  f.bar.max_bar_height = static_cast<int>(std::lround(kOverviewBarFraction * options.height));
   if (options.kind_quality != nullptr && !options.kind_quality->empty()) f.bar.label = kKindCornerQualityLabel;
   // A curved surface's values below 0: the corners of its reversed faces
   // (measured against their neighbours' orientation) and the reflex corners
@@ -610,6 +627,7 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
       f.bar.swatches.push_back({Color{}, "drawn in the main view, not here", SwatchShape::text});
   }
   f.layout = figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(f.bar, f.style), f.style);
+  fit_overview_bar(f.bar, f.style, f.layout.legend, options.height);
   const double aspect = static_cast<double>(f.layout.view.width) / static_cast<double>(f.layout.view.height);
   f.camera = fit_camera_to_points(boundary_points(mesh, topology), view_direction_of(options), aspect, {.up = options.up});
   if (!options.inverted_cells.empty() && options.outline_inverted_faces) {
@@ -700,6 +718,25 @@ OverviewPlan plan_quality_overview(const HexMesh& mesh, const Topology& topology
     if (a.flipped) std::reverse(side.slots.begin(), side.slots.end());
     const double t = largest_free_scale(mask, gw, gh, view, side.slots, margin, a.ax, a.ay);
     if (t > 0.0) candidates.push_back({t, {scaled_view(view, t, a.ax, a.ay), side.slots}});
+  }
+  // First, the insets in the legend's column under the legend, side by
+  // side, when they fit there at kColumnInsetShare of their size or more,
+  // the model in the whole view (issue 45, the 45d review: the cylinder's
+  // inset A took the view's top right, the model drawn in its lower-left
+  // quarter, and the column under the legend stayed empty).
+  {
+    const PixelRect& legend = f.layout.legend;
+    const int top = legend.y + color_bar_height(f.bar, color_bar_style_for(f.bar, f.style, legend), legend.height) + 2 * margin;
+    const int bottom = std::min(legend.y + legend.height, options.height) - margin;
+    const int full_w = static_cast<int>(std::lround(kInsetWidthFraction * view.width));
+    const int full_h = static_cast<int>(std::lround(kInsetHeightFraction * view.height));
+    const int w = std::min(full_w, (legend.width - (count + 1) * margin) / count), h = std::min(full_h, bottom - top);
+    if (w >= kColumnInsetShare * full_w && h >= kColumnInsetShare * full_h) {
+      InsetStrip column{view, {}};
+      for (int i = 0; i < count; ++i)
+        column.slots.push_back({legend.x + legend.width - (count - i) * (w + margin), top, w, h});
+      candidates.insert(candidates.begin(), {1.0, column});
+    }
   }
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const Candidate& a, const Candidate& b) { return a.scale > b.scale; });
@@ -845,6 +882,7 @@ Image render_quality_overview(const HexMesh& mesh, const Topology& topology, con
   std::erase_if(f.bar.swatches, [&](const ColorBarSwatch& s) {
     return (s.shape == SwatchShape::solid_ring && !solid) || (s.shape == SwatchShape::dashed_ring && !dashed);
   });
+  fit_overview_bar(f.bar, style, layout.legend, options.height);  // the bar taller by an entry dropped
   draw_color_bar(figure, layout.legend, f.bar, style);
   return figure;
 }
