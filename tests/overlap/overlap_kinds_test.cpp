@@ -382,6 +382,51 @@ TEST(OverlapKinds, TopologyMatchedFacesAreTheOverlapsOwnSort) {
   EXPECT_EQ(pairs_of(from_hexes), pairs_of(r));
 }
 
+// Repeated cells of every kind, in other corner orders and in threes (the
+// repeats listed are every cell whose corner set a lower-numbered cell of
+// its kind has), against a comparison of every pair of cells; a tet and a
+// pyramid of the same hex share 4 corners, never the set.
+TEST(OverlapKinds, DuplicateCellsInAnyCornerOrderAreEveryPairsVerdict) {
+  Mesh mesh = test::mixed_grid(3);
+  const auto reversed = [](auto cell) {
+    std::reverse(cell.begin(), cell.end());
+    return cell;
+  };
+  const auto rotated = [](auto cell) {
+    std::rotate(cell.begin(), cell.begin() + 1, cell.end());
+    return cell;
+  };
+  mesh.hexes.push_back(reversed(mesh.hexes[1]));
+  mesh.hexes.push_back(rotated(mesh.hexes[1]));
+  mesh.hexes.push_back(rotated(mesh.hexes[0]));
+  mesh.tets.push_back(reversed(mesh.tets[7]));
+  mesh.tets.push_back(rotated(mesh.tets[7]));
+  mesh.tets.push_back(rotated(mesh.tets[11]));
+  mesh.wedges.push_back(rotated(mesh.wedges[2]));
+  mesh.pyramids.push_back(reversed(mesh.pyramids[3]));
+  mesh.tets.push_back({mesh.pyramids[3][0], mesh.pyramids[3][1], mesh.pyramids[3][2], mesh.pyramids[3][4]});
+  const detail::VolumeCells cells(mesh);
+  const auto corner_set = [&](Index c) {
+    const detail::CellCornerIds ids = cells.corners(c);
+    std::vector<Index> set(ids.begin(), ids.end());
+    std::sort(set.begin(), set.end());
+    return set;
+  };
+  std::vector<Index> expected;
+  for (Index c = 0; c < cells.size(); ++c)
+    for (Index d = 0; d < c; ++d)
+      if (corner_set(d) == corner_set(c)) {
+        expected.push_back(c);
+        break;
+      }
+  // The grid's own repeated tet, and the 8 above but the tet of 4 pyramid corners.
+  ASSERT_EQ(expected.size(), 9u);
+  for (const int threads : {1, 2}) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+    EXPECT_EQ(run(mesh).duplicate_cells, expected) << threads << " threads";
+  }
+}
+
 // ---- A hybrid mesh by Gmsh, and an independent test -----------------------------
 
 // A convex cell as the intersection of its faces' closed half-spaces

@@ -43,33 +43,39 @@ class BallQuery {
     }
     cells_.reserve(members.size());
     for (std::size_t i = 0; i < members.size(); ++i) {
-      const auto c = coords(positions[static_cast<std::size_t>(members[i])]);
-      cells_.emplace_back(cell_key(c[0], c[1], c[2]), static_cast<Index>(i));
+      const Vec3& p = positions[static_cast<std::size_t>(members[i])];
+      const auto c = coords(p);
+      cells_.push_back({cell_key(c[0], c[1], c[2]), static_cast<Index>(i), p});
     }
-    std::sort(cells_.begin(), cells_.end());
+    std::sort(cells_.begin(), cells_.end(),
+              [](const Entry& a, const Entry& b) { return a.key != b.key ? a.key < b.key : a.local < b.local; });
   }
 
   // Appends to `out` the local numbers in the ball for which keep(i) holds.
   template <class Keep>
   void collect(const Vec3& centre, double radius, Keep keep, std::vector<Index>& out) const {
     const double r2 = radius * radius;
-    auto test = [&](Index i) {
+    auto test = [&](Index i, const Vec3& p) {
       if (!keep(i)) return;
-      const Vec3 d = positions_[static_cast<std::size_t>(members_[static_cast<std::size_t>(i)])] - centre;
+      const Vec3 d = p - centre;
       if ((d.x * d.x + d.y * d.y) + d.z * d.z < r2) out.push_back(i);
     };
     if (cells_.empty()) {
-      for (Index i = 0; i < static_cast<Index>(members_.size()); ++i) test(i);
+      for (Index i = 0; i < static_cast<Index>(members_.size()); ++i)
+        test(i, positions_[static_cast<std::size_t>(members_[static_cast<std::size_t>(i)])]);
       return;
     }
+    // The three cells along x of each (y, z) row are consecutive keys: one
+    // search a row, the entries read in place (their positions with them).
     const auto c = coords(centre);
+    const std::int64_t x0 = std::max<std::int64_t>(c[0] - 1, 0), x1 = std::min(c[0] + 1, kMaxCellCoord);
     for (std::int64_t z = std::max<std::int64_t>(c[2] - 1, 0); z <= std::min(c[2] + 1, kMaxCellCoord); ++z)
-      for (std::int64_t y = std::max<std::int64_t>(c[1] - 1, 0); y <= std::min(c[1] + 1, kMaxCellCoord); ++y)
-        for (std::int64_t x = std::max<std::int64_t>(c[0] - 1, 0); x <= std::min(c[0] + 1, kMaxCellCoord); ++x) {
-          const std::uint64_t key = cell_key(x, y, z);
-          auto it = std::lower_bound(cells_.begin(), cells_.end(), std::make_pair(key, Index{0}));
-          for (; it != cells_.end() && it->first == key; ++it) test(it->second);
-        }
+      for (std::int64_t y = std::max<std::int64_t>(c[1] - 1, 0); y <= std::min(c[1] + 1, kMaxCellCoord); ++y) {
+        const std::uint64_t last = cell_key(x1, y, z);
+        auto it = std::partition_point(cells_.begin(), cells_.end(),
+                                       [key = cell_key(x0, y, z)](const Entry& e) { return e.key < key; });
+        for (; it != cells_.end() && it->key <= last; ++it) test(it->local, it->position);
+      }
   }
 
  private:
@@ -82,7 +88,12 @@ class BallQuery {
   std::span<const Vec3> positions_;
   double cell_ = 0;
   Vec3 origin_;
-  std::vector<std::pair<std::uint64_t, Index>> cells_;
+  struct Entry {
+    std::uint64_t key;  // its cell
+    Index local;        // its local number
+    Vec3 position;
+  };
+  std::vector<Entry> cells_;  // by cell, then local number
 };
 
 // Splits one component (its members ascending) into bounded clusters, each

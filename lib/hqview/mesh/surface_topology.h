@@ -35,7 +35,7 @@ struct SurfaceTopology {
   Index num_components = 0;  // edge-connected through manifold edges
 };
 
-// Linear in the faces after one sort of their half-edges. Faces with a
+// Linear in the faces and vertices (counting sorts). Faces with a
 // repeated corner (a zero-length edge) take part through their other edges.
 SurfaceTopology build_surface_topology(const Mesh& mesh);
 

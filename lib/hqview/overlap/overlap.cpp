@@ -206,19 +206,17 @@ std::vector<Index> find_same_winding_faces(const Mesh& mesh, const Topology& top
   return faces;
 }
 
-// Cells with the same vertex set as a lower-numbered cell. The cells are
-// ordered by a hash of their sorted vertex ids (then the ids, then the cell:
-// a total order, the same for any thread count), so equal sets are
-// adjacent; whole keys are compared only between cells of equal hashes,
-// their sorted ids made again then (rare) rather than held for every cell
-// (32 bytes a cell: 70 MB on 2,181,120 tets, at the overlap stage's peak).
+// Cells with the same vertex set as a lower-numbered cell. Such cells share
+// their smallest vertex id, so the cells are put into buckets by it (a
+// counting sort: linear, each bucket in ascending cell order) and only the
+// cells of one bucket are compared, by their sorted ids (a tet mesh coned
+// from each hex's smallest vertex has up to 48 cells in a bucket, most
+// meshes one or two). The buckets are compared in parallel; each cell is in
+// one bucket, so each flag is written by one task; the list comes out in
+// cell order, the same for any thread count.
 std::vector<Index> find_duplicate_cells(const VolumeCells& cells, std::vector<char>& flagged) {
   const auto nh = static_cast<std::size_t>(cells.size());
   const std::vector<Hex>& mesh_hexes = cells.mesh->hexes;
-  struct Key {
-    std::uint64_t hash;
-    Index cell;
-  };
   // Sorted corner ids, padded with kNoIndex after a cell's n corners (so
   // cells of different kinds never compare equal).
   const auto sorted_ids = [&](std::size_t h) {
@@ -240,28 +238,38 @@ std::vector<Index> find_duplicate_cells(const VolumeCells& cells, std::vector<ch
     }
     return k;
   };
-  std::vector<Key> keys(nh);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nh, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t h = r.begin(); h != r.end(); ++h) {
-      const Hex k = sorted_ids(h);
-      std::uint64_t hash = 0x9E3779B97F4A7C15ULL;
-      for (Index v : k) hash = (hash ^ static_cast<std::uint32_t>(v)) * 0xFF51AFD7ED558CCDULL;
-      keys[h] = {hash ^ (hash >> 29), static_cast<Index>(h)};
+  const auto smallest_id = [&](std::size_t h) {
+    if (h < mesh_hexes.size()) return *std::min_element(mesh_hexes[h].begin(), mesh_hexes[h].end());
+    const CellCornerIds c = cells.corners(static_cast<Index>(h));
+    return *std::min_element(c.begin(), c.end());
+  };
+  const auto nv = static_cast<std::size_t>(cells.mesh->num_vertices());
+  std::vector<std::size_t> start(nv + 1, 0);
+  for (std::size_t h = 0; h < nh; ++h) ++start[sz(smallest_id(h)) + 1];
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<Index> bucketed(nh);
+  {
+    std::vector<std::size_t> next(start.begin(), start.end() - 1);
+    for (std::size_t h = 0; h < nh; ++h) bucketed[next[sz(smallest_id(h))]++] = static_cast<Index>(h);
+  }
+  std::vector<char> is_duplicate(nh, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    std::vector<std::pair<Hex, Index>> bucket;
+    for (std::size_t v = r.begin(); v != r.end(); ++v) {
+      if (start[v + 1] - start[v] < 2) continue;
+      bucket.clear();
+      for (std::size_t i = start[v]; i < start[v + 1]; ++i) bucket.emplace_back(sorted_ids(sz(bucketed[i])), bucketed[i]);
+      std::sort(bucket.begin(), bucket.end());
+      for (std::size_t i = 1; i < bucket.size(); ++i)
+        if (bucket[i].first == bucket[i - 1].first) {
+          is_duplicate[sz(bucket[i].second)] = 1;
+          flagged[sz(bucket[i].second)] = flagged[sz(bucket[i - 1].second)] = 1;
+        }
     }
-  });
-  tbb::parallel_sort(keys.begin(), keys.end(), [&](const Key& a, const Key& b) {
-    if (a.hash != b.hash) return a.hash < b.hash;
-    const Hex ka = sorted_ids(sz(a.cell)), kb = sorted_ids(sz(b.cell));
-    if (ka != kb) return ka < kb;
-    return a.cell < b.cell;
   });
   std::vector<Index> duplicates;
-  for (std::size_t i = 1; i < nh; ++i)
-    if (keys[i].hash == keys[i - 1].hash && sorted_ids(sz(keys[i].cell)) == sorted_ids(sz(keys[i - 1].cell))) {
-      duplicates.push_back(keys[i].cell);
-      flagged[sz(keys[i].cell)] = flagged[sz(keys[i - 1].cell)] = 1;
-    }
-  std::sort(duplicates.begin(), duplicates.end());
+  for (std::size_t h = 0; h < nh; ++h)
+    if (is_duplicate[h]) duplicates.push_back(static_cast<Index>(h));
   return duplicates;
 }
 

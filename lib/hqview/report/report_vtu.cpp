@@ -9,6 +9,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <span>
 #include <string_view>
 #include <tuple>
 #include <type_traits>
@@ -341,6 +342,38 @@ constexpr std::string_view kTail = "\n  </AppendedData>\n</VTKFile>\n";
 constexpr std::size_t kZlibBlockBytes = std::size_t{1} << 17;
 constexpr double kStoreAbove = 0.75;
 
+// The last block of one repeated value a thread compressed, and its zlib
+// stream. Columns of one value (a tet's corner values 4-7, the cell types of
+// a mesh of one kind, flags that are all 0) give the same raw block again
+// and again: the same bytes in, the same stream out (libdeflate is
+// deterministic), so the stream is copied instead of compressed again (on
+// 2.18 M tets, 4 NaN columns of 17 MB: a quarter of the file's deflate
+// time). A block is of one value when it equals itself shifted by one value
+// (memcmp stops at the first difference: at once, for most data).
+class ConstantBlock {
+ public:
+  void append_zlib_stream(std::span<const unsigned char> raw, std::size_t value_size, bool stored,
+                          std::vector<unsigned char>& out) {
+    const bool is_constant =
+        raw.size() > value_size && std::memcmp(raw.data(), raw.data() + value_size, raw.size() - value_size) == 0;
+    if (!is_constant) {
+      hq::append_zlib_stream(raw, out, stored);
+      return;
+    }
+    if (stored != stored_ || !std::equal(raw.begin(), raw.end(), raw_.begin(), raw_.end())) {
+      raw_.assign(raw.begin(), raw.end());
+      stored_ = stored;
+      stream_.clear();
+      hq::append_zlib_stream(raw, stream_, stored);
+    }
+    out.insert(out.end(), stream_.begin(), stream_.end());
+  }
+
+ private:
+  std::vector<unsigned char> raw_, stream_;
+  bool stored_ = false;
+};
+
 // One block of one array, and what the pipeline made of it.
 struct VtuBlock {
   std::size_t array = 0, block = 0;
@@ -364,13 +397,14 @@ void write_compressed(const ReportModel& model, std::vector<VtuArray> arrays, st
   std::vector<char> stored(arrays.size(), 0);  // set with an array's first block, before the others exist
   const auto compress = [&](VtuBlock& b) {
     thread_local std::vector<unsigned char> raw;
+    thread_local ConstantBlock last_constant;
     const VtuArray& a = arrays[b.array];
     const std::size_t values_per_block = kZlibBlockBytes / a.value_size;
     const std::size_t first = b.block * values_per_block;
     const std::size_t count = std::min<std::size_t>(values_per_block, a.info.num_values - first);
     raw.resize(count * a.value_size);
     a.fill(first, count, raw.data());
-    append_zlib_stream(raw, b.data, stored[b.array] != 0);
+    last_constant.append_zlib_stream(raw, a.value_size, stored[b.array] != 0, b.data);
     b.compressed = true;
     progress::add_done(raw.size());
     return static_cast<double>(b.data.size()) / static_cast<double>(std::max<std::size_t>(raw.size(), 1));

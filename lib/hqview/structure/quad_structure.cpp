@@ -29,13 +29,33 @@ struct QuadEdges {
   std::vector<std::array<Index, 2>> edge_ends;
 };
 
-QuadEdges build_quad_edges(const std::vector<Quad>& quads) {
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> entries;
-  entries.reserve(quads.size() * 4);
+// The (edge key, slot) entries ascending, without a comparison sort: counted
+// into the bucket of the edge's smaller id, placed there in slot order, and
+// each bucket (a vertex's edges up: a handful) ordered by key by insertion,
+// a large one (the apex of a fan) by a stable sort.
+QuadEdges build_quad_edges(const std::vector<Quad>& quads, Index num_vertices) {
+  using Entry = std::pair<std::uint64_t, std::uint32_t>;
+  const auto key = [&](std::size_t q, int k) { return edge_key(quads[q][k], quads[q][(k + 1) % 4]); };
+  std::vector<std::size_t> next(static_cast<std::size_t>(num_vertices) + 1, 0);
   for (std::size_t q = 0; q < quads.size(); ++q)
-    for (int k = 0; k < 4; ++k)
-      entries.emplace_back(edge_key(quads[q][k], quads[q][(k + 1) % 4]), static_cast<std::uint32_t>(4 * q + k));
-  std::sort(entries.begin(), entries.end());
+    for (int k = 0; k < 4; ++k) ++next[(key(q, k) >> 32) + 1];
+  for (std::size_t v = 1; v < next.size(); ++v) next[v] += next[v - 1];
+  std::vector<Entry> entries(quads.size() * 4);
+  for (std::size_t q = 0; q < quads.size(); ++q)
+    for (int k = 0; k < 4; ++k) entries[next[key(q, k) >> 32]++] = {key(q, k), static_cast<std::uint32_t>(4 * q + k)};
+  // next[v] is now the end of v's bucket.
+  for (std::size_t v = 0, begin = 0; v + 1 < next.size(); begin = next[v++]) {
+    if (next[v] - begin > 32) {
+      std::sort(entries.begin() + static_cast<std::ptrdiff_t>(begin), entries.begin() + static_cast<std::ptrdiff_t>(next[v]));
+      continue;
+    }
+    for (std::size_t i = begin + 1; i < next[v]; ++i) {
+      const Entry e = entries[i];
+      std::size_t j = i;
+      for (; j > begin && e < entries[j - 1]; --j) entries[j] = entries[j - 1];
+      entries[j] = e;
+    }
+  }
   QuadEdges edges;
   edges.quad_edge.assign(entries.size(), kNoIndex);
   for (std::size_t i = 0; i < entries.size();) {
@@ -83,7 +103,7 @@ class QuadStructureBuilder {
       : mesh_(mesh),
         options_(options),
         num_vertices_(mesh.num_vertices()),
-        edges_(build_quad_edges(mesh.quads)),
+        edges_(build_quad_edges(mesh.quads, mesh.num_vertices())),
         vq_(build_vertex_quads(mesh.quads, num_vertices_)) {}
 
   QuadStructure build() {
