@@ -264,10 +264,11 @@ TEST(PlanarBoundaryError, TheFlatViewMarksTheNotchsFloorAndColoursBySign) {
   // The scene: the mesh's boundary pieces over the notch red (outside), the rest white.
   const double scale = boundary_error_scale(b);
   const Scene scene = build_planar_boundary_error_scene(mesh, topo, reference, b, scale);
-  ASSERT_EQ(scene.lines.size(), 3u);
-  ASSERT_EQ(scene.lines[1].positions.size(), 2 * b.mesh_patches.size());
+  ASSERT_EQ(scene.lines.size(), 5u);
+  ASSERT_EQ(scene.lines[2].positions.size(), 2 * b.mesh_patches.size());
+  ASSERT_EQ(scene.lines[4].positions.size(), 2 * b.reference_patches.size());
   for (std::size_t i = 0; i < b.mesh_patches.size(); ++i) {
-    const Rgba8 c = scene.lines[1].colors[2 * i];
+    const Rgba8 c = scene.lines[2].colors[2 * i];
     if (b.mesh_patches[i].error > 0.05 * scale) {
       EXPECT_GT(c.r, c.b) << i;
     }

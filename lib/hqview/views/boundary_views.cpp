@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <span>
 
 #include "hqview/core/number_format.h"
@@ -302,13 +303,14 @@ Image render_reference_overlay(const HexMesh& mesh, const Topology& topology, co
 namespace {
 
 // The sampled pieces of a planar polyline (flat triangles (a, midpoint, b))
-// as line segments coloured by their errors, moved by `lift`.
+// as line segments coloured by their errors (or all `casing`, when set),
+// moved by `lift`.
 LineSet patch_segments(const std::vector<BoundaryError::ErrorPatch>& patches, const Vec3& origin, const Vec3& lift,
-                       double scale, float width) {
+                       double scale, float width, std::optional<Rgba8> casing = std::nullopt) {
   LineSet set;
   set.width = width;
   for (const auto& p : patches) {
-    const Rgba8 color = error_rgba(p.error, scale);
+    const Rgba8 color = casing ? *casing : error_rgba(p.error, scale);
     for (const Vec3& c : {p.corners[0], p.corners[2]}) {
       set.indices.push_back(static_cast<std::uint32_t>(set.positions.size()));
       set.positions.push_back(to_vec3f(c + lift - origin));
@@ -319,7 +321,10 @@ LineSet patch_segments(const std::vector<BoundaryError::ErrorPatch>& patches, co
 }
 
 constexpr Rgba8 kPlanarDomainColor{222, 222, 226, 255};
-constexpr float kPlanarBoundaryWidth = 9.0f, kPlanarOutlineWidth = 3.0f;
+// Each coloured line on a dark casing 1.5 px wider each side, so that a
+// piece of error 0 (white) shows on the white page too.
+constexpr Rgba8 kPlanarCasingColor{55, 55, 65, 255};
+constexpr float kPlanarBoundaryWidth = 9.0f, kPlanarOutlineWidth = 3.0f, kPlanarCasing = 3.0f;
 
 }  // namespace
 
@@ -345,8 +350,14 @@ Scene build_planar_boundary_error_scene(const HexMesh& mesh, const Topology& top
       edges.colors.push_back({60, 60, 70, 90});
     }
   scene.lines.push_back(std::move(edges));
-  scene.lines.push_back(patch_segments(error.mesh_patches, scene.origin, 2.0 * step, scale, kPlanarBoundaryWidth));
-  scene.lines.push_back(patch_segments(error.reference_patches, scene.origin, 3.0 * step, scale, kPlanarOutlineWidth));
+  double lift = 2.0;
+  for (const auto& [patches, width] : {std::pair{&error.mesh_patches, kPlanarBoundaryWidth},
+                                       std::pair{&error.reference_patches, kPlanarOutlineWidth}}) {
+    scene.lines.push_back(
+        patch_segments(*patches, scene.origin, lift * step, scale, width + kPlanarCasing, kPlanarCasingColor));
+    scene.lines.push_back(patch_segments(*patches, scene.origin, (lift + 1.0) * step, scale, width));
+    lift += 2.0;
+  }
   return scene;
 }
 

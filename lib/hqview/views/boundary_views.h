@@ -124,10 +124,11 @@ Image render_reference_overlay(const HexMesh& mesh, const Topology& topology, co
 
 // A planar mesh against a planar reference (BoundaryError::planar), seen
 // from above along the plane's normal: triangles[0] the reference's domain
-// (pale grey), lines[0] the mesh's edges (faint), lines[1] its boundary
+// (pale grey), lines[0] the mesh's edges (faint), lines[2] its boundary
 // polylines (thick; each sampled piece coloured by its mesh -> reference
-// error), lines[2] the reference's outline on top (thin; by its reference ->
-// mesh error). Each layer lies a little nearer the camera than the last.
+// error), lines[4] the reference's outline on top (thin; by its reference ->
+// mesh error), lines[1] and [3] their dark casings (so that white, error 0,
+// shows). Each layer lies a little nearer the camera than the last.
 Scene build_planar_boundary_error_scene(const HexMesh& mesh, const Topology& topology, const TriSurface& reference,
                                         const BoundaryError& error, double scale);
 
