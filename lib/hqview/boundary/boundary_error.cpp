@@ -204,6 +204,16 @@ SampledDistanceOptions sampling_options(const BoundaryOptions& options, const Bo
   return s;
 }
 
+// The reference's points marked in `used`, appended with their ids.
+void used_points(const TriSurface& reference, const std::vector<std::uint8_t>& used, std::vector<Vec3>& points,
+                 std::vector<Index>& ids) {
+  for (std::size_t v = 0; v < reference.points.size(); ++v)
+    if (used[v]) {
+      points.push_back(reference.points[v]);
+      ids.push_back(static_cast<Index>(v));
+    }
+}
+
 // Area-weighted mean, mean |e| and rms over the patches (fixed order).
 void patch_means(const std::vector<BoundaryError::ErrorPatch>& patches, BoundaryError::SampledSide& side) {
   double total = 0, sum = 0, sum_abs = 0, sum_sq = 0;
@@ -218,6 +228,16 @@ void patch_means(const std::vector<BoundaryError::ErrorPatch>& patches, Boundary
     side.mean_abs = sum_abs / total;
     side.rms = std::sqrt(sum_sq / total);
   }
+}
+
+// One direction's sampled figures: the sampler's maximum, bound and count,
+// the patches' means.
+void summarize_side(const SampledDistance& d, const std::vector<BoundaryError::ErrorPatch>& patches,
+                    BoundaryError::SampledSide& side) {
+  side.max = d.max_distance;
+  side.upper_bound = d.upper_bound;
+  side.num_samples = d.num_samples;
+  patch_means(patches, side);
 }
 
 // Hex boundary -> reference over the boundary triangles (certified maximum),
@@ -238,11 +258,7 @@ void sampled_mesh_errors(const HexMesh& mesh, const Topology& topo, const std::v
       out.mesh_patches[i] = {p.corners, sign < 0 ? -p.closest.distance : p.closest.distance, p.area};
     }
   });
-  auto& s = out.sampled_mesh_to_reference;
-  s.max = d.max_distance;
-  s.upper_bound = d.upper_bound;
-  s.num_samples = d.num_samples;
-  patch_means(out.mesh_patches, s);
+  summarize_side(d, out.mesh_patches, out.sampled_mesh_to_reference);
 }
 
 // A quarter of each boundary quad's area to each of its corners (a surface
@@ -272,11 +288,7 @@ void reference_to_mesh_errors(const HexMesh& mesh, const Topology& topo, const T
   const TriSurface hex_surface = boundary_triangles(mesh, topo);
   std::vector<Vec3> samples;
   std::vector<Index> sample_vertex;
-  for (std::size_t v = 0; v < reference.points.size(); ++v)
-    if (used[v]) {
-      samples.push_back(reference.points[v]);
-      sample_vertex.push_back(static_cast<Index>(v));
-    }
+  used_points(reference, used, samples, sample_vertex);
   const std::size_t num_vertex_samples = samples.size();
   for (const auto& t : reference.triangles)
     samples.push_back((reference.points[t[0]] + reference.points[t[1]] + reference.points[t[2]]) / 3.0);
@@ -315,11 +327,7 @@ void reference_to_mesh_errors(const HexMesh& mesh, const Topology& topo, const T
         out.reference_patches[i] = {p.corners, side > 0 ? -p.closest.distance : p.closest.distance, p.area};
       }
     });
-    auto& s = out.sampled_reference_to_mesh;
-    s.max = d.max_distance;
-    s.upper_bound = d.upper_bound;
-    s.num_samples = d.num_samples;
-    patch_means(out.reference_patches, s);
+    summarize_side(d, out.reference_patches, out.sampled_reference_to_mesh);
   }
 }
 
@@ -402,11 +410,7 @@ void check_reference_plane(const Planarity& plane, const TriSurface& reference,
                            const std::vector<std::uint8_t>& used, double diagonal) {
   std::vector<Vec3> points;
   std::vector<Index> ids;
-  for (std::size_t v = 0; v < reference.points.size(); ++v)
-    if (used[v]) {
-      points.push_back(reference.points[v]);
-      ids.push_back(static_cast<Index>(v));
-    }
+  used_points(reference, used, points, ids);
   const LeastSquaresPlane own = least_squares_plane(points);
   const double tolerance = kPlanarTolerance * diagonal;
   const auto farthest = [&](const Vec3& origin, const Vec3& normal) {
@@ -499,10 +503,7 @@ void sampled_planar_side(const SegmentSet& source, const PlanarDomain& target, i
   const std::vector<double> errors = signed_planar_distances(target, centres, closest, outside_sign);
   patches.resize(d.patches.size());
   for (std::size_t i = 0; i < d.patches.size(); ++i) patches[i] = {d.patches[i].corners, errors[i], d.patches[i].area};
-  side.max = d.max_distance;
-  side.upper_bound = d.upper_bound;
-  side.num_samples = d.num_samples;
-  patch_means(patches, side);
+  summarize_side(d, patches, side);
 }
 
 // The largest |value| of the finite values.

@@ -1013,6 +1013,7 @@ std::string boundary_html(const ReportModel& model) {
   data figures = figures_of(model, panel_view_ids(0), no_links);
   page.set("has_figures", !figures.is_empty_list());
   page.set("is_surface", model.analysis.mesh_summary.is_surface);
+  page.set("is_planar", e.planar);
   page.set("figures", figures);
 
   const Statistics& s = e.signed_stats;
