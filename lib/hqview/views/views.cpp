@@ -665,6 +665,8 @@ static std::string view_title(std::string_view title, const Analysis& a) {
       if (t == from) t = to;
     if (a.boundary_error && a.boundary_error->planar && t.starts_with("Boundary error:"))
       t = "Boundary error: the boundary polylines and the reference outline by signed error, from above";
+    if (a.boundary_error && a.boundary_error->planar && t.starts_with("Boundary area"))
+      t.replace(0, 13, "Boundary length");
   }
   return t;
 }
