@@ -102,7 +102,10 @@ def main():
             for i in range(4):
                 c = 1 + i + 5 * j
                 f.write(f"f {c} {c + 1} {c + 6} {c + 5}\n")
-    run([hqview, "analyze", "quads.obj", "--no-render", "-o", "quads", "-q"], work)
+    # ... measured against a planar outline (boundary_error.planar's keys).
+    with open(os.path.join(work, "outline.obj"), "w") as f:
+        f.write("v -0.5 -0.5 0\nv 4.5 -0.5 0\nv 4.5 4.5 0\nv -0.5 4.5 0\nf 1 2 3\nf 1 3 4\n")
+    run([hqview, "analyze", "quads.obj", "--reference", "outline.obj", "--no-render", "-o", "quads", "-q"], work)
     with open(os.path.join(work, "manifest.csv"), "w") as f:
         f.write("mesh,label,model\n")
         f.write(os.path.join(examples, "ball.mesh") + ",m1,ball\n")

@@ -150,6 +150,48 @@ TEST(Reference, MissingEmptyAndFarReferencesAreInputErrors) {
   EXPECT_FALSE(fs::exists(dir / "bundle"));
 }
 
+// A planar quad mesh (a 4 x 4 grid of unit quads, OBJ) against a square
+// outline 0.5 larger on every side: every boundary vertex -0.5, the
+// outline's corners -0.5 sqrt 2 (issue 47 item 5); an outline tilted out
+// of the mesh's plane exits 3 and writes nothing.
+TEST(Reference, PlanarMeshAgainstAnOutlineAndATiltedOneRefused) {
+  const fs::path dir = fresh_output_dir("reference/planar");
+  {
+    std::ofstream f(dir / "quads.obj");
+    for (int j = 0; j < 5; ++j)
+      for (int i = 0; i < 5; ++i) f << "v " << i << " " << j << " 0\n";
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i) {
+        const int c = 1 + i + 5 * j;
+        f << "f " << c << " " << c + 1 << " " << c + 6 << " " << c + 5 << "\n";
+      }
+  }
+  { std::ofstream(dir / "outline.obj") << "v -0.5 -0.5 0\nv 4.5 -0.5 0\nv 4.5 4.5 0\nv -0.5 4.5 0\nf 1 2 3\nf 1 3 4\n"; }
+  { std::ofstream(dir / "tilted.obj") << "v -0.5 -0.5 -0.5\nv 4.5 -0.5 -0.5\nv 4.5 4.5 0.5\nv -0.5 4.5 0.5\nf 1 2 3\nf 1 3 4\n"; }
+  auto run = [&](const char* reference, const char* out) {
+    return run_hqview({"analyze", (dir / "quads.obj").string(), "--reference", (dir / reference).string(), "-o",
+                       (dir / out).string(), "--no-render"});
+  };
+  const CliResult r = run("outline.obj", "good");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto e = nlohmann::json::parse(read_text(dir / "good" / "report.json"))["boundary_error"];
+  EXPECT_EQ(e["sign_method"], "planar_domain");
+  EXPECT_NEAR(e["hausdorff"]["mesh_to_reference"].get<double>(), 0.5, 1e-12);
+  EXPECT_NEAR(e["hausdorff"]["reference_to_mesh"].get<double>(), 0.5 * std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(e["signed"]["max"].get<double>(), -0.5, 1e-12);
+  EXPECT_EQ(e["fraction_inside"].get<double>(), 1.0);
+  EXPECT_EQ(e["planar"]["num_reference_outline_segments"], 4);
+  EXPECT_NEAR(e["planar"]["mesh_boundary_length"].get<double>(), 16.0, 1e-12);
+  EXPECT_TRUE(e["uv_atlas"].is_null());
+
+  const CliResult tilted = run("tilted.obj", "tilted");
+  EXPECT_EQ(tilted.exit_code, 3) << tilted.err;
+  EXPECT_NE(tilted.err.find("tilted.obj: the reference is not in the mesh's plane: its point 0 lies"),
+            std::string::npos)
+      << tilted.err;
+  EXPECT_FALSE(fs::exists(dir / "tilted"));
+}
+
 TEST(Reference, GatesReadTheBoundaryError) {
   const fs::path dir = fresh_output_dir("reference/gates");
   auto run = [&](const std::string& rule) {

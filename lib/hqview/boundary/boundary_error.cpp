@@ -13,6 +13,9 @@
 #include "hqview/boundary/surface_sign.h"
 #include "hqview/core/box3.h"
 #include "hqview/core/error.h"
+#include "hqview/core/number_format.h"
+#include "hqview/mesh/mesh_summary.h"
+#include "hqview/mesh/planarity.h"
 
 namespace hq {
 namespace {
@@ -34,7 +37,26 @@ bool has_positive_area(const TriSurface& s) {
 }  // namespace
 
 const char* sign_method_name(SignMethod method) {
-  return method == SignMethod::kPseudoNormal ? "pseudo_normal" : "winding_number";
+  switch (method) {
+    case SignMethod::kPseudoNormal: return "pseudo_normal";
+    case SignMethod::kWindingNumber: return "winding_number";
+    case SignMethod::kPlanarDomain: return "planar_domain";
+  }
+  return "";
+}
+
+bool is_planar_surface(const HexMesh& mesh, const Topology& topo) {
+  if (!is_surface_mesh(mesh)) return false;
+  const Box3 box = referenced_bounding_box(mesh, topo);
+  return measure_planarity(mesh, box.is_empty() ? 0.0 : norm(box.hi - box.lo)).is_planar;
+}
+
+SegmentSet surface_boundary_segments(const std::vector<Vec3>& points, const SurfaceTopology& topology) {
+  SegmentSet s;
+  s.points = points;
+  for (std::size_t e = 0; e < topology.edges.size(); ++e)
+    if (topology.edge_num_faces[e] == 1) s.segments.push_back(topology.edges[e]);
+  return s;
 }
 
 TriSurface boundary_triangles(const HexMesh& mesh, const Topology& topo) {
@@ -61,10 +83,15 @@ TriSurface boundary_triangles(const HexMesh& mesh, const Topology& topo) {
 std::vector<Index> measured_vertices(const HexMesh& mesh, const Topology& topo) {
   if (!is_surface_mesh(mesh)) return topo.boundary_vertices;
   std::vector<char> used(mesh.points.size(), 0);
-  for (const auto& q : mesh.quads)
-    for (Index v : q) used[static_cast<std::size_t>(v)] = 1;
-  for (const auto& t : mesh.triangles)
-    for (Index v : t) used[static_cast<std::size_t>(v)] = 1;
+  if (is_planar_surface(mesh, topo)) {
+    for (const auto& e : surface_boundary_segments({}, topo.surface).segments)
+      for (Index v : e) used[static_cast<std::size_t>(v)] = 1;
+  } else {
+    for (const auto& q : mesh.quads)
+      for (Index v : q) used[static_cast<std::size_t>(v)] = 1;
+    for (const auto& t : mesh.triangles)
+      for (Index v : t) used[static_cast<std::size_t>(v)] = 1;
+  }
   std::vector<Index> out;
   for (std::size_t v = 0; v < used.size(); ++v)
     if (used[v]) out.push_back(static_cast<Index>(v));
@@ -116,15 +143,20 @@ int reference_sign(const ReferenceSide& side, SignMethod method, double band, co
   return w >= 0.5 ? -1 : 1;
 }
 
-// Repairs the reference and builds its closest-point tree and sign structure.
+// Repairs the reference and builds its closest-point tree and sign structure
+// (none for a planar mesh: its signs are in the plane).
 void prepare_reference(const TriSurface& reference, ReferenceSide& side, BoundaryError& out) {
   side.repaired = repair_reference(reference);
   out.num_repaired_triangles = side.repaired.num_removed_triangles;
   out.num_zero_area_triangles = side.repaired.num_zero_area_triangles;
   if (!has_positive_area(side.repaired.surface))
     throw InputError("the reference surface has no triangle of positive area after repair");
-  out.sign_method = side.repaired.is_closed_manifold ? SignMethod::kPseudoNormal : SignMethod::kWindingNumber;
   side.tree = std::make_unique<ClosestPointTree>(side.repaired.surface);
+  if (out.planar) {
+    out.sign_method = SignMethod::kPlanarDomain;
+    return;
+  }
+  out.sign_method = side.repaired.is_closed_manifold ? SignMethod::kPseudoNormal : SignMethod::kWindingNumber;
   if (out.sign_method == SignMethod::kPseudoNormal)
     side.normals = compute_pseudo_normals(side.repaired.surface);
   else
@@ -172,6 +204,16 @@ SampledDistanceOptions sampling_options(const BoundaryOptions& options, const Bo
   return s;
 }
 
+// The reference's points marked in `used`, appended with their ids.
+void used_points(const TriSurface& reference, const std::vector<std::uint8_t>& used, std::vector<Vec3>& points,
+                 std::vector<Index>& ids) {
+  for (std::size_t v = 0; v < reference.points.size(); ++v)
+    if (used[v]) {
+      points.push_back(reference.points[v]);
+      ids.push_back(static_cast<Index>(v));
+    }
+}
+
 // Area-weighted mean, mean |e| and rms over the patches (fixed order).
 void patch_means(const std::vector<BoundaryError::ErrorPatch>& patches, BoundaryError::SampledSide& side) {
   double total = 0, sum = 0, sum_abs = 0, sum_sq = 0;
@@ -186,6 +228,16 @@ void patch_means(const std::vector<BoundaryError::ErrorPatch>& patches, Boundary
     side.mean_abs = sum_abs / total;
     side.rms = std::sqrt(sum_sq / total);
   }
+}
+
+// One direction's sampled figures: the sampler's maximum, bound and count,
+// the patches' means.
+void summarize_side(const SampledDistance& d, const std::vector<BoundaryError::ErrorPatch>& patches,
+                    BoundaryError::SampledSide& side) {
+  side.max = d.max_distance;
+  side.upper_bound = d.upper_bound;
+  side.num_samples = d.num_samples;
+  patch_means(patches, side);
 }
 
 // Hex boundary -> reference over the boundary triangles (certified maximum),
@@ -206,11 +258,7 @@ void sampled_mesh_errors(const HexMesh& mesh, const Topology& topo, const std::v
       out.mesh_patches[i] = {p.corners, sign < 0 ? -p.closest.distance : p.closest.distance, p.area};
     }
   });
-  auto& s = out.sampled_mesh_to_reference;
-  s.max = d.max_distance;
-  s.upper_bound = d.upper_bound;
-  s.num_samples = d.num_samples;
-  patch_means(out.mesh_patches, s);
+  summarize_side(d, out.mesh_patches, out.sampled_mesh_to_reference);
 }
 
 // A quarter of each boundary quad's area to each of its corners (a surface
@@ -240,11 +288,7 @@ void reference_to_mesh_errors(const HexMesh& mesh, const Topology& topo, const T
   const TriSurface hex_surface = boundary_triangles(mesh, topo);
   std::vector<Vec3> samples;
   std::vector<Index> sample_vertex;
-  for (std::size_t v = 0; v < reference.points.size(); ++v)
-    if (used[v]) {
-      samples.push_back(reference.points[v]);
-      sample_vertex.push_back(static_cast<Index>(v));
-    }
+  used_points(reference, used, samples, sample_vertex);
   const std::size_t num_vertex_samples = samples.size();
   for (const auto& t : reference.triangles)
     samples.push_back((reference.points[t[0]] + reference.points[t[1]] + reference.points[t[2]]) / 3.0);
@@ -283,11 +327,7 @@ void reference_to_mesh_errors(const HexMesh& mesh, const Topology& topo, const T
         out.reference_patches[i] = {p.corners, side > 0 ? -p.closest.distance : p.closest.distance, p.area};
       }
     });
-    auto& s = out.sampled_reference_to_mesh;
-    s.max = d.max_distance;
-    s.upper_bound = d.upper_bound;
-    s.num_samples = d.num_samples;
-    patch_means(out.reference_patches, s);
+    summarize_side(d, out.reference_patches, out.sampled_reference_to_mesh);
   }
 }
 
@@ -359,6 +399,185 @@ void add_warnings(const BoundaryOptions& options, BoundaryError& out) {
   }
 }
 
+// ---- A planar mesh against a planar reference (docs/analysis.md, "Planar
+// meshes against a reference outline") ----
+
+// The least-squares plane check of the reference (its used points), then
+// that they lie in the mesh's plane, both within kPlanarTolerance of the
+// larger diagonal. Throws InputError naming the farthest point (0-based, in
+// the file's order).
+void check_reference_plane(const Planarity& plane, const TriSurface& reference,
+                           const std::vector<std::uint8_t>& used, double diagonal) {
+  std::vector<Vec3> points;
+  std::vector<Index> ids;
+  used_points(reference, used, points, ids);
+  const LeastSquaresPlane own = least_squares_plane(points);
+  const double tolerance = kPlanarTolerance * diagonal;
+  const auto farthest = [&](const Vec3& origin, const Vec3& normal) {
+    std::size_t worst = 0;
+    double d = -1;
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (std::abs(dot(points[i] - origin, normal)) > d) {
+        d = std::abs(dot(points[i] - origin, normal));
+        worst = i;
+      }
+    return std::pair{worst, d};
+  };
+  const std::string what = "; a planar mesh is measured against a planar triangle mesh of its domain, in its plane";
+  if (const auto [i, d] = farthest(own.centroid, own.normal); d > tolerance)
+    throw InputError("the reference is not planar: its point " + std::to_string(ids[i]) + " lies " +
+                     display_number(d, 3) + " from its best-fit plane (" + display_number(d / diagonal, 3) +
+                     " of the diagonal)" + what);
+  if (const auto [i, d] = farthest(plane.centroid, plane.normal); d > tolerance)
+    throw InputError("the reference is not in the mesh's plane: its point " + std::to_string(ids[i]) + " lies " +
+                     display_number(d, 3) + " from the mesh's plane (" + display_number(d / diagonal, 3) +
+                     " of the diagonal)" + what);
+}
+
+// The segments as a wall: each (a, b) extruded along the plane's normal by
+// `height` to both sides (two triangles). The wall's closest point to a
+// point within `height` of the plane lies at the point's height, so its
+// distance is the in-plane distance to the segments.
+TriSurface segment_wall(const SegmentSet& segments, const Vec3& normal, double height) {
+  TriSurface wall;
+  wall.points.reserve(2 * segments.points.size());
+  for (const Vec3& p : segments.points) {
+    wall.points.push_back(p - height * normal);
+    wall.points.push_back(p + height * normal);
+  }
+  for (const auto& [a, b] : segments.segments) {
+    wall.triangles.push_back({2 * a, 2 * b, 2 * b + 1});
+    wall.triangles.push_back({2 * a, 2 * b + 1, 2 * a + 1});
+  }
+  return wall;
+}
+
+// One side of the planar measurement: a domain (its faces) and its
+// outline (the wall of its boundary segments).
+struct PlanarDomain {
+  const ClosestPointTree* faces = nullptr;
+  TriSurface wall;                            // segment_wall of the outline
+  std::unique_ptr<ClosestPointTree> outline;  // over wall
+};
+
+// The domain of `faces` with the wall of `outline` (built in place: the
+// tree refers to the wall).
+void set_planar_domain(const ClosestPointTree* faces, const SegmentSet& outline, const Vec3& normal, double height,
+                       PlanarDomain& out) {
+  out.faces = faces;
+  out.wall = segment_wall(outline, normal, height);
+  out.outline = std::make_unique<ClosestPointTree>(out.wall);
+}
+
+// The distances of `points` to the domain's outline (closest: their
+// closest points on it), signed +outside_sign outside the domain, -outside_sign
+// inside. A point is outside when its distance to the domain's faces is
+// more than half its distance to the outline: outside, the two are equal
+// (the closest point of the faces is on the outline); inside, the first is
+// 0 up to rounding and the point's height over the plane.
+std::vector<double> signed_planar_distances(const PlanarDomain& domain, std::span<const Vec3> points,
+                                            std::span<const ClosestPoint> closest, int outside_sign) {
+  const std::vector<ClosestPoint> to_faces = domain.faces->query(points);
+  std::vector<double> out(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double d = closest[i].distance;
+    const bool outside = to_faces[i].distance > 0.5 * d;
+    out[i] = (outside ? outside_sign : -outside_sign) * d;
+  }
+  return out;
+}
+
+// The sampled pieces of one polyline against the other domain's outline, signed.
+void sampled_planar_side(const SegmentSet& source, const PlanarDomain& target, int outside_sign,
+                         const SampledDistanceOptions& options, std::vector<BoundaryError::ErrorPatch>& patches,
+                         BoundaryError::SampledSide& side) {
+  const SampledDistance d = sample_distance(source, *target.outline, options);
+  std::vector<Vec3> centres;
+  std::vector<ClosestPoint> closest;
+  centres.reserve(d.patches.size());
+  closest.reserve(d.patches.size());
+  for (const SamplePatch& p : d.patches) {
+    centres.push_back(p.centre);
+    closest.push_back(p.closest);
+  }
+  const std::vector<double> errors = signed_planar_distances(target, centres, closest, outside_sign);
+  patches.resize(d.patches.size());
+  for (std::size_t i = 0; i < d.patches.size(); ++i) patches[i] = {d.patches[i].corners, errors[i], d.patches[i].area};
+  summarize_side(d, patches, side);
+}
+
+// The largest |value| of the finite values.
+double largest_magnitude(const std::vector<double>& values) {
+  double m = 0;
+  for (double v : values)
+    if (std::isfinite(v)) m = std::max(m, std::abs(v));
+  return m;
+}
+
+// The planar measurement: the mesh's boundary polylines against the
+// reference's outline (signed + outside the reference's domain), and the
+// outline against the mesh's boundary (signed + inside the mesh's domain:
+// there the mesh passes outside the reference), at the vertices and
+// sampled along the segments.
+void planar_boundary_errors(const HexMesh& mesh, const Topology& topo, const TriSurface& reference,
+                            const std::vector<Index>& vertices, const ReferenceSide& side,
+                            const BoundaryOptions& options, BoundaryError& out) {
+  const std::size_t reference_size = reference.points.size(), reference_triangles = reference.triangles.size();
+  const TriSurface& repaired = side.repaired.surface;
+  HexMesh reference_faces;
+  reference_faces.points = repaired.points;
+  reference_faces.triangles.assign(repaired.triangles.begin(), repaired.triangles.end());
+  out.reference_outline = surface_boundary_segments(repaired.points, build_surface_topology(reference_faces));
+  if (out.reference_outline.segments.empty()) throw InputError("the reference has no boundary edge (no outline)");
+  const SegmentSet mesh_outline = surface_boundary_segments(mesh.points, topo.surface);
+  const double height = out.reference_bbox_diagonal;
+
+  PlanarDomain reference_domain;
+  set_planar_domain(side.tree.get(), out.reference_outline, out.plane_normal, height, reference_domain);
+
+  // Mesh -> reference at the boundary vertices, then along the polylines.
+  std::vector<Vec3> points;
+  for (Index v : vertices) points.push_back(mesh.points[static_cast<std::size_t>(v)]);
+  const std::vector<double> vertex_errors =
+      signed_planar_distances(reference_domain, points, reference_domain.outline->query(points), +1);
+  out.vertex_error.assign(mesh.points.size(), NAN);
+  out.sign_uncertain.assign(mesh.points.size(), 0);
+  out.vertex_area.assign(mesh.points.size(), 0.0);
+  for (std::size_t i = 0; i < vertices.size(); ++i) out.vertex_error[static_cast<std::size_t>(vertices[i])] = vertex_errors[i];
+  for (const auto& [a, b] : mesh_outline.segments) {
+    const double half = 0.5 * norm(mesh.points[static_cast<std::size_t>(b)] - mesh.points[static_cast<std::size_t>(a)]);
+    out.vertex_area[static_cast<std::size_t>(a)] += half;
+    out.vertex_area[static_cast<std::size_t>(b)] += half;
+  }
+  sampled_planar_side(mesh_outline, reference_domain, +1,
+                      sampling_options(options, out, largest_magnitude(vertex_errors)), out.mesh_patches,
+                      out.sampled_mesh_to_reference);
+
+  // Reference outline -> mesh boundary.
+  out.reference_vertex_error.assign(reference_size, NAN);
+  out.reference_face_error.assign(reference_triangles, NAN);
+  out.outline_vertex_error.assign(out.reference_outline.points.size(), NAN);
+  const TriSurface mesh_surface = boundary_triangles(mesh, topo);
+  if (mesh_outline.segments.empty() || !has_positive_area(mesh_surface)) return;
+  const ClosestPointTree mesh_faces(mesh_surface);
+  PlanarDomain mesh_domain;
+  set_planar_domain(&mesh_faces, mesh_outline, out.plane_normal, height, mesh_domain);
+  std::vector<Index> outline_vertices;
+  for (const auto& e : out.reference_outline.segments) outline_vertices.insert(outline_vertices.end(), e.begin(), e.end());
+  std::sort(outline_vertices.begin(), outline_vertices.end());
+  outline_vertices.erase(std::unique(outline_vertices.begin(), outline_vertices.end()), outline_vertices.end());
+  points.clear();
+  for (Index v : outline_vertices) points.push_back(out.reference_outline.points[static_cast<std::size_t>(v)]);
+  const std::vector<double> outline_errors =
+      signed_planar_distances(mesh_domain, points, mesh_domain.outline->query(points), -1);
+  for (std::size_t i = 0; i < outline_vertices.size(); ++i)
+    out.outline_vertex_error[static_cast<std::size_t>(outline_vertices[i])] = outline_errors[i];
+  out.hausdorff_reference_to_mesh = largest_magnitude(outline_errors);
+  sampled_planar_side(out.reference_outline, mesh_domain, -1,
+                      sampling_options(options, out, out.hausdorff_reference_to_mesh), out.reference_patches,
+                      out.sampled_reference_to_mesh);
+}
+
 }  // namespace
 
 void check_reference_placement(const HexMesh& mesh, const Topology& topo, const TriSurface& reference) {
@@ -375,11 +594,22 @@ BoundaryError compute_boundary_error(const HexMesh& mesh, const Topology& topo, 
   const std::vector<Index> vertices = measured_vertices(mesh, topo);
   const std::vector<std::uint8_t> used = check_bounding_boxes(mesh, vertices, reference, out);
   ReferenceSide side;
-  prepare_reference(reference, side, out);
-  signed_vertex_errors(mesh, vertices, side, options, out);
-  sampled_mesh_errors(mesh, topo, vertices, side, options, out);
-  vertex_areas(mesh, topo, out);
-  reference_to_mesh_errors(mesh, topo, reference, used, options, out);
+  if (is_planar_surface(mesh, topo)) {
+    const Box3 box = referenced_bounding_box(mesh, topo);
+    const double diagonal = norm(box.hi - box.lo);
+    const Planarity plane = measure_planarity(mesh, diagonal);
+    check_reference_plane(plane, reference, used, std::max(diagonal, out.reference_bbox_diagonal));
+    out.planar = true;
+    out.plane_normal = plane.normal;
+    prepare_reference(reference, side, out);
+    planar_boundary_errors(mesh, topo, reference, vertices, side, options, out);
+  } else {
+    prepare_reference(reference, side, out);
+    signed_vertex_errors(mesh, vertices, side, options, out);
+    sampled_mesh_errors(mesh, topo, vertices, side, options, out);
+    vertex_areas(mesh, topo, out);
+    reference_to_mesh_errors(mesh, topo, reference, used, options, out);
+  }
   summarize_errors(vertices, options, out);
   add_warnings(options, out);
   return out;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "hqview/boundary/sampled_distance.h"
 #include "hqview/mesh/hex_mesh.h"
 #include "hqview/mesh/topology.h"
 #include "hqview/quality/statistics.h"
@@ -19,8 +20,9 @@ namespace hq {
 enum class SignMethod {
   kPseudoNormal,   // closed manifold reference bounding a volume
   kWindingNumber,  // open or non-manifold reference
+  kPlanarDomain,   // a planar mesh against a planar reference: inside or outside the domain, in the plane
 };
-// "pseudo_normal" / "winding_number", as report.json writes it.
+// "pseudo_normal" / "winding_number" / "planar_domain", as report.json writes it.
 const char* sign_method_name(SignMethod method);
 
 struct BoundaryOptions {
@@ -112,12 +114,29 @@ struct BoundaryError {
   double fraction_inside = 0;
   double fraction_on_surface = 0;
 
+  // A planar surface mesh against a planar reference (docs/analysis.md,
+  // "Planar meshes against a reference outline"): the mesh's boundary
+  // polylines against the reference's outline (its boundary edges after
+  // the repair), in the mesh's plane. vertex_error is then set on the
+  // mesh's boundary vertices only, vertex_area is half the length of their
+  // boundary edges, mesh_patches and reference_patches are pieces of the
+  // two polylines (SamplePatch: the flat triangle (a, midpoint, b), area =
+  // length), reference_vertex_error and reference_face_error stay NaN: the
+  // outline's vertices carry outline_vertex_error instead.
+  bool planar = false;
+  Vec3 plane_normal;                         // the mesh's (planarity.h), unit
+  SegmentSet reference_outline;              // the reference's boundary edges
+  std::vector<double> outline_vertex_error;  // per reference_outline point; NaN off the outline
+
   std::vector<std::string> warnings;
 };
 
 // Computes the boundary error. Throws InputError (without a path; the caller
 // prefixes it) when the reference has no triangle of positive area, or when
 // the bounding boxes of the hex boundary and the reference do not overlap.
+// A planar surface mesh is measured in its plane (BoundaryError::planar);
+// then the reference must be planar and lie in the mesh's plane (within
+// kPlanarTolerance of the larger diagonal), else InputError.
 // Deterministic for any thread count (TBB inside).
 BoundaryError compute_boundary_error(const HexMesh& mesh, const Topology& topo, const TriSurface& reference,
                                      const BoundaryOptions& options = {});
@@ -135,7 +154,15 @@ TriSurface boundary_triangles(const HexMesh& mesh, const Topology& topo);
 
 // The vertices whose distance to the reference is measured (vertex_error):
 // a volume mesh's boundary vertices (topo.boundary_vertices); a surface
-// mesh's vertices that a face uses, ascending (issue 47).
+// mesh's vertices that a face uses, ascending (issue 47); a planar surface
+// mesh's vertices on a boundary edge (one face), ascending.
 std::vector<Index> measured_vertices(const HexMesh& mesh, const Topology& topo);
+
+// A surface mesh's boundary edges (used by one face) as segments over its
+// points: the boundary polylines of a planar mesh.
+SegmentSet surface_boundary_segments(const std::vector<Vec3>& points, const SurfaceTopology& topology);
+
+// Whether a mesh is measured in its plane: a planar surface mesh.
+bool is_planar_surface(const HexMesh& mesh, const Topology& topo);
 
 }  // namespace hq

@@ -50,12 +50,21 @@ struct SampledDistanceOptions {
   std::span<const ClosestPoint> triangle_centroids;
 };
 
-// A leaf patch: a triangle of the subdivision with its centroid sample.
+// Line segments: the boundary polylines of a planar mesh and the outline of
+// a planar reference (docs/analysis.md, "Planar meshes").
+struct SegmentSet {
+  std::vector<Vec3> points;
+  std::vector<std::array<Index, 2>> segments;
+};
+
+// A leaf patch: a triangle of the subdivision with its centroid sample (of
+// a segment source: a piece (a, b) of a segment, stored as the flat
+// triangle (a, (a + b) / 2, b), whose centroid is its midpoint).
 struct SamplePatch {
   std::array<Vec3, 3> corners;
   Index source_triangle = kNoIndex;  // the source triangle it subdivides
   Vec3 centre;                       // the sample: the centroid
-  double area = 0;                   // model units squared
+  double area = 0;                   // model units squared (a segment's piece: its length)
   ClosestPoint closest;              // on the target, for the centre
 };
 
@@ -72,6 +81,13 @@ struct SampledDistance {
 // Source triangles of zero area contribute nothing. Deterministic for any
 // thread count. The target tree must hold a triangle of positive area.
 SampledDistance sample_distance(const TriSurface& source, const ClosestPointTree& target,
+                                const SampledDistanceOptions& options);
+
+// The same over segments (a boundary polyline): each piece is split in two
+// halves, its radius half its length, the same two bounds (the distance
+// to a surface is 1-Lipschitz along the segment; the distance to one
+// triangle is convex along it). Segments of zero length contribute nothing.
+SampledDistance sample_distance(const SegmentSet& source, const ClosestPointTree& target,
                                 const SampledDistanceOptions& options);
 
 }  // namespace hq

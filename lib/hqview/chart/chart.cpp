@@ -451,7 +451,7 @@ Chart boundary_area_chart(std::span<const double> vertex_error, std::span<const 
                          kAxisColor,
                          1.0});
   chart.texts.push_back({{strip.x, strip.y + strip.height + 18.0},
-                         "boundary area: outside " + format_percent(f_out) + ", on " + format_percent(f_on) +
+                         "boundary " + labels.measure + ": outside " + format_percent(f_out) + ", on " + format_percent(f_on) +
                              (labels.unit.empty() ? std::string()
                                                   : " (|error| \u2264 " + display_number(tolerance, 3) + " " +
                                                         labels.unit + ")") +
@@ -482,7 +482,7 @@ Chart boundary_area_chart(std::span<const double> vertex_error, std::span<const 
   for (double t = 0.0; t <= x_limit + 0.5 * x_step; t += x_step) x_ticks.push_back({t, x_of(t)});
   for (double t = 0.0; t <= y_limit + 0.5 * y_step; t += y_step) y_ticks.push_back({t, y_of(t)});
   add_axes(chart, r, y_ticks, x_ticks, "|error| \u2264 x" + (labels.unit.empty() ? std::string() : " (" + labels.unit + ")"),
-           "% of boundary area");
+           "% of boundary " + labels.measure);
   auto curve = [&](const std::vector<std::pair<double, double>>& v, Rgba8 color) {
     ChartPolyline line{{{x_of(0.0), y_of(0.0)}}, color, 2.2};
     const std::size_t stride = std::max<std::size_t>(1, v.size() / 2000);

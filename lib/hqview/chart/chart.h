@@ -103,6 +103,8 @@ struct ErrorChartLabels {
   // values' unit) is "on the surface": a translucent grey band about 0 over
   // the bars, edged by grey lines at +-on_band and named in a note.
   double on_band = 0;
+  // Area chart: what the weights measure ("length" for a planar mesh's boundary polylines).
+  std::string measure = "area";
 };
 Chart sorted_boundary_error_chart(std::span<const double> vertex_error, const ChartOptions& options,
                                   const ErrorChartLabels& labels = {});

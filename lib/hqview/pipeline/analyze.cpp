@@ -460,7 +460,9 @@ void start_analysis(const AnalyzeOptions& options, AnalysisInProgress& out) {
   if (!options.reference_path.empty()) {
     clock.start("read reference");
     a.reference_surface = read_reference(a, options);
-    out.atlas = start_atlas(*a.reference_surface, views_up(a, options), out.cancel_atlas);
+    // A planar mesh's reference is its own UV map (no atlas).
+    if (!is_planar_surface(a.mesh, a.topology))
+      out.atlas = start_atlas(*a.reference_surface, views_up(a, options), out.cancel_atlas);
   }
   clock.stop();
   analyze_quality(a, options, clock);

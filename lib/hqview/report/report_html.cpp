@@ -995,12 +995,16 @@ std::string boundary_html(const ReportModel& model) {
                           show(sampled_relative(e, e.sampled_mesh_to_reference.max)) + " %"));
   headline.push_back(card("sampled reference → mesh, % of diagonal",
                           show(sampled_relative(e, e.sampled_reference_to_mesh.max)) + " %"));
-  // A surface mesh's vertices are all on its "boundary" here.
-  const std::string vertices = model.analysis.mesh_summary.is_surface ? "the mesh's vertices" : "hex boundary vertices";
+  // A surface mesh's vertices are all on its "boundary" here; a planar
+  // mesh's boundary polylines are measured against the reference's outline.
+  const std::string vertices = e.planar ? "the mesh's boundary vertices"
+                               : model.analysis.mesh_summary.is_surface ? "the mesh's vertices"
+                                                                        : "hex boundary vertices";
+  const std::string measure = e.planar ? "length" : "area", over = e.planar ? "along the polylines" : "over the surfaces";
   headline.push_back(card("mesh → reference at " + vertices + " (the papers' figure), % of diagonal",
                           show(100.0 * e.relative_mesh_to_reference) + " %"));
   const std::string floor = show(sampled_relative(e, e.on_surface_tolerance));
-  headline.push_back(card("boundary area outside / on / inside the reference (on: |error| ≤ " + floor +
+  headline.push_back(card("boundary " + measure + " outside / on / inside the reference (on: |error| ≤ " + floor +
                               " % of the diagonal)",
                           // No spaces around the slashes: the card's value does not wrap (a phone's 375 px).
                           one_decimal(100.0 * e.fraction_outside) + "/" + one_decimal(100.0 * e.fraction_on_surface) +
@@ -1013,6 +1017,7 @@ std::string boundary_html(const ReportModel& model) {
   data figures = figures_of(model, panel_view_ids(0), no_links);
   page.set("has_figures", !figures.is_empty_list());
   page.set("is_surface", model.analysis.mesh_summary.is_surface);
+  page.set("is_planar", e.planar);
   page.set("figures", figures);
 
   const Statistics& s = e.signed_stats;
@@ -1028,26 +1033,27 @@ std::string boundary_html(const ReportModel& model) {
   page.set("signed_rows", stats);
 
   data rows{data::type::list};
-  rows.push_back(kv("Hausdorff sampled over the surfaces, mesh → reference: max sampled (certified upper bound)",
+  rows.push_back(kv("Hausdorff sampled " + over + ", mesh → reference: max sampled (certified upper bound)",
                     show(e.sampled_mesh_to_reference.max) + " (" + show(e.sampled_mesh_to_reference.upper_bound) + ")"));
-  rows.push_back(kv("Hausdorff sampled over the surfaces, reference → mesh: max sampled (certified upper bound)",
+  rows.push_back(kv("Hausdorff sampled " + over + ", reference → mesh: max sampled (certified upper bound)",
                     show(e.sampled_reference_to_mesh.max) + " (" + show(e.sampled_reference_to_mesh.upper_bound) + ")"));
   rows.push_back(kv("sampling tolerance / samples",
                     show(e.sampling_tolerance) + " / " +
                         show_count(e.sampled_mesh_to_reference.num_samples + e.sampled_reference_to_mesh.num_samples)));
-  rows.push_back(kv("sampled area-weighted mean / mean |error| / rms, mesh → reference",
+  rows.push_back(kv("sampled " + measure + "-weighted mean / mean |error| / rms, mesh → reference",
                     show(e.sampled_mesh_to_reference.mean) + " / " + show(e.sampled_mesh_to_reference.mean_abs) + " / " +
                         show(e.sampled_mesh_to_reference.rms)));
-  rows.push_back(kv("sampled area-weighted mean / mean |error| / rms, reference → mesh",
+  rows.push_back(kv("sampled " + measure + "-weighted mean / mean |error| / rms, reference → mesh",
                     show(e.sampled_reference_to_mesh.mean) + " / " + show(e.sampled_reference_to_mesh.mean_abs) +
                         " / " + show(e.sampled_reference_to_mesh.rms)));
   rows.push_back(kv("Hausdorff at " + vertices + ", mesh → reference", show(e.hausdorff_mesh_to_reference)));
-  rows.push_back(kv("Hausdorff at reference vertices and face centres, reference → mesh",
+  rows.push_back(kv(e.planar ? std::string("Hausdorff at the reference outline's vertices, reference → mesh")
+                             : std::string("Hausdorff at reference vertices and face centres, reference → mesh"),
                     show(e.hausdorff_reference_to_mesh)));
   rows.push_back(kv("Hausdorff (vertex figures), symmetric", show(e.hausdorff_symmetric)));
   rows.push_back(kv("reference bbox diagonal", show(e.reference_bbox_diagonal)));
   rows.push_back(
-      kv("area-weighted mean / mean |error| / rms (" + vertices + ")",
+      kv(measure + "-weighted mean / mean |error| / rms (" + vertices + ")",
          show(e.area_weighted_mean) + " / " + show(e.area_weighted_mean_abs) + " / " + show(e.area_weighted_rms)));
   rows.push_back(kv("sign method", sign_method_name(e.sign_method)));
   rows.push_back(kv("uncertain signs", show_count(e.num_uncertain_signs)));

@@ -406,6 +406,19 @@ Json boundary_error_json(const ReportModel& model) {
   j["area_weighted_sampled"] = {{"mesh_to_reference", means(m)}, {"reference_to_mesh", means(r)}};
   j["fraction_on_surface"] = number(e.fraction_on_surface);
   j["on_surface_tolerance_relative"] = relative(e.on_surface_tolerance);
+  // A planar mesh (issue 47): its boundary polylines against the reference's outline.
+  if (e.planar) {
+    auto length = [](const std::vector<BoundaryError::ErrorPatch>& patches) {
+      double sum = 0;
+      for (const auto& p : patches) sum += p.area;
+      return sum;
+    };
+    j["planar"] = {{"num_reference_outline_segments", e.reference_outline.segments.size()},
+                   {"reference_outline_length", number(length(e.reference_patches))},
+                   {"mesh_boundary_length", number(length(e.mesh_patches))}};
+  } else {
+    j["planar"] = nullptr;
+  }
   return j;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <span>
 
 #include "hqview/core/number_format.h"
@@ -75,13 +76,11 @@ void draw_worst_label(Image& figure, const PixelRect& view, double cx, double cy
 
 namespace {
 
-// A 3D error figure: the scene from view_direction, the camera fitted to
-// `points`, the shared colour bar with the marker's entry, the marker on the
-// sample of largest |error| (worst).
-Image render_error_figure(Scene scene, const std::vector<Vec3>& points, const BoundaryError& error, double scale,
-                          const WorstError& worst, const Vec3& view_direction, const BoundaryViewOptions& options,
-                          Renderer& renderer) {
-  const ErrorFigureFrame frame = error_figure_frame(points, error, scale, worst, view_direction, options);
+// An error figure: the scene through the frame's camera, the shared colour
+// bar with the marker's entry, the marker on the sample of largest |error|
+// (worst).
+Image render_error_figure(Scene scene, const ErrorFigureFrame& frame, const WorstError& worst,
+                          const BoundaryError& error, Renderer& renderer, const BoundaryViewOptions& options) {
   scene.background = options.background;
   Image figure = render_figure(renderer, scene, frame.camera, options.width, options.height, frame.layout,
                                options.title, frame.style);
@@ -98,7 +97,7 @@ Image render_error_figure(Scene scene, const std::vector<Vec3>& points, const Bo
       draw_marker_ring(figure, cx, cy, radius, thickness, !facing, kWorstMarkerColor);
       draw_worst_label(figure, frame.layout.view, cx, cy, radius,
                        "max |error| " + signed_percent_label(worst.error, error.reference_bbox_diagonal) +
-                           (facing ? "" : ", far side"),
+                           (facing ? "" : ", far side") + worst.note,
                        frame.style);
     }
   }
@@ -178,13 +177,13 @@ WorstError worst_error(const std::vector<BoundaryError::ErrorPatch>& patches, st
   WorstError w;
   for (const auto& p : patches)
     if (std::isfinite(p.error) && (!w.found || std::abs(p.error) > std::abs(w.error))) {
-      w = {(p.corners[0] + p.corners[1] + p.corners[2]) / 3.0, area_normal(p.corners), p.error, true};
+      w = {(p.corners[0] + p.corners[1] + p.corners[2]) / 3.0, area_normal(p.corners), p.error, true, {}};
     }
   std::size_t best_point = points.size();
   const std::size_t n = std::min(points.size(), point_error.size());
   for (std::size_t i = 0; i < n; ++i)
     if (std::isfinite(point_error[i]) && (!w.found || std::abs(point_error[i]) > std::abs(w.error))) {
-      w = {points[i], Vec3{}, point_error[i], true};
+      w = {points[i], Vec3{}, point_error[i], true, {}};
       best_point = i;
     }
   if (best_point < points.size()) {  // a vertex: the summed normals of the patches around it
@@ -197,18 +196,21 @@ WorstError worst_error(const std::vector<BoundaryError::ErrorPatch>& patches, st
 
 ErrorFigureFrame error_figure_frame(const std::vector<Vec3>& points, const BoundaryError& error, double scale,
                                    const WorstError& worst, const Vec3& view_direction,
-                                   const BoundaryViewOptions& options) {
+                                   const BoundaryViewOptions& options, std::vector<ColorBarSwatch> swatches) {
   ErrorFigureFrame f;
   f.style = annotation_style_for(options.height);
   f.style.background = options.background;
   f.bar = error_color_bar(scale, error.reference_bbox_diagonal, options.mesh_word);
+  f.bar.swatches = std::move(swatches);
   if (worst.found)
     f.bar.swatches.push_back({to_color(kWorstMarkerColor),
-                              "ring: max |error| " + signed_percent_label(worst.error, error.reference_bbox_diagonal)});
+                              "ring: max |error| " + signed_percent_label(worst.error, error.reference_bbox_diagonal) +
+                                  worst.note});
   f.layout = figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(f.bar, f.style),
                            f.style);
   const double aspect = static_cast<double>(f.layout.view.width) / f.layout.view.height;
-  f.camera = fit_camera_to_points(points, view_direction, aspect, {.up = options.up});
+  f.camera = fit_camera_to_points(points, view_direction, aspect,
+                                  {.up = options.up, .is_perspective = !options.orthographic});
   return f;
 }
 
@@ -238,8 +240,10 @@ Image render_boundary_error_view(const HexMesh& mesh, const Topology& topology, 
                                  const Vec3& view_direction, const BoundaryViewOptions& options, Renderer& renderer) {
   const double scale = boundary_error_scale(error);
   const std::vector<Vec3> points = boundary_points(mesh, topology);
-  return render_error_figure(build_boundary_error_scene(mesh, topology, error, scale), points, error, scale,
-                             worst_mesh_error(mesh, topology, error), view_direction, options, renderer);
+  const WorstError worst = worst_mesh_error(mesh, topology, error);
+  return render_error_figure(build_boundary_error_scene(mesh, topology, error, scale),
+                             error_figure_frame(points, error, scale, worst, view_direction, options), worst, error,
+                             renderer, options);
 }
 
 Scene build_reference_error_scene(const BoundaryError& error, double scale) {
@@ -255,9 +259,10 @@ Image render_reference_error_view(const TriSurface& reference, const BoundaryErr
   std::vector<Vec3> points;
   points.reserve(3 * error.reference_patches.size());
   for (const auto& p : error.reference_patches) points.insert(points.end(), p.corners.begin(), p.corners.end());
-  return render_error_figure(build_reference_error_scene(error, scale), points, error, scale,
-                             worst_error(error.reference_patches, reference.points, error.reference_vertex_error),
-                             view_direction, options, renderer);
+  const WorstError worst = worst_error(error.reference_patches, reference.points, error.reference_vertex_error);
+  return render_error_figure(build_reference_error_scene(error, scale),
+                             error_figure_frame(points, error, scale, worst, view_direction, options), worst, error,
+                             renderer, options);
 }
 
 Scene build_reference_overlay_scene(const HexMesh& mesh, const Topology& topology, const TriSurface& reference) {
@@ -293,6 +298,104 @@ Image render_reference_overlay(const HexMesh& mesh, const Topology& topology, co
   const Camera camera = fit_camera_to_points(points, view_direction, aspect, {.up = options.up});
   Image figure = render_figure(renderer, scene, camera, options.width, options.height, layout, options.title, style);
   return figure;
+}
+
+namespace {
+
+// The sampled pieces of a planar polyline (flat triangles (a, midpoint, b))
+// as line segments coloured by their errors (or all `casing`, when set),
+// moved by `lift`.
+LineSet patch_segments(const std::vector<BoundaryError::ErrorPatch>& patches, const Vec3& origin, const Vec3& lift,
+                       double scale, float width, std::optional<Rgba8> casing = std::nullopt) {
+  LineSet set;
+  set.width = width;
+  for (const auto& p : patches) {
+    const Rgba8 color = casing ? *casing : error_rgba(p.error, scale);
+    for (const Vec3& c : {p.corners[0], p.corners[2]}) {
+      set.indices.push_back(static_cast<std::uint32_t>(set.positions.size()));
+      set.positions.push_back(to_vec3f(c + lift - origin));
+      set.colors.push_back(color);
+    }
+  }
+  return set;
+}
+
+constexpr Rgba8 kPlanarDomainColor{222, 222, 226, 255};
+// Each coloured line on a dark casing 1.5 px wider each side, so that a
+// piece of error 0 (white) shows on the white page too.
+constexpr Rgba8 kPlanarCasingColor{55, 55, 65, 255};
+constexpr float kPlanarBoundaryWidth = 9.0f, kPlanarOutlineWidth = 3.0f, kPlanarCasing = 3.0f;
+
+}  // namespace
+
+Scene build_planar_boundary_error_scene(const HexMesh& mesh, const Topology& topology, const TriSurface& reference,
+                                        const BoundaryError& error, double scale) {
+  Scene scene;
+  scene.origin = 0.5 * (error.reference_bbox_min + error.reference_bbox_max);
+  const Vec3 step = (1e-3 * error.reference_bbox_diagonal) * error.plane_normal;  // towards the camera
+  TriangleSet domain;
+  for (const Vec3& p : reference.points) {
+    domain.positions.push_back(to_vec3f(p - scene.origin));
+    domain.normals.push_back(to_vec3f(error.plane_normal));
+    domain.colors.push_back(kPlanarDomainColor);
+  }
+  for (const auto& t : reference.triangles)
+    for (Index v : t) domain.indices.push_back(static_cast<std::uint32_t>(v));
+  scene.triangles.push_back(std::move(domain));
+  LineSet edges;
+  for (const auto& e : topology.surface.edges)
+    for (Index v : e) {
+      edges.indices.push_back(static_cast<std::uint32_t>(edges.positions.size()));
+      edges.positions.push_back(to_vec3f(mesh.points[static_cast<std::size_t>(v)] + step - scene.origin));
+      edges.colors.push_back({60, 60, 70, 90});
+    }
+  scene.lines.push_back(std::move(edges));
+  double lift = 2.0;
+  for (const auto& [patches, width] : {std::pair{&error.mesh_patches, kPlanarBoundaryWidth},
+                                       std::pair{&error.reference_patches, kPlanarOutlineWidth}}) {
+    scene.lines.push_back(
+        patch_segments(*patches, scene.origin, lift * step, scale, width + kPlanarCasing, kPlanarCasingColor));
+    scene.lines.push_back(patch_segments(*patches, scene.origin, (lift + 1.0) * step, scale, width));
+    lift += 2.0;
+  }
+  return scene;
+}
+
+WorstError worst_planar_error(const HexMesh& mesh, const BoundaryError& error) {
+  std::vector<Vec3> points;
+  std::vector<double> values;
+  for (std::size_t v = 0; v < error.vertex_error.size(); ++v)
+    if (std::isfinite(error.vertex_error[v])) {
+      points.push_back(mesh.points[v]);
+      values.push_back(error.vertex_error[v]);
+    }
+  WorstError w = worst_error(error.mesh_patches, points, values);
+  w.note = ", mesh boundary";
+  WorstError outline = worst_error(error.reference_patches, error.reference_outline.points, error.outline_vertex_error);
+  if (outline.found && (!w.found || std::abs(outline.error) > std::abs(w.error))) {
+    w = outline;
+    w.note = ", reference outline";
+  }
+  return w;
+}
+
+Image render_planar_boundary_error_view(const HexMesh& mesh, const Topology& topology, const TriSurface& reference,
+                                        const BoundaryError& error, const BoundaryViewOptions& options,
+                                        Renderer& renderer) {
+  const double scale = boundary_error_scale(error);
+  std::vector<Vec3> points = error.reference_outline.points;
+  for (const auto& p : error.mesh_patches) points.insert(points.end(), p.corners.begin(), p.corners.end());
+  const WorstError worst = worst_planar_error(mesh, error);
+  BoundaryViewOptions flat = options;
+  flat.orthographic = true;
+  const Color grey = to_color(Rgba8{90, 90, 100, 255});
+  const ErrorFigureFrame frame =
+      error_figure_frame(points, error, scale, worst, -1.0 * error.plane_normal, flat,
+                         {{grey, "thick: mesh boundary", SwatchShape::thick_line},
+                          {grey, "thin: reference outline", SwatchShape::line},
+                          {to_color(kPlanarDomainColor), "reference domain", SwatchShape::box}});
+  return render_error_figure(build_planar_boundary_error_scene(mesh, topology, reference, error, scale), frame, worst,
+                             error, renderer, flat);
 }
 
 Scene build_uv_error_scene(const TriSurface& reference, const UvAtlas& atlas, const std::vector<double>& point_error,

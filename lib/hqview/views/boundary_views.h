@@ -26,6 +26,7 @@ struct BoundaryViewOptions {
   Rgba8 background{255, 255, 255, 255};
   Vec3 up{0.0, 0.0, 1.0};  // the model axis drawn upwards in the 3D views (--up)
   std::string mesh_word = "hex";  // the legend's "+ = hex outside"; "mesh" for a surface mesh
+  bool orthographic = false;      // the error figures' camera (a planar mesh's, seen from above)
 };
 
 // The 98th percentile of |e| over the finite values of field (1 when there
@@ -68,14 +69,16 @@ struct WorstError {
   Vec3 normal;      // not unit; faces the camera when dot(normal, eye - position) >= 0
   double error = 0;  // signed, model units
   bool found = false;
+  std::string note;  // appended to the marker's label (a planar mesh: which polyline it lies on)
 };
 WorstError worst_error(const std::vector<BoundaryError::ErrorPatch>& patches, std::span<const Vec3> points,
                        std::span<const double> point_error);
 // worst_error over mesh_patches and the boundary vertices' vertex_error.
 WorstError worst_mesh_error(const HexMesh& mesh, const Topology& topology, const BoundaryError& error);
-// Where the parts of a 3D error figure go: the style, the colour bar (with
-// the marker's swatch when worst.found), the layout and the camera fitted to
-// points from view_direction.
+// Where the parts of an error figure go: the style, the colour bar (with
+// `swatches`, then the marker's swatch when worst.found), the layout and the
+// camera fitted to points from view_direction (orthographic when
+// options.orthographic).
 struct ErrorFigureFrame {
   AnnotationStyle style;
   ColorBar bar;
@@ -84,7 +87,7 @@ struct ErrorFigureFrame {
 };
 ErrorFigureFrame error_figure_frame(const std::vector<Vec3>& points, const BoundaryError& error, double scale,
                                    const WorstError& worst, const Vec3& view_direction,
-                                   const BoundaryViewOptions& options);
+                                   const BoundaryViewOptions& options, std::vector<ColorBarSwatch> swatches = {});
 
 // The hex boundary's sampled patches (mesh_patches), each flat-coloured by
 // diverging_color(error / scale) of its centre sample; boundary edges faint.
@@ -118,6 +121,27 @@ Scene build_reference_overlay_scene(const HexMesh& mesh, const Topology& topolog
 // One camera (view_direction) fitted to both the hex boundary and the reference.
 Image render_reference_overlay(const HexMesh& mesh, const Topology& topology, const TriSurface& reference,
                                const Vec3& view_direction, const BoundaryViewOptions& options, Renderer& renderer);
+
+// A planar mesh against a planar reference (BoundaryError::planar), seen
+// from above along the plane's normal: triangles[0] the reference's domain
+// (pale grey), lines[0] the mesh's edges (faint), lines[2] its boundary
+// polylines (thick; each sampled piece coloured by its mesh -> reference
+// error), lines[4] the reference's outline on top (thin; by its reference ->
+// mesh error), lines[1] and [3] their dark casings (so that white, error 0,
+// shows). Each layer lies a little nearer the camera than the last.
+Scene build_planar_boundary_error_scene(const HexMesh& mesh, const Topology& topology, const TriSurface& reference,
+                                        const BoundaryError& error, double scale);
+
+// The larger |error| of the two directions: worst_error over mesh_patches
+// and the boundary vertices, or over reference_patches and the outline's
+// vertices (ties: the mesh's), noted with its polyline.
+WorstError worst_planar_error(const HexMesh& mesh, const BoundaryError& error);
+
+// The planar figure: orthographic, from above, the shared colour bar, the
+// two lines' swatches and the marker on worst_planar_error.
+Image render_planar_boundary_error_view(const HexMesh& mesh, const Topology& topology, const TriSurface& reference,
+                                        const BoundaryError& error, const BoundaryViewOptions& options,
+                                        Renderer& renderer);
 
 // The UV map as a flat scene in the z = 0 plane (u, v in [0, 1]):
 // triangles[0] unlit, corners coloured by the reference error; lines[0] the

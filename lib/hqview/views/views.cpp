@@ -371,6 +371,13 @@ BoundaryViewOptions boundary_options(ViewContext& c) {
 std::vector<ViewFile> build_boundary_error(ViewContext& c) {
   auto b = boundary_options(c);
   std::vector<ViewFile> files;
+  if (c.a.boundary_error->planar) {  // one flat figure of both polylines (the plane is its own UV map)
+    b.title = c.name + ": boundary and reference outline by signed error, from above";
+    Image flat = render_planar_boundary_error_view(c.a.mesh, c.a.topology, *c.a.reference_surface,
+                                                   *c.a.boundary_error, b, c.renderer);
+    files.push_back(framed("views/boundary_error_plane.png", std::move(flat), c));
+    return files;
+  }
   b.title = c.name + ": signed boundary error, front";
   Image front = render_boundary_error_view(c.a.mesh, c.a.topology, *c.a.boundary_error, three_quarter_view(b.up), b,
                                            c.renderer);
@@ -386,6 +393,7 @@ std::vector<ViewFile> build_reference_error(ViewContext& c) {
   auto b = boundary_options(c);
   std::vector<ViewFile> files;
   const BoundaryError& e = *c.a.boundary_error;
+  if (e.planar) return files;  // the outline is in boundary_error's flat figure
   b.title = c.name + ": reference coloured by signed distance to the " + mesh_side(c.a) + ", front";
   files.push_back(framed("views/reference_error_front.png",
                          render_reference_error_view(*c.a.reference_surface, e, three_quarter_view(b.up), b, c.renderer), c));
@@ -411,6 +419,7 @@ std::vector<ViewFile> build_uv_key(ViewContext& c) {
 }
 
 std::vector<ViewFile> build_reference_overlay(ViewContext& c) {
+  if (c.a.boundary_error->planar) return {};  // coplanar surfaces: boundary_error's flat figure draws both
   auto b = boundary_options(c);
   b.title = c.name + ": " + mesh_side(c.a) + " (grey) and reference (orange, translucent)";
   Image image =
@@ -473,8 +482,11 @@ std::vector<ViewFile> build_boundary_area(ViewContext& c) {
   const PercentErrors v = percent_errors(e);
   return chart_files("boundary_area",
                      boundary_area_chart(v.error, v.area, v.per_unit * e.on_surface_tolerance,
-                                         {900, 500, c.name + ": boundary area outside / inside the reference"},
-                                         {std::string(mesh_side(c.a)) + " samples", "% of diagonal"}));
+                                         {900, 500, c.name + (e.planar ? ": boundary length outside / inside the reference"
+                                                                        : ": boundary area outside / inside the reference")},
+                                         {.items = std::string(mesh_side(c.a)) + " samples",
+                                          .unit = "% of diagonal",
+                                          .measure = e.planar ? "length" : "area"}));
 }
 
 // The histograms' axes: what is counted, and on a surface mesh what its
@@ -651,6 +663,10 @@ static std::string view_title(std::string_view title, const Analysis& a) {
          "Sorted boundary error (signed, surface mesh samples, % of diagonal)"}};
     for (const auto& [from, to] : kSurfaceTitles)
       if (t == from) t = to;
+    if (a.boundary_error && a.boundary_error->planar && t.starts_with("Boundary error:"))
+      t = "Boundary error: the boundary polylines and the reference outline by signed error, from above";
+    if (a.boundary_error && a.boundary_error->planar && t.starts_with("Boundary area"))
+      t.replace(0, 13, "Boundary length");
   }
   return t;
 }
