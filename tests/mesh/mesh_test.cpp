@@ -12,7 +12,7 @@
 #include "hqview/mesh/hex_mesh.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 Mesh mixed_mesh() {
   Mesh mesh;
