@@ -11,7 +11,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using test::box_grid;
 using test::cube_corners;

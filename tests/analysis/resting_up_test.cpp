@@ -20,7 +20,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using Cell = std::array<int, 3>;
 

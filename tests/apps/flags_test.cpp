@@ -14,7 +14,7 @@
 #include "hqview/views/views.h"
 
 namespace hqcli {
-namespace {
+namespace HQ_TEST_UNIT {
 
 template <class Fn>
 std::string usage_error(Fn&& fn) {

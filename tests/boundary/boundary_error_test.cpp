@@ -23,7 +23,7 @@
 #include "support/surface_fixtures.h"
 
 namespace hq::test {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // The unit cube as an n^3 grid of hexes.
 HexMesh unit_grid(int n) {

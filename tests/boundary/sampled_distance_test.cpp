@@ -16,7 +16,7 @@
 #include "support/surface_fixtures.h"
 
 namespace hq::test {
-namespace {
+namespace HQ_TEST_UNIT {
 
 double brute_force_distance(const TriSurface& s, const Vec3& p) {
   double best = INFINITY;

@@ -14,7 +14,7 @@
 #include "support/image_probe.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 bool inside(const ChartRect& outer, const ChartRect& r) {
   return r.x >= outer.x - 1e-9 && r.y >= outer.y - 1e-9 && r.x + r.width <= outer.x + outer.width + 1e-9 &&
@@ -231,7 +231,6 @@ TEST(ChartOutput, SvgAndPngFromOneChart) {
   EXPECT_EQ(corner[3], 255);
 }
 
-}  // namespace
 TEST(MethodDistribution, OneDotPerValueAtItsHeightAndAMedianBar) {
   const std::vector<std::string> methods = {"a", "b"};
   const std::vector<std::vector<double>> values = {{0.5, -0.25, std::nan("")}, {1.0, 0.0, 0.5, 0.25}};
@@ -459,10 +458,11 @@ TEST(ErrorDensityScatter, EveryHexCountedInALogLogGrid) {
   EXPECT_GT(median->points.back().y, median->points.front().y);  // y down: the right end lower
 }
 
+}  // namespace
 }  // namespace hq
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // The renumbering against std::regex (what it replaced) on tricky text:
 // ids inside longer words, a word without digits, '-' without digits, ids

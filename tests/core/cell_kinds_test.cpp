@@ -10,7 +10,7 @@
 
 #include "hqview/core/vec3.h"
 
-namespace {
+namespace HQ_TEST_UNIT {
 
 using hq::CellKind;
 using hq::CellKindTable;

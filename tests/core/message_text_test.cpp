@@ -9,7 +9,7 @@
 #include <string_view>
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using namespace std::string_literals;
 

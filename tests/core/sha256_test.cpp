@@ -8,7 +8,7 @@
 #include <unistd.h>
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // FIPS 180-4 examples and the padding boundaries (55, 56, 64 bytes).
 TEST(Sha256, KnownDigests) {

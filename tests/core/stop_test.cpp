@@ -11,7 +11,7 @@
 
 #include "hqview/core/progress.h"
 
-namespace {
+namespace HQ_TEST_UNIT {
 
 struct ResetStop {
   ResetStop() { hq::stop::reset(); }

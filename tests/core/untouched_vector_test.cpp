@@ -7,7 +7,7 @@
 #include <string>
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // Only resize(n) without a value skips the initialisation; the rest is
 // std::vector's behaviour.

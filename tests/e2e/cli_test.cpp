@@ -14,7 +14,7 @@
 #include "support/fixtures.h"
 
 namespace hq::test {
-namespace {
+namespace HQ_TEST_UNIT {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -305,7 +305,7 @@ TEST(Cli, HtmlEscapesNamesFromInput) {
 }  // namespace hq::test
 
 namespace hq::test {
-namespace {
+namespace HQ_TEST_UNIT {
 
 TEST(Cli, FormatOverridesTheExtension) {
   const fs::path dir = fresh_output_dir("format");
@@ -328,7 +328,6 @@ TEST(Cli, FormatOverridesTheExtension) {
   EXPECT_NE(bogus.err.find("--format"), std::string::npos) << bogus.err;
 }
 
-}  // namespace
 TEST(Cli, VerbosePrintsEachStageAndTimingsJsonListsThem) {
   // --verbose: one line per stage on standard error as it ends; the same
   // stages, in the same order, in timings.json (outside report.json, which
@@ -391,4 +390,5 @@ TEST(Cli, VerbosePrintsEachStageAndTimingsJsonListsThem) {
   EXPECT_EQ(read_text(dir / "v/report.json").find("seconds"), std::string::npos);
 }
 
+}  // namespace
 }  // namespace hq::test

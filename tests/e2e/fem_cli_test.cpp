@@ -13,7 +13,7 @@
 #include "support/fixtures.h"
 
 namespace hq::test {
-namespace {
+namespace HQ_TEST_UNIT {
 
 namespace fs = std::filesystem;
 using nlohmann::json;

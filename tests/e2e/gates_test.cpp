@@ -13,7 +13,7 @@
 #include "support/fixtures.h"
 
 namespace hq::test {
-namespace {
+namespace HQ_TEST_UNIT {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -310,7 +310,7 @@ TEST(RealMeshGates, ExitCodesOnTheDefectsThePapersKnow) {
 }  // namespace hq::test
 
 namespace hq::test {
-namespace {
+namespace HQ_TEST_UNIT {
 
 TEST(StructureGates, SingularityCountsGateLikeAnyNumber) {
   // The ball is a 10x10x10 grid warped into a sphere: its 12 box edges (120

@@ -19,7 +19,7 @@
 #include "support/text_checks.h"
 
 namespace hq::test {
-namespace {
+namespace HQ_TEST_UNIT {
 
 namespace fs = std::filesystem;
 

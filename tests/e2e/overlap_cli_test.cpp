@@ -10,7 +10,7 @@
 #include "support/fixtures.h"
 
 namespace hq::test {
-namespace {
+namespace HQ_TEST_UNIT {
 
 namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;  // keeps report.json's key order

@@ -13,7 +13,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // A 32^3 grid with every interior vertex moved by up to 0.3 h: 29,791 free
 // vertices, more than one 16,384-row chunk of the product, so the scatters

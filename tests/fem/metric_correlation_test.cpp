@@ -10,7 +10,7 @@
 #include <string_view>
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 TEST(Spearman, MonotoneAndReversed) {
   const std::vector<double> x = {1, 2, 3, 4, 5};

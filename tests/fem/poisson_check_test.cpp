@@ -17,7 +17,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // An n^3 box of side 1 (h = 1/n); with `perturbation` > 0 every interior vertex
 // moved by up to perturbation * h along each axis (a fixed pseudo-random pattern).

@@ -8,7 +8,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 Q1Corners transformed(Q1Corners p, double scale, const Vec3& shift, double angle) {
   const double c = std::cos(angle), s = std::sin(angle);

@@ -28,7 +28,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // The definition, pair by pair: |pi − pj| < ri + rj with the squared distance
 // ((dx² + dy²) + dz²) against (ri + rj)², glyphs where the radius is finite

@@ -25,7 +25,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // Pairs (i, j) among the first `listed` clusters where i is strictly worse
 // (lower min quality) and drawn strictly smaller.

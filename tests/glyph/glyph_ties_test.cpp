@@ -9,7 +9,7 @@
 #include <vector>
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 std::vector<AggregatedGlyph> ranked(const std::vector<double>& min_quality) {
   std::vector<AggregatedGlyph> clusters;

@@ -14,7 +14,7 @@
 #include "hqview/core/error.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 

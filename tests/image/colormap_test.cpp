@@ -8,7 +8,7 @@
 #include <tuple>
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 

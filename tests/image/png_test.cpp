@@ -16,7 +16,7 @@
 #include "hqview/core/error.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // PNG bytes written to a file and opened with OIIO (libpng underneath, which
 // checks every chunk's CRC), alpha kept straight.

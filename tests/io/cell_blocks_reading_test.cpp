@@ -26,7 +26,7 @@
 #include "temp_dir.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using test::error_text;
 using test::HybridCell;

@@ -24,7 +24,7 @@
 #include "temp_dir.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using test::kHexTetGeo;
 using test::run_gmsh;

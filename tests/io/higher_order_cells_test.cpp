@@ -32,7 +32,7 @@
 #include "hybrid_mesh_files.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using test::error_text;
 using test::HybridMesh;

@@ -10,7 +10,7 @@
 #include "io/error_text.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using hq::test::error_text;
 

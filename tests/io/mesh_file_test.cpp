@@ -10,7 +10,7 @@
 #include "io/temp_dir.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using test::error_text;
 using test::TempDir;

@@ -30,7 +30,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 constexpr const char* kMeshes[] = {
     "gao2016_sweeping/kitten_1.mesh",

@@ -15,7 +15,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using detail::check_netcdf_classic_header;
 using test::error_text;

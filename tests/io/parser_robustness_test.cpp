@@ -22,7 +22,7 @@
 #include "hqview/io/vtu_reader.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 const std::string kMedit =
     "MeshVersionFormatted 2\nDimension\n3\n# comment\nVertices 9\n"

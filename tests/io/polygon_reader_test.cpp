@@ -28,7 +28,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using test::error_text;
 using test::TempDir;

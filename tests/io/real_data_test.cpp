@@ -11,7 +11,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 struct MeshCase {
   const char* path;  // under meshes/

@@ -19,7 +19,7 @@
 #include "hqview/io/vtu_reader.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using test::error_text;
 

@@ -11,7 +11,7 @@
 #include "io/error_text.h"
 
 namespace hq::detail {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using hq::test::error_text;
 

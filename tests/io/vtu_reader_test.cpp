@@ -21,7 +21,7 @@
 #include "error_text.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using test::error_text;
 

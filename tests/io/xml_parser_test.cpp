@@ -8,7 +8,7 @@
 #include "error_text.h"
 
 namespace hq::detail {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using test::error_text;
 

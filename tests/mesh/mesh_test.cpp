@@ -15,7 +15,7 @@
 #include "hqview/mesh/surface_topology.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 Mesh mixed_mesh() {
   Mesh mesh;

@@ -28,7 +28,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using Tet = std::array<Index, 4>;
 using Wedge = std::array<Index, 6>;

@@ -9,7 +9,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 TEST(Topology, UnitCube) {
   const Topology topo = build_topology(test::unit_cube());

@@ -10,7 +10,7 @@
 #include <vector>
 
 namespace hq::detail {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // Clusters of 0-4 boxes, as a boundary quad's fan triangles: near
 // neighbours inside a cluster, clusters on a coarse lattice so that
@@ -157,7 +157,7 @@ TEST(BoxPairs, SlabbedGroupSearchFindsEveryGroupPairOnce) {
 }  // namespace hq::detail
 
 namespace hq::detail {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // The subset search (stage G's broad phase, open contact) against every
 // pair tested directly: subsets of 1 to every box, boxes on a coarse lattice

@@ -19,7 +19,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 struct Transform {
   const char* name;

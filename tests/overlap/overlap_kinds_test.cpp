@@ -29,7 +29,7 @@
 #include "temp_dir.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using Pairs = std::vector<std::array<Index, 2>>;
 

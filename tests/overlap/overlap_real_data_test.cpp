@@ -14,7 +14,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 HexMesh load(const char* relative) {
   const auto dir = test::shared_data_dir();

@@ -18,7 +18,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using test::grid;
 using test::grid_cell;

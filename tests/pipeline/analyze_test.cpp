@@ -25,7 +25,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 class RecordingRenderer final : public Renderer {
  public:

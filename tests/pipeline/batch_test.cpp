@@ -16,7 +16,7 @@
 #include <nlohmann/json.hpp>
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 BatchEntry entry(const std::string& path, BatchStatus status, const std::string& label = "", double min_sj = 0.5) {
   BatchEntry e;

@@ -10,7 +10,7 @@
 #include <string>
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 const char* kBase =
     R"({"schema_version": 1, "quality": {"scaled_jacobian": {"min": 0.5, "mean": 0.8}, "num_inverted": 0}, "boundary_error": null})";

@@ -23,7 +23,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 namespace fs = std::filesystem;
 

@@ -8,7 +8,7 @@
 #include "hqview/core/error.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // Expects a ValueError whose text contains `part`.
 #define EXPECT_VALUE_ERROR(statement, part)                                     \

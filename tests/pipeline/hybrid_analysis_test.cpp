@@ -24,7 +24,7 @@
 #include "io/temp_dir.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using Json = nlohmann::ordered_json;
 

@@ -35,7 +35,7 @@
 #include "support/verdict_oracle.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using Json = nlohmann::ordered_json;
 

@@ -40,7 +40,7 @@
 #include "support/viewer_data.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // An n x n grid of unit quads (side h) in the plane through o spanned by
 // the orthonormal e1, e2, counter-clockwise about e1 x e2; vertex (i, j)

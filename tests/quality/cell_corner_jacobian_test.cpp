@@ -18,7 +18,7 @@
 #include "support/verdict_oracle.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 const double s3 = std::sqrt(3.0);
 const std::array<Vec3, 4> kTet = {Vec3{0, 0, 0}, {1, 0, 0}, {0.5, s3 / 2, 0}, {0.5, s3 / 6, std::sqrt(2.0 / 3.0)}};

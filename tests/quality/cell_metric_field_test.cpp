@@ -21,7 +21,7 @@
 #include "hqview/quality/wedge_metrics.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // The unit cube's corners in VTK_HEXAHEDRON order, then its centre (8).
 const std::vector<Vec3> kCube = {Vec3{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},      {0, 0, 1},

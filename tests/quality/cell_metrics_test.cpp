@@ -25,7 +25,7 @@
 #include "support/verdict_oracle.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 template <std::size_t N>
 std::array<Vec3, N> corners_of(const nlohmann::json& c) {

@@ -10,7 +10,7 @@
 #include "support/verdict_oracle.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using Corners = std::array<Vec3, 8>;
 

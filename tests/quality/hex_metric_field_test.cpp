@@ -11,7 +11,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 HexMesh perturbed_grid(int n, unsigned seed) {
   HexMesh mesh = test::grid(n);

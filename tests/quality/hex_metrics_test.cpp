@@ -16,7 +16,7 @@
 #include "support/verdict_oracle.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using Corners = HexCorners;
 

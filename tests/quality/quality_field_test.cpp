@@ -9,7 +9,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 HexMesh perturbed_grid(int n) {
   HexMesh mesh = test::grid(n);

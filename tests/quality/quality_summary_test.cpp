@@ -12,7 +12,7 @@
 #include "support/mixed_grid.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 const MetricSummary* find(const std::vector<MetricSummary>& all, std::string_view name) {
   for (const MetricSummary& m : all)

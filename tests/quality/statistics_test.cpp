@@ -16,7 +16,7 @@
 #include "hqview/quality/corner_jacobian.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 TEST(Statistics, HandComputedSmallSet) {
   const std::vector<double> v = {0.5, -0.25, 1.0, 0.0, 0.75};
@@ -79,7 +79,7 @@ TEST(Statistics, EmptyInput) {
 }  // namespace hq
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // The reference: the definitions as written (kept values copied, one
 // std::sort, ascending sums, numpy's linear percentiles).

@@ -10,7 +10,7 @@
 #include "support/image_probe.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using test::count_differing;
 using test::kWhite;

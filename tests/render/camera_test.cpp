@@ -7,7 +7,7 @@
 #include <vector>
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 struct Case {
   Vec3 lo, hi, direction;

@@ -28,7 +28,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 Renderer& renderer() {
   static const std::unique_ptr<Renderer> instance = make_osmesa_renderer();

@@ -11,7 +11,7 @@
 #include <vector>
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 LabelLayoutOptions options_for(PixelRect bounds) {
   LabelLayoutOptions o;
@@ -188,7 +188,7 @@ TEST(LabelLayout, CrowdedRowKeepsLeadersApartAndRespectsEarlierLabels) {
 }  // namespace hq
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // Callout columns (issue 44 part V): 10 glyphs piled at the left end of an
 // 800 x 600 view (dolphin_rot's pile-up), each a disc of radius 6 and a
@@ -239,7 +239,7 @@ TEST(LabelLayout, CalloutColumnsHoldAPileUpWithoutCrossings) {
 }  // namespace hq
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // Spokes of glyph discs along the eight directions a label first tries
 // (every 8 px from 20 px out to the view's edge), so that every candidate

@@ -19,7 +19,7 @@
 #include "support/image_probe.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using test::count_differing;
 using test::kWhite;

@@ -6,7 +6,7 @@
 #include <cmath>
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 Camera looking_down_z() {
   Camera camera;

@@ -9,7 +9,7 @@
 #include "hqview/render/camera.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 void expect_near(const Vec3& a, const Vec3& b, double tol = 1e-12) {
   EXPECT_NEAR(a.x, b.x, tol);

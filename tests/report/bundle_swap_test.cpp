@@ -8,7 +8,7 @@
 #include "hqview/report/atomic_file.h"
 #include "hqview/report/bundle_writer.h"
 
-namespace {
+namespace HQ_TEST_UNIT {
 namespace fs = std::filesystem;
 
 // A process id no process has (above any pid_max): a killed run's.

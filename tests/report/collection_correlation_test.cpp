@@ -16,7 +16,7 @@
 #include <vector>
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 std::size_t slot(std::string_view key) {
   std::size_t k = 0;

@@ -10,7 +10,7 @@
 #include <string>
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 const CompareTableRow& row(const std::vector<CompareTableRow>& rows, const std::string& label) {
   for (const CompareTableRow& r : rows)

@@ -9,7 +9,7 @@
 #include "hqview/core/error.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 std::size_t slot(std::string_view key) {
   for (std::size_t k = 0; k < kNumHeadlineKeys; ++k)

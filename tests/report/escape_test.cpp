@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 TEST(XmlEscape, WhatXml10ForbidsIsEscaped) {
   EXPECT_EQ(xml_escape("a<b>&\"'"), "a&lt;b&gt;&amp;&quot;&apos;");

@@ -4,7 +4,7 @@
 
 #include <string>
 
-namespace {
+namespace HQ_TEST_UNIT {
 
 hq::BatchEntry entry(const std::string& path, hq::BatchStatus status) {
   hq::BatchEntry e;

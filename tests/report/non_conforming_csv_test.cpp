@@ -10,7 +10,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 TEST(NonConformingCsv, OneRowPerFaceWithItsCellsAndDiagonal) {
   ReportModel model;

@@ -14,7 +14,7 @@
 #include "hqview/report/report_markdown.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // CommonMark's reading of escaped text: "\c" is c for ASCII punctuation c,
 // and the three entities markdown_escape writes.

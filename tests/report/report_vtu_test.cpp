@@ -36,7 +36,7 @@
 #include "support/surface_fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 struct ModelParts {
   HexMetricSet metrics = all_hex_metrics();

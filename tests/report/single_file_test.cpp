@@ -9,7 +9,7 @@
 #include "hqview/core/error.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 const std::map<std::string, std::string> kFiles = {
     {"views/main.png", std::string("\x89PNG\r\n\x1a\n", 8)},

@@ -29,7 +29,7 @@
 #include "support/viewer_data.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using nlohmann::json;
 using test::array_of;

@@ -22,7 +22,7 @@
 #include "support/surface_fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using Quad = std::array<Index, 4>;
 

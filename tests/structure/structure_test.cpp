@@ -20,7 +20,7 @@
 #include "support/mixed_grid.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 HexStructure structure_of(const HexMesh& mesh) { return compute_structure(mesh, build_topology(mesh)); }
 

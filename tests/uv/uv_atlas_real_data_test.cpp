@@ -13,7 +13,7 @@
 #include "uv_atlas_checks.h"
 
 namespace hq::test {
-namespace {
+namespace HQ_TEST_UNIT {
 
 namespace fs = std::filesystem;
 

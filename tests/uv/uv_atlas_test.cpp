@@ -23,7 +23,7 @@
 #include "uv_atlas_checks.h"
 
 namespace hq::test {
-namespace {
+namespace HQ_TEST_UNIT {
 
 TEST(UvValidation, ExactOverlapAndTouching) {
   // Triangles 0 and 1 share an edge: they touch. 2 is a copy of 0; 3 crosses 0, 1 and 2.

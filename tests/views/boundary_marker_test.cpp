@@ -15,7 +15,7 @@
 #include "support/surface_fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 double wavy_radius(const Vec3& u) { return 1.0 + 0.05 * u.z; }
 

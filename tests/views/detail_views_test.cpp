@@ -14,7 +14,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // A one-vertex cluster at vertex v of mesh.
 GlyphResult one_vertex_cluster(const HexMesh& mesh, Index v) {

@@ -20,7 +20,7 @@
 #include "support/image_probe.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // The centre of a boundary face, and the outward normal of the unit box's
 // side through a point on it.
@@ -365,7 +365,7 @@ TEST(ErrorDensityView, TheBadRegionCarriesTheHighEndOfTheMap) {
 }  // namespace hq
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // The max hex's front edges, by hand: the unit cube seen from the (1, 1, 1)
 // side shows its faces x = 1, y = 1, z = 1, whose 9 edges are its front; the
@@ -398,7 +398,7 @@ TEST(ErrorDensityViews, MaxHexFrontEdgesFaceTheCamera) {
 }  // namespace hq
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // Pixel of a model point in a figure's view.
 std::array<int, 2> to_pixel(const Camera& camera, const PixelRect& view, const Vec3& p) {
@@ -514,7 +514,7 @@ TEST(ErrorDensityViews, HiddenMaxDrawnHiddenAndHiddenCellsKeepTheirColour) {
 }  // namespace hq
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // The model points of a hex's edge e at parameter t.
 Vec3 edge_point(const HexMesh& mesh, const Hex& hex, std::size_t e, double t) {
@@ -752,7 +752,7 @@ TEST(ErrorDensityViews, SmallMaxGetsAReadableRingTheLabelDoesNotCover) {
 }  // namespace hq
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // Issue 48r: an extruded plate was seen edge-on (a rectangle). A 12 x 8 x 1
 // plate (thin along z; turned so that it stands with its thin axis along x,
@@ -802,7 +802,7 @@ TEST(ErrorDensityViews, PlateIsNotSeenEdgeOn) {
 }  // namespace hq
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // Issue 48c: a boundary hex at the silhouette whose one face is in plain view
 // at a grazing angle is seen, though its faces turned away, drawn alone,

@@ -27,7 +27,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 // A dented grid, its topology and its glyphs (default options).
 struct Case {
   GlyphResult glyphs;
@@ -495,7 +495,7 @@ TEST(GlyphTiesView, ASymmetricModelGetsTwoDifferentViews) {
 }  // namespace hq
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // The legend's "edges at" line counts the vertices whose edges the scene
 // draws (the 44l review: star_twisted's legend said "edges at #0's 7

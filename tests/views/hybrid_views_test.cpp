@@ -39,7 +39,7 @@
 #include "support/image_probe.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // This process's own directory (ctest runs the tests as processes in
 // parallel), removed at exit.

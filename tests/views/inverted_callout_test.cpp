@@ -26,7 +26,7 @@
 #include "support/image_probe.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 struct Case {
   HexMesh mesh;

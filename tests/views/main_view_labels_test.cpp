@@ -51,7 +51,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 struct Case {
   HexMesh mesh;

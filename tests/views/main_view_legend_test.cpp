@@ -29,7 +29,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 struct Analysed {
   HexMesh mesh;

@@ -12,7 +12,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // A 3x3x3 grid with one cluster of two glyph vertices (0 and 1) and one
 // overlap marker of count 3 at vertex 0.

@@ -24,7 +24,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // An 8 x 8 x 4 grid whose +y face has two vertices pushed 1.6 cells inwards:
 // the hexes behind them are inverted at those corners (a dent of blue on +y).

@@ -14,7 +14,7 @@
 #include "support/fixtures.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 Vec3 model(const Scene& scene, const Vec3f& p) { return scene.origin + Vec3{p.x, p.y, p.z}; }
 

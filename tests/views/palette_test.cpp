@@ -39,7 +39,7 @@
 #include "support/colour_science.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 using test::ciede2000;
 using test::delta_e;

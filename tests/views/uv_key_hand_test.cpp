@@ -8,7 +8,7 @@
 #include "uv_key_checks.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 TEST(UvKeyFigure, TheHandsNumbersLieOnTheirChartsOrLeadToThem) {
   const auto data = test::shared_data_dir();

@@ -17,7 +17,7 @@
 #include "uv_key_checks.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // Is point p inside triangle (a, b, c) of the plane (either orientation)?
 bool inside(const std::array<double, 2>& p, const Uv& a, const Uv& b, const Uv& c) {
@@ -122,7 +122,7 @@ TEST(UvKey, NumbersOfARealAtlasInASmallFrameAreDisjoint) {
 }  // namespace hq
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 TEST(UvKeyFigure, NumbersLieOnTheirChartsOrLeadToThem) {
   const TriSurface surface = test::icosphere(3);
@@ -134,7 +134,7 @@ TEST(UvKeyFigure, NumbersLieOnTheirChartsOrLeadToThem) {
 }  // namespace hq
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 // Issue 45d: a chart in several pieces in the atlas is numbered on each:
 // two 100 x 100 squares of chart 3 joined by a 4-pixel neck (lobes), a
