@@ -25,7 +25,7 @@
 #include "support/image_probe.h"
 
 namespace hq::test {
-namespace {
+namespace HQ_TEST_UNIT {
 
 constexpr double kPi = std::numbers::pi;
 
