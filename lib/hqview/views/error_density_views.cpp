@@ -319,11 +319,12 @@ ColorBarSwatch too_small_to_outline_swatch() {
 // leader line from the label to the ring; so the label's white box never
 // covers a drawn cell; a margin more than kMaxLeader of the view's smaller
 // side from the ring's edge is no candidate (issue 48e: a 450 px leader on
-// bracket, 590 px on kitten_rot), and the boxes right of, left of, below
+// bracket, 590 px on kitten_rot; issue 48f: 0.2 left 214 px on hand_mr and
+// 193 px across slab_pi's faces), and the boxes right of, left of, below
 // and above the ring are: of them the one that covers the fewest model
 // pixels drawn so far (the `avoid` boxes, the densest 1% of the hexes,
 // weigh a hundredfold), then the nearest. label may have several lines.
-constexpr double kMaxLeader = 0.2;
+constexpr double kMaxLeader = 0.1;
 struct PixelBox {
   double x0, y0, x1, y1;
 };
@@ -414,7 +415,9 @@ struct Ring {
 };
 Ring fit_ring(const PixelRect& view, double cx, double cy, double extent, double stroke, double scale) {
   const double half = 0.5 * std::min(view.width, view.height);
-  const double pad = stroke + 2.0;  // the stroke's halo and a pixel
+  // The stroke's halo and the labels' margin (issue 48f: twist_inject's
+  // ring was 4 px from the picture's edge, the labels 10 px or more).
+  const double pad = stroke + 10.0 * scale;
   double radius = std::clamp(extent + 4.0 * scale, kMinRingRadius * scale,
                              std::max(kMinRingRadius * scale, kMaxRingFraction * 2.0 * half));
   // Shrunk towards the edge first (not below the minimum), then moved in.
