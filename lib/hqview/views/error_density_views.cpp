@@ -93,6 +93,13 @@ struct Figure {
   ErrorDensityScale scale;
   bool max_undashed = false;  // the boundary figure's hidden max drawn solid: every edge shorter than a dash
   std::vector<Index> drawn_cells;  // the densest 1% (the cells figure's cells): the max's label beside its ring avoids them
+  // The max's pixels in this figure (max_pixels_in_view; a seen max only):
+  // how many show and their centroid (figure pixels), the ring's centre.
+  std::size_t max_pixels = 0;
+  double max_x = 0, max_y = 0;
+  // A seen max too small for its outline (max_too_small_to_outline): no
+  // magenta edges over it, the label gives its pixels.
+  bool max_unoutlined = false;
 };
 
 Figure begin_figure(const HexMesh& mesh, const Topology& topology, const ErrorDensityScale& scale,
@@ -184,7 +191,7 @@ SwatchStroke boundary_max_stroke(const Figure& f) {
 // were painted opaque over the front faces, and its dashed edges were
 // depth-tested against them, which hid two of its edges or more).
 void add_max_outline(Figure& f, const HexMesh& mesh, const ErrorDensityWorst& worst) {
-  if (worst.hex == kNoIndex) return;
+  if (worst.hex == kNoIndex || f.max_unoutlined) return;
   const Hex& hex = mesh.hexes[static_cast<std::size_t>(worst.hex)];
   const SwatchStroke stroke = boundary_max_stroke(f);
   LineSet halo, core;
@@ -220,7 +227,49 @@ bool max_hex_behind_boundary(const Figure& f, const HexMesh& mesh, const Topolog
   return error_density_cells_behind_boundary(mesh, topology, max_hex, f.camera, renderer).front();
 }
 
-// With the max hidden (f.worst_hidden): the densest boundary hex of density
+// A seen max's pixels in f's view (issue 48f: warrior_rot's max, called
+// seen on the verdict's zoomed id image, is 10 x 7 px in the figure, and
+// its outline and halo covered it): an id image at the view's size with
+// f's camera, the max's faces `own` against the `others` (the boundary's
+// other faces, or the cells figure's other cells); their count and
+// centroid in figure pixels into f. Nothing when it is hidden.
+void max_pixels_in_view(Figure& f, const HexMesh& mesh, std::span<const std::array<Index, 4>> own,
+                        std::span<const std::array<Index, 4>> others, Renderer& renderer) {
+  f.max_pixels = 0;
+  if (f.worst_hidden || own.empty()) return;
+  Scene scene;
+  scene.origin = f.scene.origin;
+  scene.background = id_color(0);
+  TriangleSet mine, rest;
+  mine.is_lit = rest.is_lit = false;
+  for (const auto& q : own) add_quad(mine, mesh, scene.origin, q, id_color(2));
+  for (const auto& q : others) add_quad(rest, mesh, scene.origin, q, id_color(1));
+  scene.triangles.push_back(std::move(mine));
+  scene.triangles.push_back(std::move(rest));
+  const PixelRect& view = f.layout.view;
+  const IdImage ids = renderer.render_ids(scene, f.camera, view.width, view.height);
+  double sx = 0, sy = 0;
+  for (int y = 0; y < ids.height; ++y)
+    for (int x = 0; x < ids.width; ++x)
+      if (ids.at(x + ids.x0, y + ids.y0) == 2) ++f.max_pixels, sx += x + 0.5, sy += y + 0.5;
+  if (f.max_pixels == 0) return;
+  f.max_x = view.x + sx / static_cast<double>(f.max_pixels);
+  f.max_y = view.y + sy / static_cast<double>(f.max_pixels);
+}
+
+// Whether a seen max's outline, a halo of halo_width pixels along its
+// edges, would cover more than half of its pixels in the figure: a face of
+// P pixels, about sqrt(P) on a side, loses about 2 halo_width sqrt(P) of
+// them (half of each halo inside), more than P / 2 below (4 halo_width)^2
+// (issue 48f: warrior_rot's 54 px max face was all magenta and white).
+bool max_too_small_to_outline(const Figure& f, double halo_width) {
+  return !f.worst_hidden && f.max_pixels > 0 &&
+         static_cast<double>(f.max_pixels) < (4.0 * halo_width) * (4.0 * halo_width);
+}
+
+// With the max hidden (f.worst_hidden), or seen but too small to outline
+// (f.max_unoutlined; issue 48f: warrior_rot's max shows 7 px, its 9.4x
+// neighbour some 60 px in the same ring): the densest boundary hex of density
 // at least kNearMaxFraction of the max's (at most kNearMaxCandidates of
 // them) that error_density_cells_behind_boundary sees, into f.nearest_seen.
 constexpr double kNearMaxFraction = 0.9;
@@ -228,7 +277,7 @@ constexpr std::size_t kNearMaxCandidates = 32;
 void find_nearest_seen(Figure& f, const HexMesh& mesh, const Topology& topology, std::span<const double> density,
                        const ErrorDensityWorst& worst, Renderer& renderer) {
   f.nearest_seen = kNoIndex;
-  if (!f.worst_hidden || worst.hex == kNoIndex) return;
+  if ((!f.worst_hidden && !f.max_unoutlined) || worst.hex == kNoIndex) return;
   std::vector<Index> near;
   for (Index face : topology.boundary_faces) {
     const Index h = face_hex(topology, face);
@@ -258,17 +307,24 @@ ColorBarSwatch worst_ring_swatch(const ErrorDensityWorst& worst, bool hidden) {
   return {ink, "ring: max (visible)", SwatchShape::solid_ring};
 }
 
+// The legend's line for a seen max drawn without its outline
+// (max_too_small_to_outline): only the ring marks it.
+ColorBarSwatch too_small_to_outline_swatch() {
+  return {Color{0.08, 0.08, 0.08}, "  (max too small to outline)", SwatchShape::text};
+}
+
 // The label of the ring at (cx, cy) in the free margin beside the model's
 // projected box (x0, y0)-(x1, y1): right of it, left, above or below (the
 // first that fits in the view, nearest the ring's height or column), with a
 // leader line from the label to the ring; so the label's white box never
 // covers a drawn cell; a margin more than kMaxLeader of the view's smaller
 // side from the ring's edge is no candidate (issue 48e: a 450 px leader on
-// bracket, 590 px on kitten_rot), and the boxes right of, left of, below
+// bracket, 590 px on kitten_rot; issue 48f: 0.2 left 214 px on hand_mr and
+// 193 px across slab_pi's faces), and the boxes right of, left of, below
 // and above the ring are: of them the one that covers the fewest model
 // pixels drawn so far (the `avoid` boxes, the densest 1% of the hexes,
 // weigh a hundredfold), then the nearest. label may have several lines.
-constexpr double kMaxLeader = 0.2;
+constexpr double kMaxLeader = 0.1;
 struct PixelBox {
   double x0, y0, x1, y1;
 };
@@ -290,9 +346,6 @@ void draw_worst_label_outside(Image& figure, const PixelRect& view, const PixelB
   const auto distance = [&](const Box& b) {
     const double dx = std::max({b.x - cx, 0.0, cx - (b.x + w)}), dy = std::max({b.y - cy, 0.0, cy - (b.y + h)});
     return std::hypot(dx, dy);
-  };
-  const auto nearest = [&](const std::vector<Box>& boxes) {
-    return *std::min_element(boxes.begin(), boxes.end(), [&](const Box& a, const Box& b) { return distance(a) < distance(b); });
   };
   std::vector<Box> margins;
   if (model.x1 + gap + w <= vx1) margins.push_back({model.x1 + gap, clamp_y(cy - 0.5 * h)});
@@ -362,7 +415,9 @@ struct Ring {
 };
 Ring fit_ring(const PixelRect& view, double cx, double cy, double extent, double stroke, double scale) {
   const double half = 0.5 * std::min(view.width, view.height);
-  const double pad = stroke + 2.0;  // the stroke's halo and a pixel
+  // The stroke's halo and the labels' margin (issue 48f: twist_inject's
+  // ring was 4 px from the picture's edge, the labels 10 px or more).
+  const double pad = stroke + 10.0 * scale;
   double radius = std::clamp(extent + 4.0 * scale, kMinRingRadius * scale,
                              std::max(kMinRingRadius * scale, kMaxRingFraction * 2.0 * half));
   // Shrunk towards the edge first (not below the minimum), then moved in.
@@ -396,8 +451,11 @@ Ring draw_worst_marker(Image& figure, const Figure& f, const HexMesh& mesh, cons
     y = view.y + 0.5 * (1.0 - ndc.y) * view.height;
     return std::isfinite(ndc.x) && std::isfinite(ndc.y);
   };
-  double cx = 0, cy = 0;
-  if (!to_pixel(hex_center(mesh, worst.hex), cx, cy)) return {};
+  // Centred on a seen max's pixels (issue 48f: on kitten_rot the hex's
+  // centre projected onto a corner of its face in sight, and the ring was
+  // 41 % its colour), else on its centre.
+  double cx = f.max_x, cy = f.max_y;
+  if (f.max_pixels == 0 && !to_pixel(hex_center(mesh, worst.hex), cx, cy)) return {};
   double extent = 0;
   for (Index v : mesh.hexes[static_cast<std::size_t>(worst.hex)]) {
     double x = 0, y = 0;
@@ -420,10 +478,11 @@ Ring draw_worst_marker(Image& figure, const Figure& f, const HexMesh& mesh, cons
   std::string label = "max " + density_with_ratio(worst.density, f.scale) + ", hex " + std::to_string(worst.hex) +
                       (!worst.on_boundary ? " (interior, seen through)"
                        : f.worst_hidden   ? " (on the boundary, hidden: seen through)"
-                                          : " (on the boundary)") +
+                       : f.max_unoutlined ? " (on the boundary, visible: " + std::to_string(f.max_pixels) + " px)"
+                                          : std::string(" (on the boundary)")) +
                       f.worst_note;
   if (f.nearest_seen != kNoIndex)
-    label += "\nnearest visible: " + density_with_ratio(f.nearest_density, f.scale) + ", hex " +
+    label += std::string(f.worst_hidden ? "\nnearest visible: " : "\nalso in sight: ") + density_with_ratio(f.nearest_density, f.scale) + ", hex " +
              std::to_string(f.nearest_seen);
   std::vector<PixelBox> avoid;
   for (Index h : f.drawn_cells) {
@@ -450,7 +509,7 @@ Image finish_figure(Figure& f, const HexMesh& mesh, const ErrorDensityWorst& wor
   const Ring ring = draw_worst_marker(figure, f, mesh, worst, f.model_points);
   if (camera) *camera = f.camera;
   if (view) *view = f.layout.view;
-  if (parts) *parts = {f.scene, f.bar.swatches, ring.cx, ring.cy, ring.radius, f.worst_hidden, f.nearest_seen};
+  if (parts) *parts = {f.scene, f.bar.swatches, ring.cx, ring.cy, ring.radius, f.worst_hidden, f.nearest_seen, f.max_pixels, !f.max_unoutlined};
   return figure;
 }
 
@@ -730,12 +789,19 @@ Image render_error_density_boundary(const HexMesh& mesh, const Topology& topolog
   // edge-on) shows through it, so the dashed ring circles the max itself,
   // not other hexes' faces (issue 48h round 2).
   f.worst_hidden = max_hex_behind_boundary(f, mesh, topology, worst, renderer);
+  if (worst.hex != kNoIndex) {
+    std::vector<std::array<Index, 4>> own, others;
+    for (Index face : topology.boundary_faces)
+      (face_hex(topology, face) == worst.hex ? own : others).push_back(topology.faces[static_cast<std::size_t>(face)]);
+    max_pixels_in_view(f, mesh, own, others, renderer);
+  }
+  f.max_unoutlined = max_too_small_to_outline(f, boundary_max_stroke(f).halo_width);
   find_nearest_seen(f, mesh, topology, density, worst, renderer);
   add_max_outline(f, mesh, worst);
   f.drawn_cells = error_density_cells(density, options);  // the label keeps off the densest region
   // The ring and the outline as drawn (issue 48h: the ring was a black
   // box; issue 48: the outline had no entry).
-  for (ColorBarSwatch swatch : error_density_boundary_swatches(worst, f.worst_hidden, f.max_undashed)) {
+  for (ColorBarSwatch swatch : error_density_boundary_swatches(worst, f.worst_hidden, f.max_undashed, !f.max_unoutlined)) {
     if (swatch.shape == SwatchShape::dashed_line || swatch.shape == SwatchShape::thick_line)
       swatch.stroke = boundary_max_stroke(f);
     f.bar.swatches.push_back(swatch);
@@ -793,6 +859,16 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   // round 2: it was drawn solid, as if in front, where the boundary figure
   // said its faces are not seen): then its front edges are dashed too.
   f.worst_hidden = max_hex_behind_boundary(f, mesh, topology, worst, renderer);
+  if (worst.hex != kNoIndex) {  // the max among the drawn cells, each drawn whole
+    std::vector<std::array<Index, 4>> own, others;
+    for (Index h : shown) {
+      const Hex& hex = mesh.hexes[static_cast<std::size_t>(h)];
+      for (const auto& face : kHexFaces)
+        (h == worst.hex ? own : others).push_back({hex[face[0]], hex[face[1]], hex[face[2]], hex[face[3]]});
+    }
+    max_pixels_in_view(f, mesh, own, others, renderer);
+  }
+  f.max_unoutlined = max_too_small_to_outline(f, front_stroke(false).halo_width);
   find_nearest_seen(f, mesh, topology, density, worst, renderer);
   bool any_low = false, any_hidden = false, max_low = false;
   for (std::size_t k = 0; k < shown.size(); ++k) {
@@ -823,7 +899,7 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
         add_segment(casing, origin, a, b, kVeilOverWhite);
         add_dashed(set, f, a, b, edge_color);
       }
-      if (h != worst.hex) continue;
+      if (h != worst.hex || f.max_unoutlined) continue;
       if (front[e] && !behind) {  // the max's front edges: solid magenta on a halo
         add_segment(halo, origin, a, b, low ? kLowCellEdgeColor : Rgba8{255, 255, 255, 255});
         add_segment(halo_core, origin, a, b, kMaxHexEdgeColor);
@@ -855,7 +931,8 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
   // The legend: only the marks the figure has (no "undefined": a drawn cell
   // has a density); short lines, so the bar keeps its size.
   f.bar.swatches =
-      error_density_cells_swatches(worst, f.worst_hidden, {any_low, max_low, any_hidden}, options.quality_threshold);
+      error_density_cells_swatches(worst, f.worst_hidden, {any_low, max_low, any_hidden, !f.max_unoutlined},
+                                   options.quality_threshold);
   // The front and back edges' swatches: their stroke, halo and dashes as drawn.
   for (ColorBarSwatch& swatch : f.bar.swatches) {
     if (to_rgba8(swatch.color) != kMaxHexEdgeColor) continue;
@@ -868,9 +945,10 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
 }
 
 std::vector<ColorBarSwatch> error_density_boundary_swatches(const ErrorDensityWorst& worst, bool max_hidden,
-                                                            bool max_undashed) {
+                                                            bool max_undashed, bool max_outlined) {
   if (worst.hex == kNoIndex) return {};
   const Color magenta = to_color(kMaxHexEdgeColor);
+  if (!max_hidden && !max_outlined) return {worst_ring_swatch(worst, false), too_small_to_outline_swatch()};
   // Issue 48e: what is drawn. A hidden max whose edges are all shorter than
   // a dash is drawn solid through the surface (a dashed outline that small
   // was a magenta blot, and the legend said "dashed outline"); a seen one
@@ -891,7 +969,10 @@ std::vector<ColorBarSwatch> error_density_cells_swatches(const ErrorDensityWorst
                                                          double quality_threshold) {
   std::vector<ColorBarSwatch> swatches;
   const Color magenta = to_color(kMaxHexEdgeColor);
-  if (worst.hex != kNoIndex) {
+  if (worst.hex != kNoIndex && !max_hidden && !marks.max_outlined) {
+    swatches.push_back(worst_ring_swatch(worst, false));
+    swatches.push_back(too_small_to_outline_swatch());
+  } else if (worst.hex != kNoIndex) {
     swatches.push_back(worst_ring_swatch(worst, max_hidden));
     // Front thick, back thin (issue 48: a hidden max's front and back
     // swatches were the same thin dashed line).

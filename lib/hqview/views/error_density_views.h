@@ -25,7 +25,9 @@
 // through)", and in the cells figure its front edges dashed too), the label
 // in the free margin beside the model with a leader line to the ring. In
 // the boundary figure its 12 edges are outlined in kMaxHexEdgeColor on a
-// white halo: solid and depth-tested when it is seen, dashed and drawn
+// white halo (issue 48f: not when it is seen but so small in the figure
+// that the outline would cover most of it: then only the ring, and the
+// label gives its pixels; the ring is centred on its pixels in sight): solid and depth-tested when it is seen, dashed and drawn
 // through the surface when hidden, never filled over the faces in front of
 // it (issue 48; in the cells figure it is one of the cells, all drawn over
 // the veil). Every mark has its own legend entry. Both from one upright,
@@ -139,6 +141,8 @@ struct ErrorDensityFigureParts {
   double ring_x = 0, ring_y = 0, ring_radius = 0;
   bool max_hidden = false;
   Index nearest_seen = kNoIndex;
+  std::size_t max_pixels = 0;  // a seen max's pixels in the view (0: hidden)
+  bool max_outlined = true;    // false: seen but too small for its outline (only the ring)
 };
 
 // The two figures; `camera` (may be null) receives the 3D camera and
@@ -163,11 +167,12 @@ Image render_error_density_cells(const HexMesh& mesh, const Topology& topology, 
 // A hidden max drawn solid (max_undashed: every edge shorter than a dash)
 // says so.
 std::vector<ColorBarSwatch> error_density_boundary_swatches(const ErrorDensityWorst& worst, bool max_hidden,
-                                                            bool max_undashed = false);
+                                                            bool max_undashed = false, bool max_outlined = true);
 struct ErrorDensityCellsMarks {
   bool any_low = false;     // a drawn cell with scaled Jacobian below the threshold
   bool max_low = false;     // ... the max among them (its halo black)
   bool any_hidden = false;  // a drawn cell the boundary hides (dashed edges)
+  bool max_outlined = true;  // false: a seen max too small for its magenta edges (only the ring)
 };
 std::vector<ColorBarSwatch> error_density_cells_swatches(const ErrorDensityWorst& worst, bool max_hidden,
                                                          const ErrorDensityCellsMarks& marks, double quality_threshold);
