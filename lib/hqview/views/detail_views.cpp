@@ -13,6 +13,7 @@
 #include "hqview/image/colormap.h"
 #include "hqview/mesh/cell_faces.h"
 #include "hqview/quality/cell_corner_jacobian.h"
+#include "hqview/quality/quality_field.h"
 #include "hqview/render/annotate.h"
 #include "hqview/render/label_layout.h"
 #include "hqview/render/upright.h"
@@ -37,6 +38,18 @@ Vec3 centre_of(const std::vector<Vec3>& points) {
   return 0.5 * (box.lo + box.hi);
 }
 
+// Calls f(corner ids, size) for each face of cell c (any kind, id over all
+// blocks): a volume cell's faces (for_each_face_of), a surface cell itself
+// (a surface mesh's quad or triangle is its own face).
+template <class F>
+void for_each_drawn_face(const HexMesh& mesh, Index c, F&& f) {
+  const CellRef cell = any_cell(mesh, c);
+  if (cell_kind_dimension(cell.kind) == 3) return for_each_face_of(cell, f);
+  std::array<Index, 4> v{kNoIndex, kNoIndex, kNoIndex, kNoIndex};
+  std::copy_n(cell.corners.begin(), cell.num_corners, v.begin());
+  f(v, cell.num_corners);
+}
+
 // Unique edges of the given cells (from their faces), in one colour, in
 // ascending (a, b) order: the edges as 64-bit keys a * 2^32 + b, sorted.
 LineSet cell_edges(const HexMesh& mesh, const Topology& topology, const std::vector<Index>& cells, const Vec3& origin,
@@ -57,7 +70,7 @@ LineSet cell_edges(const HexMesh& mesh, const Topology& topology, const std::vec
   const Index num_hexes = mesh.num_hexes();
   for (Index c : cells) {
     if (c < num_hexes) continue;
-    for_each_face_of(volume_cell(mesh, c), [&](const std::array<Index, 4>& v, int size) {
+    for_each_drawn_face(mesh, c, [&](const std::array<Index, 4>& v, int size) {
       for (int i = 0; i < size; ++i) {
         const Index x = v[static_cast<std::size_t>(i)], y = v[static_cast<std::size_t>((i + 1) % size)];
         keys.push_back(std::uint64_t{static_cast<std::uint32_t>(std::min(x, y))} << 32 |
@@ -82,9 +95,11 @@ LineSet cell_edges(const HexMesh& mesh, const Topology& topology, const std::vec
 
 // Faces of the cells used once among them (the region's outer surface), pale,
 // in ascending face order: each face's uses counted (up to 2) in a table
-// of all faces, then the table read in order.
+// of all faces, then the table read in order. With cell_quality (a surface
+// mesh's cell scaled Jacobians, by cell id), each face in
+// quality_color(its cell's value) instead, opaque.
 TriangleSet outer_faces(const HexMesh& mesh, const Topology& topology, const std::vector<Index>& cells,
-                        const Vec3& origin, Rgba8 color) {
+                        const Vec3& origin, Rgba8 color, std::span<const double> cell_quality = {}) {
   std::vector<std::uint8_t> uses(topology.faces.size(), 0);
   std::size_t first = uses.size(), last = 0;  // the range of faces used
   for (Index c : cells)
@@ -109,11 +124,14 @@ TriangleSet outer_faces(const HexMesh& mesh, const Topology& topology, const std
   // twice: pale and translucent, that is fine).
   for (Index c : cells) {
     if (c < mesh.num_hexes()) continue;
-    for_each_face_of(volume_cell(mesh, c), [&](const std::array<Index, 4>& v, int size) {
+    const Rgba8 fill = static_cast<std::size_t>(c) < cell_quality.size()
+                           ? to_rgba8(quality_color(cell_quality[static_cast<std::size_t>(c)]))
+                           : color;
+    for_each_drawn_face(mesh, c, [&](const std::array<Index, 4>& v, int size) {
       const auto base = static_cast<std::uint32_t>(set.positions.size());
       for (int i = 0; i < size; ++i) {
         set.positions.push_back(to_vec3f(mesh.points[static_cast<std::size_t>(v[static_cast<std::size_t>(i)])] - origin));
-        set.colors.push_back(color);
+        set.colors.push_back(fill);
       }
       set.indices.insert(set.indices.end(), {base, base + 1, base + 2});
       if (size == 4) set.indices.insert(set.indices.end(), {base, base + 2, base + 3});
@@ -154,7 +172,7 @@ std::vector<Vec3> cell_points(const HexMesh& mesh, const std::vector<Index>& cel
   IdSet vertices(mesh.points.size());
   std::vector<Vec3> points;
   for (Index c : cells) {
-    const CellRef cell = volume_cell(mesh, c);
+    const CellRef cell = any_cell(mesh, c);
     for (int i = 0; i < cell.num_corners; ++i) {
       const Index v = cell.corners[static_cast<std::size_t>(i)];
       if (vertices.add(v)) points.push_back(mesh.points[static_cast<std::size_t>(v)]);
@@ -239,18 +257,18 @@ struct NonHexIncidence {
 
 NonHexIncidence non_hex_incidence(const HexMesh& mesh) {
   NonHexIncidence out;
-  const Index first = mesh.num_hexes(), end = static_cast<Index>(num_volume_cells(mesh));
+  const Index first = mesh.num_hexes(), end = static_cast<Index>(num_cells(mesh));
   if (first == end) return out;
   out.offsets.assign(mesh.points.size() + 1, 0);
   for (Index c = first; c < end; ++c) {
-    const CellRef cell = volume_cell(mesh, c);
+    const CellRef cell = any_cell(mesh, c);
     for (int i = 0; i < cell.num_corners; ++i) ++out.offsets[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>(i)]) + 1];
   }
   for (std::size_t v = 0; v < mesh.points.size(); ++v) out.offsets[v + 1] += out.offsets[v];
   out.cells.resize(static_cast<std::size_t>(out.offsets.back()));
   std::vector<Index> next(out.offsets.begin(), out.offsets.end() - 1);
   for (Index c = first; c < end; ++c) {
-    const CellRef cell = volume_cell(mesh, c);
+    const CellRef cell = any_cell(mesh, c);
     for (int i = 0; i < cell.num_corners; ++i)
       out.cells[static_cast<std::size_t>(next[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>(i)])]++)] = c;
   }
@@ -260,7 +278,7 @@ NonHexIncidence non_hex_incidence(const HexMesh& mesh) {
 // The cells using the given vertices, every kind, ascending.
 ClusterRegion region_of(const HexMesh& mesh, const Topology& topology, const NonHexIncidence& others,
                         std::span<const Index> vertices) {
-  IdSet cells(static_cast<std::size_t>(num_volume_cells(mesh)));
+  IdSet cells(static_cast<std::size_t>(num_cells(mesh)));
   for (Index v : vertices) {
     for (Index h : topology.hexes_of(v)) cells.add(h);
     for (Index c : others.of(v)) cells.add(c);
@@ -299,7 +317,7 @@ std::vector<Index> neighbour_cells(const HexMesh& mesh, const Topology& topology
   IdSet vertices(mesh.points.size());
   std::vector<Index> distinct;
   for (Index c : cells) {
-    const CellRef cell = volume_cell(mesh, c);
+    const CellRef cell = any_cell(mesh, c);
     for (int i = 0; i < cell.num_corners; ++i)
       if (vertices.add(cell.corners[static_cast<std::size_t>(i)])) distinct.push_back(cell.corners[static_cast<std::size_t>(i)]);
   }
@@ -307,10 +325,12 @@ std::vector<Index> neighbour_cells(const HexMesh& mesh, const Topology& topology
 }
 
 // View C's scene for the cluster's cells and the points of their distinct
-// vertices (cell_points), both made once by the caller.
+// vertices (cell_points), both made once by the caller. With cell_quality
+// (a surface mesh) the cluster's faces are filled by it (triangles[0]) and
+// only the neighbours' faces are pale.
 Scene cluster_scene(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
                     const GlyphResult& glyphs, Index cluster, const std::vector<Index>& cells,
-                    const std::vector<Vec3>& cell_vertex_points) {
+                    const std::vector<Vec3>& cell_vertex_points, std::span<const double> cell_quality = {}) {
   const std::vector<Index> neighbours = neighbour_cells(mesh, topology, cells);
   std::vector<Index> only_neighbours;
   std::set_difference(neighbours.begin(), neighbours.end(), cells.begin(), cells.end(),
@@ -347,7 +367,10 @@ Scene cluster_scene(const HexMesh& mesh, const Topology& topology, const std::ve
       spheres.colors.push_back(to_rgba8(quality_color(vertex_quality[v])));
     }
   scene.spheres.push_back(std::move(spheres));
-  scene.translucent.push_back(outer_faces(mesh, topology, neighbours, scene.origin, kRegionFaceColor));
+  if (!cell_quality.empty())
+    scene.triangles.push_back(outer_faces(mesh, topology, cells, scene.origin, kRegionFaceColor, cell_quality));
+  scene.translucent.push_back(
+      outer_faces(mesh, topology, cell_quality.empty() ? neighbours : only_neighbours, scene.origin, kRegionFaceColor));
   return scene;
 }
 
@@ -364,10 +387,12 @@ ClusterShot cluster_shot(const HexMesh& mesh, const Topology& topology, const st
   const ClusterRegion region = cluster_region(mesh, topology, glyphs, cluster);
   ClusterShot shot;
   if (has_non_hex_cells(mesh)) shot.cell_kinds = cell_kinds_legend(mesh, region.cells);
+  if (!options.cell_quality.empty())
+    shot.cell_kinds = std::string(kClusterFaceFillLegend) + "\n" + cell_kinds_legend(mesh, region.cells);
   const Figure f = detail_figure(options, shot.cell_kinds);
   // The camera frames the cells' vertices and the extremes of every glyph.
   std::vector<Vec3> points = cell_points(mesh, region.cells);
-  shot.scene = cluster_scene(mesh, topology, vertex_quality, glyphs, cluster, region.cells, points);
+  shot.scene = cluster_scene(mesh, topology, vertex_quality, glyphs, cluster, region.cells, points, options.cell_quality);
   std::vector<Vec3> centers;
   std::vector<double> radii;
   const SphereSet& s = shot.scene.spheres[0];
@@ -382,7 +407,9 @@ ClusterShot cluster_shot(const HexMesh& mesh, const Topology& topology, const st
         points.push_back(p);
       }
   }
-  const std::vector<Vec3> direction = choose_viewpoints(points, centers, radii, f.aspect, 1, options.up);
+  const std::vector<Vec3> direction = options.view_direction
+                                          ? std::vector<Vec3>{*options.view_direction}
+                                          : choose_viewpoints(points, centers, radii, f.aspect, 1, options.up);
   shot.camera = fit_camera_to_points(points, direction.at(0), f.aspect, {.up = options.up, .is_perspective = false});
   return shot;
 }
@@ -403,10 +430,23 @@ namespace {
 
 // The corner scaled Jacobians of a non-hex volume cell (the quality
 // kernels' per-corner functions, cell_corner_jacobian.h), NaN where a corner
-// has no value (the pyramid's apex).
-std::array<double, 8> non_hex_corner_values(const HexMesh& mesh, const CellRef& cell) {
+// has no value (the pyramid's apex). A surface cell's are read from
+// corner_values (QualityField's layout): signed against the plane or its
+// neighbours' orientation, which its own corners cannot tell.
+std::array<double, 8> non_hex_corner_values(const HexMesh& mesh, const CellRef& cell,
+                                            std::span<const double> corner_values) {
   std::array<double, 8> out;
   out.fill(std::nan(""));
+  if (cell_kind_dimension(cell.kind) == 2) {
+    std::size_t first = 0, per_cell = 0;
+    for_each_cell_kind([&](auto kind) {
+      if (kind() < cell.kind) first += kCornerValuesPerCell<kind()> * cell_block<kind()>(mesh).size();
+      if (kind() == cell.kind) per_cell = kCornerValuesPerCell<kind()>;
+    });
+    first += per_cell * cell.index;
+    for (std::size_t i = 0; i < per_cell && first + i < corner_values.size(); ++i) out[i] = corner_values[first + i];
+    return out;
+  }
   const auto at = [&](int i) { return mesh.points[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>(i)])]; };
   const auto copy = [&](const auto& values) {
     for (std::size_t i = 0; i < values.value.size(); ++i) out[i] = values.value[i];
@@ -429,6 +469,8 @@ std::vector<Index> non_hex_cells_of(const HexMesh& mesh, Index v) {
   scan(mesh.tets, start[1]);
   scan(mesh.wedges, start[2]);
   scan(mesh.pyramids, start[3]);
+  scan(mesh.quads, start[4]);
+  scan(mesh.triangles, start[4] + static_cast<Index>(mesh.quads.size()));
   return cells;
 }
 
@@ -443,11 +485,12 @@ std::vector<VertexCorner> vertex_corners(const HexMesh& mesh, const Topology& to
       if (hex[i] == v)
         corners.push_back({h, i, corner_values[8 * static_cast<std::size_t>(h) + static_cast<std::size_t>(i)]});
   }
-  // Then the tets, wedges and pyramids (ascending cell id); a pyramid's apex
-  // has no corner value and no entry.
+  // Then the tets, wedges and pyramids, or a surface mesh's quads and
+  // triangles (ascending cell id); a pyramid's apex has no corner value and
+  // no entry.
   for (Index id : non_hex_cells_of(mesh, v)) {
-    const CellRef cell = volume_cell(mesh, id);
-    const std::array<double, 8> values = non_hex_corner_values(mesh, cell);
+    const CellRef cell = any_cell(mesh, id);
+    const std::array<double, 8> values = non_hex_corner_values(mesh, cell, corner_values);
     for (int i = 0; i < cell.num_corners; ++i)
       if (cell.corners[static_cast<std::size_t>(i)] == v && !std::isnan(values[static_cast<std::size_t>(i)]))
         corners.push_back({id, i, values[static_cast<std::size_t>(i)], cell.kind});
@@ -458,7 +501,7 @@ std::vector<VertexCorner> vertex_corners(const HexMesh& mesh, const Topology& to
 std::string cell_kinds_legend(const HexMesh& mesh, std::span<const Index> cells) {
   std::array<std::int64_t, kNumCellKinds> count{};
   const Index num_hexes = mesh.num_hexes();
-  for (Index c : cells) ++count[static_cast<std::size_t>(c < num_hexes ? CellKind::hex : volume_cell(mesh, c).kind)];
+  for (Index c : cells) ++count[static_cast<std::size_t>(c < num_hexes ? CellKind::hex : any_cell(mesh, c).kind)];
   return cell_kinds_text(count);
 }
 
@@ -470,7 +513,7 @@ Vec3 hex_centre(const HexMesh& mesh, Index h) {
     for (const Vec3& p : hex_corners(mesh, h)) c = c + p;
     return c / 8.0;
   }
-  const CellRef cell = volume_cell(mesh, h);
+  const CellRef cell = any_cell(mesh, h);
   for (int i = 0; i < cell.num_corners; ++i) c = c + mesh.points[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>(i)])];
   return c / static_cast<double>(cell.num_corners);
 }
@@ -500,7 +543,7 @@ std::vector<Index> local_ring(const HexMesh& mesh, const Topology& topology, Ind
   if (v < 0 || static_cast<std::size_t>(v) + 1 >= topology.vertex_hex_offsets.size()) return ring;
   const std::span<const Index> hexes = topology.hexes_of(v);
   ring.assign(hexes.begin(), hexes.end());
-  if (mesh.tets.empty() && mesh.wedges.empty() && mesh.pyramids.empty()) return ring;
+  if (mesh.hexes.size() == static_cast<std::size_t>(num_cells(mesh))) return ring;
   const std::vector<Index> others = non_hex_cells_of(mesh, v);
   ring.insert(ring.end(), others.begin(), others.end());
   return ring;
@@ -513,9 +556,9 @@ Scene build_local_scene(const HexMesh& mesh, const Topology& topology, std::span
   const Vec3& p = mesh.points.at(static_cast<std::size_t>(v));
   scene.origin = p;
   // The ring's edges by kind (one set per kind present; a pure-hex ring is one set).
-  std::array<std::vector<Index>, 4> by_kind;
+  std::array<std::vector<Index>, kNumCellKinds> by_kind;
   for (Index c : ring)
-    by_kind[static_cast<std::size_t>(c < mesh.num_hexes() ? CellKind::hex : volume_cell(mesh, c).kind)].push_back(c);
+    by_kind[static_cast<std::size_t>(c < mesh.num_hexes() ? CellKind::hex : any_cell(mesh, c).kind)].push_back(c);
   for (std::size_t k = 0; k < by_kind.size(); ++k)
     if (k == 0 || !by_kind[k].empty())
       scene.lines.push_back(
@@ -543,7 +586,7 @@ std::vector<Vec3> local_face_areas(const HexMesh& mesh, std::span<const Index> c
   std::vector<std::array<Index, 4>> seen;
   std::vector<Vec3> areas;
   for (Index c : cells)
-    for_each_face_of(volume_cell(mesh, c), [&](const std::array<Index, 4>& f, int size) {
+    for_each_drawn_face(mesh, c, [&](const std::array<Index, 4>& f, int size) {
       if (std::find(f.begin(), f.begin() + size, v) == f.begin() + size) return;
       std::array<Index, 4> key = f;
       std::sort(key.begin(), key.begin() + size);
@@ -812,8 +855,10 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
 
   // Viewpoint: the corners' cells in depth (choose_local_viewpoint), the
   // discs apart (in the whole view: the same with or without the table).
-  const std::vector<Vec3> direction = {choose_local_viewpoint(local_face_areas(mesh, ring, v), points, centers,
-                                                              base_radii, f.aspect, options.up)};
+  const std::vector<Vec3> direction = {options.view_direction
+                                           ? *options.view_direction
+                                           : choose_local_viewpoint(local_face_areas(mesh, ring, v), points, centers,
+                                                                    base_radii, f.aspect, options.up)};
   // One layout in `view`: the camera, the discs on screen and the labels.
   const auto lay_out = [&](const PixelRect& view) {
     shot.labels.clear();

@@ -3,6 +3,7 @@
 // of hexes around one vertex with the scaled Jacobian of each corner there.
 
 #include <array>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -25,7 +26,16 @@ struct DetailViewOptions {
   std::string title;
   Rgba8 background{255, 255, 255, 255};
   Vec3 up{0.0, 0.0, 1.0};  // the model axis drawn upwards (--up)
+  // A planar surface mesh: the direction C and D see it along (flat, from
+  // above: planar_view_direction); none: each view chooses its own.
+  std::optional<Vec3> view_direction;
+  // A surface mesh: its cell scaled Jacobians by cell id (the lowest signed
+  // corner, QualityField::cell_scaled_jacobian); view C fills the cluster's
+  // faces with quality_color of them. Empty for a volume mesh.
+  std::span<const double> cell_quality;
 };
+// View C's legend line on a surface mesh (under the colour bar's title).
+inline constexpr const char* kClusterFaceFillLegend = "faces: their lowest corner";
 
 // The hexes of a cluster (those with a member vertex), ascending.
 struct ClusterRegion {
