@@ -29,6 +29,7 @@ namespace {
 // them would be one blob hiding every cell).
 constexpr double kClusterGlyphScale = 0.5;
 constexpr double kClusterGlyphMaxEdgeFraction = 0.35;
+constexpr double kClusterGlyphMinEdgeFraction = 0.08;
 constexpr Rgba8 kNeighbourEdgeColor{150, 152, 160, 255};
 constexpr Rgba8 kRegionFaceColor{190, 196, 210, 60};
 
@@ -346,16 +347,23 @@ Scene cluster_scene(const HexMesh& mesh, const Topology& topology, const std::ve
   const Index slot = static_cast<std::size_t>(cluster) < slots.size() ? slots[static_cast<std::size_t>(cluster)] : cluster;
   scene.lines.push_back(
       cell_edges(mesh, topology, cells, scene.origin, to_rgba8(cluster_color(slot, glyphs.options.top_clusters)), 2.0f));
-  double edge_sum = 0.0;
+  double edge_sum = 0.0, shortest = HUGE_VAL;
   const LineSet& own = scene.lines.back();
   for (std::size_t i = 0; i + 1 < own.positions.size(); i += 2) {
     const Vec3f& a = own.positions[i];
     const Vec3f& b = own.positions[i + 1];
-    edge_sum += std::hypot(double(a.x) - b.x, double(a.y) - b.y, double(a.z) - b.z);
+    const double length = std::hypot(double(a.x) - b.x, double(a.y) - b.y, double(a.z) - b.z);
+    edge_sum += length;
+    if (length > 0.0) shortest = std::min(shortest, length);
   }
+  // On a surface mesh the faces are the subject: a glyph keeps within the
+  // shortest edge's fraction (a sliver's glyph hid the sliver), but not
+  // below kClusterGlyphMinEdgeFraction of the mean edge (a dot).
+  const double mean_edge = edge_sum / static_cast<double>(std::max<std::size_t>(1, own.positions.size() / 2));
   const double max_radius =
-      own.positions.empty() ? HUGE_VAL
-                            : kClusterGlyphMaxEdgeFraction * edge_sum / static_cast<double>(own.positions.size() / 2);
+      own.positions.empty()  ? HUGE_VAL
+      : cell_quality.empty() ? kClusterGlyphMaxEdgeFraction * mean_edge
+                             : std::max(kClusterGlyphMaxEdgeFraction * shortest, kClusterGlyphMinEdgeFraction * mean_edge);
   SphereSet spheres;
   if (cluster >= 0 && static_cast<std::size_t>(cluster) + 1 < glyphs.cluster_offsets.size())
     for (Index i = glyphs.cluster_offsets[static_cast<std::size_t>(cluster)];
@@ -407,9 +415,15 @@ ClusterShot cluster_shot(const HexMesh& mesh, const Topology& topology, const st
         points.push_back(p);
       }
   }
-  const std::vector<Vec3> direction = options.view_direction
-                                          ? std::vector<Vec3>{*options.view_direction}
-                                          : choose_viewpoints(points, centers, radii, f.aspect, 1, options.up);
+  // A planar surface along its normal; a curved one as view D sees its
+  // ring (its faces in depth, none edge-on, upright); cells from where the
+  // glyphs show most.
+  const std::vector<Vec3> direction =
+      options.view_direction ? std::vector<Vec3>{*options.view_direction}
+      : !options.cell_quality.empty()
+          ? std::vector<Vec3>{choose_local_viewpoint(local_face_areas(mesh, region.cells, kNoIndex), points, centers,
+                                                     radii, f.aspect, options.up)}
+          : choose_viewpoints(points, centers, radii, f.aspect, 1, options.up);
   shot.camera = fit_camera_to_points(points, direction.at(0), f.aspect, {.up = options.up, .is_perspective = false});
   return shot;
 }
@@ -587,7 +601,7 @@ std::vector<Vec3> local_face_areas(const HexMesh& mesh, std::span<const Index> c
   std::vector<Vec3> areas;
   for (Index c : cells)
     for_each_drawn_face(mesh, c, [&](const std::array<Index, 4>& f, int size) {
-      if (std::find(f.begin(), f.begin() + size, v) == f.begin() + size) return;
+      if (v != kNoIndex && std::find(f.begin(), f.begin() + size, v) == f.begin() + size) return;
       std::array<Index, 4> key = f;
       std::sort(key.begin(), key.begin() + size);
       if (std::find(seen.begin(), seen.end(), key) != seen.end()) return;

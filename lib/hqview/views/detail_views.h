@@ -148,8 +148,10 @@ struct LocalViewScore {
   double projected_area = 0;  // P(d), model units squared
   double min_face_angle = 0;  // a(d), degrees (90 with no face)
 };
-// The faces of `cells` containing v, each once (sorted corner set), as
-// vector areas (a quad's from its two triangles 012 and 023).
+// The faces of `cells` containing v (every face when v is kNoIndex; a
+// surface cell is its own face), each once (sorted corner set), as vector
+// areas (a quad's from its two triangles 012 and 023). View C of a curved
+// surface mesh takes its viewpoint by the same rule over the cluster's faces.
 std::vector<Vec3> local_face_areas(const HexMesh& mesh, std::span<const Index> cells, Index v);
 LocalViewScore local_view_score(std::span<const Vec3> face_areas, const Vec3& direction);
 Vec3 choose_local_viewpoint(std::span<const Vec3> face_areas, std::span<const Vec3> points,
