@@ -145,17 +145,39 @@ TEST(SurfaceDetailViews, PlanarFoldClusterViewFillsTheClustersFaces) {
     }
   const ClusterShot shot =
       cluster_shot(a.mesh, a.topology, a.field.vertex_quality, *a.glyphs, 0, f.options);
-  // One opaque set: each cluster face's triangles in quality_color of its
-  // cell scaled Jacobian (two triangles a quad).
-  ASSERT_EQ(shot.scene.triangles.size(), 1u);
-  const TriangleSet& faces = shot.scene.triangles[0];
-  ASSERT_EQ(faces.indices.size(), 6 * region.cells.size());
-  ASSERT_EQ(faces.colors.size(), 4 * region.cells.size());
-  for (std::size_t k = 0; k < region.cells.size(); ++k)
-    EXPECT_EQ(faces.colors[4 * k],
-              to_rgba8(quality_color(a.field.cell_scaled_jacobian[static_cast<std::size_t>(region.cells[k])])));
+  // Two opaque sets, the faces of positive then of negative cell scaled
+  // Jacobian, each face's triangles in quality_color of that value (two
+  // triangles a quad); the negative ones lifted towards the eye (a fold
+  // stacks faces in the plane: the inverted ones drawn over the others).
+  ASSERT_EQ(shot.scene.triangles.size(), 2u);
   const Vec3 look = normalized(shot.camera.target - shot.camera.eye);
   EXPECT_NEAR(std::abs(look.z), 1.0, 1e-9);
+  std::size_t k = 0, num_inverted = 0;
+  for (std::size_t set = 0; set < 2; ++set) {
+    const TriangleSet& faces = shot.scene.triangles[set];
+    EXPECT_EQ(faces.indices.size(), 6 * (faces.colors.size() / 4));
+    for (std::size_t i = 0; i < faces.colors.size(); i += 4) {
+      Index cell = kNoIndex;  // the next region cell of this set's sign
+      while (k < region.cells.size() && cell == kNoIndex) {
+        const double q = a.field.cell_scaled_jacobian[static_cast<std::size_t>(region.cells[k])];
+        if ((q < 0.0) == (set == 1)) cell = region.cells[k];
+        ++k;
+      }
+      ASSERT_NE(cell, kNoIndex);
+      EXPECT_EQ(faces.colors[i], to_rgba8(quality_color(a.field.cell_scaled_jacobian[static_cast<std::size_t>(cell)])));
+      const Vec3f& p = faces.positions[i];
+      const double depth = dot(shot.scene.origin + Vec3{p.x, p.y, p.z} - shot.camera.eye, look);
+      const double plane = dot(Vec3{0, 0, 0} - shot.camera.eye, look);  // the grid's plane z = 0
+      if (set == 0) EXPECT_NEAR(depth, plane, 1e-6);
+      else EXPECT_LT(depth, plane - 1e-4);
+      num_inverted += set;
+    }
+    if (set == 0) k = 0;
+  }
+  EXPECT_GE(num_inverted, 1u);
+  std::size_t faces_drawn = 0;
+  for (const TriangleSet& set : shot.scene.triangles) faces_drawn += set.colors.size() / 4;
+  EXPECT_EQ(faces_drawn, region.cells.size());
   EXPECT_NE(shot.cell_kinds.find(kClusterFaceFillLegend), std::string::npos);
 }
 

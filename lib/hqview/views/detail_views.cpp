@@ -30,6 +30,9 @@ namespace {
 constexpr double kClusterGlyphScale = 0.5;
 constexpr double kClusterGlyphMaxEdgeFraction = 0.35;
 constexpr double kClusterGlyphMinEdgeFraction = 0.08;
+// View C of a planar surface mesh: how far its inverted faces are lifted
+// over the others (and its edges twice that), in frame diagonals.
+constexpr double kPlanarLift = 0.002;
 constexpr Rgba8 kNeighbourEdgeColor{150, 152, 160, 255};
 constexpr Rgba8 kRegionFaceColor{190, 196, 210, 60};
 
@@ -375,8 +378,17 @@ Scene cluster_scene(const HexMesh& mesh, const Topology& topology, const std::ve
       spheres.colors.push_back(to_rgba8(quality_color(vertex_quality[v])));
     }
   scene.spheres.push_back(std::move(spheres));
-  if (!cell_quality.empty())
-    scene.triangles.push_back(outer_faces(mesh, topology, cells, scene.origin, kRegionFaceColor, cell_quality));
+  if (!cell_quality.empty()) {
+    // The inverted faces in a set of their own (triangles[1]), which
+    // cluster_shot lifts over the others on a plane.
+    std::vector<Index> inverted, rest;
+    for (Index c : cells)
+      (static_cast<std::size_t>(c) < cell_quality.size() && cell_quality[static_cast<std::size_t>(c)] < 0.0 ? inverted
+                                                                                                          : rest)
+          .push_back(c);
+    scene.triangles.push_back(outer_faces(mesh, topology, rest, scene.origin, kRegionFaceColor, cell_quality));
+    scene.triangles.push_back(outer_faces(mesh, topology, inverted, scene.origin, kRegionFaceColor, cell_quality));
+  }
   scene.translucent.push_back(
       outer_faces(mesh, topology, cell_quality.empty() ? neighbours : only_neighbours, scene.origin, kRegionFaceColor));
   return scene;
@@ -425,6 +437,18 @@ ClusterShot cluster_shot(const HexMesh& mesh, const Topology& topology, const st
                                                      radii, f.aspect, options.up)}
           : choose_viewpoints(points, centers, radii, f.aspect, 1, options.up);
   shot.camera = fit_camera_to_points(points, direction.at(0), f.aspect, {.up = options.up, .is_perspective = false});
+  // A plane hides nothing: where a fold stacks faces, the inverted ones
+  // lie over the others, and every edge over the faces (kPlanarLift of the
+  // frame's diagonal towards the eye, twice that for the edges).
+  if (options.view_direction && shot.scene.triangles.size() == 2) {
+    const Box3 box = bounding_box(points);
+    const Vec3 towards_eye = (-kPlanarLift * norm(box.hi - box.lo)) * normalized(*options.view_direction);
+    const auto lift = [](std::vector<Vec3f>& positions, const Vec3& by) {
+      for (Vec3f& p : positions) p = to_vec3f(Vec3{p.x, p.y, p.z} + by);
+    };
+    lift(shot.scene.triangles[1].positions, towards_eye);
+    for (LineSet& lines : shot.scene.lines) lift(lines.positions, 2.0 * towards_eye);
+  }
   return shot;
 }
 
