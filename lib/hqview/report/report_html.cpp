@@ -627,7 +627,8 @@ const char* surface_panel_intro(char letter) {
     return "One view per top cluster (the table's bold rows): the faces at its vertices, each filled by its scaled "
            "Jacobian (its lowest corner) on the quality colour bar, inverted ones in dark blue-violet; its glyphs "
            "(reduced: half size, within 0.35 of the shortest edge but at least 0.08 of the mean edge) and the neighbouring faces pale. A planar mesh is "
-           "seen along its normal, orthographic; a curved one upright, its faces in depth. Each links to the local "
+           "seen along its normal, orthographic, a fold's inverted faces over the others; a curved one upright, "
+           "its faces in depth. Each links to the local "
            "view (D) and corner chart (E) of the cluster's worst vertex, and back to its table row.";
   if (letter == 'D')
     return "The faces around a chosen vertex (the worst of each top cluster, then any --focus-vertex), each "
