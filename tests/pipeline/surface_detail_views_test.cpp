@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <memory>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -18,8 +19,10 @@
 #include "hqview/image/colormap.h"
 #include "hqview/pipeline/analyze.h"
 #include "hqview/render/camera.h"
+#include "hqview/render/osmesa_renderer.h"
 #include "hqview/views/detail_views.h"
 #include "hqview/views/surface_views.h"
+#include "hqview/views/views.h"
 #include "io/temp_dir.h"
 
 namespace hq {
@@ -179,6 +182,30 @@ TEST(SurfaceDetailViews, PlanarFoldClusterViewFillsTheClustersFaces) {
   for (const TriangleSet& set : shot.scene.triangles) faces_drawn += set.colors.size() / 4;
   EXPECT_EQ(faces_drawn, region.cells.size());
   EXPECT_NE(shot.cell_kinds.find(kClusterFaceFillLegend), std::string::npos);
+}
+
+// `--views clusters,local,corners` on a quad mesh draws C of each top
+// cluster, D and E of each worst vertex (the pushed one first) and nothing
+// else; D's file names the pushed vertex.
+TEST(SurfaceDetailViews, TheirViewIdsDrawThemForAQuadMesh) {
+  const test::TempDir dir("surface_detail_views");
+  const Fixture f = folded_grid(dir);
+  ViewOptions views;
+  views.width = 320, views.height = 240;
+  views.views = {"clusters", "local", "corners"};
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  ASSERT_TRUE(renderer);
+  const std::vector<RenderedView> drawn = render_views(f.a, views, *renderer);
+  std::vector<std::string> ids, paths;
+  for (const RenderedView& v : drawn)
+    for (const ViewFile& file : v.files) {
+      if (ids.empty() || ids.back() != v.id) ids.push_back(v.id);
+      paths.push_back(file.relative_path);
+    }
+  EXPECT_EQ(ids, (std::vector<std::string>{"clusters", "local", "corners"}));
+  EXPECT_EQ(paths.at(0), "views/cluster_0.png");
+  EXPECT_NE(std::find(paths.begin(), paths.end(), "views/local_v" + std::to_string(kPushed) + ".png"), paths.end());
+  EXPECT_NE(std::find(paths.begin(), paths.end(), "views/corners_v" + std::to_string(kPushed) + ".svg"), paths.end());
 }
 
 }  // namespace
