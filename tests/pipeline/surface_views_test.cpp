@@ -4,7 +4,7 @@
 // squares on screen) and fills each quad with its scaled-Jacobian bin: the
 // worst quad's pixels carry its bin's colour, and no pixel outside the
 // quads of that bin does. The overview and the thumbnail face the plane
-// too; C, D, E are not drawn for surface meshes.
+// too (C, D and E of surface meshes: surface_detail_views_test).
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -596,6 +596,9 @@ const char* surface_panel_title(char letter) {
   if (letter == 'A') return "A · Overview and main view: vertex quality, faces by scaled Jacobian, glyphs and clusters";
   if (letter == 'S') return "S · Structure: irregular vertices, separatrices and patches";
   if (letter == 'B') return "B · Sorted vertex quality";
+  if (letter == 'C') return "C · The faces of the worst clusters";
+  if (letter == 'D') return "D · Local views: the faces of a vertex";
+  if (letter == 'E') return "E · Corner charts";
   return nullptr;
 }
 const char* surface_panel_intro(char letter) {
@@ -616,11 +619,22 @@ const char* surface_panel_intro(char letter) {
            "(no collapse of nearby singularity pairs, no motorcycle graph): on an unstructured mesh nearly every "
            "edge lies on a separatrix and a patch holds a quad or two, which the legend's counts say. Counts: "
            "report.json structure.";
-  // No views C and D on a surface mesh (the 47d review's M5): a bar goes to
-  // its cluster's row.
   if (letter == 'B')
     return "Each bar of the sorted chart is one of the worst vertices (its lowest corner scaled Jacobian over its "
-           "faces), worst on the left. Click a bar to go to its cluster's row in the clusters table.";
+           "faces), worst on the left. Click a bar to go to its cluster's faces (C), or to its local view (D) when "
+           "its cluster has no view C.";
+  if (letter == 'C')
+    return "One view per top cluster (the table's bold rows): the faces at its vertices, each filled by its scaled "
+           "Jacobian (its lowest corner) on the quality colour bar, inverted ones in dark blue-violet; its glyphs "
+           "(reduced: half size, within 0.35 of the shortest edge but at least 0.08 of the mean edge) and the neighbouring faces pale. A planar mesh is "
+           "seen along its normal, orthographic, a fold's inverted faces over the others; a curved one upright, "
+           "its faces in depth. Each links to the local "
+           "view (D) and corner chart (E) of the cluster's worst vertex, and back to its table row.";
+  if (letter == 'D')
+    return "The faces around a chosen vertex (the worst of each top cluster, then any --focus-vertex), each "
+           "corner at the vertex a disc inside its face next to the vertex, coloured and labelled with its signed "
+           "scaled Jacobian (inverted: dark blue-violet). A planar mesh is seen along its normal.";
+  if (letter == 'E') return "The corner scaled Jacobians at each chosen vertex, one bar per incident face.";
   return nullptr;
 }
 

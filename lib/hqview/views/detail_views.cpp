@@ -13,6 +13,7 @@
 #include "hqview/image/colormap.h"
 #include "hqview/mesh/cell_faces.h"
 #include "hqview/quality/cell_corner_jacobian.h"
+#include "hqview/quality/quality_field.h"
 #include "hqview/render/annotate.h"
 #include "hqview/render/label_layout.h"
 #include "hqview/render/upright.h"
@@ -28,6 +29,10 @@ namespace {
 // them would be one blob hiding every cell).
 constexpr double kClusterGlyphScale = 0.5;
 constexpr double kClusterGlyphMaxEdgeFraction = 0.35;
+constexpr double kClusterGlyphMinEdgeFraction = 0.08;
+// View C of a planar surface mesh: how far its inverted faces are lifted
+// over the others (and its edges twice that), in frame diagonals.
+constexpr double kPlanarLift = 0.002;
 constexpr Rgba8 kNeighbourEdgeColor{150, 152, 160, 255};
 constexpr Rgba8 kRegionFaceColor{190, 196, 210, 60};
 
@@ -35,6 +40,18 @@ Vec3 centre_of(const std::vector<Vec3>& points) {
   if (points.empty()) return {};
   const Box3 box = bounding_box(points);
   return 0.5 * (box.lo + box.hi);
+}
+
+// Calls f(corner ids, size) for each face of cell c (any kind, id over all
+// blocks): a volume cell's faces (for_each_face_of), a surface cell itself
+// (a surface mesh's quad or triangle is its own face).
+template <class F>
+void for_each_drawn_face(const HexMesh& mesh, Index c, F&& f) {
+  const CellRef cell = any_cell(mesh, c);
+  if (cell_kind_dimension(cell.kind) == 3) return for_each_face_of(cell, f);
+  std::array<Index, 4> v{kNoIndex, kNoIndex, kNoIndex, kNoIndex};
+  std::copy_n(cell.corners.begin(), cell.num_corners, v.begin());
+  f(v, cell.num_corners);
 }
 
 // Unique edges of the given cells (from their faces), in one colour, in
@@ -57,7 +74,7 @@ LineSet cell_edges(const HexMesh& mesh, const Topology& topology, const std::vec
   const Index num_hexes = mesh.num_hexes();
   for (Index c : cells) {
     if (c < num_hexes) continue;
-    for_each_face_of(volume_cell(mesh, c), [&](const std::array<Index, 4>& v, int size) {
+    for_each_drawn_face(mesh, c, [&](const std::array<Index, 4>& v, int size) {
       for (int i = 0; i < size; ++i) {
         const Index x = v[static_cast<std::size_t>(i)], y = v[static_cast<std::size_t>((i + 1) % size)];
         keys.push_back(std::uint64_t{static_cast<std::uint32_t>(std::min(x, y))} << 32 |
@@ -82,9 +99,11 @@ LineSet cell_edges(const HexMesh& mesh, const Topology& topology, const std::vec
 
 // Faces of the cells used once among them (the region's outer surface), pale,
 // in ascending face order: each face's uses counted (up to 2) in a table
-// of all faces, then the table read in order.
+// of all faces, then the table read in order. With cell_quality (a surface
+// mesh's cell scaled Jacobians, by cell id), each face in
+// quality_color(its cell's value) instead, opaque.
 TriangleSet outer_faces(const HexMesh& mesh, const Topology& topology, const std::vector<Index>& cells,
-                        const Vec3& origin, Rgba8 color) {
+                        const Vec3& origin, Rgba8 color, std::span<const double> cell_quality = {}) {
   std::vector<std::uint8_t> uses(topology.faces.size(), 0);
   std::size_t first = uses.size(), last = 0;  // the range of faces used
   for (Index c : cells)
@@ -109,11 +128,14 @@ TriangleSet outer_faces(const HexMesh& mesh, const Topology& topology, const std
   // twice: pale and translucent, that is fine).
   for (Index c : cells) {
     if (c < mesh.num_hexes()) continue;
-    for_each_face_of(volume_cell(mesh, c), [&](const std::array<Index, 4>& v, int size) {
+    const Rgba8 fill = static_cast<std::size_t>(c) < cell_quality.size()
+                           ? to_rgba8(quality_color(cell_quality[static_cast<std::size_t>(c)]))
+                           : color;
+    for_each_drawn_face(mesh, c, [&](const std::array<Index, 4>& v, int size) {
       const auto base = static_cast<std::uint32_t>(set.positions.size());
       for (int i = 0; i < size; ++i) {
         set.positions.push_back(to_vec3f(mesh.points[static_cast<std::size_t>(v[static_cast<std::size_t>(i)])] - origin));
-        set.colors.push_back(color);
+        set.colors.push_back(fill);
       }
       set.indices.insert(set.indices.end(), {base, base + 1, base + 2});
       if (size == 4) set.indices.insert(set.indices.end(), {base, base + 2, base + 3});
@@ -154,7 +176,7 @@ std::vector<Vec3> cell_points(const HexMesh& mesh, const std::vector<Index>& cel
   IdSet vertices(mesh.points.size());
   std::vector<Vec3> points;
   for (Index c : cells) {
-    const CellRef cell = volume_cell(mesh, c);
+    const CellRef cell = any_cell(mesh, c);
     for (int i = 0; i < cell.num_corners; ++i) {
       const Index v = cell.corners[static_cast<std::size_t>(i)];
       if (vertices.add(v)) points.push_back(mesh.points[static_cast<std::size_t>(v)]);
@@ -239,18 +261,18 @@ struct NonHexIncidence {
 
 NonHexIncidence non_hex_incidence(const HexMesh& mesh) {
   NonHexIncidence out;
-  const Index first = mesh.num_hexes(), end = static_cast<Index>(num_volume_cells(mesh));
+  const Index first = mesh.num_hexes(), end = static_cast<Index>(num_cells(mesh));
   if (first == end) return out;
   out.offsets.assign(mesh.points.size() + 1, 0);
   for (Index c = first; c < end; ++c) {
-    const CellRef cell = volume_cell(mesh, c);
+    const CellRef cell = any_cell(mesh, c);
     for (int i = 0; i < cell.num_corners; ++i) ++out.offsets[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>(i)]) + 1];
   }
   for (std::size_t v = 0; v < mesh.points.size(); ++v) out.offsets[v + 1] += out.offsets[v];
   out.cells.resize(static_cast<std::size_t>(out.offsets.back()));
   std::vector<Index> next(out.offsets.begin(), out.offsets.end() - 1);
   for (Index c = first; c < end; ++c) {
-    const CellRef cell = volume_cell(mesh, c);
+    const CellRef cell = any_cell(mesh, c);
     for (int i = 0; i < cell.num_corners; ++i)
       out.cells[static_cast<std::size_t>(next[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>(i)])]++)] = c;
   }
@@ -260,7 +282,7 @@ NonHexIncidence non_hex_incidence(const HexMesh& mesh) {
 // The cells using the given vertices, every kind, ascending.
 ClusterRegion region_of(const HexMesh& mesh, const Topology& topology, const NonHexIncidence& others,
                         std::span<const Index> vertices) {
-  IdSet cells(static_cast<std::size_t>(num_volume_cells(mesh)));
+  IdSet cells(static_cast<std::size_t>(num_cells(mesh)));
   for (Index v : vertices) {
     for (Index h : topology.hexes_of(v)) cells.add(h);
     for (Index c : others.of(v)) cells.add(c);
@@ -299,7 +321,7 @@ std::vector<Index> neighbour_cells(const HexMesh& mesh, const Topology& topology
   IdSet vertices(mesh.points.size());
   std::vector<Index> distinct;
   for (Index c : cells) {
-    const CellRef cell = volume_cell(mesh, c);
+    const CellRef cell = any_cell(mesh, c);
     for (int i = 0; i < cell.num_corners; ++i)
       if (vertices.add(cell.corners[static_cast<std::size_t>(i)])) distinct.push_back(cell.corners[static_cast<std::size_t>(i)]);
   }
@@ -307,10 +329,12 @@ std::vector<Index> neighbour_cells(const HexMesh& mesh, const Topology& topology
 }
 
 // View C's scene for the cluster's cells and the points of their distinct
-// vertices (cell_points), both made once by the caller.
+// vertices (cell_points), both made once by the caller. With cell_quality
+// (a surface mesh) the cluster's faces are filled by it (triangles[0]) and
+// only the neighbours' faces are pale.
 Scene cluster_scene(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
                     const GlyphResult& glyphs, Index cluster, const std::vector<Index>& cells,
-                    const std::vector<Vec3>& cell_vertex_points) {
+                    const std::vector<Vec3>& cell_vertex_points, std::span<const double> cell_quality = {}) {
   const std::vector<Index> neighbours = neighbour_cells(mesh, topology, cells);
   std::vector<Index> only_neighbours;
   std::set_difference(neighbours.begin(), neighbours.end(), cells.begin(), cells.end(),
@@ -326,16 +350,23 @@ Scene cluster_scene(const HexMesh& mesh, const Topology& topology, const std::ve
   const Index slot = static_cast<std::size_t>(cluster) < slots.size() ? slots[static_cast<std::size_t>(cluster)] : cluster;
   scene.lines.push_back(
       cell_edges(mesh, topology, cells, scene.origin, to_rgba8(cluster_color(slot, glyphs.options.top_clusters)), 2.0f));
-  double edge_sum = 0.0;
+  double edge_sum = 0.0, shortest = HUGE_VAL;
   const LineSet& own = scene.lines.back();
   for (std::size_t i = 0; i + 1 < own.positions.size(); i += 2) {
     const Vec3f& a = own.positions[i];
     const Vec3f& b = own.positions[i + 1];
-    edge_sum += std::hypot(double(a.x) - b.x, double(a.y) - b.y, double(a.z) - b.z);
+    const double length = std::hypot(double(a.x) - b.x, double(a.y) - b.y, double(a.z) - b.z);
+    edge_sum += length;
+    if (length > 0.0) shortest = std::min(shortest, length);
   }
+  // On a surface mesh the faces are the subject: a glyph keeps within the
+  // shortest edge's fraction (a sliver's glyph hid the sliver), but not
+  // below kClusterGlyphMinEdgeFraction of the mean edge (a dot).
+  const double mean_edge = edge_sum / static_cast<double>(std::max<std::size_t>(1, own.positions.size() / 2));
   const double max_radius =
-      own.positions.empty() ? HUGE_VAL
-                            : kClusterGlyphMaxEdgeFraction * edge_sum / static_cast<double>(own.positions.size() / 2);
+      own.positions.empty()  ? HUGE_VAL
+      : cell_quality.empty() ? kClusterGlyphMaxEdgeFraction * mean_edge
+                             : std::max(kClusterGlyphMaxEdgeFraction * shortest, kClusterGlyphMinEdgeFraction * mean_edge);
   SphereSet spheres;
   if (cluster >= 0 && static_cast<std::size_t>(cluster) + 1 < glyphs.cluster_offsets.size())
     for (Index i = glyphs.cluster_offsets[static_cast<std::size_t>(cluster)];
@@ -347,7 +378,19 @@ Scene cluster_scene(const HexMesh& mesh, const Topology& topology, const std::ve
       spheres.colors.push_back(to_rgba8(quality_color(vertex_quality[v])));
     }
   scene.spheres.push_back(std::move(spheres));
-  scene.translucent.push_back(outer_faces(mesh, topology, neighbours, scene.origin, kRegionFaceColor));
+  if (!cell_quality.empty()) {
+    // The inverted faces in a set of their own (triangles[1]), which
+    // cluster_shot lifts over the others on a plane.
+    std::vector<Index> inverted, rest;
+    for (Index c : cells)
+      (static_cast<std::size_t>(c) < cell_quality.size() && cell_quality[static_cast<std::size_t>(c)] < 0.0 ? inverted
+                                                                                                          : rest)
+          .push_back(c);
+    scene.triangles.push_back(outer_faces(mesh, topology, rest, scene.origin, kRegionFaceColor, cell_quality));
+    scene.triangles.push_back(outer_faces(mesh, topology, inverted, scene.origin, kRegionFaceColor, cell_quality));
+  }
+  scene.translucent.push_back(
+      outer_faces(mesh, topology, cell_quality.empty() ? neighbours : only_neighbours, scene.origin, kRegionFaceColor));
   return scene;
 }
 
@@ -364,10 +407,12 @@ ClusterShot cluster_shot(const HexMesh& mesh, const Topology& topology, const st
   const ClusterRegion region = cluster_region(mesh, topology, glyphs, cluster);
   ClusterShot shot;
   if (has_non_hex_cells(mesh)) shot.cell_kinds = cell_kinds_legend(mesh, region.cells);
+  if (!options.cell_quality.empty())
+    shot.cell_kinds = std::string(kClusterFaceFillLegend) + "\n" + cell_kinds_legend(mesh, region.cells);
   const Figure f = detail_figure(options, shot.cell_kinds);
   // The camera frames the cells' vertices and the extremes of every glyph.
   std::vector<Vec3> points = cell_points(mesh, region.cells);
-  shot.scene = cluster_scene(mesh, topology, vertex_quality, glyphs, cluster, region.cells, points);
+  shot.scene = cluster_scene(mesh, topology, vertex_quality, glyphs, cluster, region.cells, points, options.cell_quality);
   std::vector<Vec3> centers;
   std::vector<double> radii;
   const SphereSet& s = shot.scene.spheres[0];
@@ -382,8 +427,28 @@ ClusterShot cluster_shot(const HexMesh& mesh, const Topology& topology, const st
         points.push_back(p);
       }
   }
-  const std::vector<Vec3> direction = choose_viewpoints(points, centers, radii, f.aspect, 1, options.up);
+  // A planar surface along its normal; a curved one as view D sees its
+  // ring (its faces in depth, none edge-on, upright); cells from where the
+  // glyphs show most.
+  const std::vector<Vec3> direction =
+      options.view_direction ? std::vector<Vec3>{*options.view_direction}
+      : !options.cell_quality.empty()
+          ? std::vector<Vec3>{choose_local_viewpoint(local_face_areas(mesh, region.cells, kNoIndex), points, centers,
+                                                     radii, f.aspect, options.up)}
+          : choose_viewpoints(points, centers, radii, f.aspect, 1, options.up);
   shot.camera = fit_camera_to_points(points, direction.at(0), f.aspect, {.up = options.up, .is_perspective = false});
+  // A plane hides nothing: where a fold stacks faces, the inverted ones
+  // lie over the others, and every edge over the faces (kPlanarLift of the
+  // frame's diagonal towards the eye, twice that for the edges).
+  if (options.view_direction && shot.scene.triangles.size() == 2) {
+    const Box3 box = bounding_box(points);
+    const Vec3 towards_eye = (-kPlanarLift * norm(box.hi - box.lo)) * normalized(*options.view_direction);
+    const auto lift = [](std::vector<Vec3f>& positions, const Vec3& by) {
+      for (Vec3f& p : positions) p = to_vec3f(Vec3{p.x, p.y, p.z} + by);
+    };
+    lift(shot.scene.triangles[1].positions, towards_eye);
+    for (LineSet& lines : shot.scene.lines) lift(lines.positions, 2.0 * towards_eye);
+  }
   return shot;
 }
 
@@ -403,10 +468,23 @@ namespace {
 
 // The corner scaled Jacobians of a non-hex volume cell (the quality
 // kernels' per-corner functions, cell_corner_jacobian.h), NaN where a corner
-// has no value (the pyramid's apex).
-std::array<double, 8> non_hex_corner_values(const HexMesh& mesh, const CellRef& cell) {
+// has no value (the pyramid's apex). A surface cell's are read from
+// corner_values (QualityField's layout): signed against the plane or its
+// neighbours' orientation, which its own corners cannot tell.
+std::array<double, 8> non_hex_corner_values(const HexMesh& mesh, const CellRef& cell,
+                                            std::span<const double> corner_values) {
   std::array<double, 8> out;
   out.fill(std::nan(""));
+  if (cell_kind_dimension(cell.kind) == 2) {
+    std::size_t first = 0, per_cell = 0;
+    for_each_cell_kind([&](auto kind) {
+      if (kind() < cell.kind) first += kCornerValuesPerCell<kind()> * cell_block<kind()>(mesh).size();
+      if (kind() == cell.kind) per_cell = kCornerValuesPerCell<kind()>;
+    });
+    first += per_cell * cell.index;
+    for (std::size_t i = 0; i < per_cell && first + i < corner_values.size(); ++i) out[i] = corner_values[first + i];
+    return out;
+  }
   const auto at = [&](int i) { return mesh.points[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>(i)])]; };
   const auto copy = [&](const auto& values) {
     for (std::size_t i = 0; i < values.value.size(); ++i) out[i] = values.value[i];
@@ -429,6 +507,8 @@ std::vector<Index> non_hex_cells_of(const HexMesh& mesh, Index v) {
   scan(mesh.tets, start[1]);
   scan(mesh.wedges, start[2]);
   scan(mesh.pyramids, start[3]);
+  scan(mesh.quads, start[4]);
+  scan(mesh.triangles, start[4] + static_cast<Index>(mesh.quads.size()));
   return cells;
 }
 
@@ -443,11 +523,12 @@ std::vector<VertexCorner> vertex_corners(const HexMesh& mesh, const Topology& to
       if (hex[i] == v)
         corners.push_back({h, i, corner_values[8 * static_cast<std::size_t>(h) + static_cast<std::size_t>(i)]});
   }
-  // Then the tets, wedges and pyramids (ascending cell id); a pyramid's apex
-  // has no corner value and no entry.
+  // Then the tets, wedges and pyramids, or a surface mesh's quads and
+  // triangles (ascending cell id); a pyramid's apex has no corner value and
+  // no entry.
   for (Index id : non_hex_cells_of(mesh, v)) {
-    const CellRef cell = volume_cell(mesh, id);
-    const std::array<double, 8> values = non_hex_corner_values(mesh, cell);
+    const CellRef cell = any_cell(mesh, id);
+    const std::array<double, 8> values = non_hex_corner_values(mesh, cell, corner_values);
     for (int i = 0; i < cell.num_corners; ++i)
       if (cell.corners[static_cast<std::size_t>(i)] == v && !std::isnan(values[static_cast<std::size_t>(i)]))
         corners.push_back({id, i, values[static_cast<std::size_t>(i)], cell.kind});
@@ -458,7 +539,7 @@ std::vector<VertexCorner> vertex_corners(const HexMesh& mesh, const Topology& to
 std::string cell_kinds_legend(const HexMesh& mesh, std::span<const Index> cells) {
   std::array<std::int64_t, kNumCellKinds> count{};
   const Index num_hexes = mesh.num_hexes();
-  for (Index c : cells) ++count[static_cast<std::size_t>(c < num_hexes ? CellKind::hex : volume_cell(mesh, c).kind)];
+  for (Index c : cells) ++count[static_cast<std::size_t>(c < num_hexes ? CellKind::hex : any_cell(mesh, c).kind)];
   return cell_kinds_text(count);
 }
 
@@ -470,7 +551,7 @@ Vec3 hex_centre(const HexMesh& mesh, Index h) {
     for (const Vec3& p : hex_corners(mesh, h)) c = c + p;
     return c / 8.0;
   }
-  const CellRef cell = volume_cell(mesh, h);
+  const CellRef cell = any_cell(mesh, h);
   for (int i = 0; i < cell.num_corners; ++i) c = c + mesh.points[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>(i)])];
   return c / static_cast<double>(cell.num_corners);
 }
@@ -500,7 +581,7 @@ std::vector<Index> local_ring(const HexMesh& mesh, const Topology& topology, Ind
   if (v < 0 || static_cast<std::size_t>(v) + 1 >= topology.vertex_hex_offsets.size()) return ring;
   const std::span<const Index> hexes = topology.hexes_of(v);
   ring.assign(hexes.begin(), hexes.end());
-  if (mesh.tets.empty() && mesh.wedges.empty() && mesh.pyramids.empty()) return ring;
+  if (mesh.hexes.size() == static_cast<std::size_t>(num_cells(mesh))) return ring;
   const std::vector<Index> others = non_hex_cells_of(mesh, v);
   ring.insert(ring.end(), others.begin(), others.end());
   return ring;
@@ -513,9 +594,9 @@ Scene build_local_scene(const HexMesh& mesh, const Topology& topology, std::span
   const Vec3& p = mesh.points.at(static_cast<std::size_t>(v));
   scene.origin = p;
   // The ring's edges by kind (one set per kind present; a pure-hex ring is one set).
-  std::array<std::vector<Index>, 4> by_kind;
+  std::array<std::vector<Index>, kNumCellKinds> by_kind;
   for (Index c : ring)
-    by_kind[static_cast<std::size_t>(c < mesh.num_hexes() ? CellKind::hex : volume_cell(mesh, c).kind)].push_back(c);
+    by_kind[static_cast<std::size_t>(c < mesh.num_hexes() ? CellKind::hex : any_cell(mesh, c).kind)].push_back(c);
   for (std::size_t k = 0; k < by_kind.size(); ++k)
     if (k == 0 || !by_kind[k].empty())
       scene.lines.push_back(
@@ -543,8 +624,8 @@ std::vector<Vec3> local_face_areas(const HexMesh& mesh, std::span<const Index> c
   std::vector<std::array<Index, 4>> seen;
   std::vector<Vec3> areas;
   for (Index c : cells)
-    for_each_face_of(volume_cell(mesh, c), [&](const std::array<Index, 4>& f, int size) {
-      if (std::find(f.begin(), f.begin() + size, v) == f.begin() + size) return;
+    for_each_drawn_face(mesh, c, [&](const std::array<Index, 4>& f, int size) {
+      if (v != kNoIndex && std::find(f.begin(), f.begin() + size, v) == f.begin() + size) return;
       std::array<Index, 4> key = f;
       std::sort(key.begin(), key.begin() + size);
       if (std::find(seen.begin(), seen.end(), key) != seen.end()) return;
@@ -812,8 +893,10 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
 
   // Viewpoint: the corners' cells in depth (choose_local_viewpoint), the
   // discs apart (in the whole view: the same with or without the table).
-  const std::vector<Vec3> direction = {choose_local_viewpoint(local_face_areas(mesh, ring, v), points, centers,
-                                                              base_radii, f.aspect, options.up)};
+  const std::vector<Vec3> direction = {options.view_direction
+                                           ? *options.view_direction
+                                           : choose_local_viewpoint(local_face_areas(mesh, ring, v), points, centers,
+                                                                    base_radii, f.aspect, options.up)};
   // One layout in `view`: the camera, the discs on screen and the labels.
   const auto lay_out = [&](const PixelRect& view) {
     shot.labels.clear();

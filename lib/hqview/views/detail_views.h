@@ -3,6 +3,7 @@
 // of hexes around one vertex with the scaled Jacobian of each corner there.
 
 #include <array>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -25,7 +26,16 @@ struct DetailViewOptions {
   std::string title;
   Rgba8 background{255, 255, 255, 255};
   Vec3 up{0.0, 0.0, 1.0};  // the model axis drawn upwards (--up)
+  // A planar surface mesh: the direction C and D see it along (flat, from
+  // above: planar_view_direction); none: each view chooses its own.
+  std::optional<Vec3> view_direction;
+  // A surface mesh: its cell scaled Jacobians by cell id (the lowest signed
+  // corner, QualityField::cell_scaled_jacobian); view C fills the cluster's
+  // faces with quality_color of them. Empty for a volume mesh.
+  std::span<const double> cell_quality;
 };
+// View C's legend line on a surface mesh (under the colour bar's title).
+inline constexpr const char* kClusterFaceFillLegend = "faces: their lowest corner";
 
 // The hexes of a cluster (those with a member vertex), ascending.
 struct ClusterRegion {
@@ -138,8 +148,10 @@ struct LocalViewScore {
   double projected_area = 0;  // P(d), model units squared
   double min_face_angle = 0;  // a(d), degrees (90 with no face)
 };
-// The faces of `cells` containing v, each once (sorted corner set), as
-// vector areas (a quad's from its two triangles 012 and 023).
+// The faces of `cells` containing v (every face when v is kNoIndex; a
+// surface cell is its own face), each once (sorted corner set), as vector
+// areas (a quad's from its two triangles 012 and 023). View C of a curved
+// surface mesh takes its viewpoint by the same rule over the cluster's faces.
 std::vector<Vec3> local_face_areas(const HexMesh& mesh, std::span<const Index> cells, Index v);
 LocalViewScore local_view_score(std::span<const Vec3> face_areas, const Vec3& direction);
 Vec3 choose_local_viewpoint(std::span<const Vec3> face_areas, std::span<const Vec3> points,

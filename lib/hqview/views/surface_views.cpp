@@ -84,7 +84,8 @@ bool is_surface_mesh_view(std::string_view id) {
   return id == "overview" || id == "main" || id == "histogram" || id == "histogram_log" || id == "sorted_quality" ||
          id == "structure" || id == "thumbnail" || id == "compare" || id == "boundary_error" ||
          id == "reference_error" || id == "uv_error" || id == "uv_key" || id == "reference_overlay" ||
-         id == "boundary_error_sorted" || id == "boundary_area";
+         id == "boundary_error_sorted" || id == "boundary_area" || id == "clusters" || id == "local" ||
+         id == "corners";
 }
 
 std::optional<Vec3> planar_view_direction(const Analysis& a) {

@@ -24,9 +24,9 @@
 namespace hq {
 
 // Whether view `id` (kViews) is drawn for a surface mesh: the overview, A,
-// B, the histograms, the structure (its quad structure) and the thumbnail.
-// C, D, E, the size gradation and the boundary, compare and simulation
-// views are not (yet).
+// B, C (the cluster's faces), D (a vertex's faces and their corners), E,
+// the histograms, the structure (its quad structure) and the thumbnail.
+// The size gradation and the simulation views are not (yet).
 bool is_surface_mesh_view(std::string_view id);
 
 // The direction a planar surface mesh is seen along (eye towards the

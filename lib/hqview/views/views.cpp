@@ -295,10 +295,20 @@ std::vector<ViewFile> build_main(ViewContext& c) {
   return files;
 }
 
+// C and D: a surface mesh's faces filled by their scaled Jacobian (C), a
+// planar one seen flat along its normal (surface_views.h).
+DetailViewOptions detail_options(const ViewContext& c) {
+  auto detail = sized<DetailViewOptions>(c);
+  if (!is_surface_mesh(c.a.mesh)) return detail;
+  detail.view_direction = planar_view_direction(c.a);
+  detail.cell_quality = c.a.field.cell_scaled_jacobian;
+  return detail;
+}
+
 std::vector<ViewFile> build_clusters(ViewContext& c) {
   // The scenes and cameras of all the top clusters at once (the camera
   // search is the costly part), then drawn one by one, in order.
-  std::vector<DetailViewOptions> detail(c.num_top, sized<DetailViewOptions>(c));
+  std::vector<DetailViewOptions> detail(c.num_top, detail_options(c));
   for (std::size_t k = 0; k < c.num_top; ++k) {
     const AggregatedGlyph& g = c.glyphs->clusters[k];
     detail[k].title = c.name + ": cluster #" + std::to_string(k) + " (" + std::to_string(g.size) +
@@ -320,7 +330,7 @@ std::vector<ViewFile> build_clusters(ViewContext& c) {
 }
 
 std::vector<ViewFile> build_local(ViewContext& c) {
-  auto detail = sized<DetailViewOptions>(c);
+  auto detail = detail_options(c);
   const bool hybrid = !c.a.mesh.tets.empty() || !c.a.mesh.wedges.empty() || !c.a.mesh.pyramids.empty();
   std::vector<ViewFile> files;
   for (Index v : c.local_vertices) {
@@ -328,7 +338,9 @@ std::vector<ViewFile> build_local(ViewContext& c) {
     // not read as cluster #0's worst.
     const Index cluster = c.cluster_of(v);
     detail.title = c.name + ": " + (cluster == kNoIndex ? std::string() : "cluster #" + std::to_string(cluster) + ", ") +
-                   "vertex " + std::to_string(v) + (hybrid ? ", its cells" : ", its hexes") + " and their corner scaled Jacobians";
+                   "vertex " + std::to_string(v) +
+                   (is_surface_mesh(c.a.mesh) ? ", its faces" : hybrid ? ", its cells" : ", its hexes") +
+                   " and their corner scaled Jacobians";
     Image image = render_local_view(c.a.mesh, c.a.topology, c.a.field.corner_scaled_jacobian, v, detail, c.renderer);
     files.push_back(framed("views/local_v" + std::to_string(v) + ".png", std::move(image), c));
     files.back().cluster = c.cluster_of(v);
@@ -650,6 +662,9 @@ static std::string view_title(std::string_view title, const Analysis& a) {
         {"Structure: the singularity graph by valence", "Structure: irregular vertices, separatrices and patches"},
         {"Boundary coloured by vertex quality", "Faces coloured by vertex quality"},
         {"A: glyphs, clusters and intersecting hexes", "A: faces by scaled Jacobian, glyphs and clusters"},
+        {"C: sub-region of each top cluster", "C: each top cluster's faces by scaled Jacobian"},
+        {"D: one-ring hexes around chosen vertices, corner scaled Jacobians",
+         "D: the faces around chosen vertices, corner scaled Jacobians"},
         {"Thumbnail: the boundary by vertex quality, bounding-box frame",
          "Thumbnail: the faces by vertex quality, bounding-box frame"},
         {"Compare: both boundaries coloured by vertex quality, one camera",
@@ -706,10 +721,10 @@ std::vector<RenderedView> render_views(const Analysis& analysis, const ViewOptio
   // The top clusters (C views; their worst vertices get D and E): as the glyph stage was asked.
   shared.num_top = std::min<std::size_t>(static_cast<std::size_t>(std::max(0, shared.glyphs->options.top_clusters)),
                                          shared.glyphs->clusters.size());
-  // A surface mesh draws its own views only (surface_views.h): no C, D, E.
+  // A surface mesh draws its own views only (surface_views.h).
   const bool is_surface = is_surface_mesh(analysis.mesh);
   if (is_surface) std::erase_if(wanted, [](std::size_t i) { return !is_surface_mesh_view(kViews[i].id); });
-  if (!is_surface) shared.local_vertices = choose_local_vertices(shared);
+  shared.local_vertices = choose_local_vertices(shared);
   // The overview's and thumbnail's eye, once for both.
   shared.overview_viewpoint.direction = three_quarter_view(options.up);
   if (is_surface) {

@@ -1,0 +1,212 @@
+// Views C and D of a surface mesh (issue 47 item 7): a hand-built planar
+// 4 x 4 quad grid whose vertex (2, 2) is pushed through the opposite corner
+// (3, 3) of its quad, folding the quads around it. D of that vertex labels
+// each of its four quads' corners with the corner's signed scaled Jacobian
+// (computed here by hand against the grid's normal), each label next to
+// its corner's disc, the disc where the corner is on screen; the camera
+// looks along the plane's normal. C of cluster #0 draws the cluster's
+// faces, filled by their cell scaled Jacobian.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <memory>
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "hqview/image/colormap.h"
+#include "hqview/pipeline/analyze.h"
+#include "hqview/render/camera.h"
+#include "hqview/render/osmesa_renderer.h"
+#include "hqview/views/detail_views.h"
+#include "hqview/views/surface_views.h"
+#include "hqview/views/views.h"
+#include "io/temp_dir.h"
+
+namespace hq {
+namespace {
+
+constexpr int kN = 4;  // quads a side
+constexpr Index kPushed = 2 + (kN + 1) * 2;
+
+std::vector<Vec3> grid_points() {
+  std::vector<Vec3> p;
+  for (int j = 0; j <= kN; ++j)
+    for (int i = 0; i <= kN; ++i) p.push_back({double(i), double(j), 0.0});
+  p[static_cast<std::size_t>(kPushed)] = {3.4, 3.3, 0.0};  // through (3, 3)
+  return p;
+}
+
+std::string grid_obj(const std::vector<Vec3>& p) {
+  std::ostringstream out;
+  for (const Vec3& x : p) out << "v " << x.x << ' ' << x.y << ' ' << x.z << '\n';
+  for (int j = 0; j < kN; ++j)
+    for (int i = 0; i < kN; ++i) {
+      const int a = 1 + i + (kN + 1) * j;
+      out << "f " << a << ' ' << a + 1 << ' ' << a + kN + 2 << ' ' << a + kN + 1 << '\n';
+    }
+  return out.str();
+}
+
+// By hand: the corner at a of the planar quad (prev, a, next), against +z
+// (the majority of the grid's quads turn counter-clockwise about +z).
+double corner_by_hand(const Vec3& prev, const Vec3& a, const Vec3& next) {
+  const Vec3 e1 = next - a, e2 = prev - a;
+  return (e1.x * e2.y - e1.y * e2.x) / (norm(e1) * norm(e2));
+}
+
+struct Fixture {
+  Analysis a;
+  DetailViewOptions options;
+};
+
+Fixture folded_grid(const test::TempDir& dir) {
+  AnalyzeOptions run;
+  run.mesh_path = dir.write("fold.obj", grid_obj(grid_points()));
+  run.tool_version = "test";
+  Fixture f{analyze_mesh(run), {}};
+  f.options.width = 800, f.options.height = 600;
+  f.options.view_direction = planar_view_direction(f.a);
+  f.options.cell_quality = f.a.field.cell_scaled_jacobian;
+  return f;
+}
+
+TEST(SurfaceDetailViews, PlanarFoldOneRingLabelsEachCornerAtItsCorner) {
+  const test::TempDir dir("surface_detail_views");
+  const Fixture f = folded_grid(dir);
+  const Analysis& a = f.a;
+  ASSERT_TRUE(a.mesh_summary.planarity && a.mesh_summary.planarity->is_planar);
+  ASSERT_TRUE(f.options.view_direction);
+  EXPECT_NEAR(std::abs(f.options.view_direction->z), 1.0, 1e-12);  // flat, from above
+
+  const LocalShot shot = local_shot(a.mesh, a.topology, a.field.corner_scaled_jacobian, kPushed, f.options);
+  // The camera: orthographic, along the normal.
+  EXPECT_FALSE(shot.camera.is_perspective);
+  const Vec3 look = normalized(shot.camera.target - shot.camera.eye);
+  EXPECT_NEAR(std::abs(look.z), 1.0, 1e-9);
+
+  // The four quads at the vertex, each corner's value by hand.
+  const std::vector<Vec3> p = grid_points();
+  const std::vector<VertexCorner> corners = vertex_corners(a.mesh, a.topology, a.field.corner_scaled_jacobian, kPushed);
+  ASSERT_EQ(corners.size(), 4u);
+  ASSERT_EQ(shot.labels.size(), 4u);
+  int inverted = 0;
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    const VertexCorner& c = corners[i];
+    SCOPED_TRACE("quad " + std::to_string(c.hex));
+    EXPECT_EQ(c.kind, CellKind::quad);
+    const auto& q = a.mesh.quads.at(static_cast<std::size_t>(c.hex));
+    ASSERT_EQ(q[static_cast<std::size_t>(c.local)], kPushed);
+    const auto at = [&](int k) { return p[static_cast<std::size_t>(q[static_cast<std::size_t>((k + 4) % 4)])]; };
+    const double expected = corner_by_hand(at(c.local - 1), at(c.local), at(c.local + 1));
+    EXPECT_NEAR(c.value, expected, 1e-12);
+    const LocalLabel& l = shot.labels[i];
+    EXPECT_NEAR(l.value, expected, 1e-12);
+    EXPECT_EQ(l.is_inverted, expected < 0.0);
+    inverted += expected < 0.0;
+    // A ring of 4: every corner labelled in full, "-0.873  quad 10".
+    ASSERT_TRUE(l.placed);
+    EXPECT_EQ(l.number, 0);
+    char value[32];
+    std::snprintf(value, sizeof value, "%.3f", expected);
+    EXPECT_EQ(l.text, std::string(value) + "  quad " + std::to_string(c.hex));
+    // Its disc where its corner is: 45% of the way from the vertex to the
+    // quad's centre, projected (the vertex's dot is off it: not moved).
+    Vec3 centre{};
+    for (int k = 0; k < 4; ++k) centre = centre + 0.25 * at(k);
+    const Vec3 anchor = p[static_cast<std::size_t>(kPushed)] + 0.45 * (centre - p[static_cast<std::size_t>(kPushed)]);
+    const PixelRect& view = shot.layout.view;
+    const Vec3 ndc = project_to_ndc(shot.camera, double(view.width) / view.height, anchor);
+    const double x = view.x + 0.5 * (ndc.x + 1.0) * view.width, y = view.y + 0.5 * (1.0 - ndc.y) * view.height;
+    EXPECT_NEAR(l.marker.x, x, 1.0);
+    EXPECT_NEAR(l.marker.y, y, 1.0);
+    // The label within its disc's rim plus the leader cap of it.
+    const double dx = std::max({l.box.x - x, 0.0, x - (l.box.x + l.box.width)});
+    const double dy = std::max({l.box.y - y, 0.0, y - (l.box.y + l.box.height)});
+    EXPECT_LE(std::hypot(dx, dy), l.marker.radius + shot.max_leader);
+  }
+  // The pushed vertex turns two of its quads over (their corners there
+  // negative) and keeps two convex-or-concave ones positive.
+  EXPECT_GE(inverted, 1);
+  EXPECT_LT(inverted, 4);
+}
+
+TEST(SurfaceDetailViews, PlanarFoldClusterViewFillsTheClustersFaces) {
+  const test::TempDir dir("surface_detail_views");
+  const Fixture f = folded_grid(dir);
+  const Analysis& a = f.a;
+  ASSERT_TRUE(a.glyphs && !a.glyphs->clusters.empty());
+  const ClusterRegion region = cluster_region(a.mesh, a.topology, *a.glyphs, 0);
+  ASSERT_FALSE(region.cells.empty());
+  // The pushed vertex is #0's, so are its four quads.
+  for (const auto& q : a.mesh.quads)
+    if (std::find(q.begin(), q.end(), kPushed) != q.end()) {
+      const Index id = static_cast<Index>(&q - a.mesh.quads.data());
+      EXPECT_TRUE(std::binary_search(region.cells.begin(), region.cells.end(), id)) << id;
+    }
+  const ClusterShot shot =
+      cluster_shot(a.mesh, a.topology, a.field.vertex_quality, *a.glyphs, 0, f.options);
+  // Two opaque sets, the faces of positive then of negative cell scaled
+  // Jacobian, each face's triangles in quality_color of that value (two
+  // triangles a quad); the negative ones lifted towards the eye (a fold
+  // stacks faces in the plane: the inverted ones drawn over the others).
+  ASSERT_EQ(shot.scene.triangles.size(), 2u);
+  const Vec3 look = normalized(shot.camera.target - shot.camera.eye);
+  EXPECT_NEAR(std::abs(look.z), 1.0, 1e-9);
+  std::size_t k = 0, num_inverted = 0;
+  for (std::size_t set = 0; set < 2; ++set) {
+    const TriangleSet& faces = shot.scene.triangles[set];
+    EXPECT_EQ(faces.indices.size(), 6 * (faces.colors.size() / 4));
+    for (std::size_t i = 0; i < faces.colors.size(); i += 4) {
+      Index cell = kNoIndex;  // the next region cell of this set's sign
+      while (k < region.cells.size() && cell == kNoIndex) {
+        const double q = a.field.cell_scaled_jacobian[static_cast<std::size_t>(region.cells[k])];
+        if ((q < 0.0) == (set == 1)) cell = region.cells[k];
+        ++k;
+      }
+      ASSERT_NE(cell, kNoIndex);
+      EXPECT_EQ(faces.colors[i], to_rgba8(quality_color(a.field.cell_scaled_jacobian[static_cast<std::size_t>(cell)])));
+      const Vec3f& p = faces.positions[i];
+      const double depth = dot(shot.scene.origin + Vec3{p.x, p.y, p.z} - shot.camera.eye, look);
+      const double plane = dot(Vec3{0, 0, 0} - shot.camera.eye, look);  // the grid's plane z = 0
+      if (set == 0) EXPECT_NEAR(depth, plane, 1e-6);
+      else EXPECT_LT(depth, plane - 1e-4);
+      num_inverted += set;
+    }
+    if (set == 0) k = 0;
+  }
+  EXPECT_GE(num_inverted, 1u);
+  std::size_t faces_drawn = 0;
+  for (const TriangleSet& set : shot.scene.triangles) faces_drawn += set.colors.size() / 4;
+  EXPECT_EQ(faces_drawn, region.cells.size());
+  EXPECT_NE(shot.cell_kinds.find(kClusterFaceFillLegend), std::string::npos);
+}
+
+// `--views clusters,local,corners` on a quad mesh draws C of each top
+// cluster, D and E of each worst vertex (the pushed one first) and nothing
+// else; D's file names the pushed vertex.
+TEST(SurfaceDetailViews, TheirViewIdsDrawThemForAQuadMesh) {
+  const test::TempDir dir("surface_detail_views");
+  const Fixture f = folded_grid(dir);
+  ViewOptions views;
+  views.width = 320, views.height = 240;
+  views.views = {"clusters", "local", "corners"};
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  ASSERT_TRUE(renderer);
+  const std::vector<RenderedView> drawn = render_views(f.a, views, *renderer);
+  std::vector<std::string> ids, paths;
+  for (const RenderedView& v : drawn)
+    for (const ViewFile& file : v.files) {
+      if (ids.empty() || ids.back() != v.id) ids.push_back(v.id);
+      paths.push_back(file.relative_path);
+    }
+  EXPECT_EQ(ids, (std::vector<std::string>{"clusters", "local", "corners"}));
+  EXPECT_EQ(paths.at(0), "views/cluster_0.png");
+  EXPECT_NE(std::find(paths.begin(), paths.end(), "views/local_v" + std::to_string(kPushed) + ".png"), paths.end());
+  EXPECT_NE(std::find(paths.begin(), paths.end(), "views/corners_v" + std::to_string(kPushed) + ".svg"), paths.end());
+}
+
+}  // namespace
+}  // namespace hq
