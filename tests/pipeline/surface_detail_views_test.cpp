@@ -26,7 +26,7 @@
 #include "io/temp_dir.h"
 
 namespace hq {
-namespace {
+namespace HQ_TEST_UNIT {
 
 constexpr int kN = 4;  // quads a side
 constexpr Index kPushed = 2 + (kN + 1) * 2;
