@@ -230,8 +230,12 @@ TEST(InvertedCallout, InSightCountsTheHexesWhoseBlueShows) {
   EXPECT_TRUE(callout_in_sight(callouts[0]));
   EXPECT_EQ(callouts[0].num_cells, static_cast<int>(c.inverted.size()));
   EXPECT_EQ(callouts[0].num_seen_cells, 4);
+  // The parts add up to the count: the hexes whose blue does not show are
+  // said too (the 45e review: cyl2's "92 inverted hexes in 2 groups, 25 in
+  // sight" left 67 unsaid).
   EXPECT_EQ(inverted_callout_label(callouts[0], "hex", 1e6),
-            std::to_string(c.inverted.size()) + " inverted hexes, 4 in sight");
+            std::to_string(c.inverted.size()) + " inverted hexes, 4 in sight, " + std::to_string(c.inverted.size() - 4) +
+                " unseen beside them");
 }
 
 TEST(InvertedCallout, ADentInSightGetsASolidRing) {
@@ -923,7 +927,7 @@ TEST(InvertedCallout, EachRingsLabelCountsItsOwnHexes) {
   c.hidden_radius = 30.0;
   EXPECT_EQ(inverted_callout_label(c, "hex", 1e6), "4 inverted hexes in sight");
   c.num_seen_cells = 3;
-  EXPECT_EQ(inverted_callout_label(c, "hex", 1e6), "4 inverted hexes, 3 in sight");
+  EXPECT_EQ(inverted_callout_label(c, "hex", 1e6), "4 inverted hexes, 3 in sight, 1 unseen beside them");
   c.num_seen_cells = 4;
   EXPECT_EQ(inverted_hidden_label(c, "hex"), "6 inverted hexes in 2 groups, far side: see inset A");
   c.hidden_cells = {1};

@@ -420,8 +420,16 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
         // ring under an inset, and the model was drawn smaller to free it).
         InvertedCallout blue;
         ring_of({j.visible_x0, j.visible_y0, j.visible_x1, j.visible_y1}, blue);
-        if (blue.radius < max_radius) j.x = blue.x, j.y = blue.y, j.radius = blue.radius;
-        continue;
+        if (blue.radius >= max_radius) continue;
+        // A ring counts only the hexes it surrounds (the 45e review: the
+        // gmsh ring's far-side hexes lay 415 px from a ring of radius 345
+        // that counted them): the ring on the blue keeps the hidden only
+        // when it holds their ring's centre, else they keep their dashed one.
+        if (std::hypot(dashed.x - blue.x, dashed.y - blue.y) <= blue.radius) {
+          j.x = blue.x, j.y = blue.y, j.radius = blue.radius;
+          continue;
+        }
+        solid = blue;
       }
       j.hidden_x = dashed.x, j.hidden_y = dashed.y, j.hidden_radius = dashed.radius;
       j.x = solid.x, j.y = solid.y, j.radius = solid.radius;
@@ -467,7 +475,11 @@ std::string inverted_callout_label(const InvertedCallout& c, const std::string& 
   const std::string outside =
       c.num_seen_outside > 0 ? " (" + std::to_string(c.num_seen_outside) + (c.num_seen_outside == 1 ? " reaches" : " reach") + " outside the ring)"
                              : "";
-  const std::string seen_part = std::to_string(num_seen) + " in sight" + outside;
+  // The cells of the groups in sight whose blue does not show said too, so
+  // that the parts add up to the count (the 45e review: cyl2's "92 inverted
+  // hexes in 2 groups, 25 in sight" left 67 unsaid).
+  const std::string seen_part = std::to_string(num_seen) + " in sight" + outside +
+                                (num_in_seen_groups > num_seen ? ", " + std::to_string(num_in_seen_groups - num_seen) + " unseen beside them" : "");
   const bool all_seen = num_seen == num_in_seen_groups && outside.empty();
   if (c.hidden_radius > 0.0) {
     // A split ring's solid ring: its groups in sight only (the dashed ring
@@ -481,9 +493,7 @@ std::string inverted_callout_label(const InvertedCallout& c, const std::string& 
   if (!c.hidden_cells.empty()) {
     // One ring over groups in sight and hidden: how many of each, the cells
     // of the groups in sight whose blue does not show apart.
-    label += ": " + seen_part + ", ";
-    if (num_in_seen_groups > num_seen) label += std::to_string(num_in_seen_groups - num_seen) + " unseen beside them, ";
-    label += std::to_string(c.hidden_cells.size()) + (c.hidden_on_boundary ? " on the far side" : " inside");
+    label += ": " + seen_part + ", " + std::to_string(c.hidden_cells.size()) + (c.hidden_on_boundary ? " on the far side" : " inside");
     if (c.num_more_cells > 0) label += "; +" + std::to_string(c.num_more_cells) + " more";
     if (!c.inset.empty()) label += "; see inset " + c.inset;
     return label;
