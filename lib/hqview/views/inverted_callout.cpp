@@ -596,7 +596,7 @@ int line_pitch(int text_size) { return text_size + std::max(3, text_size / 5); }
 std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::span<const InvertedCallout> callouts,
                                                const std::string& noun, double thickness, int text_size,
                                                const AnnotationStyle& style, std::span<const PixelRect> taken,
-                                               std::span<const PixelRect> model) {
+                                               std::span<const PixelRect> model, std::optional<PixelRect> bounds) {
   const double area = static_cast<double>(view.width) * view.height;
   std::vector<ScreenDisc> rings;
   std::vector<InvertedRingLabel> labels;
@@ -617,7 +617,8 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
   }
   LabelLayoutOptions layout;
   // 8 pixels off the figure's edge (the 45e review's m1: a label touched it).
-  layout.bounds = {view.x + 8, view.y + 2, view.width - 16, view.height - 4};
+  const PixelRect b = bounds.value_or(view);
+  layout.bounds = {b.x + 8, b.y + 2, b.width - 16, b.height - 4};
   layout.gap = std::max(8.0, 0.6 * text_size);  // a leader long enough to see
   layout.ring_step = std::max(8.0, 0.8 * text_size);
   // Each label around its ring; when no place there is free (a long label
@@ -629,8 +630,11 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
   // view's top edge had no room for one line).
   // Off the model first (the 45c review: the hand's label covered its
   // wrist with free space at the right): every place tried with no box on
-  // the model's rectangles (leaders may cross them), then, when none is
-  // free, anywhere.
+  // the model's rectangles (leaders may cross them), on up to 8 lines (the
+  // 45e review: on 4 lines the hand's, the 270 degree ring's and the dented
+  // bunny's labels found no free place and covered fingertips, the ring's
+  // cut face and blue in sight, with free room narrower than 4 lines
+  // need), then, when none is free, anywhere on up to 4.
   LabelPlacer free_placer(taken, layout, model), placer(taken, layout);
   const DiscIndex ring_index(rings);
   for (std::size_t i = 0; i < labels.size(); ++i) {
@@ -638,7 +642,7 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
     const int one_line = text_extent(labels[i].text, text_size, style).width;
     std::optional<PlacedLabel> p;
     for (int pass = model.empty() ? 1 : 0; !p && pass < 2; ++pass)
-    for (int n = 1; !p && n <= 4; ++n) {
+    for (int n = 1; !p && n <= (pass == 0 ? 8 : 4); ++n) {
       const LabelPlacer& where = pass == 0 ? free_placer : placer;
       const std::vector<std::string> lines =
           n == 1 ? std::vector<std::string>{labels[i].text} : wrap_words(labels[i].text, (one_line + n - 1) / n, text_size, style);
@@ -674,12 +678,13 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
 
 void draw_inverted_callouts(Image& figure, const PixelRect& view, std::span<const InvertedCallout> callouts,
                             const std::string& noun, double thickness, int text_size, const AnnotationStyle& style,
-                            std::span<const PixelRect> taken, bool draw_rings, std::span<const PixelRect> model) {
+                            std::span<const PixelRect> taken, bool draw_rings, std::span<const PixelRect> model,
+                            std::optional<PixelRect> bounds) {
   for (const InvertedCallout& c : callouts)
     if (draw_rings) draw_callout_rings(figure, c, thickness, view);
   if (text_size <= 0) return;
   const Rgba8 line{70, 70, 70, 255};  // the labels' leaders and frames: not the ring's colour
-  const std::vector<InvertedRingLabel> labels = place_callout_labels(view, callouts, noun, thickness, text_size, style, taken, model);
+  const std::vector<InvertedRingLabel> labels = place_callout_labels(view, callouts, noun, thickness, text_size, style, taken, model, bounds);
   for (const InvertedRingLabel& label : labels) {
     if (!label.placed) continue;
     const PlacedLabel& p = *label.placed;
