@@ -472,6 +472,15 @@ TEST(InvertedCallout, LabelsGoOffTheModelFirst) {
   const std::vector<PixelRect> everywhere{view};
   const std::vector<InvertedRingLabel> forced = place_callout_labels(view, rings, "hex", 3.0, 16, style, {}, everywhere);
   EXPECT_TRUE(forced[0].placed);
+  // The 45e review: with the legend's column free under the legend, the
+  // label goes there (off the model and off the legend) before over it.
+  const PixelRect legend{800, 0, 300, 250};
+  const std::vector<PixelRect> taken{legend};
+  const std::vector<InvertedRingLabel> column =
+      place_callout_labels(view, rings, "hex", 3.0, 16, style, taken, everywhere, PixelRect{0, 0, 1100, 600});
+  ASSERT_TRUE(column[0].placed);
+  EXPECT_FALSE(boxes_meet(column[0].placed->box, view));
+  EXPECT_FALSE(boxes_meet(column[0].placed->box, legend));
 }
 
 TEST(InvertedCallout, WrappedLabelsKeepANumberWithItsNoun) {
