@@ -119,6 +119,28 @@ TEST(ColorBar, SmallFigureLegendStaysInItsPanel) {
   EXPECT_EQ(color_bar_style_for(bar, big, full.legend).scale, big.scale);
 }
 
+// A title too long for one line at the smallest size wraps onto two (the
+// 45e review: an 800 x 400 compare view's title was cut at "...; mirror
+// i..."): ink in two bands of rows with blank rows between, none cut off.
+TEST(Title, TooLongForOneLineWrapsOntoTwo) {
+  const AnnotationStyle style = annotation_style_for(400);
+  const FigureLayout layout = figure_layout(800, 400, true, 0, style);
+  std::string title = "kitten_1.mesh (left, min 0.357) vs kitten_mirror.mesh (right, min -1): vertex quality, one camera";
+  title += ", right turned 90 deg about -z (scale 1), refined by ICP; mirror image: no rotation fits (mirrored)";
+  ASSERT_GT(text_extent(title, 9, style).width, layout.title.width) << "the case this test is about";
+  Image image = make_image(800, 400, kWhite);
+  draw_title(image, layout.title, title, style);
+  std::vector<int> inked_rows;
+  for (int y = layout.title.y; y < layout.title.y + layout.title.height; ++y)
+    if (count_differing(image, {0, y, 800, 1}, kWhite) > 0) inked_rows.push_back(y);
+  ASSERT_FALSE(inked_rows.empty());
+  int bands = 1;
+  for (std::size_t i = 1; i < inked_rows.size(); ++i) bands += inked_rows[i] > inked_rows[i - 1] + 1;
+  EXPECT_EQ(bands, 2);
+  // Both lines end inside the figure: nothing in its last 8 columns.
+  EXPECT_EQ(count_differing(image, {792, layout.title.y, 8, layout.title.height}, kWhite), 0);
+}
+
 // A ring swatch (view A's rings, issue 44) is a circle outline with the
 // background inside; a square swatch of nearly the same near-black (the
 // coincident-vertex arrows) is filled: the two differ by shape.

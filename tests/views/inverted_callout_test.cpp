@@ -230,8 +230,12 @@ TEST(InvertedCallout, InSightCountsTheHexesWhoseBlueShows) {
   EXPECT_TRUE(callout_in_sight(callouts[0]));
   EXPECT_EQ(callouts[0].num_cells, static_cast<int>(c.inverted.size()));
   EXPECT_EQ(callouts[0].num_seen_cells, 4);
+  // The parts add up to the count: the hexes whose blue does not show are
+  // said too (the 45e review: cyl2's "92 inverted hexes in 2 groups, 25 in
+  // sight" left 67 unsaid).
   EXPECT_EQ(inverted_callout_label(callouts[0], "hex", 1e6),
-            std::to_string(c.inverted.size()) + " inverted hexes, 4 in sight");
+            std::to_string(c.inverted.size()) + " inverted hexes, 4 in sight, " + std::to_string(c.inverted.size() - 4) +
+                " unseen beside them");
 }
 
 TEST(InvertedCallout, ADentInSightGetsASolidRing) {
@@ -468,6 +472,15 @@ TEST(InvertedCallout, LabelsGoOffTheModelFirst) {
   const std::vector<PixelRect> everywhere{view};
   const std::vector<InvertedRingLabel> forced = place_callout_labels(view, rings, "hex", 3.0, 16, style, {}, everywhere);
   EXPECT_TRUE(forced[0].placed);
+  // The 45e review: with the legend's column free under the legend, the
+  // label goes there (off the model and off the legend) before over it.
+  const PixelRect legend{800, 0, 300, 250};
+  const std::vector<PixelRect> taken{legend};
+  const std::vector<InvertedRingLabel> column =
+      place_callout_labels(view, rings, "hex", 3.0, 16, style, taken, everywhere, PixelRect{0, 0, 1100, 600});
+  ASSERT_TRUE(column[0].placed);
+  EXPECT_FALSE(boxes_meet(column[0].placed->box, view));
+  EXPECT_FALSE(boxes_meet(column[0].placed->box, legend));
 }
 
 TEST(InvertedCallout, WrappedLabelsKeepANumberWithItsNoun) {
@@ -923,7 +936,7 @@ TEST(InvertedCallout, EachRingsLabelCountsItsOwnHexes) {
   c.hidden_radius = 30.0;
   EXPECT_EQ(inverted_callout_label(c, "hex", 1e6), "4 inverted hexes in sight");
   c.num_seen_cells = 3;
-  EXPECT_EQ(inverted_callout_label(c, "hex", 1e6), "4 inverted hexes, 3 in sight");
+  EXPECT_EQ(inverted_callout_label(c, "hex", 1e6), "4 inverted hexes, 3 in sight, 1 unseen beside them");
   c.num_seen_cells = 4;
   EXPECT_EQ(inverted_hidden_label(c, "hex"), "6 inverted hexes in 2 groups, far side: see inset A");
   c.hidden_cells = {1};

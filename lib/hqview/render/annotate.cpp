@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <mutex>
 
@@ -539,9 +540,23 @@ void draw_title(Image& image, const PixelRect& area, std::string_view title, con
   // Several lines (issue 48e: a long title shrunk on one line to below the
   // legend's text): one size for all, the largest at which each fits and
   // the block fills at most 90 % of the band.
-  const std::vector<std::string_view> lines = split_lines(title);
-  const int n = static_cast<int>(lines.size());
+  std::vector<std::string_view> lines = split_lines(title);
   int size = std::max(14, scaled(kTitleSize, style));
+  if (lines.size() == 1 && text_extent(title, fitting_text_size(title, size, 9, max_width, style), style).width > max_width) {
+    // Too long for one line even at the smallest size: two lines, broken at
+    // the space that leaves the longer line shortest (the 45e review: an
+    // 800 x 400 compare view's title was cut at "...; mirror i...", the one
+    // word it had to say).
+    const std::string_view whole = lines[0];
+    std::size_t cut = std::string_view::npos;
+    int longer = std::numeric_limits<int>::max();
+    for (std::size_t i = whole.find(' '); i != std::string_view::npos; i = whole.find(' ', i + 1)) {
+      const int w = std::max(text_extent(whole.substr(0, i), 9, style).width, text_extent(whole.substr(i + 1), 9, style).width);
+      if (w < longer) longer = w, cut = i;
+    }
+    if (cut != std::string_view::npos) lines = {whole.substr(0, cut), whole.substr(cut + 1)};
+  }
+  const int n = static_cast<int>(lines.size());
   if (n > 1) size = std::max(9, std::min(size, static_cast<int>(0.9 * area.height / (n * kLineSpacing))));
   int fitted = size;
   for (std::string_view line : lines) fitted = std::min(fitted, fitting_text_size(line, size, 9, max_width, style));

@@ -420,8 +420,16 @@ std::vector<InvertedCallout> inverted_callouts(const HexMesh& mesh, const Topolo
         // ring under an inset, and the model was drawn smaller to free it).
         InvertedCallout blue;
         ring_of({j.visible_x0, j.visible_y0, j.visible_x1, j.visible_y1}, blue);
-        if (blue.radius < max_radius) j.x = blue.x, j.y = blue.y, j.radius = blue.radius;
-        continue;
+        if (blue.radius >= max_radius) continue;
+        // A ring counts only the hexes it surrounds (the 45e review: the
+        // gmsh ring's far-side hexes lay 415 px from a ring of radius 345
+        // that counted them): the ring on the blue keeps the hidden only
+        // when it holds their ring's centre, else they keep their dashed one.
+        if (std::hypot(dashed.x - blue.x, dashed.y - blue.y) <= blue.radius) {
+          j.x = blue.x, j.y = blue.y, j.radius = blue.radius;
+          continue;
+        }
+        solid = blue;
       }
       j.hidden_x = dashed.x, j.hidden_y = dashed.y, j.hidden_radius = dashed.radius;
       j.x = solid.x, j.y = solid.y, j.radius = solid.radius;
@@ -467,7 +475,11 @@ std::string inverted_callout_label(const InvertedCallout& c, const std::string& 
   const std::string outside =
       c.num_seen_outside > 0 ? " (" + std::to_string(c.num_seen_outside) + (c.num_seen_outside == 1 ? " reaches" : " reach") + " outside the ring)"
                              : "";
-  const std::string seen_part = std::to_string(num_seen) + " in sight" + outside;
+  // The cells of the groups in sight whose blue does not show said too, so
+  // that the parts add up to the count (the 45e review: cyl2's "92 inverted
+  // hexes in 2 groups, 25 in sight" left 67 unsaid).
+  const std::string seen_part = std::to_string(num_seen) + " in sight" + outside +
+                                (num_in_seen_groups > num_seen ? ", " + std::to_string(num_in_seen_groups - num_seen) + " unseen beside them" : "");
   const bool all_seen = num_seen == num_in_seen_groups && outside.empty();
   if (c.hidden_radius > 0.0) {
     // A split ring's solid ring: its groups in sight only (the dashed ring
@@ -481,9 +493,7 @@ std::string inverted_callout_label(const InvertedCallout& c, const std::string& 
   if (!c.hidden_cells.empty()) {
     // One ring over groups in sight and hidden: how many of each, the cells
     // of the groups in sight whose blue does not show apart.
-    label += ": " + seen_part + ", ";
-    if (num_in_seen_groups > num_seen) label += std::to_string(num_in_seen_groups - num_seen) + " unseen beside them, ";
-    label += std::to_string(c.hidden_cells.size()) + (c.hidden_on_boundary ? " on the far side" : " inside");
+    label += ": " + seen_part + ", " + std::to_string(c.hidden_cells.size()) + (c.hidden_on_boundary ? " on the far side" : " inside");
     if (c.num_more_cells > 0) label += "; +" + std::to_string(c.num_more_cells) + " more";
     if (!c.inset.empty()) label += "; see inset " + c.inset;
     return label;
@@ -586,7 +596,7 @@ int line_pitch(int text_size) { return text_size + std::max(3, text_size / 5); }
 std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::span<const InvertedCallout> callouts,
                                                const std::string& noun, double thickness, int text_size,
                                                const AnnotationStyle& style, std::span<const PixelRect> taken,
-                                               std::span<const PixelRect> model) {
+                                               std::span<const PixelRect> model, std::optional<PixelRect> bounds) {
   const double area = static_cast<double>(view.width) * view.height;
   std::vector<ScreenDisc> rings;
   std::vector<InvertedRingLabel> labels;
@@ -607,7 +617,8 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
   }
   LabelLayoutOptions layout;
   // 8 pixels off the figure's edge (the 45e review's m1: a label touched it).
-  layout.bounds = {view.x + 8, view.y + 2, view.width - 16, view.height - 4};
+  const PixelRect b = bounds.value_or(view);
+  layout.bounds = {b.x + 8, b.y + 2, b.width - 16, b.height - 4};
   layout.gap = std::max(8.0, 0.6 * text_size);  // a leader long enough to see
   layout.ring_step = std::max(8.0, 0.8 * text_size);
   // Each label around its ring; when no place there is free (a long label
@@ -619,8 +630,11 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
   // view's top edge had no room for one line).
   // Off the model first (the 45c review: the hand's label covered its
   // wrist with free space at the right): every place tried with no box on
-  // the model's rectangles (leaders may cross them), then, when none is
-  // free, anywhere.
+  // the model's rectangles (leaders may cross them), on up to 8 lines (the
+  // 45e review: on 4 lines the hand's, the 270 degree ring's and the dented
+  // bunny's labels found no free place and covered fingertips, the ring's
+  // cut face and blue in sight, with free room narrower than 4 lines
+  // need), then, when none is free, anywhere on up to 4.
   LabelPlacer free_placer(taken, layout, model), placer(taken, layout);
   const DiscIndex ring_index(rings);
   for (std::size_t i = 0; i < labels.size(); ++i) {
@@ -628,7 +642,7 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
     const int one_line = text_extent(labels[i].text, text_size, style).width;
     std::optional<PlacedLabel> p;
     for (int pass = model.empty() ? 1 : 0; !p && pass < 2; ++pass)
-    for (int n = 1; !p && n <= 4; ++n) {
+    for (int n = 1; !p && n <= (pass == 0 ? 8 : 4); ++n) {
       const LabelPlacer& where = pass == 0 ? free_placer : placer;
       const std::vector<std::string> lines =
           n == 1 ? std::vector<std::string>{labels[i].text} : wrap_words(labels[i].text, (one_line + n - 1) / n, text_size, style);
@@ -664,12 +678,13 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
 
 void draw_inverted_callouts(Image& figure, const PixelRect& view, std::span<const InvertedCallout> callouts,
                             const std::string& noun, double thickness, int text_size, const AnnotationStyle& style,
-                            std::span<const PixelRect> taken, bool draw_rings, std::span<const PixelRect> model) {
+                            std::span<const PixelRect> taken, bool draw_rings, std::span<const PixelRect> model,
+                            std::optional<PixelRect> bounds) {
   for (const InvertedCallout& c : callouts)
     if (draw_rings) draw_callout_rings(figure, c, thickness, view);
   if (text_size <= 0) return;
   const Rgba8 line{70, 70, 70, 255};  // the labels' leaders and frames: not the ring's colour
-  const std::vector<InvertedRingLabel> labels = place_callout_labels(view, callouts, noun, thickness, text_size, style, taken, model);
+  const std::vector<InvertedRingLabel> labels = place_callout_labels(view, callouts, noun, thickness, text_size, style, taken, model, bounds);
   for (const InvertedRingLabel& label : labels) {
     if (!label.placed) continue;
     const PlacedLabel& p = *label.placed;

@@ -145,19 +145,22 @@ inline bool callout_in_sight(const InvertedCallout& c) { return c.visible_pixels
 // every ring protected; issue 45g); a split callout's dashed ring gets its
 // own label and leader (issue 45). A label with no place on one line
 // tries 2, then 3, then 4 lines (words wrapped). `model`: rectangles the model
-// covers; every label is tried off them first (1 to 4 lines), then over
-// them when no such place is free.
+// covers; every label is tried off them first (1 to 8 lines), then over
+// them when no such place is free (1 to 4 lines). bounds: where the boxes
+// may go (default: view; the overview's also take the free part of the
+// legend's column, the legend and insets `taken`).
 struct InvertedRingLabel {
   std::string text;
   std::size_t callout = 0;  // the callout whose ring it names
   bool dashed_ring = false;  // a split callout's dashed ring (after every callout's own label)
-  std::vector<std::string> lines;  // as drawn: text on 1 line, or wrapped on 2 to 4 when 1 found no place
+  std::vector<std::string> lines;  // as drawn: text on 1 line, or wrapped on 2 to 8 when 1 found no place
   std::optional<PlacedLabel> placed;
 };
 std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::span<const InvertedCallout> callouts,
                                                const std::string& noun, double thickness, int text_size,
                                                const AnnotationStyle& style, std::span<const PixelRect> taken = {},
-                                               std::span<const PixelRect> model = {});
+                                               std::span<const PixelRect> model = {},
+                                               std::optional<PixelRect> bounds = std::nullopt);
 
 // Draws each callout's ring (kCalloutColor core of `thickness` pixels on a
 // white halo; dashed when not in sight) and, with labels (text_size > 0),
@@ -169,7 +172,7 @@ std::vector<InvertedRingLabel> place_callout_labels(const PixelRect& view, std::
 void draw_inverted_callouts(Image& figure, const PixelRect& view, std::span<const InvertedCallout> callouts,
                             const std::string& noun, double thickness, int text_size, const AnnotationStyle& style,
                             std::span<const PixelRect> taken = {}, bool draw_rings = true,
-                            std::span<const PixelRect> model = {});
+                            std::span<const PixelRect> model = {}, std::optional<PixelRect> bounds = std::nullopt);
 
 // A callout's rings: its ring (solid when in sight, else dashed) and its
 // dashed ring of hidden groups when it has one, their pixels inside `clip`

@@ -871,10 +871,6 @@ Image render_quality_overview(const HexMesh& mesh, const Topology& topology, con
   // one), then the labels around them, anywhere in the whole view.
   for (const InvertedCallout& c : callouts) draw_callout_rings(figure, c, thickness, plan.full_view);
   draw_inverted_insets(figure, insets, pictures, callouts, options.cell_noun, text_size, style);
-  std::vector<PixelRect> taken;
-  for (const InvertedInset& inset : insets) taken.push_back(inset.rect);
-  draw_inverted_callouts(figure, plan.full_view, callouts, options.cell_noun, thickness, text_size, style, taken, false,
-                         model_rects(mesh, topology, f.camera, layout.view));
   // The legend keeps the ring styles drawn.
   const bool solid = std::any_of(callouts.begin(), callouts.end(), callout_in_sight);
   const bool dashed = std::any_of(callouts.begin(), callouts.end(),
@@ -884,6 +880,16 @@ Image render_quality_overview(const HexMesh& mesh, const Topology& topology, con
   });
   fit_overview_bar(f.bar, style, layout.legend, options.height);  // the bar taller by an entry dropped
   draw_color_bar(figure, layout.legend, f.bar, style);
+  // The labels may also take the legend's column under the legend, beside
+  // the insets (the 45e review: labels lay on the model, on a hand's
+  // fingertips and a cylinder's wall, with that column empty).
+  std::vector<PixelRect> taken{
+      {layout.legend.x, layout.legend.y, layout.legend.width,
+       color_bar_height(f.bar, color_bar_style_for(f.bar, style, layout.legend), layout.legend.height)}};
+  for (const InvertedInset& inset : insets) taken.push_back(inset.rect);
+  const PixelRect bounds{plan.full_view.x, plan.full_view.y, options.width - plan.full_view.x, plan.full_view.height};
+  draw_inverted_callouts(figure, plan.full_view, callouts, options.cell_noun, thickness, text_size, style, taken, false,
+                         model_rects(mesh, topology, f.camera, layout.view), bounds);
   return figure;
 }
 
