@@ -333,6 +333,24 @@ TEST(PlanarBoundaryError, TheFlatViewMarksTheNotchsFloorAndColoursBySign) {
   EXPECT_GT(ring.count, 50);
   EXPECT_NEAR(ring.cx, f.layout.view.x + 0.5 * (ndc.x + 1.0) * f.layout.view.width, 1.5);
   EXPECT_NEAR(ring.cy, f.layout.view.y + 0.5 * (1.0 - ndc.y) * f.layout.view.height, 1.5);
+  // The ring's label covers no coloured line (the 47e review: right of the
+  // ring it hid the notch's floor): the midpoint of every piece of |error|
+  // above a third of the scale, away from the ring, still shows its sign's
+  // hue (red or blue by 30 levels; the label's box is white).
+  int checked = 0;
+  for (const auto* patches : {&b.mesh_patches, &b.reference_patches})
+    for (const auto& p : *patches) {
+      if (std::abs(p.error) < scale / 3) continue;
+      const Vec3 m = project_to_ndc(f.camera, aspect, p.corners[1]);
+      const int x = static_cast<int>(std::lround(f.layout.view.x + 0.5 * (m.x + 1.0) * f.layout.view.width));
+      const int y = static_cast<int>(std::lround(f.layout.view.y + 0.5 * (1.0 - m.y) * f.layout.view.height));
+      if (std::hypot(x - ring.cx, y - ring.cy) < 30) continue;
+      const std::size_t o = pixel_offset(image, x, y);
+      const int hue = (p.error > 0 ? 1 : -1) * (int(image.rgba[o]) - int(image.rgba[o + 2]));
+      EXPECT_GT(hue, 30) << x << ", " << y;
+      ++checked;
+    }
+  EXPECT_GT(checked, 10);
 }
 
 std::string refusal(const Mesh& mesh, const TriSurface& reference) {
