@@ -372,7 +372,7 @@ std::vector<ViewFile> build_boundary_error(ViewContext& c) {
   auto b = boundary_options(c);
   std::vector<ViewFile> files;
   if (c.a.boundary_error->planar) {  // one flat figure of both polylines (the plane is its own UV map)
-    b.title = c.name + ": boundary and reference outline by signed error, from above";
+    b.title = c.name + ": boundary and reference outline by signed error, seen along the plane's normal";
     Image flat = render_planar_boundary_error_view(c.a.mesh, c.a.topology, *c.a.reference_surface,
                                                    *c.a.boundary_error, b, c.renderer);
     files.push_back(framed("views/boundary_error_plane.png", std::move(flat), c));
@@ -680,7 +680,7 @@ static std::string view_title(std::string_view title, const Analysis& a) {
     for (const auto& [from, to] : kSurfaceTitles)
       if (t == from) t = to;
     if (a.boundary_error && a.boundary_error->planar && t.starts_with("Boundary error:"))
-      t = "Boundary error: the boundary polylines and the reference outline by signed error, from above";
+      t = "Boundary error: the boundary polylines and the reference outline by signed error, seen along the plane's normal";
     if (a.boundary_error && a.boundary_error->planar && t.starts_with("Boundary area"))
       t.replace(0, 13, "Boundary length");
   }
