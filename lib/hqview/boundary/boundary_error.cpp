@@ -487,22 +487,92 @@ std::vector<double> signed_planar_distances(const PlanarDomain& domain, std::spa
   return out;
 }
 
-// The sampled pieces of one polyline against the other domain's outline, signed.
-void sampled_planar_side(const SegmentSet& source, const PlanarDomain& target, int outside_sign,
-                         const SampledDistanceOptions& options, std::vector<BoundaryError::ErrorPatch>& patches,
-                         BoundaryError::SampledSide& side) {
-  const SampledDistance d = sample_distance(source, *target.outline, options);
-  std::vector<Vec3> centres;
-  std::vector<ClosestPoint> closest;
-  centres.reserve(d.patches.size());
-  closest.reserve(d.patches.size());
-  for (const SamplePatch& p : d.patches) {
-    centres.push_back(p.centre);
-    closest.push_back(p.closest);
+// The signed distances of `points` to the domain's outline.
+std::vector<double> signed_outline_distances(const PlanarDomain& domain, std::span<const Vec3> points,
+                                             int outside_sign) {
+  return signed_planar_distances(domain, points, domain.outline->query(points), outside_sign);
+}
+
+// linear_pieces() cuts a piece at most this many times.
+constexpr int kMaxPieceLevel = 30;
+
+// A piece (a, b) of a polyline segment with the signed errors at its ends.
+struct PolylinePiece {
+  Vec3 a, b;
+  double error_a = 0, error_b = 0;
+};
+
+// The pieces cut further until the error is linear along each (its
+// midpoint within tolerance / 4 of the ends' mean) and changes by at most
+// `tolerance` over it, queried level by level (the ends always included:
+// the polyline's vertices are the first pieces' ends). The signed distance
+// to a polyline is continuous and piecewise smooth along a segment, so the
+// pieces' linear interpolant converges to it as the tolerance goes to 0.
+std::vector<PolylinePiece> linear_pieces(std::vector<PolylinePiece> pending, const PlanarDomain& target,
+                                         int outside_sign, double tolerance) {
+  std::vector<PolylinePiece> done;
+  for (int level = 0; !pending.empty(); ++level) {
+    std::vector<Vec3> midpoints;
+    midpoints.reserve(pending.size());
+    for (const PolylinePiece& p : pending) midpoints.push_back(0.5 * (p.a + p.b));
+    const std::vector<double> errors = signed_outline_distances(target, midpoints, outside_sign);
+    std::vector<PolylinePiece> next;
+    for (std::size_t i = 0; i < pending.size(); ++i) {
+      const PolylinePiece& p = pending[i];
+      const bool linear = std::abs(errors[i] - 0.5 * (p.error_a + p.error_b)) <= 0.25 * tolerance &&
+                          std::abs(p.error_b - p.error_a) <= tolerance;
+      if (linear || level == kMaxPieceLevel) {
+        done.push_back(p);
+        continue;
+      }
+      next.push_back({p.a, midpoints[i], p.error_a, errors[i]});
+      next.push_back({midpoints[i], p.b, errors[i], p.error_b});
+    }
+    pending = std::move(next);
   }
-  const std::vector<double> errors = signed_planar_distances(target, centres, closest, outside_sign);
-  patches.resize(d.patches.size());
-  for (std::size_t i = 0; i < d.patches.size(); ++i) patches[i] = {d.patches[i].corners, errors[i], d.patches[i].area};
+  return done;
+}
+
+// Each linear piece cut where its error crosses -on, 0 or +on (so each
+// patch lies on one side of the fractions' thresholds), as patches whose
+// error is the mean over them (exact for the linear interpolant).
+void add_linear_patches(const PolylinePiece& p, double on, std::vector<BoundaryError::ErrorPatch>& patches) {
+  std::vector<double> cuts{0.0};
+  for (double level : {-on, 0.0, on}) {
+    const double t = (level - p.error_a) / (p.error_b - p.error_a);
+    if ((p.error_a - level) * (p.error_b - level) < 0 && t > 0 && t < 1) cuts.push_back(t);
+  }
+  std::sort(cuts.begin(), cuts.end());
+  cuts.push_back(1.0);
+  const double length = norm(p.b - p.a);
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+    const Vec3 a = p.a + cuts[k] * (p.b - p.a), b = p.a + cuts[k + 1] * (p.b - p.a);
+    const double mean = p.error_a + 0.5 * (cuts[k] + cuts[k + 1]) * (p.error_b - p.error_a);
+    patches.push_back({{a, 0.5 * (a + b), b}, mean, (cuts[k + 1] - cuts[k]) * length});
+  }
+}
+
+// One polyline against the other domain's outline, signed: the certified
+// maximum from the sampler, the length-weighted figures (means, fractions,
+// the patches the views draw) from the sampler's pieces cut to linear
+// pieces (linear_pieces) and at the fractions' thresholds.
+void sampled_planar_side(const SegmentSet& source, const PlanarDomain& target, int outside_sign,
+                         const SampledDistanceOptions& options, double on_tolerance,
+                         std::vector<BoundaryError::ErrorPatch>& patches, BoundaryError::SampledSide& side) {
+  const SampledDistance d = sample_distance(source, *target.outline, options);
+  std::vector<Vec3> ends;
+  ends.reserve(2 * d.patches.size());
+  for (const SamplePatch& p : d.patches) {
+    ends.push_back(p.corners[0]);
+    ends.push_back(p.corners[2]);
+  }
+  const std::vector<double> errors = signed_outline_distances(target, ends, outside_sign);
+  std::vector<PolylinePiece> pieces(d.patches.size());
+  for (std::size_t i = 0; i < d.patches.size(); ++i)
+    pieces[i] = {ends[2 * i], ends[2 * i + 1], errors[2 * i], errors[2 * i + 1]};
+  patches.clear();
+  for (const PolylinePiece& p : linear_pieces(std::move(pieces), target, outside_sign, options.tolerance))
+    add_linear_patches(p, on_tolerance, patches);
   summarize_side(d, patches, side);
 }
 
@@ -531,6 +601,7 @@ void planar_boundary_errors(const HexMesh& mesh, const Topology& topo, const Tri
   if (out.reference_outline.segments.empty()) throw InputError("the reference has no boundary edge (no outline)");
   const SegmentSet mesh_outline = surface_boundary_segments(mesh.points, topo.surface);
   const double height = out.reference_bbox_diagonal;
+  const double on_tolerance = options.on_surface_tolerance * out.reference_bbox_diagonal;
 
   PlanarDomain reference_domain;
   set_planar_domain(side.tree.get(), out.reference_outline, out.plane_normal, height, reference_domain);
@@ -538,8 +609,7 @@ void planar_boundary_errors(const HexMesh& mesh, const Topology& topo, const Tri
   // Mesh -> reference at the boundary vertices, then along the polylines.
   std::vector<Vec3> points;
   for (Index v : vertices) points.push_back(mesh.points[static_cast<std::size_t>(v)]);
-  const std::vector<double> vertex_errors =
-      signed_planar_distances(reference_domain, points, reference_domain.outline->query(points), +1);
+  const std::vector<double> vertex_errors = signed_outline_distances(reference_domain, points, +1);
   out.vertex_error.assign(mesh.points.size(), NAN);
   out.sign_uncertain.assign(mesh.points.size(), 0);
   out.vertex_area.assign(mesh.points.size(), 0.0);
@@ -550,8 +620,8 @@ void planar_boundary_errors(const HexMesh& mesh, const Topology& topo, const Tri
     out.vertex_area[static_cast<std::size_t>(b)] += half;
   }
   sampled_planar_side(mesh_outline, reference_domain, +1,
-                      sampling_options(options, out, largest_magnitude(vertex_errors)), out.mesh_patches,
-                      out.sampled_mesh_to_reference);
+                      sampling_options(options, out, largest_magnitude(vertex_errors)), on_tolerance,
+                      out.mesh_patches, out.sampled_mesh_to_reference);
 
   // Reference outline -> mesh boundary.
   out.reference_vertex_error.assign(reference_size, NAN);
@@ -568,14 +638,13 @@ void planar_boundary_errors(const HexMesh& mesh, const Topology& topo, const Tri
   outline_vertices.erase(std::unique(outline_vertices.begin(), outline_vertices.end()), outline_vertices.end());
   points.clear();
   for (Index v : outline_vertices) points.push_back(out.reference_outline.points[static_cast<std::size_t>(v)]);
-  const std::vector<double> outline_errors =
-      signed_planar_distances(mesh_domain, points, mesh_domain.outline->query(points), -1);
+  const std::vector<double> outline_errors = signed_outline_distances(mesh_domain, points, -1);
   for (std::size_t i = 0; i < outline_vertices.size(); ++i)
     out.outline_vertex_error[static_cast<std::size_t>(outline_vertices[i])] = outline_errors[i];
   out.hausdorff_reference_to_mesh = largest_magnitude(outline_errors);
   sampled_planar_side(out.reference_outline, mesh_domain, -1,
-                      sampling_options(options, out, out.hausdorff_reference_to_mesh), out.reference_patches,
-                      out.sampled_reference_to_mesh);
+                      sampling_options(options, out, out.hausdorff_reference_to_mesh), on_tolerance,
+                      out.reference_patches, out.sampled_reference_to_mesh);
 }
 
 }  // namespace

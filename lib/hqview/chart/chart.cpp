@@ -325,13 +325,16 @@ std::string format_percent(double fraction) {
 }  // namespace
 
 Chart sorted_boundary_error_chart(std::span<const double> vertex_error, const ChartOptions& options,
-                                  const ErrorChartLabels& labels) {
+                                  const ErrorChartLabels& labels, std::span<const double> weights) {
   Chart chart = begin_chart(options);
   const ChartRect r = chart.plot;
+  // (error, weight), sorted by error; weight 1 without weights.
+  std::vector<std::pair<double, double>> ranked;
+  for (std::size_t i = 0; i < vertex_error.size(); ++i)
+    if (!std::isnan(vertex_error[i])) ranked.push_back({vertex_error[i], weights.empty() ? 1.0 : weights[i]});
+  std::sort(ranked.begin(), ranked.end());
   std::vector<double> sorted;
-  for (double e : vertex_error)
-    if (!std::isnan(e)) sorted.push_back(e);
-  std::sort(sorted.begin(), sorted.end());
+  for (const auto& [e, w] : ranked) sorted.push_back(e);
   double max_abs = 0.0;
   std::vector<double> abs_values;
   for (double e : sorted) {
@@ -345,11 +348,23 @@ Chart sorted_boundary_error_chart(std::span<const double> vertex_error, const Ch
   std::vector<std::pair<double, double>> y_ticks;
   for (double t = -limit; t <= limit + 0.5 * step; t += step) y_ticks.push_back({t, y_of(t)});
   const std::size_t n = sorted.size();
-  const std::size_t columns = std::min<std::size_t>(n, static_cast<std::size_t>(std::max(1.0, std::floor(r.width))));
+  const std::size_t pixels = static_cast<std::size_t>(std::max(1.0, std::floor(r.width)));
+  const std::size_t columns = weights.empty() ? std::min<std::size_t>(n, pixels) : (n > 0 ? pixels : 0);
   const double w = columns > 0 ? r.width / static_cast<double>(columns) : r.width;
   const double y0 = y_of(0.0);
+  // Column c covers the ranks [lo, hi]: by count, or by the weight before each rank.
+  std::vector<double> before(n + 1, 0.0);
+  for (std::size_t i = 0; i < n; ++i) before[i + 1] = before[i] + ranked[i].second;
+  const auto rank_at = [&](double fraction) {
+    const auto it = std::upper_bound(before.begin() + 1, before.end(), fraction * before[n]);
+    return std::min<std::size_t>(n - 1, static_cast<std::size_t>(it - before.begin() - 1));
+  };
   for (std::size_t c = 0; c < columns; ++c) {
-    const std::size_t lo = c * n / columns, hi = std::max(lo, (c + 1) * n / columns - 1);
+    std::size_t lo = c * n / columns, hi = std::max(lo, (c + 1) * n / columns - 1);
+    if (!weights.empty()) {
+      lo = rank_at(static_cast<double>(c) / static_cast<double>(columns));
+      hi = std::max(lo, rank_at(static_cast<double>(c + 1) / static_cast<double>(columns)));
+    }
     const double e = std::abs(sorted[lo]) >= std::abs(sorted[hi]) ? sorted[lo] : sorted[hi];
     const double y = y_of(e);
     if (std::abs(y - y0) <= 0.0) continue;
@@ -360,7 +375,8 @@ Chart sorted_boundary_error_chart(std::span<const double> vertex_error, const Ch
   std::vector<std::pair<double, double>> x_ticks;
   for (double t = 0.0; t <= 1.0001; t += 0.25) x_ticks.push_back({t, r.x + r.width * t});
   add_axes(chart, r, y_ticks, x_ticks,
-           labels.items + " sorted by signed error (fraction of " + std::to_string(n) + ")",
+           labels.items + " sorted by signed error (fraction of " +
+               (weights.empty() ? std::to_string(n) : "their " + labels.measure) + ")",
            "signed error (+ outside)" + (labels.unit.empty() ? std::string() : ", " + labels.unit));
   chart.lines.push_back({{{r.x, y0}, {r.x + r.width, y0}}, kAxisColor, 1.2});
   if (labels.on_band > 0.0) {
@@ -370,7 +386,7 @@ Chart sorted_boundary_error_chart(std::span<const double> vertex_error, const Ch
     chart.rects.push_back({r.x, top, r.width, bottom - top, kOnBandColor});
     for (double y : {top, bottom}) chart.lines.push_back({{{r.x, y}, {r.x + r.width, y}}, kOnColor, 1.0});
     chart.texts.push_back({{r.x + 8.0, r.y + r.height - 8.0},
-                           "grey band about 0: on the surface, |error| \u2264 " + display_number(labels.on_band, 3) +
+                           "grey band about 0: " + labels.on_word + ", |error| \u2264 " + display_number(labels.on_band, 3) +
                                (labels.unit.empty() ? std::string() : " " + labels.unit),
                            kTickSize,
                            kAxisColor,
@@ -521,7 +537,7 @@ Chart boundary_area_chart(std::span<const double> vertex_error, std::span<const 
   // The bar's grey segment (no curve: its |error| is within the noise floor).
   chart.rects.push_back({lx, ly + 32.0, 18.0, 10.0, kOnColor});
   chart.texts.push_back({{lx + 24.0, ly + 43.0},
-                         "on the surface (" + format_percent(f_on) + "), |error| \u2264 " +
+                         labels.on_word + " (" + format_percent(f_on) + "), |error| \u2264 " +
                              display_number(tolerance, 3) + (labels.unit.empty() ? std::string() : " " + labels.unit) +
                              ": bar only",
                          kTickSize,

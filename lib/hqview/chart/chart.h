@@ -105,9 +105,14 @@ struct ErrorChartLabels {
   double on_band = 0;
   // Area chart: what the weights measure ("length" for a planar mesh's boundary polylines).
   std::string measure = "area";
+  // Both charts' name for |error| within the noise floor.
+  std::string on_word = "on the surface";
 };
+// weights, when not empty (one per value): the x axis is the fraction of
+// their sum (e.g. of the boundary length), not of the count; each pixel
+// column the extreme value of the ranks whose weight it covers.
 Chart sorted_boundary_error_chart(std::span<const double> vertex_error, const ChartOptions& options,
-                                  const ErrorChartLabels& labels = {});
+                                  const ErrorChartLabels& labels = {}, std::span<const double> weights = {});
 
 // With --reference: the boundary area outside / on / inside the reference as
 // one stacked horizontal bar of percentages (top strip), and below it the

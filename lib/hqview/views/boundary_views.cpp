@@ -76,11 +76,65 @@ void draw_worst_label(Image& figure, const PixelRect& view, double cx, double cy
 
 namespace {
 
+// Whether a pixel shows data of the flat view: a dark casing or a saturated
+// colour (its smallest channel below 150); the page, the pale domain and
+// its thin wireframe do not.
+bool is_data_pixel(const Image& image, int x, int y) {
+  const std::size_t o = pixel_offset(image, x, y);
+  return std::min({image.rgba[o], image.rgba[o + 1], image.rgba[o + 2]}) < 150;
+}
+
+// The flat view's marker label in empty space: of the boxes on an 8 px grid
+// inside the view, clear of every data pixel (4 px around) and of the ring,
+// the one nearest the ring; a leader line to it when it is not beside the
+// ring. Falls back to draw_worst_label when no box is clear.
+void draw_label_in_empty_space(Image& figure, const PixelRect& view, double cx, double cy, double radius,
+                               const std::string& label, const AnnotationStyle& style) {
+  const int size = std::max(style.min_text_size, static_cast<int>(std::lround(20 * style.scale)));
+  const PixelRect extent = text_extent(label, size, style);
+  const int box_w = extent.width + 6 + 8, box_h = size + 6 + 8;  // the pale box and 4 px around
+  // Summed-area table of data pixels over the view.
+  const int w = view.width, h = view.height;
+  std::vector<int> sum(static_cast<std::size_t>(w + 1) * (h + 1), 0);
+  const auto at = [&](int x, int y) -> int& { return sum[static_cast<std::size_t>(y) * (w + 1) + x]; };
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      at(x + 1, y + 1) = at(x, y + 1) + at(x + 1, y) - at(x, y) + (is_data_pixel(figure, view.x + x, view.y + y) ? 1 : 0);
+  double best = INFINITY;
+  int best_x = 0, best_y = 0;
+  for (int y = 0; y + box_h <= h; y += 8)
+    for (int x = 0; x + box_w <= w; x += 8) {
+      if (at(x + box_w, y + box_h) - at(x, y + box_h) - at(x + box_w, y) + at(x, y) > 0) continue;
+      const double nx = std::clamp(cx - view.x, double(x), double(x + box_w));
+      const double ny = std::clamp(cy - view.y, double(y), double(y + box_h));
+      const double d = std::hypot(nx - (cx - view.x), ny - (cy - view.y));
+      if (d < radius + 4 || d >= best) continue;
+      best = d;
+      best_x = x;
+      best_y = y;
+    }
+  if (!std::isfinite(best)) {
+    draw_worst_label(figure, view, cx, cy, radius, label, style);
+    return;
+  }
+  const int x = view.x + best_x + 7, baseline = view.y + best_y + 4 + size + 1;
+  if (best > radius + 24) {
+    const double bx = std::clamp(cx, double(x - 3), double(x + extent.width + 3));
+    const double by = std::clamp(cy, double(baseline - size - 1), double(baseline + 5));
+    const double len = std::hypot(bx - cx, by - cy);
+    draw_line(figure, cx + (bx - cx) * radius / len, cy + (by - cy) * radius / len, bx, by, kWorstMarkerColor,
+              std::max(1.5, 2.0 * style.scale));
+  }
+  fill_rect(figure, {x - 3, baseline - size - 1, extent.width + 6, size + 6}, {255, 255, 255, 230});
+  draw_text(figure, x, baseline, label, size, style);
+}
+
 // An error figure: the scene through the frame's camera, the shared colour
 // bar with the marker's entry, the marker on the sample of largest |error|
 // (worst).
 Image render_error_figure(Scene scene, const ErrorFigureFrame& frame, const WorstError& worst,
-                          const BoundaryError& error, Renderer& renderer, const BoundaryViewOptions& options) {
+                          const BoundaryError& error, Renderer& renderer, const BoundaryViewOptions& options,
+                          bool label_in_empty_space = false) {
   scene.background = options.background;
   Image figure = render_figure(renderer, scene, frame.camera, options.width, options.height, frame.layout,
                                options.title, frame.style);
@@ -95,10 +149,11 @@ Image render_error_figure(Scene scene, const ErrorFigureFrame& frame, const Wors
       const bool facing = dot(worst.normal, frame.camera.eye - worst.position) >= 0.0;
       // Solid when the sample faces the camera, dashed when it lies on the far side.
       draw_marker_ring(figure, cx, cy, radius, thickness, !facing, kWorstMarkerColor);
-      draw_worst_label(figure, frame.layout.view, cx, cy, radius,
-                       "max |error| " + signed_percent_label(worst.error, error.reference_bbox_diagonal) +
-                           (facing ? "" : ", far side") + worst.note,
-                       frame.style);
+      (label_in_empty_space ? draw_label_in_empty_space : draw_worst_label)(
+          figure, frame.layout.view, cx, cy, radius,
+          "max |error| " + signed_percent_label(worst.error, error.reference_bbox_diagonal) +
+              (facing ? "" : ", far side") + worst.note,
+          frame.style);
     }
   }
   return figure;
@@ -395,7 +450,7 @@ Image render_planar_boundary_error_view(const HexMesh& mesh, const Topology& top
                           {grey, "thin: reference outline", SwatchShape::line},
                           {to_color(kPlanarDomainColor), "reference domain", SwatchShape::box}});
   return render_error_figure(build_planar_boundary_error_scene(mesh, topology, reference, error, scale), frame, worst,
-                             error, renderer, flat);
+                             error, renderer, flat, true);
 }
 
 Scene build_uv_error_scene(const TriSurface& reference, const UvAtlas& atlas, const std::vector<double>& point_error,

@@ -384,7 +384,7 @@ std::vector<ViewFile> build_boundary_error(ViewContext& c) {
   auto b = boundary_options(c);
   std::vector<ViewFile> files;
   if (c.a.boundary_error->planar) {  // one flat figure of both polylines (the plane is its own UV map)
-    b.title = c.name + ": boundary and reference outline by signed error, from above";
+    b.title = c.name + ": boundary and reference outline by signed error, seen along the plane's normal";
     Image flat = render_planar_boundary_error_view(c.a.mesh, c.a.topology, *c.a.reference_surface,
                                                    *c.a.boundary_error, b, c.renderer);
     files.push_back(framed("views/boundary_error_plane.png", std::move(flat), c));
@@ -479,14 +479,32 @@ PercentErrors percent_errors(const BoundaryError& e) {
   return out;
 }
 
+// The boundary error charts' words: a planar mesh's boundary pieces,
+// weighted by length, against the reference's outline.
+ErrorChartLabels error_chart_labels(const Analysis& a, const PercentErrors& v) {
+  const BoundaryError& e = *a.boundary_error;
+  if (e.planar)
+    return {.items = "mesh boundary pieces",
+            .unit = "% of diagonal",
+            .on_band = v.per_unit * e.on_surface_tolerance,
+            .measure = "length",
+            .on_word = "on the reference outline"};
+  return {.items = std::string(mesh_side(a)) + " samples",
+          .unit = "% of diagonal",
+          .on_band = v.per_unit * e.on_surface_tolerance};
+}
+
 std::vector<ViewFile> build_boundary_error_sorted(ViewContext& c) {
   const PercentErrors v = percent_errors(*c.a.boundary_error);
+  const bool planar = c.a.boundary_error->planar;
   return chart_files(
       "boundary_error_sorted",
-      sorted_boundary_error_chart(v.error,
-                                  {900, 460, c.name + ": sorted signed boundary error (+ outside the reference)"},
-                                  {std::string(mesh_side(c.a)) + " samples", "% of diagonal",
-                                   v.per_unit * c.a.boundary_error->on_surface_tolerance}));
+      sorted_boundary_error_chart(
+          v.error,
+          {900, 460,
+           c.name + (planar ? ": sorted signed boundary error, mesh \u2192 reference (+ outside the reference)"
+                            : ": sorted signed boundary error (+ outside the reference)")},
+          error_chart_labels(c.a, v), planar ? std::span<const double>(v.area) : std::span<const double>()));
 }
 
 std::vector<ViewFile> build_boundary_area(ViewContext& c) {
@@ -494,11 +512,9 @@ std::vector<ViewFile> build_boundary_area(ViewContext& c) {
   const PercentErrors v = percent_errors(e);
   return chart_files("boundary_area",
                      boundary_area_chart(v.error, v.area, v.per_unit * e.on_surface_tolerance,
-                                         {900, 500, c.name + (e.planar ? ": boundary length outside / inside the reference"
+                                         {900, 500, c.name + (e.planar ? ": boundary length outside / inside the reference, mesh \u2192 reference"
                                                                         : ": boundary area outside / inside the reference")},
-                                         {.items = std::string(mesh_side(c.a)) + " samples",
-                                          .unit = "% of diagonal",
-                                          .measure = e.planar ? "length" : "area"}));
+                                         error_chart_labels(c.a, v)));
 }
 
 // The histograms' axes: what is counted, and on a surface mesh what its
@@ -679,7 +695,7 @@ static std::string view_title(std::string_view title, const Analysis& a) {
     for (const auto& [from, to] : kSurfaceTitles)
       if (t == from) t = to;
     if (a.boundary_error && a.boundary_error->planar && t.starts_with("Boundary error:"))
-      t = "Boundary error: the boundary polylines and the reference outline by signed error, from above";
+      t = "Boundary error: the boundary polylines and the reference outline by signed error, seen along the plane's normal";
     if (a.boundary_error && a.boundary_error->planar && t.starts_with("Boundary area"))
       t.replace(0, 13, "Boundary length");
   }
