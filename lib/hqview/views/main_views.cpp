@@ -1606,7 +1606,15 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
   } else {
     lines.push_back({std::nullopt, "overlap: not checked", 1});
   }
-  if (overlap && !overlap->markers.empty()) lines.push_back({std::nullopt, "label xN: N of its colour's kind"});
+  if (overlap && !overlap->markers.empty()) {
+    lines.push_back({std::nullopt, "label xN: N of its colour's kind"});
+    // More findings than a fan's arrows: a fan can be capped (its label
+    // then says "(M shown)").
+    const int cap = std::max(1, options.max_arrows_per_marker);
+    Index findings = 0;
+    for (const OverlapMarker& m : overlap->markers) findings += m.count;
+    if (findings > cap) lines.push_back({std::nullopt, "  at most " + std::to_string(cap) + " arrows a label"});
+  }
   if (options.surface_cell_quality) {
     const std::vector<LegendLine> fill =
         surface_fill_legend_lines(*options.surface_cell_quality, options.surface_inverted_cells,
@@ -2064,6 +2072,11 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
       label.kind = MainViewLabel::Kind::marker;
       label.count = fan.group.count();
       label.text = "x" + std::to_string(label.count);
+      // A fan draws at most max_arrows_per_marker arrows: the label says
+      // how many when fewer than its count (the 44e review: "x2725" showed
+      // 12 arrows and nothing said so).
+      if (static_cast<Index>(fan.arrows.size()) < label.count)
+        label.text += " (" + std::to_string(fan.arrows.size()) + " shown)";
       label.color = fan.group.kind == MarkerKind::intersection ? kIntersectionArrowColor : kCoincidentArrowColor;
       // Anchored where its arrows point; its own fan is an obstacle, so
       // the label sits next to the fan with a leader line to its centre.
