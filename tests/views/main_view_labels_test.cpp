@@ -519,6 +519,9 @@ void expect_clear_views(const Case& c, const char* name, bool expect_findings = 
       for (const MainViewLabel& other : labels.labels) {
         if (&other == &l) continue;
         EXPECT_FALSE(leaders_cross(l.placement, other.placement)) << l.text << " and " << other.text << " leaders cross";
+        // Nor run side by side (the 44e review: "x13" 6 px beside "#1 (10)").
+        EXPECT_FALSE(leaders_run_together(l.placement, other.placement))
+            << l.text << " and " << other.text << " leaders run together";
         EXPECT_FALSE(leader_meets_box(l.placement, other.placement.box)) << l.text << "'s leader crosses " << other.text;
       }
     }

@@ -2097,8 +2097,15 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
         const double outer = has_inverted_ring(glyphs.clusters[static_cast<std::size_t>(g.id)], scaled)
                                  ? inverted_ring_radius(g.radius, style) + 0.5 * inverted_halo_width(style)
                                  : g.radius + 1.5 * style.scale;
-        if (!label.leader_from && std::hypot(disc.x - g.x, disc.y - g.y) < outer)
-          label.leader_from = ScreenDisc{g.x, g.y, outer, disc.id};
+        const double off = std::hypot(disc.x - g.x, disc.y - g.y);
+        if (label.leader_from || off >= outer) continue;
+        // On its fan's side of the glyph, where its arrows meet (the 44e
+        // review: hand_inj_rot's "x13" left #1's far rim 6 px from "#1 (10)"'s
+        // leader, a second label of #1); from anywhere on the rim when the
+        // fan sits on the glyph's centre.
+        label.leader_from = off > 0.25 * g.radius ? ScreenDisc{g.x + (disc.x - g.x) / off * outer,
+                                                               g.y + (disc.y - g.y) / off * outer, 0.0, disc.id}
+                                                  : ScreenDisc{g.x, g.y, outer, disc.id};
       }
       markers.push_back(label);
     }
