@@ -301,6 +301,7 @@ TEST(LabelLayout, LeadersDoNotRunTogether) {
   };
   EXPECT_TRUE(leaders_run_together(leader(100, 100, 60, 100), leader(100, 102, 60, 102)));
   EXPECT_FALSE(leaders_run_together(leader(100, 100, 60, 100), leader(100, 100, 100, 60)));
+  EXPECT_TRUE(leaders_run_together(leader(100, 100, 60, 100), leader(100, 106, 60, 106)));  // the 44e review's 6 px
   EXPECT_FALSE(leaders_run_together(leader(100, 100, 60, 100), leader(100, 108, 60, 108)));
   EXPECT_FALSE(leaders_run_together(leader(100, 100, 60, 100), PlacedLabel{}));
 }

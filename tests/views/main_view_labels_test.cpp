@@ -519,12 +519,16 @@ void expect_clear_views(const Case& c, const char* name, bool expect_findings = 
       for (const MainViewLabel& other : labels.labels) {
         if (&other == &l) continue;
         EXPECT_FALSE(leaders_cross(l.placement, other.placement)) << l.text << " and " << other.text << " leaders cross";
+        // Nor run side by side (the 44e review: "x13" 6 px beside "#1 (10)").
+        EXPECT_FALSE(leaders_run_together(l.placement, other.placement))
+            << l.text << " and " << other.text << " leaders run together";
         EXPECT_FALSE(leader_meets_box(l.placement, other.placement.box)) << l.text << "'s leader crosses " << other.text;
       }
     }
     EXPECT_LE(labels.labels.size(), static_cast<std::size_t>(options.max_marker_groups + 10));
     Index counted[2] = {0, 0};
     int markers = 0;
+    bool capped = false;
     for (std::size_t i = 0; i < labels.labels.size(); ++i) {
       const MainViewLabel& l = labels.labels[i];
       if (l.kind == MainViewLabel::Kind::marker) {
@@ -532,7 +536,12 @@ void expect_clear_views(const Case& c, const char* name, bool expect_findings = 
         EXPECT_TRUE(is_pair || l.color == kCoincidentArrowColor) << l.text;
         counted[is_pair ? 1 : 0] += l.count;
         ++markers;
-        EXPECT_EQ(l.text, "x" + std::to_string(l.count));
+        // A capped fan's label says how many arrows it shows (the 44e
+        // review: "x2725" over 12 arrows), and the legend says the cap.
+        const Index cap = options.max_arrows_per_marker;
+        EXPECT_EQ(l.text, "x" + std::to_string(l.count) +
+                              (l.count > cap ? " (" + std::to_string(cap) + " shown)" : std::string()));
+        capped = capped || l.count > cap;
         // Anchored at its group's position (a small disc), not at its fan's rim.
         EXPECT_LE(l.anchor.radius, 3.0 * scale) << l.text;
       }
@@ -575,6 +584,13 @@ void expect_clear_views(const Case& c, const char* name, bool expect_findings = 
       if (labels.worst_glyph.radius > 0.0) {
         EXPECT_FALSE(box_meets_disc(b, labels.worst_glyph)) << l.text;
       }
+    }
+    if (capped) {
+      const std::string cap_line = "  at most " + std::to_string(options.max_arrows_per_marker) + " arrows a label";
+      bool said = false;
+      for (const LegendLine& line : main_legend_lines(c.glyphs, &c.overlap, AnnotationStyle{}, options, 1.0))
+        said = said || line.text == cap_line;
+      EXPECT_TRUE(said) << "a capped fan and no legend line on the cap";
     }
     if (!expect_findings) continue;
     EXPECT_EQ(counted[0], findings[0]);

@@ -118,9 +118,9 @@ bool leaders_run_together(const PlacedLabel& a, const PlacedLabel& b) {
     const double s = steps > 0 ? static_cast<double>(i) / steps : 0.0;
     const double x = b.leader_x0 + s * (b.leader_x1 - b.leader_x0), y = b.leader_y0 + s * (b.leader_y1 - b.leader_y0);
     const double t = length2 > 0.0 ? std::clamp(((x - a.leader_x0) * dx + (y - a.leader_y0) * dy) / length2, 0.0, 1.0) : 0.0;
-    together += std::hypot(a.leader_x0 + t * dx - x, a.leader_y0 + t * dy - y) < 5.0 ? 1 : 0;
+    together += std::hypot(a.leader_x0 + t * dx - x, a.leader_y0 + t * dy - y) < 8.0 ? 1 : 0;
   }
-  return 2 * together > 15;  // more than 15 px of b within 5 px of a
+  return 2 * together > 15;  // more than 15 px of b within 8 px of a
 }
 
 bool leaders_cross(const PlacedLabel& a, const PlacedLabel& b) {
@@ -276,9 +276,10 @@ std::optional<PlacedLabel> LabelPlacer::place(const LabelRequest& label, const D
   const double reach = options_.leader_clearance + 1.0;
   // A candidate, checked once: its placement (with a leader when it needs
   // one) and the first pass that takes it (0: clear; 1: its leader may run
-  // over glyphs; 2: any free place; 3: not free).
+  // over glyphs; 2: any free place whose leader runs along no earlier one;
+  // 3: any free place; 4: not free).
   struct Candidate {
-    int pass = 3;
+    int pass = 4;
     double room = 0.0;
     PlacedLabel placement;
   };
@@ -334,6 +335,15 @@ std::optional<PlacedLabel> LabelPlacer::place(const LabelRequest& label, const D
         r.has_leader && any_box_near(r.leader_x0, r.leader_y0, r.leader_x1, r.leader_y1,
                                      [&](const PixelRect& b) { return leader_meets_box(r, b); });
     if (label.strict_leaders && (box_crossed || leader_through_box)) return c;
+    c.pass = 3;
+    // Only the last resort: a leader that runs along an earlier one (the
+    // 44e shots: a fan's "x13" leader 2 px under "#1 (10)"'s reads as one
+    // line; the 44e review: 6 px beside it, taken as any free place).
+    if (r.has_leader &&
+        any_leader_near(std::min(r.leader_x0, r.leader_x1) - 8.0, std::min(r.leader_y0, r.leader_y1) - 8.0,
+                        std::max(r.leader_x0, r.leader_x1) + 8.0, std::max(r.leader_y0, r.leader_y1) + 8.0,
+                        [&](const PlacedLabel& l) { return leaders_run_together(l, r); }))
+      return c;
     c.pass = 2;
     // Clear: a label beside another disc only when far enough to need a
     // leader anyway (a stub leader beside two glyphs says little).
@@ -344,11 +354,6 @@ std::optional<PlacedLabel> LabelPlacer::place(const LabelRequest& label, const D
                           [&](const PlacedLabel& l) { return leaders_cross(l, r); }))
         return c;
       if (leader_through_box) return c;
-      // Nor one that runs along an earlier leader (the 44e shots: a fan's
-      // "x13" leader 2 px under "#1 (10)"'s reads as one line).
-      if (any_leader_near(r.leader_x0, r.leader_y0, r.leader_x1, r.leader_y1,
-                          [&](const PlacedLabel& l) { return leaders_run_together(l, r); }))
-        return c;
       c.pass = 1;
       // (Nor here does a disc holding the leader's start count, unless the
       // leader heads into it.)
@@ -365,7 +370,7 @@ std::optional<PlacedLabel> LabelPlacer::place(const LabelRequest& label, const D
   // reach them.
   std::vector<std::vector<Candidate>> rings;
   const double spacing = std::max({static_cast<double>(label.height), options_.ring_step, 1.0});
-  for (int pass = 0; pass <= 2; ++pass)
+  for (int pass = 0; pass <= 3; ++pass)
     for (int ring = 0; ring <= options_.rings; ++ring) {
       if (static_cast<std::size_t>(ring) == rings.size()) {
         const double distance = anchor.radius + options_.gap + ring * options_.ring_step;

@@ -85,14 +85,14 @@ struct PlacedLabel {
 // anchor disc or another obstacle disc is not clearly farther (within the
 // anchor's gap + leader_distance: the label would read as that one's).
 // The first pass takes only clear candidates: not beside another disc
-// unless it has a leader, its leader crossing no earlier leader (nor
-// running along one, leaders_run_together), no placed
+// unless it has a leader, its leader crossing no earlier leader, no placed
 // box and no obstacle disc but its own anchor (nor coming within
 // leader_clearance of one), its box crossed by no earlier
 // leader. When none is clear, the second pass lets the leader run over
 // other discs, and the third takes the first free place (with a leader
-// when it needs one). In every pass a leader crosses no protected disc
-// (LabelRequest::protect_below), and with LabelRequest::strict_leaders no
+// when it needs one) whose leader runs along no earlier leader
+// (leaders_run_together), the fourth any free place. In every pass a
+// leader crosses no protected disc (LabelRequest::protect_below), and with LabelRequest::strict_leaders no
 // earlier leader or placed box, nor a box an earlier leader. A label with no free
 // candidate is
 // nullopt (the caller says what was left out). An obstacle with the
@@ -203,8 +203,8 @@ PlacedLabel with_leader(const ScreenDisc& anchor, const PixelRect& box);
 bool boxes_overlap(const PixelRect& a, const PixelRect& b);
 // Whether two leader lines cross (share a point; touching ends count).
 bool leaders_cross(const PlacedLabel& a, const PlacedLabel& b);
-// Whether more than 15 px of b's leader lie within 5 px of a's (they would
-// read as one line).
+// Whether more than 15 px of b's leader lie within 8 px of a's (they would
+// read as one line, or as two labels of one mark).
 bool leaders_run_together(const PlacedLabel& a, const PlacedLabel& b);
 // Whether a leader line passes through a box's / a disc's interior.
 bool leader_meets_box(const PlacedLabel& leader, const PixelRect& box);

@@ -656,9 +656,23 @@ std::vector<MarkerFan> marker_fans(const GlyphResult& glyphs, const OverlapRepor
       kept_clear.push_back({g.position, shown[static_cast<std::size_t>(g.id)]});
   auto in_plane = [&](const Vec3& v) { return std::array<double, 2>{dot(v, plane.right), dot(v, plane.up)}; };
   std::vector<MarkerFan> fans;
-  for (const ScreenMarker& marker :
-       group_markers_on_screen(overlap.markers, camera, view_height, options.marker_merge_pixels * options.pixel_scale,
-                               options.max_marker_groups)) {
+  const std::vector<ScreenMarker> groups = group_markers_on_screen(
+      overlap.markers, camera, view_height, options.marker_merge_pixels * options.pixel_scale, options.max_marker_groups);
+  // Each group's centre on screen (pixels): a fan reaches at most half way
+  // to the nearest other (the 44e review: inj_grid's x28 and x23 fans,
+  // hubs 45 px apart, and stack60's chain of three interleaved their
+  // arrows, so no arrow could be told to one fan).
+  std::vector<std::array<double, 2>> hubs;
+  for (const ScreenMarker& g : groups) {
+    const Vec3 q = g.position - camera.eye;
+    const double unit = units_per_pixel(camera, std::max(dot(q, plane.forward), 1e-12), view_height);
+    hubs.push_back({dot(q, plane.right) / unit, dot(q, plane.up) / unit});
+  }
+  for (std::size_t gi = 0; gi < groups.size(); ++gi) {
+    const ScreenMarker& marker = groups[gi];
+    double nearest = std::numeric_limits<double>::infinity();
+    for (std::size_t o = 0; o < groups.size(); ++o)
+      if (o != gi) nearest = std::min(nearest, std::hypot(hubs[o][0] - hubs[gi][0], hubs[o][1] - hubs[gi][1]));
     MarkerFan fan{marker, {}, 0.0, 0.0};
     const Index total = std::max<Index>(1, marker.count());
     const int n = std::clamp<int>(static_cast<int>(total), 1, std::max(1, options.max_arrows_per_marker));
@@ -673,7 +687,16 @@ std::vector<MarkerFan> marker_fans(const GlyphResult& glyphs, const OverlapRepor
     const double depth = std::max(dot(marker.position - camera.eye, plane.forward), 1e-12);
     const double unit = units_per_pixel(camera, depth, view_height) * options.pixel_scale;
     fan.unit = unit;
-    const double length = options.arrow_pixels * unit;
+    // (3 px: where an arrow's tip stops short of its hub; at least its
+    // head and a stub of shaft, 26 px.)
+    // (Not a fan on a coloured glyph: its arrows start at the glyph's rim.)
+    const bool on_glyph = std::any_of(kept_clear.begin(), kept_clear.end(), [&](const auto& disc) {
+      const std::array<double, 2> m = in_plane(marker.position - disc.first);
+      return std::hypot(m[0], m[1]) < disc.second + 7.0 * unit;
+    });
+    const double half_way = on_glyph ? options.arrow_pixels : 0.5 * nearest / options.pixel_scale - 3.0;
+    const double length =
+        std::max(std::min(options.arrow_pixels, half_way), std::min(options.arrow_pixels, 26.0)) * unit;
     // The arrow on the ray marker − t d: its start t0 (3 pixels, or where
     // the ray leaves the discs holding the marker) and how long it may run
     // from there before it meets another disc (at most length).
@@ -1620,7 +1643,15 @@ std::vector<LegendLine> main_legend_lines(const GlyphResult& glyphs, const Overl
   } else {
     lines.push_back({std::nullopt, "overlap: not checked", 1});
   }
-  if (overlap && !overlap->markers.empty()) lines.push_back({std::nullopt, "label xN: N of its colour's kind"});
+  if (overlap && !overlap->markers.empty()) {
+    lines.push_back({std::nullopt, "label xN: N of its colour's kind"});
+    // More findings than a fan's arrows: a fan can be capped (its label
+    // then says "(M shown)").
+    const int cap = std::max(1, options.max_arrows_per_marker);
+    Index findings = 0;
+    for (const OverlapMarker& m : overlap->markers) findings += m.count;
+    if (findings > cap) lines.push_back({std::nullopt, "  at most " + std::to_string(cap) + " arrows a label"});
+  }
   if (options.surface_cell_quality) {
     const std::vector<LegendLine> fill =
         surface_fill_legend_lines(*options.surface_cell_quality, options.surface_inverted_cells,
@@ -2078,6 +2109,11 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
       label.kind = MainViewLabel::Kind::marker;
       label.count = fan.group.count();
       label.text = "x" + std::to_string(label.count);
+      // A fan draws at most max_arrows_per_marker arrows: the label says
+      // how many when fewer than its count (the 44e review: "x2725" showed
+      // 12 arrows and nothing said so).
+      if (static_cast<Index>(fan.arrows.size()) < label.count)
+        label.text += " (" + std::to_string(fan.arrows.size()) + " shown)";
       label.color = fan.group.kind == MarkerKind::intersection ? kIntersectionArrowColor : kCoincidentArrowColor;
       // Anchored where its arrows point; its own fan is an obstacle, so
       // the label sits next to the fan with a leader line to its centre.
@@ -2098,8 +2134,15 @@ MainViewLabels layout_main_view_labels(const GlyphResult& glyphs, const OverlapR
         const double outer = has_inverted_ring(glyphs.clusters[static_cast<std::size_t>(g.id)], scaled)
                                  ? inverted_ring_radius(g.radius, style) + 0.5 * inverted_halo_width(style)
                                  : g.radius + 1.5 * style.scale;
-        if (!label.leader_from && std::hypot(disc.x - g.x, disc.y - g.y) < outer)
-          label.leader_from = ScreenDisc{g.x, g.y, outer, disc.id};
+        const double off = std::hypot(disc.x - g.x, disc.y - g.y);
+        if (label.leader_from || off >= outer) continue;
+        // On its fan's side of the glyph, where its arrows meet (the 44e
+        // review: hand_inj_rot's "x13" left #1's far rim 6 px from "#1 (10)"'s
+        // leader, a second label of #1); from anywhere on the rim when the
+        // fan sits on the glyph's centre.
+        label.leader_from = off > 0.25 * g.radius ? ScreenDisc{g.x + (disc.x - g.x) / off * outer,
+                                                               g.y + (disc.y - g.y) / off * outer, 0.0, disc.id}
+                                                  : ScreenDisc{g.x, g.y, outer, disc.id};
       }
       markers.push_back(label);
     }

@@ -102,7 +102,9 @@ struct MainViewOptions {
   double arrow_pixels = 70.0;         // arrow length on screen (at the marker's depth)
   double arrow_start_degrees = 45.0;  // first arrow's angle in the image plane (deterministic)
   int max_arrows_per_marker = 12;
-  double marker_merge_pixels = 70.0;  // markers closer on screen (one arrow length) are drawn as one
+  // Markers of one kind closer on screen are drawn as one (an arrow and a
+  // head's length: nearer fans' arrows interleaved, the 44e review).
+  double marker_merge_pixels = 100.0;
   // At most this many marker groups (one arrow fan and one count label
   // each): the merge distance grows by half until the groups are this few.
   int max_marker_groups = 12;
