@@ -102,6 +102,19 @@ LineSet cell_edges(const HexMesh& mesh, const Topology& topology, const std::vec
 // of all faces, then the table read in order. With cell_quality (a surface
 // mesh's cell scaled Jacobians, by cell id), each face in
 // quality_color(its cell's value) instead, opaque.
+// Whether the quad v (a surface cell's face) is filled along its diagonal
+// 1-3: when corner 1 or 3 is reflex (turns against the quad's Newell area),
+// the diagonal 0-2 runs outside the quad and one of its triangles spills
+// over the quad's edge, a fill with no edge line (47g review #1, a planar
+// fold). A bow-tie keeps 0-2 (no diagonal is inside it).
+bool splits_at_1_3(const HexMesh& mesh, const std::array<Index, 4>& v) {
+  const auto p = [&](int i) { return mesh.points[static_cast<std::size_t>(v[static_cast<std::size_t>(i % 4)])]; };
+  Vec3 area{};
+  for (int i = 0; i < 4; ++i) area = area + cross(p(i), p(i + 1));
+  const auto turns_with = [&](int a, int b, int c) { return dot(cross(p(b) - p(a), p(c) - p(a)), area) > 0.0; };
+  return !(turns_with(0, 1, 2) && turns_with(0, 2, 3)) && turns_with(1, 2, 3) && turns_with(1, 3, 0);
+}
+
 TriangleSet outer_faces(const HexMesh& mesh, const Topology& topology, const std::vector<Index>& cells,
                         const Vec3& origin, Rgba8 color, std::span<const double> cell_quality = {}) {
   std::vector<std::uint8_t> uses(topology.faces.size(), 0);
@@ -137,8 +150,11 @@ TriangleSet outer_faces(const HexMesh& mesh, const Topology& topology, const std
         set.positions.push_back(to_vec3f(mesh.points[static_cast<std::size_t>(v[static_cast<std::size_t>(i)])] - origin));
         set.colors.push_back(fill);
       }
-      set.indices.insert(set.indices.end(), {base, base + 1, base + 2});
-      if (size == 4) set.indices.insert(set.indices.end(), {base, base + 2, base + 3});
+      if (size == 3) set.indices.insert(set.indices.end(), {base, base + 1, base + 2});
+      else if (splits_at_1_3(mesh, v))  // a concave quad: 0-2 runs outside it
+        set.indices.insert(set.indices.end(), {base + 1, base + 2, base + 3, base + 1, base + 3, base});
+      else
+        set.indices.insert(set.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
     });
   }
   return set;
