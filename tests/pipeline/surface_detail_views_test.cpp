@@ -112,16 +112,29 @@ TEST(SurfaceDetailViews, PlanarFoldOneRingLabelsEachCornerAtItsCorner) {
     char value[32];
     std::snprintf(value, sizeof value, "%.3f", expected);
     EXPECT_EQ(l.text, std::string(value) + "  quad " + std::to_string(c.hex));
-    // Its disc where its corner is: 45% of the way from the vertex to the
-    // quad's centre, projected (the vertex's dot is off it: not moved).
-    Vec3 centre{};
-    for (int k = 0; k < 4; ++k) centre = centre + 0.25 * at(k);
-    const Vec3 anchor = p[static_cast<std::size_t>(kPushed)] + 0.45 * (centre - p[static_cast<std::size_t>(kPushed)]);
+    // Its disc where its corner is: inside its own quad as projected (even-odd
+    // rule, so a folded quad's own region), nearer its corner than the
+    // corner's shorter edge is long (47g review #2: a reversed quad's disc
+    // 45% of the way to the centre lay outside the quad).
     const PixelRect& view = shot.layout.view;
-    const Vec3 ndc = project_to_ndc(shot.camera, double(view.width) / view.height, anchor);
-    const double x = view.x + 0.5 * (ndc.x + 1.0) * view.width, y = view.y + 0.5 * (1.0 - ndc.y) * view.height;
-    EXPECT_NEAR(l.marker.x, x, 1.0);
-    EXPECT_NEAR(l.marker.y, y, 1.0);
+    const auto screen = [&](const Vec3& at_model) {
+      const Vec3 ndc = project_to_ndc(shot.camera, double(view.width) / view.height, at_model);
+      return std::array<double, 2>{view.x + 0.5 * (ndc.x + 1.0) * view.width, view.y + 0.5 * (1.0 - ndc.y) * view.height};
+    };
+    const double x = l.marker.x, y = l.marker.y;
+    bool inside = false;
+    for (int k = 0; k < 4; ++k) {
+      const auto [x0, y0] = screen(at(k));
+      const auto [x1, y1] = screen(at(k + 1));
+      if ((y0 > y) != (y1 > y) && x < x0 + (y - y0) / (y1 - y0) * (x1 - x0)) inside = !inside;
+    }
+    EXPECT_TRUE(inside) << "disc at (" << x << ", " << y << ")";
+    const auto [vx, vy] = screen(at(c.local));
+    const auto edge = [&](int k) {
+      const auto [ex, ey] = screen(at(k));
+      return std::hypot(ex - vx, ey - vy);
+    };
+    EXPECT_LT(std::hypot(x - vx, y - vy), std::min(edge(c.local - 1), edge(c.local + 1)));
     // The label within its disc's rim plus the leader cap of it.
     const double dx = std::max({l.box.x - x, 0.0, x - (l.box.x + l.box.width)});
     const double dy = std::max({l.box.y - y, 0.0, y - (l.box.y + l.box.height)});

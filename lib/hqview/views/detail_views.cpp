@@ -583,6 +583,46 @@ double mean_edge_at(const HexMesh& mesh, const std::vector<VertexCorner>& corner
   return n ? sum / n : 1.0;
 }
 
+// Where a surface cell's corner disc goes: inside its own face near its
+// corner, along the bisector of the corner's two edges at kSurfaceDiscReach
+// of the distance to the face's nearest other corner (a folded quad's far
+// corner can be nearer than its edges' ends), halved until inside the face (even-odd, in the plane
+// of its area vector: a folded quad's own region). 45% of the way to the
+// face's centre put a folded quad's disc outside the face (47g review #2).
+constexpr double kSurfaceDiscReach = 0.4;
+constexpr int kSurfaceDiscHalvings = 6;
+
+Vec3 surface_corner_anchor(const HexMesh& mesh, const VertexCorner& c) {
+  const CellRef cell = any_cell(mesh, c.hex);
+  const int n = cell.num_corners;
+  const auto at = [&](int k) { return mesh.points[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>((k + n) % n)])]; };
+  const Vec3 p = at(c.local), a = at(c.local - 1) - p, b = at(c.local + 1) - p;
+  const Vec3 to_centre = 0.45 * (hex_centre(mesh, c.hex) - p);
+  const double la = norm(a), lb = norm(b);
+  Vec3 area{};  // Newell
+  for (int k = 0; k < n; ++k) area = area + cross(at(k), at(k + 1));
+  Vec3 bisector = a / la + b / lb;
+  const double lm = norm(bisector);
+  if (!(la > 0.0) || !(lb > 0.0) || !(lm > 1e-9) || !(norm(area) > 0.0)) return p + to_centre;
+  if (dot(cross(b, a), area) < 0.0) bisector = -1.0 * bisector;  // a reflex corner: its face beyond
+  const Vec3 normal = normalized(area), u = normalized(a - dot(a, normal) * normal), w = cross(normal, u);
+  const auto inside = [&](const Vec3& q) {
+    bool in = false;
+    const double x = dot(q - p, u), y = dot(q - p, w);
+    for (int k = 0; k < n; ++k) {
+      const double x0 = dot(at(k) - p, u), y0 = dot(at(k) - p, w), x1 = dot(at(k + 1) - p, u), y1 = dot(at(k + 1) - p, w);
+      if ((y0 > y) != (y1 > y) && x < x0 + (y - y0) / (y1 - y0) * (x1 - x0)) in = !in;
+    }
+    return in;
+  };
+  double nearest = std::min(la, lb);
+  for (int k = 2; k < n - 1; ++k) nearest = std::min(nearest, norm(at(c.local + k) - p));
+  double reach = kSurfaceDiscReach * nearest / lm;
+  for (int i = 0; i < kSurfaceDiscHalvings; ++i, reach *= 0.5)
+    if (inside(p + reach * bisector)) return p + reach * bisector;
+  return p + to_centre;
+}
+
 }  // namespace
 
 double local_marker_radius(double scaled_jacobian, double size) {
@@ -620,7 +660,8 @@ Scene build_local_scene(const HexMesh& mesh, const Topology& topology, std::span
   const double size = mean_edge_at(mesh, corners, v);
   SphereSet markers, centre;
   for (const VertexCorner& c : corners) {
-    const Vec3 at = p + 0.45 * (hex_centre(mesh, c.hex) - p);
+    const Vec3 at = c.kind == CellKind::quad || c.kind == CellKind::triangle ? surface_corner_anchor(mesh, c)
+                                                                             : p + 0.45 * (hex_centre(mesh, c.hex) - p);
     markers.centers.push_back(to_vec3f(at - scene.origin));
     markers.radii.push_back(static_cast<float>(local_marker_radius(c.value, size)));
     markers.colors.push_back(to_rgba8(quality_color(c.value)));
