@@ -39,13 +39,17 @@ std::vector<Vec3> grid_points() {
   return p;
 }
 
-std::string grid_obj(const std::vector<Vec3>& p) {
+// turn: each quad's corner list starts `turn` corners on (the same quads).
+std::string grid_obj(const std::vector<Vec3>& p, int turn = 0) {
   std::ostringstream out;
   for (const Vec3& x : p) out << "v " << x.x << ' ' << x.y << ' ' << x.z << '\n';
   for (int j = 0; j < kN; ++j)
     for (int i = 0; i < kN; ++i) {
       const int a = 1 + i + (kN + 1) * j;
-      out << "f " << a << ' ' << a + 1 << ' ' << a + kN + 2 << ' ' << a + kN + 1 << '\n';
+      const std::array<int, 4> f{a, a + 1, a + kN + 2, a + kN + 1};
+      out << 'f';
+      for (int k = 0; k < 4; ++k) out << ' ' << f[static_cast<std::size_t>((k + turn) % 4)];
+      out << '\n';
     }
   return out.str();
 }
@@ -62,9 +66,9 @@ struct Fixture {
   DetailViewOptions options;
 };
 
-Fixture folded_grid(const test::TempDir& dir) {
+Fixture folded_grid(const test::TempDir& dir, int turn = 0) {
   AnalyzeOptions run;
-  run.mesh_path = dir.write("fold.obj", grid_obj(grid_points()));
+  run.mesh_path = dir.write("fold.obj", grid_obj(grid_points(), turn));
   run.tool_version = "test";
   Fixture f{analyze_mesh(run), {}};
   f.options.width = 800, f.options.height = 600;
@@ -195,6 +199,39 @@ TEST(SurfaceDetailViews, PlanarFoldClusterViewFillsTheClustersFaces) {
   for (const TriangleSet& set : shot.scene.triangles) faces_drawn += set.colors.size() / 4;
   EXPECT_EQ(faces_drawn, region.cells.size());
   EXPECT_NE(shot.cell_kinds.find(kClusterFaceFillLegend), std::string::npos);
+}
+
+// Each quad's two triangles in view C lie inside the quad (the centroid of
+// each, even-odd in the plane): with the corner lists turned by one, the
+// folded quads' reflex corners are corners 1 and 3, where the diagonal 0-2
+// ran outside the quad (47g review #1: a fill with no edge line).
+TEST(SurfaceDetailViews, PlanarFoldClusterViewFillsEachQuadInsideItsEdges) {
+  const test::TempDir dir("surface_detail_views");
+  for (int turn = 0; turn < 2; ++turn) {
+    SCOPED_TRACE("turn " + std::to_string(turn));
+    const Fixture f = folded_grid(dir, turn);
+    ASSERT_TRUE(f.a.glyphs && !f.a.glyphs->clusters.empty());
+    const ClusterShot shot = cluster_shot(f.a.mesh, f.a.topology, f.a.field.vertex_quality, *f.a.glyphs, 0, f.options);
+    std::size_t checked = 0;
+    for (const TriangleSet& faces : shot.scene.triangles)
+      for (std::size_t t = 0; t + 2 < faces.indices.size(); t += 3) {
+        const std::size_t base = faces.indices[t] / 4 * 4;  // the quad's first position
+        double x = 0.0, y = 0.0;
+        for (std::size_t k = 0; k < 3; ++k) {
+          EXPECT_EQ(faces.indices[t + k] / 4 * 4, base);
+          x += faces.positions[faces.indices[t + k]].x / 3.0, y += faces.positions[faces.indices[t + k]].y / 3.0;
+        }
+        bool inside = false;
+        for (std::size_t k = 0; k < 4; ++k) {
+          const Vec3f& p0 = faces.positions[base + k];
+          const Vec3f& p1 = faces.positions[base + (k + 1) % 4];
+          if ((p0.y > y) != (p1.y > y) && x < p0.x + (y - p0.y) / (p1.y - p0.y) * (p1.x - p0.x)) inside = !inside;
+        }
+        EXPECT_TRUE(inside) << "triangle " << t / 3 << " at (" << x << ", " << y << ")";
+        ++checked;
+      }
+    EXPECT_GE(checked, 8u);
+  }
 }
 
 // `--views clusters,local,corners` on a quad mesh draws C of each top
