@@ -31,11 +31,12 @@ namespace {
 constexpr int kN = 4;  // quads a side
 constexpr Index kPushed = 2 + (kN + 1) * 2;
 
-std::vector<Vec3> grid_points() {
+// pushed: where the vertex (2, 2) goes; by default through (3, 3).
+std::vector<Vec3> grid_points(const Vec3& pushed = {3.4, 3.3, 0.0}) {
   std::vector<Vec3> p;
   for (int j = 0; j <= kN; ++j)
     for (int i = 0; i <= kN; ++i) p.push_back({double(i), double(j), 0.0});
-  p[static_cast<std::size_t>(kPushed)] = {3.4, 3.3, 0.0};  // through (3, 3)
+  p[static_cast<std::size_t>(kPushed)] = pushed;
   return p;
 }
 
@@ -66,9 +67,9 @@ struct Fixture {
   DetailViewOptions options;
 };
 
-Fixture folded_grid(const test::TempDir& dir, int turn = 0) {
+Fixture folded_grid(const test::TempDir& dir, int turn = 0, const Vec3& pushed = {3.4, 3.3, 0.0}) {
   AnalyzeOptions run;
-  run.mesh_path = dir.write("fold.obj", grid_obj(grid_points(), turn));
+  run.mesh_path = dir.write("fold.obj", grid_obj(grid_points(pushed), turn));
   run.tool_version = "test";
   Fixture f{analyze_mesh(run), {}};
   f.options.width = 800, f.options.height = 600;
@@ -79,75 +80,80 @@ Fixture folded_grid(const test::TempDir& dir, int turn = 0) {
 
 TEST(SurfaceDetailViews, PlanarFoldOneRingLabelsEachCornerAtItsCorner) {
   const test::TempDir dir("surface_detail_views");
-  const Fixture f = folded_grid(dir);
-  const Analysis& a = f.a;
-  ASSERT_TRUE(a.mesh_summary.planarity && a.mesh_summary.planarity->is_planar);
-  ASSERT_TRUE(f.options.view_direction);
-  EXPECT_NEAR(std::abs(f.options.view_direction->z), 1.0, 1e-12);  // flat, from above
+  // Through (3, 3), and just past it: there quad 10's reflex corner (3, 3)
+  // is 0.14 from the vertex and 45% of the way to its centre lies outside it.
+  for (const Vec3& pushed : {Vec3{3.4, 3.3, 0.0}, Vec3{3.1, 3.1, 0.0}}) {
+    SCOPED_TRACE("pushed to (" + std::to_string(pushed.x) + ", " + std::to_string(pushed.y) + ")");
+    const Fixture f = folded_grid(dir, 0, pushed);
+    const Analysis& a = f.a;
+    ASSERT_TRUE(a.mesh_summary.planarity && a.mesh_summary.planarity->is_planar);
+    ASSERT_TRUE(f.options.view_direction);
+    EXPECT_NEAR(std::abs(f.options.view_direction->z), 1.0, 1e-12);  // flat, from above
 
-  const LocalShot shot = local_shot(a.mesh, a.topology, a.field.corner_scaled_jacobian, kPushed, f.options);
-  // The camera: orthographic, along the normal.
-  EXPECT_FALSE(shot.camera.is_perspective);
-  const Vec3 look = normalized(shot.camera.target - shot.camera.eye);
-  EXPECT_NEAR(std::abs(look.z), 1.0, 1e-9);
+    const LocalShot shot = local_shot(a.mesh, a.topology, a.field.corner_scaled_jacobian, kPushed, f.options);
+    // The camera: orthographic, along the normal.
+    EXPECT_FALSE(shot.camera.is_perspective);
+    const Vec3 look = normalized(shot.camera.target - shot.camera.eye);
+    EXPECT_NEAR(std::abs(look.z), 1.0, 1e-9);
 
-  // The four quads at the vertex, each corner's value by hand.
-  const std::vector<Vec3> p = grid_points();
-  const std::vector<VertexCorner> corners = vertex_corners(a.mesh, a.topology, a.field.corner_scaled_jacobian, kPushed);
-  ASSERT_EQ(corners.size(), 4u);
-  ASSERT_EQ(shot.labels.size(), 4u);
-  int inverted = 0;
-  for (std::size_t i = 0; i < corners.size(); ++i) {
-    const VertexCorner& c = corners[i];
-    SCOPED_TRACE("quad " + std::to_string(c.hex));
-    EXPECT_EQ(c.kind, CellKind::quad);
-    const auto& q = a.mesh.quads.at(static_cast<std::size_t>(c.hex));
-    ASSERT_EQ(q[static_cast<std::size_t>(c.local)], kPushed);
-    const auto at = [&](int k) { return p[static_cast<std::size_t>(q[static_cast<std::size_t>((k + 4) % 4)])]; };
-    const double expected = corner_by_hand(at(c.local - 1), at(c.local), at(c.local + 1));
-    EXPECT_NEAR(c.value, expected, 1e-12);
-    const LocalLabel& l = shot.labels[i];
-    EXPECT_NEAR(l.value, expected, 1e-12);
-    EXPECT_EQ(l.is_inverted, expected < 0.0);
-    inverted += expected < 0.0;
-    // A ring of 4: every corner labelled in full, "-0.873  quad 10".
-    ASSERT_TRUE(l.placed);
-    EXPECT_EQ(l.number, 0);
-    char value[32];
-    std::snprintf(value, sizeof value, "%.3f", expected);
-    EXPECT_EQ(l.text, std::string(value) + "  quad " + std::to_string(c.hex));
-    // Its disc where its corner is: inside its own quad as projected (even-odd
-    // rule, so a folded quad's own region), nearer its corner than the
-    // corner's shorter edge is long (47g review #2: a reversed quad's disc
-    // 45% of the way to the centre lay outside the quad).
-    const PixelRect& view = shot.layout.view;
-    const auto screen = [&](const Vec3& at_model) {
-      const Vec3 ndc = project_to_ndc(shot.camera, double(view.width) / view.height, at_model);
-      return std::array<double, 2>{view.x + 0.5 * (ndc.x + 1.0) * view.width, view.y + 0.5 * (1.0 - ndc.y) * view.height};
-    };
-    const double x = l.marker.x, y = l.marker.y;
-    bool inside = false;
-    for (int k = 0; k < 4; ++k) {
-      const auto [x0, y0] = screen(at(k));
-      const auto [x1, y1] = screen(at(k + 1));
-      if ((y0 > y) != (y1 > y) && x < x0 + (y - y0) / (y1 - y0) * (x1 - x0)) inside = !inside;
+    // The four quads at the vertex, each corner's value by hand.
+    const std::vector<Vec3> p = grid_points(pushed);
+    const std::vector<VertexCorner> corners = vertex_corners(a.mesh, a.topology, a.field.corner_scaled_jacobian, kPushed);
+    ASSERT_EQ(corners.size(), 4u);
+    ASSERT_EQ(shot.labels.size(), 4u);
+    int inverted = 0;
+    for (std::size_t i = 0; i < corners.size(); ++i) {
+      const VertexCorner& c = corners[i];
+      SCOPED_TRACE("quad " + std::to_string(c.hex));
+      EXPECT_EQ(c.kind, CellKind::quad);
+      const auto& q = a.mesh.quads.at(static_cast<std::size_t>(c.hex));
+      ASSERT_EQ(q[static_cast<std::size_t>(c.local)], kPushed);
+      const auto at = [&](int k) { return p[static_cast<std::size_t>(q[static_cast<std::size_t>((k + 4) % 4)])]; };
+      const double expected = corner_by_hand(at(c.local - 1), at(c.local), at(c.local + 1));
+      EXPECT_NEAR(c.value, expected, 1e-12);
+      const LocalLabel& l = shot.labels[i];
+      EXPECT_NEAR(l.value, expected, 1e-12);
+      EXPECT_EQ(l.is_inverted, expected < 0.0);
+      inverted += expected < 0.0;
+      // A ring of 4: every corner labelled in full, "-0.873  quad 10".
+      ASSERT_TRUE(l.placed);
+      EXPECT_EQ(l.number, 0);
+      char value[32];
+      std::snprintf(value, sizeof value, "%.3f", expected);
+      EXPECT_EQ(l.text, std::string(value) + "  quad " + std::to_string(c.hex));
+      // Its disc where its corner is: inside its own quad as projected (even-odd
+      // rule, so a folded quad's own region), nearer its corner than the
+      // corner's shorter edge is long (47g review #2: a reversed quad's disc
+      // 45% of the way to the centre lay outside the quad).
+      const PixelRect& view = shot.layout.view;
+      const auto screen = [&](const Vec3& at_model) {
+        const Vec3 ndc = project_to_ndc(shot.camera, double(view.width) / view.height, at_model);
+        return std::array<double, 2>{view.x + 0.5 * (ndc.x + 1.0) * view.width, view.y + 0.5 * (1.0 - ndc.y) * view.height};
+      };
+      const double x = l.marker.x, y = l.marker.y;
+      bool inside = false;
+      for (int k = 0; k < 4; ++k) {
+        const auto [x0, y0] = screen(at(k));
+        const auto [x1, y1] = screen(at(k + 1));
+        if ((y0 > y) != (y1 > y) && x < x0 + (y - y0) / (y1 - y0) * (x1 - x0)) inside = !inside;
+      }
+      EXPECT_TRUE(inside) << "disc at (" << x << ", " << y << ")";
+      const auto [vx, vy] = screen(at(c.local));
+      const auto edge = [&](int k) {
+        const auto [ex, ey] = screen(at(k));
+        return std::hypot(ex - vx, ey - vy);
+      };
+      EXPECT_LT(std::hypot(x - vx, y - vy), std::min(edge(c.local - 1), edge(c.local + 1)));
+      // The label within its disc's rim plus the leader cap of it.
+      const double dx = std::max({l.box.x - x, 0.0, x - (l.box.x + l.box.width)});
+      const double dy = std::max({l.box.y - y, 0.0, y - (l.box.y + l.box.height)});
+      EXPECT_LE(std::hypot(dx, dy), l.marker.radius + shot.max_leader);
     }
-    EXPECT_TRUE(inside) << "disc at (" << x << ", " << y << ")";
-    const auto [vx, vy] = screen(at(c.local));
-    const auto edge = [&](int k) {
-      const auto [ex, ey] = screen(at(k));
-      return std::hypot(ex - vx, ey - vy);
-    };
-    EXPECT_LT(std::hypot(x - vx, y - vy), std::min(edge(c.local - 1), edge(c.local + 1)));
-    // The label within its disc's rim plus the leader cap of it.
-    const double dx = std::max({l.box.x - x, 0.0, x - (l.box.x + l.box.width)});
-    const double dy = std::max({l.box.y - y, 0.0, y - (l.box.y + l.box.height)});
-    EXPECT_LE(std::hypot(dx, dy), l.marker.radius + shot.max_leader);
+    // The pushed vertex turns two of its quads over (their corners there
+    // negative) and keeps two convex-or-concave ones positive.
+    EXPECT_GE(inverted, 1);
+    EXPECT_LT(inverted, 4);
   }
-  // The pushed vertex turns two of its quads over (their corners there
-  // negative) and keeps two convex-or-concave ones positive.
-  EXPECT_GE(inverted, 1);
-  EXPECT_LT(inverted, 4);
 }
 
 TEST(SurfaceDetailViews, PlanarFoldClusterViewFillsTheClustersFaces) {
