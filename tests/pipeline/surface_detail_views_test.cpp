@@ -31,21 +31,26 @@ namespace HQ_TEST_UNIT {
 constexpr int kN = 4;  // quads a side
 constexpr Index kPushed = 2 + (kN + 1) * 2;
 
-std::vector<Vec3> grid_points() {
+// pushed: where the vertex (2, 2) goes; by default through (3, 3).
+std::vector<Vec3> grid_points(const Vec3& pushed = {3.4, 3.3, 0.0}) {
   std::vector<Vec3> p;
   for (int j = 0; j <= kN; ++j)
     for (int i = 0; i <= kN; ++i) p.push_back({double(i), double(j), 0.0});
-  p[static_cast<std::size_t>(kPushed)] = {3.4, 3.3, 0.0};  // through (3, 3)
+  p[static_cast<std::size_t>(kPushed)] = pushed;
   return p;
 }
 
-std::string grid_obj(const std::vector<Vec3>& p) {
+// turn: each quad's corner list starts `turn` corners on (the same quads).
+std::string grid_obj(const std::vector<Vec3>& p, int turn = 0) {
   std::ostringstream out;
   for (const Vec3& x : p) out << "v " << x.x << ' ' << x.y << ' ' << x.z << '\n';
   for (int j = 0; j < kN; ++j)
     for (int i = 0; i < kN; ++i) {
       const int a = 1 + i + (kN + 1) * j;
-      out << "f " << a << ' ' << a + 1 << ' ' << a + kN + 2 << ' ' << a + kN + 1 << '\n';
+      const std::array<int, 4> f{a, a + 1, a + kN + 2, a + kN + 1};
+      out << 'f';
+      for (int k = 0; k < 4; ++k) out << ' ' << f[static_cast<std::size_t>((k + turn) % 4)];
+      out << '\n';
     }
   return out.str();
 }
@@ -62,9 +67,9 @@ struct Fixture {
   DetailViewOptions options;
 };
 
-Fixture folded_grid(const test::TempDir& dir) {
+Fixture folded_grid(const test::TempDir& dir, int turn = 0, const Vec3& pushed = {3.4, 3.3, 0.0}) {
   AnalyzeOptions run;
-  run.mesh_path = dir.write("fold.obj", grid_obj(grid_points()));
+  run.mesh_path = dir.write("fold.obj", grid_obj(grid_points(pushed), turn));
   run.tool_version = "test";
   Fixture f{analyze_mesh(run), {}};
   f.options.width = 800, f.options.height = 600;
@@ -75,62 +80,80 @@ Fixture folded_grid(const test::TempDir& dir) {
 
 TEST(SurfaceDetailViews, PlanarFoldOneRingLabelsEachCornerAtItsCorner) {
   const test::TempDir dir("surface_detail_views");
-  const Fixture f = folded_grid(dir);
-  const Analysis& a = f.a;
-  ASSERT_TRUE(a.mesh_summary.planarity && a.mesh_summary.planarity->is_planar);
-  ASSERT_TRUE(f.options.view_direction);
-  EXPECT_NEAR(std::abs(f.options.view_direction->z), 1.0, 1e-12);  // flat, from above
+  // Through (3, 3), and just past it: there quad 10's reflex corner (3, 3)
+  // is 0.14 from the vertex and 45% of the way to its centre lies outside it.
+  for (const Vec3& pushed : {Vec3{3.4, 3.3, 0.0}, Vec3{3.1, 3.1, 0.0}}) {
+    SCOPED_TRACE("pushed to (" + std::to_string(pushed.x) + ", " + std::to_string(pushed.y) + ")");
+    const Fixture f = folded_grid(dir, 0, pushed);
+    const Analysis& a = f.a;
+    ASSERT_TRUE(a.mesh_summary.planarity && a.mesh_summary.planarity->is_planar);
+    ASSERT_TRUE(f.options.view_direction);
+    EXPECT_NEAR(std::abs(f.options.view_direction->z), 1.0, 1e-12);  // flat, from above
 
-  const LocalShot shot = local_shot(a.mesh, a.topology, a.field.corner_scaled_jacobian, kPushed, f.options);
-  // The camera: orthographic, along the normal.
-  EXPECT_FALSE(shot.camera.is_perspective);
-  const Vec3 look = normalized(shot.camera.target - shot.camera.eye);
-  EXPECT_NEAR(std::abs(look.z), 1.0, 1e-9);
+    const LocalShot shot = local_shot(a.mesh, a.topology, a.field.corner_scaled_jacobian, kPushed, f.options);
+    // The camera: orthographic, along the normal.
+    EXPECT_FALSE(shot.camera.is_perspective);
+    const Vec3 look = normalized(shot.camera.target - shot.camera.eye);
+    EXPECT_NEAR(std::abs(look.z), 1.0, 1e-9);
 
-  // The four quads at the vertex, each corner's value by hand.
-  const std::vector<Vec3> p = grid_points();
-  const std::vector<VertexCorner> corners = vertex_corners(a.mesh, a.topology, a.field.corner_scaled_jacobian, kPushed);
-  ASSERT_EQ(corners.size(), 4u);
-  ASSERT_EQ(shot.labels.size(), 4u);
-  int inverted = 0;
-  for (std::size_t i = 0; i < corners.size(); ++i) {
-    const VertexCorner& c = corners[i];
-    SCOPED_TRACE("quad " + std::to_string(c.hex));
-    EXPECT_EQ(c.kind, CellKind::quad);
-    const auto& q = a.mesh.quads.at(static_cast<std::size_t>(c.hex));
-    ASSERT_EQ(q[static_cast<std::size_t>(c.local)], kPushed);
-    const auto at = [&](int k) { return p[static_cast<std::size_t>(q[static_cast<std::size_t>((k + 4) % 4)])]; };
-    const double expected = corner_by_hand(at(c.local - 1), at(c.local), at(c.local + 1));
-    EXPECT_NEAR(c.value, expected, 1e-12);
-    const LocalLabel& l = shot.labels[i];
-    EXPECT_NEAR(l.value, expected, 1e-12);
-    EXPECT_EQ(l.is_inverted, expected < 0.0);
-    inverted += expected < 0.0;
-    // A ring of 4: every corner labelled in full, "-0.873  quad 10".
-    ASSERT_TRUE(l.placed);
-    EXPECT_EQ(l.number, 0);
-    char value[32];
-    std::snprintf(value, sizeof value, "%.3f", expected);
-    EXPECT_EQ(l.text, std::string(value) + "  quad " + std::to_string(c.hex));
-    // Its disc where its corner is: 45% of the way from the vertex to the
-    // quad's centre, projected (the vertex's dot is off it: not moved).
-    Vec3 centre{};
-    for (int k = 0; k < 4; ++k) centre = centre + 0.25 * at(k);
-    const Vec3 anchor = p[static_cast<std::size_t>(kPushed)] + 0.45 * (centre - p[static_cast<std::size_t>(kPushed)]);
-    const PixelRect& view = shot.layout.view;
-    const Vec3 ndc = project_to_ndc(shot.camera, double(view.width) / view.height, anchor);
-    const double x = view.x + 0.5 * (ndc.x + 1.0) * view.width, y = view.y + 0.5 * (1.0 - ndc.y) * view.height;
-    EXPECT_NEAR(l.marker.x, x, 1.0);
-    EXPECT_NEAR(l.marker.y, y, 1.0);
-    // The label within its disc's rim plus the leader cap of it.
-    const double dx = std::max({l.box.x - x, 0.0, x - (l.box.x + l.box.width)});
-    const double dy = std::max({l.box.y - y, 0.0, y - (l.box.y + l.box.height)});
-    EXPECT_LE(std::hypot(dx, dy), l.marker.radius + shot.max_leader);
+    // The four quads at the vertex, each corner's value by hand.
+    const std::vector<Vec3> p = grid_points(pushed);
+    const std::vector<VertexCorner> corners = vertex_corners(a.mesh, a.topology, a.field.corner_scaled_jacobian, kPushed);
+    ASSERT_EQ(corners.size(), 4u);
+    ASSERT_EQ(shot.labels.size(), 4u);
+    int inverted = 0;
+    for (std::size_t i = 0; i < corners.size(); ++i) {
+      const VertexCorner& c = corners[i];
+      SCOPED_TRACE("quad " + std::to_string(c.hex));
+      EXPECT_EQ(c.kind, CellKind::quad);
+      const auto& q = a.mesh.quads.at(static_cast<std::size_t>(c.hex));
+      ASSERT_EQ(q[static_cast<std::size_t>(c.local)], kPushed);
+      const auto at = [&](int k) { return p[static_cast<std::size_t>(q[static_cast<std::size_t>((k + 4) % 4)])]; };
+      const double expected = corner_by_hand(at(c.local - 1), at(c.local), at(c.local + 1));
+      EXPECT_NEAR(c.value, expected, 1e-12);
+      const LocalLabel& l = shot.labels[i];
+      EXPECT_NEAR(l.value, expected, 1e-12);
+      EXPECT_EQ(l.is_inverted, expected < 0.0);
+      inverted += expected < 0.0;
+      // A ring of 4: every corner labelled in full, "-0.873  quad 10".
+      ASSERT_TRUE(l.placed);
+      EXPECT_EQ(l.number, 0);
+      char value[32];
+      std::snprintf(value, sizeof value, "%.3f", expected);
+      EXPECT_EQ(l.text, std::string(value) + "  quad " + std::to_string(c.hex));
+      // Its disc where its corner is: inside its own quad as projected (even-odd
+      // rule, so a folded quad's own region), nearer its corner than the
+      // corner's shorter edge is long (47g review #2: a reversed quad's disc
+      // 45% of the way to the centre lay outside the quad).
+      const PixelRect& view = shot.layout.view;
+      const auto screen = [&](const Vec3& at_model) {
+        const Vec3 ndc = project_to_ndc(shot.camera, double(view.width) / view.height, at_model);
+        return std::array<double, 2>{view.x + 0.5 * (ndc.x + 1.0) * view.width, view.y + 0.5 * (1.0 - ndc.y) * view.height};
+      };
+      const double x = l.marker.x, y = l.marker.y;
+      bool inside = false;
+      for (int k = 0; k < 4; ++k) {
+        const auto [x0, y0] = screen(at(k));
+        const auto [x1, y1] = screen(at(k + 1));
+        if ((y0 > y) != (y1 > y) && x < x0 + (y - y0) / (y1 - y0) * (x1 - x0)) inside = !inside;
+      }
+      EXPECT_TRUE(inside) << "disc at (" << x << ", " << y << ")";
+      const auto [vx, vy] = screen(at(c.local));
+      const auto edge = [&](int k) {
+        const auto [ex, ey] = screen(at(k));
+        return std::hypot(ex - vx, ey - vy);
+      };
+      EXPECT_LT(std::hypot(x - vx, y - vy), std::min(edge(c.local - 1), edge(c.local + 1)));
+      // The label within its disc's rim plus the leader cap of it.
+      const double dx = std::max({l.box.x - x, 0.0, x - (l.box.x + l.box.width)});
+      const double dy = std::max({l.box.y - y, 0.0, y - (l.box.y + l.box.height)});
+      EXPECT_LE(std::hypot(dx, dy), l.marker.radius + shot.max_leader);
+    }
+    // The pushed vertex turns two of its quads over (their corners there
+    // negative) and keeps two convex-or-concave ones positive.
+    EXPECT_GE(inverted, 1);
+    EXPECT_LT(inverted, 4);
   }
-  // The pushed vertex turns two of its quads over (their corners there
-  // negative) and keeps two convex-or-concave ones positive.
-  EXPECT_GE(inverted, 1);
-  EXPECT_LT(inverted, 4);
 }
 
 TEST(SurfaceDetailViews, PlanarFoldClusterViewFillsTheClustersFaces) {
@@ -182,6 +205,39 @@ TEST(SurfaceDetailViews, PlanarFoldClusterViewFillsTheClustersFaces) {
   for (const TriangleSet& set : shot.scene.triangles) faces_drawn += set.colors.size() / 4;
   EXPECT_EQ(faces_drawn, region.cells.size());
   EXPECT_NE(shot.cell_kinds.find(kClusterFaceFillLegend), std::string::npos);
+}
+
+// Each quad's two triangles in view C lie inside the quad (the centroid of
+// each, even-odd in the plane): with the corner lists turned by one, the
+// folded quads' reflex corners are corners 1 and 3, where the diagonal 0-2
+// ran outside the quad (47g review #1: a fill with no edge line).
+TEST(SurfaceDetailViews, PlanarFoldClusterViewFillsEachQuadInsideItsEdges) {
+  const test::TempDir dir("surface_detail_views");
+  for (int turn = 0; turn < 2; ++turn) {
+    SCOPED_TRACE("turn " + std::to_string(turn));
+    const Fixture f = folded_grid(dir, turn);
+    ASSERT_TRUE(f.a.glyphs && !f.a.glyphs->clusters.empty());
+    const ClusterShot shot = cluster_shot(f.a.mesh, f.a.topology, f.a.field.vertex_quality, *f.a.glyphs, 0, f.options);
+    std::size_t checked = 0;
+    for (const TriangleSet& faces : shot.scene.triangles)
+      for (std::size_t t = 0; t + 2 < faces.indices.size(); t += 3) {
+        const std::size_t base = faces.indices[t] / 4 * 4;  // the quad's first position
+        double x = 0.0, y = 0.0;
+        for (std::size_t k = 0; k < 3; ++k) {
+          EXPECT_EQ(faces.indices[t + k] / 4 * 4, base);
+          x += faces.positions[faces.indices[t + k]].x / 3.0, y += faces.positions[faces.indices[t + k]].y / 3.0;
+        }
+        bool inside = false;
+        for (std::size_t k = 0; k < 4; ++k) {
+          const Vec3f& p0 = faces.positions[base + k];
+          const Vec3f& p1 = faces.positions[base + (k + 1) % 4];
+          if ((p0.y > y) != (p1.y > y) && x < p0.x + (y - p0.y) / (p1.y - p0.y) * (p1.x - p0.x)) inside = !inside;
+        }
+        EXPECT_TRUE(inside) << "triangle " << t / 3 << " at (" << x << ", " << y << ")";
+        ++checked;
+      }
+    EXPECT_GE(checked, 8u);
+  }
 }
 
 // `--views clusters,local,corners` on a quad mesh draws C of each top

@@ -102,6 +102,19 @@ LineSet cell_edges(const HexMesh& mesh, const Topology& topology, const std::vec
 // of all faces, then the table read in order. With cell_quality (a surface
 // mesh's cell scaled Jacobians, by cell id), each face in
 // quality_color(its cell's value) instead, opaque.
+// Whether the quad v (a surface cell's face) is filled along its diagonal
+// 1-3: when corner 1 or 3 is reflex (turns against the quad's Newell area),
+// the diagonal 0-2 runs outside the quad and one of its triangles spills
+// over the quad's edge, a fill with no edge line (47g review #1, a planar
+// fold). A bow-tie keeps 0-2 (no diagonal is inside it).
+bool splits_at_1_3(const HexMesh& mesh, const std::array<Index, 4>& v) {
+  const auto p = [&](int i) { return mesh.points[static_cast<std::size_t>(v[static_cast<std::size_t>(i % 4)])]; };
+  Vec3 area{};
+  for (int i = 0; i < 4; ++i) area = area + cross(p(i), p(i + 1));
+  const auto turns_with = [&](int a, int b, int c) { return dot(cross(p(b) - p(a), p(c) - p(a)), area) > 0.0; };
+  return !(turns_with(0, 1, 2) && turns_with(0, 2, 3)) && turns_with(1, 2, 3) && turns_with(1, 3, 0);
+}
+
 TriangleSet outer_faces(const HexMesh& mesh, const Topology& topology, const std::vector<Index>& cells,
                         const Vec3& origin, Rgba8 color, std::span<const double> cell_quality = {}) {
   std::vector<std::uint8_t> uses(topology.faces.size(), 0);
@@ -137,8 +150,11 @@ TriangleSet outer_faces(const HexMesh& mesh, const Topology& topology, const std
         set.positions.push_back(to_vec3f(mesh.points[static_cast<std::size_t>(v[static_cast<std::size_t>(i)])] - origin));
         set.colors.push_back(fill);
       }
-      set.indices.insert(set.indices.end(), {base, base + 1, base + 2});
-      if (size == 4) set.indices.insert(set.indices.end(), {base, base + 2, base + 3});
+      if (size == 3) set.indices.insert(set.indices.end(), {base, base + 1, base + 2});
+      else if (splits_at_1_3(mesh, v))  // a concave quad: 0-2 runs outside it
+        set.indices.insert(set.indices.end(), {base + 1, base + 2, base + 3, base + 1, base + 3, base});
+      else
+        set.indices.insert(set.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
     });
   }
   return set;
@@ -567,6 +583,46 @@ double mean_edge_at(const HexMesh& mesh, const std::vector<VertexCorner>& corner
   return n ? sum / n : 1.0;
 }
 
+// Where a surface cell's corner disc goes: inside its own face near its
+// corner, along the bisector of the corner's two edges at kSurfaceDiscReach
+// of the distance to the face's nearest other corner (a folded quad's far
+// corner can be nearer than its edges' ends), halved until inside the face (even-odd, in the plane
+// of its area vector: a folded quad's own region). 45% of the way to the
+// face's centre put a folded quad's disc outside the face (47g review #2).
+constexpr double kSurfaceDiscReach = 0.4;
+constexpr int kSurfaceDiscHalvings = 6;
+
+Vec3 surface_corner_anchor(const HexMesh& mesh, const VertexCorner& c) {
+  const CellRef cell = any_cell(mesh, c.hex);
+  const int n = cell.num_corners;
+  const auto at = [&](int k) { return mesh.points[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>((k + n) % n)])]; };
+  const Vec3 p = at(c.local), a = at(c.local - 1) - p, b = at(c.local + 1) - p;
+  const Vec3 to_centre = 0.45 * (hex_centre(mesh, c.hex) - p);
+  const double la = norm(a), lb = norm(b);
+  Vec3 area{};  // Newell
+  for (int k = 0; k < n; ++k) area = area + cross(at(k), at(k + 1));
+  Vec3 bisector = a / la + b / lb;
+  const double lm = norm(bisector);
+  if (!(la > 0.0) || !(lb > 0.0) || !(lm > 1e-9) || !(norm(area) > 0.0)) return p + to_centre;
+  if (dot(cross(b, a), area) < 0.0) bisector = -1.0 * bisector;  // a reflex corner: its face beyond
+  const Vec3 normal = normalized(area), u = normalized(a - dot(a, normal) * normal), w = cross(normal, u);
+  const auto inside = [&](const Vec3& q) {
+    bool in = false;
+    const double x = dot(q - p, u), y = dot(q - p, w);
+    for (int k = 0; k < n; ++k) {
+      const double x0 = dot(at(k) - p, u), y0 = dot(at(k) - p, w), x1 = dot(at(k + 1) - p, u), y1 = dot(at(k + 1) - p, w);
+      if ((y0 > y) != (y1 > y) && x < x0 + (y - y0) / (y1 - y0) * (x1 - x0)) in = !in;
+    }
+    return in;
+  };
+  double nearest = std::min(la, lb);
+  for (int k = 2; k < n - 1; ++k) nearest = std::min(nearest, norm(at(c.local + k) - p));
+  double reach = kSurfaceDiscReach * nearest / lm;
+  for (int i = 0; i < kSurfaceDiscHalvings; ++i, reach *= 0.5)
+    if (inside(p + reach * bisector)) return p + reach * bisector;
+  return p + to_centre;
+}
+
 }  // namespace
 
 double local_marker_radius(double scaled_jacobian, double size) {
@@ -604,7 +660,8 @@ Scene build_local_scene(const HexMesh& mesh, const Topology& topology, std::span
   const double size = mean_edge_at(mesh, corners, v);
   SphereSet markers, centre;
   for (const VertexCorner& c : corners) {
-    const Vec3 at = p + 0.45 * (hex_centre(mesh, c.hex) - p);
+    const Vec3 at = c.kind == CellKind::quad || c.kind == CellKind::triangle ? surface_corner_anchor(mesh, c)
+                                                                             : p + 0.45 * (hex_centre(mesh, c.hex) - p);
     markers.centers.push_back(to_vec3f(at - scene.origin));
     markers.radii.push_back(static_cast<float>(local_marker_radius(c.value, size)));
     markers.colors.push_back(to_rgba8(quality_color(c.value)));
