@@ -469,11 +469,14 @@ void start_analysis(const AnalyzeOptions& options, AnalysisInProgress& out) {
   clock.start("glyphs");
   a.glyphs = compute_glyphs(a.mesh.points, a.field.vertex_quality, a.mesh_summary.edge_length_mean, options.glyphs);
   clock.stop();
-  if (!a.topology.unreferenced_vertices.empty())
-    a.warnings.push_back(std::to_string(a.topology.unreferenced_vertices.size()) +
-                         (a.topology.across_kinds || is_surface_mesh(a.mesh) ? " nodes are no cell's corner (ignored by the analysis and not counted as "
-                                                    "vertices; a higher-order cell's mid-edge and face nodes are such nodes)"
-                                                  : " vertices are used by no hexahedron (ignored by the analysis)"));
+  if (const std::size_t n = a.topology.unreferenced_vertices.size(); n > 0)
+    a.warnings.push_back(std::to_string(n) + " " +
+                         (a.topology.across_kinds || is_surface_mesh(a.mesh)
+                              ? std::string(n == 1 ? "node is" : "nodes are") +
+                                    " no cell's corner (ignored by the analysis and not counted as vertices; a "
+                                    "higher-order cell's mid-edge and face nodes are such nodes)"
+                              : std::string(n == 1 ? "vertex is" : "vertices are") +
+                                    " used by no hexahedron (ignored by the analysis)"));
   if (a.reference_surface) {
     clock.start("boundary error");
     analyze_boundary_error(a, *a.reference_surface, options);
