@@ -25,9 +25,14 @@ Each case prints the exact command it times. Writes RESULT.json for
 bench/report.py.
 
 usage: e2e.py HQVIEW MESH_363K MESH_2_9M REFERENCE OUT_DIR RESULT.json [--runs 3] [--small MESH]
-              [--only simulate]
+              [--only simulate | --only base --base HQVIEW_BASE]
   --only simulate: only issue 48's time ratio (the interleaved pairs on the
   363,520 hexes), e.g. to measure a change of the solver.
+  --only base: issue 46's "the 363k-hex run stays within 3 %": this build
+  against an earlier one (--base) on the 363,520 hexes, --no-render and with
+  every view, in RUNS interleaved pairs (at least 7 for the issue; the order
+  in a pair swapped every other pair), target: the median of the pairs'
+  ratios (this / base) at most 1.03, in wall and in CPU seconds.
 """
 import argparse
 import json
@@ -115,19 +120,53 @@ def simulate_ratio_case(a, out):
                 ratio - 1.0 <= 5.0 and cpu_ratio - 1.0 <= 5.0, simulated)
 
 
+def base_pairs(label, base_cmd, cmd, out, runs):
+    """RUNS pairs of an earlier build's command and this build's, the order
+    swapped every other pair; each pair's ratio (this / base) of wall and of
+    CPU seconds, and the medians of those ratios against issue 46's 1.03."""
+    ratios = ([], [])
+    for i in range(runs):
+        pair = {}
+        for which in (("base", "this") if i % 2 == 0 else ("this", "base")):
+            wall, _, cpu = run_once(base_cmd if which == "base" else cmd, out)
+            pair[which] = (wall, cpu)
+            print("e2e: %s: %.2f s wall, %.2f s CPU: %s" % (which, wall, cpu, shlex.join(base_cmd if which == "base" else cmd)),
+                  file=sys.stderr)
+        for k in (0, 1):
+            ratios[k].append(pair["this"][k] / pair["base"][k])
+    wall_ratio, cpu_ratio = (statistics.median(r) for r in ratios)
+    print("e2e: %s: this / base, median of %d pairs: %.3f wall, %.3f CPU (<= 1.03)" % (label, runs, wall_ratio, cpu_ratio),
+          file=sys.stderr)
+    return case(label + ": this build / the base build", shlex.join(cmd), wall_ratio, "x",
+                "median of %d interleaved pairs: %.3f wall, %.3f CPU; target <= 1.03" % (runs, wall_ratio, cpu_ratio),
+                wall_ratio <= 1.03 and cpu_ratio <= 1.03, ratios[0])
+
+
+def base_cases(a, out):
+    """Issue 46: the 363,520 hexes with this build against an earlier one."""
+    cmd = ["analyze", a.mesh363, "-o", out, "-j", "2", "-q"]
+    cases = []
+    for label, extra in (("363,520 hexes --no-render", ["--no-render"]), ("363,520 hexes, every view", [])):
+        cases.append(base_pairs(label, [a.base] + cmd + extra, [a.hqview] + cmd + extra, out, a.runs))
+    return cases
+
+
 def main():
     ap = argparse.ArgumentParser()
     for name in ("hqview", "mesh363", "mesh2900", "reference", "out", "result"):
         ap.add_argument(name)
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--small", help="Dolphin_padded.mesh: the viewer's size on it")
-    ap.add_argument("--only", choices=["simulate"], help="run only this case")
+    ap.add_argument("--only", choices=["simulate", "base"], help="run only this case")
+    ap.add_argument("--base", help="an earlier hqview binary (--only base)")
     a = ap.parse_args()
+    if a.only == "base" and not a.base:
+        ap.error("--only base needs --base HQVIEW_BASE")
     os.makedirs(a.out, exist_ok=True)
     cases = []
     out = os.path.join(a.out, "bundle")
-    if a.only == "simulate":
-        cases.append(simulate_ratio_case(a, out))
+    if a.only:
+        cases += [simulate_ratio_case(a, out)] if a.only == "simulate" else base_cases(a, out)
         shutil.rmtree(out, ignore_errors=True)
         with open(a.result, "w") as f:
             json.dump({"e2e_cases": cases, "load_average": os.getloadavg()}, f, indent=1)
