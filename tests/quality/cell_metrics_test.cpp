@@ -131,10 +131,13 @@ TEST(CellMetrics, AllTetMetricsAreTheOneMetricKernelBitForBit) {
 }
 
 // quad_metric_list shares a quad's pieces (edges, size, corner areas,
-// angles) between the metrics it is given: each value must be the one
-// quad_metric computes alone, whatever the metrics asked before it, on the
-// oracle's quads (degenerate, collapsed, reflex and bow-tie ones among them)
-// and on random quads made collapsed, flat, tiny, huge or reversed.
+// angles, and the scaled Jacobian, shape and area that others are made of)
+// between the metrics it is given: each value must be the one quad_metric
+// computes alone, whatever the metrics asked before it, on the oracle's quads
+// (degenerate, collapsed, reflex and bow-tie ones among them) and on random
+// quads made collapsed, flat, tiny, huge or reversed. This proves only that
+// the shared pieces do not depend on the order they are asked in: that the
+// values are Verdict's is CellMetrics.QuadMatchesVerdictOracle's part.
 TEST(CellMetrics, QuadListKernelIsTheOneMetricKernelBitForBit) {
   const auto same_bits = [](double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; };
   std::vector<QuadCorners> quads;
@@ -160,12 +163,20 @@ TEST(CellMetrics, QuadListKernelIsTheOneMetricKernelBitForBit) {
   int checked = 0;
   for (const QuadCorners& q : quads)
     for (const double average : {1.0, 0.37, 1e-17}) {
-      std::array<double, kNumQuadMetrics> out{};
+      std::array<double, kNumQuadMetrics> out{}, in_eights{};
       quad_metric_list(reversed, q, average, out);
+      std::array<QuadMetric, kNumQuadMetrics> natural;
+      for (int m = 0; m < kNumQuadMetrics; ++m) natural[static_cast<std::size_t>(m)] = QuadMetric(m);
+      for (std::size_t first = 0; first < natural.size(); first += 8) {
+        const std::size_t count = std::min<std::size_t>(8, natural.size() - first);
+        quad_metric_list(std::span(natural).subspan(first, count), q, average,
+                         std::span(in_eights).subspan(first, count));
+      }
       const QuadMetricValues all = quad_metrics(q, average);
       for (int m = 0; m < kNumQuadMetrics; ++m) {
         const double one = quad_metric(QuadMetric(m), q, average);
         EXPECT_TRUE(same_bits(out[static_cast<std::size_t>(kNumQuadMetrics - 1 - m)], one)) << m;
+        EXPECT_TRUE(same_bits(in_eights[static_cast<std::size_t>(m)], one)) << m;
         EXPECT_TRUE(same_bits(all[static_cast<std::size_t>(m)], one)) << m;
         ++checked;
       }

@@ -53,19 +53,24 @@ std::array<Vec3, 4> edges_of(const QuadCorners& p) { return {p[1] - p[0], p[2] -
 // once (quad_metric_list), not once per metric. Each piece is the very
 // expression the metric computed for itself, so every value is the same
 // bit for bit.
+class QuadPieces;
+double scaled_jacobian_of(QuadPieces& s);
+double shape_of(QuadPieces& s);
+double area_of(QuadPieces& s);
+
 class QuadPieces {
  public:
-  explicit QuadPieces(const QuadCorners& corners) : p(corners) {}
-  const QuadCorners& p;
+  explicit QuadPieces(const QuadCorners& corners) : p_(corners) {}
+  const QuadCorners& corners() const { return p_; }
 
   // The edges P(i+1) - P(i).
   const std::array<Vec3, 4>& edges() {
-    if (!edges_) edges_ = edges_of(p);
+    if (!edges_) edges_ = edges_of(p_);
     return *edges_;
   }
   // Verdict's elem_scaling: its scale is the size the metrics divide by.
   const ElemScale& scaling() {
-    if (!scaling_) scaling_ = elem_scaling(p);
+    if (!scaling_) scaling_ = elem_scaling(p_);
     return *scaling_;
   }
   double size() { return scaling().scale; }
@@ -83,13 +88,13 @@ class QuadPieces {
     if (!scaled_points_) {
       const ElemScale& s = scaling();
       std::array<Vec3, 4> q;
-      for (int i = 0; i < 4; ++i) q[i] = (p[i] - s.centre) / s.scale;
+      for (int i = 0; i < 4; ++i) q[i] = (p_[i] - s.centre) / s.scale;
       scaled_points_ = q;
     }
     return *scaled_points_;
   }
   const std::array<double, 4>& areas() {
-    if (!areas_) areas_ = quad_signed_corner_areas(p);
+    if (!areas_) areas_ = quad_signed_corner_areas(p_);
     return *areas_;
   }
   // The corner areas divided by the size squared.
@@ -124,12 +129,24 @@ class QuadPieces {
     }
     return angles_->first ? &angles_->second : nullptr;
   }
+  // Metrics that others are made of (shear, the size products), kept once
+  // computed.
+  double scaled_jacobian() { return cached(scaled_jacobian_, scaled_jacobian_of); }
+  double shape() { return cached(shape_, shape_of); }
+  double area() { return cached(area_, area_of); }
 
  private:
+  double cached(std::optional<double>& slot, double (*metric)(QuadPieces&)) {
+    if (!slot) slot = metric(*this);
+    return *slot;
+  }
+
+  const QuadCorners& p_;
   std::optional<std::array<Vec3, 4>> edges_, scaled_edges_, scaled_points_;
   std::optional<ElemScale> scaling_;
   std::optional<std::array<double, 4>> areas_, scaled_areas_;
   std::optional<std::pair<bool, std::array<double, 4>>> angles_;
+  std::optional<double> scaled_jacobian_, shape_, area_;
 };
 
 double edge_ratio_of(QuadPieces& s) {
@@ -159,7 +176,7 @@ double aspect_ratio_of(QuadPieces& s) {
 }
 
 double radius_ratio_of(QuadPieces& s) {
-  const QuadCorners& p = s.p;
+  const QuadCorners& p = s.corners();
   const double size = s.size();
   const auto& e = s.scaled_edges();
   const double a2 = squared_norm(e[0]), b2 = squared_norm(e[1]), c2 = squared_norm(e[2]), d2 = squared_norm(e[3]);
@@ -240,7 +257,7 @@ double area_of(QuadPieces& s) {
 }
 
 double maximum_angle_of(QuadPieces& s) {
-  if (is_collapsed(s.p)) return triangle_maximum_angle(first_three(s.p));
+  if (is_collapsed(s.corners())) return triangle_maximum_angle(first_three(s.corners()));
   const auto* angle = s.corner_angles();
   if (angle == nullptr) return 0.0;
   double max_angle = 0.0;
@@ -251,7 +268,7 @@ double maximum_angle_of(QuadPieces& s) {
 }
 
 double minimum_angle_of(QuadPieces& s) {
-  if (is_collapsed(s.p)) return triangle_minimum_angle(first_three(s.p));
+  if (is_collapsed(s.corners())) return triangle_minimum_angle(first_three(s.corners()));
   const auto* angle = s.corner_angles();
   if (angle == nullptr) return 360.0;
   double min_angle = 360.0;
@@ -275,7 +292,7 @@ double oddy_of(QuadPieces& s) {
 }
 
 double condition_of(QuadPieces& s) {
-  const QuadCorners& p = s.p;
+  const QuadCorners& p = s.corners();
   if (is_collapsed(p)) return triangle_condition(first_three(p));
   const double size = s.size();
   const auto& areas = s.scaled_areas();
@@ -292,13 +309,13 @@ double condition_of(QuadPieces& s) {
 }
 
 double jacobian_of(QuadPieces& s) {
-  if (is_collapsed(s.p)) return triangle_area(first_three(s.p)) * 2.0;
+  if (is_collapsed(s.corners())) return triangle_area(first_three(s.corners())) * 2.0;
   const auto& a = s.areas();
   return clamp_signed(std::fmin(std::fmin(a[0], a[1]), std::fmin(a[2], a[3])));
 }
 
 double scaled_jacobian_of(QuadPieces& s) {
-  if (is_collapsed(s.p)) return triangle_scaled_jacobian(first_three(s.p));
+  if (is_collapsed(s.corners())) return triangle_scaled_jacobian(first_three(s.corners()));
   const auto& areas = s.scaled_areas();
   const auto& e = s.scaled_edges();
   double length[4];
@@ -330,7 +347,7 @@ double relative_size_squared_of(double area, double average_area) {
 }
 
 double stretch_of(QuadPieces& s) {
-  const QuadCorners& p = s.p;
+  const QuadCorners& p = s.corners();
   const double size = s.size();
   const auto& e = s.scaled_edges();
   double l2[4];
@@ -489,7 +506,7 @@ double distortion_of(const QuadCorners& p) {
 }
 
 double equiangle_skew_of(QuadPieces& s) {
-  const QuadCorners& p = s.p;
+  const QuadCorners& p = s.corners();
   double min_angle, max_angle;
   if (is_collapsed(p)) {
     min_angle = triangle_minimum_angle(first_three(p));
@@ -539,7 +556,7 @@ double metric_of(QuadMetric m, QuadPieces& s, double average_area) {
     case M::warpage:
       return warpage_of(s);
     case M::area:
-      return area_of(s);
+      return s.area();
     case M::stretch:
       return stretch_of(s);
     case M::minimum_angle:
@@ -553,21 +570,21 @@ double metric_of(QuadMetric m, QuadPieces& s, double average_area) {
     case M::jacobian:
       return jacobian_of(s);
     case M::scaled_jacobian:
-      return scaled_jacobian_of(s);
+      return s.scaled_jacobian();
     case M::shear:
-      return shear_of(scaled_jacobian_of(s));
+      return shear_of(s.scaled_jacobian());
     case M::shape:
-      return shape_of(s);
+      return s.shape();
     case M::distortion:
-      return distortion_of(s.p);
+      return distortion_of(s.corners());
     case M::equiangle_skew:
       return equiangle_skew_of(s);
     case M::relative_size_squared:
-      return relative_size_squared_of(area_of(s), average_area);
+      return relative_size_squared_of(s.area(), average_area);
     case M::shape_and_size:
-      return clamp_signed(shape_of(s) * relative_size_squared_of(area_of(s), average_area));
+      return clamp_signed(s.shape() * relative_size_squared_of(s.area(), average_area));
     case M::shear_and_size:
-      return clamp_signed(shear_of(scaled_jacobian_of(s)) * relative_size_squared_of(area_of(s), average_area));
+      return clamp_signed(shear_of(s.scaled_jacobian()) * relative_size_squared_of(s.area(), average_area));
   }
   return std::numeric_limits<double>::quiet_NaN();
 }
