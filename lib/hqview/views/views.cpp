@@ -906,6 +906,10 @@ std::vector<ViewFile> build_fem_error_density(ViewContext& c) {
   options.reference = c.options.error_density_reference;
   const Vec3 direction = choose_error_density_viewpoint(c.a.mesh, c.a.topology, p.cell_error_density, options, &c.renderer);
   const ErrorDensityWorst worst = error_density_worst(c.a.topology, p.cell_error_density);
+  // The median the colour bar's "(median)" tick is (over the positive
+  // densities, as the log scale takes them), not report.json's p50 over
+  // every finite value: the two differ when some densities are 0.
+  const double median = error_density_scale(p.cell_error_density).median;
   // Where the max is (the ring says it too), then the boundary's own max.
   const std::string max_text =
       worst.hex == kNoIndex ? std::string("no density")
@@ -915,10 +919,9 @@ std::vector<ViewFile> build_fem_error_density(ViewContext& c) {
                   (worst.on_boundary || !std::isfinite(worst.boundary_max)
                        ? std::string()
                        : ", boundary max " + display_number(worst.boundary_max, 3)) +
-                  ", median " + display_number(p.error_density_stats.p50, 3) +
-                  (worst.hex != kNoIndex && p.error_density_stats.p50 > 0
-                       ? ", max/median " + display_number(worst.density / p.error_density_stats.p50, 2)
-                       : std::string());
+                  (std::isfinite(median) ? ", median " + display_number(median, 3) : std::string()) +
+                  (worst.hex != kNoIndex && median > 0 ? ", max/median " + display_number(worst.density / median, 2)
+                                                       : std::string());
   std::vector<ViewFile> files;
   files.push_back(framed("views/fem_error_density.png",
                          render_error_density_boundary(c.a.mesh, c.a.topology, p.cell_error_density, direction,
