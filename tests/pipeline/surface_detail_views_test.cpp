@@ -240,6 +240,100 @@ TEST(SurfaceDetailViews, PlanarFoldClusterViewFillsEachQuadInsideItsEdges) {
   }
 }
 
+// View C's glyphs and marks on the fold (47g review #3, #4, #6, #8): size is
+// severity (one factor times each vertex's glyph radius, 1 - quality times
+// rmax, so the fold's inverted vertices rank), the largest within 0.35 of the
+// cluster's shortest edge (by hand from the grid's points); the worst
+// vertex's glyph first and ringed (an overlay annulus about it, facing the
+// camera, outside the glyph); the cluster's edges nearer the eye than
+// every glyph's front (the vertex where the folded edges meet stays in
+// sight); the faces lit as view A's (kSurfaceFillAmbient); and a legend
+// entry for each line colour and the neighbours' fill.
+TEST(SurfaceDetailViews, PlanarFoldClusterGlyphsRankAndLeaveTheFoldInSight) {
+  const test::TempDir dir("surface_detail_views");
+  const Fixture f = folded_grid(dir);
+  const Analysis& a = f.a;
+  ASSERT_TRUE(a.glyphs && !a.glyphs->clusters.empty());
+  const ClusterShot shot = cluster_shot(a.mesh, a.topology, a.field.vertex_quality, *a.glyphs, 0, f.options);
+  const SphereSet& spheres = shot.scene.spheres.at(0);
+  ASSERT_GE(spheres.centers.size(), 2u);
+  // Each sphere's vertex (by position) and the ratio of its radius to the
+  // vertex's glyph radius: one for all.
+  const std::vector<Vec3> p = grid_points();
+  std::vector<Index> vertex;
+  for (const Vec3f& c : spheres.centers) {
+    const Vec3 at = shot.scene.origin + Vec3{c.x, c.y, c.z};
+    Index found = kNoIndex;
+    for (std::size_t v = 0; v < p.size(); ++v)
+      if (norm(p[v] - at) < 1e-6) found = static_cast<Index>(v);
+    ASSERT_NE(found, kNoIndex);
+    vertex.push_back(found);
+  }
+  int inverted = 0;
+  for (std::size_t i = 0; i < vertex.size(); ++i) {
+    const auto v = static_cast<std::size_t>(vertex[i]);
+    SCOPED_TRACE("vertex " + std::to_string(v));
+    inverted += a.field.vertex_quality[v] < 0.0;
+    EXPECT_NEAR(a.glyphs->vertex_radius[v], (1.0 - a.field.vertex_quality[v]) * a.glyphs->rmax, 1e-9);
+    EXPECT_NEAR(spheres.radii[i] / a.glyphs->vertex_radius[v],
+                spheres.radii[0] / a.glyphs->vertex_radius[static_cast<std::size_t>(vertex[0])], 1e-5);
+    // The first is the worst.
+    EXPECT_LE(a.field.vertex_quality[static_cast<std::size_t>(vertex[0])], a.field.vertex_quality[v]);
+  }
+  EXPECT_GE(inverted, 2) << "the fold's inverted glyphs, which must rank";
+  EXPECT_EQ(vertex[0], kPushed);
+  // The shortest edge of the cluster's quads, by hand.
+  const ClusterRegion region = cluster_region(a.mesh, a.topology, *a.glyphs, 0);
+  double shortest = HUGE_VAL;
+  for (Index c : region.cells) {
+    const auto& q = a.mesh.quads.at(static_cast<std::size_t>(c));
+    for (int k = 0; k < 4; ++k) shortest = std::min(shortest, norm(p[static_cast<std::size_t>(q[k])] - p[static_cast<std::size_t>(q[(k + 1) % 4])]));
+  }
+  EXPECT_LE(*std::max_element(spheres.radii.begin(), spheres.radii.end()), 0.35 * shortest + 1e-6);
+  // The cluster's edges (the second line set) nearer the eye than every
+  // glyph's front where they meet its vertex.
+  const Vec3 look = normalized(shot.camera.target - shot.camera.eye);
+  const auto depth = [&](const Vec3f& q) { return dot(shot.scene.origin + Vec3{q.x, q.y, q.z} - shot.camera.eye, look); };
+  const LineSet& own = shot.scene.lines.at(1);
+  std::size_t at_glyphs = 0;
+  for (const Vec3f& q : own.positions)
+    for (std::size_t i = 0; i < spheres.centers.size(); ++i) {
+      const Vec3f& c = spheres.centers[i];
+      const Vec3 d{q.x - c.x, q.y - c.y, q.z - c.z};
+      if (norm(d - dot(d, look) * look) > 1e-6) continue;  // not at this glyph's vertex
+      EXPECT_LT(depth(q), depth(c) - spheres.radii[i]);
+      ++at_glyphs;
+    }
+  EXPECT_GE(at_glyphs, 2 * spheres.centers.size());
+  // The ring: in the overlay, about the first glyph, in the plane facing the
+  // camera, from its rim to a few pixels out (1200 px frame of the fold).
+  ASSERT_EQ(shot.scene.overlay.size(), 1u);
+  const Vec3f& c0 = spheres.centers[0];
+  for (const Vec3f& q : shot.scene.overlay[0].positions) {
+    const Vec3 d{q.x - c0.x, q.y - c0.y, q.z - c0.z};
+    EXPECT_NEAR(dot(d, look), 0.0, 1e-6);
+    EXPECT_GT(norm(d), spheres.radii[0]);
+    EXPECT_LT(norm(d), spheres.radii[0] + 0.1 * shot.camera.ortho_height);
+  }
+  // Lit as view A's faces.
+  for (const TriangleSet& faces : shot.scene.triangles) EXPECT_EQ(faces.ambient, kSurfaceFillAmbient);
+  // A legend entry for each line colour drawn and for the neighbours' fill
+  // as drawn over the white background.
+  const auto has_swatch = [&](Rgba8 c) {
+    return std::any_of(shot.swatches.begin(), shot.swatches.end(),
+                       [&](const ColorBarSwatch& s) { return to_rgba8(s.color) == c; });
+  };
+  for (const LineSet& lines : shot.scene.lines)
+    for (const Rgba8& c : lines.colors) EXPECT_TRUE(has_swatch(c));
+  ASSERT_FALSE(shot.scene.translucent.empty());
+  ASSERT_FALSE(shot.scene.translucent[0].colors.empty());
+  const Rgba8 fill = shot.scene.translucent[0].colors[0];
+  const auto over_white = [&](std::uint8_t v) {
+    return static_cast<std::uint8_t>(std::lround((v * fill.a + 255 * (255 - fill.a)) / 255.0));
+  };
+  EXPECT_TRUE(has_swatch({over_white(fill.r), over_white(fill.g), over_white(fill.b), 255}));
+}
+
 // `--views clusters,local,corners` on a quad mesh draws C of each top
 // cluster, D and E of each worst vertex (the pushed one first) and nothing
 // else; D's file names the pushed vertex.

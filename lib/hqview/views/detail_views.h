@@ -67,10 +67,25 @@ Image render_cluster_view(const HexMesh& mesh, const Topology& topology, const s
 
 // The same in two steps: the scene and its camera (no drawing; safe to run
 // for several clusters at once), then the figure drawn from them.
+// View C's inset of a cluster of slivers (its shortest edge a few pixels on
+// screen): the view zoomed on the worst vertex, drawn in `rect` (figure
+// pixels, a corner of the view), the area it shows boxed at `box`.
+struct ClusterInset {
+  Camera camera;
+  PixelRect rect, box;
+  double zoom = 1.0;         // its pixels per model unit over the view's
+  double glyph_scale = 1.0;  // its glyphs' radii over the view's
+};
+
 struct ClusterShot {
   Scene scene;
   Camera camera;
   std::string cell_kinds;  // on a mesh with non-hex cells, the region's kinds (cell_kinds_legend) for the legend
+  // A surface mesh: the legend's entries for the figure's marks (the
+  // cluster's edges, its worst vertex's ring, the neighbours' faces and
+  // edges), under the colour bar.
+  std::vector<ColorBarSwatch> swatches;
+  std::optional<ClusterInset> inset;
 };
 ClusterShot cluster_shot(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
                          const GlyphResult& glyphs, Index cluster, const DetailViewOptions& options);
