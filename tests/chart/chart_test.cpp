@@ -153,7 +153,7 @@ TEST(CornerChart, ValueLabelsClearOfCategoriesTitleAndGrid) {
                  x1 = std::max(line.points[0].x, line.points[1].x);
     if (line.color.r != line.color.g || line.color.r < 200) continue;  // the grid's pale grey only
     ++grid;
-    for (const std::vector<ChartRect>* boxes : {&bars, &value_boxes})
+    for (const std::vector<ChartRect>* boxes : {&bars, static_cast<const std::vector<ChartRect>*>(&value_boxes)})
       for (const ChartRect& b : *boxes)
         EXPECT_FALSE(y > b.y && y < b.y + b.height && x0 < b.x + b.width && b.x < x1)
             << "grid line at y " << y << " across a box at (" << b.x << ", " << b.y << ")";

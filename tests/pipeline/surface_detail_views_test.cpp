@@ -19,6 +19,7 @@
 #include "hqview/image/colormap.h"
 #include "hqview/pipeline/analyze.h"
 #include "hqview/render/camera.h"
+#include "hqview/render/label_layout.h"
 #include "hqview/render/osmesa_renderer.h"
 #include "hqview/views/detail_views.h"
 #include "hqview/views/surface_views.h"
@@ -332,6 +333,92 @@ TEST(SurfaceDetailViews, PlanarFoldClusterGlyphsRankAndLeaveTheFoldInSight) {
     return static_cast<std::uint8_t>(std::lround((v * fill.a + 255 * (255 - fill.a)) / 255.0));
   };
   EXPECT_TRUE(has_swatch({over_white(fill.r), over_white(fill.g), over_white(fill.b), 255}));
+}
+
+// A ring of slivers (47g review #6, Dolphin_padded's corner between edges
+// 3 px apart): a planar 4 x 4 grid whose second column is 0.01 wide. D of
+// the vertex (1, 2): in the view a sliver's disc has no room in its quad
+// (its anchor 0.4 x 0.01 from the vertex on the right angle's bisector, so
+// 0.004 / sqrt 2 from the quad's edges: under a pixel), so D gets an inset
+// zoomed on the vertex in which every disc (all four corners right angles,
+// SJ 1: one size) is 10 px in radius at scale 1
+// (0.5 for the 800 x 600 figure: 5 px, its rim 1.12 times that; the
+// tightest room takes 0.8 of it, by hand); every corner disc in the inset
+// lies inside its own quad as the inset projects it (centre and rim,
+// even-odd) and no two discs overlap; the inset covers no label.
+TEST(SurfaceDetailViews, SliverRingGetsAnInsetWithEachDiscInsideItsQuad) {
+  const test::TempDir dir("surface_detail_views");
+  const std::array<double, 5> xs{0.0, 1.0, 1.01, 2.0, 3.0};
+  std::ostringstream obj;
+  for (int j = 0; j <= 4; ++j)
+    for (double x : xs) obj << "v " << x << ' ' << j << " 0\n";
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      const int a = 1 + i + 5 * j;
+      obj << "f " << a << ' ' << a + 1 << ' ' << a + 6 << ' ' << a + 5 << '\n';
+    }
+  AnalyzeOptions run;
+  run.mesh_path = dir.write("slivers.obj", obj.str());
+  run.tool_version = "test";
+  const Analysis a = analyze_mesh(run);
+  DetailViewOptions options;
+  options.width = 800, options.height = 600;
+  options.view_direction = planar_view_direction(a);
+  options.cell_quality = a.field.cell_scaled_jacobian;
+  const Index v = 1 + 5 * 2;  // (1, 2)
+  const LocalShot shot = local_shot(a.mesh, a.topology, a.field.corner_scaled_jacobian, v, options);
+  ASSERT_TRUE(shot.inset);
+  const DetailInset& inset = *shot.inset;
+  const double aspect = double(inset.rect.width) / inset.rect.height;
+  const auto screen = [&](const Vec3& q) {
+    const Vec3 ndc = project_to_ndc(inset.camera, aspect, q);
+    return std::array<double, 2>{0.5 * (ndc.x + 1.0) * inset.rect.width, 0.5 * (1.0 - ndc.y) * inset.rect.height};
+  };
+  for (const LocalLabel& l : shot.labels)
+    if (l.placed) EXPECT_FALSE(boxes_overlap(l.box, inset.rect));
+  // The discs: triangle fans of 33 positions (centre, 32 on the rim), each
+  // corner's rim then its colour, then the vertex's two.
+  ASSERT_EQ(inset.scene.overlay.size(), 1u);
+  const TriangleSet& fans = inset.scene.overlay[0];
+  const std::size_t n = vertex_corners(a.mesh, a.topology, a.field.corner_scaled_jacobian, v).size();
+  ASSERT_EQ(n, 4u);
+  ASSERT_EQ(fans.positions.size(), 33 * (2 * n + 2));
+  std::vector<std::array<double, 3>> discs;  // x, y, radius on screen
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t base = 33 * 2 * k;  // the rim's fan
+    const auto at = [&](std::size_t i) {
+      const Vec3f& q = fans.positions[base + i];
+      return screen(inset.scene.origin + Vec3{q.x, q.y, q.z});
+    };
+    const auto [cx, cy] = at(0);
+    const auto [rx, ry] = at(1);
+    discs.push_back({cx, cy, std::hypot(rx - cx, ry - cy)});
+    EXPECT_NEAR(discs.back()[2], 1.12 * 10.0 * 0.5, 0.3);
+    // Inside one quad at the vertex, centre and rim.
+    int holding = 0;
+    for (const auto& q : a.mesh.quads) {
+      if (std::find(q.begin(), q.end(), v) == q.end()) continue;
+      const auto inside = [&](double x, double y) {
+        bool in = false;
+        for (int e = 0; e < 4; ++e) {
+          const auto [x0, y0] = screen(a.mesh.points[static_cast<std::size_t>(q[e])]);
+          const auto [x1, y1] = screen(a.mesh.points[static_cast<std::size_t>(q[(e + 1) % 4])]);
+          if ((y0 > y) != (y1 > y) && x < x0 + (y - y0) / (y1 - y0) * (x1 - x0)) in = !in;
+        }
+        return in;
+      };
+      bool all = inside(cx, cy);
+      for (std::size_t i = 1; i <= 32 && all; ++i) {
+        const auto [x, y] = at(i);
+        all = inside(x, y);
+      }
+      holding += all;
+    }
+    EXPECT_EQ(holding, 1) << "disc " << k << " at (" << cx << ", " << cy << ")";
+  }
+  for (std::size_t i = 0; i < discs.size(); ++i)
+    for (std::size_t j = i + 1; j < discs.size(); ++j)
+      EXPECT_GT(std::hypot(discs[i][0] - discs[j][0], discs[i][1] - discs[j][1]), discs[i][2] + discs[j][2]);
 }
 
 // `--views clusters,local,corners` on a quad mesh draws C of each top

@@ -50,6 +50,12 @@ constexpr double kInsetBelowPixels = 16.0;
 constexpr double kInsetShare = 0.42;
 constexpr double kInsetEdgePixels = 48.0;
 constexpr Rgba8 kInsetColor{20, 20, 24, 255};
+// View D's inset: each disc at most kInsetDiscPixels in radius, the
+// vertex's dot kInsetDotPixels (at scale 1).
+constexpr double kInsetDiscPixels = 10.0;
+constexpr double kInsetDotPixels = 5.0;
+constexpr double kInsetRoomShare = 0.8;  // of the way from a disc's anchor to its face's nearest edge
+constexpr double kInsetMinZoom = 3.0, kInsetMaxZoom = 40.0;
 
 Vec3 centre_of(const std::vector<Vec3>& points) {
   if (points.empty()) return {};
@@ -481,6 +487,77 @@ void append_annulus(TriangleSet& set, const Vec3& c, double r0, double r1, const
   }
 }
 
+// An inset (DetailInset, no scene yet) for a view seen by `camera` in
+// `view`, zoomed `zoom` times on `at`, in the corner of the view whose rect
+// holds neither `at` nor any of `keep_clear` (screen rects) and the fewest
+// of `points` on screen (none when every corner is taken).
+std::optional<DetailInset> place_inset(const Camera& camera, const PixelRect& view, const Vec3& at, double zoom,
+                                       std::span<const Vec3> points, std::span<const PixelRect> keep_clear) {
+  const double pixels_per_unit = view.height / camera.ortho_height;
+  DetailInset inset;
+  inset.rect = {0, 0, static_cast<int>(kInsetShare * view.width), static_cast<int>(kInsetShare * view.height)};
+  inset.zoom = zoom;
+  inset.camera = camera;
+  inset.camera.eye = camera.eye + (at - camera.target);
+  inset.camera.target = at;
+  inset.camera.ortho_height = inset.rect.height / (pixels_per_unit * inset.zoom);
+  const double aspect = static_cast<double>(view.width) / view.height;
+  const auto screen = [&](const Vec3& q) {
+    const Vec3 ndc = project_to_ndc(camera, aspect, q);
+    return std::array<double, 2>{view.x + 0.5 * (ndc.x + 1.0) * view.width, view.y + 0.5 * (1.0 - ndc.y) * view.height};
+  };
+  const auto [ax, ay] = screen(at);
+  std::size_t fewest = std::numeric_limits<std::size_t>::max();
+  for (int corner = 0; corner < 4; ++corner) {
+    const int x = corner % 2 == 0 ? view.x : view.x + view.width - inset.rect.width;
+    const int y = corner < 2 ? view.y : view.y + view.height - inset.rect.height;
+    const PixelRect rect{x, y, inset.rect.width, inset.rect.height};
+    const auto holds = [&](double px, double py) {
+      return px >= x && px <= x + rect.width && py >= y && py <= y + rect.height;
+    };
+    if (holds(ax, ay) || std::any_of(keep_clear.begin(), keep_clear.end(),
+                                     [&](const PixelRect& r) { return boxes_overlap(r, rect); }))
+      continue;
+    std::size_t n = 0;
+    for (const Vec3& q : points) {
+      const auto [px, py] = screen(q);
+      n += holds(px, py);
+    }
+    if (n < fewest) fewest = n, inset.rect.x = x, inset.rect.y = y;
+  }
+  if (fewest == std::numeric_limits<std::size_t>::max()) return std::nullopt;
+  // The area it shows, boxed in the view.
+  const int box_w = static_cast<int>(std::lround(inset.rect.width / inset.zoom)),
+            box_h = static_cast<int>(std::lround(inset.rect.height / inset.zoom));
+  inset.box = {static_cast<int>(std::lround(ax)) - box_w / 2, static_cast<int>(std::lround(ay)) - box_h / 2, box_w, box_h};
+  return inset;
+}
+
+// Draws the inset over the figure: the area it shows boxed, its scene
+// framed in its rect, labelled `inset: xN at <at_what>`.
+void draw_inset(Image& figure, const DetailInset& inset, Renderer& renderer, const AnnotationStyle& style,
+                Rgba8 background, const char* at_what) {
+  const Image view = renderer.render(inset.scene, inset.camera, inset.rect.width, inset.rect.height);
+  const double w = std::max(2.0, 2.0 * style.scale);
+  const auto frame = [&](const PixelRect& p) {
+    draw_line(figure, p.x, p.y, p.x + p.width, p.y, kInsetColor, w);
+    draw_line(figure, p.x + p.width, p.y, p.x + p.width, p.y + p.height, kInsetColor, w);
+    draw_line(figure, p.x + p.width, p.y + p.height, p.x, p.y + p.height, kInsetColor, w);
+    draw_line(figure, p.x, p.y + p.height, p.x, p.y, kInsetColor, w);
+  };
+  frame(inset.box);
+  paste(figure, view, inset.rect.x, inset.rect.y);
+  frame(inset.rect);
+  AnnotationStyle label = style;
+  label.text_color = kInsetColor;
+  const int size = std::max(11, static_cast<int>(std::lround(20 * style.scale)));
+  char text[64];
+  std::snprintf(text, sizeof text, "inset: x%.0f at %s", inset.zoom, at_what);
+  const PixelRect extent = text_extent(text, size, style);
+  fill_rect(figure, {inset.rect.x + 4, inset.rect.y + 4, extent.width + 8, size + 8}, background);
+  draw_text(figure, inset.rect.x + 8, inset.rect.y + 4 + size, text, size, label);
+}
+
 // The ring about the first glyph of `spheres` (the worst vertex's) as view
 // A rings its worst: a pale halo, the yellow band (kWorstBandColor), a dark
 // ring, a pale halo, in pixels of a view `height` pixels high.
@@ -526,46 +603,17 @@ void surface_cluster_marks(ClusterShot& shot, const Figure& f, const std::vector
   if (spheres.centers.empty() || !(shortest > 0.0) ||
       shortest * pixels_per_unit >= kInsetBelowPixels * f.style.scale)
     return;
-  ClusterInset inset;
-  const PixelRect& view = f.layout.view;
-  inset.rect = {0, 0, static_cast<int>(kInsetShare * view.width), static_cast<int>(kInsetShare * view.height)};
-  inset.zoom = kInsetEdgePixels * f.style.scale / (shortest * pixels_per_unit);
-  inset.camera = shot.camera;
   const Vec3 worst = shot.scene.origin + Vec3{spheres.centers[0].x, spheres.centers[0].y, spheres.centers[0].z};
-  inset.camera.eye = shot.camera.eye + (worst - shot.camera.target);
-  inset.camera.target = worst;
-  inset.camera.ortho_height = inset.rect.height / (pixels_per_unit * inset.zoom);
+  std::optional<DetailInset> inset = place_inset(shot.camera, f.layout.view, worst,
+                                                 kInsetEdgePixels * f.style.scale / (shortest * pixels_per_unit), points, {});
+  if (!inset) return;
   // Its glyphs at most 0.35 of the shortest edge (no floor: there the
-  // sliver is the subject).
-  inset.glyph_scale = std::min(1.0, kClusterGlyphMaxEdgeFraction * shortest / largest);
-  // The corner of the view whose inset rect holds the fewest of the
-  // cluster's points on screen (never the worst vertex).
-  const double aspect = static_cast<double>(view.width) / view.height;
-  const auto screen = [&](const Vec3& q) {
-    const Vec3 ndc = project_to_ndc(shot.camera, aspect, q);
-    return std::array<double, 2>{view.x + 0.5 * (ndc.x + 1.0) * view.width, view.y + 0.5 * (1.0 - ndc.y) * view.height};
-  };
-  const auto [wx, wy] = screen(worst);
-  std::size_t fewest = std::numeric_limits<std::size_t>::max();
-  for (int corner = 0; corner < 4; ++corner) {
-    const int x = corner % 2 == 0 ? view.x : view.x + view.width - inset.rect.width;
-    const int y = corner < 2 ? view.y : view.y + view.height - inset.rect.height;
-    const auto holds = [&](double px, double py) {
-      return px >= x && px <= x + inset.rect.width && py >= y && py <= y + inset.rect.height;
-    };
-    if (holds(wx, wy)) continue;
-    std::size_t n = 0;
-    for (const Vec3& q : points) {
-      const auto [px, py] = screen(q);
-      n += holds(px, py);
-    }
-    if (n < fewest) fewest = n, inset.rect.x = x, inset.rect.y = y;
-  }
-  // The area it shows, boxed in the view.
-  const int box_w = static_cast<int>(std::lround(inset.rect.width / inset.zoom)),
-            box_h = static_cast<int>(std::lround(inset.rect.height / inset.zoom));
-  inset.box = {static_cast<int>(std::lround(wx)) - box_w / 2, static_cast<int>(std::lround(wy)) - box_h / 2, box_w, box_h};
-  shot.inset = inset;
+  // sliver is the subject), its ring in its own pixels.
+  inset->scene = shot.scene;
+  const double glyph_scale = std::min(1.0, kClusterGlyphMaxEdgeFraction * shortest / largest);
+  for (float& r : inset->scene.spheres.at(0).radii) r = static_cast<float>(r * glyph_scale);
+  inset->scene.overlay = {worst_ring(inset->scene.spheres[0], inset->camera, inset->rect.height, f.style)};
+  shot.inset = std::move(inset);
   shot.swatches.push_back({to_color(kInsetColor), "box: zoomed in the inset", SwatchShape::line});
 }
 
@@ -640,35 +688,7 @@ Image render_cluster_shot(const ClusterShot& shot, const DetailViewOptions& opti
   const Figure f = detail_figure(options, shot.cell_kinds, false, false, shot.swatches);
   Image figure = compose(options, f, renderer.render(shot.scene, shot.camera, f.layout.view.width, f.layout.view.height),
                          shot.cell_kinds, false, shot.swatches);
-  if (!shot.inset) return figure;
-  // The inset: the same scene from the zoomed camera, its glyphs scaled by
-  // glyph_scale and its ring redrawn in its own pixels, framed, over the
-  // view; the area it shows boxed in the view.
-  const ClusterInset& inset = *shot.inset;
-  Scene zoomed = shot.scene;
-  for (float& r : zoomed.spheres.at(0).radii) r = static_cast<float>(r * inset.glyph_scale);
-  zoomed.overlay = {worst_ring(zoomed.spheres[0], inset.camera, inset.rect.height, f.style)};
-  const Image view = renderer.render(zoomed, inset.camera, inset.rect.width, inset.rect.height);
-  const PixelRect& r = inset.rect;
-  const PixelRect& b = inset.box;
-  const double w = std::max(2.0, 2.0 * f.style.scale);
-  const auto frame = [&](const PixelRect& p) {
-    draw_line(figure, p.x, p.y, p.x + p.width, p.y, kInsetColor, w);
-    draw_line(figure, p.x + p.width, p.y, p.x + p.width, p.y + p.height, kInsetColor, w);
-    draw_line(figure, p.x + p.width, p.y + p.height, p.x, p.y + p.height, kInsetColor, w);
-    draw_line(figure, p.x, p.y + p.height, p.x, p.y, kInsetColor, w);
-  };
-  frame(b);
-  paste(figure, view, r.x, r.y);
-  frame(r);
-  AnnotationStyle label = f.style;
-  label.text_color = kInsetColor;
-  const int size = std::max(11, static_cast<int>(std::lround(20 * f.style.scale)));
-  char text[48];
-  std::snprintf(text, sizeof text, "inset: x%.0f at the worst vertex", inset.zoom);
-  const PixelRect extent = text_extent(text, size, f.style);
-  fill_rect(figure, {r.x + 4, r.y + 4, extent.width + 8, size + 8}, options.background);
-  draw_text(figure, r.x + 8, r.y + 4 + size, text, size, label);
+  if (shot.inset) draw_inset(figure, *shot.inset, renderer, f.style, options.background, "the worst vertex");
   return figure;
 }
 
@@ -1115,6 +1135,73 @@ bool local_label_clear(const LocalShot& shot, std::size_t i, std::span<const std
   return true;
 }
 
+namespace {
+
+const Vec3& p_of(const HexMesh& mesh, Index v) { return mesh.points.at(static_cast<std::size_t>(v)); }
+
+// View D's inset on a surface mesh where a corner's disc as drawn is wider
+// than its room in its face (from its anchor to the face's nearest edge;
+// 47g review #6: Dolphin_padded's 0.090 disc covered its sliver): the ring's faces and edges zoomed on the vertex p,
+// each corner's disc at its anchor inside its own face (build_local_scene's,
+// not moved apart), at most kInsetDiscPixels in radius, its rim within
+// kInsetRoomShare of the way to its face's nearest edge, in a corner of the
+// view free of labels, discs and the table.
+void local_inset(LocalShot& shot, const HexMesh& mesh, const Scene& scene, const std::vector<VertexCorner>& corners,
+                 const std::vector<double>& values, const Vec3& p, double size, double scale) {
+  // Each disc's room: from its anchor to its face's nearest edge.
+  const SphereSet& anchors = scene.spheres.at(0);
+  std::vector<double> room(std::min(anchors.centers.size(), corners.size()), HUGE_VAL);
+  for (std::size_t i = 0; i < room.size(); ++i) {
+    const Vec3 c = scene.origin + Vec3{anchors.centers[i].x, anchors.centers[i].y, anchors.centers[i].z};
+    const CellRef cell = any_cell(mesh, corners[i].hex);
+    for (int k = 0; k < cell.num_corners; ++k) {
+      const Vec3& a = mesh.points[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>(k)])];
+      const Vec3& b =
+          mesh.points[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>((k + 1) % cell.num_corners)])];
+      const double t = std::clamp(dot(c - a, b - a) / std::max(dot(b - a, b - a), 1e-300), 0.0, 1.0);
+      room[i] = std::min(room[i], norm(c - (a + t * (b - a))));
+    }
+  }
+  // Needed when a disc as the view draws it (with its rim) is wider than its
+  // room; zoomed so every room holds a disc of kInsetDiscPixels (at least
+  // kInsetMinZoom, at most kInsetMaxZoom times).
+  const double tightest = room.empty() ? HUGE_VAL : *std::min_element(room.begin(), room.end());
+  const double pixels_per_unit = shot.layout.view.height / shot.camera.ortho_height;
+  bool crowded = false;
+  for (std::size_t i = 0; i < room.size() && i < shot.labels.size(); ++i)
+    crowded = crowded || shot.labels[i].marker.radius > room[i] * pixels_per_unit;
+  if (!crowded || !(tightest > 0.0)) return;
+  const double zoom = std::clamp(kInsetDiscPixels * kLocalRimScale * scale / (kInsetRoomShare * tightest * pixels_per_unit),
+                                 kInsetMinZoom, kInsetMaxZoom);
+  std::vector<PixelRect> taken;
+  for (const LocalLabel& l : shot.labels) {
+    if (l.placed) taken.push_back(l.box);
+    const ScreenDisc& m = l.marker;
+    taken.push_back({static_cast<int>(m.x - m.radius), static_cast<int>(m.y - m.radius),
+                     static_cast<int>(2 * m.radius) + 1, static_cast<int>(2 * m.radius) + 1});
+  }
+  if (shot.table_box.width > 0) taken.push_back(shot.table_box);
+  std::vector<Vec3> points;
+  for (const Vec3f& q : scene.translucent.at(0).positions) points.push_back(scene.origin + Vec3{q.x, q.y, q.z});
+  std::optional<DetailInset> inset = place_inset(shot.camera, shot.layout.view, p, zoom, points, taken);
+  if (!inset) return;
+  const double unit = inset->camera.ortho_height / inset->rect.height;  // model units per inset pixel
+  Scene zoomed = scene;
+  SphereSet& markers = zoomed.spheres.at(0);
+  // Size still grows with 1 - SJ (half to all of kInsetDiscPixels, by each
+  // marker's radius over the largest), each rim inside its face: at most
+  // kInsetRoomShare of its room.
+  const double largest = markers.radii.empty() ? 1.0 : *std::max_element(markers.radii.begin(), markers.radii.end());
+  for (std::size_t i = 0; i < room.size(); ++i)
+    markers.radii[i] = static_cast<float>(std::min(kInsetDiscPixels * scale * unit * (0.5 + 0.5 * markers.radii[i] / largest),
+                                                   kInsetRoomShare * room[i] / kLocalRimScale));
+  zoomed.spheres.at(1).radii.at(0) = static_cast<float>(kInsetDotPixels * scale * unit / kLocalDiscScale);
+  inset->scene = local_marker_discs(zoomed, inset->camera, values, size);
+  shot.inset = std::move(inset);
+}
+
+}  // namespace
+
 LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v,
                      const DetailViewOptions& options) {
   LocalShot shot;
@@ -1440,6 +1527,7 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
     lay_out_with_table();
     if (!numbers_worse_first(shot, best)) shot = std::move(best);
   }
+  if (!options.cell_quality.empty()) local_inset(shot, mesh, scene, corners, values, p_of(mesh, v), mean_edge_at(mesh, corners, v), f.style.scale);
   return shot;
 }
 
@@ -1474,7 +1562,8 @@ Image render_local_shot(const LocalShot& shot, const DetailViewOptions& options,
                       " not numbered\n(listed at the table's end)");
   // The vertex's dot (a white disc on a black ring), the faces and the
   // discs' rims: their own legend entries.
-  const std::vector<ColorBarSwatch> swatches = local_swatches(options);
+  std::vector<ColorBarSwatch> swatches = local_swatches(options);
+  if (shot.inset) swatches.push_back({to_color(kInsetColor), "box: zoomed in the inset", SwatchShape::line});
   const Figure f = detail_figure(options, shot.legend, shot.kind_swatches, true, swatches);
   const ColorBar bar = detail_color_bar(legend, shot.kind_swatches, true, swatches);
   Image figure = make_image(options.width, options.height, options.background);
@@ -1536,6 +1625,7 @@ Image render_local_shot(const LocalShot& shot, const DetailViewOptions& options,
       draw_text(figure, x + text_x, y, row.text, shot.table_text_size, label_style);
     }
   }
+  if (shot.inset) draw_inset(figure, *shot.inset, renderer, f.style, options.background, "the vertex");
   return figure;
 }
 
