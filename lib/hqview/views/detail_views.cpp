@@ -533,21 +533,23 @@ std::optional<DetailInset> place_inset(const Camera& camera, const PixelRect& vi
   return inset;
 }
 
-// Draws the inset over the figure: the area it shows boxed, its scene
-// framed in its rect, labelled `inset: xN at <at_what>`.
+// A frame about a rect in kInsetColor (an inset's, or the area it shows).
+void frame_rect(Image& figure, const PixelRect& p, const AnnotationStyle& style) {
+  const double w = std::max(2.0, 2.0 * style.scale);
+  draw_line(figure, p.x, p.y, p.x + p.width, p.y, kInsetColor, w);
+  draw_line(figure, p.x + p.width, p.y, p.x + p.width, p.y + p.height, kInsetColor, w);
+  draw_line(figure, p.x + p.width, p.y + p.height, p.x, p.y + p.height, kInsetColor, w);
+  draw_line(figure, p.x, p.y + p.height, p.x, p.y, kInsetColor, w);
+}
+
+// Draws the inset over the figure: its scene framed in its rect, labelled
+// `inset: xN at <at_what>` (the area it shows boxed first: frame_rect of
+// inset.box, under any labels).
 void draw_inset(Image& figure, const DetailInset& inset, Renderer& renderer, const AnnotationStyle& style,
                 Rgba8 background, const char* at_what) {
   const Image view = renderer.render(inset.scene, inset.camera, inset.rect.width, inset.rect.height);
-  const double w = std::max(2.0, 2.0 * style.scale);
-  const auto frame = [&](const PixelRect& p) {
-    draw_line(figure, p.x, p.y, p.x + p.width, p.y, kInsetColor, w);
-    draw_line(figure, p.x + p.width, p.y, p.x + p.width, p.y + p.height, kInsetColor, w);
-    draw_line(figure, p.x + p.width, p.y + p.height, p.x, p.y + p.height, kInsetColor, w);
-    draw_line(figure, p.x, p.y + p.height, p.x, p.y, kInsetColor, w);
-  };
-  frame(inset.box);
   paste(figure, view, inset.rect.x, inset.rect.y);
-  frame(inset.rect);
+  frame_rect(figure, inset.rect, style);
   AnnotationStyle label = style;
   label.text_color = kInsetColor;
   const int size = std::max(11, static_cast<int>(std::lround(20 * style.scale)));
@@ -688,7 +690,10 @@ Image render_cluster_shot(const ClusterShot& shot, const DetailViewOptions& opti
   const Figure f = detail_figure(options, shot.cell_kinds, false, false, shot.swatches);
   Image figure = compose(options, f, renderer.render(shot.scene, shot.camera, f.layout.view.width, f.layout.view.height),
                          shot.cell_kinds, false, shot.swatches);
-  if (shot.inset) draw_inset(figure, *shot.inset, renderer, f.style, options.background, "the worst vertex");
+  if (shot.inset) {
+    frame_rect(figure, shot.inset->box, f.style);
+    draw_inset(figure, *shot.inset, renderer, f.style, options.background, "the worst vertex");
+  }
   return figure;
 }
 
@@ -1575,6 +1580,7 @@ Image render_local_shot(const LocalShot& shot, const DetailViewOptions& options,
   // number on its box filled with the background (as view A's), so that no
   // cell edge runs through its text (46r review); no leader meets another
   // box (local_shot).
+  if (shot.inset) frame_rect(figure, shot.inset->box, f.style);  // under the leaders and labels
   Rgba8 halo = options.background;
   halo.a = 200;
   const double width = local_leader_width(f.style.scale);
