@@ -316,8 +316,14 @@ TEST(SurfaceDetailViews, PlanarFoldClusterGlyphsRankAndLeaveTheFoldInSight) {
     EXPECT_GT(norm(d), spheres.radii[0]);
     EXPECT_LT(norm(d), spheres.radii[0] + 0.1 * shot.camera.ortho_height);
   }
-  // Lit as view A's faces.
-  for (const TriangleSet& faces : shot.scene.triangles) EXPECT_EQ(faces.ambient, kSurfaceFillAmbient);
+  // Lit as view A's faces, each quad shaded by one normal (its Newell
+  // normal, by hand: a planar grid's is +-z), so a non-planar quad's two
+  // triangles shade alike (47g review #11).
+  for (const TriangleSet& faces : shot.scene.triangles) {
+    EXPECT_EQ(faces.ambient, kSurfaceFillAmbient);
+    ASSERT_EQ(faces.normals.size(), faces.positions.size());
+    for (const Vec3f& n : faces.normals) EXPECT_NEAR(std::abs(n.z), 1.0, 1e-6);
+  }
   // A legend entry for each line colour drawn and for the neighbours' fill
   // as drawn over the white background.
   const auto has_swatch = [&](Rgba8 c) {
