@@ -56,6 +56,7 @@ constexpr double kInsetDiscPixels = 10.0;
 constexpr double kInsetDotPixels = 5.0;
 constexpr double kInsetRoomShare = 0.8;  // of the way from a disc's anchor to its face's nearest edge
 constexpr double kInsetMinZoom = 3.0, kInsetMaxZoom = 40.0;
+constexpr double kInsetSliverRatio = 0.2;  // a face whose shortest edge is under this share of its longest
 
 Vec3 centre_of(const std::vector<Vec3>& points) {
   if (points.empty()) return {};
@@ -1154,7 +1155,8 @@ namespace {
 
 const Vec3& p_of(const HexMesh& mesh, Index v) { return mesh.points.at(static_cast<std::size_t>(v)); }
 
-// View D's inset on a surface mesh where a corner's disc as drawn is wider
+// View D's inset on a surface mesh where a sliver's corner disc (its face's
+// shortest edge under kInsetSliverRatio of its longest) as drawn is wider
 // than its room in its face (from its anchor to the face's nearest edge;
 // 47g review #6: Dolphin_padded's 0.090 disc covered its sliver): the ring's faces and edges zoomed on the vertex p,
 // each corner's disc at its anchor inside its own face (build_local_scene's,
@@ -1183,8 +1185,19 @@ void local_inset(LocalShot& shot, const HexMesh& mesh, const Scene& scene, const
   const double tightest = room.empty() ? HUGE_VAL : *std::min_element(room.begin(), room.end());
   const double pixels_per_unit = shot.layout.view.height / shot.camera.ortho_height;
   bool crowded = false;
-  for (std::size_t i = 0; i < room.size() && i < shot.labels.size(); ++i)
-    crowded = crowded || shot.labels[i].marker.radius > room[i] * pixels_per_unit;
+  for (std::size_t i = 0; i < room.size() && i < shot.labels.size(); ++i) {
+    const CellRef cell = any_cell(mesh, corners[i].hex);
+    double shortest = HUGE_VAL, longest = 0.0;
+    for (int k = 0; k < cell.num_corners; ++k) {
+      const double length =
+          norm(mesh.points[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>(k)])] -
+               mesh.points[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>((k + 1) % cell.num_corners)])]);
+      shortest = std::min(shortest, length), longest = std::max(longest, length);
+    }
+    // A sliver's disc (a fold's large discs overlap their faces' edges by
+    // design: view D moves them apart and labels them).
+    crowded = crowded || (shortest < kInsetSliverRatio * longest && shot.labels[i].marker.radius > room[i] * pixels_per_unit);
+  }
   if (!crowded || !(tightest > 0.0)) return;
   const double zoom = std::clamp(kInsetDiscPixels * kLocalRimScale * scale / (kInsetRoomShare * tightest * pixels_per_unit),
                                  kInsetMinZoom, kInsetMaxZoom);
