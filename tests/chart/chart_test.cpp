@@ -95,11 +95,75 @@ TEST(CornerChart, LabelsEveryCornerWithItsValue) {
   const std::vector<double> values{0.5, -0.25};
   const std::vector<std::string> labels{"hex 3", "hex 7"};
   const Chart chart = corner_chart(values, labels, {});
-  ASSERT_EQ(chart.rects.size(), 2u);
+  ASSERT_GE(chart.rects.size(), 2u);  // the bars first, then the colour key's
   EXPECT_TRUE(has_text(chart, "0.500"));
   EXPECT_TRUE(has_text(chart, "-0.250"));
   EXPECT_TRUE(has_text(chart, "hex 7"));
   EXPECT_EQ(chart.rects[1].fill, to_rgba8(kInvertedColor));
+}
+
+// Chart E of a fold's vertex (the goblet's: three corners 0.999 and a
+// reversed one at -0.999, plus 1 and -1 exactly), at its size in the views
+// (480 x 420 with a title). Each text's box is about 0.6 size per character
+// wide and size tall above its baseline (generous: the SVG's sans font is
+// narrower). No value label overlaps a category label (47g review #7:
+// "-0.999" on "quad 244"); every value label lies at least 6 px below the
+// title's baseline (#12: the 0.999 labels crowded it); no grid line crosses
+// a bar or a value label; the bars' colours have a key (the inverted colour
+// on a rect that is no bar, beside "< 0: inverted").
+TEST(CornerChart, ValueLabelsClearOfCategoriesTitleAndGrid) {
+  const std::vector<double> values{0.999, 0.999, -0.999, 0.999, 1.0, -1.0};
+  const std::vector<std::string> labels{"quad 233", "quad 243", "quad 244", "quad 245", "quad 1", "quad 2"};
+  const Chart chart = corner_chart(values, labels, {480, 420, "goblet_fold: corners at vertex 476"});
+  const auto box_of = [](const ChartText& t) {
+    const double width = 0.6 * t.size * static_cast<double>(t.text.size());
+    const double x = t.anchor == ChartAnchor::center ? t.at.x - 0.5 * width : t.at.x;
+    return ChartRect{x, t.at.y - t.size, width, 1.25 * t.size, {}};
+  };
+  const auto overlap = [](const ChartRect& a, const ChartRect& b) {
+    return a.x < b.x + b.width && b.x < a.x + a.width && a.y < b.y + b.height && b.y < a.y + a.height;
+  };
+  std::vector<ChartRect> value_boxes, category_boxes;
+  double title_baseline = 0.0;
+  for (const ChartText& t : chart.texts) {
+    if (t.text == "goblet_fold: corners at vertex 476") title_baseline = t.at.y;
+    if (std::find(labels.begin(), labels.end(), t.text) != labels.end()) category_boxes.push_back(box_of(t));
+    for (double v : values) {
+      char text[16];
+      std::snprintf(text, sizeof text, "%.3f", v);
+      if (t.text == text) {
+        value_boxes.push_back(box_of(t));
+        break;
+      }
+    }
+  }
+  ASSERT_EQ(value_boxes.size(), values.size());
+  ASSERT_EQ(category_boxes.size(), labels.size());
+  ASSERT_GT(title_baseline, 0.0);
+  for (const ChartRect& v : value_boxes) {
+    for (const ChartRect& c : category_boxes) EXPECT_FALSE(overlap(v, c)) << v.x << ", " << v.y;
+    EXPECT_GE(v.y, title_baseline + 6.0);
+  }
+  const std::vector<ChartRect> bars(chart.rects.begin(), chart.rects.begin() + static_cast<std::ptrdiff_t>(values.size()));
+  std::size_t grid = 0;
+  for (const ChartPolyline& line : chart.lines) {
+    if (line.points.size() != 2 || line.points[0].y != line.points[1].y) continue;
+    if (line.points[0].y == chart.plot.y + chart.plot.height) continue;  // the x axis
+    const double y = line.points[0].y, x0 = std::min(line.points[0].x, line.points[1].x),
+                 x1 = std::max(line.points[0].x, line.points[1].x);
+    if (line.color.r != line.color.g || line.color.r < 200) continue;  // the grid's pale grey only
+    ++grid;
+    for (const std::vector<ChartRect>* boxes : {&bars, static_cast<const std::vector<ChartRect>*>(&value_boxes)})
+      for (const ChartRect& b : *boxes)
+        EXPECT_FALSE(y > b.y && y < b.y + b.height && x0 < b.x + b.width && b.x < x1)
+            << "grid line at y " << y << " across a box at (" << b.x << ", " << b.y << ")";
+  }
+  EXPECT_GT(grid, 0u);
+  bool keyed = false;
+  for (std::size_t i = values.size(); i < chart.rects.size(); ++i)
+    keyed = keyed || chart.rects[i].fill == to_rgba8(kInvertedColor);
+  EXPECT_TRUE(keyed);
+  EXPECT_TRUE(has_text(chart, "< 0: inverted"));
 }
 
 TEST(SortedBoundaryError, BarsFromTheZeroLineOnASymmetricAxis) {

@@ -19,6 +19,7 @@
 #include "hqview/image/colormap.h"
 #include "hqview/pipeline/analyze.h"
 #include "hqview/render/camera.h"
+#include "hqview/render/label_layout.h"
 #include "hqview/render/osmesa_renderer.h"
 #include "hqview/views/detail_views.h"
 #include "hqview/views/surface_views.h"
@@ -238,6 +239,192 @@ TEST(SurfaceDetailViews, PlanarFoldClusterViewFillsEachQuadInsideItsEdges) {
       }
     EXPECT_GE(checked, 8u);
   }
+}
+
+// View C's glyphs and marks on the fold (47g review #3, #4, #6, #8): size is
+// severity (one factor times each vertex's glyph radius, 1 - quality times
+// rmax, so the fold's inverted vertices rank), the largest within 0.35 of the
+// cluster's shortest edge (by hand from the grid's points); the worst
+// vertex's glyph first and ringed (an overlay annulus about it, facing the
+// camera, outside the glyph); the cluster's edges nearer the eye than
+// every glyph's front (the vertex where the folded edges meet stays in
+// sight); the faces lit as view A's (kSurfaceFillAmbient); and a legend
+// entry for each line colour and the neighbours' fill.
+TEST(SurfaceDetailViews, PlanarFoldClusterGlyphsRankAndLeaveTheFoldInSight) {
+  const test::TempDir dir("surface_detail_views");
+  const Fixture f = folded_grid(dir);
+  const Analysis& a = f.a;
+  ASSERT_TRUE(a.glyphs && !a.glyphs->clusters.empty());
+  const ClusterShot shot = cluster_shot(a.mesh, a.topology, a.field.vertex_quality, *a.glyphs, 0, f.options);
+  const SphereSet& spheres = shot.scene.spheres.at(0);
+  ASSERT_GE(spheres.centers.size(), 2u);
+  // Each sphere's vertex (by position) and the ratio of its radius to the
+  // vertex's glyph radius: one for all.
+  const std::vector<Vec3> p = grid_points();
+  std::vector<Index> vertex;
+  for (const Vec3f& c : spheres.centers) {
+    const Vec3 at = shot.scene.origin + Vec3{c.x, c.y, c.z};
+    Index found = kNoIndex;
+    for (std::size_t v = 0; v < p.size(); ++v)
+      if (norm(p[v] - at) < 1e-6) found = static_cast<Index>(v);
+    ASSERT_NE(found, kNoIndex);
+    vertex.push_back(found);
+  }
+  int inverted = 0;
+  for (std::size_t i = 0; i < vertex.size(); ++i) {
+    const auto v = static_cast<std::size_t>(vertex[i]);
+    SCOPED_TRACE("vertex " + std::to_string(v));
+    inverted += a.field.vertex_quality[v] < 0.0;
+    EXPECT_NEAR(a.glyphs->vertex_radius[v], (1.0 - a.field.vertex_quality[v]) * a.glyphs->rmax, 1e-9);
+    EXPECT_NEAR(spheres.radii[i] / a.glyphs->vertex_radius[v],
+                spheres.radii[0] / a.glyphs->vertex_radius[static_cast<std::size_t>(vertex[0])], 1e-5);
+    // The first is the worst.
+    EXPECT_LE(a.field.vertex_quality[static_cast<std::size_t>(vertex[0])], a.field.vertex_quality[v]);
+  }
+  EXPECT_GE(inverted, 2) << "the fold's inverted glyphs, which must rank";
+  EXPECT_EQ(vertex[0], kPushed);
+  // The shortest edge of the cluster's quads, by hand.
+  const ClusterRegion region = cluster_region(a.mesh, a.topology, *a.glyphs, 0);
+  double shortest = HUGE_VAL;
+  for (Index c : region.cells) {
+    const auto& q = a.mesh.quads.at(static_cast<std::size_t>(c));
+    for (int k = 0; k < 4; ++k) shortest = std::min(shortest, norm(p[static_cast<std::size_t>(q[k])] - p[static_cast<std::size_t>(q[(k + 1) % 4])]));
+  }
+  EXPECT_LE(*std::max_element(spheres.radii.begin(), spheres.radii.end()), 0.35 * shortest + 1e-6);
+  // The cluster's edges (the second line set) nearer the eye than every
+  // glyph's front where they meet its vertex.
+  const Vec3 look = normalized(shot.camera.target - shot.camera.eye);
+  const auto depth = [&](const Vec3f& q) { return dot(shot.scene.origin + Vec3{q.x, q.y, q.z} - shot.camera.eye, look); };
+  const LineSet& own = shot.scene.lines.at(1);
+  std::size_t at_glyphs = 0;
+  for (const Vec3f& q : own.positions)
+    for (std::size_t i = 0; i < spheres.centers.size(); ++i) {
+      const Vec3f& c = spheres.centers[i];
+      const Vec3 d{q.x - c.x, q.y - c.y, q.z - c.z};
+      if (norm(d - dot(d, look) * look) > 1e-6) continue;  // not at this glyph's vertex
+      EXPECT_LT(depth(q), depth(c) - spheres.radii[i]);
+      ++at_glyphs;
+    }
+  EXPECT_GE(at_glyphs, 2 * spheres.centers.size());
+  // The ring: in the overlay, about the first glyph, in the plane facing the
+  // camera, from its rim to a few pixels out (1200 px frame of the fold).
+  ASSERT_EQ(shot.scene.overlay.size(), 1u);
+  const Vec3f& c0 = spheres.centers[0];
+  for (const Vec3f& q : shot.scene.overlay[0].positions) {
+    const Vec3 d{q.x - c0.x, q.y - c0.y, q.z - c0.z};
+    EXPECT_NEAR(dot(d, look), 0.0, 1e-6);
+    EXPECT_GT(norm(d), spheres.radii[0]);
+    EXPECT_LT(norm(d), spheres.radii[0] + 0.1 * shot.camera.ortho_height);
+  }
+  // Lit as view A's faces, each quad shaded by one normal (its Newell
+  // normal, by hand: a planar grid's is +-z), so a non-planar quad's two
+  // triangles shade alike (47g review #11).
+  for (const TriangleSet& faces : shot.scene.triangles) {
+    EXPECT_EQ(faces.ambient, kSurfaceFillAmbient);
+    ASSERT_EQ(faces.normals.size(), faces.positions.size());
+    for (const Vec3f& n : faces.normals) EXPECT_NEAR(std::abs(n.z), 1.0, 1e-6);
+  }
+  // A legend entry for each line colour drawn and for the neighbours' fill
+  // as drawn over the white background.
+  const auto has_swatch = [&](Rgba8 c) {
+    return std::any_of(shot.swatches.begin(), shot.swatches.end(),
+                       [&](const ColorBarSwatch& s) { return to_rgba8(s.color) == c; });
+  };
+  for (const LineSet& lines : shot.scene.lines)
+    for (const Rgba8& c : lines.colors) EXPECT_TRUE(has_swatch(c));
+  ASSERT_FALSE(shot.scene.translucent.empty());
+  ASSERT_FALSE(shot.scene.translucent[0].colors.empty());
+  const Rgba8 fill = shot.scene.translucent[0].colors[0];
+  const auto over_white = [&](std::uint8_t v) {
+    return static_cast<std::uint8_t>(std::lround((v * fill.a + 255 * (255 - fill.a)) / 255.0));
+  };
+  EXPECT_TRUE(has_swatch({over_white(fill.r), over_white(fill.g), over_white(fill.b), 255}));
+}
+
+// A ring of slivers (47g review #6, Dolphin_padded's corner between edges
+// 3 px apart): a planar 4 x 4 grid whose second column is 0.01 wide. D of
+// the vertex (1, 2): in the view a sliver's disc has no room in its quad
+// (its anchor 0.4 x 0.01 from the vertex on the right angle's bisector, so
+// 0.004 / sqrt 2 from the quad's edges: under a pixel), so D gets an inset
+// zoomed on the vertex in which every disc (all four corners right angles,
+// SJ 1: one size) is 10 px in radius at scale 1
+// (0.5 for the 800 x 600 figure: 5 px, its rim 1.12 times that; the
+// tightest room takes 0.8 of it, by hand); every corner disc in the inset
+// lies inside its own quad as the inset projects it (centre and rim,
+// even-odd) and no two discs overlap; the inset covers no label.
+TEST(SurfaceDetailViews, SliverRingGetsAnInsetWithEachDiscInsideItsQuad) {
+  const test::TempDir dir("surface_detail_views");
+  const std::array<double, 5> xs{0.0, 1.0, 1.01, 2.0, 3.0};
+  std::ostringstream obj;
+  for (int j = 0; j <= 4; ++j)
+    for (double x : xs) obj << "v " << x << ' ' << j << " 0\n";
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      const int a = 1 + i + 5 * j;
+      obj << "f " << a << ' ' << a + 1 << ' ' << a + 6 << ' ' << a + 5 << '\n';
+    }
+  AnalyzeOptions run;
+  run.mesh_path = dir.write("slivers.obj", obj.str());
+  run.tool_version = "test";
+  const Analysis a = analyze_mesh(run);
+  DetailViewOptions options;
+  options.width = 800, options.height = 600;
+  options.view_direction = planar_view_direction(a);
+  options.cell_quality = a.field.cell_scaled_jacobian;
+  const Index v = 1 + 5 * 2;  // (1, 2)
+  const LocalShot shot = local_shot(a.mesh, a.topology, a.field.corner_scaled_jacobian, v, options);
+  ASSERT_TRUE(shot.inset);
+  const DetailInset& inset = *shot.inset;
+  const double aspect = double(inset.rect.width) / inset.rect.height;
+  const auto screen = [&](const Vec3& q) {
+    const Vec3 ndc = project_to_ndc(inset.camera, aspect, q);
+    return std::array<double, 2>{0.5 * (ndc.x + 1.0) * inset.rect.width, 0.5 * (1.0 - ndc.y) * inset.rect.height};
+  };
+  for (const LocalLabel& l : shot.labels)
+    if (l.placed) EXPECT_FALSE(boxes_overlap(l.box, inset.rect));
+  // The discs: triangle fans of 33 positions (centre, 32 on the rim), each
+  // corner's rim then its colour, then the vertex's two.
+  ASSERT_EQ(inset.scene.overlay.size(), 1u);
+  const TriangleSet& fans = inset.scene.overlay[0];
+  const std::size_t n = vertex_corners(a.mesh, a.topology, a.field.corner_scaled_jacobian, v).size();
+  ASSERT_EQ(n, 4u);
+  ASSERT_EQ(fans.positions.size(), 33 * (2 * n + 2));
+  std::vector<std::array<double, 3>> discs;  // x, y, radius on screen
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t base = 33 * 2 * k;  // the rim's fan
+    const auto at = [&](std::size_t i) {
+      const Vec3f& q = fans.positions[base + i];
+      return screen(inset.scene.origin + Vec3{q.x, q.y, q.z});
+    };
+    const auto [cx, cy] = at(0);
+    const auto [rx, ry] = at(1);
+    discs.push_back({cx, cy, std::hypot(rx - cx, ry - cy)});
+    EXPECT_NEAR(discs.back()[2], 1.12 * 10.0 * 0.5, 0.3);
+    // Inside one quad at the vertex, centre and rim.
+    int holding = 0;
+    for (const auto& q : a.mesh.quads) {
+      if (std::find(q.begin(), q.end(), v) == q.end()) continue;
+      const auto inside = [&](double x, double y) {
+        bool in = false;
+        for (int e = 0; e < 4; ++e) {
+          const auto [x0, y0] = screen(a.mesh.points[static_cast<std::size_t>(q[e])]);
+          const auto [x1, y1] = screen(a.mesh.points[static_cast<std::size_t>(q[(e + 1) % 4])]);
+          if ((y0 > y) != (y1 > y) && x < x0 + (y - y0) / (y1 - y0) * (x1 - x0)) in = !in;
+        }
+        return in;
+      };
+      bool all = inside(cx, cy);
+      for (std::size_t i = 1; i <= 32 && all; ++i) {
+        const auto [x, y] = at(i);
+        all = inside(x, y);
+      }
+      holding += all;
+    }
+    EXPECT_EQ(holding, 1) << "disc " << k << " at (" << cx << ", " << cy << ")";
+  }
+  for (std::size_t i = 0; i < discs.size(); ++i)
+    for (std::size_t j = i + 1; j < discs.size(); ++j)
+      EXPECT_GT(std::hypot(discs[i][0] - discs[j][0], discs[i][1] - discs[j][1]), discs[i][2] + discs[j][2]);
 }
 
 // `--views clusters,local,corners` on a quad mesh draws C of each top

@@ -36,6 +36,7 @@
 #include "hqview/render/annotate.h"
 #include "hqview/views/main_views.h"
 #include "hqview/views/overview_views.h"
+#include "hqview/views/surface_views.h"
 #include "support/colour_science.h"
 
 namespace hq {
@@ -434,6 +435,41 @@ TEST(Palette, ShadedClusterColoursApartFromTheCriticalColoursForEveryVision) {
   const Rgba8 steel{0x44, 0x66, 0xee, 255};
   EXPECT_GE(delta_e(steel, to_rgba8(kInvertedColor)), kCriticalApart);
   EXPECT_LT(nearest_shade(steel, to_rgba8(kInvertedColor), &kTritanopia), kCriticalApart);
+}
+
+// A surface mesh's faces are lit (views A and C): the renderer's shade
+// (linear RGB, the colour times ambient + (1 - ambient) |n . l|) keeps a
+// face's value readable on the colour bar. For every value q on the bar and
+// every shade from a face lit 60 degrees off the light (|n . l| = 0.5) to
+// full light, the bar's colour nearest the shaded one (CIEDE2000) belongs to
+// a value within kReadable of q. With the default ambient (0.25) a khaki 0.8
+// face read as a bar value far from it (47g review #5).
+double worst_misreading(float ambient) {
+  constexpr int kBar = 200;
+  std::vector<Lab> bar;
+  for (int i = 0; i <= kBar; ++i) bar.push_back(lab_of(to_rgba8(sample_quality_map(double(i) / kBar))));
+  double worst = 0.0;
+  for (int i = 0; i <= 50; ++i) {
+    const double q = i / 50.0;
+    for (double diffuse = 0.5; diffuse <= 1.0001; diffuse += 0.1) {
+      std::array<double, 3> rgb = test::linear_of(to_rgba8(sample_quality_map(q)));
+      for (double& v : rgb) v *= ambient + (1.0 - ambient) * diffuse;
+      const Lab shaded = test::lab_of_linear(rgb);
+      int nearest = 0;
+      double nearest_delta = HUGE_VAL;
+      for (int k = 0; k <= kBar; ++k) {
+        const double delta = ciede2000(shaded, bar[static_cast<std::size_t>(k)]);
+        if (delta < nearest_delta) nearest_delta = delta, nearest = k;
+      }
+      worst = std::max(worst, std::abs(double(nearest) / kBar - q));
+    }
+  }
+  return worst;
+}
+TEST(Palette, LitSurfaceFacesReadOnTheColourBar) {
+  constexpr double kReadable = 0.1;
+  EXPECT_LE(worst_misreading(kSurfaceFillAmbient), kReadable);
+  EXPECT_GT(worst_misreading(0.25f), kReadable);  // the renderer's default
 }
 
 TEST(Palette, ThePalettesBeforeFailTheseRules) {

@@ -13,6 +13,7 @@
 #include "hqview/core/error.h"
 #include "hqview/core/message_text.h"
 #include "hqview/core/number_format.h"
+#include "hqview/core/quality_text.h"
 #include "hqview/image/colormap.h"
 
 namespace hq {
@@ -202,35 +203,93 @@ Chart sorted_quality_chart(std::span<const double> vertex_quality, int worst_n, 
   return chart;
 }
 
+// Chart E's value labels keep kCornerLabelPad pixels between the plot's
+// frame and the bars' ends at ±1 (47g review #7, #12: a 1 bar's label
+// touched the title, a -1 bar's garbled its category label under the axis).
+constexpr double kCornerLabelPad = 20.0;
+
+// A text's box (pixel rect) as a ChartText of `size` at baseline y, centred
+// at x: about 0.6 size per character wide, size tall above the baseline.
+ChartRect centred_text_box(double x, double y, const std::string& text, double size) {
+  const double width = 0.6 * size * static_cast<double>(text.size());
+  return {x - 0.5 * width, y - size, width, 1.25 * size, {}};
+}
+
+// The pieces of the horizontal line y from x0 to x1 outside every box
+// (chart E's grid: no grid line across a bar or a label).
+std::vector<std::pair<double, double>> line_outside(double y, double x0, double x1, std::span<const ChartRect> boxes) {
+  std::vector<std::pair<double, double>> cuts;
+  for (const ChartRect& b : boxes)
+    if (y >= b.y - 1.0 && y <= b.y + b.height + 1.0) cuts.push_back({b.x - 2.0, b.x + b.width + 2.0});
+  std::sort(cuts.begin(), cuts.end());
+  std::vector<std::pair<double, double>> pieces;
+  double from = x0;
+  for (const auto& [a, b] : cuts) {
+    if (a > from) pieces.push_back({from, std::min(a, x1)});
+    from = std::max(from, b);
+  }
+  if (from < x1) pieces.push_back({from, x1});
+  return pieces;
+}
+
 Chart corner_chart(std::span<const double> values, std::span<const std::string> labels, const ChartOptions& options) {
   Chart chart = begin_chart(options);
   const ChartRect r = chart.plot;
-  auto y_of = [&](double q) { return r.y + r.height * (1.0 - std::clamp(q, -1.0, 1.0)) / 2.0; };
-  std::vector<std::pair<double, double>> y_ticks;
-  for (double t = -1.0; t <= 1.0001; t += 0.5) y_ticks.push_back({t, y_of(t)});
+  auto y_of = [&](double q) {
+    return r.y + kCornerLabelPad + (r.height - 2.0 * kCornerLabelPad) * (1.0 - std::clamp(q, -1.0, 1.0)) / 2.0;
+  };
   const std::size_t n = values.size();
-  std::vector<std::pair<double, double>> x_ticks;
+  // Bars and their value labels: above a bar's top, below a negative bar's
+  // end, inside the padded frame.
+  std::vector<ChartRect> boxes;  // what no grid line crosses
+  std::vector<ChartText> value_labels;
   for (std::size_t i = 0; i < n; ++i) {
     const double w = r.width / static_cast<double>(std::max<std::size_t>(1, n));
     const double q = values[i];
     const double y = y_of(q), y0 = y_of(0.0);
     chart.rects.push_back(
         {r.x + i * w + 0.2 * w, std::min(y, y0), 0.6 * w, std::max(1.0, std::abs(y - y0)), bar_color(q)});
-    chart.texts.push_back({{r.x + (i + 0.5) * w, q >= 0 ? y - 5.0 : y + 14.0},
-                           format_value(q),
-                           kTickSize,
-                           {38, 38, 38, 255},
-                           ChartAnchor::center,
-                           false});
-    chart.texts.push_back({{r.x + (i + 0.5) * w, r.y + r.height + 19.0},
+    boxes.push_back(chart.rects.back());
+    const double x = r.x + (i + 0.5) * w, baseline = q >= 0 ? y - 5.0 : y + 14.0;
+    value_labels.push_back({{x, baseline}, quality_text(q), kTickSize, {38, 38, 38, 255}, ChartAnchor::center, false});
+    boxes.push_back(centred_text_box(x, baseline, value_labels.back().text, kTickSize));
+    chart.texts.push_back({{x, r.y + r.height + 19.0},
                            i < labels.size() ? labels[i] : "",
                            kTickSize,
                            kAxisColor,
                            ChartAnchor::center,
                            false});
   }
-  add_axes(chart, r, y_ticks, x_ticks, "corner", "corner scaled Jacobian");
+  std::vector<std::pair<double, double>> y_ticks;
+  for (double t = -1.0; t <= 1.0001; t += 0.5) y_ticks.push_back({t, y_of(t)});
+  add_axes(chart, r, y_ticks, {}, "", "corner scaled Jacobian");
+  // add_axes' grid lines, cut around the bars and their labels.
+  std::vector<ChartPolyline> lines;
+  for (ChartPolyline& line : chart.lines) {
+    const bool is_grid = line.color == kGridColor && line.points.size() == 2 && line.points[0].y == line.points[1].y;
+    if (!is_grid) {
+      lines.push_back(std::move(line));
+      continue;
+    }
+    for (const auto& [a, b] : line_outside(line.points[0].y, line.points[0].x, line.points[1].x, boxes))
+      lines.push_back({{{a, line.points[0].y}, {b, line.points[0].y}}, kGridColor, line.width});
+  }
+  chart.lines = std::move(lines);
   chart.lines.push_back({{{r.x, y_of(0.0)}, {r.x + r.width, y_of(0.0)}}, kAxisColor, 1.0});
+  chart.texts.insert(chart.texts.end(), value_labels.begin(), value_labels.end());
+  // The bars' colour key under the axis (no x title: each bar names its
+  // cell): the quality map from 0 to 1, then the inverted colour.
+  const double key_y = r.y + r.height + 36.0, strip = 48.0;
+  constexpr int kKeySteps = 12;
+  for (int k = 0; k < kKeySteps; ++k)
+    chart.rects.push_back({r.x + strip * k / kKeySteps, key_y, strip / kKeySteps + 0.5, 10.0,
+                           bar_color(static_cast<double>(k) / (kKeySteps - 1))});
+  chart.texts.push_back({{r.x + strip + 6.0, key_y + 9.5}, "0 to 1: quality colour", kTickSize, kAxisColor,
+                         ChartAnchor::left, false});
+  const double inverted_x = r.x + strip + 6.0 + 0.6 * kTickSize * 23.0 + 10.0;
+  chart.rects.push_back({inverted_x, key_y, 10.0, 10.0, bar_color(-1.0)});
+  chart.texts.push_back({{inverted_x + 16.0, key_y + 9.5}, "< 0: inverted", kTickSize, kAxisColor, ChartAnchor::left,
+                         false});
   return chart;
 }
 

@@ -626,15 +626,20 @@ const char* surface_panel_intro(char letter) {
   if (letter == 'C')
     return "One view per top cluster (the table's bold rows): the faces at its vertices, each filled by its scaled "
            "Jacobian (its lowest corner) on the quality colour bar, inverted ones in dark blue-violet; its glyphs "
-           "(reduced: half size, within 0.35 of the shortest edge but at least 0.08 of the mean edge) and the neighbouring faces pale. A planar mesh is "
+           "(size is severity as in view A, all scaled by one factor: the largest at most 0.35 of the shortest edge, at "
+           "least 0.08 of the mean edge; the worst vertex's glyph ringed yellow and black), the cluster's edges drawn "
+           "over the glyphs, and the neighbouring faces pale. A planar mesh is "
            "seen along its normal, orthographic, a fold's inverted faces over the others; a curved one upright, "
            "its faces in depth. Each links to the local "
            "view (D) and corner chart (E) of the cluster's worst vertex, and back to its table row.";
   if (letter == 'D')
     return "The faces around a chosen vertex (the worst of each top cluster, then any --focus-vertex), each "
            "corner at the vertex a disc inside its face next to the vertex, coloured and labelled with its signed "
-           "scaled Jacobian (inverted: dark blue-violet). A planar mesh is seen along its normal.";
-  if (letter == 'E') return "The corner scaled Jacobians at each chosen vertex, one bar per incident face.";
+           "scaled Jacobian (inverted: dark blue-violet), with the value's three decimals as in C's title and chart E. "
+           "A planar mesh is seen along its normal.";
+  if (letter == 'E')
+    return "The corner scaled Jacobians at each chosen vertex, one bar per incident face, in the quality bar's colour "
+           "of its value (inverted: dark blue-violet; the key under the axis).";
   return nullptr;
 }
 

@@ -10,6 +10,7 @@
 #include "hqview/core/box3.h"
 #include "hqview/glyph/glyph_ties.h"
 #include "hqview/core/error.h"
+#include "hqview/core/quality_text.h"
 #include "hqview/image/colormap.h"
 #include "hqview/mesh/cell_faces.h"
 #include "hqview/quality/cell_corner_jacobian.h"
@@ -18,6 +19,7 @@
 #include "hqview/render/label_layout.h"
 #include "hqview/render/upright.h"
 #include "hqview/views/main_views.h"
+#include "hqview/views/surface_views.h"
 
 namespace hq {
 namespace {
@@ -35,6 +37,26 @@ constexpr double kClusterGlyphMinEdgeFraction = 0.08;
 constexpr double kPlanarLift = 0.002;
 constexpr Rgba8 kNeighbourEdgeColor{150, 152, 160, 255};
 constexpr Rgba8 kRegionFaceColor{190, 196, 210, 60};
+// View D's discs' rims (a dark outline, kLocalRimScale of each disc).
+constexpr Rgba8 kLocalRimColor{40, 40, 46, 255};
+// View C of a surface mesh: its cluster's edges lifted towards the eye by
+// this many times the largest glyph's radius (surface_cluster_marks).
+constexpr double kClusterEdgeLift = 1.05;
+// View C's inset (ClusterInset): drawn when the cluster's shortest edge is
+// under kInsetBelowPixels on screen (at scale 1), kInsetShare of the view's
+// width and height, zoomed so that edge is kInsetEdgePixels long; its frame
+// and the box in the view in kInsetColor.
+constexpr double kInsetBelowPixels = 16.0;
+constexpr double kInsetShare = 0.42;
+constexpr double kInsetEdgePixels = 48.0;
+constexpr Rgba8 kInsetColor{20, 20, 24, 255};
+// View D's inset: each disc at most kInsetDiscPixels in radius, the
+// vertex's dot kInsetDotPixels (at scale 1).
+constexpr double kInsetDiscPixels = 10.0;
+constexpr double kInsetDotPixels = 5.0;
+constexpr double kInsetRoomShare = 0.8;  // of the way from a disc's anchor to its face's nearest edge
+constexpr double kInsetMinZoom = 3.0, kInsetMaxZoom = 40.0;
+constexpr double kInsetSliverRatio = 0.2;  // a face whose shortest edge is under this share of its longest
 
 Vec3 centre_of(const std::vector<Vec3>& points) {
   if (points.empty()) return {};
@@ -138,7 +160,11 @@ TriangleSet outer_faces(const HexMesh& mesh, const Topology& topology, const std
     set.indices.insert(set.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
   }
   // Cells of other kinds: every face (a face shared with a hex is drawn
-  // twice: pale and translucent, that is fine).
+  // twice: pale and translucent, that is fine). A surface mesh's faces
+  // (filled by cell_quality, no hex faces before them) each shaded by one
+  // normal, its Newell normal: a non-planar quad's two triangles flat-shaded
+  // apart read as an extra edge (47g review #11).
+  const bool one_normal_a_face = !cell_quality.empty() && set.positions.empty();
   for (Index c : cells) {
     if (c < mesh.num_hexes()) continue;
     const Rgba8 fill = static_cast<std::size_t>(c) < cell_quality.size()
@@ -146,9 +172,15 @@ TriangleSet outer_faces(const HexMesh& mesh, const Topology& topology, const std
                            : color;
     for_each_drawn_face(mesh, c, [&](const std::array<Index, 4>& v, int size) {
       const auto base = static_cast<std::uint32_t>(set.positions.size());
+      Vec3 newell{};
+      for (int i = 0; i < size; ++i)
+        newell = newell + cross(mesh.points[static_cast<std::size_t>(v[static_cast<std::size_t>(i)])],
+                                mesh.points[static_cast<std::size_t>(v[static_cast<std::size_t>((i + 1) % size)])]);
+      const Vec3f normal = to_vec3f(norm(newell) > 0.0 ? normalized(newell) : Vec3{0.0, 0.0, 1.0});
       for (int i = 0; i < size; ++i) {
         set.positions.push_back(to_vec3f(mesh.points[static_cast<std::size_t>(v[static_cast<std::size_t>(i)])] - origin));
         set.colors.push_back(fill);
+        if (one_normal_a_face) set.normals.push_back(normal);
       }
       if (size == 3) set.indices.insert(set.indices.end(), {base, base + 1, base + 2});
       else if (splits_at_1_3(mesh, v))  // a concave quad: 0-2 runs outside it
@@ -201,12 +233,6 @@ std::vector<Vec3> cell_points(const HexMesh& mesh, const std::vector<Index>& cel
   return points;
 }
 
-std::string format_value(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3f", v);
-  return buffer;
-}
-
 struct Figure {
   AnnotationStyle style;
   FigureLayout layout;
@@ -222,7 +248,10 @@ Rgba8 ring_edge_color(CellKind kind) { return cell_kind_edge_color(kind); }
 // colour (view D, whose ring edges are coloured by kind).
 // corner_discs: view D's heading (each disc one cell corner's value, not
 // the vertex's min: 46t review).
-ColorBar detail_color_bar(const std::string& kinds, bool kind_swatches = false, bool corner_discs = false) {
+// extra: the figure's own marks (view C's edges, fills and ring; view D's
+// fills and dot), after the others.
+ColorBar detail_color_bar(const std::string& kinds, bool kind_swatches = false, bool corner_discs = false,
+                          std::span<const ColorBarSwatch> extra = {}) {
   ColorBar bar = quality_color_bar();
   if (corner_discs) bar.label = kLocalBarHeading;
   if (!kinds.empty()) bar.label += "\n" + kinds;
@@ -234,26 +263,27 @@ ColorBar detail_color_bar(const std::string& kinds, bool kind_swatches = false, 
         if (cell_kind_name(k) == name) kind = k;
       bar.swatches.push_back({to_color(ring_edge_color(kind)), name + " edges"});
     }
+  bar.swatches.insert(bar.swatches.end(), extra.begin(), extra.end());
   return bar;
 }
 
 Figure detail_figure(const DetailViewOptions& options, const std::string& kinds = {}, bool kind_swatches = false,
-                     bool corner_discs = false) {
+                     bool corner_discs = false, std::span<const ColorBarSwatch> extra = {}) {
   Figure f;
   f.style = annotation_style_for(options.height);
   f.style.background = options.background;
   f.layout = figure_layout(options.width, options.height, !options.title.empty(),
-                           color_bar_width(detail_color_bar(kinds, kind_swatches, corner_discs), f.style), f.style);
+                           color_bar_width(detail_color_bar(kinds, kind_swatches, corner_discs, extra), f.style), f.style);
   f.aspect = static_cast<double>(std::max(1, f.layout.view.width)) / std::max(1, f.layout.view.height);
   return f;
 }
 
 Image compose(const DetailViewOptions& options, const Figure& f, const Image& view, const std::string& kinds = {},
-              bool kind_swatches = false) {
+              bool kind_swatches = false, std::span<const ColorBarSwatch> extra = {}) {
   Image figure = make_image(options.width, options.height, options.background);
   paste(figure, view, f.layout.view.x, f.layout.view.y);
   draw_title(figure, f.layout.title, options.title, f.style);
-  draw_color_bar(figure, f.layout.legend, detail_color_bar(kinds, kind_swatches), f.style);
+  draw_color_bar(figure, f.layout.legend, detail_color_bar(kinds, kind_swatches, false, extra), f.style);
   return figure;
 }
 
@@ -344,6 +374,30 @@ std::vector<Index> neighbour_cells(const HexMesh& mesh, const Topology& topology
   return region_of(mesh, topology, others, distinct).cells;
 }
 
+// The shortest nonzero and the summed length of a line set's segments
+// (each segment its own two positions, as cell_edges makes them).
+std::pair<double, double> edge_lengths(const LineSet& lines) {
+  double sum = 0.0, shortest = HUGE_VAL;
+  for (std::size_t i = 0; i + 1 < lines.positions.size(); i += 2) {
+    const Vec3f& a = lines.positions[i];
+    const Vec3f& b = lines.positions[i + 1];
+    const double length = std::hypot(double(a.x) - b.x, double(a.y) - b.y, double(a.z) - b.z);
+    sum += length;
+    if (length > 0.0) shortest = std::min(shortest, length);
+  }
+  return {shortest, sum};
+}
+double shortest_edge(const LineSet& lines) { return edge_lengths(lines).first; }
+
+// A cluster's colour in view A (by tie class: glyph_colour_slots; by rank
+// when the clusters are not listed): its edges' in view C.
+Rgba8 cluster_edge_color(const GlyphResult& glyphs, Index cluster) {
+  const std::vector<Index> slots =
+      glyph_colour_slots(glyphs.clusters, static_cast<Index>(labelled_cluster_count(glyphs.options.top_clusters)));
+  const Index slot = static_cast<std::size_t>(cluster) < slots.size() ? slots[static_cast<std::size_t>(cluster)] : cluster;
+  return to_rgba8(cluster_color(slot, glyphs.options.top_clusters));
+}
+
 // View C's scene for the cluster's cells and the points of their distinct
 // vertices (cell_points), both made once by the caller. With cell_quality
 // (a surface mesh) the cluster's faces are filled by it (triangles[0]) and
@@ -359,22 +413,9 @@ Scene cluster_scene(const HexMesh& mesh, const Topology& topology, const std::ve
   Scene scene;
   scene.origin = centre_of(cell_vertex_points);
   scene.lines.push_back(cell_edges(mesh, topology, only_neighbours, scene.origin, kNeighbourEdgeColor, 1.0f));
-  // In its colour in view A (by tie class: glyph_colour_slots; by rank when
-  // the clusters are not listed).
-  const std::vector<Index> slots =
-      glyph_colour_slots(glyphs.clusters, static_cast<Index>(labelled_cluster_count(glyphs.options.top_clusters)));
-  const Index slot = static_cast<std::size_t>(cluster) < slots.size() ? slots[static_cast<std::size_t>(cluster)] : cluster;
-  scene.lines.push_back(
-      cell_edges(mesh, topology, cells, scene.origin, to_rgba8(cluster_color(slot, glyphs.options.top_clusters)), 2.0f));
-  double edge_sum = 0.0, shortest = HUGE_VAL;
+  scene.lines.push_back(cell_edges(mesh, topology, cells, scene.origin, cluster_edge_color(glyphs, cluster), 2.0f));
   const LineSet& own = scene.lines.back();
-  for (std::size_t i = 0; i + 1 < own.positions.size(); i += 2) {
-    const Vec3f& a = own.positions[i];
-    const Vec3f& b = own.positions[i + 1];
-    const double length = std::hypot(double(a.x) - b.x, double(a.y) - b.y, double(a.z) - b.z);
-    edge_sum += length;
-    if (length > 0.0) shortest = std::min(shortest, length);
-  }
+  const auto [shortest, edge_sum] = edge_lengths(own);
   // On a surface mesh the faces are the subject: a glyph keeps within the
   // shortest edge's fraction (a sliver's glyph hid the sliver), but not
   // below kClusterGlyphMinEdgeFraction of the mean edge (a dot).
@@ -383,16 +424,30 @@ Scene cluster_scene(const HexMesh& mesh, const Topology& topology, const std::ve
       own.positions.empty()  ? HUGE_VAL
       : cell_quality.empty() ? kClusterGlyphMaxEdgeFraction * mean_edge
                              : std::max(kClusterGlyphMaxEdgeFraction * shortest, kClusterGlyphMinEdgeFraction * mean_edge);
+  // Size is severity, as in view A: every glyph scaled by one factor (their
+  // radii keep their ratios, 1 - quality), the largest at most max_radius
+  // (each capped alone, a fold's inverted glyphs were all one size: 47g
+  // review #3).
+  const std::span<const Index> members = cluster_members(glyphs, cluster);
+  double largest = 0.0;
+  for (Index v : members) largest = std::max(largest, glyphs.vertex_radius[static_cast<std::size_t>(v)]);
+  const double factor = largest > 0.0 ? std::min(kClusterGlyphScale, max_radius / largest) : kClusterGlyphScale;
+  // The worst member first (lowest quality, ties the smallest id): the one
+  // cluster_shot rings.
+  std::vector<Index> drawn;
+  for (Index v : members)
+    if (glyphs.vertex_radius[static_cast<std::size_t>(v)] > 0.0) drawn.push_back(v);
+  const auto worst = std::min_element(drawn.begin(), drawn.end(), [&](Index a, Index b) {
+    return vertex_quality[static_cast<std::size_t>(a)] < vertex_quality[static_cast<std::size_t>(b)];
+  });
+  if (worst != drawn.end()) std::rotate(drawn.begin(), worst, worst + 1);
   SphereSet spheres;
-  if (cluster >= 0 && static_cast<std::size_t>(cluster) + 1 < glyphs.cluster_offsets.size())
-    for (Index i = glyphs.cluster_offsets[static_cast<std::size_t>(cluster)];
-         i < glyphs.cluster_offsets[static_cast<std::size_t>(cluster) + 1]; ++i) {
-      const auto v = static_cast<std::size_t>(glyphs.cluster_vertices[static_cast<std::size_t>(i)]);
-      if (!(glyphs.vertex_radius[v] > 0.0)) continue;
-      spheres.centers.push_back(to_vec3f(mesh.points[v] - scene.origin));
-      spheres.radii.push_back(static_cast<float>(std::min(kClusterGlyphScale * glyphs.vertex_radius[v], max_radius)));
-      spheres.colors.push_back(to_rgba8(quality_color(vertex_quality[v])));
-    }
+  for (Index member : drawn) {
+    const auto v = static_cast<std::size_t>(member);
+    spheres.centers.push_back(to_vec3f(mesh.points[v] - scene.origin));
+    spheres.radii.push_back(static_cast<float>(factor * glyphs.vertex_radius[v]));
+    spheres.colors.push_back(to_rgba8(quality_color(vertex_quality[v])));
+  }
   scene.spheres.push_back(std::move(spheres));
   if (!cell_quality.empty()) {
     // The inverted faces in a set of their own (triangles[1]), which
@@ -402,8 +457,13 @@ Scene cluster_scene(const HexMesh& mesh, const Topology& topology, const std::ve
       (static_cast<std::size_t>(c) < cell_quality.size() && cell_quality[static_cast<std::size_t>(c)] < 0.0 ? inverted
                                                                                                           : rest)
           .push_back(c);
-    scene.triangles.push_back(outer_faces(mesh, topology, rest, scene.origin, kRegionFaceColor, cell_quality));
-    scene.triangles.push_back(outer_faces(mesh, topology, inverted, scene.origin, kRegionFaceColor, cell_quality));
+    // Lit as view A's face fill (kSurfaceFillAmbient): a face's shade stays
+    // near its colour on the bar (47g review #5: a quarter's ambient darkened
+    // a khaki face off the bar).
+    for (const std::vector<Index>* set : {&rest, &inverted}) {
+      scene.triangles.push_back(outer_faces(mesh, topology, *set, scene.origin, kRegionFaceColor, cell_quality));
+      scene.triangles.back().ambient = kSurfaceFillAmbient;
+    }
   }
   scene.translucent.push_back(
       outer_faces(mesh, topology, cell_quality.empty() ? neighbours : only_neighbours, scene.origin, kRegionFaceColor));
@@ -418,6 +478,172 @@ Scene build_cluster_scene(const HexMesh& mesh, const Topology& topology, const s
   return cluster_scene(mesh, topology, vertex_quality, glyphs, cluster, region.cells, cell_points(mesh, region.cells));
 }
 
+namespace {
+
+// An annulus from radius r0 to r1 about c (relative to the scene's origin)
+// in the plane facing the camera (screen axes right and up), unlit.
+void append_annulus(TriangleSet& set, const Vec3& c, double r0, double r1, const ScreenAxes& axes, Rgba8 color) {
+  constexpr int kSegments = 64;
+  const auto base = static_cast<std::uint32_t>(set.positions.size());
+  for (int k = 0; k < kSegments; ++k) {
+    const double a = 2.0 * 3.14159265358979323846 * k / kSegments;
+    const Vec3 u = std::cos(a) * axes.right + std::sin(a) * axes.up;
+    set.positions.push_back(to_vec3f(c + r0 * u));
+    set.positions.push_back(to_vec3f(c + r1 * u));
+    set.colors.insert(set.colors.end(), 2, color);
+  }
+  for (std::uint32_t k = 0; k < kSegments; ++k) {
+    const std::uint32_t i = base + 2 * k, j = base + 2 * ((k + 1) % kSegments);
+    set.indices.insert(set.indices.end(), {i, i + 1, j + 1, i, j + 1, j});
+  }
+}
+
+// An inset (DetailInset, no scene yet) for a view seen by `camera` in
+// `view`, zoomed `zoom` times on `at`, in the corner of the view whose rect
+// holds neither `at` nor any of `keep_clear` (screen rects) and the fewest
+// of `points` on screen (none when every corner is taken).
+std::optional<DetailInset> place_inset(const Camera& camera, const PixelRect& view, const Vec3& at, double zoom,
+                                       std::span<const Vec3> points, std::span<const PixelRect> keep_clear) {
+  const double pixels_per_unit = view.height / camera.ortho_height;
+  DetailInset inset;
+  inset.rect = {0, 0, static_cast<int>(kInsetShare * view.width), static_cast<int>(kInsetShare * view.height)};
+  inset.zoom = zoom;
+  inset.camera = camera;
+  inset.camera.eye = camera.eye + (at - camera.target);
+  inset.camera.target = at;
+  inset.camera.ortho_height = inset.rect.height / (pixels_per_unit * inset.zoom);
+  const double aspect = static_cast<double>(view.width) / view.height;
+  const auto screen = [&](const Vec3& q) {
+    const Vec3 ndc = project_to_ndc(camera, aspect, q);
+    return std::array<double, 2>{view.x + 0.5 * (ndc.x + 1.0) * view.width, view.y + 0.5 * (1.0 - ndc.y) * view.height};
+  };
+  const auto [ax, ay] = screen(at);
+  std::size_t fewest = std::numeric_limits<std::size_t>::max();
+  for (int corner = 0; corner < 4; ++corner) {
+    const int x = corner % 2 == 0 ? view.x : view.x + view.width - inset.rect.width;
+    const int y = corner < 2 ? view.y : view.y + view.height - inset.rect.height;
+    const PixelRect rect{x, y, inset.rect.width, inset.rect.height};
+    const auto holds = [&](double px, double py) {
+      return px >= x && px <= x + rect.width && py >= y && py <= y + rect.height;
+    };
+    if (holds(ax, ay) || std::any_of(keep_clear.begin(), keep_clear.end(),
+                                     [&](const PixelRect& r) { return boxes_overlap(r, rect); }))
+      continue;
+    std::size_t n = 0;
+    for (const Vec3& q : points) {
+      const auto [px, py] = screen(q);
+      n += holds(px, py);
+    }
+    if (n < fewest) fewest = n, inset.rect.x = x, inset.rect.y = y;
+  }
+  if (fewest == std::numeric_limits<std::size_t>::max()) return std::nullopt;
+  // The area it shows, boxed in the view.
+  const int box_w = static_cast<int>(std::lround(inset.rect.width / inset.zoom)),
+            box_h = static_cast<int>(std::lround(inset.rect.height / inset.zoom));
+  inset.box = {static_cast<int>(std::lround(ax)) - box_w / 2, static_cast<int>(std::lround(ay)) - box_h / 2, box_w, box_h};
+  return inset;
+}
+
+// A frame about a rect in kInsetColor (an inset's, or the area it shows).
+void frame_rect(Image& figure, const PixelRect& p, const AnnotationStyle& style) {
+  const double w = std::max(2.0, 2.0 * style.scale);
+  draw_line(figure, p.x, p.y, p.x + p.width, p.y, kInsetColor, w);
+  draw_line(figure, p.x + p.width, p.y, p.x + p.width, p.y + p.height, kInsetColor, w);
+  draw_line(figure, p.x + p.width, p.y + p.height, p.x, p.y + p.height, kInsetColor, w);
+  draw_line(figure, p.x, p.y + p.height, p.x, p.y, kInsetColor, w);
+}
+
+// Draws the inset over the figure: its scene framed in its rect, labelled
+// `inset: xN at <at_what>` (the area it shows boxed first: frame_rect of
+// inset.box, under any labels).
+void draw_inset(Image& figure, const DetailInset& inset, Renderer& renderer, const AnnotationStyle& style,
+                Rgba8 background, const char* at_what) {
+  const Image view = renderer.render(inset.scene, inset.camera, inset.rect.width, inset.rect.height);
+  paste(figure, view, inset.rect.x, inset.rect.y);
+  frame_rect(figure, inset.rect, style);
+  AnnotationStyle label = style;
+  label.text_color = kInsetColor;
+  const int size = std::max(11, static_cast<int>(std::lround(20 * style.scale)));
+  char text[64];
+  std::snprintf(text, sizeof text, "inset: x%.0f at %s", inset.zoom, at_what);
+  const PixelRect extent = text_extent(text, size, style);
+  fill_rect(figure, {inset.rect.x + 4, inset.rect.y + 4, extent.width + 8, size + 8}, background);
+  draw_text(figure, inset.rect.x + 8, inset.rect.y + 4 + size, text, size, label);
+}
+
+// The ring about the first glyph of `spheres` (the worst vertex's) as view
+// A rings its worst: a pale halo, the yellow band (kWorstBandColor), a dark
+// ring, a pale halo, in pixels of a view `height` pixels high.
+TriangleSet worst_ring(const SphereSet& spheres, const Camera& camera, int height, const AnnotationStyle& style) {
+  TriangleSet marks;
+  marks.is_lit = false;
+  const double pixel = camera.ortho_height / std::max(1, height), s = style.scale;
+  const Vec3 c{spheres.centers.at(0).x, spheres.centers[0].y, spheres.centers[0].z};
+  const double r = spheres.radii[0], a = r + 0.5 * pixel, b = r + 1.5 * s * pixel, d = r + 5.0 * s * pixel,
+               e = r + 7.5 * s * pixel, g = r + 9.0 * s * pixel;
+  const ScreenAxes axes = screen_axes(camera);
+  append_annulus(marks, c, a, b, axes, style.background);
+  append_annulus(marks, c, b, d, axes, kWorstBandColor);
+  append_annulus(marks, c, d, e, axes, style.text_color);
+  append_annulus(marks, c, e, g, axes, style.background);
+  return marks;
+}
+
+// View C of a surface mesh, once its camera is set (47g review #3, #4, #6,
+// #8): the cluster's edges lifted towards the eye by the largest glyph's
+// radius, so they are drawn over the glyphs (the vertex where a fold's edges
+// meet stays in sight) and over a folded surface crossing itself (a fill
+// boundary with no line); the worst vertex's glyph (the sphere set's first)
+// ringed as view A rings its worst (a pale halo, kWorstBandColor, a dark
+// ring); and a legend entry for each of these marks and for the neighbours.
+void surface_cluster_marks(ClusterShot& shot, const Figure& f, const std::vector<Vec3>& points, double shortest) {
+  const SphereSet& spheres = shot.scene.spheres.at(0);
+  const double largest = spheres.radii.empty() ? 0.0 : *std::max_element(spheres.radii.begin(), spheres.radii.end());
+  const Vec3 look = normalized(shot.camera.target - shot.camera.eye);
+  const double lift = kClusterEdgeLift * largest;
+  for (Vec3f& p : shot.scene.lines.at(1).positions) p = to_vec3f(Vec3{p.x, p.y, p.z} - lift * look);
+  // The eye backs off by as much (the camera framed the glyphs' extremes:
+  // the lifted edges lay before its near plane, clipped).
+  shot.camera.eye = shot.camera.eye - lift * look;
+  shot.camera.far_plane += lift;
+  if (!spheres.centers.empty())
+    shot.scene.overlay.push_back(worst_ring(spheres, shot.camera, f.layout.view.height, f.style));
+  // A cluster of slivers (its shortest edge a few pixels): an inset zoomed
+  // on the worst vertex, its shortest edge kInsetEdgePixels long there (47g
+  // review #5: Dolphin_padded's strip of slivers was a 60-150 px band, its
+  // three glyphs one blob).
+  const double pixels_per_unit = f.layout.view.height / shot.camera.ortho_height;
+  if (spheres.centers.empty() || !(shortest > 0.0) ||
+      shortest * pixels_per_unit >= kInsetBelowPixels * f.style.scale)
+    return;
+  const Vec3 worst = shot.scene.origin + Vec3{spheres.centers[0].x, spheres.centers[0].y, spheres.centers[0].z};
+  std::optional<DetailInset> inset = place_inset(shot.camera, f.layout.view, worst,
+                                                 kInsetEdgePixels * f.style.scale / (shortest * pixels_per_unit), points, {});
+  if (!inset) return;
+  // Its glyphs at most 0.35 of the shortest edge (no floor: there the
+  // sliver is the subject), its ring in its own pixels.
+  inset->scene = shot.scene;
+  const double glyph_scale = std::min(1.0, kClusterGlyphMaxEdgeFraction * shortest / largest);
+  for (float& r : inset->scene.spheres.at(0).radii) r = static_cast<float>(r * glyph_scale);
+  inset->scene.overlay = {worst_ring(inset->scene.spheres[0], inset->camera, inset->rect.height, f.style)};
+  shot.inset = std::move(inset);
+  shot.swatches.push_back({to_color(kInsetColor), "box: zoomed in the inset", SwatchShape::line});
+}
+
+// View C's legend entries on a surface mesh, one per mark (47g review #8):
+// the cluster's edges in its colour, the worst vertex's ring, the
+// neighbours' pale faces (kRegionFaceColor over the background) and edges.
+std::vector<ColorBarSwatch> surface_cluster_swatches(const GlyphResult& glyphs, Index cluster,
+                                                     const AnnotationStyle& style) {
+  const Rgba8 pale = blend_over(kRegionFaceColor, style.background);
+  return {{to_color(cluster_edge_color(glyphs, cluster)), "the cluster's edges", SwatchShape::thick_line},
+          {to_color(style.text_color), "ring: its worst vertex", SwatchShape::solid_ring},
+          {to_color(pale), "neighbour faces", SwatchShape::box},
+          {to_color(kNeighbourEdgeColor), "neighbour edges", SwatchShape::line}};
+}
+
+}  // namespace
+
 ClusterShot cluster_shot(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
                          const GlyphResult& glyphs, Index cluster, const DetailViewOptions& options) {
   const ClusterRegion region = cluster_region(mesh, topology, glyphs, cluster);
@@ -425,7 +651,9 @@ ClusterShot cluster_shot(const HexMesh& mesh, const Topology& topology, const st
   if (has_non_hex_cells(mesh)) shot.cell_kinds = cell_kinds_legend(mesh, region.cells);
   if (!options.cell_quality.empty())
     shot.cell_kinds = std::string(kClusterFaceFillLegend) + "\n" + cell_kinds_legend(mesh, region.cells);
-  const Figure f = detail_figure(options, shot.cell_kinds);
+  if (!options.cell_quality.empty())
+    shot.swatches = surface_cluster_swatches(glyphs, cluster, annotation_style_for(options.height));
+  const Figure f = detail_figure(options, shot.cell_kinds, false, false, shot.swatches);
   // The camera frames the cells' vertices and the extremes of every glyph.
   std::vector<Vec3> points = cell_points(mesh, region.cells);
   shot.scene = cluster_scene(mesh, topology, vertex_quality, glyphs, cluster, region.cells, points, options.cell_quality);
@@ -465,13 +693,19 @@ ClusterShot cluster_shot(const HexMesh& mesh, const Topology& topology, const st
     lift(shot.scene.triangles[1].positions, towards_eye);
     for (LineSet& lines : shot.scene.lines) lift(lines.positions, 2.0 * towards_eye);
   }
+  if (!options.cell_quality.empty()) surface_cluster_marks(shot, f, points, shortest_edge(shot.scene.lines.at(1)));
   return shot;
 }
 
 Image render_cluster_shot(const ClusterShot& shot, const DetailViewOptions& options, Renderer& renderer) {
-  const Figure f = detail_figure(options, shot.cell_kinds);
-  return compose(options, f, renderer.render(shot.scene, shot.camera, f.layout.view.width, f.layout.view.height),
-                 shot.cell_kinds);
+  const Figure f = detail_figure(options, shot.cell_kinds, false, false, shot.swatches);
+  Image figure = compose(options, f, renderer.render(shot.scene, shot.camera, f.layout.view.width, f.layout.view.height),
+                         shot.cell_kinds, false, shot.swatches);
+  if (shot.inset) {
+    frame_rect(figure, shot.inset->box, f.style);
+    draw_inset(figure, *shot.inset, renderer, f.style, options.background, "the worst vertex");
+  }
+  return figure;
 }
 
 Image render_cluster_view(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
@@ -740,6 +974,25 @@ Vec3 choose_local_viewpoint(std::span<const Vec3> face_areas, std::span<const Ve
   return chosen;
 }
 
+namespace {
+
+// View D's legend entries for its own marks (47g review #8): the faces at
+// the vertex (kRegionFaceColor once over the background, and twice where a
+// fold stacks two of them: a surface mesh only, a volume's cells stack
+// many), the discs' rims and the vertex's dot.
+std::vector<ColorBarSwatch> local_swatches(const DetailViewOptions& options) {
+  std::vector<ColorBarSwatch> out;
+  if (!options.cell_quality.empty()) {
+    const Rgba8 once = blend_over(kRegionFaceColor, options.background), twice = blend_over(kRegionFaceColor, once);
+    out = {{to_color(once), "faces at the vertex"}, {to_color(twice), "two faces stacked (a fold)"}};
+  }
+  out.push_back({to_color(kLocalRimColor), "disc rim (1.12 x its disc)", SwatchShape::solid_ring});
+  out.push_back({Color{0.0, 0.0, 0.0}, "the vertex", SwatchShape::solid_ring});
+  return out;
+}
+
+}  // namespace
+
 // The corner markers (the scene's first sphere set) as flat discs facing the
 // camera, each on a dark rim, over everything (Scene::overlay): behind the
 // ring's translucent faces a sphere's colour washed out towards grey, so a
@@ -823,7 +1076,6 @@ Scene local_marker_discs(const Scene& scene, const Camera& camera, const std::ve
   const Vec3 d = normalized(camera.target - camera.eye);
   const auto [right, up] = screen_axes(camera);
   constexpr int kSegments = 32;
-  constexpr Rgba8 kRim{40, 40, 46, 255};
   TriangleSet discs;
   discs.is_lit = false;
   const auto disc = [&](const Vec3& c, double r, Rgba8 color) {
@@ -852,7 +1104,7 @@ Scene local_marker_discs(const Scene& scene, const Camera& camera, const std::ve
   for (std::size_t k = 0; k < order.size(); ++k) {
     const std::size_t i = order[k];
     const double r = markers.radii[i];
-    disc(in_plane(markers.centers[i], 2.0 * static_cast<double>(k) + 1.0), kLocalRimScale * r, kRim);  // its rim just under it
+    disc(in_plane(markers.centers[i], 2.0 * static_cast<double>(k) + 1.0), kLocalRimScale * r, kLocalRimColor);  // its rim just under it
     disc(in_plane(markers.centers[i], 2.0 * static_cast<double>(k) + 2.0), r, markers.colors[i]);
   }
   // The vertex: its colour (white) inside a black ring, the legend's
@@ -899,6 +1151,85 @@ bool local_label_clear(const LocalShot& shot, std::size_t i, std::span<const std
   return true;
 }
 
+namespace {
+
+const Vec3& p_of(const HexMesh& mesh, Index v) { return mesh.points.at(static_cast<std::size_t>(v)); }
+
+// View D's inset on a surface mesh where a sliver's corner disc (its face's
+// shortest edge under kInsetSliverRatio of its longest) as drawn is wider
+// than its room in its face (from its anchor to the face's nearest edge;
+// 47g review #6: Dolphin_padded's 0.090 disc covered its sliver): the ring's faces and edges zoomed on the vertex p,
+// each corner's disc at its anchor inside its own face (build_local_scene's,
+// not moved apart), at most kInsetDiscPixels in radius, its rim within
+// kInsetRoomShare of the way to its face's nearest edge, in a corner of the
+// view free of labels, discs and the table.
+void local_inset(LocalShot& shot, const HexMesh& mesh, const Scene& scene, const std::vector<VertexCorner>& corners,
+                 const std::vector<double>& values, const Vec3& p, double size, double scale) {
+  // Each disc's room: from its anchor to its face's nearest edge.
+  const SphereSet& anchors = scene.spheres.at(0);
+  std::vector<double> room(std::min(anchors.centers.size(), corners.size()), HUGE_VAL);
+  for (std::size_t i = 0; i < room.size(); ++i) {
+    const Vec3 c = scene.origin + Vec3{anchors.centers[i].x, anchors.centers[i].y, anchors.centers[i].z};
+    const CellRef cell = any_cell(mesh, corners[i].hex);
+    for (int k = 0; k < cell.num_corners; ++k) {
+      const Vec3& a = mesh.points[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>(k)])];
+      const Vec3& b =
+          mesh.points[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>((k + 1) % cell.num_corners)])];
+      const double t = std::clamp(dot(c - a, b - a) / std::max(dot(b - a, b - a), 1e-300), 0.0, 1.0);
+      room[i] = std::min(room[i], norm(c - (a + t * (b - a))));
+    }
+  }
+  // Needed when a disc as the view draws it (with its rim) is wider than its
+  // room; zoomed so every room holds a disc of kInsetDiscPixels (at least
+  // kInsetMinZoom, at most kInsetMaxZoom times).
+  const double tightest = room.empty() ? HUGE_VAL : *std::min_element(room.begin(), room.end());
+  const double pixels_per_unit = shot.layout.view.height / shot.camera.ortho_height;
+  bool crowded = false;
+  for (std::size_t i = 0; i < room.size() && i < shot.labels.size(); ++i) {
+    const CellRef cell = any_cell(mesh, corners[i].hex);
+    double shortest = HUGE_VAL, longest = 0.0;
+    for (int k = 0; k < cell.num_corners; ++k) {
+      const double length =
+          norm(mesh.points[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>(k)])] -
+               mesh.points[static_cast<std::size_t>(cell.corners[static_cast<std::size_t>((k + 1) % cell.num_corners)])]);
+      shortest = std::min(shortest, length), longest = std::max(longest, length);
+    }
+    // A sliver's disc (a fold's large discs overlap their faces' edges by
+    // design: view D moves them apart and labels them).
+    crowded = crowded || (shortest < kInsetSliverRatio * longest && shot.labels[i].marker.radius > room[i] * pixels_per_unit);
+  }
+  if (!crowded || !(tightest > 0.0)) return;
+  const double zoom = std::clamp(kInsetDiscPixels * kLocalRimScale * scale / (kInsetRoomShare * tightest * pixels_per_unit),
+                                 kInsetMinZoom, kInsetMaxZoom);
+  std::vector<PixelRect> taken;
+  for (const LocalLabel& l : shot.labels) {
+    if (l.placed) taken.push_back(l.box);
+    const ScreenDisc& m = l.marker;
+    taken.push_back({static_cast<int>(m.x - m.radius), static_cast<int>(m.y - m.radius),
+                     static_cast<int>(2 * m.radius) + 1, static_cast<int>(2 * m.radius) + 1});
+  }
+  if (shot.table_box.width > 0) taken.push_back(shot.table_box);
+  std::vector<Vec3> points;
+  for (const Vec3f& q : scene.translucent.at(0).positions) points.push_back(scene.origin + Vec3{q.x, q.y, q.z});
+  std::optional<DetailInset> inset = place_inset(shot.camera, shot.layout.view, p, zoom, points, taken);
+  if (!inset) return;
+  const double unit = inset->camera.ortho_height / inset->rect.height;  // model units per inset pixel
+  Scene zoomed = scene;
+  SphereSet& markers = zoomed.spheres.at(0);
+  // Size still grows with 1 - SJ (half to all of kInsetDiscPixels, by each
+  // marker's radius over the largest), each rim inside its face: at most
+  // kInsetRoomShare of its room.
+  const double largest = markers.radii.empty() ? 1.0 : *std::max_element(markers.radii.begin(), markers.radii.end());
+  for (std::size_t i = 0; i < room.size(); ++i)
+    markers.radii[i] = static_cast<float>(std::min(kInsetDiscPixels * scale * unit * (0.5 + 0.5 * markers.radii[i] / largest),
+                                                   kInsetRoomShare * room[i] / kLocalRimScale));
+  zoomed.spheres.at(1).radii.at(0) = static_cast<float>(kInsetDotPixels * scale * unit / kLocalDiscScale);
+  inset->scene = local_marker_discs(zoomed, inset->camera, values, size);
+  shot.inset = std::move(inset);
+}
+
+}  // namespace
+
 LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v,
                      const DetailViewOptions& options) {
   LocalShot shot;
@@ -912,7 +1243,8 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
   shot.legend = std::string(kLocalMarkerSizeLegend) +
                 (shot.kind_swatches ? "\ncorners clamped to [-1, 1]\n" + cell_kinds_legend(mesh, ring)
                                     : std::string());
-  const Figure f = detail_figure(options, shot.legend, shot.kind_swatches, true);
+  const std::vector<ColorBarSwatch> swatches = local_swatches(options);
+  const Figure f = detail_figure(options, shot.legend, shot.kind_swatches, true, swatches);
   shot.style = f.style;
   shot.layout = f.layout;
   // The discs at kLocalDiscScale of the markers' size: at full size a ring
@@ -936,7 +1268,7 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
   shot.table_text_size = std::max(10, static_cast<int>(std::lround(0.8 * shot.text_size)));
   std::vector<std::string> texts;
   for (const VertexCorner& c : corners)
-    texts.push_back(format_value(c.value) + "  " + std::string(cell_kind_name(c.kind)) + " " + std::to_string(c.hex));
+    texts.push_back(quality_text(c.value) + "  " + std::string(cell_kind_name(c.kind)) + " " + std::to_string(c.hex));
   // Worst corner first: it gets the nearest free place and number 1.
   std::vector<std::size_t> order(corners.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -1223,6 +1555,7 @@ LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<co
     lay_out_with_table();
     if (!numbers_worse_first(shot, best)) shot = std::move(best);
   }
+  if (!options.cell_quality.empty()) local_inset(shot, mesh, scene, corners, values, p_of(mesh, v), mean_edge_at(mesh, corners, v), f.style.scale);
   return shot;
 }
 
@@ -1255,10 +1588,12 @@ Image render_local_shot(const LocalShot& shot, const DetailViewOptions& options,
     legend.insert(std::string_view(kLocalMarkerSizeLegend).size(),
                   "\n" + std::to_string(shot.num_left_out) + (shot.num_left_out == 1 ? " corner" : " corners") +
                       " not numbered\n(listed at the table's end)");
-  const Figure f = detail_figure(options, shot.legend, shot.kind_swatches, true);
-  ColorBar bar = detail_color_bar(legend, shot.kind_swatches, true);
-  // The vertex's dot: a white disc on a black ring, its own legend entry.
-  bar.swatches.push_back({Color{0.0, 0.0, 0.0}, "the vertex", SwatchShape::solid_ring});
+  // The vertex's dot (a white disc on a black ring), the faces and the
+  // discs' rims: their own legend entries.
+  std::vector<ColorBarSwatch> swatches = local_swatches(options);
+  if (shot.inset) swatches.push_back({to_color(kInsetColor), "box: zoomed in the inset", SwatchShape::line});
+  const Figure f = detail_figure(options, shot.legend, shot.kind_swatches, true, swatches);
+  const ColorBar bar = detail_color_bar(legend, shot.kind_swatches, true, swatches);
   Image figure = make_image(options.width, options.height, options.background);
   const PixelRect& view = shot.layout.view;  // narrowed by the table, if any
   paste(figure, renderer.render(shot.scene, shot.camera, view.width, view.height), view.x, view.y);
@@ -1268,6 +1603,7 @@ Image render_local_shot(const LocalShot& shot, const DetailViewOptions& options,
   // number on its box filled with the background (as view A's), so that no
   // cell edge runs through its text (46r review); no leader meets another
   // box (local_shot).
+  if (shot.inset) frame_rect(figure, shot.inset->box, f.style);  // under the leaders and labels
   Rgba8 halo = options.background;
   halo.a = 200;
   const double width = local_leader_width(f.style.scale);
@@ -1318,6 +1654,7 @@ Image render_local_shot(const LocalShot& shot, const DetailViewOptions& options,
       draw_text(figure, x + text_x, y, row.text, shot.table_text_size, label_style);
     }
   }
+  if (shot.inset) draw_inset(figure, *shot.inset, renderer, f.style, options.background, "the vertex");
   return figure;
 }
 

@@ -67,10 +67,26 @@ Image render_cluster_view(const HexMesh& mesh, const Topology& topology, const s
 
 // The same in two steps: the scene and its camera (no drawing; safe to run
 // for several clusters at once), then the figure drawn from them.
+// The inset of views C and D where the faces are slivers (an edge a few
+// pixels on screen: 47g review #5, #6): its scene drawn from `camera`,
+// zoomed on the worst vertex (C) or the vertex (D), in `rect` (figure
+// pixels, a corner of the view), the area it shows boxed at `box`.
+struct DetailInset {
+  Scene scene;
+  Camera camera;
+  PixelRect rect, box;
+  double zoom = 1.0;  // its pixels per model unit over the view's
+};
+
 struct ClusterShot {
   Scene scene;
   Camera camera;
   std::string cell_kinds;  // on a mesh with non-hex cells, the region's kinds (cell_kinds_legend) for the legend
+  // A surface mesh: the legend's entries for the figure's marks (the
+  // cluster's edges, its worst vertex's ring, the neighbours' faces and
+  // edges), under the colour bar.
+  std::vector<ColorBarSwatch> swatches;
+  std::optional<DetailInset> inset;
 };
 ClusterShot cluster_shot(const HexMesh& mesh, const Topology& topology, const std::vector<double>& vertex_quality,
                          const GlyphResult& glyphs, Index cluster, const DetailViewOptions& options);
@@ -275,6 +291,10 @@ struct LocalShot {
   int table_text_size = 0;  // pixels
   PixelRect table_box;      // the numbered corners' table (width 0: none); layout.view is narrowed by it
   bool kind_swatches = false;  // the legend's edge colour per kind (a mesh with non-hex cells)
+  // A surface mesh's ring with an edge at the vertex a few pixels long: the
+  // faces at the vertex zoomed, each corner's disc at its place inside its
+  // face (no labels: the view's name them), in a corner free of labels.
+  std::optional<DetailInset> inset;
 };
 LocalShot local_shot(const HexMesh& mesh, const Topology& topology, std::span<const double> corner_values, Index v,
                      const DetailViewOptions& options);

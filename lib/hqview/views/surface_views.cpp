@@ -43,10 +43,6 @@ const std::array<FillBin, 5> kFillBins{{{0.0, to_rgba8(kInvertedColor), "inverte
                                         {0.9, Rgba8{253, 212, 158, 255}, "0.6 to 0.9"},
                                         {1.0, Rgba8{250, 247, 240, 255}, "0.9 to 1"}}};
 
-// Lit faces keep most of their colour (TriangleSet::ambient): a shaded
-// face's bin stays readable against its legend swatch.
-constexpr float kSurfaceFillAmbient = 0.7f;
-
 // The bin of q, or -1 (undefined: NaN or Verdict's sentinel).
 int fill_bin(double q) {
   if (std::isnan(q) || is_verdict_sentinel(q)) return -1;

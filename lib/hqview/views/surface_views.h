@@ -23,6 +23,11 @@
 
 namespace hq {
 
+// Lit faces keep most of their colour (TriangleSet::ambient): a shaded
+// face's fill stays readable against its legend swatch or colour bar (view
+// A's bins, view C's faces).
+inline constexpr float kSurfaceFillAmbient = 0.7f;
+
 // Whether view `id` (kViews) is drawn for a surface mesh: the overview, A,
 // B, C (the cluster's faces), D (a vertex's faces and their corners), E,
 // the histograms, the structure (its quad structure) and the thumbnail.

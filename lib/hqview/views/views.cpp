@@ -22,6 +22,7 @@
 #include "hqview/analysis/resting_up.h"
 #include "hqview/core/error.h"
 #include "hqview/core/number_format.h"
+#include "hqview/core/quality_text.h"
 #include "hqview/core/progress.h"
 #include "hqview/core/stop.h"
 #include "hqview/core/text.h"
@@ -312,7 +313,7 @@ std::vector<ViewFile> build_clusters(ViewContext& c) {
   for (std::size_t k = 0; k < c.num_top; ++k) {
     const AggregatedGlyph& g = c.glyphs->clusters[k];
     detail[k].title = c.name + ": cluster #" + std::to_string(k) + " (" + std::to_string(g.size) +
-                      " glyphs, reduced, min quality " + std::to_string(g.min_quality).substr(0, 6) +
+                      " glyphs, reduced, min quality (lowest corner) " + quality_text(g.min_quality) +
                       ") and its neighbours";
   }
   std::vector<ClusterShot> shots(c.num_top);
