@@ -255,9 +255,14 @@ StatisticsOptions metric_statistics_options(std::string_view name) {
 CellMetricSummary corner_summary(std::span<const double> values, std::span<const std::uint8_t> masks, int C,
                                  std::vector<double>& sorted) {
   const auto per_cell = static_cast<std::size_t>(C);
-  std::vector<std::uint8_t> degenerate(values.size());
-  for (std::size_t c = 0; c < masks.size(); ++c)
-    for (std::size_t i = 0; i < per_cell; ++i) degenerate[c * per_cell + i] = (masks[c] >> i) & 1u;
+  // One flag per corner value, made only when some corner is degenerate
+  // (none flagged: the same statistics without the array).
+  std::vector<std::uint8_t> degenerate;
+  if (std::any_of(masks.begin(), masks.end(), [](std::uint8_t m) { return m != 0; })) {
+    degenerate.resize(values.size());
+    for (std::size_t c = 0; c < masks.size(); ++c)
+      for (std::size_t i = 0; i < per_cell; ++i) degenerate[c * per_cell + i] = (masks[c] >> i) & 1u;
+  }
   StatisticsOptions options;
   options.histogram_min = -1.0;
   options.histogram_max = 1.0;
