@@ -214,7 +214,7 @@ template <int N>
 struct HalfFaces {
   using Face = std::array<Index, N>;
   const NonHexBlocks* blocks = nullptr;
-  std::vector<Face> keys;          // sorted ids, by half-face
+  UntouchedVector<Face> keys;      // sorted ids, by half-face (filled whole by add, in parallel)
   std::vector<FaceRun> runs;
   std::vector<Index> order;        // half-faces by key, then half-face
   std::vector<std::size_t> groups; // starts of equal keys in `order`, then order.size()

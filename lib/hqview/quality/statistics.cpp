@@ -140,6 +140,8 @@ constexpr std::size_t kNumSlices = 16;
 template <class IsKept>
 void sorted_kept_values(std::span<const double> values, IsKept is_kept, std::size_t num_kept, KeyBuckets& buckets,
                         std::vector<double>& out) {
+  // A buffer too small is replaced, its old values not copied along.
+  if (out.capacity() < num_kept) out.clear();
   out.resize(num_kept);
   if (num_kept == 0) return;
   const std::size_t num_buckets = buckets.finish();
