@@ -273,16 +273,19 @@ void add_non_conforming_diagonal(const HexMesh& mesh, const NonConformingFace& n
 
 ColorBar overview_color_bar(const Topology& topology, const std::vector<double>& vertex_quality) {
   ColorBar bar = quality_color_bar();
-  // Only a hybrid mesh can have boundary vertices without a value (used by
-  // non-hex cells alone until their corners are analysed): a pure-hex
-  // legend keeps its bytes.
-  if (topology.across_kinds) {
-    bool undefined = false;
-    for (const BoundaryPolygon& face : boundary_polygons(topology))
-      for (int i = 0; i < face.size; ++i)
-        undefined = undefined || std::isnan(vertex_quality[static_cast<std::size_t>(face.v[static_cast<std::size_t>(i)])]);
-    if (undefined) bar.swatches.push_back({kUndefinedColor, "no value"});
-  }
+  // The legend names only what is drawn: "inverted (< 0)" when a drawn
+  // vertex is below 0 (issue 47: it was listed on meshes with none), "no
+  // value" when one has none (only a hybrid mesh's boundary vertices can:
+  // used by non-hex cells alone until their corners are analysed).
+  bool below = false, undefined = false;
+  for (const BoundaryPolygon& face : boundary_polygons(topology))
+    for (int i = 0; i < face.size; ++i) {
+      const double q = vertex_quality[static_cast<std::size_t>(face.v[static_cast<std::size_t>(i)])];
+      below = below || q < 0.0;
+      undefined = undefined || std::isnan(q);
+    }
+  if (!below) bar.swatches.clear();
+  if (undefined) bar.swatches.push_back({kUndefinedColor, "no value"});
   if (!topology.non_conforming_faces.empty())
     bar.swatches.push_back({to_color(kNonConformingColor),
                             "non-conforming (" + std::to_string(topology.non_conforming_faces.size()) + ", inside; dashed: split)"});
@@ -586,7 +589,8 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
   // (measured against their neighbours' orientation) and the reflex corners
   // of concave faces, which are not inverted there; "inverted (< 0)" named
   // neither (issue 47p).
-  if (options.inverted_are_reversed) {
+  if (options.inverted_are_reversed && !f.bar.swatches.empty() &&
+      to_rgba8(f.bar.swatches.front().color) == to_rgba8(kInvertedColor)) {
     f.bar.swatches.front().label = kCurvedBelowZeroLabel;
     f.bar.swatches.insert(f.bar.swatches.begin() + 1, {Color{}, std::string(kCurvedBelowZeroNote), SwatchShape::text});
   }
