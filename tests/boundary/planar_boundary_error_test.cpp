@@ -338,7 +338,12 @@ TEST(PlanarBoundaryError, TheFlatViewMarksTheNotchsFloorAndColoursBySign) {
   EXPECT_FALSE(f.camera.is_perspective);
   const double aspect = static_cast<double>(f.layout.view.width) / f.layout.view.height;
   const Vec3 ndc = project_to_ndc(f.camera, aspect, w.position);
-  const test::ColorPixels ring = test::pixels_of_color(image, f.layout.view, kWorstMarkerColor);
+  // The ring's pixels: within its radius and half its stroke of the floor's
+  // pixel (a leader line to a label away from it starts at the ring).
+  const double radius = std::max(8.0, 22.0 * f.style.scale), half_stroke = 0.5 * std::max(2.0, 4.0 * f.style.scale);
+  const test::ColorPixels ring =
+      test::pixels_of_color(image, f.layout.view, kWorstMarkerColor, f.layout.view.x + 0.5 * (ndc.x + 1.0) * f.layout.view.width,
+                            f.layout.view.y + 0.5 * (1.0 - ndc.y) * f.layout.view.height, radius + half_stroke + 1);
   EXPECT_GT(ring.count, 50);
   EXPECT_NEAR(ring.cx, f.layout.view.x + 0.5 * (ndc.x + 1.0) * f.layout.view.width, 1.5);
   EXPECT_NEAR(ring.cy, f.layout.view.y + 0.5 * (1.0 - ndc.y) * f.layout.view.height, 1.5);

@@ -561,7 +561,9 @@ PlanarErrorFigure planar_error_figure(const HexMesh& mesh, const BoundaryError& 
     x0 = std::min(x0, ndc.x), x1 = std::max(x1, ndc.x), y0 = std::min(y0, ndc.y), y1 = std::max(y1, ndc.y);
   }
   if (!(x1 > x0) || !(y1 > y0)) return f;
-  const double needed = 0.5 * (y1 - y0) * view.height + (1.0 - 0.5 * (x1 - x0)) * view.width;
+  // Room for a label line above and below the domain (draw_label_in_empty_space's box).
+  const int label = std::max(f.frame.style.min_text_size, static_cast<int>(std::lround(20 * f.frame.style.scale))) + 14;
+  const double needed = 0.5 * (y1 - y0) * view.height + (1.0 - 0.5 * (x1 - x0)) * view.width + 2 * label;
   const int legend = color_bar_height(f.frame.bar, f.frame.style, 1 << 20);
   const int height = std::max(options.height - static_cast<int>(std::floor(view.height - needed)),
                               f.frame.layout.legend.y + legend + static_cast<int>(std::lround(20 * f.frame.style.scale)));

@@ -162,8 +162,8 @@ std::vector<WorstError> planar_extremes(const HexMesh& mesh, const BoundaryError
 // legend's top, with a swatch for each line as it is drawn, the mesh's
 // edges and the domain, then a ring line per mark), its marks and its
 // options: as wide as asked, no taller than the domain at that width needs
-// (its margin above and below as wide as the one beside it) or the title
-// and legend need, the text sized for the height asked (issue 47: a 2 : 1
+// (its margin above and below as wide as the one beside it, plus a label
+// line's height each) or the title and legend need, the text sized for the height asked (issue 47: a 2 : 1
 // domain left a 200 px empty band above it on boundary.html).
 struct PlanarErrorFigure {
   ErrorFigureFrame frame;
