@@ -547,7 +547,7 @@ PlanarErrorFigure planar_error_figure(const HexMesh& mesh, const BoundaryError& 
   const Vec3 direction = -1.0 * error.plane_normal;
   const auto frame = [&](const BoundaryViewOptions& o) {
     ErrorFigureFrame e = error_figure_frame(points, error, scale, WorstError{}, direction, o, swatches);
-    e.bar.max_bar_height = static_cast<int>(std::lround(0.25 * options.height));
+    e.bar.max_bar_height = static_cast<int>(std::lround(options.height / 3.0));
     return e;
   };
   f.frame = frame(flat);

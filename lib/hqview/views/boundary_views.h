@@ -158,7 +158,7 @@ WorstError worst_planar_error(const HexMesh& mesh, const BoundaryError& error);
 // mesh's), each noted with its polyline; a sign with no such error has none.
 std::vector<WorstError> planar_extremes(const HexMesh& mesh, const BoundaryError& error);
 // The planar figure's frame (orthographic, along the plane's normal; the
-// shared colour bar, capped at a quarter of the height and drawn from the
+// shared colour bar, capped at a third of the height and drawn from the
 // legend's top, with a swatch for each line as it is drawn, the mesh's
 // edges and the domain, then a ring line per mark), its marks and its
 // options: as wide as asked, no taller than the domain at that width needs
