@@ -471,7 +471,11 @@ Scene build_planar_boundary_error_scene(const HexMesh& mesh, const Topology& top
   return scene;
 }
 
-WorstError worst_planar_error(const HexMesh& mesh, const BoundaryError& error) {
+namespace {
+
+// The worse of the mesh's (its boundary pieces and vertices) and the
+// outline's by worst_error's sign (ties: the mesh's), noted with its polyline.
+WorstError planar_worst(const HexMesh& mesh, const BoundaryError& error, int sign) {
   std::vector<Vec3> points;
   std::vector<double> values;
   for (std::size_t v = 0; v < error.vertex_error.size(); ++v)
@@ -479,34 +483,26 @@ WorstError worst_planar_error(const HexMesh& mesh, const BoundaryError& error) {
       points.push_back(mesh.points[v]);
       values.push_back(error.vertex_error[v]);
     }
-  WorstError w = worst_error(error.mesh_patches, points, values);
+  WorstError w = worst_error(error.mesh_patches, points, values, sign);
   w.note = ", mesh boundary";
-  WorstError outline = worst_error(error.reference_patches, error.reference_outline.points, error.outline_vertex_error);
-  if (outline.found && (!w.found || std::abs(outline.error) > std::abs(w.error))) {
+  WorstError outline =
+      worst_error(error.reference_patches, error.reference_outline.points, error.outline_vertex_error, sign);
+  const auto badness = [sign](double e) { return sign == 0 ? std::abs(e) : sign * e; };
+  if (outline.found && (!w.found || badness(outline.error) > badness(w.error))) {
     w = outline;
     w.note = ", reference outline";
   }
   return w;
 }
 
+}  // namespace
+
+WorstError worst_planar_error(const HexMesh& mesh, const BoundaryError& error) { return planar_worst(mesh, error, 0); }
+
 std::vector<WorstError> planar_extremes(const HexMesh& mesh, const BoundaryError& error) {
-  std::vector<Vec3> points;
-  std::vector<double> values;
-  for (std::size_t v = 0; v < error.vertex_error.size(); ++v)
-    if (std::isfinite(error.vertex_error[v])) {
-      points.push_back(mesh.points[v]);
-      values.push_back(error.vertex_error[v]);
-    }
   std::vector<WorstError> marks;
   for (const int sign : {1, -1}) {
-    WorstError w = worst_error(error.mesh_patches, points, values, sign);
-    w.note = ", mesh boundary";
-    WorstError outline =
-        worst_error(error.reference_patches, error.reference_outline.points, error.outline_vertex_error, sign);
-    if (outline.found && (!w.found || sign * outline.error > sign * w.error)) {
-      w = outline;
-      w.note = ", reference outline";
-    }
+    WorstError w = planar_worst(mesh, error, sign);
     w.what = sign > 0 ? "max outside" : "max inside";
     if (w.found) marks.push_back(std::move(w));
   }
