@@ -925,6 +925,8 @@ TEST(ErrorDensityViews, HiddenMaxNamesTheNearestSeenHex) {
   };
   EXPECT_EQ(undefined_swatches(), 0);
   density[static_cast<std::size_t>(far)] = 0.0;
+  options.width = 320;  // the legend only: small
+  options.height = 240;
   render_error_density_boundary(mesh, topology, density, direction, options, *renderer, nullptr, nullptr, &parts);
   EXPECT_EQ(undefined_swatches(), 1);
 }
