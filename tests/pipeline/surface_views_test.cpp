@@ -854,6 +854,43 @@ TEST(SurfaceViews, ATurnedSurfaceOfRevolutionStandsUprightInEveryView) {
   EXPECT_EQ(surface_view_up(a.mesh, a.topology, {0, 0, 1}), (Vec3{0, 0, 1}));
 }
 
+// Issue 47: a wide planar mesh's overview (seen along its normal) began
+// below index.html's first screen, centred under an empty band. A 4 x 1
+// strip of 8 x 2 quads in z = 0 at 1600 x 1200: its top edge lies as far
+// below the view's top as its left edge lies right of the view's left
+// (within 2 px; centred it was about 230 px down), its width unchanged.
+TEST(SurfaceViews, AWidePlanarOverviewHasItsTopUnderTheTitle) {
+  Mesh strip;
+  for (int j = 0; j <= 2; ++j)
+    for (int i = 0; i <= 8; ++i) strip.points.push_back({0.5 * i, 0.5 * j, 0.0});
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 8; ++i) {
+      const Index a = static_cast<Index>(j * 9 + i);
+      strip.quads.push_back({a, a + 1, a + 10, a + 9});
+    }
+  const Topology topology = build_topology(strip);
+  OverviewOptions options;
+  options.view_direction = {0, 0, -1};
+  options.up = {0, 1, 0};
+  options.outline_on_top = true;
+  options.outline_inverted_faces = true;
+  const std::vector<double> quality(strip.points.size(), 1.0);
+  const OverviewFrame f = quality_overview_frame(strip, topology, quality, options);
+  const PixelRect& view = f.layout.view;
+  const double aspect = static_cast<double>(view.width) / view.height;
+  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  for (const Vec3& p : strip.points) {
+    const Vec3 ndc = project_to_ndc(f.camera, aspect, p);
+    const double x = view.x + 0.5 * (ndc.x + 1.0) * view.width, y = view.y + 0.5 * (1.0 - ndc.y) * view.height;
+    x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+  }
+  EXPECT_NEAR(y0 - view.y, x0 - view.x, 2.0);
+  EXPECT_NEAR(x1 - x0, 4.0 * (y1 - y0), 2.0);  // not distorted
+  EXPECT_LT(y1, view.y + 0.5 * view.height);   // the spare height below it
+  // No vertex below 0: the legend has no "inverted (< 0)".
+  for (const ColorBarSwatch& s : f.bar.swatches) EXPECT_NE(s.label, "inverted (< 0)");
+}
+
 // A goblet of revolution (32 sectors): a foot disc (its centre hole at
 // r = 0.02), a stem, a cup open at its rim (r = 0.87, z = 1.8): 98 % of
 // its boundary's length at the rim.

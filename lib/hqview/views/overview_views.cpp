@@ -1,6 +1,7 @@
 #include "hqview/views/overview_views.h"
 
 #include <algorithm>
+#include <numbers>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -634,6 +635,26 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
   fit_overview_bar(f.bar, f.style, f.layout.legend, options.height);
   const double aspect = static_cast<double>(f.layout.view.width) / static_cast<double>(f.layout.view.height);
   f.camera = fit_camera_to_points(boundary_points(mesh, topology), view_direction_of(options), aspect, {.up = options.up});
+  if (options.outline_on_top) {
+    // A planar mesh seen along its normal: its top under the title, as far
+    // from it as its side is from the view's edge, not centred (issue 47: a
+    // wide plate's overview began below index.html's first screen, under
+    // an empty band); the spare height goes below it.
+    const PixelBox box = projected_box(boundary_points(mesh, topology), f.camera, f.layout.view);
+    const double shift = box.y0 - (f.layout.view.y + std::max(0.0, box.x0 - f.layout.view.x));
+    if (box.y1 > box.y0 && shift > 1.0) {
+      const Vec3 forward = normalized(f.camera.target - f.camera.eye);
+      const Vec3 screen_up = normalized(cross(cross(forward, f.camera.up), forward));
+      const double per_pixel =
+          (f.camera.is_perspective ? 2.0 * norm(f.camera.target - f.camera.eye) *
+                                         std::tan(0.5 * f.camera.fov_y_degrees * std::numbers::pi / 180.0)
+                                   : f.camera.ortho_height) /
+          f.layout.view.height;
+      const Vec3 move = (shift * per_pixel) * screen_up;
+      f.camera.eye = f.camera.eye - move;
+      f.camera.target = f.camera.target - move;
+    }
+  }
   if (!options.inverted_cells.empty() && options.outline_inverted_faces) {
     // A planar mesh (seen along its normal, outlines on top) has no far
     // side: a face is hidden only under an overlapping one (a fold).

@@ -64,7 +64,8 @@ struct OverviewOptions {
   bool inverted_are_reversed = false;
   // With it: the outlines drawn over everything (a planar mesh seen along
   // its normal: nothing lies behind), else depth-tested (a curved surface:
-  // a face on the far side stays hidden).
+  // a face on the far side stays hidden). Also the planar mesh's top sits
+  // under the title (quality_overview_frame), not centred in the view.
   bool outline_on_top = false;
   // overlap.num_intersecting_cells and the cells (ids over all volume
   // cells, or a surface mesh's face ids): their edges are drawn over
