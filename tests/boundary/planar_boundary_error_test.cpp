@@ -10,6 +10,8 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -46,6 +48,11 @@ TriSurface as_surface(const Mesh& mesh) {
 // The square [lo, hi]^2 in z = 0 as two triangles.
 TriSurface square(double lo, double hi) {
   return {{{lo, lo, 0}, {hi, lo, 0}, {hi, hi, 0}, {lo, hi, 0}}, {{{0, 1, 2}}, {{0, 2, 3}}}};
+}
+
+// The rectangle [lo, hi] x [0, 1] in z = 0 as two triangles.
+TriSurface square_of(double lo, double hi) {
+  return {{{lo, 0, 0}, {hi, 0, 0}, {hi, 1, 0}, {lo, 1, 0}}, {{{0, 1, 2}}, {{0, 2, 3}}}};
 }
 
 // An n x n grid of quads over the unit square in z = 0.
@@ -322,14 +329,21 @@ TEST(PlanarBoundaryError, TheFlatViewMarksTheNotchsFloorAndColoursBySign) {
   o.title = "notch";
   o.mesh_word = "mesh";
   const Image image = render_planar_boundary_error_view(mesh, topo, reference, b, o, *renderer);
-  std::vector<Vec3> points = b.reference_outline.points;
-  for (const auto& p : b.mesh_patches) points.insert(points.end(), p.corners.begin(), p.corners.end());
-  o.orthographic = true;
-  const ErrorFigureFrame f = error_figure_frame(points, b, scale, w, -1.0 * b.plane_normal, o);
+  const PlanarErrorFigure figure = planar_error_figure(mesh, b, o);
+  // No error below 0: one mark, the outside one, on the floor.
+  ASSERT_EQ(figure.marks.size(), 1u);
+  EXPECT_EQ(figure.marks[0].what, "max outside");
+  EXPECT_EQ(figure.marks[0].error, w.error);
+  const ErrorFigureFrame& f = figure.frame;
   EXPECT_FALSE(f.camera.is_perspective);
   const double aspect = static_cast<double>(f.layout.view.width) / f.layout.view.height;
   const Vec3 ndc = project_to_ndc(f.camera, aspect, w.position);
-  const test::ColorPixels ring = test::pixels_of_color(image, f.layout.view, kWorstMarkerColor);
+  // The ring's pixels: within its radius and half its stroke of the floor's
+  // pixel (a leader line to a label away from it starts at the ring).
+  const double radius = std::max(8.0, 22.0 * f.style.scale), half_stroke = 0.5 * std::max(2.0, 4.0 * f.style.scale);
+  const test::ColorPixels ring =
+      test::pixels_of_color(image, f.layout.view, kWorstMarkerColor, f.layout.view.x + 0.5 * (ndc.x + 1.0) * f.layout.view.width,
+                            f.layout.view.y + 0.5 * (1.0 - ndc.y) * f.layout.view.height, radius + half_stroke + 1);
   EXPECT_GT(ring.count, 50);
   EXPECT_NEAR(ring.cx, f.layout.view.x + 0.5 * (ndc.x + 1.0) * f.layout.view.width, 1.5);
   EXPECT_NEAR(ring.cy, f.layout.view.y + 0.5 * (1.0 - ndc.y) * f.layout.view.height, 1.5);
@@ -351,6 +365,91 @@ TEST(PlanarBoundaryError, TheFlatViewMarksTheNotchsFloorAndColoursBySign) {
       ++checked;
     }
   EXPECT_GT(checked, 10);
+}
+
+// The unit square (10 x 10 quads) against the square [0.05, 1.03] x [0, 1]:
+// the mesh's left edge lies 0.05 outside (+0.05 along it, the largest
+// error; the outline's left edge +0.05 too), its right edge 0.03 inside
+// (-0.03, the smallest; the outline's right edge too). The flat view rings both
+// (the 47e review: the inside extreme, -1.49 % on the bracket, was not
+// marked), each with a legend line; its legend's line swatches are the
+// strokes the figure draws (core, casing, widths, colours), and the mesh's
+// outer corners show no notch: a pixel 4 px out along the corner's
+// diagonal, inside the casing's round cap (6 px) but beyond both lines'
+// butt ends, is the casing's dark colour.
+TEST(PlanarBoundaryError, TheFlatViewRingsBothExtremesWithRoundCornersAndTrueSwatches) {
+  const Mesh mesh = unit_quad_grid(10);
+  const Topology topo = build_topology(mesh);
+  const TriSurface reference = square_of(0.05, 1.03);
+  const BoundaryError b = compute_boundary_error(mesh, topo, reference);
+  ASSERT_TRUE(b.planar);
+  BoundaryViewOptions o;
+  o.width = 640;
+  o.height = 480;
+  o.title = "shifted";
+  o.mesh_word = "mesh";
+  const PlanarErrorFigure figure = planar_error_figure(mesh, b, o);
+  ASSERT_EQ(figure.marks.size(), 2u);
+  const WorstError& out = figure.marks[0];
+  const WorstError& in = figure.marks[1];
+  // On the left edges (the mesh's x = 0 or the outline's x = 0.05, equal
+  // but for rounding), and on the right ones (x = 1 or 1.03).
+  EXPECT_EQ(out.what, "max outside");
+  EXPECT_NEAR(out.error, 0.05, 1e-12);
+  EXPECT_TRUE(std::abs(out.position.x) < 1e-12 || std::abs(out.position.x - 0.05) < 1e-12) << out.position.x;
+  EXPECT_EQ(in.what, "max inside");
+  EXPECT_NEAR(in.error, -0.03, 1e-12);
+  EXPECT_TRUE(std::abs(in.position.x - 1) < 1e-12 || std::abs(in.position.x - 1.03) < 1e-12) << in.position.x;
+  // The legend: the two lines as strokes, the edges, the domain, a ring line per mark.
+  const auto& swatches = figure.frame.bar.swatches;
+  ASSERT_EQ(swatches.size(), 6u);
+  ASSERT_TRUE(swatches[0].stroke && swatches[1].stroke && swatches[2].stroke);
+  EXPECT_EQ(swatches[0].stroke->width, kPlanarBoundaryWidth);
+  EXPECT_EQ(swatches[0].stroke->halo_width, kPlanarBoundaryWidth + kPlanarCasing);
+  EXPECT_EQ(swatches[0].stroke->halo, kPlanarCasingColor);
+  EXPECT_EQ(swatches[1].stroke->width, kPlanarOutlineWidth);
+  EXPECT_EQ(swatches[1].stroke->halo_width, kPlanarOutlineWidth + kPlanarCasing);
+  EXPECT_EQ(swatches[2].stroke->width, 1.0);
+  // The edges' colour over the domain: 90/255 of (60, 60, 70) over (222, 222, 226).
+  EXPECT_EQ(to_rgba8(swatches[2].color), (Rgba8{165, 165, 171, 255}));
+  EXPECT_EQ(to_rgba8(swatches[3].color), kPlanarDomainColor);
+  for (int k : {4, 5}) EXPECT_EQ(swatches[static_cast<std::size_t>(k)].shape, SwatchShape::solid_ring);
+  EXPECT_EQ(swatches[4].label.rfind("ring: max outside +", 0), 0u) << swatches[4].label;
+  EXPECT_EQ(swatches[5].label.rfind("ring: max inside -", 0), 0u) << swatches[5].label;
+
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  const Image image = render_planar_boundary_error_view(mesh, topo, reference, b, o, *renderer);
+  const ErrorFigureFrame& f = figure.frame;
+  const double aspect = static_cast<double>(f.layout.view.width) / f.layout.view.height;
+  const auto pixel_of = [&](const Vec3& p) {
+    const Vec3 ndc = project_to_ndc(f.camera, aspect, p);
+    return std::array<double, 2>{f.layout.view.x + 0.5 * (ndc.x + 1.0) * f.layout.view.width,
+                                 f.layout.view.y + 0.5 * (1.0 - ndc.y) * f.layout.view.height};
+  };
+  // A ring (dark pixels round it, 22 px at this scale's radius) on each mark.
+  const double radius = std::max(8.0, 22.0 * annotation_style_for(o.height).scale);
+  for (const WorstError* w : {&out, &in}) {
+    const auto [x, y] = pixel_of(w->position);
+    const test::ColorPixels ring = test::pixels_of_color(image, f.layout.view, kWorstMarkerColor, x, y, radius + 4);
+    EXPECT_GT(ring.count, 30) << w->what;
+  }
+  // Round corners: 4 px out along each outer corner's diagonal (the
+  // corners clear of a ring's halo and label).
+  const double unit = f.camera.ortho_height / f.layout.view.height;
+  int corners = 0;
+  for (const Vec3& corner : {Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{1, 1, 0}, Vec3{0, 1, 0}}) {
+    const Vec3 outward = normalized(corner - Vec3{0.5, 0.5, 0});
+    const auto [x, y] = pixel_of(corner + (4.0 * unit) * outward);
+    if (std::any_of(figure.marks.begin(), figure.marks.end(), [&](const WorstError& w) {
+          const auto [mx, my] = pixel_of(w.position);
+          return std::hypot(mx - x, my - y) < radius + 30;
+        }))
+      continue;
+    ++corners;
+    const Rgba8 c = test::pixel_at(image, static_cast<int>(std::lround(x - 0.5)), static_cast<int>(std::lround(y - 0.5)));
+    EXPECT_LT(std::max({c.r, c.g, c.b}), 150) << corner.x << ", " << corner.y << ": " << int(c.r);
+  }
+  EXPECT_GE(corners, 2);
 }
 
 std::string refusal(const Mesh& mesh, const TriSurface& reference) {

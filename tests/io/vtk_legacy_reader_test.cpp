@@ -224,9 +224,10 @@ TEST(VtkLegacyReader, TetrahedraAreReadOtherCellsSkippedWithOneWarning) {
   EXPECT_EQ(loaded.mesh.tets, (std::vector<std::array<Index, 4>>{{0, 1, 3, 4}, {1, 2, 3, 6}}));
   EXPECT_EQ(loaded.mesh.source_index[static_cast<std::size_t>(CellKind::tet)], (std::vector<std::int64_t>{1, 3}));
   ASSERT_EQ(loaded.warnings.size(), 1u);
-  // A polyhedron (42) among them: still a warning (a volume cell not analysed).
-  EXPECT_EQ(loaded.warnings[0], "rockarm.vtk: 3 cells of unread types skipped (types 5, 23, 42)");
-  EXPECT_TRUE(loaded.notes.empty());
+  // A polyhedron (42) among them: a warning (a volume cell not analysed);
+  // the triangle and the quadratic quad, faces of a volume mesh, a note.
+  EXPECT_EQ(loaded.warnings[0], "rockarm.vtk: 1 cell of unread types skipped (type 42)");
+  EXPECT_EQ(loaded.notes, std::vector<std::string>{"rockarm.vtk: 2 cells of unread types skipped (types 5, 23)"});
 
   spec.cells.resize(2);
   EXPECT_TRUE(read_vtk_legacy(write_vtk(spec), "m.vtk").warnings.empty());

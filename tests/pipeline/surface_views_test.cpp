@@ -802,6 +802,22 @@ TEST(SurfaceViews, TheFirstMainViewOfATurnedBellIsOffItsAxis) {
 // within 3 degrees of the image's up. The same bell stretched 1.3 times
 // along x has an axis (model_axis: the shortest) but no circular
 // cross-section (eigenvalues 30 % apart): its views keep +z.
+// The views of a report whose cameras show `up` (a model direction) within
+// 3 degrees of the image's up; returns the number of cameras.
+int upright_cameras(const ReportModel& model, const Vec3& up, const std::string& what) {
+  int cameras = 0;
+  for (const ViewEntry& view : model.views)
+    for (const std::optional<ViewCameraEntry>& c : view.cameras) {
+      if (!c) continue;
+      ++cameras;
+      const Vec3 forward = normalized(c->target - c->eye);
+      const Vec3 on_screen = up - dot(up, forward) * forward;
+      const double degrees = std::acos(std::clamp(dot(normalized(on_screen), normalized(c->up)), -1.0, 1.0)) * 180.0 / std::acos(-1.0);
+      EXPECT_LT(degrees, 3.0) << what << ", " << view.id;
+    }
+  return cameras;
+}
+
 TEST(SurfaceViews, ATurnedSurfaceOfRevolutionStandsUprightInEveryView) {
   const Vec3 k = normalized(Vec3{-0.6, 0.2, 0.75});
   const double angle = 1.3;
@@ -823,20 +839,11 @@ TEST(SurfaceViews, ATurnedSurfaceOfRevolutionStandsUprightInEveryView) {
   const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
   ASSERT_TRUE(renderer);
   const AnalyzeResult result = analyze(options, renderer.get());
-  Vec3 axis = turn({0, 0, 1}) - turn({0, 0, 0});
-  if (axis.z < 0.0) axis = -1.0 * axis;
+  // Up: the brim's end (the bell's mouth: 97 % of its boundary's length; its
+  // crown's hole at r = 0.05 the rest), apex to brim.
+  const Vec3 axis = turn({0, 0, 0}) - turn({0, 0, 1});
   EXPECT_GT(dot(normalized(result.model.viewer_up), normalized(axis)), 1.0 - 1e-9);
-  int cameras = 0;
-  for (const ViewEntry& view : result.model.views)
-    for (const std::optional<ViewCameraEntry>& c : view.cameras) {
-      if (!c) continue;
-      ++cameras;
-      const Vec3 forward = normalized(c->target - c->eye);
-      const Vec3 on_screen = axis - dot(axis, forward) * forward;
-      const double degrees = std::acos(std::clamp(dot(normalized(on_screen), normalized(c->up)), -1.0, 1.0)) * 180.0 / std::acos(-1.0);
-      EXPECT_LT(degrees, 3.0) << view.id;
-    }
-  EXPECT_EQ(cameras, 4);
+  EXPECT_EQ(upright_cameras(result.model, axis, "bell"), 4);
 
   Grid stretched = bell_of_revolution([](const Vec3& p) { return Vec3{1.3 * p.x, p.y, p.z}; });
   const test::TempDir other("surface_stretched_bell");
@@ -845,6 +852,148 @@ TEST(SurfaceViews, ATurnedSurfaceOfRevolutionStandsUprightInEveryView) {
   EXPECT_TRUE(model_axis(a.mesh.points).has_value());
   EXPECT_FALSE(revolution_axis(a.mesh.points).has_value());
   EXPECT_EQ(surface_view_up(a.mesh, a.topology, {0, 0, 1}), (Vec3{0, 0, 1}));
+}
+
+// Issue 47: a wide planar mesh's overview (seen along its normal) began
+// below index.html's first screen, centred under an empty band. A 4 x 1
+// strip of 8 x 2 quads in z = 0 at 1600 x 1200: its top edge lies as far
+// below the view's top as its left edge lies right of the view's left
+// (within 2 px; centred it was about 230 px down), its width unchanged.
+TEST(SurfaceViews, AWidePlanarOverviewHasItsTopUnderTheTitle) {
+  Mesh strip;
+  for (int j = 0; j <= 2; ++j)
+    for (int i = 0; i <= 8; ++i) strip.points.push_back({0.5 * i, 0.5 * j, 0.0});
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 8; ++i) {
+      const Index a = static_cast<Index>(j * 9 + i);
+      strip.quads.push_back({a, a + 1, a + 10, a + 9});
+    }
+  const Topology topology = build_topology(strip);
+  OverviewOptions options;
+  options.view_direction = {0, 0, -1};
+  options.up = {0, 1, 0};
+  options.outline_on_top = true;
+  options.outline_inverted_faces = true;
+  const std::vector<double> quality(strip.points.size(), 1.0);
+  const OverviewFrame f = quality_overview_frame(strip, topology, quality, options);
+  const PixelRect& view = f.layout.view;
+  const double aspect = static_cast<double>(view.width) / view.height;
+  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  for (const Vec3& p : strip.points) {
+    const Vec3 ndc = project_to_ndc(f.camera, aspect, p);
+    const double x = view.x + 0.5 * (ndc.x + 1.0) * view.width, y = view.y + 0.5 * (1.0 - ndc.y) * view.height;
+    x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+  }
+  EXPECT_NEAR(y0 - view.y, x0 - view.x, 2.0);
+  EXPECT_NEAR(x1 - x0, 4.0 * (y1 - y0), 2.0);  // not distorted
+  EXPECT_LT(y1, view.y + 0.5 * view.height);   // the spare height below it
+  // No vertex below 0: the legend has no "inverted (< 0)".
+  for (const ColorBarSwatch& s : f.bar.swatches) EXPECT_NE(s.label, "inverted (< 0)");
+}
+
+// A goblet of revolution (32 sectors): a foot disc (its centre hole at
+// r = 0.02), a stem, a cup open at its rim (r = 0.87, z = 1.8): 98 % of
+// its boundary's length at the rim.
+Grid goblet(const std::function<Vec3(const Vec3&)>& place) {
+  constexpr std::array<std::array<double, 2>, 12> profile{{{0.02, 0},    {0.3, 0},   {0.6, 0},  {0.55, 0.05},
+                                                           {0.15, 0.12}, {0.1, 0.4}, {0.1, 0.7}, {0.3, 0.85},
+                                                           {0.6, 1.0},   {0.8, 1.3}, {0.85, 1.6}, {0.87, 1.8}}};
+  const int rings = static_cast<int>(profile.size()), sectors = 32;
+  Grid g;
+  for (int j = 0; j < sectors; ++j)
+    for (const auto& [r, z] : profile) {
+      const double t = 2.0 * std::acos(-1.0) * j / sectors;
+      g.points.push_back(place({r * std::cos(t), r * std::sin(t), z}));
+    }
+  const auto at = [&](int i, int j) { return static_cast<Index>(i + rings * (j % sectors)); };
+  for (int j = 0; j < sectors; ++j)
+    for (int i = 0; i + 1 < rings; ++i) g.quads.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+  return g;
+}
+
+// The 47f review: a goblet turned 115 degrees in its file stood stem up
+// (the axis's sign followed the file's +z). Under --up auto a surface of
+// revolution open at one end stands with that end up (surface_view_up):
+// the goblet turned 100, 135 and 180 degrees about the horizontal
+// (0.6, 0.8, 0), each also mirrored (x negated): the viewer's up is the
+// turned stem-to-rim direction, and in its main views and overview the
+// rim's direction projects within 3 degrees of the image's up. Unturned,
+// and with the rim closed by a dome (a closed surface: no open end), the
+// sign is the file's +z's.
+TEST(SurfaceViews, ATurnedGobletStandsRimUpInEveryView) {
+  const Vec3 k = normalized(Vec3{0.6, 0.8, 0.0});
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  ASSERT_TRUE(renderer);
+  for (const double degrees : {100.0, 135.0, 180.0})
+    for (const bool mirrored : {false, true}) {
+      const double angle = degrees * std::acos(-1.0) / 180.0;
+      const auto turn = [&](const Vec3& p) {
+        const Vec3 r = test::turned(p, k, angle);
+        return mirrored ? Vec3{-r.x, r.y, r.z} : r;
+      };
+      const std::string what = std::to_string(static_cast<int>(degrees)) + (mirrored ? " mirrored" : "");
+      const Grid g = goblet(turn);
+      const Vec3 rim = normalized(turn({0, 0, 1}) - turn({0, 0, 0}));
+      ASSERT_LT(dot(rim, Vec3{0, 0, 1}), 0.0) << what;  // the file's +z points stem-wards
+      const test::TempDir dir("surface_goblet");
+      AnalyzeOptions options;
+      options.mesh_path = dir.write("goblet.obj", obj_text(g));
+      options.tool_version = "test";
+      options.up_auto = true;
+      options.viewer = false;
+      options.views.width = 320;
+      options.views.height = 240;
+      options.views.views = {"main", "overview"};
+      if (degrees != 135.0 || !mirrored) {  // the views of one case; the up of each
+        const Analysis a = analyze_mesh(options);
+        EXPECT_GT(dot(surface_view_up(a.mesh, a.topology, {0, 0, 1}), rim), 1.0 - 1e-9) << what;
+        continue;
+      }
+      const AnalyzeResult result = analyze(options, renderer.get());
+      EXPECT_GT(dot(normalized(result.model.viewer_up), rim), 1.0 - 1e-9) << what;
+      EXPECT_EQ(upright_cameras(result.model, rim, what), 3) << what;
+    }
+  // Unturned: rim up is +z; closed by a dome over the rim: +z still (the
+  // file's), and so turned 180 degrees: -z (the file's, no open end).
+  const test::TempDir dir("surface_goblet_closed");
+  for (const double degrees : {0.0, 180.0}) {
+    const auto turn = [&](const Vec3& p) { return test::turned(p, k, degrees * std::acos(-1.0) / 180.0); };
+    Grid g = goblet(turn);
+    const Analysis open = analyze_mesh([&] {
+      AnalyzeOptions o;
+      o.mesh_path = dir.write("open.obj", obj_text(g));
+      o.tool_version = "test";
+      return o;
+    }());
+    const Vec3 rim = normalized(turn({0, 0, 1}) - turn({0, 0, 0}));
+    EXPECT_GT(dot(surface_view_up(open.mesh, open.topology, {0, 0, 1}), rim), 1.0 - 1e-9) << degrees;
+    // The dome: a ring at z = 1.95, r = 0.5 and a small one at z = 2.0, r = 0.02
+    // closing the cup; the two holes left (r = 0.02 at each end) are alike.
+    const int rings = 12, sectors = 32;
+    const Index first = static_cast<Index>(g.points.size());
+    for (int j = 0; j < sectors; ++j)
+      for (const auto& [r, z] : std::array<std::array<double, 2>, 2>{{{0.5, 1.95}, {0.02, 2.0}}}) {
+        const double t = 2.0 * std::acos(-1.0) * j / sectors;
+        g.points.push_back(turn({r * std::cos(t), r * std::sin(t), z}));
+      }
+    const auto at = [&](int i, int j) {
+      return static_cast<Index>(i < rings ? i + rings * (j % sectors) : first + (i - rings) + 2 * (j % sectors));
+    };
+    for (int j = 0; j < sectors; ++j)
+      for (int i = rings - 1; i < rings + 1; ++i) g.quads.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+    const Analysis closed = analyze_mesh([&] {
+      AnalyzeOptions o;
+      o.mesh_path = dir.write("closed.obj", obj_text(g));
+      o.tool_version = "test";
+      return o;
+    }());
+    EXPECT_EQ(closed.topology.surface.num_boundary_edges, 2 * sectors) << degrees;
+    const Vec3 up = surface_view_up(closed.mesh, closed.topology, {0, 0, 1});
+    const std::optional<Vec3> axis = revolution_axis(closed.mesh.points);
+    ASSERT_TRUE(axis) << degrees;
+    EXPECT_GT(std::abs(dot(up, rim)), 1.0 - 1e-9) << degrees;
+    EXPECT_GT(dot(up, Vec3{0, 0, 1}), 0.0) << degrees;
+  }
 }
 
 // The overview's "in sight" line of a planar mesh's outlined inverted faces

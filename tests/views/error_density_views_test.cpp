@@ -917,6 +917,18 @@ TEST(ErrorDensityViews, HiddenMaxNamesTheNearestSeenHex) {
   density[static_cast<std::size_t>(far)] = 0.85;
   render_error_density_boundary(mesh, topology, density, direction, options, *renderer, nullptr, nullptr, &parts);
   EXPECT_EQ(parts.nearest_seen, kNoIndex);
+  // Every face has a density: the legend names no "undefined" (issue 47: a
+  // legend names only what is drawn); one boundary hex without: it does.
+  const auto undefined_swatches = [&] {
+    return std::count_if(parts.swatches.begin(), parts.swatches.end(),
+                         [](const ColorBarSwatch& s) { return s.label == "undefined"; });
+  };
+  EXPECT_EQ(undefined_swatches(), 0);
+  density[static_cast<std::size_t>(far)] = 0.0;
+  options.width = 320;  // the legend only: small
+  options.height = 240;
+  render_error_density_boundary(mesh, topology, density, direction, options, *renderer, nullptr, nullptr, &parts);
+  EXPECT_EQ(undefined_swatches(), 1);
 }
 
 // Issue 48f: a seen max a few pixels in the figure is not painted over

@@ -231,7 +231,8 @@ TEST(HybridViews, NonConformingFaceIsOutlinedAndOutOfTheBoundary) {
   const ColorBar bar = overview_color_bar(topo, quality);
   std::vector<std::string> labels;
   for (const ColorBarSwatch& s : bar.swatches) labels.push_back(s.label);
-  EXPECT_EQ(labels, (std::vector<std::string>{"inverted (< 0)", "no value", "non-conforming (1, inside; dashed: split)"}));
+  // No vertex below 0: no "inverted (< 0)" (the legend names only what is drawn).
+  EXPECT_EQ(labels, (std::vector<std::string>{"no value", "non-conforming (1, inside; dashed: split)"}));
   // Drawn over the model (the interface is inside): its colour is on screen.
   const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
   const Camera camera = fit_camera_to_points(boundary_points(mesh, topo), Vec3{-1, -0.6, -0.4}, 1.0, {.up = {0, 0, 1}});
@@ -244,7 +245,13 @@ TEST(HybridViews, NonConformingFaceIsOutlinedAndOutOfTheBoundary) {
   const Mesh hexes = hex_box(1, 1, 1, 1, 1, 1);
   const Topology hex_topo = build_topology(hexes);
   EXPECT_TRUE(build_quality_overview_scene(hexes, hex_topo, std::vector<double>(8, 1.0), {}).overlay.empty());
-  EXPECT_EQ(overview_color_bar(hex_topo, std::vector<double>(8, 1.0)).swatches.size(), 1u);
+  EXPECT_TRUE(overview_color_bar(hex_topo, std::vector<double>(8, 1.0)).swatches.empty());
+  // One boundary vertex below 0: its swatch, alone.
+  std::vector<double> one_below(8, 1.0);
+  one_below[5] = -0.2;
+  const ColorBar below = overview_color_bar(hex_topo, one_below);
+  ASSERT_EQ(below.swatches.size(), 1u);
+  EXPECT_EQ(below.swatches[0].label, "inverted (< 0)");
 }
 
 // sqrt(2) det[a, b, c] / (|a||b||c|), the tet corner's scaled Jacobian by

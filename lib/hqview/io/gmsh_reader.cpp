@@ -61,17 +61,22 @@ constexpr GmshCellType kGmshCellTypes[] = {
 };
 // clang-format on
 
-// Gmsh's element types of dimension 0-2: points (15), lines (1, 8, 26-28),
-// triangles (2, 9, 20-25) and quads (3, 10, 16, 36-41): physical groups'
-// boundary elements, skipped as a note.
-bool is_lower_dimensional_gmsh_type(std::int64_t type) {
+// The dimension of Gmsh's element types of dimension 0-2, -1 for the others:
+// points (15), lines (1, 8, 26-28), triangles (2, 9, 20-25) and quads (3,
+// 10, 16, 36-41). Gmsh writes them for the geometric entities (the points
+// and curves of a surface mesh, the surfaces of a volume mesh) beside the
+// cells: below the mesh's dimension they are skipped as a note.
+int gmsh_type_dimension(std::int64_t type) {
   switch (type) {
-    case 1: case 2: case 3: case 8: case 9: case 10: case 15: case 16:
-    case 20: case 21: case 22: case 23: case 24: case 25: case 26: case 27: case 28:
+    case 15:
+      return 0;
+    case 1: case 8: case 26: case 27: case 28:
+      return 1;
+    case 2: case 3: case 9: case 10: case 16: case 20: case 21: case 22: case 23: case 24: case 25:
     case 36: case 37: case 38: case 39: case 40: case 41:
-      return true;
+      return 2;
     default:
-      return false;
+      return -1;
   }
 }
 
@@ -569,9 +574,8 @@ class GmshParser {
     loaded.format = "gmsh-" + version_ + (binary_ ? "-binary" : "-ascii");
     if (num_volume_dropped > 0)
       loaded.warnings.push_back(detail::volume_dropped_warning(s_.name(), num_volume_dropped, "element"));
-    if (skipped.count > 0)
-      (!is_surface && SkippedCells::all_types(skipped_by_type_, is_lower_dimensional_gmsh_type) ? loaded.notes : loaded.warnings)
-          .push_back(skipped.warning(s_.name(), "element"));
+    SkippedCells::report(skipped_by_type_, gmsh_type_dimension, is_surface ? 2 : 3, s_.name(), "element", loaded.notes,
+                         loaded.warnings);
     if (is_surface)
       surface_.append_warnings(s_.name(), "element", loaded.warnings);
     else

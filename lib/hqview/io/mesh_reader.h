@@ -40,11 +40,12 @@ struct LoadedMesh {
   // than 4 vertices they skipped, each as (a, b) with a < b, ascending,
   // unique. Holes left by the reader, not the surface's boundary.
   std::vector<std::array<Index, 2>> hole_edges;
-  // Information, not a warning: the lower-dimensional cells a volume mesh's
-  // reader skipped (a Gmsh or VTK file's boundary triangles, edges and
-  // points, which a volume mesh's file carries for its physical groups),
-  // worded as the warning. A surface mesh's skipped cells stay warnings (a
-  // skipped polygon leaves a hole).
+  // Information, not a warning: the cells of a lower dimension than the
+  // mesh's that a reader skipped (a Gmsh or VTK file's points and lines, and
+  // a volume mesh's boundary triangles and quads: the geometric entities'
+  // and physical groups' elements Gmsh writes beside the cells), worded as
+  // the warning. Skipped cells of the mesh's own dimension (or of a type
+  // the reader does not know) stay warnings (a skipped polygon leaves a hole).
   std::vector<std::string> notes;
 };
 
@@ -74,17 +75,25 @@ struct SkippedCells {
   std::string counted(const char* noun) const {
     return std::to_string(count) + " " + noun + (count > 1 ? "s" : "") + " of " + type_word() + types;
   }
-  // True when every skipped type passes is_lower_dimensional (the format's
-  // points, lines, triangles and quads): the skip is a note, not a warning.
-  template <class Type, class Predicate>
-  static bool all_types(const std::map<Type, std::int64_t>& by_type, Predicate is_lower_dimensional) {
-    for (const auto& [type, n] : by_type)
-      if (!is_lower_dimensional(type)) return false;
-    return true;
-  }
   std::string warning(const std::string& file, const char* noun) const {
     return file + ": " + std::to_string(count) + " " + noun + (count > 1 ? "s" : "") + " of unread types skipped (" +
            type_word() + types + ")";
+  }
+  // The skipped types split by dimension_of(type) (0 points, 1 lines, 2
+  // faces, -1 unknown): those below mesh_dimension (3 a volume mesh, 2 a
+  // surface mesh) as one note, the rest as one warning, each worded as
+  // warning() (LoadedMesh::notes).
+  template <class Type, class Dimension>
+  static void report(const std::map<Type, std::int64_t>& by_type, Dimension dimension_of, int mesh_dimension,
+                     const std::string& file, const char* noun, std::vector<std::string>& notes,
+                     std::vector<std::string>& warnings) {
+    std::map<Type, std::int64_t> lower, other;
+    for (const auto& [type, n] : by_type) {
+      const int d = dimension_of(type);
+      (d >= 0 && d < mesh_dimension ? lower : other)[type] += n;
+    }
+    if (!lower.empty()) notes.push_back(SkippedCells(lower).warning(file, noun));
+    if (!other.empty()) warnings.push_back(SkippedCells(other).warning(file, noun));
   }
 };
 

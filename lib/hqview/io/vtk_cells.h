@@ -63,16 +63,21 @@ inline constexpr VolumeType kVolumeTypes[] = {
 };
 
 // The entry of a volume type read; nullptr for every other type.
-// VTK's cell types of dimension 0-2 (vertex, lines, triangles, polygons,
-// pixels, quads, linear to Lagrange and Bezier): a file skips them as notes.
-inline bool is_lower_dimensional_type(std::int64_t type) {
+// The dimension of VTK's cell types of dimension 0-2, -1 for the others:
+// vertices (1, 2), lines (3, 4, 21, 35, 68, 75), triangles, polygons,
+// pixels and quads (5-9, 22, 23, 28, 30, 34, 36, 69, 70, 76, 77), linear to
+// Lagrange and Bezier. Below the mesh's dimension a file skips them as notes.
+inline int type_dimension(std::int64_t type) {
   switch (type) {
-    case 1: case 2: case 3: case 4: case 5: case 6: case 7: case 8: case 9:
-    case 21: case 22: case 23: case 28: case 30: case 34: case 35: case 36:
-    case 68: case 69: case 70: case 75: case 76: case 77:
-      return true;
+    case 1: case 2:
+      return 0;
+    case 3: case 4: case 21: case 35: case 68: case 75:
+      return 1;
+    case 5: case 6: case 7: case 8: case 9: case 22: case 23: case 28: case 30: case 34: case 36:
+    case 69: case 70: case 76: case 77:
+      return 2;
     default:
-      return false;
+      return -1;
   }
 }
 

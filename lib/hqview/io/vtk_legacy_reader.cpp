@@ -701,9 +701,7 @@ class VtkParser {
     if (!is_surface && num_volume_cells(loaded.mesh) == 0)
       s_.fail_at(0, "no volume cells" + (skipped.count > 0 ? " (" + skipped.counted("cell") + ")" : std::string()));
     if (num_volume_dropped > 0) loaded.warnings.push_back(detail::volume_dropped_warning(s_.name(), num_volume_dropped, "cell"));
-    if (skipped.count > 0)
-      (!is_surface && SkippedCells::all_types(skipped_by_type, vtk::is_lower_dimensional_type) ? loaded.notes : loaded.warnings)
-          .push_back(skipped.warning(s_.name(), "cell"));
+    SkippedCells::report(skipped_by_type, vtk::type_dimension, is_surface ? 2 : 3, s_.name(), "cell", loaded.notes, loaded.warnings);
     if (is_surface) {
       surface.append_warnings(s_.name(), "cell", loaded.warnings);
     } else {

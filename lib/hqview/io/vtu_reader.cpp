@@ -607,9 +607,7 @@ class VtuParser {
     LoadedMesh loaded;
     loaded.format = "vtu-" + format_;
     if (num_volume_dropped > 0) loaded.warnings.push_back(detail::volume_dropped_warning(name_, num_volume_dropped, "cell"));
-    if (skipped.count > 0)
-      (!is_surface && SkippedCells::all_types(skipped_by_type_, vtk::is_lower_dimensional_type) ? loaded.notes : loaded.warnings)
-          .push_back(skipped.warning(name_, "cell"));
+    SkippedCells::report(skipped_by_type_, vtk::type_dimension, is_surface ? 2 : 3, name_, "cell", loaded.notes, loaded.warnings);
     if (is_surface)
       surface_.append_warnings(name_, "cell", loaded.warnings);
     else

@@ -130,32 +130,41 @@ void draw_label_in_empty_space(Image& figure, const PixelRect& view, double cx, 
 }
 
 // An error figure: the scene through the frame's camera, the shared colour
-// bar with the marker's entry, the marker on the sample of largest |error|
-// (worst).
-Image render_error_figure(Scene scene, const ErrorFigureFrame& frame, const WorstError& worst,
+// bar with the marks' entries, a ring on each mark (the samples of largest
+// |error|, or the planar figure's two extremes), then their labels (so no
+// label lies on a later ring).
+Image render_error_figure(Scene scene, const ErrorFigureFrame& frame, std::span<const WorstError> marks,
                           const BoundaryError& error, Renderer& renderer, const BoundaryViewOptions& options,
                           bool label_in_empty_space = false) {
   scene.background = options.background;
   Image figure = render_figure(renderer, scene, frame.camera, options.width, options.height, frame.layout,
                                options.title, frame.style);
   draw_color_bar(figure, frame.layout.legend, frame.bar, frame.style);
-  if (worst.found) {
+  struct Ring {
+    double cx, cy;
+    bool facing;
+    const WorstError* mark;
+  };
+  std::vector<Ring> rings;
+  const double radius = std::max(8.0, 22.0 * frame.style.scale), thickness = std::max(2.0, 4.0 * frame.style.scale);
+  for (const WorstError& worst : marks) {
+    if (!worst.found) continue;
     const double aspect = static_cast<double>(frame.layout.view.width) / frame.layout.view.height;
     const Vec3 ndc = project_to_ndc(frame.camera, aspect, worst.position);
-    if (std::isfinite(ndc.x) && std::abs(ndc.x) <= 1.0 && std::abs(ndc.y) <= 1.0) {
-      const double cx = frame.layout.view.x + 0.5 * (ndc.x + 1.0) * frame.layout.view.width;
-      const double cy = frame.layout.view.y + 0.5 * (1.0 - ndc.y) * frame.layout.view.height;
-      const double radius = std::max(8.0, 22.0 * frame.style.scale), thickness = std::max(2.0, 4.0 * frame.style.scale);
-      const bool facing = dot(worst.normal, frame.camera.eye - worst.position) >= 0.0;
-      // Solid when the sample faces the camera, dashed when it lies on the far side.
-      draw_marker_ring(figure, cx, cy, radius, thickness, !facing, kWorstMarkerColor);
-      (label_in_empty_space ? draw_label_in_empty_space : draw_worst_label)(
-          figure, frame.layout.view, cx, cy, radius,
-          "max |error| " + signed_percent_label(worst.error, error.reference_bbox_diagonal) +
-              (facing ? "" : ", far side") + worst.note,
-          frame.style);
-    }
+    if (!std::isfinite(ndc.x) || std::abs(ndc.x) > 1.0 || std::abs(ndc.y) > 1.0) continue;
+    const double cx = frame.layout.view.x + 0.5 * (ndc.x + 1.0) * frame.layout.view.width;
+    const double cy = frame.layout.view.y + 0.5 * (1.0 - ndc.y) * frame.layout.view.height;
+    const bool facing = dot(worst.normal, frame.camera.eye - worst.position) >= 0.0;
+    // Solid when the sample faces the camera, dashed when it lies on the far side.
+    draw_marker_ring(figure, cx, cy, radius, thickness, !facing, kWorstMarkerColor);
+    rings.push_back({cx, cy, facing, &worst});
   }
+  for (const Ring& r : rings)
+    (label_in_empty_space ? draw_label_in_empty_space : draw_worst_label)(
+        figure, frame.layout.view, r.cx, r.cy, radius,
+        r.mark->what + " " + signed_percent_label(r.mark->error, error.reference_bbox_diagonal) +
+            (r.facing ? "" : ", far side") + r.mark->note,
+        frame.style);
   return figure;
 }
 
@@ -228,16 +237,25 @@ ColorBar error_color_bar(double scale, double diagonal, std::string_view mesh_wo
 }
 
 WorstError worst_error(const std::vector<BoundaryError::ErrorPatch>& patches, std::span<const Vec3> points,
-                       std::span<const double> point_error) {
+                       std::span<const double> point_error, int sign) {
+  // How bad an error is for this sign; -1 when it does not count.
+  const auto badness = [sign](double e) {
+    if (!std::isfinite(e)) return -1.0;
+    if (sign == 0) return std::abs(e);
+    return sign * e > 0.0 ? sign * e : -1.0;
+  };
   WorstError w;
+  double worst = -1.0;
   for (const auto& p : patches)
-    if (std::isfinite(p.error) && (!w.found || std::abs(p.error) > std::abs(w.error))) {
+    if (badness(p.error) > worst) {
+      worst = badness(p.error);
       w = {(p.corners[0] + p.corners[1] + p.corners[2]) / 3.0, area_normal(p.corners), p.error, true, {}};
     }
   std::size_t best_point = points.size();
   const std::size_t n = std::min(points.size(), point_error.size());
   for (std::size_t i = 0; i < n; ++i)
-    if (std::isfinite(point_error[i]) && (!w.found || std::abs(point_error[i]) > std::abs(w.error))) {
+    if (badness(point_error[i]) > worst) {
+      worst = badness(point_error[i]);
       w = {points[i], Vec3{}, point_error[i], true, {}};
       best_point = i;
     }
@@ -253,14 +271,15 @@ ErrorFigureFrame error_figure_frame(const std::vector<Vec3>& points, const Bound
                                    const WorstError& worst, const Vec3& view_direction,
                                    const BoundaryViewOptions& options, std::vector<ColorBarSwatch> swatches) {
   ErrorFigureFrame f;
-  f.style = annotation_style_for(options.height);
+  f.style = annotation_style_for(options.text_height > 0 ? options.text_height : options.height);
   f.style.background = options.background;
   f.bar = error_color_bar(scale, error.reference_bbox_diagonal, options.mesh_word);
   f.bar.swatches = std::move(swatches);
   if (worst.found)
     f.bar.swatches.push_back({to_color(kWorstMarkerColor),
-                              "ring: max |error| " + signed_percent_label(worst.error, error.reference_bbox_diagonal) +
-                                  worst.note});
+                              "ring: " + worst.what + " " +
+                                  signed_percent_label(worst.error, error.reference_bbox_diagonal) + worst.note,
+                              SwatchShape::solid_ring});
   f.layout = figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(f.bar, f.style),
                            f.style);
   const double aspect = static_cast<double>(f.layout.view.width) / f.layout.view.height;
@@ -297,8 +316,8 @@ Image render_boundary_error_view(const HexMesh& mesh, const Topology& topology, 
   const std::vector<Vec3> points = boundary_points(mesh, topology);
   const WorstError worst = worst_mesh_error(mesh, topology, error);
   return render_error_figure(build_boundary_error_scene(mesh, topology, error, scale),
-                             error_figure_frame(points, error, scale, worst, view_direction, options), worst, error,
-                             renderer, options);
+                             error_figure_frame(points, error, scale, worst, view_direction, options), {&worst, 1},
+                             error, renderer, options);
 }
 
 Scene build_reference_error_scene(const BoundaryError& error, double scale) {
@@ -316,8 +335,8 @@ Image render_reference_error_view(const TriSurface& reference, const BoundaryErr
   for (const auto& p : error.reference_patches) points.insert(points.end(), p.corners.begin(), p.corners.end());
   const WorstError worst = worst_error(error.reference_patches, reference.points, error.reference_vertex_error);
   return render_error_figure(build_reference_error_scene(error, scale),
-                             error_figure_frame(points, error, scale, worst, view_direction, options), worst, error,
-                             renderer, options);
+                             error_figure_frame(points, error, scale, worst, view_direction, options), {&worst, 1},
+                             error, renderer, options);
 }
 
 Scene build_reference_overlay_scene(const HexMesh& mesh, const Topology& topology, const TriSurface& reference) {
@@ -375,16 +394,45 @@ LineSet patch_segments(const std::vector<BoundaryError::ErrorPatch>& patches, co
   return set;
 }
 
-constexpr Rgba8 kPlanarDomainColor{222, 222, 226, 255};
-// Each coloured line on a dark casing 1.5 px wider each side, so that a
-// piece of error 0 (white) shows on the white page too.
-constexpr Rgba8 kPlanarCasingColor{55, 55, 65, 255};
-constexpr float kPlanarBoundaryWidth = 9.0f, kPlanarOutlineWidth = 3.0f, kPlanarCasing = 3.0f;
+// `lines` as strokes in the plane (normal n) `radius` (model units) either
+// side of each piece: a band across the piece (GL's wide lines are as wide
+// as asked only along x or y: a diagonal one is 0.71 times as wide) and a
+// disc at both ends (round caps and joins), in the piece's colours.
+void append_round_strokes(const LineSet& lines, const Vec3& n, double radius, TriangleSet& strokes) {
+  constexpr int kSides = 16;
+  const auto push = [&](const Vec3f& c, const Vec3& d, Rgba8 color) {
+    strokes.positions.push_back(
+        {c.x + static_cast<float>(d.x), c.y + static_cast<float>(d.y), c.z + static_cast<float>(d.z)});
+    strokes.colors.push_back(color);
+    return static_cast<std::uint32_t>(strokes.positions.size() - 1);
+  };
+  for (std::size_t i = 0; i + 1 < lines.indices.size(); i += 2) {
+    const Vec3f& a = lines.positions[lines.indices[i]];
+    const Vec3f& b = lines.positions[lines.indices[i + 1]];
+    const Vec3 side = cross(n, Vec3{b.x - a.x, b.y - a.y, b.z - a.z});
+    if (!(norm(side) > 0.0)) continue;
+    const Vec3 d = (radius / norm(side)) * side;
+    const Rgba8 ca = lines.colors[lines.indices[i]], cb = lines.colors[lines.indices[i + 1]];
+    const std::uint32_t q0 = push(a, -1.0 * d, ca), q1 = push(b, -1.0 * d, cb), q2 = push(b, d, cb), q3 = push(a, d, ca);
+    strokes.indices.insert(strokes.indices.end(), {q0, q1, q2, q0, q2, q3});
+  }
+  Vec3 u = cross(n, std::abs(n.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0});
+  u = (radius / norm(u)) * u;
+  const Vec3 v = (radius / norm(n)) * cross(n, (1.0 / radius) * u);
+  for (std::size_t i = 0; i < lines.positions.size(); ++i) {
+    const std::uint32_t centre = push(lines.positions[i], Vec3{}, lines.colors[i]);
+    for (int k = 0; k < kSides; ++k) {
+      const double t = 2.0 * M_PI * k / kSides;
+      push(lines.positions[i], std::cos(t) * u + std::sin(t) * v, lines.colors[i]);
+      strokes.indices.insert(strokes.indices.end(), {centre, centre + 1 + k, centre + 1 + (k + 1) % kSides});
+    }
+  }
+}
 
 }  // namespace
 
 Scene build_planar_boundary_error_scene(const HexMesh& mesh, const Topology& topology, const TriSurface& reference,
-                                        const BoundaryError& error, double scale) {
+                                        const BoundaryError& error, double scale, double pixel) {
   Scene scene;
   scene.origin = 0.5 * (error.reference_bbox_min + error.reference_bbox_max);
   const Vec3 step = (1e-3 * error.reference_bbox_diagonal) * error.plane_normal;  // towards the camera
@@ -402,7 +450,7 @@ Scene build_planar_boundary_error_scene(const HexMesh& mesh, const Topology& top
     for (Index v : e) {
       edges.indices.push_back(static_cast<std::uint32_t>(edges.positions.size()));
       edges.positions.push_back(to_vec3f(mesh.points[static_cast<std::size_t>(v)] + step - scene.origin));
-      edges.colors.push_back({60, 60, 70, 90});
+      edges.colors.push_back(kPlanarEdgeColor);
     }
   scene.lines.push_back(std::move(edges));
   double lift = 2.0;
@@ -413,10 +461,21 @@ Scene build_planar_boundary_error_scene(const HexMesh& mesh, const Topology& top
     scene.lines.push_back(patch_segments(*patches, scene.origin, (lift + 1.0) * step, scale, width));
     lift += 2.0;
   }
+  if (pixel > 0.0) {
+    TriangleSet strokes;
+    strokes.is_lit = false;
+    for (std::size_t k = 1; k < scene.lines.size(); ++k)
+      append_round_strokes(scene.lines[k], error.plane_normal, 0.5 * scene.lines[k].width * pixel, strokes);
+    scene.triangles.push_back(std::move(strokes));
+  }
   return scene;
 }
 
-WorstError worst_planar_error(const HexMesh& mesh, const BoundaryError& error) {
+namespace {
+
+// The worse of the mesh's (its boundary pieces and vertices) and the
+// outline's by worst_error's sign (ties: the mesh's), noted with its polyline.
+WorstError planar_worst(const HexMesh& mesh, const BoundaryError& error, int sign) {
   std::vector<Vec3> points;
   std::vector<double> values;
   for (std::size_t v = 0; v < error.vertex_error.size(); ++v)
@@ -424,33 +483,102 @@ WorstError worst_planar_error(const HexMesh& mesh, const BoundaryError& error) {
       points.push_back(mesh.points[v]);
       values.push_back(error.vertex_error[v]);
     }
-  WorstError w = worst_error(error.mesh_patches, points, values);
+  WorstError w = worst_error(error.mesh_patches, points, values, sign);
   w.note = ", mesh boundary";
-  WorstError outline = worst_error(error.reference_patches, error.reference_outline.points, error.outline_vertex_error);
-  if (outline.found && (!w.found || std::abs(outline.error) > std::abs(w.error))) {
+  WorstError outline =
+      worst_error(error.reference_patches, error.reference_outline.points, error.outline_vertex_error, sign);
+  const auto badness = [sign](double e) { return sign == 0 ? std::abs(e) : sign * e; };
+  if (outline.found && (!w.found || badness(outline.error) > badness(w.error))) {
     w = outline;
     w.note = ", reference outline";
   }
   return w;
 }
 
+}  // namespace
+
+WorstError worst_planar_error(const HexMesh& mesh, const BoundaryError& error) { return planar_worst(mesh, error, 0); }
+
+std::vector<WorstError> planar_extremes(const HexMesh& mesh, const BoundaryError& error) {
+  std::vector<WorstError> marks;
+  for (const int sign : {1, -1}) {
+    WorstError w = planar_worst(mesh, error, sign);
+    w.what = sign > 0 ? "max outside" : "max inside";
+    if (w.found) marks.push_back(std::move(w));
+  }
+  return marks;
+}
+
+PlanarErrorFigure planar_error_figure(const HexMesh& mesh, const BoundaryError& error,
+                                      const BoundaryViewOptions& options) {
+  const double scale = boundary_error_scale(error);
+  std::vector<Vec3> points = error.reference_outline.points;
+  for (const auto& p : error.mesh_patches) points.insert(points.end(), p.corners.begin(), p.corners.end());
+  BoundaryViewOptions flat = options;
+  flat.orthographic = true;
+  // Each line as it is drawn: a white core (error 0) on its casing; the
+  // edges over the domain (their colour blended as the figure blends it).
+  const auto cased = [](float width) {
+    return SwatchStroke{.width = width, .halo_width = width + kPlanarCasing, .halo = kPlanarCasingColor};
+  };
+  const double a = kPlanarEdgeColor.a / 255.0;
+  const auto over_domain = [a](std::uint8_t edge, std::uint8_t domain) {
+    return static_cast<std::uint8_t>(std::lround(a * edge + (1.0 - a) * domain));
+  };
+  const Rgba8 edge{over_domain(kPlanarEdgeColor.r, kPlanarDomainColor.r),
+                   over_domain(kPlanarEdgeColor.g, kPlanarDomainColor.g),
+                   over_domain(kPlanarEdgeColor.b, kPlanarDomainColor.b), 255};
+  const Color white = to_color(Rgba8{255, 255, 255, 255});
+  std::vector<ColorBarSwatch> swatches{
+      {white, "thick: mesh boundary (core: its error)", SwatchShape::thick_line, cased(kPlanarBoundaryWidth)},
+      {white, "thin: reference outline (its error)", SwatchShape::line, cased(kPlanarOutlineWidth)},
+      {to_color(edge), "grey: mesh edges", SwatchShape::line, SwatchStroke{.width = 1.0}},
+      {to_color(kPlanarDomainColor), "reference domain", SwatchShape::box}};
+  PlanarErrorFigure f;
+  f.marks = planar_extremes(mesh, error);
+  for (const WorstError& w : f.marks)
+    swatches.push_back({to_color(kWorstMarkerColor),
+                        "ring: " + w.what + " " + signed_percent_label(w.error, error.reference_bbox_diagonal) + w.note,
+                        SwatchShape::solid_ring});
+  const Vec3 direction = -1.0 * error.plane_normal;
+  const auto frame = [&](const BoundaryViewOptions& o) {
+    ErrorFigureFrame e = error_figure_frame(points, error, scale, WorstError{}, direction, o, swatches);
+    e.bar.max_bar_height = static_cast<int>(std::lround(options.height / 3.0));
+    return e;
+  };
+  f.frame = frame(flat);
+  f.options = flat;
+  // The domain's box in the view; the height it needs with the margin beside it.
+  const PixelRect& view = f.frame.layout.view;
+  const double aspect = static_cast<double>(view.width) / view.height;
+  double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+  for (const Vec3& p : points) {
+    const Vec3 ndc = project_to_ndc(f.frame.camera, aspect, p);
+    x0 = std::min(x0, ndc.x), x1 = std::max(x1, ndc.x), y0 = std::min(y0, ndc.y), y1 = std::max(y1, ndc.y);
+  }
+  if (!(x1 > x0) || !(y1 > y0)) return f;
+  // Room for a label line above and below the domain (draw_label_in_empty_space's box).
+  const int label = std::max(f.frame.style.min_text_size, static_cast<int>(std::lround(20 * f.frame.style.scale))) + 14;
+  const double needed = 0.5 * (y1 - y0) * view.height + (1.0 - 0.5 * (x1 - x0)) * view.width + 2 * label;
+  const int legend = color_bar_height(f.frame.bar, f.frame.style, 1 << 20);
+  const int height = std::max(options.height - static_cast<int>(std::floor(view.height - needed)),
+                              f.frame.layout.legend.y + legend + static_cast<int>(std::lround(20 * f.frame.style.scale)));
+  if (height >= options.height) return f;
+  flat.height = height;
+  flat.text_height = options.text_height > 0 ? options.text_height : options.height;
+  f.frame = frame(flat);
+  f.options = flat;
+  return f;
+}
+
 Image render_planar_boundary_error_view(const HexMesh& mesh, const Topology& topology, const TriSurface& reference,
                                         const BoundaryError& error, const BoundaryViewOptions& options,
                                         Renderer& renderer) {
   const double scale = boundary_error_scale(error);
-  std::vector<Vec3> points = error.reference_outline.points;
-  for (const auto& p : error.mesh_patches) points.insert(points.end(), p.corners.begin(), p.corners.end());
-  const WorstError worst = worst_planar_error(mesh, error);
-  BoundaryViewOptions flat = options;
-  flat.orthographic = true;
-  const Color grey = to_color(Rgba8{90, 90, 100, 255});
-  const ErrorFigureFrame frame =
-      error_figure_frame(points, error, scale, worst, -1.0 * error.plane_normal, flat,
-                         {{grey, "thick: mesh boundary", SwatchShape::thick_line},
-                          {grey, "thin: reference outline", SwatchShape::line},
-                          {to_color(kPlanarDomainColor), "reference domain", SwatchShape::box}});
-  return render_error_figure(build_planar_boundary_error_scene(mesh, topology, reference, error, scale), frame, worst,
-                             error, renderer, flat, true);
+  const PlanarErrorFigure f = planar_error_figure(mesh, error, options);
+  const double pixel = f.frame.camera.ortho_height / f.frame.layout.view.height;
+  return render_error_figure(build_planar_boundary_error_scene(mesh, topology, reference, error, scale, pixel),
+                             f.frame, f.marks, error, renderer, f.options, true);
 }
 
 Scene build_uv_error_scene(const TriSurface& reference, const UvAtlas& atlas, const std::vector<double>& point_error,

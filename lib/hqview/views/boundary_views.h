@@ -27,6 +27,7 @@ struct BoundaryViewOptions {
   Vec3 up{0.0, 0.0, 1.0};  // the model axis drawn upwards in the 3D views (--up)
   std::string mesh_word = "hex";  // the legend's "+ = hex outside"; "mesh" for a surface mesh
   bool orthographic = false;      // the error figures' camera (a planar mesh's, seen from above)
+  int text_height = 0;            // > 0: the text sized as in a figure this tall (not `height`)
 };
 
 // The 98th percentile of |e| over the finite values of field (1 when there
@@ -70,9 +71,12 @@ struct WorstError {
   double error = 0;  // signed, model units
   bool found = false;
   std::string note;  // appended to the marker's label (a planar mesh: which polyline it lies on)
+  std::string what = "max |error|";  // the marker's label and legend line start with it
 };
+// sign 0: the largest |error|; +1: the largest error above 0 (the most
+// outside); -1: the smallest below 0 (the most inside).
 WorstError worst_error(const std::vector<BoundaryError::ErrorPatch>& patches, std::span<const Vec3> points,
-                       std::span<const double> point_error);
+                       std::span<const double> point_error, int sign = 0);
 // worst_error over mesh_patches and the boundary vertices' vertex_error.
 WorstError worst_mesh_error(const HexMesh& mesh, const Topology& topology, const BoundaryError& error);
 // Where the parts of an error figure go: the style, the colour bar (with
@@ -128,17 +132,49 @@ Image render_reference_overlay(const HexMesh& mesh, const Topology& topology, co
 // polylines (thick; each sampled piece coloured by its mesh -> reference
 // error), lines[4] the reference's outline on top (thin; by its reference ->
 // mesh error), lines[1] and [3] their dark casings (so that white, error 0,
-// shows). Each layer lies a little nearer the camera than the last.
+// shows). Each layer lies a little nearer the camera than the last. With
+// `pixel` (model units a pixel of the figure) > 0, triangles[1] draws
+// lines[1] to [4] again as strokes of their width (unlit, at their
+// heights): a band across each piece (a wide GL line on a diagonal is
+// narrower) and a disc at both its ends, so corners and joins are round
+// and show no notch.
 Scene build_planar_boundary_error_scene(const HexMesh& mesh, const Topology& topology, const TriSurface& reference,
-                                        const BoundaryError& error, double scale);
+                                        const BoundaryError& error, double scale, double pixel = 0.0);
+// The planar figure's lines in pixels: the mesh boundary's coloured core
+// and the reference outline's, each on a dark casing kPlanarCasing wider
+// (1.5 px each side); the mesh's edges 1 px.
+inline constexpr float kPlanarBoundaryWidth = 9.0f, kPlanarOutlineWidth = 3.0f, kPlanarCasing = 3.0f;
+inline constexpr Rgba8 kPlanarDomainColor{222, 222, 226, 255};
+inline constexpr Rgba8 kPlanarCasingColor{55, 55, 65, 255};
+inline constexpr Rgba8 kPlanarEdgeColor{60, 60, 70, 90};
 
 // The larger |error| of the two directions: worst_error over mesh_patches
 // and the boundary vertices, or over reference_patches and the outline's
 // vertices (ties: the mesh's), noted with its polyline.
 WorstError worst_planar_error(const HexMesh& mesh, const BoundaryError& error);
 
-// The planar figure: orthographic, from above, the shared colour bar, the
-// two lines' swatches and the marker on worst_planar_error.
+// The planar figure's marks: the largest error above 0 ("max outside")
+// and the smallest below 0 ("max inside") over both polylines (ties: the
+// mesh's), each noted with its polyline; a sign with no such error has none.
+std::vector<WorstError> planar_extremes(const HexMesh& mesh, const BoundaryError& error);
+// The planar figure's frame (orthographic, along the plane's normal; the
+// shared colour bar, capped at a third of the height and drawn from the
+// legend's top, with a swatch for each line as it is drawn, the mesh's
+// edges and the domain, then a ring line per mark), its marks and its
+// options: as wide as asked, no taller than the domain at that width needs
+// (its margin above and below as wide as the one beside it, plus a label
+// line's height each) or the title and legend need, the text sized for the height asked (issue 47: a 2 : 1
+// domain left a 200 px empty band above it on boundary.html).
+struct PlanarErrorFigure {
+  ErrorFigureFrame frame;
+  std::vector<WorstError> marks;
+  BoundaryViewOptions options;
+};
+PlanarErrorFigure planar_error_figure(const HexMesh& mesh, const BoundaryError& error,
+                                      const BoundaryViewOptions& options);
+
+// The planar figure: planar_error_figure's frame, a ring and a label (in
+// empty space) on each mark.
 Image render_planar_boundary_error_view(const HexMesh& mesh, const Topology& topology, const TriSurface& reference,
                                         const BoundaryError& error, const BoundaryViewOptions& options,
                                         Renderer& renderer);

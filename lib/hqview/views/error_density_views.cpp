@@ -790,6 +790,12 @@ Image render_error_density_boundary(const HexMesh& mesh, const Topology& topolog
   f.scene.triangles.push_back(std::move(faces));
   f.scene.lines.push_back(boundary_edge_lines(mesh, topology, f.scene.origin, kBoundaryEdgeColor,
                                               static_cast<float>(std::max(1.0, f.style.scale))));
+  // The legend names only what is drawn: "undefined" (the bar's one
+  // swatch) when a face's hex has no density (issue 47: it was listed with none).
+  if (std::all_of(topology.boundary_faces.begin(), topology.boundary_faces.end(), [&](Index face) {
+        return is_positive(density[static_cast<std::size_t>(face_hex(topology, face))]);
+      }))
+    f.bar.swatches.clear();
   // A max the boundary hides from here (interior, or a boundary one whose
   // faces this side does not show: on the far side, behind a fold or
   // edge-on) shows through it, so the dashed ring circles the max itself,

@@ -87,7 +87,8 @@ Color error_density_color(double density, const ErrorDensityScale& scale);
 // bottom, the multiples 2x, 5x, 10x, 20x ... of lo between, each with its
 // value (whole decades only over more than two), and "mesh max 0.0857 = 2.0x"
 // at the max (at the top with an arrow when above a given scale); values
-// crowding an end's or the max's label dropped; an "undefined" swatch.
+// crowding an end's or the max's label dropped; an "undefined" swatch (the
+// boundary figure drops it when every face it draws has a density).
 ColorBar error_density_color_bar(const ErrorDensityScale& scale);
 
 // The hex of largest density (the first on ties; kNoIndex when none has a

@@ -1,6 +1,7 @@
 #include "hqview/views/overview_views.h"
 
 #include <algorithm>
+#include <numbers>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -273,16 +274,19 @@ void add_non_conforming_diagonal(const HexMesh& mesh, const NonConformingFace& n
 
 ColorBar overview_color_bar(const Topology& topology, const std::vector<double>& vertex_quality) {
   ColorBar bar = quality_color_bar();
-  // Only a hybrid mesh can have boundary vertices without a value (used by
-  // non-hex cells alone until their corners are analysed): a pure-hex
-  // legend keeps its bytes.
-  if (topology.across_kinds) {
-    bool undefined = false;
-    for (const BoundaryPolygon& face : boundary_polygons(topology))
-      for (int i = 0; i < face.size; ++i)
-        undefined = undefined || std::isnan(vertex_quality[static_cast<std::size_t>(face.v[static_cast<std::size_t>(i)])]);
-    if (undefined) bar.swatches.push_back({kUndefinedColor, "no value"});
-  }
+  // The legend names only what is drawn: "inverted (< 0)" when a drawn
+  // vertex is below 0 (issue 47: it was listed on meshes with none), "no
+  // value" when one has none (only a hybrid mesh's boundary vertices can:
+  // used by non-hex cells alone until their corners are analysed).
+  bool below = false, undefined = false;
+  for (const BoundaryPolygon& face : boundary_polygons(topology))
+    for (int i = 0; i < face.size; ++i) {
+      const double q = vertex_quality[static_cast<std::size_t>(face.v[static_cast<std::size_t>(i)])];
+      below = below || q < 0.0;
+      undefined = undefined || std::isnan(q);
+    }
+  if (!below) bar.swatches.clear();
+  if (undefined) bar.swatches.push_back({kUndefinedColor, "no value"});
   if (!topology.non_conforming_faces.empty())
     bar.swatches.push_back({to_color(kNonConformingColor),
                             "non-conforming (" + std::to_string(topology.non_conforming_faces.size()) + ", inside; dashed: split)"});
@@ -586,7 +590,8 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
   // (measured against their neighbours' orientation) and the reflex corners
   // of concave faces, which are not inverted there; "inverted (< 0)" named
   // neither (issue 47p).
-  if (options.inverted_are_reversed) {
+  if (options.inverted_are_reversed && !f.bar.swatches.empty() &&
+      to_rgba8(f.bar.swatches.front().color) == to_rgba8(kInvertedColor)) {
     f.bar.swatches.front().label = kCurvedBelowZeroLabel;
     f.bar.swatches.insert(f.bar.swatches.begin() + 1, {Color{}, std::string(kCurvedBelowZeroNote), SwatchShape::text});
   }
@@ -630,6 +635,26 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
   fit_overview_bar(f.bar, f.style, f.layout.legend, options.height);
   const double aspect = static_cast<double>(f.layout.view.width) / static_cast<double>(f.layout.view.height);
   f.camera = fit_camera_to_points(boundary_points(mesh, topology), view_direction_of(options), aspect, {.up = options.up});
+  if (options.outline_on_top) {
+    // A planar mesh seen along its normal: its top under the title, as far
+    // from it as its side is from the view's edge, not centred (issue 47: a
+    // wide plate's overview began below index.html's first screen, under
+    // an empty band); the spare height goes below it.
+    const PixelBox box = projected_box(boundary_points(mesh, topology), f.camera, f.layout.view);
+    const double shift = box.y0 - (f.layout.view.y + std::max(0.0, box.x0 - f.layout.view.x));
+    if (box.y1 > box.y0 && shift > 1.0) {
+      const Vec3 forward = normalized(f.camera.target - f.camera.eye);
+      const Vec3 screen_up = normalized(cross(cross(forward, f.camera.up), forward));
+      const double per_pixel =
+          (f.camera.is_perspective ? 2.0 * norm(f.camera.target - f.camera.eye) *
+                                         std::tan(0.5 * f.camera.fov_y_degrees * std::numbers::pi / 180.0)
+                                   : f.camera.ortho_height) /
+          f.layout.view.height;
+      const Vec3 move = (shift * per_pixel) * screen_up;
+      f.camera.eye = f.camera.eye - move;
+      f.camera.target = f.camera.target - move;
+    }
+  }
   if (!options.inverted_cells.empty() && options.outline_inverted_faces) {
     // A planar mesh (seen along its normal, outlines on top) has no far
     // side: a face is hidden only under an overlapping one (a fold).

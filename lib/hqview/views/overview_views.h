@@ -64,7 +64,8 @@ struct OverviewOptions {
   bool inverted_are_reversed = false;
   // With it: the outlines drawn over everything (a planar mesh seen along
   // its normal: nothing lies behind), else depth-tested (a curved surface:
-  // a face on the far side stays hidden).
+  // a face on the far side stays hidden). Also the planar mesh's top sits
+  // under the title (quality_overview_frame), not centred in the view.
   bool outline_on_top = false;
   // overlap.num_intersecting_cells and the cells (ids over all volume
   // cells, or a surface mesh's face ids): their edges are drawn over
@@ -131,9 +132,11 @@ TriangleSet non_conforming_outlines(const HexMesh& mesh, const Topology& topolog
 void add_non_conforming_diagonal(const HexMesh& mesh, const NonConformingFace& nc, const Vec3& origin,
                                  const Rgba8& color, TriangleSet& set, double end_margin = 0.0);
 
-// The overview's legend: quality_color_bar(), plus on a hybrid mesh a
-// "no value" swatch when a boundary vertex has no quality (NaN) and a
-// "non-conforming (N, inside)" swatch when the mesh has such faces.
+// The overview's legend: quality_color_bar(), its "inverted (< 0)" swatch
+// only when a boundary vertex is below 0 (a legend names only what is
+// drawn), plus on a hybrid mesh a "no value" swatch when a boundary vertex
+// has no quality (NaN) and a "non-conforming (N, inside)" swatch when the
+// mesh has such faces.
 ColorBar overview_color_bar(const Topology& topology, const std::vector<double>& vertex_quality);
 
 // The positions of the boundary faces' vertices, each once, in vertex id

@@ -232,7 +232,24 @@ Vec3 surface_view_up(const HexMesh& mesh, const Topology& topology, const Vec3& 
   }
   const std::optional<Vec3> axis = revolution_axis(points);
   if (!axis) return up;
-  // The file's up decides the sign; an axis across it, its largest component.
+  // An open end up: the half of the axis's extent holding at least
+  // kOpenEndShare of the boundary's length (a cup's, a vase's rim).
+  double low = INFINITY, high = -INFINITY;
+  for (const Vec3& p : points) {
+    low = std::min(low, dot(p, *axis));
+    high = std::max(high, dot(p, *axis));
+  }
+  double above = 0.0, below = 0.0;
+  const SurfaceTopology& surface = topology.surface;
+  for (std::size_t e = 0; e < surface.edges.size(); ++e) {
+    if (surface.edge_num_faces[e] != 1) continue;
+    const Vec3& a = mesh.points[static_cast<std::size_t>(surface.edges[e][0])];
+    const Vec3& b = mesh.points[static_cast<std::size_t>(surface.edges[e][1])];
+    (dot(0.5 * (a + b), *axis) > 0.5 * (low + high) ? above : below) += norm(b - a);
+  }
+  if (above >= kOpenEndShare * (above + below) && above > 0.0) return *axis;
+  if (below >= kOpenEndShare * (above + below) && below > 0.0) return -1.0 * *axis;
+  // Else the file's up decides the sign; an axis across it, its largest component.
   double along = dot(*axis, up);
   if (std::abs(along) < 1e-9) {
     const Vec3& x = *axis;

@@ -67,11 +67,17 @@ inline constexpr double kRevolutionAlike = 0.05;
 std::optional<Vec3> revolution_axis(std::span<const Vec3> points);
 // The up axis of a curved surface mesh's views under --up auto (a surface
 // has no resting pose: resting_up.h needs a solid): the revolution_axis of
-// the vertices its faces use,
-// signed to agree with `up` (the file's +z; an axis across it: its largest
-// component positive), so a bowl or a bell turned in its file stands
+// the vertices its faces use, so a bowl or a bell turned in its file stands
 // upright on screen (the 47d review: a bowl lay on its side like a dish, a
 // bell leant 35-40 degrees); `up` for any other mesh, planar ones too.
+// Its sign: towards the open end, the half of the axis's extent (split at
+// its middle) holding at least kOpenEndShare of the boundary edges' length
+// (by their midpoints), so a cup, a bowl, a vase or a goblet stands rim up
+// however its file turns it (the 47f review: a goblet turned 115 degrees
+// stood stem up), and so does a bell (its mouth is its open end); else
+// (closed, or open at both ends alike: a tube) it agrees with `up` (the
+// file's +z; an axis across it: its largest component positive).
+inline constexpr double kOpenEndShare = 0.75;
 Vec3 surface_view_up(const HexMesh& mesh, const Topology& topology, const Vec3& up);
 // View 1's eye at least this far off that axis: seen along it a body of
 // revolution is concentric rings (a disc, a funnel), its profile lost.
