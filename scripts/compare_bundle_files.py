@@ -295,6 +295,30 @@ def compare_json(base_file, new_file, entries):
 
 # ---------------------------------------------------------------- CSV
 
+def check_named(entry, in_base, in_new, differs, out):
+    """A listed CSV column or VTU array: present where its change says
+    (reported in out), and counted as found and, for a change, as differing."""
+    what = "%s %s" % ("column" if entry.kind == "column" else "array", entry.target)
+    if in_base or in_new:
+        entry.found += 1
+    if entry.change == "added":
+        if not in_new:
+            out.append("%s: listed addition absent from the new output (%s)" % (what, entry.name()))
+        if in_base:
+            out.append("%s: listed addition already in the base (%s)" % (what, entry.name()))
+    elif entry.change == "removed":
+        if in_new:
+            out.append("%s: listed removal still in the new output (%s)" % (what, entry.name()))
+    elif not in_base or not in_new:
+        out.append("%s: listed change not on both sides (%s)" % (what, entry.name()))
+    elif differs():
+        entry.differed += 1
+
+
+def column_differs(name, ha, ra, hb, rb):
+    ia, ib = ha.index(name), hb.index(name)
+    return len(ra) != len(rb) or any(x[ia] != y[ib] for x, y in zip(ra, rb))
+
 def as_number(text):
     try:
         return float(text)
@@ -315,24 +339,7 @@ def compare_csv(base_file, new_file, entries):
     listed = set()
     for e in mine:
         listed.add(e.target)
-        in_a, in_b = e.target in ha, e.target in hb
-        if in_a or in_b:
-            e.found += 1
-        if e.change == "added":
-            if not in_b:
-                out.append("column %s: listed addition absent from the new output (%s)" % (e.target, e.name()))
-            if in_a:
-                out.append("column %s: listed addition already in the base (%s)" % (e.target, e.name()))
-        elif e.change == "removed":
-            if in_b:
-                out.append("column %s: listed removal still in the new output (%s)" % (e.target, e.name()))
-        else:
-            if not in_b or not in_a:
-                out.append("column %s: listed change not on both sides (%s)" % (e.target, e.name()))
-            else:
-                ia, ib = ha.index(e.target), hb.index(e.target)
-                if len(ra) != len(rb) or any(x[ia] != y[ib] for x, y in zip(ra, rb)):
-                    e.differed += 1
+        check_named(e, e.target in ha, e.target in hb, lambda e=e: column_differs(e.target, ha, ra, hb, rb), out)
     keep_a = [i for i, c in enumerate(ha) if c not in listed]
     keep_b = [i for i, c in enumerate(hb) if c not in listed]
     names_a, names_b = [ha[i] for i in keep_a], [hb[i] for i in keep_b]
@@ -408,21 +415,7 @@ def compare_vtu(base_file, new_file, entries):
         keys_a = [k for k in aa if k[1] == e.target]
         keys_b = [k for k in ab if k[1] == e.target]
         listed.update(keys_a + keys_b)
-        if keys_a or keys_b:
-            e.found += 1
-        if e.change == "added":
-            if not keys_b:
-                out.append("array %s: listed addition absent from the new output (%s)" % (e.target, e.name()))
-            if keys_a:
-                out.append("array %s: listed addition already in the base (%s)" % (e.target, e.name()))
-        elif e.change == "removed":
-            if keys_b:
-                out.append("array %s: listed removal still in the new output (%s)" % (e.target, e.name()))
-        else:
-            if not keys_a or not keys_b:
-                out.append("array %s: listed change not on both sides (%s)" % (e.target, e.name()))
-            elif any(aa[k] != ab.get(k) for k in keys_a):
-                e.differed += 1
+        check_named(e, bool(keys_a), bool(keys_b), lambda ka=keys_a: any(aa[k] != ab.get(k) for k in ka), out)
     order_a = [k for k in aa if k not in listed]
     order_b = [k for k in ab if k not in listed]
     if order_a != order_b:
