@@ -19,11 +19,12 @@ FILE (JSON) lists the changes made on purpose since a base commit:
 `files` is a glob matched against each file's path relative to the tree
 (`report.json` matches every report.json at any depth). A JSON path is dotted
 keys, `[*]` (every element of an array), `*` (every key of an object),
-`[N]`, `[?key=text]` (the elements whose `key` is `text`) and
+`[N]`, `[?key=glob]` (the elements whose `key` matches) and
 `["a key.with dots"]`; a key segment is a glob (`["quality.by_kind.*"]`). `change` is `added` (absent in the base,
 present in the new output wherever its parent is), `changed` (present on both
 sides, its value changed on purpose) or `removed` (present in the base only).
-`changelog` is a quote of CHANGELOG.md (compared with whitespace collapsed):
+A `changed` entry that some runs leave equal says why in `may_be_unchanged`
+(then it is a note, not a finding). `changelog` is a quote of CHANGELOG.md (compared with whitespace collapsed):
 each entry must be justified there (checked with --changelog).
 
 What is compared, after the listed paths are removed from both sides:
@@ -137,11 +138,11 @@ def child_path(path, key):
 
 def segment_matches(segment, key, value=None):
     """A key segment is a glob (`*`, `quality.by_kind.*`); an element segment
-    `[*]`, `[N]` or `[?key=text]` (the elements whose key holds that text)."""
+    `[*]`, `[N]` or `[?key=glob]` (the elements whose key matches the glob)."""
     if isinstance(key, int):
         if segment.startswith("[?"):
             name, _, text = segment[2:-1].partition("=")
-            return isinstance(value, dict) and name in value and str(value[name]) == text
+            return isinstance(value, dict) and name in value and fnmatch.fnmatchcase(str(value[name]), text)
         return segment == "[*]" or segment == "[%d]" % key
     return not segment.startswith("[") and fnmatch.fnmatchcase(key, segment)
 
@@ -558,8 +559,12 @@ def compare_trees(base, new, entries):
         print("skipped: %d files: %s" % (skipped[reason], reason))
     for e in entries:
         if e.change == "changed" and e.found and not e.differed:
-            reported.append("additions: %s: found in %d files, equal on both sides in every one (over-broad)"
-                            % (e.name(), e.found))
+            if e.raw.get("may_be_unchanged"):
+                print("note: %s: equal on both sides in the %d files it was found in (%s)"
+                      % (e.name(), e.found, e.raw["may_be_unchanged"]))
+            else:
+                reported.append("additions: %s: found in %d files, equal on both sides in every one (over-broad)"
+                                % (e.name(), e.found))
         if not e.found and e.change != "added":
             print("note: %s: in no compared file (not exercised by this run)" % e.name())
     return reported, total
