@@ -64,22 +64,21 @@ BASE_CELLS = "cell,scaled_jacobian,size_gradation\n0,0.5,1\n1,1,1.5\n"
 NEW_CELLS = "cell,scaled_jacobian,size_gradation,cell_type\n0,0.50,1,hex\n1,1.0,1.5,hex\n"
 BASE_VTU = [("CellData", "scaled_jacobian", "d", [0.5, 1.0, 0.25]), ("Cells", "types", "B", [12])]
 NEW_VTU = BASE_VTU + [("CellData", "source_index", "q", [1])]
+
+def entry(files, kind, target, change, issue, quote):
+    return {"files": files, kind: target, "change": change, "issue": issue, "changelog": quote}
+
+
+ADDED_46 = "new keys `headline.num_cells`"
 ADDITIONS = {"base": "test", "entries": [
-    {"files": "report.json", "json": "headline.num_cells", "change": "added", "issue": "46",
-     "changelog": "new keys `headline.num_cells`"},
-    {"files": "report.json", "json": "quality.worst_cells[*].kind", "change": "added", "issue": "46",
-     "changelog": "new keys `headline.num_cells`"},
-    {"files": "report.json", "json": 'compare.differences["headline.*"]', "change": "added", "issue": "46",
-     "changelog": "new keys `headline.num_cells`"},
+    entry("report.json", "json", "headline.num_cells", "added", "46", ADDED_46),
+    entry("report.json", "json", "quality.worst_cells[*].kind", "added", "46", ADDED_46),
+    entry("report.json", "json", 'compare.differences["headline.*"]', "added", "46", ADDED_46),
     # boundary_error is null (the stage did not run): its addition is not missing.
-    {"files": "report.json", "json": "boundary_error.planar", "change": "added", "issue": "46",
-     "changelog": "new keys `headline.num_cells`"},
-    {"files": "report.json", "json": "glyphs.clusters[*].color", "change": "changed", "issue": "44",
-     "changelog": "cluster colours change"},
-    {"files": "data/cells.csv", "column": "cell_type", "change": "added", "issue": "46",
-     "changelog": "the column `cell_type`"},
-    {"files": "data/annotated.vtu", "array": "source_index", "change": "added", "issue": "44",
-     "changelog": "the array `source_index` is new"}]}
+    entry("report.json", "json", "boundary_error.planar", "added", "46", ADDED_46),
+    entry("report.json", "json", "glyphs.clusters[*].color", "changed", "44", "cluster colours change"),
+    entry("data/cells.csv", "column", "cell_type", "added", "46", "the column `cell_type`"),
+    entry("data/annotated.vtu", "array", "source_index", "added", "44", "the array `source_index` is new")]}
 
 
 def make_tree(root, report, cells, arrays, compressed):
