@@ -436,7 +436,7 @@ OverlapReport run_surface(const Mesh& mesh, double eps = 0.0, std::int64_t min_b
   for (const auto& t : mesh.triangles)
     for (Index v : t) box.add(mesh.points[v]);
   return check_surface_overlap(
-      mesh, measure_planarity(mesh, box.diagonal()),
+      mesh, build_surface_topology(mesh), measure_planarity(mesh, box.diagonal()),
       OverlapOptions{.coincident_eps = eps, .pairs_per_box = per_box, .min_pair_budget = min_budget});
 }
 

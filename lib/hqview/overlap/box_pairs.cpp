@@ -109,18 +109,31 @@ BoxPairs box_self_pairs(const std::vector<Box3>& boxes, BoxContact contact, std:
 
 namespace {
 
-// Each non-empty group's bounds (the box around its boxes), its id the group.
-std::vector<IndexedBox> group_bounds(const std::vector<Box3>& boxes, const std::vector<Index>& first) {
-  std::vector<IndexedBox> groups;
-  for (std::size_t g = 0; g + 1 < first.size(); ++g) {
-    Box3 bounds;
-    for (Index i = first[g]; i < first[g + 1]; ++i) {
-      bounds.add(boxes[static_cast<std::size_t>(i)].lo);
-      bounds.add(boxes[static_cast<std::size_t>(i)].hi);
-    }
-    if (first[g] < first[g + 1]) groups.push_back(indexed(bounds, g));
+// The box around group g's boxes; nullopt for a group without boxes.
+std::optional<Box3> bounds_of_group(const std::vector<Box3>& boxes, const std::vector<Index>& first, std::size_t g) {
+  if (first[g] == first[g + 1]) return std::nullopt;
+  Box3 bounds;
+  for (Index i = first[g]; i < first[g + 1]; ++i) {
+    bounds.add(boxes[static_cast<std::size_t>(i)].lo);
+    bounds.add(boxes[static_cast<std::size_t>(i)].hi);
   }
+  return bounds;
+}
+
+// Each group's bounds but those nullopt, its id the group; the array made
+// at its final size (not grown by doubling into fresh pages: 61 MB for a
+// 1M-quad surface).
+std::vector<IndexedBox> group_bounds(std::size_t num_groups,
+                                     const std::function<std::optional<Box3>(std::size_t)>& bounds_of) {
+  std::vector<IndexedBox> groups;
+  groups.reserve(num_groups);
+  for (std::size_t g = 0; g < num_groups; ++g)
+    if (const std::optional<Box3> bounds = bounds_of(g)) groups.push_back(indexed(*bounds, g));
   return groups;
+}
+
+std::vector<IndexedBox> group_bounds(const std::vector<Box3>& boxes, const std::vector<Index>& first) {
+  return group_bounds(first.size() - 1, [&](std::size_t g) { return bounds_of_group(boxes, first, g); });
 }
 
 // CGAL's search on the groups' bounds, closed: report(a, b) per pair.
@@ -182,7 +195,13 @@ std::vector<double> slab_splits(const std::vector<IndexedBox>& groups) {
 std::optional<std::vector<std::array<Index, 2>>> group_bound_pairs(const std::vector<Box3>& boxes,
                                                                    const std::vector<Index>& first,
                                                                    std::int64_t max_pairs) {
-  std::vector<IndexedBox> groups = group_bounds(boxes, first);
+  return group_bound_pairs(
+      first.size() - 1, [&](std::size_t g) { return bounds_of_group(boxes, first, g); }, max_pairs);
+}
+
+std::optional<std::vector<std::array<Index, 2>>> group_bound_pairs(
+    std::size_t num_groups, const std::function<std::optional<Box3>(std::size_t)>& bounds_of, std::int64_t max_pairs) {
+  std::vector<IndexedBox> groups = group_bounds(num_groups, bounds_of);
   const std::vector<double> split = groups.size() >= kMinSlabGroups ? slab_splits(groups) : std::vector<double>{};
   const auto slab_of = [&](double x) {
     return static_cast<std::size_t>(std::upper_bound(split.begin(), split.end(), x) - split.begin());

@@ -65,4 +65,10 @@ std::optional<std::vector<std::array<Index, 2>>> group_bound_pairs(const std::ve
                                                                    const std::vector<Index>& first,
                                                                    std::int64_t max_pairs);
 
+// The same, each group's bounds given by bounds_of(g) for g < num_groups
+// (nullopt: a group without boxes, left out): the caller needs no array of
+// every box (a 1M-quad surface's 2.2 M triangles: 105 MB of fresh pages).
+std::optional<std::vector<std::array<Index, 2>>> group_bound_pairs(
+    std::size_t num_groups, const std::function<std::optional<Box3>(std::size_t)>& bounds_of, std::int64_t max_pairs);
+
 }  // namespace hq::detail

@@ -598,27 +598,41 @@ std::vector<std::uint8_t> classify_cell_orientations(const VolumeCells& cells, c
 namespace {
 
 // Non-degenerate triangles in groups (a face's triangles are consecutive:
-// the groups of the box search), with their boxes.
+// the groups of the box search). Their boxes are made where they are
+// compared, from the points the tests read anyway: no array of them (105
+// MB of fresh pages for a 1M-quad surface's 2.2 M triangles).
 struct TriangleGroups {
+  const std::vector<Vec3>* points = nullptr;
   std::vector<Triangle> triangles;
   std::vector<Index> group;
-  std::vector<Box3> boxes;
   std::vector<Index> first{0};  // one entry more than there are groups
-  void add(const std::vector<Vec3>& p, const Triangle& t) {
+  explicit TriangleGroups(const std::vector<Vec3>& p) : points(&p) {}
+  void add(const Triangle& t) {
+    const std::vector<Vec3>& p = *points;
     if (CGAL::collinear(point(at(p, t[0])), point(at(p, t[1])), point(at(p, t[2])))) return;
     triangles.push_back(t);
     group.push_back(static_cast<Index>(first.size() - 1));
-    boxes.push_back(box_of(p, t.data(), 3));
   }
   void close_group() { first.push_back(static_cast<Index>(triangles.size())); }
   // Room for this many triangles and groups at once: the arrays are not
-  // grown by doubling (each doubling a copy into freshly zeroed pages: 105
-  // MB of boxes for a 1M-quad surface's 2.2 M triangles).
+  // grown by doubling (each doubling a copy into freshly zeroed pages).
   void reserve(std::size_t num_triangles, std::size_t num_groups) {
     triangles.reserve(num_triangles);
     group.reserve(num_triangles);
-    boxes.reserve(num_triangles);
     first.reserve(num_groups + 1);
+  }
+  std::size_t num_groups() const { return first.size() - 1; }
+  Box3 box(Index i) const { return box_of(*points, triangles[static_cast<std::size_t>(i)].data(), 3); }
+  // The box around group g's triangles' boxes; nullopt when it has none.
+  std::optional<Box3> bounds(std::size_t g) const {
+    if (first[g] == first[g + 1]) return std::nullopt;
+    Box3 out;
+    for (Index i = first[g]; i < first[g + 1]; ++i) {
+      const Box3 b = box(i);
+      out.add(b.lo);
+      out.add(b.hi);
+    }
+    return out;
   }
 };
 
@@ -634,7 +648,9 @@ struct TriangleHits {
 // The same, the candidates listed by grouped_box_self_pairs and then tested.
 TriangleHits test_listed_triangle_pairs(const std::vector<Vec3>& p, const TriangleGroups& g, std::int64_t max_pairs) {
   TriangleHits out;
-  out.budget = grouped_box_self_pairs(g.boxes, g.first, max_pairs);
+  std::vector<Box3> boxes(g.triangles.size());
+  for (std::size_t i = 0; i < boxes.size(); ++i) boxes[i] = g.box(static_cast<Index>(i));
+  out.budget = grouped_box_self_pairs(boxes, g.first, max_pairs);
   const std::vector<std::array<Index, 2>> candidates = std::move(out.budget.pairs);
   out.budget.pairs = {};
   out.num_candidates = static_cast<std::int64_t>(candidates.size());
@@ -670,25 +686,29 @@ constexpr std::size_t kItemsPerChunk = 8192;
 // total the whole count passes too, so the outcome does not depend on the
 // order the chunks run in.
 TriangleHits test_triangle_groups(const std::vector<Vec3>& p, const TriangleGroups& g, std::int64_t max_pairs) {
-  const std::size_t num_groups = g.first.size() - 1;
+  const std::size_t num_groups = g.num_groups();
   const auto group_pairs =
-      group_bound_pairs(g.boxes, g.first, kMinGroupPairs + kGroupPairsPerGroup * static_cast<std::int64_t>(num_groups));
+      group_bound_pairs(num_groups, [&](std::size_t k) { return g.bounds(k); },
+                        kMinGroupPairs + kGroupPairsPerGroup * static_cast<std::int64_t>(num_groups));
   if (!group_pairs) return test_listed_triangle_pairs(p, g, max_pairs);
   const auto size = [&](Index group) { return std::int64_t{g.first[static_cast<std::size_t>(group) + 1] - g.first[static_cast<std::size_t>(group)]}; };
   // Item k: group k's own pairs for k < num_groups, else group pair k - num_groups.
   const std::size_t num_items = num_groups + group_pairs->size();
   const auto for_each_candidate = [&](std::size_t k, auto&& f) {
-    const auto touch = [&](Index i, Index j) {
-      if (boxes_overlap_closed(g.boxes[static_cast<std::size_t>(i)], g.boxes[static_cast<std::size_t>(j)])) f(i, j);
-    };
     if (k < num_groups) {
-      for (Index i = g.first[k]; i < g.first[k + 1]; ++i)
-        for (Index j = i + 1; j < g.first[k + 1]; ++j) touch(i, j);
+      for (Index i = g.first[k]; i < g.first[k + 1]; ++i) {
+        const Box3 box = g.box(i);
+        for (Index j = i + 1; j < g.first[k + 1]; ++j)
+          if (boxes_overlap_closed(box, g.box(j))) f(i, j);
+      }
       return;
     }
     const auto [a, b] = (*group_pairs)[k - num_groups];  // a < b: a's triangles come first
-    for (Index i = g.first[static_cast<std::size_t>(a)]; i < g.first[static_cast<std::size_t>(a) + 1]; ++i)
-      for (Index j = g.first[static_cast<std::size_t>(b)]; j < g.first[static_cast<std::size_t>(b) + 1]; ++j) touch(i, j);
+    for (Index i = g.first[static_cast<std::size_t>(a)]; i < g.first[static_cast<std::size_t>(a) + 1]; ++i) {
+      const Box3 box = g.box(i);
+      for (Index j = g.first[static_cast<std::size_t>(b)]; j < g.first[static_cast<std::size_t>(b) + 1]; ++j)
+        if (boxes_overlap_closed(box, g.box(j))) f(i, j);
+    }
   };
   const std::size_t num_chunks = (num_items + kItemsPerChunk - 1) / kItemsPerChunk;
   const auto chunk_range = [&](std::size_t c) {
@@ -787,12 +807,12 @@ Vec3 meeting_point(const std::vector<Vec3>& p, const Triangle& a, const Triangle
 
 FacePairs intersecting_face_pairs(const TetPoints& tp, const std::vector<BoundaryFace>& quads, std::int64_t max_pairs) {
   const auto& p = tp.points;
-  TriangleGroups groups;
+  TriangleGroups groups(p);
   std::size_t num_fan_triangles = 0;
   for (const BoundaryFace& face : quads) num_fan_triangles += static_cast<std::size_t>(face.num_fan_triangles());
   groups.reserve(num_fan_triangles, quads.size());
   for (const BoundaryFace& face : quads) {
-    for (int e = 0; e < face.num_fan_triangles(); ++e) groups.add(p, fan_triangle(face, e));
+    for (int e = 0; e < face.num_fan_triangles(); ++e) groups.add(fan_triangle(face, e));
     groups.close_group();
   }
   const TriangleHits hits = test_triangle_groups(p, groups, max_pairs);
@@ -810,10 +830,10 @@ FacePairs intersecting_face_pairs(const TetPoints& tp, const std::vector<Boundar
 
 SurfaceFacePairs intersecting_surface_faces(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles,
                                             const std::vector<Index>& first, std::int64_t max_pairs) {
-  TriangleGroups groups;
+  TriangleGroups groups(points);
   groups.reserve(triangles.size(), first.size());
   for (std::size_t f = 0; f + 1 < first.size(); ++f) {
-    for (Index t = first[f]; t < first[f + 1]; ++t) groups.add(points, triangles[static_cast<std::size_t>(t)]);
+    for (Index t = first[f]; t < first[f + 1]; ++t) groups.add(triangles[static_cast<std::size_t>(t)]);
     groups.close_group();
   }
   const TriangleHits hits = test_triangle_groups(points, groups, max_pairs);

@@ -660,8 +660,8 @@ int quad_split_diagonal(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Ve
   return squared_norm(p2 - p0) <= squared_norm(p3 - p1) ? 0 : 1;
 }
 
-OverlapReport check_surface_overlap(const Mesh& mesh, const Planarity& planarity, const OverlapOptions& options,
-                                    const std::function<void()>& on_self_intersection) {
+OverlapReport check_surface_overlap(const Mesh& mesh, const SurfaceTopology& topology, const Planarity& planarity,
+                                    const OverlapOptions& options, const std::function<void()>& on_self_intersection) {
   OverlapReport r;
   r.mode = options.mode;
   r.is_surface = true;
@@ -677,20 +677,31 @@ OverlapReport check_surface_overlap(const Mesh& mesh, const Planarity& planarity
   std::iota(welded.begin(), welded.end(), 0);
   for (const CoincidentGroup& g : r.coincident_groups)
     for (Index v : g.vertices) welded[sz(v)] = g.vertices.front();
-  // B. Unique edges of the faces, by their original ids.
+  // B. Unique edges of the faces, by their original ids: the surface
+  // topology's (no second table and sort of every side), with a side from a
+  // vertex to itself as the edge {v, v} in its sorted place.
   const double tol2 = r.coincident_tolerance * r.coincident_tolerance;
-  std::vector<Edge> edges;
-  edges.reserve(4 * num_faces);
+  std::vector<Index> repeated;  // v of each side from v to itself
   for_each_face(mesh, [&](Index, const Index* c, int n) {
-    for (int i = 0; i < n; ++i) edges.push_back({std::min(c[i], c[(i + 1) % n]), std::max(c[i], c[(i + 1) % n])});
+    for (int i = 0; i < n; ++i)
+      if (c[i] == c[(i + 1) % n]) repeated.push_back(c[i]);
   });
-  tbb::parallel_sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  for (const Edge& e : edges) {
+  std::sort(repeated.begin(), repeated.end());
+  repeated.erase(std::unique(repeated.begin(), repeated.end()), repeated.end());
+  const auto add_if_zero_length = [&](const Edge& e) {
     const Vec3 d = p[sz(e[1])] - p[sz(e[0])];
     if (tol2 > 0.0 ? squared_norm(d) <= tol2 : d == Vec3{}) r.zero_length_edges.push_back(e);
+  };
+  auto next_repeated = repeated.begin();
+  const auto add_repeated_up_to = [&](Index last) {
+    for (; next_repeated != repeated.end() && *next_repeated <= last; ++next_repeated)
+      add_if_zero_length({*next_repeated, *next_repeated});
+  };
+  for (const Edge& e : topology.edges) {
+    add_repeated_up_to(e[0]);  // {v, v} before {v, w > v}
+    add_if_zero_length(e);
   }
-  std::vector<Edge>().swap(edges);
+  add_repeated_up_to(std::numeric_limits<Index>::max());
   // Duplicate faces: sorted vertex ids (a triangle's padded with kNoIndex).
   {
     std::vector<std::pair<std::array<Index, 4>, Index>> keyed;

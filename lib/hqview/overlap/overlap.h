@@ -240,13 +240,15 @@ int quad_split_diagonal(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Ve
 //   listed, over_budget_stage "faces").
 // Stage C (orientation) is the quality's (num_inverted): inverted_cells,
 // cell_orientation and the volume-only lists stay empty. certified_clean:
-// S completed and A, B, duplicates and S found nothing. num_candidate_pairs:
+// S completed and A, B, duplicates and S found nothing. `topology`: the
+// mesh's build_surface_topology (B reads its edges). num_candidate_pairs:
 // the triangle pairs S tested. on_self_intersection, when set, is called as
 // S starts (the analysis times S as a stage of its own). markers: the
 // coincident groups, the intersecting pairs (as for volumes), then one per
 // self-intersecting face.
 // Deterministic for any number of TBB threads.
-OverlapReport check_surface_overlap(const Mesh& mesh, const Planarity& planarity, const OverlapOptions& options,
+OverlapReport check_surface_overlap(const Mesh& mesh, const SurfaceTopology& topology, const Planarity& planarity,
+                                    const OverlapOptions& options,
                                     const std::function<void()>& on_self_intersection = {});
 
 }  // namespace hq

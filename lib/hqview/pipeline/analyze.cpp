@@ -231,8 +231,8 @@ void analyze_quality(Analysis& a, const AnalyzeOptions& options, StageClock& clo
     // own (the clock is this branch's alone: the others are timed apart).
     clock.start("overlap");
     const auto overlap = [&] {
-      a.overlap = is_surface ? check_surface_overlap(a.mesh, *a.mesh_summary.planarity, *options.overlap,
-                                                     [&] { clock.start("self-intersection"); })
+      a.overlap = is_surface ? check_surface_overlap(a.mesh, a.topology.surface, *a.mesh_summary.planarity,
+                                                     *options.overlap, [&] { clock.start("self-intersection"); })
                              : check_overlap(a.mesh, a.topology, *options.overlap);
     };
     if (metrics_beside)
