@@ -917,8 +917,13 @@ std::vector<Vec3> local_face_areas(const HexMesh& mesh, std::span<const Index> c
   for (Index c : cells)
     for_each_drawn_face(mesh, c, [&](const std::array<Index, 4>& f, int size) {
       if (v != kNoIndex && std::find(f.begin(), f.begin() + size, v) == f.begin() + size) return;
+      // The face's corners sorted; a triangle's fourth slot kNoIndex (first
+      // after sorting): one key per face whatever its corner order. All four
+      // slots sorted, a fixed length: GCC 12 warned of an out-of-bounds
+      // branch (-Warray-bounds) in std::sort over a variable length <= 4.
       std::array<Index, 4> key = f;
-      std::sort(key.begin(), key.begin() + size);
+      if (size == 3) key[3] = kNoIndex;
+      std::sort(key.begin(), key.end());
       if (std::find(seen.begin(), seen.end(), key) != seen.end()) return;
       seen.push_back(key);
       const auto p = [&](int i) { return mesh.points[static_cast<std::size_t>(f[static_cast<std::size_t>(i)])]; };
