@@ -427,6 +427,69 @@ TEST(SurfaceDetailViews, SliverRingGetsAnInsetWithEachDiscInsideItsQuad) {
       EXPECT_GT(std::hypot(discs[i][0] - discs[j][0], discs[i][1] - discs[j][1]), discs[i][2] + discs[j][2]);
 }
 
+// The sliver grid above turned 35 degrees about x and 20 about z, its
+// corner (0, 4) pulled out to (-1.5, 4.8) so the ring's bounding-box centre
+// is off its plane (47i review #1: the inset's camera moved along the view
+// to the vertex's depth kept the view's near and far planes, which enclose
+// the planar ring's single depth with 1% slack, and the inset came out
+// blank white): every ring point lies between the inset camera's near and
+// far planes, the inset's rendered pixels hold the faces' fill (not only
+// white), and the box it shows lies inside the view.
+TEST(SurfaceDetailViews, TiltedSliverRingsInsetShowsItsFacesAndItsBoxIsInTheView) {
+  const test::TempDir dir("surface_detail_views");
+  const std::array<double, 5> xs{0.0, 1.0, 1.01, 2.0, 3.0};
+  const double a = 35.0 * 3.14159265358979323846 / 180.0, b = 20.0 * 3.14159265358979323846 / 180.0;
+  std::vector<Vec3> points;
+  std::ostringstream obj;
+  for (int j = 0; j <= 4; ++j)
+    for (double x : xs) {
+      Vec3 q{x, double(j), 0.0};
+      if (x == 0.0 && j == 3) q = {-1.5, 3.8, 0.0};
+      const Vec3 r{q.x, std::cos(a) * q.y - std::sin(a) * q.z, std::sin(a) * q.y + std::cos(a) * q.z};
+      obj << "v " << std::cos(b) * r.x - std::sin(b) * r.y << ' ' << std::sin(b) * r.x + std::cos(b) * r.y << ' ' << r.z
+          << '\n';
+    }
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      const int k = 1 + i + 5 * j;
+      obj << "f " << k << ' ' << k + 1 << ' ' << k + 6 << ' ' << k + 5 << '\n';
+    }
+  AnalyzeOptions run;
+  run.mesh_path = dir.write("tilted_slivers.obj", obj.str());
+  run.tool_version = "test";
+  const Analysis an = analyze_mesh(run);
+  DetailViewOptions options;
+  options.width = 800, options.height = 600;
+  options.view_direction = planar_view_direction(an);
+  options.cell_quality = an.field.cell_scaled_jacobian;
+  const Index v = 1 + 5 * 2;  // (1, 2)
+  const LocalShot shot = local_shot(an.mesh, an.topology, an.field.corner_scaled_jacobian, v, options);
+  ASSERT_TRUE(shot.inset);
+  const DetailInset& inset = *shot.inset;
+  const Vec3 ahead = normalized(inset.camera.target - inset.camera.eye);
+  for (const auto& q : an.mesh.quads) {
+    if (std::find(q.begin(), q.end(), v) == q.end()) continue;
+    for (Index c : q) {
+      const double depth = dot(an.mesh.points[static_cast<std::size_t>(c)] - inset.camera.eye, ahead);
+      EXPECT_GE(depth, inset.camera.near_plane);
+      EXPECT_LE(depth, inset.camera.far_plane);
+    }
+  }
+  const PixelRect& view = shot.layout.view;
+  EXPECT_GE(inset.box.x, view.x);
+  EXPECT_GE(inset.box.y, view.y);
+  EXPECT_LE(inset.box.x + inset.box.width, view.x + view.width);
+  EXPECT_LE(inset.box.y + inset.box.height, view.y + view.height);
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  ASSERT_TRUE(renderer);
+  const Image image = renderer->render(inset.scene, inset.camera, inset.rect.width, inset.rect.height);
+  std::size_t drawn = 0;
+  for (std::size_t i = 0; i + 3 < image.rgba.size(); i += 4)
+    drawn += image.rgba[i] < 250 || image.rgba[i + 1] < 250 || image.rgba[i + 2] < 250;
+  // The ring's faces fill most of a zoom on their vertex.
+  EXPECT_GT(drawn, image.rgba.size() / 4 / 4);
+}
+
 // `--views clusters,local,corners` on a quad mesh draws C of each top
 // cluster, D and E of each worst vertex (the pushed one first) and nothing
 // else; D's file names the pushed vertex.
