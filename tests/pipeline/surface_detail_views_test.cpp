@@ -22,6 +22,7 @@
 #include "hqview/render/label_layout.h"
 #include "hqview/render/osmesa_renderer.h"
 #include "hqview/views/detail_views.h"
+#include "hqview/views/main_views.h"
 #include "hqview/views/surface_views.h"
 #include "hqview/views/views.h"
 #include "io/temp_dir.h"
@@ -206,6 +207,15 @@ TEST(SurfaceDetailViews, PlanarFoldClusterViewFillsTheClustersFaces) {
   for (const TriangleSet& set : shot.scene.triangles) faces_drawn += set.colors.size() / 4;
   EXPECT_EQ(faces_drawn, region.cells.size());
   EXPECT_NE(shot.cell_kinds.find(kClusterFaceFillLegend), std::string::npos);
+  // The legend says what a sphere is and what its size says, and its ring
+  // swatch is drawn as the ring (47i review #7: a dark ring with no band).
+  EXPECT_NE(shot.cell_kinds.find("sphere: a vertex below the threshold\nsize: how far below"), std::string::npos);
+  const auto ring = std::find_if(shot.swatches.begin(), shot.swatches.end(),
+                                 [](const ColorBarSwatch& s) { return s.label == "ring: its worst vertex"; });
+  ASSERT_NE(ring, shot.swatches.end());
+  EXPECT_EQ(ring->shape, SwatchShape::solid_ring);
+  ASSERT_TRUE(ring->ring_band);
+  EXPECT_EQ(*ring->ring_band, kWorstBandColor);
 }
 
 // Each quad's two triangles in view C lie inside the quad (the centroid of

@@ -652,7 +652,7 @@ std::vector<ColorBarSwatch> surface_cluster_swatches(const GlyphResult& glyphs, 
                                                      const AnnotationStyle& style) {
   const Rgba8 pale = blend_over(kRegionFaceColor, style.background);
   return {{to_color(cluster_edge_color(glyphs, cluster)), "the cluster's edges", SwatchShape::thick_line},
-          {to_color(style.text_color), "ring: its worst vertex", SwatchShape::solid_ring},
+          {to_color(style.text_color), "ring: its worst vertex", SwatchShape::solid_ring, std::nullopt, kWorstBandColor},
           {to_color(pale), "neighbour faces", SwatchShape::box},
           {to_color(kNeighbourEdgeColor), "neighbour edges", SwatchShape::line}};
 }
@@ -665,7 +665,8 @@ ClusterShot cluster_shot(const HexMesh& mesh, const Topology& topology, const st
   ClusterShot shot;
   if (has_non_hex_cells(mesh)) shot.cell_kinds = cell_kinds_legend(mesh, region.cells);
   if (!options.cell_quality.empty())
-    shot.cell_kinds = std::string(kClusterFaceFillLegend) + "\n" + cell_kinds_legend(mesh, region.cells);
+    shot.cell_kinds = std::string(kClusterFaceFillLegend) + "\n" + kClusterSphereLegend + "\n" +
+                      cell_kinds_legend(mesh, region.cells);
   if (!options.cell_quality.empty())
     shot.swatches = surface_cluster_swatches(glyphs, cluster, annotation_style_for(options.height));
   const Figure f = detail_figure(options, shot.cell_kinds, false, false, shot.swatches);
