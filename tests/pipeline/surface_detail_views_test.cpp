@@ -351,6 +351,38 @@ TEST(SurfaceDetailViews, PlanarFoldClusterGlyphsRankAndLeaveTheFoldInSight) {
   EXPECT_TRUE(has_swatch({over_white(fill.r), over_white(fill.g), over_white(fill.b), 255}));
 }
 
+// The analysis of a planar 4 x 4 quad grid whose second column is 0.01
+// wide (vertex (1, 2) is 1 + 5 * 2), each grid point (x, y, 0) written
+// where `place` puts it.
+template <class Place>
+Analysis sliver_grid(const test::TempDir& dir, const std::string& name, Place place) {
+  const std::array<double, 5> xs{0.0, 1.0, 1.01, 2.0, 3.0};
+  std::ostringstream obj;
+  for (int j = 0; j <= 4; ++j)
+    for (double x : xs) {
+      const Vec3 q = place(Vec3{x, double(j), 0.0});
+      obj << "v " << q.x << ' ' << q.y << ' ' << q.z << '\n';
+    }
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      const int a = 1 + i + 5 * j;
+      obj << "f " << a << ' ' << a + 1 << ' ' << a + 6 << ' ' << a + 5 << '\n';
+    }
+  AnalyzeOptions run;
+  run.mesh_path = dir.write(name, obj.str());
+  run.tool_version = "test";
+  return analyze_mesh(run);
+}
+
+// View D (800 x 600, along the plane's normal) of vertex v of sliver_grid.
+LocalShot sliver_grid_shot(const Analysis& a, Index v) {
+  DetailViewOptions options;
+  options.width = 800, options.height = 600;
+  options.view_direction = planar_view_direction(a);
+  options.cell_quality = a.field.cell_scaled_jacobian;
+  return local_shot(a.mesh, a.topology, a.field.corner_scaled_jacobian, v, options);
+}
+
 // A ring of slivers (47g review #6, Dolphin_padded's corner between edges
 // 3 px apart): a planar 4 x 4 grid whose second column is 0.01 wide. D of
 // the vertex (1, 2): in the view a sliver's disc has no room in its quad
@@ -364,25 +396,9 @@ TEST(SurfaceDetailViews, PlanarFoldClusterGlyphsRankAndLeaveTheFoldInSight) {
 // even-odd) and no two discs overlap; the inset covers no label.
 TEST(SurfaceDetailViews, SliverRingGetsAnInsetWithEachDiscInsideItsQuad) {
   const test::TempDir dir("surface_detail_views");
-  const std::array<double, 5> xs{0.0, 1.0, 1.01, 2.0, 3.0};
-  std::ostringstream obj;
-  for (int j = 0; j <= 4; ++j)
-    for (double x : xs) obj << "v " << x << ' ' << j << " 0\n";
-  for (int j = 0; j < 4; ++j)
-    for (int i = 0; i < 4; ++i) {
-      const int a = 1 + i + 5 * j;
-      obj << "f " << a << ' ' << a + 1 << ' ' << a + 6 << ' ' << a + 5 << '\n';
-    }
-  AnalyzeOptions run;
-  run.mesh_path = dir.write("slivers.obj", obj.str());
-  run.tool_version = "test";
-  const Analysis a = analyze_mesh(run);
-  DetailViewOptions options;
-  options.width = 800, options.height = 600;
-  options.view_direction = planar_view_direction(a);
-  options.cell_quality = a.field.cell_scaled_jacobian;
+  const Analysis a = sliver_grid(dir, "slivers.obj", [](const Vec3& q) { return q; });
   const Index v = 1 + 5 * 2;  // (1, 2)
-  const LocalShot shot = local_shot(a.mesh, a.topology, a.field.corner_scaled_jacobian, v, options);
+  const LocalShot shot = sliver_grid_shot(a, v);
   ASSERT_TRUE(shot.inset);
   const DetailInset& inset = *shot.inset;
   const double aspect = double(inset.rect.width) / inset.rect.height;
@@ -447,33 +463,14 @@ TEST(SurfaceDetailViews, SliverRingGetsAnInsetWithEachDiscInsideItsQuad) {
 // white), and the box it shows lies inside the view.
 TEST(SurfaceDetailViews, TiltedSliverRingsInsetShowsItsFacesAndItsBoxIsInTheView) {
   const test::TempDir dir("surface_detail_views");
-  const std::array<double, 5> xs{0.0, 1.0, 1.01, 2.0, 3.0};
   const double a = 35.0 * 3.14159265358979323846 / 180.0, b = 20.0 * 3.14159265358979323846 / 180.0;
-  std::vector<Vec3> points;
-  std::ostringstream obj;
-  for (int j = 0; j <= 4; ++j)
-    for (double x : xs) {
-      Vec3 q{x, double(j), 0.0};
-      if (x == 0.0 && j == 3) q = {-1.5, 3.8, 0.0};
-      const Vec3 r{q.x, std::cos(a) * q.y - std::sin(a) * q.z, std::sin(a) * q.y + std::cos(a) * q.z};
-      obj << "v " << std::cos(b) * r.x - std::sin(b) * r.y << ' ' << std::sin(b) * r.x + std::cos(b) * r.y << ' ' << r.z
-          << '\n';
-    }
-  for (int j = 0; j < 4; ++j)
-    for (int i = 0; i < 4; ++i) {
-      const int k = 1 + i + 5 * j;
-      obj << "f " << k << ' ' << k + 1 << ' ' << k + 6 << ' ' << k + 5 << '\n';
-    }
-  AnalyzeOptions run;
-  run.mesh_path = dir.write("tilted_slivers.obj", obj.str());
-  run.tool_version = "test";
-  const Analysis an = analyze_mesh(run);
-  DetailViewOptions options;
-  options.width = 800, options.height = 600;
-  options.view_direction = planar_view_direction(an);
-  options.cell_quality = an.field.cell_scaled_jacobian;
+  const Analysis an = sliver_grid(dir, "tilted_slivers.obj", [&](Vec3 q) {
+    if (q.x == 0.0 && q.y == 3.0) q = {-1.5, 3.8, 0.0};
+    const Vec3 r{q.x, std::cos(a) * q.y - std::sin(a) * q.z, std::sin(a) * q.y + std::cos(a) * q.z};
+    return Vec3{std::cos(b) * r.x - std::sin(b) * r.y, std::sin(b) * r.x + std::cos(b) * r.y, r.z};
+  });
   const Index v = 1 + 5 * 2;  // (1, 2)
-  const LocalShot shot = local_shot(an.mesh, an.topology, an.field.corner_scaled_jacobian, v, options);
+  const LocalShot shot = sliver_grid_shot(an, v);
   ASSERT_TRUE(shot.inset);
   const DetailInset& inset = *shot.inset;
   const Vec3 ahead = normalized(inset.camera.target - inset.camera.eye);
