@@ -22,6 +22,7 @@
 #include "hqview/render/label_layout.h"
 #include "hqview/render/osmesa_renderer.h"
 #include "hqview/views/detail_views.h"
+#include "hqview/views/main_views.h"
 #include "hqview/views/surface_views.h"
 #include "hqview/views/views.h"
 #include "io/temp_dir.h"
@@ -206,6 +207,15 @@ TEST(SurfaceDetailViews, PlanarFoldClusterViewFillsTheClustersFaces) {
   for (const TriangleSet& set : shot.scene.triangles) faces_drawn += set.colors.size() / 4;
   EXPECT_EQ(faces_drawn, region.cells.size());
   EXPECT_NE(shot.cell_kinds.find(kClusterFaceFillLegend), std::string::npos);
+  // The legend says what a sphere is and what its size says, and its ring
+  // swatch is drawn as the ring (47i review #7: a dark ring with no band).
+  EXPECT_NE(shot.cell_kinds.find("sphere: a vertex below the threshold\nsize: how far below"), std::string::npos);
+  const auto ring = std::find_if(shot.swatches.begin(), shot.swatches.end(),
+                                 [](const ColorBarSwatch& s) { return s.label == "ring: its worst vertex"; });
+  ASSERT_NE(ring, shot.swatches.end());
+  EXPECT_EQ(ring->shape, SwatchShape::solid_ring);
+  ASSERT_TRUE(ring->ring_band);
+  EXPECT_EQ(*ring->ring_band, kWorstBandColor);
 }
 
 // Each quad's two triangles in view C lie inside the quad (the centroid of
@@ -341,6 +351,38 @@ TEST(SurfaceDetailViews, PlanarFoldClusterGlyphsRankAndLeaveTheFoldInSight) {
   EXPECT_TRUE(has_swatch({over_white(fill.r), over_white(fill.g), over_white(fill.b), 255}));
 }
 
+// The analysis of a planar 4 x 4 quad grid whose second column is 0.01
+// wide (vertex (1, 2) is 1 + 5 * 2), each grid point (x, y, 0) written
+// where `place` puts it.
+template <class Place>
+Analysis sliver_grid(const test::TempDir& dir, const std::string& name, Place place) {
+  const std::array<double, 5> xs{0.0, 1.0, 1.01, 2.0, 3.0};
+  std::ostringstream obj;
+  for (int j = 0; j <= 4; ++j)
+    for (double x : xs) {
+      const Vec3 q = place(Vec3{x, double(j), 0.0});
+      obj << "v " << q.x << ' ' << q.y << ' ' << q.z << '\n';
+    }
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      const int a = 1 + i + 5 * j;
+      obj << "f " << a << ' ' << a + 1 << ' ' << a + 6 << ' ' << a + 5 << '\n';
+    }
+  AnalyzeOptions run;
+  run.mesh_path = dir.write(name, obj.str());
+  run.tool_version = "test";
+  return analyze_mesh(run);
+}
+
+// View D (800 x 600, along the plane's normal) of vertex v of sliver_grid.
+LocalShot sliver_grid_shot(const Analysis& a, Index v) {
+  DetailViewOptions options;
+  options.width = 800, options.height = 600;
+  options.view_direction = planar_view_direction(a);
+  options.cell_quality = a.field.cell_scaled_jacobian;
+  return local_shot(a.mesh, a.topology, a.field.corner_scaled_jacobian, v, options);
+}
+
 // A ring of slivers (47g review #6, Dolphin_padded's corner between edges
 // 3 px apart): a planar 4 x 4 grid whose second column is 0.01 wide. D of
 // the vertex (1, 2): in the view a sliver's disc has no room in its quad
@@ -354,25 +396,9 @@ TEST(SurfaceDetailViews, PlanarFoldClusterGlyphsRankAndLeaveTheFoldInSight) {
 // even-odd) and no two discs overlap; the inset covers no label.
 TEST(SurfaceDetailViews, SliverRingGetsAnInsetWithEachDiscInsideItsQuad) {
   const test::TempDir dir("surface_detail_views");
-  const std::array<double, 5> xs{0.0, 1.0, 1.01, 2.0, 3.0};
-  std::ostringstream obj;
-  for (int j = 0; j <= 4; ++j)
-    for (double x : xs) obj << "v " << x << ' ' << j << " 0\n";
-  for (int j = 0; j < 4; ++j)
-    for (int i = 0; i < 4; ++i) {
-      const int a = 1 + i + 5 * j;
-      obj << "f " << a << ' ' << a + 1 << ' ' << a + 6 << ' ' << a + 5 << '\n';
-    }
-  AnalyzeOptions run;
-  run.mesh_path = dir.write("slivers.obj", obj.str());
-  run.tool_version = "test";
-  const Analysis a = analyze_mesh(run);
-  DetailViewOptions options;
-  options.width = 800, options.height = 600;
-  options.view_direction = planar_view_direction(a);
-  options.cell_quality = a.field.cell_scaled_jacobian;
+  const Analysis a = sliver_grid(dir, "slivers.obj", [](const Vec3& q) { return q; });
   const Index v = 1 + 5 * 2;  // (1, 2)
-  const LocalShot shot = local_shot(a.mesh, a.topology, a.field.corner_scaled_jacobian, v, options);
+  const LocalShot shot = sliver_grid_shot(a, v);
   ASSERT_TRUE(shot.inset);
   const DetailInset& inset = *shot.inset;
   const double aspect = double(inset.rect.width) / inset.rect.height;
@@ -425,6 +451,50 @@ TEST(SurfaceDetailViews, SliverRingGetsAnInsetWithEachDiscInsideItsQuad) {
   for (std::size_t i = 0; i < discs.size(); ++i)
     for (std::size_t j = i + 1; j < discs.size(); ++j)
       EXPECT_GT(std::hypot(discs[i][0] - discs[j][0], discs[i][1] - discs[j][1]), discs[i][2] + discs[j][2]);
+}
+
+// The sliver grid above turned 35 degrees about x and 20 about z, its
+// corner (0, 4) pulled out to (-1.5, 4.8) so the ring's bounding-box centre
+// is off its plane (47i review #1: the inset's camera moved along the view
+// to the vertex's depth kept the view's near and far planes, which enclose
+// the planar ring's single depth with 1% slack, and the inset came out
+// blank white): every ring point lies between the inset camera's near and
+// far planes, the inset's rendered pixels hold the faces' fill (not only
+// white), and the box it shows lies inside the view.
+TEST(SurfaceDetailViews, TiltedSliverRingsInsetShowsItsFacesAndItsBoxIsInTheView) {
+  const test::TempDir dir("surface_detail_views");
+  const double a = 35.0 * 3.14159265358979323846 / 180.0, b = 20.0 * 3.14159265358979323846 / 180.0;
+  const Analysis an = sliver_grid(dir, "tilted_slivers.obj", [&](Vec3 q) {
+    if (q.x == 0.0 && q.y == 3.0) q = {-1.5, 3.8, 0.0};
+    const Vec3 r{q.x, std::cos(a) * q.y - std::sin(a) * q.z, std::sin(a) * q.y + std::cos(a) * q.z};
+    return Vec3{std::cos(b) * r.x - std::sin(b) * r.y, std::sin(b) * r.x + std::cos(b) * r.y, r.z};
+  });
+  const Index v = 1 + 5 * 2;  // (1, 2)
+  const LocalShot shot = sliver_grid_shot(an, v);
+  ASSERT_TRUE(shot.inset);
+  const DetailInset& inset = *shot.inset;
+  const Vec3 ahead = normalized(inset.camera.target - inset.camera.eye);
+  for (const auto& q : an.mesh.quads) {
+    if (std::find(q.begin(), q.end(), v) == q.end()) continue;
+    for (Index c : q) {
+      const double depth = dot(an.mesh.points[static_cast<std::size_t>(c)] - inset.camera.eye, ahead);
+      EXPECT_GE(depth, inset.camera.near_plane);
+      EXPECT_LE(depth, inset.camera.far_plane);
+    }
+  }
+  const PixelRect& view = shot.layout.view;
+  EXPECT_GE(inset.box.x, view.x);
+  EXPECT_GE(inset.box.y, view.y);
+  EXPECT_LE(inset.box.x + inset.box.width, view.x + view.width);
+  EXPECT_LE(inset.box.y + inset.box.height, view.y + view.height);
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  ASSERT_TRUE(renderer);
+  const Image image = renderer->render(inset.scene, inset.camera, inset.rect.width, inset.rect.height);
+  std::size_t drawn = 0;
+  for (std::size_t i = 0; i + 3 < image.rgba.size(); i += 4)
+    drawn += image.rgba[i] < 250 || image.rgba[i + 1] < 250 || image.rgba[i + 2] < 250;
+  // The ring's faces fill most of a zoom on their vertex.
+  EXPECT_GT(drawn, image.rgba.size() / 4 / 4);
 }
 
 // `--views clusters,local,corners` on a quad mesh draws C of each top

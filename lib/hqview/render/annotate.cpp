@@ -478,6 +478,23 @@ void draw_swatch(Image& image, const PixelRect& box, const Rgba8& color, SwatchS
   }
 }
 
+namespace {
+
+// draw_swatch, and for a ring with a band (view A's and C's worst: a yellow
+// band in a dark ring) the band inside the ring, as the figure draws it: the
+// ring's stroke is mark.width * the box's height wide, the band as wide
+// again within it.
+void draw_banded_swatch(Image& image, const PixelRect& box, const Rgba8& color, SwatchShape shape,
+                        const std::optional<Rgba8>& band, int outline = 0) {
+  if (band && swatch_mark(shape).kind == SwatchMark::Kind::ring) {
+    const int inset = static_cast<int>(std::lround(swatch_mark(shape).width * box.height));
+    draw_swatch(image, {box.x + inset, box.y + inset, box.width - 2 * inset, box.height - 2 * inset}, *band, shape);
+  }
+  draw_swatch(image, box, color, shape, outline);
+}
+
+}  // namespace
+
 void draw_color_bar(Image& image, const PixelRect& area, const ColorBar& bar, const AnnotationStyle& given_style) {
   const AnnotationStyle style = color_bar_style_for(bar, given_style, area);
   const LegendMetrics m = legend_metrics(bar, style, area.height);
@@ -516,7 +533,8 @@ void draw_color_bar(Image& image, const PixelRect& area, const ColorBar& bar, co
     if (swatch.stroke)
       draw_stroke_swatch(image, {x, swatch_y, m.bar_width, m.swatch_height}, to_rgba8(swatch.color), *swatch.stroke);
     else
-      draw_swatch(image, {x, swatch_y, m.bar_width, m.swatch_height}, to_rgba8(swatch.color), swatch.shape, outline);
+      draw_banded_swatch(image, {x, swatch_y, m.bar_width, m.swatch_height}, to_rgba8(swatch.color), swatch.shape,
+                         swatch.ring_band, outline);
     draw_text(image, tick_x + m.tick_length + m.tick_gap, swatch_y + m.swatch_height / 2 + baseline_shift, swatch.label,
               m.tick_size, style);
     swatch_y += m.swatch_pitch;
@@ -587,14 +605,7 @@ void draw_legend(Image& image, const PixelRect& area, std::span<const LegendLine
     if (line.swatch) {
       Rgba8 color = *line.swatch;
       color.a = 255;
-      if (line.ring_band && swatch_mark(line.shape).kind == SwatchMark::Kind::ring) {
-        // Inside the ring, as the figure draws it: the ring's stroke is
-        // mark.width * swatch wide, the band as wide again within it.
-        const int inset = static_cast<int>(std::lround(swatch_mark(line.shape).width * swatch));
-        draw_swatch(image, {x + inset, y - swatch + inset, swatch - 2 * inset, swatch - 2 * inset}, *line.ring_band,
-                    line.shape);
-      }
-      draw_swatch(image, {x, y - swatch, swatch, swatch}, color, line.shape);
+      draw_banded_swatch(image, {x, y - swatch, swatch, swatch}, color, line.shape, line.ring_band);
       const int text_x = x + swatch + swatch / 2;
       draw_text(image, text_x, y - 2, ellipsize(line.text, text_size, right - text_x, style), text_size, style);
     } else {

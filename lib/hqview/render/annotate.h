@@ -125,6 +125,9 @@ struct ColorBarSwatch {
   std::string label;
   SwatchShape shape = SwatchShape::box;
   std::optional<SwatchStroke> stroke = std::nullopt;  // set: drawn as this stroke (a line across the box), not as shape's mark
+  // A ring swatch's band inside its ring (as LegendLine::ring_band: view C's
+  // worst vertex is ringed in a yellow band in a dark ring).
+  std::optional<Rgba8> ring_band = std::nullopt;
 };
 
 // A vertical colour bar legend: a title (lines separated by '\n'), the bar

@@ -509,8 +509,14 @@ std::optional<DetailInset> place_inset(const Camera& camera, const PixelRect& vi
   inset.rect = {0, 0, static_cast<int>(kInsetShare * view.width), static_cast<int>(kInsetShare * view.height)};
   inset.zoom = zoom;
   inset.camera = camera;
-  inset.camera.eye = camera.eye + (at - camera.target);
-  inset.camera.target = at;
+  // Moved across the view only, so every point keeps its depth between the
+  // view's near and far planes (47i review #1: moved along it too, to `at`'s
+  // depth, a tilted planar ring, whose depths span a sliver of [near, far],
+  // fell behind the far plane and the inset came out blank white).
+  const Vec3 ahead = normalized(camera.target - camera.eye);
+  const Vec3 across = (at - camera.target) - dot(at - camera.target, ahead) * ahead;
+  inset.camera.eye = camera.eye + across;
+  inset.camera.target = camera.target + across;
   inset.camera.ortho_height = inset.rect.height / (pixels_per_unit * inset.zoom);
   const double aspect = static_cast<double>(view.width) / view.height;
   const auto screen = [&](const Vec3& q) {
@@ -541,6 +547,15 @@ std::optional<DetailInset> place_inset(const Camera& camera, const PixelRect& vi
   const int box_w = static_cast<int>(std::lround(inset.rect.width / inset.zoom)),
             box_h = static_cast<int>(std::lround(inset.rect.height / inset.zoom));
   inset.box = {static_cast<int>(std::lround(ax)) - box_w / 2, static_cast<int>(std::lround(ay)) - box_h / 2, box_w, box_h};
+  // Inside the view (47i review #1: about a vertex near the view's bottom it
+  // ran off the picture), the inset moved with it: it shows what the box holds.
+  const int dx = std::clamp(inset.box.x, view.x, std::max(view.x, view.x + view.width - box_w)) - inset.box.x,
+            dy = std::clamp(inset.box.y, view.y, std::max(view.y, view.y + view.height - box_h)) - inset.box.y;
+  inset.box.x += dx, inset.box.y += dy;
+  const auto [right, up] = screen_axes(camera);
+  const Vec3 move = (dx / pixels_per_unit) * right - (dy / pixels_per_unit) * up;
+  inset.camera.eye = inset.camera.eye + move;
+  inset.camera.target = inset.camera.target + move;
   return inset;
 }
 
@@ -637,7 +652,7 @@ std::vector<ColorBarSwatch> surface_cluster_swatches(const GlyphResult& glyphs, 
                                                      const AnnotationStyle& style) {
   const Rgba8 pale = blend_over(kRegionFaceColor, style.background);
   return {{to_color(cluster_edge_color(glyphs, cluster)), "the cluster's edges", SwatchShape::thick_line},
-          {to_color(style.text_color), "ring: its worst vertex", SwatchShape::solid_ring},
+          {to_color(style.text_color), "ring: its worst vertex", SwatchShape::solid_ring, std::nullopt, kWorstBandColor},
           {to_color(pale), "neighbour faces", SwatchShape::box},
           {to_color(kNeighbourEdgeColor), "neighbour edges", SwatchShape::line}};
 }
@@ -650,7 +665,8 @@ ClusterShot cluster_shot(const HexMesh& mesh, const Topology& topology, const st
   ClusterShot shot;
   if (has_non_hex_cells(mesh)) shot.cell_kinds = cell_kinds_legend(mesh, region.cells);
   if (!options.cell_quality.empty())
-    shot.cell_kinds = std::string(kClusterFaceFillLegend) + "\n" + cell_kinds_legend(mesh, region.cells);
+    shot.cell_kinds = std::string(kClusterFaceFillLegend) + "\n" + kClusterSphereLegend + "\n" +
+                      cell_kinds_legend(mesh, region.cells);
   if (!options.cell_quality.empty())
     shot.swatches = surface_cluster_swatches(glyphs, cluster, annotation_style_for(options.height));
   const Figure f = detail_figure(options, shot.cell_kinds, false, false, shot.swatches);

@@ -36,6 +36,11 @@ struct DetailViewOptions {
 };
 // View C's legend line on a surface mesh (under the colour bar's title).
 inline constexpr const char* kClusterFaceFillLegend = "faces: their lowest corner";
+// View C of a surface mesh: what a sphere is and what its size says (47i
+// review #7: nothing in the PNG explained the glyphs; their rule: one per
+// vertex whose quality is below the glyph threshold, radius growing with
+// 1 - quality, all scaled by one factor).
+inline constexpr const char* kClusterSphereLegend = "sphere: a vertex below the threshold\nsize: how far below";
 
 // The hexes of a cluster (those with a member vertex), ascending.
 struct ClusterRegion {

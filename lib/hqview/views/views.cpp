@@ -313,7 +313,7 @@ std::vector<ViewFile> build_clusters(ViewContext& c) {
   for (std::size_t k = 0; k < c.num_top; ++k) {
     const AggregatedGlyph& g = c.glyphs->clusters[k];
     detail[k].title = c.name + ": cluster #" + std::to_string(k) + " (" + std::to_string(g.size) +
-                      " glyphs, reduced, min quality (lowest corner) " + quality_text(g.min_quality) +
+                      " glyphs, min quality (lowest corner) " + quality_text(g.min_quality) +
                       ") and its neighbours";
   }
   std::vector<ClusterShot> shots(c.num_top);
