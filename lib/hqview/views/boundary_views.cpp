@@ -257,7 +257,9 @@ double nice_tick_step(double top) {
 
 ColorBar error_color_bar(double scale, double diagonal, std::string_view mesh_word) {
   ColorBar bar;
-  bar.label = "signed error\n% of diagonal\n(model units)\n+ = " + std::string(mesh_word) + " outside";
+  // D: the reference's axis-aligned box diagonal (its pose in the file sets it).
+  bar.label = "signed error, + = " + std::string(mesh_word) + " outside\n% of D (model units)\nD = " + percent(diagonal) +
+              ": the reference's\naxis-aligned box diagonal";
   const double top = diagonal > 0.0 ? 100.0 * scale / diagonal : scale;
   const double units_per_percent = top > 0.0 ? scale / top : 1.0;
   bar.min_value = -top;
@@ -577,9 +579,16 @@ PlanarErrorFigure planar_error_figure(const HexMesh& mesh, const BoundaryError& 
       {to_color(kPlanarDomainColor), "reference domain", SwatchShape::box}};
   PlanarErrorFigure f;
   f.marks = planar_extremes(mesh, error);
+  // One legend line for both rings (their full values are by the rings):
+  // a line each pushed the legend's last line below boundary.html's first
+  // screen (the 47j review).
+  std::string rings;
   for (const WorstError& w : f.marks)
-    swatches.push_back({to_color(kWorstMarkerColor),
-                        "ring: " + w.what + " " + signed_percent_label(w.error, error.reference_bbox_diagonal) + w.note,
+    rings += (rings.empty() ? "" : ", ") + w.what + (w.error > 0 ? " +" : " ") +
+             percent(error.reference_bbox_diagonal > 0 ? 100.0 * w.error / error.reference_bbox_diagonal : w.error) +
+             " %";
+  if (!rings.empty())
+    swatches.push_back({to_color(kWorstMarkerColor), (f.marks.size() > 1 ? "rings: " : "ring: ") + rings,
                         SwatchShape::solid_ring});
   const Vec3 direction = -1.0 * error.plane_normal;
   const auto frame = [&](const BoundaryViewOptions& o) {
