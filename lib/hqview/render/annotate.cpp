@@ -524,7 +524,9 @@ void draw_color_bar(Image& image, const PixelRect& area, const ColorBar& bar, co
   // Tick labels centred on their tick: the baseline sits about 0.36 em
   // below it for DejaVu Sans digits (cap height 0.73 em).
   const int baseline_shift = static_cast<int>(std::lround(0.36 * m.tick_size));
-  const int label_height = text_extent("0123456789", m.tick_size, style).height;
+  // A label's height: a line of tick text at its spacing (brackets and
+  // descenders too; digits alone left the turned plate's labels touching).
+  const int label_height = static_cast<int>(std::lround(m.tick_size * kLineSpacing));
   for (std::size_t i : legible_ticks(bar, bar_rect.height, label_height)) {
     const ColorBarTick& tick = bar.ticks[i];
     const double u = range != 0.0 ? (tick.value - bar.min_value) / range : 0.0;
