@@ -195,7 +195,10 @@ Image render_error_figure(Scene scene, const ErrorFigureFrame& frame, std::span<
     if (!std::isfinite(ndc.x) || std::abs(ndc.x) > 1.0 || std::abs(ndc.y) > 1.0) continue;
     const double cx = frame.layout.view.x + 0.5 * (ndc.x + 1.0) * frame.layout.view.width;
     const double cy = frame.layout.view.y + 0.5 * (1.0 - ndc.y) * frame.layout.view.height;
-    const bool facing = dot(worst.normal, frame.camera.eye - worst.position) >= 0.0;
+    // A planar figure (labels in empty space) has no far side: its marks'
+    // normals follow the file's winding (an L-shaped Gmsh plate's inside
+    // extreme read ", far side", dashed).
+    const bool facing = label_in_empty_space || dot(worst.normal, frame.camera.eye - worst.position) >= 0.0;
     // Solid when the sample faces the camera, dashed when it lies on the far side.
     draw_marker_ring(figure, cx, cy, radius, thickness, !facing, kWorstMarkerColor);
     rings.push_back({cx, cy, facing, &worst});
