@@ -860,7 +860,8 @@ TEST(SurfaceViews, ATurnedSurfaceOfRevolutionStandsUprightInEveryView) {
 // strip of 8 x 2 quads in z = 0 at 1600 x 1200: its top edge lies as far
 // below the view's top as its left edge lies right of the view's left
 // (within 2 px; centred it was about 230 px down), its width unchanged.
-TEST(SurfaceViews, AWidePlanarOverviewHasItsTopUnderTheTitle) {
+// A 4 x 1 strip of 8 x 2 quads in z = 0 (vertex 9 j + i at (0.5 i, 0.5 j)).
+Mesh wide_strip() {
   Mesh strip;
   for (int j = 0; j <= 2; ++j)
     for (int i = 0; i <= 8; ++i) strip.points.push_back({0.5 * i, 0.5 * j, 0.0});
@@ -869,6 +870,11 @@ TEST(SurfaceViews, AWidePlanarOverviewHasItsTopUnderTheTitle) {
       const Index a = static_cast<Index>(j * 9 + i);
       strip.quads.push_back({a, a + 1, a + 10, a + 9});
     }
+  return strip;
+}
+
+TEST(SurfaceViews, AWidePlanarOverviewHasItsTopUnderTheTitle) {
+  const Mesh strip = wide_strip();
   const Topology topology = build_topology(strip);
   OverviewOptions options;
   options.view_direction = {0, 0, -1};
@@ -896,14 +902,7 @@ TEST(SurfaceViews, AWidePlanarOverviewHasItsTopUnderTheTitle) {
 // 47j review's plate): the vertex of least quality, 13 (0.59; vertex 20
 // ties, a higher index), ringed with its value beside it and a legend line.
 TEST(SurfaceViews, APlanarOverviewRingsItsWorstVertex) {
-  Mesh strip;
-  for (int j = 0; j <= 2; ++j)
-    for (int i = 0; i <= 8; ++i) strip.points.push_back({0.5 * i, 0.5 * j, 0.0});
-  for (int j = 0; j < 2; ++j)
-    for (int i = 0; i < 8; ++i) {
-      const Index a = static_cast<Index>(j * 9 + i);
-      strip.quads.push_back({a, a + 1, a + 10, a + 9});
-    }
+  const Mesh strip = wide_strip();
   std::vector<double> quality(strip.points.size(), 0.9);
   quality[13] = quality[20] = 0.59;
   quality[2] = 0.7;
