@@ -400,9 +400,9 @@ TEST(PlanarBoundaryError, TheFlatViewRingsBothExtremesWithRoundCornersAndTrueSwa
   EXPECT_EQ(in.what, "max inside");
   EXPECT_NEAR(in.error, -0.03, 1e-12);
   EXPECT_TRUE(std::abs(in.position.x - 1) < 1e-12 || std::abs(in.position.x - 1.03) < 1e-12) << in.position.x;
-  // The legend: the two lines as strokes, the edges, the domain, a ring line per mark.
+  // The legend: the two lines as strokes, the edges, the domain, a line for the rings.
   const auto& swatches = figure.frame.bar.swatches;
-  ASSERT_EQ(swatches.size(), 6u);
+  ASSERT_EQ(swatches.size(), 5u);
   ASSERT_TRUE(swatches[0].stroke && swatches[1].stroke && swatches[2].stroke);
   EXPECT_EQ(swatches[0].stroke->width, kPlanarBoundaryWidth);
   EXPECT_EQ(swatches[0].stroke->halo_width, kPlanarBoundaryWidth + kPlanarCasing);
@@ -413,9 +413,9 @@ TEST(PlanarBoundaryError, TheFlatViewRingsBothExtremesWithRoundCornersAndTrueSwa
   // The edges' colour over the domain: 90/255 of (60, 60, 70) over (222, 222, 226).
   EXPECT_EQ(to_rgba8(swatches[2].color), (Rgba8{165, 165, 171, 255}));
   EXPECT_EQ(to_rgba8(swatches[3].color), kPlanarDomainColor);
-  for (int k : {4, 5}) EXPECT_EQ(swatches[static_cast<std::size_t>(k)].shape, SwatchShape::solid_ring);
-  EXPECT_EQ(swatches[4].label.rfind("ring: max outside +", 0), 0u) << swatches[4].label;
-  EXPECT_EQ(swatches[5].label.rfind("ring: max inside -", 0), 0u) << swatches[5].label;
+  // One line for both rings: +0.05 and -0.03 of the reference's diagonal sqrt(0.98^2 + 1) = 1.40014.
+  EXPECT_EQ(swatches[4].shape, SwatchShape::solid_ring);
+  EXPECT_EQ(swatches[4].label, "rings: max outside +3.57 %, max inside -2.14 %");
 
   const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
   const Image image = render_planar_boundary_error_view(mesh, topo, reference, b, o, *renderer);
@@ -450,6 +450,59 @@ TEST(PlanarBoundaryError, TheFlatViewRingsBothExtremesWithRoundCornersAndTrueSwa
     EXPECT_LT(std::max({c.r, c.g, c.b}), 150) << corner.x << ", " << corner.y << ": " << int(c.r);
   }
   EXPECT_GE(corners, 2);
+}
+
+// A white 400 x 400 view with a ring at (200, 200), radius 10, and a
+// 100 x 30 label box to place.
+Image white_view() { return {400, 400, std::vector<std::uint8_t>(4u * 400 * 400, 255)}; }
+
+TEST(PlanarBoundaryError, ALabelsLeaderCrossesNoOtherLine) {
+  // The ring on a dark line (rows 196..204, x 162..299) inside a U of dark
+  // 2 px lines open to the right: top row 165, bottom row 235 (x 160..241),
+  // left column 160; too tight inside for a 30 px box on the 8 px grid.
+  // The nearest clear boxes, below the U (y 240: 40 px from the centre)
+  // and above it (y 128: 42 px), need a leader through the U, the one left
+  // of it (45 px) too; right of the U's ends (x 248) the leaders to the
+  // boxes at y 160 and 208 (their nearest points (248, 190) and (248, 208))
+  // run along the ringed line 18 px out; the nearest left is x 248, y 216,
+  // its nearest point (248, 216) 50.6 px away, its leader clear of the line.
+  Image image = white_view();
+  const Rgba8 dark{55, 55, 65, 255};
+  fill_rect(image, {160, 165, 82, 2}, dark);
+  fill_rect(image, {160, 235, 82, 2}, dark);
+  fill_rect(image, {160, 165, 2, 72}, dark);
+  fill_rect(image, {162, 196, 138, 9}, dark);
+  const LabelPlace p = place_label_in_empty_space(image, {0, 0, 400, 400}, 200, 200, 10, 100, 30);
+  ASSERT_TRUE(p.found);
+  EXPECT_EQ(p.x, 248);
+  EXPECT_EQ(p.y, 216);
+  EXPECT_TRUE(p.leader);
+  EXPECT_DOUBLE_EQ(p.leader_x, 248);
+  EXPECT_DOUBLE_EQ(p.leader_y, 216);
+}
+
+TEST(PlanarBoundaryError, ALabelStaysWithinAFifthOfTheViewOfItsRing) {
+  // All dark but a corridor (rows 195..205) from the ring to the right and a
+  // 110 px wide pocket at its end (rows 150..250): the box fits only in the
+  // pocket, on the 8 px grid at its first multiple of 8; its edge must be
+  // within 10 + 0.2 * 400 = 90 px of the centre.
+  const auto place_with_pocket_at = [](int pocket_x, bool far_ok = false) {
+    Image image = white_view();
+    fill_rect(image, {0, 0, 400, 400}, {55, 55, 65, 255});
+    fill_rect(image, {200, 195, 200, 11}, {255, 255, 255, 255});
+    fill_rect(image, {pocket_x, 150, 110, 101}, {255, 255, 255, 255});
+    return place_label_in_empty_space(image, {0, 0, 400, 400}, 200, 200, 10, 100, 30, far_ok);
+  };
+  EXPECT_FALSE(place_with_pocket_at(290).found);  // the box at x 296: 96 px away
+  const LabelPlace far = place_with_pocket_at(290, true);  // unless a far place is allowed
+  ASSERT_TRUE(far.found);
+  EXPECT_EQ(far.x, 296);
+  EXPECT_FALSE(far.near);
+  const LabelPlace near = place_with_pocket_at(284);  // at x 288: 88 px away
+  ASSERT_TRUE(near.found);
+  EXPECT_EQ(near.x, 288);
+  EXPECT_TRUE(near.leader);
+  EXPECT_TRUE(near.near);
 }
 
 std::string refusal(const Mesh& mesh, const TriSurface& reference) {

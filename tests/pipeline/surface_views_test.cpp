@@ -34,6 +34,7 @@
 #include "hqview/views/surface_views.h"
 #include "hqview/views/views.h"
 #include "io/temp_dir.h"
+#include "hqview/views/boundary_views.h"
 #include "support/image_probe.h"
 #include "support/fixtures.h"
 #include "support/surface_fixtures.h"
@@ -859,7 +860,8 @@ TEST(SurfaceViews, ATurnedSurfaceOfRevolutionStandsUprightInEveryView) {
 // strip of 8 x 2 quads in z = 0 at 1600 x 1200: its top edge lies as far
 // below the view's top as its left edge lies right of the view's left
 // (within 2 px; centred it was about 230 px down), its width unchanged.
-TEST(SurfaceViews, AWidePlanarOverviewHasItsTopUnderTheTitle) {
+// A 4 x 1 strip of 8 x 2 quads in z = 0 (vertex 9 j + i at (0.5 i, 0.5 j)).
+Mesh wide_strip() {
   Mesh strip;
   for (int j = 0; j <= 2; ++j)
     for (int i = 0; i <= 8; ++i) strip.points.push_back({0.5 * i, 0.5 * j, 0.0});
@@ -868,6 +870,11 @@ TEST(SurfaceViews, AWidePlanarOverviewHasItsTopUnderTheTitle) {
       const Index a = static_cast<Index>(j * 9 + i);
       strip.quads.push_back({a, a + 1, a + 10, a + 9});
     }
+  return strip;
+}
+
+TEST(SurfaceViews, AWidePlanarOverviewHasItsTopUnderTheTitle) {
+  const Mesh strip = wide_strip();
   const Topology topology = build_topology(strip);
   OverviewOptions options;
   options.view_direction = {0, 0, -1};
@@ -889,6 +896,43 @@ TEST(SurfaceViews, AWidePlanarOverviewHasItsTopUnderTheTitle) {
   EXPECT_LT(y1, view.y + 0.5 * view.height);   // the spare height below it
   // No vertex below 0: the legend has no "inverted (< 0)".
   for (const ColorBarSwatch& s : f.bar.swatches) EXPECT_NE(s.label, "inverted (< 0)");
+}
+
+// The same strip, its values all in the bar's pale part (0.59 to 1, the
+// 47j review's plate): the vertex of least quality, 13 (0.59; vertex 20
+// ties, a higher index), ringed with its value beside it and a legend line.
+TEST(SurfaceViews, APlanarOverviewRingsItsWorstVertex) {
+  const Mesh strip = wide_strip();
+  std::vector<double> quality(strip.points.size(), 0.9);
+  quality[13] = quality[20] = 0.59;
+  quality[2] = 0.7;
+  EXPECT_EQ(least_quality_vertex(strip, quality), 13);
+  const Topology topology = build_topology(strip);
+  OverviewOptions options;
+  options.width = 640;
+  options.height = 480;
+  options.view_direction = {0, 0, -1};
+  options.up = {0, 1, 0};
+  options.outline_on_top = true;
+  options.outline_inverted_faces = true;
+  const OverviewFrame f = quality_overview_frame(strip, topology, quality, options);
+  EXPECT_EQ(f.worst_vertex, 13);
+  ASSERT_FALSE(f.bar.swatches.empty());
+  EXPECT_EQ(f.bar.swatches.back().label, "ring: min vertex quality 0.59");
+  EXPECT_EQ(f.bar.swatches.back().shape, SwatchShape::solid_ring);
+  const std::unique_ptr<Renderer> renderer = make_osmesa_renderer();
+  const Image image = render_quality_overview(strip, topology, quality, options, *renderer);
+  const PixelRect& view = f.layout.view;
+  const Vec3 ndc = project_to_ndc(f.camera, static_cast<double>(view.width) / view.height, strip.points[13]);
+  const double x = view.x + 0.5 * (ndc.x + 1.0) * view.width, y = view.y + 0.5 * (1.0 - ndc.y) * view.height;
+  const double radius = std::max(10.0, 26.0 * f.style.scale);
+  // The ring's pixels centred on vertex 13 (none on vertex 20: 4 x 0.5 units away).
+  const test::ColorPixels ring = test::pixels_of_color(image, view, kWorstMarkerColor, x, y, radius + 4);
+  EXPECT_GT(ring.count, 40);
+  EXPECT_NEAR(ring.cx, x, 1.5);
+  EXPECT_NEAR(ring.cy, y, 1.5);
+  // Without the min below the rest (all 0.9), still one ring: on vertex 0.
+  EXPECT_EQ(least_quality_vertex(strip, std::vector<double>(strip.points.size(), 0.9)), 0);
 }
 
 // A goblet of revolution (32 sectors): a foot disc (its centre hole at

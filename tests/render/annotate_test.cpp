@@ -211,3 +211,23 @@ TEST(FigureLayout, PartsTileTheFigure) {
 
 }  // namespace
 }  // namespace hq
+
+namespace hq {
+namespace HQ_TEST_UNIT {
+
+// A bar of 101 rows over [-1, 1] (row 50 (1 - v)), labels 18 px tall (a
+// kept label needs 19 rows to the next): the ends at rows 100 and 0 first;
+// -0.94 (row 97) and 0.94 (row 3) left out, 0 (row 50) and 0.6 (row 20)
+// kept, 0.5 (row 25: 5 from 0.6's) and 0.8 (row 10: 10 from the end's) left out.
+TEST(ColorBarTicks, ALabelThatWouldTouchItsNeighboursIsLeftOut) {
+  ColorBar bar;
+  bar.min_value = -1.0;
+  bar.max_value = 1.0;
+  bar.ticks = {{-1.0, "<= -1"}, {-0.94, "-0.94"}, {0.0, "0"}, {0.6, "0.6"}, {0.5, "0.5"}, {0.8, "0.8"}, {0.94, "0.94"}, {1.0, ">= 1"}};
+  EXPECT_EQ(legible_ticks(bar, 101, 18), (std::vector<std::size_t>{0, 2, 3, 7}));
+  // 8 px labels (9 rows): 0.8 (10 from the end's and 0.6's) kept too; 0.94 (3) and 0.5 (5) still not.
+  EXPECT_EQ(legible_ticks(bar, 101, 8), (std::vector<std::size_t>{0, 2, 3, 5, 7}));
+}
+
+}  // namespace HQ_TEST_UNIT
+}  // namespace hq

@@ -495,6 +495,27 @@ void draw_banded_swatch(Image& image, const PixelRect& box, const Rgba8& color, 
 
 }  // namespace
 
+std::vector<std::size_t> legible_ticks(const ColorBar& bar, int bar_height, int label_height) {
+  const double range = bar.max_value - bar.min_value;
+  std::vector<std::pair<std::size_t, int>> order;  // (tick, its row), the ends first
+  for (int pass = 0; pass < 2; ++pass)
+    for (std::size_t i = 0; i < bar.ticks.size(); ++i) {
+      const double u = range != 0.0 ? (bar.ticks[i].value - bar.min_value) / range : 0.0;
+      if (!(u >= 0.0 && u <= 1.0)) continue;
+      if ((u == 0.0 || u == 1.0) != (pass == 0)) continue;
+      order.push_back({i, static_cast<int>(std::lround((1.0 - u) * (bar_height - 1)))});
+    }
+  std::vector<int> rows;
+  std::vector<std::size_t> kept;
+  for (const auto& [i, y] : order) {
+    if (std::any_of(rows.begin(), rows.end(), [&](int r) { return std::abs(r - y) < label_height + 1; })) continue;
+    rows.push_back(y);
+    kept.push_back(i);
+  }
+  std::sort(kept.begin(), kept.end());
+  return kept;
+}
+
 void draw_color_bar(Image& image, const PixelRect& area, const ColorBar& bar, const AnnotationStyle& given_style) {
   const AnnotationStyle style = color_bar_style_for(bar, given_style, area);
   const LegendMetrics m = legend_metrics(bar, style, area.height);
@@ -520,9 +541,12 @@ void draw_color_bar(Image& image, const PixelRect& area, const ColorBar& bar, co
   // Tick labels centred on their tick: the baseline sits about 0.36 em
   // below it for DejaVu Sans digits (cap height 0.73 em).
   const int baseline_shift = static_cast<int>(std::lround(0.36 * m.tick_size));
-  for (const ColorBarTick& tick : bar.ticks) {
+  // A label's height: a line of tick text at its spacing (brackets and
+  // descenders too; digits alone left the turned plate's labels touching).
+  const int label_height = static_cast<int>(std::lround(m.tick_size * kLineSpacing));
+  for (std::size_t i : legible_ticks(bar, bar_rect.height, label_height)) {
+    const ColorBarTick& tick = bar.ticks[i];
     const double u = range != 0.0 ? (tick.value - bar.min_value) / range : 0.0;
-    if (!(u >= 0.0 && u <= 1.0)) continue;
     const int y = bar_rect.y + static_cast<int>(std::lround((1.0 - u) * (bar_rect.height - 1)));
     fill_rect(image, {tick_x, y - outline / 2, m.tick_length, outline}, kOutlineColor);
     draw_text(image, tick_x + m.tick_length + m.tick_gap, y + baseline_shift, tick.label, m.tick_size, style);

@@ -159,8 +159,16 @@ int color_bar_width(const ColorBar& bar, const AnnotationStyle& style);
 AnnotationStyle color_bar_style_for(const ColorBar& bar, const AnnotationStyle& style, const PixelRect& area);
 // Pixel height of the legend drawn in an area of the given height.
 int color_bar_height(const ColorBar& bar, const AnnotationStyle& style, int area_height);
+// The ticks of bar whose labels draw_color_bar writes on a bar of
+// bar_height pixels (top row max_value), each label label_height pixels
+// tall centred on its tick: the ends (the ticks at min_value and
+// max_value) first, then the others in order, each left out when its label
+// would overlap or touch (1 px) one kept (the 47j review: the turned
+// plate's ">= 0.832" and "0.75" labels were 2 px apart). Indices into
+// bar.ticks, ascending.
+std::vector<std::size_t> legible_ticks(const ColorBar& bar, int bar_height, int label_height);
 // Draws the legend vertically centred in area, shrunk to fit it
-// (color_bar_style_for).
+// (color_bar_style_for); the tick labels legible_ticks keeps.
 void draw_color_bar(Image& image, const PixelRect& area, const ColorBar& bar, const AnnotationStyle& style);
 
 // Where a figure's parts go: the title band on top (empty rect when there is

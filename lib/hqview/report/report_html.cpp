@@ -1037,6 +1037,7 @@ std::string boundary_html(const ReportModel& model) {
   page.set("has_figures", !figures.is_empty_list());
   page.set("is_surface", model.analysis.mesh_summary.is_surface);
   page.set("is_planar", e.planar);
+  page.set("reference_diagonal", show(e.reference_bbox_diagonal));
   page.set("figures", figures);
 
   const Statistics& s = e.signed_stats;

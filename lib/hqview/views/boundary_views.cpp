@@ -76,23 +76,20 @@ void draw_worst_label(Image& figure, const PixelRect& view, double cx, double cy
 
 namespace {
 
-// Whether a pixel shows data of the flat view: a dark casing or a saturated
-// colour (its smallest channel below 150); the page, the pale domain and
-// its thin wireframe do not.
+// Whether a pixel shows data of the flat view: a dark casing, ring or text
+// (its largest channel below 80) or a saturated colour (its channels over
+// 30 apart); the page, the pale domain and its thin wireframe do not, even
+// where several of its half-transparent edges overlap at a vertex.
 bool is_data_pixel(const Image& image, int x, int y) {
   const std::size_t o = pixel_offset(image, x, y);
-  return std::min({image.rgba[o], image.rgba[o + 1], image.rgba[o + 2]}) < 150;
+  const auto [lo, hi] = std::minmax({image.rgba[o], image.rgba[o + 1], image.rgba[o + 2]});
+  return hi < 80 || hi - lo > 30;
 }
 
-// The flat view's marker label in empty space: of the boxes on an 8 px grid
-// inside the view, clear of every data pixel (4 px around) and of the ring,
-// the one nearest the ring; a leader line to it when it is not beside the
-// ring. Falls back to draw_worst_label when no box is clear.
-void draw_label_in_empty_space(Image& figure, const PixelRect& view, double cx, double cy, double radius,
-                               const std::string& label, const AnnotationStyle& style) {
-  const int size = std::max(style.min_text_size, static_cast<int>(std::lround(20 * style.scale)));
-  const PixelRect extent = text_extent(label, size, style);
-  const int box_w = extent.width + 6 + 8, box_h = size + 6 + 8;  // the pale box and 4 px around
+}  // namespace
+
+LabelPlace place_label_in_empty_space(const Image& figure, const PixelRect& view, double cx, double cy, double radius,
+                                      int box_w, int box_h, bool far_ok) {
   // Summed-area table of data pixels over the view.
   const int w = view.width, h = view.height;
   std::vector<int> sum(static_cast<std::size_t>(w + 1) * (h + 1), 0);
@@ -100,33 +97,77 @@ void draw_label_in_empty_space(Image& figure, const PixelRect& view, double cx, 
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
       at(x + 1, y + 1) = at(x, y + 1) + at(x + 1, y) - at(x, y) + (is_data_pixel(figure, view.x + x, view.y + y) ? 1 : 0);
-  double best = INFINITY;
-  int best_x = 0, best_y = 0;
-  for (int y = 0; y + box_h <= h; y += 8)
-    for (int x = 0; x + box_w <= w; x += 8) {
-      if (at(x + box_w, y + box_h) - at(x, y + box_h) - at(x + box_w, y) + at(x, y) > 0) continue;
-      const double nx = std::clamp(cx - view.x, double(x), double(x + box_w));
-      const double ny = std::clamp(cy - view.y, double(y), double(y + box_h));
-      const double d = std::hypot(nx - (cx - view.x), ny - (cy - view.y));
-      if (d < radius + 4 || d >= best) continue;
-      best = d;
-      best_x = x;
-      best_y = y;
+  // Whether the leader from the ring's edge to (bx, by) (view pixels) stays
+  // off the data: its first pixels beside the ring may touch the ringed
+  // line, none after that.
+  const double rx = cx - view.x, ry = cy - view.y;
+  const auto leader_is_clear = [&](double bx, double by) {
+    const double len = std::hypot(bx - rx, by - ry);
+    for (double t = radius + 8; t < len; t += 1.0) {
+      const int x = static_cast<int>(rx + (bx - rx) * t / len), y = static_cast<int>(ry + (by - ry) * t / len);
+      if (x >= 0 && y >= 0 && x < w && y < h && is_data_pixel(figure, view.x + x, view.y + y)) return false;
     }
-  if (!std::isfinite(best)) {
+    return true;
+  };
+  const auto nearest = [&](double reach) {
+    LabelPlace best;
+    double best_d = INFINITY;
+    for (int y = 0; y + box_h <= h; y += 8)
+      for (int x = 0; x + box_w <= w; x += 8) {
+        if (at(x + box_w, y + box_h) - at(x, y + box_h) - at(x + box_w, y) + at(x, y) > 0) continue;
+        const double nx = std::clamp(rx, double(x), double(x + box_w));
+        const double ny = std::clamp(ry, double(y), double(y + box_h));
+        const double d = std::hypot(nx - rx, ny - ry);
+        if (d < radius + 4 || d >= best_d || d > reach) continue;
+        if (d > radius + 24 && !leader_is_clear(nx, ny)) continue;
+        best_d = d;
+        best = {true, view.x + x, view.y + y, d > radius + 24, view.x + nx, view.y + ny, d <= reach};
+      }
+    return best;
+  };
+  const LabelPlace near = nearest(radius + kLabelReach * std::min(w, h));
+  if (near.found || !far_ok) return near;
+  LabelPlace far = nearest(INFINITY);
+  far.near = false;
+  return far;
+}
+
+namespace {
+
+// The flat view's marker label in empty space (place_label_in_empty_space):
+// near its ring on one line, else on two (its polyline's note on the
+// second), else the nearest place with a clear leader; a leader line when
+// it is not beside the ring; draw_worst_label when no place is found.
+void draw_label_in_empty_space(Image& figure, const PixelRect& view, double cx, double cy, double radius,
+                               const std::string& label, const AnnotationStyle& style) {
+  const int size = std::max(style.min_text_size, static_cast<int>(std::lround(20 * style.scale)));
+  std::string text = label;
+  const auto place_of = [&](const std::string& t, bool far_ok) {
+    const PixelRect extent = text_extent(t, size, style);
+    // The pale box and 4 px around.
+    return place_label_in_empty_space(figure, view, cx, cy, radius, extent.width + 6 + 8,
+                                      std::max(size, extent.height) + 6 + 8, far_ok);
+  };
+  LabelPlace place = place_of(text, false);
+  if (const std::size_t comma = label.rfind(", "); !place.found && comma != std::string::npos) {
+    const std::string two = label.substr(0, comma) + "\n" + label.substr(comma + 2);
+    if (const LabelPlace p = place_of(two, false); p.found) place = p, text = two;
+  }
+  if (!place.found) place = place_of(text, true);
+  if (!place.found) {
     draw_worst_label(figure, view, cx, cy, radius, label, style);
     return;
   }
-  const int x = view.x + best_x + 7, baseline = view.y + best_y + 4 + size + 1;
-  if (best > radius + 24) {
-    const double bx = std::clamp(cx, double(x - 3), double(x + extent.width + 3));
-    const double by = std::clamp(cy, double(baseline - size - 1), double(baseline + 5));
-    const double len = std::hypot(bx - cx, by - cy);
-    draw_line(figure, cx + (bx - cx) * radius / len, cy + (by - cy) * radius / len, bx, by, kWorstMarkerColor,
-              std::max(1.5, 2.0 * style.scale));
+  const PixelRect extent = text_extent(text, size, style);
+  const int x = place.x + 7, baseline = place.y + 4 + size + 1;
+  if (place.leader) {
+    const double len = std::hypot(place.leader_x - cx, place.leader_y - cy);
+    draw_line(figure, cx + (place.leader_x - cx) * radius / len, cy + (place.leader_y - cy) * radius / len,
+              place.leader_x, place.leader_y, kWorstMarkerColor, std::max(1.5, 2.0 * style.scale));
   }
-  fill_rect(figure, {x - 3, baseline - size - 1, extent.width + 6, size + 6}, {255, 255, 255, 230});
-  draw_text(figure, x, baseline, label, size, style);
+  fill_rect(figure, {x - 3, baseline - size - 1, extent.width + 6, std::max(size, extent.height) + 6},
+            {255, 255, 255, 230});
+  draw_text(figure, x, baseline, text, size, style);
 }
 
 // An error figure: the scene through the frame's camera, the shared colour
@@ -154,7 +195,10 @@ Image render_error_figure(Scene scene, const ErrorFigureFrame& frame, std::span<
     if (!std::isfinite(ndc.x) || std::abs(ndc.x) > 1.0 || std::abs(ndc.y) > 1.0) continue;
     const double cx = frame.layout.view.x + 0.5 * (ndc.x + 1.0) * frame.layout.view.width;
     const double cy = frame.layout.view.y + 0.5 * (1.0 - ndc.y) * frame.layout.view.height;
-    const bool facing = dot(worst.normal, frame.camera.eye - worst.position) >= 0.0;
+    // A planar figure (labels in empty space) has no far side: its marks'
+    // normals follow the file's winding (an L-shaped Gmsh plate's inside
+    // extreme read ", far side", dashed).
+    const bool facing = label_in_empty_space || dot(worst.normal, frame.camera.eye - worst.position) >= 0.0;
     // Solid when the sample faces the camera, dashed when it lies on the far side.
     draw_marker_ring(figure, cx, cy, radius, thickness, !facing, kWorstMarkerColor);
     rings.push_back({cx, cy, facing, &worst});
@@ -216,7 +260,9 @@ double nice_tick_step(double top) {
 
 ColorBar error_color_bar(double scale, double diagonal, std::string_view mesh_word) {
   ColorBar bar;
-  bar.label = "signed error\n% of diagonal\n(model units)\n+ = " + std::string(mesh_word) + " outside";
+  // D: the reference's axis-aligned box diagonal (its pose in the file sets it).
+  bar.label = "signed error, + = " + std::string(mesh_word) + " outside\n% of D (model units)\nD = " + percent(diagonal) +
+              ": the reference's\naxis-aligned box diagonal";
   const double top = diagonal > 0.0 ? 100.0 * scale / diagonal : scale;
   const double units_per_percent = top > 0.0 ? scale / top : 1.0;
   bar.min_value = -top;
@@ -536,9 +582,16 @@ PlanarErrorFigure planar_error_figure(const HexMesh& mesh, const BoundaryError& 
       {to_color(kPlanarDomainColor), "reference domain", SwatchShape::box}};
   PlanarErrorFigure f;
   f.marks = planar_extremes(mesh, error);
+  // One legend line for both rings (their full values are by the rings):
+  // a line each pushed the legend's last line below boundary.html's first
+  // screen (the 47j review).
+  std::string rings;
   for (const WorstError& w : f.marks)
-    swatches.push_back({to_color(kWorstMarkerColor),
-                        "ring: " + w.what + " " + signed_percent_label(w.error, error.reference_bbox_diagonal) + w.note,
+    rings += (rings.empty() ? "" : ", ") + w.what + (w.error > 0 ? " +" : " ") +
+             percent(error.reference_bbox_diagonal > 0 ? 100.0 * w.error / error.reference_bbox_diagonal : w.error) +
+             " %";
+  if (!rings.empty())
+    swatches.push_back({to_color(kWorstMarkerColor), (f.marks.size() > 1 ? "rings: " : "ring: ") + rings,
                         SwatchShape::solid_ring});
   const Vec3 direction = -1.0 * error.plane_normal;
   const auto frame = [&](const BoundaryViewOptions& o) {

@@ -60,6 +60,26 @@ inline constexpr Rgba8 kWorstMarkerColor{20, 20, 20, 255};
 // above or below it when neither side has room), on a pale box, inside `view`.
 void draw_worst_label(Image& figure, const PixelRect& view, double cx, double cy, double radius,
                       const std::string& label, const AnnotationStyle& style);
+// Where the flat view's marker label goes: of the boxes (box_w x box_h
+// pixels) on an 8 px grid inside `view`, clear of every data pixel (a dark
+// casing, ring or text, or a saturated colour) and of the ring, the one
+// nearest the ring whose nearest point lies within kLabelReach of the
+// view's smaller side beyond the ring and, when it is not beside the ring
+// (over 24 px beyond it), whose leader line from the ring's edge to that
+// point crosses no data pixel (issue 47: on a turned plate a label 450 px
+// below its ring had its leader across the square hole). When no box that
+// near qualifies and far_ok: the nearest at any distance with a clear
+// leader (near = false). found = false when none qualifies.
+inline constexpr double kLabelReach = 0.2;
+struct LabelPlace {
+  bool found = false;
+  int x = 0, y = 0;  // the box's top left
+  bool leader = false;
+  double leader_x = 0, leader_y = 0;  // the leader's end on the box
+  bool near = false;  // within kLabelReach
+};
+LabelPlace place_label_in_empty_space(const Image& figure, const PixelRect& view, double cx, double cy, double radius,
+                                      int box_w, int box_h, bool far_ok = false);
 // The sample of largest |error| of one direction (the first on ties):
 // patches in order (their centroid; normal = the patch's area normal), then
 // points (e.g. boundary vertices, whose vertex errors the sampled maximum

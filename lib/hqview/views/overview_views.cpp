@@ -8,6 +8,7 @@
 #include <string>
 
 #include "hqview/core/error.h"
+#include "hqview/core/number_format.h"
 #include "hqview/core/text.h"
 #include "hqview/image/colormap.h"
 #include "hqview/mesh/boundary_polygons.h"
@@ -15,6 +16,7 @@
 #include "hqview/quality/quad_metrics.h"
 #include "hqview/render/annotate.h"
 #include "hqview/render/upright.h"
+#include "hqview/views/boundary_views.h"
 #include "hqview/views/inverted_callout.h"
 #include "hqview/views/inverted_inset.h"
 #include "hqview/views/overview_viewpoint.h"
@@ -571,6 +573,22 @@ bool rings_under(std::span<const InvertedCallout> callouts, std::span<const Pixe
 
 }  // namespace
 
+Index least_quality_vertex(const HexMesh& mesh, const std::vector<double>& vertex_quality) {
+  Index worst = kNoIndex;
+  const auto consider = [&](Index v) {
+    const auto i = static_cast<std::size_t>(v);
+    if (i >= vertex_quality.size() || !std::isfinite(vertex_quality[i])) return;
+    if (worst == kNoIndex || vertex_quality[i] < vertex_quality[static_cast<std::size_t>(worst)] ||
+        (vertex_quality[i] == vertex_quality[static_cast<std::size_t>(worst)] && v < worst))
+      worst = v;
+  };
+  for (const auto& q : mesh.quads)
+    for (Index v : q) consider(v);
+  for (const auto& t : mesh.triangles)
+    for (Index v : t) consider(v);
+  return worst;
+}
+
 OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topology,
                                     const std::vector<double>& vertex_quality, const OverviewOptions& options) {
   if (options.width <= 0 || options.height <= 0)
@@ -630,6 +648,14 @@ OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topolo
       f.bar.swatches.push_back({Color{}, "seen through the surface)", SwatchShape::text});
     else if (options.outline_inverted_faces)
       f.bar.swatches.push_back({Color{}, "drawn in the main view, not here", SwatchShape::text});
+  }
+  if (options.outline_on_top && options.inverted_cells.empty()) {
+    f.worst_vertex = least_quality_vertex(mesh, vertex_quality);
+    if (f.worst_vertex != kNoIndex)
+      f.bar.swatches.push_back({to_color(kWorstMarkerColor),
+                                "ring: min vertex quality " +
+                                    display_number(vertex_quality[static_cast<std::size_t>(f.worst_vertex)], 3),
+                                SwatchShape::solid_ring});
   }
   f.layout = figure_layout(options.width, options.height, !options.title.empty(), color_bar_width(f.bar, f.style), f.style);
   fit_overview_bar(f.bar, f.style, f.layout.legend, options.height);
@@ -890,6 +916,16 @@ Image render_quality_overview(const HexMesh& mesh, const Topology& topology, con
   Image figure = render_figure(renderer, scene, f.camera, options.width, options.height, layout, options.title, style);
   if (options.inverted_cells.empty()) {
     draw_color_bar(figure, layout.legend, f.bar, style);
+    if (f.worst_vertex != kNoIndex) {
+      const auto w = static_cast<std::size_t>(f.worst_vertex);
+      const double aspect = static_cast<double>(layout.view.width) / layout.view.height;
+      const Vec3 ndc = project_to_ndc(f.camera, aspect, mesh.points[w]);
+      const double cx = layout.view.x + 0.5 * (ndc.x + 1.0) * layout.view.width;
+      const double cy = layout.view.y + 0.5 * (1.0 - ndc.y) * layout.view.height;
+      const double radius = std::max(10.0, 26.0 * style.scale);
+      draw_marker_ring(figure, cx, cy, radius, thickness, false, kWorstMarkerColor);
+      draw_worst_label(figure, layout.view, cx, cy, radius, "min " + display_number(vertex_quality[w], 3), style);
+    }
     return figure;
   }
   // The rings, the insets beside the model (a large ring may pass under

@@ -188,7 +188,15 @@ struct OverviewFrame {
   // (cells_under_other_faces), ascending: outlined dashed and thinner,
   // with a legend line of their own.
   std::vector<Index> hidden_cells;
+  // With outline_on_top and no inverted cell: the vertex of least quality
+  // (lowest index on ties; kNoIndex when none is finite), ringed and
+  // labelled "min <value>", with a legend line (the 47j review: on a plate
+  // whose values all lay in the bar's pale part the worst could not be found).
+  Index worst_vertex = kNoIndex;
 };
+// The vertex of cells (quads, triangles) of least finite quality, lowest
+// index on ties; kNoIndex when none.
+Index least_quality_vertex(const HexMesh& mesh, const std::vector<double>& vertex_quality);
 OverviewFrame quality_overview_frame(const HexMesh& mesh, const Topology& topology,
                                     const std::vector<double>& vertex_quality, const OverviewOptions& options);
 
